@@ -1,0 +1,25 @@
+"""Exception hierarchy: every failure mjwalk reports on purpose is an ``MjwalkError``."""
+
+
+class MjwalkError(Exception):
+    """Base class of all mjwalk errors; messages name the file, element and value."""
+
+
+class SceneError(MjwalkError):
+    """An MJCF scene cannot be used (missing file, malformed XML, no floor, unknown site...)."""
+
+
+class CaptureError(MjwalkError):
+    """A motion-capture file is truncated, inconsistent or lacks a required joint."""
+
+
+class PlanningError(MjwalkError):
+    """A walk cannot be planned (start/goal blocked or off the floor, unreachable, budget spent)."""
+
+
+class ModelFileError(MjwalkError):
+    """A saved model file is corrupt, of another kind, or of an unsupported version."""
+
+
+class CycleSpecError(MjwalkError):
+    """A cycle specification (TOML) has an unknown key, a missing site or an impossible task."""
