@@ -1,0 +1,411 @@
+"""Dynamic Cell Structure (DCS) network: a growing, topology-preserving RBF regressor.
+
+Bruske & Sommer (1995), "Dynamic cell structure learns perfectly topology preserving map", as used
+by Al-Zubi & Sommer to map a constraint vector (start/end hand positions, obstacle ratio, object
+size...) to PCA coefficients of an arm trajectory.
+
+The network holds ``K`` neurons, each with a centre ``c_i`` in the (standardized) input space, an
+output vector ``b_i`` and a Gaussian width ``sigma_i``, plus a graph of lateral edges learned by
+competitive Hebbian learning (the best and second-best matching neuron of every sample are joined;
+the other edges of the winner age and are removed past ``max_age``). Its output is the normalized
+Gaussian RBF over the best-matching neuron and its lateral neighbours (Al-Zubi & Sommer eq. 2)::
+
+    b(x) = sum_{i in A(x)} b_i h(|x - c_i| / sigma_i) / sum_{j in A(x)} h(|x - c_j| / sigma_j)
+
+Growth inserts a neuron half way between the neuron with the largest accumulated error and its
+lateral neighbour with the largest accumulated error, until the training RMSE falls below
+``error_threshold``, ``max_neurons`` is reached, or (when ``validation_fraction > 0``) the
+held-out error stops improving for ``n_iter_no_change`` insertions; the best network seen on the
+held-out part is kept. Output vectors are the least-squares solution on the normalized-RBF design
+matrix (a small ridge keeps it well posed), refit on all samples at the end.
+
+Inputs are standardized internally (zero mean, unit variance per column), so widths and
+:meth:`DCSNetwork.distance_to_training` are in units of the training standard deviation.
+"""
+
+from __future__ import annotations
+
+import json
+import zipfile
+from pathlib import Path
+
+import numpy as np
+from scipy.spatial import cKDTree
+from scipy.spatial.distance import cdist
+
+from mjwalk._io import atomic_path
+from mjwalk.errors import MjwalkError, ModelFileError
+
+DCS_FORMAT = "mjwalk.dcs"
+DCS_VERSION = 1
+
+
+class DCSNetwork:
+    """Growing normalized-RBF network with competitive-Hebbian lateral edges.
+
+    Args:
+        max_neurons: upper bound on the number of neurons.
+        error_threshold: stop growing once the training RMSE (output units) is below this.
+        max_age: lateral edges not refreshed for more than this many winning presentations of
+            their endpoint are removed.
+        width_factor: sigma_i = width_factor * mean distance of neuron i to its lateral neighbours.
+        eps_winner, eps_neighbour: Kohonen learning rates of the winner and its neighbours.
+        n_epochs: presentations of the whole training set per growth step.
+        validation_fraction: share of samples held out to select the network size (0 disables).
+        n_iter_no_change: insertions without held-out improvement before growth stops.
+        ridge: Tikhonov regularization of the output least squares (relative to the design scale).
+        random_state: seed or ``numpy.random.Generator``; same seed, same network.
+
+    Fitted attributes: ``centers_`` (K, d) standardized, ``outputs_`` (K, m), ``widths_`` (K,),
+    ``edges_`` (K, K) bool adjacency, ``x_mean_``/``x_scale_`` (d,), ``n_neurons_``,
+    ``train_rmse_``, ``history_`` (list of (neurons, train RMSE, held-out RMSE)).
+    """
+
+    def __init__(
+        self,
+        max_neurons: int = 30,
+        error_threshold: float = 0.0,
+        max_age: int = 30,
+        width_factor: float = 1.0,
+        eps_winner: float = 0.05,
+        eps_neighbour: float = 0.005,
+        n_epochs: int = 3,
+        validation_fraction: float = 0.2,
+        n_iter_no_change: int = 6,
+        ridge: float = 1e-6,
+        random_state: int | np.random.Generator | None = 0,
+    ):
+        self.max_neurons = max_neurons
+        self.error_threshold = error_threshold
+        self.max_age = max_age
+        self.width_factor = width_factor
+        self.eps_winner = eps_winner
+        self.eps_neighbour = eps_neighbour
+        self.n_epochs = n_epochs
+        self.validation_fraction = validation_fraction
+        self.n_iter_no_change = n_iter_no_change
+        self.ridge = ridge
+        self.random_state = random_state
+
+    # ------------------------------------------------------------------ fitting
+    def fit(self, X: np.ndarray, Y: np.ndarray) -> DCSNetwork:
+        """Grow the network on inputs ``X`` (N, d) and targets ``Y`` (N, m) or (N,)."""
+        X = np.asarray(X, dtype=float)
+        Y = np.asarray(Y, dtype=float)
+        if X.ndim == 1:
+            X = X[:, None]
+        self._y_1d = Y.ndim == 1
+        if Y.ndim == 1:
+            Y = Y[:, None]
+        if X.ndim != 2 or Y.ndim != 2 or len(X) != len(Y):
+            raise MjwalkError(f"DCSNetwork.fit: X {X.shape} and Y {Y.shape} do not match")
+        if len(X) < 2:
+            raise MjwalkError(f"DCSNetwork.fit: need at least 2 samples, got {len(X)}")
+        if not (np.isfinite(X).all() and np.isfinite(Y).all()):
+            raise MjwalkError("DCSNetwork.fit: X or Y holds NaN or infinite values")
+        if self.max_neurons < 2:
+            raise MjwalkError(f"DCSNetwork: max_neurons must be >= 2, got {self.max_neurons}")
+        rng = np.random.default_rng(self.random_state)
+
+        self.x_mean_ = X.mean(axis=0)
+        scale = X.std(axis=0)
+        self.x_scale_ = np.where(scale > 1e-12, scale, 1.0)
+        Z = (X - self.x_mean_) / self.x_scale_
+
+        n = len(Z)
+        n_val = round(self.validation_fraction * n) if self.validation_fraction > 0 else 0
+        if n - n_val < 2:
+            n_val = 0
+        perm = rng.permutation(n)
+        val_idx, tr_idx = perm[:n_val], perm[n_val:]
+        Ztr, Ytr = Z[tr_idx], Y[tr_idx]
+
+        # Two neurons at distinct random training samples, joined by an edge.
+        first = rng.choice(len(Ztr), size=2, replace=False)
+        centers = Ztr[first].copy()
+        if np.allclose(centers[0], centers[1]):
+            centers[1] = centers[1] + 1e-3
+        ages = np.full((2, 2), -1, dtype=np.int64)  # -1: no edge
+        ages[0, 1] = ages[1, 0] = 0
+
+        best = None
+        best_val = np.inf
+        no_change = 0
+        self.history_ = []
+        while True:
+            centers, ages = self._adapt(Ztr, centers, ages, rng)
+            widths = self._widths(centers, ages >= 0)
+            outputs = self._solve_outputs(Ztr, Ytr, centers, widths, ages >= 0)
+            pred = self._forward(Ztr, centers, widths, outputs, ages >= 0)
+            resid = ((pred - Ytr) ** 2).sum(axis=1)
+            train_rmse = float(np.sqrt(resid.mean()))
+            if n_val:
+                pv = self._forward(Z[val_idx], centers, widths, outputs, ages >= 0)
+                val_rmse = float(np.sqrt(((pv - Y[val_idx]) ** 2).sum(axis=1).mean()))
+            else:
+                val_rmse = train_rmse
+            self.history_.append((len(centers), train_rmse, val_rmse if n_val else np.nan))
+            if val_rmse < best_val - 1e-12:
+                best_val = val_rmse
+                best = (centers.copy(), ages.copy())
+                no_change = 0
+            else:
+                no_change += 1
+            if (
+                train_rmse <= self.error_threshold
+                or len(centers) >= self.max_neurons
+                or len(centers) >= len(Ztr)
+                or (n_val and no_change >= self.n_iter_no_change)
+            ):
+                break
+            # Growth: accumulated squared error per best-matching neuron.
+            bmu = np.argmin(cdist(Ztr, centers), axis=1)
+            err = np.bincount(bmu, weights=resid, minlength=len(centers))
+            q = int(np.argmax(err))
+            nbrs = np.flatnonzero(ages[q] >= 0)
+            if len(nbrs) == 0:
+                d = np.linalg.norm(centers - centers[q], axis=1)
+                d[q] = np.inf
+                nbrs = np.array([int(np.argmin(d))])
+            f = int(nbrs[np.argmax(err[nbrs])])
+            new = 0.5 * (centers[q] + centers[f])
+            k = len(centers)
+            centers = np.vstack([centers, new])
+            grown = np.full((k + 1, k + 1), -1, dtype=np.int64)
+            grown[:k, :k] = ages
+            grown[q, f] = grown[f, q] = -1
+            grown[q, k] = grown[k, q] = 0
+            grown[f, k] = grown[k, f] = 0
+            ages = grown
+
+        if n_val and best is not None:
+            centers, ages = best
+        edges = ages >= 0
+        widths = self._widths(centers, edges)
+        # Final output vectors on every sample (train + held-out).
+        self.centers_ = centers
+        self.edges_ = edges
+        self.widths_ = widths
+        self.outputs_ = self._solve_outputs(Z, Y, centers, widths, edges)
+        self.n_neurons_ = len(centers)
+        self.train_rmse_ = float(
+            np.sqrt(
+                ((self._forward(Z, centers, widths, self.outputs_, edges) - Y) ** 2)
+                .sum(axis=1)
+                .mean()
+            )
+        )
+        self._set_training_points(Z)
+        return self
+
+    def _adapt(self, Z, centers, ages, rng):
+        """Competitive Hebbian edges + Kohonen adaptation of centres, ``n_epochs`` passes."""
+        centers = centers.copy()
+        ages = ages.copy()
+        k = len(centers)
+        for _ in range(self.n_epochs):
+            for x in Z[rng.permutation(len(Z))]:
+                d = np.einsum("ij,ij->i", centers - x, centers - x)
+                if k > 2:
+                    two = np.argpartition(d, 1)[:2]
+                    w, s = two if d[two[0]] <= d[two[1]] else two[::-1]
+                else:
+                    w, s = (0, 1) if d[0] <= d[1] else (1, 0)
+                row = ages[w] >= 0
+                ages[w, row] += 1
+                ages[row, w] += 1
+                ages[w, s] = ages[s, w] = 0
+                old = ages[w] > self.max_age
+                ages[w, old] = -1
+                ages[old, w] = -1
+                nb = ages[w] >= 0
+                centers[w] += self.eps_winner * (x - centers[w])
+                centers[nb] += self.eps_neighbour * (x - centers[nb])
+        return centers, ages
+
+    def _widths(self, centers, edges):
+        d = cdist(centers, centers)
+        widths = np.empty(len(centers))
+        for i in range(len(centers)):
+            nb = np.flatnonzero(edges[i])
+            if len(nb):
+                widths[i] = d[i, nb].mean()
+            else:
+                di = d[i].copy()
+                di[i] = np.inf
+                widths[i] = di.min()
+        widths = self.width_factor * widths
+        return np.maximum(widths, 1e-6)
+
+    @staticmethod
+    def _design(Z, centers, widths, edges):
+        """(N, K) normalized RBF weights over each sample's winner and its lateral neighbours."""
+        d = cdist(Z, centers)
+        bmu = np.argmin(d, axis=1)
+        active = edges[bmu].copy()
+        active[np.arange(len(Z)), bmu] = True
+        logit = np.where(active, -0.5 * (d / widths) ** 2, -np.inf)
+        logit -= logit.max(axis=1, keepdims=True)
+        w = np.exp(logit)
+        return w / w.sum(axis=1, keepdims=True)
+
+    def _solve_outputs(self, Z, Y, centers, widths, edges):
+        Phi = self._design(Z, centers, widths, edges)
+        k = Phi.shape[1]
+        lam = self.ridge * max(float(np.trace(Phi.T @ Phi)) / k, 1e-12)
+        A = np.vstack([Phi, np.sqrt(lam) * np.eye(k)])
+        # Ridge pulls towards the winner-mean of the targets rather than towards zero.
+        bmu = np.argmax(Phi, axis=1)
+        prior = np.zeros((k, Y.shape[1]))
+        cnt = np.bincount(bmu, minlength=k)
+        np.add.at(prior, bmu, Y)
+        prior = np.where(cnt[:, None] > 0, prior / np.maximum(cnt, 1)[:, None], Y.mean(axis=0))
+        B = np.vstack([Y, np.sqrt(lam) * prior])
+        out, *_ = np.linalg.lstsq(A, B, rcond=None)
+        return out
+
+    def _forward(self, Z, centers, widths, outputs, edges):
+        return self._design(Z, centers, widths, edges) @ outputs
+
+    def _set_training_points(self, Z):
+        self._train_z = Z
+        self._tree = cKDTree(Z)
+        if len(Z) > 1:
+            d, _ = self._tree.query(Z, k=2)
+            nn = d[:, 1]
+        else:
+            nn = np.zeros(1)
+        #: Input distance (standardized units) above which a query counts as outside the
+        #: trained range: twice the 95th percentile of the training nearest-neighbour distances.
+        self.range_radius_ = float(2.0 * np.percentile(nn, 95)) if len(nn) else 0.0
+
+    # ------------------------------------------------------------------ prediction
+    def _check_fitted(self):
+        if not hasattr(self, "centers_"):
+            raise MjwalkError("DCSNetwork is not fitted; call fit() or load() first")
+
+    def _standardize(self, X):
+        X = np.asarray(X, dtype=float)
+        if X.ndim == 1:
+            X = X[None, :] if len(self.x_mean_) > 1 else X[:, None]
+        if X.shape[1] != len(self.x_mean_):
+            raise MjwalkError(
+                f"DCSNetwork: input has {X.shape[1]} columns, the network was trained on "
+                f"{len(self.x_mean_)}"
+            )
+        return (X - self.x_mean_) / self.x_scale_
+
+    def predict(self, X: np.ndarray) -> np.ndarray:
+        """Outputs (N, m) for inputs ``X`` (N, d) by the normalized RBF of eq. 2."""
+        self._check_fitted()
+        Z = self._standardize(X)
+        out = self._forward(Z, self.centers_, self.widths_, self.outputs_, self.edges_)
+        return out[:, 0] if self._y_1d else out
+
+    def distance_to_training(self, X: np.ndarray) -> np.ndarray:
+        """(N,) distance of each input to its nearest training input, in standardized units
+        (training standard deviations). Compare with ``range_radius_`` to flag extrapolation."""
+        self._check_fitted()
+        d, _ = self._tree.query(self._standardize(X), k=1)
+        return np.atleast_1d(d).astype(float)
+
+    def is_outside(self, X: np.ndarray) -> np.ndarray:
+        """(N,) True where the input lies outside the trained range (see ``range_radius_``)."""
+        return self.distance_to_training(X) > self.range_radius_
+
+    # ------------------------------------------------------------------ persistence
+    def _arrays(self) -> dict:
+        return {
+            "centers": self.centers_,
+            "outputs": self.outputs_,
+            "widths": self.widths_,
+            "edges": self.edges_,
+            "x_mean": self.x_mean_,
+            "x_scale": self.x_scale_,
+            "train_z": self._train_z,
+        }
+
+    def _header(self) -> dict:
+        params = {
+            k: getattr(self, k)
+            for k in (
+                "max_neurons",
+                "error_threshold",
+                "max_age",
+                "width_factor",
+                "eps_winner",
+                "eps_neighbour",
+                "n_epochs",
+                "validation_fraction",
+                "n_iter_no_change",
+                "ridge",
+            )
+        }
+        rs = self.random_state
+        params["random_state"] = rs if isinstance(rs, int | None) else None
+        return {
+            "format": DCS_FORMAT,
+            "version": DCS_VERSION,
+            "params": params,
+            "y_1d": bool(self._y_1d),
+            "train_rmse": self.train_rmse_,
+            "history": [[int(a), float(b), float(c)] for a, b, c in self.history_],
+        }
+
+    def save(self, path: str | Path) -> None:
+        """Write the fitted network to one versioned ``.npz`` file (atomically)."""
+        self._check_fitted()
+        arrays = dict(self._arrays(), header=np.array(json.dumps(self._header())))
+        with atomic_path(path, suffix=".npz") as tmp, open(tmp, "wb") as fh:
+            np.savez_compressed(fh, **arrays)
+
+    @classmethod
+    def from_arrays(cls, header: dict, data: dict, source: str = "<arrays>") -> DCSNetwork:
+        """Rebuild a network from :meth:`save`'s header and arrays (used by composite models)."""
+        if header.get("format") != DCS_FORMAT:
+            raise ModelFileError(f"{source}: format {header.get('format')!r} is not a DCS network")
+        if header.get("version") != DCS_VERSION:
+            raise ModelFileError(
+                f"{source}: DCS version {header.get('version')} unsupported "
+                f"(this mjwalk reads version {DCS_VERSION})"
+            )
+        try:
+            net = cls(**header["params"])
+            net.centers_ = np.asarray(data["centers"], dtype=float)
+            net.outputs_ = np.asarray(data["outputs"], dtype=float)
+            net.widths_ = np.asarray(data["widths"], dtype=float)
+            net.edges_ = np.asarray(data["edges"], dtype=bool)
+            net.x_mean_ = np.asarray(data["x_mean"], dtype=float)
+            net.x_scale_ = np.asarray(data["x_scale"], dtype=float)
+            net._y_1d = bool(header["y_1d"])
+            net.train_rmse_ = float(header["train_rmse"])
+            net.history_ = [tuple(h) for h in header.get("history", [])]
+            k = len(net.centers_)
+            if (
+                net.outputs_.shape[0] != k
+                or net.widths_.shape != (k,)
+                or net.edges_.shape != (k, k)
+                or net.centers_.shape[1] != len(net.x_mean_)
+            ):
+                raise ValueError("array shapes are inconsistent")
+            net.n_neurons_ = k
+            net._set_training_points(np.asarray(data["train_z"], dtype=float))
+        except (KeyError, TypeError, ValueError, IndexError) as exc:
+            raise ModelFileError(f"{source}: corrupt DCS network ({exc})") from exc
+        return net
+
+    @classmethod
+    def load(cls, path: str | Path) -> DCSNetwork:
+        """Read a network written by :meth:`save`; corrupt/foreign files raise ModelFileError."""
+        path = Path(path)
+        if not path.is_file():
+            raise ModelFileError(f"{path}: no such DCS network file")
+        try:
+            with np.load(path, allow_pickle=False) as z:
+                header = json.loads(str(z["header"]))
+                data = {k: z[k] for k in z.files if k != "header"}
+        except (OSError, ValueError, KeyError, zipfile.BadZipFile, EOFError) as exc:
+            raise ModelFileError(f"{path}: not a readable mjwalk DCS file ({exc})") from exc
+        if not isinstance(header, dict):
+            raise ModelFileError(f"{path}: header is not a JSON object")
+        return cls.from_arrays(header, data, source=str(path))
