@@ -1,0 +1,550 @@
+"""The mjwalk humanoid: an adult digital human model built as a ``mujoco.MjSpec``.
+
+Frames and units: metres, radians, z up. In its own frame the humanoid faces **+x**, its left is
+**+y**; the free root joint sits at the pelvis (hip-joint-centre height), so a root quaternion
+that is a pure rotation about z by ``yaw`` makes the humanoid face ``yaw`` (from +x, CCW). In the
+neutral pose (all joint angles 0, root z = :func:`pelvis_height`) the soles rest on z = 0.
+
+Joint sign convention (anatomical): positive = flexion / abduction / internal rotation /
+dorsiflexion / inversion / pronation / ulnar deviation, for both sides.
+
+Collision filtering (documented choice). Scene geoms keep MuJoCo's default
+``contype = conaffinity = 1``. Every humanoid geom has ``contype = 2, conaffinity = 1`` and
+``group = 5``. MuJoCo collides two geoms when ``(c1.contype & c2.conaffinity) or
+(c2.contype & c1.conaffinity)`` is non-zero:
+
+* human vs human: ``2 & 1 = 0`` both ways -> never (no self-collision);
+* human vs scene: ``scene.contype (1) & human.conaffinity (1) = 1`` -> collides.
+
+The group (5) and the name prefix (``human/``) let the world module leave the humanoid out of the
+obstacles.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from mjwalk.errors import SceneError
+
+#: Geom group of every humanoid geom (scene obstacles use groups 0-4).
+HUMAN_GROUP = 5
+#: Collision bits of every humanoid geom (see the module docstring).
+HUMAN_CONTYPE = 2
+HUMAN_CONAFFINITY = 1
+#: Name prefix of the attached humanoid.
+HUMAN_PREFIX = "human/"
+
+# Segment lengths as fractions of stature H. Source: D. A. Winter, "Biomechanics and Motor
+# Control of Human Movement", 4th ed. (2009), Fig. 4.1 (segment lengths after Drillis & Contini
+# 1966). Heights are from the floor in the upright stance.
+SEG = {
+    "ankle_height": 0.039,  # lateral malleolus height
+    "shank": 0.246,  # knee to ankle (0.285 - 0.039)
+    "thigh": 0.245,  # greater trochanter/hip centre to knee (0.530 - 0.285)
+    "hip_height": 0.530,  # hip joint centre height
+    "hip_width": 0.191,  # bi-trochanteric width; hip joint centres ~ half of it apart
+    "shoulder_height": 0.818,
+    "shoulder_width": 0.259,  # bi-acromial width
+    "chin_height": 0.870,
+    "head_top": 1.000,
+    "upper_arm": 0.186,
+    "forearm": 0.146,
+    "hand": 0.108,
+    "foot_length": 0.152,
+    "foot_width": 0.055,
+}
+
+# Joint ranges of motion in degrees (lo, hi) in the sign convention above. Sources: American
+# Academy of Orthopaedic Surgeons (AAOS), "Joint Motion: Method of Measuring and Recording" (1965)
+# normal adult values; spine and hand after I. A. Kapandji, "The Physiology of the Joints".
+ROM_DEG: dict[str, tuple[float, float]] = {
+    # spine (Kapandji: lumbar flex 60 / ext 35, lat. bend 20, rot 5; thoracic flex 45 / ext 25,
+    # bend 20, rot 35; cervical flex 45 / ext 55, bend 45, rot 70)
+    "lumbar_flex": (-35, 60),
+    "lumbar_bend": (-20, 20),
+    "lumbar_rot": (-5, 5),
+    "thoracic_flex": (-25, 45),
+    "thoracic_bend": (-20, 20),
+    "thoracic_rot": (-35, 35),
+    "neck_flex": (-55, 45),
+    "neck_bend": (-45, 45),
+    "neck_rot": (-70, 70),
+    # upper limb (AAOS: shoulder flex 180 / ext 60, abd 180 / add 30 (horizontal), rot int 70 /
+    # ext 90; elbow 0-150; forearm pron 80 / sup 80; wrist flex 80 / ext 70, ulnar 30 / radial 20)
+    "shoulder_flex": (-60, 180),
+    "shoulder_abd": (-30, 180),
+    "shoulder_rot": (-90, 70),
+    "elbow": (0, 150),
+    "forearm_pron": (-80, 80),
+    "wrist_flex": (-70, 80),
+    "wrist_dev": (-20, 30),
+    # hand (AAOS: thumb CMC abd 70, MCP 0-50, IP 0-80; finger MCP 0-90, PIP 0-100, DIP 0-90)
+    "thumb_cmc": (0, 70),
+    "thumb_mcp": (0, 50),
+    "thumb_ip": (0, 80),
+    "finger_mcp": (0, 90),
+    "finger_pip": (0, 100),
+    "finger_dip": (0, 90),
+    # lower limb (AAOS: hip flex 120 / ext 30, abd 45 / add 30, rot int 45 / ext 45; knee 0-135;
+    # ankle dorsi 20 / plantar 50, inversion 35 / eversion 15; first MTP ext 70 / flex 45)
+    "hip_flex": (-30, 120),
+    "hip_abd": (-30, 45),
+    "hip_rot": (-45, 45),
+    "knee": (0, 135),
+    "ankle_flex": (-50, 20),
+    "ankle_inv": (-15, 35),
+    "toe": (-70, 45),
+}
+
+FINGERS = ("index", "middle", "ring", "little")
+
+
+def pelvis_height(stature: float = 1.75) -> float:
+    """Root (hip-joint-centre) height in metres in the neutral pose: 0.530 * stature (Winter)."""
+    return SEG["hip_height"] * stature
+
+
+@dataclass(frozen=True)
+class LegGeometry:
+    """Lengths the leg IK needs, metres, in the pelvis frame (x forward, y left, z up).
+
+    Attributes:
+        hip_y: lateral offset of each hip joint centre from the root (left +, right -).
+        thigh: hip to knee. shank: knee to ankle. ankle_height: ankle above the sole.
+        foot_back, foot_front: heel and toe-tip distance from the ankle along the foot, metres.
+    """
+
+    hip_y: float
+    thigh: float
+    shank: float
+    ankle_height: float
+    foot_back: float
+    foot_front: float
+
+
+def leg_geometry(stature: float = 1.75) -> LegGeometry:
+    """The leg lengths of :func:`build_humanoid` for ``stature`` metres."""
+    H = stature
+    fl = SEG["foot_length"] * H
+    return LegGeometry(
+        hip_y=0.5 * 0.52 * SEG["hip_width"] * H,  # hip centres ~52 % of the bi-trochanteric width
+        thigh=SEG["thigh"] * H,
+        shank=SEG["shank"] * H,
+        ankle_height=SEG["ankle_height"] * H,
+        foot_back=0.25 * fl,
+        foot_front=0.75 * fl,
+    )
+
+
+def _rad(name: str) -> list[float]:
+    key = name
+    if key not in ROM_DEG:
+        for suffix in ("_mcp", "_pip", "_dip"):
+            if name.endswith(suffix):
+                key = "finger" + suffix
+    lo, hi = ROM_DEG[key]
+    return [float(np.deg2rad(lo)), float(np.deg2rad(hi))]
+
+
+def build_humanoid(stature: float = 1.75) -> mujoco.MjSpec:
+    """Build the adult humanoid for ``stature`` metres as an MjSpec.
+
+    The model holds one body tree rooted at ``pelvis`` (free joint ``root``), 3-DOF lumbar,
+    thoracic and neck joints, 3-DOF shoulders, elbows, forearm pronation, 2-DOF wrists, a thumb
+    with 3 joints and four fingers with 3 joints each, 3-DOF hips (rotation, flexion,
+    abduction, applied in that order), knees, 2-DOF ankles and toes. Joint names are stable,
+    e.g. ``hip_l_flex``, ``knee_l``, ``ankle_r_flex``, ``index_l_mcp``.
+    """
+    if not (1.0 <= stature <= 2.3):
+        raise SceneError(f"humanoid: stature {stature!r} m outside the adult range 1.0-2.3 m")
+    H = stature
+    g = leg_geometry(H)
+    spec = mujoco.MjSpec()
+    spec.modelname = "mjwalk_humanoid"
+    spec.compiler.degree = False
+    world = spec.worldbody
+
+    def geom(body, kind, size, pos=None, fromto=None, rgba=(0.85, 0.7, 0.55, 1), name=None):
+        if not name:  # every humanoid geom is named so reports can say which part touched
+            name = f"{body.name}_{sum(1 for _ in body.geoms)}"
+        gm = body.add_geom(name=name)
+        gm.type = kind
+        gm.size = list(size) + [0.0] * (3 - len(size))
+        if fromto is not None:
+            gm.fromto = list(fromto)
+        if pos is not None:
+            gm.pos = list(pos)
+        gm.rgba = list(rgba)
+        gm.contype = HUMAN_CONTYPE
+        gm.conaffinity = HUMAN_CONAFFINITY
+        gm.group = HUMAN_GROUP
+        return gm
+
+    def hinge(body, name, axis):
+        j = body.add_joint(name=name)
+        j.type = mujoco.mjtJoint.mjJNT_HINGE
+        j.axis = list(axis)
+        j.range = _rad(_strip_side(name))
+        j.limited = mujoco.mjtLimited.mjLIMITED_TRUE
+        return j
+
+    def body(parent, name, pos):
+        b = parent.add_body(name=name)
+        b.pos = list(pos)
+        return b
+
+    skin = (0.85, 0.7, 0.55, 1)
+    cloth = (0.25, 0.35, 0.6, 1)
+    trousers = (0.2, 0.2, 0.25, 1)
+
+    pelvis = body(world, "pelvis", [0, 0, pelvis_height(H)])
+    pelvis.add_freejoint(name="root")
+    geom(
+        pelvis,
+        mujoco.mjtGeom.mjGEOM_CAPSULE,
+        [0.06 * H / 1.75],
+        fromto=[0, -g.hip_y, 0.02, 0, g.hip_y, 0.02],
+        rgba=trousers,
+        name="pelvis",
+    )
+
+    # ---- spine: lumbar (L3 level) -> thorax (T12) -> neck (C7) -> head
+    lumbar_z = 0.05 * H
+    lumbar = body(pelvis, "lumbar", [0, 0, lumbar_z])
+    for n, ax in (
+        ("lumbar_flex", [0, 1, 0]),
+        ("lumbar_bend", [1, 0, 0]),
+        ("lumbar_rot", [0, 0, 1]),
+    ):
+        hinge(lumbar, n, ax)
+    geom(
+        lumbar,
+        mujoco.mjtGeom.mjGEOM_CAPSULE,
+        [0.075 * H / 1.75],
+        fromto=[0, -0.04 * H, 0.04 * H, 0, 0.04 * H, 0.04 * H],
+        rgba=cloth,
+        name="abdomen",
+    )
+    thorax_z = 0.11 * H
+    thorax = body(lumbar, "thorax", [0, 0, thorax_z])
+    for n, ax in (
+        ("thoracic_flex", [0, 1, 0]),
+        ("thoracic_bend", [1, 0, 0]),
+        ("thoracic_rot", [0, 0, 1]),
+    ):
+        hinge(thorax, n, ax)
+    sh_z = (SEG["shoulder_height"] - SEG["hip_height"]) * H - lumbar_z - thorax_z
+    geom(
+        thorax,
+        mujoco.mjtGeom.mjGEOM_CAPSULE,
+        [0.085 * H / 1.75],
+        fromto=[0, -0.05 * H, 0.5 * sh_z, 0, 0.05 * H, 0.5 * sh_z],
+        rgba=cloth,
+        name="chest",
+    )
+    neck = body(thorax, "neck", [0, 0, sh_z + 0.01 * H])
+    for n, ax in (("neck_flex", [0, 1, 0]), ("neck_bend", [1, 0, 0]), ("neck_rot", [0, 0, 1])):
+        hinge(neck, n, ax)
+    head_r = 0.5 * (SEG["head_top"] - SEG["chin_height"]) * H * 1.25
+    geom(
+        neck,
+        mujoco.mjtGeom.mjGEOM_CAPSULE,
+        [0.025 * H],
+        fromto=[0, 0, 0, 0, 0, 0.03 * H],
+        rgba=skin,
+        name="neck",
+    )
+    geom(
+        neck,
+        mujoco.mjtGeom.mjGEOM_SPHERE,
+        [head_r],
+        pos=[0.01 * H, 0, (SEG["head_top"] - SEG["shoulder_height"] - 0.01) * H - head_r],
+        rgba=skin,
+        name="head",
+    )
+
+    # ---- arms, hanging along -z in the neutral pose
+    for side, s in (("l", 1.0), ("r", -1.0)):
+        sh = body(thorax, f"upper_arm_{side}", [0, s * 0.5 * SEG["shoulder_width"] * H, sh_z])
+        # flexion: arm forward (rotation about -y); abduction: arm sideways (about +-x);
+        # internal rotation about the arm's long axis (-z for left, +z for right).
+        hinge(sh, f"shoulder_{side}_flex", [0, -1, 0])
+        hinge(sh, f"shoulder_{side}_abd", [s, 0, 0])
+        hinge(sh, f"shoulder_{side}_rot", [0, 0, -s])
+        ua = SEG["upper_arm"] * H
+        geom(
+            sh,
+            mujoco.mjtGeom.mjGEOM_CAPSULE,
+            [0.024 * H],
+            fromto=[0, 0, 0, 0, 0, -ua],
+            rgba=cloth,
+            name=f"upper_arm_{side}",
+        )
+        fa_b = body(sh, f"forearm_{side}", [0, 0, -ua])
+        hinge(fa_b, f"elbow_{side}", [0, -1, 0])
+        hinge(fa_b, f"forearm_{side}_pron", [0, 0, -s])
+        fa = SEG["forearm"] * H
+        geom(
+            fa_b,
+            mujoco.mjtGeom.mjGEOM_CAPSULE,
+            [0.019 * H],
+            fromto=[0, 0, 0, 0, 0, -fa],
+            rgba=skin,
+            name=f"forearm_{side}",
+        )
+        hand = body(fa_b, f"hand_{side}", [0, 0, -fa])
+        hinge(hand, f"wrist_{side}_flex", [0, -1, 0])
+        hinge(hand, f"wrist_{side}_dev", [s, 0, 0])
+        hl = SEG["hand"] * H
+        palm = 0.45 * hl
+        geom(
+            hand,
+            mujoco.mjtGeom.mjGEOM_BOX,
+            [0.012 * H, 0.022 * H, 0.5 * palm],
+            pos=[0, 0, -0.5 * palm],
+            rgba=skin,
+            name=f"palm_{side}",
+        )
+        # thumb: CMC opposition, MCP, IP (3 joints), from the palm's radial side
+        th = body(hand, f"thumb_{side}", [0.01 * H, s * 0.018 * H, -0.1 * palm])
+        hinge(th, f"thumb_{side}_cmc", [-1, 0, 0] if s > 0 else [1, 0, 0])
+        geom(
+            th,
+            mujoco.mjtGeom.mjGEOM_CAPSULE,
+            [0.006 * H],
+            fromto=[0, 0, 0, 0.008 * H, 0, -0.02 * H],
+            rgba=skin,
+        )
+        th2 = body(th, f"thumb_{side}_distal", [0.008 * H, 0, -0.02 * H])
+        hinge(th2, f"thumb_{side}_mcp", [0, -1, 0])
+        geom(
+            th2,
+            mujoco.mjtGeom.mjGEOM_CAPSULE,
+            [0.0055 * H],
+            fromto=[0, 0, 0, 0.004 * H, 0, -0.016 * H],
+            rgba=skin,
+        )
+        th3 = body(th2, f"thumb_{side}_tip", [0.004 * H, 0, -0.016 * H])
+        hinge(th3, f"thumb_{side}_ip", [0, -1, 0])
+        geom(
+            th3,
+            mujoco.mjtGeom.mjGEOM_CAPSULE,
+            [0.005 * H],
+            fromto=[0, 0, 0, 0, 0, -0.015 * H],
+            rgba=skin,
+        )
+        # four fingers, 3 independent joints each (MCP, PIP, DIP), flexion towards the palm (+x)
+        for k, f in enumerate(FINGERS):
+            y = s * (0.015 - 0.01 * k) * H
+            seg = [0.024, 0.014, 0.011]
+            parent = hand
+            pos = [0, y, -palm]
+            for jn, L in zip(("mcp", "pip", "dip"), seg, strict=True):
+                name = f"{f}_{side}_{jn}" if jn != "mcp" else f"{f}_{side}"
+                fb = body(parent, name if jn == "mcp" else f"{f}_{side}_{jn}_seg", pos)
+                hinge(fb, f"{f}_{side}_{jn}", [0, -1, 0])
+                geom(
+                    fb,
+                    mujoco.mjtGeom.mjGEOM_CAPSULE,
+                    [0.0045 * H],
+                    fromto=[0, 0, 0, 0, 0, -L * H],
+                    rgba=skin,
+                )
+                parent, pos = fb, [0, 0, -L * H]
+
+    # ---- legs: hip (rot, flex, abd) -> knee -> ankle (flex, inv) -> toes
+    for side, s in (("l", 1.0), ("r", -1.0)):
+        th = body(pelvis, f"thigh_{side}", [0, s * g.hip_y, 0])
+        hinge(th, f"hip_{side}_rot", [0, 0, -s])
+        hinge(th, f"hip_{side}_flex", [0, -1, 0])
+        hinge(th, f"hip_{side}_abd", [s, 0, 0])
+        geom(
+            th,
+            mujoco.mjtGeom.mjGEOM_CAPSULE,
+            [0.035 * H],
+            fromto=[0, 0, 0, 0, 0, -g.thigh],
+            rgba=trousers,
+            name=f"thigh_{side}",
+        )
+        sk = body(th, f"shin_{side}", [0, 0, -g.thigh])
+        hinge(sk, f"knee_{side}", [0, 1, 0])
+        geom(
+            sk,
+            mujoco.mjtGeom.mjGEOM_CAPSULE,
+            [0.027 * H],
+            fromto=[0, 0, 0, 0, 0, -g.shank],
+            rgba=trousers,
+            name=f"shin_{side}",
+        )
+        ft = body(sk, f"foot_{side}", [0, 0, -g.shank])
+        hinge(ft, f"ankle_{side}_flex", [0, -1, 0])
+        hinge(ft, f"ankle_{side}_inv", [-s, 0, 0])
+        ah = g.ankle_height
+        ball = g.foot_front - 0.2 * SEG["foot_length"] * H
+        hw = 0.5 * SEG["foot_width"] * H
+        geom(
+            ft,
+            mujoco.mjtGeom.mjGEOM_BOX,
+            [0.5 * (ball + g.foot_back), hw, 0.5 * ah * 0.8],
+            pos=[0.5 * (ball - g.foot_back), 0, -ah + 0.4 * ah],
+            rgba=(0.15, 0.1, 0.1, 1),
+            name=f"foot_{side}",
+        )
+        to = body(ft, f"toes_{side}", [ball, 0, -ah])
+        hinge(to, f"toe_{side}", [0, -1, 0])
+        tl = g.foot_front - ball
+        geom(
+            to,
+            mujoco.mjtGeom.mjGEOM_BOX,
+            [0.5 * tl, hw, 0.2 * ah],
+            pos=[0.5 * tl, 0, 0.2 * ah],
+            rgba=(0.15, 0.1, 0.1, 1),
+            name=f"toes_{side}",
+        )
+        site = ft.add_site(name=f"sole_{side}")
+        site.pos = [0, 0, -ah]
+    # inertia from the geoms at the density of water: a kinematic playback model, masses only
+    # matter for display; scale with mujoco.mj_setTotalmass on the compiled model if needed.
+    spec.compiler.inertiafromgeom = mujoco.mjtInertiaFromGeom.mjINERTIAFROMGEOM_TRUE
+    return spec
+
+
+def _strip_side(name: str) -> str:
+    """'hip_l_flex' -> 'hip_flex', 'index_r_pip' -> 'index_pip', 'knee_l' -> 'knee'."""
+    parts = [p for p in name.split("_") if p not in ("l", "r")]
+    return "_".join(parts)
+
+
+@dataclass
+class JointMap:
+    """Where each humanoid hinge lives in ``qpos`` and its range of motion.
+
+    Attributes:
+        names: joint names without the prefix (e.g. ``"knee_l"``), in qpos order.
+        qposadr: (J,) qpos address of each joint.
+        range: (J, 2) lower and upper limit, radians.
+        root: qpos address of the free root joint (x, y, z, qw, qx, qy, qz follow).
+        prefix: the name prefix in the compiled model ("" for the bare humanoid).
+    """
+
+    names: tuple[str, ...]
+    qposadr: np.ndarray
+    range: np.ndarray
+    root: int
+    prefix: str = ""
+
+    def __post_init__(self) -> None:
+        self._index = {n: i for i, n in enumerate(self.names)}
+
+    def __contains__(self, name: str) -> bool:
+        return name in self._index
+
+    def index(self, name: str) -> int:
+        """Position of ``name`` in :attr:`names`; unknown names raise SceneError."""
+        try:
+            return self._index[name]
+        except KeyError:
+            raise SceneError(f"humanoid has no joint {name!r}") from None
+
+    def adr(self, name: str) -> int:
+        """qpos address of joint ``name``."""
+        return int(self.qposadr[self.index(name)])
+
+    def limits(self, name: str) -> tuple[float, float]:
+        """(lo, hi) range of joint ``name`` in radians."""
+        lo, hi = self.range[self.index(name)]
+        return float(lo), float(hi)
+
+    @classmethod
+    def from_model(cls, model: mujoco.MjModel, prefix: str = "") -> JointMap:
+        """Collect the humanoid joints (names starting with ``prefix``) of a compiled model."""
+        names, adrs, ranges, root = [], [], [], None
+        for j in range(model.njnt):
+            full = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or ""
+            if not full.startswith(prefix):
+                continue
+            short = full[len(prefix) :]
+            if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE:
+                if short == "root":
+                    root = int(model.jnt_qposadr[j])
+                continue
+            names.append(short)
+            adrs.append(int(model.jnt_qposadr[j]))
+            ranges.append(model.jnt_range[j].copy())
+        if root is None:
+            raise SceneError(f"model has no humanoid root joint {prefix + 'root'!r}")
+        return cls(tuple(names), np.array(adrs, dtype=int), np.array(ranges), root, prefix)
+
+    def neutral_qpos(self, model: mujoco.MjModel, stature: float = 1.75) -> np.ndarray:
+        """``model.qpos0`` with the humanoid standing upright at the origin facing +x."""
+        q = model.qpos0.copy()
+        q[self.root : self.root + 7] = [0, 0, pelvis_height(stature), 1, 0, 0, 0]
+        q[self.qposadr] = 0.0
+        return q
+
+
+def humanoid_model(stature: float = 1.75) -> tuple[mujoco.MjModel, JointMap]:
+    """Compile the bare humanoid (with a floor plane for viewing) and its JointMap."""
+    spec = build_humanoid(stature)
+    model = spec.compile()
+    return model, JointMap.from_model(model)
+
+
+def attach_humanoid(
+    scene: str | Path | mujoco.MjSpec, stature: float = 1.75, prefix: str = HUMAN_PREFIX
+) -> tuple[mujoco.MjModel, JointMap]:
+    """Attach the humanoid to a workplace scene, without touching the scene file.
+
+    Args:
+        scene: path of an MJCF scene, or an ``MjSpec`` (it is copied, not modified).
+        stature: the humanoid's stature in metres.
+        prefix: prefix of every humanoid element name in the compiled model.
+
+    Returns:
+        the compiled model (scene + humanoid) and the humanoid's JointMap (names unprefixed).
+    """
+    if isinstance(scene, mujoco.MjSpec):
+        parent = scene.copy()
+        where = "<MjSpec>"
+    else:
+        path = Path(scene)
+        where = str(path)
+        if not path.is_file():
+            raise SceneError(f"{path}: no such scene file")
+        try:
+            parent = mujoco.MjSpec.from_file(str(path))
+        except Exception as exc:  # mujoco raises ValueError with the XML parser message
+            raise SceneError(f"{path}: cannot parse scene ({exc})") from exc
+    child = build_humanoid(stature)
+    frame = parent.worldbody.add_frame()
+    frame.attach_body(child.body("pelvis"), prefix, "")
+    try:
+        model = parent.compile()
+    except Exception as exc:
+        raise SceneError(f"{where}: cannot compile scene with the humanoid ({exc})") from exc
+    return model, JointMap.from_model(model, prefix)
+
+
+def write_humanoid_xml(path: str | Path, stature: float = 1.75) -> None:
+    """Write the humanoid MJCF (the file ``scenes/humanoid.xml`` is produced by this)."""
+    from mjwalk._io import atomic_path
+
+    spec = build_humanoid(stature)
+    floor = spec.worldbody.add_geom(name="floor")
+    floor.type = mujoco.mjtGeom.mjGEOM_PLANE
+    floor.size = [5, 5, 0.1]
+    floor.rgba = [0.8, 0.8, 0.8, 1]
+    light = spec.worldbody.add_light()
+    light.pos = [0, 0, 4]
+    spec.compile()
+    xml = spec.to_xml()
+    with atomic_path(path) as tmp:
+        tmp.write_text(
+            "<!-- Generated by mjwalk.body.humanoid.write_humanoid_xml(stature="
+            f"{stature}); do not edit by hand. -->\n" + xml
+        )
+    Path(path).chmod(0o644)
