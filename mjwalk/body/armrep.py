@@ -1,0 +1,355 @@
+"""Trajectory representation of an arm movement (Al-Zubi & Sommer §4.1).
+
+A movement of a kinematic chain (shoulder -> elbow -> wrist -> hand tip) is sampled at ``n``
+equal time intervals, each segment (upper arm, forearm, hand) becomes a unit *direction* vector,
+and each trajectory is aligned to the mean of all trajectories by one 3-D rotation and one
+*angular scaling* about a centre direction (generalized Procrustes analysis, iterated until the
+mean converges). The aligned directions are written as spherical angles (azimuth ``phi`` and
+polar angle ``theta`` in a per-segment frame chosen so that the wrap-around and the poles stay
+away from the data) and PCA keeps ``q`` modes covering a chosen share of the variance (eq. 1,
+``S = mean + Psi_q b``).
+
+Shapes: ``U`` direction trajectories are (p, n, S, 3) (p movements, n samples, S segments), or
+(n, S, 3) for a single movement. A *pose* is the alignment transform of one movement, a (4,)
+vector ``[rotvec (3, radians), log scale]`` with ``U = R @ E(s, A)``: ``A`` the aligned
+directions, ``E(s, .)`` the angular scaling by ``s`` about :attr:`ArmRepresentation.center_`
+(exp/log map of the unit sphere), ``R`` the rotation. Optional ``extras`` (p, n, C) are scalar
+channels that ride along unaligned (grip aperture in metres, forearm roll in radians...).
+
+Directions are in whatever frame the caller used (mjwalk: the body frame at the shoulder, x
+forward, y left, z up); angles are radians.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+from scipy.optimize import least_squares
+from scipy.spatial.transform import Rotation
+from sklearn.decomposition import PCA
+
+from mjwalk.errors import MjwalkError
+
+_EPS = 1e-12
+
+
+# ---------------------------------------------------------------- sampling and directions
+def resample_trajectory(positions: np.ndarray, n: int, t: np.ndarray | None = None) -> np.ndarray:
+    """Sample a trajectory ``positions`` (T, ...) at ``n`` equal time intervals, start to end.
+
+    ``t`` (T,) are the sample times (default: uniform); interpolation is a cubic spline in time,
+    so the samples crowd where the movement is slow, as in the paper.
+    """
+    positions = np.asarray(positions, dtype=float)
+    if len(positions) < 2:
+        raise MjwalkError(f"resample_trajectory: need >= 2 frames, got {len(positions)}")
+    if t is None:
+        t = np.arange(len(positions), dtype=float)
+    spline = CubicSpline(t, positions, axis=0)
+    return spline(np.linspace(t[0], t[-1], n))
+
+
+def segment_directions(positions: np.ndarray) -> np.ndarray:
+    """Unit directions (..., J-1, 3) of the segments of a chain of joint positions (..., J, 3)."""
+    seg = np.diff(np.asarray(positions, dtype=float), axis=-2)
+    norm = np.linalg.norm(seg, axis=-1, keepdims=True)
+    if np.any(norm < 1e-9):
+        raise MjwalkError("segment_directions: a segment has zero length (coincident joints)")
+    return seg / norm
+
+
+def directions_to_angles(u: np.ndarray) -> np.ndarray:
+    """Spherical angles (..., 2) = (phi, theta) of unit vectors (..., 3): phi the azimuth from
+    +x counter-clockwise about +z, theta the polar angle from +z (radians)."""
+    u = np.asarray(u, dtype=float)
+    phi = np.arctan2(u[..., 1], u[..., 0])
+    theta = np.arccos(np.clip(u[..., 2], -1.0, 1.0))
+    return np.stack([phi, theta], axis=-1)
+
+
+def angles_to_directions(angles: np.ndarray) -> np.ndarray:
+    """Inverse of :func:`directions_to_angles`: unit vectors (..., 3) from (phi, theta)."""
+    phi, theta = angles[..., 0], angles[..., 1]
+    st = np.sin(theta)
+    return np.stack([st * np.cos(phi), st * np.sin(phi), np.cos(theta)], axis=-1)
+
+
+def angular_distance(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Angle (radians) between corresponding unit vectors of ``u`` and ``v`` (..., 3)."""
+    cross = np.linalg.norm(np.cross(u, v), axis=-1)
+    return np.arctan2(cross, np.sum(u * v, axis=-1))
+
+
+def trajectory_error(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Mean joint-direction angle error (radians) per movement between (p, n, S, 3) arrays
+    (or a single (n, S, 3) movement -> scalar): the paper's mean radial distance."""
+    return angular_distance(u, v).mean(axis=(-2, -1))
+
+
+# ---------------------------------------------------------------- sphere exp/log and scaling
+def sphere_log(c: np.ndarray, a: np.ndarray) -> np.ndarray:
+    """Tangent vector at unit ``c`` (3,) pointing to unit ``a`` (..., 3), length = angle."""
+    cos = np.clip(a @ c, -1.0, 1.0)
+    v = a - cos[..., None] * c
+    nv = np.linalg.norm(v, axis=-1, keepdims=True)
+    ang = np.arccos(cos)[..., None]
+    return np.where(nv > _EPS, v * ang / np.maximum(nv, _EPS), 0.0)
+
+
+def sphere_exp(c: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Unit vector reached from ``c`` (3,) along tangent ``w`` (..., 3) (inverse of log)."""
+    ang = np.linalg.norm(w, axis=-1, keepdims=True)
+    safe = np.maximum(ang, _EPS)
+    return np.cos(ang) * c + np.where(ang > _EPS, np.sin(ang) * w / safe, 0.0)
+
+
+def angular_scale(c: np.ndarray, a: np.ndarray, s: float) -> np.ndarray:
+    """Scale the angular distance of directions ``a`` from centre ``c`` by ``s``."""
+    return sphere_exp(c, s * sphere_log(c, a))
+
+
+def apply_pose(center: np.ndarray, a: np.ndarray, pose: np.ndarray) -> np.ndarray:
+    """``R @ E(s, a)``: the raw directions of aligned directions ``a`` (n, S, 3) for one pose."""
+    rot = Rotation.from_rotvec(pose[:3])
+    scaled = angular_scale(center, a, float(np.exp(pose[3])))
+    return rot.apply(scaled.reshape(-1, 3)).reshape(scaled.shape)
+
+
+def remove_pose(center: np.ndarray, u: np.ndarray, pose: np.ndarray) -> np.ndarray:
+    """Inverse of :func:`apply_pose`: aligned directions of raw directions ``u`` (n, S, 3)."""
+    rot = Rotation.from_rotvec(pose[:3])
+    back = rot.inv().apply(u.reshape(-1, 3)).reshape(u.shape)
+    return angular_scale(center, back, float(np.exp(-pose[3])))
+
+
+def fit_pose(
+    center: np.ndarray, u: np.ndarray, target: np.ndarray, max_log_scale: float = 1.0
+) -> np.ndarray:
+    """The pose (4,) whose :func:`remove_pose` brings ``u`` (n, S, 3) closest to ``target``
+    (n, S, 3) in summed squared chord distance (rotation from Kabsch, refined with scale)."""
+    r0, _ = Rotation.align_vectors(u.reshape(-1, 3), target.reshape(-1, 3))
+    x0 = np.r_[r0.as_rotvec(), 0.0]
+
+    def resid(x):
+        return (remove_pose(center, u, x) - target).ravel()
+
+    lb = np.r_[-np.inf, -np.inf, -np.inf, -max_log_scale]
+    ub = np.r_[np.inf, np.inf, np.inf, max_log_scale]
+    return least_squares(resid, x0, bounds=(lb, ub), x_scale=1.0).x
+
+
+def _normalize(v: np.ndarray) -> np.ndarray:
+    return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), _EPS)
+
+
+# ---------------------------------------------------------------- the representation
+class ArmRepresentation:
+    """Aligned spherical-angle trajectories + PCA (Al-Zubi & Sommer §4.1, eq. 1).
+
+    Args:
+        variance: share of the variance the kept PCA modes cover (0 < variance <= 1), or an
+            int number of modes.
+        max_iter, tol: generalized Procrustes iterations and convergence tolerance (largest
+            change of a mean direction, radians).
+
+    Fitted attributes: ``mean_`` (n, S, 3) aligned mean directions, ``center_`` (3,) centre of
+    the angular scaling, ``frames_`` (S, 3, 3) per-segment spherical frames (rows: axes in the
+    aligned frame), ``phi_ref_`` (n, S) branch reference for azimuths, ``extras_scale_`` (C,),
+    ``pca_`` (sklearn PCA), ``n_modes_``, ``n_iter_``, ``poses_`` (p, 4) training poses.
+    """
+
+    def __init__(self, variance: float | int = 0.98, max_iter: int = 30, tol: float = 1e-6):
+        self.variance = variance
+        self.max_iter = max_iter
+        self.tol = tol
+
+    # ------------------------------------------------------------ alignment
+    def _align_all(self, U: np.ndarray, target: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        poses = np.array([fit_pose(self.center_, u, target) for u in U])
+        A = np.array([remove_pose(self.center_, u, x) for u, x in zip(U, poses, strict=True)])
+        return A, poses
+
+    def fit(self, U: np.ndarray, extras: np.ndarray | None = None) -> ArmRepresentation:
+        """Align direction trajectories ``U`` (p, n, S, 3) by GPA and fit the PCA."""
+        U = self._check_u(U)
+        if len(U) < 2:
+            raise MjwalkError(f"ArmRepresentation.fit: need >= 2 movements, got {len(U)}")
+        p, n, S, _ = U.shape
+        reference = U[0]
+        self.center_ = _normalize(reference.reshape(-1, 3).mean(axis=0))
+        mean = reference
+        self.n_iter_ = 0
+        for it in range(self.max_iter):
+            A, poses = self._align_all(U, mean)
+            new = _normalize(A.mean(axis=0))
+            # Gauge: keep the mean registered to the reference movement (no drift of R, s).
+            new = remove_pose(self.center_, new, fit_pose(self.center_, new, reference))
+            change = float(angular_distance(new, mean).max())
+            mean = new
+            self.n_iter_ = it + 1
+            if change < self.tol:
+                break
+        A, poses = self._align_all(U, mean)
+        self.mean_ = mean
+        self.poses_ = poses
+
+        # Per-segment spherical frames: pole = least-variance axis of the segment's directions.
+        frames = np.empty((S, 3, 3))
+        for j in range(S):
+            D = A[:, :, j].reshape(-1, 3)
+            _, vecs = np.linalg.eigh(D.T @ D)
+            e3 = vecs[:, 0]
+            m = D.mean(axis=0)
+            e1 = m - (m @ e3) * e3
+            if np.linalg.norm(e1) < 1e-6:  # degenerate: any axis orthogonal to the pole
+                e1 = np.cross(e3, [1.0, 0.0, 0.0] if abs(e3[0]) < 0.9 else [0.0, 1.0, 0.0])
+            e1 = _normalize(e1)
+            frames[j] = np.stack([e1, np.cross(e3, e1), e3])
+        self.frames_ = frames
+        local = np.einsum("sij,pnsj->pnsi", frames, A)
+        ang = directions_to_angles(local)
+        phi = np.unwrap(ang[..., 0], axis=1)
+        self.phi_ref_ = np.zeros((n, S))
+        phi = self._branch(phi)
+        self.phi_ref_ = phi.mean(axis=0)
+        angles = np.stack([phi, ang[..., 1]], axis=-1)
+        self.n_extras_ = 0 if extras is None else int(np.asarray(extras).shape[-1])
+        if extras is not None:
+            E = self._check_extras(extras, p, n)
+            ang_sd = float(angles.std()) or 1.0
+            sd = E.reshape(-1, self.n_extras_).std(axis=0)
+            self.extras_scale_ = np.where(sd > 1e-12, sd / ang_sd, 1.0)
+        else:
+            self.extras_scale_ = np.zeros(0)
+            E = None
+        X = self._pack(angles, E)
+        self.shape_ = (n, S)
+        n_comp = self.variance
+        if isinstance(n_comp, float) and n_comp >= 1.0:
+            n_comp = min(X.shape)
+        self.pca_ = PCA(n_components=n_comp, svd_solver="full").fit(X)
+        self.n_modes_ = int(self.pca_.n_components_)
+        return self
+
+    def _branch(self, phi: np.ndarray) -> np.ndarray:
+        """Shift each movement's unwrapped azimuths by 2*pi*k to the branch nearest phi_ref_."""
+        k = np.round((phi - self.phi_ref_).mean(axis=1, keepdims=True) / (2 * np.pi))
+        return phi - 2 * np.pi * k
+
+    def _pack(self, angles, E):
+        X = angles.reshape(len(angles), -1)
+        if E is not None and self.n_extras_:
+            X = np.hstack([X, (E / self.extras_scale_).reshape(len(E), -1)])
+        return X
+
+    @staticmethod
+    def _check_u(U):
+        U = np.asarray(U, dtype=float)
+        if U.ndim != 4 or U.shape[-1] != 3:
+            raise MjwalkError(f"ArmRepresentation: directions must be (p, n, S, 3), got {U.shape}")
+        if not np.isfinite(U).all():
+            raise MjwalkError("ArmRepresentation: directions hold NaN or infinite values")
+        return _normalize(U)
+
+    def _check_extras(self, extras, p, n):
+        E = np.asarray(extras, dtype=float)
+        if E.shape != (p, n, self.n_extras_):
+            raise MjwalkError(
+                f"ArmRepresentation: extras must be ({p}, {n}, {self.n_extras_}), got {E.shape}"
+            )
+        return E
+
+    # ------------------------------------------------------------ forward / inverse
+    def align(self, U: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Aligned directions (p, n, S, 3) and poses (p, 4) of raw directions (p, n, S, 3)."""
+        return self._align_all(self._check_u(U), self.mean_)
+
+    def unalign(self, A: np.ndarray, poses: np.ndarray) -> np.ndarray:
+        """Raw directions (p, n, S, 3) from aligned ones and poses (p, 4) (exact inverse)."""
+        return np.array(
+            [apply_pose(self.center_, a, x) for a, x in zip(A, np.atleast_2d(poses), strict=True)]
+        )
+
+    def to_features(self, A: np.ndarray, extras: np.ndarray | None = None) -> np.ndarray:
+        """(p, F) feature rows (spherical angles, then scaled extras) of aligned directions."""
+        local = np.einsum("sij,pnsj->pnsi", self.frames_, A)
+        ang = directions_to_angles(local)
+        phi = self._branch(np.unwrap(ang[..., 0], axis=1))
+        angles = np.stack([phi, ang[..., 1]], axis=-1)
+        E = None if extras is None else self._check_extras(extras, len(A), A.shape[1])
+        if self.n_extras_ and E is None:
+            raise MjwalkError(f"ArmRepresentation: {self.n_extras_} extra channels expected")
+        return self._pack(angles, E)
+
+    def from_features(self, X: np.ndarray) -> tuple[np.ndarray, np.ndarray | None]:
+        """Aligned directions (p, n, S, 3) and extras (p, n, C) or None from feature rows."""
+        X = np.atleast_2d(X)
+        n, S = self.shape_
+        angles = X[:, : n * S * 2].reshape(-1, n, S, 2)
+        local = angles_to_directions(angles)
+        A = np.einsum("sji,pnsj->pnsi", self.frames_, local)
+        E = None
+        if self.n_extras_:
+            E = X[:, n * S * 2 :].reshape(-1, n, self.n_extras_) * self.extras_scale_
+        return A, E
+
+    def transform(
+        self, U: np.ndarray, extras: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """PCA coefficients b (p, q) and poses (p, 4) of raw direction trajectories."""
+        A, poses = self.align(U)
+        return self.pca_.transform(self.to_features(A, extras)), poses
+
+    def inverse_transform(
+        self, b: np.ndarray, poses: np.ndarray | None = None
+    ) -> tuple[np.ndarray, np.ndarray | None]:
+        """Directions (p, n, S, 3) and extras from coefficients b (p, q) (eq. 1); aligned
+        directions when ``poses`` is None, raw ones (pose applied) otherwise."""
+        A, E = self.from_features(self.pca_.inverse_transform(np.atleast_2d(b)))
+        if poses is not None:
+            A = self.unalign(A, poses)
+        return A, E
+
+    # ------------------------------------------------------------ persistence helpers
+    def to_arrays(self) -> dict[str, np.ndarray]:
+        """Fitted state as plain arrays (for a composite model file)."""
+        return {
+            "rep_mean": self.mean_,
+            "rep_center": self.center_,
+            "rep_frames": self.frames_,
+            "rep_phi_ref": self.phi_ref_,
+            "rep_extras_scale": self.extras_scale_,
+            "rep_pca_mean": self.pca_.mean_,
+            "rep_pca_components": self.pca_.components_,
+            "rep_pca_var": self.pca_.explained_variance_,
+            "rep_pca_var_ratio": self.pca_.explained_variance_ratio_,
+            "rep_poses": self.poses_,
+        }
+
+    @classmethod
+    def from_arrays(cls, data: dict) -> ArmRepresentation:
+        """Rebuild from :meth:`to_arrays` (raises KeyError/ValueError on missing/bad arrays)."""
+        rep = cls()
+        rep.mean_ = np.asarray(data["rep_mean"], dtype=float)
+        rep.center_ = np.asarray(data["rep_center"], dtype=float)
+        rep.frames_ = np.asarray(data["rep_frames"], dtype=float)
+        rep.phi_ref_ = np.asarray(data["rep_phi_ref"], dtype=float)
+        rep.extras_scale_ = np.asarray(data["rep_extras_scale"], dtype=float)
+        rep.n_extras_ = len(rep.extras_scale_)
+        rep.poses_ = np.asarray(data["rep_poses"], dtype=float)
+        n, S = rep.mean_.shape[:2]
+        rep.shape_ = (n, S)
+        comps = np.asarray(data["rep_pca_components"], dtype=float)
+        if comps.shape[1] != n * S * 2 + n * rep.n_extras_:
+            raise ValueError(f"PCA components {comps.shape} do not match trajectories {(n, S)}")
+        pca = PCA(n_components=comps.shape[0], svd_solver="full")
+        pca.components_ = comps
+        pca.mean_ = np.asarray(data["rep_pca_mean"], dtype=float)
+        pca.explained_variance_ = np.asarray(data["rep_pca_var"], dtype=float)
+        pca.explained_variance_ratio_ = np.asarray(data["rep_pca_var_ratio"], dtype=float)
+        pca.n_components_ = comps.shape[0]
+        pca.n_features_in_ = comps.shape[1]
+        pca.whiten = False
+        rep.pca_ = pca
+        rep.n_modes_ = comps.shape[0]
+        return rep
