@@ -1,0 +1,547 @@
+"""The ``StepModel``: KDE for first steps, Gaussian-process transitions (agethen2018 §3.4-4.1).
+
+Steps live in the standardized PCA feature space of :class:`~mjwalk.gait.features.StepFeatures`.
+
+**First steps** (gait initiation): one ``scipy.stats.gaussian_kde`` (Scott's bandwidth) per side,
+fitted on the first step of every take (the step with the smallest index). The planner starts
+walkers from standing, so the starters should be initiation steps, as in the paper. When a side
+has fewer than ``max(2·(d+1), 10)`` first steps (a corpus of few long takes), that side's KDE is
+fitted on all its steps instead (recorded in :meth:`StepModel.summary` as ``kde_source``).
+
+**Transitions** left->right and right->left, each a Gaussian process from the predecessor's
+features to the successor's (zero mean, ``normalize_y=False`` on the standardized features,
+kernel ``C·RBF(per-dimension length scales) + White``). An exact GP on ~10 000 pairs per
+direction needs 10 000² matrices, so the scheme is (Rasmussen & Williams 2006, §8.3):
+
+1. hyper-parameters (C, length scales, noise σ²) by maximizing the log-marginal likelihood
+   with sklearn ``GaussianProcessRegressor`` on a random subset of ``n_hyper`` pairs;
+2. ``n_inducing`` inducing inputs Z = k-means centres of all predecessor features;
+3. the DTC / projected-process predictor with those hyper-parameters and Z, conditioned on
+   ALL pairs: Σ = (K_mm + σ⁻² K_mn K_nm)⁻¹, mean μ(x) = σ⁻² k_xm Σ K_mn Y = k_xm α,
+   latent variance v(x) = C - k_xm (K_mm⁻¹ - Σ) k_mx = C - k_xm W k_mx.
+   α (m, d) and W (m, m) are precomputed (through Cholesky factors), so one prediction is a
+   kernel row against m points and two small products;
+4. the observation noise of successors is the full (d, d) covariance of the training residuals
+   Y - μ(X) (a per-output, correlated refinement of the shared White σ², which the
+   multi-output sklearn GP must share across outputs; sampling with it keeps the spread of
+   every feature instead of averaging it).
+
+A successor is drawn as  y = μ(x) + √v(x)·ε₁ + L_res ε₂  with ε ~ N(0, I).
+
+The model is saved to ONE ``.npz`` file (format name + version in a JSON header, plain arrays,
+no pickle), written atomically.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+import warnings
+import zipfile
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy.linalg import cho_solve, cholesky, solve_triangular
+from scipy.stats import gaussian_kde
+
+from mjwalk._io import atomic_path
+from mjwalk.errors import MjwalkError, ModelFileError
+from mjwalk.gait.features import StepBatch, StepFeatures, raw_features, side_array
+from mjwalk.gait.step import Step
+
+MODEL_FORMAT = "mjwalk.stepmodel"
+#: Bump whenever the saved arrays or their meaning change.
+MODEL_VERSION = 1
+
+_SIDES = ("left", "right")
+
+
+# --------------------------------------------------------------------------------------------
+# Transition GP
+# --------------------------------------------------------------------------------------------
+
+
+@dataclass
+class TransitionGP:
+    """DTC (projected-process) GP predictor from predecessor to successor features.
+
+    Attributes:
+        inducing: (m, d) inducing inputs (k-means centres), standardized features.
+        alpha: (m, d) so that the posterior mean is ``k(x, Z) @ alpha``.
+        w: (m, m) ``K_mm⁻¹ - Σ``; latent variance = C - k W kᵀ.
+        length_scale: (d,) RBF length scales; signal_var C; noise_var σ² (White kernel).
+        res_chol: (d, d) lower Cholesky factor of the residual covariance.
+        n_pairs: pairs the posterior is conditioned on; n_hyper: pairs used for the LML fit;
+        lml: log-marginal likelihood of the hyper-parameters on the subset.
+    """
+
+    inducing: np.ndarray
+    alpha: np.ndarray
+    w: np.ndarray
+    length_scale: np.ndarray
+    signal_var: float
+    noise_var: float
+    res_chol: np.ndarray
+    n_pairs: int
+    n_hyper: int
+    lml: float
+
+    def __post_init__(self) -> None:
+        self._zs = self.inducing / self.length_scale
+        self._zs2 = np.einsum("md,md->m", self._zs, self._zs)
+
+    def kernel_rows(self, x: np.ndarray) -> np.ndarray:
+        """(P, m) signal kernel C·RBF between ``x`` (P, d) and the inducing inputs."""
+        xs = x / self.length_scale
+        sq = np.einsum("pd,pd->p", xs, xs)[:, None] + self._zs2[None, :] - 2.0 * (xs @ self._zs.T)
+        np.maximum(sq, 0.0, out=sq)
+        return self.signal_var * np.exp(-0.5 * sq)
+
+    def predict(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Posterior mean (P, d) and latent variance (P,) at predecessor features ``x`` (P, d)."""
+        k = self.kernel_rows(x)
+        mean = k @ self.alpha
+        var = self.signal_var - np.einsum("pm,pm->p", k @ self.w, k)
+        return mean, np.maximum(var, 0.0)
+
+    def sample(self, x: np.ndarray, n: int, rng: np.random.Generator) -> np.ndarray:
+        """(P, n, d) successor features: n draws for each of the P predecessors."""
+        mean, var = self.predict(x)
+        p, d = mean.shape
+        e = rng.standard_normal((2, p, n, d))
+        return mean[:, None, :] + np.sqrt(var)[:, None, None] * e[0] + e[1] @ self.res_chol.T
+
+    @classmethod
+    def fit(
+        cls,
+        x: np.ndarray,
+        y: np.ndarray,
+        *,
+        rng: np.random.Generator,
+        n_hyper: int = 1000,
+        n_inducing: int = 400,
+    ) -> TransitionGP:
+        """Fit on pairs ``x`` (N, d) -> ``y`` (N, d) (standardized features); see module doc."""
+        from sklearn.cluster import KMeans
+        from sklearn.exceptions import ConvergenceWarning
+        from sklearn.gaussian_process import GaussianProcessRegressor
+        from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
+
+        n, d = x.shape
+        if n < 5:
+            raise MjwalkError(f"transition GP: need at least 5 step pairs, got {n}")
+        seed = int(rng.integers(2**31 - 1))
+        sub = rng.choice(n, size=min(n_hyper, n), replace=False)
+        kernel = ConstantKernel(1.0, (1e-2, 1e2)) * RBF(np.full(d, 2.0), (1e-2, 1e3)) + WhiteKernel(
+            0.3, (1e-4, 1e1)
+        )
+        gpr = GaussianProcessRegressor(
+            kernel, normalize_y=False, n_restarts_optimizer=0, random_state=seed
+        )
+        with warnings.catch_warnings():
+            # A length scale at its upper bound just means "this input is irrelevant".
+            warnings.simplefilter("ignore", ConvergenceWarning)
+            gpr.fit(x[sub], y[sub])
+        k = gpr.kernel_
+        c = float(k.k1.k1.constant_value)
+        ls = np.broadcast_to(np.asarray(k.k1.k2.length_scale, dtype=float), (d,)).copy()
+        s2 = float(k.k2.noise_level)
+        lml = float(gpr.log_marginal_likelihood_value_)
+
+        m = min(n_inducing, n)
+        if m < n:
+            km = KMeans(n_clusters=m, n_init=1, max_iter=50, random_state=seed).fit(x)
+            z = km.cluster_centers_
+        else:
+            z = x.copy()
+        proto = cls(
+            inducing=z,
+            alpha=np.zeros((m, d)),
+            w=np.zeros((m, m)),
+            length_scale=ls,
+            signal_var=c,
+            noise_var=s2,
+            res_chol=np.eye(d),
+            n_pairs=n,
+            n_hyper=len(sub),
+            lml=lml,
+        )
+        kmm = proto.kernel_rows(z)
+        kmm[np.diag_indices(m)] += 1e-6 * c
+        lmm = cholesky(kmm, lower=True)
+        # V = L⁻¹ K_mn in chunks of rows of x (memory: m × N).
+        v = solve_triangular(lmm, proto.kernel_rows(x).T, lower=True)
+        b = np.eye(m) + (v @ v.T) / s2
+        lb = cholesky(b, lower=True)
+        # alpha = L⁻ᵀ B⁻¹ V Y / σ²
+        alpha = solve_triangular(lmm.T, cho_solve((lb, True), v @ y), lower=False) / s2
+        # W = K_mm⁻¹ - Σ = L⁻ᵀ (I - B⁻¹) L⁻¹
+        linv = solve_triangular(lmm, np.eye(m), lower=True)
+        w = linv.T @ (np.eye(m) - cho_solve((lb, True), np.eye(m))) @ linv
+        w = 0.5 * (w + w.T)
+        proto.alpha = alpha
+        proto.w = w
+        resid = y - proto.predict(x)[0]
+        cov = np.atleast_2d(np.cov(resid, rowvar=False)) + 1e-9 * np.eye(d)
+        proto.res_chol = np.linalg.cholesky(cov)
+        return proto
+
+    def arrays(self, prefix: str) -> dict[str, np.ndarray]:
+        return {
+            f"{prefix}inducing": self.inducing,
+            f"{prefix}alpha": self.alpha,
+            f"{prefix}w": self.w,
+            f"{prefix}length_scale": self.length_scale,
+            f"{prefix}res_chol": self.res_chol,
+            f"{prefix}scalars": np.array(
+                [self.signal_var, self.noise_var, self.n_pairs, self.n_hyper, self.lml]
+            ),
+        }
+
+    @classmethod
+    def from_arrays(cls, data, prefix: str) -> TransitionGP:
+        sc = np.asarray(data[f"{prefix}scalars"], dtype=float)
+        return cls(
+            inducing=np.asarray(data[f"{prefix}inducing"], dtype=float),
+            alpha=np.asarray(data[f"{prefix}alpha"], dtype=float),
+            w=np.asarray(data[f"{prefix}w"], dtype=float),
+            length_scale=np.asarray(data[f"{prefix}length_scale"], dtype=float),
+            res_chol=np.asarray(data[f"{prefix}res_chol"], dtype=float),
+            signal_var=float(sc[0]),
+            noise_var=float(sc[1]),
+            n_pairs=int(sc[2]),
+            n_hyper=int(sc[3]),
+            lml=float(sc[4]),
+        )
+
+
+# --------------------------------------------------------------------------------------------
+# Step model
+# --------------------------------------------------------------------------------------------
+
+
+def first_step_indices(steps: Sequence[Step]) -> np.ndarray:
+    """Indices into ``steps`` of the first step of every take (smallest ``index`` per take)."""
+    best: dict[str, int] = {}
+    for i, s in enumerate(steps):
+        j = best.get(s.take)
+        if j is None or s.index < steps[j].index:
+            best[s.take] = i
+    return np.array(sorted(best.values()), dtype=np.int64)
+
+
+def transition_pairs(steps: Sequence[Step]) -> tuple[np.ndarray, np.ndarray]:
+    """(prev, next) index arrays of captured transitions: same take, index i -> i+1, sides alternate."""
+    lookup = {(s.take, s.index): i for i, s in enumerate(steps)}
+    prev, nxt = [], []
+    for i, s in enumerate(steps):
+        j = lookup.get((s.take, s.index + 1))
+        if j is not None and steps[j].side != s.side:
+            prev.append(i)
+            nxt.append(j)
+    return np.array(prev, dtype=np.int64), np.array(nxt, dtype=np.int64)
+
+
+@dataclass
+class StepModel:
+    """Generative step model: KDE starters per side + GP transitions per side pair.
+
+    Build with :meth:`fit`; draw with :meth:`sample_first` and :meth:`sample_next`; every
+    returned :class:`StepBatch` is in its steps' local frames (origin, heading +y, x right).
+    """
+
+    features: StepFeatures
+    kde_data: dict[str, np.ndarray]  # side -> (d, n) KDE dataset
+    kde_factor: dict[str, float]  # side -> Scott factor used
+    gp: dict[str, TransitionGP]  # predecessor side -> GP to the other side
+    info: dict = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        self._kde = {
+            s: gaussian_kde(self.kde_data[s], bw_method=self.kde_factor[s]) for s in _SIDES
+        }
+
+    # -- fitting -----------------------------------------------------------------------------
+
+    @classmethod
+    def fit(
+        cls,
+        steps: Sequence[Step],
+        *,
+        seed: int = 0,
+        variance: float = 0.95,
+        n_hyper: int = 1000,
+        n_inducing: int = 400,
+        progress: bool = False,
+    ) -> StepModel:
+        """Fit features, KDEs and both transition GPs on aligned ``steps``.
+
+        Args:
+            steps: aligned steps; captured transitions are consecutive ``index`` values of one
+                ``take`` with alternating sides.
+            seed: seeds the LML subset, k-means and optimizer.
+            variance: PCA variance to keep (>= 0.95 as the paper; 1.0 keeps all).
+            n_hyper: pairs per direction for the hyper-parameter (LML) fit.
+            n_inducing: inducing points per direction for the DTC posterior.
+            progress: print timings to stderr.
+        """
+        t0 = time.perf_counter()
+        rng = np.random.default_rng(seed)
+        steps = list(steps)
+        if len(steps) < 10:
+            raise MjwalkError(f"StepModel.fit: need at least 10 steps, got {len(steps)}")
+        raw = raw_features(steps)
+        sides = side_array(steps)
+        feats = StepFeatures.fit(raw, variance=variance)
+        z = feats.encode_raw(raw)
+        d = feats.n_components
+        _log(
+            progress,
+            f"features: {len(steps)} steps -> {d} PCA dims "
+            f"({100 * feats.variance_kept:.1f} % variance)",
+        )
+
+        first = first_step_indices(steps)
+        min_first = max(2 * (d + 1), 10)
+        kde_data, kde_factor, kde_source = {}, {}, {}
+        for s in _SIDES:
+            idx = first[sides[first] == s]
+            src = "first steps"
+            if len(idx) < min_first:
+                idx = np.flatnonzero(sides == s)
+                src = "all steps (too few first steps)"
+            if len(idx) <= d + 1:
+                raise MjwalkError(
+                    f"StepModel.fit: only {len(idx)} {s} steps for a {d}-D KDE; need more data"
+                )
+            kde = gaussian_kde(z[idx].T)
+            kde_data[s] = z[idx].T.copy()
+            kde_factor[s] = float(kde.factor)
+            kde_source[s] = {"source": src, "n": len(idx)}
+
+        prev, nxt = transition_pairs(steps)
+        gps, n_trans = {}, {}
+        for s in _SIDES:
+            sel = sides[prev] == s
+            t1 = time.perf_counter()
+            gps[s] = TransitionGP.fit(
+                z[prev[sel]], z[nxt[sel]], rng=rng, n_hyper=n_hyper, n_inducing=n_inducing
+            )
+            n_trans[s] = int(sel.sum())
+            _log(
+                progress,
+                f"GP {s}->{_other(s)}: {n_trans[s]} pairs, {time.perf_counter() - t1:.1f} s",
+            )
+        info = {
+            "n_steps": len(steps),
+            "n_takes": len(first),
+            "n_transitions": n_trans,
+            "kde": kde_source,
+            "seed": seed,
+            "fit_seconds": round(time.perf_counter() - t0, 3),
+            "train_length_mean": float(np.mean(np.hypot(raw[:, 8], raw[:, 9]))),
+            "train_duration_mean": float(np.mean(raw[:, 15])),
+        }
+        return cls(features=feats, kde_data=kde_data, kde_factor=kde_factor, gp=gps, info=info)
+
+    # -- sampling ----------------------------------------------------------------------------
+
+    @property
+    def n_dims(self) -> int:
+        return self.features.n_components
+
+    def encode(self, steps: Sequence[Step]) -> np.ndarray:
+        """Steps -> (n, d) standardized features."""
+        return self.features.encode(steps)
+
+    def decode(self, z: np.ndarray, side) -> StepBatch:
+        """(n, d) standardized features -> StepBatch with ``side`` ((n,) or one value)."""
+        return self.features.decode(z, side)
+
+    def sample_first(self, n: int, rng: np.random.Generator, side: str | None = None) -> StepBatch:
+        """``n`` gait-initiation steps from the KDE.
+
+        ``side=None``: ``n - n//2`` left then ``n//2`` right steps; else all of ``side``.
+        """
+        if side is None:
+            counts = {"left": n - n // 2, "right": n // 2}
+        elif side in _SIDES:
+            counts = {side: n}
+        else:
+            raise MjwalkError(f"sample_first: side must be 'left', 'right' or None, got {side!r}")
+        zs, ss = [], []
+        for s, c in counts.items():
+            if c > 0:
+                zs.append(self._kde[s].resample(c, seed=rng).T)
+                ss.extend([s] * c)
+        z = np.concatenate(zs) if zs else np.zeros((0, self.n_dims))
+        return self.features.decode(z, np.array(ss, dtype="<U5"))
+
+    def sample_next(self, prev: StepBatch, n: int, rng: np.random.Generator) -> StepBatch:
+        """``n`` successors of every step in ``prev`` (rows i·n .. i·n+n-1 follow ``prev[i]``).
+
+        Successors swing the other foot. Vectorized over predecessors.
+        """
+        p = len(prev)
+        d = self.n_dims
+        x = prev.features
+        if x.shape != (p, d):
+            raise MjwalkError(f"sample_next: predecessor features {x.shape}, expected ({p}, {d})")
+        is_left = prev.side == "left"
+        if is_left.all() or not is_left.any():
+            s = "left" if p and is_left[0] else "right"
+            z = self.gp[s].sample(x, n, rng).reshape(p * n, d)
+            side = np.full(p * n, _other(s), dtype="<U5")
+        else:
+            z = np.empty((p, n, d))
+            for s, mask in (("left", is_left), ("right", ~is_left)):
+                z[mask] = self.gp[s].sample(x[mask], n, rng)
+            z = z.reshape(p * n, d)
+            side = np.repeat(np.where(is_left, "right", "left"), n)
+        return self.features.decode(z, side)
+
+    def sample_chain(
+        self, n_steps: int, rng: np.random.Generator, side: str | None = None
+    ) -> StepBatch:
+        """One walk of ``n_steps`` steps: a KDE starter, then one GP successor after another."""
+        first = self.sample_first(1, rng, side=side or ("left" if rng.random() < 0.5 else "right"))
+        parts = [first]
+        for _ in range(n_steps - 1):
+            parts.append(self.sample_next(parts[-1], 1, rng))
+        return concat_batches(parts)
+
+    # -- persistence -------------------------------------------------------------------------
+
+    def summary(self) -> dict:
+        """Figures of the fitted model: data sizes, PCA dims, variance kept, kernel parameters."""
+        out = dict(self.info)
+        out.update(
+            pca_dims=self.n_dims,
+            variance_kept=round(self.features.variance_kept, 5),
+            kernels={
+                f"{s}->{_other(s)}": {
+                    "signal_var": round(g.signal_var, 5),
+                    "noise_var": round(g.noise_var, 5),
+                    "length_scale": [round(float(v), 4) for v in g.length_scale],
+                    "lml_subset": round(g.lml, 3),
+                    "n_hyper": g.n_hyper,
+                    "n_inducing": int(g.inducing.shape[0]),
+                    "n_pairs": g.n_pairs,
+                }
+                for s, g in self.gp.items()
+            },
+        )
+        return out
+
+    def save(self, path: str | Path) -> None:
+        """Write the model to one versioned ``.npz`` file, atomically."""
+        arrays = self.features.arrays("feat_")
+        for s in _SIDES:
+            arrays[f"kde_{s}"] = self.kde_data[s]
+            arrays.update(self.gp[s].arrays(f"gp_{s}_"))
+        header = {
+            "format": MODEL_FORMAT,
+            "version": MODEL_VERSION,
+            "kde_factor": self.kde_factor,
+            "info": self.info,
+        }
+        arrays["header"] = np.array(json.dumps(header))
+        with atomic_path(path, suffix=".npz") as tmp, open(tmp, "wb") as fh:
+            np.savez_compressed(fh, **arrays)
+
+    @classmethod
+    def load(cls, path: str | Path) -> StepModel:
+        """Read a model written by :meth:`save`; any problem raises ``ModelFileError``."""
+        path = Path(path)
+        if not path.is_file():
+            raise ModelFileError(f"{path}: no such step-model file")
+        try:
+            with np.load(path, allow_pickle=False) as zf:
+                if "header" not in zf.files:
+                    raise ModelFileError(f"{path}: not an mjwalk step-model file (no header)")
+                header = json.loads(str(zf["header"]))
+                data = {k: zf[k] for k in zf.files}
+        except ModelFileError:
+            raise
+        except (OSError, ValueError, KeyError, zipfile.BadZipFile, EOFError, TypeError) as exc:
+            raise ModelFileError(f"{path}: not a readable mjwalk step-model file ({exc})") from exc
+        if not isinstance(header, dict) or header.get("format") != MODEL_FORMAT:
+            fmt = header.get("format") if isinstance(header, dict) else None
+            raise ModelFileError(f"{path}: format {fmt!r} is not {MODEL_FORMAT!r}")
+        if header.get("version") != MODEL_VERSION:
+            raise ModelFileError(
+                f"{path}: step-model version {header.get('version')!r} unsupported "
+                f"(this mjwalk reads version {MODEL_VERSION})"
+            )
+        try:
+            feats = StepFeatures.from_arrays(data, "feat_")
+            model = cls(
+                features=feats,
+                kde_data={s: np.asarray(data[f"kde_{s}"], dtype=float) for s in _SIDES},
+                kde_factor={s: float(header["kde_factor"][s]) for s in _SIDES},
+                gp={s: TransitionGP.from_arrays(data, f"gp_{s}_") for s in _SIDES},
+                info=dict(header.get("info", {})),
+            )
+            _check_shapes(model)
+        except ModelFileError:
+            raise
+        except (KeyError, TypeError, ValueError, np.linalg.LinAlgError) as exc:
+            raise ModelFileError(
+                f"{path}: step-model file is incomplete or corrupt ({exc!r})"
+            ) from exc
+        return model
+
+
+def _check_shapes(model: StepModel) -> None:
+    d = model.n_dims
+    f = model.features
+    if (
+        f.components.ndim != 2
+        or f.z_scale.shape != (d,)
+        or f.raw_mean.shape != (f.components.shape[1],)
+    ):
+        raise ValueError("feature arrays have inconsistent shapes")
+    for s in _SIDES:
+        g = model.gp[s]
+        m = g.inducing.shape[0]
+        if (
+            g.inducing.shape != (m, d)
+            or g.alpha.shape != (m, d)
+            or g.w.shape != (m, m)
+            or g.res_chol.shape != (d, d)
+            or model.kde_data[s].shape[0] != d
+        ):
+            raise ValueError(f"{s} GP/KDE arrays have inconsistent shapes")
+        arrs = (g.inducing, g.alpha, g.w, g.res_chol, model.kde_data[s])
+        if not all(np.all(np.isfinite(a)) for a in arrs):
+            raise ValueError(f"{s} GP/KDE arrays hold non-finite values")
+
+
+def concat_batches(batches: Sequence[StepBatch]) -> StepBatch:
+    """Concatenate step batches row-wise."""
+    return StepBatch(
+        **{
+            k: np.concatenate([getattr(b, k) for b in batches])
+            for k in (
+                "side",
+                "features",
+                "landmarks",
+                "yaw_landmarks",
+                "duration",
+                "footprint",
+                "stance",
+            )
+        }
+    )
+
+
+def _other(side: str) -> str:
+    return "right" if side == "left" else "left"
+
+
+def _log(progress: bool, msg: str) -> None:
+    if progress:
+        print(f"[mjwalk] {msg}", file=sys.stderr, flush=True)
