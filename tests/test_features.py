@@ -34,7 +34,7 @@ def make_steps(
             dur = 0.45 + 0.2 * u_dur
             if i == 0:
                 length *= 0.8
-            k = int(round(dur * fps)) + 1
+            k = round(dur * fps) + 1
             u = np.linspace(0.0, 1.0, k)
             sgn = -1.0 if side == "left" else 1.0  # pelvis sways over the stance foot
             amp = 0.025 + 0.01 * rng.random()

@@ -162,7 +162,7 @@ class StepBatch:
 
     def n_samples(self, i: int, fps: float = FPS) -> int:
         """Number of samples K = round(duration·fps) + 1 of step ``i`` at ``fps``."""
-        return int(round(float(self.duration[i]) * fps)) + 1
+        return round(float(self.duration[i]) * fps) + 1
 
     def trajectory(self, i: int, fps: float = FPS) -> tuple[np.ndarray, np.ndarray]:
         """Pelvis (K, 2) metres and yaw (K,) radians of step ``i`` at ``fps`` (local frame).
@@ -214,7 +214,7 @@ class StepBatch:
 
 
 def batch_from_raw(raw: np.ndarray, side, features: np.ndarray) -> StepBatch:
-    """Build a :class:`StepBatch` from (n, N_RAW) raw features (durations clipped >= MIN_DURATION)."""
+    """StepBatch from (n, N_RAW) raw features; durations are clipped to >= MIN_DURATION."""
     n = raw.shape[0]
     landmarks = np.zeros((n, N_LANDMARKS, 2))
     landmarks[:, 1:] = raw[:, _SL_XY].reshape(n, N_LANDMARKS - 1, 2)

@@ -234,7 +234,7 @@ def first_step_indices(steps: Sequence[Step]) -> np.ndarray:
 
 
 def transition_pairs(steps: Sequence[Step]) -> tuple[np.ndarray, np.ndarray]:
-    """(prev, next) index arrays of captured transitions: same take, index i -> i+1, sides alternate."""
+    """(prev, next) indices of captured transitions: same take, index i -> i+1, sides alternate."""
     lookup = {(s.take, s.index): i for i, s in enumerate(steps)}
     prev, nxt = [], []
     for i, s in enumerate(steps):
