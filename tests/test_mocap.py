@@ -1,4 +1,4 @@
-"""Tests of mjwalk.mocap: BVH and ASF/AMC import (hand-written files with known answers, real data)."""
+"""Tests of mjwalk.mocap: BVH and ASF/AMC import (toy files with known answers, real data)."""
 
 from __future__ import annotations
 
@@ -211,6 +211,14 @@ def test_bvh_too_many_frames_and_bad_number(tmp_path):
     frames[2] = frames[2].replace("90", "9O", 1)
     n_hier = TOY_HIERARCHY.count("\n")
     _raises(write_bvh(tmp_path, frames), rf"line {n_hier + 2 + 3}: .*'9O' is not a number")
+
+
+def test_bvh_non_finite_and_empty(tmp_path):
+    frames = list(TOY_FRAMES)
+    frames[1] = frames[1].replace("90", "nan", 1)
+    n_hier = TOY_HIERARCHY.count("\n")
+    _raises(write_bvh(tmp_path, frames), rf"line {n_hier + 2 + 2}: frame 2, value 2 is nan")
+    _raises(write_bvh(tmp_path, []), "Frames: 0")
 
 
 def test_bvh_missing_joint(tmp_path):

@@ -265,12 +265,20 @@ def _motion_data(lines, start: int, n_frames: int, n_channels: int, path) -> np.
             f"({len(rows)} in all)"
         )
     try:
-        return np.array(rows, dtype=float).reshape(n_frames, n_channels)
+        motion = np.array(rows, dtype=float).reshape(n_frames, n_channels)
     except ValueError:
         for parts, ln in zip(rows, linenos, strict=True):
             for tok in parts:
                 _float(tok, path, ln, "motion value")
         raise  # pragma: no cover - unreachable: some token must have failed
+    bad = ~np.isfinite(motion)
+    if bad.any():
+        k, c = np.argwhere(bad)[0]
+        raise CaptureError(
+            f"{path}, line {linenos[k]}: frame {k + 1}, value {c + 1} is {motion[k, c]} "
+            f"(not finite)"
+        )
+    return motion
 
 
 def bvh_forward_kinematics(bvh: Bvh) -> np.ndarray:
