@@ -112,6 +112,8 @@ def test_presets_by_name():
     assert get_skeleton(TOY) is TOY
     with pytest.raises(CaptureError, match="nosuch"):
         get_skeleton("nosuch")
+    with pytest.raises(CaptureError, match="up axis must be"):
+        SkeletonMap("bad", "a", "b", "c", "d", "e", "f", "g", up="x")
 
 
 # ---------------------------------------------------------------- BVH forward kinematics

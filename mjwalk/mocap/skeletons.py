@@ -48,6 +48,16 @@ class SkeletonMap:
     up: Literal["y", "z"] = "y"
     asf_length: float | None = None
 
+    def __post_init__(self) -> None:
+        if self.up not in ("y", "z"):
+            raise CaptureError(
+                f"skeleton {self.name!r}: up axis must be 'y' or 'z', got {self.up!r}"
+            )
+        if not self.scale > 0:
+            raise CaptureError(
+                f"skeleton {self.name!r}: scale must be positive, got {self.scale!r}"
+            )
+
     def required_joints(self) -> dict[str, str]:
         """Role -> joint name for every joint the importers look up."""
         return {
