@@ -131,12 +131,12 @@ def test_bad_files_raise_model_file_error(model, tmp_path):
 
     trunc = tmp_path / "trunc.npz"
     trunc.write_bytes(raw[: len(raw) // 2])
-    with pytest.raises(ModelFileError, match="trunc.npz"):
+    with pytest.raises(ModelFileError, match=r"trunc\.npz"):
         StepModel.load(trunc)
 
     garbage = tmp_path / "garbage.npz"
     garbage.write_bytes(b"not a zip at all" * 10)
-    with pytest.raises(ModelFileError, match="garbage.npz"):
+    with pytest.raises(ModelFileError, match=r"garbage\.npz"):
         StepModel.load(garbage)
 
     with pytest.raises(ModelFileError, match="no such"):
@@ -169,7 +169,7 @@ def test_bad_files_raise_model_file_error(model, tmp_path):
 
     shape = tmp_path / "shape.npz"
     _rewrite(good, shape, lambda d: d.__setitem__("gp_right_w", np.zeros((3, 3))))
-    with pytest.raises(ModelFileError, match="shape.npz.*inconsistent shapes"):
+    with pytest.raises(ModelFileError, match=r"shape\.npz.*inconsistent shapes"):
         StepModel.load(shape)
 
     noheader = tmp_path / "noheader.npz"
@@ -185,7 +185,7 @@ def test_bad_files_raise_model_file_error(model, tmp_path):
             if item.filename == "feat_components.npy":
                 data = data[:20]
             zout.writestr(item, data)
-    with pytest.raises(ModelFileError, match="badmember.npz"):
+    with pytest.raises(ModelFileError, match=r"badmember\.npz"):
         StepModel.load(bad_member)
 
 

@@ -1,0 +1,115 @@
+"""The default step model: trained on first use from the virtual-subject corpus, then cached.
+
+The cache file lives in ``$MJWALK_CACHE`` (if set) or ``~/.cache/mjwalk/``; its name carries the
+step-model file version and the corpus generator version, so a new mjwalk that changes either
+builds a fresh model instead of reading a stale one. A missing or unreadable cache file is
+rebuilt (and rewritten atomically).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+from collections.abc import Sequence
+from pathlib import Path
+
+from mjwalk.errors import MjwalkError, ModelFileError
+from mjwalk.gait.model import MODEL_VERSION, StepModel
+
+#: Corpus generation used for the default model (agethen2018: 12 subjects).
+DEFAULT_SUBJECTS = 12
+DEFAULT_SEED = 0
+
+_MEMO: dict[Path, StepModel] = {}
+
+
+def corpus_version() -> str:
+    """Version string of the corpus generator (``mjwalk.gait.corpus.CORPUS_VERSION``)."""
+    from mjwalk.gait import corpus
+
+    return str(getattr(corpus, "CORPUS_VERSION", "0"))
+
+
+def cache_dir() -> Path:
+    """``$MJWALK_CACHE`` or ``~/.cache/mjwalk``."""
+    env = os.environ.get("MJWALK_CACHE")
+    return Path(env).expanduser() if env else Path.home() / ".cache" / "mjwalk"
+
+
+def default_model_path() -> Path:
+    """Path of the cached default model (name includes model and corpus versions)."""
+    return cache_dir() / (
+        f"stepmodel-v{MODEL_VERSION}-corpus{corpus_version()}"
+        f"-s{DEFAULT_SUBJECTS}-seed{DEFAULT_SEED}.npz"
+    )
+
+
+def train_model(takes: Sequence, *, seed: int = 0, progress: bool = False, **fit_kwargs):
+    """Segment ``takes`` into steps and fit a :class:`StepModel`.
+
+    Returns:
+        (model, SegmentationSummary).
+    """
+    from mjwalk.gait.segment import segment_takes
+
+    t0 = time.perf_counter()
+    steps, summary = segment_takes(takes)
+    if progress:
+        print(
+            f"[mjwalk] segmented {len(takes)} takes into {len(steps)} steps "
+            f"({time.perf_counter() - t0:.1f} s)",
+            file=sys.stderr,
+            flush=True,
+        )
+    if len(steps) < 10:
+        raise MjwalkError(f"train_model: only {len(steps)} steps found in {len(takes)} takes")
+    model = StepModel.fit(steps, seed=seed, progress=progress, **fit_kwargs)
+    return model, summary
+
+
+def default_model(progress: bool = True) -> StepModel:
+    """The default :class:`StepModel`, loaded from the cache or built and cached on first use.
+
+    Building generates the virtual corpus (``generate_corpus(12, seed=0)``), segments it and
+    fits the model (about a minute); progress goes to stderr.
+    """
+    path = default_model_path()
+    if path in _MEMO:
+        return _MEMO[path]
+    model = None
+    if path.is_file():
+        try:
+            model = StepModel.load(path)
+        except ModelFileError as exc:
+            if progress:
+                print(f"[mjwalk] rebuilding default model: {exc}", file=sys.stderr, flush=True)
+    if model is None:
+        from mjwalk.gait.corpus import generate_corpus
+
+        t0 = time.perf_counter()
+        if progress:
+            print(
+                f"[mjwalk] building the default step model ({DEFAULT_SUBJECTS} virtual "
+                f"subjects) -> {path}",
+                file=sys.stderr,
+                flush=True,
+            )
+        takes = generate_corpus(n_subjects=DEFAULT_SUBJECTS, seed=DEFAULT_SEED)
+        if progress:
+            print(
+                f"[mjwalk] corpus: {len(takes)} takes ({time.perf_counter() - t0:.1f} s)",
+                file=sys.stderr,
+                flush=True,
+            )
+        model, _ = train_model(takes, seed=DEFAULT_SEED, progress=progress)
+        model.info["corpus_version"] = corpus_version()
+        model.save(path)
+        if progress:
+            print(
+                f"[mjwalk] default model ready ({time.perf_counter() - t0:.1f} s)",
+                file=sys.stderr,
+                flush=True,
+            )
+    _MEMO[path] = model
+    return model

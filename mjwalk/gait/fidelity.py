@@ -1,0 +1,442 @@
+"""Fidelity of a :class:`StepModel` against captured walking, plus train/validate entry points.
+
+Two comparisons (agethen2018 §5.2 reports path-length medians and IQRs the same way):
+
+**Step statistics.** ``n_chains`` chains of ``chain_length`` steps are sampled from the model
+(a KDE starter, then one GP successor after another) and compared with every captured step by
+the two-sample Kolmogorov-Smirnov statistic (``scipy.stats.ks_2samp``) on
+
+* step length: straight-line pelvis displacement over the step (m);
+* step duration (s);
+* lateral sway amplitude: half the peak-to-peak signed distance of the pelvis path from the
+  step's chord (start -> end), m (:func:`sway_amplitude`);
+* heading change: pelvis yaw at the end of the step relative to its start (rad).
+
+**Straight walks.** Every captured take whose steps turn the heading by less than
+``straight_deg`` in total is a straight walk; its distance D is the distance between the pelvis
+at the start of its first and the end of its last (consecutive) step, its time the sum of the
+step durations and its path length the pelvis path length (each step sampled at 25 instants,
+as for the model). The model walks each D with a greedy steering rule: start with the best of
+10 KDE starters, then repeatedly draw 10 GP successors and take the one whose end heading
+deviates least from the bearing (from its end point) to the goal at distance D straight
+ahead; stop before a step that would not bring the walker closer to the goal (so the walk ends
+within about half a step of it). Medians and IQRs of time and path length are reported,
+capture beside model.
+"""
+
+from __future__ import annotations
+
+import glob as _glob
+import itertools
+import json
+import sys
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+from scipy.stats import ks_2samp
+
+from mjwalk._io import atomic_path
+from mjwalk.errors import MjwalkError
+from mjwalk.gait.features import StepBatch
+from mjwalk.gait.model import StepModel, concat_batches
+from mjwalk.gait.step import Step
+
+#: Samples per step used for sway and path length (model and capture alike).
+PATH_SAMPLES = 25
+METRICS = ("length", "duration", "sway", "heading")
+_UNITS = {"length": "m", "duration": "s", "sway": "m", "heading": "rad"}
+
+
+# --------------------------------------------------------------------------------------------
+# Per-step metrics
+# --------------------------------------------------------------------------------------------
+
+
+def sway_amplitude(pelvis: np.ndarray) -> np.ndarray:
+    """Half peak-to-peak lateral pelvis excursion from the chord, metres.
+
+    ``pelvis``: (n, m, 2) or (m, 2) paths (metres, any planar frame). The lateral coordinate is
+    the signed distance from the straight line through the first and the last sample.
+    """
+    p = np.asarray(pelvis, dtype=float)
+    single = p.ndim == 2
+    p = np.atleast_3d(p) if not single else p[None]
+    chord = p[:, -1] - p[:, 0]
+    norm = np.maximum(np.hypot(chord[:, 0], chord[:, 1]), 1e-12)
+    rel = p - p[:, :1]
+    lat = (chord[:, None, 0] * rel[..., 1] - chord[:, None, 1] * rel[..., 0]) / norm[:, None]
+    amp = 0.5 * (lat.max(axis=1) - lat.min(axis=1))
+    return amp[0] if single else amp
+
+
+def _resample_step(step: Step, m: int = PATH_SAMPLES) -> np.ndarray:
+    t = np.arange(step.n_samples) / step.fps
+    tm = np.linspace(0.0, t[-1], m)
+    return np.column_stack(
+        [np.interp(tm, t, step.pelvis[:, 0]), np.interp(tm, t, step.pelvis[:, 1])]
+    )
+
+
+def capture_step_metrics(steps: Sequence[Step]) -> dict[str, np.ndarray]:
+    """Per-step length (m), duration (s), sway (m) and heading change (rad) of captured steps."""
+    paths = np.stack([_resample_step(s) for s in steps]) if steps else np.zeros((0, 2, 2))
+    return {
+        "length": np.array([s.length for s in steps]),
+        "duration": np.array([s.duration for s in steps]),
+        "sway": sway_amplitude(paths) if len(steps) else np.zeros(0),
+        "heading": np.array([s.end_yaw for s in steps]),
+    }
+
+
+def batch_step_metrics(batch: StepBatch) -> dict[str, np.ndarray]:
+    """The same metrics for decoded model steps."""
+    pelvis, _ = batch.resample(PATH_SAMPLES)
+    return {
+        "length": batch.length,
+        "duration": batch.duration.copy(),
+        "sway": sway_amplitude(pelvis),
+        "heading": batch.end_yaw.copy(),
+    }
+
+
+def _path_length(pelvis: np.ndarray) -> np.ndarray:
+    """(n, m, 2) -> (n,) polyline lengths."""
+    return np.linalg.norm(np.diff(pelvis, axis=1), axis=2).sum(axis=1)
+
+
+# --------------------------------------------------------------------------------------------
+# Straight walks
+# --------------------------------------------------------------------------------------------
+
+
+def _compose(pos, phi, local_xy, local_yaw):
+    """Append steps given in local frames (x right, y forward) to world states (heading phi
+    measured CCW from +y)."""
+    c, s = np.cos(phi), np.sin(phi)
+    x, y = local_xy[..., 0], local_xy[..., 1]
+    world = pos + np.stack([c * x - s * y, s * x + c * y], axis=-1)
+    return world, phi + local_yaw
+
+
+def captured_straight_walks(
+    steps: Sequence[Step], straight_deg: float = 20.0
+) -> list[dict[str, float]]:
+    """Straight walks of the capture: per take, its longest run of consecutive steps, kept when
+    its total heading change is below ``straight_deg``; distance, time, path length each."""
+    by_take: dict[str, list[Step]] = {}
+    for s in steps:
+        by_take.setdefault(s.take, []).append(s)
+    walks = []
+    for take_steps in by_take.values():
+        take_steps = sorted(take_steps, key=lambda s: s.index)
+        runs, cur = [], [take_steps[0]]
+        for a, b in itertools.pairwise(take_steps):
+            if b.index == a.index + 1 and b.side != a.side:
+                cur.append(b)
+            else:
+                runs.append(cur)
+                cur = [b]
+        runs.append(cur)
+        run = max(runs, key=len)
+        if len(run) < 2:
+            continue
+        heading = float(sum(s.end_yaw for s in run))
+        if abs(heading) > np.radians(straight_deg):
+            continue
+        pos, phi = np.zeros(2), 0.0
+        for s in run:
+            pos, phi = _compose(pos, phi, s.pelvis[-1], s.end_yaw)
+        paths = np.stack([_resample_step(s) for s in run])
+        walks.append(
+            {
+                "distance": float(np.hypot(*pos)),
+                "time": float(sum(s.duration for s in run)),
+                "path_length": float(_path_length(paths).sum()),
+                "n_steps": len(run),
+            }
+        )
+    return walks
+
+
+def model_straight_walks(
+    model: StepModel,
+    distances: np.ndarray,
+    rng: np.random.Generator,
+    *,
+    n_candidates: int = 10,
+) -> list[dict[str, float]]:
+    """Walk the model straight to a goal at each distance (m) with the greedy steering rule of
+    the module docstring; all walks advance together (vectorized)."""
+    distances = np.asarray(distances, dtype=float)
+    w = len(distances)
+    goal = np.column_stack([np.zeros(w), distances])
+    pos = np.zeros((w, 2))
+    phi = np.zeros(w)
+    time_ = np.zeros(w)
+    plen = np.zeros(w)
+    n_steps = np.zeros(w, dtype=int)
+    active = np.ones(w, dtype=bool)
+    current: StepBatch | None = None
+    max_steps = int(np.ceil(distances.max() / 0.2)) + 10 if w else 0
+    for it in range(max_steps):
+        idx = np.flatnonzero(active)
+        if idx.size == 0:
+            break
+        if it == 0:
+            cand = model.sample_first(n_candidates * w, rng)
+            order = rng.permuted(np.arange(n_candidates * w)).reshape(w, n_candidates)
+            cand = cand.take(order.ravel())
+        else:
+            cand = model.sample_next(current, n_candidates, rng)
+        k = len(idx)
+        end, phi_new = _compose(
+            pos[idx, None, :],
+            phi[idx, None],
+            cand.end_xy.reshape(k, n_candidates, 2),
+            cand.end_yaw.reshape(k, n_candidates),
+        )
+        to_goal = goal[idx, None, :] - end
+        bearing = np.arctan2(-to_goal[..., 0], to_goal[..., 1])
+        err = np.abs(np.angle(np.exp(1j * (phi_new - bearing))))
+        best = np.argmin(err, axis=1)
+        rows = np.arange(k) * n_candidates + best
+        d_now = np.hypot(*(goal[idx] - pos[idx]).T)
+        d_new = np.hypot(*to_goal[np.arange(k), best].T)
+        go = (d_new < d_now) | (n_steps[idx] == 0)
+        chosen = cand.take(rows)
+        pelvis, _ = chosen.resample(PATH_SAMPLES)
+        g = idx[go]
+        pos[g] = end[np.arange(k), best][go]
+        phi[g] = phi_new[np.arange(k), best][go]
+        time_[g] += chosen.duration[go]
+        plen[g] += _path_length(pelvis)[go]
+        n_steps[g] += 1
+        active[idx[~go]] = False
+        # keep the chosen steps of the walks still going as predecessors (same order as idx)
+        current = chosen.take(np.flatnonzero(go))
+        active[idx[go]] = True
+    return [
+        {
+            "distance": float(distances[i]),
+            "time": float(time_[i]),
+            "path_length": float(plen[i]),
+            "n_steps": int(n_steps[i]),
+            "end_error": float(np.hypot(*(goal[i] - pos[i]))),
+        }
+        for i in range(w)
+    ]
+
+
+# --------------------------------------------------------------------------------------------
+# Report
+# --------------------------------------------------------------------------------------------
+
+
+def _describe(x: np.ndarray) -> dict[str, float]:
+    x = np.asarray(x, dtype=float)
+    if x.size == 0:
+        return {"n": 0}
+    q1, med, q3 = np.percentile(x, [25, 50, 75])
+    return {
+        "n": int(x.size),
+        "mean": float(x.mean()),
+        "sd": float(x.std(ddof=1)) if x.size > 1 else 0.0,
+        "median": float(med),
+        "iqr": float(q3 - q1),
+    }
+
+
+def fidelity_from_steps(
+    model: StepModel,
+    steps: Sequence[Step],
+    rng: np.random.Generator,
+    *,
+    n_chains: int = 400,
+    chain_length: int = 8,
+    straight_deg: float = 20.0,
+) -> dict:
+    """Fidelity report against already segmented captured ``steps`` (see module docstring)."""
+    if len(steps) == 0:
+        raise MjwalkError("fidelity: no captured steps to compare against")
+    cap = capture_step_metrics(steps)
+    chains = [model.sample_chain(chain_length, rng) for _ in range(n_chains)]
+    mod = batch_step_metrics(concat_batches(chains))
+    step_report = {}
+    for k in METRICS:
+        ks = ks_2samp(cap[k], mod[k])
+        step_report[k] = {
+            "unit": _UNITS[k],
+            "ks": float(ks.statistic),
+            "p": float(ks.pvalue),
+            "capture": _describe(cap[k]),
+            "model": _describe(mod[k]),
+        }
+    cw = captured_straight_walks(steps, straight_deg)
+    walks: dict = {"n": len(cw), "straight_deg": straight_deg}
+    if cw:
+        mw = model_straight_walks(model, np.array([w["distance"] for w in cw]), rng)
+        for key in ("distance", "time", "path_length"):
+            walks[key] = {
+                "capture": _describe([w[key] for w in cw]),
+                "model": _describe([w[key] for w in mw]),
+            }
+        walks["model_end_error"] = _describe([w["end_error"] for w in mw])
+        walks["n_steps"] = {
+            "capture": _describe([w["n_steps"] for w in cw]),
+            "model": _describe([w["n_steps"] for w in mw]),
+        }
+    return {
+        "model": model.summary(),
+        "n_capture_steps": len(steps),
+        "n_model_steps": n_chains * chain_length,
+        "steps": step_report,
+        "straight_walks": walks,
+    }
+
+
+def fidelity_report(
+    model: StepModel,
+    takes,
+    rng: np.random.Generator,
+    *,
+    n_chains: int = 400,
+    chain_length: int = 8,
+    straight_deg: float = 20.0,
+) -> dict:
+    """Compare step chains of ``model`` with the captured ``takes`` (segmented here).
+
+    Returns a JSON-serializable dict: per-step KS statistics and summaries (``steps``) and
+    straight-walk time / path-length medians and IQRs (``straight_walks``). The caller writes
+    it (atomically) if wanted; :func:`format_fidelity_table` renders it.
+    """
+    from mjwalk.gait.segment import segment_takes
+
+    steps, summary = segment_takes(takes)
+    report = fidelity_from_steps(
+        model, steps, rng, n_chains=n_chains, chain_length=chain_length, straight_deg=straight_deg
+    )
+    report["segmentation"] = str(summary)
+    return report
+
+
+def format_fidelity_table(report: dict) -> str:
+    """Plain-text table of a :func:`fidelity_report`."""
+    lines = [
+        f"steps: capture n={report['n_capture_steps']}, model n={report['n_model_steps']}",
+        f"{'metric':<16}{'KS':>7}   {'capture mean±sd':>20}   {'model mean±sd':>20}",
+    ]
+    for k, r in report["steps"].items():
+        c, m = r["capture"], r["model"]
+        lines.append(
+            f"{k + ' [' + r['unit'] + ']':<16}{r['ks']:>7.3f}   "
+            f"{c['mean']:>10.3f} ± {c['sd']:<7.3f}   {m['mean']:>10.3f} ± {m['sd']:<7.3f}"
+        )
+    w = report["straight_walks"]
+    lines.append(f"straight walks: n={w['n']} (heading change < {w['straight_deg']}°)")
+    if w["n"]:
+        lines.append(f"{'':<16}{'capture median (IQR)':>24}   {'model median (IQR)':>22}")
+        for key, unit in (("distance", "m"), ("time", "s"), ("path_length", "m")):
+            c, m = w[key]["capture"], w[key]["model"]
+            lines.append(
+                f"{key + ' [' + unit + ']':<16}{c['median']:>14.3f} ({c['iqr']:.3f})   "
+                f"{m['median']:>12.3f} ({m['iqr']:.3f})"
+            )
+        e = w["model_end_error"]
+        lines.append(f"model end error to goal [m]: median {e['median']:.3f}, IQR {e['iqr']:.3f}")
+    return "\n".join(lines)
+
+
+# --------------------------------------------------------------------------------------------
+# Entry points for the CLI
+# --------------------------------------------------------------------------------------------
+
+
+def load_capture(
+    bvh: str | None = None,
+    amc: str | None = None,
+    asf: str | None = None,
+    *,
+    skeleton: str | None = None,
+) -> list:
+    """Takes from a BVH glob and/or an AMC glob with its ASF skeleton; sorted by file name."""
+    from mjwalk.mocap import load_amc, load_bvh
+
+    takes = []
+    if bvh:
+        files = sorted(_glob.glob(str(bvh)))
+        if not files:
+            raise MjwalkError(f"no BVH files match {bvh!r}")
+        takes += [load_bvh(f, skeleton=skeleton or "bandai") for f in files]
+    if amc:
+        if not asf:
+            raise MjwalkError(f"AMC glob {amc!r} given without its ASF skeleton file")
+        files = sorted(_glob.glob(str(amc)))
+        if not files:
+            raise MjwalkError(f"no AMC files match {amc!r}")
+        takes += [load_amc(f, asf, skeleton=skeleton or "cmu") for f in files]
+    return takes
+
+
+def train_main(
+    out: str | Path,
+    *,
+    bvh: str | None = None,
+    amc: str | None = None,
+    asf: str | None = None,
+    virtual: int | None = None,
+    seed: int = 0,
+    skeleton: str | None = None,
+    progress: bool = True,
+) -> dict:
+    """Train a step model and save it to ``out``; returns its summary.
+
+    Data: a BVH glob, an AMC glob (+ ``asf``), and/or ``virtual`` N virtual subjects
+    (``generate_corpus(N, seed)``); at least one is required.
+    """
+    from mjwalk.gait.default import train_model
+
+    takes = load_capture(bvh, amc, asf, skeleton=skeleton)
+    if virtual:
+        from mjwalk.gait.corpus import generate_corpus
+
+        takes += generate_corpus(n_subjects=int(virtual), seed=seed)
+    if not takes:
+        raise MjwalkError("train: give a BVH glob, an AMC glob with its ASF, or virtual N")
+    if progress:
+        print(f"[mjwalk] training on {len(takes)} takes", file=sys.stderr, flush=True)
+    model, seg = train_model(takes, seed=seed, progress=progress)
+    model.save(out)
+    summary = model.summary()
+    summary["segmentation"] = str(seg)
+    if progress:
+        print(f"[mjwalk] {seg}\n[mjwalk] model written to {out}", file=sys.stderr, flush=True)
+    return summary
+
+
+def validate_main(
+    model_path: str | Path | None,
+    against: str,
+    json_path: str | Path | None = None,
+    *,
+    amc_asf: str | None = None,
+    seed: int = 0,
+    n_chains: int = 400,
+    skeleton: str | None = None,
+) -> dict:
+    """Fidelity of the model at ``model_path`` (None: the default model) against the takes
+    matching the glob ``against`` (``.bvh``; ``.amc`` needs ``amc_asf``). Prints the table to
+    stdout, writes the JSON report to ``json_path`` atomically when given, returns the report."""
+    from mjwalk.gait.default import default_model
+
+    model = default_model() if model_path is None else StepModel.load(model_path)
+    if str(against).lower().endswith(".amc"):
+        takes = load_capture(amc=against, asf=amc_asf, skeleton=skeleton)
+    else:
+        takes = load_capture(bvh=against, skeleton=skeleton)
+    report = fidelity_report(model, takes, np.random.default_rng(seed), n_chains=n_chains)
+    print(format_fidelity_table(report))
+    if json_path is not None:
+        with atomic_path(json_path, suffix=".json") as tmp:
+            tmp.write_text(json.dumps(report, indent=2))
+    return report
