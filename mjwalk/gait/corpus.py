@@ -1,0 +1,568 @@
+"""Virtual-subject corpus: deterministic synthetic capture following agethen2018 §3.2.
+
+The product ships no motion capture, so the step model is trained on takes generated here.
+Each virtual subject (:class:`SubjectParams`, drawn by :func:`sample_subject`) performs the
+paper's capture protocol:
+
+1. ``free``: walking freely in the 3.3 m x 3.2 m tracking space with varying speed and
+   curvature, including side steps and on-the-spot turning steps;
+2. ``straight``: straight lines of 3 m and 4 m, starting and ending at rest;
+3. ``pole``: walking towards a pole, passing it, turning by 45, 90, 135 or 180 degrees and
+   walking on (path lengths 3 m and 4 m).
+
+**Step process.** A walk is a sequence of footsteps around a *walking line*: the centre point
+``c_k`` advances by a step length along the body heading ``theta_k`` (plus a lateral part for
+side steps) and the landing foot is placed half a step width to its side of ``c_k``, rotated
+outward by the toe-out angle. Step lengths and durations follow a per-bout speed factor
+(length ~ f^0.6, duration ~ f^-0.4) with step-to-step noise; heading changes are spread over
+the steps of a turn, favouring one foot according to the subject's turning strategy. Every bout
+starts standing (feet side by side), begins with a shorter gait-initiation step and ends with a
+closing step that brings the feet side by side again.
+
+**Contact timing.** Step ``k`` lasts ``T_k`` from the heel strike of the previous foot to the
+heel strike of its swing foot: a double-support phase (``double_support * T_k``) then the swing.
+During stance, ankle (0.08 m) and toe (0.02 m) are exactly stationary; during swing the foot
+travels along a smooth arc (peak clearance ``clearance``) with a cycloid-like progress profile.
+The true key frames are stored in ``Take.meta`` (``heel_strikes`` / ``toe_offs``, side ->
+frame array; a heel strike is the first planted frame, a toe-off the first moving frame).
+
+**Pelvis.** The zero-moment point ``p(t)`` is piecewise linear: under the stance foot during
+single support (rolling from heel to forefoot, laterally ``zmp_offset`` from the walking line),
+moving between the feet during double support, midway between them when standing. The
+horizontal pelvis ``x(t)`` solves the linear inverted pendulum ``x'' = g/z0 (x - p)`` as a
+boundary-value problem (at rest over ``p`` at both ends) on the 120 Hz grid: one tridiagonal
+solve per take (``scipy.linalg.solve_banded``), which is the unique bounded solution and gives
+the lateral sway towards the stance foot. The pelvis height bobs by ``bob`` (high in single
+support, low in double support); the pelvis yaw follows the walking heading plus the
+transverse pelvic rotation (``pelvis_rotation``, extreme at heel strikes).
+
+All outputs: 120 Hz, metres, z up, yaw radians CCW from +x (world frame).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+from scipy.linalg import solve_banded
+from scipy.ndimage import gaussian_filter1d
+
+from mjwalk.errors import MjwalkError
+from mjwalk.mocap.take import TAKE_FPS, Take
+
+G = 9.81
+#: Ankle and toe (ball of the foot) heights above the floor when the foot is planted, metres.
+ANKLE_HEIGHT = 0.08
+TOE_HEIGHT = 0.02
+#: Tracking space of the paper's free-walking scenario (agethen2018 §3.2), metres.
+AREA = (3.3, 3.2)
+#: Pole-protocol turning angles (degrees) and path lengths (metres), agethen2018 §3.2.
+POLE_ANGLES = (45.0, 90.0, 135.0, 180.0)
+LINE_LENGTHS = (3.0, 4.0)
+
+# ---------------------------------------------------------------------------------------------
+# Calibration figures (NOT data): measured with ``mjwalk.gait.segment`` on
+# ../shared/data/bandai-walk (Bandai Namco Research Motion Dataset 2, 354 clips, CC BY-NC 4.0,
+# Kobayashi et al. 2023, arXiv:2306.08861), all steps except gait initiations, by
+# ``python benchmarks/bench_corpus.py`` (which prints them beside the virtual corpus).
+# Per quantity: (median, 25th percentile, 75th percentile, mean, standard deviation).
+# "length": pelvis displacement over the step (m); "duration": heel strike to heel strike (s);
+# "width": lateral ankle distance across the pelvis chord (m); "sway": largest pelvis distance
+# from the step's chord (m); "yaw": pelvis yaw change over the step (deg; +-12 deg by side is the
+# transverse pelvic rotation); "speed": length / duration (m/s).
+# ---------------------------------------------------------------------------------------------
+REAL_FIGURES: dict[str, dict[str, tuple[float, float, float, float, float]]] = {
+    "walk": {  # 1347 steps from the 206 `walk` clips
+        "length": (0.691, 0.647, 0.728, 0.691, 0.061),
+        "duration": (0.550, 0.533, 0.575, 0.556, 0.037),
+        "width": (0.065, 0.037, 0.103, 0.074, 0.048),
+        "sway": (0.028, 0.024, 0.032, 0.029, 0.006),
+        "yaw": (0.06, -12.37, 12.23, -0.07, 15.80),
+        "speed": (1.251, 1.164, 1.329, 1.247, 0.112),
+    },
+    "turn": {  # 2251 steps from the 502 `walk-turn-left/right` clips (one ~90 deg turn each)
+        "length": (0.649, 0.608, 0.685, 0.641, 0.066),
+        "duration": (0.567, 0.542, 0.592, 0.570, 0.039),
+        "width": (0.095, 0.043, 0.165, 0.111, 0.084),
+        "sway": (0.030, 0.022, 0.039, 0.032, 0.015),
+        "yaw": (0.96, -13.17, 13.95, 0.41, 22.58),
+        "speed": (1.137, 1.065, 1.207, 1.127, 0.118),
+    },
+}
+#: Transverse pelvic rotation amplitude (deg) implied by the +-12.3 deg per-step yaw change.
+REAL_PELVIS_ROTATION_DEG = 6.15
+
+
+@dataclass(frozen=True)
+class SubjectParams:
+    """One virtual subject: the figures that stay fixed across their takes.
+
+    Attributes:
+        subject: subject id.
+        stature: body height, metres (agethen2018: N(1.75, 0.04)).
+        pelvis_height: standing pelvis height, metres; also the pendulum height z0.
+        step_length: preferred pelvis advance per step, metres.
+        step_duration: preferred step duration (heel strike to heel strike), seconds.
+        step_width: lateral distance between the ankle centres, metres.
+        zmp_offset: lateral distance of the single-support ZMP from the walking line, metres.
+        double_support: double-support share of a step's duration.
+        pelvis_rotation: amplitude of the transverse pelvic rotation, radians.
+        toe_out: outward rotation of each foot from the heading, radians.
+        bob: vertical pelvis amplitude, metres.
+        clearance: peak lift of the swing foot, metres.
+        foot_length: ankle to toe (ball of foot) distance, metres.
+        length_cv, duration_cv: step-to-step (intra-subject) coefficient of variation.
+        speed_sd: standard deviation of the log speed factor between bouts.
+        turn_strategy: ``"step"`` (turn on the outside foot's steps) or ``"spin"`` (inside foot).
+        turn_share: share of a turn's heading change taken on the favoured foot's steps.
+        max_turn: largest heading change of one step, radians.
+    """
+
+    subject: int
+    stature: float
+    pelvis_height: float
+    step_length: float
+    step_duration: float
+    step_width: float
+    zmp_offset: float
+    double_support: float
+    pelvis_rotation: float
+    toe_out: float
+    bob: float
+    clearance: float
+    foot_length: float
+    length_cv: float
+    duration_cv: float
+    speed_sd: float
+    turn_strategy: str
+    turn_share: float
+    max_turn: float
+
+
+def sample_subject(rng: np.random.Generator, subject: int = 0) -> SubjectParams:
+    """Draw one virtual subject (inter-subject variance), calibrated on ``REAL_FIGURES``.
+
+    Lengths scale with stature (1.75 m reference); the spread of the preferred step length and
+    duration between subjects is about half the captured spread, the rest is intra-subject.
+    """
+    stature = float(rng.normal(1.75, 0.04))
+    scale = stature / 1.75
+    return SubjectParams(
+        subject=subject,
+        stature=stature,
+        pelvis_height=0.51 * stature,
+        step_length=float(0.685 * scale * np.exp(rng.normal(0.0, 0.035))),
+        step_duration=float(0.552 * np.exp(rng.normal(0.0, 0.03))),
+        step_width=float(np.clip(rng.normal(0.075, 0.015), 0.04, 0.13) * scale),
+        zmp_offset=float(np.clip(rng.normal(0.10, 0.012), 0.06, 0.14) * scale),
+        double_support=float(rng.uniform(0.16, 0.22)),
+        pelvis_rotation=float(np.radians(rng.normal(REAL_PELVIS_ROTATION_DEG, 1.0))),
+        toe_out=float(np.radians(rng.normal(6.0, 2.5))),
+        bob=float(rng.uniform(0.008, 0.016)),
+        clearance=float(rng.uniform(0.08, 0.12)),
+        foot_length=0.14 * scale,
+        length_cv=float(rng.uniform(0.035, 0.05)),
+        duration_cv=float(rng.uniform(0.025, 0.035)),
+        speed_sd=float(rng.uniform(0.03, 0.06)),
+        turn_strategy=str(rng.choice(["step", "spin"])),
+        turn_share=float(rng.uniform(0.5, 0.8)),
+        max_turn=float(np.radians(rng.uniform(35.0, 55.0))),
+    )
+
+
+# ---------------------------------------------------------------------------------------------
+# Step plans
+# ---------------------------------------------------------------------------------------------
+
+
+@dataclass
+class _Plan:
+    """Per-step arrays of one bout: forward/lateral advance of the walking line (m, in the
+    mid-step heading frame), heading change (rad), duration (s)."""
+
+    fwd: list[float]
+    lat: list[float]
+    dtheta: list[float]
+    dur: list[float]
+
+
+def _turn_profile(angle: float, p: SubjectParams, rng: np.random.Generator) -> np.ndarray:
+    """Heading changes (rad) spreading ``angle`` over enough steps, bell-shaped."""
+    m = max(1, math.ceil(abs(angle) / p.max_turn))
+    w = np.sin(np.linspace(0, np.pi, m + 2)[1:-1]) * rng.uniform(0.8, 1.2, m)
+    return angle * w / w.sum()
+
+
+def _speed(p: SubjectParams, f: np.ndarray, rng: np.random.Generator) -> tuple:
+    """Step lengths and durations for speed factors ``f`` with intra-subject noise."""
+    n = f.shape[0]
+    length = p.step_length * f**0.6 * (1 + p.length_cv * rng.standard_normal(n))
+    dur = p.step_duration * f**-0.4 * (1 + p.duration_cv * rng.standard_normal(n))
+    return length, dur
+
+
+def _bout_plan(
+    p: SubjectParams, rng: np.random.Generator, distance: float, turn: float = 0.0
+) -> _Plan:
+    """Straight walk of about ``distance`` metres, optionally turning by ``turn`` radians half
+    way (the pole protocol); begins with a gait initiation and ends with a closing step."""
+    f0 = float(np.exp(rng.normal(0.0, p.speed_sd)))
+    turns = _turn_profile(turn, p, rng) if turn else np.zeros(0)
+    n_mid = max(1, round((distance - 0.55 * p.step_length) / p.step_length))
+    n = n_mid + 2
+    f = f0 * np.exp(0.02 * rng.standard_normal(n))
+    length, dur = _speed(p, f, rng)
+    dtheta = np.radians(1.2) * rng.standard_normal(n)
+    if turns.size:
+        # Place the turn around the middle of the path; turning steps are shorter and slower.
+        k0 = int(np.clip(n // 2 - turns.size // 2, 1, max(1, n - 1 - turns.size)))
+        if k0 + turns.size > n - 1:
+            extra = k0 + turns.size - (n - 1)
+            length = np.concatenate([length, length[-1:].repeat(extra)])
+            dur = np.concatenate([dur, dur[-1:].repeat(extra)])
+            dtheta = np.concatenate([dtheta, np.zeros(extra)])
+            n += extra
+        sl = slice(k0, k0 + turns.size)
+        dtheta[sl] += turns
+        share = np.abs(turns) / p.max_turn
+        length[sl] *= 1 - 0.15 * share
+        dur[sl] *= 1 + 0.06 * share
+    # Gait initiation (first) and closing (last) steps.
+    length[0] *= rng.uniform(0.7, 0.85)
+    dur[0] *= rng.uniform(1.0, 1.1)
+    length[-1] *= rng.uniform(0.45, 0.6)
+    dtheta[0] = dtheta[-1] = 0.0
+    return _Plan(list(length), [0.0] * n, list(dtheta), list(dur))
+
+
+def _free_plan(
+    p: SubjectParams, rng: np.random.Generator, seconds: float, start: np.ndarray, theta: float
+) -> _Plan:
+    """Free walking in the tracking space for about ``seconds``: speed and curvature vary
+    (AR(1) per step), occasional side steps and on-the-spot turns; steers back to the centre
+    near the area's border."""
+    half = 0.5 * np.asarray(AREA) - 0.45
+    fwd, lat, dth, dur = [], [], [], []
+    c = np.array(start, float)
+    logf, kappa, t = 0.0, 0.0, 0.0
+    queue: list[tuple[float, float, float, float]] = []  # pending (fwd, lat, dtheta, dur)
+    k = 0
+    while t < seconds or queue:
+        if queue:
+            a, b, d, T = queue.pop(0)
+        elif k == 0:
+            a, b, d, T = 0.78 * p.step_length, 0.0, 0.0, 1.05 * p.step_duration
+        else:
+            u = rng.random()
+            if u < 0.015 and k > 2:  # a short run of side steps (even count), slow
+                side = rng.choice([-1.0, 1.0])
+                for _ in range(2 * int(rng.integers(1, 3))):
+                    queue.append(
+                        (0.05, side * rng.uniform(0.15, 0.25), 0.0, 1.15 * p.step_duration)
+                    )
+                continue
+            if u < 0.035 and k > 2:  # turning on the spot: short, slow steps
+                ang = rng.choice([-1.0, 1.0]) * np.radians(rng.uniform(90, 180))
+                for d_ in _turn_profile(ang, p, rng):
+                    queue.append(
+                        (rng.uniform(0.2, 0.4) * p.step_length, 0.0, d_, 1.12 * p.step_duration)
+                    )
+                continue
+            logf = 0.9 * logf + 0.04 * rng.standard_normal()
+            kappa = 0.8 * kappa + np.radians(4.0) * rng.standard_normal()
+            out = np.abs(c) > half
+            d = kappa
+            if out.any():
+                to_centre = math.atan2(-c[1], -c[0])
+                err = (to_centre - theta + np.pi) % (2 * np.pi) - np.pi
+                d += np.clip(0.35 * err, -0.7 * p.max_turn, 0.7 * p.max_turn)
+            f = np.exp(logf)
+            L, T = _speed(p, np.array([f]), rng)
+            a, b, T = float(L[0]) * (1 - 0.3 * abs(d) / p.max_turn), 0.0, float(T[0])
+        th = theta + 0.5 * d
+        c = (
+            c
+            + a * np.array([math.cos(th), math.sin(th)])
+            + b * np.array([math.sin(th), -math.cos(th)])
+        )
+        theta += d
+        fwd.append(a)
+        lat.append(b)
+        dth.append(d)
+        dur.append(T)
+        t += T
+        k += 1
+    fwd.append(0.5 * fwd[-1] if abs(lat[-1]) < 1e-9 else 0.0)  # closing step
+    lat.append(0.0)
+    dth.append(0.0)
+    dur.append(p.step_duration)
+    return _Plan(fwd, lat, dth, dur)
+
+
+# ---------------------------------------------------------------------------------------------
+# Plan -> take
+# ---------------------------------------------------------------------------------------------
+
+
+def _progress(u: np.ndarray) -> np.ndarray:
+    """Swing progress 0->1 with a cycloid-like speed profile that leaves and lands with a
+    quarter of the mean swing speed (a heel strike is an impact, not a soft landing)."""
+    beta = 0.75
+    return u - beta * np.sin(2 * np.pi * u) / (2 * np.pi)
+
+
+def _lipm(p_ref: np.ndarray, z0: float, fps: float) -> np.ndarray:
+    """Pelvis (N, 2) from the ZMP (N, 2) by the LIPM x'' = g/z0 (x - p) as a boundary-value
+    problem, x = p at both ends, central differences on the frame grid (tridiagonal solve)."""
+    n = p_ref.shape[0]
+    w2 = G / z0 / fps**2
+    ab = np.empty((3, n))
+    ab[0, :] = 1.0
+    ab[1, :] = -(2.0 + w2)
+    ab[2, :] = 1.0
+    ab[0, 1] = 0.0
+    ab[1, 0] = ab[1, -1] = 1.0
+    ab[2, -2] = 0.0
+    rhs = -w2 * p_ref
+    rhs[0], rhs[-1] = p_ref[0], p_ref[-1]
+    return solve_banded((1, 1), ab, rhs)
+
+
+def _render(
+    plan: _Plan,
+    p: SubjectParams,
+    rng: np.random.Generator,
+    name: str,
+    start: np.ndarray,
+    theta0: float,
+    meta: dict,
+    fps: float = TAKE_FPS,
+) -> Take:
+    """Turn a step plan into a 120 Hz take (feet, contact timing, LIPM pelvis)."""
+    n = len(plan.fwd)
+    fwd, lat = np.asarray(plan.fwd), np.asarray(plan.lat)
+    dth = np.asarray(plan.dtheta)
+    theta = theta0 + np.cumsum(dth)  # heading after each step
+    th_mid = theta - 0.5 * dth
+    adv = fwd[:, None] * np.stack([np.cos(th_mid), np.sin(th_mid)], 1) + lat[:, None] * np.stack(
+        [np.sin(th_mid), -np.cos(th_mid)], 1
+    )
+    centre = start + np.cumsum(adv, axis=0)  # walking-line point of each step's landing
+    first = int(rng.integers(2))  # 0: left foot swings first
+    side = (first + np.arange(n)) % 2  # 0 left, 1 right
+    sgn = np.where(side == 0, -1.0, 1.0)  # left foot is on the left (-right direction)
+    right = np.stack([np.sin(theta), -np.cos(theta)], 1)
+    heading = np.stack([np.cos(theta), np.sin(theta)], 1)
+    width = np.where(np.abs(lat) > 1e-9, np.maximum(p.step_width, np.abs(lat) + 0.1), p.step_width)
+    width = width * (1 + 0.08 * rng.standard_normal(n))
+    land = centre + (sgn * 0.5 * width)[:, None] * right
+    land_yaw = theta - sgn * p.toe_out
+    # Closing step: land beside the other foot, same heading.
+    land[-1] = centre[-2] + sgn[-1] * 0.5 * p.step_width * right[-2]
+    land_yaw[-1] = theta[-2] - sgn[-1] * p.toe_out
+    theta[-1] = theta[-2]
+
+    # Initial stance: feet side by side around start, heading theta0.
+    r0 = np.array([math.sin(theta0), -math.cos(theta0)])
+    init = {
+        0: np.array([*(start - 0.5 * p.step_width * r0), theta0 + p.toe_out]),
+        1: np.array([*(start + 0.5 * p.step_width * r0), theta0 - p.toe_out]),
+    }
+
+    # Timing in frames: HS[-1] = end of the initial standing; HS[k] = HS[k-1] + T_k.
+    dur_f = np.maximum(np.round(np.asarray(plan.dur) * fps).astype(int), 20)
+    ds_f = np.maximum(np.round(p.double_support * dur_f).astype(int), 6)
+    ds_f[0] = max(round(rng.uniform(0.15, 0.25) * fps), 6)  # weight shift of the initiation
+    hs_start = round(rng.uniform(0.5, 0.9) * fps)
+    hs = hs_start + np.cumsum(dur_f)
+    to = np.concatenate([[hs_start], hs[:-1]]) + ds_f
+    end_ds = int(ds_f[-1])
+    n_frames = int(hs[-1] + end_ds + round(rng.uniform(0.5, 0.9) * fps))
+    frames = np.arange(n_frames)
+
+    # Feet: poses per landing; swing k moves foot side[k] from its previous pose to land[k].
+    poses = np.concatenate([land, land_yaw[:, None]], 1)
+    feet = {}
+    truth_hs, truth_to = {}, {}
+    for j in (0, 1):
+        ks = np.flatnonzero(side == j)
+        prev = np.vstack([init[j], poses[ks[:-1]]]) if ks.size else init[j][None]
+        nxt = poses[ks]
+        t_off, t_hs = to[ks], hs[ks]
+        idx = np.searchsorted(t_off, frames, side="right") - 1
+        out = np.repeat(init[j][None], n_frames, 0)
+        lift = np.zeros(n_frames)
+        m = idx >= 0
+        if m.any():
+            i = idx[m]
+            u = np.clip((frames[m] - t_off[i] + 1) / (t_hs[i] - t_off[i] + 1), 0.0, 1.0)
+            s = _progress(u)
+            d = nxt[i] - prev[i]
+            d[:, 2] = (d[:, 2] + np.pi) % (2 * np.pi) - np.pi
+            out[m] = prev[i] + s[:, None] * d
+            lift[m] = (p.clearance * np.sin(np.pi * u)) * ((u > 0) & (u < 1))
+        ankle = np.column_stack([out[:, 0], out[:, 1], ANKLE_HEIGHT + lift])
+        toe = ankle + np.column_stack(
+            [
+                p.foot_length * np.cos(out[:, 2]),
+                p.foot_length * np.sin(out[:, 2]),
+                np.full(n_frames, TOE_HEIGHT - ANKLE_HEIGHT),
+            ]
+        )
+        feet[j] = (ankle, toe)
+        key = "left" if j == 0 else "right"
+        truth_hs[key], truth_to[key] = t_hs.astype(int), t_off.astype(int)
+
+    # ZMP knots: standing midpoint -> stance foot (heel to forefoot in single support) -> ...
+    def zmp(k: int, along: float) -> np.ndarray:
+        """ZMP under the stance foot of step k (the foot that landed at step k-1)."""
+        if k == 0:
+            c, th = start, theta0
+        else:
+            c, th = centre[k - 1], theta[k - 1]
+        s_ = -sgn[k]  # the stance foot is the other one
+        return (
+            c
+            + s_ * p.zmp_offset * np.array([math.sin(th), -math.cos(th)])
+            + along * np.array([math.cos(th), math.sin(th)])
+        )
+
+    kt, kp = [0, hs_start], [start, start]
+    for k in range(n):
+        kt += [int(to[k]), int(hs[k])]
+        kp += [zmp(k, -0.02), zmp(k, 0.10)]
+    end_mid = 0.5 * (land[-1] + land[-2]) if n > 1 else land[-1]
+    kt += [int(hs[-1] + end_ds), n_frames - 1]
+    kp += [end_mid, end_mid]
+    kt_a, kp_a = np.asarray(kt, float), np.asarray(kp)
+    p_ref = np.column_stack(
+        [np.interp(frames, kt_a, kp_a[:, 0]), np.interp(frames, kt_a, kp_a[:, 1])]
+    )
+    pelvis_xy = _lipm(p_ref, p.pelvis_height, fps)
+
+    # Pelvis height: low in double support, high in single support.
+    zt, zv = [0, hs_start], [0.0, 0.0]
+    for k in range(n):
+        zt += [int(hs[k - 1] if k else hs_start) + int(ds_f[k]) // 2, int((to[k] + hs[k]) // 2)]
+        zv += [-p.bob, p.bob]
+    zt += [int(hs[-1] + end_ds), n_frames - 1]
+    zv += [0.0, 0.0]
+    z = p.pelvis_height + gaussian_filter1d(np.interp(frames, zt, zv), 0.04 * fps, mode="nearest")
+
+    # Pelvis yaw: heading at heel strikes + transverse rotation (extreme at heel strikes).
+    yt = np.concatenate([[0, hs_start], hs, [hs[-1] + end_ds, n_frames - 1]]).astype(float)
+    rot = sgn * p.pelvis_rotation * (1 + 0.1 * rng.standard_normal(n))
+    rot[-1] *= 0.5
+    yv = np.concatenate([[theta0, theta0], theta + rot, [theta[-1], theta[-1]]])
+    yaw = gaussian_filter1d(np.interp(frames, yt, yv), 0.05 * fps, mode="nearest")
+
+    meta = dict(meta)
+    meta.update(heel_strikes=truth_hs, toe_offs=truth_to, n_steps=n, first_side=int(first))
+    return Take(
+        name=name,
+        fps=fps,
+        pelvis=np.column_stack([pelvis_xy, z]),
+        pelvis_yaw=yaw,
+        ankle_l=feet[0][0],
+        ankle_r=feet[1][0],
+        toe_l=feet[0][1],
+        toe_r=feet[1][1],
+        meta=meta,
+    )
+
+
+# ---------------------------------------------------------------------------------------------
+# Protocol
+# ---------------------------------------------------------------------------------------------
+
+#: Paper's protocol minutes per subject: free 4, straight 2 + 2, pole 8 x 2 (agethen2018 §3.2).
+PROTOCOL_MINUTES = {"free": 4.0, "straight": 4.0, "pole": 16.0}
+#: Default minutes per subject (paper: 24). 12 subjects at this size give > 20 000 captured
+#: transitions (see benchmarks/bench_corpus.py).
+DEFAULT_MINUTES = 20.0
+
+
+def subject_takes(
+    p: SubjectParams, rng: np.random.Generator, minutes: float = DEFAULT_MINUTES
+) -> list[Take]:
+    """All takes of one subject: the paper's three scenarios in its time proportions."""
+    total = sum(PROTOCOL_MINUTES.values())
+    takes: list[Take] = []
+    base = {"subject": p.subject, "params": asdict(p)}
+
+    def emit(plan: _Plan, protocol: str, extra: dict, start, theta0) -> float:
+        name = f"virtual-s{p.subject:02d}-{protocol}-{len(takes):04d}"
+        take = _render(
+            plan,
+            p,
+            rng,
+            name,
+            np.asarray(start, float),
+            theta0,
+            {**base, "protocol": protocol, **extra},
+        )
+        takes.append(take)
+        return take.duration
+
+    # (1) free walking, bouts of 30-60 s
+    budget = 60.0 * minutes * PROTOCOL_MINUTES["free"] / total
+    while budget > 0:
+        theta0 = float(rng.uniform(-np.pi, np.pi))
+        start = rng.uniform(-0.5, 0.5, 2)
+        secs = min(float(rng.uniform(30, 60)), max(budget, 8.0))
+        budget -= emit(_free_plan(p, rng, secs, start, theta0), "free", {}, start, theta0)
+    # (2) straight lines of 3 m and 4 m
+    for dist in LINE_LENGTHS:
+        budget = 60.0 * minutes * PROTOCOL_MINUTES["straight"] / total / len(LINE_LENGTHS)
+        while budget > 0:
+            theta0 = float(rng.uniform(-np.pi, np.pi))
+            plan = _bout_plan(p, rng, dist)
+            budget -= emit(plan, "straight", {"distance": dist}, np.zeros(2), theta0)
+    # (3) pole: walk, pass the pole, turn by the angle (left or right), walk on
+    for ang in POLE_ANGLES:
+        for dist in LINE_LENGTHS:
+            budget = (
+                60.0
+                * minutes
+                * PROTOCOL_MINUTES["pole"]
+                / total
+                / len(POLE_ANGLES)
+                / len(LINE_LENGTHS)
+            )
+            while budget > 0:
+                theta0 = float(rng.uniform(-np.pi, np.pi))
+                turn = float(rng.choice([-1.0, 1.0]) * np.radians(ang))
+                # the approach and the walk on after the turn are each ``dist`` long
+                plan = _bout_plan(p, rng, 2.0 * dist, turn)
+                extra = {"distance": dist, "turn_deg": float(np.degrees(turn))}
+                budget -= emit(plan, "pole", extra, np.zeros(2), theta0)
+    return takes
+
+
+def generate_corpus(
+    n_subjects: int = 12, seed: int = 0, *, minutes_per_subject: float | None = None
+) -> list[Take]:
+    """Generate the virtual-subject corpus (deterministic: same seed, same takes).
+
+    Args:
+        n_subjects: number of virtual subjects (agethen2018: 12).
+        seed: seed; subject ``i`` draws from ``numpy.random.default_rng([seed, i])``, so a
+            subject's takes do not depend on ``n_subjects``.
+        minutes_per_subject: capture time per subject, split over the three scenarios in the
+            paper's proportions (free 4 : straight 4 : pole 16); default ``DEFAULT_MINUTES``.
+
+    Returns:
+        Takes at 120 Hz (metres, z up); ``meta`` holds ``subject``, ``protocol`` (``free``,
+        ``straight``, ``pole``), ``params`` and the true ``heel_strikes`` / ``toe_offs``.
+    """
+    if n_subjects < 1:
+        raise MjwalkError(f"generate_corpus: n_subjects must be >= 1, got {n_subjects}")
+    minutes = DEFAULT_MINUTES if minutes_per_subject is None else float(minutes_per_subject)
+    if not minutes > 0:
+        raise MjwalkError(f"generate_corpus: minutes_per_subject must be > 0, got {minutes}")
+    takes: list[Take] = []
+    for i in range(n_subjects):
+        rng = np.random.default_rng([seed, i])
+        takes.extend(subject_takes(sample_subject(rng, i), rng, minutes))
+    return takes
