@@ -97,7 +97,7 @@ ROM_DEG: dict[str, tuple[float, float]] = {
     "knee": (0, 135),
     "ankle_flex": (-50, 20),
     "ankle_inv": (-15, 35),
-    "toe": (-70, 45),
+    "toe": (-45, 70),  # positive = MTP extension (toes up)
 }
 
 FINGERS = ("index", "middle", "ring", "little")

@@ -1,0 +1,215 @@
+"""Legs from footprints: foot contact, floor, joint ranges, gait curves vs capture."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pytest
+from scipy.interpolate import PchipInterpolator
+
+from mjwalk.body.humanoid import humanoid_model, leg_geometry
+from mjwalk.body.legs import REFERENCE_GAIT, leg_ik, legs_from_walk, reference_angle
+from mjwalk.errors import PlanningError
+from mjwalk.plan.walkpath import PathStep, WalkPath
+
+DATA = Path(__file__).parents[2] / "shared" / "data"
+
+
+def make_walk(
+    n_steps: int = 8,
+    step_len: float = 0.65,
+    width: float = 0.18,
+    step_time: float = 0.55,
+    sway: float = 0.03,
+    radius: float | None = None,
+    start=(0.0, 0.0, 0.0),
+    fps: float = 120.0,
+    hold: float = 0.25,
+) -> WalkPath:
+    """A synthetic WalkPath: alternating footprints ``step_len`` apart along a straight line
+    (``radius=None``) or a left arc of ``radius`` metres (negative: right turn), step width
+    ``width``, ``step_time`` s a step, the pelvis swaying ``sway`` m towards the stance foot.
+    The walk starts standing (first step a half step) and holds ``hold`` s at the end."""
+    x0, y0, h0 = start
+
+    def centre(s):
+        s = np.asarray(s, float)
+        if radius is None:
+            p = np.stack([s, np.zeros_like(s)], -1)
+            h = np.zeros_like(s)
+        else:
+            p = radius * np.stack([np.sin(s / radius), 1 - np.cos(s / radius)], -1)
+            h = s / radius
+        c, si = np.cos(h0), np.sin(h0)
+        p = p @ np.array([[c, si], [-si, c]]) + [x0, y0]
+        return p, h + h0
+
+    # footprint arc positions: f0 = 0 (right, initial stance), f_k = (k - 0.5) L
+    f = np.array([0.0] + [(k - 0.5) * step_len for k in range(1, n_steps + 1)])
+    sides = ["right"] + ["left" if k % 2 else "right" for k in range(1, n_steps + 1)]
+
+    def footprint(k):
+        p, h = centre(f[k])
+        lat = (0.5 if sides[k] == "left" else -0.5) * width
+        n = np.array([-np.sin(h), np.cos(h)])
+        return np.array([*(p + lat * n), h])
+
+    bounds = np.round(np.arange(n_steps + 1) * step_time * fps).astype(int)
+    n = bounds[-1] + int(round(hold * fps)) + 1
+    t = np.arange(n) / fps
+    # pelvis arc length at step starts: midway between the two feet
+    sp = [0.0] + [
+        0.5 * (f[i - 1] + f[i]) if i > 1 else 0.25 * step_len for i in range(1, n_steps + 1)
+    ]
+    sp[-1] = 0.5 * (f[n_steps - 1] + f[n_steps])
+    s_of_t = PchipInterpolator(np.r_[t[bounds], t[-1]], np.r_[sp, sp[-1]])(t)
+    p, h = centre(s_of_t)
+    lat = np.zeros(n)
+    steps = []
+    for i in range(n_steps):
+        a, b = bounds[i], bounds[i + 1]
+        phi = (np.arange(a, b + 1) - a) / (b - a)
+        stance_left = sides[i] == "left"
+        lat[a : b + 1] = sway * (1 if stance_left else -1) * np.sin(np.pi * phi)
+        steps.append(
+            PathStep(
+                side=sides[i + 1],
+                start=int(a),
+                end=int(b),
+                foot=footprint(i + 1),
+                stance=footprint(i),
+            )
+        )
+    xy = p + lat[:, None] * np.stack([-np.sin(h), np.cos(h)], -1)
+    return WalkPath(t=t, xy=xy, yaw=h, steps=steps, meta={"planner": "test-helper"})
+
+
+def _fk_feet(legs, stature=1.75):
+    """Heel and ball world positions (N, 2, 2, 3) [frame, side l/r, heel/ball], foot pitch
+    (N, 2, radians, + toes up) and the lowest foot point (N,) by MuJoCo forward kinematics."""
+    model, jm = humanoid_model(stature)
+    data = mujoco.MjData(model)
+    n = len(legs.t)
+    pts, pitch, low = np.zeros((n, 2, 2, 3)), np.zeros((n, 2)), np.zeros(n)
+    feet = [model.geom(g).id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
+    signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
+    back = leg_geometry(stature).foot_back
+    for i in range(n):
+        q = jm.neutral_qpos(model, stature)
+        q[:3] = legs.root[i]
+        q[3:7] = [np.cos(legs.yaw[i] / 2), 0, 0, np.sin(legs.yaw[i] / 2)]
+        for name, v in legs.angles.items():
+            q[jm.adr(name)] = v[i]
+        data.qpos[:] = q
+        mujoco.mj_kinematics(model, data)
+        for k, s in enumerate("lr"):
+            R = data.xmat[model.body(f"foot_{s}").id].reshape(3, 3)
+            pts[i, k, 0] = data.site_xpos[model.site(f"sole_{s}").id] - back * R[:, 0]
+            pts[i, k, 1] = data.xpos[model.body(f"toes_{s}").id]
+            pitch[i, k] = np.arcsin(R[2, 0])
+        low[i] = min(
+            (data.geom_xpos[g] + (signs * model.geom_size[g]) @ data.geom_xmat[g].reshape(3, 3).T)[
+                :, 2
+            ].min()
+            for g in feet
+        )
+    return pts, pitch, low
+
+
+def stance_drift(walk, pts, pitch, eps=1e-4):
+    """Worst drift (m) of the stance foot's contact point during each step: the heel while the
+    foot is flat or toes-up, the ball while flat or heel-up (both pivots stay put)."""
+    worst = 0.0
+    for st in walk.steps:
+        k = 1 if st.side == "left" else 0  # the stance foot is the other one
+        sl = slice(st.start, st.end + 1)
+        for j, mask in ((0, pitch[sl, k] >= -eps), (1, pitch[sl, k] <= eps)):
+            p = pts[sl, k, j][mask]
+            if len(p):
+                worst = max(worst, np.linalg.norm(p - p.mean(0), axis=1).max() * 2)
+    return worst
+
+
+def _ball_xy(foot):
+    from mjwalk.body.legs import _ball
+
+    b = _ball(leg_geometry())
+    return np.asarray(foot[:2]) + b * np.array([np.cos(foot[2]), np.sin(foot[2])])
+
+
+@pytest.mark.parametrize("radius", [None, 2.5, -2.0])
+def test_stance_foot_fixed_floor_and_ranges(radius):
+    walk = make_walk(n_steps=6, radius=radius)
+    legs = legs_from_walk(walk)
+    pts, pitch, low = _fk_feet(legs)
+    worst = stance_drift(walk, pts, pitch)
+    assert worst <= 0.01, f"stance foot drifted {worst * 100:.2f} cm"
+    for st in walk.steps:
+        k = 1 if st.side == "left" else 0
+        assert np.linalg.norm(pts[st.start + 30, k, 1, :2] - _ball_xy(st.stance)) < 0.01
+    assert low.min() >= -0.01, f"foot {-low.min() * 100:.1f} cm below the floor"
+    # landing footprints are reached
+    for st in walk.steps:
+        k = 0 if st.side == "left" else 1
+        heel = np.asarray(st.foot[:2]) - leg_geometry().foot_back * np.array(
+            [np.cos(st.foot[2]), np.sin(st.foot[2])]
+        )
+        assert np.linalg.norm(pts[st.end, k, 0, :2] - heel) < 0.01
+    _, jm = humanoid_model()
+    for name, v in legs.angles.items():
+        lo, hi = jm.limits(name)
+        assert v.min() >= lo - 1e-9 and v.max() <= hi + 1e-9, name
+    # pelvis height oscillates by a few centimetres around ~0.9 m
+    z = legs.root[walk.steps[2].start : walk.steps[-1].end, 2]
+    assert 0.02 < np.ptp(z) < 0.09
+    assert 0.82 < z.mean() < 0.93
+
+
+def test_turning_uses_hip_rotation():
+    legs = legs_from_walk(make_walk(n_steps=6, radius=1.5))
+    assert np.abs(legs.angles["hip_l_rot"]).max() > np.deg2rad(3)
+    straight = legs_from_walk(make_walk(n_steps=6))
+    assert np.abs(straight.angles["hip_l_rot"]).max() < 1e-9
+
+
+def test_ik_round_trip():
+    g = leg_geometry()
+    model, jm = humanoid_model()
+    data = mujoco.MjData(model)
+    rng = np.random.default_rng(0)
+    checked = 0
+    for _ in range(40):
+        target = np.array(
+            [rng.uniform(-0.3, 0.3), g.hip_y + rng.uniform(-0.05, 0.05), -rng.uniform(0.6, 0.83)]
+        )
+        yaw, pitch = rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.2)
+        ang = leg_ik((target - [0, g.hip_y, 0])[None], np.array([yaw]), np.array([pitch]), "l", g)
+        if any(np.isclose(v[0], jm.limits(k)).any() for k, v in ang.items()):
+            continue  # clipped at a joint limit: the pose is not reachable exactly
+        checked += 1
+        q = jm.neutral_qpos(model)
+        q[:3] = 0
+        for k, v in ang.items():
+            q[jm.adr(k)] = v[0]
+        data.qpos[:] = q
+        mujoco.mj_kinematics(model, data)
+        assert np.allclose(data.xpos[model.body("foot_l").id], target, atol=1e-6)
+        R = data.xmat[model.body("foot_l").id].reshape(3, 3)
+        assert abs(np.arcsin(R[2, 0]) - pitch) < 1e-3  # foot x axis rises by the pitch
+        assert abs(R[2, 1]) < 1e-3  # sole level sideways (2-DOF ankle: tiny yaw residual)
+    assert checked >= 10
+
+
+def test_no_steps_is_an_error():
+    walk = make_walk(n_steps=2)
+    walk.steps = []
+    with pytest.raises(PlanningError, match="no steps"):
+        legs_from_walk(walk)
+
+
+def test_reference_gait_table():
+    assert REFERENCE_GAIT["knee"].max() == pytest.approx(63)  # peak swing flexion 60-65 deg
+    assert np.rad2deg(reference_angle("hip", 0.0)) == pytest.approx(30)
+    assert np.rad2deg(reference_angle("knee", 1.0)) == pytest.approx(3)
