@@ -89,7 +89,9 @@ class WalkPath:
             "xy": self.xy,
             "yaw": self.yaw,
             "step_side": np.array([s.side == "right" for s in steps], dtype=bool),
-            "step_range": np.array([[s.start, s.end] for s in steps], dtype=np.int64).reshape(-1, 2),
+            "step_range": np.array([[s.start, s.end] for s in steps], dtype=np.int64).reshape(
+                -1, 2
+            ),
             "step_foot": np.array([s.foot for s in steps], dtype=float).reshape(-1, 3),
             "step_stance": np.array([s.stance for s in steps], dtype=float).reshape(-1, 3),
             "header": np.array(
@@ -130,7 +132,10 @@ class WalkPath:
                 stance=stance,
             )
             for side, r, foot, stance in zip(
-                data["step_side"], data["step_range"], data["step_foot"], data["step_stance"],
+                data["step_side"],
+                data["step_range"],
+                data["step_foot"],
+                data["step_stance"],
                 strict=True,
             )
         ]

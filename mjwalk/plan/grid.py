@@ -1,0 +1,258 @@
+"""Grid A*: the deterministic baseline planner (agethen2018 §5.2 compares against it).
+
+An 8-connected grid of 0.08 m cells over the floor; a cell is free when its centre keeps the body
+radius of clearance from every obstacle and from the floor's edge, and a move is allowed only when
+every point along it (sampled every centimetre) does too. The route is a polyline through cell
+centres, from the exact start point to the exact goal point.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from mjwalk.errors import PlanningError
+from mjwalk.plan.walkpath import WalkPath
+from mjwalk.world.workplace import Workplace
+
+#: Default body radius (metres): half the shoulder width of an adult plus a margin.
+BODY_RADIUS = 0.25
+#: Default grid cell size (metres), as in agethen2018.
+CELL_SIZE = 0.08
+#: Walking speed (m/s) used to time the baseline's route (median speed of the Bandai walk capture).
+NOMINAL_SPEED = 1.13
+_SQRT2 = math.sqrt(2.0)
+_MOVES = [(1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1)]
+_SAMPLE_SPACING = 0.01
+
+
+@dataclass
+class OccupancyGrid:
+    """Cells over the floor: centres ``x0 + i * cell``, ``y0 + j * cell`` (metres) and, for each of
+    the 8 moves, whether it is collision-free from each cell (``moves[k, j, i]``)."""
+
+    x0: float
+    y0: float
+    cell: float
+    radius: float
+    free: np.ndarray
+    moves: np.ndarray
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return self.free.shape
+
+    def centre(self, j: int, i: int) -> np.ndarray:
+        return np.array([self.x0 + i * self.cell, self.y0 + j * self.cell])
+
+    def index(self, xy: np.ndarray) -> tuple[int, int]:
+        """(row j, column i) of the cell containing ``xy``, clipped to the grid."""
+        ny, nx = self.free.shape
+        i = int(np.clip(np.rint((xy[0] - self.x0) / self.cell), 0, nx - 1))
+        j = int(np.clip(np.rint((xy[1] - self.y0) / self.cell), 0, ny - 1))
+        return j, i
+
+
+def segment_is_free(workplace: Workplace, a: np.ndarray, b: np.ndarray, radius: float) -> bool:
+    """Whether every point of the segment a-b keeps ``radius`` of walking clearance."""
+    n = max(2, int(np.ceil(np.linalg.norm(b - a) / _SAMPLE_SPACING)) + 1)
+    pts = a + np.linspace(0.0, 1.0, n)[:, None] * (b - a)
+    return bool(np.all(workplace.walk_clearance(pts) >= radius))
+
+
+def occupancy_grid(
+    workplace: Workplace, cell: float = CELL_SIZE, radius: float = BODY_RADIUS
+) -> OccupancyGrid:
+    """Build the free-cell mask and the per-move validity for ``workplace``."""
+    xmin, ymin, xmax, ymax = workplace.floor_bounds
+    nx = int(np.floor((xmax - xmin) / cell))
+    ny = int(np.floor((ymax - ymin) / cell))
+    x0 = xmin + 0.5 * (xmax - xmin - (nx - 1) * cell)
+    y0 = ymin + 0.5 * (ymax - ymin - (ny - 1) * cell)
+    gx, gy = np.meshgrid(x0 + cell * np.arange(nx), y0 + cell * np.arange(ny))
+    centres = np.stack([gx, gy], axis=-1)
+    free = workplace.walk_clearance(centres) >= radius
+    moves = np.zeros((len(_MOVES), ny, nx), dtype=bool)
+    for k, (di, dj) in enumerate(_MOVES):
+        step = np.array([di, dj], dtype=float) * cell
+        n = int(np.ceil(np.linalg.norm(step) / _SAMPLE_SPACING)) + 1
+        ts = np.linspace(0.0, 1.0, n)
+        pts = centres[:, :, None, :] + ts[None, None, :, None] * step
+        ok = workplace.walk_clearance(pts).min(axis=-1) >= radius
+        # The target cell must exist on the grid.
+        if di > 0:
+            ok[:, -di:] = False
+        if di < 0:
+            ok[:, :-di] = False
+        if dj > 0:
+            ok[-dj:, :] = False
+        if dj < 0:
+            ok[:-dj, :] = False
+        moves[k] = ok & free
+    return OccupancyGrid(x0, y0, cell, radius, free, moves)
+
+
+def check_endpoint(workplace: Workplace, xy: np.ndarray, radius: float, what: str) -> None:
+    """Raise PlanningError when a start or goal point is off the floor, inside an obstacle or
+    closer to one than the body radius."""
+    label = f"{what} ({xy[0]:.3f}, {xy[1]:.3f})"
+    if not bool(workplace.on_floor(xy)):
+        b = workplace.floor_bounds
+        raise PlanningError(
+            f"{label} is off the floor of {workplace.name} "
+            f"(x in [{b[0]:g}, {b[2]:g}], y in [{b[1]:g}, {b[3]:g}] m)"
+        )
+    dists = {fp.name: float(fp.signed_distance(xy[None])[0]) for fp in workplace.obstacles}
+    if dists:
+        nearest = min(dists, key=dists.get)
+        if dists[nearest] < 0:
+            raise PlanningError(f"{label} is inside obstacle {nearest!r} of {workplace.name}")
+        if dists[nearest] < radius:
+            raise PlanningError(
+                f"{label} is {dists[nearest]:.3f} m from obstacle {nearest!r}, closer than the "
+                f"body radius {radius:.3f} m"
+            )
+    edge = float(workplace.edge_distance(xy))
+    if edge < radius:
+        raise PlanningError(
+            f"{label} is {edge:.3f} m from the floor's edge, closer than the body radius {radius} m"
+        )
+
+
+def plan_grid(
+    workplace: Workplace,
+    start,
+    goal,
+    *,
+    cell: float = CELL_SIZE,
+    radius: float = BODY_RADIUS,
+    speed: float = NOMINAL_SPEED,
+    grid: OccupancyGrid | None = None,
+) -> WalkPath:
+    """Shortest 8-connected grid route from ``start`` to ``goal`` (grid A*).
+
+    Args:
+        workplace: the scene.
+        start, goal: a site name, an ``"x,y"`` string or (x, y) in metres.
+        cell: grid cell size, metres.
+        radius: body radius, metres: the route keeps this clearance from obstacles and the
+            floor's edge.
+        speed: walking speed (m/s) used to give the route its times.
+        grid: a prebuilt :func:`occupancy_grid` (to plan many routes in one scene).
+
+    Returns:
+        A WalkPath through the start point, cell centres and the goal point (no steps: the
+        baseline has no gait); ``meta`` records expansions and planning time.
+
+    Raises:
+        PlanningError: start or goal off the floor, in or too near an obstacle, or unreachable.
+    """
+    t0 = time.perf_counter()
+    a = workplace.point(start)
+    b = workplace.point(goal)
+    check_endpoint(workplace, a, radius, "start")
+    check_endpoint(workplace, b, radius, "goal")
+    if grid is None or grid.cell != cell or grid.radius != radius:
+        grid = occupancy_grid(workplace, cell, radius)
+    ny, nx = grid.shape
+    n = nx * ny
+    start_node, goal_node = n, n + 1
+
+    def near_cells(p: np.ndarray) -> list[tuple[int, float]]:
+        j0, i0 = grid.index(p)
+        out = []
+        for j in range(max(0, j0 - 1), min(ny, j0 + 2)):
+            for i in range(max(0, i0 - 1), min(nx, i0 + 2)):
+                c = grid.centre(j, i)
+                if grid.free[j, i] and segment_is_free(workplace, p, c, radius):
+                    out.append((j * nx + i, float(np.linalg.norm(c - p))))
+        return out
+
+    start_links = near_cells(a)
+    goal_links = dict(near_cells(b))
+    direct = np.linalg.norm(b - a) <= 1.5 * cell and segment_is_free(workplace, a, b, radius)
+
+    gx = grid.x0 + cell * (np.arange(n) % nx)
+    gy = grid.y0 + cell * (np.arange(n) // nx)
+
+    def h(node: int) -> float:
+        if node == goal_node:
+            return 0.0
+        dx = abs(gx[node] - b[0])
+        dy = abs(gy[node] - b[1])
+        return max(dx, dy) + (_SQRT2 - 1.0) * min(dx, dy)  # octile: admissible on the grid
+
+    moves = grid.moves.reshape(len(_MOVES), -1)
+    offsets = [dj * nx + di for di, dj in _MOVES]
+    costs = [cell * (_SQRT2 if di and dj else 1.0) for di, dj in _MOVES]
+
+    g_cost = {start_node: 0.0}
+    parent: dict[int, int] = {}
+    heap: list[tuple[float, int, int]] = [(0.0, 0, start_node)]
+    closed = set()
+    counter = 1
+    expansions = 0
+    found = False
+    while heap:
+        _, _, node = heapq.heappop(heap)
+        if node in closed:
+            continue
+        closed.add(node)
+        expansions += 1
+        if node == goal_node:
+            found = True
+            break
+        if node == start_node:
+            nbrs = list(start_links)
+            if direct:
+                nbrs.append((goal_node, float(np.linalg.norm(b - a))))
+        else:
+            nbrs = [
+                (node + off, c)
+                for k, (off, c) in enumerate(zip(offsets, costs, strict=True))
+                if moves[k, node]
+            ]
+            if node in goal_links:
+                nbrs.append((goal_node, goal_links[node]))
+        g0 = g_cost[node]
+        for nb, c in nbrs:
+            if nb in closed:
+                continue
+            g1 = g0 + c
+            if g1 < g_cost.get(nb, math.inf):
+                g_cost[nb] = g1
+                parent[nb] = node
+                heapq.heappush(heap, (g1 + h(nb), counter, nb))
+                counter += 1
+    if not found:
+        raise PlanningError(
+            f"goal ({b[0]:.3f}, {b[1]:.3f}) is unreachable from start ({a[0]:.3f}, {a[1]:.3f}) "
+            f"in {workplace.name} with body radius {radius} m (searched {expansions} cells)"
+        )
+    chain = [goal_node]
+    while chain[-1] != start_node:
+        chain.append(parent[chain[-1]])
+    chain.reverse()
+    pts = np.array(
+        [a if v == start_node else b if v == goal_node else np.array([gx[v], gy[v]]) for v in chain]
+    )
+    seg = np.diff(pts, axis=0)
+    yaw = np.arctan2(seg[:, 1], seg[:, 0])
+    yaw = np.unwrap(np.append(yaw, yaw[-1])) if len(yaw) else np.zeros(1)
+    dist = np.concatenate([[0.0], np.cumsum(np.linalg.norm(seg, axis=1))])
+    return WalkPath(
+        t=dist / speed,
+        xy=pts,
+        yaw=yaw,
+        meta={
+            "planner": "grid_astar",
+            "cell": cell,
+            "radius": radius,
+            "expansions": expansions,
+            "seconds": time.perf_counter() - t0,
+        },
+    )

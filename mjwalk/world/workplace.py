@@ -1,0 +1,264 @@
+"""The ``Workplace``: an MJCF scene seen from the floor — obstacles, clearance field, stations."""
+
+from __future__ import annotations
+
+import difflib
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from mjwalk.errors import SceneError
+from mjwalk.world.clearance import ClearanceField, build_clearance
+from mjwalk.world.footprint import Footprint, geom_footprint
+
+#: Default height band (metres above the floor) in which a geom counts as an obstacle.
+OBSTACLE_Z_RANGE = (0.05, 2.0)
+#: Bodies whose name starts with one of these are part of a humanoid, never obstacles.
+HUMANOID_PREFIXES = ("human",)
+
+
+@dataclass(frozen=True)
+class Station:
+    """A named site of the scene: world position (metres) and yaw of its local +x axis (radians
+    from +x, CCW) — for standing sites, the direction the operator faces."""
+
+    name: str
+    pos: np.ndarray
+    yaw: float
+
+    @property
+    def xy(self) -> np.ndarray:
+        return self.pos[:2]
+
+
+@dataclass
+class Workplace:
+    """An MJCF workplace prepared for planning.
+
+    Attributes:
+        model: the compiled scene.
+        source: the MJCF file it came from (None for an in-memory model).
+        floor: the floor geom's name; the floor is the plane z = ``floor_z``.
+        floor_bounds: (xmin, ymin, xmax, ymax) of the walkable floor, metres.
+        obstacles: obstacle footprints (one per obstacle geom).
+        clearance: distance to the nearest obstacle footprint, metres (negative inside).
+        stations: the scene's named sites.
+        z_range: the height band used to select obstacles and to cut their footprints.
+    """
+
+    model: mujoco.MjModel
+    source: Path | None
+    floor: str
+    floor_z: float
+    floor_bounds: tuple[float, float, float, float]
+    obstacles: list[Footprint]
+    clearance: ClearanceField
+    stations: dict[str, Station] = field(default_factory=dict)
+    z_range: tuple[float, float] = OBSTACLE_Z_RANGE
+
+    @property
+    def obstacle_geoms(self) -> list[int]:
+        """Geom ids of the obstacles."""
+        return [f.geom_id for f in self.obstacles]
+
+    @property
+    def name(self) -> str:
+        return self.source.stem if self.source else "scene"
+
+    def station(self, name: str) -> Station:
+        """The site called ``name``; an unknown name raises SceneError listing near matches."""
+        try:
+            return self.stations[name]
+        except KeyError:
+            close = difflib.get_close_matches(name, list(self.stations), n=3)
+            hint = f"; did you mean {', '.join(close)}?" if close else ""
+            raise SceneError(f"{self.name}: no site named {name!r}{hint}") from None
+
+    def point(self, where: str | np.ndarray | tuple[float, float]) -> np.ndarray:
+        """A floor point (2,) from a site name, an ``"x,y"`` string or coordinates (metres)."""
+        if isinstance(where, str):
+            if re.fullmatch(r"\s*-?[\d.]+\s*,\s*-?[\d.]+\s*", where):
+                return np.array([float(v) for v in where.split(",")])
+            return self.station(where).xy.copy()
+        arr = np.asarray(where, dtype=float).ravel()
+        if arr.shape[0] < 2:
+            raise SceneError(f"{self.name}: a floor point needs x and y, got {where!r}")
+        return arr[:2].copy()
+
+    def edge_distance(self, xy: np.ndarray) -> np.ndarray:
+        """Signed distance (metres) from points (..., 2) to the floor's edge, positive on it."""
+        xy = np.asarray(xy, dtype=float)
+        xmin, ymin, xmax, ymax = self.floor_bounds
+        return np.minimum.reduce(
+            [xy[..., 0] - xmin, xmax - xy[..., 0], xy[..., 1] - ymin, ymax - xy[..., 1]]
+        )
+
+    def on_floor(self, xy: np.ndarray) -> np.ndarray:
+        """Whether points (..., 2) lie on the floor."""
+        return self.edge_distance(xy) >= 0.0
+
+    def walk_clearance(self, xy: np.ndarray) -> np.ndarray:
+        """Room to walk at points (..., 2): the smaller of obstacle clearance and distance to the
+        floor's edge, metres."""
+        return np.minimum(self.clearance(xy), self.edge_distance(xy))
+
+    def footprint(self, name: str) -> Footprint:
+        for fp in self.obstacles:
+            if fp.name == name:
+                return fp
+        raise SceneError(f"{self.name}: no obstacle geom named {name!r}")
+
+
+def load_model(source: str | Path) -> mujoco.MjModel:
+    """Compile an MJCF file, turning every failure into a SceneError naming the file."""
+    path = Path(source)
+    if not path.is_file():
+        raise SceneError(f"{path}: scene file not found")
+    try:
+        return mujoco.MjModel.from_xml_path(str(path))
+    except ValueError as exc:  # mujoco reports parse and compile errors as ValueError
+        msg = str(exc).strip().replace("\n", " ")
+        raise SceneError(f"{path}: not a valid MJCF scene: {msg}") from exc
+
+
+def _body_name(model: mujoco.MjModel, body: int) -> str:
+    return mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_BODY, body) or ""
+
+
+def _is_humanoid_geom(model: mujoco.MjModel, g: int, prefixes: tuple[str, ...]) -> bool:
+    body = model.geom_bodyid[g]
+    while body > 0:
+        if _body_name(model, body).startswith(prefixes):
+            return True
+        body = model.body_parentid[body]
+    return False
+
+
+def _find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
+    planes = [
+        g
+        for g in range(model.ngeom)
+        if model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
+        and data.geom_xmat[g].reshape(3, 3)[2, 2] > 0.999
+    ]
+    if not planes:
+        raise SceneError(
+            f"{label}: no floor: the scene needs an upward-facing plane geom (e.g. "
+            '<geom name="floor" type="plane" size="4 3 0.1"/>)'
+        )
+    named = [g for g in planes if "floor" in (mujoco.mj_id2name(model, 5, g) or "").lower()]
+    return (named or sorted(planes, key=lambda g: data.geom_xpos[g][2]))[0]
+
+
+def workplace_from_model(
+    model: mujoco.MjModel,
+    *,
+    source: Path | None = None,
+    resolution: float = 0.02,
+    z_range: tuple[float, float] = OBSTACLE_Z_RANGE,
+    groups: set[int] | None = None,
+    include: str | None = None,
+    exclude: str | None = None,
+    humanoid_prefixes: tuple[str, ...] = HUMANOID_PREFIXES,
+) -> Workplace:
+    """Prepare a compiled model for planning. See :func:`load_workplace` for the arguments."""
+    label = str(source) if source else "scene"
+    if resolution <= 0 or resolution > 0.02:
+        raise SceneError(f"{label}: clearance resolution {resolution} m must be in (0, 0.02]")
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    floor = _find_floor(model, data, label)
+    floor_z = float(data.geom_xpos[floor][2])
+    fx, fy = model.geom_size[floor][:2]
+    footprints: list[Footprint] = []
+    for g in range(model.ngeom):
+        if g == floor or _is_humanoid_geom(model, g, humanoid_prefixes):
+            continue
+        gname = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
+        if groups is not None and model.geom_group[g] not in groups:
+            continue
+        if include is not None and not re.search(include, gname):
+            continue
+        if exclude is not None and re.search(exclude, gname):
+            continue
+        gtype = int(model.geom_type[g])
+        if gtype == mujoco.mjtGeom.mjGEOM_PLANE:
+            continue  # other planes (a second floor level, a ceiling) are not footprints
+        if gtype in (mujoco.mjtGeom.mjGEOM_HFIELD, mujoco.mjtGeom.mjGEOM_SDF):
+            raise SceneError(
+                f"{label}: geom {gname!r} is a height field/SDF; mjwalk obstacles must be "
+                "primitives or meshes (exclude it with exclude=...)"
+            )
+        fp = geom_footprint(model, data, g, floor_z + z_range[0], floor_z + z_range[1])
+        if fp is not None:
+            footprints.append(fp)
+    if fx > 0 and fy > 0:
+        cx, cy = data.geom_xpos[floor][:2]
+        bounds = (cx - fx, cy - fy, cx + fx, cy + fy)
+    else:  # an infinite plane: the obstacles' extent plus 2 m
+        if not footprints:
+            raise SceneError(f"{label}: the floor plane is infinite and there are no obstacles")
+        b = np.array([f.bounds() for f in footprints])
+        bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
+    clearance = build_clearance(footprints, bounds, resolution)
+    stations = {}
+    for s in range(model.nsite):
+        sname = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_SITE, s)
+        if sname:
+            xmat = data.site_xmat[s].reshape(3, 3)
+            stations[sname] = Station(
+                sname, data.site_xpos[s].copy(), float(np.arctan2(xmat[1, 0], xmat[0, 0]))
+            )
+    return Workplace(
+        model=model,
+        source=source,
+        floor=mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}",
+        floor_z=floor_z,
+        floor_bounds=tuple(float(v) for v in bounds),
+        obstacles=footprints,
+        clearance=clearance,
+        stations=stations,
+        z_range=z_range,
+    )
+
+
+def load_workplace(
+    source: str | Path,
+    *,
+    resolution: float = 0.02,
+    z_range: tuple[float, float] = OBSTACLE_Z_RANGE,
+    groups: set[int] | None = None,
+    include: str | None = None,
+    exclude: str | None = None,
+    humanoid_prefixes: tuple[str, ...] = HUMANOID_PREFIXES,
+) -> Workplace:
+    """Load an MJCF workplace: its floor, obstacle geoms, clearance field and named sites.
+
+    Args:
+        source: path of the MJCF file.
+        resolution: clearance grid spacing, metres (at most 0.02).
+        z_range: a geom is an obstacle when its vertical extent overlaps this band of heights
+            above the floor (metres); its footprint is the part inside the band.
+        groups: only geoms in these MuJoCo geom groups are obstacles (default: all groups).
+        include, exclude: regular expressions on geom names selecting/rejecting obstacles.
+        humanoid_prefixes: bodies (and their children) whose names start with one of these are
+            a humanoid and never obstacles.
+
+    Raises:
+        SceneError: missing file, malformed MJCF, no floor, unsupported obstacle geom.
+    """
+    path = Path(source)
+    model = load_model(path)
+    return workplace_from_model(
+        model,
+        source=path,
+        resolution=resolution,
+        z_range=z_range,
+        groups=groups,
+        include=include,
+        exclude=exclude,
+        humanoid_prefixes=humanoid_prefixes,
+    )

@@ -1,0 +1,108 @@
+"""Grid A*: clearance checked with MuJoCo geometry, optimality on a known route, bad input."""
+
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import pytest
+
+from mjwalk import PlanningError
+from mjwalk.plan.grid import plan_grid
+from mjwalk.world import load_workplace
+from mjwalk.world.probe import ClearanceProbe, path_clearance
+
+ROUTES = {
+    "assembly_station": [
+        ("stand_rack2", "stand_car1"),
+        ("stand_car1", "stand_rack3"),
+        ("stand_rack3", "stand_car2"),
+        ("stand_car2", "stand_rack1"),
+        ("stand_rack1", "stand_car3"),
+        ("stand_car3", "stand_rack2"),
+        ("stand_rack2", "stand_rack3"),
+        ("-3.5,-2.5", "3.5,2.7"),
+    ],
+    "corridor": [("entry", "exit"), ("entry", "door")],
+    "open_floor": [("west", "east"), ("-4,-4", "4,4.2")],
+}
+
+
+@pytest.mark.parametrize("scene", list(ROUTES))
+def test_paths_keep_body_radius_by_mujoco_geometry(scenes_dir, scene):
+    path = scenes_dir / f"{scene}.xml"
+    wp = load_workplace(path)
+    probe = ClearanceProbe(path)
+    for a, b in ROUTES[scene]:
+        route = plan_grid(wp, a, b, radius=0.25)
+        np.testing.assert_allclose(route.xy[0], wp.point(a))
+        np.testing.assert_allclose(route.xy[-1], wp.point(b))
+        clearance = path_clearance(probe, route.xy, spacing=0.01)
+        assert clearance.min() >= 0.25 - 1e-3, (a, b, clearance.min())
+        assert route.length >= np.linalg.norm(route.xy[-1] - route.xy[0]) - 1e-9
+
+
+def test_corridor_route_passes_the_door(scenes_dir):
+    wp = load_workplace(scenes_dir / "corridor.xml")
+    route = plan_grid(wp, "entry", "exit")
+    crossing = np.flatnonzero(np.diff(np.sign(route.xy[:, 1])) != 0)
+    assert len(crossing) >= 1
+    assert np.all(np.abs(route.xy[crossing, 0]) < 0.45 - 0.25 + 0.01)
+
+
+def test_length_on_a_known_route(tmp_path):
+    """A thin wall (x in [-0.1, 0.1], y from the floor edge to -0.35) between start and goal.
+
+    Inflated by the body radius its end is a disc of radius 0.25 around (+-0.1, -0.35). The
+    shortest route in the 8-connected (octile) metric climbs 0.1036 m, runs diagonally to the
+    point where a 45 degree line touches the disc, over the cap and down the mirror image:
+    2 * (4.2232 * sqrt(2) + 0.1036) + 2 * (0.0732 * sqrt(2) + 0.1036) + 0.2 = 12.766 m.
+    (The Euclidean taut string is 12.685 m; 8-connectivity may add to it, nothing else may.)
+    """
+    xml = """<mujoco><worldbody><geom name="floor" type="plane" size="5 5 .1"/>
+      <geom name="wall" type="box" size="0.1 2.325 1" pos="0 -2.675 1"/></worldbody></mujoco>"""
+    f = tmp_path / "wall.xml"
+    f.write_text(xml)
+    wp = load_workplace(f)
+    route = plan_grid(wp, "-4.5,-4.5", "4.5,-4.5", radius=0.25)
+    c = 0.25 * math.sqrt(2) - 0.25  # the diagonal tangent to the disc passes 0.1036 m above S
+    dx = 4.5 - 0.1 - 0.25 / math.sqrt(2)
+    leg = dx * math.sqrt(2) + c
+    cap = (0.25 - 0.25 / math.sqrt(2)) * math.sqrt(2) + c
+    reference = 2 * leg + 2 * cap + 0.2
+    assert reference == pytest.approx(12.766, abs=1e-3)
+    assert route.length == pytest.approx(reference, rel=0.01)
+    assert route.length > 12.685  # never shorter than the Euclidean optimum
+    straight = plan_grid(wp, "-4.0,3.0", "4.0,3.0")
+    assert straight.length == pytest.approx(8.0, rel=0.01)
+    diagonal = plan_grid(wp, "-4.0,-1.0", "-1.0,2.0")
+    assert diagonal.length == pytest.approx(3 * math.sqrt(2), rel=0.01)
+
+
+def test_bad_endpoints(scenes_dir):
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    with pytest.raises(PlanningError, match="inside obstacle 'car_body'"):
+        plan_grid(wp, "stand_rack2", "0,1.4")
+    with pytest.raises(PlanningError, match="off the floor"):
+        plan_grid(wp, "9,0", "stand_car1")
+    with pytest.raises(PlanningError, match="closer than the body radius"):
+        plan_grid(wp, "stand_rack2", "3.3,-0.9")  # 0.1 m from the pillar
+
+
+def test_unreachable_goal_fails_fast(tmp_path, scenes_dir):
+    """A goal walled in by four boxes in the station scene: PlanningError in under 2 s."""
+    text = (scenes_dir / "assembly_station.xml").read_text()
+    cage = """
+    <geom name="cage_n" type="box" size="0.6 0.05 1" pos="3.0 1.5 1"/>
+    <geom name="cage_s" type="box" size="0.6 0.05 1" pos="3.0 0.3 1"/>
+    <geom name="cage_w" type="box" size="0.05 0.6 1" pos="2.45 0.9 1"/>
+    <geom name="cage_e" type="box" size="0.05 0.6 1" pos="3.55 0.9 1"/>
+  </worldbody>"""
+    f = tmp_path / "caged.xml"
+    f.write_text(text.replace("</worldbody>", cage))
+    wp = load_workplace(f)
+    t0 = time.perf_counter()
+    with pytest.raises(PlanningError, match="unreachable"):
+        plan_grid(wp, "stand_rack2", "3.0,0.9")
+    assert time.perf_counter() - t0 < 2.0
