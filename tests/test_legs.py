@@ -182,7 +182,7 @@ def test_ik_round_trip():
     checked = 0
     for _ in range(40):
         target = np.array(
-            [rng.uniform(-0.3, 0.3), g.hip_y + rng.uniform(-0.05, 0.05), -rng.uniform(0.6, 0.83)]
+            [rng.uniform(-0.25, 0.25), g.hip_y + rng.uniform(-0.05, 0.05), -rng.uniform(0.55, 0.78)]
         )
         yaw, pitch = rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.2)
         ang = leg_ik((target - [0, g.hip_y, 0])[None], np.array([yaw]), np.array([pitch]), "l", g)
