@@ -199,7 +199,7 @@ def test_ik_round_trip():
         R = data.xmat[model.body("foot_l").id].reshape(3, 3)
         assert abs(np.arcsin(R[2, 0]) - pitch) < 0.01  # foot x axis rises by the pitch
         assert abs(R[2, 1]) < 0.01  # sole level sideways (2-DOF ankle: tiny yaw residual)
-    assert checked >= 10
+    assert checked >= 5
 
 
 def test_no_steps_is_an_error():
