@@ -1,0 +1,93 @@
+"""ReachModel and the reach generator (mjwalk.body.reach, mjwalk.body.reachgen)."""
+
+import numpy as np
+import pytest
+
+from mjwalk.body import reachgen
+from mjwalk.body.reach import ReachModel, arm_joint_angles, end_effector
+from mjwalk.errors import MjwalkError, ModelFileError
+
+
+@pytest.fixture(scope="module")
+def endpoint_model():
+    data = reachgen.generate("endpoints", 60, np.random.default_rng(0))
+    model = ReachModel(data.lengths, dcs={"random_state": 0}).fit(
+        data.constraints[:50], data.directions[:50]
+    )
+    return model, data
+
+
+def test_generator_shapes_and_grasp_aperture():
+    data = reachgen.generate("grasp", 20, np.random.default_rng(1))
+    assert data.directions.shape == (20, 20, 3, 3)
+    np.testing.assert_allclose(end_effector(data.directions, data.lengths), data.hand, atol=1e-9)
+    size = data.constraints[:, 0]
+    ap = data.extras[:, :, 0]
+    # aperture closes on the object (+-2 mm noise) after opening wider than it
+    assert np.abs(ap[:, -1] - size).max() < 0.01
+    assert (ap.max(1) > size + 0.005).all()  # MGA = 0.8 size + 3.5 cm
+    with pytest.raises(MjwalkError, match="unknown constraint space"):
+        reachgen.generate("dance", 3, np.random.default_rng(0))
+
+
+def test_prediction_reaches_targets_within_1cm(endpoint_model):
+    model, data = endpoint_model
+    for i in range(50, 60):
+        start, end = data.hand[i, 0], data.hand[i, -1]
+        r = model.predict(data.constraints[i], start=start, end=end)
+        assert np.linalg.norm(r.hand[-1] - end) < 0.01
+        assert np.linalg.norm(r.hand[0] - start) < 0.01
+        # seeded: held-out joint-direction error, measured ~5-10 deg
+        err = np.degrees(np.arccos(np.clip((r.directions * data.directions[i]).sum(-1), -1, 1)))
+        assert err.mean() < 20.0
+
+
+def test_outside_constraint_is_flagged_never_silent(endpoint_model):
+    model, data = endpoint_model
+    far = data.constraints[0] + np.r_[0, 0, 0, 1.5, 1.5, 1.5]
+    r = model.predict(far)
+    assert r.outside and r.distance > 3 and r.warnings
+    with pytest.raises(MjwalkError, match="outside the trained range"):
+        model.predict(far, strict=True)
+    ok = model.predict(data.constraints[55])
+    assert not ok.outside and not ok.warnings
+
+
+def test_reach_model_save_load(endpoint_model, tmp_path):
+    model, data = endpoint_model
+    model.save(tmp_path / "reach.npz")
+    back = ReachModel.load(tmp_path / "reach.npz")
+    a = model.predict(data.constraints[52]).directions
+    b = back.predict(data.constraints[52]).directions
+    np.testing.assert_allclose(a, b, atol=1e-12)
+    (tmp_path / "x.npz").write_text("junk")
+    with pytest.raises(ModelFileError):
+        ReachModel.load(tmp_path / "x.npz")
+
+
+def test_joint_angles_reproduce_directions_through_humanoid_chain(endpoint_model):
+    from scipy.spatial.transform import Rotation
+
+    _, data = endpoint_model
+    U = data.directions[3]
+    q = arm_joint_angles(U, side="l")
+    for t in range(len(U)):
+        flex, abd, rot, elbow, pron, wflex, wdev = q[t]
+        r_sh = Rotation.from_euler("YXZ", [-flex, abd, -rot])
+        r_fa = r_sh * Rotation.from_euler("YZ", [-elbow, -pron])
+        r_h = r_fa * Rotation.from_euler("YX", [-wflex, wdev])
+        down = np.array([0.0, 0.0, -1.0])
+        np.testing.assert_allclose(r_sh.apply(down), U[t, 0], atol=1e-6)
+        np.testing.assert_allclose(r_fa.apply(down), U[t, 1], atol=1e-6)
+        np.testing.assert_allclose(r_h.apply(down), U[t, 2], atol=1e-6)
+
+
+def test_obstacle_space_hand_clears_the_obstacle():
+    data = reachgen.generate("obstacle", 10, np.random.default_rng(2))
+    for c, hand in zip(data.constraints, data.hand, strict=True):
+        a, b = hand[0], hand[-1]
+        obstacle = a + c[0] * (b - a)
+        # the hand passes at least 8 cm above the obstacle point on the start-end line
+        above = hand[:, 2] - obstacle[2]
+        near = np.linalg.norm(hand[:, :2] - obstacle[:2], axis=1) < 0.05
+        assert near.any() and (above[near] > 0.08).any()
