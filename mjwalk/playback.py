@@ -1,0 +1,250 @@
+"""Timeline -> MuJoCo frames: the per-frame humanoid pose of a walk, playback and collision report.
+
+A :class:`Timeline` holds the compiled scene-with-humanoid model and one ``qpos`` row per video
+frame (default 30 fps). :func:`timeline_from_walk` builds it from a
+:class:`~mjwalk.plan.walkpath.WalkPath`: root position and yaw from the path, root height and
+legs from the footprints (:mod:`mjwalk.body.legs`), arms and torso from a simple counter-swing or
+the contact-switching gait-pose dynamics (:mod:`mjwalk.body.gaitpose`).
+:func:`collision_report` runs MuJoCo collision detection on every frame and reports the
+humanoid-vs-scene contacts.
+
+World frame: metres, seconds, radians, z up, yaw from +x CCW.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from mjwalk.body.humanoid import HUMAN_GROUP, JointMap, attach_humanoid
+from mjwalk.body.legs import LegMotion, legs_from_walk
+from mjwalk.errors import MjwalkError
+from mjwalk.plan.walkpath import WalkPath
+
+
+@dataclass
+class Event:
+    """Something that happens at a time of the timeline (seconds): ``kind`` like
+    ``"heel_strike"``/``"toe_off"``, ``detail`` like ``"left"``."""
+
+    time: float
+    kind: str
+    detail: str = ""
+
+
+@dataclass
+class Timeline:
+    """Per-frame poses of the humanoid in a scene.
+
+    Attributes:
+        model: the compiled scene + humanoid model.
+        jointmap: where the humanoid's joints live in ``qpos``.
+        fps: frames per second (the video rate).
+        t: (F,) frame times in seconds from 0.
+        qpos: (F, nq) the model's qpos for every frame (root x, y, z in metres, root quaternion
+            w, x, y, z; hinge angles in radians).
+        events: gait events (heel strikes, toe-offs), in time order.
+        contact: (F,) foot contact state, 0 left stance, 1 right stance, 2 double support.
+        walk: the WalkPath the timeline was made from (drawn into videos), if any.
+        scene: the scene file (or "<MjSpec>") and ``stature`` the humanoid's stature in metres,
+            enough to rebuild ``model``.
+    """
+
+    model: mujoco.MjModel
+    jointmap: JointMap
+    fps: float
+    t: np.ndarray
+    qpos: np.ndarray
+    events: list[Event] = field(default_factory=list)
+    contact: np.ndarray | None = None
+    walk: WalkPath | None = None
+    scene: str = ""
+    stature: float = 1.75
+
+    @property
+    def n_frames(self) -> int:
+        return int(self.qpos.shape[0])
+
+    @property
+    def duration(self) -> float:
+        return float(self.t[-1]) if len(self.t) else 0.0
+
+    def root(self) -> np.ndarray:
+        """(F, 3) root (pelvis) positions in metres."""
+        r = self.jointmap.root
+        return self.qpos[:, r : r + 3]
+
+    def angle(self, name: str) -> np.ndarray:
+        """(F,) angle of joint ``name`` (unprefixed, e.g. ``"knee_l"``) in radians."""
+        return self.qpos[:, self.jointmap.adr(name)]
+
+
+@dataclass
+class Contact:
+    """One humanoid-vs-scene contact in one frame.
+
+    Attributes:
+        time: frame time in seconds.
+        body_part: the humanoid geom (unprefixed name, e.g. ``"forearm_r"``).
+        scene_geom: the scene geom's name (or ``"geom#<id>"`` when unnamed).
+        depth: penetration depth in metres (>= 0 means overlapping).
+        pos: (3,) contact point in world coordinates, metres.
+    """
+
+    time: float
+    body_part: str
+    scene_geom: str
+    depth: float
+    pos: np.ndarray
+
+
+def yaw_quat(yaw: np.ndarray) -> np.ndarray:
+    """(N, 4) unit quaternions (w, x, y, z) of rotations by ``yaw`` radians about +z."""
+    yaw = np.asarray(yaw, float)
+    return np.column_stack(
+        [np.cos(yaw / 2), np.zeros_like(yaw), np.zeros_like(yaw), np.sin(yaw / 2)]
+    )
+
+
+def arm_swing(angles: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """Counter-swing of the arms from the leg angles (radians): each shoulder flexes opposite to
+    its own hip (the arm swings with the other leg), about 0.45 of the hip excursion, elbows
+    slightly bent (15 deg plus a third of the shoulder flexion), arms 6 deg abducted. A cheap
+    stand-in for the gait-pose dynamics (:mod:`mjwalk.body.gaitpose`)."""
+    out = {}
+    for s in "lr":
+        hip = angles[f"hip_{s}_flex"]
+        sh = -0.45 * (hip - np.mean(hip))
+        out[f"shoulder_{s}_flex"] = sh
+        out[f"shoulder_{s}_abd"] = np.full_like(hip, np.deg2rad(6))
+        out[f"elbow_{s}"] = np.deg2rad(15) + np.clip(sh, 0, None) / 3
+    return out
+
+
+def timeline_from_walk(
+    walk: WalkPath,
+    scene: str | Path | mujoco.MjSpec,
+    fps: float = 30.0,
+    stature: float = 1.75,
+    arms: str = "swing",
+    rng: np.random.Generator | None = None,
+) -> Timeline:
+    """Build the Timeline of a walk in a scene.
+
+    Args:
+        walk: the planned walk (root trajectory at 120 Hz with steps and footprints).
+        scene: an MJCF scene file or an MjSpec; the humanoid is attached (the file is not edited).
+        fps: frame rate of the timeline (the video rate).
+        stature: the humanoid's stature in metres.
+        arms: ``"swing"`` (counter-swing from the legs), ``"gaitpose"`` (contact-switching GP
+            dynamics for arms and torso, :mod:`mjwalk.body.gaitpose`) or ``"none"``.
+        rng: randomness for ``arms="gaitpose"`` (its default model is fitted with seed 0).
+
+    Returns:
+        the Timeline (frames at ``t = 0, 1/fps, ...`` up to the walk's duration).
+    """
+    if fps <= 0:
+        raise MjwalkError(f"timeline_from_walk: fps must be positive, got {fps!r}")
+    model, jm = attach_humanoid(scene, stature)
+    legs = legs_from_walk(walk, stature)
+    t = np.arange(0.0, walk.duration + 1e-9, 1.0 / fps)
+    qpos = _frames_from_legs(model, jm, legs, t, stature, arms, rng)
+    events = []
+    for st in walk.steps:
+        side = st.side
+        events.append(Event(float(walk.t[st.start]), "toe_off", side))
+        events.append(Event(float(walk.t[st.end]), "heel_strike", side))
+    events.sort(key=lambda e: e.time)
+    contact = np.interp(t, legs.t, legs.contact).round().astype(int)
+    return Timeline(
+        model=model,
+        jointmap=jm,
+        fps=float(fps),
+        t=t,
+        qpos=qpos,
+        events=events,
+        contact=contact,
+        walk=walk,
+        scene=str(scene) if not isinstance(scene, mujoco.MjSpec) else "<MjSpec>",
+        stature=stature,
+    )
+
+
+def _frames_from_legs(model, jm, legs: LegMotion, t, stature, arms, rng) -> np.ndarray:
+    qpos = np.tile(jm.neutral_qpos(model, stature), (len(t), 1))
+    r = jm.root
+    for k in range(3):
+        qpos[:, r + k] = np.interp(t, legs.t, legs.root[:, k])
+    qpos[:, r + 3 : r + 7] = yaw_quat(np.interp(t, legs.t, legs.yaw))
+    angles = {name: np.interp(t, legs.t, v) for name, v in legs.angles.items()}
+    if arms == "swing":
+        angles.update(arm_swing(angles))
+    elif arms == "gaitpose":
+        from mjwalk.body.gaitpose import upper_body_from_legs
+
+        angles.update(upper_body_from_legs(legs, t, rng=rng))
+    elif arms != "none":
+        raise MjwalkError(f"timeline_from_walk: arms={arms!r}; use 'swing', 'gaitpose' or 'none'")
+    for name, v in angles.items():
+        lo, hi = jm.limits(name)
+        qpos[:, jm.adr(name)] = np.clip(v, lo, hi)
+    return qpos
+
+
+def iter_frames(timeline: Timeline, data: mujoco.MjData | None = None) -> Iterator[mujoco.MjData]:
+    """Play the timeline: set each frame's qpos, run forward kinematics, yield the MjData."""
+    model = timeline.model
+    data = data if data is not None else mujoco.MjData(model)
+    for q in timeline.qpos:
+        data.qpos[:] = q
+        mujoco.mj_kinematics(model, data)
+        yield data
+
+
+def collision_report(timeline: Timeline, floor_tolerance: float = 0.01) -> list[Contact]:
+    """Humanoid-vs-scene contacts of every frame by MuJoCo collision detection.
+
+    Only pairs of one humanoid geom (group 5) and one scene geom count. Contacts with the floor
+    (the geom named ``"floor"`` or any plane) are left out unless they penetrate deeper than
+    ``floor_tolerance`` metres, so ordinary foot contact is not reported.
+
+    Returns:
+        contacts in time order (one per geom pair and frame), depth in metres.
+    """
+    model = timeline.model
+    data = mujoco.MjData(model)
+    human = model.geom_group == HUMAN_GROUP
+    plen = len(timeline.jointmap.prefix)
+    names = [
+        mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom#{g}"
+        for g in range(model.ngeom)
+    ]
+    floorish = np.array(
+        [
+            n == "floor" or model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
+            for g, n in enumerate(names)
+        ]
+    )
+    out: list[Contact] = []
+    for i, q in enumerate(timeline.qpos):
+        data.qpos[:] = q
+        mujoco.mj_kinematics(model, data)
+        mujoco.mj_collision(model, data)
+        best: dict[tuple[int, int], tuple[float, np.ndarray]] = {}
+        for c in data.contact[: data.ncon]:
+            g1, g2 = int(c.geom1), int(c.geom2)
+            if human[g1] == human[g2]:
+                continue
+            hg, sg = (g1, g2) if human[g1] else (g2, g1)
+            depth = -float(c.dist)
+            if floorish[sg] and depth <= floor_tolerance:
+                continue
+            if depth > best.get((hg, sg), (-np.inf,))[0]:
+                best[(hg, sg)] = (depth, np.array(c.pos))
+        for (hg, sg), (depth, pos) in best.items():
+            out.append(Contact(float(timeline.t[i]), names[hg][plen:], names[sg], depth, pos))
+    return out

@@ -1,0 +1,64 @@
+"""Timeline from a walk, playback and the humanoid-vs-scene collision report."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+import pytest
+from test_legs import make_walk
+
+from mjwalk.errors import MjwalkError
+from mjwalk.playback import collision_report, iter_frames, timeline_from_walk
+
+SCENE = """<mujoco><worldbody><geom name="floor" type="plane" size="10 10 .1"/>
+<body name="shelf" pos="{x} {y} .6"><geom name="box" type="box" size=".25 .25 .6"/></body>
+</worldbody></mujoco>"""
+
+
+def _scene(x, y=0.0):
+    return mujoco.MjSpec.from_string(SCENE.format(x=x, y=y))
+
+
+def test_timeline_shapes_and_root():
+    walk = make_walk(n_steps=6)
+    tl = timeline_from_walk(walk, _scene(20.0), fps=30)
+    assert tl.qpos.shape == (len(tl.t), tl.model.nq)
+    assert tl.t[1] == pytest.approx(1 / 30)
+    assert tl.duration == pytest.approx(walk.duration, abs=1 / 30)
+    # root follows the path
+    xy = np.column_stack([np.interp(tl.t, walk.t, walk.xy[:, k]) for k in range(2)])
+    assert np.allclose(tl.root()[:, :2], xy, atol=1e-9)
+    assert len([e for e in tl.events if e.kind == "heel_strike"]) == 6
+    for name in tl.jointmap.names:
+        lo, hi = tl.jointmap.limits(name)
+        a = tl.angle(name)
+        assert a.min() >= lo - 1e-9 and a.max() <= hi + 1e-9
+    # arm counter-swing: left shoulder flexes when the left hip extends
+    assert np.corrcoef(tl.angle("shoulder_l_flex"), tl.angle("hip_l_flex"))[0, 1] < -0.9
+    # playback visits every frame
+    assert sum(1 for _ in iter_frames(tl)) == tl.n_frames
+
+
+def test_clear_walk_has_no_contacts():
+    tl = timeline_from_walk(make_walk(n_steps=6), _scene(20.0))
+    assert collision_report(tl) == []
+
+
+def test_walk_into_box_is_reported():
+    # the path passes through a box at x = 2 m (the walk covers ~3.6 m along +x)
+    tl = timeline_from_walk(make_walk(n_steps=6), _scene(2.0))
+    contacts = collision_report(tl)
+    assert contacts, "walking through a box must be reported"
+    assert {c.scene_geom for c in contacts} == {"box"}
+    first = min(c.time for c in contacts)
+    root_x = np.interp(first, tl.t, tl.root()[:, 0])
+    assert 1.2 < root_x < 1.9  # the front of the body reaches the box face at x = 1.75
+    assert max(c.depth for c in contacts) > 0.05
+    assert all(not c.body_part.startswith("human/") for c in contacts)
+    # a box beside the path (1 m to the left) is not touched
+    assert collision_report(timeline_from_walk(make_walk(n_steps=6), _scene(2.0, 1.0))) == []
+
+
+def test_bad_arms_option():
+    with pytest.raises(MjwalkError, match="arms"):
+        timeline_from_walk(make_walk(n_steps=2), _scene(20.0), arms="flail")
