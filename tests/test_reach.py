@@ -91,3 +91,23 @@ def test_obstacle_space_hand_clears_the_obstacle():
         above = hand[:, 2] - obstacle[2]
         near = np.linalg.norm(hand[:, :2] - obstacle[:2], axis=1) < 0.05
         assert near.any() and (above[near] > 0.08).any()
+
+
+def test_grasp_closes_fingers_on_object_within_5mm():
+    from mjwalk.body.reach import finger_trajectory, fingers_for_aperture, pinch_aperture
+
+    data = reachgen.generate("grasp", 60, np.random.default_rng(4))
+    model = ReachModel(data.lengths, dcs={"random_state": 0}).fit(
+        data.constraints[:50], data.directions[:50], data.extras[:50]
+    )
+    for i in (50, 51, 52):
+        size = data.constraints[i, 0]
+        r = model.predict(data.constraints[i], data.hand[i, 0], data.hand[i, -1], object_size=size)
+        assert r.extras.shape == (20, 2)
+        assert r.extras[:, 0].max() > size  # opens wider than the object first
+        q = fingers_for_aperture(r.extras[-1, 0])
+        assert abs(pinch_aperture(q) - size) < 0.005
+    traj = finger_trajectory(r.extras[:, 0])
+    assert traj["index_l_mcp"].shape == (20,)
+    with pytest.raises(MjwalkError, match="outside the hand's range"):
+        fingers_for_aperture(0.5)

@@ -20,6 +20,7 @@ never used silently: the result carries its distance to the training data and a 
 
 from __future__ import annotations
 
+import functools
 import json
 import zipfile
 from dataclasses import dataclass, field
@@ -183,9 +184,12 @@ class ReachModel:
         start: np.ndarray | None = None,
         end: np.ndarray | None = None,
         strict: bool = False,
+        object_size: float | None = None,
     ) -> ReachResult:
         """Synthesize the movement for one ``constraint`` (d,); with ``start``/``end`` (3,)
-        hand positions (metres, shoulder frame) the movement is fitted to them exactly."""
+        hand positions (metres, shoulder frame) the movement is fitted to them exactly; with
+        ``object_size`` (m) the grip aperture (extras channel 0) is blended, with a
+        minimum-jerk profile, to close exactly on the object at the end."""
         if not hasattr(self, "net_"):
             raise MjwalkError("ReachModel is not fitted; call fit() or load() first")
         c = np.atleast_1d(np.asarray(constraint, dtype=float))
@@ -204,6 +208,11 @@ class ReachModel:
         b, pose = out[: self.n_modes_], out[self.n_modes_ :]
         A, E = self.rep_.inverse_transform(b[None])
         A, E = A[0], (None if E is None else E[0])
+        if object_size is not None:
+            if E is None:
+                raise MjwalkError("ReachModel.predict: object_size needs a grasp model (extras)")
+            E = E.copy()
+            E[:, 0] += min_jerk(np.linspace(0, 1, len(E))) * (object_size - E[-1, 0])
         if start is not None or end is not None:
             pose = self._fit_endpoints(A, pose, start, end)
         U = apply_pose(self.rep_.center_, A, pose)
@@ -366,3 +375,86 @@ def arm_joint_angles(
     q[:, 0] = np.unwrap(q[:, 0])
     q[:, 2] = np.unwrap(q[:, 2])
     return q
+
+
+# ---------------------------------------------------------------- fingers
+_FINGERS = ("index", "middle", "ring", "little")
+#: Joint angles (rad) of the one-parameter grip synergy at closure g = 0 (open) and g = 1.
+_OPEN_CMC, _CLOSED_FLEX = 1.1, 1.0
+
+
+@functools.lru_cache(maxsize=4)
+def _hand_model(stature: float):
+    import mujoco
+
+    from mjwalk.body.humanoid import humanoid_model
+
+    model, jmap = humanoid_model(stature)
+    return model, jmap, mujoco.MjData(model)
+
+
+def grip_synergy(closure: float, side: str = "l") -> dict[str, float]:
+    """Finger joint angles (rad) of the grip synergy at ``closure`` in [0, 1]: the thumb's
+    opposition (CMC) closes from 63 deg to 0 while the four fingers flex (MCP = PIP = phi,
+    DIP = 0.7 phi, phi up to 57 deg) and the thumb MCP/IP flex to half that."""
+    g = float(np.clip(closure, 0.0, 1.0))
+    phi = _CLOSED_FLEX * g
+    q = {f"thumb_{side}_cmc": _OPEN_CMC * (1 - g)}
+    q[f"thumb_{side}_mcp"] = 0.5 * phi * 0.8
+    q[f"thumb_{side}_ip"] = 0.5 * phi
+    for f in _FINGERS:
+        q[f"{f}_{side}_mcp"] = phi
+        q[f"{f}_{side}_pip"] = phi
+        q[f"{f}_{side}_dip"] = 0.7 * phi
+    return q
+
+
+def pinch_aperture(finger_q: dict[str, float], side: str = "l", stature: float = 1.75) -> float:
+    """Distance (m) between the thumb tip and the index fingertip of the humanoid hand for the
+    given finger joint angles (forward kinematics of mjwalk.body.humanoid in MuJoCo)."""
+    import mujoco
+
+    model, jmap, data = _hand_model(round(float(stature), 4))
+    q = jmap.neutral_qpos(model, stature)
+    for name, v in finger_q.items():
+        q[jmap.adr(name)] = v
+    data.qpos[:] = q
+    mujoco.mj_kinematics(model, data)
+
+    def tip(body, length):
+        b = model.body(body).id
+        return data.xpos[b] + data.xmat[b].reshape(3, 3) @ np.array([0.0, 0.0, -length * stature])
+
+    return float(
+        np.linalg.norm(tip(f"index_{side}_dip_seg", 0.011) - tip(f"thumb_{side}_tip", 0.015))
+    )
+
+
+def fingers_for_aperture(aperture: float, side: str = "l", stature: float = 1.75) -> dict:
+    """Finger joint angles (rad) whose thumb-index distance equals ``aperture`` metres (to
+    0.1 mm) along the grip synergy; apertures outside the hand's range raise MjwalkError."""
+    from scipy.optimize import brentq
+
+    lo = pinch_aperture(grip_synergy(1.0, side), side, stature)
+    hi = pinch_aperture(grip_synergy(0.0, side), side, stature)
+    if not lo <= aperture <= hi:
+        raise MjwalkError(
+            f"grip aperture {aperture * 100:.1f} cm outside the hand's range "
+            f"{lo * 100:.1f}-{hi * 100:.1f} cm (stature {stature} m)"
+        )
+    g = brentq(
+        lambda c: pinch_aperture(grip_synergy(c, side), side, stature) - aperture,
+        0.0,
+        1.0,
+        xtol=1e-6,
+    )
+    return grip_synergy(g, side)
+
+
+def finger_trajectory(apertures: np.ndarray, side: str = "l", stature: float = 1.75) -> dict:
+    """Finger joint angles over time: {joint name: (n,) radians} for grip ``apertures`` (n,)
+    metres (clipped to the hand's range)."""
+    lo = pinch_aperture(grip_synergy(0.95, side), side, stature)
+    hi = pinch_aperture(grip_synergy(0.0, side), side, stature)
+    frames = [fingers_for_aperture(float(np.clip(a, lo, hi)), side, stature) for a in apertures]
+    return {k: np.array([f[k] for f in frames]) for k in frames[0]}
