@@ -1,10 +1,12 @@
 """ReachModel and the reach generator (mjwalk.body.reach, mjwalk.body.reachgen)."""
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 from mjwalk.body import reachgen
-from mjwalk.body.reach import ReachModel, arm_joint_angles, end_effector
+from mjwalk.body.reach import ReachModel, arm_joint_angles, end_effector, reach_in_scene
 from mjwalk.errors import MjwalkError, ModelFileError
 
 
@@ -111,3 +113,34 @@ def test_grasp_closes_fingers_on_object_within_5mm():
     assert traj["index_l_mcp"].shape == (20,)
     with pytest.raises(MjwalkError, match="outside the hand's range"):
         fingers_for_aperture(0.5)
+
+
+SCENE = Path(__file__).parents[1] / "scenes" / "assembly_station.xml"
+
+
+@pytest.mark.skipif(not SCENE.is_file(), reason="scenes/assembly_station.xml absent")
+def test_reach_into_rack_shelf_without_contact(endpoint_model):
+    import mujoco
+
+    from mjwalk.playback import collision_report
+
+    model, _ = endpoint_model
+    # hand tip 6 cm above the screw on the rack-2 shelf (top of the shelf at z = 1.02 m)
+    tl, res = reach_in_scene(
+        SCENE, model, "stand_rack2", "rack2_screw2", target_offset=(0, 0, 0.06)
+    )
+    assert not res.outside and not tl.meta["clipped_joints"]
+    assert collision_report(tl) == []
+    # MuJoCo forward kinematics of the humanoid: wrist + hand direction lands on the target
+    data = mujoco.MjData(tl.model)
+    data.qpos[:] = tl.qpos[-1]
+    mujoco.mj_kinematics(tl.model, data)
+    wrist = data.xpos[tl.model.body("human/hand_l").id]
+    tip = wrist + tl.meta["frame"] @ (res.directions[-1, 2] * model.lengths[2])
+    assert np.linalg.norm(tip - tl.meta["target_world"]) < 0.01
+    # straight onto the screw the fingers would hit the shelf: the check does see contacts
+    tl2, _ = reach_in_scene(SCENE, model, "stand_rack2", "rack2_screw2")
+    assert any(c.scene_geom == "rack2_shelf" for c in collision_report(tl2))
+    # the tool on the low shelf is out of the standing arm's range: flagged, never silent
+    _, far = reach_in_scene(SCENE, model, "stand_rack2", "rack2_tool")
+    assert far.outside and far.warnings

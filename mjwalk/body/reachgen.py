@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mjwalk.body.reach import arm_segment_lengths, end_effector, min_jerk, two_link_ik
+from mjwalk.body.reach import REST_HAND, arm_segment_lengths, end_effector, min_jerk, two_link_ik
 from mjwalk.errors import MjwalkError
 
 SPACES = ("endpoints", "obstacle", "grasp")
@@ -126,7 +126,7 @@ def generate(
         raise MjwalkError(f"reachgen: unknown constraint space {space!r} (choose from {SPACES})")
     L = arm_segment_lengths(stature)
     C, U, E, Hs = [], [], [], []
-    base_start = np.array([0.15, 0.02, -0.60])
+    base_start = np.array(REST_HAND)
     base_end = np.array([0.45, -0.05, -0.15])
     tau = np.linspace(0.0, 1.0, n)
     while len(C) < p:
