@@ -90,7 +90,11 @@ def main() -> None:
     del real
 
     def pick(steps, cond):
-        return [s for s in steps if not s.meta.get("initiation") and cond(s)]
+        return [
+            s
+            for s in steps
+            if not (s.meta.get("initiation") or s.meta.get("termination")) and cond(s)
+        ]
 
     groups = {
         "real walk": pick(rsteps, lambda s: s.meta["group"] == "walk"),
@@ -101,7 +105,7 @@ def main() -> None:
         "virt all": pick(vsteps, lambda s: True),
     }
     figs = {k: figures(v) for k, v in groups.items()}
-    print("\nper step, gait initiations excluded: median [q25 q75] mean sd")
+    print("\nper step, gait initiations and terminations excluded: median [q25 q75] mean sd")
     for q in QUANTITIES:
         print(f"{q}:")
         for k in groups:

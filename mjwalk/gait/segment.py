@@ -18,7 +18,8 @@ Definitions used throughout (all frames are indices into the take, 120 Hz):
   (``Step.side``), which lands at the step's last frame. The other foot is the stance foot.
   The first step of a take that starts standing (both feet in contact since frame 0) is the
   gait *initiation*: it starts one median double-support time before the toe-off of its swing
-  foot (``Step.meta["initiation"] = True``).
+  foot (``Step.meta["initiation"] = True``). The last step of a take that ends standing (both
+  feet in contact from its last frame on) is a gait *termination* (``meta["termination"]``).
 * ``Step.index`` is ``k``, the position of its landing heel strike in the take's sequence of
   heel strikes, so steps ``k`` and ``k + 1`` of the same take are a captured transition; a
   dropped step leaves a gap.
@@ -27,6 +28,7 @@ Definitions used throughout (all frames are indices into the take, 120 Hz):
 
 from __future__ import annotations
 
+import itertools
 from collections import Counter
 from collections.abc import Iterable
 from dataclasses import dataclass, field
@@ -138,7 +140,7 @@ def foot_contact(
         height_offset: height threshold above the 5th percentile of the marker height, metres.
         min_phase: contact and swing phases shorter than this (seconds) are removed.
     """
-    n = max(1, int(round(min_phase * take.fps)))
+    n = max(1, round(min_phase * take.fps))
     out = np.zeros((take.n_frames, 2), bool)
     for j, (ankle, toe) in enumerate(((take.ankle_l, take.toe_l), (take.ankle_r, take.toe_r))):
         c = np.zeros(take.n_frames, bool)
@@ -249,18 +251,18 @@ def segment_take(
     events = sorted((int(f), j) for j, side in enumerate(SIDES) for f in hs[side])
     ankles = (take.ankle_l, take.ankle_r)
     toes = (take.toe_l, take.toe_r)
-    n_avg = max(1, int(round(0.1 * fps)))
+    n_avg = max(1, round(0.1 * fps))
     dropped: Counter[str] = Counter({r: 0 for r in DROP_REASONS})
 
     # Double-support time = toe-off of the swing foot minus the previous heel strike.
     ds = []
-    for (f0, j0), (f1, j1) in zip(events[:-1], events[1:]):
+    for (f0, j0), (f1, j1) in itertools.pairwise(events):
         if j0 != j1:
             t_off = to[SIDES[j1]]
             t_off = t_off[(t_off > f0) & (t_off < f1)]
             if t_off.size:
                 ds.append(t_off[0] - f0)
-    ds_med = int(np.median(ds)) if ds else int(round(0.12 * fps))
+    ds_med = int(np.median(ds)) if ds else round(0.12 * fps)
 
     # Candidate steps as (start frame, end frame, swing foot, index, initiation).
     cands: list[tuple[int, int, int, int, bool]] = []
@@ -296,7 +298,9 @@ def segment_take(
             dropped["absurd_length"] += 1
             continue
         meta = {k2: v for k2, v in take.meta.items() if isinstance(v, (str, int, float, bool))}
-        meta.update(start_frame=a, end_frame=b, initiation=init)
+        # Termination: the last heel strike of a take that ends standing (both feet in contact).
+        term = k == len(events) - 1 and bool(contact[b:].all())
+        meta.update(start_frame=a, end_frame=b, initiation=init, termination=term)
         steps.append(
             Step(
                 side=SIDES[j],
@@ -324,7 +328,7 @@ def segment_take(
 def count_transitions(steps: list[Step]) -> int:
     """Number of captured transitions: pairs of steps ``k``, ``k + 1`` of the same take."""
     n = 0
-    for s0, s1 in zip(steps[:-1], steps[1:]):
+    for s0, s1 in itertools.pairwise(steps):
         n += s0.take == s1.take and s1.index == s0.index + 1 and s0.side != s1.side
     return n
 
