@@ -1,0 +1,278 @@
+"""Offscreen video of a Timeline: tracking or top camera, the planned path drawn into the scene.
+
+MuJoCo picks its OpenGL backend from ``MUJOCO_GL`` when ``mujoco`` is first imported, so
+:func:`select_gl_backend` runs before this module imports mujoco: it keeps a ``MUJOCO_GL`` the user
+set, else picks ``egl`` when libEGL loads, else ``osmesa`` when libOSMesa loads. (For the choice to
+hold package-wide it must also run before anything else imports mujoco: see the report / the top of
+``mjwalk/__init__.py``.) If no backend works, rendering raises an MjwalkError that names the Debian
+package to install (``libegl1`` or ``libosmesa6``).
+
+World frame: metres, z up; image pixels (u right, v down) from the top-left corner.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import os
+import sys
+
+
+def _probe_only() -> str:
+    """The backend :func:`select_gl_backend` would choose, without touching the environment."""
+    saved = os.environ.get("MUJOCO_GL")
+    saved_py = os.environ.get("PYOPENGL_PLATFORM")
+    os.environ.pop("MUJOCO_GL", None)
+    try:
+        return select_gl_backend()
+    finally:
+        for key, val in (("MUJOCO_GL", saved), ("PYOPENGL_PLATFORM", saved_py)):
+            if val is None:
+                os.environ.pop(key, None)
+            else:
+                os.environ[key] = val
+
+
+def select_gl_backend() -> str:
+    """Set ``MUJOCO_GL`` (if unset) to a headless backend that loads here; return the choice.
+
+    Order: a user-set ``MUJOCO_GL``; ``egl`` if libEGL loads; ``osmesa`` if libOSMesa loads;
+    otherwise ``"none"`` (rendering will then fail with a clear error). Has no effect on an
+    already imported mujoco.
+    """
+    if os.environ.get("MUJOCO_GL"):
+        return os.environ["MUJOCO_GL"]
+    for backend, libs in (
+        ("egl", ("libEGL.so.1", "EGL")),
+        ("osmesa", ("libOSMesa.so.8", "OSMesa")),
+    ):
+        for lib in libs:
+            name = lib if lib.startswith("lib") else ctypes.util.find_library(lib)
+            if not name:
+                continue
+            try:
+                ctypes.CDLL(name)
+            except OSError:
+                continue
+            os.environ["MUJOCO_GL"] = backend
+            if backend == "osmesa":
+                os.environ.setdefault("PYOPENGL_PLATFORM", "osmesa")
+            return backend
+    return "none"
+
+
+#: the backend chosen at import ("none" when neither EGL nor OSMesa loads).
+_SELECTED = select_gl_backend() if "mujoco" not in sys.modules else _probe_only()
+
+import mujoco  # noqa: E402
+import numpy as np  # noqa: E402
+
+from mjwalk._io import atomic_path  # noqa: E402
+from mjwalk.body.humanoid import HUMAN_GROUP  # noqa: E402
+from mjwalk.errors import MjwalkError  # noqa: E402
+from mjwalk.playback import Timeline  # noqa: E402
+
+#: Colour of the drawn path (RGBA) and of the drawn footprints (left, right).
+PATH_RGBA = np.array([1.0, 0.55, 0.0, 1.0], dtype=np.float32)
+FOOT_RGBA = (
+    np.array([0.9, 0.2, 0.2, 0.9], dtype=np.float32),
+    np.array([0.2, 0.4, 0.95, 0.9], dtype=np.float32),
+)
+CAMERAS = ("track", "top")
+
+
+def _renderer(model: mujoco.MjModel, size: tuple[int, int]) -> mujoco.Renderer:
+    width, height = size
+    model.vis.global_.offwidth = max(int(model.vis.global_.offwidth), int(width))
+    model.vis.global_.offheight = max(int(model.vis.global_.offheight), int(height))
+    try:
+        return mujoco.Renderer(model, height=int(height), width=int(width))
+    except Exception as exc:
+        backend = os.environ.get("MUJOCO_GL", "")
+        if backend in ("", "glfw") and _SELECTED != "none":
+            raise MjwalkError(
+                f"offscreen rendering failed: mujoco was imported before mjwalk.render could "
+                f"select a headless OpenGL backend ({_SELECTED} is available here), so it uses "
+                f"GLFW, which needs a display ({exc}); run with MUJOCO_GL={_SELECTED} set in "
+                f"the environment, or import mjwalk before mujoco"
+            ) from exc
+        hint = {
+            "egl": "install the Debian package libegl1 (and a Mesa EGL driver, libegl-mesa0), "
+            "or set MUJOCO_GL=osmesa with libosmesa6 installed",
+            "osmesa": "install the Debian package libosmesa6, or set MUJOCO_GL=egl with libegl1",
+        }.get(
+            backend,
+            "install the Debian package libegl1 (MUJOCO_GL=egl) or libosmesa6 (MUJOCO_GL=osmesa)",
+        )
+        raise MjwalkError(
+            f"offscreen rendering failed (MUJOCO_GL={backend or 'unset'}): {exc}; {hint}"
+        ) from exc
+
+
+def camera_for(timeline: Timeline, frame: int, camera: str, size=(640, 480)) -> mujoco.MjvCamera:
+    """The free camera of ``camera`` ("track" or "top") at ``frame``.
+
+    ``track`` looks at the pelvis from 3.5 m, 15 deg above, from the walker's left side (relative
+    to the start heading of the walk). ``top`` looks straight down on the whole walk (path and
+    the humanoid's whole extent), +x to the right and +y up in the image.
+    """
+    if camera not in CAMERAS:
+        raise MjwalkError(f"render: unknown camera {camera!r}; use one of {CAMERAS}")
+    cam = mujoco.MjvCamera()
+    cam.type = mujoco.mjtCamera.mjCAMERA_FREE
+    root = timeline.root()
+    if camera == "track":
+        r = timeline.jointmap.root
+        q = timeline.qpos[0, r + 3 : r + 7]
+        yaw0 = 2 * np.arctan2(q[3], q[0])
+        cam.lookat[:] = [root[frame, 0], root[frame, 1], 0.9 * root[frame, 2]]
+        cam.distance = 3.5
+        cam.elevation = -15.0
+        cam.azimuth = float(np.rad2deg(yaw0)) - 90.0
+    else:
+        lo = root[:, :2].min(0) - 1.0
+        hi = root[:, :2].max(0) + 1.0
+        centre = 0.5 * (lo + hi)
+        w, h = size
+        fovy = np.deg2rad(timeline.model.vis.global_.fovy)
+        half = max(0.5 * (hi[1] - lo[1]), 0.5 * (hi[0] - lo[0]) * h / w)
+        cam.lookat[:] = [centre[0], centre[1], 0.0]
+        cam.distance = float(half / np.tan(fovy / 2))
+        cam.elevation = -90.0
+        cam.azimuth = 90.0
+    return cam
+
+
+def project(renderer: mujoco.Renderer, points: np.ndarray) -> np.ndarray:
+    """(N, 2) pixel coordinates (u right, v down) of world points (N, 3) in the last rendered
+    view of ``renderer`` (after ``update_scene``), from its OpenGL camera frustum."""
+    scn = renderer.scene
+    gl = scn.camera[0]
+    pos, fwd, up = np.array(gl.pos), np.array(gl.forward), np.array(gl.up)
+    if len(scn.camera) > 1:  # stereo off: both cameras equal; average to be safe
+        pos = 0.5 * (pos + np.array(scn.camera[1].pos))
+    right = np.cross(fwd, up)
+    d = np.atleast_2d(points) - pos
+    x, y, z = d @ right, d @ up, d @ fwd
+    near = gl.frustum_near
+    xn, yn = near * x / z, near * y / z
+    # frustum_width 0 means "from the viewport aspect ratio" (as mjr_render does)
+    half = gl.frustum_width or 0.5 * (gl.frustum_top - gl.frustum_bottom) * renderer.width / (
+        renderer.height
+    )
+    left, rightb = gl.frustum_center - half, gl.frustum_center + half
+    u = renderer.width * (xn - left) / (rightb - left)
+    v = renderer.height * (gl.frustum_top - yn) / (gl.frustum_top - gl.frustum_bottom)
+    return np.column_stack([u, v])
+
+
+def _draw_path(scn: mujoco.MjvScene, timeline: Timeline, width: float = 0.02) -> None:
+    """Add the planned path (capsule segments 2 cm wide, 5 mm above the floor) and the
+    footprints (thin boxes) to the scene as user geoms."""
+    walk = timeline.walk
+    if walk is None:
+        return
+    pts = np.asarray(walk.xy)
+    step = max(1, len(pts) // 200)
+    pts = np.vstack([pts[::step], pts[-1:]])
+    eye = np.eye(3).ravel()
+    for a, b in zip(pts[:-1], pts[1:], strict=True):
+        if scn.ngeom >= scn.maxgeom or np.allclose(a, b):
+            continue
+        g = scn.geoms[scn.ngeom]
+        mujoco.mjv_initGeom(
+            g, mujoco.mjtGeom.mjGEOM_CAPSULE, np.zeros(3), np.zeros(3), eye, PATH_RGBA
+        )
+        mujoco.mjv_connector(
+            g,
+            mujoco.mjtGeom.mjGEOM_CAPSULE,
+            width,
+            np.array([a[0], a[1], 0.005]),
+            np.array([b[0], b[1], 0.005]),
+        )
+        scn.ngeom += 1
+    for st in walk.steps:
+        if scn.ngeom >= scn.maxgeom:
+            break
+        x, y, yaw = st.foot
+        c, s = np.cos(yaw), np.sin(yaw)
+        mat = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]], float).ravel()
+        g = scn.geoms[scn.ngeom]
+        mujoco.mjv_initGeom(
+            g,
+            mujoco.mjtGeom.mjGEOM_BOX,
+            np.array([0.12, 0.045, 0.002]),
+            np.array([x + 0.03 * c, y + 0.03 * s, 0.002]),
+            mat,
+            FOOT_RGBA[st.side == "right"],
+        )
+        scn.ngeom += 1
+
+
+def render_frames(
+    timeline: Timeline,
+    camera: str = "track",
+    size: tuple[int, int] = (640, 480),
+    frames=None,
+    draw_path: bool = True,
+    progress: bool = False,
+):
+    """Yield ``(frame_index, rgb image (H, W, 3) uint8, renderer)`` for the timeline's frames."""
+    from tqdm import tqdm
+
+    model = timeline.model
+    renderer = _renderer(model, size)
+    data = mujoco.MjData(model)
+    idx = range(timeline.n_frames) if frames is None else frames
+    opt = mujoco.MjvOption()
+    opt.geomgroup[HUMAN_GROUP] = 1  # MuJoCo shows groups 0-2 only by default
+    try:
+        for i in tqdm(idx, disable=not progress, desc="render", unit="frame"):
+            data.qpos[:] = timeline.qpos[i]
+            mujoco.mj_kinematics(model, data)
+            renderer.update_scene(data, camera_for(timeline, i, camera, size), scene_option=opt)
+            if draw_path:
+                _draw_path(renderer.scene, timeline)
+            yield i, renderer.render(), renderer
+    finally:
+        renderer.close()
+
+
+def render_video(
+    timeline: Timeline,
+    path: str | os.PathLike,
+    camera: str = "track",
+    size: tuple[int, int] = (640, 480),
+    fps: float | None = None,
+    progress: bool = True,
+    draw_path: bool = True,
+) -> None:
+    """Render the timeline offscreen to an mp4 (H.264 via imageio-ffmpeg), atomically.
+
+    Args:
+        timeline: the poses to show.
+        path: output video file (written to a temporary file, renamed on success).
+        camera: ``"track"`` (follows the pelvis) or ``"top"`` (whole walk from above).
+        size: (width, height) in pixels.
+        fps: video frame rate; defaults to the timeline's; frames are picked to keep real time.
+        progress: show a tqdm progress bar.
+        draw_path: draw the planned path and footprints into the scene.
+    """
+    import imageio.v2 as imageio
+
+    if camera not in CAMERAS:
+        raise MjwalkError(f"render_video: unknown camera {camera!r}; use one of {CAMERAS}")
+    fps = float(timeline.fps if fps is None else fps)
+    n_out = max(1, int(np.floor(timeline.duration * fps + 1e-9)) + 1)
+    frames = np.clip(
+        np.round(np.arange(n_out) / fps * timeline.fps).astype(int), 0, timeline.n_frames - 1
+    )
+    with atomic_path(path, suffix=".mp4") as tmp:
+        writer = imageio.get_writer(
+            str(tmp), format="FFMPEG", fps=fps, codec="libx264", macro_block_size=1, quality=7
+        )
+        try:
+            for _, img, _ in render_frames(timeline, camera, size, frames, draw_path, progress):
+                writer.append_data(img)
+        finally:
+            writer.close()

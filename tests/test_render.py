@@ -1,0 +1,97 @@
+"""Offscreen rendering: frames are not blank, the humanoid shows where the camera projects it."""
+
+from __future__ import annotations
+
+import os
+
+os.environ.setdefault("MUJOCO_GL", "egl")
+
+import mujoco
+import numpy as np
+import pytest
+from test_legs import make_walk
+
+from mjwalk.errors import MjwalkError
+from mjwalk.playback import timeline_from_walk
+
+render = pytest.importorskip("mjwalk.render")
+
+SCENE = """<mujoco><worldbody><geom name="floor" type="plane" size="10 10 .1" rgba=".2 .6 .2 1"/>
+<light pos="0 0 6" dir="0 0 -1" directional="true"/></worldbody></mujoco>"""
+
+
+@pytest.fixture(scope="module")
+def timeline():
+    walk = make_walk(n_steps=5, radius=3.0)
+    return timeline_from_walk(walk, mujoco.MjSpec.from_string(SCENE), fps=30)
+
+
+def test_top_view_humanoid_at_projected_pixels(timeline):
+    tl = timeline
+    frames = [0, tl.n_frames // 2, tl.n_frames - 1]
+    away = tl.qpos.copy()
+    away[:, tl.jointmap.root + 2] -= 50.0  # same views (camera from x, y), humanoid under the floor
+    bg_tl = type(tl)(**{**tl.__dict__, "qpos": away})
+    try:
+        fg = render_list(tl, frames)
+        bg = render_list(bg_tl, frames, project_from=tl)
+    except MjwalkError as exc:
+        pytest.skip(str(exc))
+    for (img, (uv, top)), (img0, _) in zip(fg, bg, strict=True):
+        assert img.std() > 5  # not blank
+        mask = np.abs(img.astype(int) - img0.astype(int)).sum(-1) > 40
+        assert mask.sum() > 300, "humanoid not visible"
+        ys, xs = np.nonzero(mask)
+        # perspective: the standing body spans the image segment from the projection of the
+        # floor point under the pelvis (uv) to that of the head height above it (top); the
+        # blob's centroid lies close to that segment, and the body covers the segment's middle
+        c = np.array([xs.mean(), ys.mean()])
+        seg = top - uv
+        lam = np.clip((c - uv) @ seg / (seg @ seg), 0, 1)
+        assert np.linalg.norm(c - (uv + lam * seg)) < 25
+        u, v = np.round(uv + 0.5 * seg).astype(int)
+        assert 15 <= u < img.shape[1] - 15 and 15 <= v < img.shape[0] - 15
+        assert mask[v - 15 : v + 15, u - 15 : u + 15].mean() > 0.3
+
+
+def render_list(tl, frames, project_from=None):
+    out = []
+    src = project_from or tl
+    for i, img, r in render.render_frames(tl, "top", frames=frames, draw_path=False):
+        x, y = src.root()[i][:2]
+        uv = render.project(r, np.array([[x, y, 0.0], [x, y, 1.75]]))
+        out.append((img.copy(), uv))
+    return out
+
+
+def test_track_view_and_path_drawn(timeline):
+    tl = timeline
+    try:
+        ((_, with_path, _),) = list(render.render_frames(tl, "top", frames=[10]))
+        ((_, without, _),) = list(render.render_frames(tl, "top", frames=[10], draw_path=False))
+        ((_, track, r),) = list(render.render_frames(tl, "track", frames=[10]))
+        uv = render.project(r, tl.root()[10][None])[0]
+    except MjwalkError as exc:
+        pytest.skip(str(exc))
+    drawn = np.abs(with_path.astype(int) - without.astype(int)).sum(-1) > 40
+    assert drawn.sum() > 500  # the path and footprints add pixels
+    # drawn pixels are reddish (orange path, red/blue footprints), not the green floor
+    assert (with_path[drawn][:, 1] < with_path[drawn][:, [0, 2]].max(1) + 10).mean() > 0.8
+    assert track.std() > 5
+    assert abs(uv[0] - 320) < 2 and abs(uv[1] - 240) < 60  # tracking camera centres the pelvis
+
+
+def test_render_video_atomic(tmp_path, timeline):
+    imageio = pytest.importorskip("imageio.v2")
+    short = type(timeline)(**{**timeline.__dict__, "qpos": timeline.qpos[:8], "t": timeline.t[:8]})
+    out = tmp_path / "walk.mp4"
+    try:
+        render.render_video(short, out, camera="top", size=(320, 240), progress=False)
+    except MjwalkError as exc:
+        pytest.skip(str(exc))
+    assert out.exists() and list(tmp_path.iterdir()) == [out]
+    frames = imageio.mimread(out)
+    assert len(frames) == 8 and frames[0].shape == (240, 320, 3)
+    with pytest.raises(MjwalkError, match="camera"):
+        render.render_video(short, tmp_path / "x.mp4", camera="side")
+    assert not (tmp_path / "x.mp4").exists()
