@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import ctypes
 import ctypes.util
+import itertools
 import os
 import sys
 
@@ -63,6 +64,7 @@ def select_gl_backend() -> str:
 
 #: the backend chosen at import ("none" when neither EGL nor OSMesa loads).
 _SELECTED = select_gl_backend() if "mujoco" not in sys.modules else _probe_only()
+
 
 import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
@@ -176,7 +178,7 @@ def _draw_path(scn: mujoco.MjvScene, timeline: Timeline, width: float = 0.02) ->
     step = max(1, len(pts) // 200)
     pts = np.vstack([pts[::step], pts[-1:]])
     eye = np.eye(3).ravel()
-    for a, b in zip(pts[:-1], pts[1:], strict=True):
+    for a, b in itertools.pairwise(pts):
         if scn.ngeom >= scn.maxgeom or np.allclose(a, b):
             continue
         g = scn.geoms[scn.ngeom]
