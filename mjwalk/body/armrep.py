@@ -138,6 +138,67 @@ def fit_pose(
     return least_squares(resid, x0, bounds=(lb, ub), x_scale=1.0).x
 
 
+def _remove_poses(center: np.ndarray, U: np.ndarray, X: np.ndarray) -> np.ndarray:
+    """Batched :func:`remove_pose`: U (p, n, S, 3), poses X (p, 4) -> (p, n, S, 3)."""
+    mats = Rotation.from_rotvec(X[:, :3]).as_matrix()  # (p, 3, 3)
+    back = np.einsum("pji,pnsj->pnsi", mats, U)  # R^T u
+    s = np.exp(-X[:, 3])[:, None, None, None]
+    return sphere_exp(center, s * sphere_log(center, back))
+
+
+def fit_poses(
+    center: np.ndarray,
+    U: np.ndarray,
+    target: np.ndarray,
+    max_log_scale: float = 1.0,
+    n_iter: int = 30,
+    tol: float = 1e-10,
+) -> np.ndarray:
+    """Batched :func:`fit_pose` for U (p, n, S, 3) against one target (n, S, 3): Kabsch
+    rotations, then Levenberg-Marquardt on all p 4-parameter problems at once (finite-difference
+    Jacobians, per-problem damping). Returns poses (p, 4)."""
+    p = len(U)
+    flat_t = target.reshape(-1, 3)
+    X = np.zeros((p, 4))
+    for k in range(p):
+        r0, _ = Rotation.align_vectors(U[k].reshape(-1, 3), flat_t)
+        X[k, :3] = r0.as_rotvec()
+
+    def resid(x):
+        return (_remove_poses(center, U, x) - target).reshape(p, -1)
+
+    r = resid(X)
+    cost = (r**2).sum(axis=1)
+    lam = np.full(p, 1e-3)
+    h = 1e-6
+    eye = np.eye(4)
+    for _ in range(n_iter):
+        J = np.empty((*r.shape, 4))
+        for k in range(4):
+            xk = X.copy()
+            xk[:, k] += h
+            J[:, :, k] = (resid(xk) - r) / h
+        JtJ = np.einsum("pmi,pmj->pij", J, J)
+        g = np.einsum("pmi,pm->pi", J, r)
+        A = JtJ + lam[:, None, None] * (
+            eye * np.maximum(JtJ.diagonal(axis1=1, axis2=2), 1e-9)[:, None, :]
+        )
+        dx = -np.linalg.solve(A, g[..., None])[..., 0]
+        Xn = X + dx
+        Xn[:, 3] = np.clip(Xn[:, 3], -max_log_scale, max_log_scale)
+        rn = resid(Xn)
+        cn = (rn**2).sum(axis=1)
+        better = cn < cost
+        X[better], r[better], lam[better] = Xn[better], rn[better], lam[better] * 0.3
+        gain = cost - np.where(better, cn, cost)
+        cost = np.where(better, cn, cost)
+        lam[~better] *= 10.0
+        converged = np.where(better, gain <= tol * np.maximum(cost, 1e-12), lam > 1e4)
+        if converged.all():
+            break
+    return X
+
+
 def _normalize(v: np.ndarray) -> np.ndarray:
     return v / np.maximum(np.linalg.norm(v, axis=-1, keepdims=True), _EPS)
 
@@ -165,9 +226,8 @@ class ArmRepresentation:
 
     # ------------------------------------------------------------ alignment
     def _align_all(self, U: np.ndarray, target: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        poses = np.array([fit_pose(self.center_, u, target) for u in U])
-        A = np.array([remove_pose(self.center_, u, x) for u, x in zip(U, poses, strict=True)])
-        return A, poses
+        poses = fit_poses(self.center_, U, target)
+        return _remove_poses(self.center_, U, poses), poses
 
     def fit(self, U: np.ndarray, extras: np.ndarray | None = None) -> ArmRepresentation:
         """Align direction trajectories ``U`` (p, n, S, 3) by GPA and fit the PCA."""
