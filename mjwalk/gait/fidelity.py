@@ -165,6 +165,7 @@ def model_straight_walks(
     rng: np.random.Generator,
     *,
     n_candidates: int = 10,
+    heading_weight: float = 0.05,
 ) -> list[dict[str, float]]:
     """Walk the model straight to a goal at each distance (m) with the greedy steering rule of
     the module docstring; all walks advance together (vectorized)."""
@@ -199,13 +200,18 @@ def model_straight_walks(
         to_goal = goal[idx, None, :] - end
         bearing = np.arctan2(-to_goal[..., 0], to_goal[..., 1])
         err = np.abs(np.angle(np.exp(1j * (phi_new - bearing))))
-        best = np.argmin(err, axis=1)
-        rows = np.arange(k) * n_candidates + best
         d_now = np.hypot(*(goal[idx] - pos[idx]).T)
-        d_new = np.hypot(*to_goal[np.arange(k), best].T)
+        d_cand = np.hypot(to_goal[..., 0], to_goal[..., 1])
+        cand_pelvis, _ = cand.resample(PATH_SAMPLES)
+        cand_len = _path_length(cand_pelvis).reshape(k, n_candidates)
+        # detour of the step (path length minus progress to the goal) + heading error
+        score = cand_len - (d_now[:, None] - d_cand) + heading_weight * err
+        best = np.argmin(score, axis=1)
+        rows = np.arange(k) * n_candidates + best
+        d_new = d_cand[np.arange(k), best]
         go = (d_new < d_now) | (n_steps[idx] == 0)
         chosen = cand.take(rows)
-        pelvis, _ = chosen.resample(PATH_SAMPLES)
+        pelvis = cand_pelvis[rows]
         g = idx[go]
         pos[g] = end[np.arange(k), best][go]
         phi[g] = phi_new[np.arange(k), best][go]
@@ -429,11 +435,11 @@ def validate_main(
     stdout, writes the JSON report to ``json_path`` atomically when given, returns the report."""
     from mjwalk.gait.default import default_model
 
-    model = default_model() if model_path is None else StepModel.load(model_path)
     if str(against).lower().endswith(".amc"):
         takes = load_capture(amc=against, asf=amc_asf, skeleton=skeleton)
     else:
         takes = load_capture(bvh=against, skeleton=skeleton)
+    model = default_model() if model_path is None else StepModel.load(model_path)
     report = fidelity_report(model, takes, np.random.default_rng(seed), n_chains=n_chains)
     print(format_fidelity_table(report))
     if json_path is not None:
