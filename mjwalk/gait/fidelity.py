@@ -16,12 +16,13 @@ the two-sample Kolmogorov-Smirnov statistic (``scipy.stats.ks_2samp``) on
 ``straight_deg`` in total is a straight walk; its distance D is the distance between the pelvis
 at the start of its first and the end of its last (consecutive) step, its time the sum of the
 step durations and its path length the pelvis path length (each step sampled at 25 instants,
-as for the model). The model walks each D with a greedy steering rule: start with the best of
-10 KDE starters, then repeatedly draw 10 GP successors and take the one whose end heading
-deviates least from the bearing (from its end point) to the goal at distance D straight
-ahead; stop before a step that would not bring the walker closer to the goal (so the walk ends
-within about half a step of it). Medians and IQRs of time and path length are reported,
-capture beside model.
+as for the model). The model walks each D with a greedy, one-step version of the planner's
+A* cost: start from 10 KDE starters, then repeatedly draw 10 GP successors of the chosen step
+and take the candidate with the least *detour* (its pelvis path length minus the distance it
+gains towards the goal, which lies D straight ahead) plus 0.05 m/rad times its end-heading
+error to the goal bearing; stop before a step that would not bring the walker closer to the
+goal (the walk ends within about half a step of it). Medians and IQRs of time and path length
+are reported, capture beside model.
 """
 
 from __future__ import annotations
