@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 from pathlib import Path
 
 import mujoco
@@ -213,3 +214,73 @@ def test_reference_gait_table():
     assert REFERENCE_GAIT["knee"].max() == pytest.approx(63)  # peak swing flexion 60-65 deg
     assert np.rad2deg(reference_angle("hip", 0.0)) == pytest.approx(30)
     assert np.rad2deg(reference_angle("knee", 1.0)) == pytest.approx(3)
+
+
+def _sagittal_cycles(hip, knee, ankle, pelvis, yaw, fps):
+    """Hip and knee flexion (degrees) per gait cycle of the left leg, time-normalised to 101
+    samples. Hip flexion: thigh vs vertical in the heading plane; knee: thigh vs shank there.
+    Cycles start when the ankle is furthest ahead of the pelvis (close to heel strike); the same
+    definition is applied to capture and model, so the comparison is like for like."""
+    from scipy.signal import find_peaks
+
+    fwd = np.column_stack([np.cos(yaw), np.sin(yaw), np.zeros_like(yaw)])
+    th, sh = knee - hip, ankle - knee
+    hipf = np.degrees(np.arctan2((th * fwd).sum(1), -th[:, 2]))
+    kneef = hipf - np.degrees(np.arctan2((sh * fwd).sum(1), -sh[:, 2]))
+    peaks, _ = find_peaks(((ankle - pelvis) * fwd).sum(1), distance=int(0.7 * fps), prominence=0.1)
+    x = np.linspace(0, 1, 101)
+    cycles = []
+    for a, b in itertools.pairwise(peaks):
+        s = np.linspace(0, 1, b - a + 1)
+        cycles.append([np.interp(x, s, hipf[a : b + 1]), np.interp(x, s, kneef[a : b + 1])])
+    return np.array(cycles[1:-1])
+
+
+def test_knee_hip_curves_vs_bandai_capture():
+    """Mean knee/hip flexion over a straight-walk cycle vs bandai-walk (normal style)."""
+    files = sorted((DATA / "bandai-walk").glob("dataset-2_walk_normal_*.bvh"))[:6]
+    if not files:
+        pytest.skip("../shared/data/bandai-walk not available")
+    mocap = pytest.importorskip("mjwalk.mocap")
+    caps, speed, hip_h = [], [], []
+    for f in files:
+        tk = mocap.load_bvh(f, skeleton="bandai")
+        j = tk.joints
+        c = _sagittal_cycles(
+            j["UpperLeg_L"], j["LowerLeg_L"], j["Foot_L"], tk.pelvis, tk.pelvis_yaw, tk.fps
+        )
+        if len(c):
+            caps.append(c)
+        speed.append(np.linalg.norm(np.diff(tk.pelvis[:, :2], axis=0), axis=1).sum() / tk.duration)
+        hip_h.append(j["UpperLeg_L"][:, 2].mean())
+    cap = np.concatenate(caps).mean(0)
+    # the same walker: cycle 1.11 s, 1.09 m/s, hip height 0.88 m (bandai-walk normal, 6 clips)
+    T, v = 1.11, float(np.mean(speed))
+    stature = float(np.mean(hip_h)) / 0.530
+    walk = make_walk(n_steps=14, step_len=v * T / 2, step_time=T / 2)
+    legs = legs_from_walk(walk, stature)
+    model, jm = humanoid_model(stature)
+    data = mujoco.MjData(model)
+    pos = np.zeros((len(legs.t), 3, 3))
+    for i in range(len(legs.t)):
+        q = jm.neutral_qpos(model, stature)
+        q[:3] = legs.root[i]
+        q[3:7] = [np.cos(legs.yaw[i] / 2), 0, 0, np.sin(legs.yaw[i] / 2)]
+        for name, a in legs.angles.items():
+            q[jm.adr(name)] = a[i]
+        data.qpos[:] = q
+        mujoco.mj_kinematics(model, data)
+        pos[i] = [data.xpos[model.body(b).id] for b in ("thigh_l", "shin_l", "foot_l")]
+    mod = _sagittal_cycles(pos[:, 0], pos[:, 1], pos[:, 2], legs.root, legs.yaw, 120).mean(0)
+    d_hip = np.abs(mod[0] - cap[0]).max()
+    d_knee = np.abs(mod[1] - cap[1]).max()
+    rms_hip = np.sqrt(((mod[0] - cap[0]) ** 2).mean())
+    rms_knee = np.sqrt(((mod[1] - cap[1]) ** 2).mean())
+    print(
+        f"\nvs bandai-walk: hip max diff {d_hip:.1f} deg (rms {rms_hip:.1f}; target max <= 5), "
+        f"knee max diff {d_knee:.1f} deg (rms {rms_knee:.1f}; target max <= 10)"
+    )
+    # Regression bounds on what the current model achieves (the paper's targets are not met
+    # yet, see the report): a real gait shape, not noise.
+    assert rms_knee < 25 and rms_hip < 15
+    assert np.corrcoef(mod[1], cap[1])[0, 1] > 0.5
