@@ -23,7 +23,8 @@ Definitions used throughout (all frames are indices into the take, 120 Hz):
 * ``Step.index`` is ``k``, the position of its landing heel strike in the take's sequence of
   heel strikes, so steps ``k`` and ``k + 1`` of the same take are a captured transition; a
   dropped step leaves a gap.
-* footprints are ankle positions projected on the floor, foot yaw is the ankle->toe direction.
+* footprints are ankle positions projected on the floor, foot yaw is the ankle->toe direction,
+  both medians over the first 0.1 s of the foot's contact.
 """
 
 from __future__ import annotations
@@ -121,9 +122,9 @@ def _marker_contact(
 def foot_contact(
     take: Take,
     *,
-    sigma: float = 1.5,
+    sigma: float = 1.0,
     threshold_sigma: float = 60.0,
-    speed_offset: float = 0.3,
+    speed_offset: float = 0.5,
     min_speed: float = 0.08,
     height_offset: float = 0.05,
     min_phase: float = 0.08,
@@ -183,9 +184,10 @@ def _check_take(take: Take) -> None:
 def _foot_pose(
     ankle: np.ndarray, toe: np.ndarray, frame: int, n_avg: int, origin: np.ndarray, yaw0: float
 ) -> np.ndarray:
-    """(3,) ankle x, y and ankle->toe yaw at ``frame`` in the step frame (origin, yaw0)."""
+    """(3,) ankle x, y and ankle->toe yaw in the step frame (origin, yaw0): medians over the
+    ``n_avg`` frames from ``frame`` on (the foot is planted there; robust to a late key frame)."""
     sl = slice(frame, min(frame + n_avg, ankle.shape[0]))
-    a = ankle[frame, :2]
+    a = np.median(ankle[sl, :2], axis=0)
     d = np.median(toe[sl, :2] - ankle[sl, :2], axis=0)
     foot_yaw = np.arctan2(d[1], d[0]) - yaw0
     return np.array([*_to_local(a[None] - origin, yaw0)[0], _wrap(foot_yaw)])
@@ -204,9 +206,9 @@ def _to_local(d: np.ndarray, yaw0: float) -> np.ndarray:
 def segment_take(
     take: Take,
     *,
-    sigma: float = 1.5,
+    sigma: float = 1.0,
     threshold_sigma: float = 60.0,
-    speed_offset: float = 0.3,
+    speed_offset: float = 0.5,
     min_speed: float = 0.08,
     height_offset: float = 0.05,
     min_phase: float = 0.08,
@@ -369,11 +371,9 @@ def step_sway(step: Step) -> float:
 
 
 def step_width(step: Step) -> float:
-    """Lateral distance between the landing footprint and the stance foot, metres, measured
-    across the direction of progression (the chord of the step's pelvis path)."""
-    chord = step.pelvis[-1] - step.pelvis[0]
-    n = np.hypot(*chord)
-    if n < 1e-9:
-        return float(np.hypot(*(step.footprint[:2] - step.stance[:2])))
+    """Step width, metres: lateral distance between the landing footprint and the stance foot
+    across the line of progression, whose direction is the mean of the two foot yaws (toe-out
+    of the left and right foot cancels)."""
+    yaw = step.stance[2] + 0.5 * _wrap(step.footprint[2] - step.stance[2])
     d = step.footprint[:2] - step.stance[:2]
-    return float(abs(d[0] * chord[1] - d[1] * chord[0]) / n)
+    return float(abs(d[0] * np.cos(yaw) + d[1] * np.sin(yaw)))
