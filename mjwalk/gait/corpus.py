@@ -31,10 +31,10 @@ single support (rolling from heel to forefoot, laterally ``zmp_offset`` from the
 moving between the feet during double support, midway between them when standing. The
 horizontal pelvis ``x(t)`` solves the linear inverted pendulum ``x'' = g/z0 (x - p)`` as a
 boundary-value problem (at rest over ``p`` at both ends of a grid padded by 2 s) at 120 Hz:
-one tridiagonal solve per take (``scipy.linalg.solve_banded``), which is the unique bounded solution and gives
-the lateral sway towards the stance foot. The pelvis height bobs by ``bob`` (high in single
-support, low in double support); the pelvis yaw follows the walking heading plus the
-transverse pelvic rotation (``pelvis_rotation``, extreme at heel strikes).
+one tridiagonal solve per take (``scipy.linalg.solve_banded``), which is the unique bounded
+solution and gives the lateral sway towards the stance foot. The pelvis height bobs by ``bob``
+(high in single support, low in double support); the pelvis yaw follows the walking heading
+plus the transverse pelvic rotation (``pelvis_rotation``, extreme at heel strikes).
 
 All outputs: 120 Hz, metres, z up, yaw radians CCW from +x (world frame).
 """
