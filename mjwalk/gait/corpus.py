@@ -123,6 +123,9 @@ class SubjectParams:
         step_duration: preferred step duration (heel strike to heel strike), seconds.
         step_width: lateral distance between the ankle centres, metres.
         zmp_offset: lateral distance of the single-support ZMP from the walking line, metres.
+            Calibrated (about 0.10 m) so that the pendulum pelvis sways like the captured hip
+            centre (about 3 cm per step); it exceeds half the ankle width because the captured
+            pelvis also lists sideways over the stance leg, which a point-mass LIPM lacks.
         double_support: double-support share of a step's duration.
         pelvis_rotation: amplitude of the transverse pelvic rotation, radians.
         toe_out: outward rotation of each foot from the heading, radians.
