@@ -26,14 +26,20 @@ CELL_SIZE = 0.08
 #: Walking speed (m/s) used to time the baseline's route (median speed of the Bandai walk capture).
 NOMINAL_SPEED = 1.13
 _SQRT2 = math.sqrt(2.0)
-_MOVES = [(1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1)]
+#: The 8-connected moves (di, dj) of the grid A*.
+MOVES_8 = [(1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1)]
+#: 16-connected moves (adds the knight moves): routes at most 2.7 % longer than straight lines.
+MOVES_16 = MOVES_8 + [(2, 1), (1, 2), (-1, 2), (-2, 1), (-2, -1), (-1, -2), (1, -2), (2, -1)]
+_MOVES = MOVES_8
 _SAMPLE_SPACING = 0.01
 
 
 @dataclass
 class OccupancyGrid:
-    """Cells over the floor: centres ``x0 + i * cell``, ``y0 + j * cell`` (metres) and, for each of
-    the 8 moves, whether it is collision-free from each cell (``moves[k, j, i]``)."""
+    """Cells over the floor: centres ``x0 + i * cell``, ``y0 + j * cell`` (metres) and, for each
+    move ``offsets[k]`` = (di, dj), whether it is collision-free from each cell
+    (``moves[k, j, i]``).
+    """
 
     x0: float
     y0: float
@@ -41,6 +47,7 @@ class OccupancyGrid:
     radius: float
     free: np.ndarray
     moves: np.ndarray
+    offsets: tuple[tuple[int, int], ...] = tuple(MOVES_8)
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -65,9 +72,12 @@ def segment_is_free(workplace: Workplace, a: np.ndarray, b: np.ndarray, radius: 
 
 
 def occupancy_grid(
-    workplace: Workplace, cell: float = CELL_SIZE, radius: float = BODY_RADIUS
+    workplace: Workplace,
+    cell: float = CELL_SIZE,
+    radius: float = BODY_RADIUS,
+    moves: list[tuple[int, int]] = MOVES_8,
 ) -> OccupancyGrid:
-    """Build the free-cell mask and the per-move validity for ``workplace``."""
+    """Build the free-cell mask and the validity of each of ``moves`` for ``workplace``."""
     xmin, ymin, xmax, ymax = workplace.floor_bounds
     nx = int(np.floor((xmax - xmin) / cell))
     ny = int(np.floor((ymax - ymin) / cell))
@@ -76,8 +86,8 @@ def occupancy_grid(
     gx, gy = np.meshgrid(x0 + cell * np.arange(nx), y0 + cell * np.arange(ny))
     centres = np.stack([gx, gy], axis=-1)
     free = workplace.walk_clearance(centres) >= radius
-    moves = np.zeros((len(_MOVES), ny, nx), dtype=bool)
-    for k, (di, dj) in enumerate(_MOVES):
+    valid = np.zeros((len(moves), ny, nx), dtype=bool)
+    for k, (di, dj) in enumerate(moves):
         step = np.array([di, dj], dtype=float) * cell
         n = int(np.ceil(np.linalg.norm(step) / _SAMPLE_SPACING)) + 1
         ts = np.linspace(0.0, 1.0, n)
@@ -92,8 +102,8 @@ def occupancy_grid(
             ok[-dj:, :] = False
         if dj < 0:
             ok[:-dj, :] = False
-        moves[k] = ok & free
-    return OccupancyGrid(x0, y0, cell, radius, free, moves)
+        valid[k] = ok & free
+    return OccupancyGrid(x0, y0, cell, radius, free, valid, tuple(moves))
 
 
 def check_endpoint(workplace: Workplace, xy: np.ndarray, radius: float, what: str) -> None:
@@ -158,6 +168,8 @@ def plan_grid(
     check_endpoint(workplace, b, radius, "goal")
     if grid is None or grid.cell != cell or grid.radius != radius:
         grid = occupancy_grid(workplace, cell, radius)
+    if grid.offsets != tuple(MOVES_8):  # the octile heuristic is admissible for 8 moves only
+        grid = occupancy_grid(workplace, cell, radius, MOVES_8)
     ny, nx = grid.shape
     n = nx * ny
     start_node, goal_node = n, n + 1

@@ -1,0 +1,189 @@
+"""Probabilistic hybrid A*: 200 sampled walks checked with MuJoCo geometry, gait, bad input."""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import pytest
+
+from mjwalk import PlanningError
+from mjwalk.gait.corpus import generate_corpus
+from mjwalk.gait.default import default_model
+from mjwalk.gait.fidelity import sway_amplitude
+from mjwalk.gait.segment import segment_takes
+from mjwalk.plan import WalkPath
+from mjwalk.plan.hybrid import HybridPlanner, plan_walk, plan_walks
+from mjwalk.world import load_workplace
+from mjwalk.world.probe import ClearanceProbe
+
+RADIUS = 0.25
+# 200 walks in all: (scene, start, goal, count)
+CASES = [
+    ("assembly_station", "stand_rack2", "stand_car1", 20),
+    ("assembly_station", "stand_car1", "stand_rack3", 20),
+    ("assembly_station", "stand_car2", "stand_rack1", 20),
+    ("assembly_station", "stand_car3", "stand_rack2", 20),
+    ("assembly_station", "stand_rack2", "stand_rack3", 20),
+    ("corridor", "entry", "door", 25),
+    ("corridor", "door", "exit", 25),
+    ("open_floor", "west", "east", 25),
+    ("open_floor", "-4,-4", "3.5,4", 25),
+]
+
+
+@pytest.fixture(scope="module")
+def model():
+    return default_model(progress=False)
+
+
+def _sway_towards_stance(pelvis: np.ndarray, stance_xy: np.ndarray) -> bool:
+    """Whether the pelvis's largest lateral excursion from the step's chord points to the side
+    of the stance foot (the pelvis swings over the supporting foot)."""
+    chord = pelvis[-1] - pelvis[0]
+    rel = pelvis - pelvis[0]
+    lat = chord[0] * rel[:, 1] - chord[1] * rel[:, 0]
+    srel = stance_xy - pelvis[0]
+    return bool(
+        np.sign(lat[np.argmax(np.abs(lat))]) == np.sign(chord[0] * srel[1] - chord[1] * srel[0])
+    )
+
+
+@pytest.fixture(scope="module")
+def training():
+    """Sway figures of (a slice of) the corpus the default model is trained on."""
+    steps, _ = segment_takes(generate_corpus(n_subjects=2, seed=0))
+    steps = [s for s in steps if s.index > 0]
+    amps = np.array([sway_amplitude(s.pelvis) for s in steps])
+    towards = np.mean([_sway_towards_stance(s.pelvis, s.stance[:2]) for s in steps])
+    return amps, towards
+
+
+@pytest.fixture(scope="module")
+def walks(model, scenes_dir):
+    out = []
+    for scene, start, goal, n in CASES:
+        path = scenes_dir / f"{scene}.xml"
+        wp = load_workplace(path)
+        paths = plan_walks(wp, start, goal, model, n=n, seed=7)
+        out.append((path, wp, start, goal, paths))
+    return out
+
+
+def test_two_hundred_walks_are_collision_free_by_mujoco(walks):
+    total = 0
+    for path, wp, _start, _goal, paths in walks:
+        probe = ClearanceProbe(path)
+        for p in paths:
+            if probe.geoms:
+                assert probe.clearance(p.xy).min() >= RADIUS - 1e-3
+            assert np.all(wp.on_floor(p.xy))
+            total += 1
+    assert total == 200
+
+
+def test_walks_end_in_the_goal_area_and_differ(walks):
+    for _path, wp, _start, goal, paths in walks:
+        g = wp.point(goal)
+        for p in paths:
+            assert np.linalg.norm(p.xy[-1] - g) <= 0.25 + 1e-9
+            # 120 Hz samples, times from 0, consecutive steps chained sample to sample
+            np.testing.assert_allclose(np.diff(p.t), 1 / 120)
+            assert p.steps[0].start == 0 and p.steps[-1].end == len(p.xy) - 1
+            assert all(a.end == b.start for a, b in zip(p.steps, p.steps[1:], strict=False))
+            assert all(a.side != b.side for a, b in zip(p.steps, p.steps[1:], strict=False))
+        keys = {(len(p.xy), round(float(p.xy[len(p.xy) // 2, 0]), 9)) for p in paths}
+        assert len(keys) == len(paths)  # no two paths are identical
+
+
+def test_pelvis_sways_step_by_step(walks, training):
+    """The pelvis swings over the stance foot step after step: pooled over all 200 walks, the
+    share of steps whose lateral excursion points to the stance side is within 0.08 of the
+    training corpus's share (about 0.78; 0.5 would be no oscillation; a per-walk share is too
+    noisy to test on walks of a few steps), and each walk's median sway amplitude lies in the
+    training data's range and, beyond four steps, exceeds 5 mm."""
+    amps_train, towards_train = training
+    lo, hi = amps_train.min(), amps_train.max()
+    pooled = []
+    for _path, _wp, _start, _goal, paths in walks:
+        for p in paths:
+            towards = [
+                _sway_towards_stance(p.xy[s.start : s.end + 1], s.stance[:2]) for s in p.steps[1:]
+            ]
+            amps = [sway_amplitude(p.xy[s.start : s.end + 1]) for s in p.steps[1:]]
+            pooled += towards
+            assert lo <= np.median(amps) <= hi
+            if len(towards) >= 4:  # short walks are mostly starting and stopping steps
+                assert np.median(amps) > 0.005  # a visible oscillation, not a straight line
+    assert np.mean(pooled) >= towards_train - 0.08
+    assert np.mean(pooled) >= 0.65
+
+
+def test_same_seed_same_walks(model, scenes_dir):
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    a = plan_walks(wp, "stand_rack2", "stand_car1", model, n=3, seed=11)
+    b = plan_walks(wp, "stand_rack2", "stand_car1", model, n=3, seed=11)
+    for p, q in zip(a, b, strict=True):
+        np.testing.assert_array_equal(p.xy, q.xy)
+    single = plan_walk(wp, "stand_rack2", "stand_car1", model, rng=5)
+    again = plan_walk(wp, "stand_rack2", "stand_car1", model, rng=5)
+    np.testing.assert_array_equal(single.xy, again.xy)
+
+
+def test_walkpath_roundtrip(model, scenes_dir, tmp_path):
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    p = plan_walk(wp, "stand_car1", "stand_rack3", model, rng=1)
+    p.save(tmp_path / "walk.npz")
+    q = WalkPath.load(tmp_path / "walk.npz")
+    np.testing.assert_array_equal(p.xy, q.xy)
+    assert [s.side for s in p.steps] == [s.side for s in q.steps]
+    assert q.meta["planner"] == "hybrid_astar"
+    assert p.length > np.linalg.norm(wp.point("stand_rack3") - wp.point("stand_car1")) - 0.25
+
+
+def test_goal_heading(model, scenes_dir):
+    wp = load_workplace(scenes_dir / "open_floor.xml")
+    p = plan_walk(
+        wp, "-2,0,0", "2,0", model, rng=3, goal_yaw=np.pi / 2, goal_yaw_tolerance=np.radians(30)
+    )
+    diff = (p.yaw[-1] - np.pi / 2 + np.pi) % (2 * np.pi) - np.pi
+    assert abs(diff) <= np.radians(30) + 1e-9
+
+
+def test_unreachable_goal_fails_fast(model, scenes_dir, tmp_path):
+    text = (scenes_dir / "assembly_station.xml").read_text()
+    cage = """
+    <geom name="cage_n" type="box" size="0.6 0.05 1" pos="3.0 1.5 1"/>
+    <geom name="cage_s" type="box" size="0.6 0.05 1" pos="3.0 0.3 1"/>
+    <geom name="cage_w" type="box" size="0.05 0.6 1" pos="2.45 0.9 1"/>
+    <geom name="cage_e" type="box" size="0.05 0.6 1" pos="3.55 0.9 1"/>
+  </worldbody>"""
+    f = tmp_path / "caged.xml"
+    f.write_text(text.replace("</worldbody>", cage))
+    wp = load_workplace(f)
+    t0 = time.perf_counter()
+    with pytest.raises(PlanningError, match="unreachable"):
+        plan_walk(wp, "stand_rack2", "3.0,0.9", model, rng=0)
+    assert time.perf_counter() - t0 < 5.0
+
+
+def test_goal_inside_obstacle_refused_before_search(model, scenes_dir):
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+
+    class NoSampling:
+        def sample_first(self, *a, **k):
+            raise AssertionError("searched although the goal is inside an obstacle")
+
+        sample_next = sample_first
+
+    with pytest.raises(PlanningError, match="inside obstacle 'car_body'"):
+        plan_walk(wp, "stand_rack2", "0,1.4", NoSampling(), rng=0)
+    with pytest.raises(PlanningError, match="off the floor"):
+        plan_walk(wp, "stand_rack2", "5,0", NoSampling(), rng=0)
+
+
+def test_budget_spent_is_reported(model, scenes_dir):
+    wp = load_workplace(scenes_dir / "corridor.xml")
+    planner = HybridPlanner(wp, "exit", model, max_expansions=5)
+    with pytest.raises(PlanningError, match="budget of 5"):
+        planner.plan("entry", np.random.default_rng(0))
