@@ -8,16 +8,45 @@ from mjwalk.errors import (
     PlanningError,
     SceneError,
 )
-from mjwalk.mocap import Take
+from mjwalk.gait import Step
+from mjwalk.gait.corpus import generate_corpus
+from mjwalk.gait.default import default_model
+from mjwalk.gait.features import StepBatch
+from mjwalk.gait.model import StepModel
+from mjwalk.gait.segment import segment_take, segment_takes
+from mjwalk.mocap import Take, load_amc, load_bvh
+from mjwalk.plan import PathStep, WalkPath
+from mjwalk.plan.grid import plan_grid
+from mjwalk.plan.hybrid import plan_walk, plan_walks
+from mjwalk.world import Workplace, load_workplace
+from mjwalk.world.probe import ClearanceProbe, path_clearance
 
 __version__ = "0.1.0"
 
 __all__ = [
     "CaptureError",
+    "ClearanceProbe",
     "CycleSpecError",
     "MjwalkError",
     "ModelFileError",
+    "PathStep",
     "PlanningError",
     "SceneError",
+    "Step",
+    "StepBatch",
+    "StepModel",
     "Take",
+    "WalkPath",
+    "Workplace",
+    "default_model",
+    "generate_corpus",
+    "load_amc",
+    "load_bvh",
+    "load_workplace",
+    "path_clearance",
+    "plan_grid",
+    "plan_walk",
+    "plan_walks",
+    "segment_take",
+    "segment_takes",
 ]

@@ -9,6 +9,23 @@ from pathlib import Path
 from mjwalk.errors import MjwalkError
 
 
+def _load_model(path: Path | None):
+    if path is None:
+        from mjwalk.gait.default import default_model
+
+        return default_model()
+    from mjwalk.gait.model import StepModel
+
+    return StepModel.load(path)
+
+
+def _quartiles(x) -> tuple[float, float]:
+    import numpy as np
+
+    q25, q50, q75 = np.percentile(x, [25, 50, 75])
+    return float(q50), float(q75 - q25)
+
+
 def _cmd_plan(args: argparse.Namespace) -> int:
     from mjwalk.plan.grid import plan_grid
     from mjwalk.plot import save_plan_png
@@ -20,15 +37,67 @@ def _cmd_plan(args: argparse.Namespace) -> int:
         f"grid A*  {args.start} -> {args.goal}: length {baseline.length:.3f} m, "
         f"{baseline.meta['expansions']} expansions, {1000 * baseline.meta['seconds']:.1f} ms"
     )
+    paths = []
+    if args.n > 0:
+        from mjwalk.plan.hybrid import plan_walks
+
+        model = _load_model(args.model)
+        paths = plan_walks(
+            workplace, args.start, args.goal, model, n=args.n, seed=args.seed, radius=args.radius
+        )
+        lm, li = _quartiles([p.length for p in paths])
+        dm, di = _quartiles([p.duration for p in paths])
+        tm, _ = _quartiles([1000 * p.meta["seconds"] for p in paths])
+        print(
+            f"hybrid A* {len(paths)} walks: length median {lm:.3f} m (IQR {li:.3f}), "
+            f"duration median {dm:.2f} s (IQR {di:.2f}), planning median {tm:.1f} ms"
+        )
+        if args.save:
+            for k, p in enumerate(paths):
+                p.save(args.save.with_name(f"{args.save.stem}_{k:03d}.npz"))
+            print(f"wrote {len(paths)} walk files {args.save.stem}_NNN.npz")
     if args.png:
         save_plan_png(
             args.png,
             workplace,
-            [],
+            paths,
             baseline=baseline,
+            footprints=args.footprints,
             title=f"{workplace.name}: {args.start} -> {args.goal}",
         )
         print(f"wrote {args.png}")
+    return 0
+
+
+def _cmd_train(args: argparse.Namespace) -> int:
+    from mjwalk.gait.fidelity import train_main
+
+    if args.amc and not args.asf:
+        raise MjwalkError("train: --amc needs --asf")
+    train_main(
+        args.output,
+        bvh=args.bvh,
+        amc=args.amc,
+        asf=args.asf,
+        virtual=args.virtual,
+        seed=args.seed,
+        skeleton=args.skeleton,
+    )
+    print(f"wrote {args.output}")
+    return 0
+
+
+def _cmd_validate(args: argparse.Namespace) -> int:
+    from mjwalk.gait.fidelity import validate_main
+
+    validate_main(
+        args.model,
+        args.against,
+        args.json,
+        amc_asf=args.asf,
+        seed=args.seed,
+        skeleton=args.skeleton,
+    )
     return 0
 
 
@@ -45,7 +114,36 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--to", dest="goal", required=True, help="goal: X,Y (metres) or a site name")
     p.add_argument("--radius", type=float, default=0.25, help="body radius in metres (0.25)")
     p.add_argument("--png", type=Path, help="write a top-view PNG of the plan here")
+    p.add_argument(
+        "--n",
+        type=int,
+        default=15,
+        help="walks to sample with the hybrid A* (15; 0: baseline only)",
+    )
+    p.add_argument("--model", type=Path, help="step model file (default: the built-in model)")
+    p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same walks)")
+    p.add_argument("--footprints", action="store_true", help="draw the footprints too")
+    p.add_argument("--save", type=Path, help="save each walk as NAME_NNN.npz (for mjwalk render)")
     p.set_defaults(func=_cmd_plan)
+
+    p = sub.add_parser("train", help="train a step model from capture or virtual subjects")
+    p.add_argument("--bvh", help="glob of BVH files")
+    p.add_argument("--amc", help="glob of AMC files (with --asf)")
+    p.add_argument("--asf", help="the ASF skeleton of the AMC files")
+    p.add_argument("--virtual", type=int, help="N virtual subjects from the built-in generator")
+    p.add_argument("--skeleton", help="skeleton preset: bandai, cmu, cmu_bvh")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("-o", "--output", type=Path, required=True, help="model file to write")
+    p.set_defaults(func=_cmd_train)
+
+    p = sub.add_parser("validate", help="compare a step model with captured walking")
+    p.add_argument("model", type=Path, nargs="?", help="model file (default: built-in model)")
+    p.add_argument("--against", required=True, help="glob of BVH (or AMC, with --asf) files")
+    p.add_argument("--asf", help="ASF skeleton for AMC files")
+    p.add_argument("--skeleton", help="skeleton preset: bandai, cmu, cmu_bvh")
+    p.add_argument("--json", type=Path, help="write the report as JSON here")
+    p.add_argument("--seed", type=int, default=0)
+    p.set_defaults(func=_cmd_validate)
     return parser
 
 
