@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import itertools
 from pathlib import Path
 
 import mujoco
@@ -11,8 +10,18 @@ import pytest
 from scipy.interpolate import PchipInterpolator
 
 from mjwalk.body.humanoid import humanoid_model, leg_geometry
-from mjwalk.body.legs import REFERENCE_GAIT, leg_ik, legs_from_walk, reference_angle
+from mjwalk.body.legs import (
+    WINTER_GAIT,
+    gait_cycles,
+    heel_strikes,
+    leg_ik,
+    legs_from_walk,
+    reference_angle,
+    reference_from_takes,
+    sagittal_angles,
+)
 from mjwalk.errors import PlanningError
+from mjwalk.mocap.take import Take
 from mjwalk.plan.walkpath import PathStep, WalkPath
 
 DATA = Path(__file__).parents[2] / "shared" / "data"
@@ -211,57 +220,19 @@ def test_no_steps_is_an_error():
 
 
 def test_reference_gait_table():
-    assert REFERENCE_GAIT["knee"].max() == pytest.approx(63)  # peak swing flexion 60-65 deg
+    assert max(WINTER_GAIT["knee"]) == pytest.approx(63)  # peak swing flexion 60-65 deg
     assert np.rad2deg(reference_angle("hip", 0.0)) == pytest.approx(30)
     assert np.rad2deg(reference_angle("knee", 1.0)) == pytest.approx(3)
 
 
-def _sagittal_cycles(hip, knee, ankle, pelvis, yaw, fps):
-    """Hip and knee flexion (degrees) per gait cycle of the left leg, time-normalised to 101
-    samples. Hip flexion: thigh vs vertical in the heading plane; knee: thigh vs shank there.
-    Cycles start when the ankle is furthest ahead of the pelvis (close to heel strike); the same
-    definition is applied to capture and model, so the comparison is like for like."""
-    from scipy.signal import find_peaks
-
-    fwd = np.column_stack([np.cos(yaw), np.sin(yaw), np.zeros_like(yaw)])
-    th, sh = knee - hip, ankle - knee
-    hipf = np.degrees(np.arctan2((th * fwd).sum(1), -th[:, 2]))
-    kneef = hipf - np.degrees(np.arctan2((sh * fwd).sum(1), -sh[:, 2]))
-    peaks, _ = find_peaks(((ankle - pelvis) * fwd).sum(1), distance=int(0.7 * fps), prominence=0.1)
-    x = np.linspace(0, 1, 101)
-    cycles = []
-    for a, b in itertools.pairwise(peaks):
-        s = np.linspace(0, 1, b - a + 1)
-        cycles.append([np.interp(x, s, hipf[a : b + 1]), np.interp(x, s, kneef[a : b + 1])])
-    return np.array(cycles[1:-1])
-
-
-def test_knee_hip_curves_vs_bandai_capture():
-    """Mean knee/hip flexion over a straight-walk cycle vs bandai-walk (normal style)."""
-    files = sorted((DATA / "bandai-walk").glob("dataset-2_walk_normal_*.bvh"))[:6]
-    if not files:
-        pytest.skip("../shared/data/bandai-walk not available")
-    mocap = pytest.importorskip("mjwalk.mocap")
-    caps, speed, hip_h = [], [], []
-    for f in files:
-        tk = mocap.load_bvh(f, skeleton="bandai")
-        j = tk.joints
-        c = _sagittal_cycles(
-            j["UpperLeg_L"], j["LowerLeg_L"], j["Foot_L"], tk.pelvis, tk.pelvis_yaw, tk.fps
-        )
-        if len(c):
-            caps.append(c)
-        speed.append(np.linalg.norm(np.diff(tk.pelvis[:, :2], axis=0), axis=1).sum() / tk.duration)
-        hip_h.append(j["UpperLeg_L"][:, 2].mean())
-    cap = np.concatenate(caps).mean(0)
-    # the same walker: cycle 1.11 s, 1.09 m/s, hip height 0.88 m (bandai-walk normal, 6 clips)
-    T, v = 1.11, float(np.mean(speed))
-    stature = float(np.mean(hip_h)) / 0.530
-    walk = make_walk(n_steps=14, step_len=v * T / 2, step_time=T / 2)
-    legs = legs_from_walk(walk, stature)
+def _model_cycles(walk, stature, reference=None):
+    """Gait cycles (C, 3, 101) of the model's left leg, through MuJoCo FK and the same
+    :func:`gait_cycles` used on the capture (like-for-like)."""
+    legs = legs_from_walk(walk, stature, reference=reference)
     model, jm = humanoid_model(stature)
     data = mujoco.MjData(model)
-    pos = np.zeros((len(legs.t), 3, 3))
+    bodies = ("thigh_l", "shin_l", "foot_l", "toes_l")
+    pos = np.zeros((len(legs.t), 4, 3))
     for i in range(len(legs.t)):
         q = jm.neutral_qpos(model, stature)
         q[:3] = legs.root[i]
@@ -270,17 +241,64 @@ def test_knee_hip_curves_vs_bandai_capture():
             q[jm.adr(name)] = a[i]
         data.qpos[:] = q
         mujoco.mj_kinematics(model, data)
-        pos[i] = [data.xpos[model.body(b).id] for b in ("thigh_l", "shin_l", "foot_l")]
-    mod = _sagittal_cycles(pos[:, 0], pos[:, 1], pos[:, 2], legs.root, legs.yaw, 120).mean(0)
-    d_hip = np.abs(mod[0] - cap[0]).max()
-    d_knee = np.abs(mod[1] - cap[1]).max()
-    rms_hip = np.sqrt(((mod[0] - cap[0]) ** 2).mean())
-    rms_knee = np.sqrt(((mod[1] - cap[1]) ** 2).mean())
-    print(
-        f"\nvs bandai-walk: hip max diff {d_hip:.1f} deg (rms {rms_hip:.1f}; target max <= 5), "
-        f"knee max diff {d_knee:.1f} deg (rms {rms_knee:.1f}; target max <= 10)"
+        pos[i] = [data.xpos[model.body(b).id] for b in bodies]
+    joints = dict(
+        zip(("UpperLeg_L", "LowerLeg_L", "Foot_L", "Toes_L"), pos.swapaxes(0, 1), strict=True)
     )
-    # Regression bounds on what the current model achieves (the paper's targets are not met
-    # yet, see the report): a real gait shape, not noise.
-    assert rms_knee < 25 and rms_hip < 15
-    assert np.corrcoef(mod[1], cap[1])[0, 1] > 0.5
+    take = Take(
+        "model",
+        120.0,
+        legs.root,
+        legs.yaw,
+        pos[:, 2],
+        pos[:, 2],
+        pos[:, 3],
+        pos[:, 3],
+        joints=joints,
+    )
+    return gait_cycles(take)
+
+
+def test_knee_hip_curves_vs_bandai_capture():
+    """Mean knee/hip flexion over a straight-walk cycle vs bandai-walk (normal style).
+
+    Reference gait from clips 1-3 (the paper's gait DB), compared with held-out clips 4-6 of
+    the same style; the walk (step length, cadence) and the leg length match those clips."""
+    files = sorted((DATA / "bandai-walk").glob("dataset-2_walk_normal_*.bvh"))[:6]
+    if len(files) < 6:
+        pytest.skip("../shared/data/bandai-walk not available")
+    mocap = pytest.importorskip("mjwalk.mocap")
+    takes = [mocap.load_bvh(f, skeleton="bandai") for f in files]
+    train, test = takes[:3], takes[3:]
+    cap = np.concatenate([gait_cycles(t) for t in test])
+    assert len(cap) >= 6
+    cap = cap.mean(0)
+    j = test[0].joints
+    leg = np.median(np.linalg.norm(j["UpperLeg_L"] - j["LowerLeg_L"], axis=1)) + np.median(
+        np.linalg.norm(j["LowerLeg_L"] - j["Foot_L"], axis=1)
+    )
+    stature = leg / 0.491  # thigh + shank = 0.491 stature (Winter)
+    speed = np.mean(
+        [np.linalg.norm(np.diff(t.pelvis[:, :2], axis=0), axis=1).sum() / t.duration for t in test]
+    )
+    period = []
+    for t in test:
+        _, _, pitch = sagittal_angles(
+            *(t.joints[k] for k in ("UpperLeg_L", "LowerLeg_L", "Foot_L", "Toes_L")), t.pelvis_yaw
+        )
+        period.extend(np.diff(heel_strikes(pitch, t.fps)) / t.fps)
+    T = float(np.median(period))
+    walk = make_walk(n_steps=14, step_len=speed * T / 2, step_time=T / 2)
+    figures = {}
+    for name, ref in (("Winter table", None), ("capture clips 1-3", reference_from_takes(train))):
+        mod = _model_cycles(walk, stature, ref).mean(0)
+        d = np.degrees(np.abs(mod - cap)).max(1)
+        figures[name] = d
+        print(
+            f"\nvs bandai-walk normal 4-6, reference {name}: max diff hip {d[0]:.1f} deg "
+            f"(target 5), knee {d[1]:.1f} deg (target 10), foot pitch {d[2]:.1f} deg"
+        )
+    # measured: capture reference hip 6.2, knee 11.0 deg; Winter reference hip 11.7,
+    # knee 17.1 deg. The bound is a regression guard, slightly above the paper's 5 / 10 deg.
+    hip, knee, _ = figures["capture clips 1-3"]
+    assert hip <= 8.0 and knee <= 13.0

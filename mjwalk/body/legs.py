@@ -1,59 +1,59 @@
 """Legs from footprints (mocap-based DHM walking, §4.2 A8-A9): stance splines, swing splines, IK.
 
 For every step of a :class:`~mjwalk.plan.walkpath.WalkPath` (one foot swings from its previous
-footprint to ``step.foot`` while the other stands on ``step.stance``):
+footprint to ``step.foot`` while the other stands on ``step.stance``), with the step phase
+``phi`` in [0, 1] from lift-off of the swing foot's step to its landing:
 
-* **Stance leg (A8).** The stance knee follows a cubic spline in the step phase ``phi`` in [0, 1]
-  through the reference key-frame angles at ``phi`` = 0.4, 0.5, 0.6 (they "change less against
-  strides"), with the current posture's angle and angular velocity at ``phi = 0`` and the target
-  posture's angle and the reference angular velocity at ``phi = 1`` as boundary conditions. The
-  pelvis height follows from the stance leg (knee angle + footprint + pelvis x, y), which gives
-  the pelvis height oscillation; it is capped where the swing leg could not reach its foot.
-* **Swing leg (A9).** During ``phi`` < 0.2 (double support) the swing foot rolls about its ball
-  (heel rise, toes flat). After toe-off the swing ankle follows a cubic spline through key
-  positions at ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9 between the lift-off and the landing footprint
-  (with ground clearance), zero velocity at landing (``phi = 1``).
-* **IK.** Hip (rotation, flexion, abduction), knee and ankle (flexion, inversion) come from an
-  analytic two-bone solution for the ankle position plus the foot orientation (yaw from the
-  footprint, pitch from the roll-off / swing keys, sole level). Turning is taken by hip
-  rotation: its angle is the foot yaw minus the pelvis yaw. All angles are clipped to the joint
-  ranges.
+* **Stance leg (A8).** The stance knee follows a cubic spline through the reference key-frame
+  angles at ``phi`` = 0.4, 0.5, 0.6 (they "change less against strides"), with the current
+  posture's angle and velocity at ``phi = 0`` and the target posture's angle (both feet down at
+  the next heel strike) and the reference velocity at ``phi = 1`` as boundary conditions. The
+  pelvis height follows from the stance leg (knee angle, footprint, pelvis x, y): this is the
+  pelvis height oscillation. It is capped where the swing leg could not reach its foot.
+* **Swing leg (A9).** Until toe-off (``phi`` = 0.2, double support) the swing foot rolls about
+  its ball (toes flat). Then the swing ankle follows a cubic spline through key positions at
+  ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9: the reference hip/knee angles of that gait-cycle instant
+  placed at the current hip (forward progress and height), kept on the line from the lift-off
+  to the landing footprint, lifted where the foot would touch the floor; zero velocity at the
+  landing (``phi = 1``), heel first.
+* **Feet.** The foot pitch (toes up +) follows the reference: heel strike and roll-down about
+  the heel, flat, heel rise and roll-off about the ball. Pivots stay put on the floor.
+* **IK.** Hip (rotation, flexion, abduction), knee, ankle (flexion, inversion) from an analytic
+  two-bone solution for the ankle position plus the foot orientation (yaw from the footprints,
+  pitch as above, sole level sideways). Turning is taken by hip rotation: foot yaw minus pelvis
+  yaw. All angles are clipped to the joint ranges.
 
 Footprint convention: a footprint ``(x, y, yaw)`` is the point of the floor under the ankle joint
-(the ``sole_*`` site of the humanoid) and the foot's heading. World frame, metres, radians.
-
-The reference gait is :data:`REFERENCE_GAIT`, a table of normative sagittal angles over one gait
-cycle (heel strike to heel strike of the same foot), read from D. A. Winter, "The Biomechanics and
-Motor Control of Human Gait: Normal, Elderly and Pathological", 2nd ed. (1991), natural cadence
-ensemble averages (Figs. 4.x, rounded to the degree). One step of our walks is half a cycle: the
-stance leg covers cycle 0-50 %, the swing leg cycle 50-100 %.
+(the ``sole_*`` site of the humanoid) with the foot flat, and the foot's heading. World frame,
+metres, radians. One step is half a gait cycle: the stance leg covers cycle 0-50 %, the swing
+leg cycle 50-100 % (cycle 0 = heel strike of that leg).
 """
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.interpolate import CubicSpline
 
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry, leg_geometry
-from mjwalk.errors import PlanningError
+from mjwalk.errors import CaptureError, PlanningError
 from mjwalk.plan.walkpath import WalkPath
 
-#: Normative sagittal joint angles (degrees) every 5 % of the gait cycle, 0 % = heel strike.
-#: hip: + flexion; knee: + flexion; ankle: + dorsiflexion. After Winter (1991), natural cadence.
-REFERENCE_GAIT = {
+#: Default reference gait: sagittal angles in degrees every 5 % of the gait cycle, 0 % = heel
+#: strike. ``hip``: thigh flexion, ``knee``: knee flexion, after D. A. Winter, "The Biomechanics
+#: and Motor Control of Human Gait: Normal, Elderly and Pathological", 2nd ed. (1991), natural
+#: cadence ensemble averages (read off the figures, rounded to the degree): knee ~3 deg at heel
+#: strike, ~18 deg loading response, ~60-63 deg peak swing; hip +30 to -10 deg. ``pitch``: foot
+#: angle to the floor (+ toes up), after the foot-floor angles in J. Perry & J. M. Burnfield,
+#: "Gait Analysis: Normal and Pathological Function", 2nd ed. (2010): ~20 deg at heel strike,
+#: foot flat ~8-40 %, toe-off at ~60 % with ~35-40 deg, rounded.
+WINTER_GAIT = {
     "cycle": np.arange(0, 101, 5) / 100.0,
-    "hip": np.array(
-        [30, 29, 27, 24, 20, 15, 10, 5, 0, -4, -8, -9, -5, 3, 12, 20, 26, 30, 32, 31, 30],
-        dtype=float,
-    ),
-    "knee": np.array(
-        [3, 10, 16, 19, 18, 15, 11, 7, 5, 6, 10, 20, 35, 50, 60, 63, 57, 42, 25, 10, 3], dtype=float
-    ),
-    "ankle": np.array(
-        [0, -4, -3, 1, 4, 6, 8, 9, 10, 9, 5, -3, -15, -18, -12, -5, 0, 1, 1, 0, 0], dtype=float
-    ),
+    "hip": [30, 29, 27, 24, 20, 15, 10, 5, 0, -4, -8, -9, -5, 3, 12, 20, 26, 30, 32, 31, 30],
+    "knee": [3, 10, 16, 19, 18, 15, 11, 7, 5, 6, 10, 20, 35, 50, 60, 63, 57, 42, 25, 10, 3],
+    "pitch": [20, 8, 0, 0, 0, 0, 0, 0, 0, -3, -10, -22, -38, -50, -45, -30, -15, -3, 8, 17, 20],
 }
 
 #: Stance key-frame phases (paper §4.2.3) and swing key-frame phases (§4.2.4).
@@ -61,27 +61,8 @@ STANCE_KEYS = (0.4, 0.5, 0.6)
 SWING_KEYS = (0.2, 0.4, 0.6, 0.8, 0.9)
 #: Toe-off phase of the step: double support lasts phi in [0, TOE_OFF] (10 % of the cycle).
 TOE_OFF = 0.2
-#: Swing-ankle key positions: (fraction of the way from the lift-off to the landing footprint,
-#: ankle height above its standing height in metres, foot pitch in degrees, + toes up), for a
-#: 1.75 m adult; heights scale with stature. Phase 0.2 is the end of the roll-off (computed).
-SWING_PROFILE = {
-    0.4: (0.30, 0.150, -20.0),
-    0.6: (0.60, 0.100, -5.0),
-    0.8: (0.88, 0.045, 5.0),
-    0.9: (0.965, 0.020, 10.0),
-}
-#: Foot pitch at toe-off (degrees, toes down), rolled about the ball during double support.
-TOE_OFF_PITCH = -30.0
-#: Terminal stance heel rise: the stance foot rolls about its ball from phase HEEL_OFF to the
-#: pitch HEEL_OFF_PITCH (degrees) at the end of the step (Winter: heel-off at ~35-40 % of the
-#: cycle); the roll continues in the next step down to TOE_OFF_PITCH.
-HEEL_OFF = 0.5
-HEEL_OFF_PITCH = -25.0
-#: Heel strike: the swing foot lands on its heel with the toes up by HEEL_STRIKE_PITCH degrees
-#: and rolls down about the heel to flat at phase FOOT_FLAT of the next step (loading response,
-#: foot flat at ~8 % of the cycle).
-HEEL_STRIKE_PITCH = 15.0
-FOOT_FLAT = 0.16
+#: Pitches smaller than this (degrees) count as a flat foot (no roll, so no drift).
+FLAT_DEG = 2.0
 #: Smallest knee flexion the IK uses when a leg must stretch (radians): never lock the knee.
 KNEE_MIN = np.deg2rad(2.0)
 
@@ -96,21 +77,133 @@ LEG_JOINTS = (
 )
 
 
-def reference_angle(joint: str, cycle: np.ndarray | float, derivative: bool = False):
-    """Reference angle (radians) of ``joint`` in {"hip", "knee", "ankle"} at gait-cycle fraction(s).
+@dataclass(frozen=True)
+class ReferenceGait:
+    """One gait cycle of sagittal reference angles (the "gait DB" of the paper).
 
-    A periodic cubic spline through :data:`REFERENCE_GAIT`; ``derivative=True`` gives rad per
-    unit cycle.
+    Attributes:
+        cycle: (M,) increasing cycle fractions from 0 (heel strike) to 1 (next heel strike).
+        hip: (M,) thigh flexion from the vertical in the walking plane, radians (+ knee ahead).
+        knee: (M,) knee flexion, radians.
+        pitch: (M,) foot angle to the floor, radians, + toes up.
+        source: where the numbers come from.
     """
-    sp = _REF_SPLINES[joint]
-    c = np.mod(cycle, 1.0)
-    return np.deg2rad(sp(c, 1) if derivative else sp(c))
+
+    cycle: np.ndarray
+    hip: np.ndarray
+    knee: np.ndarray
+    pitch: np.ndarray
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        sp = {}
+        for k in ("hip", "knee", "pitch"):
+            v = np.asarray(getattr(self, k), float).copy()
+            v[-1] = v[0]  # periodic
+            sp[k] = CubicSpline(np.asarray(self.cycle, float), v, bc_type="periodic")
+        object.__setattr__(self, "_splines", sp)
+
+    def __call__(self, name: str, cycle, derivative: bool = False) -> np.ndarray:
+        """Angle ``name`` ("hip", "knee", "pitch") in radians at cycle fraction(s) (wrapped);
+        ``derivative=True`` gives radians per unit cycle."""
+        c = np.mod(cycle, 1.0)
+        sp = self._splines[name]
+        return sp(c, 1) if derivative else sp(c)
 
 
-_REF_SPLINES = {
-    k: CubicSpline(REFERENCE_GAIT["cycle"], REFERENCE_GAIT[k], bc_type="periodic")
-    for k in ("hip", "knee", "ankle")
-}
+def winter_reference() -> ReferenceGait:
+    """The default reference gait :data:`WINTER_GAIT` (literature values, radians)."""
+    g = WINTER_GAIT
+    return ReferenceGait(
+        cycle=g["cycle"],
+        hip=np.deg2rad(g["hip"]),
+        knee=np.deg2rad(g["knee"]),
+        pitch=np.deg2rad(g["pitch"]),
+        source="Winter 1991 (hip, knee); Perry & Burnfield 2010 (foot-floor angle)",
+    )
+
+
+def reference_angle(joint: str, cycle, derivative: bool = False):
+    """Default-reference angle (radians) of ``joint`` ("hip", "knee", "pitch") at cycle(s)."""
+    return _WINTER(joint, cycle, derivative)
+
+
+_WINTER = winter_reference()
+
+
+def sagittal_angles(hip, knee, ankle, toe, yaw):
+    """Hip (thigh) flexion, knee flexion and raw foot pitch (ankle -> toe vs floor), radians,
+    of one leg in the walking plane, from (T, 3) joint positions and the (T,) heading yaw."""
+    fwd = np.column_stack([np.cos(yaw), np.sin(yaw), np.zeros_like(yaw)])
+    th, sh, ft = knee - hip, ankle - knee, toe - ankle
+    hipf = np.arctan2((th * fwd).sum(1), -th[:, 2])
+    kneef = hipf - np.arctan2((sh * fwd).sum(1), -sh[:, 2])
+    pitch = np.arctan2(ft[:, 2], (ft * fwd).sum(1))
+    return hipf, kneef, pitch
+
+
+def heel_strikes(pitch: np.ndarray, fps: float) -> np.ndarray:
+    """Sample indices of heel strikes: the foot's toes-up pitch peaks (radians, (T,)), at least
+    0.6 s apart and 10 deg prominent. The foot lands heel first with the toes highest, then
+    rolls down."""
+    from scipy.signal import find_peaks
+
+    peaks, _ = find_peaks(pitch, distance=max(1, int(0.6 * fps)), prominence=np.deg2rad(10))
+    return peaks
+
+
+def gait_cycles(
+    take, side: str = "L", names: str = "UpperLeg_{},LowerLeg_{},Foot_{},Toes_{}", n: int = 101
+) -> np.ndarray:
+    """Time-normalised gait cycles of one leg of a capture :class:`~mjwalk.mocap.take.Take`.
+
+    Args:
+        take: a take with ``joints`` holding hip, knee, ankle and toe positions.
+        side: side letter used in the joint names ("L"/"R").
+        names: comma-separated joint-name patterns (hip, knee, ankle, toe), ``{}`` = side.
+        n: samples per cycle.
+
+    Returns:
+        (C, 3, n) per complete cycle (heel strike to heel strike, the first and last dropped):
+        thigh flexion, knee flexion and foot pitch (radians; pitch relative to the flat foot,
+        the median over 20-40 % of the cycle).
+    """
+    keys = [k.format(side) for k in names.split(",")]
+    missing = [k for k in keys if k not in take.joints]
+    if missing:
+        raise CaptureError(
+            f"{take.name}: gait_cycles needs joints {missing} (have {sorted(take.joints)[:8]}...)"
+        )
+    h, k, a, t = (np.asarray(take.joints[j], float) for j in keys)
+    hipf, kneef, pitch = sagittal_angles(h, k, a, t, np.asarray(take.pelvis_yaw, float))
+    hs = heel_strikes(pitch, take.fps)
+    x = np.linspace(0, 1, n)
+    cycles = []
+    for i0, i1 in itertools.pairwise(hs):
+        s = np.linspace(0, 1, i1 - i0 + 1)
+        cycles.append([np.interp(x, s, v[i0 : i1 + 1]) for v in (hipf, kneef, pitch)])
+    cycles = np.array(cycles[1:-1]).reshape(-1, 3, n)
+    if len(cycles):
+        flat = np.median(cycles[:, 2, int(0.2 * (n - 1)) : int(0.4 * (n - 1)) + 1])
+        cycles[:, 2] -= flat
+    return cycles
+
+
+def reference_from_takes(
+    takes, side: str = "L", names: str = "UpperLeg_{},LowerLeg_{},Foot_{},Toes_{}"
+) -> ReferenceGait:
+    """A reference gait from captured straight walks: the mean of their gait cycles."""
+    cyc = [c for t in takes for c in gait_cycles(t, side, names)]
+    if not cyc:
+        raise CaptureError("reference_from_takes: no complete gait cycle in the takes")
+    m = np.mean(cyc, axis=0)
+    return ReferenceGait(
+        cycle=np.linspace(0, 1, m.shape[1]),
+        hip=m[0],
+        knee=m[1],
+        pitch=m[2],
+        source=f"{len(cyc)} captured cycles ({', '.join(t.name for t in takes)})",
+    )
 
 
 @dataclass
@@ -123,6 +216,7 @@ class LegMotion:
         yaw: (N,) pelvis yaw, radians from +x CCW.
         angles: joint name (e.g. ``"knee_l"``) -> (N,) angle in radians, anatomical signs.
         ankle: side ("l"/"r") -> (N, 3) ankle target position, metres.
+        pitch: side -> (N,) foot pitch to the floor, radians, + toes up.
         contact: (N,) contact state: 0 = left stance, 1 = right stance, 2 = double support.
         phase: (N,) step phase in [0, 1] (0 before the first / after the last step).
     """
@@ -132,6 +226,7 @@ class LegMotion:
     yaw: np.ndarray
     angles: dict[str, np.ndarray]
     ankle: dict[str, np.ndarray]
+    pitch: dict[str, np.ndarray]
     contact: np.ndarray
     phase: np.ndarray
     meta: dict = field(default_factory=dict)
@@ -167,6 +262,7 @@ def leg_ik(
     foot_pitch: np.ndarray,
     side: str,
     geom: LegGeometry,
+    clip: bool = True,
 ) -> dict[str, np.ndarray]:
     """Analytic leg IK in the pelvis frame (x forward, y left, z up; pelvis upright).
 
@@ -210,9 +306,10 @@ def leg_ik(
         f"ankle_{side}_flex": -a,
         f"ankle_{side}_inv": -s * b,
     }
-    for name, v in out.items():
-        lo, hi = np.deg2rad(ROM_DEG[_generic(name)])
-        out[name] = np.clip(v, lo, hi)
+    if clip:
+        for name, v in out.items():
+            lo, hi = np.deg2rad(ROM_DEG[_generic(name)])
+            out[name] = np.clip(v, lo, hi)
     return out
 
 
@@ -225,18 +322,67 @@ def _smoothstep(x: np.ndarray) -> np.ndarray:
     return x * x * (3 - 2 * x)
 
 
-def _foot_frames(walk: WalkPath, geom: LegGeometry) -> list[dict]:
+def _ball(geom: LegGeometry) -> float:
+    """Distance of the ball of the foot (toe joint) ahead of the ankle, metres."""
+    return geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)
+
+
+def _pivot(foot: np.ndarray, pitch, geom: LegGeometry) -> np.ndarray:
+    """(n, 3) ankle positions of a foot on footprint ``foot`` pitched by ``pitch`` (radians):
+    negative (heel up) rolls about the ball, positive (toes up) about the heel; the pivot stays
+    where it is on the floor when the foot is flat."""
+    ah = geom.ankle_height
+    pitch = np.atleast_1d(np.asarray(pitch, float))
+    lever = np.where(pitch <= 0, _ball(geom), -geom.foot_back)
+    fwd = np.array([np.cos(foot[2]), np.sin(foot[2]), 0.0])
+    pivot = np.array([foot[0], foot[1], 0.0]) + lever[:, None] * fwd
+    local = np.column_stack([lever, np.zeros_like(pitch), np.full_like(pitch, -ah)])
+    R = _rz(np.full_like(pitch, foot[2])) @ _ry(-pitch)
+    return pivot - (R @ local[..., None])[..., 0]
+
+
+def _soft_flat(p: np.ndarray) -> np.ndarray:
+    """Pitches within +-FLAT_DEG become exactly 0 (flat foot), continuously."""
+    t = np.deg2rad(FLAT_DEG)
+    return np.sign(p) * np.maximum(np.abs(p) - t, 0.0)
+
+
+def _heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472) -> float:
+    """Foot pitch <= ``p0`` (radians, rolled about the ball) at which the leg with ``knee``
+    flexion reaches from the ankle to ``hip`` (3,); ``p0`` if it reaches already, ``lo`` if it
+    cannot even then. Bisection: raising the heel brings the ankle up towards the hip."""
+    L1, L2 = geom.thigh, geom.shank
+    d = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(knee))
+
+    def gap(p):
+        return float(np.linalg.norm(hip - _pivot(foot, p, geom)[0])) - d
+
+    if gap(p0) <= 0:
+        return p0
+    if gap(lo) > 0:
+        return lo
+    a, b = lo, p0  # gap(a) <= 0 < gap(b)
+    for _ in range(40):
+        m = 0.5 * (a + b)
+        if gap(m) > 0:
+            b = m
+        else:
+            a = m
+    return 0.5 * (a + b)
+
+
+def _foot_frames(walk: WalkPath) -> list[dict]:
     """Per step: swing side, lift-off and landing footprints, stance footprint."""
     steps = walk.steps
     frames = []
     for i, st in enumerate(steps):
         side = "l" if st.side == "left" else "r"
+        stance = np.asarray(st.stance, float)
         if i > 0:
             lift = np.asarray(steps[i - 1].stance, float)
         else:  # standing start: the swing foot beside the stance foot, mirrored about the pelvis
             y0 = walk.yaw[st.start]
             n = np.array([-np.sin(y0), np.cos(y0)])
-            stance = np.asarray(st.stance, float)
             off = float((walk.xy[st.start] - stance[:2]) @ n)
             lift = np.array([*(stance[:2] + 2 * off * n), stance[2]])
         frames.append(
@@ -247,110 +393,45 @@ def _foot_frames(walk: WalkPath, geom: LegGeometry) -> list[dict]:
                 "end": st.end,
                 "lift": lift,
                 "land": np.asarray(st.foot, float),
-                "stance": np.asarray(st.stance, float),
-                "walking": i > 0,
+                "stance": stance,
+                "first": i == 0,
                 "final": i == len(steps) - 1,
             }
         )
     return frames
 
 
-def _ball_pivot(foot: np.ndarray, pitch: np.ndarray, geom: LegGeometry) -> np.ndarray:
-    """(n, 3) ankle positions of a foot on footprint ``foot`` pitched by ``pitch`` (radians):
-    negative (heel up) rolls about the ball, positive (toes up) about the heel; the pivot stays
-    on the floor where it is when the foot is flat."""
-    ah = geom.ankle_height
-    pitch = np.atleast_1d(np.asarray(pitch, float))
-    lever = np.where(pitch <= 0, _ball(geom), -geom.foot_back)[:, None]
-    yl = np.full_like(pitch, foot[2])
-    fwd = np.array([np.cos(foot[2]), np.sin(foot[2]), 0.0])
-    pivot = np.array([foot[0], foot[1], 0.0]) + lever * fwd
-    local = np.column_stack([lever[:, 0], np.zeros_like(pitch), np.full_like(pitch, -ah)])
-    return pivot - ((_rz(yl) @ _ry(-pitch)) @ local[..., None])[..., 0]
-
-
-def _ball(geom: LegGeometry) -> float:
-    """Distance of the ball of the foot (toe joint) ahead of the ankle, metres."""
-    return geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)
-
-
-def _swing_track(fr: dict, phi: np.ndarray, geom: LegGeometry, scale: float):
-    """Swing ankle position (n, 3), foot yaw (n,), foot pitch (n,), toe angle (n,) for phases."""
-    ah = geom.ankle_height
-    lift, land = fr["lift"], fr["land"]
-    yaw = lift[2] + (np.angle(np.exp(1j * (land[2] - lift[2])))) * _smoothstep(
-        (phi - TOE_OFF) / (0.9 - TOE_OFF)
-    )
-    # roll-off about the ball during double support
-    p_to = np.deg2rad(TOE_OFF_PITCH)
-
-    p_ho = np.deg2rad(HEEL_OFF_PITCH) if fr["walking"] else 0.0
-
-    def roll(ph):
-        p = p_ho + (p_to - p_ho) * _smoothstep(ph / TOE_OFF)
-        return _ball_pivot(lift, p, geom), p
-
-    pos = np.zeros((len(phi), 3))
-    pitch = np.zeros(len(phi))
-    early = phi <= TOE_OFF
-    pos[early], pitch[early] = roll(phi[early])
-    late = ~early
-    if late.any():
-        # spline knots: toe-off (from the roll), keys, landing (zero velocity)
-        p0, _ = roll(np.array([TOE_OFF]))
-        h = 1e-4
-        pa, _ = roll(np.array([TOE_OFF - h]))
-        v0 = (p0[0] - pa[0]) / h
-        knots = [TOE_OFF]
-        pts = [p0[0]]
-        pit = [p_to]
-        for ph, (frac, hgt, pt) in SWING_PROFILE.items():
-            xy = lift[:2] + frac * (land[:2] - lift[:2])
-            knots.append(ph)
-            pts.append(np.array([xy[0], xy[1], ah + hgt * scale]))
-            pit.append(np.deg2rad(pt))
-        hs = 0.0 if fr["final"] else np.deg2rad(HEEL_STRIKE_PITCH)  # the last step lands flat
-        knots.append(1.0)
-        pts.append(_ball_pivot(land, hs, geom)[0])
-        pit.append(hs)
-        sp = CubicSpline(knots, np.array(pts), bc_type=((1, v0), (1, np.zeros(3))))
-        spp = CubicSpline(knots, np.array(pit), bc_type=((1, 0.0), (1, 0.0)))
-        pos[late] = sp(phi[late])
-        pitch[late] = spp(phi[late])
-    # the toes stay flat during the roll-off, then straighten while the foot lifts
-    toe = np.where(early, -pitch, -p_to * (1 - _smoothstep((phi - TOE_OFF) / 0.25)))
-    return pos, yaw, pitch, toe
-
-
-def legs_from_walk(walk: WalkPath, stature: float = 1.75) -> LegMotion:
+def legs_from_walk(
+    walk: WalkPath, stature: float = 1.75, reference: ReferenceGait | None = None
+) -> LegMotion:
     """Leg joint angles and root height for every sample of ``walk`` (paper §4.2 A8-A9).
 
     Args:
         walk: a WalkPath with steps (each with side, start/end sample, landing and stance foot).
         stature: the humanoid's stature in metres.
+        reference: the reference gait (key frames); default :func:`winter_reference`.
 
     Returns:
         a :class:`LegMotion` on the walk's samples.
     """
     if not walk.steps:
         raise PlanningError(
-            "legs_from_walk: the walk path has no steps (grid-A* paths have no "
-            "gait; plan with the hybrid A* or add footprints)"
+            "legs_from_walk: the walk path has no steps (grid-A* paths have no gait; plan with "
+            "the hybrid A* or add footprints)"
         )
+    ref = reference or _WINTER
     geom = leg_geometry(stature)
-    scale = stature / 1.75
     n = len(walk.t)
     xy = np.asarray(walk.xy, float)
     yaw = np.asarray(walk.yaw, float)
-    frames = _foot_frames(walk, geom)
+    frames = _foot_frames(walk)
     for k, fr in enumerate(frames):
         if not (0 <= fr["start"] < fr["end"] < n):
             raise PlanningError(
-                f"legs_from_walk: step {k} has sample range {fr['start']}..."
-                f"{fr['end']} outside the path's {n} samples"
+                f"legs_from_walk: step {k} has sample range {fr['start']}..{fr['end']} outside "
+                f"the path's {n} samples"
             )
-    ah = geom.ankle_height
-    L1, L2 = geom.thigh, geom.shank
+    ah, L1, L2 = geom.ankle_height, geom.thigh, geom.shank
     ankle = {s: np.zeros((n, 3)) for s in "lr"}
     fyaw = {s: np.zeros(n) for s in "lr"}
     pitch = {s: np.zeros(n) for s in "lr"}
@@ -358,70 +439,80 @@ def legs_from_walk(walk: WalkPath, stature: float = 1.75) -> LegMotion:
     contact = np.full(n, 2, dtype=int)
     phase = np.zeros(n)
     z = np.full(n, np.nan)
+    ground = {s: np.zeros(n, bool) for s in "lr"}  # foot on the floor (pivoting on a print)
+    print_ = {s: np.zeros((n, 3)) for s in "lr"}  # ... on this footprint
 
-    def hip_xy(idx, side):
+    def hip_pos(idx, side, zz=None):
         sgn = 1.0 if side == "l" else -1.0
-        return xy[idx] + sgn * geom.hip_y * np.stack([-np.sin(yaw[idx]), np.cos(yaw[idx])], -1)
+        h = xy[idx] + sgn * geom.hip_y * np.stack([-np.sin(yaw[idx]), np.cos(yaw[idx])], -1)
+        return h if zz is None else np.column_stack([h, zz])
 
     def height_for_knee(idx, side, foot_pos, knee):
-        h = np.linalg.norm(hip_xy(idx, side) - foot_pos[:, :2], axis=-1)
+        h = np.linalg.norm(hip_pos(idx, side) - foot_pos[:, :2], axis=-1)
         d2 = L1**2 + L2**2 + 2 * L1 * L2 * np.cos(knee)
         return foot_pos[:, 2] + np.sqrt(np.maximum(d2 - h**2, 1e-6))
 
-    def reach_height(idx, side, foot_pos):
-        h = np.linalg.norm(hip_xy(idx, side) - foot_pos[:, :2], axis=-1)
-        d2 = L1**2 + L2**2 + 2 * L1 * L2 * np.cos(KNEE_MIN)
-        return foot_pos[:, 2] + np.sqrt(np.maximum(d2 - h**2, 1e-6))
+    def knee_for(idx, side, foot_pos, zz):
+        d = np.linalg.norm(hip_pos(idx, side, zz) - foot_pos, axis=-1)
+        return np.arccos(np.clip((d**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
 
+    hs_pitch = max(0.0, float(ref("pitch", 0.0)))
     knee_prev = None  # (angle, velocity per unit phase) of the next stance leg at its landing
     for k, fr in enumerate(frames):
+        fr["p_start"] = frames[k - 1].get("p_end") if k > 0 else None
         a, b = fr["start"], fr["end"]
         idx = np.arange(a, b + 1)
         phi = (idx - a) / (b - a)
         phase[idx] = phi
         sw, st = fr["side"], fr["other"]
         contact[idx] = np.where(phi <= TOE_OFF, 2, 0 if st == "l" else 1)
-        # swing leg
-        pos, yw, pt, tq = _swing_track(fr, phi, geom, scale)
-        ankle[sw][idx], fyaw[sw][idx], pitch[sw][idx], toe[sw][idx] = pos, yw, pt, tq
-        # stance leg: foot fixed on its footprint
-        stp = fr["stance"]
-        p_st = np.deg2rad(HEEL_OFF_PITCH) * _smoothstep((phi - HEEL_OFF) / (1 - HEEL_OFF))
-        if k > 0:  # loading response: roll down from the heel strike
-            p_st = p_st + np.deg2rad(HEEL_STRIKE_PITCH) * (1 - _smoothstep(phi / FOOT_FLAT))
-        ankle[st][idx] = _ball_pivot(stp, p_st, geom)
-        pitch[st][idx] = p_st
-        toe[st][idx] = -p_st
-        fyaw[st][idx] = stp[2]
-        # stance knee spline (A8): boundary at phi=0 from the current posture, at phi=1 the
-        # target posture (both feet down, swing knee at the reference heel-strike angle)
-        land_pos = _ball_pivot(
-            fr["land"], 0.0 if fr["final"] else np.deg2rad(HEEL_STRIKE_PITCH), geom
-        )
-        z_end = reach_height(np.array([b]), sw, land_pos)[0]
-        hk_end = L1**2 + L2**2 + 2 * L1 * L2 * np.cos(reference_angle("knee", 0.0))
-        hz = np.linalg.norm(hip_xy(np.array([b]), sw) - land_pos[:, :2], axis=-1)[0]
-        z_end = min(z_end, ah + np.sqrt(max(hk_end - hz**2, 1e-6)))
-        st_end = ankle[st][b]
-        h_st_end = np.linalg.norm(hip_xy(np.array([b]), st) - st_end[:2], axis=-1)[0]
-        d_end = np.hypot(h_st_end, z_end - st_end[2])
-        th1 = np.arccos(np.clip((d_end**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
+        # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch)
+        c_st = 0.5 * phi
+        p_ref = ref("pitch", c_st)
+        p_st = _soft_flat(np.where(phi < 0.4, np.maximum(p_ref, 0), np.minimum(p_ref, 0)))
+        if fr["first"]:  # standing start: already flat
+            p_st = np.minimum(p_st, 0.0)
+        # --- target posture at phi = 1 (A7): the landing leg at the reference heel-strike knee
+        # sets the pelvis height; the trailing (stance) leg takes the reference knee of
+        # cycle 50 %, its heel rising further (about the ball) if it cannot reach otherwise
+        land_p = hs_pitch  # the last step too: the final pose is held as it lands
+        land_pos = _pivot(fr["land"], land_p, geom)
+        hz = np.linalg.norm(hip_pos(np.array([b]), sw) - land_pos[:, :2], axis=-1)[0]
+        d_land = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(max(ref("knee", 0.0), KNEE_MIN)))
+        z_end = land_pos[0, 2] + np.sqrt(max(d_land**2 - hz**2, 1e-6))
+        th1 = max(float(ref("knee", 0.5)), float(KNEE_MIN))
+        hip_end = hip_pos(np.array([b]), st, np.array([z_end]))[0]
+        p1 = _heel_rise(fr["stance"], hip_end, th1, float(p_st[-1]), geom)
+        extra = (p1 - p_st[-1]) * _smoothstep((phi - 0.4) / 0.6)
+        p_st = p_st + extra
+        fr["p_end"] = float(p_st[-1])
+        ankle[st][idx] = _pivot(fr["stance"], p_st, geom)
+        ground[st][idx], print_[st][idx] = True, fr["stance"]
+        pitch[st][idx], toe[st][idx], fyaw[st][idx] = p_st, -np.minimum(p_st, 0), fr["stance"][2]
+        th1 = float(knee_for(np.array([b]), st, ankle[st][b][None], np.array([z_end]))[0])
         if knee_prev is None:
-            th0, v0 = reference_angle("knee", 0.0), 0.5 * reference_angle("knee", 0.0, True)
+            th0, v0 = float(ref("knee", 0.0)), 0.5 * float(ref("knee", 0.0, True))
         else:
             th0, v0 = knee_prev
-        v1 = 0.5 * reference_angle("knee", 0.5, True)
-        kp = [0.0, *STANCE_KEYS, 1.0]
-        kv = [th0, *(reference_angle("knee", 0.5 * p) for p in STANCE_KEYS), th1]
-        knee_sp = CubicSpline(kp, kv, bc_type=((1, v0), (1, v1)))
-        knee_st = np.clip(knee_sp(phi), KNEE_MIN, np.pi / 2)
-        z_st = height_for_knee(idx, st, ankle[st][idx], knee_st)
-        z_sw = reach_height(idx, sw, pos)
-        z[idx] = np.minimum(z_st, z_sw)
-        # the swing leg's knee at landing becomes the next stance leg's start posture
-        dl = np.hypot(hz, z[b] - ah)
-        th_next = np.arccos(np.clip((dl**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
-        knee_prev = (th_next, 0.5 * reference_angle("knee", 0.0, True))
+        v1 = 0.5 * float(ref("knee", 0.5, True))
+        kv = [th0, *(float(ref("knee", 0.5 * p)) for p in STANCE_KEYS), th1]
+        knee_sp = CubicSpline([0.0, *STANCE_KEYS, 1.0], kv, bc_type=((1, v0), (1, v1)))
+        knee_st = np.clip(knee_sp(phi), KNEE_MIN, np.deg2rad(80))
+        z_flat = height_for_knee(idx, st, ankle[st][idx], knee_st)
+        # --- swing foot (A9)
+        pos, p_sw, toe_sw, yw = _swing(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
+        ankle[sw][idx], pitch[sw][idx], toe[sw][idx], fyaw[sw][idx] = pos, p_sw, toe_sw, yw
+        pre_swing = idx[phi <= TOE_OFF]
+        ground[sw][pre_swing], print_[sw][pre_swing] = True, fr["lift"]
+        d_max = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(KNEE_MIN))
+        hsw = np.linalg.norm(hip_pos(idx, sw) - pos[:, :2], axis=-1)
+        z_sw = pos[:, 2] + np.sqrt(np.maximum(d_max**2 - hsw**2, 1e-6))
+        z[idx] = np.minimum(z_flat, z_sw)
+        # the swing leg's knee at landing starts the next stance spline
+        # the swing leg's knee at landing starts the next stance spline; its velocity is the
+        # reference's (loading response: the knee flexes right after heel strike)
+        k_land = knee_for(idx[-1:], sw, pos[-1:], z[idx[-1:]])
+        knee_prev = (float(k_land[-1]), 0.5 * float(ref("knee", 0.0, True)))
     # before the first step: stand on both feet; after the last: hold the final pose
     first, last = frames[0], frames[-1]
     pre = np.arange(0, first["start"])
@@ -429,9 +520,7 @@ def legs_from_walk(walk: WalkPath, stature: float = 1.75) -> LegMotion:
         for s_, f in ((first["side"], first["lift"]), (first["other"], first["stance"])):
             ankle[s_][pre] = [f[0], f[1], ah]
             fyaw[s_][pre] = f[2]
-        z[pre] = np.minimum(
-            reach_height(pre, "l", ankle["l"][pre]), reach_height(pre, "r", ankle["r"][pre])
-        )
+        z[pre] = z[first["start"]]
     post = np.arange(last["end"] + 1, n)
     if len(post):
         e = last["end"]
@@ -440,11 +529,24 @@ def legs_from_walk(walk: WalkPath, stature: float = 1.75) -> LegMotion:
         contact[post] = 2
     root = np.column_stack([xy, z])
     angles: dict[str, np.ndarray] = {}
+    dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
     for s_ in "lr":
         sgn = 1.0 if s_ == "l" else -1.0
         hip = root + sgn * geom.hip_y * np.column_stack([-np.sin(yaw), np.cos(yaw), np.zeros(n)])
-        rel = (_rz(-yaw) @ (ankle[s_] - hip)[..., None])[..., 0]
         yrel = np.angle(np.exp(1j * (fyaw[s_] - yaw)))
+        # a grounded foot whose ankle would dorsiflex past its range rolls further onto its
+        # ball instead (heel rise), so the sole keeps its place on the floor
+        for _ in range(8):
+            rel = (_rz(-yaw) @ (ankle[s_] - hip)[..., None])[..., 0]
+            dorsi = leg_ik(rel, yrel, pitch[s_], s_, geom, clip=False)[f"ankle_{s_}_flex"]
+            bad = np.flatnonzero(ground[s_] & (dorsi > dorsi_max) & (pitch[s_] <= 0))
+            if not len(bad):
+                break
+            pitch[s_][bad] -= 1.2 * (dorsi[bad] - dorsi_max)
+            toe[s_][bad] = -pitch[s_][bad]
+            for j in bad:
+                ankle[s_][j] = _pivot(print_[s_][j], pitch[s_][j], geom)[0]
+        rel = (_rz(-yaw) @ (ankle[s_] - hip)[..., None])[..., 0]
         angles.update(leg_ik(rel, yrel, pitch[s_], s_, geom))
         lo, hi = np.deg2rad(ROM_DEG["toe"])
         angles[f"toe_{s_}"] = np.clip(toe[s_], lo, hi)
@@ -454,7 +556,77 @@ def legs_from_walk(walk: WalkPath, stature: float = 1.75) -> LegMotion:
         yaw=yaw,
         angles=angles,
         ankle=ankle,
+        pitch=pitch,
         contact=contact,
         phase=phase,
-        meta={"stature": stature},
+        meta={"stature": stature, "reference": ref.source},
     )
+
+
+def _swing(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, land_p):
+    """Swing foot: ankle (n, 3), pitch (n,), toe angle (n,), yaw (n,) over the step."""
+    ah, L1, L2 = geom.ankle_height, geom.thigh, geom.shank
+    lift, land = fr["lift"], fr["land"]
+    sw = fr["side"]
+    yaw = lift[2] + np.angle(np.exp(1j * (land[2] - lift[2]))) * _smoothstep(
+        (phi - TOE_OFF) / (0.9 - TOE_OFF)
+    )
+
+    def roll_pitch(ph):
+        p = _soft_flat(np.minimum(ref("pitch", 0.5 + 0.5 * ph), 0.0))
+        if fr["first"]:
+            p = p * _smoothstep(ph / TOE_OFF)
+        elif fr["p_start"] is not None:  # continue from the stance's extra heel rise
+            p0 = _soft_flat(np.minimum(ref("pitch", 0.5), 0.0))
+            p = p + min(fr["p_start"] - p0, 0.0) * (1 - _smoothstep(ph / TOE_OFF))
+        return p
+
+    pos = np.zeros((len(phi), 3))
+    p = np.zeros(len(phi))
+    early = phi <= TOE_OFF
+    p[early] = roll_pitch(phi[early])
+    if not fr["first"]:
+        # pre-swing: the knee follows the reference; the heel rises as far as that needs
+        for j in np.flatnonzero(early):
+            hip = hip_pos(idx[j : j + 1], sw, z_hip[j : j + 1])[0]
+            knee = max(float(ref("knee", 0.5 + 0.5 * phi[j])), float(KNEE_MIN))
+            p[j] = _heel_rise(lift, hip, knee, p[j], geom)
+    pos[early] = _pivot(lift, p[early], geom)
+    late = ~early
+    if late.any():
+        je = np.flatnonzero(early)[-2:]
+        h = float(phi[je[1]] - phi[je[0]])
+        p_to = p[je[::-1]]
+        a0 = pos[je[::-1]]
+        v0 = (a0[0] - a0[1]) / h
+        knots, pts, pit = [float(phi[je[1]])], [a0[0]], [p_to[0]]
+        seg = land[:2] - lift[:2]
+        seg_len2 = max(float(seg @ seg), 1e-9)
+        for ph in SWING_KEYS[1:]:
+            j = int(np.argmin(np.abs(phi - ph)))
+            c = 0.5 + 0.5 * ph
+            hf, kf = float(ref("hip", c)), float(ref("knee", c))
+            fwd = L1 * np.sin(hf) + L2 * np.sin(hf - kf)
+            down = L1 * np.cos(hf) + L2 * np.cos(hf - kf)
+            heading = np.array([np.cos(yaw[j]), np.sin(yaw[j])])
+            target = hip_pos(idx[j : j + 1], sw)[0] + fwd * heading
+            s = np.clip((target - lift[:2]) @ seg / seg_len2, 0.0, 1.0)
+            zk = max(z_hip[j] - down, ah)
+            knots.append(ph)
+            pts.append(np.array([*(lift[:2] + s * seg), zk]))
+            pit.append(float(np.clip(ref("pitch", c), np.deg2rad(-70), np.deg2rad(30))))
+        knots.append(1.0)
+        pts.append(_pivot(land, land_p, geom)[0])
+        pit.append(land_p)
+        sp = CubicSpline(knots, np.array(pts), bc_type=((1, v0), (1, np.zeros(3))))
+        dp0 = (p_to[0] - p_to[1]) / h
+        spp = CubicSpline(knots, np.array(pit), bc_type=((1, dp0), (1, 0.0)))
+        pos[late], p[late] = sp(phi[late]), spp(phi[late])
+        # keep heel and toe tip off the floor (lift the ankle where they would dip)
+        for lever in (-geom.foot_back, geom.foot_front):
+            tip_z = pos[late, 2] + lever * np.sin(p[late]) - ah * np.cos(p[late])
+            pos[late, 2] += np.maximum(0.0, -tip_z)
+    # the toes stay flat during the roll-off, then straighten while the foot lifts
+    p_end = p[early][-1] if early.any() else 0.0
+    toe = np.where(early, -p, -p_end * (1 - _smoothstep((phi - TOE_OFF) / 0.25)))
+    return pos, p, toe, yaw
