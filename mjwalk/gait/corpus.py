@@ -51,6 +51,10 @@ from scipy.ndimage import gaussian_filter1d
 from mjwalk.errors import MjwalkError
 from mjwalk.mocap.take import TAKE_FPS, Take
 
+#: Version of the corpus generator: bump it whenever generated takes change, so cached models
+#: trained on an older corpus are rebuilt (see mjwalk.gait.default).
+CORPUS_VERSION = "1"
+
 G = 9.81
 #: Ankle and toe (ball of the foot) heights above the floor when the foot is planted, metres.
 ANKLE_HEIGHT = 0.08
