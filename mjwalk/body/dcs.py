@@ -20,7 +20,8 @@ held-out part is kept. Output vectors are the least-squares solution on the norm
 matrix (a small ridge keeps it well posed), refit on all samples at the end.
 
 Inputs are standardized internally (zero mean, unit variance per column), so widths and
-:meth:`DCSNetwork.distance_to_training` are in units of the training standard deviation.
+:meth:`DCSNetwork.distance_to_training` are in units of the training standard deviation. The
+saved file keeps the standardized training inputs (not the outputs) for that distance.
 """
 
 from __future__ import annotations
