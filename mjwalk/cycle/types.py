@@ -1,0 +1,187 @@
+"""Data of an assembly cycle: its specification (from TOML) and the result of simulating it."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from mjwalk.plan.walkpath import WalkPath
+
+#: Task kinds of a cycle specification.
+TASK_KINDS = ("walk", "carry", "pick", "place", "fasten", "wait")
+
+
+@dataclass
+class Task:
+    """One task of a cycle, as written in the spec.
+
+    Attributes:
+        kind: "walk" or "carry" (to ``site``), "pick"/"place"/"fasten" (at ``site``), "wait".
+        site: the target site (walk/carry: where to stand; pick/place/fasten: the part's site).
+        hand: "left" or "right" (pick/place/fasten/carry).
+        duration: seconds the task takes beyond the motion itself (fasten: screwing time;
+            wait: the waiting time; pick/place: optional hold time). None = the default.
+        route: label of the walk route for the report (e.g. "T1"); walks with the same label are
+            pooled.
+        part: what is handled (free text, e.g. "screw").
+        line: line of the task in the TOML file (for error messages).
+    """
+
+    kind: str
+    site: str | None = None
+    hand: str = "left"
+    duration: float | None = None
+    route: str | None = None
+    part: str | None = None
+    line: int = 0
+
+
+@dataclass
+class CycleSpec:
+    """A parsed cycle specification.
+
+    Attributes:
+        path: the TOML file.
+        scene: the MJCF scene (resolved relative to the TOML file).
+        start: the site where the operator starts.
+        stature: humanoid stature, metres.
+        step_model: "default" or a path to a step-model file.
+        reach_model: "default" or a path to a reach-model file.
+        tasks: the ordered tasks.
+        radius: body radius for walking, metres.
+    """
+
+    path: Path
+    scene: Path
+    start: str
+    tasks: list[Task]
+    stature: float = 1.75
+    step_model: str = "default"
+    reach_model: str = "default"
+    radius: float = 0.25
+    name: str = ""
+
+
+@dataclass
+class TaskRecord:
+    """When a task happened in a simulated cycle (seconds from the cycle's start)."""
+
+    index: int
+    kind: str
+    site: str | None
+    start: float
+    end: float
+    route: str | None = None
+
+    @property
+    def duration(self) -> float:
+        return self.end - self.start
+
+
+@dataclass
+class WalkRecord:
+    """One walk of a simulated cycle: the planned path and the grid-A* route for comparison."""
+
+    task: int
+    route: str
+    start_site: str
+    goal_site: str
+    path: WalkPath
+    baseline_length: float
+
+    @property
+    def length(self) -> float:
+        return self.path.length
+
+    @property
+    def duration(self) -> float:
+        return self.path.duration
+
+
+@dataclass
+class ArmRecord:
+    """One arm motion (pick/place/fasten) of a simulated cycle.
+
+    Attributes:
+        hand_error: distance of the hand from its target at the end of the reach, metres.
+        outside: the constraint lay outside the reach model's trained range (see warnings).
+    """
+
+    task: int
+    kind: str
+    site: str
+    hand: str
+    duration: float
+    hand_error: float
+    outside: bool = False
+    warnings: list[str] = field(default_factory=list)
+
+
+@dataclass
+class CycleResult:
+    """The outcome of simulating one cycle.
+
+    Attributes:
+        spec: the specification simulated.
+        run: index of the run (Monte Carlo), and ``seed`` its random seed.
+        tasks: time spans of the tasks.
+        walks: the walks, in order.
+        arms: the arm motions, in order.
+        cycle_time: seconds from the first task's start to the last task's end.
+        collisions: humanoid-vs-scene contacts (:class:`mjwalk.playback.Contact`), if checked.
+        timeline: the per-frame humanoid poses (kept only when asked for: it is large).
+    """
+
+    spec: CycleSpec
+    run: int
+    seed: int
+    tasks: list[TaskRecord]
+    walks: list[WalkRecord]
+    arms: list[ArmRecord]
+    cycle_time: float
+    collisions: list = field(default_factory=list)
+    timeline: object | None = None
+
+    def walk_lengths(self) -> dict[str, list[float]]:
+        """Walk lengths (metres) by route label."""
+        out: dict[str, list[float]] = {}
+        for w in self.walks:
+            out.setdefault(w.route, []).append(w.length)
+        return out
+
+    def summary(self) -> dict:
+        """Plain-data summary (JSON-ready)."""
+        return {
+            "run": self.run,
+            "seed": self.seed,
+            "cycle_time": self.cycle_time,
+            "walks": [
+                {
+                    "route": w.route,
+                    "from": w.start_site,
+                    "to": w.goal_site,
+                    "length": w.length,
+                    "duration": w.duration,
+                    "baseline_length": w.baseline_length,
+                }
+                for w in self.walks
+            ],
+            "tasks": [
+                {"index": t.index, "kind": t.kind, "site": t.site, "start": t.start, "end": t.end}
+                for t in self.tasks
+            ],
+            "collisions": len(self.collisions),
+            "max_hand_error": max((a.hand_error for a in self.arms), default=0.0),
+            "reach_outside_range": int(sum(a.outside for a in self.arms)),
+        }
+
+
+def walk_samples(results: list[CycleResult]) -> dict[str, np.ndarray]:
+    """(runs,) arrays of walk lengths per route over many results, for the report."""
+    out: dict[str, list[float]] = {}
+    for r in results:
+        for route, lengths in r.walk_lengths().items():
+            out.setdefault(route, []).extend(lengths)
+    return {k: np.array(v) for k, v in out.items()}
