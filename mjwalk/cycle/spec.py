@@ -1,0 +1,500 @@
+"""Read and check a cycle specification: a TOML file describing one assembly cycle.
+
+Format (every path is relative to the TOML file; lengths in metres, times in seconds)::
+
+    name = "assembly station of agethen2018"   # optional, free text
+    scene = "assembly_station.xml"              # required: the MJCF workplace
+    start = "stand_rack2"                       # required: standing site where the operator starts
+
+    [humanoid]                                  # optional table
+    stature = 1.75                              # metres, 1.4 to 2.1 (default 1.75)
+
+    [models]                                    # optional table
+    step = "default"                            # "default" or a step-model file
+    reach = "default"                           # "default" or a reach-model file
+
+    [walking]                                   # optional table
+    radius = 0.25                               # body radius for walking, metres (0.1 to 0.6)
+
+    [[task]]                                    # one table per task, in order (at least one)
+    kind = "pick"                               # walk | carry | pick | place | fasten | wait
+    site = "rack2_screw1"
+    hand = "left"
+    part = "screw"
+
+Keys of a task, by kind (``kind`` is always required):
+
+========  ==========================================  ==========================================
+kind      required                                    optional
+========  ==========================================  ==========================================
+walk      site (a standing site on the floor)         route
+carry     site (a standing site on the floor)         route, hand, part
+pick      site (where the part lies)                  hand, part, duration (hold time)
+place     site (where the part goes)                  hand, part, duration (hold time)
+fasten    site (where the part is fastened)           hand, part, duration (screwing time)
+wait      duration                                    --
+========  ==========================================  ==========================================
+
+``hand`` is "left" (default) or "right"; a carry's hand defaults to the hand holding a part.
+``route`` labels a walk for the report (walks with one label are pooled, like the paper's T1-T5);
+it defaults to ``"<from site>-><to site>"``. ``duration`` is seconds, >= 0; None (absent) means the
+simulator's default.
+
+The checks, each raising :class:`~mjwalk.errors.CycleSpecError` whose message starts with
+``<file>:<line>:`` and names the key: TOML syntax; unknown keys (with the closest valid key);
+missing required keys; wrong types and values; sites the scene lacks (with close names); missing
+scene or model files; and impossible tasks, found by following the operator through the cycle from
+``start``: a walk/carry to a site that is not a standing place (site higher than
+:data:`STAND_MAX_Z` or closer to an obstacle or the floor's edge than the walking radius), a
+walk/carry to where the operator already stands, a pick/place/fasten farther than
+:data:`MAX_REACH` (horizontally) from where the operator stands, and a place/fasten/carry with
+nothing in that hand (picks add a part to the hand; places and fastens take one away).
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import re
+import tomllib
+from pathlib import Path
+
+import numpy as np
+
+from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task
+from mjwalk.errors import CycleSpecError, SceneError
+from mjwalk.world.workplace import Workplace, load_workplace
+
+#: Highest a standing site may lie above the floor, metres.
+STAND_MAX_Z = 0.05
+#: Farthest horizontal distance from the standing site to a handled site (arm's reach), metres.
+MAX_REACH = 0.9
+#: Allowed humanoid stature, metres.
+STATURE_RANGE = (1.4, 2.1)
+#: Allowed walking (body) radius, metres.
+RADIUS_RANGE = (0.1, 0.6)
+HANDS = ("left", "right")
+
+_TOP_KEYS = ("name", "scene", "start", "humanoid", "models", "walking", "task")
+_TABLE_KEYS = {"humanoid": ("stature",), "models": ("step", "reach"), "walking": ("radius",)}
+_TASK_KEYS = {
+    "walk": ("kind", "site", "route"),
+    "carry": ("kind", "site", "route", "hand", "part"),
+    "pick": ("kind", "site", "hand", "part", "duration"),
+    "place": ("kind", "site", "hand", "part", "duration"),
+    "fasten": ("kind", "site", "hand", "part", "duration"),
+    "wait": ("kind", "duration"),
+}
+_ALL_TASK_KEYS = ("kind", "site", "hand", "duration", "route", "part")
+
+_HEADER_RE = re.compile(r"^\s*(\[\[|\[)\s*([^\[\]]+?)\s*(\]\]|\])\s*(#.*)?$")
+_KEY_RE = re.compile(
+    r"""^\s*((?:"[^"]*"|'[^']*'|[A-Za-z0-9_-]+)(?:\s*\.\s*(?:"[^"]*"|'[^']*'|[A-Za-z0-9_-]+))*)\s*="""
+)
+
+
+class _Lines:
+    """Line numbers of TOML keys and table headers, found by scanning the text.
+
+    ``tomllib`` keeps no positions, so this scans line by line: ``[table]`` and ``[[array]]``
+    headers set the current table (the n-th ``[[task]]`` is table ``("task", n)``) and each
+    ``key =`` line is recorded under it. Multi-line strings are skipped.
+    """
+
+    def __init__(self, text: str):
+        self.headers: dict[tuple[str, int | None], int] = {}
+        self.keys: dict[tuple[str, int | None, str], int] = {}
+        counts: dict[str, int] = {}
+        table: tuple[str, int | None] = ("", None)
+        in_string = None
+        for lineno, raw in enumerate(text.splitlines(), start=1):
+            if in_string is not None:
+                if raw.count(in_string) % 2 == 1:
+                    in_string = None
+                continue
+            m = _HEADER_RE.match(raw)
+            if m:
+                name = _unquote(m.group(2))
+                if m.group(1) == "[[":
+                    idx = counts.get(name, 0)
+                    counts[name] = idx + 1
+                    table = (name, idx)
+                else:
+                    table = (name, None)
+                self.headers.setdefault(table, lineno)
+                continue
+            m = _KEY_RE.match(raw)
+            if m:
+                parts = [_unquote(p) for p in re.split(r"\s*\.\s*", m.group(1))]
+                if table == ("", None) and len(parts) > 1:  # humanoid.stature = 1.7
+                    self.keys.setdefault((parts[0], None, parts[-1]), lineno)
+                    self.headers.setdefault((parts[0], None), lineno)
+                self.keys.setdefault((*table, parts[0]), lineno)
+                rest = raw[m.end() :]
+                for quote in ('"""', "'''"):
+                    if rest.count(quote) % 2 == 1:
+                        in_string = quote
+                        break
+
+    def line(self, table: str = "", index: int | None = None, key: str | None = None) -> int:
+        """Line of ``key`` in ``table`` (``index``-th of an array of tables); falls back to the
+        table's header, then to the array's ``key = [...]`` line, then to line 1."""
+        if key is not None and (table, index, key) in self.keys:
+            return self.keys[(table, index, key)]
+        if (table, index) in self.headers:
+            return self.headers[(table, index)]
+        if table and ("", None, table) in self.keys:  # task = [{...}, ...] written inline
+            return self.keys[("", None, table)]
+        return 1
+
+
+def _unquote(s: str) -> str:
+    s = s.strip()
+    if len(s) >= 2 and s[0] == s[-1] and s[0] in "\"'":
+        return s[1:-1]
+    return s
+
+
+class _Checker:
+    """Raises CycleSpecErrors that name the file, the key and its line."""
+
+    def __init__(self, path: Path, lines: _Lines):
+        self.path = path
+        self.lines = lines
+
+    def fail(
+        self, msg: str, table: str = "", index: int | None = None, key: str | None = None
+    ) -> CycleSpecError:
+        line = self.lines.line(table, index, key)
+        exc = CycleSpecError(f"{self.path}:{line}: {msg}")
+        exc.path, exc.line, exc.key = self.path, line, key
+        return exc
+
+    def where(self, table: str, index: int | None) -> str:
+        if table == "":
+            return "at the top level"
+        if index is None:
+            return f"in [{table}]"
+        return f"in task {index + 1} ([[{table}]] no. {index + 1})"
+
+    def keys(
+        self, data: dict, allowed: tuple[str, ...], table: str = "", index: int | None = None
+    ) -> None:
+        for key in data:
+            if key not in allowed:
+                close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.5)
+                hint = f"; did you mean {close[0]!r}?" if close else ""
+                raise self.fail(
+                    f"unknown key {key!r} {self.where(table, index)}{hint} "
+                    f"(valid keys: {', '.join(allowed)})",
+                    table,
+                    index,
+                    key,
+                )
+
+    def string(self, data: dict, key: str, table: str = "", index: int | None = None) -> str:
+        value = data[key]
+        if not isinstance(value, str) or not value.strip():
+            raise self.fail(
+                f"key {key!r} {self.where(table, index)} must be a non-empty string, got {value!r}",
+                table,
+                index,
+                key,
+            )
+        return value.strip()
+
+    def number(
+        self,
+        data: dict,
+        key: str,
+        lo: float,
+        hi: float,
+        unit: str,
+        table: str = "",
+        index: int | None = None,
+    ) -> float:
+        value = data[key]
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise self.fail(
+                f"key {key!r} {self.where(table, index)} must be a number ({unit}), got {value!r}",
+                table,
+                index,
+                key,
+            )
+        value = float(value)
+        if not math.isfinite(value) or not lo <= value <= hi:
+            rng = f"at least {lo:g}" if math.isinf(hi) else f"between {lo:g} and {hi:g}"
+            raise self.fail(
+                f"key {key!r} {self.where(table, index)} must be {rng} {unit}, got {value:g}",
+                table,
+                index,
+                key,
+            )
+        return value
+
+    def file(self, data: dict, key: str, base: Path, table: str = "") -> Path:
+        rel = self.string(data, key, table)
+        resolved = (base / rel).resolve()
+        if not resolved.is_file():
+            raise self.fail(
+                f"key {key!r} {self.where(table, None)}: file {rel!r} not found "
+                f"(looked for {resolved})",
+                table,
+                None,
+                key,
+            )
+        return resolved
+
+
+def _site_error(
+    check: _Checker, workplace: Workplace, name: str, table: str, index: int | None, key: str
+) -> CycleSpecError:
+    close = difflib.get_close_matches(name, list(workplace.stations), n=3, cutoff=0.5)
+    hint = f"; did you mean {', '.join(repr(c) for c in close)}?" if close else ""
+    return check.fail(
+        f"key {key!r} {check.where(table, index)}: the scene {workplace.name!r} has no site "
+        f"named {name!r}{hint}",
+        table,
+        index,
+        key,
+    )
+
+
+def _check_stand(
+    check: _Checker,
+    workplace: Workplace,
+    name: str,
+    radius: float,
+    table: str,
+    index: int | None,
+    key: str,
+) -> None:
+    """Raise unless site ``name`` is a place on the floor with room for the body."""
+    st = workplace.stations[name]
+    height = float(st.pos[2] - workplace.floor_z)
+    if height > STAND_MAX_Z:
+        raise check.fail(
+            f"key {key!r} {check.where(table, index)}: site {name!r} is {height:.2f} m above the "
+            f"floor, not a standing place (standing sites lie within {STAND_MAX_Z} m of the floor)",
+            table,
+            index,
+            key,
+        )
+    room = float(workplace.walk_clearance(np.asarray(st.xy)))
+    if room < radius:
+        raise check.fail(
+            f"key {key!r} {check.where(table, index)}: site {name!r} is {room:.2f} m from an "
+            f"obstacle or the floor's edge, closer than the walking radius {radius:g} m",
+            table,
+            index,
+            key,
+        )
+
+
+def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> CycleSpec:
+    """Read, check and resolve a cycle specification (TOML; format in the module docstring).
+
+    Args:
+        path: the TOML file.
+        workplace: the scene already loaded (saves loading it again; it must be the spec's
+            ``scene``). Default: loaded with :func:`mjwalk.world.load_workplace`.
+
+    Returns:
+        The :class:`CycleSpec` with absolute ``scene`` and model paths (models stay
+        ``"default"`` when so written), every walk/carry with a ``route`` label and every carry
+        with the hand that holds the part; ``Task.line`` is the task's ``[[task]]`` line.
+
+    Raises:
+        CycleSpecError: ``<file>:<line>: ...`` naming the offending key (see module docstring).
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise CycleSpecError(f"{path}: cycle spec file not found")
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise CycleSpecError(f"{path}: cannot read the cycle spec ({exc})") from exc
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        m = re.search(r"line (\d+)", str(exc))
+        line = int(m.group(1)) if m else 1
+        err = CycleSpecError(f"{path}:{line}: TOML syntax error: {exc}")
+        err.path, err.line, err.key = path, line, None
+        raise err from exc
+
+    check = _Checker(path, _Lines(text))
+    check.keys(data, _TOP_KEYS)
+    for key in ("scene", "start", "task"):
+        if key not in data:
+            what = "at least one [[task]] table" if key == "task" else f"{key} = ..."
+            raise check.fail(f"missing required key {key!r} at the top level ({what})", key=key)
+    name = check.string(data, "name") if "name" in data else ""
+
+    tables: dict[str, dict] = {}
+    for table, allowed in _TABLE_KEYS.items():
+        value = data.get(table, {})
+        if not isinstance(value, dict):
+            raise check.fail(f"{table!r} must be a table ([{table}])", key=table)
+        check.keys(value, allowed, table)
+        tables[table] = value
+    stature = 1.75
+    if "stature" in tables["humanoid"]:
+        stature = check.number(tables["humanoid"], "stature", *STATURE_RANGE, "m", "humanoid")
+    radius = 0.25
+    if "radius" in tables["walking"]:
+        radius = check.number(tables["walking"], "radius", *RADIUS_RANGE, "m", "walking")
+    base = path.resolve().parent
+    models = {}
+    for key in ("step", "reach"):
+        if key not in tables["models"] or tables["models"][key] == "default":
+            models[key] = "default"
+        else:
+            models[key] = str(check.file(tables["models"], key, base, "models"))
+
+    scene = check.file(data, "scene", base)
+    if workplace is None:
+        try:
+            workplace = load_workplace(scene)
+        except SceneError as exc:
+            raise check.fail(f"key 'scene': {exc}", key="scene") from exc
+
+    start = check.string(data, "start")
+    if start not in workplace.stations:
+        raise _site_error(check, workplace, start, "", None, "start")
+    _check_stand(check, workplace, start, radius, "", None, "start")
+
+    raw_tasks = data["task"]
+    if not isinstance(raw_tasks, list) or not raw_tasks:
+        raise check.fail("key 'task' must be one or more [[task]] tables", key="task")
+    tasks: list[Task] = []
+    stand = start
+    held = dict.fromkeys(HANDS, 0)
+    for i, raw in enumerate(raw_tasks):
+        if not isinstance(raw, dict):
+            raise check.fail(f"task {i + 1} must be a table ([[task]])", "task", i)
+        tasks.append(_task(check, workplace, raw, i, radius, stand, held))
+        if tasks[-1].kind in ("walk", "carry"):
+            stand = tasks[-1].site
+    return CycleSpec(
+        path=path,
+        scene=scene,
+        start=start,
+        tasks=tasks,
+        stature=stature,
+        step_model=models["step"],
+        reach_model=models["reach"],
+        radius=radius,
+        name=name,
+    )
+
+
+def _task(
+    check: _Checker,
+    workplace: Workplace,
+    raw: dict,
+    i: int,
+    radius: float,
+    stand: str,
+    held: dict[str, int],
+) -> Task:
+    """Check the ``i``-th task given where the operator stands and what each hand holds
+    (``held`` is updated)."""
+    t = "task"
+    where = check.where(t, i)
+    check.keys(raw, _ALL_TASK_KEYS, t, i)
+    if "kind" not in raw:
+        raise check.fail(f"missing required key 'kind' {where}", t, i, "kind")
+    kind = raw["kind"]
+    if kind not in TASK_KINDS:
+        close = difflib.get_close_matches(str(kind), TASK_KINDS, n=1, cutoff=0.5)
+        hint = f"; did you mean {close[0]!r}?" if close else ""
+        raise check.fail(
+            f"key 'kind' {where}: {kind!r} is not a task kind ({' | '.join(TASK_KINDS)}){hint}",
+            t,
+            i,
+            "kind",
+        )
+    allowed = _TASK_KEYS[kind]
+    for key in raw:
+        if key not in allowed:
+            raise check.fail(
+                f"key {key!r} {where} does not apply to a {kind!r} task "
+                f"(keys of a {kind} task: {', '.join(allowed)})",
+                t,
+                i,
+                key,
+            )
+    required = ("duration",) if kind == "wait" else ("site",)
+    for key in required:
+        if key not in raw:
+            raise check.fail(f"missing required key {key!r} {where} ({kind} task)", t, i, key)
+
+    site = check.string(raw, "site", t, i) if "site" in raw else None
+    if site is not None and site not in workplace.stations:
+        raise _site_error(check, workplace, site, t, i, "site")
+    hand = None
+    if "hand" in raw:
+        hand = raw["hand"]
+        if hand not in HANDS:
+            raise check.fail(
+                f"key 'hand' {where} must be 'left' or 'right', got {hand!r}", t, i, "hand"
+            )
+    duration = None
+    if "duration" in raw:
+        duration = check.number(raw, "duration", 0.0, math.inf, "s", t, i)
+    route = check.string(raw, "route", t, i) if "route" in raw else None
+    part = check.string(raw, "part", t, i) if "part" in raw else None
+
+    if kind in ("walk", "carry"):
+        if site == stand:
+            raise check.fail(
+                f"key 'site' {where}: the operator already stands at {site!r}", t, i, "site"
+            )
+        _check_stand(check, workplace, site, radius, t, i, "site")
+        if kind == "carry":
+            if hand is None:
+                hand = next((h for h in HANDS if held[h] > 0), "left")
+            if held[hand] == 0:
+                raise check.fail(
+                    f"key {'hand' if 'hand' in raw else 'kind'!r} {where}: a carry with nothing in the "
+                    f"{hand} hand (pick a part first, or "
+                    "use kind = 'walk')",
+                    t,
+                    i,
+                    "hand" if "hand" in raw else "kind",
+                )
+        route = route or f"{stand}->{site}"
+    elif kind in ("pick", "place", "fasten"):
+        hand = hand or "left"
+        dist = float(np.linalg.norm(workplace.stations[site].xy - workplace.stations[stand].xy))
+        if dist > MAX_REACH:
+            raise check.fail(
+                f"key 'site' {where}: {site!r} is {dist:.2f} m (horizontally) from where the "
+                f"operator stands ({stand!r}), beyond arm's reach ({MAX_REACH} m)",
+                t,
+                i,
+                "site",
+            )
+        if kind == "pick":
+            held[hand] += 1
+        elif held[hand] == 0:
+            raise check.fail(
+                f"key 'kind' {where}: a {kind} with nothing in the {hand} hand (no part picked and "
+                "not yet "
+                "placed or fastened)",
+                t,
+                i,
+                "kind",
+            )
+        else:
+            held[hand] -= 1
+    return Task(
+        kind=kind,
+        site=site,
+        hand=hand or "left",
+        duration=duration,
+        route=route,
+        part=part,
+        line=check.lines.line(t, i),
+    )
