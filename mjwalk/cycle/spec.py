@@ -456,13 +456,13 @@ def _task(
             if hand is None:
                 hand = next((h for h in HANDS if held[h] > 0), "left")
             if held[hand] == 0:
+                key = "hand" if "hand" in raw else "kind"
                 raise check.fail(
-                    f"key {'hand' if 'hand' in raw else 'kind'!r} {where}: a carry with nothing in the "
-                    f"{hand} hand (pick a part first, or "
-                    "use kind = 'walk')",
+                    f"key {key!r} {where}: a carry with nothing in the {hand} hand (pick a part "
+                    "first, or use kind = 'walk')",
                     t,
                     i,
-                    "hand" if "hand" in raw else "kind",
+                    key,
                 )
         route = route or f"{stand}->{site}"
     elif kind in ("pick", "place", "fasten"):
