@@ -175,7 +175,7 @@ class _Checker:
             return "at the top level"
         if index is None:
             return f"in [{table}]"
-        return f"in task {index + 1} ([[{table}]] no. {index + 1})"
+        return f"in task {index + 1}"
 
     def keys(
         self, data: dict, allowed: tuple[str, ...], table: str = "", index: int | None = None

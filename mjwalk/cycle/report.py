@@ -1,0 +1,500 @@
+"""Report of many simulated cycles: walk-length distributions per route, cycle time, collisions.
+
+:func:`report_dict` computes the figures (plain, JSON-ready data); :func:`write_report` writes them
+with tables and charts into a folder; :func:`format_summary` gives a short table for the terminal.
+
+Distributions are summarised as in agethen2018 Table 1: median (50th percentile) and
+inter-quartile range (75th - 25th percentile, ``numpy.percentile``'s linear interpolation), beside
+the grid-A* route length. Lengths in metres, times in seconds.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import json
+import math
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from mjwalk._io import atomic_path
+from mjwalk.cycle.types import TASK_KINDS, CycleResult
+from mjwalk.errors import MjwalkError
+from mjwalk.plan.walkpath import WalkPath
+
+#: Captured walk-path lengths of the paper's cycle (agethen2018 Table 1, "Baseline" columns):
+#: route -> (median, IQR), metres. Pass as ``reference=`` for the assembly station's cycle.
+CAPTURE_TABLE1: dict[str, tuple[float, float]] = {
+    "T1": (2.38, 0.21),
+    "T2": (2.25, 0.40),
+    "T3": (3.15, 0.38),
+    "T4": (2.44, 0.34),
+    "T5": (1.07, 0.21),
+}
+
+#: The files :func:`write_report` writes, by key.
+REPORT_FILES = {
+    "json": "report.json",
+    "walks": "walks.csv",
+    "cycles": "cycles.csv",
+    "markdown": "report.md",
+    "spaghetti": "spaghetti.png",
+    "histograms": "histograms.png",
+}
+
+BaselineArg = Mapping[str | tuple[str, str], WalkPath | Sequence[WalkPath]]
+
+
+def describe(values) -> dict[str, float]:
+    """n, median, q25, q75, iqr, min, max, mean and sd (ddof 1; 0 for one value) of ``values``.
+
+    Empty input gives n = 0 and NaN figures.
+    """
+    x = np.asarray(values, dtype=float).ravel()
+    if x.size == 0:
+        nan = float("nan")
+        keys = ("median", "q25", "q75", "iqr", "min", "max", "mean", "sd")
+        return {"n": 0, **dict.fromkeys(keys, nan)}
+    q25, q50, q75 = np.percentile(x, [25, 50, 75])
+    return {
+        "n": int(x.size),
+        "median": float(q50),
+        "q25": float(q25),
+        "q75": float(q75),
+        "iqr": float(q75 - q25),
+        "min": float(x.min()),
+        "max": float(x.max()),
+        "mean": float(x.mean()),
+        "sd": float(x.std(ddof=1)) if x.size > 1 else 0.0,
+    }
+
+
+def _routes(results: Sequence[CycleResult]) -> list[str]:
+    """Route labels in order of first appearance."""
+    seen: dict[str, None] = {}
+    for r in results:
+        for w in r.walks:
+            seen.setdefault(w.route, None)
+    return list(seen)
+
+
+def report_dict(
+    results: Sequence[CycleResult],
+    *,
+    reference: Mapping[str, tuple[float, float]] | None = None,
+) -> dict:
+    """The report's figures as plain data (JSON-ready).
+
+    Args:
+        results: simulated cycles (normally of one spec, one per Monte-Carlo run).
+        reference: optional captured (median, IQR) walk length per route, metres (e.g.
+            :data:`CAPTURE_TABLE1`); adds ``reference``, ``median_error`` (relative) and
+            ``iqr_ratio`` to those routes.
+
+    Returns:
+        ``{"name", "scene", "runs", "routes": {label: {...}}, "cycle_time", "collisions",
+        "task_time": {kind: {...}}, "arms", "per_run"}``; see the Markdown report for meanings.
+    """
+    if not results:
+        raise MjwalkError("report: no cycle results to report")
+    spec = results[0].spec
+    routes = {}
+    for label in _routes(results):
+        walks = [w for r in results for w in r.walks if w.route == label]
+        legs: dict[tuple[str, str], list] = {}
+        for w in walks:
+            legs.setdefault((w.start_site, w.goal_site), []).append(w)
+        length = describe([w.length for w in walks])
+        base = float(np.median([w.baseline_length for w in walks]))
+        entry = {
+            "walks": len(walks),
+            "legs": [
+                {
+                    "from": a,
+                    "to": b,
+                    "walks": len(ws),
+                    "baseline_length": float(np.median([w.baseline_length for w in ws])),
+                    "length_median": float(np.median([w.length for w in ws])),
+                }
+                for (a, b), ws in legs.items()
+            ],
+            "length": length,
+            "duration": describe([w.duration for w in walks]),
+            "baseline_length": base,
+            "length_vs_baseline": length["median"] / base - 1.0 if base > 0 else float("nan"),
+        }
+        if reference is not None and label in reference:
+            ref_median, ref_iqr = (float(v) for v in reference[label])
+            entry["reference"] = {"median": ref_median, "iqr": ref_iqr}
+            entry["median_error"] = length["median"] / ref_median - 1.0
+            entry["iqr_ratio"] = length["iqr"] / ref_iqr if ref_iqr > 0 else float("nan")
+        routes[label] = entry
+
+    per_run_collisions = [len(r.collisions) for r in results]
+    pairs: dict[str, int] = {}
+    for r in results:
+        for c in r.collisions:
+            key = f"{getattr(c, 'body_part', '?')} | {getattr(c, 'scene_geom', '?')}"
+            pairs[key] = pairs.get(key, 0) + 1
+
+    kinds = [k for k in TASK_KINDS if any(t.kind == k for r in results for t in r.tasks)]
+    task_time = {}
+    for kind in kinds:
+        spans = [t.duration for r in results for t in r.tasks if t.kind == kind]
+        per_cycle = [sum(t.duration for t in r.tasks if t.kind == kind) for r in results]
+        task_time[kind] = {
+            "count_per_cycle": len(spans) / len(results),
+            "task": describe(spans),
+            "per_cycle": describe(per_cycle),
+        }
+    arms = [a for r in results for a in r.arms]
+    return {
+        "name": spec.name,
+        "spec": str(spec.path),
+        "scene": str(spec.scene),
+        "runs": len(results),
+        "routes": routes,
+        "cycle_time": describe([r.cycle_time for r in results]),
+        "collisions": {
+            "total": int(sum(per_run_collisions)),
+            "runs_with_collisions": int(sum(n > 0 for n in per_run_collisions)),
+            "per_run": describe(per_run_collisions),
+            "by_pair": dict(sorted(pairs.items(), key=lambda kv: -kv[1])),
+        },
+        "task_time": task_time,
+        "arms": {
+            "motions": len(arms),
+            "max_hand_error": max((a.hand_error for a in arms), default=0.0),
+            "median_hand_error": float(np.median([a.hand_error for a in arms])) if arms else 0.0,
+            "outside_range": int(sum(a.outside for a in arms)),
+        },
+        "per_run": [
+            {
+                "run": r.run,
+                "seed": r.seed,
+                "cycle_time": r.cycle_time,
+                "collisions": len(r.collisions),
+            }
+            for r in results
+        ],
+    }
+
+
+def _f(x: float, digits: int = 2) -> str:
+    return "–" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.{digits}f}"
+
+
+def _route_rows(rep: dict) -> tuple[list[str], list[list[str]]]:
+    has_ref = any("reference" in e for e in rep["routes"].values())
+    head = ["route", "walks", "grid A* [m]", "length 50th [m]", "IQR [m]"]
+    head += ["duration 50th [s]", "IQR [s]", "vs A*"]
+    if has_ref:
+        head += ["capture 50th [m]", "IQR [m]", "median error", "IQR ratio"]
+    rows = []
+    for label, e in rep["routes"].items():
+        row = [
+            label,
+            str(e["walks"]),
+            _f(e["baseline_length"]),
+            _f(e["length"]["median"]),
+            _f(e["length"]["iqr"]),
+            _f(e["duration"]["median"]),
+            _f(e["duration"]["iqr"]),
+            f"{100 * e['length_vs_baseline']:+.1f} %",
+        ]
+        if has_ref:
+            if "reference" in e:
+                row += [
+                    _f(e["reference"]["median"]),
+                    _f(e["reference"]["iqr"]),
+                    f"{100 * e['median_error']:+.1f} %",
+                    f"{100 * e['iqr_ratio']:.0f} %",
+                ]
+            else:
+                row += ["–"] * 4
+        rows.append(row)
+    return head, rows
+
+
+def _md_table(head: list[str], rows: list[list[str]]) -> str:
+    lines = ["| " + " | ".join(head) + " |", "|" + "|".join("---" for _ in head) + "|"]
+    lines += ["| " + " | ".join(r) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+def format_markdown(rep: dict) -> str:
+    """The report as Markdown (the content of ``report.md``)."""
+    ct = rep["cycle_time"]
+    col = rep["collisions"]
+    out = [
+        f"# Cycle report: {rep['name'] or Path(rep['spec']).stem}",
+        "",
+        f"Spec `{rep['spec']}`, scene `{rep['scene']}`, {rep['runs']} simulated run(s).",
+        "",
+        "## Walk paths per route",
+        "",
+        "Median (50th percentile) and inter-quartile range of the walked length and duration, "
+        "beside the grid-A* route length (layout of agethen2018 Table 1).",
+        "",
+        _md_table(*_route_rows(rep)),
+        "",
+        "## Cycle time",
+        "",
+        _md_table(
+            ["median [s]", "IQR [s]", "min [s]", "max [s]", "mean [s]", "sd [s]"],
+            [[_f(ct[k]) for k in ("median", "iqr", "min", "max", "mean", "sd")]],
+        ),
+        "",
+        "## Time per task kind",
+        "",
+        _md_table(
+            ["kind", "tasks per cycle", "task median [s]", "task IQR [s]", "per cycle median [s]"],
+            [
+                [
+                    kind,
+                    _f(e["count_per_cycle"], 1),
+                    _f(e["task"]["median"]),
+                    _f(e["task"]["iqr"]),
+                    _f(e["per_cycle"]["median"]),
+                ]
+                for kind, e in rep["task_time"].items()
+            ],
+        ),
+        "",
+        "## Collisions",
+        "",
+        f"{col['total']} humanoid-vs-scene contact(s) in total; {col['runs_with_collisions']} of "
+        f"{rep['runs']} run(s) had any (per run: median {_f(col['per_run']['median'], 1)}, "
+        f"max {_f(col['per_run']['max'], 0)}).",
+    ]
+    if col["by_pair"]:
+        out += [
+            "",
+            _md_table(
+                ["body part | scene geom", "contacts"],
+                [[k, str(v)] for k, v in col["by_pair"].items()],
+            ),
+        ]
+    arms = rep["arms"]
+    out += [
+        "",
+        "## Arms",
+        "",
+        f"{arms['motions']} arm motion(s); hand error at the target: median "
+        f"{_f(1000 * arms['median_hand_error'], 0)} mm, max {_f(1000 * arms['max_hand_error'], 0)} "
+        f"mm; {arms['outside_range']} outside the reach model's trained range.",
+        "",
+    ]
+    return "\n".join(out)
+
+
+def format_summary(rep: dict) -> str:
+    """A short plain-text table of a report (from :func:`report_dict`) for the terminal."""
+    ct = rep["cycle_time"]
+    head, rows = _route_rows(rep)
+    head, rows = head[:8], [r[:8] for r in rows]  # the capture columns stay in report.md
+    widths = [max(len(h), *(len(r[k]) for r in rows)) for k, h in enumerate(head)]
+    fmt = "  ".join(f"{{:<{w}}}" for w in widths)
+    lines = [
+        f"{rep['name'] or Path(rep['spec']).stem}: {rep['runs']} run(s)",
+        f"cycle time  median {_f(ct['median'], 1)} s  IQR {_f(ct['iqr'], 1)} s  "
+        f"(min {_f(ct['min'], 1)}, max {_f(ct['max'], 1)}, mean {_f(ct['mean'], 1)}, "
+        f"sd {_f(ct['sd'], 1)})",
+        fmt.format(*head),
+        *(fmt.format(*r) for r in rows),
+        f"collisions  {rep['collisions']['total']} total, "
+        f"{rep['collisions']['runs_with_collisions']} run(s) with any",
+    ]
+    return "\n".join(lines)
+
+
+def _write_walks_csv(path: Path, results: Sequence[CycleResult]) -> None:
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(
+            [
+                "run", "seed", "task", "route", "from", "to",
+                "length_m", "duration_s", "baseline_length_m", "steps",
+            ]
+        )  # fmt: skip
+        for r in results:
+            for wk in r.walks:
+                w.writerow(
+                    [
+                        r.run,
+                        r.seed,
+                        wk.task,
+                        wk.route,
+                        wk.start_site,
+                        wk.goal_site,
+                        f"{wk.length:.4f}",
+                        f"{wk.duration:.4f}",
+                        f"{wk.baseline_length:.4f}",
+                        len(wk.path.steps),
+                    ]
+                )
+
+
+def _write_cycles_csv(path: Path, results: Sequence[CycleResult]) -> None:
+    kinds = [k for k in TASK_KINDS if any(t.kind == k for r in results for t in r.tasks)]
+    with open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(
+            ["run", "seed", "cycle_time_s", "walk_length_m", "walk_time_s", "collisions"]
+            + ["max_hand_error_m", "reach_outside_range"]
+            + [f"{k}_time_s" for k in kinds]
+        )
+        for r in results:
+            w.writerow(
+                [
+                    r.run,
+                    r.seed,
+                    f"{r.cycle_time:.4f}",
+                    f"{sum(wk.length for wk in r.walks):.4f}",
+                    f"{sum(wk.duration for wk in r.walks):.4f}",
+                    len(r.collisions),
+                    f"{max((a.hand_error for a in r.arms), default=0.0):.4f}",
+                    sum(a.outside for a in r.arms),
+                ]
+                + [f"{sum(t.duration for t in r.tasks if t.kind == k):.4f}" for k in kinds]
+            )
+
+
+def _route_colors(labels: Sequence[str]) -> dict[str, tuple]:
+    import matplotlib
+
+    cmap = matplotlib.colormaps["tab10"]
+    return {label: cmap(k % 10) for k, label in enumerate(labels)}
+
+
+def _spaghetti(path: Path, results: Sequence[CycleResult], workplace, baseline, rep) -> None:
+    import matplotlib.pyplot as plt
+
+    from mjwalk.plot import draw_floor, draw_paths
+
+    labels = list(rep["routes"])
+    colors = _route_colors(labels)
+    xmin, ymin, xmax, ymax = workplace.floor_bounds
+    fig, ax = plt.subplots(figsize=(10, 10 * (ymax - ymin) / (xmax - xmin) * 0.9 + 0.6))
+    try:
+        draw_floor(ax, workplace, shade=False)
+        alpha = 0.8 if len(results) < 5 else max(0.15, 4.0 / len(results))
+        for label in labels:
+            paths = [w.path for r in results for w in r.walks if w.route == label]
+            draw_paths(ax, paths, color=colors[label], label=label, lw=0.8, alpha=alpha)
+        leg_route = {(w.start_site, w.goal_site): w.route for r in results for w in r.walks}
+        first = True
+        for key, value in (baseline or {}).items():
+            label = leg_route.get(tuple(key)) if isinstance(key, tuple) else key
+            for p in [value] if isinstance(value, WalkPath) else value:
+                ax.plot(
+                    p.xy[:, 0],
+                    p.xy[:, 1],
+                    ls="--",
+                    lw=1.8,
+                    color=colors.get(label, "k"),
+                    label="grid A*" if first else None,
+                )
+                first = False
+        ax.legend(loc="upper right", fontsize=8)
+        ax.set_title(f"{rep['name'] or workplace.name}: {len(results)} run(s), walks by route")
+        fig.tight_layout()
+        fig.savefig(path, dpi=110)
+    finally:
+        plt.close(fig)
+
+
+def _histograms(path: Path, results: Sequence[CycleResult], rep) -> None:
+    import matplotlib.pyplot as plt
+
+    labels = list(rep["routes"])
+    colors = _route_colors(labels)
+    n = 1 + len(labels)
+    cols = min(3, n)
+    rows = math.ceil(n / cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.2 * rows), squeeze=False)
+    try:
+        axes = axes.ravel()
+        ax = axes[0]
+        ax.hist([r.cycle_time for r in results], bins="auto", color="0.4")
+        ax.axvline(rep["cycle_time"]["median"], color="k", ls="--", lw=1, label="median")
+        ax.set_xlabel("cycle time [s]")
+        ax.set_ylabel("runs")
+        ax.set_title("cycle time")
+        ax.legend(fontsize=7)
+        for ax, label in zip(axes[1:], labels, strict=False):
+            e = rep["routes"][label]
+            lengths = [w.length for r in results for w in r.walks if w.route == label]
+            ax.hist(lengths, bins="auto", color=colors[label], alpha=0.8)
+            ax.axvline(e["length"]["median"], color="k", ls="--", lw=1, label="median")
+            ax.axvline(e["baseline_length"], color="tab:orange", lw=1.5, label="grid A*")
+            if "reference" in e:
+                ax.axvline(e["reference"]["median"], color="tab:green", lw=1.5, label="capture")
+            ax.set_xlabel("walk length [m]")
+            ax.set_title(f"route {label} ({e['walks']} walks)")
+            ax.legend(fontsize=7)
+        for ax in axes[n:]:
+            ax.set_visible(False)
+        fig.tight_layout()
+        fig.savefig(path, dpi=100)
+    finally:
+        plt.close(fig)
+
+
+def write_report(
+    results: Sequence[CycleResult],
+    out_dir: str | Path,
+    *,
+    workplace=None,
+    baseline: BaselineArg | None = None,
+    reference: Mapping[str, tuple[float, float]] | None = None,
+) -> dict[str, Path]:
+    """Write the report of ``results`` into ``out_dir`` (created if needed).
+
+    Files (keys of the returned dict, see :data:`REPORT_FILES`): ``report.json`` (the figures of
+    :func:`report_dict`), ``walks.csv`` (one row per walk per run), ``cycles.csv`` (one row per
+    run), ``report.md`` (Markdown tables), ``spaghetti.png`` (every run's walk paths on the floor
+    plan, coloured by route, grid-A* routes dashed) and ``histograms.png`` (cycle time and walk
+    lengths per route). All are written to temporary files first and renamed into place together
+    at the end, so an error leaves none of them half-written (nor any new one at all).
+
+    Args:
+        results: the simulated cycles.
+        out_dir: folder to write into.
+        workplace: the scene (:class:`mjwalk.world.Workplace`) for the floor plan; default: loaded
+            from the first result's ``spec.scene``.
+        baseline: grid-A* routes to draw, keyed by route label or by ``(start_site, goal_site)``;
+            each value one :class:`WalkPath` or several.
+        reference: captured (median, IQR) walk length per route, e.g. :data:`CAPTURE_TABLE1`.
+    """
+    rep = report_dict(results, reference=reference)
+    if workplace is None:
+        from mjwalk.world import load_workplace
+
+        workplace = load_workplace(results[0].spec.scene)
+    out_dir = Path(out_dir)
+    targets = {key: out_dir / name for key, name in REPORT_FILES.items()}
+    with contextlib.ExitStack() as stack:
+        tmp = {key: stack.enter_context(atomic_path(p)) for key, p in targets.items()}
+        tmp["json"].write_text(json.dumps(_jsonable(rep), indent=2, allow_nan=False) + "\n")
+        _write_walks_csv(tmp["walks"], results)
+        _write_cycles_csv(tmp["cycles"], results)
+        tmp["markdown"].write_text(format_markdown(rep), encoding="utf-8")
+        _spaghetti(tmp["spaghetti"], results, workplace, baseline, rep)
+        _histograms(tmp["histograms"], results, rep)
+    return targets
+
+
+def _jsonable(obj):
+    """NaN/inf -> None (strict JSON), numpy scalars -> Python."""
+    if isinstance(obj, dict):
+        return {str(k): _jsonable(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_jsonable(v) for v in obj]
+    if isinstance(obj, np.generic):
+        obj = obj.item()
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    return obj

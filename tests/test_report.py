@@ -1,0 +1,175 @@
+"""The cycle report on synthetic results with known walk lengths and durations."""
+
+from __future__ import annotations
+
+import csv
+import json
+from pathlib import Path
+
+import imageio.v3 as iio
+import numpy as np
+import pytest
+
+from mjwalk.cycle import report as report_mod
+from mjwalk.cycle.report import (
+    CAPTURE_TABLE1,
+    REPORT_FILES,
+    describe,
+    format_summary,
+    report_dict,
+    write_report,
+)
+from mjwalk.cycle.types import ArmRecord, CycleResult, CycleSpec, TaskRecord, WalkRecord
+from mjwalk.errors import MjwalkError
+from mjwalk.plan.walkpath import WalkPath
+from mjwalk.playback import Contact
+from mjwalk.world import load_workplace
+
+SCENE = Path(__file__).resolve().parents[1] / "scenes" / "assembly_station.xml"
+# (label, from, to, direction of the straight synthetic walk, mean length m, grid-A* length m)
+LEGS = [
+    ("T1", "stand_rack2", "stand_car1", (-0.6, 0.8), 2.4, 2.45),
+    ("T2", "stand_car1", "stand_rack3", (0.6, -0.8), 2.3, 2.40),
+    ("T2", "stand_rack3", "stand_car2", (-0.6, 0.8), 2.2, 2.30),
+    ("T5", "stand_rack2", "stand_rack3", (1.0, 0.0), 1.1, 1.05),
+]
+
+
+@pytest.fixture(scope="module")
+def workplace():
+    return load_workplace(SCENE)
+
+
+def _line(start, direction, length: float, duration: float, n: int = 40) -> WalkPath:
+    s = np.linspace(0.0, length, n)
+    d = np.asarray(direction, float) / np.linalg.norm(direction)
+    return WalkPath(
+        t=np.linspace(0.0, duration, n),
+        xy=np.asarray(start, float) + s[:, None] * d,
+        yaw=np.full(n, np.arctan2(d[1], d[0])),
+    )
+
+
+def _results(workplace, runs: int = 12, seed: int = 3) -> list[CycleResult]:
+    rng = np.random.default_rng(seed)
+    spec = CycleSpec(path=Path("synthetic.toml"), scene=SCENE, start="stand_rack2", tasks=[])
+    out = []
+    for run in range(runs):
+        t = 0.0
+        tasks, walks, arms = [], [], []
+        for k, (label, a, b, direction, mean, base) in enumerate(LEGS):
+            length = mean + rng.normal(0.0, 0.1)
+            duration = length / 1.2 + rng.normal(0.0, 0.05)
+            path = _line(workplace.stations[a].xy, direction, length, duration)
+            walks.append(WalkRecord(2 * k, label, a, b, path, base))
+            tasks.append(TaskRecord(2 * k, "walk", b, t, t + duration, route=label))
+            t += duration
+            hold = 4.0 + rng.uniform(0.0, 1.0)
+            tasks.append(TaskRecord(2 * k + 1, "fasten", "car_screw1", t, t + hold))
+            arms.append(ArmRecord(2 * k + 1, "fasten", "car_screw1", "left", hold, 0.01 * k))
+            t += hold
+        contacts = [Contact(1.0, "hand_l", "car_body", 0.01, np.zeros(3)) for _ in range(run % 3)]
+        out.append(CycleResult(spec, run, 100 + run, tasks, walks, arms, t, contacts))
+    return out
+
+
+def test_describe_matches_numpy():
+    x = np.random.default_rng(0).normal(size=37)
+    d = describe(x)
+    q25, q50, q75 = np.percentile(x, [25, 50, 75])
+    assert d["median"] == pytest.approx(q50) and d["iqr"] == pytest.approx(q75 - q25)
+    assert d["sd"] == pytest.approx(np.std(x, ddof=1)) and d["n"] == 37
+    assert describe([2.0])["sd"] == 0.0
+    assert describe([])["n"] == 0
+
+
+def test_report_figures(workplace):
+    results = _results(workplace)
+    rep = report_dict(results, reference=CAPTURE_TABLE1)
+    assert list(rep["routes"]) == ["T1", "T2", "T5"]
+    for label, e in rep["routes"].items():
+        lengths = [w.length for r in results for w in r.walks if w.route == label]
+        durations = [w.duration for r in results for w in r.walks if w.route == label]
+        q = np.percentile(lengths, [25, 50, 75])
+        assert e["length"]["median"] == pytest.approx(q[1], abs=1e-12)
+        assert e["length"]["iqr"] == pytest.approx(q[2] - q[0], abs=1e-12)
+        qd = np.percentile(durations, [25, 50, 75])
+        assert e["duration"]["median"] == pytest.approx(qd[1], abs=1e-12)
+        assert e["duration"]["iqr"] == pytest.approx(qd[2] - qd[0], abs=1e-12)
+        assert e["reference"]["median"] == CAPTURE_TABLE1[label][0]
+        assert e["median_error"] == pytest.approx(q[1] / CAPTURE_TABLE1[label][0] - 1)
+    t2 = rep["routes"]["T2"]
+    assert t2["walks"] == 24 and len(t2["legs"]) == 2
+    assert t2["baseline_length"] == pytest.approx(2.35)  # median over both legs' A* lengths
+    assert rep["routes"]["T5"]["baseline_length"] == pytest.approx(1.05)
+    cycle = [r.cycle_time for r in results]
+    assert rep["cycle_time"]["median"] == pytest.approx(np.median(cycle))
+    assert rep["cycle_time"]["sd"] == pytest.approx(np.std(cycle, ddof=1))
+    assert rep["cycle_time"]["min"] == min(cycle) and rep["cycle_time"]["max"] == max(cycle)
+    assert rep["collisions"]["total"] == sum(r % 3 for r in range(12)) == 12
+    assert rep["collisions"]["runs_with_collisions"] == 8
+    assert rep["collisions"]["by_pair"] == {"hand_l | car_body": 12}
+    assert set(rep["task_time"]) == {"walk", "fasten"}
+    fasten = rep["task_time"]["fasten"]
+    assert fasten["count_per_cycle"] == 4
+    assert 4.0 <= fasten["task"]["min"] and fasten["task"]["max"] <= 5.0
+    walk_total = [sum(w.duration for w in r.walks) for r in results]
+    assert rep["task_time"]["walk"]["per_cycle"]["median"] == pytest.approx(np.median(walk_total))
+    assert rep["arms"]["max_hand_error"] == pytest.approx(0.03)
+
+
+def test_write_report_files(tmp_path, workplace):
+    results = _results(workplace)
+    baseline = {
+        ("stand_rack2", "stand_car1"): _line(
+            workplace.stations["stand_rack2"].xy, (-0.6, 0.8), 2.45, 1.0
+        ),
+        "T5": [_line(workplace.stations["stand_rack2"].xy, (1, 0), 1.05, 1.0)],
+    }
+    files = write_report(
+        results, tmp_path / "out", workplace=workplace, baseline=baseline, reference=CAPTURE_TABLE1
+    )
+    assert set(files) == set(REPORT_FILES)
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == sorted(REPORT_FILES.values())
+    rep = json.loads(files["json"].read_text())
+    lengths = [w.length for r in results for w in r.walks if w.route == "T1"]
+    q = np.percentile(lengths, [25, 50, 75])
+    assert rep["routes"]["T1"]["length"]["median"] == pytest.approx(q[1], abs=1e-12)
+    assert rep["routes"]["T1"]["length"]["iqr"] == pytest.approx(q[2] - q[0], abs=1e-12)
+    with open(files["walks"]) as fh:
+        walks = list(csv.DictReader(fh))
+    assert len(walks) == 12 * len(LEGS)
+    assert float(walks[0]["length_m"]) == pytest.approx(results[0].walks[0].length, abs=1e-4)
+    with open(files["cycles"]) as fh:
+        cycles = list(csv.DictReader(fh))
+    assert len(cycles) == 12
+    assert [int(c["collisions"]) for c in cycles] == [r % 3 for r in range(12)]
+    assert float(cycles[5]["fasten_time_s"]) == pytest.approx(
+        sum(t.duration for t in results[5].tasks if t.kind == "fasten"), abs=1e-4
+    )
+    md = files["markdown"].read_text()
+    assert "| T1 | 12 | 2.45 |" in md and "## Cycle time" in md and "capture 50th" in md
+    for key in ("spaghetti", "histograms"):
+        img = iio.imread(files[key])
+        assert img.ndim == 3 and img.shape[0] > 200 and img.shape[1] > 300
+        assert img[..., :3].std() > 10  # not blank
+    summary = format_summary(rep)
+    assert "T5" in summary and "cycle time" in summary and "12 run(s)" in summary
+
+
+def test_no_half_written_files(tmp_path, workplace, monkeypatch):
+    results = _results(workplace, runs=3)
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("disk full")
+
+    monkeypatch.setattr(report_mod, "_histograms", broken)
+    out = tmp_path / "out"
+    with pytest.raises(RuntimeError, match="disk full"):
+        write_report(results, out, workplace=workplace)
+    assert list(out.iterdir()) == []  # neither targets nor temporary files
+
+
+def test_no_results():
+    with pytest.raises(MjwalkError, match="no cycle results"):
+        report_dict([])
