@@ -1,0 +1,49 @@
+"""The default reach model: trained on first use from generated reaches, then cached."""
+
+from __future__ import annotations
+
+import sys
+import time
+
+import numpy as np
+
+from mjwalk.errors import ModelFileError
+
+#: Bump when the generator or the model changes, so the cache is rebuilt.
+REACH_DEFAULT_VERSION = "1"
+N_TRAIN = 200
+_MEMO: dict = {}
+
+
+def default_reach_model(progress: bool = True):
+    """The :class:`~mjwalk.body.reach.ReachModel` of start/end-constrained reaches of the left
+    arm (``reachgen.generate("endpoints", 200, seed 0)``), cached beside the step model."""
+    from mjwalk.body import reachgen
+    from mjwalk.body.reach import ReachModel
+    from mjwalk.gait.default import cache_dir
+
+    path = cache_dir() / f"reach-endpoints-v{REACH_DEFAULT_VERSION}-n{N_TRAIN}.npz"
+    if path in _MEMO:
+        return _MEMO[path]
+    model = None
+    if path.is_file():
+        try:
+            model = ReachModel.load(path)
+        except ModelFileError:
+            model = None
+    if model is None:
+        t0 = time.perf_counter()
+        if progress:
+            print(f"[mjwalk] building the default reach model -> {path}", file=sys.stderr)
+        data = reachgen.generate("endpoints", N_TRAIN, np.random.default_rng(0))
+        model = ReachModel(data.lengths, dcs={"random_state": 0}).fit(
+            data.constraints, data.directions
+        )
+        model.save(path)
+        if progress:
+            print(
+                f"[mjwalk] default reach model ready ({time.perf_counter() - t0:.1f} s)",
+                file=sys.stderr,
+            )
+    _MEMO[path] = model
+    return model

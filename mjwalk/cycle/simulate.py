@@ -1,0 +1,437 @@
+"""Simulate assembly cycles: plan every walk, animate walks and arm motions, time every task.
+
+One cycle (:func:`simulate_cycle`) walks the task list of a :class:`CycleSpec`: each ``walk`` /
+``carry`` task is planned with the probabilistic hybrid A* (and, for the report, the grid-A*
+route between the same sites); the operator turns on the spot towards the walk's first heading
+and, at its end, towards the site's facing direction; each ``pick`` / ``place`` / ``fasten``
+task is an arm reach from the current standing pose to the site (the :class:`ReachModel`, PCA +
+DCS, alzubi-sommer), a hold (the task's duration) and the return. Everything is laid on one
+timeline of humanoid poses (``fps`` frames per second), checked for humanoid-vs-scene contacts
+with MuJoCo's collision detection.
+
+Many cycles (:func:`simulate_cycles`) run through joblib, so ``n_jobs`` processes share the
+work; inside ``joblib.parallel_config(backend="dask")`` (or ``"ray"``) the same call runs on a
+Dask or Ray cluster unchanged (see the README).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from mjwalk.body.humanoid import JointMap, attach_humanoid, pelvis_height
+from mjwalk.cycle.types import (
+    ArmRecord,
+    CycleResult,
+    CycleSpec,
+    TaskRecord,
+    WalkRecord,
+)
+from mjwalk.errors import CycleSpecError, MjwalkError
+from mjwalk.plan.grid import occupancy_grid, plan_grid
+from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.playback import Timeline, _frames_from_legs, collision_report, yaw_quat
+from mjwalk.world.workplace import Workplace, load_workplace
+
+#: Turning speed on the spot (rad/s) and shortest turn (s).
+TURN_SPEED = math.radians(180.0)
+MIN_TURN = 0.25
+#: Arm reach out and back (s), and the hold of a pick or place without a given duration (s).
+REACH_OUT = 0.9
+REACH_BACK = 0.7
+DEFAULT_HOLD = {"pick": 0.4, "place": 0.4, "fasten": 3.0, "wait": 1.0}
+#: Walks of a cycle end this close to their stand site (m): the operator steps up to the
+#: workplace (the planner's default goal area of 0.25 m would leave screws out of reach).
+GOAL_TOLERANCE = 0.1
+#: The hand stops this far above a pick/place site (m) and this far in front of a fasten site.
+PICK_CLEARANCE = 0.06
+FASTEN_STANDOFF = 0.10
+#: The pre-grasp point: this far back towards the operator and (shelf work) up from the target.
+APPROACH_BACK = 0.15
+APPROACH_UP = 0.10
+
+
+@dataclass
+class CycleContext:
+    """Everything a cycle needs that does not change between runs (built once per process)."""
+
+    spec: CycleSpec
+    workplace: Workplace
+    step_model: object
+    reach_model: object
+    model: mujoco.MjModel
+    jointmap: JointMap
+    planners: dict = field(default_factory=dict)
+    baselines: dict = field(default_factory=dict)
+
+    def planner(self, goal: str) -> HybridPlanner:
+        if goal not in self.planners:
+            self.planners[goal] = HybridPlanner(
+                self.workplace,
+                goal,
+                self.step_model,
+                radius=self.spec.radius,
+                goal_tolerance=GOAL_TOLERANCE,
+            )
+        return self.planners[goal]
+
+    def baseline(self, a: str, b: str) -> float:
+        if (a, b) not in self.baselines:
+            grid = getattr(self, "_grid8", None)
+            if grid is None:
+                grid = self._grid8 = occupancy_grid(self.workplace, radius=self.spec.radius)
+            self.baselines[(a, b)] = plan_grid(
+                self.workplace, a, b, radius=self.spec.radius, grid=grid
+            ).length
+        return self.baselines[(a, b)]
+
+
+def _load_step_model(spec: CycleSpec):
+    if spec.step_model == "default":
+        from mjwalk.gait.default import default_model
+
+        return default_model()
+    from mjwalk.gait.model import StepModel
+
+    return StepModel.load(spec.step_model)
+
+
+def _load_reach_model(spec: CycleSpec):
+    from mjwalk.body.reach import ReachModel
+
+    if spec.reach_model == "default":
+        from mjwalk.body.reachdefault import default_reach_model
+
+        return default_reach_model()
+    return ReachModel.load(spec.reach_model)
+
+
+@functools.lru_cache(maxsize=4)
+def _context_cached(spec_key: str) -> CycleContext:
+    from mjwalk.cycle.spec import load_cycle_spec
+
+    return prepare(load_cycle_spec(spec_key))
+
+
+def prepare(spec: CycleSpec) -> CycleContext:
+    """Load the scene, the models and the humanoid of ``spec`` (reused by every run)."""
+    workplace = load_workplace(spec.scene)
+    model, jm = attach_humanoid(spec.scene, spec.stature)
+    return CycleContext(
+        spec=spec,
+        workplace=workplace,
+        step_model=_load_step_model(spec),
+        reach_model=_load_reach_model(spec),
+        model=model,
+        jointmap=jm,
+    )
+
+
+# ---------------------------------------------------------------------------- poses
+
+
+def _standing(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarray:
+    q = ctx.jointmap.neutral_qpos(ctx.model, ctx.spec.stature)
+    r = ctx.jointmap.root
+    q[r : r + 3] = [x, y, pelvis_height(ctx.spec.stature)]
+    q[r + 3 : r + 7] = yaw_quat(np.array([yaw]))[0]
+    return q
+
+
+def _turn_frames(ctx, x, y, yaw0, yaw1, fps) -> tuple[np.ndarray, float]:
+    d = (yaw1 - yaw0 + math.pi) % (2 * math.pi) - math.pi
+    duration = max(MIN_TURN, abs(d) / TURN_SPEED)
+    n = max(1, round(duration * fps))
+    frames = np.array([_standing(ctx, x, y, yaw0 + d * (k + 1) / n) for k in range(n)])
+    return frames, n / fps
+
+
+def _walk_frames(ctx, walk, fps) -> np.ndarray:
+    from mjwalk.body.legs import legs_from_walk
+
+    legs = legs_from_walk(walk, ctx.spec.stature)
+    t = np.arange(1, math.floor(walk.duration * fps) + 1) / fps
+    if len(t) == 0 or t[-1] < walk.duration - 1e-9:
+        t = np.append(t, walk.duration)
+    return _frames_from_legs(ctx.model, ctx.jointmap, legs, t, ctx.spec.stature, "swing", None)
+
+
+def _reach_frames(
+    ctx, q0: np.ndarray, target_w: np.ndarray, approach_w: np.ndarray, hold: float, fps: float,
+    side: str = "l",
+):
+    """Frames of reaching from pose ``q0`` to ``target_w`` (world, m), holding, returning.
+
+    The reach model (PCA + DCS) brings the hand from rest to the pre-grasp point
+    ``target_w + approach_w``; the hand then moves straight onto the target along
+    ``-approach_w`` with a minimum-jerk profile (two-link IK, hand direction kept), so it comes
+    over a shelf's front edge instead of through it. The return retraces the motion.
+
+    Returns (frames, hand error in metres, ReachResult of the model part)."""
+    from mjwalk.body.reach import ARM_JOINTS, REST_HAND, arm_joint_angles, min_jerk, two_link_ik
+
+    m, jm, model = ctx.model, ctx.jointmap, ctx.reach_model
+    data = mujoco.MjData(m)
+    data.qpos[:] = q0
+    mujoco.mj_kinematics(m, data)
+    ua = m.body(f"{jm.prefix}upper_arm_{side}").id
+    shoulder = data.xpos[ua].copy()
+    frame = data.xmat[ua].reshape(3, 3).copy()
+    end = frame.T @ (target_w - shoulder)
+    pre = frame.T @ (target_w + approach_w - shoulder)
+    start = np.asarray(REST_HAND, dtype=float)
+    res = model.predict(np.r_[start, pre], start=start, end=pre)
+    lengths = model.lengths
+    u_last = res.directions[-1]
+    n_app = max(4, len(res.directions) // 2)
+    app = np.repeat(u_last[None], n_app, axis=0)
+    for k, tau in enumerate(min_jerk(np.linspace(0.0, 1.0, n_app + 1)[1:])):
+        hand = pre + tau * (end - pre)
+        wrist = hand - lengths[2] * u_last[2]
+        app[k, 0], app[k, 1] = two_link_ik(wrist, lengths[0], lengths[1], u_last[0] * lengths[0])
+    directions = np.concatenate([res.directions, app])
+    q = arm_joint_angles(directions, side)
+    n_out = max(2, round(REACH_OUT * fps))
+    src = np.linspace(0.0, 1.0, len(q))
+    dst = np.linspace(0.0, 1.0, n_out + 1)[1:]
+    qi = np.column_stack([np.interp(dst, src, q[:, k]) for k in range(q.shape[1])])
+    out = np.repeat(q0[None], n_out, axis=0)
+    for k, name in enumerate(ARM_JOINTS):
+        parts = name.split("_")
+        jn = "_".join([parts[0], side, *parts[1:]])
+        lo, hi = jm.limits(jn)
+        out[:, jm.adr(jn)] = np.clip(qi[:, k], lo, hi)
+    data.qpos[:] = out[-1]
+    mujoco.mj_kinematics(m, data)
+    wrist = data.xpos[m.body(f"{jm.prefix}hand_{side}").id]
+    tip = wrist + frame @ (directions[-1, 2] * lengths[2])
+    error = float(np.linalg.norm(tip - target_w))
+    n_hold = max(0, round(hold * fps))
+    n_back = max(1, round(REACH_BACK * fps))
+    back = out[::-1][np.linspace(0, n_out - 1, n_back).round().astype(int)]
+    back = np.vstack([back[1:], q0[None]])
+    frames = np.vstack([out, np.repeat(out[-1:], n_hold, axis=0), back])
+    return frames, error, res
+
+
+def _approach(kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndarray:
+    """Pre-grasp offset (world, m): back towards the operator, and up for shelf work."""
+    d = np.array([x, y]) - site_pos[:2]
+    d /= max(np.linalg.norm(d), 1e-9)
+    up = 0.0 if kind == "fasten" else APPROACH_UP
+    return np.r_[APPROACH_BACK * d, up]
+
+
+def _target(ctx, kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndarray:
+    if kind == "fasten":  # stop in front of the surface, towards the operator
+        d = np.array([x, y]) - site_pos[:2]
+        d /= max(np.linalg.norm(d), 1e-9)
+        return site_pos + np.r_[FASTEN_STANDOFF * d, 0.0]
+    return site_pos + np.array([0.0, 0.0, PICK_CLEARANCE])
+
+
+# ---------------------------------------------------------------------------- one cycle
+
+
+def simulate_cycle(
+    spec: CycleSpec | CycleContext,
+    rng: np.random.Generator | int | None = None,
+    *,
+    run: int = 0,
+    fps: float = 30.0,
+    keep_timeline: bool = False,
+    check_collisions: bool = True,
+) -> CycleResult:
+    """Simulate one assembly cycle.
+
+    Args:
+        spec: the cycle (or a prepared :class:`CycleContext`, to reuse models across runs).
+        rng: random generator or seed (same seed, same cycle).
+        run: the run's index (recorded in the result).
+        fps: frame rate of the humanoid timeline (the video rate).
+        keep_timeline: keep the per-frame poses in ``result.timeline`` (for videos).
+        check_collisions: run MuJoCo's collision detection over the timeline.
+
+    Returns:
+        A :class:`CycleResult`: walks, arm motions, task times, cycle time, collisions.
+
+    Raises:
+        PlanningError: a walk cannot be planned (the spec is checked before, so this means an
+            unreachable site); MjwalkError for model files.
+    """
+    ctx = spec if isinstance(spec, CycleContext) else prepare(spec)
+    spec = ctx.spec
+    seed = int(rng) if isinstance(rng, int | np.integer) else -1
+    rng = np.random.default_rng(rng)
+    wp = ctx.workplace
+    here = spec.start
+    st = wp.station(here)
+    x, y, yaw = float(st.pos[0]), float(st.pos[1]), st.yaw
+    frames = [_standing(ctx, x, y, yaw)[None]]
+    t = 0.0
+    tasks: list[TaskRecord] = []
+    walks: list[WalkRecord] = []
+    arms: list[ArmRecord] = []
+    walk_paths = []
+    for i, task in enumerate(spec.tasks):
+        t0 = t
+        if task.kind in ("walk", "carry"):
+            goal = task.site
+            path = ctx.planner(goal).plan((x, y), rng)
+            turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps)
+            frames.append(turn)
+            t += dt
+            wf = _walk_frames(ctx, path, fps)
+            frames.append(wf)
+            t += path.duration
+            x, y = (float(v) for v in path.xy[-1])
+            yaw = float(path.yaw[-1])
+            face = wp.station(goal).yaw
+            turn, dt = _turn_frames(ctx, x, y, yaw, face, fps)
+            frames.append(turn)
+            t += dt
+            yaw = face
+            walks.append(
+                WalkRecord(
+                    task=i,
+                    route=task.route or f"{here}->{goal}",
+                    start_site=here,
+                    goal_site=goal,
+                    path=path,
+                    baseline_length=ctx.baseline(here, goal),
+                )
+            )
+            walk_paths.append(path)
+            here = goal
+        elif task.kind in ("pick", "place", "fasten"):
+            site_pos = wp.station(task.site).pos
+            target = _target(ctx, task.kind, site_pos, x, y)
+            # face the target (turning on the spot) before reaching for it
+            face = math.atan2(target[1] - y, target[0] - x)
+            turn, dt = _turn_frames(ctx, x, y, yaw, face, fps)
+            frames.append(turn)
+            t += dt
+            yaw = face
+            hold = task.duration if task.duration is not None else DEFAULT_HOLD[task.kind]
+            approach = _approach(task.kind, site_pos, x, y)
+            rf, err, res = _reach_frames(ctx, frames[-1][-1], target, approach, hold, fps)
+            frames.append(rf)
+            t += len(rf) / fps
+            arms.append(
+                ArmRecord(
+                    task=i,
+                    kind=task.kind,
+                    site=task.site,
+                    hand=task.hand,
+                    duration=len(rf) / fps,
+                    hand_error=err,
+                    outside=bool(res.outside),
+                    warnings=list(res.warnings),
+                )
+            )
+        elif task.kind == "wait":
+            hold = task.duration if task.duration is not None else DEFAULT_HOLD["wait"]
+            n = max(1, round(hold * fps))
+            frames.append(np.repeat(frames[-1][-1:], n, axis=0))
+            t += n / fps
+        else:  # the spec parser refuses unknown kinds; this guards hand-made specs
+            raise CycleSpecError(f"task {i}: unknown kind {task.kind!r}")
+        tasks.append(TaskRecord(i, task.kind, task.site, t0, t, task.route))
+    qpos = np.vstack(frames)
+    timeline = Timeline(
+        model=ctx.model,
+        jointmap=ctx.jointmap,
+        fps=fps,
+        t=np.arange(len(qpos)) / fps,
+        qpos=qpos,
+        scene=str(spec.scene),
+        stature=spec.stature,
+    )
+    timeline.walks = walk_paths  # drawn into videos
+    collisions = collision_report(timeline) if check_collisions else []
+    return CycleResult(
+        spec=spec,
+        run=run,
+        seed=seed,
+        tasks=tasks,
+        walks=walks,
+        arms=arms,
+        cycle_time=t,
+        collisions=collisions,
+        timeline=timeline if keep_timeline else None,
+    )
+
+
+# ---------------------------------------------------------------------------- many cycles
+
+
+def _run_one(spec_path: str, run: int, seed: int, check_collisions: bool) -> CycleResult:
+    ctx = _context_cached(spec_path)
+    ss = np.random.SeedSequence([seed, run])
+    return simulate_cycle(
+        ctx, np.random.default_rng(ss), run=run, check_collisions=check_collisions
+    )
+
+
+def simulate_cycles(
+    spec: CycleSpec | str | Path,
+    runs: int,
+    seed: int = 0,
+    n_jobs: int = 1,
+    *,
+    check_collisions: bool = True,
+    progress: bool = False,
+) -> list[CycleResult]:
+    """Monte Carlo: ``runs`` independent cycles, in parallel through joblib.
+
+    Run ``k`` draws from ``SeedSequence([seed, k])``: results do not depend on ``n_jobs`` or on
+    the backend. Workers load the spec and models once each (the default models come from the
+    on-disk cache). Under ``joblib.parallel_config(backend="dask")`` or ``"ray"`` the runs go to
+    that cluster unchanged.
+    """
+    from joblib import Parallel, delayed
+
+    if isinstance(spec, CycleSpec):
+        spec_path = str(spec.path)
+    else:
+        spec_path = str(spec)
+    if runs < 1:
+        raise MjwalkError(f"simulate_cycles: runs must be >= 1, got {runs}")
+    jobs = (delayed(_run_one)(spec_path, k, seed, check_collisions) for k in range(runs))
+    if progress:
+        from tqdm import tqdm
+
+        out = []
+        gen = Parallel(n_jobs=n_jobs, return_as="generator")(jobs)
+        for r in tqdm(gen, total=runs, desc="cycles", unit="cycle"):
+            out.append(r)
+        return out
+    return list(Parallel(n_jobs=n_jobs)(jobs))
+
+
+def check_collisions(result_or_timeline, scene: str | Path | None = None) -> list:
+    """Every humanoid-vs-scene contact of a simulated cycle (or of a Timeline, or of a WalkPath
+    played in ``scene``): time (s), body part, scene geom, depth (m), by MuJoCo's collision
+    detection. A CycleResult must have been simulated with ``keep_timeline=True``."""
+    from mjwalk.plan.walkpath import WalkPath
+    from mjwalk.playback import timeline_from_walk
+
+    obj = result_or_timeline
+    if isinstance(obj, CycleResult):
+        if obj.timeline is None:
+            raise MjwalkError(
+                "check_collisions: the result has no timeline; simulate with keep_timeline=True"
+            )
+        obj = obj.timeline
+    if isinstance(obj, WalkPath):
+        if scene is None:
+            raise MjwalkError("check_collisions: a WalkPath needs the scene it is played in")
+        obj = timeline_from_walk(obj, scene)
+    if not isinstance(obj, Timeline):
+        raise MjwalkError(f"check_collisions: cannot check a {type(obj).__name__}")
+    return collision_report(obj)
