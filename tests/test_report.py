@@ -108,7 +108,7 @@ def test_report_figures(workplace):
     assert rep["cycle_time"]["min"] == min(cycle) and rep["cycle_time"]["max"] == max(cycle)
     assert rep["collisions"]["total"] == sum(r % 3 for r in range(12)) == 12
     assert rep["collisions"]["runs_with_collisions"] == 8
-    assert rep["collisions"]["by_pair"] == {"hand_l | car_body": 12}
+    assert rep["collisions"]["by_pair"] == {"hand_l vs car_body": 12}
     assert set(rep["task_time"]) == {"walk", "fasten"}
     fasten = rep["task_time"]["fasten"]
     assert fasten["count_per_cycle"] == 4

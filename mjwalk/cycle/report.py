@@ -136,7 +136,7 @@ def report_dict(
     pairs: dict[str, int] = {}
     for r in results:
         for c in r.collisions:
-            key = f"{getattr(c, 'body_part', '?')} | {getattr(c, 'scene_geom', '?')}"
+            key = f"{getattr(c, 'body_part', '?')} vs {getattr(c, 'scene_geom', '?')}"
             pairs[key] = pairs.get(key, 0) + 1
 
     kinds = [k for k in TASK_KINDS if any(t.kind == k for r in results for t in r.tasks)]
@@ -273,7 +273,7 @@ def format_markdown(rep: dict) -> str:
         out += [
             "",
             _md_table(
-                ["body part | scene geom", "contacts"],
+                ["body part vs scene geom", "contacts"],
                 [[k, str(v)] for k, v in col["by_pair"].items()],
             ),
         ]
@@ -302,8 +302,8 @@ def format_summary(rep: dict) -> str:
         f"cycle time  median {_f(ct['median'], 1)} s  IQR {_f(ct['iqr'], 1)} s  "
         f"(min {_f(ct['min'], 1)}, max {_f(ct['max'], 1)}, mean {_f(ct['mean'], 1)}, "
         f"sd {_f(ct['sd'], 1)})",
-        fmt.format(*head),
-        *(fmt.format(*r) for r in rows),
+        fmt.format(*head).rstrip(),
+        *(fmt.format(*r).rstrip() for r in rows),
         f"collisions  {rep['collisions']['total']} total, "
         f"{rep['collisions']['runs_with_collisions']} run(s) with any",
     ]
@@ -398,7 +398,10 @@ def _spaghetti(path: Path, results: Sequence[CycleResult], workplace, baseline, 
                     label="grid A*" if first else None,
                 )
                 first = False
-        ax.legend(loc="upper right", fontsize=8)
+        legend = ax.legend(loc="upper right", fontsize=8)
+        for handle in legend.legend_handles:  # the runs are faint; their legend lines are not
+            handle.set_alpha(1.0)
+            handle.set_linewidth(2.0)
         ax.set_title(f"{rep['name'] or workplace.name}: {len(results)} run(s), walks by route")
         fig.tight_layout()
         fig.savefig(path, dpi=110)
@@ -429,9 +432,9 @@ def _histograms(path: Path, results: Sequence[CycleResult], rep) -> None:
             lengths = [w.length for r in results for w in r.walks if w.route == label]
             ax.hist(lengths, bins="auto", color=colors[label], alpha=0.8)
             ax.axvline(e["length"]["median"], color="k", ls="--", lw=1, label="median")
-            ax.axvline(e["baseline_length"], color="tab:orange", lw=1.5, label="grid A*")
+            ax.axvline(e["baseline_length"], color="k", lw=1.5, label="grid A*")
             if "reference" in e:
-                ax.axvline(e["reference"]["median"], color="tab:green", lw=1.5, label="capture")
+                ax.axvline(e["reference"]["median"], color="k", ls=":", lw=1.5, label="capture")
             ax.set_xlabel("walk length [m]")
             ax.set_title(f"route {label} ({e['walks']} walks)")
             ax.legend(fontsize=7)
