@@ -1,5 +1,12 @@
 """mjwalk: statistically varied human walking and reaching in MuJoCo assembly workplaces."""
 
+import sys as _sys
+
+if "mujoco" not in _sys.modules:  # pick a headless OpenGL backend before mujoco loads
+    from mjwalk._gl import select_gl_backend as _select_gl_backend
+
+    _select_gl_backend()
+
 from mjwalk.errors import (
     CaptureError,
     CycleSpecError,

@@ -6,6 +6,8 @@ import argparse
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from mjwalk.errors import MjwalkError
 
 
@@ -101,6 +103,52 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    import json
+
+    from mjwalk.cycle.report import format_summary, report_dict, write_report
+    from mjwalk.cycle.simulate import combined_walk, prepare, simulate_cycle, simulate_cycles
+    from mjwalk.cycle.spec import load_cycle_spec
+
+    spec = load_cycle_spec(args.spec)
+    print(
+        f"mjwalk simulate: {spec.name or spec.path.name}: {len(spec.tasks)} tasks, "
+        f"{args.runs} runs, seed {args.seed}",
+        flush=True,
+    )
+    ctx = prepare(spec)  # builds (or loads) the default models once, with progress
+    results = simulate_cycles(
+        spec, args.runs, seed=args.seed, n_jobs=args.jobs, progress=not args.quiet
+    )
+    files = write_report(results, args.out, workplace=ctx.workplace)
+    print(format_summary(report_dict(results)))
+    for name, path in files.items():
+        print(f"  wrote {name}: {path}")
+    if args.video:
+        from mjwalk.render import render_video
+
+        run0 = simulate_cycle(
+            ctx,
+            np.random.default_rng(np.random.SeedSequence([args.seed, 0])),
+            keep_timeline=True,
+            check_collisions=False,
+        )
+        run0.timeline.walk = combined_walk(run0)
+        video = args.out / "cycle.mp4"
+        render_video(
+            run0.timeline,
+            video,
+            camera=args.camera,
+            size=(640, 480),
+            fps=30,
+            progress=not args.quiet,
+        )
+        print(f"  wrote video: {video}")
+    if args.json_summary:
+        print(json.dumps(report_dict(results)["cycle_time"]))
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="mjwalk",
@@ -125,6 +173,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--footprints", action="store_true", help="draw the footprints too")
     p.add_argument("--save", type=Path, help="save each walk as NAME_NNN.npz (for mjwalk render)")
     p.set_defaults(func=_cmd_plan)
+
+    p = sub.add_parser("simulate", help="simulate assembly cycles (Monte Carlo) and report")
+    p.add_argument("spec", type=Path, help="cycle specification (TOML)")
+    p.add_argument("--runs", type=int, default=50, help="cycles to simulate (50)")
+    p.add_argument("--out", type=Path, default=Path("out"), help="report folder (out/)")
+    p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same report)")
+    p.add_argument("--jobs", type=int, default=-1, help="parallel processes (-1: all cores)")
+    p.add_argument("--video", action="store_true", help="also render one cycle to cycle.mp4")
+    p.add_argument("--camera", choices=["track", "top"], default="track")
+    p.add_argument("--quiet", action="store_true", help="no progress bars")
+    p.add_argument("--json-summary", action="store_true", help=argparse.SUPPRESS)
+    p.set_defaults(func=_cmd_simulate)
 
     p = sub.add_parser("train", help="train a step model from capture or virtual subjects")
     p.add_argument("--bvh", help="glob of BVH files")

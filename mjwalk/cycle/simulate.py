@@ -162,7 +162,12 @@ def _walk_frames(ctx, walk, fps) -> np.ndarray:
 
 
 def _reach_frames(
-    ctx, q0: np.ndarray, target_w: np.ndarray, approach_w: np.ndarray, hold: float, fps: float,
+    ctx,
+    q0: np.ndarray,
+    target_w: np.ndarray,
+    approach_w: np.ndarray,
+    hold: float,
+    fps: float,
     side: str = "l",
 ):
     """Frames of reaching from pose ``q0`` to ``target_w`` (world, m), holding, returning.
@@ -412,6 +417,25 @@ def simulate_cycles(
             out.append(r)
         return out
     return list(Parallel(n_jobs=n_jobs)(jobs))
+
+
+def combined_walk(result: CycleResult):
+    """All walks of a cycle as one WalkPath (for drawing the route into a video)."""
+    from mjwalk.plan.walkpath import PathStep, WalkPath
+
+    xy, yaw, t, steps = [], [], [], []
+    offset, t0 = 0, 0.0
+    for w in result.walks:
+        p = w.path
+        xy.append(p.xy)
+        yaw.append(p.yaw)
+        t.append(p.t + t0)
+        steps += [
+            PathStep(s.side, s.start + offset, s.end + offset, s.foot, s.stance) for s in p.steps
+        ]
+        offset += len(p.xy)
+        t0 = t[-1][-1] + 1.0 / 120.0
+    return WalkPath(np.concatenate(t), np.vstack(xy), np.concatenate(yaw), steps)
 
 
 def check_collisions(result_or_timeline, scene: str | Path | None = None) -> list:
