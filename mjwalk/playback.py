@@ -140,9 +140,10 @@ def timeline_from_walk(
         scene: an MJCF scene file or an MjSpec; the humanoid is attached (the file is not edited).
         fps: frame rate of the timeline (the video rate).
         stature: the humanoid's stature in metres.
-        arms: ``"swing"`` (counter-swing from the legs) or ``"none"`` (arms hang). The
-            contact-switching gait-pose dynamics (``mjwalk.body.gaitpose``) are not written yet.
-        rng: reserved for stochastic upper-body models (unused by ``"swing"``).
+        arms: ``"swing"`` (counter-swing from the legs), ``"gaitpose"`` (arms and torso from the
+            contact-switching GP dynamics, :mod:`mjwalk.body.gaitpose`; fits its default model
+            once per process, ~10 s) or ``"none"`` (arms hang).
+        rng: picks the gait-pose rollout's start (``arms="gaitpose"``).
 
     Returns:
         the Timeline (frames at ``t = 0, 1/fps, ...`` up to the walk's duration).
@@ -183,8 +184,12 @@ def _frames_from_legs(model, jm, legs: LegMotion, t, stature, arms, rng) -> np.n
     angles = {name: np.interp(t, legs.t, v) for name, v in legs.angles.items()}
     if arms == "swing":
         angles.update(arm_swing(angles))
+    elif arms == "gaitpose":
+        from mjwalk.body.gaitpose import upper_body_from_legs
+
+        angles.update(upper_body_from_legs(legs, t, rng=rng))
     elif arms != "none":
-        raise MjwalkError(f"timeline_from_walk: arms={arms!r}; use 'swing' or 'none'")
+        raise MjwalkError(f"timeline_from_walk: arms={arms!r}; use 'swing', 'gaitpose' or 'none'")
     for name, v in angles.items():
         lo, hi = jm.limits(name)
         qpos[:, jm.adr(name)] = np.clip(v, lo, hi)
