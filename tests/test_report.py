@@ -173,3 +173,10 @@ def test_no_half_written_files(tmp_path, workplace, monkeypatch):
 def test_no_results():
     with pytest.raises(MjwalkError, match="no cycle results"):
         report_dict([])
+
+
+def test_baseline_must_be_paths(tmp_path, workplace):
+    results = _results(workplace, runs=2)
+    with pytest.raises(MjwalkError, match=r"baseline\[\('a', 'b'\)\] must be a WalkPath"):
+        write_report(results, tmp_path / "out", workplace=workplace, baseline={("a", "b"): 2.4})
+    assert not (tmp_path / "out").exists() or list((tmp_path / "out").iterdir()) == []

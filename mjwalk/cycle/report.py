@@ -44,6 +44,9 @@ REPORT_FILES = {
     "histograms": "histograms.png",
 }
 
+#: Contact pairs listed in report.md (all of them are in report.json).
+MD_PAIRS = 12
+
 BaselineArg = Mapping[str | tuple[str, str], WalkPath | Sequence[WalkPath]]
 
 
@@ -274,9 +277,11 @@ def format_markdown(rep: dict) -> str:
             "",
             _md_table(
                 ["body part vs scene geom", "contacts"],
-                [[k, str(v)] for k, v in col["by_pair"].items()],
+                [[k, str(v)] for k, v in list(col["by_pair"].items())[:MD_PAIRS]],
             ),
         ]
+        if len(col["by_pair"]) > MD_PAIRS:
+            out += ["", f"(the {MD_PAIRS} most frequent of {len(col['by_pair'])} pairs)"]
     arms = rep["arms"]
     out += [
         "",
@@ -342,7 +347,7 @@ def _write_cycles_csv(path: Path, results: Sequence[CycleResult]) -> None:
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(
-            ["run", "seed", "cycle_time_s", "walk_length_m", "walk_time_s", "collisions"]
+            ["run", "seed", "cycle_time_s", "walked_length_m", "walked_time_s", "collisions"]
             + ["max_hand_error_m", "reach_outside_range"]
             + [f"{k}_time_s" for k in kinds]
         )
@@ -385,19 +390,14 @@ def _spaghetti(path: Path, results: Sequence[CycleResult], workplace, baseline, 
             paths = [w.path for r in results for w in r.walks if w.route == label]
             draw_paths(ax, paths, color=colors[label], label=label, lw=0.8, alpha=alpha)
         leg_route = {(w.start_site, w.goal_site): w.route for r in results for w in r.walks}
-        first = True
+        drawn = False
         for key, value in (baseline or {}).items():
             label = leg_route.get(tuple(key)) if isinstance(key, tuple) else key
             for p in [value] if isinstance(value, WalkPath) else value:
-                ax.plot(
-                    p.xy[:, 0],
-                    p.xy[:, 1],
-                    ls="--",
-                    lw=1.8,
-                    color=colors.get(label, "k"),
-                    label="grid A*" if first else None,
-                )
-                first = False
+                ax.plot(p.xy[:, 0], p.xy[:, 1], ls="--", lw=1.8, color=colors.get(label, "k"))
+                drawn = True
+        if drawn:  # one neutral legend entry for all grid-A* routes
+            ax.plot([], [], ls="--", lw=1.8, color="k", label="grid A* (route colour)")
         legend = ax.legend(loc="upper right", fontsize=8)
         for handle in legend.legend_handles:  # the runs are faint; their legend lines are not
             handle.set_alpha(1.0)
@@ -469,7 +469,8 @@ def write_report(
         workplace: the scene (:class:`mjwalk.world.Workplace`) for the floor plan; default: loaded
             from the first result's ``spec.scene``.
         baseline: grid-A* routes to draw, keyed by route label or by ``(start_site, goal_site)``;
-            each value one :class:`WalkPath` or several.
+            each value one :class:`WalkPath` or several. Default: planned here with
+            :func:`mjwalk.plan.grid.plan_grid` for every leg walked (``{}`` draws none).
         reference: captured (median, IQR) walk length per route, e.g. :data:`CAPTURE_TABLE1`.
     """
     rep = report_dict(results, reference=reference)
@@ -477,6 +478,14 @@ def write_report(
         from mjwalk.world import load_workplace
 
         workplace = load_workplace(results[0].spec.scene)
+    baseline = _grid_routes(results, workplace) if baseline is None else baseline
+    for key, value in baseline.items():
+        paths = [value] if isinstance(value, WalkPath) else value
+        if not isinstance(paths, Sequence) or not all(isinstance(p, WalkPath) for p in paths):
+            raise MjwalkError(
+                f"write_report: baseline[{key!r}] must be a WalkPath or a list of them, "
+                f"got {type(value).__name__}"
+            )
     out_dir = Path(out_dir)
     targets = {key: out_dir / name for key, name in REPORT_FILES.items()}
     with contextlib.ExitStack() as stack:
@@ -488,6 +497,26 @@ def write_report(
         _spaghetti(tmp["spaghetti"], results, workplace, baseline, rep)
         _histograms(tmp["histograms"], results, rep)
     return targets
+
+
+def _grid_routes(results: Sequence[CycleResult], workplace) -> dict[tuple[str, str], WalkPath]:
+    """Grid-A* routes of every (start site, goal site) walked, for the floor plan; legs the grid
+    planner cannot plan are left out."""
+    from mjwalk.errors import PlanningError, SceneError
+    from mjwalk.plan.grid import occupancy_grid, plan_grid
+
+    radius = results[0].spec.radius
+    grid = occupancy_grid(workplace, radius=radius)
+    out = {}
+    for r in results:
+        for w in r.walks:
+            leg = (w.start_site, w.goal_site)
+            if leg not in out:
+                try:
+                    out[leg] = plan_grid(workplace, *leg, radius=radius, grid=grid)
+                except (PlanningError, SceneError):
+                    out[leg] = []
+    return out
 
 
 def _jsonable(obj):
