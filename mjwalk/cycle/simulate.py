@@ -41,6 +41,14 @@ from mjwalk.world.workplace import Workplace, load_workplace
 #: Turning speed on the spot (rad/s) and shortest turn (s).
 TURN_SPEED = math.radians(180.0)
 MIN_TURN = 0.25
+#: Seconds over which the arm swing (or the carrying posture) fades in and out of a walk.
+ARM_EASE = 0.6
+#: The arms swing fully with at least ARM_ROOM[1] metres of room around the pelvis, not at all
+#: below ARM_ROOM[0].
+ARM_ROOM = (0.35, 0.6)
+#: Carrying posture of the hand that holds a part (radians): upper arm slightly back, elbow
+#: flexed 105 degrees, so the part is held close in front of the trunk.
+CARRY_POSE = {"shoulder_flex": -0.15, "shoulder_abd": 0.12, "elbow": 1.83}
 #: Arm reach out and back (s), and the hold of a pick or place without a given duration (s).
 REACH_OUT = 0.9
 REACH_BACK = 0.7
@@ -151,14 +159,34 @@ def _turn_frames(ctx, x, y, yaw0, yaw1, fps) -> tuple[np.ndarray, float]:
     return frames, n / fps
 
 
-def _walk_frames(ctx, walk, fps) -> np.ndarray:
+def _walk_frames(ctx, walk, fps, carry: str | None = None) -> np.ndarray:
+    """Frames of a walk after its first sample (legs from the footprints, arm swing from the
+    legs). The arms swing fully only in mid-walk: the swing fades in over the first and out
+    over the last :data:`ARM_EASE` seconds, so they are at rest when the operator stops at a
+    rack or the car. ``carry`` ("left"/"right"): that hand holds the part in front of the body
+    (elbow flexed, forearm close to the trunk) instead of swinging."""
     from mjwalk.body.legs import legs_from_walk
 
     legs = legs_from_walk(walk, ctx.spec.stature)
     t = np.arange(1, math.floor(walk.duration * fps) + 1) / fps
     if len(t) == 0 or t[-1] < walk.duration - 1e-9:
         t = np.append(t, walk.duration)
-    return _frames_from_legs(ctx.model, ctx.jointmap, legs, t, ctx.spec.stature, "swing", None)
+    frames = _frames_from_legs(ctx.model, ctx.jointmap, legs, t, ctx.spec.stature, "swing", None)
+    jm = ctx.jointmap
+    rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
+    ease = np.clip(np.minimum(t, walk.duration - t) / ARM_EASE, 0.0, 1.0)
+    # close to racks or the car people keep their arms in: the swing shrinks with the room
+    room = ctx.workplace.walk_clearance(frames[:, jm.root : jm.root + 2])
+    ease = np.minimum(ease, np.clip((room - ARM_ROOM[0]) / (ARM_ROOM[1] - ARM_ROOM[0]), 0, 1))
+    ease = ease * ease * (3.0 - 2.0 * ease)  # smoothstep
+    for side in "lr":
+        for joint in (f"shoulder_{side}_flex", f"shoulder_{side}_abd", f"elbow_{side}"):
+            k = jm.adr(joint)
+            target = frames[:, k]
+            if carry is not None and side == carry[0]:
+                target = np.full_like(target, CARRY_POSE[joint.replace(f"_{side}", "")])
+            frames[:, k] = rest[k] + ease * (target - rest[k])
+    return frames
 
 
 def _reach_frames(
@@ -291,7 +319,7 @@ def simulate_cycle(
             turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps)
             frames.append(turn)
             t += dt
-            wf = _walk_frames(ctx, path, fps)
+            wf = _walk_frames(ctx, path, fps, task.hand if task.kind == "carry" else None)
             frames.append(wf)
             t += path.duration
             x, y = (float(v) for v in path.xy[-1])

@@ -50,6 +50,10 @@ FPS = 120.0
 #: field's error (< 4 mm) and the curve between two of the 16 checked samples of a step, so the
 #: full 120 Hz path keeps the body radius by MuJoCo's own geometry.
 SAFETY_MARGIN = 0.01
+#: Ankle-to-toe length (m) and the clearance (m) both must keep from obstacles and the floor's
+#: edge: the landing foot reaches ahead of the pelvis, into a shelf or a car body otherwise.
+FOOT_LENGTH = 0.14
+FOOT_CLEARANCE = 0.08
 #: Without a start yaw, starters set off within +-60 degrees of the obstacle-aware downhill
 #: heading (the operator turns on the spot before the first step).
 START_SPREAD = math.radians(60.0)
@@ -265,6 +269,12 @@ class HybridPlanner:
             local, _ = succ.resample(m)
             world = _to_world(node.x, node.y, node.heading, local)  # (n, m, 2)
             ok = (self.workplace.walk_clearance(world) >= self.radius + SAFETY_MARGIN).all(axis=1)
+            # the landing foot (ankle and toes) must stand clear of obstacles too
+            foot_yaw = node.heading + succ.footprint[:, 2]
+            ankle = _to_world(node.x, node.y, node.heading, succ.footprint[:, :2])
+            toe = ankle + FOOT_LENGTH * np.stack([np.cos(foot_yaw), np.sin(foot_yaw)], axis=1)
+            feet = np.stack([ankle, toe], axis=1)
+            ok &= (self.workplace.walk_clearance(feet) >= FOOT_CLEARANCE).all(axis=1)
             rejected += int((~ok).sum())
             if not ok.any():
                 continue
