@@ -52,6 +52,7 @@ class Timeline:
         walk: the WalkPath the timeline was made from (drawn into videos), if any.
         scene: the scene file (or "<MjSpec>") and ``stature`` the humanoid's stature in metres,
             enough to rebuild ``model``.
+        meta: free-form provenance (producer, clipped joints, ...).
     """
 
     model: mujoco.MjModel
@@ -64,6 +65,7 @@ class Timeline:
     walk: WalkPath | None = None
     scene: str = ""
     stature: float = 1.75
+    meta: dict = field(default_factory=dict)
 
     @property
     def n_frames(self) -> int:
