@@ -178,16 +178,23 @@ def render_frames(
 ):
     """Yield ``(frame_index, rgb image (H, W, 3) uint8, renderer)`` for the timeline's frames.
 
-    ``fast`` turns shadows and reflections off (several times faster on software OpenGL)."""
+    ``fast`` turns multisampling, shadows and reflections off (about 8x faster on software
+    OpenGL: 640x480 at ~25 fps instead of ~3 on this project's 2-core test machine)."""
     from tqdm import tqdm
 
     model = timeline.model
-    renderer = _renderer(model, size)
+    samples = int(model.vis.quality.offsamples)
+    if fast:  # multisampling costs ~4x on software OpenGL (llvmpipe)
+        model.vis.quality.offsamples = 0
+    try:
+        renderer = _renderer(model, size)
+    finally:
+        model.vis.quality.offsamples = samples
     data = mujoco.MjData(model)
     idx = range(timeline.n_frames) if frames is None else frames
     opt = mujoco.MjvOption()
     opt.geomgroup[HUMAN_GROUP] = 1  # MuJoCo shows groups 0-2 only by default
-    if fast:  # software GL (llvmpipe) spends most of its time on shadows and reflections
+    if fast:  # ... and much of the rest on shadows and reflections
         renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = False
         renderer.scene.flags[mujoco.mjtRndFlag.mjRND_REFLECTION] = False
     try:
