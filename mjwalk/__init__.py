@@ -7,6 +7,8 @@ if "mujoco" not in _sys.modules:  # pick a headless OpenGL backend before mujoco
 
     _select_gl_backend()
 
+from mjwalk.cycle.simulate import check_collisions, simulate_cycle, simulate_cycles
+from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.errors import (
     CaptureError,
     CycleSpecError,
@@ -45,10 +47,12 @@ __all__ = [
     "Take",
     "WalkPath",
     "Workplace",
+    "check_collisions",
     "default_model",
     "generate_corpus",
     "load_amc",
     "load_bvh",
+    "load_cycle_spec",
     "load_workplace",
     "path_clearance",
     "plan_grid",
@@ -56,4 +60,6 @@ __all__ = [
     "plan_walks",
     "segment_take",
     "segment_takes",
+    "simulate_cycle",
+    "simulate_cycles",
 ]

@@ -149,6 +149,25 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_render(args: argparse.Namespace) -> int:
+    from mjwalk.plan.walkpath import WalkPath
+    from mjwalk.playback import timeline_from_walk
+    from mjwalk.render import render_video
+
+    walk = WalkPath.load(args.walk)
+    timeline = timeline_from_walk(walk, args.scene, fps=args.fps, stature=args.stature)
+    render_video(
+        timeline,
+        args.output,
+        camera=args.camera,
+        size=(args.width, args.height),
+        fps=args.fps,
+        progress=not args.quiet,
+    )
+    print(f"wrote {args.output} ({timeline.n_frames} frames)")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="mjwalk",
@@ -185,6 +204,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--quiet", action="store_true", help="no progress bars")
     p.add_argument("--json-summary", action="store_true", help=argparse.SUPPRESS)
     p.set_defaults(func=_cmd_simulate)
+
+    p = sub.add_parser("render", help="render a saved walk (mjwalk plan --save) to MP4")
+    p.add_argument("walk", type=Path, help="walk file (.npz) written by mjwalk plan --save")
+    p.add_argument("--scene", type=Path, required=True, help="MJCF scene the walk was planned in")
+    p.add_argument("-o", "--output", type=Path, required=True, help="video file to write (.mp4)")
+    p.add_argument("--camera", choices=["track", "top"], default="track")
+    p.add_argument("--fps", type=float, default=30.0)
+    p.add_argument("--width", type=int, default=640)
+    p.add_argument("--height", type=int, default=480)
+    p.add_argument("--stature", type=float, default=1.75, help="humanoid stature in metres")
+    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.set_defaults(func=_cmd_render)
 
     p = sub.add_parser("train", help="train a step model from capture or virtual subjects")
     p.add_argument("--bvh", help="glob of BVH files")
