@@ -13,6 +13,7 @@ World frame: metres, seconds, radians, z up, yaw from +x CCW.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -156,6 +157,9 @@ def timeline_from_walk(
     legs = legs_from_walk(walk, stature)
     t = np.arange(0.0, walk.duration + 1e-9, 1.0 / fps)
     qpos = _frames_from_legs(model, jm, legs, t, stature, arms, rng)
+    if arms != "none":
+        room = _room(scene, qpos[:, jm.root : jm.root + 2])
+        ease_arms(qpos, t, walk.duration, jm, jm.neutral_qpos(model, stature), room)
     events = []
     for st in walk.steps:
         side = st.side
@@ -175,6 +179,61 @@ def timeline_from_walk(
         scene=str(scene) if not isinstance(scene, mujoco.MjSpec) else "<MjSpec>",
         stature=stature,
     )
+
+
+#: Seconds over which the arm swing (or a carrying posture) fades in and out of a walk.
+ARM_EASE = 0.6
+#: The arms swing fully with at least ARM_ROOM[1] metres of room around the pelvis (distance to
+#: the nearest obstacle footprint), not at all below ARM_ROOM[0]: people keep their arms in
+#: when they pass close to a rack, a wall or a car.
+ARM_ROOM = (0.35, 0.6)
+#: Carrying posture of the hand that holds a part (radians): upper arm slightly back, elbow
+#: flexed 105 degrees, so the part is held close in front of the trunk.
+CARRY_POSE = {"shoulder_flex": -0.15, "shoulder_abd": 0.12, "elbow": 1.83}
+
+
+def ease_arms(
+    qpos: np.ndarray,
+    t: np.ndarray,
+    duration: float,
+    jm: JointMap,
+    rest: np.ndarray,
+    room: np.ndarray | None = None,
+    carry: str | None = None,
+) -> np.ndarray:
+    """Shape the arm motion of walking frames ``qpos`` (F, nq) in place and return it.
+
+    The swing (or, for ``carry`` = "left"/"right", that hand's carrying posture) fades in over
+    the first and out over the last :data:`ARM_EASE` seconds, so the arms hang at rest when the
+    walker stops, and shrinks where ``room`` (F,) — metres from the pelvis to the nearest
+    obstacle — falls below :data:`ARM_ROOM`.
+    """
+    w = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
+    if room is not None:
+        w = np.minimum(w, np.clip((room - ARM_ROOM[0]) / (ARM_ROOM[1] - ARM_ROOM[0]), 0.0, 1.0))
+    w = w * w * (3.0 - 2.0 * w)  # smoothstep
+    for side in "lr":
+        for joint in (f"shoulder_{side}_flex", f"shoulder_{side}_abd", f"elbow_{side}"):
+            k = jm.adr(joint)
+            target = qpos[:, k]
+            if carry is not None and side == carry[0]:
+                target = np.full_like(target, CARRY_POSE[joint.replace(f"_{side}", "")])
+            qpos[:, k] = rest[k] + w * (target - rest[k])
+    return qpos
+
+
+@functools.lru_cache(maxsize=8)
+def _workplace(scene: str):
+    from mjwalk.world.workplace import load_workplace
+
+    return load_workplace(scene)
+
+
+def _room(scene, xy: np.ndarray) -> np.ndarray | None:
+    """Room (m) around pelvis positions ``xy`` in ``scene`` (None for an in-memory MjSpec)."""
+    if isinstance(scene, mujoco.MjSpec):
+        return None
+    return _workplace(str(Path(scene).resolve())).clearance(xy)
 
 
 def _frames_from_legs(model, jm, legs: LegMotion, t, stature, arms, rng) -> np.ndarray:

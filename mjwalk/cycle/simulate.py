@@ -35,20 +35,12 @@ from mjwalk.cycle.types import (
 from mjwalk.errors import CycleSpecError, MjwalkError
 from mjwalk.plan.grid import occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
-from mjwalk.playback import Timeline, _frames_from_legs, collision_report, yaw_quat
+from mjwalk.playback import Timeline, _frames_from_legs, collision_report, ease_arms, yaw_quat
 from mjwalk.world.workplace import Workplace, load_workplace
 
 #: Turning speed on the spot (rad/s) and shortest turn (s).
 TURN_SPEED = math.radians(180.0)
 MIN_TURN = 0.25
-#: Seconds over which the arm swing (or the carrying posture) fades in and out of a walk.
-ARM_EASE = 0.6
-#: The arms swing fully with at least ARM_ROOM[1] metres of room around the pelvis, not at all
-#: below ARM_ROOM[0].
-ARM_ROOM = (0.35, 0.6)
-#: Carrying posture of the hand that holds a part (radians): upper arm slightly back, elbow
-#: flexed 105 degrees, so the part is held close in front of the trunk.
-CARRY_POSE = {"shoulder_flex": -0.15, "shoulder_abd": 0.12, "elbow": 1.83}
 #: Arm reach out and back (s), and the hold of a pick or place without a given duration (s).
 REACH_OUT = 0.9
 REACH_BACK = 0.7
@@ -173,19 +165,9 @@ def _walk_frames(ctx, walk, fps, carry: str | None = None) -> np.ndarray:
         t = np.append(t, walk.duration)
     frames = _frames_from_legs(ctx.model, ctx.jointmap, legs, t, ctx.spec.stature, "swing", None)
     jm = ctx.jointmap
+    room = ctx.workplace.clearance(frames[:, jm.root : jm.root + 2])
     rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
-    ease = np.clip(np.minimum(t, walk.duration - t) / ARM_EASE, 0.0, 1.0)
-    # close to racks or the car people keep their arms in: the swing shrinks with the room
-    room = ctx.workplace.walk_clearance(frames[:, jm.root : jm.root + 2])
-    ease = np.minimum(ease, np.clip((room - ARM_ROOM[0]) / (ARM_ROOM[1] - ARM_ROOM[0]), 0, 1))
-    ease = ease * ease * (3.0 - 2.0 * ease)  # smoothstep
-    for side in "lr":
-        for joint in (f"shoulder_{side}_flex", f"shoulder_{side}_abd", f"elbow_{side}"):
-            k = jm.adr(joint)
-            target = frames[:, k]
-            if carry is not None and side == carry[0]:
-                target = np.full_like(target, CARRY_POSE[joint.replace(f"_{side}", "")])
-            frames[:, k] = rest[k] + ease * (target - rest[k])
+    ease_arms(frames, t, walk.duration, jm, rest, room, carry)
     return frames
 
 
