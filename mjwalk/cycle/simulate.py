@@ -41,6 +41,8 @@ from mjwalk.world.workplace import Workplace, load_workplace
 #: Turning speed on the spot (rad/s) and shortest turn (s).
 TURN_SPEED = math.radians(180.0)
 MIN_TURN = 0.25
+#: Lateral offset of the shoulder from the pelvis centre (m, stature 1.75 m; Winter: 0.1·H).
+SHOULDER_OFFSET = 0.18
 #: Arm reach out and back (s), and the hold of a pick or place without a given duration (s).
 REACH_OUT = 0.9
 REACH_BACK = 0.7
@@ -327,7 +329,11 @@ def simulate_cycle(
             site_pos = wp.station(task.site).pos
             target = _target(ctx, task.kind, site_pos, x, y)
             # face the target (turning on the spot) before reaching for it
+            d = math.hypot(target[0] - x, target[1] - y)
             face = math.atan2(target[1] - y, target[0] - x)
+            if task.kind != "fasten":  # shelf work: bring the target ahead of the shoulder
+                side = 1 if task.hand == "left" else -1
+                face -= side * math.asin(min(SHOULDER_OFFSET / d, 0.5))
             turn, dt = _turn_frames(ctx, x, y, yaw, face, fps)
             frames.append(turn)
             t += dt
