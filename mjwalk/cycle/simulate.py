@@ -305,7 +305,7 @@ def simulate_cycle(
             t += dt
             wf = _walk_frames(ctx, path, fps, task.hand if task.kind == "carry" else None)
             frames.append(wf)
-            t += path.duration
+            t += len(wf) / fps  # the walk, to the video frame
             x, y = (float(v) for v in path.xy[-1])
             yaw = float(path.yaw[-1])
             face = wp.station(goal).yaw
