@@ -24,3 +24,20 @@ def shared_data() -> Path:
     if not SHARED_DATA.is_dir():
         pytest.skip("../shared/data (real motion capture) is not present on this machine")
     return SHARED_DATA
+
+
+@pytest.fixture
+def caged_station(tmp_path):
+    """The station with the point (3.0, 0.9) walled in by four boxes: an unreachable goal."""
+    from mjwalk.world import load_workplace
+
+    text = (SCENES / "assembly_station.xml").read_text()
+    cage = """
+    <geom name="cage_n" type="box" size="0.6 0.05 1" pos="3.0 1.5 1"/>
+    <geom name="cage_s" type="box" size="0.6 0.05 1" pos="3.0 0.3 1"/>
+    <geom name="cage_w" type="box" size="0.05 0.6 1" pos="2.45 0.9 1"/>
+    <geom name="cage_e" type="box" size="0.05 0.6 1" pos="3.55 0.9 1"/>
+  </worldbody>"""
+    path = tmp_path / "caged.xml"
+    path.write_text(text.replace("</worldbody>", cage))
+    return load_workplace(path)

@@ -90,18 +90,9 @@ def test_bad_endpoints(scenes_dir):
         plan_grid(wp, "stand_rack2", "3.3,-0.9")  # 0.1 m from the pillar
 
 
-def test_unreachable_goal_fails_fast(tmp_path, scenes_dir):
+def test_unreachable_goal_fails_fast(caged_station):
     """A goal walled in by four boxes in the station scene: PlanningError in under 2 s."""
-    text = (scenes_dir / "assembly_station.xml").read_text()
-    cage = """
-    <geom name="cage_n" type="box" size="0.6 0.05 1" pos="3.0 1.5 1"/>
-    <geom name="cage_s" type="box" size="0.6 0.05 1" pos="3.0 0.3 1"/>
-    <geom name="cage_w" type="box" size="0.05 0.6 1" pos="2.45 0.9 1"/>
-    <geom name="cage_e" type="box" size="0.05 0.6 1" pos="3.55 0.9 1"/>
-  </worldbody>"""
-    f = tmp_path / "caged.xml"
-    f.write_text(text.replace("</worldbody>", cage))
-    wp = load_workplace(f)
+    wp = caged_station
     t0 = time.perf_counter()
     with pytest.raises(PlanningError, match="unreachable"):
         plan_grid(wp, "stand_rack2", "3.0,0.9")

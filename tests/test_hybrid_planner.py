@@ -150,17 +150,8 @@ def test_goal_heading(model, scenes_dir):
     assert abs(diff) <= np.radians(30) + 1e-9
 
 
-def test_unreachable_goal_fails_fast(model, scenes_dir, tmp_path):
-    text = (scenes_dir / "assembly_station.xml").read_text()
-    cage = """
-    <geom name="cage_n" type="box" size="0.6 0.05 1" pos="3.0 1.5 1"/>
-    <geom name="cage_s" type="box" size="0.6 0.05 1" pos="3.0 0.3 1"/>
-    <geom name="cage_w" type="box" size="0.05 0.6 1" pos="2.45 0.9 1"/>
-    <geom name="cage_e" type="box" size="0.05 0.6 1" pos="3.55 0.9 1"/>
-  </worldbody>"""
-    f = tmp_path / "caged.xml"
-    f.write_text(text.replace("</worldbody>", cage))
-    wp = load_workplace(f)
+def test_unreachable_goal_fails_fast(model, caged_station):
+    wp = caged_station
     t0 = time.perf_counter()
     with pytest.raises(PlanningError, match="unreachable"):
         plan_walk(wp, "stand_rack2", "3.0,0.9", model, rng=0)
