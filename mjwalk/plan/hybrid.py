@@ -66,6 +66,10 @@ MAX_LIFT_REACH = 0.64
 START_SPREAD = math.radians(60.0)
 
 
+class _Exhausted(PlanningError):
+    """The open list ran dry (all sampled continuations blocked): worth a fresh search."""
+
+
 @dataclass
 class _Node:
     parent: int
@@ -145,6 +149,7 @@ class HybridPlanner:
         samples_per_step: int = 16,
         heuristic_weight: float = 1.01,
         cost: str = "chord",
+        attempts: int = 3,
         grid: OccupancyGrid | None = None,
     ):
         if heuristic not in ("dijkstra", "euclidean"):
@@ -172,6 +177,7 @@ class HybridPlanner:
         if cost not in ("chord", "path"):
             raise PlanningError(f"cost must be 'chord' or 'path', not {cost!r}")
         self.cost = cost
+        self.attempts = max(1, int(attempts))
         check_endpoint(workplace, self.goal, radius, "goal")
         if grid is None or grid.cell != cell or grid.radius != radius:
             grid = occupancy_grid(workplace, cell, radius, MOVES_16)
@@ -214,7 +220,26 @@ class HybridPlanner:
     # -- search ----------------------------------------------------------------------------
 
     def plan(self, start, rng: np.random.Generator) -> WalkPath:
-        """Plan one walk from ``start`` (site, "x,y", "x,y,yaw_deg" or (x, y[, yaw]))."""
+        """Plan one walk from ``start`` (site, "x,y", "x,y,yaw_deg" or (x, y[, yaw])).
+
+        When the open list runs dry (every sampled continuation blocked, which happens now and
+        then in tight places), the search starts over with fresh samples, up to ``attempts``
+        times in all; a spent expansion budget ends the planning at once.
+        """
+        for attempt in range(self.attempts):
+            try:
+                path = self._plan_once(start, rng)
+            except _Exhausted as exc:
+                if attempt == self.attempts - 1:
+                    raise PlanningError(
+                        f"{exc} ({self.attempts} searches with fresh samples)"
+                    ) from None
+                continue
+            path.meta["attempts"] = attempt + 1
+            return path
+        raise AssertionError("unreachable")  # pragma: no cover
+
+    def _plan_once(self, start, rng: np.random.Generator) -> WalkPath:
         t0 = time.perf_counter()
         start_xy, start_yaw = _parse_pose(self.workplace, start, "start")
         check_endpoint(self.workplace, start_xy, self.radius, "start")
@@ -318,7 +343,7 @@ class HybridPlanner:
                 nodes.append(_Node(nid, bidx, int(r), x, y, th, g, ankle[r].copy()))
                 heapq.heappush(heap, (g + float(hs[r]), counter, len(nodes) - 1))
                 counter += 1
-        raise PlanningError(
+        raise _Exhausted(
             f"search exhausted after {expansions} expansions: no sequence of sampled steps "
             f"reached the goal ({self.goal[0]:.3f}, {self.goal[1]:.3f}) from "
             f"({start_xy[0]:.3f}, {start_xy[1]:.3f}) without coming closer than {self.radius} m "
@@ -400,7 +425,8 @@ def plan_walk(
         **options: see :class:`HybridPlanner` (goal_tolerance=0.25, goal_yaw=None,
             radius=0.25, cell=0.08, heading_bins=None (1, or 8 with a goal yaw), n_starters=30,
             n_successors=10, heuristic="dijkstra" | "euclidean", heuristic_weight=1.01,
-            cost="chord" | "path", max_expansions=4000, samples_per_step=16).
+            cost="chord" | "path", max_expansions=4000 (per search), attempts=3,
+            samples_per_step=16).
 
     Raises:
         PlanningError: start/goal off the floor or inside/too near an obstacle (before any
