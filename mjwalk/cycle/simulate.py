@@ -52,7 +52,7 @@ DEFAULT_HOLD = {"pick": 0.4, "place": 0.4, "fasten": 3.0, "wait": 1.0}
 GOAL_TOLERANCE = 0.1
 #: The hand stops this far above a pick/place site (m) and this far in front of a fasten site.
 PICK_CLEARANCE = 0.06
-FASTEN_STANDOFF = 0.10
+FASTEN_STANDOFF = 0.13
 #: The pre-grasp point: this far back towards the operator and (shelf work) up from the target.
 APPROACH_BACK = 0.15
 APPROACH_UP = 0.10
