@@ -35,3 +35,53 @@ def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[
     finally:
         if tmp_path.exists():
             tmp_path.unlink()
+
+
+def save_npz(path: str | os.PathLike, header: dict, arrays: dict) -> None:
+    """Write ``arrays`` and a JSON ``header`` (format name, version, metadata) to one compressed
+    ``.npz`` file, atomically. ``default`` turns numpy scalars/arrays in the header into JSON."""
+    import json
+
+    import numpy as np
+
+    def default(obj):
+        if isinstance(obj, np.generic):
+            return obj.item()
+        if isinstance(obj, np.ndarray):
+            return obj.tolist()
+        raise TypeError(f"not JSON serializable: {type(obj).__name__}")
+
+    data = dict(arrays, header=np.array(json.dumps(header, default=default)))
+    with atomic_path(path, suffix=".npz") as tmp, open(tmp, "wb") as fh:
+        np.savez_compressed(fh, **data)
+
+
+def load_npz(path: str | os.PathLike, what: str) -> tuple[dict, dict]:
+    """Read a file written by :func:`save_npz`: (header dict, arrays without the header).
+
+    A missing, unreadable or header-less file raises ``ModelFileError`` naming the file and
+    ``what`` it should have been (e.g. "step-model"). Format and version checks are the caller's.
+    """
+    import json
+    import zipfile
+
+    import numpy as np
+
+    from mjwalk.errors import ModelFileError
+
+    path = Path(path)
+    if not path.is_file():
+        raise ModelFileError(f"{path}: no such {what} file")
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            if "header" not in z.files:
+                raise ModelFileError(f"{path}: not an mjwalk {what} file (no header)")
+            header = json.loads(str(z["header"]))
+            data = {k: z[k] for k in z.files if k != "header"}
+    except ModelFileError:
+        raise
+    except (OSError, ValueError, KeyError, zipfile.BadZipFile, EOFError, TypeError) as exc:
+        raise ModelFileError(f"{path}: not a readable mjwalk {what} file ({exc})") from exc
+    if not isinstance(header, dict):
+        raise ModelFileError(f"{path}: the {what} file's header is not a JSON object")
+    return header, data

@@ -26,15 +26,13 @@ saved file keeps the standardized training inputs (not the outputs) for that dis
 
 from __future__ import annotations
 
-import json
-import zipfile
 from pathlib import Path
 
 import numpy as np
 from scipy.spatial import cKDTree
 from scipy.spatial.distance import cdist
 
-from mjwalk._io import atomic_path
+from mjwalk._io import load_npz, save_npz
 from mjwalk.errors import MjwalkError, ModelFileError
 
 DCS_FORMAT = "mjwalk.dcs"
@@ -356,9 +354,7 @@ class DCSNetwork:
     def save(self, path: str | Path) -> None:
         """Write the fitted network to one versioned ``.npz`` file (atomically)."""
         self._check_fitted()
-        arrays = dict(self._arrays(), header=np.array(json.dumps(self._header())))
-        with atomic_path(path, suffix=".npz") as tmp, open(tmp, "wb") as fh:
-            np.savez_compressed(fh, **arrays)
+        save_npz(path, self._header(), self._arrays())
 
     @classmethod
     def from_arrays(cls, header: dict, data: dict, source: str = "<arrays>") -> DCSNetwork:
@@ -398,15 +394,5 @@ class DCSNetwork:
     @classmethod
     def load(cls, path: str | Path) -> DCSNetwork:
         """Read a network written by :meth:`save`; corrupt/foreign files raise ModelFileError."""
-        path = Path(path)
-        if not path.is_file():
-            raise ModelFileError(f"{path}: no such DCS network file")
-        try:
-            with np.load(path, allow_pickle=False) as z:
-                header = json.loads(str(z["header"]))
-                data = {k: z[k] for k in z.files if k != "header"}
-        except (OSError, ValueError, KeyError, zipfile.BadZipFile, EOFError) as exc:
-            raise ModelFileError(f"{path}: not a readable mjwalk DCS file ({exc})") from exc
-        if not isinstance(header, dict):
-            raise ModelFileError(f"{path}: header is not a JSON object")
+        header, data = load_npz(path, "DCS network")
         return cls.from_arrays(header, data, source=str(path))

@@ -21,8 +21,6 @@ never used silently: the result carries its distance to the training data and a 
 from __future__ import annotations
 
 import functools
-import json
-import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -30,7 +28,7 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
-from mjwalk._io import atomic_path
+from mjwalk._io import load_npz, save_npz
 from mjwalk.body.armrep import ArmRepresentation, apply_pose
 from mjwalk.body.dcs import DCSNetwork
 from mjwalk.errors import MjwalkError, ModelFileError
@@ -290,23 +288,13 @@ class ReachModel:
             "variance": self.variance,
             "dcs_header": self.net_._header(),
         }
-        arrays["header"] = np.array(json.dumps(header))
-        with atomic_path(path, suffix=".npz") as tmp, open(tmp, "wb") as fh:
-            np.savez_compressed(fh, **arrays)
+        save_npz(path, header, arrays)
 
     @classmethod
     def load(cls, path: str | Path) -> ReachModel:
         """Read a model written by :meth:`save`; corrupt/foreign files raise ModelFileError."""
-        path = Path(path)
-        if not path.is_file():
-            raise ModelFileError(f"{path}: no such reach-model file")
-        try:
-            with np.load(path, allow_pickle=False) as z:
-                header = json.loads(str(z["header"]))
-                data = {k: z[k] for k in z.files if k != "header"}
-        except (OSError, ValueError, KeyError, zipfile.BadZipFile, EOFError) as exc:
-            raise ModelFileError(f"{path}: not a readable mjwalk reach-model file ({exc})") from exc
-        if not isinstance(header, dict) or header.get("format") != REACH_FORMAT:
+        header, data = load_npz(path, "reach-model")
+        if header.get("format") != REACH_FORMAT:
             raise ModelFileError(f"{path}: not an mjwalk reach model")
         if header.get("version") != REACH_VERSION:
             raise ModelFileError(

@@ -34,11 +34,9 @@ no pickle), written atomically.
 
 from __future__ import annotations
 
-import json
 import sys
 import time
 import warnings
-import zipfile
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -47,7 +45,7 @@ import numpy as np
 from scipy.linalg import cho_solve, cholesky, solve_triangular
 from scipy.stats import gaussian_kde
 
-from mjwalk._io import atomic_path
+from mjwalk._io import load_npz, save_npz
 from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait.features import StepBatch, StepFeatures, raw_features, side_array
 from mjwalk.gait.step import Step
@@ -455,29 +453,14 @@ class StepModel:
             "kde_factor": self.kde_factor,
             "info": self.info,
         }
-        arrays["header"] = np.array(json.dumps(header))
-        with atomic_path(path, suffix=".npz") as tmp, open(tmp, "wb") as fh:
-            np.savez_compressed(fh, **arrays)
+        save_npz(path, header, arrays)
 
     @classmethod
     def load(cls, path: str | Path) -> StepModel:
         """Read a model written by :meth:`save`; any problem raises ``ModelFileError``."""
-        path = Path(path)
-        if not path.is_file():
-            raise ModelFileError(f"{path}: no such step-model file")
-        try:
-            with np.load(path, allow_pickle=False) as zf:
-                if "header" not in zf.files:
-                    raise ModelFileError(f"{path}: not an mjwalk step-model file (no header)")
-                header = json.loads(str(zf["header"]))
-                data = {k: zf[k] for k in zf.files}
-        except ModelFileError:
-            raise
-        except (OSError, ValueError, KeyError, zipfile.BadZipFile, EOFError, TypeError) as exc:
-            raise ModelFileError(f"{path}: not a readable mjwalk step-model file ({exc})") from exc
-        if not isinstance(header, dict) or header.get("format") != MODEL_FORMAT:
-            fmt = header.get("format") if isinstance(header, dict) else None
-            raise ModelFileError(f"{path}: format {fmt!r} is not {MODEL_FORMAT!r}")
+        header, data = load_npz(path, "step-model")
+        if header.get("format") != MODEL_FORMAT:
+            raise ModelFileError(f"{path}: format {header.get('format')!r} is not {MODEL_FORMAT!r}")
         if header.get("version") != MODEL_VERSION:
             raise ModelFileError(
                 f"{path}: step-model version {header.get('version')!r} unsupported "

@@ -2,14 +2,12 @@
 
 from __future__ import annotations
 
-import json
-import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from mjwalk._io import atomic_path
+from mjwalk._io import load_npz, save_npz
 from mjwalk.errors import ModelFileError
 
 WALKPATH_FORMAT = "mjwalk.walkpath"
@@ -94,28 +92,14 @@ class WalkPath:
             ),
             "step_foot": np.array([s.foot for s in steps], dtype=float).reshape(-1, 3),
             "step_stance": np.array([s.stance for s in steps], dtype=float).reshape(-1, 3),
-            "header": np.array(
-                json.dumps(
-                    {"format": WALKPATH_FORMAT, "version": WALKPATH_VERSION, "meta": self.meta},
-                    default=_json_default,
-                )
-            ),
         }
-        with atomic_path(path, suffix=".npz") as tmp, open(tmp, "wb") as fh:
-            np.savez_compressed(fh, **arrays)
+        header = {"format": WALKPATH_FORMAT, "version": WALKPATH_VERSION, "meta": self.meta}
+        save_npz(path, header, arrays)
 
     @classmethod
     def load(cls, path: str | Path) -> WalkPath:
         """Read a path written by :meth:`save`; a foreign or corrupt file raises ModelFileError."""
-        path = Path(path)
-        if not path.is_file():
-            raise ModelFileError(f"{path}: no such walk-path file")
-        try:
-            with np.load(path, allow_pickle=False) as z:
-                header = json.loads(str(z["header"]))
-                data = {k: z[k] for k in z.files}
-        except (OSError, ValueError, KeyError, zipfile.BadZipFile, EOFError) as exc:
-            raise ModelFileError(f"{path}: not a readable mjwalk walk-path file ({exc})") from exc
+        header, data = load_npz(path, "walk-path")
         if header.get("format") != WALKPATH_FORMAT:
             raise ModelFileError(f"{path}: format {header.get('format')!r} is not a walk path")
         if header.get("version") != WALKPATH_VERSION:
@@ -140,11 +124,3 @@ class WalkPath:
             )
         ]
         return cls(t=data["t"], xy=data["xy"], yaw=data["yaw"], steps=steps, meta=header["meta"])
-
-
-def _json_default(obj):
-    if isinstance(obj, np.generic):
-        return obj.item()
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    raise TypeError(f"not JSON serializable: {type(obj).__name__}")
