@@ -13,7 +13,6 @@ World frame: metres, seconds, radians, z up, yaw from +x CCW.
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -222,18 +221,13 @@ def ease_arms(
     return qpos
 
 
-@functools.lru_cache(maxsize=8)
-def _workplace(scene: str):
-    from mjwalk.world.workplace import load_workplace
-
-    return load_workplace(scene)
-
-
 def _room(scene, xy: np.ndarray) -> np.ndarray | None:
     """Room (m) around pelvis positions ``xy`` in ``scene`` (None for an in-memory MjSpec)."""
     if isinstance(scene, mujoco.MjSpec):
         return None
-    return _workplace(str(Path(scene).resolve())).clearance(xy)
+    from mjwalk.world.workplace import shared_workplace
+
+    return shared_workplace(scene).clearance(xy)
 
 
 def _frames_from_legs(model, jm, legs: LegMotion, t, stature, arms, rng) -> np.ndarray:

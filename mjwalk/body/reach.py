@@ -453,6 +453,26 @@ def finger_trajectory(apertures: np.ndarray, side: str = "l", stature: float = 1
 
 
 # ---------------------------------------------------------------- in a scene
+def arm_frames(
+    q0: np.ndarray, jm, q: np.ndarray, side: str, times: np.ndarray
+) -> tuple[np.ndarray, list[str]]:
+    """Poses (len(times), nq): ``q0`` with one arm's joint angles ``q`` (n, 7), order
+    :data:`ARM_JOINTS`, radians) sampled evenly over [0, 1], interpolated at ``times`` in [0, 1]
+    and clipped to the humanoid's joint ranges; and the names of the joints that were clipped."""
+    src = np.linspace(0.0, 1.0, len(q))
+    out = np.repeat(np.asarray(q0)[None], len(times), axis=0)
+    clipped = []
+    for k, name in enumerate(ARM_JOINTS):
+        part, *rest = name.split("_")
+        jn = "_".join([part, side, *rest])  # "shoulder_flex" -> "shoulder_l_flex"
+        qi = np.interp(times, src, q[:, k])
+        lo, hi = jm.limits(jn)
+        if (qi < lo - 1e-6).any() or (qi > hi + 1e-6).any():
+            clipped.append(jn)
+        out[:, jm.adr(jn)] = np.clip(qi, lo, hi)
+    return out, clipped
+
+
 def _site_pose(model, name: str):
     import mujoco
 
@@ -525,17 +545,7 @@ def reach_in_scene(
     n_out = max(2, round(duration * fps) + 1)
     src = np.linspace(0.0, 1.0, len(q))
     dst = np.linspace(0.0, 1.0, n_out)
-    qi = np.column_stack([np.interp(dst, src, q[:, k]) for k in range(q.shape[1])])
-    qpos = np.repeat(q0[None], n_out, axis=0)
-    clipped = []
-    for k, name in enumerate(ARM_JOINTS):
-        jn = f"{name.split('_')[0]}_{side}" + (
-            "_" + "_".join(name.split("_")[1:]) if "_" in name else ""
-        )
-        lo, hi = jm.limits(jn)
-        if (qi[:, k] < lo - 1e-6).any() or (qi[:, k] > hi + 1e-6).any():
-            clipped.append(jn)
-        qpos[:, jm.adr(jn)] = np.clip(qi[:, k], lo, hi)
+    qpos, clipped = arm_frames(q0, jm, q, side, dst)
     if res.extras is not None:
         ap = np.interp(dst, src, res.extras[:, 0])
         for name, vals in finger_trajectory(ap, side, stature).items():

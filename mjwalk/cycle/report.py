@@ -475,9 +475,9 @@ def write_report(
     """
     rep = report_dict(results, reference=reference)
     if workplace is None:
-        from mjwalk.world import load_workplace
+        from mjwalk.world import shared_workplace
 
-        workplace = load_workplace(results[0].spec.scene)
+        workplace = shared_workplace(results[0].spec.scene)
     baseline = _grid_routes(results, workplace) if baseline is None else baseline
     for key, value in baseline.items():
         paths = [value] if isinstance(value, WalkPath) else value

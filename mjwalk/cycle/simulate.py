@@ -36,7 +36,7 @@ from mjwalk.errors import CycleSpecError, MjwalkError
 from mjwalk.plan.grid import occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.playback import Timeline, _frames_from_legs, collision_report, ease_arms, yaw_quat
-from mjwalk.world.workplace import Workplace, load_workplace
+from mjwalk.world.workplace import Workplace, shared_workplace
 
 #: Turning speed on the spot (rad/s) and shortest turn (s).
 TURN_SPEED = math.radians(180.0)
@@ -122,7 +122,7 @@ def _context_cached(spec_key: str) -> CycleContext:
 
 def prepare(spec: CycleSpec) -> CycleContext:
     """Load the scene, the models and the humanoid of ``spec`` (reused by every run)."""
-    workplace = load_workplace(spec.scene)
+    workplace = shared_workplace(spec.scene)
     model, jm = attach_humanoid(spec.scene, spec.stature)
     return CycleContext(
         spec=spec,
@@ -190,7 +190,13 @@ def _reach_frames(
     over a shelf's front edge instead of through it. The return retraces the motion.
 
     Returns (frames, hand error in metres, ReachResult of the model part)."""
-    from mjwalk.body.reach import ARM_JOINTS, REST_HAND, arm_joint_angles, min_jerk, two_link_ik
+    from mjwalk.body.reach import (
+        REST_HAND,
+        arm_frames,
+        arm_joint_angles,
+        min_jerk,
+        two_link_ik,
+    )
 
     m, jm, model = ctx.model, ctx.jointmap, ctx.reach_model
     data = mujoco.MjData(m)
@@ -214,15 +220,7 @@ def _reach_frames(
     directions = np.concatenate([res.directions, app])
     q = arm_joint_angles(directions, side)
     n_out = max(2, round(REACH_OUT * fps))
-    src = np.linspace(0.0, 1.0, len(q))
-    dst = np.linspace(0.0, 1.0, n_out + 1)[1:]
-    qi = np.column_stack([np.interp(dst, src, q[:, k]) for k in range(q.shape[1])])
-    out = np.repeat(q0[None], n_out, axis=0)
-    for k, name in enumerate(ARM_JOINTS):
-        parts = name.split("_")
-        jn = "_".join([parts[0], side, *parts[1:]])
-        lo, hi = jm.limits(jn)
-        out[:, jm.adr(jn)] = np.clip(qi[:, k], lo, hi)
+    out, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
     data.qpos[:] = out[-1]
     mujoco.mj_kinematics(m, data)
     wrist = data.xpos[m.body(f"{jm.prefix}hand_{side}").id]

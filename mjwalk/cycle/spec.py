@@ -63,7 +63,7 @@ import numpy as np
 
 from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task
 from mjwalk.errors import CycleSpecError, SceneError
-from mjwalk.world.workplace import Workplace, load_workplace
+from mjwalk.world.workplace import Workplace, shared_workplace
 
 #: Highest a standing site may lie above the floor, metres.
 STAND_MAX_Z = 0.05
@@ -297,7 +297,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
     Args:
         path: the TOML file.
         workplace: the scene already loaded (saves loading it again; it must be the spec's
-            ``scene``). Default: loaded with :func:`mjwalk.world.load_workplace`.
+            ``scene``). Default: :func:`mjwalk.world.shared_workplace`.
 
     Returns:
         The :class:`CycleSpec` with absolute ``scene`` and model paths (models stay
@@ -355,7 +355,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
     scene = check.file(data, "scene", base)
     if workplace is None:
         try:
-            workplace = load_workplace(scene)
+            workplace = shared_workplace(scene)
         except SceneError as exc:
             raise check.fail(f"key 'scene': {exc}", key="scene") from exc
 

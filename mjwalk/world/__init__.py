@@ -7,6 +7,7 @@ from mjwalk.world.workplace import (
     Workplace,
     load_model,
     load_workplace,
+    shared_workplace,
     workplace_from_model,
 )
 
@@ -19,5 +20,6 @@ __all__ = [
     "geom_footprint",
     "load_model",
     "load_workplace",
+    "shared_workplace",
     "workplace_from_model",
 ]

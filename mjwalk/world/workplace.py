@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import difflib
+import functools
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -262,3 +263,18 @@ def load_workplace(
         exclude=exclude,
         humanoid_prefixes=humanoid_prefixes,
     )
+
+
+@functools.lru_cache(maxsize=8)
+def _shared(path: str, mtime: float) -> Workplace:
+    return load_workplace(path)
+
+
+def shared_workplace(source: str | Path) -> Workplace:
+    """:func:`load_workplace` with default settings, loaded once per process and file version:
+    the cycle simulator, its spec checks, playback and the report all read the same scene.
+    Treat the result as read-only."""
+    path = Path(source).resolve()
+    if not path.is_file():
+        raise SceneError(f"{source}: scene file not found")
+    return _shared(str(path), path.stat().st_mtime)
