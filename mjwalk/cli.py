@@ -107,7 +107,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     import json
 
     from mjwalk.cycle.report import format_summary, report_dict, write_report
-    from mjwalk.cycle.simulate import combined_walk, prepare, simulate_cycle, simulate_cycles
+    from mjwalk.cycle.simulate import prepare, simulate_cycle, simulate_cycles
     from mjwalk.cycle.spec import load_cycle_spec
 
     spec = load_cycle_spec(args.spec)
@@ -133,7 +133,6 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             keep_timeline=True,
             check_collisions=False,
         )
-        run0.timeline.walk = combined_walk(run0)
         video = args.out / "cycle.mp4"
         render_video(
             run0.timeline,

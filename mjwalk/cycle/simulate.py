@@ -33,7 +33,7 @@ from mjwalk.cycle.types import (
     WalkRecord,
 )
 from mjwalk.errors import CycleSpecError, MjwalkError
-from mjwalk.plan.grid import occupancy_grid, plan_grid
+from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.playback import Timeline, _frames_from_legs, collision_report, ease_arms, yaw_quat
 from mjwalk.world.workplace import Workplace, shared_workplace
@@ -70,6 +70,7 @@ class CycleContext:
     jointmap: JointMap
     planners: dict = field(default_factory=dict)
     baselines: dict = field(default_factory=dict)
+    grid: OccupancyGrid | None = None  # the grid-A* occupancy grid, built on first use
 
     def planner(self, goal: str) -> HybridPlanner:
         if goal not in self.planners:
@@ -84,11 +85,10 @@ class CycleContext:
 
     def baseline(self, a: str, b: str) -> float:
         if (a, b) not in self.baselines:
-            grid = getattr(self, "_grid8", None)
-            if grid is None:
-                grid = self._grid8 = occupancy_grid(self.workplace, radius=self.spec.radius)
+            if self.grid is None:
+                self.grid = occupancy_grid(self.workplace, radius=self.spec.radius)
             self.baselines[(a, b)] = plan_grid(
-                self.workplace, a, b, radius=self.spec.radius, grid=grid
+                self.workplace, a, b, radius=self.spec.radius, grid=self.grid
             ).length
         return self.baselines[(a, b)]
 
@@ -292,7 +292,6 @@ def simulate_cycle(
     tasks: list[TaskRecord] = []
     walks: list[WalkRecord] = []
     arms: list[ArmRecord] = []
-    walk_paths = []
     for i, task in enumerate(spec.tasks):
         t0 = t
         if task.kind in ("walk", "carry"):
@@ -321,7 +320,6 @@ def simulate_cycle(
                     baseline_length=ctx.baseline(here, goal),
                 )
             )
-            walk_paths.append(path)
             here = goal
         elif task.kind in ("pick", "place", "fasten"):
             site_pos = wp.station(task.site).pos
@@ -371,7 +369,7 @@ def simulate_cycle(
         scene=str(spec.scene),
         stature=spec.stature,
     )
-    timeline.walks = walk_paths  # drawn into videos
+    timeline.walk = combined_walk([w.path for w in walks])  # drawn into videos
     collisions = collision_report(timeline) if check_collisions else []
     return CycleResult(
         spec=spec,
@@ -433,14 +431,16 @@ def simulate_cycles(
     return list(Parallel(n_jobs=n_jobs)(jobs))
 
 
-def combined_walk(result: CycleResult):
-    """All walks of a cycle as one WalkPath (for drawing the route into a video)."""
+def combined_walk(paths: list):
+    """Walk paths laid end to end as one WalkPath (a cycle's route, drawn into its video);
+    None without any walk."""
     from mjwalk.plan.walkpath import PathStep, WalkPath
 
+    if not paths:
+        return None
     xy, yaw, t, steps = [], [], [], []
     offset, t0 = 0, 0.0
-    for w in result.walks:
-        p = w.path
+    for p in paths:
         xy.append(p.xy)
         yaw.append(p.yaw)
         t.append(p.t + t0)

@@ -111,7 +111,7 @@ def _rotate(batch: StepBatch, angle: np.ndarray) -> StepBatch:
     return out
 
 
-def _parse_pose(workplace: Workplace, where, what: str) -> tuple[np.ndarray, float | None]:
+def _parse_pose(workplace: Workplace, where) -> tuple[np.ndarray, float | None]:
     """(x, y) and an optional yaw from a site name, "x,y[,yaw_deg]" or a tuple (x, y[, yaw])."""
     if isinstance(where, str) and where.count(",") == 2:
         x, y, yaw_deg = (float(v) for v in where.split(","))
@@ -156,7 +156,7 @@ class HybridPlanner:
             raise PlanningError(f"heuristic must be 'dijkstra' or 'euclidean', not {heuristic!r}")
         self.workplace = workplace
         self.model = model
-        goal_xy, _ = _parse_pose(workplace, goal, "goal")
+        goal_xy, _ = _parse_pose(workplace, goal)
         self.goal = goal_xy
         self.goal_yaw = goal_yaw
         self.goal_yaw_tolerance = goal_yaw_tolerance
@@ -241,7 +241,7 @@ class HybridPlanner:
 
     def _plan_once(self, start, rng: np.random.Generator) -> WalkPath:
         t0 = time.perf_counter()
-        start_xy, start_yaw = _parse_pose(self.workplace, start, "start")
+        start_xy, start_yaw = _parse_pose(self.workplace, start)
         check_endpoint(self.workplace, start_xy, self.radius, "start")
         if not self.distance.reachable(start_xy):
             raise PlanningError(
