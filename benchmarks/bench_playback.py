@@ -51,11 +51,19 @@ def main() -> None:
     from mjwalk.render import render_frames
 
     n = 60
-    t0 = time.perf_counter()
-    for _ in render_frames(tl, "track", size=(640, 480), frames=range(n)):
-        pass
-    dt = time.perf_counter() - t0
-    print(f"rendering 640x480 ({os.environ.get('MUJOCO_GL')}): {n / dt:.1f} fps (target >= 30)")
+    station = SCENE.parent / "assembly_station.xml"
+    for label, t in (("open floor", tl), ("station", timeline_from_walk(walk, station, fps=30))):
+        if t is not tl and not station.exists():
+            continue
+        for cam in ("track", "top"):
+            t0 = time.perf_counter()
+            for _ in render_frames(t, cam, size=(640, 480), frames=range(n)):
+                pass
+            dt = time.perf_counter() - t0
+            print(
+                f"rendering 640x480 ({os.environ.get('MUJOCO_GL')}, {label}, {cam} camera, "
+                f"path drawn): {n / dt:.1f} fps (target >= 30, ratio {n / dt / 30:.2f})"
+            )
 
 
 if __name__ == "__main__":
