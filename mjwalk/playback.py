@@ -290,17 +290,21 @@ def collision_report(timeline: Timeline, floor_tolerance: float = 0.01) -> list[
         data.qpos[:] = q
         mujoco.mj_kinematics(model, data)
         mujoco.mj_collision(model, data)
+        n = data.ncon
+        if n == 0:
+            continue
+        con = data.contact  # struct-of-arrays view: filter in numpy, loop over the few left
+        g = np.asarray(con.geom[:n]).astype(int)
+        depth = -np.asarray(con.dist[:n])
+        h1, h2 = human[g[:, 0]], human[g[:, 1]]
+        hg = np.where(h1, g[:, 0], g[:, 1])
+        sg = np.where(h1, g[:, 1], g[:, 0])
+        keep = (h1 != h2) & ~(floorish[sg] & (depth <= floor_tolerance))
         best: dict[tuple[int, int], tuple[float, np.ndarray]] = {}
-        for c in data.contact[: data.ncon]:
-            g1, g2 = int(c.geom1), int(c.geom2)
-            if human[g1] == human[g2]:
-                continue
-            hg, sg = (g1, g2) if human[g1] else (g2, g1)
-            depth = -float(c.dist)
-            if floorish[sg] and depth <= floor_tolerance:
-                continue
-            if depth > best.get((hg, sg), (-np.inf,))[0]:
-                best[(hg, sg)] = (depth, np.array(c.pos))
+        for k in np.flatnonzero(keep):
+            key = (int(hg[k]), int(sg[k]))
+            if depth[k] > best.get(key, (-np.inf,))[0]:
+                best[key] = (float(depth[k]), np.array(con.pos[k]))
         for (hg, sg), (depth, pos) in best.items():
             out.append(Contact(float(timeline.t[i]), names[hg][plen:], names[sg], depth, pos))
     return out
