@@ -17,11 +17,17 @@ from mjwalk.gait.step import Step
 
 
 def make_steps(
-    rng: np.random.Generator, n_takes: int = 20, steps_per_take: int = 12, fps: float = 120.0
+    rng: np.random.Generator,
+    n_takes: int = 20,
+    steps_per_take: int = 12,
+    fps: float = 120.0,
+    stops: bool = False,
 ) -> list[Step]:
     """Synthetic aligned steps: alternating sides, sinusoidal sway, lengths 0.5-0.8 m,
     durations 0.45-0.65 s; length and duration follow an AR(1) process within a take so
-    transitions carry information. Take starts are shorter (gait initiation)."""
+    transitions carry information. Take starts are shorter (gait initiation). With ``stops``
+    every take also ends in a closing step of 60 % length, and ``meta`` flags initiations and
+    terminations as ``mjwalk.gait.segment`` does (same random stream either way)."""
     steps = []
     for t in range(n_takes):
         side = "left" if rng.random() < 0.5 else "right"
@@ -34,6 +40,9 @@ def make_steps(
             dur = 0.45 + 0.2 * u_dur
             if i == 0:
                 length *= 0.8
+            last = stops and i == steps_per_take - 1
+            if last:
+                length *= 0.6
             k = round(dur * fps) + 1
             u = np.linspace(0.0, 1.0, k)
             sgn = -1.0 if side == "left" else 1.0  # pelvis sways over the stance foot
@@ -53,6 +62,7 @@ def make_steps(
                     stance=np.array([-foot_x, -length * 0.5, 0.0]),
                     take=f"syn{t:03d}",
                     index=i,
+                    meta={"initiation": i == 0, "termination": last} if stops else {},
                 )
             )
             side = "right" if side == "left" else "left"

@@ -25,7 +25,7 @@ from mjwalk.gait.model import StepModel
 
 @pytest.fixture(scope="module")
 def steps():
-    return make_steps(np.random.default_rng(2), n_takes=60, steps_per_take=16)
+    return make_steps(np.random.default_rng(2), n_takes=60, steps_per_take=16, stops=True)
 
 
 @pytest.fixture(scope="module")
@@ -71,20 +71,28 @@ def test_model_straight_walks_reach_the_goal(model):
 
 
 def test_fidelity_report_in_sample(model, steps):
-    """Seeded: the model's chains match the steps it was trained on (KS <= 0.2 at n~1000)."""
+    """Seeded: the model's chains match the steps it was trained on (KS <= 0.2 at n~800);
+    steady state against steady state, KDE starters against the captured initiations."""
     rep = fidelity_from_steps(model, steps, np.random.default_rng(0), n_chains=120)
     json.dumps(rep)
-    cap = capture_step_metrics(steps)
-    assert rep["n_capture_steps"] == len(steps) and rep["n_model_steps"] == 960
-    for k in ("length", "duration"):
+    steady = [s for s in steps if not (s.meta["initiation"] or s.meta["termination"])]
+    cap = capture_step_metrics(steady)
+    assert rep["n_capture_steps"] == 60 * 14 and rep["n_model_steps"] == 120 * 7
+    for k in ("length", "duration", "sway"):
         assert rep["steps"][k]["ks"] < 0.2, (k, rep["steps"][k])
         assert rep["steps"][k]["capture"]["mean"] == pytest.approx(cap[k].mean())
+    ini = rep["initiation"]
+    assert ini["n_capture"] == 60 and ini["n_model"] == 120
+    assert ini["length"]["ks"] < 0.3  # 60 vs 120 steps: the 5 % critical value is ~0.21
+    # model durations are compared as played back at the capture's 120 Hz (whole frames)
+    frames = np.array(rep["steps"]["duration"]["model"]["median"]) * 120.0
+    assert frames == pytest.approx(round(float(frames)), abs=1e-9)
     w = rep["straight_walks"]
     assert w["n"] == len(captured_straight_walks(steps)) > 10
     c, m = w["path_length"]["capture"], w["path_length"]["model"]
     assert m["median"] == pytest.approx(c["median"], rel=0.1)
     table = format_fidelity_table(rep)
-    assert "length [m]" in table and "path_length [m]" in table
+    assert "length [m]" in table and "path_length [m]" in table and "gait initiation" in table
 
 
 def test_entry_points_errors(tmp_path):

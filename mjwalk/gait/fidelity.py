@@ -3,11 +3,20 @@
 Two comparisons (agethen2018 §5.2 reports path-length medians and IQRs the same way):
 
 **Step statistics.** ``n_chains`` chains of ``chain_length`` steps are sampled from the model
-(a KDE starter, then one GP successor after another) and compared with every captured step by
-the two-sample Kolmogorov-Smirnov statistic (``scipy.stats.ks_2samp``) on
+(a KDE starter, then one GP successor after another). Like is compared with like: the *steady
+state* of the model, every chain step after the KDE starter, against the captured steps that
+are neither a gait initiation nor a termination (``Step.meta``; the model's chains never stop,
+and a capture of short clips holds many more starts and stops per step than a chain of
+``chain_length`` steps, so pooling them would compare clip lengths, not gaits); separately, the
+KDE starters against the captured initiation steps (``initiation`` in the report; few in clips
+that start in motion). Each pair is compared by the two-sample Kolmogorov-Smirnov statistic
+(``scipy.stats.ks_2samp``) on
 
 * step length: straight-line pelvis displacement over the step (m);
-* step duration (s);
+* step duration (s); a model step plays back at the capture's frame rate with
+  round(T·fps) + 1 samples (:meth:`StepBatch.n_samples`), so its duration is compared at that
+  resolution (captured durations are whole frames: at 120 Hz up to 11 % of the steps share one
+  value, and comparing them with unrounded model durations adds up to ~0.05 to the KS);
 * lateral sway amplitude: half the peak-to-peak signed distance of the pelvis path from the
   step's chord (start -> end), m (:func:`sway_amplitude`);
 * heading change: pelvis yaw at the end of the step relative to its start (rad).
@@ -90,12 +99,14 @@ def capture_step_metrics(steps: Sequence[Step]) -> dict[str, np.ndarray]:
     }
 
 
-def batch_step_metrics(batch: StepBatch) -> dict[str, np.ndarray]:
-    """The same metrics for decoded model steps."""
+def batch_step_metrics(batch: StepBatch, fps: float | None = None) -> dict[str, np.ndarray]:
+    """The same metrics for decoded model steps; with ``fps``, durations are those of the steps
+    played back at ``fps`` (whole frames, :meth:`StepBatch.n_samples`)."""
     pelvis, _ = batch.resample(PATH_SAMPLES)
+    duration = batch.duration.copy() if fps is None else np.round(batch.duration * fps) / fps
     return {
         "length": batch.length,
-        "duration": batch.duration.copy(),
+        "duration": duration,
         "sway": sway_amplitude(pelvis),
         "heading": batch.end_yaw.copy(),
     }
@@ -266,19 +277,24 @@ def fidelity_from_steps(
     """Fidelity report against already segmented captured ``steps`` (see module docstring)."""
     if len(steps) == 0:
         raise MjwalkError("fidelity: no captured steps to compare against")
-    cap = capture_step_metrics(steps)
-    chains = [model.sample_chain(chain_length, rng) for _ in range(n_chains)]
-    mod = batch_step_metrics(concat_batches(chains))
-    step_report = {}
-    for k in METRICS:
-        ks = ks_2samp(cap[k], mod[k])
-        step_report[k] = {
-            "unit": _UNITS[k],
-            "ks": float(ks.statistic),
-            "p": float(ks.pvalue),
-            "capture": _describe(cap[k]),
-            "model": _describe(mod[k]),
-        }
+    if chain_length < 2:
+        raise MjwalkError(f"fidelity: chain_length must be >= 2, got {chain_length}")
+    fps = float(steps[0].fps)
+    starts = [bool(s.meta.get("initiation")) for s in steps]
+    steady = [s for s, a in zip(steps, starts, strict=True) if not (a or s.meta.get("termination"))]
+    if not steady:
+        raise MjwalkError("fidelity: every captured step is a gait initiation or termination")
+    chains = concat_batches([model.sample_chain(chain_length, rng) for _ in range(n_chains)])
+    is_first = np.arange(len(chains)) % chain_length == 0
+    step_report = _ks_table(
+        capture_step_metrics(steady), batch_step_metrics(chains.take(~is_first), fps)
+    )
+    init = [s for s, a in zip(steps, starts, strict=True) if a]
+    init_report = {"n_capture": len(init), "n_model": int(is_first.sum())}
+    if len(init) >= 2:
+        init_report.update(
+            _ks_table(capture_step_metrics(init), batch_step_metrics(chains.take(is_first), fps))
+        )
     cw = captured_straight_walks(steps, straight_deg)
     walks: dict = {"n": len(cw), "straight_deg": straight_deg}
     if cw:
@@ -295,11 +311,26 @@ def fidelity_from_steps(
         }
     return {
         "model": model.summary(),
-        "n_capture_steps": len(steps),
-        "n_model_steps": n_chains * chain_length,
+        "n_capture_steps": len(steady),
+        "n_model_steps": int((~is_first).sum()),
         "steps": step_report,
+        "initiation": init_report,
         "straight_walks": walks,
     }
+
+
+def _ks_table(cap: dict[str, np.ndarray], mod: dict[str, np.ndarray]) -> dict:
+    out = {}
+    for k in METRICS:
+        ks = ks_2samp(cap[k], mod[k])
+        out[k] = {
+            "unit": _UNITS[k],
+            "ks": float(ks.statistic),
+            "p": float(ks.pvalue),
+            "capture": _describe(cap[k]),
+            "model": _describe(mod[k]),
+        }
+    return out
 
 
 def fidelity_report(
@@ -330,7 +361,8 @@ def fidelity_report(
 def format_fidelity_table(report: dict) -> str:
     """Plain-text table of a :func:`fidelity_report`."""
     lines = [
-        f"steps: capture n={report['n_capture_steps']}, model n={report['n_model_steps']}",
+        f"steady-state steps: capture n={report['n_capture_steps']} (no initiations or "
+        f"terminations), model n={report['n_model_steps']} (chain steps after the starter)",
         f"{'metric':<16}{'KS':>7}   {'capture mean±sd':>20}   {'model mean±sd':>20}",
     ]
     for k, r in report["steps"].items():
@@ -338,6 +370,14 @@ def format_fidelity_table(report: dict) -> str:
         lines.append(
             f"{k + ' [' + r['unit'] + ']':<16}{r['ks']:>7.3f}   "
             f"{c['mean']:>10.3f} ± {c['sd']:<7.3f}   {m['mean']:>10.3f} ± {m['sd']:<7.3f}"
+        )
+    ini = report.get("initiation", {})
+    if "length" in ini:
+        lines.append(
+            f"gait initiation (capture n={ini['n_capture']}, KDE starters n={ini['n_model']}): KS "
+            + ", ".join(f"{k} {ini[k]['ks']:.3f}" for k in METRICS)
+            + f"; length {ini['length']['capture']['mean']:.3f} vs "
+            f"{ini['length']['model']['mean']:.3f} m"
         )
     w = report["straight_walks"]
     lines.append(f"straight walks: n={w['n']} (heading change < {w['straight_deg']}°)")

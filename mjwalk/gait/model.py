@@ -10,8 +10,14 @@ fitted on all its steps instead (recorded in :meth:`StepModel.summary` as ``kde_
 
 **Transitions** left->right and right->left, each a Gaussian process from the predecessor's
 features to the successor's (zero mean, ``normalize_y=False`` on the standardized features,
-kernel ``C·RBF(per-dimension length scales) + White``). An exact GP on ~10 000 pairs per
-direction needs 10 000² matrices, so the scheme is (Rasmussen & Williams 2006, §8.3):
+kernel ``C·RBF(per-dimension length scales) + White``), trained on every captured transition
+*except those into a gait termination* (``Step.meta["termination"]``: the closing step of a
+take that ends standing). No step follows a termination, so a forward-sampled chain that drew
+one would stop walking mid-way and wander among short steps; the planner's walks end in the
+goal area, never with a modelled stop. (On the default corpus, 9 % of the transitions end in a
+termination; trained on them, 41 % of the steps of 40-step chains were shorter than 0.45 m
+against 1 % of the corpus's steady-state steps.) An exact GP on ~10 000 pairs per direction
+needs 10 000² matrices, so the scheme is (Rasmussen & Williams 2006, §8.3):
 
 1. hyper-parameters (C, length scales, noise σ²) by maximizing the log-marginal likelihood
    with sklearn ``GaussianProcessRegressor`` on a random subset of ``n_hyper`` pairs;
@@ -21,12 +27,21 @@ direction needs 10 000² matrices, so the scheme is (Rasmussen & Williams 2006, 
    latent variance v(x) = C - k_xm (K_mm⁻¹ - Σ) k_mx = C - k_xm W k_mx.
    α (m, d) and W (m, m) are precomputed (through Cholesky factors), so one prediction is a
    kernel row against m points and two small products;
-4. the observation noise of successors is the full (d, d) covariance of the training residuals
-   Y - μ(X) (a per-output, correlated refinement of the shared White σ², which the
-   multi-output sklearn GP must share across outputs; sampling with it keeps the spread of
-   every feature instead of averaging it).
+4. the observation noise of successors is *local and empirical*: for every inducing input
+   z_j, the residuals Y - μ(X) of the ``n_residual`` training pairs whose predecessors lie
+   nearest to z_j (in the length-scale-scaled metric of the kernel) form its residual pool
+   R_j (``n_residual`` ≈ N / m, so the pools together hold about every residual once). The
+   multi-output sklearn GP must share one White σ² across outputs and across the whole input
+   space, but the captured noise differs by regime (straight walking, turning on the spot,
+   side steps) and is neither Gaussian nor uncorrelated across features: one global residual
+   covariance drew successors that combine, e.g., a turning step's yaw with a straight step's
+   length, off the data, and chains drifted. Pooling residuals by inducing input keeps the
+   noise of the regime the predecessor is in, with its correlations.
 
-A successor is drawn as  y = μ(x) + √v(x)·ε₁ + L_res ε₂  with ε ~ N(0, I).
+A successor of x is drawn as  y = μ(x) + √v(x)·ε + r,  ε ~ N(0, I) and r drawn uniformly from
+the pool R_j of the inducing input z_j nearest to x (the one with the largest kernel value,
+already computed for μ). Far from the data v(x) grows towards C, so the GP's uncertainty is
+still sampled there.
 
 The model is saved to ONE ``.npz`` file (format name + version in a JSON header, plain arrays,
 no pickle), written atomically.
@@ -52,7 +67,7 @@ from mjwalk.gait.step import Step
 
 MODEL_FORMAT = "mjwalk.stepmodel"
 #: Bump whenever the saved arrays or their meaning change.
-MODEL_VERSION = 1
+MODEL_VERSION = 2
 
 _SIDES = ("left", "right")
 
@@ -71,7 +86,8 @@ class TransitionGP:
         alpha: (m, d) so that the posterior mean is ``k(x, Z) @ alpha``.
         w: (m, m) ``K_mm⁻¹ - Σ``; latent variance = C - k W kᵀ.
         length_scale: (d,) RBF length scales; signal_var C; noise_var σ² (White kernel).
-        res_chol: (d, d) lower Cholesky factor of the residual covariance.
+        res_pool: (m, k, d) residual pool of every inducing input: the residuals y - μ(x) of
+            the k training pairs whose predecessors are nearest to it (module doc, step 4).
         n_pairs: pairs the posterior is conditioned on; n_hyper: pairs used for the LML fit;
         lml: log-marginal likelihood of the hyper-parameters on the subset.
     """
@@ -82,7 +98,7 @@ class TransitionGP:
     length_scale: np.ndarray
     signal_var: float
     noise_var: float
-    res_chol: np.ndarray
+    res_pool: np.ndarray
     n_pairs: int
     n_hyper: int
     lml: float
@@ -98,19 +114,28 @@ class TransitionGP:
         np.maximum(sq, 0.0, out=sq)
         return self.signal_var * np.exp(-0.5 * sq)
 
-    def predict(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Posterior mean (P, d) and latent variance (P,) at predecessor features ``x`` (P, d)."""
+    def _predict(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         k = self.kernel_rows(x)
         mean = k @ self.alpha
         var = self.signal_var - np.einsum("pm,pm->p", k @ self.w, k)
-        return mean, np.maximum(var, 0.0)
+        return mean, np.maximum(var, 0.0), k
+
+    def predict(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Posterior mean (P, d) and latent variance (P,) at predecessor features ``x`` (P, d)."""
+        mean, var, _ = self._predict(x)
+        return mean, var
 
     def sample(self, x: np.ndarray, n: int, rng: np.random.Generator) -> np.ndarray:
-        """(P, n, d) successor features: n draws for each of the P predecessors."""
-        mean, var = self.predict(x)
+        """(P, n, d) successor features: n draws for each of the P predecessors.
+
+        y = μ(x) + √v(x)·ε + r, r from the residual pool of the inducing input nearest to x.
+        """
+        mean, var, k = self._predict(x)
         p, d = mean.shape
-        e = rng.standard_normal((2, p, n, d))
-        return mean[:, None, :] + np.sqrt(var)[:, None, None] * e[0] + e[1] @ self.res_chol.T
+        cell = k.argmax(axis=1)
+        r = self.res_pool[cell[:, None], rng.integers(self.res_pool.shape[1], size=(p, n))]
+        e = rng.standard_normal((p, n, d))
+        return mean[:, None, :] + np.sqrt(var)[:, None, None] * e + r
 
     @classmethod
     def fit(
@@ -121,8 +146,13 @@ class TransitionGP:
         rng: np.random.Generator,
         n_hyper: int = 600,
         n_inducing: int = 400,
+        n_residual: int | None = None,
     ) -> TransitionGP:
-        """Fit on pairs ``x`` (N, d) -> ``y`` (N, d) (standardized features); see module doc."""
+        """Fit on pairs ``x`` (N, d) -> ``y`` (N, d) (standardized features); see module doc.
+
+        ``n_residual``: residuals pooled per inducing input; None: ``ceil(N / m)``, at least 5.
+        """
+        from scipy.spatial import cKDTree
         from sklearn.cluster import KMeans
         from sklearn.exceptions import ConvergenceWarning
         from sklearn.gaussian_process import GaussianProcessRegressor
@@ -166,7 +196,7 @@ class TransitionGP:
             length_scale=ls,
             signal_var=c,
             noise_var=s2,
-            res_chol=np.eye(d),
+            res_pool=np.zeros((m, 1, d)),
             n_pairs=n,
             n_hyper=len(sub),
             lml=lml,
@@ -187,8 +217,9 @@ class TransitionGP:
         proto.alpha = alpha
         proto.w = w
         resid = y - proto.predict(x)[0]
-        cov = np.atleast_2d(np.cov(resid, rowvar=False)) + 1e-9 * np.eye(d)
-        proto.res_chol = np.linalg.cholesky(cov)
+        k_res = min(n, n_residual or max(5, -(-n // m)))
+        _, near = cKDTree(x / ls).query(z / ls, k=k_res)
+        proto.res_pool = resid[np.asarray(near).reshape(m, k_res)]
         return proto
 
     def arrays(self, prefix: str) -> dict[str, np.ndarray]:
@@ -197,7 +228,7 @@ class TransitionGP:
             f"{prefix}alpha": self.alpha,
             f"{prefix}w": self.w,
             f"{prefix}length_scale": self.length_scale,
-            f"{prefix}res_chol": self.res_chol,
+            f"{prefix}res_pool": self.res_pool,
             f"{prefix}scalars": np.array(
                 [self.signal_var, self.noise_var, self.n_pairs, self.n_hyper, self.lml]
             ),
@@ -211,7 +242,7 @@ class TransitionGP:
             alpha=np.asarray(data[f"{prefix}alpha"], dtype=float),
             w=np.asarray(data[f"{prefix}w"], dtype=float),
             length_scale=np.asarray(data[f"{prefix}length_scale"], dtype=float),
-            res_chol=np.asarray(data[f"{prefix}res_chol"], dtype=float),
+            res_pool=np.asarray(data[f"{prefix}res_pool"], dtype=float),
             signal_var=float(sc[0]),
             noise_var=float(sc[1]),
             n_pairs=int(sc[2]),
@@ -277,6 +308,7 @@ class StepModel:
         variance: float = 0.99,
         n_hyper: int = 600,
         n_inducing: int = 400,
+        n_residual: int | None = None,
         progress: bool = False,
     ) -> StepModel:
         """Fit features, KDEs and both transition GPs on aligned ``steps``.
@@ -287,10 +319,14 @@ class StepModel:
             seed: seeds the LML subset, k-means and optimizer.
             variance: PCA variance to keep (the paper: >= 0.95; 1.0 keeps all). Default 0.99:
                 the lateral sway (~1.5 cm) lives mostly in the last few percent; on Bandai
-                {masculine, normal} 0.99 halves its reconstruction error (2.9 -> 1.5 mm) and
-                lowers the sway KS of sampled chains from 0.19 to 0.15 (4 -> 7 dimensions).
+                {masculine, normal} 0.99 halves its reconstruction error (2.9 -> 1.5 mm). Every
+                kept dimension needs transitions to learn: 0.99 suits the default corpus
+                (~9 800 pairs per direction, 6 dimensions); on the ~790 pairs per direction of
+                Bandai {masculine, normal} it keeps 8 and chains drift (in-sample KS of 40-step
+                chains: length 0.17, sway 0.24), where 0.95 (4 dimensions) gives 0.05, 0.19.
             n_hyper: pairs per direction for the hyper-parameter (LML) fit.
             n_inducing: inducing points per direction for the DTC posterior.
+            n_residual: residuals pooled per inducing point (None: pairs / inducing points).
             progress: print timings to stderr.
         """
         t0 = time.perf_counter()
@@ -328,12 +364,20 @@ class StepModel:
             kde_source[s] = {"source": src, "n": len(idx)}
 
         prev, nxt = transition_pairs(steps)
+        # No step follows a gait termination: transitions into one are not modelled (module doc).
+        term = np.array([bool(steps[j].meta.get("termination")) for j in nxt], dtype=bool)
+        prev, nxt = prev[~term], nxt[~term]
         gps, n_trans = {}, {}
         for s in _SIDES:
             sel = sides[prev] == s
             t1 = time.perf_counter()
             gps[s] = TransitionGP.fit(
-                z[prev[sel]], z[nxt[sel]], rng=rng, n_hyper=n_hyper, n_inducing=n_inducing
+                z[prev[sel]],
+                z[nxt[sel]],
+                rng=rng,
+                n_hyper=n_hyper,
+                n_inducing=n_inducing,
+                n_residual=n_residual,
             )
             n_trans[s] = int(sel.sum())
             _log(
@@ -344,6 +388,7 @@ class StepModel:
             "n_steps": len(steps),
             "n_takes": len(first),
             "n_transitions": n_trans,
+            "n_terminations_excluded": int(term.sum()),
             "kde": kde_source,
             "seed": seed,
             "fit_seconds": round(time.perf_counter() - t0, 3),
@@ -434,6 +479,7 @@ class StepModel:
                     "lml_subset": round(g.lml, 3),
                     "n_hyper": g.n_hyper,
                     "n_inducing": int(g.inducing.shape[0]),
+                    "n_residual": int(g.res_pool.shape[1]),
                     "n_pairs": g.n_pairs,
                 }
                 for s, g in self.gp.items()
@@ -501,11 +547,14 @@ def _check_shapes(model: StepModel) -> None:
             g.inducing.shape != (m, d)
             or g.alpha.shape != (m, d)
             or g.w.shape != (m, m)
-            or g.res_chol.shape != (d, d)
+            or g.res_pool.ndim != 3
+            or g.res_pool.shape[0] != m
+            or g.res_pool.shape[2] != d
+            or g.res_pool.shape[1] < 1
             or model.kde_data[s].shape[0] != d
         ):
             raise ValueError(f"{s} GP/KDE arrays have inconsistent shapes")
-        arrs = (g.inducing, g.alpha, g.w, g.res_chol, model.kde_data[s])
+        arrs = (g.inducing, g.alpha, g.w, g.res_pool, model.kde_data[s])
         if not all(np.all(np.isfinite(a)) for a in arrs):
             raise ValueError(f"{s} GP/KDE arrays hold non-finite values")
 

@@ -106,5 +106,25 @@ def goal_distance(grid: OccupancyGrid, goal: np.ndarray, tolerance: float) -> Go
         (np.concatenate(weights), (np.concatenate(rows), np.concatenate(cols))),
         shape=(n + 1, n + 1),
     ).tocsr()
-    dist = dijkstra(graph, directed=True, indices=n)[:n]
-    return GoalDistance(grid, np.asarray(goal, float), tolerance, dist.reshape(ny, nx))
+    dist = dijkstra(graph, directed=True, indices=n)[:n].reshape(ny, nx)
+    return GoalDistance(grid, np.asarray(goal, float), tolerance, _rim(grid, dist))
+
+
+def _rim(grid: OccupancyGrid, dist: np.ndarray) -> np.ndarray:
+    """Give blocked cells next to reachable ones the route through their best neighbour.
+
+    A cell is blocked when its *centre* lies within the body radius of an obstacle, but a
+    point that the planner's continuous checks accept (a walk's end, where the next walk
+    starts) may still have a blocked cell as its nearest one; without this rim it would be
+    called unreachable and get an infinite heuristic.
+    """
+    out = dist.copy()
+    ny, nx = dist.shape
+    for di, dj in grid.offsets:
+        step = grid.cell * math.hypot(di, dj)
+        src = np.full_like(dist, np.inf)
+        src[max(0, -dj) : ny - max(0, dj), max(0, -di) : nx - max(0, di)] = dist[
+            max(0, dj) : ny - max(0, -dj), max(0, di) : nx - max(0, -di)
+        ]
+        np.minimum(out, np.where(grid.free, out, src + step), out=out)
+    return out
