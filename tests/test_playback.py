@@ -68,7 +68,8 @@ def test_bad_arms_option():
 
 def test_gaitpose_switching_reduces_foot_skating():
     """Remillard & Kry: per-contact-state GP dynamics keep the contact discontinuities; one
-    smooth GP averages them away, which shows as foot skating. Seeded; 4 rollouts of 5 s."""
+    smooth GP averages them away, which shows as foot skating. Seeded; 12 rollouts of 5 s
+    each (single rollouts vary 0.1-1.5 m/s either way; measured means 0.38 vs 0.74 m/s)."""
     import warnings
 
     from mjwalk.body import gaitpose
@@ -80,7 +81,7 @@ def test_gaitpose_switching_reduces_foot_skating():
             model = gaitpose.default_gaitpose(switching=switching, seed=0)
             skate[switching] = [
                 gaitpose.foot_skating(model.rollout(150, np.random.default_rng(s))[0])
-                for s in (1, 3, 4, 5)
+                for s in range(1, 13)
             ]
     on, off = np.mean(skate[True]), np.mean(skate[False])
     print(

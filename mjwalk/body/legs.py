@@ -123,6 +123,94 @@ def winter_reference() -> ReferenceGait:
     )
 
 
+#: Landmarks of a straight-walk gait cycle calibrated on real capture, for :func:`warp_reference`:
+#: per angle, pairs ((cycle %, deg) on :data:`WINTER_GAIT`, (cycle %, deg) in the calibrated gait)
+#: at the gait events and extrema (heel strike, loading-response peak, mid-stance, push-off
+#: minimum, toe-off, swing peak, late swing). Target figures: bandai-walk (Kobayashi et al.
+#: 2023, CC BY-NC 4.0), ``dataset-2_walk_normal_001..003``, left leg, mean of 13 gait cycles
+#: by :func:`gait_cycles` (heel strike = toes-up pitch peak), read off and rounded to the
+#: percent and degree. This actor walks with more knee flexion in stance than Winter's
+#: ensemble (34 vs 19 deg at the loading-response peak, 17 vs 5 deg at mid-stance).
+BANDAI_LANDMARKS = {
+    "hip": [
+        ((0, 30), (0, 22)),
+        ((5, 29), (11, 29)),
+        ((30, 10), (30, 11)),
+        ((55, -9), (57, -10)),
+        ((90, 32), (85, 27)),
+        ((100, 30), (100, 22)),
+    ],
+    "knee": [
+        ((0, 3), (0, 1)),
+        ((15, 19), (18, 34)),
+        ((40, 5), (44, 17)),
+        ((60, 35), (60, 35)),
+        ((75, 63), (75, 70)),
+        ((90, 25), (90, 29)),
+        ((100, 3), (100, 1)),
+    ],
+    "pitch": [
+        ((0, 20), (0, 28)),
+        ((10, 0), (12, 0)),
+        ((40, 0), (40, 0)),
+        ((65, -50), (69, -69)),
+        ((80, -15), (80, -42)),
+        ((100, 20), (100, 28)),
+    ],
+}
+
+
+def warp_reference(
+    landmarks: dict, base: ReferenceGait | None = None, source: str = "", n: int = 101
+) -> ReferenceGait:
+    """A reference gait generated from ``base`` (default :func:`winter_reference`) warped onto
+    landmark figures, so a gait can be calibrated on a few numbers rather than copied.
+
+    Args:
+        landmarks: angle name ("hip", "knee", "pitch") -> increasing list of pairs
+            ``((base cycle %, base deg), (cycle %, deg))``, the first at 0 % and the last at
+            100 %. Time is warped piecewise linearly between the landmarks; between two
+            landmarks the base curve is scaled affinely so its landmark values map onto the
+            targets (the base's shape is kept on every segment).
+        base: the gait whose shapes are warped.
+        source: where the landmark figures come from.
+        n: samples per cycle of the result.
+
+    Returns:
+        the warped :class:`ReferenceGait` (radians).
+    """
+    base = base or _WINTER
+    x = np.linspace(0.0, 100.0, n)
+    out = {}
+    for name in ("hip", "knee", "pitch"):
+        lm = np.asarray(landmarks[name], float)  # (K, 2, 2)
+        src, dst = lm[:, 0], lm[:, 1]
+        if not (np.all(np.diff(dst[:, 0]) > 0) and np.all(np.diff(src[:, 0]) > 0)):
+            raise ValueError(f"warp_reference: {name} landmarks must increase in cycle")
+        v = np.degrees(base(name, np.interp(x, dst[:, 0], src[:, 0]) / 100.0))
+        k = np.clip(np.searchsorted(dst[:, 0], x, side="right") - 1, 0, len(dst) - 2)
+        a0, a1, b0, b1 = src[k, 1], src[k + 1, 1], dst[k, 1], dst[k + 1, 1]
+        same = np.isclose(a1, a0)
+        lin = (x - dst[k, 0]) / (dst[k + 1, 0] - dst[k, 0])
+        scaled = b0 + (v - a0) * (b1 - b0) / np.where(same, 1.0, a1 - a0)
+        out[name] = np.radians(np.where(same, b0 + (v - a0) + (b1 - b0) * lin, scaled))
+    return ReferenceGait(
+        cycle=x / 100.0,
+        hip=out["hip"],
+        knee=out["knee"],
+        pitch=out["pitch"],
+        source=f"{base.source} warped onto {source or 'landmarks'}",
+    )
+
+
+def bandai_reference() -> ReferenceGait:
+    """The Winter reference warped onto :data:`BANDAI_LANDMARKS` (a generated gait calibrated
+    on the figures of the bandai-walk "normal" actor; no capture samples are used)."""
+    return warp_reference(
+        BANDAI_LANDMARKS, source="bandai-walk normal 001-003 landmarks (BANDAI_LANDMARKS)"
+    )
+
+
 def reference_angle(joint: str, cycle, derivative: bool = False):
     """Default-reference angle (radians) of ``joint`` ("hip", "knee", "pitch") at cycle(s)."""
     return _WINTER(joint, cycle, derivative)
@@ -495,9 +583,7 @@ def legs_from_walk(
         else:
             th0, v0 = knee_prev
         v1 = 0.5 * float(ref("knee", 0.5, True))
-        kv = [th0, *(float(ref("knee", 0.5 * p)) for p in STANCE_KEYS), th1]
-        knee_sp = CubicSpline([0.0, *STANCE_KEYS, 1.0], kv, bc_type=((1, v0), (1, v1)))
-        knee_st = np.clip(knee_sp(phi), KNEE_MIN, np.deg2rad(80))
+        knee_st = np.clip(_displaced(ref, "knee", phi, th0, v0, th1, v1), KNEE_MIN, np.deg2rad(80))
         z_flat = height_for_knee(idx, st, ankle[st][idx], knee_st)
         # --- swing foot (A9)
         pos, p_sw, toe_sw, yw = _swing(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
@@ -563,6 +649,25 @@ def legs_from_walk(
     )
 
 
+def _displaced(ref: ReferenceGait, name: str, phi, th0, v0, th1, v1) -> np.ndarray:
+    """Stance-leg angle ``name`` (radians) at step phases ``phi``: the reference's own curve
+    over cycle 0-50 % plus a cubic-spline displacement that is zero at the key frames
+    :data:`STANCE_KEYS` (so the angle coincides with the reference key-frame angles there) and
+    meets the current posture's angle ``th0`` / velocity ``v0`` at ``phi = 0`` and the target
+    posture's ``th1`` / ``v1`` at ``phi = 1`` (velocities per unit phase).
+
+    Between the keys and the boundaries the result keeps the reference's shape (its loading
+    response, say) instead of the bare cubic through five points, which cuts the reference's
+    curves short (motion warping, Witkin & Popovic 1995, applied to the paper's spline)."""
+    r0, r1 = float(ref(name, 0.0)), float(ref(name, 0.5))
+    d0 = v0 - 0.5 * float(ref(name, 0.0, True))
+    d1 = v1 - 0.5 * float(ref(name, 0.5, True))
+    sp = CubicSpline(
+        [0.0, *STANCE_KEYS, 1.0], [th0 - r0, 0.0, 0.0, 0.0, th1 - r1], bc_type=((1, d0), (1, d1))
+    )
+    return ref(name, 0.5 * np.asarray(phi, float)) + sp(phi)
+
+
 def _swing(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, land_p):
     """Swing foot: ankle (n, 3), pitch (n,), toe angle (n,), yaw (n,) over the step."""
     ah, L1, L2 = geom.ankle_height, geom.thigh, geom.shank
@@ -599,29 +704,44 @@ def _swing(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, 
         p_to = p[je[::-1]]
         a0 = pos[je[::-1]]
         v0 = (a0[0] - a0[1]) / h
-        knots, pts, pit = [float(phi[je[1]])], [a0[0]], [p_to[0]]
+        # the reference swing: the reference hip/knee angles of each gait-cycle instant placed
+        # at the current hip (forward progress and height), kept on the line from the lift-off
+        # to the landing footprint
+        jl = np.flatnonzero(late)
+        c = 0.5 + 0.5 * phi[jl]
+        hf, kf = ref("hip", c), ref("knee", c)
+        fwd = L1 * np.sin(hf) + L2 * np.sin(hf - kf)
+        down = L1 * np.cos(hf) + L2 * np.cos(hf - kf)
+        heading = np.column_stack([np.cos(yaw[jl]), np.sin(yaw[jl])])
+        target = hip_pos(idx[jl], sw) + fwd[:, None] * heading
         seg = land[:2] - lift[:2]
-        seg_len2 = max(float(seg @ seg), 1e-9)
+        s = np.clip((target - lift[:2]) @ seg / max(float(seg @ seg), 1e-9), 0.0, 1.0)
+        ref_pos = np.column_stack([lift[:2] + s[:, None] * seg, z_hip[jl] - down])
+        ref_pit = np.clip(ref("pitch", c), np.deg2rad(-70), np.deg2rad(30))
+        # key positions at SWING_KEYS: the reference, lifted where the ankle would be lower
+        # than standing height; the reference shape is kept between the keys and the
+        # boundaries (lift-off state at toe-off, the landing pose with zero velocity) by a
+        # cubic-spline displacement (as the stance angles, :func:`_displaced`)
+        knots, dpos, dpit = [float(phi[je[1]])], [a0[0]], [p_to[0]]
         for ph in SWING_KEYS[1:]:
-            j = int(np.argmin(np.abs(phi - ph)))
-            c = 0.5 + 0.5 * ph
-            hf, kf = float(ref("hip", c)), float(ref("knee", c))
-            fwd = L1 * np.sin(hf) + L2 * np.sin(hf - kf)
-            down = L1 * np.cos(hf) + L2 * np.cos(hf - kf)
-            heading = np.array([np.cos(yaw[j]), np.sin(yaw[j])])
-            target = hip_pos(idx[j : j + 1], sw)[0] + fwd * heading
-            s = np.clip((target - lift[:2]) @ seg / seg_len2, 0.0, 1.0)
-            zk = max(z_hip[j] - down, ah)
-            knots.append(ph)
-            pts.append(np.array([*(lift[:2] + s * seg), zk]))
-            pit.append(float(np.clip(ref("pitch", c), np.deg2rad(-70), np.deg2rad(30))))
+            m = int(np.argmin(np.abs(phi[jl] - ph)))
+            knots.append(float(phi[jl[m]]))
+            key = ref_pos[m].copy()
+            key[2] = max(key[2], ah)
+            dpos.append(key)
+            dpit.append(ref_pit[m])
         knots.append(1.0)
-        pts.append(_pivot(land, land_p, geom)[0])
-        pit.append(land_p)
-        sp = CubicSpline(knots, np.array(pts), bc_type=((1, v0), (1, np.zeros(3))))
+        dpos.append(_pivot(land, land_p, geom)[0])
+        dpit.append(land_p)
+        # the reference at the knots (toe-off and landing extrapolate the first/last sample)
+        rk = np.column_stack([np.interp(knots, phi[jl], ref_pos[:, k]) for k in range(3)])
+        rp = np.interp(knots, phi[jl], ref_pit)
+        dr = np.gradient(ref_pos, phi[jl], axis=0) if len(jl) > 1 else np.zeros((1, 3))
+        dq = np.gradient(ref_pit, phi[jl]) if len(jl) > 1 else np.zeros(1)
+        sp = CubicSpline(knots, np.array(dpos) - rk, bc_type=((1, v0 - dr[0]), (1, -dr[-1])))
         dp0 = (p_to[0] - p_to[1]) / h
-        spp = CubicSpline(knots, np.array(pit), bc_type=((1, dp0), (1, 0.0)))
-        pos[late], p[late] = sp(phi[late]), spp(phi[late])
+        spp = CubicSpline(knots, np.array(dpit) - rp, bc_type=((1, dp0 - dq[0]), (1, -dq[-1])))
+        pos[late], p[late] = ref_pos + sp(phi[late]), ref_pit + spp(phi[late])
         # keep heel and toe tip off the floor (lift the ankle where they would dip)
         for lever in (-geom.foot_back, geom.foot_front):
             tip_z = pos[late, 2] + lever * np.sin(p[late]) - ah * np.cos(p[late])
