@@ -326,3 +326,66 @@ def test_warp_reference_meets_its_landmarks():
     assert np.abs(np.diff(np.rad2deg(ref("knee", x)))).max() < 2.0  # < 2 deg per 0.25 %
     with pytest.raises(ValueError, match="increase"):
         warp_reference({**BANDAI_LANDMARKS, "knee": BANDAI_LANDMARKS["knee"][::-1]})
+
+
+#: Walks the hybrid A* planned in the assembly-station cycle (seed 0, runs 3, 9 and 13, saved
+#: with WalkPath.save) on which clipped legs put a foot 0.9-3 cm into the floor: a landing
+#: behind the other foot (ankle at its dorsiflexion limit during the heel roll-down) and long
+#: steps followed by short turning ones (trailing hip at its extension limit before toe-off).
+AWKWARD_WALKS = sorted((Path(__file__).parent / "data").glob("station_walk_seed0_*.npz"))
+
+
+@pytest.mark.parametrize("path", AWKWARD_WALKS, ids=lambda p: p.stem)
+def test_feet_stay_above_floor_on_awkward_steps(path):
+    """Where the joint ranges keep a foot from its target, the foot is pitched or lifted,
+    never sunk: MuJoCo's lowest foot point stays above -2 mm at every 120 Hz sample (the
+    floor_tolerance of the collision report is 1 cm)."""
+    walk = WalkPath.load(path)
+    legs = legs_from_walk(walk)
+    _, _, low = _fk_feet(legs)
+    assert low.min() >= -0.002, f"foot {-low.min() * 100:.1f} cm below the floor"
+    _, jm = humanoid_model()
+    for name, v in legs.angles.items():
+        lo, hi = jm.limits(name)
+        assert v.min() >= lo - 1e-9 and v.max() <= hi + 1e-9, name
+
+
+def test_leg_fk_matches_mujoco():
+    """leg_fk / foot_lowest agree with MuJoCo's forward kinematics of the humanoid."""
+    from mjwalk.body.legs import foot_lowest, leg_fk
+
+    g = leg_geometry()
+    model, jm = humanoid_model()
+    data = mujoco.MjData(model)
+    rng = np.random.default_rng(1)
+    for side in "lr":
+        ang = {
+            n.format(side): rng.uniform(*np.radians(r), size=20)
+            for n, r in (
+                ("hip_{}_rot", (-30, 30)),
+                ("hip_{}_flex", (-25, 60)),
+                ("hip_{}_abd", (-10, 20)),
+                ("knee_{}", (0, 90)),
+                ("ankle_{}_flex", (-40, 15)),
+                ("ankle_{}_inv", (-10, 20)),
+                ("toe_{}", (-20, 50)),
+            )
+        }
+        ankle, R = leg_fk(ang, side, g)
+        low = foot_lowest(ang, side, g)
+        for i in range(20):
+            q = jm.neutral_qpos(model)
+            q[:3] = [0, 0, 2.0]
+            for k, v in ang.items():
+                q[jm.adr(k)] = v[i]
+            data.qpos[:] = q
+            mujoco.mj_kinematics(model, data)
+            hip = data.xpos[model.body(f"thigh_{side}").id]
+            assert np.allclose(data.xpos[model.body(f"foot_{side}").id] - hip, ankle[i], atol=1e-9)
+            assert np.allclose(data.xmat[model.body(f"foot_{side}").id].reshape(3, 3), R[i])
+            z = []
+            for gname in (f"foot_{side}", f"toes_{side}"):
+                gid = model.geom(gname).id
+                Rg = data.geom_xmat[gid].reshape(3, 3)
+                z.append(data.geom_xpos[gid][2] - np.abs(Rg[2] * model.geom_size[gid]).sum())
+            assert min(z) - hip[2] == pytest.approx(low[i], abs=1e-9)

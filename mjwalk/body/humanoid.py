@@ -116,6 +116,7 @@ class LegGeometry:
         hip_y: lateral offset of each hip joint centre from the root (left +, right -).
         thigh: hip to knee. shank: knee to ankle. ankle_height: ankle above the sole.
         foot_back, foot_front: heel and toe-tip distance from the ankle along the foot, metres.
+        foot_width: width of the sole (and toes), metres.
     """
 
     hip_y: float
@@ -124,6 +125,7 @@ class LegGeometry:
     ankle_height: float
     foot_back: float
     foot_front: float
+    foot_width: float = 0.0
 
 
 def leg_geometry(stature: float = 1.75) -> LegGeometry:
@@ -137,6 +139,7 @@ def leg_geometry(stature: float = 1.75) -> LegGeometry:
         ankle_height=SEG["ankle_height"] * H,
         foot_back=0.25 * fl,
         foot_front=0.75 * fl,
+        foot_width=SEG["foot_width"] * H,
     )
 
 

@@ -63,6 +63,10 @@ SWING_KEYS = (0.2, 0.4, 0.6, 0.8, 0.9)
 TOE_OFF = 0.2
 #: Pitches smaller than this (degrees) count as a flat foot (no roll, so no drift).
 FLAT_DEG = 2.0
+#: Corrections of a leg whose clipped joints would put the foot below the floor, and the depth
+#: (m) a foot may reach (a flat, slightly inverted sole dips a millimetre or two at its edge).
+FLOOR_ITERATIONS = 10
+FLOOR_TOLERANCE = 2e-3
 #: Smallest knee flexion the IK uses when a leg must stretch (radians): never lock the knee.
 KNEE_MIN = np.deg2rad(2.0)
 
@@ -401,6 +405,47 @@ def leg_ik(
     return out
 
 
+def leg_fk(angles: dict[str, np.ndarray], side: str, geom: LegGeometry):
+    """Forward kinematics of one leg in the pelvis frame (x forward, y left, z up; pelvis
+    upright), the humanoid's joint axes (:func:`~mjwalk.body.humanoid.build_humanoid`).
+
+    Args:
+        angles: joint name -> (N,) angles in radians (hip rotation/flexion/abduction, knee,
+            ankle flexion/inversion of ``side``).
+        side: "l" or "r".
+        geom: the leg lengths.
+
+    Returns:
+        (ankle (N, 3) relative to the hip joint centre in metres, foot rotation (N, 3, 3)).
+    """
+    s = 1.0 if side == "l" else -1.0
+    a = {k: np.asarray(angles[k.format(side)], float) for k in LEG_JOINTS[:-1]}
+    R = _rz(-s * a["hip_{}_rot"]) @ _ry(-a["hip_{}_flex"]) @ _rx(s * a["hip_{}_abd"])
+    knee = R[..., 2] * -geom.thigh
+    R = R @ _ry(a["knee_{}"])
+    ankle = knee + R[..., 2] * -geom.shank
+    R = R @ _ry(-a["ankle_{}_flex"]) @ _rx(-s * a["ankle_{}_inv"])
+    return ankle, R
+
+
+def foot_lowest(angles: dict[str, np.ndarray], side: str, geom: LegGeometry) -> np.ndarray:
+    """(N,) height (m) of the lowest point of the foot's collision boxes (sole and toes, as
+    built by :func:`~mjwalk.body.humanoid.build_humanoid`) above the hip joint centre, from the
+    leg angles (``toe_{side}`` included); add the hip height for the height above the floor."""
+    ankle, R = leg_fk(angles, side, geom)
+    ah, ball, hw = geom.ankle_height, _ball(geom), geom.foot_width / 2
+    corners = np.array(list(itertools.product((0.0, 1.0), (-hw, hw), (0.0, 1.0))))
+    # sole box: x from the heel to the ball, 0.8 ankle heights tall from the sole
+    foot = corners * [ball + geom.foot_back, 1.0, 0.8 * ah] + [-geom.foot_back, 0.0, -ah]
+    # toes box in the toes frame (origin at the ball on the sole, rotated by the toe angle)
+    toes = corners * [geom.foot_front - ball, 1.0, 0.4 * ah]
+    toe = np.asarray(angles[f"toe_{side}"], float)
+    toes_foot = (_ry(-toe)[:, None] @ toes[None, :, :, None])[..., 0] + [ball, 0.0, -ah]
+    z_foot = (R[:, 2, None, :] * foot[None]).sum(-1)
+    z_toes = (R[:, 2, None, :] * toes_foot).sum(-1)
+    return ankle[:, 2] + np.minimum(z_foot.min(1), z_toes.min(1))
+
+
 def _generic(name: str) -> str:
     return "_".join(p for p in name.split("_") if p not in ("l", "r"))
 
@@ -620,20 +665,43 @@ def legs_from_walk(
         sgn = 1.0 if s_ == "l" else -1.0
         hip = root + sgn * geom.hip_y * np.column_stack([-np.sin(yaw), np.cos(yaw), np.zeros(n)])
         yrel = np.angle(np.exp(1j * (fyaw[s_] - yaw)))
-        # a grounded foot whose ankle would dorsiflex past its range rolls further onto its
-        # ball instead (heel rise), so the sole keeps its place on the floor
+        # a grounded foot whose ankle would dorsiflex past its range pitches down instead:
+        # a toes-up foot rolls down about its heel, a flat one onto its ball (heel rise), so
+        # the sole keeps its place on the floor (clipping the ankle would sink the toes)
         for _ in range(8):
             rel = (_rz(-yaw) @ (ankle[s_] - hip)[..., None])[..., 0]
             dorsi = leg_ik(rel, yrel, pitch[s_], s_, geom, clip=False)[f"ankle_{s_}_flex"]
-            bad = np.flatnonzero(ground[s_] & (dorsi > dorsi_max) & (pitch[s_] <= 0))
+            bad = np.flatnonzero(ground[s_] & (dorsi > dorsi_max))
             if not len(bad):
                 break
             pitch[s_][bad] -= 1.2 * (dorsi[bad] - dorsi_max)
-            toe[s_][bad] = -pitch[s_][bad]
+            toe[s_][bad] = -np.minimum(pitch[s_][bad], 0.0)
             for j in bad:
                 ankle[s_][j] = _pivot(print_[s_][j], pitch[s_][j], geom)[0]
-        rel = (_rz(-yaw) @ (ankle[s_] - hip)[..., None])[..., 0]
-        angles.update(leg_ik(rel, yrel, pitch[s_], s_, geom))
+        # where the joint ranges still keep the foot from its target (a trailing foot too far
+        # behind for the hip's extension, say), the clipped leg would put the sole below the
+        # floor: lift the ankle target by the depth (or, where the ankle is at its
+        # dorsiflexion limit and lifting would tilt the toes down further, pitch the foot
+        # down) and solve again, so the foot stays above -FLOOR_TOLERANCE by construction
+        for _ in range(FLOOR_ITERATIONS):
+            rel = (_rz(-yaw) @ (ankle[s_] - hip)[..., None])[..., 0]
+            raw = leg_ik(rel, yrel, pitch[s_], s_, geom, clip=False)
+            ang = leg_ik(rel, yrel, pitch[s_], s_, geom)
+            ang[f"toe_{s_}"] = np.clip(toe[s_], *np.deg2rad(ROM_DEG["toe"]))
+            low = hip[:, 2] + foot_lowest(ang, s_, geom)
+            bad = low < -FLOOR_TOLERANCE
+            if not bad.any():
+                break
+            excess = raw[f"ankle_{s_}_flex"] - dorsi_max
+            tilt = bad & (excess > 0)
+            pitch[s_][tilt] -= 1.2 * excess[tilt]
+            toe[s_][tilt] = -np.minimum(pitch[s_][tilt], 0.0)
+            for j in np.flatnonzero(tilt & ground[s_]):
+                ankle[s_][j] = _pivot(print_[s_][j], pitch[s_][j], geom)[0]
+            lift = bad & ~tilt
+            ankle[s_][lift, 2] -= low[lift]
+        angles.update(ang)
+        angles.pop(f"toe_{s_}")
         lo, hi = np.deg2rad(ROM_DEG["toe"])
         angles[f"toe_{s_}"] = np.clip(toe[s_], lo, hi)
     return LegMotion(
