@@ -128,6 +128,10 @@ class LegGeometry:
     foot_width: float = 0.0
 
 
+#: Upper-arm capsule radius per metre of stature.
+UPPER_ARM_RADIUS = 0.024
+
+
 def leg_geometry(stature: float = 1.75) -> LegGeometry:
     """The leg lengths of :func:`build_humanoid` for ``stature`` metres."""
     H = stature
@@ -141,6 +145,12 @@ def leg_geometry(stature: float = 1.75) -> LegGeometry:
         foot_front=0.75 * fl,
         foot_width=SEG["foot_width"] * H,
     )
+
+
+def shoulder_geometry(stature: float = 1.75) -> tuple[float, float]:
+    """(shoulder joint centre from the trunk axis, upper-arm capsule radius), metres, of
+    :func:`build_humanoid`: together the half-width of the body at the shoulders."""
+    return 0.5 * SEG["shoulder_width"] * stature, UPPER_ARM_RADIUS * stature
 
 
 def _rad(name: str) -> list[float]:
@@ -282,7 +292,7 @@ def build_humanoid(stature: float = 1.75) -> mujoco.MjSpec:
         geom(
             sh,
             mujoco.mjtGeom.mjGEOM_CAPSULE,
-            [0.024 * H],
+            [UPPER_ARM_RADIUS * H],
             fromto=[0, 0, 0, 0, 0, -ua],
             rgba=cloth,
             name=f"upper_arm_{side}",

@@ -773,7 +773,7 @@ def _swing(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, 
         a0 = pos[je[::-1]]
         v0 = (a0[0] - a0[1]) / h
         # the reference swing: the reference hip/knee angles of each gait-cycle instant placed
-        # at the current hip (forward progress and height), kept on the line from the lift-off
+        # at the current hip (forward progress and height), along the line from the lift-off
         # to the landing footprint
         jl = np.flatnonzero(late)
         c = 0.5 + 0.5 * phi[jl]
@@ -784,7 +784,13 @@ def _swing(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, 
         target = hip_pos(idx[jl], sw) + fwd[:, None] * heading
         seg = land[:2] - lift[:2]
         s = np.clip((target - lift[:2]) @ seg / max(float(seg @ seg), 1e-9), 0.0, 1.0)
-        ref_pos = np.column_stack([lift[:2] + s[:, None] * seg, z_hip[jl] - down])
+        chord = lift[:2] + s[:, None] * seg
+        # sideways, the foot swings under its hip: where the step turns, the hip's track bends
+        # away from the chord (and from an inner corner the pelvis was planned clear of)
+        nrm = np.array([-seg[1], seg[0]]) / max(float(np.linalg.norm(seg)), 1e-9)
+        off = (hip_pos(idx[jl], sw) - chord) @ nrm
+        xy = chord + (off * np.sin(np.pi * s))[:, None] * nrm
+        ref_pos = np.column_stack([xy, z_hip[jl] - down])
         ref_pit = np.clip(ref("pitch", c), np.deg2rad(-70), np.deg2rad(30))
         # key positions at SWING_KEYS: the reference, lifted where the ankle would be lower
         # than standing height; the reference shape is kept between the keys and the
