@@ -20,7 +20,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from mjwalk.body.humanoid import HUMAN_GROUP, JointMap, attach_humanoid
+from mjwalk.body.humanoid import HUMAN_GROUP, JointMap, attach_humanoid, shoulder_geometry
 from mjwalk.body.legs import LegMotion, legs_from_walk
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
@@ -157,8 +157,9 @@ def timeline_from_walk(
     t = np.arange(0.0, walk.duration + 1e-9, 1.0 / fps)
     qpos = _frames_from_legs(model, jm, legs, t, stature, arms, rng)
     if arms != "none":
-        room = _room(scene, qpos[:, jm.root : jm.root + 2])
-        ease_arms(qpos, t, walk.duration, jm, jm.neutral_qpos(model, stature), room)
+        room, away = _room(scene, qpos[:, jm.root : jm.root + 2])
+        rest = jm.neutral_qpos(model, stature)
+        ease_arms(qpos, t, walk.duration, jm, rest, room, away=away, stature=stature)
     events = []
     for st in walk.steps:
         side = st.side
@@ -191,6 +192,55 @@ ARM_ROOM = (0.35, 0.6)
 CARRY_POSE = {"shoulder_flex": -0.15, "shoulder_abd": 0.12, "elbow": 1.83}
 
 
+#: Forearm pronation (radians) of a hanging arm where there is no room for the swing: the palm
+#: turns towards the thigh and the thumb forward, so the hand stays inside the shoulders.
+TUCK_PRONATION = np.deg2rad(45.0)
+#: Clearance (m) kept between the shoulders and the nearest obstacle by turning the trunk.
+SHOULDER_MARGIN = 0.01
+#: Largest trunk rotation against the pelvis (radians): lumbar (5 deg range) plus thoracic.
+TRUNK_TURN = np.deg2rad(38.0)
+#: Seconds over which the trunk rotation is smoothed (a centred moving average).
+TRUNK_SMOOTH = 0.3
+
+
+def trunk_turn(
+    yaw: np.ndarray,
+    room: np.ndarray,
+    away: np.ndarray,
+    stature: float = 1.75,
+    fps: float = 30.0,
+) -> np.ndarray:
+    """Trunk rotation (radians, + CCW about z; (F,)) that keeps the shoulders clear of the
+    nearest obstacle in narrow places: people turn their shoulders to pass a wall corner.
+
+    Args:
+        yaw: (F,) pelvis yaw, radians.
+        room: (F,) distance from the pelvis centre to the nearest obstacle footprint, metres.
+        away: (F, 2) unit vectors pointing away from that obstacle (the clearance gradient).
+        stature: the humanoid's stature (sets the shoulder width).
+        fps: frame rate (for the smoothing).
+
+    The shoulder line (joint centres ``a`` from the trunk axis plus the upper-arm radius ``r``)
+    reaches ``a |cos d| + r`` towards an obstacle in a direction ``d`` from it; the trunk turns
+    by the least angle that brings this within ``room - SHOULDER_MARGIN``, up to
+    :data:`TRUNK_TURN`. Zero where there is room.
+    """
+    a, r = shoulder_geometry(stature)
+    c = np.clip((room - SHOULDER_MARGIN - r) / a, 0.0, 1.0)
+    need = np.arccos(c)  # least angle between the shoulder line and the obstacle direction
+    gamma = np.arctan2(-away[:, 1], -away[:, 0])  # towards the obstacle
+    d = np.mod(yaw + np.pi / 2 - gamma + np.pi / 2, np.pi) - np.pi / 2  # axis: fold to +-pi/2
+    turn = np.where(d >= 0, 1.0, -1.0) * np.maximum(need - np.abs(d), 0.0)
+    turn = np.clip(turn, -TRUNK_TURN, TRUNK_TURN)
+    k = max(1, round(TRUNK_SMOOTH * fps) | 1)
+    if k > 1 and len(turn) > k:
+        pad = np.pad(turn, k // 2, mode="edge")
+        smooth = np.convolve(pad, np.ones(k) / k, mode="valid")
+        # smoothing must not undercut the turn a frame needs
+        turn = np.where(np.abs(smooth) >= np.abs(turn), smooth, turn)
+    return turn
+
+
 def ease_arms(
     qpos: np.ndarray,
     t: np.ndarray,
@@ -199,17 +249,25 @@ def ease_arms(
     rest: np.ndarray,
     room: np.ndarray | None = None,
     carry: str | None = None,
+    away: np.ndarray | None = None,
+    stature: float = 1.75,
 ) -> np.ndarray:
     """Shape the arm motion of walking frames ``qpos`` (F, nq) in place and return it.
 
     The swing (or, for ``carry`` = "left"/"right", that hand's carrying posture) fades in over
     the first and out over the last :data:`ARM_EASE` seconds, so the arms hang at rest when the
     walker stops, and shrinks where ``room`` (F,) — metres from the pelvis to the nearest
-    obstacle — falls below :data:`ARM_ROOM`.
+    obstacle — falls below :data:`ARM_ROOM`; there the hanging hands turn their thumbs forward
+    (:data:`TUCK_PRONATION`). With ``away`` ((F, 2) unit vectors away from the nearest
+    obstacle) the trunk also turns its shoulders clear of it (:func:`trunk_turn`).
     """
     w = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
+    tight = np.zeros(len(t))
     if room is not None:
-        w = np.minimum(w, np.clip((room - ARM_ROOM[0]) / (ARM_ROOM[1] - ARM_ROOM[0]), 0.0, 1.0))
+        free = np.clip((room - ARM_ROOM[0]) / (ARM_ROOM[1] - ARM_ROOM[0]), 0.0, 1.0)
+        w = np.minimum(w, free)
+        tight = 1.0 - free
+        tight = tight * tight * (3.0 - 2.0 * tight)
     w = w * w * (3.0 - 2.0 * w)  # smoothstep
     for side in "lr":
         for joint in (f"shoulder_{side}_flex", f"shoulder_{side}_abd", f"elbow_{side}"):
@@ -218,16 +276,44 @@ def ease_arms(
             if carry is not None and side == carry[0]:
                 target = np.full_like(target, CARRY_POSE[joint.replace(f"_{side}", "")])
             qpos[:, k] = rest[k] + w * (target - rest[k])
+        if carry is None or side != carry[0]:
+            k = jm.adr(f"forearm_{side}_pron")
+            qpos[:, k] = qpos[:, k] + tight * (TUCK_PRONATION - qpos[:, k])
+    if room is not None and away is not None:
+        yaw = 2.0 * np.arctan2(qpos[:, jm.root + 6], qpos[:, jm.root + 3])
+        fps = 1.0 / float(np.median(np.diff(t))) if len(t) > 1 else 30.0
+        turn = trunk_turn(yaw, room, away, stature, fps)
+        lo, hi = jm.limits("lumbar_rot")
+        lumbar = np.clip(turn, lo, hi)
+        qpos[:, jm.adr("lumbar_rot")] += lumbar
+        qpos[:, jm.adr("thoracic_rot")] += np.clip(turn - lumbar, *jm.limits("thoracic_rot"))
     return qpos
 
 
-def _room(scene, xy: np.ndarray) -> np.ndarray | None:
-    """Room (m) around pelvis positions ``xy`` in ``scene`` (None for an in-memory MjSpec)."""
+def room_and_away(workplace, xy: np.ndarray, h: float = 0.02) -> tuple[np.ndarray, np.ndarray]:
+    """Clearance (m) at pelvis positions ``xy`` (F, 2) and unit vectors away from the nearest
+    obstacle (central differences of the clearance field, step ``h`` metres)."""
+    xy = np.asarray(xy, float)
+    room = workplace.clearance(xy)
+    ex, ey = np.array([h, 0.0]), np.array([0.0, h])
+    g = np.column_stack(
+        [
+            workplace.clearance(xy + ex) - workplace.clearance(xy - ex),
+            workplace.clearance(xy + ey) - workplace.clearance(xy - ey),
+        ]
+    )
+    n = np.linalg.norm(g, axis=1, keepdims=True)
+    return room, np.where(n > 1e-12, g / np.maximum(n, 1e-12), [1.0, 0.0])
+
+
+def _room(scene, xy: np.ndarray) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """Room (m) around pelvis positions ``xy`` in ``scene`` and the directions away from the
+    nearest obstacle (None, None for an in-memory MjSpec)."""
     if isinstance(scene, mujoco.MjSpec):
-        return None
+        return None, None
     from mjwalk.world.workplace import shared_workplace
 
-    return shared_workplace(scene).clearance(xy)
+    return room_and_away(shared_workplace(scene), xy)
 
 
 def _frames_from_legs(model, jm, legs: LegMotion, t, stature, arms, rng) -> np.ndarray:

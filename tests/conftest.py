@@ -11,7 +11,8 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENES = ROOT / "scenes"
-SHARED_DATA = ROOT.parent / "shared" / "data"
+#: ``$MJWALK_SHARED_DATA`` overrides (e.g. when the project is checked out elsewhere).
+SHARED_DATA = Path(os.environ.get("MJWALK_SHARED_DATA", ROOT.parent / "shared" / "data"))
 
 
 @pytest.fixture(scope="session")

@@ -116,6 +116,7 @@ class LegGeometry:
         hip_y: lateral offset of each hip joint centre from the root (left +, right -).
         thigh: hip to knee. shank: knee to ankle. ankle_height: ankle above the sole.
         foot_back, foot_front: heel and toe-tip distance from the ankle along the foot, metres.
+        foot_width: width of the sole (and toes), metres.
     """
 
     hip_y: float
@@ -124,6 +125,11 @@ class LegGeometry:
     ankle_height: float
     foot_back: float
     foot_front: float
+    foot_width: float = 0.0
+
+
+#: Upper-arm capsule radius per metre of stature.
+UPPER_ARM_RADIUS = 0.024
 
 
 def leg_geometry(stature: float = 1.75) -> LegGeometry:
@@ -137,7 +143,14 @@ def leg_geometry(stature: float = 1.75) -> LegGeometry:
         ankle_height=SEG["ankle_height"] * H,
         foot_back=0.25 * fl,
         foot_front=0.75 * fl,
+        foot_width=SEG["foot_width"] * H,
     )
+
+
+def shoulder_geometry(stature: float = 1.75) -> tuple[float, float]:
+    """(shoulder joint centre from the trunk axis, upper-arm capsule radius), metres, of
+    :func:`build_humanoid`: together the half-width of the body at the shoulders."""
+    return 0.5 * SEG["shoulder_width"] * stature, UPPER_ARM_RADIUS * stature
 
 
 def _rad(name: str) -> list[float]:
@@ -279,7 +292,7 @@ def build_humanoid(stature: float = 1.75) -> mujoco.MjSpec:
         geom(
             sh,
             mujoco.mjtGeom.mjGEOM_CAPSULE,
-            [0.024 * H],
+            [UPPER_ARM_RADIUS * H],
             fromto=[0, 0, 0, 0, 0, -ua],
             rgba=cloth,
             name=f"upper_arm_{side}",

@@ -63,6 +63,10 @@ SWING_KEYS = (0.2, 0.4, 0.6, 0.8, 0.9)
 TOE_OFF = 0.2
 #: Pitches smaller than this (degrees) count as a flat foot (no roll, so no drift).
 FLAT_DEG = 2.0
+#: Corrections of a leg whose clipped joints would put the foot below the floor, and the depth
+#: (m) a foot may reach (a flat, slightly inverted sole dips a millimetre or two at its edge).
+FLOOR_ITERATIONS = 10
+FLOOR_TOLERANCE = 2e-3
 #: Smallest knee flexion the IK uses when a leg must stretch (radians): never lock the knee.
 KNEE_MIN = np.deg2rad(2.0)
 
@@ -120,6 +124,94 @@ def winter_reference() -> ReferenceGait:
         knee=np.deg2rad(g["knee"]),
         pitch=np.deg2rad(g["pitch"]),
         source="Winter 1991 (hip, knee); Perry & Burnfield 2010 (foot-floor angle)",
+    )
+
+
+#: Landmarks of a straight-walk gait cycle calibrated on real capture, for :func:`warp_reference`:
+#: per angle, pairs ((cycle %, deg) on :data:`WINTER_GAIT`, (cycle %, deg) in the calibrated gait)
+#: at the gait events and extrema (heel strike, loading-response peak, mid-stance, push-off
+#: minimum, toe-off, swing peak, late swing). Target figures: bandai-walk (Kobayashi et al.
+#: 2023, CC BY-NC 4.0), ``dataset-2_walk_normal_001..003``, left leg, mean of 13 gait cycles
+#: by :func:`gait_cycles` (heel strike = toes-up pitch peak), read off and rounded to the
+#: percent and degree. This actor walks with more knee flexion in stance than Winter's
+#: ensemble (34 vs 19 deg at the loading-response peak, 17 vs 5 deg at mid-stance).
+BANDAI_LANDMARKS = {
+    "hip": [
+        ((0, 30), (0, 22)),
+        ((5, 29), (11, 29)),
+        ((30, 10), (30, 11)),
+        ((55, -9), (57, -10)),
+        ((90, 32), (85, 27)),
+        ((100, 30), (100, 22)),
+    ],
+    "knee": [
+        ((0, 3), (0, 1)),
+        ((15, 19), (18, 34)),
+        ((40, 5), (44, 17)),
+        ((60, 35), (60, 35)),
+        ((75, 63), (75, 70)),
+        ((90, 25), (90, 29)),
+        ((100, 3), (100, 1)),
+    ],
+    "pitch": [
+        ((0, 20), (0, 28)),
+        ((10, 0), (12, 0)),
+        ((40, 0), (40, 0)),
+        ((65, -50), (69, -69)),
+        ((80, -15), (80, -42)),
+        ((100, 20), (100, 28)),
+    ],
+}
+
+
+def warp_reference(
+    landmarks: dict, base: ReferenceGait | None = None, source: str = "", n: int = 101
+) -> ReferenceGait:
+    """A reference gait generated from ``base`` (default :func:`winter_reference`) warped onto
+    landmark figures, so a gait can be calibrated on a few numbers rather than copied.
+
+    Args:
+        landmarks: angle name ("hip", "knee", "pitch") -> increasing list of pairs
+            ``((base cycle %, base deg), (cycle %, deg))``, the first at 0 % and the last at
+            100 %. Time is warped piecewise linearly between the landmarks; between two
+            landmarks the base curve is scaled affinely so its landmark values map onto the
+            targets (the base's shape is kept on every segment).
+        base: the gait whose shapes are warped.
+        source: where the landmark figures come from.
+        n: samples per cycle of the result.
+
+    Returns:
+        the warped :class:`ReferenceGait` (radians).
+    """
+    base = base or _WINTER
+    x = np.linspace(0.0, 100.0, n)
+    out = {}
+    for name in ("hip", "knee", "pitch"):
+        lm = np.asarray(landmarks[name], float)  # (K, 2, 2)
+        src, dst = lm[:, 0], lm[:, 1]
+        if not (np.all(np.diff(dst[:, 0]) > 0) and np.all(np.diff(src[:, 0]) > 0)):
+            raise ValueError(f"warp_reference: {name} landmarks must increase in cycle")
+        v = np.degrees(base(name, np.interp(x, dst[:, 0], src[:, 0]) / 100.0))
+        k = np.clip(np.searchsorted(dst[:, 0], x, side="right") - 1, 0, len(dst) - 2)
+        a0, a1, b0, b1 = src[k, 1], src[k + 1, 1], dst[k, 1], dst[k + 1, 1]
+        same = np.isclose(a1, a0)
+        lin = (x - dst[k, 0]) / (dst[k + 1, 0] - dst[k, 0])
+        scaled = b0 + (v - a0) * (b1 - b0) / np.where(same, 1.0, a1 - a0)
+        out[name] = np.radians(np.where(same, b0 + (v - a0) + (b1 - b0) * lin, scaled))
+    return ReferenceGait(
+        cycle=x / 100.0,
+        hip=out["hip"],
+        knee=out["knee"],
+        pitch=out["pitch"],
+        source=f"{base.source} warped onto {source or 'landmarks'}",
+    )
+
+
+def bandai_reference() -> ReferenceGait:
+    """The Winter reference warped onto :data:`BANDAI_LANDMARKS` (a generated gait calibrated
+    on the figures of the bandai-walk "normal" actor; no capture samples are used)."""
+    return warp_reference(
+        BANDAI_LANDMARKS, source="bandai-walk normal 001-003 landmarks (BANDAI_LANDMARKS)"
     )
 
 
@@ -313,6 +405,47 @@ def leg_ik(
     return out
 
 
+def leg_fk(angles: dict[str, np.ndarray], side: str, geom: LegGeometry):
+    """Forward kinematics of one leg in the pelvis frame (x forward, y left, z up; pelvis
+    upright), the humanoid's joint axes (:func:`~mjwalk.body.humanoid.build_humanoid`).
+
+    Args:
+        angles: joint name -> (N,) angles in radians (hip rotation/flexion/abduction, knee,
+            ankle flexion/inversion of ``side``).
+        side: "l" or "r".
+        geom: the leg lengths.
+
+    Returns:
+        (ankle (N, 3) relative to the hip joint centre in metres, foot rotation (N, 3, 3)).
+    """
+    s = 1.0 if side == "l" else -1.0
+    a = {k: np.asarray(angles[k.format(side)], float) for k in LEG_JOINTS[:-1]}
+    R = _rz(-s * a["hip_{}_rot"]) @ _ry(-a["hip_{}_flex"]) @ _rx(s * a["hip_{}_abd"])
+    knee = R[..., 2] * -geom.thigh
+    R = R @ _ry(a["knee_{}"])
+    ankle = knee + R[..., 2] * -geom.shank
+    R = R @ _ry(-a["ankle_{}_flex"]) @ _rx(-s * a["ankle_{}_inv"])
+    return ankle, R
+
+
+def foot_lowest(angles: dict[str, np.ndarray], side: str, geom: LegGeometry) -> np.ndarray:
+    """(N,) height (m) of the lowest point of the foot's collision boxes (sole and toes, as
+    built by :func:`~mjwalk.body.humanoid.build_humanoid`) above the hip joint centre, from the
+    leg angles (``toe_{side}`` included); add the hip height for the height above the floor."""
+    ankle, R = leg_fk(angles, side, geom)
+    ah, ball, hw = geom.ankle_height, _ball(geom), geom.foot_width / 2
+    corners = np.array(list(itertools.product((0.0, 1.0), (-hw, hw), (0.0, 1.0))))
+    # sole box: x from the heel to the ball, 0.8 ankle heights tall from the sole
+    foot = corners * [ball + geom.foot_back, 1.0, 0.8 * ah] + [-geom.foot_back, 0.0, -ah]
+    # toes box in the toes frame (origin at the ball on the sole, rotated by the toe angle)
+    toes = corners * [geom.foot_front - ball, 1.0, 0.4 * ah]
+    toe = np.asarray(angles[f"toe_{side}"], float)
+    toes_foot = (_ry(-toe)[:, None] @ toes[None, :, :, None])[..., 0] + [ball, 0.0, -ah]
+    z_foot = (R[:, 2, None, :] * foot[None]).sum(-1)
+    z_toes = (R[:, 2, None, :] * toes_foot).sum(-1)
+    return ankle[:, 2] + np.minimum(z_foot.min(1), z_toes.min(1))
+
+
 def _generic(name: str) -> str:
     return "_".join(p for p in name.split("_") if p not in ("l", "r"))
 
@@ -495,9 +628,7 @@ def legs_from_walk(
         else:
             th0, v0 = knee_prev
         v1 = 0.5 * float(ref("knee", 0.5, True))
-        kv = [th0, *(float(ref("knee", 0.5 * p)) for p in STANCE_KEYS), th1]
-        knee_sp = CubicSpline([0.0, *STANCE_KEYS, 1.0], kv, bc_type=((1, v0), (1, v1)))
-        knee_st = np.clip(knee_sp(phi), KNEE_MIN, np.deg2rad(80))
+        knee_st = np.clip(_displaced(ref, "knee", phi, th0, v0, th1, v1), KNEE_MIN, np.deg2rad(80))
         z_flat = height_for_knee(idx, st, ankle[st][idx], knee_st)
         # --- swing foot (A9)
         pos, p_sw, toe_sw, yw = _swing(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
@@ -534,20 +665,43 @@ def legs_from_walk(
         sgn = 1.0 if s_ == "l" else -1.0
         hip = root + sgn * geom.hip_y * np.column_stack([-np.sin(yaw), np.cos(yaw), np.zeros(n)])
         yrel = np.angle(np.exp(1j * (fyaw[s_] - yaw)))
-        # a grounded foot whose ankle would dorsiflex past its range rolls further onto its
-        # ball instead (heel rise), so the sole keeps its place on the floor
+        # a grounded foot whose ankle would dorsiflex past its range pitches down instead:
+        # a toes-up foot rolls down about its heel, a flat one onto its ball (heel rise), so
+        # the sole keeps its place on the floor (clipping the ankle would sink the toes)
         for _ in range(8):
             rel = (_rz(-yaw) @ (ankle[s_] - hip)[..., None])[..., 0]
             dorsi = leg_ik(rel, yrel, pitch[s_], s_, geom, clip=False)[f"ankle_{s_}_flex"]
-            bad = np.flatnonzero(ground[s_] & (dorsi > dorsi_max) & (pitch[s_] <= 0))
+            bad = np.flatnonzero(ground[s_] & (dorsi > dorsi_max))
             if not len(bad):
                 break
             pitch[s_][bad] -= 1.2 * (dorsi[bad] - dorsi_max)
-            toe[s_][bad] = -pitch[s_][bad]
+            toe[s_][bad] = -np.minimum(pitch[s_][bad], 0.0)
             for j in bad:
                 ankle[s_][j] = _pivot(print_[s_][j], pitch[s_][j], geom)[0]
-        rel = (_rz(-yaw) @ (ankle[s_] - hip)[..., None])[..., 0]
-        angles.update(leg_ik(rel, yrel, pitch[s_], s_, geom))
+        # where the joint ranges still keep the foot from its target (a trailing foot too far
+        # behind for the hip's extension, say), the clipped leg would put the sole below the
+        # floor: lift the ankle target by the depth (or, where the ankle is at its
+        # dorsiflexion limit and lifting would tilt the toes down further, pitch the foot
+        # down) and solve again, so the foot stays above -FLOOR_TOLERANCE by construction
+        for _ in range(FLOOR_ITERATIONS):
+            rel = (_rz(-yaw) @ (ankle[s_] - hip)[..., None])[..., 0]
+            raw = leg_ik(rel, yrel, pitch[s_], s_, geom, clip=False)
+            ang = leg_ik(rel, yrel, pitch[s_], s_, geom)
+            ang[f"toe_{s_}"] = np.clip(toe[s_], *np.deg2rad(ROM_DEG["toe"]))
+            low = hip[:, 2] + foot_lowest(ang, s_, geom)
+            bad = low < -FLOOR_TOLERANCE
+            if not bad.any():
+                break
+            excess = raw[f"ankle_{s_}_flex"] - dorsi_max
+            tilt = bad & (excess > 0)
+            pitch[s_][tilt] -= 1.2 * excess[tilt]
+            toe[s_][tilt] = -np.minimum(pitch[s_][tilt], 0.0)
+            for j in np.flatnonzero(tilt & ground[s_]):
+                ankle[s_][j] = _pivot(print_[s_][j], pitch[s_][j], geom)[0]
+            lift = bad & ~tilt
+            ankle[s_][lift, 2] -= low[lift]
+        angles.update(ang)
+        angles.pop(f"toe_{s_}")
         lo, hi = np.deg2rad(ROM_DEG["toe"])
         angles[f"toe_{s_}"] = np.clip(toe[s_], lo, hi)
     return LegMotion(
@@ -561,6 +715,25 @@ def legs_from_walk(
         phase=phase,
         meta={"stature": stature, "reference": ref.source},
     )
+
+
+def _displaced(ref: ReferenceGait, name: str, phi, th0, v0, th1, v1) -> np.ndarray:
+    """Stance-leg angle ``name`` (radians) at step phases ``phi``: the reference's own curve
+    over cycle 0-50 % plus a cubic-spline displacement that is zero at the key frames
+    :data:`STANCE_KEYS` (so the angle coincides with the reference key-frame angles there) and
+    meets the current posture's angle ``th0`` / velocity ``v0`` at ``phi = 0`` and the target
+    posture's ``th1`` / ``v1`` at ``phi = 1`` (velocities per unit phase).
+
+    Between the keys and the boundaries the result keeps the reference's shape (its loading
+    response, say) instead of the bare cubic through five points, which cuts the reference's
+    curves short (motion warping, Witkin & Popovic 1995, applied to the paper's spline)."""
+    r0, r1 = float(ref(name, 0.0)), float(ref(name, 0.5))
+    d0 = v0 - 0.5 * float(ref(name, 0.0, True))
+    d1 = v1 - 0.5 * float(ref(name, 0.5, True))
+    sp = CubicSpline(
+        [0.0, *STANCE_KEYS, 1.0], [th0 - r0, 0.0, 0.0, 0.0, th1 - r1], bc_type=((1, d0), (1, d1))
+    )
+    return ref(name, 0.5 * np.asarray(phi, float)) + sp(phi)
 
 
 def _swing(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, land_p):
@@ -599,29 +772,50 @@ def _swing(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, 
         p_to = p[je[::-1]]
         a0 = pos[je[::-1]]
         v0 = (a0[0] - a0[1]) / h
-        knots, pts, pit = [float(phi[je[1]])], [a0[0]], [p_to[0]]
+        # the reference swing: the reference hip/knee angles of each gait-cycle instant placed
+        # at the current hip (forward progress and height), along the line from the lift-off
+        # to the landing footprint
+        jl = np.flatnonzero(late)
+        c = 0.5 + 0.5 * phi[jl]
+        hf, kf = ref("hip", c), ref("knee", c)
+        fwd = L1 * np.sin(hf) + L2 * np.sin(hf - kf)
+        down = L1 * np.cos(hf) + L2 * np.cos(hf - kf)
+        heading = np.column_stack([np.cos(yaw[jl]), np.sin(yaw[jl])])
+        target = hip_pos(idx[jl], sw) + fwd[:, None] * heading
         seg = land[:2] - lift[:2]
-        seg_len2 = max(float(seg @ seg), 1e-9)
+        s = np.clip((target - lift[:2]) @ seg / max(float(seg @ seg), 1e-9), 0.0, 1.0)
+        chord = lift[:2] + s[:, None] * seg
+        # sideways, the foot swings under its hip: where the step turns, the hip's track bends
+        # away from the chord (and from an inner corner the pelvis was planned clear of)
+        nrm = np.array([-seg[1], seg[0]]) / max(float(np.linalg.norm(seg)), 1e-9)
+        off = (hip_pos(idx[jl], sw) - chord) @ nrm
+        xy = chord + (off * np.sin(np.pi * s))[:, None] * nrm
+        ref_pos = np.column_stack([xy, z_hip[jl] - down])
+        ref_pit = np.clip(ref("pitch", c), np.deg2rad(-70), np.deg2rad(30))
+        # key positions at SWING_KEYS: the reference, lifted where the ankle would be lower
+        # than standing height; the reference shape is kept between the keys and the
+        # boundaries (lift-off state at toe-off, the landing pose with zero velocity) by a
+        # cubic-spline displacement (as the stance angles, :func:`_displaced`)
+        knots, dpos, dpit = [float(phi[je[1]])], [a0[0]], [p_to[0]]
         for ph in SWING_KEYS[1:]:
-            j = int(np.argmin(np.abs(phi - ph)))
-            c = 0.5 + 0.5 * ph
-            hf, kf = float(ref("hip", c)), float(ref("knee", c))
-            fwd = L1 * np.sin(hf) + L2 * np.sin(hf - kf)
-            down = L1 * np.cos(hf) + L2 * np.cos(hf - kf)
-            heading = np.array([np.cos(yaw[j]), np.sin(yaw[j])])
-            target = hip_pos(idx[j : j + 1], sw)[0] + fwd * heading
-            s = np.clip((target - lift[:2]) @ seg / seg_len2, 0.0, 1.0)
-            zk = max(z_hip[j] - down, ah)
-            knots.append(ph)
-            pts.append(np.array([*(lift[:2] + s * seg), zk]))
-            pit.append(float(np.clip(ref("pitch", c), np.deg2rad(-70), np.deg2rad(30))))
+            m = int(np.argmin(np.abs(phi[jl] - ph)))
+            knots.append(float(phi[jl[m]]))
+            key = ref_pos[m].copy()
+            key[2] = max(key[2], ah)
+            dpos.append(key)
+            dpit.append(ref_pit[m])
         knots.append(1.0)
-        pts.append(_pivot(land, land_p, geom)[0])
-        pit.append(land_p)
-        sp = CubicSpline(knots, np.array(pts), bc_type=((1, v0), (1, np.zeros(3))))
+        dpos.append(_pivot(land, land_p, geom)[0])
+        dpit.append(land_p)
+        # the reference at the knots (toe-off and landing extrapolate the first/last sample)
+        rk = np.column_stack([np.interp(knots, phi[jl], ref_pos[:, k]) for k in range(3)])
+        rp = np.interp(knots, phi[jl], ref_pit)
+        dr = np.gradient(ref_pos, phi[jl], axis=0) if len(jl) > 1 else np.zeros((1, 3))
+        dq = np.gradient(ref_pit, phi[jl]) if len(jl) > 1 else np.zeros(1)
+        sp = CubicSpline(knots, np.array(dpos) - rk, bc_type=((1, v0 - dr[0]), (1, -dr[-1])))
         dp0 = (p_to[0] - p_to[1]) / h
-        spp = CubicSpline(knots, np.array(pit), bc_type=((1, dp0), (1, 0.0)))
-        pos[late], p[late] = sp(phi[late]), spp(phi[late])
+        spp = CubicSpline(knots, np.array(dpit) - rp, bc_type=((1, dp0 - dq[0]), (1, -dq[-1])))
+        pos[late], p[late] = ref_pos + sp(phi[late]), ref_pit + spp(phi[late])
         # keep heel and toe tip off the floor (lift the ankle where they would dip)
         for lever in (-geom.foot_back, geom.foot_front):
             tip_z = pos[late, 2] + lever * np.sin(p[late]) - ah * np.cos(p[late])

@@ -35,7 +35,14 @@ from mjwalk.cycle.types import (
 from mjwalk.errors import CycleSpecError, MjwalkError
 from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
-from mjwalk.playback import Timeline, _frames_from_legs, collision_report, ease_arms, yaw_quat
+from mjwalk.playback import (
+    Timeline,
+    _frames_from_legs,
+    collision_report,
+    ease_arms,
+    room_and_away,
+    yaw_quat,
+)
 from mjwalk.world.workplace import Workplace, shared_workplace
 
 #: Turning speed on the spot (rad/s) and shortest turn (s).
@@ -167,9 +174,9 @@ def _walk_frames(ctx, walk, fps, carry: str | None = None) -> np.ndarray:
         t = np.append(t, walk.duration)
     frames = _frames_from_legs(ctx.model, ctx.jointmap, legs, t, ctx.spec.stature, "swing", None)
     jm = ctx.jointmap
-    room = ctx.workplace.clearance(frames[:, jm.root : jm.root + 2])
+    room, away = room_and_away(ctx.workplace, frames[:, jm.root : jm.root + 2])
     rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
-    ease_arms(frames, t, walk.duration, jm, rest, room, carry)
+    ease_arms(frames, t, walk.duration, jm, rest, room, carry, away, ctx.spec.stature)
     return frames
 
 
