@@ -469,9 +469,10 @@ def _pivot(foot: np.ndarray, pitch, geom: LegGeometry) -> np.ndarray:
     lever = np.where(pitch <= 0, _ball(geom), -geom.foot_back)
     fwd = np.array([np.cos(foot[2]), np.sin(foot[2]), 0.0])
     pivot = np.array([foot[0], foot[1], 0.0]) + lever[:, None] * fwd
-    local = np.column_stack([lever, np.zeros_like(pitch), np.full_like(pitch, -ah)])
-    R = _rz(np.full_like(pitch, foot[2])) @ _ry(-pitch)
-    return pivot - (R @ local[..., None])[..., 0]
+    # R_z(yaw) R_y(-pitch) (lever, 0, -ah), written out (this runs in inner loops)
+    c, s = np.cos(pitch), np.sin(pitch)
+    along = lever * c + ah * s
+    return pivot - np.column_stack([along * fwd[0], along * fwd[1], lever * s - ah * c])
 
 
 def _soft_flat(p: np.ndarray) -> np.ndarray:
@@ -480,28 +481,33 @@ def _soft_flat(p: np.ndarray) -> np.ndarray:
     return np.sign(p) * np.maximum(np.abs(p) - t, 0.0)
 
 
-def _heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472) -> float:
+def _heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
     """Foot pitch <= ``p0`` (radians, rolled about the ball) at which the leg with ``knee``
     flexion reaches from the ankle to ``hip`` (3,); ``p0`` if it reaches already, ``lo`` if it
-    cannot even then. Bisection: raising the heel brings the ankle up towards the hip."""
+    cannot even then. Bisection: raising the heel brings the ankle up towards the hip.
+
+    Vectorized: ``hip`` (n, 3), ``knee`` (n,) and ``p0`` (n,) give (n,) pitches (one bisection
+    for all samples); scalar ``knee`` and ``p0`` with ``hip`` (3,) give a float."""
+    scalar = np.ndim(p0) == 0
+    hip = np.atleast_2d(np.asarray(hip, float))
+    p0 = np.atleast_1d(np.asarray(p0, float))
+    knee = np.broadcast_to(np.asarray(knee, float), p0.shape)
     L1, L2 = geom.thigh, geom.shank
     d = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(knee))
 
     def gap(p):
-        return float(np.linalg.norm(hip - _pivot(foot, p, geom)[0])) - d
+        return np.linalg.norm(hip - _pivot(foot, p, geom), axis=-1) - d
 
-    if gap(p0) <= 0:
-        return p0
-    if gap(lo) > 0:
-        return lo
-    a, b = lo, p0  # gap(a) <= 0 < gap(b)
+    reach0 = gap(p0) <= 0
+    never = gap(np.full_like(p0, lo)) > 0
+    a, b = np.full_like(p0, lo), p0.copy()  # gap(a) <= 0 < gap(b) where bisected
     for _ in range(40):
         m = 0.5 * (a + b)
-        if gap(m) > 0:
-            b = m
-        else:
-            a = m
-    return 0.5 * (a + b)
+        out = gap(m) > 0
+        b = np.where(out, m, b)
+        a = np.where(out, a, m)
+    p = np.where(reach0, p0, np.where(never, lo, 0.5 * (a + b)))
+    return float(p[0]) if scalar else p
 
 
 def _foot_frames(walk: WalkPath) -> list[dict]:
@@ -760,10 +766,10 @@ def _swing(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, 
     p[early] = roll_pitch(phi[early])
     if not fr["first"]:
         # pre-swing: the knee follows the reference; the heel rises as far as that needs
-        for j in np.flatnonzero(early):
-            hip = hip_pos(idx[j : j + 1], sw, z_hip[j : j + 1])[0]
-            knee = max(float(ref("knee", 0.5 + 0.5 * phi[j])), float(KNEE_MIN))
-            p[j] = _heel_rise(lift, hip, knee, p[j], geom)
+        je = np.flatnonzero(early)
+        hip = hip_pos(idx[je], sw, z_hip[je])
+        knee = np.maximum(ref("knee", 0.5 + 0.5 * phi[je]), float(KNEE_MIN))
+        p[je] = _heel_rise(lift, hip, knee, p[je], geom)
     pos[early] = _pivot(lift, p[early], geom)
     late = ~early
     if late.any():
