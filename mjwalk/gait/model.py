@@ -14,9 +14,12 @@ kernel ``C·RBF(per-dimension length scales) + White``), trained on every captur
 *except those into a gait termination* (``Step.meta["termination"]``: the closing step of a
 take that ends standing). No step follows a termination, so a forward-sampled chain that drew
 one would stop walking mid-way and wander among short steps; the planner's walks end in the
-goal area, never with a modelled stop. (On the default corpus, 9 % of the transitions end in a
-termination; trained on them, 41 % of the steps of 40-step chains were shorter than 0.45 m
-against 1 % of the corpus's steady-state steps.) An exact GP on ~10 000 pairs per direction
+goal area. (On the default corpus, 9 % of the transitions end in a termination; trained on
+them, 41 % of the steps of 40-step chains were shorter than 0.45 m against 1 % of the corpus's
+steady-state steps.) Terminations are a regime of their own: two more GPs of the same kind, the
+*stop GPs*, learn the closing step from its predecessor, and :meth:`StepModel.sample_stop` draws
+it; the planner offers such closing steps near the goal (a short walk must be able to stop
+short of a full stride). An exact GP on ~10 000 pairs per direction
 needs 10 000² matrices, so the scheme is (Rasmussen & Williams 2006, §8.3):
 
 1. hyper-parameters (C, length scales, noise σ²) by maximizing the log-marginal likelihood
@@ -67,7 +70,10 @@ from mjwalk.gait.step import Step
 
 MODEL_FORMAT = "mjwalk.stepmodel"
 #: Bump whenever the saved arrays or their meaning change.
-MODEL_VERSION = 2
+MODEL_VERSION = 3
+
+#: Fewest transitions into a gait termination, per side, for which a stop GP is fitted.
+MIN_STOP_PAIRS = 20
 
 _SIDES = ("left", "right")
 
@@ -291,6 +297,7 @@ class StepModel:
     kde_factor: dict[str, float]  # side -> Scott factor used
     gp: dict[str, TransitionGP]  # predecessor side -> GP to the other side
     info: dict = field(default_factory=dict)
+    stop_gp: dict[str, TransitionGP] = field(default_factory=dict)  # ... to a closing step
 
     def __post_init__(self) -> None:
         self._kde = {
@@ -366,6 +373,7 @@ class StepModel:
         prev, nxt = transition_pairs(steps)
         # No step follows a gait termination: transitions into one are not modelled (module doc).
         term = np.array([bool(steps[j].meta.get("termination")) for j in nxt], dtype=bool)
+        stop_prev, stop_nxt = prev[term], nxt[term]
         prev, nxt = prev[~term], nxt[~term]
         gps, n_trans = {}, {}
         for s in _SIDES:
@@ -384,18 +392,45 @@ class StepModel:
                 progress,
                 f"GP {s}->{_other(s)}: {n_trans[s]} pairs, {time.perf_counter() - t1:.1f} s",
             )
+        # ... they are their own regime: a stop GP per side, drawn by sample_stop (module doc)
+        stop_gps, n_stop = {}, {}
+        for s in _SIDES:
+            sel = sides[stop_prev] == s
+            n_stop[s] = int(sel.sum())
+            if n_stop[s] < MIN_STOP_PAIRS:
+                continue
+            t1 = time.perf_counter()
+            stop_gps[s] = TransitionGP.fit(
+                z[stop_prev[sel]],
+                z[stop_nxt[sel]],
+                rng=rng,
+                n_hyper=n_hyper,
+                n_inducing=min(n_inducing, max(5, n_stop[s] // 4)),
+            )
+            _log(
+                progress,
+                f"stop GP {s}->{_other(s)}: {n_stop[s]} pairs, {time.perf_counter() - t1:.1f} s",
+            )
         info = {
             "n_steps": len(steps),
             "n_takes": len(first),
             "n_transitions": n_trans,
             "n_terminations_excluded": int(term.sum()),
+            "n_stop_transitions": n_stop,
             "kde": kde_source,
             "seed": seed,
             "fit_seconds": round(time.perf_counter() - t0, 3),
             "train_length_mean": float(np.mean(np.hypot(raw[:, 8], raw[:, 9]))),
             "train_duration_mean": float(np.mean(raw[:, 15])),
         }
-        return cls(features=feats, kde_data=kde_data, kde_factor=kde_factor, gp=gps, info=info)
+        return cls(
+            features=feats,
+            kde_data=kde_data,
+            kde_factor=kde_factor,
+            gp=gps,
+            info=info,
+            stop_gp=stop_gps,
+        )
 
     # -- sampling ----------------------------------------------------------------------------
 
@@ -433,22 +468,42 @@ class StepModel:
     def sample_next(self, prev: StepBatch, n: int, rng: np.random.Generator) -> StepBatch:
         """``n`` successors of every step in ``prev`` (rows i·n .. i·n+n-1 follow ``prev[i]``).
 
-        Successors swing the other foot. Vectorized over predecessors.
+        Successors swing the other foot and keep walking. Vectorized over predecessors.
         """
+        return self._sample(self.gp, prev, n, rng, "sample_next")
+
+    @property
+    def can_stop(self) -> bool:
+        """Whether the model has a stop GP for both sides (see :meth:`sample_stop`)."""
+        return all(s in self.stop_gp for s in _SIDES)
+
+    def sample_stop(self, prev: StepBatch, n: int, rng: np.random.Generator) -> StepBatch:
+        """``n`` closing steps after every step in ``prev``: the step that brings the walk to a
+        stand (gait termination, usually shorter and slower), from the stop GPs. Same layout
+        as :meth:`sample_next`. Raises MjwalkError when the model has none (:attr:`can_stop`:
+        the training data had fewer than :data:`MIN_STOP_PAIRS` terminations per side)."""
+        if not self.can_stop:
+            raise MjwalkError(
+                "sample_stop: this step model has no stop GPs (its training data held fewer "
+                f"than {MIN_STOP_PAIRS} gait terminations per side)"
+            )
+        return self._sample(self.stop_gp, prev, n, rng, "sample_stop")
+
+    def _sample(self, gps, prev: StepBatch, n: int, rng, who: str) -> StepBatch:
         p = len(prev)
         d = self.n_dims
         x = prev.features
         if x.shape != (p, d):
-            raise MjwalkError(f"sample_next: predecessor features {x.shape}, expected ({p}, {d})")
+            raise MjwalkError(f"{who}: predecessor features {x.shape}, expected ({p}, {d})")
         is_left = prev.side == "left"
         if is_left.all() or not is_left.any():
             s = "left" if p and is_left[0] else "right"
-            z = self.gp[s].sample(x, n, rng).reshape(p * n, d)
+            z = gps[s].sample(x, n, rng).reshape(p * n, d)
             side = np.full(p * n, _other(s), dtype="<U5")
         else:
             z = np.empty((p, n, d))
             for s, mask in (("left", is_left), ("right", ~is_left)):
-                z[mask] = self.gp[s].sample(x[mask], n, rng)
+                z[mask] = gps[s].sample(x[mask], n, rng)
             z = z.reshape(p * n, d)
             side = np.repeat(np.where(is_left, "right", "left"), n)
         return self.features.decode(z, side)
@@ -484,6 +539,10 @@ class StepModel:
                 }
                 for s, g in self.gp.items()
             },
+            stop_kernels={
+                f"{s}->{_other(s)}": {"n_pairs": g.n_pairs, "n_inducing": int(g.inducing.shape[0])}
+                for s, g in self.stop_gp.items()
+            },
         )
         return out
 
@@ -493,10 +552,13 @@ class StepModel:
         for s in _SIDES:
             arrays[f"kde_{s}"] = self.kde_data[s]
             arrays.update(self.gp[s].arrays(f"gp_{s}_"))
+        for s, g in self.stop_gp.items():
+            arrays.update(g.arrays(f"stop_{s}_"))
         header = {
             "format": MODEL_FORMAT,
             "version": MODEL_VERSION,
             "kde_factor": self.kde_factor,
+            "stop_sides": sorted(self.stop_gp),
             "info": self.info,
         }
         save_npz(path, header, arrays)
@@ -520,6 +582,11 @@ class StepModel:
                 kde_factor={s: float(header["kde_factor"][s]) for s in _SIDES},
                 gp={s: TransitionGP.from_arrays(data, f"gp_{s}_") for s in _SIDES},
                 info=dict(header.get("info", {})),
+                stop_gp={
+                    s: TransitionGP.from_arrays(data, f"stop_{s}_")
+                    for s in header.get("stop_sides", [])
+                    if s in _SIDES
+                },
             )
             _check_shapes(model)
         except ModelFileError:
@@ -540,8 +607,7 @@ def _check_shapes(model: StepModel) -> None:
         or f.raw_mean.shape != (f.components.shape[1],)
     ):
         raise ValueError("feature arrays have inconsistent shapes")
-    for s in _SIDES:
-        g = model.gp[s]
+    for s, g in [*model.gp.items(), *model.stop_gp.items()]:
         m = g.inducing.shape[0]
         if (
             g.inducing.shape != (m, d)
