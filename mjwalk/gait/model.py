@@ -398,7 +398,7 @@ class StepModel:
         is_left = prev.side == "left"
         if is_left.all() or not is_left.any():
             s = "left" if p and is_left[0] else "right"
-            z = self.gp[s].sample(x, n, rng).reshape(p * n, d)
+            z = self.sample_next_features(x, s, n, rng)
             side = np.full(p * n, _other(s), dtype="<U5")
         else:
             z = np.empty((p, n, d))
@@ -407,6 +407,15 @@ class StepModel:
             z = z.reshape(p * n, d)
             side = np.repeat(np.where(is_left, "right", "left"), n)
         return self.features.decode(z, side)
+
+    def sample_next_features(
+        self, x: np.ndarray, side: str, n: int, rng: np.random.Generator
+    ) -> np.ndarray:
+        """The inner routine of :meth:`sample_next`, without decoding: (p·n, d) standardized
+        features of ``n`` successors of each of the predecessors ``x`` (p, d), all of whose
+        swing foot is ``side`` (rows i·n .. i·n+n-1 follow ``x[i]``; same draws as
+        :meth:`sample_next`). For callers that decode only some successors (the planner)."""
+        return self.gp[side].sample(x, n, rng).reshape(len(x) * n, self.n_dims)
 
     def sample_chain(
         self, n_steps: int, rng: np.random.Generator, side: str | None = None

@@ -47,6 +47,7 @@ class GoalDistance:
 
     def __post_init__(self) -> None:
         self._excess = grid_excess(tuple(self.grid.offsets))
+        self._scaled = (self.cells / self._excess).ravel()  # flat, for one gather per lookup
 
     def reachable(self, xy: np.ndarray) -> bool:
         j, i = self.grid.index(np.asarray(xy, dtype=float))
@@ -59,15 +60,17 @@ class GoalDistance:
         the worst 8-connected excess, minus the point's offset from its cell centre).
         """
         xy = np.asarray(xy, dtype=float)
+        return self.at(xy[..., 0], xy[..., 1])
+
+    def at(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """:meth:`__call__` at points with coordinates ``x`` and ``y`` (arrays of one shape)."""
         g = self.grid
         ny, nx = g.free.shape
-        fi = np.rint((xy[..., 0] - g.x0) / g.cell)
-        fj = np.rint((xy[..., 1] - g.y0) / g.cell)
-        i = np.clip(fi, 0, nx - 1).astype(np.intp)
-        j = np.clip(fj, 0, ny - 1).astype(np.intp)
-        offset = np.hypot(xy[..., 0] - (g.x0 + i * g.cell), xy[..., 1] - (g.y0 + j * g.cell))
-        grid_bound = self.cells[j, i] / self._excess - offset
-        euclid = np.hypot(xy[..., 0] - self.goal[0], xy[..., 1] - self.goal[1])
+        i = np.clip(np.rint((x - g.x0) / g.cell), 0, nx - 1).astype(np.intp)
+        j = np.clip(np.rint((y - g.y0) / g.cell), 0, ny - 1).astype(np.intp)
+        offset = np.hypot(x - (g.x0 + i * g.cell), y - (g.y0 + j * g.cell))
+        grid_bound = self._scaled[j * nx + i] - offset
+        euclid = np.hypot(x - self.goal[0], y - self.goal[1])
         return np.maximum(euclid, grid_bound)
 
 

@@ -27,7 +27,6 @@ from __future__ import annotations
 import heapq
 import math
 import time
-from dataclasses import dataclass
 
 import numpy as np
 
@@ -70,45 +69,12 @@ class _Exhausted(PlanningError):
     """The open list ran dry (all sampled continuations blocked): worth a fresh search."""
 
 
-@dataclass
-class _Node:
-    parent: int
-    batch: int  # index into the search's list of StepBatches (-1: the start node)
-    row: int
-    x: float
-    y: float
-    heading: float  # world yaw of the pelvis at the end of the step (radians from +x)
-    g: float
-    foot: np.ndarray | None = None  # world x, y of the foot this step landed (None: start)
-
-
 def _to_world(px, py, heading, local: np.ndarray) -> np.ndarray:
     """Local step coordinates (x right, y forward) -> world, for a frame at (px, py) heading
     ``heading`` (radians from +x). ``local`` (..., 2); px, py, heading broadcast against it."""
     s, c = np.sin(heading), np.cos(heading)
     x, y = local[..., 0], local[..., 1]
     return np.stack([px + x * s + y * c, py - x * c + y * s], axis=-1)
-
-
-def _rotate(batch: StepBatch, angle: np.ndarray) -> StepBatch:
-    """The steps of ``batch`` turned by ``angle`` (n,) radians about their start (CCW): the
-    walker turns on the spot before stepping off."""
-    s, c = np.sin(angle)[:, None], np.cos(angle)[:, None]
-
-    def rot(xy):
-        x, y = xy[..., 0], xy[..., 1]
-        return np.stack([c * x - s * y, s * x + c * y], axis=-1)
-
-    out = batch.take(slice(None))
-    out.landmarks = rot(batch.landmarks)
-    out.yaw_landmarks = batch.yaw_landmarks + angle[:, None]
-    out.yaw_landmarks[:, 0] = angle
-    for name in ("footprint", "stance"):
-        arr = getattr(batch, name).copy()
-        arr[:, :2] = rot(arr[:, None, :2])[:, 0]
-        arr[:, 2] += angle
-        setattr(out, name, arr)
-    return out
 
 
 def _parse_pose(workplace: Workplace, where) -> tuple[np.ndarray, float | None]:
@@ -121,6 +87,41 @@ def _parse_pose(workplace: Workplace, where) -> tuple[np.ndarray, float | None]:
         if arr.size == 3:
             return arr[:2].copy(), float(arr[2])
     return workplace.point(where), None
+
+
+class _Decoder:
+    """What the search needs of a step, as one affine map of its standardized features z (d,).
+
+    ``z @ matrix + offset`` is a complex row (m + 2,) in the step's local frame (x right,
+    y forward; x + iy, metres): the pelvis at m samples evenly spaced in time (sample 0 is the
+    start, exactly 0; sample m-1 the end), the landing ankle, and (landing foot yaw +
+    i · end pelvis yaw) in radians relative to the start heading. Decoding features and
+    evaluating the landmark spline are both affine (see :mod:`mjwalk.gait.features`), so the
+    map is read off the model's own decoder at z = 0 and the unit vectors, then checked on
+    random features: a model whose decoding is not affine is refused, not mis-planned.
+    """
+
+    def __init__(self, model, m: int):
+        d = model.n_dims
+        basis = np.vstack([np.zeros(d), np.eye(d)])
+        cols = self._columns(model.decode(basis, "left"), m)
+        self.offset = cols[0]
+        self.matrix = np.ascontiguousarray(cols[1:] - cols[0])
+        z = np.random.default_rng(0).standard_normal((16, d)) * 3.0
+        ref = self._columns(model.decode(z, "left"), m)
+        if not np.allclose(z @ self.matrix + self.offset, ref, rtol=0.0, atol=1e-9):
+            raise PlanningError("the step model's decoding is not affine in its features")
+
+    @staticmethod
+    def _columns(batch: StepBatch, m: int) -> np.ndarray:
+        local, _ = batch.resample(m)
+        return np.column_stack(
+            [
+                local[..., 0] + 1j * local[..., 1],
+                batch.footprint[:, 0] + 1j * batch.footprint[:, 1],
+                batch.footprint[:, 2] + 1j * batch.end_yaw,
+            ]
+        )
 
 
 class HybridPlanner:
@@ -183,6 +184,17 @@ class HybridPlanner:
             grid = occupancy_grid(workplace, cell, radius, MOVES_16)
         self.grid = grid
         self.distance: GoalDistance = goal_distance(grid, self.goal, goal_tolerance)
+        self._walk = workplace.walk_field()
+        # per checked point of a successor: m pelvis samples, the landing ankle and its toes
+        self._thresholds = np.array(
+            [radius + SAFETY_MARGIN] * samples_per_step + [FOOT_CLEARANCE] * 2
+        )
+        self._dec: _Decoder | None = None
+
+    def _decoder(self) -> _Decoder:
+        if self._dec is None:
+            self._dec = _Decoder(self.model, self.samples_per_step)
+        return self._dec
 
     # -- helpers ---------------------------------------------------------------------------
 
@@ -195,12 +207,6 @@ class HybridPlanner:
             return self.distance(xy)
         return np.hypot(xy[..., 0] - self.goal[0], xy[..., 1] - self.goal[1])
 
-    def cell_key(self, x: float, y: float, heading: float) -> tuple[int, int, int]:
-        i = math.floor((x - self.grid.x0) / self.cell + 0.5)
-        j = math.floor((y - self.grid.y0) / self.cell + 0.5)
-        b = math.floor((heading % (2 * math.pi)) / (2 * math.pi) * self.heading_bins)
-        return i, j, b % self.heading_bins
-
     def default_heading(self, xy: np.ndarray) -> float:
         """Direction in which the obstacle-aware distance to the goal falls fastest (radians)."""
         angles = np.linspace(-math.pi, math.pi, 72, endpoint=False)
@@ -209,12 +215,13 @@ class HybridPlanner:
         cost = self.distance(probe) + np.where(free, 0.0, 1e3)
         return float(angles[int(np.argmin(cost))])
 
-    def _in_goal(self, node: _Node) -> bool:
-        if math.hypot(node.x - self.goal[0], node.y - self.goal[1]) > self.tolerance:
+    def _in_goal(self, p: complex, heading: float) -> bool:
+        """Whether a node at world x + iy ``p`` facing ``heading`` (radians) ends the walk."""
+        if abs(p - complex(self.goal[0], self.goal[1])) > self.tolerance:
             return False
         if self.goal_yaw is None:
             return True
-        diff = (node.heading - self.goal_yaw + math.pi) % (2 * math.pi) - math.pi
+        diff = (heading - self.goal_yaw + math.pi) % (2 * math.pi) - math.pi
         return abs(diff) <= self.goal_yaw_tolerance
 
     # -- search ----------------------------------------------------------------------------
@@ -226,6 +233,7 @@ class HybridPlanner:
         then in tight places), the search starts over with fresh samples, up to ``attempts``
         times in all; a spent expansion budget ends the planning at once.
         """
+        t0 = time.perf_counter()
         for attempt in range(self.attempts):
             try:
                 path = self._plan_once(start, rng)
@@ -236,11 +244,11 @@ class HybridPlanner:
                     ) from None
                 continue
             path.meta["attempts"] = attempt + 1
+            path.meta["seconds"] = time.perf_counter() - t0  # all searches, not the last one
             return path
         raise AssertionError("unreachable")  # pragma: no cover
 
     def _plan_once(self, start, rng: np.random.Generator) -> WalkPath:
-        t0 = time.perf_counter()
         start_xy, start_yaw = _parse_pose(self.workplace, start)
         check_endpoint(self.workplace, start_xy, self.radius, "start")
         if not self.distance.reachable(start_xy):
@@ -252,35 +260,55 @@ class HybridPlanner:
         free_heading = start_yaw is None
         if free_heading:
             start_yaw = self.default_heading(start_xy)
-        nodes = [_Node(-1, -1, -1, float(start_xy[0]), float(start_xy[1]), start_yaw, 0.0)]
-        batches: list[StepBatch] = []
-        worlds: list[np.ndarray] = []
-        heap = [(float(self.h(start_xy)), 0, 0)]
+        dec = self._decoder()
+        m = self.samples_per_step
+        q = max(2, m // 4)  # samples of a step's first quarter (the foot behind lifts off)
+        walk = self._walk
+        thr = self._thresholds
+        gd = self.distance
+        x0, y0, cell, bins = self.grid.x0, self.grid.y0, self.cell, self.heading_bins
+        dijkstra = self.heuristic == "dijkstra"
+        weight = self.heuristic_weight
+        goal_c = complex(self.goal[0], self.goal[1])
+        chord = self.cost == "chord"
+        # Nodes in parallel lists; node 0 is the start. A node's step is row ``rows[k]`` of the
+        # feature array ``feats[srcs[k]]``, decoded in the frame at its parent's end point
+        # turned to ``frames[k]`` (the parent's heading; a starter's turn on the spot added).
+        parent = [-1]
+        srcs = [-1]
+        rows = [-1]
+        pos = [complex(start_xy[0], start_xy[1])]
+        heads = [float(start_yaw)]
+        frames = [float(start_yaw)]
+        gs = [0.0]
+        feet: list[complex | None] = [None]  # world x + iy of the foot the step landed
+        lefts = [False]  # the step's swing foot is the left one
+        feats: list[np.ndarray] = []
+        h0 = weight * float(gd.at(start_xy[0], start_xy[1]) if dijkstra else 0.0)
+        heap = [(max(h0, weight * abs(pos[0] - goal_c)), 0, 0)]
         closed: set[tuple[int, int, int]] = set()
         counter = 1
-        expansions = 0
-        generated = 0
-        rejected = 0
-        m = self.samples_per_step
+        expansions = generated = rejected = 0
+        two_pi = 2.0 * math.pi
         while heap:
-            _, _, nid = heapq.heappop(heap)
-            node = nodes[nid]
-            key = self.cell_key(node.x, node.y, node.heading)
+            nid = heapq.heappop(heap)[2]
+            p = pos[nid]
+            heading = heads[nid]
+            key = (
+                math.floor((p.real - x0) / cell + 0.5),
+                math.floor((p.imag - y0) / cell + 0.5),
+                math.floor((heading % two_pi) / two_pi * bins) % bins,
+            )
             if key in closed:
                 continue
             closed.add(key)
-            if self._in_goal(node):
+            if self._in_goal(p, heading):
                 return self._assemble(
-                    nodes,
                     nid,
-                    batches,
+                    (parent, srcs, rows, pos, heads, frames, lefts),
+                    feats,
                     start_yaw,
-                    t0,
-                    {
-                        "expansions": expansions,
-                        "generated": generated,
-                        "rejected": rejected,
-                    },
+                    {"expansions": expansions, "generated": generated, "rejected": rejected},
                 )
             if expansions >= self.max_expansions:
                 raise PlanningError(
@@ -289,59 +317,83 @@ class HybridPlanner:
                     f"{start_xy[1]:.3f}); {generated} steps sampled, {rejected} rejected"
                 )
             expansions += 1
-            if node.batch < 0:
-                succ = self.model.sample_first(self.n_starters, rng)
+            if nid == 0:
+                first = self.model.sample_first(self.n_starters, rng)
+                z = first.features
+                left = first.side == "left"
+                frame = np.full(len(z), heading)
                 if free_heading:  # the walker may set off anywhere around the downhill heading
-                    spread = rng.uniform(-START_SPREAD, START_SPREAD, len(succ))
-                    succ = _rotate(succ, spread)
+                    frame += rng.uniform(-START_SPREAD, START_SPREAD, len(z))
+                frame = frame[:, None]
             else:
-                succ = self.model.sample_next(
-                    batches[node.batch].take([node.row]), self.n_successors, rng
+                side = "left" if lefts[nid] else "right"
+                z = self.model.sample_next_features(
+                    feats[srcs[nid]][rows[nid] : rows[nid] + 1], side, self.n_successors, rng
                 )
-            generated += len(succ)
-            local, _ = succ.resample(m)
-            world = _to_world(node.x, node.y, node.heading, local)  # (n, m, 2)
-            ok = (self.workplace.walk_clearance(world) >= self.radius + SAFETY_MARGIN).all(axis=1)
-            # the landing foot (ankle and toes) must stand clear of obstacles too
-            foot_yaw = node.heading + succ.footprint[:, 2]
-            ankle = _to_world(node.x, node.y, node.heading, succ.footprint[:, :2])
-            toe = ankle + FOOT_LENGTH * np.stack([np.cos(foot_yaw), np.sin(foot_yaw)], axis=1)
-            feet = np.stack([ankle, toe], axis=1)
-            ok &= (self.workplace.walk_clearance(feet) >= FOOT_CLEARANCE).all(axis=1)
+                left = np.full(len(z), not lefts[nid])
+                frame = heading
+            n = len(z)
+            generated += n
+            # local step frame -> world, as complex numbers: x + iy -> p + (x + iy)(sin - i cos)
+            local = z @ dec.matrix + dec.offset  # (n, m + 2), see _Decoder
+            world = p + local[:, : m + 1] * (np.sin(frame) - 1j * np.cos(frame))
+            ankle = world[:, m]
+            foot_yaw = frame + local[:, m + 1 :].real  # (n, 1)
+            toe = ankle[:, None] + FOOT_LENGTH * np.exp(1j * foot_yaw)
+            pts = np.concatenate([world, toe], axis=1)  # m pelvis samples, ankle, toe
+            # clearance: body radius (+ margin) on the pelvis samples, foot clearance on the
+            # landing foot's ankle and toes (it reaches ahead of the pelvis)
+            ok = (walk.at(pts.real, pts.imag) >= thr).all(axis=1)
             # legs are only so long: the landing foot lies within reach of the pelvis at the
             # end of the step, and the stance foot (where this node's step landed) within reach
             # of the pelvis throughout (GP samples far out in the tails can break either)
-            ok &= np.linalg.norm(ankle - world[:, -1], axis=1) <= MAX_FOOT_REACH
-            if node.foot is not None:
-                reach = np.linalg.norm(world - node.foot, axis=2).max(axis=1)
-                ok &= reach <= MAX_FOOT_REACH
+            ok &= np.abs(ankle - world[:, m - 1]) <= MAX_FOOT_REACH
+            foot = feet[nid]
+            if foot is not None:
+                ok &= np.abs(world[:, :m] - foot).max(axis=1) <= MAX_FOOT_REACH
             # the swing foot lifts off where it landed two steps ago: a stride of plausible
             # length, and within reach of the pelvis until lift-off
-            lift = nodes[node.parent].foot if node.parent >= 0 else None
+            lift = feet[parent[nid]] if nid > 0 else None
             if lift is not None:
-                ok &= np.linalg.norm(ankle - lift, axis=1) <= MAX_STRIDE
-                early = world[:, : max(2, m // 4)]
-                ok &= np.linalg.norm(early - lift, axis=2).max(axis=1) <= MAX_LIFT_REACH
-            rejected += int((~ok).sum())
-            if not ok.any():
+                ok &= np.abs(ankle - lift) <= MAX_STRIDE
+                ok &= np.abs(world[:, :q] - lift).max(axis=1) <= MAX_LIFT_REACH
+            good = np.flatnonzero(ok)
+            rejected += n - len(good)
+            if not len(good):
                 continue
-            if self.cost == "chord":
-                seg = np.linalg.norm(world[:, -1] - world[:, 0], axis=1)
+            lg = local[good]
+            if chord:  # sample 0 is the step's start, exactly 0 in its local frame
+                seg = np.abs(lg[:, m - 1])
             else:
-                seg = np.linalg.norm(np.diff(world, axis=1), axis=2).sum(axis=1)
-            ends = world[:, -1]
-            headings = node.heading + succ.end_yaw
-            hs = self.h(ends)
-            bidx = len(batches)
-            batches.append(succ)
-            worlds.append(world)
-            for r in np.flatnonzero(ok):
-                x, y, th = float(ends[r, 0]), float(ends[r, 1]), float(headings[r])
-                if self.cell_key(x, y, th) in closed:
+                seg = np.abs(np.diff(lg[:, :m], axis=1)).sum(axis=1)
+            ends = world[good, m - 1]
+            ex, ey = ends.real, ends.imag
+            hs = np.abs(ends - goal_c)
+            if dijkstra:
+                hs = gd.at(ex, ey)
+            hs *= weight
+            th = (frame if np.ndim(frame) == 0 else frame[good, 0]) + lg[:, m + 1].imag
+            ki = np.floor((ex - x0) / cell + 0.5).astype(np.intp).tolist()
+            kj = np.floor((ey - y0) / cell + 0.5).astype(np.intp).tolist()
+            kb = (np.floor((th % two_pi) / two_pi * bins).astype(np.intp) % bins).tolist()
+            src = len(feats)
+            feats.append(z)
+            g0 = gs[nid]
+            fr = [frame] * n if np.ndim(frame) == 0 else frame[:, 0].tolist()
+            for k, r in enumerate(good.tolist()):
+                if (ki[k], kj[k], kb[k]) in closed:
                     continue
-                g = node.g + float(seg[r])
-                nodes.append(_Node(nid, bidx, int(r), x, y, th, g, ankle[r].copy()))
-                heapq.heappush(heap, (g + float(hs[r]), counter, len(nodes) - 1))
+                g = g0 + float(seg[k])
+                parent.append(nid)
+                srcs.append(src)
+                rows.append(r)
+                pos.append(complex(ends[k]))
+                heads.append(float(th[k]))
+                frames.append(fr[r])
+                gs.append(g)
+                feet.append(complex(ankle[r]))
+                lefts.append(bool(left[r]))
+                heapq.heappush(heap, (g + float(hs[k]), counter, len(gs) - 1))
                 counter += 1
         raise _Exhausted(
             f"search exhausted after {expansions} expansions: no sequence of sampled steps "
@@ -350,37 +402,39 @@ class HybridPlanner:
             "to an obstacle"
         )
 
-    def _assemble(self, nodes, nid, batches, start_yaw, t0, stats) -> WalkPath:
+    def _assemble(self, nid, nodes, feats, start_yaw, stats) -> WalkPath:
+        parent, srcs, rows, pos, _heads, frames, lefts = nodes
         chain = []
         while nid > 0:
             chain.append(nid)
-            nid = nodes[nid].parent
+            nid = parent[nid]
         chain.reverse()
-        xy_parts = [np.array([[nodes[0].x, nodes[0].y]])]
+        z = np.array([feats[srcs[k]][rows[k]] for k in chain]).reshape(len(chain), -1)
+        batch = self.model.decode(z, np.where([lefts[k] for k in chain], "left", "right"))
+        xy_parts = [np.array([[pos[0].real, pos[0].imag]])]
         yaw_parts = [np.array([start_yaw])]
         steps: list[PathStep] = []
         landed: dict[str, np.ndarray] = {}
         index = 0
-        for k in chain:
-            node = nodes[k]
-            parent = nodes[node.parent]
-            batch = batches[node.batch]
-            local, yaw = batch.trajectory(node.row, FPS)
-            world = _to_world(parent.x, parent.y, parent.heading, local)
+        for row, k in enumerate(chain):
+            o = pos[parent[k]]
+            frame = frames[k]
+            local, yaw = batch.trajectory(row, FPS)
+            world = _to_world(o.real, o.imag, frame, local)
             xy_parts.append(world[1:])
-            yaw_parts.append(parent.heading + yaw[1:])
-            foot = batch.footprint[node.row]
-            stance = batch.stance[node.row]
-            fw = _to_world(parent.x, parent.y, parent.heading, foot[None, :2])[0]
-            sw = _to_world(parent.x, parent.y, parent.heading, stance[None, :2])[0]
+            yaw_parts.append(frame + yaw[1:])
+            foot = batch.footprint[row]
+            stance = batch.stance[row]
+            fw = _to_world(o.real, o.imag, frame, foot[None, :2])[0]
+            sw = _to_world(o.real, o.imag, frame, stance[None, :2])[0]
             end = index + len(local) - 1
-            side = str(batch.side[node.row])
+            side = str(batch.side[row])
             # A foot stays where it landed: the stance foot of a step is where that foot landed
             # in the step before (each sampled step also carries its own estimate of it, a few
             # centimetres off its predecessor's landing, which would make the foot jump).
             other = "left" if side == "right" else "right"
-            stance_w = landed.get(other, np.array([sw[0], sw[1], parent.heading + stance[2]]))
-            landed[side] = np.array([fw[0], fw[1], parent.heading + foot[2]])
+            stance_w = landed.get(other, np.array([sw[0], sw[1], frame + stance[2]]))
+            landed[side] = np.array([fw[0], fw[1], frame + foot[2]])
             steps.append(
                 PathStep(side=side, start=index, end=end, foot=landed[side], stance=stance_w)
             )
@@ -398,7 +452,6 @@ class HybridPlanner:
                 "goal_tolerance": self.tolerance,
                 "radius": self.radius,
                 "heuristic": self.heuristic,
-                "seconds": time.perf_counter() - t0,
                 **stats,
             },
         )
