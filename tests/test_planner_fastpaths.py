@@ -8,7 +8,7 @@ import pytest
 from mjwalk import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.plan.grid import check_endpoint, occupancy_grid
-from mjwalk.plan.heuristic import goal_distance
+from mjwalk.plan.heuristic import goal_distance, grid_excess
 from mjwalk.plan.hybrid import _Decoder
 from mjwalk.world import load_workplace
 
@@ -30,7 +30,7 @@ def _points(wp, n, seed, margin=0.3):
 def test_field_lookup_at_equals_call(workplace):
     pts = _points(workplace, 5000, 0).reshape(50, 100, 2)
     c = workplace.clearance
-    np.testing.assert_allclose(c.at(pts[..., 0], pts[..., 1]), c(pts), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(c.at(pts), c(pts), rtol=0, atol=1e-12)
 
 
 def test_walk_field_never_exceeds_walk_clearance(workplace):
@@ -38,7 +38,7 @@ def test_walk_field_never_exceeds_walk_clearance(workplace):
     exact distance to the floor's edge on the floor, and at most one node spacing off it."""
     pts = _points(workplace, 20000, 1)
     field = workplace.walk_field()
-    combined = field.at(pts[:, 0], pts[:, 1])
+    combined = field.at(pts)
     exact = workplace.walk_clearance(pts)
     assert np.all(combined <= np.maximum(exact, field.resolution) + 1e-12)
     assert np.all(combined[exact >= 0] <= exact[exact >= 0] + 1e-12)
@@ -66,11 +66,21 @@ def test_quick_endpoint_accept_never_passes_a_bad_point(workplace):
                     pass
 
 
-def test_goal_distance_at_equals_call(workplace):
+def test_goal_distance_bound(workplace):
+    """The obstacle-aware distance is the larger of the straight line and the cell's grid
+    distance over the worst detour factor minus the point's offset from the cell centre."""
     grid = occupancy_grid(workplace)
-    gd = goal_distance(grid, np.array(workplace.floor_bounds[:2]) + 1.0, 0.25)
+    goal = np.array(workplace.floor_bounds[:2]) + 1.0
+    gd = goal_distance(grid, goal, 0.25)
     pts = _points(workplace, 3000, 3, margin=0.0)
-    np.testing.assert_array_equal(gd.at(pts[:, 0], pts[:, 1]), gd(pts))
+    ny, nx = grid.free.shape
+    i = np.clip(np.rint((pts[:, 0] - grid.x0) / grid.cell), 0, nx - 1).astype(int)
+    j = np.clip(np.rint((pts[:, 1] - grid.y0) / grid.cell), 0, ny - 1).astype(int)
+    offset = np.hypot(pts[:, 0] - (grid.x0 + i * grid.cell), pts[:, 1] - (grid.y0 + j * grid.cell))
+    want = np.maximum(
+        np.hypot(*(pts - goal).T), gd.cells[j, i] / grid_excess(tuple(grid.offsets)) - offset
+    )
+    np.testing.assert_array_equal(gd(pts), want)
 
 
 def test_decoder_matches_model_decoding():
@@ -108,3 +118,13 @@ def test_sample_next_features_are_sample_next_draws():
     b = model.sample_next_features(prev.features, "right", 7, np.random.default_rng(9))
     np.testing.assert_array_equal(a.features, b)
     assert set(a.side) == {"left"}
+
+
+def test_kde_starters_are_gaussian_kde_draws():
+    """sample_first draws what scipy's gaussian_kde.resample draws from the same stream (the
+    kernel factor is computed once instead of per call)."""
+    model = default_model()
+    for side in ("left", "right"):
+        got = model.sample_first(25, np.random.default_rng(8), side).features
+        ref = model._kde[side].resample(25, seed=np.random.default_rng(8)).T
+        np.testing.assert_allclose(got, ref, rtol=0, atol=1e-12)

@@ -265,6 +265,13 @@ class StepModel:
         self._kde = {
             s: gaussian_kde(self.kde_data[s], bw_method=self.kde_factor[s]) for s in _SIDES
         }
+        # gaussian_kde.resample factors the kernel covariance (SVD) and normalizes the weights
+        # on every call; both are fixed, so they are computed once (see _kde_resample)
+        self._kde_draw = {}
+        for s, kde in self._kde.items():
+            u, sv, _ = np.linalg.svd(kde.covariance)
+            cdf = np.cumsum(kde.weights)
+            self._kde_draw[s] = (u * np.sqrt(sv), cdf / cdf[-1])
 
     # -- fitting -----------------------------------------------------------------------------
 
@@ -380,10 +387,19 @@ class StepModel:
         zs, ss = [], []
         for s, c in counts.items():
             if c > 0:
-                zs.append(self._kde[s].resample(c, seed=rng).T)
+                zs.append(self._kde_resample(s, c, rng))
                 ss.extend([s] * c)
         z = np.concatenate(zs) if zs else np.zeros((0, self.n_dims))
         return self.features.decode(z, np.array(ss, dtype="<U5"))
+
+    def _kde_resample(self, side: str, n: int, rng: np.random.Generator) -> np.ndarray:
+        """(n, d) draws from ``side``'s KDE: ``gaussian_kde.resample(n, seed=rng).T``, the same
+        draws from the same random stream (a kernel offset N(0, covariance) through numpy's
+        SVD factor, then a data point chosen by weight), with the factor computed once."""
+        factor, cdf = self._kde_draw[side]
+        offset = rng.standard_normal((n, factor.shape[0])) @ factor.T
+        idx = cdf.searchsorted(rng.random(n), side="right")
+        return self._kde[side].dataset[:, idx].T + offset
 
     def sample_next(self, prev: StepBatch, n: int, rng: np.random.Generator) -> StepBatch:
         """``n`` successors of every step in ``prev`` (rows i·n .. i·n+n-1 follow ``prev[i]``).

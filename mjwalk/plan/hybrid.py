@@ -152,6 +152,8 @@ class HybridPlanner:
         cost: str = "chord",
         attempts: int = 3,
         grid: OccupancyGrid | None = None,
+        batch: int = 4,
+        batch_slack: float = 0.05,
     ):
         if heuristic not in ("dijkstra", "euclidean"):
             raise PlanningError(f"heuristic must be 'dijkstra' or 'euclidean', not {heuristic!r}")
@@ -179,6 +181,8 @@ class HybridPlanner:
             raise PlanningError(f"cost must be 'chord' or 'path', not {cost!r}")
         self.cost = cost
         self.attempts = max(1, int(attempts))
+        self.batch = max(1, int(batch))
+        self.batch_slack = float(batch_slack)
         check_endpoint(workplace, self.goal, radius, "goal")
         if grid is None or grid.cell != cell or grid.radius != radius:
             grid = occupancy_grid(workplace, cell, radius, MOVES_16)
@@ -267,10 +271,16 @@ class HybridPlanner:
         thr = self._thresholds
         gd = self.distance
         x0, y0, cell, bins = self.grid.x0, self.grid.y0, self.cell, self.heading_bins
+        corner = np.array([x0, y0])
+        # closed cells as one integer: (i * span + j) * bins + heading bin, with span larger
+        # than any cell row index j of a point a step can reach (the grid's rows plus a margin)
+        span = 4 * max(self.grid.free.shape) + 1000
         dijkstra = self.heuristic == "dijkstra"
         weight = self.heuristic_weight
         goal_c = complex(self.goal[0], self.goal[1])
         chord = self.cost == "chord"
+        batch_max, batch_slack = self.batch, self.batch_slack
+        n_succ = self.n_successors
         # Nodes in parallel lists; node 0 is the start. A node's step is row ``rows[k]`` of the
         # feature array ``feats[srcs[k]]``, decoded in the frame at its parent's end point
         # turned to ``frames[k]`` (the parent's heading; a starter's turn on the spot added).
@@ -281,119 +291,149 @@ class HybridPlanner:
         heads = [float(start_yaw)]
         frames = [float(start_yaw)]
         gs = [0.0]
-        feet: list[complex | None] = [None]  # world x + iy of the foot the step landed
+        nan = complex(math.nan, math.nan)
+        feet = [nan]  # world x + iy of the foot the node's step landed (nan: none yet)
         lefts = [False]  # the step's swing foot is the left one
         feats: list[np.ndarray] = []
-        h0 = weight * float(gd.at(start_xy[0], start_xy[1]) if dijkstra else 0.0)
+        h0 = weight * float(gd(start_xy) if dijkstra else 0.0)
         heap = [(max(h0, weight * abs(pos[0] - goal_c)), 0, 0)]
-        closed: set[tuple[int, int, int]] = set()
+        closed: set[int] = set()
         counter = 1
         expansions = generated = rejected = 0
         two_pi = 2.0 * math.pi
         while heap:
-            nid = heapq.heappop(heap)[2]
-            p = pos[nid]
-            heading = heads[nid]
-            key = (
-                math.floor((p.real - x0) / cell + 0.5),
-                math.floor((p.imag - y0) / cell + 0.5),
-                math.floor((heading % two_pi) / two_pi * bins) % bins,
-            )
-            if key in closed:
+            # Pop the best open node and, with it, up to batch_max - 1 more of the same swing side
+            # whose f lies within batch_slack of its f: their successors are drawn (one GP call)
+            # and checked in one go. A goal node ends the search only when it is the best open
+            # node (as in plain A*).
+            batch: list[int] = []
+            held = []  # open nodes of the other swing side, back to the heap after the batch
+            f_first = heap[0][0]
+            while heap and len(batch) < batch_max and heap[0][0] <= f_first + batch_slack:
+                item = heapq.heappop(heap)
+                nid = item[2]
+                p = pos[nid]
+                heading = heads[nid]
+                key = (
+                    math.floor((p.real - x0) / cell + 0.5) * span
+                    + math.floor((p.imag - y0) / cell + 0.5)
+                ) * bins + math.floor((heading % two_pi) / two_pi * bins) % bins
+                if key in closed:
+                    continue
+                if self._in_goal(p, heading):
+                    if batch:  # expand the better nodes first; the goal node waits its turn
+                        heapq.heappush(heap, item)
+                        break
+                    return self._assemble(
+                        nid,
+                        (parent, srcs, rows, pos, heads, frames, lefts),
+                        feats,
+                        start_yaw,
+                        {"expansions": expansions, "generated": generated, "rejected": rejected},
+                    )
+                if batch and lefts[nid] != lefts[batch[0]]:
+                    held.append(item)
+                    continue
+                if expansions >= self.max_expansions:
+                    raise PlanningError(
+                        f"expansion budget of {self.max_expansions} spent before reaching the "
+                        f"goal ({self.goal[0]:.3f}, {self.goal[1]:.3f}) from "
+                        f"({start_xy[0]:.3f}, {start_xy[1]:.3f}); {generated} steps sampled, "
+                        f"{rejected} rejected"
+                    )
+                closed.add(key)
+                expansions += 1
+                batch.append(nid)
+            for item in held:
+                heapq.heappush(heap, item)
+            if not batch:
                 continue
-            closed.add(key)
-            if self._in_goal(p, heading):
-                return self._assemble(
-                    nid,
-                    (parent, srcs, rows, pos, heads, frames, lefts),
-                    feats,
-                    start_yaw,
-                    {"expansions": expansions, "generated": generated, "rejected": rejected},
-                )
-            if expansions >= self.max_expansions:
-                raise PlanningError(
-                    f"expansion budget of {self.max_expansions} spent before reaching the goal "
-                    f"({self.goal[0]:.3f}, {self.goal[1]:.3f}) from ({start_xy[0]:.3f}, "
-                    f"{start_xy[1]:.3f}); {generated} steps sampled, {rejected} rejected"
-                )
-            expansions += 1
-            if nid == 0:
+            if batch[0] == 0:  # the start node (always alone: it is the first node popped)
                 first = self.model.sample_first(self.n_starters, rng)
                 z = first.features
                 left = first.side == "left"
-                frame = np.full(len(z), heading)
+                frame = np.full(len(z), heads[0])
                 if free_heading:  # the walker may set off anywhere around the downhill heading
                     frame += rng.uniform(-START_SPREAD, START_SPREAD, len(z))
-                frame = frame[:, None]
+                per = len(z)
             else:
-                side = "left" if lefts[nid] else "right"
-                z = self.model.sample_next_features(
-                    feats[srcs[nid]][rows[nid] : rows[nid] + 1], side, self.n_successors, rng
-                )
-                left = np.full(len(z), not lefts[nid])
-                frame = heading
+                x = np.array([feats[srcs[k]][rows[k]] for k in batch])
+                side = "left" if lefts[batch[0]] else "right"
+                z = self.model.sample_next_features(x, side, n_succ, rng)
+                left = np.full(len(z), not lefts[batch[0]])
+                frame = np.repeat([heads[k] for k in batch], n_succ)
+                per = n_succ
+            b = len(batch)
             n = len(z)
             generated += n
-            # local step frame -> world, as complex numbers: x + iy -> p + (x + iy)(sin - i cos)
-            local = z @ dec.matrix + dec.offset  # (n, m + 2), see _Decoder
-            world = p + local[:, : m + 1] * (np.sin(frame) - 1j * np.cos(frame))
-            ankle = world[:, m]
-            foot_yaw = frame + local[:, m + 1 :].real  # (n, 1)
-            toe = ankle[:, None] + FOOT_LENGTH * np.exp(1j * foot_yaw)
-            pts = np.concatenate([world, toe], axis=1)  # m pelvis samples, ankle, toe
+            # per predecessor: its end point, the foot its step landed and the foot behind that
+            # (world x + iy; nan where there is none yet), and g
+            ctx = np.array([(pos[k], feet[k], feet[parent[k]] if k else nan, gs[k]) for k in batch])
+            # local step frame -> world, as complex numbers: x + iy -> p + (x + iy)(sin - i cos);
+            # rows are (predecessor, successor, column); frame (n,): each row's frame heading
+            local = (z @ dec.matrix + dec.offset).reshape(b, per, m + 2)  # see _Decoder
+            rot = (-1j * np.exp(1j * frame)).reshape(b, per)
+            world = ctx[:, 0, None, None] + local[..., : m + 1] * rot[..., None]
+            ankle = world[..., m]
+            toe = ankle + (FOOT_LENGTH * rot) * (1j * np.exp(1j * local[..., m + 1].real))
+            pts = np.concatenate([world, toe[..., None]], axis=2).reshape(n, m + 2)
             # clearance: body radius (+ margin) on the pelvis samples, foot clearance on the
             # landing foot's ankle and toes (it reaches ahead of the pelvis)
-            ok = (walk.at(pts.real, pts.imag) >= thr).all(axis=1)
+            ok = (walk.at(pts.view(np.float64).reshape(n, m + 2, 2)) >= thr).all(axis=1)
             # legs are only so long: the landing foot lies within reach of the pelvis at the
-            # end of the step, and the stance foot (where this node's step landed) within reach
-            # of the pelvis throughout (GP samples far out in the tails can break either)
-            ok &= np.abs(ankle - world[:, m - 1]) <= MAX_FOOT_REACH
-            foot = feet[nid]
-            if foot is not None:
-                ok &= np.abs(world[:, :m] - foot).max(axis=1) <= MAX_FOOT_REACH
+            # end of the step, and the stance foot (where the predecessor's step landed) within
+            # reach of the pelvis throughout (GP samples far out in the tails can break either);
             # the swing foot lifts off where it landed two steps ago: a stride of plausible
-            # length, and within reach of the pelvis until lift-off
-            lift = feet[parent[nid]] if nid > 0 else None
-            if lift is not None:
-                ok &= np.abs(ankle - lift) <= MAX_STRIDE
-                ok &= np.abs(world[:, :q] - lift).max(axis=1) <= MAX_LIFT_REACH
+            # length, and within reach of the pelvis until lift-off (nan: no such foot yet; a
+            # comparison with nan is False, so "not beyond" is what is tested)
+            far = np.abs(ankle - world[..., m - 1]) > MAX_FOOT_REACH
+            far |= np.abs(world[..., :m] - ctx[:, 1, None, None]).max(axis=2) > MAX_FOOT_REACH
+            far |= np.abs(ankle - ctx[:, 2, None]) > MAX_STRIDE
+            far |= np.abs(world[..., :q] - ctx[:, 2, None, None]).max(axis=2) > MAX_LIFT_REACH
+            ok &= ~far.ravel()
             good = np.flatnonzero(ok)
             rejected += n - len(good)
             if not len(good):
                 continue
-            lg = local[good]
+            lg = local.reshape(n, m + 2)[good]
             if chord:  # sample 0 is the step's start, exactly 0 in its local frame
                 seg = np.abs(lg[:, m - 1])
             else:
                 seg = np.abs(np.diff(lg[:, :m], axis=1)).sum(axis=1)
-            ends = world[good, m - 1]
-            ex, ey = ends.real, ends.imag
-            hs = np.abs(ends - goal_c)
-            if dijkstra:
-                hs = gd.at(ex, ey)
-            hs *= weight
-            th = (frame if np.ndim(frame) == 0 else frame[good, 0]) + lg[:, m + 1].imag
-            ki = np.floor((ex - x0) / cell + 0.5).astype(np.intp).tolist()
-            kj = np.floor((ey - y0) / cell + 0.5).astype(np.intp).tolist()
-            kb = (np.floor((th % two_pi) / two_pi * bins).astype(np.intp) % bins).tolist()
+            owner = good // per
+            ends = world.reshape(n, m + 1)[good, m - 1]
+            exy = ends.view(np.float64).reshape(-1, 2)
+            hs = gd(exy) if dijkstra else np.abs(ends - goal_c)
+            frame_ok = frame[good]
+            th = frame_ok + lg[:, m + 1].imag
+            g = ctx[owner, 3].real + seg
+            fs = (g + weight * hs).tolist()
+            ij = np.floor((exy - corner) / cell + 0.5).astype(np.intp)
+            kb = np.floor((th % two_pi) / two_pi * bins).astype(np.intp) % bins
+            keys = ((ij[:, 0] * span + ij[:, 1]) * bins + kb).tolist()
             src = len(feats)
             feats.append(z)
-            g0 = gs[nid]
-            fr = [frame] * n if np.ndim(frame) == 0 else frame[:, 0].tolist()
-            for k, r in enumerate(good.tolist()):
-                if (ki[k], kj[k], kb[k]) in closed:
+            rows_ok = good.tolist()
+            heads_ok = th.tolist()
+            g_ok = g.tolist()
+            ends_ok = ends.tolist()
+            ankles_ok = ankle.ravel()[good].tolist()
+            frames_ok = frame_ok.tolist()
+            owners_ok = owner.tolist()
+            left_ok = left[good].tolist()
+            for k, key in enumerate(keys):
+                if key in closed:
                     continue
-                g = g0 + float(seg[k])
-                parent.append(nid)
+                parent.append(batch[owners_ok[k]])
                 srcs.append(src)
-                rows.append(r)
-                pos.append(complex(ends[k]))
-                heads.append(float(th[k]))
-                frames.append(fr[r])
-                gs.append(g)
-                feet.append(complex(ankle[r]))
-                lefts.append(bool(left[r]))
-                heapq.heappush(heap, (g + float(hs[k]), counter, len(gs) - 1))
+                rows.append(rows_ok[k])
+                pos.append(ends_ok[k])
+                heads.append(heads_ok[k])
+                frames.append(frames_ok[k])
+                gs.append(g_ok[k])
+                feet.append(ankles_ok[k])
+                lefts.append(left_ok[k])
+                heapq.heappush(heap, (fs[k], counter, len(gs) - 1))
                 counter += 1
         raise _Exhausted(
             f"search exhausted after {expansions} expansions: no sequence of sampled steps "
@@ -411,36 +451,39 @@ class HybridPlanner:
         chain.reverse()
         z = np.array([feats[srcs[k]][rows[k]] for k in chain]).reshape(len(chain), -1)
         batch = self.model.decode(z, np.where([lefts[k] for k in chain], "left", "right"))
-        xy_parts = [np.array([[pos[0].real, pos[0].imag]])]
-        yaw_parts = [np.array([start_yaw])]
+        ox = np.array([pos[parent[k]].real for k in chain])
+        oy = np.array([pos[parent[k]].imag for k in chain])
+        fr = np.array([frames[k] for k in chain])
+        # the steps at 120 Hz (sample 0 of each is the previous step's last), one frame each
+        trajs = [batch.trajectory(row, FPS) for row in range(len(chain))]
+        counts = [len(t[1]) - 1 for t in trajs]
+        local = np.vstack([t[0][1:] for t in trajs])
+        origin = [np.repeat(v, counts) for v in (ox, oy, fr)]
+        xy = np.vstack([[[pos[0].real, pos[0].imag]], _to_world(*origin, local)])
+        yaw = np.concatenate(
+            [[start_yaw], np.repeat(fr, counts) + np.concatenate([t[1][1:] for t in trajs])]
+        )
+        feet = _to_world(ox, oy, fr, batch.footprint[:, :2])
+        stances = _to_world(ox, oy, fr, batch.stance[:, :2])
         steps: list[PathStep] = []
         landed: dict[str, np.ndarray] = {}
         index = 0
-        for row, k in enumerate(chain):
-            o = pos[parent[k]]
-            frame = frames[k]
-            local, yaw = batch.trajectory(row, FPS)
-            world = _to_world(o.real, o.imag, frame, local)
-            xy_parts.append(world[1:])
-            yaw_parts.append(frame + yaw[1:])
-            foot = batch.footprint[row]
-            stance = batch.stance[row]
-            fw = _to_world(o.real, o.imag, frame, foot[None, :2])[0]
-            sw = _to_world(o.real, o.imag, frame, stance[None, :2])[0]
-            end = index + len(local) - 1
+        for row in range(len(chain)):
+            frame = fr[row]
+            end = index + counts[row]
             side = str(batch.side[row])
             # A foot stays where it landed: the stance foot of a step is where that foot landed
             # in the step before (each sampled step also carries its own estimate of it, a few
             # centimetres off its predecessor's landing, which would make the foot jump).
             other = "left" if side == "right" else "right"
-            stance_w = landed.get(other, np.array([sw[0], sw[1], frame + stance[2]]))
-            landed[side] = np.array([fw[0], fw[1], frame + foot[2]])
+            sw = stances[row]
+            stance_w = landed.get(other, np.array([sw[0], sw[1], frame + batch.stance[row, 2]]))
+            fw = feet[row]
+            landed[side] = np.array([fw[0], fw[1], frame + batch.footprint[row, 2]])
             steps.append(
                 PathStep(side=side, start=index, end=end, foot=landed[side], stance=stance_w)
             )
             index = end
-        xy = np.vstack(xy_parts)
-        yaw = np.concatenate(yaw_parts)
         return WalkPath(
             t=np.arange(len(xy)) / FPS,
             xy=xy,
