@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import zlib
+
 import numpy as np
 import pytest
 
 from mjwalk import PlanningError
 from mjwalk.gait.default import default_model
-from mjwalk.plan.grid import check_endpoint, occupancy_grid
+from mjwalk.plan.grid import MOVES_16, check_endpoint, occupancy_grid, shared_grid
 from mjwalk.plan.heuristic import goal_distance, grid_excess
-from mjwalk.plan.hybrid import _Decoder
+from mjwalk.plan.hybrid import HybridPlanner, _Decoder
 from mjwalk.world import load_workplace
 
 SCENE_NAMES = ["assembly_station", "corridor", "open_floor"]
@@ -128,3 +130,53 @@ def test_kde_starters_are_gaussian_kde_draws():
         got = model.sample_first(25, np.random.default_rng(8), side).features
         ref = model._kde[side].resample(25, seed=np.random.default_rng(8)).T
         np.testing.assert_allclose(got, ref, rtol=0, atol=1e-12)
+
+
+class _KeyedDraws:
+    """The default model, except that a predecessor's successors depend on the predecessor
+    alone (a seed from its features), not on when the search asks for them."""
+
+    def __init__(self, model):
+        self.model = model
+
+    def __getattr__(self, name):
+        return getattr(self.model, name)
+
+    def sample_next_features(self, x, side, n, rng):
+        return np.concatenate(
+            [
+                self.model.sample_next_features(
+                    row[None], side, n, np.random.default_rng(zlib.crc32(row.tobytes()))
+                )
+                for row in x
+            ]
+        )
+
+
+@pytest.mark.parametrize(
+    ("scene", "start", "goal"),
+    [("assembly_station", "-3.6,-1.0", "3.6,0.6"), ("corridor", "entry", "door")],
+)
+def test_drawing_ahead_leaves_the_search_unchanged(scenes_dir, scene, start, goal):
+    """Successor sets drawn ahead for open nodes (batch > 1) change only when draws are made:
+    with draws that do not depend on their order, every batch size expands the same nodes
+    and returns the same walk as drawing one node's successors at a time (batch=1)."""
+    wp = load_workplace(scenes_dir / f"{scene}.xml")
+    model = _KeyedDraws(default_model())
+    walks = {
+        b: HybridPlanner(wp, goal, model, batch=b).plan(start, np.random.default_rng(2))
+        for b in (1, 3, 4)
+    }
+    for b in (3, 4):
+        np.testing.assert_array_equal(walks[b].xy, walks[1].xy)
+        for k in ("expansions", "generated", "rejected"):
+            assert walks[b].meta[k] == walks[1].meta[k]
+
+
+def test_shared_grid_is_built_once_per_workplace(scenes_dir):
+    wp = load_workplace(scenes_dir / "corridor.xml")
+    a = shared_grid(wp, moves=MOVES_16)
+    assert shared_grid(wp, moves=MOVES_16) is a
+    fresh = occupancy_grid(wp, moves=MOVES_16)
+    np.testing.assert_array_equal(a.moves, fresh.moves)
+    assert shared_grid(wp, radius=0.3, moves=MOVES_16) is not a

@@ -121,6 +121,22 @@ def _clearly_free(workplace: Workplace, xy: np.ndarray, radius: float) -> bool:
     return float(f.values[j, i]) - gap >= radius
 
 
+def shared_grid(
+    workplace: Workplace,
+    cell: float = CELL_SIZE,
+    radius: float = BODY_RADIUS,
+    moves: list[tuple[int, int]] = MOVES_8,
+) -> OccupancyGrid:
+    """:func:`occupancy_grid`, built once per workplace, cell size, radius and moves and kept
+    on the workplace (planners to several goals of one scene share it). A workplace whose
+    clearance field is replaced gets a new grid."""
+    cache = workplace.__dict__.setdefault("_grids", {})
+    key = (float(cell), float(radius), tuple(moves), id(workplace.clearance))
+    if key not in cache:
+        cache[key] = occupancy_grid(workplace, cell, radius, moves)
+    return cache[key]
+
+
 def check_endpoint(workplace: Workplace, xy: np.ndarray, radius: float, what: str) -> None:
     """Raise PlanningError when a start or goal point is off the floor, inside an obstacle or
     closer to one than the body radius."""
