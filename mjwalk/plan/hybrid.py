@@ -328,11 +328,13 @@ class HybridPlanner:
         ahead: dict[int, tuple] = {}
 
         def cell_key(k: int) -> int:
-            p, heading = pos[k], heads[k]
-            return (
-                math.floor((p.real - x0) / cell + 0.5) * span
-                + math.floor((p.imag - y0) / cell + 0.5)
-            ) * bins + math.floor((heading % two_pi) / two_pi * bins) % bins
+            p = pos[k]
+            key = math.floor((p.real - x0) / cell + 0.5) * span + math.floor(
+                (p.imag - y0) / cell + 0.5
+            )
+            if bins == 1:
+                return key
+            return key * bins + math.floor((heads[k] % two_pi) / two_pi * bins) % bins
 
         def draw(batch: list[int]) -> list[tuple]:
             """Sample, decode and check the successors of the nodes ``batch`` (one swing
@@ -394,9 +396,11 @@ class HybridPlanner:
             g = ctx[owner, 3].real + seg
             fs = g + weight * hs
             ij = np.floor((exy - corner) / cell + 0.5).astype(np.intp)
-            kb = np.floor((th % two_pi) / two_pi * bins).astype(np.intp) % bins
+            keys = ij[:, 0] * span + ij[:, 1]
+            if bins > 1:
+                keys = keys * bins + np.floor((th % two_pi) / two_pi * bins).astype(np.intp) % bins
             cols = (
-                ((ij[:, 0] * span + ij[:, 1]) * bins + kb).tolist(),
+                keys.tolist(),
                 fs.tolist(),
                 g.tolist(),
                 good.tolist(),
