@@ -303,6 +303,13 @@ class StepModel:
         self._kde = {
             s: gaussian_kde(self.kde_data[s], bw_method=self.kde_factor[s]) for s in _SIDES
         }
+        # gaussian_kde.resample factors the kernel covariance (SVD) and normalizes the weights
+        # on every call; both are fixed, so they are computed once (see _kde_resample)
+        self._kde_draw = {}
+        for s, kde in self._kde.items():
+            u, sv, _ = np.linalg.svd(kde.covariance)
+            cdf = np.cumsum(kde.weights)
+            self._kde_draw[s] = (u * np.sqrt(sv), cdf / cdf[-1])
 
     # -- fitting -----------------------------------------------------------------------------
 
@@ -460,10 +467,19 @@ class StepModel:
         zs, ss = [], []
         for s, c in counts.items():
             if c > 0:
-                zs.append(self._kde[s].resample(c, seed=rng).T)
+                zs.append(self._kde_resample(s, c, rng))
                 ss.extend([s] * c)
         z = np.concatenate(zs) if zs else np.zeros((0, self.n_dims))
         return self.features.decode(z, np.array(ss, dtype="<U5"))
+
+    def _kde_resample(self, side: str, n: int, rng: np.random.Generator) -> np.ndarray:
+        """(n, d) draws from ``side``'s KDE: ``gaussian_kde.resample(n, seed=rng).T``, the same
+        draws from the same random stream (a kernel offset N(0, covariance) through numpy's
+        SVD factor, then a data point chosen by weight), with the factor computed once."""
+        factor, cdf = self._kde_draw[side]
+        offset = rng.standard_normal((n, factor.shape[0])) @ factor.T
+        idx = cdf.searchsorted(rng.random(n), side="right")
+        return self._kde[side].dataset[:, idx].T + offset
 
     def sample_next(self, prev: StepBatch, n: int, rng: np.random.Generator) -> StepBatch:
         """``n`` successors of every step in ``prev`` (rows i·n .. i·n+n-1 follow ``prev[i]``).
@@ -507,6 +523,19 @@ class StepModel:
             z = z.reshape(p * n, d)
             side = np.repeat(np.where(is_left, "right", "left"), n)
         return self.features.decode(z, side)
+
+    def sample_next_features(
+        self, x: np.ndarray, side: str, n: int, rng: np.random.Generator, stop: bool = False
+    ) -> np.ndarray:
+        """The inner routine of :meth:`sample_next` (``stop=True``: of :meth:`sample_stop`),
+        without decoding: (p·n, d) standardized features of ``n`` successors of each of the
+        predecessors ``x`` (p, d), all of whose swing foot is ``side`` (rows i·n .. i·n+n-1
+        follow ``x[i]``; same draws as :meth:`sample_next`). For callers that decode only some
+        successors (the planner)."""
+        gps = self.stop_gp if stop else self.gp
+        if side not in gps:
+            raise MjwalkError(f"sample_next_features: no {'stop ' if stop else ''}GP for {side!r}")
+        return gps[side].sample(x, n, rng).reshape(len(x) * n, self.n_dims)
 
     def sample_chain(
         self, n_steps: int, rng: np.random.Generator, side: str | None = None

@@ -106,9 +106,42 @@ def occupancy_grid(
     return OccupancyGrid(x0, y0, cell, radius, free, valid, tuple(moves))
 
 
+def _clearly_free(workplace: Workplace, xy: np.ndarray, radius: float) -> bool:
+    """Whether the walk-clearance field proves that ``xy`` keeps ``radius`` (a quick accept).
+
+    The field's nodes hold exact walk clearances (the minimum of the footprints' signed
+    distances and the distance to the floor's edge), and walk clearance is 1-Lipschitz, so at
+    ``xy`` it is at least the nearest node's value minus the distance to that node.
+    """
+    f = workplace.walk_field()
+    ny, nx = f.values.shape
+    i = min(max(round((float(xy[0]) - f.x0) / f.resolution), 0), nx - 1)
+    j = min(max(round((float(xy[1]) - f.y0) / f.resolution), 0), ny - 1)
+    gap = math.hypot(float(xy[0]) - f.x0 - i * f.resolution, float(xy[1]) - f.y0 - j * f.resolution)
+    return float(f.values[j, i]) - gap >= radius
+
+
+def shared_grid(
+    workplace: Workplace,
+    cell: float = CELL_SIZE,
+    radius: float = BODY_RADIUS,
+    moves: list[tuple[int, int]] = MOVES_8,
+) -> OccupancyGrid:
+    """:func:`occupancy_grid`, built once per workplace, cell size, radius and moves and kept
+    on the workplace (planners to several goals of one scene share it). A workplace whose
+    clearance field is replaced gets a new grid."""
+    cache = workplace.__dict__.setdefault("_grids", {})
+    key = (float(cell), float(radius), tuple(moves), id(workplace.clearance))
+    if key not in cache:
+        cache[key] = occupancy_grid(workplace, cell, radius, moves)
+    return cache[key]
+
+
 def check_endpoint(workplace: Workplace, xy: np.ndarray, radius: float, what: str) -> None:
     """Raise PlanningError when a start or goal point is off the floor, inside an obstacle or
     closer to one than the body radius."""
+    if _clearly_free(workplace, xy, radius):
+        return
     label = f"{what} ({xy[0]:.3f}, {xy[1]:.3f})"
     if not bool(workplace.on_floor(xy)):
         b = workplace.floor_bounds

@@ -47,6 +47,10 @@ class GoalDistance:
 
     def __post_init__(self) -> None:
         self._excess = grid_excess(tuple(self.grid.offsets))
+        self._scaled = (self.cells / self._excess).ravel()  # flat, for one gather per lookup
+        ny, nx = self.grid.free.shape
+        self._origin = np.array([self.grid.x0, self.grid.y0])
+        self._top = np.array([nx - 1.0, ny - 1.0])
 
     def reachable(self, xy: np.ndarray) -> bool:
         j, i = self.grid.index(np.asarray(xy, dtype=float))
@@ -60,13 +64,11 @@ class GoalDistance:
         """
         xy = np.asarray(xy, dtype=float)
         g = self.grid
-        ny, nx = g.free.shape
-        fi = np.rint((xy[..., 0] - g.x0) / g.cell)
-        fj = np.rint((xy[..., 1] - g.y0) / g.cell)
-        i = np.clip(fi, 0, nx - 1).astype(np.intp)
-        j = np.clip(fj, 0, ny - 1).astype(np.intp)
-        offset = np.hypot(xy[..., 0] - (g.x0 + i * g.cell), xy[..., 1] - (g.y0 + j * g.cell))
-        grid_bound = self.cells[j, i] / self._excess - offset
+        f = np.rint((xy - self._origin) / g.cell)
+        ij = np.minimum(np.maximum(f, 0.0, out=f), self._top, out=f).astype(np.intp)
+        d = xy - (self._origin + ij * g.cell)
+        offset = np.hypot(d[..., 0], d[..., 1])
+        grid_bound = self._scaled[ij[..., 1] * g.free.shape[1] + ij[..., 0]] - offset
         euclid = np.hypot(xy[..., 0] - self.goal[0], xy[..., 1] - self.goal[1])
         return np.maximum(euclid, grid_bound)
 

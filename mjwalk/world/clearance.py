@@ -66,6 +66,34 @@ class ClearanceField:
 
     lookup = __call__
 
+    def at(self, xy: np.ndarray) -> np.ndarray:
+        """Bilinear clearance (metres) at points ``xy`` (..., 2): the values of
+        :meth:`__call__` (to rounding) with half its array operations — one gather of each
+        point's cell coefficients — for hot loops (the hybrid A*)."""
+        coef = self._coefficients()
+        f = (xy - self._origin) / self.resolution
+        f = np.minimum(np.maximum(f, 0.0, out=f), self._top, out=f)
+        i = f.astype(np.intp)
+        f -= i
+        c = coef[i[..., 1] * (self.values.shape[1] - 1) + i[..., 0]]
+        tx, ty = f[..., 0], f[..., 1]
+        return c[..., 0] + tx * (c[..., 1] + ty * c[..., 3]) + ty * c[..., 2]
+
+    def _coefficients(self) -> np.ndarray:
+        """Per cell (row-major over the (ny-1, nx-1) cells) the bilinear form's coefficients
+        (a, b, c, d): value = a + b·tx + c·ty + d·tx·ty at cell fractions tx, ty in [0, 1)."""
+        coef = getattr(self, "_coef", None)
+        if coef is None or self._coef_of is not self.values:
+            v = self.values
+            v00, v01, v10, v11 = v[:-1, :-1], v[:-1, 1:], v[1:, :-1], v[1:, 1:]
+            coef = np.stack([v00, v01 - v00, v10 - v00, v11 - v10 - v01 + v00], axis=-1)
+            coef = np.ascontiguousarray(coef.reshape(-1, 4))
+            self._coef, self._coef_of = coef, self.values
+            self._origin = np.array([self.x0, self.y0])
+            ny, nx = v.shape
+            self._top = np.array([nx - 1.000001, ny - 1.000001])
+        return coef
+
 
 def build_clearance(
     footprints: Sequence[Footprint],

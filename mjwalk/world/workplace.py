@@ -106,6 +106,30 @@ class Workplace:
         floor's edge, metres."""
         return np.minimum(self.clearance(xy), self.edge_distance(xy))
 
+    def walk_field(self) -> ClearanceField:
+        """:meth:`walk_clearance` as one field (built once, cached): each node holds the smaller
+        of its obstacle clearance and its distance to the floor's edge, metres.
+
+        Within the nodes' extent its bilinear lookup never exceeds :meth:`walk_clearance` at
+        the same point: the weights are non-negative, so interpolating the minimum gives at
+        most the minimum of the interpolations, and the edge distance (a minimum of linear
+        functions, concave) is at least its own interpolation. Points beyond the nodes (off
+        the floor, or in a strip narrower than one node spacing along its edge) take the
+        border nodes' values, at most one node spacing (the border's distance to the floor's
+        edge): any test against a clearance above the spacing rejects them, as
+        :meth:`walk_clearance` does.
+        """
+        cached = getattr(self, "_walk_field", None)
+        if cached is None:
+            c = self.clearance
+            gx, gy = c.grid_xy()
+            xy = np.stack(np.meshgrid(gx, gy), axis=-1)
+            cached = ClearanceField(
+                c.x0, c.y0, c.resolution, np.minimum(c.values, self.edge_distance(xy))
+            )
+            self._walk_field = cached
+        return cached
+
     def footprint(self, name: str) -> Footprint:
         for fp in self.obstacles:
             if fp.name == name:
