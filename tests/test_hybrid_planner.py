@@ -178,3 +178,22 @@ def test_budget_spent_is_reported(model, scenes_dir):
     planner = HybridPlanner(wp, "exit", model, max_expansions=5)
     with pytest.raises(PlanningError, match="budget of 5"):
         planner.plan("entry", np.random.default_rng(0))
+
+
+def test_short_walk_to_a_tight_goal_stops_with_closing_steps(model, scenes_dir):
+    """T5 of the cycle (rack 2 -> rack 3, 1.1 m sideways between two racks) planned as the
+    cycle plans it (walking radius 0.30 m, 0.1 m goal area, free start heading): all of 60
+    walks are planned and end in the goal area, and most end with a closing step from the
+    model's stop GPs (without them, 2 of 30 cycles failed on this walk: full strides overshoot
+    a 0.1 m goal)."""
+    from mjwalk.cycle.simulate import GOAL_TOLERANCE
+
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    goal = wp.station("stand_rack3").pos[:2]
+    planner = HybridPlanner(wp, "stand_rack3", model, radius=0.30, goal_tolerance=GOAL_TOLERANCE)
+    start = tuple(wp.station("stand_rack2").pos[:2])
+    walks = [planner.plan(start, np.random.default_rng(s)) for s in range(60)]
+    for w in walks:
+        assert np.hypot(*(w.xy[-1] - goal)) <= GOAL_TOLERANCE + 1e-9
+    closing = np.mean([w.meta["closing_step"] for w in walks])
+    assert closing > 0.5, closing

@@ -189,7 +189,7 @@ def test_bad_files_raise_model_file_error(model, tmp_path):
         StepModel.load(bad_member)
 
 
-def test_chains_keep_the_steady_state_of_walks_that_stop():
+def test_chains_keep_the_steady_state_of_walks_that_stop(tmp_path):
     """Seeded: takes that end in a short closing step (gait termination, 60 % length). Chains of
     30 steps sampled from the model keep the training steps' steady-state length: mean within
     2 cm, sd within 25 %, under 2 % of steps shorter than 0.45 m (none in training). Trained
@@ -206,6 +206,30 @@ def test_chains_keep_the_steady_state_of_walks_that_stop():
     assert abs(length.mean() - steady.mean()) < 0.02
     assert abs(length.std() / steady.std() - 1.0) < 0.25
     assert (length < 0.45).mean() < 0.02
+    # ... and the closing steps are a regime of their own: the stop GPs draw them
+    assert model.can_stop
+    closing = np.array([s.length for s in steps if s.meta["termination"]])
+    chain = model.sample_chain(6, rng)
+    tail = model.sample_stop(chain, 50, rng).length
+    assert abs(tail.mean() - closing.mean()) < 0.03, (tail.mean(), closing.mean())
+    assert tail.mean() < 0.8 * steady.mean()
+    path = tmp_path / "stop.npz"
+    model.save(path)
+    back = StepModel.load(path)
+    assert back.can_stop
+    np.testing.assert_array_equal(
+        back.sample_stop(chain, 5, np.random.default_rng(1)).features,
+        model.sample_stop(chain, 5, np.random.default_rng(1)).features,
+    )
+
+
+def test_model_without_terminations_cannot_stop(model, steps):
+    """Takes without closing steps give no stop GPs; sample_stop says so by name."""
+    assert not model.can_stop
+    with pytest.raises(MjwalkError, match="no stop GPs"):
+        model.sample_stop(
+            model.sample_first(2, np.random.default_rng(0)), 3, np.random.default_rng(0)
+        )
 
 
 def test_too_few_steps(steps):

@@ -142,11 +142,15 @@ class _KeyedDraws:
     def __getattr__(self, name):
         return getattr(self.model, name)
 
-    def sample_next_features(self, x, side, n, rng):
+    def sample_next_features(self, x, side, n, rng, stop=False):
         return np.concatenate(
             [
                 self.model.sample_next_features(
-                    row[None], side, n, np.random.default_rng(zlib.crc32(row.tobytes()))
+                    row[None],
+                    side,
+                    n,
+                    np.random.default_rng(zlib.crc32(row.tobytes()) + stop),
+                    stop=stop,
                 )
                 for row in x
             ]

@@ -83,6 +83,10 @@ MAX_LIFT_REACH = 0.64
 #: Without a start yaw, starters set off within +-60 degrees of the obstacle-aware downhill
 #: heading (the operator turns on the spot before the first step).
 START_SPREAD = math.radians(60.0)
+#: Closing steps (gait termination, :meth:`StepModel.sample_stop`) are drawn for nodes within
+#: this distance (m) of the goal area, and kept only when they end in it: the walk stops
+#: there. The corpus's closing steps move the pelvis 0.2-0.5 m.
+STOP_REACH = 0.8
 
 
 class _Exhausted(PlanningError):
@@ -175,6 +179,7 @@ class HybridPlanner:
         attempts: int = 3,
         grid: OccupancyGrid | None = None,
         batch: int = 4,
+        n_stops: int = 5,
     ):
         if heuristic not in ("dijkstra", "euclidean"):
             raise PlanningError(f"heuristic must be 'dijkstra' or 'euclidean', not {heuristic!r}")
@@ -203,6 +208,8 @@ class HybridPlanner:
         self.cost = cost
         self.attempts = max(1, int(attempts))
         self.batch = max(1, int(batch))
+        # closing steps near the goal, when the model has them (module constant STOP_REACH)
+        self.n_stops = max(0, int(n_stops)) if getattr(model, "can_stop", False) else 0
         check_endpoint(workplace, self.goal, radius, "goal")
         if grid is None or grid.cell != cell or grid.radius != radius:
             grid = shared_grid(workplace, cell, radius, MOVES_16)
@@ -301,6 +308,8 @@ class HybridPlanner:
         chord = self.cost == "chord"
         batch_max = self.batch
         n_succ = self.n_successors
+        n_stop = self.n_stops
+        stop_reach = self.tolerance + STOP_REACH
         # Nodes in parallel lists; node 0 is the start. A node's step is row ``rows[k]`` of the
         # feature array ``feats[srcs[k]]``, decoded in the frame at its parent's end point
         # turned to ``frames[k]`` (the parent's heading; a starter's turn on the spot added).
@@ -326,6 +335,7 @@ class HybridPlanner:
         # g, row in the feature array, end point, heading, frame, landing foot, swing side is
         # left).
         ahead: dict[int, tuple] = {}
+        closing_rows: dict[int, int] = {}  # feature array -> row period, if it has closing steps
 
         def cell_key(k: int) -> int:
             p = pos[k]
@@ -347,13 +357,27 @@ class HybridPlanner:
                 if free_heading:  # the walker may set off anywhere around the downhill heading
                     frame += rng.uniform(-START_SPREAD, START_SPREAD, len(z))
                 per = len(z)
+                stop = None
             else:
                 x = np.array([feats[srcs[k]][rows[k]] for k in batch])
                 side = "left" if lefts[batch[0]] else "right"
                 z = self.model.sample_next_features(x, side, n_succ, rng)
-                left = np.full(len(z), not lefts[batch[0]])
-                frame = np.repeat([heads[k] for k in batch], n_succ)
                 per = n_succ
+                stop = None
+                near = [abs(pos[k] - goal_c) <= stop_reach for k in batch]
+                if n_stop and any(near):
+                    # near the goal: closing steps too, after each node's walking ones
+                    zs = self.model.sample_next_features(x, side, n_stop, rng, stop=True)
+                    d = z.shape[1]
+                    z = np.concatenate(
+                        [z.reshape(len(x), n_succ, d), zs.reshape(len(x), n_stop, d)], axis=1
+                    ).reshape(-1, d)
+                    per = n_succ + n_stop
+                    # closing rows; those of nodes far from the goal are dropped uncounted
+                    stop = np.tile(np.arange(per) >= n_succ, len(x))
+                    dropped = stop & ~np.repeat(near, per)
+                left = np.full(len(z), not lefts[batch[0]])
+                frame = np.repeat([heads[k] for k in batch], per)
             b = len(batch)
             n = len(z)
             # per predecessor: its end point, the foot its step landed and the foot behind that
@@ -381,6 +405,13 @@ class HybridPlanner:
             far |= np.abs(ankle - ctx[:, 2, None]) > MAX_STRIDE
             far |= np.abs(world[..., :q] - ctx[:, 2, None, None]).max(axis=2) > MAX_LIFT_REACH
             ok &= ~far.ravel()
+            if stop is not None:  # a closing step must end the walk: in the goal area
+                end = world.reshape(n, m + 1)[:, m - 1]
+                into = np.abs(end - goal_c) <= self.tolerance
+                if self.goal_yaw is not None:
+                    turn = frame + local.reshape(n, m + 2)[:, m + 1].imag - self.goal_yaw
+                    into &= np.abs((turn + math.pi) % two_pi - math.pi) <= self.goal_yaw_tolerance
+                ok &= ~stop | (into & ~dropped)
             good = np.flatnonzero(ok)
             lg = local.reshape(n, m + 2)[good]
             if chord:  # sample 0 is the step's start, exactly 0 in its local frame
@@ -412,21 +443,26 @@ class HybridPlanner:
             )
             src = len(feats)
             feats.append(z)
+            if stop is not None:
+                closing_rows[src] = per
             cut = np.searchsorted(owner, np.arange(b + 1)).tolist()
+            drawn = [per] * b if stop is None else (per - dropped.reshape(b, per).sum(1)).tolist()
             return [
-                (src, per, per - (cut[i + 1] - cut[i]))
+                (src, drawn[i], drawn[i] - (cut[i + 1] - cut[i]))
                 + tuple(c[cut[i] : cut[i + 1]] for c in cols)
                 for i in range(b)
             ]
 
         def push(nid: int, succ: tuple) -> None:
-            """Open the successors of node ``nid`` (those outside closed cells)."""
+            """Open the successors of node ``nid``: those outside closed cells, and those in
+            the goal area in any case (a cell that reaches into a small goal area may have been
+            closed by a node just outside it)."""
             nonlocal counter, generated, rejected
             src, n, bad, ckeys, cfs, cgs, crows, cends, cheads, cframes, cfeet, clefts = succ
             generated += n
             rejected += bad
             for k, ck in enumerate(ckeys):
-                if ck in closed:
+                if ck in closed and not self._in_goal(cends[k], cheads[k]):
                     continue
                 parent.append(nid)
                 srcs.append(src)
@@ -443,7 +479,7 @@ class HybridPlanner:
         while heap:
             nid = heapq.heappop(heap)[2]
             key = cell_key(nid)
-            if key in closed:
+            if key in closed and not self._in_goal(pos[nid], heads[nid]):
                 ahead.pop(nid, None)
                 continue
             if self._in_goal(pos[nid], heads[nid]):
@@ -452,7 +488,14 @@ class HybridPlanner:
                     (parent, srcs, rows, pos, heads, frames, lefts),
                     feats,
                     start_yaw,
-                    {"expansions": expansions, "generated": generated, "rejected": rejected},
+                    {
+                        "expansions": expansions,
+                        "generated": generated,
+                        "rejected": rejected,
+                        # whether the walk ends with a closing step (StepModel.sample_stop)
+                        "closing_step": srcs[nid] in closing_rows
+                        and rows[nid] % closing_rows[srcs[nid]] >= n_succ,
+                    },
                 )
             if expansions >= self.max_expansions:
                 raise PlanningError(
