@@ -52,5 +52,3 @@ def select_gl_backend() -> str:
                 os.environ.setdefault("PYOPENGL_PLATFORM", "osmesa")
             return backend
     return "none"
-
-
