@@ -180,10 +180,14 @@ def test_stance_foot_fixed_floor_and_ranges(radius):
 
 
 def test_turning_uses_hip_rotation():
+    """On a 1.5 m arc the hip rotation swings through > 25 deg (measured 32); walking straight
+    it stays within 5 deg (measured 4.4: the rotation that keeps a flat foot's heading while
+    the hip flexes and abducts with a 2-dof ankle)."""
     legs = legs_from_walk(make_walk(n_steps=6, radius=1.5))
-    assert np.abs(legs.angles["hip_l_rot"]).max() > np.deg2rad(3)
+    assert np.ptp(legs.angles["hip_l_rot"]) > np.deg2rad(25)
     straight = legs_from_walk(make_walk(n_steps=6))
-    assert np.abs(straight.angles["hip_l_rot"]).max() < 1e-9
+    for s in "lr":
+        assert np.abs(straight.angles[f"hip_{s}_rot"]).max() < np.deg2rad(5)
 
 
 def test_ik_round_trip():

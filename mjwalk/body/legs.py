@@ -372,31 +372,31 @@ def leg_ik(
     """
     s = 1.0 if side == "l" else -1.0
     L1, L2 = geom.thigh, geom.shank
-    d = _rz(-foot_yaw) @ ankle_rel[..., None]
-    d = d[..., 0]
-    r = np.linalg.norm(d, axis=-1)
+    # the hip-to-ankle vector in the foot frame R_f = R_z(yaw) R_y(-pitch) (sole level
+    # sideways); the chain hip R_z R_y R_x, knee R_y, ankle R_y R_x gives
+    # u = R_x(s inv) R_y(dorsi) w(knee) with w(knee) the hip-to-ankle vector in the shin frame
+    # (knee and ankle flexion axes parallel): knee from |u|, ankle inversion and flexion from
+    # the direction of u, then the hip's three angles from the remaining rotation, so the
+    # foot's position and all three orientation angles are met exactly (6 joints, 6 dof)
+    Rf = _rz(np.asarray(foot_yaw, float)) @ _ry(-np.asarray(foot_pitch, float))
+    u = (np.swapaxes(Rf, -1, -2) @ np.asarray(ankle_rel, float)[..., None])[..., 0]
+    r = np.linalg.norm(u, axis=-1)
     rmax = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(KNEE_MIN))
     rmin = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(np.deg2rad(ROM_DEG["knee"][1])))
     rc = np.clip(r, rmin, rmax)
     knee = np.arccos(np.clip((rc**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
-    ax = -L2 * np.sin(knee)
-    az = -L1 - L2 * np.cos(knee)
-    beta = np.arcsin(np.clip(d[:, 1] / np.maximum(-az, 1e-9), -1, 1))  # rotation about +x
-    c = az * np.cos(beta)
-    flex = np.arctan2(d[:, 2], d[:, 0]) - np.arctan2(c, ax)
-    flex = np.mod(flex + np.pi, 2 * np.pi) - np.pi
-    # foot orientation: R_y(-flex) R_x(beta) R_y(knee) R_y(-dorsi) R_x(b) = R_y(-pitch)
-    M = _ry(-flex) @ _rx(beta) @ _ry(knee)
-    T = np.swapaxes(M, -1, -2) @ _ry(-foot_pitch)
-    a = np.arctan2(-T[:, 2, 0], T[:, 0, 0])
-    b = np.arctan2(-T[:, 1, 2], T[:, 1, 1])
+    phi = np.arctan2(u[:, 1], -u[:, 2])  # rotation about the foot's x axis (s * inversion)
+    m = np.hypot(u[:, 1], u[:, 2])
+    a = np.arctan2(L1 * np.sin(knee), L1 * np.cos(knee) + L2) - np.arctan2(u[:, 0], m)
+    a = np.mod(a + np.pi, 2 * np.pi) - np.pi  # ankle dorsiflexion
+    H = Rf @ _rx(phi) @ _ry(a - knee)  # = R_z(-s rot) R_y(-flex) R_x(s abd)
     out = {
-        f"hip_{side}_rot": -s * foot_yaw,
-        f"hip_{side}_flex": flex,
-        f"hip_{side}_abd": s * beta,
+        f"hip_{side}_rot": -s * np.arctan2(H[:, 1, 0], H[:, 0, 0]),
+        f"hip_{side}_flex": np.arcsin(np.clip(H[:, 2, 0], -1, 1)),
+        f"hip_{side}_abd": s * np.arctan2(H[:, 2, 1], H[:, 2, 2]),
         f"knee_{side}": knee,
-        f"ankle_{side}_flex": -a,
-        f"ankle_{side}_inv": -s * b,
+        f"ankle_{side}_flex": a,
+        f"ankle_{side}_inv": s * phi,
     }
     if clip:
         for name, v in out.items():
