@@ -21,6 +21,7 @@ from mjwalk.body.legs import (
     reference_angle,
     reference_from_takes,
     sagittal_angles,
+    winter_reference,
 )
 from mjwalk.errors import PlanningError
 from mjwalk.mocap.take import Take
@@ -181,13 +182,14 @@ def test_stance_foot_fixed_floor_and_ranges(radius):
 
 def test_turning_uses_hip_rotation():
     """On a 1.5 m arc the hip rotation swings through > 25 deg (measured 32); walking straight
-    it stays within 5 deg (measured 4.4: the rotation that keeps a flat foot's heading while
-    the hip flexes and abducts with a 2-dof ankle)."""
+    it stays within 10 deg (measured 4.4, 8 with the Bandai-calibrated gait: the rotation that
+    keeps the foot's heading while the hip flexes and abducts over a flexed knee, with a 2-dof
+    ankle)."""
     legs = legs_from_walk(make_walk(n_steps=6, radius=1.5))
     assert np.ptp(legs.angles["hip_l_rot"]) > np.deg2rad(25)
     straight = legs_from_walk(make_walk(n_steps=6))
     for s in "lr":
-        assert np.abs(straight.angles[f"hip_{s}_rot"]).max() < np.deg2rad(5)
+        assert np.abs(straight.angles[f"hip_{s}_rot"]).max() < np.deg2rad(10)
 
 
 def test_ik_round_trip():
@@ -227,8 +229,9 @@ def test_no_steps_is_an_error():
 
 def test_reference_gait_table():
     assert max(WINTER_GAIT["knee"]) == pytest.approx(63)  # peak swing flexion 60-65 deg
-    assert np.rad2deg(reference_angle("hip", 0.0)) == pytest.approx(30)
+    assert np.rad2deg(reference_angle("hip", 0.0)) == pytest.approx(30)  # the default
     assert np.rad2deg(reference_angle("knee", 1.0)) == pytest.approx(3)
+    assert np.rad2deg(winter_reference()("hip", 0.3)) == pytest.approx(10)
 
 
 def _model_cycles(walk, stature, reference=None):
@@ -297,7 +300,7 @@ def test_knee_hip_curves_vs_bandai_capture():
     walk = make_walk(n_steps=14, step_len=speed * T / 2, step_time=T / 2)
     figures = {}
     refs = (
-        ("Winter table", None),
+        ("Winter table (default)", None),
         ("generated, Bandai landmarks", bandai_reference()),
         ("capture clips 1-3", reference_from_takes(train)),
     )
@@ -429,7 +432,7 @@ def test_planned_walks_stance_feet_stay_put(planned_walks):
     up, ball while flat or heel up) drifts at most 1 cm over its stance, turning steps
     included (a foot whose hip cannot rotate further spins about its ball or heel); no foot
     goes more than 1 cm below the floor; every joint stays in its range. Measured (seed 0):
-    drift <= 0.22 cm (before the spin turns and the exact IK: 10 walks > 1 cm, up to 7.4 cm),
+    drift <= 0.31 cm (before the spin turns and the exact IK: 10 walks > 1 cm, up to 7.4 cm),
     lowest foot point -0.2 cm."""
     _, jm = humanoid_model()
     assert len(planned_walks) == 20
