@@ -21,6 +21,7 @@ from mjwalk.body.legs import (
     reference_angle,
     reference_from_takes,
     sagittal_angles,
+    winter_reference,
 )
 from mjwalk.errors import PlanningError
 from mjwalk.mocap.take import Take
@@ -180,10 +181,15 @@ def test_stance_foot_fixed_floor_and_ranges(radius):
 
 
 def test_turning_uses_hip_rotation():
+    """On a 1.5 m arc the hip rotation swings through > 25 deg (measured 32); walking straight
+    it stays within 10 deg (measured 4.4, 8 with the Bandai-calibrated gait: the rotation that
+    keeps the foot's heading while the hip flexes and abducts over a flexed knee, with a 2-dof
+    ankle)."""
     legs = legs_from_walk(make_walk(n_steps=6, radius=1.5))
-    assert np.abs(legs.angles["hip_l_rot"]).max() > np.deg2rad(3)
+    assert np.ptp(legs.angles["hip_l_rot"]) > np.deg2rad(25)
     straight = legs_from_walk(make_walk(n_steps=6))
-    assert np.abs(straight.angles["hip_l_rot"]).max() < 1e-9
+    for s in "lr":
+        assert np.abs(straight.angles[f"hip_{s}_rot"]).max() < np.deg2rad(10)
 
 
 def test_ik_round_trip():
@@ -223,8 +229,9 @@ def test_no_steps_is_an_error():
 
 def test_reference_gait_table():
     assert max(WINTER_GAIT["knee"]) == pytest.approx(63)  # peak swing flexion 60-65 deg
-    assert np.rad2deg(reference_angle("hip", 0.0)) == pytest.approx(30)
+    assert np.rad2deg(reference_angle("hip", 0.0)) == pytest.approx(30)  # the default
     assert np.rad2deg(reference_angle("knee", 1.0)) == pytest.approx(3)
+    assert np.rad2deg(winter_reference()("hip", 0.3)) == pytest.approx(10)
 
 
 def _model_cycles(walk, stature, reference=None):
@@ -293,7 +300,7 @@ def test_knee_hip_curves_vs_bandai_capture():
     walk = make_walk(n_steps=14, step_len=speed * T / 2, step_time=T / 2)
     figures = {}
     refs = (
-        ("Winter table", None),
+        ("Winter table (default)", None),
         ("generated, Bandai landmarks", bandai_reference()),
         ("capture clips 1-3", reference_from_takes(train)),
     )
@@ -389,3 +396,66 @@ def test_leg_fk_matches_mujoco():
                 Rg = data.geom_xmat[gid].reshape(3, 3)
                 z.append(data.geom_xpos[gid][2] - np.abs(Rg[2] * model.geom_size[gid]).sum())
             assert min(z) - hip[2] == pytest.approx(low[i], abs=1e-9)
+
+
+#: Planned paths for issue 5's leg test: hybrid-A* walks (default model, seed 0, 5 each) on
+#: three assembly-station routes and through the corridor, sharp turning steps included.
+PLANNED_ROUTES = (
+    ("assembly_station", "stand_rack2", "stand_car1"),
+    ("assembly_station", "stand_car1", "stand_rack3"),
+    ("assembly_station", "stand_rack1", "stand_car2"),
+    ("corridor", "entry", "exit"),
+)
+
+
+@pytest.fixture(scope="module")
+def planned_walks(scenes_dir):
+    """20 planned walks: (scene path, walk, leg motion, FK heel/ball points, foot pitch,
+    lowest foot point) each."""
+    from mjwalk.gait.default import default_model
+    from mjwalk.plan.hybrid import plan_walks
+    from mjwalk.world import load_workplace
+
+    model = default_model(progress=False)
+    out = []
+    for scene, start, goal in PLANNED_ROUTES:
+        path = scenes_dir / f"{scene}.xml"
+        wp = load_workplace(path)
+        for walk in plan_walks(wp, start, goal, model, n=5, seed=0):
+            legs = legs_from_walk(walk)
+            out.append((path, walk, legs, *_fk_feet(legs)))
+    return out
+
+
+def test_planned_walks_stance_feet_stay_put(planned_walks):
+    """Issue 5: on 20 planned paths each stance foot's contact point (heel while flat or toes
+    up, ball while flat or heel up) drifts at most 1 cm over its stance, turning steps
+    included (a foot whose hip cannot rotate further spins about its ball or heel); no foot
+    goes more than 1 cm below the floor; every joint stays in its range. Measured (seed 0):
+    drift <= 0.31 cm (before the spin turns and the exact IK: 10 walks > 1 cm, up to 7.4 cm),
+    lowest foot point -0.2 cm."""
+    _, jm = humanoid_model()
+    assert len(planned_walks) == 20
+    for k, (_, walk, legs, pts, pitch, low) in enumerate(planned_walks):
+        drift = stance_drift(walk, pts, pitch)
+        assert drift <= 0.01, f"walk {k}: a stance foot drifted {drift * 100:.2f} cm"
+        assert low.min() >= -0.01, f"walk {k}: foot {-low.min() * 100:.1f} cm below the floor"
+        for name, v in legs.angles.items():
+            lo, hi = jm.limits(name)
+            assert v.min() >= lo - 1e-9 and v.max() <= hi + 1e-9, (k, name)
+
+
+def test_planned_walks_touch_nothing(planned_walks):
+    """Issue 5: the played-back walks (legs, trunk turning, arms) of the 20 planned paths
+    touch no scene geometry, the planner having certified each pelvis path clear."""
+    from mjwalk.playback import collision_report, timeline_from_walk
+    from mjwalk.world import load_workplace
+
+    for k, (path, walk, *_) in enumerate(planned_walks):
+        clear = load_workplace(path).walk_clearance(walk.xy)
+        assert clear.min() >= walk.meta["radius"] - 1e-6, f"walk {k} is not certified"
+        contacts = collision_report(timeline_from_walk(walk, path))
+        assert contacts == [], (
+            k,
+            [(c.body_part, c.scene_geom, round(c.depth, 4)) for c in contacts],
+        )

@@ -36,19 +36,21 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.interpolate import CubicSpline
+from scipy.ndimage import gaussian_filter1d, maximum_filter1d
 
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry, leg_geometry
 from mjwalk.errors import CaptureError, PlanningError
 from mjwalk.plan.walkpath import WalkPath
 
-#: Default reference gait: sagittal angles in degrees every 5 % of the gait cycle, 0 % = heel
-#: strike. ``hip``: thigh flexion, ``knee``: knee flexion, after D. A. Winter, "The Biomechanics
-#: and Motor Control of Human Gait: Normal, Elderly and Pathological", 2nd ed. (1991), natural
-#: cadence ensemble averages (read off the figures, rounded to the degree): knee ~3 deg at heel
-#: strike, ~18 deg loading response, ~60-63 deg peak swing; hip +30 to -10 deg. ``pitch``: foot
-#: angle to the floor (+ toes up), after the foot-floor angles in J. Perry & J. M. Burnfield,
-#: "Gait Analysis: Normal and Pathological Function", 2nd ed. (2010): ~20 deg at heel strike,
-#: foot flat ~8-40 %, toe-off at ~60 % with ~35-40 deg, rounded.
+#: Literature reference gait (:data:`DEFAULT_REFERENCE`): sagittal angles in degrees
+#: every 5 % of the gait cycle, 0 % = heel strike. ``hip``: thigh flexion, ``knee``: knee
+#: flexion, after D. A. Winter, "The Biomechanics and Motor Control of Human Gait: Normal,
+#: Elderly and Pathological", 2nd ed. (1991), natural cadence ensemble averages (read off the
+#: figures, rounded to the degree): knee ~3 deg at heel strike, ~18 deg loading response,
+#: ~60-63 deg peak swing; hip +30 to -10 deg. ``pitch``: foot angle to the floor (+ toes up),
+#: after the foot-floor angles in J. Perry & J. M. Burnfield, "Gait Analysis: Normal and
+#: Pathological Function", 2nd ed. (2010): ~20 deg at heel strike, foot flat ~8-40 %, toe-off
+#: at ~60 % with ~35-40 deg, rounded.
 WINTER_GAIT = {
     "cycle": np.arange(0, 101, 5) / 100.0,
     "hip": [30, 29, 27, 24, 20, 15, 10, 5, 0, -4, -8, -9, -5, 3, 12, 20, 26, 30, 32, 31, 30],
@@ -69,6 +71,10 @@ FLOOR_ITERATIONS = 10
 FLOOR_TOLERANCE = 2e-3
 #: Smallest knee flexion the IK uses when a leg must stretch (radians): never lock the knee.
 KNEE_MIN = np.deg2rad(2.0)
+#: Spin turns (degrees): a grounded foot whose hip would rotate past its range less
+#: ``SPIN_MARGIN`` turns about its ball by the excess (softly: from ``SPIN_SOFT`` before that),
+#: its heel raised ``SPIN_HEEL`` over the last ``SPIN_RAMP`` of hip rotation before the turn.
+SPIN_MARGIN, SPIN_SOFT, SPIN_HEEL, SPIN_RAMP = 2.0, 4.0, 4.0, 6.0
 
 LEG_JOINTS = (
     "hip_{}_rot",
@@ -217,10 +223,17 @@ def bandai_reference() -> ReferenceGait:
 
 def reference_angle(joint: str, cycle, derivative: bool = False):
     """Default-reference angle (radians) of ``joint`` ("hip", "knee", "pitch") at cycle(s)."""
-    return _WINTER(joint, cycle, derivative)
+    return DEFAULT_REFERENCE(joint, cycle, derivative)
 
 
 _WINTER = winter_reference()
+#: The reference gait :func:`legs_from_walk` uses by default: the Winter table. The generated
+#: :func:`bandai_reference` is closer to real walking (max difference to held-out bandai-walk
+#: clips hip 4.8 / knee 6.9 deg vs 12.4 / 16.1 deg) and keeps every leg, floor, drift, contact
+#: and cycle test green, but as the default it leaves the gait-pose arm model (trained on
+#: this module's legs, :func:`~mjwalk.body.gaitpose.training_poses`) swinging the arms by
+#: only 3.6 deg (test_timeline_with_gaitpose_arms wants > 5), so it is not the default yet.
+DEFAULT_REFERENCE = _WINTER
 
 
 def sagittal_angles(hip, knee, ankle, toe, yaw):
@@ -372,31 +385,31 @@ def leg_ik(
     """
     s = 1.0 if side == "l" else -1.0
     L1, L2 = geom.thigh, geom.shank
-    d = _rz(-foot_yaw) @ ankle_rel[..., None]
-    d = d[..., 0]
-    r = np.linalg.norm(d, axis=-1)
+    # the hip-to-ankle vector in the foot frame R_f = R_z(yaw) R_y(-pitch) (sole level
+    # sideways); the chain hip R_z R_y R_x, knee R_y, ankle R_y R_x gives
+    # u = R_x(s inv) R_y(dorsi) w(knee) with w(knee) the hip-to-ankle vector in the shin frame
+    # (knee and ankle flexion axes parallel): knee from |u|, ankle inversion and flexion from
+    # the direction of u, then the hip's three angles from the remaining rotation, so the
+    # foot's position and all three orientation angles are met exactly (6 joints, 6 dof)
+    Rf = _rz(np.asarray(foot_yaw, float)) @ _ry(-np.asarray(foot_pitch, float))
+    u = (np.swapaxes(Rf, -1, -2) @ np.asarray(ankle_rel, float)[..., None])[..., 0]
+    r = np.linalg.norm(u, axis=-1)
     rmax = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(KNEE_MIN))
     rmin = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(np.deg2rad(ROM_DEG["knee"][1])))
     rc = np.clip(r, rmin, rmax)
     knee = np.arccos(np.clip((rc**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
-    ax = -L2 * np.sin(knee)
-    az = -L1 - L2 * np.cos(knee)
-    beta = np.arcsin(np.clip(d[:, 1] / np.maximum(-az, 1e-9), -1, 1))  # rotation about +x
-    c = az * np.cos(beta)
-    flex = np.arctan2(d[:, 2], d[:, 0]) - np.arctan2(c, ax)
-    flex = np.mod(flex + np.pi, 2 * np.pi) - np.pi
-    # foot orientation: R_y(-flex) R_x(beta) R_y(knee) R_y(-dorsi) R_x(b) = R_y(-pitch)
-    M = _ry(-flex) @ _rx(beta) @ _ry(knee)
-    T = np.swapaxes(M, -1, -2) @ _ry(-foot_pitch)
-    a = np.arctan2(-T[:, 2, 0], T[:, 0, 0])
-    b = np.arctan2(-T[:, 1, 2], T[:, 1, 1])
+    phi = np.arctan2(u[:, 1], -u[:, 2])  # rotation about the foot's x axis (s * inversion)
+    m = np.hypot(u[:, 1], u[:, 2])
+    a = np.arctan2(L1 * np.sin(knee), L1 * np.cos(knee) + L2) - np.arctan2(u[:, 0], m)
+    a = np.mod(a + np.pi, 2 * np.pi) - np.pi  # ankle dorsiflexion
+    H = Rf @ _rx(phi) @ _ry(a - knee)  # = R_z(-s rot) R_y(-flex) R_x(s abd)
     out = {
-        f"hip_{side}_rot": -s * foot_yaw,
-        f"hip_{side}_flex": flex,
-        f"hip_{side}_abd": s * beta,
+        f"hip_{side}_rot": -s * np.arctan2(H[:, 1, 0], H[:, 0, 0]),
+        f"hip_{side}_flex": np.arcsin(np.clip(H[:, 2, 0], -1, 1)),
+        f"hip_{side}_abd": s * np.arctan2(H[:, 2, 1], H[:, 2, 2]),
         f"knee_{side}": knee,
-        f"ankle_{side}_flex": -a,
-        f"ankle_{side}_inv": -s * b,
+        f"ankle_{side}_flex": a,
+        f"ankle_{side}_inv": s * phi,
     }
     if clip:
         for name, v in out.items():
@@ -461,18 +474,35 @@ def _ball(geom: LegGeometry) -> float:
 
 
 def _pivot(foot: np.ndarray, pitch, geom: LegGeometry) -> np.ndarray:
-    """(n, 3) ankle positions of a foot on footprint ``foot`` pitched by ``pitch`` (radians):
-    negative (heel up) rolls about the ball, positive (toes up) about the heel; the pivot stays
-    where it is on the floor when the foot is flat."""
+    """(n, 3) ankle positions of a foot on footprint ``foot`` ((3,) or per sample (n, 3))
+    pitched by ``pitch`` (radians): negative (heel up) rolls about the ball, positive (toes up)
+    about the heel; the pivot stays where it is on the floor when the foot is flat."""
     ah = geom.ankle_height
     pitch = np.atleast_1d(np.asarray(pitch, float))
+    foot = np.asarray(foot, float)
     lever = np.where(pitch <= 0, _ball(geom), -geom.foot_back)
-    fwd = np.array([np.cos(foot[2]), np.sin(foot[2]), 0.0])
-    pivot = np.array([foot[0], foot[1], 0.0]) + lever[:, None] * fwd
-    # R_z(yaw) R_y(-pitch) (lever, 0, -ah), written out (this runs in inner loops)
+    fx, fy = np.cos(foot[..., 2]), np.sin(foot[..., 2])
+    # R_z(yaw) R_y(-pitch) (lever, 0, -ah) from the pivot, written out (inner loops)
     c, s = np.cos(pitch), np.sin(pitch)
-    along = lever * c + ah * s
-    return pivot - np.column_stack([along * fwd[0], along * fwd[1], lever * s - ah * c])
+    along = lever * (c - 1) + ah * s  # the pivot is lever ahead of the ankle when flat
+    return np.column_stack(
+        [
+            foot[..., 0] - along * fx,
+            foot[..., 1] - along * fy,
+            ah * c - lever * s,
+        ]
+    )
+
+
+def _spin_print(foot: np.ndarray, spin, geom: LegGeometry, lever: float | None = None):
+    """(n, 3) footprints of a foot on ``foot`` (3,) turned by ``spin`` (n,) radians about the
+    point ``lever`` metres ahead of the ankle on its sole (default the ball; ``-foot_back``:
+    the heel). That point stays on the floor where it is; the rest of the foot swings round."""
+    b = _ball(geom) if lever is None else lever
+    spin = np.asarray(spin, float)
+    piv = foot[:2] + b * np.array([np.cos(foot[2]), np.sin(foot[2])])
+    yaw = foot[2] + spin
+    return np.column_stack([piv[0] - b * np.cos(yaw), piv[1] - b * np.sin(yaw), yaw])
 
 
 def _soft_flat(p: np.ndarray) -> np.ndarray:
@@ -548,7 +578,7 @@ def legs_from_walk(
     Args:
         walk: a WalkPath with steps (each with side, start/end sample, landing and stance foot).
         stature: the humanoid's stature in metres.
-        reference: the reference gait (key frames); default :func:`winter_reference`.
+        reference: the reference gait (key frames); default :data:`DEFAULT_REFERENCE`.
 
     Returns:
         a :class:`LegMotion` on the walk's samples.
@@ -558,7 +588,7 @@ def legs_from_walk(
             "legs_from_walk: the walk path has no steps (grid-A* paths have no gait; plan with "
             "the hybrid A* or add footprints)"
         )
-    ref = reference or _WINTER
+    ref = reference or DEFAULT_REFERENCE
     geom = leg_geometry(stature)
     n = len(walk.t)
     xy = np.asarray(walk.xy, float)
@@ -650,6 +680,9 @@ def legs_from_walk(
         # reference's (loading response: the knee flexes right after heel strike)
         k_land = knee_for(idx[-1:], sw, pos[-1:], z[idx[-1:]])
         knee_prev = (float(k_land[-1]), 0.5 * float(ref("knee", 0.0, True)))
+    # where the pelvis turns further than a grounded foot's hip can rotate, the foot spins
+    # about its ball; its next swing starts from the turned footprint
+    _spin_turns(ankle, fyaw, pitch, toe, ground, print_, np.column_stack([xy, z]), yaw, geom)
     # before the first step: stand on both feet; after the last: hold the final pose
     first, last = frames[0], frames[-1]
     pre = np.arange(0, first["start"])
@@ -664,35 +697,47 @@ def legs_from_walk(
         for arr in (*ankle.values(), *fyaw.values(), *pitch.values(), *toe.values(), z):
             arr[post] = arr[e]
         contact[post] = 2
-    root = np.column_stack([xy, z])
     angles: dict[str, np.ndarray] = {}
     dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
+    reach = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(KNEE_MIN))
+    for _ in range(4):
+        root = np.column_stack([xy, z])
+        for s_ in "lr":
+            # a grounded foot whose ankle would dorsiflex past its range pitches down
+            # instead: a toes-up foot rolls down about its heel, a flat one onto its ball
+            # (heel rise), so the sole keeps its place on the floor (clipping the ankle would
+            # sink the toes)
+            for _ in range(8):
+                raw = _leg_raw(ankle[s_], fyaw[s_], pitch[s_], root, yaw, s_, geom)
+                dorsi = raw[f"ankle_{s_}_flex"]
+                bad = np.flatnonzero(ground[s_] & (dorsi > dorsi_max))
+                if not len(bad):
+                    break
+                pitch[s_][bad] -= 1.2 * (dorsi[bad] - dorsi_max)
+                toe[s_][bad] = -np.minimum(pitch[s_][bad], 0.0)
+                ankle[s_][bad] = _pivot(print_[s_][bad], pitch[s_][bad], geom)
+        # rolling a heel-strike foot down (or turning it about the ball) lowers its ankle:
+        # where a grounded leg then cannot reach its foot, the pelvis lowers (smoothly)
+        deficit = np.zeros(n)
+        for s_ in "lr":
+            h = np.linalg.norm(_hip_world(root, yaw, s_, geom)[:, :2] - ankle[s_][:, :2], axis=1)
+            cap = ankle[s_][:, 2] + np.sqrt(np.maximum(reach**2 - h**2, 0.0))
+            deficit = np.maximum(deficit, np.where(ground[s_], z - cap, 0.0))
+        if deficit.max() <= 1e-3:
+            break
+        win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))
+        z = z - gaussian_filter1d(maximum_filter1d(np.maximum(deficit, 0.0), 2 * win + 1), win / 3)
+    root = np.column_stack([xy, z])
     for s_ in "lr":
-        sgn = 1.0 if s_ == "l" else -1.0
-        hip = root + sgn * geom.hip_y * np.column_stack([-np.sin(yaw), np.cos(yaw), np.zeros(n)])
-        yrel = np.angle(np.exp(1j * (fyaw[s_] - yaw)))
-        # a grounded foot whose ankle would dorsiflex past its range pitches down instead:
-        # a toes-up foot rolls down about its heel, a flat one onto its ball (heel rise), so
-        # the sole keeps its place on the floor (clipping the ankle would sink the toes)
-        for _ in range(8):
-            rel = (_rz(-yaw) @ (ankle[s_] - hip)[..., None])[..., 0]
-            dorsi = leg_ik(rel, yrel, pitch[s_], s_, geom, clip=False)[f"ankle_{s_}_flex"]
-            bad = np.flatnonzero(ground[s_] & (dorsi > dorsi_max))
-            if not len(bad):
-                break
-            pitch[s_][bad] -= 1.2 * (dorsi[bad] - dorsi_max)
-            toe[s_][bad] = -np.minimum(pitch[s_][bad], 0.0)
-            for j in bad:
-                ankle[s_][j] = _pivot(print_[s_][j], pitch[s_][j], geom)[0]
+        hip = _hip_world(root, yaw, s_, geom)
         # where the joint ranges still keep the foot from its target (a trailing foot too far
         # behind for the hip's extension, say), the clipped leg would put the sole below the
         # floor: lift the ankle target by the depth (or, where the ankle is at its
         # dorsiflexion limit and lifting would tilt the toes down further, pitch the foot
         # down) and solve again, so the foot stays above -FLOOR_TOLERANCE by construction
         for _ in range(FLOOR_ITERATIONS):
-            rel = (_rz(-yaw) @ (ankle[s_] - hip)[..., None])[..., 0]
-            raw = leg_ik(rel, yrel, pitch[s_], s_, geom, clip=False)
-            ang = leg_ik(rel, yrel, pitch[s_], s_, geom)
+            raw = _leg_raw(ankle[s_], fyaw[s_], pitch[s_], root, yaw, s_, geom)
+            ang = {k: np.clip(v, *np.deg2rad(ROM_DEG[_generic(k)])) for k, v in raw.items()}
             ang[f"toe_{s_}"] = np.clip(toe[s_], *np.deg2rad(ROM_DEG["toe"]))
             low = hip[:, 2] + foot_lowest(ang, s_, geom)
             bad = low < -FLOOR_TOLERANCE
@@ -702,14 +747,11 @@ def legs_from_walk(
             tilt = bad & (excess > 0)
             pitch[s_][tilt] -= 1.2 * excess[tilt]
             toe[s_][tilt] = -np.minimum(pitch[s_][tilt], 0.0)
-            for j in np.flatnonzero(tilt & ground[s_]):
-                ankle[s_][j] = _pivot(print_[s_][j], pitch[s_][j], geom)[0]
+            j = np.flatnonzero(tilt & ground[s_])
+            ankle[s_][j] = _pivot(print_[s_][j], pitch[s_][j], geom)
             lift = bad & ~tilt
             ankle[s_][lift, 2] -= low[lift]
         angles.update(ang)
-        angles.pop(f"toe_{s_}")
-        lo, hi = np.deg2rad(ROM_DEG["toe"])
-        angles[f"toe_{s_}"] = np.clip(toe[s_], lo, hi)
     return LegMotion(
         t=np.asarray(walk.t, float),
         root=root,
@@ -721,6 +763,144 @@ def legs_from_walk(
         phase=phase,
         meta={"stature": stature, "reference": ref.source},
     )
+
+
+def _hip_world(root: np.ndarray, yaw: np.ndarray, side: str, geom: LegGeometry) -> np.ndarray:
+    """(n, 3) world position of the ``side`` hip joint centre of an upright pelvis at
+    ``root`` (n, 3) with heading ``yaw`` (n,), metres."""
+    sgn = 1.0 if side == "l" else -1.0
+    lat = np.column_stack([-np.sin(yaw), np.cos(yaw), np.zeros_like(yaw)])
+    return root + sgn * geom.hip_y * lat
+
+
+def _leg_raw(ankle, foot_yaw, pitch, root, yaw, side: str, geom: LegGeometry) -> dict:
+    """Unclipped :func:`leg_ik` angles of the ``side`` leg for world ankle targets (n, 3), foot
+    headings (n,) and pitches (n,) under the pelvis ``root`` (n, 3), ``yaw`` (n,)."""
+    hip = _hip_world(root, yaw, side, geom)
+    rel = (_rz(-yaw) @ (ankle - hip)[..., None])[..., 0]
+    yrel = np.angle(np.exp(1j * (foot_yaw - yaw)))
+    return leg_ik(rel, yrel, pitch, side, geom, clip=False)
+
+
+def _soft_excess(x: np.ndarray, w: float) -> np.ndarray:
+    """max(x, 0) rounded over ``[0, 2 w]`` (C1): 0 for x <= 0, x - w for x >= 2 w."""
+    x = np.maximum(x, 0.0)
+    return np.where(x < 2 * w, x * x / (4 * w), x - w)
+
+
+def _spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeometry) -> dict:
+    """Spin turns, in place: a grounded foot (stance, then pre-swing on the same footprint)
+    whose hip rotation would pass its range as the pelvis turns (a sharp turning step) turns
+    by the excess about the point it stands on, so that point stays put and the hip stays
+    in range, instead of the clipped hip dragging the foot round:
+
+    * flat or heel up: about the ball, the heel raised a little (:data:`SPIN_HEEL`, in
+      smoothly before the turn starts, kept up until lift-off);
+    * toes up after heel strike (the foot landed turned further than the hip allows): about
+      the heel, the toes kept up a little until the turn is undone.
+
+    The turned footprint carries into the swings before and after: the ankle, yaw and pitch
+    offsets at toe-off fade out over the next swing (gone at 90 % of it, where the swing foot
+    takes its landing heading), those at heel strike fade in over the second half of the
+    swing before.
+
+    Arrays are per side ("l"/"r") over the walk's samples: ankle (n, 3) m, fyaw (n,) rad, pitch
+    and toe (n,) rad, ground (n,) bool, print_ (n, 3) footprints; root (n, 3) pelvis
+    position, yaw (n,) pelvis yaw. Returns per side the largest turn (radians) and the number
+    of contacts that turned."""
+    n = len(yaw)
+    lo, hi = np.deg2rad(ROM_DEG["hip_rot"])
+    margin, soft, ramp = np.deg2rad([SPIN_MARGIN, SPIN_SOFT, SPIN_RAMP])
+    heel = np.deg2rad(SPIN_HEEL)
+    ball, back = _ball(geom), -geom.foot_back
+    stats = {}
+    for s_ in "lr":
+        sgn = 1.0 if s_ == "l" else -1.0
+        g = ground[s_]
+        new_print = np.r_[True, np.any(print_[s_][1:] != print_[s_][:-1], axis=1)]
+        starts = np.flatnonzero(g & (new_print | ~np.r_[False, g[:-1]]))
+        ends = [
+            j0 + int(np.argmax(np.r_[~g[j0 + 1 :] | new_print[j0 + 1 :], True])) for j0 in starts
+        ]
+        worst, count = 0.0, 0
+        for i, (j0, j1) in enumerate(zip(starts, ends, strict=True)):
+            run = np.arange(j0, j1 + 1)
+            foot = print_[s_][j0].copy()
+
+            def rot(a_, y_, p_, run=run, side=s_):
+                return _leg_raw(a_, y_, p_, root[run], yaw[run], side, geom)[f"hip_{side}_rot"]
+
+            p0 = pitch[s_][run].copy()
+            r0 = rot(ankle[s_][run], fyaw[s_][run], p0)
+            up = _soft_excess(r0 - (hi - margin - soft), soft / 2)
+            down = _soft_excess((lo + margin + soft) - r0, soft / 2)
+            need = (up > 0) | (down > 0)
+            if not need.any():
+                continue
+            target = r0 - (up - down)
+            rise = np.maximum(
+                _smoothstep((r0 - (hi - margin - soft - ramp)) / ramp),
+                _smoothstep(((lo + margin + soft + ramp) - r0) / ramp),
+            )
+            # heel phase: from heel strike while the toes are up or, turned, kept up; then
+            # the ball phase (the heel rises at the latest where the reference raises it)
+            free = (p0 <= 0) & (rise == 0)
+            k_h = 0
+            if p0[0] > 0:
+                k_h = min(int(np.argmax(np.r_[free, True])), int(np.argmax(np.r_[p0 < 0, True])))
+            heel_ph = np.arange(len(run)) < k_h
+            lift = np.maximum.accumulate(np.where(heel_ph, 0.0, rise))
+            p = np.where(
+                heel_ph,
+                np.maximum(p0, heel * rise),
+                np.where(lift > 0, np.minimum(p0, -heel * lift), p0),
+            )
+            spin = np.zeros(len(run))
+
+            def prints(spin, foot=foot, heel_ph=heel_ph, k_h=k_h):
+                fp = np.empty((len(spin), 3))
+                fp[heel_ph] = _spin_print(foot, spin[heel_ph], geom, back)
+                base = fp[k_h - 1] if k_h else foot
+                rest = spin[~heel_ph] - (spin[k_h - 1] if k_h else 0.0)
+                fp[~heel_ph] = _spin_print(base, rest, geom, ball)
+                return fp
+
+            for _ in range(6):  # the hip rotation follows the foot's yaw one to one (-s)
+                fp = prints(spin)
+                err = rot(_pivot(fp, p, geom), fp[:, 2], p) - target
+                spin = spin + np.where(need, sgn * err, 0.0)
+                # without need the foot keeps its turn (relative to its phase's pivot)
+                spin = np.where(need, spin, 0.0)
+            fp = prints(spin)
+            a_ = _pivot(fp, p, geom)
+            worst, count = max(worst, float(np.abs(fp[:, 2] - foot[2]).max())), count + 1
+            offsets = [
+                (a_[k] - ankle[s_][j], fp[k, 2] - foot[2], p[k] - p0[k])
+                for k, j in ((0, j0), (-1, j1))
+            ]
+            ankle[s_][run], fyaw[s_][run], print_[s_][run] = a_, fp[:, 2], fp
+            pitch[s_][run], toe[s_][run] = p, -np.minimum(p, 0.0)
+            # the swings around start from / land on the turned foot; the offsets fade
+            j_prev = ends[i - 1] if i else None
+            j_next = starts[i + 1] if i + 1 < len(starts) else n
+            for (d_a, d_y, d_p), sw, fade in (
+                (offsets[1], np.arange(j1 + 1, j_next), lambda x: 1 - _smoothstep(x / 0.9)),
+                (
+                    offsets[0],
+                    np.arange((j_prev if j_prev is not None else j0) + 1, j0),
+                    lambda x: _smoothstep(2 * x - 1),
+                ),
+            ):
+                if not len(sw):
+                    continue
+                x = (sw - sw[0] + 1) / (len(sw) + 1)
+                w = fade(x)
+                ankle[s_][sw] += w[:, None] * d_a
+                fyaw[s_][sw] += w * d_y
+                pitch[s_][sw] += w * d_p
+                toe[s_][sw] -= w * d_p
+        stats[s_] = (worst, count)
+    return stats
 
 
 def _displaced(ref: ReferenceGait, name: str, phi, th0, v0, th1, v1) -> np.ndarray:
