@@ -60,7 +60,8 @@ def load_npz(path: str | os.PathLike, what: str) -> tuple[dict, dict]:
     """Read a file written by :func:`save_npz`: (header dict, arrays without the header).
 
     A missing, unreadable or header-less file raises ``ModelFileError`` naming the file and
-    ``what`` it should have been (e.g. "step-model"). Format and version checks are the caller's.
+    ``what`` it should have been (e.g. "step-model"); :func:`check_header` checks the format
+    and version.
     """
     import json
     import zipfile
@@ -85,3 +86,19 @@ def load_npz(path: str | os.PathLike, what: str) -> tuple[dict, dict]:
     if not isinstance(header, dict):
         raise ModelFileError(f"{path}: the {what} file's header is not a JSON object")
     return header, data
+
+
+def check_header(header: dict, source, what: str, fmt: str, version: int) -> None:
+    """Raise ``ModelFileError`` naming ``source`` unless ``header`` is of format ``fmt`` and
+    version ``version`` (the header :func:`save_npz` wrote, or one nested inside it)."""
+    from mjwalk.errors import ModelFileError
+
+    if header.get("format") != fmt:
+        raise ModelFileError(
+            f"{source}: format {header.get('format')!r} is not {fmt!r} (a {what} file)"
+        )
+    if header.get("version") != version:
+        raise ModelFileError(
+            f"{source}: {what} version {header.get('version')!r} unsupported "
+            f"(this mjwalk reads version {version})"
+        )

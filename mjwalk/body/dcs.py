@@ -32,7 +32,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 from scipy.spatial.distance import cdist
 
-from mjwalk._io import load_npz, save_npz
+from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.errors import MjwalkError, ModelFileError
 
 DCS_FORMAT = "mjwalk.dcs"
@@ -359,13 +359,7 @@ class DCSNetwork:
     @classmethod
     def from_arrays(cls, header: dict, data: dict, source: str = "<arrays>") -> DCSNetwork:
         """Rebuild a network from :meth:`save`'s header and arrays (used by composite models)."""
-        if header.get("format") != DCS_FORMAT:
-            raise ModelFileError(f"{source}: format {header.get('format')!r} is not a DCS network")
-        if header.get("version") != DCS_VERSION:
-            raise ModelFileError(
-                f"{source}: DCS version {header.get('version')} unsupported "
-                f"(this mjwalk reads version {DCS_VERSION})"
-            )
+        check_header(header, source, "DCS network", DCS_FORMAT, DCS_VERSION)
         try:
             net = cls(**header["params"])
             net.centers_ = np.asarray(data["centers"], dtype=float)

@@ -28,7 +28,7 @@ import numpy as np
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
-from mjwalk._io import load_npz, save_npz
+from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.body.armrep import ArmRepresentation, apply_pose
 from mjwalk.body.dcs import DCSNetwork
 from mjwalk.errors import MjwalkError, ModelFileError
@@ -294,13 +294,7 @@ class ReachModel:
     def load(cls, path: str | Path) -> ReachModel:
         """Read a model written by :meth:`save`; corrupt/foreign files raise ModelFileError."""
         header, data = load_npz(path, "reach-model")
-        if header.get("format") != REACH_FORMAT:
-            raise ModelFileError(f"{path}: not an mjwalk reach model")
-        if header.get("version") != REACH_VERSION:
-            raise ModelFileError(
-                f"{path}: reach-model version {header.get('version')} unsupported "
-                f"(this mjwalk reads version {REACH_VERSION})"
-            )
+        check_header(header, path, "reach-model", REACH_FORMAT, REACH_VERSION)
         try:
             model = cls(lengths=data["lengths"], variance=header["variance"])
             model.rep_ = ArmRepresentation.from_arrays(data)

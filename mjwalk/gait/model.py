@@ -64,7 +64,7 @@ import numpy as np
 from scipy.linalg import cho_solve, cholesky, solve_triangular
 from scipy.stats import gaussian_kde
 
-from mjwalk._io import load_npz, save_npz
+from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait.features import StepBatch, StepFeatures, raw_features, side_array
 from mjwalk.gait.step import Step
@@ -607,13 +607,7 @@ class StepModel:
     def load(cls, path: str | Path) -> StepModel:
         """Read a model written by :meth:`save`; any problem raises ``ModelFileError``."""
         header, data = load_npz(path, "step-model")
-        if header.get("format") != MODEL_FORMAT:
-            raise ModelFileError(f"{path}: format {header.get('format')!r} is not {MODEL_FORMAT!r}")
-        if header.get("version") != MODEL_VERSION:
-            raise ModelFileError(
-                f"{path}: step-model version {header.get('version')!r} unsupported "
-                f"(this mjwalk reads version {MODEL_VERSION})"
-            )
+        check_header(header, path, "step-model", MODEL_FORMAT, MODEL_VERSION)
         try:
             feats = StepFeatures.from_arrays(data, "feat_")
             model = cls(

@@ -7,8 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mjwalk._io import load_npz, save_npz
-from mjwalk.errors import ModelFileError
+from mjwalk._io import check_header, load_npz, save_npz
 
 WALKPATH_FORMAT = "mjwalk.walkpath"
 WALKPATH_VERSION = 1
@@ -100,13 +99,7 @@ class WalkPath:
     def load(cls, path: str | Path) -> WalkPath:
         """Read a path written by :meth:`save`; a foreign or corrupt file raises ModelFileError."""
         header, data = load_npz(path, "walk-path")
-        if header.get("format") != WALKPATH_FORMAT:
-            raise ModelFileError(f"{path}: format {header.get('format')!r} is not a walk path")
-        if header.get("version") != WALKPATH_VERSION:
-            raise ModelFileError(
-                f"{path}: walk-path version {header.get('version')} unsupported "
-                f"(this mjwalk reads version {WALKPATH_VERSION})"
-            )
+        check_header(header, path, "walk-path", WALKPATH_FORMAT, WALKPATH_VERSION)
         steps = [
             PathStep(
                 side="right" if side else "left",
