@@ -393,42 +393,40 @@ class StepModel:
         term = np.array([bool(steps[j].meta.get("termination")) for j in nxt], dtype=bool)
         stop_prev, stop_nxt = prev[term], nxt[term]
         prev, nxt = prev[~term], nxt[~term]
-        gps, n_trans = {}, {}
-        for s in _SIDES:
-            sel = sides[prev] == s
-            t1 = time.perf_counter()
-            gps[s] = TransitionGP.fit(
-                z[prev[sel]],
-                z[nxt[sel]],
-                rng=rng,
-                n_hyper=n_hyper,
-                n_inducing=n_inducing,
-                n_residual=n_residual,
-            )
-            n_trans[s] = int(sel.sum())
-            _log(
-                progress,
-                f"GP {s}->{_other(s)}: {n_trans[s]} pairs, {time.perf_counter() - t1:.1f} s",
-            )
+
+        def fit_gps(label, pp, nn, min_pairs, inducing, residual):
+            """One transition GP per predecessor side on the pairs (pp, nn) of a regime."""
+            out, counts = {}, {}
+            for s in _SIDES:
+                sel = sides[pp] == s
+                counts[s] = int(sel.sum())
+                if counts[s] < min_pairs:
+                    continue
+                t1 = time.perf_counter()
+                out[s] = TransitionGP.fit(
+                    z[pp[sel]],
+                    z[nn[sel]],
+                    rng=rng,
+                    n_hyper=n_hyper,
+                    n_inducing=inducing(counts[s]),
+                    n_residual=residual,
+                )
+                _log(
+                    progress,
+                    f"{label}{s}->{_other(s)}: {counts[s]} pairs, {time.perf_counter() - t1:.1f} s",
+                )
+            return out, counts
+
+        gps, n_trans = fit_gps("GP ", prev, nxt, 0, lambda n: n_inducing, n_residual)
         # ... they are their own regime: a stop GP per side, drawn by sample_stop (module doc)
-        stop_gps, n_stop = {}, {}
-        for s in _SIDES:
-            sel = sides[stop_prev] == s
-            n_stop[s] = int(sel.sum())
-            if n_stop[s] < MIN_STOP_PAIRS:
-                continue
-            t1 = time.perf_counter()
-            stop_gps[s] = TransitionGP.fit(
-                z[stop_prev[sel]],
-                z[stop_nxt[sel]],
-                rng=rng,
-                n_hyper=n_hyper,
-                n_inducing=min(n_inducing, max(5, n_stop[s] // 4)),
-            )
-            _log(
-                progress,
-                f"stop GP {s}->{_other(s)}: {n_stop[s]} pairs, {time.perf_counter() - t1:.1f} s",
-            )
+        stop_gps, n_stop = fit_gps(
+            "stop GP ",
+            stop_prev,
+            stop_nxt,
+            MIN_STOP_PAIRS,
+            lambda n: min(n_inducing, max(5, n // 4)),
+            None,
+        )
         info = {
             "n_steps": len(steps),
             "n_takes": len(first),
