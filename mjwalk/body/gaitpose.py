@@ -83,11 +83,22 @@ class GaitPoseModel:
         return int(self.pca[-1].n_components_)
 
     def rollout(
-        self, n_frames: int, rng: np.random.Generator | None = None, z0: np.ndarray | None = None
+        self,
+        n_frames: int,
+        rng: np.random.Generator | None = None,
+        z0: np.ndarray | None = None,
+        reset: bool = True,
     ) -> tuple[np.ndarray, np.ndarray]:
         """Generate ``n_frames`` poses by iterating the mean dynamics from ``z0`` ((2, q): latent
         pose and latent velocity per frame; default: a training start point chosen with
         ``rng``, or the first one).
+
+        Iterated GP means contract: trained on walks of several step lengths and amplitudes,
+        the mean step averages neighbouring cycles and a free rollout's swing shrinks to a
+        few degrees within 5-10 s. With ``reset`` (default) the state is put back on the
+        training data at every switch into double support (heel strike): onto the training
+        heel-strike state (latent pose and velocity, :attr:`start`) nearest to it, a phase
+        reset at the contact event; between heel strikes the rollout is the GP's mean.
 
         Returns:
             poses (n_frames, D) in the units of :attr:`names` and contact states (n_frames,).
@@ -101,8 +112,13 @@ class GaitPoseModel:
         z = np.zeros((n_frames + 1, self.n_latent))
         z[0], z[1] = z0[0] - z0[1], z0[0]
         s = np.zeros(n_frames, dtype=int)
+        anchors = np.hstack([self.start[:, 0], self.vel_scale * self.start[:, 1]])
         for t in range(n_frames):
             s[t] = int(self.classifier.predict(z[t + 1 : t + 2])[0])
+            if reset and t > 0 and s[t] == 2 and s[t - 1] != 2:
+                x = np.hstack([z[t + 1], self.vel_scale * (z[t + 1] - z[t])])
+                k = int(np.argmin(((anchors - x) ** 2).sum(1)))
+                z[t], z[t + 1] = self.start[k, 0] - self.start[k, 1], self.start[k, 0]
             if t + 1 < n_frames:
                 gp = self.gps[s[t]] if self.switching else self.gps[-1]
                 x = np.hstack([z[t + 1], self.vel_scale * (z[t + 1] - z[t])])[None]
@@ -142,7 +158,10 @@ def _upper_body(legs: LegMotion, amp: np.ndarray) -> dict[str, np.ndarray]:
     out = {}
     for s in "lr":
         hip = legs.angles[f"hip_{s}_flex"]
-        sh = -amp[0] * (hip - hip.mean())
+        # the shoulder swings against the hip, ``amp[0]`` radians either side of its mean
+        # whatever the reference gait's hip range (which differs by ~10 deg between references)
+        centred = hip - hip.mean()
+        sh = -amp[0] * centred / max(float(np.percentile(np.abs(centred), 95)), 1e-6)
         out[f"shoulder_{s}_flex"] = sh
         out[f"shoulder_{s}_abd"] = np.full_like(hip, amp[1])
         out[f"elbow_{s}"] = amp[2] + np.clip(sh, 0, None) / 3
@@ -170,9 +189,13 @@ def training_poses(
         T = rng.uniform(0.50, 0.60)
         walk = _walk(L, T, 10, rng.uniform(0.02, 0.04))
         legs = legs_from_walk(walk, stature)
+        # amplitudes: shoulder swing either side (7-11 deg: 15-22 deg peak to peak, what the
+        # earlier hip-proportional swing gave on the Winter reference), shoulder abduction,
+        # elbow flexion, thoracic counter-rotation per radian of hip difference, lumbar side
+        # bend per 3 cm of pelvis sway, lumbar flexion
         amp = np.array(
             [
-                rng.uniform(0.35, 0.55),
+                np.deg2rad(rng.uniform(7, 11)),
                 np.deg2rad(rng.uniform(4, 8)),
                 np.deg2rad(rng.uniform(10, 20)),
                 rng.uniform(0.1, 0.2),
