@@ -131,6 +131,8 @@ class _Decoder:
         cols = self._columns(model.decode(basis, "left"), m)
         self.offset = cols[0]
         self.matrix = np.ascontiguousarray(cols[1:] - cols[0])
+        # the same map as one real product: z @ matrix_f, viewed as complex, is z @ matrix
+        self.matrix_f = self.matrix.view(np.float64)
         z = np.random.default_rng(0).standard_normal((16, d)) * 3.0
         ref = self._columns(model.decode(z, "left"), m)
         if not np.allclose(z @ self.matrix + self.offset, ref, rtol=0.0, atol=1e-9):
@@ -299,6 +301,11 @@ class HybridPlanner:
         gd = self.distance
         x0, y0, cell, bins = self.grid.x0, self.grid.y0, self.cell, self.heading_bins
         corner = np.array([x0, y0])
+        # reach checks (see draw): local columns, each less a reference point, and the limits
+        reach_cols = np.r_[0:m, 0:q, m, m]
+        reach_limits = np.array(
+            [MAX_FOOT_REACH] * m + [MAX_LIFT_REACH] * q + [MAX_STRIDE, MAX_FOOT_REACH]
+        )
         # closed cells as one integer: (i * span + j) * bins + heading bin, with span larger
         # than any cell row index j of a point a step can reach (the grid's rows plus a margin)
         span = 4 * max(self.grid.free.shape) + 1000
@@ -349,14 +356,18 @@ class HybridPlanner:
         def draw(batch: list[int]) -> list[tuple]:
             """Sample, decode and check the successors of the nodes ``batch`` (one swing
             side) in one go; one successor set per node."""
+            b = len(batch)
             if batch[0] == 0:  # the start node (always alone: it is the first node popped)
                 first = self.model.sample_first(self.n_starters, rng)
                 z = first.features
-                left = first.side == "left"
-                frame = np.full(len(z), heads[0])
-                if free_heading:  # the walker may set off anywhere around the downhill heading
-                    frame += rng.uniform(-START_SPREAD, START_SPREAD, len(z))
                 per = len(z)
+                left = first.side == "left"
+                frame = np.full(per, heads[0])
+                if free_heading:  # the walker may set off anywhere around the downhill heading
+                    frame += rng.uniform(-START_SPREAD, START_SPREAD, per)
+                # local step frame -> world: x + iy -> p + (x + iy)(sin - i cos), per row
+                rot = (np.sin(frame) - 1j * np.cos(frame))[None, :]
+                ctx = np.array([[pos[0]], [nan], [nan], [gs[0]]])
                 stop = None
             else:
                 x = np.array([feats[srcs[k]][rows[k]] for k in batch])
@@ -370,61 +381,78 @@ class HybridPlanner:
                     zs = self.model.sample_next_features(x, side, n_stop, rng, stop=True)
                     d = z.shape[1]
                     z = np.concatenate(
-                        [z.reshape(len(x), n_succ, d), zs.reshape(len(x), n_stop, d)], axis=1
+                        [z.reshape(b, n_succ, d), zs.reshape(b, n_stop, d)], axis=1
                     ).reshape(-1, d)
                     per = n_succ + n_stop
                     # closing rows; those of nodes far from the goal are dropped uncounted
-                    stop = np.tile(np.arange(per) >= n_succ, len(x))
+                    stop = np.tile(np.arange(per) >= n_succ, b)
                     dropped = stop & ~np.repeat(near, per)
-                left = np.full(len(z), not lefts[batch[0]])
-                frame = np.repeat([heads[k] for k in batch], per)
-            b = len(batch)
+                left = not lefts[batch[0]]
+                frame = np.array([heads[k] for k in batch])
+                # per predecessor: its end point p, the turn into the world (sin - i cos of
+                # its heading), the foot its step landed and the foot behind that, both in
+                # the successors' local frame (nan where there is none yet), and g
+                ctx = []
+                for k in batch:
+                    p, hk = pos[k], heads[k]
+                    r = complex(math.sin(hk), -math.cos(hk))
+                    rc = r.conjugate()
+                    ctx.append((p, r, (feet[k] - p) * rc, (feet[parent[k]] - p) * rc, gs[k]))
+                ctx = np.array(ctx).T  # (5, b)
+                rot = ctx[1, :, None]
+                ctx = ctx[[0, 2, 3, 4]]
             n = len(z)
-            # per predecessor: its end point, the foot its step landed and the foot behind that
-            # (world x + iy; nan where there is none yet), and g
-            ctx = np.array([(pos[k], feet[k], feet[parent[k]] if k else nan, gs[k]) for k in batch])
-            # local step frame -> world, as complex numbers: x + iy -> p + (x + iy)(sin - i cos);
-            # rows are (predecessor, successor, column); frame (n,): each row's frame heading
-            local = (z @ dec.matrix + dec.offset).reshape(b, per, m + 2)  # see _Decoder
-            rot = (-1j * np.exp(1j * frame)).reshape(b, per)
-            world = ctx[:, 0, None, None] + local[..., : m + 1] * rot[..., None]
-            ankle = world[..., m]
-            toe = ankle + (FOOT_LENGTH * rot) * (1j * np.exp(1j * local[..., m + 1].real))
-            pts = np.concatenate([world, toe[..., None]], axis=2).reshape(n, m + 2)
+            # rows are (predecessor, successor, column); see _Decoder
+            local = (z @ dec.matrix_f).view(np.complex128)
+            local += dec.offset
+            l3 = local.reshape(b, per, m + 2)
+            world = l3 * rot[..., None]
+            world += ctx[0, :, None, None]
+            # the last column becomes the landing foot's toes (it held the yaws)
+            world[..., m + 1] = world[..., m] + (FOOT_LENGTH * 1j) * rot * np.exp(
+                1j * l3[..., m + 1].real
+            )
+            world = world.reshape(n, m + 2)
             # clearance: body radius (+ margin) on the pelvis samples, foot clearance on the
             # landing foot's ankle and toes (it reaches ahead of the pelvis)
-            ok = (walk.at(pts.view(np.float64).reshape(n, m + 2, 2)) >= thr).all(axis=1)
+            ok = (walk.at(world.view(np.float64).reshape(n, m + 2, 2)) >= thr).all(axis=1)
             # legs are only so long: the landing foot lies within reach of the pelvis at the
             # end of the step, and the stance foot (where the predecessor's step landed) within
             # reach of the pelvis throughout (GP samples far out in the tails can break either);
             # the swing foot lifts off where it landed two steps ago: a stride of plausible
             # length, and within reach of the pelvis until lift-off (nan: no such foot yet; a
-            # comparison with nan is False, so "not beyond" is what is tested)
-            far = np.abs(ankle - world[..., m - 1]) > MAX_FOOT_REACH
-            far |= np.abs(world[..., :m] - ctx[:, 1, None, None]).max(axis=2) > MAX_FOOT_REACH
-            far |= np.abs(ankle - ctx[:, 2, None]) > MAX_STRIDE
-            far |= np.abs(world[..., :q] - ctx[:, 2, None, None]).max(axis=2) > MAX_LIFT_REACH
-            ok &= ~far.ravel()
+            # comparison with nan is False, so "not beyond" is what is tested). Distances are
+            # taken in the step's local frame (the turn into the world keeps them).
+            gap = l3[..., reach_cols]
+            gap[..., :m] -= ctx[1, :, None, None]
+            gap[..., m:-1] -= ctx[2, :, None, None]
+            gap[..., -1] -= l3[..., m - 1]
+            ok &= ~(np.abs(gap) > reach_limits).any(axis=2).ravel()
             if stop is not None:  # a closing step must end the walk: in the goal area
-                end = world.reshape(n, m + 1)[:, m - 1]
-                into = np.abs(end - goal_c) <= self.tolerance
+                into = np.abs(world[:, m - 1] - goal_c) <= self.tolerance
                 if self.goal_yaw is not None:
-                    turn = frame + local.reshape(n, m + 2)[:, m + 1].imag - self.goal_yaw
+                    turn = np.repeat(frame, per) + local[:, m + 1].imag - self.goal_yaw
                     into &= np.abs((turn + math.pi) % two_pi - math.pi) <= self.goal_yaw_tolerance
                 ok &= ~stop | (into & ~dropped)
             good = np.flatnonzero(ok)
-            lg = local.reshape(n, m + 2)[good]
+            lg = local[good]
             if chord:  # sample 0 is the step's start, exactly 0 in its local frame
                 seg = np.abs(lg[:, m - 1])
             else:
                 seg = np.abs(np.diff(lg[:, :m], axis=1)).sum(axis=1)
-            owner = good // per
-            ends = world.reshape(n, m + 1)[good, m - 1]
+            ends = world[good, m - 1]
             exy = ends.view(np.float64).reshape(-1, 2)
             hs = gd(exy) if dijkstra else np.abs(ends - goal_c)
-            frame_ok = frame[good]
+            if b == 1 and batch[0] == 0:
+                frame_ok = frame[good]
+                owner = np.zeros(len(good), dtype=np.intp)
+                lefts_ok = left[good].tolist()
+            else:
+                owner = good // per
+                frame_ok = frame[owner]
+                lefts_ok = [left] * len(good)
             th = frame_ok + lg[:, m + 1].imag
-            g = ctx[owner, 3].real + seg
+            g = ctx[3].real[owner] + seg
             fs = g + weight * hs
             ij = np.floor((exy - corner) / cell + 0.5).astype(np.intp)
             keys = ij[:, 0] * span + ij[:, 1]
@@ -438,13 +466,16 @@ class HybridPlanner:
                 ends.tolist(),
                 th.tolist(),
                 frame_ok.tolist(),
-                ankle.ravel()[good].tolist(),
-                left[good].tolist(),
+                world[good, m].tolist(),
+                lefts_ok,
             )
             src = len(feats)
             feats.append(z)
             if stop is not None:
                 closing_rows[src] = per
+            if b == 1:
+                drawn = per if stop is None else per - int(dropped.sum())
+                return [(src, drawn, drawn - len(good), *cols)]
             cut = np.searchsorted(owner, np.arange(b + 1)).tolist()
             drawn = [per] * b if stop is None else (per - dropped.reshape(b, per).sum(1)).tolist()
             return [
