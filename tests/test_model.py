@@ -85,6 +85,29 @@ def test_gp_successors_reproduce_length_statistics(model, steps):
     assert (succ.side == expect).all()
 
 
+def test_sampling_moments_match_the_dense_predictor(model, steps):
+    """TransitionGP.sample's mean and latent variance (constants folded in) are predict()'s
+    dense formulas k·alpha and C - k W kᵀ to 1e-9 (absolute; the variance relative to C), on
+    the data and far from it (seeded); its distances give predict()'s kernel rows."""
+    from mjwalk.gait.default import default_model
+
+    rng = np.random.default_rng(11)
+    for mdl in (model, default_model()):
+        d = mdl.n_dims
+        near = mdl.sample_chain(40, rng).features if mdl is not model else model.encode(steps)
+        x = np.vstack([near, 3.0 * rng.standard_normal((200, d))])
+        for gp in [*mdl.gp.values(), *mdl.stop_gp.values()]:
+            mean_ref, var_ref = gp.predict(x)
+            mean, var, h = gp._moments(x)
+            np.testing.assert_allclose(mean, mean_ref, rtol=0, atol=1e-9)
+            np.testing.assert_allclose(
+                np.maximum(var, 0.0), var_ref, rtol=0, atol=1e-9 * gp.signal_var
+            )
+            np.testing.assert_allclose(
+                gp.signal_var * np.exp(-h), gp.kernel_rows(x), rtol=1e-12, atol=1e-300
+            )
+
+
 def test_sample_next_single_and_chain(model):
     rng = np.random.default_rng(0)
     one = model.sample_first(1, rng, side="left")

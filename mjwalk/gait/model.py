@@ -57,7 +57,7 @@ import sys
 import time
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -119,6 +119,15 @@ class TransitionGP:
     def __post_init__(self) -> None:
         self._zs = self.inducing / self.length_scale
         self._zs2 = np.einsum("md,md->m", self._zs, self._zs)
+        # For sample(), with the constants folded in: half squared distances
+        # x·(x/2ℓ²) + (-z/ℓ²)·x + z·(z/2ℓ²), kernel rows C·e with e = exp(-half), so the mean is
+        # e @ (C·alpha) and k W kᵀ = e (C²·W) eᵀ; the residual pools flattened for one gather.
+        self._half_inv_l2 = 0.5 / self.length_scale**2
+        self._neg_zs_t = np.ascontiguousarray((-self._zs / self.length_scale).T)
+        self._half_zs2 = 0.5 * self._zs2
+        self._c_alpha = self.signal_var * self.alpha
+        self._c2_w = self.signal_var**2 * self.w
+        self._pool_flat = self.res_pool.reshape(-1, self.res_pool.shape[2])
 
     def kernel_rows(self, x: np.ndarray) -> np.ndarray:
         """(P, m) signal kernel C·RBF between ``x`` (P, d) and the inducing inputs."""
@@ -138,21 +147,48 @@ class TransitionGP:
         mean, var, _ = self._predict(x)
         return mean, var
 
+    def _moments(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`predict`'s mean (P, d) and latent variance (P,) (not clipped at 0) with the
+        constants folded in, and the half squared scaled distances h (P, m) to the inducing
+        inputs (k = C·exp(-h)); the dense formulas, equal to :meth:`predict`'s to rounding."""
+        h = x @ self._neg_zs_t
+        h += self._half_zs2
+        h += np.einsum("pd,pd->p", x * self._half_inv_l2, x)[:, None]
+        np.maximum(h, 0.0, out=h)
+        e = np.exp(-h)
+        mean = e @ self._c_alpha
+        var = self.signal_var - np.einsum("pm,pm->p", e @ self._c2_w, e)
+        return mean, var, h
+
     def sample(self, x: np.ndarray, n: int, rng: np.random.Generator) -> np.ndarray:
         """(P, n, d) successor features: n draws for each of the P predecessors.
 
-        y = μ(x) + √v(x)·ε + r, r from the residual pool of the inducing input nearest to x.
+        y = μ(x) + √v(x)·ε + r, r from the residual pool of an inducing input drawn with
+        probability ∝ k(x, z_j)^POOL_SHARPNESS (module doc). μ and v are :meth:`predict`'s
+        (:meth:`_moments`: the same formulas with the constants folded in, equal to rounding;
+        tests/test_model.py checks them); the pool weights are exp(-POOL_SHARPNESS·(h - min h))
+        for the half squared scaled distances h, that is (k / max k)^POOL_SHARPNESS without an
+        underflow to all-zero weights far from the data.
         """
-        mean, var, k = self._predict(x)
-        p, d = mean.shape
+        p, d = x.shape
+        mean, var, h = self._moments(x)
         # the pool of inducing input j, drawn with probability ∝ k(x, z_j)^POOL_SHARPNESS
-        w = (k / np.maximum(k.max(axis=1, keepdims=True), 1e-300)) ** POOL_SHARPNESS
-        c = np.cumsum(w, axis=1)
+        h -= h.min(axis=1, keepdims=True)
+        h *= -POOL_SHARPNESS
+        c = np.cumsum(np.exp(h, out=h), axis=1)
         u = rng.random((p, n)) * c[:, -1:]
-        cell = np.minimum((c[:, None, :] < u[:, :, None]).sum(-1), k.shape[1] - 1)
-        r = self.res_pool[cell, rng.integers(self.res_pool.shape[1], size=(p, n))]
-        e = rng.standard_normal((p, n, d))
-        return mean[:, None, :] + np.sqrt(var)[:, None, None] * e + r
+        # the first j with c_j >= u (u <= c_{m-1}: never past the last)
+        cell = np.empty((p, n), dtype=np.intp)
+        for i in range(p):
+            cell[i] = c[i].searchsorted(u[i])
+        k = self.res_pool.shape[1]
+        cell *= k
+        cell += rng.integers(k, size=(p, n))
+        eps = rng.standard_normal((p, n, d))
+        eps *= np.sqrt(np.maximum(var, 0.0))[:, None, None]
+        eps += mean[:, None, :]
+        eps += self._pool_flat[cell]
+        return eps
 
     @classmethod
     def fit(
@@ -236,8 +272,8 @@ class TransitionGP:
         resid = y - proto.predict(x)[0]
         k_res = min(n, n_residual or max(5, -(-n // m)))
         _, near = cKDTree(x / ls).query(z / ls, k=k_res)
-        proto.res_pool = resid[np.asarray(near).reshape(m, k_res)]
-        return proto
+        # a new instance: its constructor derives sample()'s folded arrays from the final ones
+        return replace(proto, res_pool=resid[np.asarray(near).reshape(m, k_res)])
 
     def arrays(self, prefix: str) -> dict[str, np.ndarray]:
         return {

@@ -40,6 +40,16 @@ the search works on several nodes per call where that leaves it unchanged:
   120 Hz trajectory is decoded for the final chain's steps only.
 * **One clearance lookup** per draw in :meth:`Workplace.walk_field` (obstacle clearance and
   floor edge in one field, never above either on the floor) with one gather per point.
+* **Few array operations per draw**: at a few dozen rows, each numpy call costs more than its
+  arithmetic, so the checks run in the step's local frame (the turn into the world keeps
+  distances) as one gathered array against one limit vector, and the GP folds its constants
+  (:meth:`TransitionGP.sample`). What is left per draw: the GP's dense variance product
+  (m = 400 inducing inputs: (rows x 400) @ (400 x 400), ~20 us; it cannot be cut short: every
+  inducing input has k(x, z)/C > 1e-6 at the chains' predecessors, and the variance
+  C - k W kᵀ ~ 1e-3 C is a cancellation carried by W's small eigenvalues, so even 150 of
+  W's 400 eigen-components leave errors larger than the variance) and some 60 small numpy
+  calls. Batches stay below 7 rows, so OpenBLAS does not thread (``OPENBLAS_NUM_THREADS=1``
+  changes nothing measurable).
 """
 
 from __future__ import annotations
@@ -142,6 +152,8 @@ class _Decoder:
         cols = self._columns(model.decode(basis, "left"), m)
         self.offset = cols[0]
         self.matrix = np.ascontiguousarray(cols[1:] - cols[0])
+        # the same map as one real product: z @ matrix_f, viewed as complex, is z @ matrix
+        self.matrix_f = self.matrix.view(np.float64)
         z = np.random.default_rng(0).standard_normal((16, d)) * 3.0
         ref = self._columns(model.decode(z, "left"), m)
         if not np.allclose(z @ self.matrix + self.offset, ref, rtol=0.0, atol=1e-9):
@@ -308,11 +320,18 @@ class HybridPlanner:
         dec = self._decoder()
         m = self.samples_per_step
         q = max(2, m // 4)  # samples of a step's first quarter (the foot behind lifts off)
+        knee_cols = [m // 2, (3 * m) // 4]  # the swing-knee probes' pelvis samples
+        knee_share = np.array(knee_cols) / (m - 1)  # ... and their share of the step
         walk = self._walk
         thr = self._thresholds
         gd = self.distance
         x0, y0, cell, bins = self.grid.x0, self.grid.y0, self.cell, self.heading_bins
         corner = np.array([x0, y0])
+        # reach checks (see draw): local columns, each less a reference point, and the limits
+        reach_cols = np.r_[0:m, 0:q, m, m]
+        reach_limits = np.array(
+            [MAX_FOOT_REACH] * m + [MAX_LIFT_REACH] * q + [MAX_STRIDE, MAX_FOOT_REACH]
+        )
         # closed cells as one integer: (i * span + j) * bins + heading bin, with span larger
         # than any cell row index j of a point a step can reach (the grid's rows plus a margin)
         span = 4 * max(self.grid.free.shape) + 1000
@@ -363,14 +382,18 @@ class HybridPlanner:
         def draw(batch: list[int]) -> list[tuple]:
             """Sample, decode and check the successors of the nodes ``batch`` (one swing
             side) in one go; one successor set per node."""
+            b = len(batch)
             if batch[0] == 0:  # the start node (always alone: it is the first node popped)
                 first = self.model.sample_first(self.n_starters, rng)
                 z = first.features
-                left = first.side == "left"
-                frame = np.full(len(z), heads[0])
-                if free_heading:  # the walker may set off anywhere around the downhill heading
-                    frame += rng.uniform(-START_SPREAD, START_SPREAD, len(z))
                 per = len(z)
+                left = first.side == "left"
+                frame = np.full(per, heads[0])
+                if free_heading:  # the walker may set off anywhere around the downhill heading
+                    frame += rng.uniform(-START_SPREAD, START_SPREAD, per)
+                # local step frame -> world: x + iy -> p + (x + iy)(sin - i cos), per row
+                rot = (np.sin(frame) - 1j * np.cos(frame))[None, :]
+                ctx = np.array([[pos[0]], [nan], [nan], [gs[0]]])
                 stop = None
             else:
                 x = np.array([feats[srcs[k]][rows[k]] for k in batch])
@@ -384,33 +407,45 @@ class HybridPlanner:
                     zs = self.model.sample_next_features(x, side, n_stop, rng, stop=True)
                     d = z.shape[1]
                     z = np.concatenate(
-                        [z.reshape(len(x), n_succ, d), zs.reshape(len(x), n_stop, d)], axis=1
+                        [z.reshape(b, n_succ, d), zs.reshape(b, n_stop, d)], axis=1
                     ).reshape(-1, d)
                     per = n_succ + n_stop
                     # closing rows; those of nodes far from the goal are dropped uncounted
-                    stop = np.tile(np.arange(per) >= n_succ, len(x))
+                    stop = np.tile(np.arange(per) >= n_succ, b)
                     dropped = stop & ~np.repeat(near, per)
-                left = np.full(len(z), not lefts[batch[0]])
-                frame = np.repeat([heads[k] for k in batch], per)
-            b = len(batch)
+                left = not lefts[batch[0]]
+                frame = np.array([heads[k] for k in batch])
+                # per predecessor: its end point p, the turn into the world (sin - i cos of
+                # its heading), the foot its step landed and the foot behind that, both in
+                # the successors' local frame (nan where there is none yet), and g
+                ctx = []
+                for k in batch:
+                    p, hk = pos[k], heads[k]
+                    r = complex(math.sin(hk), -math.cos(hk))
+                    rc = r.conjugate()
+                    ctx.append((p, r, (feet[k] - p) * rc, (feet[parent[k]] - p) * rc, gs[k]))
+                ctx = np.array(ctx).T  # (5, b)
+                rot = ctx[1, :, None]
+                ctx = ctx[[0, 2, 3, 4]]
             n = len(z)
-            # per predecessor: its end point, the foot its step landed and the foot behind that
-            # (world x + iy; nan where there is none yet), and g
-            ctx = np.array([(pos[k], feet[k], feet[parent[k]] if k else nan, gs[k]) for k in batch])
-            # local step frame -> world, as complex numbers: x + iy -> p + (x + iy)(sin - i cos);
-            # rows are (predecessor, successor, column); frame (n,): each row's frame heading
-            local = (z @ dec.matrix + dec.offset).reshape(b, per, m + 2)  # see _Decoder
-            rot = (-1j * np.exp(1j * frame)).reshape(b, per)
-            world = ctx[:, 0, None, None] + local[..., : m + 1] * rot[..., None]
-            ankle = world[..., m]
-            toe = ankle + (FOOT_LENGTH * rot) * (1j * np.exp(1j * local[..., m + 1].real))
-            # the swing knee: pelvis yaw interpolated from the step's start to its end
-            share = np.array([0.5, 0.75])
-            yaw = frame.reshape(b, per, 1) + local[..., m + 1, None].imag * share
-            fwd = np.exp(1j * yaw)
-            lat = np.where(left.reshape(b, per, 1), 1j, -1j) * KNEE_SIDE
-            knee = world[..., [m // 2, (3 * m) // 4]] + fwd * (KNEE_LEAD + lat)
-            pts = np.concatenate([world, toe[..., None], knee], axis=2).reshape(n, m + 4)
+            # rows are (predecessor, successor, column); see _Decoder
+            local = (z @ dec.matrix_f).view(np.complex128)
+            local += dec.offset
+            l3 = local.reshape(b, per, m + 2)
+            world = l3 * rot[..., None]
+            world += ctx[0, :, None, None]
+            # the last column becomes the landing foot's toes (it held the yaws)
+            world[..., m + 1] = world[..., m] + (FOOT_LENGTH * 1j) * rot * np.exp(
+                1j * l3[..., m + 1].real
+            )
+            # the swing knee (local frame: forward is +i, left is i * forward), the pelvis yaw
+            # interpolated from the step's start to its end
+            fwd = 1j * np.exp(1j * l3[..., m + 1, None].imag * knee_share)
+            lat = np.where(np.reshape(left, (-1, 1)), 1j, -1j) * KNEE_SIDE
+            knee = (l3[..., knee_cols] + fwd * (KNEE_LEAD + lat)) * rot[..., None]
+            knee += ctx[0, :, None, None]
+            pts = np.concatenate([world, knee], axis=2).reshape(n, m + 4)
+            world = world.reshape(n, m + 2)
             # clearance: body radius (+ margin) on the pelvis samples, foot clearance on the
             # landing foot's ankle and toes and knee clearance on the swing knee (they reach
             # ahead of the pelvis)
@@ -420,32 +455,38 @@ class HybridPlanner:
             # reach of the pelvis throughout (GP samples far out in the tails can break either);
             # the swing foot lifts off where it landed two steps ago: a stride of plausible
             # length, and within reach of the pelvis until lift-off (nan: no such foot yet; a
-            # comparison with nan is False, so "not beyond" is what is tested)
-            far = np.abs(ankle - world[..., m - 1]) > MAX_FOOT_REACH
-            far |= np.abs(world[..., :m] - ctx[:, 1, None, None]).max(axis=2) > MAX_FOOT_REACH
-            far |= np.abs(ankle - ctx[:, 2, None]) > MAX_STRIDE
-            far |= np.abs(world[..., :q] - ctx[:, 2, None, None]).max(axis=2) > MAX_LIFT_REACH
-            ok &= ~far.ravel()
+            # comparison with nan is False, so "not beyond" is what is tested). Distances are
+            # taken in the step's local frame (the turn into the world keeps them).
+            gap = l3[..., reach_cols]
+            gap[..., :m] -= ctx[1, :, None, None]
+            gap[..., m:-1] -= ctx[2, :, None, None]
+            gap[..., -1] -= l3[..., m - 1]
+            ok &= ~(np.abs(gap) > reach_limits).any(axis=2).ravel()
             if stop is not None:  # a closing step must end the walk: in the goal area
-                end = world.reshape(n, m + 1)[:, m - 1]
-                into = np.abs(end - goal_c) <= self.tolerance
+                into = np.abs(world[:, m - 1] - goal_c) <= self.tolerance
                 if self.goal_yaw is not None:
-                    turn = frame + local.reshape(n, m + 2)[:, m + 1].imag - self.goal_yaw
+                    turn = np.repeat(frame, per) + local[:, m + 1].imag - self.goal_yaw
                     into &= np.abs((turn + math.pi) % two_pi - math.pi) <= self.goal_yaw_tolerance
                 ok &= ~stop | (into & ~dropped)
             good = np.flatnonzero(ok)
-            lg = local.reshape(n, m + 2)[good]
+            lg = local[good]
             if chord:  # sample 0 is the step's start, exactly 0 in its local frame
                 seg = np.abs(lg[:, m - 1])
             else:
                 seg = np.abs(np.diff(lg[:, :m], axis=1)).sum(axis=1)
-            owner = good // per
-            ends = world.reshape(n, m + 1)[good, m - 1]
+            ends = world[good, m - 1]
             exy = ends.view(np.float64).reshape(-1, 2)
             hs = gd(exy) if dijkstra else np.abs(ends - goal_c)
-            frame_ok = frame[good]
+            if b == 1 and batch[0] == 0:
+                frame_ok = frame[good]
+                owner = np.zeros(len(good), dtype=np.intp)
+                lefts_ok = left[good].tolist()
+            else:
+                owner = good // per
+                frame_ok = frame[owner]
+                lefts_ok = [left] * len(good)
             th = frame_ok + lg[:, m + 1].imag
-            g = ctx[owner, 3].real + seg
+            g = ctx[3].real[owner] + seg
             fs = g + weight * hs
             ij = np.floor((exy - corner) / cell + 0.5).astype(np.intp)
             keys = ij[:, 0] * span + ij[:, 1]
@@ -459,13 +500,16 @@ class HybridPlanner:
                 ends.tolist(),
                 th.tolist(),
                 frame_ok.tolist(),
-                ankle.ravel()[good].tolist(),
-                left[good].tolist(),
+                world[good, m].tolist(),
+                lefts_ok,
             )
             src = len(feats)
             feats.append(z)
             if stop is not None:
                 closing_rows[src] = per
+            if b == 1:
+                drawn = per if stop is None else per - int(dropped.sum())
+                return [(src, drawn, drawn - len(good), *cols)]
             cut = np.searchsorted(owner, np.arange(b + 1)).tolist()
             drawn = [per] * b if stop is None else (per - dropped.reshape(b, per).sum(1)).tolist()
             return [
