@@ -227,13 +227,12 @@ def reference_angle(joint: str, cycle, derivative: bool = False):
 
 
 _WINTER = winter_reference()
-#: The reference gait :func:`legs_from_walk` uses by default: the Winter table. The generated
-#: :func:`bandai_reference` is closer to real walking (max difference to held-out bandai-walk
-#: clips hip 4.8 / knee 6.9 deg vs 12.4 / 16.1 deg) and keeps every leg, floor, drift, contact
-#: and cycle test green, but as the default it leaves the gait-pose arm model (trained on
-#: this module's legs, :func:`~mjwalk.body.gaitpose.training_poses`) swinging the arms by
-#: only 3.6 deg (test_timeline_with_gaitpose_arms wants > 5), so it is not the default yet.
-DEFAULT_REFERENCE = _WINTER
+#: The reference gait :func:`legs_from_walk` uses by default: the generated
+#: :func:`bandai_reference` (the Winter table warped onto the landmark figures
+#: :data:`BANDAI_LANDMARKS`; no capture samples). Its maximum difference to held-out
+#: bandai-walk clips is hip 4.8 / knee 6.9 deg, the plain Winter table's 12.4 / 16.1 deg
+#: (tests/test_legs.py::test_knee_hip_curves_vs_bandai_capture).
+DEFAULT_REFERENCE = bandai_reference()
 
 
 def sagittal_angles(hip, knee, ankle, toe, yaw):
