@@ -69,6 +69,8 @@ FLAT_DEG = 2.0
 #: (m) a foot may reach (a flat, slightly inverted sole dips a millimetre or two at its edge).
 FLOOR_ITERATIONS = 10
 FLOOR_TOLERANCE = 2e-3
+#: Step phase from which the swing knee eases into the landing (the last swing key frame).
+LAND_EASE = 0.8
 #: Smallest knee flexion the IK uses when a leg must stretch (radians): never lock the knee.
 KNEE_MIN = np.deg2rad(2.0)
 #: Spin turns (degrees): a grounded foot whose hip would rotate past its range less
@@ -467,6 +469,22 @@ def _smoothstep(x: np.ndarray) -> np.ndarray:
     return x * x * (3 - 2 * x)
 
 
+def _spread(need: np.ndarray, win: int) -> np.ndarray:
+    """A smooth (n,) envelope of the non-negative per-sample amounts ``need`` (n,): their
+    running maximum over +-``win`` samples, Gaussian-smoothed (sigma ``win / 3``), so a
+    correction needed at some samples fades in and out over the samples around instead of
+    acting on them alone (a jump)."""
+    return gaussian_filter1d(maximum_filter1d(need, 2 * win + 1), win / 3)
+
+
+def _soft_clip01(x: np.ndarray, w: float) -> np.ndarray:
+    """``x`` clamped to [0, 1] with rounded corners (C1): unchanged in [w, 1 - w], quadratic
+    blends over ``w`` either side of 0 and 1, constant beyond (``w`` <= 0.5)."""
+    x = np.asarray(x, float)
+    lo = np.where(x < -w, 0.0, np.where(x < w, (x + w) ** 2 / (4 * w), x))
+    return np.where(lo > 1 + w, 1.0, np.where(lo > 1 - w, 1 - (1 + w - lo) ** 2 / (4 * w), lo))
+
+
 def _ball(geom: LegGeometry) -> float:
     """Distance of the ball of the foot (toe joint) ahead of the ankle, metres."""
     return geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)
@@ -674,6 +692,24 @@ def legs_from_walk(
         hsw = np.linalg.norm(hip_pos(idx, sw) - pos[:, :2], axis=-1)
         z_sw = pos[:, 2] + np.sqrt(np.maximum(d_max**2 - hsw**2, 1e-6))
         z[idx] = np.minimum(z_flat, z_sw)
+        # landing approach: from LAND_EASE the swing leg's hip-to-ankle distance eases into
+        # its heel-strike length (zero velocity) along a cubic from its length and velocity
+        # there, and the pelvis height follows from it. Capping the pelvis only where the
+        # swing leg is fully stretched would snap the knee straight (near full extension a
+        # millimetre of leg length is several degrees of knee)
+        lj = np.flatnonzero(phi >= LAND_EASE)
+        if len(lj) >= 3 and lj[0] > 0:
+            j = lj[0]
+            hj = hip_pos(idx[j - 1 : j + 1], sw, z[idx[j - 1 : j + 1]])
+            dj = np.linalg.norm(hj - pos[j - 1 : j + 1], axis=-1)
+            span, gap = 1.0 - phi[j], d_land - dj[1]
+            m0 = span * (dj[1] - dj[0]) / (phi[j] - phi[j - 1])
+            m0 = float(np.clip(m0, min(0.0, 3 * gap), max(0.0, 3 * gap)))
+            u = (phi[lj] - phi[j]) / span
+            d_prof = dj[1] + (u**3 - 2 * u**2 + u) * m0 + (3 * u**2 - 2 * u**3) * gap
+            h_prof = np.linalg.norm(hip_pos(idx[lj], sw) - pos[lj, :2], axis=-1)
+            z_prof = pos[lj, 2] + np.sqrt(np.maximum(d_prof**2 - h_prof**2, 1e-6))
+            z[idx[lj]] = np.minimum(z_prof, z_sw[lj])
         # the swing leg's knee at landing starts the next stance spline
         # the swing leg's knee at landing starts the next stance spline; its velocity is the
         # reference's (loading response: the knee flexes right after heel strike)
@@ -696,6 +732,27 @@ def legs_from_walk(
         for arr in (*ankle.values(), *fyaw.values(), *pitch.values(), *toe.values(), z):
             arr[post] = arr[e]
         contact[post] = 2
+    win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
+
+    def repitch(s_: str, dp: np.ndarray) -> None:
+        # lower the ``s_`` foot's pitch by dp (n,) radians about its heel (toes up) or ball:
+        # on the floor about its footprint's pivot, in the air about the same point of the
+        # foot; the toes keep their angle to the floor while the heel is up
+        p0, p1 = pitch[s_], pitch[s_] - dp
+        lever = np.where(p0 <= 0, _ball(geom), -geom.foot_back)
+        off = []
+        for q in (p0, p1):
+            c, si = np.cos(q), np.sin(q)
+            off.append((-(lever * c + ah * si), ah * c - lever * si))
+        g = ground[s_]
+        head = np.column_stack([np.cos(fyaw[s_]), np.sin(fyaw[s_])])
+        moved = ankle[s_].copy()
+        moved[:, :2] += (off[1][0] - off[0][0])[:, None] * head
+        moved[:, 2] += off[1][1] - off[0][1]
+        moved[g] = _pivot(print_[s_][g], p1[g], geom)
+        toe[s_] += np.minimum(p0, 0.0) - np.minimum(p1, 0.0)
+        ankle[s_], pitch[s_] = moved, p1
+
     angles: dict[str, np.ndarray] = {}
     dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
     reach = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(KNEE_MIN))
@@ -705,16 +762,14 @@ def legs_from_walk(
             # a grounded foot whose ankle would dorsiflex past its range pitches down
             # instead: a toes-up foot rolls down about its heel, a flat one onto its ball
             # (heel rise), so the sole keeps its place on the floor (clipping the ankle would
-            # sink the toes)
+            # sink the toes). The roll is spread over the samples around (in the air too,
+            # about the same point), so a landing or lift-off does not jolt the leg
             for _ in range(8):
                 raw = _leg_raw(ankle[s_], fyaw[s_], pitch[s_], root, yaw, s_, geom)
-                dorsi = raw[f"ankle_{s_}_flex"]
-                bad = np.flatnonzero(ground[s_] & (dorsi > dorsi_max))
-                if not len(bad):
+                excess = np.where(ground[s_], raw[f"ankle_{s_}_flex"] - dorsi_max, 0.0)
+                if excess.max() <= 0:
                     break
-                pitch[s_][bad] -= 1.2 * (dorsi[bad] - dorsi_max)
-                toe[s_][bad] = -np.minimum(pitch[s_][bad], 0.0)
-                ankle[s_][bad] = _pivot(print_[s_][bad], pitch[s_][bad], geom)
+                repitch(s_, _spread(1.2 * np.maximum(excess, 0.0), win))
         # rolling a heel-strike foot down (or turning it about the ball) lowers its ankle:
         # where a grounded leg then cannot reach its foot, the pelvis lowers (smoothly)
         deficit = np.zeros(n)
@@ -724,8 +779,7 @@ def legs_from_walk(
             deficit = np.maximum(deficit, np.where(ground[s_], z - cap, 0.0))
         if deficit.max() <= 1e-3:
             break
-        win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))
-        z = z - gaussian_filter1d(maximum_filter1d(np.maximum(deficit, 0.0), 2 * win + 1), win / 3)
+        z = z - _spread(np.maximum(deficit, 0.0), win)
     root = np.column_stack([xy, z])
     for s_ in "lr":
         hip = _hip_world(root, yaw, s_, geom)
@@ -742,14 +796,13 @@ def legs_from_walk(
             bad = low < -FLOOR_TOLERANCE
             if not bad.any():
                 break
+            # (both spread over the samples around, as above)
             excess = raw[f"ankle_{s_}_flex"] - dorsi_max
             tilt = bad & (excess > 0)
-            pitch[s_][tilt] -= 1.2 * excess[tilt]
-            toe[s_][tilt] = -np.minimum(pitch[s_][tilt], 0.0)
-            j = np.flatnonzero(tilt & ground[s_])
-            ankle[s_][j] = _pivot(print_[s_][j], pitch[s_][j], geom)
+            if tilt.any():
+                repitch(s_, _spread(np.where(tilt, 1.2 * excess, 0.0), win))
             lift = bad & ~tilt
-            ankle[s_][lift, 2] -= low[lift]
+            ankle[s_][:, 2] += _spread(np.where(lift, -low, 0.0), win)
         angles.update(ang)
     return LegMotion(
         t=np.asarray(walk.t, float),
@@ -968,7 +1021,9 @@ def _swing(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, 
         heading = np.column_stack([np.cos(yaw[jl]), np.sin(yaw[jl])])
         target = hip_pos(idx[jl], sw) + fwd[:, None] * heading
         seg = land[:2] - lift[:2]
-        s = np.clip((target - lift[:2]) @ seg / max(float(seg @ seg), 1e-9), 0.0, 1.0)
+        # progress along the chord, clamped to the footprints softly (C1): a hard clamp where
+        # the reference passes the landing footprint (short steps) kinks the ankle's path
+        s = _soft_clip01((target - lift[:2]) @ seg / max(float(seg @ seg), 1e-9), 0.1)
         chord = lift[:2] + s[:, None] * seg
         # sideways, the foot swings under its hip: where the step turns, the hip's track bends
         # away from the chord (and from an inner corner the pelvis was planned clear of)
@@ -1001,11 +1056,20 @@ def _swing(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, 
         dp0 = (p_to[0] - p_to[1]) / h
         spp = CubicSpline(knots, np.array(dpit) - rp, bc_type=((1, dp0 - dq[0]), (1, -dq[-1])))
         pos[late], p[late] = ref_pos + sp(phi[late]), ref_pit + spp(phi[late])
-        # keep heel and toe tip off the floor (lift the ankle where they would dip)
-        for lever in (-geom.foot_back, geom.foot_front):
-            tip_z = pos[late, 2] + lever * np.sin(p[late]) - ah * np.cos(p[late])
-            pos[late, 2] += np.maximum(0.0, -tip_z)
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[early][-1] if early.any() else 0.0
     toe = np.where(early, -p, -p_end * (1 - _smoothstep((phi - TOE_OFF) / 0.25)))
+    if late.any():
+        # keep heel, ball and toe tip off the floor (lift the ankle where they would dip); the
+        # toe tip is on the toes, bent by the toe angle (flat on the floor at toe-off: a tip
+        # rigid with the pitched foot would dip below it and jolt the ankle up)
+        pl, tl = p[late], toe[late]
+        ball = _ball(geom)
+        ball_z = ball * np.sin(pl) - ah * np.cos(pl)
+        for tip in (
+            -geom.foot_back * np.sin(pl) - ah * np.cos(pl),
+            ball_z,
+            ball_z + (geom.foot_front - ball) * np.sin(pl + tl),
+        ):
+            pos[late, 2] += np.maximum(0.0, -(pos[late, 2] + tip))
     return pos, p, toe, yaw
