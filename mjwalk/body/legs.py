@@ -69,6 +69,9 @@ FLAT_DEG = 2.0
 #: (m) a foot may reach (a flat, slightly inverted sole dips a millimetre or two at its edge).
 FLOOR_ITERATIONS = 10
 FLOOR_TOLERANCE = 2e-3
+#: Grounded legs keep their knee flexed at least as the reference's at that instant of the
+#: gait cycle, up to this many degrees (the pelvis lowers where they would not).
+KNEE_SOFT = 10.0
 #: Step phase from which the swing knee eases into the landing (the last swing key frame).
 LAND_EASE = 0.8
 #: Smallest knee flexion the IK uses when a leg must stretch (radians): never lock the knee.
@@ -627,6 +630,7 @@ def legs_from_walk(
     z = np.full(n, np.nan)
     ground = {s: np.zeros(n, bool) for s in "lr"}  # foot on the floor (pivoting on a print)
     print_ = {s: np.zeros((n, 3)) for s in "lr"}  # ... on this footprint
+    cyc = {s: np.zeros(n) for s in "lr"}  # the leg's gait-cycle fraction (0 = heel strike)
 
     def hip_pos(idx, side, zz=None):
         sgn = 1.0 if side == "l" else -1.0
@@ -643,6 +647,7 @@ def legs_from_walk(
         return np.arccos(np.clip((d**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
 
     hs_pitch = max(0.0, float(ref("pitch", 0.0)))
+    dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
     knee_prev = None  # (angle, velocity per unit phase) of the next stance leg at its landing
     for k, fr in enumerate(frames):
         fr["p_start"] = frames[k - 1].get("p_end") if k > 0 else None
@@ -650,22 +655,38 @@ def legs_from_walk(
         idx = np.arange(a, b + 1)
         phi = (idx - a) / (b - a)
         phase[idx] = phi
+        cyc[fr["other"]][idx], cyc[fr["side"]][idx] = 0.5 * phi, 0.5 + 0.5 * phi
         sw, st = fr["side"], fr["other"]
         contact[idx] = np.where(phi <= TOE_OFF, 2, 0 if st == "l" else 1)
         # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch)
         c_st = 0.5 * phi
         p_ref = ref("pitch", c_st)
-        p_st = _soft_flat(np.where(phi < 0.4, np.maximum(p_ref, 0), np.minimum(p_ref, 0)))
+        p_st = np.where(phi < 0.4, np.maximum(p_ref, 0), np.minimum(p_ref, 0))
+        if k > 0 and hs_pitch > 0:  # the roll-down starts from the pitch it landed with
+            p_st = np.where(phi < 0.4, p_st * frames[k - 1]["land_p"] / hs_pitch, p_st)
+        p_st = _soft_flat(p_st)
         if fr["first"]:  # standing start: already flat
             p_st = np.minimum(p_st, 0.0)
         # --- target posture at phi = 1 (A7): the landing leg at the reference heel-strike knee
         # sets the pelvis height; the trailing (stance) leg takes the reference knee of
-        # cycle 50 %, its heel rising further (about the ball) if it cannot reach otherwise
+        # cycle 50 %, its heel rising further (about the ball) if it cannot reach otherwise.
+        # The foot lands toes up as the reference's, or flatter where the ankle's range
+        # does not allow that pitch (a foot landing under the hip): rolled down on the floor
+        # after landing instead, it would drop the ankle and jolt the knee
         land_p = hs_pitch  # the last step too: the final pose is held as it lands
-        land_pos = _pivot(fr["land"], land_p, geom)
-        hz = np.linalg.norm(hip_pos(np.array([b]), sw) - land_pos[:, :2], axis=-1)[0]
         d_land = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(max(ref("knee", 0.0), KNEE_MIN)))
-        z_end = land_pos[0, 2] + np.sqrt(max(d_land**2 - hz**2, 1e-6))
+        for _ in range(4):
+            land_pos = _pivot(fr["land"], land_p, geom)
+            hz = np.linalg.norm(hip_pos(np.array([b]), sw) - land_pos[:, :2], axis=-1)[0]
+            z_end = land_pos[0, 2] + np.sqrt(max(d_land**2 - hz**2, 1e-6))
+            root_b = np.array([[xy[b, 0], xy[b, 1], z_end]])
+            land_yaw, land_pa = np.array([fr["land"][2]]), np.array([land_p])
+            raw_b = _leg_raw(land_pos, land_yaw, land_pa, root_b, yaw[b : b + 1], sw, geom)
+            over = float(raw_b[f"ankle_{sw}_flex"][0]) - dorsi_max
+            if over <= 0 or land_p <= 0:
+                break
+            land_p = max(land_p - 1.2 * over, 0.0)
+        fr["land_p"] = land_p
         th1 = max(float(ref("knee", 0.5)), float(KNEE_MIN))
         hip_end = hip_pos(np.array([b]), st, np.array([z_end]))[0]
         p1 = _heel_rise(fr["stance"], hip_end, th1, float(p_st[-1]), geom)
@@ -710,6 +731,14 @@ def legs_from_walk(
             h_prof = np.linalg.norm(hip_pos(idx[lj], sw) - pos[lj, :2], axis=-1)
             z_prof = pos[lj, 2] + np.sqrt(np.maximum(d_prof**2 - h_prof**2, 1e-6))
             z[idx[lj]] = np.minimum(z_prof, z_sw[lj])
+            # the trailing leg keeps its planned knee where the pelvis now rises faster: its
+            # heel rises further (about the ball) instead of the leg stretching straight
+            hip_st = hip_pos(idx[lj], st, z[idx[lj]])
+            p_up = _heel_rise(fr["stance"], hip_st, knee_st[lj], np.minimum(p_st[lj], 0), geom)
+            p_st[lj] = np.where(p_st[lj] <= 0, p_up, p_st[lj])
+            fr["p_end"] = float(p_st[-1])
+            ankle[st][idx] = _pivot(fr["stance"], p_st, geom)
+            pitch[st][idx], toe[st][idx] = p_st, -np.minimum(p_st, 0)
         # the swing leg's knee at landing starts the next stance spline
         # the swing leg's knee at landing starts the next stance spline; its velocity is the
         # reference's (loading response: the knee flexes right after heel strike)
@@ -754,8 +783,7 @@ def legs_from_walk(
         ankle[s_], pitch[s_] = moved, p1
 
     angles: dict[str, np.ndarray] = {}
-    dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
-    reach = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(KNEE_MIN))
+    k_floor = {s_: np.clip(ref("knee", cyc[s_]), KNEE_MIN, np.deg2rad(KNEE_SOFT)) for s_ in "lr"}
     for _ in range(4):
         root = np.column_stack([xy, z])
         for s_ in "lr":
@@ -771,10 +799,14 @@ def legs_from_walk(
                     break
                 repitch(s_, _spread(1.2 * np.maximum(excess, 0.0), win))
         # rolling a heel-strike foot down (or turning it about the ball) lowers its ankle:
-        # where a grounded leg then cannot reach its foot, the pelvis lowers (smoothly)
+        # where a grounded leg then cannot reach its foot with the knee flexed at least as
+        # the reference's (up to KNEE_SOFT), the pelvis lowers (smoothly). Near full
+        # extension a millimetre of leg length is several degrees of knee: a leg stretched
+        # straight by the pelvis would flick its knee
         deficit = np.zeros(n)
         for s_ in "lr":
             h = np.linalg.norm(_hip_world(root, yaw, s_, geom)[:, :2] - ankle[s_][:, :2], axis=1)
+            reach = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(k_floor[s_]))
             cap = ankle[s_][:, 2] + np.sqrt(np.maximum(reach**2 - h**2, 0.0))
             deficit = np.maximum(deficit, np.where(ground[s_], z - cap, 0.0))
         if deficit.max() <= 1e-3:
