@@ -545,18 +545,35 @@ def _heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
     L1, L2 = geom.thigh, geom.shank
     d = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(knee))
 
-    def gap(p):
-        return np.linalg.norm(hip - _pivot(foot, p, geom), axis=-1) - d
+    def gap(h, p, dd=d):
+        return np.linalg.norm(h - _pivot(foot, p, geom), axis=-1) - dd
 
-    reach0 = gap(p0) <= 0
-    never = gap(np.full_like(p0, lo)) > 0
-    a, b = np.full_like(p0, lo), p0.copy()  # gap(a) <= 0 < gap(b) where bisected
-    for _ in range(40):
-        m = 0.5 * (a + b)
-        out = gap(m) > 0
-        b = np.where(out, m, b)
-        a = np.where(out, a, m)
-    p = np.where(reach0, p0, np.where(never, lo, 0.5 * (a + b)))
+    p = p0.copy()
+    j = np.flatnonzero(gap(hip, p0) > 0)  # the samples that do not reach at p0
+    if not len(j):
+        return float(p[0]) if scalar else p
+    hj, dj = hip[j], d[j]
+    never = gap(hj, np.full(len(j), lo), dj) > 0
+    # rolled about the ball B by p <= 0 the ankle is B + rho (-cos t f, sin t z), t = beta - p
+    # (f the foot's heading): |hip - ankle| = d is closed-form in t
+    ball, ah = _ball(geom), geom.ankle_height
+    rho, beta = np.hypot(ball, ah), np.arctan2(ah, ball)
+    f = np.array([np.cos(foot[2]), np.sin(foot[2])])
+    rel = hj - np.array([foot[0] + ball * f[0], foot[1] + ball * f[1], 0.0])
+    a_, c_ = rel[:, :2] @ f, rel[:, 2]
+    k_ = ((rel**2).sum(1) + rho**2 - dj**2) / (2 * rho)
+    t = np.arctan2(a_, c_) + np.arcsin(np.clip(k_ / np.hypot(a_, c_), -1.0, 1.0))
+    p[j] = np.where(never, lo, np.clip(beta - t, lo, p0[j]))
+    up = j[p0[j] > 0]  # toes up at p0: bisect (the roll pivots on the heel there)
+    if len(up):
+        hu, du = hip[up], d[up]
+        a, b = np.full(len(up), lo), p0[up]  # gap(a) <= 0 < gap(b) where bisected
+        for _ in range(40):
+            m = 0.5 * (a + b)
+            out = gap(hu, m, du) > 0
+            b = np.where(out, m, b)
+            a = np.where(out, a, m)
+        p[up] = np.where(gap(hu, a, du) > 0, lo, 0.5 * (a + b))
     return float(p[0]) if scalar else p
 
 
@@ -588,6 +605,38 @@ def _foot_frames(walk: WalkPath) -> list[dict]:
             }
         )
     return frames
+
+
+def _landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom: LegGeometry) -> None:
+    """Per step (``frames``, in place: ``"land_p"``), the pitch (radians, + toes up) the swing
+    foot lands with: the reference's ``hs_pitch``, or flatter (down to 0) where the landing
+    leg at its heel-strike length ``d_land`` (m) under the pelvis at ``xy``, ``yaw`` of the
+    landing sample would dorsiflex its ankle past ``dorsi_max`` (a foot landing under the
+    hip). All steps at once; a few fixed-point rounds."""
+    b = np.array([fr["end"] for fr in frames])
+    land = np.array([fr["land"] for fr in frames])
+    left = np.array([fr["side"] == "l" for fr in frames])
+    land_p = np.full(len(frames), hs_pitch)
+    for _ in range(4):
+        pos = _pivot(land, land_p, geom)
+        z = np.zeros(len(b))
+        flex = np.zeros(len(b))
+        for side, sel in (("l", left), ("r", ~left)):
+            if not sel.any():
+                continue
+            bs = b[sel]
+            hip = _hip_world(np.column_stack([xy[bs], z[sel]]), yaw[bs], side, geom)
+            hz = np.linalg.norm(hip[:, :2] - pos[sel, :2], axis=-1)
+            z[sel] = pos[sel, 2] + np.sqrt(np.maximum(d_land**2 - hz**2, 1e-6))
+            root = np.column_stack([xy[bs], z[sel]])
+            raw = _leg_raw(pos[sel], land[sel, 2], land_p[sel], root, yaw[bs], side, geom)
+            flex[sel] = raw[f"ankle_{side}_flex"]
+        over = flex - dorsi_max
+        if not np.any((over > 0) & (land_p > 0)):
+            break
+        land_p = np.where(over > 0, np.maximum(land_p - 1.2 * over, 0.0), land_p)
+    for fr, p in zip(frames, land_p, strict=True):
+        fr["land_p"] = float(p)
 
 
 def legs_from_walk(
@@ -649,6 +698,8 @@ def legs_from_walk(
     hs_pitch = max(0.0, float(ref("pitch", 0.0)))
     dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
     knee_prev = None  # (angle, velocity per unit phase) of the next stance leg at its landing
+    d_land = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(max(ref("knee", 0.0), KNEE_MIN)))
+    _landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom)
     for k, fr in enumerate(frames):
         fr["p_start"] = frames[k - 1].get("p_end") if k > 0 else None
         a, b = fr["start"], fr["end"]
@@ -673,20 +724,10 @@ def legs_from_walk(
         # The foot lands toes up as the reference's, or flatter where the ankle's range
         # does not allow that pitch (a foot landing under the hip): rolled down on the floor
         # after landing instead, it would drop the ankle and jolt the knee
-        land_p = hs_pitch  # the last step too: the final pose is held as it lands
-        d_land = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(max(ref("knee", 0.0), KNEE_MIN)))
-        for _ in range(4):
-            land_pos = _pivot(fr["land"], land_p, geom)
-            hz = np.linalg.norm(hip_pos(np.array([b]), sw) - land_pos[:, :2], axis=-1)[0]
-            z_end = land_pos[0, 2] + np.sqrt(max(d_land**2 - hz**2, 1e-6))
-            root_b = np.array([[xy[b, 0], xy[b, 1], z_end]])
-            land_yaw, land_pa = np.array([fr["land"][2]]), np.array([land_p])
-            raw_b = _leg_raw(land_pos, land_yaw, land_pa, root_b, yaw[b : b + 1], sw, geom)
-            over = float(raw_b[f"ankle_{sw}_flex"][0]) - dorsi_max
-            if over <= 0 or land_p <= 0:
-                break
-            land_p = max(land_p - 1.2 * over, 0.0)
-        fr["land_p"] = land_p
+        land_p = fr["land_p"]  # the last step too: the final pose is held as it lands
+        land_pos = _pivot(fr["land"], land_p, geom)
+        hz = np.linalg.norm(hip_pos(np.array([b]), sw) - land_pos[:, :2], axis=-1)[0]
+        z_end = land_pos[0, 2] + np.sqrt(max(d_land**2 - hz**2, 1e-6))
         th1 = max(float(ref("knee", 0.5)), float(KNEE_MIN))
         hip_end = hip_pos(np.array([b]), st, np.array([z_end]))[0]
         p1 = _heel_rise(fr["stance"], hip_end, th1, float(p_st[-1]), geom)
