@@ -9,7 +9,9 @@ footprint to ``step.foot`` while the other stands on ``step.stance``), with the 
   posture's angle and velocity at ``phi = 0`` and the target posture's angle (both feet down at
   the next heel strike) and the reference velocity at ``phi = 1`` as boundary conditions. The
   pelvis height follows from the stance leg (knee angle, footprint, pelvis x, y): this is the
-  pelvis height oscillation. It is capped where the swing leg could not reach its foot.
+  pelvis height oscillation. It is capped where the swing leg could not reach its foot;
+  over the last 20 % of the step the swing leg's length eases into its heel-strike length
+  (zero velocity), so the knee does not snap straight at landing.
 * **Swing leg (A9).** Until toe-off (``phi`` = 0.2, double support) the swing foot rolls about
   its ball (toes flat). Then the swing ankle follows a cubic spline through key positions at
   ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9: the reference hip/knee angles of that gait-cycle instant
