@@ -446,6 +446,29 @@ def test_planned_walks_stance_feet_stay_put(planned_walks):
             assert v.min() >= lo - 1e-9 and v.max() <= hi + 1e-9, (k, name)
 
 
+#: Largest leg-joint change allowed between two 120 Hz samples (degrees): 720 deg/s, about
+#: twice the peak knee velocity of normal gait (~350-400 deg/s, ~3.3 deg a sample) and well
+#: below the pops seen before (10-30 deg at the walk start, toe-off, landing, late swing).
+MAX_STEP_DEG = 6.0
+
+
+def test_planned_walks_joint_angles_do_not_jump(planned_walks):
+    """Issue 5 (playback pops): on the 20 planned paths no leg joint (and not the pelvis
+    yaw) changes by more than MAX_STEP_DEG between two samples. Measured (seed 0, Bandai
+    default): largest change 5.6 deg (knee, late swing of short quick steps), 16 of 280
+    (walk, joint) pairs above 5 deg; before the fixes 21.5 deg (hip rotation at sample 0),
+    knee 20.2 deg, 139 pairs above 5 deg."""
+    for k, (_, walk, legs, *_) in enumerate(planned_walks):
+        assert np.all(np.diff(walk.t) == pytest.approx(1 / 120)), k
+        series = {**legs.angles, "pelvis_yaw": np.unwrap(legs.yaw)}
+        for name, v in series.items():
+            d = np.degrees(np.abs(np.diff(v)))
+            i = int(np.argmax(d))
+            assert d[i] <= MAX_STEP_DEG, (
+                f"walk {k}: {name} changes {d[i]:.1f} deg between samples {i} and {i + 1}"
+            )
+
+
 def test_planned_walks_touch_nothing(planned_walks):
     """Issue 5: the played-back walks (legs, trunk turning, arms) of the 20 planned paths
     touch no scene geometry, the planner having certified each pelvis path clear."""

@@ -100,9 +100,12 @@ def test_gaitpose_switching_reduces_foot_skating():
 
 
 def test_gaitpose_rollouts_keep_swinging():
-    """Iterated GP means contract (free rollouts: arm swing ~14 deg peak to peak in the first
-    2 s, ~2 deg after 18 s); the heel-strike reset keeps a 20 s rollout's arm and hip swing
-    within 25 % of its first seconds', with and without switching (measured: equal)."""
+    """Iterated GP means contract (free rollouts of the default switching model: arm swing
+    ~13 deg peak to peak in the first 2 s, 2-3 deg after 18 s); the heel-strike reset keeps a
+    20 s rollout's arm and hip swing within 25 % of its first seconds', with and without
+    switching (measured: equal). Since the leg training gait has no jumps (issue 5), the
+    unswitched model's free rollouts hold their swing (ratio 1.0, was 0.1-0.2), so the
+    contraction is asserted for the switching model only."""
     import warnings
 
     from mjwalk.body import gaitpose
@@ -117,8 +120,9 @@ def test_gaitpose_rollouts_keep_swinging():
                 first, last = np.ptp(poses[:60, cols], 0), np.ptp(poses[-60:, cols], 0)
                 assert np.all(last >= 0.75 * first), (switching, s, np.degrees([first, last]))
                 assert np.degrees(last[0]) > 8.0  # the arms still swing after 20 s
-            free, _ = model.rollout(600, np.random.default_rng(0), reset=False)
-            assert np.ptp(free[-60:, cols[0]]) < 0.5 * np.ptp(free[:60, cols[0]])
+            if switching:
+                free, _ = model.rollout(600, np.random.default_rng(0), reset=False)
+                assert np.ptp(free[-60:, cols[0]]) < 0.5 * np.ptp(free[:60, cols[0]])
 
 
 def test_timeline_with_gaitpose_arms():

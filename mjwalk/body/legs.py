@@ -9,7 +9,9 @@ footprint to ``step.foot`` while the other stands on ``step.stance``), with the 
   posture's angle and velocity at ``phi = 0`` and the target posture's angle (both feet down at
   the next heel strike) and the reference velocity at ``phi = 1`` as boundary conditions. The
   pelvis height follows from the stance leg (knee angle, footprint, pelvis x, y): this is the
-  pelvis height oscillation. It is capped where the swing leg could not reach its foot.
+  pelvis height oscillation. It is capped where the swing leg could not reach its foot;
+  over the last 20 % of the step the swing leg's length eases into its heel-strike length
+  (zero velocity), so the knee does not snap straight at landing.
 * **Swing leg (A9).** Until toe-off (``phi`` = 0.2, double support) the swing foot rolls about
   its ball (toes flat). Then the swing ankle follows a cubic spline through key positions at
   ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9: the reference hip/knee angles of that gait-cycle instant
@@ -69,6 +71,11 @@ FLAT_DEG = 2.0
 #: (m) a foot may reach (a flat, slightly inverted sole dips a millimetre or two at its edge).
 FLOOR_ITERATIONS = 10
 FLOOR_TOLERANCE = 2e-3
+#: Grounded legs keep their knee flexed at least as the reference's at that instant of the
+#: gait cycle, up to this many degrees (the pelvis lowers where they would not).
+KNEE_SOFT = 10.0
+#: Step phase from which the swing knee eases into the landing (the last swing key frame).
+LAND_EASE = 0.8
 #: Smallest knee flexion the IK uses when a leg must stretch (radians): never lock the knee.
 KNEE_MIN = np.deg2rad(2.0)
 #: Spin turns (degrees): a grounded foot whose hip would rotate past its range less
@@ -467,6 +474,22 @@ def _smoothstep(x: np.ndarray) -> np.ndarray:
     return x * x * (3 - 2 * x)
 
 
+def _spread(need: np.ndarray, win: int) -> np.ndarray:
+    """A smooth (n,) envelope of the non-negative per-sample amounts ``need`` (n,): their
+    running maximum over +-``win`` samples, Gaussian-smoothed (sigma ``win / 3``), so a
+    correction needed at some samples fades in and out over the samples around instead of
+    acting on them alone (a jump)."""
+    return gaussian_filter1d(maximum_filter1d(need, 2 * win + 1), win / 3)
+
+
+def _soft_clip01(x: np.ndarray, w: float) -> np.ndarray:
+    """``x`` clamped to [0, 1] with rounded corners (C1): unchanged in [w, 1 - w], quadratic
+    blends over ``w`` either side of 0 and 1, constant beyond (``w`` <= 0.5)."""
+    x = np.asarray(x, float)
+    lo = np.where(x < -w, 0.0, np.where(x < w, (x + w) ** 2 / (4 * w), x))
+    return np.where(lo > 1 + w, 1.0, np.where(lo > 1 - w, 1 - (1 + w - lo) ** 2 / (4 * w), lo))
+
+
 def _ball(geom: LegGeometry) -> float:
     """Distance of the ball of the foot (toe joint) ahead of the ankle, metres."""
     return geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)
@@ -524,18 +547,35 @@ def _heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
     L1, L2 = geom.thigh, geom.shank
     d = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(knee))
 
-    def gap(p):
-        return np.linalg.norm(hip - _pivot(foot, p, geom), axis=-1) - d
+    def gap(h, p, dd=d):
+        return np.linalg.norm(h - _pivot(foot, p, geom), axis=-1) - dd
 
-    reach0 = gap(p0) <= 0
-    never = gap(np.full_like(p0, lo)) > 0
-    a, b = np.full_like(p0, lo), p0.copy()  # gap(a) <= 0 < gap(b) where bisected
-    for _ in range(40):
-        m = 0.5 * (a + b)
-        out = gap(m) > 0
-        b = np.where(out, m, b)
-        a = np.where(out, a, m)
-    p = np.where(reach0, p0, np.where(never, lo, 0.5 * (a + b)))
+    p = p0.copy()
+    j = np.flatnonzero(gap(hip, p0) > 0)  # the samples that do not reach at p0
+    if not len(j):
+        return float(p[0]) if scalar else p
+    hj, dj = hip[j], d[j]
+    never = gap(hj, np.full(len(j), lo), dj) > 0
+    # rolled about the ball B by p <= 0 the ankle is B + rho (-cos t f, sin t z), t = beta - p
+    # (f the foot's heading): |hip - ankle| = d is closed-form in t
+    ball, ah = _ball(geom), geom.ankle_height
+    rho, beta = np.hypot(ball, ah), np.arctan2(ah, ball)
+    f = np.array([np.cos(foot[2]), np.sin(foot[2])])
+    rel = hj - np.array([foot[0] + ball * f[0], foot[1] + ball * f[1], 0.0])
+    a_, c_ = rel[:, :2] @ f, rel[:, 2]
+    k_ = ((rel**2).sum(1) + rho**2 - dj**2) / (2 * rho)
+    t = np.arctan2(a_, c_) + np.arcsin(np.clip(k_ / np.hypot(a_, c_), -1.0, 1.0))
+    p[j] = np.where(never, lo, np.clip(beta - t, lo, p0[j]))
+    up = j[p0[j] > 0]  # toes up at p0: bisect (the roll pivots on the heel there)
+    if len(up):
+        hu, du = hip[up], d[up]
+        a, b = np.full(len(up), lo), p0[up]  # gap(a) <= 0 < gap(b) where bisected
+        for _ in range(40):
+            m = 0.5 * (a + b)
+            out = gap(hu, m, du) > 0
+            b = np.where(out, m, b)
+            a = np.where(out, a, m)
+        p[up] = np.where(gap(hu, a, du) > 0, lo, 0.5 * (a + b))
     return float(p[0]) if scalar else p
 
 
@@ -567,6 +607,38 @@ def _foot_frames(walk: WalkPath) -> list[dict]:
             }
         )
     return frames
+
+
+def _landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom: LegGeometry) -> None:
+    """Per step (``frames``, in place: ``"land_p"``), the pitch (radians, + toes up) the swing
+    foot lands with: the reference's ``hs_pitch``, or flatter (down to 0) where the landing
+    leg at its heel-strike length ``d_land`` (m) under the pelvis at ``xy``, ``yaw`` of the
+    landing sample would dorsiflex its ankle past ``dorsi_max`` (a foot landing under the
+    hip). All steps at once; a few fixed-point rounds."""
+    b = np.array([fr["end"] for fr in frames])
+    land = np.array([fr["land"] for fr in frames])
+    left = np.array([fr["side"] == "l" for fr in frames])
+    land_p = np.full(len(frames), hs_pitch)
+    for _ in range(4):
+        pos = _pivot(land, land_p, geom)
+        z = np.zeros(len(b))
+        flex = np.zeros(len(b))
+        for side, sel in (("l", left), ("r", ~left)):
+            if not sel.any():
+                continue
+            bs = b[sel]
+            hip = _hip_world(np.column_stack([xy[bs], z[sel]]), yaw[bs], side, geom)
+            hz = np.linalg.norm(hip[:, :2] - pos[sel, :2], axis=-1)
+            z[sel] = pos[sel, 2] + np.sqrt(np.maximum(d_land**2 - hz**2, 1e-6))
+            root = np.column_stack([xy[bs], z[sel]])
+            raw = _leg_raw(pos[sel], land[sel, 2], land_p[sel], root, yaw[bs], side, geom)
+            flex[sel] = raw[f"ankle_{side}_flex"]
+        over = flex - dorsi_max
+        if not np.any((over > 0) & (land_p > 0)):
+            break
+        land_p = np.where(over > 0, np.maximum(land_p - 1.2 * over, 0.0), land_p)
+    for fr, p in zip(frames, land_p, strict=True):
+        fr["land_p"] = float(p)
 
 
 def legs_from_walk(
@@ -609,6 +681,7 @@ def legs_from_walk(
     z = np.full(n, np.nan)
     ground = {s: np.zeros(n, bool) for s in "lr"}  # foot on the floor (pivoting on a print)
     print_ = {s: np.zeros((n, 3)) for s in "lr"}  # ... on this footprint
+    cyc = {s: np.zeros(n) for s in "lr"}  # the leg's gait-cycle fraction (0 = heel strike)
 
     def hip_pos(idx, side, zz=None):
         sgn = 1.0 if side == "l" else -1.0
@@ -625,28 +698,37 @@ def legs_from_walk(
         return np.arccos(np.clip((d**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
 
     hs_pitch = max(0.0, float(ref("pitch", 0.0)))
+    dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
     knee_prev = None  # (angle, velocity per unit phase) of the next stance leg at its landing
+    d_land = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(max(ref("knee", 0.0), KNEE_MIN)))
+    _landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom)
     for k, fr in enumerate(frames):
         fr["p_start"] = frames[k - 1].get("p_end") if k > 0 else None
         a, b = fr["start"], fr["end"]
         idx = np.arange(a, b + 1)
         phi = (idx - a) / (b - a)
         phase[idx] = phi
+        cyc[fr["other"]][idx], cyc[fr["side"]][idx] = 0.5 * phi, 0.5 + 0.5 * phi
         sw, st = fr["side"], fr["other"]
         contact[idx] = np.where(phi <= TOE_OFF, 2, 0 if st == "l" else 1)
         # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch)
         c_st = 0.5 * phi
         p_ref = ref("pitch", c_st)
-        p_st = _soft_flat(np.where(phi < 0.4, np.maximum(p_ref, 0), np.minimum(p_ref, 0)))
+        p_st = np.where(phi < 0.4, np.maximum(p_ref, 0), np.minimum(p_ref, 0))
+        if k > 0 and hs_pitch > 0:  # the roll-down starts from the pitch it landed with
+            p_st = np.where(phi < 0.4, p_st * frames[k - 1]["land_p"] / hs_pitch, p_st)
+        p_st = _soft_flat(p_st)
         if fr["first"]:  # standing start: already flat
             p_st = np.minimum(p_st, 0.0)
         # --- target posture at phi = 1 (A7): the landing leg at the reference heel-strike knee
         # sets the pelvis height; the trailing (stance) leg takes the reference knee of
-        # cycle 50 %, its heel rising further (about the ball) if it cannot reach otherwise
-        land_p = hs_pitch  # the last step too: the final pose is held as it lands
+        # cycle 50 %, its heel rising further (about the ball) if it cannot reach otherwise.
+        # The foot lands toes up as the reference's, or flatter where the ankle's range
+        # does not allow that pitch (a foot landing under the hip): rolled down on the floor
+        # after landing instead, it would drop the ankle and jolt the knee
+        land_p = fr["land_p"]  # the last step too: the final pose is held as it lands
         land_pos = _pivot(fr["land"], land_p, geom)
         hz = np.linalg.norm(hip_pos(np.array([b]), sw) - land_pos[:, :2], axis=-1)[0]
-        d_land = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(max(ref("knee", 0.0), KNEE_MIN)))
         z_end = land_pos[0, 2] + np.sqrt(max(d_land**2 - hz**2, 1e-6))
         th1 = max(float(ref("knee", 0.5)), float(KNEE_MIN))
         hip_end = hip_pos(np.array([b]), st, np.array([z_end]))[0]
@@ -674,6 +756,32 @@ def legs_from_walk(
         hsw = np.linalg.norm(hip_pos(idx, sw) - pos[:, :2], axis=-1)
         z_sw = pos[:, 2] + np.sqrt(np.maximum(d_max**2 - hsw**2, 1e-6))
         z[idx] = np.minimum(z_flat, z_sw)
+        # landing approach: from LAND_EASE the swing leg's hip-to-ankle distance eases into
+        # its heel-strike length (zero velocity) along a cubic from its length and velocity
+        # there, and the pelvis height follows from it. Capping the pelvis only where the
+        # swing leg is fully stretched would snap the knee straight (near full extension a
+        # millimetre of leg length is several degrees of knee)
+        lj = np.flatnonzero(phi >= LAND_EASE)
+        if len(lj) >= 3 and lj[0] > 0:
+            j = lj[0]
+            hj = hip_pos(idx[j - 1 : j + 1], sw, z[idx[j - 1 : j + 1]])
+            dj = np.linalg.norm(hj - pos[j - 1 : j + 1], axis=-1)
+            span, gap = 1.0 - phi[j], d_land - dj[1]
+            m0 = span * (dj[1] - dj[0]) / (phi[j] - phi[j - 1])
+            m0 = float(np.clip(m0, min(0.0, 3 * gap), max(0.0, 3 * gap)))
+            u = (phi[lj] - phi[j]) / span
+            d_prof = dj[1] + (u**3 - 2 * u**2 + u) * m0 + (3 * u**2 - 2 * u**3) * gap
+            h_prof = np.linalg.norm(hip_pos(idx[lj], sw) - pos[lj, :2], axis=-1)
+            z_prof = pos[lj, 2] + np.sqrt(np.maximum(d_prof**2 - h_prof**2, 1e-6))
+            z[idx[lj]] = np.minimum(z_prof, z_sw[lj])
+            # the trailing leg keeps its planned knee where the pelvis now rises faster: its
+            # heel rises further (about the ball) instead of the leg stretching straight
+            hip_st = hip_pos(idx[lj], st, z[idx[lj]])
+            p_up = _heel_rise(fr["stance"], hip_st, knee_st[lj], np.minimum(p_st[lj], 0), geom)
+            p_st[lj] = np.where(p_st[lj] <= 0, p_up, p_st[lj])
+            fr["p_end"] = float(p_st[-1])
+            ankle[st][idx] = _pivot(fr["stance"], p_st, geom)
+            pitch[st][idx], toe[st][idx] = p_st, -np.minimum(p_st, 0)
         # the swing leg's knee at landing starts the next stance spline
         # the swing leg's knee at landing starts the next stance spline; its velocity is the
         # reference's (loading response: the knee flexes right after heel strike)
@@ -696,36 +804,57 @@ def legs_from_walk(
         for arr in (*ankle.values(), *fyaw.values(), *pitch.values(), *toe.values(), z):
             arr[post] = arr[e]
         contact[post] = 2
+    win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
+
+    def repitch(s_: str, dp: np.ndarray) -> None:
+        # lower the ``s_`` foot's pitch by dp (n,) radians about its heel (toes up) or ball:
+        # on the floor about its footprint's pivot, in the air about the same point of the
+        # foot; the toes keep their angle to the floor while the heel is up
+        p0, p1 = pitch[s_], pitch[s_] - dp
+        lever = np.where(p0 <= 0, _ball(geom), -geom.foot_back)
+        off = []
+        for q in (p0, p1):
+            c, si = np.cos(q), np.sin(q)
+            off.append((-(lever * c + ah * si), ah * c - lever * si))
+        g = ground[s_]
+        head = np.column_stack([np.cos(fyaw[s_]), np.sin(fyaw[s_])])
+        moved = ankle[s_].copy()
+        moved[:, :2] += (off[1][0] - off[0][0])[:, None] * head
+        moved[:, 2] += off[1][1] - off[0][1]
+        moved[g] = _pivot(print_[s_][g], p1[g], geom)
+        toe[s_] += np.minimum(p0, 0.0) - np.minimum(p1, 0.0)
+        ankle[s_], pitch[s_] = moved, p1
+
     angles: dict[str, np.ndarray] = {}
-    dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
-    reach = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(KNEE_MIN))
+    k_floor = {s_: np.clip(ref("knee", cyc[s_]), KNEE_MIN, np.deg2rad(KNEE_SOFT)) for s_ in "lr"}
     for _ in range(4):
         root = np.column_stack([xy, z])
         for s_ in "lr":
             # a grounded foot whose ankle would dorsiflex past its range pitches down
             # instead: a toes-up foot rolls down about its heel, a flat one onto its ball
             # (heel rise), so the sole keeps its place on the floor (clipping the ankle would
-            # sink the toes)
+            # sink the toes). The roll is spread over the samples around (in the air too,
+            # about the same point), so a landing or lift-off does not jolt the leg
             for _ in range(8):
                 raw = _leg_raw(ankle[s_], fyaw[s_], pitch[s_], root, yaw, s_, geom)
-                dorsi = raw[f"ankle_{s_}_flex"]
-                bad = np.flatnonzero(ground[s_] & (dorsi > dorsi_max))
-                if not len(bad):
+                excess = np.where(ground[s_], raw[f"ankle_{s_}_flex"] - dorsi_max, 0.0)
+                if excess.max() <= 0:
                     break
-                pitch[s_][bad] -= 1.2 * (dorsi[bad] - dorsi_max)
-                toe[s_][bad] = -np.minimum(pitch[s_][bad], 0.0)
-                ankle[s_][bad] = _pivot(print_[s_][bad], pitch[s_][bad], geom)
+                repitch(s_, _spread(1.2 * np.maximum(excess, 0.0), win))
         # rolling a heel-strike foot down (or turning it about the ball) lowers its ankle:
-        # where a grounded leg then cannot reach its foot, the pelvis lowers (smoothly)
+        # where a grounded leg then cannot reach its foot with the knee flexed at least as
+        # the reference's (up to KNEE_SOFT), the pelvis lowers (smoothly). Near full
+        # extension a millimetre of leg length is several degrees of knee: a leg stretched
+        # straight by the pelvis would flick its knee
         deficit = np.zeros(n)
         for s_ in "lr":
             h = np.linalg.norm(_hip_world(root, yaw, s_, geom)[:, :2] - ankle[s_][:, :2], axis=1)
+            reach = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(k_floor[s_]))
             cap = ankle[s_][:, 2] + np.sqrt(np.maximum(reach**2 - h**2, 0.0))
             deficit = np.maximum(deficit, np.where(ground[s_], z - cap, 0.0))
         if deficit.max() <= 1e-3:
             break
-        win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))
-        z = z - gaussian_filter1d(maximum_filter1d(np.maximum(deficit, 0.0), 2 * win + 1), win / 3)
+        z = z - _spread(np.maximum(deficit, 0.0), win)
     root = np.column_stack([xy, z])
     for s_ in "lr":
         hip = _hip_world(root, yaw, s_, geom)
@@ -742,14 +871,13 @@ def legs_from_walk(
             bad = low < -FLOOR_TOLERANCE
             if not bad.any():
                 break
+            # (both spread over the samples around, as above)
             excess = raw[f"ankle_{s_}_flex"] - dorsi_max
             tilt = bad & (excess > 0)
-            pitch[s_][tilt] -= 1.2 * excess[tilt]
-            toe[s_][tilt] = -np.minimum(pitch[s_][tilt], 0.0)
-            j = np.flatnonzero(tilt & ground[s_])
-            ankle[s_][j] = _pivot(print_[s_][j], pitch[s_][j], geom)
+            if tilt.any():
+                repitch(s_, _spread(np.where(tilt, 1.2 * excess, 0.0), win))
             lift = bad & ~tilt
-            ankle[s_][lift, 2] -= low[lift]
+            ankle[s_][:, 2] += _spread(np.where(lift, -low, 0.0), win)
         angles.update(ang)
     return LegMotion(
         t=np.asarray(walk.t, float),
@@ -968,7 +1096,9 @@ def _swing(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, 
         heading = np.column_stack([np.cos(yaw[jl]), np.sin(yaw[jl])])
         target = hip_pos(idx[jl], sw) + fwd[:, None] * heading
         seg = land[:2] - lift[:2]
-        s = np.clip((target - lift[:2]) @ seg / max(float(seg @ seg), 1e-9), 0.0, 1.0)
+        # progress along the chord, clamped to the footprints softly (C1): a hard clamp where
+        # the reference passes the landing footprint (short steps) kinks the ankle's path
+        s = _soft_clip01((target - lift[:2]) @ seg / max(float(seg @ seg), 1e-9), 0.1)
         chord = lift[:2] + s[:, None] * seg
         # sideways, the foot swings under its hip: where the step turns, the hip's track bends
         # away from the chord (and from an inner corner the pelvis was planned clear of)
@@ -1001,11 +1131,20 @@ def _swing(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, 
         dp0 = (p_to[0] - p_to[1]) / h
         spp = CubicSpline(knots, np.array(dpit) - rp, bc_type=((1, dp0 - dq[0]), (1, -dq[-1])))
         pos[late], p[late] = ref_pos + sp(phi[late]), ref_pit + spp(phi[late])
-        # keep heel and toe tip off the floor (lift the ankle where they would dip)
-        for lever in (-geom.foot_back, geom.foot_front):
-            tip_z = pos[late, 2] + lever * np.sin(p[late]) - ah * np.cos(p[late])
-            pos[late, 2] += np.maximum(0.0, -tip_z)
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[early][-1] if early.any() else 0.0
     toe = np.where(early, -p, -p_end * (1 - _smoothstep((phi - TOE_OFF) / 0.25)))
+    if late.any():
+        # keep heel, ball and toe tip off the floor (lift the ankle where they would dip); the
+        # toe tip is on the toes, bent by the toe angle (flat on the floor at toe-off: a tip
+        # rigid with the pitched foot would dip below it and jolt the ankle up)
+        pl, tl = p[late], toe[late]
+        ball = _ball(geom)
+        ball_z = ball * np.sin(pl) - ah * np.cos(pl)
+        for tip in (
+            -geom.foot_back * np.sin(pl) - ah * np.cos(pl),
+            ball_z,
+            ball_z + (geom.foot_front - ball) * np.sin(pl + tl),
+        ):
+            pos[late, 2] += np.maximum(0.0, -(pos[late, 2] + tip))
     return pos, p, toe, yaw

@@ -552,7 +552,6 @@ class HybridPlanner:
                     nid,
                     (parent, srcs, rows, pos, heads, frames, lefts),
                     feats,
-                    start_yaw,
                     {
                         "expansions": expansions,
                         "generated": generated,
@@ -605,7 +604,7 @@ class HybridPlanner:
             "to an obstacle"
         )
 
-    def _assemble(self, nid, nodes, feats, start_yaw, stats) -> WalkPath:
+    def _assemble(self, nid, nodes, feats, stats) -> WalkPath:
         parent, srcs, rows, pos, _heads, frames, lefts = nodes
         chain = []
         while nid > 0:
@@ -623,8 +622,14 @@ class HybridPlanner:
         local = np.vstack([t[0][1:] for t in trajs])
         origin = [np.repeat(v, counts) for v in (ox, oy, fr)]
         xy = np.vstack([[[pos[0].real, pos[0].imag]], _to_world(*origin, local)])
+        # sample 0 faces the first step's frame: a starter's turn on the spot (free start
+        # heading) is not part of the walk (a cycle turns the operator before it), so the
+        # pelvis yaw does not jump between samples 0 and 1
         yaw = np.concatenate(
-            [[start_yaw], np.repeat(fr, counts) + np.concatenate([t[1][1:] for t in trajs])]
+            [
+                [fr[0] + trajs[0][1][0]],
+                np.repeat(fr, counts) + np.concatenate([t[1][1:] for t in trajs]),
+            ]
         )
         feet = _to_world(ox, oy, fr, batch.footprint[:, :2])
         stances = _to_world(ox, oy, fr, batch.stance[:, :2])
