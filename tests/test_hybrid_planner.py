@@ -187,11 +187,11 @@ def test_short_walk_to_a_tight_goal_stops_with_closing_steps(model, scenes_dir):
     model's stop GPs (without them, 2 of 30 cycles failed on this walk: full strides overshoot
     a 0.1 m goal).
 
-    They do not wander (issues 3/4/7): seeds 0-59 give a median length of 1.11 m and an IQR of
-    0.12 m (82 % shorter than 1.5 m); asserted: median <= 1.3 m, IQR <= 0.5 m. Before the
+    They do not wander (issues 3/4/7): seeds 0-59 give a median length of 1.12 m and an IQR of
+    0.12 m (80 % shorter than 1.5 m); asserted: median <= 1.3 m, IQR <= 0.5 m. Before the
     corpus's short walks and the planner's near-goal cells (NEAR_GOAL_EXPANSIONS), the median
-    was about 4.4 m: the model's first and closing steps barely varied, and no 3-step walk
-    ended within 0.1 m of a goal 1.1 m away."""
+    was about 4.5 m (benchmarks/bench_short_walks.py): the model's first and closing steps
+    barely varied, so few 3-step walks ended within 0.1 m of a goal 1.1 m away."""
     from mjwalk.cycle.simulate import GOAL_TOLERANCE
 
     wp = load_workplace(scenes_dir / "assembly_station.xml")
