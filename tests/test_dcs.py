@@ -1,5 +1,6 @@
 """DCSNetwork and the arm trajectory representation (mjwalk.body.dcs, mjwalk.body.armrep)."""
 
+import os
 from pathlib import Path
 
 import numpy as np
@@ -18,7 +19,11 @@ from mjwalk.body.armrep import (
 from mjwalk.body.dcs import DCSNetwork
 from mjwalk.errors import MjwalkError, ModelFileError
 
-DATA = Path(__file__).parents[2] / "shared" / "data" / "bandai-raise-hand"
+#: real capture: ``$MJWALK_SHARED_DATA`` or ../shared/data beside the project
+DATA = (
+    Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[2] / "shared" / "data"))
+    / "bandai-raise-hand"
+)
 
 
 def _toy(n, seed):

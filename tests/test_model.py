@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import time
 import zipfile
 from pathlib import Path
@@ -14,7 +15,8 @@ from test_features import make_steps
 from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait.model import StepModel, first_step_indices, transition_pairs
 
-DATA = Path(__file__).parents[2] / "shared" / "data"
+#: real capture: ``$MJWALK_SHARED_DATA`` or ../shared/data beside the project
+DATA = Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[2] / "shared" / "data"))
 
 
 @pytest.fixture(scope="module")

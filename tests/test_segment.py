@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+import os
 from pathlib import Path
 
 import numpy as np
@@ -20,7 +21,11 @@ from mjwalk.gait.segment import (
     step_width,
 )
 
-DATA = Path(__file__).parents[2] / "shared" / "data" / "bandai-walk"
+#: real capture: ``$MJWALK_SHARED_DATA`` or ../shared/data beside the project
+DATA = (
+    Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[2] / "shared" / "data"))
+    / "bandai-walk"
+)
 
 
 @pytest.fixture(scope="module")
