@@ -127,6 +127,18 @@ class LegGeometry:
     foot_front: float
     foot_width: float = 0.0
 
+    def span(self, knee):
+        """Hip-to-ankle distance (m) at knee flexion ``knee`` (radians, 0 = straight; the law
+        of cosines on thigh and shank)."""
+        L1, L2 = self.thigh, self.shank
+        return np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(knee))
+
+    def knee_for_span(self, d):
+        """Knee flexion (radians) that puts the ankle ``d`` metres from the hip (the inverse
+        of :meth:`span`, clipped to straight and fully folded)."""
+        L1, L2 = self.thigh, self.shank
+        return np.arccos(np.clip((d**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
+
 
 #: Upper-arm capsule radius per metre of stature.
 UPPER_ARM_RADIUS = 0.024

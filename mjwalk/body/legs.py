@@ -400,10 +400,10 @@ def leg_ik(
     Rf = _rz(np.asarray(foot_yaw, float)) @ _ry(-np.asarray(foot_pitch, float))
     u = (np.swapaxes(Rf, -1, -2) @ np.asarray(ankle_rel, float)[..., None])[..., 0]
     r = np.linalg.norm(u, axis=-1)
-    rmax = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(KNEE_MIN))
-    rmin = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(np.deg2rad(ROM_DEG["knee"][1])))
+    rmax = geom.span(KNEE_MIN)
+    rmin = geom.span(np.deg2rad(ROM_DEG["knee"][1]))
     rc = np.clip(r, rmin, rmax)
-    knee = np.arccos(np.clip((rc**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
+    knee = geom.knee_for_span(rc)
     phi = np.arctan2(u[:, 1], -u[:, 2])  # rotation about the foot's x axis (s * inversion)
     m = np.hypot(u[:, 1], u[:, 2])
     a = np.arctan2(L1 * np.sin(knee), L1 * np.cos(knee) + L2) - np.arctan2(u[:, 0], m)
@@ -544,8 +544,7 @@ def _heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
     hip = np.atleast_2d(np.asarray(hip, float))
     p0 = np.atleast_1d(np.asarray(p0, float))
     knee = np.broadcast_to(np.asarray(knee, float), p0.shape)
-    L1, L2 = geom.thigh, geom.shank
-    d = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(knee))
+    d = geom.span(knee)
 
     def gap(h, p, dd=d):
         return np.linalg.norm(h - _pivot(foot, p, geom), axis=-1) - dd
@@ -671,7 +670,7 @@ def legs_from_walk(
                 f"legs_from_walk: step {k} has sample range {fr['start']}..{fr['end']} outside "
                 f"the path's {n} samples"
             )
-    ah, L1, L2 = geom.ankle_height, geom.thigh, geom.shank
+    ah = geom.ankle_height
     ankle = {s: np.zeros((n, 3)) for s in "lr"}
     fyaw = {s: np.zeros(n) for s in "lr"}
     pitch = {s: np.zeros(n) for s in "lr"}
@@ -690,17 +689,16 @@ def legs_from_walk(
 
     def height_for_knee(idx, side, foot_pos, knee):
         h = np.linalg.norm(hip_pos(idx, side) - foot_pos[:, :2], axis=-1)
-        d2 = L1**2 + L2**2 + 2 * L1 * L2 * np.cos(knee)
-        return foot_pos[:, 2] + np.sqrt(np.maximum(d2 - h**2, 1e-6))
+        return foot_pos[:, 2] + np.sqrt(np.maximum(geom.span(knee) ** 2 - h**2, 1e-6))
 
     def knee_for(idx, side, foot_pos, zz):
         d = np.linalg.norm(hip_pos(idx, side, zz) - foot_pos, axis=-1)
-        return np.arccos(np.clip((d**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
+        return geom.knee_for_span(d)
 
     hs_pitch = max(0.0, float(ref("pitch", 0.0)))
     dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
     knee_prev = None  # (angle, velocity per unit phase) of the next stance leg at its landing
-    d_land = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(max(ref("knee", 0.0), KNEE_MIN)))
+    d_land = geom.span(max(ref("knee", 0.0), KNEE_MIN))
     _landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom)
     for k, fr in enumerate(frames):
         fr["p_start"] = frames[k - 1].get("p_end") if k > 0 else None
@@ -752,7 +750,7 @@ def legs_from_walk(
         ankle[sw][idx], pitch[sw][idx], toe[sw][idx], fyaw[sw][idx] = pos, p_sw, toe_sw, yw
         pre_swing = idx[phi <= TOE_OFF]
         ground[sw][pre_swing], print_[sw][pre_swing] = True, fr["lift"]
-        d_max = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(KNEE_MIN))
+        d_max = geom.span(KNEE_MIN)
         hsw = np.linalg.norm(hip_pos(idx, sw) - pos[:, :2], axis=-1)
         z_sw = pos[:, 2] + np.sqrt(np.maximum(d_max**2 - hsw**2, 1e-6))
         z[idx] = np.minimum(z_flat, z_sw)
@@ -849,7 +847,7 @@ def legs_from_walk(
         deficit = np.zeros(n)
         for s_ in "lr":
             h = np.linalg.norm(_hip_world(root, yaw, s_, geom)[:, :2] - ankle[s_][:, :2], axis=1)
-            reach = np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(k_floor[s_]))
+            reach = geom.span(k_floor[s_])
             cap = ankle[s_][:, 2] + np.sqrt(np.maximum(reach**2 - h**2, 0.0))
             deficit = np.maximum(deficit, np.where(ground[s_], z - cap, 0.0))
         if deficit.max() <= 1e-3:
