@@ -381,6 +381,10 @@ class HybridPlanner:
         # feature array -> (row period, first closing column), if it has closing steps
         closing_rows: dict[int, tuple[int, int]] = {}
 
+        def may_stop(p: complex) -> bool:
+            """Whether a node at world x + iy ``p`` draws closing steps (near the goal)."""
+            return abs(p - goal_c) <= stop_reach
+
         def cell_key(k: int) -> int:
             p = pos[k]
             key = math.floor((p.real - x0) / cell + 0.5) * span + math.floor(
@@ -417,7 +421,7 @@ class HybridPlanner:
                     z = self.model.sample_next_features(x, side, n_walk, rng)
                 per = n_walk
                 stop = None
-                near = [abs(pos[k] - goal_c) <= stop_reach for k in batch]
+                near = [may_stop(pos[k]) for k in batch]
                 if n_stop and any(near):
                     # near the goal: closing steps too, after each node's walking ones
                     zs = self.model.sample_next_features(x, side, n_stop, rng, stop=True)
@@ -448,20 +452,19 @@ class HybridPlanner:
             local = (z @ dec.matrix_f).view(np.complex128)
             local += dec.offset
             l3 = local.reshape(b, per, m + 2)
-            world = l3 * rot[..., None]
-            world += ctx[0, :, None, None]
-            # the last column becomes the landing foot's toes (it held the yaws)
-            world[..., m + 1] = world[..., m] + (FOOT_LENGTH * 1j) * rot * np.exp(
-                1j * l3[..., m + 1].real
-            )
             # the swing knee (local frame: forward is +i, left is i * forward), the pelvis yaw
             # interpolated from the step's start to its end
             fwd = 1j * np.exp(1j * l3[..., m + 1, None].imag * knee_share)
             lat = np.where(np.reshape(left, (-1, 1)), 1j, -1j) * KNEE_SIDE
-            knee = (l3[..., knee_cols] + fwd * (KNEE_LEAD + lat)) * rot[..., None]
-            knee += ctx[0, :, None, None]
-            pts = np.concatenate([world, knee], axis=2).reshape(n, m + 4)
-            world = world.reshape(n, m + 2)
+            knee = l3[..., knee_cols] + fwd * (KNEE_LEAD + lat)
+            pts = np.concatenate([l3, knee], axis=2) * rot[..., None]
+            pts += ctx[0, :, None, None]
+            # column m + 1 becomes the landing foot's toes (it held the yaws)
+            pts[..., m + 1] = pts[..., m] + (FOOT_LENGTH * 1j) * rot * np.exp(
+                1j * l3[..., m + 1].real
+            )
+            pts = pts.reshape(n, m + 4)
+            world = pts[:, : m + 2]
             # clearance: body radius (+ margin) on the pelvis samples, foot clearance on the
             # landing foot's ankle and toes and knee clearance on the swing knee (they reach
             # ahead of the pelvis)
@@ -546,7 +549,7 @@ class HybridPlanner:
                 if (
                     ck in closed
                     and not self._in_goal(cends[k], cheads[k])
-                    and not (n_stop and abs(cends[k] - goal_c) <= stop_reach)
+                    and not (n_stop and may_stop(cends[k]))
                 ):
                     continue
                 parent.append(nid)
@@ -566,7 +569,7 @@ class HybridPlanner:
             key = cell_key(nid)
             if key in closed and not self._in_goal(pos[nid], heads[nid]):
                 ahead.pop(nid, None)
-                if n_stop and abs(pos[nid] - goal_c) <= stop_reach:
+                if n_stop and may_stop(pos[nid]):
                     # closed for walking on, not for stopping (NEAR_GOAL_EXPANSIONS); one such
                     # draw per node at most, and nodes come from expansions: bounded by them
                     stop_draws += 1
@@ -595,7 +598,7 @@ class HybridPlanner:
                     f"{rejected} rejected"
                 )
             expansions += 1
-            if n_stop and abs(pos[nid] - goal_c) <= stop_reach:  # see NEAR_GOAL_EXPANSIONS
+            if n_stop and may_stop(pos[nid]):  # see NEAR_GOAL_EXPANSIONS
                 near_expanded[key] = near_expanded.get(key, 0) + 1
                 if near_expanded[key] >= NEAR_GOAL_EXPANSIONS:
                     closed.add(key)
