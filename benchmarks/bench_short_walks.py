@@ -23,6 +23,7 @@ import argparse
 from pathlib import Path
 
 import numpy as np
+from bench_planner import ROUTES  # the station routes T1..T5 (scenes/assembly_station.toml)
 
 from mjwalk.cycle.simulate import GOAL_TOLERANCE
 from mjwalk.cycle.spec import load_cycle_spec
@@ -32,20 +33,13 @@ from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.world import load_workplace
 
 ROOT = Path(__file__).resolve().parents[1]
-ROUTES = {  # as in benchmarks/bench_planner.py (scenes/assembly_station.toml)
-    "T5": ("stand_rack2", "stand_rack3"),
-    "T1": ("stand_rack2", "stand_car1"),
-    "T2": ("stand_car1", "stand_rack3"),
-    "T3": ("stand_car2", "stand_rack1"),
-    "T4": ("stand_car3", "stand_rack2"),
-}
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=100)
     ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("--routes", default=",".join(ROUTES), help="comma-separated route names")
+    ap.add_argument("--routes", default="T5,T1,T2,T3,T4", help="comma-separated route names")
     args = ap.parse_args()
     spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
     wp = load_workplace(ROOT / "scenes" / "assembly_station.xml")
