@@ -66,6 +66,7 @@ from scipy.stats import gaussian_kde
 
 from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.errors import MjwalkError, ModelFileError
+from mjwalk.gait import gpdraw
 from mjwalk.gait.features import StepBatch, StepFeatures, raw_features, side_array
 from mjwalk.gait.step import Step
 
@@ -126,8 +127,8 @@ class TransitionGP:
         self._neg_zs_t = np.ascontiguousarray((-self._zs / self.length_scale).T)
         self._half_zs2 = 0.5 * self._zs2
         self._c_alpha = self.signal_var * self.alpha
-        self._c2_w = self.signal_var**2 * self.w
-        self._pool_flat = self.res_pool.reshape(-1, self.res_pool.shape[2])
+        self._c2_w = np.ascontiguousarray(self.signal_var**2 * self.w)
+        self._pool_flat = np.ascontiguousarray(self.res_pool.reshape(-1, self.res_pool.shape[2]))
 
     def kernel_rows(self, x: np.ndarray) -> np.ndarray:
         """(P, m) signal kernel C·RBF between ``x`` (P, d) and the inducing inputs."""
@@ -147,18 +148,22 @@ class TransitionGP:
         mean, var, _ = self._predict(x)
         return mean, var
 
+    def _folded(self) -> tuple:
+        return (
+            self._neg_zs_t,
+            self._half_zs2,
+            self._half_inv_l2,
+            self._c_alpha,
+            self._c2_w,
+            self.signal_var,
+        )
+
     def _moments(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """:meth:`predict`'s mean (P, d) and latent variance (P,) (not clipped at 0) with the
         constants folded in, and the half squared scaled distances h (P, m) to the inducing
-        inputs (k = C·exp(-h)); the dense formulas, equal to :meth:`predict`'s to rounding."""
-        h = x @ self._neg_zs_t
-        h += self._half_zs2
-        h += np.einsum("pd,pd->p", x * self._half_inv_l2, x)[:, None]
-        np.maximum(h, 0.0, out=h)
-        e = np.exp(-h)
-        mean = e @ self._c_alpha
-        var = self.signal_var - np.einsum("pm,pm->p", e @ self._c2_w, e)
-        return mean, var, h
+        inputs (k = C·exp(-h)); the dense formulas, equal to :meth:`predict`'s to rounding
+        (compiled: :func:`mjwalk.gait.gpdraw.moments`)."""
+        return gpdraw.moments(np.ascontiguousarray(x, dtype=float), *self._folded())
 
     def sample(self, x: np.ndarray, n: int, rng: np.random.Generator) -> np.ndarray:
         """(P, n, d) successor features: n draws for each of the P predecessors.
@@ -168,27 +173,19 @@ class TransitionGP:
         (:meth:`_moments`: the same formulas with the constants folded in, equal to rounding;
         tests/test_model.py checks them); the pool weights are exp(-POOL_SHARPNESS·(h - min h))
         for the half squared scaled distances h, that is (k / max k)^POOL_SHARPNESS without an
-        underflow to all-zero weights far from the data.
+        underflow to all-zero weights far from the data. Compiled
+        (:func:`mjwalk.gait.gpdraw.sample`); the random numbers are drawn from ``rng`` as
+        NumPy would: all pool choices (uniform), all pool members, then all normal deviates.
         """
-        p, d = x.shape
-        mean, var, h = self._moments(x)
-        # the pool of inducing input j, drawn with probability ∝ k(x, z_j)^POOL_SHARPNESS
-        h -= h.min(axis=1, keepdims=True)
-        h *= -POOL_SHARPNESS
-        c = np.cumsum(np.exp(h, out=h), axis=1)
-        u = rng.random((p, n)) * c[:, -1:]
-        # the first j with c_j >= u (u <= c_{m-1}: never past the last)
-        cell = np.empty((p, n), dtype=np.intp)
-        for i in range(p):
-            cell[i] = c[i].searchsorted(u[i])
-        k = self.res_pool.shape[1]
-        cell *= k
-        cell += rng.integers(k, size=(p, n))
-        eps = rng.standard_normal((p, n, d))
-        eps *= np.sqrt(np.maximum(var, 0.0))[:, None, None]
-        eps += mean[:, None, :]
-        eps += self._pool_flat[cell]
-        return eps
+        return gpdraw.sample(
+            np.ascontiguousarray(x, dtype=float),
+            int(n),
+            rng,
+            *self._folded(),
+            self._pool_flat,
+            self.res_pool.shape[1],
+            POOL_SHARPNESS,
+        )
 
     @classmethod
     def fit(

@@ -52,6 +52,11 @@ class GoalDistance:
         self._origin = np.array([self.grid.x0, self.grid.y0])
         self._top = np.array([nx - 1.0, ny - 1.0])
 
+    def flat_bound(self) -> np.ndarray:
+        """Grid distances divided by the worst excess, flat (row-major over (ny, nx)): the
+        cell term of :meth:`__call__`, for compiled lookups (:mod:`mjwalk.plan.stepcheck`)."""
+        return self._scaled
+
     def reachable(self, xy: np.ndarray) -> bool:
         j, i = self.grid.index(np.asarray(xy, dtype=float))
         return bool(np.isfinite(self.cells[j, i]))

@@ -63,6 +63,7 @@ import numpy as np
 
 from mjwalk.errors import PlanningError
 from mjwalk.gait.features import StepBatch
+from mjwalk.plan import stepcheck
 from mjwalk.plan.grid import (
     BODY_RADIUS,
     CELL_SIZE,
@@ -72,6 +73,7 @@ from mjwalk.plan.grid import (
     shared_grid,
 )
 from mjwalk.plan.heuristic import GoalDistance, goal_distance
+from mjwalk.plan.stepcheck import check_steps
 from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.world.workplace import Workplace
 
@@ -257,6 +259,56 @@ class HybridPlanner:
         )
         self._dec: _Decoder | None = None
 
+    def _kernel_params(self) -> tuple[np.ndarray, np.ndarray]:
+        """The float and integer parameter vectors of :func:`~mjwalk.plan.stepcheck.check_steps`."""
+        m = self.samples_per_step
+        knee_cols = (m // 2, (3 * m) // 4)  # the swing-knee probes' pelvis samples
+        walk, gd = self._walk, self.distance
+        par = stepcheck.params(
+            knee_lead=KNEE_LEAD,
+            knee_side=KNEE_SIDE,
+            foot_length=FOOT_LENGTH,
+            foot_reach=MAX_FOOT_REACH,
+            lift_reach=MAX_LIFT_REACH,
+            stride=MAX_STRIDE,
+            goal_x=self.goal[0],
+            goal_y=self.goal[1],
+            tolerance=self.tolerance,
+            goal_yaw=math.nan if self.goal_yaw is None else self.goal_yaw,
+            yaw_tolerance=self.goal_yaw_tolerance,
+            weight=self.heuristic_weight,
+            corner_x=self.grid.x0,
+            corner_y=self.grid.y0,
+            cell=self.cell,
+            field_x0=walk.x0,
+            field_y0=walk.y0,
+            field_res=walk.resolution,
+            dist_x0=self.grid.x0,
+            dist_y0=self.grid.y0,
+            dist_cell=self.grid.cell,
+            dist_top_x=self.grid.free.shape[1] - 1.0,
+            dist_top_y=self.grid.free.shape[0] - 1.0,
+            knee_share0=knee_cols[0] / (m - 1),  # the probes' share of the step
+            knee_share1=knee_cols[1] / (m - 1),
+        )
+        ipar = stepcheck.iparams(
+            m=m,
+            q=max(2, m // 4),  # samples of a step's first quarter (the foot behind lifts off)
+            knee_col0=knee_cols[0],
+            knee_col1=knee_cols[1],
+            # closed cells as one integer: (i * span + j) * bins + heading bin, with span
+            # larger than any cell row index j of a point a step can reach (the grid's rows
+            # plus a margin)
+            span=4 * max(self.grid.free.shape) + 1000,
+            bins=self.heading_bins,
+            field_nx=walk.values.shape[1],
+            field_ny=walk.values.shape[0],
+            dist_nx=gd.grid.free.shape[1],
+            dijkstra=self.heuristic == "dijkstra",
+            chord=self.cost == "chord",
+        )
+        return par, ipar
+
     def _decoder(self) -> _Decoder:
         if self._dec is None:
             self._dec = _Decoder(self.model, self.samples_per_step)
@@ -327,27 +379,17 @@ class HybridPlanner:
         if free_heading:
             start_yaw = self.default_heading(start_xy)
         dec = self._decoder()
-        m = self.samples_per_step
-        q = max(2, m // 4)  # samples of a step's first quarter (the foot behind lifts off)
-        knee_cols = [m // 2, (3 * m) // 4]  # the swing-knee probes' pelvis samples
-        knee_share = np.array(knee_cols) / (m - 1)  # ... and their share of the step
-        walk = self._walk
         thr = self._thresholds
         gd = self.distance
+        par, ipar = self._kernel_params()
+        coef = self._walk._coefficients()
+        dist = gd.flat_bound()
+        no_stop = np.zeros(1, dtype=bool)
         x0, y0, cell, bins = self.grid.x0, self.grid.y0, self.cell, self.heading_bins
-        corner = np.array([x0, y0])
-        # reach checks (see draw): local columns, each less a reference point, and the limits
-        reach_cols = np.r_[0:m, 0:q, m, m]
-        reach_limits = np.array(
-            [MAX_FOOT_REACH] * m + [MAX_LIFT_REACH] * q + [MAX_STRIDE, MAX_FOOT_REACH]
-        )
-        # closed cells as one integer: (i * span + j) * bins + heading bin, with span larger
-        # than any cell row index j of a point a step can reach (the grid's rows plus a margin)
-        span = 4 * max(self.grid.free.shape) + 1000
+        span = int(ipar[stepcheck.I_SPAN])
         dijkstra = self.heuristic == "dijkstra"
         weight = self.heuristic_weight
         goal_c = complex(self.goal[0], self.goal[1])
-        chord = self.cost == "chord"
         batch_max = self.batch
         n_succ = self.n_successors
         n_stop = self.n_stops
@@ -403,15 +445,13 @@ class HybridPlanner:
             if batch[0] == 0:  # the start node (always alone: it is the first node popped)
                 first = self.model.sample_first(self.n_starters, rng)
                 z = first.features
-                per = len(z)
+                n_walk = per = len(z)
                 left = first.side == "left"
                 frame = np.full(per, heads[0])
                 if free_heading:  # the walker may set off anywhere around the downhill heading
                     frame += rng.uniform(-START_SPREAD, START_SPREAD, per)
-                # local step frame -> world: x + iy -> p + (x + iy)(sin - i cos), per row
-                rot = (np.sin(frame) - 1j * np.cos(frame))[None, :]
-                ctx = np.array([[pos[0]], [nan], [nan], [gs[0]]])
-                stop = None
+                near = no_stop
+                node = np.array([[pos[0], nan, nan, gs[0]]])
             else:
                 x = np.array([feats[srcs[k]][rows[k]] for k in batch])
                 side = "left" if lefts[batch[0]] else "right"
@@ -420,119 +460,37 @@ class HybridPlanner:
                 else:
                     z = self.model.sample_next_features(x, side, n_walk, rng)
                 per = n_walk
-                stop = None
-                near = [may_stop(pos[k]) for k in batch]
-                if n_stop and any(near):
-                    # near the goal: closing steps too, after each node's walking ones
+                near = np.array([may_stop(pos[k]) for k in batch])
+                if n_stop and near.any():
+                    # near the goal: closing steps too, after each node's walking ones (those
+                    # of nodes far from the goal are dropped uncounted)
                     zs = self.model.sample_next_features(x, side, n_stop, rng, stop=True)
                     d = z.shape[1]
                     z = np.concatenate(
                         [z.reshape(b, n_walk, d), zs.reshape(b, n_stop, d)], axis=1
                     ).reshape(-1, d)
                     per = n_walk + n_stop
-                    # closing rows; those of nodes far from the goal are dropped uncounted
-                    stop = np.tile(np.arange(per) >= n_walk, b)
-                    dropped = stop & ~np.repeat(near, per)
-                left = not lefts[batch[0]]
+                left = np.full(b, not lefts[batch[0]])
                 frame = np.array([heads[k] for k in batch])
-                # per predecessor: its end point p, the turn into the world (sin - i cos of
-                # its heading), the foot its step landed and the foot behind that, both in
-                # the successors' local frame (nan where there is none yet), and g
-                ctx = []
-                for k in batch:
-                    p, hk = pos[k], heads[k]
-                    r = complex(math.sin(hk), -math.cos(hk))
-                    rc = r.conjugate()
-                    ctx.append((p, r, (feet[k] - p) * rc, (feet[parent[k]] - p) * rc, gs[k]))
-                ctx = np.array(ctx).T  # (5, b)
-                rot = ctx[1, :, None]
-                ctx = ctx[[0, 2, 3, 4]]
-            n = len(z)
-            # rows are (predecessor, successor, column); see _Decoder
-            local = (z @ dec.matrix_f).view(np.complex128)
-            local += dec.offset
-            l3 = local.reshape(b, per, m + 2)
-            # the swing knee (local frame: forward is +i, left is i * forward), the pelvis yaw
-            # interpolated from the step's start to its end
-            fwd = 1j * np.exp(1j * l3[..., m + 1, None].imag * knee_share)
-            lat = np.where(np.reshape(left, (-1, 1)), 1j, -1j) * KNEE_SIDE
-            knee = l3[..., knee_cols] + fwd * (KNEE_LEAD + lat)
-            pts = np.concatenate([l3, knee], axis=2) * rot[..., None]
-            pts += ctx[0, :, None, None]
-            # column m + 1 becomes the landing foot's toes (it held the yaws)
-            pts[..., m + 1] = pts[..., m] + (FOOT_LENGTH * 1j) * rot * np.exp(
-                1j * l3[..., m + 1].real
-            )
-            pts = pts.reshape(n, m + 4)
-            world = pts[:, : m + 2]
-            # clearance: body radius (+ margin) on the pelvis samples, foot clearance on the
-            # landing foot's ankle and toes and knee clearance on the swing knee (they reach
-            # ahead of the pelvis)
-            ok = (walk.at(pts.view(np.float64).reshape(n, m + 4, 2)) >= thr).all(axis=1)
-            # legs are only so long: the landing foot lies within reach of the pelvis at the
-            # end of the step, and the stance foot (where the predecessor's step landed) within
-            # reach of the pelvis throughout (GP samples far out in the tails can break either);
-            # the swing foot lifts off where it landed two steps ago: a stride of plausible
-            # length, and within reach of the pelvis until lift-off (nan: no such foot yet; a
-            # comparison with nan is False, so "not beyond" is what is tested). Distances are
-            # taken in the step's local frame (the turn into the world keeps them).
-            gap = l3[..., reach_cols]
-            gap[..., :m] -= ctx[1, :, None, None]
-            gap[..., m:-1] -= ctx[2, :, None, None]
-            gap[..., -1] -= l3[..., m - 1]
-            ok &= ~(np.abs(gap) > reach_limits).any(axis=2).ravel()
-            if stop is not None:  # a closing step must end the walk: in the goal area
-                into = np.abs(world[:, m - 1] - goal_c) <= self.tolerance
-                if self.goal_yaw is not None:
-                    turn = np.repeat(frame, per) + local[:, m + 1].imag - self.goal_yaw
-                    into &= np.abs((turn + math.pi) % two_pi - math.pi) <= self.goal_yaw_tolerance
-                ok &= ~stop | (into & ~dropped)
-            good = np.flatnonzero(ok)
-            lg = local[good]
-            if chord:  # sample 0 is the step's start, exactly 0 in its local frame
-                seg = np.abs(lg[:, m - 1])
-            else:
-                seg = np.abs(np.diff(lg[:, :m], axis=1)).sum(axis=1)
-            ends = world[good, m - 1]
-            exy = ends.view(np.float64).reshape(-1, 2)
-            hs = gd(exy) if dijkstra else np.abs(ends - goal_c)
-            if b == 1 and batch[0] == 0:
-                frame_ok = frame[good]
-                owner = np.zeros(len(good), dtype=np.intp)
-                lefts_ok = left[good].tolist()
-            else:
-                owner = good // per
-                frame_ok = frame[owner]
-                lefts_ok = [left] * len(good)
-            th = frame_ok + lg[:, m + 1].imag
-            g = ctx[3].real[owner] + seg
-            fs = g + weight * hs
-            ij = np.floor((exy - corner) / cell + 0.5).astype(np.intp)
-            keys = ij[:, 0] * span + ij[:, 1]
-            if bins > 1:
-                keys = keys * bins + np.floor((th % two_pi) / two_pi * bins).astype(np.intp) % bins
-            cols = (
-                keys.tolist(),
-                fs.tolist(),
-                g.tolist(),
-                good.tolist(),
-                ends.tolist(),
-                th.tolist(),
-                frame_ok.tolist(),
-                world[good, m].tolist(),
-                lefts_ok,
-            )
+                # per predecessor: its end point, the foot its step landed and the foot
+                # behind that (nan where there is none yet), and g
+                node = np.array([(pos[k], feet[k], feet[parent[k]], gs[k]) for k in batch])
+            z = np.ascontiguousarray(z, dtype=float)
+            good, keys, f, g, ends, th, frames_ok, landed, lefts_ok, accepted, drawn = check_steps(
+                z, dec.matrix, dec.offset, per, n_walk, frame, left, near, node, thr,
+                par, ipar, coef, dist,
+            )  # fmt: skip
             src = len(feats)
             feats.append(z)
-            if stop is not None:
+            if per > n_walk:
                 closing_rows[src] = (per, n_walk)
+            cols = [c.tolist() for c in (keys, f, g, good, ends, th, frames_ok, landed, lefts_ok)]
             if b == 1:
-                drawn = per if stop is None else per - int(dropped.sum())
-                return [(src, drawn, drawn - len(good), *cols)]
-            cut = np.searchsorted(owner, np.arange(b + 1)).tolist()
-            drawn = [per] * b if stop is None else (per - dropped.reshape(b, per).sum(1)).tolist()
+                n = int(drawn[0])
+                return [(src, n, n - len(good), *cols)]
+            cut = np.concatenate([[0], np.cumsum(accepted)]).tolist()
             return [
-                (src, drawn[i], drawn[i] - (cut[i + 1] - cut[i]))
+                (src, int(drawn[i]), int(drawn[i] - accepted[i]))
                 + tuple(c[cut[i] : cut[i + 1]] for c in cols)
                 for i in range(b)
             ]

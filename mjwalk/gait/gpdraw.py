@@ -1,0 +1,95 @@
+"""Successor draws of a :class:`~mjwalk.gait.model.TransitionGP`, compiled (:mod:`mjwalk._jit`).
+
+The planner draws ten successors of one to a few predecessors at a time, thousands of times per
+second; as NumPy calls the draw is a dozen small operations whose overhead outweighs their
+arithmetic. These loops do the same arithmetic in the same order and take their random numbers
+from the caller's ``numpy.random.Generator`` in the order NumPy code would (all pool choices,
+then all pool members, then all normal deviates), so :meth:`TransitionGP.sample` gives the
+draws it gave as NumPy code (to rounding; ``tests/test_model.py`` compares with a NumPy
+reference).
+
+Arrays are those :class:`TransitionGP` folds in ``__post_init__``: x (p, d) predecessor
+features; ``neg_zs_t`` (d, m) = -(Z/ℓ²)ᵀ; ``half_zs2`` (m,) = |Z/ℓ|²/2; ``half_inv_l2`` (d,) =
+1/(2ℓ²); ``c_alpha`` (m, d) = C·α; ``c2_w`` (m, m) = C²·W; ``pool`` (m·k, d) the residual pools
+flattened, k residuals per inducing input.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mjwalk._jit import njit
+
+
+@njit
+def moments(x, neg_zs_t, half_zs2, half_inv_l2, c_alpha, c2_w, signal_var):
+    """Posterior mean (p, d), latent variance (p,) (not clipped at 0) and the half squared
+    scaled distances h (p, m) to the inducing inputs (kernel rows C·exp(-h))."""
+    p, d = x.shape
+    m = half_zs2.shape[0]
+    h = np.empty((p, m))
+    e = np.empty((p, m))
+    mean = np.zeros((p, c_alpha.shape[1]))
+    for i in range(p):
+        xx = 0.0
+        for a in range(d):
+            xx += x[i, a] * half_inv_l2[a] * x[i, a]
+        for j in range(m):
+            s = 0.0
+            for a in range(d):
+                s += x[i, a] * neg_zs_t[a, j]
+            v = s + half_zs2[j] + xx
+            if v < 0.0:
+                v = 0.0
+            h[i, j] = v
+            ej = math.exp(-v)
+            e[i, j] = ej
+            for a in range(c_alpha.shape[1]):
+                mean[i, a] += ej * c_alpha[j, a]
+    ew = np.dot(e, c2_w)
+    var = np.empty(p)
+    for i in range(p):
+        s = 0.0
+        for j in range(m):
+            s += ew[i, j] * e[i, j]
+        var[i] = signal_var - s
+    return mean, var, h
+
+
+@njit
+def sample(x, n, rng, neg_zs_t, half_zs2, half_inv_l2, c_alpha, c2_w, signal_var, pool, k, sharp):
+    """(p, n, d) successors y = μ(x) + √v(x)·ε + r of each predecessor x[i]: r from the pool
+    of inducing input j, drawn with probability ∝ exp(-sharp·(h_j - min h)) = (k_j/max k)^sharp,
+    and a uniform member of it; ε standard normal."""
+    p = x.shape[0]
+    d = pool.shape[1]
+    mean, var, h = moments(x, neg_zs_t, half_zs2, half_inv_l2, c_alpha, c2_w, signal_var)
+    m = h.shape[1]
+    u = rng.random(p * n)
+    cell = np.empty(p * n, dtype=np.intp)
+    c = np.empty(m)
+    for i in range(p):
+        lo = h[i, 0]
+        for j in range(1, m):
+            if h[i, j] < lo:
+                lo = h[i, j]
+        acc = 0.0
+        for j in range(m):
+            acc += math.exp(-sharp * (h[i, j] - lo))
+            c[j] = acc
+        for r in range(n):
+            # the first j with c_j >= u (u <= c_{m-1}: never past the last)
+            cell[i * n + r] = k * np.searchsorted(c, u[i * n + r] * acc)
+    member = rng.integers(0, k, p * n)
+    eps = rng.standard_normal(p * n * d)
+    out = np.empty((p, n, d))
+    for i in range(p):
+        sd = math.sqrt(max(var[i], 0.0))
+        for r in range(n):
+            q = i * n + r
+            row = cell[q] + member[q]
+            for a in range(d):
+                out[i, r, a] = eps[q * d + a] * sd + mean[i, a] + pool[row, a]
+    return out

@@ -1,0 +1,276 @@
+"""Decode, check and score sampled successor steps in one compiled loop (the hybrid A*'s hot path).
+
+:func:`check_steps` does for every sampled step what :mod:`mjwalk.plan.hybrid` describes: the
+affine decode of its features (:class:`~mjwalk.plan.hybrid._Decoder`) into pelvis samples, the
+landing ankle and toes and the swing-knee probes in the step's local frame (x right, y forward,
+as x + iy; metres), the turn into the world, the clearance test of every point against its own
+limit (bilinear lookup in the workplace's walk field), the leg-reach tests, the closing-step
+test (a closing step must end in the goal area), and for the accepted steps the walked length
+g, f = g + weight·h, the closed-list key, heading and landing foot. As NumPy code this was some
+60 small array operations per call; here it is one loop over the rows (numba, see
+:mod:`mjwalk._jit`), with the same arithmetic.
+
+Rows are grouped by predecessor: row r belongs to node r // per and is a closing step when
+r % per >= n_walk. Per-row ``frame``/``left`` arrays (a start node's starters each turn their
+own way) or per-node ones (length b) are both accepted.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mjwalk._jit import njit
+
+# Slots of the float parameter vector (see :func:`params`).
+(
+    P_KNEE_LEAD,
+    P_KNEE_SIDE,
+    P_FOOT_LENGTH,
+    P_FOOT_REACH,
+    P_LIFT_REACH,
+    P_STRIDE,
+    P_GOAL_X,
+    P_GOAL_Y,
+    P_TOLERANCE,
+    P_GOAL_YAW,
+    P_YAW_TOLERANCE,
+    P_WEIGHT,
+    P_CORNER_X,
+    P_CORNER_Y,
+    P_CELL,
+    P_FIELD_X0,
+    P_FIELD_Y0,
+    P_FIELD_RES,
+    P_DIST_X0,
+    P_DIST_Y0,
+    P_DIST_CELL,
+    P_DIST_TOP_X,
+    P_DIST_TOP_Y,
+    P_KNEE_SHARE0,
+    P_KNEE_SHARE1,
+    N_PARAMS,
+) = range(26)
+# Slots of the integer parameter vector.
+(
+    I_M,
+    I_Q,
+    I_KNEE_COL0,
+    I_KNEE_COL1,
+    I_SPAN,
+    I_BINS,
+    I_FIELD_NX,
+    I_FIELD_NY,
+    I_DIST_NX,
+    I_DIJKSTRA,
+    I_CHORD,
+    N_IPARAMS,
+) = range(12)
+
+
+def params(**values) -> np.ndarray:
+    """The float parameter vector from keyword slots (``knee_lead=...``, names as P_* lower)."""
+    out = np.full(N_PARAMS, np.nan)
+    for name, value in values.items():
+        out[globals()["P_" + name.upper()]] = value
+    return out
+
+
+def iparams(**values) -> np.ndarray:
+    """The integer parameter vector from keyword slots (names as I_* lower)."""
+    out = np.zeros(N_IPARAMS, dtype=np.int64)
+    for name, value in values.items():
+        out[globals()["I_" + name.upper()]] = value
+    return out
+
+
+@njit
+def _clearance(coef, x0, y0, res, nx, ny, x, y):
+    """:meth:`ClearanceField.at` for one point: bilinear walk clearance (metres)."""
+    fx = (x - x0) / res
+    fx = min(max(fx, 0.0), nx - 1.000001)
+    fy = (y - y0) / res
+    fy = min(max(fy, 0.0), ny - 1.000001)
+    ix = int(fx)
+    iy = int(fy)
+    fx -= ix
+    fy -= iy
+    c = iy * (nx - 1) + ix
+    return (coef[c, 3] * fy + coef[c, 1]) * fx + coef[c, 0] + fy * coef[c, 2]
+
+
+@njit
+def check_steps(
+    z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist
+):
+    """Decode, check and score the sampled steps ``z`` (n, d) of b = n // per predecessors.
+
+    Args:
+        z: standardized features; matrix (d, m + 2) and offset (m + 2,): the complex affine
+            decode (:class:`~mjwalk.plan.hybrid._Decoder`).
+        per, n_walk: rows per predecessor, and how many of them are walking steps (the rest
+            are closing steps).
+        frame, left: heading (radians) of each step's local frame and whether its swing foot
+            is the left one, per row (n,) or per predecessor (b,).
+        near: (b,) whether the predecessor may stop (else its closing rows are dropped
+            uncounted).
+        node: (b, 4) complex per predecessor: end point p, the foot its step landed and the
+            foot behind that (world x + iy; nan: none yet), and g (real part).
+        thr: (m + 4,) clearance limits of the pelvis samples, ankle, toes and the two knees.
+        par, ipar: :func:`params` / :func:`iparams`.
+        coef: the walk field's bilinear cell coefficients (:meth:`ClearanceField._coefficients`).
+        dist: the goal distance's flat grid bound (:class:`~mjwalk.plan.heuristic.GoalDistance`).
+
+    Returns:
+        rows, keys, f, g, end, heading, frame, foot, left of the accepted steps (row order),
+        and per predecessor the accepted and drawn (not dropped) counts.
+    """
+    n = z.shape[0]
+    d = z.shape[1]
+    b = n // per if per > 0 else 0
+    m = ipar[I_M]
+    q = ipar[I_Q]
+    kc0 = ipar[I_KNEE_COL0]
+    kc1 = ipar[I_KNEE_COL1]
+    fnx = ipar[I_FIELD_NX]
+    fny = ipar[I_FIELD_NY]
+    fx0 = par[P_FIELD_X0]
+    fy0 = par[P_FIELD_Y0]
+    fres = par[P_FIELD_RES]
+    goal = complex(par[P_GOAL_X], par[P_GOAL_Y])
+    tol = par[P_TOLERANCE]
+    goal_yaw = par[P_GOAL_YAW]
+    two_pi = 2.0 * math.pi
+    per_row = frame.shape[0] == n
+    out_rows = np.empty(n, dtype=np.int64)
+    out_keys = np.empty(n, dtype=np.int64)
+    out_f = np.empty(n)
+    out_g = np.empty(n)
+    out_end = np.empty(n, dtype=np.complex128)
+    out_th = np.empty(n)
+    out_frame = np.empty(n)
+    out_foot = np.empty(n, dtype=np.complex128)
+    out_left = np.empty(n, dtype=np.bool_)
+    accepted = np.zeros(b, dtype=np.int64)
+    drawn = np.zeros(b, dtype=np.int64)
+    loc = np.empty(m + 2, dtype=np.complex128)
+    cnt = 0
+    for r in range(n):
+        i = r // per
+        closing = r % per >= n_walk
+        if closing and not near[i]:
+            continue  # dropped uncounted
+        drawn[i] += 1
+        fr = frame[r] if per_row else frame[i]
+        lf = left[r] if per_row else left[i]
+        # decode: local = z @ matrix + offset
+        for c in range(m + 2):
+            s = offset[c]
+            for a in range(d):
+                s += z[r, a] * matrix[a, c]
+            loc[c] = s
+        rot = complex(math.sin(fr), -math.cos(fr))
+        p = node[i, 0]
+        # clearance of pelvis samples, ankle, toes, knees (world)
+        ok = True
+        for j in range(m + 1):
+            w = loc[j] * rot + p
+            if _clearance(coef, fx0, fy0, fres, fnx, fny, w.real, w.imag) < thr[j]:
+                ok = False
+                break
+        if not ok:
+            continue
+        yaws = loc[m + 1]
+        ankle = loc[m] * rot + p
+        toe = ankle + (par[P_FOOT_LENGTH] * 1j) * rot * np.exp(1j * yaws.real)
+        if _clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag) < thr[m + 1]:
+            continue
+        lat = (1j if lf else -1j) * par[P_KNEE_SIDE]
+        for kk in range(2):
+            col = kc0 if kk == 0 else kc1
+            share = par[P_KNEE_SHARE0] if kk == 0 else par[P_KNEE_SHARE1]
+            fwd = 1j * np.exp(1j * (yaws.imag * share))
+            knee = (loc[col] + fwd * (par[P_KNEE_LEAD] + lat)) * rot + p
+            if _clearance(coef, fx0, fy0, fres, fnx, fny, knee.real, knee.imag) < thr[m + 2 + kk]:
+                ok = False
+                break
+        if not ok:
+            continue
+        # leg reach, in the local frame (nan feet: comparisons with nan are False)
+        rc = rot.conjugate()
+        landed = (node[i, 1] - p) * rc
+        behind = (node[i, 2] - p) * rc
+        reach = par[P_FOOT_REACH]
+        for j in range(m):
+            if abs(loc[j] - landed) > reach:
+                ok = False
+                break
+        if not ok:
+            continue
+        for j in range(q):
+            if abs(loc[j] - behind) > par[P_LIFT_REACH]:
+                ok = False
+                break
+        if not ok:
+            continue
+        if abs(loc[m] - behind) > par[P_STRIDE] or abs(loc[m] - loc[m - 1]) > reach:
+            continue
+        end = loc[m - 1] * rot + p
+        th = fr + yaws.imag
+        if closing:  # a closing step must end the walk: in the goal area
+            if abs(end - goal) > tol:
+                continue
+            if not math.isnan(goal_yaw):
+                turn = (th - goal_yaw + math.pi) % two_pi - math.pi
+                if abs(turn) > par[P_YAW_TOLERANCE]:
+                    continue
+        # walked length and heuristic
+        if ipar[I_CHORD]:
+            seg = abs(loc[m - 1])
+        else:
+            seg = 0.0
+            for j in range(1, m):
+                seg += abs(loc[j] - loc[j - 1])
+        ex, ey = end.real, end.imag
+        h = math.hypot(ex - goal.real, ey - goal.imag)
+        if ipar[I_DIJKSTRA]:
+            dc = par[P_DIST_CELL]
+            gi = min(max(np.rint((ex - par[P_DIST_X0]) / dc), 0.0), par[P_DIST_TOP_X])
+            gj = min(max(np.rint((ey - par[P_DIST_Y0]) / dc), 0.0), par[P_DIST_TOP_Y])
+            off = math.hypot(ex - (par[P_DIST_X0] + gi * dc), ey - (par[P_DIST_Y0] + gj * dc))
+            bound = dist[int(gj) * ipar[I_DIST_NX] + int(gi)] - off
+            if bound > h:
+                h = bound
+        g = node[i, 3].real + seg
+        cell = par[P_CELL]
+        key = math.floor((ex - par[P_CORNER_X]) / cell + 0.5) * ipar[I_SPAN] + math.floor(
+            (ey - par[P_CORNER_Y]) / cell + 0.5
+        )
+        bins = ipar[I_BINS]
+        if bins > 1:
+            key = key * bins + math.floor((th % two_pi) / two_pi * bins) % bins
+        out_rows[cnt] = r
+        out_keys[cnt] = key
+        out_f[cnt] = g + par[P_WEIGHT] * h
+        out_g[cnt] = g
+        out_end[cnt] = end
+        out_th[cnt] = th
+        out_frame[cnt] = fr
+        out_foot[cnt] = ankle
+        out_left[cnt] = lf
+        accepted[i] += 1
+        cnt += 1
+    return (
+        out_rows[:cnt],
+        out_keys[:cnt],
+        out_f[:cnt],
+        out_g[:cnt],
+        out_end[:cnt],
+        out_th[:cnt],
+        out_frame[:cnt],
+        out_foot[:cnt],
+        out_left[:cnt],
+        accepted,
+        drawn,
+    )
