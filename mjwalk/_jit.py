@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import numba
 
-#: ``fastmath`` stays off: the GP variance is a cancellation (C - k W kᵀ ~ 1e-3 C) that
-#: reassociated sums would spoil; ``boundscheck`` off as usual.
+#: ``fastmath`` off by default: the arithmetic stays that of the NumPy code it replaces.
 njit = numba.njit(cache=True, nogil=True, fastmath=False)
+#: For long dot products: the sums may be reassociated (and multiply-adds fused), so they
+#: vectorize, as BLAS's do; nothing else of fastmath (NaN and inf stay IEEE).
+njit_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})

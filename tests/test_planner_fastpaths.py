@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import zlib
-
 import numpy as np
 import pytest
 
@@ -11,7 +9,7 @@ from mjwalk import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.plan.grid import MOVES_16, check_endpoint, occupancy_grid, shared_grid
 from mjwalk.plan.heuristic import goal_distance, grid_excess
-from mjwalk.plan.hybrid import HybridPlanner, _Decoder
+from mjwalk.plan.hybrid import _Decoder
 from mjwalk.world import load_workplace
 
 SCENE_NAMES = ["assembly_station", "corridor", "open_floor"]
@@ -132,51 +130,6 @@ def test_kde_starters_are_gaussian_kde_draws():
         np.testing.assert_allclose(got, ref, rtol=0, atol=1e-12)
 
 
-class _KeyedDraws:
-    """The default model, except that a predecessor's successors depend on the predecessor
-    alone (a seed from its features), not on when the search asks for them."""
-
-    def __init__(self, model):
-        self.model = model
-
-    def __getattr__(self, name):
-        return getattr(self.model, name)
-
-    def sample_next_features(self, x, side, n, rng, stop=False):
-        return np.concatenate(
-            [
-                self.model.sample_next_features(
-                    row[None],
-                    side,
-                    n,
-                    np.random.default_rng(zlib.crc32(row.tobytes()) + stop),
-                    stop=stop,
-                )
-                for row in x
-            ]
-        )
-
-
-@pytest.mark.parametrize(
-    ("scene", "start", "goal"),
-    [("assembly_station", "-3.6,-1.0", "3.6,0.6"), ("corridor", "entry", "door")],
-)
-def test_drawing_ahead_leaves_the_search_unchanged(scenes_dir, scene, start, goal):
-    """Successor sets drawn ahead for open nodes (batch > 1) change only when draws are made:
-    with draws that do not depend on their order, every batch size expands the same nodes
-    and returns the same walk as drawing one node's successors at a time (batch=1)."""
-    wp = load_workplace(scenes_dir / f"{scene}.xml")
-    model = _KeyedDraws(default_model())
-    walks = {
-        b: HybridPlanner(wp, goal, model, batch=b).plan(start, np.random.default_rng(2))
-        for b in (1, 3, 4)
-    }
-    for b in (3, 4):
-        np.testing.assert_array_equal(walks[b].xy, walks[1].xy)
-        for k in ("expansions", "generated", "rejected"):
-            assert walks[b].meta[k] == walks[1].meta[k]
-
-
 def test_shared_grid_is_built_once_per_workplace(scenes_dir):
     wp = load_workplace(scenes_dir / "corridor.xml")
     a = shared_grid(wp, moves=MOVES_16)
@@ -184,3 +137,89 @@ def test_shared_grid_is_built_once_per_workplace(scenes_dir):
     fresh = occupancy_grid(wp, moves=MOVES_16)
     np.testing.assert_array_equal(a.moves, fresh.moves)
     assert shared_grid(wp, radius=0.3, moves=MOVES_16) is not a
+
+
+def _numpy_gp_sample(gp, x, n, rng):
+    """TransitionGP.sample as the NumPy code it was before it was compiled (the reference)."""
+    from mjwalk.gait.model import POOL_SHARPNESS
+
+    p, d = x.shape
+    h = x @ gp._neg_zs_t + gp._half_zs2
+    h += np.einsum("pd,pd->p", x * gp._half_inv_l2, x)[:, None]
+    np.maximum(h, 0.0, out=h)
+    e = np.exp(-h)
+    mean = e @ gp._c_alpha
+    var = gp.signal_var - np.einsum("pm,pm->p", e @ gp._c2_w, e)
+    c = np.cumsum(np.exp(-POOL_SHARPNESS * (h - h.min(axis=1, keepdims=True))), axis=1)
+    u = rng.random((p, n)) * c[:, -1:]
+    cell = np.array([c[i].searchsorted(u[i]) for i in range(p)])
+    k = gp.res_pool.shape[1]
+    cell = cell * k + rng.integers(k, size=(p, n))
+    eps = rng.standard_normal((p, n, d)) * np.sqrt(np.maximum(var, 0.0))[:, None, None]
+    return eps + mean[:, None, :] + gp._pool_flat[cell]
+
+
+@pytest.mark.parametrize("p", [1, 2, 5])
+def test_compiled_gp_draws_are_the_numpy_draws(p):
+    """The compiled successor draws (packed variance for 1-2 rows, BLAS for more) give the
+    NumPy formulas' draws from the same random stream, and leave the stream where NumPy
+    would (the variance is a cancellation: it agrees to about 1e-10)."""
+    model = default_model()
+    x = model.sample_first(p, np.random.default_rng(5), "right").features
+    for side, gps in (("left", model.gp), ("left", model.stop_gp)):
+        gp = gps[side]
+        ra, rb = np.random.default_rng(11), np.random.default_rng(11)
+        got = gp.sample(x, 10, ra)
+        want = _numpy_gp_sample(gp, x, 10, rb)
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-8)
+        assert ra.random() == rb.random()
+
+
+def test_compiled_step_checks_agree_with_the_workplace_geometry(scenes_dir):
+    """check_steps accepts a sampled step only when its pelvis samples keep the body radius
+    (+ margin) and its landing ankle the foot clearance by the workplace's own clearance (not
+    the kernel's lookup), decoded by the model (not the planner's affine map), to the field's
+    bilinear rounding; every step whose pelvis comes closer is rejected."""
+    from mjwalk.plan import stepcheck
+    from mjwalk.plan.hybrid import FOOT_CLEARANCE, SAFETY_MARGIN, HybridPlanner, _to_world
+
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    model = default_model()
+    pl = HybridPlanner(wp, "stand_car1", model)
+    par, ipar = pl._kernel_params()
+    dec = pl._decoder()
+    m = pl.samples_per_step
+    rng = np.random.default_rng(3)
+    z = model.sample_next_features(model.sample_first(1, rng, "right").features, "right", 400, rng)
+    start, yaw = np.array([0.0, -0.3]), 0.8  # the car body 0.8 m ahead to the left
+    node = np.array([[complex(*start), np.nan, np.nan, 0.0]])
+    rows, *_, accepted, drawn = stepcheck.check_steps(
+        z, dec.matrix, dec.offset, len(z), len(z), np.array([yaw]), np.array([True]),
+        np.zeros(1, bool), node, pl._thresholds, par, ipar, wp.walk_field()._coefficients(),
+        pl.distance.flat_bound(),
+    )  # fmt: skip
+    assert drawn[0] == len(z) and accepted[0] == len(rows)
+    assert 0 < len(rows) < len(z)  # some steps pass, some do not (a car and racks around)
+    batch = model.decode(z, "left")
+    local, _ = batch.resample(m)
+    world = _to_world(start[0], start[1], yaw, local)
+    clear = wp.walk_clearance(world.reshape(-1, 2)).reshape(len(z), m).min(axis=1)
+    ankle = wp.walk_clearance(_to_world(start[0], start[1], yaw, batch.footprint[:, :2]))
+    need = pl.radius + SAFETY_MARGIN
+    ok = np.zeros(len(z), bool)
+    ok[rows] = True
+    assert np.all(clear[ok] >= need - 0.005)
+    assert np.all(ankle[ok] >= FOOT_CLEARANCE - 0.005)
+    assert not ok[clear < need - 0.005].any()
+    assert (clear < need - 0.005).sum() > 100
+
+
+def test_start_in_the_goal_area_is_refused(scenes_dir):
+    from mjwalk.plan.hybrid import HybridPlanner
+
+    model_default = default_model()
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    with pytest.raises(PlanningError, match="already lies in the goal area"):
+        HybridPlanner(wp, "stand_car1", model_default).plan(
+            wp.point("stand_car1") + 0.05, np.random.default_rng(0)
+        )

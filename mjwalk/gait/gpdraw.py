@@ -8,10 +8,11 @@ then all pool members, then all normal deviates), so :meth:`TransitionGP.sample`
 draws it gave as NumPy code (to rounding; ``tests/test_model.py`` compares with a NumPy
 reference).
 
-Arrays are those :class:`TransitionGP` folds in ``__post_init__``: x (p, d) predecessor
-features; ``neg_zs_t`` (d, m) = -(Z/ℓ²)ᵀ; ``half_zs2`` (m,) = |Z/ℓ|²/2; ``half_inv_l2`` (d,) =
-1/(2ℓ²); ``c_alpha`` (m, d) = C·α; ``c2_w`` (m, m) = C²·W; ``pool`` (m·k, d) the residual pools
-flattened, k residuals per inducing input.
+x (p, d) are predecessor features; ``gp`` is the tuple :attr:`TransitionGP.kernel` folds in
+``__post_init__``: ``neg_zs_t`` (d, m) = -(Z/ℓ²)ᵀ; ``half_zs2`` (m,) = |Z/ℓ|²/2;
+``half_inv_l2`` (d,) = 1/(2ℓ²); ``c_alpha`` (m, d) = C·α; ``c2_w`` (m, m) = C²·W and its
+:func:`pack_upper`; C; ``pool`` (m·k, d) the residual pools flattened, k residuals per inducing
+input.
 """
 
 from __future__ import annotations
@@ -20,13 +21,57 @@ import math
 
 import numpy as np
 
-from mjwalk._jit import njit
+from mjwalk._jit import njit, njit_sum
+
+
+def pack_upper(w: np.ndarray) -> np.ndarray:
+    """The upper triangle of the symmetric (m, m) ``w``, row by row, off-diagonal entries
+    doubled: Σ_i e_i Σ_{j>=i} P_ij e_j = e W eᵀ, reading half of W (which does not fit a core's
+    cache at m = 400)."""
+    i, j = np.triu_indices(w.shape[0])  # row by row
+    return np.where(i == j, 1.0, 2.0) * w[i, j]
+
+
+@njit_sum
+def _quadratic_packed(e, packed):
+    """e W eᵀ per row of e (p, m) through :func:`pack_upper` (half of W's memory traffic).
+    Sums may be reassociated (:data:`mjwalk._jit.njit_sum`), as BLAS reassociates them."""
+    p, m = e.shape
+    out = np.zeros(p)
+    s = 0
+    for i in range(m):
+        n = m - i
+        for r in range(p):
+            acc = 0.0
+            for j in range(n):
+                acc += packed[s + j] * e[r, i + j]
+            out[r] += e[r, i] * acc
+        s += n
+    return out
 
 
 @njit
-def moments(x, neg_zs_t, half_zs2, half_inv_l2, c_alpha, c2_w, signal_var):
+def _quadratic(e, c2_w, packed):
+    """e W eᵀ per row of e (p, m): packed for one or two rows, as one matrix product (BLAS,
+    which reads W once for all rows) for more."""
+    if e.shape[0] <= 2:
+        return _quadratic_packed(e, packed)
+    ew = np.dot(e, c2_w)
+    out = np.empty(e.shape[0])
+    for r in range(e.shape[0]):
+        s = 0.0
+        for j in range(e.shape[1]):
+            s += ew[r, j] * e[r, j]
+        out[r] = s
+    return out
+
+
+@njit
+def moments(x, gp):
     """Posterior mean (p, d), latent variance (p,) (not clipped at 0) and the half squared
-    scaled distances h (p, m) to the inducing inputs (kernel rows C·exp(-h))."""
+    scaled distances h (p, m) to the inducing inputs (kernel rows C·exp(-h)); ``gp`` is
+    :attr:`TransitionGP.kernel`."""
+    neg_zs_t, half_zs2, half_inv_l2, c_alpha, c2_w, packed, signal_var = gp[:7]
     p, d = x.shape
     m = half_zs2.shape[0]
     h = np.empty((p, m))
@@ -48,24 +93,20 @@ def moments(x, neg_zs_t, half_zs2, half_inv_l2, c_alpha, c2_w, signal_var):
             e[i, j] = ej
             for a in range(c_alpha.shape[1]):
                 mean[i, a] += ej * c_alpha[j, a]
-    ew = np.dot(e, c2_w)
-    var = np.empty(p)
-    for i in range(p):
-        s = 0.0
-        for j in range(m):
-            s += ew[i, j] * e[i, j]
-        var[i] = signal_var - s
+    var = signal_var - _quadratic(e, c2_w, packed)
     return mean, var, h
 
 
 @njit
-def sample(x, n, rng, neg_zs_t, half_zs2, half_inv_l2, c_alpha, c2_w, signal_var, pool, k, sharp):
+def sample(x, n, rng, gp, sharp):
     """(p, n, d) successors y = μ(x) + √v(x)·ε + r of each predecessor x[i]: r from the pool
     of inducing input j, drawn with probability ∝ exp(-sharp·(h_j - min h)) = (k_j/max k)^sharp,
-    and a uniform member of it; ε standard normal."""
+    and a uniform member of it; ε standard normal. ``gp``: :attr:`TransitionGP.kernel`."""
+    pool = gp[7]
+    k = gp[8]
     p = x.shape[0]
     d = pool.shape[1]
-    mean, var, h = moments(x, neg_zs_t, half_zs2, half_inv_l2, c_alpha, c2_w, signal_var)
+    mean, var, h = moments(x, gp)
     m = h.shape[1]
     u = rng.random(p * n)
     cell = np.empty(p * n, dtype=np.intp)

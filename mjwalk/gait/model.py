@@ -129,6 +129,18 @@ class TransitionGP:
         self._c_alpha = self.signal_var * self.alpha
         self._c2_w = np.ascontiguousarray(self.signal_var**2 * self.w)
         self._pool_flat = np.ascontiguousarray(self.res_pool.reshape(-1, self.res_pool.shape[2]))
+        #: the folded arrays as one tuple for the compiled draws (:mod:`mjwalk.gait.gpdraw`)
+        self.kernel = (
+            np.ascontiguousarray(self._neg_zs_t),
+            np.ascontiguousarray(self._half_zs2),
+            np.ascontiguousarray(self._half_inv_l2),
+            np.ascontiguousarray(self._c_alpha),
+            self._c2_w,
+            gpdraw.pack_upper(self._c2_w),
+            float(self.signal_var),
+            self._pool_flat,
+            int(self.res_pool.shape[1]),
+        )
 
     def kernel_rows(self, x: np.ndarray) -> np.ndarray:
         """(P, m) signal kernel C·RBF between ``x`` (P, d) and the inducing inputs."""
@@ -148,22 +160,12 @@ class TransitionGP:
         mean, var, _ = self._predict(x)
         return mean, var
 
-    def _folded(self) -> tuple:
-        return (
-            self._neg_zs_t,
-            self._half_zs2,
-            self._half_inv_l2,
-            self._c_alpha,
-            self._c2_w,
-            self.signal_var,
-        )
-
     def _moments(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """:meth:`predict`'s mean (P, d) and latent variance (P,) (not clipped at 0) with the
         constants folded in, and the half squared scaled distances h (P, m) to the inducing
         inputs (k = C·exp(-h)); the dense formulas, equal to :meth:`predict`'s to rounding
         (compiled: :func:`mjwalk.gait.gpdraw.moments`)."""
-        return gpdraw.moments(np.ascontiguousarray(x, dtype=float), *self._folded())
+        return gpdraw.moments(np.ascontiguousarray(x, dtype=float), self.kernel)
 
     def sample(self, x: np.ndarray, n: int, rng: np.random.Generator) -> np.ndarray:
         """(P, n, d) successor features: n draws for each of the P predecessors.
@@ -178,13 +180,7 @@ class TransitionGP:
         NumPy would: all pool choices (uniform), all pool members, then all normal deviates.
         """
         return gpdraw.sample(
-            np.ascontiguousarray(x, dtype=float),
-            int(n),
-            rng,
-            *self._folded(),
-            self._pool_flat,
-            self.res_pool.shape[1],
-            POOL_SHARPNESS,
+            np.ascontiguousarray(x, dtype=float), int(n), rng, self.kernel, POOL_SHARPNESS
         )
 
     @classmethod

@@ -55,7 +55,6 @@ the search works on several nodes per call where that leaves it unchanged:
 
 from __future__ import annotations
 
-import heapq
 import math
 import time
 
@@ -63,7 +62,8 @@ import numpy as np
 
 from mjwalk.errors import PlanningError
 from mjwalk.gait.features import StepBatch
-from mjwalk.plan import stepcheck
+from mjwalk.gait.model import POOL_SHARPNESS
+from mjwalk.plan import search, stepcheck
 from mjwalk.plan.grid import (
     BODY_RADIUS,
     CELL_SIZE,
@@ -73,7 +73,6 @@ from mjwalk.plan.grid import (
     shared_grid,
 )
 from mjwalk.plan.heuristic import GoalDistance, goal_distance
-from mjwalk.plan.stepcheck import check_steps
 from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.world.workplace import Workplace
 
@@ -188,7 +187,7 @@ class HybridPlanner:
     Building it costs the Dijkstra distance field (and, once per workplace, cell size and
     radius, the 16-connected occupancy grid: :func:`~mjwalk.plan.grid.shared_grid`);
     :meth:`plan` then only samples and searches. :func:`plan_walk` and :func:`plan_walks` wrap
-    it. ``batch``: successor sets drawn per GP call (see the module docstring; 1 = one node's).
+    it.
     """
 
     def __init__(
@@ -212,7 +211,6 @@ class HybridPlanner:
         cost: str = "chord",
         attempts: int = 3,
         grid: OccupancyGrid | None = None,
-        batch: int = 4,
         n_stops: int = 5,
     ):
         if heuristic not in ("dijkstra", "euclidean"):
@@ -241,7 +239,6 @@ class HybridPlanner:
             raise PlanningError(f"cost must be 'chord' or 'path', not {cost!r}")
         self.cost = cost
         self.attempts = max(1, int(attempts))
-        self.batch = max(1, int(batch))
         # closing steps near the goal, when the model has them (module constant STOP_REACH)
         self.n_stops = max(0, int(n_stops)) if getattr(model, "can_stop", False) else 0
         check_endpoint(workplace, self.goal, radius, "goal")
@@ -290,6 +287,8 @@ class HybridPlanner:
             dist_top_y=self.grid.free.shape[0] - 1.0,
             knee_share0=knee_cols[0] / (m - 1),  # the probes' share of the step
             knee_share1=knee_cols[1] / (m - 1),
+            stop_reach=self.tolerance + STOP_REACH,
+            pool_sharpness=POOL_SHARPNESS,
         )
         ipar = stepcheck.iparams(
             m=m,
@@ -306,6 +305,10 @@ class HybridPlanner:
             dist_nx=gd.grid.free.shape[1],
             dijkstra=self.heuristic == "dijkstra",
             chord=self.cost == "chord",
+            n_successors=self.n_successors,
+            n_stops=self.n_stops,
+            max_expansions=self.max_expansions,
+            near_goal_expansions=NEAR_GOAL_EXPANSIONS,
         )
         return par, ipar
 
@@ -378,236 +381,85 @@ class HybridPlanner:
         free_heading = start_yaw is None
         if free_heading:
             start_yaw = self.default_heading(start_xy)
-        dec = self._decoder()
-        thr = self._thresholds
-        gd = self.distance
-        par, ipar = self._kernel_params()
-        coef = self._walk._coefficients()
-        dist = gd.flat_bound()
-        no_stop = np.zeros(1, dtype=bool)
-        x0, y0, cell, bins = self.grid.x0, self.grid.y0, self.cell, self.heading_bins
-        span = int(ipar[stepcheck.I_SPAN])
-        dijkstra = self.heuristic == "dijkstra"
-        weight = self.heuristic_weight
-        goal_c = complex(self.goal[0], self.goal[1])
-        batch_max = self.batch
-        n_succ = self.n_successors
-        n_stop = self.n_stops
-        stop_reach = self.tolerance + STOP_REACH
-        # Nodes in parallel lists; node 0 is the start. A node's step is row ``rows[k]`` of the
-        # feature array ``feats[srcs[k]]``, decoded in the frame at its parent's end point
-        # turned to ``frames[k]`` (the parent's heading; a starter's turn on the spot added).
-        parent = [-1]
-        srcs = [-1]
-        rows = [-1]
-        pos = [complex(start_xy[0], start_xy[1])]
-        heads = [float(start_yaw)]
-        frames = [float(start_yaw)]
-        gs = [0.0]
-        nan = complex(math.nan, math.nan)
-        feet = [nan]  # world x + iy of the foot the node's step landed (nan: none yet)
-        lefts = [False]  # the step's swing foot is the left one
-        feats: list[np.ndarray] = []
-        h0 = weight * float(gd(start_xy) if dijkstra else 0.0)
-        heap = [(max(h0, weight * abs(pos[0] - goal_c)), 0, 0)]
-        closed: set[int] = set()
-        near_expanded: dict[int, int] = {}  # cell near the goal -> expansions in it
-        counter = 1
-        expansions = generated = rejected = stop_draws = 0
-        two_pi = 2.0 * math.pi
-        # Successor sets drawn ahead for open nodes (see the class docstring): node id ->
-        # (feature array, steps sampled, rejected, then per accepted successor: closed key, f,
-        # g, row in the feature array, end point, heading, frame, landing foot, swing side is
-        # left).
-        ahead: dict[int, tuple] = {}
-        # feature array -> (row period, first closing column), if it has closing steps
-        closing_rows: dict[int, tuple[int, int]] = {}
-
-        def may_stop(p: complex) -> bool:
-            """Whether a node at world x + iy ``p`` draws closing steps (near the goal)."""
-            return abs(p - goal_c) <= stop_reach
-
-        def cell_key(k: int) -> int:
-            p = pos[k]
-            key = math.floor((p.real - x0) / cell + 0.5) * span + math.floor(
-                (p.imag - y0) / cell + 0.5
+        if self._in_goal(complex(*start_xy), start_yaw):
+            raise PlanningError(
+                f"start ({start_xy[0]:.3f}, {start_xy[1]:.3f}) already lies in the goal area "
+                f"(within {self.tolerance} m of ({self.goal[0]:.3f}, {self.goal[1]:.3f})): "
+                "there is no walk to plan"
             )
-            if bins == 1:
-                return key
-            return key * bins + math.floor((heads[k] % two_pi) / two_pi * bins) % bins
-
-        def draw(batch: list[int], stop_only: bool = False) -> list[tuple]:
-            """Sample, decode and check the successors of the nodes ``batch`` (one swing
-            side) in one go; one successor set per node. ``stop_only``: closing steps only
-            (nodes near the goal in closed cells, see NEAR_GOAL_EXPANSIONS)."""
-            b = len(batch)
-            n_walk = 0 if stop_only else n_succ
-            if batch[0] == 0:  # the start node (always alone: it is the first node popped)
-                first = self.model.sample_first(self.n_starters, rng)
-                z = first.features
-                n_walk = per = len(z)
-                left = first.side == "left"
-                frame = np.full(per, heads[0])
-                if free_heading:  # the walker may set off anywhere around the downhill heading
-                    frame += rng.uniform(-START_SPREAD, START_SPREAD, per)
-                near = no_stop
-                node = np.array([[pos[0], nan, nan, gs[0]]])
-            else:
-                x = np.array([feats[srcs[k]][rows[k]] for k in batch])
-                side = "left" if lefts[batch[0]] else "right"
-                if stop_only:
-                    z = np.zeros((0, self.model.n_dims))
-                else:
-                    z = self.model.sample_next_features(x, side, n_walk, rng)
-                per = n_walk
-                near = np.array([may_stop(pos[k]) for k in batch])
-                if n_stop and near.any():
-                    # near the goal: closing steps too, after each node's walking ones (those
-                    # of nodes far from the goal are dropped uncounted)
-                    zs = self.model.sample_next_features(x, side, n_stop, rng, stop=True)
-                    d = z.shape[1]
-                    z = np.concatenate(
-                        [z.reshape(b, n_walk, d), zs.reshape(b, n_stop, d)], axis=1
-                    ).reshape(-1, d)
-                    per = n_walk + n_stop
-                left = np.full(b, not lefts[batch[0]])
-                frame = np.array([heads[k] for k in batch])
-                # per predecessor: its end point, the foot its step landed and the foot
-                # behind that (nan where there is none yet), and g
-                node = np.array([(pos[k], feet[k], feet[parent[k]], gs[k]) for k in batch])
-            z = np.ascontiguousarray(z, dtype=float)
-            good, keys, f, g, ends, th, frames_ok, landed, lefts_ok, accepted, drawn = check_steps(
-                z, dec.matrix, dec.offset, per, n_walk, frame, left, near, node, thr,
-                par, ipar, coef, dist,
-            )  # fmt: skip
-            src = len(feats)
-            feats.append(z)
-            if per > n_walk:
-                closing_rows[src] = (per, n_walk)
-            cols = [c.tolist() for c in (keys, f, g, good, ends, th, frames_ok, landed, lefts_ok)]
-            if b == 1:
-                n = int(drawn[0])
-                return [(src, n, n - len(good), *cols)]
-            cut = np.concatenate([[0], np.cumsum(accepted)]).tolist()
-            return [
-                (src, int(drawn[i]), int(drawn[i] - accepted[i]))
-                + tuple(c[cut[i] : cut[i + 1]] for c in cols)
-                for i in range(b)
-            ]
-
-        def push(nid: int, succ: tuple) -> None:
-            """Open the successors of node ``nid``: those outside closed cells, and those in
-            the goal area in any case (a cell that reaches into a small goal area may have been
-            closed by a node just outside it)."""
-            nonlocal counter, generated, rejected
-            src, n, bad, ckeys, cfs, cgs, crows, cends, cheads, cframes, cfeet, clefts = succ
-            generated += n
-            rejected += bad
-            for k, ck in enumerate(ckeys):
-                if (
-                    ck in closed
-                    and not self._in_goal(cends[k], cheads[k])
-                    and not (n_stop and may_stop(cends[k]))
-                ):
-                    continue
-                parent.append(nid)
-                srcs.append(src)
-                rows.append(crows[k])
-                pos.append(cends[k])
-                heads.append(cheads[k])
-                frames.append(cframes[k])
-                gs.append(cgs[k])
-                feet.append(cfeet[k])
-                lefts.append(clefts[k])
-                heapq.heappush(heap, (cfs[k], counter, len(gs) - 1))
-                counter += 1
-
-        while heap:
-            nid = heapq.heappop(heap)[2]
-            key = cell_key(nid)
-            if key in closed and not self._in_goal(pos[nid], heads[nid]):
-                ahead.pop(nid, None)
-                if n_stop and may_stop(pos[nid]):
-                    # closed for walking on, not for stopping (NEAR_GOAL_EXPANSIONS); one such
-                    # draw per node at most, and nodes come from expansions: bounded by them
-                    stop_draws += 1
-                    push(nid, draw([nid], stop_only=True)[0])
-                continue
-            if self._in_goal(pos[nid], heads[nid]):
-                return self._assemble(
-                    nid,
-                    (parent, srcs, rows, pos, heads, frames, lefts),
-                    feats,
-                    {
-                        "expansions": expansions,
-                        "generated": generated,
-                        "rejected": rejected,
-                        "stop_draws": stop_draws,
-                        # whether the walk ends with a closing step (StepModel.sample_stop)
-                        "closing_step": srcs[nid] in closing_rows
-                        and rows[nid] % closing_rows[srcs[nid]][0] >= closing_rows[srcs[nid]][1],
-                    },
-                )
-            if expansions >= self.max_expansions:
-                raise PlanningError(
-                    f"expansion budget of {self.max_expansions} spent before reaching the "
-                    f"goal ({self.goal[0]:.3f}, {self.goal[1]:.3f}) from "
-                    f"({start_xy[0]:.3f}, {start_xy[1]:.3f}); {generated} steps sampled, "
-                    f"{rejected} rejected"
-                )
-            expansions += 1
-            if n_stop and may_stop(pos[nid]):  # see NEAR_GOAL_EXPANSIONS
-                near_expanded[key] = near_expanded.get(key, 0) + 1
-                if near_expanded[key] >= NEAR_GOAL_EXPANSIONS:
-                    closed.add(key)
-            else:
-                closed.add(key)
-            succ = ahead.pop(nid, None)
-            if succ is not None:
-                push(nid, succ)
-                continue
-            # Draw this node's successors and, in the same go, those of up to batch_max - 1
-            # of the next open nodes of its swing side (looking at no more than twice that
-            # many), kept for when (if) the search expands them.
-            batch = [nid]
-            if nid:
-                looked = []
-                while heap and len(batch) < batch_max and len(looked) < 2 * batch_max:
-                    item = heapq.heappop(heap)
-                    looked.append(item)
-                    k = item[2]
-                    if (
-                        k in ahead
-                        or lefts[k] != lefts[nid]
-                        or cell_key(k) in closed
-                        or self._in_goal(pos[k], heads[k])
-                    ):
-                        continue
-                    batch.append(k)
-                for item in looked:
-                    heapq.heappush(heap, item)
-            sets = draw(batch)
-            push(nid, sets[0])
-            ahead.update(zip(batch[1:], sets[1:], strict=True))
-        raise _Exhausted(
-            f"search exhausted after {expansions} expansions: no sequence of sampled steps "
-            f"reached the goal ({self.goal[0]:.3f}, {self.goal[1]:.3f}) from "
-            f"({start_xy[0]:.3f}, {start_xy[1]:.3f}) without coming closer than {self.radius} m "
-            "to an obstacle"
+        dec = self._decoder()
+        par, ipar = self._kernel_params()
+        # the starters, for the first expansion (the start node's)
+        first = self.model.sample_first(self.n_starters, rng)
+        frame0 = np.full(len(first.features), float(start_yaw))
+        if free_heading:  # the walker may set off anywhere around the downhill heading
+            frame0 += rng.uniform(-START_SPREAD, START_SPREAD, len(frame0))
+        weight = self.heuristic_weight
+        h0 = float(self.distance(start_xy)) if self.heuristic == "dijkstra" else 0.0
+        euclid = float(np.hypot(*(start_xy - self.goal)))
+        gps = (self.model.gp["left"].kernel, self.model.gp["right"].kernel)
+        stops = (self.model.stop_gp["left"].kernel, self.model.stop_gp["right"].kernel) if (
+            self.n_stops
+        ) else gps  # fmt: skip
+        outcome, goal_node, stats, *nodes = search.search(
+            np.ascontiguousarray(first.features, dtype=float),
+            frame0,
+            np.ascontiguousarray(first.side == "left"),
+            complex(*start_xy),
+            float(start_yaw),
+            weight * max(h0, euclid),
+            gps,
+            stops,
+            rng,
+            dec.matrix,
+            dec.offset,
+            self._thresholds,
+            par,
+            ipar,
+            self._walk._coefficients(),
+            self.distance.flat_bound(),
+        )
+        expansions, generated, rejected, stop_draws = stats.tolist()
+        if outcome == search.BUDGET:
+            raise PlanningError(
+                f"expansion budget of {self.max_expansions} spent before reaching the "
+                f"goal ({self.goal[0]:.3f}, {self.goal[1]:.3f}) from "
+                f"({start_xy[0]:.3f}, {start_xy[1]:.3f}); {generated} steps sampled, "
+                f"{rejected} rejected"
+            )
+        if outcome == search.EXHAUSTED:
+            raise _Exhausted(
+                f"search exhausted after {expansions} expansions: no sequence of sampled "
+                f"steps reached the goal ({self.goal[0]:.3f}, {self.goal[1]:.3f}) from "
+                f"({start_xy[0]:.3f}, {start_xy[1]:.3f}) without coming closer than "
+                f"{self.radius} m to an obstacle"
+            )
+        parent, rows, pos, frames, lefts, feats, closing = nodes
+        return self._assemble(
+            goal_node,
+            (parent, rows, pos, frames, lefts),
+            feats,
+            {
+                "expansions": expansions,
+                "generated": generated,
+                "rejected": rejected,
+                "stop_draws": stop_draws,
+                # whether the walk ends with a closing step (StepModel.sample_stop)
+                "closing_step": bool(closing[rows[goal_node]]),
+            },
         )
 
     def _assemble(self, nid, nodes, feats, stats) -> WalkPath:
-        parent, srcs, rows, pos, _heads, frames, lefts = nodes
+        parent, rows, pos, frames, lefts = nodes
         chain = []
         while nid > 0:
             chain.append(nid)
             nid = parent[nid]
-        chain.reverse()
-        z = np.array([feats[srcs[k]][rows[k]] for k in chain]).reshape(len(chain), -1)
-        batch = self.model.decode(z, np.where([lefts[k] for k in chain], "left", "right"))
-        ox = np.array([pos[parent[k]].real for k in chain])
-        oy = np.array([pos[parent[k]].imag for k in chain])
-        fr = np.array([frames[k] for k in chain])
+        chain = np.array(chain[::-1])
+        batch = self.model.decode(feats[rows[chain]], np.where(lefts[chain], "left", "right"))
+        ox = pos[parent[chain]].real
+        oy = pos[parent[chain]].imag
+        fr = frames[chain]
         # the steps at 120 Hz (sample 0 of each is the previous step's last), one frame each
         trajs = [batch.trajectory(row, FPS) for row in range(len(chain))]
         counts = [len(t[1]) - 1 for t in trajs]
@@ -682,7 +534,7 @@ def plan_walk(
             radius=0.25, cell=0.08, heading_bins=None (1, or 8 with a goal yaw), n_starters=30,
             n_successors=10, heuristic="dijkstra" | "euclidean", heuristic_weight=1.01,
             cost="chord" | "path", max_expansions=4000 (per search), attempts=3,
-            samples_per_step=16, batch=4).
+            samples_per_step=16).
 
     Raises:
         PlanningError: start/goal off the floor or inside/too near an obstacle (before any

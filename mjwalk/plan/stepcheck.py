@@ -50,8 +50,10 @@ from mjwalk._jit import njit
     P_DIST_TOP_Y,
     P_KNEE_SHARE0,
     P_KNEE_SHARE1,
+    P_STOP_REACH,
+    P_POOL_SHARPNESS,
     N_PARAMS,
-) = range(26)
+) = range(28)
 # Slots of the integer parameter vector.
 (
     I_M,
@@ -65,8 +67,12 @@ from mjwalk._jit import njit
     I_DIST_NX,
     I_DIJKSTRA,
     I_CHORD,
+    I_N_SUCCESSORS,
+    I_N_STOPS,
+    I_MAX_EXPANSIONS,
+    I_NEAR_GOAL_EXPANSIONS,
     N_IPARAMS,
-) = range(12)
+) = range(16)
 
 
 def params(**values) -> np.ndarray:

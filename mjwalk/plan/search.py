@@ -1,0 +1,281 @@
+"""The hybrid A*'s search loop, compiled (:mod:`mjwalk._jit`).
+
+:func:`search` is Algorithm 1 of agethen2018 as :class:`~mjwalk.plan.hybrid.HybridPlanner`
+describes it: an open list (binary heap by f = g + weight·h, ties by push order), a closed set of
+cell keys, and for every expanded node ``n_successors`` GP successors of its step
+(:func:`mjwalk.gait.gpdraw.sample`), plus ``n_stops`` closing steps when it lies within the stop
+reach of the goal, decoded, checked and scored by :func:`~mjwalk.plan.stepcheck.check_steps`.
+Near the goal a cell closes after ``near_goal_expansions`` expansions, and a node popped in a
+closed cell there still draws its closing steps. The first expansion (the start node) takes the
+starters drawn by the caller (the KDE lives in SciPy).
+
+Everything is in one compiled function because an expansion is small: ten successors, twenty
+checked points each. As Python, the loop's bookkeeping (heap, closed set, node lists) cost as
+much as the draws. Nodes live in growing arrays; node 0 is the start. Random numbers come from
+the caller's Generator in the order the Python loop drew them.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+
+import numpy as np
+from numba import types
+from numba.typed import Dict
+
+from mjwalk._jit import njit
+from mjwalk.gait.gpdraw import sample as gp_sample
+from mjwalk.plan.stepcheck import (
+    I_BINS,
+    I_MAX_EXPANSIONS,
+    I_N_STOPS,
+    I_N_SUCCESSORS,
+    I_NEAR_GOAL_EXPANSIONS,
+    I_SPAN,
+    P_CELL,
+    P_CORNER_X,
+    P_CORNER_Y,
+    P_GOAL_X,
+    P_GOAL_Y,
+    P_GOAL_YAW,
+    P_POOL_SHARPNESS,
+    P_STOP_REACH,
+    P_TOLERANCE,
+    P_YAW_TOLERANCE,
+    check_steps,
+)
+
+#: :func:`search` outcomes.
+FOUND, EXHAUSTED, BUDGET = 0, 1, 2
+
+
+@njit
+def cell_key(p, heading, par, ipar):
+    """Closed-list key of a node at world x + iy ``p`` facing ``heading`` (radians): its grid
+    cell (i · span + j) and, with heading bins, times bins plus its heading bin."""
+    cell = par[P_CELL]
+    key = math.floor((p.real - par[P_CORNER_X]) / cell + 0.5) * ipar[I_SPAN] + math.floor(
+        (p.imag - par[P_CORNER_Y]) / cell + 0.5
+    )
+    bins = ipar[I_BINS]
+    if bins > 1:
+        two_pi = 2.0 * math.pi
+        key = key * bins + math.floor((heading % two_pi) / two_pi * bins) % bins
+    return key
+
+
+@njit
+def in_goal(p, heading, par):
+    """Whether a node at world x + iy ``p`` facing ``heading`` (radians) ends the walk."""
+    if abs(p - complex(par[P_GOAL_X], par[P_GOAL_Y])) > par[P_TOLERANCE]:
+        return False
+    goal_yaw = par[P_GOAL_YAW]
+    if math.isnan(goal_yaw):
+        return True
+    diff = (heading - goal_yaw + math.pi) % (2.0 * math.pi) - math.pi
+    return abs(diff) <= par[P_YAW_TOLERANCE]
+
+
+@njit
+def _grow1(a, n):
+    out = np.empty(n, dtype=a.dtype)
+    out[: a.shape[0]] = a
+    return out
+
+
+@njit
+def _grow2(a, n):
+    out = np.empty((n, a.shape[1]), dtype=a.dtype)
+    out[: a.shape[0]] = a
+    return out
+
+
+@njit
+def search(
+    z0, frame0, left0, start, heading, f0, gps, stops, rng, matrix, offset, thr, par, ipar, coef,
+    dist,
+):  # fmt: skip
+    """Search from ``start`` (world x + iy, facing ``heading``) to the goal of ``par``.
+
+    Args:
+        z0, frame0, left0: the starters (features, frame heading, swing foot is left) for the
+            first expansion.
+        f0: the start node's f.
+        gps, stops: :attr:`TransitionGP.kernel` of the walking and the closing-step GPs, for
+            a left and a right predecessor (``stops`` unused when ``ipar`` has no stops).
+        rng: numpy Generator.
+        matrix, offset, thr, par, ipar, coef, dist: as for
+            :func:`~mjwalk.plan.stepcheck.check_steps` (``par``/``ipar`` with the search's
+            slots filled).
+
+    Returns:
+        (outcome, goal node, [expansions, generated, rejected, stop draws], and per node:
+        parent, feature row, end point, frame heading, swing foot is left; the feature rows
+        and whether each is a closing step).
+    """
+    d = matrix.shape[0]
+    n_succ = ipar[I_N_SUCCESSORS]
+    n_stop = ipar[I_N_STOPS]
+    max_exp = ipar[I_MAX_EXPANSIONS]
+    near_n = ipar[I_NEAR_GOAL_EXPANSIONS]
+    stop_reach = par[P_STOP_REACH]
+    sharp = par[P_POOL_SHARPNESS]
+    goal = complex(par[P_GOAL_X], par[P_GOAL_Y])
+    nan_c = complex(np.nan, np.nan)
+    cap = 256
+    parent = np.empty(cap, dtype=np.int64)
+    row = np.empty(cap, dtype=np.int64)
+    pos = np.empty(cap, dtype=np.complex128)
+    head = np.empty(cap)
+    frame = np.empty(cap)
+    g = np.empty(cap)
+    foot = np.empty(cap, dtype=np.complex128)  # where the node's step landed (nan: none)
+    left = np.empty(cap, dtype=np.bool_)
+    parent[0] = -1
+    row[0] = -1
+    pos[0] = start
+    head[0] = heading
+    frame[0] = heading
+    g[0] = 0.0
+    foot[0] = nan_c
+    left[0] = False
+    nn = 1
+    fcap = 256
+    feats = np.empty((fcap, d))
+    closing = np.empty(fcap, dtype=np.bool_)
+    nf = 0
+    heap = [(f0, 0, 0)]
+    closed = {-1}
+    closed.discard(-1)
+    near_expanded = Dict.empty(key_type=types.int64, value_type=types.int64)
+    counter = 1
+    expansions = 0
+    generated = 0
+    rejected = 0
+    stop_draws = 0
+    outcome = EXHAUSTED
+    goal_node = -1
+    one_near = np.zeros(1, dtype=np.bool_)
+    one_frame = np.empty(1)
+    one_left = np.empty(1, dtype=np.bool_)
+    one_node = np.empty((1, 4), dtype=np.complex128)
+    while len(heap) > 0:
+        nid = heapq.heappop(heap)[2]
+        p = pos[nid]
+        hd = head[nid]
+        key = cell_key(p, hd, par, ipar)
+        done = in_goal(p, hd, par)
+        near = n_stop > 0 and abs(p - goal) <= stop_reach
+        if key in closed and not done:
+            if not near:
+                continue
+            # closed for walking on, not for stopping (NEAR_GOAL_EXPANSIONS); one such draw
+            # per node at most, and nodes come from expansions: bounded by them
+            stop_draws += 1
+            stop_only = True
+        else:
+            if done:
+                outcome = FOUND
+                goal_node = nid
+                break
+            if expansions >= max_exp:
+                outcome = BUDGET
+                break
+            expansions += 1
+            if near:
+                c = near_expanded.get(key, 0) + 1
+                near_expanded[key] = c
+                if c >= near_n:
+                    closed.add(key)
+            else:
+                closed.add(key)
+            stop_only = False
+        # draw this node's successors (the start node: the starters)
+        one_near[0] = near
+        one_node[0, 0] = p
+        if nid == 0:
+            z = z0
+            per = z0.shape[0]
+            n_walk = per
+            frm = frame0
+            lft = left0
+            one_node[0, 1] = nan_c
+            one_node[0, 2] = nan_c
+        else:
+            x = feats[row[nid] : row[nid] + 1]
+            side = 0 if left[nid] else 1
+            n_walk = 0 if stop_only else n_succ
+            per = n_walk + n_stop if near else n_walk
+            z = np.empty((per, d))
+            if n_walk > 0:
+                z[:n_walk] = gp_sample(x, n_walk, rng, gps[side], sharp)[0]
+            if per > n_walk:  # near the goal: closing steps too, after the walking ones
+                z[n_walk:] = gp_sample(x, n_stop, rng, stops[side], sharp)[0]
+            one_frame[0] = hd
+            one_left[0] = not left[nid]
+            frm = one_frame
+            lft = one_left
+            one_node[0, 1] = foot[nid]
+            one_node[0, 2] = foot[parent[nid]]
+        one_node[0, 3] = g[nid]
+        rows, keys, fs, gs, ends, ths, frames, feet, lefts, accepted, drawn = check_steps(
+            z, matrix, offset, per, n_walk, frm, lft, one_near, one_node, thr, par, ipar, coef,
+            dist,
+        )  # fmt: skip
+        if nf + per > fcap:
+            fcap = max(2 * fcap, nf + per)
+            feats = _grow2(feats, fcap)
+            closing = _grow1(closing, fcap)
+        feats[nf : nf + per] = z
+        for r in range(per):
+            closing[nf + r] = r >= n_walk
+        base = nf
+        nf += per
+        generated += drawn[0]
+        rejected += drawn[0] - accepted[0]
+        # open the successors outside closed cells, and those that may end or stop the walk
+        # in any case (a cell reaching into a small goal area may have been closed by a node
+        # just outside it)
+        if nn + rows.shape[0] > cap:
+            cap = max(2 * cap, nn + rows.shape[0])
+            parent = _grow1(parent, cap)
+            row = _grow1(row, cap)
+            pos = _grow1(pos, cap)
+            head = _grow1(head, cap)
+            frame = _grow1(frame, cap)
+            g = _grow1(g, cap)
+            foot = _grow1(foot, cap)
+            left = _grow1(left, cap)
+        for c in range(rows.shape[0]):
+            e = ends[c]
+            if (
+                keys[c] in closed
+                and not in_goal(e, ths[c], par)
+                and not (n_stop > 0 and abs(e - goal) <= stop_reach)
+            ):
+                continue
+            parent[nn] = nid
+            row[nn] = base + rows[c]
+            pos[nn] = e
+            head[nn] = ths[c]
+            frame[nn] = frames[c]
+            g[nn] = gs[c]
+            foot[nn] = feet[c]
+            left[nn] = lefts[c]
+            heapq.heappush(heap, (fs[c], counter, nn))
+            counter += 1
+            nn += 1
+    stats = np.array([expansions, generated, rejected, stop_draws], dtype=np.int64)
+    return (
+        outcome,
+        goal_node,
+        stats,
+        parent[:nn],
+        row[:nn],
+        pos[:nn],
+        frame[:nn],
+        left[:nn],
+        feats[:nf],
+        closing[:nf],
+    )
