@@ -22,35 +22,26 @@ bins) that is already closed (near the goal: closed for walking on after
 Because the steps are random, repeated plans between the same points differ — they form the
 corridor real walks form — while a fixed ``rng`` seed reproduces a plan exactly.
 
-Speed (``benchmarks/bench_planner.py``). An expansion costs a few dozen small numpy calls, so
-the search works on several nodes per call where that leaves it unchanged:
+Speed (``benchmarks/bench_planner.py``). The search loop (:func:`mjwalk.plan.search.search`)
+with its GP draws (:mod:`mjwalk.gait.gpdraw`) and step checks (:mod:`mjwalk.plan.stepcheck`)
+is compiled with numba: an expansion is ten successors of twenty checked points each, and as
+NumPy calls and Python bookkeeping its overhead cost several times its arithmetic. Python keeps
+the setup (endpoint checks, the start heading, the KDE starters) and the final chain's 120 Hz
+decode. What the compiled loop does per draw:
 
-* **Successors drawn ahead.** A node whose successors are not drawn yet draws them together with
-  those of up to ``batch - 1`` of the next open nodes of its swing side (one GP call; one
-  decode and check for all). The extra sets wait until the search expands their nodes, if it
-  does; a closed or goal node's set is dropped. The search still expands one node at a time in
-  A* order, and a node's successors are still independent draws given its step, only drawn
-  earlier: the walks have the same distribution as with ``batch=1``, which gives the walks of
-  the planner before these changes seed for seed (checked on 160 walks in three scenes). With
-  draws that do not depend on their order, every ``batch`` gives the same walk
-  (``tests/test_planner_fastpaths.py``). ``batch`` stays small: this machine's OpenBLAS
-  threads the GP's (rows x 400) @ (400 x 400) product from 7 rows, which costs 50-100x on a
-  loaded machine.
-* **One affine map per draw** (:class:`_Decoder`): features -> pelvis samples, landing foot and
-  yaws in the step's frame, as complex numbers so the turn into the world is one product; the
-  120 Hz trajectory is decoded for the final chain's steps only.
-* **One clearance lookup** per draw in :meth:`Workplace.walk_field` (obstacle clearance and
-  floor edge in one field, never above either on the floor) with one gather per point.
-* **Few array operations per draw**: at a few dozen rows, each numpy call costs more than its
-  arithmetic, so the checks run in the step's local frame (the turn into the world keeps
-  distances) as one gathered array against one limit vector, and the GP folds its constants
-  (:meth:`TransitionGP.sample`). What is left per draw: the GP's dense variance product
-  (m = 400 inducing inputs: (rows x 400) @ (400 x 400), ~20 us; it cannot be cut short: every
-  inducing input has k(x, z)/C > 1e-6 at the chains' predecessors, and the variance
-  C - k W kᵀ ~ 1e-3 C is a cancellation carried by W's small eigenvalues, so even 150 of
-  W's 400 eigen-components leave errors larger than the variance) and some 60 small numpy
-  calls. Batches stay below 7 rows, so OpenBLAS does not thread (``OPENBLAS_NUM_THREADS=1``
-  changes nothing measurable).
+* **One affine map** (:class:`_Decoder`): features -> pelvis samples, landing foot and yaws in
+  the step's frame, as complex numbers so the turn into the world is one product.
+* **One clearance lookup** per checked point in :meth:`Workplace.walk_field` (obstacle
+  clearance and floor edge in one field, never above either on the floor), stopping at the
+  first point that fails.
+* **The GP's dense variance** C - k W kᵀ (m = 400 inducing inputs) through the upper triangle
+  of W (half its memory). It cannot be cut short: every inducing input has k(x, z)/C > 1e-6 at
+  the chains' predecessors, and the variance ~ 1e-3 C is a cancellation carried by W's small
+  eigenvalues, so even 150 of W's 400 eigen-components leave errors larger than the variance.
+
+The compiled loop expands the nodes, and draws from ``rng``, in the order the NumPy/Python
+implementation before it did (checked on 30 walks in three scenes: the same expansions,
+samples and rejections, lengths equal to 1e-8 m).
 """
 
 from __future__ import annotations
@@ -162,8 +153,6 @@ class _Decoder:
         cols = self._columns(model.decode(basis, "left"), m)
         self.offset = cols[0]
         self.matrix = np.ascontiguousarray(cols[1:] - cols[0])
-        # the same map as one real product: z @ matrix_f, viewed as complex, is z @ matrix
-        self.matrix_f = self.matrix.view(np.float64)
         z = np.random.default_rng(0).standard_normal((16, d)) * 3.0
         ref = self._columns(model.decode(z, "left"), m)
         if not np.allclose(z @ self.matrix + self.offset, ref, rtol=0.0, atol=1e-9):
