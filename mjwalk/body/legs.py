@@ -535,8 +535,11 @@ def _soft_flat(p: np.ndarray) -> np.ndarray:
 
 def _heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
     """Foot pitch <= ``p0`` (radians, rolled about the ball) at which the leg with ``knee``
-    flexion reaches from the ankle to ``hip`` (3,); ``p0`` if it reaches already, ``lo`` if it
-    cannot even then. Bisection: raising the heel brings the ankle up towards the hip.
+    flexion reaches from the ankle to ``hip`` (3,); ``p0`` if it reaches already. Where it
+    reaches at no pitch, the pitch in [``lo``, ``p0``] that brings the ankle closest to the
+    hip: rolled about the ball the ankle moves on a circle, so past the point of the circle
+    nearest the hip a higher heel takes it away again (a foot ahead of the hip gets there
+    long before ``lo``, a trailing foot not before).
 
     Vectorized: ``hip`` (n, 3), ``knee`` (n,) and ``p0`` (n,) give (n,) pitches (one bisection
     for all samples); scalar ``knee`` and ``p0`` with ``hip`` (3,) give a float."""
@@ -554,9 +557,9 @@ def _heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
     if not len(j):
         return float(p[0]) if scalar else p
     hj, dj = hip[j], d[j]
-    never = gap(hj, np.full(len(j), lo), dj) > 0
     # rolled about the ball B by p <= 0 the ankle is B + rho (-cos t f, sin t z), t = beta - p
-    # (f the foot's heading): |hip - ankle| = d is closed-form in t
+    # (f the foot's heading): |hip - ankle| = d is closed-form in t, the first root as the
+    # heel rises; without a root the clipped arcsin gives the t nearest the hip
     ball, ah = _ball(geom), geom.ankle_height
     rho, beta = np.hypot(ball, ah), np.arctan2(ah, ball)
     f = np.array([np.cos(foot[2]), np.sin(foot[2])])
@@ -564,17 +567,20 @@ def _heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
     a_, c_ = rel[:, :2] @ f, rel[:, 2]
     k_ = ((rel**2).sum(1) + rho**2 - dj**2) / (2 * rho)
     t = np.arctan2(a_, c_) + np.arcsin(np.clip(k_ / np.hypot(a_, c_), -1.0, 1.0))
-    p[j] = np.where(never, lo, np.clip(beta - t, lo, p0[j]))
-    up = j[p0[j] > 0]  # toes up at p0: bisect (the roll pivots on the heel there)
+    p[j] = np.clip(beta - t, lo, np.minimum(p0[j], 0.0))
+    # toes up at p0 and reaching with the foot flat: bisect between flat and p0 (the roll
+    # pivots on the heel there); not reaching flat, the ball roll above holds
+    up = j[p0[j] > 0]
+    up = up[gap(hip[up], np.zeros(len(up)), d[up]) <= 0]
     if len(up):
         hu, du = hip[up], d[up]
-        a, b = np.full(len(up), lo), p0[up]  # gap(a) <= 0 < gap(b) where bisected
+        a, b = np.zeros(len(up)), p0[up]  # gap(a) <= 0 < gap(b)
         for _ in range(40):
             m = 0.5 * (a + b)
             out = gap(hu, m, du) > 0
             b = np.where(out, m, b)
             a = np.where(out, a, m)
-        p[up] = np.where(gap(hu, a, du) > 0, lo, 0.5 * (a + b))
+        p[up] = 0.5 * (a + b)
     return float(p[0]) if scalar else p
 
 
@@ -697,6 +703,7 @@ def legs_from_walk(
 
     hs_pitch = max(0.0, float(ref("pitch", 0.0)))
     dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
+    plantar_min = np.deg2rad(ROM_DEG["ankle_flex"][0] + 1.0)
     knee_prev = None  # (angle, velocity per unit phase) of the next stance leg at its landing
     d_land = geom.span(max(ref("knee", 0.0), KNEE_MIN))
     _landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom)
@@ -831,14 +838,21 @@ def legs_from_walk(
             # a grounded foot whose ankle would dorsiflex past its range pitches down
             # instead: a toes-up foot rolls down about its heel, a flat one onto its ball
             # (heel rise), so the sole keeps its place on the floor (clipping the ankle would
-            # sink the toes). The roll is spread over the samples around (in the air too,
-            # about the same point), so a landing or lift-off does not jolt the leg
+            # sink the toes). Likewise a heel-up foot whose ankle would plantarflex past its
+            # range lowers its heel about the ball, down to flat (a stance foot ahead of the
+            # hip: clipped, the foot would turn about the ankle and its ball slide), and the
+            # pelvis lowers below. The roll is spread over the samples around (in the air
+            # too, about the same point), so a landing or lift-off does not jolt the leg
             for _ in range(8):
                 raw = _leg_raw(ankle[s_], fyaw[s_], pitch[s_], root, yaw, s_, geom)
-                excess = np.where(ground[s_], raw[f"ankle_{s_}_flex"] - dorsi_max, 0.0)
-                if excess.max() <= 0:
+                flex = raw[f"ankle_{s_}_flex"]
+                excess = np.where(ground[s_], flex - dorsi_max, 0.0)
+                short = np.where(ground[s_] & (pitch[s_] < 0), plantar_min - flex, 0.0)
+                if excess.max() <= 0 and short.max() <= 0:
                     break
-                repitch(s_, _spread(1.2 * np.maximum(excess, 0.0), win))
+                down = _spread(1.2 * np.maximum(excess, 0.0), win)
+                up = _spread(1.2 * np.maximum(short, 0.0), win)
+                repitch(s_, down - np.minimum(up, np.maximum(-pitch[s_], 0.0)))
         # rolling a heel-strike foot down (or turning it about the ball) lowers its ankle:
         # where a grounded leg then cannot reach its foot with the knee flexed at least as
         # the reference's (up to KNEE_SOFT), the pelvis lowers (smoothly). Near full
