@@ -325,15 +325,6 @@ class HybridPlanner:
         cost = self.distance(probe) + np.where(free, 0.0, 1e3)
         return float(angles[int(np.argmin(cost))])
 
-    def _in_goal(self, p: complex, heading: float) -> bool:
-        """Whether a node at world x + iy ``p`` facing ``heading`` (radians) ends the walk."""
-        if abs(p - complex(self.goal[0], self.goal[1])) > self.tolerance:
-            return False
-        if self.goal_yaw is None:
-            return True
-        diff = (heading - self.goal_yaw + math.pi) % (2 * math.pi) - math.pi
-        return abs(diff) <= self.goal_yaw_tolerance
-
     # -- search ----------------------------------------------------------------------------
 
     def plan(self, start, rng: np.random.Generator) -> WalkPath:
@@ -370,14 +361,14 @@ class HybridPlanner:
         free_heading = start_yaw is None
         if free_heading:
             start_yaw = self.default_heading(start_xy)
-        if self._in_goal(complex(*start_xy), start_yaw):
+        dec = self._decoder()
+        par, ipar = self._kernel_params()
+        if stepcheck.in_goal(complex(*start_xy), start_yaw, par):
             raise PlanningError(
                 f"start ({start_xy[0]:.3f}, {start_xy[1]:.3f}) already lies in the goal area "
                 f"(within {self.tolerance} m of ({self.goal[0]:.3f}, {self.goal[1]:.3f})): "
                 "there is no walk to plan"
             )
-        dec = self._decoder()
-        par, ipar = self._kernel_params()
         # the starters, for the first expansion (the start node's)
         first = self.model.sample_first(self.n_starters, rng)
         frame0 = np.full(len(first.features), float(start_yaw))

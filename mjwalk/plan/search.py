@@ -18,7 +18,6 @@ the caller's Generator in the order the Python loop drew them.
 from __future__ import annotations
 
 import heapq
-import math
 
 import numpy as np
 from numba import types
@@ -27,54 +26,21 @@ from numba.typed import Dict
 from mjwalk._jit import njit
 from mjwalk.gait.gpdraw import sample as gp_sample
 from mjwalk.plan.stepcheck import (
-    I_BINS,
     I_MAX_EXPANSIONS,
     I_N_STOPS,
     I_N_SUCCESSORS,
     I_NEAR_GOAL_EXPANSIONS,
-    I_SPAN,
-    P_CELL,
-    P_CORNER_X,
-    P_CORNER_Y,
     P_GOAL_X,
     P_GOAL_Y,
-    P_GOAL_YAW,
     P_POOL_SHARPNESS,
     P_STOP_REACH,
-    P_TOLERANCE,
-    P_YAW_TOLERANCE,
+    cell_key,
     check_steps,
+    in_goal,
 )
 
 #: :func:`search` outcomes.
 FOUND, EXHAUSTED, BUDGET = 0, 1, 2
-
-
-@njit
-def cell_key(p, heading, par, ipar):
-    """Closed-list key of a node at world x + iy ``p`` facing ``heading`` (radians): its grid
-    cell (i · span + j) and, with heading bins, times bins plus its heading bin."""
-    cell = par[P_CELL]
-    key = math.floor((p.real - par[P_CORNER_X]) / cell + 0.5) * ipar[I_SPAN] + math.floor(
-        (p.imag - par[P_CORNER_Y]) / cell + 0.5
-    )
-    bins = ipar[I_BINS]
-    if bins > 1:
-        two_pi = 2.0 * math.pi
-        key = key * bins + math.floor((heading % two_pi) / two_pi * bins) % bins
-    return key
-
-
-@njit
-def in_goal(p, heading, par):
-    """Whether a node at world x + iy ``p`` facing ``heading`` (radians) ends the walk."""
-    if abs(p - complex(par[P_GOAL_X], par[P_GOAL_Y])) > par[P_TOLERANCE]:
-        return False
-    goal_yaw = par[P_GOAL_YAW]
-    if math.isnan(goal_yaw):
-        return True
-    diff = (heading - goal_yaw + math.pi) % (2.0 * math.pi) - math.pi
-    return abs(diff) <= par[P_YAW_TOLERANCE]
 
 
 @njit

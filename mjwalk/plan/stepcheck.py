@@ -107,6 +107,33 @@ def _clearance(coef, x0, y0, res, nx, ny, x, y):
 
 
 @njit
+def cell_key(p, heading, par, ipar):
+    """Closed-list key of a node at world x + iy ``p`` facing ``heading`` (radians): its grid
+    cell (i · span + j) and, with heading bins, times bins plus its heading bin."""
+    cell = par[P_CELL]
+    key = math.floor((p.real - par[P_CORNER_X]) / cell + 0.5) * ipar[I_SPAN] + math.floor(
+        (p.imag - par[P_CORNER_Y]) / cell + 0.5
+    )
+    bins = ipar[I_BINS]
+    if bins > 1:
+        two_pi = 2.0 * math.pi
+        key = key * bins + math.floor((heading % two_pi) / two_pi * bins) % bins
+    return key
+
+
+@njit
+def in_goal(p, heading, par):
+    """Whether a node at world x + iy ``p`` facing ``heading`` (radians) ends the walk."""
+    if abs(p - complex(par[P_GOAL_X], par[P_GOAL_Y])) > par[P_TOLERANCE]:
+        return False
+    goal_yaw = par[P_GOAL_YAW]
+    if math.isnan(goal_yaw):
+        return True
+    diff = (heading - goal_yaw + math.pi) % (2.0 * math.pi) - math.pi
+    return abs(diff) <= par[P_YAW_TOLERANCE]
+
+
+@njit
 def check_steps(
     z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist
 ):
@@ -145,9 +172,6 @@ def check_steps(
     fy0 = par[P_FIELD_Y0]
     fres = par[P_FIELD_RES]
     goal = complex(par[P_GOAL_X], par[P_GOAL_Y])
-    tol = par[P_TOLERANCE]
-    goal_yaw = par[P_GOAL_YAW]
-    two_pi = 2.0 * math.pi
     per_row = frame.shape[0] == n
     out_rows = np.empty(n, dtype=np.int64)
     out_keys = np.empty(n, dtype=np.int64)
@@ -224,13 +248,8 @@ def check_steps(
             continue
         end = loc[m - 1] * rot + p
         th = fr + yaws.imag
-        if closing:  # a closing step must end the walk: in the goal area
-            if abs(end - goal) > tol:
-                continue
-            if not math.isnan(goal_yaw):
-                turn = (th - goal_yaw + math.pi) % two_pi - math.pi
-                if abs(turn) > par[P_YAW_TOLERANCE]:
-                    continue
+        if closing and not in_goal(end, th, par):  # a closing step must end the walk
+            continue
         # walked length and heuristic
         if ipar[I_CHORD]:
             seg = abs(loc[m - 1])
@@ -249,15 +268,8 @@ def check_steps(
             if bound > h:
                 h = bound
         g = node[i, 3].real + seg
-        cell = par[P_CELL]
-        key = math.floor((ex - par[P_CORNER_X]) / cell + 0.5) * ipar[I_SPAN] + math.floor(
-            (ey - par[P_CORNER_Y]) / cell + 0.5
-        )
-        bins = ipar[I_BINS]
-        if bins > 1:
-            key = key * bins + math.floor((th % two_pi) / two_pi * bins) % bins
         out_rows[cnt] = r
-        out_keys[cnt] = key
+        out_keys[cnt] = cell_key(end, th, par, ipar)
         out_f[cnt] = g + par[P_WEIGHT] * h
         out_g[cnt] = g
         out_end[cnt] = end
