@@ -27,10 +27,19 @@ def _points(wp, n, seed, margin=0.3):
     return rng.uniform([xmin - margin, ymin - margin], [xmax + margin, ymax + margin], (n, 2))
 
 
-def test_field_lookup_at_equals_call(workplace):
-    pts = _points(workplace, 5000, 0).reshape(50, 100, 2)
+def _compiled_lookup(field, pts):
+    """The planner's compiled bilinear lookup (stepcheck._clearance) at points (n, 2)."""
+    from mjwalk.plan.stepcheck import _clearance
+
+    coef, (ny, nx) = field._coefficients(), field.values.shape
+    args = (coef, field.x0, field.y0, field.resolution, nx, ny)
+    return np.array([_clearance(*args, x, y) for x, y in pts])
+
+
+def test_compiled_field_lookup_equals_call(workplace):
+    pts = _points(workplace, 5000, 0)
     c = workplace.clearance
-    np.testing.assert_allclose(c.at(pts), c(pts), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(_compiled_lookup(c, pts), c(pts), rtol=0, atol=1e-12)
 
 
 def test_walk_field_never_exceeds_walk_clearance(workplace):
@@ -38,7 +47,7 @@ def test_walk_field_never_exceeds_walk_clearance(workplace):
     exact distance to the floor's edge on the floor, and at most one node spacing off it."""
     pts = _points(workplace, 20000, 1)
     field = workplace.walk_field()
-    combined = field.at(pts)
+    combined = _compiled_lookup(field, pts)
     exact = workplace.walk_clearance(pts)
     assert np.all(combined <= np.maximum(exact, field.resolution) + 1e-12)
     assert np.all(combined[exact >= 0] <= exact[exact >= 0] + 1e-12)

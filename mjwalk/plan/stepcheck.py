@@ -93,7 +93,8 @@ def iparams(**values) -> np.ndarray:
 
 @njit
 def _clearance(coef, x0, y0, res, nx, ny, x, y):
-    """:meth:`ClearanceField.at` for one point: bilinear walk clearance (metres)."""
+    """:meth:`ClearanceField.__call__` at one point (x, y) (metres) from the field's cell
+    coefficients (:meth:`ClearanceField._coefficients`): bilinear clearance, metres."""
     fx = (x - x0) / res
     fx = min(max(fx, 0.0), nx - 1.000001)
     fy = (y - y0) / res

@@ -66,40 +66,10 @@ class ClearanceField:
 
     lookup = __call__
 
-    def at(self, xy: np.ndarray) -> np.ndarray:
-        """Bilinear clearance (metres) at points ``xy`` (..., 2): the values of
-        :meth:`__call__` (to rounding) with a third of its array operations — each axis with
-        scalars only, one gather of each point's cell coefficients — for hot loops (the
-        hybrid A*)."""
-        coef = self._coefficients()
-        ny, nx = self.values.shape
-        res = self.resolution
-        fx = xy[..., 0] - self.x0
-        fx /= res
-        np.maximum(fx, 0.0, out=fx)
-        np.minimum(fx, nx - 1.000001, out=fx)
-        fy = xy[..., 1] - self.y0
-        fy /= res
-        np.maximum(fy, 0.0, out=fy)
-        np.minimum(fy, ny - 1.000001, out=fy)
-        ix = fx.astype(np.intp)
-        iy = fy.astype(np.intp)
-        fx -= ix
-        fy -= iy
-        iy *= nx - 1
-        iy += ix
-        c = coef.take(iy, axis=0)
-        out = c[..., 3] * fy
-        out += c[..., 1]
-        out *= fx
-        out += c[..., 0]
-        fy *= c[..., 2]
-        out += fy
-        return out
-
     def _coefficients(self) -> np.ndarray:
         """Per cell (row-major over the (ny-1, nx-1) cells) the bilinear form's coefficients
-        (a, b, c, d): value = a + b·tx + c·ty + d·tx·ty at cell fractions tx, ty in [0, 1)."""
+        (a, b, c, d): value = a + b·tx + c·ty + d·tx·ty at cell fractions tx, ty in [0, 1), for the
+        planner's compiled lookup (:func:`mjwalk.plan.stepcheck._clearance`)."""
         coef = getattr(self, "_coef", None)
         if coef is None or self._coef_of is not self.values:
             v = self.values
