@@ -35,8 +35,8 @@ from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import StandardScaler
 
 import mjwalk.render  # noqa: F401  (picks a headless GL backend before mujoco is loaded)
-from mjwalk.body.armrep import resample_trajectory, segment_directions, trajectory_error
-from mjwalk.body.reach import ReachModel, end_effector
+from mjwalk.arms.armrep import resample_trajectory, segment_directions, trajectory_error
+from mjwalk.arms.reach import ReachModel, end_effector
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "bandai-raise-hand"
 N_SAMPLES = 20
@@ -158,7 +158,7 @@ def main(argv=None):
             )
     if not args.no_synthetic:
         try:
-            from mjwalk.body import reachgen
+            from mjwalk.arms import reachgen
         except ImportError:
             print("reachgen not available")
             return 0
@@ -178,10 +178,10 @@ def main(argv=None):
 
 def scene_clip(path: str) -> None:
     """Humanoid at stand_rack2 reaching 6 cm above rack2_screw2: contacts and an mp4 clip."""
-    from mjwalk.body import reachgen
-    from mjwalk.body.reach import reach_in_scene
-    from mjwalk.playback import collision_report
+    from mjwalk.arms import reachgen
+    from mjwalk.arms.reach import reach_in_scene
     from mjwalk.render import render_video
+    from mjwalk.timeline.frames import collision_report
 
     scene = Path(__file__).resolve().parents[1] / "scenes" / "assembly_station.xml"
     data = reachgen.generate("endpoints", 150, np.random.default_rng(0))

@@ -150,8 +150,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
 def _cmd_render(args: argparse.Namespace) -> int:
     from mjwalk.plan.walkpath import WalkPath
-    from mjwalk.playback import timeline_from_walk
     from mjwalk.render import render_video
+    from mjwalk.timeline.frames import timeline_from_walk
 
     walk = WalkPath.load(args.walk)
     timeline = timeline_from_walk(walk, args.scene, fps=args.fps, stature=args.stature)

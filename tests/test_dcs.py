@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mjwalk.body.armrep import (
+from mjwalk.arms.armrep import (
     ArmRepresentation,
     angles_to_directions,
     apply_pose,
@@ -16,7 +16,7 @@ from mjwalk.body.armrep import (
     segment_directions,
     trajectory_error,
 )
-from mjwalk.body.dcs import DCSNetwork
+from mjwalk.arms.dcs import DCSNetwork
 from mjwalk.errors import MjwalkError, ModelFileError
 
 #: real capture: ``$MJWALK_SHARED_DATA`` or ../shared/data beside the project

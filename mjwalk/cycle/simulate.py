@@ -35,7 +35,7 @@ from mjwalk.cycle.types import (
 from mjwalk.errors import CycleSpecError, MjwalkError
 from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
-from mjwalk.playback import (
+from mjwalk.timeline.frames import (
     Timeline,
     _frames_from_legs,
     collision_report,
@@ -111,10 +111,10 @@ def _load_step_model(spec: CycleSpec):
 
 
 def _load_reach_model(spec: CycleSpec):
-    from mjwalk.body.reach import ReachModel
+    from mjwalk.arms.reach import ReachModel
 
     if spec.reach_model == "default":
-        from mjwalk.body.reachdefault import default_reach_model
+        from mjwalk.arms.reachdefault import default_reach_model
 
         return default_reach_model()
     return ReachModel.load(spec.reach_model)
@@ -197,7 +197,7 @@ def _reach_frames(
     over a shelf's front edge instead of through it. The return retraces the motion.
 
     Returns (frames, hand error in metres, ReachResult of the model part)."""
-    from mjwalk.body.reach import (
+    from mjwalk.arms.reach import (
         REST_HAND,
         arm_frames,
         arm_joint_angles,
@@ -464,7 +464,7 @@ def check_collisions(result_or_timeline, scene: str | Path | None = None) -> lis
     played in ``scene``): time (s), body part, scene geom, depth (m), by MuJoCo's collision
     detection. A CycleResult must have been simulated with ``keep_timeline=True``."""
     from mjwalk.plan.walkpath import WalkPath
-    from mjwalk.playback import timeline_from_walk
+    from mjwalk.timeline.frames import timeline_from_walk
 
     obj = result_or_timeline
     if isinstance(obj, CycleResult):

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mjwalk.body.reach import REST_HAND, arm_segment_lengths, end_effector, min_jerk, two_link_ik
+from mjwalk.arms.reach import REST_HAND, arm_segment_lengths, end_effector, min_jerk, two_link_ik
 from mjwalk.errors import MjwalkError
 
 SPACES = ("endpoints", "obstacle", "grasp")

@@ -18,8 +18,8 @@ _MEMO: dict = {}
 def default_reach_model(progress: bool = True):
     """The :class:`~mjwalk.body.reach.ReachModel` of start/end-constrained reaches of the left
     arm (``reachgen.generate("endpoints", 200, seed 0)``), cached beside the step model."""
-    from mjwalk.body import reachgen
-    from mjwalk.body.reach import ReachModel
+    from mjwalk.arms import reachgen
+    from mjwalk.arms.reach import ReachModel
     from mjwalk.gait.default import cache_dir
 
     path = cache_dir() / f"reach-endpoints-v{REACH_DEFAULT_VERSION}-n{N_TRAIN}.npz"

@@ -29,8 +29,8 @@ from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
 from mjwalk._io import check_header, load_npz, save_npz
-from mjwalk.body.armrep import ArmRepresentation, apply_pose
-from mjwalk.body.dcs import DCSNetwork
+from mjwalk.arms.armrep import ArmRepresentation, apply_pose
+from mjwalk.arms.dcs import DCSNetwork
 from mjwalk.errors import MjwalkError, ModelFileError
 
 REACH_FORMAT = "mjwalk.reach"
@@ -502,7 +502,7 @@ def reach_in_scene(
     import mujoco
 
     from mjwalk.body.humanoid import attach_humanoid, pelvis_height
-    from mjwalk.playback import Timeline, yaw_quat
+    from mjwalk.timeline.frames import Timeline, yaw_quat
 
     if side != "l":
         raise MjwalkError("reach_in_scene: models are trained for the left arm; mirror first")
