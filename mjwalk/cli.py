@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 
 
@@ -178,7 +179,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("scene", type=Path, help="MJCF scene file")
     p.add_argument("--from", dest="start", required=True, help="start: X,Y (metres) or a site name")
     p.add_argument("--to", dest="goal", required=True, help="goal: X,Y (metres) or a site name")
-    p.add_argument("--radius", type=float, default=0.25, help="body radius in metres (0.25)")
+    p.add_argument("--radius", type=float, default=BODY_RADIUS, help="body radius in metres (0.25)")
     p.add_argument("--png", type=Path, help="write a top-view PNG of the plan here")
     p.add_argument(
         "--n",
@@ -212,7 +213,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--fps", type=float, default=30.0)
     p.add_argument("--width", type=int, default=640)
     p.add_argument("--height", type=int, default=480)
-    p.add_argument("--stature", type=float, default=1.75, help="humanoid stature in metres")
+    p.add_argument(
+        "--stature", type=float, default=DEFAULT_STATURE, help="humanoid stature in metres"
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_render)
 

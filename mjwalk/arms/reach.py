@@ -31,6 +31,7 @@ from scipy.spatial.transform import Rotation
 from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.arms.armrep import ArmRepresentation, apply_pose
 from mjwalk.arms.dcs import DCSNetwork
+from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError, ModelFileError
 
 REACH_FORMAT = "mjwalk.reach"
@@ -44,7 +45,7 @@ ARM_SEGMENT_SHARES = (0.186, 0.146, 0.108)
 REST_HAND = (0.15, 0.02, -0.60)
 
 
-def arm_segment_lengths(stature: float = 1.75, with_hand: bool = True) -> np.ndarray:
+def arm_segment_lengths(stature: float = DEFAULT_STATURE, with_hand: bool = True) -> np.ndarray:
     """Upper arm, forearm (and hand) lengths in metres for a person of ``stature`` metres."""
     shares = ARM_SEGMENT_SHARES if with_hand else ARM_SEGMENT_SHARES[:2]
     return stature * np.asarray(shares)
@@ -395,7 +396,9 @@ def grip_synergy(closure: float, side: str = "l") -> dict[str, float]:
     return q
 
 
-def pinch_aperture(finger_q: dict[str, float], side: str = "l", stature: float = 1.75) -> float:
+def pinch_aperture(
+    finger_q: dict[str, float], side: str = "l", stature: float = DEFAULT_STATURE
+) -> float:
     """Distance (m) between the thumb tip and the index fingertip of the humanoid hand for the
     given finger joint angles (forward kinematics of mjwalk.body.humanoid in MuJoCo)."""
     import mujoco
@@ -416,7 +419,9 @@ def pinch_aperture(finger_q: dict[str, float], side: str = "l", stature: float =
     )
 
 
-def fingers_for_aperture(aperture: float, side: str = "l", stature: float = 1.75) -> dict:
+def fingers_for_aperture(
+    aperture: float, side: str = "l", stature: float = DEFAULT_STATURE
+) -> dict:
     """Finger joint angles (rad) whose thumb-index distance equals ``aperture`` metres (to
     0.1 mm) along the grip synergy; apertures outside the hand's range raise MjwalkError."""
     from scipy.optimize import brentq
@@ -437,7 +442,9 @@ def fingers_for_aperture(aperture: float, side: str = "l", stature: float = 1.75
     return grip_synergy(g, side)
 
 
-def finger_trajectory(apertures: np.ndarray, side: str = "l", stature: float = 1.75) -> dict:
+def finger_trajectory(
+    apertures: np.ndarray, side: str = "l", stature: float = DEFAULT_STATURE
+) -> dict:
     """Finger joint angles over time: {joint name: (n,) radians} for grip ``apertures`` (n,)
     metres (clipped to the hand's range)."""
     lo = pinch_aperture(grip_synergy(0.95, side), side, stature)
@@ -483,7 +490,7 @@ def reach_in_scene(
     target_site: str,
     constraint: np.ndarray | None = None,
     side: str = "l",
-    stature: float = 1.75,
+    stature: float = DEFAULT_STATURE,
     duration: float = 1.2,
     fps: float = 30.0,
     target_offset: np.ndarray = (0.0, 0.0, 0.0),

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mjwalk.arms.reach import REST_HAND, arm_segment_lengths, end_effector, min_jerk, two_link_ik
+from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 
 SPACES = ("endpoints", "obstacle", "grasp")
@@ -119,7 +120,7 @@ def _reachable(p, lengths):
 
 
 def generate(
-    space: str, p: int, rng: np.random.Generator, n: int = 20, stature: float = 1.75
+    space: str, p: int, rng: np.random.Generator, n: int = 20, stature: float = DEFAULT_STATURE
 ) -> ReachData:
     """Generate ``p`` reaches of constraint ``space`` (one of :data:`SPACES`)."""
     if space not in SPACES:

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.plan.walkpath import WalkPath
 
 #: Task kinds of a cycle specification.
@@ -57,10 +58,10 @@ class CycleSpec:
     scene: Path
     start: str
     tasks: list[Task]
-    stature: float = 1.75
+    stature: float = DEFAULT_STATURE
     step_model: str = "default"
     reach_model: str = "default"
-    radius: float = 0.25
+    radius: float = BODY_RADIUS
     name: str = ""
 
 

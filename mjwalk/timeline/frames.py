@@ -22,6 +22,7 @@ import numpy as np
 
 from mjwalk.body.humanoid import HUMAN_GROUP, JointMap, attach_humanoid, shoulder_geometry
 from mjwalk.body.legs import LegMotion, legs_from_walk
+from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
 
@@ -64,7 +65,7 @@ class Timeline:
     contact: np.ndarray | None = None
     walk: WalkPath | None = None
     scene: str = ""
-    stature: float = 1.75
+    stature: float = DEFAULT_STATURE
     meta: dict = field(default_factory=dict)
 
     @property
@@ -131,7 +132,7 @@ def timeline_from_walk(
     walk: WalkPath,
     scene: str | Path | mujoco.MjSpec,
     fps: float = 30.0,
-    stature: float = 1.75,
+    stature: float = DEFAULT_STATURE,
     arms: str = "swing",
     rng: np.random.Generator | None = None,
 ) -> Timeline:
@@ -207,7 +208,7 @@ def trunk_turn(
     yaw: np.ndarray,
     room: np.ndarray,
     away: np.ndarray,
-    stature: float = 1.75,
+    stature: float = DEFAULT_STATURE,
     fps: float = 30.0,
 ) -> np.ndarray:
     """Trunk rotation (radians, + CCW about z; (F,)) that keeps the shoulders clear of the
@@ -250,7 +251,7 @@ def ease_arms(
     room: np.ndarray | None = None,
     carry: str | None = None,
     away: np.ndarray | None = None,
-    stature: float = 1.75,
+    stature: float = DEFAULT_STATURE,
 ) -> np.ndarray:
     """Shape the arm motion of walking frames ``qpos`` (F, nq) in place and return it.
 

@@ -41,6 +41,7 @@ from scipy.interpolate import CubicSpline
 from scipy.ndimage import gaussian_filter1d, maximum_filter1d
 
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry, leg_geometry
+from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import CaptureError, PlanningError
 from mjwalk.plan.walkpath import WalkPath
 
@@ -647,7 +648,7 @@ def _landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom: LegGeom
 
 
 def legs_from_walk(
-    walk: WalkPath, stature: float = 1.75, reference: ReferenceGait | None = None
+    walk: WalkPath, stature: float = DEFAULT_STATURE, reference: ReferenceGait | None = None
 ) -> LegMotion:
     """Leg joint angles and root height for every sample of ``walk`` (paper §4.2 A8-A9).
 
