@@ -179,9 +179,8 @@ def main(argv=None):
 def scene_clip(path: str) -> None:
     """Humanoid at stand_rack2 reaching 6 cm above rack2_screw2: contacts and an mp4 clip."""
     from mjwalk.arms import reachgen
-    from mjwalk.arms.reach import reach_in_scene
     from mjwalk.render import render_video
-    from mjwalk.timeline.frames import collision_report
+    from mjwalk.timeline import collision_report, reach_in_scene
 
     scene = Path(__file__).resolve().parents[1] / "scenes" / "assembly_station.xml"
     data = reachgen.generate("endpoints", 150, np.random.default_rng(0))

@@ -7,7 +7,7 @@ if "mujoco" not in _sys.modules:  # pick a headless OpenGL backend before mujoco
 
     _select_gl_backend()
 
-from mjwalk.cycle.simulate import check_collisions, simulate_cycle, simulate_cycles
+from mjwalk.cycle.simulate import simulate_cycle, simulate_cycles
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.errors import (
     CaptureError,
@@ -27,6 +27,7 @@ from mjwalk.mocap import Take, load_amc, load_bvh
 from mjwalk.plan import PathStep, WalkPath
 from mjwalk.plan.grid import plan_grid
 from mjwalk.plan.hybrid import plan_walk, plan_walks
+from mjwalk.timeline import check_collisions
 from mjwalk.world import Workplace, load_workplace
 from mjwalk.world.probe import ClearanceProbe, path_clearance
 

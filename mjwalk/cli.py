@@ -132,7 +132,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             ctx,
             np.random.default_rng(np.random.SeedSequence([args.seed, 0])),
             keep_timeline=True,
-            check_collisions=False,
+            collisions=False,
         )
         video = args.out / "cycle.mp4"
         render_video(
@@ -152,7 +152,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 def _cmd_render(args: argparse.Namespace) -> int:
     from mjwalk.plan.walkpath import WalkPath
     from mjwalk.render import render_video
-    from mjwalk.timeline.frames import timeline_from_walk
+    from mjwalk.timeline import timeline_from_walk
 
     walk = WalkPath.load(args.walk)
     timeline = timeline_from_walk(walk, args.scene, fps=args.fps, stature=args.stature)

@@ -27,7 +27,7 @@ import numpy as np  # noqa: E402
 from mjwalk._io import atomic_path  # noqa: E402
 from mjwalk.body.humanoid import HUMAN_GROUP  # noqa: E402
 from mjwalk.errors import MjwalkError  # noqa: E402
-from mjwalk.timeline.frames import Timeline  # noqa: E402
+from mjwalk.timeline.timeline import Timeline  # noqa: E402
 
 #: Colour of the drawn path (RGBA) and of the drawn footprints (left, right).
 PATH_RGBA = np.array([1.0, 0.55, 0.0, 1.0], dtype=np.float32)

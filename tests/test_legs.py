@@ -488,7 +488,7 @@ def test_planned_walks_joint_angles_do_not_jump(planned_walks):
 def test_planned_walks_touch_nothing(planned_walks):
     """Issue 5: the played-back walks (legs, trunk turning, arms) of the 20 planned paths
     touch no scene geometry, the planner having certified each pelvis path clear."""
-    from mjwalk.timeline.frames import collision_report, timeline_from_walk
+    from mjwalk.timeline import collision_report, timeline_from_walk
     from mjwalk.world import load_workplace
 
     for k, (path, walk, *_) in enumerate(planned_walks):

@@ -10,7 +10,8 @@ import pytest
 from test_legs import make_walk
 
 from mjwalk.errors import MjwalkError
-from mjwalk.timeline.frames import ARM_EASE, collision_report, iter_frames, timeline_from_walk
+from mjwalk.timeline import collision_report, iter_frames, timeline_from_walk
+from mjwalk.timeline.frames import ARM_EASE
 
 SCENE = """<mujoco><worldbody><geom name="floor" type="plane" size="10 10 .1"/>
 <body name="shelf" pos="{x} {y} .6"><geom name="box" type="box" size=".25 .25 .6"/></body>

@@ -6,8 +6,10 @@ import numpy as np
 import pytest
 
 from mjwalk.arms import reachgen
-from mjwalk.arms.reach import ReachModel, arm_joint_angles, end_effector, reach_in_scene
+from mjwalk.arms.kinematics import arm_joint_angles, end_effector
+from mjwalk.arms.reach import ReachModel
 from mjwalk.errors import MjwalkError, ModelFileError
+from mjwalk.timeline import reach_in_scene
 
 
 @pytest.fixture(scope="module")
@@ -96,7 +98,7 @@ def test_obstacle_space_hand_clears_the_obstacle():
 
 
 def test_grasp_closes_fingers_on_object_within_5mm():
-    from mjwalk.arms.reach import finger_trajectory, fingers_for_aperture, pinch_aperture
+    from mjwalk.arms.hands import finger_trajectory, fingers_for_aperture, pinch_aperture
 
     data = reachgen.generate("grasp", 60, np.random.default_rng(4))
     model = ReachModel(data.lengths, dcs={"random_state": 0}).fit(
@@ -122,7 +124,7 @@ SCENE = Path(__file__).parents[1] / "scenes" / "assembly_station.xml"
 def test_reach_into_rack_shelf_without_contact(endpoint_model):
     import mujoco
 
-    from mjwalk.timeline.frames import collision_report
+    from mjwalk.timeline import collision_report
 
     model, _ = endpoint_model
     # hand tip 6 cm above the screw on the rack-2 shelf (top of the shelf at z = 1.02 m)

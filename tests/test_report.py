@@ -22,7 +22,7 @@ from mjwalk.cycle.report import (
 from mjwalk.cycle.types import ArmRecord, CycleResult, CycleSpec, TaskRecord, WalkRecord
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
-from mjwalk.timeline.frames import Contact
+from mjwalk.timeline import Contact
 from mjwalk.world import load_workplace
 
 SCENE = Path(__file__).resolve().parents[1] / "scenes" / "assembly_station.xml"

@@ -10,7 +10,8 @@ Pipeline of :meth:`ReachModel.predict`:
    is refit so the hand starts and ends there (the paper's "fitted to a start and end
    position"), then a final analytic IK correction, blended over the movement with a
    minimum-jerk profile, moves the hand onto both points exactly (well within 1 cm);
-4. :func:`arm_joint_angles` turns directions (+ forearm roll) into the humanoid's joint angles.
+4. :func:`~mjwalk.arms.kinematics.arm_joint_angles` turns directions (+ forearm roll) into
+   the humanoid's joint angles.
 
 Frames: the body frame at the shoulder of the moving arm, metres, x forward, y left, z up
 (the humanoid's thorax frame in its neutral pose). A constraint outside the trained range is
@@ -20,76 +21,25 @@ never used silently: the result carries its distance to the training data and a 
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 from scipy.optimize import least_squares
-from scipy.spatial.transform import Rotation
 
 from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.arms.armrep import ArmRepresentation, apply_pose
 from mjwalk.arms.dcs import DCSNetwork
-from mjwalk.conventions import DEFAULT_STATURE
+from mjwalk.arms.kinematics import (
+    arm_segment_lengths,
+    end_effector,
+    min_jerk,
+    two_link_ik,
+)
 from mjwalk.errors import MjwalkError, ModelFileError
 
 REACH_FORMAT = "mjwalk.reach"
 REACH_VERSION = 1
-
-#: Anthropometric segment lengths as shares of stature H (Winter): upper arm, forearm, hand.
-ARM_SEGMENT_SHARES = (0.186, 0.146, 0.108)
-
-
-#: Relaxed hand position (m, left shoulder frame, x fwd, y left, z up) where reaches start.
-REST_HAND = (0.15, 0.02, -0.60)
-
-
-def arm_segment_lengths(stature: float = DEFAULT_STATURE, with_hand: bool = True) -> np.ndarray:
-    """Upper arm, forearm (and hand) lengths in metres for a person of ``stature`` metres."""
-    shares = ARM_SEGMENT_SHARES if with_hand else ARM_SEGMENT_SHARES[:2]
-    return stature * np.asarray(shares)
-
-
-def chain_points(directions: np.ndarray, lengths: np.ndarray) -> np.ndarray:
-    """Joint positions (..., S+1, 3) from the shoulder (origin) along unit segment
-    ``directions`` (..., S, 3) with ``lengths`` (S,) metres."""
-    seg = directions * np.asarray(lengths)[:, None]
-    zero = np.zeros((*directions.shape[:-2], 1, 3))
-    return np.concatenate([zero, np.cumsum(seg, axis=-2)], axis=-2)
-
-
-def end_effector(directions: np.ndarray, lengths: np.ndarray) -> np.ndarray:
-    """Hand (end of the chain) position (..., 3), metres from the shoulder."""
-    return np.einsum("...sj,s->...j", directions, np.asarray(lengths))
-
-
-def min_jerk(tau: np.ndarray) -> np.ndarray:
-    """Minimum-jerk profile 10 t^3 - 15 t^4 + 6 t^5 on t in [0, 1]."""
-    tau = np.clip(tau, 0.0, 1.0)
-    return tau**3 * (10 - 15 * tau + 6 * tau**2)
-
-
-def two_link_ik(
-    target: np.ndarray, l1: float, l2: float, elbow_hint: np.ndarray
-) -> tuple[np.ndarray, np.ndarray]:
-    """Unit directions (upper arm, forearm) putting the wrist at ``target`` (3,) from the
-    shoulder, with the elbow in the plane of the shoulder-wrist axis and ``elbow_hint`` (the
-    swivel angle of the hint is kept). Unreachable targets are clamped to the workspace."""
-    d = float(np.linalg.norm(target))
-    d = float(np.clip(d, abs(l1 - l2) + 1e-6, l1 + l2 - 1e-6))
-    axis = target / max(np.linalg.norm(target), 1e-9)
-    perp = elbow_hint - (elbow_hint @ axis) * axis
-    if np.linalg.norm(perp) < 1e-9:
-        perp = np.cross(axis, [0.0, 1.0, 0.0])
-        if np.linalg.norm(perp) < 1e-9:
-            perp = np.cross(axis, [1.0, 0.0, 0.0])
-    perp /= np.linalg.norm(perp)
-    a = (l1**2 - l2**2 + d**2) / (2 * d)
-    h = np.sqrt(max(l1**2 - a**2, 0.0))
-    elbow = a * axis + h * perp
-    wrist = d * axis
-    return elbow / l1, (wrist - elbow) / l2
 
 
 @dataclass
@@ -305,265 +255,3 @@ class ReachModel:
         except (KeyError, ValueError, TypeError) as exc:
             raise ModelFileError(f"{path}: corrupt reach model ({exc})") from exc
         return model
-
-
-# ---------------------------------------------------------------- joint angles
-#: Joint names of one arm of the mjwalk humanoid (mjwalk.body.humanoid), in output order.
-ARM_JOINTS = (
-    "shoulder_flex",
-    "shoulder_abd",
-    "shoulder_rot",
-    "elbow",
-    "forearm_pron",
-    "wrist_flex",
-    "wrist_dev",
-)
-
-
-def arm_joint_angles(
-    directions: np.ndarray, side: str = "l", roll: np.ndarray | None = None
-) -> np.ndarray:
-    """Humanoid arm joint angles (n, 7) in radians, order :data:`ARM_JOINTS`, from segment
-    directions (n, S, 3) in the thorax frame (x forward, y left, z up; S = 2 or 3) and an
-    optional forearm roll (n,) (pronation, radians).
-
-    The humanoid's chain (mjwalk.body.humanoid) is R_sh = Ry(-flex) Rx(s abd) Rz(-s rot) with
-    the arm along -z, elbow Ry(-elbow), pronation Rz(-s pron), wrist Ry(-flex) Rx(s dev), with
-    s = +1 for the left and -1 for the right arm. The upper arm's twist is the one that puts
-    the forearm in the elbow's flexion plane; when the elbow is straight it is carried over
-    from the previous frame.
-    """
-    s = 1.0 if side == "l" else -1.0
-    U = np.asarray(directions, dtype=float)
-    n = len(U)
-    q = np.zeros((n, 7))
-    prev_x = None
-    for t in range(n):
-        u1, u2 = U[t, 0], U[t, 1]
-        z = -u1
-        x = u2 - (u2 @ u1) * u1
-        if np.linalg.norm(x) < 1e-3:
-            x = prev_x if prev_x is not None else np.array([1.0, 0.0, 0.0])
-            x = x - (x @ z) * z
-        x /= np.linalg.norm(x)
-        prev_x = x
-        y = np.cross(z, x)
-        r_sh = Rotation.from_matrix(np.column_stack([x, y, z]))
-        a, b, c = r_sh.as_euler("YXZ")
-        elbow = float(np.arccos(np.clip(u1 @ u2, -1, 1)))
-        pron = 0.0 if roll is None else float(roll[t])
-        q[t, :5] = [-a, s * b, -s * c, elbow, pron]
-        if U.shape[1] > 2:
-            r_fa = r_sh * Rotation.from_euler("YZ", [-elbow, -s * pron])
-            h = r_fa.inv().apply(U[t, 2])
-            beta = np.arcsin(np.clip(h[1], -1, 1))
-            q[t, 5] = np.arctan2(h[0], -h[2])
-            q[t, 6] = s * beta
-    q[:, 0] = np.unwrap(q[:, 0])
-    q[:, 2] = np.unwrap(q[:, 2])
-    return q
-
-
-# ---------------------------------------------------------------- fingers
-_FINGERS = ("index", "middle", "ring", "little")
-#: Joint angles (rad) of the one-parameter grip synergy at closure g = 0 (open) and g = 1.
-_OPEN_CMC, _CLOSED_FLEX = 1.1, 1.0
-
-
-@functools.lru_cache(maxsize=4)
-def _hand_model(stature: float):
-    import mujoco
-
-    from mjwalk.body.humanoid import humanoid_model
-
-    model, jmap = humanoid_model(stature)
-    return model, jmap, mujoco.MjData(model)
-
-
-def grip_synergy(closure: float, side: str = "l") -> dict[str, float]:
-    """Finger joint angles (rad) of the grip synergy at ``closure`` in [0, 1]: the thumb's
-    opposition (CMC) closes from 63 deg to 0 while the four fingers flex (MCP = PIP = phi,
-    DIP = 0.7 phi, phi up to 57 deg) and the thumb MCP/IP flex to half that."""
-    g = float(np.clip(closure, 0.0, 1.0))
-    phi = _CLOSED_FLEX * g
-    q = {f"thumb_{side}_cmc": _OPEN_CMC * (1 - g)}
-    q[f"thumb_{side}_mcp"] = 0.5 * phi * 0.8
-    q[f"thumb_{side}_ip"] = 0.5 * phi
-    for f in _FINGERS:
-        q[f"{f}_{side}_mcp"] = phi
-        q[f"{f}_{side}_pip"] = phi
-        q[f"{f}_{side}_dip"] = 0.7 * phi
-    return q
-
-
-def pinch_aperture(
-    finger_q: dict[str, float], side: str = "l", stature: float = DEFAULT_STATURE
-) -> float:
-    """Distance (m) between the thumb tip and the index fingertip of the humanoid hand for the
-    given finger joint angles (forward kinematics of mjwalk.body.humanoid in MuJoCo)."""
-    import mujoco
-
-    model, jmap, data = _hand_model(round(float(stature), 4))
-    q = jmap.neutral_qpos(model, stature)
-    for name, v in finger_q.items():
-        q[jmap.adr(name)] = v
-    data.qpos[:] = q
-    mujoco.mj_kinematics(model, data)
-
-    def tip(body, length):
-        b = model.body(body).id
-        return data.xpos[b] + data.xmat[b].reshape(3, 3) @ np.array([0.0, 0.0, -length * stature])
-
-    return float(
-        np.linalg.norm(tip(f"index_{side}_dip_seg", 0.011) - tip(f"thumb_{side}_tip", 0.015))
-    )
-
-
-def fingers_for_aperture(
-    aperture: float, side: str = "l", stature: float = DEFAULT_STATURE
-) -> dict:
-    """Finger joint angles (rad) whose thumb-index distance equals ``aperture`` metres (to
-    0.1 mm) along the grip synergy; apertures outside the hand's range raise MjwalkError."""
-    from scipy.optimize import brentq
-
-    lo = pinch_aperture(grip_synergy(1.0, side), side, stature)
-    hi = pinch_aperture(grip_synergy(0.0, side), side, stature)
-    if not lo <= aperture <= hi:
-        raise MjwalkError(
-            f"grip aperture {aperture * 100:.1f} cm outside the hand's range "
-            f"{lo * 100:.1f}-{hi * 100:.1f} cm (stature {stature} m)"
-        )
-    g = brentq(
-        lambda c: pinch_aperture(grip_synergy(c, side), side, stature) - aperture,
-        0.0,
-        1.0,
-        xtol=1e-6,
-    )
-    return grip_synergy(g, side)
-
-
-def finger_trajectory(
-    apertures: np.ndarray, side: str = "l", stature: float = DEFAULT_STATURE
-) -> dict:
-    """Finger joint angles over time: {joint name: (n,) radians} for grip ``apertures`` (n,)
-    metres (clipped to the hand's range)."""
-    lo = pinch_aperture(grip_synergy(0.95, side), side, stature)
-    hi = pinch_aperture(grip_synergy(0.0, side), side, stature)
-    frames = [fingers_for_aperture(float(np.clip(a, lo, hi)), side, stature) for a in apertures]
-    return {k: np.array([f[k] for f in frames]) for k in frames[0]}
-
-
-# ---------------------------------------------------------------- in a scene
-def arm_frames(
-    q0: np.ndarray, jm, q: np.ndarray, side: str, times: np.ndarray
-) -> tuple[np.ndarray, list[str]]:
-    """Poses (len(times), nq): ``q0`` with one arm's joint angles ``q`` (n, 7), order
-    :data:`ARM_JOINTS`, radians) sampled evenly over [0, 1], interpolated at ``times`` in [0, 1]
-    and clipped to the humanoid's joint ranges; and the names of the joints that were clipped."""
-    src = np.linspace(0.0, 1.0, len(q))
-    out = np.repeat(np.asarray(q0)[None], len(times), axis=0)
-    clipped = []
-    for k, name in enumerate(ARM_JOINTS):
-        part, *rest = name.split("_")
-        jn = "_".join([part, side, *rest])  # "shoulder_flex" -> "shoulder_l_flex"
-        qi = np.interp(times, src, q[:, k])
-        lo, hi = jm.limits(jn)
-        if (qi < lo - 1e-6).any() or (qi > hi + 1e-6).any():
-            clipped.append(jn)
-        out[:, jm.adr(jn)] = np.clip(qi, lo, hi)
-    return out, clipped
-
-
-def _site_pose(model, name: str):
-    import mujoco
-
-    sid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, name)
-    if sid < 0:
-        raise MjwalkError(f"scene has no site {name!r}")
-    return model.site_pos[sid], model.site_quat[sid], sid
-
-
-def reach_in_scene(
-    scene,
-    model: ReachModel,
-    stand_site: str,
-    target_site: str,
-    constraint: np.ndarray | None = None,
-    side: str = "l",
-    stature: float = DEFAULT_STATURE,
-    duration: float = 1.2,
-    fps: float = 30.0,
-    target_offset: np.ndarray = (0.0, 0.0, 0.0),
-    object_size: float | None = None,
-):
-    """A :class:`~mjwalk.playback.Timeline` of the humanoid standing at ``stand_site`` (facing
-    the site's +x) and reaching its ``side`` hand to ``target_site`` (+ ``target_offset``,
-    world metres): the hand starts at :data:`REST_HAND` (relaxed, elbow slightly bent; the
-    start of :mod:`~mjwalk.body.reachgen` reaches) and ends on the target within
-    1 cm; joint angles outside the humanoid's ranges are clipped (noted in ``meta``).
-
-    ``constraint`` defaults to the start and end hand positions (an ``"endpoints"`` model); for
-    an ``"obstacle"`` or ``"grasp"`` model pass its constraint vector. Returns
-    ``(timeline, result)`` with ``result`` the :class:`ReachResult` in the shoulder frame.
-    """
-    import mujoco
-
-    from mjwalk.body.humanoid import attach_humanoid, pelvis_height
-    from mjwalk.timeline.frames import Timeline, yaw_quat
-
-    if side != "l":
-        raise MjwalkError("reach_in_scene: models are trained for the left arm; mirror first")
-    mj, jm = attach_humanoid(scene, stature)
-    _site_pose(mj, stand_site)
-    data = mujoco.MjData(mj)
-    mujoco.mj_kinematics(mj, data)  # site_xpos of bodies' sites need the kinematics
-    sid_stand = mujoco.mj_name2id(mj, mujoco.mjtObj.mjOBJ_SITE, stand_site)
-    sid_target = mujoco.mj_name2id(mj, mujoco.mjtObj.mjOBJ_SITE, target_site)
-    if sid_target < 0:
-        raise MjwalkError(f"scene has no site {target_site!r}")
-    xmat = data.site_xmat[sid_stand].reshape(3, 3)
-    yaw = float(np.arctan2(xmat[1, 0], xmat[0, 0]))
-    q0 = jm.neutral_qpos(mj, stature)
-    r = jm.root
-    q0[r : r + 3] = [
-        data.site_xpos[sid_stand][0],
-        data.site_xpos[sid_stand][1],
-        pelvis_height(stature),
-    ]
-    q0[r + 3 : r + 7] = yaw_quat(np.array([yaw]))[0]
-    data.qpos[:] = q0
-    mujoco.mj_kinematics(mj, data)
-    prefix = jm.prefix
-    ua = mj.body(f"{prefix}upper_arm_{side}").id
-    shoulder = data.xpos[ua].copy()
-    frame = data.xmat[ua].reshape(3, 3).copy()  # shoulder frame at zero shoulder angles
-    target_w = data.site_xpos[sid_target] + np.asarray(target_offset, dtype=float)
-    end = frame.T @ (target_w - shoulder)
-    start = np.asarray(REST_HAND, dtype=float)
-    c = np.r_[start, end] if constraint is None else np.asarray(constraint, dtype=float)
-    res = model.predict(c, start=start, end=end, object_size=object_size)
-    q = arm_joint_angles(res.directions, side, None if res.extras is None else res.extras[:, 1])
-    n_out = max(2, round(duration * fps) + 1)
-    src = np.linspace(0.0, 1.0, len(q))
-    dst = np.linspace(0.0, 1.0, n_out)
-    qpos, clipped = arm_frames(q0, jm, q, side, dst)
-    if res.extras is not None:
-        ap = np.interp(dst, src, res.extras[:, 0])
-        for name, vals in finger_trajectory(ap, side, stature).items():
-            qpos[:, jm.adr(name)] = vals
-    tl = Timeline(
-        model=mj,
-        jointmap=jm,
-        fps=fps,
-        t=dst * duration,
-        qpos=qpos,
-        scene=str(scene),
-        stature=stature,
-    )
-    tl.meta = {
-        "clipped_joints": clipped,
-        "target_world": target_w,
-        "shoulder": shoulder,
-        "frame": frame,
-    }
-    return tl, res

@@ -24,7 +24,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mjwalk.arms.reach import REST_HAND, arm_segment_lengths, end_effector, min_jerk, two_link_ik
+from mjwalk.arms.kinematics import (
+    REST_HAND,
+    arm_segment_lengths,
+    end_effector,
+    min_jerk,
+    two_link_ik,
+)
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 
