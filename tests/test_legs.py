@@ -146,7 +146,7 @@ def stance_drift(walk, pts, pitch, eps=1e-4):
 
 
 def _ball_xy(foot):
-    from mjwalk.body.legs.synthesis import _ball
+    from mjwalk.body.legs.kinematics import ball_offset as _ball
 
     b = _ball(leg_geometry())
     return np.asarray(foot[:2]) + b * np.array([np.cos(foot[2]), np.sin(foot[2])])
