@@ -74,13 +74,13 @@ _LAZY: dict[str, str] = {
     # cycles and reports
     "CycleResult": "mjwalk.cycle.types",
     "CycleSpec": "mjwalk.cycle.types",
-    "format_markdown": "mjwalk.cycle.report",
-    "format_summary": "mjwalk.cycle.report",
+    "format_markdown": "mjwalk.report",
+    "format_summary": "mjwalk.report",
     "load_cycle_spec": "mjwalk.cycle.spec",
-    "report_dict": "mjwalk.cycle.report",
+    "report_dict": "mjwalk.report",
     "simulate_cycle": "mjwalk.cycle.simulate",
     "simulate_cycles": "mjwalk.cycle.simulate",
-    "write_report": "mjwalk.cycle.report",
+    "write_report": "mjwalk.report",
     # video and plots
     "render_frames": "mjwalk.render",
     "render_video": "mjwalk.render",
@@ -167,7 +167,6 @@ if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
     from mjwalk.arms.reachdefault import default_reach_model
     from mjwalk.body.humanoid import attach_humanoid, build_humanoid, humanoid_model
     from mjwalk.body.legs import LegMotion, legs_from_walk
-    from mjwalk.cycle.report import format_markdown, format_summary, report_dict, write_report
     from mjwalk.cycle.simulate import simulate_cycle, simulate_cycles
     from mjwalk.cycle.spec import load_cycle_spec
     from mjwalk.cycle.types import CycleResult, CycleSpec
@@ -183,6 +182,7 @@ if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
     from mjwalk.plan.walkpath import PathStep, WalkPath
     from mjwalk.plot import save_plan_png
     from mjwalk.render import render_frames, render_video
+    from mjwalk.report import format_markdown, format_summary, report_dict, write_report
     from mjwalk.timeline.collisions import (
         Contact,
         check_collisions,

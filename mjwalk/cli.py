@@ -107,9 +107,9 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 def _cmd_simulate(args: argparse.Namespace) -> int:
     import json
 
-    from mjwalk.cycle.report import format_summary, report_dict, write_report
     from mjwalk.cycle.simulate import prepare, simulate_cycle, simulate_cycles
     from mjwalk.cycle.spec import load_cycle_spec
+    from mjwalk.report import format_summary, report_dict, write_report
 
     spec = load_cycle_spec(args.spec)
     print(

@@ -11,7 +11,10 @@ import numpy as np
 import pytest
 
 from mjwalk.cycle import report as report_mod
-from mjwalk.cycle.report import (
+from mjwalk.cycle.types import ArmRecord, CycleResult, CycleSpec, TaskRecord, WalkRecord
+from mjwalk.errors import MjwalkError
+from mjwalk.plan.walkpath import WalkPath
+from mjwalk.report import (
     CAPTURE_TABLE1,
     REPORT_FILES,
     describe,
@@ -19,9 +22,6 @@ from mjwalk.cycle.report import (
     report_dict,
     write_report,
 )
-from mjwalk.cycle.types import ArmRecord, CycleResult, CycleSpec, TaskRecord, WalkRecord
-from mjwalk.errors import MjwalkError
-from mjwalk.plan.walkpath import WalkPath
 from mjwalk.timeline import Contact
 from mjwalk.world import load_workplace
 
