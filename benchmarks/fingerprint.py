@@ -9,7 +9,8 @@ Compared outputs:
 - ``cycle``: the timeline qpos, cycle time and contacts of 2 simulated station cycles (rng 0, 1);
 - ``simulate``: report.md, report.json, walks.csv, cycles.csv, spaghetti.png and histograms.png of
   ``mjwalk simulate scenes/assembly_station.toml --runs 4 --seed 0`` in a temporary directory
-  (the report has no wall-clock fields);
+  (the report has no wall-clock fields; the checkout's path, which the report names, is
+  replaced by ``<repo>`` so checkouts in different folders compare);
 - ``frames``: raw pixels of 10 rendered frames (320x240, track camera) of cycle rng 0 and 2 frames
   of the top camera.
 
