@@ -1,4 +1,4 @@
-"""ReachModel and the reach generator (mjwalk.body.reach, mjwalk.body.reachgen)."""
+"""ReachModel and the reach generator (mjwalk.arms.reach, mjwalk.arms.reachgen)."""
 
 from pathlib import Path
 

@@ -3,7 +3,7 @@
 Pipeline of :meth:`ReachModel.predict`:
 
 1. the constraint vector (start/end hand position; obstacle ratio B/A; object size and
-   orientation...) goes through a :class:`~mjwalk.body.dcs.DCSNetwork` that returns the PCA
+   orientation...) goes through a :class:`~mjwalk.arms.dcs.DCSNetwork` that returns the PCA
    coefficients ``b`` and the alignment pose of the movement;
 2. eq. 1 rebuilds the aligned segment directions, the pose maps them back to the body frame;
 3. when the actual start and end hand positions are given, the pose (rotation + angular scale)

@@ -16,7 +16,7 @@ _MEMO: dict = {}
 
 
 def default_reach_model(progress: bool = True):
-    """The :class:`~mjwalk.body.reach.ReachModel` of start/end-constrained reaches of the left
+    """The :class:`~mjwalk.arms.reach.ReachModel` of start/end-constrained reaches of the left
     arm (``reachgen.generate("endpoints", 200, seed 0)``), cached beside the step model."""
     from mjwalk.arms import reachgen
     from mjwalk.arms.reach import ReachModel

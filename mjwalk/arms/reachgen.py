@@ -15,7 +15,7 @@ path lifts over the obstacle with its peak above it;
 extras = grip aperture (m) and forearm roll (rad) per sample.
 
 Frame: left shoulder at the origin, metres, x forward, y left, z up. The "hand position" is the
-end of the hand segment (see :func:`mjwalk.body.reach.end_effector`).
+end of the hand segment (see :func:`mjwalk.arms.kinematics.end_effector`).
 """
 
 from __future__ import annotations

@@ -131,7 +131,8 @@ class CycleResult:
         walks: the walks, in order.
         arms: the arm motions, in order.
         cycle_time: seconds from the first task's start to the last task's end.
-        collisions: humanoid-vs-scene contacts (:class:`mjwalk.playback.Contact`), if checked.
+        collisions: humanoid-vs-scene contacts (:class:`~mjwalk.timeline.collisions.Contact`),
+            if checked.
         timeline: the per-frame humanoid poses (kept only when asked for: it is large).
     """
 

@@ -38,11 +38,12 @@ def reach_in_scene(
     target_offset: np.ndarray = (0.0, 0.0, 0.0),
     object_size: float | None = None,
 ):
-    """A :class:`~mjwalk.playback.Timeline` of the humanoid standing at ``stand_site`` (facing
-    the site's +x) and reaching its ``side`` hand to ``target_site`` (+ ``target_offset``,
-    world metres): the hand starts at :data:`REST_HAND` (relaxed, elbow slightly bent; the
-    start of :mod:`~mjwalk.body.reachgen` reaches) and ends on the target within
-    1 cm; joint angles outside the humanoid's ranges are clipped (noted in ``meta``).
+    """A :class:`~mjwalk.timeline.timeline.Timeline` of the humanoid standing at ``stand_site``
+    (facing the site's +x) and reaching its ``side`` hand to ``target_site`` (+
+    ``target_offset``, world metres): the hand starts at
+    :data:`~mjwalk.arms.kinematics.REST_HAND` (relaxed, elbow slightly bent; the start of
+    :mod:`~mjwalk.arms.reachgen` reaches) and ends on the target within 1 cm; joint angles
+    outside the humanoid's ranges are clipped (noted in ``meta``).
 
     ``constraint`` defaults to the start and end hand positions (an ``"endpoints"`` model); for
     an ``"obstacle"`` or ``"grasp"`` model pass its constraint vector. Returns
