@@ -92,9 +92,7 @@ def cross_validate(C, U, lengths, extras=None, endpoints=True, seed=0, folds=10)
         errs, ex_errs, neurons, t0 = [], [], [], time.perf_counter()
         for fold, (tr, te) in enumerate(kf.split(C)):
             reg = regressors(seed + fold, C.shape[1])[name]
-            model = ReachModel(
-                lengths, variance=0.98, dcs={"random_state": seed + fold}, regressor=reg
-            )
+            model = ReachModel(lengths, variance=0.98, dcs={"rng": seed + fold}, regressor=reg)
             model.fit(C[tr], U[tr], None if extras is None else extras[tr], rep=reps.get(fold))
             reps[fold] = model.rep_  # the PCA/alignment is shared by all regressors of a fold
             if model.n_neurons is not None:
@@ -184,7 +182,7 @@ def scene_clip(path: str) -> None:
 
     scene = Path(__file__).resolve().parents[1] / "scenes" / "assembly_station.xml"
     data = reachgen.generate("endpoints", 150, np.random.default_rng(0))
-    model = ReachModel(data.lengths, dcs={"random_state": 0}).fit(data.constraints, data.directions)
+    model = ReachModel(data.lengths, dcs={"rng": 0}).fit(data.constraints, data.directions)
     tl, res = reach_in_scene(
         scene, model, "stand_rack2", "rack2_screw2", target_offset=(0, 0, 0.06)
     )

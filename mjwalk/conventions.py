@@ -36,6 +36,16 @@ def side_prefix(side: Side) -> Literal["l", "r"]:
     raise ValueError(f"side must be 'left' or 'right', got {side!r}")
 
 
+def side_of_prefix(prefix: str) -> Side:
+    """The side of a one-letter joint-name side ``"l"`` / ``"r"`` (inverse of
+    :func:`side_prefix`)."""
+    if prefix == "l":
+        return "left"
+    if prefix == "r":
+        return "right"
+    raise ValueError(f"side prefix must be 'l' or 'r', got {prefix!r}")
+
+
 def other_side(side: Side) -> Side:
     """The opposite side: ``"left"`` <-> ``"right"``."""
     return "right" if side == "left" else "left"

@@ -203,7 +203,9 @@ def test_ik_round_trip():
             [rng.uniform(-0.25, 0.25), g.hip_y + rng.uniform(-0.05, 0.05), -rng.uniform(0.55, 0.78)]
         )
         yaw, pitch = rng.uniform(-0.3, 0.3), rng.uniform(-0.2, 0.1)
-        ang = leg_ik((target - [0, g.hip_y, 0])[None], np.array([yaw]), np.array([pitch]), "l", g)
+        ang = leg_ik(
+            (target - [0, g.hip_y, 0])[None], np.array([yaw]), np.array([pitch]), "left", g
+        )
         if any(np.isclose(v[0], jm.limits(k)).any() for k, v in ang.items()):
             continue  # clipped at a joint limit: the pose is not reachable exactly
         checked += 1
@@ -361,6 +363,7 @@ def test_feet_stay_above_floor_on_awkward_steps(path):
 def test_leg_fk_matches_mujoco():
     """leg_fk / foot_lowest agree with MuJoCo's forward kinematics of the humanoid."""
     from mjwalk.body.legs import foot_lowest, leg_fk
+    from mjwalk.conventions import side_of_prefix
 
     g = leg_geometry()
     model, jm = humanoid_model()
@@ -379,8 +382,8 @@ def test_leg_fk_matches_mujoco():
                 ("toe_{}", (-20, 50)),
             )
         }
-        ankle, R = leg_fk(ang, side, g)
-        low = foot_lowest(ang, side, g)
+        ankle, R = leg_fk(ang, side_of_prefix(side), g)
+        low = foot_lowest(ang, side_of_prefix(side), g)
         for i in range(20):
             q = jm.neutral_qpos(model)
             q[:3] = [0, 0, 2.0]
@@ -521,5 +524,5 @@ def test_stance_foot_ahead_of_the_hip_keeps_its_place():
     # the stance foot of step 16 (right) keeps its commanded pitch: no joint clipped it
     st = walk.steps[16]
     sl = slice(st.start, st.end + 1)
-    assert np.abs(pitch[sl, 1] - legs.pitch["r"][sl]).max() < np.deg2rad(0.5)
+    assert np.abs(pitch[sl, 1] - legs.pitch["right"][sl]).max() < np.deg2rad(0.5)
     assert low.min() >= -0.002

@@ -15,7 +15,7 @@ from mjwalk.timeline import reach_in_scene
 @pytest.fixture(scope="module")
 def endpoint_model():
     data = reachgen.generate("endpoints", 60, np.random.default_rng(0))
-    model = ReachModel(data.lengths, dcs={"random_state": 0}).fit(
+    model = ReachModel(data.lengths, dcs={"rng": 0}).fit(
         data.constraints[:50], data.directions[:50]
     )
     return model, data
@@ -74,7 +74,7 @@ def test_joint_angles_reproduce_directions_through_humanoid_chain(endpoint_model
 
     _, data = endpoint_model
     U = data.directions[3]
-    q = arm_joint_angles(U, side="l")
+    q = arm_joint_angles(U, side="left")
     for t in range(len(U)):
         flex, abd, rot, elbow, pron, wflex, wdev = q[t]
         r_sh = Rotation.from_euler("YXZ", [-flex, abd, -rot])
@@ -101,7 +101,7 @@ def test_grasp_closes_fingers_on_object_within_5mm():
     from mjwalk.arms.hands import finger_trajectory, fingers_for_aperture, pinch_aperture
 
     data = reachgen.generate("grasp", 60, np.random.default_rng(4))
-    model = ReachModel(data.lengths, dcs={"random_state": 0}).fit(
+    model = ReachModel(data.lengths, dcs={"rng": 0}).fit(
         data.constraints[:50], data.directions[:50], data.extras[:50]
     )
     for i in (50, 51, 52):

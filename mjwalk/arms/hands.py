@@ -10,7 +10,7 @@ import functools
 
 import numpy as np
 
-from mjwalk.conventions import DEFAULT_STATURE
+from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 from mjwalk.errors import MjwalkError
 
 _FINGERS = ("index", "middle", "ring", "little")
@@ -28,30 +28,32 @@ def _hand_model(stature: float):
     return model, jmap, mujoco.MjData(model)
 
 
-def grip_synergy(closure: float, side: str = "l") -> dict[str, float]:
+def grip_synergy(closure: float, side: Side = "left") -> dict[str, float]:
     """Finger joint angles (rad) of the grip synergy at ``closure`` in [0, 1]: the thumb's
     opposition (CMC) closes from 63 deg to 0 while the four fingers flex (MCP = PIP = phi,
     DIP = 0.7 phi, phi up to 57 deg) and the thumb MCP/IP flex to half that."""
     g = float(np.clip(closure, 0.0, 1.0))
     phi = _CLOSED_FLEX * g
-    q = {f"thumb_{side}_cmc": _OPEN_CMC * (1 - g)}
-    q[f"thumb_{side}_mcp"] = 0.5 * phi * 0.8
-    q[f"thumb_{side}_ip"] = 0.5 * phi
+    p = side_prefix(side)  # joint names: "thumb_l_cmc"
+    q = {f"thumb_{p}_cmc": _OPEN_CMC * (1 - g)}
+    q[f"thumb_{p}_mcp"] = 0.5 * phi * 0.8
+    q[f"thumb_{p}_ip"] = 0.5 * phi
     for f in _FINGERS:
-        q[f"{f}_{side}_mcp"] = phi
-        q[f"{f}_{side}_pip"] = phi
-        q[f"{f}_{side}_dip"] = 0.7 * phi
+        q[f"{f}_{p}_mcp"] = phi
+        q[f"{f}_{p}_pip"] = phi
+        q[f"{f}_{p}_dip"] = 0.7 * phi
     return q
 
 
 def pinch_aperture(
-    finger_q: dict[str, float], side: str = "l", stature: float = DEFAULT_STATURE
+    finger_q: dict[str, float], side: Side = "left", stature: float = DEFAULT_STATURE
 ) -> float:
     """Distance (m) between the thumb tip and the index fingertip of the humanoid hand for the
     given finger joint angles (forward kinematics of mjwalk.body.humanoid in MuJoCo)."""
     import mujoco
 
     model, jmap, data = _hand_model(round(float(stature), 4))
+    p = side_prefix(side)
     q = jmap.neutral_qpos(model, stature)
     for name, v in finger_q.items():
         q[jmap.adr(name)] = v
@@ -62,13 +64,11 @@ def pinch_aperture(
         b = model.body(body).id
         return data.xpos[b] + data.xmat[b].reshape(3, 3) @ np.array([0.0, 0.0, -length * stature])
 
-    return float(
-        np.linalg.norm(tip(f"index_{side}_dip_seg", 0.011) - tip(f"thumb_{side}_tip", 0.015))
-    )
+    return float(np.linalg.norm(tip(f"index_{p}_dip_seg", 0.011) - tip(f"thumb_{p}_tip", 0.015)))
 
 
 def fingers_for_aperture(
-    aperture: float, side: str = "l", stature: float = DEFAULT_STATURE
+    aperture: float, side: Side = "left", stature: float = DEFAULT_STATURE
 ) -> dict:
     """Finger joint angles (rad) whose thumb-index distance equals ``aperture`` metres (to
     0.1 mm) along the grip synergy; apertures outside the hand's range raise MjwalkError."""
@@ -91,7 +91,7 @@ def fingers_for_aperture(
 
 
 def finger_trajectory(
-    apertures: np.ndarray, side: str = "l", stature: float = DEFAULT_STATURE
+    apertures: np.ndarray, side: Side = "left", stature: float = DEFAULT_STATURE
 ) -> dict:
     """Finger joint angles over time: {joint name: (n,) radians} for grip ``apertures`` (n,)
     metres (clipped to the hand's range)."""

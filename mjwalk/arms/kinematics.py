@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
-from mjwalk.conventions import DEFAULT_STATURE
+from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 
 #: Anthropometric segment lengths as shares of stature H (Winter): upper arm, forearm, hand.
 ARM_SEGMENT_SHARES = (0.186, 0.146, 0.108)
@@ -80,7 +80,7 @@ ARM_JOINTS = (
 
 
 def arm_joint_angles(
-    directions: np.ndarray, side: str = "l", roll: np.ndarray | None = None
+    directions: np.ndarray, side: Side = "left", roll: np.ndarray | None = None
 ) -> np.ndarray:
     """Humanoid arm joint angles (n, 7) in radians, order :data:`ARM_JOINTS`, from segment
     directions (n, S, 3) in the thorax frame (x forward, y left, z up; S = 2 or 3) and an
@@ -92,7 +92,7 @@ def arm_joint_angles(
     the forearm in the elbow's flexion plane; when the elbow is straight it is carried over
     from the previous frame.
     """
-    s = 1.0 if side == "l" else -1.0
+    s = 1.0 if side == "left" else -1.0
     U = np.asarray(directions, dtype=float)
     n = len(U)
     q = np.zeros((n, 7))
@@ -124,7 +124,7 @@ def arm_joint_angles(
 
 
 def arm_frames(
-    q0: np.ndarray, jm, q: np.ndarray, side: str, times: np.ndarray
+    q0: np.ndarray, jm, q: np.ndarray, side: Side, times: np.ndarray
 ) -> tuple[np.ndarray, list[str]]:
     """Poses (len(times), nq): ``q0`` with one arm's joint angles ``q`` (n, 7), order
     :data:`ARM_JOINTS`, radians) sampled evenly over [0, 1], interpolated at ``times`` in [0, 1]
@@ -134,7 +134,7 @@ def arm_frames(
     clipped = []
     for k, name in enumerate(ARM_JOINTS):
         part, *rest = name.split("_")
-        jn = "_".join([part, side, *rest])  # "shoulder_flex" -> "shoulder_l_flex"
+        jn = "_".join([part, side_prefix(side), *rest])  # "shoulder_flex" -> "shoulder_l_flex"
         qi = np.interp(times, src, q[:, k])
         lo, hi = jm.limits(jn)
         if (qi < lo - 1e-6).any() or (qi > hi + 1e-6).any():

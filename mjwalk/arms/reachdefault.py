@@ -36,9 +36,7 @@ def default_reach_model(progress: bool = True):
         if progress:
             print(f"[mjwalk] building the default reach model -> {path}", file=sys.stderr)
         data = reachgen.generate("endpoints", N_TRAIN, np.random.default_rng(0))
-        model = ReachModel(data.lengths, dcs={"random_state": 0}).fit(
-            data.constraints, data.directions
-        )
+        model = ReachModel(data.lengths, dcs={"rng": 0}).fit(data.constraints, data.directions)
         model.save(path)
         if progress:
             print(

@@ -25,6 +25,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.body.humanoid import JointMap, attach_humanoid, pelvis_height
+from mjwalk.conventions import Side, side_prefix
 from mjwalk.cycle.types import (
     ArmRecord,
     CycleResult,
@@ -182,7 +183,7 @@ def _reach_frames(
     approach_w: np.ndarray,
     hold: float,
     fps: float,
-    side: str = "l",
+    side: Side = "left",
 ):
     """Frames of reaching from pose ``q0`` to ``target_w`` (world, m), holding, returning.
 
@@ -204,7 +205,7 @@ def _reach_frames(
     data = mujoco.MjData(m)
     data.qpos[:] = q0
     mujoco.mj_kinematics(m, data)
-    ua = m.body(f"{jm.prefix}upper_arm_{side}").id
+    ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id
     shoulder = data.xpos[ua].copy()
     frame = data.xmat[ua].reshape(3, 3).copy()
     end = frame.T @ (target_w - shoulder)
@@ -225,7 +226,7 @@ def _reach_frames(
     out, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
     data.qpos[:] = out[-1]
     mujoco.mj_kinematics(m, data)
-    wrist = data.xpos[m.body(f"{jm.prefix}hand_{side}").id]
+    wrist = data.xpos[m.body(f"{jm.prefix}hand_{side_prefix(side)}").id]
     tip = wrist + frame @ (directions[-1, 2] * lengths[2])
     error = float(np.linalg.norm(tip - target_w))
     n_hold = max(0, round(hold * fps))

@@ -10,7 +10,7 @@ import numpy as np
 from mjwalk.arms.hands import finger_trajectory
 from mjwalk.arms.kinematics import REST_HAND, arm_frames, arm_joint_angles
 from mjwalk.arms.reach import ReachModel
-from mjwalk.conventions import DEFAULT_STATURE
+from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 from mjwalk.errors import MjwalkError
 from mjwalk.timeline.frames import yaw_quat
 from mjwalk.timeline.timeline import Timeline
@@ -31,7 +31,7 @@ def reach_in_scene(
     stand_site: str,
     target_site: str,
     constraint: np.ndarray | None = None,
-    side: str = "l",
+    side: Side = "left",
     stature: float = DEFAULT_STATURE,
     duration: float = 1.2,
     fps: float = 30.0,
@@ -53,7 +53,7 @@ def reach_in_scene(
 
     from mjwalk.body.humanoid import attach_humanoid, pelvis_height
 
-    if side != "l":
+    if side != "left":
         raise MjwalkError("reach_in_scene: models are trained for the left arm; mirror first")
     mj, jm = attach_humanoid(scene, stature)
     _site_pose(mj, stand_site)
@@ -76,7 +76,7 @@ def reach_in_scene(
     data.qpos[:] = q0
     mujoco.mj_kinematics(mj, data)
     prefix = jm.prefix
-    ua = mj.body(f"{prefix}upper_arm_{side}").id
+    ua = mj.body(f"{prefix}upper_arm_{side_prefix(side)}").id
     shoulder = data.xpos[ua].copy()
     frame = data.xmat[ua].reshape(3, 3).copy()  # shoulder frame at zero shoulder angles
     target_w = data.site_xpos[sid_target] + np.asarray(target_offset, dtype=float)

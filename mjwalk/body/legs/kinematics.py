@@ -3,7 +3,9 @@ lowest point, and the geometry of a foot rolling about its heel or ball on a foo
 
 Pelvis frame: x forward, y left, z up, pelvis upright. World frame: metres, z up, yaw from +x
 CCW. Footprint ``(x, y, yaw)``: the floor point under the ankle joint with the foot flat, and the
-foot's heading. ``side`` is the joint-name letter ``"l"`` / ``"r"``. Angles in radians.
+foot's heading. The public functions take ``side`` "left" / "right"; the helpers the synthesis
+loops over (:func:`hip_world`, :func:`leg_ik_world`) the joint-name letter "l" / "r". Angles in
+radians.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ import itertools
 import numpy as np
 
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
+from mjwalk.conventions import Side, side_of_prefix, side_prefix
 
 #: Smallest knee flexion the IK uses when a leg must stretch (radians): never lock the knee.
 KNEE_MIN = np.deg2rad(2.0)
@@ -56,7 +59,7 @@ def leg_ik(
     ankle_rel: np.ndarray,
     foot_yaw: np.ndarray,
     foot_pitch: np.ndarray,
-    side: str,
+    side: Side,
     geom: LegGeometry,
     clip: bool = True,
 ) -> dict[str, np.ndarray]:
@@ -66,7 +69,7 @@ def leg_ik(
         ankle_rel: (N, 3) ankle position relative to the hip joint centre, metres.
         foot_yaw: (N,) foot heading relative to the pelvis heading, radians (CCW).
         foot_pitch: (N,) foot pitch relative to the floor, radians, + toes up.
-        side: "l" or "r".
+        side: "left" or "right".
         geom: the leg lengths.
 
     Returns:
@@ -74,7 +77,8 @@ def leg_ik(
         flexion/inversion), anatomical signs, clipped to the humanoid's ranges. Unreachable
         targets are met as closely as the leg allows (stretched to :data:`KNEE_MIN`).
     """
-    s = 1.0 if side == "l" else -1.0
+    s = 1.0 if side == "left" else -1.0
+    p = side_prefix(side)
     L1, L2 = geom.thigh, geom.shank
     # the hip-to-ankle vector in the foot frame R_f = R_z(yaw) R_y(-pitch) (sole level
     # sideways); the chain hip R_z R_y R_x, knee R_y, ankle R_y R_x gives
@@ -95,12 +99,12 @@ def leg_ik(
     a = np.mod(a + np.pi, 2 * np.pi) - np.pi  # ankle dorsiflexion
     H = Rf @ rot_x(phi) @ rot_y(a - knee)  # = R_z(-s rot) R_y(-flex) R_x(s abd)
     out = {
-        f"hip_{side}_rot": -s * np.arctan2(H[:, 1, 0], H[:, 0, 0]),
-        f"hip_{side}_flex": np.arcsin(np.clip(H[:, 2, 0], -1, 1)),
-        f"hip_{side}_abd": s * np.arctan2(H[:, 2, 1], H[:, 2, 2]),
-        f"knee_{side}": knee,
-        f"ankle_{side}_flex": a,
-        f"ankle_{side}_inv": s * phi,
+        f"hip_{p}_rot": -s * np.arctan2(H[:, 1, 0], H[:, 0, 0]),
+        f"hip_{p}_flex": np.arcsin(np.clip(H[:, 2, 0], -1, 1)),
+        f"hip_{p}_abd": s * np.arctan2(H[:, 2, 1], H[:, 2, 2]),
+        f"knee_{p}": knee,
+        f"ankle_{p}_flex": a,
+        f"ankle_{p}_inv": s * phi,
     }
     if clip:
         for name, v in out.items():
@@ -109,21 +113,21 @@ def leg_ik(
     return out
 
 
-def leg_fk(angles: dict[str, np.ndarray], side: str, geom: LegGeometry):
+def leg_fk(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry):
     """Forward kinematics of one leg in the pelvis frame (x forward, y left, z up; pelvis
     upright), the humanoid's joint axes (:func:`~mjwalk.body.humanoid.build_humanoid`).
 
     Args:
         angles: joint name -> (N,) angles in radians (hip rotation/flexion/abduction, knee,
             ankle flexion/inversion of ``side``).
-        side: "l" or "r".
+        side: "left" or "right".
         geom: the leg lengths.
 
     Returns:
         (ankle (N, 3) relative to the hip joint centre in metres, foot rotation (N, 3, 3)).
     """
-    s = 1.0 if side == "l" else -1.0
-    a = {k: np.asarray(angles[k.format(side)], float) for k in LEG_JOINTS[:-1]}
+    s = 1.0 if side == "left" else -1.0
+    a = {k: np.asarray(angles[k.format(side_prefix(side))], float) for k in LEG_JOINTS[:-1]}
     R = rot_z(-s * a["hip_{}_rot"]) @ rot_y(-a["hip_{}_flex"]) @ rot_x(s * a["hip_{}_abd"])
     knee = R[..., 2] * -geom.thigh
     R = R @ rot_y(a["knee_{}"])
@@ -132,10 +136,11 @@ def leg_fk(angles: dict[str, np.ndarray], side: str, geom: LegGeometry):
     return ankle, R
 
 
-def foot_lowest(angles: dict[str, np.ndarray], side: str, geom: LegGeometry) -> np.ndarray:
+def foot_lowest(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry) -> np.ndarray:
     """(N,) height (m) of the lowest point of the foot's collision boxes (sole and toes, as
     built by :func:`~mjwalk.body.humanoid.build_humanoid`) above the hip joint centre, from the
-    leg angles (``toe_{side}`` included); add the hip height for the height above the floor."""
+    leg angles (``toe_l`` / ``toe_r`` included); add the hip height for the height above the
+    floor."""
     ankle, R = leg_fk(angles, side, geom)
     ah, ball, hw = geom.ankle_height, ball_offset(geom), geom.foot_width / 2
     corners = np.array(list(itertools.product((0.0, 1.0), (-hw, hw), (0.0, 1.0))))
@@ -143,7 +148,7 @@ def foot_lowest(angles: dict[str, np.ndarray], side: str, geom: LegGeometry) -> 
     foot = corners * [ball + geom.foot_back, 1.0, 0.8 * ah] + [-geom.foot_back, 0.0, -ah]
     # toes box in the toes frame (origin at the ball on the sole, rotated by the toe angle)
     toes = corners * [geom.foot_front - ball, 1.0, 0.4 * ah]
-    toe = np.asarray(angles[f"toe_{side}"], float)
+    toe = np.asarray(angles[f"toe_{side_prefix(side)}"], float)
     toes_foot = (rot_y(-toe)[:, None] @ toes[None, :, :, None])[..., 0] + [ball, 0.0, -ah]
     z_foot = (R[:, 2, None, :] * foot[None]).sum(-1)
     z_toes = (R[:, 2, None, :] * toes_foot).sum(-1)
@@ -256,4 +261,4 @@ def leg_ik_world(ankle, foot_yaw, pitch, root, yaw, side: str, geom: LegGeometry
     hip = hip_world(root, yaw, side, geom)
     rel = (rot_z(-yaw) @ (ankle - hip)[..., None])[..., 0]
     yrel = np.angle(np.exp(1j * (foot_yaw - yaw)))
-    return leg_ik(rel, yrel, pitch, side, geom, clip=False)
+    return leg_ik(rel, yrel, pitch, side_of_prefix(side), geom, clip=False)

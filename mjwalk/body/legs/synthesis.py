@@ -59,7 +59,7 @@ from mjwalk.body.legs.steps import (
     step_frames,
     swing_foot,
 )
-from mjwalk.conventions import DEFAULT_STATURE
+from mjwalk.conventions import DEFAULT_STATURE, side_of_prefix
 from mjwalk.errors import PlanningError
 from mjwalk.plan.walkpath import WalkPath
 
@@ -85,7 +85,7 @@ class LegMotion:
         root: (N, 3) pelvis (root) position, metres; z is the pelvis height above the floor.
         yaw: (N,) pelvis yaw, radians from +x CCW.
         angles: joint name (e.g. ``"knee_l"``) -> (N,) angle in radians, anatomical signs.
-        ankle: side ("l"/"r") -> (N, 3) ankle target position, metres.
+        ankle: side ("left"/"right") -> (N, 3) ankle target position, metres.
         pitch: side -> (N,) foot pitch to the floor, radians, + toes up.
         contact: (N,) contact state: 0 = left stance, 1 = right stance, 2 = double support.
         phase: (N,) step phase in [0, 1] (0 before the first / after the last step).
@@ -337,7 +337,7 @@ def legs_from_walk(
             raw = leg_ik_world(ankle[s_], fyaw[s_], pitch[s_], root, yaw, s_, geom)
             ang = {k: np.clip(v, *np.deg2rad(ROM_DEG[generic_joint(k)])) for k, v in raw.items()}
             ang[f"toe_{s_}"] = np.clip(toe[s_], *np.deg2rad(ROM_DEG["toe"]))
-            low = hip[:, 2] + foot_lowest(ang, s_, geom)
+            low = hip[:, 2] + foot_lowest(ang, side_of_prefix(s_), geom)
             bad = low < -FLOOR_TOLERANCE
             if not bad.any():
                 break
@@ -354,8 +354,8 @@ def legs_from_walk(
         root=root,
         yaw=yaw,
         angles=angles,
-        ankle=ankle,
-        pitch=pitch,
+        ankle={side_of_prefix(s_): v for s_, v in ankle.items()},
+        pitch={side_of_prefix(s_): v for s_, v in pitch.items()},
         contact=contact,
         phase=phase,
         meta={"stature": stature, "reference": ref.source},
