@@ -5,7 +5,7 @@ The whole pipeline is importable from here; modules load on first use (PEP 562),
 Stages, lowest first: capture (:mod:`mjwalk.mocap`), step model (:mod:`mjwalk.gait`), scene and
 clearance (:mod:`mjwalk.world`), walk planning (:mod:`mjwalk.plan`), humanoid and legs
 (:mod:`mjwalk.body`), arms (:mod:`mjwalk.arms`), timeline and collisions
-(:mod:`mjwalk.timeline`), cycles and reports (:mod:`mjwalk.cycle`), video
+(:mod:`mjwalk.timeline`), cycles (:mod:`mjwalk.cycle`), reports (:mod:`mjwalk.report`), video
 (:mod:`mjwalk.render`); see ARCHITECTURE.md.
 """
 

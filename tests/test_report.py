@@ -10,7 +10,7 @@ import imageio.v3 as iio
 import numpy as np
 import pytest
 
-from mjwalk.cycle import report as report_mod
+from mjwalk import report as report_mod
 from mjwalk.cycle.types import ArmRecord, CycleResult, CycleSpec, TaskRecord, WalkRecord
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
