@@ -229,6 +229,13 @@ def test_no_steps_is_an_error():
         legs_from_walk(walk)
 
 
+def test_step_outside_the_path_is_an_error():
+    walk = make_walk(n_steps=2)
+    walk.steps[-1].end = len(walk.t) + 5
+    with pytest.raises(PlanningError, match=rf"step 1 has sample range \d+\.\.{len(walk.t) + 5}"):
+        legs_from_walk(walk)
+
+
 def test_reference_gait_table():
     assert max(WINTER_GAIT["knee"]) == pytest.approx(63)  # peak swing flexion 60-65 deg
     # the default is the generated reference: through BANDAI_LANDMARKS' heel-strike figures

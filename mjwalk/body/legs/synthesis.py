@@ -129,7 +129,7 @@ def legs_from_walk(
     for k, fr in enumerate(frames):
         if not (0 <= fr.start < fr.end < n):
             raise PlanningError(
-                f"legs_from_walk: step {k} has sample range {fr['start']}..{fr['end']} outside "
+                f"legs_from_walk: step {k} has sample range {fr.start}..{fr.end} outside "
                 f"the path's {n} samples"
             )
     ah = geom.ankle_height
