@@ -13,7 +13,7 @@ from pathlib import Path
 from mjwalk.cycle.simulate import simulate_cycles
 from mjwalk.gait.default import default_model
 from mjwalk.plan.hybrid import plan_walks
-from mjwalk.playback import collision_report, timeline_from_walk
+from mjwalk.timeline import collision_report, timeline_from_walk
 from mjwalk.world import load_workplace
 
 SCENES = Path(__file__).parents[1] / "scenes"

@@ -38,7 +38,7 @@ def main() -> None:
         times = []
         for k in range(5):
             t0 = time.perf_counter()
-            r = simulate_cycle(ctx, k, check_collisions=check)
+            r = simulate_cycle(ctx, k, collisions=check)
             times.append(time.perf_counter() - t0)
         label = "with collision check" if check else "plan + animate"
         print(
@@ -62,7 +62,7 @@ def main() -> None:
 
     from mjwalk.render import render_video
 
-    r = simulate_cycle(ctx, 0, keep_timeline=True, check_collisions=False)
+    r = simulate_cycle(ctx, 0, keep_timeline=True, collisions=False)
     tl = r.timeline
     n = min(tl.n_frames, int(args.video_seconds * tl.fps))
     tl.qpos, tl.t = tl.qpos[:n], tl.t[:n]

@@ -17,7 +17,7 @@ sys.path.insert(0, str(Path(__file__).parents[1] / "tests"))
 import mujoco
 from test_legs import make_walk
 
-from mjwalk.playback import collision_report, iter_frames, timeline_from_walk
+from mjwalk.timeline import collision_report, iter_frames, timeline_from_walk
 
 SCENE = Path(__file__).parents[1] / "scenes" / "open_floor.xml"
 

@@ -35,8 +35,8 @@ from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import StandardScaler
 
 import mjwalk.render  # noqa: F401  (picks a headless GL backend before mujoco is loaded)
-from mjwalk.body.armrep import resample_trajectory, segment_directions, trajectory_error
-from mjwalk.body.reach import ReachModel, end_effector
+from mjwalk.arms.armrep import resample_trajectory, segment_directions, trajectory_error
+from mjwalk.arms.reach import ReachModel, end_effector
 
 DATA = Path(__file__).resolve().parents[2] / "shared" / "data" / "bandai-raise-hand"
 N_SAMPLES = 20
@@ -92,9 +92,7 @@ def cross_validate(C, U, lengths, extras=None, endpoints=True, seed=0, folds=10)
         errs, ex_errs, neurons, t0 = [], [], [], time.perf_counter()
         for fold, (tr, te) in enumerate(kf.split(C)):
             reg = regressors(seed + fold, C.shape[1])[name]
-            model = ReachModel(
-                lengths, variance=0.98, dcs={"random_state": seed + fold}, regressor=reg
-            )
+            model = ReachModel(lengths, variance=0.98, dcs={"rng": seed + fold}, regressor=reg)
             model.fit(C[tr], U[tr], None if extras is None else extras[tr], rep=reps.get(fold))
             reps[fold] = model.rep_  # the PCA/alignment is shared by all regressors of a fold
             if model.n_neurons is not None:
@@ -158,7 +156,7 @@ def main(argv=None):
             )
     if not args.no_synthetic:
         try:
-            from mjwalk.body import reachgen
+            from mjwalk.arms import reachgen
         except ImportError:
             print("reachgen not available")
             return 0
@@ -178,14 +176,13 @@ def main(argv=None):
 
 def scene_clip(path: str) -> None:
     """Humanoid at stand_rack2 reaching 6 cm above rack2_screw2: contacts and an mp4 clip."""
-    from mjwalk.body import reachgen
-    from mjwalk.body.reach import reach_in_scene
-    from mjwalk.playback import collision_report
+    from mjwalk.arms import reachgen
     from mjwalk.render import render_video
+    from mjwalk.timeline import collision_report, reach_in_scene
 
     scene = Path(__file__).resolve().parents[1] / "scenes" / "assembly_station.xml"
     data = reachgen.generate("endpoints", 150, np.random.default_rng(0))
-    model = ReachModel(data.lengths, dcs={"random_state": 0}).fit(data.constraints, data.directions)
+    model = ReachModel(data.lengths, dcs={"rng": 0}).fit(data.constraints, data.directions)
     tl, res = reach_in_scene(
         scene, model, "stand_rack2", "rack2_screw2", target_offset=(0, 0, 0.06)
     )

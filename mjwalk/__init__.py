@@ -1,14 +1,20 @@
-"""mjwalk: statistically varied human walking and reaching in MuJoCo assembly workplaces."""
+"""mjwalk: statistically varied human walking and reaching in MuJoCo assembly workplaces.
 
-import sys as _sys
+The whole pipeline is importable from here; modules load on first use (PEP 562), so
+``import mjwalk`` is fast and changes nothing (no environment variable, no mujoco import).
+Stages, lowest first: capture (:mod:`mjwalk.mocap`), step model (:mod:`mjwalk.gait`), scene and
+clearance (:mod:`mjwalk.world`), walk planning (:mod:`mjwalk.plan`), humanoid and legs
+(:mod:`mjwalk.body`), arms (:mod:`mjwalk.arms`), timeline and collisions
+(:mod:`mjwalk.timeline`), cycles (:mod:`mjwalk.cycle`), reports (:mod:`mjwalk.report`), video
+(:mod:`mjwalk.render`); see ARCHITECTURE.md.
+"""
 
-if "mujoco" not in _sys.modules:  # pick a headless OpenGL backend before mujoco loads
-    from mjwalk._gl import select_gl_backend as _select_gl_backend
+from __future__ import annotations
 
-    _select_gl_backend()
+import importlib
+from typing import TYPE_CHECKING, Any
 
-from mjwalk.cycle.simulate import check_collisions, simulate_cycle, simulate_cycles
-from mjwalk.cycle.spec import load_cycle_spec
+from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE, SAMPLE_RATE_HZ, Side
 from mjwalk.errors import (
     CaptureError,
     CycleSpecError,
@@ -17,39 +23,110 @@ from mjwalk.errors import (
     PlanningError,
     SceneError,
 )
-from mjwalk.gait import Step
-from mjwalk.gait.corpus import generate_corpus
-from mjwalk.gait.default import default_model
-from mjwalk.gait.features import StepBatch
-from mjwalk.gait.model import StepModel
-from mjwalk.gait.segment import segment_take, segment_takes
-from mjwalk.mocap import Take, load_amc, load_bvh
-from mjwalk.plan import PathStep, WalkPath
-from mjwalk.plan.grid import plan_grid
-from mjwalk.plan.hybrid import plan_walk, plan_walks
-from mjwalk.world import Workplace, load_workplace
-from mjwalk.world.probe import ClearanceProbe, path_clearance
 
 __version__ = "0.1.0"
 
+#: Public name -> module that defines it, imported on first access.
+_LAZY: dict[str, str] = {
+    # capture
+    "Take": "mjwalk.mocap",
+    "load_amc": "mjwalk.mocap",
+    "load_bvh": "mjwalk.mocap",
+    # step model
+    "Step": "mjwalk.gait.step",
+    "StepBatch": "mjwalk.gait.features",
+    "StepModel": "mjwalk.gait.model",
+    "default_model": "mjwalk.gait.default",
+    "generate_corpus": "mjwalk.gait.corpus",
+    "segment_take": "mjwalk.gait.segment",
+    "segment_takes": "mjwalk.gait.segment",
+    # scene and clearance
+    "ClearanceField": "mjwalk.world.clearance",
+    "ClearanceProbe": "mjwalk.world.probe",
+    "Workplace": "mjwalk.world.workplace",
+    "load_workplace": "mjwalk.world.workplace",
+    "path_clearance": "mjwalk.world.probe",
+    # walk planning
+    "HybridPlanner": "mjwalk.plan.hybrid",
+    "PathStep": "mjwalk.plan.walkpath",
+    "WalkPath": "mjwalk.plan.walkpath",
+    "plan_grid": "mjwalk.plan.grid",
+    "plan_walk": "mjwalk.plan.hybrid",
+    "plan_walks": "mjwalk.plan.hybrid",
+    # humanoid and legs
+    "LegMotion": "mjwalk.body.legs",
+    "attach_humanoid": "mjwalk.body.humanoid",
+    "build_humanoid": "mjwalk.body.humanoid",
+    "humanoid_model": "mjwalk.body.humanoid",
+    "legs_from_walk": "mjwalk.body.legs",
+    # arms
+    "ReachModel": "mjwalk.arms.reach",
+    "default_reach_model": "mjwalk.arms.reachdefault",
+    # timeline and collisions
+    "Contact": "mjwalk.timeline.collisions",
+    "Event": "mjwalk.timeline.timeline",
+    "Timeline": "mjwalk.timeline.timeline",
+    "check_collisions": "mjwalk.timeline.collisions",
+    "collision_report": "mjwalk.timeline.collisions",
+    "iter_frames": "mjwalk.timeline.collisions",
+    "reach_in_scene": "mjwalk.timeline.reach",
+    "timeline_from_walk": "mjwalk.timeline.frames",
+    # cycles and reports
+    "CycleResult": "mjwalk.cycle.types",
+    "CycleSpec": "mjwalk.cycle.types",
+    "format_markdown": "mjwalk.report",
+    "format_summary": "mjwalk.report",
+    "load_cycle_spec": "mjwalk.cycle.spec",
+    "report_dict": "mjwalk.report",
+    "simulate_cycle": "mjwalk.cycle.simulate",
+    "simulate_cycles": "mjwalk.cycle.simulate",
+    "write_report": "mjwalk.report",
+    # video and plots
+    "render_frames": "mjwalk.render",
+    "render_video": "mjwalk.render",
+    "save_plan_png": "mjwalk.plot",
+}
+
 __all__ = [
+    "BODY_RADIUS",
+    "DEFAULT_STATURE",
+    "SAMPLE_RATE_HZ",
     "CaptureError",
+    "ClearanceField",
     "ClearanceProbe",
+    "Contact",
+    "CycleResult",
+    "CycleSpec",
     "CycleSpecError",
+    "Event",
+    "HybridPlanner",
+    "LegMotion",
     "MjwalkError",
     "ModelFileError",
     "PathStep",
     "PlanningError",
+    "ReachModel",
     "SceneError",
+    "Side",
     "Step",
     "StepBatch",
     "StepModel",
     "Take",
+    "Timeline",
     "WalkPath",
     "Workplace",
+    "attach_humanoid",
+    "build_humanoid",
     "check_collisions",
+    "collision_report",
     "default_model",
+    "default_reach_model",
+    "format_markdown",
+    "format_summary",
     "generate_corpus",
+    "humanoid_model",
+    "iter_frames",
+    "legs_from_walk",
     "load_amc",
     "load_bvh",
     "load_cycle_spec",
@@ -58,8 +135,63 @@ __all__ = [
     "plan_grid",
     "plan_walk",
     "plan_walks",
+    "reach_in_scene",
+    "render_frames",
+    "render_video",
+    "report_dict",
+    "save_plan_png",
     "segment_take",
     "segment_takes",
     "simulate_cycle",
     "simulate_cycles",
+    "timeline_from_walk",
+    "write_report",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY.get(name)
+    if module is None:
+        raise AttributeError(f"module 'mjwalk' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value  # later look-ups skip __getattr__
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(__all__))
+
+
+if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
+    from mjwalk.arms.reach import ReachModel
+    from mjwalk.arms.reachdefault import default_reach_model
+    from mjwalk.body.humanoid import attach_humanoid, build_humanoid, humanoid_model
+    from mjwalk.body.legs import LegMotion, legs_from_walk
+    from mjwalk.cycle.simulate import simulate_cycle, simulate_cycles
+    from mjwalk.cycle.spec import load_cycle_spec
+    from mjwalk.cycle.types import CycleResult, CycleSpec
+    from mjwalk.gait.corpus import generate_corpus
+    from mjwalk.gait.default import default_model
+    from mjwalk.gait.features import StepBatch
+    from mjwalk.gait.model import StepModel
+    from mjwalk.gait.segment import segment_take, segment_takes
+    from mjwalk.gait.step import Step
+    from mjwalk.mocap import Take, load_amc, load_bvh
+    from mjwalk.plan.grid import plan_grid
+    from mjwalk.plan.hybrid import HybridPlanner, plan_walk, plan_walks
+    from mjwalk.plan.walkpath import PathStep, WalkPath
+    from mjwalk.plot import save_plan_png
+    from mjwalk.render import render_frames, render_video
+    from mjwalk.report import format_markdown, format_summary, report_dict, write_report
+    from mjwalk.timeline.collisions import (
+        Contact,
+        check_collisions,
+        collision_report,
+        iter_frames,
+    )
+    from mjwalk.timeline.frames import timeline_from_walk
+    from mjwalk.timeline.reach import reach_in_scene
+    from mjwalk.timeline.timeline import Event, Timeline
+    from mjwalk.world.clearance import ClearanceField
+    from mjwalk.world.probe import ClearanceProbe, path_clearance
+    from mjwalk.world.workplace import Workplace, load_workplace

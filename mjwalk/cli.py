@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 
 
@@ -106,9 +107,9 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 def _cmd_simulate(args: argparse.Namespace) -> int:
     import json
 
-    from mjwalk.cycle.report import format_summary, report_dict, write_report
     from mjwalk.cycle.simulate import prepare, simulate_cycle, simulate_cycles
     from mjwalk.cycle.spec import load_cycle_spec
+    from mjwalk.report import format_summary, report_dict, write_report
 
     spec = load_cycle_spec(args.spec)
     print(
@@ -131,7 +132,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             ctx,
             np.random.default_rng(np.random.SeedSequence([args.seed, 0])),
             keep_timeline=True,
-            check_collisions=False,
+            collisions=False,
         )
         video = args.out / "cycle.mp4"
         render_video(
@@ -150,8 +151,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
 def _cmd_render(args: argparse.Namespace) -> int:
     from mjwalk.plan.walkpath import WalkPath
-    from mjwalk.playback import timeline_from_walk
     from mjwalk.render import render_video
+    from mjwalk.timeline import timeline_from_walk
 
     walk = WalkPath.load(args.walk)
     timeline = timeline_from_walk(walk, args.scene, fps=args.fps, stature=args.stature)
@@ -178,7 +179,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("scene", type=Path, help="MJCF scene file")
     p.add_argument("--from", dest="start", required=True, help="start: X,Y (metres) or a site name")
     p.add_argument("--to", dest="goal", required=True, help="goal: X,Y (metres) or a site name")
-    p.add_argument("--radius", type=float, default=0.25, help="body radius in metres (0.25)")
+    p.add_argument("--radius", type=float, default=BODY_RADIUS, help="body radius in metres (0.25)")
     p.add_argument("--png", type=Path, help="write a top-view PNG of the plan here")
     p.add_argument(
         "--n",
@@ -212,7 +213,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--fps", type=float, default=30.0)
     p.add_argument("--width", type=int, default=640)
     p.add_argument("--height", type=int, default=480)
-    p.add_argument("--stature", type=float, default=1.75, help="humanoid stature in metres")
+    p.add_argument(
+        "--stature", type=float, default=DEFAULT_STATURE, help="humanoid stature in metres"
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_render)
 

@@ -1,11 +1,9 @@
 """Offscreen video of a Timeline: tracking or top camera, the planned path drawn into the scene.
 
-MuJoCo picks its OpenGL backend from ``MUJOCO_GL`` when ``mujoco`` is first imported, so
-:func:`select_gl_backend` runs before this module imports mujoco: it keeps a ``MUJOCO_GL`` the user
-set, else picks ``egl`` when libEGL loads, else ``osmesa`` when libOSMesa loads. (For the choice to
-hold package-wide it must also run before anything else imports mujoco: see the report / the top of
-``mjwalk/__init__.py``.) If no backend works, rendering raises an MjwalkError that names the Debian
-package to install (``libegl1`` or ``libosmesa6``).
+Importing this module selects a headless OpenGL backend (:func:`mjwalk._gl.ensure_headless_backend`:
+a ``MUJOCO_GL`` the user set, else ``egl`` when libEGL loads, else ``osmesa`` when libOSMesa
+loads), also when mujoco was imported before. If no backend works, rendering raises an
+MjwalkError that names the Debian package to install (``libegl1`` or ``libosmesa6``).
 
 World frame: metres, z up; image pixels (u right, v down) from the top-left corner.
 """
@@ -13,12 +11,11 @@ World frame: metres, z up; image pixels (u right, v down) from the top-left corn
 from __future__ import annotations
 
 import os
-import sys
 
-from mjwalk._gl import _probe_only, select_gl_backend
+from mjwalk._gl import available_backend, ensure_headless_backend
 
 #: the backend chosen at import ("none" when neither EGL nor OSMesa loads).
-_SELECTED = select_gl_backend() if "mujoco" not in sys.modules else _probe_only()
+_SELECTED = ensure_headless_backend()
 
 
 import mujoco  # noqa: E402
@@ -27,7 +24,7 @@ import numpy as np  # noqa: E402
 from mjwalk._io import atomic_path  # noqa: E402
 from mjwalk.body.humanoid import HUMAN_GROUP  # noqa: E402
 from mjwalk.errors import MjwalkError  # noqa: E402
-from mjwalk.playback import Timeline  # noqa: E402
+from mjwalk.timeline.timeline import Timeline  # noqa: E402
 
 #: Colour of the drawn path (RGBA) and of the drawn footprints (left, right).
 PATH_RGBA = np.array([1.0, 0.55, 0.0, 1.0], dtype=np.float32)
@@ -46,12 +43,12 @@ def _renderer(model: mujoco.MjModel, size: tuple[int, int]) -> mujoco.Renderer:
         return mujoco.Renderer(model, height=int(height), width=int(width))
     except Exception as exc:
         backend = os.environ.get("MUJOCO_GL", "")
-        if backend in ("", "glfw") and _SELECTED != "none":
+        avail = available_backend()
+        if backend in ("", "glfw") and avail != "none":
             raise MjwalkError(
-                f"offscreen rendering failed: mujoco was imported before mjwalk.render could "
-                f"select a headless OpenGL backend ({_SELECTED} is available here), so it uses "
-                f"GLFW, which needs a display ({exc}); run with MUJOCO_GL={_SELECTED} set in "
-                f"the environment, or import mjwalk before mujoco"
+                f"offscreen rendering failed: MUJOCO_GL={backend or 'unset'} uses GLFW, which "
+                f"needs a display ({exc}); run with MUJOCO_GL={avail} set in the environment "
+                f"({avail} is available here)"
             ) from exc
         hint = {
             "egl": "install the Debian package libegl1 (and a Mesa EGL driver, libegl-mesa0), "

@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mjwalk.cycle.simulate import check_collisions, prepare, simulate_cycle, simulate_cycles
+from mjwalk.cycle.simulate import prepare, simulate_cycle, simulate_cycles
 from mjwalk.cycle.spec import load_cycle_spec
+from mjwalk.timeline import check_collisions
 
 
 @pytest.fixture(scope="module")
@@ -40,17 +41,17 @@ def test_station_cycle_end_to_end(ctx):
 
 
 def test_same_seed_same_cycle(ctx):
-    a = simulate_cycle(ctx, 11, check_collisions=False)
-    b = simulate_cycle(ctx, 11, check_collisions=False)
+    a = simulate_cycle(ctx, 11, collisions=False)
+    b = simulate_cycle(ctx, 11, collisions=False)
     assert a.cycle_time == b.cycle_time
     assert [w.length for w in a.walks] == [w.length for w in b.walks]
-    c = simulate_cycle(ctx, 12, check_collisions=False)
+    c = simulate_cycle(ctx, 12, collisions=False)
     assert [w.length for w in a.walks] != [w.length for w in c.walks]
 
 
 def test_monte_carlo_independent_of_jobs(scenes_dir):
     spec = scenes_dir / "assembly_station.toml"
-    one = simulate_cycles(spec, runs=3, seed=5, n_jobs=1, check_collisions=False)
-    two = simulate_cycles(spec, runs=3, seed=5, n_jobs=2, check_collisions=False)
+    one = simulate_cycles(spec, runs=3, seed=5, n_jobs=1, collisions=False)
+    two = simulate_cycles(spec, runs=3, seed=5, n_jobs=2, collisions=False)
     assert [r.cycle_time for r in one] == [r.cycle_time for r in two]
     assert len({r.cycle_time for r in one}) == 3

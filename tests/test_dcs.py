@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mjwalk.body.armrep import (
+from mjwalk.arms.armrep import (
     ArmRepresentation,
     angles_to_directions,
     apply_pose,
@@ -16,7 +16,7 @@ from mjwalk.body.armrep import (
     segment_directions,
     trajectory_error,
 )
-from mjwalk.body.dcs import DCSNetwork
+from mjwalk.arms.dcs import DCSNetwork
 from mjwalk.errors import MjwalkError, ModelFileError
 
 #: real capture: ``$MJWALK_SHARED_DATA`` or ../shared/data beside the project
@@ -36,7 +36,7 @@ def _toy(n, seed):
 def test_dcs_learns_smooth_map_and_beats_mean():
     X, Y = _toy(200, 1)
     Xt, Yt = _toy(400, 2)
-    net = DCSNetwork(random_state=0).fit(X, Y)
+    net = DCSNetwork(rng=0).fit(X, Y)
     rmse = np.sqrt(((net.predict(Xt) - Yt) ** 2).sum(1).mean())
     base = np.sqrt(((Yt - Y.mean(0)) ** 2).sum(1).mean())
     # seeded: held-out RMSE well below the constant predictor (0.84); measured 0.16
@@ -48,7 +48,7 @@ def test_dcs_learns_smooth_map_and_beats_mean():
 
 def test_dcs_output_is_normalized_rbf_over_winner_and_neighbours():
     X, Y = _toy(120, 3)
-    net = DCSNetwork(random_state=1).fit(X, Y)
+    net = DCSNetwork(rng=1).fit(X, Y)
     x = np.array([0.1, -0.2])
     z = (x - net.x_mean_) / net.x_scale_
     d = np.linalg.norm(net.centers_ - z, axis=1)
@@ -61,8 +61,8 @@ def test_dcs_output_is_normalized_rbf_over_winner_and_neighbours():
 
 def test_dcs_deterministic_size_limit_and_growth_stop():
     X, Y = _toy(150, 4)
-    a = DCSNetwork(random_state=5).fit(X, Y).predict(X)
-    b = DCSNetwork(random_state=5).fit(X, Y).predict(X)
+    a = DCSNetwork(rng=5).fit(X, Y).predict(X)
+    b = DCSNetwork(rng=5).fit(X, Y).predict(X)
     np.testing.assert_array_equal(a, b)
     assert DCSNetwork(max_neurons=4, validation_fraction=0).fit(X, Y).n_neurons_ == 4
     net = DCSNetwork(error_threshold=10.0, validation_fraction=0).fit(X, Y)
@@ -71,7 +71,7 @@ def test_dcs_deterministic_size_limit_and_growth_stop():
 
 def test_dcs_distance_to_training_flags_extrapolation():
     X, Y = _toy(100, 5)
-    net = DCSNetwork(random_state=0).fit(X, Y)
+    net = DCSNetwork(rng=0).fit(X, Y)
     d = net.distance_to_training(np.array([[0.0, 0.0], [6.0, 6.0]]))
     assert d[0] < net.range_radius_ < d[1]
     assert net.is_outside(np.array([[6.0, 6.0]]))[0]
@@ -79,7 +79,7 @@ def test_dcs_distance_to_training_flags_extrapolation():
 
 def test_dcs_save_load_roundtrip_and_bad_files(tmp_path):
     X, Y = _toy(80, 6)
-    net = DCSNetwork(random_state=0).fit(X, Y[:, 0])
+    net = DCSNetwork(rng=0).fit(X, Y[:, 0])
     path = tmp_path / "net.npz"
     net.save(path)
     back = DCSNetwork.load(path)

@@ -146,7 +146,7 @@ def stance_drift(walk, pts, pitch, eps=1e-4):
 
 
 def _ball_xy(foot):
-    from mjwalk.body.legs import _ball
+    from mjwalk.body.legs.kinematics import ball_offset as _ball
 
     b = _ball(leg_geometry())
     return np.asarray(foot[:2]) + b * np.array([np.cos(foot[2]), np.sin(foot[2])])
@@ -203,7 +203,9 @@ def test_ik_round_trip():
             [rng.uniform(-0.25, 0.25), g.hip_y + rng.uniform(-0.05, 0.05), -rng.uniform(0.55, 0.78)]
         )
         yaw, pitch = rng.uniform(-0.3, 0.3), rng.uniform(-0.2, 0.1)
-        ang = leg_ik((target - [0, g.hip_y, 0])[None], np.array([yaw]), np.array([pitch]), "l", g)
+        ang = leg_ik(
+            (target - [0, g.hip_y, 0])[None], np.array([yaw]), np.array([pitch]), "left", g
+        )
         if any(np.isclose(v[0], jm.limits(k)).any() for k, v in ang.items()):
             continue  # clipped at a joint limit: the pose is not reachable exactly
         checked += 1
@@ -224,6 +226,13 @@ def test_no_steps_is_an_error():
     walk = make_walk(n_steps=2)
     walk.steps = []
     with pytest.raises(PlanningError, match="no steps"):
+        legs_from_walk(walk)
+
+
+def test_step_outside_the_path_is_an_error():
+    walk = make_walk(n_steps=2)
+    walk.steps[-1].end = len(walk.t) + 5
+    with pytest.raises(PlanningError, match=rf"step 1 has sample range \d+\.\.{len(walk.t) + 5}"):
         legs_from_walk(walk)
 
 
@@ -361,6 +370,7 @@ def test_feet_stay_above_floor_on_awkward_steps(path):
 def test_leg_fk_matches_mujoco():
     """leg_fk / foot_lowest agree with MuJoCo's forward kinematics of the humanoid."""
     from mjwalk.body.legs import foot_lowest, leg_fk
+    from mjwalk.conventions import side_of_prefix
 
     g = leg_geometry()
     model, jm = humanoid_model()
@@ -379,8 +389,8 @@ def test_leg_fk_matches_mujoco():
                 ("toe_{}", (-20, 50)),
             )
         }
-        ankle, R = leg_fk(ang, side, g)
-        low = foot_lowest(ang, side, g)
+        ankle, R = leg_fk(ang, side_of_prefix(side), g)
+        low = foot_lowest(ang, side_of_prefix(side), g)
         for i in range(20):
             q = jm.neutral_qpos(model)
             q[:3] = [0, 0, 2.0]
@@ -488,7 +498,7 @@ def test_planned_walks_joint_angles_do_not_jump(planned_walks):
 def test_planned_walks_touch_nothing(planned_walks):
     """Issue 5: the played-back walks (legs, trunk turning, arms) of the 20 planned paths
     touch no scene geometry, the planner having certified each pelvis path clear."""
-    from mjwalk.playback import collision_report, timeline_from_walk
+    from mjwalk.timeline import collision_report, timeline_from_walk
     from mjwalk.world import load_workplace
 
     for k, (path, walk, *_) in enumerate(planned_walks):
@@ -521,5 +531,5 @@ def test_stance_foot_ahead_of_the_hip_keeps_its_place():
     # the stance foot of step 16 (right) keeps its commanded pitch: no joint clipped it
     st = walk.steps[16]
     sl = slice(st.start, st.end + 1)
-    assert np.abs(pitch[sl, 1] - legs.pitch["r"][sl]).max() < np.deg2rad(0.5)
+    assert np.abs(pitch[sl, 1] - legs.pitch["right"][sl]).max() < np.deg2rad(0.5)
     assert low.min() >= -0.002

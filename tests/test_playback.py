@@ -10,7 +10,8 @@ import pytest
 from test_legs import make_walk
 
 from mjwalk.errors import MjwalkError
-from mjwalk.playback import ARM_EASE, collision_report, iter_frames, timeline_from_walk
+from mjwalk.timeline import collision_report, iter_frames, timeline_from_walk
+from mjwalk.timeline.frames import ARM_EASE
 
 SCENE = """<mujoco><worldbody><geom name="floor" type="plane" size="10 10 .1"/>
 <body name="shelf" pos="{x} {y} .6"><geom name="box" type="box" size=".25 .25 .6"/></body>
@@ -159,7 +160,7 @@ def test_trunk_turns_shoulders_clear_of_a_wall():
     """The shoulder line turns just enough to keep ``room - SHOULDER_MARGIN`` to a wall beside
     the walker, not at all with room to spare."""
     from mjwalk.body.humanoid import shoulder_geometry
-    from mjwalk.playback import SHOULDER_MARGIN, TRUNK_TURN, trunk_turn
+    from mjwalk.timeline.frames import SHOULDER_MARGIN, TRUNK_TURN, trunk_turn
 
     a, r = shoulder_geometry(1.75)
     room = np.linspace(0.2, 0.4, 60)

@@ -1,19 +1,21 @@
-"""ReachModel and the reach generator (mjwalk.body.reach, mjwalk.body.reachgen)."""
+"""ReachModel and the reach generator (mjwalk.arms.reach, mjwalk.arms.reachgen)."""
 
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from mjwalk.body import reachgen
-from mjwalk.body.reach import ReachModel, arm_joint_angles, end_effector, reach_in_scene
+from mjwalk.arms import reachgen
+from mjwalk.arms.kinematics import arm_joint_angles, end_effector
+from mjwalk.arms.reach import ReachModel
 from mjwalk.errors import MjwalkError, ModelFileError
+from mjwalk.timeline import reach_in_scene
 
 
 @pytest.fixture(scope="module")
 def endpoint_model():
     data = reachgen.generate("endpoints", 60, np.random.default_rng(0))
-    model = ReachModel(data.lengths, dcs={"random_state": 0}).fit(
+    model = ReachModel(data.lengths, dcs={"rng": 0}).fit(
         data.constraints[:50], data.directions[:50]
     )
     return model, data
@@ -72,7 +74,7 @@ def test_joint_angles_reproduce_directions_through_humanoid_chain(endpoint_model
 
     _, data = endpoint_model
     U = data.directions[3]
-    q = arm_joint_angles(U, side="l")
+    q = arm_joint_angles(U, side="left")
     for t in range(len(U)):
         flex, abd, rot, elbow, pron, wflex, wdev = q[t]
         r_sh = Rotation.from_euler("YXZ", [-flex, abd, -rot])
@@ -96,10 +98,10 @@ def test_obstacle_space_hand_clears_the_obstacle():
 
 
 def test_grasp_closes_fingers_on_object_within_5mm():
-    from mjwalk.body.reach import finger_trajectory, fingers_for_aperture, pinch_aperture
+    from mjwalk.arms.hands import finger_trajectory, fingers_for_aperture, pinch_aperture
 
     data = reachgen.generate("grasp", 60, np.random.default_rng(4))
-    model = ReachModel(data.lengths, dcs={"random_state": 0}).fit(
+    model = ReachModel(data.lengths, dcs={"rng": 0}).fit(
         data.constraints[:50], data.directions[:50], data.extras[:50]
     )
     for i in (50, 51, 52):
@@ -122,7 +124,7 @@ SCENE = Path(__file__).parents[1] / "scenes" / "assembly_station.xml"
 def test_reach_into_rack_shelf_without_contact(endpoint_model):
     import mujoco
 
-    from mjwalk.playback import collision_report
+    from mjwalk.timeline import collision_report
 
     model, _ = endpoint_model
     # hand tip 6 cm above the screw on the rack-2 shelf (top of the shelf at z = 1.02 m)

@@ -12,7 +12,7 @@ import pytest
 from test_legs import make_walk
 
 from mjwalk.errors import MjwalkError
-from mjwalk.playback import timeline_from_walk
+from mjwalk.timeline import timeline_from_walk
 
 render = pytest.importorskip("mjwalk.render")
 

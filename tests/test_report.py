@@ -10,8 +10,11 @@ import imageio.v3 as iio
 import numpy as np
 import pytest
 
-from mjwalk.cycle import report as report_mod
-from mjwalk.cycle.report import (
+from mjwalk import report as report_mod
+from mjwalk.cycle.types import ArmRecord, CycleResult, CycleSpec, TaskRecord, WalkRecord
+from mjwalk.errors import MjwalkError
+from mjwalk.plan.walkpath import WalkPath
+from mjwalk.report import (
     CAPTURE_TABLE1,
     REPORT_FILES,
     describe,
@@ -19,10 +22,7 @@ from mjwalk.cycle.report import (
     report_dict,
     write_report,
 )
-from mjwalk.cycle.types import ArmRecord, CycleResult, CycleSpec, TaskRecord, WalkRecord
-from mjwalk.errors import MjwalkError
-from mjwalk.plan.walkpath import WalkPath
-from mjwalk.playback import Contact
+from mjwalk.timeline import Contact
 from mjwalk.world import load_workplace
 
 SCENE = Path(__file__).resolve().parents[1] / "scenes" / "assembly_station.xml"

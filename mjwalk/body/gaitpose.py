@@ -25,6 +25,7 @@ from sklearn.pipeline import Pipeline, make_pipeline
 from sklearn.preprocessing import StandardScaler
 
 from mjwalk.body.legs import LegMotion, legs_from_walk
+from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import PathStep, WalkPath
 
@@ -173,7 +174,7 @@ def _upper_body(legs: LegMotion, amp: np.ndarray) -> dict[str, np.ndarray]:
 
 
 def training_poses(
-    rng: np.random.Generator, n_walks: int = 6, fps: float = 30.0, stature: float = 1.75
+    rng: np.random.Generator, n_walks: int = 6, fps: float = 30.0, stature: float = DEFAULT_STATURE
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Walking poses from the project's own gait (no capture needed).
 
@@ -271,7 +272,10 @@ def default_gaitpose(switching: bool = True, seed: int = 0) -> GaitPoseModel:
 
 
 def foot_skating(
-    poses: np.ndarray, fps: float = 30.0, stature: float = 1.75, contact_height: float = 0.02
+    poses: np.ndarray,
+    fps: float = 30.0,
+    stature: float = DEFAULT_STATURE,
+    contact_height: float = 0.02,
 ) -> float:
     """Mean horizontal speed (m/s) of the lower foot's sole while it touches the floor.
 

@@ -28,6 +28,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import SceneError
 
 #: Geom group of every humanoid geom (scene obstacles use groups 0-4).
@@ -103,7 +104,7 @@ ROM_DEG: dict[str, tuple[float, float]] = {
 FINGERS = ("index", "middle", "ring", "little")
 
 
-def pelvis_height(stature: float = 1.75) -> float:
+def pelvis_height(stature: float = DEFAULT_STATURE) -> float:
     """Root (hip-joint-centre) height in metres in the neutral pose: 0.530 * stature (Winter)."""
     return SEG["hip_height"] * stature
 
@@ -144,7 +145,7 @@ class LegGeometry:
 UPPER_ARM_RADIUS = 0.024
 
 
-def leg_geometry(stature: float = 1.75) -> LegGeometry:
+def leg_geometry(stature: float = DEFAULT_STATURE) -> LegGeometry:
     """The leg lengths of :func:`build_humanoid` for ``stature`` metres."""
     H = stature
     fl = SEG["foot_length"] * H
@@ -159,7 +160,7 @@ def leg_geometry(stature: float = 1.75) -> LegGeometry:
     )
 
 
-def shoulder_geometry(stature: float = 1.75) -> tuple[float, float]:
+def shoulder_geometry(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
     """(shoulder joint centre from the trunk axis, upper-arm capsule radius), metres, of
     :func:`build_humanoid`: together the half-width of the body at the shoulders."""
     return 0.5 * SEG["shoulder_width"] * stature, UPPER_ARM_RADIUS * stature
@@ -175,7 +176,7 @@ def _rad(name: str) -> list[float]:
     return [float(np.deg2rad(lo)), float(np.deg2rad(hi))]
 
 
-def build_humanoid(stature: float = 1.75) -> mujoco.MjSpec:
+def build_humanoid(stature: float = DEFAULT_STATURE) -> mujoco.MjSpec:
     """Build the adult humanoid for ``stature`` metres as an MjSpec.
 
     The model holds one body tree rooted at ``pelvis`` (free joint ``root``), 3-DOF lumbar,
@@ -231,7 +232,7 @@ def build_humanoid(stature: float = 1.75) -> mujoco.MjSpec:
     geom(
         pelvis,
         mujoco.mjtGeom.mjGEOM_CAPSULE,
-        [0.06 * H / 1.75],
+        [0.06 * H / DEFAULT_STATURE],
         fromto=[0, -g.hip_y, 0.02, 0, g.hip_y, 0.02],
         rgba=trousers,
         name="pelvis",
@@ -249,7 +250,7 @@ def build_humanoid(stature: float = 1.75) -> mujoco.MjSpec:
     geom(
         lumbar,
         mujoco.mjtGeom.mjGEOM_CAPSULE,
-        [0.075 * H / 1.75],
+        [0.075 * H / DEFAULT_STATURE],
         fromto=[0, -0.04 * H, 0.04 * H, 0, 0.04 * H, 0.04 * H],
         rgba=cloth,
         name="abdomen",
@@ -266,7 +267,7 @@ def build_humanoid(stature: float = 1.75) -> mujoco.MjSpec:
     geom(
         thorax,
         mujoco.mjtGeom.mjGEOM_CAPSULE,
-        [0.085 * H / 1.75],
+        [0.085 * H / DEFAULT_STATURE],
         fromto=[0, -0.05 * H, 0.5 * sh_z, 0, 0.05 * H, 0.5 * sh_z],
         rgba=cloth,
         name="chest",
@@ -504,7 +505,7 @@ class JointMap:
             raise SceneError(f"model has no humanoid root joint {prefix + 'root'!r}")
         return cls(tuple(names), np.array(adrs, dtype=int), np.array(ranges), root, prefix)
 
-    def neutral_qpos(self, model: mujoco.MjModel, stature: float = 1.75) -> np.ndarray:
+    def neutral_qpos(self, model: mujoco.MjModel, stature: float = DEFAULT_STATURE) -> np.ndarray:
         """``model.qpos0`` with the humanoid standing upright at the origin facing +x."""
         q = model.qpos0.copy()
         q[self.root : self.root + 7] = [0, 0, pelvis_height(stature), 1, 0, 0, 0]
@@ -512,7 +513,7 @@ class JointMap:
         return q
 
 
-def humanoid_model(stature: float = 1.75) -> tuple[mujoco.MjModel, JointMap]:
+def humanoid_model(stature: float = DEFAULT_STATURE) -> tuple[mujoco.MjModel, JointMap]:
     """Compile the bare humanoid (with a floor plane for viewing) and its JointMap."""
     spec = build_humanoid(stature)
     model = spec.compile()
@@ -520,7 +521,7 @@ def humanoid_model(stature: float = 1.75) -> tuple[mujoco.MjModel, JointMap]:
 
 
 def attach_humanoid(
-    scene: str | Path | mujoco.MjSpec, stature: float = 1.75, prefix: str = HUMAN_PREFIX
+    scene: str | Path | mujoco.MjSpec, stature: float = DEFAULT_STATURE, prefix: str = HUMAN_PREFIX
 ) -> tuple[mujoco.MjModel, JointMap]:
     """Attach the humanoid to a workplace scene, without touching the scene file.
 
@@ -554,7 +555,7 @@ def attach_humanoid(
     return model, JointMap.from_model(model, prefix)
 
 
-def write_humanoid_xml(path: str | Path, stature: float = 1.75) -> None:
+def write_humanoid_xml(path: str | Path, stature: float = DEFAULT_STATURE) -> None:
     """Write the humanoid MJCF (the file ``scenes/humanoid.xml`` is produced by this)."""
     from mjwalk._io import atomic_path
 

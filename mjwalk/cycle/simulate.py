@@ -25,6 +25,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.body.humanoid import JointMap, attach_humanoid, pelvis_height
+from mjwalk.conventions import Side, side_prefix
 from mjwalk.cycle.types import (
     ArmRecord,
     CycleResult,
@@ -35,14 +36,9 @@ from mjwalk.cycle.types import (
 from mjwalk.errors import CycleSpecError, MjwalkError
 from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
-from mjwalk.playback import (
-    Timeline,
-    _frames_from_legs,
-    collision_report,
-    ease_arms,
-    room_and_away,
-    yaw_quat,
-)
+from mjwalk.timeline.collisions import collision_report
+from mjwalk.timeline.frames import ease_arms, frames_from_legs, room_and_away, yaw_quat
+from mjwalk.timeline.timeline import Timeline
 from mjwalk.world.workplace import Workplace, shared_workplace
 
 #: Turning speed on the spot (rad/s) and shortest turn (s).
@@ -111,10 +107,10 @@ def _load_step_model(spec: CycleSpec):
 
 
 def _load_reach_model(spec: CycleSpec):
-    from mjwalk.body.reach import ReachModel
+    from mjwalk.arms.reach import ReachModel
 
     if spec.reach_model == "default":
-        from mjwalk.body.reachdefault import default_reach_model
+        from mjwalk.arms.reachdefault import default_reach_model
 
         return default_reach_model()
     return ReachModel.load(spec.reach_model)
@@ -172,7 +168,7 @@ def _walk_frames(ctx, walk, fps, carry: str | None = None) -> np.ndarray:
     t = np.arange(1, math.floor(walk.duration * fps) + 1) / fps
     if len(t) == 0 or t[-1] < walk.duration - 1e-9:
         t = np.append(t, walk.duration)
-    frames = _frames_from_legs(ctx.model, ctx.jointmap, legs, t, ctx.spec.stature, "swing", None)
+    frames = frames_from_legs(ctx.model, ctx.jointmap, legs, t, ctx.spec.stature, "swing", None)
     jm = ctx.jointmap
     room, away = room_and_away(ctx.workplace, frames[:, jm.root : jm.root + 2])
     rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
@@ -187,7 +183,7 @@ def _reach_frames(
     approach_w: np.ndarray,
     hold: float,
     fps: float,
-    side: str = "l",
+    side: Side = "left",
 ):
     """Frames of reaching from pose ``q0`` to ``target_w`` (world, m), holding, returning.
 
@@ -197,7 +193,7 @@ def _reach_frames(
     over a shelf's front edge instead of through it. The return retraces the motion.
 
     Returns (frames, hand error in metres, ReachResult of the model part)."""
-    from mjwalk.body.reach import (
+    from mjwalk.arms.kinematics import (
         REST_HAND,
         arm_frames,
         arm_joint_angles,
@@ -209,7 +205,7 @@ def _reach_frames(
     data = mujoco.MjData(m)
     data.qpos[:] = q0
     mujoco.mj_kinematics(m, data)
-    ua = m.body(f"{jm.prefix}upper_arm_{side}").id
+    ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id
     shoulder = data.xpos[ua].copy()
     frame = data.xmat[ua].reshape(3, 3).copy()
     end = frame.T @ (target_w - shoulder)
@@ -230,7 +226,7 @@ def _reach_frames(
     out, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
     data.qpos[:] = out[-1]
     mujoco.mj_kinematics(m, data)
-    wrist = data.xpos[m.body(f"{jm.prefix}hand_{side}").id]
+    wrist = data.xpos[m.body(f"{jm.prefix}hand_{side_prefix(side)}").id]
     tip = wrist + frame @ (directions[-1, 2] * lengths[2])
     error = float(np.linalg.norm(tip - target_w))
     n_hold = max(0, round(hold * fps))
@@ -267,7 +263,7 @@ def simulate_cycle(
     run: int = 0,
     fps: float = 30.0,
     keep_timeline: bool = False,
-    check_collisions: bool = True,
+    collisions: bool = True,
 ) -> CycleResult:
     """Simulate one assembly cycle.
 
@@ -277,7 +273,8 @@ def simulate_cycle(
         run: the run's index (recorded in the result).
         fps: frame rate of the humanoid timeline (the video rate).
         keep_timeline: keep the per-frame poses in ``result.timeline`` (for videos).
-        check_collisions: run MuJoCo's collision detection over the timeline.
+        collisions: run MuJoCo's collision detection over the timeline
+            (:func:`~mjwalk.timeline.collisions.check_collisions` checks a result later).
 
     Returns:
         A :class:`CycleResult`: walks, arm motions, task times, cycle time, collisions.
@@ -377,7 +374,7 @@ def simulate_cycle(
         stature=spec.stature,
     )
     timeline.walk = combined_walk([w.path for w in walks])  # drawn into videos
-    collisions = collision_report(timeline) if check_collisions else []
+    contacts = collision_report(timeline) if collisions else []
     return CycleResult(
         spec=spec,
         run=run,
@@ -386,7 +383,7 @@ def simulate_cycle(
         walks=walks,
         arms=arms,
         cycle_time=t,
-        collisions=collisions,
+        collisions=contacts,
         timeline=timeline if keep_timeline else None,
     )
 
@@ -394,12 +391,10 @@ def simulate_cycle(
 # ---------------------------------------------------------------------------- many cycles
 
 
-def _run_one(spec_path: str, run: int, seed: int, check_collisions: bool) -> CycleResult:
+def _run_one(spec_path: str, run: int, seed: int, collisions: bool) -> CycleResult:
     ctx = _context_cached(spec_path)
     ss = np.random.SeedSequence([seed, run])
-    return simulate_cycle(
-        ctx, np.random.default_rng(ss), run=run, check_collisions=check_collisions
-    )
+    return simulate_cycle(ctx, np.random.default_rng(ss), run=run, collisions=collisions)
 
 
 def simulate_cycles(
@@ -408,7 +403,7 @@ def simulate_cycles(
     seed: int = 0,
     n_jobs: int = 1,
     *,
-    check_collisions: bool = True,
+    collisions: bool = True,
     progress: bool = False,
 ) -> list[CycleResult]:
     """Monte Carlo: ``runs`` independent cycles, in parallel through joblib.
@@ -426,7 +421,7 @@ def simulate_cycles(
         spec_path = str(spec)
     if runs < 1:
         raise MjwalkError(f"simulate_cycles: runs must be >= 1, got {runs}")
-    jobs = (delayed(_run_one)(spec_path, k, seed, check_collisions) for k in range(runs))
+    jobs = (delayed(_run_one)(spec_path, k, seed, collisions) for k in range(runs))
     if progress:
         from tqdm import tqdm
 
@@ -457,26 +452,3 @@ def combined_walk(paths: list):
         offset += len(p.xy)
         t0 = t[-1][-1] + 1.0 / 120.0
     return WalkPath(np.concatenate(t), np.vstack(xy), np.concatenate(yaw), steps)
-
-
-def check_collisions(result_or_timeline, scene: str | Path | None = None) -> list:
-    """Every humanoid-vs-scene contact of a simulated cycle (or of a Timeline, or of a WalkPath
-    played in ``scene``): time (s), body part, scene geom, depth (m), by MuJoCo's collision
-    detection. A CycleResult must have been simulated with ``keep_timeline=True``."""
-    from mjwalk.plan.walkpath import WalkPath
-    from mjwalk.playback import timeline_from_walk
-
-    obj = result_or_timeline
-    if isinstance(obj, CycleResult):
-        if obj.timeline is None:
-            raise MjwalkError(
-                "check_collisions: the result has no timeline; simulate with keep_timeline=True"
-            )
-        obj = obj.timeline
-    if isinstance(obj, WalkPath):
-        if scene is None:
-            raise MjwalkError("check_collisions: a WalkPath needs the scene it is played in")
-        obj = timeline_from_walk(obj, scene)
-    if not isinstance(obj, Timeline):
-        raise MjwalkError(f"check_collisions: cannot check a {type(obj).__name__}")
-    return collision_report(obj)

@@ -61,6 +61,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task
 from mjwalk.errors import CycleSpecError, SceneError
 from mjwalk.world.workplace import Workplace, shared_workplace
@@ -338,10 +339,10 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
             raise check.fail(f"{table!r} must be a table ([{table}])", key=table)
         check.keys(value, allowed, table)
         tables[table] = value
-    stature = 1.75
+    stature = DEFAULT_STATURE
     if "stature" in tables["humanoid"]:
         stature = check.number(tables["humanoid"], "stature", *STATURE_RANGE, "m", "humanoid")
-    radius = 0.25
+    radius = BODY_RADIUS
     if "radius" in tables["walking"]:
         radius = check.number(tables["walking"], "radius", *RADIUS_RANGE, "m", "walking")
     base = path.resolve().parent

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.plan.walkpath import WalkPath
 
 #: Task kinds of a cycle specification.
@@ -57,10 +58,10 @@ class CycleSpec:
     scene: Path
     start: str
     tasks: list[Task]
-    stature: float = 1.75
+    stature: float = DEFAULT_STATURE
     step_model: str = "default"
     reach_model: str = "default"
-    radius: float = 0.25
+    radius: float = BODY_RADIUS
     name: str = ""
 
 
@@ -130,7 +131,8 @@ class CycleResult:
         walks: the walks, in order.
         arms: the arm motions, in order.
         cycle_time: seconds from the first task's start to the last task's end.
-        collisions: humanoid-vs-scene contacts (:class:`mjwalk.playback.Contact`), if checked.
+        collisions: humanoid-vs-scene contacts (:class:`~mjwalk.timeline.collisions.Contact`),
+            if checked.
         timeline: the per-frame humanoid poses (kept only when asked for: it is large).
     """
 

@@ -50,6 +50,7 @@ import numpy as np
 from scipy.linalg import solve_banded
 from scipy.ndimage import gaussian_filter1d
 
+from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 from mjwalk.mocap.take import TAKE_FPS, Take
 
@@ -198,8 +199,8 @@ def sample_subject(rng: np.random.Generator, subject: int = 0) -> SubjectParams:
     Lengths scale with stature (1.75 m reference); the spread of the preferred step length and
     duration between subjects is about half the captured spread, the rest is intra-subject.
     """
-    stature = float(rng.normal(1.75, 0.04))
-    scale = stature / 1.75
+    stature = float(rng.normal(DEFAULT_STATURE, 0.04))
+    scale = stature / DEFAULT_STATURE
     return SubjectParams(
         subject=subject,
         stature=stature,

@@ -39,6 +39,7 @@ from scipy.interpolate import make_interp_spline
 from sklearn.decomposition import PCA
 from sklearn.preprocessing import StandardScaler
 
+from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.errors import MjwalkError
 from mjwalk.gait.step import Step
 
@@ -49,7 +50,7 @@ N_RAW = 2 * (N_LANDMARKS - 1) + (N_LANDMARKS - 1) + 1 + 3 + 3
 #: Shortest duration a decoded step may have (s); sampled features are clipped to it.
 MIN_DURATION = 0.15
 #: Synthesis rate (Hz), as the paper.
-FPS = 120.0
+FPS = SAMPLE_RATE_HZ
 
 _SL_XY = slice(0, 10)
 _SL_YAW = slice(10, 15)

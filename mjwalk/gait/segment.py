@@ -37,11 +37,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.ndimage import binary_closing, binary_opening, gaussian_filter1d
 
+from mjwalk.conventions import SIDES
 from mjwalk.errors import CaptureError
-from mjwalk.gait.step import Side, Step
+from mjwalk.gait.step import Step
 from mjwalk.mocap.take import Take
-
-SIDES: tuple[Side, Side] = ("left", "right")
 
 #: Reasons a candidate step is dropped (keys of ``SegmentationSummary.dropped``).
 DROP_REASONS = ("too_short", "too_long", "no_alternation", "absurd_length")

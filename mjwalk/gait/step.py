@@ -3,11 +3,10 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Literal
 
 import numpy as np
 
-Side = Literal["left", "right"]
+from mjwalk.conventions import Side
 
 
 @dataclass

@@ -6,8 +6,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from mjwalk.conventions import SAMPLE_RATE_HZ
+
 #: Sampling rate of every Take and every synthesized trajectory (Hz), as in agethen2018.
-TAKE_FPS = 120.0
+TAKE_FPS = SAMPLE_RATE_HZ
 
 
 @dataclass

@@ -15,12 +15,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mjwalk.conventions import BODY_RADIUS
 from mjwalk.errors import PlanningError
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace
 
-#: Default body radius (metres): half the shoulder width of an adult plus a margin.
-BODY_RADIUS = 0.25
 #: Default grid cell size (metres), as in agethen2018.
 CELL_SIZE = 0.08
 #: Walking speed (m/s) used to time the baseline's route (median speed of the Bandai walk capture).

@@ -51,6 +51,7 @@ import time
 
 import numpy as np
 
+from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.errors import PlanningError
 from mjwalk.gait.features import StepBatch
 from mjwalk.gait.model import POOL_SHARPNESS
@@ -67,7 +68,7 @@ from mjwalk.plan.heuristic import GoalDistance, goal_distance
 from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.world.workplace import Workplace
 
-FPS = 120.0
+FPS = SAMPLE_RATE_HZ
 #: Extra clearance (metres) demanded of the sampled trajectory points: it covers the bilinear
 #: field's error (< 4 mm) and the curve between two of the 16 checked samples of a step, so the
 #: full 120 Hz path keeps the body radius by MuJoCo's own geometry.

@@ -53,7 +53,7 @@ class DCSNetwork:
         validation_fraction: share of samples held out to select the network size (0 disables).
         n_iter_no_change: insertions without held-out improvement before growth stops.
         ridge: Tikhonov regularization of the output least squares (relative to the design scale).
-        random_state: seed or ``numpy.random.Generator``; same seed, same network.
+        rng: seed or ``numpy.random.Generator``; same seed, same network.
 
     Fitted attributes: ``centers_`` (K, d) standardized, ``outputs_`` (K, m), ``widths_`` (K,),
     ``edges_`` (K, K) bool adjacency, ``x_mean_``/``x_scale_`` (d,), ``n_neurons_``,
@@ -72,7 +72,7 @@ class DCSNetwork:
         validation_fraction: float = 0.2,
         n_iter_no_change: int = 6,
         ridge: float = 1e-6,
-        random_state: int | np.random.Generator | None = 0,
+        rng: int | np.random.Generator | None = 0,
     ):
         self.max_neurons = max_neurons
         self.error_threshold = error_threshold
@@ -84,7 +84,7 @@ class DCSNetwork:
         self.validation_fraction = validation_fraction
         self.n_iter_no_change = n_iter_no_change
         self.ridge = ridge
-        self.random_state = random_state
+        self.rng = rng
 
     # ------------------------------------------------------------------ fitting
     def fit(self, X: np.ndarray, Y: np.ndarray) -> DCSNetwork:
@@ -104,7 +104,7 @@ class DCSNetwork:
             raise MjwalkError("DCSNetwork.fit: X or Y holds NaN or infinite values")
         if self.max_neurons < 2:
             raise MjwalkError(f"DCSNetwork: max_neurons must be >= 2, got {self.max_neurons}")
-        rng = np.random.default_rng(self.random_state)
+        rng = np.random.default_rng(self.rng)
 
         self.x_mean_ = X.mean(axis=0)
         scale = X.std(axis=0)
@@ -340,8 +340,8 @@ class DCSNetwork:
                 "ridge",
             )
         }
-        rs = self.random_state
-        params["random_state"] = rs if isinstance(rs, int | None) else None
+        rs = self.rng
+        params["rng"] = rs if isinstance(rs, int | None) else None
         return {
             "format": DCS_FORMAT,
             "version": DCS_VERSION,
@@ -361,7 +361,10 @@ class DCSNetwork:
         """Rebuild a network from :meth:`save`'s header and arrays (used by composite models)."""
         check_header(header, source, "DCS network", DCS_FORMAT, DCS_VERSION)
         try:
-            net = cls(**header["params"])
+            params = dict(header["params"])
+            if "random_state" in params:  # files written before the rng/seed convention
+                params["rng"] = params.pop("random_state")
+            net = cls(**params)
             net.centers_ = np.asarray(data["centers"], dtype=float)
             net.outputs_ = np.asarray(data["outputs"], dtype=float)
             net.widths_ = np.asarray(data["widths"], dtype=float)

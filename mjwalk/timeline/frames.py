@@ -1,107 +1,27 @@
-"""Timeline -> MuJoCo frames: the per-frame humanoid pose of a walk, playback and collision report.
+"""Walk -> timeline frames: the per-frame humanoid pose of a walk in a scene.
 
-A :class:`Timeline` holds the compiled scene-with-humanoid model and one ``qpos`` row per video
-frame (default 30 fps). :func:`timeline_from_walk` builds it from a
+:func:`timeline_from_walk` builds a :class:`~mjwalk.timeline.timeline.Timeline` from a
 :class:`~mjwalk.plan.walkpath.WalkPath`: root position and yaw from the path, root height and
 legs from the footprints (:mod:`mjwalk.body.legs`), arms and torso from a simple counter-swing or
-the contact-switching gait-pose dynamics (:mod:`mjwalk.body.gaitpose`).
-:func:`collision_report` runs MuJoCo collision detection on every frame and reports the
-humanoid-vs-scene contacts.
+the contact-switching gait-pose dynamics (:mod:`mjwalk.body.gaitpose`), eased in and out and
+kept clear of nearby obstacles (:func:`ease_arms`, :func:`trunk_turn`).
 
 World frame: metres, seconds, radians, z up, yaw from +x CCW.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import mujoco
 import numpy as np
 
-from mjwalk.body.humanoid import HUMAN_GROUP, JointMap, attach_humanoid, shoulder_geometry
+from mjwalk.body.humanoid import JointMap, attach_humanoid, shoulder_geometry
 from mjwalk.body.legs import LegMotion, legs_from_walk
+from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
-
-
-@dataclass
-class Event:
-    """Something that happens at a time of the timeline (seconds): ``kind`` like
-    ``"heel_strike"``/``"toe_off"``, ``detail`` like ``"left"``."""
-
-    time: float
-    kind: str
-    detail: str = ""
-
-
-@dataclass
-class Timeline:
-    """Per-frame poses of the humanoid in a scene.
-
-    Attributes:
-        model: the compiled scene + humanoid model.
-        jointmap: where the humanoid's joints live in ``qpos``.
-        fps: frames per second (the video rate).
-        t: (F,) frame times in seconds from 0.
-        qpos: (F, nq) the model's qpos for every frame (root x, y, z in metres, root quaternion
-            w, x, y, z; hinge angles in radians).
-        events: gait events (heel strikes, toe-offs), in time order.
-        contact: (F,) foot contact state, 0 left stance, 1 right stance, 2 double support.
-        walk: the WalkPath the timeline was made from (drawn into videos), if any.
-        scene: the scene file (or "<MjSpec>") and ``stature`` the humanoid's stature in metres,
-            enough to rebuild ``model``.
-        meta: free-form provenance (producer, clipped joints, ...).
-    """
-
-    model: mujoco.MjModel
-    jointmap: JointMap
-    fps: float
-    t: np.ndarray
-    qpos: np.ndarray
-    events: list[Event] = field(default_factory=list)
-    contact: np.ndarray | None = None
-    walk: WalkPath | None = None
-    scene: str = ""
-    stature: float = 1.75
-    meta: dict = field(default_factory=dict)
-
-    @property
-    def n_frames(self) -> int:
-        return int(self.qpos.shape[0])
-
-    @property
-    def duration(self) -> float:
-        return float(self.t[-1]) if len(self.t) else 0.0
-
-    def root(self) -> np.ndarray:
-        """(F, 3) root (pelvis) positions in metres."""
-        r = self.jointmap.root
-        return self.qpos[:, r : r + 3]
-
-    def angle(self, name: str) -> np.ndarray:
-        """(F,) angle of joint ``name`` (unprefixed, e.g. ``"knee_l"``) in radians."""
-        return self.qpos[:, self.jointmap.adr(name)]
-
-
-@dataclass
-class Contact:
-    """One humanoid-vs-scene contact in one frame.
-
-    Attributes:
-        time: frame time in seconds.
-        body_part: the humanoid geom (unprefixed name, e.g. ``"forearm_r"``).
-        scene_geom: the scene geom's name (or ``"geom#<id>"`` when unnamed).
-        depth: penetration depth in metres (>= 0 means overlapping).
-        pos: (3,) contact point in world coordinates, metres.
-    """
-
-    time: float
-    body_part: str
-    scene_geom: str
-    depth: float
-    pos: np.ndarray
+from mjwalk.timeline.timeline import Event, Timeline
 
 
 def yaw_quat(yaw: np.ndarray) -> np.ndarray:
@@ -131,7 +51,7 @@ def timeline_from_walk(
     walk: WalkPath,
     scene: str | Path | mujoco.MjSpec,
     fps: float = 30.0,
-    stature: float = 1.75,
+    stature: float = DEFAULT_STATURE,
     arms: str = "swing",
     rng: np.random.Generator | None = None,
 ) -> Timeline:
@@ -155,9 +75,9 @@ def timeline_from_walk(
     model, jm = attach_humanoid(scene, stature)
     legs = legs_from_walk(walk, stature)
     t = np.arange(0.0, walk.duration + 1e-9, 1.0 / fps)
-    qpos = _frames_from_legs(model, jm, legs, t, stature, arms, rng)
+    qpos = frames_from_legs(model, jm, legs, t, stature, arms, rng)
     if arms != "none":
-        room, away = _room(scene, qpos[:, jm.root : jm.root + 2])
+        room, away = room_in_scene(scene, qpos[:, jm.root : jm.root + 2])
         rest = jm.neutral_qpos(model, stature)
         ease_arms(qpos, t, walk.duration, jm, rest, room, away=away, stature=stature)
     events = []
@@ -207,7 +127,7 @@ def trunk_turn(
     yaw: np.ndarray,
     room: np.ndarray,
     away: np.ndarray,
-    stature: float = 1.75,
+    stature: float = DEFAULT_STATURE,
     fps: float = 30.0,
 ) -> np.ndarray:
     """Trunk rotation (radians, + CCW about z; (F,)) that keeps the shoulders clear of the
@@ -250,7 +170,7 @@ def ease_arms(
     room: np.ndarray | None = None,
     carry: str | None = None,
     away: np.ndarray | None = None,
-    stature: float = 1.75,
+    stature: float = DEFAULT_STATURE,
 ) -> np.ndarray:
     """Shape the arm motion of walking frames ``qpos`` (F, nq) in place and return it.
 
@@ -306,7 +226,7 @@ def room_and_away(workplace, xy: np.ndarray, h: float = 0.02) -> tuple[np.ndarra
     return room, np.where(n > 1e-12, g / np.maximum(n, 1e-12), [1.0, 0.0])
 
 
-def _room(scene, xy: np.ndarray) -> tuple[np.ndarray | None, np.ndarray | None]:
+def room_in_scene(scene, xy: np.ndarray) -> tuple[np.ndarray | None, np.ndarray | None]:
     """Room (m) around pelvis positions ``xy`` in ``scene`` and the directions away from the
     nearest obstacle (None, None for an in-memory MjSpec)."""
     if isinstance(scene, mujoco.MjSpec):
@@ -316,7 +236,18 @@ def _room(scene, xy: np.ndarray) -> tuple[np.ndarray | None, np.ndarray | None]:
     return room_and_away(shared_workplace(scene), xy)
 
 
-def _frames_from_legs(model, jm, legs: LegMotion, t, stature, arms, rng) -> np.ndarray:
+def frames_from_legs(
+    model: mujoco.MjModel,
+    jm: JointMap,
+    legs: LegMotion,
+    t: np.ndarray,
+    stature: float,
+    arms: str,
+    rng: np.random.Generator | int | None,
+) -> np.ndarray:
+    """(len(t), nq) qpos of the humanoid in ``model`` at times ``t`` (s): root and legs
+    interpolated from ``legs``, arms and torso by ``arms`` ("swing", "gaitpose" or "none", see
+    :func:`timeline_from_walk`), every angle clipped to its joint range."""
     qpos = np.tile(jm.neutral_qpos(model, stature), (len(t), 1))
     r = jm.root
     for k in range(3):
@@ -335,62 +266,3 @@ def _frames_from_legs(model, jm, legs: LegMotion, t, stature, arms, rng) -> np.n
         lo, hi = jm.limits(name)
         qpos[:, jm.adr(name)] = np.clip(v, lo, hi)
     return qpos
-
-
-def iter_frames(timeline: Timeline, data: mujoco.MjData | None = None) -> Iterator[mujoco.MjData]:
-    """Play the timeline: set each frame's qpos, run forward kinematics, yield the MjData."""
-    model = timeline.model
-    data = data if data is not None else mujoco.MjData(model)
-    for q in timeline.qpos:
-        data.qpos[:] = q
-        mujoco.mj_kinematics(model, data)
-        yield data
-
-
-def collision_report(timeline: Timeline, floor_tolerance: float = 0.01) -> list[Contact]:
-    """Humanoid-vs-scene contacts of every frame by MuJoCo collision detection.
-
-    Only pairs of one humanoid geom (group 5) and one scene geom count. Contacts with the floor
-    (the geom named ``"floor"`` or any plane) are left out unless they penetrate deeper than
-    ``floor_tolerance`` metres, so ordinary foot contact is not reported.
-
-    Returns:
-        contacts in time order (one per geom pair and frame), depth in metres.
-    """
-    model = timeline.model
-    data = mujoco.MjData(model)
-    human = model.geom_group == HUMAN_GROUP
-    plen = len(timeline.jointmap.prefix)
-    names = [
-        mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom#{g}"
-        for g in range(model.ngeom)
-    ]
-    floorish = np.array(
-        [
-            n == "floor" or model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
-            for g, n in enumerate(names)
-        ]
-    )
-    out: list[Contact] = []
-    for i, q in enumerate(timeline.qpos):
-        data.qpos[:] = q
-        mujoco.mj_kinematics(model, data)
-        mujoco.mj_collision(model, data)
-        n = data.ncon
-        if n == 0:
-            continue
-        con = data.contact  # struct-of-arrays view: filter in numpy, loop over the few left
-        g = np.asarray(con.geom[:n]).astype(int)
-        depth = -np.asarray(con.dist[:n])
-        h1, h2 = human[g[:, 0]], human[g[:, 1]]
-        hg = np.where(h1, g[:, 0], g[:, 1])
-        sg = np.where(h1, g[:, 1], g[:, 0])
-        keep = (h1 != h2) & ~(floorish[sg] & (depth <= floor_tolerance))
-        best: dict[tuple[int, int], tuple[float, np.ndarray]] = {}
-        for k in np.flatnonzero(keep):
-            key = (int(hg[k]), int(sg[k]))
-            if depth[k] > best.get(key, (-np.inf,))[0]:
-                best[key] = (float(depth[k]), np.array(con.pos[k]))
-        for (hg, sg), (depth, pos) in best.items():
-            out.append(Contact(float(timeline.t[i]), names[hg][plen:], names[sg], depth, pos))
-    return out

@@ -16,10 +16,10 @@ _MEMO: dict = {}
 
 
 def default_reach_model(progress: bool = True):
-    """The :class:`~mjwalk.body.reach.ReachModel` of start/end-constrained reaches of the left
+    """The :class:`~mjwalk.arms.reach.ReachModel` of start/end-constrained reaches of the left
     arm (``reachgen.generate("endpoints", 200, seed 0)``), cached beside the step model."""
-    from mjwalk.body import reachgen
-    from mjwalk.body.reach import ReachModel
+    from mjwalk.arms import reachgen
+    from mjwalk.arms.reach import ReachModel
     from mjwalk.gait.default import cache_dir
 
     path = cache_dir() / f"reach-endpoints-v{REACH_DEFAULT_VERSION}-n{N_TRAIN}.npz"
@@ -36,9 +36,7 @@ def default_reach_model(progress: bool = True):
         if progress:
             print(f"[mjwalk] building the default reach model -> {path}", file=sys.stderr)
         data = reachgen.generate("endpoints", N_TRAIN, np.random.default_rng(0))
-        model = ReachModel(data.lengths, dcs={"random_state": 0}).fit(
-            data.constraints, data.directions
-        )
+        model = ReachModel(data.lengths, dcs={"rng": 0}).fit(data.constraints, data.directions)
         model.save(path)
         if progress:
             print(

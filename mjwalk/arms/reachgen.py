@@ -15,7 +15,7 @@ path lifts over the obstacle with its peak above it;
 extras = grip aperture (m) and forearm roll (rad) per sample.
 
 Frame: left shoulder at the origin, metres, x forward, y left, z up. The "hand position" is the
-end of the hand segment (see :func:`mjwalk.body.reach.end_effector`).
+end of the hand segment (see :func:`mjwalk.arms.kinematics.end_effector`).
 """
 
 from __future__ import annotations
@@ -24,7 +24,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mjwalk.body.reach import REST_HAND, arm_segment_lengths, end_effector, min_jerk, two_link_ik
+from mjwalk.arms.kinematics import (
+    REST_HAND,
+    arm_segment_lengths,
+    end_effector,
+    min_jerk,
+    two_link_ik,
+)
+from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 
 SPACES = ("endpoints", "obstacle", "grasp")
@@ -119,7 +126,7 @@ def _reachable(p, lengths):
 
 
 def generate(
-    space: str, p: int, rng: np.random.Generator, n: int = 20, stature: float = 1.75
+    space: str, p: int, rng: np.random.Generator, n: int = 20, stature: float = DEFAULT_STATURE
 ) -> ReachData:
     """Generate ``p`` reaches of constraint ``space`` (one of :data:`SPACES`)."""
     if space not in SPACES:

@@ -1,0 +1,1 @@
+"""Arm motion: trajectory representation, DCS network, reach model, reach generator, hands."""

@@ -1,0 +1,143 @@
+"""Arm kinematics: segment lengths, chain points, two-link IK, minimum jerk, and the humanoid's
+arm joint angles from segment directions.
+
+Frames: the body frame at the shoulder of the moving arm, metres, x forward, y left, z up (the
+humanoid's thorax frame in its neutral pose). Angles in radians.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
+
+#: Anthropometric segment lengths as shares of stature H (Winter): upper arm, forearm, hand.
+ARM_SEGMENT_SHARES = (0.186, 0.146, 0.108)
+
+
+#: Relaxed hand position (m, left shoulder frame, x fwd, y left, z up) where reaches start.
+REST_HAND = (0.15, 0.02, -0.60)
+
+
+def arm_segment_lengths(stature: float = DEFAULT_STATURE, with_hand: bool = True) -> np.ndarray:
+    """Upper arm, forearm (and hand) lengths in metres for a person of ``stature`` metres."""
+    shares = ARM_SEGMENT_SHARES if with_hand else ARM_SEGMENT_SHARES[:2]
+    return stature * np.asarray(shares)
+
+
+def chain_points(directions: np.ndarray, lengths: np.ndarray) -> np.ndarray:
+    """Joint positions (..., S+1, 3) from the shoulder (origin) along unit segment
+    ``directions`` (..., S, 3) with ``lengths`` (S,) metres."""
+    seg = directions * np.asarray(lengths)[:, None]
+    zero = np.zeros((*directions.shape[:-2], 1, 3))
+    return np.concatenate([zero, np.cumsum(seg, axis=-2)], axis=-2)
+
+
+def end_effector(directions: np.ndarray, lengths: np.ndarray) -> np.ndarray:
+    """Hand (end of the chain) position (..., 3), metres from the shoulder."""
+    return np.einsum("...sj,s->...j", directions, np.asarray(lengths))
+
+
+def min_jerk(tau: np.ndarray) -> np.ndarray:
+    """Minimum-jerk profile 10 t^3 - 15 t^4 + 6 t^5 on t in [0, 1]."""
+    tau = np.clip(tau, 0.0, 1.0)
+    return tau**3 * (10 - 15 * tau + 6 * tau**2)
+
+
+def two_link_ik(
+    target: np.ndarray, l1: float, l2: float, elbow_hint: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Unit directions (upper arm, forearm) putting the wrist at ``target`` (3,) from the
+    shoulder, with the elbow in the plane of the shoulder-wrist axis and ``elbow_hint`` (the
+    swivel angle of the hint is kept). Unreachable targets are clamped to the workspace."""
+    d = float(np.linalg.norm(target))
+    d = float(np.clip(d, abs(l1 - l2) + 1e-6, l1 + l2 - 1e-6))
+    axis = target / max(np.linalg.norm(target), 1e-9)
+    perp = elbow_hint - (elbow_hint @ axis) * axis
+    if np.linalg.norm(perp) < 1e-9:
+        perp = np.cross(axis, [0.0, 1.0, 0.0])
+        if np.linalg.norm(perp) < 1e-9:
+            perp = np.cross(axis, [1.0, 0.0, 0.0])
+    perp /= np.linalg.norm(perp)
+    a = (l1**2 - l2**2 + d**2) / (2 * d)
+    h = np.sqrt(max(l1**2 - a**2, 0.0))
+    elbow = a * axis + h * perp
+    wrist = d * axis
+    return elbow / l1, (wrist - elbow) / l2
+
+
+#: Joint names of one arm of the mjwalk humanoid (mjwalk.body.humanoid), in output order.
+ARM_JOINTS = (
+    "shoulder_flex",
+    "shoulder_abd",
+    "shoulder_rot",
+    "elbow",
+    "forearm_pron",
+    "wrist_flex",
+    "wrist_dev",
+)
+
+
+def arm_joint_angles(
+    directions: np.ndarray, side: Side = "left", roll: np.ndarray | None = None
+) -> np.ndarray:
+    """Humanoid arm joint angles (n, 7) in radians, order :data:`ARM_JOINTS`, from segment
+    directions (n, S, 3) in the thorax frame (x forward, y left, z up; S = 2 or 3) and an
+    optional forearm roll (n,) (pronation, radians).
+
+    The humanoid's chain (mjwalk.body.humanoid) is R_sh = Ry(-flex) Rx(s abd) Rz(-s rot) with
+    the arm along -z, elbow Ry(-elbow), pronation Rz(-s pron), wrist Ry(-flex) Rx(s dev), with
+    s = +1 for the left and -1 for the right arm. The upper arm's twist is the one that puts
+    the forearm in the elbow's flexion plane; when the elbow is straight it is carried over
+    from the previous frame.
+    """
+    s = 1.0 if side == "left" else -1.0
+    U = np.asarray(directions, dtype=float)
+    n = len(U)
+    q = np.zeros((n, 7))
+    prev_x = None
+    for t in range(n):
+        u1, u2 = U[t, 0], U[t, 1]
+        z = -u1
+        x = u2 - (u2 @ u1) * u1
+        if np.linalg.norm(x) < 1e-3:
+            x = prev_x if prev_x is not None else np.array([1.0, 0.0, 0.0])
+            x = x - (x @ z) * z
+        x /= np.linalg.norm(x)
+        prev_x = x
+        y = np.cross(z, x)
+        r_sh = Rotation.from_matrix(np.column_stack([x, y, z]))
+        a, b, c = r_sh.as_euler("YXZ")
+        elbow = float(np.arccos(np.clip(u1 @ u2, -1, 1)))
+        pron = 0.0 if roll is None else float(roll[t])
+        q[t, :5] = [-a, s * b, -s * c, elbow, pron]
+        if U.shape[1] > 2:
+            r_fa = r_sh * Rotation.from_euler("YZ", [-elbow, -s * pron])
+            h = r_fa.inv().apply(U[t, 2])
+            beta = np.arcsin(np.clip(h[1], -1, 1))
+            q[t, 5] = np.arctan2(h[0], -h[2])
+            q[t, 6] = s * beta
+    q[:, 0] = np.unwrap(q[:, 0])
+    q[:, 2] = np.unwrap(q[:, 2])
+    return q
+
+
+def arm_frames(
+    q0: np.ndarray, jm, q: np.ndarray, side: Side, times: np.ndarray
+) -> tuple[np.ndarray, list[str]]:
+    """Poses (len(times), nq): ``q0`` with one arm's joint angles ``q`` (n, 7), order
+    :data:`ARM_JOINTS`, radians) sampled evenly over [0, 1], interpolated at ``times`` in [0, 1]
+    and clipped to the humanoid's joint ranges; and the names of the joints that were clipped."""
+    src = np.linspace(0.0, 1.0, len(q))
+    out = np.repeat(np.asarray(q0)[None], len(times), axis=0)
+    clipped = []
+    for k, name in enumerate(ARM_JOINTS):
+        part, *rest = name.split("_")
+        jn = "_".join([part, side_prefix(side), *rest])  # "shoulder_flex" -> "shoulder_l_flex"
+        qi = np.interp(times, src, q[:, k])
+        lo, hi = jm.limits(jn)
+        if (qi < lo - 1e-6).any() or (qi > hi + 1e-6).any():
+            clipped.append(jn)
+        out[:, jm.adr(jn)] = np.clip(qi, lo, hi)
+    return out, clipped

@@ -1,0 +1,257 @@
+"""``ReachModel``: constraint -> DCS -> PCA coefficients -> arm trajectory (Al-Zubi & Sommer).
+
+Pipeline of :meth:`ReachModel.predict`:
+
+1. the constraint vector (start/end hand position; obstacle ratio B/A; object size and
+   orientation...) goes through a :class:`~mjwalk.arms.dcs.DCSNetwork` that returns the PCA
+   coefficients ``b`` and the alignment pose of the movement;
+2. eq. 1 rebuilds the aligned segment directions, the pose maps them back to the body frame;
+3. when the actual start and end hand positions are given, the pose (rotation + angular scale)
+   is refit so the hand starts and ends there (the paper's "fitted to a start and end
+   position"), then a final analytic IK correction, blended over the movement with a
+   minimum-jerk profile, moves the hand onto both points exactly (well within 1 cm);
+4. :func:`~mjwalk.arms.kinematics.arm_joint_angles` turns directions (+ forearm roll) into
+   the humanoid's joint angles.
+
+Frames: the body frame at the shoulder of the moving arm, metres, x forward, y left, z up
+(the humanoid's thorax frame in its neutral pose). A constraint outside the trained range is
+never used silently: the result carries its distance to the training data and a warning, or
+``strict=True`` raises :class:`~mjwalk.errors.MjwalkError`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from mjwalk._io import check_header, load_npz, save_npz
+from mjwalk.arms.armrep import ArmRepresentation, apply_pose
+from mjwalk.arms.dcs import DCSNetwork
+from mjwalk.arms.kinematics import (
+    arm_segment_lengths,
+    end_effector,
+    min_jerk,
+    two_link_ik,
+)
+from mjwalk.errors import MjwalkError, ModelFileError
+
+REACH_FORMAT = "mjwalk.reach"
+REACH_VERSION = 1
+
+
+@dataclass
+class ReachResult:
+    """One synthesized arm movement in the shoulder body frame (metres, x fwd, y left, z up).
+
+    Attributes:
+        directions: (n, S, 3) unit segment directions (upper arm, forearm[, hand]) over time.
+        hand: (n, 3) end-of-chain position over time, metres from the shoulder.
+        extras: (n, C) extra channels (e.g. grip aperture m, forearm roll rad) or None.
+        coefficients: (q,) PCA coefficients the DCS returned.
+        distance: distance of the constraint to the nearest training constraint, in training
+            standard deviations.
+        outside: True when ``distance`` exceeds the network's trained-range radius.
+        warnings: human-readable notes (extrapolation, clamped targets).
+    """
+
+    directions: np.ndarray
+    hand: np.ndarray
+    extras: np.ndarray | None
+    coefficients: np.ndarray
+    distance: float
+    outside: bool
+    warnings: list[str] = field(default_factory=list)
+
+
+class ReachModel:
+    """PCA + DCS model of arm trajectories conditioned on a constraint vector.
+
+    Args:
+        lengths: (S,) segment lengths in metres (see :func:`arm_segment_lengths`).
+        variance: PCA variance share (or number of modes) for :class:`ArmRepresentation`.
+        dcs: keyword arguments of :class:`DCSNetwork`.
+        regressor: any object with ``fit(X, Y)``/``predict(X)`` used instead of the DCS (for
+            baselines: sklearn KNeighborsRegressor, GaussianProcessRegressor); not saved.
+    """
+
+    def __init__(
+        self,
+        lengths: np.ndarray | None = None,
+        variance: float | int = 0.98,
+        dcs: dict | None = None,
+        regressor=None,
+    ):
+        self.lengths = np.asarray(lengths if lengths is not None else arm_segment_lengths())
+        self.variance = variance
+        self.dcs = dict(dcs or {})
+        self.regressor = regressor
+
+    def fit(
+        self,
+        constraints: np.ndarray,
+        directions: np.ndarray,
+        extras: np.ndarray | None = None,
+        rep: ArmRepresentation | None = None,
+    ) -> ReachModel:
+        """Fit on constraints (p, d) and direction trajectories (p, n, S, 3) [+ extras];
+        ``rep`` reuses an ArmRepresentation already fitted on the same trajectories."""
+        C = np.asarray(constraints, dtype=float)
+        if C.ndim == 1:
+            C = C[:, None]
+        U = np.asarray(directions, dtype=float)
+        if len(C) != len(U):
+            raise MjwalkError(f"ReachModel.fit: {len(C)} constraints but {len(U)} trajectories")
+        if U.shape[2] != len(self.lengths):
+            raise MjwalkError(
+                f"ReachModel.fit: trajectories have {U.shape[2]} segments, lengths {self.lengths}"
+            )
+        self.rep_ = rep if rep is not None else ArmRepresentation(self.variance).fit(U, extras)
+        A, poses = self.rep_.align(U)
+        b = self.rep_.pca_.transform(self.rep_.to_features(A, extras))
+        self.n_modes_ = b.shape[1]
+        target = np.hstack([b, poses])
+        self.net_ = self.regressor if self.regressor is not None else DCSNetwork(**self.dcs)
+        self.net_.fit(C, target)
+        if not hasattr(self.net_, "distance_to_training"):
+            self._scale = C.std(axis=0) + 1e-12
+            self._train = C / self._scale
+        return self
+
+    @property
+    def n_neurons(self) -> int | None:
+        return getattr(self.net_, "n_neurons_", None)
+
+    def _distance(self, c: np.ndarray) -> tuple[float, bool]:
+        if hasattr(self.net_, "distance_to_training"):
+            d = float(self.net_.distance_to_training(c[None])[0])
+            return d, d > self.net_.range_radius_
+        d = float(np.min(np.linalg.norm(self._train - c / self._scale, axis=1)))
+        return d, False
+
+    def predict(
+        self,
+        constraint: np.ndarray,
+        start: np.ndarray | None = None,
+        end: np.ndarray | None = None,
+        strict: bool = False,
+        object_size: float | None = None,
+    ) -> ReachResult:
+        """Synthesize the movement for one ``constraint`` (d,); with ``start``/``end`` (3,)
+        hand positions (metres, shoulder frame) the movement is fitted to them exactly; with
+        ``object_size`` (m) the grip aperture (extras channel 0) is blended, with a
+        minimum-jerk profile, to close exactly on the object at the end."""
+        if not hasattr(self, "net_"):
+            raise MjwalkError("ReachModel is not fitted; call fit() or load() first")
+        c = np.atleast_1d(np.asarray(constraint, dtype=float))
+        dist, outside = self._distance(c)
+        warnings = []
+        if outside:
+            msg = (
+                f"constraint {np.round(c, 4).tolist()} lies outside the trained range: "
+                f"{dist:.2f} sd from the nearest training constraint "
+                f"(limit {self.net_.range_radius_:.2f})"
+            )
+            if strict:
+                raise MjwalkError(msg)
+            warnings.append(msg)
+        out = np.asarray(self.net_.predict(c[None]))[0]
+        b, pose = out[: self.n_modes_], out[self.n_modes_ :]
+        A, E = self.rep_.inverse_transform(b[None])
+        A, E = A[0], (None if E is None else E[0])
+        if object_size is not None:
+            if E is None:
+                raise MjwalkError("ReachModel.predict: object_size needs a grasp model (extras)")
+            E = E.copy()
+            E[:, 0] += min_jerk(np.linspace(0, 1, len(E))) * (object_size - E[-1, 0])
+        if start is not None or end is not None:
+            pose = self._fit_endpoints(A, pose, start, end)
+        U = apply_pose(self.rep_.center_, A, pose)
+        if start is not None or end is not None:
+            U, note = self._ik_correct(U, start, end)
+            warnings += note
+        return ReachResult(
+            directions=U,
+            hand=end_effector(U, self.lengths),
+            extras=E,
+            coefficients=b,
+            distance=dist,
+            outside=outside,
+            warnings=warnings,
+        )
+
+    def _fit_endpoints(self, A, pose0, start, end):
+        idx, tgt = [], []
+        if start is not None:
+            idx.append(0)
+            tgt.append(np.asarray(start, dtype=float))
+        if end is not None:
+            idx.append(len(A) - 1)
+            tgt.append(np.asarray(end, dtype=float))
+        tgt = np.array(tgt)
+        Asub = A[idx]
+
+        def resid(x):
+            return (
+                end_effector(apply_pose(self.rep_.center_, Asub, x), self.lengths) - tgt
+            ).ravel()
+
+        lb = np.r_[-np.inf, -np.inf, -np.inf, -1.0]
+        ub = np.r_[np.inf, np.inf, np.inf, 1.0]
+        x0 = np.clip(pose0, lb + 1e-9, ub - 1e-9)
+        return least_squares(resid, x0, bounds=(lb, ub)).x
+
+    def _ik_correct(self, U, start, end):
+        """Blend the start/end hand errors out with a minimum-jerk profile (analytic IK)."""
+        n = len(U)
+        hand = end_effector(U, self.lengths)
+        e0 = np.zeros(3) if start is None else np.asarray(start) - hand[0]
+        e1 = np.zeros(3) if end is None else np.asarray(end) - hand[-1]
+        w = min_jerk(np.linspace(0, 1, n))[:, None]
+        delta = (1 - w) * e0 + w * e1
+        l1, l2 = self.lengths[:2]
+        out = U.copy()
+        notes = []
+        for t in range(n):
+            wrist_target = hand[t] + delta[t]
+            if len(self.lengths) > 2:
+                wrist_target = wrist_target - end_effector(U[t, 2:], self.lengths[2:])
+            if np.linalg.norm(wrist_target) > l1 + l2 - 1e-6:
+                notes.append(f"frame {t}: hand target out of reach, clamped")
+            elbow_hint = U[t, 0] * l1
+            out[t, 0], out[t, 1] = two_link_ik(wrist_target, l1, l2, elbow_hint)
+        return out, notes[:1]
+
+    # ------------------------------------------------------------ persistence
+    def save(self, path: str | Path) -> None:
+        """Write the model (representation + DCS) to one versioned ``.npz`` (atomically)."""
+        if not isinstance(getattr(self, "net_", None), DCSNetwork):
+            raise MjwalkError("ReachModel.save: only a fitted DCS-based model can be saved")
+        arrays = dict(self.rep_.to_arrays())
+        arrays.update({f"dcs_{k}": v for k, v in self.net_._arrays().items()})
+        arrays["lengths"] = self.lengths
+        header = {
+            "format": REACH_FORMAT,
+            "version": REACH_VERSION,
+            "n_modes": int(self.n_modes_),
+            "variance": self.variance,
+            "dcs_header": self.net_._header(),
+        }
+        save_npz(path, header, arrays)
+
+    @classmethod
+    def load(cls, path: str | Path) -> ReachModel:
+        """Read a model written by :meth:`save`; corrupt/foreign files raise ModelFileError."""
+        header, data = load_npz(path, "reach-model")
+        check_header(header, path, "reach-model", REACH_FORMAT, REACH_VERSION)
+        try:
+            model = cls(lengths=data["lengths"], variance=header["variance"])
+            model.rep_ = ArmRepresentation.from_arrays(data)
+            model.n_modes_ = int(header["n_modes"])
+            dcs_data = {k[4:]: v for k, v in data.items() if k.startswith("dcs_")}
+            model.net_ = DCSNetwork.from_arrays(header["dcs_header"], dcs_data, source=str(path))
+        except (KeyError, ValueError, TypeError) as exc:
+            raise ModelFileError(f"{path}: corrupt reach model ({exc})") from exc
+        return model

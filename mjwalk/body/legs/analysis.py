@@ -1,0 +1,90 @@
+"""Gait analysis of capture: sagittal leg angles, heel strikes and time-normalised gait cycles
+of a :class:`~mjwalk.mocap.take.Take`, and a :class:`~mjwalk.body.legs.reference.ReferenceGait`
+averaged from them.
+
+World frame: metres, z up; angles in radians.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+from mjwalk.body.legs.reference import ReferenceGait
+from mjwalk.errors import CaptureError
+
+
+def sagittal_angles(hip, knee, ankle, toe, yaw):
+    """Hip (thigh) flexion, knee flexion and raw foot pitch (ankle -> toe vs floor), radians,
+    of one leg in the walking plane, from (T, 3) joint positions and the (T,) heading yaw."""
+    fwd = np.column_stack([np.cos(yaw), np.sin(yaw), np.zeros_like(yaw)])
+    th, sh, ft = knee - hip, ankle - knee, toe - ankle
+    hipf = np.arctan2((th * fwd).sum(1), -th[:, 2])
+    kneef = hipf - np.arctan2((sh * fwd).sum(1), -sh[:, 2])
+    pitch = np.arctan2(ft[:, 2], (ft * fwd).sum(1))
+    return hipf, kneef, pitch
+
+
+def heel_strikes(pitch: np.ndarray, fps: float) -> np.ndarray:
+    """Sample indices of heel strikes: the foot's toes-up pitch peaks (radians, (T,)), at least
+    0.6 s apart and 10 deg prominent. The foot lands heel first with the toes highest, then
+    rolls down."""
+    from scipy.signal import find_peaks
+
+    peaks, _ = find_peaks(pitch, distance=max(1, int(0.6 * fps)), prominence=np.deg2rad(10))
+    return peaks
+
+
+def gait_cycles(
+    take, side: str = "L", names: str = "UpperLeg_{},LowerLeg_{},Foot_{},Toes_{}", n: int = 101
+) -> np.ndarray:
+    """Time-normalised gait cycles of one leg of a capture :class:`~mjwalk.mocap.take.Take`.
+
+    Args:
+        take: a take with ``joints`` holding hip, knee, ankle and toe positions.
+        side: side letter used in the joint names ("L"/"R").
+        names: comma-separated joint-name patterns (hip, knee, ankle, toe), ``{}`` = side.
+        n: samples per cycle.
+
+    Returns:
+        (C, 3, n) per complete cycle (heel strike to heel strike, the first and last dropped):
+        thigh flexion, knee flexion and foot pitch (radians; pitch relative to the flat foot,
+        the median over 20-40 % of the cycle).
+    """
+    keys = [k.format(side) for k in names.split(",")]
+    missing = [k for k in keys if k not in take.joints]
+    if missing:
+        raise CaptureError(
+            f"{take.name}: gait_cycles needs joints {missing} (have {sorted(take.joints)[:8]}...)"
+        )
+    h, k, a, t = (np.asarray(take.joints[j], float) for j in keys)
+    hipf, kneef, pitch = sagittal_angles(h, k, a, t, np.asarray(take.pelvis_yaw, float))
+    hs = heel_strikes(pitch, take.fps)
+    x = np.linspace(0, 1, n)
+    cycles = []
+    for i0, i1 in itertools.pairwise(hs):
+        s = np.linspace(0, 1, i1 - i0 + 1)
+        cycles.append([np.interp(x, s, v[i0 : i1 + 1]) for v in (hipf, kneef, pitch)])
+    cycles = np.array(cycles[1:-1]).reshape(-1, 3, n)
+    if len(cycles):
+        flat = np.median(cycles[:, 2, int(0.2 * (n - 1)) : int(0.4 * (n - 1)) + 1])
+        cycles[:, 2] -= flat
+    return cycles
+
+
+def reference_from_takes(
+    takes, side: str = "L", names: str = "UpperLeg_{},LowerLeg_{},Foot_{},Toes_{}"
+) -> ReferenceGait:
+    """A reference gait from captured straight walks: the mean of their gait cycles."""
+    cyc = [c for t in takes for c in gait_cycles(t, side, names)]
+    if not cyc:
+        raise CaptureError("reference_from_takes: no complete gait cycle in the takes")
+    m = np.mean(cyc, axis=0)
+    return ReferenceGait(
+        cycle=np.linspace(0, 1, m.shape[1]),
+        hip=m[0],
+        knee=m[1],
+        pitch=m[2],
+        source=f"{len(cyc)} captured cycles ({', '.join(t.name for t in takes)})",
+    )

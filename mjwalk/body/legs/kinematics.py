@@ -1,0 +1,264 @@
+"""Leg kinematics of the humanoid: analytic IK and FK of one leg in the pelvis frame, the foot's
+lowest point, and the geometry of a foot rolling about its heel or ball on a footprint.
+
+Pelvis frame: x forward, y left, z up, pelvis upright. World frame: metres, z up, yaw from +x
+CCW. Footprint ``(x, y, yaw)``: the floor point under the ankle joint with the foot flat, and the
+foot's heading. The public functions take ``side`` "left" / "right"; the helpers the synthesis
+loops over (:func:`hip_world`, :func:`leg_ik_world`) the joint-name letter "l" / "r". Angles in
+radians.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+from mjwalk.body.humanoid import ROM_DEG, LegGeometry
+from mjwalk.conventions import Side, side_of_prefix, side_prefix
+
+#: Smallest knee flexion the IK uses when a leg must stretch (radians): never lock the knee.
+KNEE_MIN = np.deg2rad(2.0)
+
+LEG_JOINTS = (
+    "hip_{}_rot",
+    "hip_{}_flex",
+    "hip_{}_abd",
+    "knee_{}",
+    "ankle_{}_flex",
+    "ankle_{}_inv",
+    "toe_{}",
+)
+
+
+def rot_z(a: np.ndarray) -> np.ndarray:
+    c, s = np.cos(a), np.sin(a)
+    z, o = np.zeros_like(a), np.ones_like(a)
+    return np.stack(
+        [np.stack([c, -s, z], -1), np.stack([s, c, z], -1), np.stack([z, z, o], -1)], -2
+    )
+
+
+def rot_y(a: np.ndarray) -> np.ndarray:
+    c, s = np.cos(a), np.sin(a)
+    z, o = np.zeros_like(a), np.ones_like(a)
+    return np.stack(
+        [np.stack([c, z, s], -1), np.stack([z, o, z], -1), np.stack([-s, z, c], -1)], -2
+    )
+
+
+def rot_x(a: np.ndarray) -> np.ndarray:
+    c, s = np.cos(a), np.sin(a)
+    z, o = np.zeros_like(a), np.ones_like(a)
+    return np.stack(
+        [np.stack([o, z, z], -1), np.stack([z, c, -s], -1), np.stack([z, s, c], -1)], -2
+    )
+
+
+def leg_ik(
+    ankle_rel: np.ndarray,
+    foot_yaw: np.ndarray,
+    foot_pitch: np.ndarray,
+    side: Side,
+    geom: LegGeometry,
+    clip: bool = True,
+) -> dict[str, np.ndarray]:
+    """Analytic leg IK in the pelvis frame (x forward, y left, z up; pelvis upright).
+
+    Args:
+        ankle_rel: (N, 3) ankle position relative to the hip joint centre, metres.
+        foot_yaw: (N,) foot heading relative to the pelvis heading, radians (CCW).
+        foot_pitch: (N,) foot pitch relative to the floor, radians, + toes up.
+        side: "left" or "right".
+        geom: the leg lengths.
+
+    Returns:
+        joint name -> (N,) angle in radians (hip rotation/flexion/abduction, knee, ankle
+        flexion/inversion), anatomical signs, clipped to the humanoid's ranges. Unreachable
+        targets are met as closely as the leg allows (stretched to :data:`KNEE_MIN`).
+    """
+    s = 1.0 if side == "left" else -1.0
+    p = side_prefix(side)
+    L1, L2 = geom.thigh, geom.shank
+    # the hip-to-ankle vector in the foot frame R_f = R_z(yaw) R_y(-pitch) (sole level
+    # sideways); the chain hip R_z R_y R_x, knee R_y, ankle R_y R_x gives
+    # u = R_x(s inv) R_y(dorsi) w(knee) with w(knee) the hip-to-ankle vector in the shin frame
+    # (knee and ankle flexion axes parallel): knee from |u|, ankle inversion and flexion from
+    # the direction of u, then the hip's three angles from the remaining rotation, so the
+    # foot's position and all three orientation angles are met exactly (6 joints, 6 dof)
+    Rf = rot_z(np.asarray(foot_yaw, float)) @ rot_y(-np.asarray(foot_pitch, float))
+    u = (np.swapaxes(Rf, -1, -2) @ np.asarray(ankle_rel, float)[..., None])[..., 0]
+    r = np.linalg.norm(u, axis=-1)
+    rmax = geom.span(KNEE_MIN)
+    rmin = geom.span(np.deg2rad(ROM_DEG["knee"][1]))
+    rc = np.clip(r, rmin, rmax)
+    knee = geom.knee_for_span(rc)
+    phi = np.arctan2(u[:, 1], -u[:, 2])  # rotation about the foot's x axis (s * inversion)
+    m = np.hypot(u[:, 1], u[:, 2])
+    a = np.arctan2(L1 * np.sin(knee), L1 * np.cos(knee) + L2) - np.arctan2(u[:, 0], m)
+    a = np.mod(a + np.pi, 2 * np.pi) - np.pi  # ankle dorsiflexion
+    H = Rf @ rot_x(phi) @ rot_y(a - knee)  # = R_z(-s rot) R_y(-flex) R_x(s abd)
+    out = {
+        f"hip_{p}_rot": -s * np.arctan2(H[:, 1, 0], H[:, 0, 0]),
+        f"hip_{p}_flex": np.arcsin(np.clip(H[:, 2, 0], -1, 1)),
+        f"hip_{p}_abd": s * np.arctan2(H[:, 2, 1], H[:, 2, 2]),
+        f"knee_{p}": knee,
+        f"ankle_{p}_flex": a,
+        f"ankle_{p}_inv": s * phi,
+    }
+    if clip:
+        for name, v in out.items():
+            lo, hi = np.deg2rad(ROM_DEG[generic_joint(name)])
+            out[name] = np.clip(v, lo, hi)
+    return out
+
+
+def leg_fk(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry):
+    """Forward kinematics of one leg in the pelvis frame (x forward, y left, z up; pelvis
+    upright), the humanoid's joint axes (:func:`~mjwalk.body.humanoid.build_humanoid`).
+
+    Args:
+        angles: joint name -> (N,) angles in radians (hip rotation/flexion/abduction, knee,
+            ankle flexion/inversion of ``side``).
+        side: "left" or "right".
+        geom: the leg lengths.
+
+    Returns:
+        (ankle (N, 3) relative to the hip joint centre in metres, foot rotation (N, 3, 3)).
+    """
+    s = 1.0 if side == "left" else -1.0
+    a = {k: np.asarray(angles[k.format(side_prefix(side))], float) for k in LEG_JOINTS[:-1]}
+    R = rot_z(-s * a["hip_{}_rot"]) @ rot_y(-a["hip_{}_flex"]) @ rot_x(s * a["hip_{}_abd"])
+    knee = R[..., 2] * -geom.thigh
+    R = R @ rot_y(a["knee_{}"])
+    ankle = knee + R[..., 2] * -geom.shank
+    R = R @ rot_y(-a["ankle_{}_flex"]) @ rot_x(-s * a["ankle_{}_inv"])
+    return ankle, R
+
+
+def foot_lowest(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry) -> np.ndarray:
+    """(N,) height (m) of the lowest point of the foot's collision boxes (sole and toes, as
+    built by :func:`~mjwalk.body.humanoid.build_humanoid`) above the hip joint centre, from the
+    leg angles (``toe_l`` / ``toe_r`` included); add the hip height for the height above the
+    floor."""
+    ankle, R = leg_fk(angles, side, geom)
+    ah, ball, hw = geom.ankle_height, ball_offset(geom), geom.foot_width / 2
+    corners = np.array(list(itertools.product((0.0, 1.0), (-hw, hw), (0.0, 1.0))))
+    # sole box: x from the heel to the ball, 0.8 ankle heights tall from the sole
+    foot = corners * [ball + geom.foot_back, 1.0, 0.8 * ah] + [-geom.foot_back, 0.0, -ah]
+    # toes box in the toes frame (origin at the ball on the sole, rotated by the toe angle)
+    toes = corners * [geom.foot_front - ball, 1.0, 0.4 * ah]
+    toe = np.asarray(angles[f"toe_{side_prefix(side)}"], float)
+    toes_foot = (rot_y(-toe)[:, None] @ toes[None, :, :, None])[..., 0] + [ball, 0.0, -ah]
+    z_foot = (R[:, 2, None, :] * foot[None]).sum(-1)
+    z_toes = (R[:, 2, None, :] * toes_foot).sum(-1)
+    return ankle[:, 2] + np.minimum(z_foot.min(1), z_toes.min(1))
+
+
+def generic_joint(name: str) -> str:
+    return "_".join(p for p in name.split("_") if p not in ("l", "r"))
+
+
+def ball_offset(geom: LegGeometry) -> float:
+    """Distance of the ball of the foot (toe joint) ahead of the ankle, metres."""
+    return geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)
+
+
+def pivot_ankle(foot: np.ndarray, pitch, geom: LegGeometry) -> np.ndarray:
+    """(n, 3) ankle positions of a foot on footprint ``foot`` ((3,) or per sample (n, 3))
+    pitched by ``pitch`` (radians): negative (heel up) rolls about the ball, positive (toes up)
+    about the heel; the pivot stays where it is on the floor when the foot is flat."""
+    ah = geom.ankle_height
+    pitch = np.atleast_1d(np.asarray(pitch, float))
+    foot = np.asarray(foot, float)
+    lever = np.where(pitch <= 0, ball_offset(geom), -geom.foot_back)
+    fx, fy = np.cos(foot[..., 2]), np.sin(foot[..., 2])
+    # R_z(yaw) R_y(-pitch) (lever, 0, -ah) from the pivot, written out (inner loops)
+    c, s = np.cos(pitch), np.sin(pitch)
+    along = lever * (c - 1) + ah * s  # the pivot is lever ahead of the ankle when flat
+    return np.column_stack(
+        [
+            foot[..., 0] - along * fx,
+            foot[..., 1] - along * fy,
+            ah * c - lever * s,
+        ]
+    )
+
+
+def spin_print(foot: np.ndarray, spin, geom: LegGeometry, lever: float | None = None):
+    """(n, 3) footprints of a foot on ``foot`` (3,) turned by ``spin`` (n,) radians about the
+    point ``lever`` metres ahead of the ankle on its sole (default the ball; ``-foot_back``:
+    the heel). That point stays on the floor where it is; the rest of the foot swings round."""
+    b = ball_offset(geom) if lever is None else lever
+    spin = np.asarray(spin, float)
+    piv = foot[:2] + b * np.array([np.cos(foot[2]), np.sin(foot[2])])
+    yaw = foot[2] + spin
+    return np.column_stack([piv[0] - b * np.cos(yaw), piv[1] - b * np.sin(yaw), yaw])
+
+
+def heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
+    """Foot pitch <= ``p0`` (radians, rolled about the ball) at which the leg with ``knee``
+    flexion reaches from the ankle to ``hip`` (3,); ``p0`` if it reaches already. Where it
+    reaches at no pitch, the pitch in [``lo``, ``p0``] that brings the ankle closest to the
+    hip: rolled about the ball the ankle moves on a circle, so past the point of the circle
+    nearest the hip a higher heel takes it away again (a foot ahead of the hip gets there
+    long before ``lo``, a trailing foot not before).
+
+    Vectorized: ``hip`` (n, 3), ``knee`` (n,) and ``p0`` (n,) give (n,) pitches (one bisection
+    for all samples); scalar ``knee`` and ``p0`` with ``hip`` (3,) give a float."""
+    scalar = np.ndim(p0) == 0
+    hip = np.atleast_2d(np.asarray(hip, float))
+    p0 = np.atleast_1d(np.asarray(p0, float))
+    knee = np.broadcast_to(np.asarray(knee, float), p0.shape)
+    d = geom.span(knee)
+
+    def gap(h, p, dd=d):
+        return np.linalg.norm(h - pivot_ankle(foot, p, geom), axis=-1) - dd
+
+    p = p0.copy()
+    j = np.flatnonzero(gap(hip, p0) > 0)  # the samples that do not reach at p0
+    if not len(j):
+        return float(p[0]) if scalar else p
+    hj, dj = hip[j], d[j]
+    # rolled about the ball B by p <= 0 the ankle is B + rho (-cos t f, sin t z), t = beta - p
+    # (f the foot's heading): |hip - ankle| = d is closed-form in t, the first root as the
+    # heel rises; without a root the clipped arcsin gives the t nearest the hip
+    ball, ah = ball_offset(geom), geom.ankle_height
+    rho, beta = np.hypot(ball, ah), np.arctan2(ah, ball)
+    f = np.array([np.cos(foot[2]), np.sin(foot[2])])
+    rel = hj - np.array([foot[0] + ball * f[0], foot[1] + ball * f[1], 0.0])
+    a_, c_ = rel[:, :2] @ f, rel[:, 2]
+    k_ = ((rel**2).sum(1) + rho**2 - dj**2) / (2 * rho)
+    t = np.arctan2(a_, c_) + np.arcsin(np.clip(k_ / np.hypot(a_, c_), -1.0, 1.0))
+    p[j] = np.clip(beta - t, lo, np.minimum(p0[j], 0.0))
+    # toes up at p0 and reaching with the foot flat: bisect between flat and p0 (the roll
+    # pivots on the heel there); not reaching flat, the ball roll above holds
+    up = j[p0[j] > 0]
+    up = up[gap(hip[up], np.zeros(len(up)), d[up]) <= 0]
+    if len(up):
+        hu, du = hip[up], d[up]
+        a, b = np.zeros(len(up)), p0[up]  # gap(a) <= 0 < gap(b)
+        for _ in range(40):
+            m = 0.5 * (a + b)
+            out = gap(hu, m, du) > 0
+            b = np.where(out, m, b)
+            a = np.where(out, a, m)
+        p[up] = 0.5 * (a + b)
+    return float(p[0]) if scalar else p
+
+
+def hip_world(root: np.ndarray, yaw: np.ndarray, side: str, geom: LegGeometry) -> np.ndarray:
+    """(n, 3) world position of the ``side`` hip joint centre of an upright pelvis at
+    ``root`` (n, 3) with heading ``yaw`` (n,), metres."""
+    sgn = 1.0 if side == "l" else -1.0
+    lat = np.column_stack([-np.sin(yaw), np.cos(yaw), np.zeros_like(yaw)])
+    return root + sgn * geom.hip_y * lat
+
+
+def leg_ik_world(ankle, foot_yaw, pitch, root, yaw, side: str, geom: LegGeometry) -> dict:
+    """Unclipped :func:`leg_ik` angles of the ``side`` leg for world ankle targets (n, 3), foot
+    headings (n,) and pitches (n,) under the pelvis ``root`` (n, 3), ``yaw`` (n,)."""
+    hip = hip_world(root, yaw, side, geom)
+    rel = (rot_z(-yaw) @ (ankle - hip)[..., None])[..., 0]
+    yrel = np.angle(np.exp(1j * (foot_yaw - yaw)))
+    return leg_ik(rel, yrel, pitch, side_of_prefix(side), geom, clip=False)

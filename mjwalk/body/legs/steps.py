@@ -1,0 +1,256 @@
+"""A walk's steps as the leg synthesis sees them (:class:`StepFrames`: swing side, sample range,
+lift-off, landing and stance footprints), and the per-step curves: the stance-leg angle
+(paper §4.2.3, A8), the swing foot (§4.2.4, A9) and the landing pitch.
+
+Step phase ``phi`` in [0, 1]: from lift-off of the swing foot's step to its landing; one step is
+half a gait cycle. World frame, metres, radians.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+from mjwalk.body.humanoid import LegGeometry
+from mjwalk.body.legs.curves import smoothstep, soft_clip01, soft_flat
+from mjwalk.body.legs.kinematics import (
+    KNEE_MIN,
+    ball_offset,
+    heel_rise,
+    hip_world,
+    leg_ik_world,
+    pivot_ankle,
+)
+from mjwalk.body.legs.reference import ReferenceGait
+from mjwalk.conventions import side_prefix
+from mjwalk.plan.walkpath import WalkPath
+
+#: Stance key-frame phases (paper §4.2.3) and swing key-frame phases (§4.2.4).
+STANCE_KEYS = (0.4, 0.5, 0.6)
+SWING_KEYS = (0.2, 0.4, 0.6, 0.8, 0.9)
+#: Toe-off phase of the step: double support lasts phi in [0, TOE_OFF] (10 % of the cycle).
+TOE_OFF = 0.2
+#: Step phase up to which the stance foot rolls down after heel strike (toes up or flat) and
+#: from which its heel may rise (toes down): the first stance key frame, cycle 20 %, inside
+#: the reference's foot-flat 8-40 % of the cycle.
+FOOT_FLAT = STANCE_KEYS[0]
+#: Step phase by which the swing foot has turned to its landing heading: the last swing key.
+SWING_TURNED = SWING_KEYS[-1]
+#: Share of the step after toe-off over which the swing foot's toes straighten.
+TOE_STRAIGHTEN = 0.25
+
+
+@dataclass
+class StepFrames:
+    """One step of a walk as the leg synthesis sees it (world frame, metres, radians).
+
+    Attributes:
+        side: the swing leg's joint-name letter ("l" / "r"); ``other`` the stance leg's.
+        start, end: the walk's sample indices where the step begins and ends (inclusive).
+        lift: (3,) the swing foot's lift-off footprint x, y, yaw.
+        land: (3,) its landing footprint.
+        stance: (3,) the stance foot's footprint.
+        first, final: the walk's first / last step.
+        land_p: the pitch the swing foot lands with (set by :func:`landing_pitches`).
+        p_start: the stance pitch the previous step ended with (None on the first step).
+        p_end: the stance pitch this step ends with (set by the synthesis).
+    """
+
+    side: str
+    other: str
+    start: int
+    end: int
+    lift: np.ndarray
+    land: np.ndarray
+    stance: np.ndarray
+    first: bool
+    final: bool
+    land_p: float = 0.0
+    p_start: float | None = None
+    p_end: float | None = None
+
+
+def step_frames(walk: WalkPath) -> list[StepFrames]:
+    """Per step: swing side, lift-off and landing footprints, stance footprint."""
+    steps = walk.steps
+    frames = []
+    for i, st in enumerate(steps):
+        side = side_prefix(st.side)
+        stance = np.asarray(st.stance, float)
+        if i > 0:
+            lift = np.asarray(steps[i - 1].stance, float)
+        else:  # standing start: the swing foot beside the stance foot, mirrored about the pelvis
+            y0 = walk.yaw[st.start]
+            n = np.array([-np.sin(y0), np.cos(y0)])
+            off = float((walk.xy[st.start] - stance[:2]) @ n)
+            lift = np.array([*(stance[:2] + 2 * off * n), stance[2]])
+        frames.append(
+            StepFrames(
+                side=side,
+                other="r" if side == "l" else "l",
+                start=st.start,
+                end=st.end,
+                lift=lift,
+                land=np.asarray(st.foot, float),
+                stance=stance,
+                first=i == 0,
+                final=i == len(steps) - 1,
+            )
+        )
+    return frames
+
+
+def landing_pitches(
+    frames: list[StepFrames], xy, yaw, hs_pitch, d_land, dorsi_max, geom: LegGeometry
+) -> None:
+    """Per step (``frames``, in place: ``land_p``), the pitch (radians, + toes up) the swing
+    foot lands with: the reference's ``hs_pitch``, or flatter (down to 0) where the landing
+    leg at its heel-strike length ``d_land`` (m) under the pelvis at ``xy``, ``yaw`` of the
+    landing sample would dorsiflex its ankle past ``dorsi_max`` (a foot landing under the
+    hip). All steps at once; a few fixed-point rounds."""
+    b = np.array([fr.end for fr in frames])
+    land = np.array([fr.land for fr in frames])
+    left = np.array([fr.side == "l" for fr in frames])
+    land_p = np.full(len(frames), hs_pitch)
+    for _ in range(4):
+        pos = pivot_ankle(land, land_p, geom)
+        z = np.zeros(len(b))
+        flex = np.zeros(len(b))
+        for side, sel in (("l", left), ("r", ~left)):
+            if not sel.any():
+                continue
+            bs = b[sel]
+            hip = hip_world(np.column_stack([xy[bs], z[sel]]), yaw[bs], side, geom)
+            hz = np.linalg.norm(hip[:, :2] - pos[sel, :2], axis=-1)
+            z[sel] = pos[sel, 2] + np.sqrt(np.maximum(d_land**2 - hz**2, 1e-6))
+            root = np.column_stack([xy[bs], z[sel]])
+            raw = leg_ik_world(pos[sel], land[sel, 2], land_p[sel], root, yaw[bs], side, geom)
+            flex[sel] = raw[f"ankle_{side}_flex"]
+        over = flex - dorsi_max
+        if not np.any((over > 0) & (land_p > 0)):
+            break
+        land_p = np.where(over > 0, np.maximum(land_p - 1.2 * over, 0.0), land_p)
+    for fr, p in zip(frames, land_p, strict=True):
+        fr.land_p = float(p)
+
+
+def stance_angle(ref: ReferenceGait, name: str, phi, th0, v0, th1, v1) -> np.ndarray:
+    """Stance-leg angle ``name`` (radians) at step phases ``phi``: the reference's own curve
+    over cycle 0-50 % plus a cubic-spline displacement that is zero at the key frames
+    :data:`STANCE_KEYS` (so the angle coincides with the reference key-frame angles there) and
+    meets the current posture's angle ``th0`` / velocity ``v0`` at ``phi = 0`` and the target
+    posture's ``th1`` / ``v1`` at ``phi = 1`` (velocities per unit phase).
+
+    Between the keys and the boundaries the result keeps the reference's shape (its loading
+    response, say) instead of the bare cubic through five points, which cuts the reference's
+    curves short (motion warping, Witkin & Popovic 1995, applied to the paper's spline)."""
+    r0, r1 = float(ref(name, 0.0)), float(ref(name, 0.5))
+    d0 = v0 - 0.5 * float(ref(name, 0.0, True))
+    d1 = v1 - 0.5 * float(ref(name, 0.5, True))
+    sp = CubicSpline(
+        [0.0, *STANCE_KEYS, 1.0], [th0 - r0, 0.0, 0.0, 0.0, th1 - r1], bc_type=((1, d0), (1, d1))
+    )
+    return ref(name, 0.5 * np.asarray(phi, float)) + sp(phi)
+
+
+def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, land_p):
+    """Swing foot: ankle (n, 3), pitch (n,), toe angle (n,), yaw (n,) over the step."""
+    ah, L1, L2 = geom.ankle_height, geom.thigh, geom.shank
+    lift, land = fr.lift, fr.land
+    sw = fr.side
+    yaw = lift[2] + np.angle(np.exp(1j * (land[2] - lift[2]))) * smoothstep(
+        (phi - TOE_OFF) / (SWING_TURNED - TOE_OFF)
+    )
+
+    def roll_pitch(ph):
+        p = soft_flat(np.minimum(ref("pitch", 0.5 + 0.5 * ph), 0.0))
+        if fr.first:
+            p = p * smoothstep(ph / TOE_OFF)
+        elif fr.p_start is not None:  # continue from the stance's extra heel rise
+            p0 = soft_flat(np.minimum(ref("pitch", 0.5), 0.0))
+            p = p + min(fr.p_start - p0, 0.0) * (1 - smoothstep(ph / TOE_OFF))
+        return p
+
+    pos = np.zeros((len(phi), 3))
+    p = np.zeros(len(phi))
+    early = phi <= TOE_OFF
+    p[early] = roll_pitch(phi[early])
+    if not fr.first:
+        # pre-swing: the knee follows the reference; the heel rises as far as that needs
+        je = np.flatnonzero(early)
+        hip = hip_pos(idx[je], sw, z_hip[je])
+        knee = np.maximum(ref("knee", 0.5 + 0.5 * phi[je]), float(KNEE_MIN))
+        p[je] = heel_rise(lift, hip, knee, p[je], geom)
+    pos[early] = pivot_ankle(lift, p[early], geom)
+    late = ~early
+    if late.any():
+        je = np.flatnonzero(early)[-2:]
+        h = float(phi[je[1]] - phi[je[0]])
+        p_to = p[je[::-1]]
+        a0 = pos[je[::-1]]
+        v0 = (a0[0] - a0[1]) / h
+        # the reference swing: the reference hip/knee angles of each gait-cycle instant placed
+        # at the current hip (forward progress and height), along the line from the lift-off
+        # to the landing footprint
+        jl = np.flatnonzero(late)
+        c = 0.5 + 0.5 * phi[jl]
+        hf, kf = ref("hip", c), ref("knee", c)
+        fwd = L1 * np.sin(hf) + L2 * np.sin(hf - kf)
+        down = L1 * np.cos(hf) + L2 * np.cos(hf - kf)
+        heading = np.column_stack([np.cos(yaw[jl]), np.sin(yaw[jl])])
+        target = hip_pos(idx[jl], sw) + fwd[:, None] * heading
+        seg = land[:2] - lift[:2]
+        # progress along the chord, clamped to the footprints softly (C1): a hard clamp where
+        # the reference passes the landing footprint (short steps) kinks the ankle's path
+        s = soft_clip01((target - lift[:2]) @ seg / max(float(seg @ seg), 1e-9), 0.1)
+        chord = lift[:2] + s[:, None] * seg
+        # sideways, the foot swings under its hip: where the step turns, the hip's track bends
+        # away from the chord (and from an inner corner the pelvis was planned clear of)
+        nrm = np.array([-seg[1], seg[0]]) / max(float(np.linalg.norm(seg)), 1e-9)
+        off = (hip_pos(idx[jl], sw) - chord) @ nrm
+        xy = chord + (off * np.sin(np.pi * s))[:, None] * nrm
+        ref_pos = np.column_stack([xy, z_hip[jl] - down])
+        ref_pit = np.clip(ref("pitch", c), np.deg2rad(-70), np.deg2rad(30))
+        # key positions at SWING_KEYS: the reference, lifted where the ankle would be lower
+        # than standing height; the reference shape is kept between the keys and the
+        # boundaries (lift-off state at toe-off, the landing pose with zero velocity) by a
+        # cubic-spline displacement (as the stance angles, :func:`stance_angle`)
+        knots, dpos, dpit = [float(phi[je[1]])], [a0[0]], [p_to[0]]
+        for ph in SWING_KEYS[1:]:
+            m = int(np.argmin(np.abs(phi[jl] - ph)))
+            knots.append(float(phi[jl[m]]))
+            key = ref_pos[m].copy()
+            key[2] = max(key[2], ah)
+            dpos.append(key)
+            dpit.append(ref_pit[m])
+        knots.append(1.0)
+        dpos.append(pivot_ankle(land, land_p, geom)[0])
+        dpit.append(land_p)
+        # the reference at the knots (toe-off and landing extrapolate the first/last sample)
+        rk = np.column_stack([np.interp(knots, phi[jl], ref_pos[:, k]) for k in range(3)])
+        rp = np.interp(knots, phi[jl], ref_pit)
+        dr = np.gradient(ref_pos, phi[jl], axis=0) if len(jl) > 1 else np.zeros((1, 3))
+        dq = np.gradient(ref_pit, phi[jl]) if len(jl) > 1 else np.zeros(1)
+        sp = CubicSpline(knots, np.array(dpos) - rk, bc_type=((1, v0 - dr[0]), (1, -dr[-1])))
+        dp0 = (p_to[0] - p_to[1]) / h
+        spp = CubicSpline(knots, np.array(dpit) - rp, bc_type=((1, dp0 - dq[0]), (1, -dq[-1])))
+        pos[late], p[late] = ref_pos + sp(phi[late]), ref_pit + spp(phi[late])
+    # the toes stay flat during the roll-off, then straighten while the foot lifts
+    p_end = p[early][-1] if early.any() else 0.0
+    toe = np.where(early, -p, -p_end * (1 - smoothstep((phi - TOE_OFF) / TOE_STRAIGHTEN)))
+    if late.any():
+        # keep heel, ball and toe tip off the floor (lift the ankle where they would dip); the
+        # toe tip is on the toes, bent by the toe angle (flat on the floor at toe-off: a tip
+        # rigid with the pitched foot would dip below it and jolt the ankle up)
+        pl, tl = p[late], toe[late]
+        ball = ball_offset(geom)
+        ball_z = ball * np.sin(pl) - ah * np.cos(pl)
+        for tip in (
+            -geom.foot_back * np.sin(pl) - ah * np.cos(pl),
+            ball_z,
+            ball_z + (geom.foot_front - ball) * np.sin(pl + tl),
+        ):
+            pos[late, 2] += np.maximum(0.0, -(pos[late, 2] + tip))
+    return pos, p, toe, yaw

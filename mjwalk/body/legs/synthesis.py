@@ -1,0 +1,362 @@
+"""Legs from footprints (mocap-based DHM walking, §4.2 A8-A9): stance splines, swing splines, IK.
+
+For every step of a :class:`~mjwalk.plan.walkpath.WalkPath` (one foot swings from its previous
+footprint to ``step.foot`` while the other stands on ``step.stance``), with the step phase
+``phi`` in [0, 1] from lift-off of the swing foot's step to its landing:
+
+* **Stance leg (A8).** The stance knee follows a cubic spline through the reference key-frame
+  angles at ``phi`` = 0.4, 0.5, 0.6 (they "change less against strides"), with the current
+  posture's angle and velocity at ``phi = 0`` and the target posture's angle (both feet down at
+  the next heel strike) and the reference velocity at ``phi = 1`` as boundary conditions. The
+  pelvis height follows from the stance leg (knee angle, footprint, pelvis x, y): this is the
+  pelvis height oscillation. It is capped where the swing leg could not reach its foot;
+  over the last 20 % of the step the swing leg's length eases into its heel-strike length
+  (zero velocity), so the knee does not snap straight at landing.
+* **Swing leg (A9).** Until toe-off (``phi`` = 0.2, double support) the swing foot rolls about
+  its ball (toes flat). Then the swing ankle follows a cubic spline through key positions at
+  ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9: the reference hip/knee angles of that gait-cycle instant
+  placed at the current hip (forward progress and height), kept on the line from the lift-off
+  to the landing footprint, lifted where the foot would touch the floor; zero velocity at the
+  landing (``phi = 1``), heel first.
+* **Feet.** The foot pitch (toes up +) follows the reference: heel strike and roll-down about
+  the heel, flat, heel rise and roll-off about the ball. Pivots stay put on the floor.
+* **IK.** Hip (rotation, flexion, abduction), knee, ankle (flexion, inversion) from an analytic
+  two-bone solution for the ankle position plus the foot orientation (yaw from the footprints,
+  pitch as above, sole level sideways). Turning is taken by hip rotation: foot yaw minus pelvis
+  yaw. All angles are clipped to the joint ranges.
+
+Footprint convention: a footprint ``(x, y, yaw)`` is the point of the floor under the ankle joint
+(the ``sole_*`` site of the humanoid) with the foot flat, and the foot's heading. World frame,
+metres, radians. One step is half a gait cycle: the stance leg covers cycle 0-50 %, the swing
+leg cycle 50-100 % (cycle 0 = heel strike of that leg).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from mjwalk.body.humanoid import ROM_DEG, leg_geometry
+from mjwalk.body.legs.curves import smoothstep, soft_flat, spread
+from mjwalk.body.legs.kinematics import (
+    KNEE_MIN,
+    ball_offset,
+    foot_lowest,
+    generic_joint,
+    heel_rise,
+    hip_world,
+    leg_ik_world,
+    pivot_ankle,
+)
+from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
+from mjwalk.body.legs.spin import spin_turns
+from mjwalk.body.legs.steps import (
+    FOOT_FLAT,
+    TOE_OFF,
+    landing_pitches,
+    stance_angle,
+    step_frames,
+    swing_foot,
+)
+from mjwalk.conventions import DEFAULT_STATURE, side_of_prefix
+from mjwalk.errors import PlanningError
+from mjwalk.plan.walkpath import WalkPath
+
+#: Corrections of a leg whose clipped joints would put the foot below the floor, and the depth
+#: (m) a foot may reach (a flat, slightly inverted sole dips a millimetre or two at its edge).
+FLOOR_ITERATIONS = 10
+FLOOR_TOLERANCE = 2e-3
+
+#: Grounded legs keep their knee flexed at least as the reference's at that instant of the
+#: gait cycle, up to this many degrees (the pelvis lowers where they would not).
+KNEE_SOFT = 10.0
+
+#: Step phase from which the swing knee eases into the landing (the last swing key frame).
+LAND_EASE = 0.8
+
+
+@dataclass
+class LegMotion:
+    """Per-sample leg motion for a WalkPath (same samples, 120 Hz), world frame.
+
+    Attributes:
+        t: (N,) sample times in seconds.
+        root: (N, 3) pelvis (root) position, metres; z is the pelvis height above the floor.
+        yaw: (N,) pelvis yaw, radians from +x CCW.
+        angles: joint name (e.g. ``"knee_l"``) -> (N,) angle in radians, anatomical signs.
+        ankle: side ("left"/"right") -> (N, 3) ankle target position, metres.
+        pitch: side -> (N,) foot pitch to the floor, radians, + toes up.
+        contact: (N,) contact state: 0 = left stance, 1 = right stance, 2 = double support.
+        phase: (N,) step phase in [0, 1] (0 before the first / after the last step).
+    """
+
+    t: np.ndarray
+    root: np.ndarray
+    yaw: np.ndarray
+    angles: dict[str, np.ndarray]
+    ankle: dict[str, np.ndarray]
+    pitch: dict[str, np.ndarray]
+    contact: np.ndarray
+    phase: np.ndarray
+    meta: dict = field(default_factory=dict)
+
+
+def legs_from_walk(
+    walk: WalkPath, stature: float = DEFAULT_STATURE, reference: ReferenceGait | None = None
+) -> LegMotion:
+    """Leg joint angles and root height for every sample of ``walk`` (paper §4.2 A8-A9).
+
+    Args:
+        walk: a WalkPath with steps (each with side, start/end sample, landing and stance foot).
+        stature: the humanoid's stature in metres.
+        reference: the reference gait (key frames); default :data:`DEFAULT_REFERENCE`.
+
+    Returns:
+        a :class:`LegMotion` on the walk's samples.
+    """
+    if not walk.steps:
+        raise PlanningError(
+            "legs_from_walk: the walk path has no steps (grid-A* paths have no gait; plan with "
+            "the hybrid A* or add footprints)"
+        )
+    ref = reference or DEFAULT_REFERENCE
+    geom = leg_geometry(stature)
+    n = len(walk.t)
+    xy = np.asarray(walk.xy, float)
+    yaw = np.asarray(walk.yaw, float)
+    frames = step_frames(walk)
+    for k, fr in enumerate(frames):
+        if not (0 <= fr.start < fr.end < n):
+            raise PlanningError(
+                f"legs_from_walk: step {k} has sample range {fr.start}..{fr.end} outside "
+                f"the path's {n} samples"
+            )
+    ah = geom.ankle_height
+    ankle = {s: np.zeros((n, 3)) for s in "lr"}
+    fyaw = {s: np.zeros(n) for s in "lr"}
+    pitch = {s: np.zeros(n) for s in "lr"}
+    toe = {s: np.zeros(n) for s in "lr"}
+    contact = np.full(n, 2, dtype=int)
+    phase = np.zeros(n)
+    z = np.full(n, np.nan)
+    ground = {s: np.zeros(n, bool) for s in "lr"}  # foot on the floor (pivoting on a print)
+    print_ = {s: np.zeros((n, 3)) for s in "lr"}  # ... on this footprint
+    cyc = {s: np.zeros(n) for s in "lr"}  # the leg's gait-cycle fraction (0 = heel strike)
+
+    def hip_pos(idx, side, zz=None):
+        sgn = 1.0 if side == "l" else -1.0
+        h = xy[idx] + sgn * geom.hip_y * np.stack([-np.sin(yaw[idx]), np.cos(yaw[idx])], -1)
+        return h if zz is None else np.column_stack([h, zz])
+
+    def height_for_knee(idx, side, foot_pos, knee):
+        h = np.linalg.norm(hip_pos(idx, side) - foot_pos[:, :2], axis=-1)
+        return foot_pos[:, 2] + np.sqrt(np.maximum(geom.span(knee) ** 2 - h**2, 1e-6))
+
+    def knee_for(idx, side, foot_pos, zz):
+        d = np.linalg.norm(hip_pos(idx, side, zz) - foot_pos, axis=-1)
+        return geom.knee_for_span(d)
+
+    hs_pitch = max(0.0, float(ref("pitch", 0.0)))
+    dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
+    plantar_min = np.deg2rad(ROM_DEG["ankle_flex"][0] + 1.0)
+    knee_prev = None  # (angle, velocity per unit phase) of the next stance leg at its landing
+    d_land = geom.span(max(ref("knee", 0.0), KNEE_MIN))
+    landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom)
+    for k, fr in enumerate(frames):
+        fr.p_start = frames[k - 1].p_end if k > 0 else None
+        a, b = fr.start, fr.end
+        idx = np.arange(a, b + 1)
+        phi = (idx - a) / (b - a)
+        phase[idx] = phi
+        cyc[fr.other][idx], cyc[fr.side][idx] = 0.5 * phi, 0.5 + 0.5 * phi
+        sw, st = fr.side, fr.other
+        contact[idx] = np.where(phi <= TOE_OFF, 2, 0 if st == "l" else 1)
+        # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch)
+        c_st = 0.5 * phi
+        p_ref = ref("pitch", c_st)
+        p_st = np.where(phi < FOOT_FLAT, np.maximum(p_ref, 0), np.minimum(p_ref, 0))
+        if k > 0 and hs_pitch > 0:  # the roll-down starts from the pitch it landed with
+            p_st = np.where(phi < FOOT_FLAT, p_st * frames[k - 1].land_p / hs_pitch, p_st)
+        p_st = soft_flat(p_st)
+        if fr.first:  # standing start: already flat
+            p_st = np.minimum(p_st, 0.0)
+        # --- target posture at phi = 1 (A7): the landing leg at the reference heel-strike knee
+        # sets the pelvis height; the trailing (stance) leg takes the reference knee of
+        # cycle 50 %, its heel rising further (about the ball) if it cannot reach otherwise.
+        # The foot lands toes up as the reference's, or flatter where the ankle's range
+        # does not allow that pitch (a foot landing under the hip): rolled down on the floor
+        # after landing instead, it would drop the ankle and jolt the knee
+        land_p = fr.land_p  # the last step too: the final pose is held as it lands
+        land_pos = pivot_ankle(fr.land, land_p, geom)
+        hz = np.linalg.norm(hip_pos(np.array([b]), sw) - land_pos[:, :2], axis=-1)[0]
+        z_end = land_pos[0, 2] + np.sqrt(max(d_land**2 - hz**2, 1e-6))
+        th1 = max(float(ref("knee", 0.5)), float(KNEE_MIN))
+        hip_end = hip_pos(np.array([b]), st, np.array([z_end]))[0]
+        p1 = heel_rise(fr.stance, hip_end, th1, float(p_st[-1]), geom)
+        extra = (p1 - p_st[-1]) * smoothstep((phi - FOOT_FLAT) / (1.0 - FOOT_FLAT))
+        p_st = p_st + extra
+        fr.p_end = float(p_st[-1])
+        ankle[st][idx] = pivot_ankle(fr.stance, p_st, geom)
+        ground[st][idx], print_[st][idx] = True, fr.stance
+        pitch[st][idx], toe[st][idx], fyaw[st][idx] = p_st, -np.minimum(p_st, 0), fr.stance[2]
+        th1 = float(knee_for(np.array([b]), st, ankle[st][b][None], np.array([z_end]))[0])
+        if knee_prev is None:
+            th0, v0 = float(ref("knee", 0.0)), 0.5 * float(ref("knee", 0.0, True))
+        else:
+            th0, v0 = knee_prev
+        v1 = 0.5 * float(ref("knee", 0.5, True))
+        knee_st = np.clip(
+            stance_angle(ref, "knee", phi, th0, v0, th1, v1), KNEE_MIN, np.deg2rad(80)
+        )
+        z_flat = height_for_knee(idx, st, ankle[st][idx], knee_st)
+        # --- swing foot (A9)
+        pos, p_sw, toe_sw, yw = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
+        ankle[sw][idx], pitch[sw][idx], toe[sw][idx], fyaw[sw][idx] = pos, p_sw, toe_sw, yw
+        pre_swing = idx[phi <= TOE_OFF]
+        ground[sw][pre_swing], print_[sw][pre_swing] = True, fr.lift
+        d_max = geom.span(KNEE_MIN)
+        hsw = np.linalg.norm(hip_pos(idx, sw) - pos[:, :2], axis=-1)
+        z_sw = pos[:, 2] + np.sqrt(np.maximum(d_max**2 - hsw**2, 1e-6))
+        z[idx] = np.minimum(z_flat, z_sw)
+        # landing approach: from LAND_EASE the swing leg's hip-to-ankle distance eases into
+        # its heel-strike length (zero velocity) along a cubic from its length and velocity
+        # there, and the pelvis height follows from it. Capping the pelvis only where the
+        # swing leg is fully stretched would snap the knee straight (near full extension a
+        # millimetre of leg length is several degrees of knee)
+        lj = np.flatnonzero(phi >= LAND_EASE)
+        if len(lj) >= 3 and lj[0] > 0:
+            j = lj[0]
+            hj = hip_pos(idx[j - 1 : j + 1], sw, z[idx[j - 1 : j + 1]])
+            dj = np.linalg.norm(hj - pos[j - 1 : j + 1], axis=-1)
+            span, gap = 1.0 - phi[j], d_land - dj[1]
+            m0 = span * (dj[1] - dj[0]) / (phi[j] - phi[j - 1])
+            m0 = float(np.clip(m0, min(0.0, 3 * gap), max(0.0, 3 * gap)))
+            u = (phi[lj] - phi[j]) / span
+            d_prof = dj[1] + (u**3 - 2 * u**2 + u) * m0 + (3 * u**2 - 2 * u**3) * gap
+            h_prof = np.linalg.norm(hip_pos(idx[lj], sw) - pos[lj, :2], axis=-1)
+            z_prof = pos[lj, 2] + np.sqrt(np.maximum(d_prof**2 - h_prof**2, 1e-6))
+            z[idx[lj]] = np.minimum(z_prof, z_sw[lj])
+            # the trailing leg keeps its planned knee where the pelvis now rises faster: its
+            # heel rises further (about the ball) instead of the leg stretching straight
+            hip_st = hip_pos(idx[lj], st, z[idx[lj]])
+            p_up = heel_rise(fr.stance, hip_st, knee_st[lj], np.minimum(p_st[lj], 0), geom)
+            p_st[lj] = np.where(p_st[lj] <= 0, p_up, p_st[lj])
+            fr.p_end = float(p_st[-1])
+            ankle[st][idx] = pivot_ankle(fr.stance, p_st, geom)
+            pitch[st][idx], toe[st][idx] = p_st, -np.minimum(p_st, 0)
+        # the swing leg's knee at landing starts the next stance spline
+        # the swing leg's knee at landing starts the next stance spline; its velocity is the
+        # reference's (loading response: the knee flexes right after heel strike)
+        k_land = knee_for(idx[-1:], sw, pos[-1:], z[idx[-1:]])
+        knee_prev = (float(k_land[-1]), 0.5 * float(ref("knee", 0.0, True)))
+    # where the pelvis turns further than a grounded foot's hip can rotate, the foot spins
+    # about its ball; its next swing starts from the turned footprint
+    spin_turns(ankle, fyaw, pitch, toe, ground, print_, np.column_stack([xy, z]), yaw, geom)
+    # before the first step: stand on both feet; after the last: hold the final pose
+    first, last = frames[0], frames[-1]
+    pre = np.arange(0, first.start)
+    if len(pre):
+        for s_, f in ((first.side, first.lift), (first.other, first.stance)):
+            ankle[s_][pre] = [f[0], f[1], ah]
+            fyaw[s_][pre] = f[2]
+        z[pre] = z[first.start]
+    post = np.arange(last.end + 1, n)
+    if len(post):
+        e = last.end
+        for arr in (*ankle.values(), *fyaw.values(), *pitch.values(), *toe.values(), z):
+            arr[post] = arr[e]
+        contact[post] = 2
+    win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
+
+    def repitch(s_: str, dp: np.ndarray) -> None:
+        # lower the ``s_`` foot's pitch by dp (n,) radians about its heel (toes up) or ball:
+        # on the floor about its footprint's pivot, in the air about the same point of the
+        # foot; the toes keep their angle to the floor while the heel is up
+        p0, p1 = pitch[s_], pitch[s_] - dp
+        lever = np.where(p0 <= 0, ball_offset(geom), -geom.foot_back)
+        off = []
+        for q in (p0, p1):
+            c, si = np.cos(q), np.sin(q)
+            off.append((-(lever * c + ah * si), ah * c - lever * si))
+        g = ground[s_]
+        head = np.column_stack([np.cos(fyaw[s_]), np.sin(fyaw[s_])])
+        moved = ankle[s_].copy()
+        moved[:, :2] += (off[1][0] - off[0][0])[:, None] * head
+        moved[:, 2] += off[1][1] - off[0][1]
+        moved[g] = pivot_ankle(print_[s_][g], p1[g], geom)
+        toe[s_] += np.minimum(p0, 0.0) - np.minimum(p1, 0.0)
+        ankle[s_], pitch[s_] = moved, p1
+
+    angles: dict[str, np.ndarray] = {}
+    k_floor = {s_: np.clip(ref("knee", cyc[s_]), KNEE_MIN, np.deg2rad(KNEE_SOFT)) for s_ in "lr"}
+    for _ in range(4):
+        root = np.column_stack([xy, z])
+        for s_ in "lr":
+            # a grounded foot whose ankle would dorsiflex past its range pitches down
+            # instead: a toes-up foot rolls down about its heel, a flat one onto its ball
+            # (heel rise), so the sole keeps its place on the floor (clipping the ankle would
+            # sink the toes). Likewise a heel-up foot whose ankle would plantarflex past its
+            # range lowers its heel about the ball, down to flat (a stance foot ahead of the
+            # hip: clipped, the foot would turn about the ankle and its ball slide), and the
+            # pelvis lowers below. The roll is spread over the samples around (in the air
+            # too, about the same point), so a landing or lift-off does not jolt the leg
+            for _ in range(8):
+                raw = leg_ik_world(ankle[s_], fyaw[s_], pitch[s_], root, yaw, s_, geom)
+                flex = raw[f"ankle_{s_}_flex"]
+                excess = np.where(ground[s_], flex - dorsi_max, 0.0)
+                short = np.where(ground[s_] & (pitch[s_] < 0), plantar_min - flex, 0.0)
+                if excess.max() <= 0 and short.max() <= 0:
+                    break
+                down = spread(1.2 * np.maximum(excess, 0.0), win)
+                up = spread(1.2 * np.maximum(short, 0.0), win)
+                repitch(s_, down - np.minimum(up, np.maximum(-pitch[s_], 0.0)))
+        # rolling a heel-strike foot down (or turning it about the ball) lowers its ankle:
+        # where a grounded leg then cannot reach its foot with the knee flexed at least as
+        # the reference's (up to KNEE_SOFT), the pelvis lowers (smoothly). Near full
+        # extension a millimetre of leg length is several degrees of knee: a leg stretched
+        # straight by the pelvis would flick its knee
+        deficit = np.zeros(n)
+        for s_ in "lr":
+            h = np.linalg.norm(hip_world(root, yaw, s_, geom)[:, :2] - ankle[s_][:, :2], axis=1)
+            reach = geom.span(k_floor[s_])
+            cap = ankle[s_][:, 2] + np.sqrt(np.maximum(reach**2 - h**2, 0.0))
+            deficit = np.maximum(deficit, np.where(ground[s_], z - cap, 0.0))
+        if deficit.max() <= 1e-3:
+            break
+        z = z - spread(np.maximum(deficit, 0.0), win)
+    root = np.column_stack([xy, z])
+    for s_ in "lr":
+        hip = hip_world(root, yaw, s_, geom)
+        # where the joint ranges still keep the foot from its target (a trailing foot too far
+        # behind for the hip's extension, say), the clipped leg would put the sole below the
+        # floor: lift the ankle target by the depth (or, where the ankle is at its
+        # dorsiflexion limit and lifting would tilt the toes down further, pitch the foot
+        # down) and solve again, so the foot stays above -FLOOR_TOLERANCE by construction
+        for _ in range(FLOOR_ITERATIONS):
+            raw = leg_ik_world(ankle[s_], fyaw[s_], pitch[s_], root, yaw, s_, geom)
+            ang = {k: np.clip(v, *np.deg2rad(ROM_DEG[generic_joint(k)])) for k, v in raw.items()}
+            ang[f"toe_{s_}"] = np.clip(toe[s_], *np.deg2rad(ROM_DEG["toe"]))
+            low = hip[:, 2] + foot_lowest(ang, side_of_prefix(s_), geom)
+            bad = low < -FLOOR_TOLERANCE
+            if not bad.any():
+                break
+            # (both spread over the samples around, as above)
+            excess = raw[f"ankle_{s_}_flex"] - dorsi_max
+            tilt = bad & (excess > 0)
+            if tilt.any():
+                repitch(s_, spread(np.where(tilt, 1.2 * excess, 0.0), win))
+            lift = bad & ~tilt
+            ankle[s_][:, 2] += spread(np.where(lift, -low, 0.0), win)
+        angles.update(ang)
+    return LegMotion(
+        t=np.asarray(walk.t, float),
+        root=root,
+        yaw=yaw,
+        angles=angles,
+        ankle={side_of_prefix(s_): v for s_, v in ankle.items()},
+        pitch={side_of_prefix(s_): v for s_, v in pitch.items()},
+        contact=contact,
+        phase=phase,
+        meta={"stature": stature, "reference": ref.source},
+    )

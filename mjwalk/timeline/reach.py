@@ -1,0 +1,111 @@
+"""The timeline of one reach in a scene: the humanoid standing at a site reaching to another.
+
+World frame: metres, seconds, radians, z up, yaw from +x CCW.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mjwalk.arms.hands import finger_trajectory
+from mjwalk.arms.kinematics import REST_HAND, arm_frames, arm_joint_angles
+from mjwalk.arms.reach import ReachModel
+from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
+from mjwalk.errors import MjwalkError
+from mjwalk.timeline.frames import yaw_quat
+from mjwalk.timeline.timeline import Timeline
+
+
+def _site_pose(model, name: str):
+    import mujoco
+
+    sid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, name)
+    if sid < 0:
+        raise MjwalkError(f"scene has no site {name!r}")
+    return model.site_pos[sid], model.site_quat[sid], sid
+
+
+def reach_in_scene(
+    scene,
+    model: ReachModel,
+    stand_site: str,
+    target_site: str,
+    constraint: np.ndarray | None = None,
+    side: Side = "left",
+    stature: float = DEFAULT_STATURE,
+    duration: float = 1.2,
+    fps: float = 30.0,
+    target_offset: np.ndarray = (0.0, 0.0, 0.0),
+    object_size: float | None = None,
+):
+    """A :class:`~mjwalk.timeline.timeline.Timeline` of the humanoid standing at ``stand_site``
+    (facing the site's +x) and reaching its ``side`` hand to ``target_site`` (+
+    ``target_offset``, world metres): the hand starts at
+    :data:`~mjwalk.arms.kinematics.REST_HAND` (relaxed, elbow slightly bent; the start of
+    :mod:`~mjwalk.arms.reachgen` reaches) and ends on the target within 1 cm; joint angles
+    outside the humanoid's ranges are clipped (noted in ``meta``).
+
+    ``constraint`` defaults to the start and end hand positions (an ``"endpoints"`` model); for
+    an ``"obstacle"`` or ``"grasp"`` model pass its constraint vector. Returns
+    ``(timeline, result)`` with ``result`` the :class:`ReachResult` in the shoulder frame.
+    """
+    import mujoco
+
+    from mjwalk.body.humanoid import attach_humanoid, pelvis_height
+
+    if side != "left":
+        raise MjwalkError("reach_in_scene: models are trained for the left arm; mirror first")
+    mj, jm = attach_humanoid(scene, stature)
+    _site_pose(mj, stand_site)
+    data = mujoco.MjData(mj)
+    mujoco.mj_kinematics(mj, data)  # site_xpos of bodies' sites need the kinematics
+    sid_stand = mujoco.mj_name2id(mj, mujoco.mjtObj.mjOBJ_SITE, stand_site)
+    sid_target = mujoco.mj_name2id(mj, mujoco.mjtObj.mjOBJ_SITE, target_site)
+    if sid_target < 0:
+        raise MjwalkError(f"scene has no site {target_site!r}")
+    xmat = data.site_xmat[sid_stand].reshape(3, 3)
+    yaw = float(np.arctan2(xmat[1, 0], xmat[0, 0]))
+    q0 = jm.neutral_qpos(mj, stature)
+    r = jm.root
+    q0[r : r + 3] = [
+        data.site_xpos[sid_stand][0],
+        data.site_xpos[sid_stand][1],
+        pelvis_height(stature),
+    ]
+    q0[r + 3 : r + 7] = yaw_quat(np.array([yaw]))[0]
+    data.qpos[:] = q0
+    mujoco.mj_kinematics(mj, data)
+    prefix = jm.prefix
+    ua = mj.body(f"{prefix}upper_arm_{side_prefix(side)}").id
+    shoulder = data.xpos[ua].copy()
+    frame = data.xmat[ua].reshape(3, 3).copy()  # shoulder frame at zero shoulder angles
+    target_w = data.site_xpos[sid_target] + np.asarray(target_offset, dtype=float)
+    end = frame.T @ (target_w - shoulder)
+    start = np.asarray(REST_HAND, dtype=float)
+    c = np.r_[start, end] if constraint is None else np.asarray(constraint, dtype=float)
+    res = model.predict(c, start=start, end=end, object_size=object_size)
+    q = arm_joint_angles(res.directions, side, None if res.extras is None else res.extras[:, 1])
+    n_out = max(2, round(duration * fps) + 1)
+    src = np.linspace(0.0, 1.0, len(q))
+    dst = np.linspace(0.0, 1.0, n_out)
+    qpos, clipped = arm_frames(q0, jm, q, side, dst)
+    if res.extras is not None:
+        ap = np.interp(dst, src, res.extras[:, 0])
+        for name, vals in finger_trajectory(ap, side, stature).items():
+            qpos[:, jm.adr(name)] = vals
+    tl = Timeline(
+        model=mj,
+        jointmap=jm,
+        fps=fps,
+        t=dst * duration,
+        qpos=qpos,
+        scene=str(scene),
+        stature=stature,
+    )
+    tl.meta = {
+        "clipped_joints": clipped,
+        "target_world": target_w,
+        "shoulder": shoulder,
+        "frame": frame,
+    }
+    return tl, res

@@ -1,0 +1,78 @@
+"""The ``Timeline``: per-frame poses of the humanoid in a scene, with its gait events.
+
+A :class:`Timeline` holds the compiled scene-with-humanoid model and one ``qpos`` row per video
+frame (default 30 fps); :mod:`mjwalk.timeline.frames` builds one from a walk,
+:mod:`mjwalk.timeline.reach` from a reach, :mod:`mjwalk.cycle.simulate` from a whole cycle.
+
+World frame: metres, seconds, radians, z up, yaw from +x CCW.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+from mjwalk.body.humanoid import JointMap
+from mjwalk.conventions import DEFAULT_STATURE
+from mjwalk.plan.walkpath import WalkPath
+
+
+@dataclass
+class Event:
+    """Something that happens at a time of the timeline (seconds): ``kind`` like
+    ``"heel_strike"``/``"toe_off"``, ``detail`` like ``"left"``."""
+
+    time: float
+    kind: str
+    detail: str = ""
+
+
+@dataclass
+class Timeline:
+    """Per-frame poses of the humanoid in a scene.
+
+    Attributes:
+        model: the compiled scene + humanoid model.
+        jointmap: where the humanoid's joints live in ``qpos``.
+        fps: frames per second (the video rate).
+        t: (F,) frame times in seconds from 0.
+        qpos: (F, nq) the model's qpos for every frame (root x, y, z in metres, root quaternion
+            w, x, y, z; hinge angles in radians).
+        events: gait events (heel strikes, toe-offs), in time order.
+        contact: (F,) foot contact state, 0 left stance, 1 right stance, 2 double support.
+        walk: the WalkPath the timeline was made from (drawn into videos), if any.
+        scene: the scene file (or "<MjSpec>") and ``stature`` the humanoid's stature in metres,
+            enough to rebuild ``model``.
+        meta: free-form provenance (producer, clipped joints, ...).
+    """
+
+    model: mujoco.MjModel
+    jointmap: JointMap
+    fps: float
+    t: np.ndarray
+    qpos: np.ndarray
+    events: list[Event] = field(default_factory=list)
+    contact: np.ndarray | None = None
+    walk: WalkPath | None = None
+    scene: str = ""
+    stature: float = DEFAULT_STATURE
+    meta: dict = field(default_factory=dict)
+
+    @property
+    def n_frames(self) -> int:
+        return int(self.qpos.shape[0])
+
+    @property
+    def duration(self) -> float:
+        return float(self.t[-1]) if len(self.t) else 0.0
+
+    def root(self) -> np.ndarray:
+        """(F, 3) root (pelvis) positions in metres."""
+        r = self.jointmap.root
+        return self.qpos[:, r : r + 3]
+
+    def angle(self, name: str) -> np.ndarray:
+        """(F,) angle of joint ``name`` (unprefixed, e.g. ``"knee_l"``) in radians."""
+        return self.qpos[:, self.jointmap.adr(name)]
