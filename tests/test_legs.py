@@ -428,21 +428,6 @@ def planned_walks(scenes_dir):
     return out
 
 
-#: Planned walks of the fixture whose stance drift exceeds 1 cm for a reason legs.py cannot
-#: remove, with their bound (m). Walk 18, its step 18: the right stance foot points ~40-55 deg
-#: left of where the pelvis travels (a corridor corner), the right hip passes 0.3 m lateral
-#: of it, and keeping the sole level sideways would evert the ankle 20-33 deg (range 15):
-#: the clipped ankle tilts the foot, its ball moves 2.6 cm. The planner's reach checks accept
-#: this placement (plan/stepcheck.py has no check of the stance leg's sideways lean in the
-#: stance foot's frame); until it refuses it, the drift is bounded here.
-EVERSION_LIMITED = {18: 0.03}
-#: The same walk's largest joint change per sample (degrees), pinned: at its step 16 the
-#: pelvis rises over the landing leg beyond the stance leg's reach and lowers again within a
-#: few samples (knee_r 15.2 deg in one sample; before the heel-rise fix hip_r_flex 37.9 deg).
-#: Every other fixture walk keeps MAX_STEP_DEG.
-AWKWARD_JUMP_DEG = {18: 16.0}
-
-
 def test_planned_walks_stance_feet_stay_put(planned_walks):
     """Issue 5: on 20 planned paths each stance foot's contact point (heel while flat or toes
     up, ball while flat or heel up) drifts at most 1 cm over its stance, turning steps
@@ -454,8 +439,7 @@ def test_planned_walks_stance_feet_stay_put(planned_walks):
     assert len(planned_walks) == 20
     for k, (_, walk, legs, pts, pitch, low) in enumerate(planned_walks):
         drift = stance_drift(walk, pts, pitch)
-        bound = EVERSION_LIMITED.get(k, 0.01)
-        assert drift <= bound, f"walk {k}: a stance foot drifted {drift * 100:.2f} cm"
+        assert drift <= 0.01, f"walk {k}: a stance foot drifted {drift * 100:.2f} cm"
         assert low.min() >= -0.01, f"walk {k}: foot {-low.min() * 100:.1f} cm below the floor"
         for name, v in legs.angles.items():
             lo, hi = jm.limits(name)
@@ -480,7 +464,7 @@ def test_planned_walks_joint_angles_do_not_jump(planned_walks):
         for name, v in series.items():
             d = np.degrees(np.abs(np.diff(v)))
             i = int(np.argmax(d))
-            assert d[i] <= AWKWARD_JUMP_DEG.get(k, MAX_STEP_DEG), (
+            assert d[i] <= MAX_STEP_DEG, (
                 f"walk {k}: {name} changes {d[i]:.1f} deg between samples {i} and {i + 1}"
             )
 
