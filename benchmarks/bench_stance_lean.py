@@ -9,7 +9,8 @@ tests' fixture, seeds 1-10 benchmarks/bench_stance_drift.py's set), and ``--extr
 (seed 0) on each of three more routes in three scenes (open floor, corridor to the door, the
 station's 8 m walk). For each set: walks that differ (any pelvis sample more than 1e-9 m
 apart, or another sample count), planning failures, median and inter-quartile range of the
-walk length, and the planning time ratio (with / without, the plans interleaved). Without the
+walk length, node expansions and the planning time ratio (with / without, the plans
+interleaved). Without the
 check, the number of planned steps that the check would refuse (its stance leg leaning out of
 the ankle's or hip's range) is counted as well.
 """
@@ -90,17 +91,26 @@ def run_set(name, jobs, model) -> None:
         x is None or y is None or x.xy.shape != y.xy.shape or np.abs(x.xy - y.xy).max() > 1e-9
         for x, y in zip(a, b, strict=True)
     )
-    print(f"\n{name}: {len(a)} walks, {changed} changed by the check")
+    direct = sum(
+        x is not None and y is not None and refused_steps(y, par) > 0
+        for x, y in zip(a, b, strict=True)
+    )
+    print(
+        f"\n{name}: {len(a)} walks, {changed} changed by the check ({direct} of them planned "
+        "without it have a step it refuses; the others differ because a successor refused "
+        "during the search changes the search's course)"
+    )
     for key, walks in res.items():
         ok = [w for w in walks if w is not None]
         lengths = np.array([_length(w) for w in ok])
         q25, q50, q75 = np.percentile(lengths, [25, 50, 75])
         refused = sum(refused_steps(w, par) for w in ok)
         steps = sum(len(w.steps) for w in ok)
+        expansions = sum(w.meta["expansions"] for w in ok)
         print(
             f"  {key:8s} check: failures {len(walks) - len(ok)}, length median {q50:.3f} m, "
             f"IQR {q75 - q25:.3f} m; steps the check refuses {refused} of {steps}; "
-            f"planning {secs[key]:.1f} s"
+            f"expansions {expansions}; planning {secs[key]:.1f} s"
         )
     print(f"  planning time ratio with/without: {secs['with'] / secs['without']:.3f}")
 

@@ -117,7 +117,13 @@ NEAR_GOAL_EXPANSIONS = 3
 #: 15 / inversion 35 deg, hip adduction 30 / abduction 45 deg) is rejected
 #: (:func:`mjwalk.plan.stepcheck.stance_lean_ok`). The hip offset and leg length are those of
 #: the default 1.75 m humanoid (the planner does not know the walker's stature; the lean of a
-#: given placement scales about inversely with it).
+#: given placement scales about inversely with it). On planned walks the straight-leg lean is
+#: within 1-2 deg of the leg synthesis's own (unclipped) ankle inversion where it matters.
+#: Measured (``benchmarks/bench_stance_lean.py``: the leg tests' four routes, seeds 0-10, 5 walks
+#: each, and 3 x 10 walks in three scenes): without the check 1 of 186, 47 of 1803 and 6 of
+#: 360 planned steps lean out of range (all but a few in the corridor's corners); with it 5 of
+#: 20, 50 of 200 and 10 of 30 walks change (the others because a successor refused during
+#: the search changes its course), none fails, median lengths within 0.03 m.
 LEAN_GEOMETRY = leg_geometry(1.75)
 
 

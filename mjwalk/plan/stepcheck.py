@@ -207,6 +207,11 @@ def stance_lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_lef
     hip_y = par[P_HIP_Y]
     span = par[P_LEG_SPAN]
     foot = complex(math.cos(-foot_heading), math.sin(-foot_heading))
+    # the limits as slopes: atan2(y, h) and asin(y / span) are monotonic in y
+    tan_ev = math.tan(par[P_EVERSION])
+    tan_inv = math.tan(par[P_INVERSION])
+    sin_add = math.sin(par[P_ADDUCTION])
+    sin_abd = math.sin(par[P_ABDUCTION])
     for j in range(m):
         psi = offset[m + 2 + j].real
         for a in range(d):
@@ -215,14 +220,14 @@ def stance_lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_lef
         # the hip joint centre: the left one is hip_y to the pelvis's left (-x turned by psi)
         v = ankle - (loc[j] - s * hip_y * turn)  # hip to ankle, step frame
         h = math.sqrt(max(span * span - (v.real * v.real + v.imag * v.imag), 1e-12))
-        # ankle: the sideways lean in the stance foot's frame (left = -x turned by its heading)
-        inv = s * math.atan2(-(v * foot).real, h)
-        if inv < -par[P_EVERSION] or inv > par[P_INVERSION]:
+        # ankle: the sideways lean atan2(s u_y, h) in the stance foot's frame (left = -x
+        # turned by its heading)
+        inv = -s * (v * foot).real
+        if inv < -tan_ev * h or inv > tan_inv * h:
             return False
-        # hip: the sideways lean of a straight leg in the pelvis frame
-        lat = -(v * turn.conjugate()).real / span
-        abd = s * math.asin(min(max(lat, -1.0), 1.0))
-        if abd < -par[P_ADDUCTION] or abd > par[P_ABDUCTION]:
+        # hip: the sideways lean asin(s p_y / span) of a straight leg in the pelvis frame
+        abd = -s * (v * turn.conjugate()).real
+        if abd < -sin_add * span or abd > sin_abd * span:
             return False
     return True
 
