@@ -97,6 +97,7 @@ def search(
     frame = np.empty(cap)
     g = np.empty(cap)
     foot = np.empty(cap, dtype=np.complex128)  # where the node's step landed (nan: none)
+    fhead = np.empty(cap)  # ... and the landed foot's heading (nan: none)
     left = np.empty(cap, dtype=np.bool_)
     parent[0] = -1
     row[0] = -1
@@ -105,6 +106,7 @@ def search(
     frame[0] = heading
     g[0] = 0.0
     foot[0] = nan_c
+    fhead[0] = np.nan
     left[0] = False
     nn = 1
     fcap = 256
@@ -125,7 +127,7 @@ def search(
     one_near = np.zeros(1, dtype=np.bool_)
     one_frame = np.empty(1)
     one_left = np.empty(1, dtype=np.bool_)
-    one_node = np.empty((1, 4), dtype=np.complex128)
+    one_node = np.empty((1, 5), dtype=np.complex128)
     while len(heap) > 0:
         nid = heapq.heappop(heap)[2]
         p = pos[nid]
@@ -168,6 +170,7 @@ def search(
             lft = left0
             one_node[0, 1] = nan_c
             one_node[0, 2] = nan_c
+            one_node[0, 4] = np.nan
         else:
             x = feats[row[nid] : row[nid] + 1]
             side = 0 if left[nid] else 1
@@ -184,8 +187,9 @@ def search(
             lft = one_left
             one_node[0, 1] = foot[nid]
             one_node[0, 2] = foot[parent[nid]]
+            one_node[0, 4] = fhead[nid]
         one_node[0, 3] = g[nid]
-        rows, keys, fs, gs, ends, ths, frames, feet, lefts, accepted, drawn = check_steps(
+        rows, keys, fs, gs, ends, ths, frames, feet, fheads, lefts, accepted, drawn = check_steps(
             z, matrix, offset, per, n_walk, frm, lft, one_near, one_node, thr, par, ipar, coef,
             dist,
         )  # fmt: skip
@@ -212,6 +216,7 @@ def search(
             frame = _grow1(frame, cap)
             g = _grow1(g, cap)
             foot = _grow1(foot, cap)
+            fhead = _grow1(fhead, cap)
             left = _grow1(left, cap)
         for c in range(rows.shape[0]):
             e = ends[c]
@@ -228,6 +233,7 @@ def search(
             frame[nn] = frames[c]
             g[nn] = gs[c]
             foot[nn] = feet[c]
+            fhead[nn] = fheads[c]
             left[nn] = lefts[c]
             heapq.heappush(heap, (fs[c], counter, nn))
             counter += 1

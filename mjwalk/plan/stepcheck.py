@@ -4,8 +4,10 @@
 affine decode of its features (:class:`~mjwalk.plan.hybrid._Decoder`) into pelvis samples, the
 landing ankle and toes and the swing-knee probes in the step's local frame (x right, y forward,
 as x + iy; metres), the turn into the world, the clearance test of every point against its own
-limit (bilinear lookup in the workplace's walk field), the leg-reach tests, the closing-step
-test (a closing step must end in the goal area), and for the accepted steps the walked length
+limit (bilinear lookup in the workplace's walk field), the leg-reach tests, the stance-leg
+lean test (:func:`stance_lean_ok`: the stance leg must follow the pelvis within the ankle's and
+the hip's sideways ranges; :func:`stance_lean` is its NumPy form), the closing-step test (a
+closing step must end in the goal area), and for the accepted steps the walked length
 g, f = g + weight·h, the closed-list key, heading and landing foot. As NumPy code this was some
 60 small array operations per call; here it is one loop over the rows (numba, see
 :mod:`mjwalk._jit`), with the same arithmetic.
@@ -52,8 +54,14 @@ from mjwalk._jit import njit
     P_KNEE_SHARE1,
     P_STOP_REACH,
     P_POOL_SHARPNESS,
+    P_HIP_Y,
+    P_LEG_SPAN,
+    P_EVERSION,
+    P_INVERSION,
+    P_ADDUCTION,
+    P_ABDUCTION,
     N_PARAMS,
-) = range(28)
+) = range(34)
 # Slots of the integer parameter vector.
 (
     I_M,
@@ -134,6 +142,96 @@ def in_goal(p, heading, par):
     return abs(diff) <= par[P_YAW_TOLERANCE]
 
 
+def stance_lean(
+    pelvis: np.ndarray, yaw: np.ndarray, stance: np.ndarray, stance_left: bool, par: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The stance leg's sideways lean at pelvis samples, as :func:`stance_lean_ok` takes it
+    (NumPy; the reference of the compiled check, and for walks already planned).
+
+    Args:
+        pelvis: (k, 2) pelvis positions, yaw: (k,) pelvis headings (radians), stance: the stance
+            foot (x, y, heading), all in one frame (metres, radians from +x).
+        stance_left: whether the stance foot is the left one.
+        par: :func:`params` with the P_HIP_Y and P_LEG_SPAN slots.
+
+    Returns:
+        (ankle inversion, hip abduction) (k,) each, radians, anatomical signs (negative:
+        eversion, adduction), of a straight leg keeping the sole level sideways.
+    """
+    s = 1.0 if stance_left else -1.0
+    yaw = np.asarray(yaw, float)
+    left = np.stack([-np.sin(yaw), np.cos(yaw)], -1)
+    v = np.asarray(stance[:2], float) - (np.asarray(pelvis, float) + s * par[P_HIP_Y] * left)
+    span = par[P_LEG_SPAN]
+    h = np.sqrt(np.maximum(span**2 - (v**2).sum(-1), 1e-12))
+    foot_left = np.array([-math.sin(stance[2]), math.cos(stance[2])])
+    inv = s * np.arctan2(v @ foot_left, h)
+    abd = s * np.arcsin(np.clip((v * left).sum(-1) / span, -1.0, 1.0))
+    return inv, abd
+
+
+def lean_in_range(inv: np.ndarray, abd: np.ndarray, par: np.ndarray) -> bool:
+    """Whether every lean of :func:`stance_lean` is within the P_EVERSION .. P_ABDUCTION ranges."""
+    return bool(
+        np.all((inv >= -par[P_EVERSION]) & (inv <= par[P_INVERSION]))
+        and np.all((abd >= -par[P_ADDUCTION]) & (abd <= par[P_ABDUCTION]))
+    )
+
+
+@njit
+def stance_lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_left, par):
+    """Whether the stance leg can follow the pelvis samples of one step without leaving the
+    ankle's eversion/inversion or the hip's adduction/abduction range.
+
+    The leg synthesis (:mod:`mjwalk.body.legs`) keeps the stance sole level sideways, so the
+    ankle takes the whole sideways lean of the hip-to-ankle line in the stance foot's frame,
+    ``atan2(u_y, h)`` (its inversion, :func:`~mjwalk.body.legs.leg_ik`), and the upright pelvis
+    leaves the hip the sideways lean of that line in the pelvis frame. Both are taken with the
+    leg stretched straight (``P_LEG_SPAN``: the hip as high above the ankle as it can be), so a
+    step refused here cannot be followed at any pelvis height: the check is a necessary
+    condition, not a model of the synthesis's pelvis height. The hip's lean is that of a
+    straight, unrotated leg, ``asin(p_y / span)``.
+
+    Args:
+        z, r: the standardized features and the row of the step.
+        matrix, offset: the decoder, with the pelvis yaw at the m samples in columns
+            m + 2 .. 2m + 1 (real parts, radians relative to the step's frame).
+        loc: the decoded pelvis samples (m,) of the row, step frame (x right, y forward).
+        ankle: the stance foot (the point under its ankle), step frame, x + iy.
+        foot_heading: the stance foot's heading relative to the step's frame (radians).
+        stance_left: whether the stance foot is the left one.
+        par: :func:`params` with the P_HIP_Y .. P_ABDUCTION slots (metres, radians).
+    """
+    d = z.shape[1]
+    s = 1.0 if stance_left else -1.0
+    hip_y = par[P_HIP_Y]
+    span = par[P_LEG_SPAN]
+    foot = complex(math.cos(-foot_heading), math.sin(-foot_heading))
+    # the limits as slopes: atan2(y, h) and asin(y / span) are monotonic in y
+    tan_ev = math.tan(par[P_EVERSION])
+    tan_inv = math.tan(par[P_INVERSION])
+    sin_add = math.sin(par[P_ADDUCTION])
+    sin_abd = math.sin(par[P_ABDUCTION])
+    for j in range(m):
+        psi = offset[m + 2 + j].real
+        for a in range(d):
+            psi += z[r, a] * matrix[a, m + 2 + j].real
+        turn = complex(math.cos(psi), math.sin(psi))
+        # the hip joint centre: the left one is hip_y to the pelvis's left (-x turned by psi)
+        v = ankle - (loc[j] - s * hip_y * turn)  # hip to ankle, step frame
+        h = math.sqrt(max(span * span - (v.real * v.real + v.imag * v.imag), 1e-12))
+        # ankle: the sideways lean atan2(s u_y, h) in the stance foot's frame (left = -x
+        # turned by its heading)
+        inv = -s * (v * foot).real
+        if inv < -tan_ev * h or inv > tan_inv * h:
+            return False
+        # hip: the sideways lean asin(s p_y / span) of a straight leg in the pelvis frame
+        abd = -s * (v * turn.conjugate()).real
+        if abd < -sin_add * span or abd > sin_abd * span:
+            return False
+    return True
+
+
 @njit
 def check_steps(
     z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist
@@ -149,16 +247,22 @@ def check_steps(
             is the left one, per row (n,) or per predecessor (b,).
         near: (b,) whether the predecessor may stop (else its closing rows are dropped
             uncounted).
-        node: (b, 4) complex per predecessor: end point p, the foot its step landed and the
-            foot behind that (world x + iy; nan: none yet), and g (real part).
+        node: (b, 4) or (b, 5) complex per predecessor: end point p, the foot its step
+            landed and the foot behind that (world x + iy; nan: none yet), g (real part) and,
+            in column 4, the landed foot's heading (real part, world radians; nan: none).
+            The landed foot is the stance foot of the step drawn from the predecessor: with
+            its heading, and the decoder's pelvis-yaw columns, and the P_HIP_Y .. P_ABDUCTION
+            slots set, a step whose stance leg cannot follow it is rejected
+            (:func:`stance_lean_ok`).
         thr: (m + 4,) clearance limits of the pelvis samples, ankle, toes and the two knees.
         par, ipar: :func:`params` / :func:`iparams`.
         coef: the walk field's bilinear cell coefficients (:meth:`ClearanceField._coefficients`).
         dist: the goal distance's flat grid bound (:class:`~mjwalk.plan.heuristic.GoalDistance`).
 
     Returns:
-        rows, keys, f, g, end, heading, frame, foot, left of the accepted steps (row order),
-        and per predecessor the accepted and drawn (not dropped) counts.
+        rows, keys, f, g, end, heading, frame, foot, foot heading (world radians), left of the
+        accepted steps (row order), and per predecessor the accepted and drawn (not dropped)
+        counts.
     """
     n = z.shape[0]
     d = z.shape[1]
@@ -174,6 +278,7 @@ def check_steps(
     fres = par[P_FIELD_RES]
     goal = complex(par[P_GOAL_X], par[P_GOAL_Y])
     per_row = frame.shape[0] == n
+    lean = node.shape[1] > 4 and matrix.shape[1] >= 2 * m + 2 and not math.isnan(par[P_HIP_Y])
     out_rows = np.empty(n, dtype=np.int64)
     out_keys = np.empty(n, dtype=np.int64)
     out_f = np.empty(n)
@@ -182,6 +287,7 @@ def check_steps(
     out_th = np.empty(n)
     out_frame = np.empty(n)
     out_foot = np.empty(n, dtype=np.complex128)
+    out_fhead = np.empty(n)
     out_left = np.empty(n, dtype=np.bool_)
     accepted = np.zeros(b, dtype=np.int64)
     drawn = np.zeros(b, dtype=np.int64)
@@ -247,6 +353,11 @@ def check_steps(
             continue
         if abs(loc[m] - behind) > par[P_STRIDE] or abs(loc[m] - loc[m - 1]) > reach:
             continue
+        # the stance leg's sideways lean (the landed foot is this step's stance foot)
+        if lean and not (math.isnan(landed.real) or math.isnan(node[i, 4].real)):
+            if not stance_lean_ok(z, r, matrix, offset, loc, m, landed, node[i, 4].real - fr,
+                                  not lf, par):  # fmt: skip
+                continue
         end = loc[m - 1] * rot + p
         th = fr + yaws.imag
         if closing and not in_goal(end, th, par):  # a closing step must end the walk
@@ -277,6 +388,7 @@ def check_steps(
         out_th[cnt] = th
         out_frame[cnt] = fr
         out_foot[cnt] = ankle
+        out_fhead[cnt] = fr + yaws.real
         out_left[cnt] = lf
         accepted[i] += 1
         cnt += 1
@@ -289,6 +401,7 @@ def check_steps(
         out_th[:cnt],
         out_frame[:cnt],
         out_foot[:cnt],
+        out_fhead[:cnt],
         out_left[:cnt],
         accepted,
         drawn,

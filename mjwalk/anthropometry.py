@@ -1,0 +1,140 @@
+"""Body dimensions and joint ranges of the mjwalk humanoid, as fractions of stature.
+
+The figures the humanoid is built from (:mod:`mjwalk.body.humanoid`) and that lower stages need
+without building a body: the planner's stance-lean check (:mod:`mjwalk.plan.hybrid`) uses the
+leg lengths and the joint ranges. Metres, degrees where named ``_DEG``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mjwalk.conventions import DEFAULT_STATURE
+
+# Segment lengths as fractions of stature H. Source: D. A. Winter, "Biomechanics and Motor
+# Control of Human Movement", 4th ed. (2009), Fig. 4.1 (segment lengths after Drillis & Contini
+# 1966). Heights are from the floor in the upright stance.
+SEG = {
+    "ankle_height": 0.039,  # lateral malleolus height
+    "shank": 0.246,  # knee to ankle (0.285 - 0.039)
+    "thigh": 0.245,  # greater trochanter/hip centre to knee (0.530 - 0.285)
+    "hip_height": 0.530,  # hip joint centre height
+    "hip_width": 0.191,  # bi-trochanteric width; hip joint centres ~ half of it apart
+    "shoulder_height": 0.818,
+    "shoulder_width": 0.259,  # bi-acromial width
+    "chin_height": 0.870,
+    "head_top": 1.000,
+    "upper_arm": 0.186,
+    "forearm": 0.146,
+    "hand": 0.108,
+    "foot_length": 0.152,
+    "foot_width": 0.055,
+}
+
+# Joint ranges of motion in degrees (lo, hi) in the sign convention above. Sources: American
+# Academy of Orthopaedic Surgeons (AAOS), "Joint Motion: Method of Measuring and Recording" (1965)
+# normal adult values; spine and hand after I. A. Kapandji, "The Physiology of the Joints".
+ROM_DEG: dict[str, tuple[float, float]] = {
+    # spine (Kapandji: lumbar flex 60 / ext 35, lat. bend 20, rot 5; thoracic flex 45 / ext 25,
+    # bend 20, rot 35; cervical flex 45 / ext 55, bend 45, rot 70)
+    "lumbar_flex": (-35, 60),
+    "lumbar_bend": (-20, 20),
+    "lumbar_rot": (-5, 5),
+    "thoracic_flex": (-25, 45),
+    "thoracic_bend": (-20, 20),
+    "thoracic_rot": (-35, 35),
+    "neck_flex": (-55, 45),
+    "neck_bend": (-45, 45),
+    "neck_rot": (-70, 70),
+    # upper limb (AAOS: shoulder flex 180 / ext 60, abd 180 / add 30 (horizontal), rot int 70 /
+    # ext 90; elbow 0-150; forearm pron 80 / sup 80; wrist flex 80 / ext 70, ulnar 30 / radial 20)
+    "shoulder_flex": (-60, 180),
+    "shoulder_abd": (-30, 180),
+    "shoulder_rot": (-90, 70),
+    "elbow": (0, 150),
+    "forearm_pron": (-80, 80),
+    "wrist_flex": (-70, 80),
+    "wrist_dev": (-20, 30),
+    # hand (AAOS: thumb CMC abd 70, MCP 0-50, IP 0-80; finger MCP 0-90, PIP 0-100, DIP 0-90)
+    "thumb_cmc": (0, 70),
+    "thumb_mcp": (0, 50),
+    "thumb_ip": (0, 80),
+    "finger_mcp": (0, 90),
+    "finger_pip": (0, 100),
+    "finger_dip": (0, 90),
+    # lower limb (AAOS: hip flex 120 / ext 30, abd 45 / add 30, rot int 45 / ext 45; knee 0-135;
+    # ankle dorsi 20 / plantar 50, inversion 35 / eversion 15; first MTP ext 70 / flex 45)
+    "hip_flex": (-30, 120),
+    "hip_abd": (-30, 45),
+    "hip_rot": (-45, 45),
+    "knee": (0, 135),
+    "ankle_flex": (-50, 20),
+    "ankle_inv": (-15, 35),
+    "toe": (-45, 70),  # positive = MTP extension (toes up)
+}
+
+FINGERS = ("index", "middle", "ring", "little")
+
+
+def pelvis_height(stature: float = DEFAULT_STATURE) -> float:
+    """Root (hip-joint-centre) height in metres in the neutral pose: 0.530 * stature (Winter)."""
+    return SEG["hip_height"] * stature
+
+
+@dataclass(frozen=True)
+class LegGeometry:
+    """Lengths the leg IK needs, metres, in the pelvis frame (x forward, y left, z up).
+
+    Attributes:
+        hip_y: lateral offset of each hip joint centre from the root (left +, right -).
+        thigh: hip to knee. shank: knee to ankle. ankle_height: ankle above the sole.
+        foot_back, foot_front: heel and toe-tip distance from the ankle along the foot, metres.
+        foot_width: width of the sole (and toes), metres.
+    """
+
+    hip_y: float
+    thigh: float
+    shank: float
+    ankle_height: float
+    foot_back: float
+    foot_front: float
+    foot_width: float = 0.0
+
+    def span(self, knee):
+        """Hip-to-ankle distance (m) at knee flexion ``knee`` (radians, 0 = straight; the law
+        of cosines on thigh and shank)."""
+        L1, L2 = self.thigh, self.shank
+        return np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(knee))
+
+    def knee_for_span(self, d):
+        """Knee flexion (radians) that puts the ankle ``d`` metres from the hip (the inverse
+        of :meth:`span`, clipped to straight and fully folded)."""
+        L1, L2 = self.thigh, self.shank
+        return np.arccos(np.clip((d**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
+
+
+#: Upper-arm capsule radius per metre of stature.
+UPPER_ARM_RADIUS = 0.024
+
+
+def leg_geometry(stature: float = DEFAULT_STATURE) -> LegGeometry:
+    """The leg lengths of :func:`build_humanoid` for ``stature`` metres."""
+    H = stature
+    fl = SEG["foot_length"] * H
+    return LegGeometry(
+        hip_y=0.5 * 0.52 * SEG["hip_width"] * H,  # hip centres ~52 % of the bi-trochanteric width
+        thigh=SEG["thigh"] * H,
+        shank=SEG["shank"] * H,
+        ankle_height=SEG["ankle_height"] * H,
+        foot_back=0.25 * fl,
+        foot_front=0.75 * fl,
+        foot_width=SEG["foot_width"] * H,
+    )
+
+
+def shoulder_geometry(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
+    """(shoulder joint centre from the trunk axis, upper-arm capsule radius), metres, of
+    :func:`build_humanoid`: together the half-width of the body at the shoulders."""
+    return 0.5 * SEG["shoulder_width"] * stature, UPPER_ARM_RADIUS * stature

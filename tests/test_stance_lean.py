@@ -1,0 +1,150 @@
+"""The planner's stance-lean check (plan/stepcheck.py): the stance leg must follow the pelvis
+within the ankle's eversion/inversion and the hip's adduction/abduction ranges."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from mjwalk.body.humanoid import ROM_DEG, leg_geometry
+from mjwalk.plan import stepcheck
+from mjwalk.plan.hybrid import HybridPlanner
+
+M = 16
+#: A step frame heading +y (world): the step's local frame (x right, y forward) is the world's.
+FRAME = math.pi / 2
+
+
+def _par() -> np.ndarray:
+    g = leg_geometry()
+    return stepcheck.params(
+        hip_y=g.hip_y,
+        leg_span=g.thigh + g.shank,
+        eversion=-math.radians(ROM_DEG["ankle_inv"][0]),
+        inversion=math.radians(ROM_DEG["ankle_inv"][1]),
+        adduction=-math.radians(ROM_DEG["hip_abd"][0]),
+        abduction=math.radians(ROM_DEG["hip_abd"][1]),
+    )
+
+
+def _compiled(pelvis, yaw, stance, stance_left, par) -> bool:
+    """stance_lean_ok on pelvis samples (M, 2) and yaws (M,) (world = step frame, see FRAME)
+    through a hand-made decoder: no features, the pelvis yaws in its offset."""
+    offset = np.zeros(2 * M + 2, complex)
+    offset[M + 2 :] = np.asarray(yaw) - FRAME
+    loc = np.zeros(M + 2, complex)
+    loc[:M] = pelvis[:, 0] + 1j * pelvis[:, 1]
+    return stepcheck.stance_lean_ok(
+        np.zeros((1, 1)), 0, np.zeros((1, 2 * M + 2), complex), offset, loc, M,
+        complex(stance[0], stance[1]), stance[2] - FRAME, stance_left, par,
+    )  # fmt: skip
+
+
+def _straight(stance_x: float):
+    """A straight step heading +y (pelvis 0 -> 0.6 m, yaw along), the right foot standing
+    ``stance_x`` m to the right of the pelvis line at y = 0.3, pointing ahead."""
+    pelvis = np.column_stack([np.zeros(M), np.linspace(0.0, 0.6, M)])
+    return pelvis, np.full(M, FRAME), np.array([stance_x, 0.3, FRAME])
+
+
+def test_lean_is_the_ankle_inversion_of_the_leg_ik():
+    """With the sole level sideways and the hip as high as the straight leg reaches, the check's
+    ankle lean is the leg IK's ankle inversion (mjwalk.body.legs.leg_ik, unclipped)."""
+    from mjwalk.body.legs import leg_ik
+
+    g, par = leg_geometry(), _par()
+    for x in (-0.3, -0.1, 0.0, 0.1, 0.35):
+        pelvis, yaw, stance = _straight(x)
+        inv, _ = stepcheck.stance_lean(pelvis, yaw, stance, False, par)
+        hip = pelvis + [g.hip_y, 0.0]  # the right hip, heading +y
+        d = stance[:2] - hip
+        h = np.sqrt((g.thigh + g.shank - 1e-9) ** 2 - (d**2).sum(1))
+        rel = np.column_stack([d[:, 1], -d[:, 0], -h])  # pelvis frame: x forward, y left
+        ik = leg_ik(rel, np.zeros(M), np.zeros(M), "right", g, clip=False)
+        np.testing.assert_allclose(inv, ik["ankle_r_inv"], atol=2e-3)
+
+
+def test_hand_made_placements_beyond_the_lean_range_are_refused():
+    """A right stance foot 0.1 m right of the pelvis line (about under its hip) is accepted; one
+    crossed 0.25 m to the left (the hip 0.34 m lateral of it: eversion 23-25 deg, range 15) and
+    one 0.6 m out to the right (inversion 37-40 deg, range 35) are refused; a foot turned 60 deg
+    off the walking direction beside the hip (as at a corridor corner) everts the ankle as
+    well. The compiled check and its NumPy form agree."""
+    par = _par()
+    cases = {0.1: True, 0.0: True, -0.25: False, 0.6: False}
+    for x, ok in cases.items():
+        pelvis, yaw, stance = _straight(x)
+        inv, abd = stepcheck.stance_lean(pelvis, yaw, stance, False, par)
+        assert stepcheck.lean_in_range(inv, abd, par) is ok, (x, np.degrees(inv).round(1))
+        assert _compiled(pelvis, yaw, stance, False, par) is ok, x
+    pelvis, yaw, stance = _straight(0.15)
+    stance[2] += math.radians(60)  # turned left: the hip now lies lateral of the foot's axis
+    assert not stepcheck.lean_in_range(*stepcheck.stance_lean(pelvis, yaw, stance, False, par), par)
+    assert not _compiled(pelvis, yaw, stance, False, par)
+    # mirrored: a left stance foot
+    pelvis, yaw, stance = _straight(-0.1)
+    assert _compiled(pelvis, yaw, stance, True, par)
+    pelvis, yaw, stance = _straight(0.25)
+    assert not _compiled(pelvis, yaw, stance, True, par)
+
+
+def test_compiled_lean_check_agrees_with_numpy():
+    """On 2000 random placements and curved, turning pelvis paths both forms give the same
+    verdict (the rare placements within 1e-9 rad of a limit excepted)."""
+    rng = np.random.default_rng(0)
+    par = _par()
+    t = np.linspace(0.0, 1.0, M)
+    refused = 0
+    for _ in range(2000):
+        turn = rng.uniform(-0.8, 0.8)
+        yaw = FRAME + turn * t
+        pelvis = np.column_stack([rng.uniform(-0.1, 0.1) * t**2, rng.uniform(0.3, 0.8) * t])
+        stance = np.array([rng.uniform(-0.4, 0.4), rng.uniform(-0.2, 0.6), FRAME])
+        stance[2] += rng.uniform(-1.2, 1.2)
+        left = bool(rng.integers(2))
+        want = stepcheck.lean_in_range(*stepcheck.stance_lean(pelvis, yaw, stance, left, par), par)
+        assert _compiled(pelvis, yaw, stance, left, par) is want
+        refused += not want
+    assert 300 < refused < 1700  # both verdicts well represented
+
+
+@pytest.mark.parametrize("foot_x", [0.1, -0.2])
+def test_check_steps_refuses_the_steps_the_stance_leg_cannot_follow(scenes_dir, foot_x, request):
+    """In the planner's step check (sampled steps, decoded by the planner's affine map) a step
+    is refused exactly when its stance leg leans out of range, by the NumPy form on the
+    model's own decoding; the stance foot is the node's landed foot (column 4: its heading).
+    Without a heading (a start node) the check is skipped."""
+    from mjwalk.gait.default import default_model
+    from mjwalk.world import load_workplace
+
+    model = default_model()
+    wp = load_workplace(scenes_dir / "open_floor.xml")
+    pl = HybridPlanner(wp, "east", model)
+    par, ipar = pl._kernel_params()
+    dec = pl._decoder()
+    rng = np.random.default_rng(2)
+    z = model.sample_next_features(model.sample_first(1, rng, "right").features, "right", 300, rng)
+    batch = model.decode(z, "left")  # swing left: the right foot stands
+    local, yaw = batch.resample(M)
+    stance = np.array([foot_x, 0.05, FRAME])  # the landed right foot, beside the start
+    args = (dec.matrix, dec.offset, len(z), len(z), np.array([FRAME]), np.array([True]),
+            np.zeros(1, bool))  # fmt: skip
+    rest = (pl._thresholds, par, ipar, wp.walk_field()._coefficients(), pl.distance.flat_bound())
+    node = np.array([[0j, complex(stance[0], stance[1]), np.nan, 0.0, stance[2]]])
+    rows = stepcheck.check_steps(z, *args, node, *rest)[0]
+    node[0, 4] = np.nan
+    free = stepcheck.check_steps(z, *args, node, *rest)[0]
+    want = [
+        r
+        for r in free
+        if stepcheck.lean_in_range(
+            *stepcheck.stance_lean(local[r], FRAME + yaw[r], stance, False, par), par
+        )
+    ]
+    np.testing.assert_array_equal(rows, want)
+    if foot_x > 0:  # a foot under the hip: (measured) all but a few steps pass
+        assert len(rows) > 0.9 * len(free)
+    else:  # a foot crossed under the other: most are refused
+        assert len(rows) < 0.5 * len(free)
