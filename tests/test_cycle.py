@@ -55,3 +55,52 @@ def test_monte_carlo_independent_of_jobs(scenes_dir):
     two = simulate_cycles(spec, runs=3, seed=5, n_jobs=2, collisions=False)
     assert [r.cycle_time for r in one] == [r.cycle_time for r in two]
     assert len({r.cycle_time for r in one}) == 3
+
+
+def test_right_hand_tasks_use_the_right_hand(scenes_dir, tmp_path):
+    """Issue 16: ``hand = "right"`` is done with the right arm: its hand reaches the site within
+    1 cm while the left hand keeps its place, with no contact."""
+    import mujoco
+
+    toml = f"""
+name = "right-handed picks"
+scene = "{(scenes_dir / "assembly_station.xml").as_posix()}"
+start = "stand_rack2"
+[[task]]
+kind = "pick"
+site = "rack2_screw1"
+hand = "right"
+part = "screw"
+[[task]]
+kind = "carry"
+site = "stand_car1"
+hand = "right"
+part = "screw"
+[[task]]
+kind = "fasten"
+site = "car_screw1"
+hand = "right"
+part = "screw"
+duration = 1.0
+"""
+    path = tmp_path / "right.toml"
+    path.write_text(toml)
+    result = simulate_cycle(load_cycle_spec(path), 3, keep_timeline=True)
+    assert [a.hand for a in result.arms] == ["right", "right"]
+    assert max(a.hand_error for a in result.arms) < 0.01
+    assert result.collisions == []
+    tl = result.timeline
+    m, data = tl.model, mujoco.MjData(tl.model)
+    hl, hr = m.body("human/hand_l").id, m.body("human/hand_r").id
+    pelvis = m.body("human/pelvis").id
+    for task in (t for t in result.tasks if t.kind in ("pick", "fasten")):
+        rel = []
+        for k in np.flatnonzero((tl.t >= task.start) & (tl.t <= task.end)):
+            data.qpos[:] = tl.qpos[k]
+            mujoco.mj_kinematics(m, data)
+            R = data.xmat[pelvis].reshape(3, 3)
+            rel.append([R.T @ (data.xpos[h] - data.xpos[pelvis]) for h in (hl, hr)])
+        rel = np.asarray(rel)
+        # in the pelvis frame the left hand barely moves, the right hand travels
+        assert np.ptp(rel[:, 0], axis=0).max() < 0.05
+        assert np.ptp(rel[:, 1], axis=0).max() > 0.2

@@ -146,3 +146,54 @@ def test_reach_into_rack_shelf_without_contact(endpoint_model):
     # 80 cm below the screw (near the floor) is out of the standing arm's range: flagged
     _, far = reach_in_scene(SCENE, model, "stand_rack2", "rack2_screw2", target_offset=(0, 0, -0.8))
     assert far.outside and far.warnings
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_either_hand_reaches_the_shelf_target_within_1cm_other_hand_at_rest(endpoint_model, side):
+    """Issue 16: the hand asked for reaches (right-arm reaches mirror the left-arm model through
+    the sagittal plane); the other hand stays where it was, and the shelf reach is
+    collision-free by MuJoCo's check."""
+    import mujoco
+
+    from mjwalk.conventions import side_prefix
+    from mjwalk.timeline.collisions import collision_report
+
+    model, _ = endpoint_model
+    # the screw on the hand's side of the body (facing the rack, screw 2 is on the left)
+    screw = "rack2_screw2" if side == "left" else "rack2_screw1"
+    tl, res = reach_in_scene(
+        SCENE, model, "stand_rack2", screw, side=side, target_offset=(0, 0, 0.06)
+    )
+    assert not res.outside
+    assert collision_report(tl) == []
+    m, data = tl.model, mujoco.MjData(tl.model)
+    other = "right" if side == "left" else "left"
+    rest = None
+    for k in (0, len(tl.qpos) - 1):
+        data.qpos[:] = tl.qpos[k]
+        mujoco.mj_kinematics(m, data)
+        hand_other = data.xpos[m.body(f"human/hand_{side_prefix(other)}").id].copy()
+        rest = hand_other if rest is None else rest
+        assert np.linalg.norm(hand_other - rest) < 1e-9  # the other hand does not move
+    wrist = data.xpos[m.body(f"human/hand_{side_prefix(side)}").id]
+    tip = wrist + tl.meta["frame"] @ (res.directions[-1, 2] * model.lengths[2])
+    assert np.linalg.norm(tip - tl.meta["target_world"]) < 0.01
+
+
+def test_right_arm_reach_is_the_mirror_of_the_left(endpoint_model):
+    """Mirror symmetry: the right-arm reach to a target equals the left-arm reach to the target
+    mirrored through the sagittal plane, mirrored back, and its joint angles equal the left
+    arm's (the humanoid's joint signs are anatomical, the same for both sides)."""
+    from mjwalk.arms.kinematics import MIRROR_Y, REST_HAND
+    from mjwalk.arms.reach import mirror_result
+
+    model, _ = endpoint_model
+    start = np.asarray(REST_HAND)
+    end_left = np.array([0.35, 0.12, -0.25])
+    left = model.predict(np.r_[start, end_left], start=start, end=end_left)
+    right = mirror_result(left)
+    assert np.allclose(right.hand[-1], end_left * MIRROR_Y, atol=0.01)
+    assert np.allclose(mirror_result(right).directions, left.directions)
+    q_left = arm_joint_angles(left.directions, "left")
+    q_right = arm_joint_angles(right.directions, "right")
+    assert np.allclose(q_left, q_right, atol=1e-9)

@@ -16,6 +16,11 @@ from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 ARM_SEGMENT_SHARES = (0.186, 0.146, 0.108)
 
 
+#: Reflection through the body's sagittal plane (x-z) in the shoulder frame: multiplies y by -1.
+#: The humanoid is left-right symmetric, so a right-arm movement is the left-arm movement to the
+#: mirrored target, mirrored back.
+MIRROR_Y = np.array([1.0, -1.0, 1.0])
+
 #: Relaxed hand position (m, left shoulder frame, x fwd, y left, z up) where reaches start.
 REST_HAND = (0.15, 0.02, -0.60)
 

@@ -21,7 +21,7 @@ never used silently: the result carries its distance to the training data and a 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -31,6 +31,7 @@ from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.arms.armrep import ArmRepresentation, apply_pose
 from mjwalk.arms.dcs import DCSNetwork
 from mjwalk.arms.kinematics import (
+    MIRROR_Y,
     arm_segment_lengths,
     end_effector,
     min_jerk,
@@ -64,6 +65,19 @@ class ReachResult:
     distance: float
     outside: bool
     warnings: list[str] = field(default_factory=list)
+
+
+def mirror_result(res: ReachResult) -> ReachResult:
+    """The mirror image of a reach through the body's sagittal plane (y -> -y in the shoulder
+    frame): a left-arm movement becomes the right arm's and back. Directions and hand path are
+    reflected; the extra channels (grip aperture, forearm roll in the anatomical sign
+    convention, which is the same for both sides) are kept."""
+    return replace(
+        res,
+        directions=res.directions * MIRROR_Y,
+        hand=res.hand * MIRROR_Y,
+        warnings=list(res.warnings),
+    )
 
 
 class ReachModel:

@@ -194,12 +194,14 @@ def _reach_frames(
 
     Returns (frames, hand error in metres, ReachResult of the model part)."""
     from mjwalk.arms.kinematics import (
+        MIRROR_Y,
         REST_HAND,
         arm_frames,
         arm_joint_angles,
         min_jerk,
         two_link_ik,
     )
+    from mjwalk.arms.reach import mirror_result
 
     m, jm, model = ctx.model, ctx.jointmap, ctx.reach_model
     data = mujoco.MjData(m)
@@ -211,7 +213,13 @@ def _reach_frames(
     end = frame.T @ (target_w - shoulder)
     pre = frame.T @ (target_w + approach_w - shoulder)
     start = np.asarray(REST_HAND, dtype=float)
-    res = model.predict(np.r_[start, pre], start=start, end=pre)
+    # The reach model is a left-arm model; the body is symmetric about its sagittal plane
+    # (x-z of the shoulder frame), so a right-arm reach is the mirror image of the left-arm
+    # reach to the mirrored target (mjwalk.arms.reach.mirror_directions).
+    mirror = MIRROR_Y if side == "right" else np.ones(3)
+    res = model.predict(np.r_[start, pre * mirror], start=start, end=pre * mirror)
+    if side == "right":
+        res = mirror_result(res)
     lengths = model.lengths
     u_last = res.directions[-1]
     n_app = max(4, len(res.directions) // 2)
@@ -340,7 +348,9 @@ def simulate_cycle(
             yaw = face
             hold = task.duration if task.duration is not None else DEFAULT_HOLD[task.kind]
             approach = _approach(task.kind, site_pos, x, y)
-            rf, err, res = _reach_frames(ctx, frames[-1][-1], target, approach, hold, fps)
+            rf, err, res = _reach_frames(
+                ctx, frames[-1][-1], target, approach, hold, fps, side=task.hand or "left"
+            )
             frames.append(rf)
             t += len(rf) / fps
             arms.append(

@@ -8,8 +8,8 @@ from __future__ import annotations
 import numpy as np
 
 from mjwalk.arms.hands import finger_trajectory
-from mjwalk.arms.kinematics import REST_HAND, arm_frames, arm_joint_angles
-from mjwalk.arms.reach import ReachModel
+from mjwalk.arms.kinematics import MIRROR_Y, REST_HAND, arm_frames, arm_joint_angles
+from mjwalk.arms.reach import ReachModel, mirror_result
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 from mjwalk.errors import MjwalkError
 from mjwalk.timeline.frames import yaw_quat
@@ -53,8 +53,13 @@ def reach_in_scene(
 
     from mjwalk.body.humanoid import attach_humanoid, pelvis_height
 
-    if side != "left":
-        raise MjwalkError("reach_in_scene: models are trained for the left arm; mirror first")
+    if side not in ("left", "right"):
+        raise MjwalkError(f"reach_in_scene: side must be 'left' or 'right', got {side!r}")
+    if side == "right" and constraint is not None:
+        raise MjwalkError(
+            "reach_in_scene: a right-arm reach mirrors the left-arm model's endpoint constraint;"
+            " pass constraint=None (an explicit constraint is in the left shoulder's frame)"
+        )
     mj, jm = attach_humanoid(scene, stature)
     _site_pose(mj, stand_site)
     data = mujoco.MjData(mj)
@@ -82,8 +87,14 @@ def reach_in_scene(
     target_w = data.site_xpos[sid_target] + np.asarray(target_offset, dtype=float)
     end = frame.T @ (target_w - shoulder)
     start = np.asarray(REST_HAND, dtype=float)
-    c = np.r_[start, end] if constraint is None else np.asarray(constraint, dtype=float)
-    res = model.predict(c, start=start, end=end, object_size=object_size)
+    if side == "right":  # the left-arm model's reach to the mirrored target, mirrored back
+        m_end = end * MIRROR_Y
+        res = mirror_result(
+            model.predict(np.r_[start, m_end], start=start, end=m_end, object_size=object_size)
+        )
+    else:
+        c = np.r_[start, end] if constraint is None else np.asarray(constraint, dtype=float)
+        res = model.predict(c, start=start, end=end, object_size=object_size)
     q = arm_joint_angles(res.directions, side, None if res.extras is None else res.extras[:, 1])
     n_out = max(2, round(duration * fps) + 1)
     src = np.linspace(0.0, 1.0, len(q))
