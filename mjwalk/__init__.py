@@ -30,7 +30,7 @@ from mjwalk.plan.hybrid import plan_walk, plan_walks
 from mjwalk.world import Workplace, load_workplace
 from mjwalk.world.probe import ClearanceProbe, path_clearance
 
-__version__ = "0.1.0"
+__version__: str = __import__("mjwalk._version", fromlist=["__version__"]).__version__
 
 __all__ = [
     "CaptureError",
