@@ -51,14 +51,15 @@ def _cmd_plan(args: argparse.Namespace) -> int:
         check_output_file(args.png, "--png", IMAGE_SUFFIXES)
     if args.save:
         check_output_file(args.save.with_suffix(".npz"), "--save")
-    from mjwalk.plan.grid import plan_grid
+    from mjwalk.plan.grid import check_endpoint, plan_grid
     from mjwalk.plot import save_plan_png
     from mjwalk.shipped import scene_file
     from mjwalk.world import load_workplace
 
     workplace = load_workplace(scene_file(args.scene))
-    for where in (args.start, args.goal):
-        workplace.point(where)  # unknown sites and bad coordinates fail here, before planning
+    for where, what in ((args.start, "start"), (args.goal, "goal")):
+        # unknown sites, points off the floor or in an obstacle fail here, before planning
+        check_endpoint(workplace, workplace.point(where), args.radius, what)
     model = _load_model(args.model) if args.n > 0 else None
     baseline = plan_grid(workplace, args.start, args.goal, radius=args.radius)
     print(
