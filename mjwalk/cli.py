@@ -52,7 +52,6 @@ def _cmd_plan(args: argparse.Namespace) -> int:
     if args.save:
         check_output_file(args.save.with_suffix(".npz"), "--save")
     from mjwalk.plan.grid import check_endpoint, plan_grid
-    from mjwalk.plot import save_plan_png
     from mjwalk.shipped import scene_file
     from mjwalk.world import load_workplace
 
@@ -85,6 +84,8 @@ def _cmd_plan(args: argparse.Namespace) -> int:
                 p.save(args.save.with_name(f"{args.save.stem}_{k:03d}.npz"))
             print(f"wrote {len(paths)} walk files {args.save.stem}_NNN.npz")
     if args.png:
+        from mjwalk.plot import save_plan_png  # matplotlib: imported only when drawing
+
         save_plan_png(
             args.png,
             workplace,
