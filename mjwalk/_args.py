@@ -6,8 +6,8 @@ library uses :func:`parse_point` and :func:`finite_points` directly, which raise
 :class:`~mjwalk.errors.InputError`. Output paths are checked with :func:`check_output_file` /
 :func:`check_output_dir` before a command starts its work, so a bad ``--out`` or ``--png``
 fails in a second instead of after the whole simulation; the writers themselves stay atomic
-(:func:`mjwalk._io.atomic_path`). Nothing here imports more than the standard library and
-NumPy, so parsing a command line stays fast.
+(:func:`mjwalk._io.atomic_path`). At import nothing here needs more than the standard library
+and NumPy, so parsing a command line stays fast.
 """
 
 from __future__ import annotations
@@ -26,12 +26,6 @@ from mjwalk.errors import InputError
 #: Text that is meant as coordinates rather than a site name: digits, signs, dots, commas,
 #: exponents, spaces and the words nan/inf (site names are MJCF identifiers, which have letters).
 _NUMERIC = re.compile(r"[\s0-9.,eE+\-]*|.*\b(nan|inf|infinity)\b.*", re.IGNORECASE)
-#: Image formats matplotlib writes (``FigureCanvasBase.get_supported_filetypes()`` of its
-#: Agg, PDF, PS and SVG backends; checked against matplotlib in tests/test_args.py).
-IMAGE_SUFFIXES = (
-    ".eps", ".jpeg", ".jpg", ".pdf", ".pgf", ".png", ".ps", ".raw", ".rgba", ".svg", ".svgz",
-    ".tif", ".tiff", ".webp",
-)  # fmt: skip
 #: Largest video frame side, pixels (H.264 level 6.2 allows 8192 x 4320).
 MAX_VIDEO_SIDE = 8192
 
@@ -193,6 +187,14 @@ def arg_video_side(text: str) -> int:
 
 
 # ------------------------------------------------------------------ output paths
+
+
+def image_suffixes() -> tuple[str, ...]:
+    """The file suffixes matplotlib can save figures as (".png", ".svg", ...), from its
+    backend registry (imports matplotlib: call it only when an image is to be written)."""
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    return tuple(sorted(f".{ext}" for ext in FigureCanvasBase.get_supported_filetypes()))
 
 
 def _nearest_existing(path: Path) -> Path:

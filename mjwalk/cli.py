@@ -9,7 +9,6 @@ from pathlib import Path
 import numpy as np
 
 from mjwalk._args import (
-    IMAGE_SUFFIXES,
     arg_count,
     arg_fraction,
     arg_jobs,
@@ -19,6 +18,7 @@ from mjwalk._args import (
     arg_video_side,
     check_output_dir,
     check_output_file,
+    image_suffixes,
     join_negative_values,
 )
 from mjwalk._version import __version__
@@ -48,7 +48,7 @@ def _quartiles(x) -> tuple[float, float]:
 
 def _cmd_plan(args: argparse.Namespace) -> int:
     if args.png:
-        check_output_file(args.png, "--png", IMAGE_SUFFIXES)
+        check_output_file(args.png, "--png", image_suffixes())
     if args.save:
         check_output_file(args.save.with_suffix(".npz"), "--save")
     from mjwalk.plan.grid import check_endpoint, plan_grid
@@ -173,6 +173,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         run0 = simulate_cycle(
             ctx,
             np.random.default_rng(np.random.SeedSequence([args.seed, results[0].run])),
+            run=results[0].run,
             keep_timeline=True,
             check_collisions=False,
         )

@@ -39,7 +39,7 @@ def scene_dir() -> Path:
 
 def _resolve(name: str | os.PathLike, table: dict[str, str], what: str, error) -> Path:
     path = Path(name)
-    if path.exists() or str(name) not in table:
+    if path.is_file() or str(name) not in table:
         if not path.exists() and path.suffix == "" and path.parent == Path("."):
             raise error(
                 f"{name}: no such {what} file, and not the name of a shipped {what} "
