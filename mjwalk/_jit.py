@@ -24,11 +24,12 @@ njit_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
 
 #: Printed (stderr, once per process) when one of mjwalk's compiled functions misses the
 #: cache and compiles: on the first plan after an install or upgrade. Measured: 15 s on an
-#: idle 2-core machine, 44 s and up to 106 s on a loaded one; later processes load the
-#: machine code in about 0.2 s (``benchmarks/bench_cold_start.py``).
+#: idle 2-core machine; 44 s, 106 s and 159 s wall (44 CPU s) on one loaded by other jobs
+#: (load average 13: ``NUMBA_CACHE_DIR=$(mktemp -d) mjwalk plan station --from stand_rack2
+#: --to stand_car1 --n 1``); the next process loads the machine code instead (no notice).
 COMPILE_NOTICE = (
-    "mjwalk: compiling the planner (numba, first run after an install: 15 s to 2 min; "
-    "cached for later runs)..."
+    "mjwalk: compiling the planner (numba, once after an install: 15 s idle, minutes on a "
+    "busy machine; cached for later runs)..."
 )
 
 
