@@ -14,6 +14,7 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
+from mjwalk._version import __version__
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE, SAMPLE_RATE_HZ, Side
 from mjwalk.errors import (
     CaptureError,
@@ -23,8 +24,6 @@ from mjwalk.errors import (
     PlanningError,
     SceneError,
 )
-
-__version__ = "0.1.0"
 
 #: Public name -> module that defines it, imported on first access.
 _LAZY: dict[str, str] = {

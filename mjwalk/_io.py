@@ -73,6 +73,11 @@ def load_npz(path: str | os.PathLike, what: str) -> tuple[dict, dict]:
     path = Path(path)
     if not path.is_file():
         raise ModelFileError(f"{path}: no such {what} file")
+    if not zipfile.is_zipfile(path):
+        raise ModelFileError(
+            f"{path}: not an mjwalk {what} file: mjwalk writes .npz (zip) archives, and this "
+            "file is not one (corrupt, truncated, or another kind of file)"
+        )
     try:
         with np.load(path, allow_pickle=False) as z:
             if "header" not in z.files:
@@ -82,7 +87,11 @@ def load_npz(path: str | os.PathLike, what: str) -> tuple[dict, dict]:
     except ModelFileError:
         raise
     except (OSError, ValueError, KeyError, zipfile.BadZipFile, EOFError, TypeError) as exc:
-        raise ModelFileError(f"{path}: not a readable mjwalk {what} file ({exc})") from exc
+        if "pickle" in str(exc):  # numpy's advice to load pickles is not ours to give
+            why = "it holds Python objects (pickled arrays), which mjwalk never writes"
+        else:
+            why = f"{type(exc).__name__}: {exc}"
+        raise ModelFileError(f"{path}: not a readable mjwalk {what} file ({why})") from exc
     if not isinstance(header, dict):
         raise ModelFileError(f"{path}: the {what} file's header is not a JSON object")
     return header, data

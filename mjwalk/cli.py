@@ -8,8 +8,26 @@ from pathlib import Path
 
 import numpy as np
 
+from mjwalk._args import (
+    arg_count,
+    arg_fraction,
+    arg_jobs,
+    arg_point,
+    arg_positive_float,
+    arg_positive_int,
+    arg_video_side,
+    check_output_dir,
+    check_output_file,
+    image_suffixes,
+    join_negative_values,
+)
+from mjwalk._version import __version__
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
-from mjwalk.errors import MjwalkError
+from mjwalk.errors import InputError, MjwalkError
+
+#: Video files ``mjwalk render`` writes (H.264 in MP4).
+VIDEO_SUFFIXES = (".mp4",)
+_SCENES = "station, corridor, open_floor"
 
 
 def _load_model(path: Path | None):
@@ -30,11 +48,19 @@ def _quartiles(x) -> tuple[float, float]:
 
 
 def _cmd_plan(args: argparse.Namespace) -> int:
-    from mjwalk.plan.grid import plan_grid
-    from mjwalk.plot import save_plan_png
+    if args.png:
+        check_output_file(args.png, "--png", image_suffixes())
+    if args.save:
+        check_output_file(args.save.with_suffix(".npz"), "--save")
+    from mjwalk.plan.grid import check_endpoint, plan_grid
+    from mjwalk.shipped import scene_file
     from mjwalk.world import load_workplace
 
-    workplace = load_workplace(args.scene)
+    workplace = load_workplace(scene_file(args.scene))
+    for where, what in ((args.start, "start"), (args.goal, "goal")):
+        # unknown sites, points off the floor or in an obstacle fail here, before planning
+        check_endpoint(workplace, workplace.point(where), args.radius, what)
+    model = _load_model(args.model) if args.n > 0 else None
     baseline = plan_grid(workplace, args.start, args.goal, radius=args.radius)
     print(
         f"grid A*  {args.start} -> {args.goal}: length {baseline.length:.3f} m, "
@@ -44,7 +70,6 @@ def _cmd_plan(args: argparse.Namespace) -> int:
     if args.n > 0:
         from mjwalk.plan.hybrid import plan_walks
 
-        model = _load_model(args.model)
         paths = plan_walks(
             workplace, args.start, args.goal, model, n=args.n, seed=args.seed, radius=args.radius
         )
@@ -60,6 +85,8 @@ def _cmd_plan(args: argparse.Namespace) -> int:
                 p.save(args.save.with_name(f"{args.save.stem}_{k:03d}.npz"))
             print(f"wrote {len(paths)} walk files {args.save.stem}_NNN.npz")
     if args.png:
+        from mjwalk.plot import save_plan_png  # matplotlib: imported only when drawing
+
         save_plan_png(
             args.png,
             workplace,
@@ -77,6 +104,7 @@ def _cmd_train(args: argparse.Namespace) -> int:
 
     if args.amc and not args.asf:
         raise MjwalkError("train: --amc needs --asf")
+    check_output_file(args.output, "-o/--output")
     train_main(
         args.output,
         bvh=args.bvh,
@@ -85,6 +113,7 @@ def _cmd_train(args: argparse.Namespace) -> int:
         virtual=args.virtual,
         seed=args.seed,
         skeleton=args.skeleton,
+        variance=args.pca_variance,
     )
     print(f"wrote {args.output}")
     return 0
@@ -93,6 +122,8 @@ def _cmd_train(args: argparse.Namespace) -> int:
 def _cmd_validate(args: argparse.Namespace) -> int:
     from mjwalk.gait.fidelity import validate_main
 
+    if args.json:
+        check_output_file(args.json, "--json")
     validate_main(
         args.model,
         args.against,
@@ -107,19 +138,31 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 def _cmd_simulate(args: argparse.Namespace) -> int:
     import json
 
+    check_output_dir(args.out, "--out")
+    if args.only_run is not None and args.only_run >= args.runs:
+        raise InputError(
+            f"--only-run {args.only_run}: runs are numbered 0 to {args.runs - 1} "
+            f"(--runs {args.runs})"
+        )
     from mjwalk.cycle.simulate import prepare, simulate_cycle, simulate_cycles
     from mjwalk.cycle.spec import load_cycle_spec
     from mjwalk.report import format_summary, report_dict, write_report
+    from mjwalk.shipped import cycle_file
 
-    spec = load_cycle_spec(args.spec)
+    spec = load_cycle_spec(cycle_file(args.spec))
+    only = None if args.only_run is None else [args.only_run]
+    which = f"run {args.only_run} of {args.runs}" if only else f"{args.runs} runs"
     print(
         f"mjwalk simulate: {spec.name or spec.path.name}: {len(spec.tasks)} tasks, "
-        f"{args.runs} runs, seed {args.seed}",
+        f"{which}, seed {args.seed}",
         flush=True,
     )
+    if args.dry_run:
+        print(f"  {spec.path} and --out {args.out} checked; nothing simulated (--dry-run)")
+        return 0
     ctx = prepare(spec)  # builds (or loads) the default models once, with progress
     results = simulate_cycles(
-        spec, args.runs, seed=args.seed, n_jobs=args.jobs, progress=not args.quiet
+        spec, args.runs, seed=args.seed, n_jobs=args.jobs, progress=not args.quiet, only=only
     )
     files = write_report(results, args.out, workplace=ctx.workplace)
     print(format_summary(report_dict(results)))
@@ -130,7 +173,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
         run0 = simulate_cycle(
             ctx,
-            np.random.default_rng(np.random.SeedSequence([args.seed, 0])),
+            np.random.default_rng(np.random.SeedSequence([args.seed, results[0].run])),
+            run=results[0].run,
             keep_timeline=True,
             collisions=False,
         )
@@ -150,12 +194,17 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 
 
 def _cmd_render(args: argparse.Namespace) -> int:
+    check_output_file(args.output, "-o/--output", VIDEO_SUFFIXES)
     from mjwalk.plan.walkpath import WalkPath
     from mjwalk.render import render_video
+    from mjwalk.shipped import scene_file
     from mjwalk.timeline import timeline_from_walk
+    from mjwalk.world.workplace import shared_workplace
 
     walk = WalkPath.load(args.walk)
-    timeline = timeline_from_walk(walk, args.scene, fps=args.fps, stature=args.stature)
+    scene = scene_file(args.scene)
+    walk.check_scene(shared_workplace(scene), force=args.force)
+    timeline = timeline_from_walk(walk, scene, fps=args.fps, stature=args.stature)
     render_video(
         timeline,
         args.output,
@@ -173,17 +222,29 @@ def build_parser() -> argparse.ArgumentParser:
         prog="mjwalk",
         description="Statistically varied human walking and reaching in MuJoCo workplaces.",
     )
+    parser.add_argument("--version", action="version", version=f"mjwalk {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
 
     p = sub.add_parser("plan", help="plan a walk between two points or sites of a scene")
-    p.add_argument("scene", type=Path, help="MJCF scene file")
-    p.add_argument("--from", dest="start", required=True, help="start: X,Y (metres) or a site name")
-    p.add_argument("--to", dest="goal", required=True, help="goal: X,Y (metres) or a site name")
-    p.add_argument("--radius", type=float, default=BODY_RADIUS, help="body radius in metres (0.25)")
-    p.add_argument("--png", type=Path, help="write a top-view PNG of the plan here")
+    p.add_argument("scene", type=Path, help=f"MJCF scene file, or a shipped scene: {_SCENES}")
+    p.add_argument(
+        "--from", dest="start", required=True, type=arg_point, help="start: X,Y (metres) or a site"
+    )
+    p.add_argument(
+        "--to", dest="goal", required=True, type=arg_point, help="goal: X,Y (metres) or a site"
+    )
+    p.add_argument(
+        "--radius",
+        type=arg_positive_float,
+        default=BODY_RADIUS,
+        help="body radius in metres (0.25)",
+    )
+    p.add_argument(
+        "--png", type=Path, help="write a top-view image of the plan here (.png, .svg...)"
+    )
     p.add_argument(
         "--n",
-        type=int,
+        type=arg_count,
         default=15,
         help="walks to sample with the hybrid A* (15; 0: baseline only)",
     )
@@ -194,11 +255,20 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_plan)
 
     p = sub.add_parser("simulate", help="simulate assembly cycles (Monte Carlo) and report")
-    p.add_argument("spec", type=Path, help="cycle specification (TOML)")
-    p.add_argument("--runs", type=int, default=50, help="cycles to simulate (50)")
+    p.add_argument("spec", type=Path, help="cycle specification (TOML), or 'station' (shipped)")
+    p.add_argument("--runs", type=arg_positive_int, default=50, help="cycles to simulate (50)")
     p.add_argument("--out", type=Path, default=Path("out"), help="report folder (out/)")
     p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same report)")
-    p.add_argument("--jobs", type=int, default=-1, help="parallel processes (-1: all cores)")
+    p.add_argument("--jobs", type=arg_jobs, default=-1, help="parallel processes (-1: all cores)")
+    p.add_argument(
+        "--only-run",
+        type=arg_count,
+        metavar="K",
+        help="simulate only run K of the --runs (the same cycle as in the full batch)",
+    )
+    p.add_argument(
+        "--dry-run", action="store_true", help="check the cycle and --out, simulate nothing"
+    )
     p.add_argument("--video", action="store_true", help="also render one cycle to cycle.mp4")
     p.add_argument("--camera", choices=["track", "top"], default="track")
     p.add_argument("--quiet", action="store_true", help="no progress bars")
@@ -207,14 +277,22 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("render", help="render a saved walk (mjwalk plan --save) to MP4")
     p.add_argument("walk", type=Path, help="walk file (.npz) written by mjwalk plan --save")
-    p.add_argument("--scene", type=Path, required=True, help="MJCF scene the walk was planned in")
+    p.add_argument(
+        "--scene", type=Path, required=True, help="MJCF scene (or shipped scene) of the walk"
+    )
+    p.add_argument(
+        "--force", action="store_true", help="play the walk even if planned in another scene"
+    )
     p.add_argument("-o", "--output", type=Path, required=True, help="video file to write (.mp4)")
     p.add_argument("--camera", choices=["track", "top"], default="track")
-    p.add_argument("--fps", type=float, default=30.0)
-    p.add_argument("--width", type=int, default=640)
-    p.add_argument("--height", type=int, default=480)
+    p.add_argument("--fps", type=arg_positive_float, default=30.0)
+    p.add_argument("--width", type=arg_video_side, default=640, help="pixels, even (640)")
+    p.add_argument("--height", type=arg_video_side, default=480, help="pixels, even (480)")
     p.add_argument(
-        "--stature", type=float, default=DEFAULT_STATURE, help="humanoid stature in metres"
+        "--stature",
+        type=arg_positive_float,
+        default=DEFAULT_STATURE,
+        help="humanoid stature in metres",
     )
     p.add_argument("--quiet", action="store_true", help="no progress bar")
     p.set_defaults(func=_cmd_render)
@@ -223,7 +301,16 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--bvh", help="glob of BVH files")
     p.add_argument("--amc", help="glob of AMC files (with --asf)")
     p.add_argument("--asf", help="the ASF skeleton of the AMC files")
-    p.add_argument("--virtual", type=int, help="N virtual subjects from the built-in generator")
+    p.add_argument(
+        "--virtual", type=arg_positive_int, help="N virtual subjects from the built-in generator"
+    )
+    p.add_argument(
+        "--pca-variance",
+        type=arg_fraction,
+        metavar="SHARE",
+        help="share of the step features' variance the PCA keeps, in (0, 1] (default 0.99; "
+        "the paper keeps >= 0.95, better for small captures)",
+    )
     p.add_argument("--skeleton", help="skeleton preset: bandai, cmu, cmu_bvh")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("-o", "--output", type=Path, required=True, help="model file to write")
@@ -242,7 +329,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    argv = sys.argv[1:] if argv is None else argv
+    args = parser.parse_args(join_negative_values(argv, ("--from", "--to")))
     try:
         return args.func(args)
     except MjwalkError as exc:

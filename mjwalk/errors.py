@@ -23,3 +23,8 @@ class ModelFileError(MjwalkError):
 
 class CycleSpecError(MjwalkError):
     """A cycle specification (TOML) has an unknown key, a missing site or an impossible task."""
+
+
+class InputError(MjwalkError, ValueError):
+    """A bad argument value (a non-finite coordinate, a negative count, an unwritable output
+    path...). Also a ``ValueError``, so code that catches those keeps working."""

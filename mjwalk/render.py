@@ -23,7 +23,7 @@ import numpy as np  # noqa: E402
 
 from mjwalk._io import atomic_path  # noqa: E402
 from mjwalk.body.humanoid import HUMAN_GROUP  # noqa: E402
-from mjwalk.errors import MjwalkError  # noqa: E402
+from mjwalk.errors import InputError, MjwalkError  # noqa: E402
 from mjwalk.timeline.timeline import Timeline  # noqa: E402
 
 #: Colour of the drawn path (RGBA) and of the drawn footprints (left, right).
@@ -250,7 +250,15 @@ def render_video(
 
     if camera not in CAMERAS:
         raise MjwalkError(f"render_video: unknown camera {camera!r}; use one of {CAMERAS}")
+    width, height = (int(v) for v in size)
+    if min(width, height) < 16 or width % 2 or height % 2:
+        raise InputError(
+            f"render_video: size {width}x{height}: width and height must be even numbers of "
+            "pixels, at least 16 (H.264)"
+        )
     fps = float(timeline.fps if fps is None else fps)
+    if not (np.isfinite(fps) and fps > 0):
+        raise InputError(f"render_video: fps must be a positive number, got {fps!r}")
     n_out = max(1, int(np.floor(timeline.duration * fps + 1e-9)) + 1)
     frames = np.clip(
         np.round(np.arange(n_out) / fps * timeline.fps).astype(int), 0, timeline.n_frames - 1

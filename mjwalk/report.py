@@ -177,6 +177,7 @@ def report_dict(
             {
                 "run": r.run,
                 "seed": r.seed,
+                "entropy": getattr(r, "entropy", None),
                 "cycle_time": r.cycle_time,
                 "collisions": len(r.collisions),
             }

@@ -84,7 +84,8 @@ def test_shipped_cycle_is_the_papers(workplace):
     fastens = [t for t in spec.tasks if t.kind == "fasten"]
     assert [t.site for t in fastens] == [f"car_screw{k}" for k in range(1, 7)]
     assert all(t.duration == 4.0 for t in fastens)
-    assert all(t.hand == "left" for t in spec.tasks)
+    # a right-handed operator: screws with the left hand, the tool with the right
+    assert all(t.hand == ("right" if t.part == "tool" else "left") for t in spec.tasks)
     assert spec.tasks[-1].site == "rack3_tool" and spec.tasks[-1].part == "tool"
     text = SHIPPED.read_text()
     assert [t.line for t in spec.tasks] == [
@@ -167,7 +168,7 @@ def test_missing_required_keys(tmp_path, workplace):
         ('kind = "fasten"', 'kind = "screw"', "kind", 0, "not a task kind"),
         ('kind = "walk"', 'kind = "wakl"', "kind", 1, "did you mean 'walk'"),
         ('hand = "left"', 'hand = "middle"', "hand", 3, "'left' or 'right'"),
-        ("duration = 4.0", "duration = -1.0", "duration", 2, "at least 0"),
+        ("duration = 4.0", "duration = -1.0", "duration", 2, "between 0 and 3600 s"),
         ("duration = 4.0", 'duration = "4 s"', "duration", 0, "must be a number"),
         ("stature = 1.75", "stature = 2.5", "stature", 0, "between 1.4 and 2.1"),
         ('site = "car_screw4"', 'site = "car_screw7"', "site", 0, "no site named 'car_screw7'"),

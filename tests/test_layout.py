@@ -16,8 +16,8 @@ PKG = Path(mjwalk.__file__).parent
 #: errors, file I/O, numba set-up, GL selection) sit below all of them; the report writers, the
 #: video, the plots and the command line on top.
 STAGES = ("_base", "mocap", "world", "gait", "plan", "body", "arms", "timeline", "cycle", "top")
-BASE = {"conventions", "anthropometry", "errors", "_io", "_jit", "_gl"}
-TOP = {"render", "plot", "report", "cli", "__main__"}
+BASE = {"conventions", "anthropometry", "errors", "_io", "_jit", "_gl", "_args", "_version"}
+TOP = {"render", "plot", "report", "cli", "__main__", "shipped"}
 
 
 def _module(path: Path) -> str:

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -26,6 +27,7 @@ import numpy as np
 
 from mjwalk.body.humanoid import JointMap, attach_humanoid, pelvis_height
 from mjwalk.conventions import Side, side_prefix
+from mjwalk.cycle.spec import check_durations
 from mjwalk.cycle.types import (
     ArmRecord,
     CycleResult,
@@ -33,7 +35,7 @@ from mjwalk.cycle.types import (
     TaskRecord,
     WalkRecord,
 )
-from mjwalk.errors import CycleSpecError, MjwalkError
+from mjwalk.errors import CycleSpecError, InputError
 from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.timeline.collisions import collision_report
@@ -293,8 +295,9 @@ def simulate_cycle(
     """
     ctx = spec if isinstance(spec, CycleContext) else prepare(spec)
     spec = ctx.spec
-    seed = int(rng) if isinstance(rng, int | np.integer) else -1
+    check_durations(spec.tasks)
     rng = np.random.default_rng(rng)
+    entropy = _entropy(rng)
     wp = ctx.workplace
     here = spec.start
     st = wp.station(here)
@@ -388,7 +391,8 @@ def simulate_cycle(
     return CycleResult(
         spec=spec,
         run=run,
-        seed=seed,
+        seed=entropy[0] if isinstance(entropy, list) else entropy,
+        entropy=entropy,
         tasks=tasks,
         walks=walks,
         arms=arms,
@@ -396,6 +400,18 @@ def simulate_cycle(
         collisions=contacts,
         timeline=timeline if keep_timeline else None,
     )
+
+
+def _entropy(rng: np.random.Generator) -> int | list[int] | None:
+    """The entropy of the SeedSequence behind ``rng``: ``default_rng(SeedSequence(entropy))``
+    draws the same numbers (``[seed, run]`` for a run of :func:`simulate_cycles`, the seed for
+    ``default_rng(seed)``, the OS's draw for ``default_rng()``). None for a generator built from
+    a spawned sequence or without one (it cannot be recreated from an entropy alone)."""
+    seq = getattr(rng.bit_generator, "seed_seq", None)
+    if not isinstance(seq, np.random.SeedSequence) or seq.spawn_key:
+        return None
+    ent = seq.entropy
+    return [int(v) for v in ent] if isinstance(ent, list | tuple | np.ndarray) else int(ent)
 
 
 # ---------------------------------------------------------------------------- many cycles
@@ -415,13 +431,16 @@ def simulate_cycles(
     *,
     collisions: bool = True,
     progress: bool = False,
+    only: Sequence[int] | None = None,
 ) -> list[CycleResult]:
     """Monte Carlo: ``runs`` independent cycles, in parallel through joblib.
 
-    Run ``k`` draws from ``SeedSequence([seed, k])``: results do not depend on ``n_jobs`` or on
-    the backend. Workers load the spec and models once each (the default models come from the
-    on-disk cache). Under ``joblib.parallel_config(backend="dask")`` or ``"ray"`` the runs go to
-    that cluster unchanged.
+    Run ``k`` draws from ``SeedSequence([seed, k])`` (``result.entropy``): results do not
+    depend on ``n_jobs`` or on the backend, and ``only=[k]`` re-simulates run ``k`` of a batch
+    alone (``mjwalk simulate ... --only-run K``). Workers load the spec and models once each
+    (the default models come from the on-disk cache). Under
+    ``joblib.parallel_config(backend="dask")`` or ``"ray"`` the runs go to that cluster
+    unchanged.
     """
     from joblib import Parallel, delayed
 
@@ -429,15 +448,22 @@ def simulate_cycles(
         spec_path = str(spec.path)
     else:
         spec_path = str(spec)
-    if runs < 1:
-        raise MjwalkError(f"simulate_cycles: runs must be >= 1, got {runs}")
-    jobs = (delayed(_run_one)(spec_path, k, seed, collisions) for k in range(runs))
+    if isinstance(runs, bool) or not isinstance(runs, int | np.integer) or runs < 1:
+        raise InputError(f"simulate_cycles: runs must be a whole number >= 1, got {runs!r}")
+    indices = list(range(runs)) if only is None else [int(k) for k in only]
+    bad = [k for k in indices if not 0 <= k < runs]
+    if bad or not indices:
+        raise InputError(
+            f"simulate_cycles: run indices must lie in 0..{runs - 1} (of {runs} runs), "
+            f"got {bad or 'none'}"
+        )
+    jobs = (delayed(_run_one)(spec_path, k, seed, collisions) for k in indices)
     if progress:
         from tqdm import tqdm
 
         out = []
         gen = Parallel(n_jobs=n_jobs, return_as="generator")(jobs)
-        for r in tqdm(gen, total=runs, desc="cycles", unit="cycle"):
+        for r in tqdm(gen, total=len(indices), desc="cycles", unit="cycle"):
             out.append(r)
         return out
     return list(Parallel(n_jobs=n_jobs)(jobs))

@@ -75,6 +75,11 @@ STATURE_RANGE = (1.4, 2.1)
 #: Allowed walking (body) radius, metres.
 RADIUS_RANGE = (0.1, 0.6)
 HANDS = ("left", "right")
+#: Longest a task's ``duration`` and the durations of a cycle together may be, seconds. An
+#: assembly cycle's tasks last seconds to minutes (the station cycle of agethen2018 about 40 s);
+#: an hour bounds the simulated timeline at 108 000 frames at 30 fps (about 60 MB of poses),
+#: where ``duration = 1e12`` asked for petabytes.
+MAX_CYCLE_SECONDS = 3600.0
 
 _TOP_KEYS = ("name", "scene", "start", "humanoid", "models", "walking", "task")
 _TABLE_KEYS = {"humanoid": ("stature",), "models": ("step", "reach"), "walking": ("radius",)}
@@ -377,6 +382,10 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         tasks.append(_task(check, workplace, raw, i, radius, stand, held))
         if tasks[-1].kind in ("walk", "carry"):
             stand = tasks[-1].site
+    try:
+        check_durations(tasks)
+    except CycleSpecError as exc:
+        raise check.fail(str(exc), "task", len(tasks) - 1, "duration") from None
     return CycleSpec(
         path=path,
         scene=scene,
@@ -388,6 +397,25 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         radius=radius,
         name=name,
     )
+
+
+def check_durations(tasks) -> None:
+    """Raise CycleSpecError when the tasks' ``duration``s (seconds) add up to more than
+    :data:`MAX_CYCLE_SECONDS` (or one is negative or not finite): checked before a cycle's
+    timeline is laid out, also for specs built in Python."""
+    total = 0.0
+    for i, task in enumerate(tasks):
+        if task.duration is None:
+            continue
+        d = float(task.duration)
+        if not (math.isfinite(d) and d >= 0.0):
+            raise CycleSpecError(f"task {i + 1}: duration must be >= 0 s and finite, got {d:g}")
+        total += d
+    if total > MAX_CYCLE_SECONDS:
+        raise CycleSpecError(
+            f"the tasks' durations add up to {total:g} s, more than the longest cycle mjwalk "
+            f"simulates ({MAX_CYCLE_SECONDS:g} s)"
+        )
 
 
 def _task(
@@ -443,7 +471,7 @@ def _task(
             )
     duration = None
     if "duration" in raw:
-        duration = check.number(raw, "duration", 0.0, math.inf, "s", t, i)
+        duration = check.number(raw, "duration", 0.0, MAX_CYCLE_SECONDS, "s", t, i)
     route = check.string(raw, "route", t, i) if "route" in raw else None
     part = check.string(raw, "part", t, i) if "part" in raw else None
 

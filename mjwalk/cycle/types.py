@@ -126,7 +126,12 @@ class CycleResult:
 
     Attributes:
         spec: the specification simulated.
-        run: index of the run (Monte Carlo), and ``seed`` its random seed.
+        run: index of the run (Monte Carlo).
+        seed: the random seed: the batch's root seed for a run of
+            :func:`~mjwalk.cycle.simulate.simulate_cycles` (``--seed``), else the seed the
+            cycle's generator was made from (None when it cannot be recovered).
+        entropy: the run's ``SeedSequence`` entropy (``[seed, run]`` in a batch): the cycle is
+            re-simulated by ``simulate_cycle(spec, default_rng(SeedSequence(entropy)))``.
         tasks: time spans of the tasks.
         walks: the walks, in order.
         arms: the arm motions, in order.
@@ -138,13 +143,14 @@ class CycleResult:
 
     spec: CycleSpec
     run: int
-    seed: int
+    seed: int | None
     tasks: list[TaskRecord]
     walks: list[WalkRecord]
     arms: list[ArmRecord]
     cycle_time: float
     collisions: list = field(default_factory=list)
     timeline: object | None = None
+    entropy: int | list[int] | None = None
 
     def walk_lengths(self) -> dict[str, list[float]]:
         """Walk lengths (metres) by route label."""
@@ -158,6 +164,7 @@ class CycleResult:
         return {
             "run": self.run,
             "seed": self.seed,
+            "entropy": self.entropy,
             "cycle_time": self.cycle_time,
             "walks": [
                 {

@@ -15,7 +15,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from mjwalk.errors import MjwalkError, ModelFileError
-from mjwalk.gait.model import MODEL_VERSION, StepModel
+from mjwalk.gait.model import MIN_STEPS, MODEL_VERSION, StepModel
 
 #: Corpus generation used for the default model (agethen2018: 12 subjects).
 DEFAULT_SUBJECTS = 12
@@ -62,8 +62,11 @@ def train_model(takes: Sequence, *, seed: int = 0, progress: bool = False, **fit
             file=sys.stderr,
             flush=True,
         )
-    if len(steps) < 10:
-        raise MjwalkError(f"train_model: only {len(steps)} steps found in {len(takes)} takes")
+    if len(steps) < MIN_STEPS:
+        raise MjwalkError(
+            f"train_model: only {len(steps)} steps found in {len(takes)} takes; a step model "
+            f"needs at least {MIN_STEPS} steps: give more walking capture"
+        )
     model = StepModel.fit(steps, seed=seed, progress=progress, **fit_kwargs)
     return model, summary
 

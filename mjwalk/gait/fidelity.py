@@ -47,7 +47,7 @@ import numpy as np
 from scipy.stats import ks_2samp
 
 from mjwalk._io import atomic_path
-from mjwalk.errors import MjwalkError
+from mjwalk.errors import InputError, MjwalkError
 from mjwalk.gait.features import StepBatch
 from mjwalk.gait.model import StepModel, concat_batches
 from mjwalk.gait.step import Step
@@ -435,12 +435,18 @@ def train_main(
     seed: int = 0,
     skeleton: str | None = None,
     progress: bool = True,
+    variance: float | None = None,
 ) -> dict:
     """Train a step model and save it to ``out``; returns its summary.
 
     Data: a BVH glob, an AMC glob (+ ``asf``), and/or ``virtual`` N virtual subjects
-    (``generate_corpus(N, seed)``); at least one is required.
+    (``generate_corpus(N, seed)``); at least one is required. ``variance``: the share of the
+    step features' variance the PCA keeps, in (0, 1] (None: :meth:`StepModel.fit`'s default,
+    0.99; the paper keeps >= 0.95, which suits small captures, see there).
     """
+    if variance is not None and not 0.0 < variance <= 1.0:
+        raise InputError(f"train: the PCA variance to keep must be in (0, 1], got {variance!r}")
+    fit = {} if variance is None else {"variance": float(variance)}
     from mjwalk.gait.default import train_model
 
     takes = load_capture(bvh, amc, asf, skeleton=skeleton)
@@ -452,7 +458,7 @@ def train_main(
         raise MjwalkError("train: give a BVH glob, an AMC glob with its ASF, or virtual N")
     if progress:
         print(f"[mjwalk] training on {len(takes)} takes", file=sys.stderr, flush=True)
-    model, seg = train_model(takes, seed=seed, progress=progress)
+    model, seg = train_model(takes, seed=seed, progress=progress, **fit)
     model.save(out)
     summary = model.summary()
     summary["segmentation"] = str(seg)

@@ -73,6 +73,9 @@ from mjwalk.gait.step import Step
 MODEL_FORMAT = "mjwalk.stepmodel"
 #: Bump whenever the saved arrays or their meaning change.
 MODEL_VERSION = 3
+#: Fewest aligned steps a model is fitted on: with alternating sides, 10 steps give each
+#: transition GP its minimum of 5 pairs per direction (:meth:`TransitionGP.fit`).
+MIN_STEPS = 10
 
 #: Fewest transitions into a gait termination, per side, for which a stop GP is fitted.
 MIN_STOP_PAIRS = 20
@@ -386,8 +389,8 @@ class StepModel:
         t0 = time.perf_counter()
         rng = np.random.default_rng(seed)
         steps = list(steps)
-        if len(steps) < 10:
-            raise MjwalkError(f"StepModel.fit: need at least 10 steps, got {len(steps)}")
+        if len(steps) < MIN_STEPS:
+            raise MjwalkError(f"StepModel.fit: need at least {MIN_STEPS} steps, got {len(steps)}")
         raw = raw_features(steps)
         sides = side_array(steps)
         feats = StepFeatures.fit(raw, variance=variance)

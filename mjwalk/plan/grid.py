@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mjwalk.conventions import BODY_RADIUS
-from mjwalk.errors import PlanningError
+from mjwalk.errors import InputError, PlanningError
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace
 
@@ -139,6 +139,8 @@ def shared_grid(
 def check_endpoint(workplace: Workplace, xy: np.ndarray, radius: float, what: str) -> None:
     """Raise PlanningError when a start or goal point is off the floor, inside an obstacle or
     closer to one than the body radius."""
+    if isinstance(radius, bool | str) or not (math.isfinite(radius) and radius > 0):
+        raise InputError(f"body radius must be a positive number of metres, got {radius!r}")
     if _clearly_free(workplace, xy, radius):
         return
     label = f"{what} ({xy[0]:.3f}, {xy[1]:.3f})"
@@ -299,4 +301,4 @@ def plan_grid(
             "expansions": expansions,
             "seconds": time.perf_counter() - t0,
         },
-    )
+    ).stamp_scene(workplace)

@@ -51,9 +51,10 @@ import time
 
 import numpy as np
 
+from mjwalk._args import finite_points, parse_point
 from mjwalk.anthropometry import ROM_DEG, leg_geometry
 from mjwalk.conventions import SAMPLE_RATE_HZ
-from mjwalk.errors import PlanningError
+from mjwalk.errors import InputError, PlanningError
 from mjwalk.gait.features import StepBatch
 from mjwalk.gait.model import POOL_SHARPNESS
 from mjwalk.plan import search, stepcheck
@@ -143,11 +144,13 @@ def _to_world(px, py, heading, local: np.ndarray) -> np.ndarray:
 def _parse_pose(workplace: Workplace, where) -> tuple[np.ndarray, float | None]:
     """(x, y) and an optional yaw from a site name, "x,y[,yaw_deg]" or a tuple (x, y[, yaw])."""
     if isinstance(where, str) and where.count(",") == 2:
-        x, y, yaw_deg = (float(v) for v in where.split(","))
-        return np.array([x, y]), math.radians(yaw_deg)
+        xyyaw = parse_point(where, f"{workplace.name}: pose (x,y,yaw_deg)", n=3)
+        if xyyaw is not None:
+            return xyyaw[:2].copy(), math.radians(float(xyyaw[2]))
     if not isinstance(where, str):
         arr = np.asarray(where, dtype=float).ravel()
         if arr.size == 3:
+            finite_points(arr, f"{workplace.name}: pose (x, y, yaw)")
             return arr[:2].copy(), float(arr[2])
     return workplace.point(where), None
 
@@ -515,7 +518,7 @@ class HybridPlanner:
                 "heuristic": self.heuristic,
                 **stats,
             },
-        )
+        ).stamp_scene(self.workplace)
 
 
 def plan_walk(
@@ -568,6 +571,8 @@ def plan_walks(
     Walk ``k`` uses its own random stream (``SeedSequence(seed).spawn``), so a walk does not
     depend on how many others are planned with it.
     """
+    if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 0:
+        raise InputError(f"plan_walks: n must be a whole number of walks >= 0, got {n!r}")
     if model is None:
         from mjwalk.gait.default import default_model
 

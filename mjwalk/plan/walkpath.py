@@ -78,6 +78,30 @@ class WalkPath:
             return np.zeros((0, 4))
         return np.array([[s.side == "right", *s.foot] for s in self.steps], dtype=float)
 
+    def stamp_scene(self, workplace) -> WalkPath:
+        """Record the scene this walk was planned in (its name and
+        :attr:`~mjwalk.world.workplace.Workplace.fingerprint`) in ``meta``; returns self."""
+        self.meta["scene"] = workplace.name
+        self.meta["scene_fingerprint"] = workplace.fingerprint
+        return self
+
+    def check_scene(self, workplace, force: bool = False) -> None:
+        """Raise SceneError when the walk was planned in a scene whose obstacle geometry
+        differs from ``workplace``'s (played there it would pass through obstacles or leave
+        the floor), unless ``force``. Walks without a recorded scene pass."""
+        from mjwalk.errors import SceneError
+
+        planned = self.meta.get("scene_fingerprint")
+        if force or planned is None or planned == workplace.fingerprint:
+            return
+        raise SceneError(
+            f"the walk was planned in scene {self.meta.get('scene', '?')!r} (obstacle "
+            f"fingerprint {planned}), not in {workplace.name!r} (fingerprint "
+            f"{workplace.fingerprint}): its obstacles or floor differ, so the walk would pass "
+            "through obstacles or off the floor; use the scene it was planned in (or force it: "
+            "--force on the command line, force=True in Python)"
+        )
+
     def save(self, path: str | Path) -> None:
         """Write the path to one ``.npz`` file (atomically)."""
         steps = self.steps

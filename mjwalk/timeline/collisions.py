@@ -98,11 +98,15 @@ def collision_report(timeline: Timeline, floor_tolerance: float = 0.01) -> list[
     return out
 
 
-def check_collisions(result_or_timeline, scene: str | Path | None = None) -> list[Contact]:
+def check_collisions(
+    result_or_timeline, scene: str | Path | None = None, *, force: bool = False
+) -> list[Contact]:
     """Every humanoid-vs-scene contact of a simulated cycle (or of a Timeline, or of a WalkPath
     played in ``scene``): time (s), body part, scene geom, depth (m), by MuJoCo's collision
-    detection. A CycleResult must have been simulated with ``keep_timeline=True``."""
+    detection. A CycleResult must have been simulated with ``keep_timeline=True``. A WalkPath
+    planned in another scene (other obstacle geometry) raises SceneError unless ``force``."""
     from mjwalk.timeline.frames import timeline_from_walk
+    from mjwalk.world.workplace import shared_workplace
 
     obj = result_or_timeline
     if not isinstance(obj, Timeline | WalkPath) and hasattr(obj, "timeline"):  # a CycleResult
@@ -114,6 +118,7 @@ def check_collisions(result_or_timeline, scene: str | Path | None = None) -> lis
     if isinstance(obj, WalkPath):
         if scene is None:
             raise MjwalkError("check_collisions: a WalkPath needs the scene it is played in")
+        obj.check_scene(shared_workplace(scene), force=force)
         obj = timeline_from_walk(obj, scene)
     if not isinstance(obj, Timeline):
         raise MjwalkError(f"check_collisions: cannot check a {type(obj).__name__}")

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mjwalk._args import finite_points
 from mjwalk.world.footprint import Footprint
 
 
@@ -48,8 +49,10 @@ class ClearanceField:
         )
 
     def __call__(self, xy: np.ndarray) -> np.ndarray:
-        """Bilinear clearance at points ``xy`` (..., 2), metres. Vectorized over any shape."""
-        xy = np.asarray(xy, dtype=float)
+        """Bilinear clearance at points ``xy`` (..., 2), metres. Vectorized over any shape.
+
+        NaN or infinite coordinates raise :class:`~mjwalk.errors.InputError`."""
+        xy = finite_points(xy, "clearance lookup")
         ny, nx = self.values.shape
         fx = np.clip((xy[..., 0] - self.x0) / self.resolution, 0.0, nx - 1.000001)
         fy = np.clip((xy[..., 1] - self.y0) / self.resolution, 0.0, ny - 1.000001)

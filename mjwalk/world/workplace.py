@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import difflib
 import functools
+import hashlib
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -11,7 +12,8 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from mjwalk.errors import SceneError
+from mjwalk._args import finite_points, parse_point
+from mjwalk.errors import InputError, SceneError
 from mjwalk.world.clearance import ClearanceField, build_clearance
 from mjwalk.world.footprint import Footprint, geom_footprint
 
@@ -19,6 +21,9 @@ from mjwalk.world.footprint import Footprint, geom_footprint
 OBSTACLE_Z_RANGE = (0.05, 2.0)
 #: Bodies whose name starts with one of these are part of a humanoid, never obstacles.
 HUMANOID_PREFIXES = ("human",)
+#: A plane is a floor when its normal's z is above this (its normal within 2.56 deg of +z):
+#: the clearance field and the humanoid's legs assume a level floor.
+FLOOR_MIN_NZ = 0.999
 
 
 @dataclass(frozen=True)
@@ -79,15 +84,36 @@ class Workplace:
             raise SceneError(f"{self.name}: no site named {name!r}{hint}") from None
 
     def point(self, where: str | np.ndarray | tuple[float, float]) -> np.ndarray:
-        """A floor point (2,) from a site name, an ``"x,y"`` string or coordinates (metres)."""
+        """A floor point (2,) from a site name, an ``"x,y"`` string or coordinates (metres).
+
+        Malformed or non-finite coordinates raise :class:`~mjwalk.errors.InputError`."""
         if isinstance(where, str):
-            if re.fullmatch(r"\s*-?[\d.]+\s*,\s*-?[\d.]+\s*", where):
-                return np.array([float(v) for v in where.split(",")])
-            return self.station(where).xy.copy()
-        arr = np.asarray(where, dtype=float).ravel()
+            xy = parse_point(where, f"{self.name}: point")
+            return xy if xy is not None else self.station(where).xy.copy()
+        try:
+            arr = np.asarray(where, dtype=float).ravel()
+        except (TypeError, ValueError):
+            raise InputError(
+                f"{self.name}: a floor point is a site name, 'x,y' or (x, y) metres; got {where!r}"
+            ) from None
         if arr.shape[0] < 2:
             raise SceneError(f"{self.name}: a floor point needs x and y, got {where!r}")
-        return arr[:2].copy()
+        return finite_points(arr[:2], f"{self.name}: point").copy()
+
+    @property
+    def fingerprint(self) -> str:
+        """A hash of the obstacle geometry (footprints and floor bounds, rounded to 0.1 mm):
+        equal for the same scene wherever its file lies, different once an obstacle moves.
+        Walks record it (:meth:`mjwalk.plan.walkpath.WalkPath.check_scene`)."""
+        cached = getattr(self, "_fingerprint", None)
+        if cached is None:
+            h = hashlib.sha256()
+            h.update(np.round(np.array(self.floor_bounds + (self.floor_z,)), 4).tobytes())
+            for fp in sorted(self.obstacles, key=lambda f: (f.bounds(), f.name)):
+                h.update(np.round(np.asarray(fp.vertices, dtype=float), 4).tobytes())
+                h.update(np.round(np.array([fp.radius]), 4).tobytes())
+            cached = self._fingerprint = h.hexdigest()[:16]
+        return cached
 
     def edge_distance(self, xy: np.ndarray) -> np.ndarray:
         """Signed distance (metres) from points (..., 2) to the floor's edge, positive on it."""
@@ -167,9 +193,21 @@ def _find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
         g
         for g in range(model.ngeom)
         if model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
-        and data.geom_xmat[g].reshape(3, 3)[2, 2] > 0.999
+        and data.geom_xmat[g].reshape(3, 3)[2, 2] > FLOOR_MIN_NZ
     ]
     if not planes:
+        tilted = [
+            g for g in range(model.ngeom) if model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
+        ]
+        if tilted:
+            g = max(tilted, key=lambda g: data.geom_xmat[g].reshape(3, 3)[2, 2])
+            nz = float(np.clip(data.geom_xmat[g].reshape(3, 3)[2, 2], -1.0, 1.0))
+            name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
+            raise SceneError(
+                f"{label}: no level floor: plane {name!r} is tilted {np.degrees(np.arccos(nz)):.1f}"
+                f" deg from horizontal (its normal must point up within "
+                f"{np.degrees(np.arccos(FLOOR_MIN_NZ)):.1f} deg; mjwalk plans on level floors)"
+            )
         raise SceneError(
             f"{label}: no floor: the scene needs an upward-facing plane geom (e.g. "
             '<geom name="floor" type="plane" size="4 3 0.1"/>)'
