@@ -392,7 +392,7 @@ def _spaghetti(path: Path, results: Sequence[CycleResult], workplace, baseline, 
         leg_route = {(w.start_site, w.goal_site): w.route for r in results for w in r.walks}
         drawn = False
         for key, value in (baseline or {}).items():
-            label = leg_route.get(tuple(key)) if isinstance(key, tuple) else key
+            label = leg_route.get(tuple(key), "") if isinstance(key, tuple) else key
             for p in [value] if isinstance(value, WalkPath) else value:
                 ax.plot(p.xy[:, 0], p.xy[:, 1], ls="--", lw=1.8, color=colors.get(label, "k"))
                 drawn = True
@@ -400,8 +400,10 @@ def _spaghetti(path: Path, results: Sequence[CycleResult], workplace, baseline, 
             ax.plot([], [], ls="--", lw=1.8, color="k", label="grid A* (route colour)")
         legend = ax.legend(loc="upper right", fontsize=8)
         for handle in legend.legend_handles:  # the runs are faint; their legend lines are not
+            if handle is None:
+                continue
             handle.set_alpha(1.0)
-            handle.set_linewidth(2.0)
+            handle.set_linewidth(2.0)  # type: ignore[attr-defined]  # lines and collections
         ax.set_title(f"{rep['name'] or workplace.name}: {len(results)} run(s), walks by route")
         fig.tight_layout()
         fig.savefig(path, dpi=110)
@@ -478,8 +480,8 @@ def write_report(
         from mjwalk.world import shared_workplace
 
         workplace = shared_workplace(results[0].spec.scene)
-    baseline = _grid_routes(results, workplace) if baseline is None else baseline
-    for key, value in baseline.items():
+    routes = _grid_routes(results, workplace) if baseline is None else baseline
+    for key, value in routes.items():
         paths = [value] if isinstance(value, WalkPath) else value
         if not isinstance(paths, Sequence) or not all(isinstance(p, WalkPath) for p in paths):
             raise MjwalkError(
@@ -494,12 +496,14 @@ def write_report(
         _write_walks_csv(tmp["walks"], results)
         _write_cycles_csv(tmp["cycles"], results)
         tmp["markdown"].write_text(format_markdown(rep), encoding="utf-8")
-        _spaghetti(tmp["spaghetti"], results, workplace, baseline, rep)
+        _spaghetti(tmp["spaghetti"], results, workplace, routes, rep)
         _histograms(tmp["histograms"], results, rep)
     return targets
 
 
-def _grid_routes(results: Sequence[CycleResult], workplace) -> dict[tuple[str, str], WalkPath]:
+def _grid_routes(
+    results: Sequence[CycleResult], workplace
+) -> dict[tuple[str, str], WalkPath | list[WalkPath]]:
     """Grid-A* routes of every (start site, goal site) walked, for the floor plan; legs the grid
     planner cannot plan are left out."""
     from mjwalk.errors import PlanningError, SceneError
@@ -507,7 +511,7 @@ def _grid_routes(results: Sequence[CycleResult], workplace) -> dict[tuple[str, s
 
     radius = results[0].spec.radius
     grid = occupancy_grid(workplace, radius=radius)
-    out = {}
+    out: dict[tuple[str, str], WalkPath | list[WalkPath]] = {}
     for r in results:
         for w in r.walks:
             leg = (w.start_site, w.goal_site)

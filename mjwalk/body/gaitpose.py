@@ -325,7 +325,7 @@ def _unwrapped_phase(states: np.ndarray) -> np.ndarray:
     heel strikes.
     """
     n = len(states)
-    runs = []  # (state, start)
+    runs: list[tuple[int, int]] = []  # (state, start)
     for i, v in enumerate(states):
         if not runs or runs[-1][0] != v:
             runs.append((int(v), i))

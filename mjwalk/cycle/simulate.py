@@ -300,6 +300,7 @@ def simulate_cycle(
         t0 = t
         if task.kind in ("walk", "carry"):
             goal = task.site
+            assert goal is not None  # the spec loader requires a site for walks
             path = ctx.planner(goal).plan((x, y), rng)
             turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps)
             frames.append(turn)
@@ -326,6 +327,7 @@ def simulate_cycle(
             )
             here = goal
         elif task.kind in ("pick", "place", "fasten"):
+            assert task.site is not None  # the spec loader requires a site for reaches
             site_pos = wp.station(task.site).pos
             target = _target(ctx, task.kind, site_pos, x, y)
             # face the target (turning on the spot) before reaching for it

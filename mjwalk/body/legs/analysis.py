@@ -62,11 +62,11 @@ def gait_cycles(
     hipf, kneef, pitch = sagittal_angles(h, k, a, t, np.asarray(take.pelvis_yaw, float))
     hs = heel_strikes(pitch, take.fps)
     x = np.linspace(0, 1, n)
-    cycles = []
+    rows = []
     for i0, i1 in itertools.pairwise(hs):
         s = np.linspace(0, 1, i1 - i0 + 1)
-        cycles.append([np.interp(x, s, v[i0 : i1 + 1]) for v in (hipf, kneef, pitch)])
-    cycles = np.array(cycles[1:-1]).reshape(-1, 3, n)
+        rows.append([np.interp(x, s, v[i0 : i1 + 1]) for v in (hipf, kneef, pitch)])
+    cycles = np.array(rows[1:-1]).reshape(-1, 3, n)
     if len(cycles):
         flat = np.median(cycles[:, 2, int(0.2 * (n - 1)) : int(0.4 * (n - 1)) + 1])
         cycles[:, 2] -= flat
