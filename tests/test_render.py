@@ -9,9 +9,9 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 import mujoco
 import numpy as np
 import pytest
-from test_legs import make_walk
 
 from mjwalk.errors import MjwalkError
+from mjwalk.plan.synthetic import synthetic_walk as make_walk
 from mjwalk.timeline import timeline_from_walk
 
 render = pytest.importorskip("mjwalk.render")
