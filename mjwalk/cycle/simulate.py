@@ -25,7 +25,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.body.humanoid import JointMap, attach_humanoid, pelvis_height
-from mjwalk.conventions import Side, side_prefix
+from mjwalk.conventions import SAMPLE_RATE_HZ, Side, side_prefix
 from mjwalk.cycle.types import (
     ArmRecord,
     CycleResult,
@@ -452,5 +452,5 @@ def combined_walk(paths: list):
             PathStep(s.side, s.start + offset, s.end + offset, s.foot, s.stance) for s in p.steps
         ]
         offset += len(p.xy)
-        t0 = t[-1][-1] + 1.0 / 120.0
+        t0 = t[-1][-1] + 1.0 / SAMPLE_RATE_HZ
     return WalkPath(np.concatenate(t), np.vstack(xy), np.concatenate(yaw), steps)
