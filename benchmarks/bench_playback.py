@@ -7,23 +7,21 @@ Run: python benchmarks/bench_playback.py
 from __future__ import annotations
 
 import os
-import sys
 import time
 from pathlib import Path
 
 os.environ.setdefault("MUJOCO_GL", "egl")
-sys.path.insert(0, str(Path(__file__).parents[1] / "tests"))
 
 import mujoco
-from test_legs import make_walk
 
+from mjwalk.plan.synthetic import synthetic_walk
 from mjwalk.timeline import collision_report, iter_frames, timeline_from_walk
 
 SCENE = Path(__file__).parents[1] / "scenes" / "open_floor.xml"
 
 
 def main() -> None:
-    walk = make_walk(n_steps=20)
+    walk = synthetic_walk(n_steps=20)
     scene = (
         SCENE
         if SCENE.exists()

@@ -49,7 +49,7 @@ def _swap_context(backend: str) -> None:
     for name in _CONTEXT_MODULES:
         mod = sys.modules.get(name)
         if mod is not None and hasattr(mod, "GLContext"):
-            mod.GLContext = GLContext
+            setattr(mod, "GLContext", GLContext)  # noqa: B010  (a module attribute)
 
 
 def ensure_headless_backend() -> str:

@@ -25,7 +25,7 @@ Side = Literal["left", "right"]
 SIDES: tuple[Side, Side] = ("left", "right")
 
 
-def side_prefix(side: Side) -> Literal["l", "r"]:
+def side_prefix(side: str) -> Literal["l", "r"]:
     """The one-letter side of MJCF joint and body names (``"knee_l"``): ``"l"`` or ``"r"``.
 
     Raises ValueError for anything but ``"left"`` / ``"right"``."""

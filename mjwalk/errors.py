@@ -22,7 +22,14 @@ class ModelFileError(MjwalkError):
 
 
 class CycleSpecError(MjwalkError):
-    """A cycle specification (TOML) has an unknown key, a missing site or an impossible task."""
+    """A cycle specification (TOML) has an unknown key, a missing site or an impossible task.
+
+    Attributes (set by the spec loader): ``path`` the spec file, ``line`` the 1-based line,
+    ``key`` the offending key (None when the error is not about one key)."""
+
+    path: object = None
+    line: int | None = None
+    key: str | None = None
 
 
 class InputError(MjwalkError, ValueError):

@@ -1,7 +1,9 @@
-"""Top-view plots of a workplace: floor plan, obstacles, clearance shading, walk paths."""
+"""Top-view plots of a workplace (floor plan, obstacles, clearance shading, walk paths) and the
+report's charts (walks by route over the floor plan, cycle-time and walk-length histograms)."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -13,6 +15,7 @@ import numpy as np
 from matplotlib.patches import Circle, Polygon, Rectangle
 
 from mjwalk._io import atomic_path
+from mjwalk.cycle.types import CycleResult
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace
 
@@ -126,5 +129,89 @@ def save_plan_png(
         fig.tight_layout()
         with atomic_path(path) as tmp:
             fig.savefig(tmp, dpi=120)
+    finally:
+        plt.close(fig)
+
+
+# ---------------------------------------------------------------- report charts
+def route_colors(labels: Sequence[str]) -> dict[str, tuple]:
+    """A tab10 colour per route label, in order."""
+    cmap = matplotlib.colormaps["tab10"]
+    return {label: cmap(k % 10) for k, label in enumerate(labels)}
+
+
+def spaghetti_png(
+    path: Path, results: Sequence[CycleResult], workplace: Workplace, baseline, rep: dict
+) -> None:
+    """The report's floor plan: every walk of ``results`` coloured by route (faint when there
+    are many), the ``baseline`` routes (grid A*, see :func:`mjwalk.report.write_report`)
+    dashed, written as a PNG to ``path``; ``rep`` is :func:`mjwalk.report.report_dict`'s."""
+
+    labels = list(rep["routes"])
+    colors = route_colors(labels)
+    xmin, ymin, xmax, ymax = workplace.floor_bounds
+    fig, ax = plt.subplots(figsize=(10, 10 * (ymax - ymin) / (xmax - xmin) * 0.9 + 0.6))
+    try:
+        draw_floor(ax, workplace, shade=False)
+        alpha = 0.8 if len(results) < 5 else max(0.15, 4.0 / len(results))
+        for label in labels:
+            paths = [w.path for r in results for w in r.walks if w.route == label]
+            draw_paths(ax, paths, color=colors[label], label=label, lw=0.8, alpha=alpha)
+        leg_route = {(w.start_site, w.goal_site): w.route for r in results for w in r.walks}
+        drawn = False
+        for key, value in (baseline or {}).items():
+            label = leg_route.get(tuple(key), "") if isinstance(key, tuple) else key
+            for p in [value] if isinstance(value, WalkPath) else value:
+                ax.plot(p.xy[:, 0], p.xy[:, 1], ls="--", lw=1.8, color=colors.get(label, "k"))
+                drawn = True
+        if drawn:  # one neutral legend entry for all grid-A* routes
+            ax.plot([], [], ls="--", lw=1.8, color="k", label="grid A* (route colour)")
+        legend = ax.legend(loc="upper right", fontsize=8)
+        for handle in legend.legend_handles:  # the runs are faint; their legend lines are not
+            if handle is None:
+                continue
+            handle.set_alpha(1.0)
+            handle.set_linewidth(2.0)  # type: ignore[attr-defined]  # lines and collections
+        ax.set_title(f"{rep['name'] or workplace.name}: {len(results)} run(s), walks by route")
+        fig.tight_layout()
+        fig.savefig(path, dpi=110)
+    finally:
+        plt.close(fig)
+
+
+def histograms_png(path: Path, results: Sequence[CycleResult], rep: dict) -> None:
+    """The report's histograms: cycle time and the walk length of every route (median dashed,
+    grid A* solid, capture dotted), written as a PNG to ``path``."""
+
+    labels = list(rep["routes"])
+    colors = route_colors(labels)
+    n = 1 + len(labels)
+    cols = min(3, n)
+    rows = math.ceil(n / cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.2 * rows), squeeze=False)
+    try:
+        axes = axes.ravel()
+        ax = axes[0]
+        ax.hist([r.cycle_time for r in results], bins="auto", color="0.4")
+        ax.axvline(rep["cycle_time"]["median"], color="k", ls="--", lw=1, label="median")
+        ax.set_xlabel("cycle time [s]")
+        ax.set_ylabel("runs")
+        ax.set_title("cycle time")
+        ax.legend(fontsize=7)
+        for ax, label in zip(axes[1:], labels, strict=False):
+            e = rep["routes"][label]
+            lengths = [w.length for r in results for w in r.walks if w.route == label]
+            ax.hist(lengths, bins="auto", color=colors[label], alpha=0.8)
+            ax.axvline(e["length"]["median"], color="k", ls="--", lw=1, label="median")
+            ax.axvline(e["baseline_length"], color="k", lw=1.5, label="grid A*")
+            if "reference" in e:
+                ax.axvline(e["reference"]["median"], color="k", ls=":", lw=1.5, label="capture")
+            ax.set_xlabel("walk length [m]")
+            ax.set_title(f"route {label} ({e['walks']} walks)")
+            ax.legend(fontsize=7)
+        for ax in axes[n:]:
+            ax.set_visible(False)
+        fig.tight_layout()
+        fig.savefig(path, dpi=100)
     finally:
         plt.close(fig)

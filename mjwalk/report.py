@@ -368,85 +368,6 @@ def _write_cycles_csv(path: Path, results: Sequence[CycleResult]) -> None:
             )
 
 
-def _route_colors(labels: Sequence[str]) -> dict[str, tuple]:
-    import matplotlib
-
-    cmap = matplotlib.colormaps["tab10"]
-    return {label: cmap(k % 10) for k, label in enumerate(labels)}
-
-
-def _spaghetti(path: Path, results: Sequence[CycleResult], workplace, baseline, rep) -> None:
-    import matplotlib.pyplot as plt
-
-    from mjwalk.plot import draw_floor, draw_paths
-
-    labels = list(rep["routes"])
-    colors = _route_colors(labels)
-    xmin, ymin, xmax, ymax = workplace.floor_bounds
-    fig, ax = plt.subplots(figsize=(10, 10 * (ymax - ymin) / (xmax - xmin) * 0.9 + 0.6))
-    try:
-        draw_floor(ax, workplace, shade=False)
-        alpha = 0.8 if len(results) < 5 else max(0.15, 4.0 / len(results))
-        for label in labels:
-            paths = [w.path for r in results for w in r.walks if w.route == label]
-            draw_paths(ax, paths, color=colors[label], label=label, lw=0.8, alpha=alpha)
-        leg_route = {(w.start_site, w.goal_site): w.route for r in results for w in r.walks}
-        drawn = False
-        for key, value in (baseline or {}).items():
-            label = leg_route.get(tuple(key)) if isinstance(key, tuple) else key
-            for p in [value] if isinstance(value, WalkPath) else value:
-                ax.plot(p.xy[:, 0], p.xy[:, 1], ls="--", lw=1.8, color=colors.get(label, "k"))
-                drawn = True
-        if drawn:  # one neutral legend entry for all grid-A* routes
-            ax.plot([], [], ls="--", lw=1.8, color="k", label="grid A* (route colour)")
-        legend = ax.legend(loc="upper right", fontsize=8)
-        for handle in legend.legend_handles:  # the runs are faint; their legend lines are not
-            handle.set_alpha(1.0)
-            handle.set_linewidth(2.0)
-        ax.set_title(f"{rep['name'] or workplace.name}: {len(results)} run(s), walks by route")
-        fig.tight_layout()
-        fig.savefig(path, dpi=110)
-    finally:
-        plt.close(fig)
-
-
-def _histograms(path: Path, results: Sequence[CycleResult], rep) -> None:
-    import matplotlib.pyplot as plt
-
-    labels = list(rep["routes"])
-    colors = _route_colors(labels)
-    n = 1 + len(labels)
-    cols = min(3, n)
-    rows = math.ceil(n / cols)
-    fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, 3.2 * rows), squeeze=False)
-    try:
-        axes = axes.ravel()
-        ax = axes[0]
-        ax.hist([r.cycle_time for r in results], bins="auto", color="0.4")
-        ax.axvline(rep["cycle_time"]["median"], color="k", ls="--", lw=1, label="median")
-        ax.set_xlabel("cycle time [s]")
-        ax.set_ylabel("runs")
-        ax.set_title("cycle time")
-        ax.legend(fontsize=7)
-        for ax, label in zip(axes[1:], labels, strict=False):
-            e = rep["routes"][label]
-            lengths = [w.length for r in results for w in r.walks if w.route == label]
-            ax.hist(lengths, bins="auto", color=colors[label], alpha=0.8)
-            ax.axvline(e["length"]["median"], color="k", ls="--", lw=1, label="median")
-            ax.axvline(e["baseline_length"], color="k", lw=1.5, label="grid A*")
-            if "reference" in e:
-                ax.axvline(e["reference"]["median"], color="k", ls=":", lw=1.5, label="capture")
-            ax.set_xlabel("walk length [m]")
-            ax.set_title(f"route {label} ({e['walks']} walks)")
-            ax.legend(fontsize=7)
-        for ax in axes[n:]:
-            ax.set_visible(False)
-        fig.tight_layout()
-        fig.savefig(path, dpi=100)
-    finally:
-        plt.close(fig)
-
-
 def write_report(
     results: Sequence[CycleResult],
     out_dir: str | Path,
@@ -474,13 +395,15 @@ def write_report(
             :func:`mjwalk.plan.grid.plan_grid` for every leg walked (``{}`` draws none).
         reference: captured (median, IQR) walk length per route, e.g. :data:`CAPTURE_TABLE1`.
     """
+    from mjwalk.plot import histograms_png, spaghetti_png  # matplotlib: loaded when drawing
+
     rep = report_dict(results, reference=reference)
     if workplace is None:
         from mjwalk.world import shared_workplace
 
         workplace = shared_workplace(results[0].spec.scene)
-    baseline = _grid_routes(results, workplace) if baseline is None else baseline
-    for key, value in baseline.items():
+    routes = _grid_routes(results, workplace) if baseline is None else baseline
+    for key, value in routes.items():
         paths = [value] if isinstance(value, WalkPath) else value
         if not isinstance(paths, Sequence) or not all(isinstance(p, WalkPath) for p in paths):
             raise MjwalkError(
@@ -495,12 +418,14 @@ def write_report(
         _write_walks_csv(tmp["walks"], results)
         _write_cycles_csv(tmp["cycles"], results)
         tmp["markdown"].write_text(format_markdown(rep), encoding="utf-8")
-        _spaghetti(tmp["spaghetti"], results, workplace, baseline, rep)
-        _histograms(tmp["histograms"], results, rep)
+        spaghetti_png(tmp["spaghetti"], results, workplace, routes, rep)
+        histograms_png(tmp["histograms"], results, rep)
     return targets
 
 
-def _grid_routes(results: Sequence[CycleResult], workplace) -> dict[tuple[str, str], WalkPath]:
+def _grid_routes(
+    results: Sequence[CycleResult], workplace
+) -> dict[tuple[str, str], WalkPath | list[WalkPath]]:
     """Grid-A* routes of every (start site, goal site) walked, for the floor plan; legs the grid
     planner cannot plan are left out."""
     from mjwalk.errors import PlanningError, SceneError
@@ -508,7 +433,7 @@ def _grid_routes(results: Sequence[CycleResult], workplace) -> dict[tuple[str, s
 
     radius = results[0].spec.radius
     grid = occupancy_grid(workplace, radius=radius)
-    out = {}
+    out: dict[tuple[str, str], WalkPath | list[WalkPath]] = {}
     for r in results:
         for w in r.walks:
             leg = (w.start_site, w.goal_site)

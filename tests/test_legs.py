@@ -8,7 +8,6 @@ from pathlib import Path
 import mujoco
 import numpy as np
 import pytest
-from scipy.interpolate import PchipInterpolator
 
 from mjwalk.body.humanoid import humanoid_model, leg_geometry
 from mjwalk.body.legs import (
@@ -25,78 +24,15 @@ from mjwalk.body.legs import (
 )
 from mjwalk.errors import PlanningError
 from mjwalk.mocap.take import Take
-from mjwalk.plan.walkpath import PathStep, WalkPath
+from mjwalk.plan.synthetic import synthetic_walk
+from mjwalk.plan.walkpath import WalkPath
 
 DATA = Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[2] / "shared" / "data"))
 
 
-def make_walk(
-    n_steps: int = 8,
-    step_len: float = 0.65,
-    width: float = 0.18,
-    step_time: float = 0.55,
-    sway: float = 0.03,
-    radius: float | None = None,
-    start=(0.0, 0.0, 0.0),
-    fps: float = 120.0,
-    hold: float = 0.25,
-) -> WalkPath:
-    """A synthetic WalkPath: alternating footprints ``step_len`` apart along a straight line
-    (``radius=None``) or a left arc of ``radius`` metres (negative: right turn), step width
-    ``width``, ``step_time`` s a step, the pelvis swaying ``sway`` m towards the stance foot.
-    The walk starts standing (first step a half step) and holds ``hold`` s at the end."""
-    x0, y0, h0 = start
-
-    def centre(s):
-        s = np.asarray(s, float)
-        if radius is None:
-            p = np.stack([s, np.zeros_like(s)], -1)
-            h = np.zeros_like(s)
-        else:
-            p = radius * np.stack([np.sin(s / radius), 1 - np.cos(s / radius)], -1)
-            h = s / radius
-        c, si = np.cos(h0), np.sin(h0)
-        p = p @ np.array([[c, si], [-si, c]]) + [x0, y0]
-        return p, h + h0
-
-    # footprint arc positions: f0 = 0 (right, initial stance), f_k = (k - 0.5) L
-    f = np.array([0.0] + [(k - 0.5) * step_len for k in range(1, n_steps + 1)])
-    sides = ["right"] + ["left" if k % 2 else "right" for k in range(1, n_steps + 1)]
-
-    def footprint(k):
-        p, h = centre(f[k])
-        lat = (0.5 if sides[k] == "left" else -0.5) * width
-        n = np.array([-np.sin(h), np.cos(h)])
-        return np.array([*(p + lat * n), h])
-
-    bounds = np.round(np.arange(n_steps + 1) * step_time * fps).astype(int)
-    n = bounds[-1] + round(hold * fps) + 1
-    t = np.arange(n) / fps
-    # pelvis arc length at step starts: midway between the two feet
-    sp = [0.0] + [
-        0.5 * (f[i - 1] + f[i]) if i > 1 else 0.25 * step_len for i in range(1, n_steps + 1)
-    ]
-    sp[-1] = 0.5 * (f[n_steps - 1] + f[n_steps])
-    s_of_t = PchipInterpolator(np.r_[t[bounds], t[-1]], np.r_[sp, sp[-1]])(t)
-    p, h = centre(s_of_t)
-    lat = np.zeros(n)
-    steps = []
-    for i in range(n_steps):
-        a, b = bounds[i], bounds[i + 1]
-        phi = (np.arange(a, b + 1) - a) / (b - a)
-        stance_left = sides[i] == "left"
-        lat[a : b + 1] = sway * (1 if stance_left else -1) * np.sin(np.pi * phi)
-        steps.append(
-            PathStep(
-                side=sides[i + 1],
-                start=int(a),
-                end=int(b),
-                foot=footprint(i + 1),
-                stance=footprint(i),
-            )
-        )
-    xy = p + lat[:, None] * np.stack([-np.sin(h), np.cos(h)], -1)
-    return WalkPath(t=t, xy=xy, yaw=h, steps=steps, meta={"planner": "test-helper"})
+#: The synthetic walk of the library (straight or curved, no planner); the tests of this file,
+#: test_playback and test_render use it under this name.
+make_walk = synthetic_walk
 
 
 def _fk_feet(legs, stature=1.75):

@@ -7,9 +7,9 @@ from pathlib import Path
 import mujoco
 import numpy as np
 import pytest
-from test_legs import make_walk
 
 from mjwalk.errors import MjwalkError
+from mjwalk.plan.synthetic import synthetic_walk as make_walk
 from mjwalk.timeline import collision_report, iter_frames, timeline_from_walk
 from mjwalk.timeline.frames import ARM_EASE
 

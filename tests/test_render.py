@@ -9,9 +9,9 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 import mujoco
 import numpy as np
 import pytest
-from test_legs import make_walk
 
 from mjwalk.errors import MjwalkError
+from mjwalk.plan.synthetic import synthetic_walk as make_walk
 from mjwalk.timeline import timeline_from_walk
 
 render = pytest.importorskip("mjwalk.render")
@@ -95,3 +95,34 @@ def test_render_video_atomic(tmp_path, timeline):
     with pytest.raises(MjwalkError, match="camera"):
         render.render_video(short, tmp_path / "x.mp4", camera="side")
     assert not (tmp_path / "x.mp4").exists()
+
+
+def test_renders_headless_when_mujoco_was_imported_first():
+    """MUJOCO_GL unset and mujoco imported before mjwalk.render (the scene and planning stages
+    import it): importing mjwalk.render selects the headless backend and swaps its context into
+    the loaded mujoco, so rendering works without a display."""
+    import subprocess
+    import sys
+
+    from mjwalk._gl import available_backend
+
+    if available_backend() == "none":
+        pytest.skip("neither EGL nor OSMesa loads here")
+    code = (
+        "import os, mujoco, numpy as np\n"
+        "assert 'MUJOCO_GL' not in os.environ\n"
+        "from mjwalk.plan.synthetic import synthetic_walk\n"
+        "from mjwalk.timeline import timeline_from_walk\n"
+        f"spec = mujoco.MjSpec.from_string({SCENE!r})\n"
+        "tl = timeline_from_walk(synthetic_walk(n_steps=2), spec)\n"
+        "import mjwalk.render as r\n"
+        "(_, img, _), = list(r.render_frames(tl, 'top', size=(64, 48), frames=[0]))\n"
+        "print(os.environ['MUJOCO_GL'], img.shape, int(img.std() > 1))\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k not in ("MUJOCO_GL", "PYOPENGL_PLATFORM")}
+    env.pop("DISPLAY", None)
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=300
+    )
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.split() == [available_backend(), "(48,", "64,", "3)", "1"]

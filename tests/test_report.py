@@ -10,7 +10,6 @@ import imageio.v3 as iio
 import numpy as np
 import pytest
 
-from mjwalk import report as report_mod
 from mjwalk.cycle.types import ArmRecord, CycleResult, CycleSpec, TaskRecord, WalkRecord
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
@@ -163,7 +162,9 @@ def test_no_half_written_files(tmp_path, workplace, monkeypatch):
     def broken(*args, **kwargs):
         raise RuntimeError("disk full")
 
-    monkeypatch.setattr(report_mod, "_histograms", broken)
+    import mjwalk.plot
+
+    monkeypatch.setattr(mjwalk.plot, "histograms_png", broken)
     out = tmp_path / "out"
     with pytest.raises(RuntimeError, match="disk full"):
         write_report(results, out, workplace=workplace)

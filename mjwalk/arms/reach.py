@@ -197,14 +197,14 @@ class ReachModel:
         )
 
     def _fit_endpoints(self, A, pose0, start, end):
-        idx, tgt = [], []
+        idx, points = [], []
         if start is not None:
             idx.append(0)
-            tgt.append(np.asarray(start, dtype=float))
+            points.append(np.asarray(start, dtype=float))
         if end is not None:
             idx.append(len(A) - 1)
-            tgt.append(np.asarray(end, dtype=float))
-        tgt = np.array(tgt)
+            points.append(np.asarray(end, dtype=float))
+        tgt = np.array(points)
         Asub = A[idx]
 
         def resid(x):

@@ -132,7 +132,10 @@ def generate(
     if space not in SPACES:
         raise MjwalkError(f"reachgen: unknown constraint space {space!r} (choose from {SPACES})")
     L = arm_segment_lengths(stature)
-    C, U, E, Hs = [], [], [], []
+    C: list[np.ndarray] = []
+    U: list[np.ndarray] = []
+    E: list[np.ndarray | None] = []
+    Hs: list[np.ndarray] = []
     base_start = np.array(REST_HAND)
     base_end = np.array([0.45, -0.05, -0.15])
     tau = np.linspace(0.0, 1.0, n)

@@ -25,9 +25,9 @@ from sklearn.pipeline import Pipeline, make_pipeline
 from sklearn.preprocessing import StandardScaler
 
 from mjwalk.body.legs import LegMotion, legs_from_walk
-from mjwalk.conventions import DEFAULT_STATURE
+from mjwalk.conventions import DEFAULT_STATURE, SAMPLE_RATE_HZ
 from mjwalk.errors import MjwalkError
-from mjwalk.plan.walkpath import PathStep, WalkPath
+from mjwalk.plan.synthetic import synthetic_walk
 
 #: Contact states (as in :class:`~mjwalk.body.legs.LegMotion`): left stance, right stance, both.
 STATES = (0, 1, 2)
@@ -128,32 +128,6 @@ class GaitPoseModel:
         return self.pca.inverse_transform(z), s
 
 
-def _walk(step_len: float, step_time: float, n_steps: int, sway: float, fps: float = 120.0):
-    """A straight footprint walk along +x from standing (first step a half step)."""
-    f = np.array([0.0] + [(k - 0.5) * step_len for k in range(1, n_steps + 1)])
-    sides = ["right"] + ["left" if k % 2 else "right" for k in range(1, n_steps + 1)]
-    width = 0.18
-
-    def fp(k):
-        return np.array([f[k], (0.5 if sides[k] == "left" else -0.5) * width, 0.0])
-
-    bounds = np.round(np.arange(n_steps + 1) * step_time * fps).astype(int)
-    n = bounds[-1] + 1
-    t = np.arange(n) / fps
-    sp = [0.0, 0.25 * step_len] + [0.5 * (f[i - 1] + f[i]) for i in range(2, n_steps + 1)]
-    from scipy.interpolate import PchipInterpolator
-
-    x = PchipInterpolator(t[bounds], sp)(t)
-    y = np.zeros(n)
-    steps = []
-    for i in range(n_steps):
-        a, b = bounds[i], bounds[i + 1]
-        phi = (np.arange(a, b + 1) - a) / (b - a)
-        y[a : b + 1] = sway * (1 if sides[i] == "left" else -1) * np.sin(np.pi * phi)
-        steps.append(PathStep(sides[i + 1], int(a), int(b), fp(i + 1), fp(i)))
-    return WalkPath(t=t, xy=np.column_stack([x, y]), yaw=np.zeros(n), steps=steps)
-
-
 def _upper_body(legs: LegMotion, amp: np.ndarray) -> dict[str, np.ndarray]:
     """Arm swing and torso motion that go with the legs (amplitudes ``amp`` per walk)."""
     out = {}
@@ -188,7 +162,7 @@ def training_poses(
     for w in range(n_walks):
         L = rng.uniform(0.55, 0.75)
         T = rng.uniform(0.50, 0.60)
-        walk = _walk(L, T, 10, rng.uniform(0.02, 0.04))
+        walk = synthetic_walk(10, L, step_time=T, sway=rng.uniform(0.02, 0.04), hold=0.0)
         legs = legs_from_walk(walk, stature)
         # amplitudes: shoulder swing either side (7-11 deg: 15-22 deg peak to peak, what the
         # earlier hip-proportional swing gave on the Winter reference), shoulder abduction,
@@ -209,8 +183,8 @@ def training_poses(
         cols = [speed, legs.root[:, 2]]
         cols += [legs.angles[c] for c in LEG_CHANNELS] + [up[c] for c in UPPER_CHANNELS]
         q = np.column_stack(cols)
-        t_out = np.arange(walk.steps[2].start / 120.0, walk.steps[-1].end / 120.0, 1.0 / fps)
-        idx = np.round(t_out * 120.0).astype(int)
+        t_out = np.arange(walk.t[walk.steps[2].start], walk.t[walk.steps[-1].end], 1.0 / fps)
+        idx = np.round(t_out * SAMPLE_RATE_HZ).astype(int)
         poses.append(q[idx])
         states.append(legs.contact[idx])
         ids.append(np.full(len(idx), w))
@@ -325,7 +299,7 @@ def _unwrapped_phase(states: np.ndarray) -> np.ndarray:
     heel strikes.
     """
     n = len(states)
-    runs = []  # (state, start)
+    runs: list[tuple[int, int]] = []  # (state, start)
     for i, v in enumerate(states):
         if not runs or runs[-1][0] != v:
             runs.append((int(v), i))

@@ -26,7 +26,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.body.humanoid import JointMap, attach_humanoid, pelvis_height
-from mjwalk.conventions import Side, side_prefix
+from mjwalk.conventions import SAMPLE_RATE_HZ, Side, side_prefix
 from mjwalk.cycle.spec import check_durations
 from mjwalk.cycle.types import (
     ArmRecord,
@@ -311,6 +311,7 @@ def simulate_cycle(
         t0 = t
         if task.kind in ("walk", "carry"):
             goal = task.site
+            assert goal is not None  # the spec loader requires a site for walks
             path = ctx.planner(goal).plan((x, y), rng)
             turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps)
             frames.append(turn)
@@ -337,6 +338,7 @@ def simulate_cycle(
             )
             here = goal
         elif task.kind in ("pick", "place", "fasten"):
+            assert task.site is not None  # the spec loader requires a site for reaches
             site_pos = wp.station(task.site).pos
             target = _target(ctx, task.kind, site_pos, x, y)
             # face the target (turning on the spot) before reaching for it
@@ -351,9 +353,8 @@ def simulate_cycle(
             yaw = face
             hold = task.duration if task.duration is not None else DEFAULT_HOLD[task.kind]
             approach = _approach(task.kind, site_pos, x, y)
-            rf, err, res = _reach_frames(
-                ctx, frames[-1][-1], target, approach, hold, fps, side=task.hand or "left"
-            )
+            arm: Side = "right" if task.hand == "right" else "left"
+            rf, err, res = _reach_frames(ctx, frames[-1][-1], target, approach, hold, fps, arm)
             frames.append(rf)
             t += len(rf) / fps
             arms.append(
@@ -411,7 +412,9 @@ def _entropy(rng: np.random.Generator) -> int | list[int] | None:
     if not isinstance(seq, np.random.SeedSequence) or seq.spawn_key:
         return None
     ent = seq.entropy
-    return [int(v) for v in ent] if isinstance(ent, list | tuple | np.ndarray) else int(ent)
+    if isinstance(ent, list | tuple | np.ndarray):
+        return [int(v) for v in ent]
+    return None if ent is None else int(ent)  # type: ignore[arg-type]
 
 
 # ---------------------------------------------------------------------------- many cycles
@@ -486,5 +489,5 @@ def combined_walk(paths: list):
             PathStep(s.side, s.start + offset, s.end + offset, s.foot, s.stance) for s in p.steps
         ]
         offset += len(p.xy)
-        t0 = t[-1][-1] + 1.0 / 120.0
+        t0 = t[-1][-1] + 1.0 / SAMPLE_RATE_HZ
     return WalkPath(np.concatenate(t), np.vstack(xy), np.concatenate(yaw), steps)

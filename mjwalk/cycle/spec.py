@@ -381,6 +381,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
             raise check.fail(f"task {i + 1} must be a table ([[task]])", "task", i)
         tasks.append(_task(check, workplace, raw, i, radius, stand, held))
         if tasks[-1].kind in ("walk", "carry"):
+            assert tasks[-1].site is not None  # checked by _task: walks need a site
             stand = tasks[-1].site
     try:
         check_durations(tasks)
@@ -476,6 +477,7 @@ def _task(
     part = check.string(raw, "part", t, i) if "part" in raw else None
 
     if kind in ("walk", "carry"):
+        assert site is not None  # required above
         if site == stand:
             raise check.fail(
                 f"key 'site' {where}: the operator already stands at {site!r}", t, i, "site"
@@ -495,6 +497,7 @@ def _task(
                 )
         route = route or f"{stand}->{site}"
     elif kind in ("pick", "place", "fasten"):
+        assert site is not None  # required above
         hand = hand or "left"
         dist = float(np.linalg.norm(workplace.stations[site].xy - workplace.stations[stand].xy))
         if dist > MAX_REACH:

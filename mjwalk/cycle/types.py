@@ -4,11 +4,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.plan.walkpath import WalkPath
+
+if TYPE_CHECKING:  # the timeline stage is above this one at run time: no import
+    from mjwalk.timeline.collisions import Contact
+    from mjwalk.timeline.timeline import Timeline
 
 #: Task kinds of a cycle specification.
 TASK_KINDS = ("walk", "carry", "pick", "place", "fasten", "wait")
@@ -148,8 +153,8 @@ class CycleResult:
     walks: list[WalkRecord]
     arms: list[ArmRecord]
     cycle_time: float
-    collisions: list = field(default_factory=list)
-    timeline: object | None = None
+    collisions: list[Contact] = field(default_factory=list)
+    timeline: Timeline | None = None
     entropy: int | list[int] | None = None
 
     def walk_lengths(self) -> dict[str, list[float]]:

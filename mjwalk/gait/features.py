@@ -201,7 +201,7 @@ class StepBatch:
             pelvis, yaw = self.trajectory(i, fps)
             out.append(
                 Step(
-                    side=str(self.side[i]),
+                    side="left" if self.side[i] == "left" else "right",  # checked: side_array
                     fps=fps,
                     pelvis=pelvis,
                     yaw=yaw,

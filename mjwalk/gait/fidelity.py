@@ -44,6 +44,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.stats import ks_2samp
 
 from mjwalk._io import atomic_path
@@ -201,6 +202,7 @@ def model_straight_walks(
             order = rng.permuted(np.arange(n_candidates * w)).reshape(w, n_candidates)
             cand = cand.take(order.ravel())
         else:
+            assert current is not None  # set by the first iteration
             cand = model.sample_next(current, n_candidates, rng)
         k = len(idx)
         end, phi_new = _compose(
@@ -251,7 +253,7 @@ def model_straight_walks(
 # --------------------------------------------------------------------------------------------
 
 
-def _describe(x: np.ndarray) -> dict[str, float]:
+def _describe(x: ArrayLike) -> dict[str, float]:
     x = np.asarray(x, dtype=float)
     if x.size == 0:
         return {"n": 0}

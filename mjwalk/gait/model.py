@@ -65,6 +65,7 @@ from scipy.linalg import cho_solve, cholesky, solve_triangular
 from scipy.stats import gaussian_kde
 
 from mjwalk._io import check_header, load_npz, save_npz
+from mjwalk.conventions import Side
 from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait import gpdraw
 from mjwalk.gait.features import StepBatch, StepFeatures, raw_features, side_array
@@ -494,7 +495,7 @@ class StepModel:
         """(n, d) standardized features -> StepBatch with ``side`` ((n,) or one value)."""
         return self.features.decode(z, side)
 
-    def sample_first(self, n: int, rng: np.random.Generator, side: str | None = None) -> StepBatch:
+    def sample_first(self, n: int, rng: np.random.Generator, side: Side | None = None) -> StepBatch:
         """``n`` gait-initiation steps from the KDE.
 
         ``side=None``: ``n - n//2`` left then ``n//2`` right steps; else all of ``side``.
@@ -579,7 +580,7 @@ class StepModel:
         return gps[side].sample(x, n, rng).reshape(len(x) * n, self.n_dims)
 
     def sample_chain(
-        self, n_steps: int, rng: np.random.Generator, side: str | None = None
+        self, n_steps: int, rng: np.random.Generator, side: Side | None = None
     ) -> StepBatch:
         """One walk of ``n_steps`` steps: a KDE starter, then one GP successor after another."""
         first = self.sample_first(1, rng, side=side or ("left" if rng.random() < 0.5 else "right"))
@@ -610,7 +611,10 @@ class StepModel:
                 for s, g in self.gp.items()
             },
             stop_kernels={
-                f"{s}->{_other(s)}": {"n_pairs": g.n_pairs, "n_inducing": int(g.inducing.shape[0])}
+                f"{s}->{_other(s)}": {
+                    "n_pairs": g.n_pairs,
+                    "n_inducing": int(g.inducing.shape[0]),
+                }
                 for s, g in self.stop_gp.items()
             },
         )

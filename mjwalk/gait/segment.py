@@ -37,7 +37,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.ndimage import binary_closing, binary_opening, gaussian_filter1d
 
-from mjwalk.conventions import SIDES
+from mjwalk.conventions import SIDES, Side
 from mjwalk.errors import CaptureError
 from mjwalk.gait.step import Step
 from mjwalk.mocap.take import Take
@@ -63,8 +63,8 @@ class Segmentation:
     take: str
     fps: float
     contact: np.ndarray
-    heel_strikes: dict[str, np.ndarray]
-    toe_offs: dict[str, np.ndarray]
+    heel_strikes: dict[Side, np.ndarray]
+    toe_offs: dict[Side, np.ndarray]
     steps: list[Step]
     dropped: dict[str, int] = field(default_factory=dict)
 

@@ -232,6 +232,7 @@ def _check_acyclic(bones: dict[str, AsfBone], path) -> None:
     for bone in bones.values():
         seen, b = set(), bone
         while b.parent != "root":
+            assert b.parent is not None  # parse_asf refuses bones missing from :hierarchy
             if b.name in seen:
                 raise CaptureError(f"{path}: :hierarchy has a cycle through bone {b.name!r}")
             seen.add(b.name)
@@ -330,6 +331,7 @@ def amc_forward_kinematics(
     names, columns = ["root"], [trans]
     children = {b.parent for b in asf.bones.values()}
     for bone in _topological(asf.bones):
+        assert bone.parent is not None  # parse_asf refuses bones missing from :hierarchy
         c = _bone_frame(bone, asf.degrees)
         parent_r = rot[bone.parent]
         if bone.dof:

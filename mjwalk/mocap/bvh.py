@@ -241,7 +241,7 @@ def _motion_header(lines: list[str], motion_line: int, path) -> tuple[int, float
 
 def _motion_data(lines, start: int, n_frames: int, n_channels: int, path) -> np.ndarray:
     """(n_frames, n_channels) motion values; wrong counts raise CaptureError with the line."""
-    rows = []
+    rows: list[list[str]] = []
     linenos = []
     for k in range(start, len(lines)):
         parts = lines[k].split()

@@ -93,8 +93,8 @@ def collision_report(timeline: Timeline, floor_tolerance: float = 0.01) -> list[
             key = (int(hg[k]), int(sg[k]))
             if depth[k] > best.get(key, (-np.inf,))[0]:
                 best[key] = (float(depth[k]), np.array(con.pos[k]))
-        for (hg, sg), (depth, pos) in best.items():
-            out.append(Contact(float(timeline.t[i]), names[hg][plen:], names[sg], depth, pos))
+        for (h, s), (d, pos) in best.items():
+            out.append(Contact(float(timeline.t[i]), names[h][plen:], names[s], d, pos))
     return out
 
 

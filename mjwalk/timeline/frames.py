@@ -243,7 +243,7 @@ def frames_from_legs(
     t: np.ndarray,
     stature: float,
     arms: str,
-    rng: np.random.Generator | int | None,
+    rng: np.random.Generator | None,
 ) -> np.ndarray:
     """(len(t), nq) qpos of the humanoid in ``model`` at times ``t`` (s): root and legs
     interpolated from ``legs``, arms and torso by ``arms`` ("swing", "gaitpose" or "none", see

@@ -6,6 +6,7 @@ World frame: metres, seconds, radians, z up, yaw from +x CCW.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mjwalk.arms.hands import finger_trajectory
 from mjwalk.arms.kinematics import MIRROR_Y, REST_HAND, arm_frames, arm_joint_angles
@@ -35,7 +36,7 @@ def reach_in_scene(
     stature: float = DEFAULT_STATURE,
     duration: float = 1.2,
     fps: float = 30.0,
-    target_offset: np.ndarray = (0.0, 0.0, 0.0),
+    target_offset: ArrayLike = (0.0, 0.0, 0.0),
     object_size: float | None = None,
 ):
     """A :class:`~mjwalk.timeline.timeline.Timeline` of the humanoid standing at ``stand_site``

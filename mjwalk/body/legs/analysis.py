@@ -12,6 +12,7 @@ import itertools
 import numpy as np
 
 from mjwalk.body.legs.reference import ReferenceGait
+from mjwalk.conventions import Side, side_prefix
 from mjwalk.errors import CaptureError
 
 
@@ -37,14 +38,15 @@ def heel_strikes(pitch: np.ndarray, fps: float) -> np.ndarray:
 
 
 def gait_cycles(
-    take, side: str = "L", names: str = "UpperLeg_{},LowerLeg_{},Foot_{},Toes_{}", n: int = 101
+    take, side: Side = "left", names: str = "UpperLeg_{},LowerLeg_{},Foot_{},Toes_{}", n: int = 101
 ) -> np.ndarray:
     """Time-normalised gait cycles of one leg of a capture :class:`~mjwalk.mocap.take.Take`.
 
     Args:
         take: a take with ``joints`` holding hip, knee, ankle and toe positions.
-        side: side letter used in the joint names ("L"/"R").
-        names: comma-separated joint-name patterns (hip, knee, ankle, toe), ``{}`` = side.
+        side: the leg, "left" or "right".
+        names: comma-separated joint-name patterns (hip, knee, ankle, toe), ``{}`` = the side's
+            capital letter ("L"/"R", as in the bandai-walk skeleton).
         n: samples per cycle.
 
     Returns:
@@ -52,7 +54,7 @@ def gait_cycles(
         thigh flexion, knee flexion and foot pitch (radians; pitch relative to the flat foot,
         the median over 20-40 % of the cycle).
     """
-    keys = [k.format(side) for k in names.split(",")]
+    keys = [k.format(side_prefix(side).upper()) for k in names.split(",")]
     missing = [k for k in keys if k not in take.joints]
     if missing:
         raise CaptureError(
@@ -62,11 +64,11 @@ def gait_cycles(
     hipf, kneef, pitch = sagittal_angles(h, k, a, t, np.asarray(take.pelvis_yaw, float))
     hs = heel_strikes(pitch, take.fps)
     x = np.linspace(0, 1, n)
-    cycles = []
+    rows = []
     for i0, i1 in itertools.pairwise(hs):
         s = np.linspace(0, 1, i1 - i0 + 1)
-        cycles.append([np.interp(x, s, v[i0 : i1 + 1]) for v in (hipf, kneef, pitch)])
-    cycles = np.array(cycles[1:-1]).reshape(-1, 3, n)
+        rows.append([np.interp(x, s, v[i0 : i1 + 1]) for v in (hipf, kneef, pitch)])
+    cycles = np.array(rows[1:-1]).reshape(-1, 3, n)
     if len(cycles):
         flat = np.median(cycles[:, 2, int(0.2 * (n - 1)) : int(0.4 * (n - 1)) + 1])
         cycles[:, 2] -= flat
@@ -74,7 +76,7 @@ def gait_cycles(
 
 
 def reference_from_takes(
-    takes, side: str = "L", names: str = "UpperLeg_{},LowerLeg_{},Foot_{},Toes_{}"
+    takes, side: Side = "left", names: str = "UpperLeg_{},LowerLeg_{},Foot_{},Toes_{}"
 ) -> ReferenceGait:
     """A reference gait from captured straight walks: the mean of their gait cycles."""
     cyc = [c for t in takes for c in gait_cycles(t, side, names)]

@@ -8,7 +8,8 @@ Cycle fractions: 0 = heel strike of the leg, 1 = its next heel strike. Angles in
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from scipy.interpolate import CubicSpline
@@ -22,7 +23,7 @@ from scipy.interpolate import CubicSpline
 #: after the foot-floor angles in J. Perry & J. M. Burnfield, "Gait Analysis: Normal and
 #: Pathological Function", 2nd ed. (2010): ~20 deg at heel strike, foot flat ~8-40 %, toe-off
 #: at ~60 % with ~35-40 deg, rounded.
-WINTER_GAIT = {
+WINTER_GAIT: dict[str, Any] = {
     "cycle": np.arange(0, 101, 5) / 100.0,
     "hip": [30, 29, 27, 24, 20, 15, 10, 5, 0, -4, -8, -9, -5, 3, 12, 20, 26, 30, 32, 31, 30],
     "knee": [3, 10, 16, 19, 18, 15, 11, 7, 5, 6, 10, 20, 35, 50, 60, 63, 57, 42, 25, 10, 3],
@@ -47,6 +48,7 @@ class ReferenceGait:
     knee: np.ndarray
     pitch: np.ndarray
     source: str = ""
+    _splines: dict[str, CubicSpline] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         sp = {}

@@ -1,0 +1,40 @@
+"""The synthetic walk helper (mjwalk.plan.synthetic): footprints, timing and arcs as specified."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjwalk.errors import MjwalkError
+from mjwalk.plan.synthetic import synthetic_walk
+
+
+def test_straight_walk_footprints_and_timing():
+    w = synthetic_walk(n_steps=6, step_len=0.7, width=0.2, step_time=0.5, hold=0.25)
+    assert [s.side for s in w.steps] == ["left", "right"] * 3
+    feet = np.array([w.steps[0].stance] + [s.foot for s in w.steps])
+    assert np.allclose(np.diff(feet[1:, 0]), 0.7)  # a full step between landings
+    assert feet[1, 0] == pytest.approx(0.35)  # the first step is a half step
+    assert np.allclose(np.abs(feet[:, 1]), 0.1) and np.allclose(feet[:, 2], 0.0)
+    assert w.duration == pytest.approx(6 * 0.5 + 0.25)
+    assert all(b.start == a.end for a, b in zip(w.steps, w.steps[1:], strict=False))
+    # the pelvis ends midway between the last two feet and sways towards the stance foot
+    assert w.xy[-1, 0] == pytest.approx(0.5 * (feet[-1, 0] + feet[-2, 0]))
+    mid = (w.steps[1].start + w.steps[1].end) // 2  # left foot stands (step 1 swings right)
+    assert w.xy[mid, 1] > 0.02
+
+
+@pytest.mark.parametrize("radius", [2.5, -2.0])
+def test_curved_walk_stays_on_its_arc(radius):
+    w = synthetic_walk(n_steps=8, radius=radius, sway=0.0, start=(1.0, -1.0, 0.5))
+    c, s = np.cos(0.5), np.sin(0.5)
+    centre = np.array([1.0, -1.0]) + radius * np.array([-s, c])  # left of the start heading
+    r = np.linalg.norm(w.xy - centre, axis=1)
+    assert np.allclose(r, abs(radius), atol=1e-9)
+    turned = w.yaw[-1] - w.yaw[0]
+    assert np.sign(turned) == np.sign(radius)
+
+
+def test_bad_arguments_are_refused():
+    with pytest.raises(MjwalkError, match="n_steps >= 1"):
+        synthetic_walk(n_steps=0)
