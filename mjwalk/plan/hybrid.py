@@ -396,7 +396,7 @@ class HybridPlanner:
             self._thresholds,
             par,
             ipar,
-            self._walk._coefficients(),
+            self._walk.values,
             self.distance.flat_bound(),
         )
         expansions, generated, rejected, stop_draws = stats.tolist()

@@ -93,8 +93,10 @@ def iparams(**values) -> np.ndarray:
 
 @njit
 def _clearance(coef, x0, y0, res, nx, ny, x, y):
-    """:meth:`ClearanceField.__call__` at one point (x, y) (metres) from the field's cell
-    coefficients (:meth:`ClearanceField._coefficients`): bilinear clearance, metres."""
+    """:meth:`ClearanceField.__call__` at one point (x, y) (metres) from the field's node
+    values ``coef`` (ny, nx): bilinear clearance, metres, as value = a + b·tx + c·ty + d·tx·ty
+    with the cell's coefficients a = v00, b = v01 - v00, c = v10 - v00,
+    d = v11 - v10 - v01 + v00 formed on the fly (a table of them held four times the field)."""
     fx = (x - x0) / res
     fx = min(max(fx, 0.0), nx - 1.000001)
     fy = (y - y0) / res
@@ -103,8 +105,11 @@ def _clearance(coef, x0, y0, res, nx, ny, x, y):
     iy = int(fy)
     fx -= ix
     fy -= iy
-    c = iy * (nx - 1) + ix
-    return (coef[c, 3] * fy + coef[c, 1]) * fx + coef[c, 0] + fy * coef[c, 2]
+    v00 = coef[iy, ix]
+    v01 = coef[iy, ix + 1]
+    v10 = coef[iy + 1, ix]
+    v11 = coef[iy + 1, ix + 1]
+    return ((v11 - v10 - v01 + v00) * fy + (v01 - v00)) * fx + v00 + fy * (v10 - v00)
 
 
 @njit
@@ -153,7 +158,7 @@ def check_steps(
             foot behind that (world x + iy; nan: none yet), and g (real part).
         thr: (m + 4,) clearance limits of the pelvis samples, ankle, toes and the two knees.
         par, ipar: :func:`params` / :func:`iparams`.
-        coef: the walk field's bilinear cell coefficients (:meth:`ClearanceField._coefficients`).
+        coef: the walk field's node values (ny, nx) (:meth:`Workplace.walk_field`).
         dist: the goal distance's flat grid bound (:class:`~mjwalk.plan.heuristic.GoalDistance`).
 
     Returns:
