@@ -13,7 +13,8 @@ obstacle-aware bound from a 2-D Dijkstra over a 16-connected occupancy grid divi
 grid's worst detour factor (both admissible). The search weights the heuristic by 1.01
 (weighted A*: a walk is at most 1 % longer than the best continuation of the sampled steps),
 which cuts node expansions about eightfold on open floors; ``heuristic_weight=1.0`` is the
-paper's plain A*. A successor is
+paper's plain A*. Farther than 4 m from the goal the weight grows by 0.05 (:data:`FAR_WEIGHT`;
+long walks through clutter stay near-linear in expansions). A successor is
 rejected when any sample of its pelvis trajectory comes closer to an obstacle (or the floor's
 edge) than the body radius, or when it ends in a grid cell (0.08 m, optionally with heading
 bins) that is already closed (near the goal: closed for walking on after
@@ -109,6 +110,18 @@ STOP_REACH = 0.8
 #: default model of corpus 2): walks shorter than 1.5 m 51 % with one expansion per cell and no
 #: closing-only draws (median 1.31 m, IQR 3.27 m), 79 % with both (1.13 m, 0.12 m).
 NEAR_GOAL_EXPANSIONS = 3
+#: Far from the goal the heuristic weighs more (dynamic weighting, Pohl 1973): beyond
+#: ``FAR_FROM`` metres of obstacle-aware distance h, f = g + weight·h + FAR_WEIGHT·(h - FAR_FROM).
+#: Why: the bound h falls short of the walked length left by a share that does not shrink with
+#: distance (the grid bound is divided by the 16-move detour factor 1.026, and sampled steps
+#: weave around obstacles), so with weight 1.01 alone the open list's f grows along the walk and
+#: the search floods back over every node it passed: expansions grew as L^2.5 and 32 m walks in
+#: a cluttered hall spent the budget (issue 18). Measured walked chord length over h at the
+#: start, 18 walks of 8-24 m in the generated 36 x 10 m hall with 144 boxes
+#: (``/tmp`` script in the commit message): see FAR_WEIGHT's figures in benchmarks/bench_scale.py.
+#: Within FAR_FROM (every walk of the 8 x 6 m station) the search is the plain weighted A*.
+FAR_WEIGHT = 0.05
+FAR_FROM = 4.0
 
 
 class _Exhausted(PlanningError):
@@ -197,6 +210,7 @@ class HybridPlanner:
         max_expansions: int = 4000,
         samples_per_step: int = 16,
         heuristic_weight: float = 1.01,
+        far_weight: float = FAR_WEIGHT,
         cost: str = "chord",
         attempts: int = 3,
         grid: OccupancyGrid | None = None,
@@ -224,6 +238,9 @@ class HybridPlanner:
         if heuristic_weight < 1.0:
             raise PlanningError(f"heuristic_weight must be >= 1, not {heuristic_weight}")
         self.heuristic_weight = heuristic_weight
+        if far_weight < 0.0:
+            raise PlanningError(f"far_weight must be >= 0, not {far_weight}")
+        self.far_weight = far_weight
         if cost not in ("chord", "path"):
             raise PlanningError(f"cost must be 'chord' or 'path', not {cost!r}")
         self.cost = cost
@@ -278,6 +295,8 @@ class HybridPlanner:
             knee_share1=knee_cols[1] / (m - 1),
             stop_reach=self.tolerance + STOP_REACH,
             pool_sharpness=POOL_SHARPNESS,
+            far_weight=self.far_weight,
+            far_from=FAR_FROM,
         )
         ipar = stepcheck.iparams(
             m=m,
@@ -309,8 +328,10 @@ class HybridPlanner:
     # -- helpers ---------------------------------------------------------------------------
 
     def h(self, xy: np.ndarray) -> np.ndarray:
-        """Heuristic (metres, times ``heuristic_weight``) at points (..., 2)."""
-        return self.heuristic_weight * self._h(xy)
+        """Weighted heuristic (metres) at points (..., 2): ``heuristic_weight`` times h, plus
+        ``far_weight`` times its excess over :data:`FAR_FROM`."""
+        h = self._h(xy)
+        return self.heuristic_weight * h + self.far_weight * np.maximum(h - FAR_FROM, 0.0)
 
     def _h(self, xy: np.ndarray) -> np.ndarray:
         if self.heuristic == "dijkstra":
@@ -377,6 +398,10 @@ class HybridPlanner:
         weight = self.heuristic_weight
         h0 = float(self.distance(start_xy)) if self.heuristic == "dijkstra" else 0.0
         euclid = float(np.hypot(*(start_xy - self.goal)))
+        h_start = max(h0, euclid)
+        f0 = weight * h_start  # as stepcheck.check_steps scores a node
+        if h_start > FAR_FROM:
+            f0 += self.far_weight * (h_start - FAR_FROM)
         gps = (self.model.gp["left"].kernel, self.model.gp["right"].kernel)
         stops = (self.model.stop_gp["left"].kernel, self.model.stop_gp["right"].kernel) if (
             self.n_stops
@@ -387,7 +412,7 @@ class HybridPlanner:
             np.ascontiguousarray(first.side == "left"),
             complex(*start_xy),
             float(start_yaw),
-            weight * max(h0, euclid),
+            f0,
             gps,
             stops,
             rng,
@@ -513,7 +538,8 @@ def plan_walk(
         **options: see :class:`HybridPlanner` (goal_tolerance=0.25, goal_yaw=None,
             radius=0.25, cell=0.08, heading_bins=None (1, or 8 with a goal yaw), n_starters=30,
             n_successors=10, heuristic="dijkstra" | "euclidean", heuristic_weight=1.01,
-            cost="chord" | "path", max_expansions=4000 (per search), attempts=3,
+            far_weight=0.05 (beyond FAR_FROM = 4 m of the goal), cost="chord" | "path",
+            max_expansions=4000 (per search), attempts=3,
             samples_per_step=16).
 
     Raises:

@@ -6,9 +6,9 @@ landing ankle and toes and the swing-knee probes in the step's local frame (x ri
 as x + iy; metres), the turn into the world, the clearance test of every point against its own
 limit (bilinear lookup in the workplace's walk field), the leg-reach tests, the closing-step
 test (a closing step must end in the goal area), and for the accepted steps the walked length
-g, f = g + weight·h, the closed-list key, heading and landing foot. As NumPy code this was some
-60 small array operations per call; here it is one loop over the rows (numba, see
-:mod:`mjwalk._jit`), with the same arithmetic.
+g, f = g + weight·h (plus far weight·(h - far from) beyond far from), the closed-list key,
+heading and landing foot. As NumPy code this was some 60 small array operations per call;
+here it is one loop over the rows (numba, see :mod:`mjwalk._jit`), with the same arithmetic.
 
 Rows are grouped by predecessor: row r belongs to node r // per and is a closing step when
 r % per >= n_walk. Per-row ``frame``/``left`` arrays (a start node's starters each turn their
@@ -52,8 +52,10 @@ from mjwalk._jit import njit
     P_KNEE_SHARE1,
     P_STOP_REACH,
     P_POOL_SHARPNESS,
+    P_FAR_WEIGHT,
+    P_FAR_FROM,
     N_PARAMS,
-) = range(28)
+) = range(30)
 # Slots of the integer parameter vector.
 (
     I_M,
@@ -274,9 +276,12 @@ def check_steps(
             if bound > h:
                 h = bound
         g = node[i, 3].real + seg
+        fh = par[P_WEIGHT] * h
+        if h > par[P_FAR_FROM]:  # farther than FAR_FROM from the goal: the far weight too
+            fh += par[P_FAR_WEIGHT] * (h - par[P_FAR_FROM])
         out_rows[cnt] = r
         out_keys[cnt] = cell_key(end, th, par, ipar)
-        out_f[cnt] = g + par[P_WEIGHT] * h
+        out_f[cnt] = g + fh
         out_g[cnt] = g
         out_end[cnt] = end
         out_th[cnt] = th
