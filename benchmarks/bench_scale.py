@@ -101,6 +101,62 @@ def run_setup(sizes: list[float]) -> None:
     print("  (peak MB includes the interpreter, MuJoCo and numba: about 200 MB at 0 nodes)")
 
 
+def _pairs(hall, length: float, n: int, rng: np.random.Generator) -> list:
+    """``n`` (start, goal) pairs ``length`` metres apart across the 36 x 10 m hall, both 0.5 m
+    clear of every obstacle's bounding circle."""
+    pairs = []
+    c = hall.circles
+    while len(pairs) < n:
+        a = rng.uniform([-17.5, -4.5], [17.5 - length, 4.5])
+        ang = rng.uniform(-0.25, 0.25)
+        b = a + length * np.array([np.cos(ang), np.sin(ang)])
+        if abs(b[1]) > 4.5 or b[0] > 17.5:
+            continue
+        if min(np.min(np.hypot(*(c[:, :2] - p).T) - c[:, 2]) for p in (a, b)) < 0.5:
+            continue
+        pairs.append((a, b))
+    return pairs
+
+
+def run_spread(lengths: list[float], n_pairs: int, n_walks: int, **options) -> None:
+    """The spread of repeated walks between the same two points (what the probabilistic
+    planner is for): per pair the IQR of ``n_walks`` walk lengths and their sway share."""
+    from mjwalk.errors import PlanningError
+    from mjwalk.gait.default import default_model
+    from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.world import load_workplace
+    from mjwalk.world.generate import generate_hall
+
+    hall = generate_hall(36, 10, kinds=("box",), seed=0)
+    with tempfile.TemporaryDirectory() as tmp:
+        wp = load_workplace(hall.write(Path(tmp) / "hall36.xml"), cache=False)
+    model = default_model()
+    rng = np.random.default_rng(8)
+    print(f"\n(b2) spread of {n_walks} walks per start/goal pair, {n_pairs} pairs per length")
+    print(f"{'L [m]':>6} {'IQR [m] median over pairs':>26} {'sway':>6} {'fail':>5} {'exp':>6}")
+    for length in lengths:
+        iqrs, sways, fails, exp = [], [], 0, []
+        for a, b in _pairs(hall, length, n_pairs, rng):
+            planner = HybridPlanner(wp, b, model, **options)
+            lens = []
+            for k in range(n_walks):
+                try:
+                    w = planner.plan(a, np.random.default_rng(k))
+                except PlanningError:
+                    fails += 1
+                    continue
+                lens.append(w.length)
+                exp.append(w.meta["expansions"])
+                sways += [_sways(w.xy[s.start : s.end + 1], s.stance[:2]) for s in w.steps[1:]]
+            if len(lens) >= 4:
+                q25, q75 = np.percentile(lens, [25, 75])
+                iqrs.append(q75 - q25)
+        print(
+            f"{length:>6g} {np.median(iqrs):>26.3f} {np.mean(sways):>6.3f} {fails:>5d} "
+            f"{np.median(exp):>6.0f}"
+        )
+
+
 def run_walks(lengths: list[float], n_walks: int, **options) -> None:
     from mjwalk.errors import PlanningError
     from mjwalk.gait.default import default_model
@@ -122,17 +178,7 @@ def run_walks(lengths: list[float], n_walks: int, **options) -> None:
     )
     warm = False
     for length in lengths:
-        pairs = []
-        while len(pairs) < n_walks:
-            a = rng.uniform([-17.5, -4.5], [17.5 - length, 4.5])
-            ang = rng.uniform(-0.25, 0.25)
-            b = a + length * np.array([np.cos(ang), np.sin(ang)])
-            if abs(b[1]) > 4.5 or b[0] > 17.5:
-                continue
-            c = hall.circles
-            if min(np.min(np.hypot(*(c[:, :2] - p).T) - c[:, 2]) for p in (a, b)) < 0.5:
-                continue
-            pairs.append((a, b))
+        pairs = _pairs(hall, length, n_walks, rng)
         exp, times, gtimes, gexp, ratios, lens, sways, fails = [], [], [], [], [], [], [], 0
         for k, (a, b) in enumerate(pairs):
             planner = HybridPlanner(wp, b, model, **options)
@@ -187,6 +233,8 @@ def main() -> None:
     ap.add_argument("--skip-setup", action="store_true")
     ap.add_argument("--skip-walks", action="store_true")
     ap.add_argument("--skip-cycles", action="store_true")
+    ap.add_argument("--skip-spread", action="store_true")
+    ap.add_argument("--budget", type=int, help="max_expansions (default: the planner's)")
     ap.add_argument("--setup-one", nargs=2, help=argparse.SUPPRESS)
     ap.add_argument("--weight", type=float, help="heuristic_weight (default: the planner's)")
     ap.add_argument("--far-weight", type=float, help="far_weight (0: the search before issue 18)")
@@ -200,7 +248,11 @@ def main() -> None:
         opts = {} if args.weight is None else {"heuristic_weight": args.weight}
         if args.far_weight is not None:
             opts["far_weight"] = args.far_weight
+        if args.budget is not None:
+            opts["max_expansions"] = args.budget
         run_walks(args.lengths, args.walks, **opts)
+        if not args.skip_spread:
+            run_spread([4, 8, 16, 32], 4, 10, **opts)
     if not args.skip_cycles:
         run_cycles(args.cycles)
 
