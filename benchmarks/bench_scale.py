@@ -6,9 +6,9 @@ Run: PYTHONPATH=. python3 benchmarks/bench_scale.py [--sizes 10 40 100] [--walks
 
 (a) Setup per generated hall (``mjwalk.world.generate``: width x width m, 0.4 obstacles per
     m^2 of boxes, cylinders and capsules, seed 0): footprints + clearance field + walk field +
-    8- and 16-connected occupancy grids, cold (cache off) and from the disk cache, each size
-    in a fresh process (peak RSS of that process). "before": the old code path
-    (``build_clearance_bruteforce`` + ``occupancy_grid_sampled``), run on the 10 m hall only
+    8- and 16-connected occupancy grids, cold (cache off) and from the disk cache (after one
+    build that stores it), each in a fresh process (peak RSS of that process). "before": the
+    old code path (``build_clearance_bruteforce`` + ``occupancy_grid_sampled``), 10 m hall only
     (issue 18 measured it at 40 m: 118.6 s for 640 boxes; at 100 m with 40 boxes: 107 s for
     the field, 25-32 s and 63-71 s for the grids, 4.85 GB).
 (b) Walk-length scaling on the cluttered 36 x 10 m hall (144 boxes, seed 0): for each length,
@@ -57,6 +57,13 @@ def setup_one(size: float, mode: str) -> dict:
     hall = generate_hall(size, seed=0)
     path = Path(tempfile.gettempdir()) / f"mjwalk_bench_hall_{size:g}.xml"
     hall.write(path)
+    # load the compiled kernels (numba's cache) on a 3 m hall first: a one-off per process
+    t0 = time.perf_counter()
+    tiny = generate_hall(3, seed=0).write(Path(tempfile.gettempdir()) / "mjwalk_bench_tiny.xml")
+    small = load_workplace(tiny, cache=False)
+    shared_grid(small)
+    occupancy_grid_sampled(small)
+    kernels = time.perf_counter() - t0
     t0 = time.perf_counter()
     if mode == "before":
         wp = load_workplace(path, cache=False)
@@ -65,13 +72,13 @@ def setup_one(size: float, mode: str) -> dict:
         occupancy_grid_sampled(wp)
         occupancy_grid_sampled(wp, moves=MOVES_16)
     else:
-        wp = load_workplace(path, cache=mode == "warm")
+        wp = load_workplace(path, cache=mode in ("store", "warm"))
         wp.walk_field()
         shared_grid(wp)
         shared_grid(wp, moves=MOVES_16)
     seconds = time.perf_counter() - t0
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # kB -> MB (Linux)
-    return {"size": size, "mode": mode, "seconds": seconds, "peak_mb": peak,
+    return {"size": size, "mode": mode, "seconds": seconds, "peak_mb": peak, "kernels": kernels,
             "obstacles": len(wp.obstacles), "nodes": int(np.prod(wp.clearance.shape))}  # fmt: skip
 
 
@@ -81,7 +88,7 @@ def run_setup(sizes: list[float]) -> None:
     with tempfile.TemporaryDirectory() as cache:
         env = {**__import__("os").environ, "MJWALK_CACHE_DIR": cache}
         for size in sizes:
-            modes = ["cold", "warm"] + (["before"] if size <= 10 else [])
+            modes = ["cold", "store", "warm"] + (["before"] if size <= 10 else [])
             res = {}
             for mode in modes:
                 out = subprocess.run(
@@ -90,6 +97,8 @@ def run_setup(sizes: list[float]) -> None:
                 )  # fmt: skip
                 r = json.loads(out.stdout.strip().splitlines()[-1])
                 res[mode] = r
+                if mode == "store":  # the first cached build: builds and writes the files
+                    continue
                 print(
                     f"{size:>6g} m {r['obstacles']:>9d} {r['nodes']:>11d} {mode:>7} "
                     f"{r['seconds']:>8.2f} {r['peak_mb']:>8.0f}"
@@ -98,7 +107,9 @@ def run_setup(sizes: list[float]) -> None:
                 print(
                     f"  RATIO before/cold: {res['before']['seconds'] / res['cold']['seconds']:.1f}"
                 )
-    print("  (peak MB includes the interpreter, MuJoCo and numba: about 200 MB at 0 nodes)")
+    print("  (seconds exclude loading the compiled kernels, once per process: 1-4 s; peak MB")
+    print("  includes the interpreter, MuJoCo and numba: about 250 MB at 0 nodes; warm: the")
+    print("  arrays mapped from the disk cache, as a second worker gets them)")
 
 
 def _pairs(hall, length: float, n: int, rng: np.random.Generator) -> list:
