@@ -439,11 +439,8 @@ EVERSION_LIMITED = {18: 0.03}
 #: The same walk's largest joint change per sample (degrees), pinned: at its step 16 the
 #: pelvis rises over the landing leg beyond the stance leg's reach and lowers again within a
 #: few samples (knee_r 15.2 deg in one sample; before the heel-rise fix hip_r_flex 37.9 deg).
-#: Walk 16 (a corridor walk; the far heuristic weight of issue 18 re-sampled the corridor's
-#: five walks): knee_l 6.2 deg between its samples 919 and 920, a bound pinned at 6.5 deg
-#: until the legs (issue 18 item 3) or the planner's stance-lean check look at it.
 #: Every other fixture walk keeps MAX_STEP_DEG.
-AWKWARD_JUMP_DEG = {18: 16.0, 16: 6.5}
+AWKWARD_JUMP_DEG = {18: 16.0}
 
 
 def test_planned_walks_stance_feet_stay_put(planned_walks):
