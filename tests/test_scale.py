@@ -119,3 +119,31 @@ def test_unwritable_cache_still_builds(hall10, tmp_path, monkeypatch):
     wp = load_workplace(hall10, cache=True)
     ref = load_workplace(hall10, cache=False)
     np.testing.assert_array_equal(wp.clearance.values, ref.clearance.values)
+
+
+@pytest.mark.slow
+def test_long_walks_through_clutter(tmp_path):
+    """30 m walks across the cluttered 36 x 10 m hall (144 boxes) plan within the default
+    expansion budget (before the far weight of issue 18, 11 of 20 32 m walks spent it) and
+    keep the body radius; a walk starting within LONG_WALK of its goal is the same walk with
+    and without the far weight."""
+    from mjwalk.gait.default import default_model
+    from mjwalk.plan.hybrid import LONG_WALK, plan_walk
+    from mjwalk.world.generate import free_points
+
+    hall = generate_hall(36, 10, kinds=("box",), seed=0)
+    wp = load_workplace(hall.write(tmp_path / "hall36.xml"), cache=False)
+    model = default_model(progress=False)
+    pts = free_points(hall, 400, np.random.default_rng(2))
+    far = pts[:, 0] < -14.0
+    a = pts[far][0]
+    b = pts[pts[:, 0] > a[0] + 29.5][0]
+    for k in range(3):
+        w = plan_walk(wp, a, b, model, rng=k)
+        assert w.meta["expansions"] < 4000
+        assert wp.walk_clearance(w.xy).min() >= 0.25 - 0.005
+    c = pts[(np.hypot(*(pts - a).T) > 5.0) & (np.hypot(*(pts - a).T) < 7.0)][0]
+    assert np.hypot(*(c - a)) < LONG_WALK
+    w1 = plan_walk(wp, a, c, model, rng=5)
+    w2 = plan_walk(wp, a, c, model, rng=5, far_weight=0.0)
+    np.testing.assert_array_equal(w1.xy, w2.xy)
