@@ -31,8 +31,8 @@ def _compiled_lookup(field, pts):
     """The planner's compiled bilinear lookup (stepcheck._clearance) at points (n, 2)."""
     from mjwalk.plan.stepcheck import _clearance
 
-    coef, (ny, nx) = field._coefficients(), field.values.shape
-    args = (coef, field.x0, field.y0, field.resolution, nx, ny)
+    (ny, nx) = field.values.shape
+    args = (field.values, field.x0, field.y0, field.resolution, nx, ny)
     return np.array([_clearance(*args, x, y) for x, y in pts])
 
 
@@ -210,7 +210,7 @@ def test_compiled_step_checks_agree_with_the_workplace_geometry(scenes_dir):
         rows, *_, accepted, drawn = stepcheck.check_steps(
             z, dec.matrix, dec.offset, len(z), len(z), np.array([yaw]), np.array([True]),
             np.zeros(1, bool), node, pl._thresholds, par, ipar,
-            wp.walk_field()._coefficients(), pl.distance.flat_bound(),
+            wp.walk_field().values, pl.distance.flat_bound(),
         )  # fmt: skip
         assert drawn[0] == len(z) and accepted[0] == len(rows)
         world = _to_world(start[0], start[1], yaw, local)

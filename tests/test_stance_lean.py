@@ -131,7 +131,7 @@ def test_check_steps_refuses_the_steps_the_stance_leg_cannot_follow(scenes_dir, 
     stance = np.array([foot_x, 0.05, FRAME])  # the landed right foot, beside the start
     args = (dec.matrix, dec.offset, len(z), len(z), np.array([FRAME]), np.array([True]),
             np.zeros(1, bool))  # fmt: skip
-    rest = (pl._thresholds, par, ipar, wp.walk_field()._coefficients(), pl.distance.flat_bound())
+    rest = (pl._thresholds, par, ipar, wp.walk_field().values, pl.distance.flat_bound())
     node = np.array([[0j, complex(stance[0], stance[1]), np.nan, 0.0, stance[2]]])
     rows = stepcheck.check_steps(z, *args, node, *rest)[0]
     node[0, 4] = np.nan

@@ -15,9 +15,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.conventions import BODY_RADIUS
 from mjwalk.errors import InputError, PlanningError
 from mjwalk.plan.walkpath import WalkPath
+from mjwalk.world.cache import cached_array, content_key
 from mjwalk.world.workplace import Workplace
 
 #: Default grid cell size (metres), as in agethen2018.
@@ -70,13 +72,110 @@ def segment_is_free(workplace: Workplace, a: np.ndarray, b: np.ndarray, radius: 
     return bool(np.all(workplace.walk_clearance(pts) >= radius))
 
 
+def _grid_origin(workplace: Workplace, cell: float) -> tuple[float, float]:
+    """Centre (x, y) of the grid's first cell, metres: the cells are centred on the floor."""
+    xmin, ymin, xmax, ymax = workplace.floor_bounds
+    nx = int(np.floor((xmax - xmin) / cell))
+    ny = int(np.floor((ymax - ymin) / cell))
+    return xmin + 0.5 * (xmax - xmin - (nx - 1) * cell), ymin + 0.5 * (
+        ymax - ymin - (ny - 1) * cell
+    )
+
+
+@njit
+def _walk_min(values, x0, y0, res, bounds, xs, ys, ts, sx, sy, js, is_, radius):
+    """For each cell (js[c], is_[c]): whether every point ``centre + ts[s] * (sx, sy)`` keeps
+    ``radius`` of walking clearance, with the arithmetic of :meth:`ClearanceField.__call__`
+    (bilinear) and :meth:`Workplace.edge_distance`; stops at a cell's first failing point."""
+    ny, nx = values.shape
+    out = np.empty(js.shape[0], dtype=np.bool_)
+    for c in range(js.shape[0]):
+        cx, cy = xs[is_[c]], ys[js[c]]
+        ok = True
+        for s in range(ts.shape[0]):
+            x = cx + ts[s] * sx
+            y = cy + ts[s] * sy
+            edge = min(x - bounds[0], bounds[2] - x, y - bounds[1], bounds[3] - y)
+            if edge < radius:
+                ok = False
+                break
+            fx = min(max((x - x0) / res, 0.0), nx - 1.000001)
+            fy = min(max((y - y0) / res, 0.0), ny - 1.000001)
+            ix = int(fx)
+            iy = int(fy)
+            tx = fx - ix
+            ty = fy - iy
+            v = (values[iy, ix] * (1 - tx) + values[iy, ix + 1] * tx) * (1 - ty) + (
+                values[iy + 1, ix] * (1 - tx) + values[iy + 1, ix + 1] * tx
+            ) * ty
+            if v < radius:
+                ok = False
+                break
+        out[c] = ok
+    return out
+
+
 def occupancy_grid(
     workplace: Workplace,
     cell: float = CELL_SIZE,
     radius: float = BODY_RADIUS,
     moves: list[tuple[int, int]] = MOVES_8,
 ) -> OccupancyGrid:
-    """Build the free-cell mask and the validity of each of ``moves`` for ``workplace``."""
+    """Build the free-cell mask and the validity of each of ``moves`` for ``workplace``.
+
+    A cell is free when the walking clearance at its centre is at least ``radius``; a move
+    when every point along it, every centimetre, is. The points are sampled only where the
+    clearance field leaves the answer open: the bilinear field is at most sqrt(2)-Lipschitz
+    (its nodes hold a 1-Lipschitz distance, so each partial derivative is at most 1) and the
+    edge distance 1-Lipschitz, so a move of length L whose two end cells both keep
+    ``radius + sqrt(2) L / 2`` is free throughout. Only the cells near obstacles and the
+    floor's edge are sampled, with the same points and arithmetic as before (the same grid).
+    """
+    xmin, ymin, xmax, ymax = workplace.floor_bounds
+    nx = int(np.floor((xmax - xmin) / cell))
+    ny = int(np.floor((ymax - ymin) / cell))
+    x0, y0 = _grid_origin(workplace, cell)
+    xs = x0 + cell * np.arange(nx)
+    ys = y0 + cell * np.arange(ny)
+    gx, gy = np.meshgrid(xs, ys)
+    centres = np.stack([gx, gy], axis=-1)
+    walk = workplace.walk_clearance(centres)
+    del gx, gy, centres
+    free = walk >= radius
+    f = workplace.clearance
+    bounds = np.asarray(workplace.floor_bounds, dtype=float)
+    valid = np.zeros((len(moves), ny, nx), dtype=bool)
+    for k, (di, dj) in enumerate(moves):
+        step = np.array([di, dj], dtype=float) * cell
+        length = float(np.linalg.norm(step))
+        n = int(np.ceil(length / _SAMPLE_SPACING)) + 1
+        ts = np.linspace(0.0, 1.0, n)
+        # the cells whose move target exists on the grid
+        src = (slice(max(0, -dj), ny - max(0, dj)), slice(max(0, -di), nx - max(0, di)))
+        dst = (slice(max(0, dj), ny - max(0, -dj)), slice(max(0, di), nx - max(0, -di)))
+        inner = np.zeros((ny, nx), dtype=bool)
+        inner[src] = True
+        sure = np.zeros((ny, nx), dtype=bool)
+        sure[src] = np.minimum(walk[src], walk[dst]) >= radius + _SQRT2 * length / 2 + 1e-9
+        open_ = free & inner & ~sure
+        js, is_ = np.nonzero(open_)
+        ok = sure & free
+        ok[js, is_] = _walk_min(
+            f.values, f.x0, f.y0, f.resolution, bounds, xs, ys, ts, step[0], step[1], js, is_,
+            float(radius),
+        )  # fmt: skip
+        valid[k] = ok
+    return OccupancyGrid(x0, y0, cell, radius, free, valid, tuple(moves))
+
+
+def occupancy_grid_sampled(
+    workplace: Workplace,
+    cell: float = CELL_SIZE,
+    radius: float = BODY_RADIUS,
+    moves: list[tuple[int, int]] = MOVES_8,
+) -> OccupancyGrid:
+    """:func:`occupancy_grid` the way it was first written (kept as the reference of tests and
+    ``benchmarks/bench_scale.py``): every move of every cell sampled every centimetre."""
     xmin, ymin, xmax, ymax = workplace.floor_bounds
     nx = int(np.floor((xmax - xmin) / cell))
     ny = int(np.floor((ymax - ymin) / cell))
@@ -132,7 +231,21 @@ def shared_grid(
     cache = workplace.__dict__.setdefault("_grids", {})
     key = (float(cell), float(radius), tuple(moves), id(workplace.clearance))
     if key not in cache:
-        cache[key] = occupancy_grid(workplace, cell, radius, moves)
+        if workplace.cache_key is None:
+            cache[key] = occupancy_grid(workplace, cell, radius, moves)
+        else:  # kept on disk beside the workplace's clearance field (mjwalk.world.cache)
+            disk = content_key(workplace.cache_key, "grid", *key[:3])
+            built: list[OccupancyGrid] = []
+
+            def build() -> OccupancyGrid:
+                if not built:
+                    built.append(occupancy_grid(workplace, cell, radius, moves))
+                return built[0]
+
+            free = cached_array(disk, "free", lambda: build().free)
+            valid = cached_array(disk, "moves", lambda: build().moves)
+            x0, y0 = _grid_origin(workplace, cell)
+            cache[key] = OccupancyGrid(x0, y0, cell, radius, free, valid, tuple(moves))
     return cache[key]
 
 

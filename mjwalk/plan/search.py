@@ -13,6 +13,12 @@ Everything is in one compiled function because an expansion is small: ten succes
 checked points each. As Python, the loop's bookkeeping (heap, closed set, node lists) cost as
 much as the draws. Nodes live in growing arrays; node 0 is the start. Random numbers come from
 the caller's Generator in the order the Python loop drew them.
+
+numba's on-disk cache of :func:`search` is keyed by this file only, not by the compiled
+functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_steps`,
+:func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change here, or processes
+keep running the old machine code. Last such change: issue 18 (the walk field read as node
+values; the far weight).
 """
 
 from __future__ import annotations

@@ -8,9 +8,9 @@ limit (bilinear lookup in the workplace's walk field), the leg-reach tests, the 
 lean test (:func:`stance_lean_ok`: the stance leg must follow the pelvis within the ankle's and
 the hip's sideways ranges; :func:`stance_lean` is its NumPy form), the closing-step test (a
 closing step must end in the goal area), and for the accepted steps the walked length
-g, f = g + weight·h, the closed-list key, heading and landing foot. As NumPy code this was some
-60 small array operations per call; here it is one loop over the rows (numba, see
-:mod:`mjwalk._jit`), with the same arithmetic.
+g, f = g + weight·h (plus far weight·(h - far from) beyond far from), the closed-list key,
+heading and landing foot. As NumPy code this was some 60 small array operations per call; here
+it is one loop over the rows (numba, see :mod:`mjwalk._jit`), with the same arithmetic.
 
 Rows are grouped by predecessor: row r belongs to node r // per and is a closing step when
 r % per >= n_walk. Per-row ``frame``/``left`` arrays (a start node's starters each turn their
@@ -60,8 +60,10 @@ from mjwalk._jit import njit
     P_INVERSION,
     P_ADDUCTION,
     P_ABDUCTION,
+    P_FAR_WEIGHT,
+    P_FAR_FROM,
     N_PARAMS,
-) = range(34)
+) = range(36)
 # Slots of the integer parameter vector.
 (
     I_M,
@@ -101,8 +103,10 @@ def iparams(**values) -> np.ndarray:
 
 @njit
 def _clearance(coef, x0, y0, res, nx, ny, x, y):
-    """:meth:`ClearanceField.__call__` at one point (x, y) (metres) from the field's cell
-    coefficients (:meth:`ClearanceField._coefficients`): bilinear clearance, metres."""
+    """:meth:`ClearanceField.__call__` at one point (x, y) (metres) from the field's node
+    values ``coef`` (ny, nx): bilinear clearance, metres, as value = a + b·tx + c·ty + d·tx·ty
+    with the cell's coefficients a = v00, b = v01 - v00, c = v10 - v00,
+    d = v11 - v10 - v01 + v00 formed on the fly (a table of them held four times the field)."""
     fx = (x - x0) / res
     fx = min(max(fx, 0.0), nx - 1.000001)
     fy = (y - y0) / res
@@ -111,8 +115,11 @@ def _clearance(coef, x0, y0, res, nx, ny, x, y):
     iy = int(fy)
     fx -= ix
     fy -= iy
-    c = iy * (nx - 1) + ix
-    return (coef[c, 3] * fy + coef[c, 1]) * fx + coef[c, 0] + fy * coef[c, 2]
+    v00 = coef[iy, ix]
+    v01 = coef[iy, ix + 1]
+    v10 = coef[iy + 1, ix]
+    v11 = coef[iy + 1, ix + 1]
+    return ((v11 - v10 - v01 + v00) * fy + (v01 - v00)) * fx + v00 + fy * (v10 - v00)
 
 
 @njit
@@ -256,7 +263,7 @@ def check_steps(
             (:func:`stance_lean_ok`).
         thr: (m + 4,) clearance limits of the pelvis samples, ankle, toes and the two knees.
         par, ipar: :func:`params` / :func:`iparams`.
-        coef: the walk field's bilinear cell coefficients (:meth:`ClearanceField._coefficients`).
+        coef: the walk field's node values (ny, nx) (:meth:`Workplace.walk_field`).
         dist: the goal distance's flat grid bound (:class:`~mjwalk.plan.heuristic.GoalDistance`).
 
     Returns:
@@ -380,9 +387,12 @@ def check_steps(
             if bound > h:
                 h = bound
         g = node[i, 3].real + seg
+        fh = par[P_WEIGHT] * h
+        if h > par[P_FAR_FROM]:  # farther than FAR_FROM from the goal: the far weight too
+            fh += par[P_FAR_WEIGHT] * (h - par[P_FAR_FROM])
         out_rows[cnt] = r
         out_keys[cnt] = cell_key(end, th, par, ipar)
-        out_f[cnt] = g + par[P_WEIGHT] * h
+        out_f[cnt] = g + fh
         out_g[cnt] = g
         out_end[cnt] = end
         out_th[cnt] = th

@@ -4,8 +4,8 @@ Every MuJoCo primitive is convex, so the projection of (geom ∩ slab) is a conv
 meshes (their convex hull) are clipped exactly as polytopes; curved primitives (sphere, capsule,
 cylinder, ellipsoid) are first tessellated into an inscribed polytope fine enough that the
 footprint is within 0.2 mm of the true one for geoms up to 1 m in size. Vertical capsules,
-cylinders and spheres that lie wholly inside the slab keep their exact round footprints
-(circle or stadium).
+cylinders and spheres keep their exact round footprints (circles), capsules lying wholly inside
+the slab their stadiums, and vertical (yaw-rotated) boxes their rectangles.
 """
 
 from __future__ import annotations
@@ -158,16 +158,30 @@ def geom_footprint(
     size = model.geom_size[g]
     axis = rot[:, 2]
     vertical = abs(abs(axis[2]) - 1.0) < 1e-9
-    # Exact round footprints where the shape allows.
-    if gtype == mujoco.mjtGeom.mjGEOM_SPHERE and pos[2] - size[0] >= z0 and pos[2] + size[0] <= z1:
-        return Footprint(name, g, pos[None, :2].copy(), float(size[0]))
-    if gtype in (mujoco.mjtGeom.mjGEOM_CAPSULE, mujoco.mjtGeom.mjGEOM_CYLINDER) and vertical:
-        top = pos[2] + size[1] + (size[0] if gtype == mujoco.mjtGeom.mjGEOM_CAPSULE else 0.0)
-        bot = pos[2] - size[1] - (size[0] if gtype == mujoco.mjtGeom.mjGEOM_CAPSULE else 0.0)
-        if top < z0 or bot > z1:
+    # Exact round footprints where the shape allows: a sphere, or a vertical capsule, cut by a
+    # horizontal slab projects to a circle (of the radius of its widest cross-section in the
+    # slab: r at a height within the capsule's cylinder, sqrt(r^2 - dz^2) dz above a centre).
+    if gtype == mujoco.mjtGeom.mjGEOM_SPHERE or (
+        gtype == mujoco.mjtGeom.mjGEOM_CAPSULE and vertical
+    ):
+        half = size[1] if gtype == mujoco.mjtGeom.mjGEOM_CAPSULE else 0.0
+        dz = max(0.0, z0 - (pos[2] + half), (pos[2] - half) - z1)
+        if dz > size[0]:
             return None
-        if gtype == mujoco.mjtGeom.mjGEOM_CYLINDER or (bot >= z0 and top <= z1):
-            return Footprint(name, g, pos[None, :2].copy(), float(size[0]))
+        return Footprint(name, g, pos[None, :2].copy(), float(np.sqrt(size[0] ** 2 - dz**2)))
+    if gtype == mujoco.mjtGeom.mjGEOM_CYLINDER and vertical:
+        if pos[2] + size[1] < z0 or pos[2] - size[1] > z1:
+            return None
+        return Footprint(name, g, pos[None, :2].copy(), float(size[0]))
+    if gtype == mujoco.mjtGeom.mjGEOM_BOX and vertical:  # a yaw-rotated box: its rectangle
+        if pos[2] + size[2] < z0 or pos[2] - size[2] > z1:
+            return None
+        ex, ey = rot[:2, 0] * size[0], rot[:2, 1] * size[1]
+        c = pos[:2]
+        verts = np.array([c - ex - ey, c + ex - ey, c + ex + ey, c - ex + ey])
+        if (ex[0] * ey[1] - ex[1] * ey[0]) < 0:  # a mirrored frame: keep counter-clockwise
+            verts = verts[::-1]
+        return Footprint(name, g, verts)
     if gtype == mujoco.mjtGeom.mjGEOM_CAPSULE:
         a, b = pos - axis * size[1], pos + axis * size[1]
         if min(a[2], b[2]) - size[0] >= z0 and max(a[2], b[2]) + size[0] <= z1:

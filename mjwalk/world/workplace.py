@@ -14,6 +14,7 @@ import numpy as np
 
 from mjwalk._args import finite_points, parse_point
 from mjwalk.errors import InputError, SceneError
+from mjwalk.world.cache import AUTO_NODES, cached_array, content_key
 from mjwalk.world.clearance import ClearanceField, build_clearance
 from mjwalk.world.footprint import Footprint, geom_footprint
 
@@ -64,6 +65,9 @@ class Workplace:
     clearance: ClearanceField
     stations: dict[str, Station] = field(default_factory=dict)
     z_range: tuple[float, float] = OBSTACLE_Z_RANGE
+    #: Content key of the arrays cached on disk (:mod:`mjwalk.world.cache`), None when the
+    #: workplace is not cached.
+    cache_key: str | None = None
 
     @property
     def obstacle_geoms(self) -> list[int]:
@@ -148,11 +152,21 @@ class Workplace:
         cached = getattr(self, "_walk_field", None)
         if cached is None:
             c = self.clearance
-            gx, gy = c.grid_xy()
-            xy = np.stack(np.meshgrid(gx, gy), axis=-1)
-            cached = ClearanceField(
-                c.x0, c.y0, c.resolution, np.minimum(c.values, self.edge_distance(xy))
-            )
+
+            def build() -> np.ndarray:
+                # the edge distance separates into a row and a column term (no (ny, nx, 2)
+                # coordinate array): the same minimum of the same four differences
+                gx, gy = c.grid_xy()
+                xmin, ymin, xmax, ymax = self.floor_bounds
+                ex = np.minimum(gx - xmin, xmax - gx)
+                ey = np.minimum(gy - ymin, ymax - gy)
+                return np.minimum(c.values, np.minimum(ex[None, :], ey[:, None]))
+
+            if self.cache_key is not None:
+                values = cached_array(self.cache_key, "walk", build)
+            else:
+                values = build()
+            cached = ClearanceField(c.x0, c.y0, c.resolution, values)
             self._walk_field = cached
         return cached
 
@@ -226,6 +240,7 @@ def workplace_from_model(
     include: str | None = None,
     exclude: str | None = None,
     humanoid_prefixes: tuple[str, ...] = HUMANOID_PREFIXES,
+    cache: bool | None = None,
 ) -> Workplace:
     """Prepare a compiled model for planning. See :func:`load_workplace` for the arguments."""
     label = str(source) if source else "scene"
@@ -266,7 +281,23 @@ def workplace_from_model(
             raise SceneError(f"{label}: the floor plane is infinite and there are no obstacles")
         b = np.array([f.bounds() for f in footprints])
         bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
-    clearance = build_clearance(footprints, bounds, resolution)
+    key = None
+    nx = int(np.floor((bounds[2] - bounds[0]) / resolution + 1e-9)) + 1
+    ny = int(np.floor((bounds[3] - bounds[1]) / resolution + 1e-9)) + 1
+    if cache if cache is not None else nx * ny >= AUTO_NODES:
+        key = content_key(
+            "clearance",
+            tuple(float(v) for v in bounds),
+            float(resolution),
+            [(len(f.vertices), float(f.radius)) for f in footprints],
+            arrays=[f.vertices for f in footprints],
+        )
+        values = cached_array(
+            key, "clearance", lambda: build_clearance(footprints, bounds, resolution).values
+        )
+        clearance = ClearanceField(bounds[0], bounds[1], resolution, values)
+    else:
+        clearance = build_clearance(footprints, bounds, resolution)
     stations = {}
     for s in range(model.nsite):
         sname = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_SITE, s)
@@ -285,6 +316,7 @@ def workplace_from_model(
         clearance=clearance,
         stations=stations,
         z_range=z_range,
+        cache_key=key,
     )
 
 
@@ -297,6 +329,7 @@ def load_workplace(
     include: str | None = None,
     exclude: str | None = None,
     humanoid_prefixes: tuple[str, ...] = HUMANOID_PREFIXES,
+    cache: bool | None = None,
 ) -> Workplace:
     """Load an MJCF workplace: its floor, obstacle geoms, clearance field and named sites.
 
@@ -309,6 +342,10 @@ def load_workplace(
         include, exclude: regular expressions on geom names selecting/rejecting obstacles.
         humanoid_prefixes: bodies (and their children) whose names start with one of these are
             a humanoid and never obstacles.
+        cache: keep the clearance field, walk field and occupancy grids on disk, keyed by the
+            footprints' geometry, and map them into memory (:mod:`mjwalk.world.cache`; workers
+            planning in one hall then share one copy). None (default): for fields of at least
+            a million nodes (about 20 x 20 m).
 
     Raises:
         SceneError: missing file, malformed MJCF, no floor, unsupported obstacle geom.
@@ -324,6 +361,7 @@ def load_workplace(
         include=include,
         exclude=exclude,
         humanoid_prefixes=humanoid_prefixes,
+        cache=cache,
     )
 
 
