@@ -356,10 +356,14 @@ def _scenes(timeline, camera, size, frames, draw_path, progress, fast, view):
             yield int(i), r
 
 
-#: Frame buffers between the drawing loop and the encoder thread: enough to ride out the
-#: encoder's jitter (a pipe write blocks while ffmpeg encodes), few enough to stay small
-#: (640x480x3 bytes each).
-N_BUFFERS = 4
+#: Drawing threads of :func:`render_video`, each with its own OpenGL context: while one
+#: waits for Mesa's rasterizer threads to finish its frame, the other prepares the next
+#: (software OpenGL does the vertex work in the calling thread). Two fill both cores of the
+#: 2-core test machine with the encoder.
+N_DRAWERS = 2
+#: Frame buffers per drawing thread: a drawer runs at most this many frames ahead of the
+#: encoder (640x480x3 bytes each).
+N_BUFFERS = 2
 #: H.264 settings of the videos: imageio-ffmpeg's quality 7 (x264 CRF 15) at x264's
 #: ``veryfast`` preset, which halves the encoder's CPU time against the default ``medium``
 #: (300 station frames: 1.9 s vs 4.1 s of CPU) for 50.8 dB PSNR against the rendered frames
@@ -379,31 +383,71 @@ def video_frames(timeline: Timeline, fps: float) -> np.ndarray:
     )
 
 
-class _Encoder:
-    """H.264 encoding in a thread beside the drawing loop.
+class _Drawer:
+    """One drawing thread of :func:`render_video`: draws every ``n``-th frame from ``first``
+    into its own preallocated buffers (rows bottom-up) and hands ``(frame, buffer index)`` to
+    the encoder through ``done``; a buffer is reused once the encoder gives its index back
+    through ``free``. An exception is handed over instead of a frame."""
 
-    The drawing loop reads each frame into one of ``n`` preallocated buffers (:meth:`buffer`
-    hands out a free one, waiting while all are in flight) and passes it on with
-    :meth:`submit`; the thread flips it top-down into its own buffer, frees the slot and
-    writes the bytes to ffmpeg's stdin (imageio-ffmpeg; the pipe write releases the GIL,
-    ffmpeg encodes in its own process). No per-frame allocation on either side. An error in
-    the thread is raised in the drawing loop at its next call.
-    """
-
-    def __init__(self, path, size: tuple[int, int], fps: float, n: int = N_BUFFERS):
+    def __init__(self, timeline, camera, size, frames, geoms, view, lock):
         import queue
+
+        self.args = (timeline, camera, size, frames, geoms, view, lock)
+        w, h = int(size[0]), int(size[1])
+        self.bufs = [np.empty((h, w, 3), np.uint8) for _ in range(N_BUFFERS)]
+        self.free: queue.Queue = queue.Queue()
+        self.done: queue.Queue = queue.Queue()
+        for b in range(N_BUFFERS):
+            self.free.put(b)
+        self.thread = None
+        self.stopping = False
+
+    def start(self) -> None:
         import threading
 
+        self.thread = threading.Thread(target=self._run, name="mjwalk-draw", daemon=True)
+        self.thread.start()
+
+    def stop(self) -> None:
+        """Let the thread finish (it exits at its next wait for a buffer)."""
+        self.stopping = True
+        self.free.put(None)
+        if self.thread is not None:
+            self.thread.join()
+
+    def _run(self) -> None:
+        timeline, camera, size, frames, geoms, view, lock = self.args
+        try:
+            with lock:  # Offscreen briefly changes the model's visual options
+                r = Offscreen(timeline.model, size)
+            with r:
+                update = _SceneUpdater(timeline.model, r.scene, geoms)
+                data = mujoco.MjData(timeline.model)
+                cam = mujoco.MjvCamera()
+                for i in frames:
+                    b = self.free.get()
+                    if b is None or self.stopping:
+                        return
+                    data.qpos[:] = timeline.qpos[i]
+                    mujoco.mj_kinematics(timeline.model, data)
+                    _set_camera(cam, timeline, int(i), camera, size, view)
+                    update(data, cam)
+                    r.read_into(self.bufs[b])
+                    self.done.put((int(i), b))
+        except BaseException as exc:  # handed to the encoding thread
+            self.done.put(exc)
+
+
+class _Video:
+    """ffmpeg (imageio-ffmpeg) writing H.264 from top-down RGB frames; no per-frame
+    allocation: each frame is flipped into one reused buffer, whose bytes go down the pipe
+    (the write releases the GIL; ffmpeg encodes in its own process)."""
+
+    def __init__(self, path, size: tuple[int, int], fps: float):
         import imageio_ffmpeg
 
         w, h = int(size[0]), int(size[1])
-        self.bufs = [np.empty((h, w, 3), np.uint8) for _ in range(n)]
         self._flip = np.empty((h, w, 3), np.uint8)
-        self._free: queue.Queue = queue.Queue()
-        self._full: queue.Queue = queue.Queue()
-        for b in range(n):
-            self._free.put(b)
-        self._error: BaseException | None = None
         self._writer = imageio_ffmpeg.write_frames(
             str(path),
             (w, h),
@@ -415,41 +459,14 @@ class _Encoder:
             output_params=["-preset", VIDEO_PRESET],
         )
         self._writer.send(None)  # start ffmpeg
-        self._thread = threading.Thread(target=self._run, name="mjwalk-encoder", daemon=True)
-        self._thread.start()
 
-    def _run(self) -> None:
-        try:
-            while (b := self._full.get()) is not None:
-                np.copyto(self._flip, self.bufs[b][::-1])
-                self._free.put(b)
-                self._writer.send(self._flip)
-        except BaseException as exc:  # handed to the drawing loop
-            self._error = exc
-            self._free.put(-1)
-            while self._full.get() is not None:  # drain until close()
-                pass
-
-    def buffer(self) -> int:
-        """Index of a free buffer (waits for the encoder)."""
-        b = self._free.get()
-        if b < 0:
-            raise MjwalkError(f"video encoding failed: {self._error}") from self._error
-        return b
-
-    def submit(self, b: int) -> None:
-        """Queue buffer ``b`` (rows bottom-up) as the next frame."""
-        self._full.put(b)
+    def write_bottom_up(self, buf: np.ndarray) -> None:
+        """Append a frame stored bottom-up (as OpenGL reads it)."""
+        np.copyto(self._flip, buf[::-1])
+        self._writer.send(self._flip)
 
     def close(self) -> None:
-        """Finish the queued frames and the file; raise what went wrong in the thread."""
-        self._full.put(None)
-        self._thread.join()
-        try:
-            self._writer.close()
-        finally:
-            if self._error is not None:
-                raise MjwalkError(f"video encoding failed: {self._error}") from self._error
+        self._writer.close()
 
 
 def render_video(
@@ -464,8 +481,9 @@ def render_video(
 ) -> None:
     """Render the timeline offscreen to an mp4 (H.264 via imageio-ffmpeg), atomically.
 
-    Drawing runs in this thread, encoding in another (:class:`_Encoder`), so a frame costs
-    about the larger of the two rather than their sum.
+    :data:`N_DRAWERS` threads draw alternate frames, each in its own OpenGL context, while
+    this thread puts the frames in order and feeds them to ffmpeg (:class:`_Video`), so
+    drawing, rasterizing and encoding overlap instead of adding up.
 
     Args:
         timeline: the poses to show.
@@ -478,6 +496,10 @@ def render_video(
         draw_path: draw the planned path and footprints into the scene.
         view: the tracking camera's viewpoints (computed when None).
     """
+    import threading
+
+    from tqdm import tqdm
+
     if camera not in CAMERAS:
         raise MjwalkError(f"render_video: unknown camera {camera!r}; use one of {CAMERAS}")
     w, h = int(size[0]), int(size[1])
@@ -487,12 +509,27 @@ def render_video(
     if not np.isfinite(fps) or fps <= 0:
         raise MjwalkError(f"render_video: fps must be a positive number, got {fps}")
     frames = video_frames(timeline, fps)
+    if camera == "track" and view is None:
+        view = track_view(timeline)
+    geoms = path_geoms(timeline) if draw_path else []
+    lock = threading.Lock()
+    n = min(N_DRAWERS, len(frames))
+    drawers = [_Drawer(timeline, camera, (w, h), frames[k::n], geoms, view, lock) for k in range(n)]
     with atomic_path(path, suffix=".mp4") as tmp:
-        enc = _Encoder(tmp, (w, h), fps)
+        video = _Video(tmp, (w, h), fps)
         try:
-            for _, r in _scenes(timeline, camera, (w, h), frames, draw_path, progress, True, view):
-                b = enc.buffer()
-                r.read_into(enc.bufs[b])
-                enc.submit(b)
+            for d in drawers:
+                d.start()
+            for k in tqdm(range(len(frames)), disable=not progress, desc="render", unit="frame"):
+                d = drawers[k % n]
+                got = d.done.get()
+                if isinstance(got, BaseException):
+                    if isinstance(got, MjwalkError):
+                        raise got
+                    raise MjwalkError(f"render_video: drawing failed: {got}") from got
+                video.write_bottom_up(d.bufs[got[1]])
+                d.free.put(got[1])
         finally:
-            enc.close()
+            for d in drawers:
+                d.stop()
+            video.close()
