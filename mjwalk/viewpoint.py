@@ -25,6 +25,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.body.humanoid import HUMAN_GROUP
+from mjwalk.errors import MjwalkError
 
 if TYPE_CHECKING:
     from mjwalk.timeline.timeline import Timeline
@@ -107,7 +108,7 @@ class _SightLines:
         ids = [mujoco.mj_name2id(self.model, mujoco.mjtObj.mjOBJ_BODY, prefix + t) for t in TARGETS]
         if min(ids) < 0:
             missing = [t for t, i in zip(TARGETS, ids, strict=True) if i < 0]
-            raise ValueError(f"track_view: the humanoid has no bodies {missing}")
+            raise MjwalkError(f"track_view: the humanoid has no bodies {missing}")
         self.ids = np.array(ids)
         self.group = np.ones(mujoco.mjNGROUP, np.uint8)
         self.group[HUMAN_GROUP] = 0
