@@ -14,7 +14,7 @@ from test_legs import make_walk
 
 from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.errors import MjwalkError
-from mjwalk.playback import timeline_from_walk
+from mjwalk.timeline import timeline_from_walk
 from mjwalk.viewpoint import (
     MAX_TURN_RATE,
     TARGETS,
