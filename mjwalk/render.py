@@ -23,7 +23,7 @@ import numpy as np  # noqa: E402
 
 from mjwalk._io import atomic_path  # noqa: E402
 from mjwalk.body.humanoid import HUMAN_GROUP  # noqa: E402
-from mjwalk.errors import MjwalkError  # noqa: E402
+from mjwalk.errors import InputError, MjwalkError  # noqa: E402
 from mjwalk.timeline.timeline import Timeline  # noqa: E402
 from mjwalk.viewpoint import (  # noqa: E402
     LOOKAT_HEIGHT,
@@ -502,12 +502,15 @@ def render_video(
 
     if camera not in CAMERAS:
         raise MjwalkError(f"render_video: unknown camera {camera!r}; use one of {CAMERAS}")
-    w, h = int(size[0]), int(size[1])
-    if w < 1 or h < 1:
-        raise MjwalkError(f"render_video: image size must be positive, got {w}x{h}")
+    w, h = (int(v) for v in size)
+    if min(w, h) < 16 or w % 2 or h % 2:
+        raise InputError(
+            f"render_video: size {w}x{h}: width and height must be even numbers of "
+            "pixels, at least 16 (H.264)"
+        )
     fps = float(timeline.fps if fps is None else fps)
-    if not np.isfinite(fps) or fps <= 0:
-        raise MjwalkError(f"render_video: fps must be a positive number, got {fps}")
+    if not (np.isfinite(fps) and fps > 0):
+        raise InputError(f"render_video: fps must be a positive number, got {fps!r}")
     frames = video_frames(timeline, fps)
     if camera == "track" and view is None:
         view = track_view(timeline)
