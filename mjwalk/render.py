@@ -25,6 +25,14 @@ from mjwalk._io import atomic_path  # noqa: E402
 from mjwalk.body.humanoid import HUMAN_GROUP  # noqa: E402
 from mjwalk.errors import InputError, MjwalkError  # noqa: E402
 from mjwalk.timeline.timeline import Timeline  # noqa: E402
+from mjwalk.viewpoint import (  # noqa: E402
+    LOOKAT_HEIGHT,
+    TRACK_DISTANCE,
+    TRACK_ELEVATION,
+    TrackView,
+    preferred_azimuth,
+    track_view,
+)
 
 #: Colour of the drawn path (RGBA) and of the drawn footprints (left, right).
 PATH_RGBA = np.array([1.0, 0.55, 0.0, 1.0], dtype=np.float32)
@@ -35,55 +43,44 @@ FOOT_RGBA = (
 CAMERAS = ("track", "top")
 
 
-def _renderer(model: mujoco.MjModel, size: tuple[int, int]) -> mujoco.Renderer:
-    width, height = size
-    model.vis.global_.offwidth = max(int(model.vis.global_.offwidth), int(width))
-    model.vis.global_.offheight = max(int(model.vis.global_.offheight), int(height))
-    try:
-        return mujoco.Renderer(model, height=int(height), width=int(width))
-    except Exception as exc:
-        backend = os.environ.get("MUJOCO_GL", "")
-        avail = available_backend()
-        if backend in ("", "glfw") and avail != "none":
-            raise MjwalkError(
-                f"offscreen rendering failed: MUJOCO_GL={backend or 'unset'} uses GLFW, which "
-                f"needs a display ({exc}); run with MUJOCO_GL={avail} set in the environment "
-                f"({avail} is available here)"
-            ) from exc
-        hint = {
-            "egl": "install the Debian package libegl1 (and a Mesa EGL driver, libegl-mesa0), "
-            "or set MUJOCO_GL=osmesa with libosmesa6 installed",
-            "osmesa": "install the Debian package libosmesa6, or set MUJOCO_GL=egl with libegl1",
-        }.get(
-            backend,
-            "install the Debian package libegl1 (MUJOCO_GL=egl) or libosmesa6 (MUJOCO_GL=osmesa)",
-        )
-        raise MjwalkError(
-            f"offscreen rendering failed (MUJOCO_GL={backend or 'unset'}): {exc}; {hint}"
-        ) from exc
-
-
-def camera_for(timeline: Timeline, frame: int, camera: str, size=(640, 480)) -> mujoco.MjvCamera:
+def camera_for(
+    timeline: Timeline,
+    frame: int,
+    camera: str,
+    size=(640, 480),
+    view: TrackView | None = None,
+) -> mujoco.MjvCamera:
     """The free camera of ``camera`` ("track" or "top") at ``frame``.
 
-    ``track`` looks at the pelvis from 3.5 m, 15 deg above, from the walker's left side (relative
-    to the start heading of the walk). ``top`` looks straight down on the whole walk (path and
-    the humanoid's whole extent), +x to the right and +y up in the image.
+    ``track`` looks at the pelvis from :data:`~mjwalk.viewpoint.TRACK_DISTANCE` (3.5 m), from
+    the azimuth and elevation of ``view`` (:func:`~mjwalk.viewpoint.track_view`) or, without
+    one, from 15 deg above on the walker's left side (relative to the start heading of the
+    walk). ``top`` looks straight down on the whole walk (path and the humanoid's whole
+    extent), +x to the right and +y up in the image.
     """
     if camera not in CAMERAS:
         raise MjwalkError(f"render: unknown camera {camera!r}; use one of {CAMERAS}")
     cam = mujoco.MjvCamera()
+    _set_camera(cam, timeline, frame, camera, size, view)
+    return cam
+
+
+def _set_camera(cam, timeline: Timeline, frame: int, camera: str, size, view) -> None:
+    """Write the free camera of :func:`camera_for` into ``cam``."""
     cam.type = mujoco.mjtCamera.mjCAMERA_FREE
-    root = timeline.root()
+    r = timeline.jointmap.root
     if camera == "track":
-        r = timeline.jointmap.root
-        q = timeline.qpos[0, r + 3 : r + 7]
-        yaw0 = 2 * np.arctan2(q[3], q[0])
-        cam.lookat[:] = [root[frame, 0], root[frame, 1], 0.9 * root[frame, 2]]
-        cam.distance = 3.5
-        cam.elevation = -15.0
-        cam.azimuth = float(np.rad2deg(yaw0)) - 90.0
+        x, y, z = timeline.qpos[frame, r : r + 3]
+        cam.lookat[:] = [x, y, LOOKAT_HEIGHT * z]
+        cam.distance = TRACK_DISTANCE
+        if view is None:
+            cam.elevation = TRACK_ELEVATION
+            cam.azimuth = preferred_azimuth(timeline)
+        else:
+            cam.elevation = float(view.elevation[frame])
+            cam.azimuth = float(view.azimuth[frame])
     else:
+        root = timeline.root()
         lo = root[:, :2].min(0) - 1.0
         hi = root[:, :2].max(0) + 1.0
         centre = 0.5 * (lo + hi)
@@ -94,7 +91,6 @@ def camera_for(timeline: Timeline, frame: int, camera: str, size=(640, 480)) -> 
         cam.distance = float(half / np.tan(fovy / 2))
         cam.elevation = -90.0
         cam.azimuth = 90.0
-    return cam
 
 
 def project(renderer: mujoco.Renderer, points: np.ndarray) -> np.ndarray:
@@ -184,6 +180,138 @@ def _draw_path(scn: mujoco.MjvScene, geoms: list[tuple]) -> None:
         scn.ngeom += 1
 
 
+class Offscreen:
+    """An offscreen OpenGL context of exactly ``width`` x ``height`` pixels with its scene.
+
+    Unlike :class:`mujoco.Renderer`, :meth:`read_into` reads the frame into a caller's buffer
+    with no allocation and no flip (OpenGL's rows run bottom-up), and the framebuffer is
+    sized to the image, not to the model's ``offwidth`` x ``offheight`` (1280 x 960 in the
+    station scene). ``scene``, ``width`` and ``height`` are what :func:`project` reads.
+
+    Args:
+        model: the compiled model (its visual options are restored after the context is made).
+        size: (width, height) in pixels.
+        fast: no multisampling, shadows or reflections (software OpenGL: see
+            :func:`render_frames`).
+    """
+
+    def __init__(self, model: mujoco.MjModel, size: tuple[int, int], fast: bool = True):
+        width, height = int(size[0]), int(size[1])
+        if width < 1 or height < 1:
+            raise MjwalkError(f"render: image size must be positive, got {width}x{height}")
+        self.model = model
+        self.width, self.height = width, height
+        self.rect = mujoco.MjrRect(0, 0, width, height)
+        self.scene = mujoco.MjvScene(model, maxgeom=10000)
+        self._gl = None
+        self._con = None
+        g, q = model.vis.global_, model.vis.quality
+        saved = (int(g.offwidth), int(g.offheight), int(q.offsamples))
+        g.offwidth, g.offheight = width, height
+        if fast:  # multisampling costs ~4x on software OpenGL (llvmpipe)
+            q.offsamples = 0
+        try:
+            self._gl = mujoco.GLContext(width, height)
+            self._gl.make_current()
+            self._con = mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_150.value)
+            mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN.value, self._con)
+        except Exception as exc:
+            self.close()
+            raise _gl_error(exc) from exc
+        finally:
+            g.offwidth, g.offheight, q.offsamples = saved
+        if fast:  # shadows and reflections cost much of the rest
+            self.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = False
+            self.scene.flags[mujoco.mjtRndFlag.mjRND_REFLECTION] = False
+
+    def read_into(self, buf: np.ndarray) -> np.ndarray:
+        """Draw the scene and read the RGB frame into ``buf`` ((H, W, 3) uint8, C-contiguous),
+        rows bottom-up as OpenGL stores them (``buf[::-1]`` is the image)."""
+        self._gl.make_current()
+        mujoco.mjr_render(self.rect, self.scene, self._con)
+        mujoco.mjr_readPixels(buf, None, self.rect, self._con)
+        return buf
+
+    def render(self) -> np.ndarray:
+        """Draw the scene; a new (H, W, 3) uint8 image, rows top-down."""
+        buf = np.empty((self.height, self.width, 3), np.uint8)
+        return np.ascontiguousarray(self.read_into(buf)[::-1])
+
+    def close(self) -> None:
+        """Free the OpenGL resources (idempotent)."""
+        if self._con is not None:
+            self._gl.make_current()
+            self._con.free()
+            self._con = None
+        if self._gl is not None:
+            self._gl.free()
+            self._gl = None
+
+    def __enter__(self) -> Offscreen:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+def _gl_error(exc: Exception) -> MjwalkError:
+    """The MjwalkError that names the missing OpenGL piece behind ``exc``."""
+    backend = os.environ.get("MUJOCO_GL", "")
+    avail = available_backend()
+    if backend in ("", "glfw") and avail != "none":
+        return MjwalkError(
+            f"offscreen rendering failed: MUJOCO_GL={backend or 'unset'} uses GLFW, which "
+            f"needs a display ({exc}); run with MUJOCO_GL={avail} set in the environment "
+            f"({avail} is available here)"
+        )
+    hint = {
+        "egl": "install the Debian package libegl1 (and a Mesa EGL driver, libegl-mesa0), "
+        "or set MUJOCO_GL=osmesa with libosmesa6 installed",
+        "osmesa": "install the Debian package libosmesa6, or set MUJOCO_GL=egl with libegl1",
+    }.get(
+        backend,
+        "install the Debian package libegl1 (MUJOCO_GL=egl) or libosmesa6 (MUJOCO_GL=osmesa)",
+    )
+    return MjwalkError(
+        f"offscreen rendering failed (MUJOCO_GL={backend or 'unset'}): {exc}; {hint}"
+    )
+
+
+class _SceneUpdater:
+    """Per-frame scene update with the path geoms kept in the scene's first slots.
+
+    :func:`mujoco.mjv_updateScene` empties the scene, so adding ~400 path boxes after it costs
+    ~5 ms of Python per frame. Instead the boxes are written once into slots ``0..k-1`` and
+    each frame appends the model's geoms after them (``mjv_addGeoms``), then updates the
+    camera and the lights, the same calls in the same order as ``mjv_updateScene`` (MuJoCo
+    4.0) for a model without plugins, flexes or skins (others take the general path).
+    """
+
+    def __init__(self, model: mujoco.MjModel, scene: mujoco.MjvScene, geoms: list[tuple]):
+        self.model, self.scene = model, scene
+        self.opt = mujoco.MjvOption()
+        self.opt.geomgroup[HUMAN_GROUP] = 1  # MuJoCo shows groups 0-2 only by default
+        self.geoms = geoms
+        self.prefix = bool(geoms) and model.nplugin == 0 and model.nflex == 0 and model.nskin == 0
+        self.catmask = mujoco.mjtCatBit.mjCAT_ALL.value
+        self.pert = mujoco.MjvPerturb()  # nothing selected: draws nothing, as NULL would
+        if self.prefix:
+            scene.ngeom = 0
+            _draw_path(scene, geoms)
+            self.n_prefix = scene.ngeom
+
+    def __call__(self, data: mujoco.MjData, cam: mujoco.MjvCamera) -> None:
+        m, scn = self.model, self.scene
+        if self.prefix:
+            scn.ngeom = self.n_prefix
+            mujoco.mjv_addGeoms(m, data, self.opt, self.pert, self.catmask, scn)
+            mujoco.mjv_updateCamera(m, data, cam, scn)
+            mujoco.mjv_makeLights(m, data, scn)
+        else:
+            mujoco.mjv_updateScene(m, data, self.opt, None, cam, self.catmask, scn)
+            _draw_path(scn, self.geoms)
+
+
 def render_frames(
     timeline: Timeline,
     camera: str = "track",
@@ -192,38 +320,153 @@ def render_frames(
     draw_path: bool = True,
     progress: bool = False,
     fast: bool = True,
+    view: TrackView | None = None,
 ):
     """Yield ``(frame_index, rgb image (H, W, 3) uint8, renderer)`` for the timeline's frames.
 
-    ``fast`` turns multisampling, shadows and reflections off (about 8x faster on software
-    OpenGL: 640x480 at ~25 fps instead of ~3 on this project's 2-core test machine)."""
+    Each image is a new array, rows top-down. ``fast`` turns multisampling, shadows and
+    reflections off (about 8x faster on software OpenGL: 640x480 at ~25 fps instead of ~3 on
+    this project's 2-core test machine). The ``track`` camera follows :func:`track_view`
+    (a clear line of sight to the legs), computed here unless ``view`` is given.
+    """
+    for i, r in _scenes(timeline, camera, size, frames, draw_path, progress, fast, view):
+        yield i, r.render(), r
+
+
+def _scenes(timeline, camera, size, frames, draw_path, progress, fast, view):
+    """Yield ``(frame_index, Offscreen)`` with the scene of each frame ready to draw."""
     from tqdm import tqdm
 
+    if camera not in CAMERAS:
+        raise MjwalkError(f"render: unknown camera {camera!r}; use one of {CAMERAS}")
     model = timeline.model
-    samples = int(model.vis.quality.offsamples)
-    if fast:  # multisampling costs ~4x on software OpenGL (llvmpipe)
-        model.vis.quality.offsamples = 0
-    try:
-        renderer = _renderer(model, size)
-    finally:
-        model.vis.quality.offsamples = samples
-    data = mujoco.MjData(model)
     idx = range(timeline.n_frames) if frames is None else frames
-    opt = mujoco.MjvOption()
-    opt.geomgroup[HUMAN_GROUP] = 1  # MuJoCo shows groups 0-2 only by default
-    if fast:  # ... and much of the rest on shadows and reflections
-        renderer.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = False
-        renderer.scene.flags[mujoco.mjtRndFlag.mjRND_REFLECTION] = False
+    if camera == "track" and view is None:
+        view = track_view(timeline)
     geoms = path_geoms(timeline) if draw_path else []
-    try:
+    with Offscreen(model, size, fast=fast) as r:
+        update = _SceneUpdater(model, r.scene, geoms)
+        data = mujoco.MjData(model)
+        cam = mujoco.MjvCamera()
         for i in tqdm(idx, disable=not progress, desc="render", unit="frame"):
             data.qpos[:] = timeline.qpos[i]
             mujoco.mj_kinematics(model, data)
-            renderer.update_scene(data, camera_for(timeline, i, camera, size), scene_option=opt)
-            _draw_path(renderer.scene, geoms)
-            yield i, renderer.render(), renderer
-    finally:
-        renderer.close()
+            _set_camera(cam, timeline, int(i), camera, size, view)
+            update(data, cam)
+            yield int(i), r
+
+
+#: Drawing threads of :func:`render_video`, each with its own OpenGL context: while one
+#: waits for Mesa's rasterizer threads to finish its frame, the other prepares the next
+#: (software OpenGL does the vertex work in the calling thread). Two fill both cores of the
+#: 2-core test machine with the encoder.
+N_DRAWERS = 2
+#: Frame buffers per drawing thread: a drawer runs at most this many frames ahead of the
+#: encoder (640x480x3 bytes each).
+N_BUFFERS = 2
+#: H.264 settings of the videos: imageio-ffmpeg's quality 7 (x264 CRF 15) at x264's
+#: ``veryfast`` preset, which halves the encoder's CPU time against the default ``medium``
+#: (300 station frames: 1.9 s vs 4.1 s of CPU) for 50.8 dB PSNR against the rendered frames
+#: (medium: 54.8 dB) and a file of the same size (763 vs 810 kB). Measured with ffmpeg 9.0.2
+#: of imageio-ffmpeg 0.8.1 on frames from benchmarks/bench_render.py
+#: (``ffmpeg -f rawvideo ... -crf 15 -preset P``, ``-lavfi psnr``).
+VIDEO_CODEC = "libx264"
+VIDEO_QUALITY = 7
+VIDEO_PRESET = "veryfast"
+
+
+def video_frames(timeline: Timeline, fps: float) -> np.ndarray:
+    """Indices of the timeline frames shown at ``fps`` frames per second, in real time."""
+    n_out = max(1, int(np.floor(timeline.duration * fps + 1e-9)) + 1)
+    return np.clip(
+        np.round(np.arange(n_out) / fps * timeline.fps).astype(int), 0, timeline.n_frames - 1
+    )
+
+
+class _Drawer:
+    """One drawing thread of :func:`render_video`: draws every ``n``-th frame from ``first``
+    into its own preallocated buffers (rows bottom-up) and hands ``(frame, buffer index)`` to
+    the encoder through ``done``; a buffer is reused once the encoder gives its index back
+    through ``free``. An exception is handed over instead of a frame."""
+
+    def __init__(self, timeline, camera, size, frames, geoms, view, lock):
+        import queue
+
+        self.args = (timeline, camera, size, frames, geoms, view, lock)
+        w, h = int(size[0]), int(size[1])
+        self.bufs = [np.empty((h, w, 3), np.uint8) for _ in range(N_BUFFERS)]
+        self.free: queue.Queue = queue.Queue()
+        self.done: queue.Queue = queue.Queue()
+        for b in range(N_BUFFERS):
+            self.free.put(b)
+        self.thread = None
+        self.stopping = False
+
+    def start(self) -> None:
+        import threading
+
+        self.thread = threading.Thread(target=self._run, name="mjwalk-draw", daemon=True)
+        self.thread.start()
+
+    def stop(self) -> None:
+        """Let the thread finish (it exits at its next wait for a buffer)."""
+        self.stopping = True
+        self.free.put(None)
+        if self.thread is not None:
+            self.thread.join()
+
+    def _run(self) -> None:
+        timeline, camera, size, frames, geoms, view, lock = self.args
+        try:
+            with lock:  # Offscreen briefly changes the model's visual options
+                r = Offscreen(timeline.model, size)
+            with r:
+                update = _SceneUpdater(timeline.model, r.scene, geoms)
+                data = mujoco.MjData(timeline.model)
+                cam = mujoco.MjvCamera()
+                for i in frames:
+                    b = self.free.get()
+                    if b is None or self.stopping:
+                        return
+                    data.qpos[:] = timeline.qpos[i]
+                    mujoco.mj_kinematics(timeline.model, data)
+                    _set_camera(cam, timeline, int(i), camera, size, view)
+                    update(data, cam)
+                    r.read_into(self.bufs[b])
+                    self.done.put((int(i), b))
+        except BaseException as exc:  # handed to the encoding thread
+            self.done.put(exc)
+
+
+class _Video:
+    """ffmpeg (imageio-ffmpeg) writing H.264 from top-down RGB frames; no per-frame
+    allocation: each frame is flipped into one reused buffer, whose bytes go down the pipe
+    (the write releases the GIL; ffmpeg encodes in its own process)."""
+
+    def __init__(self, path, size: tuple[int, int], fps: float):
+        import imageio_ffmpeg
+
+        w, h = int(size[0]), int(size[1])
+        self._flip = np.empty((h, w, 3), np.uint8)
+        self._writer = imageio_ffmpeg.write_frames(
+            str(path),
+            (w, h),
+            fps=fps,
+            codec=VIDEO_CODEC,
+            quality=VIDEO_QUALITY,
+            macro_block_size=1,
+            ffmpeg_log_level="warning",
+            output_params=["-preset", VIDEO_PRESET],
+        )
+        self._writer.send(None)  # start ffmpeg
+
+    def write_bottom_up(self, buf: np.ndarray) -> None:
+        """Append a frame stored bottom-up (as OpenGL reads it)."""
+        np.copyto(self._flip, buf[::-1])
+        self._writer.send(self._flip)
+
+    def close(self) -> None:
+        self._writer.close()
 
 
 def render_video(
@@ -234,41 +477,62 @@ def render_video(
     fps: float | None = None,
     progress: bool = True,
     draw_path: bool = True,
+    view: TrackView | None = None,
 ) -> None:
     """Render the timeline offscreen to an mp4 (H.264 via imageio-ffmpeg), atomically.
+
+    :data:`N_DRAWERS` threads draw alternate frames, each in its own OpenGL context, while
+    this thread puts the frames in order and feeds them to ffmpeg (:class:`_Video`), so
+    drawing, rasterizing and encoding overlap instead of adding up.
 
     Args:
         timeline: the poses to show.
         path: output video file (written to a temporary file, renamed on success).
-        camera: ``"track"`` (follows the pelvis) or ``"top"`` (whole walk from above).
+        camera: ``"track"`` (follows the pelvis with a clear view of the legs, see
+            :func:`~mjwalk.viewpoint.track_view`) or ``"top"`` (whole walk from above).
         size: (width, height) in pixels.
         fps: video frame rate; defaults to the timeline's; frames are picked to keep real time.
         progress: show a tqdm progress bar.
         draw_path: draw the planned path and footprints into the scene.
+        view: the tracking camera's viewpoints (computed when None).
     """
-    import imageio.v2 as imageio
+    import threading
+
+    from tqdm import tqdm
 
     if camera not in CAMERAS:
         raise MjwalkError(f"render_video: unknown camera {camera!r}; use one of {CAMERAS}")
-    width, height = (int(v) for v in size)
-    if min(width, height) < 16 or width % 2 or height % 2:
+    w, h = (int(v) for v in size)
+    if min(w, h) < 16 or w % 2 or h % 2:
         raise InputError(
-            f"render_video: size {width}x{height}: width and height must be even numbers of "
+            f"render_video: size {w}x{h}: width and height must be even numbers of "
             "pixels, at least 16 (H.264)"
         )
     fps = float(timeline.fps if fps is None else fps)
     if not (np.isfinite(fps) and fps > 0):
         raise InputError(f"render_video: fps must be a positive number, got {fps!r}")
-    n_out = max(1, int(np.floor(timeline.duration * fps + 1e-9)) + 1)
-    frames = np.clip(
-        np.round(np.arange(n_out) / fps * timeline.fps).astype(int), 0, timeline.n_frames - 1
-    )
+    frames = video_frames(timeline, fps)
+    if camera == "track" and view is None:
+        view = track_view(timeline)
+    geoms = path_geoms(timeline) if draw_path else []
+    lock = threading.Lock()
+    n = min(N_DRAWERS, len(frames))
+    drawers = [_Drawer(timeline, camera, (w, h), frames[k::n], geoms, view, lock) for k in range(n)]
     with atomic_path(path, suffix=".mp4") as tmp:
-        writer = imageio.get_writer(
-            str(tmp), format="FFMPEG", fps=fps, codec="libx264", macro_block_size=1, quality=7
-        )
+        video = _Video(tmp, (w, h), fps)
         try:
-            for _, img, _ in render_frames(timeline, camera, size, frames, draw_path, progress):
-                writer.append_data(img)
+            for d in drawers:
+                d.start()
+            for k in tqdm(range(len(frames)), disable=not progress, desc="render", unit="frame"):
+                d = drawers[k % n]
+                got = d.done.get()
+                if isinstance(got, BaseException):
+                    if isinstance(got, MjwalkError):
+                        raise got
+                    raise MjwalkError(f"render_video: drawing failed: {got}") from got
+                video.write_bottom_up(d.bufs[got[1]])
+                d.free.put(got[1])
         finally:
-            writer.close()
+            for d in drawers:
+                d.stop()
+            video.close()

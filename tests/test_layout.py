@@ -17,7 +17,7 @@ PKG = Path(mjwalk.__file__).parent
 #: video, the plots and the command line on top.
 STAGES = ("_base", "mocap", "world", "gait", "plan", "body", "arms", "timeline", "cycle", "top")
 BASE = {"conventions", "anthropometry", "errors", "_io", "_jit", "_gl", "_args", "_version"}
-TOP = {"render", "plot", "report", "cli", "__main__", "shipped"}
+TOP = {"render", "viewpoint", "plot", "report", "cli", "__main__", "shipped"}
 
 
 def _module(path: Path) -> str:

@@ -126,3 +126,59 @@ def test_renders_headless_when_mujoco_was_imported_first():
     )
     assert out.returncode == 0, out.stderr[-2000:]
     assert out.stdout.split() == [available_backend(), "(48,", "64,", "3)", "1"]
+
+
+def test_fixed_camera_frames_identical_to_mujoco_renderer(timeline):
+    """The fast loop (own context sized to the image, path geoms kept in the scene's first
+    slots, reused buffers) draws exactly what mujoco.Renderer + update_scene + the path added
+    after it drew before."""
+    from mjwalk.body.humanoid import HUMAN_GROUP
+    from mjwalk.viewpoint import fixed_view
+
+    tl = timeline
+    frames = [0, tl.n_frames // 3, tl.n_frames - 1]
+    try:
+        new = [img for _, img, _ in render.render_frames(tl, frames=frames, view=fixed_view(tl))]
+    except MjwalkError as exc:
+        pytest.skip(str(exc))
+    model = tl.model
+    samples = int(model.vis.quality.offsamples)
+    model.vis.quality.offsamples = 0
+    try:
+        ref = mujoco.Renderer(model, height=480, width=640)
+    finally:
+        model.vis.quality.offsamples = samples
+    ref.scene.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = False
+    ref.scene.flags[mujoco.mjtRndFlag.mjRND_REFLECTION] = False
+    opt = mujoco.MjvOption()
+    opt.geomgroup[HUMAN_GROUP] = 1
+    data = mujoco.MjData(model)
+    geoms = render.path_geoms(tl)
+    try:
+        for i, img in zip(frames, new, strict=True):
+            data.qpos[:] = tl.qpos[i]
+            mujoco.mj_kinematics(model, data)
+            ref.update_scene(data, render.camera_for(tl, i, "track"), scene_option=opt)
+            render._draw_path(ref.scene, geoms)
+            assert np.array_equal(ref.render(), img)
+    finally:
+        ref.close()
+
+
+def test_render_video_drawing_error_leaves_no_file(tmp_path, timeline, monkeypatch):
+    short = type(timeline)(**{**timeline.__dict__, "qpos": timeline.qpos[:6], "t": timeline.t[:6]})
+
+    def broken(cam, tl, frame, *args):
+        if frame == 3:
+            raise RuntimeError("camera broke")
+        return set_camera(cam, tl, frame, *args)
+
+    set_camera = render._set_camera
+    monkeypatch.setattr(render, "_set_camera", broken)
+    out = tmp_path / "walk.mp4"
+    with pytest.raises(MjwalkError, match="camera broke"):
+        render.render_video(short, out, camera="top", size=(160, 120), progress=False)
+    assert list(tmp_path.iterdir()) == []
+    with pytest.raises(MjwalkError, match="size"):
+        render.render_video(short, out, size=(0, 480), progress=False)
+    assert list(tmp_path.iterdir()) == []
