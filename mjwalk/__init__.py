@@ -19,6 +19,7 @@ from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE, SAMPLE_RATE_HZ, Sid
 from mjwalk.errors import (
     CaptureError,
     CycleSpecError,
+    InputError,
     MjwalkError,
     ModelFileError,
     PlanningError,

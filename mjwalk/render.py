@@ -227,6 +227,7 @@ class Offscreen:
     def read_into(self, buf: np.ndarray) -> np.ndarray:
         """Draw the scene and read the RGB frame into ``buf`` ((H, W, 3) uint8, C-contiguous),
         rows bottom-up as OpenGL stores them (``buf[::-1]`` is the image)."""
+        assert self._gl is not None
         self._gl.make_current()
         mujoco.mjr_render(self.rect, self.scene, self._con)
         mujoco.mjr_readPixels(buf, None, self.rect, self._con)
@@ -239,7 +240,7 @@ class Offscreen:
 
     def close(self) -> None:
         """Free the OpenGL resources (idempotent)."""
-        if self._con is not None:
+        if self._con is not None and self._gl is not None:
             self._gl.make_current()
             self._con.free()
             self._con = None

@@ -49,6 +49,46 @@ def resample_trajectory(positions: np.ndarray, n: int, t: np.ndarray | None = No
     return spline(np.linspace(t[0], t[-1], n))
 
 
+#: Movement onset/offset threshold as a share of the peak tangential hand speed: the usual
+#: kinematic criterion of reaching studies (5 % of peak velocity, e.g. Flash & Hogan 1985 data
+#: analysis; Gordon, Ghilardi & Ghez 1994).
+ONSET_SPEED_SHARE = 0.05
+
+
+def movement_span(
+    hand: np.ndarray, until: int | None = None, share: float = ONSET_SPEED_SHARE
+) -> tuple[int, int]:
+    """Frames ``(a, b)`` (inclusive) of the one movement of ``hand`` (T, 3) that holds the
+    fastest frame up to frame ``until`` (default: the last): from the last frame before it
+    whose speed is at most ``share`` of that peak speed to the first such frame after it.
+
+    This is the time alignment of a clip before it is sampled at n equal time intervals (Al-Zubi
+    & Sommer §4.1 "from the start of the sequence to its end"): a rest before the movement or a
+    hold after it would otherwise stretch or squeeze the movement differently in every clip.
+    Speed is the frame-to-frame displacement (any unit; frames evenly spaced).
+    """
+    hand = np.asarray(hand, dtype=float)
+    if hand.ndim != 2 or len(hand) < 2:
+        raise MjwalkError(f"movement_span: need a (T >= 2, 3) hand path, got {hand.shape}")
+    last = len(hand) - 1 if until is None else int(np.clip(until, 1, len(hand) - 1))
+    step = np.linalg.norm(np.diff(hand, axis=0), axis=1)
+    # speed[t]: displacement into frame t (frame 0 takes its successor's).
+    speed = np.r_[step[0], step]
+    peak = int(np.argmax(speed[: last + 1]))
+    thr = share * speed[peak]
+    a = peak
+    while a > 0 and speed[a - 1] > thr:
+        a -= 1
+    a = max(a - 1, 0)  # speed[a] is the step into frame a: the hand was still at a - 1
+    b = peak
+    while b < last and speed[b + 1] > thr:
+        b += 1
+    if b - a < 1:
+        b = min(a + 1, len(hand) - 1)
+        a = b - 1
+    return a, b
+
+
 def segment_directions(positions: np.ndarray) -> np.ndarray:
     """Unit directions (..., J-1, 3) of the segments of a chain of joint positions (..., J, 3)."""
     seg = np.diff(np.asarray(positions, dtype=float), axis=-2)

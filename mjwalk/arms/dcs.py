@@ -17,15 +17,22 @@ lateral neighbour with the largest accumulated error, until the training RMSE fa
 ``error_threshold``, ``max_neurons`` is reached, or (when ``validation_fraction > 0``) the
 held-out error stops improving for ``n_iter_no_change`` insertions; the best network seen on the
 held-out part is kept. Output vectors are the least-squares solution on the normalized-RBF design
-matrix (a small ridge keeps it well posed), refit on all samples at the end.
+matrix (a ridge towards each neuron's mean target keeps it well posed), refit on all samples at
+the end. ``width_factor`` and ``ridge`` may be grids: at every growth step each pair is tried and
+the best on the held-out part is kept with the network (inner validation; the test data of a
+benchmark never choose them).
 
-Inputs are standardized internally (zero mean, unit variance per column), so widths and
-:meth:`DCSNetwork.distance_to_training` are in units of the training standard deviation. The
-saved file keeps the standardized training inputs (not the outputs) for that distance.
+Inputs are standardized internally: per column (``scaling="column"``, zero mean, unit variance)
+or with one scale for all columns (``scaling="global"``: the RMS column sd, so distances keep
+the input's units -- right for constraints that are all positions in metres, where per-column
+scaling would blow a near-constant column's noise up to the weight of the informative ones).
+Widths and :meth:`DCSNetwork.distance_to_training` are in these standardized units. The saved
+file keeps the standardized training inputs (not the outputs) for that distance.
 """
 
 from __future__ import annotations
 
+import itertools
 from pathlib import Path
 
 import numpy as np
@@ -47,17 +54,21 @@ class DCSNetwork:
         error_threshold: stop growing once the training RMSE (output units) is below this.
         max_age: lateral edges not refreshed for more than this many winning presentations of
             their endpoint are removed.
-        width_factor: sigma_i = width_factor * mean distance of neuron i to its lateral neighbours.
+        width_factor: sigma_i = width_factor * mean distance of neuron i to its lateral
+            neighbours; a sequence is a grid chosen on the held-out part (see module docstring).
         eps_winner, eps_neighbour: Kohonen learning rates of the winner and its neighbours.
         n_epochs: presentations of the whole training set per growth step.
         validation_fraction: share of samples held out to select the network size (0 disables).
         n_iter_no_change: insertions without held-out improvement before growth stops.
-        ridge: Tikhonov regularization of the output least squares (relative to the design scale).
+        ridge: Tikhonov regularization of the output least squares (relative to the design
+            scale), towards each neuron's mean target; a sequence is a grid like width_factor.
         rng: seed or ``numpy.random.Generator``; same seed, same network.
+        scaling: input standardization, ``"column"`` or ``"global"`` (see module docstring).
 
     Fitted attributes: ``centers_`` (K, d) standardized, ``outputs_`` (K, m), ``widths_`` (K,),
     ``edges_`` (K, K) bool adjacency, ``x_mean_``/``x_scale_`` (d,), ``n_neurons_``,
-    ``train_rmse_``, ``history_`` (list of (neurons, train RMSE, held-out RMSE)).
+    ``train_rmse_``, ``history_`` (list of (neurons, train RMSE, held-out RMSE)),
+    ``width_factor_`` and ``ridge_`` (the values used).
     """
 
     def __init__(
@@ -73,6 +84,7 @@ class DCSNetwork:
         n_iter_no_change: int = 6,
         ridge: float = 1e-6,
         rng: int | np.random.Generator | None = 0,
+        scaling: str = "column",
     ):
         self.max_neurons = max_neurons
         self.error_threshold = error_threshold
@@ -85,6 +97,7 @@ class DCSNetwork:
         self.n_iter_no_change = n_iter_no_change
         self.ridge = ridge
         self.rng = rng
+        self.scaling = scaling
 
     # ------------------------------------------------------------------ fitting
     def fit(self, X: np.ndarray, Y: np.ndarray) -> DCSNetwork:
@@ -107,7 +120,13 @@ class DCSNetwork:
         rng = np.random.default_rng(self.rng)
 
         self.x_mean_ = X.mean(axis=0)
+        if self.scaling not in ("column", "global"):
+            raise MjwalkError(
+                f"DCSNetwork: scaling must be 'column' or 'global', got {self.scaling!r}"
+            )
         scale = X.std(axis=0)
+        if self.scaling == "global":  # one scale for all columns: distances keep their units
+            scale = np.full_like(scale, np.sqrt((scale**2).mean()))
         self.x_scale_ = np.where(scale > 1e-12, scale, 1.0)
         Z = (X - self.x_mean_) / self.x_scale_
 
@@ -131,22 +150,33 @@ class DCSNetwork:
         best_val = np.inf
         no_change = 0
         self.history_ = []
+        factors = self._factors()
+        ridges = self._ridges()
         while True:
             centers, ages = self._adapt(Ztr, centers, ages, rng)
-            widths = self._widths(centers, ages >= 0)
-            outputs = self._solve_outputs(Ztr, Ytr, centers, widths, ages >= 0)
-            pred = self._forward(Ztr, centers, widths, outputs, ages >= 0)
-            resid = ((pred - Ytr) ** 2).sum(axis=1)
+            edges = ages >= 0
+            base = self._widths(centers, edges, 1.0)
+            # The RBF width factor is chosen with the network size on the held-out part.
+            step_best = None
+            for factor, ridge in itertools.product(factors, ridges):
+                widths = factor * base
+                outputs = self._solve_outputs(Ztr, Ytr, centers, widths, edges, ridge)
+                pred = self._forward(Ztr, centers, widths, outputs, edges)
+                resid_f = ((pred - Ytr) ** 2).sum(axis=1)
+                if n_val:
+                    pv = self._forward(Z[val_idx], centers, widths, outputs, edges)
+                    val_f = float(np.sqrt(((pv - Y[val_idx]) ** 2).sum(axis=1).mean()))
+                else:
+                    val_f = float(np.sqrt(resid_f.mean()))
+                if step_best is None or val_f < step_best[0] - 1e-12:
+                    step_best = (val_f, factor, ridge, resid_f)
+            assert step_best is not None  # the grids are non-empty
+            val_rmse, factor, ridge, resid = step_best
             train_rmse = float(np.sqrt(resid.mean()))
-            if n_val:
-                pv = self._forward(Z[val_idx], centers, widths, outputs, ages >= 0)
-                val_rmse = float(np.sqrt(((pv - Y[val_idx]) ** 2).sum(axis=1).mean()))
-            else:
-                val_rmse = train_rmse
             self.history_.append((len(centers), train_rmse, val_rmse if n_val else np.nan))
             if val_rmse < best_val - 1e-12:
                 best_val = val_rmse
-                best = (centers.copy(), ages.copy())
+                best = (centers.copy(), ages.copy(), factor, ridge)
                 no_change = 0
             else:
                 no_change += 1
@@ -178,14 +208,16 @@ class DCSNetwork:
             ages = grown
 
         if n_val and best is not None:
-            centers, ages = best
+            centers, ages, factor, ridge = best
         edges = ages >= 0
-        widths = self._widths(centers, edges)
+        self.width_factor_ = float(factor)
+        self.ridge_ = float(ridge)
+        widths = self._widths(centers, edges, factor)
         # Final output vectors on every sample (train + held-out).
         self.centers_ = centers
         self.edges_ = edges
         self.widths_ = widths
-        self.outputs_ = self._solve_outputs(Z, Y, centers, widths, edges)
+        self.outputs_ = self._solve_outputs(Z, Y, centers, widths, edges, ridge)
         self.n_neurons_ = len(centers)
         self.train_rmse_ = float(
             np.sqrt(
@@ -222,7 +254,21 @@ class DCSNetwork:
                 centers[nb] += self.eps_neighbour * (x - centers[nb])
         return centers, ages
 
-    def _widths(self, centers, edges):
+    def _factors(self) -> tuple[float, ...]:
+        wf = self.width_factor
+        factors = tuple(float(f) for f in (wf if isinstance(wf, list | tuple) else (wf,)))
+        if not factors or min(factors) <= 0:
+            raise MjwalkError(f"DCSNetwork: width_factor must be > 0, got {wf!r}")
+        return factors
+
+    def _ridges(self) -> tuple[float, ...]:
+        r = self.ridge
+        ridges = tuple(float(x) for x in (r if isinstance(r, list | tuple) else (r,)))
+        if not ridges or min(ridges) < 0:
+            raise MjwalkError(f"DCSNetwork: ridge must be >= 0, got {r!r}")
+        return ridges
+
+    def _widths(self, centers, edges, factor):
         d = cdist(centers, centers)
         widths = np.empty(len(centers))
         for i in range(len(centers)):
@@ -233,8 +279,7 @@ class DCSNetwork:
                 di = d[i].copy()
                 di[i] = np.inf
                 widths[i] = di.min()
-        widths = self.width_factor * widths
-        return np.maximum(widths, 1e-6)
+        return np.maximum(factor * widths, 1e-6)
 
     @staticmethod
     def _design(Z, centers, widths, edges):
@@ -248,10 +293,10 @@ class DCSNetwork:
         w = np.exp(logit)
         return w / w.sum(axis=1, keepdims=True)
 
-    def _solve_outputs(self, Z, Y, centers, widths, edges):
+    def _solve_outputs(self, Z, Y, centers, widths, edges, ridge):
         Phi = self._design(Z, centers, widths, edges)
         k = Phi.shape[1]
-        lam = self.ridge * max(float(np.trace(Phi.T @ Phi)) / k, 1e-12)
+        lam = ridge * max(float(np.trace(Phi.T @ Phi)) / k, 1e-12)
         A = np.vstack([Phi, np.sqrt(lam) * np.eye(k)])
         # Ridge pulls towards the winner-mean of the targets rather than towards zero.
         bmu = np.argmax(Phi, axis=1)
@@ -338,6 +383,7 @@ class DCSNetwork:
                 "validation_fraction",
                 "n_iter_no_change",
                 "ridge",
+                "scaling",
             )
         }
         rs = self.rng
@@ -348,6 +394,8 @@ class DCSNetwork:
             "params": params,
             "y_1d": bool(self._y_1d),
             "train_rmse": self.train_rmse_,
+            "width_factor_": getattr(self, "width_factor_", None),
+            "ridge_": getattr(self, "ridge_", None),
             "history": [[int(a), float(b), float(c)] for a, b, c in self.history_],
         }
 
@@ -373,6 +421,8 @@ class DCSNetwork:
             net.x_scale_ = np.asarray(data["x_scale"], dtype=float)
             net._y_1d = bool(header["y_1d"])
             net.train_rmse_ = float(header["train_rmse"])
+            net.width_factor_ = header.get("width_factor_")  # type: ignore[assignment]
+            net.ridge_ = header.get("ridge_")  # type: ignore[assignment]
             net.history_ = [tuple(h) for h in header.get("history", [])]
             k = len(net.centers_)
             if (
