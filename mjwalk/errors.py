@@ -23,3 +23,7 @@ class ModelFileError(MjwalkError):
 
 class CycleSpecError(MjwalkError):
     """A cycle specification (TOML) has an unknown key, a missing site or an impossible task."""
+
+
+class ScanError(SceneError):
+    """A point cloud cannot become a scene (unreadable, empty, NaN points, units, no floor)."""
