@@ -230,8 +230,15 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
         ScanError: no walk surface of at least :data:`MIN_FLOOR_AREA` square metres.
     """
     step = max(1, len(points) // MAX_NORMAL_POINTS)
-    vn = voxel_normals(points[::step] if step > 1 else points)
-    labels = walk_surfaces(vn)
+    sub = points[::step] if step > 1 else points
+    # A sparse scan (fewer than ~500 points/m²) leaves too few points per voxel for a normal:
+    # the neighbourhood doubles until a floor-sized walk surface shows (at most twice).
+    for voxel in (VOXEL, 2 * VOXEL, 4 * VOXEL):
+        vn = voxel_normals(sub, voxel)
+        labels = walk_surfaces(vn)
+        ok = labels >= 0
+        if ok.any() and np.unique(vn.ijk[ok, :2], axis=0).shape[0] * voxel**2 >= MIN_FLOOR_AREA:
+            break
     surf = np.flatnonzero(labels >= 0)
     if len(surf) == 0:
         raise ScanError(
@@ -242,7 +249,7 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
     # Area: distinct (i, j) columns of each surface.
     col = vn.ijk[surf, 0] * (int(vn.ijk[:, 1].max()) + 1) + vn.ijk[surf, 1]
     pair = np.unique(lab * (int(col.max()) + 1) + col)
-    area = np.bincount(pair // (int(col.max()) + 1), minlength=nlab) * VOXEL**2
+    area = np.bincount(pair // (int(col.max()) + 1), minlength=nlab) * voxel**2
     order = np.argsort(lab, kind="stable")
     bounds = np.searchsorted(lab[order], np.arange(nlab + 1))
     zs = vn.centroid[surf[order], 2]
@@ -266,7 +273,6 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
     # Refit on every point near the plane: the walk surface found by region growing can be a
     # small part of a cluttered floor, and a real floor is not flat to the millimetre (the pump
     # room's undulates by +-8 mm), so the tilt of the whole visible floor is the one to remove.
-    sub = points[::step] if step > 1 else points
     for tol in (PLANE_TOL, 0.5 * PLANE_TOL):
         near = sub[np.abs((sub - centre) @ normal) <= tol]
         if len(near) < 100:

@@ -16,7 +16,8 @@ On a grid of ``resolution`` metres over the floor:
 - the walkable floor is the largest connected floor region (pockets of floor walled in by
   obstacles, such as the floor seen under a car body on its wheels, are not reachable on foot);
   its bounding rectangle becomes the MJCF floor plane, and what of the rectangle is neither
-  floor nor obstacle is void (an obstacle to the planner too: nobody walks where no floor was scanned).
+  floor nor obstacle is void (an obstacle to the planner too: nobody walks where no floor
+  was scanned).
 
 Obstacles and voids become boxes (:func:`rectangles`): each connected obstacle is cut into the
 fewest row-run rectangles, standing on the floor up to the obstacle's highest band point.

@@ -157,7 +157,7 @@ def _mjcf(
     for name, (x, y, yaw) in sites.items():
         lines.append(
             f'    <site name="{name}" pos="{x:.4f} {y:.4f} {SITE_Z}" size="0.05" '
-            f'euler="0 0 {yaw:.6g}"/>'
+            f'euler="0 0 {np.degrees(yaw):.6g}"/>'  # MJCF angles are degrees by default
         )
     lines += ["  </worldbody>", "</mujoco>", ""]
     return "\n".join(lines)
