@@ -44,8 +44,9 @@ FLOOR_SHARE = 0.25
 #: metres (6 sigma of a 5 mm range noise).
 PLANE_TOL = 0.03
 #: At most this many points feed the normals; larger clouds are thinned by a regular stride
-#: (the voxel PCA needs tens of points per voxel, not thousands).
-MAX_NORMAL_POINTS = 2_000_000
+#: (the voxel PCA needs tens of points per voxel, not thousands; a sparse large scan falls
+#: back to larger voxels, see :func:`find_floor`).
+MAX_NORMAL_POINTS = 1_000_000
 
 
 @dataclass(frozen=True)

@@ -44,7 +44,8 @@ SITE_Z = 0.0
 class ScanScene:
     """The result of :func:`build_scene`: the MJCF text and what it was made from.
 
-    ``matrix`` (4, 4) takes scan-file points to the scene; ``timings`` holds seconds per stage.
+    ``matrix`` (4, 4) takes scan-file points to the scene; ``timings`` holds wall-clock seconds
+    per stage.
     """
 
     xml: str
