@@ -341,3 +341,47 @@ def test_real_scan(shared_data, tmp_path, rel, overhead):
     png = Path(os.environ.get("MJWALK_SCAN_PNG_DIR", tmp_path)) / f"walk_{src.stem}.png"
     save_plan_png(png, wp, walks, title=f"{src.name}: walk across")
     assert png.stat().st_size > 10_000
+
+
+def _write_format(path, pts):
+    """Write ``pts`` (metres) in the format of ``path``'s suffix with the readers' libraries."""
+    suffix = path.suffix
+    if suffix in (".ply", ".pcd"):
+        from mjwalk.world.scan.read import _open3d
+
+        o3d = _open3d()
+        cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts))
+        o3d.io.write_point_cloud(str(path), cloud, write_ascii=False, compressed=suffix == ".pcd")
+    elif suffix in (".las", ".laz"):
+        import laspy
+
+        header = laspy.LasHeader(point_format=3, version="1.2")
+        header.offsets = pts.min(axis=0)
+        header.scales = [0.001, 0.001, 0.001]
+        las = laspy.LasData(header)
+        las.x, las.y, las.z = pts[:, 0], pts[:, 1], pts[:, 2]
+        las.write(str(path))
+    elif suffix == ".e57":
+        import pye57
+
+        with pye57.E57(str(path), mode="w") as e57:
+            e57.write_scan_raw(
+                {"cartesianX": pts[:, 0], "cartesianY": pts[:, 1], "cartesianZ": pts[:, 2]}
+            )
+    return path
+
+
+@pytest.mark.parametrize("suffix", [".ply", ".pcd", ".las", ".laz", ".e57"])
+def test_formats_read_by_their_libraries(tmp_path, suffix):
+    """Binary PLY, binary-compressed PCD (Open3D), LAS and LAZ (laspy, lazrs), E57 (pye57) of
+    a tilted room far from the origin (georeferenced LAS-like x, y) give the same scene."""
+    far = suffix in (".las", ".laz")
+    offset = np.array([512_000.0, 5_400_000.0, 230.0]) if far else np.zeros(3)
+    pts = _tilt(_room_cloud(spacing=0.04), 1.2, -0.8) + offset
+    src = _write_format(tmp_path / f"room{suffix}", pts)
+    scene = scan_to_scene(src, tmp_path / "room.xml")
+    assert abs(scene.levelling.tilt_deg - 1.2) < 0.05
+    wp = load_workplace(tmp_path / "room.xml")
+    x0, y0, x1, y1 = np.asarray(wp.floor_bounds) - np.resize(np.asarray(offset)[:2], 4)
+    assert x1 - x0 == pytest.approx(4.0, abs=0.05)
+    assert y1 - y0 == pytest.approx(3.0 * np.cos(np.radians(1.2)), abs=0.05)

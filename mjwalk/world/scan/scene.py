@@ -113,7 +113,7 @@ def _matrix(levelling: Levelling, scale: float, axes: np.ndarray) -> np.ndarray:
 
 
 def _fmt(v) -> str:
-    return " ".join(f"{x:.6g}" for x in np.ravel(v))
+    return " ".join(f"{x:.10g}" for x in np.ravel(v))  # georeferenced x, y keep mm
 
 
 def _mjcf(
