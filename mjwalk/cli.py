@@ -217,6 +217,72 @@ def _cmd_render(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_scan(args: argparse.Namespace) -> int:
+    from mjwalk.world.scan import scan_to_scene
+
+    scene = scan_to_scene(
+        args.scan,
+        args.output,
+        units=args.units,
+        up=args.up,
+        drop_invalid=args.drop_invalid,
+        resolution=args.resolution,
+        sites=args.sites,
+    )
+    lv = scene.levelling
+    b = scene.plan.bounds
+    print(
+        f"{args.scan}: {scene.n_points} points; floor tilt {lv.tilt_deg:.3f} deg removed, "
+        f"floor x [{b[0]:.2f}, {b[2]:.2f}] y [{b[1]:.2f}, {b[3]:.2f}] m; "
+        f"{scene.n_obstacle_boxes} obstacle boxes, {scene.n_void_boxes} void boxes, "
+        f"{len(scene.sites)} sites"
+    )
+    print("scan -> scene transform (4x4, row-major):")
+    for row in scene.matrix:
+        print("  " + " ".join(f"{v:10.6f}" for v in row))
+    print(" ".join(f"{k} {v:.2f} s" for k, v in scene.timings.items()))
+    print(f"wrote {args.output}")
+    return 0
+
+
+def _add_scan_parser(sub) -> None:
+    p = sub.add_parser("scan", help="turn a laser scan (PLY/PCD/LAS/LAZ/E57/XYZ/PTS) into a scene")
+    p.add_argument("scan", type=Path, help="point-cloud file")
+    p.add_argument("-o", "--output", type=Path, required=True, help="MJCF scene to write")
+    p.add_argument("--units", default="m", help="file units when it does not say: m cm mm in ft")
+    p.add_argument("--up", default="+z", help="file up axis when it does not say: +z -z +y -y ...")
+    p.add_argument("--sites", type=Path, help="TOML of named sites ([site.NAME] xy = [x, y])")
+    p.add_argument("--resolution", type=float, default=0.02, help="floor-plan grid, metres")
+    p.add_argument(
+        "--drop-invalid", action="store_true", help="leave out NaN/infinite points (else error)"
+    )
+    p.set_defaults(func=_cmd_scan)
+
+
+def _cmd_scene_import(args: argparse.Namespace) -> int:
+    from mjwalk.world.meshimport import import_scene
+
+    result = import_scene(
+        args.source, args.output, units=args.units, up=args.up, threshold=args.threshold
+    )
+    for name, parts in result.parts.items():
+        print(f"  {name}: concave, {parts} convex parts for MuJoCo's collision")
+    print(f"wrote {args.output} ({len(result.files)} part meshes in {result.mesh_dir})")
+    return 0
+
+
+def _add_scene_import_parser(sub) -> None:
+    p = sub.add_parser(
+        "scene-import", help="import a mesh or MJCF: concave meshes get convex decompositions"
+    )
+    p.add_argument("source", type=Path, help="mesh (STL/OBJ/PLY/GLB/OFF) or MJCF scene")
+    p.add_argument("-o", "--output", type=Path, required=True, help="MJCF scene to write")
+    p.add_argument("--units", default="m", help="mesh file units: m cm mm in ft")
+    p.add_argument("--up", default="+z", help="mesh file up axis: +z +y ...")
+    p.add_argument("--threshold", type=float, default=0.02, help="CoACD concavity threshold (0.02)")
+    p.set_defaults(func=_cmd_scene_import)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="mjwalk",
@@ -324,6 +390,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", type=Path, help="write the report as JSON here")
     p.add_argument("--seed", type=int, default=0)
     p.set_defaults(func=_cmd_validate)
+    _add_scan_parser(sub)
+    _add_scene_import_parser(sub)
     return parser
 
 

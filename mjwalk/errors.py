@@ -35,3 +35,7 @@ class CycleSpecError(MjwalkError):
 class InputError(MjwalkError, ValueError):
     """A bad argument value (a non-finite coordinate, a negative count, an unwritable output
     path...). Also a ``ValueError``, so code that catches those keeps working."""
+
+
+class ScanError(SceneError):
+    """A point cloud cannot become a scene (unreadable, empty, NaN points, units, no floor)."""

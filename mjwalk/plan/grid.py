@@ -263,7 +263,10 @@ def check_endpoint(workplace: Workplace, xy: np.ndarray, radius: float, what: st
             f"{label} is off the floor of {workplace.name} "
             f"(x in [{b[0]:g}, {b[2]:g}], y in [{b[1]:g}, {b[3]:g}] m)"
         )
-    dists = {fp.name: float(fp.signed_distance(xy[None])[0]) for fp in workplace.obstacles}
+    dists: dict[str, float] = {}
+    for fp in workplace.obstacles:  # a concave mesh has several pieces under one name
+        d = float(fp.signed_distance(xy[None])[0])
+        dists[fp.name] = min(d, dists.get(fp.name, d))
     if dists:
         nearest = min(dists, key=dists.get)
         if dists[nearest] < 0:

@@ -37,7 +37,9 @@ class ClearanceProbe:
         if isinstance(scene, Workplace):
             if scene.source is None:
                 raise SceneError("ClearanceProbe needs a workplace loaded from an MJCF file")
-            names = geoms if geoms is not None else [f.name for f in scene.obstacles]
+            names = (
+                geoms if geoms is not None else list(dict.fromkeys(f.name for f in scene.obstacles))
+            )
             path, floor_z, z_range = scene.source, scene.floor_z, scene.z_range
         else:
             path, floor_z = Path(scene), 0.0

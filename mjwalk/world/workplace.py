@@ -17,6 +17,7 @@ from mjwalk.errors import InputError, SceneError
 from mjwalk.world.cache import AUTO_NODES, cached_array, content_key
 from mjwalk.world.clearance import ClearanceField, build_clearance
 from mjwalk.world.footprint import Footprint, geom_footprint
+from mjwalk.world.meshimport import concave_mesh_footprints
 
 #: Default height band (metres above the floor) in which a geom counts as an obstacle.
 OBSTACLE_Z_RANGE = (0.05, 2.0)
@@ -50,7 +51,8 @@ class Workplace:
         source: the MJCF file it came from (None for an in-memory model).
         floor: the floor geom's name; the floor is the plane z = ``floor_z``.
         floor_bounds: (xmin, ymin, xmax, ymax) of the walkable floor, metres.
-        obstacles: obstacle footprints (one per obstacle geom).
+        obstacles: obstacle footprints (one per obstacle geom; a concave mesh geom gives
+            several convex pieces under its name, see :mod:`mjwalk.world.meshimport`).
         clearance: distance to the nearest obstacle footprint, metres (negative inside).
         stations: the scene's named sites.
         z_range: the height band used to select obstacles and to cut their footprints.
@@ -270,7 +272,12 @@ def workplace_from_model(
                 f"{label}: geom {gname!r} is a height field/SDF; mjwalk obstacles must be "
                 "primitives or meshes (exclude it with exclude=...)"
             )
-        fp = geom_footprint(model, data, g, floor_z + z_range[0], floor_z + z_range[1])
+        z0, z1 = floor_z + z_range[0], floor_z + z_range[1]
+        pieces = concave_mesh_footprints(model, data, g, z0, z1)  # None unless concave
+        if pieces is not None:
+            footprints.extend(pieces)
+            continue
+        fp = geom_footprint(model, data, g, z0, z1)
         if fp is not None:
             footprints.append(fp)
     if fx > 0 and fy > 0:

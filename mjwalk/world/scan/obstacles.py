@@ -1,0 +1,218 @@
+"""A levelled scan (floor at z = 0) as a floor plan: walkable floor, obstacles and voids.
+
+On a grid of ``resolution`` metres over the floor:
+
+- floor cells hold points within :data:`FLOOR_TOL` of z = 0;
+- obstacle cells hold at least :data:`MIN_BAND_POINTS` points in the obstacle band (0.05-2.0 m
+  above the floor, as for MJCF scenes, :data:`mjwalk.world.workplace.OBSTACLE_Z_RANGE`); gaps
+  of one cell are closed, and regions the obstacles enclose with no floor seen inside (the
+  inside of a cabinet taller than the scanner) become obstacle too. Structure above the band
+  (pipework, lamps, the ceiling) is not an obstacle;
+- floor points closer than 2 :data:`FLOOR_GAP` are joined (closing);
+- unscanned holes in the floor (under the scanner, behind small objects, between the sparse
+  rings of far floor) count as floor, within the convex outline of the seen floor, when no
+  point of them is farther than :data:`HOLE_RADIUS` from their edge; larger unseen regions are
+  voids;
+- the walkable floor is the largest connected floor region (pockets of floor walled in by
+  obstacles, such as the floor seen under a car body on its wheels, are not reachable on foot);
+  its bounding rectangle becomes the MJCF floor plane, and what of the rectangle is neither
+  floor nor obstacle is void (an obstacle to the planner too: nobody walks where no floor
+  was scanned).
+
+Obstacles and voids become boxes (:func:`rectangles`): each connected obstacle is cut into the
+fewest row-run rectangles, standing on the floor up to the obstacle's highest band point.
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import ndimage
+
+from mjwalk.world.workplace import OBSTACLE_Z_RANGE
+
+#: A floor point is within this height of z = 0 after levelling, metres: below the band's
+#: 0.05 m, and 6 sigma of a 5 mm range noise.
+FLOOR_TOL = 0.03
+#: Band points a grid cell needs to be an obstacle (a lone point is a mixed pixel or noise).
+MIN_BAND_POINTS = 2
+#: An unscanned hole counts as floor when its inscribed radius is at most this, metres: the
+#: blind cone below a terrestrial scanner (vertical field of view 300°, e.g. FARO Focus, i.e. 30°
+#: half-angle) on a tripod up to 1.7 m high leaves a disc of radius 1.7 tan 30° = 0.98 m.
+HOLE_RADIUS = 1.0
+#: Floor points closer than twice this are joined into one floor, metres: the rings of floor
+#: points a scanner leaves grow apart with range (d² Δθ / h: 0.15 m at 4 m for a 1.5 m high
+#: scanner stepping 0.2°), and a gap narrower than a body diameter (2 x 0.25 m) holds no obstacle
+#: the band points did not show.
+FLOOR_GAP = 0.25
+#: Heights of the obstacle band split into bins this tall to find each obstacle's top, metres.
+TOP_STEP = 0.05
+
+
+@dataclass
+class FloorPlan:
+    """Grids over the scanned floor (world x, y in metres; ``[iy, ix]`` is the cell whose lower
+    corner is ``(x0 + ix * resolution, y0 + iy * resolution)``).
+
+    Attributes:
+        floor: walkable floor cells (scanned or small holes), bool.
+        obstacles: obstacle label per cell (0: none; 1..n connected obstacles).
+        tops: (n + 1,) height of each obstacle's highest band point, metres (tops[0] unused).
+        void: cells of the floor rectangle that are neither floor nor obstacle, bool.
+        bounds: (xmin, ymin, xmax, ymax) of the floor rectangle, metres.
+        holes_filled: number of unscanned holes counted as floor.
+    """
+
+    x0: float
+    y0: float
+    resolution: float
+    floor: np.ndarray
+    obstacles: np.ndarray
+    tops: np.ndarray
+    void: np.ndarray
+    bounds: tuple[float, float, float, float]
+    holes_filled: int
+
+
+def floor_plan(
+    points: np.ndarray,
+    *,
+    resolution: float = 0.02,
+    z_range: tuple[float, float] = OBSTACLE_Z_RANGE,
+) -> FloorPlan | None:
+    """The floor plan of levelled points (N, 3), metres, floor at z = 0; None without floor
+    points."""
+    z = points[:, 2]
+    near = np.abs(z) <= FLOOR_TOL
+    band = (z >= z_range[0]) & (z <= z_range[1])
+    if not near.any():
+        return None
+    fxy = points[near, :2]
+    # A margin wider than a small hole: the unseen region around the floor is never "small".
+    margin = HOLE_RADIUS + 3 * resolution
+    lo = fxy.min(axis=0) - margin
+    hi = fxy.max(axis=0) + margin
+    nx, ny = (np.ceil((hi - lo) / resolution).astype(int) + 1).tolist()
+
+    def cells(xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        ij = np.floor((xy - lo) / resolution).astype(np.int64)
+        ok = (ij[:, 0] >= 0) & (ij[:, 0] < nx) & (ij[:, 1] >= 0) & (ij[:, 1] < ny)
+        return ij[ok, 1] * nx + ij[ok, 0], ok
+
+    lin, _ = cells(fxy)
+    seen_floor = (np.bincount(lin, minlength=nx * ny) > 0).reshape(ny, nx)
+    bpts = points[band]
+    lin, ok = cells(bpts[:, :2])
+    nbins = int(np.ceil((z_range[1] - z_range[0]) / TOP_STEP))
+    zbin = np.minimum(((bpts[ok, 2] - z_range[0]) / TOP_STEP).astype(np.int64), nbins - 1)
+    counts = np.bincount(lin, minlength=nx * ny).reshape(ny, nx)
+    occupied = counts >= MIN_BAND_POINTS
+    top_bin = np.full(nx * ny, -1, dtype=np.int64)  # highest band bin per cell
+    np.maximum.at(top_bin, lin, zbin)
+    top_bin = top_bin.reshape(ny, nx)
+
+    square = np.ones((3, 3), bool)
+    obst = ndimage.binary_closing(occupied, square) | occupied
+    # Enclosed regions without a floor point inside are the inside of an obstacle.
+    enclosed = ndimage.binary_fill_holes(obst) & ~obst
+    lab, n = ndimage.label(enclosed, square)
+    if n:
+        has_floor = ndimage.sum(seen_floor, lab, np.arange(1, n + 1)) > 0
+        obst |= np.isin(lab, np.flatnonzero(~has_floor) + 1)
+    # Sparse floor evidence (the rings of far floor points) closed over gaps up to 2 FLOOR_GAP.
+    spread = ndimage.distance_transform_edt(~seen_floor) * resolution <= FLOOR_GAP
+    closed = ndimage.distance_transform_edt(spread) * resolution > FLOOR_GAP
+    floor = (closed | seen_floor) & ~obst
+    # Small unscanned holes are floor.
+    # Only inside the seen floor's convex outline: a hole at the floor's edge (the blind disc
+    # of a scanner near the edge, a shadow behind a rack) fills up to the floor's edge.
+    unknown = ~floor & ~obst & _hull_mask(seen_floor)
+    lab, n = ndimage.label(unknown, square)
+    filled = 0
+    if n:
+        radius = ndimage.distance_transform_edt(unknown) * resolution
+        inscribed = ndimage.maximum(radius, lab, np.arange(1, n + 1))
+        small = np.asarray(inscribed) <= HOLE_RADIUS
+        floor |= np.isin(lab, np.flatnonzero(small) + 1)
+        filled = int(small.sum())
+    # The walkable floor: the largest connected floor region. Floor seen in pockets walled in
+    # by obstacles (under a car body raised on its wheels, inside a fenced cell) is not
+    # reachable on foot and becomes void; obstacles are kept where they touch the floor.
+    lab, n = ndimage.label(floor, square)
+    if n == 0:
+        return None
+    sizes = ndimage.sum(floor, lab, np.arange(1, n + 1))
+    floor = lab == int(np.argmax(sizes)) + 1
+    olab, n = ndimage.label(obst, square)
+    touching = np.unique(olab[ndimage.binary_dilation(floor, square) & obst])
+    obst = np.isin(olab, touching[touching > 0])
+    iy, ix = np.nonzero(floor)
+    y0i, y1i, x0i, x1i = iy.min(), iy.max() + 1, ix.min(), ix.max() + 1
+    floor = floor[y0i:y1i, x0i:x1i]
+    obst = obst[y0i:y1i, x0i:x1i]
+    top_bin = top_bin[y0i:y1i, x0i:x1i]
+    olab, n = ndimage.label(obst, square)
+    tops = np.zeros(n + 1)
+    if n:
+        tb = ndimage.maximum(top_bin, olab, np.arange(1, n + 1))
+        tb = np.maximum(np.asarray(tb), 0)
+        tops[1:] = np.minimum(z_range[0] + (tb + 1) * TOP_STEP, z_range[1])
+    x0 = float(lo[0] + x0i * resolution)
+    y0 = float(lo[1] + y0i * resolution)
+    void = ~floor & ~obst
+    # The floor's edge lies inside its outermost cells, on average at their centres.
+    half = 0.5 * resolution
+    bounds = (
+        x0 + half,
+        y0 + half,
+        x0 + floor.shape[1] * resolution - half,
+        y0 + floor.shape[0] * resolution - half,
+    )
+    return FloorPlan(x0, y0, resolution, floor, olab, tops, void, bounds, filled)
+
+
+def _hull_mask(mask: np.ndarray) -> np.ndarray:
+    """Cells inside the convex hull of the set cells of ``mask``."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    iy, ix = np.nonzero(mask)
+    pts = np.column_stack([ix, iy]).astype(float)
+    out = np.zeros_like(mask)
+    try:
+        hull = ConvexHull(pts)
+    except QhullError:
+        return mask.copy()
+    gx, gy = np.meshgrid(np.arange(mask.shape[1]), np.arange(mask.shape[0]))
+    eq = hull.equations  # a x + b y + c <= 0 inside
+    inside = np.ones(mask.shape, bool)
+    for a, b, c in eq:
+        inside &= a * gx + b * gy + c <= 1e-9
+    out |= inside
+    return out
+
+
+def rectangles(labels: np.ndarray) -> list[tuple[int, int, int, int, int]]:
+    """Cover each labelled region of ``labels`` (ny, nx; 0 = empty) with axis-aligned
+    rectangles of cells: runs of equal label along each row, stacked while the same run
+    repeats on the next row. Returns (iy0, iy1, ix0, ix1, label) with exclusive ends."""
+    ny, nx = labels.shape
+    out: list[tuple[int, int, int, int, int]] = []
+    active: dict[tuple[int, int, int], int] = {}
+    padded = np.zeros((ny + 1, nx + 2), dtype=labels.dtype)
+    padded[:ny, 1:-1] = labels
+    for iy in range(ny + 1):
+        row = padded[iy]
+        change = np.flatnonzero(row[1:] != row[:-1])  # run boundaries in cell coordinates
+        runs = set()
+        for a, b in itertools.pairwise(change):
+            lab = int(row[a + 1])
+            if lab:
+                runs.add((int(a), int(b), lab))
+        for key in list(active):
+            if key not in runs:
+                out.append((active.pop(key), iy, key[0], key[1], key[2]))
+        for key in runs:
+            active.setdefault(key, iy)
+    return out

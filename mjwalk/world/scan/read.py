@@ -1,0 +1,242 @@
+"""Read laser scans into one (N, 3) array of points in metres with z up.
+
+Formats and the library that reads each (no format is parsed here by hand):
+
+- PLY, PCD (ASCII, binary and binary-compressed), XYZ, XYZN, XYZRGB and PTS: Open3D
+  (``open3d.io.read_point_cloud``).
+- LAS and LAZ: laspy (LAZ through its lazrs backend); the scaled x, y, z.
+- E57: pye57; every scan of the file, each moved by its pose into the file's frame; points the
+  file marks invalid are left out (as pye57 does).
+
+Units and up axis: E57 is metres by its standard (ASTM E2807); the other formats do not say, so the
+caller states them (``units``, ``up``; default metres and +z, the convention of terrestrial
+scanners, LAS and E57). A cloud whose height span is implausible for metres is refused with the
+likely unit named (:func:`check_units`) instead of becoming a 3 km tall scene.
+"""
+
+from __future__ import annotations
+
+import ctypes
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from mjwalk.errors import ScanError
+
+#: Length units accepted for ``units``: metres per unit.
+UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254, "ft": 0.3048}
+#: Up axes accepted for ``up``: the rotation taking file coordinates to z-up coordinates
+#: (right-handed; for +y up, the file's -z becomes +y, as glTF/Blender exports are converted).
+UP_AXES = {
+    "+z": np.eye(3),
+    "-z": np.diag([1.0, -1.0, -1.0]),
+    "+y": np.array([[1.0, 0, 0], [0, 0, -1.0], [0, 1.0, 0]]),
+    "-y": np.array([[1.0, 0, 0], [0, 0, 1.0], [0, -1.0, 0]]),
+    "+x": np.array([[0, 0, -1.0], [0, 1.0, 0], [1.0, 0, 0]]),
+    "-x": np.array([[0, 0, 1.0], [0, 1.0, 0], [-1.0, 0, 0]]),
+}
+#: Suffixes read by Open3D, and the formats Open3D's reader expects for them.
+_OPEN3D = {".ply": "ply", ".pcd": "pcd", ".xyz": "xyz", ".xyzn": "xyzn", ".xyzrgb": "xyzrgb"}
+_OPEN3D_PTS = {".pts": "pts"}
+SUFFIXES = (*_OPEN3D, *_OPEN3D_PTS, ".las", ".laz", ".e57")
+#: Tallest plausible span of an indoor scan in metres (floor to the highest return, after the
+#: 0.5/99.5 % percentiles). Tall assembly halls reach about 30 m under the crane rail; a cloud
+#: spanning more than this in its stated units is in other units.
+MAX_HEIGHT_SPAN = 60.0
+#: Smallest plausible span (metres): a scan of a workplace holds at least a person's height.
+MIN_HEIGHT_SPAN = 0.3
+
+
+@dataclass
+class ScanCloud:
+    """Points of a scan: ``points`` (N, 3) in metres, z up, in the file's frame otherwise.
+
+    ``points = scale * (axes @ file_point)``: ``scale`` metres per file unit (``units``) and
+    ``axes`` (3, 3) the rotation of the up axis ``up`` onto +z.
+    """
+
+    source: Path
+    points: np.ndarray
+    units: str
+    up: str
+    scale: float
+    axes: np.ndarray
+
+
+def _open3d():
+    """Import Open3D. Its Linux wheels link libusb-1.0 (for the Azure Kinect) without bundling
+    it; the ``libusb-package`` wheel ships that library, loaded here first so a machine without
+    Debian's libusb-1.0-0 still imports Open3D."""
+    try:
+        import open3d
+    except ImportError as exc:
+        if "libusb" not in str(exc):
+            raise ScanError(f"Open3D cannot be imported: {exc}") from exc
+        try:
+            import libusb_package
+
+            ctypes.CDLL(str(libusb_package.get_library_path()), mode=ctypes.RTLD_GLOBAL)
+            import open3d
+        except (ImportError, OSError) as exc2:
+            raise ScanError(
+                f"Open3D needs libusb-1.0 ({exc2}); pip install libusb-package "
+                "or apt-get install libusb-1.0-0"
+            ) from exc2
+    return open3d
+
+
+def _sniff(path: Path, suffix: str) -> None:
+    """Refuse a file that is not of the format its suffix names (Open3D would print a warning
+    and return an empty cloud)."""
+    with open(path, "rb") as fh:
+        head = fh.read(4096)
+    if not head:
+        raise ScanError(f"{path}: empty file, not a point cloud")
+    if suffix == ".ply" and not head.startswith(b"ply"):
+        raise ScanError(f"{path}: not a PLY file (it does not start with 'ply')")
+    if suffix == ".pcd" and not (b"FIELDS" in head and b"DATA" in head):
+        raise ScanError(f"{path}: not a PCD file (no FIELDS/DATA header)")
+    if suffix == ".las" or suffix == ".laz":
+        if not head.startswith(b"LASF"):
+            raise ScanError(f"{path}: not a LAS/LAZ file (no LASF signature)")
+    if suffix == ".e57" and not head.startswith(b"ASTM-E57"):
+        raise ScanError(f"{path}: not an E57 file (no ASTM-E57 signature)")
+    if suffix in (".xyz", ".xyzn", ".xyzrgb", ".pts"):
+        lines = [ln for ln in head.split(b"\n")[:-1] if ln.strip() and not ln.startswith(b"#")]
+        rows = lines[1:4] if suffix == ".pts" else lines[:3]
+        try:
+            ok = bool(rows) and all(len(ln.split()) >= 3 for ln in rows)
+            [float(v) for ln in rows for v in ln.split()[:3]]
+        except ValueError:
+            ok = False
+        if not ok:
+            raise ScanError(f"{path}: not a text point cloud (rows of 'x y z ...' numbers)")
+
+
+def read_points_raw(path: Path) -> np.ndarray:
+    """The file's points (N, 3) as stored (float64, file units and axes), NaNs kept."""
+    suffix = path.suffix.lower()
+    if suffix not in SUFFIXES:
+        raise ScanError(
+            f"{path}: unknown point-cloud format {suffix!r} (read: {', '.join(SUFFIXES)})"
+        )
+    if not path.is_file():
+        raise ScanError(f"{path}: scan file not found")
+    _sniff(path, suffix)
+    if suffix in _OPEN3D or suffix in _OPEN3D_PTS:
+        o3d = _open3d()
+        fmt = {**_OPEN3D, **_OPEN3D_PTS}[suffix]
+        cloud = o3d.io.read_point_cloud(
+            str(path), format=fmt, remove_nan_points=False, remove_infinite_points=False
+        )
+        return np.asarray(cloud.points, dtype=np.float64)
+    if suffix in (".las", ".laz"):
+        import laspy
+
+        try:
+            las = laspy.read(str(path))
+        except (laspy.errors.LaspyException, OSError, ValueError) as exc:
+            raise ScanError(f"{path}: unreadable LAS/LAZ file: {exc}") from exc
+        return np.column_stack([las.x, las.y, las.z]).astype(np.float64)
+    import pye57
+
+    try:
+        e57 = pye57.E57(str(path))
+        parts = []
+        for i in range(e57.scan_count):
+            scan = e57.read_scan(i, ignore_missing_fields=True, transform=True)
+            parts.append(
+                np.column_stack([scan["cartesianX"], scan["cartesianY"], scan["cartesianZ"]])
+            )
+    except ScanError:
+        raise
+    except Exception as exc:  # pye57 raises libE57's own exception types
+        raise ScanError(f"{path}: unreadable E57 file: {exc}") from exc
+    return np.vstack(parts) if parts else np.empty((0, 3))
+
+
+def check_units(points: np.ndarray, units: str, source: Path | str) -> None:
+    """Refuse a cloud whose height span (z, metres after ``units``) is implausible for an indoor
+    workplace, naming the units that would make it plausible."""
+    if len(points) < 10:
+        return
+    lo, hi = np.percentile(points[:, 2], [0.5, 99.5])
+    span = float(hi - lo)
+    if MIN_HEIGHT_SPAN <= span <= MAX_HEIGHT_SPAN:
+        return
+    per_unit = UNITS[units]
+    raw = span / per_unit
+    fits = [
+        f"{u} ({raw * f:.3g} m)"
+        for u, f in UNITS.items()
+        if MIN_HEIGHT_SPAN <= raw * f <= MAX_HEIGHT_SPAN and u != units
+    ]
+    hint = f"; as {' or '.join(fits)} it would fit: pass units=" if fits else ""
+    if fits:
+        hint += repr(fits[0].split()[0])
+    raise ScanError(
+        f"{source}: the cloud spans {raw:.4g} {units} = {span:.4g} m in height, not a plausible "
+        f"indoor scan in {units} ({MIN_HEIGHT_SPAN}-{MAX_HEIGHT_SPAN} m){hint}"
+    )
+
+
+def to_metres_z_up(
+    raw: np.ndarray,
+    *,
+    units: str = "m",
+    up: str = "+z",
+    source: Path | str = "cloud",
+    drop_invalid: bool = False,
+) -> tuple[np.ndarray, float, np.ndarray]:
+    """Validate raw points and convert them to metres, z up: (points, scale, axes).
+
+    NaN or infinite coordinates are an error unless ``drop_invalid`` (organised clouds mark
+    missing returns with NaN; say so explicitly to drop them).
+    """
+    if units not in UNITS:
+        raise ScanError(f"{source}: unknown units {units!r} (one of {', '.join(UNITS)})")
+    key = up if up.startswith(("+", "-")) else f"+{up}"
+    if key.lower() not in UP_AXES:
+        raise ScanError(f"{source}: unknown up axis {up!r} (one of {', '.join(UP_AXES)})")
+    key = key.lower()
+    raw = np.asarray(raw, dtype=np.float64)
+    if raw.ndim != 2 or raw.shape[1] != 3:
+        raise ScanError(f"{source}: points must be an (N, 3) array, got shape {raw.shape}")
+    if len(raw) == 0:
+        raise ScanError(f"{source}: the point cloud is empty")
+    finite = np.isfinite(raw).all(axis=1)
+    bad = int(len(raw) - finite.sum())
+    if bad:
+        if not drop_invalid:
+            raise ScanError(
+                f"{source}: {bad} of {len(raw)} points have NaN or infinite coordinates "
+                "(pass drop_invalid=True / --drop-invalid to leave them out)"
+            )
+        raw = raw[finite]
+        if len(raw) == 0:
+            raise ScanError(f"{source}: every point has NaN or infinite coordinates")
+    scale = UNITS[units]
+    axes = UP_AXES[key]
+    pts = raw @ (axes.T * scale) if key != "+z" or scale != 1.0 else raw
+    check_units(pts, units, source)
+    return pts, scale, axes
+
+
+def read_scan(
+    path: str | Path, *, units: str = "m", up: str = "+z", drop_invalid: bool = False
+) -> ScanCloud:
+    """Read a scan file into metres, z up. See the module docstring for formats and options.
+
+    Raises:
+        ScanError: unknown suffix, missing file, a file not of its format, no points, NaN
+            points (unless ``drop_invalid``), implausible units, unknown units or up axis.
+    """
+    path = Path(path)
+    raw = read_points_raw(path)
+    if path.suffix.lower() == ".e57" and units != "m":
+        raise ScanError(f"{path}: E57 coordinates are metres by the standard; units={units!r}")
+    pts, scale, axes = to_metres_z_up(
+        raw, units=units, up=up, source=path, drop_invalid=drop_invalid
+    )
+    return ScanCloud(path, pts, units, up, scale, axes)

@@ -1,0 +1,338 @@
+"""A scan becomes a plain MJCF scene: floor plane, obstacle and void boxes, named sites.
+
+``scan_to_scene`` runs the whole pipeline: read (:mod:`.read`), find and level the floor
+(:mod:`.level`), floor plan and boxes (:mod:`.obstacles`), then write the MJCF atomically after
+MuJoCo has compiled it. The levelling transform is written into the scene twice: in its header
+comment and as ``<custom><numeric name="mjwalk_scan_transform">``: the 16 numbers (row-major) of
+the 4 x 4 matrix taking a point of the scan file (its units, its axes) to the scene (metres,
+z up, floor at z = 0).
+
+Sites TOML (``sites=``): one table per site under ``[site]``, in metres::
+
+    [site.door]
+    xy = [1.20, 0.40]        # scene x, y (the scan's x, y for a z-up scan in metres)
+    yaw = 90                 # optional: the direction faced, degrees from +x, CCW
+
+    [site.bench]
+    scan = [3.1, 1.0, -1.2]  # or a point picked in the scan file (its units and axes)
+"""
+
+from __future__ import annotations
+
+import time
+import tomllib
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from mjwalk._io import atomic_path
+from mjwalk.errors import ScanError
+from mjwalk.world.scan.level import Levelling, find_floor
+from mjwalk.world.scan.obstacles import FloorPlan, floor_plan, rectangles
+from mjwalk.world.scan.read import read_scan, to_metres_z_up
+from mjwalk.world.workplace import OBSTACLE_Z_RANGE
+
+#: Sites are written this far above the floor (a stand site on the floor, as in the shipped
+#: scenes: ``mjwalk.plot`` draws sites below 0.05 m as stand positions).
+SITE_Z = 0.0
+
+
+@dataclass
+class ScanScene:
+    """The result of :func:`build_scene`: the MJCF text and what it was made from.
+
+    ``matrix`` (4, 4) takes scan-file points to the scene; ``timings`` holds wall-clock seconds
+    per stage.
+    """
+
+    xml: str
+    plan: FloorPlan
+    levelling: Levelling
+    matrix: np.ndarray
+    n_points: int
+    n_obstacle_boxes: int
+    n_void_boxes: int
+    sites: dict[str, tuple[float, float, float]]
+    timings: dict[str, float] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class _Site:
+    name: str
+    xy: tuple[float, float] | None
+    scan: tuple[float, float, float] | None
+    yaw_deg: float
+
+
+def read_sites(path: str | Path) -> list[_Site]:
+    """Parse a sites TOML (format in the module docstring). Raises ScanError naming the key."""
+    path = Path(path)
+    try:
+        doc = tomllib.loads(path.read_text())
+    except FileNotFoundError:
+        raise ScanError(f"{path}: sites file not found") from None
+    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+        raise ScanError(f"{path}: not a valid TOML sites file: {exc}") from exc
+    extra = set(doc) - {"site"}
+    if extra:
+        raise ScanError(f"{path}: unknown top-level key(s) {sorted(extra)} (expected [site.NAME])")
+    out = []
+    for name, spec in doc.get("site", {}).items():
+        where = f"{path}: [site.{name}]"
+        if not isinstance(spec, dict):
+            raise ScanError(f"{where} must be a table with xy or scan")
+        unknown = set(spec) - {"xy", "scan", "yaw"}
+        if unknown:
+            raise ScanError(f"{where}: unknown key(s) {sorted(unknown)} (xy, scan, yaw)")
+        if ("xy" in spec) == ("scan" in spec):
+            raise ScanError(f"{where} needs exactly one of xy = [x, y] or scan = [x, y, z]")
+        key, n = ("xy", 2) if "xy" in spec else ("scan", 3)
+        val = spec[key]
+        if (
+            not isinstance(val, list)
+            or len(val) != n
+            or not all(isinstance(v, int | float) and np.isfinite(v) for v in val)
+        ):
+            raise ScanError(f"{where}: {key} must be {n} finite numbers, got {val!r}")
+        yaw = spec.get("yaw", 0.0)
+        if not isinstance(yaw, int | float):
+            raise ScanError(f"{where}: yaw must be a number of degrees, got {yaw!r}")
+        xy = tuple(float(v) for v in val) if key == "xy" else None
+        scan = tuple(float(v) for v in val) if key == "scan" else None
+        out.append(_Site(str(name), xy, scan, float(yaw)))  # type: ignore[arg-type]
+    return out
+
+
+def _matrix(levelling: Levelling, scale: float, axes: np.ndarray) -> np.ndarray:
+    pre = np.eye(4)
+    pre[:3, :3] = scale * axes
+    return levelling.matrix @ pre
+
+
+def _fmt(v) -> str:
+    return " ".join(f"{x:.10g}" for x in np.ravel(v))  # georeferenced x, y keep mm
+
+
+def _mjcf(
+    plan: FloorPlan,
+    boxes: list[tuple[str, np.ndarray, np.ndarray, str]],
+    sites: dict[str, tuple[float, float, float]],
+    header: str,
+    matrix: np.ndarray,
+    model_name: str,
+) -> str:
+    xmin, ymin, xmax, ymax = plan.bounds
+    cx, cy = 0.5 * (xmin + xmax), 0.5 * (ymin + ymax)
+    hx, hy = 0.5 * (xmax - xmin), 0.5 * (ymax - ymin)
+    lines = [
+        "<!--",
+        *[f"  {ln}" for ln in header.splitlines()],
+        "-->",
+        f'<mujoco model="{model_name}">',
+        '  <visual><headlight ambient="0.45 0.45 0.45" diffuse="0.5 0.5 0.5"/></visual>',
+        "  <custom>",
+        f'    <numeric name="mjwalk_scan_transform" data="{_fmt(matrix)}"/>',
+        "  </custom>",
+        "  <asset>",
+        '    <texture name="grid" type="2d" builtin="checker" rgb1="0.82 0.82 0.80" '
+        'rgb2="0.74 0.74 0.72" width="300" height="300"/>',
+        f'    <material name="floor" texture="grid" texrepeat="{max(1, round(2 * hx))} '
+        f'{max(1, round(2 * hy))}"/>',
+        '    <material name="scan_obstacle" rgba="0.62 0.58 0.52 1"/>',
+        '    <material name="scan_void" rgba="0.55 0.25 0.25 0.25"/>',
+        "  </asset>",
+        "  <worldbody>",
+        f'    <light pos="{cx:.4f} {cy:.4f} 6" dir="0 0 -1"/>',
+        f'    <geom name="floor" type="plane" pos="{cx:.4f} {cy:.4f} 0" size="{hx:.4f} {hy:.4f} '
+        '0.05" material="floor"/>',
+    ]
+    for name, pos, half, material in boxes:
+        group = ' group="3"' if material == "scan_void" else ""
+        lines.append(
+            f'    <geom name="{name}" type="box" pos="{_fmt(np.round(pos, 5))}" '
+            f'size="{_fmt(np.round(half, 5))}" material="{material}"{group}/>'
+        )
+    for name, (x, y, yaw) in sites.items():
+        lines.append(
+            f'    <site name="{name}" pos="{x:.4f} {y:.4f} {SITE_Z}" size="0.05" '
+            f'euler="0 0 {np.degrees(yaw):.6g}"/>'  # MJCF angles are degrees by default
+        )
+    lines += ["  </worldbody>", "</mujoco>", ""]
+    return "\n".join(lines)
+
+
+def _boxes(plan: FloorPlan) -> tuple[list, int, int]:
+    """Obstacle boxes, then void boxes. An obstacle's outermost cells hold its surface at an
+    unknown place inside them, on average at their centre: each box side facing a cell that
+    is not part of the same obstacle is moved in by half a cell (an unbiased outline)."""
+    r = plan.resolution
+    out: list = []
+    lab_grid = np.pad(plan.obstacles, 1)
+    for iy0, iy1, ix0, ix1, lab in rectangles(plan.obstacles):
+        top = float(plan.tops[lab])
+        inset = (
+            0.5
+            * r
+            * np.array(
+                [
+                    True,  # left and right ends of row runs always face another label or none
+                    True,
+                    not (lab_grid[iy0, ix0 + 1 : ix1 + 1] == lab).any(),  # the row below
+                    not (lab_grid[iy1 + 1, ix0 + 1 : ix1 + 1] == lab).any(),  # the row above
+                ]
+            )
+        )
+        lo = np.array([plan.x0 + ix0 * r + inset[0], plan.y0 + iy0 * r + inset[2]])
+        hi = np.array([plan.x0 + ix1 * r - inset[1], plan.y0 + iy1 * r - inset[3]])
+        mid = 0.5 * (lo + hi)
+        lo, hi = np.minimum(lo, mid - 0.25 * r), np.maximum(hi, mid + 0.25 * r)  # >= r/2 wide
+        pos = np.array([*(0.5 * (lo + hi)), 0.5 * top])
+        out.append(
+            (
+                f"scan_obstacle_{len(out)}",
+                pos,
+                np.array([*(0.5 * (hi - lo)), 0.5 * top]),
+                "scan_obstacle",
+            )
+        )
+    n_obst = len(out)
+    top = OBSTACLE_Z_RANGE[1]
+    for iy0, iy1, ix0, ix1, _ in rectangles(plan.void.astype(np.int32)):
+        lo = np.array([plan.x0 + ix0 * r, plan.y0 + iy0 * r])
+        hi = np.array([plan.x0 + ix1 * r, plan.y0 + iy1 * r])
+        pos = np.array([*(0.5 * (lo + hi)), 0.5 * top])
+        out.append(
+            (
+                f"scan_void_{len(out) - n_obst}",
+                pos,
+                np.array([*(0.5 * (hi - lo)), 0.5 * top]),
+                "scan_void",
+            )
+        )
+    return out, n_obst, len(out) - n_obst
+
+
+def build_scene(
+    points: np.ndarray,
+    *,
+    units: str = "m",
+    up: str = "+z",
+    drop_invalid: bool = False,
+    resolution: float = 0.02,
+    sites: list[_Site] | None = None,
+    source: str = "cloud",
+    model_name: str = "scan",
+    _read: tuple[np.ndarray, float, np.ndarray] | None = None,
+    clock: Callable[[], float] = time.perf_counter,
+) -> ScanScene:
+    """Make the MJCF scene of a point cloud ``points`` (N, 3) in the file's units and axes.
+
+    Everything is checked, and the MJCF compiled by MuJoCo, before anything is written.
+
+    Raises:
+        ScanError: empty cloud, NaN points, implausible units, no floor, sites off the floor.
+    """
+    timings: dict[str, float] = {}
+    t = clock()
+    if _read is None:
+        pts, scale, axes = to_metres_z_up(
+            points, units=units, up=up, source=source, drop_invalid=drop_invalid
+        )
+        timings["validate"] = clock() - t
+        t = clock()
+    else:
+        pts, scale, axes = _read
+    levelling = find_floor(pts, source=source)
+    timings["floor"] = clock() - t
+    t = clock()
+    levelled = levelling.apply(pts)
+    timings["level"] = clock() - t
+    t = clock()
+    plan = floor_plan(levelled, resolution=resolution)
+    if plan is None or not plan.floor.any():
+        raise ScanError(f"{source}: no floor found after levelling (no points at z = 0)")
+    timings["floor plan"] = clock() - t
+    t = clock()
+    matrix = _matrix(levelling, scale, axes)
+    site_xyyaw: dict[str, tuple[float, float, float]] = {}
+    for s in sites or []:
+        if s.xy is not None:
+            xy = np.array(s.xy)
+        else:
+            xy = (matrix @ np.array([*(s.scan or ()), 1.0]))[:2]
+        ix = int(np.floor((xy[0] - plan.x0) / plan.resolution))
+        iy = int(np.floor((xy[1] - plan.y0) / plan.resolution))
+        ny, nx = plan.floor.shape
+        if not (0 <= ix < nx and 0 <= iy < ny) or not plan.floor[iy, ix]:
+            b = plan.bounds
+            raise ScanError(
+                f"{source}: site {s.name!r} at ({xy[0]:.3f}, {xy[1]:.3f}) is not on the scanned "
+                f"floor (x in [{b[0]:.2f}, {b[2]:.2f}], y in [{b[1]:.2f}, {b[3]:.2f}] m, "
+                "obstacles and voids excluded)"
+            )
+        site_xyyaw[s.name] = (float(xy[0]), float(xy[1]), float(np.radians(s.yaw_deg)))
+    boxes, n_obst, n_void = _boxes(plan)
+    header = (
+        f"mjwalk scan of {source}: {len(pts)} points, metres, z up, floor at z = 0.\n"
+        f"Floor tilt removed: {levelling.tilt_deg:.3f} deg (normal {_fmt(levelling.normal)} in "
+        f"the scan), floor plane rms {1000 * levelling.rms:.1f} mm.\n"
+        f"Scan file point -> scene point: 4x4 matrix (row-major, also in custom numeric "
+        f"mjwalk_scan_transform):\n  {_fmt(matrix[0])}\n  {_fmt(matrix[1])}\n"
+        f"  {_fmt(matrix[2])}\n  {_fmt(matrix[3])}\n"
+        f"Obstacles: points {OBSTACLE_Z_RANGE[0]}-{OBSTACLE_Z_RANGE[1]} m above the floor, "
+        f"{n_obst} boxes on a {resolution} m grid; voids (unscanned or no floor): {n_void} boxes "
+        f"(group 3); {plan.holes_filled} small unscanned holes counted as floor."
+    )
+    xml = _mjcf(plan, boxes, site_xyyaw, header, matrix, model_name)
+    try:
+        mujoco.MjModel.from_xml_string(xml)
+    except ValueError as exc:  # a bug here, not bad input: say so plainly
+        raise ScanError(f"{source}: the generated scene does not compile: {exc}") from exc
+    timings["mjcf"] = clock() - t
+    return ScanScene(xml, plan, levelling, matrix, len(pts), n_obst, n_void, site_xyyaw, timings)
+
+
+def write_scene(scene: ScanScene, output: str | Path) -> Path:
+    """Write the scene's MJCF atomically (temporary file, then rename)."""
+    output = Path(output)
+    with atomic_path(output) as tmp:
+        tmp.write_text(scene.xml)
+    return output
+
+
+def scan_to_scene(
+    scan: str | Path,
+    output: str | Path,
+    *,
+    units: str = "m",
+    up: str = "+z",
+    drop_invalid: bool = False,
+    resolution: float = 0.02,
+    sites: str | Path | None = None,
+) -> ScanScene:
+    """Read a scan file and write its MJCF scene to ``output``; returns the :class:`ScanScene`.
+
+    The sites file is read and every input checked before any work; nothing is written unless
+    the whole pipeline succeeded.
+    """
+    scan = Path(scan)
+    site_list = read_sites(sites) if sites is not None else None
+    t = time.perf_counter()
+    cloud = read_scan(scan, units=units, up=up, drop_invalid=drop_invalid)
+    t_read = time.perf_counter() - t
+    scene = build_scene(
+        cloud.points,
+        source=str(scan),
+        resolution=resolution,
+        sites=site_list,
+        model_name=scan.stem,
+        _read=(cloud.points, cloud.scale, cloud.axes),
+    )
+    scene.timings = {"read": t_read, **scene.timings}
+    t = time.perf_counter()
+    write_scene(scene, output)
+    scene.timings["write"] = time.perf_counter() - t
+    return scene

@@ -1,0 +1,136 @@
+"""Concave mesh obstacles: true band footprint for the planner, CoACD parts for MuJoCo."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import mujoco
+import numpy as np
+import pytest
+import shapely
+
+from mjwalk.errors import PlanningError, SceneError
+from mjwalk.plan.grid import plan_grid
+from mjwalk.world import build_clearance, geom_footprint, load_workplace
+from mjwalk.world.meshimport import import_scene
+
+
+def _extrude(poly: shapely.Polygon, height: float) -> tuple[np.ndarray, np.ndarray]:
+    """A closed prism mesh (vertices, outward faces) of a simple polygon, z from 0 to height."""
+    ext = np.asarray(shapely.orient_polygons(poly).exterior.coords)[:-1]
+    n = len(ext)
+    verts = np.vstack([np.c_[ext, np.zeros(n)], np.c_[ext, np.full(n, height)]])
+    index = {tuple(p): i for i, p in enumerate(ext.round(9))}
+    faces = []
+    for t in shapely.get_parts(shapely.constrained_delaunay_triangles(poly)):
+        c = np.asarray(t.exterior.coords)[:-1]
+        ids = [index[tuple(p)] for p in c.round(9)]
+        if (c[1, 0] - c[0, 0]) * (c[2, 1] - c[0, 1]) - (c[2, 0] - c[0, 0]) * (
+            c[1, 1] - c[0, 1]
+        ) < 0:
+            ids = ids[::-1]
+        faces += [[ids[2], ids[1], ids[0]], [i + n for i in ids]]
+    for i in range(n):
+        j = (i + 1) % n
+        faces += [[i, j, j + n], [i, j + n, i + n]]
+    return verts, np.array(faces)
+
+
+#: A U-shaped bench, 2.2 x 2.0 m, 0.9 m high, arms 0.4 m thick: the inside is 1.4 m wide and
+#: 1.6 m deep, open towards +y. Placed with its base on y in [-1.0, -0.6].
+U_BENCH = shapely.Polygon(
+    [(0, 0), (2.2, 0), (2.2, 2.0), (1.8, 2.0), (1.8, 0.4), (0.4, 0.4), (0.4, 2.0), (0, 2.0)]
+)
+INSIDE = np.array([0.0, 0.0])  # in the U, 0.7 m from either arm, 0.6 m from the base
+OUTSIDE = np.array([0.0, -2.3])  # behind the base
+
+
+@pytest.fixture
+def u_scene(tmp_path):
+    v, f = _extrude(U_BENCH, 0.9)
+    xml = f"""<mujoco>
+  <asset><mesh name="u" vertex="{" ".join(f"{x:.6g}" for x in v.ravel())}"
+               face="{" ".join(str(i) for i in f.ravel())}"/></asset>
+  <worldbody>
+    <geom name="floor" type="plane" size="3 3 0.05"/>
+    <geom name="bench" type="mesh" mesh="u" pos="-1.1 -1.0 0"/>
+  </worldbody>
+</mujoco>"""
+    path = tmp_path / "ubench.xml"
+    path.write_text(xml)
+    return path
+
+
+def test_concave_mesh_gets_its_true_footprint(u_scene):
+    wp = load_workplace(u_scene)
+    assert len(wp.obstacles) > 1 and {f.name for f in wp.obstacles} == {"bench"}
+    # In the U: 0.7 m to the arms; the hull would put the point inside the bench.
+    assert wp.clearance(INSIDE) == pytest.approx(0.6, abs=0.005)
+    assert wp.clearance(np.array([0.0, -0.8])) < 0  # the base itself
+    assert wp.clearance(np.array([0.9, 0.0])) < 0  # an arm
+
+
+def test_walk_into_the_u_is_planned_and_refused_with_the_hull(u_scene):
+    wp = load_workplace(u_scene)
+    route = plan_grid(wp, OUTSIDE, INSIDE, radius=0.25)
+    assert route.length > 3.0  # around an arm and in through the open side
+    # The same scene with the bench reduced to its convex hull refuses the goal.
+    model = wp.model
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    hull = geom_footprint(model, data, model.geom("bench").id, 0.05, 2.0)
+    hulled = dataclasses.replace(
+        wp, obstacles=[hull], clearance=build_clearance([hull], wp.floor_bounds)
+    )
+    with pytest.raises(PlanningError, match="inside obstacle"):
+        plan_grid(hulled, OUTSIDE, INSIDE, radius=0.25)
+
+
+@pytest.mark.slow
+def test_imported_u_bench_walk_is_collision_free_in_mujoco(u_scene, tmp_path):
+    """scene-import decomposes the bench (CoACD); walks planned into the U keep the body
+    radius by MuJoCo's own distance to the convex parts it collides with."""
+    from mjwalk.gait.default import default_model
+    from mjwalk.plan.hybrid import plan_walks
+    from mjwalk.world.probe import ClearanceProbe, path_clearance
+
+    out = tmp_path / "imported.xml"
+    result = import_scene(u_scene, out)
+    assert result.parts["bench"] >= 3
+    wp = load_workplace(out)
+    assert all(f.name.startswith("bench_part") for f in wp.obstacles)
+    # The parts' union is the U to within CoACD's tolerance.
+    assert wp.clearance(INSIDE) == pytest.approx(0.6, abs=0.05)
+    probe = ClearanceProbe(wp)
+    walks = plan_walks(wp, OUTSIDE, INSIDE, default_model(progress=False), n=3, seed=0)
+    assert len(walks) == 3
+    for w in walks:
+        assert path_clearance(probe, w.xy, spacing=0.02).min() >= 0.25 - 0.005
+    # The raw scene's MuJoCo geometry is the hull: the same walks would collide with it.
+    raw_probe = ClearanceProbe(load_workplace(u_scene))
+    assert path_clearance(raw_probe, walks[0].xy, spacing=0.02).min() < 0
+
+
+def test_scene_import_of_a_mesh_file(tmp_path):
+    import trimesh
+
+    v, f = _extrude(U_BENCH, 0.9)
+    stl = tmp_path / "bench.stl"
+    trimesh.Trimesh(v * 1000.0, f).export(stl)  # millimetres, as CAD exports
+    out = tmp_path / "bench.xml"
+    result = import_scene(stl, out, units="mm")
+    assert result.parts["bench"] >= 3
+    wp = load_workplace(out)
+    # Placed as in the file: the U's inside centre is at (1.1, 1.2).
+    assert wp.clearance(np.array([1.1, 1.2])) == pytest.approx(0.7, abs=0.05)
+
+
+def test_scene_import_bad_input(tmp_path):
+    bad = tmp_path / "x.stl"
+    bad.write_text("not a mesh")
+    with pytest.raises(SceneError):
+        import_scene(bad, tmp_path / "o.xml")
+    (tmp_path / "x.txt").write_text("x")
+    with pytest.raises(SceneError, match="unknown scene format"):
+        import_scene(tmp_path / "x.txt", tmp_path / "o.xml")
+    assert not (tmp_path / "o.xml").exists()
