@@ -100,7 +100,13 @@ def test_wheel_and_editable_install_run_from_any_folder(tmp_path):
     work.mkdir()
     _check_install(venv, work, venv)
 
-    _run([*pip, "--python", py, "install", "--no-deps", "-q", "-e", src], tmp_path)
+    # a second fresh environment: uninstalling the wheel would leave the numba cache files the
+    # plan wrote beside its modules (not in the wheel's RECORD), and that leftover folder would
+    # shadow the editable install as a namespace package
+    venv2 = tmp_path / "venv2"
+    _run([sys.executable, "-m", "venv", "--without-pip", "--system-site-packages", venv2], tmp_path)
+    py2 = venv2 / "bin" / "python"
+    _run([*pip, "--python", py2, "install", "--no-deps", "-q", "-e", src], tmp_path)
     work2 = tmp_path / "work2"
     work2.mkdir()
-    _check_install(venv, work2, src)
+    _check_install(venv2, work2, src)
