@@ -27,6 +27,7 @@ import numpy as np
 
 from mjwalk.body.humanoid import JointMap, attach_humanoid, pelvis_height
 from mjwalk.conventions import SAMPLE_RATE_HZ, Side, side_prefix
+from mjwalk.cycle.handling import REACH_CASE, RETURN_CASE, reach_duration, task_factor
 from mjwalk.cycle.spec import check_durations
 from mjwalk.cycle.types import (
     ArmRecord,
@@ -48,9 +49,8 @@ TURN_SPEED = math.radians(180.0)
 MIN_TURN = 0.25
 #: Lateral offset of the shoulder from the pelvis centre (m, stature 1.75 m; Winter: 0.1·H).
 SHOULDER_OFFSET = 0.18
-#: Arm reach out and back (s), and the hold of a pick or place without a given duration (s).
-REACH_OUT = 0.9
-REACH_BACK = 0.7
+#: The hold of a pick or place without a given duration (s), the median for the reference
+#: adult; reach and return times come from the reach distance (MTM-1, mjwalk.cycle.handling).
 DEFAULT_HOLD = {"pick": 0.4, "place": 0.4, "fasten": 3.0, "wait": 1.0}
 #: Walks of a cycle end this close to their stand site (m): the operator steps up to the
 #: workplace (the planner's default goal area of 0.25 m would leave screws out of reach).
@@ -186,8 +186,13 @@ def _reach_frames(
     hold: float,
     fps: float,
     side: Side = "left",
+    timing=None,
 ):
     """Frames of reaching from pose ``q0`` to ``target_w`` (world, m), holding, returning.
+
+    ``timing(distance)`` gives the (reach, return) durations in seconds of a hand movement of
+    ``distance`` metres (rest hand to target); default: the reference adult's MTM-1 case B
+    reach and case E return (:mod:`mjwalk.cycle.handling`).
 
     The reach model (PCA + DCS) brings the hand from rest to the pre-grasp point
     ``target_w + approach_w``; the hand then moves straight onto the target along
@@ -232,7 +237,13 @@ def _reach_frames(
         app[k, 0], app[k, 1] = two_link_ik(wrist, lengths[0], lengths[1], u_last[0] * lengths[0])
     directions = np.concatenate([res.directions, app])
     q = arm_joint_angles(directions, side)
-    n_out = max(2, round(REACH_OUT * fps))
+    if timing is None:
+
+        def timing(dist: float) -> tuple[float, float]:
+            return reach_duration(dist, None, "B"), reach_duration(dist, None, RETURN_CASE)
+
+    reach_out, reach_back = timing(float(np.linalg.norm(end - start)))
+    n_out = max(2, round(reach_out * fps))
     out, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
     data.qpos[:] = out[-1]
     mujoco.mj_kinematics(m, data)
@@ -240,7 +251,7 @@ def _reach_frames(
     tip = wrist + frame @ (directions[-1, 2] * lengths[2])
     error = float(np.linalg.norm(tip - target_w))
     n_hold = max(0, round(hold * fps))
-    n_back = max(1, round(REACH_BACK * fps))
+    n_back = max(1, round(reach_back * fps))
     back = out[::-1][np.linspace(0, n_out - 1, n_back).round().astype(int)]
     back = np.vstack([back[1:], q0[None]])
     frames = np.vstack([out, np.repeat(out[-1:], n_hold, axis=0), back])
@@ -297,6 +308,10 @@ def simulate_cycle(
     spec = ctx.spec
     check_durations(spec.tasks)
     rng = np.random.default_rng(rng)
+    # side streams spawned from the run's generator (its own draws, the walks, are unchanged):
+    # the operator (issue 14's population, not yet merged), the task-time factors, the
+    # standing spots (ditto); the same order the population work uses
+    _op_rng, hand_rng, _stand_rng = rng.spawn(3)
     entropy = _entropy(rng)
     wp = ctx.workplace
     here = spec.start
@@ -352,9 +367,21 @@ def simulate_cycle(
             t += dt
             yaw = face
             hold = task.duration if task.duration is not None else DEFAULT_HOLD[task.kind]
+            factor = task_factor(hand_rng)  # lognormal, median 1 (mjwalk.cycle.handling)
+            hold *= factor
+            case = REACH_CASE[task.kind]
+
+            def timing(dist, case=case, factor=factor):
+                return (
+                    reach_duration(dist, None, case) * factor,
+                    reach_duration(dist, None, RETURN_CASE) * factor,
+                )
+
             approach = _approach(task.kind, site_pos, x, y)
             arm: Side = "right" if task.hand == "right" else "left"
-            rf, err, res = _reach_frames(ctx, frames[-1][-1], target, approach, hold, fps, arm)
+            rf, err, res = _reach_frames(
+                ctx, frames[-1][-1], target, approach, hold, fps, arm, timing=timing
+            )
             frames.append(rf)
             t += len(rf) / fps
             arms.append(
