@@ -167,7 +167,7 @@ def test_missing_required_keys(tmp_path, workplace):
     [
         ('kind = "fasten"', 'kind = "screw"', "kind", 0, "not a task kind"),
         ('kind = "walk"', 'kind = "wakl"', "kind", 1, "did you mean 'walk'"),
-        ('hand = "left"', 'hand = "middle"', "hand", 3, "'left' or 'right'"),
+        ('hand = "left"', 'hand = "middle"', "hand", 3, "'left', 'right' or 'both'"),
         ("duration = 4.0", "duration = -1.0", "duration", 2, "between 0 and 3600 s"),
         ("duration = 4.0", 'duration = "4 s"', "duration", 0, "must be a number"),
         ("stature = 1.75", "stature = 2.5", "stature", 0, "between 1.4 and 2.1"),

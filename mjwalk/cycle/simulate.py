@@ -158,12 +158,61 @@ def _turn_frames(ctx, x, y, yaw0, yaw1, fps) -> tuple[np.ndarray, float]:
     return frames, n / fps
 
 
-def _walk_frames(ctx, walk, fps, carry: str | None = None) -> np.ndarray:
+def hand_points(ctx, qpos: np.ndarray) -> np.ndarray:
+    """(F, 2, 3) world positions (m) of the left and right palm (the hand geoms' centres) in
+    the poses ``qpos`` (F, nq)."""
+    m, jm = ctx.model, ctx.jointmap
+    data = mujoco.MjData(m)
+    ids = [m.body(f"{jm.prefix}hand_{p}").id for p in ("l", "r")]
+    gids = [int(np.flatnonzero(m.geom_bodyid == b)[0]) for b in ids]
+    out = np.empty((len(qpos), 2, 3))
+    for f, q in enumerate(np.atleast_2d(qpos)):
+        data.qpos[:] = q
+        mujoco.mj_kinematics(m, data)
+        out[f] = data.geom_xpos[gids]
+    return out
+
+
+def carry_abduction(ctx, width: float) -> float:
+    """Shoulder abduction (radians, both arms) of the two-handed carrying posture
+    (:data:`~mjwalk.timeline.frames.CARRY_POSE` otherwise) that puts the palms ``width`` metres
+    apart: the hands stay on the grips of the part while it is carried. Solved by Brent's
+    method within the joint's range (clipped to it when the part is wider or narrower than the
+    arms can span)."""
+    from scipy.optimize import brentq
+
+    from mjwalk.timeline.frames import CARRY_POSE
+
+    jm = ctx.jointmap
+    q = jm.neutral_qpos(ctx.model, ctx.spec.stature)
+    for side in "lr":
+        q[jm.adr(f"shoulder_{side}_flex")] = CARRY_POSE["shoulder_flex"]
+        q[jm.adr(f"elbow_{side}")] = CARRY_POSE["elbow"]
+
+    def gap(abd: float) -> float:
+        for side in "lr":
+            q[jm.adr(f"shoulder_{side}_abd")] = abd
+        h = hand_points(ctx, q[None])[0]
+        return float(np.linalg.norm(h[0] - h[1])) - width
+
+    lo, hi = jm.limits("shoulder_l_abd")
+    hi = min(hi, 1.2)
+    if gap(lo) >= 0.0:
+        return float(lo)
+    if gap(hi) <= 0.0:
+        return float(hi)
+    return float(brentq(gap, lo, hi, xtol=1e-4))
+
+
+def _walk_frames(
+    ctx, walk, fps, carry: str | None = None, carry_width: float | None = None
+) -> np.ndarray:
     """Frames of a walk after its first sample (legs from the footprints, arm swing from the
     legs). The arms swing fully only in mid-walk: the swing fades in over the first and out
     over the last :data:`ARM_EASE` seconds, so they are at rest when the operator stops at a
     rack or the car. ``carry`` ("left"/"right"): that hand holds the part in front of the body
-    (elbow flexed, forearm close to the trunk) instead of swinging."""
+    (elbow flexed, forearm close to the trunk) instead of swinging; "both": both hands hold a
+    part whose grips are ``carry_width`` metres apart (:func:`carry_abduction`)."""
     from mjwalk.body.legs import legs_from_walk
 
     legs = legs_from_walk(walk, ctx.spec.stature)
@@ -174,8 +223,15 @@ def _walk_frames(ctx, walk, fps, carry: str | None = None) -> np.ndarray:
     jm = ctx.jointmap
     room, away = room_and_away(ctx.workplace, frames[:, jm.root : jm.root + 2])
     rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
-    ease_arms(frames, t, walk.duration, jm, rest, room, carry, away, ctx.spec.stature)
+    abd = carry_abduction(ctx, carry_width) if carry == "both" and carry_width else None
+    ease_arms(frames, t, walk.duration, jm, rest, room, carry, away, ctx.spec.stature, abd)
     return frames
+
+
+def _default_timing(dist: float) -> tuple[float, float]:
+    """The reference adult's reach (MTM-1 case B) and return (case E) times, seconds, for a
+    hand movement of ``dist`` metres."""
+    return reach_duration(dist, None, "B"), reach_duration(dist, None, RETURN_CASE)
 
 
 def _reach_frames(
@@ -238,10 +294,7 @@ def _reach_frames(
     directions = np.concatenate([res.directions, app])
     q = arm_joint_angles(directions, side)
     if timing is None:
-
-        def timing(dist: float) -> tuple[float, float]:
-            return reach_duration(dist, None, "B"), reach_duration(dist, None, RETURN_CASE)
-
+        timing = _default_timing
     reach_out, reach_back = timing(float(np.linalg.norm(end - start)))
     n_out = max(2, round(reach_out * fps))
     out, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
@@ -256,6 +309,40 @@ def _reach_frames(
     back = np.vstack([back[1:], q0[None]])
     frames = np.vstack([out, np.repeat(out[-1:], n_hold, axis=0), back])
     return frames, error, res
+
+
+def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None):
+    """A two-handed reach (``hand = "both"``): the left arm to the grip site ``<site>_left``, the
+    right arm (the mirrored model) to ``<site>_right``, at the same time, holding and returning
+    together. Returns (frames, the larger hand error in metres, the left arm's ReachResult with
+    both arms' warnings, the grip distance in metres)."""
+    from mjwalk.cycle.spec import grip_sites
+
+    wp = ctx.workplace
+    parts = {}
+    # Both hands of a bimanual reach start and arrive together (Kelso, Southard & Goodman 1979,
+    # Science 203: 1029-1031): the second arm takes the first arm's durations.
+    first: list[tuple[float, float]] = []
+
+    def shared(dist: float) -> tuple[float, float]:
+        if not first:
+            first.append(timing(dist) if timing is not None else _default_timing(dist))
+        return first[0]
+
+    for side_name, name in grip_sites(task.site, "both"):
+        side: Side = "right" if side_name == "right" else "left"
+        grip = np.asarray(wp.station(name).pos, dtype=float)
+        parts[side] = (
+            grip,
+            *_reach_frames(ctx, q0, grip, approach, hold, fps, side, timing=shared),
+        )
+    (gl, fl, el, rl), (gr, fr, er, rr) = parts["left"], parts["right"]
+    frames = fl.copy()
+    moved = np.any(fr != q0[None], axis=0)  # the right arm's joints
+    frames[:, moved] = fr[:, moved]
+    rl.warnings = list(rl.warnings) + [w for w in rr.warnings if w not in rl.warnings]
+    rl.outside = bool(rl.outside or rr.outside)
+    return frames, max(el, er), rl, float(np.linalg.norm(gl - gr))
 
 
 def _approach(kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndarray:
@@ -322,6 +409,7 @@ def simulate_cycle(
     tasks: list[TaskRecord] = []
     walks: list[WalkRecord] = []
     arms: list[ArmRecord] = []
+    width: float | None = None  # grip distance (m) of the two-handed part in the hands
     for i, task in enumerate(spec.tasks):
         t0 = t
         if task.kind in ("walk", "carry"):
@@ -331,7 +419,8 @@ def simulate_cycle(
             turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps)
             frames.append(turn)
             t += dt
-            wf = _walk_frames(ctx, path, fps, task.hand if task.kind == "carry" else None)
+            carry = task.hand if task.kind == "carry" else None
+            wf = _walk_frames(ctx, path, fps, carry, width)
             frames.append(wf)
             t += len(wf) / fps  # the walk, to the video frame
             x, y = (float(v) for v in path.xy[-1])
@@ -359,7 +448,8 @@ def simulate_cycle(
             # face the target (turning on the spot) before reaching for it
             d = math.hypot(target[0] - x, target[1] - y)
             face = math.atan2(target[1] - y, target[0] - x)
-            if task.kind != "fasten":  # shelf work: bring the target ahead of the shoulder
+            if task.hand != "both" and task.kind != "fasten":
+                # shelf work: bring the target ahead of the shoulder
                 side = 1 if task.hand == "left" else -1
                 face -= side * math.asin(min(SHOULDER_OFFSET / d, 0.5))
             turn, dt = _turn_frames(ctx, x, y, yaw, face, fps)
@@ -378,10 +468,18 @@ def simulate_cycle(
                 )
 
             approach = _approach(task.kind, site_pos, x, y)
-            arm: Side = "right" if task.hand == "right" else "left"
-            rf, err, res = _reach_frames(
-                ctx, frames[-1][-1], target, approach, hold, fps, arm, timing=timing
-            )
+            q0 = frames[-1][-1]
+            if task.hand == "both":
+                rf, err, res, width = _two_hand_frames(
+                    ctx, q0, task, approach, hold, fps, timing=timing
+                )
+                if task.kind != "pick":
+                    width = None  # released
+            else:
+                arm: Side = "right" if task.hand == "right" else "left"
+                rf, err, res = _reach_frames(
+                    ctx, q0, target, approach, hold, fps, arm, timing=timing
+                )
             frames.append(rf)
             t += len(rf) / fps
             arms.append(

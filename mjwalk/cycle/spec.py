@@ -35,7 +35,11 @@ fasten    site (where the part is fastened)           hand, part, duration (scre
 wait      duration                                    --
 ========  ==========================================  ==========================================
 
-``hand`` is "left" (default) or "right"; a carry's hand defaults to the hand holding a part.
+``hand`` is "left" (default), "right" or "both"; a carry's hand defaults to the hand holding a part.
+``hand = "both"`` is a two-handed pick / carry / place of a large part: the pick and place site
+``S`` is the part's centre and the scene must also have the grip sites ``S_left`` and ``S_right``
+(where the operator's left and right hand hold it); both hands reach their grips together, hold
+the part while carrying, and the place releases both.
 ``route`` labels a walk for the report (walks with one label are pooled, like the paper's T1-T5);
 it defaults to ``"<from site>-><to site>"``. ``duration`` is seconds, >= 0; None (absent) means the
 simulator's default.
@@ -75,6 +79,18 @@ STATURE_RANGE = (1.4, 2.1)
 #: Allowed walking (body) radius, metres.
 RADIUS_RANGE = (0.1, 0.6)
 HANDS = ("left", "right")
+#: Accepted values of a task's ``hand`` ("both": two-handed, see above).
+HAND_VALUES = (*HANDS, "both")
+
+
+def grip_sites(site: str, hand: str) -> list[tuple[str, str]]:
+    """(side, site name) pairs of the hands reaching for ``site``: ``[(hand, site)]`` for one
+    hand, ``[("left", site + "_left"), ("right", site + "_right")]`` for ``hand = "both"``."""
+    if hand == "both":
+        return [("left", f"{site}_left"), ("right", f"{site}_right")]
+    return [(hand, site)]
+
+
 #: Longest a task's ``duration`` and the durations of a cycle together may be, seconds. An
 #: assembly cycle's tasks last seconds to minutes (the station cycle of agethen2018 about 40 s);
 #: an hour bounds the simulated timeline at 108 000 frames at 30 fps (about 60 MB of poses),
@@ -466,9 +482,9 @@ def _task(
     hand = None
     if "hand" in raw:
         hand = raw["hand"]
-        if hand not in HANDS:
+        if hand not in HAND_VALUES:
             raise check.fail(
-                f"key 'hand' {where} must be 'left' or 'right', got {hand!r}", t, i, "hand"
+                f"key 'hand' {where} must be 'left', 'right' or 'both', got {hand!r}", t, i, "hand"
             )
     duration = None
     if "duration" in raw:
@@ -486,7 +502,7 @@ def _task(
         if kind == "carry":
             if hand is None:
                 hand = next((h for h in HANDS if held[h] > 0), "left")
-            if held[hand] == 0:
+            if any(held[h] == 0 for h in _hands(hand)):
                 key = "hand" if "hand" in raw else "kind"
                 raise check.fail(
                     f"key {key!r} {where}: a carry with nothing in the {hand} hand (pick a part "
@@ -499,6 +515,17 @@ def _task(
     elif kind in ("pick", "place", "fasten"):
         assert site is not None  # required above
         hand = hand or "left"
+        if hand == "both":
+            for _, grip in grip_sites(site, hand):
+                if grip not in workplace.stations:
+                    raise check.fail(
+                        f"key 'site' {where}: a two-handed {kind} (hand = 'both') needs the grip "
+                        f"sites {site + '_left'!r} and {site + '_right'!r} in the scene; "
+                        f"{grip!r} is missing",
+                        t,
+                        i,
+                        "site",
+                    )
         dist = float(np.linalg.norm(workplace.stations[site].xy - workplace.stations[stand].xy))
         if dist > MAX_REACH:
             raise check.fail(
@@ -509,8 +536,9 @@ def _task(
                 "site",
             )
         if kind == "pick":
-            held[hand] += 1
-        elif held[hand] == 0:
+            for h in _hands(hand):
+                held[h] += 1
+        elif any(held[h] == 0 for h in _hands(hand)):
             raise check.fail(
                 f"key 'kind' {where}: a {kind} with nothing in the {hand} hand (no part picked and "
                 "not yet "
@@ -520,7 +548,8 @@ def _task(
                 "kind",
             )
         else:
-            held[hand] -= 1
+            for h in _hands(hand):
+                held[h] -= 1
     return Task(
         kind=kind,
         site=site,
@@ -530,3 +559,8 @@ def _task(
         part=part,
         line=check.lines.line(t, i),
     )
+
+
+def _hands(hand: str) -> tuple[str, ...]:
+    """The hands of a task's ``hand`` value ("both": left and right)."""
+    return HANDS if hand == "both" else (hand,)

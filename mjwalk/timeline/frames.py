@@ -171,10 +171,13 @@ def ease_arms(
     carry: str | None = None,
     away: np.ndarray | None = None,
     stature: float = DEFAULT_STATURE,
+    carry_abd: float | None = None,
 ) -> np.ndarray:
     """Shape the arm motion of walking frames ``qpos`` (F, nq) in place and return it.
 
-    The swing (or, for ``carry`` = "left"/"right", that hand's carrying posture) fades in over
+    The swing (or, for ``carry`` = "left"/"right", that hand's carrying posture; for "both",
+    both arms in it, with the shoulder abduction ``carry_abd`` (radians) when given, so the
+    hands stay on a two-handed part's grips) fades in over
     the first and out over the last :data:`ARM_EASE` seconds, so the arms hang at rest when the
     walker stops, and shrinks where ``room`` (F,) — metres from the pelvis to the nearest
     obstacle — falls below :data:`ARM_ROOM`; there the hanging hands turn their thumbs forward
@@ -193,10 +196,15 @@ def ease_arms(
         for joint in (f"shoulder_{side}_flex", f"shoulder_{side}_abd", f"elbow_{side}"):
             k = jm.adr(joint)
             target = qpos[:, k]
-            if carry is not None and side == carry[0]:
-                target = np.full_like(target, CARRY_POSE[joint.replace(f"_{side}", "")])
+            holds = carry is not None and (carry == "both" or side == carry[0])
+            if holds:
+                name = joint.replace(f"_{side}", "")
+                pose = CARRY_POSE[name]
+                if carry == "both" and carry_abd is not None and name == "shoulder_abd":
+                    pose = carry_abd
+                target = np.full_like(target, pose)
             qpos[:, k] = rest[k] + w * (target - rest[k])
-        if carry is None or side != carry[0]:
+        if carry is None or not (carry == "both" or side == carry[0]):
             k = jm.adr(f"forearm_{side}_pron")
             qpos[:, k] = qpos[:, k] + tight * (TUCK_PRONATION - qpos[:, k])
     if room is not None and away is not None:
