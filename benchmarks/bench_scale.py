@@ -32,19 +32,9 @@ import time
 from pathlib import Path
 
 import numpy as np
+from bench_planner import sways_towards_stance  # the sway measure of the station benchmark
 
 ROOT = Path(__file__).resolve().parents[1]
-
-
-def _sways(pelvis: np.ndarray, stance_xy: np.ndarray) -> bool:
-    """As benchmarks/bench_planner.py: the step's largest lateral excursion from its chord
-    points to the stance foot's side."""
-    chord = pelvis[-1] - pelvis[0]
-    rel = pelvis - pelvis[0]
-    lat = chord[0] * rel[:, 1] - chord[1] * rel[:, 0]
-    srel = stance_xy - pelvis[0]
-    side = chord[0] * srel[1] - chord[1] * srel[0]
-    return bool(np.sign(lat[np.argmax(np.abs(lat))]) == np.sign(side))
 
 
 def setup_one(size: float, mode: str) -> dict:
@@ -158,7 +148,10 @@ def run_spread(lengths: list[float], n_pairs: int, n_walks: int, **options) -> N
                     continue
                 lens.append(w.length)
                 exp.append(w.meta["expansions"])
-                sways += [_sways(w.xy[s.start : s.end + 1], s.stance[:2]) for s in w.steps[1:]]
+                sways += [
+                    sways_towards_stance(w.xy[s.start : s.end + 1], s.stance[:2])
+                    for s in w.steps[1:]
+                ]
             if len(lens) >= 4:
                 q25, q75 = np.percentile(lens, [25, 75])
                 iqrs.append(q75 - q25)
@@ -209,7 +202,10 @@ def run_walks(lengths: list[float], n_walks: int, **options) -> None:
                 times.append(w.meta["seconds"])
                 ratios.append(w.meta["seconds"] / route.meta["seconds"])
                 lens.append(w.length / route.length)
-                sways += [_sways(w.xy[s.start : s.end + 1], s.stance[:2]) for s in w.steps[1:]]
+                sways += [
+                    sways_towards_stance(w.xy[s.start : s.end + 1], s.stance[:2])
+                    for s in w.steps[1:]
+                ]
         q25, q50, q75 = np.percentile(lens, [25, 50, 75]) if lens else (np.nan,) * 3
         print(
             f"{length:>6g} {np.median(exp) if exp else np.nan:>8.0f} {fails:>5d} "

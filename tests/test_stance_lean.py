@@ -8,9 +8,9 @@ import math
 import numpy as np
 import pytest
 
-from mjwalk.body.humanoid import ROM_DEG, leg_geometry
+from mjwalk.body.humanoid import leg_geometry
 from mjwalk.plan import stepcheck
-from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.hybrid import HybridPlanner, lean_params
 
 M = 16
 #: A step frame heading +y (world): the step's local frame (x right, y forward) is the world's.
@@ -18,15 +18,8 @@ FRAME = math.pi / 2
 
 
 def _par() -> np.ndarray:
-    g = leg_geometry()
-    return stepcheck.params(
-        hip_y=g.hip_y,
-        leg_span=g.thigh + g.shank,
-        eversion=-math.radians(ROM_DEG["ankle_inv"][0]),
-        inversion=math.radians(ROM_DEG["ankle_inv"][1]),
-        adduction=-math.radians(ROM_DEG["hip_abd"][0]),
-        abduction=math.radians(ROM_DEG["hip_abd"][1]),
-    )
+    """The planner's own stance-lean slots (1.75 m humanoid, ROM_DEG limits)."""
+    return stepcheck.params(**lean_params())
 
 
 def _compiled(pelvis, yaw, stance, stance_left, par) -> bool:

@@ -32,11 +32,13 @@ from mjwalk.arms.armrep import ArmRepresentation, apply_pose
 from mjwalk.arms.dcs import DCSNetwork
 from mjwalk.arms.kinematics import (
     MIRROR_Y,
+    REST_HAND,
     arm_segment_lengths,
     end_effector,
     min_jerk,
     two_link_ik,
 )
+from mjwalk.conventions import Side
 from mjwalk.errors import MjwalkError, ModelFileError
 
 REACH_FORMAT = "mjwalk.reach"
@@ -78,6 +80,26 @@ def mirror_result(res: ReachResult) -> ReachResult:
         hand=res.hand * MIRROR_Y,
         warnings=list(res.warnings),
     )
+
+
+def reach_for_side(
+    model: ReachModel,
+    end: np.ndarray,
+    side: Side,
+    start: np.ndarray | None = None,
+    object_size: float | None = None,
+) -> ReachResult:
+    """The endpoint reach from ``start`` (default :data:`REST_HAND`) to ``end`` (metres, in the
+    moving arm's shoulder frame) for either arm. The model is a left-arm model; the body is
+    symmetric about its sagittal plane, so a right-arm reach is the left-arm reach to the
+    mirrored target (:data:`MIRROR_Y`), mirrored back (:func:`mirror_result`)."""
+    start = np.asarray(REST_HAND if start is None else start, dtype=float)
+    end = np.asarray(end, dtype=float)
+    if side == "right":
+        m_end = end * MIRROR_Y
+        res = model.predict(np.r_[start, m_end], start=start, end=m_end, object_size=object_size)
+        return mirror_result(res)
+    return model.predict(np.r_[start, end], start=start, end=end, object_size=object_size)
 
 
 class ReachModel:

@@ -257,14 +257,13 @@ def _reach_frames(
 
     Returns (frames, hand error in metres, ReachResult of the model part)."""
     from mjwalk.arms.kinematics import (
-        MIRROR_Y,
         REST_HAND,
         arm_frames,
         arm_joint_angles,
         min_jerk,
         two_link_ik,
     )
-    from mjwalk.arms.reach import mirror_result
+    from mjwalk.arms.reach import reach_for_side
 
     m, jm, model = ctx.model, ctx.jointmap, ctx.reach_model
     data = mujoco.MjData(m)
@@ -276,13 +275,7 @@ def _reach_frames(
     end = frame.T @ (target_w - shoulder)
     pre = frame.T @ (target_w + approach_w - shoulder)
     start = np.asarray(REST_HAND, dtype=float)
-    # The reach model is a left-arm model; the body is symmetric about its sagittal plane
-    # (x-z of the shoulder frame), so a right-arm reach is the mirror image of the left-arm
-    # reach to the mirrored target (mjwalk.arms.reach.mirror_directions).
-    mirror = MIRROR_Y if side == "right" else np.ones(3)
-    res = model.predict(np.r_[start, pre * mirror], start=start, end=pre * mirror)
-    if side == "right":
-        res = mirror_result(res)
+    res = reach_for_side(model, pre, side, start)  # a right arm mirrors the left-arm model
     lengths = model.lengths
     u_last = res.directions[-1]
     n_app = max(4, len(res.directions) // 2)

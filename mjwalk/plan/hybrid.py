@@ -129,6 +129,22 @@ NEAR_GOAL_EXPANSIONS = 3
 #: 20, 50 of 200 and 10 of 30 walks change (the others because a successor refused during
 #: the search changes its course), none fails, median lengths within 0.03 m.
 LEAN_GEOMETRY = leg_geometry(1.75)
+
+
+def lean_params() -> dict[str, float]:
+    """The stance-lean check's slots of :func:`mjwalk.plan.stepcheck.params`: hip offset and
+    straight-leg length (m) of :data:`LEAN_GEOMETRY`, and the ankle eversion/inversion and hip
+    adduction/abduction limits (radians) of ``ROM_DEG``."""
+    return {
+        "hip_y": LEAN_GEOMETRY.hip_y,
+        "leg_span": LEAN_GEOMETRY.thigh + LEAN_GEOMETRY.shank,
+        "eversion": -math.radians(ROM_DEG["ankle_inv"][0]),
+        "inversion": math.radians(ROM_DEG["ankle_inv"][1]),
+        "adduction": -math.radians(ROM_DEG["hip_abd"][0]),
+        "abduction": math.radians(ROM_DEG["hip_abd"][1]),
+    }
+
+
 #: Far from the goal the heuristic weighs more (dynamic weighting, Pohl 1973): beyond
 #: ``FAR_FROM`` metres of obstacle-aware distance h, f = g + weight·h + FAR_WEIGHT·(h - FAR_FROM).
 #: Why: the bound h falls short of the walked length left by a share that does not shrink with
@@ -327,12 +343,7 @@ class HybridPlanner:
             knee_share1=knee_cols[1] / (m - 1),
             stop_reach=self.tolerance + STOP_REACH,
             pool_sharpness=POOL_SHARPNESS,
-            hip_y=LEAN_GEOMETRY.hip_y,
-            leg_span=LEAN_GEOMETRY.thigh + LEAN_GEOMETRY.shank,
-            eversion=-math.radians(ROM_DEG["ankle_inv"][0]),
-            inversion=math.radians(ROM_DEG["ankle_inv"][1]),
-            adduction=-math.radians(ROM_DEG["hip_abd"][0]),
-            abduction=math.radians(ROM_DEG["hip_abd"][1]),
+            **lean_params(),
             far_weight=self.far_weight,
             far_from=FAR_FROM,
         )

@@ -9,8 +9,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mjwalk.arms.hands import finger_trajectory
-from mjwalk.arms.kinematics import MIRROR_Y, REST_HAND, arm_frames, arm_joint_angles
-from mjwalk.arms.reach import ReachModel, mirror_result
+from mjwalk.arms.kinematics import REST_HAND, arm_frames, arm_joint_angles
+from mjwalk.arms.reach import ReachModel, reach_for_side
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 from mjwalk.errors import MjwalkError
 from mjwalk.timeline.frames import yaw_quat
@@ -88,13 +88,10 @@ def reach_in_scene(
     target_w = data.site_xpos[sid_target] + np.asarray(target_offset, dtype=float)
     end = frame.T @ (target_w - shoulder)
     start = np.asarray(REST_HAND, dtype=float)
-    if side == "right":  # the left-arm model's reach to the mirrored target, mirrored back
-        m_end = end * MIRROR_Y
-        res = mirror_result(
-            model.predict(np.r_[start, m_end], start=start, end=m_end, object_size=object_size)
-        )
+    if constraint is None:  # either arm (a right arm mirrors the left-arm model)
+        res = reach_for_side(model, end, side, start, object_size)
     else:
-        c = np.r_[start, end] if constraint is None else np.asarray(constraint, dtype=float)
+        c = np.asarray(constraint, dtype=float)
         res = model.predict(c, start=start, end=end, object_size=object_size)
     q = arm_joint_angles(res.directions, side, None if res.extras is None else res.extras[:, 1])
     n_out = max(2, round(duration * fps) + 1)
