@@ -11,9 +11,11 @@ radians.
 from __future__ import annotations
 
 import itertools
+import math
 
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.conventions import Side, side_of_prefix, side_prefix
 
@@ -78,39 +80,119 @@ def leg_ik(
         targets are met as closely as the leg allows (stretched to :data:`KNEE_MIN`).
     """
     s = 1.0 if side == "left" else -1.0
+    rel = np.ascontiguousarray(np.atleast_2d(np.asarray(ankle_rel, float)))
+    n = len(rel)
+    fy = np.ascontiguousarray(np.broadcast_to(np.asarray(foot_yaw, float), (n,)))
+    fp = np.ascontiguousarray(np.broadcast_to(np.asarray(foot_pitch, float), (n,)))
+    out = np.empty((n, 6))
+    _leg_ik_rows(rel, fy, fp, s, *_ik_lengths(geom), out)
+    return _named(out, side, clip)
+
+
+def _ik_lengths(geom: LegGeometry) -> tuple[float, float, float, float]:
+    """Thigh, shank (m) and the shortest and longest hip-to-ankle distance the IK uses (m)."""
+    rmax = float(geom.span(KNEE_MIN))
+    rmin = float(geom.span(np.deg2rad(ROM_DEG["knee"][1])))
+    return float(geom.thigh), float(geom.shank), rmin, rmax
+
+
+def _named(out: np.ndarray, side: Side, clip: bool) -> dict[str, np.ndarray]:
+    """The IK's (n, 6) angle rows as {joint name: (n,) radians}, clipped to the ranges."""
     p = side_prefix(side)
-    L1, L2 = geom.thigh, geom.shank
-    # the hip-to-ankle vector in the foot frame R_f = R_z(yaw) R_y(-pitch) (sole level
-    # sideways); the chain hip R_z R_y R_x, knee R_y, ankle R_y R_x gives
-    # u = R_x(s inv) R_y(dorsi) w(knee) with w(knee) the hip-to-ankle vector in the shin frame
-    # (knee and ankle flexion axes parallel): knee from |u|, ankle inversion and flexion from
-    # the direction of u, then the hip's three angles from the remaining rotation, so the
-    # foot's position and all three orientation angles are met exactly (6 joints, 6 dof)
-    Rf = rot_z(np.asarray(foot_yaw, float)) @ rot_y(-np.asarray(foot_pitch, float))
-    u = (np.swapaxes(Rf, -1, -2) @ np.asarray(ankle_rel, float)[..., None])[..., 0]
-    r = np.linalg.norm(u, axis=-1)
-    rmax = geom.span(KNEE_MIN)
-    rmin = geom.span(np.deg2rad(ROM_DEG["knee"][1]))
-    rc = np.clip(r, rmin, rmax)
-    knee = geom.knee_for_span(rc)
-    phi = np.arctan2(u[:, 1], -u[:, 2])  # rotation about the foot's x axis (s * inversion)
-    m = np.hypot(u[:, 1], u[:, 2])
-    a = np.arctan2(L1 * np.sin(knee), L1 * np.cos(knee) + L2) - np.arctan2(u[:, 0], m)
-    a = np.mod(a + np.pi, 2 * np.pi) - np.pi  # ankle dorsiflexion
-    H = Rf @ rot_x(phi) @ rot_y(a - knee)  # = R_z(-s rot) R_y(-flex) R_x(s abd)
-    out = {
-        f"hip_{p}_rot": -s * np.arctan2(H[:, 1, 0], H[:, 0, 0]),
-        f"hip_{p}_flex": np.arcsin(np.clip(H[:, 2, 0], -1, 1)),
-        f"hip_{p}_abd": s * np.arctan2(H[:, 2, 1], H[:, 2, 2]),
-        f"knee_{p}": knee,
-        f"ankle_{p}_flex": a,
-        f"ankle_{p}_inv": s * phi,
-    }
-    if clip:
-        for name, v in out.items():
+    names = (f"hip_{p}_rot", f"hip_{p}_flex", f"hip_{p}_abd", f"knee_{p}")
+    names += (f"ankle_{p}_flex", f"ankle_{p}_inv")
+    res = {}
+    for k, name in enumerate(names):
+        v = out[:, k]
+        if clip:
             lo, hi = np.deg2rad(ROM_DEG[generic_joint(name)])
-            out[name] = np.clip(v, lo, hi)
-    return out
+            v = np.clip(v, lo, hi)
+        res[name] = v
+    return res
+
+
+@njit
+def _mat3(a, b):
+    """3x3 product a @ b of row-major 9-tuples (sums in index order, as NumPy's matmul; tuples
+    stay in registers, no allocation per sample)."""
+    return (
+        a[0] * b[0] + a[1] * b[3] + a[2] * b[6],
+        a[0] * b[1] + a[1] * b[4] + a[2] * b[7],
+        a[0] * b[2] + a[1] * b[5] + a[2] * b[8],
+        a[3] * b[0] + a[4] * b[3] + a[5] * b[6],
+        a[3] * b[1] + a[4] * b[4] + a[5] * b[7],
+        a[3] * b[2] + a[4] * b[5] + a[5] * b[8],
+        a[6] * b[0] + a[7] * b[3] + a[8] * b[6],
+        a[6] * b[1] + a[7] * b[4] + a[8] * b[7],
+        a[6] * b[2] + a[7] * b[5] + a[8] * b[8],
+    )
+
+
+@njit
+def _leg_ik_one(u0, u1, u2, yaw_f, pitch_f, s, L1, L2, rmin, rmax, out):
+    """One sample of :func:`leg_ik`: ``(u0, u1, u2)`` the hip-to-ankle vector (pelvis frame),
+    the foot's relative yaw and pitch; writes the six angles to ``out`` (6,). The matrices
+    are :func:`rot_z`, :func:`rot_y`, :func:`rot_x` as row-major 9-tuples."""
+    cz, sz = math.cos(yaw_f), math.sin(yaw_f)
+    cy, sy = math.cos(-pitch_f), math.sin(-pitch_f)
+    rf = _mat3(
+        (cz, -sz, 0.0, sz, cz, 0.0, 0.0, 0.0, 1.0), (cy, 0.0, sy, 0.0, 1.0, 0.0, -sy, 0.0, cy)
+    )
+    v0 = rf[0] * u0 + rf[3] * u1 + rf[6] * u2  # R_f^T (ankle - hip)
+    v1 = rf[1] * u0 + rf[4] * u1 + rf[7] * u2
+    v2 = rf[2] * u0 + rf[5] * u1 + rf[8] * u2
+    r = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
+    rc = min(max(r, rmin), rmax)
+    ck = (rc**2 - L1**2 - L2**2) / (2 * L1 * L2)
+    knee = math.acos(min(max(ck, -1.0), 1.0))
+    phi = math.atan2(v1, -v2)
+    m = math.hypot(v1, v2)
+    a = math.atan2(L1 * math.sin(knee), L1 * math.cos(knee) + L2) - math.atan2(v0, m)
+    w = np.fmod(a + math.pi, 2 * math.pi)  # np.mod(a + pi, 2 pi) - pi: into [-pi, pi)
+    if w < 0.0:
+        w += 2 * math.pi
+    a = w - math.pi
+    cx, sx = math.cos(phi), math.sin(phi)
+    cb, sb = math.cos(a - knee), math.sin(a - knee)
+    h = _mat3(
+        _mat3(rf, (1.0, 0.0, 0.0, 0.0, cx, -sx, 0.0, sx, cx)),
+        (cb, 0.0, sb, 0.0, 1.0, 0.0, -sb, 0.0, cb),
+    )
+    out[0] = -s * math.atan2(h[3], h[0])
+    out[1] = math.asin(min(max(h[6], -1.0), 1.0))
+    out[2] = s * math.atan2(h[7], h[8])
+    out[3] = knee
+    out[4] = a
+    out[5] = s * phi
+
+
+@njit
+def _leg_ik_rows(rel, yaw_f, pitch_f, s, L1, L2, rmin, rmax, out):
+    """:func:`leg_ik` (unclipped) for every row: rel (n, 3), yaw_f, pitch_f (n,) -> out (n, 6)."""
+    for i in range(rel.shape[0]):
+        _leg_ik_one(
+            rel[i, 0], rel[i, 1], rel[i, 2], yaw_f[i], pitch_f[i], s, L1, L2, rmin, rmax, out[i]
+        )
+
+
+@njit
+def _leg_ik_world_rows(ankle, foot_yaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, out):
+    """:func:`leg_ik_world` for every row into ``out`` (n, 6): the hip joint centre of an
+    upright pelvis (:func:`hip_world`), the ankle target in the pelvis frame, the foot's yaw
+    relative to the pelvis wrapped to (-pi, pi], then :func:`_leg_ik_one` (``sgn`` +1 for the
+    left leg, -1 for the right)."""
+    for i in range(ankle.shape[0]):
+        cy, sy = math.cos(yaw[i]), math.sin(yaw[i])
+        d0 = ankle[i, 0] - (root[i, 0] + sgn * hip_y * -sy)
+        d1 = ankle[i, 1] - (root[i, 1] + sgn * hip_y * cy)
+        d2 = ankle[i, 2] - (root[i, 2] + sgn * hip_y * 0.0)
+        c, sn = math.cos(-yaw[i]), math.sin(-yaw[i])
+        u0 = c * d0 + -sn * d1 + 0.0 * d2  # R_z(-yaw) (ankle - hip)
+        u1 = sn * d0 + c * d1 + 0.0 * d2
+        u2 = 0.0 * d0 + 0.0 * d1 + 1.0 * d2
+        dy = foot_yaw[i] - yaw[i]
+        yrel = math.atan2(math.sin(dy), math.cos(dy))
+        _leg_ik_one(u0, u1, u2, yrel, pitch[i], sgn, L1, L2, rmin, rmax, out[i])
 
 
 def leg_fk(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry):
@@ -257,8 +339,25 @@ def hip_world(root: np.ndarray, yaw: np.ndarray, side: str, geom: LegGeometry) -
 
 def leg_ik_world(ankle, foot_yaw, pitch, root, yaw, side: str, geom: LegGeometry) -> dict:
     """Unclipped :func:`leg_ik` angles of the ``side`` leg for world ankle targets (n, 3), foot
-    headings (n,) and pitches (n,) under the pelvis ``root`` (n, 3), ``yaw`` (n,)."""
-    hip = hip_world(root, yaw, side, geom)
-    rel = (rot_z(-yaw) @ (ankle - hip)[..., None])[..., 0]
-    yrel = np.angle(np.exp(1j * (foot_yaw - yaw)))
-    return leg_ik(rel, yrel, pitch, side_of_prefix(side), geom, clip=False)
+    headings (n,) and pitches (n,) under the pelvis ``root`` (n, 3), ``yaw`` (n,) (compiled:
+    the synthesis calls it dozens of times per walk)."""
+    ankle = np.ascontiguousarray(ankle, dtype=float)
+    n = len(ankle)
+    out = np.empty((n, 6))
+    sgn = 1.0 if side == "l" else -1.0
+
+    def row(v):
+        return np.ascontiguousarray(np.broadcast_to(np.asarray(v, float), (n,)))
+
+    _leg_ik_world_rows(
+        ankle,
+        row(foot_yaw),
+        row(pitch),
+        np.ascontiguousarray(np.broadcast_to(np.asarray(root, float), (n, 3))),
+        row(yaw),
+        sgn,
+        float(geom.hip_y),
+        *_ik_lengths(geom),
+        out,
+    )
+    return _named(out, side_of_prefix(side), clip=False)
