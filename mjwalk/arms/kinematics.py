@@ -50,25 +50,43 @@ def min_jerk(tau: np.ndarray) -> np.ndarray:
     return tau**3 * (10 - 15 * tau + 6 * tau**2)
 
 
+def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Row-wise dot products (n,) of (n, 3) arrays, summed left to right like ``u @ v``."""
+    return u[:, 0] * v[:, 0] + u[:, 1] * v[:, 1] + u[:, 2] * v[:, 2]
+
+
 def two_link_ik(
     target: np.ndarray, l1: float, l2: float, elbow_hint: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
     """Unit directions (upper arm, forearm) putting the wrist at ``target`` (3,) from the
     shoulder, with the elbow in the plane of the shoulder-wrist axis and ``elbow_hint`` (the
     swivel angle of the hint is kept). Unreachable targets are clamped to the workspace."""
-    d = float(np.linalg.norm(target))
-    d = float(np.clip(d, abs(l1 - l2) + 1e-6, l1 + l2 - 1e-6))
-    axis = target / max(np.linalg.norm(target), 1e-9)
-    perp = elbow_hint - (elbow_hint @ axis) * axis
-    if np.linalg.norm(perp) < 1e-9:
-        perp = np.cross(axis, [0.0, 1.0, 0.0])
-        if np.linalg.norm(perp) < 1e-9:
-            perp = np.cross(axis, [1.0, 0.0, 0.0])
-    perp /= np.linalg.norm(perp)
+    upper, fore = two_link_ik_rows(np.asarray(target)[None], l1, l2, np.asarray(elbow_hint)[None])
+    return upper[0], fore[0]
+
+
+def two_link_ik_rows(
+    target: np.ndarray, l1: float, l2: float, elbow_hint: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`two_link_ik` for many wrist targets (n, 3) and elbow hints (n, 3) at once:
+    unit directions (n, 3) of the upper arm and of the forearm."""
+    target = np.asarray(target, dtype=float)
+    hint = np.asarray(elbow_hint, dtype=float)
+    norm = np.sqrt(_dot(target, target))
+    d = np.clip(norm, abs(l1 - l2) + 1e-6, l1 + l2 - 1e-6)
+    axis = target / np.maximum(norm, 1e-9)[:, None]
+    perp = hint - _dot(hint, axis)[:, None] * axis
+    bad = np.sqrt(_dot(perp, perp)) < 1e-9
+    if bad.any():  # a hint along the axis: any perpendicular, from y (or x)
+        alt = np.cross(axis[bad], [0.0, 1.0, 0.0])
+        flat = np.sqrt(_dot(alt, alt)) < 1e-9
+        alt[flat] = np.cross(axis[bad][flat], [1.0, 0.0, 0.0])
+        perp[bad] = alt
+    perp = perp / np.sqrt(_dot(perp, perp))[:, None]
     a = (l1**2 - l2**2 + d**2) / (2 * d)
-    h = np.sqrt(max(l1**2 - a**2, 0.0))
-    elbow = a * axis + h * perp
-    wrist = d * axis
+    h = np.sqrt(np.maximum(l1**2 - a**2, 0.0))
+    elbow = a[:, None] * axis + h[:, None] * perp
+    wrist = d[:, None] * axis
     return elbow / l1, (wrist - elbow) / l2
 
 
@@ -132,11 +150,6 @@ def arm_joint_angles(
     q[:, 0] = np.unwrap(q[:, 0])
     q[:, 2] = np.unwrap(q[:, 2])
     return q
-
-
-def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """Row-wise dot products (n,) of (n, 3) arrays, summed left to right like ``u @ v``."""
-    return u[:, 0] * v[:, 0] + u[:, 1] * v[:, 1] + u[:, 2] * v[:, 2]
 
 
 #: |sin| of the middle YXZ angle above which a frame is decomposed by scipy (gimbal lock: the
