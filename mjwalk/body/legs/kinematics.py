@@ -342,18 +342,22 @@ def leg_ik_world(ankle, foot_yaw, pitch, root, yaw, side: str, geom: LegGeometry
     headings (n,) and pitches (n,) under the pelvis ``root`` (n, 3), ``yaw`` (n,) (compiled:
     the synthesis calls it dozens of times per walk)."""
     ankle = np.ascontiguousarray(ankle, dtype=float)
+    root = np.ascontiguousarray(root, dtype=float)
     n = len(ankle)
     out = np.empty((n, 6))
     sgn = 1.0 if side == "l" else -1.0
 
     def row(v):
-        return np.ascontiguousarray(np.broadcast_to(np.asarray(v, float), (n,)))
+        v = np.asarray(v, dtype=float)
+        if v.shape == (n,) and v.flags.c_contiguous:
+            return v
+        return np.ascontiguousarray(np.broadcast_to(v, (n,)))
 
     _leg_ik_world_rows(
         ankle,
         row(foot_yaw),
         row(pitch),
-        np.ascontiguousarray(np.broadcast_to(np.asarray(root, float), (n, 3))),
+        root if root.shape == (n, 3) else np.ascontiguousarray(np.broadcast_to(root, (n, 3))),
         row(yaw),
         sgn,
         float(geom.hip_y),
