@@ -99,8 +99,8 @@ def _ik_lengths(geom: LegGeometry) -> tuple[float, float, float, float]:
 def _named(out: np.ndarray, side: Side, clip: bool) -> dict[str, np.ndarray]:
     """The IK's (n, 6) angle rows as {joint name: (n,) radians}, clipped to the ranges."""
     p = side_prefix(side)
-    names = (f"hip_{p}_rot", f"hip_{p}_flex", f"hip_{p}_abd", f"knee_{p}")
-    names += (f"ankle_{p}_flex", f"ankle_{p}_inv")
+    names = [f"hip_{p}_rot", f"hip_{p}_flex", f"hip_{p}_abd", f"knee_{p}"]
+    names += [f"ankle_{p}_flex", f"ankle_{p}_inv"]
     res = {}
     for k, name in enumerate(names):
         v = out[:, k]
