@@ -161,15 +161,20 @@ def candidate_frames(
         or (model.geom_type[floors] != plane).any()
     ):
         return np.ones(n, dtype=bool)
+    if len(hid) == 0:  # no humanoid: nothing to report
+        return np.zeros(n, dtype=bool)
     data = mujoco.MjData(model)
-    xpos = np.empty((n, len(hid), 3))
-    xmat = np.empty((n, len(hid), 9))
-    q, gx, gm = data.qpos, data.geom_xpos, data.geom_xmat  # views, fetched once
+    lo, hi = int(hid.min()), int(hid.max()) + 1  # the humanoid's geoms are one block
+    xpos = np.empty((n, hi - lo, 3))
+    xmat = np.empty((n, hi - lo, 9))
+    q, gx, gm = data.qpos, data.geom_xpos[lo:hi], data.geom_xmat[lo:hi]  # views, fetched once
     for f in range(n):
         q[:] = qpos[f]
         mujoco.mj_kinematics(model, data)
-        xpos[f] = gx[hid]
-        xmat[f] = gm[hid]
+        xpos[f] = gx
+        xmat[f] = gm
+    if hi - lo != len(hid):  # not one block after all: keep the humanoid's rows
+        xpos, xmat = xpos[:, hid - lo], xmat[:, hid - lo]
     slack = model.geom_margin[hid].max(initial=0.0) + BROAD_SLACK
     reach = model.geom_rbound[hid] + model.geom_margin[hid] + slack
     # the scene's boxes (static: welded to the world) in world axes

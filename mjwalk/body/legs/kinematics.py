@@ -10,6 +10,7 @@ radians.
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 
@@ -89,6 +90,7 @@ def leg_ik(
     return _named(out, side, clip)
 
 
+@functools.lru_cache(maxsize=16)
 def _ik_lengths(geom: LegGeometry) -> tuple[float, float, float, float]:
     """Thigh, shank (m) and the shortest and longest hip-to-ankle distance the IK uses (m)."""
     rmax = float(geom.span(KNEE_MIN))
@@ -223,18 +225,63 @@ def foot_lowest(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry) ->
     built by :func:`~mjwalk.body.humanoid.build_humanoid`) above the hip joint centre, from the
     leg angles (``toe_l`` / ``toe_r`` included); add the hip height for the height above the
     floor."""
-    ankle, R = leg_fk(angles, side, geom)
     ah, ball, hw = geom.ankle_height, ball_offset(geom), geom.foot_width / 2
     corners = np.array(list(itertools.product((0.0, 1.0), (-hw, hw), (0.0, 1.0))))
     # sole box: x from the heel to the ball, 0.8 ankle heights tall from the sole
     foot = corners * [ball + geom.foot_back, 1.0, 0.8 * ah] + [-geom.foot_back, 0.0, -ah]
     # toes box in the toes frame (origin at the ball on the sole, rotated by the toe angle)
     toes = corners * [geom.foot_front - ball, 1.0, 0.4 * ah]
-    toe = np.asarray(angles[f"toe_{side_prefix(side)}"], float)
-    toes_foot = (rot_y(-toe)[:, None] @ toes[None, :, :, None])[..., 0] + [ball, 0.0, -ah]
-    z_foot = (R[:, 2, None, :] * foot[None]).sum(-1)
-    z_toes = (R[:, 2, None, :] * toes_foot).sum(-1)
-    return ankle[:, 2] + np.minimum(z_foot.min(1), z_toes.min(1))
+    p = side_prefix(side)
+    names = [k.format(p) for k in LEG_JOINTS]
+    q = np.ascontiguousarray(np.column_stack([np.asarray(angles[k], float) for k in names]))
+    s = 1.0 if side == "left" else -1.0
+    return _foot_lowest_rows(q, s, geom.thigh, geom.shank, foot, toes, ball, ah)
+
+
+@njit
+def _rz(a):
+    c, s = math.cos(a), math.sin(a)
+    return (c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
+
+
+@njit
+def _ry(a):
+    c, s = math.cos(a), math.sin(a)
+    return (c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c)
+
+
+@njit
+def _rx(a):
+    c, s = math.cos(a), math.sin(a)
+    return (1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c)
+
+
+@njit
+def _foot_lowest_rows(q, s, thigh, shank, foot, toes, ball, ah):
+    """:func:`foot_lowest` per row of ``q`` (n, 7) = the :data:`LEG_JOINTS` angles: the chain
+    of :func:`leg_fk` (same products, same order) and the lowest corner of the sole and toes
+    boxes (``foot``, ``toes`` (8, 3) corners in the foot and toes frames)."""
+    n = q.shape[0]
+    out = np.empty(n)
+    for i in range(n):
+        r = _mat3(_mat3(_rz(-s * q[i, 0]), _ry(-q[i, 1])), _rx(s * q[i, 2]))
+        kz = r[8] * -thigh
+        r = _mat3(r, _ry(q[i, 3]))
+        az = kz + r[8] * -shank
+        r = _mat3(_mat3(r, _ry(-q[i, 4])), _rx(-s * q[i, 5]))
+        low = np.inf
+        for c in range(foot.shape[0]):
+            z = r[6] * foot[c, 0] + r[7] * foot[c, 1] + r[8] * foot[c, 2]
+            low = min(low, z)
+        t = _ry(-q[i, 6])
+        for c in range(toes.shape[0]):
+            x = t[0] * toes[c, 0] + t[1] * toes[c, 1] + t[2] * toes[c, 2] + ball
+            y = t[3] * toes[c, 0] + t[4] * toes[c, 1] + t[5] * toes[c, 2] + 0.0
+            zz = t[6] * toes[c, 0] + t[7] * toes[c, 1] + t[8] * toes[c, 2] + -ah
+            z = r[6] * x + r[7] * y + r[8] * zz
+            low = min(low, z)
+        out[i] = az + low
+    return out
 
 
 def generic_joint(name: str) -> str:
@@ -250,21 +297,33 @@ def pivot_ankle(foot: np.ndarray, pitch, geom: LegGeometry) -> np.ndarray:
     """(n, 3) ankle positions of a foot on footprint ``foot`` ((3,) or per sample (n, 3))
     pitched by ``pitch`` (radians): negative (heel up) rolls about the ball, positive (toes up)
     about the heel; the pivot stays where it is on the floor when the foot is flat."""
-    ah = geom.ankle_height
     pitch = np.atleast_1d(np.asarray(pitch, float))
-    foot = np.asarray(foot, float)
-    lever = np.where(pitch <= 0, ball_offset(geom), -geom.foot_back)
-    fx, fy = np.cos(foot[..., 2]), np.sin(foot[..., 2])
-    # R_z(yaw) R_y(-pitch) (lever, 0, -ah) from the pivot, written out (inner loops)
-    c, s = np.cos(pitch), np.sin(pitch)
-    along = lever * (c - 1) + ah * s  # the pivot is lever ahead of the ankle when flat
-    return np.column_stack(
-        [
-            foot[..., 0] - along * fx,
-            foot[..., 1] - along * fy,
-            ah * c - lever * s,
-        ]
-    )
+    foot = np.atleast_2d(np.asarray(foot, float))
+    n = 0 if 0 in (len(pitch), len(foot)) else max(len(pitch), len(foot))
+    if len(pitch) not in (1, n) or len(foot) not in (1, n):
+        raise ValueError(f"pivot_ankle: {len(foot)} footprints for {len(pitch)} pitches")
+    out = np.empty((n, 3))
+    _pivot_rows(foot, pitch, ball_offset(geom), geom.foot_back, geom.ankle_height, out)
+    return out
+
+
+@njit
+def _pivot_rows(foot, pitch, ball, back, ah, out):
+    """:func:`pivot_ankle` into ``out`` (n, 3); ``foot`` (1 or n, 3), ``pitch`` (1 or n,):
+    R_z(yaw) R_y(-pitch) (lever, 0, -ah) from the pivot, written out; the pivot is ``lever``
+    ahead of the ankle when flat (the ball for pitch <= 0, the heel otherwise)."""
+    one_f, one_p = foot.shape[0] == 1, pitch.shape[0] == 1
+    for i in range(out.shape[0]):
+        f = 0 if one_f else i
+        p = pitch[0 if one_p else i]
+        lever = ball if p <= 0 else -back
+        yaw = foot[f, 2]
+        fx, fy = math.cos(yaw), math.sin(yaw)
+        c, s = math.cos(p), math.sin(p)
+        along = lever * (c - 1) + ah * s
+        out[i, 0] = foot[f, 0] - along * fx
+        out[i, 1] = foot[f, 1] - along * fy
+        out[i, 2] = ah * c - lever * s
 
 
 def spin_print(foot: np.ndarray, spin, geom: LegGeometry, lever: float | None = None):

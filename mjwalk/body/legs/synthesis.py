@@ -33,10 +33,12 @@ leg cycle 50-100 % (cycle 0 = heel strike of that leg).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, leg_geometry
 from mjwalk.body.legs.curves import smoothstep, soft_flat, spread
 from mjwalk.body.legs.kinematics import (
@@ -273,19 +275,12 @@ def legs_from_walk(
         # lower the ``s_`` foot's pitch by dp (n,) radians about its heel (toes up) or ball:
         # on the floor about its footprint's pivot, in the air about the same point of the
         # foot; the toes keep their angle to the floor while the heel is up
-        p0, p1 = pitch[s_], pitch[s_] - dp
-        lever = np.where(p0 <= 0, ball_offset(geom), -geom.foot_back)
-        off = []
-        for q in (p0, p1):
-            c, si = np.cos(q), np.sin(q)
-            off.append((-(lever * c + ah * si), ah * c - lever * si))
-        g = ground[s_]
-        head = np.column_stack([np.cos(fyaw[s_]), np.sin(fyaw[s_])])
-        moved = ankle[s_].copy()
-        moved[:, :2] += (off[1][0] - off[0][0])[:, None] * head
-        moved[:, 2] += off[1][1] - off[0][1]
-        moved[g] = pivot_ankle(print_[s_][g], p1[g], geom)
-        toe[s_] += np.minimum(p0, 0.0) - np.minimum(p1, 0.0)
+        moved, p1 = np.empty_like(ankle[s_]), np.empty_like(pitch[s_])
+        _repitch_rows(
+            ankle[s_], pitch[s_], toe[s_], fyaw[s_], ground[s_], print_[s_],
+            np.ascontiguousarray(dp, dtype=float), ball_offset(geom), geom.foot_back, ah,
+            moved, p1,
+        )  # fmt: skip
         ankle[s_], pitch[s_] = moved, p1
 
     angles: dict[str, np.ndarray] = {}
@@ -360,3 +355,34 @@ def legs_from_walk(
         phase=phase,
         meta={"stature": stature, "reference": ref.source},
     )
+
+
+@njit
+def _repitch_rows(ankle, pitch, toe, fyaw, ground, prints, dp, ball, back, ah, moved, p1):
+    """The synthesis's ``repitch`` per sample: the pitch lowered by ``dp`` about the heel
+    (toes up) or the ball; a grounded foot (``ground``) pivots on its footprint
+    (:func:`~mjwalk.body.legs.kinematics.pivot_ankle`), one in the air about the same point of
+    the foot. Writes the ankle to ``moved`` (n, 3) and the pitch to ``p1`` (n,); the toe angle
+    (n,) is updated in place (the toes keep their angle to the floor while the heel is up)."""
+    for i in range(ankle.shape[0]):
+        q0 = pitch[i]
+        q1 = q0 - dp[i]
+        p1[i] = q1
+        if ground[i]:
+            lever = ball if q1 <= 0 else -back
+            yaw = prints[i, 2]
+            c, s = math.cos(q1), math.sin(q1)
+            along = lever * (c - 1) + ah * s
+            moved[i, 0] = prints[i, 0] - along * math.cos(yaw)
+            moved[i, 1] = prints[i, 1] - along * math.sin(yaw)
+            moved[i, 2] = ah * c - lever * s
+        else:
+            lever = ball if q0 <= 0 else -back
+            c0, s0 = math.cos(q0), math.sin(q0)
+            c1, s1 = math.cos(q1), math.sin(q1)
+            dx = -(lever * c1 + ah * s1) - -(lever * c0 + ah * s0)
+            dz = (ah * c1 - lever * s1) - (ah * c0 - lever * s0)
+            moved[i, 0] = ankle[i, 0] + dx * math.cos(fyaw[i])
+            moved[i, 1] = ankle[i, 1] + dx * math.sin(fyaw[i])
+            moved[i, 2] = ankle[i, 2] + dz
+        toe[i] += min(q0, 0.0) - min(q1, 0.0)
