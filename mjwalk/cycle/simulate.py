@@ -76,6 +76,14 @@ class CycleContext:
     planners: dict = field(default_factory=dict)
     baselines: dict = field(default_factory=dict)
     grid: OccupancyGrid | None = None  # the grid-A* occupancy grid, built on first use
+    _data: mujoco.MjData | None = field(default=None, repr=False)
+
+    def scratch(self) -> mujoco.MjData:
+        """One MjData of ``model`` for this process's forward kinematics (building one takes
+        about a millisecond; every user sets the whole qpos before each use)."""
+        if self._data is None:
+            self._data = mujoco.MjData(self.model)
+        return self._data
 
     def planner(self, goal: str) -> HybridPlanner:
         if goal not in self.planners:
@@ -154,7 +162,9 @@ def _turn_frames(ctx, x, y, yaw0, yaw1, fps) -> tuple[np.ndarray, float]:
     d = (yaw1 - yaw0 + math.pi) % (2 * math.pi) - math.pi
     duration = max(MIN_TURN, abs(d) / TURN_SPEED)
     n = max(1, round(duration * fps))
-    frames = np.array([_standing(ctx, x, y, yaw0 + d * (k + 1) / n) for k in range(n)])
+    frames = np.repeat(_standing(ctx, x, y, yaw0)[None], n, axis=0)
+    r = ctx.jointmap.root
+    frames[:, r + 3 : r + 7] = yaw_quat(yaw0 + d * np.arange(1, n + 1) / n)
     return frames, n / fps
 
 
@@ -162,7 +172,7 @@ def hand_points(ctx, qpos: np.ndarray) -> np.ndarray:
     """(F, 2, 3) world positions (m) of the left and right palm (the hand geoms' centres) in
     the poses ``qpos`` (F, nq)."""
     m, jm = ctx.model, ctx.jointmap
-    data = mujoco.MjData(m)
+    data = ctx.scratch()
     ids = [m.body(f"{jm.prefix}hand_{p}").id for p in ("l", "r")]
     gids = [int(np.flatnonzero(m.geom_bodyid == b)[0]) for b in ids]
     out = np.empty((len(qpos), 2, 3))
@@ -266,7 +276,7 @@ def _reach_frames(
     from mjwalk.arms.reach import reach_for_side
 
     m, jm, model = ctx.model, ctx.jointmap, ctx.reach_model
-    data = mujoco.MjData(m)
+    data = ctx.scratch()
     data.qpos[:] = q0
     mujoco.mj_kinematics(m, data)
     ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id
@@ -506,7 +516,7 @@ def simulate_cycle(
         stature=spec.stature,
     )
     timeline.walk = combined_walk([w.path for w in walks])  # drawn into videos
-    contacts = collision_report(timeline) if collisions else []
+    contacts = collision_report(timeline, data=ctx.scratch()) if collisions else []
     return CycleResult(
         spec=spec,
         run=run,

@@ -59,7 +59,10 @@ BROAD_SLACK = 1e-3
 
 
 def collision_report(
-    timeline: Timeline, floor_tolerance: float = 0.01, broad_phase: bool = True
+    timeline: Timeline,
+    floor_tolerance: float = 0.01,
+    broad_phase: bool = True,
+    data: mujoco.MjData | None = None,
 ) -> list[Contact]:
     """Humanoid-vs-scene contacts of every frame by MuJoCo collision detection.
 
@@ -74,11 +77,13 @@ def collision_report(
     frame's contacts; the contacts are the same as those of the full check
     (``broad_phase=False``: every frame through MuJoCo).
 
+    ``data``: an MjData of the timeline's model to work in (default: a new one).
+
     Returns:
         contacts in time order (one per geom pair and frame), depth in metres.
     """
     model = timeline.model
-    data = mujoco.MjData(model)
+    data = data if data is not None else mujoco.MjData(model)
     human = model.geom_group == HUMAN_GROUP
     plen = len(timeline.jointmap.prefix)
     names = [
@@ -97,7 +102,9 @@ def collision_report(
         same[1:] = np.all(qpos[1:] == qpos[:-1], axis=1)
         check = np.zeros(len(qpos), dtype=bool)
         fresh = np.flatnonzero(~same)
-        check[fresh] = candidate_frames(model, qpos[fresh], human, floorish, floor_tolerance)
+        check[fresh] = candidate_frames(
+            model, qpos[fresh], human, floorish, floor_tolerance, data=data
+        )
     else:
         check = np.ones(len(qpos), dtype=bool)
     out: list[Contact] = []
@@ -138,6 +145,7 @@ def candidate_frames(
     human: np.ndarray,
     floorish: np.ndarray,
     floor_tolerance: float,
+    data: mujoco.MjData | None = None,
 ) -> np.ndarray:
     """(F,) True for the poses ``qpos`` (F, nq) in which a humanoid geom (``human`` (ngeom,)
     mask) may touch a scene geom, by bounding volumes (conservative: every contact MuJoCo can
@@ -151,7 +159,8 @@ def candidate_frames(
       margins and the slack below it (shallower floor contacts are not reported).
 
     Scene geoms on moving bodies, and floors that are not planes, make every frame a
-    candidate. Forward kinematics of every pose: about a fifth of MuJoCo's collision pass."""
+    candidate. Forward kinematics of every pose (in ``data``, default a new MjData): about a
+    fifth of MuJoCo's collision pass."""
     n = len(qpos)
     hid = np.flatnonzero(human)
     sid = np.flatnonzero(~human & (model.geom_contype | model.geom_conaffinity).astype(bool))
@@ -166,7 +175,7 @@ def candidate_frames(
         return np.ones(n, dtype=bool)
     if len(hid) == 0:  # no humanoid: nothing to report
         return np.zeros(n, dtype=bool)
-    data = mujoco.MjData(model)
+    data = data if data is not None else mujoco.MjData(model)
     lo, hi = int(hid.min()), int(hid.max()) + 1  # the humanoid's geoms are one block
     xpos = np.empty((n, hi - lo, 3))
     xmat = np.empty((n, hi - lo, 9))
