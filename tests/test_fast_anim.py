@@ -28,6 +28,7 @@ from mjwalk.body.humanoid import HUMAN_GROUP, ROM_DEG, leg_geometry
 from mjwalk.body.legs.curves import clamped_cubic, spread
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
+    LegIKCache,
     generic_joint,
     hip_world,
     leg_ik,
@@ -220,6 +221,31 @@ def test_leg_ik_world_matches_the_pelvis_frame_ik(s_):
     got = leg_ik_world(ankle, fyaw, pitch, root, yaw, s_, geom)
     for k in ref:
         np.testing.assert_allclose(got[k], ref[k], atol=1e-9, err_msg=k)
+
+
+def test_leg_ik_cache_resolves_the_changed_samples():
+    """The synthesis's IK cache re-solves exactly the samples whose inputs changed: after any
+    change its angles are those of a fresh leg_ik_world call, bit for bit."""
+    geom = leg_geometry(1.75)
+    rng = np.random.default_rng(9)
+    n = 200
+    root = np.column_stack([rng.normal(size=(n, 2)), np.full(n, 0.9)])
+    yaw = rng.uniform(-3, 3, n)
+    ankle = root + rng.normal(scale=0.2, size=(n, 3))
+    ankle[:, 2] = rng.uniform(0.05, 0.3, n)
+    fyaw, pitch = yaw + rng.normal(scale=0.3, size=n), rng.normal(scale=0.2, size=n)
+    cache = LegIKCache("r", geom)
+    for step in range(4):
+        got = cache(ankle, fyaw, pitch, root, yaw)
+        ref = leg_ik_world(ankle, fyaw, pitch, root, yaw, "r", geom)
+        for k in ref:
+            np.testing.assert_array_equal(got[k], ref[k], err_msg=f"{k}, step {step}")
+        sel = rng.uniform(size=n) < 0.2  # change a few samples' inputs, as the loops do
+        ankle = ankle.copy()
+        ankle[sel, 2] += 0.01
+        pitch = np.where(rng.uniform(size=n) < 0.1, pitch - 0.05, pitch)
+        root = root.copy()
+        root[sel[::-1], 2] -= 0.003
 
 
 def test_clamped_cubic_matches_scipy():

@@ -424,3 +424,80 @@ def leg_ik_world(ankle, foot_yaw, pitch, root, yaw, side: str, geom: LegGeometry
         out,
     )
     return _named(out, side_of_prefix(side), clip=False)
+
+
+class LegIKCache:
+    """:func:`leg_ik_world` for one leg over the same samples again and again (the synthesis's
+    correction loops): a sample whose inputs (ankle target, foot yaw and pitch, pelvis
+    position and yaw) are bit for bit those of the previous call keeps its angles, the others
+    are solved again; the results are those of :func:`leg_ik_world`."""
+
+    def __init__(self, side: str, geom: LegGeometry):
+        self.side, self.geom = side, geom
+        self.inputs: np.ndarray | None = None  # (n, 9) of the previous call
+        self.out: np.ndarray | None = None  # (n, 6) its angles
+
+    def __call__(self, ankle, foot_yaw, pitch, root, yaw) -> dict:
+        ankle = np.ascontiguousarray(ankle, dtype=float)
+        n = len(ankle)
+        if self.inputs is None or len(self.inputs) != n:
+            self.inputs = np.full((n, 9), np.nan)  # nan: never equal, every row is solved
+            self.out = np.empty((n, 6))
+        assert self.out is not None
+        sgn = 1.0 if self.side == "l" else -1.0
+        _leg_ik_world_cached(
+            ankle,
+            np.ascontiguousarray(foot_yaw, dtype=float),
+            np.ascontiguousarray(pitch, dtype=float),
+            np.ascontiguousarray(root, dtype=float),
+            np.ascontiguousarray(yaw, dtype=float),
+            sgn,
+            float(self.geom.hip_y),
+            *_ik_lengths(self.geom),
+            self.inputs,
+            self.out,
+        )
+        return _named(self.out.copy(), side_of_prefix(self.side), clip=False)
+
+
+@njit
+def _leg_ik_world_cached(
+    ankle, foot_yaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs, out
+):
+    """:func:`_leg_ik_world_rows` for the rows whose inputs differ from ``inputs`` (n, 9),
+    which are updated; the other rows of ``out`` (n, 6) are kept."""
+    for i in range(ankle.shape[0]):
+        row = (
+            ankle[i, 0],
+            ankle[i, 1],
+            ankle[i, 2],
+            foot_yaw[i],
+            pitch[i],
+            root[i, 0],
+            root[i, 1],
+            root[i, 2],
+            yaw[i],
+        )
+        same = True
+        for k in range(9):
+            if row[k] != inputs[i, k]:
+                same = False
+                break
+        if same:
+            continue
+        for k in range(9):
+            inputs[i, k] = row[k]
+        _leg_ik_world_rows(
+            ankle[i : i + 1],
+            foot_yaw[i : i + 1],
+            pitch[i : i + 1],
+            root[i : i + 1],
+            yaw[i : i + 1],
+            sgn,
+            hip_y,
+            L1,
+            L2,
+            rmin,
+            rmax,
+            out[i : i + 1],
+        )
