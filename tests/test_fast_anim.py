@@ -29,10 +29,13 @@ from mjwalk.body.legs.curves import clamped_cubic, spread
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
     LegIKCache,
+    ball_offset,
     generic_joint,
+    heel_rise,
     hip_world,
     leg_ik,
     leg_ik_world,
+    pivot_ankle,
     rot_x,
     rot_y,
     rot_z,
@@ -99,6 +102,53 @@ def _leg_ik_ref(ankle_rel, foot_yaw, foot_pitch, side, geom, clip=True):
     if clip:
         out = {k: np.clip(v, *np.deg2rad(ROM_DEG[generic_joint(k)])) for k, v in out.items()}
     return out
+
+
+def _heel_rise_ref(foot, hip, knee, p0, geom, lo=-1.0472):
+    """The NumPy implementation of heel_rise (before issue 18), (n,) samples."""
+    hip, p0 = np.atleast_2d(hip), np.atleast_1d(p0)
+    d = geom.span(np.broadcast_to(knee, p0.shape))
+
+    def gap(h, p, dd=d):
+        return np.linalg.norm(h - _pivot_ref(foot, p, geom), axis=-1) - dd
+
+    p = p0.copy()
+    j = np.flatnonzero(gap(hip, p0) > 0)
+    if not len(j):
+        return p
+    hj, dj = hip[j], d[j]
+    ball, ah = ball_offset(geom), geom.ankle_height
+    rho, beta = np.hypot(ball, ah), np.arctan2(ah, ball)
+    f = np.array([np.cos(foot[2]), np.sin(foot[2])])
+    rel = hj - np.array([foot[0] + ball * f[0], foot[1] + ball * f[1], 0.0])
+    a_, c_ = rel[:, :2] @ f, rel[:, 2]
+    k_ = ((rel**2).sum(1) + rho**2 - dj**2) / (2 * rho)
+    t = np.arctan2(a_, c_) + np.arcsin(np.clip(k_ / np.hypot(a_, c_), -1.0, 1.0))
+    p[j] = np.clip(beta - t, lo, np.minimum(p0[j], 0.0))
+    up = j[p0[j] > 0]
+    up = up[gap(hip[up], np.zeros(len(up)), d[up]) <= 0]
+    if len(up):
+        hu, du = hip[up], d[up]
+        a, b = np.zeros(len(up)), p0[up]
+        for _ in range(40):
+            m = 0.5 * (a + b)
+            out = gap(hu, m, du) > 0
+            b, a = np.where(out, m, b), np.where(out, a, m)
+        p[up] = 0.5 * (a + b)
+    return p
+
+
+def _pivot_ref(foot, pitch, geom):
+    """The NumPy implementation of pivot_ankle (before issue 18)."""
+    ah = geom.ankle_height
+    pitch = np.atleast_1d(pitch)
+    lever = np.where(pitch <= 0, ball_offset(geom), -geom.foot_back)
+    fx, fy = np.cos(foot[..., 2]), np.sin(foot[..., 2])
+    c, s = np.cos(pitch), np.sin(pitch)
+    along = lever * (c - 1) + ah * s
+    return np.column_stack(
+        [foot[..., 0] - along * fx, foot[..., 1] - along * fy, ah * c - lever * s]
+    )
 
 
 def _unit(rng, shape):
@@ -246,6 +296,38 @@ def test_leg_ik_cache_resolves_the_changed_samples():
         pitch = np.where(rng.uniform(size=n) < 0.1, pitch - 0.05, pitch)
         root = root.copy()
         root[sel[::-1], 2] -= 0.003
+
+
+def test_pivot_ankle_and_heel_rise_match_numpy():
+    """Compiled per sample: the ankle of a foot rolled about its heel or ball, and the heel
+    rise that lets a leg reach its hip (closed form, and the bisection of a toes-up foot)."""
+    geom = leg_geometry(1.75)
+    rng = np.random.default_rng(10)
+    bisected = 0
+    for _ in range(60):
+        foot = np.r_[rng.normal(size=2), rng.uniform(-3, 3)]
+        n = 40
+        hip = np.column_stack(
+            [foot[:2] + rng.normal(scale=0.35, size=(n, 2)), rng.uniform(0.75, 0.95, n)]
+        )
+        knee, p0 = rng.uniform(0.03, 0.6, n), rng.normal(scale=0.3, size=n)
+        # and hips just within reach of the flat foot's ankle, the toes up: bisected
+        flat = _pivot_ref(foot, 0.0, geom)[0]
+        up = _unit(rng, (n // 2,))
+        up[:, 2] = np.abs(up[:, 2]) + 1.0
+        up /= np.linalg.norm(up, axis=1, keepdims=True)
+        reach = geom.span(knee[: n // 2]) * rng.uniform(0.97, 1.0, n // 2)
+        hip[: n // 2] = flat + reach[:, None] * up
+        p0[: n // 2] = rng.uniform(0.05, 0.5, n // 2)
+        np.testing.assert_allclose(pivot_ankle(foot, p0, geom), _pivot_ref(foot, p0, geom))
+        prints = np.column_stack([hip[:, :2], rng.uniform(-3, 3, n)])
+        np.testing.assert_allclose(pivot_ankle(prints, p0, geom), _pivot_ref(prints, p0, geom))
+        ref = _heel_rise_ref(foot, hip, knee, p0, geom)
+        np.testing.assert_allclose(heel_rise(foot, hip, knee, p0, geom), ref, atol=1e-12)
+        bisected += int(np.sum((ref > 0) & (ref < p0)))
+        one = heel_rise(foot, hip[0], float(knee[0]), float(p0[0]), geom)
+        assert isinstance(one, float) and abs(one - ref[0]) < 1e-12
+    assert bisected > 0  # the toes-up bisection was exercised
 
 
 def test_clamped_cubic_matches_scipy():

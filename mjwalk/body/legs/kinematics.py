@@ -352,6 +352,21 @@ def heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
     p0 = np.atleast_1d(np.asarray(p0, float))
     knee = np.broadcast_to(np.asarray(knee, float), p0.shape)
     d = geom.span(knee)
+    foot = np.asarray(foot, float)
+    if foot.shape == (3,) and p0.ndim == 1 and hip.shape == (len(p0), 3):  # compiled
+        p = np.empty(len(p0))
+        _heel_rise_rows(
+            foot,
+            np.ascontiguousarray(hip),
+            np.ascontiguousarray(d, dtype=float),
+            p0,
+            ball_offset(geom),
+            geom.foot_back,
+            geom.ankle_height,
+            float(lo),
+            p,
+        )
+        return float(p[0]) if scalar else p
 
     def gap(h, p, dd=d):
         return np.linalg.norm(h - pivot_ankle(foot, p, geom), axis=-1) - dd
@@ -386,6 +401,48 @@ def heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
             a = np.where(out, a, m)
         p[up] = 0.5 * (a + b)
     return float(p[0]) if scalar else p
+
+
+@njit
+def _pivot_gap(foot, fx, fy, h, p, d, ball, back, ah):
+    """|hip ``h`` - ankle of the foot pitched by ``p``| - ``d`` (:func:`pivot_ankle`)."""
+    lever = ball if p <= 0 else -back
+    c, s = math.cos(p), math.sin(p)
+    along = lever * (c - 1) + ah * s
+    dx = h[0] - (foot[0] - along * fx)
+    dy = h[1] - (foot[1] - along * fy)
+    dz = h[2] - (ah * c - lever * s)
+    return math.sqrt(dx * dx + dy * dy + dz * dz) - d
+
+
+@njit
+def _heel_rise_rows(foot, hip, d, p0, ball, back, ah, lo, out):
+    """:func:`heel_rise` per sample (the same steps: reach test at ``p0``, the closed-form
+    roll about the ball, the 40-step bisection of a toes-up foot) into ``out`` (n,)."""
+    fx, fy = math.cos(foot[2]), math.sin(foot[2])
+    rho, beta = math.hypot(ball, ah), math.atan2(ah, ball)
+    bx, by = foot[0] + ball * fx, foot[1] + ball * fy
+    for i in range(len(p0)):
+        h = hip[i]
+        q0 = p0[i]
+        if not _pivot_gap(foot, fx, fy, h, q0, d[i], ball, back, ah) > 0:
+            out[i] = q0
+            continue
+        r0, r1, r2 = h[0] - bx, h[1] - by, h[2] - 0.0
+        a_, c_ = r0 * fx + r1 * fy, r2
+        k_ = ((r0**2 + r1**2 + r2**2) + rho**2 - d[i] ** 2) / (2 * rho)
+        t = math.atan2(a_, c_) + math.asin(min(max(k_ / math.hypot(a_, c_), -1.0), 1.0))
+        q = min(max(beta - t, lo), min(q0, 0.0))
+        if q0 > 0 and _pivot_gap(foot, fx, fy, h, 0.0, d[i], ball, back, ah) <= 0:
+            a, b = 0.0, q0  # gap(a) <= 0 < gap(b)
+            for _ in range(40):
+                m = 0.5 * (a + b)
+                if _pivot_gap(foot, fx, fy, h, m, d[i], ball, back, ah) > 0:
+                    b = m
+                else:
+                    a = m
+            q = 0.5 * (a + b)
+        out[i] = q
 
 
 def hip_world(root: np.ndarray, yaw: np.ndarray, side: str, geom: LegGeometry) -> np.ndarray:
