@@ -52,6 +52,7 @@ class ReferenceGait:
     source: str = ""
     _splines: dict[str, CubicSpline] = field(init=False, repr=False, compare=False)
     _unit: bool = field(init=False, repr=False, compare=False)
+    _ppoly: dict[str, tuple[np.ndarray, np.ndarray]] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         sp = {}
@@ -62,6 +63,8 @@ class ReferenceGait:
         object.__setattr__(self, "_splines", sp)
         cyc = np.asarray(self.cycle, float)
         object.__setattr__(self, "_unit", bool(cyc[0] == 0.0 and cyc[-1] == 1.0))
+        ppoly = {k: (np.ascontiguousarray(v.c), np.ascontiguousarray(v.x)) for k, v in sp.items()}
+        object.__setattr__(self, "_ppoly", ppoly)
 
     def __call__(self, name: str, cycle, derivative: bool = False) -> np.ndarray:
         """Angle ``name`` ("hip", "knee", "pitch") in radians at cycle fraction(s) (wrapped);
@@ -70,10 +73,11 @@ class ReferenceGait:
         sp = self._splines[name]
         if not self._unit:  # a table not on [0, 1]: scipy wraps onto it
             return sp(c, 1) if derivative else sp(c)
+        coef, knots = self._ppoly[name]
         if isinstance(c, np.ndarray):
-            out = _ppoly_eval(sp.c, sp.x, c.ravel().astype(float), 1 if derivative else 0)
+            out = _ppoly_eval(coef, knots, c.ravel().astype(float), 1 if derivative else 0)
             return out.reshape(c.shape)
-        return _ppoly_eval(sp.c, sp.x, np.array([float(c)]), 1 if derivative else 0)[0]
+        return _ppoly_eval(coef, knots, np.array([float(c)]), 1 if derivative else 0)[0]
 
 
 @njit

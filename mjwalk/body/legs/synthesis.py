@@ -146,9 +146,12 @@ def legs_from_walk(
     print_ = {s: np.zeros((n, 3)) for s in "lr"}  # ... on this footprint
     cyc = {s: np.zeros(n) for s in "lr"}  # the leg's gait-cycle fraction (0 = heel strike)
 
+    # each hip's offset from the pelvis centre (m) at every sample, for hip_pos
+    side_dir = np.stack([-np.sin(yaw), np.cos(yaw)], -1)
+    hip_off = {s_: (1.0 if s_ == "l" else -1.0) * geom.hip_y * side_dir for s_ in "lr"}
+
     def hip_pos(idx, side, zz=None):
-        sgn = 1.0 if side == "l" else -1.0
-        h = xy[idx] + sgn * geom.hip_y * np.stack([-np.sin(yaw[idx]), np.cos(yaw[idx])], -1)
+        h = xy[idx] + hip_off[side][idx]
         return h if zz is None else np.column_stack([h, zz])
 
     def height_for_knee(idx, side, foot_pos, knee):
