@@ -42,6 +42,7 @@ import json
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -514,7 +515,7 @@ def train_main(
     """
     if variance is not None and not 0.0 < variance <= 1.0:
         raise InputError(f"train: the PCA variance to keep must be in (0, 1], got {variance!r}")
-    fit = {} if variance is None else {"variance": float(variance)}
+    fit: dict[str, Any] = {} if variance is None else {"variance": float(variance)}
     from mjwalk.gait.default import train_model
 
     takes = load_capture(bvh, amc, asf, skeleton=skeleton)

@@ -655,8 +655,8 @@ class StepModel:
                 },
             },
         )
-        out._base = base
-        out._walker = walker
+        out._base = base  # type: ignore[attr-defined]
+        out._walker = walker  # type: ignore[attr-defined]
         return out
 
     # -- persistence -------------------------------------------------------------------------

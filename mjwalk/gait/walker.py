@@ -95,15 +95,14 @@ class Walker:
     def preset(cls, name: str, **changes) -> Walker:
         """The typical (mean) walker of a named :data:`PRESETS` group, with ``changes``."""
         p = get_preset(name)
-        figures = {
-            "stature": p.stature[0],
-            "speed": p.speed[0],
-            "cadence": p.cadence[0],
-            "step_width": p.step_width,
-            "group": name,
-        }
-        figures.update(changes)
-        return cls(**figures)
+        base = cls(
+            stature=p.stature[0],
+            speed=p.speed[0],
+            cadence=p.cadence[0],
+            step_width=p.step_width,
+            group=name,
+        )
+        return replace(base, **changes) if changes else base
 
 
 @dataclass(frozen=True)
