@@ -348,6 +348,9 @@ class StepModel:
     gp: dict[str, TransitionGP]  # predecessor side -> GP to the other side
     info: dict = field(default_factory=dict)
     stop_gp: dict[str, TransitionGP] = field(default_factory=dict)  # ... to a closing step
+    #: set by :meth:`for_walker`: the learned model and the walker it is conditioned on
+    _base: StepModel | None = field(default=None, repr=False, compare=False)
+    _walker: Walker | None = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         self._kde = {
@@ -604,7 +607,7 @@ class StepModel:
         was conditioned from."""
         from mjwalk.gait.pace import PACE_VERSION, Pace, model_pace
 
-        base = getattr(self, "_base", None) or self
+        base = self._base or self
         if base.info.get("pace", {}).get("version") != PACE_VERSION:
             base.info["pace"] = model_pace(base).as_dict()
         return Pace.from_dict(base.info["pace"])
@@ -612,7 +615,7 @@ class StepModel:
     @property
     def walker(self) -> Walker | None:
         """The walker this model was conditioned on (:meth:`for_walker`), else None."""
-        return getattr(self, "_walker", None)
+        return self._walker
 
     def for_walker(self, walker: Walker | None) -> StepModel:
         """This model conditioned on ``walker``: its steps, stretched in their local frames so
@@ -630,7 +633,7 @@ class StepModel:
         from mjwalk.conventions import DEFAULT_STATURE
         from mjwalk.gait.features import raw_scale_factors
 
-        base = getattr(self, "_base", None) or self
+        base = self._base or self
         if walker is None:
             return base
         ref = base.pace()
@@ -654,9 +657,9 @@ class StepModel:
                     "scale": {"lateral": lateral, "forward": forward, "time": time_},
                 },
             },
+            _base=base,
+            _walker=walker,
         )
-        out._base = base  # type: ignore[attr-defined]
-        out._walker = walker  # type: ignore[attr-defined]
         return out
 
     # -- persistence -------------------------------------------------------------------------
@@ -694,7 +697,7 @@ class StepModel:
         """Write the model to one versioned ``.npz`` file, atomically. A model conditioned on
         a walker (:meth:`for_walker`) writes the model it was conditioned from: the walker is a
         choice made when planning, not part of the learned model."""
-        base = getattr(self, "_base", None)
+        base = self._base
         if base is not None:
             base.save(path)
             return
