@@ -40,6 +40,37 @@ def _load_model(path: Path | None):
     return StepModel.load(path)
 
 
+def _add_walker_args(p: argparse.ArgumentParser) -> None:
+    """The walker options shared by ``plan`` and ``validate`` (:class:`mjwalk.Walker`)."""
+    g = p.add_argument_group(
+        "walker",
+        "the operator the steps are sampled for (default: the model's own pace); a preset's "
+        "figures are overridden by --speed/--cadence/--stature/--step-width",
+    )
+    g.add_argument(
+        "--walker", metavar="PRESET", help="adult, older_adult, elderly, fatigued, brisk"
+    )
+    g.add_argument("--speed", type=arg_positive_float, help="preferred walking speed, m/s")
+    g.add_argument("--cadence", type=arg_positive_float, help="preferred cadence, steps/min")
+    g.add_argument("--stature", type=arg_positive_float, help="body height, metres")
+    g.add_argument("--step-width", type=arg_positive_float, help="step width, metres")
+
+
+def _walker_from_args(args: argparse.Namespace):
+    """The :class:`~mjwalk.gait.walker.Walker` the options describe, or None (checked here,
+    before any work: a bad figure raises WalkerError naming it)."""
+    from mjwalk.gait.walker import Walker
+
+    given = {
+        k: getattr(args, k)
+        for k in ("speed", "cadence", "stature", "step_width")
+        if getattr(args, k, None) is not None
+    }
+    if args.walker:
+        return Walker.preset(args.walker, **given)
+    return Walker(**given) if given else None
+
+
 def _quartiles(x) -> tuple[float, float]:
     import numpy as np
 
@@ -52,6 +83,7 @@ def _cmd_plan(args: argparse.Namespace) -> int:
         check_output_file(args.png, "--png", image_suffixes())
     if args.save:
         check_output_file(args.save.with_suffix(".npz"), "--save")
+    walker = _walker_from_args(args)
     from mjwalk.plan.grid import check_endpoint, plan_grid
     from mjwalk.shipped import scene_file
     from mjwalk.world import load_workplace
@@ -60,7 +92,7 @@ def _cmd_plan(args: argparse.Namespace) -> int:
     for where, what in ((args.start, "start"), (args.goal, "goal")):
         # unknown sites, points off the floor or in an obstacle fail here, before planning
         check_endpoint(workplace, workplace.point(where), args.radius, what)
-    model = _load_model(args.model) if args.n > 0 else None
+    model = _load_model(args.model).for_walker(walker) if args.n > 0 else None
     baseline = plan_grid(workplace, args.start, args.goal, radius=args.radius)
     print(
         f"grid A*  {args.start} -> {args.goal}: length {baseline.length:.3f} m, "
@@ -76,6 +108,11 @@ def _cmd_plan(args: argparse.Namespace) -> int:
         lm, li = _quartiles([p.length for p in paths])
         dm, di = _quartiles([p.duration for p in paths])
         tm, _ = _quartiles([1000 * p.meta["seconds"] for p in paths])
+        if walker is not None:
+            print(
+                f"walker {walker.group}: {walker.speed:.2f} m/s, {walker.cadence:.0f} steps/min, "
+                f"stature {walker.stature:.2f} m"
+            )
         print(
             f"hybrid A* {len(paths)} walks: length median {lm:.3f} m (IQR {li:.3f}), "
             f"duration median {dm:.2f} s (IQR {di:.2f}), planning median {tm:.1f} ms"
@@ -124,6 +161,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
 
     if args.json:
         check_output_file(args.json, "--json")
+    walker = _walker_from_args(args)
     validate_main(
         args.model,
         args.against,
@@ -131,6 +169,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         amc_asf=args.asf,
         seed=args.seed,
         skeleton=args.skeleton,
+        walker=walker,
     )
     return 0
 
@@ -318,6 +357,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same walks)")
     p.add_argument("--footprints", action="store_true", help="draw the footprints too")
     p.add_argument("--save", type=Path, help="save each walk as NAME_NNN.npz (for mjwalk render)")
+    _add_walker_args(p)
     p.set_defaults(func=_cmd_plan)
 
     p = sub.add_parser("simulate", help="simulate assembly cycles (Monte Carlo) and report")
@@ -389,6 +429,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--skeleton", help="skeleton preset: bandai, cmu, cmu_bvh")
     p.add_argument("--json", type=Path, help="write the report as JSON here")
     p.add_argument("--seed", type=int, default=0)
+    _add_walker_args(p)
     p.set_defaults(func=_cmd_validate)
     _add_scan_parser(sub)
     _add_scene_import_parser(sub)

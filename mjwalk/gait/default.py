@@ -20,6 +20,9 @@ from mjwalk.gait.model import MIN_STEPS, MODEL_VERSION, StepModel
 #: Corpus generation used for the default model (agethen2018: 12 subjects).
 DEFAULT_SUBJECTS = 12
 DEFAULT_SEED = 0
+#: The default model learns steps within a person: each virtual subject's steps are brought to
+#: the subjects' common pace before fitting (:func:`mjwalk.gait.pace.normalize_paces`).
+DEFAULT_NORMALIZE_BY = "subject"
 
 _MEMO: dict[Path, StepModel] = {}
 
@@ -45,8 +48,20 @@ def default_model_path() -> Path:
     )
 
 
-def train_model(takes: Sequence, *, seed: int = 0, progress: bool = False, **fit_kwargs):
+def train_model(
+    takes: Sequence,
+    *,
+    seed: int = 0,
+    progress: bool = False,
+    normalize_by: str | None = None,
+    **fit_kwargs,
+):
     """Segment ``takes`` into steps and fit a :class:`StepModel`.
+
+    ``normalize_by``: a take ``meta`` key naming the walker (``"subject"`` for the virtual
+    corpus): the steps of every walker are first brought to one common pace
+    (:func:`mjwalk.gait.pace.normalize_paces`), so the model learns the variance within a
+    person and a population's walkers (:meth:`StepModel.for_walker`) supply the rest.
 
     Returns:
         (model, SegmentationSummary).
@@ -55,6 +70,11 @@ def train_model(takes: Sequence, *, seed: int = 0, progress: bool = False, **fit
 
     t0 = time.perf_counter()
     steps, summary = segment_takes(takes)
+    norm: dict = {}
+    if normalize_by:
+        from mjwalk.gait.pace import normalize_paces
+
+        steps, norm = normalize_paces(steps, key=normalize_by)
     if progress:
         print(
             f"[mjwalk] segmented {len(takes)} takes into {len(steps)} steps "
@@ -68,6 +88,9 @@ def train_model(takes: Sequence, *, seed: int = 0, progress: bool = False, **fit
             f"needs at least {MIN_STEPS} steps: give more walking capture"
         )
     model = StepModel.fit(steps, seed=seed, progress=progress, **fit_kwargs)
+    if normalize_by:
+        model.info["normalized_by"] = normalize_by
+        model.info["normalized_walkers"] = len(norm)
     return model, summary
 
 
@@ -105,8 +128,11 @@ def default_model(progress: bool = True) -> StepModel:
                 file=sys.stderr,
                 flush=True,
             )
-        model, _ = train_model(takes, seed=DEFAULT_SEED, progress=progress)
+        model, _ = train_model(
+            takes, seed=DEFAULT_SEED, progress=progress, normalize_by=DEFAULT_NORMALIZE_BY
+        )
         model.info["corpus_version"] = corpus_version()
+        model.pace()  # measured once, saved with the model (mjwalk.gait.pace)
         model.save(path)
         if progress:
             print(

@@ -330,6 +330,28 @@ class StepFeatures:
             )
         return batch_from_raw(self.decode_raw(z), side, z)
 
+    def scaled(self, factor: np.ndarray) -> StepFeatures:
+        """The same chain with every decoded raw feature multiplied by ``factor`` (N_RAW,).
+
+        ``decode`` of the result is ``factor`` times this chain's decode, and ``encode`` of
+        scaled raw features gives back the same z: scaling the first z-score's mean and scale
+        by ``factor`` is all it takes (the PCA and the final scaler act on z-scored values).
+        The model space (the KDEs, the transition GPs) is untouched; see
+        :func:`raw_scale_factors` and :meth:`mjwalk.gait.model.StepModel.for_walker`.
+        """
+        f = np.asarray(factor, dtype=float)
+        if f.shape != (N_RAW,) or not np.all(np.isfinite(f)) or np.any(f <= 0):
+            raise MjwalkError(f"StepFeatures.scaled: need {N_RAW} positive finite factors")
+        return StepFeatures(
+            raw_mean=self.raw_mean * f,
+            raw_scale=self.raw_scale * f,
+            pca_mean=self.pca_mean,
+            components=self.components,
+            explained_variance_ratio=self.explained_variance_ratio,
+            z_mean=self.z_mean,
+            z_scale=self.z_scale,
+        )
+
     def arrays(self, prefix: str = "feat_") -> dict[str, np.ndarray]:
         """The fitted parameters as named arrays (for saving)."""
         return {
@@ -355,6 +377,21 @@ class StepFeatures:
                 if k.startswith(prefix)
             }
         )
+
+
+def raw_scale_factors(lateral: float, forward: float, time: float) -> np.ndarray:
+    """(N_RAW,) factors that stretch a step in its local frame: ``lateral`` multiplies every
+    x (to the walker's right: pelvis landmarks, footprint, stance foot), ``forward`` every y,
+    ``time`` the duration; yaws stay. Both frames' axes are the step's own (x right, y
+    forward), so the stretch is well defined for every step, turning ones included."""
+    f = np.ones(N_RAW)
+    f[_SL_XY][0::2] = lateral
+    f[_SL_XY][1::2] = forward
+    f[_I_DUR] = time
+    for sl in (_SL_FOOT, _SL_STANCE):
+        f[sl.start] = lateral
+        f[sl.start + 1] = forward
+    return f
 
 
 def _as_raw(steps_or_raw) -> np.ndarray:

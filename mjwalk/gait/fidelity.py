@@ -42,6 +42,7 @@ import json
 import sys
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -132,15 +133,14 @@ def _compose(pos, phi, local_xy, local_yaw):
     return world, phi + local_yaw
 
 
-def captured_straight_walks(
-    steps: Sequence[Step], straight_deg: float = 20.0
-) -> list[dict[str, float]]:
-    """Straight walks of the capture: per take, its longest run of consecutive steps, kept when
-    its total heading change is below ``straight_deg``; distance, time, path length each."""
+def straight_runs(steps: Sequence[Step], straight_deg: float = 20.0) -> list[list[Step]]:
+    """The capture's straight walks as step lists: per take, its longest run of consecutive
+    steps (alternating sides), kept when it has at least 2 steps and its total heading change
+    is below ``straight_deg`` degrees."""
     by_take: dict[str, list[Step]] = {}
     for s in steps:
         by_take.setdefault(s.take, []).append(s)
-    walks = []
+    out = []
     for take_steps in by_take.values():
         take_steps = sorted(take_steps, key=lambda s: s.index)
         runs, cur = [], [take_steps[0]]
@@ -154,9 +154,19 @@ def captured_straight_walks(
         run = max(runs, key=len)
         if len(run) < 2:
             continue
-        heading = float(sum(s.end_yaw for s in run))
-        if abs(heading) > np.radians(straight_deg):
+        if abs(float(sum(s.end_yaw for s in run))) > np.radians(straight_deg):
             continue
+        out.append(run)
+    return out
+
+
+def captured_straight_walks(
+    steps: Sequence[Step], straight_deg: float = 20.0
+) -> list[dict[str, float]]:
+    """Straight walks of the capture (:func:`straight_runs`): distance, time, path length
+    and step count each."""
+    walks = []
+    for run in straight_runs(steps, straight_deg):
         pos, phi = np.zeros(2), 0.0
         for s in run:
             pos, phi = _compose(pos, phi, s.pelvis[-1], s.end_yaw)
@@ -167,6 +177,7 @@ def captured_straight_walks(
                 "time": float(sum(s.duration for s in run)),
                 "path_length": float(_path_length(paths).sum()),
                 "n_steps": len(run),
+                "in_motion": float(not run[0].meta.get("initiation")),
             }
         )
     return walks
@@ -179,9 +190,16 @@ def model_straight_walks(
     *,
     n_candidates: int = 10,
     heading_weight: float = 0.05,
-) -> list[dict[str, float]]:
+    record_steps: bool = False,
+    in_motion: ArrayLike | None = None,
+) -> list[dict]:
     """Walk the model straight to a goal at each distance (m) with the greedy steering rule of
-    the module docstring; all walks advance together (vectorized)."""
+    the module docstring; all walks advance together (vectorized). ``record_steps``: each
+    walk's dict also holds its steps' ``lengths`` (m), ``durations`` (s) and ``widths`` (m:
+    lateral distance of the landing foot from the stance foot), in walking order.
+    ``in_motion`` (per walk, bool): that walk starts already walking, like a captured walk
+    whose first step is not a gait initiation: its first candidates are the third steps of
+    chains (a KDE starter and one successor before them, not counted) instead of starters."""
     distances = np.asarray(distances, dtype=float)
     w = len(distances)
     goal = np.column_stack([np.zeros(w), distances])
@@ -190,6 +208,7 @@ def model_straight_walks(
     time_ = np.zeros(w)
     plen = np.zeros(w)
     n_steps = np.zeros(w, dtype=int)
+    per_step: list[list[tuple[float, float, float]]] = [[] for _ in range(w)]
     active = np.ones(w, dtype=bool)
     current: StepBatch | None = None
     max_steps = int(np.ceil(distances.max() / 0.2)) + 10 if w else 0
@@ -201,6 +220,15 @@ def model_straight_walks(
             cand = model.sample_first(n_candidates * w, rng)
             order = rng.permuted(np.arange(n_candidates * w)).reshape(w, n_candidates)
             cand = cand.take(order.ravel())
+            moving = np.zeros(w, bool) if in_motion is None else np.asarray(in_motion, bool)
+            if moving.any():
+                rows_m = (
+                    np.flatnonzero(moving)[:, None] * n_candidates + np.arange(n_candidates)
+                ).ravel()
+                warm = model.sample_next(model.sample_next(cand.take(rows_m), 1, rng), 1, rng)
+                cand = concat_batches([cand.take(np.setdiff1d(np.arange(len(cand)), rows_m)), warm])
+                back = np.concatenate([np.setdiff1d(np.arange(len(cand)), rows_m), rows_m])
+                cand = cand.take(np.argsort(back))
         else:
             assert current is not None  # set by the first iteration
             cand = model.sample_next(current, n_candidates, rng)
@@ -232,20 +260,32 @@ def model_straight_walks(
         time_[g] += chosen.duration[go]
         plen[g] += _path_length(pelvis)[go]
         n_steps[g] += 1
+        if record_steps:
+            from mjwalk.gait.pace import step_widths
+
+            widths = step_widths(chosen.end_xy, chosen.footprint, chosen.stance)
+            for j in np.flatnonzero(go):
+                per_step[idx[j]].append(
+                    (float(chosen.length[j]), float(chosen.duration[j]), float(widths[j]))
+                )
         active[idx[~go]] = False
         # keep the chosen steps of the walks still going as predecessors (same order as idx)
         current = chosen.take(np.flatnonzero(go))
         active[idx[go]] = True
-    return [
-        {
+    out: list[dict] = []
+    for i in range(w):
+        walk: dict = {
             "distance": float(distances[i]),
             "time": float(time_[i]),
             "path_length": float(plen[i]),
             "n_steps": int(n_steps[i]),
             "end_error": float(np.hypot(*(goal[i] - pos[i]))),
         }
-        for i in range(w)
-    ]
+        if record_steps:
+            rec = np.asarray(per_step[i], dtype=float).reshape(-1, 3)
+            walk.update(lengths=rec[:, 0], durations=rec[:, 1], widths=rec[:, 2])
+        out.append(walk)
+    return out
 
 
 # --------------------------------------------------------------------------------------------
@@ -300,7 +340,12 @@ def fidelity_from_steps(
     cw = captured_straight_walks(steps, straight_deg)
     walks: dict = {"n": len(cw), "straight_deg": straight_deg}
     if cw:
-        mw = model_straight_walks(model, np.array([w["distance"] for w in cw]), rng)
+        mw = model_straight_walks(
+            model,
+            np.array([w["distance"] for w in cw]),
+            rng,
+            in_motion=np.array([w["in_motion"] for w in cw], dtype=bool),
+        )
         for key in ("distance", "time", "path_length"):
             walks[key] = {
                 "capture": _describe([w[key] for w in cw]),
@@ -311,8 +356,15 @@ def fidelity_from_steps(
             "capture": _describe([w["n_steps"] for w in cw]),
             "model": _describe([w["n_steps"] for w in mw]),
         }
+    from mjwalk.gait.pace import capture_pace, model_pace
+
+    try:
+        cap_pace: dict | None = capture_pace(steps, straight_deg).as_dict()
+    except MjwalkError:  # no straight walking in the capture
+        cap_pace = None
     return {
         "model": model.summary(),
+        "pace": {"capture": cap_pace, "model": model_pace(model).as_dict()},
         "n_capture_steps": len(steady),
         "n_model_steps": int((~is_first).sum()),
         "steps": step_report,
@@ -372,6 +424,21 @@ def format_fidelity_table(report: dict) -> str:
         lines.append(
             f"{k + ' [' + r['unit'] + ']':<16}{r['ks']:>7.3f}   "
             f"{c['mean']:>10.3f} ± {c['sd']:<7.3f}   {m['mean']:>10.3f} ± {m['sd']:<7.3f}"
+        )
+    pace = report.get("pace", {})
+    for who in ("capture", "model"):
+        q = pace.get(who)
+        if q:
+            lines.append(
+                f"pace of the {who + ' (steady straight steps)':<31} {q['speed']:.3f} m/s, "
+                f"{q['cadence']:.1f} steps/min, step {q['step_length']:.3f} m, "
+                f"width {q['step_width']:.3f} m (n={q['n_steps']})"
+            )
+    walker = report.get("model", {}).get("walker")
+    if walker:
+        lines.append(
+            f"model conditioned on the walker {walker['speed']:.3f} m/s, "
+            f"{walker['cadence']:.1f} steps/min, stature {walker['stature']:.2f} m"
         )
     ini = report.get("initiation", {})
     if "length" in ini:
@@ -448,7 +515,7 @@ def train_main(
     """
     if variance is not None and not 0.0 < variance <= 1.0:
         raise InputError(f"train: the PCA variance to keep must be in (0, 1], got {variance!r}")
-    fit = {} if variance is None else {"variance": float(variance)}
+    fit: dict[str, Any] = {} if variance is None else {"variance": float(variance)}
     from mjwalk.gait.default import train_model
 
     takes = load_capture(bvh, amc, asf, skeleton=skeleton)
@@ -461,6 +528,7 @@ def train_main(
     if progress:
         print(f"[mjwalk] training on {len(takes)} takes", file=sys.stderr, flush=True)
     model, seg = train_model(takes, seed=seed, progress=progress, **fit)
+    model.pace()  # measured once, saved with the model (mjwalk.gait.pace)
     model.save(out)
     summary = model.summary()
     summary["segmentation"] = str(seg)
@@ -478,6 +546,7 @@ def validate_main(
     seed: int = 0,
     n_chains: int = 400,
     skeleton: str | None = None,
+    walker=None,
 ) -> dict:
     """Fidelity of the model at ``model_path`` (None: the default model) against the takes
     matching the glob ``against`` (``.bvh``; ``.amc`` needs ``amc_asf``). Prints the table to
@@ -489,6 +558,7 @@ def validate_main(
     else:
         takes = load_capture(bvh=against, skeleton=skeleton)
     model = default_model() if model_path is None else StepModel.load(model_path)
+    model = model.for_walker(walker)
     report = fidelity_report(model, takes, np.random.default_rng(seed), n_chains=n_chains)
     print(format_fidelity_table(report))
     if json_path is not None:

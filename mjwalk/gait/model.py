@@ -59,6 +59,7 @@ import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.linalg import cho_solve, cholesky, solve_triangular
@@ -70,10 +71,15 @@ from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait import gpdraw
 from mjwalk.gait.features import StepBatch, StepFeatures, raw_features, side_array
 from mjwalk.gait.step import Step
+from mjwalk.gait.walker import Walker
+
+if TYPE_CHECKING:
+    from mjwalk.gait.pace import Pace
 
 MODEL_FORMAT = "mjwalk.stepmodel"
-#: Bump whenever the saved arrays or their meaning change.
-MODEL_VERSION = 3
+#: Bump whenever the saved arrays or their meaning change (4: the default model is trained on
+#: pace-normalized steps and saves its pace, mjwalk.gait.pace).
+MODEL_VERSION = 4
 #: Fewest aligned steps a model is fitted on: with alternating sides, 10 steps give each
 #: transition GP its minimum of 5 pairs per direction (:meth:`TransitionGP.fit`).
 MIN_STEPS = 10
@@ -342,6 +348,9 @@ class StepModel:
     gp: dict[str, TransitionGP]  # predecessor side -> GP to the other side
     info: dict = field(default_factory=dict)
     stop_gp: dict[str, TransitionGP] = field(default_factory=dict)  # ... to a closing step
+    #: set by :meth:`for_walker`: the learned model and the walker it is conditioned on
+    _base: StepModel | None = field(default=None, repr=False, compare=False)
+    _walker: Walker | None = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         self._kde = {
@@ -589,6 +598,70 @@ class StepModel:
             parts.append(self.sample_next(parts[-1], 1, rng))
         return concat_batches(parts)
 
+    # -- walkers -----------------------------------------------------------------------------
+
+    def pace(self) -> Pace:
+        """The model's own steady straight-walking pace (:func:`mjwalk.gait.pace.model_pace`,
+        seeded): measured once on first use and kept in ``info["pace"]`` (saved with the
+        model). For a model conditioned with :meth:`for_walker`, the pace of the model it
+        was conditioned from."""
+        from mjwalk.gait.pace import PACE_VERSION, Pace, model_pace
+
+        base = self._base or self
+        if base.info.get("pace", {}).get("version") != PACE_VERSION:
+            base.info["pace"] = model_pace(base).as_dict()
+        return Pace.from_dict(base.info["pace"])
+
+    @property
+    def walker(self) -> Walker | None:
+        """The walker this model was conditioned on (:meth:`for_walker`), else None."""
+        return self._walker
+
+    def for_walker(self, walker: Walker | None) -> StepModel:
+        """This model conditioned on ``walker``: its steps, stretched in their local frames so
+        that the steady straight walking of the result has the walker's preferred step length
+        (``walker.speed * 60 / walker.cadence``) and step duration (``60 / walker.cadence``)
+        as medians, and the walker's step width (``walker.step_width``; when None, the model's
+        width scaled by ``walker.stature / model stature``, Perry & Burnfield 2010). Shapes,
+        turning and the variance relative to the pace are the model's (:mod:`mjwalk.gait.pace`
+        says why). ``walker=None`` gives the unconditioned model back.
+
+        The KDE starters and the transition GPs are shared (they live in feature space); only
+        the decoding changes (:meth:`StepFeatures.scaled`), so a conditioned model costs
+        nothing to build beyond the model's pace, which is measured once.
+        """
+        from mjwalk.conventions import DEFAULT_STATURE
+        from mjwalk.gait.features import raw_scale_factors
+
+        base = self._base or self
+        if walker is None:
+            return base
+        ref = base.pace()
+        if walker.step_width is not None:
+            lateral = walker.step_width / max(ref.step_width, 1e-3)
+        else:
+            lateral = walker.stature / float(base.info.get("stature", DEFAULT_STATURE))
+        forward = walker.step_length / ref.step_length
+        time_ = walker.step_duration / ref.step_duration
+        out = replace(
+            base,
+            features=base.features.scaled(raw_scale_factors(lateral, forward, time_)),
+            info={
+                **base.info,
+                "walker": {
+                    "stature": walker.stature,
+                    "speed": walker.speed,
+                    "cadence": walker.cadence,
+                    "step_width": walker.step_width,
+                    "group": walker.group,
+                    "scale": {"lateral": lateral, "forward": forward, "time": time_},
+                },
+            },
+            _base=base,
+            _walker=walker,
+        )
+        return out
+
     # -- persistence -------------------------------------------------------------------------
 
     def summary(self) -> dict:
@@ -621,7 +694,13 @@ class StepModel:
         return out
 
     def save(self, path: str | Path) -> None:
-        """Write the model to one versioned ``.npz`` file, atomically."""
+        """Write the model to one versioned ``.npz`` file, atomically. A model conditioned on
+        a walker (:meth:`for_walker`) writes the model it was conditioned from: the walker is a
+        choice made when planning, not part of the learned model."""
+        base = self._base
+        if base is not None:
+            base.save(path)
+            return
         arrays = self.features.arrays("feat_")
         for s in _SIDES:
             arrays[f"kde_{s}"] = self.kde_data[s]

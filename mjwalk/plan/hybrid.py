@@ -369,10 +369,17 @@ class HybridPlanner:
         )
         return par, ipar
 
-    def _decoder(self) -> _Decoder:
-        if self._dec is None:
-            self._dec = _Decoder(self.model, self.samples_per_step)
-        return self._dec
+    def _decoder(self, model=None) -> _Decoder:
+        if model is None or model is self.model:
+            if self._dec is None:
+                self._dec = _Decoder(self.model, self.samples_per_step)
+            return self._dec
+        # another model (a walker's, StepModel.for_walker): the last one's decoder is kept
+        held = getattr(self, "_other_dec", None)
+        if held is None or held[0] is not model:
+            held = (model, _Decoder(model, self.samples_per_step))
+            self._other_dec = held
+        return held[1]
 
     # -- helpers ---------------------------------------------------------------------------
 
@@ -398,8 +405,13 @@ class HybridPlanner:
 
     # -- search ----------------------------------------------------------------------------
 
-    def plan(self, start, rng: np.random.Generator) -> WalkPath:
+    def plan(self, start, rng: np.random.Generator, *, model=None) -> WalkPath:
         """Plan one walk from ``start`` (site, "x,y", "x,y,yaw_deg" or (x, y[, yaw])).
+
+        ``model``: sample the steps from this step model instead of the planner's (e.g. the
+        planner's model conditioned on the run's operator, :meth:`StepModel.for_walker`); the
+        goal's distance field and grid are shared. It must have the planner model's feature
+        dimensions and GPs (a conditioned copy does).
 
         When the open list runs dry (every sampled continuation blocked, which happens now and
         then in tight places), the search starts over with fresh samples, up to ``attempts``
@@ -408,7 +420,7 @@ class HybridPlanner:
         t0 = time.perf_counter()
         for attempt in range(self.attempts):
             try:
-                path = self._plan_once(start, rng)
+                path = self._plan_once(start, rng, model or self.model)
             except _Exhausted as exc:
                 if attempt == self.attempts - 1:
                     raise PlanningError(
@@ -420,7 +432,7 @@ class HybridPlanner:
             return path
         raise AssertionError("unreachable")  # pragma: no cover
 
-    def _plan_once(self, start, rng: np.random.Generator) -> WalkPath:
+    def _plan_once(self, start, rng: np.random.Generator, model) -> WalkPath:
         start_xy, start_yaw = _parse_pose(self.workplace, start)
         check_endpoint(self.workplace, start_xy, self.radius, "start")
         if not self.distance.reachable(start_xy):
@@ -432,7 +444,7 @@ class HybridPlanner:
         free_heading = start_yaw is None
         if free_heading:
             start_yaw = self.default_heading(start_xy)
-        dec = self._decoder()
+        dec = self._decoder(model)
         par, ipar = self._kernel_params()
         if stepcheck.in_goal(complex(*start_xy), start_yaw, par):
             raise PlanningError(
@@ -441,7 +453,7 @@ class HybridPlanner:
                 "there is no walk to plan"
             )
         # the starters, for the first expansion (the start node's)
-        first = self.model.sample_first(self.n_starters, rng)
+        first = model.sample_first(self.n_starters, rng)
         frame0 = np.full(len(first.features), float(start_yaw))
         if free_heading:  # the walker may set off anywhere around the downhill heading
             frame0 += rng.uniform(-START_SPREAD, START_SPREAD, len(frame0))
@@ -454,8 +466,8 @@ class HybridPlanner:
         f0 = weight * h_start  # as stepcheck.check_steps scores a node
         if h_start > FAR_FROM:
             f0 += far * (h_start - FAR_FROM)
-        gps = (self.model.gp["left"].kernel, self.model.gp["right"].kernel)
-        stops = (self.model.stop_gp["left"].kernel, self.model.stop_gp["right"].kernel) if (
+        gps = (model.gp["left"].kernel, model.gp["right"].kernel)
+        stops = (model.stop_gp["left"].kernel, model.stop_gp["right"].kernel) if (
             self.n_stops
         ) else gps  # fmt: skip
         outcome, goal_node, stats, *nodes = search.search(
@@ -493,6 +505,7 @@ class HybridPlanner:
             )
         parent, rows, pos, frames, lefts, feats, closing = nodes
         return self._assemble(
+            model,
             goal_node,
             (parent, rows, pos, frames, lefts),
             feats,
@@ -506,14 +519,14 @@ class HybridPlanner:
             },
         )
 
-    def _assemble(self, nid, nodes, feats, stats) -> WalkPath:
+    def _assemble(self, model, nid, nodes, feats, stats) -> WalkPath:
         parent, rows, pos, frames, lefts = nodes
         chain = []
         while nid > 0:
             chain.append(nid)
             nid = parent[nid]
         chain = np.array(chain[::-1])
-        batch = self.model.decode(feats[rows[chain]], np.where(lefts[chain], "left", "right"))
+        batch = model.decode(feats[rows[chain]], np.where(lefts[chain], "left", "right"))
         ox = pos[parent[chain]].real
         oy = pos[parent[chain]].imag
         fr = frames[chain]
