@@ -171,6 +171,27 @@ class _Exhausted(PlanningError):
     """The open list ran dry (all sampled continuations blocked): worth a fresh search."""
 
 
+def _goal_discs(discs, goal: np.ndarray) -> np.ndarray:
+    """(k, 3) goal discs (x, y, radius; metres) checked: finite, positive radii, at most
+    :data:`~mjwalk.plan.stepcheck.MAX_GOAL_DISCS`, and the goal itself inside every one (the
+    goal area must not be empty where the walk is aimed)."""
+    arr = np.asarray(discs, dtype=float).reshape(-1, 3) if len(discs) else np.zeros((0, 3))
+    if len(arr) > stepcheck.MAX_GOAL_DISCS:
+        raise PlanningError(
+            f"goal_within: at most {stepcheck.MAX_GOAL_DISCS} discs, got {len(arr)}"
+        )
+    if not np.all(np.isfinite(arr)) or np.any(arr[:, 2] <= 0):
+        raise PlanningError("goal_within: discs are (x, y, radius) with finite x, y and radius > 0")
+    out = np.hypot(arr[:, 0] - goal[0], arr[:, 1] - goal[1]) > arr[:, 2]
+    if out.any():
+        k = int(np.flatnonzero(out)[0])
+        raise PlanningError(
+            f"goal_within: the goal ({goal[0]:.3f}, {goal[1]:.3f}) lies outside disc {k} "
+            f"({arr[k, 0]:.3f}, {arr[k, 1]:.3f}, radius {arr[k, 2]:.3f} m)"
+        )
+    return arr
+
+
 def _to_world(px, py, heading, local: np.ndarray) -> np.ndarray:
     """Local step coordinates (x right, y forward) -> world, for a frame at (px, py) heading
     ``heading`` (radians from +x). ``local`` (..., 2); px, py, heading broadcast against it."""
@@ -263,6 +284,7 @@ class HybridPlanner:
         attempts: int = 3,
         grid: OccupancyGrid | None = None,
         n_stops: int = 5,
+        goal_within=(),
     ):
         if heuristic not in ("dijkstra", "euclidean"):
             raise PlanningError(f"heuristic must be 'dijkstra' or 'euclidean', not {heuristic!r}")
@@ -273,6 +295,7 @@ class HybridPlanner:
         self.goal_yaw = goal_yaw
         self.goal_yaw_tolerance = goal_yaw_tolerance
         self.tolerance = goal_tolerance
+        self.goal_within = _goal_discs(goal_within, self.goal)
         self.radius = radius
         self.cell = cell
         if heading_bins is None:  # a goal heading needs nodes of other headings kept apart
@@ -347,6 +370,8 @@ class HybridPlanner:
             far_weight=self.far_weight,
             far_from=FAR_FROM,
         )
+        for k, (dx, dy, dr) in enumerate(self.goal_within):
+            par[stepcheck.P_DISC0 + 3 * k : stepcheck.P_DISC0 + 3 * k + 3] = (dx, dy, dr)
         ipar = stepcheck.iparams(
             m=m,
             q=max(2, m // 4),  # samples of a step's first quarter (the foot behind lifts off)
@@ -366,6 +391,7 @@ class HybridPlanner:
             n_stops=self.n_stops,
             max_expansions=self.max_expansions,
             near_goal_expansions=NEAR_GOAL_EXPANSIONS,
+            n_discs=len(self.goal_within),
         )
         return par, ipar
 
@@ -446,7 +472,7 @@ class HybridPlanner:
             start_yaw = self.default_heading(start_xy)
         dec = self._decoder(model)
         par, ipar = self._kernel_params()
-        if stepcheck.in_goal(complex(*start_xy), start_yaw, par):
+        if stepcheck.in_goal(complex(*start_xy), start_yaw, par, ipar):
             raise PlanningError(
                 f"start ({start_xy[0]:.3f}, {start_xy[1]:.3f}) already lies in the goal area "
                 f"(within {self.tolerance} m of ({self.goal[0]:.3f}, {self.goal[1]:.3f})): "
