@@ -57,8 +57,9 @@ def station_walks(scenes_dir):
 
 
 def test_station_walks_end_in_their_zones_and_spread_there(station_walks):
-    """Seeded, 200 cycles: every walk ends in its stand zone; the end points of walks to the car spread
-    (standard deviation > 4 cm along the car, where the screws are well within reach)."""
+    """Seeded, 200 cycles: every walk ends in its stand zone; the end points of walks to the
+    car spread (standard deviation > 4 cm along the car, where the screws are well within
+    reach)."""
     ctx, walks = station_walks
     step = ctx.step_model.pace().step_length
     ends: dict[str, list] = {}

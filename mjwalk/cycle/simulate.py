@@ -400,7 +400,7 @@ def plan_task_walk(ctx: CycleContext, i: int, start, rng: np.random.Generator, w
     task's stand zone (:func:`work_zone`) for the walker's stature and step length."""
     task = ctx.spec.tasks[i]
     assert task.site is not None  # the spec loader requires a site for walks
-    model = ctx.step_model.for_walker(walker) if walker is not None else ctx.step_model
+    model = ctx.step_model.for_walker(walker) if walker is not None else ctx.step_model  # type: ignore[attr-defined]
     stature = walker.stature if walker is not None else ctx.spec.stature
     step = walker.step_length if walker is not None else _pace_of(ctx.step_model).step_length
     zone = ctx.zone(i, stature, step)
@@ -420,9 +420,10 @@ def plan_cycle_walks(ctx: CycleContext, rng: np.random.Generator, walker=None) -
     for i, task in enumerate(spec.tasks):
         if task.kind in ("walk", "carry"):
             path = plan_task_walk(ctx, i, (x, y), rng, walker)
-            out.append((i, here, task.site, path))
+            goal = str(task.site)
+            out.append((i, here, goal, path))
             x, y = (float(v) for v in path.xy[-1])
-            here = task.site
+            here = goal
     return out
 
 

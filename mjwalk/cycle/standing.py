@@ -21,10 +21,10 @@ steps reach. Metres throughout; targets are world points (x, y, z up).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from mjwalk.anthropometry import hand_reach
 from mjwalk.conventions import DEFAULT_STATURE
@@ -61,8 +61,8 @@ class StandZone:
 
 
 def stand_zone(
-    centre: Sequence[float],
-    targets: Sequence[Sequence[float]],
+    centre: ArrayLike,
+    targets: ArrayLike,
     step_length: float,
     stature: float = DEFAULT_STATURE,
 ) -> StandZone:
