@@ -151,7 +151,10 @@ REACH_TRUNK_LEAN_DEG = 10.0
 
 
 def hand_reach(
-    height: float, stature: float = DEFAULT_STATURE, lean_deg: float = REACH_TRUNK_LEAN_DEG
+    height: float,
+    stature: float = DEFAULT_STATURE,
+    lean_deg: float = REACH_TRUNK_LEAN_DEG,
+    turned: bool = True,
 ) -> float:
     """Farthest horizontal distance (m) from the body's vertical axis (the pelvis centre) at
     which a standing person puts the grip centre on a point ``height`` metres above the floor.
@@ -159,8 +162,9 @@ def hand_reach(
     The trunk (hip to shoulder, Winter's segment table :data:`SEG`) leans ``lean_deg`` forward,
     the body turns so the reaching shoulder (half the bi-acromial width from the trunk axis)
     lies beside the line to the target, as the cycle turns the operator before a reach, and the
-    arm (upper arm, forearm and half the hand) is stretched towards it. Returns 0 when the
-    point is out of the arm's vertical reach."""
+    arm (upper arm, forearm and half the hand) is stretched towards it; ``turned=False``: the
+    body faces the target squarely (the cycle's fastening), the shoulder beside the line, so
+    the arm reaches across. Returns 0 when the point is out of the arm's reach."""
     H = stature
     lean = np.radians(lean_deg)
     trunk = (SEG["shoulder_height"] - SEG["hip_height"]) * H
@@ -171,4 +175,7 @@ def hand_reach(
     if abs(dz) >= arm:
         return 0.0
     ahead = forward + float(np.sqrt(arm**2 - dz**2))
-    return float(np.hypot(ahead, 0.5 * SEG["shoulder_width"] * H))
+    side = 0.5 * SEG["shoulder_width"] * H
+    if turned:
+        return float(np.hypot(ahead, side))
+    return float(np.sqrt(max(ahead**2 - side**2, 0.0)))

@@ -356,10 +356,18 @@ def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None):
     return frames, max(el, er), rl, float(np.linalg.norm(gl - gr))
 
 
-def _approach(kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndarray:
-    """Pre-grasp offset (world, m): back towards the operator, and up for shelf work."""
-    d = np.array([x, y]) - site_pos[:2]
-    d /= max(np.linalg.norm(d), 1e-9)
+def _approach(
+    kind: str, site_pos: np.ndarray, x: float, y: float, facing: float | None = None
+) -> np.ndarray:
+    """Pre-grasp offset (world, m): back towards the operator, and up for shelf work. Shelf
+    work (pick, place) at a stand site facing ``facing`` (radians from +x) comes in along the
+    site's facing, out of the shelf's opening, wherever in the stand zone the operator stands
+    (towards the operator, an oblique approach swept the fingers across the rack's frame)."""
+    if facing is not None and kind != "fasten":
+        d = -np.array([math.cos(facing), math.sin(facing)])
+    else:
+        d = np.array([x, y]) - site_pos[:2]
+        d /= max(np.linalg.norm(d), 1e-9)
     up = 0.0 if kind == "fasten" else APPROACH_UP
     return np.r_[APPROACH_BACK * d, up]
 
@@ -381,7 +389,7 @@ def work_zone(ctx: CycleContext, i: int, stature: float, step_length: float) -> 
     goal = tasks[i].site
     assert goal is not None  # the spec loader requires a site for walks
     stand = ctx.workplace.station(goal).pos
-    targets = []
+    targets, squarely, hands = [], [], []
     for task in tasks[i + 1 :]:
         if task.kind in ("walk", "carry"):
             break
@@ -391,7 +399,11 @@ def work_zone(ctx: CycleContext, i: int, stature: float, step_length: float) -> 
         for name in sites:
             pos = ctx.workplace.station(name).pos
             targets.append(_target(ctx, task.kind, pos, float(stand[0]), float(stand[1])))
-    return stand_zone(stand[:2], targets, step_length, stature)
+            # the cycle faces fastenings and two-handed work squarely (simulate_cycle)
+            squarely.append(task.kind == "fasten" or task.hand == "both")
+            hands.append(None if squarely[-1] else task.hand)
+    facing = ctx.workplace.station(goal).yaw
+    return stand_zone(stand[:2], targets, step_length, stature, facing, squarely, hands)
 
 
 def plan_task_walk(ctx: CycleContext, i: int, start, rng: np.random.Generator, walker=None):
@@ -533,7 +545,7 @@ def simulate_cycle(
                     reach_duration(dist, None, RETURN_CASE) * factor,
                 )
 
-            approach = _approach(task.kind, site_pos, x, y)
+            approach = _approach(task.kind, site_pos, x, y, wp.station(here).yaw)
             q0 = frames[-1][-1]
             if task.hand == "both":
                 rf, err, res, width = _two_hand_frames(

@@ -21,21 +21,34 @@ steps reach. Metres throughout; targets are world points (x, y, z up).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from mjwalk.anthropometry import hand_reach
+from mjwalk.anthropometry import SEG, hand_reach
 from mjwalk.conventions import DEFAULT_STATURE
 
 #: The zone's radius in preferred step lengths (half a step: see the module docstring).
 ZONE_STEPS = 0.5
-#: Reach discs keep this margin inside the arm's reach (m): the reach solver's hand error grows
-#: from about 2 mm at the reach limit (anthropometry.REACH_TRUNK_LEAN_DEG).
-REACH_MARGIN = 0.02
-#: The planner takes at most this many discs (mjwalk.plan.stepcheck.MAX_GOAL_DISCS).
-MAX_DISCS = 4
+#: Reach discs keep this margin inside the arm's reach (m): the humanoid's reach solver misses
+#: by 2 mm at the reach limit (anthropometry.REACH_TRUNK_LEAN_DEG), by 8 mm 1.5 cm beyond it.
+REACH_MARGIN = 0.03
+#: People stand *in front of* their work: for a one-handed reach the body centre stands between
+#: the target and the place where the reaching shoulder is in front of it (half the bi-acromial
+#: width to the other side, Winter's 0.259 H / 2), for work faced squarely (fastening, both
+#: hands) within a quarter of that width either side; the zone keeps the body within the span
+#: of these ranges over all the work there, so the arm reaches into a shelf through its opening
+#: rather than across its frame (measured: stands 0.25-0.35 m to the side swept the hand
+#: across rack 1's and rack 3's frame posts).
+SIDE_SLACK = 0.5 * SEG["shoulder_width"]
+#: A half-plane is passed to the planner as a disc of this radius (m) whose edge is the
+#: half-plane's boundary: over a zone 1 m across it departs from the line by < 0.5 mm.
+HALF_PLANE_DISC = 1000.0
+#: The planner takes at most this many discs (mjwalk.plan.stepcheck.MAX_GOAL_DISCS): two for
+#: the sides, the rest for the targets farthest from the site.
+MAX_DISCS = 6
 
 
 @dataclass(frozen=True)
@@ -45,7 +58,8 @@ class StandZone:
     Attributes:
         centre: (2,) the stand site, metres.
         radius: metres.
-        discs: ((x, y, r), ...) reach discs, metres.
+        discs: ((x, y, r), ...) reach discs and the two side half-planes (as large discs),
+            metres.
     """
 
     centre: tuple[float, float]
@@ -65,23 +79,58 @@ def stand_zone(
     targets: ArrayLike,
     step_length: float,
     stature: float = DEFAULT_STATURE,
+    facing: float | None = None,
+    squarely: ArrayLike | None = None,
+    hands: Sequence[str | None] | None = None,
 ) -> StandZone:
     """The zone around the stand site ``centre`` (x, y) for work on ``targets`` (k, 3) by a
-    walker of preferred ``step_length`` and ``stature`` (metres).
+    walker of preferred ``step_length`` and ``stature`` (metres), facing ``facing`` (radians
+    from +x; None: towards the targets' centroid). ``squarely`` (k,) marks targets reached
+    facing them squarely (:func:`~mjwalk.anthropometry.hand_reach` ``turned=False``);
+    ``hands`` (k,) the hand of each target ("left", "right"; else faced squarely), for the
+    sides of the zone (:data:`SIDE_SLACK`).
 
     Each target's disc has the arm's reach at its height less :data:`REACH_MARGIN`, but never
     excludes the stand site itself (a site placed beyond comfortable reach keeps its own
-    distance: the zone then asks no more than the site). With more than :data:`MAX_DISCS`
-    targets the ones farthest from the site are kept (they bound the zone)."""
+    distance: the zone then asks no more than the site). Two half-planes keep the body in front
+    of the work (:data:`SIDE_SLACK`). With more targets than discs left, the ones farthest from
+    the site are kept (they bound the zone)."""
     c = np.asarray(centre, dtype=float)[:2]
+    pts = np.asarray(targets, dtype=float).reshape(-1, 3)
     discs = []
-    for t in np.asarray(targets, dtype=float).reshape(-1, 3):
+    square = np.zeros(len(pts), bool) if squarely is None else np.asarray(squarely, bool)
+    for t, sq in zip(pts, square, strict=True):
         own = float(np.hypot(*(t[:2] - c)))
-        r = max(hand_reach(float(t[2]), stature) - REACH_MARGIN, own + 1e-3)
+        reach = hand_reach(float(t[2]), stature, turned=not sq)
+        r = max(reach - REACH_MARGIN, own + 1e-3)
         discs.append((own, (float(t[0]), float(t[1]), r)))
     discs.sort(key=lambda d: -d[0])
+    sides: list[tuple[float, float, float]] = []
+    if len(pts):
+        if facing is None:
+            d = pts[:, :2].mean(axis=0) - c
+            facing = float(np.arctan2(d[1], d[0]))
+        left = np.array([-np.sin(facing), np.cos(facing)])
+        lat = (pts[:, :2] - c) @ left
+        slack = SIDE_SLACK * stature
+        # the body centre's lateral range per target: the left shoulder is at +slack
+        lows, highs = [0.0], [0.0]  # the stand site itself stays in the zone
+        for t_lat, hand in zip(lat, hands or [None] * len(lat), strict=True):
+            if hand == "left":
+                lows.append(t_lat - slack)
+                highs.append(t_lat)
+            elif hand == "right":
+                lows.append(t_lat)
+                highs.append(t_lat + slack)
+            else:
+                lows.append(t_lat - 0.5 * slack)
+                highs.append(t_lat + 0.5 * slack)
+        lo, hi = min(lows), max(highs)
+        for bound, sign in ((hi, 1.0), (lo, -1.0)):  # keep p.left <= hi and p.left >= lo
+            centre_disc = c + (bound - sign * HALF_PLANE_DISC) * left
+            sides.append((float(centre_disc[0]), float(centre_disc[1]), HALF_PLANE_DISC))
     return StandZone(
         centre=(float(c[0]), float(c[1])),
         radius=ZONE_STEPS * float(step_length),
-        discs=tuple(d for _, d in discs[:MAX_DISCS]),
+        discs=tuple(sides) + tuple(d for _, d in discs[: MAX_DISCS - len(sides)]),
     )

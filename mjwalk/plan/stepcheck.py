@@ -65,7 +65,7 @@ from mjwalk._jit import njit
     P_DISC0,  # goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal)
 ) = range(36)
 #: Most discs the goal area can be cut by (:func:`in_goal`); their count is I_N_DISCS.
-MAX_GOAL_DISCS = 4
+MAX_GOAL_DISCS = 6
 N_PARAMS = P_DISC0 + 3 * MAX_GOAL_DISCS
 # Slots of the integer parameter vector.
 (
