@@ -27,9 +27,12 @@ def test_station_cycle_end_to_end(ctx):
     assert result.cycle_time == pytest.approx(result.tasks[-1].end)
     # five distinct walk routes T1..T5, seven walks (T2 and T3 there and back)
     assert [w.route for w in result.walks] == ["T1", "T2", "T2", "T3", "T3", "T4", "T5"]
+    # each walk ends in its stand zone: within half a step of the site, the work in reach
+    step = ctx.step_model.pace().step_length
     for w in result.walks:
-        goal = ctx.workplace.station(w.goal_site).xy
-        assert np.linalg.norm(w.path.xy[-1] - goal) <= 0.1 + 1e-9
+        zone = ctx.zone(w.task, spec.stature, step)
+        assert zone.contains(w.path.xy[-1])
+        assert np.linalg.norm(w.path.xy[-1] - zone.centre) <= 0.5 * step + 1e-9
     # the hand reaches every screw, the tool and the drop-off point
     assert max(a.hand_error for a in result.arms) < 0.01
     assert not any(a.outside for a in result.arms)

@@ -29,6 +29,7 @@ from mjwalk.body.humanoid import JointMap, attach_humanoid, pelvis_height
 from mjwalk.conventions import SAMPLE_RATE_HZ, Side, side_prefix
 from mjwalk.cycle.handling import REACH_CASE, RETURN_CASE, reach_duration, task_factor
 from mjwalk.cycle.spec import check_durations
+from mjwalk.cycle.standing import StandZone, stand_zone
 from mjwalk.cycle.types import (
     ArmRecord,
     CycleResult,
@@ -74,19 +75,31 @@ class CycleContext:
     model: mujoco.MjModel
     jointmap: JointMap
     planners: dict = field(default_factory=dict)
+    zones: dict = field(default_factory=dict)
     baselines: dict = field(default_factory=dict)
     grid: OccupancyGrid | None = None  # the grid-A* occupancy grid, built on first use
 
-    def planner(self, goal: str) -> HybridPlanner:
-        if goal not in self.planners:
-            self.planners[goal] = HybridPlanner(
+    def planner(self, goal: str, zone: StandZone | None = None) -> HybridPlanner:
+        """The planner of walks to ``goal``, ending in ``zone`` (:mod:`mjwalk.cycle.standing`;
+        None: within :data:`GOAL_TOLERANCE` of the site). One per goal and zone."""
+        key = (goal, zone)
+        if key not in self.planners:
+            self.planners[key] = HybridPlanner(
                 self.workplace,
                 goal,
                 self.step_model,
                 radius=self.spec.radius,
-                goal_tolerance=GOAL_TOLERANCE,
+                goal_tolerance=GOAL_TOLERANCE if zone is None else zone.radius,
+                goal_within=() if zone is None else zone.discs,
             )
-        return self.planners[goal]
+        return self.planners[key]
+
+    def zone(self, i: int, stature: float, step_length: float) -> StandZone:
+        """The stand zone of the walk that is task ``i`` (:func:`work_zone`)."""
+        key = (i, round(stature, 3), round(step_length, 3))
+        if key not in self.zones:
+            self.zones[key] = work_zone(self, i, stature, step_length)
+        return self.zones[key]
 
     def baseline(self, a: str, b: str) -> float:
         if (a, b) not in self.baselines:
@@ -96,6 +109,11 @@ class CycleContext:
                 self.workplace, a, b, radius=self.spec.radius, grid=self.grid
             ).length
         return self.baselines[(a, b)]
+
+
+def _pace_of(model):
+    """The step model's pace (:meth:`mjwalk.gait.model.StepModel.pace`), measured once."""
+    return model.pace()
 
 
 def _load_step_model(spec: CycleSpec):
@@ -338,10 +356,18 @@ def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None):
     return frames, max(el, er), rl, float(np.linalg.norm(gl - gr))
 
 
-def _approach(kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndarray:
-    """Pre-grasp offset (world, m): back towards the operator, and up for shelf work."""
-    d = np.array([x, y]) - site_pos[:2]
-    d /= max(np.linalg.norm(d), 1e-9)
+def _approach(
+    kind: str, site_pos: np.ndarray, x: float, y: float, facing: float | None = None
+) -> np.ndarray:
+    """Pre-grasp offset (world, m): back towards the operator, and up for shelf work. Shelf
+    work (pick, place) at a stand site facing ``facing`` (radians from +x) comes in along the
+    site's facing, out of the shelf's opening, wherever in the stand zone the operator stands
+    (towards the operator, an oblique approach swept the fingers across the rack's frame)."""
+    if facing is not None and kind != "fasten":
+        d = -np.array([math.cos(facing), math.sin(facing)])
+    else:
+        d = np.array([x, y]) - site_pos[:2]
+        d /= max(np.linalg.norm(d), 1e-9)
     up = 0.0 if kind == "fasten" else APPROACH_UP
     return np.r_[APPROACH_BACK * d, up]
 
@@ -352,6 +378,65 @@ def _target(ctx, kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndar
         d /= max(np.linalg.norm(d), 1e-9)
         return site_pos + np.r_[FASTEN_STANDOFF * d, 0.0]
     return site_pos + np.array([0.0, 0.0, PICK_CLEARANCE])
+
+
+def work_zone(ctx: CycleContext, i: int, stature: float, step_length: float) -> StandZone:
+    """Where the walk that is task ``i`` may end (:func:`mjwalk.cycle.standing.stand_zone`):
+    near its stand site, with every reach target of the work done there (the tasks after it
+    up to the next walk) within the arm's reach. A two-handed task's targets are its grip
+    sites ``<site>_left`` and ``<site>_right``."""
+    tasks = ctx.spec.tasks
+    goal = tasks[i].site
+    assert goal is not None  # the spec loader requires a site for walks
+    stand = ctx.workplace.station(goal).pos
+    targets, squarely, hands = [], [], []
+    for task in tasks[i + 1 :]:
+        if task.kind in ("walk", "carry"):
+            break
+        if task.kind not in ("pick", "place", "fasten") or task.site is None:
+            continue
+        sites = [f"{task.site}_left", f"{task.site}_right"] if task.hand == "both" else [task.site]
+        for name in sites:
+            pos = ctx.workplace.station(name).pos
+            targets.append(_target(ctx, task.kind, pos, float(stand[0]), float(stand[1])))
+            # the cycle faces fastenings and two-handed work squarely (simulate_cycle)
+            squarely.append(task.kind == "fasten" or task.hand == "both")
+            hands.append(None if squarely[-1] else task.hand)
+    facing = ctx.workplace.station(goal).yaw
+    return stand_zone(stand[:2], targets, step_length, stature, facing, squarely, hands)
+
+
+def plan_task_walk(ctx: CycleContext, i: int, start, rng: np.random.Generator, walker=None):
+    """The walk of task ``i`` (a walk or carry) from ``start`` (x, y), as a cycle plans it:
+    steps from the cycle's step model (conditioned on ``walker`` when given), ending in the
+    task's stand zone (:func:`work_zone`) for the walker's stature and step length."""
+    task = ctx.spec.tasks[i]
+    assert task.site is not None  # the spec loader requires a site for walks
+    model = ctx.step_model.for_walker(walker) if walker is not None else ctx.step_model  # type: ignore[attr-defined]
+    stature = walker.stature if walker is not None else ctx.spec.stature
+    step = walker.step_length if walker is not None else _pace_of(ctx.step_model).step_length
+    zone = ctx.zone(i, stature, step)
+    return ctx.planner(task.site, zone).plan(start, rng, model=model)
+
+
+def plan_cycle_walks(ctx: CycleContext, rng: np.random.Generator, walker=None) -> list:
+    """Only the walks of one cycle, in order, as :func:`simulate_cycle` plans them with the
+    same ``rng`` (the run's generator; arms and handling draw from spawned streams): a list of
+    (task index, start site, goal site, WalkPath). Fast (no animation): for studies of the
+    routes alone (``benchmarks/bench_variability.py``)."""
+    spec = ctx.spec
+    here = spec.start
+    st = ctx.workplace.station(here)
+    x, y = float(st.pos[0]), float(st.pos[1])
+    out = []
+    for i, task in enumerate(spec.tasks):
+        if task.kind in ("walk", "carry"):
+            path = plan_task_walk(ctx, i, (x, y), rng, walker)
+            goal = str(task.site)
+            out.append((i, here, goal, path))
+            x, y = (float(v) for v in path.xy[-1])
+            here = goal
+    return out
 
 
 # ---------------------------------------------------------------------------- one cycle
@@ -408,7 +493,7 @@ def simulate_cycle(
         if task.kind in ("walk", "carry"):
             goal = task.site
             assert goal is not None  # the spec loader requires a site for walks
-            path = ctx.planner(goal).plan((x, y), rng)
+            path = plan_task_walk(ctx, i, (x, y), rng)
             turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps)
             frames.append(turn)
             t += dt
@@ -460,7 +545,7 @@ def simulate_cycle(
                     reach_duration(dist, None, RETURN_CASE) * factor,
                 )
 
-            approach = _approach(task.kind, site_pos, x, y)
+            approach = _approach(task.kind, site_pos, x, y, wp.station(here).yaw)
             q0 = frames[-1][-1]
             if task.hand == "both":
                 rf, err, res, width = _two_hand_frames(
