@@ -57,6 +57,12 @@ def main() -> None:
             )
     n = sum(1 for r in res if r.collisions)
     print(f"station cycles: {n} of {len(res)} runs with contacts ({dt:.1f} s)")
+    backs = [a.step_back for r in res for a in r.arms]
+    moved = [b for b in backs if b > 0]
+    print(
+        f"  reaches that stepped back to clear the scene (mjwalk.cycle.standoff): {len(moved)}"
+        f" of {len(backs)}" + (f", largest {max(moved):.2f} m" if moved else "")
+    )
 
 
 if __name__ == "__main__":

@@ -21,6 +21,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
@@ -44,6 +45,9 @@ from mjwalk.timeline.collisions import collision_report
 from mjwalk.timeline.frames import ease_arms, frames_from_legs, room_and_away, yaw_quat
 from mjwalk.timeline.timeline import Timeline
 from mjwalk.world.workplace import Workplace, shared_workplace
+
+if TYPE_CHECKING:
+    from mjwalk.arms.reach import ReachResult
 
 #: Turning speed on the spot (rad/s) and shortest turn (s).
 TURN_SPEED = math.radians(180.0)
@@ -404,7 +408,7 @@ class WorkingReach:
     turn_time: float
     frames: np.ndarray
     error: float
-    result: object
+    result: ReachResult
     width: float | None
     distance: float
 
@@ -551,6 +555,7 @@ def simulate_cycle(
                     reach_duration(dist, None, RETURN_CASE) * factor,
                 )
 
+            assert task.site is not None  # the spec loader requires a site for reaches
             r = _reach_task(ctx, task, x, y, yaw, hold, fps, timing)
             x, y, yaw = r.x, r.y, r.yaw
             frames.append(r.turn)
@@ -569,6 +574,7 @@ def simulate_cycle(
                     hand_error=r.error,
                     outside=bool(r.result.outside),
                     warnings=list(r.result.warnings),
+                    step_back=r.step_back,
                 )
             )
         elif task.kind == "wait":

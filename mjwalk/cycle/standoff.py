@@ -1,17 +1,19 @@
 """The stand-off of a reach: where the operator stands so the reaching arm clears the scene.
 
-A walk ends anywhere within the planner's goal area around a stand site, and the operator then
-turns to bring the target ahead of the reaching shoulder. Both move the shoulder: at a rack
-turned against the walk (rack 1 of the station), the turn swings the reaching shoulder about
-0.1 m towards the shelf, and the arm's relaxed start pose
-(:data:`~mjwalk.arms.kinematics.REST_HAND`: elbow slightly bent, hand about 0.15 m in front of
-the shoulder at wrist height, i.e. the height of a shelf board at 1 m) then meets the board's
-front edge before the reach even begins. The planner cannot see this (its clearance is 2-D, the
-body radius around the pelvis); the arm can. So the cycle checks each reach with MuJoCo's
-collision detection, arm geoms inflated by :data:`REACH_CLEARANCE`, and when it is not clear
-steps the operator back from the target in :data:`STEP_BACK` increments (up to
-:data:`MAX_STEP_BACK`) during the turn, as a worker steps back from a shelf he stands too close
-to. The contact check of the cycle (:mod:`mjwalk.timeline.collisions`) is unchanged.
+A walk ends anywhere within the planner's goal area around a stand site (0.1 m), and the
+operator then turns to bring the target ahead of the reaching shoulder. Both move the shoulder:
+at rack 1 of the station (turned 20 degrees against the walk T3) a walk that ends a few
+centimetres short of the shelf and the turn (the target on the far side of the body) put the
+left shoulder about 0.2 m from the shelf board's front face. The reach then lifts the hand from
+its relaxed pose (:data:`~mjwalk.arms.kinematics.REST_HAND`, wrist at about 1 m, the board's
+height) almost straight up, a few centimetres in front of the board, and the fingers, pointing
+forward and down, brush its front edge (benchmarks/bench_contacts.py, 300 cycles: 3 runs, thumb
+or index fingertip up to 6.3 mm deep). The planner cannot see this (its clearance is 2-D, a body
+radius around the pelvis); the arm can. So the cycle checks each reach with MuJoCo's collision
+detection, the arm geoms inflated by :data:`REACH_CLEARANCE`, and when it is not clear steps the
+operator back from the target in :data:`STEP_BACK` increments (up to :data:`MAX_STEP_BACK`)
+during the turn, as a worker steps back from a shelf he stands too close to. The cycle's contact
+check (:mod:`mjwalk.timeline.collisions`) is unchanged.
 
 World frame: metres, z up.
 """
