@@ -30,7 +30,7 @@ from mjwalk.body.humanoid import JointMap, attach_humanoid, pelvis_height
 from mjwalk.conventions import SAMPLE_RATE_HZ, Side, side_prefix
 from mjwalk.cycle.handling import REACH_CASE, RETURN_CASE, reach_duration, task_factor
 from mjwalk.cycle.spec import check_durations
-from mjwalk.cycle.standoff import ArmClearance, step_back_offsets
+from mjwalk.cycle.standoff import REACH_TOLERANCE, ArmClearance, step_back_offsets
 from mjwalk.cycle.types import (
     ArmRecord,
     CycleResult,
@@ -424,14 +424,17 @@ def _reach_task(ctx, task, x, y, yaw, hold, fps, timing) -> WorkingReach:
     ``(x, y)`` where the walk ended (facing ``yaw``); when the arm would come closer to the
     scene than :data:`~mjwalk.cycle.standoff.REACH_CLEARANCE` (or the body touch it), step back
     from the target during the turn, :data:`~mjwalk.cycle.standoff.STEP_BACK` at a time, until
-    it is clear (the first clear spot; the clearest one when none within
-    :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is)."""
+    it is clear: the first clear spot whose hand error (m) stays within
+    :data:`~mjwalk.cycle.standoff.REACH_TOLERANCE` (or within the error at the walk's end
+    spot, when that is larger); the clearest such spot when none within
+    :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear."""
     assert task.site is not None  # the spec loader requires a site for reaches
     site_pos = ctx.workplace.station(task.site).pos
     back = np.array([x, y]) - _target(ctx, task.kind, site_pos, x, y)[:2]
     back /= max(float(np.linalg.norm(back)), 1e-9)
     check = _arm_clearance(ctx)
     best: WorkingReach | None = None
+    first: WorkingReach | None = None
     for s in step_back_offsets():
         xs, ys = float(x + s * back[0]), float(y + s * back[1])
         target = _target(ctx, task.kind, site_pos, xs, ys)
@@ -455,9 +458,12 @@ def _reach_task(ctx, task, x, y, yaw, hold, fps, timing) -> WorkingReach:
             rf, err, res = _reach_frames(ctx, q0, target, approach, hold, fps, arm, timing=timing)
         dist = check.distance(np.vstack([turn, rf]))
         cand = WorkingReach(xs, ys, face, float(s), turn, dt, rf, err, res, width, dist)
-        if dist == np.inf:
+        if first is None:
+            first = cand
+        # a step back must not cost the hand its target (beyond REACH_TOLERANCE)
+        if dist == np.inf and err <= max(first.error, REACH_TOLERANCE):
             return cand
-        if best is None or dist > best.distance:
+        if best is None or (dist > best.distance and err <= max(first.error, REACH_TOLERANCE)):
             best = cand
     assert best is not None
     return best
