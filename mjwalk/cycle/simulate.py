@@ -427,7 +427,8 @@ def _reach_task(ctx, task, x, y, yaw, hold, fps, timing) -> WorkingReach:
     it is clear: the first clear spot whose hand error (m) stays within
     :data:`~mjwalk.cycle.standoff.REACH_TOLERANCE` (or within the error at the walk's end
     spot, when that is larger); the clearest such spot when none within
-    :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear."""
+    :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear. A step back never brings the pelvis
+    closer to an obstacle or the floor's edge than the planner's body radius (or than it was)."""
     assert task.site is not None  # the spec loader requires a site for reaches
     site_pos = ctx.workplace.station(task.site).pos
     back = np.array([x, y]) - _target(ctx, task.kind, site_pos, x, y)[:2]
@@ -435,8 +436,12 @@ def _reach_task(ctx, task, x, y, yaw, hold, fps, timing) -> WorkingReach:
     check = _arm_clearance(ctx)
     best: WorkingReach | None = None
     first: WorkingReach | None = None
+    room0 = float(ctx.workplace.walk_clearance(np.array([x, y]))[()])
     for s in step_back_offsets():
         xs, ys = float(x + s * back[0]), float(y + s * back[1])
+        room = float(ctx.workplace.walk_clearance(np.array([xs, ys]))[()])
+        if s > 0 and room < min(ctx.spec.radius, room0):
+            continue  # the next walk must start clear of obstacles (the planner's body radius)
         target = _target(ctx, task.kind, site_pos, xs, ys)
         # face the target (turning on the spot) before reaching for it
         d = math.hypot(target[0] - xs, target[1] - ys)
