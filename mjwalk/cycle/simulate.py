@@ -21,6 +21,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
@@ -30,6 +31,7 @@ from mjwalk.conventions import SAMPLE_RATE_HZ, Side, side_prefix
 from mjwalk.cycle.handling import REACH_CASE, RETURN_CASE, reach_duration, task_factor
 from mjwalk.cycle.spec import check_durations
 from mjwalk.cycle.standing import StandZone, stand_zone
+from mjwalk.cycle.standoff import REACH_TOLERANCE, ArmClearance, step_back_offsets
 from mjwalk.cycle.types import (
     ArmRecord,
     CycleResult,
@@ -45,9 +47,15 @@ from mjwalk.timeline.frames import ease_arms, frames_from_legs, room_and_away, y
 from mjwalk.timeline.timeline import Timeline
 from mjwalk.world.workplace import Workplace, shared_workplace
 
+if TYPE_CHECKING:
+    from mjwalk.arms.reach import ReachResult
+
 #: Turning speed on the spot (rad/s) and shortest turn (s).
 TURN_SPEED = math.radians(180.0)
 MIN_TURN = 0.25
+#: Speed (m/s) of a step back before a reach (:mod:`mjwalk.cycle.standoff`): a slow walk's
+#: speed (about half the preferred 1.3 m/s walking speed; Bohannon 1997).
+STEP_SPEED = 0.6
 #: Lateral offset of the shoulder from the pelvis centre (m, stature 1.75 m; Winter: 0.1·H).
 SHOULDER_OFFSET = 0.18
 #: The hold of a pick or place without a given duration (s), the median for the reference
@@ -78,6 +86,7 @@ class CycleContext:
     zones: dict = field(default_factory=dict)
     baselines: dict = field(default_factory=dict)
     grid: OccupancyGrid | None = None  # the grid-A* occupancy grid, built on first use
+    clearance: ArmClearance | None = None  # the reach's clearance check, built on first use
 
     def planner(self, goal: str, zone: StandZone | None = None) -> HybridPlanner:
         """The planner of walks to ``goal``, ending in ``zone`` (:mod:`mjwalk.cycle.standing`;
@@ -168,11 +177,29 @@ def _standing(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarray:
     return q
 
 
-def _turn_frames(ctx, x, y, yaw0, yaw1, fps) -> tuple[np.ndarray, float]:
+def _turn_frames(ctx, x, y, yaw0, yaw1, fps, to=None) -> tuple[np.ndarray, float]:
+    """Frames of turning on the spot ``(x, y)`` from ``yaw0`` to ``yaw1`` (radians) at
+    :data:`TURN_SPEED`; with ``to`` = (x1, y1) the pelvis moves there during the turn (a short
+    step back, :mod:`mjwalk.cycle.standoff`; the turn lasts at least as long as that step at
+    :data:`STEP_SPEED`). Returns (frames, duration in seconds)."""
     d = (yaw1 - yaw0 + math.pi) % (2 * math.pi) - math.pi
     duration = max(MIN_TURN, abs(d) / TURN_SPEED)
+    x1, y1 = (x, y) if to is None else to
+    shift = math.hypot(x1 - x, y1 - y)
+    if shift > 0.0:
+        duration = max(duration, shift / STEP_SPEED)
     n = max(1, round(duration * fps))
-    frames = np.array([_standing(ctx, x, y, yaw0 + d * (k + 1) / n) for k in range(n)])
+    frames = np.array(
+        [
+            _standing(
+                ctx,
+                x + (x1 - x) * (k + 1) / n,
+                y + (y1 - y) * (k + 1) / n,
+                yaw0 + d * (k + 1) / n,
+            )
+            for k in range(n)
+        ]
+    )
     return frames, n / fps
 
 
@@ -439,6 +466,101 @@ def plan_cycle_walks(ctx: CycleContext, rng: np.random.Generator, walker=None) -
     return out
 
 
+@dataclass
+class WorkingReach:
+    """One reach task laid out at its standing spot (world frame, metres, radians, seconds).
+
+    Attributes:
+        x, y, yaw: where the operator stands and faces during the reach.
+        step_back: metres the operator stepped back from where the walk ended
+            (:mod:`mjwalk.cycle.standoff`), 0 when the reach was clear there.
+        turn: (F, nq) frames of the turn (and step back) towards the target.
+        turn_time: its duration in seconds.
+        frames: (G, nq) frames of the reach, hold and return.
+        error: distance (m) of the hand from its target at the end of the reach.
+        result: the reach model's ReachResult (left arm's for two hands, with both warnings).
+        width: grip distance (m) of a two-handed part, else None.
+        distance: the humanoid's smallest distance (m) to the scene over turn and reach among
+            the close pairs (:meth:`~mjwalk.cycle.standoff.ArmClearance.distance`), ``inf``
+            when clear.
+    """
+
+    x: float
+    y: float
+    yaw: float
+    step_back: float
+    turn: np.ndarray
+    turn_time: float
+    frames: np.ndarray
+    error: float
+    result: ReachResult
+    width: float | None
+    distance: float
+
+
+def _arm_clearance(ctx: CycleContext) -> ArmClearance:
+    if ctx.clearance is None:
+        ctx.clearance = ArmClearance(ctx.model, ctx.jointmap)
+    return ctx.clearance
+
+
+def _reach_task(ctx, task, x, y, yaw, hold, fps, timing, facing=None) -> WorkingReach:
+    """Turn towards the target of a pick/place/fasten ``task`` and reach for it from the spot
+    ``(x, y)`` where the walk ended (facing ``yaw``); when the arm would come closer to the
+    scene than :data:`~mjwalk.cycle.standoff.REACH_CLEARANCE` (or the body touch it), step back
+    from the target during the turn, :data:`~mjwalk.cycle.standoff.STEP_BACK` at a time, until
+    it is clear: the first clear spot whose hand error (m) stays within
+    :data:`~mjwalk.cycle.standoff.REACH_TOLERANCE` (or within the error at the walk's end
+    spot, when that is larger); the clearest such spot when none within
+    :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear. A step back never brings the pelvis
+    closer to an obstacle or the floor's edge than the planner's body radius (or than it was).
+    ``facing``: the stand site's facing (radians), along which shelf work comes in
+    (:func:`_approach`)."""
+    assert task.site is not None  # the spec loader requires a site for reaches
+    site_pos = ctx.workplace.station(task.site).pos
+    back = np.array([x, y]) - _target(ctx, task.kind, site_pos, x, y)[:2]
+    back /= max(float(np.linalg.norm(back)), 1e-9)
+    check = _arm_clearance(ctx)
+    best: WorkingReach | None = None
+    first: WorkingReach | None = None
+    room0 = float(ctx.workplace.walk_clearance(np.array([x, y]))[()])
+    for s in step_back_offsets():
+        xs, ys = float(x + s * back[0]), float(y + s * back[1])
+        room = float(ctx.workplace.walk_clearance(np.array([xs, ys]))[()])
+        if s > 0 and room < min(ctx.spec.radius, room0):
+            continue  # the next walk must start clear of obstacles (the planner's body radius)
+        target = _target(ctx, task.kind, site_pos, xs, ys)
+        # face the target (turning on the spot) before reaching for it
+        d = math.hypot(target[0] - xs, target[1] - ys)
+        face = math.atan2(target[1] - ys, target[0] - xs)
+        if task.hand != "both" and task.kind != "fasten":
+            # shelf work: bring the target ahead of the shoulder
+            side = 1 if task.hand == "left" else -1
+            face -= side * math.asin(min(SHOULDER_OFFSET / d, 0.5))
+        turn, dt = _turn_frames(ctx, x, y, yaw, face, fps, to=(xs, ys))
+        approach = _approach(task.kind, site_pos, xs, ys, facing)
+        q0 = turn[-1]
+        width = None
+        if task.hand == "both":
+            rf, err, res, width = _two_hand_frames(
+                ctx, q0, task, approach, hold, fps, timing=timing
+            )
+        else:
+            arm: Side = "right" if task.hand == "right" else "left"
+            rf, err, res = _reach_frames(ctx, q0, target, approach, hold, fps, arm, timing=timing)
+        dist = check.distance(np.vstack([turn, rf]))
+        cand = WorkingReach(xs, ys, face, float(s), turn, dt, rf, err, res, width, dist)
+        if first is None:
+            first = cand
+        # a step back must not cost the hand its target (beyond REACH_TOLERANCE)
+        if dist == np.inf and err <= max(first.error, REACH_TOLERANCE):
+            return cand
+        if best is None or (dist > best.distance and err <= max(first.error, REACH_TOLERANCE)):
+            best = cand
+    assert best is not None
+    return best
+
+
 # ---------------------------------------------------------------------------- one cycle
 
 
@@ -520,20 +642,6 @@ def simulate_cycle(
             )
             here = goal
         elif task.kind in ("pick", "place", "fasten"):
-            assert task.site is not None  # the spec loader requires a site for reaches
-            site_pos = wp.station(task.site).pos
-            target = _target(ctx, task.kind, site_pos, x, y)
-            # face the target (turning on the spot) before reaching for it
-            d = math.hypot(target[0] - x, target[1] - y)
-            face = math.atan2(target[1] - y, target[0] - x)
-            if task.hand != "both" and task.kind != "fasten":
-                # shelf work: bring the target ahead of the shoulder
-                side = 1 if task.hand == "left" else -1
-                face -= side * math.asin(min(SHOULDER_OFFSET / d, 0.5))
-            turn, dt = _turn_frames(ctx, x, y, yaw, face, fps)
-            frames.append(turn)
-            t += dt
-            yaw = face
             hold = task.duration if task.duration is not None else DEFAULT_HOLD[task.kind]
             factor = task_factor(hand_rng)  # lognormal, median 1 (mjwalk.cycle.handling)
             hold *= factor
@@ -545,31 +653,26 @@ def simulate_cycle(
                     reach_duration(dist, None, RETURN_CASE) * factor,
                 )
 
-            approach = _approach(task.kind, site_pos, x, y, wp.station(here).yaw)
-            q0 = frames[-1][-1]
+            assert task.site is not None  # the spec loader requires a site for reaches
+            r = _reach_task(ctx, task, x, y, yaw, hold, fps, timing, wp.station(here).yaw)
+            x, y, yaw = r.x, r.y, r.yaw
+            frames.append(r.turn)
+            t += r.turn_time
             if task.hand == "both":
-                rf, err, res, width = _two_hand_frames(
-                    ctx, q0, task, approach, hold, fps, timing=timing
-                )
-                if task.kind != "pick":
-                    width = None  # released
-            else:
-                arm: Side = "right" if task.hand == "right" else "left"
-                rf, err, res = _reach_frames(
-                    ctx, q0, target, approach, hold, fps, arm, timing=timing
-                )
-            frames.append(rf)
-            t += len(rf) / fps
+                width = r.width if task.kind == "pick" else None  # released on place/fasten
+            frames.append(r.frames)
+            t += len(r.frames) / fps
             arms.append(
                 ArmRecord(
                     task=i,
                     kind=task.kind,
                     site=task.site,
                     hand=task.hand,
-                    duration=len(rf) / fps,
-                    hand_error=err,
-                    outside=bool(res.outside),
-                    warnings=list(res.warnings),
+                    duration=len(r.frames) / fps,
+                    hand_error=r.error,
+                    outside=bool(r.result.outside),
+                    warnings=list(r.result.warnings),
+                    step_back=r.step_back,
                 )
             )
         elif task.kind == "wait":

@@ -113,6 +113,8 @@ class ArmRecord:
     Attributes:
         hand_error: distance of the hand from its target at the end of the reach, metres.
         outside: the constraint lay outside the reach model's trained range (see warnings).
+        step_back: metres the operator stepped back from where the walk ended so the arm
+            clears the scene (:mod:`mjwalk.cycle.standoff`); 0 when it was clear there.
     """
 
     task: int
@@ -123,6 +125,7 @@ class ArmRecord:
     hand_error: float
     outside: bool = False
     warnings: list[str] = field(default_factory=list)
+    step_back: float = 0.0
 
 
 @dataclass
