@@ -19,8 +19,9 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
@@ -37,12 +38,16 @@ from mjwalk.cycle.types import (
     WalkRecord,
 )
 from mjwalk.errors import CycleSpecError, InputError
+from mjwalk.gait.walker import Walker
 from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.timeline.collisions import collision_report
 from mjwalk.timeline.frames import ease_arms, frames_from_legs, room_and_away, yaw_quat
 from mjwalk.timeline.timeline import Timeline
 from mjwalk.world.workplace import Workplace, shared_workplace
+
+if TYPE_CHECKING:  # loaded on first use (prepare)
+    from mjwalk.gait.model import StepModel
 
 #: Turning speed on the spot (rad/s) and shortest turn (s).
 TURN_SPEED = math.radians(180.0)
@@ -69,7 +74,7 @@ class CycleContext:
 
     spec: CycleSpec
     workplace: Workplace
-    step_model: object
+    step_model: StepModel
     reach_model: object
     model: mujoco.MjModel
     jointmap: JointMap
@@ -123,6 +128,23 @@ def _context_cached(spec_key: str) -> CycleContext:
     from mjwalk.cycle.spec import load_cycle_spec
 
     return prepare(load_cycle_spec(spec_key))
+
+
+@functools.lru_cache(maxsize=16)
+def _humanoid(scene: str, stature: float) -> tuple[mujoco.MjModel, JointMap]:
+    """The scene with a humanoid of ``stature`` metres (kept for the last 16 statures of this
+    process: a population's statures come in centimetres, attaching one takes about 15 ms)."""
+    return attach_humanoid(Path(scene), stature)
+
+
+def operator_context(ctx: CycleContext, walker: Walker | None) -> CycleContext:
+    """``ctx`` for a run of ``walker``: the humanoid (and ``spec.stature``) of the walker's
+    stature; planners, grid-A* baselines and models are shared with ``ctx``. ``ctx`` itself
+    without a walker or at the spec's stature."""
+    if walker is None or abs(walker.stature - ctx.spec.stature) < 1e-9:
+        return ctx
+    model, jm = _humanoid(str(ctx.spec.scene), round(walker.stature, 3))
+    return replace(ctx, spec=replace(ctx.spec, stature=walker.stature), model=model, jointmap=jm)
 
 
 def prepare(spec: CycleSpec) -> CycleContext:
@@ -389,10 +411,15 @@ def simulate_cycle(
     check_durations(spec.tasks)
     rng = np.random.default_rng(rng)
     # side streams spawned from the run's generator (its own draws, the walks, are unchanged):
-    # the operator (issue 14's population, not yet merged), the task-time factors, the
-    # standing spots (ditto); the same order the population work uses
-    _op_rng, hand_rng, _stand_rng = rng.spawn(3)
+    # the operator, the task-time factors, the standing spots (not yet merged)
+    op_rng, hand_rng, _stand_rng = rng.spawn(3)
     entropy = _entropy(rng)
+    # the run's operator (None without a [population]: the step model's own pace, handling at
+    # the reference adult's pace): their humanoid, their steps, their handling pace
+    walker = spec.population.draw(op_rng) if spec.population is not None else None
+    ctx = operator_context(ctx, walker)
+    steps = ctx.step_model.for_walker(walker) if walker is not None else None
+    pace = 1.0 if walker is None else walker.pace
     wp = ctx.workplace
     here = spec.start
     st = wp.station(here)
@@ -408,7 +435,7 @@ def simulate_cycle(
         if task.kind in ("walk", "carry"):
             goal = task.site
             assert goal is not None  # the spec loader requires a site for walks
-            path = ctx.planner(goal).plan((x, y), rng)
+            path = ctx.planner(goal).plan((x, y), rng, model=steps)
             turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps)
             frames.append(turn)
             t += dt
@@ -451,13 +478,13 @@ def simulate_cycle(
             yaw = face
             hold = task.duration if task.duration is not None else DEFAULT_HOLD[task.kind]
             factor = task_factor(hand_rng)  # lognormal, median 1 (mjwalk.cycle.handling)
-            hold *= factor
+            hold *= factor / pace  # the hold, like the reach, at the operator's pace
             case = REACH_CASE[task.kind]
 
             def timing(dist, case=case, factor=factor):
                 return (
-                    reach_duration(dist, None, case) * factor,
-                    reach_duration(dist, None, RETURN_CASE) * factor,
+                    reach_duration(dist, walker, case) * factor,
+                    reach_duration(dist, walker, RETURN_CASE) * factor,
                 )
 
             approach = _approach(task.kind, site_pos, x, y)
@@ -503,7 +530,7 @@ def simulate_cycle(
         t=np.arange(len(qpos)) / fps,
         qpos=qpos,
         scene=str(spec.scene),
-        stature=spec.stature,
+        stature=ctx.spec.stature,
     )
     timeline.walk = combined_walk([w.path for w in walks])  # drawn into videos
     contacts = collision_report(timeline) if collisions else []
@@ -518,6 +545,7 @@ def simulate_cycle(
         cycle_time=t,
         collisions=contacts,
         timeline=timeline if keep_timeline else None,
+        operator=walker,
     )
 
 
