@@ -48,7 +48,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import ndtr
+from scipy.special import ndtr, ndtri
 from scipy.stats import truncnorm
 
 from mjwalk.errors import CycleSpecError
@@ -114,7 +114,7 @@ class Distribution:
         if self.kind == "fixed" or self.sigma == 0.0:
             return float(self.mu)
         a, b = self._ab()
-        z = float(truncnorm.ppf(u, a, b))
+        z = _truncnorm_ppf(u, a, b)
         x = self.mu + self.sigma * z
         return float(np.clip(math.exp(x) if self._log else x, self.lo, self.hi))
 
@@ -154,6 +154,15 @@ class Distribution:
         else:
             head = f"{self.kind}({self.mu:.3g}, {self.sigma:.3g})"
         return f"{head} {unit} in {self.lo:g}-{self.hi:g}".replace("  ", " ")
+
+
+def _truncnorm_ppf(u: float, a: float, b: float) -> float:
+    """Quantile ``u`` of the standard normal truncated to ``[a, b]`` (inverse CDF; the upper
+    tail through the mirror image, where the lower tail's probabilities keep their precision)."""
+    if a > 0.0:
+        return -_truncnorm_ppf(1.0 - u, -b, -a)
+    pa, pb = float(ndtr(a)), float(ndtr(b))
+    return float(np.clip(ndtri(pa + u * (pb - pa)), a, b))
 
 
 def fixed(value: float) -> Distribution:
