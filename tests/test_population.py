@@ -241,14 +241,18 @@ def test_slower_operators_take_longer_and_handling_scales_with_pace(short):
             assert arm_slow.duration == pytest.approx(2.0 * arm_fast.duration, abs=2 / 30 * 3)
 
 
-def test_operator_stature_builds_the_humanoid(short):
+@pytest.mark.parametrize("stature", [1.55, 1.95])
+def test_operator_stature_builds_the_humanoid(short, stature):
+    """The run's humanoid has the operator's stature, and its hand still reaches every target
+    within 1 cm (the reach is solved at the reach model's size and scaled)."""
     _, ctx = short
-    c = _with(ctx, {"walker": "adult", "stature": 1.6})
+    c = _with(ctx, {"walker": "adult", "stature": stature})
     r = simulate_cycle(c, 0, keep_timeline=True, collisions=False)
-    assert r.operator.stature == 1.6
-    assert r.timeline.stature == 1.6
+    assert r.operator.stature == stature
+    assert r.timeline.stature == stature
     assert r.timeline.model is not ctx.model
     assert r.spec.stature == ctx.spec.stature  # the result keeps the spec as written
+    assert max(a.hand_error for a in r.arms) < 0.01
 
 
 @pytest.mark.parametrize("speed", [1.0, 1.5])

@@ -256,6 +256,15 @@ def _default_timing(dist: float) -> tuple[float, float]:
     return reach_duration(dist, None, "B"), reach_duration(dist, None, RETURN_CASE)
 
 
+def _arm_scale(reach_model, stature: float) -> float:
+    """Reach-model arm length over the arm length of a humanoid of ``stature`` metres (1 at
+    the model's stature)."""
+    from mjwalk.arms.kinematics import arm_segment_lengths
+
+    lengths = np.asarray(reach_model.lengths, dtype=float)
+    return float(lengths[:2].sum() / arm_segment_lengths(stature)[:2].sum())
+
+
 def _reach_frames(
     ctx,
     q0: np.ndarray,
@@ -294,8 +303,12 @@ def _reach_frames(
     ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id
     shoulder = data.xpos[ua].copy()
     frame = data.xmat[ua].reshape(3, 3).copy()
-    end = frame.T @ (target_w - shoulder)
-    pre = frame.T @ (target_w + approach_w - shoulder)
+    # the reach is solved at the reach model's arm lengths; an operator of another stature has
+    # the same arm shape scaled (Winter's shares), so the targets are scaled into the model's
+    # size (directions, hence joint angles, do not change with the scale)
+    scale = _arm_scale(model, ctx.spec.stature)
+    end = frame.T @ (target_w - shoulder) * scale
+    pre = frame.T @ (target_w + approach_w - shoulder) * scale
     start = np.asarray(REST_HAND, dtype=float)
     res = reach_for_side(model, pre, side, start)  # a right arm mirrors the left-arm model
     lengths = model.lengths
@@ -310,13 +323,13 @@ def _reach_frames(
     q = arm_joint_angles(directions, side)
     if timing is None:
         timing = _default_timing
-    reach_out, reach_back = timing(float(np.linalg.norm(end - start)))
+    reach_out, reach_back = timing(float(np.linalg.norm(end - start)) / scale)  # operator's metres
     n_out = max(2, round(reach_out * fps))
     out, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
     data.qpos[:] = out[-1]
     mujoco.mj_kinematics(m, data)
     wrist = data.xpos[m.body(f"{jm.prefix}hand_{side_prefix(side)}").id]
-    tip = wrist + frame @ (directions[-1, 2] * lengths[2])
+    tip = wrist + frame @ (directions[-1, 2] * lengths[2] / scale)  # the operator's hand
     error = float(np.linalg.norm(tip - target_w))
     n_hold = max(0, round(hold * fps))
     n_back = max(1, round(reach_back * fps))
