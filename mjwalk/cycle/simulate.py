@@ -9,6 +9,12 @@ DCS, alzubi-sommer), a hold (the task's duration) and the return. Everything is 
 timeline of humanoid poses (``fps`` frames per second), checked for humanoid-vs-scene contacts
 with MuJoCo's collision detection.
 
+With a ``[population]`` in the spec each run first draws its operator
+(:meth:`~mjwalk.cycle.population.Population.draw`, from the run's first spawned stream): the
+humanoid is built at the operator's stature (:func:`operator_context`), the walks are sampled
+from the step model conditioned on the operator (:meth:`StepModel.for_walker`), and reach,
+hold and return times are divided by the operator's pace (:mod:`mjwalk.cycle.handling`).
+
 Many cycles (:func:`simulate_cycles`) run through joblib, so ``n_jobs`` processes share the
 work; inside ``joblib.parallel_config(backend="dask")`` (or ``"ray"``) the same call runs on a
 Dask or Ray cluster unchanged (see the README).
@@ -413,7 +419,8 @@ def simulate_cycle(
             (:func:`~mjwalk.timeline.collisions.check_collisions` checks a result later).
 
     Returns:
-        A :class:`CycleResult`: walks, arm motions, task times, cycle time, collisions.
+        A :class:`CycleResult`: walks, arm motions, task times, cycle time, collisions, and the
+        run's operator (``result.operator``, drawn from ``spec.population``; None without one).
 
     Raises:
         PlanningError: a walk cannot be planned (the spec is checked before, so this means an

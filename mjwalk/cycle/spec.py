@@ -9,7 +9,8 @@ Format (every path is relative to the TOML file; lengths in metres, times in sec
                                                 # of cycles over takt
 
     [humanoid]                                  # optional table
-    stature = 1.75                              # metres, 1.4 to 2.1 (default 1.75)
+    stature = 1.75                              # metres, 1.4 to 2.1 (default 1.75); with a
+                                                # [population] each run's operator's stature
 
     [models]                                    # optional table
     step = "default"                            # "default" or a step-model file
