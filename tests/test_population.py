@@ -74,6 +74,36 @@ def test_mixture_shares_and_preset_figures():
     assert RANGES["stature"][0] <= st.min() and st.max() <= RANGES["stature"][1]
 
 
+def test_speed_and_cadence_correlate_as_step_length_and_cadence_vary_independently():
+    """Adult preset, 4000 draws: the logs of speed and cadence correlate with rho = cv_cadence /
+    cv_speed (0.58) within 0.05 (about 3.5 standard errors); step length (speed * 60 / cadence)
+    is then uncorrelated with cadence (|r| < 0.05) and its CV is sqrt(cv_s^2 - cv_c^2) (0.10)
+    within 0.01; the marginals keep their preset's means and SDs."""
+    pop = parse_population({"mix": {"adult": 1}}, 1.75)
+    ws = _draws(pop)
+    speed = np.array([w.speed for w in ws])
+    cadence = np.array([w.cadence for w in ws])
+    step = np.array([w.step_length for w in ws])
+    p = PRESETS["adult"]
+    cv_s, cv_c = p.speed[1] / p.speed[0], p.cadence[1] / p.cadence[0]
+    rho = pop.groups[0].speed_cadence_rho()
+    assert rho == pytest.approx(cv_c / cv_s)
+    assert np.corrcoef(np.log(speed), np.log(cadence))[0, 1] == pytest.approx(rho, abs=0.05)
+    assert abs(np.corrcoef(np.log(step), np.log(cadence))[0, 1]) < 0.05
+    assert step.std() / step.mean() == pytest.approx(np.sqrt(cv_s**2 - cv_c**2), abs=0.01)
+    assert speed.std() == pytest.approx(p.speed[1], rel=0.05)
+    assert cadence.std() == pytest.approx(p.cadence[1], rel=0.05)
+    # a fixed cadence: no correlation to model
+    assert (
+        parse_population(
+            {"walker": "adult", "speed": {"dist": "normal", "mean": 1.3, "sd": 0.1}}, 1.75
+        )
+        .groups[0]
+        .speed_cadence_rho()
+        == 0.0
+    )
+
+
 def test_extreme_distributions_are_truncated_not_raised():
     """A wide distribution never gives an operator outside the human ranges (no mid-run error)."""
     pop = parse_population(
