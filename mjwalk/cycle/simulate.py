@@ -9,6 +9,12 @@ DCS, alzubi-sommer), a hold (the task's duration) and the return. Everything is 
 timeline of humanoid poses (``fps`` frames per second), checked for humanoid-vs-scene contacts
 with MuJoCo's collision detection.
 
+With a ``[population]`` in the spec each run first draws its operator
+(:meth:`~mjwalk.cycle.population.Population.draw`, from the run's first spawned stream): the
+humanoid is built at the operator's stature (:func:`operator_context`), the walks are sampled
+from the step model conditioned on the operator (:meth:`StepModel.for_walker`), and reach,
+hold and return times are divided by the operator's pace (:mod:`mjwalk.cycle.handling`).
+
 Many cycles (:func:`simulate_cycles`) run through joblib, so ``n_jobs`` processes share the
 work; inside ``joblib.parallel_config(backend="dask")`` (or ``"ray"``) the same call runs on a
 Dask or Ray cluster unchanged (see the README).
@@ -19,7 +25,7 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -40,6 +46,7 @@ from mjwalk.cycle.types import (
     WalkRecord,
 )
 from mjwalk.errors import CycleSpecError, InputError
+from mjwalk.gait.walker import Walker
 from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.timeline.collisions import collision_report
@@ -49,6 +56,7 @@ from mjwalk.world.workplace import Workplace, shared_workplace
 
 if TYPE_CHECKING:
     from mjwalk.arms.reach import ReachResult
+    from mjwalk.gait.model import StepModel  # loaded on first use (prepare)
 
 #: Turning speed on the spot (rad/s) and shortest turn (s).
 TURN_SPEED = math.radians(180.0)
@@ -78,7 +86,7 @@ class CycleContext:
 
     spec: CycleSpec
     workplace: Workplace
-    step_model: object
+    step_model: StepModel
     reach_model: object
     model: mujoco.MjModel
     jointmap: JointMap
@@ -150,6 +158,37 @@ def _context_cached(spec_key: str) -> CycleContext:
     from mjwalk.cycle.spec import load_cycle_spec
 
     return prepare(load_cycle_spec(spec_key))
+
+
+@functools.lru_cache(maxsize=16)
+def _humanoid(scene: str, stature: float) -> tuple[mujoco.MjModel, JointMap]:
+    """The scene with a humanoid of ``stature`` metres (kept for the last 16 statures of this
+    process: a population's statures come in centimetres, attaching one takes about 15 ms)."""
+    return attach_humanoid(Path(scene), stature)
+
+
+def operator_context(ctx: CycleContext, walker: Walker | None) -> CycleContext:
+    """``ctx`` for a run of ``walker``: the humanoid (and ``spec.stature``) of the walker's
+    stature; planners, grid-A* baselines and models are shared with ``ctx``. ``ctx`` itself
+    without a walker or at the spec's stature."""
+    if walker is None or abs(walker.stature - ctx.spec.stature) < 1e-9:
+        return ctx
+    model, jm = _humanoid(str(ctx.spec.scene), round(walker.stature, 3))
+    return replace(
+        ctx,
+        spec=replace(ctx.spec, stature=walker.stature),
+        model=model,
+        jointmap=jm,
+        clearance=_clearance_of(str(ctx.spec.scene), round(walker.stature, 3)),
+    )
+
+
+@functools.lru_cache(maxsize=16)
+def _clearance_of(scene: str, stature: float) -> ArmClearance:
+    """The reach's clearance check (:class:`~mjwalk.cycle.standoff.ArmClearance`) of the
+    humanoid of ``stature`` metres in ``scene`` (kept like :func:`_humanoid`)."""
+    model, jm = _humanoid(scene, stature)
+    return ArmClearance(model, jm)
 
 
 def prepare(spec: CycleSpec) -> CycleContext:
@@ -279,6 +318,15 @@ def _default_timing(dist: float) -> tuple[float, float]:
     return reach_duration(dist, None, "B"), reach_duration(dist, None, RETURN_CASE)
 
 
+def _arm_scale(reach_model, stature: float) -> float:
+    """Reach-model arm length over the arm length of a humanoid of ``stature`` metres (1 at
+    the model's stature)."""
+    from mjwalk.arms.kinematics import arm_segment_lengths
+
+    lengths = np.asarray(reach_model.lengths, dtype=float)
+    return float(lengths[:2].sum() / arm_segment_lengths(stature)[:2].sum())
+
+
 def _reach_frames(
     ctx,
     q0: np.ndarray,
@@ -317,8 +365,12 @@ def _reach_frames(
     ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id
     shoulder = data.xpos[ua].copy()
     frame = data.xmat[ua].reshape(3, 3).copy()
-    end = frame.T @ (target_w - shoulder)
-    pre = frame.T @ (target_w + approach_w - shoulder)
+    # the reach is solved at the reach model's arm lengths; an operator of another stature has
+    # the same arm shape scaled (Winter's shares), so the targets are scaled into the model's
+    # size (directions, hence joint angles, do not change with the scale)
+    scale = _arm_scale(model, ctx.spec.stature)
+    end = frame.T @ (target_w - shoulder) * scale
+    pre = frame.T @ (target_w + approach_w - shoulder) * scale
     start = np.asarray(REST_HAND, dtype=float)
     res = reach_for_side(model, pre, side, start)  # a right arm mirrors the left-arm model
     lengths = model.lengths
@@ -333,13 +385,13 @@ def _reach_frames(
     q = arm_joint_angles(directions, side)
     if timing is None:
         timing = _default_timing
-    reach_out, reach_back = timing(float(np.linalg.norm(end - start)))
+    reach_out, reach_back = timing(float(np.linalg.norm(end - start)) / scale)  # operator's metres
     n_out = max(2, round(reach_out * fps))
     out, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
     data.qpos[:] = out[-1]
     mujoco.mj_kinematics(m, data)
     wrist = data.xpos[m.body(f"{jm.prefix}hand_{side_prefix(side)}").id]
-    tip = wrist + frame @ (directions[-1, 2] * lengths[2])
+    tip = wrist + frame @ (directions[-1, 2] * lengths[2] / scale)  # the operator's hand
     error = float(np.linalg.norm(tip - target_w))
     n_hold = max(0, round(hold * fps))
     n_back = max(1, round(reach_back * fps))
@@ -439,7 +491,7 @@ def plan_task_walk(ctx: CycleContext, i: int, start, rng: np.random.Generator, w
     task's stand zone (:func:`work_zone`) for the walker's stature and step length."""
     task = ctx.spec.tasks[i]
     assert task.site is not None  # the spec loader requires a site for walks
-    model = ctx.step_model.for_walker(walker) if walker is not None else ctx.step_model  # type: ignore[attr-defined]
+    model = ctx.step_model.for_walker(walker) if walker is not None else ctx.step_model
     stature = walker.stature if walker is not None else ctx.spec.stature
     step = walker.step_length if walker is not None else _pace_of(ctx.step_model).step_length
     zone = ctx.zone(i, stature, step)
@@ -585,7 +637,8 @@ def simulate_cycle(
             (:func:`~mjwalk.timeline.collisions.check_collisions` checks a result later).
 
     Returns:
-        A :class:`CycleResult`: walks, arm motions, task times, cycle time, collisions.
+        A :class:`CycleResult`: walks, arm motions, task times, cycle time, collisions, and the
+        run's operator (``result.operator``, drawn from ``spec.population``; None without one).
 
     Raises:
         PlanningError: a walk cannot be planned (the spec is checked before, so this means an
@@ -596,10 +649,14 @@ def simulate_cycle(
     check_durations(spec.tasks)
     rng = np.random.default_rng(rng)
     # side streams spawned from the run's generator (its own draws, the walks, are unchanged):
-    # the operator (issue 14's population, not yet merged), the task-time factors, the
-    # standing spots (ditto); the same order the population work uses
-    _op_rng, hand_rng, _stand_rng = rng.spawn(3)
+    # the operator, the task-time factors, the standing spots (not yet merged)
+    op_rng, hand_rng, _stand_rng = rng.spawn(3)
     entropy = _entropy(rng)
+    # the run's operator (None without a [population]: the step model's own pace, handling at
+    # the reference adult's pace): their humanoid, their steps, their handling pace
+    walker = spec.population.draw(op_rng) if spec.population is not None else None
+    ctx = operator_context(ctx, walker)
+    pace = 1.0 if walker is None else walker.pace
     wp = ctx.workplace
     here = spec.start
     st = wp.station(here)
@@ -615,7 +672,7 @@ def simulate_cycle(
         if task.kind in ("walk", "carry"):
             goal = task.site
             assert goal is not None  # the spec loader requires a site for walks
-            path = plan_task_walk(ctx, i, (x, y), rng)
+            path = plan_task_walk(ctx, i, (x, y), rng, walker)
             turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps)
             frames.append(turn)
             t += dt
@@ -644,13 +701,13 @@ def simulate_cycle(
         elif task.kind in ("pick", "place", "fasten"):
             hold = task.duration if task.duration is not None else DEFAULT_HOLD[task.kind]
             factor = task_factor(hand_rng)  # lognormal, median 1 (mjwalk.cycle.handling)
-            hold *= factor
+            hold *= factor / pace  # the hold, like the reach, at the operator's pace
             case = REACH_CASE[task.kind]
 
             def timing(dist, case=case, factor=factor):
                 return (
-                    reach_duration(dist, None, case) * factor,
-                    reach_duration(dist, None, RETURN_CASE) * factor,
+                    reach_duration(dist, walker, case) * factor,
+                    reach_duration(dist, walker, RETURN_CASE) * factor,
                 )
 
             assert task.site is not None  # the spec loader requires a site for reaches
@@ -691,7 +748,7 @@ def simulate_cycle(
         t=np.arange(len(qpos)) / fps,
         qpos=qpos,
         scene=str(spec.scene),
-        stature=spec.stature,
+        stature=ctx.spec.stature,
     )
     timeline.walk = combined_walk([w.path for w in walks])  # drawn into videos
     contacts = collision_report(timeline) if collisions else []
@@ -706,6 +763,7 @@ def simulate_cycle(
         cycle_time=t,
         collisions=contacts,
         timeline=timeline if keep_timeline else None,
+        operator=walker,
     )
 
 
