@@ -1,7 +1,7 @@
 """Humanoid-vs-scene contacts of planned walks played back (issue 5) and of simulated station
 cycles (issue 7), by MuJoCo collision detection (feet count when > 1 cm into the floor).
 
-Run: python benchmarks/bench_contacts.py [--walks 20] [--cycles 40] [--seed 0]
+Run: python benchmarks/bench_contacts.py [--walks 20] [--cycles 40] [--seed 0] [--jobs 1]
 """
 
 from __future__ import annotations
@@ -24,6 +24,7 @@ def main() -> None:
     ap.add_argument("--walks", type=int, default=20, help="walks per corridor route")
     ap.add_argument("--cycles", type=int, default=40)
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--jobs", type=int, default=1, help="processes for the cycles (-1: all)")
     a = ap.parse_args()
     scene = SCENES / "corridor.xml"
     wp = load_workplace(scene)
@@ -44,7 +45,9 @@ def main() -> None:
     dt = time.perf_counter() - t0
     print(f"corridor: {bad} of {len(walks)} planned walks touch the scene ({dt:.1f} s)")
     t0 = time.perf_counter()
-    res = simulate_cycles(SCENES / "assembly_station.toml", runs=a.cycles, seed=a.seed)
+    res = simulate_cycles(
+        SCENES / "assembly_station.toml", runs=a.cycles, seed=a.seed, n_jobs=a.jobs
+    )
     dt = time.perf_counter() - t0
     for r in res:
         for c in r.collisions:
@@ -54,6 +57,12 @@ def main() -> None:
             )
     n = sum(1 for r in res if r.collisions)
     print(f"station cycles: {n} of {len(res)} runs with contacts ({dt:.1f} s)")
+    backs = [a.step_back for r in res for a in r.arms]
+    moved = [b for b in backs if b > 0]
+    print(
+        f"  reaches that stepped back to clear the scene (mjwalk.cycle.standoff): {len(moved)}"
+        f" of {len(backs)}" + (f", largest {max(moved):.2f} m" if moved else "")
+    )
 
 
 if __name__ == "__main__":

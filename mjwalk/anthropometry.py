@@ -138,3 +138,44 @@ def shoulder_geometry(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
     """(shoulder joint centre from the trunk axis, upper-arm capsule radius), metres, of
     :func:`build_humanoid`: together the half-width of the body at the shoulders."""
     return 0.5 * SEG["shoulder_width"] * stature, UPPER_ARM_RADIUS * stature
+
+
+#: Forward trunk inclination (degrees) a standing reach may use. ISO 11226:2000 (evaluation of
+#: static working postures) accepts 0-20 deg of trunk inclination without further conditions;
+#: mjwalk's humanoid realises about half of that in its reaches: from a shelf at 1.07-1.10 m it
+#: puts the hand on targets up to 0.70 m from the pelvis axis with no error and misses beyond
+#: (measured: cycle reach of rack 2's screws and tool from stands moved back 0-0.3 m and
+#: sideways +-0.2 m, hand error 0 mm at 0.51-0.70 m, 2.2-2.4 mm at 0.72 m, 27-35 mm at 0.75 m),
+#: which is :func:`hand_reach` at 10 deg.
+REACH_TRUNK_LEAN_DEG = 10.0
+
+
+def hand_reach(
+    height: float,
+    stature: float = DEFAULT_STATURE,
+    lean_deg: float = REACH_TRUNK_LEAN_DEG,
+    turned: bool = True,
+) -> float:
+    """Farthest horizontal distance (m) from the body's vertical axis (the pelvis centre) at
+    which a standing person puts the grip centre on a point ``height`` metres above the floor.
+
+    The trunk (hip to shoulder, Winter's segment table :data:`SEG`) leans ``lean_deg`` forward,
+    the body turns so the reaching shoulder (half the bi-acromial width from the trunk axis)
+    lies beside the line to the target, as the cycle turns the operator before a reach, and the
+    arm (upper arm, forearm and half the hand) is stretched towards it; ``turned=False``: the
+    body faces the target squarely (the cycle's fastening), the shoulder beside the line, so
+    the arm reaches across. Returns 0 when the point is out of the arm's reach."""
+    H = stature
+    lean = np.radians(lean_deg)
+    trunk = (SEG["shoulder_height"] - SEG["hip_height"]) * H
+    forward = trunk * np.sin(lean)
+    shoulder_z = SEG["hip_height"] * H + trunk * np.cos(lean)
+    arm = (SEG["upper_arm"] + SEG["forearm"] + 0.5 * SEG["hand"]) * H
+    dz = shoulder_z - height
+    if abs(dz) >= arm:
+        return 0.0
+    ahead = forward + float(np.sqrt(arm**2 - dz**2))
+    side = 0.5 * SEG["shoulder_width"] * H
+    if turned:
+        return float(np.hypot(ahead, side))
+    return float(np.sqrt(max(ahead**2 - side**2, 0.0)))

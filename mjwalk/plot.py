@@ -180,8 +180,9 @@ def spaghetti_png(
 
 
 def histograms_png(path: Path, results: Sequence[CycleResult], rep: dict) -> None:
-    """The report's histograms: cycle time and the walk length of every route (median dashed,
-    grid A* solid, capture dotted), written as a PNG to ``path``."""
+    """The report's histograms: cycle time (stacked by operator group when the population has
+    several, takt as a red line) and the walk length of every route (median dashed, grid A*
+    solid, capture dotted), written as a PNG to ``path``."""
 
     labels = list(rep["routes"])
     colors = route_colors(labels)
@@ -192,11 +193,25 @@ def histograms_png(path: Path, results: Sequence[CycleResult], rep: dict) -> Non
     try:
         axes = axes.ravel()
         ax = axes[0]
-        ax.hist([r.cycle_time for r in results], bins="auto", color="0.4")
+        times = np.array([r.cycle_time for r in results])
+        groups = list(rep.get("groups") or {})
+        if len(groups) > 1:  # stacked by operator group
+            edges = np.histogram_bin_edges(times, bins="auto")
+            by = [[r.cycle_time for r in results if r.group == g] for g in groups]
+            cmap = matplotlib.colormaps["Set2"]
+            group_colors = [cmap(k % 8) for k in range(len(groups))]
+            ax.hist(by, bins=edges, stacked=True, color=group_colors, label=groups)
+        else:
+            ax.hist(times, bins="auto", color="0.4")
         ax.axvline(rep["cycle_time"]["median"], color="k", ls="--", lw=1, label="median")
+        if rep.get("over_takt"):
+            e = rep["over_takt"]
+            ax.axvline(
+                e["takt"], color="tab:red", lw=1.5, label=f"takt ({100 * e['share']:.0f} % over)"
+            )
         ax.set_xlabel("cycle time [s]")
         ax.set_ylabel("runs")
-        ax.set_title("cycle time")
+        ax.set_title("cycle time" + (" by operator group" if len(groups) > 1 else ""))
         ax.legend(fontsize=7)
         for ax, label in zip(axes[1:], labels, strict=False):
             e = rep["routes"][label]

@@ -6,6 +6,13 @@ with tables and charts into a folder; :func:`format_summary` gives a short table
 Distributions are summarised as in agethen2018 Table 1: median (50th percentile) and
 inter-quartile range (75th - 25th percentile, ``numpy.percentile``'s linear interpolation), beside
 the grid-A* route length. Lengths in metres, times in seconds.
+
+Cycle times are also given as the 5th, 50th and 95th percentiles, overall and per operator group
+(the cycle file's ``[population]``, :mod:`mjwalk.cycle.population`); with a ``takt`` the report
+gives the share of cycles over takt with its 95 % Wilson score interval (Wilson, "Probable
+inference, the law of succession, and statistical inference", JASA 22:209-212, 1927; good
+coverage for small samples and shares near 0 or 1, where the normal approximation is not:
+Brown, Cai & DasGupta, Statistical Science 16:101-133, 2001).
 """
 
 from __future__ import annotations
@@ -20,7 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from mjwalk._io import atomic_path
-from mjwalk.cycle.types import TASK_KINDS, CycleResult
+from mjwalk.cycle.types import TASK_KINDS, CycleResult, operator_dict
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
 
@@ -47,6 +54,13 @@ REPORT_FILES = {
 #: Contact pairs listed in report.md (all of them are in report.json).
 MD_PAIRS = 12
 
+#: Percentiles of the cycle time in the report (P5, P50, P95).
+CYCLE_PERCENTILES = (5, 50, 95)
+#: Confidence level of the share of cycles over takt.
+TAKT_CONFIDENCE = 0.95
+#: Operator columns of walks.csv and cycles.csv (empty without a population).
+OPERATOR_COLUMNS = ("group", "stature_m", "speed_m_s", "cadence_steps_min")
+
 BaselineArg = Mapping[str | tuple[str, str], WalkPath | Sequence[WalkPath]]
 
 
@@ -72,6 +86,58 @@ def describe(values) -> dict[str, float]:
         "mean": float(x.mean()),
         "sd": float(x.std(ddof=1)) if x.size > 1 else 0.0,
     }
+
+
+def percentiles(values, qs=CYCLE_PERCENTILES) -> dict[str, float]:
+    """``{"n", "p5", "p50", "p95"}`` of ``values`` (NaN when empty)."""
+    x = np.asarray(values, dtype=float).ravel()
+    out: dict[str, float] = {"n": int(x.size)}
+    ps = np.percentile(x, qs) if x.size else [float("nan")] * len(qs)
+    out.update({f"p{q}": float(v) for q, v in zip(qs, ps, strict=True)})
+    return out
+
+
+def over_takt(cycle_times, takt: float, confidence: float = TAKT_CONFIDENCE) -> dict:
+    """Share of ``cycle_times`` (s) longer than ``takt`` (s), with its Wilson score interval:
+    ``{"takt", "runs", "over", "share", "ci_low", "ci_high", "confidence"}``."""
+    from scipy.stats import binomtest
+
+    x = np.asarray(cycle_times, dtype=float).ravel()
+    n, k = int(x.size), int(np.sum(x > takt))
+    out = {"takt": float(takt), "runs": n, "over": k, "confidence": confidence}
+    if n == 0:
+        return {**out, "share": float("nan"), "ci_low": float("nan"), "ci_high": float("nan")}
+    ci = binomtest(k, n).proportion_ci(confidence_level=confidence, method="wilson")
+    return {**out, "share": k / n, "ci_low": float(ci.low), "ci_high": float(ci.high)}
+
+
+def _operators(results: Sequence[CycleResult], takt: float | None) -> dict:
+    """Cycle-time percentiles (and the share over takt) per operator group, the operators'
+    figures (median speed, cadence, stature) and walk times per group."""
+    population = getattr(results[0].spec, "population", None)
+    shares = {g.name: g.share for g in population.groups} if population else {}
+    names = list(shares) + sorted({r.group for r in results} - set(shares))
+    out = {}
+    for name in names:
+        runs = [r for r in results if r.group == name]
+        ops = [r.operator for r in runs if r.operator is not None]
+        entry = {
+            "share": shares.get(name),
+            "runs": len(runs),
+            "cycle_time": percentiles([r.cycle_time for r in runs]),
+            "walk_time_per_cycle_median": float(
+                np.median([sum(w.duration for w in r.walks) for r in runs])
+            )
+            if runs
+            else float("nan"),
+            "speed_median": float(np.median([o.speed for o in ops])) if ops else float("nan"),
+            "cadence_median": float(np.median([o.cadence for o in ops])) if ops else float("nan"),
+            "stature_median": float(np.median([o.stature for o in ops])) if ops else float("nan"),
+        }
+        if takt is not None:
+            entry["over_takt"] = over_takt([r.cycle_time for r in runs], takt)
+        out[name] = entry
+    return out
 
 
 def _routes(results: Sequence[CycleResult]) -> list[str]:
@@ -103,6 +169,8 @@ def report_dict(
     if not results:
         raise MjwalkError("report: no cycle results to report")
     spec = results[0].spec
+    takt = getattr(spec, "takt", None)
+    population = getattr(spec, "population", None)
     routes = {}
     for label in _routes(results):
         walks = [w for r in results for w in r.walks if w.route == label]
@@ -159,7 +227,14 @@ def report_dict(
         "scene": str(spec.scene),
         "runs": len(results),
         "routes": routes,
-        "cycle_time": describe([r.cycle_time for r in results]),
+        "cycle_time": {
+            **describe([r.cycle_time for r in results]),
+            **percentiles([r.cycle_time for r in results]),
+        },
+        "takt": takt,
+        "over_takt": None if takt is None else over_takt([r.cycle_time for r in results], takt),
+        "population": None if population is None else population.describe(),
+        "groups": _operators(results, takt) if population is not None else {},
         "collisions": {
             "total": int(sum(per_run_collisions)),
             "runs_with_collisions": int(sum(n > 0 for n in per_run_collisions)),
@@ -180,6 +255,7 @@ def report_dict(
                 "entropy": getattr(r, "entropy", None),
                 "cycle_time": r.cycle_time,
                 "collisions": len(r.collisions),
+                "operator": operator_dict(r.operator),
             }
             for r in results
         ],
@@ -247,10 +323,13 @@ def format_markdown(rep: dict) -> str:
         "## Cycle time",
         "",
         _md_table(
-            ["median [s]", "IQR [s]", "min [s]", "max [s]", "mean [s]", "sd [s]"],
-            [[_f(ct[k]) for k in ("median", "iqr", "min", "max", "mean", "sd")]],
+            ["P5 [s]", "P50 [s]", "P95 [s]", "IQR [s]", "min [s]", "max [s]", "mean [s]"]
+            + ["sd [s]"],
+            [[_f(ct[k]) for k in ("p5", "p50", "p95", "iqr", "min", "max", "mean", "sd")]],
         ),
         "",
+        *_takt_md(rep),
+        *_operators_md(rep),
         "## Time per task kind",
         "",
         _md_table(
@@ -296,6 +375,73 @@ def format_markdown(rep: dict) -> str:
     return "\n".join(out)
 
 
+def _share_ci(e: dict | None) -> str:
+    if not e:
+        return "–"
+    return (
+        f"{100 * e['share']:.0f} % [{100 * e['ci_low']:.0f}-{100 * e['ci_high']:.0f} %]"
+        if e["runs"]
+        else "–"
+    )
+
+
+def _takt_md(rep: dict) -> list[str]:
+    e = rep.get("over_takt")
+    if not e:
+        return []
+    return [
+        f"Takt {_f(e['takt'], 1)} s: {e['over']} of {e['runs']} cycle(s) over takt, "
+        f"{_share_ci(e)} (share, {100 * e['confidence']:.0f} % Wilson score interval).",
+        "",
+    ]
+
+
+def _operators_md(rep: dict) -> list[str]:
+    if not rep.get("population"):
+        return []
+    takt = rep.get("takt") is not None
+    head = ["operator group", "share", "runs", "speed 50th [m/s]", "cadence 50th [/min]"]
+    head += ["stature 50th [m]", "walk time 50th [s]", "P5 [s]", "P50 [s]", "P95 [s]"]
+    if takt:
+        head += ["over takt [95 % CI]"]
+    rows = []
+    for name, e in rep["groups"].items():
+        ct = e["cycle_time"]
+        row = [
+            name,
+            "–" if e["share"] is None else f"{100 * e['share']:.0f} %",
+            str(e["runs"]),
+            _f(e["speed_median"]),
+            _f(e["cadence_median"], 0),
+            _f(e["stature_median"]),
+            _f(e["walk_time_per_cycle_median"], 1),
+            _f(ct["p5"], 1),
+            _f(ct["p50"], 1),
+            _f(ct["p95"], 1),
+        ]
+        if takt:
+            row.append(_share_ci(e.get("over_takt")))
+        rows.append(row)
+    figures = [
+        f"- {g['group']} ({100 * g['share']:.0f} %): stature {g['stature']}, speed "
+        f"{g['speed']}, cadence {g['cadence']}"
+        for g in rep["population"]
+    ]
+    return [
+        "## Operators",
+        "",
+        "Each run's operator is drawn from the cycle file's `[population]`:",
+        "",
+        *figures,
+        "",
+        "Cycle time per operator group (the operator's pace sets the walk and the handling "
+        "times; walk time is the walks' total per cycle):",
+        "",
+        _md_table(head, rows),
+        "",
+    ]
+
+
 def format_summary(rep: dict) -> str:
     """A short plain-text table of a report (from :func:`report_dict`) for the terminal."""
     ct = rep["cycle_time"]
@@ -308,12 +454,39 @@ def format_summary(rep: dict) -> str:
         f"cycle time  median {_f(ct['median'], 1)} s  IQR {_f(ct['iqr'], 1)} s  "
         f"(min {_f(ct['min'], 1)}, max {_f(ct['max'], 1)}, mean {_f(ct['mean'], 1)}, "
         f"sd {_f(ct['sd'], 1)})",
+        *(
+            [
+                f"cycle time  P5 {_f(ct['p5'], 1)} s  P50 {_f(ct['p50'], 1)} s  P95 "
+                f"{_f(ct['p95'], 1)} s"
+            ]
+            if "p5" in ct
+            else []
+        ),
+        *(
+            [f"over takt {_f(rep['over_takt']['takt'], 1)} s  {_share_ci(rep['over_takt'])}"]
+            if rep.get("over_takt")
+            else []
+        ),
+        *(
+            f"  {name:<12} {e['runs']:>4} run(s)  P5 {_f(e['cycle_time']['p5'], 1)}  P50 "
+            f"{_f(e['cycle_time']['p50'], 1)}  P95 {_f(e['cycle_time']['p95'], 1)} s"
+            + (f"  over takt {_share_ci(e['over_takt'])}" if e.get("over_takt") else "")
+            for name, e in (rep.get("groups") or {}).items()
+        ),
         fmt.format(*head).rstrip(),
         *(fmt.format(*r).rstrip() for r in rows),
         f"collisions  {rep['collisions']['total']} total, "
         f"{rep['collisions']['runs_with_collisions']} run(s) with any",
     ]
     return "\n".join(lines)
+
+
+def _operator_cells(r: CycleResult) -> list[str]:
+    """The OPERATOR_COLUMNS of a run (empty strings without an operator)."""
+    op = getattr(r, "operator", None)
+    if op is None:
+        return [""] * len(OPERATOR_COLUMNS)
+    return [op.group, f"{op.stature:.2f}", f"{op.speed:.4f}", f"{op.cadence:.2f}"]
 
 
 def _write_walks_csv(path: Path, results: Sequence[CycleResult]) -> None:
@@ -323,6 +496,7 @@ def _write_walks_csv(path: Path, results: Sequence[CycleResult]) -> None:
             [
                 "run", "seed", "task", "route", "from", "to",
                 "length_m", "duration_s", "baseline_length_m", "steps",
+                *OPERATOR_COLUMNS,
             ]
         )  # fmt: skip
         for r in results:
@@ -339,6 +513,7 @@ def _write_walks_csv(path: Path, results: Sequence[CycleResult]) -> None:
                         f"{wk.duration:.4f}",
                         f"{wk.baseline_length:.4f}",
                         len(wk.path.steps),
+                        *_operator_cells(r),
                     ]
                 )
 
@@ -351,6 +526,7 @@ def _write_cycles_csv(path: Path, results: Sequence[CycleResult]) -> None:
             ["run", "seed", "cycle_time_s", "walked_length_m", "walked_time_s", "collisions"]
             + ["max_hand_error_m", "reach_outside_range"]
             + [f"{k}_time_s" for k in kinds]
+            + list(OPERATOR_COLUMNS)
         )
         for r in results:
             w.writerow(
@@ -365,6 +541,7 @@ def _write_cycles_csv(path: Path, results: Sequence[CycleResult]) -> None:
                     sum(a.outside for a in r.arms),
                 ]
                 + [f"{sum(t.duration for t in r.tasks if t.kind == k):.4f}" for k in kinds]
+                + _operator_cells(r)
             )
 
 

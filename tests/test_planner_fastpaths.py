@@ -131,11 +131,14 @@ def test_sample_next_features_are_sample_next_draws():
 
 def test_kde_starters_are_gaussian_kde_draws():
     """sample_first draws what scipy's gaussian_kde.resample draws from the same stream (the
-    kernel factor is computed once instead of per call)."""
+    kernel factor is computed once instead of per call, without building the kde)."""
+    from scipy.stats import gaussian_kde
+
     model = default_model()
     for side in ("left", "right"):
         got = model.sample_first(25, np.random.default_rng(8), side).features
-        ref = model._kde[side].resample(25, seed=np.random.default_rng(8)).T
+        kde = gaussian_kde(model.kde_data[side], bw_method=model.kde_factor[side])
+        ref = kde.resample(25, seed=np.random.default_rng(8)).T
         np.testing.assert_allclose(got, ref, rtol=0, atol=1e-12)
 
 

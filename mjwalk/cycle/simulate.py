@@ -9,6 +9,12 @@ DCS, alzubi-sommer), a hold (the task's duration) and the return. Everything is 
 timeline of humanoid poses (``fps`` frames per second), checked for humanoid-vs-scene contacts
 with MuJoCo's collision detection.
 
+With a ``[population]`` in the spec each run first draws its operator
+(:meth:`~mjwalk.cycle.population.Population.draw`, from the run's first spawned stream): the
+humanoid is built at the operator's stature (:func:`operator_context`), the walks are sampled
+from the step model conditioned on the operator (:meth:`StepModel.for_walker`), and reach,
+hold and return times are divided by the operator's pace (:mod:`mjwalk.cycle.handling`).
+
 Many cycles (:func:`simulate_cycles`) run through joblib, so ``n_jobs`` processes share the
 work; inside ``joblib.parallel_config(backend="dask")`` (or ``"ray"``) the same call runs on a
 Dask or Ray cluster unchanged (see the README).
@@ -19,8 +25,9 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
@@ -29,6 +36,8 @@ from mjwalk.body.humanoid import JointMap, attach_humanoid, pelvis_height
 from mjwalk.conventions import SAMPLE_RATE_HZ, Side, side_prefix
 from mjwalk.cycle.handling import REACH_CASE, RETURN_CASE, reach_duration, task_factor
 from mjwalk.cycle.spec import check_durations
+from mjwalk.cycle.standing import StandZone, stand_zone
+from mjwalk.cycle.standoff import REACH_TOLERANCE, ArmClearance, step_back_offsets
 from mjwalk.cycle.types import (
     ArmRecord,
     CycleResult,
@@ -37,6 +46,7 @@ from mjwalk.cycle.types import (
     WalkRecord,
 )
 from mjwalk.errors import CycleSpecError, InputError
+from mjwalk.gait.walker import Walker
 from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.timeline.collisions import collision_report
@@ -44,9 +54,16 @@ from mjwalk.timeline.frames import ease_arms, frames_from_legs, room_and_away, y
 from mjwalk.timeline.timeline import Timeline
 from mjwalk.world.workplace import Workplace, shared_workplace
 
+if TYPE_CHECKING:
+    from mjwalk.arms.reach import ReachResult
+    from mjwalk.gait.model import StepModel  # loaded on first use (prepare)
+
 #: Turning speed on the spot (rad/s) and shortest turn (s).
 TURN_SPEED = math.radians(180.0)
 MIN_TURN = 0.25
+#: Speed (m/s) of a step back before a reach (:mod:`mjwalk.cycle.standoff`): a slow walk's
+#: speed (about half the preferred 1.3 m/s walking speed; Bohannon 1997).
+STEP_SPEED = 0.6
 #: Lateral offset of the shoulder from the pelvis centre (m, stature 1.75 m; Winter: 0.1·H).
 SHOULDER_OFFSET = 0.18
 #: The hold of a pick or place without a given duration (s), the median for the reference
@@ -69,13 +86,15 @@ class CycleContext:
 
     spec: CycleSpec
     workplace: Workplace
-    step_model: object
+    step_model: StepModel
     reach_model: object
     model: mujoco.MjModel
     jointmap: JointMap
     planners: dict = field(default_factory=dict)
+    zones: dict = field(default_factory=dict)
     baselines: dict = field(default_factory=dict)
     grid: OccupancyGrid | None = None  # the grid-A* occupancy grid, built on first use
+    clearance: ArmClearance | None = None  # the reach's clearance check, built on first use
     _data: mujoco.MjData | None = field(default=None, repr=False)
 
     def scratch(self) -> mujoco.MjData:
@@ -85,16 +104,27 @@ class CycleContext:
             self._data = mujoco.MjData(self.model)
         return self._data
 
-    def planner(self, goal: str) -> HybridPlanner:
-        if goal not in self.planners:
-            self.planners[goal] = HybridPlanner(
+    def planner(self, goal: str, zone: StandZone | None = None) -> HybridPlanner:
+        """The planner of walks to ``goal``, ending in ``zone`` (:mod:`mjwalk.cycle.standing`;
+        None: within :data:`GOAL_TOLERANCE` of the site). One per goal and zone."""
+        key = (goal, zone)
+        if key not in self.planners:
+            self.planners[key] = HybridPlanner(
                 self.workplace,
                 goal,
                 self.step_model,
                 radius=self.spec.radius,
-                goal_tolerance=GOAL_TOLERANCE,
+                goal_tolerance=GOAL_TOLERANCE if zone is None else zone.radius,
+                goal_within=() if zone is None else zone.discs,
             )
-        return self.planners[goal]
+        return self.planners[key]
+
+    def zone(self, i: int, stature: float, step_length: float) -> StandZone:
+        """The stand zone of the walk that is task ``i`` (:func:`work_zone`)."""
+        key = (i, round(stature, 3), round(step_length, 3))
+        if key not in self.zones:
+            self.zones[key] = work_zone(self, i, stature, step_length)
+        return self.zones[key]
 
     def baseline(self, a: str, b: str) -> float:
         if (a, b) not in self.baselines:
@@ -104,6 +134,11 @@ class CycleContext:
                 self.workplace, a, b, radius=self.spec.radius, grid=self.grid
             ).length
         return self.baselines[(a, b)]
+
+
+def _pace_of(model):
+    """The step model's pace (:meth:`mjwalk.gait.model.StepModel.pace`), measured once."""
+    return model.pace()
 
 
 def _load_step_model(spec: CycleSpec):
@@ -133,6 +168,37 @@ def _context_cached(spec_key: str) -> CycleContext:
     return prepare(load_cycle_spec(spec_key))
 
 
+@functools.lru_cache(maxsize=16)
+def _humanoid(scene: str, stature: float) -> tuple[mujoco.MjModel, JointMap]:
+    """The scene with a humanoid of ``stature`` metres (kept for the last 16 statures of this
+    process: a population's statures come in centimetres, attaching one takes about 15 ms)."""
+    return attach_humanoid(Path(scene), stature)
+
+
+def operator_context(ctx: CycleContext, walker: Walker | None) -> CycleContext:
+    """``ctx`` for a run of ``walker``: the humanoid (and ``spec.stature``) of the walker's
+    stature; planners, grid-A* baselines and models are shared with ``ctx``. ``ctx`` itself
+    without a walker or at the spec's stature."""
+    if walker is None or abs(walker.stature - ctx.spec.stature) < 1e-9:
+        return ctx
+    model, jm = _humanoid(str(ctx.spec.scene), round(walker.stature, 3))
+    return replace(
+        ctx,
+        spec=replace(ctx.spec, stature=walker.stature),
+        model=model,
+        jointmap=jm,
+        clearance=_clearance_of(str(ctx.spec.scene), round(walker.stature, 3)),
+    )
+
+
+@functools.lru_cache(maxsize=16)
+def _clearance_of(scene: str, stature: float) -> ArmClearance:
+    """The reach's clearance check (:class:`~mjwalk.cycle.standoff.ArmClearance`) of the
+    humanoid of ``stature`` metres in ``scene`` (kept like :func:`_humanoid`)."""
+    model, jm = _humanoid(scene, stature)
+    return ArmClearance(model, jm)
+
+
 def prepare(spec: CycleSpec) -> CycleContext:
     """Load the scene, the models and the humanoid of ``spec`` (reused by every run)."""
     workplace = shared_workplace(spec.scene)
@@ -158,13 +224,24 @@ def _standing(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarray:
     return q
 
 
-def _turn_frames(ctx, x, y, yaw0, yaw1, fps) -> tuple[np.ndarray, float]:
+def _turn_frames(ctx, x, y, yaw0, yaw1, fps, to=None) -> tuple[np.ndarray, float]:
+    """Frames of turning on the spot ``(x, y)`` from ``yaw0`` to ``yaw1`` (radians) at
+    :data:`TURN_SPEED`; with ``to`` = (x1, y1) the pelvis moves there during the turn (a short
+    step back, :mod:`mjwalk.cycle.standoff`; the turn lasts at least as long as that step at
+    :data:`STEP_SPEED`). Returns (frames, duration in seconds)."""
     d = (yaw1 - yaw0 + math.pi) % (2 * math.pi) - math.pi
     duration = max(MIN_TURN, abs(d) / TURN_SPEED)
+    x1, y1 = (x, y) if to is None else to
+    shift = math.hypot(x1 - x, y1 - y)
+    if shift > 0.0:
+        duration = max(duration, shift / STEP_SPEED)
     n = max(1, round(duration * fps))
+    k = np.arange(1, n + 1)
     frames = np.repeat(_standing(ctx, x, y, yaw0)[None], n, axis=0)
     r = ctx.jointmap.root
-    frames[:, r + 3 : r + 7] = yaw_quat(yaw0 + d * np.arange(1, n + 1) / n)
+    frames[:, r] = x + (x1 - x) * k / n
+    frames[:, r + 1] = y + (y1 - y) * k / n
+    frames[:, r + 3 : r + 7] = yaw_quat(yaw0 + d * k / n)
     return frames, n / fps
 
 
@@ -244,6 +321,15 @@ def _default_timing(dist: float) -> tuple[float, float]:
     return reach_duration(dist, None, "B"), reach_duration(dist, None, RETURN_CASE)
 
 
+def _arm_scale(reach_model, stature: float) -> float:
+    """Reach-model arm length over the arm length of a humanoid of ``stature`` metres (1 at
+    the model's stature)."""
+    from mjwalk.arms.kinematics import arm_segment_lengths
+
+    lengths = np.asarray(reach_model.lengths, dtype=float)
+    return float(lengths[:2].sum() / arm_segment_lengths(stature)[:2].sum())
+
+
 def _reach_frames(
     ctx,
     q0: np.ndarray,
@@ -282,8 +368,12 @@ def _reach_frames(
     ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id
     shoulder = data.xpos[ua].copy()
     frame = data.xmat[ua].reshape(3, 3).copy()
-    end = frame.T @ (target_w - shoulder)
-    pre = frame.T @ (target_w + approach_w - shoulder)
+    # the reach is solved at the reach model's arm lengths; an operator of another stature has
+    # the same arm shape scaled (Winter's shares), so the targets are scaled into the model's
+    # size (directions, hence joint angles, do not change with the scale)
+    scale = _arm_scale(model, ctx.spec.stature)
+    end = frame.T @ (target_w - shoulder) * scale
+    pre = frame.T @ (target_w + approach_w - shoulder) * scale
     start = np.asarray(REST_HAND, dtype=float)
     res = reach_for_side(model, pre, side, start)  # a right arm mirrors the left-arm model
     lengths = model.lengths
@@ -298,13 +388,13 @@ def _reach_frames(
     q = arm_joint_angles(directions, side)
     if timing is None:
         timing = _default_timing
-    reach_out, reach_back = timing(float(np.linalg.norm(end - start)))
+    reach_out, reach_back = timing(float(np.linalg.norm(end - start)) / scale)  # operator's metres
     n_out = max(2, round(reach_out * fps))
     out, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
     data.qpos[:] = out[-1]
     mujoco.mj_kinematics(m, data)
     wrist = data.xpos[m.body(f"{jm.prefix}hand_{side_prefix(side)}").id]
-    tip = wrist + frame @ (directions[-1, 2] * lengths[2])
+    tip = wrist + frame @ (directions[-1, 2] * lengths[2] / scale)  # the operator's hand
     error = float(np.linalg.norm(tip - target_w))
     n_hold = max(0, round(hold * fps))
     n_back = max(1, round(reach_back * fps))
@@ -348,10 +438,18 @@ def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None):
     return frames, max(el, er), rl, float(np.linalg.norm(gl - gr))
 
 
-def _approach(kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndarray:
-    """Pre-grasp offset (world, m): back towards the operator, and up for shelf work."""
-    d = np.array([x, y]) - site_pos[:2]
-    d /= max(np.linalg.norm(d), 1e-9)
+def _approach(
+    kind: str, site_pos: np.ndarray, x: float, y: float, facing: float | None = None
+) -> np.ndarray:
+    """Pre-grasp offset (world, m): back towards the operator, and up for shelf work. Shelf
+    work (pick, place) at a stand site facing ``facing`` (radians from +x) comes in along the
+    site's facing, out of the shelf's opening, wherever in the stand zone the operator stands
+    (towards the operator, an oblique approach swept the fingers across the rack's frame)."""
+    if facing is not None and kind != "fasten":
+        d = -np.array([math.cos(facing), math.sin(facing)])
+    else:
+        d = np.array([x, y]) - site_pos[:2]
+        d /= max(np.linalg.norm(d), 1e-9)
     up = 0.0 if kind == "fasten" else APPROACH_UP
     return np.r_[APPROACH_BACK * d, up]
 
@@ -362,6 +460,160 @@ def _target(ctx, kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndar
         d /= max(np.linalg.norm(d), 1e-9)
         return site_pos + np.r_[FASTEN_STANDOFF * d, 0.0]
     return site_pos + np.array([0.0, 0.0, PICK_CLEARANCE])
+
+
+def work_zone(ctx: CycleContext, i: int, stature: float, step_length: float) -> StandZone:
+    """Where the walk that is task ``i`` may end (:func:`mjwalk.cycle.standing.stand_zone`):
+    near its stand site, with every reach target of the work done there (the tasks after it
+    up to the next walk) within the arm's reach. A two-handed task's targets are its grip
+    sites ``<site>_left`` and ``<site>_right``."""
+    tasks = ctx.spec.tasks
+    goal = tasks[i].site
+    assert goal is not None  # the spec loader requires a site for walks
+    stand = ctx.workplace.station(goal).pos
+    targets, squarely, hands = [], [], []
+    for task in tasks[i + 1 :]:
+        if task.kind in ("walk", "carry"):
+            break
+        if task.kind not in ("pick", "place", "fasten") or task.site is None:
+            continue
+        sites = [f"{task.site}_left", f"{task.site}_right"] if task.hand == "both" else [task.site]
+        for name in sites:
+            pos = ctx.workplace.station(name).pos
+            targets.append(_target(ctx, task.kind, pos, float(stand[0]), float(stand[1])))
+            # the cycle faces fastenings and two-handed work squarely (simulate_cycle)
+            squarely.append(task.kind == "fasten" or task.hand == "both")
+            hands.append(None if squarely[-1] else task.hand)
+    facing = ctx.workplace.station(goal).yaw
+    return stand_zone(stand[:2], targets, step_length, stature, facing, squarely, hands)
+
+
+def plan_task_walk(ctx: CycleContext, i: int, start, rng: np.random.Generator, walker=None):
+    """The walk of task ``i`` (a walk or carry) from ``start`` (x, y), as a cycle plans it:
+    steps from the cycle's step model (conditioned on ``walker`` when given), ending in the
+    task's stand zone (:func:`work_zone`) for the walker's stature and step length."""
+    task = ctx.spec.tasks[i]
+    assert task.site is not None  # the spec loader requires a site for walks
+    model = ctx.step_model.for_walker(walker) if walker is not None else ctx.step_model
+    stature = walker.stature if walker is not None else ctx.spec.stature
+    step = walker.step_length if walker is not None else _pace_of(ctx.step_model).step_length
+    zone = ctx.zone(i, stature, step)
+    return ctx.planner(task.site, zone).plan(start, rng, model=model)
+
+
+def plan_cycle_walks(ctx: CycleContext, rng: np.random.Generator, walker=None) -> list:
+    """Only the walks of one cycle, in order, as :func:`simulate_cycle` plans them with the
+    same ``rng`` (the run's generator; arms and handling draw from spawned streams): a list of
+    (task index, start site, goal site, WalkPath). Fast (no animation): for studies of the
+    routes alone (``benchmarks/bench_variability.py``)."""
+    spec = ctx.spec
+    here = spec.start
+    st = ctx.workplace.station(here)
+    x, y = float(st.pos[0]), float(st.pos[1])
+    out = []
+    for i, task in enumerate(spec.tasks):
+        if task.kind in ("walk", "carry"):
+            path = plan_task_walk(ctx, i, (x, y), rng, walker)
+            goal = str(task.site)
+            out.append((i, here, goal, path))
+            x, y = (float(v) for v in path.xy[-1])
+            here = goal
+    return out
+
+
+@dataclass
+class WorkingReach:
+    """One reach task laid out at its standing spot (world frame, metres, radians, seconds).
+
+    Attributes:
+        x, y, yaw: where the operator stands and faces during the reach.
+        step_back: metres the operator stepped back from where the walk ended
+            (:mod:`mjwalk.cycle.standoff`), 0 when the reach was clear there.
+        turn: (F, nq) frames of the turn (and step back) towards the target.
+        turn_time: its duration in seconds.
+        frames: (G, nq) frames of the reach, hold and return.
+        error: distance (m) of the hand from its target at the end of the reach.
+        result: the reach model's ReachResult (left arm's for two hands, with both warnings).
+        width: grip distance (m) of a two-handed part, else None.
+        distance: the humanoid's smallest distance (m) to the scene over turn and reach among
+            the close pairs (:meth:`~mjwalk.cycle.standoff.ArmClearance.distance`), ``inf``
+            when clear.
+    """
+
+    x: float
+    y: float
+    yaw: float
+    step_back: float
+    turn: np.ndarray
+    turn_time: float
+    frames: np.ndarray
+    error: float
+    result: ReachResult
+    width: float | None
+    distance: float
+
+
+def _arm_clearance(ctx: CycleContext) -> ArmClearance:
+    if ctx.clearance is None:
+        ctx.clearance = ArmClearance(ctx.model, ctx.jointmap)
+    return ctx.clearance
+
+
+def _reach_task(ctx, task, x, y, yaw, hold, fps, timing, facing=None) -> WorkingReach:
+    """Turn towards the target of a pick/place/fasten ``task`` and reach for it from the spot
+    ``(x, y)`` where the walk ended (facing ``yaw``); when the arm would come closer to the
+    scene than :data:`~mjwalk.cycle.standoff.REACH_CLEARANCE` (or the body touch it), step back
+    from the target during the turn, :data:`~mjwalk.cycle.standoff.STEP_BACK` at a time, until
+    it is clear: the first clear spot whose hand error (m) stays within
+    :data:`~mjwalk.cycle.standoff.REACH_TOLERANCE` (or within the error at the walk's end
+    spot, when that is larger); the clearest such spot when none within
+    :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear. A step back never brings the pelvis
+    closer to an obstacle or the floor's edge than the planner's body radius (or than it was).
+    ``facing``: the stand site's facing (radians), along which shelf work comes in
+    (:func:`_approach`)."""
+    assert task.site is not None  # the spec loader requires a site for reaches
+    site_pos = ctx.workplace.station(task.site).pos
+    back = np.array([x, y]) - _target(ctx, task.kind, site_pos, x, y)[:2]
+    back /= max(float(np.linalg.norm(back)), 1e-9)
+    check = _arm_clearance(ctx)
+    best: WorkingReach | None = None
+    first: WorkingReach | None = None
+    room0 = float(ctx.workplace.walk_clearance(np.array([x, y]))[()])
+    for s in step_back_offsets():
+        xs, ys = float(x + s * back[0]), float(y + s * back[1])
+        room = float(ctx.workplace.walk_clearance(np.array([xs, ys]))[()])
+        if s > 0 and room < min(ctx.spec.radius, room0):
+            continue  # the next walk must start clear of obstacles (the planner's body radius)
+        target = _target(ctx, task.kind, site_pos, xs, ys)
+        # face the target (turning on the spot) before reaching for it
+        d = math.hypot(target[0] - xs, target[1] - ys)
+        face = math.atan2(target[1] - ys, target[0] - xs)
+        if task.hand != "both" and task.kind != "fasten":
+            # shelf work: bring the target ahead of the shoulder
+            side = 1 if task.hand == "left" else -1
+            face -= side * math.asin(min(SHOULDER_OFFSET / d, 0.5))
+        turn, dt = _turn_frames(ctx, x, y, yaw, face, fps, to=(xs, ys))
+        approach = _approach(task.kind, site_pos, xs, ys, facing)
+        q0 = turn[-1]
+        width = None
+        if task.hand == "both":
+            rf, err, res, width = _two_hand_frames(
+                ctx, q0, task, approach, hold, fps, timing=timing
+            )
+        else:
+            arm: Side = "right" if task.hand == "right" else "left"
+            rf, err, res = _reach_frames(ctx, q0, target, approach, hold, fps, arm, timing=timing)
+        dist = check.distance(np.vstack([turn, rf]))
+        cand = WorkingReach(xs, ys, face, float(s), turn, dt, rf, err, res, width, dist)
+        if first is None:
+            first = cand
+        # a step back must not cost the hand its target (beyond REACH_TOLERANCE)
+        if dist == np.inf and err <= max(first.error, REACH_TOLERANCE):
+            return cand
+        if best is None or (dist > best.distance and err <= max(first.error, REACH_TOLERANCE)):
+            best = cand
+    assert best is not None
+    return best
 
 
 # ---------------------------------------------------------------------------- one cycle
@@ -388,7 +640,8 @@ def simulate_cycle(
             (:func:`~mjwalk.timeline.collisions.check_collisions` checks a result later).
 
     Returns:
-        A :class:`CycleResult`: walks, arm motions, task times, cycle time, collisions.
+        A :class:`CycleResult`: walks, arm motions, task times, cycle time, collisions, and the
+        run's operator (``result.operator``, drawn from ``spec.population``; None without one).
 
     Raises:
         PlanningError: a walk cannot be planned (the spec is checked before, so this means an
@@ -399,10 +652,14 @@ def simulate_cycle(
     check_durations(spec.tasks)
     rng = np.random.default_rng(rng)
     # side streams spawned from the run's generator (its own draws, the walks, are unchanged):
-    # the operator (issue 14's population, not yet merged), the task-time factors, the
-    # standing spots (ditto); the same order the population work uses
-    _op_rng, hand_rng, _stand_rng = rng.spawn(3)
+    # the operator, the task-time factors, the standing spots (not yet merged)
+    op_rng, hand_rng, _stand_rng = rng.spawn(3)
     entropy = _entropy(rng)
+    # the run's operator (None without a [population]: the step model's own pace, handling at
+    # the reference adult's pace): their humanoid, their steps, their handling pace
+    walker = spec.population.draw(op_rng) if spec.population is not None else None
+    ctx = operator_context(ctx, walker)
+    pace = 1.0 if walker is None else walker.pace
     wp = ctx.workplace
     here = spec.start
     st = wp.station(here)
@@ -418,7 +675,7 @@ def simulate_cycle(
         if task.kind in ("walk", "carry"):
             goal = task.site
             assert goal is not None  # the spec loader requires a site for walks
-            path = ctx.planner(goal).plan((x, y), rng)
+            path = plan_task_walk(ctx, i, (x, y), rng, walker)
             turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps)
             frames.append(turn)
             t += dt
@@ -445,56 +702,37 @@ def simulate_cycle(
             )
             here = goal
         elif task.kind in ("pick", "place", "fasten"):
-            assert task.site is not None  # the spec loader requires a site for reaches
-            site_pos = wp.station(task.site).pos
-            target = _target(ctx, task.kind, site_pos, x, y)
-            # face the target (turning on the spot) before reaching for it
-            d = math.hypot(target[0] - x, target[1] - y)
-            face = math.atan2(target[1] - y, target[0] - x)
-            if task.hand != "both" and task.kind != "fasten":
-                # shelf work: bring the target ahead of the shoulder
-                side = 1 if task.hand == "left" else -1
-                face -= side * math.asin(min(SHOULDER_OFFSET / d, 0.5))
-            turn, dt = _turn_frames(ctx, x, y, yaw, face, fps)
-            frames.append(turn)
-            t += dt
-            yaw = face
             hold = task.duration if task.duration is not None else DEFAULT_HOLD[task.kind]
             factor = task_factor(hand_rng)  # lognormal, median 1 (mjwalk.cycle.handling)
-            hold *= factor
+            hold *= factor / pace  # the hold, like the reach, at the operator's pace
             case = REACH_CASE[task.kind]
 
             def timing(dist, case=case, factor=factor):
                 return (
-                    reach_duration(dist, None, case) * factor,
-                    reach_duration(dist, None, RETURN_CASE) * factor,
+                    reach_duration(dist, walker, case) * factor,
+                    reach_duration(dist, walker, RETURN_CASE) * factor,
                 )
 
-            approach = _approach(task.kind, site_pos, x, y)
-            q0 = frames[-1][-1]
+            assert task.site is not None  # the spec loader requires a site for reaches
+            r = _reach_task(ctx, task, x, y, yaw, hold, fps, timing, wp.station(here).yaw)
+            x, y, yaw = r.x, r.y, r.yaw
+            frames.append(r.turn)
+            t += r.turn_time
             if task.hand == "both":
-                rf, err, res, width = _two_hand_frames(
-                    ctx, q0, task, approach, hold, fps, timing=timing
-                )
-                if task.kind != "pick":
-                    width = None  # released
-            else:
-                arm: Side = "right" if task.hand == "right" else "left"
-                rf, err, res = _reach_frames(
-                    ctx, q0, target, approach, hold, fps, arm, timing=timing
-                )
-            frames.append(rf)
-            t += len(rf) / fps
+                width = r.width if task.kind == "pick" else None  # released on place/fasten
+            frames.append(r.frames)
+            t += len(r.frames) / fps
             arms.append(
                 ArmRecord(
                     task=i,
                     kind=task.kind,
                     site=task.site,
                     hand=task.hand,
-                    duration=len(rf) / fps,
-                    hand_error=err,
-                    outside=bool(res.outside),
-                    warnings=list(res.warnings),
+                    duration=len(r.frames) / fps,
+                    hand_error=r.error,
+                    outside=bool(r.result.outside),
+                    warnings=list(r.result.warnings),
+                    step_back=r.step_back,
                 )
             )
         elif task.kind == "wait":
@@ -513,7 +751,7 @@ def simulate_cycle(
         t=np.arange(len(qpos)) / fps,
         qpos=qpos,
         scene=str(spec.scene),
-        stature=spec.stature,
+        stature=ctx.spec.stature,
     )
     timeline.walk = combined_walk([w.path for w in walks])  # drawn into videos
     contacts = collision_report(timeline, data=ctx.scratch()) if collisions else []
@@ -528,6 +766,7 @@ def simulate_cycle(
         cycle_time=t,
         collisions=contacts,
         timeline=timeline if keep_timeline else None,
+        operator=walker,
     )
 
 

@@ -5,9 +5,12 @@ Format (every path is relative to the TOML file; lengths in metres, times in sec
     name = "assembly station of agethen2018"   # optional, free text
     scene = "assembly_station.xml"              # required: the MJCF workplace
     start = "stand_rack2"                       # required: standing site where the operator starts
+    takt = 60.0                                 # optional: seconds; the report gives the share
+                                                # of cycles over takt
 
     [humanoid]                                  # optional table
-    stature = 1.75                              # metres, 1.4 to 2.1 (default 1.75)
+    stature = 1.75                              # metres, 1.4 to 2.1 (default 1.75); with a
+                                                # [population] each run's operator's stature
 
     [models]                                    # optional table
     step = "default"                            # "default" or a step-model file
@@ -15,6 +18,10 @@ Format (every path is relative to the TOML file; lengths in metres, times in sec
 
     [walking]                                   # optional table
     radius = 0.25                               # body radius for walking, metres (0.1 to 0.6)
+
+    [population]                                # optional: who operates each run
+    mix = { adult = 0.7, older_adult = 0.2, fatigued = 0.1 }   # or walker/figures, see
+                                                # mjwalk.cycle.population
 
     [[task]]                                    # one table per task, in order (at least one)
     kind = "pick"                               # walk | carry | pick | place | fasten | wait
@@ -66,6 +73,7 @@ from pathlib import Path
 import numpy as np
 
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
+from mjwalk.cycle.population import HUMANOID_STATURE_RANGE, Population, parse_population
 from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task
 from mjwalk.errors import CycleSpecError, SceneError
 from mjwalk.world.workplace import Workplace, shared_workplace
@@ -75,7 +83,7 @@ STAND_MAX_Z = 0.05
 #: Farthest horizontal distance from the standing site to a handled site (arm's reach), metres.
 MAX_REACH = 0.9
 #: Allowed humanoid stature, metres.
-STATURE_RANGE = (1.4, 2.1)
+STATURE_RANGE = HUMANOID_STATURE_RANGE
 #: Allowed walking (body) radius, metres.
 RADIUS_RANGE = (0.1, 0.6)
 HANDS = ("left", "right")
@@ -97,7 +105,9 @@ def grip_sites(site: str, hand: str) -> list[tuple[str, str]]:
 #: where ``duration = 1e12`` asked for petabytes.
 MAX_CYCLE_SECONDS = 3600.0
 
-_TOP_KEYS = ("name", "scene", "start", "humanoid", "models", "walking", "task")
+_TOP_KEYS = (
+    "name", "scene", "start", "takt", "humanoid", "models", "walking", "population", "task"
+)  # fmt: skip
 _TABLE_KEYS = {"humanoid": ("stature",), "models": ("step", "reach"), "walking": ("radius",)}
 _TASK_KEYS = {
     "walk": ("kind", "site", "route"),
@@ -366,6 +376,18 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
     radius = BODY_RADIUS
     if "radius" in tables["walking"]:
         radius = check.number(tables["walking"], "radius", *RADIUS_RANGE, "m", "walking")
+    takt = None
+    if "takt" in data:
+        takt = check.number(data, "takt", 0.0, MAX_CYCLE_SECONDS, "s")
+        if takt <= 0.0:
+            raise check.fail(f"key 'takt' at the top level must be > 0 s, got {takt:g}", key="takt")
+    population: Population | None = None
+    if "population" in data:
+
+        def pop_fail(msg: str, key: str) -> CycleSpecError:
+            return check.fail(msg, "population", None, key)
+
+        population = parse_population(data["population"], stature, pop_fail)
     base = path.resolve().parent
     models = {}
     for key in ("step", "reach"):
@@ -413,6 +435,8 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         reach_model=models["reach"],
         radius=radius,
         name=name,
+        population=population,
+        takt=takt,
     )
 
 

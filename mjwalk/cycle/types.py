@@ -9,9 +9,11 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
+from mjwalk.gait.walker import Walker
 from mjwalk.plan.walkpath import WalkPath
 
 if TYPE_CHECKING:  # the timeline stage is above this one at run time: no import
+    from mjwalk.cycle.population import Population
     from mjwalk.timeline.collisions import Contact
     from mjwalk.timeline.timeline import Timeline
 
@@ -57,6 +59,9 @@ class CycleSpec:
         reach_model: "default" or a path to a reach-model file.
         tasks: the ordered tasks.
         radius: body radius for walking, metres.
+        population: who operates each run (:mod:`mjwalk.cycle.population`); None: the step
+            model's own pace, handling at the reference adult's pace, the ``stature`` humanoid.
+        takt: the takt time, seconds (None: not given); the report gives P(cycle > takt).
     """
 
     path: Path
@@ -68,6 +73,8 @@ class CycleSpec:
     reach_model: str = "default"
     radius: float = BODY_RADIUS
     name: str = ""
+    population: Population | None = None
+    takt: float | None = None
 
 
 @dataclass
@@ -113,6 +120,8 @@ class ArmRecord:
     Attributes:
         hand_error: distance of the hand from its target at the end of the reach, metres.
         outside: the constraint lay outside the reach model's trained range (see warnings).
+        step_back: metres the operator stepped back from where the walk ended so the arm
+            clears the scene (:mod:`mjwalk.cycle.standoff`); 0 when it was clear there.
     """
 
     task: int
@@ -123,6 +132,7 @@ class ArmRecord:
     hand_error: float
     outside: bool = False
     warnings: list[str] = field(default_factory=list)
+    step_back: float = 0.0
 
 
 @dataclass
@@ -144,6 +154,7 @@ class CycleResult:
         collisions: humanoid-vs-scene contacts (:class:`~mjwalk.timeline.collisions.Contact`),
             if checked.
         timeline: the per-frame humanoid poses (kept only when asked for: it is large).
+        operator: the run's operator, drawn from ``spec.population`` (None without one).
     """
 
     spec: CycleSpec
@@ -156,6 +167,12 @@ class CycleResult:
     collisions: list[Contact] = field(default_factory=list)
     timeline: Timeline | None = None
     entropy: int | list[int] | None = None
+    operator: Walker | None = None
+
+    @property
+    def group(self) -> str:
+        """The operator's group label ("" without a population)."""
+        return "" if self.operator is None else self.operator.group
 
     def walk_lengths(self) -> dict[str, list[float]]:
         """Walk lengths (metres) by route label."""
@@ -171,6 +188,7 @@ class CycleResult:
             "seed": self.seed,
             "entropy": self.entropy,
             "cycle_time": self.cycle_time,
+            "operator": operator_dict(self.operator),
             "walks": [
                 {
                     "route": w.route,
@@ -190,6 +208,21 @@ class CycleResult:
             "max_hand_error": max((a.hand_error for a in self.arms), default=0.0),
             "reach_outside_range": int(sum(a.outside for a in self.arms)),
         }
+
+
+def operator_dict(walker: Walker | None) -> dict | None:
+    """A run's operator as plain data: group, stature (m), speed (m/s), cadence (steps/min),
+    step_width (m or None), pace (speed / reference speed); None without one."""
+    if walker is None:
+        return None
+    return {
+        "group": walker.group,
+        "stature": walker.stature,
+        "speed": walker.speed,
+        "cadence": walker.cadence,
+        "step_width": walker.step_width,
+        "pace": walker.pace,
+    }
 
 
 def walk_samples(results: list[CycleResult]) -> dict[str, np.ndarray]:

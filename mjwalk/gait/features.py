@@ -36,8 +36,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.interpolate import make_interp_spline
-from sklearn.decomposition import PCA
-from sklearn.preprocessing import StandardScaler
 
 from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.errors import MjwalkError
@@ -284,6 +282,9 @@ class StepFeatures:
 
         ``variance=1.0`` keeps every component (exact inverse).
         """
+        from sklearn.decomposition import PCA  # only for fitting (import cost: mjwalk plan)
+        from sklearn.preprocessing import StandardScaler
+
         raw = _as_raw(steps_or_raw)
         if raw.shape[0] < 3:
             raise MjwalkError(f"StepFeatures.fit: need at least 3 steps, got {raw.shape[0]}")

@@ -63,7 +63,6 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.linalg import cho_solve, cholesky, solve_triangular
-from scipy.stats import gaussian_kde
 
 from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.conventions import Side
@@ -353,15 +352,18 @@ class StepModel:
     _walker: Walker | None = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        self._kde = {
-            s: gaussian_kde(self.kde_data[s], bw_method=self.kde_factor[s]) for s in _SIDES
-        }
-        # gaussian_kde.resample factors the kernel covariance (SVD) and normalizes the weights
-        # on every call; both are fixed, so they are computed once (see _kde_resample)
+        # scipy.stats.gaussian_kde(data, bw_method=factor) with its uniform weights: kernel
+        # covariance = the data's (unbiased) covariance times factor squared. Its resample
+        # factors that covariance (SVD) and normalizes the weights on every call; both are
+        # fixed, so they are computed here, once (see _kde_resample). Building the kde objects
+        # themselves would import scipy.stats (about 1 s) for every ``mjwalk plan``.
         self._kde_draw = {}
-        for s, kde in self._kde.items():
-            u, sv, _ = np.linalg.svd(kde.covariance)
-            cdf = np.cumsum(kde.weights)
+        for s in _SIDES:
+            data = self.kde_data[s]
+            n = data.shape[1]
+            cov = np.atleast_2d(np.cov(data, rowvar=True, bias=False, aweights=np.full(n, 1 / n)))
+            u, sv, _ = np.linalg.svd(cov * self.kde_factor[s] ** 2)
+            cdf = np.cumsum(np.full(n, 1 / n))
             self._kde_draw[s] = (u * np.sqrt(sv), cdf / cdf[-1])
 
     # -- fitting -----------------------------------------------------------------------------
@@ -425,6 +427,8 @@ class StepModel:
                 raise MjwalkError(
                     f"StepModel.fit: only {len(idx)} {s} steps for a {d}-D KDE; need more data"
                 )
+            from scipy.stats import gaussian_kde  # only for fitting
+
             kde = gaussian_kde(z[idx].T)
             kde_data[s] = z[idx].T.copy()
             kde_factor[s] = float(kde.factor)
@@ -530,7 +534,7 @@ class StepModel:
         factor, cdf = self._kde_draw[side]
         offset = rng.standard_normal((n, factor.shape[0])) @ factor.T
         idx = cdf.searchsorted(rng.random(n), side="right")
-        return self._kde[side].dataset[:, idx].T + offset
+        return self.kde_data[side][:, idx].T + offset
 
     def sample_next(self, prev: StepBatch, n: int, rng: np.random.Generator) -> StepBatch:
         """``n`` successors of every step in ``prev`` (rows i·n .. i·n+n-1 follow ``prev[i]``).

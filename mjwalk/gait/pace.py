@@ -26,7 +26,6 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.stats import trim_mean
 
 from mjwalk.errors import MjwalkError
 from mjwalk.gait.step import Step
@@ -106,6 +105,8 @@ def step_widths(end_xy: np.ndarray, footprint: np.ndarray, stance: np.ndarray) -
 
 
 def _pace(lengths, durations, widths) -> Pace:
+    from scipy.stats import trim_mean  # scipy.stats costs ~1 s to import: only when measuring
+
     lengths, durations, widths = (np.asarray(x, dtype=float) for x in (lengths, durations, widths))
     if lengths.size < 3:
         raise MjwalkError(

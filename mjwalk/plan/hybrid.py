@@ -167,8 +167,39 @@ FAR_FROM = 4.0
 LONG_WALK = 14.0
 
 
+#: A walk longer than this multiple of the obstacle-aware route length from its start to the
+#: goal is a loop, not a variation: people do not walk back around a rack to arrive. The
+#: planner then searches again with fresh samples (up to ``attempts`` searches in all, keeping
+#: the shortest). Walks split into two groups with a gap between them (station cycle, 300 runs,
+#: stand zones: every walk but the loops within 1.2 times its grid-A* length, the loops 1.6-5
+#: times), so any factor in the gap draws the same line; a walk that still loops after every
+#: attempt is returned with ``meta["wandering"]`` set.
+WANDER_FACTOR = 1.5
+
+
 class _Exhausted(PlanningError):
     """The open list ran dry (all sampled continuations blocked): worth a fresh search."""
+
+
+def _goal_discs(discs, goal: np.ndarray) -> np.ndarray:
+    """(k, 3) goal discs (x, y, radius; metres) checked: finite, positive radii, at most
+    :data:`~mjwalk.plan.stepcheck.MAX_GOAL_DISCS`, and the goal itself inside every one (the
+    goal area must not be empty where the walk is aimed)."""
+    arr = np.asarray(discs, dtype=float).reshape(-1, 3) if len(discs) else np.zeros((0, 3))
+    if len(arr) > stepcheck.MAX_GOAL_DISCS:
+        raise PlanningError(
+            f"goal_within: at most {stepcheck.MAX_GOAL_DISCS} discs, got {len(arr)}"
+        )
+    if not np.all(np.isfinite(arr)) or np.any(arr[:, 2] <= 0):
+        raise PlanningError("goal_within: discs are (x, y, radius) with finite x, y and radius > 0")
+    out = np.hypot(arr[:, 0] - goal[0], arr[:, 1] - goal[1]) > arr[:, 2]
+    if out.any():
+        k = int(np.flatnonzero(out)[0])
+        raise PlanningError(
+            f"goal_within: the goal ({goal[0]:.3f}, {goal[1]:.3f}) lies outside disc {k} "
+            f"({arr[k, 0]:.3f}, {arr[k, 1]:.3f}, radius {arr[k, 2]:.3f} m)"
+        )
+    return arr
 
 
 def _to_world(px, py, heading, local: np.ndarray) -> np.ndarray:
@@ -263,6 +294,7 @@ class HybridPlanner:
         attempts: int = 3,
         grid: OccupancyGrid | None = None,
         n_stops: int = 5,
+        goal_within=(),
     ):
         if heuristic not in ("dijkstra", "euclidean"):
             raise PlanningError(f"heuristic must be 'dijkstra' or 'euclidean', not {heuristic!r}")
@@ -273,6 +305,7 @@ class HybridPlanner:
         self.goal_yaw = goal_yaw
         self.goal_yaw_tolerance = goal_yaw_tolerance
         self.tolerance = goal_tolerance
+        self.goal_within = _goal_discs(goal_within, self.goal)
         self.radius = radius
         self.cell = cell
         if heading_bins is None:  # a goal heading needs nodes of other headings kept apart
@@ -347,6 +380,8 @@ class HybridPlanner:
             far_weight=self.far_weight,
             far_from=FAR_FROM,
         )
+        for k, (dx, dy, dr) in enumerate(self.goal_within):
+            par[stepcheck.P_DISC0 + 3 * k : stepcheck.P_DISC0 + 3 * k + 3] = (dx, dy, dr)
         ipar = stepcheck.iparams(
             m=m,
             q=max(2, m // 4),  # samples of a step's first quarter (the foot behind lifts off)
@@ -366,6 +401,7 @@ class HybridPlanner:
             n_stops=self.n_stops,
             max_expansions=self.max_expansions,
             near_goal_expansions=NEAR_GOAL_EXPANSIONS,
+            n_discs=len(self.goal_within),
         )
         return par, ipar
 
@@ -418,19 +454,31 @@ class HybridPlanner:
         times in all; a spent expansion budget ends the planning at once.
         """
         t0 = time.perf_counter()
+        best: WalkPath | None = None
+        bound = None
         for attempt in range(self.attempts):
             try:
                 path = self._plan_once(start, rng, model or self.model)
             except _Exhausted as exc:
                 if attempt == self.attempts - 1:
+                    if best is not None:
+                        break
                     raise PlanningError(
                         f"{exc} ({self.attempts} searches with fresh samples)"
                     ) from None
                 continue
             path.meta["attempts"] = attempt + 1
             path.meta["seconds"] = time.perf_counter() - t0  # all searches, not the last one
-            return path
-        raise AssertionError("unreachable")  # pragma: no cover
+            if bound is None:
+                bound = WANDER_FACTOR * max(float(self.distance(path.xy[0])), self.tolerance)
+            path.meta["wandering"] = bool(path.length > bound)
+            if not path.meta["wandering"]:
+                return path
+            if best is None or path.length < best.length:
+                best = path  # a loop: try fresh samples, keep the shortest
+        assert best is not None  # a search returned, or the last attempt raised
+        best.meta["seconds"] = time.perf_counter() - t0
+        return best
 
     def _plan_once(self, start, rng: np.random.Generator, model) -> WalkPath:
         start_xy, start_yaw = _parse_pose(self.workplace, start)
@@ -446,7 +494,7 @@ class HybridPlanner:
             start_yaw = self.default_heading(start_xy)
         dec = self._decoder(model)
         par, ipar = self._kernel_params()
-        if stepcheck.in_goal(complex(*start_xy), start_yaw, par):
+        if stepcheck.in_goal(complex(*start_xy), start_yaw, par, ipar):
             raise PlanningError(
                 f"start ({start_xy[0]:.3f}, {start_xy[1]:.3f}) already lies in the goal area "
                 f"(within {self.tolerance} m of ({self.goal[0]:.3f}, {self.goal[1]:.3f})): "

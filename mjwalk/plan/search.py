@@ -139,7 +139,7 @@ def search(
         p = pos[nid]
         hd = head[nid]
         key = cell_key(p, hd, par, ipar)
-        done = in_goal(p, hd, par)
+        done = in_goal(p, hd, par, ipar)
         near = n_stop > 0 and abs(p - goal) <= stop_reach
         if key in closed and not done:
             if not near:
@@ -228,7 +228,7 @@ def search(
             e = ends[c]
             if (
                 keys[c] in closed
-                and not in_goal(e, ths[c], par)
+                and not in_goal(e, ths[c], par, ipar)
                 and not (n_stop > 0 and abs(e - goal) <= stop_reach)
             ):
                 continue

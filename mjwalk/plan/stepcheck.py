@@ -62,8 +62,11 @@ from mjwalk._jit import njit
     P_ABDUCTION,
     P_FAR_WEIGHT,
     P_FAR_FROM,
-    N_PARAMS,
+    P_DISC0,  # goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal)
 ) = range(36)
+#: Most discs the goal area can be cut by (:func:`in_goal`); their count is I_N_DISCS.
+MAX_GOAL_DISCS = 6
+N_PARAMS = P_DISC0 + 3 * MAX_GOAL_DISCS
 # Slots of the integer parameter vector.
 (
     I_M,
@@ -81,8 +84,9 @@ from mjwalk._jit import njit
     I_N_STOPS,
     I_MAX_EXPANSIONS,
     I_NEAR_GOAL_EXPANSIONS,
+    I_N_DISCS,
     N_IPARAMS,
-) = range(16)
+) = range(17)
 
 
 def params(**values) -> np.ndarray:
@@ -138,10 +142,17 @@ def cell_key(p, heading, par, ipar):
 
 
 @njit
-def in_goal(p, heading, par):
-    """Whether a node at world x + iy ``p`` facing ``heading`` (radians) ends the walk."""
+def in_goal(p, heading, par, ipar):
+    """Whether a node at world x + iy ``p`` facing ``heading`` (radians) ends the walk: within
+    the tolerance of the goal, within each of the I_N_DISCS goal discs (x, y, radius at
+    P_DISC0 + 3k: e.g. the places from which the work there is within reach) and, with a goal
+    yaw, facing it within its tolerance."""
     if abs(p - complex(par[P_GOAL_X], par[P_GOAL_Y])) > par[P_TOLERANCE]:
         return False
+    for k in range(ipar[I_N_DISCS]):
+        j = P_DISC0 + 3 * k
+        if abs(p - complex(par[j], par[j + 1])) > par[j + 2]:
+            return False
     goal_yaw = par[P_GOAL_YAW]
     if math.isnan(goal_yaw):
         return True
@@ -367,7 +378,7 @@ def check_steps(
                 continue
         end = loc[m - 1] * rot + p
         th = fr + yaws.imag
-        if closing and not in_goal(end, th, par):  # a closing step must end the walk
+        if closing and not in_goal(end, th, par, ipar):  # a closing step must end the walk
             continue
         # walked length and heuristic
         if ipar[I_CHORD]:

@@ -14,7 +14,6 @@ from dataclasses import dataclass
 
 import mujoco
 import numpy as np
-from scipy.spatial import ConvexHull, QhullError
 
 #: Angular resolution of the tessellation of curved primitives (segments per full turn).
 _N_AROUND = 128
@@ -125,6 +124,8 @@ def _clip_hull_to_slab(points: np.ndarray, z0: float, z1: float) -> np.ndarray:
     inside = points[(points[:, 2] >= z0) & (points[:, 2] <= z1)]
     if points[:, 2].min() >= z0 and points[:, 2].max() <= z1:
         return points
+    from scipy.spatial import ConvexHull, QhullError  # lazy: ~1 s import
+
     try:
         hull = ConvexHull(points)
     except QhullError:
@@ -196,6 +197,8 @@ def geom_footprint(
     if len(clipped) == 0:
         return None
     xy = clipped[:, :2]
+    from scipy.spatial import ConvexHull, QhullError  # lazy: ~1 s import
+
     try:
         hull = ConvexHull(xy)
         verts = xy[hull.vertices]  # counter-clockwise for 2-D input

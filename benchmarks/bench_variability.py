@@ -1,0 +1,147 @@
+"""How varied mjwalk's walks are, beside real people's (issue 14).
+
+Run: python3 benchmarks/bench_variability.py [--cycles 200] [--data ../shared/data]
+
+1. **Routes T1-T5 as the cycle walks them** (agethen2018 Table 1 layout): the station cycle's
+   walks only (``mjwalk.cycle.simulate.plan_cycle_walks``: the walks ``simulate_cycle`` plans
+   for the same seeds, without animation), route length median, IQR and IQR/median beside the
+   captured figures, and the 99th percentile and maximum of each walk's length over its grid-A*
+   length (wandering: the bound is 1.35). T2 and T3 are walked there and back; in the shipped
+   station their two directions join different stand sites (car 1 -> rack 3 -> car 2, car 1
+   -> rack 1 -> car 3), so the pooled route is bimodal and its IQR measures the scene, not the
+   walkers: each direction is also shown alone.
+2. **Straight walks against capture** (``--data``; skipped without the shared capture): every
+   captured straight walk of the four Bandai styles is walked by the default model conditioned
+   on its style's pace (``capture_pace``: the population that matches the captured walkers),
+   starting in motion when the captured walk does; median time and IQR, capture vs model, per
+   style and pooled.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+from collections import defaultdict
+from pathlib import Path
+
+import numpy as np
+
+from mjwalk.cycle.simulate import plan_cycle_walks, prepare
+from mjwalk.cycle.spec import load_cycle_spec
+
+ROOT = Path(__file__).resolve().parents[1]
+#: agethen2018 Table 1, captured walks: route -> (median length m, IQR m).
+CAPTURED = {
+    "T1": (2.38, 0.21),
+    "T2": (2.25, 0.40),
+    "T3": (3.15, 0.38),
+    "T4": (2.44, 0.34),
+    "T5": (1.07, 0.21),
+}
+LOOP_BOUND = 1.35
+STYLES = ("normal", "masculine", "feminine", "youthful")
+
+
+def _q(x) -> tuple[float, float]:
+    q1, m, q3 = np.percentile(x, [25, 50, 75])
+    return float(m), float(q3 - q1)
+
+
+def route_table(cycles: int, seed: int = 0, walker=None) -> dict:
+    """Per route (and per direction ``T2 a->b``): lengths and length / grid-A* length."""
+    spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
+    ctx = prepare(spec)
+    lengths: dict[str, list[float]] = defaultdict(list)
+    ratios: dict[str, list[float]] = defaultdict(list)
+    for run in range(cycles):
+        rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
+        for i, here, goal, path in plan_cycle_walks(ctx, rng, walker):
+            route = spec.tasks[i].route or f"{here}->{goal}"
+            ratio = path.length / ctx.baseline(here, goal)
+            for key in (route, f"{route} {here}->{goal}"):
+                lengths[key].append(path.length)
+                ratios[key].append(ratio)
+    return {k: (np.array(lengths[k]), np.array(ratios[k])) for k in lengths}
+
+
+def print_routes(table: dict) -> None:
+    print(
+        f"{'route':<34}{'n':>5}{'median':>8}{'IQR':>7}{'IQR/med':>9}{'captured':>10}"
+        f"{'ratio':>7}{'p99/grid':>10}{'max/grid':>10}"
+    )
+    for key in sorted(table):
+        length, ratio = table[key]
+        med, iqr = _q(length)
+        route = key.split()[0]
+        cm, ci = CAPTURED.get(route, (np.nan, np.nan))
+        ours, theirs = iqr / med, ci / cm
+        flag = "" if np.percentile(ratio, 99) <= LOOP_BOUND else "  LOOPS"
+        print(
+            f"{key:<34}{len(length):>5}{med:>8.2f}{iqr:>7.3f}{100 * ours:>8.1f}%"
+            f"{100 * theirs:>9.1f}%{100 * ours / theirs:>6.0f}%"
+            f"{np.percentile(ratio, 99):>10.2f}{ratio.max():>10.2f}{flag}"
+        )
+
+
+def straight_walks(data: Path) -> None:
+    from mjwalk.gait.default import default_model
+    from mjwalk.gait.fidelity import captured_straight_walks, load_capture, model_straight_walks
+    from mjwalk.gait.pace import capture_pace
+    from mjwalk.gait.segment import segment_takes
+    from mjwalk.gait.walker import Walker
+
+    model = default_model(progress=False)
+    print(
+        f"\n{'style':<10}{'walker m/s':>11}{'/min':>7}{'n':>4}{'capture median (IQR) s':>24}"
+        f"{'model median (IQR) s':>22}{'median':>8}{'IQR':>7}"
+    )
+    pooled_c, pooled_m = [], []
+    rng = np.random.default_rng(0)
+    for style in STYLES:
+        takes = load_capture(bvh=str(data / "bandai-walk" / f"*_{style}_*.bvh"))
+        steps, _ = segment_takes(takes)
+        pace = capture_pace(steps)
+        walker = Walker(speed=pace.speed, cadence=pace.cadence, group=style)
+        cw = captured_straight_walks(steps)
+        mw = model_straight_walks(
+            model.for_walker(walker),
+            np.array([w["distance"] for w in cw]),
+            rng,
+            in_motion=np.array([w["in_motion"] for w in cw], dtype=bool),
+        )
+        ct = [w["time"] for w in cw]
+        mt = [w["time"] for w in mw]
+        pooled_c += ct
+        pooled_m += mt
+        _row(style, pace.speed, pace.cadence, ct, mt)
+    _row("pooled", np.nan, np.nan, pooled_c, pooled_m)
+
+
+def _row(name, speed, cadence, ct, mt) -> None:
+    (cm, ci), (mm, mi) = _q(ct), _q(mt)
+    print(
+        f"{name:<10}{speed:>11.3f}{cadence:>7.1f}{len(ct):>4}{cm:>15.2f} ({ci:.2f})"
+        f"{mm:>14.2f} ({mi:.2f}){100 * (mm / cm - 1):>+7.1f}%{100 * mi / ci:>6.0f}%"
+    )
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--cycles", type=int, default=200)
+    ap.add_argument("--seed", type=int, default=0)
+    default_data = Path(os.environ.get("MJWALK_SHARED_DATA", ROOT.parent / "shared" / "data"))
+    ap.add_argument("--data", type=Path, default=default_data)
+    args = ap.parse_args()
+    t0 = time.perf_counter()
+    table = route_table(args.cycles, args.seed)
+    print(f"routes of {args.cycles} station cycles ({time.perf_counter() - t0:.1f} s)")
+    print_routes(table)
+    if (args.data / "bandai-walk").is_dir():
+        straight_walks(args.data)
+    else:
+        print(f"\n(no capture at {args.data}: straight walks skipped)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,464 @@
+"""The operator population of a cycle: who walks each Monte-Carlo run (issue 14, item 2).
+
+A cycle file's optional ``[population]`` table says how the operator of each run is drawn: a
+mixture of named walker presets with shares, per-figure distributions of stature, speed and
+cadence, or one fixed walker. Each run draws one :class:`~mjwalk.gait.walker.Walker` from its own
+random stream (:meth:`Population.draw`), so the draws do not depend on the number of workers.
+
+Format (lengths in metres, speeds in metres per second, cadences in steps per minute)::
+
+    takt = 60.0                 # optional, top level: seconds; the report gives P(cycle > takt)
+
+    [population]                # either a mixture of presets ...
+    mix = { adult = 0.7, older_adult = 0.2, fatigued = 0.1 }
+
+    [population]                # ... or one walker (a preset's typical figures) ...
+    walker = "adult"
+
+    [population]                # ... or figures, each a plain number or a distribution
+    group = "night shift"       # label in the reports (default: the walker preset, else
+                                # "population")
+    walker = "older_adult"      # optional base: figures not given are this preset's means
+    stature = { dist = "normal", mean = 1.72, sd = 0.09 }
+    speed = { dist = "truncnorm", mean = 1.3, sd = 0.2, min = 0.8, max = 1.8 }
+    cadence = { dist = "lognormal", median = 110.0, cv = 0.08 }   # or mean = .., sd = ..
+    step_width = 0.10           # optional, fixed (default: the step model's, scaled by stature)
+
+``mix``: preset names of :data:`mjwalk.gait.walker.PRESETS` (adult, older_adult, elderly,
+fatigued, brisk) with positive relative shares (normalised to sum to 1); each group draws every
+figure from its preset's normal distribution (mean, between-person SD). ``mix`` stands alone in the
+table. Distributions (``dist``): ``"fixed"`` (``value``), ``"normal"`` (``mean``, ``sd``),
+``"truncnorm"`` (``mean``, ``sd`` of the untruncated normal and ``min`` and/or ``max``) and
+``"lognormal"`` (``median`` and ``cv``, or ``mean`` and ``sd`` of the variable itself; optional
+``min``/``max``). Without a stature figure (no ``mix``, no ``walker``, no ``stature``) the
+operator has the ``[humanoid]`` stature.
+
+Every draw is truncated to the human ranges (:data:`RANGES`: the
+:class:`~mjwalk.gait.walker.Walker` checks, and the humanoid's statures) by inverse-CDF sampling,
+so no run fails on an implausible operator; a distribution that puts less than
+:data:`MIN_MASS` of its draws inside those ranges is refused when the cycle file is read.
+Statures are drawn to the centimetre (the humanoid is built per centimetre).
+
+Speed and cadence are not independent: speed is step length times cadence, and mjwalk takes the
+two factors, step length and cadence, to vary independently between people. Then the logarithms
+of speed and cadence correlate with ``rho = cv_cadence / cv_speed`` (capped at 1), and the step
+length's between-person coefficient of variation is ``sqrt(cv_speed**2 - cv_cadence**2)``:
+for the adult preset (speed 1.38 +- 0.17 m/s, cadence 113 +- 8 steps/min) rho = 0.58 and the step
+length varies by about 10 %, where independent speed and cadence draws would give 14 % and
+operators with 0.95 m steps at 1.73 m stature. The pair is drawn through a Gaussian copula with
+that rho (:meth:`OperatorGroup.speed_cadence_rho`), so each figure keeps its own distribution.
+Stature is drawn independently of both (an ASSUMPTION: the step model already widens the step
+with stature, :meth:`~mjwalk.gait.model.StepModel.for_walker`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.special import ndtr, ndtri
+from scipy.stats import truncnorm
+
+from mjwalk.errors import CycleSpecError
+from mjwalk.gait.walker import CADENCE_RANGE, PRESETS, SPEED_RANGE, Walker
+from mjwalk.gait.walker import STATURE_RANGE as WALKER_STATURE_RANGE
+
+#: Statures the humanoid is built for, metres (the ``[humanoid]`` stature's range too).
+HUMANOID_STATURE_RANGE = (1.4, 2.1)
+#: Where drawn figures are truncated: the Walker's human ranges, statures also to the humanoid's.
+RANGES: dict[str, tuple[float, float]] = {
+    "stature": (
+        max(WALKER_STATURE_RANGE[0], HUMANOID_STATURE_RANGE[0]),
+        min(WALKER_STATURE_RANGE[1], HUMANOID_STATURE_RANGE[1]),
+    ),
+    "speed": SPEED_RANGE,
+    "cadence": CADENCE_RANGE,
+}
+UNITS = {"stature": "m", "speed": "m/s", "cadence": "steps/min"}
+FIGURES = ("stature", "speed", "cadence")
+#: A distribution must put at least this share of its draws inside the human range (else its
+#: mean or sd is most likely in the wrong unit); checked when the cycle file is read.
+MIN_MASS = 0.01
+#: Statures are drawn to this resolution (m): the humanoid is rebuilt per value.
+STATURE_STEP = 0.01
+#: The group label of per-figure draws without a preset or a ``group``.
+POPULATION_GROUP = "population"
+DISTS = ("fixed", "normal", "truncnorm", "lognormal")
+_POP_KEYS = ("mix", "walker", "group", "stature", "speed", "cadence", "step_width")
+_DIST_KEYS = {
+    "fixed": ("dist", "value"),
+    "normal": ("dist", "mean", "sd"),
+    "truncnorm": ("dist", "mean", "sd", "min", "max"),
+    "lognormal": ("dist", "median", "cv", "mean", "sd", "min", "max"),
+}
+
+
+@dataclass(frozen=True)
+class Distribution:
+    """One figure's distribution, truncated to ``[lo, hi]``.
+
+    Attributes:
+        kind: "fixed", "normal", "truncnorm" or "lognormal".
+        mu, sigma: the normal's mean and sd (lognormal: of the logarithm; fixed: the value, 0).
+        lo, hi: truncation bounds in the figure's unit (always within :data:`RANGES`).
+    """
+
+    kind: str
+    mu: float
+    sigma: float
+    lo: float
+    hi: float
+
+    @property
+    def _log(self) -> bool:
+        return self.kind == "lognormal"
+
+    def _ab(self) -> tuple[float, float]:
+        f = math.log if self._log else float
+        return (f(self.lo) - self.mu) / self.sigma, (f(self.hi) - self.mu) / self.sigma
+
+    def ppf(self, u: float) -> float:
+        """The value at quantile ``u`` (0-1) of the truncated distribution."""
+        if self.kind == "fixed" or self.sigma == 0.0:
+            return float(self.mu)
+        a, b = self._ab()
+        z = _truncnorm_ppf(u, a, b)
+        x = self.mu + self.sigma * z
+        return float(np.clip(math.exp(x) if self._log else x, self.lo, self.hi))
+
+    def mass(self) -> float:
+        """Share of the untruncated distribution inside ``[lo, hi]``."""
+        if self.kind == "fixed" or self.sigma == 0.0:
+            return 1.0 if self.lo <= self.mu <= self.hi else 0.0
+        a, b = self._ab()
+        return float(ndtr(b) - ndtr(a))
+
+    def moments(self) -> tuple[float, float]:
+        """Mean and standard deviation of the truncated distribution (figure's unit)."""
+        if self.kind == "fixed" or self.sigma == 0.0:
+            return float(self.mu), 0.0
+        a, b = self._ab()
+        if not self._log:
+            m, v = truncnorm.stats(a, b, loc=self.mu, scale=self.sigma, moments="mv")
+            return float(m), float(math.sqrt(v))
+
+        # E[exp(k X)] of the truncated normal X: closed form (raw moments of a lognormal
+        # restricted to [lo, hi])
+        def raw(k: int) -> float:
+            s = self.sigma
+            num = ndtr(b - k * s) - ndtr(a - k * s)
+            return math.exp(k * self.mu + 0.5 * k * k * s * s) * num / (ndtr(b) - ndtr(a))
+
+        m1, m2 = raw(1), raw(2)
+        return m1, math.sqrt(max(m2 - m1 * m1, 0.0))
+
+    def cv(self) -> float:
+        """Coefficient of variation of the untruncated distribution (0 for a fixed figure)."""
+        if self.kind == "fixed" or self.sigma == 0.0:
+            return 0.0
+        if self._log:
+            return math.sqrt(math.expm1(self.sigma**2))
+        return self.sigma / abs(self.mu) if self.mu != 0.0 else math.inf
+
+    def describe(self, unit: str = "") -> str:
+        """Short text, e.g. ``normal(1.38, 0.17) m/s in 0.3-2.5``."""
+        if self.kind == "fixed":
+            return f"{self.mu:g} {unit}".strip()
+        if self._log:
+            cv = math.sqrt(math.expm1(self.sigma**2))
+            head = f"lognormal(median {math.exp(self.mu):.3g}, cv {cv:.2f})"
+        else:
+            head = f"{self.kind}({self.mu:.3g}, {self.sigma:.3g})"
+        return f"{head} {unit} in {self.lo:g}-{self.hi:g}".replace("  ", " ")
+
+
+def _truncnorm_ppf(u: float, a: float, b: float) -> float:
+    """Quantile ``u`` of the standard normal truncated to ``[a, b]`` (inverse CDF; the upper
+    tail through the mirror image, where the lower tail's probabilities keep their precision)."""
+    if a > 0.0:
+        return -_truncnorm_ppf(1.0 - u, -b, -a)
+    pa, pb = float(ndtr(a)), float(ndtr(b))
+    return float(np.clip(ndtri(pa + u * (pb - pa)), a, b))
+
+
+def fixed(value: float) -> Distribution:
+    """A figure that does not vary."""
+    return Distribution("fixed", float(value), 0.0, float(value), float(value))
+
+
+@dataclass(frozen=True)
+class OperatorGroup:
+    """One group of the workforce: its share and the distribution of each figure.
+
+    Attributes:
+        name: the label in reports (preset name, ``group`` or "population").
+        share: the group's share of the runs (the groups' shares sum to 1).
+        stature, speed, cadence: the figures' distributions (m, m/s, steps/min).
+        step_width: fixed step width (m) or None (the step model's, scaled by stature).
+    """
+
+    name: str
+    share: float
+    stature: Distribution
+    speed: Distribution
+    cadence: Distribution
+    step_width: float | None = None
+
+    def speed_cadence_rho(self) -> float:
+        """Correlation of the speed and cadence draws (Gaussian copula): ``cv_cadence /
+        cv_speed`` capped at 1, from step length and cadence varying independently between
+        people (module docstring); 0 when either figure is fixed."""
+        cs, cc = self.speed.cv(), self.cadence.cv()
+        if cs == 0.0 or cc == 0.0:
+            return 0.0
+        return min(cc / cs, 1.0)
+
+    def describe(self) -> dict[str, str | float | None]:
+        return {
+            "group": self.name,
+            "share": self.share,
+            **{f: getattr(self, f).describe(UNITS[f]) for f in FIGURES},
+            "speed_cadence_rho": round(self.speed_cadence_rho(), 3),
+            "step_width": self.step_width,
+        }
+
+
+@dataclass(frozen=True)
+class Population:
+    """The operators of a cycle's runs: groups with shares (one group for a fixed walker or
+    per-figure distributions)."""
+
+    groups: tuple[OperatorGroup, ...]
+
+    def draw(self, rng: np.random.Generator) -> Walker:
+        """One operator: the group by its share, then each figure at a quantile of its
+        truncated distribution: stature at an independent uniform quantile, speed and cadence
+        at quantiles correlated by :meth:`OperatorGroup.speed_cadence_rho` (Gaussian copula).
+        Four uniforms from ``rng`` in every case. Stature is rounded to :data:`STATURE_STEP`."""
+        u = rng.random(4)
+        cum = np.cumsum([g.share for g in self.groups])
+        k = min(int(np.searchsorted(cum, u[0] * cum[-1], side="right")), len(self.groups) - 1)
+        g = self.groups[k]
+        lo, hi = RANGES["stature"]
+        stature = round(g.stature.ppf(float(u[1])) / STATURE_STEP) * STATURE_STEP
+        rho = g.speed_cadence_rho()
+        z_speed, z_other = ndtri(u[2:4])
+        u_cadence = float(ndtr(rho * z_speed + math.sqrt(max(1.0 - rho * rho, 0.0)) * z_other))
+        return Walker(
+            stature=float(np.clip(round(stature, 2), lo, hi)),
+            speed=g.speed.ppf(float(u[2])),
+            cadence=g.cadence.ppf(u_cadence),
+            step_width=g.step_width,
+            group=g.name,
+        )
+
+    @property
+    def group_names(self) -> list[str]:
+        return [g.name for g in self.groups]
+
+    def describe(self) -> list[dict[str, str | float | None]]:
+        """The groups as plain data (for the report)."""
+        return [g.describe() for g in self.groups]
+
+
+# ------------------------------------------------------------------------------ parsing
+
+#: ``fail(message, key)`` returns the CycleSpecError to raise (the spec loader's, which adds the
+#: file and the key's line).
+Fail = Callable[[str, str], CycleSpecError]
+
+
+def _default_fail(msg: str, key: str) -> CycleSpecError:
+    exc = CycleSpecError(msg)
+    exc.key = key
+    return exc
+
+
+def _num(value, where: str, key: str, fail: Fail) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float) or not math.isfinite(value):
+        raise fail(f"{where} must be a finite number, got {value!r}", key)
+    return float(value)
+
+
+def _preset(name, where: str, key: str, fail: Fail):
+    if not isinstance(name, str) or name not in PRESETS:
+        raise fail(f"{where}: unknown walker preset {name!r} (known: {', '.join(PRESETS)})", key)
+    return PRESETS[name]
+
+
+def _check_range(value: float, figure: str, where: str, key: str, fail: Fail) -> float:
+    lo, hi = RANGES[figure]
+    if not lo <= value <= hi:
+        raise fail(
+            f"{where} = {value:g} {UNITS[figure]} is outside the human range {lo:g}-{hi:g}", key
+        )
+    return value
+
+
+def parse_distribution(value, figure: str, fail: Fail = _default_fail) -> Distribution:
+    """A figure of ``[population]``: a plain number (fixed) or a ``{dist = ...}`` table."""
+    where = f"population.{figure}"
+    if not isinstance(value, dict):
+        v = _num(value, where, figure, fail)
+        return fixed(_check_range(v, figure, where, figure, fail))
+    if "dist" not in value:
+        raise fail(f"{where}: missing key 'dist' ({' | '.join(DISTS)})", figure)
+    kind = value["dist"]
+    if kind not in DISTS:
+        raise fail(
+            f"{where}.dist: unknown distribution {kind!r} (known: {', '.join(DISTS)})", figure
+        )
+    allowed = _DIST_KEYS[kind]
+    for key in value:
+        if key not in allowed:
+            raise fail(
+                f"{where}: unknown key {key!r} for dist = {kind!r} (valid keys: "
+                f"{', '.join(allowed)})",
+                figure,
+            )
+    nums = {k: _num(v, f"{where}.{k}", figure, fail) for k, v in value.items() if k != "dist"}
+    lo, hi = RANGES[figure]
+
+    def need(*keys: str) -> None:
+        for k in keys:
+            if k not in nums:
+                raise fail(f"{where}: dist = {kind!r} needs key {k!r}", figure)
+
+    if kind == "fixed":
+        need("value")
+        return fixed(_check_range(nums["value"], figure, f"{where}.value", figure, fail))
+    for k in ("min", "max"):
+        if k in nums:
+            _check_range(nums[k], figure, f"{where}.{k}", figure, fail)
+    t_lo, t_hi = nums.get("min", lo), nums.get("max", hi)
+    if t_lo >= t_hi:
+        raise fail(f"{where}: min {t_lo:g} must be below max {t_hi:g}", figure)
+    if kind == "truncnorm" and "min" not in nums and "max" not in nums:
+        raise fail(f"{where}: dist = 'truncnorm' needs 'min' and/or 'max'", figure)
+    for k in ("sd", "cv"):
+        if k in nums and nums[k] <= 0.0:
+            raise fail(
+                f"{where}.{k} must be > 0, got {nums[k]:g} (a plain number gives a fixed figure)",
+                figure,
+            )
+    if kind in ("normal", "truncnorm"):
+        need("mean", "sd")
+        dist = Distribution(kind, nums["mean"], nums["sd"], t_lo, t_hi)
+    else:  # lognormal: median and cv, or mean and sd of the variable
+        if "median" in nums or "cv" in nums:
+            if "mean" in nums or "sd" in nums:
+                raise fail(f"{where}: give either median and cv, or mean and sd", figure)
+            need("median", "cv")
+            median, cv = nums["median"], nums["cv"]
+        else:
+            need("mean", "sd")
+            cv = nums["sd"] / nums["mean"] if nums["mean"] > 0 else -1.0
+            median = nums["mean"] / math.sqrt(1.0 + cv * cv) if cv > 0 else -1.0
+        if median <= 0.0:
+            raise fail(f"{where}: a lognormal's median (or mean) must be > 0", figure)
+        dist = Distribution(kind, math.log(median), math.sqrt(math.log1p(cv * cv)), t_lo, t_hi)
+    mass = dist.mass()
+    if mass < MIN_MASS:
+        raise fail(
+            f"{where}: only {100 * mass:.2g} % of the distribution lies within "
+            f"{t_lo:g}-{t_hi:g} {UNITS[figure]} (the human range or min/max); check its "
+            "figures and unit",
+            figure,
+        )
+    return dist
+
+
+def preset_group(name: str, share: float = 1.0) -> OperatorGroup:
+    """The group of a :data:`PRESETS` entry: each figure normal(mean, sd), truncated."""
+    p = PRESETS[name]
+    figs = {}
+    for f in FIGURES:
+        mean, sd = getattr(p, f)
+        lo, hi = RANGES[f]
+        figs[f] = Distribution("normal", mean, sd, lo, hi) if sd > 0 else fixed(mean)
+    return OperatorGroup(name, share, step_width=p.step_width, **figs)
+
+
+def parse_population(table, humanoid_stature: float, fail: Fail = _default_fail) -> Population:
+    """The :class:`Population` of a ``[population]`` table (format in the module docstring).
+
+    Args:
+        table: the parsed TOML table.
+        humanoid_stature: the ``[humanoid]`` stature (m), used when no figure gives one.
+        fail: builds the error to raise from a message and the offending key.
+
+    Raises:
+        CycleSpecError: unknown keys, presets or distributions; shares that are not positive;
+            sd or cv not positive; figures outside the human ranges; ``mix`` with other keys.
+    """
+    if not isinstance(table, dict):
+        raise fail("'population' must be a table ([population])", "population")
+    for key in table:
+        if key not in _POP_KEYS:
+            raise fail(
+                f"unknown key {key!r} in [population] (valid keys: {', '.join(_POP_KEYS)})", key
+            )
+    if not table:
+        raise fail(
+            '[population] is empty: give mix = {...}, walker = "<preset>" or figures '
+            "(stature, speed, cadence)",
+            "population",
+        )
+    if "mix" in table:
+        others = [k for k in table if k != "mix"]
+        if others:
+            raise fail(
+                f"[population]: 'mix' stands alone (each preset brings its own figures); "
+                f"remove {', '.join(repr(k) for k in others)}",
+                others[0],
+            )
+        mix = table["mix"]
+        if not isinstance(mix, dict) or not mix:
+            raise fail(
+                "population.mix must be a table of preset = share, e.g. "
+                "{ adult = 0.8, older_adult = 0.2 }",
+                "mix",
+            )
+        shares = {}
+        for name, share in mix.items():
+            _preset(name, f"population.mix.{name}", "mix", fail)
+            s = _num(share, f"population.mix.{name}", "mix", fail)
+            if s <= 0.0:
+                raise fail(f"population.mix.{name}: share must be > 0, got {s:g}", "mix")
+            shares[name] = s
+        total = sum(shares.values())
+        return Population(tuple(preset_group(n, s / total) for n, s in shares.items()))
+
+    base = None
+    if "walker" in table:
+        base = _preset(table["walker"], "population.walker", "walker", fail)
+    group = table.get("group", table.get("walker", POPULATION_GROUP))
+    if not isinstance(group, str) or not group.strip():
+        raise fail(f"population.group must be a non-empty string, got {group!r}", "group")
+    figs: dict[str, Distribution] = {}
+    for f in FIGURES:
+        if f in table:
+            figs[f] = parse_distribution(table[f], f, fail)
+        elif base is not None:
+            figs[f] = fixed(getattr(base, f)[0])
+        elif f == "stature":
+            figs[f] = fixed(humanoid_stature)
+        else:
+            raise fail(
+                f"[population] needs {f!r} (a number or a distribution), a walker preset "
+                '(walker = "adult") or a mix',
+                f,
+            )
+    width = base.step_width if base is not None else None
+    if "step_width" in table:
+        width = _num(table["step_width"], "population.step_width", "step_width", fail)
+        if not 0.0 <= width <= 0.4:
+            raise fail(f"population.step_width must be within 0-0.4 m, got {width:g}", "step_width")
+    return Population((OperatorGroup(group.strip(), 1.0, step_width=width, **figs),))
+
+
+def group_shares(population: Population | None) -> Mapping[str, float]:
+    """Group name -> share (empty without a population)."""
+    return {} if population is None else {g.name: g.share for g in population.groups}

@@ -1,0 +1,118 @@
+"""The stand-off of a reach: where the operator stands so the reaching arm clears the scene.
+
+A walk ends anywhere within the planner's goal area around a stand site (0.1 m), and the
+operator then turns to bring the target ahead of the reaching shoulder. Both move the shoulder:
+at rack 1 of the station (turned 20 degrees against the walk T3) a walk that ends a few
+centimetres short of the shelf and the turn (the target on the far side of the body) put the
+left shoulder about 0.2 m from the shelf board's front face. The reach then lifts the hand from
+its relaxed pose (:data:`~mjwalk.arms.kinematics.REST_HAND`, wrist at about 1 m, the board's
+height) almost straight up, a few centimetres in front of the board, and the fingers, pointing
+forward and down, brush its front edge (benchmarks/bench_contacts.py, 300 cycles: 3 runs, thumb
+or index fingertip up to 6.3 mm deep). The planner cannot see this (its clearance is 2-D, a body
+radius around the pelvis); the arm can. So the cycle checks each reach with MuJoCo's collision
+detection, the arm geoms inflated by :data:`REACH_CLEARANCE`, and when it is not clear steps the
+operator back from the target in :data:`STEP_BACK` increments (up to :data:`MAX_STEP_BACK`)
+during the turn, as a worker steps back from a shelf he stands too close to. The cycle's contact
+check (:mod:`mjwalk.timeline.collisions`) is unchanged. Measured (``python
+benchmarks/bench_contacts.py --walks 200 --cycles 1000 --jobs 1``): 29 of 14 000 reaches step
+back, each by 0.02 m; no reach of the 1000 cycles touches the scene.
+
+World frame: metres, z up.
+"""
+
+from __future__ import annotations
+
+import copy
+
+import mujoco
+import numpy as np
+
+from mjwalk.body.humanoid import HUMAN_GROUP, JointMap
+
+#: Clearance (m) the reaching arm (upper arm to fingertips) keeps from every scene geom. The
+#: contacts it prevents were up to 6.3 mm deep (benchmarks/bench_contacts.py, 300 cycles);
+#: 1 cm is a little more than the radius of a fingertip (0.0045 H = 8 mm at H = 1.75 m), so a
+#: finger passing the edge keeps about its own thickness of air.
+REACH_CLEARANCE = 0.01
+#: Increment (m) of the step back from a target whose reach is not clear, and the largest step
+#: back: a short shuffle step (about a third of a walking step of 0.7 m).
+STEP_BACK = 0.02
+MAX_STEP_BACK = 0.20
+#: A step back must leave the hand within this distance (m) of its target (or no farther than
+#: from where the walk ended): the cycle's reaches end on their targets within 1 cm
+#: (tests/test_cycle.py), the accuracy of the reach model fitted to its end points.
+REACH_TOLERANCE = 0.01
+#: Contacts with the floor count only deeper than this (m): the soles rest on it (as in
+#: :func:`mjwalk.timeline.collisions.collision_report`).
+FLOOR_TOLERANCE = 0.01
+
+
+class ArmClearance:
+    """Clearance of humanoid poses from the scene by MuJoCo collision detection, the arm geoms
+    (both arms, upper arm to fingertips) inflated by ``clearance`` metres.
+
+    Args:
+        model: the scene with the humanoid attached (:func:`mjwalk.body.humanoid.attach_humanoid`).
+        jointmap: its joint map (for the humanoid's name prefix).
+        clearance: metres the arms must keep from the scene.
+    """
+
+    def __init__(
+        self, model: mujoco.MjModel, jointmap: JointMap, clearance: float = REACH_CLEARANCE
+    ):
+        self.clearance = float(clearance)
+        self.model = copy.deepcopy(model)  # the caller's model keeps its margins
+        self.data = mujoco.MjData(self.model)
+        m = self.model
+        roots = {m.body(f"{jointmap.prefix}upper_arm_{s}").id for s in ("l", "r")}
+        arm = np.zeros(m.ngeom, dtype=bool)
+        for g in range(m.ngeom):
+            b = int(m.geom_bodyid[g])
+            while b > 0 and b not in roots:
+                b = int(m.body_parentid[b])
+            arm[g] = b in roots
+        self.human = m.geom_group == HUMAN_GROUP
+        self.model.geom_margin[arm & self.human] = self.clearance
+        self.floor = np.array(
+            [
+                mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, g) == "floor"
+                or m.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
+                for g in range(m.ngeom)
+            ]
+        )
+
+    def distance(self, qpos: np.ndarray) -> float:
+        """The smallest distance (m) of the humanoid to the scene over the poses ``qpos``
+        (F, nq) among the pairs closer than their margin (an arm geom within ``clearance``,
+        any other humanoid geom overlapping, the floor deeper than
+        :data:`FLOOR_TOLERANCE`); ``inf`` when no pair is that close (the poses are clear).
+        Negative: overlap."""
+        m, d = self.model, self.data
+        best = np.inf
+        for q in np.atleast_2d(qpos):
+            d.qpos[:] = q
+            mujoco.mj_kinematics(m, d)
+            mujoco.mj_collision(m, d)
+            n = d.ncon
+            if n == 0:
+                continue
+            g = np.asarray(d.contact.geom[:n]).astype(int)
+            dist = np.asarray(d.contact.dist[:n])
+            h1, h2 = self.human[g[:, 0]], self.human[g[:, 1]]
+            scene = np.where(h1, g[:, 1], g[:, 0])
+            keep = (h1 != h2) & ~(self.floor[scene] & (dist >= -FLOOR_TOLERANCE))
+            if keep.any():
+                best = min(best, float(dist[keep].min()))
+        return best
+
+    def clear(self, qpos: np.ndarray) -> bool:
+        """True when every pose of ``qpos`` keeps the arms ``clearance`` metres from the scene
+        and nothing else of the humanoid touches it."""
+        return self.distance(qpos) == np.inf
+
+
+def step_back_offsets() -> np.ndarray:
+    """The step-back distances (m) tried in order: 0, :data:`STEP_BACK`, ... up to
+    :data:`MAX_STEP_BACK`."""
+    n = round(MAX_STEP_BACK / STEP_BACK)
+    return np.arange(n + 1) * STEP_BACK

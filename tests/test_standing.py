@@ -1,0 +1,90 @@
+"""Stand zones: walks end where the work is within reach, not on one point (issue 14 item 3)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjwalk.anthropometry import hand_reach
+from mjwalk.cycle.simulate import plan_cycle_walks, prepare
+from mjwalk.cycle.spec import load_cycle_spec
+from mjwalk.cycle.standing import REACH_MARGIN, SIDE_SLACK, ZONE_STEPS, stand_zone
+from mjwalk.errors import PlanningError
+
+
+def test_hand_reach_grows_with_stature_and_lean_and_shrinks_below_the_shoulder():
+    assert hand_reach(1.1, 1.90) > hand_reach(1.1, 1.75) > hand_reach(1.1, 1.60)
+    assert hand_reach(1.1, lean_deg=20.0) > hand_reach(1.1) > hand_reach(1.1, lean_deg=0.0)
+    assert hand_reach(0.8) < hand_reach(1.1)  # a low shelf: the arm goes down, not out
+    assert hand_reach(3.0) == 0.0  # above the fingertips
+    # the arm of a 1.75 m person (Winter: 0.386 H to the grip) plus shoulder and lean
+    assert 0.6 < hand_reach(1.1) < 0.8
+
+
+def test_zone_keeps_every_target_in_reach_and_never_excludes_the_site():
+    """A stand site at the origin facing -y (a shelf ahead): one far target (beyond reach from
+    the site) and one near target, both picked with the left hand."""
+    far = (0.0, -0.9, 1.1)
+    near = (0.1, -0.5, 1.1)
+    zone = stand_zone((0.0, 0.0), [near, far], 0.7, facing=-np.pi / 2, hands=["left", "left"])
+    assert zone.radius == pytest.approx(ZONE_STEPS * 0.7)
+    assert zone.contains((0.0, 0.0))
+    assert not zone.contains((0.0, 0.05))  # farther from the far target than the site
+    r_near = hand_reach(1.1) - REACH_MARGIN
+    assert (0.1, -0.5, r_near) in zone.discs
+    assert not zone.contains((0.0, 0.4))  # beyond half a step
+    # facing -y the walker's left is +x: the left shoulder is in front of a target when the
+    # body stands half a shoulder width to the target's right (-x), not farther
+    slack = SIDE_SLACK * 1.75
+    assert zone.contains((-slack + 0.01, -0.1))
+    assert not zone.contains((-slack - 0.02, -0.1))
+    assert not zone.contains((0.15, -0.1))  # left of both targets: the arm would cross over
+
+
+def test_planner_refuses_goal_discs_that_exclude_the_goal(scenes_dir):
+    from mjwalk.gait.default import default_model
+    from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.world import load_workplace
+
+    wp = load_workplace(scenes_dir / "open_floor.xml")
+    with pytest.raises(PlanningError, match="outside disc 0"):
+        HybridPlanner(wp, (2.0, 0.0), default_model(progress=False), goal_within=[(5.0, 5.0, 0.5)])
+    with pytest.raises(PlanningError, match="radius > 0"):
+        HybridPlanner(wp, (2.0, 0.0), default_model(progress=False), goal_within=[(2, 0, -1)])
+
+
+@pytest.fixture(scope="module")
+def station_walks(scenes_dir):
+    ctx = prepare(load_cycle_spec(scenes_dir / "assembly_station.toml"))
+    walks = []
+    for run in range(200):
+        rng = np.random.default_rng(np.random.SeedSequence([0, run]))
+        walks += plan_cycle_walks(ctx, rng)
+    return ctx, walks
+
+
+def test_station_walks_end_in_their_zones_and_spread_there(station_walks):
+    """Seeded, 200 cycles: every walk ends in its stand zone; the end points of walks to the
+    car spread (standard deviation > 4 cm along the car, where the screws are well within
+    reach)."""
+    ctx, walks = station_walks
+    step = ctx.step_model.pace().step_length
+    ends: dict[str, list] = {}
+    for i, _, goal, path in walks:
+        assert ctx.zone(i, ctx.spec.stature, step).contains(path.xy[-1])
+        ends.setdefault(goal, []).append(path.xy[-1])
+    along_car = np.array(ends["stand_car1"])[:, 0]
+    assert along_car.std() > 0.04
+
+
+@pytest.mark.parametrize("route", ["T2", "T3", "T5"])
+def test_no_wandering(station_walks, route):
+    """Seeded, 200 cycles: the 99th percentile of a route's walk lengths is at most 1.35 times
+    its grid-A* length (issue 14: walks that loop around a rack are wandering, not variance)."""
+    ctx, walks = station_walks
+    ratios = [
+        path.length / ctx.baseline(here, goal)
+        for i, here, goal, path in walks
+        if ctx.spec.tasks[i].route == route
+    ]
+    assert np.percentile(ratios, 99) <= 1.35

@@ -1,0 +1,117 @@
+"""The reach's stand-off (issue 17 item 5): an operator standing too close to a shelf steps back
+until the reaching arm clears it, so station cycles have no humanoid-scene contacts."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import mjwalk.cycle.simulate as simulate
+from mjwalk.cycle.simulate import _reach_task, prepare, simulate_cycles
+from mjwalk.cycle.spec import load_cycle_spec
+from mjwalk.cycle.standoff import REACH_CLEARANCE, ArmClearance
+from mjwalk.timeline.collisions import collision_report
+from mjwalk.timeline.timeline import Timeline
+
+#: Where run 42 of ``simulate_cycles(station, 300, seed=0)`` ended its walk T3 to rack 1 before
+#: this fix (world, m): 0.035 m closer to the shelf than the stand site and 0.08 m to its side.
+#: Turned to bring screw 1 ahead of the left shoulder, its relaxed left hand touched the
+#: front edge of ``rack1_shelf`` (thumb tip 3.1 mm deep).
+CLOSE_TO_RACK1 = (-2.6685561, -1.69231075)
+
+
+@pytest.fixture(scope="module")
+def ctx(scenes_dir):
+    return prepare(load_cycle_spec(scenes_dir / "assembly_station.toml"))
+
+
+def _pick(ctx, site: str):
+    return next(t for t in ctx.spec.tasks if t.kind == "pick" and t.site == site)
+
+
+def _timing(dist):
+    return simulate._default_timing(dist)
+
+
+def _reach(ctx, site, xy, yaw):
+    return _reach_task(ctx, _pick(ctx, site), xy[0], xy[1], yaw, 0.4, 30.0, _timing)
+
+
+def _contacts(ctx, frames):
+    tl = Timeline(
+        model=ctx.model,
+        jointmap=ctx.jointmap,
+        fps=30.0,
+        t=np.arange(len(frames)) / 30.0,
+        qpos=frames,
+        scene=str(ctx.spec.scene),
+        stature=ctx.spec.stature,
+    )
+    return collision_report(tl)
+
+
+def test_too_close_to_a_shelf_the_operator_steps_back(ctx, monkeypatch):
+    yaw = ctx.workplace.station("stand_rack1").yaw
+    # without the stand-off (no step back allowed) the hand touches the shelf's front edge
+    with monkeypatch.context() as m:
+        m.setattr(simulate, "step_back_offsets", lambda: np.array([0.0]))
+        stay = _reach(ctx, "rack1_screw1", CLOSE_TO_RACK1, yaw)
+    assert stay.step_back == 0.0
+    assert stay.distance < 0.0  # overlapping
+    hits = _contacts(ctx, np.vstack([stay.turn, stay.frames]))
+    assert {c.scene_geom for c in hits} == {"rack1_shelf"}
+    assert all("_l_" in c.body_part for c in hits)  # the left hand's fingers
+    # with it: a short step back, away from the target, and the whole reach clears by 1 cm
+    r = _reach(ctx, "rack1_screw1", CLOSE_TO_RACK1, yaw)
+    assert 0.0 < r.step_back <= 0.06
+    assert r.distance == np.inf
+    assert ArmClearance(ctx.model, ctx.jointmap, REACH_CLEARANCE).clear(
+        np.vstack([r.turn, r.frames])
+    )
+    assert _contacts(ctx, np.vstack([r.turn, r.frames])) == []
+    target = ctx.workplace.station("rack1_screw1").pos[:2]
+    before = math.dist(CLOSE_TO_RACK1, target)
+    assert math.dist((r.x, r.y), target) == pytest.approx(before + r.step_back, abs=1e-9)
+    # the step happens during the turn, which ends where the reach starts
+    root = ctx.jointmap.root
+    np.testing.assert_allclose(r.turn[0, root : root + 2], CLOSE_TO_RACK1, atol=0.02)
+    np.testing.assert_allclose(r.turn[-1, root : root + 2], (r.x, r.y), atol=1e-12)
+    np.testing.assert_allclose(r.frames[0, root : root + 2], (r.x, r.y), atol=1e-12)
+    # and the hand still gets onto the screw
+    assert r.error < 0.01
+
+
+def test_a_clear_reach_stays_where_the_walk_ended(ctx):
+    st = ctx.workplace.station("stand_rack2")
+    r = _reach(ctx, "rack2_screw1", st.pos[:2], st.yaw)
+    assert r.step_back == 0.0
+    assert r.distance == np.inf
+    assert (r.x, r.y) == (float(st.pos[0]), float(st.pos[1]))
+
+
+def test_arm_clearance_measures_the_gap(ctx):
+    """The clearance check reports the true gap (m) when it is below its margin."""
+    yaw = ctx.workplace.station("stand_rack1").yaw
+    r = _reach(ctx, "rack1_screw1", CLOSE_TO_RACK1, yaw)  # clear by 1 cm after the step back
+    frames = np.vstack([r.turn, r.frames])
+    wide = ArmClearance(ctx.model, ctx.jointmap, 0.3)
+    gap = wide.distance(frames)
+    assert REACH_CLEARANCE <= gap < 0.3  # measured: 0.12 m (the step back changed the reach)
+    assert not wide.clear(frames)
+    assert ArmClearance(ctx.model, ctx.jointmap, REACH_CLEARANCE).distance(frames) == np.inf
+    assert not ctx.model.geom_margin.any()  # the cycle's own model keeps its margins
+
+
+def test_station_runs_that_touched_rack1_are_contact_free(scenes_dir):
+    """Runs 42, 202 and 284 of 300 (seed 0) touched rack1_shelf with the left thumb or index
+    fingertip (up to 6.3 mm deep) while picking rack1_screw1 before the stand-off."""
+    res = simulate_cycles(
+        scenes_dir / "assembly_station.toml", runs=300, seed=0, only=[42, 202, 284]
+    )
+    assert [r.run for r in res] == [42, 202, 284]
+    for r in res:
+        assert r.collisions == [], (r.run, r.collisions[:3])
+        assert max(a.hand_error for a in r.arms) < 0.01
+        assert all(0.0 <= a.step_back <= 0.2 for a in r.arms)
