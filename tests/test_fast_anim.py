@@ -399,3 +399,19 @@ def test_broad_phase_skips_clear_frames():
     floorish = m.geom_type == mujoco.mjtGeom.mjGEOM_PLANE
     assert not candidate_frames(m, tl.qpos, human, floorish, 0.01).any()
     assert collision_report(tl) == collision_report(tl, broad_phase=False) == []
+
+
+@pytest.mark.parametrize("x", [2.0, 2.6, 20.0])
+def test_arm_clearance_distance_same_with_broad_phase(x):
+    """The reach's clearance check (arm geoms with a margin) finds the same smallest distance
+    with and without the broad phase: near the box and bar, and clear of them (inf)."""
+    from mjwalk.cycle.standoff import ArmClearance
+
+    spec = mujoco.MjSpec.from_string(SCENE.format(x=x, y=0.3))
+    tl = timeline_from_walk(synthetic_walk(n_steps=6), spec)
+    check = ArmClearance(tl.model, tl.jointmap, clearance=0.05)
+    for part in (tl.qpos, tl.qpos[::7], tl.qpos[-5:]):
+        full = check.distance(part, broad_phase=False)
+        assert check.distance(part) == full
+    if x < 10:
+        assert np.isfinite(check.distance(tl.qpos, broad_phase=False))
