@@ -478,6 +478,7 @@ class HybridPlanner:
                 best = path  # a loop: try fresh samples, keep the shortest
         assert best is not None  # a search returned, or the last attempt raised
         best.meta["seconds"] = time.perf_counter() - t0
+        best.meta["searches"] = self.attempts
         return best
 
     def _plan_once(self, start, rng: np.random.Generator, model) -> WalkPath:
