@@ -270,20 +270,16 @@ def legs_from_walk(
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
 
     def repitch(s_: str, dp: np.ndarray) -> None:
-        # lower the ``s_`` foot's pitch by dp (n,) radians about its heel (toes up) or ball:
-        # on the floor about its footprint's pivot, in the air about the same point of the
-        # foot; the toes keep their angle to the floor while the heel is up
+        # lower the ``s_`` foot's pitch by dp (n,) radians: on the floor about its footprint's
+        # pivot (the heel while toes up, the ball while heel up), in the air by the same
+        # motion of the ankle relative to the foot, as if it stood on a footprint under it
+        # (pivot_ankle is continuous through the flat foot: a pivot switched by the pitch's
+        # sign would move an airborne ankle by centimetres where the pitch crosses zero); the
+        # toes keep their angle to the floor while the heel is up
         p0, p1 = pitch[s_], pitch[s_] - dp
-        lever = np.where(p0 <= 0, ball_offset(geom), -geom.foot_back)
-        off = []
-        for q in (p0, p1):
-            c, si = np.cos(q), np.sin(q)
-            off.append((-(lever * c + ah * si), ah * c - lever * si))
+        virtual = np.column_stack([np.zeros((n, 2)), fyaw[s_]])
+        moved = ankle[s_] + pivot_ankle(virtual, p1, geom) - pivot_ankle(virtual, p0, geom)
         g = ground[s_]
-        head = np.column_stack([np.cos(fyaw[s_]), np.sin(fyaw[s_])])
-        moved = ankle[s_].copy()
-        moved[:, :2] += (off[1][0] - off[0][0])[:, None] * head
-        moved[:, 2] += off[1][1] - off[0][1]
         moved[g] = pivot_ankle(print_[s_][g], p1[g], geom)
         toe[s_] += np.minimum(p0, 0.0) - np.minimum(p1, 0.0)
         ankle[s_], pitch[s_] = moved, p1
