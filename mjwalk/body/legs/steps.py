@@ -228,11 +228,17 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
         knots.append(1.0)
         dpos.append(pivot_ankle(land, land_p, geom)[0])
         dpit.append(land_p)
-        # the reference at the knots (toe-off and landing extrapolate the first/last sample)
+        # the reference at the knots; the toe-off knot (the last pre-swing sample) lies before
+        # the first swing sample: extrapolated linearly with the reference's velocity there (the
+        # first sample's value would offset the whole reference by one sample's motion, and the
+        # foot would move back by it right after toe-off)
         rk = np.column_stack([np.interp(knots, phi[jl], ref_pos[:, k]) for k in range(3)])
         rp = np.interp(knots, phi[jl], ref_pit)
         dr = np.gradient(ref_pos, phi[jl], axis=0) if len(jl) > 1 else np.zeros((1, 3))
         dq = np.gradient(ref_pit, phi[jl]) if len(jl) > 1 else np.zeros(1)
+        lead = float(phi[jl[0]]) - knots[0]
+        rk[0] -= lead * dr[0]
+        rp[0] -= lead * dq[0]
         sp = CubicSpline(knots, np.array(dpos) - rk, bc_type=((1, v0 - dr[0]), (1, -dr[-1])))
         dp0 = (p_to[0] - p_to[1]) / h
         spp = CubicSpline(knots, np.array(dpit) - rp, bc_type=((1, dp0 - dq[0]), (1, -dq[-1])))
