@@ -211,9 +211,12 @@ def legs_from_walk(
         )
         z_flat = height_for_knee(idx, st, ankle[st][idx], knee_st)
         # --- swing foot (A9)
-        pos, p_sw, toe_sw, yw = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
+        pos, p_sw, toe_sw, yw, phi_to = swing_foot(
+            fr, phi, idx, z_flat, hip_pos, ref, geom, land_p
+        )
+        contact[idx] = np.where(phi <= phi_to, 2, 0 if st == "l" else 1)
         ankle[sw][idx], pitch[sw][idx], toe[sw][idx], fyaw[sw][idx] = pos, p_sw, toe_sw, yw
-        pre_swing = idx[phi <= TOE_OFF]
+        pre_swing = idx[phi <= phi_to]
         ground[sw][pre_swing], print_[sw][pre_swing] = True, fr.lift
         d_max = geom.span(KNEE_MIN)
         hsw = np.linalg.norm(hip_pos(idx, sw) - pos[:, :2], axis=-1)
