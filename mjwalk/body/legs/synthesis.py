@@ -41,7 +41,6 @@ from mjwalk.body.humanoid import ROM_DEG, leg_geometry
 from mjwalk.body.legs.curves import smoothstep, soft_flat, spread
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
-    ball_offset,
     foot_lowest,
     generic_joint,
     heel_rise,
@@ -211,9 +210,7 @@ def legs_from_walk(
         )
         z_flat = height_for_knee(idx, st, ankle[st][idx], knee_st)
         # --- swing foot (A9)
-        pos, p_sw, toe_sw, yw, phi_to = swing_foot(
-            fr, phi, idx, z_flat, hip_pos, ref, geom, land_p
-        )
+        pos, p_sw, toe_sw, yw, phi_to = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
         contact[idx] = np.where(phi <= phi_to, 2, 0 if st == "l" else 1)
         ankle[sw][idx], pitch[sw][idx], toe[sw][idx], fyaw[sw][idx] = pos, p_sw, toe_sw, yw
         pre_swing = idx[phi <= phi_to]
