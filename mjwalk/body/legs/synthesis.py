@@ -13,11 +13,12 @@ footprint to ``step.foot`` while the other stands on ``step.stance``), with the 
   over the last 20 % of the step the swing leg's length eases into its heel-strike length
   (zero velocity), so the knee does not snap straight at landing.
 * **Swing leg (A9).** Until toe-off (``phi`` = 0.2, double support) the swing foot rolls about
-  its ball (toes flat). Then the swing ankle follows a cubic spline through key positions at
-  ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9: the reference hip/knee angles of that gait-cycle instant
-  placed at the current hip (forward progress and height), kept on the line from the lift-off
-  to the landing footprint, lifted where the foot would touch the floor; zero velocity at the
-  landing (``phi = 1``), heel first.
+  its ball (toes flat); a trailing foot whose heel rise reaches its bound (60 deg) before that
+  lifts off there (the leg could not reach it on the floor). Then the swing ankle follows a
+  cubic spline through key positions at ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9: the reference
+  hip/knee angles of that gait-cycle instant placed at the current hip (forward progress and
+  height), kept on the line from the lift-off to the landing footprint, lifted where the foot
+  would touch the floor; zero velocity at the landing (``phi = 1``), heel first.
 * **Feet.** The foot pitch (toes up +) follows the reference: heel strike and roll-down about
   the heel, flat, heel rise and roll-off about the ball. Pivots stay put on the floor.
 * **IK.** Hip (rotation, flexion, abduction), knee, ankle (flexion, inversion) from an analytic
@@ -52,7 +53,6 @@ from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
 from mjwalk.body.legs.steps import (
     FOOT_FLAT,
-    TOE_OFF,
     landing_pitches,
     stance_angle,
     step_frames,
@@ -170,7 +170,6 @@ def legs_from_walk(
         phase[idx] = phi
         cyc[fr.other][idx], cyc[fr.side][idx] = 0.5 * phi, 0.5 + 0.5 * phi
         sw, st = fr.side, fr.other
-        contact[idx] = np.where(phi <= TOE_OFF, 2, 0 if st == "l" else 1)
         # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch)
         c_st = 0.5 * phi
         p_ref = ref("pitch", c_st)
