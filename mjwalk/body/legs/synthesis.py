@@ -13,11 +13,12 @@ footprint to ``step.foot`` while the other stands on ``step.stance``), with the 
   over the last 20 % of the step the swing leg's length eases into its heel-strike length
   (zero velocity), so the knee does not snap straight at landing.
 * **Swing leg (A9).** Until toe-off (``phi`` = 0.2, double support) the swing foot rolls about
-  its ball (toes flat). Then the swing ankle follows a cubic spline through key positions at
-  ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9: the reference hip/knee angles of that gait-cycle instant
-  placed at the current hip (forward progress and height), kept on the line from the lift-off
-  to the landing footprint, lifted where the foot would touch the floor; zero velocity at the
-  landing (``phi = 1``), heel first.
+  its ball (toes flat); a trailing foot whose heel rise reaches its bound (60 deg) before that
+  lifts off there (the leg could not reach it on the floor). Then the swing ankle follows a
+  cubic spline through key positions at ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9: the reference
+  hip/knee angles of that gait-cycle instant placed at the current hip (forward progress and
+  height), kept on the line from the lift-off to the landing footprint, lifted where the foot
+  would touch the floor; zero velocity at the landing (``phi = 1``), heel first.
 * **Feet.** The foot pitch (toes up +) follows the reference: heel strike and roll-down about
   the heel, flat, heel rise and roll-off about the ball. Pivots stay put on the floor.
 * **IK.** Hip (rotation, flexion, abduction), knee, ankle (flexion, inversion) from an analytic
@@ -41,7 +42,6 @@ from mjwalk.body.humanoid import ROM_DEG, leg_geometry
 from mjwalk.body.legs.curves import smoothstep, soft_flat, spread
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
-    ball_offset,
     foot_lowest,
     generic_joint,
     heel_rise,
@@ -53,7 +53,6 @@ from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
 from mjwalk.body.legs.steps import (
     FOOT_FLAT,
-    TOE_OFF,
     landing_pitches,
     stance_angle,
     step_frames,
@@ -171,7 +170,6 @@ def legs_from_walk(
         phase[idx] = phi
         cyc[fr.other][idx], cyc[fr.side][idx] = 0.5 * phi, 0.5 + 0.5 * phi
         sw, st = fr.side, fr.other
-        contact[idx] = np.where(phi <= TOE_OFF, 2, 0 if st == "l" else 1)
         # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch)
         c_st = 0.5 * phi
         p_ref = ref("pitch", c_st)
@@ -211,9 +209,10 @@ def legs_from_walk(
         )
         z_flat = height_for_knee(idx, st, ankle[st][idx], knee_st)
         # --- swing foot (A9)
-        pos, p_sw, toe_sw, yw = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
+        pos, p_sw, toe_sw, yw, phi_to = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
+        contact[idx] = np.where(phi <= phi_to, 2, 0 if st == "l" else 1)
         ankle[sw][idx], pitch[sw][idx], toe[sw][idx], fyaw[sw][idx] = pos, p_sw, toe_sw, yw
-        pre_swing = idx[phi <= TOE_OFF]
+        pre_swing = idx[phi <= phi_to]
         ground[sw][pre_swing], print_[sw][pre_swing] = True, fr.lift
         d_max = geom.span(KNEE_MIN)
         hsw = np.linalg.norm(hip_pos(idx, sw) - pos[:, :2], axis=-1)
@@ -270,20 +269,16 @@ def legs_from_walk(
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
 
     def repitch(s_: str, dp: np.ndarray) -> None:
-        # lower the ``s_`` foot's pitch by dp (n,) radians about its heel (toes up) or ball:
-        # on the floor about its footprint's pivot, in the air about the same point of the
-        # foot; the toes keep their angle to the floor while the heel is up
+        # lower the ``s_`` foot's pitch by dp (n,) radians: on the floor about its footprint's
+        # pivot (the heel while toes up, the ball while heel up), in the air by the same
+        # motion of the ankle relative to the foot, as if it stood on a footprint under it
+        # (pivot_ankle is continuous through the flat foot: a pivot switched by the pitch's
+        # sign would move an airborne ankle by centimetres where the pitch crosses zero); the
+        # toes keep their angle to the floor while the heel is up
         p0, p1 = pitch[s_], pitch[s_] - dp
-        lever = np.where(p0 <= 0, ball_offset(geom), -geom.foot_back)
-        off = []
-        for q in (p0, p1):
-            c, si = np.cos(q), np.sin(q)
-            off.append((-(lever * c + ah * si), ah * c - lever * si))
+        virtual = np.column_stack([np.zeros((n, 2)), fyaw[s_]])
+        moved = ankle[s_] + pivot_ankle(virtual, p1, geom) - pivot_ankle(virtual, p0, geom)
         g = ground[s_]
-        head = np.column_stack([np.cos(fyaw[s_]), np.sin(fyaw[s_])])
-        moved = ankle[s_].copy()
-        moved[:, :2] += (off[1][0] - off[0][0])[:, None] * head
-        moved[:, 2] += off[1][1] - off[0][1]
         moved[g] = pivot_ankle(print_[s_][g], p1[g], geom)
         toe[s_] += np.minimum(p0, 0.0) - np.minimum(p1, 0.0)
         ankle[s_], pitch[s_] = moved, p1
