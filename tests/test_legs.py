@@ -22,6 +22,7 @@ from mjwalk.body.legs import (
     sagittal_angles,
     winter_reference,
 )
+from mjwalk.body.legs.footcheck import foot_points, stance_drift
 from mjwalk.errors import PlanningError
 from mjwalk.mocap.take import Take
 from mjwalk.plan.synthetic import synthetic_walk
@@ -35,52 +36,6 @@ DATA = Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[2] / "sh
 make_walk = synthetic_walk
 
 
-def _fk_feet(legs, stature=1.75):
-    """Heel and ball world positions (N, 2, 2, 3) [frame, side l/r, heel/ball], foot pitch
-    (N, 2, radians, + toes up) and the lowest foot point (N,) by MuJoCo forward kinematics."""
-    model, jm = humanoid_model(stature)
-    data = mujoco.MjData(model)
-    n = len(legs.t)
-    pts, pitch, low = np.zeros((n, 2, 2, 3)), np.zeros((n, 2)), np.zeros(n)
-    feet = [model.geom(g).id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
-    signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
-    back = leg_geometry(stature).foot_back
-    for i in range(n):
-        q = jm.neutral_qpos(model, stature)
-        q[:3] = legs.root[i]
-        q[3:7] = [np.cos(legs.yaw[i] / 2), 0, 0, np.sin(legs.yaw[i] / 2)]
-        for name, v in legs.angles.items():
-            q[jm.adr(name)] = v[i]
-        data.qpos[:] = q
-        mujoco.mj_kinematics(model, data)
-        for k, s in enumerate("lr"):
-            R = data.xmat[model.body(f"foot_{s}").id].reshape(3, 3)
-            pts[i, k, 0] = data.site_xpos[model.site(f"sole_{s}").id] - back * R[:, 0]
-            pts[i, k, 1] = data.xpos[model.body(f"toes_{s}").id]
-            pitch[i, k] = np.arcsin(R[2, 0])
-        low[i] = min(
-            (data.geom_xpos[g] + (signs * model.geom_size[g]) @ data.geom_xmat[g].reshape(3, 3).T)[
-                :, 2
-            ].min()
-            for g in feet
-        )
-    return pts, pitch, low
-
-
-def stance_drift(walk, pts, pitch, eps=1e-4):
-    """Worst drift (m) of the stance foot's contact point during each step: the heel while the
-    foot is flat or toes-up, the ball while flat or heel-up (both pivots stay put)."""
-    worst = 0.0
-    for st in walk.steps:
-        k = 1 if st.side == "left" else 0  # the stance foot is the other one
-        sl = slice(st.start, st.end + 1)
-        for j, mask in ((0, pitch[sl, k] >= -eps), (1, pitch[sl, k] <= eps)):
-            p = pts[sl, k, j][mask]
-            if len(p):
-                worst = max(worst, np.linalg.norm(p - p.mean(0), axis=1).max() * 2)
-    return worst
-
-
 def _ball_xy(foot):
     from mjwalk.body.legs.kinematics import ball_offset as _ball
 
@@ -92,7 +47,7 @@ def _ball_xy(foot):
 def test_stance_foot_fixed_floor_and_ranges(radius):
     walk = make_walk(n_steps=6, radius=radius)
     legs = legs_from_walk(walk)
-    pts, pitch, low = _fk_feet(legs)
+    pts, pitch, low = foot_points(legs)
     worst = stance_drift(walk, pts, pitch)
     assert worst <= 0.01, f"stance foot drifted {worst * 100:.2f} cm"
     for st in walk.steps:
@@ -295,7 +250,7 @@ def test_feet_stay_above_floor_on_awkward_steps(path):
     floor_tolerance of the collision report is 1 cm)."""
     walk = WalkPath.load(path)
     legs = legs_from_walk(walk)
-    _, _, low = _fk_feet(legs)
+    _, _, low = foot_points(legs)
     assert low.min() >= -0.002, f"foot {-low.min() * 100:.1f} cm below the floor"
     _, jm = humanoid_model()
     for name, v in legs.angles.items():
@@ -370,7 +325,7 @@ def planned_walks(scenes_dir):
         wp = load_workplace(path)
         for walk in plan_walks(wp, start, goal, model, n=5, seed=0):
             legs = legs_from_walk(walk)
-            out.append((path, walk, legs, *_fk_feet(legs)))
+            out.append((path, walk, legs, *foot_points(legs)))
     return out
 
 
@@ -453,7 +408,7 @@ def test_stance_foot_ahead_of_the_hip_keeps_its_place():
     wp = load_workplace(Path(__file__).parents[1] / "scenes" / "corridor.xml")
     par = HybridPlanner(wp, "exit", default_model(progress=False))._kernel_params()[0]
     legs = legs_from_walk(walk)
-    pts, pitch, low = _fk_feet(legs)
+    pts, pitch, low = foot_points(legs)
     refused = []
     for k, st in enumerate(walk.steps):
         sl = slice(st.start, st.end + 1)
@@ -484,7 +439,7 @@ def leg_jump_walks():
     for path in LEG_JUMP_WALKS:
         walk = WalkPath.load(path)
         legs = legs_from_walk(walk)
-        out.append((path.stem, walk, legs, *_fk_feet(legs)))
+        out.append((path.stem, walk, legs, *foot_points(legs)))
     return out
 
 
