@@ -58,7 +58,7 @@ from mjwalk.anthropometry import ROM_DEG, leg_geometry
 from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.errors import InputError, PlanningError
 from mjwalk.gait.features import StepBatch
-from mjwalk.gait.model import POOL_SHARPNESS
+from mjwalk.gait.transition import POOL_SHARPNESS
 from mjwalk.plan import search, stepcheck
 from mjwalk.plan.grid import (
     BODY_RADIUS,
