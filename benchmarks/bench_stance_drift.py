@@ -16,15 +16,16 @@ import sys
 from pathlib import Path
 
 import numpy as np
+from bench_stance_lean import LEG_ROUTES as PLANNED_ROUTES  # tests/test_legs.py's routes
 
 from mjwalk.body.legs import legs_from_walk
+from mjwalk.body.legs.footcheck import foot_points as _fk_feet
+from mjwalk.body.legs.footcheck import stance_drift
 from mjwalk.gait.default import default_model
 from mjwalk.plan.hybrid import plan_walks
 from mjwalk.world import load_workplace
 
 ROOT = Path(__file__).parents[1]
-sys.path.insert(0, str(ROOT / "tests"))
-from test_legs import PLANNED_ROUTES, _fk_feet, stance_drift  # noqa: E402
 
 
 def _load(path: str):

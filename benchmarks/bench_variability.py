@@ -10,7 +10,13 @@ Run: python3 benchmarks/bench_variability.py [--cycles 200] [--data ../shared/da
    station their two directions join different stand sites (car 1 -> rack 3 -> car 2, car 1
    -> rack 1 -> car 3), so the pooled route is bimodal and its IQR measures the scene, not the
    walkers: each direction is also shown alone.
-2. **Straight walks against capture** (``--data``; skipped without the shared capture): every
+2. **Routes with the shipped workforce**: the same table with each run's operator drawn from
+   the station cycle's ``[population]`` (between-person differences: stature, hence reach and
+   stand zone, step length and pace).
+3. **Cycle times for two populations** (``--cycle-runs`` full cycles each, animated, no video):
+   the shipped mixed workforce and an older one (older adults and elderly), P5/P50/P95 and the
+   share over the station's takt with its Wilson 95 % interval (``mjwalk.report``'s figures).
+4. **Straight walks against capture** (``--data``; skipped without the shared capture): every
    captured straight walk of the four Bandai styles is walked by the default model conditioned
    on its style's pace (``capture_pace``: the population that matches the captured walkers),
    starting in motion when the captured walk does; median time and IQR, capture vs model, per
@@ -48,14 +54,17 @@ def _q(x) -> tuple[float, float]:
     return float(m), float(q3 - q1)
 
 
-def route_table(cycles: int, seed: int = 0, walker=None) -> dict:
-    """Per route (and per direction ``T2 a->b``): lengths and length / grid-A* length."""
+def route_table(cycles: int, seed: int = 0, population: bool = False) -> dict:
+    """Per route (and per direction ``T2 a->b``): lengths and length / grid-A* length; with
+    ``population``, each run's operator drawn as ``simulate_cycle`` draws it."""
     spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
     ctx = prepare(spec)
     lengths: dict[str, list[float]] = defaultdict(list)
     ratios: dict[str, list[float]] = defaultdict(list)
     for run in range(cycles):
         rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
+        op_rng = rng.spawn(3)[0]  # simulate_cycle's operator stream
+        walker = spec.population.draw(op_rng) if population and spec.population else None
         for i, here, goal, path in plan_cycle_walks(ctx, rng, walker):
             route = spec.tasks[i].route or f"{here}->{goal}"
             ratio = path.length / ctx.baseline(here, goal)
@@ -82,6 +91,41 @@ def print_routes(table: dict) -> None:
             f"{100 * theirs:>9.1f}%{100 * ours / theirs:>6.0f}%"
             f"{np.percentile(ratio, 99):>10.2f}{ratio.max():>10.2f}{flag}"
         )
+
+
+def cycle_populations(runs: int, seed: int = 0) -> None:
+    """Cycle time P5/P50/P95 and P(cycle > takt) for the shipped workforce and an older one
+    (the station's cycle file with its ``[population]`` table replaced)."""
+    import tempfile
+
+    from mjwalk.cycle.simulate import simulate_cycles
+    from mjwalk.report import over_takt, percentiles
+
+    src = ROOT / "scenes" / "assembly_station.toml"
+    text = src.read_text().replace(
+        'scene = "assembly_station.xml"', f'scene = "{ROOT / "scenes" / "assembly_station.xml"}"'
+    )
+    shipped = "mix = { adult = 0.65, older_adult = 0.15, fatigued = 0.20 }"
+    assert shipped in text, "the shipped [population] changed: update this benchmark"
+    takt = load_cycle_spec(src).takt
+    print(f"\ncycle times, {runs} runs each, takt {takt} s")
+    populations = {
+        "shipped workforce": shipped,
+        "older workforce": "mix = { older_adult = 0.6, elderly = 0.4 }",
+    }
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, table in populations.items():
+            path = Path(tmp) / f"{name.split()[0]}.toml"
+            path.write_text(text.replace(shipped, table))
+            t0 = time.perf_counter()
+            results = simulate_cycles(path, runs, seed=seed, n_jobs=2, collisions=False)
+            ct = percentiles([r.cycle_time for r in results])
+            over = over_takt([r.cycle_time for r in results], float(takt or np.nan))
+            print(
+                f"  {name:<18} P5 {ct['p5']:.1f}  P50 {ct['p50']:.1f}  P95 {ct['p95']:.1f} s;"
+                f"  over takt {100 * over['share']:.0f} % [{100 * over['ci_low']:.0f}-"
+                f"{100 * over['ci_high']:.0f} %]  ({time.perf_counter() - t0:.0f} s)"
+            )
 
 
 def straight_walks(data: Path) -> None:
@@ -130,6 +174,7 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--cycles", type=int, default=200)
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--cycle-runs", type=int, default=100, help="full cycles per population")
     default_data = Path(os.environ.get("MJWALK_SHARED_DATA", ROOT.parent / "shared" / "data"))
     ap.add_argument("--data", type=Path, default=default_data)
     args = ap.parse_args()
@@ -137,6 +182,12 @@ def main() -> None:
     table = route_table(args.cycles, args.seed)
     print(f"routes of {args.cycles} station cycles ({time.perf_counter() - t0:.1f} s)")
     print_routes(table)
+    t0 = time.perf_counter()
+    table = route_table(args.cycles, args.seed, population=True)
+    print(f"\nthe same with the shipped workforce ({time.perf_counter() - t0:.1f} s)")
+    print_routes(table)
+    if args.cycle_runs:
+        cycle_populations(args.cycle_runs, args.seed)
     if (args.data / "bandai-walk").is_dir():
         straight_walks(args.data)
     else:

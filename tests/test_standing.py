@@ -88,3 +88,19 @@ def test_no_wandering(station_walks, route):
         if ctx.spec.tasks[i].route == route
     ]
     assert np.percentile(ratios, 99) <= 1.35
+
+
+def test_wandering_walks_are_planned_again(scenes_dir, monkeypatch):
+    """A walk longer than WANDER_FACTOR times the route is searched again with fresh steps; when
+    every attempt wanders the shortest is returned, marked."""
+    import mjwalk.plan.hybrid as hybrid
+    from mjwalk.gait.default import default_model
+    from mjwalk.world import load_workplace
+
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    planner = hybrid.HybridPlanner(wp, "stand_car1", default_model(progress=False))
+    walk = planner.plan("stand_rack2", np.random.default_rng(0))
+    assert walk.meta["wandering"] is False and walk.meta["attempts"] == 1
+    monkeypatch.setattr(hybrid, "WANDER_FACTOR", 0.5)  # every walk "wanders"
+    walk = planner.plan("stand_rack2", np.random.default_rng(0))
+    assert walk.meta["wandering"] is True and walk.meta["searches"] == planner.attempts

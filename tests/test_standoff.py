@@ -8,8 +8,9 @@ import math
 import numpy as np
 import pytest
 
-import mjwalk.cycle.simulate as simulate
-from mjwalk.cycle.simulate import _reach_task, prepare, simulate_cycles
+import mjwalk.cycle.reaching as reaching
+from mjwalk.cycle.reaching import _reach_task
+from mjwalk.cycle.simulate import prepare, simulate_cycles
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.standoff import REACH_CLEARANCE, ArmClearance
 from mjwalk.timeline.collisions import collision_report
@@ -32,7 +33,7 @@ def _pick(ctx, site: str):
 
 
 def _timing(dist):
-    return simulate._default_timing(dist)
+    return reaching._default_timing(dist)
 
 
 def _reach(ctx, site, xy, yaw):
@@ -56,7 +57,7 @@ def test_too_close_to_a_shelf_the_operator_steps_back(ctx, monkeypatch):
     yaw = ctx.workplace.station("stand_rack1").yaw
     # without the stand-off (no step back allowed) the hand touches the shelf's front edge
     with monkeypatch.context() as m:
-        m.setattr(simulate, "step_back_offsets", lambda: np.array([0.0]))
+        m.setattr(reaching, "step_back_offsets", lambda: np.array([0.0]))
         stay = _reach(ctx, "rack1_screw1", CLOSE_TO_RACK1, yaw)
     assert stay.step_back == 0.0
     assert stay.distance < 0.0  # overlapping

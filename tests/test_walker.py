@@ -173,3 +173,31 @@ def test_held_out_style_conditioned_on_its_pace_only(model, bandai_styles, style
     dur = np.round(np.concatenate([x["durations"][sl] for x in walks]) * 120) / 120
     assert ks_2samp([s.length for s in steady], length).statistic <= 0.15
     assert ks_2samp([s.duration for s in steady], dur).statistic <= 0.15
+
+
+def test_validate_cli_for_a_walker(shared_data, tmp_path, capsys):
+    """`mjwalk validate --against GLOB --speed V --cadence C --json FILE`: the report keeps its
+    layout, says which walker the model was conditioned on and both paces."""
+    import json
+
+    from mjwalk.cli import main
+
+    out = tmp_path / "fidelity.json"
+    glob = str(shared_data / "bandai-walk" / "dataset-2_walk_normal_00[1-4].bvh")
+    code = main(
+        ["validate", "--against", glob, "--speed", "1.15", "--cadence", "109", "--json", str(out)]
+    )
+    assert code == 0
+    report = json.loads(out.read_text())
+    assert {"steps", "straight_walks", "initiation", "pace"} <= set(report)
+    assert report["model"]["walker"]["speed"] == pytest.approx(1.15)
+    assert report["pace"]["model"]["speed"] == pytest.approx(1.15, rel=0.05)
+    assert "pace of the capture" in capsys.readouterr().out
+
+
+def test_plan_cli_rejects_a_walker_outside_human_ranges(capsys):
+    from mjwalk.cli import main
+
+    code = main(["plan", "station", "--from", "stand_rack2", "--to", "stand_car1", "--speed", "7"])
+    assert code == 2
+    assert "speed 7 is outside the human range" in capsys.readouterr().err

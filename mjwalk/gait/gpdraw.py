@@ -1,4 +1,5 @@
-"""Successor draws of a :class:`~mjwalk.gait.model.TransitionGP`, compiled (:mod:`mjwalk._jit`).
+"""Successor draws of a :class:`~mjwalk.gait.transition.TransitionGP`, compiled
+(:mod:`mjwalk._jit`).
 
 The planner draws ten successors of one to a few predecessors at a time, thousands of times per
 second; as NumPy calls the draw is a dozen small operations whose overhead outweighs their

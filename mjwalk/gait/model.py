@@ -55,21 +55,19 @@ from __future__ import annotations
 
 import sys
 import time
-import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.linalg import cho_solve, cholesky, solve_triangular
 
 from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.conventions import Side
 from mjwalk.errors import MjwalkError, ModelFileError
-from mjwalk.gait import gpdraw
 from mjwalk.gait.features import StepBatch, StepFeatures, raw_features, side_array
 from mjwalk.gait.step import Step
+from mjwalk.gait.transition import TransitionGP
 from mjwalk.gait.walker import Walker
 
 if TYPE_CHECKING:
@@ -85,225 +83,8 @@ MIN_STEPS = 10
 
 #: Fewest transitions into a gait termination, per side, for which a stop GP is fitted.
 MIN_STOP_PAIRS = 20
-#: Sharpness of the choice of residual pool (module doc, step 4): inducing input j is drawn
-#: with probability ∝ k(x, z_j)^POOL_SHARPNESS. Measured on the default model: the nearest pool
-#: alone (sharpness -> inf) made the corridor's sharp turns fail (door->exit: 4 of 10 seeds of
-#: 25 walks), proportional to k (1) mixed regimes again (sway KS vs all Bandai 0.16); 10 gives
-#: 0 of 10 and KS length/duration/sway 0.066/0.079/0.109 (nearest alone 0.087/0.083/0.099).
-POOL_SHARPNESS = 10.0
 
 _SIDES = ("left", "right")
-
-
-# --------------------------------------------------------------------------------------------
-# Transition GP
-# --------------------------------------------------------------------------------------------
-
-
-@dataclass
-class TransitionGP:
-    """DTC (projected-process) GP predictor from predecessor to successor features.
-
-    Attributes:
-        inducing: (m, d) inducing inputs (k-means centres), standardized features.
-        alpha: (m, d) so that the posterior mean is ``k(x, Z) @ alpha``.
-        w: (m, m) ``K_mm⁻¹ - Σ``; latent variance = C - k W kᵀ.
-        length_scale: (d,) RBF length scales; signal_var C; noise_var σ² (White kernel).
-        res_pool: (m, k, d) residual pool of every inducing input: the residuals y - μ(x) of
-            the k training pairs whose predecessors are nearest to it (module doc, step 4).
-        n_pairs: pairs the posterior is conditioned on; n_hyper: pairs used for the LML fit;
-        lml: log-marginal likelihood of the hyper-parameters on the subset.
-    """
-
-    inducing: np.ndarray
-    alpha: np.ndarray
-    w: np.ndarray
-    length_scale: np.ndarray
-    signal_var: float
-    noise_var: float
-    res_pool: np.ndarray
-    n_pairs: int
-    n_hyper: int
-    lml: float
-
-    def __post_init__(self) -> None:
-        self._zs = self.inducing / self.length_scale
-        self._zs2 = np.einsum("md,md->m", self._zs, self._zs)
-        # For sample(), with the constants folded in: half squared distances
-        # x·(x/2ℓ²) + (-z/ℓ²)·x + z·(z/2ℓ²), kernel rows C·e with e = exp(-half), so the mean is
-        # e @ (C·alpha) and k W kᵀ = e (C²·W) eᵀ; the residual pools flattened for one gather.
-        self._half_inv_l2 = 0.5 / self.length_scale**2
-        self._neg_zs_t = np.ascontiguousarray((-self._zs / self.length_scale).T)
-        self._half_zs2 = 0.5 * self._zs2
-        self._c_alpha = self.signal_var * self.alpha
-        self._c2_w = np.ascontiguousarray(self.signal_var**2 * self.w)
-        self._pool_flat = np.ascontiguousarray(self.res_pool.reshape(-1, self.res_pool.shape[2]))
-        #: the folded arrays as one tuple for the compiled draws (:mod:`mjwalk.gait.gpdraw`)
-        self.kernel = (
-            np.ascontiguousarray(self._neg_zs_t),
-            np.ascontiguousarray(self._half_zs2),
-            np.ascontiguousarray(self._half_inv_l2),
-            np.ascontiguousarray(self._c_alpha),
-            self._c2_w,
-            gpdraw.pack_upper(self._c2_w),
-            float(self.signal_var),
-            self._pool_flat,
-            int(self.res_pool.shape[1]),
-        )
-
-    def kernel_rows(self, x: np.ndarray) -> np.ndarray:
-        """(P, m) signal kernel C·RBF between ``x`` (P, d) and the inducing inputs."""
-        xs = x / self.length_scale
-        sq = np.einsum("pd,pd->p", xs, xs)[:, None] + self._zs2[None, :] - 2.0 * (xs @ self._zs.T)
-        np.maximum(sq, 0.0, out=sq)
-        return self.signal_var * np.exp(-0.5 * sq)
-
-    def _predict(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        k = self.kernel_rows(x)
-        mean = k @ self.alpha
-        var = self.signal_var - np.einsum("pm,pm->p", k @ self.w, k)
-        return mean, np.maximum(var, 0.0), k
-
-    def predict(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Posterior mean (P, d) and latent variance (P,) at predecessor features ``x`` (P, d)."""
-        mean, var, _ = self._predict(x)
-        return mean, var
-
-    def _moments(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """:meth:`predict`'s mean (P, d) and latent variance (P,) (not clipped at 0) with the
-        constants folded in, and the half squared scaled distances h (P, m) to the inducing
-        inputs (k = C·exp(-h)); the dense formulas, equal to :meth:`predict`'s to rounding
-        (compiled: :func:`mjwalk.gait.gpdraw.moments`)."""
-        return gpdraw.moments(np.ascontiguousarray(x, dtype=float), self.kernel)
-
-    def sample(self, x: np.ndarray, n: int, rng: np.random.Generator) -> np.ndarray:
-        """(P, n, d) successor features: n draws for each of the P predecessors.
-
-        y = μ(x) + √v(x)·ε + r, r from the residual pool of an inducing input drawn with
-        probability ∝ k(x, z_j)^POOL_SHARPNESS (module doc). μ and v are :meth:`predict`'s
-        (:meth:`_moments`: the same formulas with the constants folded in, equal to rounding;
-        tests/test_model.py checks them); the pool weights are exp(-POOL_SHARPNESS·(h - min h))
-        for the half squared scaled distances h, that is (k / max k)^POOL_SHARPNESS without an
-        underflow to all-zero weights far from the data. Compiled
-        (:func:`mjwalk.gait.gpdraw.sample`); the random numbers are drawn from ``rng`` as
-        NumPy would: all pool choices (uniform), all pool members, then all normal deviates.
-        """
-        return gpdraw.sample(
-            np.ascontiguousarray(x, dtype=float), int(n), rng, self.kernel, POOL_SHARPNESS
-        )
-
-    @classmethod
-    def fit(
-        cls,
-        x: np.ndarray,
-        y: np.ndarray,
-        *,
-        rng: np.random.Generator,
-        n_hyper: int = 600,
-        n_inducing: int = 400,
-        n_residual: int | None = None,
-    ) -> TransitionGP:
-        """Fit on pairs ``x`` (N, d) -> ``y`` (N, d) (standardized features); see module doc.
-
-        ``n_residual``: residuals pooled per inducing input; None: ``ceil(N / m)``, at least 5.
-        """
-        from scipy.spatial import cKDTree
-        from sklearn.cluster import KMeans
-        from sklearn.exceptions import ConvergenceWarning
-        from sklearn.gaussian_process import GaussianProcessRegressor
-        from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
-
-        n, d = x.shape
-        if n < 5:
-            raise MjwalkError(f"transition GP: need at least 5 step pairs, got {n}")
-        seed = int(rng.integers(2**31 - 1))
-        sub = rng.choice(n, size=min(n_hyper, n), replace=False)
-        kernel = ConstantKernel(1.0, (1e-2, 1e2)) * RBF(np.full(d, 2.0), (1e-2, 1e3)) + WhiteKernel(
-            0.3, (1e-4, 1e1)
-        )
-        gpr = GaussianProcessRegressor(
-            kernel,
-            optimizer=_lbfgs,
-            normalize_y=False,
-            n_restarts_optimizer=0,
-            random_state=seed,
-        )
-        with warnings.catch_warnings():
-            # A length scale at its upper bound just means "this input is irrelevant".
-            warnings.simplefilter("ignore", ConvergenceWarning)
-            gpr.fit(x[sub], y[sub])
-        k = gpr.kernel_
-        c = float(k.k1.k1.constant_value)
-        ls = np.broadcast_to(np.asarray(k.k1.k2.length_scale, dtype=float), (d,)).copy()
-        s2 = float(k.k2.noise_level)
-        lml = float(gpr.log_marginal_likelihood_value_)
-
-        m = min(n_inducing, n)
-        if m < n:
-            km = KMeans(n_clusters=m, n_init=1, max_iter=50, random_state=seed).fit(x)
-            z = km.cluster_centers_
-        else:
-            z = x.copy()
-        proto = cls(
-            inducing=z,
-            alpha=np.zeros((m, d)),
-            w=np.zeros((m, m)),
-            length_scale=ls,
-            signal_var=c,
-            noise_var=s2,
-            res_pool=np.zeros((m, 1, d)),
-            n_pairs=n,
-            n_hyper=len(sub),
-            lml=lml,
-        )
-        kmm = proto.kernel_rows(z)
-        kmm[np.diag_indices(m)] += 1e-6 * c
-        lmm = cholesky(kmm, lower=True)
-        # V = L⁻¹ K_mn in chunks of rows of x (memory: m × N).
-        v = solve_triangular(lmm, proto.kernel_rows(x).T, lower=True)
-        b = np.eye(m) + (v @ v.T) / s2
-        lb = cholesky(b, lower=True)
-        # alpha = L⁻ᵀ B⁻¹ V Y / σ²
-        alpha = solve_triangular(lmm.T, cho_solve((lb, True), v @ y), lower=False) / s2
-        # W = K_mm⁻¹ - Σ = L⁻ᵀ (I - B⁻¹) L⁻¹
-        linv = solve_triangular(lmm, np.eye(m), lower=True)
-        w = linv.T @ (np.eye(m) - cho_solve((lb, True), np.eye(m))) @ linv
-        w = 0.5 * (w + w.T)
-        proto.alpha = alpha
-        proto.w = w
-        resid = y - proto.predict(x)[0]
-        k_res = min(n, n_residual or max(5, -(-n // m)))
-        _, near = cKDTree(x / ls).query(z / ls, k=k_res)
-        # a new instance: its constructor derives sample()'s folded arrays from the final ones
-        return replace(proto, res_pool=resid[np.asarray(near).reshape(m, k_res)])
-
-    def arrays(self, prefix: str) -> dict[str, np.ndarray]:
-        return {
-            f"{prefix}inducing": self.inducing,
-            f"{prefix}alpha": self.alpha,
-            f"{prefix}w": self.w,
-            f"{prefix}length_scale": self.length_scale,
-            f"{prefix}res_pool": self.res_pool,
-            f"{prefix}scalars": np.array(
-                [self.signal_var, self.noise_var, self.n_pairs, self.n_hyper, self.lml]
-            ),
-        }
-
-    @classmethod
-    def from_arrays(cls, data, prefix: str) -> TransitionGP:
-        sc = np.asarray(data[f"{prefix}scalars"], dtype=float)
-        return cls(
-            inducing=np.asarray(data[f"{prefix}inducing"], dtype=float),
-            alpha=np.asarray(data[f"{prefix}alpha"], dtype=float),
-            w=np.asarray(data[f"{prefix}w"], dtype=float),
-            length_scale=np.asarray(data[f"{prefix}length_scale"], dtype=float),
-            res_pool=np.asarray(data[f"{prefix}res_pool"], dtype=float),
-            signal_var=float(sc[0]),
-            noise_var=float(sc[1]),
-            n_pairs=int(sc[2]),
-            n_hyper=int(sc[3]),
-            lml=float(sc[4]),
-        )
 
 
 # --------------------------------------------------------------------------------------------
@@ -792,21 +573,6 @@ def concat_batches(batches: Sequence[StepBatch]) -> StepBatch:
             )
         }
     )
-
-
-def _lbfgs(obj_func, initial_theta, bounds):
-    """L-BFGS-B on the negative LML (as sklearn's default) with a bounded iteration budget."""
-    from scipy.optimize import minimize
-
-    res = minimize(
-        obj_func,
-        initial_theta,
-        method="L-BFGS-B",
-        jac=True,
-        bounds=bounds,
-        options={"maxiter": 80},
-    )
-    return res.x, res.fun
 
 
 def _other(side: str) -> str:

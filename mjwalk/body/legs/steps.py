@@ -39,6 +39,9 @@ FOOT_FLAT = STANCE_KEYS[0]
 SWING_TURNED = SWING_KEYS[-1]
 #: Share of the step after toe-off over which the swing foot's toes straighten.
 TOE_STRAIGHTEN = 0.25
+#: Highest heel rise of a foot rolling about its ball (radians, pitch toes down): 60 deg,
+#: within the toes' 70 deg extension (ROM_DEG["toe"]); :func:`heel_rise`'s bound.
+HEEL_RISE_MAX = np.deg2rad(60.0)
 
 
 @dataclass
@@ -155,7 +158,12 @@ def stance_angle(ref: ReferenceGait, name: str, phi, th0, v0, th1, v1) -> np.nda
 
 
 def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, land_p):
-    """Swing foot: ankle (n, 3), pitch (n,), toe angle (n,), yaw (n,) over the step."""
+    """Swing foot: ankle (n, 3), pitch (n,), toe angle (n,), yaw (n,) over the step, and the
+    step phase of its toe-off: :data:`TOE_OFF`, or earlier where the pre-swing heel rise
+    reaches :data:`HEEL_RISE_MAX` and the leg still cannot reach the foot with the
+    reference knee (a trailing foot far behind its hip): the toes leave the floor there and
+    the foot goes with the leg (held on the floor, the stretched leg's knee would straighten
+    until toe-off, then flex to the swing's within a few samples)."""
     ah, L1, L2 = geom.ankle_height, geom.thigh, geom.shank
     lift, land = fr.lift, fr.land
     sw = fr.side
@@ -176,12 +184,17 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     p = np.zeros(len(phi))
     early = phi <= TOE_OFF
     p[early] = roll_pitch(phi[early])
+    phi_to = TOE_OFF
     if not fr.first:
         # pre-swing: the knee follows the reference; the heel rises as far as that needs
         je = np.flatnonzero(early)
         hip = hip_pos(idx[je], sw, z_hip[je])
         knee = np.maximum(ref("knee", 0.5 + 0.5 * phi[je]), float(KNEE_MIN))
-        p[je] = heel_rise(lift, hip, knee, p[je], geom)
+        p[je] = heel_rise(lift, hip, knee, p[je], geom, lo=-HEEL_RISE_MAX)
+        held = np.flatnonzero(p[je] <= -HEEL_RISE_MAX + 1e-9)
+        if len(held) and held[0] >= 1:  # (two samples on the floor give the lift-off velocity)
+            phi_to = float(phi[je[held[0]]])
+            early = phi <= phi_to
     pos[early] = pivot_ankle(lift, p[early], geom)
     late = ~early
     if late.any():
@@ -227,18 +240,24 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
         knots.append(1.0)
         dpos.append(pivot_ankle(land, land_p, geom)[0])
         dpit.append(land_p)
-        # the reference at the knots (toe-off and landing extrapolate the first/last sample)
+        # the reference at the knots; the toe-off knot (the last pre-swing sample) lies before
+        # the first swing sample: extrapolated linearly with the reference's velocity there (the
+        # first sample's value would offset the whole reference by one sample's motion, and the
+        # foot would move back by it right after toe-off)
         rk = np.column_stack([np.interp(knots, phi[jl], ref_pos[:, k]) for k in range(3)])
         rp = np.interp(knots, phi[jl], ref_pit)
         dr = np.gradient(ref_pos, phi[jl], axis=0) if len(jl) > 1 else np.zeros((1, 3))
         dq = np.gradient(ref_pit, phi[jl]) if len(jl) > 1 else np.zeros(1)
+        lead = float(phi[jl[0]]) - knots[0]
+        rk[0] -= lead * dr[0]
+        rp[0] -= lead * dq[0]
         sp = clamped_cubic(knots, np.array(dpos) - rk, v0 - dr[0], -dr[-1], phi[late])
         dp0 = (p_to[0] - p_to[1]) / h
         spp = clamped_cubic(knots, np.array(dpit) - rp, dp0 - dq[0], -dq[-1], phi[late])
         pos[late], p[late] = ref_pos + sp, ref_pit + spp
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[early][-1] if early.any() else 0.0
-    toe = np.where(early, -p, -p_end * (1 - smoothstep((phi - TOE_OFF) / TOE_STRAIGHTEN)))
+    toe = np.where(early, -p, -p_end * (1 - smoothstep((phi - phi_to) / TOE_STRAIGHTEN)))
     if late.any():
         # keep heel, ball and toe tip off the floor (lift the ankle where they would dip); the
         # toe tip is on the toes, bent by the toe angle (flat on the floor at toe-off: a tip
@@ -252,4 +271,4 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
             ball_z + (geom.foot_front - ball) * np.sin(pl + tl),
         ):
             pos[late, 2] += np.maximum(0.0, -(pos[late, 2] + tip))
-    return pos, p, toe, yaw
+    return pos, p, toe, yaw, phi_to

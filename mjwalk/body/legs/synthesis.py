@@ -13,11 +13,12 @@ footprint to ``step.foot`` while the other stands on ``step.stance``), with the 
   over the last 20 % of the step the swing leg's length eases into its heel-strike length
   (zero velocity), so the knee does not snap straight at landing.
 * **Swing leg (A9).** Until toe-off (``phi`` = 0.2, double support) the swing foot rolls about
-  its ball (toes flat). Then the swing ankle follows a cubic spline through key positions at
-  ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9: the reference hip/knee angles of that gait-cycle instant
-  placed at the current hip (forward progress and height), kept on the line from the lift-off
-  to the landing footprint, lifted where the foot would touch the floor; zero velocity at the
-  landing (``phi = 1``), heel first.
+  its ball (toes flat); a trailing foot whose heel rise reaches its bound (60 deg) before that
+  lifts off there (the leg could not reach it on the floor). Then the swing ankle follows a
+  cubic spline through key positions at ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9: the reference
+  hip/knee angles of that gait-cycle instant placed at the current hip (forward progress and
+  height), kept on the line from the lift-off to the landing footprint, lifted where the foot
+  would touch the floor; zero velocity at the landing (``phi = 1``), heel first.
 * **Feet.** The foot pitch (toes up +) follows the reference: heel strike and roll-down about
   the heel, flat, heel rise and roll-off about the ball. Pivots stay put on the floor.
 * **IK.** Hip (rotation, flexion, abduction), knee, ankle (flexion, inversion) from an analytic
@@ -33,18 +34,15 @@ leg cycle 50-100 % (cycle 0 = heel strike of that leg).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, leg_geometry
 from mjwalk.body.legs.curves import smoothstep, soft_flat, spread
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
     LegIKCache,
-    ball_offset,
     foot_lowest,
     generic_joint,
     heel_rise,
@@ -55,7 +53,6 @@ from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
 from mjwalk.body.legs.steps import (
     FOOT_FLAT,
-    TOE_OFF,
     landing_pitches,
     stance_angle,
     step_frames,
@@ -176,7 +173,6 @@ def legs_from_walk(
         phase[idx] = phi
         cyc[fr.other][idx], cyc[fr.side][idx] = 0.5 * phi, 0.5 + 0.5 * phi
         sw, st = fr.side, fr.other
-        contact[idx] = np.where(phi <= TOE_OFF, 2, 0 if st == "l" else 1)
         # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch)
         c_st = 0.5 * phi
         p_ref = ref("pitch", c_st)
@@ -216,9 +212,10 @@ def legs_from_walk(
         )
         z_flat = height_for_knee(idx, st, ankle[st][idx], knee_st)
         # --- swing foot (A9)
-        pos, p_sw, toe_sw, yw = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
+        pos, p_sw, toe_sw, yw, phi_to = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
+        contact[idx] = np.where(phi <= phi_to, 2, 0 if st == "l" else 1)
         ankle[sw][idx], pitch[sw][idx], toe[sw][idx], fyaw[sw][idx] = pos, p_sw, toe_sw, yw
-        pre_swing = idx[phi <= TOE_OFF]
+        pre_swing = idx[phi <= phi_to]
         ground[sw][pre_swing], print_[sw][pre_swing] = True, fr.lift
         d_max = geom.span(KNEE_MIN)
         hsw = np.linalg.norm(hip_pos(idx, sw) - pos[:, :2], axis=-1)
@@ -275,24 +272,18 @@ def legs_from_walk(
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
 
     def repitch(s_: str, dp: np.ndarray) -> None:
-        # lower the ``s_`` foot's pitch by dp (n,) radians about its heel (toes up) or ball:
-        # on the floor about its footprint's pivot, in the air about the same point of the
-        # foot; the toes keep their angle to the floor while the heel is up
-        moved, p1 = np.empty_like(ankle[s_]), np.empty_like(pitch[s_])
-        _repitch_rows(
-            ankle[s_],
-            pitch[s_],
-            toe[s_],
-            fyaw[s_],
-            ground[s_],
-            print_[s_],
-            np.ascontiguousarray(dp, dtype=float),
-            ball_offset(geom),
-            geom.foot_back,
-            ah,
-            moved,
-            p1,
-        )
+        # lower the ``s_`` foot's pitch by dp (n,) radians: on the floor about its footprint's
+        # pivot (the heel while toes up, the ball while heel up), in the air by the same
+        # motion of the ankle relative to the foot, as if it stood on a footprint under it
+        # (pivot_ankle is continuous through the flat foot: a pivot switched by the pitch's
+        # sign would move an airborne ankle by centimetres where the pitch crosses zero); the
+        # toes keep their angle to the floor while the heel is up
+        p0, p1 = pitch[s_], pitch[s_] - dp
+        virtual = np.column_stack([np.zeros((n, 2)), fyaw[s_]])
+        moved = ankle[s_] + pivot_ankle(virtual, p1, geom) - pivot_ankle(virtual, p0, geom)
+        g = ground[s_]
+        moved[g] = pivot_ankle(print_[s_][g], p1[g], geom)
+        toe[s_] += np.minimum(p0, 0.0) - np.minimum(p1, 0.0)
         ankle[s_], pitch[s_] = moved, p1
 
     angles: dict[str, np.ndarray] = {}
@@ -368,34 +359,3 @@ def legs_from_walk(
         phase=phase,
         meta={"stature": stature, "reference": ref.source},
     )
-
-
-@njit
-def _repitch_rows(ankle, pitch, toe, fyaw, ground, prints, dp, ball, back, ah, moved, p1):
-    """The synthesis's ``repitch`` per sample: the pitch lowered by ``dp`` about the heel
-    (toes up) or the ball; a grounded foot (``ground``) pivots on its footprint
-    (:func:`~mjwalk.body.legs.kinematics.pivot_ankle`), one in the air about the same point of
-    the foot. Writes the ankle to ``moved`` (n, 3) and the pitch to ``p1`` (n,); the toe angle
-    (n,) is updated in place (the toes keep their angle to the floor while the heel is up)."""
-    for i in range(ankle.shape[0]):
-        q0 = pitch[i]
-        q1 = q0 - dp[i]
-        p1[i] = q1
-        if ground[i]:
-            lever = ball if q1 <= 0 else -back
-            yaw = prints[i, 2]
-            c, s = math.cos(q1), math.sin(q1)
-            along = lever * (c - 1) + ah * s
-            moved[i, 0] = prints[i, 0] - along * math.cos(yaw)
-            moved[i, 1] = prints[i, 1] - along * math.sin(yaw)
-            moved[i, 2] = ah * c - lever * s
-        else:
-            lever = ball if q0 <= 0 else -back
-            c0, s0 = math.cos(q0), math.sin(q0)
-            c1, s1 = math.cos(q1), math.sin(q1)
-            dx = -(lever * c1 + ah * s1) - -(lever * c0 + ah * s0)
-            dz = (ah * c1 - lever * s1) - (ah * c0 - lever * s0)
-            moved[i, 0] = ankle[i, 0] + dx * math.cos(fyaw[i])
-            moved[i, 1] = ankle[i, 1] + dx * math.sin(fyaw[i])
-            moved[i, 2] = ankle[i, 2] + dz
-        toe[i] += min(q0, 0.0) - min(q1, 0.0)

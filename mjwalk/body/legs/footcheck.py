@@ -1,0 +1,69 @@
+"""Checks of synthesized legs by MuJoCo forward kinematics: where the feet really are.
+
+:func:`foot_points` poses the humanoid frame by frame from a :class:`LegMotion` and reads the
+heel and ball of each foot, the foot pitch and the lowest point of the feet;
+:func:`stance_drift` measures how far a stance foot's contact point moves while it should stay
+planted. Used by the leg tests and the leg benchmarks (one implementation for both).
+
+World frame: metres, z up; pitch in radians, positive toes up.
+"""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from mjwalk.anthropometry import leg_geometry
+from mjwalk.conventions import DEFAULT_STATURE
+
+
+def foot_points(legs, stature: float = DEFAULT_STATURE):
+    """Heel and ball world positions (N, 2, 2, 3) [frame, side l/r, heel/ball], foot pitch
+    (N, 2, radians, + toes up) and the lowest foot point (N,) of ``legs`` (a
+    :class:`~mjwalk.body.legs.synthesis.LegMotion`), by MuJoCo forward kinematics of the
+    humanoid of ``stature`` metres."""
+    from mjwalk.body.humanoid import humanoid_model
+
+    model, jm = humanoid_model(stature)
+    data = mujoco.MjData(model)
+    n = len(legs.t)
+    pts, pitch, low = np.zeros((n, 2, 2, 3)), np.zeros((n, 2)), np.zeros(n)
+    feet = [model.geom(g).id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
+    signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
+    back = leg_geometry(stature).foot_back
+    for i in range(n):
+        q = jm.neutral_qpos(model, stature)
+        q[:3] = legs.root[i]
+        q[3:7] = [np.cos(legs.yaw[i] / 2), 0, 0, np.sin(legs.yaw[i] / 2)]
+        for name, v in legs.angles.items():
+            q[jm.adr(name)] = v[i]
+        data.qpos[:] = q
+        mujoco.mj_kinematics(model, data)
+        for k, s in enumerate("lr"):
+            R = data.xmat[model.body(f"foot_{s}").id].reshape(3, 3)
+            pts[i, k, 0] = data.site_xpos[model.site(f"sole_{s}").id] - back * R[:, 0]
+            pts[i, k, 1] = data.xpos[model.body(f"toes_{s}").id]
+            pitch[i, k] = np.arcsin(R[2, 0])
+        low[i] = min(
+            (data.geom_xpos[g] + (signs * model.geom_size[g]) @ data.geom_xmat[g].reshape(3, 3).T)[
+                :, 2
+            ].min()
+            for g in feet
+        )
+    return pts, pitch, low
+
+
+def stance_drift(walk, pts: np.ndarray, pitch: np.ndarray, eps: float = 1e-4) -> float:
+    """Worst drift (m) of the stance foot's contact point during each step of ``walk`` (a
+    :class:`~mjwalk.plan.walkpath.WalkPath`), from :func:`foot_points`'s ``pts`` and
+    ``pitch``: the heel while the foot is flat or toes-up, the ball while flat or heel-up (both
+    pivots stay put)."""
+    worst = 0.0
+    for st in walk.steps:
+        k = 1 if st.side == "left" else 0  # the stance foot is the other one
+        sl = slice(st.start, st.end + 1)
+        for j, mask in ((0, pitch[sl, k] >= -eps), (1, pitch[sl, k] <= eps)):
+            p = pts[sl, k, j][mask]
+            if len(p):
+                worst = max(worst, float(np.linalg.norm(p - p.mean(0), axis=1).max() * 2))
+    return worst

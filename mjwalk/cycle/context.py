@@ -1,0 +1,170 @@
+"""What a cycle needs that does not change between runs: the scene, the models, the humanoid
+(:class:`CycleContext`, :func:`prepare`), and the humanoid of a run's operator
+(:func:`operator_context`). Metres, seconds."""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import mujoco
+
+from mjwalk.body.humanoid import JointMap, attach_humanoid
+from mjwalk.cycle.standing import StandZone
+from mjwalk.cycle.standoff import ArmClearance
+from mjwalk.cycle.types import (
+    CycleSpec,
+)
+from mjwalk.gait.walker import Walker
+from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
+from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.world.workplace import Workplace, shared_workplace
+
+if TYPE_CHECKING:
+    from mjwalk.gait.model import StepModel  # loaded on first use (prepare)
+
+
+#: The goal area (m) of a planner built without a stand zone (:meth:`CycleContext.planner`);
+#: a cycle's walks end in their stand zones (:mod:`mjwalk.cycle.standing`).
+GOAL_TOLERANCE = 0.1
+
+
+@dataclass
+class CycleContext:
+    """Everything a cycle needs that does not change between runs (built once per process)."""
+
+    spec: CycleSpec
+    workplace: Workplace
+    step_model: StepModel
+    reach_model: object
+    model: mujoco.MjModel
+    jointmap: JointMap
+    planners: dict = field(default_factory=dict)
+    zones: dict = field(default_factory=dict)
+    baselines: dict = field(default_factory=dict)
+    grid: OccupancyGrid | None = None  # the grid-A* occupancy grid, built on first use
+    clearance: ArmClearance | None = None  # the reach's clearance check, built on first use
+    # the scratch MjData and the model it was made for (not copied by dataclasses.replace:
+    # an operator's context has its own humanoid model)
+    _data: tuple[mujoco.MjModel, mujoco.MjData] | None = field(
+        default=None, init=False, repr=False, compare=False
+    )
+
+    def scratch(self) -> mujoco.MjData:
+        """One MjData of ``model`` for this context's forward kinematics (building one takes
+        about a millisecond; every user sets the whole qpos before each use)."""
+        if self._data is None or self._data[0] is not self.model:
+            self._data = (self.model, mujoco.MjData(self.model))
+        return self._data[1]
+
+    def planner(self, goal: str, zone: StandZone | None = None) -> HybridPlanner:
+        """The planner of walks to ``goal``, ending in ``zone`` (:mod:`mjwalk.cycle.standing`;
+        None: within :data:`GOAL_TOLERANCE` of the site). One per goal and zone."""
+        key = (goal, zone)
+        if key not in self.planners:
+            self.planners[key] = HybridPlanner(
+                self.workplace,
+                goal,
+                self.step_model,
+                radius=self.spec.radius,
+                goal_tolerance=GOAL_TOLERANCE if zone is None else zone.radius,
+                goal_within=() if zone is None else zone.discs,
+            )
+        return self.planners[key]
+
+    def zone(self, i: int, stature: float, step_length: float) -> StandZone:
+        """The stand zone of the walk that is task ``i`` (:func:`work_zone`)."""
+        from mjwalk.cycle.walking import work_zone  # the walk stage builds on the context
+
+        key = (i, round(stature, 3), round(step_length, 3))
+        if key not in self.zones:
+            self.zones[key] = work_zone(self, i, stature, step_length)
+        return self.zones[key]
+
+    def baseline(self, a: str, b: str) -> float:
+        if (a, b) not in self.baselines:
+            if self.grid is None:
+                self.grid = occupancy_grid(self.workplace, radius=self.spec.radius)
+            self.baselines[(a, b)] = plan_grid(
+                self.workplace, a, b, radius=self.spec.radius, grid=self.grid
+            ).length
+        return self.baselines[(a, b)]
+
+
+def _pace_of(model):
+    """The step model's pace (:meth:`mjwalk.gait.model.StepModel.pace`), measured once."""
+    return model.pace()
+
+
+def _load_step_model(spec: CycleSpec):
+    if spec.step_model == "default":
+        from mjwalk.gait.default import default_model
+
+        return default_model()
+    from mjwalk.gait.model import StepModel
+
+    return StepModel.load(spec.step_model)
+
+
+def _load_reach_model(spec: CycleSpec):
+    from mjwalk.arms.reach import ReachModel
+
+    if spec.reach_model == "default":
+        from mjwalk.arms.reachdefault import default_reach_model
+
+        return default_reach_model()
+    return ReachModel.load(spec.reach_model)
+
+
+@functools.lru_cache(maxsize=4)
+def _context_cached(spec_key: str) -> CycleContext:
+    from mjwalk.cycle.spec import load_cycle_spec
+
+    return prepare(load_cycle_spec(spec_key))
+
+
+@functools.lru_cache(maxsize=16)
+def _humanoid(scene: str, stature: float) -> tuple[mujoco.MjModel, JointMap]:
+    """The scene with a humanoid of ``stature`` metres (kept for the last 16 statures of this
+    process: a population's statures come in centimetres, attaching one takes about 15 ms)."""
+    return attach_humanoid(Path(scene), stature)
+
+
+def operator_context(ctx: CycleContext, walker: Walker | None) -> CycleContext:
+    """``ctx`` for a run of ``walker``: the humanoid (and ``spec.stature``) of the walker's
+    stature; planners, grid-A* baselines and models are shared with ``ctx``. ``ctx`` itself
+    without a walker or at the spec's stature."""
+    if walker is None or abs(walker.stature - ctx.spec.stature) < 1e-9:
+        return ctx
+    model, jm = _humanoid(str(ctx.spec.scene), round(walker.stature, 3))
+    return replace(
+        ctx,
+        spec=replace(ctx.spec, stature=walker.stature),
+        model=model,
+        jointmap=jm,
+        clearance=_clearance_of(str(ctx.spec.scene), round(walker.stature, 3)),
+    )
+
+
+@functools.lru_cache(maxsize=16)
+def _clearance_of(scene: str, stature: float) -> ArmClearance:
+    """The reach's clearance check (:class:`~mjwalk.cycle.standoff.ArmClearance`) of the
+    humanoid of ``stature`` metres in ``scene`` (kept like :func:`_humanoid`)."""
+    model, jm = _humanoid(scene, stature)
+    return ArmClearance(model, jm)
+
+
+def prepare(spec: CycleSpec) -> CycleContext:
+    """Load the scene, the models and the humanoid of ``spec`` (reused by every run)."""
+    workplace = shared_workplace(spec.scene)
+    model, jm = attach_humanoid(spec.scene, spec.stature)
+    return CycleContext(
+        spec=spec,
+        workplace=workplace,
+        step_model=_load_step_model(spec),
+        reach_model=_load_reach_model(spec),
+        model=model,
+        jointmap=jm,
+    )

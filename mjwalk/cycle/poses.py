@@ -1,0 +1,129 @@
+"""Whole-body poses of a cycle's humanoid: standing, turning on the spot (with a short step
+back), the frames of a walk with its arm swing or carrying posture, and hand positions.
+World frame: metres, z up, yaw in radians from +x; frames at ``fps`` per second."""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import mujoco
+import numpy as np
+
+from mjwalk.body.humanoid import pelvis_height
+from mjwalk.timeline.frames import ease_arms, frames_from_legs, room_and_away, yaw_quat
+
+if TYPE_CHECKING:
+    pass  # loaded on first use (prepare)
+
+from mjwalk.cycle.context import CycleContext
+
+#: Turning speed on the spot (rad/s) and shortest turn (s).
+TURN_SPEED = math.radians(180.0)
+
+
+MIN_TURN = 0.25
+
+
+#: Speed (m/s) of a step back before a reach (:mod:`mjwalk.cycle.standoff`): a slow walk's
+#: speed (about half the preferred 1.3 m/s walking speed; Bohannon 1997).
+STEP_SPEED = 0.6
+
+
+def _standing(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarray:
+    q = ctx.jointmap.neutral_qpos(ctx.model, ctx.spec.stature)
+    r = ctx.jointmap.root
+    q[r : r + 3] = [x, y, pelvis_height(ctx.spec.stature)]
+    q[r + 3 : r + 7] = yaw_quat(np.array([yaw]))[0]
+    return q
+
+
+def _turn_frames(ctx, x, y, yaw0, yaw1, fps, to=None) -> tuple[np.ndarray, float]:
+    """Frames of turning on the spot ``(x, y)`` from ``yaw0`` to ``yaw1`` (radians) at
+    :data:`TURN_SPEED`; with ``to`` = (x1, y1) the pelvis moves there during the turn (a short
+    step back, :mod:`mjwalk.cycle.standoff`; the turn lasts at least as long as that step at
+    :data:`STEP_SPEED`). Returns (frames, duration in seconds)."""
+    d = (yaw1 - yaw0 + math.pi) % (2 * math.pi) - math.pi
+    duration = max(MIN_TURN, abs(d) / TURN_SPEED)
+    x1, y1 = (x, y) if to is None else to
+    shift = math.hypot(x1 - x, y1 - y)
+    if shift > 0.0:
+        duration = max(duration, shift / STEP_SPEED)
+    n = max(1, round(duration * fps))
+    k = np.arange(1, n + 1)
+    frames = np.repeat(_standing(ctx, x, y, yaw0)[None], n, axis=0)
+    r = ctx.jointmap.root
+    frames[:, r] = x + (x1 - x) * k / n
+    frames[:, r + 1] = y + (y1 - y) * k / n
+    frames[:, r + 3 : r + 7] = yaw_quat(yaw0 + d * k / n)
+    return frames, n / fps
+
+
+def hand_points(ctx, qpos: np.ndarray) -> np.ndarray:
+    """(F, 2, 3) world positions (m) of the left and right palm (the hand geoms' centres) in
+    the poses ``qpos`` (F, nq)."""
+    m, jm = ctx.model, ctx.jointmap
+    data = ctx.scratch()
+    ids = [m.body(f"{jm.prefix}hand_{p}").id for p in ("l", "r")]
+    gids = [int(np.flatnonzero(m.geom_bodyid == b)[0]) for b in ids]
+    out = np.empty((len(qpos), 2, 3))
+    for f, q in enumerate(np.atleast_2d(qpos)):
+        data.qpos[:] = q
+        mujoco.mj_kinematics(m, data)
+        out[f] = data.geom_xpos[gids]
+    return out
+
+
+def carry_abduction(ctx, width: float) -> float:
+    """Shoulder abduction (radians, both arms) of the two-handed carrying posture
+    (:data:`~mjwalk.timeline.frames.CARRY_POSE` otherwise) that puts the palms ``width`` metres
+    apart: the hands stay on the grips of the part while it is carried. Solved by Brent's
+    method within the joint's range (clipped to it when the part is wider or narrower than the
+    arms can span)."""
+    from scipy.optimize import brentq
+
+    from mjwalk.timeline.frames import CARRY_POSE
+
+    jm = ctx.jointmap
+    q = jm.neutral_qpos(ctx.model, ctx.spec.stature)
+    for side in "lr":
+        q[jm.adr(f"shoulder_{side}_flex")] = CARRY_POSE["shoulder_flex"]
+        q[jm.adr(f"elbow_{side}")] = CARRY_POSE["elbow"]
+
+    def gap(abd: float) -> float:
+        for side in "lr":
+            q[jm.adr(f"shoulder_{side}_abd")] = abd
+        h = hand_points(ctx, q[None])[0]
+        return float(np.linalg.norm(h[0] - h[1])) - width
+
+    lo, hi = jm.limits("shoulder_l_abd")
+    hi = min(hi, 1.2)
+    if gap(lo) >= 0.0:
+        return float(lo)
+    if gap(hi) <= 0.0:
+        return float(hi)
+    return float(brentq(gap, lo, hi, xtol=1e-4))
+
+
+def _walk_frames(
+    ctx, walk, fps, carry: str | None = None, carry_width: float | None = None
+) -> np.ndarray:
+    """Frames of a walk after its first sample (legs from the footprints, arm swing from the
+    legs). The arms swing fully only in mid-walk: the swing fades in over the first and out
+    over the last :data:`ARM_EASE` seconds, so they are at rest when the operator stops at a
+    rack or the car. ``carry`` ("left"/"right"): that hand holds the part in front of the body
+    (elbow flexed, forearm close to the trunk) instead of swinging; "both": both hands hold a
+    part whose grips are ``carry_width`` metres apart (:func:`carry_abduction`)."""
+    from mjwalk.body.legs import legs_from_walk
+
+    legs = legs_from_walk(walk, ctx.spec.stature)
+    t = np.arange(1, math.floor(walk.duration * fps) + 1) / fps
+    if len(t) == 0 or t[-1] < walk.duration - 1e-9:
+        t = np.append(t, walk.duration)
+    frames = frames_from_legs(ctx.model, ctx.jointmap, legs, t, ctx.spec.stature, "swing", None)
+    jm = ctx.jointmap
+    room, away = room_and_away(ctx.workplace, frames[:, jm.root : jm.root + 2])
+    rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
+    abd = carry_abduction(ctx, carry_width) if carry == "both" and carry_width else None
+    ease_arms(frames, t, walk.duration, jm, rest, room, carry, away, ctx.spec.stature, abd)
+    return frames

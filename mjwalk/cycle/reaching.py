@@ -1,0 +1,282 @@
+"""A cycle's reaches: an arm reach from the standing pose to a pick/place/fasten target (the
+PCA + DCS reach model, alzubi-sommer; the right arm mirrors it), two-handed reaches, the
+pre-grasp approach, and the step back that keeps the arm clear of the scene
+(:mod:`mjwalk.cycle.standoff`). World frame: metres, z up; frames at ``fps`` per second."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import mujoco
+import numpy as np
+
+from mjwalk.conventions import Side, side_prefix
+from mjwalk.cycle.handling import RETURN_CASE, reach_duration
+from mjwalk.cycle.standoff import REACH_TOLERANCE, ArmClearance, step_back_offsets
+
+if TYPE_CHECKING:
+    from mjwalk.arms.reach import ReachResult
+
+from mjwalk.cycle.context import CycleContext
+from mjwalk.cycle.poses import _turn_frames
+
+#: Lateral offset of the shoulder from the pelvis centre (m, stature 1.75 m; Winter: 0.1·H).
+SHOULDER_OFFSET = 0.18
+
+
+#: The hand stops this far above a pick/place site (m) and this far in front of a fasten site.
+PICK_CLEARANCE = 0.06
+
+
+FASTEN_STANDOFF = 0.13
+
+
+#: The pre-grasp point: this far back towards the operator and (shelf work) up from the target.
+APPROACH_BACK = 0.15
+
+
+APPROACH_UP = 0.10
+
+
+def _default_timing(dist: float) -> tuple[float, float]:
+    """The reference adult's reach (MTM-1 case B) and return (case E) times, seconds, for a
+    hand movement of ``dist`` metres."""
+    return reach_duration(dist, None, "B"), reach_duration(dist, None, RETURN_CASE)
+
+
+def _arm_scale(reach_model, stature: float) -> float:
+    """Reach-model arm length over the arm length of a humanoid of ``stature`` metres (1 at
+    the model's stature)."""
+    from mjwalk.arms.kinematics import arm_segment_lengths
+
+    lengths = np.asarray(reach_model.lengths, dtype=float)
+    return float(lengths[:2].sum() / arm_segment_lengths(stature)[:2].sum())
+
+
+def _reach_frames(
+    ctx,
+    q0: np.ndarray,
+    target_w: np.ndarray,
+    approach_w: np.ndarray,
+    hold: float,
+    fps: float,
+    side: Side = "left",
+    timing=None,
+):
+    """Frames of reaching from pose ``q0`` to ``target_w`` (world, m), holding, returning.
+
+    ``timing(distance)`` gives the (reach, return) durations in seconds of a hand movement of
+    ``distance`` metres (rest hand to target); default: the reference adult's MTM-1 case B
+    reach and case E return (:mod:`mjwalk.cycle.handling`).
+
+    The reach model (PCA + DCS) brings the hand from rest to the pre-grasp point
+    ``target_w + approach_w``; the hand then moves straight onto the target along
+    ``-approach_w`` with a minimum-jerk profile (two-link IK, hand direction kept), so it comes
+    over a shelf's front edge instead of through it. The return retraces the motion.
+
+    Returns (frames, hand error in metres, ReachResult of the model part)."""
+    from mjwalk.arms.kinematics import (
+        REST_HAND,
+        arm_frames,
+        arm_joint_angles,
+        min_jerk,
+        two_link_ik,
+    )
+    from mjwalk.arms.reach import reach_for_side
+
+    m, jm, model = ctx.model, ctx.jointmap, ctx.reach_model
+    data = ctx.scratch()
+    data.qpos[:] = q0
+    mujoco.mj_kinematics(m, data)
+    ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id
+    shoulder = data.xpos[ua].copy()
+    frame = data.xmat[ua].reshape(3, 3).copy()
+    # the reach is solved at the reach model's arm lengths; an operator of another stature has
+    # the same arm shape scaled (Winter's shares), so the targets are scaled into the model's
+    # size (directions, hence joint angles, do not change with the scale)
+    scale = _arm_scale(model, ctx.spec.stature)
+    end = frame.T @ (target_w - shoulder) * scale
+    pre = frame.T @ (target_w + approach_w - shoulder) * scale
+    start = np.asarray(REST_HAND, dtype=float)
+    res = reach_for_side(model, pre, side, start)  # a right arm mirrors the left-arm model
+    lengths = model.lengths
+    u_last = res.directions[-1]
+    n_app = max(4, len(res.directions) // 2)
+    app = np.repeat(u_last[None], n_app, axis=0)
+    for k, tau in enumerate(min_jerk(np.linspace(0.0, 1.0, n_app + 1)[1:])):
+        hand = pre + tau * (end - pre)
+        wrist = hand - lengths[2] * u_last[2]
+        app[k, 0], app[k, 1] = two_link_ik(wrist, lengths[0], lengths[1], u_last[0] * lengths[0])
+    directions = np.concatenate([res.directions, app])
+    q = arm_joint_angles(directions, side)
+    if timing is None:
+        timing = _default_timing
+    reach_out, reach_back = timing(float(np.linalg.norm(end - start)) / scale)  # operator's metres
+    n_out = max(2, round(reach_out * fps))
+    out, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
+    data.qpos[:] = out[-1]
+    mujoco.mj_kinematics(m, data)
+    wrist = data.xpos[m.body(f"{jm.prefix}hand_{side_prefix(side)}").id]
+    tip = wrist + frame @ (directions[-1, 2] * lengths[2] / scale)  # the operator's hand
+    error = float(np.linalg.norm(tip - target_w))
+    n_hold = max(0, round(hold * fps))
+    n_back = max(1, round(reach_back * fps))
+    back = out[::-1][np.linspace(0, n_out - 1, n_back).round().astype(int)]
+    back = np.vstack([back[1:], q0[None]])
+    frames = np.vstack([out, np.repeat(out[-1:], n_hold, axis=0), back])
+    return frames, error, res
+
+
+def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None):
+    """A two-handed reach (``hand = "both"``): the left arm to the grip site ``<site>_left``, the
+    right arm (the mirrored model) to ``<site>_right``, at the same time, holding and returning
+    together. Returns (frames, the larger hand error in metres, the left arm's ReachResult with
+    both arms' warnings, the grip distance in metres)."""
+    from mjwalk.cycle.spec import grip_sites
+
+    wp = ctx.workplace
+    parts = {}
+    # Both hands of a bimanual reach start and arrive together (Kelso, Southard & Goodman 1979,
+    # Science 203: 1029-1031): the second arm takes the first arm's durations.
+    first: list[tuple[float, float]] = []
+
+    def shared(dist: float) -> tuple[float, float]:
+        if not first:
+            first.append(timing(dist) if timing is not None else _default_timing(dist))
+        return first[0]
+
+    for side_name, name in grip_sites(task.site, "both"):
+        side: Side = "right" if side_name == "right" else "left"
+        grip = np.asarray(wp.station(name).pos, dtype=float)
+        parts[side] = (
+            grip,
+            *_reach_frames(ctx, q0, grip, approach, hold, fps, side, timing=shared),
+        )
+    (gl, fl, el, rl), (gr, fr, er, rr) = parts["left"], parts["right"]
+    frames = fl.copy()
+    moved = np.any(fr != q0[None], axis=0)  # the right arm's joints
+    frames[:, moved] = fr[:, moved]
+    rl.warnings = list(rl.warnings) + [w for w in rr.warnings if w not in rl.warnings]
+    rl.outside = bool(rl.outside or rr.outside)
+    return frames, max(el, er), rl, float(np.linalg.norm(gl - gr))
+
+
+def _approach(
+    kind: str, site_pos: np.ndarray, x: float, y: float, facing: float | None = None
+) -> np.ndarray:
+    """Pre-grasp offset (world, m): back towards the operator, and up for shelf work. Shelf
+    work (pick, place) at a stand site facing ``facing`` (radians from +x) comes in along the
+    site's facing, out of the shelf's opening, wherever in the stand zone the operator stands
+    (towards the operator, an oblique approach swept the fingers across the rack's frame)."""
+    if facing is not None and kind != "fasten":
+        d = -np.array([math.cos(facing), math.sin(facing)])
+    else:
+        d = np.array([x, y]) - site_pos[:2]
+        d /= max(np.linalg.norm(d), 1e-9)
+    up = 0.0 if kind == "fasten" else APPROACH_UP
+    return np.r_[APPROACH_BACK * d, up]
+
+
+def _target(ctx, kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndarray:
+    if kind == "fasten":  # stop in front of the surface, towards the operator
+        d = np.array([x, y]) - site_pos[:2]
+        d /= max(np.linalg.norm(d), 1e-9)
+        return site_pos + np.r_[FASTEN_STANDOFF * d, 0.0]
+    return site_pos + np.array([0.0, 0.0, PICK_CLEARANCE])
+
+
+@dataclass
+class WorkingReach:
+    """One reach task laid out at its standing spot (world frame, metres, radians, seconds).
+
+    Attributes:
+        x, y, yaw: where the operator stands and faces during the reach.
+        step_back: metres the operator stepped back from where the walk ended
+            (:mod:`mjwalk.cycle.standoff`), 0 when the reach was clear there.
+        turn: (F, nq) frames of the turn (and step back) towards the target.
+        turn_time: its duration in seconds.
+        frames: (G, nq) frames of the reach, hold and return.
+        error: distance (m) of the hand from its target at the end of the reach.
+        result: the reach model's ReachResult (left arm's for two hands, with both warnings).
+        width: grip distance (m) of a two-handed part, else None.
+        distance: the humanoid's smallest distance (m) to the scene over turn and reach among
+            the close pairs (:meth:`~mjwalk.cycle.standoff.ArmClearance.distance`), ``inf``
+            when clear.
+    """
+
+    x: float
+    y: float
+    yaw: float
+    step_back: float
+    turn: np.ndarray
+    turn_time: float
+    frames: np.ndarray
+    error: float
+    result: ReachResult
+    width: float | None
+    distance: float
+
+
+def _arm_clearance(ctx: CycleContext) -> ArmClearance:
+    if ctx.clearance is None:
+        ctx.clearance = ArmClearance(ctx.model, ctx.jointmap)
+    return ctx.clearance
+
+
+def _reach_task(ctx, task, x, y, yaw, hold, fps, timing, facing=None) -> WorkingReach:
+    """Turn towards the target of a pick/place/fasten ``task`` and reach for it from the spot
+    ``(x, y)`` where the walk ended (facing ``yaw``); when the arm would come closer to the
+    scene than :data:`~mjwalk.cycle.standoff.REACH_CLEARANCE` (or the body touch it), step back
+    from the target during the turn, :data:`~mjwalk.cycle.standoff.STEP_BACK` at a time, until
+    it is clear: the first clear spot whose hand error (m) stays within
+    :data:`~mjwalk.cycle.standoff.REACH_TOLERANCE` (or within the error at the walk's end
+    spot, when that is larger); the clearest such spot when none within
+    :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear. A step back never brings the pelvis
+    closer to an obstacle or the floor's edge than the planner's body radius (or than it was).
+    ``facing``: the stand site's facing (radians), along which shelf work comes in
+    (:func:`_approach`)."""
+    assert task.site is not None  # the spec loader requires a site for reaches
+    site_pos = ctx.workplace.station(task.site).pos
+    back = np.array([x, y]) - _target(ctx, task.kind, site_pos, x, y)[:2]
+    back /= max(float(np.linalg.norm(back)), 1e-9)
+    check = _arm_clearance(ctx)
+    best: WorkingReach | None = None
+    first: WorkingReach | None = None
+    room0 = float(ctx.workplace.walk_clearance(np.array([x, y]))[()])
+    for s in step_back_offsets():
+        xs, ys = float(x + s * back[0]), float(y + s * back[1])
+        room = float(ctx.workplace.walk_clearance(np.array([xs, ys]))[()])
+        if s > 0 and room < min(ctx.spec.radius, room0):
+            continue  # the next walk must start clear of obstacles (the planner's body radius)
+        target = _target(ctx, task.kind, site_pos, xs, ys)
+        # face the target (turning on the spot) before reaching for it
+        d = math.hypot(target[0] - xs, target[1] - ys)
+        face = math.atan2(target[1] - ys, target[0] - xs)
+        if task.hand != "both" and task.kind != "fasten":
+            # shelf work: bring the target ahead of the shoulder
+            side = 1 if task.hand == "left" else -1
+            face -= side * math.asin(min(SHOULDER_OFFSET / d, 0.5))
+        turn, dt = _turn_frames(ctx, x, y, yaw, face, fps, to=(xs, ys))
+        approach = _approach(task.kind, site_pos, xs, ys, facing)
+        q0 = turn[-1]
+        width = None
+        if task.hand == "both":
+            rf, err, res, width = _two_hand_frames(
+                ctx, q0, task, approach, hold, fps, timing=timing
+            )
+        else:
+            arm: Side = "right" if task.hand == "right" else "left"
+            rf, err, res = _reach_frames(ctx, q0, target, approach, hold, fps, arm, timing=timing)
+        dist = check.distance(np.vstack([turn, rf]))
+        cand = WorkingReach(xs, ys, face, float(s), turn, dt, rf, err, res, width, dist)
+        if first is None:
+            first = cand
+        # a step back must not cost the hand its target (beyond REACH_TOLERANCE)
+        if dist == np.inf and err <= max(first.error, REACH_TOLERANCE):
+            return cand
+        if best is None or (dist > best.distance and err <= max(first.error, REACH_TOLERANCE)):
+            best = cand
+    assert best is not None
+    return best
