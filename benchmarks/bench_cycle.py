@@ -1,14 +1,14 @@
 """Assembly-cycle speed: one cycle, many cycles in parallel, and video rendering.
 
 Run: python3 benchmarks/bench_cycle.py [--runs 1000] [--jobs 2] [--video-seconds 10]
-     python3 benchmarks/bench_cycle.py --anim [--baseline 8676171] [--cycles 5] [--rate-runs 20]
+     python3 benchmarks/bench_cycle.py --anim [--baseline 0e99913] [--cycles 5] [--rate-runs 20]
 
 Targets (issue 7): one cycle (plan and animate, no video) in at most 2 s; 1000 cycles in at most
 10 minutes on 2 cores; video frames per second reported.
 
 ``--anim`` (issue 18 item 3, animation at scale; goal <= 0.1 s per animated cycle): one
 animated station cycle (plan + legs + arms + collision check) timed with the baseline commit
-(default 8676171: main before the animation work) and with this tree, each in a fresh
+(default 0e99913: main before the animation work) and with this tree, each in a fresh
 subprocess running ``benchmarks/cycle_timing.py`` (the baseline exported once with
 ``git archive`` to ``~/.cache/mjwalk/bench-baseline-<sha>``, its compiled code cached
 there), in alternating rounds (old, new, old, new); prints wall and CPU
@@ -105,7 +105,7 @@ def main() -> None:
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--video-seconds", type=float, default=10.0)
     ap.add_argument("--anim", action="store_true", help="only the old-vs-new animation section")
-    ap.add_argument("--baseline", default="8676171", help="commit timed as the old code")
+    ap.add_argument("--baseline", default="0e99913", help="commit timed as the old code")
     ap.add_argument("--cycles", type=int, default=5, help="--anim: cycles timed per round")
     ap.add_argument("--rate-runs", type=int, default=20, help="--anim: cycles per rate")
     args = ap.parse_args()
