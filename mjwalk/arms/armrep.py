@@ -148,11 +148,34 @@ def angular_scale(c: np.ndarray, a: np.ndarray, s: float) -> np.ndarray:
     return sphere_exp(c, s * sphere_log(c, a))
 
 
+def rotvec_matrix(rotvec: np.ndarray) -> np.ndarray:
+    """(3, 3) rotation matrix of a rotation vector (3,) (axis times angle, radians): scipy's
+    ``Rotation.from_rotvec(r).as_matrix()`` (through the unit quaternion, with its Taylor
+    series below 1e-3 rad) without the per-call overhead of a Rotation object."""
+    r = np.asarray(rotvec, dtype=float)
+    angle = float(np.sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]))
+    if angle <= 1e-3:
+        a2 = angle * angle
+        scale = 0.5 - a2 / 48 + a2 * a2 / 3840
+    else:
+        scale = np.sin(angle / 2) / angle
+    x, y, z = scale * r[0], scale * r[1], scale * r[2]
+    w = np.cos(angle / 2)
+    x2, y2, z2, w2 = x * x, y * y, z * z, w * w
+    xy, zw, xz, yw, yz, xw = x * y, z * w, x * z, y * w, y * z, x * w
+    return np.array(
+        [
+            [x2 - y2 - z2 + w2, 2 * (xy - zw), 2 * (xz + yw)],
+            [2 * (xy + zw), -x2 + y2 - z2 + w2, 2 * (yz - xw)],
+            [2 * (xz - yw), 2 * (yz + xw), -x2 - y2 + z2 + w2],
+        ]
+    )
+
+
 def apply_pose(center: np.ndarray, a: np.ndarray, pose: np.ndarray) -> np.ndarray:
     """``R @ E(s, a)``: the raw directions of aligned directions ``a`` (n, S, 3) for one pose."""
-    rot = Rotation.from_rotvec(pose[:3])
     scaled = angular_scale(center, a, float(np.exp(pose[3])))
-    return rot.apply(scaled.reshape(-1, 3)).reshape(scaled.shape)
+    return scaled @ rotvec_matrix(pose[:3]).T
 
 
 def remove_pose(center: np.ndarray, u: np.ndarray, pose: np.ndarray) -> np.ndarray:

@@ -50,25 +50,43 @@ def min_jerk(tau: np.ndarray) -> np.ndarray:
     return tau**3 * (10 - 15 * tau + 6 * tau**2)
 
 
+def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Row-wise dot products (n,) of (n, 3) arrays, summed left to right like ``u @ v``."""
+    return u[:, 0] * v[:, 0] + u[:, 1] * v[:, 1] + u[:, 2] * v[:, 2]
+
+
 def two_link_ik(
     target: np.ndarray, l1: float, l2: float, elbow_hint: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
     """Unit directions (upper arm, forearm) putting the wrist at ``target`` (3,) from the
     shoulder, with the elbow in the plane of the shoulder-wrist axis and ``elbow_hint`` (the
     swivel angle of the hint is kept). Unreachable targets are clamped to the workspace."""
-    d = float(np.linalg.norm(target))
-    d = float(np.clip(d, abs(l1 - l2) + 1e-6, l1 + l2 - 1e-6))
-    axis = target / max(np.linalg.norm(target), 1e-9)
-    perp = elbow_hint - (elbow_hint @ axis) * axis
-    if np.linalg.norm(perp) < 1e-9:
-        perp = np.cross(axis, [0.0, 1.0, 0.0])
-        if np.linalg.norm(perp) < 1e-9:
-            perp = np.cross(axis, [1.0, 0.0, 0.0])
-    perp /= np.linalg.norm(perp)
+    upper, fore = two_link_ik_rows(np.asarray(target)[None], l1, l2, np.asarray(elbow_hint)[None])
+    return upper[0], fore[0]
+
+
+def two_link_ik_rows(
+    target: np.ndarray, l1: float, l2: float, elbow_hint: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`two_link_ik` for many wrist targets (n, 3) and elbow hints (n, 3) at once:
+    unit directions (n, 3) of the upper arm and of the forearm."""
+    target = np.asarray(target, dtype=float)
+    hint = np.asarray(elbow_hint, dtype=float)
+    norm = np.sqrt(_dot(target, target))
+    d = np.clip(norm, abs(l1 - l2) + 1e-6, l1 + l2 - 1e-6)
+    axis = target / np.maximum(norm, 1e-9)[:, None]
+    perp = hint - _dot(hint, axis)[:, None] * axis
+    bad = np.sqrt(_dot(perp, perp)) < 1e-9
+    if bad.any():  # a hint along the axis: any perpendicular, from y (or x)
+        alt = np.cross(axis[bad], [0.0, 1.0, 0.0])
+        flat = np.sqrt(_dot(alt, alt)) < 1e-9
+        alt[flat] = np.cross(axis[bad][flat], [1.0, 0.0, 0.0])
+        perp[bad] = alt
+    perp = perp / np.sqrt(_dot(perp, perp))[:, None]
     a = (l1**2 - l2**2 + d**2) / (2 * d)
-    h = np.sqrt(max(l1**2 - a**2, 0.0))
-    elbow = a * axis + h * perp
-    wrist = d * axis
+    h = np.sqrt(np.maximum(l1**2 - a**2, 0.0))
+    elbow = a[:, None] * axis + h[:, None] * perp
+    wrist = d[:, None] * axis
     return elbow / l1, (wrist - elbow) / l2
 
 
@@ -101,31 +119,56 @@ def arm_joint_angles(
     U = np.asarray(directions, dtype=float)
     n = len(U)
     q = np.zeros((n, 7))
-    prev_x = None
-    for t in range(n):
-        u1, u2 = U[t, 0], U[t, 1]
-        z = -u1
-        x = u2 - (u2 @ u1) * u1
-        if np.linalg.norm(x) < 1e-3:
-            x = prev_x if prev_x is not None else np.array([1.0, 0.0, 0.0])
-            x = x - (x @ z) * z
-        x /= np.linalg.norm(x)
-        prev_x = x
-        y = np.cross(z, x)
-        r_sh = Rotation.from_matrix(np.column_stack([x, y, z]))
-        a, b, c = r_sh.as_euler("YXZ")
-        elbow = float(np.arccos(np.clip(u1 @ u2, -1, 1)))
-        pron = 0.0 if roll is None else float(roll[t])
-        q[t, :5] = [-a, s * b, -s * c, elbow, pron]
-        if U.shape[1] > 2:
-            r_fa = r_sh * Rotation.from_euler("YZ", [-elbow, -s * pron])
-            h = r_fa.inv().apply(U[t, 2])
-            beta = np.arcsin(np.clip(h[1], -1, 1))
-            q[t, 5] = np.arctan2(h[0], -h[2])
-            q[t, 6] = s * beta
+    u1, u2 = U[:, 0], U[:, 1]
+    z = -u1
+    # the upper arm's x axis: the forearm's part perpendicular to the upper arm (all frames
+    # at once); where the elbow is straight it is carried over from the previous frame
+    x = u2 - _dot(u2, u1)[:, None] * u1
+    norm = np.linalg.norm(x, axis=1)
+    straight = norm < 1e-3
+    x[~straight] /= norm[~straight, None]
+    for t in np.flatnonzero(straight):  # rare, and each depends on the frame before
+        xt = x[t - 1] if t > 0 else np.array([1.0, 0.0, 0.0])
+        xt = xt - (xt @ z[t]) * z[t]
+        x[t] = xt / np.linalg.norm(xt)
+    y = np.cross(z, x)
+    r_sh = np.stack([x, y, z], axis=-1)  # (n, 3, 3), columns x, y, z
+    a, b, c = _euler_yxz(r_sh)
+    elbow = np.arccos(np.clip(_dot(u1, u2), -1, 1))
+    pron = np.zeros(n) if roll is None else np.asarray(roll, dtype=float)[:n]
+    q[:, 0], q[:, 1], q[:, 2], q[:, 3], q[:, 4] = -a, s * b, -s * c, elbow, pron
+    if U.shape[1] > 2:
+        # the hand in the forearm frame R_sh Ry(-elbow) Rz(-s pron): rotate back step by step
+        h = np.einsum("nji,nj->ni", r_sh, U[:, 2])  # R_sh^T u3
+        ce, se = np.cos(-elbow), np.sin(-elbow)
+        h = np.column_stack([ce * h[:, 0] - se * h[:, 2], h[:, 1], se * h[:, 0] + ce * h[:, 2]])
+        cp, sp = np.cos(-s * pron), np.sin(-s * pron)
+        h = np.column_stack([cp * h[:, 0] + sp * h[:, 1], -sp * h[:, 0] + cp * h[:, 1], h[:, 2]])
+        beta = np.arcsin(np.clip(h[:, 1], -1, 1))
+        q[:, 5] = np.arctan2(h[:, 0], -h[:, 2])
+        q[:, 6] = s * beta
     q[:, 0] = np.unwrap(q[:, 0])
     q[:, 2] = np.unwrap(q[:, 2])
     return q
+
+
+#: |sin| of the middle YXZ angle above which a frame is decomposed by scipy (gimbal lock: the
+#: first and third angles are not separable there; scipy's convention picks them).
+_GIMBAL = 1.0 - 1e-7
+
+
+def _euler_yxz(r: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Intrinsic Y-X-Z Euler angles (a, b, c) of rotation matrices ``r`` (n, 3, 3),
+    ``r = Ry(a) Rx(b) Rz(c)``, radians (scipy's ``as_euler("YXZ")`` written out for all
+    frames at once; near gimbal lock scipy decomposes those frames)."""
+    sb = -r[:, 1, 2]
+    b = np.arcsin(np.clip(sb, -1.0, 1.0))
+    a = np.arctan2(r[:, 0, 2], r[:, 2, 2])
+    c = np.arctan2(r[:, 1, 0], r[:, 1, 1])
+    lock = np.abs(sb) > _GIMBAL
+    if lock.any():
+        a[lock], b[lock], c[lock] = Rotation.from_matrix(r[lock]).as_euler("YXZ").T
+    return a, b, c
 
 
 def arm_frames(

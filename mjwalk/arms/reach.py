@@ -36,8 +36,9 @@ from mjwalk.arms.kinematics import (
     arm_segment_lengths,
     end_effector,
     min_jerk,
-    two_link_ik,
+    two_link_ik_rows,
 )
+from mjwalk.arms.posefit import fit_endpoint_pose
 from mjwalk.conventions import Side
 from mjwalk.errors import MjwalkError, ModelFileError
 
@@ -237,6 +238,11 @@ class ReachModel:
         lb = np.r_[-np.inf, -np.inf, -np.inf, -1.0]
         ub = np.r_[np.inf, np.inf, np.inf, 1.0]
         x0 = np.clip(pose0, lb + 1e-9, ub - 1e-9)
+        # compiled Levenberg-Marquardt (the same residual); scipy's bounded solver where it
+        # does not converge or the scale ends on its bound
+        x, ok = fit_endpoint_pose(self.rep_.center_, Asub, self.lengths, tgt, x0, (-1.0, 1.0))
+        if ok:
+            return x
         return least_squares(resid, x0, bounds=(lb, ub)).x
 
     def _ik_correct(self, U, start, end):
@@ -249,16 +255,13 @@ class ReachModel:
         delta = (1 - w) * e0 + w * e1
         l1, l2 = self.lengths[:2]
         out = U.copy()
-        notes = []
-        for t in range(n):
-            wrist_target = hand[t] + delta[t]
-            if len(self.lengths) > 2:
-                wrist_target = wrist_target - end_effector(U[t, 2:], self.lengths[2:])
-            if np.linalg.norm(wrist_target) > l1 + l2 - 1e-6:
-                notes.append(f"frame {t}: hand target out of reach, clamped")
-            elbow_hint = U[t, 0] * l1
-            out[t, 0], out[t, 1] = two_link_ik(wrist_target, l1, l2, elbow_hint)
-        return out, notes[:1]
+        wrist_target = hand + delta
+        if len(self.lengths) > 2:
+            wrist_target = wrist_target - end_effector(U[:, 2:], self.lengths[2:])
+        far = np.flatnonzero(np.linalg.norm(wrist_target, axis=1) > l1 + l2 - 1e-6)
+        notes = [f"frame {far[0]}: hand target out of reach, clamped"] if len(far) else []
+        out[:, 0], out[:, 1] = two_link_ik_rows(wrist_target, l1, l2, U[:, 0] * l1)
+        return out, notes
 
     # ------------------------------------------------------------ persistence
     def save(self, path: str | Path) -> None:

@@ -46,6 +46,18 @@ class CycleContext:
     baselines: dict = field(default_factory=dict)
     grid: OccupancyGrid | None = None  # the grid-A* occupancy grid, built on first use
     clearance: ArmClearance | None = None  # the reach's clearance check, built on first use
+    # the scratch MjData and the model it was made for (not copied by dataclasses.replace:
+    # an operator's context has its own humanoid model)
+    _data: tuple[mujoco.MjModel, mujoco.MjData] | None = field(
+        default=None, init=False, repr=False, compare=False
+    )
+
+    def scratch(self) -> mujoco.MjData:
+        """One MjData of ``model`` for this context's forward kinematics (building one takes
+        about a millisecond; every user sets the whole qpos before each use)."""
+        if self._data is None or self._data[0] is not self.model:
+            self._data = (self.model, mujoco.MjData(self.model))
+        return self._data[1]
 
     def planner(self, goal: str, zone: StandZone | None = None) -> HybridPlanner:
         """The planner of walks to ``goal``, ending in ``zone`` (:mod:`mjwalk.cycle.standing`;

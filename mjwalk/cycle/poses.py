@@ -50,17 +50,12 @@ def _turn_frames(ctx, x, y, yaw0, yaw1, fps, to=None) -> tuple[np.ndarray, float
     if shift > 0.0:
         duration = max(duration, shift / STEP_SPEED)
     n = max(1, round(duration * fps))
-    frames = np.array(
-        [
-            _standing(
-                ctx,
-                x + (x1 - x) * (k + 1) / n,
-                y + (y1 - y) * (k + 1) / n,
-                yaw0 + d * (k + 1) / n,
-            )
-            for k in range(n)
-        ]
-    )
+    k = np.arange(1, n + 1)
+    frames = np.repeat(_standing(ctx, x, y, yaw0)[None], n, axis=0)
+    r = ctx.jointmap.root
+    frames[:, r] = x + (x1 - x) * k / n
+    frames[:, r + 1] = y + (y1 - y) * k / n
+    frames[:, r + 3 : r + 7] = yaw_quat(yaw0 + d * k / n)
     return frames, n / fps
 
 
@@ -68,7 +63,7 @@ def hand_points(ctx, qpos: np.ndarray) -> np.ndarray:
     """(F, 2, 3) world positions (m) of the left and right palm (the hand geoms' centres) in
     the poses ``qpos`` (F, nq)."""
     m, jm = ctx.model, ctx.jointmap
-    data = mujoco.MjData(m)
+    data = ctx.scratch()
     ids = [m.body(f"{jm.prefix}hand_{p}").id for p in ("l", "r")]
     gids = [int(np.flatnonzero(m.geom_bodyid == b)[0]) for b in ids]
     out = np.empty((len(qpos), 2, 3))

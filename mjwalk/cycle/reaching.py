@@ -87,7 +87,7 @@ def _reach_frames(
     from mjwalk.arms.reach import reach_for_side
 
     m, jm, model = ctx.model, ctx.jointmap, ctx.reach_model
-    data = mujoco.MjData(m)
+    data = ctx.scratch()
     data.qpos[:] = q0
     mujoco.mj_kinematics(m, data)
     ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id

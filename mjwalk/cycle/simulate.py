@@ -212,7 +212,7 @@ def simulate_cycle(
         stature=ctx.spec.stature,
     )
     timeline.walk = combined_walk([w.path for w in walks])  # drawn into videos
-    contacts = collision_report(timeline) if collisions else []
+    contacts = collision_report(timeline, data=ctx.scratch()) if collisions else []
     return CycleResult(
         spec=spec,
         run=run,

@@ -28,6 +28,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.body.humanoid import HUMAN_GROUP, JointMap
+from mjwalk.timeline.collisions import candidate_frames
 
 #: Clearance (m) the reaching arm (upper arm to fingertips) keeps from every scene geom. The
 #: contacts it prevents were up to 6.3 mm deep (benchmarks/bench_contacts.py, 300 cycles);
@@ -81,15 +82,20 @@ class ArmClearance:
             ]
         )
 
-    def distance(self, qpos: np.ndarray) -> float:
+    def distance(self, qpos: np.ndarray, broad_phase: bool = True) -> float:
         """The smallest distance (m) of the humanoid to the scene over the poses ``qpos``
         (F, nq) among the pairs closer than their margin (an arm geom within ``clearance``,
         any other humanoid geom overlapping, the floor deeper than
         :data:`FLOOR_TOLERANCE`); ``inf`` when no pair is that close (the poses are clear).
-        Negative: overlap."""
+        Negative: overlap. With ``broad_phase`` MuJoCo's collision detection runs only on the
+        poses where such a pair can be (:func:`~mjwalk.timeline.collisions.candidate_frames`,
+        the margins included); the result is that of every pose (``broad_phase=False``)."""
         m, d = self.model, self.data
         best = np.inf
-        for q in np.atleast_2d(qpos):
+        poses = np.atleast_2d(qpos)
+        if broad_phase:
+            poses = poses[candidate_frames(m, poses, self.human, self.floor, FLOOR_TOLERANCE, d)]
+        for q in poses:
             d.qpos[:] = q
             mujoco.mj_kinematics(m, d)
             mujoco.mj_collision(m, d)

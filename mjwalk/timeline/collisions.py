@@ -1,12 +1,16 @@
 """Humanoid-vs-scene contacts of a timeline by MuJoCo's collision detection, and playback.
 
-:func:`collision_report` runs MuJoCo collision detection on every frame of a
-:class:`~mjwalk.timeline.timeline.Timeline`; :func:`check_collisions` does the same for a
-simulated cycle, a timeline or a walk played in a scene. World frame: metres, seconds, z up.
+:func:`collision_report` runs MuJoCo collision detection on the frames of a
+:class:`~mjwalk.timeline.timeline.Timeline` where a contact can be reported (a broad phase by
+bounding volumes, :func:`candidate_frames`, measured on station cycles: about a tenth of the
+frames, 3-4x faster than every frame, the same contacts); :func:`check_collisions` does the
+same for a simulated cycle, a timeline or a walk played in a scene. World frame: metres,
+seconds, z up.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -14,6 +18,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
@@ -49,18 +54,36 @@ def iter_frames(timeline: Timeline, data: mujoco.MjData | None = None) -> Iterat
         yield data
 
 
-def collision_report(timeline: Timeline, floor_tolerance: float = 0.01) -> list[Contact]:
+#: Slack (m) of the broad phase's bounding-volume tests: a pair this close is handed to MuJoCo.
+BROAD_SLACK = 1e-3
+
+
+def collision_report(
+    timeline: Timeline,
+    floor_tolerance: float = 0.01,
+    broad_phase: bool = True,
+    data: mujoco.MjData | None = None,
+) -> list[Contact]:
     """Humanoid-vs-scene contacts of every frame by MuJoCo collision detection.
 
     Only pairs of one humanoid geom (group 5) and one scene geom count. Contacts with the floor
     (the geom named ``"floor"`` or any plane) are left out unless they penetrate deeper than
     ``floor_tolerance`` metres, so ordinary foot contact is not reported.
 
+    With ``broad_phase`` (default) MuJoCo's collision detection runs only on the frames where
+    a contact can be reported (:func:`candidate_frames`: some humanoid geom's bounding sphere
+    within reach of a scene geom's box, or some humanoid geom deeper than
+    ``floor_tolerance`` below a floor plane), and a frame equal to the one before takes that
+    frame's contacts; the contacts are the same as those of the full check
+    (``broad_phase=False``: every frame through MuJoCo).
+
+    ``data``: an MjData of the timeline's model to work in (default: a new one).
+
     Returns:
         contacts in time order (one per geom pair and frame), depth in metres.
     """
     model = timeline.model
-    data = mujoco.MjData(model)
+    data = data if data is not None else mujoco.MjData(model)
     human = model.geom_group == HUMAN_GROUP
     plen = len(timeline.jointmap.prefix)
     names = [
@@ -73,8 +96,26 @@ def collision_report(timeline: Timeline, floor_tolerance: float = 0.01) -> list[
             for g, n in enumerate(names)
         ]
     )
+    qpos = np.asarray(timeline.qpos)
+    same = np.zeros(len(qpos), dtype=bool)
+    if broad_phase and len(qpos) > 1:
+        same[1:] = np.all(qpos[1:] == qpos[:-1], axis=1)
+        check = np.zeros(len(qpos), dtype=bool)
+        fresh = np.flatnonzero(~same)
+        check[fresh] = candidate_frames(
+            model, qpos[fresh], human, floorish, floor_tolerance, data=data
+        )
+    else:
+        check = np.ones(len(qpos), dtype=bool)
     out: list[Contact] = []
-    for i, q in enumerate(timeline.qpos):
+    found: list[tuple[str, str, float, np.ndarray]] = []  # the last checked frame's contacts
+    for i, q in enumerate(qpos):
+        if same[i]:  # the pose of the frame before: its contacts again
+            out += [Contact(float(timeline.t[i]), h, s_, d, p.copy()) for h, s_, d, p in found]
+            continue
+        found = []
+        if not check[i]:
+            continue
         data.qpos[:] = q
         mujoco.mj_kinematics(model, data)
         mujoco.mj_collision(model, data)
@@ -93,9 +134,158 @@ def collision_report(timeline: Timeline, floor_tolerance: float = 0.01) -> list[
             key = (int(hg[k]), int(sg[k]))
             if depth[k] > best.get(key, (-np.inf,))[0]:
                 best[key] = (float(depth[k]), np.array(con.pos[k]))
-        for (h, s), (d, pos) in best.items():
-            out.append(Contact(float(timeline.t[i]), names[h][plen:], names[s], d, pos))
+        found = [(names[h][plen:], names[s_], d, pos) for (h, s_), (d, pos) in best.items()]
+        out += [Contact(float(timeline.t[i]), h, s_, d, p.copy()) for h, s_, d, p in found]
     return out
+
+
+def candidate_frames(
+    model: mujoco.MjModel,
+    qpos: np.ndarray,
+    human: np.ndarray,
+    floorish: np.ndarray,
+    floor_tolerance: float,
+    data: mujoco.MjData | None = None,
+) -> np.ndarray:
+    """(F,) True for the poses ``qpos`` (F, nq) in which a humanoid geom (``human`` (ngeom,)
+    mask) may touch a scene geom, by bounding volumes (conservative: every contact MuJoCo can
+    report lies in a True frame; world frame, metres):
+
+    * a scene geom other than a floor (``floorish`` mask): its world box (MuJoCo's
+      ``geom_aabb``, rotated into the world) within a humanoid geom's bounding sphere
+      (``geom_rbound``) plus both margins and :data:`BROAD_SLACK`;
+    * a floor plane: a humanoid geom's lowest point (exact for spheres, capsules, cylinders
+      and boxes; the bounding sphere otherwise) deeper than ``floor_tolerance`` less the
+      margins and the slack below it (shallower floor contacts are not reported).
+
+    Scene geoms on moving bodies, and floors that are not planes, make every frame a
+    candidate. Forward kinematics of every pose (in ``data``, default a new MjData): about a
+    fifth of MuJoCo's collision pass."""
+    n = len(qpos)
+    hid = np.flatnonzero(human)
+    sid = np.flatnonzero(~human & (model.geom_contype | model.geom_conaffinity).astype(bool))
+    plane = mujoco.mjtGeom.mjGEOM_PLANE
+    floors = sid[floorish[sid]]
+    solids = sid[~floorish[sid]]
+    if (
+        n == 0
+        or (model.body_weldid[model.geom_bodyid[sid]] != 0).any()
+        or (model.geom_type[floors] != plane).any()
+    ):
+        return np.ones(n, dtype=bool)
+    if len(hid) == 0:  # no humanoid: nothing to report
+        return np.zeros(n, dtype=bool)
+    data = data if data is not None else mujoco.MjData(model)
+    lo, hi = int(hid.min()), int(hid.max()) + 1  # the humanoid's geoms are one block
+    xpos = np.empty((n, hi - lo, 3))
+    xmat = np.empty((n, hi - lo, 9))
+    q, gx, gm = data.qpos, data.geom_xpos[lo:hi], data.geom_xmat[lo:hi]  # views, fetched once
+    for f in range(n):
+        q[:] = qpos[f]
+        mujoco.mj_kinematics(model, data)
+        xpos[f] = gx
+        xmat[f] = gm
+    if hi - lo != len(hid):  # not one block after all: keep the humanoid's rows
+        xpos, xmat = xpos[:, hid - lo], xmat[:, hid - lo]
+    slack = model.geom_margin[hid].max(initial=0.0) + BROAD_SLACK
+    reach = model.geom_rbound[hid] + model.geom_margin[hid] + slack
+    # the scene's boxes (static: welded to the world) in world axes
+    R = data.geom_xmat[solids].reshape(-1, 3, 3)
+    aabb = model.geom_aabb[solids]
+    centre = data.geom_xpos[solids] + np.einsum("gij,gj->gi", R, aabb[:, :3])
+    half = np.einsum("gij,gj->gi", np.abs(R), aabb[:, 3:])
+    reach_solid = reach + model.geom_margin[solids].max(initial=0.0)
+    normals = np.array([data.geom_xmat[g].reshape(3, 3)[:, 2] for g in floors]).reshape(-1, 3)
+    origins = data.geom_xpos[floors].reshape(-1, 3)
+    depth = floor_tolerance - slack - model.geom_margin[floors].max(initial=0.0)
+    return _touching(
+        xpos,
+        xmat,
+        model.geom_type[hid].astype(np.int64),
+        model.geom_size[hid],
+        model.geom_rbound[hid],
+        reach_solid,
+        centre,
+        half,
+        normals,
+        origins,
+        depth,
+    )
+
+
+#: MuJoCo's geom type codes the floor test handles exactly (others: the bounding sphere).
+_SPHERE, _CAPSULE, _CYLINDER, _BOX = (
+    int(mujoco.mjtGeom.mjGEOM_SPHERE),
+    int(mujoco.mjtGeom.mjGEOM_CAPSULE),
+    int(mujoco.mjtGeom.mjGEOM_CYLINDER),
+    int(mujoco.mjtGeom.mjGEOM_BOX),
+)
+
+
+@njit
+def _touching(xpos, xmat, types, size, rbound, reach, centre, half, normals, origins, depth):
+    """(F,) frames where a humanoid geom (centres ``xpos`` (F, G, 3), rotations ``xmat``
+    (F, G, 9), MuJoCo ``types``/``size``/``rbound`` (G,)) comes within ``reach`` (G,) of a
+    scene box (``centre``, ``half`` (S, 3), world axes), or its lowest point lies more than
+    ``depth`` below a floor plane (``normals``, ``origins`` (P, 3)). Metres."""
+    n, g_n, s_n, p_n = xpos.shape[0], xpos.shape[1], centre.shape[0], normals.shape[0]
+    hit = np.zeros(n, dtype=np.bool_)
+    near = np.zeros(s_n, dtype=np.bool_)
+    for f in range(n):
+        # the scene boxes that overlap the box around all the humanoid's reach spheres
+        lo = np.full(3, np.inf)
+        hi = np.full(3, -np.inf)
+        for g in range(g_n):
+            for j in range(3):
+                lo[j] = min(lo[j], xpos[f, g, j] - reach[g])
+                hi[j] = max(hi[j], xpos[f, g, j] + reach[g])
+        for k in range(s_n):
+            near[k] = True
+            for j in range(3):
+                if lo[j] > centre[k, j] + half[k, j] or hi[j] < centre[k, j] - half[k, j]:
+                    near[k] = False
+        for g in range(g_n):
+            for k in range(s_n):
+                if not near[k]:
+                    continue
+                d2 = 0.0
+                for j in range(3):
+                    e = abs(xpos[f, g, j] - centre[k, j]) - half[k, j]
+                    if e > 0.0:
+                        d2 += e * e
+                if d2 <= reach[g] * reach[g]:
+                    hit[f] = True
+                    break
+            if hit[f]:
+                break
+            for k in range(p_n):
+                nx, ny, nz = normals[k, 0], normals[k, 1], normals[k, 2]
+                h = (
+                    (xpos[f, g, 0] - origins[k, 0]) * nx
+                    + (xpos[f, g, 1] - origins[k, 1]) * ny
+                    + (xpos[f, g, 2] - origins[k, 2]) * nz
+                )
+                # the plane normal in the geom's frame: R^T n (xmat row-major)
+                a0 = abs(xmat[f, g, 0] * nx + xmat[f, g, 3] * ny + xmat[f, g, 6] * nz)
+                a1 = abs(xmat[f, g, 1] * nx + xmat[f, g, 4] * ny + xmat[f, g, 7] * nz)
+                a2 = abs(xmat[f, g, 2] * nx + xmat[f, g, 5] * ny + xmat[f, g, 8] * nz)
+                t = types[g]
+                if t == _BOX:
+                    ext = a0 * size[g, 0] + a1 * size[g, 1] + a2 * size[g, 2]
+                elif t == _SPHERE:
+                    ext = size[g, 0]
+                elif t == _CAPSULE:
+                    ext = a2 * size[g, 1] + size[g, 0]
+                elif t == _CYLINDER:
+                    ext = a2 * size[g, 1] + math.sqrt(max(1.0 - a2 * a2, 0.0)) * size[g, 0]
+                else:
+                    ext = rbound[g]
+                if h - ext < -depth:
+                    hit[f] = True
+                    break
+            if hit[f]:
+                break
+    return hit
 
 
 def check_collisions(

@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from scipy.ndimage import gaussian_filter1d, maximum_filter1d
+
+from mjwalk._jit import njit
 
 #: Pitches smaller than this (degrees) count as a flat foot (no roll, so no drift).
 FLAT_DEG = 2.0
@@ -19,7 +23,59 @@ def spread(need: np.ndarray, win: int) -> np.ndarray:
     running maximum over +-``win`` samples, Gaussian-smoothed (sigma ``win / 3``), so a
     correction needed at some samples fades in and out over the samples around instead of
     acting on them alone (a jump)."""
-    return gaussian_filter1d(maximum_filter1d(need, 2 * win + 1), win / 3)
+    need = np.asarray(need, dtype=float)
+    if need.ndim != 1 or len(need) < 2 * win + 2:
+        return gaussian_filter1d(maximum_filter1d(need, 2 * win + 1), win / 3)
+    return _spread(need, win, _gauss_kernel(win))
+
+
+@functools.lru_cache(maxsize=32)
+def _gauss_kernel(win: int) -> np.ndarray:
+    """scipy.ndimage's Gaussian kernel for sigma ``win / 3`` (truncated at 4 sigma)."""
+    sigma = win / 3
+    radius = int(4.0 * float(sigma) + 0.5)
+    x = np.arange(-radius, radius + 1)
+    phi = np.exp(-0.5 / (sigma * sigma) * x**2)
+    return phi / phi.sum()
+
+
+@njit
+def _reflect(j, n):
+    """scipy.ndimage's "reflect" boundary (d c b a | a b c d | d c b a) for index ``j``."""
+    period = 2 * n
+    j = j % period
+    return j if j < n else period - 1 - j
+
+
+@njit
+def _spread(need, win, kernel):
+    """:func:`spread` for ``len(need) > 2 win + 1``: the running maximum over +-``win`` and
+    the symmetric Gaussian ``kernel``, both with the reflecting boundary, as scipy.ndimage
+    (the symmetric kernel summed pairwise from the centre out, as its correlate1d)."""
+    n = len(need)
+    r = len(kernel) // 2
+    pad = win
+    ext = np.empty(n + 2 * pad)
+    for i in range(-pad, n + pad):
+        ext[i + pad] = need[_reflect(i, n)]
+    peak = np.empty(n + 2 * r)
+    for i in range(n):
+        m = ext[i]
+        for j in range(i + 1, i + 2 * win + 1):
+            if ext[j] > m:
+                m = ext[j]
+        peak[i + r] = m
+    for i in range(r):  # the maximum's reflected borders
+        peak[r - 1 - i] = peak[r + _reflect(-1 - i, n)]
+        peak[r + n + i] = peak[r + _reflect(n + i, n)]
+    out = np.empty(n)
+    for i in range(n):
+        c = i + r
+        acc = peak[c] * kernel[r]
+        for j in range(1, r + 1):
+            acc += (peak[c - j] + peak[c + j]) * kernel[r + j]
+        out[i] = acc
+    return out
 
 
 def soft_clip01(x: np.ndarray, w: float) -> np.ndarray:
@@ -40,3 +96,64 @@ def soft_excess(x: np.ndarray, w: float) -> np.ndarray:
     """max(x, 0) rounded over ``[0, 2 w]`` (C1): 0 for x <= 0, x - w for x >= 2 w."""
     x = np.maximum(x, 0.0)
     return np.where(x < 2 * w, x * x / (4 * w), x - w)
+
+
+def clamped_cubic(x, y, d0, d1, xq) -> np.ndarray:
+    """The cubic spline through knots ``x`` (m,) with values ``y`` (m,) or (m, k) and first
+    derivatives ``d0`` / ``d1`` at the ends, evaluated at ``xq`` (q,) (extrapolated beyond the
+    knots): scipy's ``CubicSpline(x, y, bc_type=((1, d0), (1, d1)))(xq)`` (same equations,
+    slopes from the tridiagonal system, power-sum evaluation) in one compiled call, without
+    scipy's per-spline set-up cost (the leg synthesis builds three splines per step)."""
+    y = np.asarray(y, dtype=float)
+    vec = y.ndim == 2
+    y2 = y if vec else y[:, None]
+    k = y2.shape[1]
+    out = _clamped_cubic(
+        np.asarray(x, dtype=float),
+        np.ascontiguousarray(y2),
+        np.broadcast_to(np.asarray(d0, dtype=float), (k,)).copy(),
+        np.broadcast_to(np.asarray(d1, dtype=float), (k,)).copy(),
+        np.atleast_1d(np.asarray(xq, dtype=float)),
+    )
+    return out if vec else out[:, 0]
+
+
+@njit
+def _clamped_cubic(x, y, d0, d1, xq):
+    n, k = y.shape
+    dx = x[1:] - x[:-1]
+    out = np.empty((len(xq), k))
+    s = np.empty(n)
+    for c in range(k):
+        slope = (y[1:, c] - y[:-1, c]) / dx
+        # slopes: identity rows at the ends, dx[i] s[i-1] + 2 (dx[i-1] + dx[i]) s[i]
+        # + dx[i-1] s[i+1] = 3 (dx[i] slope[i-1] + dx[i-1] slope[i]) inside (Thomas algorithm)
+        s[0], s[n - 1] = d0[c], d1[c]
+        if n > 2:
+            m = n - 2
+            rhs = np.empty(m)
+            for i in range(1, n - 1):
+                rhs[i - 1] = 3 * (dx[i] * slope[i - 1] + dx[i - 1] * slope[i])
+            rhs[0] -= dx[1] * s[0]
+            rhs[m - 1] -= dx[n - 3] * s[n - 1]
+            diag = np.empty(m)
+            for i in range(m):
+                diag[i] = 2 * (dx[i] + dx[i + 1])
+            # forward sweep: row j (knot j + 1) has lower dx[j + 1], upper dx[j]
+            for j in range(1, m):
+                w = dx[j + 1] / diag[j - 1]
+                diag[j] -= w * dx[j - 1]
+                rhs[j] -= w * rhs[j - 1]
+            s[m] = rhs[m - 1] / diag[m - 1]
+            for j in range(m - 2, -1, -1):
+                s[j + 1] = (rhs[j] - dx[j] * s[j + 2]) / diag[j]
+        for q in range(len(xq)):
+            xv = xq[q]
+            i = np.searchsorted(x, xv, side="right") - 1
+            i = min(max(i, 0), n - 2)
+            t = (s[i] + s[i + 1] - 2 * slope[i]) / dx[i]
+            c0 = t / dx[i]
+            c1 = (slope[i] - s[i]) / dx[i] - t
+            z = xv - x[i]
+            out[q, c] = y[i, c] + s[i] * z + c1 * (z * z) + c0 * (z * z * z)
+    return out

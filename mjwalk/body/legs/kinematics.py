@@ -10,10 +10,13 @@ radians.
 
 from __future__ import annotations
 
+import functools
 import itertools
+import math
 
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.conventions import Side, side_of_prefix, side_prefix
 
@@ -78,39 +81,120 @@ def leg_ik(
         targets are met as closely as the leg allows (stretched to :data:`KNEE_MIN`).
     """
     s = 1.0 if side == "left" else -1.0
+    rel = np.ascontiguousarray(np.atleast_2d(np.asarray(ankle_rel, float)))
+    n = len(rel)
+    fy = np.ascontiguousarray(np.broadcast_to(np.asarray(foot_yaw, float), (n,)))
+    fp = np.ascontiguousarray(np.broadcast_to(np.asarray(foot_pitch, float), (n,)))
+    out = np.empty((n, 6))
+    _leg_ik_rows(rel, fy, fp, s, *_ik_lengths(geom), out)
+    return _named(out, side, clip)
+
+
+@functools.lru_cache(maxsize=16)
+def _ik_lengths(geom: LegGeometry) -> tuple[float, float, float, float]:
+    """Thigh, shank (m) and the shortest and longest hip-to-ankle distance the IK uses (m)."""
+    rmax = float(geom.span(KNEE_MIN))
+    rmin = float(geom.span(np.deg2rad(ROM_DEG["knee"][1])))
+    return float(geom.thigh), float(geom.shank), rmin, rmax
+
+
+def _named(out: np.ndarray, side: Side, clip: bool) -> dict[str, np.ndarray]:
+    """The IK's (n, 6) angle rows as {joint name: (n,) radians}, clipped to the ranges."""
     p = side_prefix(side)
-    L1, L2 = geom.thigh, geom.shank
-    # the hip-to-ankle vector in the foot frame R_f = R_z(yaw) R_y(-pitch) (sole level
-    # sideways); the chain hip R_z R_y R_x, knee R_y, ankle R_y R_x gives
-    # u = R_x(s inv) R_y(dorsi) w(knee) with w(knee) the hip-to-ankle vector in the shin frame
-    # (knee and ankle flexion axes parallel): knee from |u|, ankle inversion and flexion from
-    # the direction of u, then the hip's three angles from the remaining rotation, so the
-    # foot's position and all three orientation angles are met exactly (6 joints, 6 dof)
-    Rf = rot_z(np.asarray(foot_yaw, float)) @ rot_y(-np.asarray(foot_pitch, float))
-    u = (np.swapaxes(Rf, -1, -2) @ np.asarray(ankle_rel, float)[..., None])[..., 0]
-    r = np.linalg.norm(u, axis=-1)
-    rmax = geom.span(KNEE_MIN)
-    rmin = geom.span(np.deg2rad(ROM_DEG["knee"][1]))
-    rc = np.clip(r, rmin, rmax)
-    knee = geom.knee_for_span(rc)
-    phi = np.arctan2(u[:, 1], -u[:, 2])  # rotation about the foot's x axis (s * inversion)
-    m = np.hypot(u[:, 1], u[:, 2])
-    a = np.arctan2(L1 * np.sin(knee), L1 * np.cos(knee) + L2) - np.arctan2(u[:, 0], m)
-    a = np.mod(a + np.pi, 2 * np.pi) - np.pi  # ankle dorsiflexion
-    H = Rf @ rot_x(phi) @ rot_y(a - knee)  # = R_z(-s rot) R_y(-flex) R_x(s abd)
-    out = {
-        f"hip_{p}_rot": -s * np.arctan2(H[:, 1, 0], H[:, 0, 0]),
-        f"hip_{p}_flex": np.arcsin(np.clip(H[:, 2, 0], -1, 1)),
-        f"hip_{p}_abd": s * np.arctan2(H[:, 2, 1], H[:, 2, 2]),
-        f"knee_{p}": knee,
-        f"ankle_{p}_flex": a,
-        f"ankle_{p}_inv": s * phi,
-    }
-    if clip:
-        for name, v in out.items():
+    names = [f"hip_{p}_rot", f"hip_{p}_flex", f"hip_{p}_abd", f"knee_{p}"]
+    names += [f"ankle_{p}_flex", f"ankle_{p}_inv"]
+    res = {}
+    for k, name in enumerate(names):
+        v = out[:, k]
+        if clip:
             lo, hi = np.deg2rad(ROM_DEG[generic_joint(name)])
-            out[name] = np.clip(v, lo, hi)
-    return out
+            v = np.clip(v, lo, hi)
+        res[name] = v
+    return res
+
+
+@njit
+def _mat3(a, b):
+    """3x3 product a @ b of row-major 9-tuples (sums in index order, as NumPy's matmul; tuples
+    stay in registers, no allocation per sample)."""
+    return (
+        a[0] * b[0] + a[1] * b[3] + a[2] * b[6],
+        a[0] * b[1] + a[1] * b[4] + a[2] * b[7],
+        a[0] * b[2] + a[1] * b[5] + a[2] * b[8],
+        a[3] * b[0] + a[4] * b[3] + a[5] * b[6],
+        a[3] * b[1] + a[4] * b[4] + a[5] * b[7],
+        a[3] * b[2] + a[4] * b[5] + a[5] * b[8],
+        a[6] * b[0] + a[7] * b[3] + a[8] * b[6],
+        a[6] * b[1] + a[7] * b[4] + a[8] * b[7],
+        a[6] * b[2] + a[7] * b[5] + a[8] * b[8],
+    )
+
+
+@njit
+def _leg_ik_one(u0, u1, u2, yaw_f, pitch_f, s, L1, L2, rmin, rmax, out):
+    """One sample of :func:`leg_ik`: ``(u0, u1, u2)`` the hip-to-ankle vector (pelvis frame),
+    the foot's relative yaw and pitch; writes the six angles to ``out`` (6,). The matrices
+    are :func:`rot_z`, :func:`rot_y`, :func:`rot_x` as row-major 9-tuples."""
+    cz, sz = math.cos(yaw_f), math.sin(yaw_f)
+    cy, sy = math.cos(-pitch_f), math.sin(-pitch_f)
+    rf = _mat3(
+        (cz, -sz, 0.0, sz, cz, 0.0, 0.0, 0.0, 1.0), (cy, 0.0, sy, 0.0, 1.0, 0.0, -sy, 0.0, cy)
+    )
+    v0 = rf[0] * u0 + rf[3] * u1 + rf[6] * u2  # R_f^T (ankle - hip)
+    v1 = rf[1] * u0 + rf[4] * u1 + rf[7] * u2
+    v2 = rf[2] * u0 + rf[5] * u1 + rf[8] * u2
+    r = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
+    rc = min(max(r, rmin), rmax)
+    ck = (rc**2 - L1**2 - L2**2) / (2 * L1 * L2)
+    knee = math.acos(min(max(ck, -1.0), 1.0))
+    phi = math.atan2(v1, -v2)
+    m = math.hypot(v1, v2)
+    a = math.atan2(L1 * math.sin(knee), L1 * math.cos(knee) + L2) - math.atan2(v0, m)
+    w = np.fmod(a + math.pi, 2 * math.pi)  # np.mod(a + pi, 2 pi) - pi: into [-pi, pi)
+    if w < 0.0:
+        w += 2 * math.pi
+    a = w - math.pi
+    cx, sx = math.cos(phi), math.sin(phi)
+    cb, sb = math.cos(a - knee), math.sin(a - knee)
+    h = _mat3(
+        _mat3(rf, (1.0, 0.0, 0.0, 0.0, cx, -sx, 0.0, sx, cx)),
+        (cb, 0.0, sb, 0.0, 1.0, 0.0, -sb, 0.0, cb),
+    )
+    out[0] = -s * math.atan2(h[3], h[0])
+    out[1] = math.asin(min(max(h[6], -1.0), 1.0))
+    out[2] = s * math.atan2(h[7], h[8])
+    out[3] = knee
+    out[4] = a
+    out[5] = s * phi
+
+
+@njit
+def _leg_ik_rows(rel, yaw_f, pitch_f, s, L1, L2, rmin, rmax, out):
+    """:func:`leg_ik` (unclipped) for every row: rel (n, 3), yaw_f, pitch_f (n,) -> out (n, 6)."""
+    for i in range(rel.shape[0]):
+        _leg_ik_one(
+            rel[i, 0], rel[i, 1], rel[i, 2], yaw_f[i], pitch_f[i], s, L1, L2, rmin, rmax, out[i]
+        )
+
+
+@njit
+def _leg_ik_world_rows(ankle, foot_yaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, out):
+    """:func:`leg_ik_world` for every row into ``out`` (n, 6): the hip joint centre of an
+    upright pelvis (:func:`hip_world`), the ankle target in the pelvis frame, the foot's yaw
+    relative to the pelvis wrapped to (-pi, pi], then :func:`_leg_ik_one` (``sgn`` +1 for the
+    left leg, -1 for the right)."""
+    for i in range(ankle.shape[0]):
+        cy, sy = math.cos(yaw[i]), math.sin(yaw[i])
+        d0 = ankle[i, 0] - (root[i, 0] + sgn * hip_y * -sy)
+        d1 = ankle[i, 1] - (root[i, 1] + sgn * hip_y * cy)
+        d2 = ankle[i, 2] - (root[i, 2] + sgn * hip_y * 0.0)
+        c, sn = math.cos(-yaw[i]), math.sin(-yaw[i])
+        u0 = c * d0 + -sn * d1 + 0.0 * d2  # R_z(-yaw) (ankle - hip)
+        u1 = sn * d0 + c * d1 + 0.0 * d2
+        u2 = 0.0 * d0 + 0.0 * d1 + 1.0 * d2
+        dy = foot_yaw[i] - yaw[i]
+        yrel = math.atan2(math.sin(dy), math.cos(dy))
+        _leg_ik_one(u0, u1, u2, yrel, pitch[i], sgn, L1, L2, rmin, rmax, out[i])
 
 
 def leg_fk(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry):
@@ -141,18 +225,63 @@ def foot_lowest(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry) ->
     built by :func:`~mjwalk.body.humanoid.build_humanoid`) above the hip joint centre, from the
     leg angles (``toe_l`` / ``toe_r`` included); add the hip height for the height above the
     floor."""
-    ankle, R = leg_fk(angles, side, geom)
     ah, ball, hw = geom.ankle_height, ball_offset(geom), geom.foot_width / 2
     corners = np.array(list(itertools.product((0.0, 1.0), (-hw, hw), (0.0, 1.0))))
     # sole box: x from the heel to the ball, 0.8 ankle heights tall from the sole
     foot = corners * [ball + geom.foot_back, 1.0, 0.8 * ah] + [-geom.foot_back, 0.0, -ah]
     # toes box in the toes frame (origin at the ball on the sole, rotated by the toe angle)
     toes = corners * [geom.foot_front - ball, 1.0, 0.4 * ah]
-    toe = np.asarray(angles[f"toe_{side_prefix(side)}"], float)
-    toes_foot = (rot_y(-toe)[:, None] @ toes[None, :, :, None])[..., 0] + [ball, 0.0, -ah]
-    z_foot = (R[:, 2, None, :] * foot[None]).sum(-1)
-    z_toes = (R[:, 2, None, :] * toes_foot).sum(-1)
-    return ankle[:, 2] + np.minimum(z_foot.min(1), z_toes.min(1))
+    p = side_prefix(side)
+    names = [k.format(p) for k in LEG_JOINTS]
+    q = np.ascontiguousarray(np.column_stack([np.asarray(angles[k], float) for k in names]))
+    s = 1.0 if side == "left" else -1.0
+    return _foot_lowest_rows(q, s, geom.thigh, geom.shank, foot, toes, ball, ah)
+
+
+@njit
+def _rz(a):
+    c, s = math.cos(a), math.sin(a)
+    return (c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0)
+
+
+@njit
+def _ry(a):
+    c, s = math.cos(a), math.sin(a)
+    return (c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c)
+
+
+@njit
+def _rx(a):
+    c, s = math.cos(a), math.sin(a)
+    return (1.0, 0.0, 0.0, 0.0, c, -s, 0.0, s, c)
+
+
+@njit
+def _foot_lowest_rows(q, s, thigh, shank, foot, toes, ball, ah):
+    """:func:`foot_lowest` per row of ``q`` (n, 7) = the :data:`LEG_JOINTS` angles: the chain
+    of :func:`leg_fk` (same products, same order) and the lowest corner of the sole and toes
+    boxes (``foot``, ``toes`` (8, 3) corners in the foot and toes frames)."""
+    n = q.shape[0]
+    out = np.empty(n)
+    for i in range(n):
+        r = _mat3(_mat3(_rz(-s * q[i, 0]), _ry(-q[i, 1])), _rx(s * q[i, 2]))
+        kz = r[8] * -thigh
+        r = _mat3(r, _ry(q[i, 3]))
+        az = kz + r[8] * -shank
+        r = _mat3(_mat3(r, _ry(-q[i, 4])), _rx(-s * q[i, 5]))
+        low = np.inf
+        for c in range(foot.shape[0]):
+            z = r[6] * foot[c, 0] + r[7] * foot[c, 1] + r[8] * foot[c, 2]
+            low = min(low, z)
+        t = _ry(-q[i, 6])
+        for c in range(toes.shape[0]):
+            x = t[0] * toes[c, 0] + t[1] * toes[c, 1] + t[2] * toes[c, 2] + ball
+            y = t[3] * toes[c, 0] + t[4] * toes[c, 1] + t[5] * toes[c, 2] + 0.0
+            zz = t[6] * toes[c, 0] + t[7] * toes[c, 1] + t[8] * toes[c, 2] + -ah
+            z = r[6] * x + r[7] * y + r[8] * zz
+            low = min(low, z)
+        out[i] = az + low
+    return out
 
 
 def generic_joint(name: str) -> str:
@@ -168,21 +297,33 @@ def pivot_ankle(foot: np.ndarray, pitch, geom: LegGeometry) -> np.ndarray:
     """(n, 3) ankle positions of a foot on footprint ``foot`` ((3,) or per sample (n, 3))
     pitched by ``pitch`` (radians): negative (heel up) rolls about the ball, positive (toes up)
     about the heel; the pivot stays where it is on the floor when the foot is flat."""
-    ah = geom.ankle_height
     pitch = np.atleast_1d(np.asarray(pitch, float))
-    foot = np.asarray(foot, float)
-    lever = np.where(pitch <= 0, ball_offset(geom), -geom.foot_back)
-    fx, fy = np.cos(foot[..., 2]), np.sin(foot[..., 2])
-    # R_z(yaw) R_y(-pitch) (lever, 0, -ah) from the pivot, written out (inner loops)
-    c, s = np.cos(pitch), np.sin(pitch)
-    along = lever * (c - 1) + ah * s  # the pivot is lever ahead of the ankle when flat
-    return np.column_stack(
-        [
-            foot[..., 0] - along * fx,
-            foot[..., 1] - along * fy,
-            ah * c - lever * s,
-        ]
-    )
+    foot = np.atleast_2d(np.asarray(foot, float))
+    n = 0 if 0 in (len(pitch), len(foot)) else max(len(pitch), len(foot))
+    if len(pitch) not in (1, n) or len(foot) not in (1, n):
+        raise ValueError(f"pivot_ankle: {len(foot)} footprints for {len(pitch)} pitches")
+    out = np.empty((n, 3))
+    _pivot_rows(foot, pitch, ball_offset(geom), geom.foot_back, geom.ankle_height, out)
+    return out
+
+
+@njit
+def _pivot_rows(foot, pitch, ball, back, ah, out):
+    """:func:`pivot_ankle` into ``out`` (n, 3); ``foot`` (1 or n, 3), ``pitch`` (1 or n,):
+    R_z(yaw) R_y(-pitch) (lever, 0, -ah) from the pivot, written out; the pivot is ``lever``
+    ahead of the ankle when flat (the ball for pitch <= 0, the heel otherwise)."""
+    one_f, one_p = foot.shape[0] == 1, pitch.shape[0] == 1
+    for i in range(out.shape[0]):
+        f = 0 if one_f else i
+        p = pitch[0 if one_p else i]
+        lever = ball if p <= 0 else -back
+        yaw = foot[f, 2]
+        fx, fy = math.cos(yaw), math.sin(yaw)
+        c, s = math.cos(p), math.sin(p)
+        along = lever * (c - 1) + ah * s
+        out[i, 0] = foot[f, 0] - along * fx
+        out[i, 1] = foot[f, 1] - along * fy
+        out[i, 2] = ah * c - lever * s
 
 
 def spin_print(foot: np.ndarray, spin, geom: LegGeometry, lever: float | None = None):
@@ -211,6 +352,21 @@ def heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
     p0 = np.atleast_1d(np.asarray(p0, float))
     knee = np.broadcast_to(np.asarray(knee, float), p0.shape)
     d = geom.span(knee)
+    foot = np.asarray(foot, float)
+    if foot.shape == (3,) and p0.ndim == 1 and hip.shape == (len(p0), 3):  # compiled
+        p = np.empty(len(p0))
+        _heel_rise_rows(
+            foot,
+            np.ascontiguousarray(hip),
+            np.ascontiguousarray(d, dtype=float),
+            p0,
+            ball_offset(geom),
+            geom.foot_back,
+            geom.ankle_height,
+            float(lo),
+            p,
+        )
+        return float(p[0]) if scalar else p
 
     def gap(h, p, dd=d):
         return np.linalg.norm(h - pivot_ankle(foot, p, geom), axis=-1) - dd
@@ -247,6 +403,48 @@ def heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
     return float(p[0]) if scalar else p
 
 
+@njit
+def _pivot_gap(foot, fx, fy, h, p, d, ball, back, ah):
+    """|hip ``h`` - ankle of the foot pitched by ``p``| - ``d`` (:func:`pivot_ankle`)."""
+    lever = ball if p <= 0 else -back
+    c, s = math.cos(p), math.sin(p)
+    along = lever * (c - 1) + ah * s
+    dx = h[0] - (foot[0] - along * fx)
+    dy = h[1] - (foot[1] - along * fy)
+    dz = h[2] - (ah * c - lever * s)
+    return math.sqrt(dx * dx + dy * dy + dz * dz) - d
+
+
+@njit
+def _heel_rise_rows(foot, hip, d, p0, ball, back, ah, lo, out):
+    """:func:`heel_rise` per sample (the same steps: reach test at ``p0``, the closed-form
+    roll about the ball, the 40-step bisection of a toes-up foot) into ``out`` (n,)."""
+    fx, fy = math.cos(foot[2]), math.sin(foot[2])
+    rho, beta = math.hypot(ball, ah), math.atan2(ah, ball)
+    bx, by = foot[0] + ball * fx, foot[1] + ball * fy
+    for i in range(len(p0)):
+        h = hip[i]
+        q0 = p0[i]
+        if not _pivot_gap(foot, fx, fy, h, q0, d[i], ball, back, ah) > 0:
+            out[i] = q0
+            continue
+        r0, r1, r2 = h[0] - bx, h[1] - by, h[2] - 0.0
+        a_, c_ = r0 * fx + r1 * fy, r2
+        k_ = ((r0**2 + r1**2 + r2**2) + rho**2 - d[i] ** 2) / (2 * rho)
+        t = math.atan2(a_, c_) + math.asin(min(max(k_ / math.hypot(a_, c_), -1.0), 1.0))
+        q = min(max(beta - t, lo), min(q0, 0.0))
+        if q0 > 0 and _pivot_gap(foot, fx, fy, h, 0.0, d[i], ball, back, ah) <= 0:
+            a, b = 0.0, q0  # gap(a) <= 0 < gap(b)
+            for _ in range(40):
+                m = 0.5 * (a + b)
+                if _pivot_gap(foot, fx, fy, h, m, d[i], ball, back, ah) > 0:
+                    b = m
+                else:
+                    a = m
+            q = 0.5 * (a + b)
+        out[i] = q
+
+
 def hip_world(root: np.ndarray, yaw: np.ndarray, side: str, geom: LegGeometry) -> np.ndarray:
     """(n, 3) world position of the ``side`` hip joint centre of an upright pelvis at
     ``root`` (n, 3) with heading ``yaw`` (n,), metres."""
@@ -257,8 +455,106 @@ def hip_world(root: np.ndarray, yaw: np.ndarray, side: str, geom: LegGeometry) -
 
 def leg_ik_world(ankle, foot_yaw, pitch, root, yaw, side: str, geom: LegGeometry) -> dict:
     """Unclipped :func:`leg_ik` angles of the ``side`` leg for world ankle targets (n, 3), foot
-    headings (n,) and pitches (n,) under the pelvis ``root`` (n, 3), ``yaw`` (n,)."""
-    hip = hip_world(root, yaw, side, geom)
-    rel = (rot_z(-yaw) @ (ankle - hip)[..., None])[..., 0]
-    yrel = np.angle(np.exp(1j * (foot_yaw - yaw)))
-    return leg_ik(rel, yrel, pitch, side_of_prefix(side), geom, clip=False)
+    headings (n,) and pitches (n,) under the pelvis ``root`` (n, 3), ``yaw`` (n,) (compiled:
+    the synthesis calls it dozens of times per walk)."""
+    ankle = np.ascontiguousarray(ankle, dtype=float)
+    root = np.ascontiguousarray(root, dtype=float)
+    n = len(ankle)
+    out = np.empty((n, 6))
+    sgn = 1.0 if side == "l" else -1.0
+
+    def row(v):
+        v = np.asarray(v, dtype=float)
+        if v.shape == (n,) and v.flags.c_contiguous:
+            return v
+        return np.ascontiguousarray(np.broadcast_to(v, (n,)))
+
+    _leg_ik_world_rows(
+        ankle,
+        row(foot_yaw),
+        row(pitch),
+        root if root.shape == (n, 3) else np.ascontiguousarray(np.broadcast_to(root, (n, 3))),
+        row(yaw),
+        sgn,
+        float(geom.hip_y),
+        *_ik_lengths(geom),
+        out,
+    )
+    return _named(out, side_of_prefix(side), clip=False)
+
+
+class LegIKCache:
+    """:func:`leg_ik_world` for one leg over the same samples again and again (the synthesis's
+    correction loops): a sample whose inputs (ankle target, foot yaw and pitch, pelvis
+    position and yaw) are bit for bit those of the previous call keeps its angles, the others
+    are solved again; the results are those of :func:`leg_ik_world`."""
+
+    def __init__(self, side: str, geom: LegGeometry):
+        self.side, self.geom = side, geom
+        self.inputs: np.ndarray | None = None  # (n, 9) of the previous call
+        self.out: np.ndarray | None = None  # (n, 6) its angles
+
+    def __call__(self, ankle, foot_yaw, pitch, root, yaw) -> dict:
+        ankle = np.ascontiguousarray(ankle, dtype=float)
+        n = len(ankle)
+        if self.inputs is None or len(self.inputs) != n:
+            self.inputs = np.full((n, 9), np.nan)  # nan: never equal, every row is solved
+            self.out = np.empty((n, 6))
+        assert self.out is not None
+        sgn = 1.0 if self.side == "l" else -1.0
+        _leg_ik_world_cached(
+            ankle,
+            np.ascontiguousarray(foot_yaw, dtype=float),
+            np.ascontiguousarray(pitch, dtype=float),
+            np.ascontiguousarray(root, dtype=float),
+            np.ascontiguousarray(yaw, dtype=float),
+            sgn,
+            float(self.geom.hip_y),
+            *_ik_lengths(self.geom),
+            self.inputs,
+            self.out,
+        )
+        return _named(self.out.copy(), side_of_prefix(self.side), clip=False)
+
+
+@njit
+def _leg_ik_world_cached(
+    ankle, foot_yaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs, out
+):
+    """:func:`_leg_ik_world_rows` for the rows whose inputs differ from ``inputs`` (n, 9),
+    which are updated; the other rows of ``out`` (n, 6) are kept."""
+    for i in range(ankle.shape[0]):
+        row = (
+            ankle[i, 0],
+            ankle[i, 1],
+            ankle[i, 2],
+            foot_yaw[i],
+            pitch[i],
+            root[i, 0],
+            root[i, 1],
+            root[i, 2],
+            yaw[i],
+        )
+        same = True
+        for k in range(9):
+            if row[k] != inputs[i, k]:
+                same = False
+                break
+        if same:
+            continue
+        for k in range(9):
+            inputs[i, k] = row[k]
+        _leg_ik_world_rows(
+            ankle[i : i + 1],
+            foot_yaw[i : i + 1],
+            pitch[i : i + 1],
+            root[i : i + 1],
+            yaw[i : i + 1],
+            sgn,
+            hip_y,
+            L1,
+            L2,
+            rmin,
+            rmax,
+            out[i : i + 1],
+        )

@@ -14,6 +14,8 @@ from typing import Any
 import numpy as np
 from scipy.interpolate import CubicSpline
 
+from mjwalk._jit import njit
+
 #: Literature reference gait (:data:`DEFAULT_REFERENCE`): sagittal angles in degrees
 #: every 5 % of the gait cycle, 0 % = heel strike. ``hip``: thigh flexion, ``knee``: knee
 #: flexion, after D. A. Winter, "The Biomechanics and Motor Control of Human Gait: Normal,
@@ -49,6 +51,8 @@ class ReferenceGait:
     pitch: np.ndarray
     source: str = ""
     _splines: dict[str, CubicSpline] = field(init=False, repr=False, compare=False)
+    _unit: bool = field(init=False, repr=False, compare=False)
+    _ppoly: dict[str, tuple[np.ndarray, np.ndarray]] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         sp = {}
@@ -57,13 +61,52 @@ class ReferenceGait:
             v[-1] = v[0]  # periodic
             sp[k] = CubicSpline(np.asarray(self.cycle, float), v, bc_type="periodic")
         object.__setattr__(self, "_splines", sp)
+        cyc = np.asarray(self.cycle, float)
+        object.__setattr__(self, "_unit", bool(cyc[0] == 0.0 and cyc[-1] == 1.0))
+        ppoly = {k: (np.ascontiguousarray(v.c), np.ascontiguousarray(v.x)) for k, v in sp.items()}
+        object.__setattr__(self, "_ppoly", ppoly)
 
     def __call__(self, name: str, cycle, derivative: bool = False) -> np.ndarray:
         """Angle ``name`` ("hip", "knee", "pitch") in radians at cycle fraction(s) (wrapped);
         ``derivative=True`` gives radians per unit cycle."""
         c = np.mod(cycle, 1.0)
         sp = self._splines[name]
-        return sp(c, 1) if derivative else sp(c)
+        if not self._unit:  # a table not on [0, 1]: scipy wraps onto it
+            return sp(c, 1) if derivative else sp(c)
+        coef, knots = self._ppoly[name]
+        if isinstance(c, np.ndarray):
+            out = _ppoly_eval(coef, knots, c.ravel().astype(float), 1 if derivative else 0)
+            return out.reshape(c.shape)
+        return _ppoly_eval(coef, knots, np.array([float(c)]), 1 if derivative else 0)[0]
+
+
+@njit
+def _ppoly_eval(coef, knots, xs, nu):
+    """A cubic spline's value (``nu`` = 0) or first derivative (1) at ``xs`` in [0, 1] from its
+    piecewise-polynomial coefficients ``coef`` (4, m-1) on ``knots`` (m,): scipy's
+    ``PPoly.__call__`` (interval with knots[i] <= x < knots[i+1], the last one closed; the
+    power sum with its running power and derivative prefactors) without its per-call
+    overhead (the leg synthesis evaluates the reference thousands of times per walk)."""
+    out = np.empty(len(xs))
+    m = len(knots)
+    for j in range(len(xs)):
+        x = xs[j]
+        i = np.searchsorted(knots, x, side="right") - 1
+        i = min(max(i, 0), m - 2)
+        sx = x - knots[i]
+        res = 0.0
+        z = 1.0
+        for kp in range(4):
+            if kp < nu:
+                continue
+            pref = 1.0
+            for k in range(kp, kp - nu, -1):
+                pref *= k
+            res = res + coef[3 - kp, i] * z * pref
+            if kp < 3:
+                z *= sx
+        out[j] = res
+    return out
 
 
 def winter_reference() -> ReferenceGait:

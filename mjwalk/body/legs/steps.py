@@ -11,10 +11,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 
 from mjwalk.body.humanoid import LegGeometry
-from mjwalk.body.legs.curves import smoothstep, soft_clip01, soft_flat
+from mjwalk.body.legs.curves import clamped_cubic, smoothstep, soft_clip01, soft_flat
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
     ball_offset,
@@ -152,10 +151,10 @@ def stance_angle(ref: ReferenceGait, name: str, phi, th0, v0, th1, v1) -> np.nda
     r0, r1 = float(ref(name, 0.0)), float(ref(name, 0.5))
     d0 = v0 - 0.5 * float(ref(name, 0.0, True))
     d1 = v1 - 0.5 * float(ref(name, 0.5, True))
-    sp = CubicSpline(
-        [0.0, *STANCE_KEYS, 1.0], [th0 - r0, 0.0, 0.0, 0.0, th1 - r1], bc_type=((1, d0), (1, d1))
-    )
-    return ref(name, 0.5 * np.asarray(phi, float)) + sp(phi)
+    phi = np.asarray(phi, float)
+    knots, values = [0.0, *STANCE_KEYS, 1.0], [th0 - r0, 0.0, 0.0, 0.0, th1 - r1]
+    disp = clamped_cubic(knots, values, d0, d1, phi).reshape(phi.shape)
+    return ref(name, 0.5 * phi) + disp
 
 
 def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, land_p):
@@ -252,10 +251,10 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
         lead = float(phi[jl[0]]) - knots[0]
         rk[0] -= lead * dr[0]
         rp[0] -= lead * dq[0]
-        sp = CubicSpline(knots, np.array(dpos) - rk, bc_type=((1, v0 - dr[0]), (1, -dr[-1])))
+        sp = clamped_cubic(knots, np.array(dpos) - rk, v0 - dr[0], -dr[-1], phi[late])
         dp0 = (p_to[0] - p_to[1]) / h
-        spp = CubicSpline(knots, np.array(dpit) - rp, bc_type=((1, dp0 - dq[0]), (1, -dq[-1])))
-        pos[late], p[late] = ref_pos + sp(phi[late]), ref_pit + spp(phi[late])
+        spp = clamped_cubic(knots, np.array(dpit) - rp, dp0 - dq[0], -dq[-1], phi[late])
+        pos[late], p[late] = ref_pos + sp, ref_pit + spp
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[early][-1] if early.any() else 0.0
     toe = np.where(early, -p, -p_end * (1 - smoothstep((phi - phi_to) / TOE_STRAIGHTEN)))

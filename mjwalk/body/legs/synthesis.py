@@ -42,11 +42,11 @@ from mjwalk.body.humanoid import ROM_DEG, leg_geometry
 from mjwalk.body.legs.curves import smoothstep, soft_flat, spread
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
+    LegIKCache,
     foot_lowest,
     generic_joint,
     heel_rise,
     hip_world,
-    leg_ik_world,
     pivot_ankle,
 )
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
@@ -143,9 +143,12 @@ def legs_from_walk(
     print_ = {s: np.zeros((n, 3)) for s in "lr"}  # ... on this footprint
     cyc = {s: np.zeros(n) for s in "lr"}  # the leg's gait-cycle fraction (0 = heel strike)
 
+    # each hip's offset from the pelvis centre (m) at every sample, for hip_pos
+    side_dir = np.stack([-np.sin(yaw), np.cos(yaw)], -1)
+    hip_off = {s_: (1.0 if s_ == "l" else -1.0) * geom.hip_y * side_dir for s_ in "lr"}
+
     def hip_pos(idx, side, zz=None):
-        sgn = 1.0 if side == "l" else -1.0
-        h = xy[idx] + sgn * geom.hip_y * np.stack([-np.sin(yaw[idx]), np.cos(yaw[idx])], -1)
+        h = xy[idx] + hip_off[side][idx]
         return h if zz is None else np.column_stack([h, zz])
 
     def height_for_knee(idx, side, foot_pos, knee):
@@ -284,6 +287,7 @@ def legs_from_walk(
         ankle[s_], pitch[s_] = moved, p1
 
     angles: dict[str, np.ndarray] = {}
+    ik = {s_: LegIKCache(s_, geom) for s_ in "lr"}  # the loops below re-solve changed samples
     k_floor = {s_: np.clip(ref("knee", cyc[s_]), KNEE_MIN, np.deg2rad(KNEE_SOFT)) for s_ in "lr"}
     for _ in range(4):
         root = np.column_stack([xy, z])
@@ -297,7 +301,7 @@ def legs_from_walk(
             # pelvis lowers below. The roll is spread over the samples around (in the air
             # too, about the same point), so a landing or lift-off does not jolt the leg
             for _ in range(8):
-                raw = leg_ik_world(ankle[s_], fyaw[s_], pitch[s_], root, yaw, s_, geom)
+                raw = ik[s_](ankle[s_], fyaw[s_], pitch[s_], root, yaw)
                 flex = raw[f"ankle_{s_}_flex"]
                 excess = np.where(ground[s_], flex - dorsi_max, 0.0)
                 short = np.where(ground[s_] & (pitch[s_] < 0), plantar_min - flex, 0.0)
@@ -329,7 +333,7 @@ def legs_from_walk(
         # dorsiflexion limit and lifting would tilt the toes down further, pitch the foot
         # down) and solve again, so the foot stays above -FLOOR_TOLERANCE by construction
         for _ in range(FLOOR_ITERATIONS):
-            raw = leg_ik_world(ankle[s_], fyaw[s_], pitch[s_], root, yaw, s_, geom)
+            raw = ik[s_](ankle[s_], fyaw[s_], pitch[s_], root, yaw)
             ang = {k: np.clip(v, *np.deg2rad(ROM_DEG[generic_joint(k)])) for k, v in raw.items()}
             ang[f"toe_{s_}"] = np.clip(toe[s_], *np.deg2rad(ROM_DEG["toe"]))
             low = hip[:, 2] + foot_lowest(ang, side_of_prefix(s_), geom)
