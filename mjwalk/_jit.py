@@ -23,13 +23,15 @@ njit = numba.njit(cache=True, nogil=True, fastmath=False)
 njit_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
 
 #: Printed (stderr, once per process) when one of mjwalk's compiled functions misses the
-#: cache and compiles: on the first plan after an install or upgrade. Measured: 15 s on an
-#: idle 2-core machine; 44 s, 106 s and 159 s wall (44 CPU s) on one loaded by other jobs
+#: cache and compiles: on the first plan or animation after an install or upgrade. Measured
+#: for the planner alone: 15 s on an idle 2-core machine; 44 s, 106 s and 159 s wall (44 CPU s)
+#: on one loaded by other jobs; the animation kernels (legs, reach pose fit) compile on the
+#: first animated walk or reach on top of that (not measured separately)
 #: (load average 13: ``NUMBA_CACHE_DIR=$(mktemp -d) mjwalk plan station --from stand_rack2
 #: --to stand_car1 --n 1``); the next process loads the machine code instead (no notice).
 COMPILE_NOTICE = (
-    "mjwalk: compiling the planner (numba, once after an install: 15 s idle, minutes on a "
-    "busy machine; cached for later runs)..."
+    "mjwalk: compiling the planner and the animation kernels (numba, once after an install: "
+    "about a minute idle, minutes on a busy machine; cached for later runs)..."
 )
 
 
