@@ -5,7 +5,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mjwalk.cycle.simulate import carry_abduction, hand_points, prepare, simulate_cycle
+from mjwalk.cycle.simulate import (
+    _standing,
+    carry_abduction,
+    carry_pose,
+    hand_points,
+    prepare,
+    simulate_cycle,
+)
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.errors import CycleSpecError
 
@@ -33,8 +40,7 @@ def test_carry_keeps_both_hands_on_the_part(run):
     ctx, r = run
     carry = next(t for t in r.tasks if t.kind == "carry")
     tl = r.timeline
-    # the held stretch of the walk: the carrying posture fully in (it fades in and out over
-    # ARM_EASE at the walk's ends, where the hands move between the rest and the holding pose)
+    # the walk's frames in the carrying posture (all of them: it no longer fades at the ends)
     in_walk = (tl.t >= carry.start) & (tl.t <= carry.end)
     abd = tl.qpos[:, ctx.jointmap.adr("shoulder_l_abd")]
     f = in_walk & np.isclose(abd, carry_abduction(ctx, WIDTH), atol=1e-6)
@@ -42,6 +48,48 @@ def test_carry_keeps_both_hands_on_the_part(run):
     h = hand_points(ctx, tl.qpos[f])
     gap = np.linalg.norm(h[:, 0] - h[:, 1], axis=1)
     assert np.all(np.abs(gap - WIDTH) < 0.02), (gap.min(), gap.max())
+
+
+def _pelvis_frame(q: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Points ``p`` (F, 3) in the pelvis's yaw frame of poses ``q`` (F, nq) (root at 0..7)."""
+    yaw = 2.0 * np.arctan2(q[:, 6], q[:, 3])
+    d = p - q[:, :3]
+    c, s = np.cos(yaw), np.sin(yaw)
+    return np.column_stack([c * d[:, 0] + s * d[:, 1], -s * d[:, 0] + c * d[:, 1], d[:, 2]])
+
+
+@pytest.mark.slow
+def test_hands_stay_on_the_part_from_pick_to_place(run):
+    """From the end of the pick's hold to the first frame of the place reach the palms keep the
+    grip distance (within 2 cm) and, from the end of the pick's return on (turns, walk), the
+    part moves with the body: the palms' midpoint stays within 0.1 m of where the carrying
+    posture holds it relative to the pelvis."""
+    ctx, r = run
+    assert ctx.jointmap.root == 0
+    tl = r.timeline
+    q = tl.qpos
+    pick = next(t for t in r.tasks if t.kind == "pick")
+    place = next(t for t in r.tasks if t.kind == "place")
+    arm_pick, arm_place = r.arms
+    # a task from t0 to t1 (s) fills frames round(t0 fps) + 1 .. round(t1 fps)
+    p1 = round(pick.end * tl.fps)
+    p0 = p1 - round(arm_pick.duration * tl.fps) + 1  # the pick reach's first frame
+    still = np.flatnonzero(np.all(q[p0 + 1 : p1 + 1] == q[p0:p1], axis=1))
+    assert len(still) > 3  # the hold repeats one pose
+    hold_end = p0 + 1 + int(still[-1])
+    reach = round((place.end - arm_place.duration) * tl.fps) + 1  # the place reach's first frame
+    assert hold_end < p1 < reach
+    h = hand_points(ctx, q[hold_end : reach + 1])
+    gap = np.linalg.norm(h[:, 0] - h[:, 1], axis=1)
+    assert np.abs(gap - WIDTH).max() < 0.02, (gap.min(), gap.max())
+    mid = _pelvis_frame(q[p1 : reach + 1], h[p1 - hold_end :].mean(axis=1))
+    ref_q = carry_pose(ctx, _standing(ctx, 0.0, 0.0, 0.0), WIDTH)
+    ref = _pelvis_frame(ref_q[None], hand_points(ctx, ref_q[None]).mean(axis=1))[0]
+    dev = np.linalg.norm(mid - ref, axis=1)
+    assert dev.max() < 0.1, dev.max()
+    # no jumps: each palm moves less than 5 cm a frame relative to the pelvis (1.5 m/s)
+    rel = np.stack([_pelvis_frame(q[hold_end : reach + 1], h[:, i]) for i in (0, 1)])
+    assert np.linalg.norm(np.diff(rel, axis=1), axis=2).max() < 0.05
 
 
 def test_both_needs_grip_sites(tmp_path):

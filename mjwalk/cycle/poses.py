@@ -38,11 +38,15 @@ def _standing(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarray:
     return q
 
 
-def _turn_frames(ctx, x, y, yaw0, yaw1, fps, to=None) -> tuple[np.ndarray, float]:
+def _turn_frames(
+    ctx, x, y, yaw0, yaw1, fps, to=None, pose: np.ndarray | None = None
+) -> tuple[np.ndarray, float]:
     """Frames of turning on the spot ``(x, y)`` from ``yaw0`` to ``yaw1`` (radians) at
     :data:`TURN_SPEED`; with ``to`` = (x1, y1) the pelvis moves there during the turn (a short
     step back, :mod:`mjwalk.cycle.standoff`; the turn lasts at least as long as that step at
-    :data:`STEP_SPEED`). Returns (frames, duration in seconds)."""
+    :data:`STEP_SPEED`). The body's joints hold ``pose`` (nq,; e.g. the two-handed carrying
+    posture, :func:`carry_pose`), the standing pose by default; only the root moves.
+    Returns (frames, duration in seconds)."""
     d = (yaw1 - yaw0 + math.pi) % (2 * math.pi) - math.pi
     duration = max(MIN_TURN, abs(d) / TURN_SPEED)
     x1, y1 = (x, y) if to is None else to
@@ -51,8 +55,11 @@ def _turn_frames(ctx, x, y, yaw0, yaw1, fps, to=None) -> tuple[np.ndarray, float
         duration = max(duration, shift / STEP_SPEED)
     n = max(1, round(duration * fps))
     k = np.arange(1, n + 1)
-    frames = np.repeat(_standing(ctx, x, y, yaw0)[None], n, axis=0)
     r = ctx.jointmap.root
+    base = _standing(ctx, x, y, yaw0)
+    if pose is not None:
+        base[r + 7 :] = pose[r + 7 :]
+    frames = np.repeat(base[None], n, axis=0)
     frames[:, r] = x + (x1 - x) * k / n
     frames[:, r + 1] = y + (y1 - y) * k / n
     frames[:, r + 3 : r + 7] = yaw_quat(yaw0 + d * k / n)
@@ -105,6 +112,26 @@ def carry_abduction(ctx, width: float) -> float:
     return float(brentq(gap, lo, hi, xtol=1e-4))
 
 
+def carry_pose(ctx, q: np.ndarray, width: float) -> np.ndarray:
+    """``q`` (nq,) with both arms in the two-handed carrying posture for a part whose grips are
+    ``width`` metres apart: :data:`~mjwalk.timeline.frames.CARRY_POSE` with the shoulder
+    abduction of :func:`carry_abduction`, the other arm joints at the standing pose (as in the
+    carrying walk's frames, :func:`_walk_frames`). Radians; a new array."""
+    from mjwalk.arms.kinematics import ARM_JOINTS
+    from mjwalk.timeline.frames import CARRY_POSE
+
+    jm = ctx.jointmap
+    rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
+    out = np.array(q, dtype=float)
+    abd = carry_abduction(ctx, width)
+    for side in "lr":
+        for name in ARM_JOINTS:
+            part, *tail = name.split("_")
+            k = jm.adr("_".join([part, side, *tail]))
+            out[k] = abd if name == "shoulder_abd" else CARRY_POSE.get(name, rest[k])
+    return out
+
+
 def _walk_frames(
     ctx, walk, fps, carry: str | None = None, carry_width: float | None = None
 ) -> np.ndarray:
@@ -113,7 +140,9 @@ def _walk_frames(
     over the last :data:`ARM_EASE` seconds, so they are at rest when the operator stops at a
     rack or the car. ``carry`` ("left"/"right"): that hand holds the part in front of the body
     (elbow flexed, forearm close to the trunk) instead of swinging; "both": both hands hold a
-    part whose grips are ``carry_width`` metres apart (:func:`carry_abduction`)."""
+    part whose grips are ``carry_width`` metres apart (:func:`carry_abduction`) in the carrying
+    posture throughout, without fading (the hands took the part into it at the pick and keep
+    it until the place, :func:`~mjwalk.cycle.reaching._two_hand_frames`)."""
     from mjwalk.body.legs import legs_from_walk
 
     legs = legs_from_walk(walk, ctx.spec.stature)

@@ -64,6 +64,7 @@ def _reach_frames(
     fps: float,
     side: Side = "left",
     timing=None,
+    face: np.ndarray | None = None,
 ):
     """Frames of reaching from pose ``q0`` to ``target_w`` (world, m), holding, returning.
 
@@ -74,7 +75,10 @@ def _reach_frames(
     The reach model (PCA + DCS) brings the hand from rest to the pre-grasp point
     ``target_w + approach_w``; the hand then moves straight onto the target along
     ``-approach_w`` with a minimum-jerk profile (two-link IK, hand direction kept), so it comes
-    over a shelf's front edge instead of through it. The return retraces the motion.
+    over a shelf's front edge instead of through it. The return retraces the motion. ``face``
+    (world unit vector, the normal of a grip face such as a box's side): during the approach
+    the hand also turns to lie flat on that face (its direction loses the component along the
+    normal), so the palm, not only the hand's end, comes onto the face.
 
     Returns (frames, hand error in metres, ReachResult of the model part)."""
     from mjwalk.arms.kinematics import (
@@ -103,11 +107,17 @@ def _reach_frames(
     res = reach_for_side(model, pre, side, start)  # a right arm mirrors the left-arm model
     lengths = model.lengths
     u_last = res.directions[-1]
+    if face is not None:  # the hand's direction in the face's plane (shoulder frame)
+        n_s = frame.T @ np.asarray(face, dtype=float)
+        u_face = u_last[2] - (u_last[2] @ n_s) * n_s
+        u_face /= max(float(np.linalg.norm(u_face)), 1e-9)
     n_app = max(4, len(res.directions) // 2)
     app = np.repeat(u_last[None], n_app, axis=0)
     for k, tau in enumerate(min_jerk(np.linspace(0.0, 1.0, n_app + 1)[1:])):
         hand = pre + tau * (end - pre)
-        wrist = hand - lengths[2] * u_last[2]
+        u_hand = u_last[2] if face is None else _blend_dir(u_last[2], u_face, tau)
+        wrist = hand - lengths[2] * u_hand
+        app[k, 2] = u_hand
         app[k, 0], app[k, 1] = two_link_ik(wrist, lengths[0], lengths[1], u_last[0] * lengths[0])
     directions = np.concatenate([res.directions, app])
     q = arm_joint_angles(directions, side)
@@ -129,13 +139,79 @@ def _reach_frames(
     return frames, error, res
 
 
-def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None):
+#: Largest shift (radians) of both shoulder abductions that :func:`_holding_frames` tries to keep
+#: the palms' distance while the hands move a held part (the abduction's range is about 1.2 rad).
+HOLD_SHIFT = 0.5
+
+
+def _holding_frames(ctx, qa: np.ndarray, qb: np.ndarray, n: int) -> np.ndarray:
+    """``n`` frames (n, nq) that move both hands, holding a part, from pose ``qa`` to ``qb``
+    (``qa`` excluded, ``qb`` included; same root): every joint on a minimum-jerk profile, and
+    both shoulder abductions shifted together in each frame (Brent's method) so the palms'
+    distance (m) follows the same profile from ``qa``'s to ``qb``'s: the hands keep the grips
+    of the part they carry between the bench and the carrying posture."""
+    from scipy.optimize import brentq
+
+    from mjwalk.arms.kinematics import min_jerk
+    from mjwalk.cycle.poses import hand_points
+
+    jm = ctx.jointmap
+    ks = [jm.adr(f"shoulder_{p}_abd") for p in "lr"]
+    lims = [jm.limits(f"shoulder_{p}_abd") for p in "lr"]
+
+    def gap(q: np.ndarray) -> float:
+        h = hand_points(ctx, q[None])[0]
+        return float(np.linalg.norm(h[0] - h[1]))
+
+    def shifted(q: np.ndarray, d: float) -> np.ndarray:
+        out = q.copy()
+        for k, (lo, hi) in zip(ks, lims, strict=True):
+            out[k] = np.clip(q[k] + d, lo, hi)
+        return out
+
+    ga, gb = gap(qa), gap(qb)
+    prof = min_jerk(np.arange(1, n + 1) / n)
+    frames = qa[None] + prof[:, None] * (qb - qa)[None]
+    for f, p in enumerate(prof[:-1]):  # the last frame is qb itself
+        want = ga + p * (gb - ga)
+        lo, hi = -HOLD_SHIFT, HOLD_SHIFT
+        glo, ghi = gap(shifted(frames[f], lo)) - want, gap(shifted(frames[f], hi)) - want
+        if glo * ghi < 0.0:
+            d = brentq(lambda d, q=frames[f], w=want: gap(shifted(q, d)) - w, lo, hi, xtol=1e-5)
+            frames[f] = shifted(frames[f], d)
+    return frames
+
+
+def _blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
+    """Unit vector between unit vectors ``a`` (``tau`` = 0) and ``b`` (``tau`` = 1)."""
+    v = (1.0 - tau) * a + tau * b
+    return v / max(float(np.linalg.norm(v)), 1e-9)
+
+
+def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None, held=None):
     """A two-handed reach (``hand = "both"``): the left arm to the grip site ``<site>_left``, the
     right arm (the mirrored model) to ``<site>_right``, at the same time, holding and returning
-    together. Returns (frames, the larger hand error in metres, the left arm's ReachResult with
-    both arms' warnings, the grip distance in metres)."""
+    together. A pick's return brings the part into the carrying posture
+    (:func:`~mjwalk.cycle.poses.carry_pose`) instead of back to rest; with ``held`` (the grip
+    distance in metres of the part in the hands, ``q0`` in its carrying posture) the reach starts
+    from that posture and the return goes to rest. Between the grips and the carrying posture
+    the palms keep their distance (:func:`_holding_frames`). Returns (frames, the larger hand
+    error in metres, the left arm's ReachResult with both arms' warnings, the grip distance in
+    metres)."""
+    from mjwalk.arms.kinematics import ARM_JOINTS
+    from mjwalk.cycle.poses import carry_pose
     from mjwalk.cycle.spec import grip_sites
 
+    jm = ctx.jointmap
+    carrying = np.array(q0, dtype=float)
+    if held is not None:  # the reach model starts from rest: the arms at the standing pose
+        rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
+        q0 = carrying.copy()
+        for prefix in "lr":
+            for name in ARM_JOINTS:
+                part, *tail = name.split("_")
+                k = jm.adr("_".join([part, prefix, *tail]))
+                q0[k] = rest[k]
     wp = ctx.workplace
     parts = {}
     # Both hands of a bimanual reach start and arrive together (Kelso, Southard & Goodman 1979,
@@ -147,12 +223,16 @@ def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None):
             first.append(timing(dist) if timing is not None else _default_timing(dist))
         return first[0]
 
-    for side_name, name in grip_sites(task.site, "both"):
+    grips = {
+        s: np.asarray(wp.station(n).pos, dtype=float) for s, n in grip_sites(task.site, "both")
+    }
+    normal = grips["right"] - grips["left"]  # of the grip faces: the line between the grips
+    normal /= max(float(np.linalg.norm(normal)), 1e-9)
+    for side_name, grip in grips.items():
         side: Side = "right" if side_name == "right" else "left"
-        grip = np.asarray(wp.station(name).pos, dtype=float)
         parts[side] = (
             grip,
-            *_reach_frames(ctx, q0, grip, approach, hold, fps, side, timing=shared),
+            *_reach_frames(ctx, q0, grip, approach, hold, fps, side, timing=shared, face=normal),
         )
     (gl, fl, el, rl), (gr, fr, er, rr) = parts["left"], parts["right"]
     frames = fl.copy()
@@ -160,7 +240,16 @@ def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None):
     frames[:, moved] = fr[:, moved]
     rl.warnings = list(rl.warnings) + [w for w in rr.warnings if w not in rl.warnings]
     rl.outside = bool(rl.outside or rr.outside)
-    return frames, max(el, er), rl, float(np.linalg.norm(gl - gr))
+    width = float(np.linalg.norm(gl - gr))
+    n_out = max(2, round(first[0][0] * fps))
+    n_hold = max(0, round(hold * fps))
+    n_back = len(frames) - n_out - n_hold
+    grip = frames[n_out - 1]  # both hands on the grips
+    if held is not None:  # from the carrying posture to the grips
+        frames[:n_out] = _holding_frames(ctx, carrying, grip, n_out)
+    elif task.kind == "pick":  # from the grips into the carrying posture
+        frames[n_out + n_hold :] = _holding_frames(ctx, grip, carry_pose(ctx, q0, width), n_back)
+    return frames, max(el, er), rl, width
 
 
 def _approach(
@@ -225,7 +314,9 @@ def _arm_clearance(ctx: CycleContext) -> ArmClearance:
     return ctx.clearance
 
 
-def _reach_task(ctx, task, x, y, yaw, hold, fps, timing, facing=None) -> WorkingReach:
+def _reach_task(
+    ctx, task, x, y, yaw, hold, fps, timing, facing=None, held: float | None = None
+) -> WorkingReach:
     """Turn towards the target of a pick/place/fasten ``task`` and reach for it from the spot
     ``(x, y)`` where the walk ended (facing ``yaw``); when the arm would come closer to the
     scene than :data:`~mjwalk.cycle.standoff.REACH_CLEARANCE` (or the body touch it), step back
@@ -236,7 +327,10 @@ def _reach_task(ctx, task, x, y, yaw, hold, fps, timing, facing=None) -> Working
     :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear. A step back never brings the pelvis
     closer to an obstacle or the floor's edge than the planner's body radius (or than it was).
     ``facing``: the stand site's facing (radians), along which shelf work comes in
-    (:func:`_approach`)."""
+    (:func:`_approach`). ``held``: grip distance (m) of a two-handed part in the hands (a
+    two-handed place turns and starts its reach in the carrying posture)."""
+    from mjwalk.cycle.poses import _standing, carry_pose
+
     assert task.site is not None  # the spec loader requires a site for reaches
     site_pos = ctx.workplace.station(task.site).pos
     back = np.array([x, y]) - _target(ctx, task.kind, site_pos, x, y)[:2]
@@ -258,13 +352,15 @@ def _reach_task(ctx, task, x, y, yaw, hold, fps, timing, facing=None) -> Working
             # shelf work: bring the target ahead of the shoulder
             side = 1 if task.hand == "left" else -1
             face -= side * math.asin(min(SHOULDER_OFFSET / d, 0.5))
-        turn, dt = _turn_frames(ctx, x, y, yaw, face, fps, to=(xs, ys))
+        held = held if task.hand == "both" else None
+        pose = None if held is None else carry_pose(ctx, _standing(ctx, x, y, yaw), held)
+        turn, dt = _turn_frames(ctx, x, y, yaw, face, fps, to=(xs, ys), pose=pose)
         approach = _approach(task.kind, site_pos, xs, ys, facing)
         q0 = turn[-1]
         width = None
         if task.hand == "both":
             rf, err, res, width = _two_hand_frames(
-                ctx, q0, task, approach, hold, fps, timing=timing
+                ctx, q0, task, approach, hold, fps, timing=timing, held=held
             )
         else:
             arm: Side = "right" if task.hand == "right" else "left"

@@ -52,7 +52,14 @@ from mjwalk.cycle.context import (
     operator_context,
     prepare,
 )
-from mjwalk.cycle.poses import _standing, _turn_frames, _walk_frames, carry_abduction, hand_points
+from mjwalk.cycle.poses import (
+    _standing,
+    _turn_frames,
+    _walk_frames,
+    carry_abduction,
+    carry_pose,
+    hand_points,
+)
 from mjwalk.cycle.reaching import _reach_task
 from mjwalk.cycle.walking import plan_cycle_walks, plan_task_walk, work_zone
 
@@ -60,6 +67,7 @@ __all__ = [
     "GOAL_TOLERANCE",
     "CycleContext",
     "carry_abduction",
+    "carry_pose",
     "combined_walk",
     "hand_points",
     "operator_context",
@@ -134,17 +142,21 @@ def simulate_cycle(
             goal = task.site
             assert goal is not None  # the spec loader requires a site for walks
             path = plan_task_walk(ctx, i, (x, y), rng, walker)
-            turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps)
+            # a two-handed part stays in the hands, in the carrying posture (turns included)
+            pose = None if width is None else carry_pose(ctx, frames[0][0], width)
+            turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps, pose=pose)
             frames.append(turn)
             t += dt
             carry = task.hand if task.kind == "carry" else None
+            if width is not None:
+                carry = "both"
             wf = _walk_frames(ctx, path, fps, carry, width)
             frames.append(wf)
             t += len(wf) / fps  # the walk, to the video frame
             x, y = (float(v) for v in path.xy[-1])
             yaw = float(path.yaw[-1])
             face = wp.station(goal).yaw
-            turn, dt = _turn_frames(ctx, x, y, yaw, face, fps)
+            turn, dt = _turn_frames(ctx, x, y, yaw, face, fps, pose=pose)
             frames.append(turn)
             t += dt
             yaw = face
@@ -172,7 +184,7 @@ def simulate_cycle(
                 )
 
             assert task.site is not None  # the spec loader requires a site for reaches
-            r = _reach_task(ctx, task, x, y, yaw, hold, fps, timing, wp.station(here).yaw)
+            r = _reach_task(ctx, task, x, y, yaw, hold, fps, timing, wp.station(here).yaw, width)
             x, y, yaw = r.x, r.y, r.yaw
             frames.append(r.turn)
             t += r.turn_time

@@ -175,13 +175,14 @@ def ease_arms(
 ) -> np.ndarray:
     """Shape the arm motion of walking frames ``qpos`` (F, nq) in place and return it.
 
-    The swing (or, for ``carry`` = "left"/"right", that hand's carrying posture; for "both",
-    both arms in it, with the shoulder abduction ``carry_abd`` (radians) when given, so the
-    hands stay on a two-handed part's grips) fades in over
+    The swing (or, for ``carry`` = "left"/"right", that hand's carrying posture) fades in over
     the first and out over the last :data:`ARM_EASE` seconds, so the arms hang at rest when the
     walker stops, and shrinks where ``room`` (F,) — metres from the pelvis to the nearest
     obstacle — falls below :data:`ARM_ROOM`; there the hanging hands turn their thumbs forward
-    (:data:`TUCK_PRONATION`). With ``away`` ((F, 2) unit vectors away from the nearest
+    (:data:`TUCK_PRONATION`). For ``carry`` = "both" both arms hold the carrying posture, with
+    the shoulder abduction ``carry_abd`` (radians) when given, over the whole walk without
+    fading or shrinking: the hands stay on a two-handed part's grips, which they took before
+    the walk and leave after it. With ``away`` ((F, 2) unit vectors away from the nearest
     obstacle) the trunk also turns its shoulders clear of it (:func:`trunk_turn`).
     """
     w = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
@@ -203,7 +204,8 @@ def ease_arms(
                 if carry == "both" and carry_abd is not None and name == "shoulder_abd":
                     pose = carry_abd
                 target = np.full_like(target, pose)
-            qpos[:, k] = rest[k] + w * (target - rest[k])
+            wk = np.ones_like(w) if carry == "both" else w
+            qpos[:, k] = rest[k] + wk * (target - rest[k])
         if carry is None or not (carry == "both" or side == carry[0]):
             k = jm.adr(f"forearm_{side}_pron")
             qpos[:, k] = qpos[:, k] + tight * (TUCK_PRONATION - qpos[:, k])
