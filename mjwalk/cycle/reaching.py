@@ -125,6 +125,16 @@ def _reach_frames(
         timing = _default_timing
     reach_out, reach_back = timing(float(np.linalg.norm(end - start)) / scale)  # operator's metres
     n_out = max(2, round(reach_out * fps))
+    # The reach model's trajectories start at the ready posture (REST_HAND: elbow bent, hand
+    # in front of the thigh), the standing arm hangs straight: the first READY_SHARE of the
+    # reach time bends the arm into the ready posture (joint-space, the hand stays by the body),
+    # the rest follows the model's trajectory; the return ends the same way. Without it the arm
+    # snapped between the two in one frame (elbow 0 <-> 87 deg).
+    n_ready = min(n_out - 2, max(1, round(max(READY_SHARE * n_out, READY_MIN * fps))))
+    ready, _ = arm_frames(q0, jm, q[:1], side, np.ones(n_ready))
+    w = _smooth(np.arange(1, n_ready + 1) / (n_ready + 1))[:, None]
+    ready = q0[None] + w * (ready - q0[None])
+    n_out -= n_ready
     out, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
     data.qpos[:] = out[-1]
     mujoco.mj_kinematics(m, data)
@@ -133,10 +143,25 @@ def _reach_frames(
     error = float(np.linalg.norm(tip - target_w))
     n_hold = max(0, round(hold * fps))
     n_back = max(1, round(reach_back * fps))
+    n_back = max(2, n_back - n_ready)
     back = out[::-1][np.linspace(0, n_out - 1, n_back).round().astype(int)]
-    back = np.vstack([back[1:], q0[None]])
-    frames = np.vstack([out, np.repeat(out[-1:], n_hold, axis=0), back])
+    back = np.vstack([back[1:], ready[::-1], q0[None]])  # ... the ready posture, hanging
+    frames = np.vstack([ready, out, np.repeat(out[-1:], n_hold, axis=0), back])
     return frames, error, res
+
+
+#: Share of a reach's (and its return's) time spent bending the hanging arm into the reach
+#: model's ready posture (or back): about a quarter of an MTM-1 reach, 0.1-0.15 s for the
+#: station's reaches (a modelling choice: MTM-1 times the whole reach from rest).
+READY_SHARE = 0.25
+#: ... and at least this long (s): the elbow bends by about 85 deg into the ready posture, at
+#: most about 600 deg/s (peak elbow speeds of quick human reaches are of that order).
+READY_MIN = 0.15
+
+
+def _smooth(u: np.ndarray) -> np.ndarray:
+    """Smoothstep 3u^2 - 2u^3 of ``u`` in [0, 1]."""
+    return u * u * (3.0 - 2.0 * u)
 
 
 #: Largest shift (radians) of both shoulder abductions that :func:`_holding_frames` tries to keep
