@@ -104,7 +104,11 @@ KNEE_CLEARANCE = 0.10
 #: (:data:`mjwalk.anthropometry.SHIN_RADIUS` times the walker's stature) plus SAFETY_MARGIN
 #: plus half the spacing (:func:`mjwalk.plan.stepcheck.landing_leg_clear`); the first probe
 #: also covers the toes-up heel (at 1.75 m its upper back edge reaches 0.09 m behind the
-#: ankle, 0.05 m to the side: 0.07 m from the probe, within the 0.077 m kept).
+#: ankle, 0.05 m to the side: 0.07 m from the probe, within the 0.077 m kept). Measured with
+#: the probes (``bench_contacts.py --walks 200 --cycles 1000 --jobs 2``): corridor 0 of 400
+#: walks, station 0 of 1000 runs with contacts (without: 0 and 1); they change the walks of 4
+#: of the first 150 station runs (12 of 1050 walks, median route lengths within 1 mm) and 3 of
+#: 200 corridor walks.
 LEG_PROBE_STEP = 0.04
 
 
