@@ -117,6 +117,8 @@ class LegGeometry:
 
 #: Upper-arm capsule radius per metre of stature.
 UPPER_ARM_RADIUS = 0.024
+#: Shin (shank) capsule radius per metre of stature of the humanoid's legs.
+SHIN_RADIUS = 0.027
 
 
 def leg_geometry(stature: float = DEFAULT_STATURE) -> LegGeometry:

@@ -33,6 +33,7 @@ from mjwalk.anthropometry import (  # noqa: F401  re-exported
     FINGERS,
     ROM_DEG,
     SEG,
+    SHIN_RADIUS,
     UPPER_ARM_RADIUS,
     LegGeometry,
     leg_geometry,
@@ -286,7 +287,7 @@ def build_humanoid(stature: float = DEFAULT_STATURE) -> mujoco.MjSpec:
         geom(
             sk,
             mujoco.mjtGeom.mjGEOM_CAPSULE,
-            [0.027 * H],
+            [SHIN_RADIUS * H],
             fromto=[0, 0, 0, 0, 0, -g.shank],
             rgba=trousers,
             name=f"shin_{side}",

@@ -54,8 +54,8 @@ import time
 import numpy as np
 
 from mjwalk._args import finite_points, parse_point
-from mjwalk.anthropometry import ROM_DEG, leg_geometry
-from mjwalk.conventions import SAMPLE_RATE_HZ
+from mjwalk.anthropometry import ROM_DEG, SHIN_RADIUS, leg_geometry
+from mjwalk.conventions import DEFAULT_STATURE, SAMPLE_RATE_HZ
 from mjwalk.errors import InputError, PlanningError
 from mjwalk.gait.features import StepBatch
 from mjwalk.gait.transition import POOL_SHARPNESS
@@ -92,6 +92,32 @@ FOOT_CLEARANCE = 0.08
 KNEE_LEAD = 0.23
 KNEE_SIDE = 0.12
 KNEE_CLEARANCE = 0.10
+#: The landing leg at heel strike. A foot lands heel first, toes up (the leg synthesis,
+#: :mod:`mjwalk.body.legs.synthesis`): its ankle lies some 4 cm behind and 2 cm above the flat
+#: footprint's, the heel's upper edge swings 2-3 cm behind the flat heel, and the shin leans
+#: back from the ankle towards the hip. A landing foot far ahead of the pelvis (up to
+#: MAX_FOOT_REACH) leaves some 0.2 m of shin between the ankle's check and the pelvis's; found
+#: by ``benchmarks/bench_contacts.py`` (station run 727 of 1000, seed 0: a 1.64 m operator's
+#: last step of route T4 lands 0.51 m ahead of the pelvis, its ankle 8.3 cm beside the corner
+#: of rack 2's frame post, and shin and heel touch the post 5-9 mm deep). Probes every
+#: ``LEG_PROBE_STEP`` metres along the ankle-to-hip line keep the shin radius
+#: (:data:`mjwalk.anthropometry.SHIN_RADIUS` times the walker's stature) plus SAFETY_MARGIN
+#: plus half the spacing (:func:`mjwalk.plan.stepcheck.landing_leg_clear`); the first probe
+#: also covers the toes-up heel (at 1.75 m its upper back edge reaches 0.09 m behind the
+#: ankle, 0.05 m to the side: 0.07 m from the probe, within the 0.077 m kept). Measured with
+#: the probes (``bench_contacts.py --walks 200 --cycles 1000 --jobs 2``): corridor 0 of 400
+#: walks, station 0 of 1000 runs with contacts (without: 0 and 1); they change the walks of 4
+#: of the first 150 station runs (12 of 1050 walks, median route lengths within 1 mm) and 3 of
+#: 200 corridor walks.
+LEG_PROBE_STEP = 0.04
+
+
+def leg_clearance(stature: float = DEFAULT_STATURE) -> float:
+    """Clearance (m) the landing leg's probes keep for a walker of ``stature`` metres: the
+    shin radius plus SAFETY_MARGIN plus half of LEG_PROBE_STEP."""
+    return SHIN_RADIUS * stature + SAFETY_MARGIN + 0.5 * LEG_PROBE_STEP
+
+
 #: Largest horizontal distance (m) of a planted foot from the pelvis: the largest seen in the
 #: virtual corpus (landing foot vs pelvis at heel strike: median 0.37, 99.9th percentile 0.52).
 MAX_FOOT_REACH = 0.55
@@ -343,8 +369,9 @@ class HybridPlanner:
         )
         self._dec: _Decoder | None = None
 
-    def _kernel_params(self) -> tuple[np.ndarray, np.ndarray]:
-        """The float and integer parameter vectors of :func:`~mjwalk.plan.stepcheck.check_steps`."""
+    def _kernel_params(self, stature: float = DEFAULT_STATURE) -> tuple[np.ndarray, np.ndarray]:
+        """The float and integer parameter vectors of :func:`~mjwalk.plan.stepcheck.check_steps`
+        for a walker of ``stature`` metres (the landing leg's clearance scales with it)."""
         m = self.samples_per_step
         knee_cols = (m // 2, (3 * m) // 4)  # the swing-knee probes' pelvis samples
         walk, gd = self._walk, self.distance
@@ -379,6 +406,8 @@ class HybridPlanner:
             **lean_params(),
             far_weight=self.far_weight,
             far_from=FAR_FROM,
+            leg_step=LEG_PROBE_STEP,
+            leg_clearance=leg_clearance(stature),
         )
         for k, (dx, dy, dr) in enumerate(self.goal_within):
             par[stepcheck.P_DISC0 + 3 * k : stepcheck.P_DISC0 + 3 * k + 3] = (dx, dy, dr)
@@ -494,7 +523,9 @@ class HybridPlanner:
         if free_heading:
             start_yaw = self.default_heading(start_xy)
         dec = self._decoder(model)
-        par, ipar = self._kernel_params()
+        walker = getattr(model, "walker", None)  # a model conditioned on the run's operator
+        stature = float(getattr(walker, "stature", None) or DEFAULT_STATURE)
+        par, ipar = self._kernel_params(stature)
         if stepcheck.in_goal(complex(*start_xy), start_yaw, par, ipar):
             raise PlanningError(
                 f"start ({start_xy[0]:.3f}, {start_xy[1]:.3f}) already lies in the goal area "

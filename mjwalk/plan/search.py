@@ -17,8 +17,9 @@ the caller's Generator in the order the Python loop drew them.
 numba's on-disk cache of :func:`search` is keyed by this file only, not by the compiled
 functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_steps`,
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change here, or processes
-keep running the old machine code. Last such change: issue 18 (the walk field read as node
-values; the far weight).
+keep running the old machine code (its stamp is a hash of this file's text: touching it is not
+enough). Last such change: issue 17 item 5 (the landing leg's probes,
+:func:`~mjwalk.plan.stepcheck.landing_leg_clear`, and their two parameter slots).
 """
 
 from __future__ import annotations

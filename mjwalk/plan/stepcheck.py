@@ -4,7 +4,8 @@
 affine decode of its features (:class:`~mjwalk.plan.hybrid._Decoder`) into pelvis samples, the
 landing ankle and toes and the swing-knee probes in the step's local frame (x right, y forward,
 as x + iy; metres), the turn into the world, the clearance test of every point against its own
-limit (bilinear lookup in the workplace's walk field), the leg-reach tests, the stance-leg
+limit (bilinear lookup in the workplace's walk field), the landing leg's probes from the ankle
+towards the hip (:func:`landing_leg_clear`), the leg-reach tests, the stance-leg
 lean test (:func:`stance_lean_ok`: the stance leg must follow the pelvis within the ankle's and
 the hip's sideways ranges; :func:`stance_lean` is its NumPy form), the closing-step test (a
 closing step must end in the goal area), and for the accepted steps the walked length
@@ -62,8 +63,10 @@ from mjwalk._jit import njit
     P_ABDUCTION,
     P_FAR_WEIGHT,
     P_FAR_FROM,
+    P_LEG_STEP,
+    P_LEG_CLEARANCE,
     P_DISC0,  # goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal)
-) = range(36)
+) = range(38)
 #: Most discs the goal area can be cut by (:func:`in_goal`); their count is I_N_DISCS.
 MAX_GOAL_DISCS = 6
 N_PARAMS = P_DISC0 + 3 * MAX_GOAL_DISCS
@@ -251,6 +254,52 @@ def stance_lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_lef
 
 
 @njit
+def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, y0, res, nx, ny):
+    """Whether the landing leg of one step keeps ``P_LEG_CLEARANCE`` from obstacles at heel
+    strike (True when the slots are nan: no leg check).
+
+    The leg reaches from the landing ankle ``loc[m]`` up to the swing-side hip of the end
+    pelvis ``loc[m - 1]`` (``P_HIP_Y`` to its side, turned by ``end_yaw``, radians relative to
+    the step's frame); seen from above it is the segment between them. Probes lie on it every
+    ``P_LEG_STEP`` metres from the ankle (whose own check, FOOT_CLEARANCE, covers the first
+    half spacing) until the end pelvis's check covers the rest: a probe within
+    ``pelvis_thr - P_LEG_CLEARANCE`` of the end pelvis already has that clearance, since the
+    clearance is 1-Lipschitz. For the same reason every point of the segment keeps
+    ``P_LEG_CLEARANCE - P_LEG_STEP / 2`` when every probe keeps ``P_LEG_CLEARANCE``.
+
+    Args:
+        loc: the decoded step (step frame, x + iy, metres): pelvis samples, landing ankle.
+        left: whether the swing (landing) foot is the left one.
+        rot, p: the step frame's turn into the world and its origin (world x + iy).
+        pelvis_thr: the clearance the pelvis samples keep (metres).
+        coef, x0, y0, res, nx, ny: the walk field (:func:`_clearance`).
+    """
+    step = par[P_LEG_STEP]
+    clear = par[P_LEG_CLEARANCE]
+    if math.isnan(step) or math.isnan(clear) or step <= 0.0:
+        return True
+    s = 1.0 if left else -1.0
+    ankle = loc[m]
+    end = loc[m - 1]
+    hip = end - s * par[P_HIP_Y] * complex(math.cos(end_yaw), math.sin(end_yaw))
+    span = abs(hip - ankle)
+    if span <= 0.0:
+        return True
+    u = (hip - ankle) / span
+    covered = pelvis_thr - clear  # probes this close to the end pelvis need no check
+    k = 1
+    while k * step < span:
+        q = ankle + (k * step) * u
+        if abs(q - end) <= covered:
+            break
+        w = q * rot + p
+        if _clearance(coef, x0, y0, res, nx, ny, w.real, w.imag) < clear:
+            return False
+        k += 1
+    return True
+
+
+@njit
 def check_steps(
     z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist
 ):
@@ -272,7 +321,8 @@ def check_steps(
             its heading, and the decoder's pelvis-yaw columns, and the P_HIP_Y .. P_ABDUCTION
             slots set, a step whose stance leg cannot follow it is rejected
             (:func:`stance_lean_ok`).
-        thr: (m + 4,) clearance limits of the pelvis samples, ankle, toes and the two knees.
+        thr: (m + 4,) clearance limits of the pelvis samples, ankle, toes and the two knees
+            (the landing leg's probes keep P_LEG_CLEARANCE: :func:`landing_leg_clear`).
         par, ipar: :func:`params` / :func:`iparams`.
         coef: the walk field's node values (ny, nx) (:meth:`Workplace.walk_field`).
         dist: the goal distance's flat grid bound (:class:`~mjwalk.plan.heuristic.GoalDistance`).
@@ -340,6 +390,12 @@ def check_steps(
         ankle = loc[m] * rot + p
         toe = ankle + (par[P_FOOT_LENGTH] * 1j) * rot * np.exp(1j * yaws.real)
         if _clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag) < thr[m + 1]:
+            continue
+        # the landing leg, from the ankle towards its hip at the step's end (heel strike: the
+        # shin leans back over the heel, the toes-up heel reaches behind the flat footprint),
+        # probed every P_LEG_STEP out to where the end pelvis's own clearance covers it
+        if not landing_leg_clear(loc, m, lf, yaws.imag, rot, p, thr[0], par, coef, fx0, fy0,
+                                 fres, fnx, fny):  # fmt: skip
             continue
         lat = (1j if lf else -1j) * par[P_KNEE_SIDE]
         for kk in range(2):
