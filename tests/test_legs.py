@@ -22,7 +22,7 @@ from mjwalk.body.legs import (
     sagittal_angles,
     winter_reference,
 )
-from mjwalk.body.legs.footcheck import foot_points, stance_drift
+from mjwalk.body.legs.footcheck import foot_points, posed, stance_drift
 from mjwalk.errors import PlanningError
 from mjwalk.mocap.take import Take
 from mjwalk.plan.synthetic import synthetic_walk
@@ -139,18 +139,9 @@ def _model_cycles(walk, stature, reference=None):
     """Gait cycles (C, 3, 101) of the model's left leg, through MuJoCo FK and the same
     :func:`gait_cycles` used on the capture (like-for-like)."""
     legs = legs_from_walk(walk, stature, reference=reference)
-    model, jm = humanoid_model(stature)
-    data = mujoco.MjData(model)
     bodies = ("thigh_l", "shin_l", "foot_l", "toes_l")
     pos = np.zeros((len(legs.t), 4, 3))
-    for i in range(len(legs.t)):
-        q = jm.neutral_qpos(model, stature)
-        q[:3] = legs.root[i]
-        q[3:7] = [np.cos(legs.yaw[i] / 2), 0, 0, np.sin(legs.yaw[i] / 2)]
-        for name, a in legs.angles.items():
-            q[jm.adr(name)] = a[i]
-        data.qpos[:] = q
-        mujoco.mj_kinematics(model, data)
+    for i, model, data in posed(legs, stature):
         pos[i] = [data.xpos[model.body(b).id] for b in bodies]
     joints = dict(
         zip(("UpperLeg_L", "LowerLeg_L", "Foot_L", "Toes_L"), pos.swapaxes(0, 1), strict=True)

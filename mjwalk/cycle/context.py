@@ -93,11 +93,6 @@ class CycleContext:
         return self.baselines[(a, b)]
 
 
-def _pace_of(model):
-    """The step model's pace (:meth:`mjwalk.gait.model.StepModel.pace`), measured once."""
-    return model.pace()
-
-
 def _load_step_model(spec: CycleSpec):
     if spec.step_model == "default":
         from mjwalk.gait.default import default_model

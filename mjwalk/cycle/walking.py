@@ -13,7 +13,7 @@ from mjwalk.cycle.standing import StandZone, stand_zone
 if TYPE_CHECKING:
     pass  # loaded on first use (prepare)
 
-from mjwalk.cycle.context import CycleContext, _pace_of
+from mjwalk.cycle.context import CycleContext
 from mjwalk.cycle.reaching import _target
 
 
@@ -49,9 +49,9 @@ def plan_task_walk(ctx: CycleContext, i: int, start, rng: np.random.Generator, w
     task's stand zone (:func:`work_zone`) for the walker's stature and step length."""
     task = ctx.spec.tasks[i]
     assert task.site is not None  # the spec loader requires a site for walks
-    model = ctx.step_model.for_walker(walker) if walker is not None else ctx.step_model
+    model = ctx.step_model.for_walker(walker)  # the model itself for None
     stature = walker.stature if walker is not None else ctx.spec.stature
-    step = walker.step_length if walker is not None else _pace_of(ctx.step_model).step_length
+    step = walker.step_length if walker is not None else ctx.step_model.pace().step_length
     zone = ctx.zone(i, stature, step)
     return ctx.planner(task.site, zone).plan(start, rng, model=model)
 

@@ -131,6 +131,9 @@ class StepModel:
     #: set by :meth:`for_walker`: the learned model and the walker it is conditioned on
     _base: StepModel | None = field(default=None, repr=False, compare=False)
     _walker: Walker | None = field(default=None, repr=False, compare=False)
+    #: the last (walker, conditioned model) of :meth:`for_walker`: a cycle conditions the model
+    #: on its run's operator for every walk, and the planner keys its decoder on the model
+    _last: tuple | None = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         # scipy.stats.gaussian_kde(data, bw_method=factor) with its uniform weights: kernel
@@ -421,6 +424,8 @@ class StepModel:
         base = self._base or self
         if walker is None:
             return base
+        if base._last is not None and base._last[0] == walker:
+            return base._last[1]
         ref = base.pace()
         if walker.step_width is not None:
             lateral = walker.step_width / max(ref.step_width, 1e-3)
@@ -444,7 +449,9 @@ class StepModel:
             },
             _base=base,
             _walker=walker,
+            _last=None,
         )
+        base._last = (walker, out)
         return out
 
     # -- persistence -------------------------------------------------------------------------

@@ -17,21 +17,16 @@ from mjwalk.anthropometry import leg_geometry
 from mjwalk.conventions import DEFAULT_STATURE
 
 
-def foot_points(legs, stature: float = DEFAULT_STATURE):
-    """Heel and ball world positions (N, 2, 2, 3) [frame, side l/r, heel/ball], foot pitch
-    (N, 2, radians, + toes up) and the lowest foot point (N,) of ``legs`` (a
-    :class:`~mjwalk.body.legs.synthesis.LegMotion`), by MuJoCo forward kinematics of the
-    humanoid of ``stature`` metres."""
+def posed(legs, stature: float = DEFAULT_STATURE):
+    """Yield ``(i, model, data)`` for every frame ``i`` of ``legs`` (a
+    :class:`~mjwalk.body.legs.synthesis.LegMotion`): the humanoid of ``stature`` metres in its
+    neutral pose with the legs' root, yaw and joint angles of that frame, after MuJoCo forward
+    kinematics (``data`` is reused from frame to frame)."""
     from mjwalk.body.humanoid import humanoid_model
 
     model, jm = humanoid_model(stature)
     data = mujoco.MjData(model)
-    n = len(legs.t)
-    pts, pitch, low = np.zeros((n, 2, 2, 3)), np.zeros((n, 2)), np.zeros(n)
-    feet = [model.geom(g).id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
-    signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
-    back = leg_geometry(stature).foot_back
-    for i in range(n):
+    for i in range(len(legs.t)):
         q = jm.neutral_qpos(model, stature)
         q[:3] = legs.root[i]
         q[3:7] = [np.cos(legs.yaw[i] / 2), 0, 0, np.sin(legs.yaw[i] / 2)]
@@ -39,6 +34,21 @@ def foot_points(legs, stature: float = DEFAULT_STATURE):
             q[jm.adr(name)] = v[i]
         data.qpos[:] = q
         mujoco.mj_kinematics(model, data)
+        yield i, model, data
+
+
+def foot_points(legs, stature: float = DEFAULT_STATURE):
+    """Heel and ball world positions (N, 2, 2, 3) [frame, side l/r, heel/ball], foot pitch
+    (N, 2, radians, + toes up) and the lowest foot point (N,) of ``legs`` (a
+    :class:`~mjwalk.body.legs.synthesis.LegMotion`), by MuJoCo forward kinematics of the
+    humanoid of ``stature`` metres."""
+    n = len(legs.t)
+    pts, pitch, low = np.zeros((n, 2, 2, 3)), np.zeros((n, 2)), np.zeros(n)
+    signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
+    back = leg_geometry(stature).foot_back
+    feet: list[int] = []
+    for i, model, data in posed(legs, stature):
+        feet = feet or [model.geom(g).id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
         for k, s in enumerate("lr"):
             R = data.xmat[model.body(f"foot_{s}").id].reshape(3, 3)
             pts[i, k, 0] = data.site_xpos[model.site(f"sole_{s}").id] - back * R[:, 0]
