@@ -201,7 +201,13 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         return 0
     ctx = prepare(spec)  # builds (or loads) the default models once, with progress
     results = simulate_cycles(
-        spec, args.runs, seed=args.seed, n_jobs=args.jobs, progress=not args.quiet, only=only
+        spec,
+        args.runs,
+        seed=args.seed,
+        n_jobs=args.jobs,
+        progress=not args.quiet,
+        only=only,
+        on_error="record",  # one unplannable run does not end a long batch; the report lists it
     )
     files = write_report(results, args.out, workplace=ctx.workplace)
     print(format_summary(report_dict(results)))
@@ -210,10 +216,11 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if args.video:
         from mjwalk.render import render_video
 
+        first = next(r for r in results if r.error is None)  # report_dict: at least one
         run0 = simulate_cycle(
             ctx,
-            np.random.default_rng(np.random.SeedSequence([args.seed, results[0].run])),
-            run=results[0].run,
+            np.random.default_rng(np.random.SeedSequence([args.seed, first.run])),
+            run=first.run,
             keep_timeline=True,
             collisions=False,
         )

@@ -149,6 +149,21 @@ def _routes(results: Sequence[CycleResult]) -> list[str]:
     return list(seen)
 
 
+def split_failed(
+    results: Sequence[CycleResult],
+) -> tuple[list[CycleResult], list[CycleResult]]:
+    """The simulated cycles and the failed runs (``result.error`` set, from
+    ``simulate_cycles(on_error="record")``); MjwalkError when every run failed."""
+    ok = [r for r in results if getattr(r, "error", None) is None]
+    failed = [r for r in results if getattr(r, "error", None) is not None]
+    if not ok:
+        raise MjwalkError(
+            f"report: all {len(failed)} run(s) failed; the first (run {failed[0].run}): "
+            f"{failed[0].error}"
+        )
+    return ok, failed
+
+
 def report_dict(
     results: Sequence[CycleResult],
     *,
@@ -168,6 +183,7 @@ def report_dict(
     """
     if not results:
         raise MjwalkError("report: no cycle results to report")
+    results, failed = split_failed(results)
     spec = results[0].spec
     takt = getattr(spec, "takt", None)
     population = getattr(spec, "population", None)
@@ -226,6 +242,15 @@ def report_dict(
         "spec": str(spec.path),
         "scene": str(spec.scene),
         "runs": len(results),
+        "failed_runs": [
+            {
+                "run": r.run,
+                "entropy": getattr(r, "entropy", None),
+                "error": r.error,
+                "operator": operator_dict(r.operator),
+            }
+            for r in failed
+        ],
         "routes": routes,
         "cycle_time": {
             **describe([r.cycle_time for r in results]),
@@ -313,6 +338,7 @@ def format_markdown(rep: dict) -> str:
         "",
         f"Spec `{rep['spec']}`, scene `{rep['scene']}`, {rep['runs']} simulated run(s).",
         "",
+        *_failed_md(rep),
         "## Walk paths per route",
         "",
         "Median (50th percentile) and inter-quartile range of the walked length and duration, "
@@ -373,6 +399,19 @@ def format_markdown(rep: dict) -> str:
         "",
     ]
     return "\n".join(out)
+
+
+def _failed_md(rep: dict) -> list[str]:
+    failed = rep.get("failed_runs") or []
+    if not failed:
+        return []
+    out = [
+        f"**{len(failed)} run(s) failed** and are left out of every figure below (re-simulate "
+        "one alone with `mjwalk simulate ... --only-run K`):",
+        "",
+    ]
+    out += [f"- run {f['run']}: {f['error']}" for f in failed]
+    return out + [""]
 
 
 def _share_ci(e: dict | None) -> str:
@@ -475,6 +514,11 @@ def format_summary(rep: dict) -> str:
         ),
         fmt.format(*head).rstrip(),
         *(fmt.format(*r).rstrip() for r in rows),
+        *(
+            f"FAILED run {f['run']} (left out of the figures; --only-run {f['run']} re-simulates "
+            f"it): {f['error']}"
+            for f in rep.get("failed_runs") or []
+        ),
         f"collisions  {rep['collisions']['total']} total, "
         f"{rep['collisions']['runs_with_collisions']} run(s) with any",
     ]
@@ -575,6 +619,7 @@ def write_report(
     from mjwalk.plot import histograms_png, spaghetti_png  # matplotlib: loaded when drawing
 
     rep = report_dict(results, reference=reference)
+    results = split_failed(results)[0]  # the failed runs are listed in the report only
     if workplace is None:
         from mjwalk.world import shared_workplace
 

@@ -181,3 +181,56 @@ def test_baseline_must_be_paths(tmp_path, workplace):
     with pytest.raises(MjwalkError, match=r"baseline\[\('a', 'b'\)\] must be a WalkPath"):
         write_report(results, tmp_path / "out", workplace=workplace, baseline={("a", "b"): 2.4})
     assert not (tmp_path / "out").exists() or list((tmp_path / "out").iterdir()) == []
+
+
+def _failed(spec: CycleSpec, run: int) -> CycleResult:
+    return CycleResult(
+        spec, run, 7, [], [], [], float("nan"), entropy=[7, run], error="PlanningError: boxed in"
+    )
+
+
+def test_failed_runs_are_listed_apart(tmp_path, workplace):
+    ok = _results(workplace, runs=6)
+    mixed = ok[:3] + [_failed(ok[0].spec, 6)] + ok[3:]
+    rep = report_dict(mixed)
+    # the figures are those of the simulated runs alone, the failure listed with its seed
+    assert rep == {**report_dict(ok), "failed_runs": rep["failed_runs"]}
+    assert rep["failed_runs"] == [
+        {"run": 6, "entropy": [7, 6], "error": "PlanningError: boxed in", "operator": None}
+    ]
+    assert "FAILED run 6" in format_summary(rep)
+    files = write_report(mixed, tmp_path, workplace=workplace, baseline={})
+    assert "run 6: PlanningError: boxed in" in files["markdown"].read_text()
+    rows = list(csv.DictReader(files["cycles"].open()))
+    assert [r["run"] for r in rows] == [str(r.run) for r in ok]
+    with pytest.raises(MjwalkError, match=r"all 2 run\(s\) failed.*run 6.*boxed in"):
+        report_dict([_failed(ok[0].spec, 6), _failed(ok[0].spec, 7)])
+
+
+def test_simulate_cycles_records_a_failed_run(monkeypatch, scenes_dir):
+    """``on_error="record"`` (the CLI's choice) keeps a batch going past an unplannable run;
+    the default re-raises it."""
+    import mjwalk.cycle.simulate as sim
+    from mjwalk.errors import PlanningError
+
+    real = sim.simulate_cycle
+
+    def flaky(ctx, rng, *, run=0, **kw):
+        if run == 1:
+            raise PlanningError("no walk from stand_car1 to stand_rack3")
+        return real(ctx, rng, run=run, **kw)
+
+    monkeypatch.setattr(sim, "simulate_cycle", flaky)
+    spec = scenes_dir / "assembly_station.toml"
+    res = sim.simulate_cycles(spec, runs=3, seed=5, collisions=False, on_error="record")
+    assert [r.error is None for r in res] == [True, False, True]
+    bad = res[1]
+    assert bad.entropy == [5, 1] and np.isnan(bad.cycle_time) and not bad.walks
+    assert "no walk from stand_car1" in bad.error
+    # the failed run's operator is the one the run drew (same as its own simulation would)
+    assert bad.operator is not None and bad.operator.group
+    assert report_dict(res)["runs"] == 2
+    with pytest.raises(PlanningError):
+        sim.simulate_cycles(spec, runs=3, seed=5, collisions=False)
+    with pytest.raises(MjwalkError, match="on_error"):
+        sim.simulate_cycles(spec, runs=3, on_error="ignore")

@@ -38,7 +38,7 @@ from mjwalk.cycle.types import (
     TaskRecord,
     WalkRecord,
 )
-from mjwalk.errors import CycleSpecError, InputError
+from mjwalk.errors import CycleSpecError, InputError, PlanningError
 from mjwalk.timeline.collisions import collision_report
 from mjwalk.timeline.timeline import Timeline
 
@@ -254,10 +254,32 @@ def _entropy(rng: np.random.Generator) -> int | list[int] | None:
     return None if ent is None else int(ent)  # type: ignore[arg-type]
 
 
-def _run_one(spec_path: str, run: int, seed: int, collisions: bool) -> CycleResult:
+def _run_one(
+    spec_path: str, run: int, seed: int, collisions: bool, on_error: str = "raise"
+) -> CycleResult:
     ctx = _context_cached(spec_path)
     ss = np.random.SeedSequence([seed, run])
-    return simulate_cycle(ctx, np.random.default_rng(ss), run=run, collisions=collisions)
+    try:
+        return simulate_cycle(ctx, np.random.default_rng(ss), run=run, collisions=collisions)
+    except PlanningError as e:
+        if on_error == "raise":
+            raise
+        # the operator this run drew (as simulate_cycle draws it: the first spawned stream)
+        op_rng = np.random.default_rng(ss).spawn(3)[0]
+        spec = ctx.spec
+        walker = spec.population.draw(op_rng) if spec.population is not None else None
+        return CycleResult(
+            spec=spec,
+            run=run,
+            seed=seed,
+            tasks=[],
+            walks=[],
+            arms=[],
+            cycle_time=float("nan"),
+            entropy=[seed, run],
+            operator=walker,
+            error=f"{type(e).__name__}: {e}",
+        )
 
 
 def simulate_cycles(
@@ -269,8 +291,15 @@ def simulate_cycles(
     collisions: bool = True,
     progress: bool = False,
     only: Sequence[int] | None = None,
+    on_error: str = "raise",
 ) -> list[CycleResult]:
     """Monte Carlo: ``runs`` independent cycles, in parallel through joblib.
+
+    ``on_error="record"`` keeps going when a run's walk cannot be planned
+    (:class:`~mjwalk.errors.PlanningError`, e.g. a rare operator whose steps cannot reach a
+    tight stand zone): that run comes back with ``result.error`` set, no tasks and a NaN
+    cycle time, and the report lists it apart from the statistics. ``"raise"`` (the default)
+    re-raises the first such error. Other errors (a bad spec, a model file) always raise.
 
     Run ``k`` draws from ``SeedSequence([seed, k])`` (``result.entropy``): results do not
     depend on ``n_jobs`` or on the backend, and ``only=[k]`` re-simulates run ``k`` of a batch
@@ -294,7 +323,9 @@ def simulate_cycles(
             f"simulate_cycles: run indices must lie in 0..{runs - 1} (of {runs} runs), "
             f"got {bad or 'none'}"
         )
-    jobs = (delayed(_run_one)(spec_path, k, seed, collisions) for k in indices)
+    if on_error not in ("raise", "record"):
+        raise InputError(f"simulate_cycles: on_error must be 'raise' or 'record', got {on_error!r}")
+    jobs = (delayed(_run_one)(spec_path, k, seed, collisions, on_error) for k in indices)
     if progress:
         from tqdm import tqdm
 

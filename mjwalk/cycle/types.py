@@ -155,6 +155,8 @@ class CycleResult:
             if checked.
         timeline: the per-frame humanoid poses (kept only when asked for: it is large).
         operator: the run's operator, drawn from ``spec.population`` (None without one).
+        error: why the run failed (``simulate_cycles(on_error="record")``): then it has no
+            tasks, walks or arms and its cycle time is NaN; None for a simulated cycle.
     """
 
     spec: CycleSpec
@@ -168,6 +170,7 @@ class CycleResult:
     timeline: Timeline | None = None
     entropy: int | list[int] | None = None
     operator: Walker | None = None
+    error: str | None = None
 
     @property
     def group(self) -> str:
