@@ -53,6 +53,13 @@ def test_station_cycle_end_to_end(ctx):
     for joint in ("elbow_l", "elbow_r", "shoulder_l_flex", "shoulder_r_flex"):
         step = np.abs(np.diff(result.timeline.qpos[:, jm.adr(joint)]))
         assert np.degrees(step.max()) < 60.0, joint
+    # a walk's last step lands knee flexed and pelvis low; the final turn settles into standing
+    # instead of snapping (knees jumped 57-64 deg in one frame before), and
+    # the hanging forearms do not snap into or out of the walking tuck (45 deg/frame before)
+    q = result.timeline.qpos
+    for joint in ("knee_l", "knee_r", "hip_l_flex", "hip_r_flex", "forearm_l_pron"):
+        step = np.degrees(np.abs(np.diff(q[:, jm.adr(joint)])))
+        assert step.max() < 30.0, (joint, step.max())
     # the timeline covers the cycle at 30 frames per second
     assert result.timeline.t[-1] == pytest.approx(result.cycle_time, abs=2 / 30)
 

@@ -168,8 +168,10 @@ def test_arm_joint_angles_match_the_frame_by_frame_rotations(side):
         if trial == 0:
             U[0, 1] = U[0, 0]  # ... or starts from +x
         roll = rng.normal(size=25) if trial % 2 else None
+        # atol 1e-7 rad (6e-6 deg): at a straight elbow the twist is an angle of ~1e-8 rad that
+        # the two formulas round differently (scipy 1.17: 1.5e-8 vs 2.1e-8)
         np.testing.assert_allclose(
-            arm_joint_angles(U, side, roll), _arm_angles_ref(U, side, roll), atol=1e-9
+            arm_joint_angles(U, side, roll), _arm_angles_ref(U, side, roll), atol=1e-7
         )
 
 

@@ -39,14 +39,27 @@ def _standing(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarray:
 
 
 def _turn_frames(
-    ctx, x, y, yaw0, yaw1, fps, to=None, pose: np.ndarray | None = None
+    ctx,
+    x,
+    y,
+    yaw0,
+    yaw1,
+    fps,
+    to=None,
+    pose: np.ndarray | None = None,
+    settle: np.ndarray | None = None,
 ) -> tuple[np.ndarray, float]:
     """Frames of turning on the spot ``(x, y)`` from ``yaw0`` to ``yaw1`` (radians) at
     :data:`TURN_SPEED`; with ``to`` = (x1, y1) the pelvis moves there during the turn (a short
     step back, :mod:`mjwalk.cycle.standoff`; the turn lasts at least as long as that step at
     :data:`STEP_SPEED`). The body's joints hold ``pose`` (nq,; e.g. the two-handed carrying
     posture, :func:`carry_pose`), the standing pose by default; only the root moves.
-    Returns (frames, duration in seconds)."""
+
+    ``settle`` (nq,): the pose the body is in when the turn starts (a walk's last frame: the
+    last step's landing, knee flexed and pelvis low). The turn then also settles into the
+    standing pose: the joints and the pelvis height go from ``settle`` to the turn's own pose
+    with a smoothstep over the turn (at least :data:`MIN_TURN`), instead of snapping there in
+    one frame. Returns (frames, duration in seconds)."""
     d = (yaw1 - yaw0 + math.pi) % (2 * math.pi) - math.pi
     duration = max(MIN_TURN, abs(d) / TURN_SPEED)
     x1, y1 = (x, y) if to is None else to
@@ -63,7 +76,73 @@ def _turn_frames(
     frames[:, r] = x + (x1 - x) * k / n
     frames[:, r + 1] = y + (y1 - y) * k / n
     frames[:, r + 3 : r + 7] = yaw_quat(yaw0 + d * k / n)
+    if settle is not None:
+        settled = frames.copy()
+        _settle(settled, np.asarray(settle, float), r, ctx.jointmap.qposadr)
+        _feet_above_floor(ctx, settled)
+        if not _touches(ctx, settled):
+            frames = settled
+        # else: the settling leg would brush the scene (a foot landed beside a post): the body
+        # goes straight to its standing pose, as it did before the settle, rather than touch
     return frames, n / fps
+
+
+def _touches(ctx, frames: np.ndarray) -> bool:
+    """Whether any of ``frames`` (n, nq) touches the scene (MuJoCo's collision detection, the
+    cycle's own contact check: :func:`~mjwalk.timeline.collisions.collision_report`)."""
+    from mjwalk.timeline.collisions import collision_report
+    from mjwalk.timeline.timeline import Timeline
+
+    tl = Timeline(
+        model=ctx.model,
+        jointmap=ctx.jointmap,
+        fps=30.0,
+        t=np.arange(len(frames)) / 30.0,
+        qpos=frames,
+        scene=str(ctx.spec.scene),
+        stature=ctx.spec.stature,
+    )
+    return bool(collision_report(tl, data=ctx.scratch()))
+
+
+def _feet_above_floor(ctx, frames: np.ndarray) -> None:
+    """Raise the pelvis of ``frames`` (n, nq) in place where a blended pose puts a foot's lowest
+    corner below the floor (z = 0): blending a landing pose (trailing heel raised, knee
+    flexed) into the standing pose joint by joint swings that foot's toes through the floor."""
+    m, jm = ctx.model, ctx.jointmap
+    data = ctx.scratch()
+    feet = [m.geom(f"{jm.prefix}{g}").id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
+    signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
+    for q in frames:
+        data.qpos[:] = q
+        mujoco.mj_kinematics(m, data)
+        low = min(
+            float(
+                (data.geom_xpos[g] + (signs * m.geom_size[g]) @ data.geom_xmat[g].reshape(3, 3).T)[
+                    :, 2
+                ].min()
+            )
+            for g in feet
+        )
+        if low < 0.0:
+            q[jm.root + 2] -= low
+
+
+def _settle(frames: np.ndarray, start: np.ndarray, r: int, hinges: np.ndarray) -> None:
+    """Blend ``frames`` (n, nq) in place from ``start`` (the pose before them) into their own
+    poses: weight smoothstep(k / n) for frame k = 1..n (the last frame is the frames' own pose).
+    Hinge joints and the pelvis position blend linearly; the pelvis orientation keeps the
+    frames' yaw and loses ``start``'s tilt (normalized linear blend of the quaternions)."""
+    n = len(frames)
+    s = np.arange(1, n + 1) / n
+    w = (s * s * (3.0 - 2.0 * s))[:, None]
+    joints = np.r_[r : r + 3, np.asarray(hinges, int)]  # pelvis position, the humanoid's hinges
+    frames[:, joints] = start[joints] + w * (frames[:, joints] - start[joints])
+    q0 = start[r + 3 : r + 7]
+    q1 = frames[:, r + 3 : r + 7]
+    q0 = np.where((q1 @ q0)[:, None] < 0.0, -q0, q0)  # the shorter way round
+    q = q0 + w * (q1 - q0)
+    frames[:, r + 3 : r + 7] = q / np.linalg.norm(q, axis=1, keepdims=True)
 
 
 def hand_points(ctx, qpos: np.ndarray) -> np.ndarray:

@@ -156,7 +156,8 @@ def simulate_cycle(
             x, y = (float(v) for v in path.xy[-1])
             yaw = float(path.yaw[-1])
             face = wp.station(goal).yaw
-            turn, dt = _turn_frames(ctx, x, y, yaw, face, fps, pose=pose)
+            # the last step lands knee flexed, pelvis low: the turn settles into standing
+            turn, dt = _turn_frames(ctx, x, y, yaw, face, fps, pose=pose, settle=wf[-1])
             frames.append(turn)
             t += dt
             yaw = face

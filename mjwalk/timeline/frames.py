@@ -193,6 +193,8 @@ def ease_arms(
         tight = 1.0 - free
         tight = tight * tight * (3.0 - 2.0 * tight)
     w = w * w * (3.0 - 2.0 * w)  # smoothstep
+    ease = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
+    ease = ease * ease * (3.0 - 2.0 * ease)
     for side in "lr":
         for joint in (f"shoulder_{side}_flex", f"shoulder_{side}_abd", f"elbow_{side}"):
             k = jm.adr(joint)
@@ -207,8 +209,10 @@ def ease_arms(
             wk = np.ones_like(w) if carry == "both" else w
             qpos[:, k] = rest[k] + wk * (target - rest[k])
         if carry is None or not (carry == "both" or side == carry[0]):
+            # the tuck narrows a swinging arm: it eases in and out with the swing (a hanging
+            # arm at the start and the end of the walk is the standing pose, untucked)
             k = jm.adr(f"forearm_{side}_pron")
-            qpos[:, k] = qpos[:, k] + tight * (TUCK_PRONATION - qpos[:, k])
+            qpos[:, k] = qpos[:, k] + tight * ease * (TUCK_PRONATION - qpos[:, k])
     if room is not None and away is not None:
         yaw = 2.0 * np.arctan2(qpos[:, jm.root + 6], qpos[:, jm.root + 3])
         fps = 1.0 / float(np.median(np.diff(t))) if len(t) > 1 else 30.0
