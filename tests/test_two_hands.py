@@ -103,3 +103,27 @@ def test_both_needs_grip_sites(tmp_path):
     )
     with pytest.raises(CycleSpecError, match="grip"):
         load_cycle_spec(bad)
+
+
+def test_no_one_handed_reach_while_both_hands_hold_the_part(tmp_path):
+    """Both hands are on the box's grips from its pick to its place: a one-handed pick in
+    between is refused by name (it used to run with the arms at rest and the box left in the
+    air), and the same pick after the place is accepted."""
+    base = SPEC.read_text().replace(
+        'scene = "assembly_station_2h.xml"',
+        f'scene = "{SPEC.parent / "assembly_station_2h.xml"}"',
+    )
+    one_hand = '\n[[task]]\nkind = "pick"\nsite = "bench_b_box_left"\nhand = "left"\n'
+    between = base.replace(
+        '[[task]]\nkind = "place"', one_hand.lstrip("\n") + '\n[[task]]\nkind = "place"'
+    )
+    assert between != base
+    bad = tmp_path / "between.toml"
+    bad.write_text(between)
+    with pytest.raises(
+        CycleSpecError, match=r"one-handed pick \(left hand\) while both hands hold"
+    ):
+        load_cycle_spec(bad)
+    good = tmp_path / "after.toml"
+    good.write_text(base + one_hand)
+    assert [t.hand for t in load_cycle_spec(good).tasks][-1] == "left"

@@ -59,7 +59,8 @@ scene or model files; and impossible tasks, found by following the operator thro
 :data:`STAND_MAX_Z` or closer to an obstacle or the floor's edge than the walking radius), a
 walk/carry to where the operator already stands, a pick/place/fasten farther than
 :data:`MAX_REACH` (horizontally) from where the operator stands, and a place/fasten/carry with
-nothing in that hand (picks add a part to the hand; places and fastens take one away).
+nothing in that hand (picks add a part to the hand; places and fastens take one away), and a
+one-handed pick/place/fasten while both hands hold a two-handed part.
 """
 
 from __future__ import annotations
@@ -414,6 +415,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
     tasks: list[Task] = []
     stand = start
     held = dict.fromkeys(HANDS, 0)
+    held["both"] = -1  # the task index of the two-handed part in the hands, -1: none
     for i, raw in enumerate(raw_tasks):
         if not isinstance(raw, dict):
             raise check.fail(f"task {i + 1} must be a table ([[task]])", "task", i)
@@ -539,6 +541,17 @@ def _task(
     elif kind in ("pick", "place", "fasten"):
         assert site is not None  # required above
         hand = hand or "left"
+        if held["both"] >= 0 and hand != "both":
+            # both hands are on the grips of a large part (agethen2018's two-handed parts): a
+            # one-handed reach would need a hand the part cannot spare
+            raise check.fail(
+                f"key 'hand' {where}: a one-handed {kind} ({hand} hand) while both hands hold "
+                f"the two-handed part picked at task {held['both']}; place it (hand = 'both') "
+                "first",
+                t,
+                i,
+                "hand" if "hand" in raw else "kind",
+            )
         if hand == "both":
             for _, grip in grip_sites(site, hand):
                 if grip not in workplace.stations:
@@ -562,6 +575,8 @@ def _task(
         if kind == "pick":
             for h in _hands(hand):
                 held[h] += 1
+            if hand == "both":
+                held["both"] = i
         elif any(held[h] == 0 for h in _hands(hand)):
             raise check.fail(
                 f"key 'kind' {where}: a {kind} with nothing in the {hand} hand (no part picked and "
@@ -574,6 +589,8 @@ def _task(
         else:
             for h in _hands(hand):
                 held[h] -= 1
+            if hand == "both":
+                held["both"] = -1
     return Task(
         kind=kind,
         site=site,
