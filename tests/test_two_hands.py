@@ -87,6 +87,13 @@ def test_hands_stay_on_the_part_from_pick_to_place(run):
     ref = _pelvis_frame(ref_q[None], hand_points(ctx, ref_q[None]).mean(axis=1))[0]
     dev = np.linalg.norm(mid - ref, axis=1)
     assert dev.max() < 0.1, dev.max()
+    # the box leaves the bench the way the hands came: lifted towards the pre-grasp point (10 cm
+    # up, 15 cm back) before it swings into the carrying posture, instead of sliding diagonally
+    # through the bench's edge; the place lowers it the same way
+    c = h.mean(axis=1)
+    z0 = c[0, 2]
+    away = np.flatnonzero(np.linalg.norm(c[:, :2] - c[0, :2], axis=1) >= 0.10)[0]
+    assert c[away, 2] - z0 >= 0.06, c[away, 2] - z0
     # no jumps: each palm moves less than 5 cm a frame relative to the pelvis (1.5 m/s)
     rel = np.stack([_pelvis_frame(q[hold_end : reach + 1], h[:, i]) for i in (0, 1)])
     assert np.linalg.norm(np.diff(rel, axis=1), axis=2).max() < 0.05

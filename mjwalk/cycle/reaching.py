@@ -172,39 +172,48 @@ HOLD_SHIFT = 0.5
 def _holding_frames(ctx, qa: np.ndarray, qb: np.ndarray, n: int) -> np.ndarray:
     """``n`` frames (n, nq) that move both hands, holding a part, from pose ``qa`` to ``qb``
     (``qa`` excluded, ``qb`` included; same root): every joint on a minimum-jerk profile, and
-    both shoulder abductions shifted together in each frame (Brent's method) so the palms'
+    both shoulder abductions shifted together in each frame (:func:`_palms_apart`) so the palms'
     distance (m) follows the same profile from ``qa``'s to ``qb``'s: the hands keep the grips
     of the part they carry between the bench and the carrying posture."""
-    from scipy.optimize import brentq
-
     from mjwalk.arms.kinematics import min_jerk
+
+    ga, gb = _palm_gap(ctx, qa), _palm_gap(ctx, qb)
+    prof = min_jerk(np.arange(1, n + 1) / n)
+    frames = qa[None] + prof[:, None] * (qb - qa)[None]
+    for f, p in enumerate(prof[:-1]):  # the last frame is qb itself
+        frames[f] = _palms_apart(ctx, frames[f], ga + p * (gb - ga))
+    return frames
+
+
+def _palm_gap(ctx, q: np.ndarray) -> float:
+    """Distance (m) between the palms in pose ``q``."""
     from mjwalk.cycle.poses import hand_points
+
+    h = hand_points(ctx, q[None])[0]
+    return float(np.linalg.norm(h[0] - h[1]))
+
+
+def _palms_apart(ctx, q: np.ndarray, want: float) -> np.ndarray:
+    """Pose ``q`` with both shoulder abductions shifted together (by at most
+    :data:`HOLD_SHIFT`, Brent's method) so the palms lie ``want`` metres apart; ``q`` itself
+    when no shift within that bound reaches it."""
+    from scipy.optimize import brentq
 
     jm = ctx.jointmap
     ks = [jm.adr(f"shoulder_{p}_abd") for p in "lr"]
     lims = [jm.limits(f"shoulder_{p}_abd") for p in "lr"]
 
-    def gap(q: np.ndarray) -> float:
-        h = hand_points(ctx, q[None])[0]
-        return float(np.linalg.norm(h[0] - h[1]))
-
-    def shifted(q: np.ndarray, d: float) -> np.ndarray:
+    def shifted(d: float) -> np.ndarray:
         out = q.copy()
         for k, (lo, hi) in zip(ks, lims, strict=True):
             out[k] = np.clip(q[k] + d, lo, hi)
         return out
 
-    ga, gb = gap(qa), gap(qb)
-    prof = min_jerk(np.arange(1, n + 1) / n)
-    frames = qa[None] + prof[:, None] * (qb - qa)[None]
-    for f, p in enumerate(prof[:-1]):  # the last frame is qb itself
-        want = ga + p * (gb - ga)
-        lo, hi = -HOLD_SHIFT, HOLD_SHIFT
-        glo, ghi = gap(shifted(frames[f], lo)) - want, gap(shifted(frames[f], hi)) - want
-        if glo * ghi < 0.0:
-            d = brentq(lambda d, q=frames[f], w=want: gap(shifted(q, d)) - w, lo, hi, xtol=1e-5)
-            frames[f] = shifted(frames[f], d)
-    return frames
+    lo, hi = -HOLD_SHIFT, HOLD_SHIFT
+    glo, ghi = _palm_gap(ctx, shifted(lo)) - want, _palm_gap(ctx, shifted(hi)) - want
+    if glo * ghi >= 0.0:
+        return q
+    return shifted(brentq(lambda d: _palm_gap(ctx, shifted(d)) - want, lo, hi, xtol=1e-5))
 
 
 def _blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
@@ -224,7 +233,7 @@ def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None, held=None)
     error in metres, the left arm's ReachResult with both arms' warnings, the grip distance in
     metres)."""
     from mjwalk.arms.kinematics import ARM_JOINTS
-    from mjwalk.cycle.poses import carry_pose
+    from mjwalk.cycle.poses import carry_pose, hand_points
     from mjwalk.cycle.spec import grip_sites
 
     jm = ctx.jointmap
@@ -270,11 +279,44 @@ def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None, held=None)
     n_hold = max(0, round(hold * fps))
     n_back = len(frames) - n_out - n_hold
     grip = frames[n_out - 1]  # both hands on the grips
-    if held is not None:  # from the carrying posture to the grips
-        frames[:n_out] = _holding_frames(ctx, carrying, grip, n_out)
-    elif task.kind == "pick":  # from the grips into the carrying posture
-        frames[n_out + n_hold :] = _holding_frames(ctx, grip, carry_pose(ctx, q0, width), n_back)
+    # the last frames of the reach bring the hands from the pre-grasp point straight onto the
+    # grips (above the bench and back towards the operator: :func:`_approach`); a held part
+    # comes and goes the same way, so it is lowered onto the bench and lifted off it along
+    # that line instead of swept from the carrying posture through the bench's edge
+    app = _approach_frames(ctx, frames[:n_out], float(np.linalg.norm(approach)))
+    n_app = min(len(app) - 1, n_out - 2, n_back - 2)
+    if held is not None or task.kind == "pick":
+        # the pre-grasp pose with the palms still the part's width apart
+        pre = _palms_apart(ctx, frames[n_out - 1 - n_app], _palm_gap(ctx, grip))
+    if held is not None:  # carrying posture -> above the bench -> down onto the grips
+        mid = [hand_points(ctx, q[None])[0].mean(axis=0) for q in (carrying, pre, grip)]
+        on, down = np.linalg.norm(np.diff(mid, axis=0), axis=1)
+        n_down = int(np.clip(round(n_out * down / max(on + down, 1e-9)), 1, n_out - 2))
+        head = _holding_frames(ctx, carrying, pre, n_out - n_down)
+        frames[:n_out] = np.vstack([head, _holding_frames(ctx, pre, grip, n_down)])
+    elif task.kind == "pick":  # lifted off the bench, then into the carrying posture
+        carry = carry_pose(ctx, q0, width)
+        # the return's time shared by the two moves in proportion to the palms' travel
+        mid = [hand_points(ctx, q[None])[0].mean(axis=0) for q in (grip, pre, carry)]
+        up, on = np.linalg.norm(np.diff(mid, axis=0), axis=1)
+        n_lift = int(np.clip(round(n_back * up / max(up + on, 1e-9)), 1, n_back - 2))
+        lift = _holding_frames(ctx, grip, pre, n_lift)
+        tail = _holding_frames(ctx, pre, carry, n_back - n_lift)
+        frames[n_out + n_hold :] = np.vstack([lift, tail])
     return frames, max(el, er), rl, width
+
+
+def _approach_frames(ctx, reach: np.ndarray, length: float) -> np.ndarray:
+    """The final frames of ``reach`` (F, nq; a two-handed reach's frames up to the grips) in
+    which both palms move along the straight pre-grasp approach of ``length`` metres: from the
+    last frame with a palm at least 90 % of that length from its final position to the end
+    (at least the last frame)."""
+    from mjwalk.cycle.poses import hand_points
+
+    h = hand_points(ctx, reach)
+    d = np.linalg.norm(h - h[-1][None], axis=2).max(axis=1)
+    far = np.flatnonzero(d >= 0.9 * length)
+    return reach[int(far[-1]) if len(far) else len(reach) - 1 :]
 
 
 def _approach(
