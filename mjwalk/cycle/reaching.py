@@ -295,14 +295,14 @@ def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None, held=None)
         head = _holding_frames(ctx, carrying, pre, n_out - n_down)
         frames[:n_out] = np.vstack([head, _holding_frames(ctx, pre, grip, n_down)])
     elif task.kind == "pick":  # lifted off the bench, then into the carrying posture
-        carry = carry_pose(ctx, q0, width)
+        q_carry = carry_pose(ctx, q0, width)
         # the return's time shared by the two moves in proportion to the palms' travel
-        mid = [hand_points(ctx, q[None])[0].mean(axis=0) for q in (grip, pre, carry)]
+        mid = [hand_points(ctx, q[None])[0].mean(axis=0) for q in (grip, pre, q_carry)]
         up, on = np.linalg.norm(np.diff(mid, axis=0), axis=1)
         n_lift = int(np.clip(round(n_back * up / max(up + on, 1e-9)), 1, n_back - 2))
         lift = _holding_frames(ctx, grip, pre, n_lift)
-        tail = _holding_frames(ctx, pre, carry, n_back - n_lift)
-        frames[n_out + n_hold :] = np.vstack([lift, tail])
+        rest_frames = _holding_frames(ctx, pre, q_carry, n_back - n_lift)
+        frames[n_out + n_hold :] = np.vstack([lift, rest_frames])
     return frames, max(el, er), rl, width
 
 
