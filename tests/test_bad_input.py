@@ -9,6 +9,7 @@ file was left behind. The Python API cases assert the named error type and messa
 from __future__ import annotations
 
 import dataclasses
+import importlib
 import time
 
 import numpy as np
@@ -45,6 +46,10 @@ def no_work(monkeypatch):
 
         return fail
 
+    # import every module first: a module imported while another's function is patched would
+    # bind the sentinel for good (mjwalk.cycle.context takes plan_grid by name)
+    for target in WORK:
+        importlib.import_module(target.rsplit(".", 1)[0])
     for target in WORK:
         monkeypatch.setattr(target, sentinel(target))
 

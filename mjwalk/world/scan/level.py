@@ -81,7 +81,9 @@ class Levelling:
 
     def apply(self, points: np.ndarray) -> np.ndarray:
         """Levelled copies of ``points`` (..., 3)."""
-        return (np.asarray(points) - self.pivot) @ self.rotation.T + self.target
+        out = np.asarray(points) @ self.rotation.T  # one (N, 3) array, shifted in place
+        out += self.target - self.rotation @ self.pivot
+        return out
 
 
 @dataclass

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage
 
+from mjwalk._jit import njit
 from mjwalk.world.workplace import OBSTACLE_Z_RANGE
 
 #: A floor point is within this height of z = 0 after levelling, metres: below the band's
@@ -76,6 +77,49 @@ class FloorPlan:
     holes_filled: int
 
 
+@njit
+def _floor_box(points, tol):
+    """(xmin, ymin, xmax, ymax) of the points within ``tol`` of z = 0 (inf/-inf: none), in
+    one pass over the cloud (no masked copies of millions of points)."""
+    out = np.array([np.inf, np.inf, -np.inf, -np.inf])
+    for k in range(points.shape[0]):
+        if abs(points[k, 2]) <= tol:
+            x, y = points[k, 0], points[k, 1]
+            out[0] = min(out[0], x)
+            out[1] = min(out[1], y)
+            out[2] = max(out[2], x)
+            out[3] = max(out[3], y)
+    return out
+
+
+@njit
+def _rasterize(points, x0, y0, res, nx, ny, tol, z0, z1, step, nbins):
+    """Per floor-plan cell (ny, nx), in one pass over the cloud: the number of floor points
+    (within ``tol`` of z = 0), of obstacle-band points (``z0 <= z <= z1``) and the highest band
+    bin (``step`` metres from ``z0``, -1: none) of the band points."""
+    floor_n = np.zeros((ny, nx), dtype=np.int64)
+    band_n = np.zeros((ny, nx), dtype=np.int64)
+    top = np.full((ny, nx), -1, dtype=np.int64)
+    for k in range(points.shape[0]):
+        z = points[k, 2]
+        near = abs(z) <= tol
+        band = z0 <= z <= z1
+        if not (near or band):
+            continue
+        i = int(np.floor((points[k, 0] - x0) / res))
+        j = int(np.floor((points[k, 1] - y0) / res))
+        if i < 0 or i >= nx or j < 0 or j >= ny:
+            continue
+        if near:
+            floor_n[j, i] += 1
+        if band:
+            band_n[j, i] += 1
+            b = min(int((z - z0) / step), nbins - 1)
+            if b > top[j, i]:
+                top[j, i] = b
+    return floor_n, band_n, top
+
+
 def floor_plan(
     points: np.ndarray,
     *,
@@ -84,34 +128,21 @@ def floor_plan(
 ) -> FloorPlan | None:
     """The floor plan of levelled points (N, 3), metres, floor at z = 0; None without floor
     points."""
-    z = points[:, 2]
-    near = np.abs(z) <= FLOOR_TOL
-    band = (z >= z_range[0]) & (z <= z_range[1])
-    if not near.any():
-        return None
-    fxy = points[near, :2]
+    pts = np.ascontiguousarray(points, dtype=np.float64)
+    box = _floor_box(pts, FLOOR_TOL)
+    if not np.isfinite(box).all():
+        return None  # no floor points
     # A margin wider than a small hole: the unseen region around the floor is never "small".
     margin = HOLE_RADIUS + 3 * resolution
-    lo = fxy.min(axis=0) - margin
-    hi = fxy.max(axis=0) + margin
+    lo = box[:2] - margin
+    hi = box[2:] + margin
     nx, ny = (np.ceil((hi - lo) / resolution).astype(int) + 1).tolist()
-
-    def cells(xy: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        ij = np.floor((xy - lo) / resolution).astype(np.int64)
-        ok = (ij[:, 0] >= 0) & (ij[:, 0] < nx) & (ij[:, 1] >= 0) & (ij[:, 1] < ny)
-        return ij[ok, 1] * nx + ij[ok, 0], ok
-
-    lin, _ = cells(fxy)
-    seen_floor = (np.bincount(lin, minlength=nx * ny) > 0).reshape(ny, nx)
-    bpts = points[band]
-    lin, ok = cells(bpts[:, :2])
     nbins = int(np.ceil((z_range[1] - z_range[0]) / TOP_STEP))
-    zbin = np.minimum(((bpts[ok, 2] - z_range[0]) / TOP_STEP).astype(np.int64), nbins - 1)
-    counts = np.bincount(lin, minlength=nx * ny).reshape(ny, nx)
+    floor_n, counts, top_bin = _rasterize(
+        pts, lo[0], lo[1], resolution, nx, ny, FLOOR_TOL, z_range[0], z_range[1], TOP_STEP, nbins
+    )
+    seen_floor = floor_n > 0
     occupied = counts >= MIN_BAND_POINTS
-    top_bin = np.full(nx * ny, -1, dtype=np.int64)  # highest band bin per cell
-    np.maximum.at(top_bin, lin, zbin)
-    top_bin = top_bin.reshape(ny, nx)
 
     square = np.ones((3, 3), bool)
     obst = ndimage.binary_closing(occupied, square) | occupied

@@ -16,12 +16,16 @@ likely unit named (:func:`check_units`) instead of becoming a 3 km tall scene.
 
 from __future__ import annotations
 
+import contextlib
 import ctypes
+import sys
+import types
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.errors import ScanError
 
 #: Length units accepted for ``units``: metres per unit.
@@ -67,7 +71,42 @@ class ScanCloud:
 def _open3d():
     """Import Open3D. Its Linux wheels link libusb-1.0 (for the Azure Kinect) without bundling
     it; the ``libusb-package`` wheel ships that library, loaded here first so a machine without
-    Debian's libusb-1.0-0 still imports Open3D."""
+    Debian's libusb-1.0-0 still imports Open3D. ``import open3d`` also imports its Plotly/Dash
+    drawing helpers (Dash, Flask and IPython: 0.4 s of a 0.9 s import), which mjwalk never
+    calls: they are left out (:func:`_without_plotly_drawing`)."""
+    with _without_plotly_drawing():
+        return _import_open3d()
+
+
+@contextlib.contextmanager
+def _without_plotly_drawing():
+    """While Open3D is first imported, ``open3d.visualization.draw_plotly`` is a stub: any
+    function taken from it says that mjwalk loaded Open3D without its Plotly drawing (the stub
+    stays: import open3d before mjwalk's scan reader to have the real one)."""
+    name = "open3d.visualization.draw_plotly"
+    if "open3d" in sys.modules or name in sys.modules:
+        yield
+        return
+    stub = types.ModuleType(name)
+
+    def __getattr__(attr: str):
+        if attr.startswith("__"):
+            raise AttributeError(attr)
+
+        def unavailable(*args, **kwargs):
+            raise ImportError(
+                f"open3d.visualization.{attr}: mjwalk imported Open3D without its Plotly "
+                "drawing (Dash); import open3d before mjwalk's scan reader to use it"
+            )
+
+        return unavailable
+
+    stub.__getattr__ = __getattr__  # type: ignore[method-assign]
+    sys.modules[name] = stub
+    yield
+
+
+def _import_open3d():
     try:
         import open3d
     except ImportError as exc:
@@ -181,6 +220,16 @@ def check_units(points: np.ndarray, units: str, source: Path | str) -> None:
     )
 
 
+@njit
+def _non_finite_rows(raw):
+    """How many rows of ``raw`` (N, 3) hold a NaN or infinite coordinate."""
+    n = 0
+    for k in range(raw.shape[0]):
+        if not (np.isfinite(raw[k, 0]) and np.isfinite(raw[k, 1]) and np.isfinite(raw[k, 2])):
+            n += 1
+    return n
+
+
 def to_metres_z_up(
     raw: np.ndarray,
     *,
@@ -205,9 +254,9 @@ def to_metres_z_up(
         raise ScanError(f"{source}: points must be an (N, 3) array, got shape {raw.shape}")
     if len(raw) == 0:
         raise ScanError(f"{source}: the point cloud is empty")
-    finite = np.isfinite(raw).all(axis=1)
-    bad = int(len(raw) - finite.sum())
+    bad = _non_finite_rows(raw)  # one compiled pass; the mask only when there are some
     if bad:
+        finite = np.isfinite(raw).all(axis=1)
         if not drop_invalid:
             raise ScanError(
                 f"{source}: {bad} of {len(raw)} points have NaN or infinite coordinates "
