@@ -77,11 +77,28 @@ def test_station_walks_end_in_their_zones_and_spread_there(station_walks):
     assert along_car.std() > 0.04
 
 
+@pytest.fixture(scope="module")
+def workforce_walks(scenes_dir):
+    """The walks of 200 cycles, each by the operator its run draws from the shipped
+    workforce (as simulate_cycle draws it: the run generator's first spawned stream)."""
+    spec = load_cycle_spec(scenes_dir / "assembly_station.toml")
+    ctx = prepare(spec)
+    walks = []
+    for run in range(200):
+        rng = np.random.default_rng(np.random.SeedSequence([0, run]))
+        walker = spec.population.draw(rng.spawn(3)[0])
+        walks += plan_cycle_walks(ctx, rng, walker)
+    return ctx, walks
+
+
 @pytest.mark.parametrize("route", ["T2", "T3", "T5"])
-def test_no_wandering(station_walks, route):
+@pytest.mark.parametrize("who", ["model", "workforce"])
+def test_no_wandering(station_walks, workforce_walks, route, who):
     """Seeded, 200 cycles: the 99th percentile of a route's walk lengths is at most 1.35 times
-    its grid-A* length (issue 14: walks that loop around a rack are wandering, not variance)."""
-    ctx, walks = station_walks
+    its grid-A* length (issue 14: walks that loop around a rack are wandering, not variance),
+    for the model's own walker and for the shipped workforce (slow operators with short steps
+    looped on the short T5 until WANDER_SEARCHES: p99 1.38)."""
+    ctx, walks = station_walks if who == "model" else workforce_walks
     ratios = [
         path.length / ctx.baseline(here, goal)
         for i, here, goal, path in walks
@@ -92,7 +109,7 @@ def test_no_wandering(station_walks, route):
 
 def test_wandering_walks_are_planned_again(scenes_dir, monkeypatch):
     """A walk longer than WANDER_FACTOR times the route is searched again with fresh steps; when
-    every attempt wanders the shortest is returned, marked."""
+    every one of the WANDER_SEARCHES searches wanders the shortest is returned, marked."""
     import mjwalk.plan.hybrid as hybrid
     from mjwalk.gait.default import default_model
     from mjwalk.world import load_workplace
@@ -103,4 +120,5 @@ def test_wandering_walks_are_planned_again(scenes_dir, monkeypatch):
     assert walk.meta["wandering"] is False and walk.meta["attempts"] == 1
     monkeypatch.setattr(hybrid, "WANDER_FACTOR", 0.5)  # every walk "wanders"
     walk = planner.plan("stand_rack2", np.random.default_rng(0))
-    assert walk.meta["wandering"] is True and walk.meta["searches"] == planner.attempts
+    assert walk.meta["wandering"] is True and walk.meta["searches"] == hybrid.WANDER_SEARCHES
+    assert hybrid.WANDER_SEARCHES > planner.attempts  # loops get more searches than dead ends

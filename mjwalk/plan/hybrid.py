@@ -201,6 +201,13 @@ LONG_WALK = 14.0
 #: then jumps to the loops, 1.68-10; 1.5 lies in the gap. A walk that still loops after every
 #: attempt is returned with ``meta["wandering"]`` set.
 WANDER_FACTOR = 1.5
+#: Searches a looping walk gets in all (each with fresh samples) before the shortest is kept.
+#: With three, the shipped workforce's short T5 walks (rack 2 -> rack 3, 1.1 m; slow operators
+#: with short steps and small stand zones) still looped on every search in about 1 % of the
+#: cycles (99th percentile of length over the grid route 1.38, the loop bound 1.35); with six,
+#: 1.24 (``benchmarks/bench_variability.py --cycles 200``). A loop costs a short walk's
+#: search (milliseconds), so the extra searches are cheap where they happen.
+WANDER_SEARCHES = 6
 
 
 class _Exhausted(PlanningError):
@@ -480,20 +487,25 @@ class HybridPlanner:
 
         When the open list runs dry (every sampled continuation blocked, which happens now and
         then in tight places), the search starts over with fresh samples, up to ``attempts``
-        times in all; a spent expansion budget ends the planning at once.
+        times in all; a spent expansion budget ends the planning at once. A walk that loops
+        (:data:`WANDER_FACTOR`) is searched again too, up to :data:`WANDER_SEARCHES` searches
+        in all, and the shortest is kept.
         """
         t0 = time.perf_counter()
         best: WalkPath | None = None
         bound = None
-        for attempt in range(self.attempts):
+        limit = max(self.attempts, WANDER_SEARCHES)
+        exhausted = 0
+        for attempt in range(limit):
             try:
                 path = self._plan_once(start, rng, model or self.model)
             except _Exhausted as exc:
-                if attempt == self.attempts - 1:
+                exhausted += 1
+                if exhausted >= self.attempts or attempt == limit - 1:
                     if best is not None:
                         break
                     raise PlanningError(
-                        f"{exc} ({self.attempts} searches with fresh samples)"
+                        f"{exc} ({exhausted} searches with fresh samples)"
                     ) from None
                 continue
             path.meta["attempts"] = attempt + 1
@@ -507,7 +519,7 @@ class HybridPlanner:
                 best = path  # a loop: try fresh samples, keep the shortest
         assert best is not None  # a search returned, or the last attempt raised
         best.meta["seconds"] = time.perf_counter() - t0
-        best.meta["searches"] = self.attempts
+        best.meta["searches"] = attempt + 1
         return best
 
     def _plan_once(self, start, rng: np.random.Generator, model) -> WalkPath:
