@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import math
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -78,22 +79,23 @@ class GoalDistance:
         return np.maximum(euclid, grid_bound)
 
 
+#: Distance fields already computed, by grid, goal and the set of goal cells (a field depends on
+#: the tolerance only through which cell centres it takes in, so the operators of a population,
+#: whose stand zones differ by millimetres, share one). The grid is held weakly; the oldest
+#: fields go first beyond :data:`_FIELDS_BYTES` (a 100 m hall's field alone is 200 MB: such
+#: fields are not kept).
+_FIELDS: dict[tuple, tuple[weakref.ref, np.ndarray]] = {}
+_FIELDS_BYTES = 64 * 2**20
+
+
 def goal_distance(grid: OccupancyGrid, goal: np.ndarray, tolerance: float) -> GoalDistance:
     """Route length from every cell to the goal centre (Dijkstra, scipy.sparse.csgraph).
 
     The cells inside the goal area are joined to a virtual goal node by their straight-line
     distance to the goal centre; Dijkstra runs from that node over the reversed move graph.
+    The field of the same grid, goal and goal cells is computed once per process.
     """
     ny, nx = grid.free.shape
-    n = nx * ny
-    idx = np.arange(n).reshape(ny, nx)
-    rows, cols, weights = [], [], []
-    for k, (di, dj) in enumerate(grid.offsets):
-        src = idx[grid.moves[k]]
-        # reversed edge: from the move's target back to its source
-        rows.append(src + dj * nx + di)
-        cols.append(src)
-        weights.append(np.full(src.shape, grid.cell * math.hypot(di, dj)))
     gx = grid.x0 + grid.cell * np.arange(nx)
     gy = grid.y0 + grid.cell * np.arange(ny)
     cx, cy = np.meshgrid(gx, gy)
@@ -106,6 +108,31 @@ def goal_distance(grid: OccupancyGrid, goal: np.ndarray, tolerance: float) -> Go
         inside &= grid.free
     if not inside.any():
         return GoalDistance(grid, np.asarray(goal, float), tolerance, np.full((ny, nx), np.inf))
+    key = (id(grid), float(goal[0]), float(goal[1]), np.packbits(inside).tobytes())
+    hit = _FIELDS.get(key)
+    if hit is not None and hit[0]() is grid:
+        return GoalDistance(grid, np.asarray(goal, float), tolerance, hit[1])
+    field = _dijkstra_field(grid, to_goal, inside)
+    if field.nbytes <= _FIELDS_BYTES:
+        while _FIELDS and sum(f.nbytes for _, f in _FIELDS.values()) + field.nbytes > _FIELDS_BYTES:
+            _FIELDS.pop(next(iter(_FIELDS)))
+        _FIELDS[key] = (weakref.ref(grid), field)
+    return GoalDistance(grid, np.asarray(goal, float), tolerance, field)
+
+
+def _dijkstra_field(grid: OccupancyGrid, to_goal: np.ndarray, inside: np.ndarray) -> np.ndarray:
+    """The route-length field to the goal cells ``inside`` (joined to a virtual goal node by
+    their distance ``to_goal`` to the goal centre), with the rim of :func:`_rim`."""
+    ny, nx = grid.free.shape
+    n = nx * ny
+    idx = np.arange(n).reshape(ny, nx)
+    rows, cols, weights = [], [], []
+    for k, (di, dj) in enumerate(grid.offsets):
+        src = idx[grid.moves[k]]
+        # reversed edge: from the move's target back to its source
+        rows.append(src + dj * nx + di)
+        cols.append(src)
+        weights.append(np.full(src.shape, grid.cell * math.hypot(di, dj)))
     rows.append(np.full(int(inside.sum()), n))
     cols.append(idx[inside])
     weights.append(to_goal[inside])
@@ -114,7 +141,9 @@ def goal_distance(grid: OccupancyGrid, goal: np.ndarray, tolerance: float) -> Go
         shape=(n + 1, n + 1),
     ).tocsr()
     dist = dijkstra(graph, directed=True, indices=n)[:n].reshape(ny, nx)
-    return GoalDistance(grid, np.asarray(goal, float), tolerance, _rim(grid, dist))
+    field = _rim(grid, dist)
+    field.setflags(write=False)  # shared by every GoalDistance of these goal cells
+    return field
 
 
 def _rim(grid: OccupancyGrid, dist: np.ndarray) -> np.ndarray:
