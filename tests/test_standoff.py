@@ -9,12 +9,11 @@ import numpy as np
 import pytest
 
 import mjwalk.cycle.reaching as reaching
+from mjwalk.cycle.poses import frame_contacts
 from mjwalk.cycle.reaching import _reach_task
 from mjwalk.cycle.simulate import prepare, simulate_cycles
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.standoff import REACH_CLEARANCE, ArmClearance
-from mjwalk.timeline.collisions import collision_report
-from mjwalk.timeline.timeline import Timeline
 
 #: Where run 42 of ``simulate_cycles(station, 300, seed=0)`` ended its walk T3 to rack 1 before
 #: this fix (world, m): 0.035 m closer to the shelf than the stand site and 0.08 m to its side.
@@ -41,16 +40,7 @@ def _reach(ctx, site, xy, yaw):
 
 
 def _contacts(ctx, frames):
-    tl = Timeline(
-        model=ctx.model,
-        jointmap=ctx.jointmap,
-        fps=30.0,
-        t=np.arange(len(frames)) / 30.0,
-        qpos=frames,
-        scene=str(ctx.spec.scene),
-        stature=ctx.spec.stature,
-    )
-    return collision_report(tl)
+    return frame_contacts(ctx, frames)
 
 
 def test_too_close_to_a_shelf_the_operator_steps_back(ctx, monkeypatch):

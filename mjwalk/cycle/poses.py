@@ -88,21 +88,27 @@ def _turn_frames(
 
 
 def _touches(ctx, frames: np.ndarray) -> bool:
-    """Whether any of ``frames`` (n, nq) touches the scene (MuJoCo's collision detection, the
-    cycle's own contact check: :func:`~mjwalk.timeline.collisions.collision_report`)."""
+    """Whether any of ``frames`` (n, nq) touches the scene (:func:`frame_contacts`)."""
+    return bool(frame_contacts(ctx, frames))
+
+
+def frame_contacts(ctx, frames: np.ndarray, fps: float = 30.0) -> list:
+    """The humanoid-scene contacts of ``frames`` (n, nq) of ``ctx``'s model at ``fps``: the
+    cycle's own contact check (:func:`~mjwalk.timeline.collisions.collision_report`, times
+    from 0 s)."""
     from mjwalk.timeline.collisions import collision_report
     from mjwalk.timeline.timeline import Timeline
 
     tl = Timeline(
         model=ctx.model,
         jointmap=ctx.jointmap,
-        fps=30.0,
-        t=np.arange(len(frames)) / 30.0,
+        fps=fps,
+        t=np.arange(len(frames)) / fps,
         qpos=frames,
         scene=str(ctx.spec.scene),
         stature=ctx.spec.stature,
     )
-    return bool(collision_report(tl, data=ctx.scratch()))
+    return collision_report(tl, data=ctx.scratch())
 
 
 def _feet_above_floor(ctx, frames: np.ndarray) -> None:
