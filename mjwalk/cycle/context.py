@@ -46,6 +46,8 @@ class CycleContext:
     baselines: dict = field(default_factory=dict)
     grid: OccupancyGrid | None = None  # the grid-A* occupancy grid, built on first use
     clearance: ArmClearance | None = None  # the reach's clearance check, built on first use
+    #: the operator's turning speed on the spot over the reference adult's (operator_context)
+    turn_rate: float = 1.0
     # the scratch MjData and the model it was made for (not copied by dataclasses.replace:
     # an operator's context has its own humanoid model)
     _data: tuple[mujoco.MjModel, mujoco.MjData] | None = field(
@@ -129,10 +131,16 @@ def _humanoid(scene: str, stature: float) -> tuple[mujoco.MjModel, JointMap]:
 
 def operator_context(ctx: CycleContext, walker: Walker | None) -> CycleContext:
     """``ctx`` for a run of ``walker``: the humanoid (and ``spec.stature``) of the walker's
-    stature; planners, grid-A* baselines and models are shared with ``ctx``. ``ctx`` itself
-    without a walker or at the spec's stature."""
-    if walker is None or abs(walker.stature - ctx.spec.stature) < 1e-9:
+    stature, and their turning speed (``turn_rate``: a turn on the spot is made of steps, so it
+    goes at the walker's cadence over :data:`~mjwalk.gait.walker.REFERENCE_CADENCE`); planners,
+    grid-A* baselines and models are shared with ``ctx``. ``ctx`` itself without a walker."""
+    if walker is None:
         return ctx
+    from mjwalk.gait.walker import REFERENCE_CADENCE
+
+    rate = walker.cadence / REFERENCE_CADENCE
+    if abs(walker.stature - ctx.spec.stature) < 1e-9:
+        return replace(ctx, turn_rate=rate)
     model, jm = _humanoid(str(ctx.spec.scene), round(walker.stature, 3))
     return replace(
         ctx,
@@ -140,6 +148,7 @@ def operator_context(ctx: CycleContext, walker: Walker | None) -> CycleContext:
         model=model,
         jointmap=jm,
         clearance=_clearance_of(str(ctx.spec.scene), round(walker.stature, 3)),
+        turn_rate=rate,
     )
 
 

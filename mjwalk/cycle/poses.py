@@ -18,7 +18,9 @@ if TYPE_CHECKING:
 
 from mjwalk.cycle.context import CycleContext
 
-#: Turning speed on the spot (rad/s) and shortest turn (s).
+#: Turning speed on the spot (rad/s) and shortest turn (s) of the reference adult
+#: (:data:`~mjwalk.gait.walker.REFERENCE_CADENCE`): ASSUMPTION, a half turn in about two steps
+#: (1.06 s at 113 steps/min). An operator turns at their cadence (``CycleContext.turn_rate``).
 TURN_SPEED = math.radians(180.0)
 
 
@@ -61,7 +63,7 @@ def _turn_frames(
     with a smoothstep over the turn (at least :data:`MIN_TURN`), instead of snapping there in
     one frame. Returns (frames, duration in seconds)."""
     d = (yaw1 - yaw0 + math.pi) % (2 * math.pi) - math.pi
-    duration = max(MIN_TURN, abs(d) / TURN_SPEED)
+    duration = max(MIN_TURN, abs(d) / TURN_SPEED) / ctx.turn_rate  # at the operator's cadence
     x1, y1 = (x, y) if to is None else to
     shift = math.hypot(x1 - x, y1 - y)
     if shift > 0.0:
