@@ -20,7 +20,11 @@ Run: python3 benchmarks/bench_variability.py [--cycles 200] [--data ../shared/da
    captured straight walk of the four Bandai styles is walked by the default model conditioned
    on its style's pace (``capture_pace``: the population that matches the captured walkers),
    starting in motion when the captured walk does; median time and IQR, capture vs model, per
-   style and pooled.
+   style and pooled. Two model lines: the greedy straight walker of ``mjwalk.gait.fidelity``
+   (the model's steps steered step by step, as the fidelity tests use it), and ``planned``:
+   the walks as mjwalk plans them, by the hybrid A* in an empty straight hall
+   (:func:`planned_straight_walks`, three per captured walk). The greedy walker's paths wander
+   (path over distance 1.01-1.02 +- 0.02-0.03, captured 1.006 +- 0.001), the planner's do not.
 """
 
 from __future__ import annotations
@@ -140,8 +144,9 @@ def straight_walks(data: Path) -> None:
         f"\n{'style':<10}{'walker m/s':>11}{'/min':>7}{'n':>4}{'capture median (IQR) s':>24}"
         f"{'model median (IQR) s':>22}{'median':>8}{'IQR':>7}"
     )
-    pooled_c, pooled_m = [], []
+    pooled_c, pooled_m, pooled_p = [], [], []
     rng = np.random.default_rng(0)
+    prng = np.random.default_rng(1)
     for style in STYLES:
         takes = load_capture(bvh=str(data / "bandai-walk" / f"*_{style}_*.bvh"))
         steps, _ = segment_takes(takes)
@@ -156,10 +161,65 @@ def straight_walks(data: Path) -> None:
         )
         ct = [w["time"] for w in cw]
         mt = [w["time"] for w in mw]
+        # the planner's own stream; each captured walk planned PLANNED_REPEATS times (the
+        # model's spread is then not that of a sample of 15-27 walks)
+        pt = planned_straight_walks(
+            model.for_walker(walker),
+            [w["distance"] for w in cw] * PLANNED_REPEATS,
+            [bool(w["in_motion"]) for w in cw] * PLANNED_REPEATS,
+            prng,
+        )
         pooled_c += ct
         pooled_m += mt
+        pooled_p += pt
         _row(style, pace.speed, pace.cadence, ct, mt)
+        _row("  planned", pace.speed, pace.cadence, ct, pt)
     _row("pooled", np.nan, np.nan, pooled_c, pooled_m)
+    _row("  planned", np.nan, np.nan, pooled_c, pooled_p)
+
+
+#: A straight hall for the planned straight walks: floor half-length and half-width (m).
+HALL = (14.0, 3.0)
+#: Planned walks per captured straight walk.
+PLANNED_REPEATS = 3
+#: Planned walks start this far before the measured stretch when the captured walk starts in
+#: motion (its first step is not an initiation), and aim this far beyond its end (m).
+RUN_UP, RUN_ON = 2.5, 1.0
+
+
+def planned_straight_walks(model, distances, in_motion, rng) -> list[float]:
+    """The time (s) mjwalk's hybrid A* takes to walk each captured straight walk: planned in an
+    empty straight hall, from rest (or, for a walk captured in motion, from :data:`RUN_UP`
+    metres before it, timed from where the walk's progress passes that point), to a goal
+    :data:`RUN_ON` metres beyond its end; the time at the captured distance is read off the
+    steps' ends as for the greedy walks (``fidelity._time_at``)."""
+    import tempfile
+
+    from mjwalk.gait.fidelity import _time_at
+    from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.world import load_workplace
+
+    lx, ly = HALL
+    xml = (
+        '<mujoco model="straight_hall"><worldbody>'
+        f'<geom name="floor" type="plane" size="{lx} {ly} 0.05"/>'
+        "</worldbody></mujoco>"
+    )
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "straight_hall.xml"
+        path.write_text(xml)
+        wp = load_workplace(path, cache=False)
+    x0 = -lx + 1.0
+    out = []
+    for d, moving in zip(distances, in_motion, strict=True):
+        lead = RUN_UP if moving else 0.0
+        planner = HybridPlanner(wp, (x0 + lead + d + RUN_ON, 0.0), model)
+        walk = planner.plan(f"{x0},0,0", rng)
+        track = [(float(walk.t[s.end]), float(walk.xy[s.end, 0] - x0)) for s in walk.steps]
+        track = [(0.0, 0.0), *track]
+        t0 = _time_at(track, lead) if moving else 0.0
+        out.append(_time_at(track, lead + d) - t0)
+    return out
 
 
 def _row(name, speed, cadence, ct, mt) -> None:
