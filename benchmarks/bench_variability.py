@@ -13,6 +13,8 @@ Run: python3 benchmarks/bench_variability.py [--cycles 200] [--data ../shared/da
 2. **Routes with the shipped workforce**: the same table with each run's operator drawn from
    the station cycle's ``[population]`` (between-person differences: stature, hence reach and
    stand zone, step length and pace).
+   Then what the length spread is made of (:func:`length_makeup`): the chord and the excess
+   over it, and where the walks start and end.
 3. **Cycle times for two populations** (``--cycle-runs`` full cycles each, animated, no video):
    the shipped mixed workforce and an older one (older adults and elderly), P5/P50/P95 and the
    share over the station's takt with its Wilson 95 % interval (``mjwalk.report``'s figures).
@@ -76,6 +78,38 @@ def route_table(cycles: int, seed: int = 0, population: bool = False) -> dict:
                 lengths[key].append(path.length)
                 ratios[key].append(ratio)
     return {k: (np.array(lengths[k]), np.array(ratios[k])) for k in lengths}
+
+
+def length_makeup(cycles: int, seed: int = 0) -> None:
+    """What a route's length spread is made of (shipped workforce): per direction, the IQR of
+    the walked length and of its chord (start to end, straight), the median and IQR of the
+    excess of the walk over the chord, and the standard deviation (m) of where the walks
+    start and end. A walk is its chord plus a few centimetres, so the length spread is the
+    spread of where walks start and end: the stand zones'."""
+    spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
+    ctx = prepare(spec)
+    rows: dict[str, list] = defaultdict(list)
+    for run in range(cycles):
+        rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
+        walker = spec.population.draw(rng.spawn(3)[0]) if spec.population else None
+        for i, here, goal, p in plan_cycle_walks(ctx, rng, walker):
+            chord = float(np.hypot(*(p.xy[-1] - p.xy[0])))
+            rows[f"{spec.tasks[i].route} {here}->{goal}"].append(
+                (p.length, chord, p.length - chord, *p.xy[0], *p.xy[-1])
+            )
+    print(
+        f"\nwhat the length spread is made of (shipped workforce, {cycles} cycles)\n"
+        f"{'route':<34}{'len IQR':>8}{'chord IQR':>10}{'excess med':>11}{'excess IQR':>11}"
+        f"{'start sd':>9}{'end sd':>8}"
+    )
+    for key in sorted(rows):
+        v = np.array(rows[key])
+        sd0 = float(np.linalg.norm(v[:, 3:5].std(axis=0)))
+        sd1 = float(np.linalg.norm(v[:, 5:7].std(axis=0)))
+        print(
+            f"{key:<34}{_q(v[:, 0])[1]:>8.3f}{_q(v[:, 1])[1]:>10.3f}{np.median(v[:, 2]):>11.3f}"
+            f"{_q(v[:, 2])[1]:>11.3f}{sd0:>9.3f}{sd1:>8.3f}"
+        )
 
 
 def print_routes(table: dict) -> None:
@@ -246,6 +280,7 @@ def main() -> None:
     table = route_table(args.cycles, args.seed, population=True)
     print(f"\nthe same with the shipped workforce ({time.perf_counter() - t0:.1f} s)")
     print_routes(table)
+    length_makeup(args.cycles, args.seed)
     if args.cycle_runs:
         cycle_populations(args.cycle_runs, args.seed)
     if (args.data / "bandai-walk").is_dir():
