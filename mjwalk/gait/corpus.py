@@ -224,7 +224,9 @@ def sample_subject(rng: np.random.Generator, subject: int = 0) -> SubjectParams:
         # (straight-walk speed IQR 0.98x the capture's, step-time CV 3.3 %), but the planner
         # then looped on the station's short routes (bench_variability, 20 cycles: T5
         # p99/grid-A* 2.86, T4 1.94 with the workforce; a 1.83 m fatigued operator's walk not
-        # plannable), presumably from fewer sampled steps that end in a small goal area.
+        # plannable). Changing the durations alone (step-time CV 2-3 %, cadence SD 7 %) also
+        # made T5 loop (p99/grid-A* 2.15) and left the straight-walk IQR at 157 %: the short
+        # routes react to any retrained model, so retrain only with the loop bound in view.
         length_cv=float(rng.uniform(0.035, 0.05)),
         duration_cv=float(rng.uniform(0.04, 0.05)),
         speed_sd=float(rng.uniform(0.03, 0.06)),
