@@ -13,20 +13,23 @@ Run: python3 benchmarks/bench_variability.py [--cycles 200] [--data ../shared/da
 2. **Routes with the shipped workforce**: the same table with each run's operator drawn from
    the station cycle's ``[population]`` (between-person differences: stature, hence reach and
    stand zone, step length and pace).
-   Then what the length spread is made of (:func:`length_makeup`): the chord and the excess
-   over it, and where the walks start and end.
 3. **Cycle times for two populations** (``--cycle-runs`` full cycles each, animated, no video):
    the shipped mixed workforce and an older one (older adults and elderly), P5/P50/P95 and the
    share over the station's takt with its Wilson 95 % interval (``mjwalk.report``'s figures).
 4. **Straight walks against capture** (``--data``; skipped without the shared capture): every
-   captured straight walk of the four Bandai styles is walked by the default model conditioned
-   on its style's pace (``capture_pace``: the population that matches the captured walkers),
-   starting in motion when the captured walk does; median time and IQR, capture vs model, per
-   style and pooled. Two model lines: the greedy straight walker of ``mjwalk.gait.fidelity``
-   (the model's steps steered step by step, as the fidelity tests use it), and ``planned``:
-   the walks as mjwalk plans them, by the hybrid A* in an empty straight hall
-   (:func:`planned_straight_walks`, three per captured walk). The greedy walker's paths wander
-   (path over distance 1.01-1.02 +- 0.02-0.03, captured 1.006 +- 0.001), the planner's do not.
+   captured straight walk of the four Bandai styles is walked ``--walk-reps`` times by the
+   default model conditioned on its style's pace (``capture_pace``: the population that
+   matches the captured walkers), starting in motion unless the captured walk starts from
+   standing (``starts_at_rest``); median time and IQR, capture vs model, per style and pooled
+   (one walk per captured walk left the model's IQR to chance: 71-160 % of the captured for one
+   style over ten seeds); a ``planned`` line walks them as mjwalk plans walks (the hybrid A*
+   in an empty straight hall, :func:`planned_straight_walks`, three per captured walk; the
+   greedy walker's paths wander, the planner's do not). The captured IQR is itself uncertain
+   (91 walks): its bootstrap interval is printed, and the IQR expected of a model that had
+   every style's per-walk speeds exactly but paired them with the captured distances at
+   random, as any model must. Then
+   where the spread comes from, per walk: speed, steady step length and duration, lateral
+   wander.
 """
 
 from __future__ import annotations
@@ -41,6 +44,7 @@ import numpy as np
 
 from mjwalk.cycle.simulate import plan_cycle_walks, prepare
 from mjwalk.cycle.spec import load_cycle_spec
+from mjwalk.errors import PlanningError
 
 ROOT = Path(__file__).resolve().parents[1]
 #: agethen2018 Table 1, captured walks: route -> (median length m, IQR m).
@@ -62,7 +66,9 @@ def _q(x) -> tuple[float, float]:
 
 def route_table(cycles: int, seed: int = 0, population: bool = False) -> dict:
     """Per route (and per direction ``T2 a->b``): lengths and length / grid-A* length; with
-    ``population``, each run's operator drawn as ``simulate_cycle`` draws it."""
+    ``population``, each run's operator drawn as ``simulate_cycle`` draws it. A run whose walks
+    cannot all be planned is printed and left out (as ``simulate_cycles(on_error="record")``
+    lists it apart)."""
     spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
     ctx = prepare(spec)
     lengths: dict[str, list[float]] = defaultdict(list)
@@ -71,7 +77,12 @@ def route_table(cycles: int, seed: int = 0, population: bool = False) -> dict:
         rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
         op_rng = rng.spawn(3)[0]  # simulate_cycle's operator stream
         walker = spec.population.draw(op_rng) if population and spec.population else None
-        for i, here, goal, path in plan_cycle_walks(ctx, rng, walker):
+        try:  # a cycle's walks, all or none (a rare operator's walk may not be plannable)
+            walks = list(plan_cycle_walks(ctx, rng, walker))
+        except PlanningError as exc:
+            print(f"  run {run}: no walk plan for {walker} ({str(exc)[:60]}...)")
+            continue
+        for i, here, goal, path in walks:
             route = spec.tasks[i].route or f"{here}->{goal}"
             ratio = path.length / ctx.baseline(here, goal)
             for key in (route, f"{route} {here}->{goal}"):
@@ -166,7 +177,7 @@ def cycle_populations(runs: int, seed: int = 0) -> None:
             )
 
 
-def straight_walks(data: Path) -> None:
+def straight_walks(data: Path, reps: int = 10, seed: int = 0) -> None:
     from mjwalk.gait.default import default_model
     from mjwalk.gait.fidelity import captured_straight_walks, load_capture, model_straight_walks
     from mjwalk.gait.pace import capture_pace
@@ -175,41 +186,56 @@ def straight_walks(data: Path) -> None:
 
     model = default_model(progress=False)
     print(
-        f"\n{'style':<10}{'walker m/s':>11}{'/min':>7}{'n':>4}{'capture median (IQR) s':>24}"
+        f"\nstraight walks: every captured walk walked {reps}x by the model (its median and IQR"
+        " over all of them)"
+    )
+    print(
+        f"{'style':<10}{'walker m/s':>11}{'/min':>7}{'n':>4}{'capture median (IQR) s':>24}"
         f"{'model median (IQR) s':>22}{'median':>8}{'IQR':>7}"
     )
-    pooled_c, pooled_m, pooled_p = [], [], []
-    rng = np.random.default_rng(0)
-    prng = np.random.default_rng(1)
+    pooled: dict[str, list] = defaultdict(list)
+    parts: dict[str, dict[str, list]] = {}
+    rng = np.random.default_rng(seed)
+    prng = np.random.default_rng(seed + 1)
     for style in STYLES:
         takes = load_capture(bvh=str(data / "bandai-walk" / f"*_{style}_*.bvh"))
         steps, _ = segment_takes(takes)
         pace = capture_pace(steps)
         walker = Walker(speed=pace.speed, cadence=pace.cadence, group=style)
         cw = captured_straight_walks(steps)
+        dist = np.array([w["distance"] for w in cw])
         mw = model_straight_walks(
             model.for_walker(walker),
-            np.array([w["distance"] for w in cw]),
+            np.tile(dist, reps),
             rng,
-            in_motion=np.array([w["in_motion"] for w in cw], dtype=bool),
+            in_motion=np.tile(np.array([w["in_motion"] for w in cw], dtype=bool), reps),
+            record_steps=True,
         )
-        ct = [w["time"] for w in cw]
-        mt = [w["time"] for w in mw]
-        # the planner's own stream; each captured walk planned PLANNED_REPEATS times (the
-        # model's spread is then not that of a sample of 15-27 walks)
+        ct = np.array([w["time"] for w in cw])
+        mt = np.array([w["time"] for w in mw])
+        for key, x in (
+            ("c", ct),
+            ("m", mt),
+            ("d", dist),
+            ("v", dist / ct),
+            ("style", [style] * len(ct)),
+        ):
+            pooled[key] += list(x)
+        parts[style] = _walk_parts(cw, mw, steps)
+        # the same walks as mjwalk plans them (hybrid A*, the planner's own stream)
         pt = planned_straight_walks(
             model.for_walker(walker),
-            [w["distance"] for w in cw] * PLANNED_REPEATS,
+            list(dist) * PLANNED_REPEATS,
             [bool(w["in_motion"]) for w in cw] * PLANNED_REPEATS,
             prng,
         )
-        pooled_c += ct
-        pooled_m += mt
-        pooled_p += pt
+        pooled["p"] += pt
         _row(style, pace.speed, pace.cadence, ct, mt)
         _row("  planned", pace.speed, pace.cadence, ct, pt)
-    _row("pooled", np.nan, np.nan, pooled_c, pooled_m)
-    _row("  planned", np.nan, np.nan, pooled_c, pooled_p)
+    _row("pooled", np.nan, np.nan, pooled["c"], pooled["m"])
+    _row("  planned", np.nan, np.nan, pooled["c"], pooled["p"])
+    _capture_iqr_spread(pooled)
+    _print_parts(parts)
 
 
 #: A straight hall for the planned straight walks: floor half-length and half-width (m).
@@ -264,6 +290,81 @@ def _row(name, speed, cadence, ct, mt) -> None:
     )
 
 
+def _capture_iqr_spread(pooled: dict, n_boot: int = 2000) -> None:
+    """How certain the captured pooled IQR is (bootstrap within styles), and the IQR a model
+    would have in expectation if it reproduced every style's per-walk speeds exactly but, as it
+    must, not which captured distance goes with which speed (speeds paired with the distances
+    at random within each style)."""
+    rng = np.random.default_rng(1)
+    d, v = np.array(pooled["d"]), np.array(pooled["v"])
+    style = np.array(pooled["style"])
+    groups = [np.flatnonzero(style == s) for s in STYLES]
+    boot, pair = [], []
+    for _ in range(n_boot):
+        idx = np.concatenate([rng.choice(g, g.size) for g in groups])
+        boot.append(_q(d[idx] / v[idx])[1])
+        vp = v.copy()
+        for g in groups:
+            vp[g] = v[rng.permutation(g)]
+        pair.append(_q(d / vp)[1])
+    iqr = _q(d / v)[1]
+    print(
+        f"captured pooled IQR {iqr:.2f} s: bootstrap 90 % interval {np.percentile(boot, 5):.2f}-"
+        f"{np.percentile(boot, 95):.2f} s; with each style's speeds paired with its distances at "
+        f"random {np.median(pair):.2f} s ({100 * np.median(pair) / iqr:.0f} % of the captured)"
+    )
+
+
+def _walk_parts(cw: list, mw: list, steps: list) -> dict[str, list]:
+    """Per walk, capture and model: speed (distance / time), mean steady step length and
+    duration, and the largest lateral distance from the start-goal line (m)."""
+    from mjwalk.gait.fidelity import _compose, straight_runs
+
+    out: dict[str, list] = defaultdict(list)
+    for run, w in zip(straight_runs(steps), cw, strict=True):
+        pos, phi, path = np.zeros(2), 0.0, [np.zeros(2)]
+        for s in run:
+            pos, phi = _compose(pos, phi, s.pelvis[-1], s.end_yaw)
+            path.append(pos)
+        p = np.array(path)
+        u = p[-1] / np.hypot(*p[-1])
+        steady = [s for s in run if not (s.meta.get("initiation") or s.meta.get("termination"))]
+        out["c speed"].append(w["distance"] / w["time"])
+        out["c step length"].append(np.mean([s.length for s in steady]))
+        out["c step duration"].append(np.mean([s.duration for s in steady]))
+        out["c lateral"].append(np.abs(p @ np.array([-u[1], u[0]])).max())
+    for w in mw:
+        out["m speed"].append(w["distance"] / w["time"])
+        out["m step length"].append(np.mean(w["lengths"][2:-1]))
+        out["m step duration"].append(np.mean(w["durations"][2:-1]))
+        out["m lateral"].append(np.abs(w["track"][:, 2]).max())
+    return out
+
+
+def _print_parts(parts: dict[str, dict[str, list]]) -> None:
+    """Where the time spread comes from: per walk speed, steady step length and duration,
+    lateral wander; IQR/median of each, capture vs model, and their ratio."""
+    keys = ("speed", "step length", "duration", "lateral")
+    print("\nper walk (IQR/median %, capture / model): speed = step length / step duration")
+    print(f"{'style':<10}" + "".join(f"{k:>22}" for k in keys))
+    rows = list(parts.items()) + [
+        (
+            "pooled",
+            {k: [x for p in parts.values() for x in p[k]] for k in next(iter(parts.values()))},
+        )
+    ]
+    for style, p in rows:
+        cells = []
+        for k in keys:
+            name = "step duration" if k == "duration" else k
+            (cm, ci), (mm, mi) = _q(p[f"c {name}"]), _q(p[f"m {name}"])
+            if k == "lateral":  # metres, not relative
+                cells.append(f"{cm:.2f}/{mm:.2f} m (IQR {mi / ci:.1f}x)")
+            else:
+                cells.append(f"{100 * ci / cm:.1f}/{100 * mi / mm:.1f} ({mi / ci:.2f}x)")
+        print(f"{style:<10}" + "".join(f"{c:>22}" for c in cells))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--cycles", type=int, default=200)
@@ -271,6 +372,9 @@ def main() -> None:
     ap.add_argument("--cycle-runs", type=int, default=100, help="full cycles per population")
     default_data = Path(os.environ.get("MJWALK_SHARED_DATA", ROOT.parent / "shared" / "data"))
     ap.add_argument("--data", type=Path, default=default_data)
+    ap.add_argument(
+        "--walk-reps", type=int, default=10, help="model walks per captured straight walk"
+    )
     args = ap.parse_args()
     t0 = time.perf_counter()
     table = route_table(args.cycles, args.seed)
@@ -284,7 +388,7 @@ def main() -> None:
     if args.cycle_runs:
         cycle_populations(args.cycle_runs, args.seed)
     if (args.data / "bandai-walk").is_dir():
-        straight_walks(args.data)
+        straight_walks(args.data, args.walk_reps, args.seed)
     else:
         print(f"\n(no capture at {args.data}: straight walks skipped)")
 

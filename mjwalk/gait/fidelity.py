@@ -163,11 +163,35 @@ def straight_runs(steps: Sequence[Step], straight_deg: float = 20.0) -> list[lis
     return out
 
 
+#: A captured walk starts from standing when the pelvis moves slower than this at the start
+#: of its first step (m/s, mean over the first :data:`REST_WINDOW` s), not merely when the
+#: segmenter flags that step a gait initiation (both feet on the floor since the take's first
+#: frame): a clip cut in double support starts so while walking. On the Bandai straight walks,
+#: 17 of 91 first steps are flagged initiations, and their pelvis moves at 0.40 m/s (1 walk)
+#: and 0.90-1.56 m/s (16 walks): walked from standing, they took the model ~0.4 s of gait
+#: initiation the captured walkers never did. 0.2 m/s: the shared capture's README calls a
+#: clip starting below it one starting from a stand; a standing person's pelvis sways at
+#: a few cm/s.
+REST_SPEED = 0.2
+REST_WINDOW = 0.1
+
+
+def starts_at_rest(step: Step) -> bool:
+    """Whether a captured ``step`` starts from standing: a gait initiation (``Step.meta``)
+    whose pelvis moves slower than :data:`REST_SPEED` over its first :data:`REST_WINDOW` s."""
+    if not step.meta.get("initiation"):
+        return False
+    k = max(1, min(len(step.pelvis) - 1, round(REST_WINDOW * step.fps)))
+    speed = float(np.hypot(*(step.pelvis[k] - step.pelvis[0]))) * step.fps / k
+    return speed < REST_SPEED
+
+
 def captured_straight_walks(
     steps: Sequence[Step], straight_deg: float = 20.0
 ) -> list[dict[str, float]]:
-    """Straight walks of the capture (:func:`straight_runs`): distance, time, path length
-    and step count each."""
+    """Straight walks of the capture (:func:`straight_runs`): distance, time, path length,
+    step count and ``in_motion`` (1.0 unless the walk starts from standing,
+    :func:`starts_at_rest`) each."""
     walks = []
     for run in straight_runs(steps, straight_deg):
         pos, phi = np.zeros(2), 0.0
@@ -180,7 +204,7 @@ def captured_straight_walks(
                 "time": float(sum(s.duration for s in run)),
                 "path_length": float(_path_length(paths).sum()),
                 "n_steps": len(run),
-                "in_motion": float(not run[0].meta.get("initiation")),
+                "in_motion": float(not starts_at_rest(run[0])),
             }
         )
     return walks
@@ -199,9 +223,11 @@ def model_straight_walks(
     """Walk the model straight to a goal at each distance (m) with the greedy steering rule of
     the module docstring; all walks advance together (vectorized). ``record_steps``: each
     walk's dict also holds its steps' ``lengths`` (m), ``durations`` (s) and ``widths`` (m:
-    lateral distance of the landing foot from the stance foot), in walking order.
-    ``in_motion`` (per walk, bool): that walk starts already walking, like a captured walk
-    whose first step is not a gait initiation: its first candidates are the third steps of
+    lateral distance of the landing foot from the stance foot), in walking order, and its
+    ``track`` ((n + 1, 3): time s, progress along the start-goal line m, lateral offset m, at
+    the start and after every step). ``in_motion`` (per walk, bool): that walk starts already
+    walking, like a captured walk that does not start from standing
+    (:func:`starts_at_rest`): its first candidates are the third steps of
     chains (a KDE starter and one successor before them, not counted) instead of starters."""
     distances = np.asarray(distances, dtype=float)
     w = len(distances)
@@ -214,6 +240,7 @@ def model_straight_walks(
     per_step: list[list[tuple[float, float, float]]] = [[] for _ in range(w)]
     # (time, progress along the start -> goal line) after every step of every walk
     track: list[list[tuple[float, float]]] = [[(0.0, 0.0)] for _ in range(w)]
+    lateral: list[list[float]] = [[0.0] for _ in range(w)]  # x after every step (m)
     active = np.ones(w, dtype=bool)
     current: StepBatch | None = None
     max_steps = int(np.ceil(distances.max() / 0.2)) + 10 if w else 0
@@ -265,6 +292,7 @@ def model_straight_walks(
         time_[g] += chosen.duration[go]
         for j in g:
             track[j].append((float(time_[j]), float(pos[j, 1])))
+            lateral[j].append(float(pos[j, 0]))
         plen[g] += _path_length(pelvis)[go]
         n_steps[g] += 1
         if record_steps:
@@ -292,6 +320,7 @@ def model_straight_walks(
         if record_steps:
             rec = np.asarray(per_step[i], dtype=float).reshape(-1, 3)
             walk.update(lengths=rec[:, 0], durations=rec[:, 1], widths=rec[:, 2])
+            walk["track"] = np.column_stack([np.asarray(track[i], dtype=float), lateral[i]])
         out.append(walk)
     return out
 
