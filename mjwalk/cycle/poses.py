@@ -117,21 +117,15 @@ def _feet_above_floor(ctx, frames: np.ndarray) -> None:
     """Raise the pelvis of ``frames`` (n, nq) in place where a blended pose puts a foot's lowest
     corner below the floor (z = 0): blending a landing pose (trailing heel raised, knee
     flexed) into the standing pose joint by joint swings that foot's toes through the floor."""
+    from mjwalk.body.legs.footcheck import lowest_point
+
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
     feet = [m.geom(f"{jm.prefix}{g}").id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
-    signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
     for q in frames:
         data.qpos[:] = q
         mujoco.mj_kinematics(m, data)
-        low = min(
-            float(
-                (data.geom_xpos[g] + (signs * m.geom_size[g]) @ data.geom_xmat[g].reshape(3, 3).T)[
-                    :, 2
-                ].min()
-            )
-            for g in feet
-        )
+        low = lowest_point(m, data, feet)
         if low < 0.0:
             q[jm.root + 2] -= low
 

@@ -37,6 +37,24 @@ def posed(legs, stature: float = DEFAULT_STATURE):
         yield i, model, data
 
 
+#: The eight corners of a box geom, as signs of its half-sizes.
+_CORNERS = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
+
+
+def lowest_point(model: mujoco.MjModel, data: mujoco.MjData, geoms) -> float:
+    """Height (m) of the lowest corner of the box geoms ``geoms`` (ids) in ``data``'s pose
+    (after forward kinematics): the feet's lowest point."""
+    return min(
+        float(
+            (
+                data.geom_xpos[g]
+                + (_CORNERS * model.geom_size[g]) @ data.geom_xmat[g].reshape(3, 3).T
+            )[:, 2].min()
+        )
+        for g in geoms
+    )
+
+
 def foot_points(legs, stature: float = DEFAULT_STATURE):
     """Heel and ball world positions (N, 2, 2, 3) [frame, side l/r, heel/ball], foot pitch
     (N, 2, radians, + toes up) and the lowest foot point (N,) of ``legs`` (a
@@ -44,7 +62,6 @@ def foot_points(legs, stature: float = DEFAULT_STATURE):
     humanoid of ``stature`` metres."""
     n = len(legs.t)
     pts, pitch, low = np.zeros((n, 2, 2, 3)), np.zeros((n, 2)), np.zeros(n)
-    signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
     back = leg_geometry(stature).foot_back
     feet: list[int] = []
     for i, model, data in posed(legs, stature):
@@ -54,12 +71,7 @@ def foot_points(legs, stature: float = DEFAULT_STATURE):
             pts[i, k, 0] = data.site_xpos[model.site(f"sole_{s}").id] - back * R[:, 0]
             pts[i, k, 1] = data.xpos[model.body(f"toes_{s}").id]
             pitch[i, k] = np.arcsin(R[2, 0])
-        low[i] = min(
-            (data.geom_xpos[g] + (signs * model.geom_size[g]) @ data.geom_xmat[g].reshape(3, 3).T)[
-                :, 2
-            ].min()
-            for g in feet
-        )
+        low[i] = lowest_point(model, data, feet)
     return pts, pitch, low
 
 
