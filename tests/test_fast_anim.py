@@ -417,3 +417,28 @@ def test_arm_clearance_distance_same_with_broad_phase(x):
         assert check.distance(part) == full
     if x < 10:
         assert np.isfinite(check.distance(tl.qpos, broad_phase=False))
+
+
+@pytest.mark.parametrize("x", [2.0, 20.0])
+def test_arm_clearance_floor_broad_phase(x):
+    """The clearance check's arm margin does not enter the floor test (a contact's distance is
+    the geometry's): with the feet on the floor and no solid near, no frame is a candidate;
+    with the body lowered into the floor by 5 to 25 mm (the floor counts below 10 mm) the
+    broad phase still finds the full check's smallest distance."""
+    from mjwalk.cycle.standoff import FLOOR_TOLERANCE, ArmClearance
+
+    spec = mujoco.MjSpec.from_string(SCENE.format(x=x, y=0.3).replace("2.6 0 1.55", "20 5 2"))
+    tl = timeline_from_walk(synthetic_walk(n_steps=6), spec)
+    check = ArmClearance(tl.model, tl.jointmap, clearance=0.05)
+    if x > 10:
+        cand = candidate_frames(
+            check.model, tl.qpos, check.human, check.floor, FLOOR_TOLERANCE, check.data
+        )
+        assert not cand.any()
+    for drop in (0.005, 0.0095, 0.0105, 0.015, 0.025):
+        q = tl.qpos.copy()
+        q[:, 2] -= drop  # the free joint's height
+        full = check.distance(q, broad_phase=False)
+        assert check.distance(q) == full
+        if x > 10 and drop > 0.012:
+            assert np.isfinite(full)  # the floor counts

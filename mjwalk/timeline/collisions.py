@@ -156,7 +156,10 @@ def candidate_frames(
       (``geom_rbound``) plus both margins and :data:`BROAD_SLACK`;
     * a floor plane: a humanoid geom's lowest point (exact for spheres, capsules, cylinders
       and boxes; the bounding sphere otherwise) deeper than ``floor_tolerance`` less the
-      margins and the slack below it (shallower floor contacts are not reported).
+      slack below it (shallower floor contacts are not reported; a contact's distance is the
+      geometry's whatever the margins, which only decide whether a pair apart is reported, so
+      the arms' clearance margin of :class:`~mjwalk.cycle.standoff.ArmClearance` does not
+      make every frame with a foot on the floor a candidate).
 
     Scene geoms on moving bodies, and floors that are not planes, make every frame a
     candidate. Forward kinematics of every pose (in ``data``, default a new MjData): about a
@@ -197,7 +200,10 @@ def candidate_frames(
     reach_solid = reach + model.geom_margin[solids].max(initial=0.0)
     normals = np.array([data.geom_xmat[g].reshape(3, 3)[:, 2] for g in floors]).reshape(-1, 3)
     origins = data.geom_xpos[floors].reshape(-1, 3)
-    depth = floor_tolerance - slack - model.geom_margin[floors].max(initial=0.0)
+    # a floor contact's distance is the geometry's, margins do not enter it (they only let
+    # MuJoCo report pairs that are apart): a contact deeper than floor_tolerance needs the
+    # lowest point that deep, less the slack for round-off
+    depth = floor_tolerance - BROAD_SLACK
     return _touching(
         xpos,
         xmat,
