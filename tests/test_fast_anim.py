@@ -442,3 +442,38 @@ def test_arm_clearance_floor_broad_phase(x):
         assert check.distance(q) == full
         if x > 10 and drop > 0.012:
             assert np.isfinite(full)  # the floor counts
+
+
+JOINTS = """<mujoco><worldbody><geom name="floor" type="plane" size="5 5 .1"/>
+<body name="a" pos=".1 .2 1" quat=".9 .1 .3 -.2"><freejoint/><geom type="box" size=".1 .2 .3"/>
+ <body name="b" pos="0 .3 .1" euler="10 20 30"><joint type="ball" pos=".05 0 .02"/>
+  <geom type="capsule" size=".05 .2" pos=".1 0 0" euler="30 0 10"/>
+  <body name="c" pos=".2 0 0"><joint type="hinge" axis="0 .6 .8" pos="0 .1 0" ref="20"/>
+   <joint type="slide" axis="1 0 0" ref=".1"/><joint type="hinge" axis="1 0 0"/>
+   <geom type="sphere" size=".05" pos="0 0 .1"/></body></body></body>
+<body name="d" pos="1 0 0"><joint type="hinge" axis="0 0 1" pos=".1 0 0"/>
+ <geom type="cylinder" size=".05 .1"/></body>
+</worldbody></mujoco>"""
+
+
+def test_geom_poses_match_mujoco():
+    """The compiled forward kinematics of the broad phase leaves the geoms where
+    ``mj_kinematics`` does (round-off): on a humanoid walk, and on a model with free, ball,
+    hinge and slide joints, anchors off the body origin and a joint reference angle."""
+    from mjwalk.timeline.kinematics import geom_poses, supported
+
+    rng = np.random.default_rng(9)
+    spec = mujoco.MjSpec.from_string(SCENE.format(x=2.0, y=0.0))
+    tl = timeline_from_walk(synthetic_walk(n_steps=4), spec)
+    small = mujoco.MjModel.from_xml_string(JOINTS)
+    q_small = small.qpos0 + rng.normal(scale=0.7, size=(40, small.nq))
+    for m, qpos in ((tl.model, tl.qpos), (small, q_small)):
+        assert supported(m)
+        geoms = np.arange(m.ngeom)
+        xpos, xmat = geom_poses(m, qpos, geoms)
+        d = mujoco.MjData(m)
+        for f, q in enumerate(qpos):
+            d.qpos[:] = q
+            mujoco.mj_kinematics(m, d)
+            np.testing.assert_allclose(xpos[f], d.geom_xpos, atol=1e-12)
+            np.testing.assert_allclose(xmat[f], d.geom_xmat, atol=1e-12)

@@ -22,6 +22,7 @@ from mjwalk._jit import njit
 from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
+from mjwalk.timeline.kinematics import geom_poses, supported
 from mjwalk.timeline.timeline import Timeline
 
 
@@ -162,8 +163,9 @@ def candidate_frames(
       make every frame with a foot on the floor a candidate).
 
     Scene geoms on moving bodies, and floors that are not planes, make every frame a
-    candidate. Forward kinematics of every pose (in ``data``, default a new MjData): about a
-    fifth of MuJoCo's collision pass."""
+    candidate. Forward kinematics of every pose, compiled over all frames
+    (:func:`mjwalk.timeline.kinematics.geom_poses`; with mocap bodies by ``mj_kinematics``
+    in ``data``, default a new MjData, frame by frame)."""
     n = len(qpos)
     hid = np.flatnonzero(human)
     sid = np.flatnonzero(~human & (model.geom_contype | model.geom_conaffinity).astype(bool))
@@ -179,17 +181,22 @@ def candidate_frames(
     if len(hid) == 0:  # no humanoid: nothing to report
         return np.zeros(n, dtype=bool)
     data = data if data is not None else mujoco.MjData(model)
-    lo, hi = int(hid.min()), int(hid.max()) + 1  # the humanoid's geoms are one block
-    xpos = np.empty((n, hi - lo, 3))
-    xmat = np.empty((n, hi - lo, 9))
-    q, gx, gm = data.qpos, data.geom_xpos[lo:hi], data.geom_xmat[lo:hi]  # views, fetched once
-    for f in range(n):
-        q[:] = qpos[f]
+    if supported(model):  # compiled over all frames; the scene's static geoms from one pose
+        xpos, xmat = geom_poses(model, qpos, hid)
+        data.qpos[:] = qpos[0]
         mujoco.mj_kinematics(model, data)
-        xpos[f] = gx
-        xmat[f] = gm
-    if hi - lo != len(hid):  # not one block after all: keep the humanoid's rows
-        xpos, xmat = xpos[:, hid - lo], xmat[:, hid - lo]
+    else:
+        lo, hi = int(hid.min()), int(hid.max()) + 1  # the humanoid's geoms are one block
+        xpos = np.empty((n, hi - lo, 3))
+        xmat = np.empty((n, hi - lo, 9))
+        q, gx, gm = data.qpos, data.geom_xpos[lo:hi], data.geom_xmat[lo:hi]  # views
+        for f in range(n):
+            q[:] = qpos[f]
+            mujoco.mj_kinematics(model, data)
+            xpos[f] = gx
+            xmat[f] = gm
+        if hi - lo != len(hid):  # not one block after all: keep the humanoid's rows
+            xpos, xmat = xpos[:, hid - lo], xmat[:, hid - lo]
     slack = model.geom_margin[hid].max(initial=0.0) + BROAD_SLACK
     reach = model.geom_rbound[hid] + model.geom_margin[hid] + slack
     # the scene's boxes (static: welded to the world) in world axes
