@@ -477,3 +477,85 @@ def test_geom_poses_match_mujoco():
             mujoco.mj_kinematics(m, d)
             np.testing.assert_allclose(xpos[f], d.geom_xpos, atol=1e-12)
             np.testing.assert_allclose(xmat[f], d.geom_xmat, atol=1e-12)
+
+
+# ------------------------------------------------------------------ leg pitch corrections
+
+
+def _repitch_ref(ankle, pitch, toe, fyaw, ground, prints, dp, geom):
+    """The NumPy repitch of legs_from_walk before pitchfit (returns new ankle, pitch, toe)."""
+    n = len(pitch)
+    p0, p1 = pitch, pitch - dp
+    virtual = np.column_stack([np.zeros((n, 2)), fyaw])
+    moved = ankle + pivot_ankle(virtual, p1, geom) - pivot_ankle(virtual, p0, geom)
+    moved[ground] = pivot_ankle(prints[ground], p1[ground], geom)
+    return moved, p1, toe + (np.minimum(p0, 0.0) - np.minimum(p1, 0.0))
+
+
+def _fit_ref(ik, ankle, fyaw, pitch, toe, ground, prints, root, yaw, dorsi, plantar, win, geom):
+    """The NumPy ankle-range rounds of legs_from_walk before pitchfit."""
+    s_ = ik.side
+    for _ in range(8):
+        flex = ik(ankle, fyaw, pitch, root, yaw)[f"ankle_{s_}_flex"]
+        excess = np.where(ground, flex - dorsi, 0.0)
+        short = np.where(ground & (pitch < 0), plantar - flex, 0.0)
+        if excess.max() <= 0 and short.max() <= 0:
+            break
+        down = spread(1.2 * np.maximum(excess, 0.0), win)
+        up = spread(1.2 * np.maximum(short, 0.0), win)
+        dp = down - np.minimum(up, np.maximum(-pitch, 0.0))
+        ankle, pitch, toe = _repitch_ref(ankle, pitch, toe, fyaw, ground, prints, dp, geom)
+    return ankle, pitch, toe
+
+
+def _leg_case(rng, n, geom):
+    """A foot on and off the floor beside a walking pelvis, pitched up and down."""
+    t = np.linspace(0.0, 1.0, n)
+    yaw = 0.3 * np.sin(3 * t)
+    root = np.column_stack([0.6 * t, 0.05 * t, 0.9 + 0.02 * np.sin(9 * t)])
+    fyaw = yaw + rng.normal(scale=0.05, size=n)
+    pitch = 0.5 * np.sin(7 * t) + rng.normal(scale=0.02, size=n)
+    ground = (np.sin(5 * t) > -0.3) | (t < 0.1)
+    prints = np.column_stack([0.6 * t + 0.15, 0.15 + 0 * t, fyaw])
+    ankle = pivot_ankle(prints, pitch, geom)
+    ankle[~ground, 2] += 0.05
+    ankle[:, 0] += rng.normal(scale=0.1, size=n)  # ahead of and behind the hip
+    return ankle, fyaw, pitch, ground, prints, root, yaw
+
+
+@pytest.mark.parametrize("side", ["l", "r"])
+def test_compiled_pitch_fit_matches_numpy(side):
+    """pitchfit's compiled repitch and ankle-range rounds give the NumPy code's numbers bit
+    for bit (same arithmetic in the same order), with the IK cache left alike."""
+    from mjwalk.body.legs import pitchfit
+
+    geom = leg_geometry(1.75)
+    rng = np.random.default_rng(11)
+    dorsi = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
+    plantar = np.deg2rad(ROM_DEG["ankle_flex"][0] + 1.0)
+    rounds = 0
+    for n in (40, 300):
+        ankle, fyaw, pitch, ground, prints, root, yaw = _leg_case(rng, n, geom)
+        toe = -np.minimum(pitch, 0.0)
+        dp = rng.normal(scale=0.1, size=n) * (rng.uniform(size=n) < 0.5)
+        ref = _repitch_ref(ankle, pitch, toe, fyaw, ground, prints, dp, geom)
+        toe_c = toe.copy()
+        a_c, p_c = pitchfit.repitch(ankle, pitch, toe_c, fyaw, ground, prints, dp, geom)
+        for x, y in zip(ref, (a_c, p_c, toe_c), strict=True):
+            assert np.array_equal(x, y)
+        ik_ref, ik_c = LegIKCache(side, geom), LegIKCache(side, geom)
+        args = (fyaw, pitch, toe, ground, prints, root, yaw, dorsi, plantar, 3)
+        ref = _fit_ref(ik_ref, ankle, *args, geom)
+        toe_c = toe.copy()
+        fit = pitchfit.fit_ankle_range(ik_c, ankle, fyaw, pitch, toe_c, *args[3:], 8)
+        assert fit is not None
+        for x, y in zip(ref, (*fit, toe_c), strict=True):
+            assert np.array_equal(x, y)
+        assert np.array_equal(ik_ref.inputs, ik_c.inputs)
+        assert np.array_equal(ik_ref.out, ik_c.out)
+        rounds += int(not np.array_equal(fit[1], pitch))
+    assert rounds == 2  # both cases were corrected
+    # too short for the compiled spread: the caller's NumPy rounds
+    ankle, fyaw, pitch, ground, prints, root, yaw = _leg_case(rng, 7, geom)
+    short = (ankle, fyaw, pitch, np.zeros(7), ground, prints, root, yaw, dorsi, plantar, 3, 8)
+    assert pitchfit.fit_ankle_range(LegIKCache(side, geom), *short) is None

@@ -494,12 +494,17 @@ class LegIKCache:
         self.inputs: np.ndarray | None = None  # (n, 9) of the previous call
         self.out: np.ndarray | None = None  # (n, 6) its angles
 
-    def __call__(self, ankle, foot_yaw, pitch, root, yaw) -> dict:
-        ankle = np.ascontiguousarray(ankle, dtype=float)
-        n = len(ankle)
-        if self.inputs is None or len(self.inputs) != n:
+    def buffers(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """The previous call's inputs (n, 9) and angles (n, 6), for compiled callers of
+        ``_leg_ik_world_cached`` (new ones, every row to be solved, for another ``n``)."""
+        if self.inputs is None or self.out is None or len(self.inputs) != n:
             self.inputs = np.full((n, 9), np.nan)  # nan: never equal, every row is solved
             self.out = np.empty((n, 6))
+        return self.inputs, self.out
+
+    def __call__(self, ankle, foot_yaw, pitch, root, yaw) -> dict:
+        ankle = np.ascontiguousarray(ankle, dtype=float)
+        self.buffers(len(ankle))
         assert self.out is not None
         sgn = 1.0 if self.side == "l" else -1.0
         _leg_ik_world_cached(

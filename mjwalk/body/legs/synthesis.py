@@ -39,6 +39,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mjwalk.body.humanoid import ROM_DEG, leg_geometry
+from mjwalk.body.legs import pitchfit
 from mjwalk.body.legs.curves import smoothstep, soft_flat, spread
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
@@ -73,6 +74,9 @@ KNEE_SOFT = 10.0
 
 #: Step phase from which the swing knee eases into the landing (the last swing key frame).
 LAND_EASE = 0.8
+
+#: Rounds of the ankle-range fit (pitch corrections and IK) per leg and pass.
+ANKLE_ROUNDS = 8
 
 
 @dataclass
@@ -277,14 +281,10 @@ def legs_from_walk(
         # motion of the ankle relative to the foot, as if it stood on a footprint under it
         # (pivot_ankle is continuous through the flat foot: a pivot switched by the pitch's
         # sign would move an airborne ankle by centimetres where the pitch crosses zero); the
-        # toes keep their angle to the floor while the heel is up
-        p0, p1 = pitch[s_], pitch[s_] - dp
-        virtual = np.column_stack([np.zeros((n, 2)), fyaw[s_]])
-        moved = ankle[s_] + pivot_ankle(virtual, p1, geom) - pivot_ankle(virtual, p0, geom)
-        g = ground[s_]
-        moved[g] = pivot_ankle(print_[s_][g], p1[g], geom)
-        toe[s_] += np.minimum(p0, 0.0) - np.minimum(p1, 0.0)
-        ankle[s_], pitch[s_] = moved, p1
+        # toes keep their angle to the floor while the heel is up (compiled: pitchfit)
+        ankle[s_], pitch[s_] = pitchfit.repitch(
+            ankle[s_], pitch[s_], toe[s_], fyaw[s_], ground[s_], print_[s_], dp, geom
+        )
 
     angles: dict[str, np.ndarray] = {}
     ik = {s_: LegIKCache(s_, geom) for s_ in "lr"}  # the loops below re-solve changed samples
@@ -300,7 +300,15 @@ def legs_from_walk(
             # hip: clipped, the foot would turn about the ankle and its ball slide), and the
             # pelvis lowers below. The roll is spread over the samples around (in the air
             # too, about the same point), so a landing or lift-off does not jolt the leg
-            for _ in range(8):
+            # (compiled: pitchfit.fit_ankle_range; the rounds below for very short walks)
+            fit = pitchfit.fit_ankle_range(
+                ik[s_], ankle[s_], fyaw[s_], pitch[s_], toe[s_], ground[s_], print_[s_],
+                root, yaw, dorsi_max, plantar_min, win, ANKLE_ROUNDS,
+            )  # fmt: skip
+            if fit is not None:
+                ankle[s_], pitch[s_] = fit
+                continue
+            for _ in range(ANKLE_ROUNDS):
                 raw = ik[s_](ankle[s_], fyaw[s_], pitch[s_], root, yaw)
                 flex = raw[f"ankle_{s_}_flex"]
                 excess = np.where(ground[s_], flex - dorsi_max, 0.0)

@@ -1,0 +1,200 @@
+"""Compiled pitch corrections of the leg synthesis (:func:`~.synthesis.legs_from_walk`).
+
+Where a grounded foot's ankle would leave its range, the synthesis lowers or raises the foot's
+pitch about its pivot on the floor, spread over the samples around, and solves the leg again,
+up to eight times per leg and pass (four passes). Each round is a few dozen NumPy operations
+on a walk's few hundred samples: in NumPy their call overhead cost about as much as the
+arithmetic. :func:`repitch` and :func:`fit_ankle_range` do the same arithmetic, in the same
+order, in one compiled call (the same numbers, bit for bit: tests/test_fast_anim.py compares
+them with the NumPy code they replace). World frame, metres, radians; a foot's pitch + toes up.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mjwalk._jit import njit
+from mjwalk.body.humanoid import LegGeometry
+from mjwalk.body.legs.curves import _gauss_kernel, _spread
+from mjwalk.body.legs.kinematics import (
+    LegIKCache,
+    _ik_lengths,
+    _leg_ik_world_cached,
+    ball_offset,
+)
+
+
+def repitch(
+    ankle: np.ndarray,
+    pitch: np.ndarray,
+    toe: np.ndarray,
+    fyaw: np.ndarray,
+    ground: np.ndarray,
+    prints: np.ndarray,
+    dp: np.ndarray,
+    geom: LegGeometry,
+) -> tuple[np.ndarray, np.ndarray]:
+    """A foot's ankle targets (n, 3) and pitches (n,) with the pitch lowered by ``dp`` (n,):
+    on the floor (``ground``) about the pivot of its footprint ``prints`` (n, 3) (the heel
+    while toes up, the ball while heel up, :func:`~mjwalk.body.legs.kinematics.pivot_ankle`),
+    in the air by the same motion of the ankle relative to the foot, as if it stood on a
+    footprint under it (headings ``fyaw`` (n,)). ``toe`` (n,) keeps the toes' angle to the
+    floor while the heel is up (updated in place). New arrays; the inputs are not changed."""
+    ankle = np.array(ankle, dtype=float, order="C")
+    pitch = np.array(pitch, dtype=float)
+    _repitch_rows(
+        ankle,
+        pitch,
+        toe,
+        np.ascontiguousarray(fyaw, dtype=float),
+        np.ascontiguousarray(ground, dtype=np.bool_),
+        np.ascontiguousarray(prints, dtype=float),
+        np.ascontiguousarray(dp, dtype=float),
+        ball_offset(geom),
+        geom.foot_back,
+        geom.ankle_height,
+    )
+    return ankle, pitch
+
+
+@njit
+def _pivot_one(x, y, yaw, p, ball, back, ah):
+    """One row of :func:`~mjwalk.body.legs.kinematics._pivot_rows` (the same arithmetic)."""
+    lever = ball if p <= 0 else -back
+    fx, fy = math.cos(yaw), math.sin(yaw)
+    c, s = math.cos(p), math.sin(p)
+    along = lever * (c - 1) + ah * s
+    return x - along * fx, y - along * fy, ah * c - lever * s
+
+
+@njit
+def _repitch_rows(ankle, pitch, toe, fyaw, ground, prints, dp, ball, back, ah):
+    """:func:`repitch` in place: ``ankle`` (n, 3), ``pitch`` and ``toe`` (n,)."""
+    for i in range(ankle.shape[0]):
+        p0 = pitch[i]
+        p1 = p0 - dp[i]
+        if ground[i]:
+            a0, a1, a2 = _pivot_one(prints[i, 0], prints[i, 1], prints[i, 2], p1, ball, back, ah)
+            ankle[i, 0], ankle[i, 1], ankle[i, 2] = a0, a1, a2
+        else:  # ankle + pivot(p1) - pivot(p0) on a footprint at the origin, as NumPy's order
+            n0, n1, n2 = _pivot_one(0.0, 0.0, fyaw[i], p1, ball, back, ah)
+            o0, o1, o2 = _pivot_one(0.0, 0.0, fyaw[i], p0, ball, back, ah)
+            ankle[i, 0] = (ankle[i, 0] + n0) - o0
+            ankle[i, 1] = (ankle[i, 1] + n1) - o1
+            ankle[i, 2] = (ankle[i, 2] + n2) - o2
+        toe[i] += min(p0, 0.0) - min(p1, 0.0)
+        pitch[i] = p1
+
+
+def fit_ankle_range(
+    ik: LegIKCache,
+    ankle: np.ndarray,
+    fyaw: np.ndarray,
+    pitch: np.ndarray,
+    toe: np.ndarray,
+    ground: np.ndarray,
+    prints: np.ndarray,
+    root: np.ndarray,
+    yaw: np.ndarray,
+    dorsi_max: float,
+    plantar_min: float,
+    win: int,
+    rounds: int,
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """Up to ``rounds`` rounds of the synthesis's ankle-range fit of one leg (its ``ik``
+    cache): solve the leg (:meth:`LegIKCache.__call__`); a grounded foot whose ankle flexes
+    past ``dorsi_max`` pitches down by 1.2 times the excess, one heel-up foot whose ankle
+    extends past ``plantar_min`` lowers its heel by 1.2 times the shortfall (down to flat),
+    both spread over +-``win`` samples (:func:`~mjwalk.body.legs.curves.spread`), by
+    :func:`repitch`; stop when no grounded ankle is out of range. Returns the new ankle
+    targets (n, 3) and pitches (n,) (``toe`` updated in place), or None for walks shorter than
+    the compiled spread handles (2 ``win`` + 2 samples): the caller runs the NumPy rounds."""
+    n = len(ankle)
+    if n < 2 * win + 2:
+        return None
+    inputs, out = ik.buffers(n)
+    ankle = np.array(ankle, dtype=float, order="C")
+    pitch = np.array(pitch, dtype=float)
+    geom = ik.geom
+    _fit_rounds(
+        ankle,
+        np.ascontiguousarray(fyaw, dtype=float),
+        pitch,
+        toe,
+        np.ascontiguousarray(ground, dtype=np.bool_),
+        np.ascontiguousarray(prints, dtype=float),
+        np.ascontiguousarray(root, dtype=float),
+        np.ascontiguousarray(yaw, dtype=float),
+        1.0 if ik.side == "l" else -1.0,
+        float(geom.hip_y),
+        *_ik_lengths(geom),
+        inputs,
+        out,
+        float(dorsi_max),
+        float(plantar_min),
+        int(win),
+        _gauss_kernel(int(win)),
+        ball_offset(geom),
+        float(geom.foot_back),
+        float(geom.ankle_height),
+        int(rounds),
+    )
+    return ankle, pitch
+
+
+@njit
+def _fit_rounds(
+    ankle,
+    fyaw,
+    pitch,
+    toe,
+    ground,
+    prints,
+    root,
+    yaw,
+    sgn,
+    hip_y,
+    L1,
+    L2,
+    rmin,
+    rmax,
+    inputs,
+    out,
+    dorsi_max,
+    plantar_min,
+    win,
+    kernel,
+    ball,
+    back,
+    ah,
+    rounds,
+):
+    """The rounds of :func:`fit_ankle_range` in place (``ankle``, ``pitch``, ``toe``, the IK
+    cache's ``inputs`` and ``out``)."""
+    n = ankle.shape[0]
+    need_down = np.empty(n)
+    need_up = np.empty(n)
+    dp = np.empty(n)
+    for _ in range(rounds):
+        _leg_ik_world_cached(
+            ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs, out
+        )
+        e_max = -np.inf
+        s_max = -np.inf
+        for i in range(n):
+            flex = out[i, 4]
+            excess = flex - dorsi_max if ground[i] else 0.0
+            short = plantar_min - flex if ground[i] and pitch[i] < 0 else 0.0
+            e_max = max(e_max, excess)
+            s_max = max(s_max, short)
+            need_down[i] = 1.2 * max(excess, 0.0)
+            need_up[i] = 1.2 * max(short, 0.0)
+        if e_max <= 0 and s_max <= 0:
+            break
+        down = _spread(need_down, win, kernel)
+        up = _spread(need_up, win, kernel)
+        for i in range(n):
+            dp[i] = down[i] - min(up[i], max(-pitch[i], 0.0))
+        _repitch_rows(ankle, pitch, toe, fyaw, ground, prints, dp, ball, back, ah)
