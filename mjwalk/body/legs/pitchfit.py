@@ -60,11 +60,11 @@ def repitch(
 
 
 @njit
-def _pivot_one(x, y, yaw, p, ball, back, ah):
-    """One row of :func:`~mjwalk.body.legs.kinematics._pivot_rows` (the same arithmetic)."""
+def _pivot_cs(x, y, fx, fy, c, s, p, ball, back, ah):
+    """One row of :func:`~mjwalk.body.legs.kinematics._pivot_rows` (the same arithmetic) on
+    the footprint at ``x``, ``y`` heading (``fx``, ``fy``) = (cos, sin) yaw, pitched by ``p``
+    with (``c``, ``s``) = (cos, sin) p."""
     lever = ball if p <= 0 else -back
-    fx, fy = math.cos(yaw), math.sin(yaw)
-    c, s = math.cos(p), math.sin(p)
     along = lever * (c - 1) + ah * s
     return x - along * fx, y - along * fy, ah * c - lever * s
 
@@ -75,12 +75,18 @@ def _repitch_rows(ankle, pitch, toe, fyaw, ground, prints, dp, ball, back, ah):
     for i in range(ankle.shape[0]):
         p0 = pitch[i]
         p1 = p0 - dp[i]
+        c1, s1 = math.cos(p1), math.sin(p1)
         if ground[i]:
-            a0, a1, a2 = _pivot_one(prints[i, 0], prints[i, 1], prints[i, 2], p1, ball, back, ah)
+            yaw = prints[i, 2]
+            a0, a1, a2 = _pivot_cs(
+                prints[i, 0], prints[i, 1], math.cos(yaw), math.sin(yaw), c1, s1, p1, ball, back, ah
+            )
             ankle[i, 0], ankle[i, 1], ankle[i, 2] = a0, a1, a2
         else:  # ankle + pivot(p1) - pivot(p0) on a footprint at the origin, as NumPy's order
-            n0, n1, n2 = _pivot_one(0.0, 0.0, fyaw[i], p1, ball, back, ah)
-            o0, o1, o2 = _pivot_one(0.0, 0.0, fyaw[i], p0, ball, back, ah)
+            fx, fy = math.cos(fyaw[i]), math.sin(fyaw[i])
+            c0, s0 = math.cos(p0), math.sin(p0)
+            n0, n1, n2 = _pivot_cs(0.0, 0.0, fx, fy, c1, s1, p1, ball, back, ah)
+            o0, o1, o2 = _pivot_cs(0.0, 0.0, fx, fy, c0, s0, p0, ball, back, ah)
             ankle[i, 0] = (ankle[i, 0] + n0) - o0
             ankle[i, 1] = (ankle[i, 1] + n1) - o1
             ankle[i, 2] = (ankle[i, 2] + n2) - o2
@@ -176,7 +182,11 @@ def _fit_rounds(
     n = ankle.shape[0]
     need_down = np.empty(n)
     need_up = np.empty(n)
-    dp = np.empty(n)
+    # sines and cosines: of the foot headings, the footprints' headings (constant here) and
+    # the pitches (c0, s0: before a round's repitch; cp, sp: after)
+    cf, sf, cg, sg = np.cos(fyaw), np.sin(fyaw), np.cos(prints[:, 2]), np.sin(prints[:, 2])
+    c0, s0 = np.cos(pitch), np.sin(pitch)
+    cp, sp = c0.copy(), s0.copy()
     for _ in range(rounds):
         _leg_ik_world_cached(
             ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs, out
@@ -196,5 +206,21 @@ def _fit_rounds(
         down = _spread(need_down, win, kernel)
         up = _spread(need_up, win, kernel)
         for i in range(n):
-            dp[i] = down[i] - min(up[i], max(-pitch[i], 0.0))
-        _repitch_rows(ankle, pitch, toe, fyaw, ground, prints, dp, ball, back, ah)
+            p0 = pitch[i]
+            p1 = p0 - (down[i] - min(up[i], max(-p0, 0.0)))
+            if p1 != p0:  # (the sines and cosines of unchanged pitches are kept)
+                cp[i], sp[i] = math.cos(p1), math.sin(p1)
+            if ground[i]:
+                a0, a1, a2 = _pivot_cs(
+                    prints[i, 0], prints[i, 1], cg[i], sg[i], cp[i], sp[i], p1, ball, back, ah
+                )
+                ankle[i, 0], ankle[i, 1], ankle[i, 2] = a0, a1, a2
+            else:  # as _repitch_rows
+                n0, n1, n2 = _pivot_cs(0.0, 0.0, cf[i], sf[i], cp[i], sp[i], p1, ball, back, ah)
+                o0, o1, o2 = _pivot_cs(0.0, 0.0, cf[i], sf[i], c0[i], s0[i], p0, ball, back, ah)
+                ankle[i, 0] = (ankle[i, 0] + n0) - o0
+                ankle[i, 1] = (ankle[i, 1] + n1) - o1
+                ankle[i, 2] = (ankle[i, 2] + n2) - o2
+            c0[i], s0[i] = cp[i], sp[i]
+            toe[i] += min(p0, 0.0) - min(p1, 0.0)
+            pitch[i] = p1
