@@ -428,7 +428,12 @@ class ArmRepresentation:
     ) -> tuple[np.ndarray, np.ndarray | None]:
         """Directions (p, n, S, 3) and extras from coefficients b (p, q) (eq. 1); aligned
         directions when ``poses`` is None, raw ones (pose applied) otherwise."""
-        A, E = self.from_features(self.pca_.inverse_transform(np.atleast_2d(b)))
+        b = np.atleast_2d(np.asarray(b, dtype=float))
+        if self.pca_.whiten or not np.isfinite(b).all():  # (scikit-learn's checks and errors)
+            X = self.pca_.inverse_transform(b)
+        else:  # PCA.inverse_transform's arithmetic without its input validation (~60 us)
+            X = b @ self.pca_.components_ + self.pca_.mean_
+        A, E = self.from_features(X)
         if poses is not None:
             A = self.unalign(A, poses)
         return A, E

@@ -86,7 +86,7 @@ def _reach_frames(
         arm_frames,
         arm_joint_angles,
         min_jerk,
-        two_link_ik,
+        two_link_ik_rows,
     )
     from mjwalk.arms.reach import reach_for_side
 
@@ -113,12 +113,13 @@ def _reach_frames(
         u_face /= max(float(np.linalg.norm(u_face)), 1e-9)
     n_app = max(4, len(res.directions) // 2)
     app = np.repeat(u_last[None], n_app, axis=0)
-    for k, tau in enumerate(min_jerk(np.linspace(0.0, 1.0, n_app + 1)[1:])):
-        hand = pre + tau * (end - pre)
-        u_hand = u_last[2] if face is None else _blend_dir(u_last[2], u_face, tau)
-        wrist = hand - lengths[2] * u_hand
-        app[k, 2] = u_hand
-        app[k, 0], app[k, 1] = two_link_ik(wrist, lengths[0], lengths[1], u_last[0] * lengths[0])
+    taus = min_jerk(np.linspace(0.0, 1.0, n_app + 1)[1:])
+    hands = pre + taus[:, None] * (end - pre)
+    if face is not None:
+        app[:, 2] = [_blend_dir(u_last[2], u_face, tau) for tau in taus]
+    wrists = hands - lengths[2] * app[:, 2]
+    hints = np.repeat((u_last[0] * lengths[0])[None], n_app, axis=0)
+    app[:, 0], app[:, 1] = two_link_ik_rows(wrists, lengths[0], lengths[1], hints)  # (row-wise)
     directions = np.concatenate([res.directions, app])
     q = arm_joint_angles(directions, side)
     if timing is None:
