@@ -559,3 +559,16 @@ def test_compiled_pitch_fit_matches_numpy(side):
     ankle, fyaw, pitch, ground, prints, root, yaw = _leg_case(rng, 7, geom)
     short = (ankle, fyaw, pitch, np.zeros(7), ground, prints, root, yaw, dorsi, plantar, 3, 8)
     assert pitchfit.fit_ankle_range(LegIKCache(side, geom), *short) is None
+
+
+def test_end_slopes_match_numpy_gradient():
+    """The swing's end slopes are np.gradient's first and last rows, bit for bit (uneven and
+    even spacing, two samples and many, vectors and scalars)."""
+    from mjwalk.body.legs.steps import _end_slopes
+
+    rng = np.random.default_rng(12)
+    for n in (2, 3, 17):
+        for x in (np.sort(rng.uniform(size=n)), np.arange(n) / 7.0):
+            for f in (rng.normal(size=(n, 3)), rng.normal(size=n)):
+                g = np.gradient(f, x, axis=0)
+                assert np.array_equal(_end_slopes(f, x), g[[0, -1]])

@@ -11,6 +11,7 @@ seconds, z up.
 from __future__ import annotations
 
 import math
+import weakref
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -87,16 +88,7 @@ def collision_report(
     data = data if data is not None else mujoco.MjData(model)
     human = model.geom_group == HUMAN_GROUP
     plen = len(timeline.jointmap.prefix)
-    names = [
-        mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom#{g}"
-        for g in range(model.ngeom)
-    ]
-    floorish = np.array(
-        [
-            n == "floor" or model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
-            for g, n in enumerate(names)
-        ]
-    )
+    names, floorish = _geom_names(model)
     qpos = np.asarray(timeline.qpos)
     same = np.zeros(len(qpos), dtype=bool)
     if broad_phase and len(qpos) > 1:
@@ -138,6 +130,32 @@ def collision_report(
         found = [(names[h][plen:], names[s_], d, pos) for (h, s_), (d, pos) in best.items()]
         out += [Contact(float(timeline.t[i]), h, s_, d, p.copy()) for h, s_, d, p in found]
     return out
+
+
+#: :func:`_geom_names` of the models seen (a cycle checks its frames in a few models, again
+#: and again: 80 name look-ups each time cost about 0.1 ms).
+_NAMES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _geom_names(model: mujoco.MjModel) -> tuple[list[str], np.ndarray]:
+    """The geoms' names (``"geom#<id>"`` when unnamed) and the floor mask (the geom named
+    ``"floor"`` and every plane) of ``model``, kept per model (names and types do not change
+    after compiling)."""
+    hit = _NAMES.get(model)
+    if hit is None or len(hit[0]) != model.ngeom:
+        names = [
+            mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom#{g}"
+            for g in range(model.ngeom)
+        ]
+        floorish = np.array(
+            [
+                n == "floor" or model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
+                for g, n in enumerate(names)
+            ]
+        )
+        floorish.setflags(write=False)
+        hit = _NAMES[model] = (names, floorish)
+    return hit
 
 
 def candidate_frames(

@@ -157,6 +157,13 @@ def stance_angle(ref: ReferenceGait, name: str, phi, th0, v0, th1, v1) -> np.nda
     return ref(name, 0.5 * phi) + disp
 
 
+def _end_slopes(f: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """The first and last rows of ``np.gradient(f, x, axis=0)`` (its first-order one-sided
+    differences at the ends, the same arithmetic) for ``f`` (n, ...) sampled at ``x`` (n,),
+    n >= 2, without the interior's central differences."""
+    return np.stack([(f[1] - f[0]) / (x[1] - x[0]), (f[-1] - f[-2]) / (x[-1] - x[-2])])
+
+
 def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, land_p):
     """Swing foot: ankle (n, 3), pitch (n,), toe angle (n,), yaw (n,) over the step, and the
     step phase of its toe-off: :data:`TOE_OFF`, or earlier where the pre-swing heel rise
@@ -246,8 +253,9 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
         # foot would move back by it right after toe-off)
         rk = np.column_stack([np.interp(knots, phi[jl], ref_pos[:, k]) for k in range(3)])
         rp = np.interp(knots, phi[jl], ref_pit)
-        dr = np.gradient(ref_pos, phi[jl], axis=0) if len(jl) > 1 else np.zeros((1, 3))
-        dq = np.gradient(ref_pit, phi[jl]) if len(jl) > 1 else np.zeros(1)
+        # (the reference's slopes at both ends: np.gradient's one-sided end differences)
+        dr = _end_slopes(ref_pos, phi[jl]) if len(jl) > 1 else np.zeros((1, 3))
+        dq = _end_slopes(ref_pit, phi[jl]) if len(jl) > 1 else np.zeros(1)
         lead = float(phi[jl[0]]) - knots[0]
         rk[0] -= lead * dr[0]
         rp[0] -= lead * dq[0]
