@@ -89,11 +89,16 @@ class ArmClearance:
         :data:`FLOOR_TOLERANCE`); ``inf`` when no pair is that close (the poses are clear).
         Negative: overlap. With ``broad_phase`` MuJoCo's collision detection runs only on the
         poses where such a pair can be (:func:`~mjwalk.timeline.collisions.candidate_frames`,
-        the margins included); the result is that of every pose (``broad_phase=False``)."""
+        the margins included), and once for a run of equal poses (a reach's hold: about half
+        a cycle's poses); the result is that of every pose (``broad_phase=False``)."""
         m, d = self.model, self.data
         best = np.inf
         poses = np.atleast_2d(qpos)
         if broad_phase:
+            if len(poses) > 1:  # a pose equal to the one before has its distance
+                fresh = np.ones(len(poses), dtype=bool)
+                fresh[1:] = np.any(poses[1:] != poses[:-1], axis=1)
+                poses = poses[fresh]
             poses = poses[candidate_frames(m, poses, self.human, self.floor, FLOOR_TOLERANCE, d)]
         for q in poses:
             d.qpos[:] = q
