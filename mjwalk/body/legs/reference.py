@@ -53,6 +53,9 @@ class ReferenceGait:
     _splines: dict[str, CubicSpline] = field(init=False, repr=False, compare=False)
     _unit: bool = field(init=False, repr=False, compare=False)
     _ppoly: dict[str, tuple[np.ndarray, np.ndarray]] = field(init=False, repr=False, compare=False)
+    #: values at single cycle fractions, kept (the synthesis asks for the same few, such as
+    #: the knee at heel strike, hundreds of times per cycle)
+    _memo: dict[tuple[str, float, bool], np.floating] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         sp = {}
@@ -65,6 +68,7 @@ class ReferenceGait:
         object.__setattr__(self, "_unit", bool(cyc[0] == 0.0 and cyc[-1] == 1.0))
         ppoly = {k: (np.ascontiguousarray(v.c), np.ascontiguousarray(v.x)) for k, v in sp.items()}
         object.__setattr__(self, "_ppoly", ppoly)
+        object.__setattr__(self, "_memo", {})
 
     def __call__(self, name: str, cycle, derivative: bool = False) -> np.ndarray:
         """Angle ``name`` ("hip", "knee", "pitch") in radians at cycle fraction(s) (wrapped);
@@ -77,7 +81,13 @@ class ReferenceGait:
         if isinstance(c, np.ndarray):
             out = _ppoly_eval(coef, knots, c.ravel().astype(float), 1 if derivative else 0)
             return out.reshape(c.shape)
-        return _ppoly_eval(coef, knots, np.array([float(c)]), 1 if derivative else 0)[0]
+        key = (name, float(c), bool(derivative))
+        val = self._memo.get(key)
+        if val is None:
+            val = _ppoly_eval(coef, knots, np.array([float(c)]), 1 if derivative else 0)[0]
+            if len(self._memo) < 4096:
+                self._memo[key] = val
+        return val
 
 
 @njit
