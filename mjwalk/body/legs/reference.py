@@ -55,7 +55,7 @@ class ReferenceGait:
     _ppoly: dict[str, tuple[np.ndarray, np.ndarray]] = field(init=False, repr=False, compare=False)
     #: values at single cycle fractions, kept (the synthesis asks for the same few, such as
     #: the knee at heel strike, hundreds of times per cycle)
-    _memo: dict[tuple[str, float, bool], np.floating] = field(init=False, repr=False, compare=False)
+    _memo: dict[tuple[str, float, bool], Any] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         sp = {}
