@@ -133,6 +133,9 @@ def _geom_poses(
     xquat = np.zeros((n_b, 4))
     xmat = np.zeros((n_b, 9))
     mt = np.empty((1, 9))
+    last = np.full(jnt_type.shape[0], np.nan)  # a hinge's angle in the frame before
+    sin_h = np.zeros(jnt_type.shape[0])
+    cos_h = np.zeros(jnt_type.shape[0])
     xquat[0, 0] = 1.0
     xmat[0, 0] = xmat[0, 4] = xmat[0, 8] = 1.0
     for f in range(n_f):
@@ -187,10 +190,13 @@ def _geom_poses(
                         l0, l1, l2, l3 = _normalize4(
                             qpos[f, a], qpos[f, a + 1], qpos[f, a + 2], qpos[f, a + 3]
                         )
-                    else:  # hinge
-                        half = 0.5 * (qpos[f, a] - qpos0[a])
-                        sn = math.sin(half)
-                        l0 = math.cos(half)
+                    else:  # hinge (the sine and cosine kept while its angle stays)
+                        if qpos[f, a] != last[j]:
+                            half = 0.5 * (qpos[f, a] - qpos0[a])
+                            last[j] = qpos[f, a]
+                            sin_h[j], cos_h[j] = math.sin(half), math.cos(half)
+                        sn = sin_h[j]
+                        l0 = cos_h[j]
                         l1, l2, l3 = jnt_axis[j, 0] * sn, jnt_axis[j, 1] * sn, jnt_axis[j, 2] * sn
                     t0, t1, t2, t3 = _mul_quat(t0, t1, t2, t3, l0, l1, l2, l3)
                     if off:  # (at the body's origin the rotation leaves it in place)
