@@ -67,17 +67,18 @@ class ArmClearance:
         m = self.model
         roots = {m.body(f"{jointmap.prefix}upper_arm_{s}").id for s in ("l", "r")}
         arm = np.zeros(m.ngeom, dtype=bool)
-        for g in range(m.ngeom):
-            b = int(m.geom_bodyid[g])
+        parent = m.body_parentid.tolist()  # (each attribute read of an MjModel makes an array)
+        for g, b in enumerate(m.geom_bodyid.tolist()):
             while b > 0 and b not in roots:
-                b = int(m.body_parentid[b])
+                b = parent[b]
             arm[g] = b in roots
         self.human = m.geom_group == HUMAN_GROUP
         self.model.geom_margin[arm & self.human] = self.clearance
+        types = m.geom_type.tolist()
         self.floor = np.array(
             [
                 mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, g) == "floor"
-                or m.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
+                or types[g] == mujoco.mjtGeom.mjGEOM_PLANE
                 for g in range(m.ngeom)
             ]
         )
