@@ -238,3 +238,54 @@ def test_start_in_the_goal_area_is_refused(scenes_dir):
         HybridPlanner(wp, "stand_car1", model_default).plan(
             wp.point("stand_car1") + 0.05, np.random.default_rng(0)
         )
+
+
+def _field_ref(grid, to_goal, inside):
+    """The distance field with the whole graph (moves and goal edges) built per goal, as
+    before the move graph was kept per grid."""
+    import math
+
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import dijkstra
+
+    from mjwalk.plan.heuristic import _rim
+
+    ny, nx = grid.free.shape
+    n = nx * ny
+    idx = np.arange(n).reshape(ny, nx)
+    rows, cols, weights = [], [], []
+    for k, (di, dj) in enumerate(grid.offsets):
+        src = idx[grid.moves[k]]
+        rows.append(src + dj * nx + di)
+        cols.append(src)
+        weights.append(np.full(src.shape, grid.cell * math.hypot(di, dj)))
+    rows.append(np.full(int(inside.sum()), n))
+    cols.append(idx[inside])
+    weights.append(to_goal[inside])
+    graph = coo_matrix(
+        (np.concatenate(weights), (np.concatenate(rows), np.concatenate(cols))),
+        shape=(n + 1, n + 1),
+    ).tocsr()
+    return _rim(grid, dijkstra(graph, directed=True, indices=n)[:n].reshape(ny, nx))
+
+
+def test_kept_move_graph_gives_the_same_fields(workplace):
+    """Distance fields from the move graph kept per grid (the goal node's row appended) are
+    those of the graph built whole for each goal, bit for bit."""
+    from mjwalk.plan.heuristic import _dijkstra_field
+
+    grid = shared_grid(workplace, 0.08, 0.25, MOVES_16)
+    ny, nx = grid.free.shape
+    gx, gy = grid.x0 + grid.cell * np.arange(nx), grid.y0 + grid.cell * np.arange(ny)
+    cx, cy = np.meshgrid(gx, gy)
+    rng = np.random.default_rng(5)
+    done = 0
+    for _ in range(8):
+        goal = rng.uniform([gx[0], gy[0]], [gx[-1], gy[-1]])
+        to_goal = np.hypot(cx - goal[0], cy - goal[1])
+        inside = (to_goal <= rng.uniform(0.1, 0.6)) & grid.free
+        if inside.any():
+            ref = _field_ref(grid, to_goal, inside)
+            assert np.array_equal(_dijkstra_field(grid, to_goal, inside), ref)
+            done += 1
+    assert done >= 4

@@ -8,7 +8,7 @@ import weakref
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.sparse import coo_matrix
+from scipy.sparse import coo_matrix, csr_matrix
 from scipy.sparse.csgraph import dijkstra
 
 from mjwalk.plan.grid import OccupancyGrid
@@ -125,6 +125,42 @@ def _dijkstra_field(grid: OccupancyGrid, to_goal: np.ndarray, inside: np.ndarray
     their distance ``to_goal`` to the goal centre), with the rim of :func:`_rim`."""
     ny, nx = grid.free.shape
     n = nx * ny
+    moves = _move_graph(grid)
+    # the goal node's row (the last) after the move graph's rows: the matrix that
+    # scipy's COO -> CSR conversion gives for all edges at once (columns ascending)
+    cols = np.flatnonzero(inside.ravel()).astype(moves.indices.dtype)
+    indptr = moves.indptr.copy()
+    indptr[-1] += len(cols)
+    graph = csr_matrix(
+        (
+            np.concatenate([moves.data, to_goal[inside]]),
+            np.concatenate([moves.indices, cols]),
+            indptr,
+        ),
+        shape=(n + 1, n + 1),
+    )
+    dist = dijkstra(graph, directed=True, indices=n)[:n].reshape(ny, nx)
+    field = _rim(grid, dist)
+    field.setflags(write=False)  # shared by every GoalDistance of these goal cells
+    return field
+
+
+#: The reversed move graphs of the grids seen (:func:`_move_graph`), grids held weakly, the
+#: last few kept (one is about 1 MB for the station's 100 x 75 cells).
+_GRAPHS: dict[int, tuple[weakref.ref, csr_matrix]] = {}
+_GRAPHS_KEPT = 4
+
+
+def _move_graph(grid: OccupancyGrid) -> csr_matrix:
+    """The grid's moves as a sparse (n + 1, n + 1) graph (n cells; the last row, the virtual
+    goal node's, empty), reversed: an edge from each move's target back to its source, as long
+    as the move (metres). The same for every goal of the grid: built once per grid (building
+    it was half of a distance field's time)."""
+    hit = _GRAPHS.get(id(grid))
+    if hit is not None and hit[0]() is grid:
+        return hit[1]
+    ny, nx = grid.free.shape
+    n = nx * ny
     idx = np.arange(n).reshape(ny, nx)
     rows, cols, weights = [], [], []
     for k, (di, dj) in enumerate(grid.offsets):
@@ -133,17 +169,14 @@ def _dijkstra_field(grid: OccupancyGrid, to_goal: np.ndarray, inside: np.ndarray
         rows.append(src + dj * nx + di)
         cols.append(src)
         weights.append(np.full(src.shape, grid.cell * math.hypot(di, dj)))
-    rows.append(np.full(int(inside.sum()), n))
-    cols.append(idx[inside])
-    weights.append(to_goal[inside])
     graph = coo_matrix(
         (np.concatenate(weights), (np.concatenate(rows), np.concatenate(cols))),
         shape=(n + 1, n + 1),
     ).tocsr()
-    dist = dijkstra(graph, directed=True, indices=n)[:n].reshape(ny, nx)
-    field = _rim(grid, dist)
-    field.setflags(write=False)  # shared by every GoalDistance of these goal cells
-    return field
+    while len(_GRAPHS) >= _GRAPHS_KEPT:
+        _GRAPHS.pop(next(iter(_GRAPHS)))
+    _GRAPHS[id(grid)] = (weakref.ref(grid), graph)
+    return graph
 
 
 def _rim(grid: OccupancyGrid, dist: np.ndarray) -> np.ndarray:
