@@ -50,6 +50,7 @@ from __future__ import annotations
 
 import math
 import time
+import weakref
 
 import numpy as np
 
@@ -295,6 +296,25 @@ class _Decoder:
         )
 
 
+#: The decoders built (:func:`_shared_decoder`), by model (held weakly) and samples per step.
+_DECODERS: dict[tuple[int, int], tuple[weakref.ref, _Decoder]] = {}
+
+
+def _shared_decoder(model, m: int) -> _Decoder:
+    """``_Decoder(model, m)``, built once per model and ``m`` (a cycle's planners, one per
+    goal and stand zone, all decode the same walker's model; building one costs a few
+    decodes)."""
+    key = (id(model), int(m))
+    hit = _DECODERS.get(key)
+    if hit is not None and hit[0]() is model:
+        return hit[1]
+    dec = _Decoder(model, m)
+    for k in [k for k, (ref, _) in _DECODERS.items() if ref() is None]:
+        del _DECODERS[k]  # (the models gone)
+    _DECODERS[key] = (weakref.ref(model), dec)
+    return dec
+
+
 class HybridPlanner:
     """Reusable planning context for one workplace, model and goal.
 
@@ -444,12 +464,12 @@ class HybridPlanner:
     def _decoder(self, model=None) -> _Decoder:
         if model is None or model is self.model:
             if self._dec is None:
-                self._dec = _Decoder(self.model, self.samples_per_step)
+                self._dec = _shared_decoder(self.model, self.samples_per_step)
             return self._dec
         # another model (a walker's, StepModel.for_walker): the last one's decoder is kept
         held = getattr(self, "_other_dec", None)
         if held is None or held[0] is not model:
-            held = (model, _Decoder(model, self.samples_per_step))
+            held = (model, _shared_decoder(model, self.samples_per_step))
             self._other_dec = held
         return held[1]
 
