@@ -540,7 +540,7 @@ def test_compiled_pitch_fit_matches_numpy(side):
         dp = rng.normal(scale=0.1, size=n) * (rng.uniform(size=n) < 0.5)
         ref = _repitch_ref(ankle, pitch, toe, fyaw, ground, prints, dp, geom)
         toe_c = toe.copy()
-        a_c, p_c = pitchfit.repitch(ankle, pitch, toe_c, fyaw, ground, prints, dp, geom)
+        a_c, p_c = pitchfit.repitch_foot(ankle, pitch, toe_c, fyaw, ground, prints, dp, geom)
         for x, y in zip(ref, (a_c, p_c, toe_c), strict=True):
             assert np.array_equal(x, y)
         ik_ref, ik_c = LegIKCache(side, geom), LegIKCache(side, geom)

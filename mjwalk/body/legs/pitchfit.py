@@ -4,7 +4,7 @@ Where a grounded foot's ankle would leave its range, the synthesis lowers or rai
 pitch about its pivot on the floor, spread over the samples around, and solves the leg again,
 up to eight times per leg and pass (four passes). Each round is a few dozen NumPy operations
 on a walk's few hundred samples: in NumPy their call overhead cost about as much as the
-arithmetic. :func:`repitch` and :func:`fit_ankle_range` do the same arithmetic, in the same
+arithmetic. :func:`repitch_foot` and :func:`fit_ankle_range` do the same arithmetic, in the same
 order, in one compiled call (the same numbers, bit for bit: tests/test_fast_anim.py compares
 them with the NumPy code they replace). World frame, metres, radians; a foot's pitch + toes up.
 """
@@ -26,7 +26,7 @@ from mjwalk.body.legs.kinematics import (
 )
 
 
-def repitch(
+def repitch_foot(
     ankle: np.ndarray,
     pitch: np.ndarray,
     toe: np.ndarray,
@@ -71,7 +71,7 @@ def _pivot_cs(x, y, fx, fy, c, s, p, ball, back, ah):
 
 @njit
 def _repitch_rows(ankle, pitch, toe, fyaw, ground, prints, dp, ball, back, ah):
-    """:func:`repitch` in place: ``ankle`` (n, 3), ``pitch`` and ``toe`` (n,)."""
+    """:func:`repitch_foot` in place: ``ankle`` (n, 3), ``pitch`` and ``toe`` (n,)."""
     for i in range(ankle.shape[0]):
         p0 = pitch[i]
         p1 = p0 - dp[i]
@@ -114,7 +114,7 @@ def fit_ankle_range(
     past ``dorsi_max`` pitches down by 1.2 times the excess, one heel-up foot whose ankle
     extends past ``plantar_min`` lowers its heel by 1.2 times the shortfall (down to flat),
     both spread over +-``win`` samples (:func:`~mjwalk.body.legs.curves.spread`), by
-    :func:`repitch`; stop when no grounded ankle is out of range. Returns the new ankle
+    :func:`repitch_foot`; stop when no grounded ankle is out of range. Returns the new ankle
     targets (n, 3) and pitches (n,) (``toe`` updated in place), or None for walks shorter than
     the compiled spread handles (2 ``win`` + 2 samples): the caller runs the NumPy rounds."""
     n = len(ankle)

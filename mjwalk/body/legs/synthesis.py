@@ -39,7 +39,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mjwalk.body.humanoid import ROM_DEG, leg_geometry
-from mjwalk.body.legs import pitchfit
 from mjwalk.body.legs.curves import smoothstep, soft_flat, spread
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
@@ -50,6 +49,7 @@ from mjwalk.body.legs.kinematics import (
     hip_world,
     pivot_ankle,
 )
+from mjwalk.body.legs.pitchfit import fit_ankle_range, repitch_foot
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
 from mjwalk.body.legs.steps import (
@@ -281,8 +281,8 @@ def legs_from_walk(
         # motion of the ankle relative to the foot, as if it stood on a footprint under it
         # (pivot_ankle is continuous through the flat foot: a pivot switched by the pitch's
         # sign would move an airborne ankle by centimetres where the pitch crosses zero); the
-        # toes keep their angle to the floor while the heel is up (compiled: pitchfit)
-        ankle[s_], pitch[s_] = pitchfit.repitch(
+        # toes keep their angle to the floor while the heel is up (compiled: pitchfit.repitch_foot)
+        ankle[s_], pitch[s_] = repitch_foot(
             ankle[s_], pitch[s_], toe[s_], fyaw[s_], ground[s_], print_[s_], dp, geom
         )
 
@@ -301,7 +301,7 @@ def legs_from_walk(
             # pelvis lowers below. The roll is spread over the samples around (in the air
             # too, about the same point), so a landing or lift-off does not jolt the leg
             # (compiled: pitchfit.fit_ankle_range; the rounds below for very short walks)
-            fit = pitchfit.fit_ankle_range(
+            fit = fit_ankle_range(
                 ik[s_], ankle[s_], fyaw[s_], pitch[s_], toe[s_], ground[s_], print_[s_],
                 root, yaw, dorsi_max, plantar_min, win, ANKLE_ROUNDS,
             )  # fmt: skip
