@@ -184,17 +184,23 @@ def _leg_ik_world_rows(ankle, foot_yaw, pitch, root, yaw, sgn, hip_y, L1, L2, rm
     relative to the pelvis wrapped to (-pi, pi], then :func:`_leg_ik_one` (``sgn`` +1 for the
     left leg, -1 for the right)."""
     for i in range(ankle.shape[0]):
-        cy, sy = math.cos(yaw[i]), math.sin(yaw[i])
-        d0 = ankle[i, 0] - (root[i, 0] + sgn * hip_y * -sy)
-        d1 = ankle[i, 1] - (root[i, 1] + sgn * hip_y * cy)
-        d2 = ankle[i, 2] - (root[i, 2] + sgn * hip_y * 0.0)
-        c, sn = math.cos(-yaw[i]), math.sin(-yaw[i])
-        u0 = c * d0 + -sn * d1 + 0.0 * d2  # R_z(-yaw) (ankle - hip)
-        u1 = sn * d0 + c * d1 + 0.0 * d2
-        u2 = 0.0 * d0 + 0.0 * d1 + 1.0 * d2
-        dy = foot_yaw[i] - yaw[i]
-        yrel = math.atan2(math.sin(dy), math.cos(dy))
-        _leg_ik_one(u0, u1, u2, yrel, pitch[i], sgn, L1, L2, rmin, rmax, out[i])
+        _leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
+
+
+@njit
+def _leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out):
+    """Row ``i`` of :func:`_leg_ik_world_rows` (no array views made per row)."""
+    cy, sy = math.cos(yaw[i]), math.sin(yaw[i])
+    d0 = ankle[i, 0] - (root[i, 0] + sgn * hip_y * -sy)
+    d1 = ankle[i, 1] - (root[i, 1] + sgn * hip_y * cy)
+    d2 = ankle[i, 2] - (root[i, 2] + sgn * hip_y * 0.0)
+    c, sn = math.cos(-yaw[i]), math.sin(-yaw[i])
+    u0 = c * d0 + -sn * d1 + 0.0 * d2  # R_z(-yaw) (ankle - hip)
+    u1 = sn * d0 + c * d1 + 0.0 * d2
+    u2 = 0.0 * d0 + 0.0 * d1 + 1.0 * d2
+    dy = foot_yaw[i] - yaw[i]
+    yrel = math.atan2(math.sin(dy), math.cos(dy))
+    _leg_ik_one(u0, u1, u2, yrel, pitch[i], sgn, L1, L2, rmin, rmax, out[i])
 
 
 def leg_fk(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry):
@@ -549,17 +555,4 @@ def _leg_ik_world_cached(
             continue
         for k in range(9):
             inputs[i, k] = row[k]
-        _leg_ik_world_rows(
-            ankle[i : i + 1],
-            foot_yaw[i : i + 1],
-            pitch[i : i + 1],
-            root[i : i + 1],
-            yaw[i : i + 1],
-            sgn,
-            hip_y,
-            L1,
-            L2,
-            rmin,
-            rmax,
-            out[i : i + 1],
-        )
+        _leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
