@@ -53,6 +53,12 @@ def _spread(need, win, kernel):
     the symmetric Gaussian ``kernel``, both with the reflecting boundary, as scipy.ndimage
     (the symmetric kernel summed pairwise from the centre out, as its correlate1d)."""
     n = len(need)
+    out = np.zeros(n)
+    for i in range(n):
+        if need[i] != 0.0:
+            break
+    else:  # nothing needed: the envelope is exactly zero (as the sums below give)
+        return out
     r = len(kernel) // 2
     pad = win
     ext = np.empty(n + 2 * pad)
@@ -68,7 +74,6 @@ def _spread(need, win, kernel):
     for i in range(r):  # the maximum's reflected borders
         peak[r - 1 - i] = peak[r + _reflect(-1 - i, n)]
         peak[r + n + i] = peak[r + _reflect(n + i, n)]
-    out = np.empty(n)
     for i in range(n):
         c = i + r
         acc = peak[c] * kernel[r]
