@@ -7,6 +7,10 @@ on a walk's few hundred samples: in NumPy their call overhead cost about as much
 arithmetic. :func:`repitch_foot` and :func:`fit_ankle_range` do the same arithmetic, in the same
 order, in one compiled call (the same numbers, bit for bit: tests/test_fast_anim.py compares
 them with the NumPy code they replace). World frame, metres, radians; a foot's pitch + toes up.
+
+The compiled rounds call the leg IK (``kinematics._leg_ik_world_cached``) and the spread
+(``curves._spread``): numba caches this module's machine code by its own source, so change a
+comment here when those change (else a cached copy keeps the old callees).
 """
 
 from __future__ import annotations
