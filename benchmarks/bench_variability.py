@@ -42,7 +42,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mjwalk.cycle.simulate import plan_cycle_walks, prepare
+from mjwalk.cycle.simulate import cycle_start, plan_cycle_walks, prepare
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.errors import PlanningError
 
@@ -75,10 +75,11 @@ def route_table(cycles: int, seed: int = 0, population: bool = False) -> dict:
     ratios: dict[str, list[float]] = defaultdict(list)
     for run in range(cycles):
         rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
-        op_rng = rng.spawn(3)[0]  # simulate_cycle's operator stream
+        op_rng, _, stand_rng = rng.spawn(3)  # simulate_cycle's operator and start streams
         walker = spec.population.draw(op_rng) if population and spec.population else None
         try:  # a cycle's walks, all or none (a rare operator's walk may not be plannable)
-            walks = list(plan_cycle_walks(ctx, rng, walker))
+            start = cycle_start(ctx, stand_rng, walker)
+            walks = list(plan_cycle_walks(ctx, rng, walker, start))
         except PlanningError as exc:
             print(f"  run {run}: no walk plan for {walker} ({str(exc)[:60]}...)")
             continue
@@ -102,8 +103,10 @@ def length_makeup(cycles: int, seed: int = 0) -> None:
     rows: dict[str, list] = defaultdict(list)
     for run in range(cycles):
         rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
-        walker = spec.population.draw(rng.spawn(3)[0]) if spec.population else None
-        for i, here, goal, p in plan_cycle_walks(ctx, rng, walker):
+        op_rng, _, stand_rng = rng.spawn(3)
+        walker = spec.population.draw(op_rng) if spec.population else None
+        start = cycle_start(ctx, stand_rng, walker)
+        for i, here, goal, p in plan_cycle_walks(ctx, rng, walker, start):
             chord = float(np.hypot(*(p.xy[-1] - p.xy[0])))
             rows[f"{spec.tasks[i].route} {here}->{goal}"].append(
                 (p.length, chord, p.length - chord, *p.xy[0], *p.xy[-1])
