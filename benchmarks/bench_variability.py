@@ -12,7 +12,8 @@ Run: python3 benchmarks/bench_variability.py [--cycles 200] [--data ../shared/da
    walkers: each direction is also shown alone.
 2. **Routes with the shipped workforce**: the same table with each run's operator drawn from
    the station cycle's ``[population]`` (between-person differences: stature, hence reach and
-   stand zone, step length and pace).
+   stand zone, step length and pace), and with agethen2018's own participants
+   (:data:`PARTICIPANTS`: statures 1.79 +- 0.12 m), the people the captured figures come from.
    Then the most stand zones can give (:func:`zone_bound`): the chord between spots drawn
    uniformly over each route's start and end zones, at the station's walking radius and at
    smaller ones.
@@ -67,19 +68,33 @@ def _q(x) -> tuple[float, float]:
     return float(m), float(q3 - q1)
 
 
-def route_table(cycles: int, seed: int = 0, population: bool = False) -> dict:
+#: agethen2018 §5.2's participants, as a [population] table: 10 people aged 21-40, statures
+#: 1.60-1.98 m (mean 1.79, SD 0.12); their pace is not reported: the adult preset's.
+PARTICIPANTS = {
+    "group": "agethen2018 participants",
+    "walker": "adult",
+    "stature": {"dist": "truncnorm", "mean": 1.79, "sd": 0.12, "min": 1.60, "max": 1.98},
+}
+
+
+def route_table(cycles: int, seed: int = 0, population: bool | dict = False) -> dict:
     """Per route (and per direction ``T2 a->b``): lengths and length / grid-A* length; with
     ``population``, each run's operator drawn as ``simulate_cycle`` draws it. A run whose walks
     cannot all be planned is printed and left out (as ``simulate_cycles(on_error="record")``
     lists it apart)."""
     spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
     ctx = prepare(spec)
+    pop = spec.population
+    if isinstance(population, dict):  # a [population] table of its own
+        from mjwalk.cycle.population import parse_population
+
+        pop = parse_population(population, spec.stature)
     lengths: dict[str, list[float]] = defaultdict(list)
     ratios: dict[str, list[float]] = defaultdict(list)
     for run in range(cycles):
         rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
         op_rng, _, stand_rng = rng.spawn(3)  # simulate_cycle's operator and start streams
-        walker = spec.population.draw(op_rng) if population and spec.population else None
+        walker = pop.draw(op_rng) if population and pop is not None else None
         try:  # a cycle's walks, all or none (a rare operator's walk may not be plannable)
             start = cycle_start(ctx, stand_rng, walker)
             walks = list(plan_cycle_walks(ctx, rng, walker, start))
@@ -432,6 +447,13 @@ def main() -> None:
     t0 = time.perf_counter()
     table = route_table(args.cycles, args.seed, population=True)
     print(f"\nthe same with the shipped workforce ({time.perf_counter() - t0:.1f} s)")
+    print_routes(table)
+    t0 = time.perf_counter()
+    table = route_table(args.cycles, args.seed, population=PARTICIPANTS)
+    print(
+        f"\nthe same with agethen2018's participants (statures 1.79 +- 0.12 m, adult pace; "
+        f"{time.perf_counter() - t0:.1f} s)"
+    )
     print_routes(table)
     length_makeup(args.cycles, args.seed)
     zone_bound(seed=args.seed)
