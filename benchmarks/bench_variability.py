@@ -12,7 +12,11 @@ Run: python3 benchmarks/bench_variability.py [--cycles 200] [--data ../shared/da
    walkers: each direction is also shown alone.
 2. **Routes with the shipped workforce**: the same table with each run's operator drawn from
    the station cycle's ``[population]`` (between-person differences: stature, hence reach and
-   stand zone, step length and pace).
+   stand zone, step length and pace), and with agethen2018's own participants
+   (:data:`PARTICIPANTS`: statures 1.79 +- 0.12 m), the people the captured figures come from.
+   Then the most stand zones can give (:func:`zone_bound`): the chord between spots drawn
+   uniformly over each route's start and end zones, at the station's walking radius and at
+   smaller ones.
 3. **Cycle times for two populations** (``--cycle-runs`` full cycles each, animated, no video):
    the shipped mixed workforce and an older one (older adults and elderly), P5/P50/P95 and the
    share over the station's takt with its Wilson 95 % interval (``mjwalk.report``'s figures).
@@ -42,7 +46,7 @@ from pathlib import Path
 
 import numpy as np
 
-from mjwalk.cycle.simulate import plan_cycle_walks, prepare
+from mjwalk.cycle.simulate import cycle_start, plan_cycle_walks, prepare
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.errors import PlanningError
 
@@ -64,21 +68,36 @@ def _q(x) -> tuple[float, float]:
     return float(m), float(q3 - q1)
 
 
-def route_table(cycles: int, seed: int = 0, population: bool = False) -> dict:
+#: agethen2018 §5.2's participants, as a [population] table: 10 people aged 21-40, statures
+#: 1.60-1.98 m (mean 1.79, SD 0.12); their pace is not reported: the adult preset's.
+PARTICIPANTS = {
+    "group": "agethen2018 participants",
+    "walker": "adult",
+    "stature": {"dist": "truncnorm", "mean": 1.79, "sd": 0.12, "min": 1.60, "max": 1.98},
+}
+
+
+def route_table(cycles: int, seed: int = 0, population: bool | dict = False) -> dict:
     """Per route (and per direction ``T2 a->b``): lengths and length / grid-A* length; with
     ``population``, each run's operator drawn as ``simulate_cycle`` draws it. A run whose walks
     cannot all be planned is printed and left out (as ``simulate_cycles(on_error="record")``
     lists it apart)."""
     spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
     ctx = prepare(spec)
+    pop = spec.population
+    if isinstance(population, dict):  # a [population] table of its own
+        from mjwalk.cycle.population import parse_population
+
+        pop = parse_population(population, spec.stature)
     lengths: dict[str, list[float]] = defaultdict(list)
     ratios: dict[str, list[float]] = defaultdict(list)
     for run in range(cycles):
         rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
-        op_rng = rng.spawn(3)[0]  # simulate_cycle's operator stream
-        walker = spec.population.draw(op_rng) if population and spec.population else None
+        op_rng, _, stand_rng = rng.spawn(3)  # simulate_cycle's operator and start streams
+        walker = pop.draw(op_rng) if population and pop is not None else None
         try:  # a cycle's walks, all or none (a rare operator's walk may not be plannable)
-            walks = list(plan_cycle_walks(ctx, rng, walker))
+            start = cycle_start(ctx, stand_rng, walker)
+            walks = list(plan_cycle_walks(ctx, rng, walker, start))
         except PlanningError as exc:
             print(f"  run {run}: no walk plan for {walker} ({str(exc)[:60]}...)")
             continue
@@ -102,8 +121,14 @@ def length_makeup(cycles: int, seed: int = 0) -> None:
     rows: dict[str, list] = defaultdict(list)
     for run in range(cycles):
         rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
-        walker = spec.population.draw(rng.spawn(3)[0]) if spec.population else None
-        for i, here, goal, p in plan_cycle_walks(ctx, rng, walker):
+        op_rng, _, stand_rng = rng.spawn(3)
+        walker = spec.population.draw(op_rng) if spec.population else None
+        start = cycle_start(ctx, stand_rng, walker)
+        try:  # as route_table: a run whose walks cannot all be planned is left out
+            walks = plan_cycle_walks(ctx, rng, walker, start)
+        except PlanningError:
+            continue
+        for i, here, goal, p in walks:
             chord = float(np.hypot(*(p.xy[-1] - p.xy[0])))
             rows[f"{spec.tasks[i].route} {here}->{goal}"].append(
                 (p.length, chord, p.length - chord, *p.xy[0], *p.xy[-1])
@@ -121,6 +146,45 @@ def length_makeup(cycles: int, seed: int = 0) -> None:
             f"{key:<34}{_q(v[:, 0])[1]:>8.3f}{_q(v[:, 1])[1]:>10.3f}{np.median(v[:, 2]):>11.3f}"
             f"{_q(v[:, 2])[1]:>11.3f}{sd0:>9.3f}{sd1:>8.3f}"
         )
+
+
+def zone_bound(draws: int = 1500, seed: int = 0) -> None:
+    """The most length spread stand zones can give: each route's chord between two spots drawn
+    uniformly over the walkable part of its start and end zones (``standing_spot``, reference
+    adult), for the station's walking radius and for smaller ones (a body standing square to
+    its work is about half a chest depth deep, not a shoulder width). Walks end at the first
+    place in the zone their steps reach, so they spread less than this."""
+    import dataclasses
+
+    from mjwalk.cycle.walking import standing_spot, start_zone
+
+    base = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
+    rng = np.random.default_rng(seed)
+    print(
+        f"\nthe most stand zones can give: chords between uniform spots ({draws} pairs), "
+        "IQR/median vs captured"
+    )
+    print(f"{'route':<34}" + "".join(f"{f'r={r:.2f}':>9}" for r in (base.radius, 0.25, 0.20)))
+    rows: dict[str, list[str]] = defaultdict(list)
+    for radius in (base.radius, 0.25, 0.20):
+        spec = dataclasses.replace(base, radius=radius)
+        ctx = prepare(spec)
+        step = ctx.step_model.pace().step_length
+        prev, here = start_zone(ctx, spec.stature, step), spec.start
+        for i, task in enumerate(spec.tasks):
+            if task.kind not in ("walk", "carry"):
+                continue
+            zone = ctx.zone(i, spec.stature, step)
+            a = np.array([standing_spot(ctx, prev, rng) for _ in range(draws)])
+            b = np.array([standing_spot(ctx, zone, rng) for _ in range(draws)])
+            m, iqr = _q(np.hypot(*(b - a).T))
+            cap_m, cap_iqr = CAPTURED[str(task.route)]
+            rows[f"{task.route} {here}->{task.site}"].append(
+                f"{100 * (iqr / m) / (cap_iqr / cap_m):>8.0f}%"
+            )
+            prev, here = zone, task.site
+    for key, cells in rows.items():
+        print(f"{key:<34}" + "".join(cells))
 
 
 def print_routes(table: dict) -> None:
@@ -384,7 +448,15 @@ def main() -> None:
     table = route_table(args.cycles, args.seed, population=True)
     print(f"\nthe same with the shipped workforce ({time.perf_counter() - t0:.1f} s)")
     print_routes(table)
+    t0 = time.perf_counter()
+    table = route_table(args.cycles, args.seed, population=PARTICIPANTS)
+    print(
+        f"\nthe same with agethen2018's participants (statures 1.79 +- 0.12 m, adult pace; "
+        f"{time.perf_counter() - t0:.1f} s)"
+    )
+    print_routes(table)
     length_makeup(args.cycles, args.seed)
+    zone_bound(seed=args.seed)
     if args.cycle_runs:
         cycle_populations(args.cycle_runs, args.seed)
     if (args.data / "bandai-walk").is_dir():

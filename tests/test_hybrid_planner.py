@@ -205,3 +205,36 @@ def test_short_walk_to_a_tight_goal_stops_with_closing_steps(model, scenes_dir):
     assert closing > 0.5, closing
     q25, q50, q75 = np.percentile([w.length for w in walks], [25, 50, 75])  # metres
     assert q50 <= 1.3 and q75 - q25 <= 0.5, (q50, q75 - q25)
+
+
+#: Route selection around a barrier (PMC7875474, walkers going around a barrier to a visible
+#: goal, N = 19 and 15, mixed-effects logistic regression): 75 % of choices go to the side of
+#: smaller deviation angle when the two sides' angles differ by 1.65 deg (50 % at 0), i.e. a
+#: logistic slope of ln 3 / 1.65 per degree.
+SIDE_SLOPE_PER_DEG = np.log(3.0) / 1.65
+
+
+@pytest.mark.parametrize("offset", [0.0, 0.1])
+def test_walkers_pass_a_pillar_on_either_side_as_people_choose(tmp_path, model, offset):
+    """A 0.6 m square pillar midway on a 6 m walk: with start and goal on its axis people go
+    either way; moved 0.1 m off the axis, most take the side with the smaller deviation angle,
+    as the cited logistic model predicts (0.93 for the 3.8 deg difference). 40 seeded walks:
+    the share of each side within 0.17 of the prediction (3.5 binomial SDs at 0.5)."""
+    scene = tmp_path / "pillar.xml"
+    scene.write_text(
+        '<mujoco model="pillar"><worldbody>'
+        '<geom name="floor" type="plane" size="5 3 0.05"/>'
+        '<geom name="pillar" type="box" size="0.3 0.3 1.0" pos="0 0 1.0"/>'
+        "</worldbody></mujoco>"
+    )
+    wp = load_workplace(scene)
+    planner = HybridPlanner(wp, (3.0, offset), model, radius=RADIUS)
+    sides = []
+    for k in range(40):
+        p = planner.plan((-3.0, offset), np.random.default_rng(k))
+        sides.append(p.xy[np.argmin(np.abs(p.xy[:, 0])), 1] > 0)  # passes left (+y) of it
+    # deviation angle of each edge of the pillar seen from the start, relative to the goal
+    d_left = np.degrees(np.arctan2(0.3 - offset, 3.0))
+    d_right = np.degrees(np.arctan2(0.3 + offset, 3.0))
+    predicted = 1.0 / (1.0 + np.exp(-SIDE_SLOPE_PER_DEG * (d_right - d_left)))
+    assert np.mean(sides) == pytest.approx(predicted, abs=0.17)

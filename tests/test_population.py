@@ -288,7 +288,9 @@ def test_operator_stature_builds_the_humanoid(short, stature):
 @pytest.mark.parametrize("speed", [1.0, 1.5])
 def test_a_walkers_steady_speed_reaches_the_walk(scenes_dir, tmp_path, speed):
     """An 8 m straight walk on the open floor: the pelvis speed over the middle half of the
-    walk (after starting, before stopping) is within 10 % of the walker's preferred speed."""
+    walk (after starting, before stopping) is within 10 % of the walker's preferred speed.
+    Over 12 walks: a walk's own speed varies (as a person's does from walk to walk; at 1.5
+    m/s, 1.0-1.7 m/s over 12 seeds), so the median of three was a draw."""
     path = tmp_path / "straight.toml"
     path.write_text(
         f"""
@@ -305,7 +307,7 @@ site = "east"
     )
     ctx = prepare(load_cycle_spec(path))
     speeds = []
-    for k in range(3):
+    for k in range(12):
         p = simulate_cycle(ctx, k, collisions=False).walks[0].path
         mid = (p.t >= 0.25 * p.t[-1]) & (p.t <= 0.75 * p.t[-1])
         xy, t = p.xy[mid], p.t[mid]

@@ -122,3 +122,29 @@ def test_wandering_walks_are_planned_again(scenes_dir, monkeypatch):
     walk = planner.plan("stand_rack2", np.random.default_rng(0))
     assert walk.meta["wandering"] is True and walk.meta["searches"] == hybrid.WANDER_SEARCHES
     assert hybrid.WANDER_SEARCHES > planner.attempts  # loops get more searches than dead ends
+
+
+def test_cycle_starts_anywhere_in_the_start_zone_and_every_start_sets_off(scenes_dir):
+    """The cycle's operator starts where the work at the start site left them: 60 seeded runs'
+    starts all lie in the start's stand zone, clear of obstacles by the radius and the start
+    margin, spread over it (not on the site's mark), and a walk can set off from each."""
+    from mjwalk.cycle.walking import START_MARGIN, cycle_start, start_zone
+
+    ctx = prepare(load_cycle_spec(scenes_dir / "assembly_station.toml"))
+    step = ctx.step_model.pace().step_length
+    zone = start_zone(ctx, ctx.spec.stature, step)
+    field = ctx.workplace.walk_field()
+    starts = []
+    for run in range(60):
+        rng = np.random.default_rng(np.random.SeedSequence([0, run]))
+        xy = cycle_start(ctx, rng.spawn(3)[2], None)  # simulate_cycle's standing stream
+        assert zone.contains(xy)
+        assert field(np.array(xy)) >= ctx.spec.radius + START_MARGIN - 1e-9
+        starts.append(xy)
+        if run < 20:
+            plan_cycle_walks(ctx, rng, None, xy)  # raises PlanningError if it cannot set off
+    s = np.array(starts)
+    site = ctx.workplace.station(ctx.spec.start).pos[:2]
+    # spread over the zone: depth (y) and width (x) both vary by several centimetres
+    assert s.std(axis=0).min() > 0.03
+    assert np.median(np.hypot(*(s - site).T)) > 0.05

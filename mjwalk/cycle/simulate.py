@@ -61,7 +61,7 @@ from mjwalk.cycle.poses import (
     hand_points,
 )
 from mjwalk.cycle.reaching import _reach_task
-from mjwalk.cycle.walking import plan_cycle_walks, plan_task_walk, work_zone
+from mjwalk.cycle.walking import cycle_start, plan_cycle_walks, plan_task_walk, work_zone
 
 __all__ = [
     "GOAL_TOLERANCE",
@@ -69,6 +69,7 @@ __all__ = [
     "carry_abduction",
     "carry_pose",
     "combined_walk",
+    "cycle_start",
     "hand_points",
     "operator_context",
     "plan_cycle_walks",
@@ -118,8 +119,8 @@ def simulate_cycle(
     check_durations(spec.tasks)
     rng = np.random.default_rng(rng)
     # side streams spawned from the run's generator (its own draws, the walks, are unchanged):
-    # the operator, the task-time factors, the standing spots (not yet merged)
-    op_rng, hand_rng, _stand_rng = rng.spawn(3)
+    # the operator, the task-time factors, where the operator stands at the start
+    op_rng, hand_rng, stand_rng = rng.spawn(3)
     entropy = _entropy(rng)
     # the run's operator (None without a [population]: the step model's own pace, handling at
     # the reference adult's pace): their humanoid, their steps, their handling pace
@@ -128,8 +129,8 @@ def simulate_cycle(
     pace = 1.0 if walker is None else walker.pace
     wp = ctx.workplace
     here = spec.start
-    st = wp.station(here)
-    x, y, yaw = float(st.pos[0]), float(st.pos[1]), st.yaw
+    x, y = cycle_start(ctx, stand_rng, walker)  # in the start's stand zone, not on its mark
+    yaw = wp.station(here).yaw
     frames = [_standing(ctx, x, y, yaw)[None]]
     t = 0.0
     tasks: list[TaskRecord] = []
