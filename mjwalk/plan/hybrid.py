@@ -50,6 +50,7 @@ from __future__ import annotations
 
 import math
 import time
+import weakref
 
 import numpy as np
 
@@ -57,7 +58,7 @@ from mjwalk._args import finite_points, parse_point
 from mjwalk.anthropometry import ROM_DEG, SHIN_RADIUS, leg_geometry
 from mjwalk.conventions import DEFAULT_STATURE, SAMPLE_RATE_HZ
 from mjwalk.errors import InputError, PlanningError
-from mjwalk.gait.features import StepBatch
+from mjwalk.gait.features import StepBatch, spline_basis
 from mjwalk.gait.transition import POOL_SHARPNESS
 from mjwalk.plan import search, stepcheck
 from mjwalk.plan.grid import (
@@ -210,6 +211,12 @@ WANDER_FACTOR = 1.5
 WANDER_SEARCHES = 6
 
 
+#: :meth:`HybridPlanner.default_heading`'s 72 directions (radians) and its probes 0.3 m out
+#: along them (metres), made once.
+_HEADING_ANGLES = np.linspace(-math.pi, math.pi, 72, endpoint=False)
+_HEADING_PROBES = 0.3 * np.stack([np.cos(_HEADING_ANGLES), np.sin(_HEADING_ANGLES)], axis=1)
+
+
 class _Exhausted(PlanningError):
     """The open list ran dry (all sampled continuations blocked): worth a fresh search."""
 
@@ -295,6 +302,29 @@ class _Decoder:
         )
 
 
+#: Decoders already built, by model and samples per step (:func:`_decoder_of`); the model is
+#: held weakly and the oldest entries go beyond :data:`_DECODERS_MAX`.
+_DECODERS: dict[tuple[int, int], tuple[weakref.ref, _Decoder]] = {}
+_DECODERS_MAX = 16
+
+
+def _decoder_of(model, m: int) -> _Decoder:
+    """The :class:`_Decoder` of ``model`` at ``m`` samples per step, built once per process.
+
+    Building one decodes and checks 23 feature rows (about 0.15 ms, as much as a short walk's
+    whole search); planners are made per goal (a cycle's walks, a benchmark's start/goal
+    pairs), models per operator (:meth:`StepModel.for_walker`), so it is shared by model."""
+    key = (id(model), int(m))
+    hit = _DECODERS.get(key)
+    if hit is not None and hit[0]() is model:
+        return hit[1]
+    dec = _Decoder(model, m)
+    while len(_DECODERS) >= _DECODERS_MAX:
+        _DECODERS.pop(next(iter(_DECODERS)))
+    _DECODERS[key] = (weakref.ref(model), dec)
+    return dec
+
+
 class HybridPlanner:
     """Reusable planning context for one workplace, model and goal.
 
@@ -374,11 +404,18 @@ class HybridPlanner:
             + [FOOT_CLEARANCE] * 2
             + [KNEE_CLEARANCE] * 2
         )
-        self._dec: _Decoder | None = None
+        self._params: dict[float, tuple[np.ndarray, np.ndarray]] = {}
 
     def _kernel_params(self, stature: float = DEFAULT_STATURE) -> tuple[np.ndarray, np.ndarray]:
         """The float and integer parameter vectors of :func:`~mjwalk.plan.stepcheck.check_steps`
-        for a walker of ``stature`` metres (the landing leg's clearance scales with it)."""
+        for a walker of ``stature`` metres (the landing leg's clearance scales with it); fresh
+        copies of the ones made on this planner's first plan for that stature."""
+        held = self._params.get(stature)
+        if held is None:
+            held = self._params[stature] = self._make_kernel_params(stature)
+        return held[0].copy(), held[1].copy()
+
+    def _make_kernel_params(self, stature: float) -> tuple[np.ndarray, np.ndarray]:
         m = self.samples_per_step
         knee_cols = (m // 2, (3 * m) // 4)  # the swing-knee probes' pelvis samples
         walk, gd = self._walk, self.distance
@@ -442,16 +479,7 @@ class HybridPlanner:
         return par, ipar
 
     def _decoder(self, model=None) -> _Decoder:
-        if model is None or model is self.model:
-            if self._dec is None:
-                self._dec = _Decoder(self.model, self.samples_per_step)
-            return self._dec
-        # another model (a walker's, StepModel.for_walker): the last one's decoder is kept
-        held = getattr(self, "_other_dec", None)
-        if held is None or held[0] is not model:
-            held = (model, _Decoder(model, self.samples_per_step))
-            self._other_dec = held
-        return held[1]
+        return _decoder_of(self.model if model is None else model, self.samples_per_step)
 
     # -- helpers ---------------------------------------------------------------------------
 
@@ -469,11 +497,10 @@ class HybridPlanner:
 
     def default_heading(self, xy: np.ndarray) -> float:
         """Direction in which the obstacle-aware distance to the goal falls fastest (radians)."""
-        angles = np.linspace(-math.pi, math.pi, 72, endpoint=False)
-        probe = xy + 0.3 * np.stack([np.cos(angles), np.sin(angles)], axis=1)
+        probe = xy + _HEADING_PROBES
         free = self.workplace.walk_clearance(probe) >= self.radius
         cost = self.distance(probe) + np.where(free, 0.0, 1e3)
-        return float(angles[int(np.argmin(cost))])
+        return float(_HEADING_ANGLES[int(np.argmin(cost))])
 
     # -- search ----------------------------------------------------------------------------
 
@@ -498,7 +525,7 @@ class HybridPlanner:
         exhausted = 0
         for attempt in range(limit):
             try:
-                path = self._plan_once(start, rng, model or self.model)
+                path, start_distance = self._plan_once(start, rng, model or self.model)
             except _Exhausted as exc:
                 exhausted += 1
                 if exhausted >= self.attempts or attempt == limit - 1:
@@ -511,7 +538,7 @@ class HybridPlanner:
             path.meta["attempts"] = attempt + 1
             path.meta["seconds"] = time.perf_counter() - t0  # all searches, not the last one
             if bound is None:
-                bound = WANDER_FACTOR * max(float(self.distance(path.xy[0])), self.tolerance)
+                bound = WANDER_FACTOR * max(start_distance, self.tolerance)
             path.meta["wandering"] = bool(path.length > bound)
             if not path.meta["wandering"]:
                 return path
@@ -522,7 +549,8 @@ class HybridPlanner:
         best.meta["searches"] = attempt + 1
         return best
 
-    def _plan_once(self, start, rng: np.random.Generator, model) -> WalkPath:
+    def _plan_once(self, start, rng: np.random.Generator, model) -> tuple[WalkPath, float]:
+        """One search: the walk and the obstacle-aware distance (m) from its start to the goal."""
         start_xy, start_yaw = _parse_pose(self.workplace, start)
         check_endpoint(self.workplace, start_xy, self.radius, "start")
         if not self.distance.reachable(start_xy):
@@ -545,12 +573,13 @@ class HybridPlanner:
                 "there is no walk to plan"
             )
         # the starters, for the first expansion (the start node's)
-        first = model.sample_first(self.n_starters, rng)
-        frame0 = np.full(len(first.features), float(start_yaw))
+        z0, side0 = model.sample_first_features(self.n_starters, rng)
+        frame0 = np.full(len(z0), float(start_yaw))
         if free_heading:  # the walker may set off anywhere around the downhill heading
             frame0 += rng.uniform(-START_SPREAD, START_SPREAD, len(frame0))
         weight = self.heuristic_weight
-        h0 = float(self.distance(start_xy)) if self.heuristic == "dijkstra" else 0.0
+        start_distance = float(self.distance(start_xy))
+        h0 = start_distance if self.heuristic == "dijkstra" else 0.0
         euclid = float(np.hypot(*(start_xy - self.goal)))
         h_start = max(h0, euclid)
         far = self.far_weight if h_start > LONG_WALK else 0.0  # only long walks
@@ -563,9 +592,9 @@ class HybridPlanner:
             self.n_stops
         ) else gps  # fmt: skip
         outcome, goal_node, stats, *nodes = search.search(
-            np.ascontiguousarray(first.features, dtype=float),
+            np.ascontiguousarray(z0, dtype=float),
             frame0,
-            np.ascontiguousarray(first.side == "left"),
+            np.ascontiguousarray(side0 == "left"),
             complex(*start_xy),
             float(start_yaw),
             f0,
@@ -596,7 +625,7 @@ class HybridPlanner:
                 f"{self.radius} m to an obstacle"
             )
         parent, rows, pos, frames, lefts, feats, closing = nodes
-        return self._assemble(
+        path = self._assemble(
             model,
             goal_node,
             (parent, rows, pos, frames, lefts),
@@ -610,6 +639,7 @@ class HybridPlanner:
                 "closing_step": bool(closing[rows[goal_node]]),
             },
         )
+        return path, start_distance
 
     def _assemble(self, model, nid, nodes, feats, stats) -> WalkPath:
         parent, rows, pos, frames, lefts = nodes
@@ -623,22 +653,30 @@ class HybridPlanner:
         oy = pos[parent[chain]].imag
         fr = frames[chain]
         # the steps at 120 Hz (sample 0 of each is the previous step's last), one frame each
-        trajs = [batch.trajectory(row, FPS) for row in range(len(chain))]
-        counts = [len(t[1]) - 1 for t in trajs]
-        local = np.vstack([t[0][1:] for t in trajs])
+        # (StepBatch.trajectory, its spline basis looked up once per sample count)
+        n = len(chain)
+        local_parts, yaw_parts, counts = [], [], []
+        for row in range(n):
+            basis = spline_basis(max(round(float(batch.duration[row]) * FPS) + 1, 2))
+            local_parts.append((basis @ batch.landmarks[row])[1:])
+            yaw_parts.append(basis @ batch.yaw_landmarks[row])
+            counts.append(len(basis) - 1)
         origin = [np.repeat(v, counts) for v in (ox, oy, fr)]
-        xy = np.vstack([[[pos[0].real, pos[0].imag]], _to_world(*origin, local)])
+        xy = np.empty((1 + sum(counts), 2))
+        xy[0] = pos[0].real, pos[0].imag
+        xy[1:] = _to_world(*origin, np.concatenate(local_parts))
         # sample 0 faces the first step's frame: a starter's turn on the spot (free start
         # heading) is not part of the walk (a cycle turns the operator before it), so the
         # pelvis yaw does not jump between samples 0 and 1
-        yaw = np.concatenate(
-            [
-                [fr[0] + trajs[0][1][0]],
-                np.repeat(fr, counts) + np.concatenate([t[1][1:] for t in trajs]),
-            ]
-        )
-        feet = _to_world(ox, oy, fr, batch.footprint[:, :2])
-        stances = _to_world(ox, oy, fr, batch.stance[:, :2])
+        yaw = np.empty(len(xy))
+        yaw[0] = fr[0] + yaw_parts[0][0]
+        yaw[1:] = origin[2] + np.concatenate([y[1:] for y in yaw_parts])
+        # landing and stance feet in one turn into the world
+        both = _to_world(
+            np.tile(ox, 2), np.tile(oy, 2), np.tile(fr, 2),
+            np.concatenate([batch.footprint[:, :2], batch.stance[:, :2]]),
+        )  # fmt: skip
+        feet, stances = both[:n], both[n:]
         steps: list[PathStep] = []
         landed: dict[str, np.ndarray] = {}
         index = 0

@@ -18,8 +18,8 @@ numba's on-disk cache of :func:`search` is keyed by this file only, not by the c
 functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_steps`,
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change here, or processes
 keep running the old machine code (its stamp is a hash of this file's text: touching it is not
-enough). Last such change: issue 17 item 5 (the landing leg's probes,
-:func:`~mjwalk.plan.stepcheck.landing_leg_clear`, and their two parameter slots).
+enough). Last such change: issue 18 item 2 (the leg-reach tests compare squares,
+:func:`~mjwalk.plan.stepcheck._beyond`, hypot only where the squares do not decide).
 """
 
 from __future__ import annotations

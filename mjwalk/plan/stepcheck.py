@@ -130,6 +130,20 @@ def _clearance(coef, x0, y0, res, nx, ny, x, y):
 
 
 @njit
+def _beyond(v, r):
+    """``abs(v) > r`` for a complex ``v`` and r > 0, without the hypot where the squares decide
+    it: |v|² beyond r² by more than 1e-12 relative is beyond r, and short of it by as much is
+    not, whatever the roundings (a few ulp); only the band between (and nan) takes abs(v)."""
+    sq = v.real * v.real + v.imag * v.imag
+    r2 = r * r
+    if sq > r2 * (1.0 + 1e-12):
+        return True
+    if sq < r2 * (1.0 - 1e-12):
+        return False
+    return abs(v) > r
+
+
+@njit
 def cell_key(p, heading, par, ipar):
     """Closed-list key of a node at world x + iy ``p`` facing ``heading`` (radians): its grid
     cell (i · span + j) and, with heading bins, times bins plus its heading bin."""
@@ -414,18 +428,19 @@ def check_steps(
         behind = (node[i, 2] - p) * rc
         reach = par[P_FOOT_REACH]
         for j in range(m):
-            if abs(loc[j] - landed) > reach:
+            if _beyond(loc[j] - landed, reach):
                 ok = False
                 break
         if not ok:
             continue
+        lift = par[P_LIFT_REACH]
         for j in range(q):
-            if abs(loc[j] - behind) > par[P_LIFT_REACH]:
+            if _beyond(loc[j] - behind, lift):
                 ok = False
                 break
         if not ok:
             continue
-        if abs(loc[m] - behind) > par[P_STRIDE] or abs(loc[m] - loc[m - 1]) > reach:
+        if _beyond(loc[m] - behind, par[P_STRIDE]) or _beyond(loc[m] - loc[m - 1], reach):
             continue
         # the stance leg's sideways lean (the landed foot is this step's stance foot)
         if lean and not (math.isnan(landed.real) or math.isnan(node[i, 4].real)):
