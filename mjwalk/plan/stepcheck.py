@@ -347,6 +347,60 @@ def check_steps(
         counts.
     """
     n = z.shape[0]
+    b = n // per if per > 0 else 0
+    out = new_buffers(n, ipar[I_M])
+    accepted = np.zeros(b, dtype=np.int64)
+    drawn = np.zeros(b, dtype=np.int64)
+    cnt = check_into(
+        z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist,
+        out, accepted, drawn,
+    )  # fmt: skip
+    out_rows, out_keys, out_f, out_g, out_end, out_th, out_frame, out_foot, out_fhead = out[:9]
+    return (
+        out_rows[:cnt],
+        out_keys[:cnt],
+        out_f[:cnt],
+        out_g[:cnt],
+        out_end[:cnt],
+        out_th[:cnt],
+        out_frame[:cnt],
+        out_foot[:cnt],
+        out_fhead[:cnt],
+        out[9][:cnt],
+        accepted,
+        drawn,
+    )
+
+
+@njit
+def new_buffers(n, m):
+    """:func:`check_into`'s output buffers for up to ``n`` steps of ``m`` pelvis samples: rows,
+    keys, f, g, end, heading, frame, foot, foot heading, left (n,) and the decode row (m + 2,)."""
+    return (
+        np.empty(n, dtype=np.int64),
+        np.empty(n, dtype=np.int64),
+        np.empty(n),
+        np.empty(n),
+        np.empty(n, dtype=np.complex128),
+        np.empty(n),
+        np.empty(n),
+        np.empty(n, dtype=np.complex128),
+        np.empty(n),
+        np.empty(n, dtype=np.bool_),
+        np.empty(m + 2, dtype=np.complex128),
+    )
+
+
+@njit
+def check_into(
+    z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist, out,
+    accepted, drawn,
+):  # fmt: skip
+    """:func:`check_steps` into buffers: ``out`` from :func:`new_buffers` (at least n rows)
+    takes the accepted steps in its first rows, ``accepted`` and ``drawn`` (at least b, set
+    to 0 here) the per-predecessor counts; returns the number of accepted steps. The search
+    keeps one set of buffers instead of a dozen new arrays per expansion."""
+    n = z.shape[0]
     d = z.shape[1]
     b = n // per if per > 0 else 0
     m = ipar[I_M]
@@ -361,19 +415,11 @@ def check_steps(
     goal = complex(par[P_GOAL_X], par[P_GOAL_Y])
     per_row = frame.shape[0] == n
     lean = node.shape[1] > 4 and matrix.shape[1] >= 2 * m + 2 and not math.isnan(par[P_HIP_Y])
-    out_rows = np.empty(n, dtype=np.int64)
-    out_keys = np.empty(n, dtype=np.int64)
-    out_f = np.empty(n)
-    out_g = np.empty(n)
-    out_end = np.empty(n, dtype=np.complex128)
-    out_th = np.empty(n)
-    out_frame = np.empty(n)
-    out_foot = np.empty(n, dtype=np.complex128)
-    out_fhead = np.empty(n)
-    out_left = np.empty(n, dtype=np.bool_)
-    accepted = np.zeros(b, dtype=np.int64)
-    drawn = np.zeros(b, dtype=np.int64)
-    loc = np.empty(m + 2, dtype=np.complex128)
+    out_rows, out_keys, out_f, out_g, out_end, out_th, out_frame, out_foot, out_fhead = out[:9]
+    out_left = out[9]
+    loc = out[10]
+    accepted[:b] = 0
+    drawn[:b] = 0
     cnt = 0
     for r in range(n):
         i = r // per
@@ -484,17 +530,4 @@ def check_steps(
         out_left[cnt] = lf
         accepted[i] += 1
         cnt += 1
-    return (
-        out_rows[:cnt],
-        out_keys[:cnt],
-        out_f[:cnt],
-        out_g[:cnt],
-        out_end[:cnt],
-        out_th[:cnt],
-        out_frame[:cnt],
-        out_foot[:cnt],
-        out_fhead[:cnt],
-        out_left[:cnt],
-        accepted,
-        drawn,
-    )
+    return cnt
