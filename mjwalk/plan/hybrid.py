@@ -661,22 +661,22 @@ class HybridPlanner:
             local_parts.append((basis @ batch.landmarks[row])[1:])
             yaw_parts.append(basis @ batch.yaw_landmarks[row])
             counts.append(len(basis) - 1)
-        origin = [np.repeat(v, counts) for v in (ox, oy, fr)]
-        xy = np.empty((1 + sum(counts), 2))
+        # every sample's step, then the landing and the stance foot of every step: one turn
+        # into the world for all of them
+        of = np.concatenate([np.repeat(np.arange(n), counts), np.arange(n), np.arange(n)])
+        local = np.concatenate([*local_parts, batch.footprint[:, :2], batch.stance[:, :2]])
+        world = _to_world(ox[of], oy[of], fr[of], local)
+        k = len(world) - 2 * n
+        xy = np.empty((1 + k, 2))
         xy[0] = pos[0].real, pos[0].imag
-        xy[1:] = _to_world(*origin, np.concatenate(local_parts))
+        xy[1:] = world[:k]
+        feet, stances = world[k : k + n], world[k + n :]
         # sample 0 faces the first step's frame: a starter's turn on the spot (free start
         # heading) is not part of the walk (a cycle turns the operator before it), so the
         # pelvis yaw does not jump between samples 0 and 1
         yaw = np.empty(len(xy))
         yaw[0] = fr[0] + yaw_parts[0][0]
-        yaw[1:] = origin[2] + np.concatenate([y[1:] for y in yaw_parts])
-        # landing and stance feet in one turn into the world
-        both = _to_world(
-            np.tile(ox, 2), np.tile(oy, 2), np.tile(fr, 2),
-            np.concatenate([batch.footprint[:, :2], batch.stance[:, :2]]),
-        )  # fmt: skip
-        feet, stances = both[:n], both[n:]
+        yaw[1:] = fr[of[:k]] + np.concatenate([y[1:] for y in yaw_parts])
         steps: list[PathStep] = []
         landed: dict[str, np.ndarray] = {}
         index = 0

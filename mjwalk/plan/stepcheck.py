@@ -20,6 +20,7 @@ own way) or per-node ones (length b) are both accepted.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -94,18 +95,24 @@ N_PARAMS = P_DISC0 + 3 * MAX_GOAL_DISCS
 
 def params(**values) -> np.ndarray:
     """The float parameter vector from keyword slots (``knee_lead=...``, names as P_* lower)."""
+    slots = [_slot("P_", name) for name in values]
     out = np.full(N_PARAMS, np.nan)
-    for name, value in values.items():
-        out[globals()["P_" + name.upper()]] = value
+    out[slots] = list(values.values())
     return out
 
 
 def iparams(**values) -> np.ndarray:
     """The integer parameter vector from keyword slots (names as I_* lower)."""
+    slots = [_slot("I_", name) for name in values]
     out = np.zeros(N_IPARAMS, dtype=np.int64)
-    for name, value in values.items():
-        out[globals()["I_" + name.upper()]] = value
+    out[slots] = list(values.values())
     return out
+
+
+@functools.lru_cache(maxsize=256)
+def _slot(prefix: str, name: str) -> int:
+    """The slot of keyword ``name`` (P_/I_ constants; KeyError for an unknown name)."""
+    return globals()[prefix + name.upper()]
 
 
 @njit
