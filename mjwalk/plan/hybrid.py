@@ -405,6 +405,7 @@ class HybridPlanner:
             + [KNEE_CLEARANCE] * 2
         )
         self._params: dict[float, tuple[np.ndarray, np.ndarray]] = {}
+        self._kernel_params()  # the default walker's, with the distance field: per goal
 
     def _kernel_params(self, stature: float = DEFAULT_STATURE) -> tuple[np.ndarray, np.ndarray]:
         """The float and integer parameter vectors of :func:`~mjwalk.plan.stepcheck.check_steps`

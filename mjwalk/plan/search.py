@@ -22,7 +22,7 @@ keep running the old machine code (its stamp is a hash of this file's text: touc
 enough). Last such change: issue 18 item 2 (the leg-reach tests compare squares,
 :func:`~mjwalk.plan.stepcheck._beyond`, hypot only where the squares do not decide; the step
 checks write into buffers kept for the whole search; the GP's pool weights are powers of its
-kernel row).
+kernel row; the stance-lean limits once per batch; distance tests to the goal by squares).
 """
 
 from __future__ import annotations
@@ -45,6 +45,7 @@ from mjwalk.plan.stepcheck import (
     P_GOAL_Y,
     P_POOL_SHARPNESS,
     P_STOP_REACH,
+    _within,
     cell_key,
     check_into,
     in_goal,
@@ -153,7 +154,7 @@ def search(
         hd = head[nid]
         key = cell_key(p, hd, par, ipar)
         done = in_goal(p, hd, par, ipar)
-        near = n_stop > 0 and abs(p - goal) <= stop_reach
+        near = n_stop > 0 and _within(p - goal, stop_reach)
         if key in closed and not done:
             if not near:
                 continue
@@ -242,7 +243,7 @@ def search(
             if (
                 keys[c] in closed
                 and not in_goal(e, ths[c], par, ipar)
-                and not (n_stop > 0 and abs(e - goal) <= stop_reach)
+                and not (n_stop > 0 and _within(e - goal, stop_reach))
             ):
                 continue
             parent[nn] = nid

@@ -138,9 +138,11 @@ def _clearance(coef, x0, y0, res, nx, ny, x, y):
 
 @njit
 def _beyond(v, r):
-    """``abs(v) > r`` for a complex ``v`` and r > 0, without the hypot where the squares decide
-    it: |v|² beyond r² by more than 1e-12 relative is beyond r, and short of it by as much is
+    """``abs(v) > r`` for a complex ``v``, without the hypot where the squares decide it (r > 0):
+    |v|² beyond r² by more than 1e-12 relative is beyond r, and short of it by as much is
     not, whatever the roundings (a few ulp); only the band between (and nan) takes abs(v)."""
+    if not r > 0.0:
+        return abs(v) > r
     sq = v.real * v.real + v.imag * v.imag
     r2 = r * r
     if sq > r2 * (1.0 + 1e-12):
@@ -148,6 +150,20 @@ def _beyond(v, r):
     if sq < r2 * (1.0 - 1e-12):
         return False
     return abs(v) > r
+
+
+@njit
+def _within(v, r):
+    """``abs(v) <= r`` for a complex ``v``, as :func:`_beyond` decides it (nan: False)."""
+    if not r > 0.0:
+        return abs(v) <= r
+    sq = v.real * v.real + v.imag * v.imag
+    r2 = r * r
+    if sq < r2 * (1.0 - 1e-12):
+        return True
+    if sq > r2 * (1.0 + 1e-12):
+        return False
+    return abs(v) <= r
 
 
 @njit
@@ -171,11 +187,11 @@ def in_goal(p, heading, par, ipar):
     the tolerance of the goal, within each of the I_N_DISCS goal discs (x, y, radius at
     P_DISC0 + 3k: e.g. the places from which the work there is within reach) and, with a goal
     yaw, facing it within its tolerance."""
-    if abs(p - complex(par[P_GOAL_X], par[P_GOAL_Y])) > par[P_TOLERANCE]:
+    if _beyond(p - complex(par[P_GOAL_X], par[P_GOAL_Y]), par[P_TOLERANCE]):
         return False
     for k in range(ipar[I_N_DISCS]):
         j = P_DISC0 + 3 * k
-        if abs(p - complex(par[j], par[j + 1])) > par[j + 2]:
+        if _beyond(p - complex(par[j], par[j + 1]), par[j + 2]):
             return False
     goal_yaw = par[P_GOAL_YAW]
     if math.isnan(goal_yaw):
@@ -244,16 +260,32 @@ def stance_lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_lef
         stance_left: whether the stance foot is the left one.
         par: :func:`params` with the P_HIP_Y .. P_ABDUCTION slots (metres, radians).
     """
+    return _lean_ok(
+        z, r, matrix, offset, loc, m, ankle, foot_heading, stance_left, par, lean_limits(par)
+    )
+
+
+@njit
+def lean_limits(par):
+    """The stance-lean limits of ``par`` as slopes (atan2(y, h) and asin(y / span) are
+    monotonic in y): tan of the eversion and inversion, sin of the adduction and abduction."""
+    return (
+        math.tan(par[P_EVERSION]),
+        math.tan(par[P_INVERSION]),
+        math.sin(par[P_ADDUCTION]),
+        math.sin(par[P_ABDUCTION]),
+    )
+
+
+@njit
+def _lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_left, par, limits):
+    """:func:`stance_lean_ok` with :func:`lean_limits` made once per batch of steps."""
     d = z.shape[1]
     s = 1.0 if stance_left else -1.0
     hip_y = par[P_HIP_Y]
     span = par[P_LEG_SPAN]
     foot = complex(math.cos(-foot_heading), math.sin(-foot_heading))
-    # the limits as slopes: atan2(y, h) and asin(y / span) are monotonic in y
-    tan_ev = math.tan(par[P_EVERSION])
-    tan_inv = math.tan(par[P_INVERSION])
-    sin_add = math.sin(par[P_ADDUCTION])
-    sin_abd = math.sin(par[P_ABDUCTION])
+    tan_ev, tan_inv, sin_add, sin_abd = limits
     for j in range(m):
         psi = offset[m + 2 + j].real
         for a in range(d):
@@ -422,6 +454,7 @@ def check_into(
     goal = complex(par[P_GOAL_X], par[P_GOAL_Y])
     per_row = frame.shape[0] == n
     lean = node.shape[1] > 4 and matrix.shape[1] >= 2 * m + 2 and not math.isnan(par[P_HIP_Y])
+    limits = lean_limits(par)
     out_rows, out_keys, out_f, out_g, out_end, out_th, out_frame, out_foot, out_fhead = out[:9]
     out_left = out[9]
     loc = out[10]
@@ -497,8 +530,8 @@ def check_into(
             continue
         # the stance leg's sideways lean (the landed foot is this step's stance foot)
         if lean and not (math.isnan(landed.real) or math.isnan(node[i, 4].real)):
-            if not stance_lean_ok(z, r, matrix, offset, loc, m, landed, node[i, 4].real - fr,
-                                  not lf, par):  # fmt: skip
+            if not _lean_ok(z, r, matrix, offset, loc, m, landed, node[i, 4].real - fr,
+                            not lf, par, limits):  # fmt: skip
                 continue
         end = loc[m - 1] * rot + p
         th = fr + yaws.imag
