@@ -106,19 +106,6 @@ def _moments(x, gp):
 
 
 @njit
-def _ipow(x, n):
-    """x**n for a whole n >= 1 by repeated squaring (a few roundings, no exp/log)."""
-    out = 1.0
-    while True:
-        if n & 1:
-            out *= x
-        n >>= 1
-        if n == 0:
-            return out
-        x *= x
-
-
-@njit
 def sample(x, n, rng, gp, sharp):
     """(p, n, d) successors y = μ(x) + √v(x)·ε + r of each predecessor x[i]: r from the pool
     of inducing input j, drawn with probability ∝ exp(-sharp·(h_j - min h)) = (k_j/max k)^sharp
@@ -137,6 +124,7 @@ def sample(x, n, rng, gp, sharp):
     u = rng.random(p * n)
     cell = np.empty(p * n, dtype=np.intp)
     c = np.empty(m)
+    sq = np.empty(m)
     for i in range(p):
         lo = h[i, 0]
         near = 0
@@ -147,9 +135,22 @@ def sample(x, n, rng, gp, sharp):
         if power > 0 and lo < 600.0:
             # exp(-sharp·(h_j - lo)) = (e_j / e_near)^sharp to a few roundings (e_near is a
             # normal number here; an e_j that underflows gives a weight of 0 either way)
+            # (repeated squaring, x^power = product of x^(2^k) over power's set bits, on the
+            # whole row at once so it vectorizes)
             top = 1.0 / e[i, near]
             for j in range(m):
-                c[j] = _ipow(e[i, j] * top, power)
+                sq[j] = e[i, j] * top
+                c[j] = 1.0
+            b = power
+            while True:
+                if b & 1:
+                    for j in range(m):
+                        c[j] *= sq[j]
+                b >>= 1
+                if b == 0:
+                    break
+                for j in range(m):
+                    sq[j] *= sq[j]
         else:
             for j in range(m):
                 c[j] = math.exp(-sharp * (h[i, j] - lo))

@@ -22,7 +22,8 @@ keep running the old machine code (its stamp is a hash of this file's text: touc
 enough). Last such change: issue 18 item 2 (the leg-reach tests compare squares,
 :func:`~mjwalk.plan.stepcheck._beyond`, hypot only where the squares do not decide; the step
 checks write into buffers kept for the whole search; the GP's pool weights are powers of its
-kernel row; the stance-lean limits once per batch; distance tests to the goal by squares).
+kernel row, squared on the whole row at once; the stance-lean limits once per batch; a step
+frame's turn once per frame; distance tests to the goal by squares).
 """
 
 from __future__ import annotations

@@ -455,6 +455,8 @@ def check_into(
     per_row = frame.shape[0] == n
     lean = node.shape[1] > 4 and matrix.shape[1] >= 2 * m + 2 and not math.isnan(par[P_HIP_Y])
     limits = lean_limits(par)
+    rot = complex(1.0, 0.0)
+    fr_last = math.nan
     out_rows, out_keys, out_f, out_g, out_end, out_th, out_frame, out_foot, out_fhead = out[:9]
     out_left = out[9]
     loc = out[10]
@@ -475,7 +477,9 @@ def check_into(
             for a in range(d):
                 s += z[r, a] * matrix[a, c]
             loc[c] = s
-        rot = complex(math.sin(fr), -math.cos(fr))
+        if fr != fr_last:  # the turn into the world, once per frame heading (rows share it)
+            rot = complex(math.sin(fr), -math.cos(fr))
+            fr_last = fr
         p = node[i, 0]
         # clearance of pelvis samples, ankle, toes, knees (world)
         ok = True
