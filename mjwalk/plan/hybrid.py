@@ -71,6 +71,7 @@ from mjwalk.plan.grid import (
 )
 from mjwalk.plan.heuristic import GoalDistance, goal_distance
 from mjwalk.plan.walkpath import PathStep, WalkPath
+from mjwalk.world.clearance import ClearanceField
 from mjwalk.world.workplace import Workplace
 
 FPS = SAMPLE_RATE_HZ
@@ -498,9 +499,18 @@ class HybridPlanner:
 
     def default_heading(self, xy: np.ndarray) -> float:
         """Direction in which the obstacle-aware distance to the goal falls fastest (radians)."""
-        probe = xy + _HEADING_PROBES
-        free = self.workplace.walk_clearance(probe) >= self.radius
-        cost = self.distance(probe) + np.where(free, 0.0, 1e3)
+        wp, g, c = self.workplace, self.grid, self.workplace.clearance
+        if not isinstance(c, ClearanceField):  # another clearance model: its own lookup
+            probe = xy + _HEADING_PROBES
+            free = wp.walk_clearance(probe) >= self.radius
+            cost = self.distance(probe) + np.where(free, 0.0, 1e3)
+            return float(_HEADING_ANGLES[int(np.argmin(cost))])
+        cost = stepcheck.downhill_costs(
+            np.asarray(xy, dtype=float), _HEADING_PROBES, c.values, c.x0, c.y0, c.resolution,
+            np.asarray(wp.floor_bounds, dtype=float), float(self.radius),
+            self.distance.flat_bound(), g.x0, g.y0, g.cell, g.free.shape[1] - 1.0,
+            g.free.shape[0] - 1.0, float(self.goal[0]), float(self.goal[1]),
+        )  # fmt: skip
         return float(_HEADING_ANGLES[int(np.argmin(cost))])
 
     # -- search ----------------------------------------------------------------------------
@@ -554,7 +564,9 @@ class HybridPlanner:
         """One search: the walk and the obstacle-aware distance (m) from its start to the goal."""
         start_xy, start_yaw = _parse_pose(self.workplace, start)
         check_endpoint(self.workplace, start_xy, self.radius, "start")
-        if not self.distance.reachable(start_xy):
+        # infinite exactly where GoalDistance.reachable is False (the same nearest cell)
+        start_distance = float(self.distance(start_xy))
+        if not math.isfinite(start_distance):
             raise PlanningError(
                 f"goal ({self.goal[0]:.3f}, {self.goal[1]:.3f}) is unreachable from start "
                 f"({start_xy[0]:.3f}, {start_xy[1]:.3f}) in {self.workplace.name}: no "
@@ -579,7 +591,6 @@ class HybridPlanner:
         if free_heading:  # the walker may set off anywhere around the downhill heading
             frame0 += rng.uniform(-START_SPREAD, START_SPREAD, len(frame0))
         weight = self.heuristic_weight
-        start_distance = float(self.distance(start_xy))
         h0 = start_distance if self.heuristic == "dijkstra" else 0.0
         euclid = float(np.hypot(*(start_xy - self.goal)))
         h_start = max(h0, euclid)

@@ -237,6 +237,41 @@ def lean_in_range(inv: np.ndarray, abd: np.ndarray, par: np.ndarray) -> bool:
 
 
 @njit
+def downhill_costs(xy, probes, clear, cx0, cy0, cres, floor, radius, dist, gx0, gy0, gcell,
+                   top_x, top_y, goal_x, goal_y):  # fmt: skip
+    """:meth:`~mjwalk.plan.hybrid.HybridPlanner.default_heading`'s costs at ``xy + probes``
+    (k, 2), with NumPy's arithmetic of :meth:`ClearanceField.__call__` on the obstacle field
+    ``clear`` (origin cx0, cy0, spacing cres), :meth:`Workplace.edge_distance` on ``floor``
+    (xmin, ymin, xmax, ymax), and :meth:`GoalDistance.__call__` on the flat grid bound
+    ``dist`` (origin gx0, gy0, cell gcell, last column/row top_x, top_y): the distance to the
+    goal, plus 1e3 where the walking clearance is short of ``radius`` (metres)."""
+    ny, nx = clear.shape
+    n = probes.shape[0]
+    out = np.empty(n)
+    for k in range(n):
+        x = xy[0] + probes[k, 0]
+        y = xy[1] + probes[k, 1]
+        fx = min(max((x - cx0) / cres, 0.0), nx - 1.000001)
+        fy = min(max((y - cy0) / cres, 0.0), ny - 1.000001)
+        ix = int(fx)
+        iy = int(fy)
+        tx = fx - ix
+        ty = fy - iy
+        c = (clear[iy, ix] * (1 - tx) + clear[iy, ix + 1] * tx) * (1 - ty) + (
+            clear[iy + 1, ix] * (1 - tx) + clear[iy + 1, ix + 1] * tx
+        ) * ty
+        edge = min(min(min(x - floor[0], floor[2] - x), y - floor[1]), floor[3] - y)
+        free = min(c, edge) >= radius
+        gi = min(max(np.rint((x - gx0) / gcell), 0.0), top_x)
+        gj = min(max(np.rint((y - gy0) / gcell), 0.0), top_y)
+        off = math.hypot(x - (gx0 + int(gi) * gcell), y - (gy0 + int(gj) * gcell))
+        bound = dist[int(gj) * (int(top_x) + 1) + int(gi)] - off
+        euclid = math.hypot(x - goal_x, y - goal_y)
+        out[k] = max(euclid, bound) + (0.0 if free else 1e3)
+    return out
+
+
+@njit
 def stance_lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_left, par):
     """Whether the stance leg can follow the pelvis samples of one step without leaving the
     ankle's eversion/inversion or the hip's adduction/abduction range.
