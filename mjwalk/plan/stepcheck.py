@@ -506,12 +506,17 @@ def check_into(
         drawn[i] += 1
         fr = frame[r] if per_row else frame[i]
         lf = left[r] if per_row else left[i]
-        # decode: local = z @ matrix + offset
+        # decode: local = z @ matrix + offset (real features times complex columns: the real
+        # and imaginary sums apart, the products a complex product with 0j would add as ±0)
         for c in range(m + 2):
-            s = offset[c]
+            sr = offset[c].real
+            si = offset[c].imag
             for a in range(d):
-                s += z[r, a] * matrix[a, c]
-            loc[c] = s
+                za = z[r, a]
+                w = matrix[a, c]
+                sr += za * w.real
+                si += za * w.imag
+            loc[c] = complex(sr, si)
         if fr != fr_last:  # the turn into the world, once per frame heading (rows share it)
             rot = complex(math.sin(fr), -math.cos(fr))
             fr_last = fr
