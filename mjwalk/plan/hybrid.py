@@ -660,19 +660,22 @@ class HybridPlanner:
             chain.append(nid)
             nid = parent[nid]
         chain = np.array(chain[::-1])
-        batch = model.decode(feats[rows[chain]], np.where(lefts[chain], "left", "right"))
+        left = lefts[chain]
+        batch = model.decode(feats[rows[chain]], np.where(left, "left", "right"))
         ox = pos[parent[chain]].real
         oy = pos[parent[chain]].imag
         fr = frames[chain]
         # the steps at 120 Hz (sample 0 of each is the previous step's last), one frame each
-        # (StepBatch.trajectory, its spline basis looked up once per sample count)
+        # (StepBatch.trajectory: K = round(duration·fps) + 1 samples, at least 2, its spline
+        # basis looked up once per sample count)
         n = len(chain)
-        local_parts, yaw_parts, counts = [], [], []
-        for row in range(n):
-            basis = spline_basis(max(round(float(batch.duration[row]) * FPS) + 1, 2))
+        sizes = np.maximum(np.round(batch.duration * FPS).astype(np.int64) + 1, 2).tolist()
+        local_parts, yaw_parts = [], []
+        for row, k in enumerate(sizes):
+            basis = spline_basis(k)
             local_parts.append((basis @ batch.landmarks[row])[1:])
             yaw_parts.append(basis @ batch.yaw_landmarks[row])
-            counts.append(len(basis) - 1)
+        counts = [k - 1 for k in sizes]
         # every sample's step, then the landing and the stance foot of every step: one turn
         # into the world for all of them
         of = np.concatenate([np.repeat(np.arange(n), counts), np.arange(n), np.arange(n)])
@@ -682,32 +685,31 @@ class HybridPlanner:
         xy = np.empty((1 + k, 2))
         xy[0] = pos[0].real, pos[0].imag
         xy[1:] = world[:k]
-        feet, stances = world[k : k + n], world[k + n :]
         # sample 0 faces the first step's frame: a starter's turn on the spot (free start
         # heading) is not part of the walk (a cycle turns the operator before it), so the
         # pelvis yaw does not jump between samples 0 and 1
         yaw = np.empty(len(xy))
         yaw[0] = fr[0] + yaw_parts[0][0]
         yaw[1:] = fr[of[:k]] + np.concatenate([y[1:] for y in yaw_parts])
+        # world poses (x, y, yaw) of every step's landing foot and of its own estimate of the
+        # stance foot
+        feet = np.column_stack([world[k : k + n], fr + batch.footprint[:, 2]])
+        own_stance = np.column_stack([world[k + n :], fr + batch.stance[:, 2]])
         steps: list[PathStep] = []
-        landed: dict[str, np.ndarray] = {}
+        landed: dict[bool, np.ndarray] = {}
+        ends = np.cumsum(counts).tolist()
         index = 0
-        for row in range(len(chain)):
-            frame = fr[row]
-            end = index + counts[row]
-            side = str(batch.side[row])
+        for row, is_left in enumerate(left.tolist()):
             # A foot stays where it landed: the stance foot of a step is where that foot landed
             # in the step before (each sampled step also carries its own estimate of it, a few
             # centimetres off its predecessor's landing, which would make the foot jump).
-            other = "left" if side == "right" else "right"
-            sw = stances[row]
-            stance_w = landed.get(other, np.array([sw[0], sw[1], frame + batch.stance[row, 2]]))
-            fw = feet[row]
-            landed[side] = np.array([fw[0], fw[1], frame + batch.footprint[row, 2]])
+            stance_w = landed.get(not is_left, own_stance[row])
+            landed[is_left] = feet[row]
+            side = "left" if is_left else "right"
             steps.append(
-                PathStep(side=side, start=index, end=end, foot=landed[side], stance=stance_w)
+                PathStep(side=side, start=index, end=ends[row], foot=feet[row], stance=stance_w)
             )
-            index = end
+            index = ends[row]
         return WalkPath(
             t=np.arange(len(xy)) / FPS,
             xy=xy,
