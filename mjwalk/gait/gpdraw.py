@@ -89,11 +89,16 @@ def _moments(x, gp):
         xx = 0.0
         for a in range(d):
             xx += x[i, a] * half_inv_l2[a] * x[i, a]
+        # the cross terms x·(-z_j/ℓ²) summed over a in order for all j at once (vectorized)
+        hi = h[i]
+        hi[:] = 0.0
+        for a in range(d):
+            xa = x[i, a]
+            row = neg_zs_t[a]
+            for j in range(m):
+                hi[j] += xa * row[j]
         for j in range(m):
-            s = 0.0
-            for a in range(d):
-                s += x[i, a] * neg_zs_t[a, j]
-            v = s + half_zs2[j] + xx
+            v = hi[j] + half_zs2[j] + xx
             if v < 0.0:
                 v = 0.0
             h[i, j] = v

@@ -24,7 +24,8 @@ enough). Last such change: issue 18 item 2 (the leg-reach tests compare squares,
 checks write into buffers kept for the whole search; the GP's pool weights are powers of its
 kernel row, squared on the whole row at once; the stance-lean limits once per batch; a step
 frame's turn once per frame; distance tests to the goal by squares; downhill_costs added;
-the decode's real and imaginary sums apart).
+the decode's real and imaginary sums apart; the GP kernel row's cross terms vectorized; the
+GPs picked by name).
 """
 
 from __future__ import annotations
@@ -96,6 +97,8 @@ def search(
         and whether each is a closing step).
     """
     d = matrix.shape[0]
+    gp_left, gp_right = gps
+    stop_left, stop_right = stops
     n_succ = ipar[I_N_SUCCESSORS]
     n_stop = ipar[I_N_STOPS]
     max_exp = ipar[I_MAX_EXPANSIONS]
@@ -195,14 +198,21 @@ def search(
             one_node[0, 4] = np.nan
         else:
             x = feats[row[nid] : row[nid] + 1]
-            side = 0 if left[nid] else 1
+            on_left = left[nid]
             n_walk = 0 if stop_only else n_succ
             per = n_walk + n_stop if near else n_walk
             z = np.empty((per, d))
             if n_walk > 0:
-                z[:n_walk] = gp_sample(x, n_walk, rng, gps[side], sharp)[0]
+                # (each GP by name, not a tuple picked at run time: that copies it)
+                if on_left:
+                    z[:n_walk] = gp_sample(x, n_walk, rng, gp_left, sharp)[0]
+                else:
+                    z[:n_walk] = gp_sample(x, n_walk, rng, gp_right, sharp)[0]
             if per > n_walk:  # near the goal: closing steps too, after the walking ones
-                z[n_walk:] = gp_sample(x, n_stop, rng, stops[side], sharp)[0]
+                if on_left:
+                    z[n_walk:] = gp_sample(x, n_stop, rng, stop_left, sharp)[0]
+                else:
+                    z[n_walk:] = gp_sample(x, n_stop, rng, stop_right, sharp)[0]
             one_frame[0] = hd
             one_left[0] = not left[nid]
             frm = one_frame
