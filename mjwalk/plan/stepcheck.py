@@ -153,6 +153,13 @@ def _beyond(v, r):
 
 
 @njit
+def _turn(angle):
+    """exp(i·angle) for a real angle (radians): (cos, sin), as the complex exp computes it
+    (exp(0) = 1 times each), without the exp."""
+    return complex(math.cos(angle), math.sin(angle))
+
+
+@njit
 def _within(v, r):
     """``abs(v) <= r`` for a complex ``v``, as :func:`_beyond` decides it (nan: False)."""
     if not r > 0.0:
@@ -532,7 +539,7 @@ def check_into(
             continue
         yaws = loc[m + 1]
         ankle = loc[m] * rot + p
-        toe = ankle + (par[P_FOOT_LENGTH] * 1j) * rot * np.exp(1j * yaws.real)
+        toe = ankle + (par[P_FOOT_LENGTH] * 1j) * rot * _turn(yaws.real)
         if _clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag) < thr[m + 1]:
             continue
         # the landing leg, from the ankle towards its hip at the step's end (heel strike: the
@@ -545,7 +552,7 @@ def check_into(
         for kk in range(2):
             col = kc0 if kk == 0 else kc1
             share = par[P_KNEE_SHARE0] if kk == 0 else par[P_KNEE_SHARE1]
-            fwd = 1j * np.exp(1j * (yaws.imag * share))
+            fwd = 1j * _turn(yaws.imag * share)
             knee = (loc[col] + fwd * (par[P_KNEE_LEAD] + lat)) * rot + p
             if _clearance(coef, fx0, fy0, fres, fnx, fny, knee.real, knee.imag) < thr[m + 2 + kk]:
                 ok = False
