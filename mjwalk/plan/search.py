@@ -25,7 +25,8 @@ checks write into buffers kept for the whole search; the GP's pool weights are p
 kernel row, squared on the whole row at once; the stance-lean limits once per batch; a step
 frame's turn once per frame; distance tests to the goal by squares; downhill_costs added;
 the decode's real and imaginary sums apart; the GP kernel row's cross terms vectorized; the
-GPs picked by name; the toe's and knees' turns without a complex exp).
+GPs picked by name; the toe's and knees' turns without a complex exp; the leg probes' cover
+test by squares).
 """
 
 from __future__ import annotations

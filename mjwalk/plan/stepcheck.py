@@ -385,7 +385,7 @@ def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, 
     k = 1
     while k * step < span:
         q = ankle + (k * step) * u
-        if abs(q - end) <= covered:
+        if _within(q - end, covered):
             break
         w = q * rot + p
         if _clearance(coef, x0, y0, res, nx, ny, w.real, w.imag) < clear:
