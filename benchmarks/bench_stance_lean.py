@@ -47,8 +47,8 @@ EXTRA_ROUTES = (
 class _NoLean(HybridPlanner):
     """The planner without the stance-lean check (its slots NaN: the kernel skips it)."""
 
-    def _kernel_params(self):
-        par, ipar = super()._kernel_params()
+    def _kernel_params(self, stature: float = 1.75):
+        par, ipar = super()._kernel_params(stature)
         par[stepcheck.P_HIP_Y] = math.nan
         return par, ipar
 

@@ -165,7 +165,7 @@ def test_goal_inside_obstacle_refused_before_search(model, scenes_dir):
         def sample_first(self, *a, **k):
             raise AssertionError("searched although the goal is inside an obstacle")
 
-        sample_next = sample_first
+        sample_next = sample_first_features = sample_first
 
     with pytest.raises(PlanningError, match="inside obstacle 'car_body'"):
         plan_walk(wp, "stand_rack2", "0,1.4", NoSampling(), rng=0)

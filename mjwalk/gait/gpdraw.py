@@ -72,6 +72,13 @@ def moments(x, gp):
     """Posterior mean (p, d), latent variance (p,) (not clipped at 0) and the half squared
     scaled distances h (p, m) to the inducing inputs (kernel rows C·exp(-h)); ``gp`` is
     :attr:`TransitionGP.kernel`."""
+    mean, var, h, _ = _moments(x, gp)
+    return mean, var, h
+
+
+@njit
+def _moments(x, gp):
+    """:func:`moments` and exp(-h) (p, m)."""
     neg_zs_t, half_zs2, half_inv_l2, c_alpha, c2_w, packed, signal_var = gp[:7]
     p, d = x.shape
     m = half_zs2.shape[0]
@@ -82,11 +89,16 @@ def moments(x, gp):
         xx = 0.0
         for a in range(d):
             xx += x[i, a] * half_inv_l2[a] * x[i, a]
+        # the cross terms x·(-z_j/ℓ²) summed over a in order for all j at once (vectorized)
+        hi = h[i]
+        hi[:] = 0.0
+        for a in range(d):
+            xa = x[i, a]
+            row = neg_zs_t[a]
+            for j in range(m):
+                hi[j] += xa * row[j]
         for j in range(m):
-            s = 0.0
-            for a in range(d):
-                s += x[i, a] * neg_zs_t[a, j]
-            v = s + half_zs2[j] + xx
+            v = hi[j] + half_zs2[j] + xx
             if v < 0.0:
                 v = 0.0
             h[i, j] = v
@@ -95,31 +107,61 @@ def moments(x, gp):
             for a in range(c_alpha.shape[1]):
                 mean[i, a] += ej * c_alpha[j, a]
     var = signal_var - _quadratic(e, c2_w, packed)
-    return mean, var, h
+    return mean, var, h, e
 
 
 @njit
 def sample(x, n, rng, gp, sharp):
     """(p, n, d) successors y = μ(x) + √v(x)·ε + r of each predecessor x[i]: r from the pool
-    of inducing input j, drawn with probability ∝ exp(-sharp·(h_j - min h)) = (k_j/max k)^sharp,
-    and a uniform member of it; ε standard normal. ``gp``: :attr:`TransitionGP.kernel`."""
+    of inducing input j, drawn with probability ∝ exp(-sharp·(h_j - min h)) = (k_j/max k)^sharp
+    (the power for a whole sharpness: equal to rounding, so a choice could only differ where
+    the uniform number falls within a few roundings of a boundary between two inducing
+    inputs), and a uniform member of it; ε standard normal. ``gp``: :attr:`TransitionGP.kernel`."""
     pool = gp[7]
     k = gp[8]
     p = x.shape[0]
     d = pool.shape[1]
-    mean, var, h = moments(x, gp)
+    mean, var, h, e = _moments(x, gp)
     m = h.shape[1]
+    # a whole sharpness (up to 64): the weights are that power of exp(-h) over its largest
+    # value, by multiplications, instead of a second exp per inducing input
+    power = int(sharp) if sharp == math.floor(sharp) and 1.0 <= sharp <= 64.0 else 0
     u = rng.random(p * n)
     cell = np.empty(p * n, dtype=np.intp)
     c = np.empty(m)
+    sq = np.empty(m)
     for i in range(p):
         lo = h[i, 0]
+        near = 0
         for j in range(1, m):
             if h[i, j] < lo:
                 lo = h[i, j]
+                near = j
+        if power > 0 and lo < 600.0:
+            # exp(-sharp·(h_j - lo)) = (e_j / e_near)^sharp to a few roundings (e_near is a
+            # normal number here; an e_j that underflows gives a weight of 0 either way)
+            # (repeated squaring, x^power = product of x^(2^k) over power's set bits, on the
+            # whole row at once so it vectorizes)
+            top = 1.0 / e[i, near]
+            for j in range(m):
+                sq[j] = e[i, j] * top
+                c[j] = 1.0
+            b = power
+            while True:
+                if b & 1:
+                    for j in range(m):
+                        c[j] *= sq[j]
+                b >>= 1
+                if b == 0:
+                    break
+                for j in range(m):
+                    sq[j] *= sq[j]
+        else:
+            for j in range(m):
+                c[j] = math.exp(-sharp * (h[i, j] - lo))
         acc = 0.0
         for j in range(m):
-            acc += math.exp(-sharp * (h[i, j] - lo))
+            acc += c[j]
             c[j] = acc
         for r in range(n):
             # the first j with c_j >= u (u <= c_{m-1}: never past the last)

@@ -297,6 +297,14 @@ class StepModel:
 
         ``side=None``: ``n - n//2`` left then ``n//2`` right steps; else all of ``side``.
         """
+        z, sides = self.sample_first_features(n, rng, side)
+        return self.features.decode(z, sides)
+
+    def sample_first_features(
+        self, n: int, rng: np.random.Generator, side: Side | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`sample_first`'s standardized features (n, d) and swing sides (n,), the same
+        draws, not decoded (the planner decodes only the steps of the walk it returns)."""
         if side is None:
             counts = {"left": n - n // 2, "right": n // 2}
         elif side in _SIDES:
@@ -309,7 +317,7 @@ class StepModel:
                 zs.append(self._kde_resample(s, c, rng))
                 ss.extend([s] * c)
         z = np.concatenate(zs) if zs else np.zeros((0, self.n_dims))
-        return self.features.decode(z, np.array(ss, dtype="<U5"))
+        return z, np.array(ss, dtype="<U5")
 
     def _kde_resample(self, side: str, n: int, rng: np.random.Generator) -> np.ndarray:
         """(n, d) draws from ``side``'s KDE: ``gaussian_kde.resample(n, seed=rng).T``, the same

@@ -8,9 +8,10 @@ import weakref
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.sparse import coo_matrix, csr_matrix
+from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import dijkstra
 
+from mjwalk._jit import njit
 from mjwalk.plan.grid import OccupancyGrid
 
 
@@ -146,37 +147,63 @@ def _dijkstra_field(grid: OccupancyGrid, to_goal: np.ndarray, inside: np.ndarray
 
 
 #: The reversed move graphs of the grids seen (:func:`_move_graph`), grids held weakly, the
-#: last few kept (one is about 1 MB for the station's 100 x 75 cells).
+#: last two kept (one is about 1 MB for the station's 100 x 75 cells, 12 bytes per move).
 _GRAPHS: dict[int, tuple[weakref.ref, csr_matrix]] = {}
-_GRAPHS_KEPT = 4
+_GRAPHS_KEPT = 2
 
 
 def _move_graph(grid: OccupancyGrid) -> csr_matrix:
     """The grid's moves as a sparse (n + 1, n + 1) graph (n cells; the last row, the virtual
-    goal node's, empty), reversed: an edge from each move's target back to its source, as long
-    as the move (metres). The same for every goal of the grid: built once per grid (building
-    it was half of a distance field's time)."""
+    goal node's, empty), reversed (:func:`_reversed_graph`). The same for every goal of the
+    grid: built once per grid (building it was half of a distance field's time)."""
     hit = _GRAPHS.get(id(grid))
     if hit is not None and hit[0]() is grid:
         return hit[1]
-    ny, nx = grid.free.shape
-    n = nx * ny
-    idx = np.arange(n).reshape(ny, nx)
-    rows, cols, weights = [], [], []
-    for k, (di, dj) in enumerate(grid.offsets):
-        src = idx[grid.moves[k]]
-        # reversed edge: from the move's target back to its source
-        rows.append(src + dj * nx + di)
-        cols.append(src)
-        weights.append(np.full(src.shape, grid.cell * math.hypot(di, dj)))
-    graph = coo_matrix(
-        (np.concatenate(weights), (np.concatenate(rows), np.concatenate(cols))),
-        shape=(n + 1, n + 1),
-    ).tocsr()
+    none = np.zeros(grid.free.shape, dtype=bool)
+    graph = _reversed_graph(grid, np.zeros(grid.free.shape), none)
     while len(_GRAPHS) >= _GRAPHS_KEPT:
         _GRAPHS.pop(next(iter(_GRAPHS)))
     _GRAPHS[id(grid)] = (weakref.ref(grid), graph)
     return graph
+
+
+def _reversed_graph(grid: OccupancyGrid, to_goal: np.ndarray, inside: np.ndarray) -> csr_matrix:
+    """The reversed move graph as CSR, (n + 1) nodes: row t holds the cells s from which a move
+    reaches t (weight: the move's length), columns ascending; row n (the virtual goal node) the
+    goal cells ``inside`` with their distance ``to_goal`` to the goal centre.
+
+    Built in place, row by row in column order, it is the matrix a COO of every reversed edge
+    gives after ``tocsr()`` (which sorts the columns of each row): the same arrays, so the same
+    Dijkstra, without the COO's and the sort's ~60 MB of temporaries on a 36 x 10 m hall (they
+    flushed the cache the planning after it works in)."""
+    ny, nx = grid.free.shape
+    n = nx * ny
+    flat_moves = grid.moves.reshape(len(grid.offsets), n)
+    shift = [dj * nx + di for di, dj in grid.offsets]
+    # in a row t the sources s = t - shift ascend as the shifts descend
+    order = sorted(range(len(shift)), key=lambda k: -shift[k])
+    targets = [np.flatnonzero(flat_moves[k]) + shift[k] for k in order]
+    counts = np.zeros(n + 1, dtype=np.int64)
+    for t in targets:
+        counts[t] += 1
+    goal_cells = np.flatnonzero(inside.ravel())
+    counts[n] = len(goal_cells)
+    indptr = np.zeros(n + 2, dtype=np.int64)
+    np.cumsum(counts, out=indptr[1:])
+    nnz = int(indptr[-1])
+    index_type = np.int32 if max(nnz, n + 1) < 2**31 else np.int64
+    indices = np.empty(nnz, dtype=index_type)
+    data = np.empty(nnz)
+    fill = indptr[:-1].copy()
+    for k, t in zip(order, targets, strict=True):
+        at = fill[t]
+        indices[at] = t - shift[k]
+        di, dj = grid.offsets[k]
+        data[at] = grid.cell * math.hypot(di, dj)
+        fill[t] += 1
+    indices[indptr[n] :] = goal_cells
+    data[indptr[n] :] = to_goal.ravel()[goal_cells]
+    return csr_matrix((data, indices, indptr.astype(index_type)), shape=(n + 1, n + 1))
 
 
 def _rim(grid: OccupancyGrid, dist: np.ndarray) -> np.ndarray:
@@ -185,15 +212,34 @@ def _rim(grid: OccupancyGrid, dist: np.ndarray) -> np.ndarray:
     A cell is blocked when its *centre* lies within the body radius of an obstacle, but a
     point that the planner's continuous checks accept (a walk's end, where the next walk
     starts) may still have a blocked cell as its nearest one; without this rim it would be
-    called unreachable and get an infinite heuristic.
+    called unreachable and get an infinite heuristic. Compiled (:func:`_rim_cells`): as
+    NumPy code (a shifted copy, a sum and a choice per move) it streamed some 20 MB of
+    temporaries through the cache on a 36 x 10 m hall, and the search after it found its
+    data evicted.
     """
+    di = np.array([o[0] for o in grid.offsets], dtype=np.int64)
+    dj = np.array([o[1] for o in grid.offsets], dtype=np.int64)
+    steps = np.array([grid.cell * math.hypot(a, b) for a, b in grid.offsets])
+    return _rim_cells(np.ascontiguousarray(dist, dtype=float), grid.free, di, dj, steps)
+
+
+@njit
+def _rim_cells(dist, free, di, dj, steps):
+    """``dist`` with every blocked cell lowered to its in-grid neighbours' dist + move length
+    (moves ``di``, ``dj``, lengths ``steps``), the neighbours' values before any lowering."""
     out = dist.copy()
     ny, nx = dist.shape
-    for di, dj in grid.offsets:
-        step = grid.cell * math.hypot(di, dj)
-        src = np.full_like(dist, np.inf)
-        src[max(0, -dj) : ny - max(0, dj), max(0, -di) : nx - max(0, di)] = dist[
-            max(0, dj) : ny - max(0, -dj), max(0, di) : nx - max(0, -di)
-        ]
-        np.minimum(out, np.where(grid.free, out, src + step), out=out)
+    for j in range(ny):
+        for i in range(nx):
+            if free[j, i]:
+                continue
+            best = out[j, i]
+            for k in range(steps.shape[0]):
+                jj = j + dj[k]
+                ii = i + di[k]
+                if 0 <= jj < ny and 0 <= ii < nx:
+                    v = dist[jj, ii] + steps[k]
+                    if v < best:
+                        best = v
+            out[j, i] = best
     return out

@@ -58,7 +58,7 @@ from mjwalk._args import finite_points, parse_point
 from mjwalk.anthropometry import ROM_DEG, SHIN_RADIUS, leg_geometry
 from mjwalk.conventions import DEFAULT_STATURE, SAMPLE_RATE_HZ
 from mjwalk.errors import InputError, PlanningError
-from mjwalk.gait.features import StepBatch
+from mjwalk.gait.features import StepBatch, spline_basis
 from mjwalk.gait.transition import POOL_SHARPNESS
 from mjwalk.plan import search, stepcheck
 from mjwalk.plan.grid import (
@@ -71,6 +71,7 @@ from mjwalk.plan.grid import (
 )
 from mjwalk.plan.heuristic import GoalDistance, goal_distance
 from mjwalk.plan.walkpath import PathStep, WalkPath
+from mjwalk.world.clearance import ClearanceField
 from mjwalk.world.workplace import Workplace
 
 FPS = SAMPLE_RATE_HZ
@@ -211,6 +212,12 @@ WANDER_FACTOR = 1.5
 WANDER_SEARCHES = 6
 
 
+#: :meth:`HybridPlanner.default_heading`'s 72 directions (radians) and its probes 0.3 m out
+#: along them (metres), made once.
+_HEADING_ANGLES = np.linspace(-math.pi, math.pi, 72, endpoint=False)
+_HEADING_PROBES = 0.3 * np.stack([np.cos(_HEADING_ANGLES), np.sin(_HEADING_ANGLES)], axis=1)
+
+
 class _Exhausted(PlanningError):
     """The open list ran dry (all sampled continuations blocked): worth a fresh search."""
 
@@ -296,21 +303,25 @@ class _Decoder:
         )
 
 
-#: The decoders built (:func:`_shared_decoder`), by model (held weakly) and samples per step.
+#: Decoders already built, by model and samples per step (:func:`_decoder_of`); the model is
+#: held weakly and the oldest entries go beyond :data:`_DECODERS_MAX`.
 _DECODERS: dict[tuple[int, int], tuple[weakref.ref, _Decoder]] = {}
+_DECODERS_MAX = 16
 
 
-def _shared_decoder(model, m: int) -> _Decoder:
-    """``_Decoder(model, m)``, built once per model and ``m`` (a cycle's planners, one per
-    goal and stand zone, all decode the same walker's model; building one costs a few
-    decodes)."""
+def _decoder_of(model, m: int) -> _Decoder:
+    """The :class:`_Decoder` of ``model`` at ``m`` samples per step, built once per process.
+
+    Building one decodes and checks 23 feature rows (about 0.15 ms, as much as a short walk's
+    whole search); planners are made per goal (a cycle's walks, a benchmark's start/goal
+    pairs), models per operator (:meth:`StepModel.for_walker`), so it is shared by model."""
     key = (id(model), int(m))
     hit = _DECODERS.get(key)
     if hit is not None and hit[0]() is model:
         return hit[1]
     dec = _Decoder(model, m)
-    for k in [k for k, (ref, _) in _DECODERS.items() if ref() is None]:
-        del _DECODERS[k]  # (the models gone)
+    while len(_DECODERS) >= _DECODERS_MAX:
+        _DECODERS.pop(next(iter(_DECODERS)))
     _DECODERS[key] = (weakref.ref(model), dec)
     return dec
 
@@ -394,11 +405,19 @@ class HybridPlanner:
             + [FOOT_CLEARANCE] * 2
             + [KNEE_CLEARANCE] * 2
         )
-        self._dec: _Decoder | None = None
+        self._params: dict[float, tuple[np.ndarray, np.ndarray]] = {}
+        self._kernel_params()  # the default walker's, with the distance field: per goal
 
     def _kernel_params(self, stature: float = DEFAULT_STATURE) -> tuple[np.ndarray, np.ndarray]:
         """The float and integer parameter vectors of :func:`~mjwalk.plan.stepcheck.check_steps`
-        for a walker of ``stature`` metres (the landing leg's clearance scales with it)."""
+        for a walker of ``stature`` metres (the landing leg's clearance scales with it); fresh
+        copies of the ones made on this planner's first plan for that stature."""
+        held = self._params.get(stature)
+        if held is None:
+            held = self._params[stature] = self._make_kernel_params(stature)
+        return held[0].copy(), held[1].copy()
+
+    def _make_kernel_params(self, stature: float) -> tuple[np.ndarray, np.ndarray]:
         m = self.samples_per_step
         knee_cols = (m // 2, (3 * m) // 4)  # the swing-knee probes' pelvis samples
         walk, gd = self._walk, self.distance
@@ -462,16 +481,7 @@ class HybridPlanner:
         return par, ipar
 
     def _decoder(self, model=None) -> _Decoder:
-        if model is None or model is self.model:
-            if self._dec is None:
-                self._dec = _shared_decoder(self.model, self.samples_per_step)
-            return self._dec
-        # another model (a walker's, StepModel.for_walker): the last one's decoder is kept
-        held = getattr(self, "_other_dec", None)
-        if held is None or held[0] is not model:
-            held = (model, _shared_decoder(model, self.samples_per_step))
-            self._other_dec = held
-        return held[1]
+        return _decoder_of(self.model if model is None else model, self.samples_per_step)
 
     # -- helpers ---------------------------------------------------------------------------
 
@@ -489,11 +499,19 @@ class HybridPlanner:
 
     def default_heading(self, xy: np.ndarray) -> float:
         """Direction in which the obstacle-aware distance to the goal falls fastest (radians)."""
-        angles = np.linspace(-math.pi, math.pi, 72, endpoint=False)
-        probe = xy + 0.3 * np.stack([np.cos(angles), np.sin(angles)], axis=1)
-        free = self.workplace.walk_clearance(probe) >= self.radius
-        cost = self.distance(probe) + np.where(free, 0.0, 1e3)
-        return float(angles[int(np.argmin(cost))])
+        wp, g, c = self.workplace, self.grid, self.workplace.clearance
+        if not isinstance(c, ClearanceField):  # another clearance model: its own lookup
+            probe = xy + _HEADING_PROBES
+            free = wp.walk_clearance(probe) >= self.radius
+            cost = self.distance(probe) + np.where(free, 0.0, 1e3)
+            return float(_HEADING_ANGLES[int(np.argmin(cost))])
+        cost = stepcheck.downhill_costs(
+            np.asarray(xy, dtype=float), _HEADING_PROBES, c.values, c.x0, c.y0, c.resolution,
+            np.asarray(wp.floor_bounds, dtype=float), float(self.radius),
+            self.distance.flat_bound(), g.x0, g.y0, g.cell, g.free.shape[1] - 1.0,
+            g.free.shape[0] - 1.0, float(self.goal[0]), float(self.goal[1]),
+        )  # fmt: skip
+        return float(_HEADING_ANGLES[int(np.argmin(cost))])
 
     # -- search ----------------------------------------------------------------------------
 
@@ -518,7 +536,7 @@ class HybridPlanner:
         exhausted = 0
         for attempt in range(limit):
             try:
-                path = self._plan_once(start, rng, model or self.model)
+                path, start_distance = self._plan_once(start, rng, model or self.model)
             except _Exhausted as exc:
                 exhausted += 1
                 if exhausted >= self.attempts or attempt == limit - 1:
@@ -531,7 +549,7 @@ class HybridPlanner:
             path.meta["attempts"] = attempt + 1
             path.meta["seconds"] = time.perf_counter() - t0  # all searches, not the last one
             if bound is None:
-                bound = WANDER_FACTOR * max(float(self.distance(path.xy[0])), self.tolerance)
+                bound = WANDER_FACTOR * max(start_distance, self.tolerance)
             path.meta["wandering"] = bool(path.length > bound)
             if not path.meta["wandering"]:
                 return path
@@ -542,10 +560,13 @@ class HybridPlanner:
         best.meta["searches"] = attempt + 1
         return best
 
-    def _plan_once(self, start, rng: np.random.Generator, model) -> WalkPath:
+    def _plan_once(self, start, rng: np.random.Generator, model) -> tuple[WalkPath, float]:
+        """One search: the walk and the obstacle-aware distance (m) from its start to the goal."""
         start_xy, start_yaw = _parse_pose(self.workplace, start)
         check_endpoint(self.workplace, start_xy, self.radius, "start")
-        if not self.distance.reachable(start_xy):
+        # infinite exactly where GoalDistance.reachable is False (the same nearest cell)
+        start_distance = float(self.distance(start_xy))
+        if not math.isfinite(start_distance):
             raise PlanningError(
                 f"goal ({self.goal[0]:.3f}, {self.goal[1]:.3f}) is unreachable from start "
                 f"({start_xy[0]:.3f}, {start_xy[1]:.3f}) in {self.workplace.name}: no "
@@ -565,12 +586,12 @@ class HybridPlanner:
                 "there is no walk to plan"
             )
         # the starters, for the first expansion (the start node's)
-        first = model.sample_first(self.n_starters, rng)
-        frame0 = np.full(len(first.features), float(start_yaw))
+        z0, side0 = model.sample_first_features(self.n_starters, rng)
+        frame0 = np.full(len(z0), float(start_yaw))
         if free_heading:  # the walker may set off anywhere around the downhill heading
             frame0 += rng.uniform(-START_SPREAD, START_SPREAD, len(frame0))
         weight = self.heuristic_weight
-        h0 = float(self.distance(start_xy)) if self.heuristic == "dijkstra" else 0.0
+        h0 = start_distance if self.heuristic == "dijkstra" else 0.0
         euclid = float(np.hypot(*(start_xy - self.goal)))
         h_start = max(h0, euclid)
         far = self.far_weight if h_start > LONG_WALK else 0.0  # only long walks
@@ -583,9 +604,9 @@ class HybridPlanner:
             self.n_stops
         ) else gps  # fmt: skip
         outcome, goal_node, stats, *nodes = search.search(
-            np.ascontiguousarray(first.features, dtype=float),
+            np.ascontiguousarray(z0, dtype=float),
             frame0,
-            np.ascontiguousarray(first.side == "left"),
+            np.ascontiguousarray(side0 == "left"),
             complex(*start_xy),
             float(start_yaw),
             f0,
@@ -616,7 +637,7 @@ class HybridPlanner:
                 f"{self.radius} m to an obstacle"
             )
         parent, rows, pos, frames, lefts, feats, closing = nodes
-        return self._assemble(
+        path = self._assemble(
             model,
             goal_node,
             (parent, rows, pos, frames, lefts),
@@ -630,6 +651,7 @@ class HybridPlanner:
                 "closing_step": bool(closing[rows[goal_node]]),
             },
         )
+        return path, start_distance
 
     def _assemble(self, model, nid, nodes, feats, stats) -> WalkPath:
         parent, rows, pos, frames, lefts = nodes
@@ -638,46 +660,56 @@ class HybridPlanner:
             chain.append(nid)
             nid = parent[nid]
         chain = np.array(chain[::-1])
-        batch = model.decode(feats[rows[chain]], np.where(lefts[chain], "left", "right"))
+        left = lefts[chain]
+        batch = model.decode(feats[rows[chain]], np.where(left, "left", "right"))
         ox = pos[parent[chain]].real
         oy = pos[parent[chain]].imag
         fr = frames[chain]
         # the steps at 120 Hz (sample 0 of each is the previous step's last), one frame each
-        trajs = [batch.trajectory(row, FPS) for row in range(len(chain))]
-        counts = [len(t[1]) - 1 for t in trajs]
-        local = np.vstack([t[0][1:] for t in trajs])
-        origin = [np.repeat(v, counts) for v in (ox, oy, fr)]
-        xy = np.vstack([[[pos[0].real, pos[0].imag]], _to_world(*origin, local)])
+        # (StepBatch.trajectory: K = round(duration·fps) + 1 samples, at least 2, its spline
+        # basis looked up once per sample count)
+        n = len(chain)
+        sizes = np.maximum(np.round(batch.duration * FPS).astype(np.int64) + 1, 2).tolist()
+        local_parts, yaw_parts = [], []
+        for row, k in enumerate(sizes):
+            basis = spline_basis(k)
+            local_parts.append((basis @ batch.landmarks[row])[1:])
+            yaw_parts.append(basis @ batch.yaw_landmarks[row])
+        counts = [k - 1 for k in sizes]
+        # every sample's step, then the landing and the stance foot of every step: one turn
+        # into the world for all of them
+        of = np.concatenate([np.repeat(np.arange(n), counts), np.arange(n), np.arange(n)])
+        local = np.concatenate([*local_parts, batch.footprint[:, :2], batch.stance[:, :2]])
+        world = _to_world(ox[of], oy[of], fr[of], local)
+        k = len(world) - 2 * n
+        xy = np.empty((1 + k, 2))
+        xy[0] = pos[0].real, pos[0].imag
+        xy[1:] = world[:k]
         # sample 0 faces the first step's frame: a starter's turn on the spot (free start
         # heading) is not part of the walk (a cycle turns the operator before it), so the
         # pelvis yaw does not jump between samples 0 and 1
-        yaw = np.concatenate(
-            [
-                [fr[0] + trajs[0][1][0]],
-                np.repeat(fr, counts) + np.concatenate([t[1][1:] for t in trajs]),
-            ]
-        )
-        feet = _to_world(ox, oy, fr, batch.footprint[:, :2])
-        stances = _to_world(ox, oy, fr, batch.stance[:, :2])
+        yaw = np.empty(len(xy))
+        yaw[0] = fr[0] + yaw_parts[0][0]
+        yaw[1:] = fr[of[:k]] + np.concatenate([y[1:] for y in yaw_parts])
+        # world poses (x, y, yaw) of every step's landing foot and of its own estimate of the
+        # stance foot
+        feet = np.column_stack([world[k : k + n], fr + batch.footprint[:, 2]])
+        own_stance = np.column_stack([world[k + n :], fr + batch.stance[:, 2]])
         steps: list[PathStep] = []
-        landed: dict[str, np.ndarray] = {}
+        landed: dict[bool, np.ndarray] = {}
+        ends = np.cumsum(counts).tolist()
         index = 0
-        for row in range(len(chain)):
-            frame = fr[row]
-            end = index + counts[row]
-            side = str(batch.side[row])
+        for row, is_left in enumerate(left.tolist()):
             # A foot stays where it landed: the stance foot of a step is where that foot landed
             # in the step before (each sampled step also carries its own estimate of it, a few
             # centimetres off its predecessor's landing, which would make the foot jump).
-            other = "left" if side == "right" else "right"
-            sw = stances[row]
-            stance_w = landed.get(other, np.array([sw[0], sw[1], frame + batch.stance[row, 2]]))
-            fw = feet[row]
-            landed[side] = np.array([fw[0], fw[1], frame + batch.footprint[row, 2]])
+            stance_w = landed.get(not is_left, own_stance[row])
+            landed[is_left] = feet[row]
+            side = "left" if is_left else "right"
             steps.append(
-                PathStep(side=side, start=index, end=end, foot=landed[side], stance=stance_w)
+                PathStep(side=side, start=index, end=ends[row], foot=feet[row], stance=stance_w)
             )
-            index = end
+            index = ends[row]
         return WalkPath(
             t=np.arange(len(xy)) / FPS,
             xy=xy,

@@ -4,7 +4,8 @@
 describes it: an open list (binary heap by f = g + weight·h, ties by push order), a closed set of
 cell keys, and for every expanded node ``n_successors`` GP successors of its step
 (:func:`mjwalk.gait.gpdraw.sample`), plus ``n_stops`` closing steps when it lies within the stop
-reach of the goal, decoded, checked and scored by :func:`~mjwalk.plan.stepcheck.check_steps`.
+reach of the goal, decoded, checked and scored by :func:`~mjwalk.plan.stepcheck.check_steps`
+(its buffered form :func:`~mjwalk.plan.stepcheck.check_into`).
 Near the goal a cell closes after ``near_goal_expansions`` expansions, and a node popped in a
 closed cell there still draws its closing steps. The first expansion (the start node) takes the
 starters drawn by the caller (the KDE lives in SciPy).
@@ -18,8 +19,14 @@ numba's on-disk cache of :func:`search` is keyed by this file only, not by the c
 functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_steps`,
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change here, or processes
 keep running the old machine code (its stamp is a hash of this file's text: touching it is not
-enough). Last such change: issue 17 item 5 (the landing leg's probes,
-:func:`~mjwalk.plan.stepcheck.landing_leg_clear`, and their two parameter slots).
+enough). Last such change: issue 18 item 2 (the leg-reach tests compare squares,
+:func:`~mjwalk.plan.stepcheck._beyond`, hypot only where the squares do not decide; the step
+checks write into buffers kept for the whole search; the GP's pool weights are powers of its
+kernel row, squared on the whole row at once; the stance-lean limits once per batch; a step
+frame's turn once per frame; distance tests to the goal by squares; downhill_costs added;
+the decode's real and imaginary sums apart; the GP kernel row's cross terms vectorized; the
+GPs picked by name; the toe's and knees' turns without a complex exp; the leg probes' cover
+test by squares).
 """
 
 from __future__ import annotations
@@ -33,6 +40,7 @@ from numba.typed import Dict
 from mjwalk._jit import njit
 from mjwalk.gait.gpdraw import sample as gp_sample
 from mjwalk.plan.stepcheck import (
+    I_M,
     I_MAX_EXPANSIONS,
     I_N_STOPS,
     I_N_SUCCESSORS,
@@ -41,9 +49,11 @@ from mjwalk.plan.stepcheck import (
     P_GOAL_Y,
     P_POOL_SHARPNESS,
     P_STOP_REACH,
+    _within,
     cell_key,
-    check_steps,
+    check_into,
     in_goal,
+    new_buffers,
 )
 
 #: :func:`search` outcomes.
@@ -88,6 +98,8 @@ def search(
         and whether each is a closing step).
     """
     d = matrix.shape[0]
+    gp_left, gp_right = gps
+    stop_left, stop_right = stops
     n_succ = ipar[I_N_SUCCESSORS]
     n_stop = ipar[I_N_STOPS]
     max_exp = ipar[I_MAX_EXPANSIONS]
@@ -135,13 +147,20 @@ def search(
     one_frame = np.empty(1)
     one_left = np.empty(1, dtype=np.bool_)
     one_node = np.empty((1, 5), dtype=np.complex128)
+    # the step checks' outputs, one set for all expansions (the start node's starters or a
+    # node's walking and closing steps)
+    bufs = new_buffers(max(z0.shape[0], n_succ + n_stop), ipar[I_M])
+    rows, keys, fs, gs, ends, ths, frames, feet, fheads = bufs[:9]
+    lefts = bufs[9]
+    accepted = np.zeros(1, dtype=np.int64)
+    drawn = np.zeros(1, dtype=np.int64)
     while len(heap) > 0:
         nid = heapq.heappop(heap)[2]
         p = pos[nid]
         hd = head[nid]
         key = cell_key(p, hd, par, ipar)
         done = in_goal(p, hd, par, ipar)
-        near = n_stop > 0 and abs(p - goal) <= stop_reach
+        near = n_stop > 0 and _within(p - goal, stop_reach)
         if key in closed and not done:
             if not near:
                 continue
@@ -180,14 +199,21 @@ def search(
             one_node[0, 4] = np.nan
         else:
             x = feats[row[nid] : row[nid] + 1]
-            side = 0 if left[nid] else 1
+            on_left = left[nid]
             n_walk = 0 if stop_only else n_succ
             per = n_walk + n_stop if near else n_walk
             z = np.empty((per, d))
             if n_walk > 0:
-                z[:n_walk] = gp_sample(x, n_walk, rng, gps[side], sharp)[0]
+                # (each GP by name, not a tuple picked at run time: that copies it)
+                if on_left:
+                    z[:n_walk] = gp_sample(x, n_walk, rng, gp_left, sharp)[0]
+                else:
+                    z[:n_walk] = gp_sample(x, n_walk, rng, gp_right, sharp)[0]
             if per > n_walk:  # near the goal: closing steps too, after the walking ones
-                z[n_walk:] = gp_sample(x, n_stop, rng, stops[side], sharp)[0]
+                if on_left:
+                    z[n_walk:] = gp_sample(x, n_stop, rng, stop_left, sharp)[0]
+                else:
+                    z[n_walk:] = gp_sample(x, n_stop, rng, stop_right, sharp)[0]
             one_frame[0] = hd
             one_left[0] = not left[nid]
             frm = one_frame
@@ -196,9 +222,9 @@ def search(
             one_node[0, 2] = foot[parent[nid]]
             one_node[0, 4] = fhead[nid]
         one_node[0, 3] = g[nid]
-        rows, keys, fs, gs, ends, ths, frames, feet, fheads, lefts, accepted, drawn = check_steps(
+        n_ok = check_into(
             z, matrix, offset, per, n_walk, frm, lft, one_near, one_node, thr, par, ipar, coef,
-            dist,
+            dist, bufs, accepted, drawn,
         )  # fmt: skip
         if nf + per > fcap:
             fcap = max(2 * fcap, nf + per)
@@ -214,8 +240,8 @@ def search(
         # open the successors outside closed cells, and those that may end or stop the walk
         # in any case (a cell reaching into a small goal area may have been closed by a node
         # just outside it)
-        if nn + rows.shape[0] > cap:
-            cap = max(2 * cap, nn + rows.shape[0])
+        if nn + n_ok > cap:
+            cap = max(2 * cap, nn + n_ok)
             parent = _grow1(parent, cap)
             row = _grow1(row, cap)
             pos = _grow1(pos, cap)
@@ -225,12 +251,12 @@ def search(
             foot = _grow1(foot, cap)
             fhead = _grow1(fhead, cap)
             left = _grow1(left, cap)
-        for c in range(rows.shape[0]):
+        for c in range(n_ok):
             e = ends[c]
             if (
                 keys[c] in closed
                 and not in_goal(e, ths[c], par, ipar)
-                and not (n_stop > 0 and abs(e - goal) <= stop_reach)
+                and not (n_stop > 0 and _within(e - goal, stop_reach))
             ):
                 continue
             parent[nn] = nid

@@ -20,6 +20,7 @@ own way) or per-node ones (length b) are both accepted.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -94,18 +95,24 @@ N_PARAMS = P_DISC0 + 3 * MAX_GOAL_DISCS
 
 def params(**values) -> np.ndarray:
     """The float parameter vector from keyword slots (``knee_lead=...``, names as P_* lower)."""
+    slots = [_slot("P_", name) for name in values]
     out = np.full(N_PARAMS, np.nan)
-    for name, value in values.items():
-        out[globals()["P_" + name.upper()]] = value
+    out[slots] = list(values.values())
     return out
 
 
 def iparams(**values) -> np.ndarray:
     """The integer parameter vector from keyword slots (names as I_* lower)."""
+    slots = [_slot("I_", name) for name in values]
     out = np.zeros(N_IPARAMS, dtype=np.int64)
-    for name, value in values.items():
-        out[globals()["I_" + name.upper()]] = value
+    out[slots] = list(values.values())
     return out
+
+
+@functools.lru_cache(maxsize=256)
+def _slot(prefix: str, name: str) -> int:
+    """The slot of keyword ``name`` (P_/I_ constants; KeyError for an unknown name)."""
+    return globals()[prefix + name.upper()]
 
 
 @njit
@@ -130,6 +137,43 @@ def _clearance(coef, x0, y0, res, nx, ny, x, y):
 
 
 @njit
+def _beyond(v, r):
+    """``abs(v) > r`` for a complex ``v``, without the hypot where the squares decide it (r > 0):
+    |v|² beyond r² by more than 1e-12 relative is beyond r, and short of it by as much is
+    not, whatever the roundings (a few ulp); only the band between (and nan) takes abs(v)."""
+    if not r > 0.0:
+        return abs(v) > r
+    sq = v.real * v.real + v.imag * v.imag
+    r2 = r * r
+    if sq > r2 * (1.0 + 1e-12):
+        return True
+    if sq < r2 * (1.0 - 1e-12):
+        return False
+    return abs(v) > r
+
+
+@njit
+def _turn(angle):
+    """exp(i·angle) for a real angle (radians): (cos, sin), as the complex exp computes it
+    (exp(0) = 1 times each), without the exp."""
+    return complex(math.cos(angle), math.sin(angle))
+
+
+@njit
+def _within(v, r):
+    """``abs(v) <= r`` for a complex ``v``, as :func:`_beyond` decides it (nan: False)."""
+    if not r > 0.0:
+        return abs(v) <= r
+    sq = v.real * v.real + v.imag * v.imag
+    r2 = r * r
+    if sq < r2 * (1.0 - 1e-12):
+        return True
+    if sq > r2 * (1.0 + 1e-12):
+        return False
+    return abs(v) <= r
+
+
+@njit
 def cell_key(p, heading, par, ipar):
     """Closed-list key of a node at world x + iy ``p`` facing ``heading`` (radians): its grid
     cell (i · span + j) and, with heading bins, times bins plus its heading bin."""
@@ -150,11 +194,11 @@ def in_goal(p, heading, par, ipar):
     the tolerance of the goal, within each of the I_N_DISCS goal discs (x, y, radius at
     P_DISC0 + 3k: e.g. the places from which the work there is within reach) and, with a goal
     yaw, facing it within its tolerance."""
-    if abs(p - complex(par[P_GOAL_X], par[P_GOAL_Y])) > par[P_TOLERANCE]:
+    if _beyond(p - complex(par[P_GOAL_X], par[P_GOAL_Y]), par[P_TOLERANCE]):
         return False
     for k in range(ipar[I_N_DISCS]):
         j = P_DISC0 + 3 * k
-        if abs(p - complex(par[j], par[j + 1])) > par[j + 2]:
+        if _beyond(p - complex(par[j], par[j + 1]), par[j + 2]):
             return False
     goal_yaw = par[P_GOAL_YAW]
     if math.isnan(goal_yaw):
@@ -200,6 +244,41 @@ def lean_in_range(inv: np.ndarray, abd: np.ndarray, par: np.ndarray) -> bool:
 
 
 @njit
+def downhill_costs(xy, probes, clear, cx0, cy0, cres, floor, radius, dist, gx0, gy0, gcell,
+                   top_x, top_y, goal_x, goal_y):  # fmt: skip
+    """:meth:`~mjwalk.plan.hybrid.HybridPlanner.default_heading`'s costs at ``xy + probes``
+    (k, 2), with NumPy's arithmetic of :meth:`ClearanceField.__call__` on the obstacle field
+    ``clear`` (origin cx0, cy0, spacing cres), :meth:`Workplace.edge_distance` on ``floor``
+    (xmin, ymin, xmax, ymax), and :meth:`GoalDistance.__call__` on the flat grid bound
+    ``dist`` (origin gx0, gy0, cell gcell, last column/row top_x, top_y): the distance to the
+    goal, plus 1e3 where the walking clearance is short of ``radius`` (metres)."""
+    ny, nx = clear.shape
+    n = probes.shape[0]
+    out = np.empty(n)
+    for k in range(n):
+        x = xy[0] + probes[k, 0]
+        y = xy[1] + probes[k, 1]
+        fx = min(max((x - cx0) / cres, 0.0), nx - 1.000001)
+        fy = min(max((y - cy0) / cres, 0.0), ny - 1.000001)
+        ix = int(fx)
+        iy = int(fy)
+        tx = fx - ix
+        ty = fy - iy
+        c = (clear[iy, ix] * (1 - tx) + clear[iy, ix + 1] * tx) * (1 - ty) + (
+            clear[iy + 1, ix] * (1 - tx) + clear[iy + 1, ix + 1] * tx
+        ) * ty
+        edge = min(min(min(x - floor[0], floor[2] - x), y - floor[1]), floor[3] - y)
+        free = min(c, edge) >= radius
+        gi = min(max(np.rint((x - gx0) / gcell), 0.0), top_x)
+        gj = min(max(np.rint((y - gy0) / gcell), 0.0), top_y)
+        off = math.hypot(x - (gx0 + int(gi) * gcell), y - (gy0 + int(gj) * gcell))
+        bound = dist[int(gj) * (int(top_x) + 1) + int(gi)] - off
+        euclid = math.hypot(x - goal_x, y - goal_y)
+        out[k] = max(euclid, bound) + (0.0 if free else 1e3)
+    return out
+
+
+@njit
 def stance_lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_left, par):
     """Whether the stance leg can follow the pelvis samples of one step without leaving the
     ankle's eversion/inversion or the hip's adduction/abduction range.
@@ -223,16 +302,32 @@ def stance_lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_lef
         stance_left: whether the stance foot is the left one.
         par: :func:`params` with the P_HIP_Y .. P_ABDUCTION slots (metres, radians).
     """
+    return _lean_ok(
+        z, r, matrix, offset, loc, m, ankle, foot_heading, stance_left, par, lean_limits(par)
+    )
+
+
+@njit
+def lean_limits(par):
+    """The stance-lean limits of ``par`` as slopes (atan2(y, h) and asin(y / span) are
+    monotonic in y): tan of the eversion and inversion, sin of the adduction and abduction."""
+    return (
+        math.tan(par[P_EVERSION]),
+        math.tan(par[P_INVERSION]),
+        math.sin(par[P_ADDUCTION]),
+        math.sin(par[P_ABDUCTION]),
+    )
+
+
+@njit
+def _lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_left, par, limits):
+    """:func:`stance_lean_ok` with :func:`lean_limits` made once per batch of steps."""
     d = z.shape[1]
     s = 1.0 if stance_left else -1.0
     hip_y = par[P_HIP_Y]
     span = par[P_LEG_SPAN]
     foot = complex(math.cos(-foot_heading), math.sin(-foot_heading))
-    # the limits as slopes: atan2(y, h) and asin(y / span) are monotonic in y
-    tan_ev = math.tan(par[P_EVERSION])
-    tan_inv = math.tan(par[P_INVERSION])
-    sin_add = math.sin(par[P_ADDUCTION])
-    sin_abd = math.sin(par[P_ABDUCTION])
+    tan_ev, tan_inv, sin_add, sin_abd = limits
     for j in range(m):
         psi = offset[m + 2 + j].real
         for a in range(d):
@@ -290,7 +385,7 @@ def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, 
     k = 1
     while k * step < span:
         q = ankle + (k * step) * u
-        if abs(q - end) <= covered:
+        if _within(q - end, covered):
             break
         w = q * rot + p
         if _clearance(coef, x0, y0, res, nx, ny, w.real, w.imag) < clear:
@@ -333,6 +428,60 @@ def check_steps(
         counts.
     """
     n = z.shape[0]
+    b = n // per if per > 0 else 0
+    out = new_buffers(n, ipar[I_M])
+    accepted = np.zeros(b, dtype=np.int64)
+    drawn = np.zeros(b, dtype=np.int64)
+    cnt = check_into(
+        z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist,
+        out, accepted, drawn,
+    )  # fmt: skip
+    out_rows, out_keys, out_f, out_g, out_end, out_th, out_frame, out_foot, out_fhead = out[:9]
+    return (
+        out_rows[:cnt],
+        out_keys[:cnt],
+        out_f[:cnt],
+        out_g[:cnt],
+        out_end[:cnt],
+        out_th[:cnt],
+        out_frame[:cnt],
+        out_foot[:cnt],
+        out_fhead[:cnt],
+        out[9][:cnt],
+        accepted,
+        drawn,
+    )
+
+
+@njit
+def new_buffers(n, m):
+    """:func:`check_into`'s output buffers for up to ``n`` steps of ``m`` pelvis samples: rows,
+    keys, f, g, end, heading, frame, foot, foot heading, left (n,) and the decode row (m + 2,)."""
+    return (
+        np.empty(n, dtype=np.int64),
+        np.empty(n, dtype=np.int64),
+        np.empty(n),
+        np.empty(n),
+        np.empty(n, dtype=np.complex128),
+        np.empty(n),
+        np.empty(n),
+        np.empty(n, dtype=np.complex128),
+        np.empty(n),
+        np.empty(n, dtype=np.bool_),
+        np.empty(m + 2, dtype=np.complex128),
+    )
+
+
+@njit
+def check_into(
+    z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist, out,
+    accepted, drawn,
+):  # fmt: skip
+    """:func:`check_steps` into buffers: ``out`` from :func:`new_buffers` (at least n rows)
+    takes the accepted steps in its first rows, ``accepted`` and ``drawn`` (at least b, set
+    to 0 here) the per-predecessor counts; returns the number of accepted steps. The search
+    keeps one set of buffers instead of a dozen new arrays per expansion."""
+    n = z.shape[0]
     d = z.shape[1]
     b = n // per if per > 0 else 0
     m = ipar[I_M]
@@ -347,19 +496,14 @@ def check_steps(
     goal = complex(par[P_GOAL_X], par[P_GOAL_Y])
     per_row = frame.shape[0] == n
     lean = node.shape[1] > 4 and matrix.shape[1] >= 2 * m + 2 and not math.isnan(par[P_HIP_Y])
-    out_rows = np.empty(n, dtype=np.int64)
-    out_keys = np.empty(n, dtype=np.int64)
-    out_f = np.empty(n)
-    out_g = np.empty(n)
-    out_end = np.empty(n, dtype=np.complex128)
-    out_th = np.empty(n)
-    out_frame = np.empty(n)
-    out_foot = np.empty(n, dtype=np.complex128)
-    out_fhead = np.empty(n)
-    out_left = np.empty(n, dtype=np.bool_)
-    accepted = np.zeros(b, dtype=np.int64)
-    drawn = np.zeros(b, dtype=np.int64)
-    loc = np.empty(m + 2, dtype=np.complex128)
+    limits = lean_limits(par)
+    rot = complex(1.0, 0.0)
+    fr_last = math.nan
+    out_rows, out_keys, out_f, out_g, out_end, out_th, out_frame, out_foot, out_fhead = out[:9]
+    out_left = out[9]
+    loc = out[10]
+    accepted[:b] = 0
+    drawn[:b] = 0
     cnt = 0
     for r in range(n):
         i = r // per
@@ -369,13 +513,20 @@ def check_steps(
         drawn[i] += 1
         fr = frame[r] if per_row else frame[i]
         lf = left[r] if per_row else left[i]
-        # decode: local = z @ matrix + offset
+        # decode: local = z @ matrix + offset (real features times complex columns: the real
+        # and imaginary sums apart, the products a complex product with 0j would add as ±0)
         for c in range(m + 2):
-            s = offset[c]
+            sr = offset[c].real
+            si = offset[c].imag
             for a in range(d):
-                s += z[r, a] * matrix[a, c]
-            loc[c] = s
-        rot = complex(math.sin(fr), -math.cos(fr))
+                za = z[r, a]
+                w = matrix[a, c]
+                sr += za * w.real
+                si += za * w.imag
+            loc[c] = complex(sr, si)
+        if fr != fr_last:  # the turn into the world, once per frame heading (rows share it)
+            rot = complex(math.sin(fr), -math.cos(fr))
+            fr_last = fr
         p = node[i, 0]
         # clearance of pelvis samples, ankle, toes, knees (world)
         ok = True
@@ -388,7 +539,7 @@ def check_steps(
             continue
         yaws = loc[m + 1]
         ankle = loc[m] * rot + p
-        toe = ankle + (par[P_FOOT_LENGTH] * 1j) * rot * np.exp(1j * yaws.real)
+        toe = ankle + (par[P_FOOT_LENGTH] * 1j) * rot * _turn(yaws.real)
         if _clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag) < thr[m + 1]:
             continue
         # the landing leg, from the ankle towards its hip at the step's end (heel strike: the
@@ -401,7 +552,7 @@ def check_steps(
         for kk in range(2):
             col = kc0 if kk == 0 else kc1
             share = par[P_KNEE_SHARE0] if kk == 0 else par[P_KNEE_SHARE1]
-            fwd = 1j * np.exp(1j * (yaws.imag * share))
+            fwd = 1j * _turn(yaws.imag * share)
             knee = (loc[col] + fwd * (par[P_KNEE_LEAD] + lat)) * rot + p
             if _clearance(coef, fx0, fy0, fres, fnx, fny, knee.real, knee.imag) < thr[m + 2 + kk]:
                 ok = False
@@ -414,23 +565,24 @@ def check_steps(
         behind = (node[i, 2] - p) * rc
         reach = par[P_FOOT_REACH]
         for j in range(m):
-            if abs(loc[j] - landed) > reach:
+            if _beyond(loc[j] - landed, reach):
                 ok = False
                 break
         if not ok:
             continue
+        lift = par[P_LIFT_REACH]
         for j in range(q):
-            if abs(loc[j] - behind) > par[P_LIFT_REACH]:
+            if _beyond(loc[j] - behind, lift):
                 ok = False
                 break
         if not ok:
             continue
-        if abs(loc[m] - behind) > par[P_STRIDE] or abs(loc[m] - loc[m - 1]) > reach:
+        if _beyond(loc[m] - behind, par[P_STRIDE]) or _beyond(loc[m] - loc[m - 1], reach):
             continue
         # the stance leg's sideways lean (the landed foot is this step's stance foot)
         if lean and not (math.isnan(landed.real) or math.isnan(node[i, 4].real)):
-            if not stance_lean_ok(z, r, matrix, offset, loc, m, landed, node[i, 4].real - fr,
-                                  not lf, par):  # fmt: skip
+            if not _lean_ok(z, r, matrix, offset, loc, m, landed, node[i, 4].real - fr,
+                            not lf, par, limits):  # fmt: skip
                 continue
         end = loc[m - 1] * rot + p
         th = fr + yaws.imag
@@ -469,17 +621,4 @@ def check_steps(
         out_left[cnt] = lf
         accepted[i] += 1
         cnt += 1
-    return (
-        out_rows[:cnt],
-        out_keys[:cnt],
-        out_f[:cnt],
-        out_g[:cnt],
-        out_end[:cnt],
-        out_th[:cnt],
-        out_frame[:cnt],
-        out_foot[:cnt],
-        out_fhead[:cnt],
-        out_left[:cnt],
-        accepted,
-        drawn,
-    )
+    return cnt
