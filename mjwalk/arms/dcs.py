@@ -371,7 +371,11 @@ class DCSNetwork:
         out, *_ = np.linalg.lstsq(A, B, rcond=None)
         if not with_hat:
             return out
-        G = np.linalg.pinv(F.T @ F + lam * np.eye(cols)) @ (F.T + lam * P)  # outputs = G @ Y
+        M = F.T @ F + lam * np.eye(cols)
+        try:  # outputs = G @ Y; M is symmetric positive definite for lam > 0
+            G = np.linalg.solve(M, F.T + lam * P)
+        except np.linalg.LinAlgError:  # ridge 0 and a rank-deficient design
+            G = np.linalg.pinv(M) @ (F.T + lam * P)
         hat = np.einsum("ik,ki->i", F, G)
         return out, hat
 
