@@ -303,3 +303,47 @@ def test_real_raise_hand_dcs_beats_mean_trajectory():
     # seeded, 4-fold on 65 clips: measured DCS 5.7 deg, mean trajectory 19.3 deg
     assert dcs < 0.5 * mean
     assert dcs < 8.0
+
+
+def test_dcs_leave_one_out_residuals_match_refits():
+    # selection="loo" scores each candidate by the PRESS residuals r_i / (1 - H_ii) of the
+    # output least squares; with a small ridge they equal refitting without sample i
+    X, Y = _toy(60, 3)
+    for linear in (False, True):
+        net = DCSNetwork(
+            rng=0, max_neurons=6, validation_fraction=0, local_linear=linear, ridge=1e-6
+        ).fit(X, Y)
+        Z = (X - net.x_mean_) / net.x_scale_
+        c, w, e = net.centers_, net.widths_, net.edges_
+        out, hat = net._solve_outputs(Z, Y, c, w, e, 1e-6, linear, with_hat=True)
+        fast = (Y - net._forward(Z, c, w, out, e, linear)) / (1 - hat[:, None])
+        for i in range(0, len(Z), 7):
+            keep = np.arange(len(Z)) != i
+            o = net._solve_outputs(Z[keep], Y[keep], c, w, e, 1e-6, linear)
+            refit = Y[i] - net._forward(Z[i : i + 1], c, w, o, e, linear)[0]
+            np.testing.assert_allclose(fast[i], refit, atol=1e-4)
+    net = DCSNetwork(rng=0, selection="loo").fit(X, Y)
+    assert np.isfinite([h[2] for h in net.history_]).all()
+    with pytest.raises(MjwalkError, match="selection"):
+        DCSNetwork(selection="kfold").fit(X, Y)
+
+
+def test_dcs_local_linear_outputs_reproduce_a_linear_map(tmp_path):
+    # b_i + S_i (x - c_i) per neuron: three neurons carry an affine map exactly, where
+    # constant outputs (eq. 2 as printed) leave a piecewise-constant error
+    rng = np.random.default_rng(0)
+    W = np.array([[1.0, 2.0], [0.5, -1.0], [0.0, 3.0]])
+    X = rng.uniform(-1, 1, (80, 3))
+    Xt = rng.uniform(-0.8, 0.8, (50, 3))
+    kw = {"rng": 0, "max_neurons": 3, "validation_fraction": 0}
+    lin = DCSNetwork(local_linear=True, **kw).fit(X, X @ W + 0.2)
+    const = DCSNetwork(**kw).fit(X, X @ W + 0.2)
+    assert np.abs(lin.predict(Xt) - (Xt @ W + 0.2)).max() < 1e-3  # measured 1e-4
+    assert np.abs(const.predict(Xt) - (Xt @ W + 0.2)).max() > 0.5  # measured 1.6
+    assert lin.slopes_.shape == (3, 3, 2) and const.slopes_ is None
+    lin.save(tmp_path / "lin.npz")
+    back = DCSNetwork.load(tmp_path / "lin.npz")
+    np.testing.assert_allclose(back.predict(Xt), lin.predict(Xt))
+    # a grid (False, True) is chosen with the network size on the held-out residuals
+    grid = DCSNetwork(rng=0, selection="loo", local_linear=(False, True)).fit(X, X @ W)
+    assert grid.local_linear_ is True

@@ -22,6 +22,19 @@ the end. ``width_factor`` and ``ridge`` may be grids: at every growth step each 
 the best on the held-out part is kept with the network (inner validation; the test data of a
 benchmark never choose them).
 
+Model selection (``selection``): ``"holdout"`` scores network size, width and ridge on a
+random ``validation_fraction`` of the samples (the centres then never see them); ``"loo"`` grows
+the network on every sample and scores each candidate by the exact leave-one-out residuals of
+the output least squares, ``r_i / (1 - H_ii)`` with ``H`` the hat matrix (PRESS; the centres are
+fixed, the winner-mean ridge prior is refitted approximately). With few samples the single
+held-out fifth is a noisy judge (network sizes 4-48 on folds of the same data); PRESS uses all.
+
+Local linear outputs (``local_linear=True``): each neuron's output is ``b_i + S_i (x - c_i)``
+inside the same normalized RBF (a local linear map per neuron, Ritter's LLM; eq. 2 is the
+constant case ``S_i = 0``), solved by the same ridge least squares after growth. The slopes
+let a few neurons follow a smoothly varying map; a grid ``(False, True)`` is chosen on the
+held-out/PRESS residuals like the width.
+
 Inputs are standardized internally: per column (``scaling="column"``, zero mean, unit variance)
 or with one scale for all columns (``scaling="global"``: the RMS column sd, so distances keep
 the input's units -- right for constraints that are all positions in metres, where per-column
@@ -64,11 +77,14 @@ class DCSNetwork:
             scale), towards each neuron's mean target; a sequence is a grid like width_factor.
         rng: seed or ``numpy.random.Generator``; same seed, same network.
         scaling: input standardization, ``"column"`` or ``"global"`` (see module docstring).
+        selection: ``"holdout"`` or ``"loo"`` (PRESS on all samples; see module docstring).
+        local_linear: per-neuron local linear outputs; a sequence is a grid like width_factor.
 
     Fitted attributes: ``centers_`` (K, d) standardized, ``outputs_`` (K, m), ``widths_`` (K,),
     ``edges_`` (K, K) bool adjacency, ``x_mean_``/``x_scale_`` (d,), ``n_neurons_``,
     ``train_rmse_``, ``history_`` (list of (neurons, train RMSE, held-out RMSE)),
-    ``width_factor_`` and ``ridge_`` (the values used).
+    ``width_factor_``, ``ridge_`` and ``local_linear_`` (the values used), ``slopes_`` (K, d, m)
+    local linear terms in standardized input units, or None.
     """
 
     def __init__(
@@ -85,6 +101,8 @@ class DCSNetwork:
         ridge: float = 1e-6,
         rng: int | np.random.Generator | None = 0,
         scaling: str = "column",
+        selection: str = "holdout",
+        local_linear: bool | tuple[bool, ...] = False,
     ):
         self.max_neurons = max_neurons
         self.error_threshold = error_threshold
@@ -98,6 +116,8 @@ class DCSNetwork:
         self.ridge = ridge
         self.rng = rng
         self.scaling = scaling
+        self.selection = selection
+        self.local_linear = local_linear
 
     # ------------------------------------------------------------------ fitting
     def fit(self, X: np.ndarray, Y: np.ndarray) -> DCSNetwork:
@@ -131,9 +151,15 @@ class DCSNetwork:
         Z = (X - self.x_mean_) / self.x_scale_
 
         n = len(Z)
+        if self.selection not in ("holdout", "loo"):
+            raise MjwalkError(
+                f"DCSNetwork: selection must be 'holdout' or 'loo', got {self.selection!r}"
+            )
+        loo = self.selection == "loo"
         n_val = round(self.validation_fraction * n) if self.validation_fraction > 0 else 0
-        if n - n_val < 2:
+        if n - n_val < 2 or loo:
             n_val = 0
+        select = bool(n_val) or loo
         perm = rng.permutation(n)
         val_idx, tr_idx = perm[:n_val], perm[n_val:]
         Ztr, Ytr = Z[tr_idx], Y[tr_idx]
@@ -152,31 +178,37 @@ class DCSNetwork:
         self.history_ = []
         factors = self._factors()
         ridges = self._ridges()
+        linears = self._linears()
         while True:
             centers, ages = self._adapt(Ztr, centers, ages, rng)
             edges = ages >= 0
             base = self._widths(centers, edges, 1.0)
             # The RBF width factor is chosen with the network size on the held-out part.
             step_best = None
-            for factor, ridge in itertools.product(factors, ridges):
+            for factor, ridge, linear in itertools.product(factors, ridges, linears):
                 widths = factor * base
-                outputs = self._solve_outputs(Ztr, Ytr, centers, widths, edges, ridge)
-                pred = self._forward(Ztr, centers, widths, outputs, edges)
+                outputs, hat = self._solve_outputs(
+                    Ztr, Ytr, centers, widths, edges, ridge, linear, with_hat=True
+                )
+                pred = self._forward(Ztr, centers, widths, outputs, edges, linear)
                 resid_f = ((pred - Ytr) ** 2).sum(axis=1)
-                if n_val:
-                    pv = self._forward(Z[val_idx], centers, widths, outputs, edges)
+                if loo:  # leave-one-out residuals of the output least squares (PRESS)
+                    lev = np.minimum(hat, 1.0 - 1e-6)
+                    val_f = float(np.sqrt((resid_f / (1.0 - lev) ** 2).mean()))
+                elif n_val:
+                    pv = self._forward(Z[val_idx], centers, widths, outputs, edges, linear)
                     val_f = float(np.sqrt(((pv - Y[val_idx]) ** 2).sum(axis=1).mean()))
                 else:
                     val_f = float(np.sqrt(resid_f.mean()))
                 if step_best is None or val_f < step_best[0] - 1e-12:
-                    step_best = (val_f, factor, ridge, resid_f)
+                    step_best = (val_f, factor, ridge, linear, resid_f)
             assert step_best is not None  # the grids are non-empty
-            val_rmse, factor, ridge, resid = step_best
+            val_rmse, factor, ridge, linear, resid = step_best
             train_rmse = float(np.sqrt(resid.mean()))
-            self.history_.append((len(centers), train_rmse, val_rmse if n_val else np.nan))
+            self.history_.append((len(centers), train_rmse, val_rmse if select else np.nan))
             if val_rmse < best_val - 1e-12:
                 best_val = val_rmse
-                best = (centers.copy(), ages.copy(), factor, ridge)
+                best = (centers.copy(), ages.copy(), factor, ridge, linear)
                 no_change = 0
             else:
                 no_change += 1
@@ -184,7 +216,7 @@ class DCSNetwork:
                 train_rmse <= self.error_threshold
                 or len(centers) >= self.max_neurons
                 or len(centers) >= len(Ztr)
-                or (n_val and no_change >= self.n_iter_no_change)
+                or (select and no_change >= self.n_iter_no_change)
             ):
                 break
             # Growth: accumulated squared error per best-matching neuron.
@@ -207,21 +239,23 @@ class DCSNetwork:
             grown[f, k] = grown[k, f] = 0
             ages = grown
 
-        if n_val and best is not None:
-            centers, ages, factor, ridge = best
+        if select and best is not None:
+            centers, ages, factor, ridge, linear = best
         edges = ages >= 0
         self.width_factor_ = float(factor)
         self.ridge_ = float(ridge)
+        self.local_linear_ = bool(linear)
         widths = self._widths(centers, edges, factor)
         # Final output vectors on every sample (train + held-out).
         self.centers_ = centers
         self.edges_ = edges
         self.widths_ = widths
-        self.outputs_ = self._solve_outputs(Z, Y, centers, widths, edges, ridge)
+        stacked = self._solve_outputs(Z, Y, centers, widths, edges, ridge, linear)
+        self.outputs_, self.slopes_ = self._split(stacked, len(centers), linear)
         self.n_neurons_ = len(centers)
         self.train_rmse_ = float(
             np.sqrt(
-                ((self._forward(Z, centers, widths, self.outputs_, edges) - Y) ** 2)
+                ((self._forward(Z, centers, widths, stacked, edges, linear) - Y) ** 2)
                 .sum(axis=1)
                 .mean()
             )
@@ -268,6 +302,18 @@ class DCSNetwork:
             raise MjwalkError(f"DCSNetwork: ridge must be >= 0, got {r!r}")
         return ridges
 
+    def _linears(self) -> tuple[bool, ...]:
+        ll = self.local_linear
+        return tuple(bool(x) for x in (ll if isinstance(ll, list | tuple) else (ll,))) or (False,)
+
+    @staticmethod
+    def _split(stacked, k, linear):
+        """Stacked output rows -> (``outputs`` (K, m), ``slopes`` (K, d, m) or None)."""
+        if not linear:
+            return stacked, None
+        m = stacked.shape[1]
+        return stacked[:k], stacked[k:].reshape(k, -1, m)
+
     def _widths(self, centers, edges, factor):
         d = cdist(centers, centers)
         widths = np.empty(len(centers))
@@ -293,23 +339,48 @@ class DCSNetwork:
         w = np.exp(logit)
         return w / w.sum(axis=1, keepdims=True)
 
-    def _solve_outputs(self, Z, Y, centers, widths, edges, ridge):
-        Phi = self._design(Z, centers, widths, edges)
-        k = Phi.shape[1]
-        lam = ridge * max(float(np.trace(Phi.T @ Phi)) / k, 1e-12)
-        A = np.vstack([Phi, np.sqrt(lam) * np.eye(k)])
-        # Ridge pulls towards the winner-mean of the targets rather than towards zero.
-        bmu = np.argmax(Phi, axis=1)
-        prior = np.zeros((k, Y.shape[1]))
-        cnt = np.bincount(bmu, minlength=k)
-        np.add.at(prior, bmu, Y)
-        prior = np.where(cnt[:, None] > 0, prior / np.maximum(cnt, 1)[:, None], Y.mean(axis=0))
-        B = np.vstack([Y, np.sqrt(lam) * prior])
-        out, *_ = np.linalg.lstsq(A, B, rcond=None)
-        return out
+    @classmethod
+    def _features(cls, Z, centers, widths, edges, linear):
+        """(N, K) normalized RBF weights, or with ``linear`` (N, K (1 + d)): the weights and
+        the weights times the offsets ``z - c_i`` (the local linear terms)."""
+        Phi = cls._design(Z, centers, widths, edges)
+        if not linear:
+            return Phi
+        offsets = Z[:, None, :] - centers[None]
+        return np.hstack([Phi, (Phi[:, :, None] * offsets).reshape(len(Z), -1)])
 
-    def _forward(self, Z, centers, widths, outputs, edges):
-        return self._design(Z, centers, widths, edges) @ outputs
+    def _solve_outputs(self, Z, Y, centers, widths, edges, ridge, linear=False, with_hat=False):
+        """Stacked output rows (K, m), or (K (1 + d), m) with local linear terms, by ridge
+        least squares; with ``with_hat`` also the diagonal (N,) of the hat matrix (prediction
+        = H @ Y, the ridge prior being a linear function of Y too), for the leave-one-out
+        residuals ``r_i / (1 - H_ii)``."""
+        F = self._features(Z, centers, widths, edges, linear)
+        k = len(centers)
+        Phi = F[:, :k]
+        cols = F.shape[1]
+        lam = ridge * max(float(np.trace(Phi.T @ Phi)) / k, 1e-12)
+        # Ridge pulls each neuron's output towards the mean target of the samples it wins
+        # (rather than towards zero) and the local slopes towards zero.
+        bmu = np.argmax(Phi, axis=1)
+        cnt = np.bincount(bmu, minlength=k)
+        P = np.zeros((cols, len(Z)))  # prior = P @ Y
+        P[bmu, np.arange(len(Z))] = 1.0 / cnt[bmu]
+        P[:k][cnt == 0] = 1.0 / len(Z)
+        A = np.vstack([F, np.sqrt(lam) * np.eye(cols)])
+        B = np.vstack([Y, np.sqrt(lam) * (P @ Y)])
+        out, *_ = np.linalg.lstsq(A, B, rcond=None)
+        if not with_hat:
+            return out
+        M = F.T @ F + lam * np.eye(cols)
+        try:  # outputs = G @ Y; M is symmetric positive definite for lam > 0
+            G = np.linalg.solve(M, F.T + lam * P)
+        except np.linalg.LinAlgError:  # ridge 0 and a rank-deficient design
+            G = np.linalg.pinv(M) @ (F.T + lam * P)
+        hat = np.einsum("ik,ki->i", F, G)
+        return out, hat
+
+    def _forward(self, Z, centers, widths, outputs, edges, linear=False):
+        return self._features(Z, centers, widths, edges, linear) @ outputs
 
     def _set_training_points(self, Z):
         self._train_z = Z
@@ -343,7 +414,11 @@ class DCSNetwork:
         """Outputs (N, m) for inputs ``X`` (N, d) by the normalized RBF of eq. 2."""
         self._check_fitted()
         Z = self._standardize(X)
-        out = self._forward(Z, self.centers_, self.widths_, self.outputs_, self.edges_)
+        Phi = self._design(Z, self.centers_, self.widths_, self.edges_)
+        out = Phi @ self.outputs_
+        if self.slopes_ is not None:  # local linear terms: sum_i h_i (z - c_i) @ S_i
+            offsets = Z[:, None, :] - self.centers_[None]
+            out = out + np.einsum("nk,nkd,kdm->nm", Phi, offsets, self.slopes_)
         return out[:, 0] if self._y_1d else out
 
     def distance_to_training(self, X: np.ndarray) -> np.ndarray:
@@ -367,6 +442,7 @@ class DCSNetwork:
             "x_mean": self.x_mean_,
             "x_scale": self.x_scale_,
             "train_z": self._train_z,
+            **({} if self.slopes_ is None else {"slopes": self.slopes_}),
         }
 
     def _header(self) -> dict:
@@ -384,6 +460,8 @@ class DCSNetwork:
                 "n_iter_no_change",
                 "ridge",
                 "scaling",
+                "selection",
+                "local_linear",
             )
         }
         rs = self.rng
@@ -396,6 +474,7 @@ class DCSNetwork:
             "train_rmse": self.train_rmse_,
             "width_factor_": getattr(self, "width_factor_", None),
             "ridge_": getattr(self, "ridge_", None),
+            "local_linear_": self.slopes_ is not None,
             "history": [[int(a), float(b), float(c)] for a, b, c in self.history_],
         }
 
@@ -423,6 +502,8 @@ class DCSNetwork:
             net.train_rmse_ = float(header["train_rmse"])
             net.width_factor_ = header.get("width_factor_")  # type: ignore[assignment]
             net.ridge_ = header.get("ridge_")  # type: ignore[assignment]
+            net.local_linear_ = bool(header.get("local_linear_", False))
+            net.slopes_ = np.asarray(data["slopes"], dtype=float) if net.local_linear_ else None
             net.history_ = [tuple(h) for h in header.get("history", [])]
             k = len(net.centers_)
             if (
@@ -430,6 +511,10 @@ class DCSNetwork:
                 or net.widths_.shape != (k,)
                 or net.edges_.shape != (k, k)
                 or net.centers_.shape[1] != len(net.x_mean_)
+                or (
+                    net.slopes_ is not None
+                    and net.slopes_.shape != (k, len(net.x_mean_), net.outputs_.shape[1])
+                )
             ):
                 raise ValueError("array shapes are inconsistent")
             net.n_neurons_ = k
