@@ -381,7 +381,8 @@ def _capture_iqr_spread(pooled: dict, n_boot: int = 2000) -> None:
 
 def _walk_parts(cw: list, mw: list, steps: list) -> dict[str, list]:
     """Per walk, capture and model: speed (distance / time), mean steady step length and
-    duration, and the largest lateral distance from the start-goal line (m)."""
+    duration, and the largest lateral distance (m) from the line through the walk's start and
+    end."""
     from mjwalk.gait.fidelity import _compose, straight_runs
 
     out: dict[str, list] = defaultdict(list)
@@ -401,7 +402,11 @@ def _walk_parts(cw: list, mw: list, steps: list) -> dict[str, list]:
         out["m speed"].append(w["distance"] / w["time"])
         out["m step length"].append(np.mean(w["lengths"][2:-1]))
         out["m step duration"].append(np.mean(w["durations"][2:-1]))
-        out["m lateral"].append(np.abs(w["track"][:, 2]).max())
+        # as for capture: from the line through the walk's own start and end (the greedy
+        # walker's end may lie beside the nominal goal; that is not wander)
+        q = w["track"][:, 1:3] - w["track"][0, 1:3]
+        v = q[-1] / np.hypot(*q[-1])
+        out["m lateral"].append(np.abs(q @ np.array([-v[1], v[0]])).max())
     return out
 
 
