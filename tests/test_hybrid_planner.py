@@ -238,3 +238,31 @@ def test_walkers_pass_a_pillar_on_either_side_as_people_choose(tmp_path, model, 
     d_right = np.degrees(np.arctan2(0.3 + offset, 3.0))
     predicted = 1.0 / (1.0 + np.exp(-SIDE_SLOPE_PER_DEG * (d_right - d_left)))
     assert np.mean(sides) == pytest.approx(predicted, abs=0.17)
+
+
+def test_dead_ends_are_searched_again_up_to_attempts(scenes_dir, model, monkeypatch):
+    """A search whose open list runs dry is started over with fresh samples: five dead ends and
+    then a walk give the walk; ATTEMPTS dead ends give a PlanningError that counts them."""
+    import mjwalk.plan.hybrid as hybrid
+
+    wp = load_workplace(scenes_dir / "open_floor.xml")
+    planner = HybridPlanner(wp, "east", model)
+    real = planner._plan_once
+    calls = {"n": 0}
+
+    def dead_ends(k):
+        def plan_once(start, rng, mdl):
+            calls["n"] += 1
+            if calls["n"] <= k:
+                raise hybrid._Exhausted("search exhausted (test)")
+            return real(start, rng, mdl)
+
+        return plan_once
+
+    monkeypatch.setattr(planner, "_plan_once", dead_ends(hybrid.ATTEMPTS - 1))
+    walk = planner.plan("west", np.random.default_rng(0))
+    assert walk.meta["attempts"] == hybrid.ATTEMPTS
+    calls["n"] = 0
+    monkeypatch.setattr(planner, "_plan_once", dead_ends(hybrid.ATTEMPTS))
+    with pytest.raises(PlanningError, match=f"{hybrid.ATTEMPTS} searches with fresh samples"):
+        planner.plan("west", np.random.default_rng(0))

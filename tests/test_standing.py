@@ -121,7 +121,7 @@ def test_wandering_walks_are_planned_again(scenes_dir, monkeypatch):
     monkeypatch.setattr(hybrid, "WANDER_FACTOR", 0.5)  # every walk "wanders"
     walk = planner.plan("stand_rack2", np.random.default_rng(0))
     assert walk.meta["wandering"] is True and walk.meta["searches"] == hybrid.WANDER_SEARCHES
-    assert hybrid.WANDER_SEARCHES > planner.attempts  # loops get more searches than dead ends
+    assert hybrid.WANDER_SEARCHES >= planner.attempts  # loops get as many searches as dead ends
 
 
 def test_cycle_starts_anywhere_in_the_start_zone_and_every_start_sets_off(scenes_dir):
