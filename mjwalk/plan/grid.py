@@ -20,6 +20,7 @@ from mjwalk.conventions import BODY_RADIUS
 from mjwalk.errors import InputError, PlanningError
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.cache import cached_array, content_key
+from mjwalk.world.clearance import bilinear_at
 from mjwalk.world.workplace import Workplace
 
 #: Default grid cell size (metres), as in agethen2018.
@@ -87,7 +88,6 @@ def _walk_min(values, x0, y0, res, bounds, xs, ys, ts, sx, sy, js, is_, radius):
     """For each cell (js[c], is_[c]): whether every point ``centre + ts[s] * (sx, sy)`` keeps
     ``radius`` of walking clearance, with the arithmetic of :meth:`ClearanceField.__call__`
     (bilinear) and :meth:`Workplace.edge_distance`; stops at a cell's first failing point."""
-    ny, nx = values.shape
     out = np.empty(js.shape[0], dtype=np.bool_)
     for c in range(js.shape[0]):
         cx, cy = xs[is_[c]], ys[js[c]]
@@ -99,15 +99,7 @@ def _walk_min(values, x0, y0, res, bounds, xs, ys, ts, sx, sy, js, is_, radius):
             if edge < radius:
                 ok = False
                 break
-            fx = min(max((x - x0) / res, 0.0), nx - 1.000001)
-            fy = min(max((y - y0) / res, 0.0), ny - 1.000001)
-            ix = int(fx)
-            iy = int(fy)
-            tx = fx - ix
-            ty = fy - iy
-            v = (values[iy, ix] * (1 - tx) + values[iy, ix + 1] * tx) * (1 - ty) + (
-                values[iy + 1, ix] * (1 - tx) + values[iy + 1, ix + 1] * tx
-            ) * ty
+            v = bilinear_at(values, x0, y0, res, x, y)
             if v < radius:
                 ok = False
                 break

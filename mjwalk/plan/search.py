@@ -23,7 +23,8 @@ enough). Last such change: issue 18 item 2 (the leg-reach tests compare squares,
 :func:`~mjwalk.plan.stepcheck._beyond`, hypot only where the squares do not decide; the step
 checks write into buffers kept for the whole search; the GP's pool weights are powers of its
 kernel row, squared on the whole row at once; the stance-lean limits once per batch; a step
-frame's turn once per frame; distance tests to the goal by squares; downhill_costs added;
+frame's turn once per frame; distance tests to the goal by squares; downhill_costs added,
+its bilinear lookup now world.clearance.bilinear_at;
 the decode's real and imaginary sums apart; the GP kernel row's cross terms vectorized; the
 GPs picked by name; the toe's and knees' turns without a complex exp; the leg probes' cover
 test by squares).

@@ -26,6 +26,7 @@ import math
 import numpy as np
 
 from mjwalk._jit import njit
+from mjwalk.world.clearance import bilinear_at
 
 # Slots of the float parameter vector (see :func:`params`).
 (
@@ -252,21 +253,12 @@ def downhill_costs(xy, probes, clear, cx0, cy0, cres, floor, radius, dist, gx0, 
     (xmin, ymin, xmax, ymax), and :meth:`GoalDistance.__call__` on the flat grid bound
     ``dist`` (origin gx0, gy0, cell gcell, last column/row top_x, top_y): the distance to the
     goal, plus 1e3 where the walking clearance is short of ``radius`` (metres)."""
-    ny, nx = clear.shape
     n = probes.shape[0]
     out = np.empty(n)
     for k in range(n):
         x = xy[0] + probes[k, 0]
         y = xy[1] + probes[k, 1]
-        fx = min(max((x - cx0) / cres, 0.0), nx - 1.000001)
-        fy = min(max((y - cy0) / cres, 0.0), ny - 1.000001)
-        ix = int(fx)
-        iy = int(fy)
-        tx = fx - ix
-        ty = fy - iy
-        c = (clear[iy, ix] * (1 - tx) + clear[iy, ix + 1] * tx) * (1 - ty) + (
-            clear[iy + 1, ix] * (1 - tx) + clear[iy + 1, ix + 1] * tx
-        ) * ty
+        c = bilinear_at(clear, cx0, cy0, cres, x, y)
         edge = min(min(min(x - floor[0], floor[2] - x), y - floor[1]), floor[3] - y)
         free = min(c, edge) >= radius
         gi = min(max(np.rint((x - gx0) / gcell), 0.0), top_x)

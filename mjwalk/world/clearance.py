@@ -72,6 +72,24 @@ class ClearanceField:
     lookup = __call__
 
 
+@njit
+def bilinear_at(values, x0, y0, res, x, y):
+    """:meth:`ClearanceField.__call__` at one point (``x``, ``y``, metres) of a field's
+    ``values`` (origin ``x0``, ``y0``, spacing ``res``), compiled for the planners' loops: the
+    same arithmetic in the same order. (numba caches a caller by its own source: edit a
+    comment in the callers, ``plan/grid.py`` and ``plan/stepcheck.py``, if this changes.)"""
+    ny, nx = values.shape
+    fx = min(max((x - x0) / res, 0.0), nx - 1.000001)
+    fy = min(max((y - y0) / res, 0.0), ny - 1.000001)
+    ix = int(fx)
+    iy = int(fy)
+    tx = fx - ix
+    ty = fy - iy
+    return (values[iy, ix] * (1 - tx) + values[iy, ix + 1] * tx) * (1 - ty) + (
+        values[iy + 1, ix] * (1 - tx) + values[iy + 1, ix + 1] * tx
+    ) * ty
+
+
 def _pack(footprints: Sequence[Footprint]):
     """Footprints as flat arrays for the compiled kernels: per footprint the first edge and
     edge count, round radius (0: polygon) and bounding circle (centre, reach); per edge its
