@@ -140,11 +140,18 @@ def route_colors(labels: Sequence[str]) -> dict[str, tuple]:
     return {label: cmap(k % 10) for k, label in enumerate(labels)}
 
 
+#: The spaghetti plot draws at most this many walks of each route (runs evenly spaced over the
+#: batch): beyond a few hundred faint lines a corridor looks the same, and drawing every walk
+#: of 10 000 runs (70 000 paths at the station) took most of a minute and gigabytes.
+MAX_DRAWN_PER_ROUTE = 500
+
+
 def spaghetti_png(
     path: Path, results: Sequence[CycleResult], workplace: Workplace, baseline, rep: dict
 ) -> None:
-    """The report's floor plan: every walk of ``results`` coloured by route (faint when there
-    are many), the ``baseline`` routes (grid A*, see :func:`mjwalk.report.write_report`)
+    """The report's floor plan: the walks of ``results`` coloured by route (faint when there
+    are many; at most :data:`MAX_DRAWN_PER_ROUTE` of each route, from runs evenly spaced over
+    the batch), the ``baseline`` routes (grid A*, see :func:`mjwalk.report.write_report`)
     dashed, written as a PNG to ``path``; ``rep`` is :func:`mjwalk.report.report_dict`'s."""
 
     labels = list(rep["routes"])
@@ -153,9 +160,14 @@ def spaghetti_png(
     fig, ax = plt.subplots(figsize=(10, 10 * (ymax - ymin) / (xmax - xmin) * 0.9 + 0.6))
     try:
         draw_floor(ax, workplace, shade=False)
-        alpha = 0.8 if len(results) < 5 else max(0.15, 4.0 / len(results))
+        capped = False
         for label in labels:
             paths = [w.path for r in results for w in r.walks if w.route == label]
+            if len(paths) > MAX_DRAWN_PER_ROUTE:
+                keep = np.linspace(0, len(paths) - 1, MAX_DRAWN_PER_ROUTE).round().astype(int)
+                paths = [paths[k] for k in keep]
+                capped = True
+            alpha = 0.8 if len(paths) < 5 else max(0.15, 4.0 / len(paths))
             draw_paths(ax, paths, color=colors[label], label=label, lw=0.8, alpha=alpha)
         leg_route = {(w.start_site, w.goal_site): w.route for r in results for w in r.walks}
         drawn = False
@@ -172,7 +184,10 @@ def spaghetti_png(
                 continue
             handle.set_alpha(1.0)
             handle.set_linewidth(2.0)  # type: ignore[attr-defined]  # lines and collections
-        ax.set_title(f"{rep['name'] or workplace.name}: {len(results)} run(s), walks by route")
+        drawn_note = f" ({MAX_DRAWN_PER_ROUTE} per route drawn)" if capped else ""
+        ax.set_title(
+            f"{rep['name'] or workplace.name}: {len(results)} run(s), walks by route{drawn_note}"
+        )
         fig.tight_layout()
         fig.savefig(path, dpi=110)
     finally:

@@ -234,3 +234,25 @@ def test_simulate_cycles_records_a_failed_run(monkeypatch, scenes_dir):
         sim.simulate_cycles(spec, runs=3, seed=5, collisions=False)
     with pytest.raises(MjwalkError, match="on_error"):
         sim.simulate_cycles(spec, runs=3, on_error="ignore")
+
+
+def test_spaghetti_draws_at_most_a_cap_of_walks_per_route(tmp_path, workplace, monkeypatch):
+    """A long batch's floor plan draws a capped, evenly spread sample of each route's walks
+    (the statistics and CSVs keep every walk)."""
+    import mjwalk.plot as plot
+    from mjwalk.report import report_dict
+
+    results = _results(workplace, runs=12)
+    drawn: dict[str, int] = {}
+    real = plot.draw_paths
+
+    def counting(ax, paths, *args, label=None, **kw):
+        drawn[label] = len(paths)
+        return real(ax, paths, *args, label=label, **kw)
+
+    monkeypatch.setattr(plot, "draw_paths", counting)
+    monkeypatch.setattr(plot, "MAX_DRAWN_PER_ROUTE", 5)
+    rep = report_dict(results)
+    plot.spaghetti_png(tmp_path / "s.png", results, workplace, None, rep)
+    assert drawn and all(n == 5 for n in drawn.values())  # 12 runs, each route walked 12+ times
+    assert (tmp_path / "s.png").stat().st_size > 0
