@@ -159,18 +159,17 @@ def _move_graph(grid: OccupancyGrid) -> csr_matrix:
     hit = _GRAPHS.get(id(grid))
     if hit is not None and hit[0]() is grid:
         return hit[1]
-    none = np.zeros(grid.free.shape, dtype=bool)
-    graph = _reversed_graph(grid, np.zeros(grid.free.shape), none)
+    graph = _reversed_graph(grid)
     while len(_GRAPHS) >= _GRAPHS_KEPT:
         _GRAPHS.pop(next(iter(_GRAPHS)))
     _GRAPHS[id(grid)] = (weakref.ref(grid), graph)
     return graph
 
 
-def _reversed_graph(grid: OccupancyGrid, to_goal: np.ndarray, inside: np.ndarray) -> csr_matrix:
+def _reversed_graph(grid: OccupancyGrid) -> csr_matrix:
     """The reversed move graph as CSR, (n + 1) nodes: row t holds the cells s from which a move
-    reaches t (weight: the move's length), columns ascending; row n (the virtual goal node) the
-    goal cells ``inside`` with their distance ``to_goal`` to the goal centre.
+    reaches t (weight: the move's length), columns ascending; row n (the virtual goal node,
+    whose edges :func:`_dijkstra_field` appends per goal) empty.
 
     Built in place, row by row in column order, it is the matrix a COO of every reversed edge
     gives after ``tocsr()`` (which sorts the columns of each row): the same arrays, so the same
@@ -186,8 +185,6 @@ def _reversed_graph(grid: OccupancyGrid, to_goal: np.ndarray, inside: np.ndarray
     counts = np.zeros(n + 1, dtype=np.int64)
     for t in targets:
         counts[t] += 1
-    goal_cells = np.flatnonzero(inside.ravel())
-    counts[n] = len(goal_cells)
     indptr = np.zeros(n + 2, dtype=np.int64)
     np.cumsum(counts, out=indptr[1:])
     nnz = int(indptr[-1])
@@ -201,8 +198,6 @@ def _reversed_graph(grid: OccupancyGrid, to_goal: np.ndarray, inside: np.ndarray
         di, dj = grid.offsets[k]
         data[at] = grid.cell * math.hypot(di, dj)
         fill[t] += 1
-    indices[indptr[n] :] = goal_cells
-    data[indptr[n] :] = to_goal.ravel()[goal_cells]
     return csr_matrix((data, indices, indptr.astype(index_type)), shape=(n + 1, n + 1))
 
 
