@@ -24,7 +24,7 @@ enough). Last such change: issue 18 item 2 (the leg-reach tests compare squares,
 checks write into buffers kept for the whole search; the GP's pool weights are powers of its
 kernel row, squared on the whole row at once; the stance-lean limits once per batch; a step
 frame's turn once per frame; distance tests to the goal by squares; downhill_costs added,
-its bilinear lookup now world.clearance.bilinear_at;
+its bilinear lookup now world.clearance.bilinear_at, its grid bound stepcheck._grid_bound;
 the decode's real and imaginary sums apart; the GP kernel row's cross terms vectorized; the
 GPs picked by name; the toe's and knees' turns without a complex exp; the leg probes' cover
 test by squares).

@@ -245,6 +245,17 @@ def lean_in_range(inv: np.ndarray, abd: np.ndarray, par: np.ndarray) -> bool:
 
 
 @njit
+def _grid_bound(dist, x0, y0, cell, top_x, top_y, nx, x, y):
+    """:meth:`GoalDistance.__call__`'s grid bound at (``x``, ``y``) (metres) on the flat field
+    ``dist`` (origin ``x0``, ``y0``, spacing ``cell``, last column/row ``top_x``/``top_y``,
+    ``nx`` columns): the nearest node's distance to the goal less the way to that node."""
+    gi = min(max(np.rint((x - x0) / cell), 0.0), top_x)
+    gj = min(max(np.rint((y - y0) / cell), 0.0), top_y)
+    off = math.hypot(x - (x0 + gi * cell), y - (y0 + gj * cell))
+    return dist[int(gj) * nx + int(gi)] - off
+
+
+@njit
 def downhill_costs(xy, probes, clear, cx0, cy0, cres, floor, radius, dist, gx0, gy0, gcell,
                    top_x, top_y, goal_x, goal_y):  # fmt: skip
     """:meth:`~mjwalk.plan.hybrid.HybridPlanner.default_heading`'s costs at ``xy + probes``
@@ -261,10 +272,7 @@ def downhill_costs(xy, probes, clear, cx0, cy0, cres, floor, radius, dist, gx0, 
         c = bilinear_at(clear, cx0, cy0, cres, x, y)
         edge = min(min(min(x - floor[0], floor[2] - x), y - floor[1]), floor[3] - y)
         free = min(c, edge) >= radius
-        gi = min(max(np.rint((x - gx0) / gcell), 0.0), top_x)
-        gj = min(max(np.rint((y - gy0) / gcell), 0.0), top_y)
-        off = math.hypot(x - (gx0 + int(gi) * gcell), y - (gy0 + int(gj) * gcell))
-        bound = dist[int(gj) * (int(top_x) + 1) + int(gi)] - off
+        bound = _grid_bound(dist, gx0, gy0, gcell, top_x, top_y, int(top_x) + 1, x, y)
         euclid = math.hypot(x - goal_x, y - goal_y)
         out[k] = max(euclid, bound) + (0.0 if free else 1e3)
     return out
@@ -590,11 +598,10 @@ def check_into(
         ex, ey = end.real, end.imag
         h = math.hypot(ex - goal.real, ey - goal.imag)
         if ipar[I_DIJKSTRA]:
-            dc = par[P_DIST_CELL]
-            gi = min(max(np.rint((ex - par[P_DIST_X0]) / dc), 0.0), par[P_DIST_TOP_X])
-            gj = min(max(np.rint((ey - par[P_DIST_Y0]) / dc), 0.0), par[P_DIST_TOP_Y])
-            off = math.hypot(ex - (par[P_DIST_X0] + gi * dc), ey - (par[P_DIST_Y0] + gj * dc))
-            bound = dist[int(gj) * ipar[I_DIST_NX] + int(gi)] - off
+            bound = _grid_bound(
+                dist, par[P_DIST_X0], par[P_DIST_Y0], par[P_DIST_CELL], par[P_DIST_TOP_X],
+                par[P_DIST_TOP_Y], ipar[I_DIST_NX], ex, ey,
+            )  # fmt: skip
             if bound > h:
                 h = bound
         g = node[i, 3].real + seg
