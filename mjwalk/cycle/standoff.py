@@ -28,7 +28,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.body.humanoid import HUMAN_GROUP, JointMap
-from mjwalk.timeline.collisions import candidate_frames
+from mjwalk.timeline.collisions import candidate_frames, floor_geoms, repeats
 
 #: Clearance (m) the reaching arm (upper arm to fingertips) keeps from every scene geom. The
 #: contacts it prevents were up to 6.3 mm deep (benchmarks/bench_contacts.py, 300 cycles);
@@ -74,14 +74,7 @@ class ArmClearance:
             arm[g] = b in roots
         self.human = m.geom_group == HUMAN_GROUP
         self.model.geom_margin[arm & self.human] = self.clearance
-        types = m.geom_type.tolist()
-        self.floor = np.array(
-            [
-                mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, g) == "floor"
-                or types[g] == mujoco.mjtGeom.mjGEOM_PLANE
-                for g in range(m.ngeom)
-            ]
-        )
+        self.floor = floor_geoms(m)
 
     def distance(self, qpos: np.ndarray, broad_phase: bool = True) -> float:
         """The smallest distance (m) of the humanoid to the scene over the poses ``qpos``
@@ -96,10 +89,7 @@ class ArmClearance:
         best = np.inf
         poses = np.atleast_2d(qpos)
         if broad_phase:
-            if len(poses) > 1:  # a pose equal to the one before has its distance
-                fresh = np.ones(len(poses), dtype=bool)
-                fresh[1:] = np.any(poses[1:] != poses[:-1], axis=1)
-                poses = poses[fresh]
+            poses = poses[~repeats(poses)]  # a pose equal to the one before has its distance
             poses = poses[candidate_frames(m, poses, self.human, self.floor, FLOOR_TOLERANCE, d)]
         for q in poses:
             d.qpos[:] = q

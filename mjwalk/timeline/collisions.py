@@ -90,9 +90,8 @@ def collision_report(
     plen = len(timeline.jointmap.prefix)
     names, floorish = _geom_names(model)
     qpos = np.asarray(timeline.qpos)
-    same = np.zeros(len(qpos), dtype=bool)
+    same = repeats(qpos) if broad_phase else np.zeros(len(qpos), dtype=bool)
     if broad_phase and len(qpos) > 1:
-        same[1:] = np.all(qpos[1:] == qpos[:-1], axis=1)
         check = np.zeros(len(qpos), dtype=bool)
         fresh = np.flatnonzero(~same)
         check[fresh] = candidate_frames(
@@ -156,6 +155,21 @@ def _geom_names(model: mujoco.MjModel) -> tuple[list[str], np.ndarray]:
         floorish.setflags(write=False)
         hit = _NAMES[model] = (names, floorish)
     return hit
+
+
+def repeats(qpos: np.ndarray) -> np.ndarray:
+    """(F,) whether each pose of ``qpos`` (F, nq) equals the one before it (a hold): its
+    contacts, and its distances, are those of that pose."""
+    same = np.zeros(len(qpos), dtype=bool)
+    if len(qpos) > 1:
+        same[1:] = np.all(qpos[1:] == qpos[:-1], axis=1)
+    return same
+
+
+def floor_geoms(model: mujoco.MjModel) -> np.ndarray:
+    """(ngeom,) read-only mask of ``model``'s floors: the geom named ``"floor"`` and every
+    plane (their shallow contacts with the humanoid are standing, not collisions)."""
+    return _geom_names(model)[1]
 
 
 def candidate_frames(
