@@ -74,28 +74,39 @@ def _pivot_cs(x, y, fx, fy, c, s, p, ball, back, ah):
 
 
 @njit
+def _repitch_row(ankle, pitch, toe, i, grounded, px, py, cg, sg, cf, sf, c0, s0, p1, cp, sp,
+                 ball, back, ah):  # fmt: skip
+    """Row ``i`` of a repitch to ``p1`` (its cos ``cp`` and sin ``sp``; ``c0``, ``s0`` those of
+    the pitch before) in place: a ``grounded`` foot about the pivot of its footprint at ``px``,
+    ``py`` heading (``cg``, ``sg``), an airborne one by the pivot's motion on a footprint at
+    the origin heading (``cf``, ``sf``) = the foot's heading, as NumPy's order; the toes keep
+    their angle to the floor while the heel is up."""
+    p0 = pitch[i]
+    if grounded:
+        a0, a1, a2 = _pivot_cs(px, py, cg, sg, cp, sp, p1, ball, back, ah)
+        ankle[i, 0], ankle[i, 1], ankle[i, 2] = a0, a1, a2
+    else:  # ankle + pivot(p1) - pivot(p0) on a footprint at the origin
+        n0, n1, n2 = _pivot_cs(0.0, 0.0, cf, sf, cp, sp, p1, ball, back, ah)
+        o0, o1, o2 = _pivot_cs(0.0, 0.0, cf, sf, c0, s0, p0, ball, back, ah)
+        ankle[i, 0] = (ankle[i, 0] + n0) - o0
+        ankle[i, 1] = (ankle[i, 1] + n1) - o1
+        ankle[i, 2] = (ankle[i, 2] + n2) - o2
+    toe[i] += min(p0, 0.0) - min(p1, 0.0)
+    pitch[i] = p1
+
+
+@njit
 def _repitch_rows(ankle, pitch, toe, fyaw, ground, prints, dp, ball, back, ah):
     """:func:`repitch_foot` in place: ``ankle`` (n, 3), ``pitch`` and ``toe`` (n,)."""
     for i in range(ankle.shape[0]):
         p0 = pitch[i]
         p1 = p0 - dp[i]
-        c1, s1 = math.cos(p1), math.sin(p1)
-        if ground[i]:
-            yaw = prints[i, 2]
-            a0, a1, a2 = _pivot_cs(
-                prints[i, 0], prints[i, 1], math.cos(yaw), math.sin(yaw), c1, s1, p1, ball, back, ah
-            )
-            ankle[i, 0], ankle[i, 1], ankle[i, 2] = a0, a1, a2
-        else:  # ankle + pivot(p1) - pivot(p0) on a footprint at the origin, as NumPy's order
-            fx, fy = math.cos(fyaw[i]), math.sin(fyaw[i])
-            c0, s0 = math.cos(p0), math.sin(p0)
-            n0, n1, n2 = _pivot_cs(0.0, 0.0, fx, fy, c1, s1, p1, ball, back, ah)
-            o0, o1, o2 = _pivot_cs(0.0, 0.0, fx, fy, c0, s0, p0, ball, back, ah)
-            ankle[i, 0] = (ankle[i, 0] + n0) - o0
-            ankle[i, 1] = (ankle[i, 1] + n1) - o1
-            ankle[i, 2] = (ankle[i, 2] + n2) - o2
-        toe[i] += min(p0, 0.0) - min(p1, 0.0)
-        pitch[i] = p1
+        yaw = prints[i, 2]
+        _repitch_row(
+            ankle, pitch, toe, i, ground[i], prints[i, 0], prints[i, 1], math.cos(yaw),
+            math.sin(yaw), math.cos(fyaw[i]), math.sin(fyaw[i]), math.cos(p0), math.sin(p0),
+            p1, math.cos(p1), math.sin(p1), ball, back, ah,
+        )  # fmt: skip
 
 
 def fit_ankle_range(
@@ -214,17 +225,8 @@ def _fit_rounds(
             p1 = p0 - (down[i] - min(up[i], max(-p0, 0.0)))
             if p1 != p0:  # (the sines and cosines of unchanged pitches are kept)
                 cp[i], sp[i] = math.cos(p1), math.sin(p1)
-            if ground[i]:
-                a0, a1, a2 = _pivot_cs(
-                    prints[i, 0], prints[i, 1], cg[i], sg[i], cp[i], sp[i], p1, ball, back, ah
-                )
-                ankle[i, 0], ankle[i, 1], ankle[i, 2] = a0, a1, a2
-            else:  # as _repitch_rows
-                n0, n1, n2 = _pivot_cs(0.0, 0.0, cf[i], sf[i], cp[i], sp[i], p1, ball, back, ah)
-                o0, o1, o2 = _pivot_cs(0.0, 0.0, cf[i], sf[i], c0[i], s0[i], p0, ball, back, ah)
-                ankle[i, 0] = (ankle[i, 0] + n0) - o0
-                ankle[i, 1] = (ankle[i, 1] + n1) - o1
-                ankle[i, 2] = (ankle[i, 2] + n2) - o2
+            _repitch_row(
+                ankle, pitch, toe, i, ground[i], prints[i, 0], prints[i, 1], cg[i], sg[i],
+                cf[i], sf[i], c0[i], s0[i], p1, cp[i], sp[i], ball, back, ah,
+            )  # fmt: skip
             c0[i], s0[i] = cp[i], sp[i]
-            toe[i] += min(p0, 0.0) - min(p1, 0.0)
-            pitch[i] = p1
