@@ -77,11 +77,26 @@ PARTICIPANTS = {
 }
 
 
+def _cycle_walks(ctx, cycles: int, seed: int, population):
+    """The walks of runs 0 .. ``cycles`` - 1 (``plan_cycle_walks``), each run as
+    ``simulate_cycle`` plans it: its operator drawn from ``population`` (None: the cycle's own
+    humanoid and model) and its start from their streams. A run whose walks cannot all be
+    planned is printed and left out (as ``simulate_cycles(on_error="record")`` lists it
+    apart)."""
+    for run in range(cycles):
+        rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
+        op_rng, _, stand_rng = rng.spawn(3)  # simulate_cycle's operator and start streams
+        walker = population.draw(op_rng) if population is not None else None
+        try:  # a cycle's walks, all or none (a rare operator's walk may not be plannable)
+            yield plan_cycle_walks(ctx, rng, walker, cycle_start(ctx, stand_rng, walker))
+        except PlanningError as exc:
+            print(f"  run {run}: no walk plan for {walker} ({str(exc)[:60]}...)")
+
+
 def route_table(cycles: int, seed: int = 0, population: bool | dict = False) -> dict:
     """Per route (and per direction ``T2 a->b``): lengths and length / grid-A* length; with
-    ``population``, each run's operator drawn as ``simulate_cycle`` draws it. A run whose walks
-    cannot all be planned is printed and left out (as ``simulate_cycles(on_error="record")``
-    lists it apart)."""
+    ``population``, each run's operator drawn as ``simulate_cycle`` draws it
+    (:func:`_cycle_walks`)."""
     spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
     ctx = prepare(spec)
     pop = spec.population
@@ -91,16 +106,7 @@ def route_table(cycles: int, seed: int = 0, population: bool | dict = False) -> 
         pop = parse_population(population, spec.stature)
     lengths: dict[str, list[float]] = defaultdict(list)
     ratios: dict[str, list[float]] = defaultdict(list)
-    for run in range(cycles):
-        rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
-        op_rng, _, stand_rng = rng.spawn(3)  # simulate_cycle's operator and start streams
-        walker = pop.draw(op_rng) if population and pop is not None else None
-        try:  # a cycle's walks, all or none (a rare operator's walk may not be plannable)
-            start = cycle_start(ctx, stand_rng, walker)
-            walks = list(plan_cycle_walks(ctx, rng, walker, start))
-        except PlanningError as exc:
-            print(f"  run {run}: no walk plan for {walker} ({str(exc)[:60]}...)")
-            continue
+    for walks in _cycle_walks(ctx, cycles, seed, pop if population else None):
         for i, here, goal, path in walks:
             route = spec.tasks[i].route or f"{here}->{goal}"
             ratio = path.length / ctx.baseline(here, goal)
@@ -119,15 +125,7 @@ def length_makeup(cycles: int, seed: int = 0) -> None:
     spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
     ctx = prepare(spec)
     rows: dict[str, list] = defaultdict(list)
-    for run in range(cycles):
-        rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
-        op_rng, _, stand_rng = rng.spawn(3)
-        walker = spec.population.draw(op_rng) if spec.population else None
-        start = cycle_start(ctx, stand_rng, walker)
-        try:  # as route_table: a run whose walks cannot all be planned is left out
-            walks = plan_cycle_walks(ctx, rng, walker, start)
-        except PlanningError:
-            continue
+    for walks in _cycle_walks(ctx, cycles, seed, spec.population):
         for i, here, goal, p in walks:
             chord = float(np.hypot(*(p.xy[-1] - p.xy[0])))
             rows[f"{spec.tasks[i].route} {here}->{goal}"].append(
