@@ -41,10 +41,13 @@ def cache_dir() -> Path:
 
 
 def default_model_path() -> Path:
-    """Path of the cached default model (name includes model and corpus versions)."""
+    """Path of the cached default model (name includes the model and corpus versions and the
+    transition GPs' inducing inputs)."""
+    from mjwalk.gait.transition import N_INDUCING
+
     return cache_dir() / (
         f"stepmodel-v{MODEL_VERSION}-corpus{corpus_version()}"
-        f"-s{DEFAULT_SUBJECTS}-seed{DEFAULT_SEED}.npz"
+        f"-s{DEFAULT_SUBJECTS}-seed{DEFAULT_SEED}-m{N_INDUCING}.npz"
     )
 
 

@@ -28,7 +28,7 @@ from mjwalk._jit import njit, njit_sum
 def pack_upper(w: np.ndarray) -> np.ndarray:
     """The upper triangle of the symmetric (m, m) ``w``, row by row, off-diagonal entries
     doubled: Σ_i e_i Σ_{j>=i} P_ij e_j = e W eᵀ, reading half of W (which does not fit a core's
-    cache at m = 400)."""
+    cache at m = 400; the default model has m = 200)."""
     i, j = np.triu_indices(w.shape[0])  # row by row
     return np.where(i == j, 1.0, 2.0) * w[i, j]
 

@@ -67,7 +67,7 @@ from mjwalk.conventions import Side
 from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait.features import StepBatch, StepFeatures, raw_features, side_array
 from mjwalk.gait.step import Step
-from mjwalk.gait.transition import TransitionGP
+from mjwalk.gait.transition import N_INDUCING, TransitionGP
 from mjwalk.gait.walker import Walker
 
 if TYPE_CHECKING:
@@ -160,7 +160,7 @@ class StepModel:
         seed: int = 0,
         variance: float = 0.99,
         n_hyper: int = 600,
-        n_inducing: int = 400,
+        n_inducing: int = N_INDUCING,
         n_residual: int | None = None,
         progress: bool = False,
     ) -> StepModel:
@@ -178,7 +178,8 @@ class StepModel:
                 Bandai {masculine, normal} it keeps 8 and chains drift (in-sample KS of 40-step
                 chains: length 0.17, sway 0.24), where 0.95 (4 dimensions) gives 0.05, 0.19.
             n_hyper: pairs per direction for the hyper-parameter (LML) fit.
-            n_inducing: inducing points per direction for the DTC posterior.
+            n_inducing: inducing points per direction for the DTC posterior
+                (:data:`~mjwalk.gait.transition.N_INDUCING`, which says why 200).
             n_residual: residuals pooled per inducing point (None: pairs / inducing points).
             progress: print timings to stderr.
         """
@@ -480,6 +481,7 @@ class StepModel:
                     "n_inducing": int(g.inducing.shape[0]),
                     "n_residual": int(g.res_pool.shape[1]),
                     "n_pairs": g.n_pairs,
+                    "nystrom_share": round(g.nystrom, 5),
                 }
                 for s, g in self.gp.items()
             },

@@ -23,6 +23,19 @@ from mjwalk.gait import gpdraw
 #: 25 walks), proportional to k (1) mixed regimes again (sway KS vs all Bandai 0.16); 10 gives
 #: 0 of 10 and KS length/duration/sway 0.066/0.079/0.109 (nearest alone 0.087/0.083/0.099).
 POOL_SHARPNESS = 10.0
+#: Inducing inputs per transition GP (module doc of :mod:`mjwalk.gait.model`, step 2). A draw's
+#: latent variance is an m x m quadratic form (:func:`mjwalk.gait.gpdraw._quadratic`), about
+#: half of a planner expansion's time at m = 400. Measured on the default model (2026-11-27),
+#: 200 against 400: the DTC's own error, the mean Nyström residual C - k K_mm⁻¹ k over the
+#: training predecessors (:attr:`TransitionGP.nystrom`), 2.0 % / 0.8 % of the noise variance
+#: (left / right predecessors; 0.9 % / 0.4 % at 400); KS of 40-step chains against all Bandai
+#: steps, mean of 3 seeds, length/duration/sway/heading 0.080/0.093/0.082/0.061 (400:
+#: 0.087/0.088/0.082/0.075); the station's routes over 1000 cycles (bench_variability), length
+#: IQR/median and p99/grid-A* within a percentage point and 0.02 of 400's for the model, the
+#: workforce and agethen2018's participants (T5's p99: 1.31/1.33/1.34 against 1.23/1.33/1.34);
+#: and a draw 13 µs instead of 22 µs, the hybrid A* 1.6x faster on the station's routes and
+#: 0.56-0.91x the grid A*'s time at 2-32 m in the cluttered hall (bench_scale; 0.82-1.17x).
+N_INDUCING = 200
 
 
 @dataclass
@@ -38,6 +51,10 @@ class TransitionGP:
             the k training pairs whose predecessors are nearest to it (module doc, step 4).
         n_pairs: pairs the posterior is conditioned on; n_hyper: pairs used for the LML fit;
         lml: log-marginal likelihood of the hyper-parameters on the subset.
+        nystrom: mean Nyström residual C - k(x, Z) K_mm⁻¹ k(Z, x) over the training
+            predecessors as a share of the noise variance σ²: how much of the signal the
+            inducing inputs cannot represent (the DTC's approximation error; Rasmussen &
+            Williams 2006, §8.3); NaN for a model saved before it was recorded.
     """
 
     inducing: np.ndarray
@@ -50,6 +67,7 @@ class TransitionGP:
     n_pairs: int
     n_hyper: int
     lml: float
+    nystrom: float = float("nan")
 
     def __post_init__(self) -> None:
         self._zs = self.inducing / self.length_scale
@@ -125,7 +143,7 @@ class TransitionGP:
         *,
         rng: np.random.Generator,
         n_hyper: int = 600,
-        n_inducing: int = 400,
+        n_inducing: int = N_INDUCING,
         n_residual: int | None = None,
     ) -> TransitionGP:
         """Fit on pairs ``x`` (N, d) -> ``y`` (N, d) (standardized features); see module doc.
@@ -186,6 +204,7 @@ class TransitionGP:
         lmm = cholesky(kmm, lower=True)
         # V = L⁻¹ K_mn in chunks of rows of x (memory: m × N).
         v = solve_triangular(lmm, proto.kernel_rows(x).T, lower=True)
+        nystrom = float(np.mean(c - np.einsum("mn,mn->n", v, v)) / s2)
         b = np.eye(m) + (v @ v.T) / s2
         lb = cholesky(b, lower=True)
         # alpha = L⁻ᵀ B⁻¹ V Y / σ²
@@ -200,7 +219,7 @@ class TransitionGP:
         k_res = min(n, n_residual or max(5, -(-n // m)))
         _, near = cKDTree(x / ls).query(z / ls, k=k_res)
         # a new instance: its constructor derives sample()'s folded arrays from the final ones
-        return replace(proto, res_pool=resid[np.asarray(near).reshape(m, k_res)])
+        return replace(proto, res_pool=resid[np.asarray(near).reshape(m, k_res)], nystrom=nystrom)
 
     def arrays(self, prefix: str) -> dict[str, np.ndarray]:
         return {
@@ -210,7 +229,14 @@ class TransitionGP:
             f"{prefix}length_scale": self.length_scale,
             f"{prefix}res_pool": self.res_pool,
             f"{prefix}scalars": np.array(
-                [self.signal_var, self.noise_var, self.n_pairs, self.n_hyper, self.lml]
+                [
+                    self.signal_var,
+                    self.noise_var,
+                    self.n_pairs,
+                    self.n_hyper,
+                    self.lml,
+                    self.nystrom,
+                ]
             ),
         }
 
@@ -228,6 +254,7 @@ class TransitionGP:
             n_pairs=int(sc[2]),
             n_hyper=int(sc[3]),
             lml=float(sc[4]),
+            nystrom=float(sc[5]) if sc.size > 5 else float("nan"),
         )
 
 

@@ -36,10 +36,14 @@ decode. What the compiled loop does per draw:
 * **One clearance lookup** per checked point in :meth:`Workplace.walk_field` (obstacle
   clearance and floor edge in one field, never above either on the floor), stopping at the
   first point that fails.
-* **The GP's dense variance** C - k W kᵀ (m = 400 inducing inputs) through the upper triangle
-  of W (half its memory). It cannot be cut short: every inducing input has k(x, z)/C > 1e-6 at
+* **The GP's dense variance** C - k W kᵀ (m inducing inputs) through the upper triangle of W
+  (half its memory). It cannot be cut short: every inducing input has k(x, z)/C > 1e-6 at
   the chains' predecessors, and the variance ~ 1e-3 C is a cancellation carried by W's small
-  eigenvalues, so even 150 of W's 400 eigen-components leave errors larger than the variance.
+  eigenvalues, so even 150 of W's 400 eigen-components leave errors larger than the variance
+  (nor stored in float32: errors up to 12x the variance). At m = 400 it was about half of an
+  expansion's time; the default model has m = 200
+  (:data:`~mjwalk.gait.transition.N_INDUCING` says what that costs the model: nothing
+  measurable).
 
 The compiled loop expands the nodes, and draws from ``rng``, in the order the NumPy/Python
 implementation before it did (checked on 30 walks in three scenes: the same expansions,
