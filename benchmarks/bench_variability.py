@@ -88,7 +88,8 @@ def _cycle_walks(ctx, cycles: int, seed: int, population):
         op_rng, _, stand_rng = rng.spawn(3)  # simulate_cycle's operator and start streams
         walker = population.draw(op_rng) if population is not None else None
         try:  # a cycle's walks, all or none (a rare operator's walk may not be plannable)
-            yield plan_cycle_walks(ctx, rng, walker, cycle_start(ctx, stand_rng, walker))
+            start = cycle_start(ctx, stand_rng, walker)
+            yield plan_cycle_walks(ctx, rng, walker, start, stand_rng)
         except PlanningError as exc:
             print(f"  run {run}: no walk plan for {walker} ({str(exc)[:60]}...)")
 
@@ -150,8 +151,9 @@ def zone_bound(draws: int = 1500, seed: int = 0) -> None:
     """The most length spread stand zones can give: each route's chord between two spots drawn
     uniformly over the walkable part of its start and end zones (``standing_spot``, reference
     adult), for the station's walking radius and for smaller ones (a body standing square to
-    its work is about half a chest depth deep, not a shoulder width). Walks end at the first
-    place in the zone their steps reach, so they spread less than this."""
+    its work is about half a chest depth deep, not a shoulder width). Walks aim at such spots
+    but end within half a step of them (``mjwalk.cycle.walking.SPOT_REACH``), at the near
+    side, so they spread a little less than this."""
     import dataclasses
 
     from mjwalk.cycle.walking import standing_spot, start_zone

@@ -119,7 +119,8 @@ def simulate_cycle(
     check_durations(spec.tasks)
     rng = np.random.default_rng(rng)
     # side streams spawned from the run's generator (its own draws, the walks, are unchanged):
-    # the operator, the task-time factors, where the operator stands at the start
+    # the operator, the task-time factors, where the operator stands (at the start, then the
+    # spot each walk aims at: plan_task_walk)
     op_rng, hand_rng, stand_rng = rng.spawn(3)
     entropy = _entropy(rng)
     # the run's operator (None without a [population]: the step model's own pace, handling at
@@ -142,7 +143,7 @@ def simulate_cycle(
         if task.kind in ("walk", "carry"):
             goal = task.site
             assert goal is not None  # the spec loader requires a site for walks
-            path = plan_task_walk(ctx, i, (x, y), rng, walker)
+            path = plan_task_walk(ctx, i, (x, y), rng, walker, stand_rng)
             # a two-handed part stays in the hands, in the carrying posture (turns included)
             pose = None if width is None else carry_pose(ctx, frames[0][0], width)
             turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps, pose=pose)

@@ -15,8 +15,9 @@ from walk to walk with the approach and the steps. mjwalk models it with two fac
   within reach (the car's side), operators spread along it.
 
 The hybrid A* takes the zone as its goal area (:class:`~mjwalk.plan.hybrid.HybridPlanner`,
-``goal_tolerance`` and ``goal_within``) and ends the walk at the first place in it its sampled
-steps reach. Metres throughout; targets are world points (x, y, z up).
+``goal_tolerance`` and ``goal_within``); a cycle's walk aims at a spot drawn in the zone and
+ends within half a step of it (:func:`mjwalk.cycle.walking.plan_task_walk`). Metres
+throughout; targets are world points (x, y, z up).
 """
 
 from __future__ import annotations

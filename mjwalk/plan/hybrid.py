@@ -235,12 +235,12 @@ class _Exhausted(PlanningError):
 
 def _goal_discs(discs, goal: np.ndarray) -> np.ndarray:
     """(k, 3) goal discs (x, y, radius; metres) checked: finite, positive radii, at most
-    :data:`~mjwalk.plan.stepcheck.MAX_GOAL_DISCS`, and the goal itself inside every one (the
-    goal area must not be empty where the walk is aimed)."""
+    :data:`~mjwalk.plan.stepcheck.MAX_GOAL_DISCS` less one, and the goal itself inside every
+    one (the goal area must not be empty where the walk is aimed)."""
     arr = np.asarray(discs, dtype=float).reshape(-1, 3) if len(discs) else np.zeros((0, 3))
-    if len(arr) > stepcheck.MAX_GOAL_DISCS:
+    if len(arr) > stepcheck.MAX_GOAL_DISCS - 1:  # one kept for a spot's walk (plan)
         raise PlanningError(
-            f"goal_within: at most {stepcheck.MAX_GOAL_DISCS} discs, got {len(arr)}"
+            f"goal_within: at most {stepcheck.MAX_GOAL_DISCS - 1} discs, got {len(arr)}"
         )
     if not np.all(np.isfinite(arr)) or np.any(arr[:, 2] <= 0):
         raise PlanningError("goal_within: discs are (x, y, radius) with finite x, y and radius > 0")
@@ -465,6 +465,7 @@ class HybridPlanner:
             far_from=FAR_FROM,
             leg_step=LEG_PROBE_STEP,
             leg_clearance=leg_clearance(stature),
+            dist_offset=0.0,
         )
         for k, (dx, dy, dr) in enumerate(self.goal_within):
             par[stepcheck.P_DISC0 + 3 * k : stepcheck.P_DISC0 + 3 * k + 3] = (dx, dy, dr)
@@ -491,6 +492,26 @@ class HybridPlanner:
         )
         return par, ipar
 
+    def _check_spot(self, spot) -> tuple[float, float, float]:
+        """``spot`` of :meth:`plan` as floats, checked: finite, a positive tolerance, and in
+        the planner's goal area (within its tolerance of the goal and inside every goal disc)."""
+        try:
+            x, y, tol = (float(v) for v in spot)
+        except (TypeError, ValueError):
+            raise PlanningError(f"spot must be (x, y, tolerance) in metres, got {spot!r}") from None
+        if not (math.isfinite(x) and math.isfinite(y) and math.isfinite(tol) and tol > 0):
+            raise PlanningError(f"spot must be finite with a tolerance > 0, got {spot!r}")
+        inside = math.hypot(x - self.goal[0], y - self.goal[1]) <= self.tolerance + 1e-9 and all(
+            math.hypot(x - dx, y - dy) <= dr + 1e-9 for dx, dy, dr in self.goal_within
+        )
+        if not inside:
+            raise PlanningError(
+                f"spot ({x:.3f}, {y:.3f}) lies outside the goal area of the planner (within "
+                f"{self.tolerance} m of ({self.goal[0]:.3f}, {self.goal[1]:.3f}) and its "
+                f"{len(self.goal_within)} goal discs)"
+            )
+        return x, y, tol
+
     def _decoder(self, model=None) -> _Decoder:
         return _decoder_of(self.model if model is None else model, self.samples_per_step)
 
@@ -508,8 +529,15 @@ class HybridPlanner:
             return self.distance(xy)
         return np.hypot(xy[..., 0] - self.goal[0], xy[..., 1] - self.goal[1])
 
-    def default_heading(self, xy: np.ndarray) -> float:
-        """Direction in which the obstacle-aware distance to the goal falls fastest (radians)."""
+    def default_heading(self, xy: np.ndarray, goal=None) -> float:
+        """Direction in which the obstacle-aware distance to the goal falls fastest (radians):
+        the larger of the goal's field and the straight line to the goal point (``goal``: x, y
+        of another point in the goal area, a walk's spot; None: the planner's goal)."""
+        gx, gy = (float(self.goal[0]), float(self.goal[1])) if goal is None else goal
+        # the field measures the way to the planner's goal: to another point, at most the
+        # straight line between them less (triangle inequality; a spot and its goal see each
+        # other in a stand zone)
+        offset = math.hypot(gx - self.goal[0], gy - self.goal[1])
         wp, g, c = self.workplace, self.grid, self.workplace.clearance
         if not isinstance(c, ClearanceField):  # another clearance model: its own lookup
             probe = xy + _HEADING_PROBES
@@ -520,19 +548,25 @@ class HybridPlanner:
             np.asarray(xy, dtype=float), _HEADING_PROBES, c.values, c.x0, c.y0, c.resolution,
             np.asarray(wp.floor_bounds, dtype=float), float(self.radius),
             self.distance.flat_bound(), g.x0, g.y0, g.cell, g.free.shape[1] - 1.0,
-            g.free.shape[0] - 1.0, float(self.goal[0]), float(self.goal[1]),
+            g.free.shape[0] - 1.0, gx, gy, offset,
         )  # fmt: skip
         return float(_HEADING_ANGLES[int(np.argmin(cost))])
 
     # -- search ----------------------------------------------------------------------------
 
-    def plan(self, start, rng: np.random.Generator, *, model=None) -> WalkPath:
+    def plan(self, start, rng: np.random.Generator, *, model=None, spot=None) -> WalkPath:
         """Plan one walk from ``start`` (site, "x,y", "x,y,yaw_deg" or (x, y[, yaw])).
 
         ``model``: sample the steps from this step model instead of the planner's (e.g. the
         planner's model conditioned on the run's operator, :meth:`StepModel.for_walker`); the
         goal's distance field and grid are shared. It must have the planner model's feature
         dimensions and GPs (a conditioned copy does).
+
+        ``spot``: (x, y, tolerance), metres: this walk ends within ``tolerance`` of the point
+        (x, y) and in the planner's goal area (within its goal tolerance of its goal and its
+        goal discs, ``goal_within``); the point must lie in that area (a spot
+        where the walker means to stand in a stand zone, :func:`mjwalk.cycle.walking.
+        plan_task_walk`). The distance field stays the goal's: a spot costs no new field.
 
         When the open list runs dry (every sampled continuation blocked, which happens now and
         then in tight places), the search starts over with fresh samples, up to ``attempts``
@@ -547,7 +581,7 @@ class HybridPlanner:
         exhausted = 0
         for attempt in range(limit):
             try:
-                path, start_distance = self._plan_once(start, rng, model or self.model)
+                path, start_distance = self._plan_once(start, rng, model or self.model, spot)
             except _Exhausted as exc:
                 exhausted += 1
                 if exhausted >= self.attempts or attempt == limit - 1:
@@ -560,7 +594,8 @@ class HybridPlanner:
             path.meta["attempts"] = attempt + 1
             path.meta["seconds"] = time.perf_counter() - t0  # all searches, not the last one
             if bound is None:
-                bound = WANDER_FACTOR * max(start_distance, self.tolerance)
+                tolerance = self.tolerance if spot is None else float(spot[2])
+                bound = WANDER_FACTOR * max(start_distance, tolerance)
             path.meta["wandering"] = bool(path.length > bound)
             if not path.meta["wandering"]:
                 return path
@@ -571,8 +606,13 @@ class HybridPlanner:
         best.meta["searches"] = attempt + 1
         return best
 
-    def _plan_once(self, start, rng: np.random.Generator, model) -> tuple[WalkPath, float]:
-        """One search: the walk and the obstacle-aware distance (m) from its start to the goal."""
+    def _plan_once(
+        self, start, rng: np.random.Generator, model, spot=None
+    ) -> tuple[WalkPath, float]:
+        """One search: the walk and the obstacle-aware distance (m) from its start to the goal
+        (to the ``spot`` of :meth:`plan`, when given)."""
+        if spot is not None:
+            spot = self._check_spot(spot)
         start_xy, start_yaw = _parse_pose(self.workplace, start)
         check_endpoint(self.workplace, start_xy, self.radius, "start")
         # infinite exactly where GoalDistance.reachable is False (the same nearest cell)
@@ -585,15 +625,36 @@ class HybridPlanner:
             )
         free_heading = start_yaw is None
         if free_heading:
-            start_yaw = self.default_heading(start_xy)
+            start_yaw = self.default_heading(start_xy, None if spot is None else spot[:2])
         dec = self._decoder(model)
         walker = getattr(model, "walker", None)  # a model conditioned on the run's operator
         stature = float(getattr(walker, "stature", None) or DEFAULT_STATURE)
         par, ipar = self._kernel_params(stature)
+        goal_x, goal_y, tolerance = float(self.goal[0]), float(self.goal[1]), self.tolerance
+        field_distance = start_distance
+        if spot is not None:  # this walk's own goal point (module doc of plan)
+            goal_x, goal_y, tolerance = spot
+            par[stepcheck.P_GOAL_X] = goal_x
+            par[stepcheck.P_GOAL_Y] = goal_y
+            par[stepcheck.P_TOLERANCE] = tolerance
+            par[stepcheck.P_STOP_REACH] = tolerance + STOP_REACH
+            # the goal's field bounds the way to the spot from below only less the way between
+            # them (triangle inequality; a spot sees its goal in a stand zone)
+            offset = math.hypot(goal_x - self.goal[0], goal_y - self.goal[1])
+            par[stepcheck.P_DIST_OFFSET] = offset
+            field_distance -= offset
+            # ... and the walk still ends in the planner's own goal area: one more disc
+            k = int(ipar[stepcheck.I_N_DISCS])
+            j = stepcheck.P_DISC0 + 3 * k
+            par[j : j + 3] = (float(self.goal[0]), float(self.goal[1]), self.tolerance)
+            ipar[stepcheck.I_N_DISCS] = k + 1
+            start_distance = max(
+                field_distance, math.hypot(start_xy[0] - goal_x, start_xy[1] - goal_y) - tolerance
+            )
         if stepcheck.in_goal(complex(*start_xy), start_yaw, par, ipar):
             raise PlanningError(
                 f"start ({start_xy[0]:.3f}, {start_xy[1]:.3f}) already lies in the goal area "
-                f"(within {self.tolerance} m of ({self.goal[0]:.3f}, {self.goal[1]:.3f})): "
+                f"(within {tolerance} m of ({goal_x:.3f}, {goal_y:.3f})): "
                 "there is no walk to plan"
             )
         # the starters, for the first expansion (the start node's)
@@ -602,8 +663,10 @@ class HybridPlanner:
         if free_heading:  # the walker may set off anywhere around the downhill heading
             frame0 += rng.uniform(-START_SPREAD, START_SPREAD, len(frame0))
         weight = self.heuristic_weight
-        h0 = start_distance if self.heuristic == "dijkstra" else 0.0
-        euclid = float(np.hypot(*(start_xy - self.goal)))
+        # as stepcheck.check_steps bounds a node: the field's distance, the straight line to
+        # the goal point
+        h0 = field_distance if self.heuristic == "dijkstra" else 0.0
+        euclid = float(math.hypot(start_xy[0] - goal_x, start_xy[1] - goal_y))
         h_start = max(h0, euclid)
         far = self.far_weight if h_start > LONG_WALK else 0.0  # only long walks
         par[stepcheck.P_FAR_WEIGHT] = far
@@ -636,14 +699,14 @@ class HybridPlanner:
         if outcome == search.BUDGET:
             raise PlanningError(
                 f"expansion budget of {self.max_expansions} spent before reaching the "
-                f"goal ({self.goal[0]:.3f}, {self.goal[1]:.3f}) from "
+                f"goal ({goal_x:.3f}, {goal_y:.3f}) from "
                 f"({start_xy[0]:.3f}, {start_xy[1]:.3f}); {generated} steps sampled, "
                 f"{rejected} rejected"
             )
         if outcome == search.EXHAUSTED:
             raise _Exhausted(
                 f"search exhausted after {expansions} expansions: no sequence of sampled "
-                f"steps reached the goal ({self.goal[0]:.3f}, {self.goal[1]:.3f}) from "
+                f"steps reached the goal ({goal_x:.3f}, {goal_y:.3f}) from "
                 f"({start_xy[0]:.3f}, {start_xy[1]:.3f}) without coming closer than "
                 f"{self.radius} m to an obstacle"
             )
@@ -660,6 +723,7 @@ class HybridPlanner:
                 "stop_draws": stop_draws,
                 # whether the walk ends with a closing step (StepModel.sample_stop)
                 "closing_step": bool(closing[rows[goal_node]]),
+                **({} if spot is None else {"spot": [goal_x, goal_y], "spot_tolerance": tolerance}),
             },
         )
         return path, start_distance

@@ -67,10 +67,13 @@ from mjwalk.world.clearance import bilinear_at
     P_FAR_FROM,
     P_LEG_STEP,
     P_LEG_CLEARANCE,
+    P_DIST_OFFSET,  # subtracted from the grid bound: a walk's spot lies this far from the goal
     P_DISC0,  # goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal)
-) = range(38)
-#: Most discs the goal area can be cut by (:func:`in_goal`); their count is I_N_DISCS.
-MAX_GOAL_DISCS = 6
+) = range(39)
+#: Most discs the goal area can be cut by (:func:`in_goal`); their count is I_N_DISCS. A
+#: planner takes one fewer (``goal_within``): a walk to a spot keeps the planner's own goal
+#: area as one more disc (:meth:`~mjwalk.plan.hybrid.HybridPlanner.plan`).
+MAX_GOAL_DISCS = 7
 N_PARAMS = P_DISC0 + 3 * MAX_GOAL_DISCS
 # Slots of the integer parameter vector.
 (
@@ -257,13 +260,14 @@ def _grid_bound(dist, x0, y0, cell, top_x, top_y, nx, x, y):
 
 @njit
 def downhill_costs(xy, probes, clear, cx0, cy0, cres, floor, radius, dist, gx0, gy0, gcell,
-                   top_x, top_y, goal_x, goal_y):  # fmt: skip
+                   top_x, top_y, goal_x, goal_y, offset):  # fmt: skip
     """:meth:`~mjwalk.plan.hybrid.HybridPlanner.default_heading`'s costs at ``xy + probes``
     (k, 2), with NumPy's arithmetic of :meth:`ClearanceField.__call__` on the obstacle field
     ``clear`` (origin cx0, cy0, spacing cres), :meth:`Workplace.edge_distance` on ``floor``
     (xmin, ymin, xmax, ymax), and :meth:`GoalDistance.__call__` on the flat grid bound
-    ``dist`` (origin gx0, gy0, cell gcell, last column/row top_x, top_y): the distance to the
-    goal, plus 1e3 where the walking clearance is short of ``radius`` (metres)."""
+    ``dist`` (origin gx0, gy0, cell gcell, last column/row top_x, top_y) less ``offset``, or
+    the straight line to (``goal_x``, ``goal_y``) where longer: the distance to the goal,
+    plus 1e3 where the walking clearance is short of ``radius`` (metres)."""
     n = probes.shape[0]
     out = np.empty(n)
     for k in range(n):
@@ -272,7 +276,7 @@ def downhill_costs(xy, probes, clear, cx0, cy0, cres, floor, radius, dist, gx0, 
         c = bilinear_at(clear, cx0, cy0, cres, x, y)
         edge = min(min(min(x - floor[0], floor[2] - x), y - floor[1]), floor[3] - y)
         free = min(c, edge) >= radius
-        bound = _grid_bound(dist, gx0, gy0, gcell, top_x, top_y, int(top_x) + 1, x, y)
+        bound = _grid_bound(dist, gx0, gy0, gcell, top_x, top_y, int(top_x) + 1, x, y) - offset
         euclid = math.hypot(x - goal_x, y - goal_y)
         out[k] = max(euclid, bound) + (0.0 if free else 1e3)
     return out
@@ -601,7 +605,7 @@ def check_into(
             bound = _grid_bound(
                 dist, par[P_DIST_X0], par[P_DIST_Y0], par[P_DIST_CELL], par[P_DIST_TOP_X],
                 par[P_DIST_TOP_Y], ipar[I_DIST_NX], ex, ey,
-            )  # fmt: skip
+            ) - par[P_DIST_OFFSET]  # fmt: skip
             if bound > h:
                 h = bound
         g = node[i, 3].real + seg
