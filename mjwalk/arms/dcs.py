@@ -185,23 +185,24 @@ class DCSNetwork:
             base = self._widths(centers, edges, 1.0)
             # The RBF width factor is chosen with the network size on the held-out part.
             step_best = None
-            for factor, ridge, linear in itertools.product(factors, ridges, linears):
+            for factor, linear in itertools.product(factors, linears):
                 widths = factor * base
-                outputs, hat = self._solve_outputs(
-                    Ztr, Ytr, centers, widths, edges, ridge, linear, with_hat=True
-                )
-                pred = self._forward(Ztr, centers, widths, outputs, edges, linear)
-                resid_f = ((pred - Ytr) ** 2).sum(axis=1)
-                if loo:  # leave-one-out residuals of the output least squares (PRESS)
-                    lev = np.minimum(hat, 1.0 - 1e-6)
-                    val_f = float(np.sqrt((resid_f / (1.0 - lev) ** 2).mean()))
-                elif n_val:
-                    pv = self._forward(Z[val_idx], centers, widths, outputs, edges, linear)
-                    val_f = float(np.sqrt(((pv - Y[val_idx]) ** 2).sum(axis=1).mean()))
-                else:
-                    val_f = float(np.sqrt(resid_f.mean()))
-                if step_best is None or val_f < step_best[0] - 1e-12:
-                    step_best = (val_f, factor, ridge, linear, resid_f)
+                F = self._features(Ztr, centers, widths, edges, linear)
+                Fv = self._features(Z[val_idx], centers, widths, edges, linear) if n_val else None
+                for ridge, (outputs, hat) in zip(
+                    ridges, self._ridge_path(F, Ytr, len(centers), ridges), strict=True
+                ):
+                    resid_f = ((F @ outputs - Ytr) ** 2).sum(axis=1)
+                    if loo:  # leave-one-out residuals of the output least squares (PRESS)
+                        lev = np.minimum(hat, 1.0 - 1e-6)
+                        val_f = float(np.sqrt((resid_f / (1.0 - lev) ** 2).mean()))
+                    elif Fv is not None:
+                        pv = Fv @ outputs
+                        val_f = float(np.sqrt(((pv - Y[val_idx]) ** 2).sum(axis=1).mean()))
+                    else:
+                        val_f = float(np.sqrt(resid_f.mean()))
+                    if step_best is None or val_f < step_best[0] - 1e-12:
+                        step_best = (val_f, factor, ridge, linear, resid_f)
             assert step_best is not None  # the grids are non-empty
             val_rmse, factor, ridge, linear, resid = step_best
             train_rmse = float(np.sqrt(resid.mean()))
@@ -355,29 +356,46 @@ class DCSNetwork:
         = H @ Y, the ridge prior being a linear function of Y too), for the leave-one-out
         residuals ``r_i / (1 - H_ii)``."""
         F = self._features(Z, centers, widths, edges, linear)
-        k = len(centers)
+        ((out, hat),) = self._ridge_path(F, Y, len(centers), (ridge,))
+        return (out, hat) if with_hat else out
+
+    @staticmethod
+    def _ridge_path(F, Y, k, ridges):
+        """``[(outputs, hat diagonal)]`` of the ridge least squares on the features ``F``
+        (N, cols) for every ridge in ``ridges``, from one eigendecomposition of ``F.T @ F``.
+
+        Ridge ``lam = ridge * trace(Phi.T Phi) / K`` (``Phi`` the first ``k`` columns, the RBF
+        weights) pulls each neuron's output towards the mean target of the samples it wins
+        (rather than towards zero) and the local slopes towards zero: outputs
+        ``G @ Y`` with ``G = (F.T F + lam I)^-1 (F.T + lam P)``, ``P @ Y`` the prior. The hat
+        diagonal ``diag(F G)`` gives the exact leave-one-out residuals ``r_i / (1 - H_ii)``.
+        """
+        n, cols = F.shape
         Phi = F[:, :k]
-        cols = F.shape[1]
-        lam = ridge * max(float(np.trace(Phi.T @ Phi)) / k, 1e-12)
-        # Ridge pulls each neuron's output towards the mean target of the samples it wins
-        # (rather than towards zero) and the local slopes towards zero.
+        scale = max(float(np.einsum("ij,ij->", Phi, Phi)) / k, 1e-12)
         bmu = np.argmax(Phi, axis=1)
         cnt = np.bincount(bmu, minlength=k)
-        P = np.zeros((cols, len(Z)))  # prior = P @ Y
-        P[bmu, np.arange(len(Z))] = 1.0 / cnt[bmu]
-        P[:k][cnt == 0] = 1.0 / len(Z)
-        A = np.vstack([F, np.sqrt(lam) * np.eye(cols)])
-        B = np.vstack([Y, np.sqrt(lam) * (P @ Y)])
-        out, *_ = np.linalg.lstsq(A, B, rcond=None)
-        if not with_hat:
-            return out
-        M = F.T @ F + lam * np.eye(cols)
-        try:  # outputs = G @ Y; M is symmetric positive definite for lam > 0
-            G = np.linalg.solve(M, F.T + lam * P)
-        except np.linalg.LinAlgError:  # ridge 0 and a rank-deficient design
-            G = np.linalg.pinv(M) @ (F.T + lam * P)
-        hat = np.einsum("ik,ki->i", F, G)
-        return out, hat
+        P = np.zeros((cols, n))  # prior = P @ Y
+        P[bmu, np.arange(n)] = 1.0 / np.maximum(cnt[bmu], 1)
+        P[:k][cnt == 0] = 1.0 / n
+        evals, V = np.linalg.eigh(F.T @ F)
+        evals = np.maximum(evals, 0.0)
+        FV = F @ V  # (N, cols)
+        VtP = V.T @ P  # (cols, N)
+        FtY = FV.T @ Y  # V.T F.T Y
+        PY = VtP @ Y  # V.T P Y
+        sq = FV**2
+        cross = FV * VtP.T
+        tol = max(float(evals.max()), 1e-300) * cols * np.finfo(float).eps
+        path = []
+        for ridge in ridges:
+            lam = ridge * scale
+            den = evals + lam
+            inv = np.where(den > tol, 1.0 / np.maximum(den, tol), 0.0)  # pinv when lam = 0
+            out = V @ (inv[:, None] * (FtY + lam * PY))
+            hat = sq @ inv + lam * (cross @ inv)
+            path.append((out, hat))
+        return path
 
     def _forward(self, Z, centers, widths, outputs, edges, linear=False):
         return self._features(Z, centers, widths, edges, linear) @ outputs
