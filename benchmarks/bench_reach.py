@@ -97,6 +97,10 @@ DCS_REAL = {
     # swings of 0.2 deg)
     "selection": "loo",
     "local_linear": (False, True),
+    # a global linear term (the trend a new walker's constraint extrapolates along) and the
+    # local slopes' own penalty (decades relative to the ridge), chosen by PRESS likewise
+    "global_linear": (False, True),
+    "slope_ridge": (0.1, 1.0, 10.0, 100.0),
 }
 
 
