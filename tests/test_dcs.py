@@ -17,7 +17,7 @@ from mjwalk.arms.armrep import (
     segment_directions,
     trajectory_error,
 )
-from mjwalk.arms.dcs import DCSNetwork
+from mjwalk.arms.dcs import DCS_VERSION, DCSNetwork
 from mjwalk.errors import MjwalkError, ModelFileError
 
 #: real capture: ``$MJWALK_SHARED_DATA`` or ../shared/data beside the project
@@ -141,8 +141,14 @@ def test_dcs_save_load_roundtrip_and_bad_files(tmp_path):
         DCSNetwork.load(tmp_path / "bad.npz")
     with np.load(path) as z:
         data = dict(z)
-    data["header"] = np.array(str(data["header"]).replace('"version": 1', '"version": 99'))
+    header = str(data["header"])
+    assert f'"version": {DCS_VERSION}' in header
+    data["header"] = np.array(header.replace(f'"version": {DCS_VERSION}', '"version": 99'))
     np.savez(tmp_path / "v99.npz", **data)
+    # a version 1 file (before the global linear term) still loads
+    data["header"] = np.array(header.replace(f'"version": {DCS_VERSION}', '"version": 1'))
+    np.savez(tmp_path / "v1.npz", **data)
+    np.testing.assert_allclose(DCSNetwork.load(tmp_path / "v1.npz").predict(X), net.predict(X))
     with pytest.raises(ModelFileError, match="version 99"):
         DCSNetwork.load(tmp_path / "v99.npz")
     with pytest.raises(ModelFileError):
@@ -309,9 +315,18 @@ def test_dcs_leave_one_out_residuals_match_refits():
     # selection="loo" scores each candidate by the PRESS residuals r_i / (1 - H_ii) of the
     # output least squares; with a small ridge they equal refitting without sample i
     X, Y = _toy(60, 3)
-    for linear in (False, True):
+    # output forms: constant, local linear, local linear with its own slope ridge and a
+    # global linear term, constant with a global linear term
+    for linear in (False, True, (True, True, 10.0), (False, True, 1.0)):
+        local, glob, r = DCSNetwork._form(linear)
         net = DCSNetwork(
-            rng=0, max_neurons=6, validation_fraction=0, local_linear=linear, ridge=1e-6
+            rng=0,
+            max_neurons=6,
+            validation_fraction=0,
+            local_linear=local,
+            global_linear=glob,
+            slope_ridge=r,
+            ridge=1e-6,
         ).fit(X, Y)
         Z = (X - net.x_mean_) / net.x_scale_
         c, w, e = net.centers_, net.widths_, net.edges_
@@ -347,3 +362,55 @@ def test_dcs_local_linear_outputs_reproduce_a_linear_map(tmp_path):
     # a grid (False, True) is chosen with the network size on the held-out residuals
     grid = DCSNetwork(rng=0, selection="loo", local_linear=(False, True)).fit(X, X @ W)
     assert grid.local_linear_ is True
+
+
+def test_dcs_slope_ridge_penalizes_slopes_relative_to_ridge():
+    # slope_ridge r: the local slopes carry r times the output ridge; the stacked solution
+    # equals the explicit ridge normal equations with that per-column penalty
+    X, Y = _toy(70, 5)
+    net = DCSNetwork(rng=0, max_neurons=5, validation_fraction=0, local_linear=True).fit(X, Y)
+    Z = (X - net.x_mean_) / net.x_scale_
+    c, w, e = net.centers_, net.widths_, net.edges_
+    k, d = len(c), X.shape[1]
+    r, ridge = 30.0, 1e-2
+    out = net._solve_outputs(Z, Y, c, w, e, ridge, (True, False, r))
+    _, slopes, trend = DCSNetwork._split(out, k, d, (True, False, r))
+    assert trend is None
+    F = DCSNetwork._features(Z, c, w, e, True)  # unscaled slope columns
+    Phi = F[:, :k]
+    lam = ridge * np.sum(Phi**2) / k
+    bmu = np.argmax(Phi, axis=1)
+    P = np.zeros((F.shape[1], len(Z)))
+    P[bmu, np.arange(len(Z))] = 1.0 / np.bincount(bmu, minlength=k)[bmu]
+    pen = np.r_[np.full(k, lam), np.full(k * d, r * lam)]
+    beta = np.linalg.solve(F.T @ F + np.diag(pen), F.T @ Y + pen[:, None] * (P @ Y))
+    np.testing.assert_allclose(slopes, beta[k:].reshape(k, d, -1), rtol=1e-6, atol=1e-9)
+    with pytest.raises(MjwalkError, match="slope_ridge"):
+        DCSNetwork(local_linear=True, slope_ridge=0.0).fit(X, Y)
+
+
+def test_dcs_global_linear_term_extrapolates_the_trend(tmp_path):
+    # y = affine + a bump: inside the data both forms fit; beyond it the normalized RBF keeps
+    # the outermost neuron's output while the global linear term carries on along the trend
+    rng = np.random.default_rng(2)
+    W = np.array([[1.5], [-0.5]])
+
+    def f(X):
+        return X @ W + 0.3 * np.exp(-4 * (X**2).sum(1, keepdims=True))
+
+    X = rng.uniform(-1, 1, (150, 2))
+    Xfar = rng.uniform(1.5, 2.0, (40, 2))
+    kw = {"rng": 0, "max_neurons": 8, "validation_fraction": 0}
+    glob = DCSNetwork(global_linear=True, **kw).fit(X, f(X))
+    const = DCSNetwork(**kw).fit(X, f(X))
+    assert glob.trend_.shape == (2, 1) and const.trend_ is None
+    err_glob = np.abs(glob.predict(Xfar) - f(Xfar)).mean()
+    err_const = np.abs(const.predict(Xfar) - f(Xfar)).mean()
+    assert err_glob < 0.3 * err_const  # measured 0.06 vs 1.03
+    glob.save(tmp_path / "glob.npz")
+    back = DCSNetwork.load(tmp_path / "glob.npz")
+    np.testing.assert_allclose(back.predict(Xfar), glob.predict(Xfar))
+    assert back.global_linear_ and back.trend_.shape == (2, 1)
+    # the grid (False, True) is chosen with the network size on the PRESS residuals
+    grid = DCSNetwork(rng=0, selection="loo", global_linear=(False, True)).fit(X, X @ W)
+    assert grid.global_linear_ is True

@@ -35,6 +35,19 @@ constant case ``S_i = 0``), solved by the same ridge least squares after growth.
 let a few neurons follow a smoothly varying map; a grid ``(False, True)`` is chosen on the
 held-out/PRESS residuals like the width.
 
+Global linear term (``global_linear=True``): the output gains a term ``T z`` linear in the
+whole (standardized) input, a trend shared by all neurons and solved in the same ridge least
+squares (penalized towards zero). Inside the data it changes little (the neurons carry the
+local shape); outside, where the normalized RBF keeps the nearest neuron's output, the trend
+keeps following the data's overall slope -- a new walker whose hand ends higher or lower than
+any in training gets the trajectory the trend says, not the outermost neuron's (Bandai
+raise-hand clips, leave-one-style-out in ``benchmarks/bench_reach.py``: 16.0 -> 14.5 deg, the
+held-out feminine style 28.1 -> 21.5). The slopes of
+the local linear maps get their own penalty ``slope_ridge`` times the ridge (the offsets ``z -
+c_i`` are of the width's size, the neuron outputs of the target's: one ridge for both
+over-shrinks one or under-shrinks the other). Both are grids chosen on the held-out/PRESS
+residuals like the width.
+
 Inputs are standardized internally: per column (``scaling="column"``, zero mean, unit variance)
 or with one scale for all columns (``scaling="global"``: the RMS column sd, so distances keep
 the input's units -- right for constraints that are all positions in metres, where per-column
@@ -56,7 +69,8 @@ from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.errors import MjwalkError, ModelFileError
 
 DCS_FORMAT = "mjwalk.dcs"
-DCS_VERSION = 1
+#: 2: optional global linear term (``trend``) and slope ridge; version 1 files still load.
+DCS_VERSION = 2
 
 
 class DCSNetwork:
@@ -79,12 +93,16 @@ class DCSNetwork:
         scaling: input standardization, ``"column"`` or ``"global"`` (see module docstring).
         selection: ``"holdout"`` or ``"loo"`` (PRESS on all samples; see module docstring).
         local_linear: per-neuron local linear outputs; a sequence is a grid like width_factor.
+        global_linear: add a global linear term ``T z``; a sequence is a grid like width_factor.
+        slope_ridge: penalty of the local slopes relative to ``ridge`` (> 0); a sequence is a
+            grid like width_factor (used only with local linear outputs).
 
     Fitted attributes: ``centers_`` (K, d) standardized, ``outputs_`` (K, m), ``widths_`` (K,),
     ``edges_`` (K, K) bool adjacency, ``x_mean_``/``x_scale_`` (d,), ``n_neurons_``,
     ``train_rmse_``, ``history_`` (list of (neurons, train RMSE, held-out RMSE)),
-    ``width_factor_``, ``ridge_`` and ``local_linear_`` (the values used), ``slopes_`` (K, d, m)
-    local linear terms in standardized input units, or None.
+    ``width_factor_``, ``ridge_``, ``local_linear_``, ``global_linear_`` and ``slope_ridge_``
+    (the values used), ``slopes_`` (K, d, m) local linear terms in standardized input units, or
+    None, ``trend_`` (d, m) the global linear term in standardized input units, or None.
     """
 
     def __init__(
@@ -103,6 +121,8 @@ class DCSNetwork:
         scaling: str = "column",
         selection: str = "holdout",
         local_linear: bool | tuple[bool, ...] = False,
+        global_linear: bool | tuple[bool, ...] = False,
+        slope_ridge: float | tuple[float, ...] = 1.0,
     ):
         self.max_neurons = max_neurons
         self.error_threshold = error_threshold
@@ -118,6 +138,8 @@ class DCSNetwork:
         self.scaling = scaling
         self.selection = selection
         self.local_linear = local_linear
+        self.global_linear = global_linear
+        self.slope_ridge = slope_ridge
 
     # ------------------------------------------------------------------ fitting
     def fit(self, X: np.ndarray, Y: np.ndarray) -> DCSNetwork:
@@ -178,30 +200,37 @@ class DCSNetwork:
         self.history_ = []
         factors = self._factors()
         ridges = self._ridges()
-        linears = self._linears()
+        # output forms (local linear, global linear, slope ridge), chosen like the width
+        forms = [
+            (local, glob, r)
+            for local in self._grid(self.local_linear)
+            for glob in self._grid(self.global_linear)
+            for r in (self._slope_ridges() if local else (1.0,))
+        ]
         while True:
             centers, ages = self._adapt(Ztr, centers, ages, rng)
             edges = ages >= 0
             base = self._widths(centers, edges, 1.0)
             # The RBF width factor is chosen with the network size on the held-out part.
             step_best = None
-            for factor, ridge, linear in itertools.product(factors, ridges, linears):
+            for factor, linear in itertools.product(factors, forms):
                 widths = factor * base
-                outputs, hat = self._solve_outputs(
-                    Ztr, Ytr, centers, widths, edges, ridge, linear, with_hat=True
-                )
-                pred = self._forward(Ztr, centers, widths, outputs, edges, linear)
-                resid_f = ((pred - Ytr) ** 2).sum(axis=1)
-                if loo:  # leave-one-out residuals of the output least squares (PRESS)
-                    lev = np.minimum(hat, 1.0 - 1e-6)
-                    val_f = float(np.sqrt((resid_f / (1.0 - lev) ** 2).mean()))
-                elif n_val:
-                    pv = self._forward(Z[val_idx], centers, widths, outputs, edges, linear)
-                    val_f = float(np.sqrt(((pv - Y[val_idx]) ** 2).sum(axis=1).mean()))
-                else:
-                    val_f = float(np.sqrt(resid_f.mean()))
-                if step_best is None or val_f < step_best[0] - 1e-12:
-                    step_best = (val_f, factor, ridge, linear, resid_f)
+                F = self._features(Ztr, centers, widths, edges, linear)
+                Fv = self._features(Z[val_idx], centers, widths, edges, linear) if n_val else None
+                for ridge, (outputs, hat) in zip(
+                    ridges, self._ridge_path(F, Ytr, len(centers), ridges), strict=True
+                ):
+                    resid_f = ((F @ outputs - Ytr) ** 2).sum(axis=1)
+                    if loo:  # leave-one-out residuals of the output least squares (PRESS)
+                        lev = np.minimum(hat, 1.0 - 1e-6)
+                        val_f = float(np.sqrt((resid_f / (1.0 - lev) ** 2).mean()))
+                    elif Fv is not None:
+                        pv = Fv @ outputs
+                        val_f = float(np.sqrt(((pv - Y[val_idx]) ** 2).sum(axis=1).mean()))
+                    else:
+                        val_f = float(np.sqrt(resid_f.mean()))
+                    if step_best is None or val_f < step_best[0] - 1e-12:
+                        step_best = (val_f, factor, ridge, linear, resid_f)
             assert step_best is not None  # the grids are non-empty
             val_rmse, factor, ridge, linear, resid = step_best
             train_rmse = float(np.sqrt(resid.mean()))
@@ -244,14 +273,18 @@ class DCSNetwork:
         edges = ages >= 0
         self.width_factor_ = float(factor)
         self.ridge_ = float(ridge)
-        self.local_linear_ = bool(linear)
+        self.local_linear_ = bool(linear[0])
+        self.global_linear_ = bool(linear[1])
+        self.slope_ridge_ = float(linear[2])
         widths = self._widths(centers, edges, factor)
         # Final output vectors on every sample (train + held-out).
         self.centers_ = centers
         self.edges_ = edges
         self.widths_ = widths
         stacked = self._solve_outputs(Z, Y, centers, widths, edges, ridge, linear)
-        self.outputs_, self.slopes_ = self._split(stacked, len(centers), linear)
+        self.outputs_, self.slopes_, self.trend_ = self._split(
+            stacked, len(centers), Z.shape[1], linear
+        )
         self.n_neurons_ = len(centers)
         self.train_rmse_ = float(
             np.sqrt(
@@ -302,17 +335,35 @@ class DCSNetwork:
             raise MjwalkError(f"DCSNetwork: ridge must be >= 0, got {r!r}")
         return ridges
 
-    def _linears(self) -> tuple[bool, ...]:
-        ll = self.local_linear
-        return tuple(bool(x) for x in (ll if isinstance(ll, list | tuple) else (ll,))) or (False,)
+    def _slope_ridges(self) -> tuple[float, ...]:
+        r = self.slope_ridge
+        out = tuple(float(x) for x in (r if isinstance(r, list | tuple) else (r,)))
+        if not out or min(out) <= 0:
+            raise MjwalkError(f"DCSNetwork: slope_ridge must be > 0, got {r!r}")
+        return out
 
     @staticmethod
-    def _split(stacked, k, linear):
-        """Stacked output rows -> (``outputs`` (K, m), ``slopes`` (K, d, m) or None)."""
-        if not linear:
-            return stacked, None
+    def _grid(flag) -> tuple[bool, ...]:
+        seq = flag if isinstance(flag, list | tuple) else (flag,)
+        return tuple(bool(x) for x in seq) or (False,)
+
+    @staticmethod
+    def _form(linear) -> tuple[bool, bool, float]:
+        """Output form ``(local linear, global linear, slope ridge)``; a bool is the local
+        flag alone (constant or local linear outputs, no trend, slope ridge 1)."""
+        if isinstance(linear, tuple):
+            return bool(linear[0]), bool(linear[1]), float(linear[2])
+        return bool(linear), False, 1.0
+
+    @classmethod
+    def _split(cls, stacked, k, d, linear):
+        """Stacked output rows -> (``outputs`` (K, m), ``slopes`` (K, d, m) or None,
+        ``trend`` (d, m) or None)."""
+        local, glob, r = cls._form(linear)
         m = stacked.shape[1]
-        return stacked[:k], stacked[k:].reshape(k, -1, m)
+        slopes = stacked[k : k + k * d].reshape(k, d, m) / np.sqrt(r) if local else None
+        trend = stacked[-d:] if glob else None
+        return stacked[:k], slopes, trend
 
     def _widths(self, centers, edges, factor):
         d = cdist(centers, centers)
@@ -341,13 +392,19 @@ class DCSNetwork:
 
     @classmethod
     def _features(cls, Z, centers, widths, edges, linear):
-        """(N, K) normalized RBF weights, or with ``linear`` (N, K (1 + d)): the weights and
-        the weights times the offsets ``z - c_i`` (the local linear terms)."""
+        """(N, K) normalized RBF weights, then with local linear outputs (see
+        :meth:`_form`) the weights times the offsets ``z - c_i`` over the square root of the
+        slope ridge (so one ridge penalizes the slopes ``slope_ridge`` times more), then with a
+        global linear term the inputs ``z``."""
         Phi = cls._design(Z, centers, widths, edges)
-        if not linear:
-            return Phi
-        offsets = Z[:, None, :] - centers[None]
-        return np.hstack([Phi, (Phi[:, :, None] * offsets).reshape(len(Z), -1)])
+        local, glob, r = cls._form(linear)
+        cols = [Phi]
+        if local:
+            offsets = (Z[:, None, :] - centers[None]) / np.sqrt(r)
+            cols.append((Phi[:, :, None] * offsets).reshape(len(Z), -1))
+        if glob:
+            cols.append(Z)
+        return np.hstack(cols) if len(cols) > 1 else Phi
 
     def _solve_outputs(self, Z, Y, centers, widths, edges, ridge, linear=False, with_hat=False):
         """Stacked output rows (K, m), or (K (1 + d), m) with local linear terms, by ridge
@@ -355,29 +412,46 @@ class DCSNetwork:
         = H @ Y, the ridge prior being a linear function of Y too), for the leave-one-out
         residuals ``r_i / (1 - H_ii)``."""
         F = self._features(Z, centers, widths, edges, linear)
-        k = len(centers)
+        ((out, hat),) = self._ridge_path(F, Y, len(centers), (ridge,))
+        return (out, hat) if with_hat else out
+
+    @staticmethod
+    def _ridge_path(F, Y, k, ridges):
+        """``[(outputs, hat diagonal)]`` of the ridge least squares on the features ``F``
+        (N, cols) for every ridge in ``ridges``, from one eigendecomposition of ``F.T @ F``.
+
+        Ridge ``lam = ridge * trace(Phi.T Phi) / K`` (``Phi`` the first ``k`` columns, the RBF
+        weights) pulls each neuron's output towards the mean target of the samples it wins
+        (rather than towards zero) and the local slopes towards zero: outputs
+        ``G @ Y`` with ``G = (F.T F + lam I)^-1 (F.T + lam P)``, ``P @ Y`` the prior. The hat
+        diagonal ``diag(F G)`` gives the exact leave-one-out residuals ``r_i / (1 - H_ii)``.
+        """
+        n, cols = F.shape
         Phi = F[:, :k]
-        cols = F.shape[1]
-        lam = ridge * max(float(np.trace(Phi.T @ Phi)) / k, 1e-12)
-        # Ridge pulls each neuron's output towards the mean target of the samples it wins
-        # (rather than towards zero) and the local slopes towards zero.
+        scale = max(float(np.einsum("ij,ij->", Phi, Phi)) / k, 1e-12)
         bmu = np.argmax(Phi, axis=1)
         cnt = np.bincount(bmu, minlength=k)
-        P = np.zeros((cols, len(Z)))  # prior = P @ Y
-        P[bmu, np.arange(len(Z))] = 1.0 / cnt[bmu]
-        P[:k][cnt == 0] = 1.0 / len(Z)
-        A = np.vstack([F, np.sqrt(lam) * np.eye(cols)])
-        B = np.vstack([Y, np.sqrt(lam) * (P @ Y)])
-        out, *_ = np.linalg.lstsq(A, B, rcond=None)
-        if not with_hat:
-            return out
-        M = F.T @ F + lam * np.eye(cols)
-        try:  # outputs = G @ Y; M is symmetric positive definite for lam > 0
-            G = np.linalg.solve(M, F.T + lam * P)
-        except np.linalg.LinAlgError:  # ridge 0 and a rank-deficient design
-            G = np.linalg.pinv(M) @ (F.T + lam * P)
-        hat = np.einsum("ik,ki->i", F, G)
-        return out, hat
+        P = np.zeros((cols, n))  # prior = P @ Y
+        P[bmu, np.arange(n)] = 1.0 / np.maximum(cnt[bmu], 1)
+        P[:k][cnt == 0] = 1.0 / n
+        evals, V = np.linalg.eigh(F.T @ F)
+        evals = np.maximum(evals, 0.0)
+        FV = F @ V  # (N, cols)
+        VtP = V.T @ P  # (cols, N)
+        FtY = FV.T @ Y  # V.T F.T Y
+        PY = VtP @ Y  # V.T P Y
+        sq = FV**2
+        cross = FV * VtP.T
+        tol = max(float(evals.max()), 1e-300) * cols * np.finfo(float).eps
+        path = []
+        for ridge in ridges:
+            lam = ridge * scale
+            den = evals + lam
+            inv = np.where(den > tol, 1.0 / np.maximum(den, tol), 0.0)  # pinv when lam = 0
+            out = V @ (inv[:, None] * (FtY + lam * PY))
+            hat = sq @ inv + lam * (cross @ inv)
+            path.append((out, hat))
+        return path
 
     def _forward(self, Z, centers, widths, outputs, edges, linear=False):
         return self._features(Z, centers, widths, edges, linear) @ outputs
@@ -419,6 +493,8 @@ class DCSNetwork:
         if self.slopes_ is not None:  # local linear terms: sum_i h_i (z - c_i) @ S_i
             offsets = Z[:, None, :] - self.centers_[None]
             out = out + np.einsum("nk,nkd,kdm->nm", Phi, offsets, self.slopes_)
+        if self.trend_ is not None:  # global linear term
+            out = out + Z @ self.trend_
         return out[:, 0] if self._y_1d else out
 
     def distance_to_training(self, X: np.ndarray) -> np.ndarray:
@@ -443,6 +519,7 @@ class DCSNetwork:
             "x_scale": self.x_scale_,
             "train_z": self._train_z,
             **({} if self.slopes_ is None else {"slopes": self.slopes_}),
+            **({} if self.trend_ is None else {"trend": self.trend_}),
         }
 
     def _header(self) -> dict:
@@ -462,6 +539,8 @@ class DCSNetwork:
                 "scaling",
                 "selection",
                 "local_linear",
+                "global_linear",
+                "slope_ridge",
             )
         }
         rs = self.rng
@@ -475,6 +554,8 @@ class DCSNetwork:
             "width_factor_": getattr(self, "width_factor_", None),
             "ridge_": getattr(self, "ridge_", None),
             "local_linear_": self.slopes_ is not None,
+            "global_linear_": self.trend_ is not None,
+            "slope_ridge_": getattr(self, "slope_ridge_", None),
             "history": [[int(a), float(b), float(c)] for a, b, c in self.history_],
         }
 
@@ -486,7 +567,10 @@ class DCSNetwork:
     @classmethod
     def from_arrays(cls, header: dict, data: dict, source: str = "<arrays>") -> DCSNetwork:
         """Rebuild a network from :meth:`save`'s header and arrays (used by composite models)."""
-        check_header(header, source, "DCS network", DCS_FORMAT, DCS_VERSION)
+        version = header.get("version")  # version 1 files (no trend) read the same way
+        check_header(
+            header, source, "DCS network", DCS_FORMAT, version if version == 1 else DCS_VERSION
+        )
         try:
             params = dict(header["params"])
             if "random_state" in params:  # files written before the rng/seed convention
@@ -504,6 +588,9 @@ class DCSNetwork:
             net.ridge_ = header.get("ridge_")  # type: ignore[assignment]
             net.local_linear_ = bool(header.get("local_linear_", False))
             net.slopes_ = np.asarray(data["slopes"], dtype=float) if net.local_linear_ else None
+            net.global_linear_ = bool(header.get("global_linear_", False))
+            net.slope_ridge_ = header.get("slope_ridge_")  # type: ignore[assignment]
+            net.trend_ = np.asarray(data["trend"], dtype=float) if net.global_linear_ else None
             net.history_ = [tuple(h) for h in header.get("history", [])]
             k = len(net.centers_)
             if (
@@ -514,6 +601,10 @@ class DCSNetwork:
                 or (
                     net.slopes_ is not None
                     and net.slopes_.shape != (k, len(net.x_mean_), net.outputs_.shape[1])
+                )
+                or (
+                    net.trend_ is not None
+                    and net.trend_.shape != (len(net.x_mean_), net.outputs_.shape[1])
                 )
             ):
                 raise ValueError("array shapes are inconsistent")
