@@ -321,26 +321,24 @@ class DCSNetwork:
                 centers[nb] += self.eps_neighbour * (x - centers[nb])
         return centers, ages
 
+    @staticmethod
+    def _grid_values(name: str, value, zero_ok: bool) -> tuple[float, ...]:
+        """A number or a list of candidates as a tuple of floats, checked: at least one, all
+        > 0 (>= 0 with ``zero_ok``)."""
+        out = tuple(float(x) for x in (value if isinstance(value, list | tuple) else (value,)))
+        if not out or min(out) < 0 or (min(out) == 0 and not zero_ok):
+            bound = ">= 0" if zero_ok else "> 0"
+            raise MjwalkError(f"DCSNetwork: {name} must be {bound}, got {value!r}")
+        return out
+
     def _factors(self) -> tuple[float, ...]:
-        wf = self.width_factor
-        factors = tuple(float(f) for f in (wf if isinstance(wf, list | tuple) else (wf,)))
-        if not factors or min(factors) <= 0:
-            raise MjwalkError(f"DCSNetwork: width_factor must be > 0, got {wf!r}")
-        return factors
+        return self._grid_values("width_factor", self.width_factor, False)
 
     def _ridges(self) -> tuple[float, ...]:
-        r = self.ridge
-        ridges = tuple(float(x) for x in (r if isinstance(r, list | tuple) else (r,)))
-        if not ridges or min(ridges) < 0:
-            raise MjwalkError(f"DCSNetwork: ridge must be >= 0, got {r!r}")
-        return ridges
+        return self._grid_values("ridge", self.ridge, True)
 
     def _slope_ridges(self) -> tuple[float, ...]:
-        r = self.slope_ridge
-        out = tuple(float(x) for x in (r if isinstance(r, list | tuple) else (r,)))
-        if not out or min(out) <= 0:
-            raise MjwalkError(f"DCSNetwork: slope_ridge must be > 0, got {r!r}")
-        return out
+        return self._grid_values("slope_ridge", self.slope_ridge, False)
 
     @staticmethod
     def _grid(flag) -> tuple[bool, ...]:
