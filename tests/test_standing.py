@@ -98,6 +98,18 @@ def test_walks_end_at_the_spot_they_aim_at_and_spread_over_the_zone(station_walk
     assert (q75 - q25) / q50 >= 0.035
 
 
+def test_operators_zones_share_one_distance_field_per_site(station_walks):
+    """The planners of one site for operators of different step lengths (stand zones of
+    different radii) start their distance fields from the same goal cells: one field, computed
+    once (in a 100 m hall a field takes about a second)."""
+    ctx, walks = station_walks
+    i = next(k for k, _, goal, _ in walks if goal == "stand_car1")
+    short = ctx.planner("stand_car1", ctx.zone(i, 1.60, 0.55))
+    long = ctx.planner("stand_car1", ctx.zone(i, 1.90, 0.80))
+    assert short.tolerance != pytest.approx(long.tolerance)
+    assert short.distance.cells is long.distance.cells
+
+
 def test_planner_walks_to_a_spot_of_its_goal_area_only(scenes_dir):
     from mjwalk.gait.default import default_model
     from mjwalk.plan.hybrid import HybridPlanner

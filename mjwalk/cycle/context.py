@@ -79,6 +79,8 @@ class CycleContext:
                 radius=self.spec.radius,
                 goal_tolerance=GOAL_TOLERANCE if zone is None else zone.radius,
                 goal_within=() if zone is None else zone.discs,
+                # one distance field per site whatever the operator's zone
+                field_tolerance=GOAL_TOLERANCE,
             )
         return self.planners[key]
 
