@@ -543,9 +543,9 @@ class HybridPlanner:
         the larger of the goal's field and the straight line to the goal point (``goal``: x, y
         of another point in the goal area, a walk's spot; None: the planner's goal)."""
         gx, gy = (float(self.goal[0]), float(self.goal[1])) if goal is None else goal
-        # the field measures the way to the planner's goal: to another point, at most the
-        # straight line between them less (triangle inequality; a spot and its goal see each
-        # other in a stand zone)
+        # the field measures the way to the planner's goal; the way to another point is at
+        # least that less the straight line between the two (triangle inequality; a spot and
+        # its goal see each other in a stand zone)
         offset = math.hypot(gx - self.goal[0], gy - self.goal[1])
         wp, g, c = self.workplace, self.grid, self.workplace.clearance
         if not isinstance(c, ClearanceField):  # another clearance model: its own lookup
@@ -573,9 +573,9 @@ class HybridPlanner:
 
         ``spot``: (x, y, tolerance), metres: this walk ends within ``tolerance`` of the point
         (x, y) and in the planner's goal area (within its goal tolerance of its goal and its
-        goal discs, ``goal_within``); the point must lie in that area (a spot
-        where the walker means to stand in a stand zone, :func:`mjwalk.cycle.walking.
-        plan_task_walk`). The distance field stays the goal's: a spot costs no new field.
+        goal discs, ``goal_within``); the point must lie in that area (where the walker means
+        to stand in a stand zone: :func:`mjwalk.cycle.walking.plan_task_walk`). The distance
+        field stays the goal's: a spot costs no new field.
 
         When the open list runs dry (every sampled continuation blocked, which happens now and
         then in tight places), the search starts over with fresh samples, up to ``attempts``
