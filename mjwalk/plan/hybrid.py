@@ -551,7 +551,10 @@ class HybridPlanner:
         if not isinstance(c, ClearanceField):  # another clearance model: its own lookup
             probe = xy + _HEADING_PROBES
             free = wp.walk_clearance(probe) >= self.radius
-            cost = self.distance(probe) + np.where(free, 0.0, 1e3)
+            # (the field's bound is at least the straight line to the goal centre: for the
+            # goal itself, offset 0, the larger of the two is the field's)
+            dist = np.maximum(self.distance(probe) - offset, np.hypot(*(probe - (gx, gy)).T))
+            cost = dist + np.where(free, 0.0, 1e3)
             return float(_HEADING_ANGLES[int(np.argmin(cost))])
         cost = stepcheck.downhill_costs(
             np.asarray(xy, dtype=float), _HEADING_PROBES, c.values, c.x0, c.y0, c.resolution,
@@ -583,6 +586,8 @@ class HybridPlanner:
         (:data:`WANDER_FACTOR`) is searched again too, up to :data:`WANDER_SEARCHES` searches
         in all, and the shortest is kept.
         """
+        if spot is not None:  # checked once, before any search
+            spot = self._check_spot(spot)
         t0 = time.perf_counter()
         best: WalkPath | None = None
         bound = None
@@ -603,7 +608,7 @@ class HybridPlanner:
             path.meta["attempts"] = attempt + 1
             path.meta["seconds"] = time.perf_counter() - t0  # all searches, not the last one
             if bound is None:
-                tolerance = self.tolerance if spot is None else float(spot[2])
+                tolerance = self.tolerance if spot is None else spot[2]
                 bound = WANDER_FACTOR * max(start_distance, tolerance)
             path.meta["wandering"] = bool(path.length > bound)
             if not path.meta["wandering"]:
@@ -619,9 +624,7 @@ class HybridPlanner:
         self, start, rng: np.random.Generator, model, spot=None
     ) -> tuple[WalkPath, float]:
         """One search: the walk and the obstacle-aware distance (m) from its start to the goal
-        (to the ``spot`` of :meth:`plan`, when given)."""
-        if spot is not None:
-            spot = self._check_spot(spot)
+        (to the ``spot`` of :meth:`plan`, checked there, when given)."""
         start_xy, start_yaw = _parse_pose(self.workplace, start)
         check_endpoint(self.workplace, start_xy, self.radius, "start")
         # infinite exactly where GoalDistance.reachable is False (the same nearest cell)
