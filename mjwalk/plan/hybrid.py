@@ -3,11 +3,23 @@
 Walks are stitched from steps sampled from a learned :class:`~mjwalk.gait.model.StepModel`: the
 search starts with ``n_starters`` gait-initiation steps drawn from the model's KDE, and every
 expansion draws ``n_successors`` continuations of the expanded step from its Gaussian-process
-transition model. Cost is the walked length, step by step: by default each step counts its
-straight start-to-end distance (``cost="chord"``); ``cost="path"`` counts the swaying pelvis arc.
-Minimizing the arc makes the search pick the long, low-sway steps of fast walking out of the
-samples (measured on an 8 m open-floor walk: median speed 1.44 m/s with the arc, 1.25 m/s with
-the chord; Bandai straight walks: 1.13 m/s), so the chord is the default. The heuristic is the
+transition model. Cost is the walked length, step by step, each step counting its straight
+start-to-end distance (``cost="chord"``, the paper's) or the swaying pelvis arc
+(``cost="path"``: minimizing the arc makes the search pick the long, low-sway steps of fast
+walking out of the samples: median speed 1.44 m/s on an 8 m open-floor walk, 1.25 m/s with the
+chord; Bandai straight walks: 1.13 m/s). By default (``cost="energy"``) each walking step's
+chord is weighted by the metabolic cost of walking at its speed relative to the walker's
+preferred one (:func:`~mjwalk.plan.stepcheck.step_energy`: Ralston 1958, least at the
+preferred speed, 2.5 % more per metre at 20 % off it), and each walk has its own preferred
+speed about the walker's (:data:`WALK_PACE_SD`). People hold their pace step to step: speed
+deviations are corrected at once while step length and duration drift (Dingwell, John &
+Cusumano, PLoS Comput Biol 6:e1000856, 2010); the transition GP, first-order in one step's
+features, does not: it carries the corpus's speed changes (free walking, turns, the bouts'
+starts) into the successors of a steady step. Measured (``benchmarks/bench_variability.py``,
+the four Bandai styles' 91 straight walks, 10 planned walks each, seeds 0 and 1): walk time
+IQR 106 % / 116 % of the captured (chord: 146 % / 144 %), median +0.7 % / +0.6 %; planned
+9 m walks of one walker (150): step speed SD 0.061 in log (chord 0.19; captured styles
+0.061-0.098), within a walk 0.039 (0.105; captured 0.039-0.048). The heuristic is the
 straight-line distance to the goal centre or, by default, the larger of that and an
 obstacle-aware bound from a 2-D Dijkstra over a 16-connected occupancy grid divided by the
 grid's worst detour factor (both admissible). The search weights the heuristic by 1.01
@@ -62,7 +74,7 @@ from mjwalk._args import finite_points, parse_point
 from mjwalk.anthropometry import ROM_DEG, SHIN_RADIUS, leg_geometry
 from mjwalk.conventions import DEFAULT_STATURE, SAMPLE_RATE_HZ
 from mjwalk.errors import InputError, PlanningError
-from mjwalk.gait.features import StepBatch, spline_basis
+from mjwalk.gait.features import _I_DUR, StepBatch, spline_basis
 from mjwalk.gait.transition import POOL_SHARPNESS
 from mjwalk.plan import search, stepcheck
 from mjwalk.plan.grid import (
@@ -197,6 +209,11 @@ def lean_params() -> dict[str, float]:
 FAR_WEIGHT = 0.05
 FAR_FROM = 4.0
 LONG_WALK = 14.0
+#: Expansions one search may spend. The energy cost makes the search back up where sampled
+#: successors stray from the walker's pace (32 m walks in the cluttered hall, 100 seeded:
+#: median 1011 expansions, 90th percentile 2309, against 720 and 1517 with the chord), and
+#: 2 of 100 spent 4000 (the chord: 1); with 8000 they took 5652 and 4364.
+MAX_EXPANSIONS = 8000
 
 
 #: A walk longer than this multiple of the obstacle-aware route length from its start to the
@@ -227,6 +244,12 @@ ATTEMPTS = 6
 #: along them (metres), made once.
 _HEADING_ANGLES = np.linspace(-math.pi, math.pi, 72, endpoint=False)
 _HEADING_PROBES = 0.3 * np.stack([np.cos(_HEADING_ANGLES), np.sin(_HEADING_ANGLES)], axis=1)
+
+
+#: Walk-to-walk spread of a person's pace with the energy cost: each walk's preferred speed is
+#: the walker's times exp(N(0, WALK_PACE_SD²)), as the virtual subjects vary theirs from bout
+#: to bout (:func:`mjwalk.gait.corpus.sample_subject`, ``speed_sd`` uniform 0.03-0.06).
+WALK_PACE_SD = 0.045
 
 
 class _Exhausted(PlanningError):
@@ -293,16 +316,17 @@ class _Decoder:
     def __init__(self, model, m: int):
         d = model.n_dims
         basis = np.vstack([np.zeros(d), np.eye(d)])
-        cols = self._columns(model.decode(basis, "left"), m)
+        cols = self._columns(model, basis, m)
         self.offset = cols[0]
         self.matrix = np.ascontiguousarray(cols[1:] - cols[0])
         z = np.random.default_rng(0).standard_normal((16, d)) * 3.0
-        ref = self._columns(model.decode(z, "left"), m)
+        ref = self._columns(model, z, m)
         if not np.allclose(z @ self.matrix + self.offset, ref, rtol=0.0, atol=1e-9):
             raise PlanningError("the step model's decoding is not affine in its features")
 
     @staticmethod
-    def _columns(batch: StepBatch, m: int) -> np.ndarray:
+    def _columns(model, z: np.ndarray, m: int) -> np.ndarray:
+        batch: StepBatch = model.decode(z, "left")
         local, yaw = batch.resample(m)
         return np.column_stack(
             [
@@ -310,6 +334,8 @@ class _Decoder:
                 batch.footprint[:, 0] + 1j * batch.footprint[:, 1],
                 batch.footprint[:, 2] + 1j * batch.end_yaw,
                 yaw + 0j,
+                # the duration before decode's clip at MIN_DURATION (the check clips it)
+                model.features.decode_raw(z)[:, _I_DUR] + 0j,
             ]
         )
 
@@ -335,6 +361,16 @@ def _decoder_of(model, m: int) -> _Decoder:
         _DECODERS.pop(next(iter(_DECODERS)))
     _DECODERS[key] = (weakref.ref(model), dec)
     return dec
+
+
+def preferred_speed(model) -> float:
+    """The preferred straight-walk speed (m/s) the energy cost is least at: the walker's a
+    model was conditioned on (:meth:`~mjwalk.gait.model.StepModel.for_walker`), else the
+    model's own steady pace (:meth:`~mjwalk.gait.model.StepModel.pace`)."""
+    walker = getattr(model, "walker", None)
+    if walker is not None:
+        return float(walker.speed)
+    return float(model.pace().speed)
 
 
 class HybridPlanner:
@@ -367,11 +403,11 @@ class HybridPlanner:
         n_starters: int = 30,
         n_successors: int = 10,
         heuristic: str = "dijkstra",
-        max_expansions: int = 4000,
+        max_expansions: int = MAX_EXPANSIONS,
         samples_per_step: int = 16,
         heuristic_weight: float = 1.01,
         far_weight: float = FAR_WEIGHT,
-        cost: str = "chord",
+        cost: str = "energy",
         attempts: int = ATTEMPTS,
         grid: OccupancyGrid | None = None,
         n_stops: int = 5,
@@ -404,8 +440,8 @@ class HybridPlanner:
         if far_weight < 0.0:
             raise PlanningError(f"far_weight must be >= 0, not {far_weight}")
         self.far_weight = far_weight
-        if cost not in ("chord", "path"):
-            raise PlanningError(f"cost must be 'chord' or 'path', not {cost!r}")
+        if cost not in ("chord", "path", "energy"):
+            raise PlanningError(f"cost must be 'chord', 'path' or 'energy', not {cost!r}")
         self.cost = cost
         self.attempts = max(1, int(attempts))
         # closing steps near the goal, when the model has them (module constant STOP_REACH)
@@ -475,6 +511,7 @@ class HybridPlanner:
             leg_step=LEG_PROBE_STEP,
             leg_clearance=leg_clearance(stature),
             dist_offset=0.0,
+            pace=math.nan,
         )
         for k, (dx, dy, dr) in enumerate(self.goal_within):
             par[stepcheck.P_DISC0 + 3 * k : stepcheck.P_DISC0 + 3 * k + 3] = (dx, dy, dr)
@@ -492,7 +529,7 @@ class HybridPlanner:
             field_ny=walk.values.shape[0],
             dist_nx=gd.grid.free.shape[1],
             dijkstra=self.heuristic == "dijkstra",
-            chord=self.cost == "chord",
+            chord=self.cost != "path",
             n_successors=self.n_successors,
             n_stops=self.n_stops,
             max_expansions=self.max_expansions,
@@ -589,13 +626,18 @@ class HybridPlanner:
         if spot is not None:  # checked once, before any search
             spot = self._check_spot(spot)
         t0 = time.perf_counter()
+        model = model or self.model
+        pace = math.nan
+        if self.cost == "energy":  # this walk's own pace (WALK_PACE_SD), once the start holds
+            _parse_pose(self.workplace, start)
+            pace = preferred_speed(model) * math.exp(WALK_PACE_SD * rng.standard_normal())
         best: WalkPath | None = None
         bound = None
         limit = max(self.attempts, WANDER_SEARCHES)
         exhausted = 0
         for attempt in range(limit):
             try:
-                path, start_distance = self._plan_once(start, rng, model or self.model, spot)
+                path, start_distance = self._plan_once(start, rng, model, spot, pace)
             except _Exhausted as exc:
                 exhausted += 1
                 if exhausted >= self.attempts or attempt == limit - 1:
@@ -621,7 +663,7 @@ class HybridPlanner:
         return best
 
     def _plan_once(
-        self, start, rng: np.random.Generator, model, spot=None
+        self, start, rng: np.random.Generator, model, spot=None, pace: float = math.nan
     ) -> tuple[WalkPath, float]:
         """One search: the walk and the obstacle-aware distance (m) from its start to the goal
         (to the ``spot`` of :meth:`plan`, checked there, when given)."""
@@ -642,6 +684,7 @@ class HybridPlanner:
         walker = getattr(model, "walker", None)  # a model conditioned on the run's operator
         stature = float(getattr(walker, "stature", None) or DEFAULT_STATURE)
         par, ipar = self._kernel_params(stature)
+        par[stepcheck.P_PACE] = pace
         goal_x, goal_y, tolerance = float(self.goal[0]), float(self.goal[1]), self.tolerance
         field_distance = start_distance
         if spot is not None:  # this walk's own goal point (module doc of plan)
@@ -835,8 +878,8 @@ def plan_walk(
             radius=0.25, cell=0.08, heading_bins=None (1, or 8 with a goal yaw), n_starters=30,
             n_successors=10, heuristic="dijkstra" | "euclidean", heuristic_weight=1.01,
             far_weight=0.05 (walks from beyond LONG_WALK = 14 m, nodes beyond FAR_FROM = 4 m),
-            cost="chord" | "path",
-            max_expansions=4000 (per search), attempts=6,
+            cost="energy" | "chord" | "path",
+            max_expansions=8000 (per search), attempts=6,
             samples_per_step=16).
 
     Raises:

@@ -27,7 +27,8 @@ frame's turn once per frame; distance tests to the goal by squares; downhill_cos
 its bilinear lookup now world.clearance.bilinear_at, its grid bound stepcheck._grid_bound;
 the decode's real and imaginary sums apart; the GP kernel row's cross terms vectorized; the
 GPs picked by name; the toe's and knees' turns without a complex exp; the leg probes' cover
-test by squares; the grid bound less a walk's spot offset, P_DIST_OFFSET).
+test by squares; the grid bound less a walk's spot offset, P_DIST_OFFSET; the energy cost,
+P_PACE and stepcheck.step_energy, not for starters and closing steps).
 """
 
 from __future__ import annotations

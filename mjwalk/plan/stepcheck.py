@@ -26,6 +26,7 @@ import math
 import numpy as np
 
 from mjwalk._jit import njit
+from mjwalk.gait.features import MIN_DURATION
 from mjwalk.world.clearance import bilinear_at
 
 # Slots of the float parameter vector (see :func:`params`).
@@ -68,8 +69,9 @@ from mjwalk.world.clearance import bilinear_at
     P_LEG_STEP,
     P_LEG_CLEARANCE,
     P_DIST_OFFSET,  # subtracted from the grid bound: a walk's spot lies this far from the goal
+    P_PACE,  # the walker's preferred speed (m/s) of the energy cost; nan: length cost only
     P_DISC0,  # goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal)
-) = range(39)
+) = range(40)
 #: Most discs the goal area can be cut by (:func:`in_goal`); their count is I_N_DISCS. A
 #: planner takes one fewer (``goal_within``): a walk to a spot keeps the planner's own goal
 #: area as one more disc (:meth:`~mjwalk.plan.hybrid.HybridPlanner.plan`).
@@ -399,6 +401,23 @@ def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, 
 
 
 @njit
+def step_energy(length, duration, pace):
+    """A step's cost in metres walked at the walker's preferred speed ``pace`` (m/s): its
+    ``length`` (m) times c(v) = (pace / v + v / pace) / 2 at its speed v = length / duration
+    (s; at least :data:`~mjwalk.gait.features.MIN_DURATION`), that is
+    (pace·T + L² / (pace·T)) / 2. c is the metabolic cost of walking a metre at speed v
+    relative to its least, at the preferred speed: Ralston's net power a + b·v² per kg
+    (Ralston, "Energy-speed relation and optimal speed during level walking", Int Z angew
+    Physiol 17:277-283, 1958: 29 + 0.0053 v² cal/kg/min, v in m/min) gives a/v + b·v per
+    metre, least at v* = sqrt(a/b) (1.23 m/s there), and people walk at about that speed
+    (ibid.; Zarrugh, Todd & Ralston, Eur J Appl Physiol 33:293-306, 1974); the walker's own
+    preferred speed stands for v*. c >= 1, so the walked length is still a lower bound and the
+    heuristic stays admissible; a step that stands still costs pace·T/2."""
+    t = max(duration, MIN_DURATION) * pace
+    return 0.5 * (t + length * length / t)
+
+
+@njit
 def check_steps(
     z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist
 ):
@@ -599,6 +618,15 @@ def check_into(
             seg = 0.0
             for j in range(1, m):
                 seg += abs(loc[j] - loc[j - 1])
+        pace = par[P_PACE]
+        if not (math.isnan(pace) or closing or math.isnan(node[i, 1].real)):
+            # energy cost (step_energy) of a walking step: not of a starter (its node has no
+            # landed foot) nor of a closing step, which set off from and come to a stand;
+            # the duration is the decoder's last column
+            dur = offset[2 * m + 2].real
+            for a in range(d):
+                dur += z[r, a] * matrix[a, 2 * m + 2].real
+            seg = step_energy(seg, dur, pace)
         ex, ey = end.real, end.imag
         h = math.hypot(ex - goal.real, ey - goal.imag)
         if ipar[I_DIJKSTRA]:
