@@ -27,7 +27,7 @@ Run: python3 benchmarks/bench_variability.py [--cycles 200] [--data ../shared/da
    standing (``starts_at_rest``); median time and IQR, capture vs model, per style and pooled
    (one walk per captured walk left the model's IQR to chance: 71-160 % of the captured for one
    style over ten seeds); a ``planned`` line walks them as mjwalk plans walks (the hybrid A*
-   in an empty straight hall, :func:`planned_straight_walks`, :data:`PLANNED_REPEATS` per
+   in an empty straight hall, ``mjwalk.plan.straight``, :data:`PLANNED_REPEATS` per
    captured walk; the greedy walker's paths wander, the planner's do not). The captured IQR
    is itself uncertain (91 walks): its bootstrap interval is printed, and the IQR expected of
    a model that had every style's per-walk speeds exactly but paired them with the captured
@@ -247,6 +247,7 @@ def straight_walks(data: Path, reps: int = 10, seed: int = 0) -> None:
     from mjwalk.gait.pace import capture_pace
     from mjwalk.gait.segment import segment_takes
     from mjwalk.gait.walker import Walker
+    from mjwalk.plan.straight import planned_straight_walks
 
     model = default_model(progress=False)
     print(
@@ -302,49 +303,9 @@ def straight_walks(data: Path, reps: int = 10, seed: int = 0) -> None:
     _print_parts(parts)
 
 
-#: A straight hall for the planned straight walks: floor half-length and half-width (m).
-HALL = (14.0, 3.0)
 #: Planned walks per captured straight walk (3 left the pooled IQR to chance: 132 % of the
-#: captured where 10 give 144-146 % over two seeds).
+#: captured where 10 give 144-146 % over two seeds, with the chord cost).
 PLANNED_REPEATS = 10
-#: Planned walks start this far before the measured stretch when the captured walk starts in
-#: motion (its first step is not an initiation), and aim this far beyond its end (m).
-RUN_UP, RUN_ON = 2.5, 1.0
-
-
-def planned_straight_walks(model, distances, in_motion, rng) -> list[float]:
-    """The time (s) mjwalk's hybrid A* takes to walk each captured straight walk: planned in an
-    empty straight hall, from rest (or, for a walk captured in motion, from :data:`RUN_UP`
-    metres before it, timed from where the walk's progress passes that point), to a goal
-    :data:`RUN_ON` metres beyond its end; the time at the captured distance is read off the
-    steps' ends as for the greedy walks (``fidelity._time_at``)."""
-    import tempfile
-
-    from mjwalk.gait.fidelity import _time_at
-    from mjwalk.plan.hybrid import HybridPlanner
-    from mjwalk.world import load_workplace
-
-    lx, ly = HALL
-    xml = (
-        '<mujoco model="straight_hall"><worldbody>'
-        f'<geom name="floor" type="plane" size="{lx} {ly} 0.05"/>'
-        "</worldbody></mujoco>"
-    )
-    with tempfile.TemporaryDirectory() as tmp:
-        path = Path(tmp) / "straight_hall.xml"
-        path.write_text(xml)
-        wp = load_workplace(path, cache=False)
-    x0 = -lx + 1.0
-    out = []
-    for d, moving in zip(distances, in_motion, strict=True):
-        lead = RUN_UP if moving else 0.0
-        planner = HybridPlanner(wp, (x0 + lead + d + RUN_ON, 0.0), model)
-        walk = planner.plan(f"{x0},0,0", rng)
-        track = [(float(walk.t[s.end]), float(walk.xy[s.end, 0] - x0)) for s in walk.steps]
-        track = [(0.0, 0.0), *track]
-        t0 = _time_at(track, lead) if moving else 0.0
-        out.append(_time_at(track, lead + d) - t0)
-    return out
 
 
 def _row(name, speed, cadence, ct, mt) -> None:

@@ -72,3 +72,45 @@ def test_planned_straight_walks_hold_the_walkers_pace(hall):
     assert within <= 0.06, within
     means = np.std([w.mean() for w in walks])
     assert 0.02 <= means <= 0.07, (means, WALK_PACE_SD)
+
+
+def test_planned_straight_walks_take_the_walkers_time():
+    """20 planned 6 m walks (10 from rest, 10 in motion) of a 1.3 m/s walker: in motion about
+    6 / 1.3 = 4.6 s (median within 5 %); from rest longer (gait initiation); bad distances are
+    refused before any planning."""
+    from mjwalk.errors import MjwalkError
+    from mjwalk.plan.straight import planned_straight_walks
+
+    model = default_model(progress=False).for_walker(Walker(speed=1.3, cadence=112.0))
+    rng = np.random.default_rng(0)
+    times = np.array(planned_straight_walks(model, [6.0] * 20, [False] * 10 + [True] * 10, rng))
+    assert np.median(times[10:]) == pytest.approx(6.0 / 1.3, rel=0.05)
+    assert np.median(times[:10]) > np.median(times[10:])
+    for bad in ([-1.0], [np.nan], [np.inf]):
+        with pytest.raises(MjwalkError, match="positive and finite"):
+            planned_straight_walks(model, bad, [False], rng)
+    with pytest.raises(MjwalkError, match="in_motion"):
+        planned_straight_walks(model, [1.0, 2.0], [False], rng)
+
+
+def test_validate_reports_planned_straight_walks(tmp_path):
+    """The fidelity report (``mjwalk validate``) times the captured straight walks as the
+    planner walks them too, beside the greedy walks: per walk ``planned`` plans, their median
+    and IQR, and how many could not be planned. (The corpus's 3-4 m bouts start and end at
+    rest, and a planned walk is timed as it walks through: the model's median is some 20 %
+    shorter than the bouts'; the Bandai walks, cut mid-walk, are compared in
+    ``benchmarks/bench_variability.py``.)"""
+    from mjwalk.gait.corpus import generate_corpus
+    from mjwalk.gait.fidelity import captured_straight_walks, fidelity_from_steps
+    from mjwalk.gait.segment import segment_takes
+
+    steps, _ = segment_takes(generate_corpus(1, seed=3))
+    model = default_model(progress=False)
+    rep = fidelity_from_steps(model, steps, np.random.default_rng(0), n_chains=40, planned=2)
+    p = rep["straight_walks"]["planned"]
+    n = len(captured_straight_walks(steps))
+    assert n > 0 and p["per_walk"] == 2
+    assert p["time"]["model"]["n"] + p["failed"] == 2 * n and p["failed"] <= 2 * n // 10
+    dist = rep["straight_walks"]["distance"]["capture"]["median"]
+    speed = model.pace().speed
+    assert 0.6 < speed * p["time"]["model"]["median"] / dist < 1.4

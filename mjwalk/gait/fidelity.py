@@ -367,8 +367,11 @@ def fidelity_from_steps(
     n_chains: int = 400,
     chain_length: int = 8,
     straight_deg: float = 20.0,
+    planned: int = 3,
 ) -> dict:
-    """Fidelity report against already segmented captured ``steps`` (see module docstring)."""
+    """Fidelity report against already segmented captured ``steps`` (see module docstring);
+    ``planned``: hybrid-A* walks per captured straight walk (``straight_walks["planned"]``,
+    :func:`mjwalk.plan.straight.planned_straight_walks`; 0: none)."""
     if len(steps) == 0:
         raise MjwalkError("fidelity: no captured steps to compare against")
     if chain_length < 2:
@@ -404,6 +407,22 @@ def fidelity_from_steps(
                 "model": _describe([w[key] for w in mw]),
             }
         walks["model_end_error"] = _describe([w["end_error"] for w in mw])
+        if planned:  # the same walks as the planner walks them (mjwalk.plan.straight)
+            from mjwalk.plan.straight import planned_straight_walks
+
+            pt = planned_straight_walks(
+                model,
+                [w["distance"] for w in cw] * planned,
+                [bool(w["in_motion"]) for w in cw] * planned,
+                rng,
+                failed_as_nan=True,
+            )
+            ok = [t for t in pt if np.isfinite(t)]
+            walks["planned"] = {
+                "per_walk": planned,
+                "failed": len(pt) - len(ok),
+                "time": {"capture": _describe([w["time"] for w in cw]), "model": _describe(ok)},
+            }
         walks["n_steps"] = {
             "capture": _describe([w["n_steps"] for w in cw]),
             "model": _describe([w["n_steps"] for w in mw]),
@@ -512,6 +531,14 @@ def format_fidelity_table(report: dict) -> str:
             )
         e = w["model_end_error"]
         lines.append(f"model end error to goal [m]: median {e['median']:.3f}, IQR {e['iqr']:.3f}")
+        p = w.get("planned")
+        if p:
+            c, m = p["time"]["capture"], p["time"]["model"]
+            planned = f"{m['median']:>12.3f} ({m['iqr']:.3f})" if m["n"] else f"{'-':>12}        "
+            lines.append(
+                f"{'planned time [s]':<16}{c['median']:>14.3f} ({c['iqr']:.3f})   {planned}   "
+                f"(hybrid A*, {p['per_walk']} per walk, {p['failed']} not plannable)"
+            )
     return "\n".join(lines)
 
 

@@ -1,0 +1,89 @@
+"""Straight walks as the planner walks them: the time a planned walk takes over a distance.
+
+The step model's own straight walks (:func:`mjwalk.gait.fidelity.model_straight_walks`) steer
+its chains greedily; the walks mjwalk plans are searched (:class:`~mjwalk.plan.hybrid.HybridPlanner`,
+with its energy cost holding the walker's pace). :func:`planned_straight_walks` plans each
+distance in an empty straight hall and times it as captured straight walks are timed, so a
+capture can be compared with what a cycle simulation would take (``mjwalk validate``,
+``benchmarks/bench_variability.py``).
+"""
+
+from __future__ import annotations
+
+import tempfile
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+
+#: The straight hall's half-width (m) and the floor it leaves behind the start and beyond the
+#: goal (m); its length fits the longest walk.
+HALL_HALF_WIDTH, HALL_MARGIN = 3.0, 1.0
+#: A walk captured in motion starts ``RUN_UP`` metres before the timed stretch (its first step
+#: is not a gait initiation); every walk aims ``RUN_ON`` metres beyond its end (m).
+RUN_UP, RUN_ON = 2.5, 1.0
+
+
+def planned_straight_walks(
+    model,
+    distances: Sequence[float],
+    in_motion: Sequence[bool],
+    rng: np.random.Generator,
+    *,
+    failed_as_nan: bool = False,
+) -> list[float]:
+    """The time (s) the hybrid A* takes to walk each distance (m) straight ahead.
+
+    Each walk is planned in an empty straight hall from rest facing the goal, to a goal
+    :data:`RUN_ON` metres beyond the distance; a walk ``in_motion`` is timed from where its
+    progress passes :data:`RUN_UP` metres (it started that far before, so it is walking
+    there), the others from the start. The time at a distance is read off the steps' ends
+    (``mjwalk.gait.fidelity._time_at``: interpolated within the step that crosses it).
+    Distances must be positive and finite (else MjwalkError). A walk the planner cannot plan
+    raises its PlanningError, or with ``failed_as_nan`` gives NaN (a model that does not plan
+    well still gets its other figures reported)."""
+    from mjwalk.errors import MjwalkError, PlanningError
+    from mjwalk.gait.fidelity import _time_at
+    from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.world import load_workplace
+
+    distances = [float(d) for d in distances]
+    if len(distances) != len(in_motion):
+        raise MjwalkError(
+            f"planned_straight_walks: {len(distances)} distances, {len(in_motion)} in_motion flags"
+        )
+    bad = [d for d in distances if not 0.0 < d < float("inf")]
+    if bad:
+        raise MjwalkError(
+            f"planned_straight_walks: distances must be positive and finite, got {bad[0]!r}"
+        )
+    if not distances:
+        return []
+    lx = 0.5 * (max(distances) + RUN_UP + RUN_ON) + HALL_MARGIN
+    ly = HALL_HALF_WIDTH
+    xml = (
+        '<mujoco model="straight_hall"><worldbody>'
+        f'<geom name="floor" type="plane" size="{lx} {ly} 0.05"/>'
+        "</worldbody></mujoco>"
+    )
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "straight_hall.xml"
+        path.write_text(xml)
+        wp = load_workplace(path, cache=False)
+    x0 = -lx + HALL_MARGIN
+    out = []
+    for d, moving in zip(distances, in_motion, strict=True):
+        lead = RUN_UP if moving else 0.0
+        planner = HybridPlanner(wp, (x0 + lead + d + RUN_ON, 0.0), model)
+        try:
+            walk = planner.plan(f"{x0},0,0", rng)
+        except PlanningError:
+            if not failed_as_nan:
+                raise
+            out.append(float("nan"))
+            continue
+        track = [(float(walk.t[s.end]), float(walk.xy[s.end, 0] - x0)) for s in walk.steps]
+        track = [(0.0, 0.0), *track]
+        t0 = _time_at(track, lead) if moving else 0.0
+        out.append(_time_at(track, lead + d) - t0)
+    return out
