@@ -1,11 +1,11 @@
 """Straight walks as the planner walks them: the time a planned walk takes over a distance.
 
 The step model's own straight walks (:func:`mjwalk.gait.fidelity.model_straight_walks`) steer
-its chains greedily; the walks mjwalk plans are searched (:class:`~mjwalk.plan.hybrid.HybridPlanner`,
-with its energy cost holding the walker's pace). :func:`planned_straight_walks` plans each
-distance in an empty straight hall and times it as captured straight walks are timed, so a
-capture can be compared with what a cycle simulation would take (``mjwalk validate``,
-``benchmarks/bench_variability.py``).
+its chains greedily; the walks mjwalk plans are searched
+(:class:`~mjwalk.plan.hybrid.HybridPlanner`, its energy cost holding the walker's pace).
+:func:`planned_straight_walks` plans each distance in an empty straight hall and times it as
+captured straight walks are timed, so a capture can be compared with what a cycle simulation
+would take (``mjwalk validate``, ``benchmarks/bench_variability.py``).
 """
 
 from __future__ import annotations
