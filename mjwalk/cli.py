@@ -158,6 +158,7 @@ def _cmd_train(args: argparse.Namespace) -> int:
 
 def _cmd_validate(args: argparse.Namespace) -> int:
     from mjwalk.gait.fidelity import validate_main
+    from mjwalk.plan.straight import planned_straight_walks
 
     if args.json:
         check_output_file(args.json, "--json")
@@ -170,6 +171,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         seed=args.seed,
         skeleton=args.skeleton,
         walker=walker,
+        planned_walks=planned_straight_walks,
     )
     return 0
 

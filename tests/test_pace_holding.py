@@ -106,7 +106,12 @@ def test_validate_reports_planned_straight_walks(tmp_path):
 
     steps, _ = segment_takes(generate_corpus(1, seed=3))
     model = default_model(progress=False)
-    rep = fidelity_from_steps(model, steps, np.random.default_rng(0), n_chains=40, planned=2)
+    from mjwalk.plan.straight import planned_straight_walks
+
+    rng = np.random.default_rng(0)
+    rep = fidelity_from_steps(
+        model, steps, rng, n_chains=40, planned=2, planned_walks=planned_straight_walks
+    )
     p = rep["straight_walks"]["planned"]
     n = len(captured_straight_walks(steps))
     assert n > 0 and p["per_walk"] == 2

@@ -368,10 +368,13 @@ def fidelity_from_steps(
     chain_length: int = 8,
     straight_deg: float = 20.0,
     planned: int = 3,
+    planned_walks=None,
 ) -> dict:
-    """Fidelity report against already segmented captured ``steps`` (see module docstring);
-    ``planned``: hybrid-A* walks per captured straight walk (``straight_walks["planned"]``,
-    :func:`mjwalk.plan.straight.planned_straight_walks`; 0: none)."""
+    """Fidelity report against already segmented captured ``steps`` (see module docstring).
+
+    ``planned_walks``: :func:`mjwalk.plan.straight.planned_straight_walks` (the planner sits
+    above this module; the command line passes it), to time every captured straight walk as
+    ``planned`` planned walks too (``straight_walks["planned"]``); None: not."""
     if len(steps) == 0:
         raise MjwalkError("fidelity: no captured steps to compare against")
     if chain_length < 2:
@@ -407,10 +410,8 @@ def fidelity_from_steps(
                 "model": _describe([w[key] for w in mw]),
             }
         walks["model_end_error"] = _describe([w["end_error"] for w in mw])
-        if planned:  # the same walks as the planner walks them (mjwalk.plan.straight)
-            from mjwalk.plan.straight import planned_straight_walks
-
-            pt = planned_straight_walks(
+        if planned and planned_walks is not None:  # the same walks as the planner walks them
+            pt = planned_walks(
                 model,
                 [w["distance"] for w in cw] * planned,
                 [bool(w["in_motion"]) for w in cw] * planned,
@@ -466,6 +467,7 @@ def fidelity_report(
     n_chains: int = 400,
     chain_length: int = 8,
     straight_deg: float = 20.0,
+    planned_walks=None,
 ) -> dict:
     """Compare step chains of ``model`` with the captured ``takes`` (segmented here).
 
@@ -477,7 +479,13 @@ def fidelity_report(
 
     steps, summary = segment_takes(takes)
     report = fidelity_from_steps(
-        model, steps, rng, n_chains=n_chains, chain_length=chain_length, straight_deg=straight_deg
+        model,
+        steps,
+        rng,
+        n_chains=n_chains,
+        chain_length=chain_length,
+        straight_deg=straight_deg,
+        planned_walks=planned_walks,
     )
     report["segmentation"] = str(summary)
     return report
@@ -626,10 +634,12 @@ def validate_main(
     n_chains: int = 400,
     skeleton: str | None = None,
     walker=None,
+    planned_walks=None,
 ) -> dict:
     """Fidelity of the model at ``model_path`` (None: the default model) against the takes
     matching the glob ``against`` (``.bvh``; ``.amc`` needs ``amc_asf``). Prints the table to
-    stdout, writes the JSON report to ``json_path`` atomically when given, returns the report."""
+    stdout, writes the JSON report to ``json_path`` atomically when given, returns the report.
+    ``planned_walks``: see :func:`fidelity_from_steps`."""
     from mjwalk.gait.default import default_model
 
     if str(against).lower().endswith(".amc"):
@@ -638,7 +648,9 @@ def validate_main(
         takes = load_capture(bvh=against, skeleton=skeleton)
     model = default_model() if model_path is None else StepModel.load(model_path)
     model = model.for_walker(walker)
-    report = fidelity_report(model, takes, np.random.default_rng(seed), n_chains=n_chains)
+    report = fidelity_report(
+        model, takes, np.random.default_rng(seed), n_chains=n_chains, planned_walks=planned_walks
+    )
     print(format_fidelity_table(report))
     if json_path is not None:
         with atomic_path(json_path, suffix=".json") as tmp:
