@@ -212,8 +212,8 @@ def test_planned_straight_walks_take_as_long_as_the_captured_ones(bandai_styles)
     times by the planner with the default model conditioned on its style's pace only (the
     population that matches the captured walkers): pooled time median within 3 % of the
     capture's and IQR within 70-130 % (seeded; here +0.6 % and 114 %). Measured with 10 per
-    walk, seeds 0-2 (benchmarks/bench_variability.py): median +0.3/+0.6/+0.6 %, IQR 117/121/113 % (the
-    capture's own bootstrap 90 % interval is 76-135 % of its IQR)."""
+    walk, seeds 0-2 (benchmarks/bench_variability.py): median +0.3/+0.6/+0.6 %, IQR
+    117/121/113 % (the capture's own bootstrap 90 % interval is 76-135 % of its IQR)."""
     from mjwalk.gait.default import default_model
     from mjwalk.gait.fidelity import captured_straight_walks
     from mjwalk.plan.straight import planned_straight_walks
