@@ -28,7 +28,8 @@ Run: python3 benchmarks/bench_variability.py [--cycles 200] [--data ../shared/da
    (one walk per captured walk left the model's IQR to chance: 71-160 % of the captured for one
    style over ten seeds); a ``planned`` line walks them as mjwalk plans walks (the hybrid A*
    in an empty straight hall, ``mjwalk.plan.straight``, :data:`PLANNED_REPEATS` per
-   captured walk; the greedy walker's paths wander, the planner's do not). The captured IQR
+   captured walk; the greedy walker's paths wander, the planner's do not, and its energy cost
+   holds the walker's pace: the planned line is what a cycle walks). The captured IQR
    is itself uncertain (91 walks): its bootstrap interval is printed, and the IQR expected of
    a model that had every style's per-walk speeds exactly but paired them with the captured
    distances at random, as any model must. Then

@@ -237,7 +237,11 @@ def sample_subject(rng: np.random.Generator, subject: int = 0) -> SubjectParams:
         # corpus's straight bouts (3-4 m, mostly speeding up or slowing down) have a within-walk
         # SD of log step speed of 0.08 against the capture's 0.04: the excess is in the
         # transition GP's successors of a steady step (in 9 m walks the per-step log speed SD
-        # is 0.12-0.18; captured styles 0.06-0.10), which mix the corpus's regimes.
+        # is 0.12-0.18; captured styles 0.06-0.10), which mix the corpus's regimes. Lower
+        # noise makes it worse, not better (CVs 2-3 % / 1.5-3 %, innovation 0.015: chains' step
+        # log-speed SD 0.187 against 0.164; greedy walks 209 %): the GP then learns the bouts'
+        # deterministic speed changes. Resolved in the planner instead: its energy cost holds
+        # the walk's pace as people do (mjwalk.plan.hybrid module doc: 113-121 %).
         length_cv=float(rng.uniform(0.035, 0.05)),
         duration_cv=float(rng.uniform(0.04, 0.05)),
         speed_sd=float(rng.uniform(0.03, 0.06)),

@@ -16,8 +16,9 @@ deviations are corrected at once while step length and duration drift (Dingwell,
 Cusumano, PLoS Comput Biol 6:e1000856, 2010); the transition GP, first-order in one step's
 features, does not: it carries the corpus's speed changes (free walking, turns, the bouts'
 starts) into the successors of a steady step. Measured (``benchmarks/bench_variability.py``,
-the four Bandai styles' 91 straight walks, 10 planned walks each, seeds 0 and 1): walk time
-IQR 106 % / 116 % of the captured (chord: 146 % / 144 %), median +0.7 % / +0.6 %; planned
+the four Bandai styles' 91 straight walks, 10 planned walks each, seeds 0-2): walk time IQR
+117 / 121 / 113 % of the captured (chord, seeds 0-1: 146 / 144 %), median +0.3 / +0.6 / +0.6 %
+(chord +1.4 / +1.3 %); planned
 9 m walks of one walker (150): step speed SD 0.061 in log (chord 0.19; captured styles
 0.061-0.098), within a walk 0.039 (0.105; captured 0.039-0.048). The heuristic is the
 straight-line distance to the goal centre or, by default, the larger of that and an
