@@ -119,3 +119,19 @@ def test_validate_reports_planned_straight_walks(tmp_path):
     dist = rep["straight_walks"]["distance"]["capture"]["median"]
     speed = model.pace().speed
     assert 0.6 < speed * p["time"]["model"]["median"] / dist < 1.4
+
+
+def test_cost_options(hall):
+    """An unknown cost is refused by name; the paper's chord cost and the arc still plan; a
+    model not conditioned on a walker holds its own steady pace."""
+    from mjwalk.errors import PlanningError
+
+    model = default_model(progress=False)
+    assert preferred_speed(model) == pytest.approx(model.pace().speed)
+    with pytest.raises(PlanningError, match="cost must be 'chord', 'path' or 'energy'"):
+        HybridPlanner(hall, (3.0, 0.0), model, cost="time")
+    for cost in ("chord", "path", "energy"):
+        walk = HybridPlanner(hall, (3.0, 0.0), model, cost=cost).plan(
+            "-3,0,0", np.random.default_rng(0)
+        )
+        assert np.hypot(walk.xy[-1, 0] - 3.0, walk.xy[-1, 1]) <= 0.25 + 1e-9
