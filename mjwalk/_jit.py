@@ -15,6 +15,7 @@ import sys
 
 import numba
 import numba.core.event
+import numba.extending
 
 #: ``fastmath`` off by default: the arithmetic stays that of the NumPy code it replaces.
 njit = numba.njit(cache=True, nogil=True, fastmath=False)
@@ -55,3 +56,19 @@ class _CompileNotice(numba.core.event.Listener):
 
 NOTICE = _CompileNotice()
 numba.core.event.register("numba:compile", NOTICE)
+
+
+@numba.extending.intrinsic
+def fma(typingctx, a, b, c):
+    """``a * b + c`` rounded once (LLVM's ``llvm.fma``, a fused multiply-add instruction on
+    x86-64 with FMA3), in compiled functions only. NumPy's matmul of an (m, 2) array by a
+    2-vector and its dot of two 2-vectors go through OpenBLAS, whose kernels on FMA machines
+    compute ``fma(r0, s0, r1 * s1)`` and ``fma(s1, s1, s0 * s0)`` (measured here on
+    SkylakeX: equal bit for bit on 10^4 random rows); compiled replacements of such products use
+    this to give the same numbers."""
+    sig = numba.types.float64(numba.types.float64, numba.types.float64, numba.types.float64)
+
+    def codegen(context, builder, signature, args):
+        return builder.fma(*args)
+
+    return sig, codegen

@@ -572,3 +572,40 @@ def test_end_slopes_match_numpy_gradient():
             for f in (rng.normal(size=(n, 3)), rng.normal(size=n)):
                 g = np.gradient(f, x, axis=0)
                 assert np.array_equal(_end_slopes(f, x), g[[0, -1]])
+
+
+@pytest.mark.parametrize("reference", ["default", "winter"])
+def test_compiled_swing_foot_matches_numpy(monkeypatch, reference):
+    """The compiled swing foot (body.legs.swing) gives steps.swing_foot's numbers bit for bit
+    on every step of straight, turning, short-stepped and long-stepped walks, with both
+    reference tables; the leg motion is the NumPy path's."""
+    from mjwalk.body.legs import steps, synthesis
+    from mjwalk.body.legs.reference import DEFAULT_REFERENCE, winter_reference
+    from mjwalk.body.legs.swing import swing_foot
+
+    ref = DEFAULT_REFERENCE if reference == "default" else winter_reference()
+    calls = []
+
+    def both(fr, phi, hip_xy, z_hip, ref_, geom, land_p):
+        got = swing_foot(fr, phi, hip_xy, z_hip, ref_, geom, land_p)
+        want = steps.swing_foot(
+            fr, phi, np.arange(len(phi)), z_hip,
+            lambda i, side, zz=None: hip_xy[i] if zz is None else np.column_stack([hip_xy[i], zz]),
+            ref_, geom, land_p,
+        )  # fmt: skip
+        for x, y in zip(want, got, strict=True):
+            assert np.array_equal(x, y)
+        calls.append(want[4])
+        return got
+
+    monkeypatch.setattr(synthesis, "swing_foot_compiled", both)
+    walks = [
+        synthetic_walk(n_steps=6),
+        synthetic_walk(n_steps=6, radius=1.2),
+        synthetic_walk(n_steps=5, step_len=0.12, step_time=0.45),
+        synthetic_walk(n_steps=4, step_len=0.95, step_time=0.6),
+    ]
+    for walk in walks:
+        synthesis.legs_from_walk(walk, reference=ref)
+    assert len(calls) == sum(len(w.steps) for w in walks)
+    assert any(phi_to < 0.2 for phi_to in calls)  # an early lift-off among them

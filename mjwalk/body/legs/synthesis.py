@@ -52,13 +52,8 @@ from mjwalk.body.legs.kinematics import (
 from mjwalk.body.legs.pitchfit import fit_ankle_range, repitch_foot
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
-from mjwalk.body.legs.steps import (
-    FOOT_FLAT,
-    landing_pitches,
-    stance_angle,
-    step_frames,
-    swing_foot,
-)
+from mjwalk.body.legs.steps import FOOT_FLAT, landing_pitches, stance_angle, step_frames, swing_foot
+from mjwalk.body.legs.swing import swing_foot as swing_foot_compiled
 from mjwalk.conventions import DEFAULT_STATURE, side_of_prefix
 from mjwalk.errors import PlanningError
 from mjwalk.plan.walkpath import WalkPath
@@ -150,6 +145,7 @@ def legs_from_walk(
     # each hip's offset from the pelvis centre (m) at every sample, for hip_pos
     side_dir = np.stack([-np.sin(yaw), np.cos(yaw)], -1)
     hip_off = {s_: (1.0 if s_ == "l" else -1.0) * geom.hip_y * side_dir for s_ in "lr"}
+    hip_xy = {s_: xy + hip_off[s_] for s_ in "lr"}  # each hip's (x, y) (m), as hip_pos's
 
     def hip_pos(idx, side, zz=None):
         h = xy[idx] + hip_off[side][idx]
@@ -216,7 +212,11 @@ def legs_from_walk(
         )
         z_flat = height_for_knee(idx, st, ankle[st][idx], knee_st)
         # --- swing foot (A9)
-        pos, p_sw, toe_sw, yw, phi_to = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
+        if ref._unit:  # compiled (the same numbers); other tables through scipy's splines
+            swing = swing_foot_compiled(fr, phi, hip_xy[sw][a : b + 1], z_flat, ref, geom, land_p)
+        else:
+            swing = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
+        pos, p_sw, toe_sw, yw, phi_to = swing
         contact[idx] = np.where(phi <= phi_to, 2, 0 if st == "l" else 1)
         ankle[sw][idx], pitch[sw][idx], toe[sw][idx], fyaw[sw][idx] = pos, p_sw, toe_sw, yw
         pre_swing = idx[phi <= phi_to]
