@@ -12,6 +12,8 @@ algorithms, so a seed gives the same numbers inside and outside them.
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
+from typing import cast
 
 import numba
 import numba.core.event
@@ -59,7 +61,7 @@ numba.core.event.register("numba:compile", NOTICE)
 
 
 @numba.extending.intrinsic
-def fma(typingctx, a, b, c):
+def _fma(typingctx, a, b, c):
     """``a * b + c`` rounded once (LLVM's ``llvm.fma``, a fused multiply-add instruction on
     x86-64 with FMA3), in compiled functions only. NumPy's matmul of an (m, 2) array by a
     2-vector and its dot of two 2-vectors go through OpenBLAS, whose kernels on FMA machines
@@ -72,3 +74,7 @@ def fma(typingctx, a, b, c):
         return builder.fma(*args)
 
     return sig, codegen
+
+
+#: ``fma(a, b, c)``: :func:`_fma` as compiled callers call it.
+fma = cast(Callable[[float, float, float], float], _fma)

@@ -74,7 +74,7 @@ def swing_foot(
         mode, p_pre = ROLL_FIRST, 0.0
     elif fr.p_start is not None:  # continue from the stance's extra heel rise
         p0 = soft_flat(np.minimum(ref("pitch", 0.5), 0.0))
-        mode, p_pre = ROLL_CONTINUE, min(fr.p_start - p0, 0.0)
+        mode, p_pre = ROLL_CONTINUE, min(float(fr.p_start - p0), 0.0)
     else:
         mode, p_pre = ROLL_PLAIN, 0.0
     seg = land[:2] - lift[:2]
