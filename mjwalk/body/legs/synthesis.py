@@ -148,7 +148,8 @@ def legs_from_walk(
     hip_xy = {s_: xy + hip_off[s_] for s_ in "lr"}  # each hip's (x, y) (m), as hip_pos's
 
     def hip_pos(idx, side, zz=None):
-        h = xy[idx] + hip_off[side][idx]
+        # idx: sample indices, or a slice of them (a view of hip_xy: the same numbers)
+        h = hip_xy[side][idx]
         return h if zz is None else np.column_stack([h, zz])
 
     def height_for_knee(idx, side, foot_pos, knee):
@@ -165,13 +166,15 @@ def legs_from_walk(
     knee_prev = None  # (angle, velocity per unit phase) of the next stance leg at its landing
     d_land = geom.span(max(ref("knee", 0.0), KNEE_MIN))
     landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom)
+    d_max_sq = geom.span(KNEE_MIN) ** 2  # the swing leg's longest hip-to-ankle distance, squared
     for k, fr in enumerate(frames):
         fr.p_start = frames[k - 1].p_end if k > 0 else None
         a, b = fr.start, fr.end
         idx = np.arange(a, b + 1)
+        ids = slice(a, b + 1)  # the same samples, indexed without a copy
         phi = (idx - a) / (b - a)
-        phase[idx] = phi
-        cyc[fr.other][idx], cyc[fr.side][idx] = 0.5 * phi, 0.5 + 0.5 * phi
+        phase[ids] = phi
+        cyc[fr.other][ids], cyc[fr.side][ids] = 0.5 * phi, 0.5 + 0.5 * phi
         sw, st = fr.side, fr.other
         # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch)
         c_st = 0.5 * phi
@@ -198,9 +201,9 @@ def legs_from_walk(
         extra = (p1 - p_st[-1]) * smoothstep((phi - FOOT_FLAT) / (1.0 - FOOT_FLAT))
         p_st = p_st + extra
         fr.p_end = float(p_st[-1])
-        ankle[st][idx] = pivot_ankle(fr.stance, p_st, geom)
-        ground[st][idx], print_[st][idx] = True, fr.stance
-        pitch[st][idx], toe[st][idx], fyaw[st][idx] = p_st, -np.minimum(p_st, 0), fr.stance[2]
+        ankle[st][ids] = pivot_ankle(fr.stance, p_st, geom)
+        ground[st][ids], print_[st][ids] = True, fr.stance
+        pitch[st][ids], toe[st][ids], fyaw[st][ids] = p_st, -np.minimum(p_st, 0), fr.stance[2]
         th1 = float(knee_for(np.array([b]), st, ankle[st][b][None], np.array([z_end]))[0])
         if knee_prev is None:
             th0, v0 = float(ref("knee", 0.0)), 0.5 * float(ref("knee", 0.0, True))
@@ -210,21 +213,20 @@ def legs_from_walk(
         knee_st = np.clip(
             stance_angle(ref, "knee", phi, th0, v0, th1, v1), KNEE_MIN, np.deg2rad(80)
         )
-        z_flat = height_for_knee(idx, st, ankle[st][idx], knee_st)
+        z_flat = height_for_knee(ids, st, ankle[st][ids], knee_st)
         # --- swing foot (A9)
         if ref._unit:  # compiled (the same numbers); other tables through scipy's splines
-            swing = swing_foot_compiled(fr, phi, hip_xy[sw][a : b + 1], z_flat, ref, geom, land_p)
+            swing = swing_foot_compiled(fr, phi, hip_xy[sw][ids], z_flat, ref, geom, land_p)
         else:
             swing = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
         pos, p_sw, toe_sw, yw, phi_to = swing
-        contact[idx] = np.where(phi <= phi_to, 2, 0 if st == "l" else 1)
-        ankle[sw][idx], pitch[sw][idx], toe[sw][idx], fyaw[sw][idx] = pos, p_sw, toe_sw, yw
+        contact[ids] = np.where(phi <= phi_to, 2, 0 if st == "l" else 1)
+        ankle[sw][ids], pitch[sw][ids], toe[sw][ids], fyaw[sw][ids] = pos, p_sw, toe_sw, yw
         pre_swing = idx[phi <= phi_to]
         ground[sw][pre_swing], print_[sw][pre_swing] = True, fr.lift
-        d_max = geom.span(KNEE_MIN)
-        hsw = np.linalg.norm(hip_pos(idx, sw) - pos[:, :2], axis=-1)
-        z_sw = pos[:, 2] + np.sqrt(np.maximum(d_max**2 - hsw**2, 1e-6))
-        z[idx] = np.minimum(z_flat, z_sw)
+        hsw = np.linalg.norm(hip_pos(ids, sw) - pos[:, :2], axis=-1)
+        z_sw = pos[:, 2] + np.sqrt(np.maximum(d_max_sq - hsw**2, 1e-6))
+        z[ids] = np.minimum(z_flat, z_sw)
         # landing approach: from LAND_EASE the swing leg's hip-to-ankle distance eases into
         # its heel-strike length (zero velocity) along a cubic from its length and velocity
         # there, and the pelvis height follows from it. Capping the pelvis only where the
@@ -249,8 +251,8 @@ def legs_from_walk(
             p_up = heel_rise(fr.stance, hip_st, knee_st[lj], np.minimum(p_st[lj], 0), geom)
             p_st[lj] = np.where(p_st[lj] <= 0, p_up, p_st[lj])
             fr.p_end = float(p_st[-1])
-            ankle[st][idx] = pivot_ankle(fr.stance, p_st, geom)
-            pitch[st][idx], toe[st][idx] = p_st, -np.minimum(p_st, 0)
+            ankle[st][ids] = pivot_ankle(fr.stance, p_st, geom)
+            pitch[st][ids], toe[st][ids] = p_st, -np.minimum(p_st, 0)
         # the swing leg's knee at landing starts the next stance spline
         # the swing leg's knee at landing starts the next stance spline; its velocity is the
         # reference's (loading response: the knee flexes right after heel strike)
