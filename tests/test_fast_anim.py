@@ -609,3 +609,69 @@ def test_compiled_swing_foot_matches_numpy(monkeypatch, reference):
         synthesis.legs_from_walk(walk, reference=ref)
     assert len(calls) == sum(len(w.steps) for w in walks)
     assert any(phi_to < 0.2 for phi_to in calls)  # an early lift-off among them
+
+
+def _stance_foot_ref(fr, phi, p_ref, land_prev, hs_pitch, hip_end, knee_end, geom):
+    """The stance foot as legs_from_walk computed it in NumPy (before stance.stance_foot)."""
+    from mjwalk.body.legs.curves import smoothstep, soft_flat
+    from mjwalk.body.legs.steps import FOOT_FLAT
+
+    p_st = np.where(phi < FOOT_FLAT, np.maximum(p_ref, 0), np.minimum(p_ref, 0))
+    if land_prev is not None:
+        p_st = np.where(phi < FOOT_FLAT, p_st * land_prev / hs_pitch, p_st)
+    p_st = soft_flat(p_st)
+    if fr.first:
+        p_st = np.minimum(p_st, 0.0)
+    p1 = heel_rise(fr.stance, hip_end, knee_end, float(p_st[-1]), geom)
+    p_st = p_st + (p1 - p_st[-1]) * smoothstep((phi - FOOT_FLAT) / (1.0 - FOOT_FLAT))
+    return p_st, pivot_ankle(fr.stance, p_st, geom)
+
+
+def _stance_knee_ref(ref, phi, k_ref, th0, v0, th1, v1, hip_xy, ankle, geom):
+    """The stance knee and pelvis height as legs_from_walk computed them in NumPy."""
+    from mjwalk.body.legs.steps import stance_angle
+
+    assert np.array_equal(k_ref, ref("knee", 0.5 * phi))
+    knee = np.clip(stance_angle(ref, "knee", phi, th0, v0, th1, v1), KNEE_MIN, np.deg2rad(80))
+    h = np.linalg.norm(hip_xy - ankle[:, :2], axis=-1)
+    return knee, ankle[:, 2] + np.sqrt(np.maximum(geom.span(knee) ** 2 - h**2, 1e-6))
+
+
+@pytest.mark.parametrize("reference", ["default", "winter"])
+def test_compiled_stance_leg_matches_numpy(monkeypatch, reference):
+    """stance.stance_foot and stance.stance_knee give the NumPy code's numbers bit for bit on
+    every step of straight, turning, short-stepped and long-stepped walks."""
+    from mjwalk.body.legs import stance, synthesis
+    from mjwalk.body.legs.reference import DEFAULT_REFERENCE, winter_reference
+
+    ref = DEFAULT_REFERENCE if reference == "default" else winter_reference()
+    seen = {"foot": 0, "knee": 0, "scaled": 0}
+
+    def foot(*args):
+        got, want = stance.stance_foot(*args), _stance_foot_ref(*args)
+        for x, y in zip(want, got, strict=True):
+            assert np.array_equal(x, y)
+        seen["foot"] += 1
+        seen["scaled"] += args[3] is not None
+        return got
+
+    def knee(*args):
+        got, want = stance.stance_knee(*args), _stance_knee_ref(*args)
+        for x, y in zip(want, got, strict=True):
+            assert np.array_equal(x, y)
+        seen["knee"] += 1
+        return got
+
+    monkeypatch.setattr(synthesis, "stance_foot", foot)
+    monkeypatch.setattr(synthesis, "stance_knee", knee)
+    walks = [
+        synthetic_walk(n_steps=6),
+        synthetic_walk(n_steps=6, radius=1.2),
+        synthetic_walk(n_steps=5, step_len=0.12, step_time=0.45),
+        synthetic_walk(n_steps=4, step_len=0.95, step_time=0.6),
+    ]
+    for walk in walks:
+        synthesis.legs_from_walk(walk, reference=ref)
+    n_steps = sum(len(w.steps) for w in walks)
+    assert seen["foot"] == seen["knee"] == n_steps
+    assert seen["scaled"] == n_steps - len(walks)  # all but the first steps roll down

@@ -12,7 +12,8 @@ frame, metres, radians; a foot's pitch + toes up.
 
 numba caches this module's machine code by its own source, not by the compiled functions it
 calls from other modules (``kinematics._heel_rise_rows``, ``kinematics._pivot_rows``,
-``curves._clamped_cubic``, ``reference.ppoly_at``): change a comment here when those change.
+``curves._clamped_cubic`` and the one-value shapes such as ``curves.smoothstep1``,
+``reference.ppoly_at``): change a comment here when those change.
 """
 
 from __future__ import annotations
@@ -23,7 +24,16 @@ import numpy as np
 
 from mjwalk._jit import fma, njit
 from mjwalk.body.humanoid import LegGeometry
-from mjwalk.body.legs.curves import FLAT_DEG, _clamped_cubic, soft_flat
+from mjwalk.body.legs.curves import (
+    FLAT,
+    _clamped_cubic,
+    maximum1,
+    minimum1,
+    smoothstep1,
+    soft_clip01_1,
+    soft_flat,
+    soft_flat1,
+)
 from mjwalk.body.legs.kinematics import KNEE_MIN, _heel_rise_rows, _pivot_rows, ball_offset
 from mjwalk.body.legs.reference import ReferenceGait, ppoly_at, wrap01
 from mjwalk.body.legs.steps import (
@@ -35,8 +45,6 @@ from mjwalk.body.legs.steps import (
     StepFrames,
 )
 
-#: Pitches within this of zero count as a flat foot (radians; curves.soft_flat's threshold).
-FLAT = float(np.deg2rad(FLAT_DEG))
 #: The reference pitch's clamp in the swing (radians): :func:`~.steps.swing_foot`'s.
 PITCH_LO, PITCH_HI = float(np.deg2rad(-70)), float(np.deg2rad(30))
 
@@ -117,43 +125,6 @@ def swing_foot(
 
 
 @njit
-def _smoothstep(x):
-    """:func:`~mjwalk.body.legs.curves.smoothstep` of one value."""
-    x = min(max(x, 0.0), 1.0)
-    return x * x * (3 - 2 * x)
-
-
-@njit
-def _maximum(a, b):
-    """``np.maximum`` of two values (the first on ties and NaN)."""
-    return a if a >= b or a != a else b
-
-
-@njit
-def _minimum(a, b):
-    """``np.minimum`` of two values (the first on ties and NaN)."""
-    return a if a <= b or a != a else b
-
-
-@njit
-def _soft_flat(p, flat):
-    """:func:`~mjwalk.body.legs.curves.soft_flat` of one pitch (``flat`` its threshold, rad)."""
-    sign = 1.0 if p > 0 else (-1.0 if p < 0 else (0.0 if p == 0 else p))
-    return sign * _maximum(abs(p) - flat, 0.0)
-
-
-@njit
-def _soft_clip01(x, w):
-    """:func:`~mjwalk.body.legs.curves.soft_clip01` of one value."""
-    lo = 0.0 if x < -w else ((x + w) * (x + w) / (4 * w) if x < w else x)
-    if lo > 1 + w:
-        return 1.0
-    if lo > 1 - w:
-        return 1 - (1 + w - lo) * (1 + w - lo) / (4 * w)
-    return lo
-
-
-@njit
 def _swing(phi, hip_xy, z_hip, lift, land, dyaw, mode, p_pre, seg, seg_sq, nrm,
            hip_c, hip_k, knee_c, knee_k, pitch_c, pitch_k, L1, L2, span0, span1, knee_min,
            ball, back, front, ah, land_p, pos, p, toe, yaw):  # fmt: skip
@@ -163,18 +134,18 @@ def _swing(phi, hip_xy, z_hip, lift, land, dyaw, mode, p_pre, seg, seg_sq, nrm,
     knee`` the squared hip-to-ankle span (:meth:`LegGeometry.span`)."""
     n = phi.shape[0]
     for i in range(n):
-        yaw[i] = lift[2] + dyaw * _smoothstep((phi[i] - TOE_OFF) / (SWING_TURNED - TOE_OFF))
+        yaw[i] = lift[2] + dyaw * smoothstep1((phi[i] - TOE_OFF) / (SWING_TURNED - TOE_OFF))
     # pre-swing roll (the samples up to TOE_OFF: a prefix, phi increasing)
     ne = 0
     while ne < n and phi[ne] <= TOE_OFF:
         ne += 1
     for i in range(ne):
         ph = phi[i]
-        q = _soft_flat(_minimum(ppoly_at(pitch_c, pitch_k, wrap01(0.5 + 0.5 * ph), 0), 0.0), FLAT)
+        q = soft_flat1(minimum1(ppoly_at(pitch_c, pitch_k, wrap01(0.5 + 0.5 * ph), 0), 0.0), FLAT)
         if mode == ROLL_FIRST:
-            q = q * _smoothstep(ph / TOE_OFF)
+            q = q * smoothstep1(ph / TOE_OFF)
         elif mode == ROLL_CONTINUE:
-            q = q + p_pre * (1 - _smoothstep(ph / TOE_OFF))
+            q = q + p_pre * (1 - smoothstep1(ph / TOE_OFF))
         p[i] = q
     phi_to = TOE_OFF
     if mode != ROLL_FIRST and ne > 0:
@@ -183,7 +154,7 @@ def _swing(phi, hip_xy, z_hip, lift, land, dyaw, mode, p_pre, seg, seg_sq, nrm,
         d = np.empty(ne)
         for i in range(ne):
             hip[i, 0], hip[i, 1], hip[i, 2] = hip_xy[i, 0], hip_xy[i, 1], z_hip[i]
-            kv = _maximum(ppoly_at(knee_c, knee_k, wrap01(0.5 + 0.5 * phi[i]), 0), knee_min)
+            kv = maximum1(ppoly_at(knee_c, knee_k, wrap01(0.5 + 0.5 * phi[i]), 0), knee_min)
             d[i] = math.sqrt(span0 + span1 * math.cos(kv))
         rise = np.empty(ne)
         _heel_rise_rows(lift, hip, d, p[:ne].copy(), ball, back, ah, -HEEL_RISE_MAX, rise)
@@ -209,15 +180,15 @@ def _swing(phi, hip_xy, z_hip, lift, land, dyaw, mode, p_pre, seg, seg_sq, nrm,
         if i < ne:
             toe[i] = -p[i]
         else:
-            toe[i] = -p_end * (1 - _smoothstep((phi[i] - phi_to) / TOE_STRAIGHTEN))
+            toe[i] = -p_end * (1 - smoothstep1((phi[i] - phi_to) / TOE_STRAIGHTEN))
     # keep heel, ball and toe tip off the floor (lift the ankle where they would dip)
     for i in range(ne, n):
         sp, cp = math.sin(p[i]), math.cos(p[i])
         ball_z = ball * sp - ah * cp
         z = pos[i, 2]
-        z += _maximum(0.0, -(z + (-back * sp - ah * cp)))
-        z += _maximum(0.0, -(z + ball_z))
-        z += _maximum(0.0, -(z + (ball_z + (front - ball) * math.sin(p[i] + toe[i]))))
+        z += maximum1(0.0, -(z + (-back * sp - ah * cp)))
+        z += maximum1(0.0, -(z + ball_z))
+        z += maximum1(0.0, -(z + (ball_z + (front - ball) * math.sin(p[i] + toe[i]))))
         pos[i, 2] = z
     return phi_to
 
@@ -249,7 +220,7 @@ def _swing_late(phi, hip_xy, z_hip, lift, land, seg, seg_sq, nrm, hip_c, hip_k, 
         t0 = hip_xy[i, 0] + fwd * math.cos(yaw[i])
         t1 = hip_xy[i, 1] + fwd * math.sin(yaw[i])
         # progress along the chord, clamped softly (C1); numpy's (m, 2) @ (2,) is OpenBLAS's
-        s = _soft_clip01(fma(t0 - lift[0], seg[0], (t1 - lift[1]) * seg[1]) / seg_sq, 0.1)
+        s = soft_clip01_1(fma(t0 - lift[0], seg[0], (t1 - lift[1]) * seg[1]) / seg_sq, 0.1)
         ch0 = lift[0] + s * seg[0]
         ch1 = lift[1] + s * seg[1]
         off = fma(hip_xy[i, 0] - ch0, nrm[0], (hip_xy[i, 1] - ch1) * nrm[1])

@@ -39,7 +39,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from mjwalk.body.humanoid import ROM_DEG, leg_geometry
-from mjwalk.body.legs.curves import smoothstep, soft_flat, spread
+from mjwalk.body.legs.curves import spread
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
     LegIKCache,
@@ -52,7 +52,8 @@ from mjwalk.body.legs.kinematics import (
 from mjwalk.body.legs.pitchfit import fit_ankle_range, repitch_foot
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
-from mjwalk.body.legs.steps import FOOT_FLAT, landing_pitches, stance_angle, step_frames, swing_foot
+from mjwalk.body.legs.stance import stance_foot, stance_knee
+from mjwalk.body.legs.steps import landing_pitches, step_frames, swing_foot
 from mjwalk.body.legs.swing import swing_foot as swing_foot_compiled
 from mjwalk.conventions import DEFAULT_STATURE, side_of_prefix
 from mjwalk.errors import PlanningError
@@ -152,10 +153,6 @@ def legs_from_walk(
         h = hip_xy[side][idx]
         return h if zz is None else np.column_stack([h, zz])
 
-    def height_for_knee(idx, side, foot_pos, knee):
-        h = np.linalg.norm(hip_pos(idx, side) - foot_pos[:, :2], axis=-1)
-        return foot_pos[:, 2] + np.sqrt(np.maximum(geom.span(knee) ** 2 - h**2, 1e-6))
-
     def knee_for(idx, side, foot_pos, zz):
         d = np.linalg.norm(hip_pos(idx, side, zz) - foot_pos, axis=-1)
         return geom.knee_for_span(d)
@@ -176,15 +173,9 @@ def legs_from_walk(
         phase[ids] = phi
         cyc[fr.other][ids], cyc[fr.side][ids] = 0.5 * phi, 0.5 + 0.5 * phi
         sw, st = fr.side, fr.other
-        # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch)
+        # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch); the
+        # roll-down starts from the pitch it landed with; a standing start is flat already
         c_st = 0.5 * phi
-        p_ref = ref("pitch", c_st)
-        p_st = np.where(phi < FOOT_FLAT, np.maximum(p_ref, 0), np.minimum(p_ref, 0))
-        if k > 0 and hs_pitch > 0:  # the roll-down starts from the pitch it landed with
-            p_st = np.where(phi < FOOT_FLAT, p_st * frames[k - 1].land_p / hs_pitch, p_st)
-        p_st = soft_flat(p_st)
-        if fr.first:  # standing start: already flat
-            p_st = np.minimum(p_st, 0.0)
         # --- target posture at phi = 1 (A7): the landing leg at the reference heel-strike knee
         # sets the pelvis height; the trailing (stance) leg takes the reference knee of
         # cycle 50 %, its heel rising further (about the ball) if it cannot reach otherwise.
@@ -195,13 +186,14 @@ def legs_from_walk(
         land_pos = pivot_ankle(fr.land, land_p, geom)
         hz = np.linalg.norm(hip_pos(np.array([b]), sw) - land_pos[:, :2], axis=-1)[0]
         z_end = land_pos[0, 2] + np.sqrt(max(d_land**2 - hz**2, 1e-6))
-        th1 = max(float(ref("knee", 0.5)), float(KNEE_MIN))
         hip_end = hip_pos(np.array([b]), st, np.array([z_end]))[0]
-        p1 = heel_rise(fr.stance, hip_end, th1, float(p_st[-1]), geom)
-        extra = (p1 - p_st[-1]) * smoothstep((phi - FOOT_FLAT) / (1.0 - FOOT_FLAT))
-        p_st = p_st + extra
+        land_prev = frames[k - 1].land_p if k > 0 and hs_pitch > 0 else None
+        th1 = max(float(ref("knee", 0.5)), float(KNEE_MIN))
+        p_st, ankle_st = stance_foot(
+            fr, phi, ref("pitch", c_st), land_prev, hs_pitch, hip_end, th1, geom
+        )  # (compiled: stance.stance_foot)
         fr.p_end = float(p_st[-1])
-        ankle[st][ids] = pivot_ankle(fr.stance, p_st, geom)
+        ankle[st][ids] = ankle_st
         ground[st][ids], print_[st][ids] = True, fr.stance
         pitch[st][ids], toe[st][ids], fyaw[st][ids] = p_st, -np.minimum(p_st, 0), fr.stance[2]
         th1 = float(knee_for(np.array([b]), st, ankle[st][b][None], np.array([z_end]))[0])
@@ -210,10 +202,10 @@ def legs_from_walk(
         else:
             th0, v0 = knee_prev
         v1 = 0.5 * float(ref("knee", 0.5, True))
-        knee_st = np.clip(
-            stance_angle(ref, "knee", phi, th0, v0, th1, v1), KNEE_MIN, np.deg2rad(80)
-        )
-        z_flat = height_for_knee(ids, st, ankle[st][ids], knee_st)
+        # the stance knee (steps.stance_angle, clipped) and the pelvis height it gives
+        knee_st, z_flat = stance_knee(
+            ref, phi, ref("knee", c_st), th0, v0, th1, v1, hip_xy[st][ids], ankle_st, geom
+        )  # (compiled: stance.stance_knee)
         # --- swing foot (A9)
         if ref._unit:  # compiled (the same numbers); other tables through scipy's splines
             swing = swing_foot_compiled(fr, phi, hip_xy[sw][ids], z_flat, ref, geom, land_p)
