@@ -51,8 +51,21 @@ def spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeom
         ends = [
             j0 + int(np.argmax(np.r_[~g[j0 + 1 :] | new_print[j0 + 1 :], True])) for j0 in starts
         ]
+        # the hip rotation of every grounded sample at once (the rows are independent: as
+        # per contact), and where it passes its range; the other contacts are left as they are
+        on = np.flatnonzero(g)
+        r_all, up_all, down_all = (np.zeros(n) for _ in range(3))
+        if len(on):
+            r_all[on] = leg_ik_world(
+                ankle[s_][on], fyaw[s_][on], pitch[s_][on], root[on], yaw[on], s_, geom
+            )[f"hip_{s_}_rot"]
+            up_all[on] = soft_excess(r_all[on] - (hi - margin - soft), soft / 2)
+            down_all[on] = soft_excess((lo + margin + soft) - r_all[on], soft / 2)
+        need_all = (up_all > 0) | (down_all > 0)
         worst, count = 0.0, 0
         for i, (j0, j1) in enumerate(zip(starts, ends, strict=True)):
+            if not need_all[j0 : j1 + 1].any():
+                continue
             run = np.arange(j0, j1 + 1)
             foot = print_[s_][j0].copy()
 
@@ -60,12 +73,8 @@ def spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeom
                 return leg_ik_world(a_, y_, p_, root[run], yaw[run], side, geom)[f"hip_{side}_rot"]
 
             p0 = pitch[s_][run].copy()
-            r0 = rot(ankle[s_][run], fyaw[s_][run], p0)
-            up = soft_excess(r0 - (hi - margin - soft), soft / 2)
-            down = soft_excess((lo + margin + soft) - r0, soft / 2)
-            need = (up > 0) | (down > 0)
-            if not need.any():
-                continue
+            r0, up, down = r_all[run], up_all[run], down_all[run]
+            need = need_all[run]
             target = r0 - (up - down)
             rise = np.maximum(
                 smoothstep((r0 - (hi - margin - soft - ramp)) / ramp),
