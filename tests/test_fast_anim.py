@@ -637,15 +637,42 @@ def _stance_knee_ref(ref, phi, k_ref, th0, v0, th1, v1, hip_xy, ankle, geom):
     return knee, ankle[:, 2] + np.sqrt(np.maximum(geom.span(knee) ** 2 - h**2, 1e-6))
 
 
+def _pelvis_height_ref(phi, z_flat, pos, hip_sw, hip_st, knee_st, p_st, fr, d_max_sq, d_land,
+                       ease_from, geom):  # fmt: skip
+    """The pelvis height and landing ease as legs_from_walk computed them in NumPy."""
+    hsw = np.linalg.norm(hip_sw - pos[:, :2], axis=-1)
+    z_sw = pos[:, 2] + np.sqrt(np.maximum(d_max_sq - hsw**2, 1e-6))
+    z = np.minimum(z_flat, z_sw)
+    lj = np.flatnonzero(phi >= ease_from)
+    if not (len(lj) >= 3 and lj[0] > 0):
+        return z, None
+    j = lj[0]
+    hj = np.column_stack([hip_sw[j - 1 : j + 1], z[j - 1 : j + 1]])
+    dj = np.linalg.norm(hj - pos[j - 1 : j + 1], axis=-1)
+    span, gap = 1.0 - phi[j], d_land - dj[1]
+    m0 = span * (dj[1] - dj[0]) / (phi[j] - phi[j - 1])
+    m0 = float(np.clip(m0, min(0.0, 3 * gap), max(0.0, 3 * gap)))
+    u = (phi[lj] - phi[j]) / span
+    d_prof = dj[1] + (u**3 - 2 * u**2 + u) * m0 + (3 * u**2 - 2 * u**3) * gap
+    h_prof = np.linalg.norm(hip_sw[lj] - pos[lj, :2], axis=-1)
+    z_prof = pos[lj, 2] + np.sqrt(np.maximum(d_prof**2 - h_prof**2, 1e-6))
+    z[lj] = np.minimum(z_prof, z_sw[lj])
+    hip = np.column_stack([hip_st[lj], z[lj]])
+    p_up = heel_rise(fr.stance, hip, knee_st[lj], np.minimum(p_st[lj], 0), geom)
+    p_st[lj] = np.where(p_st[lj] <= 0, p_up, p_st[lj])
+    return z, pivot_ankle(fr.stance, p_st, geom)
+
+
 @pytest.mark.parametrize("reference", ["default", "winter"])
 def test_compiled_stance_leg_matches_numpy(monkeypatch, reference):
-    """stance.stance_foot and stance.stance_knee give the NumPy code's numbers bit for bit on
-    every step of straight, turning, short-stepped and long-stepped walks."""
+    """stance.stance_foot, stance.stance_knee and stance.pelvis_height give the NumPy code's
+    numbers bit for bit on every step of straight, turning, short-stepped and long-stepped
+    walks."""
     from mjwalk.body.legs import stance, synthesis
     from mjwalk.body.legs.reference import DEFAULT_REFERENCE, winter_reference
 
     ref = DEFAULT_REFERENCE if reference == "default" else winter_reference()
-    seen = {"foot": 0, "knee": 0, "scaled": 0}
+    seen = {"foot": 0, "knee": 0, "scaled": 0, "height": 0, "eased": 0}
 
     def foot(*args):
         got, want = stance.stance_foot(*args), _stance_foot_ref(*args)
@@ -662,7 +689,21 @@ def test_compiled_stance_leg_matches_numpy(monkeypatch, reference):
         seen["knee"] += 1
         return got
 
+    def height(*args):
+        p_ref = args[6].copy()
+        got = stance.pelvis_height(*args)
+        want = _pelvis_height_ref(*args[:6], p_ref, *args[7:])
+        assert np.array_equal(want[0], got[0])
+        assert (want[1] is None) == (got[1] is None)
+        if got[1] is not None:
+            assert np.array_equal(want[1], got[1])
+            assert np.array_equal(p_ref, args[6])
+            seen["eased"] += 1
+        seen["height"] += 1
+        return got
+
     monkeypatch.setattr(synthesis, "stance_foot", foot)
+    monkeypatch.setattr(synthesis, "pelvis_height", height)
     monkeypatch.setattr(synthesis, "stance_knee", knee)
     walks = [
         synthetic_walk(n_steps=6),
@@ -673,5 +714,6 @@ def test_compiled_stance_leg_matches_numpy(monkeypatch, reference):
     for walk in walks:
         synthesis.legs_from_walk(walk, reference=ref)
     n_steps = sum(len(w.steps) for w in walks)
-    assert seen["foot"] == seen["knee"] == n_steps
+    assert seen["foot"] == seen["knee"] == seen["height"] == n_steps
+    assert seen["eased"] > n_steps // 2
     assert seen["scaled"] == n_steps - len(walks)  # all but the first steps roll down

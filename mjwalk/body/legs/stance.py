@@ -173,3 +173,110 @@ def _stance_knee(phi, k_ref, values, d0, d1, hip_xy, ankle, span0, span1, knee, 
         h = math.sqrt(dx * dx + dy * dy)
         s = math.sqrt(span0 + span1 * math.cos(k))
         z[i] = ankle[i, 2] + math.sqrt(maximum1(s * s - h * h, 1e-6))
+
+
+def pelvis_height(
+    phi: np.ndarray,
+    z_flat: np.ndarray,
+    ankle_sw: np.ndarray,
+    hip_sw: np.ndarray,
+    hip_st: np.ndarray,
+    knee_st: np.ndarray,
+    p_st: np.ndarray,
+    fr: StepFrames,
+    d_max_sq: float,
+    d_land: float,
+    ease_from: float,
+    geom: LegGeometry,
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """The pelvis height (n,) over a step: the stance leg's ``z_flat`` (n,), capped where the
+    swing leg (ankle ``ankle_sw`` (n, 3), hip at ``hip_sw`` (n, 2)) could not reach its foot
+    at its longest span (``d_max_sq``, m²); from step phase ``ease_from`` (at least three
+    samples, not the first) the swing leg's hip-to-ankle distance eases into its heel-strike
+    length ``d_land`` (m, zero velocity) along a cubic from its length and velocity there, and
+    the pelvis height follows from it. Where the pelvis then rises, the trailing (stance) leg
+    keeps its knee ``knee_st`` (n,): its heel rises further about the ball of its footprint
+    (``p_st`` (n,) updated in place, hip at ``hip_st`` (n, 2)); returns the stance ankle
+    (n, 3) for the new pitches then, else None."""
+    lj = np.flatnonzero(phi >= ease_from)
+    ease = len(lj) >= 3 and lj[0] > 0
+    j = int(lj[0]) if ease else -1
+    # u³ by NumPy (its power rounds unlike a compiled one)
+    u3 = ((phi[lj] - phi[j]) / (1.0 - phi[j])) ** 3 if ease else np.empty(0)
+    L1, L2 = float(geom.thigh), float(geom.shank)
+    n = len(phi)
+    z, ankle = np.empty(n), np.empty((n, 3))
+    eased = _pelvis_height(
+        np.ascontiguousarray(phi, dtype=float),
+        np.ascontiguousarray(z_flat, dtype=float),
+        np.ascontiguousarray(ankle_sw, dtype=float),
+        np.ascontiguousarray(hip_sw, dtype=float),
+        np.ascontiguousarray(hip_st, dtype=float),
+        np.ascontiguousarray(knee_st, dtype=float),
+        p_st,
+        np.asarray(fr.stance, float),
+        float(d_max_sq),
+        float(d_land),
+        j,
+        u3,
+        L1**2 + L2**2,
+        2 * L1 * L2,
+        ball_offset(geom),
+        float(geom.foot_back),
+        float(geom.ankle_height),
+        z,
+        ankle,
+    )
+    return z, (ankle if eased else None)
+
+
+@njit
+def _pelvis_height(phi, z_flat, ankle_sw, hip_sw, hip_st, knee_st, p_st, stance, d_max_sq,
+                   d_land, j, u3, span0, span1, ball, back, ah, z, ankle):  # fmt: skip
+    """:func:`pelvis_height` into ``z`` (n,), and ``p_st`` and ``ankle`` (n, 3) where the
+    landing eases (samples ``j`` on, ``u3`` (n - j,) the cubed phase within the ease);
+    returns whether it did (``j >= 1``)."""
+    n = phi.shape[0]
+    z_sw = np.empty(n)
+    for i in range(n):
+        dx, dy = hip_sw[i, 0] - ankle_sw[i, 0], hip_sw[i, 1] - ankle_sw[i, 1]
+        h = math.sqrt(dx * dx + dy * dy)
+        z_sw[i] = ankle_sw[i, 2] + math.sqrt(maximum1(d_max_sq - h * h, 1e-6))
+        z[i] = minimum1(z_flat[i], z_sw[i])
+    if j < 1:
+        return False
+    dj = np.empty(2)
+    for r in range(2):
+        i = j - 1 + r
+        dx = hip_sw[i, 0] - ankle_sw[i, 0]
+        dy = hip_sw[i, 1] - ankle_sw[i, 1]
+        dz = z[i] - ankle_sw[i, 2]
+        dj[r] = math.sqrt(dx * dx + dy * dy + dz * dz)
+    span, gap = 1.0 - phi[j], d_land - dj[1]
+    m0 = span * (dj[1] - dj[0]) / (phi[j] - phi[j - 1])
+    g3 = 3 * gap
+    lo = g3 if g3 < 0.0 else 0.0  # Python's min(0.0, 3 gap), max(0.0, 3 gap)
+    hi = g3 if g3 > 0.0 else 0.0
+    m0 = min(max(m0, lo), hi)
+    m = n - j
+    hip = np.empty((m, 3))
+    d = np.empty(m)
+    p0 = np.empty(m)
+    for k in range(m):
+        i = j + k
+        u = (phi[i] - phi[j]) / span
+        d_prof = dj[1] + (u3[k] - 2 * (u * u) + u) * m0 + (3 * (u * u) - 2 * u3[k]) * gap
+        dx, dy = hip_sw[i, 0] - ankle_sw[i, 0], hip_sw[i, 1] - ankle_sw[i, 1]
+        h = math.sqrt(dx * dx + dy * dy)
+        z_prof = ankle_sw[i, 2] + math.sqrt(maximum1(d_prof * d_prof - h * h, 1e-6))
+        z[i] = minimum1(z_prof, z_sw[i])
+        hip[k, 0], hip[k, 1], hip[k, 2] = hip_st[i, 0], hip_st[i, 1], z[i]
+        d[k] = math.sqrt(span0 + span1 * math.cos(knee_st[i]))
+        p0[k] = minimum1(p_st[i], 0.0)
+    p_up = np.empty(m)
+    _heel_rise_rows(stance, hip, d, p0, ball, back, ah, HEEL_RISE_LO, p_up)
+    for k in range(m):
+        if p_st[j + k] <= 0:
+            p_st[j + k] = p_up[k]
+    _pivot_rows(stance.reshape(1, 3), p_st, ball, back, ah, ankle)
+    return True

@@ -45,14 +45,13 @@ from mjwalk.body.legs.kinematics import (
     LegIKCache,
     foot_lowest,
     generic_joint,
-    heel_rise,
     hip_world,
     pivot_ankle,
 )
 from mjwalk.body.legs.pitchfit import fit_ankle_range, repitch_foot
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
-from mjwalk.body.legs.stance import stance_foot, stance_knee
+from mjwalk.body.legs.stance import pelvis_height, stance_foot, stance_knee
 from mjwalk.body.legs.steps import landing_pitches, step_frames, swing_foot
 from mjwalk.body.legs.swing import swing_foot as swing_foot_compiled
 from mjwalk.conventions import DEFAULT_STATURE, side_of_prefix
@@ -216,36 +215,22 @@ def legs_from_walk(
         ankle[sw][ids], pitch[sw][ids], toe[sw][ids], fyaw[sw][ids] = pos, p_sw, toe_sw, yw
         pre_swing = idx[phi <= phi_to]
         ground[sw][pre_swing], print_[sw][pre_swing] = True, fr.lift
-        hsw = np.linalg.norm(hip_pos(ids, sw) - pos[:, :2], axis=-1)
-        z_sw = pos[:, 2] + np.sqrt(np.maximum(d_max_sq - hsw**2, 1e-6))
-        z[ids] = np.minimum(z_flat, z_sw)
-        # landing approach: from LAND_EASE the swing leg's hip-to-ankle distance eases into
-        # its heel-strike length (zero velocity) along a cubic from its length and velocity
+        # the pelvis height: capped where the swing leg could not reach its foot; landing
+        # approach: from LAND_EASE the swing leg's hip-to-ankle distance eases into its
+        # heel-strike length (zero velocity) along a cubic from its length and velocity
         # there, and the pelvis height follows from it. Capping the pelvis only where the
         # swing leg is fully stretched would snap the knee straight (near full extension a
-        # millimetre of leg length is several degrees of knee)
-        lj = np.flatnonzero(phi >= LAND_EASE)
-        if len(lj) >= 3 and lj[0] > 0:
-            j = lj[0]
-            hj = hip_pos(idx[j - 1 : j + 1], sw, z[idx[j - 1 : j + 1]])
-            dj = np.linalg.norm(hj - pos[j - 1 : j + 1], axis=-1)
-            span, gap = 1.0 - phi[j], d_land - dj[1]
-            m0 = span * (dj[1] - dj[0]) / (phi[j] - phi[j - 1])
-            m0 = float(np.clip(m0, min(0.0, 3 * gap), max(0.0, 3 * gap)))
-            u = (phi[lj] - phi[j]) / span
-            d_prof = dj[1] + (u**3 - 2 * u**2 + u) * m0 + (3 * u**2 - 2 * u**3) * gap
-            h_prof = np.linalg.norm(hip_pos(idx[lj], sw) - pos[lj, :2], axis=-1)
-            z_prof = pos[lj, 2] + np.sqrt(np.maximum(d_prof**2 - h_prof**2, 1e-6))
-            z[idx[lj]] = np.minimum(z_prof, z_sw[lj])
-            # the trailing leg keeps its planned knee where the pelvis now rises faster: its
-            # heel rises further (about the ball) instead of the leg stretching straight
-            hip_st = hip_pos(idx[lj], st, z[idx[lj]])
-            p_up = heel_rise(fr.stance, hip_st, knee_st[lj], np.minimum(p_st[lj], 0), geom)
-            p_st[lj] = np.where(p_st[lj] <= 0, p_up, p_st[lj])
+        # millimetre of leg length is several degrees of knee). The trailing leg keeps its
+        # planned knee where the pelvis now rises faster: its heel rises further (about the
+        # ball) instead of the leg stretching straight (compiled: stance.pelvis_height)
+        z[ids], ankle_st = pelvis_height(
+            phi, z_flat, pos, hip_xy[sw][ids], hip_xy[st][ids], knee_st, p_st, fr, d_max_sq,
+            d_land, LAND_EASE, geom,
+        )  # fmt: skip
+        if ankle_st is not None:
             fr.p_end = float(p_st[-1])
-            ankle[st][ids] = pivot_ankle(fr.stance, p_st, geom)
+            ankle[st][ids] = ankle_st
             pitch[st][ids], toe[st][ids] = p_st, -np.minimum(p_st, 0)
-        # the swing leg's knee at landing starts the next stance spline
         # the swing leg's knee at landing starts the next stance spline; its velocity is the
         # reference's (loading response: the knee flexes right after heel strike)
         k_land = knee_for(idx[-1:], sw, pos[-1:], z[idx[-1:]])
