@@ -223,13 +223,13 @@ def legs_from_walk(
         # millimetre of leg length is several degrees of knee). The trailing leg keeps its
         # planned knee where the pelvis now rises faster: its heel rises further (about the
         # ball) instead of the leg stretching straight (compiled: stance.pelvis_height)
-        z[ids], ankle_st = pelvis_height(
+        z[ids], ankle_up = pelvis_height(
             phi, z_flat, pos, hip_xy[sw][ids], hip_xy[st][ids], knee_st, p_st, fr, d_max_sq,
             d_land, LAND_EASE, geom,
         )  # fmt: skip
-        if ankle_st is not None:
+        if ankle_up is not None:
             fr.p_end = float(p_st[-1])
-            ankle[st][ids] = ankle_st
+            ankle[st][ids] = ankle_up
             pitch[st][ids], toe[st][ids] = p_st, -np.minimum(p_st, 0)
         # the swing leg's knee at landing starts the next stance spline; its velocity is the
         # reference's (loading response: the knee flexes right after heel strike)
