@@ -48,9 +48,10 @@ def spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeom
         g = ground[s_]
         new_print = np.r_[True, np.any(print_[s_][1:] != print_[s_][:-1], axis=1)]
         starts = np.flatnonzero(g & (new_print | ~np.r_[False, g[:-1]]))
-        ends = [
-            j0 + int(np.argmax(np.r_[~g[j0 + 1 :] | new_print[j0 + 1 :], True])) for j0 in starts
-        ]
+        # each contact ends before the next sample off the floor or on another print
+        breaks = np.flatnonzero(~g | new_print)
+        nxt = np.searchsorted(breaks, starts, side="right")
+        ends = [int(breaks[k]) - 1 if k < len(breaks) else n - 1 for k in nxt]
         # the hip rotation of every grounded sample at once (the rows are independent: as
         # per contact), and where it passes its range; the other contacts are left as they are
         on = np.flatnonzero(g)

@@ -34,6 +34,7 @@ leg cycle 50-100 % (cycle 0 = heel strike of that leg).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -152,9 +153,14 @@ def legs_from_walk(
         h = hip_xy[side][idx]
         return h if zz is None else np.column_stack([h, zz])
 
-    def knee_for(idx, side, foot_pos, zz):
-        d = np.linalg.norm(hip_pos(idx, side, zz) - foot_pos, axis=-1)
-        return geom.knee_for_span(d)
+    def knee_for(i: int, side: str, foot_pos, zz) -> float:
+        # the knee flexion that puts the ankle foot_pos (3,) at the hip of sample i with the
+        # pelvis at height zz: |hip - ankle| as np.linalg.norm sums it, in Python floats
+        # (the same IEEE arithmetic without array calls), the arccos NumPy's
+        dx = float(hip_xy[side][i, 0]) - float(foot_pos[0])
+        dy = float(hip_xy[side][i, 1]) - float(foot_pos[1])
+        dz = float(zz) - float(foot_pos[2])
+        return float(geom.knee_for_span(np.array([math.sqrt(dx * dx + dy * dy + dz * dz)]))[0])
 
     hs_pitch = max(0.0, float(ref("pitch", 0.0)))
     dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
@@ -195,7 +201,7 @@ def legs_from_walk(
         ankle[st][ids] = ankle_st
         ground[st][ids], print_[st][ids] = True, fr.stance
         pitch[st][ids], toe[st][ids], fyaw[st][ids] = p_st, -np.minimum(p_st, 0), fr.stance[2]
-        th1 = float(knee_for(np.array([b]), st, ankle[st][b][None], np.array([z_end]))[0])
+        th1 = knee_for(b, st, ankle_st[-1], z_end)
         if knee_prev is None:
             th0, v0 = float(ref("knee", 0.0)), 0.5 * float(ref("knee", 0.0, True))
         else:
@@ -233,8 +239,7 @@ def legs_from_walk(
             pitch[st][ids], toe[st][ids] = p_st, -np.minimum(p_st, 0)
         # the swing leg's knee at landing starts the next stance spline; its velocity is the
         # reference's (loading response: the knee flexes right after heel strike)
-        k_land = knee_for(idx[-1:], sw, pos[-1:], z[idx[-1:]])
-        knee_prev = (float(k_land[-1]), 0.5 * float(ref("knee", 0.0, True)))
+        knee_prev = (knee_for(b, sw, pos[-1], z[b]), 0.5 * float(ref("knee", 0.0, True)))
     # where the pelvis turns further than a grounded foot's hip can rotate, the foot spins
     # about its ball; its next swing starts from the turned footprint
     spin_turns(ankle, fyaw, pitch, toe, ground, print_, np.column_stack([xy, z]), yaw, geom)
