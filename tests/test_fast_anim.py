@@ -717,3 +717,57 @@ def test_compiled_stance_leg_matches_numpy(monkeypatch, reference):
     assert seen["foot"] == seen["knee"] == seen["height"] == n_steps
     assert seen["eased"] > n_steps // 2
     assert seen["scaled"] == n_steps - len(walks)  # all but the first steps roll down
+
+
+def _landing_pitches_ref(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom):
+    """steps.landing_pitches as NumPy code (before it was compiled): the landing pitches."""
+    b = np.array([fr.end for fr in frames])
+    land = np.array([fr.land for fr in frames])
+    left = np.array([fr.side == "l" for fr in frames])
+    land_p = np.full(len(frames), hs_pitch)
+    for _ in range(4):
+        pos = pivot_ankle(land, land_p, geom)
+        z = np.zeros(len(b))
+        flex = np.zeros(len(b))
+        for side, sel in (("l", left), ("r", ~left)):
+            if not sel.any():
+                continue
+            bs = b[sel]
+            hip = hip_world(np.column_stack([xy[bs], z[sel]]), yaw[bs], side, geom)
+            hz = np.linalg.norm(hip[:, :2] - pos[sel, :2], axis=-1)
+            z[sel] = pos[sel, 2] + np.sqrt(np.maximum(d_land**2 - hz**2, 1e-6))
+            root = np.column_stack([xy[bs], z[sel]])
+            raw = leg_ik_world(pos[sel], land[sel, 2], land_p[sel], root, yaw[bs], side, geom)
+            flex[sel] = raw[f"ankle_{side}_flex"]
+        over = flex - dorsi_max
+        if not np.any((over > 0) & (land_p > 0)):
+            break
+        land_p = np.where(over > 0, np.maximum(land_p - 1.2 * over, 0.0), land_p)
+    return land_p
+
+
+def test_compiled_landing_pitches_match_numpy():
+    """steps.landing_pitches (compiled rounds) gives the NumPy rounds' pitches bit for bit,
+    on steps landing ahead of the hip (the reference pitch kept) and under it (flattened)."""
+    from mjwalk.body.legs.reference import DEFAULT_REFERENCE as ref
+    from mjwalk.body.legs.steps import landing_pitches, step_frames
+
+    geom = leg_geometry(1.75)
+    hs_pitch = max(0.0, float(ref("pitch", 0.0)))
+    d_land = geom.span(max(ref("knee", 0.0), KNEE_MIN))
+    dorsi = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
+    rng = np.random.default_rng(13)
+    kept = flat = 0
+    for walk in (synthetic_walk(n_steps=6), synthetic_walk(n_steps=6, radius=1.2)):
+        for shift in (0.0, 0.2, 0.35):  # the pelvis moved ahead of the feet by that (m)
+            frames = step_frames(walk)
+            xy = np.asarray(walk.xy, float) + shift * np.array([1.0, 0.0])
+            xy = xy + rng.normal(scale=0.01, size=xy.shape)
+            yaw = np.asarray(walk.yaw, float)
+            want = _landing_pitches_ref(frames, xy, yaw, hs_pitch, d_land, dorsi, geom)
+            landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi, geom)
+            got = np.array([fr.land_p for fr in frames])
+            assert np.array_equal(want, got)
+            kept += int(np.sum(got == hs_pitch))
+            flat += int(np.sum(got < hs_pitch))
+    assert kept > 0 and flat > 0
