@@ -771,3 +771,31 @@ def test_compiled_landing_pitches_match_numpy():
             kept += int(np.sum(got == hs_pitch))
             flat += int(np.sum(got < hs_pitch))
     assert kept > 0 and flat > 0
+
+
+@pytest.mark.parametrize("s_", ["l", "r"])
+def test_spin_hip_rotation_excess_matches_numpy(s_):
+    """spin._hip_rotation_excess gives leg_ik_world's hip rotation and soft_excess's
+    overshoots bit for bit on the grounded samples and leaves the others alone."""
+    from mjwalk.body.legs.curves import soft_excess
+    from mjwalk.body.legs.kinematics import _ik_lengths
+    from mjwalk.body.legs.spin import _hip_rotation_excess
+
+    geom = leg_geometry(1.75)
+    rng = np.random.default_rng(14)
+    n = 300
+    ankle, fyaw, pitch, ground, _, root, yaw = _leg_case(rng, n, geom)
+    fyaw = fyaw + rng.normal(scale=0.6, size=n)  # hips turned past their range too
+    top, bottom, w = np.deg2rad(39.0), np.deg2rad(-39.0), np.deg2rad(2.0)
+    rot, up, down = np.full(n, 7.0), np.full(n, 7.0), np.full(n, 7.0)
+    sgn = 1.0 if s_ == "l" else -1.0
+    args = (ankle, fyaw, pitch, root, yaw, sgn, geom.hip_y, *_ik_lengths(geom))
+    _hip_rotation_excess(ground, *args, top, bottom, w, rot, up, down)
+    on = np.flatnonzero(ground)
+    want = leg_ik_world(ankle[on], fyaw[on], pitch[on], root[on], yaw[on], s_, geom)
+    r = want[f"hip_{s_}_rot"]
+    assert np.array_equal(rot[on], r)
+    assert np.array_equal(up[on], soft_excess(r - top, w))
+    assert np.array_equal(down[on], soft_excess(bottom - r, w))
+    assert np.all(rot[~ground] == 7.0) and np.all(up[~ground] == 7.0)
+    assert np.any(up[on] > 0) and np.any(down[on] > 0) and np.any((up[on] == 0) & (down[on] == 0))

@@ -135,6 +135,13 @@ def soft_flat1(p, flat):
 
 
 @njit
+def soft_excess1(x, w):
+    """:func:`soft_excess` of one value."""
+    x = maximum1(x, 0.0)
+    return x * x / (4 * w) if x < 2 * w else x - w
+
+
+@njit
 def soft_clip01_1(x, w):
     """:func:`soft_clip01` of one value."""
     lo = 0.0 if x < -w else ((x + w) * (x + w) / (4 * w) if x < w else x)

@@ -6,9 +6,17 @@ from __future__ import annotations
 
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
-from mjwalk.body.legs.curves import smoothstep, soft_excess
-from mjwalk.body.legs.kinematics import ball_offset, leg_ik_world, pivot_ankle, spin_print
+from mjwalk.body.legs.curves import smoothstep, soft_excess1
+from mjwalk.body.legs.kinematics import (
+    _ik_lengths,
+    _leg_ik_world_row,
+    ball_offset,
+    leg_ik_world,
+    pivot_ankle,
+    spin_print,
+)
 from mjwalk.body.legs.steps import SWING_TURNED
 
 #: Spin turns (degrees): a grounded foot whose hip would rotate past its range less
@@ -43,6 +51,7 @@ def spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeom
     heel = np.deg2rad(SPIN_HEEL)
     ball, back = ball_offset(geom), -geom.foot_back
     stats = {}
+    root_c, yaw_c = np.ascontiguousarray(root, dtype=float), np.ascontiguousarray(yaw, dtype=float)
     for s_ in "lr":
         sgn = 1.0 if s_ == "l" else -1.0
         g = ground[s_]
@@ -54,14 +63,24 @@ def spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeom
         ends = [int(breaks[k]) - 1 if k < len(breaks) else n - 1 for k in nxt]
         # the hip rotation of every grounded sample at once (the rows are independent: as
         # per contact), and where it passes its range; the other contacts are left as they are
-        on = np.flatnonzero(g)
         r_all, up_all, down_all = (np.zeros(n) for _ in range(3))
-        if len(on):
-            r_all[on] = leg_ik_world(
-                ankle[s_][on], fyaw[s_][on], pitch[s_][on], root[on], yaw[on], s_, geom
-            )[f"hip_{s_}_rot"]
-            up_all[on] = soft_excess(r_all[on] - (hi - margin - soft), soft / 2)
-            down_all[on] = soft_excess((lo + margin + soft) - r_all[on], soft / 2)
+        _hip_rotation_excess(
+            np.ascontiguousarray(g, dtype=np.bool_),
+            np.ascontiguousarray(ankle[s_], dtype=float),
+            np.ascontiguousarray(fyaw[s_], dtype=float),
+            np.ascontiguousarray(pitch[s_], dtype=float),
+            root_c,
+            yaw_c,
+            sgn,
+            float(geom.hip_y),
+            *_ik_lengths(geom),
+            float(hi - margin - soft),
+            float(lo + margin + soft),
+            float(soft / 2),
+            r_all,
+            up_all,
+            down_all,
+        )
         need_all = (up_all > 0) | (down_all > 0)
         worst, count = 0.0, 0
         for i, (j0, j1) in enumerate(zip(starts, ends, strict=True)):
@@ -140,3 +159,20 @@ def spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeom
                 toe[s_][sw] -= w * d_p
         stats[s_] = (worst, count)
     return stats
+
+
+@njit
+def _hip_rotation_excess(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax,
+                         top, bottom, w, rot, up, down):  # fmt: skip
+    """Per grounded sample (``ground`` (n,)): the leg's hip rotation ``rot`` (unclipped IK,
+    :func:`~mjwalk.body.legs.kinematics._leg_ik_world_row`) and how far it passes ``top`` and
+    falls short of ``bottom`` (``up``, ``down``: :func:`~mjwalk.body.legs.curves.soft_excess`
+    over ``w``), radians; the other samples are left as they are."""
+    out = np.empty((ground.shape[0], 6))
+    for i in range(ground.shape[0]):
+        if not ground[i]:
+            continue
+        _leg_ik_world_row(ankle, fyaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
+        rot[i] = out[i, 0]
+        up[i] = soft_excess1(out[i, 0] - top, w)
+        down[i] = soft_excess1(bottom - out[i, 0], w)
