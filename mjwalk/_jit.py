@@ -29,9 +29,12 @@ njit_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
 #: cache and compiles: on the first plan or animation after an install or upgrade. Measured
 #: for the planner alone: 15 s on an idle 2-core machine; 44 s, 106 s and 159 s wall (44 CPU s)
 #: on one loaded by other jobs; the animation kernels (legs, reach pose fit) compile on the
-#: first animated walk or reach on top of that (not measured separately)
+#: first animated walk or reach on top of that
 #: (load average 13: ``NUMBA_CACHE_DIR=$(mktemp -d) mjwalk plan station --from stand_rack2
 #: --to stand_car1 --n 1``); the next process loads the machine code instead (no notice).
+#: The leg synthesis's kernels alone: 12 s on the 2-core machine at load average 2, 4 s
+#: before its per-step loops were compiled (the first ``legs_from_walk`` of a 6-step
+#: synthetic walk under ``NUMBA_CACHE_DIR=$(mktemp -d)``).
 COMPILE_NOTICE = (
     "mjwalk: compiling the planner and the animation kernels (numba, once after an install: "
     "about a minute idle, minutes on a busy machine; cached for later runs)..."
