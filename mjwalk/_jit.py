@@ -32,7 +32,7 @@ njit_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
 #: first animated walk or reach on top of that
 #: (load average 13: ``NUMBA_CACHE_DIR=$(mktemp -d) mjwalk plan station --from stand_rack2
 #: --to stand_car1 --n 1``); the next process loads the machine code instead (no notice).
-#: The leg synthesis's kernels alone: 12 s on the 2-core machine at load average 2, 4 s
+#: The leg synthesis's kernels alone: 8 s on the 2-core machine at load average 2, 4 s
 #: before its per-step loops were compiled (the first ``legs_from_walk`` of a 6-step
 #: synthetic walk under ``NUMBA_CACHE_DIR=$(mktemp -d)``).
 COMPILE_NOTICE = (

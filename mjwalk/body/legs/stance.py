@@ -79,7 +79,7 @@ def stance_foot(
         0.0 if land_prev is None else float(land_prev),
         float(hs_pitch),
         bool(fr.first),
-        np.asarray(fr.stance, float),
+        np.asarray(fr.stance, float).reshape(1, 3),
         np.asarray(hip_end, float).reshape(1, 3),
         L1**2 + L2**2,
         2 * L1 * L2,
@@ -94,10 +94,11 @@ def stance_foot(
 
 
 @njit
-def _stance_foot(phi, p_ref, scaled, land_prev, hs_pitch, first, stance, hip_end, span0, span1,
+def _stance_foot(phi, p_ref, scaled, land_prev, hs_pitch, first, stance2, hip_end, span0, span1,
                  knee_end, ball, back, ah, p, ankle):  # fmt: skip
     """:func:`stance_foot` into ``p`` (n,) and ``ankle`` (n, 3); ``span0 + span1 cos knee`` the
-    squared hip-to-ankle span (:meth:`LegGeometry.span`)."""
+    squared hip-to-ankle span (:meth:`LegGeometry.span`); ``stance2`` the footprint as a
+    (1, 3) row (no reshape in compiled code: its error path compiles slowly)."""
     n = phi.shape[0]
     for i in range(n):
         q = maximum1(p_ref[i], 0.0) if phi[i] < FOOT_FLAT else minimum1(p_ref[i], 0.0)
@@ -110,11 +111,11 @@ def _stance_foot(phi, p_ref, scaled, land_prev, hs_pitch, first, stance, hip_end
     rise = np.empty(1)
     d = np.empty(1)
     d[0] = math.sqrt(span0 + span1 * math.cos(knee_end))
-    _heel_rise_rows(stance, hip_end, d, p[n - 1 : n].copy(), ball, back, ah, HEEL_RISE_LO, rise)
+    _heel_rise_rows(stance2[0], hip_end, d, p[n - 1 : n].copy(), ball, back, ah, HEEL_RISE_LO, rise)
     last = p[n - 1]
     for i in range(n):
         p[i] = p[i] + (rise[0] - last) * smoothstep1((phi[i] - FOOT_FLAT) / (1.0 - FOOT_FLAT))
-    _pivot_rows(stance.reshape(1, 3), p, ball, back, ah, ankle)
+    _pivot_rows(stance2, p, ball, back, ah, ankle)
 
 
 def stance_knee(
@@ -143,6 +144,7 @@ def stance_knee(
     n = len(phi)
     knee, z = np.empty(n), np.empty(n)
     _stance_knee(
+        _KNOTS,
         np.ascontiguousarray(phi, dtype=float),
         np.ascontiguousarray(k_ref, dtype=float),
         values,
@@ -163,9 +165,10 @@ _KNOTS = np.array([0.0, *STANCE_KEYS, 1.0])
 
 
 @njit
-def _stance_knee(phi, k_ref, values, d0, d1, hip_xy, ankle, span0, span1, knee, z):
-    """:func:`stance_knee` into ``knee`` and ``z`` (n,)."""
-    disp = _clamped_cubic(_KNOTS, values, d0, d1, phi)
+def _stance_knee(knots, phi, k_ref, values, d0, d1, hip_xy, ankle, span0, span1, knee, z):
+    """:func:`stance_knee` into ``knee`` and ``z`` (n,); ``knots`` :data:`_KNOTS` (an argument:
+    a global array is a read-only type, for which ``_clamped_cubic`` would compile again)."""
+    disp = _clamped_cubic(knots, values, d0, d1, phi)
     for i in range(phi.shape[0]):
         k = min(max(k_ref[i] + disp[i, 0], KNEE_MIN), KNEE_STANCE_MAX)
         knee[i] = k
@@ -214,7 +217,7 @@ def pelvis_height(
         np.ascontiguousarray(hip_st, dtype=float),
         np.ascontiguousarray(knee_st, dtype=float),
         p_st,
-        np.asarray(fr.stance, float),
+        np.asarray(fr.stance, float).reshape(1, 3),
         float(d_max_sq),
         float(d_land),
         j,
@@ -231,11 +234,11 @@ def pelvis_height(
 
 
 @njit
-def _pelvis_height(phi, z_flat, ankle_sw, hip_sw, hip_st, knee_st, p_st, stance, d_max_sq,
+def _pelvis_height(phi, z_flat, ankle_sw, hip_sw, hip_st, knee_st, p_st, stance2, d_max_sq,
                    d_land, j, u3, span0, span1, ball, back, ah, z, ankle):  # fmt: skip
     """:func:`pelvis_height` into ``z`` (n,), and ``p_st`` and ``ankle`` (n, 3) where the
     landing eases (samples ``j`` on, ``u3`` (n - j,) the cubed phase within the ease);
-    returns whether it did (``j >= 1``)."""
+    returns whether it did (``j >= 1``). ``stance2``: the stance footprint as a (1, 3) row."""
     n = phi.shape[0]
     z_sw = np.empty(n)
     for i in range(n):
@@ -274,9 +277,9 @@ def _pelvis_height(phi, z_flat, ankle_sw, hip_sw, hip_st, knee_st, p_st, stance,
         d[k] = math.sqrt(span0 + span1 * math.cos(knee_st[i]))
         p0[k] = minimum1(p_st[i], 0.0)
     p_up = np.empty(m)
-    _heel_rise_rows(stance, hip, d, p0, ball, back, ah, HEEL_RISE_LO, p_up)
+    _heel_rise_rows(stance2[0], hip, d, p0, ball, back, ah, HEEL_RISE_LO, p_up)
     for k in range(m):
         if p_st[j + k] <= 0:
             p_st[j + k] = p_up[k]
-    _pivot_rows(stance.reshape(1, 3), p_st, ball, back, ah, ankle)
+    _pivot_rows(stance2, p_st, ball, back, ah, ankle)
     return True

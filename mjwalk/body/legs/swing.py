@@ -95,8 +95,8 @@ def swing_foot(
         np.ascontiguousarray(phi, dtype=float),
         np.ascontiguousarray(hip_xy, dtype=float),
         np.ascontiguousarray(z_hip, dtype=float),
-        lift,
-        land,
+        lift.reshape(1, 3),
+        land.reshape(1, 3),
         dyaw,
         mode,
         float(p_pre),
@@ -125,13 +125,16 @@ def swing_foot(
 
 
 @njit
-def _swing(phi, hip_xy, z_hip, lift, land, dyaw, mode, p_pre, seg, seg_sq, nrm,
+def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm,
            hip_c, hip_k, knee_c, knee_k, pitch_c, pitch_k, L1, L2, span0, span1, knee_min,
            ball, back, front, ah, land_p, pos, p, toe, yaw):  # fmt: skip
     """The arithmetic of :func:`swing_foot` into ``pos`` (n, 3, zeros), ``p`` (n, zeros),
     ``toe`` and ``yaw`` (n,); returns the toe-off phase. ``hip_c``, ``hip_k`` (and knee,
     pitch): the reference's piecewise-polynomial coefficients and knots; ``span0 + span1 cos
-    knee`` the squared hip-to-ankle span (:meth:`LegGeometry.span`)."""
+    knee`` the squared hip-to-ankle span (:meth:`LegGeometry.span`); ``lift2``, ``land2``
+    the footprints as (1, 3) rows (no reshape in compiled code: its error path compiles
+    slowly)."""
+    lift = lift2[0]
     n = phi.shape[0]
     for i in range(n):
         yaw[i] = lift[2] + dyaw * smoothstep1((phi[i] - TOE_OFF) / (SWING_TURNED - TOE_OFF))
@@ -157,8 +160,12 @@ def _swing(phi, hip_xy, z_hip, lift, land, dyaw, mode, p_pre, seg, seg_sq, nrm,
             kv = maximum1(ppoly_at(knee_c, knee_k, wrap01(0.5 + 0.5 * phi[i]), 0), knee_min)
             d[i] = math.sqrt(span0 + span1 * math.cos(kv))
         rise = np.empty(ne)
-        _heel_rise_rows(lift, hip, d, p[:ne].copy(), ball, back, ah, -HEEL_RISE_MAX, rise)
-        p[:ne] = rise
+        p0 = np.empty(ne)
+        for i in range(ne):
+            p0[i] = p[i]
+        _heel_rise_rows(lift, hip, d, p0, ball, back, ah, -HEEL_RISE_MAX, rise)
+        for i in range(ne):  # (element loops: no shape checks to compile)
+            p[i] = rise[i]
         held = -1
         for i in range(ne):
             if p[i] <= -HEEL_RISE_MAX + 1e-9:
@@ -169,9 +176,9 @@ def _swing(phi, hip_xy, z_hip, lift, land, dyaw, mode, p_pre, seg, seg_sq, nrm,
             ne = 0
             while ne < n and phi[ne] <= phi_to:
                 ne += 1
-    _pivot_rows(lift.reshape(1, 3), p[:ne], ball, back, ah, pos[:ne])
+    _pivot_rows(lift2, p[:ne], ball, back, ah, pos[:ne])
     if ne < n:
-        _swing_late(phi, hip_xy, z_hip, lift, land, seg, seg_sq, nrm, hip_c, hip_k, knee_c,
+        _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k, knee_c,
                     knee_k, pitch_c, pitch_k, L1, L2, ball, back, ah, land_p, ne, yaw, pos,
                     p)  # fmt: skip
     # the toes stay flat during the roll-off, then straighten while the foot lifts
@@ -194,12 +201,13 @@ def _swing(phi, hip_xy, z_hip, lift, land, dyaw, mode, p_pre, seg, seg_sq, nrm,
 
 
 @njit
-def _swing_late(phi, hip_xy, z_hip, lift, land, seg, seg_sq, nrm, hip_c, hip_k, knee_c, knee_k,
+def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k, knee_c, knee_k,
                 pitch_c, pitch_k, L1, L2, ball, back, ah, land_p, ne, yaw, pos, p):  # fmt: skip
     """The swing after toe-off (samples ``ne`` on) into ``pos`` and ``p``: the reference
     swing (the reference hip/knee angles of each gait-cycle instant at the current hip, along
     the chord from the lift-off to the landing footprint, under the hip sideways) plus
-    clamped cubic-spline displacements to the key positions at :data:`SWING_KEYS`."""
+    clamped cubic-spline displacements to the key positions at :data:`SWING_KEYS` (``land2``
+    the landing footprint as a (1, 3) row)."""
     n = phi.shape[0]
     if ne < 2:
         raise IndexError("swing_foot: fewer than two samples before toe-off")
@@ -245,20 +253,20 @@ def _swing_late(phi, hip_xy, z_hip, lift, land, seg, seg_sq, nrm, hip_c, hip_k, 
     # key values less the reference at the knots (np.interp: the knots are swing samples,
     # the toe-off knot before them takes the first one's value)
     dpos = np.empty((nk, 3))
-    dpit = np.empty(nk)
+    dpit = np.empty((nk, 1))  # (one column, as the spline takes it)
     for k in range(3):
         dpos[0, k] = pos[ne - 1, k]
-    dpit[0] = p[ne - 1]
+    dpit[0, 0] = p[ne - 1]
     for kk in range(1, nk - 1):
         for k in range(3):
             dpos[kk, k] = ref_pos[rows[kk], k]
         dpos[kk, 2] = ah if ah > dpos[kk, 2] else dpos[kk, 2]
-        dpit[kk] = ref_pit[rows[kk]]
+        dpit[kk, 0] = ref_pit[rows[kk]]
     land_pos = np.empty((1, 3))
-    _pivot_rows(land.reshape(1, 3), np.array([land_p]), ball, back, ah, land_pos)
+    _pivot_rows(land2, np.array([land_p]), ball, back, ah, land_pos)
     for k in range(3):
         dpos[nk - 1, k] = land_pos[0, k]
-    dpit[nk - 1] = land_p
+    dpit[nk - 1, 0] = land_p
     # the reference's slopes at both ends (np.gradient's one-sided end differences); the
     # toe-off knot extrapolated linearly with the first one
     dr0, dr1 = np.zeros(3), np.zeros(3)
@@ -279,11 +287,14 @@ def _swing_late(phi, hip_xy, z_hip, lift, land, seg, seg_sq, nrm, hip_c, hip_k, 
         rp = ref_pit[rows[kk]]
         if kk == 0:
             rp -= lead * dq0
-        dpit[kk] = dpit[kk] - rp
+        dpit[kk, 0] = dpit[kk, 0] - rp
     xq = phi[ne:]
-    sp = _clamped_cubic(knots, dpos, v0 - dr0, -dr1, xq)
+    d0, d1 = np.empty(3), np.empty(3)
+    for k in range(3):
+        d0[k], d1[k] = v0[k] - dr0[k], -dr1[k]
+    sp = _clamped_cubic(knots, dpos, d0, d1, xq)
     dp0 = (p[ne - 1] - p[ne - 2]) / h
-    spp = _clamped_cubic(knots, dpit.reshape(nk, 1), np.array([dp0 - dq0]), np.array([-dq1]), xq)
+    spp = _clamped_cubic(knots, dpit, np.array([dp0 - dq0]), np.array([-dq1]), xq)
     for j in range(m):
         for k in range(3):
             pos[ne + j, k] = ref_pos[j, k] + sp[j, k]
