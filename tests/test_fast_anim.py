@@ -799,3 +799,28 @@ def test_spin_hip_rotation_excess_matches_numpy(s_):
     assert np.array_equal(down[on], soft_excess(bottom - r, w))
     assert np.all(rot[~ground] == 7.0) and np.all(up[~ground] == 7.0)
     assert np.any(up[on] > 0) and np.any(down[on] > 0) and np.any((up[on] == 0) & (down[on] == 0))
+
+
+def test_reach_deficit_matches_numpy():
+    """stance.reach_deficit gives the NumPy deficit of the synthesis's pelvis-lowering
+    passes (the larger of both grounded legs' reach deficits) bit for bit."""
+    from mjwalk.body.legs.stance import reach_deficit
+
+    geom = leg_geometry(1.75)
+    rng = np.random.default_rng(15)
+    n = 300
+    ankle, ground, reach_sq = {}, {}, {}
+    for s_ in "lr":
+        a, _, _, g, _, root, yaw = _leg_case(rng, n, geom)
+        ankle[s_], ground[s_] = a, g
+        reach_sq[s_] = geom.span(np.deg2rad(rng.uniform(2.0, 10.0, n))) ** 2
+    root = root.copy()
+    root[:, 2] += rng.normal(scale=0.08, size=n)  # some legs short of their feet, some not
+    want = np.zeros(n)
+    for s_ in "lr":
+        h = np.linalg.norm(hip_world(root, yaw, s_, geom)[:, :2] - ankle[s_][:, :2], axis=1)
+        cap = ankle[s_][:, 2] + np.sqrt(np.maximum(reach_sq[s_] - h**2, 0.0))
+        want = np.maximum(want, np.where(ground[s_], root[:, 2] - cap, 0.0))
+    got = reach_deficit(root, yaw, ankle, ground, reach_sq, geom)
+    assert np.array_equal(want, got)
+    assert np.any(got > 1e-3) and np.any((got == 0) & (ground["l"] | ground["r"]))

@@ -283,3 +283,43 @@ def _pelvis_height(phi, z_flat, ankle_sw, hip_sw, hip_st, knee_st, p_st, stance2
             p_st[j + k] = p_up[k]
     _pivot_rows(stance2, p_st, ball, back, ah, ankle)
     return True
+
+
+def reach_deficit(
+    root: np.ndarray,
+    yaw: np.ndarray,
+    ankle: dict[str, np.ndarray],
+    ground: dict[str, np.ndarray],
+    reach_sq: dict[str, np.ndarray],
+    geom: LegGeometry,
+) -> np.ndarray:
+    """(n,) how far (m) the pelvis at ``root`` (n, 3) with heading ``yaw`` (n,) stands above
+    the height from which each grounded leg (``ground`` per side "l"/"r", (n,) bool) reaches
+    its ankle (``ankle`` per side, (n, 3)) with the hip-to-ankle span whose square is
+    ``reach_sq`` (per side, (n,), m²): the larger of the legs' deficits, 0 where neither is
+    grounded or the grounded legs reach."""
+    out = np.zeros(len(yaw))
+    for s_ in "lr":
+        _reach_deficit(
+            np.ascontiguousarray(root, dtype=float),
+            np.ascontiguousarray(yaw, dtype=float),
+            np.ascontiguousarray(ankle[s_], dtype=float),
+            np.ascontiguousarray(ground[s_], dtype=np.bool_),
+            np.ascontiguousarray(reach_sq[s_], dtype=float),
+            (1.0 if s_ == "l" else -1.0) * float(geom.hip_y),
+            out,
+        )
+    return out
+
+
+@njit
+def _reach_deficit(root, yaw, ankle, ground, reach_sq, c, out):
+    """One leg's part of :func:`reach_deficit`, folded into ``out`` (n,) by ``np.maximum``:
+    the hip ``c`` metres to the pelvis's left (:func:`~.kinematics.hip_world`), the height
+    above the ankle at which the leg spans ``reach_sq``, the pelvis height above that."""
+    for i in range(yaw.shape[0]):
+        dx = (root[i, 0] + c * -math.sin(yaw[i])) - ankle[i, 0]
+        dy = (root[i, 1] + c * math.cos(yaw[i])) - ankle[i, 1]
+        h = math.sqrt(dx * dx + dy * dy)
+        cap = ankle[i, 2] + math.sqrt(maximum1(reach_sq[i] - h * h, 0.0))
+        out[i] = maximum1(out[i], root[i, 2] - cap if ground[i] else 0.0)

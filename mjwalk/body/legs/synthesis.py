@@ -52,7 +52,7 @@ from mjwalk.body.legs.kinematics import (
 from mjwalk.body.legs.pitchfit import fit_ankle_range, repitch_foot
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
-from mjwalk.body.legs.stance import pelvis_height, stance_foot, stance_knee
+from mjwalk.body.legs.stance import pelvis_height, reach_deficit, stance_foot, stance_knee
 from mjwalk.body.legs.steps import landing_pitches, step_frames, swing_foot
 from mjwalk.body.legs.swing import swing_foot as swing_foot_compiled
 from mjwalk.conventions import DEFAULT_STATURE, side_of_prefix
@@ -273,6 +273,7 @@ def legs_from_walk(
     angles: dict[str, np.ndarray] = {}
     ik = {s_: LegIKCache(s_, geom) for s_ in "lr"}  # the loops below re-solve changed samples
     k_floor = {s_: np.clip(ref("knee", cyc[s_]), KNEE_MIN, np.deg2rad(KNEE_SOFT)) for s_ in "lr"}
+    reach_sq = {s_: geom.span(k_floor[s_]) ** 2 for s_ in "lr"}  # (m²) with those knees
     for _ in range(4):
         root = np.column_stack([xy, z])
         for s_ in "lr":
@@ -307,12 +308,8 @@ def legs_from_walk(
         # the reference's (up to KNEE_SOFT), the pelvis lowers (smoothly). Near full
         # extension a millimetre of leg length is several degrees of knee: a leg stretched
         # straight by the pelvis would flick its knee
-        deficit = np.zeros(n)
-        for s_ in "lr":
-            h = np.linalg.norm(hip_world(root, yaw, s_, geom)[:, :2] - ankle[s_][:, :2], axis=1)
-            reach = geom.span(k_floor[s_])
-            cap = ankle[s_][:, 2] + np.sqrt(np.maximum(reach**2 - h**2, 0.0))
-            deficit = np.maximum(deficit, np.where(ground[s_], z - cap, 0.0))
+        # (compiled: stance.reach_deficit)
+        deficit = reach_deficit(root, yaw, ankle, ground, reach_sq, geom)
         if deficit.max() <= 1e-3:
             break
         z = z - spread(np.maximum(deficit, 0.0), win)
