@@ -189,9 +189,11 @@ def legs_from_walk(
         # after landing instead, it would drop the ankle and jolt the knee
         land_p = fr.land_p  # the last step too: the final pose is held as it lands
         land_pos = pivot_ankle(fr.land, land_p, geom)
-        hz = np.linalg.norm(hip_pos(np.array([b]), sw) - land_pos[:, :2], axis=-1)[0]
+        # (|hip - landing ankle| in (x, y) as np.linalg.norm sums it, without array calls)
+        dx, dy = hip_xy[sw][b] - land_pos[0, :2]
+        hz = np.sqrt(dx * dx + dy * dy)
         z_end = land_pos[0, 2] + np.sqrt(max(d_land**2 - hz**2, 1e-6))
-        hip_end = hip_pos(np.array([b]), st, np.array([z_end]))[0]
+        hip_end = np.array([*hip_xy[st][b], z_end])
         land_prev = frames[k - 1].land_p if k > 0 and hs_pitch > 0 else None
         th1 = max(float(ref("knee", 0.5)), float(KNEE_MIN))
         p_st, ankle_st = stance_foot(
