@@ -12,9 +12,12 @@ algorithms, so a seed gives the same numbers inside and outside them.
 from __future__ import annotations
 
 import sys
+from collections.abc import Callable
+from typing import cast
 
 import numba
 import numba.core.event
+import numba.extending
 
 #: ``fastmath`` off by default: the arithmetic stays that of the NumPy code it replaces.
 njit = numba.njit(cache=True, nogil=True, fastmath=False)
@@ -26,9 +29,12 @@ njit_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
 #: cache and compiles: on the first plan or animation after an install or upgrade. Measured
 #: for the planner alone: 15 s on an idle 2-core machine; 44 s, 106 s and 159 s wall (44 CPU s)
 #: on one loaded by other jobs; the animation kernels (legs, reach pose fit) compile on the
-#: first animated walk or reach on top of that (not measured separately)
+#: first animated walk or reach on top of that
 #: (load average 13: ``NUMBA_CACHE_DIR=$(mktemp -d) mjwalk plan station --from stand_rack2
 #: --to stand_car1 --n 1``); the next process loads the machine code instead (no notice).
+#: The leg synthesis's kernels alone: 8 s on the 2-core machine at load average 2, 4 s
+#: before its per-step loops were compiled (the first ``legs_from_walk`` of a 6-step
+#: synthetic walk under ``NUMBA_CACHE_DIR=$(mktemp -d)``).
 COMPILE_NOTICE = (
     "mjwalk: compiling the planner and the animation kernels (numba, once after an install: "
     "about a minute idle, minutes on a busy machine; cached for later runs)..."
@@ -55,3 +61,24 @@ class _CompileNotice(numba.core.event.Listener):
 
 NOTICE = _CompileNotice()
 numba.core.event.register("numba:compile", NOTICE)
+
+
+@numba.extending.intrinsic
+def _fma(typingctx, a, b, c):
+    """``a * b + c`` rounded once (LLVM's ``llvm.fma``, a fused multiply-add instruction on
+    x86-64 with FMA3), in compiled functions only. NumPy's matmul of an (m, 2) array by a
+    2-vector and its dot of two 2-vectors go through OpenBLAS, whose kernels on FMA machines
+    compute ``fma(r0, s0, r1 * s1)`` and ``fma(s1, s1, s0 * s0)`` (measured here on
+    SkylakeX: equal bit for bit on 10^4 random rows); compiled replacements of such products use
+    this to give the same numbers (on machines whose BLAS does not fuse them, the two differ
+    by rounding only)."""
+    sig = numba.types.float64(numba.types.float64, numba.types.float64, numba.types.float64)
+
+    def codegen(context, builder, signature, args):
+        return builder.fma(*args)
+
+    return sig, codegen
+
+
+#: ``fma(a, b, c)``: :func:`_fma` as compiled callers call it.
+fma = cast(Callable[[float, float, float], float], _fma)

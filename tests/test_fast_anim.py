@@ -572,3 +572,273 @@ def test_end_slopes_match_numpy_gradient():
             for f in (rng.normal(size=(n, 3)), rng.normal(size=n)):
                 g = np.gradient(f, x, axis=0)
                 assert np.array_equal(_end_slopes(f, x), g[[0, -1]])
+
+
+def _matmul_is_fma() -> bool:
+    """Whether NumPy's (m, 2) @ (2,) gives fma(r0, s0, r1 s1) here, as the compiled swing
+    assumes (OpenBLAS's kernels on FMA machines); elsewhere the two differ by rounding."""
+    from numba import njit
+
+    from mjwalk._jit import fma
+
+    @njit
+    def rows(r, s):
+        return np.array([fma(r[i, 0], s[0], r[i, 1] * s[1]) for i in range(r.shape[0])])
+
+    rng = np.random.default_rng(16)
+    r, s = rng.normal(size=(500, 2)), rng.normal(size=2)
+    return bool(np.array_equal(r @ s, rows(r, s)))
+
+
+@pytest.mark.parametrize("reference", ["default", "winter"])
+def test_compiled_swing_foot_matches_numpy(monkeypatch, reference):
+    """The compiled swing foot (body.legs.swing) gives steps.swing_foot's numbers bit for bit
+    on every step of straight, turning, short-stepped and long-stepped walks, with both
+    reference tables; the leg motion is the NumPy path's. (Bit for bit where NumPy's
+    2-vector products are fused multiply-adds, :func:`_matmul_is_fma`; else to 1e-12.)"""
+    from mjwalk.body.legs import steps, synthesis
+    from mjwalk.body.legs.reference import DEFAULT_REFERENCE, winter_reference
+    from mjwalk.body.legs.swing import swing_foot
+
+    ref = DEFAULT_REFERENCE if reference == "default" else winter_reference()
+    calls = []
+    exact = _matmul_is_fma()
+
+    def both(fr, phi, hip_xy, z_hip, ref_, geom, land_p):
+        got = swing_foot(fr, phi, hip_xy, z_hip, ref_, geom, land_p)
+        want = steps.swing_foot(
+            fr, phi, np.arange(len(phi)), z_hip,
+            lambda i, side, zz=None: hip_xy[i] if zz is None else np.column_stack([hip_xy[i], zz]),
+            ref_, geom, land_p,
+        )  # fmt: skip
+        for x, y in zip(want, got, strict=True):
+            assert np.array_equal(x, y) if exact else np.allclose(x, y, rtol=0, atol=1e-12)
+        calls.append(want[4])
+        return got
+
+    monkeypatch.setattr(synthesis, "swing_foot_compiled", both)
+    walks = [
+        synthetic_walk(n_steps=6),
+        synthetic_walk(n_steps=6, radius=1.2),
+        synthetic_walk(n_steps=5, step_len=0.12, step_time=0.45),
+        synthetic_walk(n_steps=4, step_len=0.95, step_time=0.6),
+    ]
+    for walk in walks:
+        synthesis.legs_from_walk(walk, reference=ref)
+    assert len(calls) == sum(len(w.steps) for w in walks)
+    assert any(phi_to < 0.2 for phi_to in calls)  # an early lift-off among them
+
+
+def _stance_foot_ref(fr, phi, p_ref, land_prev, hs_pitch, hip_end, knee_end, geom):
+    """The stance foot as legs_from_walk computed it in NumPy (before stance.stance_foot)."""
+    from mjwalk.body.legs.curves import smoothstep, soft_flat
+    from mjwalk.body.legs.steps import FOOT_FLAT
+
+    p_st = np.where(phi < FOOT_FLAT, np.maximum(p_ref, 0), np.minimum(p_ref, 0))
+    if land_prev is not None:
+        p_st = np.where(phi < FOOT_FLAT, p_st * land_prev / hs_pitch, p_st)
+    p_st = soft_flat(p_st)
+    if fr.first:
+        p_st = np.minimum(p_st, 0.0)
+    p1 = heel_rise(fr.stance, hip_end, knee_end, float(p_st[-1]), geom)
+    p_st = p_st + (p1 - p_st[-1]) * smoothstep((phi - FOOT_FLAT) / (1.0 - FOOT_FLAT))
+    return p_st, pivot_ankle(fr.stance, p_st, geom)
+
+
+def _stance_knee_ref(ref, phi, k_ref, th0, v0, th1, v1, hip_xy, ankle, geom):
+    """The stance knee and pelvis height as legs_from_walk computed them in NumPy."""
+    from mjwalk.body.legs.steps import stance_angle
+
+    assert np.array_equal(k_ref, ref("knee", 0.5 * phi))
+    knee = np.clip(stance_angle(ref, "knee", phi, th0, v0, th1, v1), KNEE_MIN, np.deg2rad(80))
+    h = np.linalg.norm(hip_xy - ankle[:, :2], axis=-1)
+    return knee, ankle[:, 2] + np.sqrt(np.maximum(geom.span(knee) ** 2 - h**2, 1e-6))
+
+
+def _pelvis_height_ref(phi, z_flat, pos, hip_sw, hip_st, knee_st, p_st, fr, d_max_sq, d_land,
+                       ease_from, geom):  # fmt: skip
+    """The pelvis height and landing ease as legs_from_walk computed them in NumPy."""
+    hsw = np.linalg.norm(hip_sw - pos[:, :2], axis=-1)
+    z_sw = pos[:, 2] + np.sqrt(np.maximum(d_max_sq - hsw**2, 1e-6))
+    z = np.minimum(z_flat, z_sw)
+    lj = np.flatnonzero(phi >= ease_from)
+    if not (len(lj) >= 3 and lj[0] > 0):
+        return z, None
+    j = lj[0]
+    hj = np.column_stack([hip_sw[j - 1 : j + 1], z[j - 1 : j + 1]])
+    dj = np.linalg.norm(hj - pos[j - 1 : j + 1], axis=-1)
+    span, gap = 1.0 - phi[j], d_land - dj[1]
+    m0 = span * (dj[1] - dj[0]) / (phi[j] - phi[j - 1])
+    m0 = float(np.clip(m0, min(0.0, 3 * gap), max(0.0, 3 * gap)))
+    u = (phi[lj] - phi[j]) / span
+    d_prof = dj[1] + (u**3 - 2 * u**2 + u) * m0 + (3 * u**2 - 2 * u**3) * gap
+    h_prof = np.linalg.norm(hip_sw[lj] - pos[lj, :2], axis=-1)
+    z_prof = pos[lj, 2] + np.sqrt(np.maximum(d_prof**2 - h_prof**2, 1e-6))
+    z[lj] = np.minimum(z_prof, z_sw[lj])
+    hip = np.column_stack([hip_st[lj], z[lj]])
+    p_up = heel_rise(fr.stance, hip, knee_st[lj], np.minimum(p_st[lj], 0), geom)
+    p_st[lj] = np.where(p_st[lj] <= 0, p_up, p_st[lj])
+    return z, pivot_ankle(fr.stance, p_st, geom)
+
+
+@pytest.mark.parametrize("reference", ["default", "winter"])
+def test_compiled_stance_leg_matches_numpy(monkeypatch, reference):
+    """stance.stance_foot, stance.stance_knee and stance.pelvis_height give the NumPy code's
+    numbers bit for bit on every step of straight, turning, short-stepped and long-stepped
+    walks."""
+    from mjwalk.body.legs import stance, synthesis
+    from mjwalk.body.legs.reference import DEFAULT_REFERENCE, winter_reference
+
+    ref = DEFAULT_REFERENCE if reference == "default" else winter_reference()
+    seen = {"foot": 0, "knee": 0, "scaled": 0, "height": 0, "eased": 0}
+
+    def foot(*args):
+        got, want = stance.stance_foot(*args), _stance_foot_ref(*args)
+        for x, y in zip(want, got, strict=True):
+            assert np.array_equal(x, y)
+        seen["foot"] += 1
+        seen["scaled"] += args[3] is not None
+        return got
+
+    def knee(*args):
+        got, want = stance.stance_knee(*args), _stance_knee_ref(*args)
+        for x, y in zip(want, got, strict=True):
+            assert np.array_equal(x, y)
+        seen["knee"] += 1
+        return got
+
+    def height(*args):
+        p_ref = args[6].copy()
+        got = stance.pelvis_height(*args)
+        want = _pelvis_height_ref(*args[:6], p_ref, *args[7:])
+        assert np.array_equal(want[0], got[0])
+        assert (want[1] is None) == (got[1] is None)
+        if got[1] is not None:
+            assert np.array_equal(want[1], got[1])
+            assert np.array_equal(p_ref, args[6])
+            seen["eased"] += 1
+        seen["height"] += 1
+        return got
+
+    monkeypatch.setattr(synthesis, "stance_foot", foot)
+    monkeypatch.setattr(synthesis, "pelvis_height", height)
+    monkeypatch.setattr(synthesis, "stance_knee", knee)
+    walks = [
+        synthetic_walk(n_steps=6),
+        synthetic_walk(n_steps=6, radius=1.2),
+        synthetic_walk(n_steps=5, step_len=0.12, step_time=0.45),
+        synthetic_walk(n_steps=4, step_len=0.95, step_time=0.6),
+    ]
+    for walk in walks:
+        synthesis.legs_from_walk(walk, reference=ref)
+    n_steps = sum(len(w.steps) for w in walks)
+    assert seen["foot"] == seen["knee"] == seen["height"] == n_steps
+    assert seen["eased"] > n_steps // 2
+    assert seen["scaled"] == n_steps - len(walks)  # all but the first steps roll down
+
+
+def _landing_pitches_ref(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom):
+    """steps.landing_pitches as NumPy code (before it was compiled): the landing pitches."""
+    b = np.array([fr.end for fr in frames])
+    land = np.array([fr.land for fr in frames])
+    left = np.array([fr.side == "l" for fr in frames])
+    land_p = np.full(len(frames), hs_pitch)
+    for _ in range(4):
+        pos = pivot_ankle(land, land_p, geom)
+        z = np.zeros(len(b))
+        flex = np.zeros(len(b))
+        for side, sel in (("l", left), ("r", ~left)):
+            if not sel.any():
+                continue
+            bs = b[sel]
+            hip = hip_world(np.column_stack([xy[bs], z[sel]]), yaw[bs], side, geom)
+            hz = np.linalg.norm(hip[:, :2] - pos[sel, :2], axis=-1)
+            z[sel] = pos[sel, 2] + np.sqrt(np.maximum(d_land**2 - hz**2, 1e-6))
+            root = np.column_stack([xy[bs], z[sel]])
+            raw = leg_ik_world(pos[sel], land[sel, 2], land_p[sel], root, yaw[bs], side, geom)
+            flex[sel] = raw[f"ankle_{side}_flex"]
+        over = flex - dorsi_max
+        if not np.any((over > 0) & (land_p > 0)):
+            break
+        land_p = np.where(over > 0, np.maximum(land_p - 1.2 * over, 0.0), land_p)
+    return land_p
+
+
+def test_compiled_landing_pitches_match_numpy():
+    """steps.landing_pitches (compiled rounds) gives the NumPy rounds' pitches bit for bit,
+    on steps landing ahead of the hip (the reference pitch kept) and under it (flattened)."""
+    from mjwalk.body.legs.reference import DEFAULT_REFERENCE as ref
+    from mjwalk.body.legs.steps import landing_pitches, step_frames
+
+    geom = leg_geometry(1.75)
+    hs_pitch = max(0.0, float(ref("pitch", 0.0)))
+    d_land = geom.span(max(ref("knee", 0.0), KNEE_MIN))
+    dorsi = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
+    rng = np.random.default_rng(13)
+    kept = flat = 0
+    for walk in (synthetic_walk(n_steps=6), synthetic_walk(n_steps=6, radius=1.2)):
+        for shift in (0.0, 0.2, 0.35):  # the pelvis moved ahead of the feet by that (m)
+            frames = step_frames(walk)
+            xy = np.asarray(walk.xy, float) + shift * np.array([1.0, 0.0])
+            xy = xy + rng.normal(scale=0.01, size=xy.shape)
+            yaw = np.asarray(walk.yaw, float)
+            want = _landing_pitches_ref(frames, xy, yaw, hs_pitch, d_land, dorsi, geom)
+            landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi, geom)
+            got = np.array([fr.land_p for fr in frames])
+            assert np.array_equal(want, got)
+            kept += int(np.sum(got == hs_pitch))
+            flat += int(np.sum(got < hs_pitch))
+    assert kept > 0 and flat > 0
+
+
+@pytest.mark.parametrize("s_", ["l", "r"])
+def test_spin_hip_rotation_excess_matches_numpy(s_):
+    """spin._hip_rotation_excess gives leg_ik_world's hip rotation and soft_excess's
+    overshoots bit for bit on the grounded samples and leaves the others alone."""
+    from mjwalk.body.legs.curves import soft_excess
+    from mjwalk.body.legs.kinematics import _ik_lengths
+    from mjwalk.body.legs.spin import _hip_rotation_excess
+
+    geom = leg_geometry(1.75)
+    rng = np.random.default_rng(14)
+    n = 300
+    ankle, fyaw, pitch, ground, _, root, yaw = _leg_case(rng, n, geom)
+    fyaw = fyaw + rng.normal(scale=0.6, size=n)  # hips turned past their range too
+    top, bottom, w = np.deg2rad(39.0), np.deg2rad(-39.0), np.deg2rad(2.0)
+    rot, up, down = np.full(n, 7.0), np.full(n, 7.0), np.full(n, 7.0)
+    sgn = 1.0 if s_ == "l" else -1.0
+    args = (ankle, fyaw, pitch, root, yaw, sgn, geom.hip_y, *_ik_lengths(geom))
+    _hip_rotation_excess(ground, *args, top, bottom, w, rot, up, down)
+    on = np.flatnonzero(ground)
+    want = leg_ik_world(ankle[on], fyaw[on], pitch[on], root[on], yaw[on], s_, geom)
+    r = want[f"hip_{s_}_rot"]
+    assert np.array_equal(rot[on], r)
+    assert np.array_equal(up[on], soft_excess(r - top, w))
+    assert np.array_equal(down[on], soft_excess(bottom - r, w))
+    assert np.all(rot[~ground] == 7.0) and np.all(up[~ground] == 7.0)
+    assert np.any(up[on] > 0) and np.any(down[on] > 0) and np.any((up[on] == 0) & (down[on] == 0))
+
+
+def test_reach_deficit_matches_numpy():
+    """stance.reach_deficit gives the NumPy deficit of the synthesis's pelvis-lowering
+    passes (the larger of both grounded legs' reach deficits) bit for bit."""
+    from mjwalk.body.legs.stance import reach_deficit
+
+    geom = leg_geometry(1.75)
+    rng = np.random.default_rng(15)
+    n = 300
+    ankle, ground, reach_sq = {}, {}, {}
+    for s_ in "lr":
+        a, _, _, g, _, root, yaw = _leg_case(rng, n, geom)
+        ankle[s_], ground[s_] = a, g
+        reach_sq[s_] = geom.span(np.deg2rad(rng.uniform(2.0, 10.0, n))) ** 2
+    root = root.copy()
+    root[:, 2] += rng.normal(scale=0.08, size=n)  # some legs short of their feet, some not
+    want = np.zeros(n)
+    for s_ in "lr":
+        h = np.linalg.norm(hip_world(root, yaw, s_, geom)[:, :2] - ankle[s_][:, :2], axis=1)
+        cap = ankle[s_][:, 2] + np.sqrt(np.maximum(reach_sq[s_] - h**2, 0.0))
+        want = np.maximum(want, np.where(ground[s_], root[:, 2] - cap, 0.0))
+    got = reach_deficit(root, yaw, ankle, ground, reach_sq, geom)
+    assert np.array_equal(want, got)
+    assert np.any(got > 1e-3) and np.any((got == 0) & (ground["l"] | ground["r"]))

@@ -11,6 +11,8 @@ from mjwalk._jit import njit
 
 #: Pitches smaller than this (degrees) count as a flat foot (no roll, so no drift).
 FLAT_DEG = 2.0
+#: The same in radians.
+FLAT = float(np.deg2rad(FLAT_DEG))
 
 
 def smoothstep(x: np.ndarray) -> np.ndarray:
@@ -101,6 +103,53 @@ def soft_excess(x: np.ndarray, w: float) -> np.ndarray:
     """max(x, 0) rounded over ``[0, 2 w]`` (C1): 0 for x <= 0, x - w for x >= 2 w."""
     x = np.maximum(x, 0.0)
     return np.where(x < 2 * w, x * x / (4 * w), x - w)
+
+
+# one value at a time, for compiled callers (the same arithmetic as the array functions)
+
+
+@njit
+def smoothstep1(x):
+    """:func:`smoothstep` of one value."""
+    x = min(max(x, 0.0), 1.0)
+    return x * x * (3 - 2 * x)
+
+
+@njit
+def maximum1(a, b):
+    """``np.maximum`` of two values (the first on ties and NaN)."""
+    return a if a >= b or a != a else b
+
+
+@njit
+def minimum1(a, b):
+    """``np.minimum`` of two values (the first on ties and NaN)."""
+    return a if a <= b or a != a else b
+
+
+@njit
+def soft_flat1(p, flat):
+    """:func:`soft_flat` of one pitch (``flat`` its threshold, rad)."""
+    sign = 1.0 if p > 0 else (-1.0 if p < 0 else (0.0 if p == 0 else p))
+    return sign * maximum1(abs(p) - flat, 0.0)
+
+
+@njit
+def soft_excess1(x, w):
+    """:func:`soft_excess` of one value."""
+    x = maximum1(x, 0.0)
+    return x * x / (4 * w) if x < 2 * w else x - w
+
+
+@njit
+def soft_clip01_1(x, w):
+    """:func:`soft_clip01` of one value."""
+    lo = 0.0 if x < -w else ((x + w) * (x + w) / (4 * w) if x < w else x)
+    if lo > 1 + w:
+        return 1.0
+    if lo > 1 - w:
+        return 1 - (1 + w - lo) * (1 + w - lo) / (4 * w)
+    return lo
 
 
 def clamped_cubic(x, y, d0, d1, xq) -> np.ndarray:

@@ -94,29 +94,48 @@ class ReferenceGait:
 def _ppoly_eval(coef, knots, xs, nu):
     """A cubic spline's value (``nu`` = 0) or first derivative (1) at ``xs`` in [0, 1] from its
     piecewise-polynomial coefficients ``coef`` (4, m-1) on ``knots`` (m,): scipy's
-    ``PPoly.__call__`` (interval with knots[i] <= x < knots[i+1], the last one closed; the
-    power sum with its running power and derivative prefactors) without its per-call
-    overhead (the leg synthesis evaluates the reference thousands of times per walk)."""
+    ``PPoly.__call__`` without its per-call overhead (the leg synthesis evaluates the
+    reference thousands of times per walk); :func:`ppoly_at` per value."""
     out = np.empty(len(xs))
-    m = len(knots)
     for j in range(len(xs)):
-        x = xs[j]
-        i = np.searchsorted(knots, x, side="right") - 1
-        i = min(max(i, 0), m - 2)
-        sx = x - knots[i]
-        res = 0.0
-        z = 1.0
-        for kp in range(4):
-            if kp < nu:
-                continue
-            pref = 1.0
-            for k in range(kp, kp - nu, -1):
-                pref *= k
-            res = res + coef[3 - kp, i] * z * pref
-            if kp < 3:
-                z *= sx
-        out[j] = res
+        out[j] = ppoly_at(coef, knots, xs[j], nu)
     return out
+
+
+@njit
+def ppoly_at(coef, knots, x, nu):
+    """One value of :func:`_ppoly_eval` (for compiled callers): scipy's ``PPoly`` arithmetic
+    (interval with knots[i] <= x < knots[i+1], the last one closed; the power sum with its
+    running power and derivative prefactors)."""
+    m = len(knots)
+    i = np.searchsorted(knots, x, side="right") - 1
+    i = min(max(i, 0), m - 2)
+    sx = x - knots[i]
+    res = 0.0
+    z = 1.0
+    for kp in range(4):
+        if kp < nu:
+            continue
+        pref = 1.0
+        for k in range(kp, kp - nu, -1):
+            pref *= k
+        res = res + coef[3 - kp, i] * z * pref
+        if kp < 3:
+            z *= sx
+    return res
+
+
+@njit
+def wrap01(c):
+    """``np.mod(c, 1.0)`` of one float (the cycle fraction :meth:`ReferenceGait.__call__`
+    evaluates): NumPy's floor-mod arithmetic (fmod, then shifted into [0, 1))."""
+    r = np.fmod(c, 1.0)
+    if r != 0.0:
+        if r < 0.0:
+            r += 1.0
+    else:
+        r = 0.0
+    return r
 
 
 def winter_reference() -> ReferenceGait:

@@ -6,9 +6,17 @@ from __future__ import annotations
 
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
-from mjwalk.body.legs.curves import smoothstep, soft_excess
-from mjwalk.body.legs.kinematics import ball_offset, leg_ik_world, pivot_ankle, spin_print
+from mjwalk.body.legs.curves import smoothstep, soft_excess1
+from mjwalk.body.legs.kinematics import (
+    _ik_lengths,
+    _leg_ik_world_row,
+    ball_offset,
+    leg_ik_world,
+    pivot_ankle,
+    spin_print,
+)
 from mjwalk.body.legs.steps import SWING_TURNED
 
 #: Spin turns (degrees): a grounded foot whose hip would rotate past its range less
@@ -43,16 +51,41 @@ def spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeom
     heel = np.deg2rad(SPIN_HEEL)
     ball, back = ball_offset(geom), -geom.foot_back
     stats = {}
+    root_c, yaw_c = np.ascontiguousarray(root, dtype=float), np.ascontiguousarray(yaw, dtype=float)
     for s_ in "lr":
         sgn = 1.0 if s_ == "l" else -1.0
         g = ground[s_]
         new_print = np.r_[True, np.any(print_[s_][1:] != print_[s_][:-1], axis=1)]
         starts = np.flatnonzero(g & (new_print | ~np.r_[False, g[:-1]]))
-        ends = [
-            j0 + int(np.argmax(np.r_[~g[j0 + 1 :] | new_print[j0 + 1 :], True])) for j0 in starts
-        ]
+        # each contact ends before the next sample off the floor or on another print
+        breaks = np.flatnonzero(~g | new_print)
+        nxt = np.searchsorted(breaks, starts, side="right")
+        ends = [int(breaks[k]) - 1 if k < len(breaks) else n - 1 for k in nxt]
+        # the hip rotation of every grounded sample at once (the rows are independent: as
+        # per contact), and where it passes its range; the other contacts are left as they are
+        r_all, up_all, down_all = (np.zeros(n) for _ in range(3))
+        _hip_rotation_excess(
+            np.ascontiguousarray(g, dtype=np.bool_),
+            np.ascontiguousarray(ankle[s_], dtype=float),
+            np.ascontiguousarray(fyaw[s_], dtype=float),
+            np.ascontiguousarray(pitch[s_], dtype=float),
+            root_c,
+            yaw_c,
+            sgn,
+            float(geom.hip_y),
+            *_ik_lengths(geom),
+            float(hi - margin - soft),
+            float(lo + margin + soft),
+            float(soft / 2),
+            r_all,
+            up_all,
+            down_all,
+        )
+        need_all = (up_all > 0) | (down_all > 0)
         worst, count = 0.0, 0
         for i, (j0, j1) in enumerate(zip(starts, ends, strict=True)):
+            if not need_all[j0 : j1 + 1].any():
+                continue
             run = np.arange(j0, j1 + 1)
             foot = print_[s_][j0].copy()
 
@@ -60,12 +93,8 @@ def spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeom
                 return leg_ik_world(a_, y_, p_, root[run], yaw[run], side, geom)[f"hip_{side}_rot"]
 
             p0 = pitch[s_][run].copy()
-            r0 = rot(ankle[s_][run], fyaw[s_][run], p0)
-            up = soft_excess(r0 - (hi - margin - soft), soft / 2)
-            down = soft_excess((lo + margin + soft) - r0, soft / 2)
-            need = (up > 0) | (down > 0)
-            if not need.any():
-                continue
+            r0, up, down = r_all[run], up_all[run], down_all[run]
+            need = need_all[run]
             target = r0 - (up - down)
             rise = np.maximum(
                 smoothstep((r0 - (hi - margin - soft - ramp)) / ramp),
@@ -130,3 +159,20 @@ def spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeom
                 toe[s_][sw] -= w * d_p
         stats[s_] = (worst, count)
     return stats
+
+
+@njit
+def _hip_rotation_excess(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax,
+                         top, bottom, w, rot, up, down):  # fmt: skip
+    """Per grounded sample (``ground`` (n,)): the leg's hip rotation ``rot`` (unclipped IK,
+    :func:`~mjwalk.body.legs.kinematics._leg_ik_world_row`) and how far it passes ``top`` and
+    falls short of ``bottom`` (``up``, ``down``: :func:`~mjwalk.body.legs.curves.soft_excess`
+    over ``w``), radians; the other samples are left as they are."""
+    out = np.empty((ground.shape[0], 6))
+    for i in range(ground.shape[0]):
+        if not ground[i]:
+            continue
+        _leg_ik_world_row(ankle, fyaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
+        rot[i] = out[i, 0]
+        up[i] = soft_excess1(out[i, 0] - top, w)
+        down[i] = soft_excess1(bottom - out[i, 0], w)

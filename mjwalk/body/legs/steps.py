@@ -8,18 +8,21 @@ half a gait cycle. World frame, metres, radians.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
-from mjwalk.body.legs.curves import clamped_cubic, smoothstep, soft_clip01, soft_flat
+from mjwalk.body.legs.curves import clamped_cubic, maximum1, smoothstep, soft_clip01, soft_flat
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
+    _ik_lengths,
+    _leg_ik_world_row,
+    _pivot_rows,
     ball_offset,
     heel_rise,
-    hip_world,
-    leg_ik_world,
     pivot_ankle,
 )
 from mjwalk.body.legs.reference import ReferenceGait
@@ -111,31 +114,69 @@ def landing_pitches(
     foot lands with: the reference's ``hs_pitch``, or flatter (down to 0) where the landing
     leg at its heel-strike length ``d_land`` (m) under the pelvis at ``xy``, ``yaw`` of the
     landing sample would dorsiflex its ankle past ``dorsi_max`` (a foot landing under the
-    hip). All steps at once; a few fixed-point rounds."""
-    b = np.array([fr.end for fr in frames])
-    land = np.array([fr.land for fr in frames])
-    left = np.array([fr.side == "l" for fr in frames])
-    land_p = np.full(len(frames), hs_pitch)
-    for _ in range(4):
-        pos = pivot_ankle(land, land_p, geom)
-        z = np.zeros(len(b))
-        flex = np.zeros(len(b))
-        for side, sel in (("l", left), ("r", ~left)):
-            if not sel.any():
-                continue
-            bs = b[sel]
-            hip = hip_world(np.column_stack([xy[bs], z[sel]]), yaw[bs], side, geom)
-            hz = np.linalg.norm(hip[:, :2] - pos[sel, :2], axis=-1)
-            z[sel] = pos[sel, 2] + np.sqrt(np.maximum(d_land**2 - hz**2, 1e-6))
-            root = np.column_stack([xy[bs], z[sel]])
-            raw = leg_ik_world(pos[sel], land[sel, 2], land_p[sel], root, yaw[bs], side, geom)
-            flex[sel] = raw[f"ankle_{side}_flex"]
-        over = flex - dorsi_max
-        if not np.any((over > 0) & (land_p > 0)):
-            break
-        land_p = np.where(over > 0, np.maximum(land_p - 1.2 * over, 0.0), land_p)
+    hip). All steps at once; a few fixed-point rounds (compiled: :func:`_landing_rounds`)."""
+    L1, L2, rmin, rmax = _ik_lengths(geom)
+    land_p = np.full(len(frames), float(hs_pitch))
+    _landing_rounds(
+        np.array([fr.end for fr in frames], dtype=np.int64),
+        np.array([fr.land for fr in frames], dtype=float).reshape(-1, 3),
+        np.array([1.0 if fr.side == "l" else -1.0 for fr in frames]),
+        np.ascontiguousarray(xy, dtype=float),
+        np.ascontiguousarray(yaw, dtype=float),
+        float(d_land**2),
+        float(dorsi_max),
+        float(geom.hip_y),
+        L1,
+        L2,
+        rmin,
+        rmax,
+        ball_offset(geom),
+        float(geom.foot_back),
+        float(geom.ankle_height),
+        land_p,
+    )
     for fr, p in zip(frames, land_p, strict=True):
         fr.land_p = float(p)
+
+
+@njit
+def _landing_rounds(b, land, sgn, xy, yaw, d_land_sq, dorsi_max, hip_y, L1, L2, rmin, rmax,
+                    ball, back, ah, land_p):  # fmt: skip
+    """The rounds of :func:`landing_pitches` on ``land_p`` (m,), in place: per step (landing
+    sample ``b``, footprint ``land`` (m, 3), ``sgn`` +1 left / -1 right) the landing ankle
+    pivoted by its pitch, the pelvis height at which the leg spans ``d_land_sq`` (m²) to it
+    from the hip of the upright pelvis (:func:`~.kinematics.hip_world` at height 0), and the
+    leg IK's ankle flexion there (:func:`~.kinematics._leg_ik_world_row`); a foot whose
+    ankle flexes past ``dorsi_max`` lands flatter by 1.2 times the excess (down to 0)."""
+    m = b.shape[0]
+    pos = np.empty((m, 3))
+    root = np.empty((m, 3))
+    yaw_b = np.empty(m)
+    foot_yaw = land[:, 2].copy()
+    out = np.empty((m, 6))
+    for _ in range(4):
+        _pivot_rows(land, land_p, ball, back, ah, pos)
+        for i in range(m):
+            k = b[i]
+            c = sgn[i] * hip_y
+            dx = (xy[k, 0] + c * -math.sin(yaw[k])) - pos[i, 0]
+            dy = (xy[k, 1] + c * math.cos(yaw[k])) - pos[i, 1]
+            hz = math.sqrt(dx * dx + dy * dy)
+            root[i, 0], root[i, 1] = xy[k, 0], xy[k, 1]
+            root[i, 2] = pos[i, 2] + math.sqrt(maximum1(d_land_sq - hz * hz, 1e-6))
+            yaw_b[i] = yaw[k]
+            _leg_ik_world_row(pos, foot_yaw, land_p, root, yaw_b, i, sgn[i], hip_y, L1, L2,
+                              rmin, rmax, out)  # fmt: skip
+        done = True
+        for i in range(m):
+            if out[i, 4] - dorsi_max > 0 and land_p[i] > 0:
+                done = False
+        if done:
+            break
+        for i in range(m):
+            over = out[i, 4] - dorsi_max
+            if over > 0:
+                land_p[i] = maximum1(land_p[i] - 1.2 * over, 0.0)
 
 
 def stance_angle(ref: ReferenceGait, name: str, phi, th0, v0, th1, v1) -> np.ndarray:

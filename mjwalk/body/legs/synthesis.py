@@ -34,31 +34,27 @@ leg cycle 50-100 % (cycle 0 = heel strike of that leg).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from mjwalk.body.humanoid import ROM_DEG, leg_geometry
-from mjwalk.body.legs.curves import smoothstep, soft_flat, spread
+from mjwalk.body.legs.curves import spread
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
     LegIKCache,
     foot_lowest,
     generic_joint,
-    heel_rise,
     hip_world,
     pivot_ankle,
 )
 from mjwalk.body.legs.pitchfit import fit_ankle_range, repitch_foot
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
-from mjwalk.body.legs.steps import (
-    FOOT_FLAT,
-    landing_pitches,
-    stance_angle,
-    step_frames,
-    swing_foot,
-)
+from mjwalk.body.legs.stance import pelvis_height, reach_deficit, stance_foot, stance_knee
+from mjwalk.body.legs.steps import landing_pitches, step_frames, swing_foot
+from mjwalk.body.legs.swing import swing_foot as swing_foot_compiled
 from mjwalk.conventions import DEFAULT_STATURE, side_of_prefix
 from mjwalk.errors import PlanningError
 from mjwalk.plan.walkpath import WalkPath
@@ -150,18 +146,21 @@ def legs_from_walk(
     # each hip's offset from the pelvis centre (m) at every sample, for hip_pos
     side_dir = np.stack([-np.sin(yaw), np.cos(yaw)], -1)
     hip_off = {s_: (1.0 if s_ == "l" else -1.0) * geom.hip_y * side_dir for s_ in "lr"}
+    hip_xy = {s_: xy + hip_off[s_] for s_ in "lr"}  # each hip's (x, y) (m), as hip_pos's
 
     def hip_pos(idx, side, zz=None):
-        h = xy[idx] + hip_off[side][idx]
+        # idx: sample indices, or a slice of them (a view of hip_xy: the same numbers)
+        h = hip_xy[side][idx]
         return h if zz is None else np.column_stack([h, zz])
 
-    def height_for_knee(idx, side, foot_pos, knee):
-        h = np.linalg.norm(hip_pos(idx, side) - foot_pos[:, :2], axis=-1)
-        return foot_pos[:, 2] + np.sqrt(np.maximum(geom.span(knee) ** 2 - h**2, 1e-6))
-
-    def knee_for(idx, side, foot_pos, zz):
-        d = np.linalg.norm(hip_pos(idx, side, zz) - foot_pos, axis=-1)
-        return geom.knee_for_span(d)
+    def knee_for(i: int, side: str, foot_pos, zz) -> float:
+        # the knee flexion that puts the ankle foot_pos (3,) at the hip of sample i with the
+        # pelvis at height zz: |hip - ankle| as np.linalg.norm sums it, in Python floats
+        # (the same IEEE arithmetic without array calls), the arccos NumPy's
+        dx = float(hip_xy[side][i, 0]) - float(foot_pos[0])
+        dy = float(hip_xy[side][i, 1]) - float(foot_pos[1])
+        dz = float(zz) - float(foot_pos[2])
+        return float(geom.knee_for_span(np.array([math.sqrt(dx * dx + dy * dy + dz * dz)]))[0])
 
     hs_pitch = max(0.0, float(ref("pitch", 0.0)))
     dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
@@ -169,23 +168,19 @@ def legs_from_walk(
     knee_prev = None  # (angle, velocity per unit phase) of the next stance leg at its landing
     d_land = geom.span(max(ref("knee", 0.0), KNEE_MIN))
     landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom)
+    d_max_sq = geom.span(KNEE_MIN) ** 2  # the swing leg's longest hip-to-ankle distance, squared
     for k, fr in enumerate(frames):
         fr.p_start = frames[k - 1].p_end if k > 0 else None
         a, b = fr.start, fr.end
         idx = np.arange(a, b + 1)
+        ids = slice(a, b + 1)  # the same samples, indexed without a copy
         phi = (idx - a) / (b - a)
-        phase[idx] = phi
-        cyc[fr.other][idx], cyc[fr.side][idx] = 0.5 * phi, 0.5 + 0.5 * phi
+        phase[ids] = phi
+        cyc[fr.other][ids], cyc[fr.side][ids] = 0.5 * phi, 0.5 + 0.5 * phi
         sw, st = fr.side, fr.other
-        # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch)
+        # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch); the
+        # roll-down starts from the pitch it landed with; a standing start is flat already
         c_st = 0.5 * phi
-        p_ref = ref("pitch", c_st)
-        p_st = np.where(phi < FOOT_FLAT, np.maximum(p_ref, 0), np.minimum(p_ref, 0))
-        if k > 0 and hs_pitch > 0:  # the roll-down starts from the pitch it landed with
-            p_st = np.where(phi < FOOT_FLAT, p_st * frames[k - 1].land_p / hs_pitch, p_st)
-        p_st = soft_flat(p_st)
-        if fr.first:  # standing start: already flat
-            p_st = np.minimum(p_st, 0.0)
         # --- target posture at phi = 1 (A7): the landing leg at the reference heel-strike knee
         # sets the pelvis height; the trailing (stance) leg takes the reference knee of
         # cycle 50 %, its heel rising further (about the ball) if it cannot reach otherwise.
@@ -194,68 +189,59 @@ def legs_from_walk(
         # after landing instead, it would drop the ankle and jolt the knee
         land_p = fr.land_p  # the last step too: the final pose is held as it lands
         land_pos = pivot_ankle(fr.land, land_p, geom)
-        hz = np.linalg.norm(hip_pos(np.array([b]), sw) - land_pos[:, :2], axis=-1)[0]
+        # (|hip - landing ankle| in (x, y) as np.linalg.norm sums it, without array calls)
+        dx, dy = hip_xy[sw][b] - land_pos[0, :2]
+        hz = np.sqrt(dx * dx + dy * dy)
         z_end = land_pos[0, 2] + np.sqrt(max(d_land**2 - hz**2, 1e-6))
+        hip_end = np.array([*hip_xy[st][b], z_end])
+        land_prev = frames[k - 1].land_p if k > 0 and hs_pitch > 0 else None
         th1 = max(float(ref("knee", 0.5)), float(KNEE_MIN))
-        hip_end = hip_pos(np.array([b]), st, np.array([z_end]))[0]
-        p1 = heel_rise(fr.stance, hip_end, th1, float(p_st[-1]), geom)
-        extra = (p1 - p_st[-1]) * smoothstep((phi - FOOT_FLAT) / (1.0 - FOOT_FLAT))
-        p_st = p_st + extra
+        p_st, ankle_st = stance_foot(
+            fr, phi, ref("pitch", c_st), land_prev, hs_pitch, hip_end, th1, geom
+        )  # (compiled: stance.stance_foot)
         fr.p_end = float(p_st[-1])
-        ankle[st][idx] = pivot_ankle(fr.stance, p_st, geom)
-        ground[st][idx], print_[st][idx] = True, fr.stance
-        pitch[st][idx], toe[st][idx], fyaw[st][idx] = p_st, -np.minimum(p_st, 0), fr.stance[2]
-        th1 = float(knee_for(np.array([b]), st, ankle[st][b][None], np.array([z_end]))[0])
+        ankle[st][ids] = ankle_st
+        ground[st][ids], print_[st][ids] = True, fr.stance
+        pitch[st][ids], toe[st][ids], fyaw[st][ids] = p_st, -np.minimum(p_st, 0), fr.stance[2]
+        th1 = knee_for(b, st, ankle_st[-1], z_end)
         if knee_prev is None:
             th0, v0 = float(ref("knee", 0.0)), 0.5 * float(ref("knee", 0.0, True))
         else:
             th0, v0 = knee_prev
         v1 = 0.5 * float(ref("knee", 0.5, True))
-        knee_st = np.clip(
-            stance_angle(ref, "knee", phi, th0, v0, th1, v1), KNEE_MIN, np.deg2rad(80)
-        )
-        z_flat = height_for_knee(idx, st, ankle[st][idx], knee_st)
+        # the stance knee (steps.stance_angle, clipped) and the pelvis height it gives
+        knee_st, z_flat = stance_knee(
+            ref, phi, ref("knee", c_st), th0, v0, th1, v1, hip_xy[st][ids], ankle_st, geom
+        )  # (compiled: stance.stance_knee)
         # --- swing foot (A9)
-        pos, p_sw, toe_sw, yw, phi_to = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
-        contact[idx] = np.where(phi <= phi_to, 2, 0 if st == "l" else 1)
-        ankle[sw][idx], pitch[sw][idx], toe[sw][idx], fyaw[sw][idx] = pos, p_sw, toe_sw, yw
+        if ref._unit:  # compiled (the same numbers); other tables through scipy's splines
+            swing = swing_foot_compiled(fr, phi, hip_xy[sw][ids], z_flat, ref, geom, land_p)
+        else:
+            swing = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
+        pos, p_sw, toe_sw, yw, phi_to = swing
+        contact[ids] = np.where(phi <= phi_to, 2, 0 if st == "l" else 1)
+        ankle[sw][ids], pitch[sw][ids], toe[sw][ids], fyaw[sw][ids] = pos, p_sw, toe_sw, yw
         pre_swing = idx[phi <= phi_to]
         ground[sw][pre_swing], print_[sw][pre_swing] = True, fr.lift
-        d_max = geom.span(KNEE_MIN)
-        hsw = np.linalg.norm(hip_pos(idx, sw) - pos[:, :2], axis=-1)
-        z_sw = pos[:, 2] + np.sqrt(np.maximum(d_max**2 - hsw**2, 1e-6))
-        z[idx] = np.minimum(z_flat, z_sw)
-        # landing approach: from LAND_EASE the swing leg's hip-to-ankle distance eases into
-        # its heel-strike length (zero velocity) along a cubic from its length and velocity
+        # the pelvis height: capped where the swing leg could not reach its foot; landing
+        # approach: from LAND_EASE the swing leg's hip-to-ankle distance eases into its
+        # heel-strike length (zero velocity) along a cubic from its length and velocity
         # there, and the pelvis height follows from it. Capping the pelvis only where the
         # swing leg is fully stretched would snap the knee straight (near full extension a
-        # millimetre of leg length is several degrees of knee)
-        lj = np.flatnonzero(phi >= LAND_EASE)
-        if len(lj) >= 3 and lj[0] > 0:
-            j = lj[0]
-            hj = hip_pos(idx[j - 1 : j + 1], sw, z[idx[j - 1 : j + 1]])
-            dj = np.linalg.norm(hj - pos[j - 1 : j + 1], axis=-1)
-            span, gap = 1.0 - phi[j], d_land - dj[1]
-            m0 = span * (dj[1] - dj[0]) / (phi[j] - phi[j - 1])
-            m0 = float(np.clip(m0, min(0.0, 3 * gap), max(0.0, 3 * gap)))
-            u = (phi[lj] - phi[j]) / span
-            d_prof = dj[1] + (u**3 - 2 * u**2 + u) * m0 + (3 * u**2 - 2 * u**3) * gap
-            h_prof = np.linalg.norm(hip_pos(idx[lj], sw) - pos[lj, :2], axis=-1)
-            z_prof = pos[lj, 2] + np.sqrt(np.maximum(d_prof**2 - h_prof**2, 1e-6))
-            z[idx[lj]] = np.minimum(z_prof, z_sw[lj])
-            # the trailing leg keeps its planned knee where the pelvis now rises faster: its
-            # heel rises further (about the ball) instead of the leg stretching straight
-            hip_st = hip_pos(idx[lj], st, z[idx[lj]])
-            p_up = heel_rise(fr.stance, hip_st, knee_st[lj], np.minimum(p_st[lj], 0), geom)
-            p_st[lj] = np.where(p_st[lj] <= 0, p_up, p_st[lj])
+        # millimetre of leg length is several degrees of knee). The trailing leg keeps its
+        # planned knee where the pelvis now rises faster: its heel rises further (about the
+        # ball) instead of the leg stretching straight (compiled: stance.pelvis_height)
+        z[ids], ankle_up = pelvis_height(
+            phi, z_flat, pos, hip_xy[sw][ids], hip_xy[st][ids], knee_st, p_st, fr, d_max_sq,
+            d_land, LAND_EASE, geom,
+        )  # fmt: skip
+        if ankle_up is not None:
             fr.p_end = float(p_st[-1])
-            ankle[st][idx] = pivot_ankle(fr.stance, p_st, geom)
-            pitch[st][idx], toe[st][idx] = p_st, -np.minimum(p_st, 0)
-        # the swing leg's knee at landing starts the next stance spline
+            ankle[st][ids] = ankle_up
+            pitch[st][ids], toe[st][ids] = p_st, -np.minimum(p_st, 0)
         # the swing leg's knee at landing starts the next stance spline; its velocity is the
         # reference's (loading response: the knee flexes right after heel strike)
-        k_land = knee_for(idx[-1:], sw, pos[-1:], z[idx[-1:]])
-        knee_prev = (float(k_land[-1]), 0.5 * float(ref("knee", 0.0, True)))
+        knee_prev = (knee_for(b, sw, pos[-1], z[b]), 0.5 * float(ref("knee", 0.0, True)))
     # where the pelvis turns further than a grounded foot's hip can rotate, the foot spins
     # about its ball; its next swing starts from the turned footprint
     spin_turns(ankle, fyaw, pitch, toe, ground, print_, np.column_stack([xy, z]), yaw, geom)
@@ -289,6 +275,7 @@ def legs_from_walk(
     angles: dict[str, np.ndarray] = {}
     ik = {s_: LegIKCache(s_, geom) for s_ in "lr"}  # the loops below re-solve changed samples
     k_floor = {s_: np.clip(ref("knee", cyc[s_]), KNEE_MIN, np.deg2rad(KNEE_SOFT)) for s_ in "lr"}
+    reach_sq = {s_: geom.span(k_floor[s_]) ** 2 for s_ in "lr"}  # (m²) with those knees
     for _ in range(4):
         root = np.column_stack([xy, z])
         for s_ in "lr":
@@ -323,12 +310,8 @@ def legs_from_walk(
         # the reference's (up to KNEE_SOFT), the pelvis lowers (smoothly). Near full
         # extension a millimetre of leg length is several degrees of knee: a leg stretched
         # straight by the pelvis would flick its knee
-        deficit = np.zeros(n)
-        for s_ in "lr":
-            h = np.linalg.norm(hip_world(root, yaw, s_, geom)[:, :2] - ankle[s_][:, :2], axis=1)
-            reach = geom.span(k_floor[s_])
-            cap = ankle[s_][:, 2] + np.sqrt(np.maximum(reach**2 - h**2, 0.0))
-            deficit = np.maximum(deficit, np.where(ground[s_], z - cap, 0.0))
+        # (compiled: stance.reach_deficit)
+        deficit = reach_deficit(root, yaw, ankle, ground, reach_sq, geom)
         if deficit.max() <= 1e-3:
             break
         z = z - spread(np.maximum(deficit, 0.0), win)

@@ -1,0 +1,325 @@
+"""The stance leg of one step, compiled (paper §4.2.3, A8): the stance foot's pitch and ankle
+(:func:`stance_foot`) and the stance knee with the pelvis height it gives (:func:`stance_knee`).
+
+They were a few dozen NumPy operations per step on its few dozen samples, as
+:func:`~mjwalk.body.legs.synthesis.legs_from_walk`'s loop over the steps, whose call overhead
+cost more than their arithmetic. Here the same arithmetic runs in the same order in one
+compiled call each (the same numbers, bit for bit: ``tests/test_fast_anim.py`` compares them
+with that NumPy code on walks). The reference gait's values come in as arrays (any reference
+table); the knee for a hip-to-ankle span (an arccos) and powers of NumPy scalars stay with the
+caller, as compiled code rounds them differently from NumPy here.
+
+Step phase ``phi`` in [0, 1] from lift-off of the swing foot's step to its landing; the stance
+leg covers gait cycle 0-50 %. World frame, metres, radians; a foot's pitch + toes up.
+
+numba caches this module's machine code by its own source, not by the compiled functions it
+calls from other modules (``kinematics._heel_rise_rows``, ``kinematics._pivot_rows``,
+``curves._clamped_cubic`` and the one-value shapes such as ``curves.smoothstep1``): change a
+comment here when those change.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mjwalk._jit import njit
+from mjwalk.body.humanoid import LegGeometry
+from mjwalk.body.legs.curves import (
+    FLAT,
+    _clamped_cubic,
+    maximum1,
+    minimum1,
+    smoothstep1,
+    soft_flat1,
+)
+from mjwalk.body.legs.kinematics import KNEE_MIN, _heel_rise_rows, _pivot_rows, ball_offset
+from mjwalk.body.legs.reference import ReferenceGait
+from mjwalk.body.legs.steps import FOOT_FLAT, STANCE_KEYS, StepFrames
+
+#: The stance knee's upper bound (radians, 80 deg): the synthesis's clip of the stance spline.
+KNEE_STANCE_MAX = float(np.deg2rad(80))
+#: :func:`~mjwalk.body.legs.kinematics.heel_rise`'s default lowest pitch (radians).
+HEEL_RISE_LO = -1.0472
+
+
+def stance_foot(
+    fr: StepFrames,
+    phi: np.ndarray,
+    p_ref: np.ndarray,
+    land_prev: float | None,
+    hs_pitch: float,
+    hip_end: np.ndarray,
+    knee_end: float,
+    geom: LegGeometry,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The stance foot's pitch (n,) and ankle (n, 3) over a step: heel-strike roll-down, flat,
+    heel rise after the reference, and the heel rising further (about the ball) towards the
+    end where the leg with ``knee_end`` flexion would not reach the hip at the target posture.
+
+    Args:
+        fr: the step (stance footprint, ``first``).
+        phi: (n,) increasing step phases of the step's samples, 0 to 1.
+        p_ref: (n,) the reference foot pitch at gait cycle ``0.5 phi`` (radians).
+        land_prev: the pitch the foot landed with (the previous step's ``land_p``), or None
+            (the walk's first step, or a reference without toes-up heel strike).
+        hs_pitch: the reference's heel-strike pitch (radians, > 0 where ``land_prev`` is set).
+        hip_end: (3,) the stance hip joint centre at the step's end (target posture), metres.
+        knee_end: the stance knee flexion there (radians).
+        geom: the leg lengths.
+    """
+    L1, L2 = float(geom.thigh), float(geom.shank)
+    n = len(phi)
+    p, ankle = np.empty(n), np.empty((n, 3))
+    _stance_foot(
+        np.ascontiguousarray(phi, dtype=float),
+        np.ascontiguousarray(p_ref, dtype=float),
+        land_prev is not None,
+        0.0 if land_prev is None else float(land_prev),
+        float(hs_pitch),
+        bool(fr.first),
+        np.asarray(fr.stance, float).reshape(1, 3),
+        np.asarray(hip_end, float).reshape(1, 3),
+        L1**2 + L2**2,
+        2 * L1 * L2,
+        float(knee_end),
+        ball_offset(geom),
+        float(geom.foot_back),
+        float(geom.ankle_height),
+        p,
+        ankle,
+    )
+    return p, ankle
+
+
+@njit
+def _stance_foot(phi, p_ref, scaled, land_prev, hs_pitch, first, stance2, hip_end, span0, span1,
+                 knee_end, ball, back, ah, p, ankle):  # fmt: skip
+    """:func:`stance_foot` into ``p`` (n,) and ``ankle`` (n, 3); ``span0 + span1 cos knee`` the
+    squared hip-to-ankle span (:meth:`LegGeometry.span`); ``stance2`` the footprint as a
+    (1, 3) row (no reshape in compiled code: its error path compiles slowly)."""
+    n = phi.shape[0]
+    for i in range(n):
+        q = maximum1(p_ref[i], 0.0) if phi[i] < FOOT_FLAT else minimum1(p_ref[i], 0.0)
+        if scaled and phi[i] < FOOT_FLAT:  # the roll-down starts from the landing pitch
+            q = q * land_prev / hs_pitch
+        q = soft_flat1(q, FLAT)
+        if first:  # standing start: already flat
+            q = minimum1(q, 0.0)
+        p[i] = q
+    rise = np.empty(1)
+    d = np.empty(1)
+    d[0] = math.sqrt(span0 + span1 * math.cos(knee_end))
+    _heel_rise_rows(stance2[0], hip_end, d, p[n - 1 : n].copy(), ball, back, ah, HEEL_RISE_LO, rise)
+    last = p[n - 1]
+    for i in range(n):
+        p[i] = p[i] + (rise[0] - last) * smoothstep1((phi[i] - FOOT_FLAT) / (1.0 - FOOT_FLAT))
+    _pivot_rows(stance2, p, ball, back, ah, ankle)
+
+
+def stance_knee(
+    ref: ReferenceGait,
+    phi: np.ndarray,
+    k_ref: np.ndarray,
+    th0: float,
+    v0: float,
+    th1: float,
+    v1: float,
+    hip_xy: np.ndarray,
+    ankle: np.ndarray,
+    geom: LegGeometry,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The stance knee (n,) over a step (:func:`~mjwalk.body.legs.steps.stance_angle`: the
+    reference knee ``k_ref`` (n,) at gait cycle ``0.5 phi`` plus a clamped cubic-spline
+    displacement meeting ``th0``, ``v0`` at ``phi = 0`` and ``th1``, ``v1`` at ``phi = 1``,
+    velocities per unit phase; clipped to [:data:`KNEE_MIN`, :data:`KNEE_STANCE_MAX`]) and the
+    pelvis height (n,) at which that leg reaches its ankle (n, 3) from the hip at ``hip_xy``
+    (n, 2), metres."""
+    r0, r1 = float(ref("knee", 0.0)), float(ref("knee", 0.5))
+    d0 = v0 - 0.5 * float(ref("knee", 0.0, True))
+    d1 = v1 - 0.5 * float(ref("knee", 0.5, True))
+    values = np.array([[th0 - r0], [0.0], [0.0], [0.0], [th1 - r1]])
+    L1, L2 = float(geom.thigh), float(geom.shank)
+    n = len(phi)
+    knee, z = np.empty(n), np.empty(n)
+    _stance_knee(
+        _KNOTS,
+        np.ascontiguousarray(phi, dtype=float),
+        np.ascontiguousarray(k_ref, dtype=float),
+        values,
+        np.array([d0]),
+        np.array([d1]),
+        np.ascontiguousarray(hip_xy, dtype=float),
+        np.ascontiguousarray(ankle, dtype=float),
+        L1**2 + L2**2,
+        2 * L1 * L2,
+        knee,
+        z,
+    )
+    return knee, z
+
+
+#: The stance spline's knots (step phases): the ends and the key frames.
+_KNOTS = np.array([0.0, *STANCE_KEYS, 1.0])
+
+
+@njit
+def _stance_knee(knots, phi, k_ref, values, d0, d1, hip_xy, ankle, span0, span1, knee, z):
+    """:func:`stance_knee` into ``knee`` and ``z`` (n,); ``knots`` :data:`_KNOTS` (an argument:
+    a global array is a read-only type, for which ``_clamped_cubic`` would compile again)."""
+    disp = _clamped_cubic(knots, values, d0, d1, phi)
+    for i in range(phi.shape[0]):
+        k = min(max(k_ref[i] + disp[i, 0], KNEE_MIN), KNEE_STANCE_MAX)
+        knee[i] = k
+        dx, dy = hip_xy[i, 0] - ankle[i, 0], hip_xy[i, 1] - ankle[i, 1]
+        h = math.sqrt(dx * dx + dy * dy)
+        s = math.sqrt(span0 + span1 * math.cos(k))
+        z[i] = ankle[i, 2] + math.sqrt(maximum1(s * s - h * h, 1e-6))
+
+
+def pelvis_height(
+    phi: np.ndarray,
+    z_flat: np.ndarray,
+    ankle_sw: np.ndarray,
+    hip_sw: np.ndarray,
+    hip_st: np.ndarray,
+    knee_st: np.ndarray,
+    p_st: np.ndarray,
+    fr: StepFrames,
+    d_max_sq: float,
+    d_land: float,
+    ease_from: float,
+    geom: LegGeometry,
+) -> tuple[np.ndarray, np.ndarray | None]:
+    """The pelvis height (n,) over a step: the stance leg's ``z_flat`` (n,), capped where the
+    swing leg (ankle ``ankle_sw`` (n, 3), hip at ``hip_sw`` (n, 2)) could not reach its foot
+    at its longest span (``d_max_sq``, m²); from step phase ``ease_from`` (at least three
+    samples, not the first) the swing leg's hip-to-ankle distance eases into its heel-strike
+    length ``d_land`` (m, zero velocity) along a cubic from its length and velocity there, and
+    the pelvis height follows from it. Where the pelvis then rises, the trailing (stance) leg
+    keeps its knee ``knee_st`` (n,): its heel rises further about the ball of its footprint
+    (``p_st`` (n,) updated in place, hip at ``hip_st`` (n, 2)); returns the stance ankle
+    (n, 3) for the new pitches then, else None."""
+    lj = np.flatnonzero(phi >= ease_from)
+    ease = len(lj) >= 3 and lj[0] > 0
+    j = int(lj[0]) if ease else -1
+    # u³ by NumPy (its power rounds unlike a compiled one)
+    u3 = ((phi[lj] - phi[j]) / (1.0 - phi[j])) ** 3 if ease else np.empty(0)
+    L1, L2 = float(geom.thigh), float(geom.shank)
+    n = len(phi)
+    z, ankle = np.empty(n), np.empty((n, 3))
+    eased = _pelvis_height(
+        np.ascontiguousarray(phi, dtype=float),
+        np.ascontiguousarray(z_flat, dtype=float),
+        np.ascontiguousarray(ankle_sw, dtype=float),
+        np.ascontiguousarray(hip_sw, dtype=float),
+        np.ascontiguousarray(hip_st, dtype=float),
+        np.ascontiguousarray(knee_st, dtype=float),
+        p_st,
+        np.asarray(fr.stance, float).reshape(1, 3),
+        float(d_max_sq),
+        float(d_land),
+        j,
+        u3,
+        L1**2 + L2**2,
+        2 * L1 * L2,
+        ball_offset(geom),
+        float(geom.foot_back),
+        float(geom.ankle_height),
+        z,
+        ankle,
+    )
+    return z, (ankle if eased else None)
+
+
+@njit
+def _pelvis_height(phi, z_flat, ankle_sw, hip_sw, hip_st, knee_st, p_st, stance2, d_max_sq,
+                   d_land, j, u3, span0, span1, ball, back, ah, z, ankle):  # fmt: skip
+    """:func:`pelvis_height` into ``z`` (n,), and ``p_st`` and ``ankle`` (n, 3) where the
+    landing eases (samples ``j`` on, ``u3`` (n - j,) the cubed phase within the ease);
+    returns whether it did (``j >= 1``). ``stance2``: the stance footprint as a (1, 3) row."""
+    n = phi.shape[0]
+    z_sw = np.empty(n)
+    for i in range(n):
+        dx, dy = hip_sw[i, 0] - ankle_sw[i, 0], hip_sw[i, 1] - ankle_sw[i, 1]
+        h = math.sqrt(dx * dx + dy * dy)
+        z_sw[i] = ankle_sw[i, 2] + math.sqrt(maximum1(d_max_sq - h * h, 1e-6))
+        z[i] = minimum1(z_flat[i], z_sw[i])
+    if j < 1:
+        return False
+    dj = np.empty(2)
+    for r in range(2):
+        i = j - 1 + r
+        dx = hip_sw[i, 0] - ankle_sw[i, 0]
+        dy = hip_sw[i, 1] - ankle_sw[i, 1]
+        dz = z[i] - ankle_sw[i, 2]
+        dj[r] = math.sqrt(dx * dx + dy * dy + dz * dz)
+    span, gap = 1.0 - phi[j], d_land - dj[1]
+    m0 = span * (dj[1] - dj[0]) / (phi[j] - phi[j - 1])
+    g3 = 3 * gap
+    lo = g3 if g3 < 0.0 else 0.0  # Python's min(0.0, 3 gap), max(0.0, 3 gap)
+    hi = g3 if g3 > 0.0 else 0.0
+    m0 = min(max(m0, lo), hi)
+    m = n - j
+    hip = np.empty((m, 3))
+    d = np.empty(m)
+    p0 = np.empty(m)
+    for k in range(m):
+        i = j + k
+        u = (phi[i] - phi[j]) / span
+        d_prof = dj[1] + (u3[k] - 2 * (u * u) + u) * m0 + (3 * (u * u) - 2 * u3[k]) * gap
+        dx, dy = hip_sw[i, 0] - ankle_sw[i, 0], hip_sw[i, 1] - ankle_sw[i, 1]
+        h = math.sqrt(dx * dx + dy * dy)
+        z_prof = ankle_sw[i, 2] + math.sqrt(maximum1(d_prof * d_prof - h * h, 1e-6))
+        z[i] = minimum1(z_prof, z_sw[i])
+        hip[k, 0], hip[k, 1], hip[k, 2] = hip_st[i, 0], hip_st[i, 1], z[i]
+        d[k] = math.sqrt(span0 + span1 * math.cos(knee_st[i]))
+        p0[k] = minimum1(p_st[i], 0.0)
+    p_up = np.empty(m)
+    _heel_rise_rows(stance2[0], hip, d, p0, ball, back, ah, HEEL_RISE_LO, p_up)
+    for k in range(m):
+        if p_st[j + k] <= 0:
+            p_st[j + k] = p_up[k]
+    _pivot_rows(stance2, p_st, ball, back, ah, ankle)
+    return True
+
+
+def reach_deficit(
+    root: np.ndarray,
+    yaw: np.ndarray,
+    ankle: dict[str, np.ndarray],
+    ground: dict[str, np.ndarray],
+    reach_sq: dict[str, np.ndarray],
+    geom: LegGeometry,
+) -> np.ndarray:
+    """(n,) how far (m) the pelvis at ``root`` (n, 3) with heading ``yaw`` (n,) stands above
+    the height from which each grounded leg (``ground`` per side "l"/"r", (n,) bool) reaches
+    its ankle (``ankle`` per side, (n, 3)) with the hip-to-ankle span whose square is
+    ``reach_sq`` (per side, (n,), m²): the larger of the legs' deficits, 0 where neither is
+    grounded or the grounded legs reach."""
+    out = np.zeros(len(yaw))
+    for s_ in "lr":
+        _reach_deficit(
+            np.ascontiguousarray(root, dtype=float),
+            np.ascontiguousarray(yaw, dtype=float),
+            np.ascontiguousarray(ankle[s_], dtype=float),
+            np.ascontiguousarray(ground[s_], dtype=np.bool_),
+            np.ascontiguousarray(reach_sq[s_], dtype=float),
+            (1.0 if s_ == "l" else -1.0) * float(geom.hip_y),
+            out,
+        )
+    return out
+
+
+@njit
+def _reach_deficit(root, yaw, ankle, ground, reach_sq, c, out):
+    """One leg's part of :func:`reach_deficit`, folded into ``out`` (n,) by ``np.maximum``:
+    the hip ``c`` metres to the pelvis's left (:func:`~.kinematics.hip_world`), the height
+    above the ankle at which the leg spans ``reach_sq``, the pelvis height above that."""
+    for i in range(yaw.shape[0]):
+        dx = (root[i, 0] + c * -math.sin(yaw[i])) - ankle[i, 0]
+        dy = (root[i, 1] + c * math.cos(yaw[i])) - ankle[i, 1]
+        h = math.sqrt(dx * dx + dy * dy)
+        cap = ankle[i, 2] + math.sqrt(maximum1(reach_sq[i] - h * h, 0.0))
+        out[i] = maximum1(out[i], root[i, 2] - cap if ground[i] else 0.0)
