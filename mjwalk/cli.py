@@ -103,7 +103,14 @@ def _cmd_plan(args: argparse.Namespace) -> int:
         from mjwalk.plan.hybrid import plan_walks
 
         paths = plan_walks(
-            workplace, args.start, args.goal, model, n=args.n, seed=args.seed, radius=args.radius
+            workplace,
+            args.start,
+            args.goal,
+            model,
+            n=args.n,
+            seed=args.seed,
+            radius=args.radius,
+            cost=args.cost,
         )
         lm, li = _quartiles([p.length for p in paths])
         dm, di = _quartiles([p.duration for p in paths])
@@ -363,6 +370,13 @@ def build_parser() -> argparse.ArgumentParser:
         help="walks to sample with the hybrid A* (15; 0: baseline only)",
     )
     p.add_argument("--model", type=Path, help="step model file (default: the built-in model)")
+    p.add_argument(
+        "--cost",
+        choices=("energy", "chord", "path"),
+        default="energy",
+        help="step cost: length weighted by the energy of its pace (energy, default), the "
+        "paper's straight length (chord) or the pelvis arc (path)",
+    )
     p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same walks)")
     p.add_argument("--footprints", action="store_true", help="draw the footprints too")
     p.add_argument("--save", type=Path, help="save each walk as NAME_NNN.npz (for mjwalk render)")

@@ -114,6 +114,7 @@ def test_bad_points(point, message, capsys, no_work, tmp_path):
         (["--n", "two"], "argument --n: 'two' is not a whole number"),
         (["--png", "out.xyz"], "--png 'out.xyz': unsupported file type ('.xyz')"),
         (["--png", "plan"], "--png 'plan': unsupported file type (no extension)"),
+        (["--cost", "time"], "argument --cost: invalid choice: 'time'"),
     ],
 )
 def test_bad_plan_options(argv, message, capsys, no_work, tmp_path, monkeypatch):
