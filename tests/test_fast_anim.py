@@ -590,6 +590,17 @@ def _matmul_is_fma() -> bool:
     return bool(np.array_equal(r @ s, rows(r, s)))
 
 
+def _kernel_walks():
+    """Synthetic walks for the kernel comparisons: straight, curved, short quick steps, long
+    slow steps (lift-offs early and late)."""
+    return [
+        synthetic_walk(n_steps=6),
+        synthetic_walk(n_steps=6, radius=1.2),
+        synthetic_walk(n_steps=5, step_len=0.12, step_time=0.45),
+        synthetic_walk(n_steps=4, step_len=0.95, step_time=0.6),
+    ]
+
+
 @pytest.mark.parametrize("reference", ["default", "winter"])
 def test_compiled_swing_foot_matches_numpy(monkeypatch, reference):
     """The compiled swing foot (body.legs.swing) gives steps.swing_foot's numbers bit for bit
@@ -617,12 +628,7 @@ def test_compiled_swing_foot_matches_numpy(monkeypatch, reference):
         return got
 
     monkeypatch.setattr(synthesis, "swing_foot_compiled", both)
-    walks = [
-        synthetic_walk(n_steps=6),
-        synthetic_walk(n_steps=6, radius=1.2),
-        synthetic_walk(n_steps=5, step_len=0.12, step_time=0.45),
-        synthetic_walk(n_steps=4, step_len=0.95, step_time=0.6),
-    ]
+    walks = _kernel_walks()
     for walk in walks:
         synthesis.legs_from_walk(walk, reference=ref)
     assert len(calls) == sum(len(w.steps) for w in walks)
@@ -723,12 +729,7 @@ def test_compiled_stance_leg_matches_numpy(monkeypatch, reference):
     monkeypatch.setattr(synthesis, "stance_foot", foot)
     monkeypatch.setattr(synthesis, "pelvis_height", height)
     monkeypatch.setattr(synthesis, "stance_knee", knee)
-    walks = [
-        synthetic_walk(n_steps=6),
-        synthetic_walk(n_steps=6, radius=1.2),
-        synthetic_walk(n_steps=5, step_len=0.12, step_time=0.45),
-        synthetic_walk(n_steps=4, step_len=0.95, step_time=0.6),
-    ]
+    walks = _kernel_walks()
     for walk in walks:
         synthesis.legs_from_walk(walk, reference=ref)
     n_steps = sum(len(w.steps) for w in walks)
