@@ -10,17 +10,18 @@ walking out of the samples: median speed 1.44 m/s on an 8 m open-floor walk, 1.2
 chord; Bandai straight walks: 1.13 m/s). By default (``cost="energy"``) each walking step's
 chord is weighted by the metabolic cost of walking at its speed relative to the walker's
 preferred one (:func:`~mjwalk.plan.stepcheck.step_energy`: Ralston 1958, least at the
-preferred speed, 2.5 % more per metre at 20 % off it), and each walk has its own preferred
-speed about the walker's (:data:`WALK_PACE_SD`). People hold their pace step to step: speed
+preferred speed, 2.5 % more per metre at 20 % below it; not the starters and closing steps,
+which set off from and come to a stand), and each walk has its own preferred speed about the
+walker's (:data:`WALK_PACE_SD`). People hold their pace step to step: speed
 deviations are corrected at once while step length and duration drift (Dingwell, John &
 Cusumano, PLoS Comput Biol 6:e1000856, 2010); the transition GP, first-order in one step's
 features, does not: it carries the corpus's speed changes (free walking, turns, the bouts'
 starts) into the successors of a steady step. Measured (``benchmarks/bench_variability.py``,
 the four Bandai styles' 91 straight walks, 10 planned walks each, seeds 0-2): walk time IQR
 117 / 121 / 113 % of the captured (chord, seeds 0-1: 146 / 144 %), median +0.3 / +0.6 / +0.6 %
-(chord +1.4 / +1.3 %); planned
-9 m walks of one walker (150): step speed SD 0.061 in log (chord 0.19; captured styles
-0.061-0.098), within a walk 0.039 (0.105; captured 0.039-0.048). The heuristic is the
+(chord +1.4 / +1.3 %); planned 9 m walks of one walker (150): step speed SD 0.061 in log
+(chord 0.19; captured styles 0.061-0.098), within a walk 0.039 (0.105; captured
+0.039-0.048). The heuristic is the
 straight-line distance to the goal centre or, by default, the larger of that and an
 obstacle-aware bound from a 2-D Dijkstra over a 16-connected occupancy grid divided by the
 grid's worst detour factor (both admissible). The search weights the heuristic by 1.01
@@ -303,12 +304,13 @@ def _parse_pose(workplace: Workplace, where) -> tuple[np.ndarray, float | None]:
 class _Decoder:
     """What the search needs of a step, as one affine map of its standardized features z (d,).
 
-    ``z @ matrix + offset`` is a complex row (2m + 2,) in the step's local frame (x right,
+    ``z @ matrix + offset`` is a complex row (2m + 3,) in the step's local frame (x right,
     y forward; x + iy, metres): the pelvis at m samples evenly spaced in time (sample 0 is the
     start, exactly 0; sample m-1 the end), the landing ankle, (landing foot yaw +
     i · end pelvis yaw) in radians relative to the start heading, and the pelvis yaw at the
     m samples (real parts, radians relative to the start heading; the stance-lean check
-    decodes them only for the steps that reach it). Decoding features and
+    decodes them only for the steps that reach it) and the duration (real part, seconds, not
+    clipped; the energy cost's). Decoding features and
     evaluating the landmark spline are both affine (see :mod:`mjwalk.gait.features`), so the
     map is read off the model's own decoder at z = 0 and the unit vectors, then checked on
     random features: a model whose decoding is not affine is refused, not mis-planned.

@@ -424,8 +424,9 @@ def check_steps(
     """Decode, check and score the sampled steps ``z`` (n, d) of b = n // per predecessors.
 
     Args:
-        z: standardized features; matrix (d, m + 2) and offset (m + 2,): the complex affine
-            decode (:class:`~mjwalk.plan.hybrid._Decoder`).
+        z: standardized features; matrix (d, 2m + 3) and offset (2m + 3,): the complex affine
+            decode (:class:`~mjwalk.plan.hybrid._Decoder`; the pelvis-yaw columns only with the
+            stance-lean slots set, the duration column only with P_PACE set).
         per, n_walk: rows per predecessor, and how many of them are walking steps (the rest
             are closing steps).
         frame, left: heading (radians) of each step's local frame and whether its swing foot
