@@ -422,7 +422,7 @@ def fidelity_from_steps(
             walks["planned"] = {
                 "per_walk": planned,
                 "failed": len(pt) - len(ok),
-                "time": {"capture": _describe([w["time"] for w in cw]), "model": _describe(ok)},
+                "time": {"capture": walks["time"]["capture"], "model": _describe(ok)},
             }
         walks["n_steps"] = {
             "capture": _describe([w["n_steps"] for w in cw]),

@@ -10,9 +10,7 @@ would take (``mjwalk validate``, ``benchmarks/bench_variability.py``).
 
 from __future__ import annotations
 
-import tempfile
 from collections.abc import Sequence
-from pathlib import Path
 
 import numpy as np
 
@@ -42,10 +40,12 @@ def planned_straight_walks(
     Distances must be positive and finite (else MjwalkError). A walk the planner cannot plan
     raises its PlanningError, or with ``failed_as_nan`` gives NaN (a model that does not plan
     well still gets its other figures reported)."""
+    import mujoco
+
     from mjwalk.errors import MjwalkError, PlanningError
     from mjwalk.gait.fidelity import _time_at
     from mjwalk.plan.hybrid import HybridPlanner
-    from mjwalk.world import load_workplace
+    from mjwalk.world import workplace_from_model
 
     distances = [float(d) for d in distances]
     if len(distances) != len(in_motion):
@@ -66,10 +66,7 @@ def planned_straight_walks(
         f'<geom name="floor" type="plane" size="{lx} {ly} 0.05"/>'
         "</worldbody></mujoco>"
     )
-    with tempfile.TemporaryDirectory() as tmp:
-        path = Path(tmp) / "straight_hall.xml"
-        path.write_text(xml)
-        wp = load_workplace(path, cache=False)
+    wp = workplace_from_model(mujoco.MjModel.from_xml_string(xml), cache=False)
     x0 = -lx + HALL_MARGIN
     out = []
     for d, moving in zip(distances, in_motion, strict=True):
