@@ -28,7 +28,8 @@ its bilinear lookup now world.clearance.bilinear_at, its grid bound stepcheck._g
 the decode's real and imaginary sums apart; the GP kernel row's cross terms vectorized; the
 GPs picked by name; the toe's and knees' turns without a complex exp; the leg probes' cover
 test by squares; the grid bound less a walk's spot offset, P_DIST_OFFSET; the energy cost,
-P_PACE and stepcheck.step_energy, not for starters and closing steps).
+P_PACE and stepcheck.step_energy, not for starters and closing steps; the decoder's
+real columns by one stepcheck._decode_real).
 """
 
 from __future__ import annotations

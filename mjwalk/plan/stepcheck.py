@@ -326,18 +326,25 @@ def lean_limits(par):
 
 
 @njit
+def _decode_real(z, r, matrix, offset, col):
+    """The real part of decoder column ``col`` for feature row ``r`` (``z[r] @ matrix + offset``
+    there, summed in feature order): the columns only some steps need (pelvis yaws, duration)."""
+    v = offset[col].real
+    for a in range(z.shape[1]):
+        v += z[r, a] * matrix[a, col].real
+    return v
+
+
+@njit
 def _lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_left, par, limits):
     """:func:`stance_lean_ok` with :func:`lean_limits` made once per batch of steps."""
-    d = z.shape[1]
     s = 1.0 if stance_left else -1.0
     hip_y = par[P_HIP_Y]
     span = par[P_LEG_SPAN]
     foot = complex(math.cos(-foot_heading), math.sin(-foot_heading))
     tan_ev, tan_inv, sin_add, sin_abd = limits
     for j in range(m):
-        psi = offset[m + 2 + j].real
-        for a in range(d):
-            psi += z[r, a] * matrix[a, m + 2 + j].real
+        psi = _decode_real(z, r, matrix, offset, m + 2 + j)
         turn = complex(math.cos(psi), math.sin(psi))
         # the hip joint centre: the left one is hip_y to the pelvis's left (-x turned by psi)
         v = ankle - (loc[j] - s * hip_y * turn)  # hip to ankle, step frame
@@ -624,10 +631,7 @@ def check_into(
             # energy cost (step_energy) of a walking step: not of a starter (its node has no
             # landed foot) nor of a closing step, which set off from and come to a stand;
             # the duration is the decoder's last column
-            dur = offset[2 * m + 2].real
-            for a in range(d):
-                dur += z[r, a] * matrix[a, 2 * m + 2].real
-            seg = step_energy(seg, dur, pace)
+            seg = step_energy(seg, _decode_real(z, r, matrix, offset, 2 * m + 2), pace)
         ex, ey = end.real, end.imag
         h = math.hypot(ex - goal.real, ey - goal.imag)
         if ipar[I_DIJKSTRA]:
