@@ -628,11 +628,11 @@ class HybridPlanner:
         """
         if spot is not None:  # checked once, before any search
             spot = self._check_spot(spot)
+        pose = _parse_pose(self.workplace, start)  # parsed once, before any draw
         t0 = time.perf_counter()
         model = model or self.model
         pace = math.nan
-        if self.cost == "energy":  # this walk's own pace (WALK_PACE_SD), once the start holds
-            _parse_pose(self.workplace, start)
+        if self.cost == "energy":  # this walk's own pace (WALK_PACE_SD)
             pace = preferred_speed(model) * math.exp(WALK_PACE_SD * rng.standard_normal())
         best: WalkPath | None = None
         bound = None
@@ -640,7 +640,7 @@ class HybridPlanner:
         exhausted = 0
         for attempt in range(limit):
             try:
-                path, start_distance = self._plan_once(start, rng, model, spot, pace)
+                path, start_distance = self._plan_once(pose, rng, model, spot, pace)
             except _Exhausted as exc:
                 exhausted += 1
                 if exhausted >= self.attempts or attempt == limit - 1:
@@ -666,11 +666,12 @@ class HybridPlanner:
         return best
 
     def _plan_once(
-        self, start, rng: np.random.Generator, model, spot=None, pace: float = math.nan
+        self, pose, rng: np.random.Generator, model, spot=None, pace: float = math.nan
     ) -> tuple[WalkPath, float]:
         """One search: the walk and the obstacle-aware distance (m) from its start to the goal
-        (to the ``spot`` of :meth:`plan`, checked there, when given)."""
-        start_xy, start_yaw = _parse_pose(self.workplace, start)
+        (to the ``spot`` of :meth:`plan`, checked there, when given). ``pose``: the start's
+        (x, y) and optional yaw, as :meth:`plan` parsed it."""
+        start_xy, start_yaw = pose
         check_endpoint(self.workplace, start_xy, self.radius, "start")
         # infinite exactly where GoalDistance.reachable is False (the same nearest cell)
         start_distance = float(self.distance(start_xy))
