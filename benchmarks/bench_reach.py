@@ -92,31 +92,12 @@ from mjwalk.arms.armrep import (
 )
 from mjwalk.arms.dcs import DCSNetwork
 from mjwalk.arms.reach import ReachModel, end_effector
+from mjwalk.arms.reachdefault import CAPTURE_DCS
 
 RAISE_DIR = "bandai-raise-hand"
 N_SAMPLES = 20
-#: The DCS settings of the real-data runs. Constraints are positions in metres, so one scale
-#: for all columns keeps distances in metres (per-column standardization would blow the
-#: near-constant start-posture columns up to the weight of the end position). The RBF width
-#: factor, the output ridge and the output form are chosen with the network size by the
-#: exact leave-one-out (PRESS) residuals on the training fold (never on the test fold): grids
-#: of a factor sqrt(2) around the mean lateral-edge length and decades of ridge.
-DCS_REAL = {
-    "scaling": "global",
-    "width_factor": (0.5, 0.71, 1.0, 1.41, 2.0),
-    "ridge": (1e-6, 1e-3, 1e-2, 0.1, 1.0),
-    "n_iter_no_change": 10,
-    "max_neurons": 60,
-    # size, width, ridge and constant-vs-local-linear outputs by leave-one-out (PRESS) on the
-    # training fold, not a random held-out fifth (which gave 4-48 neurons and seed-to-seed
-    # swings of 0.2 deg)
-    "selection": "loo",
-    "local_linear": (False, True),
-    # a global linear term (the trend a new walker's constraint extrapolates along) and the
-    # local slopes' own penalty (decades relative to the ridge), chosen by PRESS likewise
-    "global_linear": (False, True),
-    "slope_ridge": (0.1, 1.0, 10.0, 100.0),
-}
+#: The DCS settings of the real-data runs (see :data:`mjwalk.arms.reachdefault.CAPTURE_DCS`).
+DCS_REAL = CAPTURE_DCS
 
 
 def find_data(arg: str | None) -> Path | None:
@@ -317,7 +298,7 @@ def print_group_table(title, res, groups, held_out):
     print(f"DCS neurons per held-out style: {nn}", flush=True)
 
 
-def run_real(data_dir: Path, max_clips: int | None) -> None:
+def run_real(data_dir: Path, max_clips: int | None, seed: int = 0) -> None:
     t = time.perf_counter()
     ds = load_raise_hand(data_dir, max_clips)
     styles = sorted(set(ds.groups))
@@ -326,7 +307,7 @@ def run_real(data_dir: Path, max_clips: int | None) -> None:
         f"{time.perf_counter() - t:.1f} s; segments {np.round(ds.lengths, 3)} m; styles "
         + ", ".join(f"{s} {int((ds.groups == s).sum())}" for s in styles)
     )
-    res = cross_validate(ds.constraints, ds.directions, ds.lengths, dcs=DCS_REAL)
+    res = cross_validate(ds.constraints, ds.directions, ds.lengths, dcs=DCS_REAL, seed=seed)
     print_table(
         "10-fold CV, constraint = start posture + end hand",
         res,
@@ -337,7 +318,7 @@ def run_real(data_dir: Path, max_clips: int | None) -> None:
         print("\nleave-one-style-out: skipped (one style only)")
         return
     splits = [(np.flatnonzero(ds.groups != s), np.flatnonzero(ds.groups == s)) for s in styles]
-    res = evaluate(ds.constraints, ds.directions, ds.lengths, splits, dcs=DCS_REAL)
+    res = evaluate(ds.constraints, ds.directions, ds.lengths, splits, dcs=DCS_REAL, seed=seed)
     print_table("leave-one-style-out (train on the other styles)", res)
     print_paired(res)
     print_group_table(
@@ -353,6 +334,9 @@ def main(argv=None):
         "(default: $MJWALK_SHARED_DATA, then ../shared/data)",
     )
     ap.add_argument("--max-clips", type=int, default=None)
+    ap.add_argument(
+        "--seed", type=int, default=0, help="CV folds and DCS seeds (fold k uses seed + k)"
+    )
     ap.add_argument("--no-real", action="store_true")
     ap.add_argument("--no-synthetic", action="store_true")
     ap.add_argument("--video", help="also render the rack-2 shelf reach to this mp4")
@@ -367,7 +351,7 @@ def main(argv=None):
             if args.data:
                 return 2
         else:
-            run_real(data_dir, args.max_clips)
+            run_real(data_dir, args.max_clips, args.seed)
     if not args.no_synthetic:
         try:
             from mjwalk.arms import reachgen

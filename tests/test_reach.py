@@ -57,6 +57,22 @@ def test_outside_constraint_is_flagged_never_silent(endpoint_model):
     assert not ok.outside and not ok.warnings
 
 
+def test_outside_constraint_follows_the_trend_network_and_says_so(endpoint_model, tmp_path):
+    _, data = endpoint_model
+    model = ReachModel(data.lengths, dcs={"rng": 0, "trend_fallback": True}).fit(
+        data.constraints[:50], data.directions[:50]
+    )
+    far = data.constraints[0] + np.r_[0, 0, 0, 1.5, 1.5, 1.5]
+    r = model.predict(far)
+    assert r.outside and "follows the trend network (100%)" in r.warnings[0]
+    # inside the data the network's own output is used (weight 1 at a training constraint)
+    assert model.net_.network_weight(data.constraints[:1])[0] == 1.0
+    model.save(tmp_path / "fb.npz")
+    back = ReachModel.load(tmp_path / "fb.npz")
+    assert back.net_.fallback_ is not None
+    np.testing.assert_allclose(back.predict(far).directions, r.directions)
+
+
 def test_reach_model_save_load(endpoint_model, tmp_path):
     model, data = endpoint_model
     model.save(tmp_path / "reach.npz")

@@ -48,6 +48,29 @@ c_i`` are of the width's size, the neuron outputs of the target's: one ridge for
 over-shrinks one or under-shrinks the other). Both are grids chosen on the held-out/PRESS
 residuals like the width.
 
+Dead units (``min_wins``): after every adaptation pass, a neuron that wins fewer than
+``min_wins`` training samples (default 1: none) is removed with its edges, as growing networks
+remove units the data no longer supports (Fritzke 1995, "A growing neural gas network learns
+topologies"). A neuron inserted half way between two others can fall into a gap between
+clusters of the data; winning no sample, its output and slopes are set by nothing but the
+ridge, and a new input in that gap (a walker between the trained styles) got them: Bandai
+raise-hand clips, leave-one-style-out, the held-out normal style fell to such a neuron and
+gave 49 deg at one network seed against 9.8 at another. When the neuron just inserted dies,
+the edge between its two parents is cut too, so the next insertion goes elsewhere.
+
+Trend fallback (``trend_fallback=True``): outside the data, no local structure is known, so
+the output blends into the *trend network* -- the network growth starts from (two neurons,
+constant outputs) with the global linear term, fitted on the same samples with the same grids
+-- with the weight ``g = exp(-d^2 / (2 r^2))`` of the full network, ``d`` the distance to the
+nearest training input and ``r`` the trained-range radius (``range_radius_``, where
+:meth:`DCSNetwork.is_outside` starts to flag a query). A Gaussian process with a linear mean
+function reverts to its mean function away from its data in the same way (Rasmussen &
+Williams 2006, §2.7). Inside the data ``g`` is close to 1 (the cross-validation figures move
+by 0.04 deg); a walker unlike every trained one gets the trend, not the outermost neuron's
+local map (leave-one-style-out in ``benchmarks/bench_reach.py``: the held-out masculine
+style 14.6 -> 10.6 deg, feminine 21.5 -> 16.9; without it the local maps extrapolate to
+15-74 deg depending on the network seed).
+
 Inputs are standardized internally: per column (``scaling="column"``, zero mean, unit variance)
 or with one scale for all columns (``scaling="global"``: the RMS column sd, so distances keep
 the input's units -- right for constraints that are all positions in metres, where per-column
@@ -69,8 +92,9 @@ from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.errors import MjwalkError, ModelFileError
 
 DCS_FORMAT = "mjwalk.dcs"
-#: 2: optional global linear term (``trend``) and slope ridge; version 1 files still load.
-DCS_VERSION = 2
+#: 2: optional global linear term (``trend``) and slope ridge; 3: dead-unit pruning and the
+#: trend fallback network. Version 1 and 2 files still load (no fallback).
+DCS_VERSION = 3
 
 
 class DCSNetwork:
@@ -96,10 +120,15 @@ class DCSNetwork:
         global_linear: add a global linear term ``T z``; a sequence is a grid like width_factor.
         slope_ridge: penalty of the local slopes relative to ``ridge`` (> 0); a sequence is a
             grid like width_factor (used only with local linear outputs).
+        min_wins: neurons winning fewer training samples after an adaptation pass are removed
+            (dead units; 0 keeps every neuron).
+        trend_fallback: blend into the trend network outside the trained range (see the
+            module docstring).
 
     Fitted attributes: ``centers_`` (K, d) standardized, ``outputs_`` (K, m), ``widths_`` (K,),
     ``edges_`` (K, K) bool adjacency, ``x_mean_``/``x_scale_`` (d,), ``n_neurons_``,
-    ``train_rmse_``, ``history_`` (list of (neurons, train RMSE, held-out RMSE)),
+    ``train_rmse_``, ``history_`` (list of (neurons, train RMSE, held-out RMSE)), ``n_pruned_``
+    (dead units removed while growing), ``fallback_`` the trend network or None,
     ``width_factor_``, ``ridge_``, ``local_linear_``, ``global_linear_`` and ``slope_ridge_``
     (the values used), ``slopes_`` (K, d, m) local linear terms in standardized input units, or
     None, ``trend_`` (d, m) the global linear term in standardized input units, or None.
@@ -123,6 +152,8 @@ class DCSNetwork:
         local_linear: bool | tuple[bool, ...] = False,
         global_linear: bool | tuple[bool, ...] = False,
         slope_ridge: float | tuple[float, ...] = 1.0,
+        min_wins: int = 1,
+        trend_fallback: bool = False,
     ):
         self.max_neurons = max_neurons
         self.error_threshold = error_threshold
@@ -140,6 +171,8 @@ class DCSNetwork:
         self.local_linear = local_linear
         self.global_linear = global_linear
         self.slope_ridge = slope_ridge
+        self.min_wins = min_wins
+        self.trend_fallback = trend_fallback
 
     # ------------------------------------------------------------------ fitting
     def fit(self, X: np.ndarray, Y: np.ndarray) -> DCSNetwork:
@@ -159,6 +192,8 @@ class DCSNetwork:
             raise MjwalkError("DCSNetwork.fit: X or Y holds NaN or infinite values")
         if self.max_neurons < 2:
             raise MjwalkError(f"DCSNetwork: max_neurons must be >= 2, got {self.max_neurons}")
+        if int(self.min_wins) != self.min_wins or self.min_wins < 0:
+            raise MjwalkError(f"DCSNetwork: min_wins must be an integer >= 0, got {self.min_wins}")
         rng = np.random.default_rng(self.rng)
 
         self.x_mean_ = X.mean(axis=0)
@@ -197,7 +232,11 @@ class DCSNetwork:
         best = None
         best_val = np.inf
         no_change = 0
+        stalled = 0  # insertions in a row whose neuron died at once
+        parents: tuple[int, int] | None = None
+        resid = np.zeros(len(Ztr))  # squared training error per sample, set by every step
         self.history_ = []
+        self.n_pruned_ = 0
         factors = self._factors()
         ridges = self._ridges()
         # output forms (local linear, global linear, slope ridge), chosen like the width
@@ -209,6 +248,15 @@ class DCSNetwork:
         ]
         while True:
             centers, ages = self._adapt(Ztr, centers, ages, rng)
+            centers, ages, newest_died = self._prune(Ztr, centers, ages, parents)
+            if newest_died:
+                stalled += 1
+                if stalled >= max(self.n_iter_no_change, 1):
+                    break
+                parents = self._insert_at_largest_error(Ztr, centers, ages, resid)
+                centers, ages = self._grow(centers, ages, *parents)
+                continue
+            stalled = 0
             edges = ages >= 0
             base = self._widths(centers, edges, 1.0)
             # The RBF width factor is chosen with the network size on the held-out part.
@@ -248,25 +296,8 @@ class DCSNetwork:
                 or (select and no_change >= self.n_iter_no_change)
             ):
                 break
-            # Growth: accumulated squared error per best-matching neuron.
-            bmu = np.argmin(cdist(Ztr, centers), axis=1)
-            err = np.bincount(bmu, weights=resid, minlength=len(centers))
-            q = int(np.argmax(err))
-            nbrs = np.flatnonzero(ages[q] >= 0)
-            if len(nbrs) == 0:
-                d = np.linalg.norm(centers - centers[q], axis=1)
-                d[q] = np.inf
-                nbrs = np.array([int(np.argmin(d))])
-            f = int(nbrs[np.argmax(err[nbrs])])
-            new = 0.5 * (centers[q] + centers[f])
-            k = len(centers)
-            centers = np.vstack([centers, new])
-            grown = np.full((k + 1, k + 1), -1, dtype=np.int64)
-            grown[:k, :k] = ages
-            grown[q, f] = grown[f, q] = -1
-            grown[q, k] = grown[k, q] = 0
-            grown[f, k] = grown[k, f] = 0
-            ages = grown
+            parents = self._insert_at_largest_error(Ztr, centers, ages, resid)
+            centers, ages = self._grow(centers, ages, *parents)
 
         if select and best is not None:
             centers, ages, factor, ridge, linear = best
@@ -294,7 +325,70 @@ class DCSNetwork:
             )
         )
         self._set_training_points(Z)
+        self.fallback_ = None
+        if self.trend_fallback:
+            self.fallback_ = DCSNetwork(**self._trend_params()).fit(X, Y[:, 0] if self._y_1d else Y)
         return self
+
+    def _trend_params(self) -> dict:
+        """The trend network's settings: this network's, grown no further than the two
+        neurons growth starts from, constant outputs, with the global linear term."""
+        params = self._params()
+        params.update(
+            max_neurons=2,
+            n_iter_no_change=1,
+            local_linear=False,
+            global_linear=True,
+            trend_fallback=False,
+        )
+        return params
+
+    @staticmethod
+    def _insert_at_largest_error(Z, centers, ages, resid) -> tuple[int, int]:
+        """Growth: the neuron ``q`` with the largest accumulated squared error over the samples
+        it wins and its lateral neighbour ``f`` with the largest (the nearest neuron when ``q``
+        has no edge); the new neuron goes half way between them."""
+        bmu = np.argmin(cdist(Z, centers), axis=1)
+        err = np.bincount(bmu, weights=resid, minlength=len(centers))
+        q = int(np.argmax(err))
+        nbrs = np.flatnonzero(ages[q] >= 0)
+        if len(nbrs) == 0:
+            d = np.linalg.norm(centers - centers[q], axis=1)
+            d[q] = np.inf
+            nbrs = np.array([int(np.argmin(d))])
+        return q, int(nbrs[np.argmax(err[nbrs])])
+
+    @staticmethod
+    def _grow(centers, ages, q: int, f: int):
+        """Insert a neuron half way between ``q`` and ``f``, replacing their edge by two."""
+        k = len(centers)
+        centers = np.vstack([centers, 0.5 * (centers[q] + centers[f])])
+        grown = np.full((k + 1, k + 1), -1, dtype=np.int64)
+        grown[:k, :k] = ages
+        grown[q, f] = grown[f, q] = -1
+        grown[q, k] = grown[k, q] = 0
+        grown[f, k] = grown[k, f] = 0
+        return centers, grown
+
+    def _prune(self, Z, centers, ages, parents):
+        """Remove dead units (fewer than ``min_wins`` wins), keeping at least two neurons.
+        Returns the centres, the edge ages and whether the neuron inserted last (between
+        ``parents``) died; then the parents' edge is cut, as no data joins them."""
+        if self.min_wins <= 0 or len(centers) <= 2:
+            return centers, ages, False
+        wins = np.bincount(np.argmin(cdist(Z, centers), axis=1), minlength=len(centers))
+        keep = wins >= self.min_wins
+        if keep.all() or keep.sum() < 2:
+            return centers, ages, False
+        self.n_pruned_ += int((~keep).sum())
+        newest_died = parents is not None and not keep[-1]
+        centers, ages = centers[keep], ages[np.ix_(keep, keep)].copy()
+        if newest_died:
+            index = np.cumsum(keep) - 1
+            q, f = parents
+            if keep[q] and keep[f]:
+                ages[index[q], index[f]] = ages[index[f], index[q]] = -1
+        return centers, ages, bool(newest_died)
 
     def _adapt(self, Z, centers, ages, rng):
         """Competitive Hebbian edges + Kohonen adaptation of centres, ``n_epochs`` passes."""
@@ -483,8 +577,29 @@ class DCSNetwork:
         return (X - self.x_mean_) / self.x_scale_
 
     def predict(self, X: np.ndarray) -> np.ndarray:
-        """Outputs (N, m) for inputs ``X`` (N, d) by the normalized RBF of eq. 2."""
+        """Outputs (N, m) for inputs ``X`` (N, d) by the normalized RBF of eq. 2 (blended into
+        the trend network outside the trained range when it has one, see the module doc)."""
         self._check_fitted()
+        out = self._predict_network(X)
+        fallback = self._fallback()
+        if fallback is not None:
+            g = self.network_weight(X)
+            trend = fallback._predict_network(X)
+            out = trend + g[:, None] * (out - trend)
+        return out[:, 0] if self._y_1d else out
+
+    def network_weight(self, X: np.ndarray) -> np.ndarray:
+        """(N,) weight of the full network in :meth:`predict`: ``exp(-d^2 / (2 r^2))``,
+        ``d`` the distance to the nearest training input, ``r = range_radius_``; 1 without a
+        trend fallback."""
+        self._check_fitted()
+        if self._fallback() is None:
+            return np.ones(len(self._standardize(X)))
+        q = self.distance_to_training(X) / max(self.range_radius_, 1e-12)
+        return np.exp(-0.5 * q**2)
+
+    def _predict_network(self, X: np.ndarray) -> np.ndarray:
+        """(N, m) outputs of this network alone."""
         Z = self._standardize(X)
         Phi = self._design(Z, self.centers_, self.widths_, self.edges_)
         out = Phi @ self.outputs_
@@ -493,7 +608,7 @@ class DCSNetwork:
             out = out + np.einsum("nk,nkd,kdm->nm", Phi, offsets, self.slopes_)
         if self.trend_ is not None:  # global linear term
             out = out + Z @ self.trend_
-        return out[:, 0] if self._y_1d else out
+        return out
 
     def distance_to_training(self, X: np.ndarray) -> np.ndarray:
         """(N,) distance of each input to its nearest training input, in standardized units
@@ -507,7 +622,12 @@ class DCSNetwork:
         return self.distance_to_training(X) > self.range_radius_
 
     # ------------------------------------------------------------------ persistence
+    def _fallback(self) -> DCSNetwork | None:
+        """The trend network, or None (none fitted, or a version 1-2 file)."""
+        return getattr(self, "fallback_", None)
+
     def _arrays(self) -> dict:
+        fallback = self._fallback()
         return {
             "centers": self.centers_,
             "outputs": self.outputs_,
@@ -518,31 +638,43 @@ class DCSNetwork:
             "train_z": self._train_z,
             **({} if self.slopes_ is None else {"slopes": self.slopes_}),
             **({} if self.trend_ is None else {"trend": self.trend_}),
+            **(
+                {}
+                if fallback is None
+                else {f"fallback.{k}": v for k, v in fallback._arrays().items()}
+            ),
         }
 
-    def _header(self) -> dict:
-        params = {
-            k: getattr(self, k)
-            for k in (
-                "max_neurons",
-                "error_threshold",
-                "max_age",
-                "width_factor",
-                "eps_winner",
-                "eps_neighbour",
-                "n_epochs",
-                "validation_fraction",
-                "n_iter_no_change",
-                "ridge",
-                "scaling",
-                "selection",
-                "local_linear",
-                "global_linear",
-                "slope_ridge",
-            )
-        }
+    _PARAMS = (
+        "max_neurons",
+        "error_threshold",
+        "max_age",
+        "width_factor",
+        "eps_winner",
+        "eps_neighbour",
+        "n_epochs",
+        "validation_fraction",
+        "n_iter_no_change",
+        "ridge",
+        "scaling",
+        "selection",
+        "local_linear",
+        "global_linear",
+        "slope_ridge",
+        "min_wins",
+        "trend_fallback",
+    )
+
+    def _params(self) -> dict:
+        """The constructor arguments (a seed as is; a Generator as None)."""
+        params = {k: getattr(self, k) for k in self._PARAMS}
         rs = self.rng
         params["rng"] = rs if isinstance(rs, int | None) else None
+        return params
+
+    def _header(self) -> dict:
+        params = self._params()
+        fallback = self._fallback()
         return {
             "format": DCS_FORMAT,
             "version": DCS_VERSION,
@@ -555,6 +687,8 @@ class DCSNetwork:
             "global_linear_": self.trend_ is not None,
             "slope_ridge_": getattr(self, "slope_ridge_", None),
             "history": [[int(a), float(b), float(c)] for a, b, c in self.history_],
+            "n_pruned_": int(getattr(self, "n_pruned_", 0)),
+            **({} if fallback is None else {"fallback": fallback._header()}),
         }
 
     def save(self, path: str | Path) -> None:
@@ -565,9 +699,9 @@ class DCSNetwork:
     @classmethod
     def from_arrays(cls, header: dict, data: dict, source: str = "<arrays>") -> DCSNetwork:
         """Rebuild a network from :meth:`save`'s header and arrays (used by composite models)."""
-        version = header.get("version")  # version 1 files (no trend) read the same way
+        version = header.get("version")  # version 1-2 files (no trend/fallback) read the same
         check_header(
-            header, source, "DCS network", DCS_FORMAT, version if version == 1 else DCS_VERSION
+            header, source, "DCS network", DCS_FORMAT, version if version in (1, 2) else DCS_VERSION
         )
         try:
             params = dict(header["params"])
@@ -590,6 +724,11 @@ class DCSNetwork:
             net.slope_ridge_ = header.get("slope_ridge_")  # type: ignore[assignment]
             net.trend_ = np.asarray(data["trend"], dtype=float) if net.global_linear_ else None
             net.history_ = [tuple(h) for h in header.get("history", [])]
+            net.n_pruned_ = int(header.get("n_pruned_", 0))
+            net.fallback_ = None
+            if "fallback" in header:
+                sub = {k[9:]: v for k, v in data.items() if k.startswith("fallback.")}
+                net.fallback_ = cls.from_arrays(header["fallback"], sub, source)
             k = len(net.centers_)
             if (
                 net.outputs_.shape[0] != k

@@ -16,7 +16,9 @@ Pipeline of :meth:`ReachModel.predict`:
 Frames: the body frame at the shoulder of the moving arm, metres, x forward, y left, z up
 (the humanoid's thorax frame in its neutral pose). A constraint outside the trained range is
 never used silently: the result carries its distance to the training data and a warning, or
-``strict=True`` raises :class:`~mjwalk.errors.MjwalkError`.
+``strict=True`` raises :class:`~mjwalk.errors.MjwalkError`. A DCS with a trend fallback (the
+default model's and :data:`~mjwalk.arms.reachdefault.CAPTURE_DCS`) blends into its trend network
+there rather than extrapolating its neurons' local maps; the warning says by how much.
 """
 
 from __future__ import annotations
@@ -191,6 +193,9 @@ class ReachModel:
                 f"{dist:.2f} sd from the nearest training constraint "
                 f"(limit {self.net_.range_radius_:.2f})"
             )
+            if getattr(self.net_, "fallback_", None) is not None:
+                g = float(self.net_.network_weight(c[None])[0])
+                msg += f"; the trajectory follows the trend network ({1 - g:.0%})"
             if strict:
                 raise MjwalkError(msg)
             warnings.append(msg)
