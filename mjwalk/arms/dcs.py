@@ -65,8 +65,8 @@ constant outputs) with the global linear term, fitted on the same samples with t
 nearest training input and ``r`` the trained-range radius (``range_radius_``, where
 :meth:`DCSNetwork.is_outside` starts to flag a query). A Gaussian process with a linear mean
 function reverts to its mean function away from its data in the same way (Rasmussen &
-Williams 2006, §2.7). Inside the data ``g`` is close to 1 (the cross-validation figures move
-by 0.04 deg); a walker unlike every trained one gets the trend, not the outermost neuron's
+Williams 2006, §2.7). Inside the data ``g`` is close to 1 (10-fold cross-validation moves by
+less than 0.05 deg); a walker unlike every trained one gets the trend, not the outermost neuron's
 local map (leave-one-style-out in ``benchmarks/bench_reach.py``: the held-out masculine
 style 14.6 -> 10.6 deg, feminine 21.5 -> 16.9; without it the local maps extrapolate to
 15-74 deg depending on the network seed).
