@@ -522,3 +522,27 @@ def test_dcs_trend_fallback_blends_into_the_trend_outside_the_data(tmp_path):
     np.testing.assert_allclose(
         DCSNetwork.load(tmp_path / "v2.npz").predict(Xfar), plain.predict(Xfar)
     )
+
+
+def test_dcs_averages_networks_grown_from_independent_seeds(tmp_path):
+    X, Y = _toy(120, 7)
+    Xt, _ = _toy(50, 8)
+    kw = {"rng": 3, "max_neurons": 8, "validation_fraction": 0, "trend_fallback": True}
+    one = DCSNetwork(**kw).fit(X, Y)
+    avg = DCSNetwork(n_networks=3, **kw).fit(X, Y)
+    assert len(avg.members_) == 2 and one.members_ == []
+    # the first network is the one a single-network fit grows; the others differ
+    np.testing.assert_array_equal(avg.centers_, one.centers_)
+    assert not np.allclose(avg.members_[0].predict(Xt), one.predict(Xt))
+    mean = (one.predict(Xt) + sum(m.predict(Xt) for m in avg.members_)) / 3
+    np.testing.assert_allclose(avg.predict(Xt), mean, rtol=1e-12, atol=1e-12)
+    # the same seed gives the same ensemble; saved and loaded with its members
+    np.testing.assert_array_equal(
+        DCSNetwork(n_networks=3, **kw).fit(X, Y).predict(Xt), avg.predict(Xt)
+    )
+    avg.save(tmp_path / "avg.npz")
+    back = DCSNetwork.load(tmp_path / "avg.npz")
+    assert len(back.members_) == 2
+    np.testing.assert_allclose(back.predict(Xt), avg.predict(Xt))
+    with pytest.raises(MjwalkError, match="n_networks"):
+        DCSNetwork(n_networks=0).fit(X, Y)
