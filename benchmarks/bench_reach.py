@@ -1,9 +1,11 @@
 """Cross-validation of the PCA + DCS arm model (Al-Zubi & Sommer §5) beside baselines.
 
-Real data: a folder of Bandai-style raise-hand clips (``*raise-up-left-hand*.bvh`` with a
-``.json`` beside each naming its style id), given by ``--data DIR`` or ``$MJWALK_SHARED_DATA``
-(either the folder itself or a folder holding ``bandai-raise-hand/``); default
-../shared/data beside the checkout.
+Real data: a folder of Bandai-style raise-hand clips (``*raise-up-left-hand*.bvh`` and
+``*raise-up-right-hand*.bvh``, a ``.json`` beside each naming its style id; ``--side`` picks
+one arm, default both: right-arm clips are mirrored into the left arm's frame, and a last table
+tests a model trained on one arm on the other arm's mirrored clips), given by ``--data DIR``
+or ``$MJWALK_SHARED_DATA`` (either the folder itself or a folder holding
+``bandai-raise-hand/``); default ../shared/data beside the checkout.
 
 Each clip becomes one movement (see :func:`load_raise_hand`):
 
@@ -93,6 +95,7 @@ from mjwalk.arms.armrep import (
     trajectory_error,
 )
 from mjwalk.arms.dcs import DCSNetwork
+from mjwalk.arms.kinematics import MIRROR_Y
 from mjwalk.arms.reach import ReachModel, end_effector
 from mjwalk.arms.reachdefault import CAPTURE_DCS
 
@@ -113,14 +116,15 @@ def find_data(arg: str | None) -> Path | None:
     for base in map(Path, bases):
         if (base / RAISE_DIR).is_dir():
             return base / RAISE_DIR
-        if base.is_dir() and any(base.glob("*raise-up-left-hand*.bvh")):
+        if base.is_dir() and any(base.glob("*raise-up-*-hand*.bvh")):
             return base
     return None
 
 
 @dataclass
 class RaiseHandSet:
-    """Raising movements of the left arm (shoulder frame, metres; see the module docstring).
+    """Raising movements in the left arm's shoulder frame (metres; see the module docstring;
+    right-arm clips mirrored into it).
 
     Attributes:
         constraints: (p, 9) start elbow, start hand, end hand positions (m).
@@ -148,19 +152,27 @@ def _style(path: Path) -> str:
     return "?"
 
 
-def load_raise_hand(data_dir: Path, max_clips: int | None = None) -> RaiseHandSet:
-    """The raising movements of every ``*raise-up-left-hand*.bvh`` clip in ``data_dir``."""
+def load_raise_hand(
+    data_dir: Path, max_clips: int | None = None, side: str = "left"
+) -> RaiseHandSet:
+    """The raising movements of every ``*raise-up-<side>-hand*.bvh`` clip in ``data_dir``.
+    Right-arm clips are mirrored through the body's sagittal plane (y -> -y) into the left
+    arm's frame: the reach model is a left-arm model, mirrored back for the right arm
+    (:func:`mjwalk.arms.reach.reach_for_side`)."""
     from mjwalk.mocap import load_bvh
 
-    files = sorted(Path(data_dir).glob("*raise-up-left-hand*.bvh"))[:max_clips]
+    files = sorted(Path(data_dir).glob(f"*raise-up-{side}-hand*.bvh"))[:max_clips]
+    suffix = "_L" if side == "left" else "_R"
     C, U, L, G, names = [], [], [], [], []
     for f in files:
         tk = load_bvh(f, skeleton="bandai", fps=30)
-        P = np.stack([tk.joints[j] for j in ("UpperArm_L", "LowerArm_L", "Hand_L")], axis=1)
+        P = np.stack([tk.joints[j + suffix] for j in ("UpperArm", "LowerArm", "Hand")], axis=1)
         yaw = tk.pelvis_yaw[0]
         c, s = np.cos(-yaw), np.sin(-yaw)
         rz = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
         P = (P - P[:, :1]) @ rz.T  # shoulder at origin, body frame (x forward)
+        if side == "right":
+            P = P * MIRROR_Y  # into the left arm's frame
         top = int(np.argmax(P[:, 2, 2]))
         a, b = movement_span(P[:, 2], until=top)
         if b - a < 4:
@@ -300,9 +312,47 @@ def print_group_table(title, res, groups, held_out):
     print(f"DCS neurons per held-out style: {nn}", flush=True)
 
 
-def run_real(data_dir: Path, max_clips: int | None, seed: int = 0) -> None:
-    t = time.perf_counter()
-    ds = load_raise_hand(data_dir, max_clips)
+def run_real(data_dir: Path, max_clips: int | None, seed: int = 0, sides=("left", "right")):
+    """Both tables for every side with clips, then the mirror transfer between the sides."""
+    sets = {}
+    for side in sides:
+        t = time.perf_counter()
+        ds = load_raise_hand(data_dir, max_clips, side)
+        if len(ds.constraints) < 10:
+            print(f"\n# {side} arm: {len(ds.constraints)} clips, skipped (fewer than 10)")
+            continue
+        print(
+            f"\n# {side} arm" + (" (clips mirrored into the left arm's frame)" * (side == "right"))
+        )
+        run_side(ds, data_dir, t, seed)
+        sets[side] = ds
+    if len(sets) == 2:
+        print_mirror_transfer(sets["left"], sets["right"], seed)
+
+
+def print_mirror_transfer(left: RaiseHandSet, right: RaiseHandSet, seed: int) -> None:
+    """The body is symmetric about its sagittal plane: a model trained on one arm's clips
+    predicts the other arm's mirrored clips (all of one side to train, all of the other to
+    test), beside the mean trajectory."""
+    print("\n## mirror transfer: trained on one arm, tested on the other arm's mirrored clips")
+    print(f"{'train -> test':<16}{'DCS deg':>10}{'mean only':>11}{'p':>6}")
+    for a, b, name in ((left, right, "left -> right"), (right, left, "right -> left")):
+        out = []
+        for reg in (None, DummyRegressor()):
+            model = ReachModel(
+                a.lengths, variance=0.98, dcs={**DCS_REAL, "rng": seed}, regressor=reg
+            )
+            model.fit(a.constraints, a.directions)
+            errs = []
+            for c, u in zip(b.constraints, b.directions, strict=True):
+                hand = end_effector(u, b.lengths)
+                r = model.predict(c, start=hand[0], end=hand[-1])
+                errs.append(np.degrees(trajectory_error(r.directions, u)))
+            out.append(float(np.mean(errs)))
+        print(f"{name:<16}{out[0]:>10.2f}{out[1]:>11.2f}{len(b.constraints):>6}", flush=True)
+
+
+def run_side(ds: RaiseHandSet, data_dir: Path, t: float, seed: int) -> None:
     styles = sorted(set(ds.groups))
     print(
         f"loaded {len(ds.constraints)} raising movements from {data_dir} in "
@@ -335,7 +385,13 @@ def main(argv=None):
         help="raise-hand clip folder, or a folder holding bandai-raise-hand/ "
         "(default: $MJWALK_SHARED_DATA, then ../shared/data)",
     )
-    ap.add_argument("--max-clips", type=int, default=None)
+    ap.add_argument("--max-clips", type=int, default=None, help="per arm")
+    ap.add_argument(
+        "--side",
+        choices=("left", "right", "both"),
+        default="both",
+        help="which arm's clips (right-arm clips are mirrored into the left arm's frame)",
+    )
     ap.add_argument(
         "--seed", type=int, default=0, help="CV folds and DCS seeds (fold k uses seed + k)"
     )
@@ -349,11 +405,12 @@ def main(argv=None):
         data_dir = find_data(args.data)
         if data_dir is None:
             where = args.data or "$MJWALK_SHARED_DATA or ../shared/data"
-            print(f"skip real data: no raise-up-left-hand clips in {where}")
+            print(f"skip real data: no raise-up-left/right-hand clips in {where}")
             if args.data:
                 return 2
         else:
-            run_real(data_dir, args.max_clips, args.seed)
+            sides = ("left", "right") if args.side == "both" else (args.side,)
+            run_real(data_dir, args.max_clips, args.seed, sides)
     if not args.no_synthetic:
         try:
             from mjwalk.arms import reachgen

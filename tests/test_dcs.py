@@ -426,15 +426,16 @@ def test_dcs_slope_ridge_penalizes_slopes_relative_to_ridge():
         DCSNetwork(local_linear=True, slope_ridge=0.0).fit(X, Y)
 
 
+def _affine_and_bump(X):
+    """y = 1.5 x0 - 0.5 x1 + a Gaussian bump at the origin, (N, 1)."""
+    return X @ np.array([[1.5], [-0.5]]) + 0.3 * np.exp(-4 * (X**2).sum(1, keepdims=True))
+
+
 def test_dcs_global_linear_term_extrapolates_the_trend(tmp_path):
     # y = affine + a bump: inside the data both forms fit; beyond it the normalized RBF keeps
     # the outermost neuron's output while the global linear term carries on along the trend
     rng = np.random.default_rng(2)
-    W = np.array([[1.5], [-0.5]])
-
-    def f(X):
-        return X @ W + 0.3 * np.exp(-4 * (X**2).sum(1, keepdims=True))
-
+    f = _affine_and_bump
     X = rng.uniform(-1, 1, (150, 2))
     Xfar = rng.uniform(1.5, 2.0, (40, 2))
     kw = {"rng": 0, "max_neurons": 8, "validation_fraction": 0}
@@ -449,7 +450,9 @@ def test_dcs_global_linear_term_extrapolates_the_trend(tmp_path):
     np.testing.assert_allclose(back.predict(Xfar), glob.predict(Xfar))
     assert back.global_linear_ and back.trend_.shape == (2, 1)
     # the grid (False, True) is chosen with the network size on the PRESS residuals
-    grid = DCSNetwork(rng=0, selection="loo", global_linear=(False, True)).fit(X, X @ W)
+    grid = DCSNetwork(rng=0, selection="loo", global_linear=(False, True)).fit(
+        X, X @ np.array([[1.5], [-0.5]])
+    )
     assert grid.global_linear_ is True
 
 
@@ -480,11 +483,7 @@ def test_dcs_trend_fallback_blends_into_the_trend_outside_the_data(tmp_path):
     # y = affine + a bump, local linear outputs: inside the data the network is used as is;
     # far outside, the output is the trend network's (two neurons + the global linear term)
     rng = np.random.default_rng(2)
-    W = np.array([[1.5], [-0.5]])
-
-    def f(X):
-        return X @ W + 0.3 * np.exp(-4 * (X**2).sum(1, keepdims=True))
-
+    f = _affine_and_bump
     X = rng.uniform(-1, 1, (150, 2))
     kw = {"rng": 0, "max_neurons": 8, "validation_fraction": 0, "local_linear": True}
     net = DCSNetwork(trend_fallback=True, **kw).fit(X, f(X))

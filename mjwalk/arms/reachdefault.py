@@ -12,45 +12,34 @@ from mjwalk.errors import ModelFileError
 #: Bump when the generator or the model changes, so the cache is rebuilt.
 REACH_DEFAULT_VERSION = "4"
 N_TRAIN = 200
-#: The DCS of the default model: network size, RBF width, output ridge, constant or local
-#: linear outputs (with the slopes' own ridge) and a global linear term chosen by exact
-#: leave-one-out errors on the training reaches (PRESS), as ``benchmarks/bench_reach.py`` runs
-#: it on capture (10-fold CV on the Bandai raise-hand clips: 4.21 deg against kNN 4.27);
-#: dead units removed while growing and, outside the trained range, a blend into the trend
-#: network (leave-one-style-out 11.95 deg against 14.50 without them, mean trajectory 25.05).
-DEFAULT_DCS = {
-    "rng": 0,
+#: Chosen by exact leave-one-out errors on the training samples (PRESS), with the network
+#: size: RBF width, output ridge, constant or local linear outputs (with the slopes' own ridge)
+#: and a global linear term; dead units are removed while growing (the DCSNetwork default) and,
+#: outside the trained range, the output blends into the trend network.
+_PRESS_SELECTED = {
     "selection": "loo",
     "local_linear": (False, True),
     "global_linear": (False, True),
     "slope_ridge": (0.1, 1.0, 10.0, 100.0),
     "trend_fallback": True,
 }
+#: The DCS of the default model, as ``benchmarks/bench_reach.py`` runs it on capture (10-fold
+#: CV on the Bandai raise-hand clips: 4.21 deg against kNN 4.27; leave-one-style-out 12.0 deg
+#: against 14.5 without dead-unit pruning and the trend fallback, mean trajectory 25.1).
+DEFAULT_DCS = {"rng": 0, **_PRESS_SELECTED}
 #: The DCS of a reach model trained on capture (``benchmarks/bench_reach.py``, the shared-data
-#: tests; a user's own clips). Constraints are positions in metres, so one scale
-#: for all columns keeps distances in metres (per-column standardization would blow the
-#: near-constant start-posture columns up to the weight of the end position). The RBF width
-#: factor, the output ridge and the output form are chosen with the network size by the
-#: exact leave-one-out (PRESS) residuals on the training fold (never on the test fold): grids
-#: of a factor sqrt(2) around the mean lateral-edge length and decades of ridge.
+#: tests; a user's own clips). Constraints are positions in metres, so one scale for all
+#: columns keeps distances in metres (per-column standardization would blow the near-constant
+#: start-posture columns up to the weight of the end position). The RBF width factor and the
+#: output ridge are grids chosen on the training fold (never on the test fold): a factor
+#: sqrt(2) around the mean lateral-edge length and decades of ridge.
 CAPTURE_DCS = {
+    **_PRESS_SELECTED,
     "scaling": "global",
     "width_factor": (0.5, 0.71, 1.0, 1.41, 2.0),
     "ridge": (1e-6, 1e-3, 1e-2, 0.1, 1.0),
     "n_iter_no_change": 10,
     "max_neurons": 60,
-    # size, width, ridge and constant-vs-local-linear outputs by leave-one-out (PRESS) on the
-    # training fold, not a random held-out fifth (which gave 4-48 neurons and seed-to-seed
-    # swings of 0.2 deg)
-    "selection": "loo",
-    "local_linear": (False, True),
-    # a global linear term (the trend a new walker's constraint extrapolates along) and the
-    # local slopes' own penalty (decades relative to the ridge), chosen by PRESS likewise
-    "global_linear": (False, True),
-    "slope_ridge": (0.1, 1.0, 10.0, 100.0),
-    # outside the trained range, blend into the trend network (two neurons + global linear
-    # term): a walker unlike every trained one gets the trend, not a neuron's local map
-    "trend_fallback": True,
     # five networks from independent seeds, averaged: one network's error depends on its
     # seed (10-fold CV 4.21 / 4.42 deg at bench seeds 0 / 20; five: 4.21 / 4.27, kNN 4.27 /
     # 4.33); five is the ensemble size of Lakshminarayanan et al. 2017 ("Simple and scalable
