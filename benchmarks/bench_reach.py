@@ -47,6 +47,15 @@ Held-out styles raise to heights the others never reach: 83-100 % of their const
 outside the trained range, where the trend carries the prediction. A plain ridge line as
 the fallback instead of the two-neuron trend network (ad hoc, not kept) gave feminine 28.4:
 linear extrapolation three trained-range radii out, where the arm saturates.
+Right arm (255 clips, mirrored into the left arm's frame; first run 2026-11-27, the same
+settings): 10-fold CV DCS 4.81 +/- 3.42 (4-22 neurons), kNN 4.69, GPR 4.70, mean only 16.50
+(paired DCS - kNN +0.12 +/- 0.10: level within about one SE, not below); leave-one-style-out
+DCS 13.04, trend only 13.06, kNN 16.43, GPR 19.36, mean only 21.32; per style DCS / mean
+trajectory: feminine 17.5 / 40.1, masculine 12.8 / 14.8, normal 9.7 / 9.2, youthful 12.9 /
+22.5. The held-out right-arm normal style is described best by the others' mean trajectory:
+no regressor here beats it (trend 9.3, GPR 11.2, kNN 16.3). Mirror transfer (all clips of one
+arm to train, all mirrored clips of the other to test): left -> right 6.15 deg (mean only
+17.08), right -> left 6.43 (18.39), against 4.2-4.8 within one arm.
 Before the dead-unit pruning and the trend fallback (earlier that day): CV 4.21, LOSO 14.50
 (feminine 21.5, masculine 14.6 -- worse than the mean trajectory --, normal 9.8, youthful
 12.9), and from seed to seed (DCS seeds + 0..40, ad hoc) the masculine fold gave 14.6-25.0,
