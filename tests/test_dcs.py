@@ -530,6 +530,9 @@ def test_dcs_averages_networks_grown_from_independent_seeds(tmp_path):
     one = DCSNetwork(**kw).fit(X, Y)
     avg = DCSNetwork(n_networks=3, **kw).fit(X, Y)
     assert len(avg.members_) == 2 and one.members_ == []
+    # each network has its own two-neuron trend network, itself a single network
+    assert all(m.fallback_.n_neurons_ == 2 for m in (avg, *avg.members_))
+    assert avg.fallback_.members_ == []
     # the first network is the one a single-network fit grows; the others differ
     np.testing.assert_array_equal(avg.centers_, one.centers_)
     assert not np.allclose(avg.members_[0].predict(Xt), one.predict(Xt))

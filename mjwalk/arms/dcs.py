@@ -378,6 +378,7 @@ class DCSNetwork:
             local_linear=False,
             global_linear=True,
             trend_fallback=False,
+            n_networks=1,
         )
         return params
 
