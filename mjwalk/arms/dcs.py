@@ -619,18 +619,20 @@ class DCSNetwork:
         """Outputs (N, m) for inputs ``X`` (N, d) by the normalized RBF of eq. 2 (blended into
         the trend network outside the trained range when it has one, see the module doc)."""
         self._check_fitted()
-        out = self._predict_one(X)
+        # one weight for all networks: they share the training inputs, hence d and r
+        g = self.network_weight(X) if self._fallback() is not None else None
+        out = self._predict_one(X, g)
         members = getattr(self, "members_", [])
         if members:
-            out = (out + sum(m._predict_one(X) for m in members)) / (1 + len(members))
+            out = (out + sum(m._predict_one(X, g) for m in members)) / (1 + len(members))
         return out[:, 0] if self._y_1d else out
 
-    def _predict_one(self, X: np.ndarray) -> np.ndarray:
-        """(N, m) output of this network alone, with its trend fallback."""
+    def _predict_one(self, X: np.ndarray, g: np.ndarray | None) -> np.ndarray:
+        """(N, m) output of this network alone, blended into its trend network with the full
+        network's weight ``g`` (:meth:`network_weight`) when it has one."""
         out = self._predict_network(X)
         fallback = self._fallback()
-        if fallback is not None:
-            g = self.network_weight(X)
+        if fallback is not None and g is not None:
             trend = fallback._predict_network(X)
             out = trend + g[:, None] * (out - trend)
         return out
