@@ -228,6 +228,14 @@ def regressors(seed: int, n_inputs: int, dcs: dict):
     }
 
 
+def movement_error(model, c, u, lengths, endpoints=True):
+    """(error deg, ReachResult) of ``model`` on one movement: constraint ``c``, directions
+    ``u``, fitted to its true start and end hand positions unless ``endpoints`` is False."""
+    hand = end_effector(u, lengths)
+    r = model.predict(c, start=hand[0] if endpoints else None, end=hand[-1] if endpoints else None)
+    return float(np.degrees(trajectory_error(r.directions, u))), r
+
+
 def evaluate(C, U, lengths, splits, extras=None, endpoints=True, dcs=None, seed=0):
     """Per regressor: (errors in degrees per test movement, neuron counts, seconds, extras
     RMS, test index per error) over the (train, test) index ``splits``."""
@@ -246,13 +254,8 @@ def evaluate(C, U, lengths, splits, extras=None, endpoints=True, dcs=None, seed=
             if model.n_neurons is not None:
                 neurons.append(model.n_neurons)
             for i in te:
-                hand = end_effector(U[i], lengths)
-                r = model.predict(
-                    C[i],
-                    start=hand[0] if endpoints else None,
-                    end=hand[-1] if endpoints else None,
-                )
-                errs.append(np.degrees(trajectory_error(r.directions, U[i])))
+                e, r = movement_error(model, C[i], U[i], lengths, endpoints)
+                errs.append(e)
                 idx.append(i)
                 if extras is not None:  # RMS over time of each extra channel
                     ex_errs.append(np.sqrt(((r.extras - extras[i]) ** 2).mean(axis=0)))
@@ -347,16 +350,17 @@ def print_mirror_transfer(left: RaiseHandSet, right: RaiseHandSet, seed: int) ->
     print(f"{'train -> test':<16}{'DCS deg':>10}{'mean only':>11}{'p':>6}")
     for a, b, name in ((left, right, "left -> right"), (right, left, "right -> left")):
         out = []
+        rep = None  # the PCA/alignment is shared by both regressors, as in evaluate()
         for reg in (None, DummyRegressor()):
             model = ReachModel(
                 a.lengths, variance=0.98, dcs={**DCS_REAL, "rng": seed}, regressor=reg
             )
-            model.fit(a.constraints, a.directions)
-            errs = []
-            for c, u in zip(b.constraints, b.directions, strict=True):
-                hand = end_effector(u, b.lengths)
-                r = model.predict(c, start=hand[0], end=hand[-1])
-                errs.append(np.degrees(trajectory_error(r.directions, u)))
+            model.fit(a.constraints, a.directions, rep=rep)
+            rep = model.rep_
+            errs = [
+                movement_error(model, c, u, b.lengths)[0]
+                for c, u in zip(b.constraints, b.directions, strict=True)
+            ]
             out.append(float(np.mean(errs)))
         print(f"{name:<16}{out[0]:>10.2f}{out[1]:>11.2f}{len(b.constraints):>6}", flush=True)
 

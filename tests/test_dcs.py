@@ -291,26 +291,38 @@ def test_real_raise_hand_pca_is_compact():
     assert rep.n_modes_ <= 8
 
 
+def _dcs_and_mean_errors(C, U, L, tr, te, dcs):
+    """Per test movement of ``te``: the trajectory error (deg) of the DCS model (settings
+    ``dcs``) and of the mean trajectory, both trained on ``tr`` with one PCA/alignment and
+    fitted to the movement's true start and end hand positions."""
+    from sklearn.dummy import DummyRegressor
+
+    from mjwalk.arms.reach import ReachModel, end_effector
+
+    errs = {}
+    rep = None
+    for name, reg in (("dcs", None), ("mean", DummyRegressor())):
+        m = ReachModel(L, dcs=dcs, regressor=reg).fit(C[tr], U[tr], rep=rep)
+        rep = m.rep_
+        errs[name] = []
+        for i in te:
+            hand = end_effector(U[i], L)
+            r = m.predict(C[i], start=hand[0], end=hand[-1])
+            errs[name].append(np.degrees(trajectory_error(r.directions, U[i])))
+    return errs
+
+
 @pytest.mark.slow
 @pytest.mark.skipif(not DATA.is_dir(), reason="../shared/data/bandai-raise-hand absent")
 def test_real_raise_hand_dcs_beats_mean_trajectory():
-    from sklearn.dummy import DummyRegressor
     from sklearn.model_selection import KFold
-
-    from mjwalk.arms.reach import ReachModel, end_effector
 
     C, U, L = _real_raises(4)  # 65 clips, all four styles
     errs = {"dcs": [], "mean": []}
     for fold, (tr, te) in enumerate(KFold(4, shuffle=True, random_state=0).split(C)):
-        rep = None
-        for name, reg in (("dcs", None), ("mean", DummyRegressor())):
-            dcs = {"scaling": "global", "rng": fold}
-            m = ReachModel(L, dcs=dcs, regressor=reg).fit(C[tr], U[tr], rep=rep)
-            rep = m.rep_
-            for i in te:
-                hand = end_effector(U[i], L)
-                r = m.predict(C[i], start=hand[0], end=hand[-1])
-                errs[name].append(np.degrees(trajectory_error(r.directions, U[i])))
+        fold_errs = _dcs_and_mean_errors(C, U, L, tr, te, {"scaling": "global", "rng": fold})
+        for name in errs:
+            errs[name] += fold_errs[name]
     dcs, mean = np.mean(errs["dcs"]), np.mean(errs["mean"])
     # seeded, 4-fold on 65 clips: measured DCS 5.7 deg, mean trajectory 19.3 deg
     assert dcs < 0.5 * mean
@@ -322,29 +334,17 @@ def test_real_raise_hand_dcs_beats_mean_trajectory():
 def test_real_raise_hand_dcs_beats_mean_trajectory_on_a_style_it_has_not_seen():
     # leave-one-style-out (train on three Bandai styles, test on the fourth): every held-out
     # style raises to heights the others never reach, so the network extrapolates; the trend
-    # fallback carries it (benchmarks/bench_reach.py, rng = fold index: DCS 16.9 / 10.6 /
-    # 9.5 / 10.9 deg against the mean trajectory 51.3 / 14.1 / 10.4 / 25.1; without the
-    # fallback and dead-unit pruning the masculine style gave 14.6, at other seeds 15-25)
-    from sklearn.dummy import DummyRegressor
-
-    from mjwalk.arms.reach import ReachModel, end_effector
+    # fallback carries it (benchmarks/bench_reach.py --side left, rng = fold index: DCS
+    # 16.7 / 10.3 / 9.5 / 11.7 deg against the mean trajectory 51.3 / 14.1 / 10.4 / 25.1;
+    # without the fallback and dead-unit pruning the masculine style gave 14.6, at other
+    # seeds 15-25)
     from mjwalk.arms.reachdefault import CAPTURE_DCS
 
     C, U, L, S = _real_raises(1, styles=True)
     for fold, style in enumerate(np.unique(S)):
         tr, te = np.flatnonzero(S != style), np.flatnonzero(S == style)
-        errs = {}
-        rep = None
-        for name, reg in (("dcs", None), ("mean", DummyRegressor())):
-            m = ReachModel(L, dcs={**CAPTURE_DCS, "rng": fold}, regressor=reg)
-            m.fit(C[tr], U[tr], rep=rep)
-            rep = m.rep_
-            e = []
-            for i in te:
-                hand = end_effector(U[i], L)
-                r = m.predict(C[i], start=hand[0], end=hand[-1])
-                e.append(np.degrees(trajectory_error(r.directions, U[i])))
-            errs[name] = float(np.mean(e))
+        errs = _dcs_and_mean_errors(C, U, L, tr, te, {**CAPTURE_DCS, "rng": fold})
+        errs = {name: float(np.mean(e)) for name, e in errs.items()}
         assert errs["dcs"] < errs["mean"], (style, errs)
 
 
