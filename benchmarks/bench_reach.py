@@ -107,8 +107,11 @@ from mjwalk.arms.dcs import DCSNetwork
 from mjwalk.arms.kinematics import MIRROR_Y
 from mjwalk.arms.reach import ReachModel, end_effector
 from mjwalk.arms.reachdefault import CAPTURE_DCS
+from mjwalk.errors import CaptureError, MjwalkError
 
 RAISE_DIR = "bandai-raise-hand"
+#: Shoulder, elbow and wrist joints of the Bandai skeleton (``_L`` / ``_R`` appended).
+ARM_JOINTS = ("UpperArm", "LowerArm", "Hand")
 N_SAMPLES = 20
 #: The DCS settings of the real-data runs (see :data:`mjwalk.arms.reachdefault.CAPTURE_DCS`).
 DCS_REAL = CAPTURE_DCS
@@ -171,11 +174,17 @@ def load_raise_hand(
     from mjwalk.mocap import load_bvh
 
     files = sorted(Path(data_dir).glob(f"*raise-up-{side}-hand*.bvh"))[:max_clips]
-    suffix = "_L" if side == "left" else "_R"
+    arm = [j + ("_L" if side == "left" else "_R") for j in ARM_JOINTS]
     C, U, L, G, names = [], [], [], [], []
     for f in files:
         tk = load_bvh(f, skeleton="bandai", fps=30)
-        P = np.stack([tk.joints[j + suffix] for j in ("UpperArm", "LowerArm", "Hand")], axis=1)
+        missing = [j for j in arm if j not in tk.joints]
+        if missing:
+            raise CaptureError(
+                f"{f}: no joint {', '.join(missing)} (the {side} arm of the Bandai skeleton: "
+                f"{', '.join(arm)}); joints present: {', '.join(tk.joints)}"
+            )
+        P = np.stack([tk.joints[j] for j in arm], axis=1)
         yaw = tk.pelvis_yaw[0]
         c, s = np.cos(-yaw), np.sin(-yaw)
         rz = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
@@ -192,7 +201,8 @@ def load_raise_hand(
         C.append(np.r_[Pn[0, 1], Pn[0, 2], Pn[-1, 2]])
         G.append(_style(f))
         names.append(f.name)
-    return RaiseHandSet(np.array(C), np.array(U), np.mean(L, axis=0), np.array(G), names)
+    lengths = np.mean(L, axis=0) if L else np.full(2, np.nan)
+    return RaiseHandSet(np.array(C), np.array(U), lengths, np.array(G), names)
 
 
 class GlobalScaler(StandardScaler):
@@ -325,18 +335,21 @@ def print_group_table(title, res, groups, held_out):
 
 
 def run_real(data_dir: Path, max_clips: int | None, seed: int = 0, sides=("left", "right")):
-    """Both tables for every side with clips, then the mirror transfer between the sides."""
-    sets = {}
+    """Both tables for every side with clips, then the mirror transfer between the sides.
+    Every clip of every side is loaded first, so a bad clip stops the run before any work."""
+    loaded = {}
     for side in sides:
         t = time.perf_counter()
-        ds = load_raise_hand(data_dir, max_clips, side)
+        loaded[side] = (load_raise_hand(data_dir, max_clips, side), time.perf_counter() - t)
+    sets = {}
+    for side, (ds, secs) in loaded.items():
         if len(ds.constraints) < 10:
             print(f"\n# {side} arm: {len(ds.constraints)} clips, skipped (fewer than 10)")
             continue
         print(
             f"\n# {side} arm" + (" (clips mirrored into the left arm's frame)" * (side == "right"))
         )
-        run_side(ds, data_dir, t, seed)
+        run_side(ds, data_dir, secs, seed)
         sets[side] = ds
     if len(sets) == 2:
         print_mirror_transfer(sets["left"], sets["right"], seed)
@@ -365,11 +378,11 @@ def print_mirror_transfer(left: RaiseHandSet, right: RaiseHandSet, seed: int) ->
         print(f"{name:<16}{out[0]:>10.2f}{out[1]:>11.2f}{len(b.constraints):>6}", flush=True)
 
 
-def run_side(ds: RaiseHandSet, data_dir: Path, t: float, seed: int) -> None:
+def run_side(ds: RaiseHandSet, data_dir: Path, load_s: float, seed: int) -> None:
     styles = sorted(set(ds.groups))
     print(
         f"loaded {len(ds.constraints)} raising movements from {data_dir} in "
-        f"{time.perf_counter() - t:.1f} s; segments {np.round(ds.lengths, 3)} m; styles "
+        f"{load_s:.1f} s; segments {np.round(ds.lengths, 3)} m; styles "
         + ", ".join(f"{s} {int((ds.groups == s).sum())}" for s in styles)
     )
     res = cross_validate(ds.constraints, ds.directions, ds.lengths, dcs=DCS_REAL, seed=seed)
@@ -423,7 +436,11 @@ def main(argv=None):
                 return 2
         else:
             sides = ("left", "right") if args.side == "both" else (args.side,)
-            run_real(data_dir, args.max_clips, args.seed, sides)
+            try:
+                run_real(data_dir, args.max_clips, args.seed, sides)
+            except MjwalkError as exc:  # a corrupt clip, a skeleton without the arm joints
+                print(f"bench_reach: error: {exc}", file=sys.stderr)
+                return 2
     if not args.no_synthetic:
         try:
             from mjwalk.arms import reachgen

@@ -266,53 +266,29 @@ class DCSNetwork:
         while True:
             centers, ages = self._adapt(Ztr, centers, ages, rng)
             centers, ages, newest_died = self._prune(Ztr, centers, ages, parents)
-            if newest_died:
-                stalled += 1
+            stalled = stalled + 1 if newest_died else 0
+            if newest_died:  # nothing new to score; insert elsewhere (the parents' edge is cut)
                 if stalled >= max(self.n_iter_no_change, 1):
                     break
-                parents = self._insert_at_largest_error(Ztr, centers, ages, resid)
-                centers, ages = self._grow(centers, ages, *parents)
-                continue
-            stalled = 0
-            edges = ages >= 0
-            base = self._widths(centers, edges, 1.0)
-            # The RBF width factor is chosen with the network size on the held-out part.
-            step_best = None
-            for factor, linear in itertools.product(factors, forms):
-                widths = factor * base
-                F = self._features(Ztr, centers, widths, edges, linear)
-                Fv = self._features(Z[val_idx], centers, widths, edges, linear) if n_val else None
-                for ridge, (outputs, hat) in zip(
-                    ridges, self._ridge_path(F, Ytr, len(centers), ridges), strict=True
-                ):
-                    resid_f = ((F @ outputs - Ytr) ** 2).sum(axis=1)
-                    if loo:  # leave-one-out residuals of the output least squares (PRESS)
-                        lev = np.minimum(hat, 1.0 - 1e-6)
-                        val_f = float(np.sqrt((resid_f / (1.0 - lev) ** 2).mean()))
-                    elif Fv is not None:
-                        pv = Fv @ outputs
-                        val_f = float(np.sqrt(((pv - Y[val_idx]) ** 2).sum(axis=1).mean()))
-                    else:
-                        val_f = float(np.sqrt(resid_f.mean()))
-                    if step_best is None or val_f < step_best[0] - 1e-12:
-                        step_best = (val_f, factor, ridge, linear, resid_f)
-            assert step_best is not None  # the grids are non-empty
-            val_rmse, factor, ridge, linear, resid = step_best
-            train_rmse = float(np.sqrt(resid.mean()))
-            self.history_.append((len(centers), train_rmse, val_rmse if select else np.nan))
-            if val_rmse < best_val - 1e-12:
-                best_val = val_rmse
-                best = (centers.copy(), ages.copy(), factor, ridge, linear)
-                no_change = 0
             else:
-                no_change += 1
-            if (
-                train_rmse <= self.error_threshold
-                or len(centers) >= self.max_neurons
-                or len(centers) >= len(Ztr)
-                or (select and no_change >= self.n_iter_no_change)
-            ):
-                break
+                val_rmse, factor, ridge, linear, resid = self._score_step(
+                    Ztr, Ytr, Z[val_idx], Y[val_idx], centers, ages, ridges, factors, forms, loo
+                )
+                train_rmse = float(np.sqrt(resid.mean()))
+                self.history_.append((len(centers), train_rmse, val_rmse if select else np.nan))
+                if val_rmse < best_val - 1e-12:
+                    best_val = val_rmse
+                    best = (centers.copy(), ages.copy(), factor, ridge, linear)
+                    no_change = 0
+                else:
+                    no_change += 1
+                if (
+                    train_rmse <= self.error_threshold
+                    or len(centers) >= self.max_neurons
+                    or len(centers) >= len(Ztr)
+                    or (select and no_change >= self.n_iter_no_change)
+                ):
+                    break
             parents = self._insert_at_largest_error(Ztr, centers, ages, resid)
             centers, ages = self._grow(centers, ages, *parents)
 
@@ -352,6 +328,33 @@ class DCSNetwork:
             for seed in member_seeds
         ]
         return self
+
+    def _score_step(self, Ztr, Ytr, Zval, Yval, centers, ages, ridges, factors, forms, loo):
+        """The best (score, width factor, ridge, output form, squared training error per
+        sample) of the current centres over the grids: scored by PRESS (``loo``), on the
+        held-out samples ``Zval`` when there are any, else by the training error (RMSE)."""
+        edges = ages >= 0
+        base = self._widths(centers, edges, 1.0)
+        best = None
+        for factor, linear in itertools.product(factors, forms):
+            widths = factor * base
+            F = self._features(Ztr, centers, widths, edges, linear)
+            Fv = self._features(Zval, centers, widths, edges, linear) if len(Zval) else None
+            for ridge, (outputs, hat) in zip(
+                ridges, self._ridge_path(F, Ytr, len(centers), ridges), strict=True
+            ):
+                resid = ((F @ outputs - Ytr) ** 2).sum(axis=1)
+                if loo:  # leave-one-out residuals of the output least squares (PRESS)
+                    lev = np.minimum(hat, 1.0 - 1e-6)
+                    score = float(np.sqrt((resid / (1.0 - lev) ** 2).mean()))
+                elif Fv is not None:
+                    score = float(np.sqrt(((Fv @ outputs - Yval) ** 2).sum(axis=1).mean()))
+                else:
+                    score = float(np.sqrt(resid.mean()))
+                if best is None or score < best[0] - 1e-12:
+                    best = (score, factor, ridge, linear, resid)
+        assert best is not None  # the grids are non-empty
+        return best
 
     def _member_seeds(self) -> list[int]:
         """Seeds of the networks after the first (``n_networks - 1``): spawned from an integer

@@ -1,0 +1,92 @@
+"""benchmarks/bench_reach.py on a user's clip folder: bad clips stop it with a clear error
+before any work (no traceback, exit status 2)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+bench_reach = pytest.importorskip("bench_reach")
+
+
+def _leg(side: str) -> str:
+    return f"""  JOINT UpperLeg_{side}
+  {{
+    OFFSET {"10" if side == "L" else "-10"} 0 0
+    CHANNELS 3 Zrotation Xrotation Yrotation
+    JOINT Foot_{side}
+    {{
+      OFFSET 0 -80 0
+      CHANNELS 3 Zrotation Xrotation Yrotation
+      JOINT Toes_{side}
+      {{
+        OFFSET 0 -5 10
+        CHANNELS 3 Zrotation Xrotation Yrotation
+        End Site
+        {{
+          OFFSET 0 0 5
+        }}
+      }}
+    }}
+  }}
+"""
+
+
+def _armless_bvh(path: Path, frames: int = 10) -> None:
+    """A Bandai-named skeleton with legs and no arms (centimetres, y up, 30 fps)."""
+    row = " ".join(["0 90 0 0 0 0"] + ["0 0 0"] * 6)
+    path.write_text(
+        "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 0\n"
+        "  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
+        + _leg("L")
+        + _leg("R")
+        + f"}}\nMOTION\nFrames: {frames}\nFrame Time: 0.0333333\n"
+        + "\n".join([row] * frames)
+        + "\n"
+    )
+
+
+def test_corrupt_clip_stops_the_run_with_the_file_named(tmp_path, capsys):
+    (tmp_path / "x_raise-up-left-hand_a_001.bvh").write_text("garbage\n")
+    assert bench_reach.main(["--data", str(tmp_path), "--no-synthetic"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("bench_reach: error:")
+    assert "x_raise-up-left-hand_a_001.bvh" in err and "HIERARCHY" in err
+
+
+def test_clip_without_arm_joints_names_the_missing_joints(tmp_path, capsys):
+    _armless_bvh(tmp_path / "x_raise-up-right-hand_a_001.bvh")
+    assert bench_reach.main(["--data", str(tmp_path), "--no-synthetic"]) == 2
+    err = capsys.readouterr().err
+    assert "no joint UpperArm_R, LowerArm_R, Hand_R" in err
+    assert "joints present: Hips" in err
+
+
+def test_every_clip_is_loaded_before_any_arm_is_evaluated(tmp_path, monkeypatch, capsys):
+    """A bad right-arm clip stops the run before the (long) left-arm evaluation starts."""
+    import numpy as np
+
+    (tmp_path / "x_raise-up-left-hand_a_001.bvh").write_text("not read: load is replaced\n")
+    good = bench_reach.RaiseHandSet(
+        np.zeros((12, 9)), np.zeros((12, 20, 2, 3)), np.ones(2), np.array(["a"] * 12), []
+    )
+
+    def load(data_dir, max_clips, side):
+        if side == "right":
+            raise bench_reach.CaptureError("x_raise-up-right-hand_a_001.bvh: bad clip")
+        return good
+
+    evaluated = []
+    monkeypatch.setattr(bench_reach, "load_raise_hand", load)
+    monkeypatch.setattr(bench_reach, "run_side", lambda ds, *a: evaluated.append(ds))
+    assert bench_reach.main(["--data", str(tmp_path), "--no-synthetic"]) == 2
+    assert evaluated == []
+    assert "x_raise-up-right-hand_a_001.bvh: bad clip" in capsys.readouterr().err
+
+
+def test_folder_without_clips_is_reported(tmp_path, capsys):
+    assert bench_reach.main(["--data", str(tmp_path), "--no-synthetic"]) == 2
+    assert "no raise-up-left/right-hand clips" in capsys.readouterr().out
