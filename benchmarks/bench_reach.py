@@ -84,7 +84,6 @@ import re
 import sys
 import time
 import warnings
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -97,21 +96,16 @@ from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import StandardScaler
 
 import mjwalk.render  # noqa: F401  (picks a headless GL backend before mujoco is loaded)
+from mjwalk.arms.armcapture import ArmMovements, arm_movements
 from mjwalk.arms.armrep import (
-    movement_span,
-    resample_trajectory,
-    segment_directions,
     trajectory_error,
 )
 from mjwalk.arms.dcs import DCSNetwork
-from mjwalk.arms.kinematics import MIRROR_Y
 from mjwalk.arms.reach import ReachModel, end_effector
 from mjwalk.arms.reachdefault import CAPTURE_DCS
-from mjwalk.errors import CaptureError, MjwalkError
+from mjwalk.errors import MjwalkError
 
 RAISE_DIR = "bandai-raise-hand"
-#: Shoulder, elbow and wrist joints of the Bandai skeleton (``_L`` / ``_R`` appended).
-ARM_JOINTS = ("UpperArm", "LowerArm", "Hand")
 N_SAMPLES = 20
 #: The DCS settings of the real-data runs (see :data:`mjwalk.arms.reachdefault.CAPTURE_DCS`).
 DCS_REAL = CAPTURE_DCS
@@ -133,26 +127,6 @@ def find_data(arg: str | None) -> Path | None:
     return None
 
 
-@dataclass
-class RaiseHandSet:
-    """Raising movements in the left arm's shoulder frame (metres; see the module docstring;
-    right-arm clips mirrored into it).
-
-    Attributes:
-        constraints: (p, 9) start elbow, start hand, end hand positions (m).
-        directions: (p, n, 2, 3) unit upper-arm and forearm directions over time.
-        lengths: (2,) mean upper-arm and forearm lengths (m).
-        groups: (p,) style name of each clip (the leave-one-style-out groups).
-        files: clip file names.
-    """
-
-    constraints: np.ndarray
-    directions: np.ndarray
-    lengths: np.ndarray
-    groups: np.ndarray
-    files: list[str]
-
-
 def _style(path: Path) -> str:
     """Style of a Bandai clip: the name in ``...-hand_<style>_<nnn>.bvh``, else the json id."""
     m = re.search(r"-hand_([A-Za-z-]+)_\d+$", path.stem)
@@ -166,43 +140,17 @@ def _style(path: Path) -> str:
 
 def load_raise_hand(
     data_dir: Path, max_clips: int | None = None, side: str = "left"
-) -> RaiseHandSet:
-    """The raising movements of every ``*raise-up-<side>-hand*.bvh`` clip in ``data_dir``.
-    Right-arm clips are mirrored through the body's sagittal plane (y -> -y) into the left
-    arm's frame: the reach model is a left-arm model, mirrored back for the right arm
-    (:func:`mjwalk.arms.reach.reach_for_side`)."""
+) -> ArmMovements:
+    """The raising movements of every ``*raise-up-<side>-hand*.bvh`` clip in ``data_dir``
+    (:func:`mjwalk.arms.armcapture.arm_movements`: right-arm clips mirrored into the left arm's
+    frame, constraints scaled to the clips' mean arm), grouped by style."""
     from mjwalk.mocap import load_bvh
 
     files = sorted(Path(data_dir).glob(f"*raise-up-{side}-hand*.bvh"))[:max_clips]
-    arm = [j + ("_L" if side == "left" else "_R") for j in ARM_JOINTS]
-    C, U, L, G, names = [], [], [], [], []
-    for f in files:
-        tk = load_bvh(f, skeleton="bandai", fps=30)
-        missing = [j for j in arm if j not in tk.joints]
-        if missing:
-            raise CaptureError(
-                f"{f}: no joint {', '.join(missing)} (the {side} arm of the Bandai skeleton: "
-                f"{', '.join(arm)}); joints present: {', '.join(tk.joints)}"
-            )
-        P = np.stack([tk.joints[j] for j in arm], axis=1)
-        yaw = tk.pelvis_yaw[0]
-        c, s = np.cos(-yaw), np.sin(-yaw)
-        rz = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])
-        P = (P - P[:, :1]) @ rz.T  # shoulder at origin, body frame (x forward)
-        if side == "right":
-            P = P * MIRROR_Y  # into the left arm's frame
-        top = int(np.argmax(P[:, 2, 2]))
-        a, b = movement_span(P[:, 2], until=top)
-        if b - a < 4:
-            continue
-        Pn = resample_trajectory(P[a : b + 1], N_SAMPLES)
-        U.append(segment_directions(Pn))
-        L.append(np.linalg.norm(np.diff(P[0], axis=0), axis=1))
-        C.append(np.r_[Pn[0, 1], Pn[0, 2], Pn[-1, 2]])
-        G.append(_style(f))
-        names.append(f.name)
-    lengths = np.mean(L, axis=0) if L else np.full(2, np.nan)
-    return RaiseHandSet(np.array(C), np.array(U), lengths, np.array(G), names)
+    takes = [load_bvh(f, skeleton="bandai", fps=30) for f in files]
+    for take, f in zip(takes, files, strict=True):
+        take.name = f.name
+    return arm_movements(takes, side, "bandai", [_style(f) for f in files], n=N_SAMPLES)
 
 
 class GlobalScaler(StandardScaler):
@@ -355,7 +303,7 @@ def run_real(data_dir: Path, max_clips: int | None, seed: int = 0, sides=("left"
         print_mirror_transfer(sets["left"], sets["right"], seed)
 
 
-def print_mirror_transfer(left: RaiseHandSet, right: RaiseHandSet, seed: int) -> None:
+def print_mirror_transfer(left: ArmMovements, right: ArmMovements, seed: int) -> None:
     """The body is symmetric about its sagittal plane: a model trained on one arm's clips
     predicts the other arm's mirrored clips (all of one side to train, all of the other to
     test), beside the mean trajectory."""
@@ -378,7 +326,7 @@ def print_mirror_transfer(left: RaiseHandSet, right: RaiseHandSet, seed: int) ->
         print(f"{name:<16}{out[0]:>10.2f}{out[1]:>11.2f}{len(b.constraints):>6}", flush=True)
 
 
-def run_side(ds: RaiseHandSet, data_dir: Path, load_s: float, seed: int) -> None:
+def run_side(ds: ArmMovements, data_dir: Path, load_s: float, seed: int) -> None:
     styles = sorted(set(ds.groups))
     print(
         f"loaded {len(ds.constraints)} raising movements from {data_dir} in "

@@ -64,7 +64,9 @@ _LAZY: dict[str, str] = {
     "humanoid_model": "mjwalk.body.humanoid",
     "legs_from_walk": "mjwalk.body.legs",
     # arms
+    "ArmMovements": "mjwalk.arms.armcapture",
     "ReachModel": "mjwalk.arms.reach",
+    "arm_movements": "mjwalk.arms.armcapture",
     "default_reach_model": "mjwalk.arms.reachdefault",
     # timeline and collisions
     "Contact": "mjwalk.timeline.collisions",
@@ -96,6 +98,7 @@ __all__ = [
     "BODY_RADIUS",
     "DEFAULT_STATURE",
     "SAMPLE_RATE_HZ",
+    "ArmMovements",
     "CaptureError",
     "ClearanceField",
     "ClearanceProbe",
@@ -125,6 +128,7 @@ __all__ = [
     "Walker",
     "Workplace",
     "__version__",
+    "arm_movements",
     "attach_humanoid",
     "build_humanoid",
     "capture_pace",
@@ -175,6 +179,7 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
+    from mjwalk.arms.armcapture import ArmMovements, arm_movements
     from mjwalk.arms.reach import ReachModel
     from mjwalk.arms.reachdefault import default_reach_model
     from mjwalk.body.humanoid import attach_humanoid, build_humanoid, humanoid_model

@@ -8,6 +8,9 @@ from pathlib import Path
 
 import pytest
 
+from mjwalk.arms.armcapture import ArmMovements
+from mjwalk.errors import CaptureError
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 bench_reach = pytest.importorskip("bench_reach")
 
@@ -70,13 +73,18 @@ def test_every_clip_is_loaded_before_any_arm_is_evaluated(tmp_path, monkeypatch,
     import numpy as np
 
     (tmp_path / "x_raise-up-left-hand_a_001.bvh").write_text("not read: load is replaced\n")
-    good = bench_reach.RaiseHandSet(
-        np.zeros((12, 9)), np.zeros((12, 20, 2, 3)), np.ones(2), np.array(["a"] * 12), []
+    good = ArmMovements(
+        np.zeros((12, 9)),
+        np.zeros((12, 20, 2, 3)),
+        np.ones(2),
+        np.ones(12),
+        np.array(["a"] * 12),
+        [],
     )
 
     def load(data_dir, max_clips, side):
         if side == "right":
-            raise bench_reach.CaptureError("x_raise-up-right-hand_a_001.bvh: bad clip")
+            raise CaptureError("x_raise-up-right-hand_a_001.bvh: bad clip")
         return good
 
     evaluated = []

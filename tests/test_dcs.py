@@ -259,27 +259,22 @@ def test_representation_extras_roundtrip():
 
 def _real_raises(step, styles=False):
     """Every ``step``-th left raise-hand clip: constraints (start elbow, start hand, end hand;
-    m, shoulder frame), directions (p, 20, 2, 3), segment lengths (2,) -- as the benchmark;
-    with ``styles`` also each clip's style id (p,) from the json beside it."""
+    m, shoulder frame), directions (p, 20, 2, 3), segment lengths (2,) -- as the benchmark
+    (:func:`mjwalk.arms.armcapture.arm_movements`); with ``styles`` also each clip's style id
+    (p,) from the json beside it."""
     import json
 
+    from mjwalk.arms.armcapture import arm_movements
     from mjwalk.mocap import load_bvh
 
-    C, U, L, S = [], [], [], []
-    for f in sorted(DATA.glob("*raise-up-left-hand*.bvh"))[::step]:
-        S.append(json.loads(f.with_suffix(".json").read_text())["style"])
-        tk = load_bvh(f, skeleton="bandai", fps=30)
-        P = np.stack([tk.joints[j] for j in ("UpperArm_L", "LowerArm_L", "Hand_L")], axis=1)
-        c, s = np.cos(tk.pelvis_yaw[0]), np.sin(tk.pelvis_yaw[0])
-        P = (P - P[:, :1]) @ np.array([[c, s, 0], [-s, c, 0], [0, 0, 1]]).T  # body frame
-        a, b = movement_span(P[:, 2], until=int(np.argmax(P[:, 2, 2])))
-        Pn = resample_trajectory(P[a : b + 1], 20)
-        C.append(np.r_[Pn[0, 1], Pn[0, 2], Pn[-1, 2]])
-        U.append(segment_directions(Pn))
-        L.append(np.linalg.norm(np.diff(P[0], axis=0), axis=1))
+    files = sorted(DATA.glob("*raise-up-left-hand*.bvh"))[::step]
+    S = [json.loads(f.with_suffix(".json").read_text())["style"] for f in files]
+    takes = [load_bvh(f, skeleton="bandai", fps=30) for f in files]
+    mv = arm_movements(takes, "left", "bandai", S)
+    assert len(mv) == len(files)  # every clip holds one raise
     if styles:
-        return np.array(C), np.array(U), np.mean(L, axis=0), np.array(S)
-    return np.array(C), np.array(U), np.mean(L, axis=0)
+        return mv.constraints, mv.directions, mv.lengths, mv.groups.astype(int)
+    return mv.constraints, mv.directions, mv.lengths
 
 
 @pytest.mark.skipif(not DATA.is_dir(), reason="../shared/data/bandai-raise-hand absent")
