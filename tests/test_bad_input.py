@@ -394,6 +394,37 @@ def test_corrupt_model_file(tmp_path, capsys, no_work):
     assert "not an mjwalk step-model file" in err
 
 
+def _capture_shaped_reach_model(path):
+    """A small reach model shaped like one trained on capture raises (mjwalk.arm_movements):
+    9 constraint values (start elbow, start hand, end hand), 2 segments (no hand)."""
+    from mjwalk.arms import reachgen
+    from mjwalk.arms.reach import ReachModel
+
+    data = reachgen.generate("endpoints", 30, np.random.default_rng(0))
+    elbow = data.directions[:, 0, 0] * data.lengths[0]
+    C = np.c_[elbow, data.constraints]
+    model = ReachModel(data.lengths[:2], dcs={"rng": 0, "max_neurons": 4})
+    model.fit(C, data.directions[:, :, :2])
+    model.save(path)
+    return model
+
+
+def test_reach_model_of_another_kind_is_refused(tmp_path, scenes_dir, capsys, no_work):
+    from mjwalk.cycle.spec import load_cycle_spec
+
+    _capture_shaped_reach_model(tmp_path / "raise.npz")
+    spec = _spec_with(tmp_path, scenes_dir, "")
+    spec.write_text(spec.read_text().replace('reach = "default"', 'reach = "raise.npz"'))
+    with pytest.raises(CycleSpecError, match=r"key 'reach' in \[models\]: .*raise.npz: a scene"):
+        load_cycle_spec(spec)
+    err = refused(["simulate", spec, "--out", tmp_path / "out"], capsys, tmp_path)
+    assert "this one takes 9 inputs and has 2 segments" in err
+    assert "mjwalk.arm_movements" in err  # says what kind of model it is
+    (tmp_path / "raise.npz").write_bytes(np.random.default_rng(0).bytes(3000))
+    err = refused(["simulate", spec, "--out", tmp_path / "out"], capsys, tmp_path)
+    assert "key 'reach' in [models]" in err and "not an mjwalk reach-model file" in err
+
+
 def test_too_few_steps_names_the_minimum():
     from mjwalk.gait.default import train_model
     from mjwalk.gait.model import MIN_STEPS

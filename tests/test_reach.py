@@ -213,3 +213,24 @@ def test_right_arm_reach_is_the_mirror_of_the_left(endpoint_model):
     q_left = arm_joint_angles(left.directions, "left")
     q_right = arm_joint_angles(right.directions, "right")
     assert np.allclose(q_left, q_right, atol=1e-9)
+
+
+def test_a_scene_reach_refuses_a_model_of_another_kind():
+    # a model of capture raises (mjwalk.arm_movements: start elbow + start hand + end hand,
+    # upper arm and forearm only) cannot drive the humanoid's three-segment arm to a target
+    from mjwalk.arms.reach import check_endpoint_model, reach_for_side
+
+    data = reachgen.generate("endpoints", 30, np.random.default_rng(0))
+    elbow = data.directions[:, 0, 0] * data.lengths[0]
+    model = ReachModel(data.lengths[:2], dcs={"rng": 0, "max_neurons": 4}).fit(
+        np.c_[elbow, data.constraints], data.directions[:, :, :2]
+    )
+    assert model.n_inputs == 9
+    for side in ("left", "right"):
+        with pytest.raises(MjwalkError, match="takes 9 inputs and has 2 segments"):
+            reach_for_side(model, np.array([0.3, 0.1, -0.2]), side)
+    # the model itself still predicts from its own constraint
+    r = model.predict(np.r_[elbow[0], data.constraints[0]])
+    assert r.directions.shape == (20, 2, 3)
+    with pytest.raises(MjwalkError, match="not fitted"):
+        check_endpoint_model(ReachModel(data.lengths))

@@ -46,6 +46,31 @@ from mjwalk.errors import MjwalkError, ModelFileError
 
 REACH_FORMAT = "mjwalk.reach"
 REACH_VERSION = 1
+#: Constraint of an endpoint reach model: start and end hand positions (m, shoulder frame).
+ENDPOINT_INPUTS = 6
+#: Segments of the humanoid arm chain a scene reach drives: upper arm, forearm, hand.
+HUMANOID_ARM_SEGMENTS = 3
+
+
+def check_endpoint_model(model: ReachModel, source: str = "reach model") -> None:
+    """Raise :class:`~mjwalk.errors.MjwalkError` unless ``model`` is what
+    :func:`reach_for_side`, :func:`~mjwalk.timeline.reach.reach_in_scene` and the cycle ask
+    of it: a start/end hand constraint (6,) mapped to the humanoid's upper arm, forearm and
+    hand (3 segments), such as :func:`~mjwalk.arms.reachdefault.default_reach_model`."""
+    n_in, n_seg = model.n_inputs, len(model.lengths)
+    if n_in == ENDPOINT_INPUTS and n_seg == HUMANOID_ARM_SEGMENTS:
+        return
+    hint = ""
+    if n_in == 9 and n_seg == 2:
+        hint = (
+            " (a model of raises from capture, mjwalk.arm_movements: its constraint is the "
+            "start elbow, start hand and end hand; use it with ReachModel.predict)"
+        )
+    raise MjwalkError(
+        f"{source}: a scene reach needs an endpoint model of the humanoid's arm (constraint: "
+        f"start and end hand positions, {ENDPOINT_INPUTS} values; segments: upper arm, "
+        f"forearm, hand); this one takes {n_in} inputs and has {n_seg} segments{hint}"
+    )
 
 
 @dataclass
@@ -96,6 +121,7 @@ def reach_for_side(
     moving arm's shoulder frame) for either arm. The model is a left-arm model; the body is
     symmetric about its sagittal plane, so a right-arm reach is the left-arm reach to the
     mirrored target (:data:`MIRROR_Y`), mirrored back (:func:`mirror_result`)."""
+    check_endpoint_model(model)
     start = np.asarray(REST_HAND if start is None else start, dtype=float)
     end = np.asarray(end, dtype=float)
     if side == "right":
@@ -151,6 +177,7 @@ class ReachModel:
         A, poses = self.rep_.align(U)
         b = self.rep_.pca_.transform(self.rep_.to_features(A, extras))
         self.n_modes_ = b.shape[1]
+        self.n_inputs_ = C.shape[1]
         target = np.hstack([b, poses])
         self.net_ = self.regressor if self.regressor is not None else DCSNetwork(**self.dcs)
         self.net_.fit(C, target)
@@ -158,6 +185,13 @@ class ReachModel:
             self._scale = C.std(axis=0) + 1e-12
             self._train = C / self._scale
         return self
+
+    @property
+    def n_inputs(self) -> int:
+        """Length of the constraint vector the model was fitted on."""
+        if not hasattr(self, "n_inputs_"):
+            raise MjwalkError("ReachModel is not fitted; call fit() or load() first")
+        return self.n_inputs_
 
     @property
     def n_neurons(self) -> int | None:
@@ -296,6 +330,7 @@ class ReachModel:
             model.n_modes_ = int(header["n_modes"])
             dcs_data = {k[4:]: v for k, v in data.items() if k.startswith("dcs_")}
             model.net_ = DCSNetwork.from_arrays(header["dcs_header"], dcs_data, source=str(path))
+            model.n_inputs_ = len(model.net_.x_mean_)
         except (KeyError, ValueError, TypeError) as exc:
             raise ModelFileError(f"{path}: corrupt reach model ({exc})") from exc
         return model

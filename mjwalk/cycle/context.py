@@ -121,13 +121,15 @@ def _load_step_model(spec: CycleSpec):
 
 
 def _load_reach_model(spec: CycleSpec):
-    from mjwalk.arms.reach import ReachModel
+    from mjwalk.arms.reach import ReachModel, check_endpoint_model
 
     if spec.reach_model == "default":
         from mjwalk.arms.reachdefault import default_reach_model
 
         return default_reach_model()
-    return ReachModel.load(spec.reach_model)
+    model = ReachModel.load(spec.reach_model)
+    check_endpoint_model(model, f"reach model {spec.reach_model}")  # before any work
+    return model
 
 
 @functools.lru_cache(maxsize=4)

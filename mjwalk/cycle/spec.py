@@ -76,7 +76,7 @@ import numpy as np
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.cycle.population import HUMANOID_STATURE_RANGE, Population, parse_population
 from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task
-from mjwalk.errors import CycleSpecError, SceneError
+from mjwalk.errors import CycleSpecError, MjwalkError, SceneError
 from mjwalk.world.workplace import Workplace, shared_workplace
 
 #: Highest a standing site may lie above the floor, metres.
@@ -396,6 +396,13 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
             models[key] = "default"
         else:
             models[key] = str(check.file(tables["models"], key, base, "models"))
+    if models["reach"] != "default":  # the kind of model, before any work (a few ms)
+        from mjwalk.arms.reach import ReachModel, check_endpoint_model
+
+        try:
+            check_endpoint_model(ReachModel.load(models["reach"]), models["reach"])
+        except MjwalkError as exc:
+            raise check.fail(f"key 'reach' in [models]: {exc}", "models", None, "reach") from None
 
     scene = check.file(data, "scene", base)
     if workplace is None:
