@@ -56,6 +56,13 @@ trajectory: feminine 17.5 / 40.1, masculine 12.8 / 14.8, normal 9.7 / 9.2, youth
 no regressor here beats it (trend 9.3, GPR 11.2, kNN 16.3). Mirror transfer (all clips of one
 arm to train, all mirrored clips of the other to test): left -> right 6.15 deg (mean only
 17.08), right -> left 6.43 (18.39), against 4.2-4.8 within one arm.
+Right arm at other folds and seeds (``--side right --seed 20`` / ``30``, DCS and kNN rows):
+DCS 4.59 / 4.74, kNN 4.56 / 4.63; paired DCS - kNN +0.12, +0.03, +0.10 deg at seeds 0, 20,
+30 (SE 0.10-0.11 each): on the right-arm clips kNN is ahead by about 0.1 deg, spread over all
+clips (median paired difference +0.13), not a few outliers. Tried at seed 0 and not kept
+(right arm, ad hoc): ten networks 4.77, patience 20 and up to 120 neurons 4.74, a width grid
+0.35-2.83 4.81, the pose columns left out of the selection score (the endpoint refit fixes
+the pose) 4.80 -- none below kNN's 4.69.
 Before the dead-unit pruning and the trend fallback (earlier that day): CV 4.21, LOSO 14.50
 (feminine 21.5, masculine 14.6 -- worse than the mean trajectory --, normal 9.8, youthful
 12.9), and from seed to seed (DCS seeds + 0..40, ad hoc) the masculine fold gave 14.6-25.0,

@@ -541,5 +541,10 @@ def test_dcs_averages_networks_grown_from_independent_seeds(tmp_path):
     back = DCSNetwork.load(tmp_path / "avg.npz")
     assert len(back.members_) == 2
     np.testing.assert_allclose(back.predict(Xt), avg.predict(Xt))
+    # the training inputs are stored once: the trend and averaged networks borrow them
+    with np.load(tmp_path / "avg.npz") as z:
+        assert [k for k in z.files if k.endswith("train_z")] == ["train_z"]
+    for sub in (back.fallback_, *back.members_):
+        np.testing.assert_array_equal(sub.distance_to_training(Xt), back.distance_to_training(Xt))
     with pytest.raises(MjwalkError, match="n_networks"):
         DCSNetwork(n_networks=0).fit(X, Y)

@@ -678,7 +678,10 @@ class DCSNetwork:
         """The trend network, or None (none fitted, or a version 1-2 file)."""
         return getattr(self, "fallback_", None)
 
-    def _arrays(self) -> dict:
+    def _arrays(self, with_training: bool = True) -> dict:
+        """The arrays :meth:`save` writes. The trend network and the averaged networks were
+        fitted on the same inputs, so only the first network keeps the training inputs
+        (``with_training``); they borrow them on load."""
         fallback = self._fallback()
         return {
             "centers": self.centers_,
@@ -687,18 +690,18 @@ class DCSNetwork:
             "edges": self.edges_,
             "x_mean": self.x_mean_,
             "x_scale": self.x_scale_,
-            "train_z": self._train_z,
+            **({"train_z": self._train_z} if with_training else {}),
             **({} if self.slopes_ is None else {"slopes": self.slopes_}),
             **({} if self.trend_ is None else {"trend": self.trend_}),
             **(
                 {}
                 if fallback is None
-                else {f"fallback.{k}": v for k, v in fallback._arrays().items()}
+                else {f"fallback.{k}": v for k, v in fallback._arrays(False).items()}
             ),
             **{
                 f"member{j}.{k}": v
                 for j, m in enumerate(getattr(self, "members_", []))
-                for k, v in m._arrays().items()
+                for k, v in m._arrays(False).items()
             },
         }
 
@@ -756,8 +759,12 @@ class DCSNetwork:
         save_npz(path, self._header(), self._arrays())
 
     @classmethod
-    def from_arrays(cls, header: dict, data: dict, source: str = "<arrays>") -> DCSNetwork:
-        """Rebuild a network from :meth:`save`'s header and arrays (used by composite models)."""
+    def from_arrays(
+        cls, header: dict, data: dict, source: str = "<arrays>", train_z: np.ndarray | None = None
+    ) -> DCSNetwork:
+        """Rebuild a network from :meth:`save`'s header and arrays (used by composite models);
+        ``train_z``: the training inputs of the network this one belongs to (its trend network
+        or an averaged network), used when ``data`` has none."""
         version = header.get("version")  # version 1-2 files (no trend/fallback) read the same
         check_header(
             header, source, "DCS network", DCS_FORMAT, version if version in (1, 2) else DCS_VERSION
@@ -784,15 +791,18 @@ class DCSNetwork:
             net.trend_ = np.asarray(data["trend"], dtype=float) if net.global_linear_ else None
             net.history_ = [tuple(h) for h in header.get("history", [])]
             net.n_pruned_ = int(header.get("n_pruned_", 0))
+            own = np.asarray(data["train_z"] if "train_z" in data else train_z, dtype=float)
+            if own.ndim != 2:
+                raise ValueError("no training inputs")
             net.fallback_ = None
             if "fallback" in header:
                 sub = {k[9:]: v for k, v in data.items() if k.startswith("fallback.")}
-                net.fallback_ = cls.from_arrays(header["fallback"], sub, source)
+                net.fallback_ = cls.from_arrays(header["fallback"], sub, source, own)
             net.members_ = []
             for j, sub_header in enumerate(header.get("members", [])):
                 pre = f"member{j}."
                 sub = {k[len(pre) :]: v for k, v in data.items() if k.startswith(pre)}
-                net.members_.append(cls.from_arrays(sub_header, sub, source))
+                net.members_.append(cls.from_arrays(sub_header, sub, source, own))
             k = len(net.centers_)
             if (
                 net.outputs_.shape[0] != k
@@ -810,7 +820,7 @@ class DCSNetwork:
             ):
                 raise ValueError("array shapes are inconsistent")
             net.n_neurons_ = k
-            net._set_training_points(np.asarray(data["train_z"], dtype=float))
+            net._set_training_points(own)
         except (KeyError, TypeError, ValueError, IndexError) as exc:
             raise ModelFileError(f"{source}: corrupt DCS network ({exc})") from exc
         return net
