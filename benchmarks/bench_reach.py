@@ -1,7 +1,8 @@
 """Cross-validation of the PCA + DCS arm model (Al-Zubi & Sommer §5) beside baselines.
 
 Real data: a folder of Bandai-style raise-hand clips (``*raise-up-left-hand*.bvh`` and
-``*raise-up-right-hand*.bvh``, a ``.json`` beside each naming its style id; ``--side`` picks
+``*raise-up-right-hand*.bvh``, a ``.json`` beside each naming its style id; ``--skeleton
+cmu_bvh`` reads CMU-named BVH joints; ``--side`` picks
 one arm, default both: right-arm clips are mirrored into the left arm's frame, and a last table
 tests a model trained on one arm on the other arm's mirrored clips), given by ``--data DIR``
 or ``$MJWALK_SHARED_DATA`` (either the folder itself or a folder holding
@@ -146,18 +147,19 @@ def _style(path: Path) -> str:
 
 
 def load_raise_hand(
-    data_dir: Path, max_clips: int | None = None, side: str = "left"
+    data_dir: Path, max_clips: int | None = None, side: str = "left", skeleton: str = "bandai"
 ) -> ArmMovements:
     """The raising movements of every ``*raise-up-<side>-hand*.bvh`` clip in ``data_dir``
     (:func:`mjwalk.arms.armcapture.arm_movements`: right-arm clips mirrored into the left arm's
-    frame, constraints scaled to the clips' mean arm), grouped by style."""
+    frame, constraints scaled to the clips' mean arm), grouped by style; ``skeleton`` names
+    the BVH preset (units, axes, arm joints)."""
     from mjwalk.mocap import load_bvh
 
     files = sorted(Path(data_dir).glob(f"*raise-up-{side}-hand*.bvh"))[:max_clips]
-    takes = [load_bvh(f, skeleton="bandai", fps=30) for f in files]
+    takes = [load_bvh(f, skeleton=skeleton, fps=30) for f in files]
     for take, f in zip(takes, files, strict=True):
         take.name = f.name
-    return arm_movements(takes, side, "bandai", [_style(f) for f in files], n=N_SAMPLES)
+    return arm_movements(takes, side, skeleton, [_style(f) for f in files], n=N_SAMPLES)
 
 
 class GlobalScaler(StandardScaler):
@@ -289,13 +291,20 @@ def print_group_table(title, res, groups, held_out):
     print(f"DCS neurons per held-out style: {nn}", flush=True)
 
 
-def run_real(data_dir: Path, max_clips: int | None, seed: int = 0, sides=("left", "right")):
+def run_real(
+    data_dir: Path,
+    max_clips: int | None,
+    seed: int = 0,
+    sides=("left", "right"),
+    skeleton: str = "bandai",
+):
     """Both tables for every side with clips, then the mirror transfer between the sides.
     Every clip of every side is loaded first, so a bad clip stops the run before any work."""
     loaded = {}
     for side in sides:
         t = time.perf_counter()
-        loaded[side] = (load_raise_hand(data_dir, max_clips, side), time.perf_counter() - t)
+        ds = load_raise_hand(data_dir, max_clips, side, skeleton)
+        loaded[side] = (ds, time.perf_counter() - t)
     sets = {}
     for side, (ds, secs) in loaded.items():
         if len(ds.constraints) < 10:
@@ -376,6 +385,12 @@ def main(argv=None):
     ap.add_argument(
         "--seed", type=int, default=0, help="CV folds and DCS seeds (fold k uses seed + k)"
     )
+    ap.add_argument(
+        "--skeleton",
+        choices=("bandai", "cmu_bvh"),
+        default="bandai",
+        help="BVH skeleton preset of the clips (units, axes, arm joint names)",
+    )
     ap.add_argument("--no-real", action="store_true")
     ap.add_argument("--no-synthetic", action="store_true")
     ap.add_argument("--video", help="also render the rack-2 shelf reach to this mp4")
@@ -392,7 +407,7 @@ def main(argv=None):
         else:
             sides = ("left", "right") if args.side == "both" else (args.side,)
             try:
-                run_real(data_dir, args.max_clips, args.seed, sides)
+                run_real(data_dir, args.max_clips, args.seed, sides, args.skeleton)
             except MjwalkError as exc:  # a corrupt clip, a skeleton without the arm joints
                 print(f"bench_reach: error: {exc}", file=sys.stderr)
                 return 2
