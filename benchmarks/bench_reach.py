@@ -57,6 +57,13 @@ trajectory: feminine 17.5 / 40.1, masculine 12.8 / 14.8, normal 9.7 / 9.2, youth
 no regressor here beats it (trend 9.3, GPR 11.2, kNN 16.3). Mirror transfer (all clips of one
 arm to train, all mirrored clips of the other to test): left -> right 6.15 deg (mean only
 17.08), right -> left 6.43 (18.39), against 4.2-4.8 within one arm.
+Few clips: 13 left raises (the first 7 masculine and 6 youthful clips, a folder of links,
+2026-11-27): leave-one-style-out trains on 6-7 clips of one style, and the linear maps (global
+trend, local slopes: 9 coefficients per output each) were set by a handful of samples and
+ran off for the other style: DCS 31.33 deg, trend only 39.65, mean only 19.35. Fitted only
+from ten samples per input column on (``mjwalk.arms.dcs.SAMPLES_PER_COEFFICIENT``; the full
+sets train on 178-231 clips, 90 needed, so the tables above do not change): DCS 20.90, trend
+only 20.89; 10-fold CV 6.51 -> 5.78 (kNN 5.88, GPR 7.93).
 Right arm at other folds and seeds (``--side right --seed 20`` / ``30``, DCS and kNN rows):
 DCS 4.59 / 4.74, kNN 4.56 / 4.63; paired DCS - kNN +0.12, +0.03, +0.10 deg at seeds 0, 20,
 30 (SE 0.10-0.11 each): on the right-arm clips kNN is ahead by about 0.1 deg, spread over all

@@ -548,3 +548,34 @@ def test_dcs_averages_networks_grown_from_independent_seeds(tmp_path):
         np.testing.assert_array_equal(sub.distance_to_training(Xt), back.distance_to_training(Xt))
     with pytest.raises(MjwalkError, match="n_networks"):
         DCSNetwork(n_networks=0).fit(X, Y)
+
+
+def test_dcs_fits_linear_maps_only_from_ten_samples_per_input():
+    # a linear map through d = 3 inputs: with 40 samples (>= 10 per input) the PRESS
+    # selection takes a linear term; with 12 a plane would be set by a handful of samples and
+    # run off away from them, so the network and its trend keep constant outputs: far
+    # outside the prediction is a convex combination of neuron outputs, not a plane
+    from mjwalk.arms.dcs import SAMPLES_PER_COEFFICIENT
+
+    assert SAMPLES_PER_COEFFICIENT == 10
+    rng = np.random.default_rng(4)
+    W = np.array([[1.0, -2.0], [0.5, 1.0], [-1.0, 0.3]])
+    kw = {
+        "rng": 0,
+        "selection": "loo",
+        "local_linear": (False, True),
+        "global_linear": (False, True),
+        "trend_fallback": True,
+    }
+    X = rng.normal(size=(40, 3))
+    net = DCSNetwork(**kw).fit(X, X @ W + 0.01 * rng.normal(size=(40, 2)))
+    assert net.global_linear_ or net.local_linear_
+    assert net.fallback_.global_linear_
+    X, far = X[:12], 10.0 * rng.normal(size=(50, 3))
+    Y = X @ W
+    net = DCSNetwork(**kw).fit(X, Y)
+    assert not (net.global_linear_ or net.local_linear_ or net.fallback_.global_linear_)
+    out = net.predict(far)
+    neurons = np.vstack([net.outputs_, net.fallback_.outputs_])
+    assert (out >= neurons.min(axis=0) - 1e-9).all() and (out <= neurons.max(axis=0) + 1e-9).all()
+    assert np.abs(out).max() < 0.25 * np.abs(far @ W).max()  # the plane goes 4x further

@@ -46,7 +46,11 @@ held-out feminine style 28.1 -> 21.5). The slopes of
 the local linear maps get their own penalty ``slope_ridge`` times the ridge (the offsets ``z -
 c_i`` are of the width's size, the neuron outputs of the target's: one ridge for both
 over-shrinks one or under-shrinks the other). Both are grids chosen on the held-out/PRESS
-residuals like the width.
+residuals like the width. Linear maps, the global term and the neurons' slopes, are fitted
+only from :data:`SAMPLES_PER_COEFFICIENT` samples per input column on (each has one
+coefficient per input and output): with fewer, a plane through ``d`` inputs is set by a
+handful of samples and runs off away from them -- a new walker -- and a leave-one-out score
+within the samples cannot see that.
 
 Dead units (``min_wins``): after every adaptation pass, a neuron that wins fewer than
 ``min_wins`` training samples (default 1: none) is removed with its edges, as growing networks
@@ -103,6 +107,11 @@ DCS_FORMAT = "mjwalk.dcs"
 #: 2: optional global linear term (``trend``) and slope ridge; 3: dead-unit pruning and the
 #: trend fallback network. Version 1 and 2 files still load (no fallback).
 DCS_VERSION = 3
+#: Fewest training samples per input column for the global linear term (one coefficient per
+#: input and output): ten, the usual limit of a regression model's predictors, about m/10 for
+#: m samples (Harrell 2015, *Regression Modeling Strategies*, 2nd ed., §4.4). Below it the
+#: term is left out (module docstring).
+SAMPLES_PER_COEFFICIENT = 10
 
 
 class DCSNetwork:
@@ -126,6 +135,8 @@ class DCSNetwork:
         selection: ``"holdout"`` or ``"loo"`` (PRESS on all samples; see module docstring).
         local_linear: per-neuron local linear outputs; a sequence is a grid like width_factor.
         global_linear: add a global linear term ``T z``; a sequence is a grid like width_factor.
+            Left out, like ``local_linear``, with fewer than :data:`SAMPLES_PER_COEFFICIENT`
+            samples per input column.
         slope_ridge: penalty of the local slopes relative to ``ridge`` (> 0); a sequence is a
             grid like width_factor (used only with local linear outputs).
         min_wins: neurons winning fewer training samples after an adaptation pass are removed
@@ -257,10 +268,12 @@ class DCSNetwork:
         factors = self._factors()
         ridges = self._ridges()
         # output forms (local linear, global linear, slope ridge), chosen like the width
+        # a linear map (global or per neuron) has one coefficient per input and output
+        linear_ok = len(Ztr) >= SAMPLES_PER_COEFFICIENT * Z.shape[1]
         forms = [
             (local, glob, r)
-            for local in self._grid(self.local_linear)
-            for glob in self._grid(self.global_linear)
+            for local in (self._grid(self.local_linear) if linear_ok else (False,))
+            for glob in (self._grid(self.global_linear) if linear_ok else (False,))
             for r in (self._slope_ridges() if local else (1.0,))
         ]
         while True:
