@@ -111,7 +111,7 @@ from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import StandardScaler
 
 import mjwalk.render  # noqa: F401  (picks a headless GL backend before mujoco is loaded)
-from mjwalk.arms.armcapture import ArmMovements, arm_movements
+from mjwalk.arms.armcapture import N_SAMPLES, ArmMovements, arm_movements
 from mjwalk.arms.armrep import (
     trajectory_error,
 )
@@ -121,9 +121,6 @@ from mjwalk.arms.reachdefault import CAPTURE_DCS
 from mjwalk.errors import MjwalkError
 
 RAISE_DIR = "bandai-raise-hand"
-N_SAMPLES = 20
-#: The DCS settings of the real-data runs (see :data:`mjwalk.arms.reachdefault.CAPTURE_DCS`).
-DCS_REAL = CAPTURE_DCS
 
 
 def find_data(arg: str | None) -> Path | None:
@@ -163,10 +160,8 @@ def load_raise_hand(
     from mjwalk.mocap import load_bvh
 
     files = sorted(Path(data_dir).glob(f"*raise-up-{side}-hand*.bvh"))[:max_clips]
-    takes = [load_bvh(f, skeleton=skeleton, fps=30) for f in files]
-    for take, f in zip(takes, files, strict=True):
-        take.name = f.name
-    return arm_movements(takes, side, skeleton, [_style(f) for f in files], n=N_SAMPLES)
+    takes = [load_bvh(f, skeleton=skeleton, fps=30) for f in files]  # named by file
+    return arm_movements(takes, side, skeleton, [_style(f) for f in files])
 
 
 class GlobalScaler(StandardScaler):
@@ -337,7 +332,7 @@ def print_mirror_transfer(left: ArmMovements, right: ArmMovements, seed: int) ->
         rep = None  # the PCA/alignment is shared by both regressors, as in evaluate()
         for reg in (None, DummyRegressor()):
             model = ReachModel(
-                a.lengths, variance=0.98, dcs={**DCS_REAL, "rng": seed}, regressor=reg
+                a.lengths, variance=0.98, dcs={**CAPTURE_DCS, "rng": seed}, regressor=reg
             )
             model.fit(a.constraints, a.directions, rep=rep)
             rep = model.rep_
@@ -356,7 +351,7 @@ def run_side(ds: ArmMovements, data_dir: Path, load_s: float, seed: int) -> None
         f"{load_s:.1f} s; segments {np.round(ds.lengths, 3)} m; styles "
         + ", ".join(f"{s} {int((ds.groups == s).sum())}" for s in styles)
     )
-    res = cross_validate(ds.constraints, ds.directions, ds.lengths, dcs=DCS_REAL, seed=seed)
+    res = cross_validate(ds.constraints, ds.directions, ds.lengths, dcs=CAPTURE_DCS, seed=seed)
     print_table(
         "10-fold CV, constraint = start posture + end hand",
         res,
@@ -367,7 +362,7 @@ def run_side(ds: ArmMovements, data_dir: Path, load_s: float, seed: int) -> None
         print("\nleave-one-style-out: skipped (one style only)")
         return
     splits = [(np.flatnonzero(ds.groups != s), np.flatnonzero(ds.groups == s)) for s in styles]
-    res = evaluate(ds.constraints, ds.directions, ds.lengths, splits, dcs=DCS_REAL, seed=seed)
+    res = evaluate(ds.constraints, ds.directions, ds.lengths, splits, dcs=CAPTURE_DCS, seed=seed)
     print_table("leave-one-style-out (train on the other styles)", res)
     print_paired(res)
     print_group_table(

@@ -267,9 +267,9 @@ class DCSNetwork:
         self.n_pruned_ = 0
         factors = self._factors()
         ridges = self._ridges()
-        # output forms (local linear, global linear, slope ridge), chosen like the width
         # a linear map (global or per neuron) has one coefficient per input and output
         linear_ok = len(Ztr) >= SAMPLES_PER_COEFFICIENT * Z.shape[1]
+        # output forms (local linear, global linear, slope ridge), chosen like the width
         forms = [
             (local, glob, r)
             for local in (self._grid(self.local_linear) if linear_ok else (False,))
