@@ -26,8 +26,10 @@ segments (degrees) per test movement, the same for every model: each prediction 
 movement's true start and end hand positions (pose refit + IK blend, ReachModel.predict). The
 tables show mean +/- sd and median over all test movements, the DCS neuron count range.
 
-Splits: 10-fold cross-validation (shuffled, seed 0) and leave-one-style-out (train on the other
-styles, test on one: walkers/styles the model has not seen).
+Splits: 10-fold cross-validation (shuffled, seed 0), leave-one-style-out (train on the other
+styles, test on one: styles the model has not seen) and leave-one-walker-out (train on the
+clips of the other skeletons, test on one: clips sharing a BVH skeleton, every joint OFFSET,
+come from one actor or capture session; :func:`skeleton_walkers`).
 Baselines on the same PCA coefficients and poses and the same folds: kNN (k = 5, distance
 weighted, on the same input scaling as the DCS), an ARD Gaussian process, and "mean only" (the
 mean aligned trajectory fitted to start/end like the others: the floor of the method).
@@ -57,6 +59,23 @@ trajectory: feminine 17.5 / 40.1, masculine 12.8 / 14.8, normal 9.7 / 9.2, youth
 no regressor here beats it (trend 9.3, GPR 11.2, kNN 16.3). Mirror transfer (all clips of one
 arm to train, all mirrored clips of the other to test): left -> right 6.15 deg (mean only
 17.08), right -> left 6.43 (18.39), against 4.2-4.8 within one arm.
+Leave-one-walker-out (first run 2026-11-27; the Bandai clips hold two skeletons, Hips OFFSETs
+of {feminine, youthful} and {masculine, normal}, ../shared/data/README.md): left arm DCS
+17.34, trend only 17.92, kNN 30.26, GPR 22.89, mean only 23.25; per held-out walker DCS /
+mean trajectory: {feminine, youthful} 14.32 / 33.22, {masculine, normal} 20.28 / 13.50.
+Right arm DCS 13.05, trend only 13.83, kNN 17.15, GPR 17.75, mean only 18.69; {feminine,
+youthful} 11.98 / 27.88, {masculine, normal} 14.08 / 9.85. The DCS is best overall on both
+arms, but trained on {feminine, youthful} alone -- two clusters of end positions, hands at
+shoulder height and overhead -- it predicts {masculine, normal}, who raise between and
+beside them from a resting arm 2-4 cm further forward, worse than that walker's mean
+trajectory (the trend network's slopes, fitted within each cluster, carry over to no other
+walker). Variants tried on these splits and not kept (ad hoc, 2026-11-27): the trend on the
+broken-stick principal components of the inputs only (principal component regression)
+brought {masculine, normal} to the mean trajectory's level (left 16.75 / 12.43 masculine /
+normal) but the held-out feminine style to 66 (left, walker split) and 52.6 (left,
+leave-one-style-out), worse than the mean; a plain ridge line or principal component
+regression as the trend (scikit-learn) won some held-out groups and lost others, with no
+rule that did not need the test groups to choose it.
 Few clips: 13 left raises (the first 7 masculine and 6 youthful clips, a folder of links,
 2026-11-27): leave-one-style-out trains on 6-7 clips of one style, and the linear maps (global
 trend, local slopes: 9 coefficients per output each) were set by a handful of samples and
@@ -150,6 +169,27 @@ def _style(path: Path) -> str:
     return "?"
 
 
+def raise_files(data_dir: Path, max_clips: int | None = None, side: str = "left") -> list[Path]:
+    """The ``*raise-up-<side>-hand*.bvh`` clips of ``data_dir``, sorted, at most ``max_clips``."""
+    return sorted(Path(data_dir).glob(f"*raise-up-{side}-hand*.bvh"))[:max_clips]
+
+
+def skeleton_walkers(files: list[Path]) -> dict[str, str]:
+    """File name -> walker label (``skeleton 1``, ``skeleton 2``, ... in file order): clips
+    whose BVH hierarchies hold the same joint OFFSETs (to 0.01 file units) share one
+    calibrated skeleton, one actor or capture session. (The Bandai clips hold two: the Hips
+    OFFSET of {masculine, normal} and of {feminine, youthful}, ../shared/data/README.md.)"""
+    from mjwalk.mocap.bvh import parse_bvh
+
+    keys: dict[bytes, str] = {}
+    out = {}
+    for f in files:
+        bvh = parse_bvh(f)
+        key = np.round(bvh.offsets, 2).tobytes() + "/".join(bvh.names).encode()
+        out[f.name] = keys.setdefault(key, f"skeleton {len(keys) + 1}")
+    return out
+
+
 def load_raise_hand(
     data_dir: Path, max_clips: int | None = None, side: str = "left", skeleton: str = "bandai"
 ) -> ArmMovements:
@@ -159,7 +199,7 @@ def load_raise_hand(
     the BVH preset (units, axes, arm joints)."""
     from mjwalk.mocap import load_bvh
 
-    files = sorted(Path(data_dir).glob(f"*raise-up-{side}-hand*.bvh"))[:max_clips]
+    files = raise_files(data_dir, max_clips, side)
     takes = [load_bvh(f, skeleton=skeleton, fps=30) for f in files]  # named by file
     return arm_movements(takes, side, skeleton, [_style(f) for f in files])
 
@@ -275,11 +315,12 @@ def print_paired(res):
     print("paired DCS - baseline (mean +/- SE, deg): " + ", ".join(cells), flush=True)
 
 
-def print_group_table(title, res, groups, held_out):
-    """Mean error per held-out group and overall, one column per model."""
+def print_group_table(title, res, groups, held_out, label="held-out style", neurons=True):
+    """Mean error per group (``label``) and overall, one column per model; with ``neurons``
+    the DCS neuron counts of the splits."""
     names = list(res)
     print(f"\n## {title}")
-    print(f"{'held-out style':<16} {'p':>4} " + " ".join(f"{n:>12}" for n in names))
+    print(f"{label:<16} {'p':>4} " + " ".join(f"{n:>12}" for n in names))
     rows = [*held_out, "all"]
     for g in rows:
         cells = []
@@ -289,8 +330,8 @@ def print_group_table(title, res, groups, held_out):
             cells.append(f"{e[m].mean():>12.2f}")
         count = len(groups) if g == "all" else int((groups == g).sum())
         print(f"{g:<16} {count:>4} " + " ".join(cells))
-    nn = res["DCS"][1]
-    print(f"DCS neurons per held-out style: {nn}", flush=True)
+    if neurons:
+        print(f"DCS neurons per {label}: {res['DCS'][1]}", flush=True)
 
 
 def run_real(
@@ -306,16 +347,17 @@ def run_real(
     for side in sides:
         t = time.perf_counter()
         ds = load_raise_hand(data_dir, max_clips, side, skeleton)
-        loaded[side] = (ds, time.perf_counter() - t)
+        walkers = skeleton_walkers(raise_files(data_dir, max_clips, side))
+        loaded[side] = (ds, time.perf_counter() - t, np.array([walkers[n] for n in ds.names]))
     sets = {}
-    for side, (ds, secs) in loaded.items():
+    for side, (ds, secs, walkers) in loaded.items():
         if len(ds.constraints) < 10:
             print(f"\n# {side} arm: {len(ds.constraints)} clips, skipped (fewer than 10)")
             continue
         print(
             f"\n# {side} arm" + (" (clips mirrored into the left arm's frame)" * (side == "right"))
         )
-        run_side(ds, data_dir, secs, seed)
+        run_side(ds, data_dir, secs, seed, walkers)
         sets[side] = ds
     if len(sets) == 2:
         print_mirror_transfer(sets["left"], sets["right"], seed)
@@ -344,7 +386,12 @@ def print_mirror_transfer(left: ArmMovements, right: ArmMovements, seed: int) ->
         print(f"{name:<16}{out[0]:>10.2f}{out[1]:>11.2f}{len(b.constraints):>6}", flush=True)
 
 
-def run_side(ds: ArmMovements, data_dir: Path, load_s: float, seed: int) -> None:
+def run_side(
+    ds: ArmMovements, data_dir: Path, load_s: float, seed: int, walkers: np.ndarray | None = None
+) -> None:
+    """The tables of one arm: 10-fold CV, leave-one-style-out and, with clips of more than one
+    skeleton (``walkers``, one label per movement: :func:`skeleton_walkers`),
+    leave-one-walker-out."""
     styles = sorted(set(ds.groups))
     print(
         f"loaded {len(ds.constraints)} raising movements from {data_dir} in "
@@ -367,6 +414,33 @@ def run_side(ds: ArmMovements, data_dir: Path, load_s: float, seed: int) -> None
     print_paired(res)
     print_group_table(
         "leave-one-style-out, mean error deg per held-out style", res, ds.groups, styles
+    )
+    if walkers is None or len(set(walkers)) < 2:
+        print("\nleave-one-walker-out: skipped (the clips share one skeleton)")
+        return
+    names = sorted(set(walkers))
+    print(
+        "\nwalkers (clips sharing one BVH skeleton): "
+        + "; ".join(f"{w}: " + ", ".join(sorted(set(ds.groups[walkers == w]))) for w in names)
+    )
+    splits = [(np.flatnonzero(walkers != w), np.flatnonzero(walkers == w)) for w in names]
+    res = evaluate(ds.constraints, ds.directions, ds.lengths, splits, dcs=CAPTURE_DCS, seed=seed)
+    print_table("leave-one-walker-out (train on the other walkers' clips)", res)
+    print_paired(res)
+    print_group_table(
+        "leave-one-walker-out, mean error deg per held-out walker",
+        res,
+        walkers,
+        names,
+        "held-out walker",
+    )
+    print_group_table(
+        "leave-one-walker-out, mean error deg per style (of the held-out walker)",
+        res,
+        ds.groups,
+        styles,
+        "style",
+        neurons=False,
     )
 
 

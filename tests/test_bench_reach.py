@@ -49,11 +49,13 @@ def _leg(side: str, skeleton: str = "bandai") -> str:
 """
 
 
-def _armless_bvh(path: Path, frames: int = 10, skeleton: str = "bandai") -> None:
+def _armless_bvh(
+    path: Path, frames: int = 10, skeleton: str = "bandai", hips: str = "0 0 0"
+) -> None:
     """A skeleton with the preset's leg names and no arms (centimetres, y up, 30 fps)."""
     row = " ".join(["0 90 0 0 0 0"] + ["0 0 0"] * 6)
     path.write_text(
-        "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 0\n"
+        f"HIERARCHY\nROOT Hips\n{{\n  OFFSET {hips}\n"
         "  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
         + _leg("L", skeleton)
         + _leg("R", skeleton)
@@ -108,6 +110,7 @@ def test_every_clip_is_loaded_before_any_arm_is_evaluated(tmp_path, monkeypatch,
 
     evaluated = []
     monkeypatch.setattr(bench_reach, "load_raise_hand", load)
+    monkeypatch.setattr(bench_reach, "skeleton_walkers", lambda files: {})
     monkeypatch.setattr(bench_reach, "run_side", lambda ds, *a: evaluated.append(ds))
     assert bench_reach.main(["--data", str(tmp_path), "--no-synthetic"]) == 2
     assert evaluated == []
@@ -117,3 +120,72 @@ def test_every_clip_is_loaded_before_any_arm_is_evaluated(tmp_path, monkeypatch,
 def test_folder_without_clips_is_reported(tmp_path, capsys):
     assert bench_reach.main(["--data", str(tmp_path), "--no-synthetic"]) == 2
     assert "no raise-up-left/right-hand clips" in capsys.readouterr().out
+
+
+def test_clips_of_one_skeleton_are_one_walker(tmp_path):
+    """Walkers are told apart by their BVH skeleton: the Bandai actors differ in the Hips
+    OFFSET only (../shared/data/README.md)."""
+    names = ["a_001.bvh", "b_001.bvh", "a_002.bvh", "c_001.bvh"]
+    for name, hips in zip(names, ["-0.73 93.31 -2.0", "-17.16 93.16 452.98"] * 2, strict=True):
+        _armless_bvh(tmp_path / name, hips=hips)
+    _armless_bvh(tmp_path / "c_001.bvh", hips="-0.73 93.31 -2.0", skeleton="cmu_bvh")
+    got = bench_reach.skeleton_walkers([tmp_path / n for n in names])
+    assert got == {
+        "a_001.bvh": "skeleton 1",
+        "b_001.bvh": "skeleton 2",
+        "a_002.bvh": "skeleton 1",
+        "c_001.bvh": "skeleton 3",  # same offsets, other joint names
+    }
+
+
+@pytest.mark.filterwarnings("ignore::sklearn.exceptions.ConvergenceWarning")  # the GP baseline
+def test_leave_one_walker_out_table(monkeypatch, capsys):
+    """With clips of two skeletons, each walker is predicted by a model of the other's clips;
+    the table has a row per held-out walker and per style."""
+    import numpy as np
+
+    from mjwalk.arms import reachgen
+
+    data = reachgen.generate("endpoints", 30, np.random.default_rng(0))
+    ds = ArmMovements(
+        data.constraints,
+        data.directions,
+        data.lengths,
+        np.ones(30),
+        np.array(["feminine", "normal"] * 15),
+        [f"{i}.bvh" for i in range(30)],
+    )
+    walkers = np.array(["skeleton 1"] * 12 + ["skeleton 2"] * 18)
+    fast = {**bench_reach.CAPTURE_DCS, "n_networks": 1, "max_neurons": 4}
+    monkeypatch.setattr(bench_reach, "CAPTURE_DCS", fast)
+    bench_reach.run_side(ds, Path("clips"), 0.0, 0, walkers)
+    out = capsys.readouterr().out
+    assert "walkers (clips sharing one BVH skeleton): skeleton 1: feminine, normal;" in out
+    table = out.split("per held-out walker")[1].splitlines()
+    rows = {line.split()[0] + " " + line.split()[1]: line.split()[2:] for line in table[2:4]}
+    assert rows["skeleton 1"][0] == "12" and rows["skeleton 2"][0] == "18"
+    assert all(float(x) > 0 for r in rows.values() for x in r[1:])  # every model, both walkers
+    assert "per style (of the held-out walker)" in out
+
+
+@pytest.mark.filterwarnings("ignore::sklearn.exceptions.ConvergenceWarning")  # the GP baseline
+def test_clips_of_one_skeleton_skip_the_walker_table(monkeypatch, capsys):
+    import numpy as np
+
+    from mjwalk.arms import reachgen
+
+    data = reachgen.generate("endpoints", 20, np.random.default_rng(1))
+    ds = ArmMovements(
+        data.constraints,
+        data.directions,
+        data.lengths,
+        np.ones(20),
+        np.array(["a"] * 20),
+        [f"{i}.bvh" for i in range(20)],
+    )
+    fast = {**bench_reach.CAPTURE_DCS, "n_networks": 1, "max_neurons": 4}
+    monkeypatch.setattr(bench_reach, "CAPTURE_DCS", fast)
+    bench_reach.run_side(ds, Path("clips"), 0.0, 0, np.array(["skeleton 1"] * 20))
+    out = capsys.readouterr().out
+    assert "leave-one-style-out: skipped (one style only)" in out
+    assert "leave-one-walker-out" not in out
