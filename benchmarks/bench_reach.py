@@ -140,6 +140,10 @@ from mjwalk.arms.reachdefault import CAPTURE_DCS
 from mjwalk.errors import MjwalkError
 
 RAISE_DIR = "bandai-raise-hand"
+#: Fewest clips of an arm to evaluate it on (fewer: the arm is skipped).
+MIN_CLIPS = 10
+#: Neighbours of the kNN baseline; also the fewest clips a held-out group leaves to train on.
+K_NEIGHBOURS = 5
 
 
 def find_data(arg: str | None) -> Path | None:
@@ -231,7 +235,9 @@ def regressors(seed: int, n_inputs: int, dcs: dict):
     return {
         "DCS": None,
         "DCS trend only": DCSNetwork(**{**trend, "global_linear": True, "rng": seed}),
-        "kNN (k=5)": make_pipeline(scaler(), KNeighborsRegressor(5, weights="distance")),
+        f"kNN (k={K_NEIGHBOURS})": make_pipeline(
+            scaler(), KNeighborsRegressor(K_NEIGHBOURS, weights="distance")
+        ),
         "GPR (ARD)": gpr,
         "mean only": DummyRegressor(),
     }
@@ -311,7 +317,8 @@ def print_paired(res):
         if name == "DCS":
             continue
         d = e[np.argsort(idx)] - eb[np.argsort(ib)]
-        cells.append(f"{name} {d.mean():+.3f} +/- {d.std(ddof=1) / np.sqrt(len(d)):.3f}")
+        se = f"{d.std(ddof=1) / np.sqrt(len(d)):.3f}" if len(d) > 1 else "n/a (one movement)"
+        cells.append(f"{name} {d.mean():+.3f} +/- {se}")
     print("paired DCS - baseline (mean +/- SE, deg): " + ", ".join(cells), flush=True)
 
 
@@ -328,7 +335,7 @@ def print_group_table(title, res, groups, held_out, label="held-out style", neur
             e, _, _, _, idx = res[n]
             m = np.ones(len(e), bool) if g == "all" else groups[idx] == g
             cells.append(f"{e[m].mean():>12.2f}")
-        count = len(groups) if g == "all" else int((groups == g).sum())
+        count = len(res["DCS"][0]) if g == "all" else int((groups == g).sum())
         print(f"{g:<16} {count:>4} " + " ".join(cells))
     if neurons:
         print(f"DCS neurons per {label}: {res['DCS'][1]}", flush=True)
@@ -351,8 +358,8 @@ def run_real(
         loaded[side] = (ds, time.perf_counter() - t, np.array([walkers[n] for n in ds.names]))
     sets = {}
     for side, (ds, secs, walkers) in loaded.items():
-        if len(ds.constraints) < 10:
-            print(f"\n# {side} arm: {len(ds.constraints)} clips, skipped (fewer than 10)")
+        if len(ds.constraints) < MIN_CLIPS:
+            print(f"\n# {side} arm: {len(ds.constraints)} clips, skipped (fewer than {MIN_CLIPS})")
             continue
         print(
             f"\n# {side} arm" + (" (clips mirrored into the left arm's frame)" * (side == "right"))
@@ -386,6 +393,53 @@ def print_mirror_transfer(left: ArmMovements, right: ArmMovements, seed: int) ->
         print(f"{name:<16}{out[0]:>10.2f}{out[1]:>11.2f}{len(b.constraints):>6}", flush=True)
 
 
+def group_splits(labels: np.ndarray) -> tuple[list, list[str], list[str]]:
+    """Leave-one-group-out (train, test) index pairs over ``labels``, the held-out groups,
+    and the groups not held out because fewer than :data:`K_NEIGHBOURS` clips of the others
+    are left to train on (the kNN baseline needs that many)."""
+    held, short, splits = [], [], []
+    for g in sorted(set(labels)):
+        train = np.flatnonzero(labels != g)
+        if len(train) < K_NEIGHBOURS:
+            short.append(str(g))
+            continue
+        held.append(str(g))
+        splits.append((train, np.flatnonzero(labels == g)))
+    return splits, held, short
+
+
+def leave_one_group_out(ds: ArmMovements, labels: np.ndarray, what: str, seed: int) -> None:
+    """The tables of one leave-one-group-out split (``what``: ``"style"`` or ``"walker"``):
+    overall, paired, per held-out group and, for walkers, per style."""
+    splits, held, short = group_splits(labels)
+    title = f"leave-one-{what}-out"
+    if len(set(labels)) < 2 or not splits:
+        why = "one style only" if what == "style" else "the clips share one skeleton"
+        print(f"\n{title}: skipped ({why if len(set(labels)) < 2 else 'too few clips'})")
+        return
+    if short:
+        print(
+            f"\n{title}: not held out (fewer than {K_NEIGHBOURS} clips of the others to train "
+            f"on): {', '.join(short)}"
+        )
+    res = evaluate(ds.constraints, ds.directions, ds.lengths, splits, dcs=CAPTURE_DCS, seed=seed)
+    print_table(f"{title} (train on the other {what}s' clips)", res)
+    print_paired(res)
+    print_group_table(
+        f"{title}, mean error deg per held-out {what}", res, labels, held, f"held-out {what}"
+    )
+    if what == "walker":
+        tested = sorted(set(ds.groups[np.concatenate([te for _, te in splits])]))
+        print_group_table(
+            f"{title}, mean error deg per style (of the held-out walker)",
+            res,
+            ds.groups,
+            tested,
+            "style",
+            neurons=False,
+        )
+
+
 def run_side(
     ds: ArmMovements, data_dir: Path, load_s: float, seed: int, walkers: np.ndarray | None = None
 ) -> None:
@@ -405,43 +459,20 @@ def run_side(
         f" (p={len(ds.constraints)}, n={N_SAMPLES})",
     )
     print_paired(res)
-    if len(styles) < 2:
-        print("\nleave-one-style-out: skipped (one style only)")
+    leave_one_group_out(ds, ds.groups, "style", seed)
+    if walkers is None:
+        walkers = np.full(len(ds.groups), "skeleton 1")
+    else:
+        names = sorted(set(walkers))
+        print(
+            "\nwalkers (clips sharing one BVH skeleton): "
+            + "; ".join(f"{w}: " + ", ".join(sorted(set(ds.groups[walkers == w]))) for w in names)
+        )
+    pairs = set(zip(walkers, ds.groups, strict=True))
+    if len(pairs) == len(set(walkers)) == len(set(ds.groups)) > 1:  # one style per skeleton
+        print("\nleave-one-walker-out: the leave-one-style-out split (one style per skeleton)")
         return
-    splits = [(np.flatnonzero(ds.groups != s), np.flatnonzero(ds.groups == s)) for s in styles]
-    res = evaluate(ds.constraints, ds.directions, ds.lengths, splits, dcs=CAPTURE_DCS, seed=seed)
-    print_table("leave-one-style-out (train on the other styles)", res)
-    print_paired(res)
-    print_group_table(
-        "leave-one-style-out, mean error deg per held-out style", res, ds.groups, styles
-    )
-    if walkers is None or len(set(walkers)) < 2:
-        print("\nleave-one-walker-out: skipped (the clips share one skeleton)")
-        return
-    names = sorted(set(walkers))
-    print(
-        "\nwalkers (clips sharing one BVH skeleton): "
-        + "; ".join(f"{w}: " + ", ".join(sorted(set(ds.groups[walkers == w]))) for w in names)
-    )
-    splits = [(np.flatnonzero(walkers != w), np.flatnonzero(walkers == w)) for w in names]
-    res = evaluate(ds.constraints, ds.directions, ds.lengths, splits, dcs=CAPTURE_DCS, seed=seed)
-    print_table("leave-one-walker-out (train on the other walkers' clips)", res)
-    print_paired(res)
-    print_group_table(
-        "leave-one-walker-out, mean error deg per held-out walker",
-        res,
-        walkers,
-        names,
-        "held-out walker",
-    )
-    print_group_table(
-        "leave-one-walker-out, mean error deg per style (of the held-out walker)",
-        res,
-        ds.groups,
-        styles,
-        "style",
-        neurons=False,
-    )
+    leave_one_group_out(ds, walkers, "walker", seed)
 
 
 def main(argv=None):

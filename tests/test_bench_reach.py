@@ -188,4 +188,38 @@ def test_clips_of_one_skeleton_skip_the_walker_table(monkeypatch, capsys):
     bench_reach.run_side(ds, Path("clips"), 0.0, 0, np.array(["skeleton 1"] * 20))
     out = capsys.readouterr().out
     assert "leave-one-style-out: skipped (one style only)" in out
-    assert "leave-one-walker-out" not in out
+    assert "leave-one-walker-out: skipped (the clips share one skeleton)" in out
+    assert "per held-out" not in out
+
+
+def test_a_group_is_held_out_only_with_enough_clips_left_to_train_on():
+    """A stray clip of another skeleton is tested on a model of the others; the others are
+    not tested on a model of that one clip (it would not train)."""
+    import numpy as np
+
+    labels = np.array(["skeleton 1"] * 12 + ["skeleton 2"] * 4)
+    splits, held, short = bench_reach.group_splits(labels)
+    assert bench_reach.K_NEIGHBOURS == 5
+    assert held == ["skeleton 2"] and short == ["skeleton 1"]
+    ((train, test),) = splits
+    assert list(test) == [12, 13, 14, 15] and list(train) == list(range(12))
+
+
+@pytest.mark.filterwarnings("ignore::sklearn.exceptions.ConvergenceWarning")  # the GP baseline
+def test_one_style_per_skeleton_is_not_evaluated_twice(monkeypatch, capsys):
+    import numpy as np
+
+    from mjwalk.arms import reachgen
+
+    data = reachgen.generate("endpoints", 20, np.random.default_rng(2))
+    styles = np.array(["a"] * 10 + ["b"] * 10)
+    ds = ArmMovements(
+        data.constraints, data.directions, data.lengths, np.ones(20), styles, ["x"] * 20
+    )
+    fast = {**bench_reach.CAPTURE_DCS, "n_networks": 1, "max_neurons": 4}
+    monkeypatch.setattr(bench_reach, "CAPTURE_DCS", fast)
+    walkers = np.where(styles == "a", "skeleton 1", "skeleton 2")
+    bench_reach.run_side(ds, Path("clips"), 0.0, 0, walkers)
+    out = capsys.readouterr().out
+    assert "per held-out style" in out and "per held-out walker" not in out
+    assert "leave-one-walker-out: the leave-one-style-out split (one style per skeleton)" in out
