@@ -24,6 +24,7 @@ import numpy as np  # noqa: E402
 from mjwalk._io import atomic_path  # noqa: E402
 from mjwalk.body.humanoid import HUMAN_GROUP  # noqa: E402
 from mjwalk.errors import InputError, MjwalkError  # noqa: E402
+from mjwalk.timeline.parts import PartTrack  # noqa: E402
 from mjwalk.timeline.timeline import Timeline  # noqa: E402
 from mjwalk.viewpoint import (  # noqa: E402
     LOOKAT_HEIGHT,
@@ -288,8 +289,17 @@ class _SceneUpdater:
     4.0) for a model without plugins, flexes or skins (others take the general path).
     """
 
-    def __init__(self, model: mujoco.MjModel, scene: mujoco.MjvScene, geoms: list[tuple]):
+    def __init__(
+        self,
+        model: mujoco.MjModel,
+        scene: mujoco.MjvScene,
+        geoms: list[tuple],
+        parts: list[PartTrack] | None = None,
+    ):
         self.model, self.scene = model, scene
+        # handled parts (mjwalk.timeline.parts): geom id -> track, moved in the drawn scene
+        self.parts = {model.geom(p.geom).id: p for p in parts or []}
+        self.slots: list[tuple[int, int, PartTrack]] | None = None  # scene slot, geom, track
         self.opt = mujoco.MjvOption()
         self.opt.geomgroup[HUMAN_GROUP] = 1  # MuJoCo shows groups 0-2 only by default
         self.geoms = geoms
@@ -301,7 +311,7 @@ class _SceneUpdater:
             _draw_path(scene, geoms)
             self.n_prefix = scene.ngeom
 
-    def __call__(self, data: mujoco.MjData, cam: mujoco.MjvCamera) -> None:
+    def __call__(self, data: mujoco.MjData, cam: mujoco.MjvCamera, frame: int = 0) -> None:
         m, scn = self.model, self.scene
         if self.prefix:
             scn.ngeom = self.n_prefix
@@ -311,6 +321,24 @@ class _SceneUpdater:
         else:
             mujoco.mjv_updateScene(m, data, self.opt, None, cam, self.catmask, scn)
             _draw_path(scn, self.geoms)
+        if self.parts:
+            self._move_parts(frame)
+
+    def _move_parts(self, frame: int) -> None:
+        """Draw each handled part where its track puts it in ``frame``."""
+        scn = self.scene
+        geom = mujoco.mjtObj.mjOBJ_GEOM.value
+        if self.slots is None or any(  # the scene slots of the part geoms, found again if moved
+            scn.geoms[k].objtype != geom or scn.geoms[k].objid != g for k, g, _ in self.slots
+        ):
+            self.slots = [
+                (k, int(scn.geoms[k].objid), self.parts[int(scn.geoms[k].objid)])
+                for k in range(scn.ngeom)
+                if scn.geoms[k].objtype == geom and int(scn.geoms[k].objid) in self.parts
+            ]
+        for k, _, track in self.slots:
+            scn.geoms[k].pos[:] = track.pos[frame]
+            scn.geoms[k].mat[:] = track.mat[frame]
 
 
 def render_frames(
@@ -346,14 +374,14 @@ def _scenes(timeline, camera, size, frames, draw_path, progress, fast, view):
         view = track_view(timeline)
     geoms = path_geoms(timeline) if draw_path else []
     with Offscreen(model, size, fast=fast) as r:
-        update = _SceneUpdater(model, r.scene, geoms)
+        update = _SceneUpdater(model, r.scene, geoms, timeline.parts)
         data = mujoco.MjData(model)
         cam = mujoco.MjvCamera()
         for i in tqdm(idx, disable=not progress, desc="render", unit="frame"):
             data.qpos[:] = timeline.qpos[i]
             mujoco.mj_kinematics(model, data)
             _set_camera(cam, timeline, int(i), camera, size, view)
-            update(data, cam)
+            update(data, cam, int(i))
             yield int(i), r
 
 
@@ -422,7 +450,7 @@ class _Drawer:
             with lock:  # Offscreen briefly changes the model's visual options
                 r = Offscreen(timeline.model, size)
             with r:
-                update = _SceneUpdater(timeline.model, r.scene, geoms)
+                update = _SceneUpdater(timeline.model, r.scene, geoms, timeline.parts)
                 data = mujoco.MjData(timeline.model)
                 cam = mujoco.MjvCamera()
                 for i in frames:
@@ -432,7 +460,7 @@ class _Drawer:
                     data.qpos[:] = timeline.qpos[i]
                     mujoco.mj_kinematics(timeline.model, data)
                     _set_camera(cam, timeline, int(i), camera, size, view)
-                    update(data, cam)
+                    update(data, cam, int(i))
                     r.read_into(self.bufs[b])
                     self.done.put((int(i), b))
         except BaseException as exc:  # handed to the encoding thread

@@ -40,6 +40,7 @@ from mjwalk.cycle.types import (
 )
 from mjwalk.errors import CycleSpecError, InputError, PlanningError
 from mjwalk.timeline.collisions import collision_report
+from mjwalk.timeline.parts import Handling, part_tracks
 from mjwalk.timeline.timeline import Timeline
 
 if TYPE_CHECKING:
@@ -138,8 +139,10 @@ def simulate_cycle(
     walks: list[WalkRecord] = []
     arms: list[ArmRecord] = []
     width: float | None = None  # grip distance (m) of the two-handed part in the hands
+    spans: list[tuple[int, int]] = []  # frames [first, end) of each task
     for i, task in enumerate(spec.tasks):
         t0 = t
+        f0 = sum(len(f) for f in frames)
         if task.kind in ("walk", "carry"):
             goal = task.site
             assert goal is not None  # the spec loader requires a site for walks
@@ -216,6 +219,7 @@ def simulate_cycle(
         else:  # the spec parser refuses unknown kinds; this guards hand-made specs
             raise CycleSpecError(f"task {i}: unknown kind {task.kind!r}")
         tasks.append(TaskRecord(i, task.kind, task.site, t0, t, task.route))
+        spans.append((f0, sum(len(f) for f in frames)))
     qpos = np.vstack(frames)
     timeline = Timeline(
         model=ctx.model,
@@ -227,6 +231,13 @@ def simulate_cycle(
         stature=ctx.spec.stature,
     )
     timeline.walk = combined_walk([w.path for w in walks])  # drawn into videos
+    if keep_timeline:  # the parts the hands pick, carry and put down, drawn into videos
+        handlings = [
+            Handling(task.kind, task.site, task.hand, *spans[i])
+            for i, task in enumerate(spec.tasks)
+            if task.kind in ("pick", "place", "fasten") and task.site is not None
+        ]
+        timeline.parts = part_tracks(ctx.model, ctx.jointmap, qpos, handlings)
     contacts = collision_report(timeline, data=ctx.scratch()) if collisions else []
     return CycleResult(
         spec=spec,

@@ -4,17 +4,20 @@ playback and humanoid-vs-scene collision checks (:mod:`~mjwalk.timeline.collisio
 
 from mjwalk.timeline.collisions import Contact, check_collisions, collision_report, iter_frames
 from mjwalk.timeline.frames import frames_from_legs, timeline_from_walk
+from mjwalk.timeline.parts import PartTrack, part_tracks
 from mjwalk.timeline.reach import reach_in_scene
 from mjwalk.timeline.timeline import Event, Timeline
 
 __all__ = [
     "Contact",
     "Event",
+    "PartTrack",
     "Timeline",
     "check_collisions",
     "collision_report",
     "frames_from_legs",
     "iter_frames",
+    "part_tracks",
     "reach_in_scene",
     "timeline_from_walk",
 ]

@@ -17,6 +17,7 @@ import numpy as np
 from mjwalk.body.humanoid import JointMap
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.plan.walkpath import WalkPath
+from mjwalk.timeline.parts import PartTrack
 
 
 @dataclass
@@ -46,6 +47,8 @@ class Timeline:
         scene: the scene file (or "<MjSpec>") and ``stature`` the humanoid's stature in metres,
             enough to rebuild ``model``.
         meta: free-form provenance (producer, clipped joints, ...).
+        parts: scene geoms the hands pick, carry and put down, where each is drawn in every
+            frame (:mod:`mjwalk.timeline.parts`); videos move them, collisions ignore them.
     """
 
     model: mujoco.MjModel
@@ -59,6 +62,7 @@ class Timeline:
     scene: str = ""
     stature: float = DEFAULT_STATURE
     meta: dict = field(default_factory=dict)
+    parts: list[PartTrack] = field(default_factory=list)
 
     @property
     def n_frames(self) -> int:

@@ -1,0 +1,161 @@
+"""Handled parts in a timeline: scene geoms the hands pick, carry and put down, for videos.
+
+A pick at site ``S`` takes the part lying there. The part is drawn with a scene geom: at the
+start, the geom named ``S_geom`` (:data:`PART_GEOM_SUFFIX`; the shipped scenes name the screws,
+the tool and the box so, e.g. ``rack2_screw1_geom`` under the site ``rack2_screw1``); later,
+the geom a place or fasten left at ``S``. A pick without such a geom handles a part that is not
+drawn, as before.
+
+Frames (world: metres, z up):
+
+* until the grasp the geom stays where the scene puts it;
+* from the grasp -- the frame of the pick in which the grip point (the palm's centre; for a
+  two-handed part, half way between the palms) comes nearest the site -- its centre is at the
+  grip point and it moves rigidly with the hand body that took it (``hand_l`` / ``hand_r``),
+  or, for a two-handed part, with the frame of both palms: origin half way between them, y
+  along the line from the right palm to the left one, z up;
+* from the release -- the frame of the place or fasten in which the grip point comes nearest
+  its site -- it lies at that site as it lay at the site it was picked from: the same offset
+  from the site, the same orientation (a fastening hand stops in front of the surface; the
+  screw goes in).
+
+A hand holding several parts (two screws) puts them down in the order it picked them. The
+collision model is unchanged: the geoms are moved in the drawn scene only
+(:func:`mjwalk.render.render_frames` and :func:`~mjwalk.render.render_video`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from mjwalk.body.humanoid import JointMap
+
+#: Name suffix of the scene geom that shows the part lying at a pick site.
+PART_GEOM_SUFFIX = "_geom"
+
+
+@dataclass
+class PartTrack:
+    """Where one scene geom is drawn in every frame of a timeline.
+
+    Attributes:
+        geom: the scene geom's name.
+        pos: (F, 3) world position of the geom's centre, metres.
+        mat: (F, 3, 3) world orientation (columns: the geom's axes).
+        grasp: frame of the pick.
+        release: frame of the place or fasten, or None (still in the hand at the end).
+    """
+
+    geom: str
+    pos: np.ndarray
+    mat: np.ndarray
+    grasp: int
+    release: int | None
+
+
+@dataclass
+class Handling:
+    """One pick, place or fasten as :func:`part_tracks` needs it: ``kind``, the target
+    ``site``, the ``hand`` ("left", "right" or "both") and its frames ``[start, end)``."""
+
+    kind: str
+    site: str
+    hand: str
+    start: int
+    end: int
+
+
+def _body_poses(model, jm: JointMap, qpos: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(F, 2, 3) positions and (F, 2, 3, 3) orientations of the hand bodies (left, right) and
+    (F, 2, 3) palm centres, for every pose."""
+    data = mujoco.MjData(model)
+    bodies = [model.body(f"{jm.prefix}hand_{p}").id for p in ("l", "r")]
+    palms = [int(np.flatnonzero(model.geom_bodyid == b)[0]) for b in bodies]
+    n = len(qpos)
+    pos, mat, palm = np.empty((n, 2, 3)), np.empty((n, 2, 3, 3)), np.empty((n, 2, 3))
+    for f, q in enumerate(qpos):
+        data.qpos[:] = q
+        mujoco.mj_kinematics(model, data)
+        pos[f] = data.xpos[bodies]
+        mat[f] = data.xmat[bodies].reshape(2, 3, 3)
+        palm[f] = data.geom_xpos[palms]
+    return pos, mat, palm
+
+
+def _palms_frame(palm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(F, 3) origin and (F, 3, 3) axes of the two-handed grip: half way between the palms
+    ``palm`` (F, 2, 3), y from the right palm to the left one (horizontal), z up."""
+    y = palm[:, 0] - palm[:, 1]
+    y[:, 2] = 0.0
+    y /= np.maximum(np.linalg.norm(y, axis=1, keepdims=True), 1e-9)
+    z = np.broadcast_to([0.0, 0.0, 1.0], y.shape)
+    x = np.cross(y, z)
+    return palm.mean(axis=1), np.stack([x, y, z], axis=2)
+
+
+def part_tracks(
+    model: mujoco.MjModel, jm: JointMap, qpos: np.ndarray, handlings: Sequence[Handling]
+) -> list[PartTrack]:
+    """The tracks of the scene geoms handled in a timeline of poses ``qpos`` (F, nq) by the
+    picks, places and fastens ``handlings`` (in time order); see the module docstring."""
+    names = {model.geom(g).name: g for g in range(model.ngeom)}
+    lying = {  # site -> geom lying there
+        model.site(s).name: names[model.site(s).name + PART_GEOM_SUFFIX]
+        for s in range(model.nsite)
+        if model.site(s).name + PART_GEOM_SUFFIX in names
+    }
+    if not lying or not any(h.kind == "pick" and h.site in lying for h in handlings):
+        return []
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)  # the scene's own geom poses (the humanoid's unused)
+    n = len(qpos)
+    hand_pos, hand_mat, palm = _body_poses(model, jm, qpos)
+    both_pos, both_mat = _palms_frame(palm)
+    held: dict[str, list[tuple[int | None, int]]] = {"left": [], "right": [], "both": []}
+    tracks: dict[int, PartTrack] = {}
+    lay: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # offset from its site, orientation
+    for h in handlings:
+        site_pos = data.site_xpos[model.site(h.site).id]
+        span = slice(max(h.start, 0), max(min(h.end, n), h.start + 1))
+        side = {"left": 0, "right": 1}.get(h.hand)
+        grip = palm[span, side] if side is not None else both_pos[span]
+        f = span.start + int(np.argmin(np.linalg.norm(grip - site_pos, axis=1)))
+        if f >= n:
+            continue
+        if side is not None:
+            origin, axes = hand_pos[:, side], hand_mat[:, side]
+        else:
+            origin, axes = both_pos, both_mat
+        if h.kind == "pick":
+            g = lying.pop(h.site, None)
+            held[h.hand].append((g, f))
+            if g is None:
+                continue
+            track = tracks.get(g)
+            if track is None:
+                pos = np.repeat(data.geom_xpos[g][None], n, axis=0)
+                mat = np.repeat(data.geom_xmat[g].reshape(1, 3, 3), n, axis=0)
+                track = tracks[g] = PartTrack(model.geom(g).name, pos, mat, f, None)
+            lay[g] = (track.pos[f] - site_pos, track.mat[f].copy())
+            track.grasp, track.release = f, None
+            # centred on the grip point, its pose in the holding frame kept from the grasp on
+            grip_at = palm[f, side] if side is not None else both_pos[f]
+            rel_mat = axes[f].T @ track.mat[f]
+            rel_pos = axes[f].T @ (grip_at - origin[f])
+            track.pos[f:] = origin[f:] + np.einsum("fij,j->fi", axes[f:], rel_pos)
+            track.mat[f:] = axes[f:] @ rel_mat
+        elif held[h.hand]:  # place / fasten: the first part this hand took
+            g, _ = held[h.hand].pop(0)
+            if g is None:
+                continue
+            track = tracks[g]
+            offset, mat0 = lay[g]
+            track.pos[f:] = site_pos + offset
+            track.mat[f:] = mat0
+            track.release = f
+            lying[h.site] = g
+    return list(tracks.values())

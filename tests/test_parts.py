@@ -1,0 +1,151 @@
+"""Handled parts in a cycle's timeline and video (mjwalk.timeline.parts): the scene geom of a
+picked part leaves its place at the grasp, moves with the hand(s), and lies at the place or
+fasten site after the release."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pytest
+
+import mjwalk
+from mjwalk.cycle.poses import hand_points
+from mjwalk.cycle.simulate import prepare
+from mjwalk.cycle.spec import load_cycle_spec
+from mjwalk.timeline.parts import Handling, part_tracks
+
+SCENES = Path(__file__).resolve().parents[1] / "scenes"
+
+
+@pytest.fixture(scope="module")
+def box_cycle():
+    spec = load_cycle_spec(SCENES / "assembly_station_2h.toml")
+    ctx = prepare(spec)
+    return ctx, mjwalk.simulate_cycle(ctx, rng=0, keep_timeline=True)
+
+
+@pytest.fixture(scope="module")
+def station_cycle():
+    spec = load_cycle_spec(SCENES / "assembly_station.toml")
+    return mjwalk.simulate_cycle(spec, rng=0, keep_timeline=True)
+
+
+def _scene_poses(model):
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    return data
+
+
+def _frames(task, fps):
+    return round(task.start * fps), round(task.end * fps) + 1
+
+
+def test_two_handed_box_is_carried_between_the_palms_and_put_on_bench_b(box_cycle):
+    ctx, res = box_cycle
+    tl = res.timeline
+    (track,) = tl.parts
+    assert track.geom == "bench_a_box_geom"
+    pick, carry, place = res.tasks  # carry: the walk to bench b
+    lo, hi = _frames(pick, tl.fps)
+    assert lo <= track.grasp < hi
+    lo, hi = _frames(place, tl.fps)
+    assert track.release is not None and lo <= track.release < hi
+    data = _scene_poses(tl.model)
+    g = tl.model.geom("bench_a_box_geom").id
+    # on bench a until the grasp
+    home = data.geom_xpos[g][None].repeat(track.grasp, 0)
+    np.testing.assert_allclose(track.pos[: track.grasp], home)
+    # in the hands while held: centred between the palms (measured 0)
+    held = np.arange(track.grasp, track.release)
+    palms = hand_points(ctx, tl.qpos[held])
+    centre = np.abs(track.pos[held] - palms.mean(axis=1)).max()
+    assert centre < 1e-9, centre
+    # on the walk each palm is on its face of the 0.40 m box (grip sites 0.40 m apart)
+    lo, hi = _frames(carry, tl.fps)
+    walk = (held >= lo) & (held < hi)
+    half = np.linalg.norm(palms[walk, 0] - track.pos[held[walk]], axis=1)
+    assert walk.sum() > 30 and np.all(np.abs(half - 0.20) < 0.02), (half.min(), half.max())
+    # it travels with the walk: 2.2 m from bench a to bench b
+    assert np.linalg.norm(track.pos[track.release - 1, :2] - track.pos[0, :2]) > 1.5
+    # on bench b from the release on, as it lay on bench a (centre on the site, same axes)
+    site = data.site_xpos[tl.model.site("bench_b_box").id]
+    np.testing.assert_allclose(
+        track.pos[track.release :], site[None].repeat(len(tl.t) - track.release, 0), atol=1e-9
+    )
+    np.testing.assert_allclose(track.mat[-1], data.geom_xmat[g].reshape(3, 3), atol=1e-9)
+
+
+def test_screws_are_fastened_at_the_car_sites_in_the_order_picked(station_cycle):
+    tl = station_cycle.timeline
+    tracks = {t.geom: t for t in tl.parts}
+    # six screws and the tool; every one picked and put down
+    assert set(tracks) == {f"rack{r}_screw{s}_geom" for r in (1, 2, 3) for s in (1, 2)} | {
+        "rack2_tool_geom"
+    }
+    assert all(t.release is not None and t.grasp < t.release for t in tracks.values())
+    data = _scene_poses(tl.model)
+    m = tl.model
+    # scenes/assembly_station.toml: rack 2's screws go to car_screw1-2, rack 3's to 3-4,
+    # rack 1's to 5-6; each hand fastens the screw it picked first first
+    for rack, first in ((2, 1), (3, 3), (1, 5)):
+        for s in (1, 2):
+            name = f"rack{rack}_screw{s}"
+            offset = data.geom_xpos[m.geom(name + "_geom").id] - data.site_xpos[m.site(name).id]
+            want = data.site_xpos[m.site(f"car_screw{first + s - 1}").id] + offset
+            np.testing.assert_allclose(tracks[name + "_geom"].pos[-1], want, atol=1e-9)
+    # the tool goes from rack 2 to rack 3
+    tool = tracks["rack2_tool_geom"]
+    off = data.geom_xpos[m.geom("rack2_tool_geom").id] - data.site_xpos[m.site("rack2_tool").id]
+    np.testing.assert_allclose(tool.pos[-1], data.site_xpos[m.site("rack3_tool").id] + off)
+
+
+def test_a_single_hand_holds_its_part_rigidly(station_cycle):
+    """While held, the screw keeps its place and orientation in the hand body's frame."""
+    tl = station_cycle.timeline
+    track = next(t for t in tl.parts if t.geom == "rack2_screw1_geom")
+    m = tl.model
+    data = mujoco.MjData(m)
+    hand = m.body(f"{tl.jointmap.prefix}hand_l").id
+    rel = []
+    for f in range(track.grasp, track.release, 20):
+        data.qpos[:] = tl.qpos[f]
+        mujoco.mj_kinematics(m, data)
+        R = data.xmat[hand].reshape(3, 3)
+        rel.append(np.r_[R.T @ (track.pos[f] - data.xpos[hand]), (R.T @ track.mat[f]).ravel()])
+    rel = np.array(rel)
+    assert len(rel) > 5
+    assert np.abs(rel - rel[0]).max() < 1e-9
+
+
+def test_drawn_scene_moves_the_part_geom(box_cycle):
+    from mjwalk.render import render_frames
+
+    _, res = box_cycle
+    tl = res.timeline
+    (track,) = tl.parts
+    g = tl.model.geom(track.geom).id
+    k = (track.grasp + track.release) // 2
+    for i, _, r in render_frames(tl, frames=[0, k], draw_path=False):
+        (slot,) = [
+            j
+            for j in range(r.scene.ngeom)
+            if r.scene.geoms[j].objtype == mujoco.mjtObj.mjOBJ_GEOM and r.scene.geoms[j].objid == g
+        ]
+        np.testing.assert_allclose(r.scene.geoms[slot].pos, track.pos[i], atol=1e-6)
+        np.testing.assert_allclose(
+            np.asarray(r.scene.geoms[slot].mat).reshape(3, 3), track.mat[i], atol=1e-6
+        )
+    assert np.linalg.norm(track.pos[k] - track.pos[0]) > 0.3
+
+
+def test_a_pick_without_a_part_geom_draws_nothing(box_cycle):
+    ctx, res = box_cycle
+    tl = res.timeline
+    # a pick at a site that has no "<site>_geom" (the standing mark), and its place
+    handlings = [
+        Handling("pick", "stand_bench_a", "left", 0, 40),
+        Handling("place", "bench_b_box", "left", 40, 80),
+    ]
+    assert part_tracks(tl.model, ctx.jointmap, tl.qpos, handlings) == []
