@@ -62,11 +62,13 @@ def test_two_handed_box_is_carried_between_the_palms_and_put_on_bench_b(box_cycl
     palms = hand_points(ctx, tl.qpos[held])
     centre = np.abs(track.pos[held] - palms.mean(axis=1)).max()
     assert centre < 1e-9, centre
-    # on the walk each palm is on its face of the 0.40 m box (grip sites 0.40 m apart)
+    # each palm on its face of the 0.40 m box (grip sites 0.40 m apart) from the grasp to the
+    # release, the walk and both reaches (this seed's place reach opened them to 0.484 m when
+    # only the shoulder abductions kept the gap: reaching._palms_apart; measured 0.400)
     lo, hi = _frames(carry, tl.fps)
-    walk = (held >= lo) & (held < hi)
-    half = np.linalg.norm(palms[walk, 0] - track.pos[held[walk]], axis=1)
-    assert walk.sum() > 30 and np.all(np.abs(half - 0.20) < 0.02), (half.min(), half.max())
+    assert ((held >= lo) & (held < hi)).sum() > 30
+    half = np.linalg.norm(palms[:, 0] - track.pos[held], axis=1)
+    assert np.all(np.abs(half - 0.20) < 0.01), (half.min(), half.max())
     # it travels with the walk: 2.2 m from bench a to bench b
     assert np.linalg.norm(track.pos[track.release - 1, :2] - track.pos[0, :2]) > 1.5
     # on bench b from the release on, as it lay on bench a (centre on the site, same axes)

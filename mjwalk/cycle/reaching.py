@@ -196,13 +196,26 @@ def _palm_gap(ctx, q: np.ndarray) -> float:
 
 def _palms_apart(ctx, q: np.ndarray, want: float) -> np.ndarray:
     """Pose ``q`` with both shoulder abductions shifted together (by at most
-    :data:`HOLD_SHIFT`, Brent's method) so the palms lie ``want`` metres apart; ``q`` itself
-    when no shift within that bound reaches it."""
+    :data:`HOLD_SHIFT`, Brent's method) so the palms lie ``want`` metres apart. When no such
+    shift reaches it (the arms low and forward, adducted to their limit, still too far apart),
+    the abductions go to the end of that range nearest ``want`` and both shoulder rotations
+    shift together instead (with the elbows bent, rotating the upper arms inwards brings the
+    hands together); ``q`` itself when neither reaches it."""
+    out, nearest = _shift_to_gap(ctx, q, want, "abd")
+    if out is None:
+        out, _ = _shift_to_gap(ctx, nearest, want, "rot")
+    return q if out is None else out
+
+
+def _shift_to_gap(ctx, q: np.ndarray, want: float, joint: str):
+    """(pose with both ``shoulder_<side>_<joint>`` angles shifted together, within
+    :data:`HOLD_SHIFT` and the joint limits, so the palms lie ``want`` metres apart, or None
+    when no shift reaches it; the pose at the end of the shift range nearest ``want``)."""
     from scipy.optimize import brentq
 
     jm = ctx.jointmap
-    ks = [jm.adr(f"shoulder_{p}_abd") for p in "lr"]
-    lims = [jm.limits(f"shoulder_{p}_abd") for p in "lr"]
+    ks = [jm.adr(f"shoulder_{p}_{joint}") for p in "lr"]
+    lims = [jm.limits(f"shoulder_{p}_{joint}") for p in "lr"]
 
     def shifted(d: float) -> np.ndarray:
         out = q.copy()
@@ -213,8 +226,8 @@ def _palms_apart(ctx, q: np.ndarray, want: float) -> np.ndarray:
     lo, hi = -HOLD_SHIFT, HOLD_SHIFT
     glo, ghi = _palm_gap(ctx, shifted(lo)) - want, _palm_gap(ctx, shifted(hi)) - want
     if glo * ghi >= 0.0:
-        return q
-    return shifted(brentq(lambda d: _palm_gap(ctx, shifted(d)) - want, lo, hi, xtol=1e-5))
+        return None, shifted(lo if abs(glo) <= abs(ghi) else hi)
+    return shifted(brentq(lambda d: _palm_gap(ctx, shifted(d)) - want, lo, hi, xtol=1e-5)), None
 
 
 def _blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
