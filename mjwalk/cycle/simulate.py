@@ -103,7 +103,8 @@ def simulate_cycle(
         rng: random generator or seed (same seed, same cycle).
         run: the run's index (recorded in the result).
         fps: frame rate of the humanoid timeline (the video rate).
-        keep_timeline: keep the per-frame poses in ``result.timeline`` (for videos).
+        keep_timeline: keep the per-frame poses in ``result.timeline`` (for videos), with the
+            tracks of the parts the hands handle (``Timeline.parts``, :mod:`mjwalk.timeline.parts`).
         collisions: run MuJoCo's collision detection over the timeline
             (:func:`~mjwalk.timeline.collisions.check_collisions` checks a result later).
 
