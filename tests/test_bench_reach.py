@@ -138,26 +138,34 @@ def test_clips_of_one_skeleton_are_one_walker(tmp_path):
     }
 
 
+def _synthetic_side(monkeypatch, n: int, styles: list[str], seed: int) -> ArmMovements:
+    """``n`` generated shelf reaches as one arm's movements of ``styles`` (one per movement),
+    and a small quick DCS for the benchmark's tables."""
+    import numpy as np
+
+    from mjwalk.arms import reachgen
+
+    data = reachgen.generate("endpoints", n, np.random.default_rng(seed))
+    fast = {**bench_reach.CAPTURE_DCS, "n_networks": 1, "max_neurons": 4}
+    monkeypatch.setattr(bench_reach, "CAPTURE_DCS", fast)
+    return ArmMovements(
+        data.constraints,
+        data.directions,
+        data.lengths,
+        np.ones(n),
+        np.array(styles),
+        [f"{i}.bvh" for i in range(n)],
+    )
+
+
 @pytest.mark.filterwarnings("ignore::sklearn.exceptions.ConvergenceWarning")  # the GP baseline
 def test_leave_one_walker_out_table(monkeypatch, capsys):
     """With clips of two skeletons, each walker is predicted by a model of the other's clips;
     the table has a row per held-out walker and per style."""
     import numpy as np
 
-    from mjwalk.arms import reachgen
-
-    data = reachgen.generate("endpoints", 30, np.random.default_rng(0))
-    ds = ArmMovements(
-        data.constraints,
-        data.directions,
-        data.lengths,
-        np.ones(30),
-        np.array(["feminine", "normal"] * 15),
-        [f"{i}.bvh" for i in range(30)],
-    )
+    ds = _synthetic_side(monkeypatch, 30, ["feminine", "normal"] * 15, 0)
     walkers = np.array(["skeleton 1"] * 12 + ["skeleton 2"] * 18)
-    fast = {**bench_reach.CAPTURE_DCS, "n_networks": 1, "max_neurons": 4}
-    monkeypatch.setattr(bench_reach, "CAPTURE_DCS", fast)
     bench_reach.run_side(ds, Path("clips"), 0.0, 0, walkers)
     out = capsys.readouterr().out
     assert "walkers (clips sharing one BVH skeleton): skeleton 1: feminine, normal;" in out
@@ -172,19 +180,7 @@ def test_leave_one_walker_out_table(monkeypatch, capsys):
 def test_clips_of_one_skeleton_skip_the_walker_table(monkeypatch, capsys):
     import numpy as np
 
-    from mjwalk.arms import reachgen
-
-    data = reachgen.generate("endpoints", 20, np.random.default_rng(1))
-    ds = ArmMovements(
-        data.constraints,
-        data.directions,
-        data.lengths,
-        np.ones(20),
-        np.array(["a"] * 20),
-        [f"{i}.bvh" for i in range(20)],
-    )
-    fast = {**bench_reach.CAPTURE_DCS, "n_networks": 1, "max_neurons": 4}
-    monkeypatch.setattr(bench_reach, "CAPTURE_DCS", fast)
+    ds = _synthetic_side(monkeypatch, 20, ["a"] * 20, 1)
     bench_reach.run_side(ds, Path("clips"), 0.0, 0, np.array(["skeleton 1"] * 20))
     out = capsys.readouterr().out
     assert "leave-one-style-out: skipped (one style only)" in out
@@ -209,16 +205,8 @@ def test_a_group_is_held_out_only_with_enough_clips_left_to_train_on():
 def test_one_style_per_skeleton_is_not_evaluated_twice(monkeypatch, capsys):
     import numpy as np
 
-    from mjwalk.arms import reachgen
-
-    data = reachgen.generate("endpoints", 20, np.random.default_rng(2))
-    styles = np.array(["a"] * 10 + ["b"] * 10)
-    ds = ArmMovements(
-        data.constraints, data.directions, data.lengths, np.ones(20), styles, ["x"] * 20
-    )
-    fast = {**bench_reach.CAPTURE_DCS, "n_networks": 1, "max_neurons": 4}
-    monkeypatch.setattr(bench_reach, "CAPTURE_DCS", fast)
-    walkers = np.where(styles == "a", "skeleton 1", "skeleton 2")
+    ds = _synthetic_side(monkeypatch, 20, ["a"] * 10 + ["b"] * 10, 2)
+    walkers = np.where(ds.groups == "a", "skeleton 1", "skeleton 2")
     bench_reach.run_side(ds, Path("clips"), 0.0, 0, walkers)
     out = capsys.readouterr().out
     assert "per held-out style" in out and "per held-out walker" not in out
