@@ -128,6 +128,7 @@ from sklearn.model_selection import KFold
 from sklearn.neighbors import KNeighborsRegressor
 from sklearn.pipeline import make_pipeline
 from sklearn.preprocessing import StandardScaler
+from tqdm import tqdm
 
 import mjwalk.render  # noqa: F401  (picks a headless GL backend before mujoco is loaded)
 from mjwalk.arms.armcapture import N_SAMPLES, ArmMovements, arm_movements
@@ -253,12 +254,16 @@ def movement_error(model, c, u, lengths, endpoints=True):
 
 def evaluate(C, U, lengths, splits, extras=None, endpoints=True, dcs=None, seed=0):
     """Per regressor: (errors in degrees per test movement, neuron counts, seconds, extras
-    RMS, test index per error) over the (train, test) index ``splits``."""
+    RMS, test index per error) over the (train, test) index ``splits``; a progress bar on
+    a terminal."""
     dcs = dict(dcs or {})
     out = {}
     reps = {}
-    for name in regressors(seed, C.shape[1], dcs):
+    names = list(regressors(seed, C.shape[1], dcs))
+    bar = tqdm(total=len(names) * len(splits), desc="folds", unit="fold", leave=False, disable=None)
+    for name in names:
         errs, ex_errs, neurons, idx, t0 = [], [], [], [], time.perf_counter()
+        bar.set_description(name)
         for fold, (tr, te) in enumerate(splits):
             reg = regressors(seed + fold, C.shape[1], dcs)[name]
             model = ReachModel(
@@ -274,6 +279,7 @@ def evaluate(C, U, lengths, splits, extras=None, endpoints=True, dcs=None, seed=
                 idx.append(i)
                 if extras is not None:  # RMS over time of each extra channel
                     ex_errs.append(np.sqrt(((r.extras - extras[i]) ** 2).mean(axis=0)))
+            bar.update()
         out[name] = (
             np.array(errs),
             neurons,
@@ -281,6 +287,7 @@ def evaluate(C, U, lengths, splits, extras=None, endpoints=True, dcs=None, seed=
             np.array(ex_errs),
             np.array(idx),
         )
+    bar.close()
     return out
 
 
