@@ -12,6 +12,7 @@ import numpy as np
 
 from mjwalk.body.humanoid import pelvis_height
 from mjwalk.timeline.frames import ease_arms, frames_from_legs, room_and_away, yaw_quat
+from mjwalk.timeline.parts import hand_poses
 
 if TYPE_CHECKING:
     pass  # loaded on first use (prepare)
@@ -150,16 +151,7 @@ def _settle(frames: np.ndarray, start: np.ndarray, r: int, hinges: np.ndarray) -
 def hand_points(ctx, qpos: np.ndarray) -> np.ndarray:
     """(F, 2, 3) world positions (m) of the left and right palm (the hand geoms' centres) in
     the poses ``qpos`` (F, nq)."""
-    m, jm = ctx.model, ctx.jointmap
-    data = ctx.scratch()
-    ids = [m.body(f"{jm.prefix}hand_{p}").id for p in ("l", "r")]
-    gids = [int(np.flatnonzero(m.geom_bodyid == b)[0]) for b in ids]
-    out = np.empty((len(qpos), 2, 3))
-    for f, q in enumerate(np.atleast_2d(qpos)):
-        data.qpos[:] = q
-        mujoco.mj_kinematics(m, data)
-        out[f] = data.geom_xpos[gids]
-    return out
+    return hand_poses(ctx.model, ctx.jointmap, qpos, ctx.scratch())[2]
 
 
 def carry_abduction(ctx, width: float) -> float:

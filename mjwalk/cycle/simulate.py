@@ -238,7 +238,7 @@ def simulate_cycle(
             for i, task in enumerate(spec.tasks)
             if task.kind in ("pick", "place", "fasten") and task.site is not None
         ]
-        timeline.parts = part_tracks(ctx.model, ctx.jointmap, qpos, handlings)
+        timeline.parts = part_tracks(ctx.model, ctx.jointmap, qpos, handlings, ctx.scratch())
     contacts = collision_report(timeline, data=ctx.scratch()) if collisions else []
     return CycleResult(
         spec=spec,

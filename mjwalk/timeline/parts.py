@@ -69,12 +69,17 @@ class Handling:
     end: int
 
 
-def _body_poses(model, jm: JointMap, qpos: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(F, 2, 3) positions and (F, 2, 3, 3) orientations of the hand bodies (left, right) and
-    (F, 2, 3) palm centres, for every pose."""
-    data = mujoco.MjData(model)
+def hand_poses(
+    model: mujoco.MjModel, jm: JointMap, qpos: np.ndarray, data: mujoco.MjData | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(F, 2, 3) world positions (m) and (F, 2, 3, 3) orientations of the hand bodies (left,
+    right) and (F, 2, 3) their palms' centres (each hand's first geom) in the poses ``qpos``
+    (F, nq), by forward kinematics in ``data`` (a new MjData when None; its pose is the last
+    one's afterwards)."""
+    data = mujoco.MjData(model) if data is None else data
     bodies = [model.body(f"{jm.prefix}hand_{p}").id for p in ("l", "r")]
     palms = [int(np.flatnonzero(model.geom_bodyid == b)[0]) for b in bodies]
+    qpos = np.atleast_2d(qpos)
     n = len(qpos)
     pos, mat, palm = np.empty((n, 2, 3)), np.empty((n, 2, 3, 3)), np.empty((n, 2, 3))
     for f, q in enumerate(qpos):
@@ -98,10 +103,15 @@ def _palms_frame(palm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def part_tracks(
-    model: mujoco.MjModel, jm: JointMap, qpos: np.ndarray, handlings: Sequence[Handling]
+    model: mujoco.MjModel,
+    jm: JointMap,
+    qpos: np.ndarray,
+    handlings: Sequence[Handling],
+    data: mujoco.MjData | None = None,
 ) -> list[PartTrack]:
     """The tracks of the scene geoms handled in a timeline of poses ``qpos`` (F, nq) by the
-    picks, places and fastens ``handlings`` (in time order); see the module docstring."""
+    picks, places and fastens ``handlings`` (in time order); see the module docstring.
+    ``data``: an MjData of ``model`` to compute in (a new one when None)."""
     names = {model.geom(g).name: g for g in range(model.ngeom)}
     lying = {  # site -> geom lying there
         model.site(s).name: names[model.site(s).name + PART_GEOM_SUFFIX]
@@ -110,29 +120,30 @@ def part_tracks(
     }
     if not lying or not any(h.kind == "pick" and h.site in lying for h in handlings):
         return []
-    data = mujoco.MjData(model)
-    mujoco.mj_kinematics(model, data)  # the scene's own geom poses (the humanoid's unused)
     n = len(qpos)
-    hand_pos, hand_mat, palm = _body_poses(model, jm, qpos)
+    data = mujoco.MjData(model) if data is None else data
+    # the scene's geoms and sites are welded to the world: any pose's kinematics places them
+    hand_pos, hand_mat, palm = hand_poses(model, jm, qpos, data)
     both_pos, both_mat = _palms_frame(palm)
-    held: dict[str, list[tuple[int | None, int]]] = {"left": [], "right": [], "both": []}
+    held: dict[str, list[int | None]] = {"left": [], "right": [], "both": []}
     tracks: dict[int, PartTrack] = {}
     lay: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # offset from its site, orientation
     for h in handlings:
         site_pos = data.site_xpos[model.site(h.site).id]
-        span = slice(max(h.start, 0), max(min(h.end, n), h.start + 1))
-        side = {"left": 0, "right": 1}.get(h.hand)
-        grip = palm[span, side] if side is not None else both_pos[span]
-        f = span.start + int(np.argmin(np.linalg.norm(grip - site_pos, axis=1)))
-        if f >= n:
+        lo, hi = max(h.start, 0), min(max(h.end, h.start + 1), n)
+        if lo >= hi:  # no frame of this task in the timeline
             continue
+        side = {"left": 0, "right": 1}.get(h.hand)
+        grip = palm[lo:hi, side] if side is not None else both_pos[lo:hi]
+        k = int(np.argmin(np.linalg.norm(grip - site_pos, axis=1)))
+        f, grip_at = lo + k, grip[k]
         if side is not None:
             origin, axes = hand_pos[:, side], hand_mat[:, side]
         else:
             origin, axes = both_pos, both_mat
         if h.kind == "pick":
             g = lying.pop(h.site, None)
-            held[h.hand].append((g, f))
+            held[h.hand].append(g)
             if g is None:
                 continue
             track = tracks.get(g)
@@ -143,13 +154,12 @@ def part_tracks(
             lay[g] = (track.pos[f] - site_pos, track.mat[f].copy())
             track.grasp, track.release = f, None
             # centred on the grip point, its pose in the holding frame kept from the grasp on
-            grip_at = palm[f, side] if side is not None else both_pos[f]
             rel_mat = axes[f].T @ track.mat[f]
             rel_pos = axes[f].T @ (grip_at - origin[f])
             track.pos[f:] = origin[f:] + np.einsum("fij,j->fi", axes[f:], rel_pos)
             track.mat[f:] = axes[f:] @ rel_mat
         elif held[h.hand]:  # place / fasten: the first part this hand took
-            g, _ = held[h.hand].pop(0)
+            g = held[h.hand].pop(0)
             if g is None:
                 continue
             track = tracks[g]
