@@ -179,34 +179,43 @@ def raise_files(data_dir: Path, max_clips: int | None = None, side: str = "left"
     return sorted(Path(data_dir).glob(f"*raise-up-{side}-hand*.bvh"))[:max_clips]
 
 
-def skeleton_walkers(files: list[Path]) -> dict[str, str]:
-    """File name -> walker label (``skeleton 1``, ``skeleton 2``, ... in file order): clips
-    whose BVH hierarchies hold the same joint OFFSETs (to 0.01 file units) share one
-    calibrated skeleton, one actor or capture session. (The Bandai clips hold two: the Hips
-    OFFSET of {masculine, normal} and of {feminine, youthful}, ../shared/data/README.md.)"""
-    from mjwalk.mocap.bvh import parse_bvh
-
+def skeleton_walkers(bvhs: list) -> dict[str, str]:
+    """File name -> walker label (``skeleton 1``, ``skeleton 2``, ... in file order) of parsed
+    BVH files (:func:`mjwalk.mocap.bvh.parse_bvh`): clips whose hierarchies hold the same joint
+    OFFSETs (to 0.01 file units) share one calibrated skeleton, one actor or capture session.
+    (The Bandai clips hold two: the Hips OFFSET of {masculine, normal} and of {feminine,
+    youthful}, ../shared/data/README.md.)"""
     keys: dict[bytes, str] = {}
     out = {}
-    for f in files:
-        bvh = parse_bvh(f)
+    for bvh in bvhs:
         key = np.round(bvh.offsets, 2).tobytes() + "/".join(bvh.names).encode()
-        out[f.name] = keys.setdefault(key, f"skeleton {len(keys) + 1}")
+        out[bvh.path.name] = keys.setdefault(key, f"skeleton {len(keys) + 1}")
     return out
+
+
+def load_side(
+    data_dir: Path, max_clips: int | None = None, side: str = "left", skeleton: str = "bandai"
+) -> tuple[ArmMovements, np.ndarray]:
+    """The raising movements of every ``*raise-up-<side>-hand*.bvh`` clip in ``data_dir``
+    (:func:`mjwalk.arms.armcapture.arm_movements`: right-arm clips mirrored into the left arm's
+    frame, constraints scaled to the clips' mean arm), grouped by style, and each movement's
+    walker (:func:`skeleton_walkers`); ``skeleton`` names the BVH preset (units, axes, arm
+    joints). Each file is read once."""
+    from mjwalk.mocap.bvh import parse_bvh, take_from_bvh
+
+    files = raise_files(data_dir, max_clips, side)
+    bvhs = [parse_bvh(f) for f in files]
+    takes = [take_from_bvh(b, skeleton, fps=30) for b in bvhs]  # named by file
+    ds = arm_movements(takes, side, skeleton, [_style(f) for f in files])
+    walkers = skeleton_walkers(bvhs)
+    return ds, np.array([walkers[n] for n in ds.names])
 
 
 def load_raise_hand(
     data_dir: Path, max_clips: int | None = None, side: str = "left", skeleton: str = "bandai"
 ) -> ArmMovements:
-    """The raising movements of every ``*raise-up-<side>-hand*.bvh`` clip in ``data_dir``
-    (:func:`mjwalk.arms.armcapture.arm_movements`: right-arm clips mirrored into the left arm's
-    frame, constraints scaled to the clips' mean arm), grouped by style; ``skeleton`` names
-    the BVH preset (units, axes, arm joints)."""
-    from mjwalk.mocap import load_bvh
-
-    files = raise_files(data_dir, max_clips, side)
-    takes = [load_bvh(f, skeleton=skeleton, fps=30) for f in files]  # named by file
-    return arm_movements(takes, side, skeleton, [_style(f) for f in files])
+    """The movements of :func:`load_side`, without the walkers."""
+    return load_side(data_dir, max_clips, side, skeleton)[0]
 
 
 class GlobalScaler(StandardScaler):
@@ -360,9 +369,8 @@ def run_real(
     loaded = {}
     for side in sides:
         t = time.perf_counter()
-        ds = load_raise_hand(data_dir, max_clips, side, skeleton)
-        walkers = skeleton_walkers(raise_files(data_dir, max_clips, side))
-        loaded[side] = (ds, time.perf_counter() - t, np.array([walkers[n] for n in ds.names]))
+        ds, walkers = load_side(data_dir, max_clips, side, skeleton)
+        loaded[side] = (ds, time.perf_counter() - t, walkers)
     sets = {}
     for side, (ds, secs, walkers) in loaded.items():
         if len(ds.constraints) < MIN_CLIPS:

@@ -106,11 +106,10 @@ def test_every_clip_is_loaded_before_any_arm_is_evaluated(tmp_path, monkeypatch,
     def load(data_dir, max_clips, side, skeleton):
         if side == "right":
             raise CaptureError("x_raise-up-right-hand_a_001.bvh: bad clip")
-        return good
+        return good, np.array(["skeleton 1"] * 12)
 
     evaluated = []
-    monkeypatch.setattr(bench_reach, "load_raise_hand", load)
-    monkeypatch.setattr(bench_reach, "skeleton_walkers", lambda files: {})
+    monkeypatch.setattr(bench_reach, "load_side", load)
     monkeypatch.setattr(bench_reach, "run_side", lambda ds, *a: evaluated.append(ds))
     assert bench_reach.main(["--data", str(tmp_path), "--no-synthetic"]) == 2
     assert evaluated == []
@@ -129,7 +128,9 @@ def test_clips_of_one_skeleton_are_one_walker(tmp_path):
     for name, hips in zip(names, ["-0.73 93.31 -2.0", "-17.16 93.16 452.98"] * 2, strict=True):
         _armless_bvh(tmp_path / name, hips=hips)
     _armless_bvh(tmp_path / "c_001.bvh", hips="-0.73 93.31 -2.0", skeleton="cmu_bvh")
-    got = bench_reach.skeleton_walkers([tmp_path / n for n in names])
+    from mjwalk.mocap.bvh import parse_bvh
+
+    got = bench_reach.skeleton_walkers([parse_bvh(tmp_path / n) for n in names])
     assert got == {
         "a_001.bvh": "skeleton 1",
         "b_001.bvh": "skeleton 2",

@@ -346,8 +346,13 @@ def load_bvh(
         CaptureError: missing/unreadable file, malformed hierarchy, wrong value counts,
             truncated motion, or a joint named by ``skeleton`` that the file lacks.
     """
+    return take_from_bvh(parse_bvh(path), skeleton, fps)
+
+
+def take_from_bvh(bvh: Bvh, skeleton: SkeletonMap | str = "bandai", fps: float = TAKE_FPS) -> Take:
+    """The :class:`Take` of a parsed BVH file (:func:`parse_bvh`): :func:`load_bvh` without
+    reading the file again (for callers that also need the hierarchy, e.g. its OFFSETs)."""
     skel = get_skeleton(skeleton)
-    bvh = parse_bvh(path)
     check_joints(skel, bvh.names, bvh.path)
     if bvh.motion.shape[0] == 0:
         raise CaptureError(f"{bvh.path}: 'Frames: 0', the file holds no motion")
