@@ -6,7 +6,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mjwalk.arms.armcapture import ARM_JOINTS, arm_chain, arm_movement, arm_movements
+from mjwalk.arms.armcapture import (
+    ARM_JOINTS,
+    HAND_ENDS,
+    arm_chain,
+    arm_movement,
+    arm_movements,
+)
 from mjwalk.arms.armrep import movement_span, resample_trajectory, segment_directions
 from mjwalk.arms.kinematics import min_jerk
 from mjwalk.errors import CaptureError, MjwalkError
@@ -38,8 +44,19 @@ def _raise_chain(lengths=LENGTHS, yaw=0.0, shoulder=(1.0, 2.0, 1.4), hold=(10, 1
 def _take(chain, yaw=0.0, side="left", name="clip"):
     n = len(chain)
     zeros = np.zeros((n, 3))
-    joints = dict(zip(ARM_JOINTS["bandai"][side], np.moveaxis(chain, 1, 0), strict=True))
+    names = ARM_JOINTS["bandai"][side] + (HAND_ENDS["bandai"][side],)[: chain.shape[1] - 3]
+    joints = dict(zip(names, np.moveaxis(chain, 1, 0), strict=True))
     return Take(name, 30.0, zeros, np.full(n, yaw), zeros, zeros, zeros, zeros, joints=joints)
+
+
+HAND = 0.18
+
+
+def _with_hand(chain, hand=HAND):
+    """``chain`` (T, 3, 3) with a hand end (T, 4, 3) continuing the forearm by ``hand`` m."""
+    fore = chain[:, 2] - chain[:, 1]
+    tip = chain[:, 2] + hand * fore / np.linalg.norm(fore, axis=1, keepdims=True)
+    return np.concatenate([chain, tip[:, None]], axis=1)
 
 
 def test_movement_is_cut_from_rest_to_stop_and_put_in_the_body_frame():
@@ -122,5 +139,49 @@ def test_bad_input_is_named():
     bad[5, 2, 0] = np.nan
     with pytest.raises(CaptureError, match="NaN"):
         arm_movement(bad, 0.0)
-    with pytest.raises(MjwalkError, match="two positive lengths"):
+    with pytest.raises(MjwalkError, match="2 positive segment lengths"):
         arm_movements([take], lengths=np.array([0.3, -0.1]))
+    with pytest.raises(MjwalkError, match="3 positive segment lengths"):
+        arm_movements([_take(_with_hand(chain))], hand=True, lengths=LENGTHS)
+
+
+def test_with_the_hand_the_constraint_is_the_hand_ends_start_and_end():
+    # the endpoint model a cycle drives the humanoid with: three segments, the hand's end
+    small, body = _raise_chain(LENGTHS, yaw=0.4)
+    tall, _ = _raise_chain(1.25 * LENGTHS, yaw=-1.0, shoulder=(0.0, 0.0, 1.7))
+    takes = [_take(_with_hand(small), yaw=0.4), _take(_with_hand(tall, 1.25 * HAND), yaw=-1.0)]
+    mv = arm_movements(takes, "left", hand=True, lengths=np.r_[LENGTHS, HAND])
+    assert mv.constraints.shape == (2, 6) and mv.directions.shape == (2, 20, 3, 3)
+    np.testing.assert_allclose(mv.scales, [1.0, 0.8])
+    np.testing.assert_allclose(mv.constraints[0], mv.constraints[1], atol=1e-9)
+    # timed on the hand's end: its start and end positions in the body frame
+    tip = _with_hand(body)[:, 3]
+    a, b = movement_span(tip, until=int(np.argmax(tip[:, 2])))
+    moving = resample_trajectory(_with_hand(body)[a : b + 1], 20)
+    np.testing.assert_allclose(mv.constraints[0], np.r_[moving[0, 3], moving[-1, 3]], atol=1e-9)
+    np.testing.assert_allclose(mv.directions[0], segment_directions(moving), atol=1e-9)
+    np.testing.assert_allclose(mv.directions[0][:, 2], mv.directions[0][:, 1], atol=1e-9)
+    # a right arm's is mirrored into the left arm's frame like the 3-joint chain
+    right = arm_movement(_with_hand(small) * [1.0, -1.0, 1.0], 0.0, "right")
+    left = arm_movement(_with_hand(small), 0.0, "left")
+    for x, y in zip(left, right, strict=True):
+        np.testing.assert_allclose(x, y, atol=1e-9)
+    empty = arm_movements([], hand=True)
+    assert empty.constraints.shape == (0, 6) and empty.directions.shape == (0, 20, 3, 3)
+
+
+def test_a_take_without_a_hand_gets_a_neutral_wrist():
+    # no hand-end joint, or one on the wrist (the Bandai BVH's zero-offset End Site): the hand
+    # continues the forearm, Winter's hand share over the forearm's long
+    chain, _ = _raise_chain()
+    fore = chain[:, 2] - chain[:, 1]
+    expect = chain[:, 2] + 0.108 / 0.146 * fore
+    on_wrist = np.concatenate([chain, chain[:, 2:3]], axis=1)
+    for take in (_take(chain), _take(on_wrist)):
+        got = arm_chain(take, "left", hand=True)
+        assert got.shape == (len(chain), 4, 3)
+        np.testing.assert_allclose(got[:, 3], expect, atol=1e-12)
+    np.testing.assert_allclose(arm_chain(_take(chain), "left", hand=True)[:, :3], chain)
+    # a hand the take holds is used as it is
+    held = _with_hand(chain)
+    np.testing.assert_allclose(arm_chain(_take(held), "left", hand=True), held)

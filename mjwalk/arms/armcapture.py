@@ -15,6 +15,18 @@ One clip becomes one movement of the arm model (Al-Zubi & Sommer §4.1), as
 * constraint (9,): start elbow, start hand and end hand positions (metres, shoulder frame): the
   start posture and the end of the reach, what a planner knows before it.
 
+With ``hand=True`` the chain goes on to the end of the hand, three segments like the humanoid's
+arm (upper arm, forearm, hand), and the constraint (6,) is the start and end position of the
+hand's end: an *endpoint* model, the kind a cycle drives the humanoid with
+(:func:`~mjwalk.arms.reach.check_endpoint_model`). The hand's end is the joint in
+:data:`HAND_ENDS` (the CMU ``fingers`` bone's end) where the capture has one; where it has none
+(the Bandai BVH's hand ``End Site`` lies on the wrist, offset 0; the CMU BVH conversions) the
+hand continues the forearm -- a neutral wrist, what capture without hand markers implies --
+with the hand's length in Winter's proportion to the forearm (:data:`HAND_TO_FOREARM`). A
+cycle's reaches then start where the clips' reaches start
+(:attr:`~mjwalk.arms.reach.ReachModel.rest_hand`), and ``[models] reach`` / ``reach_right`` of
+a cycle file take the two sides' models (:mod:`mjwalk.cycle.spec`).
+
 Body size: people differ in arm length, and the directions of the segments (what the model
 predicts) do not depend on it, but positions do. Each movement's constraint is scaled to one
 reference arm (``ArmMovements.lengths``: the clips' mean upper-arm and forearm lengths unless
@@ -34,7 +46,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mjwalk.arms.armrep import movement_span, resample_trajectory, segment_directions
-from mjwalk.arms.kinematics import MIRROR_Y
+from mjwalk.arms.kinematics import ARM_SEGMENT_SHARES, MIRROR_Y
 from mjwalk.conventions import Side
 from mjwalk.errors import CaptureError, MjwalkError
 from mjwalk.mocap.take import Take
@@ -66,6 +78,20 @@ ARM_JOINTS: dict[str, dict[str, tuple[str, str, str]]] = {
         "right": ("RightArm", "RightForeArm", "RightHand"),
     },
 }
+#: The end of each arm's hand (the tip of the humanoid's hand segment), per skeleton preset: the
+#: Bandai BVH ``End Site`` of the hand joint (offset 0 in the Bandai clips: no hand) and the end
+#: of the CMU ASF ``fingers`` bone (:mod:`mjwalk.mocap.asf` names a bone's end ``<bone>_end``).
+#: The CMU BVH conversions end their hands in fingers of varying names, so they have none here.
+HAND_ENDS: dict[str, dict[str, str]] = {
+    "bandai": {"left": "Hand_L_end", "right": "Hand_R_end"},
+    "cmu": {"left": "lfingers_end", "right": "rfingers_end"},
+}
+#: Hand length over forearm length, for a hand the capture does not hold (Winter 2009, Table
+#: 4.1: hand 0.108 H, forearm 0.146 H; :data:`~mjwalk.arms.kinematics.ARM_SEGMENT_SHARES`).
+HAND_TO_FOREARM = ARM_SEGMENT_SHARES[2] / ARM_SEGMENT_SHARES[1]
+#: A hand-end joint nearer the wrist than this (m, median over the take) is no hand: the
+#: capture holds none (a zero-offset ``End Site``). A real hand is 15-20 cm.
+MIN_HAND = 0.02
 
 
 @dataclass
@@ -73,10 +99,11 @@ class ArmMovements:
     """Movements of one arm, in the left arm's shoulder frame (metres; module docstring).
 
     Attributes:
-        constraints: (p, 9) start elbow, start hand, end hand positions (m), scaled to
-            ``lengths``.
-        directions: (p, n, 2, 3) unit upper-arm and forearm directions over time.
-        lengths: (2,) reference upper-arm and forearm lengths (m) the constraints are scaled to.
+        constraints: (p, 9) start elbow, start hand, end hand positions (m), or with the hand
+            (``hand=True``) (p, 6) start and end of the hand's end, scaled to ``lengths``.
+        directions: (p, n, S, 3) unit segment directions over time: upper arm and forearm
+            (S = 2), and the hand with ``hand=True`` (S = 3).
+        lengths: (S,) reference segment lengths (m) the constraints are scaled to.
         scales: (p,) factor each clip's positions were scaled by (reference arm length over the
             clip's; 1 for a clip of the reference size).
         groups: (p,) group of each movement (style or walker: the leave-one-group-out groups).
@@ -94,9 +121,12 @@ class ArmMovements:
         return len(self.constraints)
 
 
-def arm_chain(take: Take, side: Side, skeleton: str = "bandai") -> np.ndarray:
+def arm_chain(take: Take, side: Side, skeleton: str = "bandai", hand: bool = False) -> np.ndarray:
     """(T, 3, 3) shoulder, elbow, wrist positions of ``side``'s arm in ``take`` (world, m),
-    joint names from :data:`ARM_JOINTS`; a take without them raises CaptureError naming them."""
+    joint names from :data:`ARM_JOINTS`; with ``hand`` (T, 4, 3), the hand's end last: the
+    :data:`HAND_ENDS` joint, or where the take has none (or one on the wrist), the forearm
+    continued by :data:`HAND_TO_FOREARM` of its length. A take without the arm's joints raises
+    CaptureError naming them."""
     if skeleton not in ARM_JOINTS:
         raise MjwalkError(
             f"arm joints: unknown skeleton {skeleton!r} (choose from {sorted(ARM_JOINTS)})"
@@ -110,7 +140,14 @@ def arm_chain(take: Take, side: Side, skeleton: str = "bandai") -> np.ndarray:
             f"{take.name}: no joint {', '.join(missing)} (the {side} arm of the {skeleton} "
             f"skeleton: {', '.join(names)}); joints present: {', '.join(take.joints) or 'none'}"
         )
-    return np.stack([take.joints[j] for j in names], axis=1)
+    chain = np.stack([take.joints[j] for j in names], axis=1)
+    if not hand:
+        return chain
+    wrist = chain[:, 2]
+    tip = take.joints.get(HAND_ENDS.get(skeleton, {}).get(side, ""))
+    if tip is None or np.median(np.linalg.norm(tip - wrist, axis=1)) < MIN_HAND:
+        tip = wrist + HAND_TO_FOREARM * (wrist - chain[:, 1])  # a neutral wrist
+    return np.concatenate([chain, np.asarray(tip, dtype=float)[:, None]], axis=1)
 
 
 def arm_movement(
@@ -121,17 +158,23 @@ def arm_movement(
     until_highest: bool = True,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
     """One movement of an arm ``chain`` (T, 3, 3): shoulder, elbow, wrist positions (world,
-    metres, z up) with the body heading ``yaw`` (radians from +x) at the first frame.
+    metres, z up) with the body heading ``yaw`` (radians from +x) at the first frame; or (T, 4,
+    3) with the hand's end last.
 
-    Returns ``(constraint (9,), directions (n, 2, 3), lengths (2,))`` in the left arm's shoulder
+    Returns ``(constraint, directions (n, S, 3), lengths (S,))`` in the left arm's shoulder
     frame (module docstring), unscaled (``lengths`` are this clip's), or None when the clip holds
-    no movement of at least :data:`MIN_FRAMES` frames and :data:`MIN_TRAVEL` metres.
-    ``until_highest``: the movement ends by the hand's highest frame (a raise held and creeping
-    upwards while held).
+    no movement of at least :data:`MIN_FRAMES` frames and :data:`MIN_TRAVEL` metres. The
+    constraint is (9,) start elbow, start wrist, end wrist for a 3-joint chain and (6,) start
+    and end of the hand's end for a 4-joint one; the movement is timed on the chain's last
+    joint. ``until_highest``: the movement ends by that joint's highest frame (a raise held and
+    creeping upwards while held).
     """
     P = np.asarray(chain, dtype=float)
-    if P.ndim != 3 or P.shape[1:] != (3, 3) or len(P) < 2:
-        raise MjwalkError(f"arm_movement: need a (T >= 2, 3, 3) arm chain, got {P.shape}")
+    if P.ndim != 3 or P.shape[1:] not in ((3, 3), (4, 3)) or len(P) < 2:
+        raise MjwalkError(
+            f"arm_movement: need a (T >= 2, 3, 3) arm chain or a (T >= 2, 4, 3) one with the "
+            f"hand, got {P.shape}"
+        )
     if not np.isfinite(P).all():
         raise CaptureError("arm_movement: the arm chain holds NaN or infinite positions")
     c, s = np.cos(-yaw), np.sin(-yaw)
@@ -139,14 +182,16 @@ def arm_movement(
     P = (P - P[:, :1]) @ rz.T  # shoulder at the origin, body frame of frame 0
     if side == "right":
         P = P * MIRROR_Y  # into the left arm's frame
-    until = int(np.argmax(P[:, 2, 2])) if until_highest else None
-    a, b = movement_span(P[:, 2], until=until)
+    until = int(np.argmax(P[:, -1, 2])) if until_highest else None
+    a, b = movement_span(P[:, -1], until=until)
     if b - a + 1 < MIN_FRAMES:
         return None
     Pn = resample_trajectory(P[a : b + 1], n)
-    if np.linalg.norm(Pn[-1, 2] - Pn[0, 2]) < MIN_TRAVEL:
+    if np.linalg.norm(Pn[-1, -1] - Pn[0, -1]) < MIN_TRAVEL:
         return None
     lengths = np.linalg.norm(np.diff(P[a], axis=0), axis=1)
+    if P.shape[1] == 4:
+        return np.r_[Pn[0, 3], Pn[-1, 3]], segment_directions(Pn), lengths
     return np.r_[Pn[0, 1], Pn[0, 2], Pn[-1, 2]], segment_directions(Pn), lengths
 
 
@@ -158,16 +203,24 @@ def arm_movements(
     lengths: np.ndarray | None = None,
     n: int = N_SAMPLES,
     until_highest: bool = True,
+    hand: bool = False,
 ) -> ArmMovements:
     """The movement of ``side``'s arm in every take (see :func:`arm_movement`; takes without
-    one are left out), constraints scaled to the reference arm ``lengths`` (2,) m (default:
-    the mean over the clips). ``groups``: one label per take (style or walker)."""
+    one are left out), constraints scaled to the reference arm ``lengths`` (S,) m (default:
+    the mean over the clips). ``groups``: one label per take (style or walker). ``hand``: the
+    chain goes on to the hand's end and the constraint is its start and end (6,): an endpoint
+    model for cycles (module docstring)."""
     if groups is not None and len(groups) != len(takes):
         raise MjwalkError(f"arm_movements: {len(groups)} groups for {len(takes)} takes")
+    n_seg, n_con = (3, 6) if hand else (2, 9)
     C, U, L, G, names = [], [], [], [], []
     for i, take in enumerate(takes):
         out = arm_movement(
-            arm_chain(take, side, skeleton), float(take.pelvis_yaw[0]), side, n, until_highest
+            arm_chain(take, side, skeleton, hand),
+            float(take.pelvis_yaw[0]),
+            side,
+            n,
+            until_highest,
         )
         if out is None:
             continue
@@ -177,12 +230,19 @@ def arm_movements(
         G.append("?" if groups is None else str(groups[i]))
         names.append(take.name)
     if not C:
-        empty = np.full(2, np.nan) if lengths is None else np.asarray(lengths, dtype=float)
+        empty = np.full(n_seg, np.nan) if lengths is None else np.asarray(lengths, dtype=float)
         return ArmMovements(
-            np.zeros((0, 9)), np.zeros((0, n, 2, 3)), empty, np.zeros(0), np.array([]), []
+            np.zeros((0, n_con)),
+            np.zeros((0, n, n_seg, 3)),
+            empty,
+            np.zeros(0),
+            np.array([]),
+            [],
         )
     ref = np.mean(L, axis=0) if lengths is None else np.asarray(lengths, dtype=float)
-    if ref.shape != (2,) or not (ref > 0).all():
-        raise MjwalkError(f"arm_movements: lengths must be two positive lengths, got {ref}")
+    if ref.shape != (n_seg,) or not (ref > 0).all():
+        raise MjwalkError(
+            f"arm_movements: lengths must be {n_seg} positive segment lengths, got {ref}"
+        )
     scales = ref.sum() / np.sum(L, axis=1)
     return ArmMovements(np.array(C) * scales[:, None], np.array(U), ref, scales, np.array(G), names)

@@ -27,6 +27,7 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
+from numpy.typing import ArrayLike
 from scipy.optimize import least_squares
 
 from mjwalk._io import check_header, load_npz, save_npz
@@ -64,13 +65,22 @@ def check_endpoint_model(model: ReachModel, source: str = "reach model") -> None
     if n_in == 9 and n_seg == 2:
         hint = (
             " (a model of raises from capture, mjwalk.arm_movements: its constraint is the "
-            "start elbow, start hand and end hand; use it with ReachModel.predict)"
+            "start elbow, start hand and end hand; use it with ReachModel.predict, or train "
+            "an endpoint model with mjwalk.arm_movements(..., hand=True))"
         )
     raise MjwalkError(
         f"{source}: a scene reach needs an endpoint model of the humanoid's arm (constraint: "
         f"start and end hand positions, {ENDPOINT_INPUTS} values; segments: upper arm, "
         f"forearm, hand); this one takes {n_in} inputs and has {n_seg} segments{hint}"
     )
+
+
+def _point(p, what: str, error: type[MjwalkError] = MjwalkError) -> np.ndarray:
+    """``p`` as a finite (3,) float array, or ``error`` naming ``what``."""
+    a = np.asarray(p, dtype=float)
+    if a.shape != (3,) or not np.isfinite(a).all():
+        raise error(f"ReachModel: {what} must be three finite numbers (m), got {a.tolist()}")
+    return a
 
 
 @dataclass
@@ -110,25 +120,64 @@ def mirror_result(res: ReachResult) -> ReachResult:
     )
 
 
+def arm_scale(model: ReachModel, stature: float) -> float:
+    """The model's arm length over the arm of a humanoid of ``stature`` metres, both summed
+    over the model's segments (to the hand's end for an endpoint model, whose hand end is what
+    it places; Winter's shares for the humanoid; 1 at the stature the model's lengths are of).
+    A scene reach is solved at the model's size: targets (m, shoulder frame) are multiplied
+    by it, and segment directions, hence joint angles, are the same at every size (geometric
+    similarity)."""
+    lengths = np.asarray(model.lengths, dtype=float)
+    return float(lengths.sum() / arm_segment_lengths(stature)[: len(lengths)].sum())
+
+
+def humanoid_arm(model: ReachModel, stature: float) -> tuple[float, np.ndarray]:
+    """``(scale, arm_lengths)`` of a humanoid of ``stature`` metres reaching with ``model``:
+    :func:`arm_scale`, and its upper arm, forearm and hand at the model's size (Winter's
+    shares times the scale): the segments the endpoint fit puts the humanoid's hand on the
+    target with, where the model's clips had arms of other proportions."""
+    scale = arm_scale(model, stature)
+    return scale, arm_segment_lengths(stature)[: len(model.lengths)] * scale
+
+
 def reach_for_side(
     model: ReachModel,
     end: np.ndarray,
     side: Side,
     start: np.ndarray | None = None,
     object_size: float | None = None,
+    arm_lengths: ArrayLike | None = None,
 ) -> ReachResult:
-    """The endpoint reach from ``start`` (default :data:`REST_HAND`) to ``end`` (metres, in the
-    moving arm's shoulder frame) for either arm. The model is a left-arm model; the body is
-    symmetric about its sagittal plane, so a right-arm reach is the left-arm reach to the
-    mirrored target (:data:`MIRROR_Y`), mirrored back (:func:`mirror_result`)."""
+    """The endpoint reach from ``start`` (default: where the model's reaches start,
+    :attr:`ReachModel.rest_hand`) to ``end`` (metres, in the moving arm's shoulder frame) for
+    either arm; ``start`` is a rest posture, the same for both arms (in the left arm's frame).
+    The model is a left-arm model; the body is symmetric about its sagittal plane, so a
+    right-arm reach is the left-arm reach to the mirrored target (:data:`MIRROR_Y`), mirrored
+    back (:func:`mirror_result`). ``arm_lengths``: the moving arm's segments at the model's
+    size (see :meth:`ReachModel.predict`; :func:`humanoid_arm` for a humanoid's)."""
     check_endpoint_model(model)
-    start = np.asarray(REST_HAND if start is None else start, dtype=float)
+    start = np.asarray(model.rest_hand if start is None else start, dtype=float)
+    if arm_lengths is not None:
+        # a rest hand out of this arm's reach (a straight hanging arm of other proportions
+        # than the clips') comes onto its reach: a rest posture, not a target
+        reach = (1.0 - 1e-6) * float(np.sum(arm_lengths))
+        r = float(np.linalg.norm(start))
+        if r > reach:
+            start = start * (reach / r)
     end = np.asarray(end, dtype=float)
     if side == "right":
         m_end = end * MIRROR_Y
-        res = model.predict(np.r_[start, m_end], start=start, end=m_end, object_size=object_size)
+        res = model.predict(
+            np.r_[start, m_end],
+            start=start,
+            end=m_end,
+            object_size=object_size,
+            arm_lengths=arm_lengths,
+        )
         return mirror_result(res)
-    return model.predict(np.r_[start, end], start=start, end=end, object_size=object_size)
+    return model.predict(
+        np.r_[start, end], start=start, end=end, object_size=object_size, arm_lengths=arm_lengths
+    )
 
 
 class ReachModel:
@@ -140,6 +189,8 @@ class ReachModel:
         dcs: keyword arguments of :class:`DCSNetwork`.
         regressor: any object with ``fit(X, Y)``/``predict(X)`` used instead of the DCS (for
             baselines: sklearn KNeighborsRegressor, GaussianProcessRegressor); not saved.
+        rest_hand: (3,) where an endpoint model's reaches start (m, left shoulder frame; see
+            :attr:`rest_hand`); default: the mean start of its training constraints.
     """
 
     def __init__(
@@ -148,11 +199,25 @@ class ReachModel:
         variance: float | int = 0.98,
         dcs: dict | None = None,
         regressor=None,
+        rest_hand: ArrayLike | None = None,
     ):
         self.lengths = np.asarray(lengths if lengths is not None else arm_segment_lengths())
         self.variance = variance
         self.dcs = dict(dcs or {})
         self.regressor = regressor
+        self.rest_hand_ = None if rest_hand is None else _point(rest_hand, "rest_hand")
+
+    @property
+    def rest_hand(self) -> np.ndarray:
+        """(3,) hand position (m, left shoulder frame; the same rest posture for a mirrored
+        right arm) where the reaches of a cycle and of
+        :func:`~mjwalk.timeline.reach.reach_in_scene` start: given to the constructor, else the
+        mean start hand of an endpoint model's training constraints (a model trained on capture
+        starts where the clips' reaches start), else :data:`REST_HAND` (the generated default
+        model's nominal start, and models saved before this was kept)."""
+        if self.rest_hand_ is not None:
+            return self.rest_hand_.copy()
+        return np.asarray(REST_HAND, dtype=float)
 
     def fit(
         self,
@@ -178,6 +243,8 @@ class ReachModel:
         b = self.rep_.pca_.transform(self.rep_.to_features(A, extras))
         self.n_modes_ = b.shape[1]
         self.n_inputs_ = C.shape[1]
+        if self.rest_hand_ is None and C.shape[1] == ENDPOINT_INPUTS:
+            self.rest_hand_ = C[:, :3].mean(axis=0)
         target = np.hstack([b, poses])
         self.net_ = self.regressor if self.regressor is not None else DCSNetwork(**self.dcs)
         self.net_.fit(C, target)
@@ -211,11 +278,21 @@ class ReachModel:
         end: np.ndarray | None = None,
         strict: bool = False,
         object_size: float | None = None,
+        arm_lengths: ArrayLike | None = None,
     ) -> ReachResult:
         """Synthesize the movement for one ``constraint`` (d,); with ``start``/``end`` (3,)
         hand positions (metres, shoulder frame) the movement is fitted to them exactly; with
         ``object_size`` (m) the grip aperture (extras channel 0) is blended, with a
-        minimum-jerk profile, to close exactly on the object at the end."""
+        minimum-jerk profile, to close exactly on the object at the end. ``arm_lengths`` (S,)
+        m: the segments of the arm that makes the movement (default: the model's ``lengths``),
+        for the fit to ``start``/``end`` and ``hand``: an arm of other proportions than the
+        clips' (a humanoid's, at the model's size) puts its own hand on the points."""
+        L = self.lengths if arm_lengths is None else np.asarray(arm_lengths, dtype=float)
+        if L.shape != self.lengths.shape or not (L > 0).all():
+            raise MjwalkError(
+                f"ReachModel.predict: arm_lengths must be {len(self.lengths)} positive lengths "
+                f"(m), got {np.asarray(arm_lengths).tolist()}"
+            )
         if not hasattr(self, "net_"):
             raise MjwalkError("ReachModel is not fitted; call fit() or load() first")
         c = np.atleast_1d(np.asarray(constraint, dtype=float))
@@ -243,14 +320,14 @@ class ReachModel:
             E = E.copy()
             E[:, 0] += min_jerk(np.linspace(0, 1, len(E))) * (object_size - E[-1, 0])
         if start is not None or end is not None:
-            pose = self._fit_endpoints(A, pose, start, end)
+            pose = self._fit_endpoints(A, pose, start, end, L)
         U = apply_pose(self.rep_.center_, A, pose)
         if start is not None or end is not None:
-            U, note = self._ik_correct(U, start, end)
+            U, note = self._ik_correct(U, start, end, L)
             warnings += note
         return ReachResult(
             directions=U,
-            hand=end_effector(U, self.lengths),
+            hand=end_effector(U, L),
             extras=E,
             coefficients=b,
             distance=dist,
@@ -258,7 +335,7 @@ class ReachModel:
             warnings=warnings,
         )
 
-    def _fit_endpoints(self, A, pose0, start, end):
+    def _fit_endpoints(self, A, pose0, start, end, lengths):
         idx, points = [], []
         if start is not None:
             idx.append(0)
@@ -270,33 +347,31 @@ class ReachModel:
         Asub = A[idx]
 
         def resid(x):
-            return (
-                end_effector(apply_pose(self.rep_.center_, Asub, x), self.lengths) - tgt
-            ).ravel()
+            return (end_effector(apply_pose(self.rep_.center_, Asub, x), lengths) - tgt).ravel()
 
         lb = np.r_[-np.inf, -np.inf, -np.inf, -1.0]
         ub = np.r_[np.inf, np.inf, np.inf, 1.0]
         x0 = np.clip(pose0, lb + 1e-9, ub - 1e-9)
         # compiled Levenberg-Marquardt (the same residual); scipy's bounded solver where it
         # does not converge or the scale ends on its bound
-        x, ok = fit_endpoint_pose(self.rep_.center_, Asub, self.lengths, tgt, x0, (-1.0, 1.0))
+        x, ok = fit_endpoint_pose(self.rep_.center_, Asub, lengths, tgt, x0, (-1.0, 1.0))
         if ok:
             return x
         return least_squares(resid, x0, bounds=(lb, ub)).x
 
-    def _ik_correct(self, U, start, end):
+    def _ik_correct(self, U, start, end, lengths):
         """Blend the start/end hand errors out with a minimum-jerk profile (analytic IK)."""
         n = len(U)
-        hand = end_effector(U, self.lengths)
+        hand = end_effector(U, lengths)
         e0 = np.zeros(3) if start is None else np.asarray(start) - hand[0]
         e1 = np.zeros(3) if end is None else np.asarray(end) - hand[-1]
         w = min_jerk(np.linspace(0, 1, n))[:, None]
         delta = (1 - w) * e0 + w * e1
-        l1, l2 = self.lengths[:2]
+        l1, l2 = lengths[:2]
         out = U.copy()
         wrist_target = hand + delta
-        if len(self.lengths) > 2:
-            wrist_target = wrist_target - end_effector(U[:, 2:], self.lengths[2:])
+        if len(lengths) > 2:
+            wrist_target = wrist_target - end_effector(U[:, 2:], lengths[2:])
         far = np.flatnonzero(np.linalg.norm(wrist_target, axis=1) > l1 + l2 - 1e-6)
         notes = [f"frame {far[0]}: hand target out of reach, clamped"] if len(far) else []
         out[:, 0], out[:, 1] = two_link_ik_rows(wrist_target, l1, l2, U[:, 0] * l1)
@@ -310,6 +385,8 @@ class ReachModel:
         arrays = dict(self.rep_.to_arrays())
         arrays.update({f"dcs_{k}": v for k, v in self.net_._arrays().items()})
         arrays["lengths"] = self.lengths
+        if self.rest_hand_ is not None:
+            arrays["rest_hand"] = self.rest_hand_
         header = {
             "format": REACH_FORMAT,
             "version": REACH_VERSION,
@@ -331,6 +408,8 @@ class ReachModel:
             dcs_data = {k[4:]: v for k, v in data.items() if k.startswith("dcs_")}
             model.net_ = DCSNetwork.from_arrays(header["dcs_header"], dcs_data, source=str(path))
             model.n_inputs_ = len(model.net_.x_mean_)
+            if "rest_hand" in data:
+                model.rest_hand_ = _point(data["rest_hand"], f"{path}: rest_hand", ModelFileError)
         except (KeyError, ValueError, TypeError) as exc:
             raise ModelFileError(f"{path}: corrupt reach model ({exc})") from exc
         return model

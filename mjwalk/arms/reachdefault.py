@@ -53,6 +53,7 @@ def default_reach_model(progress: bool = True):
     """The :class:`~mjwalk.arms.reach.ReachModel` of start/end-constrained reaches of the left
     arm (``reachgen.generate("endpoints", 200, seed 0)``), cached beside the step model."""
     from mjwalk.arms import reachgen
+    from mjwalk.arms.kinematics import REST_HAND
     from mjwalk.arms.reach import ReachModel
     from mjwalk.gait.default import cache_dir
 
@@ -70,7 +71,9 @@ def default_reach_model(progress: bool = True):
         if progress:
             print(f"[mjwalk] building the default reach model -> {path}", file=sys.stderr)
         data = reachgen.generate("endpoints", N_TRAIN, np.random.default_rng(0))
-        model = ReachModel(data.lengths, dcs=DEFAULT_DCS).fit(data.constraints, data.directions)
+        # reaches start at the generator's nominal start (the sample mean is within a mm of it)
+        model = ReachModel(data.lengths, dcs=DEFAULT_DCS, rest_hand=REST_HAND)
+        model.fit(data.constraints, data.directions)
         model.save(path)
         if progress:
             print(

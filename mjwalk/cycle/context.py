@@ -53,11 +53,21 @@ class CycleContext:
     clearance: ArmClearance | None = None  # the reach's clearance check, built on first use
     #: the operator's turning speed on the spot over the reference adult's (operator_context)
     turn_rate: float = 1.0
+    #: the right arm's reach model (``[models] reach_right``), None: ``reach_model`` mirrored
+    reach_model_right: object | None = None
     # the scratch MjData and the model it was made for (not copied by dataclasses.replace:
     # an operator's context has its own humanoid model)
     _data: tuple[mujoco.MjModel, mujoco.MjData] | None = field(
         default=None, init=False, repr=False, compare=False
     )
+
+    def reach_model_for(self, side: str):
+        """The reach model of the ``side`` arm ("left" or "right"): both are left-arm-frame
+        models, a right arm's reach mirrors the one it gets
+        (:func:`~mjwalk.arms.reach.reach_for_side`)."""
+        if side == "right" and self.reach_model_right is not None:
+            return self.reach_model_right
+        return self.reach_model
 
     def scratch(self) -> mujoco.MjData:
         """One MjData of ``model`` for this context's forward kinematics (building one takes
@@ -120,15 +130,15 @@ def _load_step_model(spec: CycleSpec):
     return StepModel.load(spec.step_model)
 
 
-def _load_reach_model(spec: CycleSpec):
+def _load_reach_model(path: str):
     from mjwalk.arms.reach import ReachModel, check_endpoint_model
 
-    if spec.reach_model == "default":
+    if path == "default":
         from mjwalk.arms.reachdefault import default_reach_model
 
         return default_reach_model()
-    model = ReachModel.load(spec.reach_model)
-    check_endpoint_model(model, f"reach model {spec.reach_model}")  # before any work
+    model = ReachModel.load(path)
+    check_endpoint_model(model, f"reach model {path}")  # before any work
     return model
 
 
@@ -185,7 +195,10 @@ def prepare(spec: CycleSpec) -> CycleContext:
         spec=spec,
         workplace=workplace,
         step_model=_load_step_model(spec),
-        reach_model=_load_reach_model(spec),
+        reach_model=_load_reach_model(spec.reach_model),
+        reach_model_right=(
+            None if spec.reach_model_right is None else _load_reach_model(spec.reach_model_right)
+        ),
         model=model,
         jointmap=jm,
     )

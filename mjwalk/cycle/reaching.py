@@ -46,15 +46,6 @@ def _default_timing(dist: float) -> tuple[float, float]:
     return reach_duration(dist, None, "B"), reach_duration(dist, None, RETURN_CASE)
 
 
-def _arm_scale(reach_model, stature: float) -> float:
-    """Reach-model arm length over the arm length of a humanoid of ``stature`` metres (1 at
-    the model's stature)."""
-    from mjwalk.arms.kinematics import arm_segment_lengths
-
-    lengths = np.asarray(reach_model.lengths, dtype=float)
-    return float(lengths[:2].sum() / arm_segment_lengths(stature)[:2].sum())
-
-
 def _reach_frames(
     ctx,
     q0: np.ndarray,
@@ -82,15 +73,14 @@ def _reach_frames(
 
     Returns (frames, hand error in metres, ReachResult of the model part)."""
     from mjwalk.arms.kinematics import (
-        REST_HAND,
         arm_frames,
         arm_joint_angles,
         min_jerk,
         two_link_ik_rows,
     )
-    from mjwalk.arms.reach import reach_for_side
+    from mjwalk.arms.reach import humanoid_arm, reach_for_side
 
-    m, jm, model = ctx.model, ctx.jointmap, ctx.reach_model
+    m, jm, model = ctx.model, ctx.jointmap, ctx.reach_model_for(side)
     data = ctx.scratch()
     data.qpos[:] = q0
     mujoco.mj_kinematics(m, data)
@@ -100,12 +90,13 @@ def _reach_frames(
     # the reach is solved at the reach model's arm lengths; an operator of another stature has
     # the same arm shape scaled (Winter's shares), so the targets are scaled into the model's
     # size (directions, hence joint angles, do not change with the scale)
-    scale = _arm_scale(model, ctx.spec.stature)
+    scale, lengths = humanoid_arm(model, ctx.spec.stature)
     end = frame.T @ (target_w - shoulder) * scale
     pre = frame.T @ (target_w + approach_w - shoulder) * scale
-    start = np.asarray(REST_HAND, dtype=float)
-    res = reach_for_side(model, pre, side, start)  # a right arm mirrors the left-arm model
-    lengths = model.lengths
+    start = model.rest_hand  # where the model's reaches start (the ready posture)
+    # a right arm mirrors the left-arm model; the fit puts the humanoid's own hand on the
+    # points (the model's clips may have had arms of other proportions)
+    res = reach_for_side(model, pre, side, start, arm_lengths=lengths)
     u_last = res.directions[-1]
     if face is not None:  # the hand's direction in the face's plane (shoulder frame)
         n_s = frame.T @ np.asarray(face, dtype=float)
@@ -126,9 +117,10 @@ def _reach_frames(
         timing = _default_timing
     reach_out, reach_back = timing(float(np.linalg.norm(end - start)) / scale)  # operator's metres
     n_out = max(2, round(reach_out * fps))
-    # The reach model's trajectories start at the ready posture (REST_HAND: elbow bent, hand
-    # in front of the thigh), the standing arm hangs straight: the first READY_SHARE of the
-    # reach time bends the arm into the ready posture (joint-space, the hand stays by the body),
+    # The reach model's trajectories start at its ready posture (ReachModel.rest_hand; the
+    # default model's REST_HAND: elbow bent, hand in front of the thigh), the standing arm
+    # hangs straight: the first READY_SHARE of the reach time bends the arm into the ready
+    # posture (joint-space, the hand stays by the body),
     # the rest follows the model's trajectory; the return ends the same way. Without it the arm
     # snapped between the two in one frame (elbow 0 <-> 87 deg).
     n_ready = min(n_out - 2, max(1, round(max(READY_SHARE * n_out, READY_MIN * fps))))

@@ -15,6 +15,8 @@ Format (every path is relative to the TOML file; lengths in metres, times in sec
     [models]                                    # optional table
     step = "default"                            # "default" or a step-model file
     reach = "default"                           # "default" or a reach-model file
+    reach_right = "right.npz"                   # optional: the right arm's model (default: the
+                                                # reach model mirrored); see below
 
     [walking]                                   # optional table
     radius = 0.25                               # body radius for walking, metres (0.1 to 0.6)
@@ -109,7 +111,11 @@ MAX_CYCLE_SECONDS = 3600.0
 _TOP_KEYS = (
     "name", "scene", "start", "takt", "humanoid", "models", "walking", "population", "task"
 )  # fmt: skip
-_TABLE_KEYS = {"humanoid": ("stature",), "models": ("step", "reach"), "walking": ("radius",)}
+_TABLE_KEYS = {
+    "humanoid": ("stature",),
+    "models": ("step", "reach", "reach_right"),
+    "walking": ("radius",),
+}
 _TASK_KEYS = {
     "walk": ("kind", "site", "route"),
     "carry": ("kind", "site", "route", "hand", "part"),
@@ -390,19 +396,25 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
 
         population = parse_population(data["population"], stature, pop_fail)
     base = path.resolve().parent
-    models = {}
-    for key in ("step", "reach"):
-        if key not in tables["models"] or tables["models"][key] == "default":
+    models: dict[str, str | None] = {"reach_right": None}
+    for key in _TABLE_KEYS["models"]:
+        if key not in tables["models"]:
+            continue
+        if tables["models"][key] == "default":
             models[key] = "default"
         else:
             models[key] = str(check.file(tables["models"], key, base, "models"))
-    if models["reach"] != "default":  # the kind of model, before any work (a few ms)
+    for key in ("reach", "reach_right"):
+        path_ = models.get(key, "default")
+        if path_ is None or path_ == "default":
+            continue
+        # the kind of model, before any work (a few ms)
         from mjwalk.arms.reach import ReachModel, check_endpoint_model
 
         try:
-            check_endpoint_model(ReachModel.load(models["reach"]), models["reach"])
+            check_endpoint_model(ReachModel.load(path_), path_)
         except MjwalkError as exc:
-            raise check.fail(f"key 'reach' in [models]: {exc}", "models", None, "reach") from None
+            raise check.fail(f"key {key!r} in [models]: {exc}", "models", None, key) from None
 
     scene = check.file(data, "scene", base)
     if workplace is None:
@@ -440,8 +452,9 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         start=start,
         tasks=tasks,
         stature=stature,
-        step_model=models["step"],
-        reach_model=models["reach"],
+        step_model=models.get("step") or "default",
+        reach_model=models.get("reach") or "default",
+        reach_model_right=models["reach_right"],
         radius=radius,
         name=name,
         population=population,

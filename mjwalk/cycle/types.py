@@ -56,7 +56,11 @@ class CycleSpec:
         start: the site where the operator starts.
         stature: humanoid stature, metres.
         step_model: "default" or a path to a step-model file.
-        reach_model: "default" or a path to a reach-model file.
+        reach_model: "default" or a path to a reach-model file (an endpoint model of the left
+            arm; the right arm mirrors it unless ``reach_model_right`` is given).
+        reach_model_right: None (the right arm mirrors ``reach_model``), "default" or a path to
+            the right arm's model (trained on right-arm clips, which
+            :func:`~mjwalk.arms.armcapture.arm_movements` mirrors into the left arm's frame).
         tasks: the ordered tasks.
         radius: body radius for walking, metres.
         population: who operates each run (:mod:`mjwalk.cycle.population`); None: the step
@@ -71,6 +75,7 @@ class CycleSpec:
     stature: float = DEFAULT_STATURE
     step_model: str = "default"
     reach_model: str = "default"
+    reach_model_right: str | None = None
     radius: float = BODY_RADIUS
     name: str = ""
     population: Population | None = None

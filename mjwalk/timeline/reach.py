@@ -9,8 +9,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from mjwalk.arms.hands import finger_trajectory
-from mjwalk.arms.kinematics import REST_HAND, arm_frames, arm_joint_angles
-from mjwalk.arms.reach import ReachModel, reach_for_side
+from mjwalk.arms.kinematics import arm_frames, arm_joint_angles
+from mjwalk.arms.reach import ReachModel, humanoid_arm, reach_for_side
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 from mjwalk.errors import MjwalkError
 from mjwalk.timeline.frames import yaw_quat
@@ -41,14 +41,18 @@ def reach_in_scene(
 ):
     """A :class:`~mjwalk.timeline.timeline.Timeline` of the humanoid standing at ``stand_site``
     (facing the site's +x) and reaching its ``side`` hand to ``target_site`` (+
-    ``target_offset``, world metres): the hand starts at
-    :data:`~mjwalk.arms.kinematics.REST_HAND` (relaxed, elbow slightly bent; the start of
-    :mod:`~mjwalk.arms.reachgen` reaches) and ends on the target within 1 cm; joint angles
+    ``target_offset``, world metres): the hand starts where the model's reaches start
+    (:attr:`~mjwalk.arms.reach.ReachModel.rest_hand`: for the generated models
+    :data:`~mjwalk.arms.kinematics.REST_HAND`, relaxed, elbow slightly bent) and ends on the
+    target within 1 cm; joint angles
     outside the humanoid's ranges are clipped (noted in ``meta``).
 
     ``constraint`` defaults to the start and end hand positions (an ``"endpoints"`` model); for
     an ``"obstacle"`` or ``"grasp"`` model pass its constraint vector. Returns
-    ``(timeline, result)`` with ``result`` the :class:`ReachResult` in the shoulder frame.
+    ``(timeline, result)`` with ``result`` the :class:`ReachResult` in the shoulder frame, at
+    the model's arm lengths: the target is scaled into the model's size by ``meta["scale"]``
+    (:func:`~mjwalk.arms.reach.arm_scale`; 1 for the default model at 1.75 m), and fitted
+    for the humanoid's arm at that size (``meta["arm_lengths"]``).
     """
     import mujoco
 
@@ -86,13 +90,16 @@ def reach_in_scene(
     shoulder = data.xpos[ua].copy()
     frame = data.xmat[ua].reshape(3, 3).copy()  # shoulder frame at zero shoulder angles
     target_w = data.site_xpos[sid_target] + np.asarray(target_offset, dtype=float)
-    end = frame.T @ (target_w - shoulder)
-    start = np.asarray(REST_HAND, dtype=float)
+    # solved at the model's arm lengths: the target scaled into the model's size, as the cycle
+    # does (segment directions, hence joint angles, do not change with the scale)
+    scale, lengths = humanoid_arm(model, stature)
+    end = frame.T @ (target_w - shoulder) * scale
+    start = model.rest_hand
     if constraint is None:  # either arm (a right arm mirrors the left-arm model)
-        res = reach_for_side(model, end, side, start, object_size)
+        res = reach_for_side(model, end, side, start, object_size, arm_lengths=lengths)
     else:
         c = np.asarray(constraint, dtype=float)
-        res = model.predict(c, start=start, end=end, object_size=object_size)
+        res = model.predict(c, start=start, end=end, object_size=object_size, arm_lengths=lengths)
     q = arm_joint_angles(res.directions, side, None if res.extras is None else res.extras[:, 1])
     n_out = max(2, round(duration * fps) + 1)
     src = np.linspace(0.0, 1.0, len(q))
@@ -116,5 +123,7 @@ def reach_in_scene(
         "target_world": target_w,
         "shoulder": shoulder,
         "frame": frame,
+        "scale": scale,
+        "arm_lengths": lengths,
     }
     return tl, res
