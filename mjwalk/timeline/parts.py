@@ -10,10 +10,11 @@ Frames (world: metres, z up):
 
 * until the grasp the geom stays where the scene puts it;
 * from the grasp -- the frame of the pick in which the grip point (the palm's centre; for a
-  two-handed part, half way between the palms) comes nearest the site -- its centre is at the
-  grip point and it moves rigidly with the hand body that took it (``hand_l`` / ``hand_r``),
-  or, for a two-handed part, with the frame of both palms: origin half way between them, y
-  along the line from the right palm to the left one, z up;
+  two-handed part, half way between the palms) comes nearest the site -- it moves rigidly
+  with the hand body that took it (``hand_l`` / ``hand_r``), or, for a two-handed part, with
+  the frame of both palms (origin half way between them, y along the line from the right palm
+  to the left one, z up), from where it lies at the grasp: the hand's end, which the reach
+  brings onto the part, holds it, so it does not jump onto the palm;
 * from the release -- the frame of the place or fasten in which the grip point comes nearest
   its site -- it lies at that site as it lay at the site it was picked from: the same offset
   from the site, the same orientation (a fastening hand stops in front of the surface; the
@@ -32,6 +33,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from mjwalk.arms.kinematics import min_jerk
 from mjwalk.body.humanoid import JointMap
 
 #: Name suffix of the scene geom that shows the part lying at a pick site.
@@ -91,6 +93,18 @@ def hand_poses(
     return pos, mat, palm
 
 
+#: A grip point moving less than this (m) from where it was at the release is holding still:
+#: the part goes onto its site over those frames. Millimetres: the hold is one repeated pose.
+HOLD_STILL = 1e-3
+
+
+def _slerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """Rotation matrices (n, 3, 3) from ``a`` to ``b`` (3, 3) at shares ``w`` (n,) (SLERP)."""
+    from scipy.spatial.transform import Rotation, Slerp
+
+    return Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([a, b])))(w).as_matrix()
+
+
 def _palms_frame(palm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(F, 3) origin and (F, 3, 3) axes of the two-handed grip: half way between the palms
     ``palm`` (F, 2, 3), y from the right palm to the left one (horizontal), z up."""
@@ -136,7 +150,7 @@ def part_tracks(
         side = {"left": 0, "right": 1}.get(h.hand)
         grip = palm[lo:hi, side] if side is not None else both_pos[lo:hi]
         k = int(np.argmin(np.linalg.norm(grip - site_pos, axis=1)))
-        f, grip_at = lo + k, grip[k]
+        f = lo + k
         if side is not None:
             origin, axes = hand_pos[:, side], hand_mat[:, side]
         else:
@@ -153,9 +167,11 @@ def part_tracks(
                 track = tracks[g] = PartTrack(model.geom(g).name, pos, mat, f, None)
             lay[g] = (track.pos[f] - site_pos, track.mat[f].copy())
             track.grasp, track.release = f, None
-            # centred on the grip point, its pose in the holding frame kept from the grasp on
+            # its pose in the holding frame kept from the grasp on, where it lies then: the
+            # hand's end, not its palm, comes onto the part (the palm centre stops 15-18 cm
+            # from a screw's site; snapping the part onto it jumped it that far in one frame)
             rel_mat = axes[f].T @ track.mat[f]
-            rel_pos = axes[f].T @ (grip_at - origin[f])
+            rel_pos = axes[f].T @ (track.pos[f] - origin[f])
             track.pos[f:] = origin[f:] + np.einsum("fij,j->fi", axes[f:], rel_pos)
             track.mat[f:] = axes[f:] @ rel_mat
         elif held[h.hand]:  # place / fasten: the first part this hand took
@@ -164,8 +180,18 @@ def part_tracks(
                 continue
             track = tracks[g]
             offset, mat0 = lay[g]
-            track.pos[f:] = site_pos + offset
-            track.mat[f:] = mat0
+            # while the hand holds still at the site (a fastening hand stops in front of the
+            # surface) the part goes from the hand onto the site: a screw driven in, not
+            # jumping there in one frame
+            still = np.linalg.norm(grip[k:] - grip[k], axis=1) < HOLD_STILL
+            n_in = int(np.argmin(still)) if not still.all() else len(still)
+            if n_in > 1:
+                w = min_jerk(np.linspace(0.0, 1.0, n_in))[:, None]
+                track.pos[f : f + n_in] = (1 - w) * track.pos[f] + w * (site_pos + offset)
+                for i, r in enumerate(_slerp(track.mat[f], mat0, w[:, 0])):
+                    track.mat[f + i] = r
+            track.pos[f + max(n_in - 1, 0) :] = site_pos + offset
+            track.mat[f + max(n_in - 1, 0) :] = mat0
             track.release = f
             lying[h.site] = g
     return list(tracks.values())
