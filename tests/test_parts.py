@@ -192,3 +192,35 @@ def test_a_pick_without_a_part_geom_draws_nothing(box_cycle):
         Handling("place", "bench_b_box", "left", 40, 80),
     ]
     assert part_tracks(tl.model, ctx.jointmap, tl.qpos, handlings) == []
+
+
+def test_a_reach_is_timed_by_the_hands_true_path(monkeypatch):
+    """MTM-1 measures a reach along the hand's true path, not the straight line: the distance
+    the reach's time is looked up for is the path the hand then travels in the timeline (from
+    the task's first frame to the hold; the palm, measured within 7 %), 1.25-1.7 times the
+    straight line between its ends at the station (1.0 before: the straight line)."""
+    from mjwalk.cycle import simulate as sim
+
+    spec = load_cycle_spec(SCENES / "assembly_station.toml")
+    ctx = prepare(spec)
+    asked: list[tuple[float, str]] = []
+    real = sim.reach_duration
+
+    def spy(distance, walker=None, case="B"):
+        asked.append((distance, case))
+        return real(distance, walker, case)
+
+    monkeypatch.setattr(sim, "reach_duration", spy)
+    res = mjwalk.simulate_cycle(ctx, rng=0, keep_timeline=True)
+    tl = res.timeline
+    timed = [d for d, case in asked if case != "E"]  # the reaches out (E: their returns)
+    hands = {a.task: a.hand for a in res.arms}
+    tasks = [t for t in res.tasks if t.index in hands]
+    assert len(timed) == len(tasks) == 14
+    for d, task in zip(timed, tasks, strict=True):
+        lo, hi = _frames(task, tl.fps)
+        palm = hand_points(ctx, tl.qpos[lo:hi])[:, 0 if hands[task.index] == "left" else 1]
+        step = np.linalg.norm(np.diff(palm, axis=0), axis=1)
+        hold = int(np.flatnonzero(step < 1e-9)[0])
+        assert abs(d / step[:hold].sum() - 1.0) < 0.1, (task, d, step[:hold].sum())
+        assert d > 1.15 * np.linalg.norm(palm[hold] - palm[0]), (task, d)

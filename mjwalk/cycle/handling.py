@@ -3,8 +3,11 @@
 Three factors make a handling time (seconds):
 
 1. **Distance** (MTM-1). The reach out lasts the MTM-1 *Reach* time of its distance
-   (:func:`reach_tmu`), the return to rest the MTM-1 reach of case E (hand moved to an indefinite
-   location, out of the way). The table is the MTM-1 data card (MTM Association for Standards and
+   (:func:`reach_tmu`) -- the true path of the hand, as MTM-1 measures a reach, not the straight
+   line between its ends: from where the hand is, along the planned movement, onto the target
+   (:mod:`mjwalk.cycle.reaching`; 1.25-1.7 times the straight line at the station) -- and the
+   return to rest the MTM-1 reach of case E (hand moved to an indefinite location, out of the
+   way). The table is the MTM-1 data card (MTM Association for Standards and
    Research; reproduced e.g. in Maynard's Industrial Engineering Handbook, 5th ed., McGraw-Hill
    2001, ch. 5.5, and in Freivalds & Niebel, *Niebel's Methods, Standards, and Work Design*,
    13th ed., 2014, Table 12-1): time measurement units (1 TMU = 1e-5 h = 0.036 s) by distance

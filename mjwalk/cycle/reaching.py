@@ -60,8 +60,9 @@ def _reach_frames(
     """Frames of reaching from pose ``q0`` to ``target_w`` (world, m), holding, returning.
 
     ``timing(distance)`` gives the (reach, return) durations in seconds of a hand movement of
-    ``distance`` metres (rest hand to target); default: the reference adult's MTM-1 case B
-    reach and case E return (:mod:`mjwalk.cycle.handling`).
+    ``distance`` metres (the hand's true path, as MTM-1 measures a reach: from where the hand
+    is in ``q0`` along the planned movement to the target); default: the reference adult's
+    MTM-1 case B reach and case E return (:mod:`mjwalk.cycle.handling`).
 
     The reach model (PCA + DCS) brings the hand from rest to the pre-grasp point
     ``target_w + approach_w``; the hand then moves straight onto the target along
@@ -115,15 +116,24 @@ def _reach_frames(
     q = arm_joint_angles(directions, side)
     if timing is None:
         timing = _default_timing
-    reach_out, reach_back = timing(float(np.linalg.norm(end - start)) / scale)  # operator's metres
+    # MTM-1 times a reach by the true path of the hand, not the straight line from start to
+    # end (MTM-1 data card, Reach: "distance moved ... is the true path"; Freivalds & Niebel
+    # 2014, ch. 12): the hand's path from where it is in q0 (the ready phase bends it into the
+    # model's start), along the model's trajectory and the approach, in the operator's metres
+    ready_len, model_len = _hand_path(
+        data, m, jm, side, frame, shoulder, directions, lengths, scale
+    )
+    reach_out, reach_back = timing(ready_len + model_len)
     n_out = max(2, round(reach_out * fps))
     # The reach model's trajectories start at its ready posture (ReachModel.rest_hand; the
     # default model's REST_HAND: elbow bent, hand in front of the thigh), the standing arm
-    # hangs straight: the first READY_SHARE of the reach time bends the arm into the ready
-    # posture (joint-space, the hand stays by the body),
-    # the rest follows the model's trajectory; the return ends the same way. Without it the arm
-    # snapped between the two in one frame (elbow 0 <-> 87 deg).
-    n_ready = min(n_out - 2, max(1, round(max(READY_SHARE * n_out, READY_MIN * fps))))
+    # hangs straight: the first frames bend the arm into the ready posture (joint-space, the
+    # hand stays by the body), their share of the reach time the share of the hand's path they
+    # cover (one pace along the path: a fixed quarter of the time moved the hand up to 3.5 m/s
+    # there), the rest follows the model's trajectory; the return ends the same way. Without
+    # it the arm snapped between the two in one frame (elbow 0 <-> 87 deg).
+    share = ready_len / max(ready_len + model_len, 1e-9)
+    n_ready = min(n_out - 2, max(1, round(max(share * n_out, READY_MIN * fps))))
     ready, _ = arm_frames(q0, jm, q[:1], side, np.ones(n_ready))
     w = _smooth(np.arange(1, n_ready + 1) / (n_ready + 1))[:, None]
     ready = q0[None] + w * (ready - q0[None])
@@ -151,11 +161,28 @@ def _reach_frames(
     return frames, error, res
 
 
-#: Share of a reach's (and its return's) time spent bending the hanging arm into the reach
-#: model's ready posture (or back): about a quarter of an MTM-1 reach, 0.1-0.15 s for the
-#: station's reaches (a modelling choice: MTM-1 times the whole reach from rest).
-READY_SHARE = 0.25
-#: ... and at least this long (s): the elbow bends by about 85 deg into the ready posture, at
+def _hand_path(
+    data, m, jm, side, frame, shoulder, directions, lengths, scale
+) -> tuple[float, float]:
+    """Lengths (m, the operator's size) of the hand's path of a reach: ``(ready, movement)``,
+    from the hand's end in the pose ``data`` holds (kinematics done) straight to the
+    trajectory's start (the ready phase), and along the hand ends of ``directions`` (S
+    segments, model size ``lengths``; scaled by ``scale`` into it). The hand's end in
+    ``data``: the wrist plus the hand's length along the forearm (a neutral wrist)."""
+    from mjwalk.arms.kinematics import end_effector
+
+    p = side_prefix(side)
+    wrist = data.xpos[m.body(f"{jm.prefix}hand_{p}").id]
+    elbow = data.xpos[m.body(f"{jm.prefix}forearm_{p}").id]
+    fore = wrist - elbow
+    tip = wrist + (lengths[2] / scale) * fore / max(float(np.linalg.norm(fore)), 1e-9)
+    hand = end_effector(directions, lengths) / scale  # shoulder frame, operator's metres
+    path = np.linalg.norm(np.diff(hand, axis=0), axis=1).sum()
+    return float(np.linalg.norm(hand[0] - frame.T @ (tip - shoulder))), float(path)
+
+
+#: The ready phase (bending the hanging arm into the reach model's ready posture, or back)
+#: lasts at least this long (s): the elbow bends by about 85 deg into the ready posture, at
 #: most about 600 deg/s (peak elbow speeds of quick human reaches are of that order).
 READY_MIN = 0.15
 
