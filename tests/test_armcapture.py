@@ -185,3 +185,20 @@ def test_a_take_without_a_hand_gets_a_neutral_wrist():
     # a hand the take holds is used as it is
     held = _with_hand(chain)
     np.testing.assert_allclose(arm_chain(_take(held), "left", hand=True), held)
+
+
+def test_cmu_hands_come_from_the_capture(shared_data):
+    """The CMU ASF skeleton has hands (wrist to the end of the fingers bone); the Bandai clips
+    do not (a zero-offset End Site): their hand continues the forearm."""
+    from mjwalk.mocap.asf import load_amc
+    from mjwalk.mocap.bvh import load_bvh
+
+    cmu = load_amc(shared_data / "cmu-35" / "35_01.amc", shared_data / "cmu-35" / "35.asf")
+    chain = arm_chain(cmu, "left", "cmu", hand=True)
+    np.testing.assert_allclose(chain[:, 3], cmu.joints["lfingers_end"])
+    hand = np.linalg.norm(chain[:, 3] - chain[:, 2], axis=1)
+    assert 0.10 < np.median(hand) < 0.20  # a real hand, metres
+    clip = next((shared_data / "bandai-raise-hand").glob("*raise-up-left-hand*.bvh"))
+    bandai = arm_chain(load_bvh(clip), "left", "bandai", hand=True)
+    fore = bandai[:, 2] - bandai[:, 1]
+    np.testing.assert_allclose(bandai[:, 3], bandai[:, 2] + 0.108 / 0.146 * fore, atol=1e-9)
