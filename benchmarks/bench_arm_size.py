@@ -43,10 +43,9 @@ def main(argv=None) -> int:
         )
         return 2
     warnings.filterwarnings("ignore", module="sklearn")
-    data_dir = br.find_data(args.data)
-    if data_dir is None:
-        print(f"skip: no raise-up-left/right-hand clips in {args.data or 'the default places'}")
-        return 2 if args.data else 0
+    data_dir = br.data_or_status(args.data)
+    if isinstance(data_dir, int):
+        return data_dir
     try:
         ds = br.load_raise_hand(data_dir, side="left")
     except MjwalkError as exc:

@@ -163,6 +163,17 @@ def find_data(arg: str | None) -> Path | None:
     return None
 
 
+def data_or_status(arg: str | None) -> Path | int:
+    """The clip folder for ``--data`` ``arg`` (:func:`find_data`), or, having printed why not,
+    the exit status: 2 when ``arg`` names a folder without clips, 0 when none was given (the
+    shared data is absent: a user's machine)."""
+    data_dir = find_data(arg)
+    if data_dir is None:
+        print(f"skip: no raise-up-left/right-hand clips in {arg or 'the default places'}")
+        return 2 if arg else 0
+    return data_dir
+
+
 def _style(path: Path) -> str:
     """Style of a Bandai clip: the name in ``...-hand_<style>_<nnn>.bvh``, else the json id."""
     m = re.search(r"-hand_([A-Za-z-]+)_\d+$", path.stem)
