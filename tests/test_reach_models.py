@@ -19,7 +19,8 @@ from mjwalk.errors import CycleSpecError, MjwalkError
 from mjwalk.timeline import reach_in_scene
 
 
-def _model(seed: int, stature: float = 1.75, p: int = 60) -> tuple[ReachModel, object]:
+def _model(seed: int, stature: float = 1.75, p: int = 60) -> tuple[ReachModel, reachgen.ReachData]:
+    """An endpoint model fitted on ``p`` generated reaches of a ``stature`` m person."""
     data = reachgen.generate("endpoints", p, np.random.default_rng(seed), stature=stature)
     return ReachModel(data.lengths, dcs={"rng": 0}).fit(data.constraints, data.directions), data
 
@@ -40,8 +41,9 @@ def test_rest_hand_is_where_the_training_reaches_start_and_is_saved(tmp_path):
     given.fit(data.constraints, data.directions)
     np.testing.assert_allclose(given.rest_hand, REST_HAND)
     # a model of another constraint (obstacle ratio) has no start in it: the generated rest
-    grasp = reachgen.generate("obstacle", 30, np.random.default_rng(0))
-    other = ReachModel(grasp.lengths, dcs={"rng": 0}).fit(grasp.constraints, grasp.directions)
+    obstacle = reachgen.generate("obstacle", 30, np.random.default_rng(0))
+    other = ReachModel(obstacle.lengths, dcs={"rng": 0})
+    other.fit(obstacle.constraints, obstacle.directions)
     np.testing.assert_allclose(other.rest_hand, REST_HAND)
     with pytest.raises(MjwalkError, match="rest_hand must be three finite numbers"):
         ReachModel(rest_hand=(0.1, np.nan, 0.0))
