@@ -178,7 +178,7 @@ def report_dict(
             ``iqr_ratio`` to those routes.
 
     Returns:
-        ``{"name", "scene", "runs", "routes": {label: {...}}, "cycle_time", "collisions",
+        ``{"name", "scene", "models", "runs", "routes": {label: {...}}, "cycle_time", "collisions",
         "task_time": {kind: {...}}, "arms", "per_run"}``; see the Markdown report for meanings.
     """
     if not results:
@@ -241,6 +241,11 @@ def report_dict(
         "name": spec.name,
         "spec": str(spec.path),
         "scene": str(spec.scene),
+        "models": {  # "default" or the model files the runs used
+            "step": str(getattr(spec, "step_model", "default")),
+            "reach": str(getattr(spec, "reach_model", "default")),
+            "reach_right": getattr(spec, "reach_model_right", None),  # None: reach mirrored
+        },
         "runs": len(results),
         "failed_runs": [
             {
@@ -337,6 +342,7 @@ def format_markdown(rep: dict) -> str:
         f"# Cycle report: {rep['name'] or Path(rep['spec']).stem}",
         "",
         f"Spec `{rep['spec']}`, scene `{rep['scene']}`, {rep['runs']} simulated run(s).",
+        *_models_md(rep),
         "",
         *_failed_md(rep),
         "## Walk paths per route",
@@ -399,6 +405,20 @@ def format_markdown(rep: dict) -> str:
         "",
     ]
     return "\n".join(out)
+
+
+def _models_md(rep: dict) -> list[str]:
+    """The models line of the Markdown report (none for a report without them)."""
+    models = rep.get("models")
+    if not models:
+        return []
+    right = models.get("reach_right")
+    arms = (
+        f"reach `{models['reach']}` (the right arm mirrors it)"
+        if right is None
+        else f"left arm `{models['reach']}`, right arm `{right}`"
+    )
+    return [f"Models: step `{models['step']}`, {arms}."]
 
 
 def _failed_md(rep: dict) -> list[str]:

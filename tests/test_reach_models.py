@@ -119,6 +119,18 @@ def test_the_right_arm_gets_its_own_model(scenes_dir, tmp_path, two_models, monk
     assert used == {"left": {id(ctx.reach_model)}, "right": {id(ctx.reach_model_right)}}
     assert {a.hand for a in res.arms} == {"left", "right"}
     assert max(a.hand_error for a in res.arms) < 0.01
+    # the report says which models the runs used
+    from mjwalk.report import format_markdown, report_dict
+
+    rep = report_dict([res])
+    assert rep["models"] == {
+        "step": "default",
+        "reach": str(tmp_path / "left.npz"),
+        "reach_right": str(tmp_path / "right.npz"),
+    }
+    assert f"left arm `{tmp_path / 'left.npz'}`, right arm `{tmp_path / 'right.npz'}`" in (
+        format_markdown(rep)
+    )
     # without reach_right the right arm mirrors the reach model
     spec1 = load_cycle_spec(_spec_with(scenes_dir, tmp_path, 'reach = "left.npz"'))
     assert spec1.reach_model_right is None
