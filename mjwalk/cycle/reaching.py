@@ -107,8 +107,15 @@ def _reach_frames(
     app = np.repeat(u_last[None], n_app, axis=0)
     taus = min_jerk(np.linspace(0.0, 1.0, n_app + 1)[1:])
     hands = pre + taus[:, None] * (end - pre)
-    if face is not None:
-        app[:, 2] = [_blend_dir(u_last[2], u_face, tau) for tau in taus]
+    # the hand's direction on the target: the model's (or the grip face's) as far as the
+    # humanoid's wrist can turn it there; beyond its range the hand turned as far as it goes
+    # and the arm placed so that hand's end is on the target (before, the wrist was clipped
+    # after the fact and the fingers ended up to 14 cm off a fastening target)
+    u_end = _wrist_feasible(
+        ctx, q0, side, frame, end, u_face if face is not None else u_last[2], u_last, lengths
+    )
+    if face is not None or not np.allclose(u_end, u_last[2]):
+        app[:, 2] = [_blend_dir(u_last[2], u_end, tau) for tau in taus]
     wrists = hands - lengths[2] * app[:, 2]
     hints = np.repeat((u_last[0] * lengths[0])[None], n_app, axis=0)
     app[:, 0], app[:, 1] = two_link_ik_rows(wrists, lengths[0], lengths[1], hints)  # (row-wise)
@@ -141,9 +148,8 @@ def _reach_frames(
     out, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
     data.qpos[:] = out[-1]
     mujoco.mj_kinematics(m, data)
-    wrist = data.xpos[m.body(f"{jm.prefix}hand_{side_prefix(side)}").id]
-    tip = wrist + frame @ (directions[-1, 2] * lengths[2] / scale)  # the operator's hand
-    error = float(np.linalg.norm(tip - target_w))
+    # the hand's end as the humanoid holds it (its hand body's -z axis, after the joint ranges)
+    error = float(np.linalg.norm(_hand_tip(data, m, jm, side, lengths[2] / scale) - target_w))
     n_hold = max(0, round(hold * fps))
     n_back = max(1, round(reach_back * fps))
     n_back = max(2, n_back - n_ready)
@@ -159,6 +165,45 @@ def _reach_frames(
     back = np.vstack([back[1:], ready[::-1], q0[None]])  # ... the ready posture, hanging
     frames = np.vstack([ready, out, np.repeat(out[-1:], n_hold, axis=0), back])
     return frames, error, res
+
+
+def _hand_tip(data, m, jm, side, hand_length: float) -> np.ndarray:
+    """World position of the end of ``side``'s hand in the pose ``data`` holds (kinematics
+    done): the hand body's origin (the wrist) plus ``hand_length`` m along its -z axis, the
+    direction the humanoid's hand points (:mod:`mjwalk.body.humanoid`)."""
+    b = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
+    return data.xpos[b] - hand_length * data.xmat[b].reshape(3, 3)[:, 2]
+
+
+#: Iterations of :func:`_wrist_feasible` (each re-solves the arm for the last hand direction;
+#: the direction moves by well under a degree after the second).
+WRIST_ITERATIONS = 4
+
+
+def _wrist_feasible(ctx, q0, side, frame, end, u_hand, u_last, lengths) -> np.ndarray:
+    """A hand direction (unit, shoulder frame) the humanoid's wrist can hold with the hand's
+    end on ``end`` (model size): ``u_hand`` when its wrist angles are within their ranges,
+    else the direction the hand has with the wrist at its range limits, the arm re-solved by
+    two-link IK (elbow hint from ``u_last``) for that hand, a few times over. Computes in the
+    context's scratch data and leaves it in ``q0``'s kinematics."""
+    from mjwalk.arms.kinematics import arm_frames, arm_joint_angles, two_link_ik_rows
+
+    data = ctx.scratch()
+    u = np.asarray(u_hand, dtype=float)
+    hint = (u_last[0] * lengths[0])[None]
+    b = ctx.model.body(f"{ctx.jointmap.prefix}hand_{side_prefix(side)}").id
+    for _ in range(WRIST_ITERATIONS):
+        u1, u2 = two_link_ik_rows((end - lengths[2] * u)[None], lengths[0], lengths[1], hint)
+        q = arm_joint_angles(np.stack([u1[0], u2[0], u])[None], side)
+        row, clipped = arm_frames(q0, ctx.jointmap, q, side, np.ones(1))
+        if not any("wrist" in c for c in clipped):
+            break
+        data.qpos[:] = row[0]
+        mujoco.mj_kinematics(ctx.model, data)
+        u = frame.T @ -data.xmat[b].reshape(3, 3)[:, 2]
+    data.qpos[:] = q0  # the scratch data back in the pose the caller left it in
+    mujoco.mj_kinematics(ctx.model, data)
+    return u
 
 
 def _hand_path(
