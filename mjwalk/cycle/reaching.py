@@ -440,7 +440,8 @@ class WorkingReach:
         turn: (F, nq) frames of the turn (and step back) towards the target.
         turn_time: its duration in seconds.
         frames: (G, nq) frames of the reach, hold and return.
-        error: distance (m) of the hand from its target at the end of the reach.
+        error: distance (m) of the hand's end from its target at the end of the reach, as
+            the humanoid holds it.
         result: the reach model's ReachResult (left arm's for two hands, with both warnings).
         width: grip distance (m) of a two-handed part, else None.
         distance: the humanoid's smallest distance (m) to the scene over turn and reach among

@@ -123,7 +123,8 @@ class ArmRecord:
     """One arm motion (pick/place/fasten) of a simulated cycle.
 
     Attributes:
-        hand_error: distance of the hand from its target at the end of the reach, metres.
+        hand_error: distance of the hand's end from its target at the end of the reach,
+            metres, as the humanoid holds it (its joint ranges applied).
         outside: the constraint lay outside the reach model's trained range (see warnings).
         step_back: metres the operator stepped back from where the walk ended so the arm
             clears the scene (:mod:`mjwalk.cycle.standoff`); 0 when it was clear there.
