@@ -164,20 +164,11 @@ def reach_for_side(
         r = float(np.linalg.norm(start))
         if r > reach:
             start = start * (reach / r)
-    end = np.asarray(end, dtype=float)
-    if side == "right":
-        m_end = end * MIRROR_Y
-        res = model.predict(
-            np.r_[start, m_end],
-            start=start,
-            end=m_end,
-            object_size=object_size,
-            arm_lengths=arm_lengths,
-        )
-        return mirror_result(res)
-    return model.predict(
+    end = np.asarray(end, dtype=float) * (MIRROR_Y if side == "right" else 1.0)
+    res = model.predict(
         np.r_[start, end], start=start, end=end, object_size=object_size, arm_lengths=arm_lengths
     )
+    return mirror_result(res) if side == "right" else res
 
 
 class ReachModel:

@@ -92,6 +92,7 @@ def _reach_frames(
     # the same arm shape scaled (Winter's shares), so the targets are scaled into the model's
     # size (directions, hence joint angles, do not change with the scale)
     scale, lengths = humanoid_arm(model, ctx.spec.stature)
+    rest = frame.T @ (_neutral_tip(data, m, jm, side, lengths[2] / scale) - shoulder)  # q0's
     end = frame.T @ (target_w - shoulder) * scale
     pre = frame.T @ (target_w + approach_w - shoulder) * scale
     start = model.rest_hand  # where the model's reaches start (the ready posture)
@@ -127,9 +128,7 @@ def _reach_frames(
     # end (MTM-1 data card, Reach: "distance moved ... is the true path"; Freivalds & Niebel
     # 2014, ch. 12): the hand's path from where it is in q0 (the ready phase bends it into the
     # model's start), along the model's trajectory and the approach, in the operator's metres
-    ready_len, model_len = _hand_path(
-        data, m, jm, side, frame, shoulder, directions, lengths, scale
-    )
+    ready_len, model_len = _hand_path(rest, directions, lengths, scale)
     reach_out, reach_back = timing(ready_len + model_len)
     n_out = max(2, round(reach_out * fps))
     # The reach model's trajectories start at its ready posture (ReachModel.rest_hand; the
@@ -185,7 +184,7 @@ def _wrist_feasible(ctx, q0, side, frame, end, u_hand, u_last, lengths) -> np.nd
     end on ``end`` (model size): ``u_hand`` when its wrist angles are within their ranges,
     else the direction the hand has with the wrist at its range limits, the arm re-solved by
     two-link IK (elbow hint from ``u_last``) for that hand, a few times over. Computes in the
-    context's scratch data and leaves it in ``q0``'s kinematics."""
+    context's scratch data."""
     from mjwalk.arms.kinematics import arm_frames, arm_joint_angles, two_link_ik_rows
 
     data = ctx.scratch()
@@ -201,29 +200,28 @@ def _wrist_feasible(ctx, q0, side, frame, end, u_hand, u_last, lengths) -> np.nd
         data.qpos[:] = row[0]
         mujoco.mj_kinematics(ctx.model, data)
         u = frame.T @ -data.xmat[b].reshape(3, 3)[:, 2]
-    data.qpos[:] = q0  # the scratch data back in the pose the caller left it in
-    mujoco.mj_kinematics(ctx.model, data)
     return u
 
 
-def _hand_path(
-    data, m, jm, side, frame, shoulder, directions, lengths, scale
-) -> tuple[float, float]:
-    """Lengths (m, the operator's size) of the hand's path of a reach: ``(ready, movement)``,
-    from the hand's end in the pose ``data`` holds (kinematics done) straight to the
-    trajectory's start (the ready phase), and along the hand ends of ``directions`` (S
-    segments, model size ``lengths``; scaled by ``scale`` into it). The hand's end in
-    ``data``: the wrist plus the hand's length along the forearm (a neutral wrist)."""
-    from mjwalk.arms.kinematics import end_effector
-
+def _neutral_tip(data, m, jm, side, hand_length: float) -> np.ndarray:
+    """World position of the end of ``side``'s hand in the pose ``data`` holds (kinematics
+    done) with a neutral wrist: the wrist plus ``hand_length`` m along the forearm."""
     p = side_prefix(side)
     wrist = data.xpos[m.body(f"{jm.prefix}hand_{p}").id]
-    elbow = data.xpos[m.body(f"{jm.prefix}forearm_{p}").id]
-    fore = wrist - elbow
-    tip = wrist + (lengths[2] / scale) * fore / max(float(np.linalg.norm(fore)), 1e-9)
+    fore = wrist - data.xpos[m.body(f"{jm.prefix}forearm_{p}").id]
+    return wrist + hand_length * fore / max(float(np.linalg.norm(fore)), 1e-9)
+
+
+def _hand_path(rest, directions, lengths, scale) -> tuple[float, float]:
+    """Lengths (m, the operator's size) of the hand's path of a reach: ``(ready, movement)``,
+    from the hand's end ``rest`` (shoulder frame, operator's metres) straight to the
+    trajectory's start (the ready phase), and along the hand ends of ``directions`` (S
+    segments, model size ``lengths``; scaled by ``scale`` into it)."""
+    from mjwalk.arms.kinematics import end_effector
+
     hand = end_effector(directions, lengths) / scale  # shoulder frame, operator's metres
     path = np.linalg.norm(np.diff(hand, axis=0), axis=1).sum()
-    return float(np.linalg.norm(hand[0] - frame.T @ (tip - shoulder))), float(path)
+    return float(np.linalg.norm(hand[0] - rest)), float(path)
 
 
 #: The ready phase (bending the hanging arm into the reach model's ready posture, or back)

@@ -140,10 +140,10 @@ def simulate_cycle(
     walks: list[WalkRecord] = []
     arms: list[ArmRecord] = []
     width: float | None = None  # grip distance (m) of the two-handed part in the hands
-    spans: list[tuple[int, int]] = []  # frames [first, end) of each task
+    starts: list[int] = []  # first frame of each task
     for i, task in enumerate(spec.tasks):
         t0 = t
-        f0 = sum(len(f) for f in frames)
+        starts.append(sum(len(f) for f in frames))
         if task.kind in ("walk", "carry"):
             goal = task.site
             assert goal is not None  # the spec loader requires a site for walks
@@ -220,7 +220,6 @@ def simulate_cycle(
         else:  # the spec parser refuses unknown kinds; this guards hand-made specs
             raise CycleSpecError(f"task {i}: unknown kind {task.kind!r}")
         tasks.append(TaskRecord(i, task.kind, task.site, t0, t, task.route))
-        spans.append((f0, sum(len(f) for f in frames)))
     qpos = np.vstack(frames)
     timeline = Timeline(
         model=ctx.model,
@@ -233,8 +232,9 @@ def simulate_cycle(
     )
     timeline.walk = combined_walk([w.path for w in walks])  # drawn into videos
     if keep_timeline:  # the parts the hands pick, carry and put down, drawn into videos
+        ends = [*starts[1:], len(qpos)]
         handlings = [
-            Handling(task.kind, task.site, task.hand, *spans[i])
+            Handling(task.kind, task.site, task.hand, starts[i], ends[i])
             for i, task in enumerate(spec.tasks)
             if task.kind in ("pick", "place", "fasten") and task.site is not None
         ]

@@ -396,23 +396,22 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
 
         population = parse_population(data["population"], stature, pop_fail)
     base = path.resolve().parent
-    models: dict[str, str | None] = {"reach_right": None}
+    # "default", a model file, or for reach_right None: the reach model mirrored
+    models: dict[str, str | None] = {"step": "default", "reach": "default", "reach_right": None}
     for key in _TABLE_KEYS["models"]:
-        if key not in tables["models"]:
-            continue
-        if tables["models"][key] == "default":
-            models[key] = "default"
-        else:
+        if key in tables["models"] and tables["models"][key] != "default":
             models[key] = str(check.file(tables["models"], key, base, "models"))
+        elif key in tables["models"]:
+            models[key] = "default"
     for key in ("reach", "reach_right"):
-        path_ = models.get(key, "default")
-        if path_ is None or path_ == "default":
+        file = models[key]
+        if file is None or file == "default":
             continue
         # the kind of model, before any work (a few ms)
         from mjwalk.arms.reach import ReachModel, check_endpoint_model
 
         try:
-            check_endpoint_model(ReachModel.load(path_), path_)
+            check_endpoint_model(ReachModel.load(file), file)
         except MjwalkError as exc:
             raise check.fail(f"key {key!r} in [models]: {exc}", "models", None, key) from None
 
@@ -452,8 +451,8 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         start=start,
         tasks=tasks,
         stature=stature,
-        step_model=models.get("step") or "default",
-        reach_model=models.get("reach") or "default",
+        step_model=str(models["step"]),
+        reach_model=str(models["reach"]),
         reach_model_right=models["reach_right"],
         radius=radius,
         name=name,

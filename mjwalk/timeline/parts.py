@@ -188,8 +188,7 @@ def part_tracks(
             if n_in > 1:
                 w = min_jerk(np.linspace(0.0, 1.0, n_in))[:, None]
                 track.pos[f : f + n_in] = (1 - w) * track.pos[f] + w * (site_pos + offset)
-                for i, r in enumerate(_slerp(track.mat[f], mat0, w[:, 0])):
-                    track.mat[f + i] = r
+                track.mat[f : f + n_in] = _slerp(track.mat[f], mat0, w[:, 0])
             track.pos[f + max(n_in - 1, 0) :] = site_pos + offset
             track.mat[f + max(n_in - 1, 0) :] = mat0
             track.release = f
