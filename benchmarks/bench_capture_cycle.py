@@ -2,8 +2,8 @@
 
 Trains an endpoint reach model per arm on a folder of raise-hand clips
 (``mjwalk.arm_movements(..., hand=True)``: the chain to the hand's end, the hand's start and
-end as the constraint; right-arm clips mirrored into the left arm's frame), names them in a
-copy of a cycle file (``[models] reach`` / ``reach_right``) and simulates ``--runs`` cycles
+end as the constraint; right-arm clips mirrored into the left arm's frame), gives them to a
+cycle (``[models] reach`` / ``reach_right``, set on the loaded spec) and simulates ``--runs`` cycles
 with them and with the default (generated) model, same seeds. Prints, per model: the hand's
 error at the targets, the reaches outside the model's trained range, humanoid-scene contacts
 and the cycle time.
@@ -25,7 +25,7 @@ Run from the repo root:  python benchmarks/bench_capture_cycle.py --data DIR [--
 from __future__ import annotations
 
 import argparse
-import re
+import dataclasses
 import sys
 import tempfile
 import warnings
@@ -35,10 +35,11 @@ import bench_reach as br
 import numpy as np
 
 from mjwalk.arms.armcapture import arm_movements
-from mjwalk.arms.reach import ReachModel
+from mjwalk.arms.reach import ReachModel, check_endpoint_model
 from mjwalk.arms.reachdefault import CAPTURE_DCS
 from mjwalk.cycle.simulate import simulate_cycles
 from mjwalk.cycle.spec import load_cycle_spec
+from mjwalk.cycle.types import CycleSpec
 from mjwalk.errors import MjwalkError
 from mjwalk.mocap.bvh import load_bvh
 
@@ -56,14 +57,16 @@ def train(data_dir: Path, side: str, out: Path) -> tuple[ReachModel, int]:
     return model, len(mv)
 
 
-def with_models(cycle: Path, folder: Path, left: Path, right: Path) -> Path:
-    """A copy of ``cycle`` in ``folder`` with its scene absolute and the two reach models."""
-    text = cycle.read_text()
-    text = re.sub(r'(?m)^scene = "(.*)"', lambda m: f'scene = "{cycle.parent / m.group(1)}"', text)
-    text = re.sub(r"(?ms)^\[models\]\n.*?\n\n", "", text)
-    path = folder / cycle.name
-    path.write_text(f'{text}\n[models]\nreach = "{left}"\nreach_right = "{right}"\n')
-    return path
+def capture_spec(cycle: Path, left: Path, right: Path) -> CycleSpec:
+    """The cycle of ``cycle`` with the two reach models (``[models] reach`` / ``reach_right``),
+    each checked to be an endpoint model as the cycle file's loader checks them."""
+    for key, file in (("reach", left), ("reach_right", right)):
+        try:
+            check_endpoint_model(ReachModel.load(file), str(file))
+        except MjwalkError as exc:
+            raise MjwalkError(f"{key}: {exc}") from None
+    spec = load_cycle_spec(cycle)
+    return dataclasses.replace(spec, reach_model=str(left), reach_model_right=str(right))
 
 
 def summary(label: str, results) -> None:
@@ -97,11 +100,11 @@ def main(argv=None) -> int:
             for side in ("left", "right"):
                 model, n = train(data_dir, side, folder / f"reach_{side}.npz")
                 print(f"{side} arm: {n} raises, {model.n_neurons} neurons (first network)")
-            cycle = with_models(
-                Path(args.cycle), folder, folder / "reach_left.npz", folder / "reach_right.npz"
+            spec = capture_spec(
+                Path(args.cycle), folder / "reach_left.npz", folder / "reach_right.npz"
             )
             runs = {
-                "capture": simulate_cycles(load_cycle_spec(cycle), args.runs, args.seed),
+                "capture": simulate_cycles(spec, args.runs, args.seed),
                 "default": simulate_cycles(load_cycle_spec(args.cycle), args.runs, args.seed),
             }
         except MjwalkError as exc:

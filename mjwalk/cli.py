@@ -192,7 +192,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             f"--only-run {args.only_run}: runs are numbered 0 to {args.runs - 1} "
             f"(--runs {args.runs})"
         )
-    from mjwalk.cycle.simulate import prepare, simulate_cycle, simulate_cycles
+    from mjwalk.cycle.context import context_of
+    from mjwalk.cycle.simulate import simulate_cycle, simulate_cycles
     from mjwalk.cycle.spec import load_cycle_spec
     from mjwalk.report import format_summary, report_dict, write_report
     from mjwalk.shipped import cycle_file
@@ -208,7 +209,8 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     if args.dry_run:
         print(f"  {spec.path} and --out {args.out} checked; nothing simulated (--dry-run)")
         return 0
-    ctx = prepare(spec)  # builds (or loads) the default models once, with progress
+    # builds (or loads) the default models once, with progress; the runs in this process reuse it
+    ctx = context_of(spec)
     results = simulate_cycles(
         spec,
         args.runs,

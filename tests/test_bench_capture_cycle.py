@@ -9,6 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from mjwalk.errors import MjwalkError
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 bench = pytest.importorskip("bench_capture_cycle")
 
@@ -24,20 +26,29 @@ def test_bad_input_is_named(tmp_path, capsys):
     assert err.startswith("bench_capture_cycle: error:") and "x_raise-up-left-hand_a_001" in err
 
 
-def test_the_cycle_copy_names_both_arms_models(tmp_path, scenes_dir):
+def test_the_capture_cycle_runs_both_arms_models(tmp_path, scenes_dir):
     from mjwalk.arms import reachgen
     from mjwalk.arms.reach import ReachModel
+    from mjwalk.cycle.context import context_of
     from mjwalk.cycle.spec import load_cycle_spec
 
     data = reachgen.generate("endpoints", 30, np.random.default_rng(0))
     model = ReachModel(data.lengths, dcs={"rng": 0}).fit(data.constraints, data.directions)
     model.save(tmp_path / "l.npz")
     model.save(tmp_path / "r.npz")
-    cycle = bench.with_models(
-        scenes_dir / "assembly_station.toml", tmp_path, tmp_path / "l.npz", tmp_path / "r.npz"
+    spec = bench.capture_spec(
+        scenes_dir / "assembly_station.toml", tmp_path / "l.npz", tmp_path / "r.npz"
     )
-    spec = load_cycle_spec(cycle)
     assert spec.reach_model == str(tmp_path / "l.npz")
     assert spec.reach_model_right == str(tmp_path / "r.npz")
-    assert spec.scene == scenes_dir / "assembly_station.xml"
-    assert len(spec.tasks) == len(load_cycle_spec(scenes_dir / "assembly_station.toml").tasks)
+    assert spec.tasks == load_cycle_spec(scenes_dir / "assembly_station.toml").tasks
+    # the context the runs get has both models, not the file's defaults
+    ctx = context_of(spec)
+    assert ctx.reach_model.n_neurons == model.n_neurons
+    assert ctx.reach_model_right is not None
+    # a model of the wrong kind is named before any work
+    (tmp_path / "bad.npz").write_bytes(b"not a model")
+    with pytest.raises(MjwalkError, match="reach_right"):
+        bench.capture_spec(
+            scenes_dir / "assembly_station.toml", tmp_path / "l.npz", tmp_path / "bad.npz"
+        )

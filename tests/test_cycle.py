@@ -81,6 +81,19 @@ def test_monte_carlo_independent_of_jobs(scenes_dir):
     assert len({r.cycle_time for r in one}) == 3
 
 
+def test_monte_carlo_runs_the_spec_as_edited_in_memory(scenes_dir):
+    """A CycleSpec edited in memory is simulated with its edits: the workers used to re-read
+    ``spec.path``, so ``dataclasses.replace(spec, ...)`` was silently ignored."""
+    spec = load_cycle_spec(scenes_dir / "assembly_station.toml")
+    short = dataclasses.replace(spec, tasks=spec.tasks[:2], population=None)
+    (result,) = simulate_cycles(short, runs=1, seed=3, collisions=False)
+    assert [t.kind for t in result.tasks] == [t.kind for t in spec.tasks[:2]]
+    assert result.spec.population is None
+    # the same in-memory spec again comes from the worker's cache: the same run
+    (again,) = simulate_cycles(short, runs=1, seed=3, collisions=False)
+    assert again.cycle_time == result.cycle_time
+
+
 def test_right_hand_tasks_use_the_right_hand(scenes_dir, tmp_path):
     """Issue 16: ``hand = "right"`` is done with the right arm: its hand reaches the site within
     1 cm while the left hand keeps its place, with no contact."""

@@ -5,6 +5,8 @@
 from __future__ import annotations
 
 import functools
+import hashlib
+import pickle
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -147,6 +149,30 @@ def _context_cached(spec_key: str) -> CycleContext:
     from mjwalk.cycle.spec import load_cycle_spec
 
     return prepare(load_cycle_spec(spec_key))
+
+
+#: Contexts of in-memory specs, by a digest of the pickled spec (a CycleSpec holds lists, so it
+#: is not hashable); the last few are kept, like :func:`_context_cached`.
+_SPEC_CONTEXTS: dict[str, CycleContext] = {}
+_SPEC_CONTEXTS_KEPT = 4
+
+
+def context_of(spec: CycleSpec | str | Path) -> CycleContext:
+    """The context of ``spec`` for a worker (prepared once per process and spec).
+
+    A path is read with :func:`~mjwalk.cycle.spec.load_cycle_spec`; a :class:`CycleSpec` is used
+    as it is, so a spec edited in memory (``dataclasses.replace(spec, reach_model=...)``) runs
+    with its edits, not with the file it was read from."""
+    if not isinstance(spec, CycleSpec):
+        return _context_cached(str(spec))
+    key = hashlib.sha1(pickle.dumps(spec)).hexdigest()
+    ctx = _SPEC_CONTEXTS.get(key)
+    if ctx is None:
+        ctx = prepare(spec)
+        if len(_SPEC_CONTEXTS) >= _SPEC_CONTEXTS_KEPT:
+            _SPEC_CONTEXTS.pop(next(iter(_SPEC_CONTEXTS)))
+        _SPEC_CONTEXTS[key] = ctx
+    return ctx
 
 
 @functools.lru_cache(maxsize=16)

@@ -49,7 +49,7 @@ if TYPE_CHECKING:
 from mjwalk.cycle.context import (
     GOAL_TOLERANCE,
     CycleContext,
-    _context_cached,
+    context_of,
     operator_context,
     prepare,
 )
@@ -270,9 +270,9 @@ def _entropy(rng: np.random.Generator) -> int | list[int] | None:
 
 
 def _run_one(
-    spec_path: str, run: int, seed: int, collisions: bool, on_error: str = "raise"
+    spec: CycleSpec | str, run: int, seed: int, collisions: bool, on_error: str = "raise"
 ) -> CycleResult:
-    ctx = _context_cached(spec_path)
+    ctx = context_of(spec)
     ss = np.random.SeedSequence([seed, run])
     try:
         return simulate_cycle(ctx, np.random.default_rng(ss), run=run, collisions=collisions)
@@ -319,16 +319,16 @@ def simulate_cycles(
     Run ``k`` draws from ``SeedSequence([seed, k])`` (``result.entropy``): results do not
     depend on ``n_jobs`` or on the backend, and ``only=[k]`` re-simulates run ``k`` of a batch
     alone (``mjwalk simulate ... --only-run K``). Workers load the spec and models once each
-    (the default models come from the on-disk cache). Under
+    (the default models come from the on-disk cache). A :class:`CycleSpec` is simulated as it
+    is in memory (``dataclasses.replace(spec, reach_model=...)`` runs the new model), a path is
+    read in each worker. Under
     ``joblib.parallel_config(backend="dask")`` or ``"ray"`` the runs go to that cluster
     unchanged.
     """
     from joblib import Parallel, delayed
 
-    if isinstance(spec, CycleSpec):
-        spec_path = str(spec.path)
-    else:
-        spec_path = str(spec)
+    # a CycleSpec goes to the workers as it is (edits made in memory count), a path as a string
+    job_spec: CycleSpec | str = spec if isinstance(spec, CycleSpec) else str(spec)
     if isinstance(runs, bool) or not isinstance(runs, int | np.integer) or runs < 1:
         raise InputError(f"simulate_cycles: runs must be a whole number >= 1, got {runs!r}")
     indices = list(range(runs)) if only is None else [int(k) for k in only]
@@ -340,7 +340,7 @@ def simulate_cycles(
         )
     if on_error not in ("raise", "record"):
         raise InputError(f"simulate_cycles: on_error must be 'raise' or 'record', got {on_error!r}")
-    jobs = (delayed(_run_one)(spec_path, k, seed, collisions, on_error) for k in indices)
+    jobs = (delayed(_run_one)(job_spec, k, seed, collisions, on_error) for k in indices)
     if progress:
         from tqdm import tqdm
 
