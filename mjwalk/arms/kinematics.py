@@ -152,6 +152,32 @@ def arm_joint_angles(
     return q
 
 
+def hand_directions(
+    u1: np.ndarray, u2: np.ndarray, flex: np.ndarray, dev: np.ndarray, side: Side = "left"
+) -> np.ndarray:
+    """Unit hand directions (n, 3) of arms with upper arm ``u1`` and forearm ``u2`` (n, 3; thorax
+    frame) and the wrist at ``flex`` / ``dev`` (n,), radians, no forearm pronation: the inverse
+    of the wrist part of :func:`arm_joint_angles` (``arm_joint_angles`` of the result gives
+    ``flex`` and ``dev`` back, for |dev| < 90 deg and a bent elbow)."""
+    s = 1.0 if side == "left" else -1.0
+    u1 = np.asarray(u1, dtype=float)
+    u2 = np.asarray(u2, dtype=float)
+    # the forearm frame: z along -u2, x in the elbow's plane (towards the side the forearm
+    # bends to), y = z x x; R_sh Ry(-elbow) of arm_joint_angles
+    x = u2 - _dot(u2, u1)[:, None] * u1
+    x /= np.maximum(np.linalg.norm(x, axis=1, keepdims=True), 1e-12)
+    elbow = np.arccos(np.clip(_dot(u1, u2), -1, 1))
+    ce, se = np.cos(elbow), np.sin(elbow)
+    xf = ce[:, None] * x - se[:, None] * u1  # the upper arm frame's x turned with the elbow
+    zf = -u2
+    yf = np.cross(zf, xf)
+    beta = s * np.asarray(dev, dtype=float)
+    f = np.asarray(flex, dtype=float)
+    cb = np.cos(beta)
+    h = (cb * np.sin(f))[:, None] * xf + np.sin(beta)[:, None] * yf - (cb * np.cos(f))[:, None] * zf
+    return h / np.linalg.norm(h, axis=1, keepdims=True)
+
+
 #: |sin| of the middle YXZ angle above which a frame is decomposed by scipy (gimbal lock: the
 #: first and third angles are not separable there; scipy's convention picks them).
 _GIMBAL = 1.0 - 1e-7

@@ -1,11 +1,15 @@
 """Synthetic training data for the arm model: human-like reaches of one (left) arm.
 
 Each reach is a minimum-jerk hand path (Flash & Hogan) from a start to an end hand position with
-a slight upward curvature, the hand's direction turning from hanging to the approach direction,
-shoulder/elbow from analytic two-link IK with a natural swivel angle (elbow down and slightly
-out, varying from trial to trial), and for grasps a grip aperture that opens to a maximum growing
-with object size (Jeannerod: about 0.8 cm per cm plus about 3.5 cm, peak at ~70 % of the
-movement) and closes on the object, while the forearm rolls to the object's orientation.
+a slight upward curvature; the hand in line with the forearm (a neutral wrist) while it is
+carried, turning over the second half to the approach direction (out from the shoulder over the
+target, slightly down) only as far as the wrist's functional range allows
+(:data:`FUNCTIONAL_WRIST`); shoulder/elbow from analytic two-link IK with a natural swivel angle
+(elbow down and slightly out, varying from trial to trial); every pose within the humanoid's
+ranges of motion (others are drawn again); and for grasps a grip aperture that opens to a
+maximum growing with object size (Jeannerod: about 0.8 cm per cm plus about 3.5 cm, peak at
+~70 % of the movement) and closes on the object, while the forearm rolls to the object's
+orientation.
 
 Three constraint spaces (Al-Zubi & Sommer §5):
 ``"endpoints"``: constraint = start and end hand position (6,);
@@ -24,17 +28,42 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mjwalk.anthropometry import ROM_DEG
 from mjwalk.arms.kinematics import (
+    ARM_JOINTS,
     REST_HAND,
+    arm_joint_angles,
     arm_segment_lengths,
     end_effector,
+    hand_directions,
     min_jerk,
     two_link_ik,
+    two_link_ik_rows,
 )
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 
 SPACES = ("endpoints", "obstacle", "grasp")
+#: The wrist's functional range, degrees (lo, hi) for flexion (+) / extension (-) and ulnar (+)
+#: / radial (-) deviation (the humanoid's sign convention, :data:`mjwalk.anthropometry.ROM_DEG`):
+#: 40 deg flexion, 40 deg extension and 40 deg of radio-ulnar deviation (10 radial, 30 ulnar)
+#: cover most activities of daily living (Ryu, Cooney, Askew, An & Chao 1991, "Functional
+#: ranges of motion of the wrist joint", J. Hand Surg. 16A:409-419).
+FUNCTIONAL_WRIST = ((-40.0, 40.0), (-10.0, 30.0))
+#: Where ``"endpoints"`` reaches end: (lo, hi) metres along x, y, z of the left shoulder frame
+#: (default stature; unreachable ends are drawn again). A standing operator's working area:
+#: from a hand close in front of the chest (x 0.15) to the arm's reach (0.55, 0.72 of the arm);
+#: across the body's midline (about 0.20 m medial of the shoulder joint, half the biacromial
+#: breadth) by 10 cm, as the normal working area of each hand overlaps the other's in front of
+#: the body (Barnes 1980, *Motion and Time Study*, 7th ed., ch. 17: normal and maximum working
+#: areas), and as far out to the side (y 0.30); from 15 cm below the elbow (about -0.33 m; the
+#: work height of heavy work, Grandjean 1988, *Fitting the Task to the Man*, 4th ed., ch. 4)
+#: to above the shoulder (z 0.15). Until 2026-11 the box began at x 0.30, y -0.15, z -0.35:
+#: the station's fastens across the body at the car lay outside it and the model extrapolated.
+END_BOX = ((0.15, 0.55), (-0.30, 0.30), (-0.48, 0.15))
+#: Passes of the wrist-range projection in :func:`reach_trajectory` (each re-solves the arm for
+#: the turned hand).
+WRIST_ITERATIONS = 6
 
 
 @dataclass
@@ -96,29 +125,71 @@ def reach_trajectory(
     bump = m**a * (1 - m) ** b / (bump_at**a * (1 - bump_at) ** b)
     h = lift if lift is not None else curvature * dist
     hand = start + m[:, None] * d + (h * bump)[:, None] * up
-    # Hand direction: from hanging forward-down to the approach direction (slightly down).
-    d0 = np.array([0.25, 0.0, -1.0])
-    app = np.array([d[0], d[1], 0.0])
-    app = app / max(np.linalg.norm(app), 1e-9) + np.array([0.0, 0.0, -0.3])
-    hd = (1 - m)[:, None] * (d0 / np.linalg.norm(d0)) + m[:, None] * (app / np.linalg.norm(app))
-    hd /= np.linalg.norm(hd, axis=1, keepdims=True)
-    wrist = hand - lengths[2] * hd
     swivel = np.radians(rng.normal(25.0, 6.0))  # elbow out of the vertical plane, per trial
+    # Hand direction: in line with the forearm while the hand is carried (a neutral wrist: the
+    # arm solved with forearm and hand as one segment), turning to the approach direction
+    # (towards the target, slightly down) over the second half, as the hand decelerates onto
+    # its target (the grasp forms then: peak grip aperture at about 70 % of the movement,
+    # :func:`grip_aperture`).
+    u1c, neutral = _arm(hand, np.array([lengths[0], lengths[1] + lengths[2]]), swivel)
+    elbows = lengths[0] * u1c  # the elbow of the neutral-wrist arm: it sets the elbow's plane
+    app = np.array([end[0], end[1], 0.0])  # out from the shoulder, over the target
+    app = app / max(np.linalg.norm(app), 1e-9) + np.array([0.0, 0.0, -0.3])
+    w = min_jerk(np.clip(2.0 * tau - 1.0, 0.0, 1.0))[:, None]
+    hd = (1 - w) * neutral + w * (app / np.linalg.norm(app))
+    hd /= np.linalg.norm(hd, axis=1, keepdims=True)
+    # the wrist within its functional range: where the hand direction above would bend it
+    # further, the hand turns only as far as the range goes and the arm is re-solved for that
+    # hand (a few times over: the forearm moves with the wrist).
+    lo, hi = np.radians(FUNCTIONAL_WRIST).T
+    for _ in range(WRIST_ITERATIONS):
+        u1, u2 = two_link_ik_rows(hand - lengths[2] * hd, lengths[0], lengths[1], elbows)
+        q = arm_joint_angles(np.stack([u1, u2, hd], axis=1))[:, 5:7]
+        if ((q >= lo - 1e-9) & (q <= hi + 1e-9)).all():
+            break
+        q = np.clip(q, lo, hi)
+        hd = hand_directions(u1, u2, q[:, 0], q[:, 1])
     U = np.empty((n, 3, 3))
-    for t in range(n):
-        w = wrist[t]
+    U[:, 0], U[:, 1] = two_link_ik_rows(hand - lengths[2] * hd, lengths[0], lengths[1], elbows)
+    U[:, 2] = hd
+    return U, hand
+
+
+def _arm(wrist: np.ndarray, lengths: np.ndarray, swivel: float) -> tuple[np.ndarray, np.ndarray]:
+    """Upper arm and forearm directions (n, 3) putting the wrist on ``wrist`` (n, 3), the elbow
+    turned ``swivel`` radians outwards from straight below the shoulder-wrist axis.
+
+    Outwards is +y (left) for the left arm at the first pose and stays on the same side of the
+    axis as it moves (no flip from one pose to the next). Until 2026-11 the elbow swung the
+    other way, in: adducted 16-18 deg (median), 9 cm medial of the shoulder, into the chest."""
+    u1 = np.empty_like(wrist)
+    u2 = np.empty_like(wrist)
+    v = np.array([0.0, 0.0, -1.0])
+    prev = np.array([0.0, 1.0, 0.0])
+    for t, w in enumerate(wrist):
         axis = w / np.linalg.norm(w)
-        down = np.array([0.0, 0.0, -1.0]) - axis[2] * axis
-        if np.linalg.norm(down) < 1e-6:
-            down = np.array([1.0, 0.0, 0.0])
+        down = v - (v @ axis) * axis
+        if np.linalg.norm(down) < 1e-6:  # the wrist straight below or above the shoulder
+            down = np.array([1.0, 0.0, 0.0]) - axis[0] * axis
         down /= np.linalg.norm(down)
         side = np.cross(axis, down)
-        hint = np.cos(swivel) * down - np.sin(swivel) * side  # outward (-y) for the left arm
-        if hint[1] > 0:
-            hint = np.cos(swivel) * down + np.sin(swivel) * side
-        U[t, 0], U[t, 1] = two_link_ik(w, lengths[0], lengths[1], hint)
-        U[t, 2] = hd[t]
-    return U, hand
+        if side @ prev < 0:
+            side = -side
+        prev = side
+        hint = np.cos(swivel) * down + np.sin(swivel) * side
+        u1[t], u2[t] = two_link_ik(w, lengths[0], lengths[1], hint)
+    return u1, u2
+
+
+#: The left arm's joint ranges (radians, order of :data:`~mjwalk.arms.kinematics.ARM_JOINTS`).
+_ROM = np.radians([ROM_DEG[j] for j in ARM_JOINTS]).T
+
+
+def _within_rom(directions: np.ndarray) -> bool:
+    """Whether every pose of a left-arm movement (n, 3, 3) lies within the humanoid's joint
+    ranges (no forearm pronation)."""
+    q = arm_joint_angles(directions)
+    return bool(((q >= _ROM[0] - 1e-9) & (q <= _ROM[1] + 1e-9)).all())
 
 
 def _reachable(p, lengths):
@@ -142,9 +213,7 @@ def generate(
     while len(C) < p:
         start = base_start + rng.normal(0, 0.02, 3)
         if space == "endpoints":
-            end = np.array(
-                [rng.uniform(0.30, 0.50), rng.uniform(-0.15, 0.30), rng.uniform(-0.35, 0.15)]
-            )
+            end = rng.uniform(*np.array(END_BOX).T)
         else:
             end = base_end + rng.normal(0, 0.015, 3)
         if not (_reachable(end - 0.7 * L[2] * np.array([0.7, 0, -0.3]), L)):
@@ -170,6 +239,8 @@ def generate(
             c = np.r_[hand[0], hand[-1]]
         if np.abs(end_effector(dirs, L) - hand).max() > 1e-6:
             continue  # the wrist left the arm's workspace somewhere: not a valid reach
+        if not _within_rom(dirs):
+            continue  # a joint beyond its range of motion (an elbow folded past 150 deg)
         C.append(c)
         U.append(dirs)
         Hs.append(hand)

@@ -52,6 +52,11 @@ HUMAN_CONAFFINITY = 1
 HUMAN_PREFIX = "human/"
 
 
+#: The palm's share of the hand's length (wrist to fingertip): the fingers' MCP joints (the
+#: knuckles) lie this far along the hand from the wrist.
+PALM_SHARE = 0.45
+
+
 def _rad(name: str) -> list[float]:
     key = name
     if key not in ROM_DEG:
@@ -212,7 +217,7 @@ def build_humanoid(stature: float = DEFAULT_STATURE) -> mujoco.MjSpec:
         hinge(hand, f"wrist_{side}_flex", [0, -1, 0])
         hinge(hand, f"wrist_{side}_dev", [s, 0, 0])
         hl = SEG["hand"] * H
-        palm = 0.45 * hl
+        palm = PALM_SHARE * hl
         geom(
             hand,
             mujoco.mjtGeom.mjGEOM_BOX,

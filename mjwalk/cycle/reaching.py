@@ -60,9 +60,9 @@ def _reach_frames(
     """Frames of reaching from pose ``q0`` to ``target_w`` (world, m), holding, returning.
 
     ``timing(distance)`` gives the (reach, return) durations in seconds of a hand movement of
-    ``distance`` metres (the hand's true path, as MTM-1 measures a reach: from where the hand
-    is in ``q0`` along the planned movement to the target); default: the reference adult's
-    MTM-1 case B reach and case E return (:mod:`mjwalk.cycle.handling`).
+    ``distance`` metres (the hand's true path at the index knuckle, as MTM-1 measures a reach:
+    from where the hand is in ``q0`` along the planned movement to the target); default: the
+    reference adult's MTM-1 case B reach and case E return (:mod:`mjwalk.cycle.handling`).
 
     The reach model (PCA + DCS) brings the hand from rest to the pre-grasp point
     ``target_w + approach_w``; the hand then moves straight onto the target along
@@ -80,6 +80,7 @@ def _reach_frames(
         two_link_ik_rows,
     )
     from mjwalk.arms.reach import humanoid_arm, reach_for_side
+    from mjwalk.body.humanoid import PALM_SHARE
 
     m, jm, model = ctx.model, ctx.jointmap, ctx.reach_model_for(side)
     data = ctx.scratch()
@@ -92,7 +93,6 @@ def _reach_frames(
     # the same arm shape scaled (Winter's shares), so the targets are scaled into the model's
     # size (directions, hence joint angles, do not change with the scale)
     scale, lengths = humanoid_arm(model, ctx.spec.stature)
-    rest = frame.T @ (_neutral_tip(data, m, jm, side, lengths[2] / scale) - shoulder)  # q0's
     end = frame.T @ (target_w - shoulder) * scale
     pre = frame.T @ (target_w + approach_w - shoulder) * scale
     start = model.rest_hand  # where the model's reaches start (the ready posture)
@@ -112,13 +112,14 @@ def _reach_frames(
     # humanoid's wrist can turn it there; beyond its range the hand turned as far as it goes
     # and the arm placed so that hand's end is on the target (before, the wrist was clipped
     # after the fact and the fingers ended up to 14 cm off a fastening target)
-    u_end = _wrist_feasible(
+    u_end, elbow_end = _wrist_feasible(
         ctx, q0, side, frame, end, u_face if face is not None else u_last[2], u_last, lengths
     )
     if face is not None or not np.allclose(u_end, u_last[2]):
         app[:, 2] = [_blend_dir(u_last[2], u_end, tau) for tau in taus]
     wrists = hands - lengths[2] * app[:, 2]
-    hints = np.repeat((u_last[0] * lengths[0])[None], n_app, axis=0)
+    # the elbow swivels from where the model left it to where the hand's end pose needs it
+    hints = np.array([_blend_dir(u_last[0], elbow_end, tau) for tau in taus]) * lengths[0]
     app[:, 0], app[:, 1] = two_link_ik_rows(wrists, lengths[0], lengths[1], hints)  # (row-wise)
     directions = np.concatenate([res.directions, app])
     q = arm_joint_angles(directions, side)
@@ -126,9 +127,9 @@ def _reach_frames(
         timing = _default_timing
     # MTM-1 times a reach by the true path of the hand, not the straight line from start to
     # end (MTM-1 data card, Reach: "distance moved ... is the true path"; Freivalds & Niebel
-    # 2014, ch. 12): the hand's path from where it is in q0 (the ready phase bends it into the
-    # model's start), along the model's trajectory and the approach, in the operator's metres
-    ready_len, model_len = _hand_path(rest, directions, lengths, scale)
+    # 2014, ch. 12): the humanoid's index knuckle from where it is in q0 (the ready phase bends
+    # the arm into the model's start), along the model's trajectory and the approach
+    ready_len, model_len = _hand_path(ctx, q0, q, side, PALM_SHARE * lengths[2] / scale)
     reach_out, reach_back = timing(ready_len + model_len)
     n_out = max(2, round(reach_out * fps))
     # The reach model's trajectories start at its ready posture (ReachModel.rest_hand; the
@@ -177,22 +178,47 @@ def _hand_tip(data, m, jm, side, hand_length: float) -> np.ndarray:
 #: Iterations of :func:`_wrist_feasible` (each re-solves the arm for the last hand direction;
 #: the direction moves by well under a degree after the second).
 WRIST_ITERATIONS = 4
+#: Elbow swivels (radians about the shoulder-wrist axis, nearest first) that
+#: :func:`_wrist_feasible` tries when the model's elbow leaves the hand's direction beyond the
+#: wrist's range: a search grid of 5 deg steps up to 60 deg either way, the nearest in-range
+#: swivel kept (people orient the hand partly by the elbow's swivel, which varies with the hand's
+#: position and orientation: Kim, Miller, Byl, Abrams & Rosen 2012, "Redundancy resolution of
+#: the human arm and an upper limb exoskeleton", IEEE Trans. Biomed. Eng. 59:1770-1779).
+SWIVELS = np.radians(np.array([0.0] + [s * k for k in range(5, 65, 5) for s in (1, -1)]))
 
 
-def _wrist_feasible(ctx, q0, side, frame, end, u_hand, u_last, lengths) -> np.ndarray:
+def _wrist_feasible(
+    ctx, q0, side, frame, end, u_hand, u_last, lengths
+) -> tuple[np.ndarray, np.ndarray]:
     """A hand direction (unit, shoulder frame) the humanoid's wrist can hold with the hand's
-    end on ``end`` (model size): ``u_hand`` when its wrist angles are within their ranges,
-    else the direction the hand has with the wrist at its range limits, the arm re-solved by
-    two-link IK (elbow hint from ``u_last``) for that hand, a few times over. Computes in the
-    context's scratch data."""
+    end on ``end`` (model size), and the upper arm's direction for it: ``u_hand`` with the elbow
+    where the model's last pose has it (``u_last``) when the arm's joint angles are within their
+    ranges there; else ``u_hand`` with the elbow swivelled about the shoulder-wrist axis (the
+    nearest of :data:`SWIVELS` that keeps every joint in range: people turn the elbow out or in
+    to orient the hand); else the direction the hand has with the wrist at its range limits,
+    the arm re-solved by two-link IK for that hand, a few times over. Computes in the context's
+    scratch data."""
     from mjwalk.arms.kinematics import arm_frames, arm_joint_angles, two_link_ik_rows
 
     data = ctx.scratch()
     u = np.asarray(u_hand, dtype=float)
-    hint = (u_last[0] * lengths[0])[None]
+    hint = u_last[0] * lengths[0]
+    wrist = end - lengths[2] * u
+    axis = wrist / max(float(np.linalg.norm(wrist)), 1e-9)
+    for a in SWIVELS:  # Rodrigues: the elbow hint turned by a about the shoulder-wrist axis
+        h = (
+            hint * np.cos(a)
+            + np.cross(axis, hint) * np.sin(a)
+            + axis * (axis @ hint) * (1.0 - np.cos(a))
+        )
+        u1, u2 = two_link_ik_rows(wrist[None], lengths[0], lengths[1], h[None])
+        q = arm_joint_angles(np.stack([u1[0], u2[0], u])[None], side)
+        if not arm_frames(q0, ctx.jointmap, q, side, np.ones(1))[1]:
+            return u, u1[0]
     b = ctx.model.body(f"{ctx.jointmap.prefix}hand_{side_prefix(side)}").id
+    u1 = u_last[0][None]
     for _ in range(WRIST_ITERATIONS):
-        u1, u2 = two_link_ik_rows((end - lengths[2] * u)[None], lengths[0], lengths[1], hint)
+        u1, u2 = two_link_ik_rows((end - lengths[2] * u)[None], lengths[0], lengths[1], hint[None])
         q = arm_joint_angles(np.stack([u1[0], u2[0], u])[None], side)
         row, clipped = arm_frames(q0, ctx.jointmap, q, side, np.ones(1))
         if not any("wrist" in c for c in clipped):
@@ -200,28 +226,43 @@ def _wrist_feasible(ctx, q0, side, frame, end, u_hand, u_last, lengths) -> np.nd
         data.qpos[:] = row[0]
         mujoco.mj_kinematics(ctx.model, data)
         u = frame.T @ -data.xmat[b].reshape(3, 3)[:, 2]
-    return u
+    return u, u1[0]
 
 
-def _neutral_tip(data, m, jm, side, hand_length: float) -> np.ndarray:
-    """World position of the end of ``side``'s hand in the pose ``data`` holds (kinematics
-    done) with a neutral wrist: the wrist plus ``hand_length`` m along the forearm."""
-    p = side_prefix(side)
-    wrist = data.xpos[m.body(f"{jm.prefix}hand_{p}").id]
-    fore = wrist - data.xpos[m.body(f"{jm.prefix}forearm_{p}").id]
-    return wrist + hand_length * fore / max(float(np.linalg.norm(fore)), 1e-9)
+#: Poses of the ready phase, and poses per interval between two of the trajectory's samples,
+#: along which :func:`_hand_path` measures the knuckle's path (the frames interpolate the joint
+#: angles between the samples; a finer split changes the length by well under 1 %).
+PATH_POSES = 16
+PATH_SUBSTEPS = 4
 
 
-def _hand_path(rest, directions, lengths, scale) -> tuple[float, float]:
-    """Lengths (m, the operator's size) of the hand's path of a reach: ``(ready, movement)``,
-    from the hand's end ``rest`` (shoulder frame, operator's metres) straight to the
-    trajectory's start (the ready phase), and along the hand ends of ``directions`` (S
-    segments, model size ``lengths``; scaled by ``scale`` into it)."""
-    from mjwalk.arms.kinematics import end_effector
+def _hand_path(ctx, q0, q, side, knuckle: float) -> tuple[float, float]:
+    """Lengths (m) of the path of the humanoid's index knuckle in a reach, where MTM-1 measures
+    a hand's reach (Freivalds & Niebel 2014, *Niebel's Methods, Standards, and Work Design*,
+    13th ed., ch. 12): ``(ready, movement)``, through the ready phase's poses (the joint angles
+    from ``q0`` into the trajectory's first pose) and the trajectory's poses (joint angles ``q``,
+    (n, 7), each interval split as the frames interpolate it), after the joint ranges.
+    ``knuckle``: its distance (m) from the wrist along the hand (the operator's size).
+    Computes in the context's scratch data."""
+    from mjwalk.arms.kinematics import arm_frames
 
-    hand = end_effector(directions, lengths) / scale  # shoulder frame, operator's metres
-    path = np.linalg.norm(np.diff(hand, axis=0), axis=1).sum()
-    return float(np.linalg.norm(hand[0] - rest)), float(path)
+    m, jm = ctx.model, ctx.jointmap
+    data = ctx.scratch()
+    b = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
+    first = arm_frames(q0, jm, q[:1], side, np.ones(1))[0][0]
+    w = np.linspace(0.0, 1.0, PATH_POSES)[:, None]
+    ready = q0[None] + w * (first - q0)[None]
+    move, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, PATH_SUBSTEPS * (len(q) - 1) + 1))
+
+    def length(poses: np.ndarray) -> float:
+        points = np.empty((len(poses), 3))
+        for k, pose in enumerate(poses):
+            data.qpos[:] = pose
+            mujoco.mj_kinematics(m, data)
+            points[k] = data.xpos[b] - knuckle * data.xmat[b].reshape(3, 3)[:, 2]
+        return float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
+
+    return length(ready), length(move)
 
 
 #: The ready phase (bending the hanging arm into the reach model's ready posture, or back)
