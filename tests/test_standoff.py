@@ -21,8 +21,8 @@ from mjwalk.cycle.standoff import REACH_CLEARANCE, ArmClearance
 #: front edge of ``rack1_shelf`` (thumb tip 3.1 mm deep). Here 1 cm closer to the screw: since
 #: reaches are timed by the hand's true path (their frames changed), the hand clears the edge
 #: by 0.2 mm from the walk's end point, short of the 1 cm stand-off; 1 cm closer it was 8.8 mm
-#: in, and since reaches swing the elbow out and keep the wrist in its functional range
-#: (reachgen) it is 11.5 mm in: the index finger on the shelf's edge, the upper arm on the upright.
+#: in; since reaches swing the elbow out, keep the wrist in its functional range (reachgen) and
+#: the hand comes in pointing along its approach, it is 12.9 mm in (the index finger).
 CLOSE_TO_RACK1 = (-2.66876101, -1.70230865)
 
 
@@ -50,8 +50,7 @@ def _contacts(ctx, frames):
 def test_too_close_to_a_shelf_the_operator_steps_back(ctx, monkeypatch):
     yaw = ctx.workplace.station("stand_rack1").yaw
     # without the stand-off (no step back allowed) the index finger touches the shelf's front
-    # edge and the elbow, swung out, the rack's upright (since reaches swing the elbow out, not
-    # in: reachgen._arm)
+    # edge (with the old hand directions, the elbow also touched the rack's upright)
     with monkeypatch.context() as m:
         m.setattr(reaching, "step_back_offsets", lambda: np.array([0.0]))
         stay = _reach(ctx, "rack1_screw1", CLOSE_TO_RACK1, yaw)
@@ -79,6 +78,40 @@ def test_too_close_to_a_shelf_the_operator_steps_back(ctx, monkeypatch):
     np.testing.assert_allclose(r.frames[0, root : root + 2], (r.x, r.y), atol=1e-12)
     # and the hand still gets onto the screw
     assert r.error < 0.01
+
+
+def test_out_of_reach_the_operator_steps_in(ctx, monkeypatch):
+    """From a spot 0.25 m further from the shelf than the stand site (where a step back for the
+    reach before, or a short operator's walk, may leave them) the hand falls short of the screw;
+    the operator steps in towards it (a negative step back) until the hand is on it, clear of
+    the shelf. Before, the reach stayed put and the hand ended up to 36 mm short (short
+    operators of the station, runs 154 and 287 of 300, after a step back)."""
+    st = ctx.workplace.station("stand_rack2")
+    site = ctx.workplace.station("rack2_screw1").pos
+    back = (st.pos[:2] - site[:2]) / np.linalg.norm(st.pos[:2] - site[:2])
+    xy = st.pos[:2] + 0.25 * back
+    with monkeypatch.context() as m:  # no steps: the hand falls short
+        m.setattr(reaching, "step_back_offsets", lambda: np.array([0.0]))
+        stay = _reach(ctx, "rack2_screw1", xy, st.yaw)
+    assert stay.step_back == 0.0 and stay.error > 0.03
+    r = _reach(ctx, "rack2_screw1", xy, st.yaw)
+    assert -0.2 <= r.step_back < 0.0  # measured: 0.08 m in
+    assert r.error < 0.01
+    assert r.distance == np.inf and _contacts(ctx, np.vstack([r.turn, r.frames])) == []
+    assert math.dist((r.x, r.y), site[:2]) == pytest.approx(
+        math.dist(xy, site[:2]) + r.step_back, abs=1e-9
+    )
+
+
+def test_station_runs_of_short_operators_reach_every_target(scenes_dir):
+    """Runs 154 and 287 of 300 (seed 0; 1.52 and 1.48 m operators) reach every target within
+    1 cm with no contact (hand errors up to 36 mm when a step back for the first screw left
+    the second out of reach)."""
+    res = simulate_cycles(scenes_dir / "assembly_station.toml", runs=300, seed=0, only=[154, 287])
+    for r in res:
+        assert r.operator is not None and r.operator.stature < 1.55
+        assert r.collisions == []
+        assert max(a.hand_error for a in r.arms) < 0.01, r.run
 
 
 def test_a_clear_reach_stays_where_the_walk_ended(ctx):

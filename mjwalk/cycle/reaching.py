@@ -14,7 +14,7 @@ import numpy as np
 
 from mjwalk.conventions import Side, side_prefix
 from mjwalk.cycle.handling import RETURN_CASE, reach_duration
-from mjwalk.cycle.standoff import REACH_TOLERANCE, ArmClearance, step_back_offsets
+from mjwalk.cycle.standoff import REACH_TOLERANCE, STEP_BACK, ArmClearance, step_back_offsets
 
 if TYPE_CHECKING:
     from mjwalk.arms.reach import ReachResult
@@ -112,8 +112,13 @@ def _reach_frames(
     # humanoid's wrist can turn it there; beyond its range the hand turned as far as it goes
     # and the arm placed so that hand's end is on the target (before, the wrist was clipped
     # after the fact and the fingers ended up to 14 cm off a fastening target)
+    # the hand points along its approach: the hand (and the forearm behind it, as far as the
+    # wrist follows) stays on the approach's line, which comes in from the free side of the
+    # target (out of a shelf's opening, from the operator at the car)
+    u_app = frame.T @ -np.asarray(approach_w, dtype=float)
+    u_app /= max(float(np.linalg.norm(u_app)), 1e-9)
     u_end, elbow_end = _wrist_feasible(
-        ctx, q0, side, frame, end, u_face if face is not None else u_last[2], u_last, lengths
+        ctx, q0, side, frame, end, u_face if face is not None else u_app, u_last, lengths
     )
     if face is not None or not np.allclose(u_end, u_last[2]):
         app[:, 2] = [_blend_dir(u_last[2], u_end, tau) for tau in taus]
@@ -191,7 +196,8 @@ def _wrist_feasible(
     ctx, q0, side, frame, end, u_hand, u_last, lengths
 ) -> tuple[np.ndarray, np.ndarray]:
     """A hand direction (unit, shoulder frame) the humanoid's wrist can hold with the hand's
-    end on ``end`` (model size), and the upper arm's direction for it: ``u_hand`` with the elbow
+    end on ``end`` (model size), and the upper arm's direction for it: ``u_hand`` (turned
+    towards ``end`` as far as the arm needs to reach it: :func:`_within_reach`) with the elbow
     where the model's last pose has it (``u_last``) when the arm's joint angles are within their
     ranges there; else ``u_hand`` with the elbow swivelled about the shoulder-wrist axis (the
     nearest of :data:`SWIVELS` that keeps every joint in range: people turn the elbow out or in
@@ -201,7 +207,7 @@ def _wrist_feasible(
     from mjwalk.arms.kinematics import arm_frames, arm_joint_angles, two_link_ik_rows
 
     data = ctx.scratch()
-    u = np.asarray(u_hand, dtype=float)
+    u = _within_reach(np.asarray(u_hand, dtype=float), end, lengths)
     hint = u_last[0] * lengths[0]
     wrist = end - lengths[2] * u
     axis = wrist / max(float(np.linalg.norm(wrist)), 1e-9)
@@ -234,6 +240,22 @@ def _wrist_feasible(
 #: angles between the samples; a finer split changes the length by well under 1 %).
 PATH_POSES = 16
 PATH_SUBSTEPS = 4
+
+
+def _within_reach(u: np.ndarray, end: np.ndarray, lengths: np.ndarray) -> np.ndarray:
+    """Hand direction ``u`` (unit) turned towards ``end``'s direction from the shoulder (the
+    hand pointing away from the shoulder reaches farthest) just far enough that the wrist,
+    the hand's length back from ``end``, is within the upper arm and forearm's reach (a 5 %
+    grid of blends; the radial direction when even it is not: ``end`` beyond the arm)."""
+    reach = (lengths[0] + lengths[1]) * (1.0 - 1e-6)
+    if np.linalg.norm(end - lengths[2] * u) <= reach:
+        return u
+    radial = end / max(float(np.linalg.norm(end)), 1e-9)
+    for b in np.linspace(0.05, 1.0, 20):
+        v = _blend_dir(u, radial, float(b))
+        if np.linalg.norm(end - lengths[2] * v) <= reach:
+            return v
+    return radial
 
 
 def _hand_path(ctx, q0, q, side, knuckle: float) -> tuple[float, float]:
@@ -475,7 +497,8 @@ class WorkingReach:
     Attributes:
         x, y, yaw: where the operator stands and faces during the reach.
         step_back: metres the operator stepped back from where the walk ended
-            (:mod:`mjwalk.cycle.standoff`), 0 when the reach was clear there.
+            (:mod:`mjwalk.cycle.standoff`), 0 when the reach was clear there; negative: they
+            stepped in towards a target out of reach from there.
         turn: (F, nq) frames of the turn (and step back) towards the target.
         turn_time: its duration in seconds.
         frames: (G, nq) frames of the reach, hold and return.
@@ -517,8 +540,11 @@ def _reach_task(
     it is clear: the first clear spot whose hand error (m) stays within
     :data:`~mjwalk.cycle.standoff.REACH_TOLERANCE` (or within the error at the walk's end
     spot, when that is larger); the clearest such spot when none within
-    :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear. A step back never brings the pelvis
-    closer to an obstacle or the floor's edge than the planner's body radius (or than it was).
+    :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear. When the hand falls short of the
+    target from ``(x, y)`` (a spot a step back for the reach before left, a short operator), the
+    operator first steps in towards it, by as much as the hand falls short: the first spot from
+    which the hand is on its target and clear. A step never brings the pelvis closer to an
+    obstacle or the floor's edge than the planner's body radius (or than it was).
     ``facing``: the stand site's facing (radians), along which shelf work comes in
     (:func:`_approach`). ``held``: grip distance (m) of a two-handed part in the hands (a
     two-handed place turns and starts its reach in the carrying posture)."""
@@ -529,14 +555,15 @@ def _reach_task(
     back = np.array([x, y]) - _target(ctx, task.kind, site_pos, x, y)[:2]
     back /= max(float(np.linalg.norm(back)), 1e-9)
     check = _arm_clearance(ctx)
-    best: WorkingReach | None = None
-    first: WorkingReach | None = None
     room0 = float(ctx.workplace.walk_clearance(np.array([x, y]))[()])
-    for s in step_back_offsets():
+
+    def candidate(s: float) -> WorkingReach | None:
+        """The reach from ``s`` metres back (in: < 0) from ``(x, y)``; None when the spot is
+        not clear for the next walk (the planner's body radius, or the room there was)."""
         xs, ys = float(x + s * back[0]), float(y + s * back[1])
         room = float(ctx.workplace.walk_clearance(np.array([xs, ys]))[()])
-        if s > 0 and room < min(ctx.spec.radius, room0):
-            continue  # the next walk must start clear of obstacles (the planner's body radius)
+        if s != 0 and room < min(ctx.spec.radius, room0):
+            return None
         target = _target(ctx, task.kind, site_pos, xs, ys)
         # face the target (turning on the spot) before reaching for it
         d = math.hypot(target[0] - xs, target[1] - ys)
@@ -545,27 +572,42 @@ def _reach_task(
             # shelf work: bring the target ahead of the shoulder
             side = 1 if task.hand == "left" else -1
             face -= side * math.asin(min(SHOULDER_OFFSET / d, 0.5))
-        held = held if task.hand == "both" else None
-        pose = None if held is None else carry_pose(ctx, _standing(ctx, x, y, yaw), held)
+        grip = held if task.hand == "both" else None
+        pose = None if grip is None else carry_pose(ctx, _standing(ctx, x, y, yaw), grip)
         turn, dt = _turn_frames(ctx, x, y, yaw, face, fps, to=(xs, ys), pose=pose)
         approach = _approach(task.kind, site_pos, xs, ys, facing)
         q0 = turn[-1]
         width = None
         if task.hand == "both":
             rf, err, res, width = _two_hand_frames(
-                ctx, q0, task, approach, hold, fps, timing=timing, held=held
+                ctx, q0, task, approach, hold, fps, timing=timing, held=grip
             )
         else:
             arm: Side = "right" if task.hand == "right" else "left"
             rf, err, res = _reach_frames(ctx, q0, target, approach, hold, fps, arm, timing=timing)
         dist = check.distance(np.vstack([turn, rf]))
-        cand = WorkingReach(xs, ys, face, float(s), turn, dt, rf, err, res, width, dist)
-        if first is None:
-            first = cand
+        return WorkingReach(xs, ys, face, float(s), turn, dt, rf, err, res, width, dist)
+
+    offsets = step_back_offsets()
+    first = candidate(float(offsets[0]))
+    assert first is not None  # offsets start at 0: where the operator stands
+    if first.error > REACH_TOLERANCE and len(offsets) > 1:
+        # out of reach from here (a step back for the reach before, a short operator): step in
+        # towards the target first, as far as the hand falls short, onto it and clear
+        n_in = min(len(offsets) - 1, math.ceil((first.error - REACH_TOLERANCE) / STEP_BACK) + 1)
+        for j in range(1, n_in + 1):
+            cand = candidate(-STEP_BACK * j)
+            if cand is not None and cand.distance == np.inf and cand.error <= REACH_TOLERANCE:
+                return cand
+    tolerance = max(first.error, REACH_TOLERANCE)
+    best = first
+    for s in offsets:
+        cand = first if s == offsets[0] else candidate(float(s))
+        if cand is None:
+            continue
         # a step back must not cost the hand its target (beyond REACH_TOLERANCE)
-        if dist == np.inf and err <= max(first.error, REACH_TOLERANCE):
+        if cand.distance == np.inf and cand.error <= tolerance:
             return cand
-        if best is None or (dist > best.distance and err <= max(first.error, REACH_TOLERANCE)):
+        if cand.distance > best.distance and cand.error <= tolerance:
             best = cand
-    assert best is not None
     return best

@@ -127,7 +127,8 @@ class ArmRecord:
             metres, as the humanoid holds it (its joint ranges applied).
         outside: the constraint lay outside the reach model's trained range (see warnings).
         step_back: metres the operator stepped back from where the walk ended so the arm
-            clears the scene (:mod:`mjwalk.cycle.standoff`); 0 when it was clear there.
+            clears the scene (:mod:`mjwalk.cycle.standoff`); 0 when it was clear there;
+            negative when they stepped in towards a target out of reach from there.
     """
 
     task: int
