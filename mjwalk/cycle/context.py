@@ -100,10 +100,13 @@ class CycleContext:
         """The stand zone of the walk that is task ``i`` (:func:`work_zone`)."""
         from mjwalk.cycle.walking import work_zone  # the walk stage builds on the context
 
+        # made for the key's own (rounded) stature and step length: a zone made for the exact
+        # figures of the first run to ask was handed to every later run within the rounding,
+        # so a run's walks depended on which runs the process had simulated before it
         key = (i, round(stature, 3), round(step_length, 3))
         if key not in self.zones:
             _make_room(self.zones)
-            self.zones[key] = work_zone(self, i, stature, step_length)
+            self.zones[key] = work_zone(self, i, key[1], key[2])
         return self.zones[key]
 
     def baseline(self, a: str, b: str) -> float:
