@@ -103,6 +103,34 @@ def test_out_of_reach_the_operator_steps_in(ctx, monkeypatch):
     )
 
 
+def test_step_backs_do_not_add_up(ctx):
+    """A reach at the stand where the walk ended (``home``) starts from that spot again, not
+    from where a step back for the reach before left the operator: here 0.2 m back, and the
+    screw is clear and in reach from the walk's end, so the operator steps forward onto it
+    during the turn (before, the steps added up: an unseen workplace's operator drifted 0.4 m
+    from the walk's end, and the next reaches ended up to 187 mm short)."""
+    st = ctx.workplace.station("stand_rack2")
+    site = ctx.workplace.station("rack2_screw1").pos
+    back = (st.pos[:2] - site[:2]) / np.linalg.norm(st.pos[:2] - site[:2])
+    here = st.pos[:2] + 0.2 * back
+    r = _reach_task(
+        ctx,
+        _pick(ctx, "rack2_screw1"),
+        here[0],
+        here[1],
+        st.yaw,
+        0.4,
+        30.0,
+        _timing,
+        home=(float(st.pos[0]), float(st.pos[1])),
+    )
+    assert r.step_back == 0.0 and r.error < 0.01 and r.distance == np.inf
+    np.testing.assert_allclose((r.x, r.y), st.pos[:2], atol=1e-12)
+    root = ctx.jointmap.root
+    np.testing.assert_allclose(r.turn[0, root : root + 2], here, atol=0.02)
+    np.testing.assert_allclose(r.turn[-1, root : root + 2], st.pos[:2], atol=1e-12)
+
+
 def test_station_runs_of_short_operators_reach_every_target(scenes_dir):
     """Runs 154 and 287 of 300 (seed 0; 1.52 and 1.48 m operators) reach every target within
     1 cm with no contact (hand errors up to 36 mm when a step back for the first screw left

@@ -531,7 +531,17 @@ def _arm_clearance(ctx: CycleContext) -> ArmClearance:
 
 
 def _reach_task(
-    ctx, task, x, y, yaw, hold, fps, timing, facing=None, held: float | None = None
+    ctx,
+    task,
+    x,
+    y,
+    yaw,
+    hold,
+    fps,
+    timing,
+    facing=None,
+    held: float | None = None,
+    home: tuple[float, float] | None = None,
 ) -> WorkingReach:
     """Turn towards the target of a pick/place/fasten ``task`` and reach for it from the spot
     ``(x, y)`` where the walk ended (facing ``yaw``); when the arm would come closer to the
@@ -547,20 +557,24 @@ def _reach_task(
     obstacle or the floor's edge than the planner's body radius (or than it was).
     ``facing``: the stand site's facing (radians), along which shelf work comes in
     (:func:`_approach`). ``held``: grip distance (m) of a two-handed part in the hands (a
-    two-handed place turns and starts its reach in the carrying posture)."""
+    two-handed place turns and starts its reach in the carrying posture). ``home``: where the
+    walk ended (x, y), when the operator stands elsewhere now (a step for the reach before):
+    the steps are measured from there, so each reach at a stand steps back or in as far as it
+    needs from the walk's end, and step-backs do not add up (default: ``(x, y)``)."""
     from mjwalk.cycle.poses import _standing, carry_pose
 
     assert task.site is not None  # the spec loader requires a site for reaches
     site_pos = ctx.workplace.station(task.site).pos
-    back = np.array([x, y]) - _target(ctx, task.kind, site_pos, x, y)[:2]
+    hx, hy = (float(x), float(y)) if home is None else (float(home[0]), float(home[1]))
+    back = np.array([hx, hy]) - _target(ctx, task.kind, site_pos, hx, hy)[:2]
     back /= max(float(np.linalg.norm(back)), 1e-9)
     check = _arm_clearance(ctx)
-    room0 = float(ctx.workplace.walk_clearance(np.array([x, y]))[()])
+    room0 = float(ctx.workplace.walk_clearance(np.array([hx, hy]))[()])
 
     def candidate(s: float) -> WorkingReach | None:
         """The reach from ``s`` metres back (in: < 0) from ``(x, y)``; None when the spot is
         not clear for the next walk (the planner's body radius, or the room there was)."""
-        xs, ys = float(x + s * back[0]), float(y + s * back[1])
+        xs, ys = float(hx + s * back[0]), float(hy + s * back[1])
         room = float(ctx.workplace.walk_clearance(np.array([xs, ys]))[()])
         if s != 0 and room < min(ctx.spec.radius, room0):
             return None

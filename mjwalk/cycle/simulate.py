@@ -133,6 +133,7 @@ def simulate_cycle(
     wp = ctx.workplace
     here = spec.start
     x, y = cycle_start(ctx, stand_rng, walker)  # in the start's stand zone, not on its mark
+    home = (x, y)  # where the last walk ended: the reaches there step back or in from it
     yaw = wp.station(here).yaw
     frames = [_standing(ctx, x, y, yaw)[None]]
     t = 0.0
@@ -160,6 +161,7 @@ def simulate_cycle(
             frames.append(wf)
             t += len(wf) / fps  # the walk, to the video frame
             x, y = (float(v) for v in path.xy[-1])
+            home = (x, y)
             yaw = float(path.yaw[-1])
             face = wp.station(goal).yaw
             # the last step lands knee flexed, pelvis low: the turn settles into standing
@@ -191,7 +193,9 @@ def simulate_cycle(
                 )
 
             assert task.site is not None  # the spec loader requires a site for reaches
-            r = _reach_task(ctx, task, x, y, yaw, hold, fps, timing, wp.station(here).yaw, width)
+            r = _reach_task(
+                ctx, task, x, y, yaw, hold, fps, timing, wp.station(here).yaw, width, home
+            )
             x, y, yaw = r.x, r.y, r.yaw
             frames.append(r.turn)
             t += r.turn_time
