@@ -56,6 +56,7 @@ def _reach_frames(
     side: Side = "left",
     timing=None,
     face: np.ndarray | None = None,
+    lean: bool = False,
 ):
     """Frames of reaching from pose ``q0`` to ``target_w`` (world, m), holding, returning.
 
@@ -83,16 +84,21 @@ def _reach_frames(
     from mjwalk.body.humanoid import PALM_SHARE
 
     m, jm, model = ctx.model, ctx.jointmap, ctx.reach_model_for(side)
-    data = ctx.scratch()
-    data.qpos[:] = q0
-    mujoco.mj_kinematics(m, data)
-    ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id
-    shoulder = data.xpos[ua].copy()
-    frame = data.xmat[ua].reshape(3, 3).copy()
     # the reach is solved at the reach model's arm lengths; an operator of another stature has
     # the same arm shape scaled (Winter's shares), so the targets are scaled into the model's
     # size (directions, hence joint angles, do not change with the scale)
     scale, lengths = humanoid_arm(model, ctx.spec.stature)
+    # ``base``: q0, or q0 bent forward at the trunk (the lean comes in with the ready phase and
+    # goes with the return; the arm's poses are solved from the leaning shoulder)
+    base = q0
+    if lean:
+        base = _leaning(ctx, q0, side, target_w, float(lengths.sum()) / scale - LEAN_SPARE)
+    data = ctx.scratch()
+    data.qpos[:] = base
+    mujoco.mj_kinematics(m, data)
+    ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id
+    shoulder = data.xpos[ua].copy()
+    frame = data.xmat[ua].reshape(3, 3).copy()
     end = frame.T @ (target_w - shoulder) * scale
     pre = frame.T @ (target_w + approach_w - shoulder) * scale
     start = model.rest_hand  # where the model's reaches start (the ready posture)
@@ -118,7 +124,7 @@ def _reach_frames(
     u_app = frame.T @ -np.asarray(approach_w, dtype=float)
     u_app /= max(float(np.linalg.norm(u_app)), 1e-9)
     u_end, elbow_end = _wrist_feasible(
-        ctx, q0, side, frame, end, u_face if face is not None else u_app, u_last, lengths
+        ctx, base, side, frame, end, u_face if face is not None else u_app, u_last, lengths
     )
     if face is not None or not np.allclose(u_end, u_last[2]):
         app[:, 2] = [_blend_dir(u_last[2], u_end, tau) for tau in taus]
@@ -134,7 +140,8 @@ def _reach_frames(
     # end (MTM-1 data card, Reach: "distance moved ... is the true path"; Freivalds & Niebel
     # 2014, ch. 12): the humanoid's index knuckle from where it is in q0 (the ready phase bends
     # the arm into the model's start), along the model's trajectory and the approach
-    ready_len, model_len = _hand_path(ctx, q0, q, side, PALM_SHARE * lengths[2] / scale)
+    knuckle = PALM_SHARE * lengths[2] / scale
+    ready_len, model_len = _hand_path(ctx, q0, q, side, knuckle, base)
     reach_out, reach_back = timing(ready_len + model_len)
     n_out = max(2, round(reach_out * fps))
     # The reach model's trajectories start at its ready posture (ReachModel.rest_hand; the
@@ -146,11 +153,11 @@ def _reach_frames(
     # it the arm snapped between the two in one frame (elbow 0 <-> 87 deg).
     share = ready_len / max(ready_len + model_len, 1e-9)
     n_ready = min(n_out - 2, max(1, round(max(share * n_out, READY_MIN * fps))))
-    ready, _ = arm_frames(q0, jm, q[:1], side, np.ones(n_ready))
+    ready, _ = arm_frames(base, jm, q[:1], side, np.ones(n_ready))
     w = _smooth(np.arange(1, n_ready + 1) / (n_ready + 1))[:, None]
     ready = q0[None] + w * (ready - q0[None])
     n_out -= n_ready
-    out, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
+    out, _ = arm_frames(base, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
     data.qpos[:] = out[-1]
     mujoco.mj_kinematics(m, data)
     # the hand's end as the humanoid holds it (its hand body's -z axis, after the joint ranges)
@@ -170,6 +177,37 @@ def _reach_frames(
     back = np.vstack([back[1:], ready[::-1], q0[None]])  # ... the ready posture, hanging
     frames = np.vstack([ready, out, np.repeat(out[-1:], n_hold, axis=0), back])
     return frames, error, res
+
+
+#: Steps (radians) of the trunk's forward lean for a target out of the arm's reach, and the
+#: reach (m) the lean leaves to spare: the smallest lean, 5 deg at a time, that brings the target
+#: within the arm's length less 2 cm of the shoulder (a choice: a reach short of locking the
+#: elbow). The lean goes into the lumbar and thoracic flexion in proportion to their ranges
+#: (:data:`mjwalk.anthropometry.ROM_DEG`: 60 and 45 deg).
+LEAN_STEP = np.radians(5.0)
+LEAN_SPARE = 0.02
+
+
+def _leaning(ctx, q0: np.ndarray, side: Side, target_w: np.ndarray, reach: float) -> np.ndarray:
+    """``q0`` with the trunk bent forward just far enough that ``target_w`` (world, m) lies
+    within ``reach`` metres of ``side``'s shoulder (lumbar and thoracic flexion, within their
+    ranges, :data:`LEAN_STEP` at a time); bent as far as they go when that is not enough."""
+    m, jm = ctx.model, ctx.jointmap
+    data = ctx.scratch()
+    ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id
+    joints = [jm.adr(j) for j in ("lumbar_flex", "thoracic_flex")]
+    room = np.array([jm.limits(j)[1] for j in ("lumbar_flex", "thoracic_flex")]) - q0[joints]
+    room = np.maximum(room, 0.0)
+    total = float(room.sum())
+    q = q0.copy()
+    for theta in np.arange(0.0, total + 1e-9, float(LEAN_STEP)):
+        q[joints] = q0[joints] + theta * room / max(total, 1e-9)
+        data.qpos[:] = q
+        mujoco.mj_kinematics(m, data)
+        if np.linalg.norm(target_w - data.xpos[ua]) <= reach:
+            return q
+    q[joints] = q0[joints] + room
+    return q
 
 
 def _hand_tip(data, m, jm, side, hand_length: float) -> np.ndarray:
@@ -258,23 +296,26 @@ def _within_reach(u: np.ndarray, end: np.ndarray, lengths: np.ndarray) -> np.nda
     return radial
 
 
-def _hand_path(ctx, q0, q, side, knuckle: float) -> tuple[float, float]:
+def _hand_path(ctx, q0, q, side, knuckle: float, base=None) -> tuple[float, float]:
     """Lengths (m) of the path of the humanoid's index knuckle in a reach, where MTM-1 measures
     a hand's reach (Freivalds & Niebel 2014, *Niebel's Methods, Standards, and Work Design*,
     13th ed., ch. 12): ``(ready, movement)``, through the ready phase's poses (the joint angles
     from ``q0`` into the trajectory's first pose) and the trajectory's poses (joint angles ``q``,
     (n, 7), each interval split as the frames interpolate it), after the joint ranges.
     ``knuckle``: its distance (m) from the wrist along the hand (the operator's size).
+    ``base``: the pose the arm's angles are set in (q0 bent forward, for a leaning reach).
     Computes in the context's scratch data."""
     from mjwalk.arms.kinematics import arm_frames
 
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
     b = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
-    first = arm_frames(q0, jm, q[:1], side, np.ones(1))[0][0]
+    base = q0 if base is None else base
+    first = arm_frames(base, jm, q[:1], side, np.ones(1))[0][0]
     w = np.linspace(0.0, 1.0, PATH_POSES)[:, None]
     ready = q0[None] + w * (first - q0)[None]
-    move, _ = arm_frames(q0, jm, q, side, np.linspace(0.0, 1.0, PATH_SUBSTEPS * (len(q) - 1) + 1))
+    steps = np.linspace(0.0, 1.0, PATH_SUBSTEPS * (len(q) - 1) + 1)
+    move, _ = arm_frames(base, jm, q, side, steps)
 
     def length(poses: np.ndarray) -> float:
         points = np.empty((len(poses), 3))
@@ -560,7 +601,10 @@ def _reach_task(
     two-handed place turns and starts its reach in the carrying posture). ``home``: where the
     walk ended (x, y), when the operator stands elsewhere now (a step for the reach before):
     the steps are measured from there, so each reach at a stand steps back or in as far as it
-    needs from the walk's end, and step-backs do not add up (default: ``(x, y)``)."""
+    needs from the walk's end, and step-backs do not add up (default: ``(x, y)``). When no
+    spot brings a one-handed target within the arm's reach (low, below a standing reach), the
+    search runs again with the trunk bent forward as far as the target needs
+    (:func:`_leaning`), and that reach is kept when it brings the hand closer."""
     from mjwalk.cycle.poses import _standing, carry_pose
 
     assert task.site is not None  # the spec loader requires a site for reaches
@@ -571,9 +615,10 @@ def _reach_task(
     check = _arm_clearance(ctx)
     room0 = float(ctx.workplace.walk_clearance(np.array([hx, hy]))[()])
 
-    def candidate(s: float) -> WorkingReach | None:
-        """The reach from ``s`` metres back (in: < 0) from ``(x, y)``; None when the spot is
-        not clear for the next walk (the planner's body radius, or the room there was)."""
+    def candidate(s: float, lean: bool) -> WorkingReach | None:
+        """The reach from ``s`` metres back (in: < 0) from the walk's end (``lean``: bending
+        the trunk forward as far as the target needs); None when the spot is not clear for the
+        next walk (the planner's body radius, or the room there was)."""
         xs, ys = float(hx + s * back[0]), float(hy + s * back[1])
         room = float(ctx.workplace.walk_clearance(np.array([xs, ys]))[()])
         if s != 0 and room < min(ctx.spec.radius, room0):
@@ -598,30 +643,43 @@ def _reach_task(
             )
         else:
             arm: Side = "right" if task.hand == "right" else "left"
-            rf, err, res = _reach_frames(ctx, q0, target, approach, hold, fps, arm, timing=timing)
+            rf, err, res = _reach_frames(
+                ctx, q0, target, approach, hold, fps, arm, timing=timing, lean=lean
+            )
         dist = check.distance(np.vstack([turn, rf]))
         return WorkingReach(xs, ys, face, float(s), turn, dt, rf, err, res, width, dist)
 
-    offsets = step_back_offsets()
-    first = candidate(float(offsets[0]))
-    assert first is not None  # offsets start at 0: where the operator stands
-    if first.error > REACH_TOLERANCE and len(offsets) > 1:
-        # out of reach from here (a step back for the reach before, a short operator): step in
-        # towards the target first, as far as the hand falls short, onto it and clear
-        n_in = min(len(offsets) - 1, math.ceil((first.error - REACH_TOLERANCE) / STEP_BACK) + 1)
-        for j in range(1, n_in + 1):
-            cand = candidate(-STEP_BACK * j)
-            if cand is not None and cand.distance == np.inf and cand.error <= REACH_TOLERANCE:
+    def settle(lean: bool) -> WorkingReach:
+        """The stand-off's search (see above) for reaches with or without the trunk's lean."""
+        offsets = step_back_offsets()
+        first = candidate(float(offsets[0]), lean)
+        assert first is not None  # offsets start at 0: where the operator stands
+        if first.error > REACH_TOLERANCE and len(offsets) > 1:
+            # out of reach from here (a step back for the reach before, a short operator): step
+            # in towards the target first, as far as the hand falls short, onto it and clear
+            short = first.error - REACH_TOLERANCE
+            n_in = min(len(offsets) - 1, math.ceil(short / STEP_BACK) + 1)
+            for j in range(1, n_in + 1):
+                cand = candidate(-STEP_BACK * j, lean)
+                if cand is not None and cand.distance == np.inf and cand.error <= REACH_TOLERANCE:
+                    return cand
+        tolerance = max(first.error, REACH_TOLERANCE)
+        best = first
+        for s in offsets:
+            cand = first if s == offsets[0] else candidate(float(s), lean)
+            if cand is None:
+                continue
+            # a step back must not cost the hand its target (beyond REACH_TOLERANCE)
+            if cand.distance == np.inf and cand.error <= tolerance:
                 return cand
-    tolerance = max(first.error, REACH_TOLERANCE)
-    best = first
-    for s in offsets:
-        cand = first if s == offsets[0] else candidate(float(s))
-        if cand is None:
-            continue
-        # a step back must not cost the hand its target (beyond REACH_TOLERANCE)
-        if cand.distance == np.inf and cand.error <= tolerance:
-            return cand
-        if cand.distance > best.distance and cand.error <= tolerance:
-            best = cand
-    return best
+            if cand.distance > best.distance and cand.error <= tolerance:
+                best = cand
+        return best
+
+    upright = settle(lean=False)
+    if upright.error <= REACH_TOLERANCE or task.hand == "both":
+        return upright
+    # a target no step brings within the arm's reach (low, as a bin by the feet, or deep): the
+    # operator bends forward for it, and keeps the lean when it brings the hand closer
+    bent = settle(lean=True)
+    return bent if bent.error < upright.error else upright
