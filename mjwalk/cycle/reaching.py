@@ -114,13 +114,12 @@ def _reach_frames(
     app = np.repeat(u_last[None], n_app, axis=0)
     taus = min_jerk(np.linspace(0.0, 1.0, n_app + 1)[1:])
     hands = pre + taus[:, None] * (end - pre)
-    # the hand's direction on the target: the model's (or the grip face's) as far as the
-    # humanoid's wrist can turn it there; beyond its range the hand turned as far as it goes
-    # and the arm placed so that hand's end is on the target (before, the wrist was clipped
-    # after the fact and the fingers ended up to 14 cm off a fastening target)
-    # the hand points along its approach: the hand (and the forearm behind it, as far as the
-    # wrist follows) stays on the approach's line, which comes in from the free side of the
-    # target (out of a shelf's opening, from the operator at the car)
+    # the hand's direction on the target: along its approach (the hand, and the forearm behind
+    # it as far as the wrist follows, stay on the approach's line, which comes in from the free
+    # side of the target: out of a shelf's opening, from the operator at the car), or in the
+    # grip face's plane; as far as the humanoid's wrist can turn it there, the elbow swivelled
+    # as it needs (_wrist_feasible). Before, the wrist was clipped after the fact and the
+    # fingers ended up to 14 cm off a fastening target
     u_app = frame.T @ -np.asarray(approach_w, dtype=float)
     u_app /= max(float(np.linalg.norm(u_app)), 1e-9)
     u_end, elbow_end = _wrist_feasible(
