@@ -119,9 +119,9 @@ class CycleContext:
         return self.baselines[(a, b)]
 
 
-def _make_room(kept: dict) -> None:
-    """Drop the oldest entries of ``kept`` until one more fits :data:`KEPT_PER_CONTEXT`."""
-    while len(kept) >= KEPT_PER_CONTEXT:
+def _make_room(kept: dict, limit: int = KEPT_PER_CONTEXT) -> None:
+    """Drop the oldest entries of ``kept`` until one more fits ``limit`` entries."""
+    while len(kept) >= limit:
         kept.pop(next(iter(kept)))
 
 
@@ -172,8 +172,7 @@ def context_of(spec: CycleSpec | str | Path) -> CycleContext:
     ctx = _SPEC_CONTEXTS.get(key)
     if ctx is None:
         ctx = prepare(spec)
-        if len(_SPEC_CONTEXTS) >= _SPEC_CONTEXTS_KEPT:
-            _SPEC_CONTEXTS.pop(next(iter(_SPEC_CONTEXTS)))
+        _make_room(_SPEC_CONTEXTS, _SPEC_CONTEXTS_KEPT)
         _SPEC_CONTEXTS[key] = ctx
     return ctx
 

@@ -259,7 +259,6 @@ def _wrist_feasible(
         if not arm_frames(q0, ctx.jointmap, q, side, np.ones(1))[1]:
             return u, u1[0]
     b = ctx.model.body(f"{ctx.jointmap.prefix}hand_{side_prefix(side)}").id
-    u1 = u_last[0][None]
     for _ in range(WRIST_ITERATIONS):
         u1, u2 = two_link_ik_rows((end - lengths[2] * u)[None], lengths[0], lengths[1], hint[None])
         q = arm_joint_angles(np.stack([u1[0], u2[0], u])[None], side)
@@ -308,7 +307,6 @@ def _hand_path(ctx, q0, q, side, knuckle: float, base=None) -> tuple[float, floa
 
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
-    b = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
     base = q0 if base is None else base
     first = arm_frames(base, jm, q[:1], side, np.ones(1))[0][0]
     w = np.linspace(0.0, 1.0, PATH_POSES)[:, None]
@@ -321,7 +319,7 @@ def _hand_path(ctx, q0, q, side, knuckle: float, base=None) -> tuple[float, floa
         for k, pose in enumerate(poses):
             data.qpos[:] = pose
             mujoco.mj_kinematics(m, data)
-            points[k] = data.xpos[b] - knuckle * data.xmat[b].reshape(3, 3)[:, 2]
+            points[k] = _hand_tip(data, m, jm, side, knuckle)  # ``knuckle`` m along the hand
         return float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
 
     return length(ready), length(move)
