@@ -90,6 +90,18 @@ clips (median paired difference +0.13), not a few outliers. Tried at seed 0 and 
 (right arm, ad hoc): ten networks 4.77, patience 20 and up to 120 neurons 4.74, a width grid
 0.35-2.83 4.81, the pose columns left out of the selection score (the endpoint refit fixes
 the pose) 4.80 -- none below kNN's 4.69.
+Where the right-arm gap lies (seed 0, ad hoc, 2026-11-28; distance to the nearest training
+constraint in trained-range radii, ``DCSNetwork.range_radius_``): within 0.25, 157 movements,
+DCS 3.99 / kNN 3.99; 0.25-0.5, 85, 5.88 / 5.83; 0.5-1, 13 (12 youthful), 7.69 / 5.64 -- the
+whole gap comes from the data's edge, where every linear extrapolation (the network's local
+maps 7.90 with its trend fallback held off, the trend network alone 8.51) does worse than
+averaging the nearest clips; further out (leave-one-style-out) the trend is what beats the
+mean trajectory. kNN's own k: 1 5.18, 3 4.73, 5 4.69, 10 4.81, 20 4.94 (no near-duplicate
+clips: one neighbour is worst). Also tried then and not kept: a ridge per output column
+chosen by PRESS 4.83; subagging (each averaged network on 63.2 % of the clips, ten networks)
+4.61 / 4.61 / 4.69 at seeds 0 / 20 / 30 against kNN 4.69 / 4.56 / 4.63 and GPR 4.70 / 4.65 /
+4.55 (left 4.18), but leave-one-style-out right 13.04 -> 13.50, at twice the cost; local
+maps held at each neuron's data radius 5.01.
 Before the dead-unit pruning and the trend fallback (earlier that day): CV 4.21, LOSO 14.50
 (feminine 21.5, masculine 14.6 -- worse than the mean trajectory --, normal 9.8, youthful
 12.9), and from seed to seed (DCS seeds + 0..40, ad hoc) the masculine fold gave 14.6-25.0,
