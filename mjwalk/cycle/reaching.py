@@ -241,6 +241,8 @@ def _wrist_feasible(
     to orient the hand); else the direction the hand has with the wrist at its range limits,
     the arm re-solved by two-link IK for that hand, a few times over. Computes in the context's
     scratch data."""
+    from scipy.spatial.transform import Rotation
+
     from mjwalk.arms.kinematics import arm_frames, arm_joint_angles, two_link_ik_rows
 
     data = ctx.scratch()
@@ -248,12 +250,8 @@ def _wrist_feasible(
     hint = u_last[0] * lengths[0]
     wrist = end - lengths[2] * u
     axis = wrist / max(float(np.linalg.norm(wrist)), 1e-9)
-    for a in SWIVELS:  # Rodrigues: the elbow hint turned by a about the shoulder-wrist axis
-        h = (
-            hint * np.cos(a)
-            + np.cross(axis, hint) * np.sin(a)
-            + axis * (axis @ hint) * (1.0 - np.cos(a))
-        )
+    # the elbow hint turned by each swivel about the shoulder-wrist axis
+    for h in Rotation.from_rotvec(SWIVELS[:, None] * axis).apply(hint):
         u1, u2 = two_link_ik_rows(wrist[None], lengths[0], lengths[1], h[None])
         q = arm_joint_angles(np.stack([u1[0], u2[0], u])[None], side)
         if not arm_frames(q0, ctx.jointmap, q, side, np.ones(1))[1]:
