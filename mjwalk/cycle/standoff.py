@@ -14,8 +14,7 @@ detection, the arm geoms inflated by :data:`REACH_CLEARANCE`, and when it is not
 operator back from the target in :data:`STEP_BACK` increments (up to :data:`MAX_STEP_BACK`)
 during the turn, as a worker steps back from a shelf he stands too close to; a reach whose
 target is out of arm's length from where the last one left the operator steps in first. The
-cycle's contact
-check (:mod:`mjwalk.timeline.collisions`) is unchanged. Measured (``python
+cycle's contact check (:mod:`mjwalk.timeline.collisions`) is unchanged. Measured (``python
 benchmarks/bench_contacts.py --walks 200 --cycles 1000 --jobs 1``): 29 of 14 000 reaches step
 back, each by 0.02 m; no reach of the 1000 cycles touches the scene. Re-measured 2026-11-27
 (``--jobs 2``), after the reach generator's wrist and elbow and the hand along its approach
