@@ -193,3 +193,33 @@ def test_endpoint_models_trained_on_capture_drive_a_scene_reach(shared_data, sce
                 assert np.linalg.norm(tip - (sh + fr @ rest / scale)) < 0.01
             else:
                 assert np.linalg.norm(tip - want) < 0.01
+
+
+def test_a_model_file_is_read_once_for_the_spec_check_and_the_cycle(
+    scenes_dir, tmp_path, two_models, monkeypatch
+):
+    """load_cycle_spec checks the reach model file and prepare() uses it: one read, one
+    object; a rewritten file is read again."""
+    from mjwalk.arms.reach import ReachModel, _load_reach_file
+
+    left, _ = two_models
+    left.save(tmp_path / "left.npz")
+    _load_reach_file.cache_clear()
+    reads = []
+    real = ReachModel.load.__func__
+
+    def counting(cls, path):
+        reads.append(str(path))
+        return real(cls, path)
+
+    monkeypatch.setattr(ReachModel, "load", classmethod(counting))
+    spec = load_cycle_spec(_spec_with(scenes_dir, tmp_path, 'reach = "left.npz"'))
+    ctx = prepare(spec)
+    assert len(reads) == 1
+    assert ctx.reach_model.n_neurons == left.n_neurons
+    import os
+
+    st = os.stat(tmp_path / "left.npz")
+    os.utime(tmp_path / "left.npz", ns=(st.st_atime_ns, st.st_mtime_ns + 1_000_000_000))
+    load_cycle_spec(_spec_with(scenes_dir, tmp_path, 'reach = "left.npz"'))
+    assert len(reads) == 2

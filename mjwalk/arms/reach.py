@@ -23,6 +23,7 @@ there rather than extrapolating its neurons' local maps; the warning says by how
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -51,6 +52,29 @@ REACH_VERSION = 1
 ENDPOINT_INPUTS = 6
 #: Segments of the humanoid arm chain a scene reach drives: upper arm, forearm, hand.
 HUMANOID_ARM_SEGMENTS = 3
+
+
+def load_endpoint_model(path: str | Path, source: str | None = None) -> ReachModel:
+    """Read a reach model file and check it is an endpoint model of the humanoid's arm
+    (:func:`check_endpoint_model`); ``source`` names it in the error (default: the path).
+
+    The file is read once per content: a cycle spec checks it when it is loaded and the
+    cycle uses it later, so both get the same :class:`ReachModel` object as long as the
+    file's size and modification time are unchanged (treat it as read-only)."""
+    file = Path(path).resolve()
+    if file.is_file():
+        stat = file.stat()
+        model = _load_reach_file(str(file), stat.st_size, stat.st_mtime_ns)
+    else:
+        model = ReachModel.load(path)  # raises the loader's "no such file" error
+    check_endpoint_model(model, str(path) if source is None else source)
+    return model
+
+
+@functools.lru_cache(maxsize=8)
+def _load_reach_file(path: str, size: int, mtime_ns: int) -> ReachModel:
+    """:meth:`ReachModel.load`, memoized by path, size and modification time."""
+    return ReachModel.load(path)
 
 
 def check_endpoint_model(model: ReachModel, source: str = "reach model") -> None:

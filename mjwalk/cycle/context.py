@@ -136,15 +136,14 @@ def _load_step_model(spec: CycleSpec):
 
 
 def _load_reach_model(path: str):
-    from mjwalk.arms.reach import ReachModel, check_endpoint_model
+    from mjwalk.arms.reach import load_endpoint_model
 
     if path == "default":
         from mjwalk.arms.reachdefault import default_reach_model
 
         return default_reach_model()
-    model = ReachModel.load(path)
-    check_endpoint_model(model, f"reach model {path}")  # before any work
-    return model
+    # the spec checked this file when it was loaded: the same object comes back
+    return load_endpoint_model(path, f"reach model {path}")
 
 
 @functools.lru_cache(maxsize=4)
