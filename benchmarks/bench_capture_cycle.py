@@ -38,7 +38,7 @@ import bench_reach as br
 import numpy as np
 
 from mjwalk.arms.armcapture import arm_movements
-from mjwalk.arms.reach import ReachModel, check_endpoint_model
+from mjwalk.arms.reach import ReachModel, load_endpoint_model
 from mjwalk.arms.reachdefault import CAPTURE_DCS
 from mjwalk.cycle.simulate import simulate_cycles
 from mjwalk.cycle.spec import load_cycle_spec
@@ -62,10 +62,10 @@ def train(data_dir: Path, side: str, out: Path) -> tuple[ReachModel, int]:
 
 def capture_spec(cycle: Path, left: Path, right: Path) -> CycleSpec:
     """The cycle of ``cycle`` with the two reach models (``[models] reach`` / ``reach_right``),
-    each checked to be an endpoint model as the cycle file's loader checks them."""
+    each checked (and read once for the runs) by the cycle file loader's own check."""
     for key, file in (("reach", left), ("reach_right", right)):
         try:
-            check_endpoint_model(ReachModel.load(file), str(file))
+            load_endpoint_model(file)
         except MjwalkError as exc:
             raise MjwalkError(f"{key}: {exc}") from None
     spec = load_cycle_spec(cycle)
