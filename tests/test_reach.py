@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from mjwalk.arms import reachgen
-from mjwalk.arms.kinematics import arm_joint_angles, end_effector
+from mjwalk.arms.kinematics import arm_joint_angles, end_effector, wrist_in_range
 from mjwalk.arms.reach import ReachModel
 from mjwalk.arms.reachdefault import DEFAULT_DCS
 from mjwalk.errors import MjwalkError, ModelFileError
@@ -75,6 +75,34 @@ def test_generated_reaches_keep_a_human_wrist_and_elbow():
     ends = data.hand[:, -1]
     assert ((ends >= lo) & (ends <= hi)).all()
     assert (ends[:, 1] < -0.2).any()
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_wrist_in_range_turns_the_hand_to_the_limit_and_keeps_its_end(side):
+    """A hand direction the wrist cannot hold is turned to the range's edge (not past it, not
+    short of it), the arm re-solved so the hand's end stays on the target; a direction within
+    the range is kept as it is."""
+    rng = np.random.default_rng(3)
+    lengths = np.array([0.30, 0.27, 0.18])
+    s = 1.0 if side == "left" else -1.0
+    n = 40
+    end = np.column_stack(
+        [rng.uniform(0.25, 0.5, n), s * rng.uniform(-0.1, 0.25, n), rng.uniform(-0.4, 0.0, n)]
+    )
+    hand = rng.normal(size=(n, 3))
+    hand /= np.linalg.norm(hand, axis=1, keepdims=True)
+    hint = np.tile([0.0, s * 0.3, -1.0], (n, 1))
+    limits = np.radians(reachgen.FUNCTIONAL_WRIST)
+    arm = wrist_in_range(end, hand, lengths, hint, limits, side, iterations=20)
+    assert np.allclose(np.linalg.norm(arm, axis=2), 1.0)
+    assert np.abs(end_effector(arm, lengths) - end).max() < 1e-6
+    q = arm_joint_angles(arm, side)[:, 5:7]
+    lo, hi = limits.T
+    assert ((q >= lo - 1e-3) & (q <= hi + 1e-3)).all()
+    q_free = arm_joint_angles(wrist_in_range(end, hand, lengths, hint, limits, side, 0), side)
+    inside = ((q_free[:, 5:7] >= lo) & (q_free[:, 5:7] <= hi)).all(axis=1)
+    assert 0 < inside.sum() < n  # both kinds among the random directions
+    assert np.allclose(arm[inside, 2], hand[inside])
 
 
 def test_outside_constraint_is_flagged_never_silent(endpoint_model):

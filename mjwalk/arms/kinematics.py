@@ -197,6 +197,37 @@ def _euler_yxz(r: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return a, b, c
 
 
+def wrist_in_range(
+    end: np.ndarray,
+    hand_dir: np.ndarray,
+    lengths: np.ndarray,
+    elbow_hint: np.ndarray,
+    limits: np.ndarray,
+    side: Side = "left",
+    iterations: int = 6,
+) -> np.ndarray:
+    """Arm directions (n, 3, 3) (upper arm, forearm, hand; unit, thorax frame) putting the
+    hand's end on ``end`` (n, 3) m with the hand along ``hand_dir`` (n, 3) as far as the wrist's
+    range allows: where the two-link arm solved for that hand (elbow towards ``elbow_hint``
+    (n, 3)) would bend the wrist beyond ``limits`` ((2, 2) radians: (lo, hi) of flexion and of
+    deviation, :data:`ARM_JOINTS` order), the hand turns only to the limit
+    (:func:`hand_directions`) and the arm is re-solved for it, ``iterations`` times at most
+    (the forearm moves with the wrist; the direction settles within a few passes).
+    ``lengths``: (3,) upper arm, forearm, hand (m)."""
+    end = np.asarray(end, dtype=float)
+    hd = np.asarray(hand_dir, dtype=float).copy()
+    lo, hi = np.asarray(limits, dtype=float).T
+    for _ in range(iterations):
+        u1, u2 = two_link_ik_rows(end - lengths[2] * hd, lengths[0], lengths[1], elbow_hint)
+        q = arm_joint_angles(np.stack([u1, u2, hd], axis=1), side)[:, 5:7]
+        if ((q >= lo - 1e-9) & (q <= hi + 1e-9)).all():
+            break
+        q = np.clip(q, lo, hi)
+        hd = hand_directions(u1, u2, q[:, 0], q[:, 1], side)
+    u1, u2 = two_link_ik_rows(end - lengths[2] * hd, lengths[0], lengths[1], elbow_hint)
+    return np.stack([u1, u2, hd], axis=1)
+
+
 def arm_frames(
     q0: np.ndarray, jm, q: np.ndarray, side: Side, times: np.ndarray
 ) -> tuple[np.ndarray, list[str]]:

@@ -35,10 +35,9 @@ from mjwalk.arms.kinematics import (
     arm_joint_angles,
     arm_segment_lengths,
     end_effector,
-    hand_directions,
     min_jerk,
     two_link_ik,
-    two_link_ik_rows,
+    wrist_in_range,
 )
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
@@ -141,18 +140,8 @@ def reach_trajectory(
     # the wrist within its functional range: where the hand direction above would bend it
     # further, the hand turns only as far as the range goes and the arm is re-solved for that
     # hand (a few times over: the forearm moves with the wrist).
-    lo, hi = np.radians(FUNCTIONAL_WRIST).T
-    for _ in range(WRIST_ITERATIONS):
-        u1, u2 = two_link_ik_rows(hand - lengths[2] * hd, lengths[0], lengths[1], elbows)
-        q = arm_joint_angles(np.stack([u1, u2, hd], axis=1))[:, 5:7]
-        if ((q >= lo - 1e-9) & (q <= hi + 1e-9)).all():
-            break
-        q = np.clip(q, lo, hi)
-        hd = hand_directions(u1, u2, q[:, 0], q[:, 1])
-    U = np.empty((n, 3, 3))
-    U[:, 0], U[:, 1] = two_link_ik_rows(hand - lengths[2] * hd, lengths[0], lengths[1], elbows)
-    U[:, 2] = hd
-    return U, hand
+    limits = np.radians(FUNCTIONAL_WRIST)
+    return wrist_in_range(hand, hd, lengths, elbows, limits, iterations=WRIST_ITERATIONS), hand
 
 
 def _arm(wrist: np.ndarray, lengths: np.ndarray, swivel: float) -> tuple[np.ndarray, np.ndarray]:

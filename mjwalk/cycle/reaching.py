@@ -123,7 +123,7 @@ def _reach_frames(
     u_app = frame.T @ -np.asarray(approach_w, dtype=float)
     u_app /= max(float(np.linalg.norm(u_app)), 1e-9)
     u_end, elbow_end = _wrist_feasible(
-        ctx, base, side, frame, end, u_face if face is not None else u_app, u_last, lengths
+        ctx, base, side, end, u_face if face is not None else u_app, u_last, lengths
     )
     if face is not None or not np.allclose(u_end, u_last[2]):
         app[:, 2] = [_blend_dir(u_last[2], u_end, tau) for tau in taus]
@@ -229,23 +229,24 @@ WRIST_ITERATIONS = 4
 SWIVELS = np.radians(np.array([0.0] + [s * k for k in range(5, 65, 5) for s in (1, -1)]))
 
 
-def _wrist_feasible(
-    ctx, q0, side, frame, end, u_hand, u_last, lengths
-) -> tuple[np.ndarray, np.ndarray]:
+def _wrist_feasible(ctx, q0, side, end, u_hand, u_last, lengths) -> tuple[np.ndarray, np.ndarray]:
     """A hand direction (unit, shoulder frame) the humanoid's wrist can hold with the hand's
     end on ``end`` (model size), and the upper arm's direction for it: ``u_hand`` (turned
     towards ``end`` as far as the arm needs to reach it: :func:`_within_reach`) with the elbow
     where the model's last pose has it (``u_last``) when the arm's joint angles are within their
     ranges there; else ``u_hand`` with the elbow swivelled about the shoulder-wrist axis (the
     nearest of :data:`SWIVELS` that keeps every joint in range: people turn the elbow out or in
-    to orient the hand); else the direction the hand has with the wrist at its range limits,
-    the arm re-solved by two-link IK for that hand, a few times over. Computes in the context's
-    scratch data."""
+    to orient the hand); else the hand turned only as far as the humanoid's wrist ranges allow,
+    the arm re-solved for that hand (:func:`~mjwalk.arms.kinematics.wrist_in_range`)."""
     from scipy.spatial.transform import Rotation
 
-    from mjwalk.arms.kinematics import arm_frames, arm_joint_angles, two_link_ik_rows
+    from mjwalk.arms.kinematics import (
+        arm_frames,
+        arm_joint_angles,
+        two_link_ik_rows,
+        wrist_in_range,
+    )
 
-    data = ctx.scratch()
     u = _within_reach(np.asarray(u_hand, dtype=float), end, lengths)
     hint = u_last[0] * lengths[0]
     wrist = end - lengths[2] * u
@@ -256,17 +257,12 @@ def _wrist_feasible(
         q = arm_joint_angles(np.stack([u1[0], u2[0], u])[None], side)
         if not arm_frames(q0, ctx.jointmap, q, side, np.ones(1))[1]:
             return u, u1[0]
-    b = ctx.model.body(f"{ctx.jointmap.prefix}hand_{side_prefix(side)}").id
-    for _ in range(WRIST_ITERATIONS):
-        u1, u2 = two_link_ik_rows((end - lengths[2] * u)[None], lengths[0], lengths[1], hint[None])
-        q = arm_joint_angles(np.stack([u1[0], u2[0], u])[None], side)
-        row, clipped = arm_frames(q0, ctx.jointmap, q, side, np.ones(1))
-        if not any("wrist" in c for c in clipped):
-            break
-        data.qpos[:] = row[0]
-        mujoco.mj_kinematics(ctx.model, data)
-        u = frame.T @ -data.xmat[b].reshape(3, 3)[:, 2]
-    return u, u1[0]
+    # no swivel will do: the wrist at the humanoid's range limits, the arm re-solved for it
+    limits = np.array(
+        [ctx.jointmap.limits(f"wrist_{side_prefix(side)}_{dof}") for dof in ("flex", "dev")]
+    )
+    arm = wrist_in_range(end[None], u[None], lengths, hint[None], limits, side, WRIST_ITERATIONS)
+    return arm[0, 2], arm[0, 0]
 
 
 #: Poses of the ready phase, and poses per interval between two of the trajectory's samples,
