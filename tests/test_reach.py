@@ -103,6 +103,17 @@ def test_wrist_in_range_turns_the_hand_to_the_limit_and_keeps_its_end(side):
     inside = ((q_free[:, 5:7] >= lo) & (q_free[:, 5:7] <= hi)).all(axis=1)
     assert 0 < inside.sum() < n  # both kinds among the random directions
     assert np.allclose(arm[inside, 2], hand[inside])
+    # outside: the least turn, so the wrist ends on its range's edge in one of its two angles
+    edge = np.minimum(np.abs(q - lo), np.abs(q - hi)).min(axis=1)
+    assert edge[~inside].max() < np.radians(0.1)
+    # and no direction between the wanted one and the result is in range: 10 points along it
+    for t in np.linspace(0.0, 0.99, 10):
+        h = (1 - t) * hand[~inside] + t * arm[~inside, 2]
+        h /= np.linalg.norm(h, axis=1, keepdims=True)
+        qt = arm_joint_angles(
+            wrist_in_range(end[~inside], h, lengths, hint[~inside], limits, side, 0), side
+        )[:, 5:7]
+        assert (((qt < lo - 1e-9) | (qt > hi + 1e-9)).any(axis=1)).all()
 
 
 def test_outside_constraint_is_flagged_never_silent(endpoint_model):

@@ -10,7 +10,7 @@ import numpy as np
 from mjwalk.errors import ModelFileError
 
 #: Bump when the generator or the model changes, so the cache is rebuilt.
-REACH_DEFAULT_VERSION = "5"
+REACH_DEFAULT_VERSION = "6"
 N_TRAIN = 200
 #: Chosen by exact leave-one-out errors on the training samples (PRESS), with the network
 #: size: RBF width, output ridge, constant or local linear outputs (with the slopes' own ridge)
