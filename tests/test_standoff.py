@@ -211,3 +211,54 @@ def test_station_runs_that_touched_rack1_are_contact_free(scenes_dir):
         assert r.collisions == [], (r.run, r.collisions[:3])
         assert max(a.hand_error for a in r.arms) < 0.01
         assert all(0.0 <= a.step_back <= 0.2 for a in r.arms)
+
+
+def _station_with_shelf_above(scenes_dir, tmp_path, top: float, visual_only: bool = False):
+    """The station with a second shelf over rack 1's (centre ``top`` m): a compartment."""
+    import shutil
+
+    shelf = (
+        '<geom name="rack1_shelf" type="box" size="0.4 0.25 0.02" pos="0 0 1.0" material="shelf"/>'
+    )
+    extra = ' contype="0" conaffinity="0"' if visual_only else ""
+    above = (
+        f'<geom name="rack1_shelf_above" type="box" size="0.4 0.25 0.02" pos="0 0 {top}" '
+        f'material="shelf"{extra}/>'
+    )
+    xml = (scenes_dir / "assembly_station.xml").read_text()
+    assert shelf in xml
+    (tmp_path / "assembly_station.xml").write_text(xml.replace(shelf, f"{shelf}\n{above}"))
+    shutil.copy(scenes_dir / "assembly_station.toml", tmp_path / "station.toml")
+    return prepare(load_cycle_spec(tmp_path / "station.toml"))
+
+
+def test_under_a_shelf_the_hand_comes_in_low_enough_to_clear_it(scenes_dir, tmp_path):
+    """A pick from a compartment 26 cm high (screw 1 on rack 1's shelf, a shelf over it at
+    1.30 m): the pre-grasp point does not rise (the space above the target is less than a
+    hand's length), and the reach is clear by MuJoCo's collision check; with the open-shelf
+    rise of 10 cm the thumb and forearm touched the upper shelf (16 mm deep)."""
+    from mjwalk.arms.kinematics import arm_segment_lengths
+
+    ctx = _station_with_shelf_above(scenes_dir, tmp_path, 1.30)
+    st = ctx.workplace.station("stand_rack1")
+    site = ctx.workplace.station("rack1_screw1").pos
+    target = reaching._target(ctx, "pick", site, st.pos[0], st.pos[1])
+    free = 1.28 - target[2]  # to the upper shelf's underside
+    assert reaching._headroom(ctx, target) == pytest.approx(free, abs=1e-6)
+    assert free < arm_segment_lengths(ctx.spec.stature)[2]
+    assert reaching._approach_rise(ctx, target) == 0.0
+    r = _reach(ctx, "rack1_screw1", st.pos[:2], st.yaw)
+    assert r.distance == np.inf
+    assert r.error < 0.01
+    assert not _contacts(ctx, np.vstack([r.turn, r.frames]))
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(reaching, "_approach_rise", lambda ctx, target: reaching.APPROACH_UP)
+        old = _reach(ctx, "rack1_screw1", st.pos[:2], st.yaw)
+    assert old.distance < 0.0
+    # open above (the station as shipped), or under a shelf that is only drawn: the full rise
+    shipped = prepare(load_cycle_spec(scenes_dir / "assembly_station.toml"))
+    assert reaching._approach_rise(shipped, target) == reaching.APPROACH_UP
+    (tmp_path / "drawn").mkdir()
+    drawn = _station_with_shelf_above(scenes_dir, tmp_path / "drawn", 1.30, visual_only=True)
+    assert reaching._headroom(drawn, target) == np.inf
+    assert reaching._approach_rise(drawn, target) == reaching.APPROACH_UP

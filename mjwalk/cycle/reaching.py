@@ -38,6 +38,8 @@ APPROACH_BACK = 0.15
 
 
 APPROACH_UP = 0.10
+#: Visual-only geoms a ray passes through at most while measuring a target's headroom.
+HEADROOM_HITS = 8
 
 
 def _default_timing(dist: float) -> tuple[float, float]:
@@ -499,9 +501,15 @@ def _approach_frames(ctx, reach: np.ndarray, length: float) -> np.ndarray:
 
 
 def _approach(
-    kind: str, site_pos: np.ndarray, x: float, y: float, facing: float | None = None
+    kind: str,
+    site_pos: np.ndarray,
+    x: float,
+    y: float,
+    facing: float | None = None,
+    rise: float = APPROACH_UP,
 ) -> np.ndarray:
-    """Pre-grasp offset (world, m): back towards the operator, and up for shelf work. Shelf
+    """Pre-grasp offset (world, m): back towards the operator, and up for shelf work (by
+    ``rise``, at most :data:`APPROACH_UP`: less under a shelf, :func:`_approach_rise`). Shelf
     work (pick, place) at a stand site facing ``facing`` (radians from +x) comes in along the
     site's facing, out of the shelf's opening, wherever in the stand zone the operator stands
     (towards the operator, an oblique approach swept the fingers across the rack's frame)."""
@@ -510,8 +518,48 @@ def _approach(
     else:
         d = np.array([x, y]) - site_pos[:2]
         d /= max(np.linalg.norm(d), 1e-9)
-    up = 0.0 if kind == "fasten" else APPROACH_UP
+    up = 0.0 if kind == "fasten" else min(APPROACH_UP, rise)
     return np.r_[APPROACH_BACK * d, up]
+
+
+def _approach_rise(ctx, target: np.ndarray) -> float:
+    """How far (m) the pre-grasp point may rise above ``target`` (world): :data:`APPROACH_UP`
+    in the open; under a shelf, only so far that the hand at its pre-grasp point still has its
+    own length free above it (the hand may point anywhere from level to straight down along
+    its approach, and the wrist's range turns it further where the arm comes in steeply: a
+    compartment's upper shelf otherwise took the thumb, palm and forearm of a reach into it,
+    20-30 mm deep), none when the compartment is lower than that."""
+    from mjwalk.arms.kinematics import arm_segment_lengths
+
+    hand = float(arm_segment_lengths(ctx.spec.stature)[2])
+    return float(np.clip(_headroom(ctx, target) - hand, 0.0, APPROACH_UP))
+
+
+def _headroom(ctx, point: np.ndarray) -> float:
+    """Free height (m) straight up from ``point`` (world) to the first scene geom that
+    collides (geoms with neither contype nor conaffinity, and the humanoid's, let the ray
+    through); ``inf`` when nothing is above."""
+    from mjwalk.body.humanoid import HUMAN_GROUP
+
+    m = ctx.model
+    data = ctx.scratch()
+    mujoco.mj_kinematics(m, data)  # the scene's geoms in place (the humanoid's do not count)
+    groups = np.ones(6, dtype=np.uint8)
+    groups[HUMAN_GROUP] = 0
+    up = np.array([0.0, 0.0, 1.0])
+    start = np.asarray(point, dtype=float).copy()
+    gid = np.zeros(1, dtype=np.int32)
+    travelled = 0.0
+    for _ in range(HEADROOM_HITS):
+        d = mujoco.mj_ray(m, data, start, up, groups, 1, -1, gid)
+        if d < 0:
+            return math.inf
+        g = int(gid[0])
+        if m.geom_contype[g] or m.geom_conaffinity[g]:
+            return travelled + float(d)
+        travelled += float(d) + 1e-6
+        start = start + (float(d) + 1e-6) * up
+    return travelled
 
 
 def _target(ctx, kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndarray:
@@ -605,6 +653,7 @@ def _reach_task(
     back /= max(float(np.linalg.norm(back)), 1e-9)
     check = _arm_clearance(ctx)
     room0 = float(ctx.workplace.walk_clearance(np.array([hx, hy]))[()])
+    rise = _approach_rise(ctx, _target(ctx, task.kind, site_pos, hx, hy))
 
     def candidate(s: float, lean: bool) -> WorkingReach | None:
         """The reach from ``s`` metres back (in: < 0) from the walk's end (``lean``: bending
@@ -625,7 +674,7 @@ def _reach_task(
         grip = held if task.hand == "both" else None
         pose = None if grip is None else carry_pose(ctx, _standing(ctx, x, y, yaw), grip)
         turn, dt = _turn_frames(ctx, x, y, yaw, face, fps, to=(xs, ys), pose=pose)
-        approach = _approach(task.kind, site_pos, xs, ys, facing)
+        approach = _approach(task.kind, site_pos, xs, ys, facing, rise)
         q0 = turn[-1]
         width = None
         if task.hand == "both":
