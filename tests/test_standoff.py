@@ -162,8 +162,9 @@ def test_a_target_below_a_standing_reach_is_reached_bending_forward(scenes_dir, 
     assert r.frames[:, lumbar].max() > np.radians(5.0)  # bent forward
     assert r.frames[0, lumbar] < r.frames[:, lumbar].max()  # and back up at the end
     assert abs(r.frames[-1, lumbar] - r.turn[-1, lumbar]) < 1e-9
-    with pytest.MonkeyPatch.context() as m:  # upright only
+    with pytest.MonkeyPatch.context() as m:  # upright only (no lean, no crouch)
         m.setattr(reaching, "_leaning", lambda ctx, q0, *a: q0)
+        m.setattr(reaching, "CROUCH_DROPS", ())
         upright = reach()
     assert upright.error > 0.03
 
@@ -251,8 +252,11 @@ def test_under_a_shelf_the_hand_comes_in_low_enough_to_clear_it(scenes_dir, tmp_
     assert r.distance == np.inf
     assert r.error < 0.01
     assert not _contacts(ctx, np.vstack([r.turn, r.frames]))
-    with pytest.MonkeyPatch.context() as m:
+    root_z = ctx.jointmap.root + 2
+    assert np.allclose(r.frames[:, root_z], r.turn[-1, root_z])  # standing: no crouch needed
+    with pytest.MonkeyPatch.context() as m:  # the open-shelf rise, standing (no crouch)
         m.setattr(reaching, "_approach_rise", lambda ctx, target: reaching.APPROACH_UP)
+        m.setattr(reaching, "CROUCH_DROPS", ())
         old = _reach(ctx, "rack1_screw1", st.pos[:2], st.yaw)
     assert old.distance < 0.0
     # open above (the station as shipped), or under a shelf that is only drawn: the full rise

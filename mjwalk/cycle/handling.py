@@ -88,6 +88,21 @@ def reach_duration(distance: float, walker: Walker | None = None, case: str = "B
     return reach_tmu(distance, case) * TMU / pace
 
 
+#: MTM-1 body motions (TMU): "B" bend, stoop or kneel on one knee, and "AB" arise from it
+#: (Freivalds & Niebel 2014, *Niebel's Methods, Standards, and Work Design*, 13th ed.,
+#: Table 12-1, Body, leg and foot motions: 29.0 and 31.9 TMU).
+BODY_MOTION_TMU = {"B": 29.0, "AB": 31.9}
+
+
+def body_motion_duration(motion: str, walker: Walker | None = None) -> float:
+    """Seconds the MTM-1 body motion ``motion`` ("B" or "AB") takes ``walker`` (None: the
+    reference adult, pace 1)."""
+    if motion not in BODY_MOTION_TMU:
+        raise MjwalkError(f"unknown MTM-1 body motion {motion!r}; known: {sorted(BODY_MOTION_TMU)}")
+    pace = 1.0 if walker is None else walker.pace
+    return BODY_MOTION_TMU[motion] * TMU / pace
+
+
 def task_factor(rng: np.random.Generator, cv: float = TASK_CV) -> float:
     """One task's lognormal time factor: median 1, coefficient of variation ``cv``."""
     sigma = math.sqrt(math.log1p(cv * cv))

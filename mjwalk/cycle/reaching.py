@@ -13,7 +13,8 @@ import mujoco
 import numpy as np
 
 from mjwalk.conventions import Side, side_prefix
-from mjwalk.cycle.handling import RETURN_CASE, reach_duration
+from mjwalk.cycle.crouch import crouch_frames, crouch_pose
+from mjwalk.cycle.handling import RETURN_CASE, body_motion_duration, reach_duration
 from mjwalk.cycle.standoff import REACH_TOLERANCE, STEP_BACK, ArmClearance, step_back_offsets
 
 if TYPE_CHECKING:
@@ -59,6 +60,7 @@ def _reach_frames(
     timing=None,
     face: np.ndarray | None = None,
     lean: bool = False,
+    drop: float = 0.0,
 ):
     """Frames of reaching from pose ``q0`` to ``target_w`` (world, m), holding, returning.
 
@@ -93,8 +95,10 @@ def _reach_frames(
     # ``base``: q0, or q0 bent forward at the trunk (the lean comes in with the ready phase and
     # goes with the return; the arm's poses are solved from the leaning shoulder)
     base = q0
+    if drop > 0.0:  # crouched: the pelvis lower, the trunk bent for balance (mjwalk.cycle.crouch)
+        base = crouch_pose(ctx, q0, drop)
     if lean:
-        base = _leaning(ctx, q0, side, target_w, float(lengths.sum()) / scale - LEAN_SPARE)
+        base = _leaning(ctx, base, side, target_w, float(lengths.sum()) / scale - LEAN_SPARE)
     data = ctx.scratch()
     data.qpos[:] = base
     mujoco.mj_kinematics(m, data)
@@ -154,9 +158,24 @@ def _reach_frames(
     # it the arm snapped between the two in one frame (elbow 0 <-> 87 deg).
     share = ready_len / max(ready_len + model_len, 1e-9)
     n_ready = min(n_out - 2, max(1, round(max(share * n_out, READY_MIN * fps))))
-    ready, _ = arm_frames(base, jm, q[:1], side, np.ones(n_ready))
-    w = _smooth(np.arange(1, n_ready + 1) / (n_ready + 1))[:, None]
-    ready = q0[None] + w * (ready - q0[None])
+    n_arm_ready = n_rise = n_ready
+    if drop > 0.0:
+        # the crouch comes with the ready phase and the rise with the return's, each taking at
+        # least MTM-1's bend / arise at the operator's time factor (its return time over the
+        # reference adult's: factor / pace); the reach lasts longer by what they add
+        factor = timing(1.0)[1] / _default_timing(1.0)[1]
+        n_down = round(body_motion_duration("B") * factor * fps)
+        n_ready = max(n_ready, n_down)
+        n_out += n_ready - n_arm_ready
+        n_rise = max(n_arm_ready, round(body_motion_duration("AB") * factor * fps))
+    ready_pose = arm_frames(base, jm, q[:1], side, np.ones(1))[0][0]
+    w = _smooth(np.arange(1, n_ready + 1) / (n_ready + 1))
+    # the feet stay planted while the pelvis lowers (the legs solved at every pose)
+    ready = (
+        crouch_frames(ctx, q0, ready_pose, w)
+        if drop > 0.0
+        else (q0[None] + w[:, None] * (ready_pose - q0)[None])
+    )
     n_out -= n_ready
     out, _ = arm_frames(base, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
     data.qpos[:] = out[-1]
@@ -165,7 +184,7 @@ def _reach_frames(
     error = float(np.linalg.norm(_hand_tip(data, m, jm, side, lengths[2] / scale) - target_w))
     n_hold = max(0, round(hold * fps))
     n_back = max(1, round(reach_back * fps))
-    n_back = max(2, n_back - n_ready)
+    n_back = max(2, n_back - n_arm_ready)
     # the reach retraced in the return's time: poses interpolated between the reach's frames
     # (hinge angles; the root does not move during a reach). Rounding to the nearest frame
     # skipped one or two frames in turn and the hand jumped (19 cm in one frame, 5.6 m/s)
@@ -175,7 +194,11 @@ def _reach_frames(
     w = (src - i0)[:, None]
     rev = out[::-1]
     back = (1.0 - w) * rev[i0] + w * rev[i1]
-    back = np.vstack([back[1:], ready[::-1], q0[None]])  # ... the ready posture, hanging
+    rise = ready[::-1]  # ... the ready posture, hanging (standing up from a crouch)
+    if n_rise != n_ready:
+        w = _smooth(np.arange(1, n_rise + 1) / (n_rise + 1))[::-1]
+        rise = crouch_frames(ctx, q0, ready_pose, w)
+    back = np.vstack([back[1:], rise, q0[None]])
     frames = np.vstack([ready, out, np.repeat(out[-1:], n_hold, axis=0), back])
     return frames, error, res
 
@@ -187,6 +210,13 @@ def _reach_frames(
 #: (:data:`mjwalk.anthropometry.ROM_DEG`: 60 and 45 deg).
 LEAN_STEP = np.radians(5.0)
 LEAN_SPARE = 0.02
+#: How deep (share of stature: the pelvis 9, 17 and 26 cm lower at 1.72 m) a one-handed reach
+#: that touches the scene from every spot standing or stooping crouches, tried in this order:
+#: a semi-squat to a squat with the knees at about 50, 70 and 90 deg (mjwalk.cycle.crouch).
+#: People reaching into low storage bend the knees as well as the back (the "semi-squat" and
+#: "squat" of lifting studies: Straker 2003, "Evidence to support using squat, semi-squat
+#: and stoop techniques to lift low-lying objects", Int. J. Ind. Ergon. 31:149-160).
+CROUCH_DROPS = (0.05, 0.10, 0.15)
 
 
 def _leaning(ctx, q0: np.ndarray, side: Side, target_w: np.ndarray, reach: float) -> np.ndarray:
@@ -655,10 +685,11 @@ def _reach_task(
     room0 = float(ctx.workplace.walk_clearance(np.array([hx, hy]))[()])
     rise = _approach_rise(ctx, _target(ctx, task.kind, site_pos, hx, hy))
 
-    def candidate(s: float, lean: bool) -> WorkingReach | None:
+    def candidate(s: float, lean: bool, drop: float = 0.0) -> WorkingReach | None:
         """The reach from ``s`` metres back (in: < 0) from the walk's end (``lean``: bending
-        the trunk forward as far as the target needs); None when the spot is not clear for the
-        next walk (the planner's body radius, or the room there was)."""
+        the trunk forward as far as the target needs; ``drop``: crouched, the pelvis that much
+        lower); None when the spot is not clear for the next walk (the planner's body radius,
+        or the room there was)."""
         xs, ys = float(hx + s * back[0]), float(hy + s * back[1])
         room = float(ctx.workplace.walk_clearance(np.array([xs, ys]))[()])
         if s != 0 and room < min(ctx.spec.radius, room0):
@@ -684,15 +715,16 @@ def _reach_task(
         else:
             arm: Side = "right" if task.hand == "right" else "left"
             rf, err, res = _reach_frames(
-                ctx, q0, target, approach, hold, fps, arm, timing=timing, lean=lean
+                ctx, q0, target, approach, hold, fps, arm, timing=timing, lean=lean, drop=drop
             )
         dist = check.distance(np.vstack([turn, rf]))
         return WorkingReach(xs, ys, face, float(s), turn, dt, rf, err, res, width, dist)
 
-    def settle(lean: bool) -> WorkingReach:
-        """The stand-off's search (see above) for reaches with or without the trunk's lean."""
+    def settle(lean: bool, drop: float = 0.0) -> WorkingReach:
+        """The stand-off's search (see above) for reaches with or without the trunk's lean,
+        standing or crouched."""
         offsets = step_back_offsets()
-        first = candidate(float(offsets[0]), lean)
+        first = candidate(float(offsets[0]), lean, drop)
         assert first is not None  # offsets start at 0: where the operator stands
         if first.error > REACH_TOLERANCE and len(offsets) > 1:
             # out of reach from here (a step back for the reach before, a short operator): step
@@ -700,13 +732,13 @@ def _reach_task(
             short = first.error - REACH_TOLERANCE
             n_in = min(len(offsets) - 1, math.ceil(short / STEP_BACK) + 1)
             for j in range(1, n_in + 1):
-                cand = candidate(-STEP_BACK * j, lean)
+                cand = candidate(-STEP_BACK * j, lean, drop)
                 if cand is not None and cand.distance == np.inf and cand.error <= REACH_TOLERANCE:
                     return cand
         tolerance = max(first.error, REACH_TOLERANCE)
         best = first
         for s in offsets:
-            cand = first if s == offsets[0] else candidate(float(s), lean)
+            cand = first if s == offsets[0] else candidate(float(s), lean, drop)
             if cand is None:
                 continue
             # a step back must not cost the hand its target (beyond REACH_TOLERANCE)
@@ -717,9 +749,33 @@ def _reach_task(
         return best
 
     upright = settle(lean=False)
-    if upright.error <= REACH_TOLERANCE or task.hand == "both":
+    if task.hand == "both":
         return upright
-    # a target no step brings within the arm's reach (low, as a bin by the feet, or deep): the
-    # operator bends forward for it, and keeps the lean when it brings the hand closer
-    bent = settle(lean=True)
-    return bent if bent.error < upright.error else upright
+    best = upright
+    if upright.error > REACH_TOLERANCE:
+        # a target no step brings within the arm's reach (low, as a bin by the feet, or deep):
+        # the operator bends forward for it, and keeps the lean when it brings the hand closer
+        bent = settle(lean=True)
+        best = bent if bent.error < upright.error else upright
+    # still touching the scene from every spot (a compartment low under a shelf, where the
+    # arm from a standing or stooping shoulder slopes down through the shelf's front edge):
+    # the operator crouches
+    return _crouching_reach(settle, best, ctx.spec.stature)
+
+
+def _crouching_reach(settle, best: WorkingReach, stature: float) -> WorkingReach:
+    """``best`` (a one-handed reach standing or stooping), or when it touches the scene from
+    every spot, the reach crouched (:mod:`mjwalk.cycle.crouch`) the least of
+    :data:`CROUCH_DROPS` deep that is clear, else the crouch that comes closest to clear --
+    as long as the hand stays on its target (within :data:`REACH_TOLERANCE`, or as close as
+    in ``best``). ``settle(lean, drop)``: the stand-off's search of :func:`_reach_task`."""
+    if best.distance >= 0.0:
+        return best
+    tolerance = max(best.error, REACH_TOLERANCE)
+    for share in CROUCH_DROPS:
+        cand = settle(True, float(share * stature))
+        if cand.error <= tolerance and cand.distance > best.distance:
+            best = cand
+            if best.distance == np.inf:
+                break
+    return best
