@@ -81,14 +81,22 @@ def write_workplace(folder: Path) -> Path:
     return folder / "shelving.toml"
 
 
+def _count(text: str) -> int:
+    """An argparse type: an integer >= 1 (argparse names the option and exits with status 2)."""
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be an integer >= 1, got {text!r}")
+    return value
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--runs", type=int, default=20)
+    ap.add_argument("--runs", type=_count, default=20, help="cycles to simulate")
     ap.add_argument("--seed", type=int, default=0)
     a = ap.parse_args(argv)
-    if a.runs < 1:
-        print(f"bench_shelving: error: --runs must be >= 1, got {a.runs}", file=sys.stderr)
-        return 2
     with tempfile.TemporaryDirectory() as tmp:
         spec = load_cycle_spec(write_workplace(Path(tmp)))
         results = simulate_cycles(spec, a.runs, a.seed)

@@ -7,6 +7,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+import pytest
+
 from mjwalk.cycle.simulate import simulate_cycles
 from mjwalk.cycle.spec import load_cycle_spec
 
@@ -14,8 +16,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 import bench_shelving as bench
 
 
-def test_bad_runs_stop_with_status_2():
-    assert bench.main(["--runs", "0"]) == 2
+def test_bad_runs_stop_with_status_2(capsys):
+    with pytest.raises(SystemExit) as exc:
+        bench.main(["--runs", "0"])
+    assert exc.value.code == 2
+    assert "--runs: must be an integer >= 1, got '0'" in capsys.readouterr().err
 
 
 def test_the_low_compartment_place_is_clear_of_the_shelf(tmp_path):
