@@ -101,7 +101,13 @@ clips: one neighbour is worst). Also tried then and not kept: a ridge per output
 chosen by PRESS 4.83; subagging (each averaged network on 63.2 % of the clips, ten networks)
 4.61 / 4.61 / 4.69 at seeds 0 / 20 / 30 against kNN 4.69 / 4.56 / 4.63 and GPR 4.70 / 4.65 /
 4.55 (left 4.18), but leave-one-style-out right 13.04 -> 13.50, at twice the cost; local
-maps held at each neuron's data radius 5.01.
+maps held at each neuron's data radius 5.01. Tried 2026-11-28 (right arm, DCS alone, ad hoc):
+linear terms only along the inputs' leading principal axes (98 % / 95 % of their variance)
+4.79 / 4.79; a growth patience of 25 insertions instead of 10 (``n_iter_no_change``; the
+best network by PRESS kept, 4-43 neurons) 4.68 / 4.51 / 4.77 at seeds 0 / 20 / 30 -- at or
+below both baselines at seeds 0 and 20, not at 30; not yet measured on the left arm or the
+style and walker splits, so not adopted; growing to the 60-neuron cap without early stopping
+did not finish in 45 minutes on two cores.
 Before the dead-unit pruning and the trend fallback (earlier that day): CV 4.21, LOSO 14.50
 (feminine 21.5, masculine 14.6 -- worse than the mean trajectory --, normal 9.8, youthful
 12.9), and from seed to seed (DCS seeds + 0..40, ad hoc) the masculine fold gave 14.6-25.0,
