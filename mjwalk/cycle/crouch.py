@@ -17,6 +17,7 @@ World frame: metres, z up, yaw from +x; angles in radians.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np
@@ -32,79 +33,118 @@ DORSIFLEXION_SHARE = 0.9
 BALANCE_STEP = math.radians(2.5)
 
 
-def root_yaw(q: np.ndarray, root: int) -> float:
-    """Heading (radians from +x) of the root quaternion (w, x, y, z) at ``q[root + 3:]``."""
-    w, x, y, z = q[root + 3 : root + 7]
-    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+#: The trunk's flexion joints a forward bend uses, in proportion to the range each has left.
+TRUNK_FLEXION = ("lumbar_flex", "thoracic_flex")
 
 
-def _com_ahead(ctx, q: np.ndarray, data) -> float:
-    """How far (m) the humanoid's centre of mass lies ahead of the midpoint of its ankle joints,
-    along its heading, in pose ``q``."""
-    m, jm = ctx.model, ctx.jointmap
-    data.qpos[:] = q
-    mujoco.mj_kinematics(m, data)
-    mujoco.mj_comPos(m, data)
-    yaw = root_yaw(q, jm.root)
-    ahead = np.array([math.cos(yaw), math.sin(yaw)])
-    ankles = [data.xanchor[m.joint(f"{jm.prefix}ankle_{p}_flex").id][:2] for p in "lr"]
-    com = data.subtree_com[m.body(f"{jm.prefix}pelvis").id][:2]
-    return float((com - 0.5 * (ankles[0] + ankles[1])) @ ahead)
-
-
-def crouch_pose(ctx, q0: np.ndarray, drop: float, balance: bool = True) -> np.ndarray:
-    """``q0`` (a standing pose, nq) with the pelvis ``drop`` metres lower and moved back as
-    far as the ankles' dorsiflexion needs, the feet flat where they are in ``q0`` and, with
-    ``balance``, the trunk bent forward until the centre of mass is as far ahead of the ankles
-    as in ``q0`` (see the module docstring). ``drop`` 0 returns ``q0``."""
-    if drop <= 0.0:
-        return np.asarray(q0, dtype=float).copy()
+def bend_trunk(ctx, q0: np.ndarray, step: float, enough) -> np.ndarray:
+    """``q0`` with the trunk bent forward ``step`` radians at a time (lumbar and thoracic
+    flexion in proportion to the range each has left) until ``enough(data)`` holds for the
+    pose's forward kinematics in ``ctx.scratch()``; bent as far as the ranges go when it never
+    does. The reach's lean (:func:`mjwalk.cycle.reaching._leaning`) and the crouch's balance
+    both bend this way."""
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
-    geom = leg_geometry(ctx.spec.stature)
-    q = np.asarray(q0, dtype=float).copy()
-    r = jm.root
-    yaw = root_yaw(q, r)
-    ahead = np.array([math.cos(yaw), math.sin(yaw), 0.0])
-    data.qpos[:] = q
+    q0 = np.asarray(q0, dtype=float)
+    joints = [jm.adr(j) for j in TRUNK_FLEXION]
+    room = np.maximum(np.array([jm.limits(j)[1] for j in TRUNK_FLEXION]) - q0[joints], 0.0)
+    total = float(room.sum())
+    q = q0.copy()
+    for theta in np.arange(0.0, total + 1e-9, float(step)):
+        q[joints] = q0[joints] + theta * room / max(total, 1e-9)
+        data.qpos[:] = q
+        mujoco.mj_kinematics(m, data)
+        if enough(data):
+            return q
+    q[joints] = q0[joints] + room
+    return q
+
+
+@dataclass(frozen=True)
+class _Stance:
+    """Where a standing pose's feet and hips are (world, m) and its pelvis frame (3, 3)."""
+
+    q0: np.ndarray
+    pelvis: np.ndarray
+    ankle: dict[str, np.ndarray]
+    hip: dict[str, np.ndarray]
+
+
+def _stance(ctx, q0: np.ndarray) -> _Stance:
+    m, jm = ctx.model, ctx.jointmap
+    data = ctx.scratch()
+    q0 = np.asarray(q0, dtype=float)
+    data.qpos[:] = q0
     mujoco.mj_kinematics(m, data)
-    ankle = {p: data.xanchor[m.joint(f"{jm.prefix}ankle_{p}_flex").id].copy() for p in "lr"}
-    hip = {p: data.xanchor[m.joint(f"{jm.prefix}hip_{p}_flex").id].copy() for p in "lr"}
-    com0 = _com_ahead(ctx, q, data) if balance else 0.0
+
+    def anchor(name: str) -> np.ndarray:
+        return data.xanchor[m.joint(f"{jm.prefix}{name}").id].copy()
+
+    pelvis = data.xmat[m.body(f"{jm.prefix}pelvis").id].reshape(3, 3).copy()
+    return _Stance(
+        q0,
+        pelvis,
+        {p: anchor(f"ankle_{p}_flex") for p in "lr"},
+        {p: anchor(f"hip_{p}_flex") for p in "lr"},
+    )
+
+
+def _com_ahead(ctx, data) -> float:
+    """How far (m) the humanoid's centre of mass lies ahead of the midpoint of its ankle joints,
+    along its pelvis's heading (+x), in the pose whose kinematics ``data`` holds."""
+    m, jm = ctx.model, ctx.jointmap
+    mujoco.mj_comPos(m, data)
+    pelvis = m.body(f"{jm.prefix}pelvis").id
+    ahead = data.xmat[pelvis].reshape(3, 3)[:2, 0]
+    ankles = [data.xanchor[m.joint(f"{jm.prefix}ankle_{p}_flex").id][:2] for p in "lr"]
+    com = data.subtree_com[pelvis][:2]
+    return float((com - 0.5 * (ankles[0] + ankles[1])) @ ahead / np.linalg.norm(ahead))
+
+
+def _lowered(ctx, stance: _Stance, drop: float) -> np.ndarray:
+    """The stance's pose with the pelvis ``drop`` metres lower and back as far as the ankles'
+    dorsiflexion needs, the legs solved for the feet where they stand (see the module doc)."""
+    q = stance.q0.copy()
+    if drop <= 0.0:
+        return q
+    jm = ctx.jointmap
+    geom = leg_geometry(ctx.spec.stature)
+    ahead = stance.pelvis[:, 0]
     # the pelvis back as far as the shank's tilt needs (hip over the ankle while it suffices)
     tilt = DORSIFLEXION_SHARE * math.radians(ROM_DEG["ankle_flex"][1])
-    height = 0.5 * sum(hip[p][2] - ankle[p][2] for p in "lr") - drop
+    height = 0.5 * sum(stance.hip[p][2] - stance.ankle[p][2] for p in "lr") - drop
     rise = height - geom.shank * math.cos(tilt)
     reach = math.sqrt(max(geom.thigh**2 - rise**2, 0.0))
     back = max(0.0, reach - geom.shank * math.sin(tilt))
     shift = -back * ahead - np.array([0.0, 0.0, drop])
+    r = jm.root
     q[r : r + 3] = q[r : r + 3] + shift
-    c, s = math.cos(yaw), math.sin(yaw)
-    to_pelvis = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
     for p in "lr":
-        rel = to_pelvis @ (ankle[p] - (hip[p] + shift))
+        rel = stance.pelvis.T @ (stance.ankle[p] - (stance.hip[p] + shift))
         for name, value in leg_ik(rel[None], np.zeros(1), np.zeros(1), side_of(p), geom).items():
             q[jm.adr(name)] = value[0]
-    if not balance:
-        return q
-    joints = [jm.adr(j) for j in ("lumbar_flex", "thoracic_flex")]
-    room = np.maximum(
-        np.array([jm.limits(j)[1] for j in ("lumbar_flex", "thoracic_flex")]) - q[joints], 0.0
-    )
-    total = float(room.sum())
-    upright = q[joints].copy()
-    for theta in np.arange(0.0, total + 1e-9, BALANCE_STEP):
-        q[joints] = upright + theta * room / max(total, 1e-9)
-        if _com_ahead(ctx, q, data) >= com0:
-            break
     return q
+
+
+def crouch_pose(ctx, q0: np.ndarray, drop: float) -> np.ndarray:
+    """``q0`` (a standing pose, nq) with the pelvis ``drop`` metres lower and moved back as
+    far as the ankles' dorsiflexion needs, the feet flat where they are in ``q0``, and the
+    trunk bent forward until the centre of mass is as far ahead of the ankles as in ``q0``
+    (see the module docstring). ``drop`` 0 returns ``q0``."""
+    if drop <= 0.0:
+        return np.asarray(q0, dtype=float).copy()
+    stance = _stance(ctx, q0)
+    com0 = _com_ahead(ctx, ctx.scratch())  # the kinematics of q0, from _stance
+    lowered = _lowered(ctx, stance, drop)
+    return bend_trunk(ctx, lowered, BALANCE_STEP, lambda data: _com_ahead(ctx, data) >= com0)
 
 
 def crouch_frames(ctx, q0: np.ndarray, target: np.ndarray, w: np.ndarray) -> np.ndarray:
     """Poses (len(w), nq) on the way from ``q0`` (standing) into ``target`` (a pose whose root
-    and legs are :func:`crouch_pose`'s): every joint but the legs' interpolated by the weights
-    ``w`` (0: ``q0``, 1: ``target``), the pelvis lowered by that share of the target's drop and
-    the legs solved for it at each pose, so the feet stay planted all the way."""
+    and legs are :func:`crouch_pose`'s, or ``q0``'s): every joint interpolated by the weights
+    ``w`` (0: ``q0``, 1: ``target``), and when the target is crouched, the pelvis lowered by
+    that share of its drop and the legs solved for it at each pose, so the feet stay planted
+    all the way."""
     jm = ctx.jointmap
     r = jm.root
     q0 = np.asarray(q0, dtype=float)
@@ -113,8 +153,9 @@ def crouch_frames(ctx, q0: np.ndarray, target: np.ndarray, w: np.ndarray) -> np.
     if drop <= 0.0:
         return frames
     legs = [jm.adr(n) for n in _leg_joints()]
+    stance = _stance(ctx, q0)
     for k, wk in enumerate(w):
-        pose = crouch_pose(ctx, q0, drop * float(wk), balance=False)
+        pose = _lowered(ctx, stance, drop * float(wk))
         frames[k, r : r + 3] = pose[r : r + 3]
         frames[k, legs] = pose[legs]
     return frames

@@ -13,7 +13,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.conventions import Side, side_prefix
-from mjwalk.cycle.crouch import crouch_frames, crouch_pose
+from mjwalk.cycle.crouch import bend_trunk, crouch_frames, crouch_pose
 from mjwalk.cycle.handling import RETURN_CASE, body_motion_duration, reach_duration
 from mjwalk.cycle.standoff import REACH_TOLERANCE, STEP_BACK, ArmClearance, step_back_offsets
 
@@ -171,11 +171,7 @@ def _reach_frames(
     ready_pose = arm_frames(base, jm, q[:1], side, np.ones(1))[0][0]
     w = _smooth(np.arange(1, n_ready + 1) / (n_ready + 1))
     # the feet stay planted while the pelvis lowers (the legs solved at every pose)
-    ready = (
-        crouch_frames(ctx, q0, ready_pose, w)
-        if drop > 0.0
-        else (q0[None] + w[:, None] * (ready_pose - q0)[None])
-    )
+    ready = crouch_frames(ctx, q0, ready_pose, w)
     n_out -= n_ready
     out, _ = arm_frames(base, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
     data.qpos[:] = out[-1]
@@ -222,23 +218,12 @@ CROUCH_DROPS = (0.05, 0.10, 0.15)
 def _leaning(ctx, q0: np.ndarray, side: Side, target_w: np.ndarray, reach: float) -> np.ndarray:
     """``q0`` with the trunk bent forward just far enough that ``target_w`` (world, m) lies
     within ``reach`` metres of ``side``'s shoulder (lumbar and thoracic flexion, within their
-    ranges, :data:`LEAN_STEP` at a time); bent as far as they go when that is not enough."""
-    m, jm = ctx.model, ctx.jointmap
-    data = ctx.scratch()
-    ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id
-    joints = [jm.adr(j) for j in ("lumbar_flex", "thoracic_flex")]
-    room = np.array([jm.limits(j)[1] for j in ("lumbar_flex", "thoracic_flex")]) - q0[joints]
-    room = np.maximum(room, 0.0)
-    total = float(room.sum())
-    q = q0.copy()
-    for theta in np.arange(0.0, total + 1e-9, float(LEAN_STEP)):
-        q[joints] = q0[joints] + theta * room / max(total, 1e-9)
-        data.qpos[:] = q
-        mujoco.mj_kinematics(m, data)
-        if np.linalg.norm(target_w - data.xpos[ua]) <= reach:
-            return q
-    q[joints] = q0[joints] + room
-    return q
+    ranges, :data:`LEAN_STEP` at a time: :func:`~mjwalk.cycle.crouch.bend_trunk`); bent as far
+    as they go when that is not enough."""
+    ua = ctx.model.body(f"{ctx.jointmap.prefix}upper_arm_{side_prefix(side)}").id
+    return bend_trunk(
+        ctx, q0, LEAN_STEP, lambda data: np.linalg.norm(target_w - data.xpos[ua]) <= reach
+    )
 
 
 def _hand_tip(data, m, jm, side, hand_length: float) -> np.ndarray:
