@@ -277,6 +277,9 @@ def report_dict(
             "max_hand_error": max((a.hand_error for a in arms), default=0.0),
             "median_hand_error": float(np.median([a.hand_error for a in arms])) if arms else 0.0,
             "outside_range": int(sum(a.outside for a in arms)),
+            # hands that ended off their target (out of the operator's reach from every spot
+            # tried): the reach is recorded, but the part was not where the hand was
+            "short_of_target": _short_of_target(arms),
         },
         "per_run": [
             {
@@ -290,6 +293,38 @@ def report_dict(
             for r in results
         ],
     }
+
+
+def _short_of_target(arms: Sequence) -> dict:
+    """The arm motions whose hand ended farther than
+    :data:`~mjwalk.cycle.standoff.REACH_TOLERANCE` from its target: how many, by site (most
+    first), and the largest miss (m)."""
+    from mjwalk.cycle.standoff import REACH_TOLERANCE
+
+    short = [a for a in arms if a.hand_error > REACH_TOLERANCE]
+    sites: dict[str, int] = {}
+    for a in short:
+        sites[a.site] = sites.get(a.site, 0) + 1
+    return {
+        "motions": len(short),
+        "tolerance": REACH_TOLERANCE,
+        "sites": dict(sorted(sites.items(), key=lambda kv: -kv[1])),
+        "max_error": max((a.hand_error for a in short), default=0.0),
+    }
+
+
+def _short_line(arms: dict) -> list[str]:
+    """The warning line of a report's hands short of their targets (none when every hand
+    ended on its target)."""
+    short = arms.get("short_of_target") or {}
+    if not short.get("motions"):
+        return []
+    sites = ", ".join(f"{k} ({v})" for k, v in short["sites"].items())
+    return [
+        f"WARNING: {short['motions']} of {arms['motions']} arm motion(s) ended more than "
+        f"{1000 * short['tolerance']:.0f} mm from their target (max "
+        f"{1000 * short['max_error']:.0f} mm; out of reach from every spot tried): {sites}"
+    ]
 
 
 def _f(x: float, digits: int = 2) -> str:
@@ -402,6 +437,7 @@ def format_markdown(rep: dict) -> str:
         f"{arms['motions']} arm motion(s); hand error at the target: median "
         f"{_f(1000 * arms['median_hand_error'], 0)} mm, max {_f(1000 * arms['max_hand_error'], 0)} "
         f"mm; {arms['outside_range']} outside the reach model's trained range.",
+        *(["", *_short_line(arms)] if _short_line(arms) else []),
         "",
     ]
     return "\n".join(out)
@@ -541,6 +577,7 @@ def format_summary(rep: dict) -> str:
         ),
         f"collisions  {rep['collisions']['total']} total, "
         f"{rep['collisions']['runs_with_collisions']} run(s) with any",
+        *_short_line(rep["arms"]),
     ]
     return "\n".join(lines)
 

@@ -17,6 +17,7 @@ from mjwalk.report import (
     CAPTURE_TABLE1,
     REPORT_FILES,
     describe,
+    format_markdown,
     format_summary,
     report_dict,
     write_report,
@@ -115,6 +116,12 @@ def test_report_figures(workplace):
     walk_total = [sum(w.duration for w in r.walks) for r in results]
     assert rep["task_time"]["walk"]["per_cycle"]["median"] == pytest.approx(np.median(walk_total))
     assert rep["arms"]["max_hand_error"] == pytest.approx(0.03)
+    # hands 2 and 3 cm off (legs 2 and 3 of each run) are short of their target, 1 cm is on it
+    short = rep["arms"]["short_of_target"]
+    assert short["motions"] == 2 * 12 and short["sites"] == {"car_screw1": 24}
+    assert short["max_error"] == pytest.approx(0.03)
+    assert "WARNING: 24 of 48 arm motion(s) ended more than 10 mm" in format_summary(rep)
+    assert "max 30 mm" in format_markdown(rep)
 
 
 def test_write_report_files(tmp_path, workplace):
