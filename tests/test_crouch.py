@@ -11,8 +11,8 @@ import pytest
 import mjwalk.cycle.reaching as reaching
 from mjwalk.cycle.crouch import _com_ahead, crouch_frames, crouch_pose
 from mjwalk.cycle.handling import BODY_MOTION_TMU, TMU
-from mjwalk.cycle.poses import _standing, frame_contacts
-from mjwalk.cycle.simulate import prepare
+from mjwalk.cycle.poses import _standing, frame_contacts, hand_points
+from mjwalk.cycle.simulate import prepare, simulate_cycle
 from mjwalk.cycle.spec import load_cycle_spec
 
 SHELF = '<geom name="rack1_shelf" type="box" size="0.4 0.25 0.02" pos="0 0 1.0" material="shelf"/>'
@@ -124,3 +124,97 @@ def test_a_reach_into_a_low_compartment_crouches_and_is_clear(ctx, monkeypatch):
     up = len(z) - 1 - np.flatnonzero(z <= z.min() + 1e-9)[-1]
     assert (down + 1) / 30.0 >= BODY_MOTION_TMU["B"] * TMU - 1 / 30.0
     assert up / 30.0 >= BODY_MOTION_TMU["AB"] * TMU - 1 / 30.0
+
+
+#: Bench a of the two-handed station (top at 0.95 m, the box's centre and grips at 1.05 m) ...
+BENCH_A = (
+    '<geom name="bench_a_top" type="box" size="0.35 0.25 0.02" pos="0 0 0.93" material="shelf"/>\n'
+    '      <geom name="bench_a_leg" type="box" size="0.3 0.2 0.455" pos="0 0 0.455" '
+    'material="rack"/>'
+)
+BENCH_B = BENCH_A.replace("bench_a", "bench_b")
+
+
+def _low(xml: str, bench: str, old: str, top: float) -> str:
+    """``xml`` with ``bench`` (its geoms ``old``) a pallet whose top is at ``top`` metres and
+    its box's grips (and centre) 0.10 m above it."""
+    new = (
+        f'<geom name="{bench}_top" type="box" size="0.35 0.25 0.02" pos="0 0 {top - 0.02}" '
+        'material="shelf"/>\n'
+        f'      <geom name="{bench}_leg" type="box" size="0.3 0.2 {(top - 0.04) / 2}" '
+        f'pos="0 0 {(top - 0.04) / 2}" material="rack"/>'
+    )
+    assert old in xml
+    xml = xml.replace(old, new)
+    for suffix in ("_geom", "", "_left", "_right"):
+        for x in ("0", "-0.2", "0.2"):
+            for y in ("0.1", "-0.1"):
+                xml = xml.replace(
+                    f'name="{bench}_box{suffix}" pos="{x} {y} 1.05"',
+                    f'name="{bench}_box{suffix}" pos="{x} {y} {top + 0.10:.2f}"',
+                )
+    assert f"{top + 0.10:.2f}" in xml
+    return xml
+
+
+@pytest.fixture(scope="module")
+def pallets(scenes_dir, tmp_path_factory):
+    """The two-handed station with the box on a pallet 6 cm high (bench a) and bench b a
+    pallet 35 cm high: a pick from the floor, a place low."""
+    folder = tmp_path_factory.mktemp("pallets")
+    xml = (scenes_dir / "assembly_station_2h.xml").read_text()
+    xml = _low(_low(xml, "bench_a", BENCH_A, 0.06), "bench_b", BENCH_B, 0.35)
+    (folder / "assembly_station_2h.xml").write_text(xml)
+    (folder / "cycle.toml").write_text((scenes_dir / "assembly_station_2h.toml").read_text())
+    return prepare(load_cycle_spec(folder / "cycle.toml"))
+
+
+def test_a_two_handed_pick_from_the_floor_crouches_with_both_hands_on_the_part(pallets):
+    """Standing, the hands end a third of a metre and more above the box's grips; the operator
+    crouches and bends, both hands on their grips, clear of the scene, the feet planted, the
+    arms hanging plumb on the way down, and the part comes up in the carrying posture."""
+    ctx = pallets
+    jm = ctx.jointmap
+    task = ctx.spec.tasks[0]
+    st = ctx.workplace.station("stand_bench_a")
+    r = reaching._reach_task(
+        ctx, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching._default_timing
+    )
+    assert r.error < 0.01 and r.distance == np.inf
+    assert not frame_contacts(ctx, np.vstack([r.turn, r.frames]))
+    z = r.frames[:, jm.root + 2]
+    z0 = r.turn[-1, jm.root + 2]
+    assert z.min() < z0 - 0.05 and z[-1] == pytest.approx(z0)  # crouched, and up again
+    ankles = _feet(ctx, r.turn[-1])
+    for f in r.frames[:: max(1, len(r.frames) // 20)]:
+        assert np.abs(_feet(ctx, f) - ankles).max() < 1e-6
+    # at the bottom of the way down (MTM-1 bend: at least 29 TMU) the trunk is bent and the
+    # hands hang under the shoulders (within 10 cm across), not swept back with the trunk
+    down = np.flatnonzero(z <= z.min() + 1e-9)[0]
+    assert (down + 1) / 30.0 >= BODY_MOTION_TMU["B"] * TMU - 1 / 30.0
+    q = r.frames[down]
+    assert q[jm.adr("lumbar_flex")] > r.turn[-1, jm.adr("lumbar_flex")] + 0.2
+    d = mujoco.MjData(ctx.model)
+    d.qpos[:] = q
+    mujoco.mj_kinematics(ctx.model, d)
+    palms = hand_points(ctx, q[None])[0]
+    for k, p in enumerate("lr"):
+        shoulder = d.xpos[ctx.model.body(f"{jm.prefix}upper_arm_{p}").id]
+        assert np.linalg.norm(palms[k, :2] - shoulder[:2]) < 0.10
+        assert palms[k, 2] < shoulder[2] - 0.3
+    # both palms end on their grips, the part's width apart, and come up holding it there
+    grips = np.array([ctx.workplace.station(f"bench_a_box_{s}").pos for s in ("left", "right")])
+    gaps = np.linalg.norm(np.diff(hand_points(ctx, r.frames), axis=1)[:, 0], axis=1)
+    at = int(np.argmin(np.linalg.norm(hand_points(ctx, r.frames) - grips[None], axis=2).max(1)))
+    assert gaps[at:] == pytest.approx(gaps[at], abs=0.02)
+
+
+def test_a_two_handed_cycle_from_and_to_pallets_ends_every_hand_on_target(pallets):
+    """The whole cycle (pick from the floor, carry, place on the low pallet): every hand on
+    its target, no contact with the scene, no warning of a hand short of its target."""
+    res = simulate_cycle(pallets, rng=0)
+    assert [a.kind for a in res.arms] == ["pick", "place"]
+    assert max(a.hand_error for a in res.arms) < 0.01
+    assert not res.collisions
+    # the pick crouches: MTM-1 bend and arise on top of the standing station's pick
+    assert res.tasks[0].duration > BODY_MOTION_TMU["B"] * TMU + BODY_MOTION_TMU["AB"] * TMU

@@ -98,7 +98,7 @@ def _reach_frames(
     if drop > 0.0:  # crouched: the pelvis lower, the trunk bent for balance (mjwalk.cycle.crouch)
         base = crouch_pose(ctx, q0, drop)
     if lean:
-        base = _leaning(ctx, base, side, target_w, float(lengths.sum()) / scale - LEAN_SPARE)
+        base = _leaning(ctx, base, [(side, target_w)], float(lengths.sum()) / scale - LEAN_SPARE)
     data = ctx.scratch()
     data.qpos[:] = base
     mujoco.mj_kinematics(m, data)
@@ -215,14 +215,21 @@ LEAN_SPARE = 0.02
 CROUCH_DROPS = (0.05, 0.10, 0.15)
 
 
-def _leaning(ctx, q0: np.ndarray, side: Side, target_w: np.ndarray, reach: float) -> np.ndarray:
-    """``q0`` with the trunk bent forward just far enough that ``target_w`` (world, m) lies
-    within ``reach`` metres of ``side``'s shoulder (lumbar and thoracic flexion, within their
-    ranges, :data:`LEAN_STEP` at a time: :func:`~mjwalk.cycle.crouch.bend_trunk`); bent as far
-    as they go when that is not enough."""
-    ua = ctx.model.body(f"{ctx.jointmap.prefix}upper_arm_{side_prefix(side)}").id
+def _leaning(ctx, q0: np.ndarray, targets, reach: float) -> np.ndarray:
+    """``q0`` with the trunk bent forward just far enough that every ``(side, target)`` of
+    ``targets`` (the target in world coordinates, m) lies within ``reach`` metres of that side's
+    shoulder (lumbar and thoracic flexion, within their ranges, :data:`LEAN_STEP` at a time:
+    :func:`~mjwalk.cycle.crouch.bend_trunk`); bent as far as they go when that is not enough."""
+    prefix = ctx.jointmap.prefix
+    arms = [
+        (ctx.model.body(f"{prefix}upper_arm_{side_prefix(side)}").id, np.asarray(t, dtype=float))
+        for side, t in targets
+    ]
     return bend_trunk(
-        ctx, q0, LEAN_STEP, lambda data: np.linalg.norm(target_w - data.xpos[ua]) <= reach
+        ctx,
+        q0,
+        LEAN_STEP,
+        lambda data: all(np.linalg.norm(t - data.xpos[ua]) <= reach for ua, t in arms),
     )
 
 
@@ -418,7 +425,84 @@ def _blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
     return v / max(float(np.linalg.norm(v)), 1e-9)
 
 
-def _two_hand_frames(ctx, q0, task, approach, hold, fps, timing=None, held=None):
+def _two_hand_frames(
+    ctx, q0, task, approach, hold, fps, timing=None, held=None, lean=False, drop=0.0
+):
+    """A two-handed reach (:func:`_two_hand_reach`) from ``q0``, or, with ``lean`` or
+    ``drop`` (m), from ``q0`` crouched that much (:func:`~mjwalk.cycle.crouch.crouch_pose`)
+    and with the trunk bent forward until both grips are within the arms' reach
+    (:func:`_leaning`): a part on a pallet or a low bench, which no standing reach gets both
+    hands to. The body goes down with the arms as they are in ``q0`` (hanging, or holding the
+    part in the carrying posture), the reach runs from there, and the body comes back up with
+    the arms as the reach leaves them (carrying the part it picked, hanging after a place),
+    the feet planted throughout (:func:`~mjwalk.cycle.crouch.crouch_frames`). Going down and
+    coming up are MTM-1's body motions "B" (bend, stoop) and "AB" (arise) at the operator's
+    time factor, before and after the reach (MTM-1 adds body and hand motions). Returns what
+    :func:`_two_hand_reach` returns."""
+    if not lean and drop <= 0.0:
+        return _two_hand_reach(ctx, q0, task, approach, hold, fps, timing, held)
+    from mjwalk.arms.kinematics import ARM_JOINTS
+    from mjwalk.arms.reach import humanoid_arm
+    from mjwalk.cycle.spec import grip_sites
+
+    body = crouch_pose(ctx, q0, drop)
+    if lean:
+        scale, lengths = humanoid_arm(ctx.reach_model_for("left"), ctx.spec.stature)
+        grips = [
+            ("right" if s == "right" else "left", ctx.workplace.station(n).pos)
+            for s, n in grip_sites(task.site, "both")
+        ]
+        body = _leaning(ctx, body, grips, float(lengths.sum()) / scale - LEAN_SPARE)
+    frames, error, res, width = _two_hand_reach(ctx, body, task, approach, hold, fps, timing, held)
+    factor = (timing or _default_timing)(1.0)[1] / _default_timing(1.0)[1]
+    n_down = max(1, round(body_motion_duration("B") * factor * fps))
+    n_up = max(1, round(body_motion_duration("AB") * factor * fps))
+    # down with the arms of q0; up with the arms of the reach's last frame (root and legs of
+    # q0 standing, crouch_frames lowers the pelvis and solves the legs at each pose)
+    down = crouch_frames(ctx, q0, body, _smooth(np.arange(1, n_down + 1) / n_down))
+    last = frames[-1]
+    standing = np.array(q0, dtype=float)
+    arms = [
+        ctx.jointmap.adr("_".join([part, p, *tail]))
+        for p in "lr"
+        for part, *tail in (name.split("_") for name in ARM_JOINTS)
+    ]
+    standing[arms] = last[arms]
+    up = crouch_frames(ctx, standing, last, _smooth(np.arange(n_up) / n_up)[::-1])
+    seq = np.vstack([down, frames, up])
+    # hands free (going down for a pick, coming up after a place): the arms hang plumb from
+    # the bending trunk instead of swinging back with it, and swing into (out of) the reach
+    # over as long as the bend (arise) takes (at most a third of the reach)
+    free = np.zeros(len(seq))
+    if held is None:
+        n_b = max(1, min(n_down, len(frames) // 3))
+        free[:n_down] = 1.0
+        free[n_down : n_down + n_b] = 1.0 - _smooth(np.arange(1, n_b + 1) / (n_b + 1))
+    else:
+        n_b = max(1, min(n_up, len(frames) // 3))
+        free[len(seq) - n_up :] = 1.0
+        free[len(seq) - n_up - n_b : len(seq) - n_up] = _smooth(np.arange(1, n_b + 1) / (n_b + 1))
+    return _plumb_arms(ctx, seq, q0, free), error, res, width
+
+
+def _plumb_arms(ctx, frames: np.ndarray, q0: np.ndarray, share: np.ndarray) -> np.ndarray:
+    """``frames`` (F, nq) with both shoulder flexions raised by ``share`` (F,) times the trunk's
+    forward bend beyond ``q0``'s (lumbar and thoracic flexion, radians; within the shoulder's
+    range): at share 1 an arm hanging in ``q0`` hangs plumb from the bent trunk."""
+    from mjwalk.cycle.crouch import TRUNK_FLEXION
+
+    jm = ctx.jointmap
+    trunk = [jm.adr(j) for j in TRUNK_FLEXION]
+    bend = frames[:, trunk].sum(axis=1) - np.asarray(q0, dtype=float)[trunk].sum()
+    out = frames.copy()
+    for p in "lr":
+        k = jm.adr(f"shoulder_{p}_flex")
+        lo, hi = jm.limits(f"shoulder_{p}_flex")
+        out[:, k] = np.clip(frames[:, k] + share * bend, lo, hi)
+    return out
+
+
+def _two_hand_reach(ctx, q0, task, approach, hold, fps, timing=None, held=None):
     """A two-handed reach (``hand = "both"``): the left arm to the grip site ``<site>_left``, the
     right arm (the mirrored model) to ``<site>_right``, at the same time, holding and returning
     together. A pick's return brings the part into the carrying posture
@@ -656,9 +740,10 @@ def _reach_task(
     walk ended (x, y), when the operator stands elsewhere now (a step for the reach before):
     the steps are measured from there, so each reach at a stand steps back or in as far as it
     needs from the walk's end, and step-backs do not add up (default: ``(x, y)``). When no
-    spot brings a one-handed target within the arm's reach (low, below a standing reach), the
-    search runs again with the trunk bent forward as far as the target needs
-    (:func:`_leaning`), and that reach is kept when it brings the hand closer."""
+    spot brings the target (both grips of a two-handed part) within the arms' reach (low,
+    below a standing reach), the search runs again with the trunk bent forward as far as the
+    target needs (:func:`_leaning`), and that reach is kept when it brings the hand closer; one
+    that still touches the scene or falls short crouches (:func:`_crouching_reach`)."""
     from mjwalk.cycle.poses import _standing, carry_pose
 
     assert task.site is not None  # the spec loader requires a site for reaches
@@ -695,7 +780,7 @@ def _reach_task(
         width = None
         if task.hand == "both":
             rf, err, res, width = _two_hand_frames(
-                ctx, q0, task, approach, hold, fps, timing=timing, held=grip
+                ctx, q0, task, approach, hold, fps, timing=timing, held=grip, lean=lean, drop=drop
             )
         else:
             arm: Side = "right" if task.hand == "right" else "left"
@@ -734,8 +819,6 @@ def _reach_task(
         return best
 
     upright = settle(lean=False)
-    if task.hand == "both":
-        return upright
     best = upright
     if upright.error > REACH_TOLERANCE:
         # a target no step brings within the arm's reach (low, as a bin by the feet, or deep):
@@ -743,24 +826,29 @@ def _reach_task(
         bent = settle(lean=True)
         best = bent if bent.error < upright.error else upright
     # still touching the scene from every spot (a compartment low under a shelf, where the
-    # arm from a standing or stooping shoulder slopes down through the shelf's front edge):
-    # the operator crouches
+    # arm from a standing or stooping shoulder slopes down through the shelf's front edge) or
+    # short of the target (a part on a pallet): the operator crouches
     return _crouching_reach(settle, best, ctx.spec.stature)
 
 
 def _crouching_reach(settle, best: WorkingReach, stature: float) -> WorkingReach:
-    """``best`` (a one-handed reach standing or stooping), or when it touches the scene from
-    every spot, the reach crouched (:mod:`mjwalk.cycle.crouch`) the least of
-    :data:`CROUCH_DROPS` deep that is clear, else the crouch that comes closest to clear --
-    as long as the hand stays on its target (within :data:`REACH_TOLERANCE`, or as close as
-    in ``best``). ``settle(lean, drop)``: the stand-off's search of :func:`_reach_task`."""
-    if best.distance >= 0.0:
+    """``best`` (a reach standing or stooping), or when it touches the scene from every spot
+    or its hand ends short of the target (beyond :data:`REACH_TOLERANCE`: a part on a pallet),
+    the reach crouched (:mod:`mjwalk.cycle.crouch`) the least of :data:`CROUCH_DROPS` deep
+    that is on its target and clear. Short of the target, a crouch is kept when it brings the
+    hand onto it (within :data:`REACH_TOLERANCE`) without touching the scene more (a crouch
+    does not bring a far target nearer: a few millimetres closer is no reason to squat);
+    touching the scene, when it is clearer with the hand still on its target.
+    ``settle(lean, drop)``: the stand-off's search of :func:`_reach_task`."""
+    if best.distance >= 0.0 and best.error <= REACH_TOLERANCE:
         return best
-    tolerance = max(best.error, REACH_TOLERANCE)
     for share in CROUCH_DROPS:
         cand = settle(True, float(share * stature))
-        if cand.error <= tolerance and cand.distance > best.distance:
+        if best.error > REACH_TOLERANCE:  # short: on the target, and no more in the scene
+            if cand.error <= REACH_TOLERANCE and min(cand.distance, 0.0) >= min(best.distance, 0.0):
+                best = cand
+        elif cand.error <= REACH_TOLERANCE and cand.distance > best.distance:
             best = cand
-            if best.distance == np.inf:
-                break
+        if best.distance == np.inf and best.error <= REACH_TOLERANCE:
+            break
     return best
