@@ -86,6 +86,20 @@ def test_a_crouch_lowers_the_pelvis_with_the_feet_planted_and_balanced(ctx, drop
     assert np.all(np.diff(frames[:, jm.root + 2]) < 0)  # the pelvis goes down all the way
 
 
+def _assert_hangs_plumb(ctx, q, sides: str) -> None:
+    """In pose ``q`` the palm of each side in ``sides`` ("l", "r") hangs under its shoulder:
+    within 10 cm across, at least 30 cm below."""
+    d = mujoco.MjData(ctx.model)
+    d.qpos[:] = q
+    mujoco.mj_kinematics(ctx.model, d)
+    palms = hand_points(ctx, q[None])[0]
+    for p in sides:
+        shoulder = d.xpos[ctx.model.body(f"{ctx.jointmap.prefix}upper_arm_{p}").id]
+        palm = palms["lr".index(p)]
+        assert np.linalg.norm(palm[:2] - shoulder[:2]) < 0.10
+        assert palm[2] < shoulder[2] - 0.3
+
+
 def test_no_drop_is_the_standing_pose(ctx):
     q0 = _standing(ctx, 0.0, 0.0, 0.0)
     assert np.array_equal(crouch_pose(ctx, q0, 0.0), q0)
@@ -124,6 +138,8 @@ def test_a_reach_into_a_low_compartment_crouches_and_is_clear(ctx, monkeypatch):
     up = len(z) - 1 - np.flatnonzero(z <= z.min() + 1e-9)[-1]
     assert (down + 1) / 30.0 >= BODY_MOTION_TMU["B"] * TMU - 1 / 30.0
     assert up / 30.0 >= BODY_MOTION_TMU["AB"] * TMU - 1 / 30.0
+    # the free (right) arm hangs plumb from the bent trunk, not swept back with it
+    _assert_hangs_plumb(ctx, r.frames[down], "r")
 
 
 #: Bench a of the two-handed station (top at 0.95 m, the box's centre and grips at 1.05 m) ...
@@ -194,14 +210,7 @@ def test_a_two_handed_pick_from_the_floor_crouches_with_both_hands_on_the_part(p
     assert (down + 1) / 30.0 >= BODY_MOTION_TMU["B"] * TMU - 1 / 30.0
     q = r.frames[down]
     assert q[jm.adr("lumbar_flex")] > r.turn[-1, jm.adr("lumbar_flex")] + 0.2
-    d = mujoco.MjData(ctx.model)
-    d.qpos[:] = q
-    mujoco.mj_kinematics(ctx.model, d)
-    palms = hand_points(ctx, q[None])[0]
-    for k, p in enumerate("lr"):
-        shoulder = d.xpos[ctx.model.body(f"{jm.prefix}upper_arm_{p}").id]
-        assert np.linalg.norm(palms[k, :2] - shoulder[:2]) < 0.10
-        assert palms[k, 2] < shoulder[2] - 0.3
+    _assert_hangs_plumb(ctx, q, "lr")
     # both palms end on their grips, the part's width apart, and come up holding it there
     grips = np.array([ctx.workplace.station(f"bench_a_box_{s}").pos for s in ("left", "right")])
     gaps = np.linalg.norm(np.diff(hand_points(ctx, r.frames), axis=1)[:, 0], axis=1)

@@ -196,6 +196,9 @@ def _reach_frames(
         rise = crouch_frames(ctx, q0, ready_pose, w)
     back = np.vstack([back[1:], rise, q0[None]])
     frames = np.vstack([ready, out, np.repeat(out[-1:], n_hold, axis=0), back])
+    if lean or drop > 0.0:  # the other arm hangs plumb from the bending trunk
+        other: Side = "right" if side == "left" else "left"
+        frames = _plumb_arms(ctx, frames, q0, np.ones(len(frames)), (other,))
     return frames, error, res
 
 
@@ -485,17 +488,20 @@ def _two_hand_frames(
     return _plumb_arms(ctx, seq, q0, free), error, res, width
 
 
-def _plumb_arms(ctx, frames: np.ndarray, q0: np.ndarray, share: np.ndarray) -> np.ndarray:
-    """``frames`` (F, nq) with both shoulder flexions raised by ``share`` (F,) times the trunk's
-    forward bend beyond ``q0``'s (lumbar and thoracic flexion, radians; within the shoulder's
-    range): at share 1 an arm hanging in ``q0`` hangs plumb from the bent trunk."""
+def _plumb_arms(
+    ctx, frames: np.ndarray, q0: np.ndarray, share: np.ndarray, sides=("left", "right")
+) -> np.ndarray:
+    """``frames`` (F, nq) with the shoulder flexions of ``sides`` raised by ``share`` (F,)
+    times the trunk's forward bend beyond ``q0``'s (lumbar and thoracic flexion, radians;
+    within the shoulder's range): at share 1 an arm hanging in ``q0`` hangs plumb from the
+    bent trunk."""
     from mjwalk.cycle.crouch import TRUNK_FLEXION
 
     jm = ctx.jointmap
     trunk = [jm.adr(j) for j in TRUNK_FLEXION]
     bend = frames[:, trunk].sum(axis=1) - np.asarray(q0, dtype=float)[trunk].sum()
     out = frames.copy()
-    for p in "lr":
+    for p in (side_prefix(side) for side in sides):
         k = jm.adr(f"shoulder_{p}_flex")
         lo, hi = jm.limits(f"shoulder_{p}_flex")
         out[:, k] = np.clip(frames[:, k] + share * bend, lo, hi)
