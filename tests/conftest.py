@@ -42,3 +42,28 @@ def caged_station(tmp_path):
     path = tmp_path / "caged.xml"
     path.write_text(text.replace("</worldbody>", cage))
     return load_workplace(path)
+
+
+#: A shelf at 0.7 m in rack 1 (under its shelf at 1.0 m) and a pick site on it, 20 cm into the
+#: rack: a compartment 26 cm high at knuckle height, below a standing reach.
+LOW_COMPARTMENT = (
+    '<geom name="rack1_shelf_mid" type="box" size="0.4 0.25 0.02" pos="0 0 0.7" '
+    'material="shelf"/>\n      <site name="rack1_low" pos="0.1 0.05 0.76" size="0.02"/>\n      '
+)
+
+
+@pytest.fixture(scope="session")
+def low_compartment(tmp_path_factory) -> Path:
+    """The cycle file of a left-hand pick from the station's rack 1 at :data:`LOW_COMPARTMENT`
+    (the scene beside it)."""
+    folder = tmp_path_factory.mktemp("low_compartment")
+    xml = (SCENES / "assembly_station.xml").read_text()
+    mark = '<site name="stand_rack1"'
+    assert mark in xml
+    (folder / "low.xml").write_text(xml.replace(mark, LOW_COMPARTMENT + mark, 1))
+    (folder / "low.toml").write_text(
+        'name = "low compartment"\nscene = "low.xml"\nstart = "stand_rack1"\n'
+        "[humanoid]\nstature = 1.75\n"
+        '[[task]]\nkind = "pick"\nsite = "rack1_low"\nhand = "left"\n'
+    )
+    return folder / "low.toml"

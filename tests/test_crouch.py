@@ -15,33 +15,10 @@ from mjwalk.cycle.poses import _standing, frame_contacts, hand_points
 from mjwalk.cycle.simulate import prepare, simulate_cycle
 from mjwalk.cycle.spec import load_cycle_spec
 
-SHELF = '<geom name="rack1_shelf" type="box" size="0.4 0.25 0.02" pos="0 0 1.0" material="shelf"/>'
-#: A shelf at 0.7 m under rack 1's (at 1.0 m) and a site on it, 20 cm into the rack: a
-#: compartment 26 cm high at knuckle height.
-LOW = (
-    '<geom name="rack1_shelf_mid" type="box" size="0.4 0.25 0.02" pos="0 0 0.7" '
-    'material="shelf"/>\n<site name="rack1_low" pos="0.1 0.05 0.76" size="0.02"/>'
-)
-CYCLE = """name = "low compartment"
-scene = "assembly_station.xml"
-start = "stand_rack1"
-[humanoid]
-stature = 1.75
-[[task]]
-kind = "pick"
-site = "rack1_low"
-hand = "left"
-"""
-
 
 @pytest.fixture(scope="module")
-def ctx(scenes_dir, tmp_path_factory):
-    folder = tmp_path_factory.mktemp("low")
-    xml = (scenes_dir / "assembly_station.xml").read_text()
-    assert SHELF in xml
-    (folder / "assembly_station.xml").write_text(xml.replace(SHELF, f"{SHELF}\n{LOW}"))
-    (folder / "cycle.toml").write_text(CYCLE)
-    return prepare(load_cycle_spec(folder / "cycle.toml"))
+def ctx(low_compartment):
+    return prepare(load_cycle_spec(low_compartment))
 
 
 def _feet(ctx, q):

@@ -132,23 +132,12 @@ def test_step_backs_do_not_add_up(ctx):
     np.testing.assert_allclose(r.turn[-1, root : root + 2], st.pos[:2], atol=1e-12)
 
 
-def test_a_target_below_a_standing_reach_is_reached_bending_forward(scenes_dir, tmp_path):
+def test_a_target_below_a_standing_reach_is_reached_bending_forward(low_compartment):
     """A pick site 0.76 m high in rack 1 (on a shelf added at 0.7 m) is below the standing
     operator's reach from the stand site: no step brings it within the arm (the hand ended
     40 mm short). The operator bends the trunk forward (lumbar and thoracic flexion) just far
     enough, and the hand ends on it; the lean comes in with the reach and goes with it."""
-    xml = (scenes_dir / "assembly_station.xml").read_text()
-    mark = '<site name="stand_rack1"'
-    extra = (
-        '<geom name="rack1_shelf_mid" type="box" size="0.4 0.25 0.02" pos="0 0 0.7" '
-        'material="shelf"/>\n      <site name="rack1_low" pos="0.1 0.05 0.76" size="0.02"/>\n      '
-    )
-    (tmp_path / "low.xml").write_text(xml.replace(mark, extra + mark, 1))
-    (tmp_path / "low.toml").write_text(
-        'scene = "low.xml"\nstart = "stand_rack1"\n[[task]]\nkind = "pick"\n'
-        'site = "rack1_low"\nhand = "left"\n'
-    )
-    low = prepare(load_cycle_spec(tmp_path / "low.toml"))
+    low = prepare(load_cycle_spec(low_compartment))
     st = low.workplace.station("stand_rack1")
     task = low.spec.tasks[0]
     jm = low.jointmap
