@@ -759,7 +759,12 @@ def _reach_task(
     back /= max(float(np.linalg.norm(back)), 1e-9)
     check = _arm_clearance(ctx)
     room0 = float(ctx.workplace.walk_clearance(np.array([hx, hy]))[()])
-    rise = _approach_rise(ctx, _target(ctx, task.kind, site_pos, hx, hy))
+    # a fastening's approach is level (_approach): no headroom to measure
+    rise = (
+        0.0
+        if task.kind == "fasten"
+        else _approach_rise(ctx, _target(ctx, task.kind, site_pos, hx, hy))
+    )
 
     def candidate(s: float, lean: bool, drop: float = 0.0) -> WorkingReach | None:
         """The reach from ``s`` metres back (in: < 0) from the walk's end (``lean``: bending
