@@ -105,9 +105,14 @@ maps held at each neuron's data radius 5.01. Tried 2026-11-28 (right arm, DCS al
 linear terms only along the inputs' leading principal axes (98 % / 95 % of their variance)
 4.79 / 4.79; a growth patience of 25 insertions instead of 10 (``n_iter_no_change``; the
 best network by PRESS kept, 4-43 neurons) 4.68 / 4.51 / 4.77 at seeds 0 / 20 / 30 -- at or
-below both baselines at seeds 0 and 20, not at 30; not yet measured on the left arm or the
-style and walker splits, so not adopted; growing to the 60-neuron cap without early stopping
-did not finish in 45 minutes on two cores.
+below both baselines at seeds 0 and 20, not at 30 (mean 4.65 against kNN 4.63, GPR 4.63);
+left arm CV 4.18 (4.21 with 10), leave-one-style-out left 12.05 (12.02), right 13.09
+(13.04), leave-one-walker-out left 16.93 (17.34), right 13.05 (13.05) -- level on the
+unseen styles and walkers, 0.03-0.06 deg better in CV, at 10-20 times the training time
+(a 10-fold run 1100-2500 s instead of about 110: the larger networks' local linear
+designs, 10 (K + 1) columns, are decomposed for every width and output form at every
+insertion), so not adopted; growing to the 60-neuron cap without early stopping did not
+finish in 45 minutes on two cores.
 Before the dead-unit pruning and the trend fallback (earlier that day): CV 4.21, LOSO 14.50
 (feminine 21.5, masculine 14.6 -- worse than the mean trajectory --, normal 9.8, youthful
 12.9), and from seed to seed (DCS seeds + 0..40, ad hoc) the masculine fold gave 14.6-25.0,
