@@ -110,7 +110,7 @@ left arm CV 4.18 (4.21 with 10), leave-one-style-out left 12.05 (12.02), right 1
 (13.04), leave-one-walker-out left 16.93 (17.34), right 13.05 (13.05) -- level on the
 unseen styles and walkers, 0.03-0.06 deg better in CV, at 10-20 times the training time
 (a 10-fold run 1100-2500 s instead of about 110: the larger networks' local linear
-designs, 10 (K + 1) columns, are decomposed for every width and output form at every
+designs, 10 K + 9 columns, are decomposed for every width and output form at every
 insertion), so not adopted; growing to the 60-neuron cap without early stopping did not
 finish in 45 minutes on two cores.
 Before the dead-unit pruning and the trend fallback (earlier that day): CV 4.21, LOSO 14.50
