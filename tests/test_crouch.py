@@ -204,3 +204,39 @@ def test_a_two_handed_cycle_from_and_to_pallets_ends_every_hand_on_target(pallet
     assert not res.collisions
     # the pick crouches: MTM-1 bend and arise on top of the standing station's pick
     assert res.tasks[0].duration > BODY_MOTION_TMU["B"] * TMU + BODY_MOTION_TMU["AB"] * TMU
+
+
+def test_a_two_handed_pick_deep_on_a_bench_bends_briefly(scenes_dir, tmp_path):
+    """The box 25 cm further back on bench a (grips at 1.05 m, above the knee): standing the
+    hands fall short; the trunk bends forward (no crouch) and both hands reach the grips. A
+    bend that keeps the hands above the knee is no MTM-1 bend (B): the body goes down at a
+    full bend's pace for as long as its angle needs, well under B's 29 TMU."""
+    xml = (scenes_dir / "assembly_station_2h.xml").read_text()
+    for x in ("0", "-0.2", "0.2"):  # bench a's box and grips (bench b's lie at y = 0.1)
+        xml = xml.replace(f'pos="{x} -0.1 1.05"', f'pos="{x} 0.15 1.05"')
+    assert xml.count(" 0.15 1.05") == 4
+    (tmp_path / "assembly_station_2h.xml").write_text(xml)
+    (tmp_path / "c.toml").write_text((scenes_dir / "assembly_station_2h.toml").read_text())
+    ctx = prepare(load_cycle_spec(tmp_path / "c.toml"))
+    jm = ctx.jointmap
+    st = ctx.workplace.station("stand_bench_a")
+    task = ctx.spec.tasks[0]
+
+    def reach():
+        return reaching._reach_task(
+            ctx, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching._default_timing
+        )
+
+    r = reach()
+    assert r.error < 0.01 and r.distance == np.inf
+    assert not frame_contacts(ctx, np.vstack([r.turn, r.frames]))
+    z = r.frames[:, jm.root + 2]
+    assert np.allclose(z, r.turn[-1, jm.root + 2])  # no crouch
+    bend = np.array([reaching._trunk_bend(ctx, f, r.turn[-1]) for f in r.frames])
+    assert np.radians(5.0) < bend.max() < np.radians(45.0)
+    down = np.flatnonzero(bend >= bend.max() - 1e-9)[0]
+    assert (down + 1) / 30.0 < 0.5 * BODY_MOTION_TMU["B"] * TMU
+    with pytest.MonkeyPatch.context() as m:  # upright only: short of the grips
+        m.setattr(reaching, "_leaning", lambda ctx, q0, *a: q0)
+        m.setattr(reaching, "CROUCH_DROPS", ())
+        assert reach().error > 0.02

@@ -449,17 +449,23 @@ def _two_hand_frames(
     from mjwalk.cycle.spec import grip_sites
 
     body = crouch_pose(ctx, q0, drop)
+    grips: list[tuple[Side, np.ndarray]] = [
+        ("right" if s == "right" else "left", ctx.workplace.station(n).pos)
+        for s, n in grip_sites(task.site, "both")
+    ]
     if lean:
         scale, lengths = humanoid_arm(ctx.reach_model_for("left"), ctx.spec.stature)
-        grips = [
-            ("right" if s == "right" else "left", ctx.workplace.station(n).pos)
-            for s, n in grip_sites(task.site, "both")
-        ]
         body = _leaning(ctx, body, grips, float(lengths.sum()) / scale - LEAN_SPARE)
     frames, error, res, width = _two_hand_reach(ctx, body, task, approach, hold, fps, timing, held)
     factor = (timing or _default_timing)(1.0)[1] / _default_timing(1.0)[1]
-    n_down = max(1, round(body_motion_duration("B") * factor * fps))
-    n_up = max(1, round(body_motion_duration("AB") * factor * fps))
+    share = 1.0
+    if drop <= 0.0 and min(float(g[2]) for _, g in grips) >= knee_height(ctx.spec.stature):
+        # MTM-1's bend is the one that lets the hands reach below the knee; a shallower bend
+        # (a deep bench) assists the reach: it goes down and up at a full bend's pace (the
+        # trunk's flexion range in the bend's time), for as long as its angle needs
+        share = min(1.0, _trunk_bend(ctx, body, q0) / _trunk_bend_range(ctx, q0))
+    n_down = max(1, round(share * body_motion_duration("B") * factor * fps))
+    n_up = max(1, round(share * body_motion_duration("AB") * factor * fps))
     # down with the arms of q0; up with the arms of the reach's last frame (root and legs of
     # q0 standing, crouch_frames lowers the pelvis and solves the legs at each pose)
     down = crouch_frames(ctx, q0, body, _smooth(np.arange(1, n_down + 1) / n_down))
@@ -488,6 +494,32 @@ def _two_hand_frames(
     return _plumb_arms(ctx, seq, q0, free), error, res, width
 
 
+def knee_height(stature: float) -> float:
+    """Height (m) of the knee joint above the floor standing: Winter's ankle height plus
+    shank, 0.285 of ``stature`` (:data:`mjwalk.anthropometry.SEG`)."""
+    from mjwalk.anthropometry import SEG
+
+    return (SEG["ankle_height"] + SEG["shank"]) * stature
+
+
+def _trunk_bend(ctx, q: np.ndarray, q0: np.ndarray) -> float:
+    """How far (radians) the trunk of ``q`` is bent forward beyond ``q0``'s (lumbar and
+    thoracic flexion)."""
+    from mjwalk.cycle.crouch import TRUNK_FLEXION
+
+    k = [ctx.jointmap.adr(j) for j in TRUNK_FLEXION]
+    return float(np.sum(np.asarray(q)[k]) - np.sum(np.asarray(q0)[k]))
+
+
+def _trunk_bend_range(ctx, q0: np.ndarray) -> float:
+    """How far (radians) the trunk of ``q0`` can bend forward (lumbar and thoracic flexion
+    to their upper limits)."""
+    from mjwalk.cycle.crouch import TRUNK_FLEXION
+
+    jm = ctx.jointmap
+    return max(sum(jm.limits(j)[1] - float(q0[jm.adr(j)]) for j in TRUNK_FLEXION), 1e-9)
+
+
 def _plumb_arms(
     ctx, frames: np.ndarray, q0: np.ndarray, share: np.ndarray, sides=("left", "right")
 ) -> np.ndarray:
@@ -495,11 +527,8 @@ def _plumb_arms(
     times the trunk's forward bend beyond ``q0``'s (lumbar and thoracic flexion, radians;
     within the shoulder's range): at share 1 an arm hanging in ``q0`` hangs plumb from the
     bent trunk."""
-    from mjwalk.cycle.crouch import TRUNK_FLEXION
-
     jm = ctx.jointmap
-    trunk = [jm.adr(j) for j in TRUNK_FLEXION]
-    bend = frames[:, trunk].sum(axis=1) - np.asarray(q0, dtype=float)[trunk].sum()
+    bend = np.array([_trunk_bend(ctx, f, q0) for f in frames])
     out = frames.copy()
     for p in (side_prefix(side) for side in sides):
         k = jm.adr(f"shoulder_{p}_flex")
