@@ -240,3 +240,28 @@ def test_a_two_handed_pick_deep_on_a_bench_bends_briefly(scenes_dir, tmp_path):
         m.setattr(reaching, "_leaning", lambda ctx, q0, *a: q0)
         m.setattr(reaching, "CROUCH_DROPS", ())
         assert reach().error > 0.02
+
+
+def test_a_one_handed_stoop_below_the_knee_takes_mtm_bend_and_arise(scenes_dir, tmp_path):
+    """A one-handed pick from a pallet 25 cm high (the hand's target 0.41 m up, below the
+    1.75 m operator's knee at 0.50 m): the operator stoops (no crouch), and the stoop takes at
+    least MTM-1's bend (B) on the way down and its arise (AB) on the way up."""
+    xml = _low((scenes_dir / "assembly_station_2h.xml").read_text(), "bench_a", BENCH_A, 0.25)
+    (tmp_path / "p.xml").write_text(xml)
+    (tmp_path / "c.toml").write_text(
+        'scene = "p.xml"\nstart = "stand_bench_a"\n[humanoid]\nstature = 1.75\n'
+        '[[task]]\nkind = "pick"\nsite = "bench_a_box"\nhand = "left"\n'
+    )
+    ctx = prepare(load_cycle_spec(tmp_path / "c.toml"))
+    st = ctx.workplace.station("stand_bench_a")
+    r = reaching._reach_task(
+        ctx, ctx.spec.tasks[0], st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching._default_timing
+    )
+    assert r.error < 0.01 and r.distance == np.inf
+    z = r.frames[:, ctx.jointmap.root + 2]
+    assert np.allclose(z, r.turn[-1, ctx.jointmap.root + 2])  # a stoop, not a crouch
+    bend = np.array([reaching._trunk_bend(ctx, f, r.turn[-1]) for f in r.frames])
+    assert bend.max() > np.radians(45.0)
+    deepest = np.flatnonzero(bend >= bend.max() - 1e-9)
+    assert (deepest[0] + 1) / 30.0 >= BODY_MOTION_TMU["B"] * TMU - 1 / 30.0
+    assert (len(bend) - 1 - deepest[-1]) / 30.0 >= BODY_MOTION_TMU["AB"] * TMU - 1 / 30.0

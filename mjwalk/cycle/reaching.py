@@ -159,10 +159,11 @@ def _reach_frames(
     share = ready_len / max(ready_len + model_len, 1e-9)
     n_ready = min(n_out - 2, max(1, round(max(share * n_out, READY_MIN * fps))))
     n_arm_ready = n_rise = n_ready
-    if drop > 0.0:
-        # the crouch comes with the ready phase and the rise with the return's, each taking at
-        # least MTM-1's bend / arise at the operator's time factor (its return time over the
-        # reference adult's: factor / pace); the reach lasts longer by what they add
+    if drop > 0.0 or (lean and target_w[2] < knee_height(ctx.spec.stature)):
+        # the crouch (or a stoop for a target below the knee: MTM-1's bend) comes with the
+        # ready phase and the rise with the return's, each taking at least MTM-1's bend /
+        # arise at the operator's time factor (its return time over the reference adult's:
+        # factor / pace); the reach lasts longer by what they add
         factor = timing(1.0)[1] / _default_timing(1.0)[1]
         n_down = round(body_motion_duration("B") * factor * fps)
         n_ready = max(n_ready, n_down)
