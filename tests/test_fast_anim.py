@@ -48,8 +48,21 @@ from mjwalk.timeline.collisions import candidate_frames
 # ------------------------------------------------------------------ reference implementations
 
 
+def _rom_excess(abc, s: float) -> float:
+    """Radians by which the shoulder angles of Euler set ``abc`` lie beyond their ranges."""
+    from mjwalk.anthropometry import ROM_DEG
+
+    a, b, c = abc
+    out = 0.0
+    for value, name in ((-a, "shoulder_flex"), (s * b, "shoulder_abd"), (-s * c, "shoulder_rot")):
+        lo, hi = np.radians(ROM_DEG[name])
+        out += max(lo - value, 0.0) + max(value - hi, 0.0)
+    return out
+
+
 def _arm_angles_ref(U, side, roll=None):
-    """The frame-by-frame scipy implementation of arm_joint_angles (before issue 18)."""
+    """The frame-by-frame scipy implementation of arm_joint_angles (before issue 18), with
+    the Euler set within the shoulder's ranges (2026-11-28)."""
     s = 1.0 if side == "left" else -1.0
     q = np.zeros((len(U), 7))
     prev_x = None
@@ -64,6 +77,12 @@ def _arm_angles_ref(U, side, roll=None):
         prev_x = x
         r_sh = Rotation.from_matrix(np.column_stack([x, np.cross(z, x), z]))
         a, b, c = r_sh.as_euler("YXZ")
+        # the other Euler set of the same rotation, when it keeps the shoulder in its ranges
+        # and scipy's does not (an arm raised sideways above the shoulder)
+        alt = (np.angle(-np.exp(1j * a)), np.copysign(np.pi, b) - b, np.angle(-np.exp(1j * c)))
+        assert np.allclose(Rotation.from_euler("YXZ", alt).as_matrix(), r_sh.as_matrix())
+        if _rom_excess(alt, s) < _rom_excess((a, b, c), s) - 1e-9:
+            a, b, c = alt
         elbow = float(np.arccos(np.clip(u1 @ u2, -1, 1)))
         pron = 0.0 if roll is None else float(roll[t])
         q[t, :5] = [-a, s * b, -s * c, elbow, pron]

@@ -304,3 +304,59 @@ def test_a_scene_reach_refuses_a_model_of_another_kind():
     assert r.directions.shape == (20, 2, 3)
     with pytest.raises(MjwalkError, match="not fitted"):
         check_endpoint_model(ReachModel(data.lengths))
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_arm_joint_angles_recover_poses_across_the_shoulders_range(side):
+    """Upper arm and forearm directions made by the humanoid's shoulder chain (R = Ry(-flex)
+    Rx(s abd) Rz(-s rot), the arm along -z, the elbow Ry(-elbow)) from angles anywhere in the
+    joints' ranges give those angles back -- an arm raised sideways above the shoulder
+    (abduction beyond 90 deg) too, which came back as 180 deg flexion and rotation, beyond
+    their ranges (a reach to a 1.95 m shelf ended 1.3 m off)."""
+    from scipy.spatial.transform import Rotation
+
+    from mjwalk.anthropometry import ROM_DEG
+
+    s = 1.0 if side == "left" else -1.0
+    rng = np.random.default_rng(7)
+    names = ("shoulder_flex", "shoulder_abd", "shoulder_rot")
+    lo, hi = np.radians([ROM_DEG[j] for j in names]).T
+    q = rng.uniform(lo, hi, size=(400, 3))
+    q = q[np.abs(q[:, 1] - np.pi / 2) > np.radians(5.0)]  # away from the gimbal pose
+    assert (q[:, 1] > np.radians(100.0)).sum() > 50  # raised sideways above the shoulder
+    elbow = rng.uniform(np.radians(20.0), np.radians(140.0), size=len(q))
+    dirs = np.empty((len(q), 3, 3))
+    down = np.array([0.0, 0.0, -1.0])
+    for k, (flex, abd, rot) in enumerate(q):
+        r = Rotation.from_euler("YXZ", [-flex, s * abd, -s * rot]).as_matrix()
+        fore = r @ Rotation.from_euler("Y", -elbow[k]).as_matrix() @ down
+        dirs[k] = [r @ down, fore, fore]
+    got = np.array([arm_joint_angles(d[None], side)[0] for d in dirs])
+    np.testing.assert_allclose(got[:, :3], q, atol=1e-6)
+    np.testing.assert_allclose(got[:, 3], elbow, atol=1e-6)
+
+
+@pytest.mark.parametrize("hand", ["left", "right"])
+def test_a_pick_from_a_shelf_above_the_head_ends_on_the_target(scenes_dir, tmp_path, hand):
+    """A part 1.95 m up on bench a of the two-handed station (a top shelf, above the 1.75 m
+    operator's head), picked with one hand: the hand ends on it (it ended 1.3 m off, the arm
+    clipped into extension by joint angles on the wrong Euler branch)."""
+    from mjwalk.cycle import reaching
+    from mjwalk.cycle.simulate import prepare
+    from mjwalk.cycle.spec import load_cycle_spec
+
+    xml = (scenes_dir / "assembly_station_2h.xml").read_text()
+    xml = xml.replace(
+        'name="bench_a_box" pos="0 -0.1 1.05"', 'name="bench_a_box" pos="0 -0.1 1.95"'
+    )
+    (tmp_path / "s.xml").write_text(xml)
+    (tmp_path / "c.toml").write_text(
+        'scene = "s.xml"\nstart = "stand_bench_a"\n[humanoid]\nstature = 1.75\n'
+        f'[[task]]\nkind = "pick"\nsite = "bench_a_box"\nhand = "{hand}"\n'
+    )
+    ctx = prepare(load_cycle_spec(tmp_path / "c.toml"))
+    st = ctx.workplace.station("stand_bench_a")
+    r = reaching._reach_task(
+        ctx, ctx.spec.tasks[0], st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching._default_timing
+    )
+    assert r.error < 0.01 and r.distance == np.inf

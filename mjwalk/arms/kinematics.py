@@ -133,7 +133,7 @@ def arm_joint_angles(
         x[t] = xt / np.linalg.norm(xt)
     y = np.cross(z, x)
     r_sh = np.stack([x, y, z], axis=-1)  # (n, 3, 3), columns x, y, z
-    a, b, c = _euler_yxz(r_sh)
+    a, b, c = _shoulder_branch(*_euler_yxz(r_sh), s)
     elbow = np.arccos(np.clip(_dot(u1, u2), -1, 1))
     pron = np.zeros(n) if roll is None else np.asarray(roll, dtype=float)[:n]
     q[:, 0], q[:, 1], q[:, 2], q[:, 3], q[:, 4] = -a, s * b, -s * c, elbow, pron
@@ -181,6 +181,36 @@ def hand_directions(
 #: |sin| of the middle YXZ angle above which a frame is decomposed by scipy (gimbal lock: the
 #: first and third angles are not separable there; scipy's convention picks them).
 _GIMBAL = 1.0 - 1e-7
+
+
+def _shoulder_branch(a: np.ndarray, b: np.ndarray, c: np.ndarray, s: float):
+    """The shoulder's Y-X-Z angles (a, b, c) of :func:`_euler_yxz` (whose ``b`` lies within
+    +-90 deg), or per frame the other set for the same rotation, ``(a + pi, sign(b) pi - b,
+    c + pi)``, where that one keeps the joints within their ranges and this one does not: an
+    arm raised sideways above the shoulder (abduction beyond 90 deg) is ``b`` = 120 deg with
+    no flexion or rotation, which the first set writes as 60 deg with flexion and rotation
+    of 180 deg, beyond their ranges (the clipped pose then pointed the arm backwards: a
+    reach to a top shelf ended 1.3 m off). Ranges: :data:`mjwalk.anthropometry.ROM_DEG`;
+    ``s`` +1 for the left arm, -1 for the right."""
+    from mjwalk.anthropometry import ROM_DEG
+
+    def excess(a, b, c):  # radians beyond the ranges of flexion, abduction and rotation
+        out = np.zeros_like(a)
+        for value, name in (
+            (-a, "shoulder_flex"),
+            (s * b, "shoulder_abd"),
+            (-s * c, "shoulder_rot"),
+        ):
+            lo, hi = np.radians(ROM_DEG[name])
+            out += np.maximum(lo - value, 0.0) + np.maximum(value - hi, 0.0)
+        return out
+
+    def wrap(x):
+        return (x + np.pi) % (2.0 * np.pi) - np.pi
+
+    a2, b2, c2 = wrap(a + np.pi), np.where(b >= 0.0, np.pi, -np.pi) - b, wrap(c + np.pi)
+    other = excess(a2, b2, c2) < excess(a, b, c) - 1e-9
+    return np.where(other, a2, a), np.where(other, b2, b), np.where(other, c2, c)
 
 
 def _euler_yxz(r: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
