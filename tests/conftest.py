@@ -44,11 +44,13 @@ def caged_station(tmp_path):
     return load_workplace(path)
 
 
-#: A shelf at 0.7 m in rack 1 (under its shelf at 1.0 m) and a pick site on it, 20 cm into the
-#: rack: a compartment 26 cm high at knuckle height, below a standing reach.
+#: A shelf at 0.7 m in rack 1 (under its shelf at 1.0 m) and a pick site on it, 30 cm into the
+#: rack: a compartment 26 cm high at knuckle height, below a standing reach. (20 cm into it
+#: until the default reach model's working area grew to a top shelf: its reach from a stooping
+#: shoulder then cleared the upper shelf by 6 mm.)
 LOW_COMPARTMENT = (
     '<geom name="rack1_shelf_mid" type="box" size="0.4 0.25 0.02" pos="0 0 0.7" '
-    'material="shelf"/>\n      <site name="rack1_low" pos="0.1 0.05 0.76" size="0.02"/>\n      '
+    'material="shelf"/>\n      <site name="rack1_low" pos="0.1 -0.05 0.76" size="0.02"/>\n      '
 )
 
 

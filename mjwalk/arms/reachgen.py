@@ -57,9 +57,13 @@ FUNCTIONAL_WRIST = ((-40.0, 40.0), (-10.0, 30.0))
 #: the body (Barnes 1980, *Motion and Time Study*, 7th ed., ch. 17: normal and maximum working
 #: areas), and as far out to the side (y 0.30); from 15 cm below the elbow (about -0.33 m; the
 #: work height of heavy work, Grandjean 1988, *Fitting the Task to the Man*, 4th ed., ch. 4)
-#: to above the shoulder (z 0.15). Until 2026-11 the box began at x 0.30, y -0.15, z -0.35:
-#: the station's fastens across the body at the car lay outside it and the model extrapolated.
-END_BOX = ((0.15, 0.55), (-0.30, 0.30), (-0.48, 0.15))
+#: up to a top shelf: the standing vertical grip reach, about 1.12 of stature (Pheasant &
+#: Haslegrave 2006, *Bodyspace*, 3rd ed., Table 2.5: 1950 mm for men of 1740 mm, 50th
+#: percentile), 0.53 m above the shoulder of the default humanoid (z 0.55). Until 2026-11
+#: the box began at x 0.30, y -0.15, z -0.35: the station's fastens across the body at the
+#: car lay outside it and the model extrapolated; until 2026-11-28 it ended at z 0.15, and a
+#: pick from a shelf at 1.85 m ended 0.18 m off (1 mm now).
+END_BOX = ((0.15, 0.55), (-0.30, 0.30), (-0.48, 0.55))
 #: Passes of the wrist-range projection in :func:`reach_trajectory` (each re-solves the arm for
 #: the turned hand).
 WRIST_ITERATIONS = 6
