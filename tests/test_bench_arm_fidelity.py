@@ -29,4 +29,8 @@ def test_the_hand_follows_the_planned_path(scenes_dir, capsys):
     worst = float(re.search(r"planned path, mm: .*max (\d+)", out).group(1))
     assert worst <= 1.0, out
     assert "beyond their ranges (reaches): none" in out
-    assert "wrist at a range limit: flexion 0.0%, deviation 0.0%" in out
+    # the wrist rarely needs its range's edge (turned there, not past it: wrist_in_range);
+    # 16.5 % / 8.2 % of frames with the generator before 2026-11-27, 0.2 % of deviation with
+    # the default model trained up to a top shelf (reach model v7)
+    flex, dev = map(float, re.search(r"flexion ([\d.]+)%, deviation ([\d.]+)%", out).groups())
+    assert flex <= 1.0 and dev <= 1.0, out
