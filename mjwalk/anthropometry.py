@@ -83,6 +83,12 @@ def pelvis_height(stature: float = DEFAULT_STATURE) -> float:
     return SEG["hip_height"] * stature
 
 
+def knee_height(stature: float = DEFAULT_STATURE) -> float:
+    """Knee joint height in metres standing: ankle height plus shank, 0.285 * stature
+    (Winter)."""
+    return (SEG["ankle_height"] + SEG["shank"]) * stature
+
+
 @dataclass(frozen=True)
 class LegGeometry:
     """Lengths the leg IK needs, metres, in the pelvis frame (x forward, y left, z up).

@@ -430,6 +430,7 @@ def format_markdown(rep: dict) -> str:
         if len(col["by_pair"]) > MD_PAIRS:
             out += ["", f"(the {MD_PAIRS} most frequent of {len(col['by_pair'])} pairs)"]
     arms = rep["arms"]
+    short = _short_line(arms)
     out += [
         "",
         "## Arms",
@@ -437,7 +438,7 @@ def format_markdown(rep: dict) -> str:
         f"{arms['motions']} arm motion(s); hand error at the target: median "
         f"{_f(1000 * arms['median_hand_error'], 0)} mm, max {_f(1000 * arms['max_hand_error'], 0)} "
         f"mm; {arms['outside_range']} outside the reach model's trained range.",
-        *(["", *_short_line(arms)] if _short_line(arms) else []),
+        *(["", *short] if short else []),
         "",
     ]
     return "\n".join(out)

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import mjwalk.cycle.reaching as reaching
-from mjwalk.cycle.crouch import _com_ahead, crouch_frames, crouch_pose
+from mjwalk.cycle.crouch import _com_ahead, crouch_frames, crouch_pose, trunk_bend
 from mjwalk.cycle.handling import BODY_MOTION_TMU, TMU
 from mjwalk.cycle.poses import _standing, frame_contacts, hand_points
 from mjwalk.cycle.simulate import prepare, simulate_cycle
@@ -232,7 +232,7 @@ def test_a_two_handed_pick_deep_on_a_bench_bends_briefly(scenes_dir, tmp_path):
     assert not frame_contacts(ctx, np.vstack([r.turn, r.frames]))
     z = r.frames[:, jm.root + 2]
     assert np.allclose(z, r.turn[-1, jm.root + 2])  # no crouch
-    bend = np.array([reaching._trunk_bend(ctx, f, r.turn[-1]) for f in r.frames])
+    bend = trunk_bend(ctx, r.frames, r.turn[-1])
     assert np.radians(5.0) < bend.max() < np.radians(45.0)
     down = np.flatnonzero(bend >= bend.max() - 1e-9)[0]
     assert (down + 1) / 30.0 < 0.5 * BODY_MOTION_TMU["B"] * TMU
@@ -260,7 +260,7 @@ def test_a_one_handed_stoop_below_the_knee_takes_mtm_bend_and_arise(scenes_dir, 
     assert r.error < 0.01 and r.distance == np.inf
     z = r.frames[:, ctx.jointmap.root + 2]
     assert np.allclose(z, r.turn[-1, ctx.jointmap.root + 2])  # a stoop, not a crouch
-    bend = np.array([reaching._trunk_bend(ctx, f, r.turn[-1]) for f in r.frames])
+    bend = trunk_bend(ctx, r.frames, r.turn[-1])
     assert bend.max() > np.radians(45.0)
     deepest = np.flatnonzero(bend >= bend.max() - 1e-9)
     assert (deepest[0] + 1) / 30.0 >= BODY_MOTION_TMU["B"] * TMU - 1 / 30.0

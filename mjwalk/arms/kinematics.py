@@ -102,6 +102,18 @@ ARM_JOINTS = (
 )
 
 
+def arm_joint(name: str, side: Side) -> str:
+    """The humanoid's joint of ``side``'s arm for an :data:`ARM_JOINTS` name
+    (``"shoulder_flex"`` -> ``"shoulder_l_flex"``)."""
+    part, *rest = name.split("_")
+    return "_".join([part, side_prefix(side), *rest])
+
+
+def arm_adrs(jm, sides: tuple[Side, ...] = ("left", "right")) -> list[int]:
+    """``qpos`` addresses of the :data:`ARM_JOINTS` of ``sides``' arms (jointmap ``jm``)."""
+    return [jm.adr(arm_joint(name, side)) for side in sides for name in ARM_JOINTS]
+
+
 def arm_joint_angles(
     directions: np.ndarray, side: Side = "left", roll: np.ndarray | None = None
 ) -> np.ndarray:
@@ -304,8 +316,7 @@ def arm_frames(
     out = np.repeat(np.asarray(q0)[None], len(times), axis=0)
     clipped = []
     for k, name in enumerate(ARM_JOINTS):
-        part, *rest = name.split("_")
-        jn = "_".join([part, side_prefix(side), *rest])  # "shoulder_flex" -> "shoulder_l_flex"
+        jn = arm_joint(name, side)
         qi = np.interp(times, src, q[:, k])
         lo, hi = jm.limits(jn)
         if (qi < lo - 1e-6).any() or (qi > hi + 1e-6).any():

@@ -47,7 +47,7 @@ def bend_trunk(ctx, q0: np.ndarray, step: float, enough) -> np.ndarray:
     data = ctx.scratch()
     q0 = np.asarray(q0, dtype=float)
     joints = [jm.adr(j) for j in TRUNK_FLEXION]
-    room = np.maximum(np.array([jm.limits(j)[1] for j in TRUNK_FLEXION]) - q0[joints], 0.0)
+    room = trunk_room(ctx, q0)
     total = float(room.sum())
     q = q0.copy()
     for theta in np.arange(0.0, total + 1e-9, float(step)):
@@ -58,6 +58,20 @@ def bend_trunk(ctx, q0: np.ndarray, step: float, enough) -> np.ndarray:
             return q
     q[joints] = q0[joints] + room
     return q
+
+
+def trunk_room(ctx, q0: np.ndarray) -> np.ndarray:
+    """How far (radians) each of :data:`TRUNK_FLEXION` can still flex forward in ``q0``."""
+    jm = ctx.jointmap
+    q0 = np.asarray(q0, dtype=float)
+    return np.maximum([jm.limits(j)[1] - q0[jm.adr(j)] for j in TRUNK_FLEXION], 0.0)
+
+
+def trunk_bend(ctx, q: np.ndarray, q0: np.ndarray) -> np.ndarray:
+    """How far (radians) the trunk of pose(s) ``q`` (..., nq) is bent forward beyond ``q0``'s
+    (lumbar and thoracic flexion together)."""
+    k = [ctx.jointmap.adr(j) for j in TRUNK_FLEXION]
+    return np.asarray(q)[..., k].sum(axis=-1) - np.asarray(q0)[k].sum()
 
 
 @dataclass(frozen=True)

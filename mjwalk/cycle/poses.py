@@ -190,17 +190,16 @@ def carry_pose(ctx, q: np.ndarray, width: float) -> np.ndarray:
     ``width`` metres apart: :data:`~mjwalk.timeline.frames.CARRY_POSE` with the shoulder
     abduction of :func:`carry_abduction`, the other arm joints at the standing pose (as in the
     carrying walk's frames, :func:`_walk_frames`). Radians; a new array."""
-    from mjwalk.arms.kinematics import ARM_JOINTS
+    from mjwalk.arms.kinematics import ARM_JOINTS, arm_joint
     from mjwalk.timeline.frames import CARRY_POSE
 
     jm = ctx.jointmap
     rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
     out = np.array(q, dtype=float)
     abd = carry_abduction(ctx, width)
-    for side in "lr":
+    for side in ("left", "right"):
         for name in ARM_JOINTS:
-            part, *tail = name.split("_")
-            k = jm.adr("_".join([part, side, *tail]))
+            k = jm.adr(arm_joint(name, side))
             out[k] = abd if name == "shoulder_abd" else CARRY_POSE.get(name, rest[k])
     return out
 

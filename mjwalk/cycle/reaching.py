@@ -12,8 +12,9 @@ from typing import TYPE_CHECKING
 import mujoco
 import numpy as np
 
+from mjwalk.anthropometry import knee_height
 from mjwalk.conventions import Side, side_prefix
-from mjwalk.cycle.crouch import bend_trunk, crouch_frames, crouch_pose
+from mjwalk.cycle.crouch import bend_trunk, crouch_frames, crouch_pose, trunk_bend, trunk_room
 from mjwalk.cycle.handling import RETURN_CASE, body_motion_duration, reach_duration
 from mjwalk.cycle.standoff import REACH_TOLERANCE, STEP_BACK, ArmClearance, step_back_offsets
 
@@ -47,6 +48,13 @@ def _default_timing(dist: float) -> tuple[float, float]:
     """The reference adult's reach (MTM-1 case B) and return (case E) times, seconds, for a
     hand movement of ``dist`` metres."""
     return reach_duration(dist, None, "B"), reach_duration(dist, None, RETURN_CASE)
+
+
+def _time_factor(timing) -> float:
+    """The operator's time factor of a ``timing(distance)`` (None: the reference adult): the
+    return time over the reference adult's (factor / pace), which times the body's bend and
+    arise."""
+    return 1.0 if timing is None else timing(1.0)[1] / _default_timing(1.0)[1]
 
 
 def _reach_frames(
@@ -164,7 +172,7 @@ def _reach_frames(
         # ready phase and the rise with the return's, each taking at least MTM-1's bend /
         # arise at the operator's time factor (its return time over the reference adult's:
         # factor / pace); the reach lasts longer by what they add
-        factor = timing(1.0)[1] / _default_timing(1.0)[1]
+        factor = _time_factor(timing)
         n_down = round(body_motion_duration("B") * factor * fps)
         n_ready = max(n_ready, n_down)
         n_out += n_ready - n_arm_ready
@@ -445,7 +453,7 @@ def _two_hand_frames(
     :func:`_two_hand_reach` returns."""
     if not lean and drop <= 0.0:
         return _two_hand_reach(ctx, q0, task, approach, hold, fps, timing, held)
-    from mjwalk.arms.kinematics import ARM_JOINTS
+    from mjwalk.arms.kinematics import arm_adrs
     from mjwalk.arms.reach import humanoid_arm
     from mjwalk.cycle.spec import grip_sites
 
@@ -458,13 +466,13 @@ def _two_hand_frames(
         scale, lengths = humanoid_arm(ctx.reach_model_for("left"), ctx.spec.stature)
         body = _leaning(ctx, body, grips, float(lengths.sum()) / scale - LEAN_SPARE)
     frames, error, res, width = _two_hand_reach(ctx, body, task, approach, hold, fps, timing, held)
-    factor = (timing or _default_timing)(1.0)[1] / _default_timing(1.0)[1]
+    factor = _time_factor(timing)
     share = 1.0
     if drop <= 0.0 and min(float(g[2]) for _, g in grips) >= knee_height(ctx.spec.stature):
         # MTM-1's bend is the one that lets the hands reach below the knee; a shallower bend
         # (a deep bench) assists the reach: it goes down and up at a full bend's pace (the
         # trunk's flexion range in the bend's time), for as long as its angle needs
-        share = min(1.0, _trunk_bend(ctx, body, q0) / _trunk_bend_range(ctx, q0))
+        share = min(1.0, float(trunk_bend(ctx, body, q0)) / max(trunk_room(ctx, q0).sum(), 1e-9))
     n_down = max(1, round(share * body_motion_duration("B") * factor * fps))
     n_up = max(1, round(share * body_motion_duration("AB") * factor * fps))
     # down with the arms of q0; up with the arms of the reach's last frame (root and legs of
@@ -472,11 +480,7 @@ def _two_hand_frames(
     down = crouch_frames(ctx, q0, body, _smooth(np.arange(1, n_down + 1) / n_down))
     last = frames[-1]
     standing = np.array(q0, dtype=float)
-    arms = [
-        ctx.jointmap.adr("_".join([part, p, *tail]))
-        for p in "lr"
-        for part, *tail in (name.split("_") for name in ARM_JOINTS)
-    ]
+    arms = arm_adrs(ctx.jointmap)
     standing[arms] = last[arms]
     up = crouch_frames(ctx, standing, last, _smooth(np.arange(n_up) / n_up)[::-1])
     seq = np.vstack([down, frames, up])
@@ -495,32 +499,6 @@ def _two_hand_frames(
     return _plumb_arms(ctx, seq, q0, free), error, res, width
 
 
-def knee_height(stature: float) -> float:
-    """Height (m) of the knee joint above the floor standing: Winter's ankle height plus
-    shank, 0.285 of ``stature`` (:data:`mjwalk.anthropometry.SEG`)."""
-    from mjwalk.anthropometry import SEG
-
-    return (SEG["ankle_height"] + SEG["shank"]) * stature
-
-
-def _trunk_bend(ctx, q: np.ndarray, q0: np.ndarray) -> float:
-    """How far (radians) the trunk of ``q`` is bent forward beyond ``q0``'s (lumbar and
-    thoracic flexion)."""
-    from mjwalk.cycle.crouch import TRUNK_FLEXION
-
-    k = [ctx.jointmap.adr(j) for j in TRUNK_FLEXION]
-    return float(np.sum(np.asarray(q)[k]) - np.sum(np.asarray(q0)[k]))
-
-
-def _trunk_bend_range(ctx, q0: np.ndarray) -> float:
-    """How far (radians) the trunk of ``q0`` can bend forward (lumbar and thoracic flexion
-    to their upper limits)."""
-    from mjwalk.cycle.crouch import TRUNK_FLEXION
-
-    jm = ctx.jointmap
-    return max(sum(jm.limits(j)[1] - float(q0[jm.adr(j)]) for j in TRUNK_FLEXION), 1e-9)
-
-
 def _plumb_arms(
     ctx, frames: np.ndarray, q0: np.ndarray, share: np.ndarray, sides=("left", "right")
 ) -> np.ndarray:
@@ -529,7 +507,7 @@ def _plumb_arms(
     within the shoulder's range): at share 1 an arm hanging in ``q0`` hangs plumb from the
     bent trunk."""
     jm = ctx.jointmap
-    bend = np.array([_trunk_bend(ctx, f, q0) for f in frames])
+    bend = trunk_bend(ctx, frames, q0)
     out = frames.copy()
     for p in (side_prefix(side) for side in sides):
         k = jm.adr(f"shoulder_{p}_flex")
@@ -548,7 +526,7 @@ def _two_hand_reach(ctx, q0, task, approach, hold, fps, timing=None, held=None):
     the palms keep their distance (:func:`_holding_frames`). Returns (frames, the larger hand
     error in metres, the left arm's ReachResult with both arms' warnings, the grip distance in
     metres)."""
-    from mjwalk.arms.kinematics import ARM_JOINTS
+    from mjwalk.arms.kinematics import arm_adrs
     from mjwalk.cycle.poses import carry_pose, hand_points
     from mjwalk.cycle.spec import grip_sites
 
@@ -557,11 +535,8 @@ def _two_hand_reach(ctx, q0, task, approach, hold, fps, timing=None, held=None):
     if held is not None:  # the reach model starts from rest: the arms at the standing pose
         rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
         q0 = carrying.copy()
-        for prefix in "lr":
-            for name in ARM_JOINTS:
-                part, *tail = name.split("_")
-                k = jm.adr("_".join([part, prefix, *tail]))
-                q0[k] = rest[k]
+        arms = arm_adrs(jm)
+        q0[arms] = rest[arms]
     wp = ctx.workplace
     parts = {}
     # Both hands of a bimanual reach start and arrive together (Kelso, Southard & Goodman 1979,
