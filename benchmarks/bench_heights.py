@@ -41,41 +41,53 @@ from mjwalk.errors import MjwalkError
 ROOT = Path(__file__).resolve().parents[1]
 HEIGHTS = (0.16, 0.45, 0.75, 1.05, 1.55, 1.85, 1.95, 2.05)
 HANDS = ("left", "right", "both")
-#: Bench a of scenes/assembly_station_2h.xml (top 0.95 m, the box's centre at 1.05 m).
+#: Bench a of scenes/assembly_station_2h.xml (top 0.95 m, the box's centre at 1.05 m); bench
+#: b's geoms are the same with its name.
 BENCH = (
     '<geom name="bench_a_top" type="box" size="0.35 0.25 0.02" pos="0 0 0.93" material="shelf"/>\n'
     '      <geom name="bench_a_leg" type="box" size="0.3 0.2 0.455" pos="0 0 0.455" '
     'material="rack"/>'
 )
-#: The box's geom and its sites on bench a (local x, y; z = 1.05 m).
-BOX = ('name="bench_a_box_geom"', 'name="bench_a_box"', 'name="bench_a_box_left"')
+#: Where each bench's box (centre and grip sites; bench a's box geom too) lies across the
+#: bench (local y, m); at x 0 and -+0.2, 1.05 m up.
+BOX_Y = {"bench_a": "-0.1", "bench_b": "0.1"}
 
 
-def write_workplace(folder: Path, height: float, hand: str) -> Path:
-    """The station with bench a's box (centre and grips) ``height`` metres up and a cycle file
-    picking it with ``hand``; returns the cycle file."""
-    xml = (ROOT / "scenes" / "assembly_station_2h.xml").read_text()
-    if BENCH not in xml:
-        raise MjwalkError("scenes/assembly_station_2h.xml: bench a is not where this expects it")
+def box_at(xml: str, bench: str, height: float) -> str:
+    """``xml`` (scenes/assembly_station_2h.xml) with the box of ``bench`` ("bench_a" or
+    "bench_b": its centre and grip sites) ``height`` metres up: below 1.05 m on a pallet (or
+    lower bench) whose top is 10 cm under the box's centre, above it on a shelf board there
+    over the bench."""
+    old = BENCH.replace("bench_a", bench)
+    if bench not in BOX_Y or old not in xml:
+        raise MjwalkError(f"scenes/assembly_station_2h.xml: {bench} is not where this expects it")
     top = height - 0.10
     if top < 0.95:  # a pallet (or lower bench) under the box
         half = max((top - 0.04) / 2.0, 0.005)
-        bench = (
-            f'<geom name="bench_a_top" type="box" size="0.35 0.25 0.02" pos="0 0 {top - 0.02}" '
+        new = (
+            f'<geom name="{bench}_top" type="box" size="0.35 0.25 0.02" pos="0 0 {top - 0.02}" '
             'material="shelf"/>\n'
-            f'      <geom name="bench_a_leg" type="box" size="0.3 0.2 {half}" pos="0 0 {half}" '
+            f'      <geom name="{bench}_leg" type="box" size="0.3 0.2 {half}" pos="0 0 {half}" '
             'material="rack"/>'
         )
     else:  # the bench, and a shelf board under the box
-        bench = BENCH + (
-            f'\n      <geom name="bench_a_shelf" type="box" size="0.35 0.25 0.02" '
+        new = old + (
+            f'\n      <geom name="{bench}_shelf" type="box" size="0.35 0.25 0.02" '
             f'pos="0 0 {top - 0.02}" material="shelf"/>'
         )
-    xml = xml.replace(BENCH, bench)
-    for x in ("0", "-0.2", "0.2"):  # bench b's sites lie at y = 0.1
-        xml = xml.replace(f'pos="{x} -0.1 1.05"', f'pos="{x} -0.1 {height:.3f}"')
-    if xml.count(f" -0.1 {height:.3f}") != 4:
-        raise MjwalkError("scenes/assembly_station_2h.xml: bench a's box is not where expected")
+    xml = xml.replace(old, new)
+    y = BOX_Y[bench]
+    for x in ("0", "-0.2", "0.2"):
+        xml = xml.replace(f'pos="{x} {y} 1.05"', f'pos="{x} {y} {height:.3f}"')
+    if xml.count(f" {y} {height:.3f}") < 3:
+        raise MjwalkError(f"scenes/assembly_station_2h.xml: {bench}'s box is not where expected")
+    return xml
+
+
+def write_workplace(folder: Path, height: float, hand: str) -> Path:
+    """The station with bench a's box (centre and grips) ``height`` metres up (:func:`box_at`)
+    and a cycle file picking it with ``hand``; returns the cycle file."""
+    xml = box_at((ROOT / "scenes" / "assembly_station_2h.xml").read_text(), "bench_a", height)
     (folder / "heights.xml").write_text(xml)
     (folder / "heights.toml").write_text(
         'scene = "heights.xml"\nstart = "stand_bench_a"\n[humanoid]\nstature = 1.75\n'

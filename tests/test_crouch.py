@@ -4,6 +4,9 @@ stooping shoulder becomes clear by MuJoCo's collision check."""
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 import mujoco
 import numpy as np
 import pytest
@@ -14,6 +17,9 @@ from mjwalk.cycle.handling import BODY_MOTION_TMU, TMU
 from mjwalk.cycle.poses import _standing, frame_contacts, hand_points
 from mjwalk.cycle.simulate import prepare, simulate_cycle
 from mjwalk.cycle.spec import load_cycle_spec
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+from bench_heights import box_at
 
 
 @pytest.fixture(scope="module")
@@ -119,44 +125,13 @@ def test_a_reach_into_a_low_compartment_crouches_and_is_clear(ctx, monkeypatch):
     _assert_hangs_plumb(ctx, r.frames[down], "r")
 
 
-#: Bench a of the two-handed station (top at 0.95 m, the box's centre and grips at 1.05 m) ...
-BENCH_A = (
-    '<geom name="bench_a_top" type="box" size="0.35 0.25 0.02" pos="0 0 0.93" material="shelf"/>\n'
-    '      <geom name="bench_a_leg" type="box" size="0.3 0.2 0.455" pos="0 0 0.455" '
-    'material="rack"/>'
-)
-BENCH_B = BENCH_A.replace("bench_a", "bench_b")
-
-
-def _low(xml: str, bench: str, old: str, top: float) -> str:
-    """``xml`` with ``bench`` (its geoms ``old``) a pallet whose top is at ``top`` metres and
-    its box's grips (and centre) 0.10 m above it."""
-    new = (
-        f'<geom name="{bench}_top" type="box" size="0.35 0.25 0.02" pos="0 0 {top - 0.02}" '
-        'material="shelf"/>\n'
-        f'      <geom name="{bench}_leg" type="box" size="0.3 0.2 {(top - 0.04) / 2}" '
-        f'pos="0 0 {(top - 0.04) / 2}" material="rack"/>'
-    )
-    assert old in xml
-    xml = xml.replace(old, new)
-    for suffix in ("_geom", "", "_left", "_right"):
-        for x in ("0", "-0.2", "0.2"):
-            for y in ("0.1", "-0.1"):
-                xml = xml.replace(
-                    f'name="{bench}_box{suffix}" pos="{x} {y} 1.05"',
-                    f'name="{bench}_box{suffix}" pos="{x} {y} {top + 0.10:.2f}"',
-                )
-    assert f"{top + 0.10:.2f}" in xml
-    return xml
-
-
 @pytest.fixture(scope="module")
 def pallets(scenes_dir, tmp_path_factory):
     """The two-handed station with the box on a pallet 6 cm high (bench a) and bench b a
     pallet 35 cm high: a pick from the floor, a place low."""
     folder = tmp_path_factory.mktemp("pallets")
     xml = (scenes_dir / "assembly_station_2h.xml").read_text()
-    xml = _low(_low(xml, "bench_a", BENCH_A, 0.06), "bench_b", BENCH_B, 0.35)
+    xml = box_at(box_at(xml, "bench_a", 0.16), "bench_b", 0.45)
     (folder / "assembly_station_2h.xml").write_text(xml)
     (folder / "cycle.toml").write_text((scenes_dir / "assembly_station_2h.toml").read_text())
     return prepare(load_cycle_spec(folder / "cycle.toml"))
@@ -246,7 +221,7 @@ def test_a_one_handed_stoop_below_the_knee_takes_mtm_bend_and_arise(scenes_dir, 
     """A one-handed pick from a pallet 25 cm high (the hand's target 0.41 m up, below the
     1.75 m operator's knee at 0.50 m): the operator stoops (no crouch), and the stoop takes at
     least MTM-1's bend (B) on the way down and its arise (AB) on the way up."""
-    xml = _low((scenes_dir / "assembly_station_2h.xml").read_text(), "bench_a", BENCH_A, 0.25)
+    xml = box_at((scenes_dir / "assembly_station_2h.xml").read_text(), "bench_a", 0.35)
     (tmp_path / "p.xml").write_text(xml)
     (tmp_path / "c.toml").write_text(
         'scene = "p.xml"\nstart = "stand_bench_a"\n[humanoid]\nstature = 1.75\n'
