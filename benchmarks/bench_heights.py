@@ -21,6 +21,18 @@ the 1.75 m operator's 2.2 m reach) the hands end 20-95 mm short, reported by ``m
 simulate`` as short of the target. At that session's start a two-handed pick from a 0.35 m
 pallet ended 332 mm short and a one-handed pick 1.95 m up 1.3 m off, neither warned about.
 
+Later on 2026-11-28, two-handed picks from a shelf: the hands lie on the box's
+sides pointing along their approach (in and down over the board's edge), turned to it on the
+way to the pre-grasp point, and a box lifted off a board is pulled back clear of its edge
+before it is lowered (``mjwalk.cycle.reaching._held_move``). Both hands at 1.55 m: 48 -> 0
+contact frames, 3.77 -> 3.97 s; 1.85 m: 118 -> 0, 8.70 -> 4.50 s (the long pick was the hands
+turning from the reach model's upward direction onto the grips: a long path of the hand);
+1.95 m: 385 -> 8; 2.05 m: on the grips (95 mm short before), 455 contact frames, 10.5 s (a
+target beyond the arms' reach: the arm straight overhead, its shoulder angles wound round).
+One-handed picks unchanged (1.95 m: 63 and 62 frames, the forearm over the board's edge while
+the hand holds the part). Placing on a shelf as high over bench b (``tests/test_two_hands.py``):
+1.85 m, pick and place 108 + 59 -> 0 contact frames.
+
 Run from the repo root:  python benchmarks/bench_heights.py [--heights 0.16,0.45,1.85]
 """
 

@@ -33,3 +33,16 @@ def test_a_two_handed_pick_from_a_pallet_bends_onto_the_grips(capsys):
     assert (height, hand, posture, touching) == ("0.45", "both", "bend", "-")
     assert float(error) < 10.0 and int(contacts) == 0
     assert float(duration) > 2.2  # MTM-1's bend and arise (29 + 31.9 TMU) on top of the reach
+
+
+def test_a_two_handed_pick_from_a_shelf_above_the_shoulder_is_clear(capsys):
+    """Box on a shelf board at 1.45 m (grips 1.55 m, above a 1.75 m operator's shoulder): the
+    hands lie flat on the box's sides pointing along their approach (in and down over the
+    board's front edge), so the wrists and forearms stay above the edge. With the hands
+    pointing where the reach model's trajectory left them (up, towards the raised target) the
+    forearms went through the edge: 48 contact frames."""
+    assert bench.main(["--heights", "1.55", "--hands", "both"]) == 0
+    (row,) = capsys.readouterr().out.splitlines()[1:]
+    height, hand, error, contacts, _, posture, touching = row.split()
+    assert (height, hand, posture, touching) == ("1.55", "both", "stand", "-")
+    assert float(error) < 10.0 and int(contacts) == 0

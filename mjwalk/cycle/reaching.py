@@ -82,8 +82,8 @@ def _reach_frames(
     ``-approach_w`` with a minimum-jerk profile (two-link IK, hand direction kept), so it comes
     over a shelf's front edge instead of through it. The return retraces the motion. ``face``
     (world unit vector, the normal of a grip face such as a box's side): during the approach
-    the hand also turns to lie flat on that face (its direction loses the component along the
-    normal), so the palm, not only the hand's end, comes onto the face.
+    the hand also turns to lie flat on that face (the approach's direction less its component
+    along the normal), so the palm, not only the hand's end, comes onto the face.
 
     Returns (frames, hand error in metres, ReachResult of the model part)."""
     from mjwalk.arms.kinematics import (
@@ -120,10 +120,6 @@ def _reach_frames(
     # points (the model's clips may have had arms of other proportions)
     res = reach_for_side(model, pre, side, start, arm_lengths=lengths)
     u_last = res.directions[-1]
-    if face is not None:  # the hand's direction in the face's plane (shoulder frame)
-        n_s = frame.T @ np.asarray(face, dtype=float)
-        u_face = u_last[2] - (u_last[2] @ n_s) * n_s
-        u_face /= max(float(np.linalg.norm(u_face)), 1e-9)
     n_app = max(4, len(res.directions) // 2)
     app = np.repeat(u_last[None], n_app, axis=0)
     taus = min_jerk(np.linspace(0.0, 1.0, n_app + 1)[1:])
@@ -136,16 +132,35 @@ def _reach_frames(
     # fingers ended up to 14 cm off a fastening target
     u_app = frame.T @ -np.asarray(approach_w, dtype=float)
     u_app /= max(float(np.linalg.norm(u_app)), 1e-9)
+    if face is not None:
+        # in the face's plane: the approach's direction there. The model's last direction
+        # (up, for a part above the shoulder) put the wrists below the grips and the forearms
+        # through a shelf board's front edge (benchmarks/bench_heights.py, both hands, 1.55 m)
+        # (the model's, when the approach runs along the normal: grips one behind the other)
+        n_s = frame.T @ np.asarray(face, dtype=float)
+        u_face = u_app - (u_app @ n_s) * n_s
+        if np.linalg.norm(u_face) < 0.1:
+            u_face = u_last[2] - (u_last[2] @ n_s) * n_s
+        u_face /= max(float(np.linalg.norm(u_face)), 1e-9)
     u_end, elbow_end = _wrist_feasible(
         ctx, base, side, end, u_face if face is not None else u_app, u_last, lengths
     )
-    if face is not None or not np.allclose(u_end, u_last[2]):
+    model_dirs = res.directions
+    if face is not None:
+        # a grip face: the hand turns to it during the last third of the movement to the
+        # pre-grasp point and comes onto the face along the approach without turning, so the
+        # part held between the palms moves straight along that line as it is lifted off (or
+        # set down), instead of tilting in the hands
+        model_dirs = _turn_hand(model_dirs, u_end, lengths)
+        u_last = model_dirs[-1]
+        app[:] = u_last
+    elif not np.allclose(u_end, u_last[2]):
         app[:, 2] = [_blend_dir(u_last[2], u_end, tau) for tau in taus]
     wrists = hands - lengths[2] * app[:, 2]
     # the elbow swivels from where the model left it to where the hand's end pose needs it
     hints = np.array([_blend_dir(u_last[0], elbow_end, tau) for tau in taus]) * lengths[0]
     app[:, 0], app[:, 1] = two_link_ik_rows(wrists, lengths[0], lengths[1], hints)  # (row-wise)
-    directions = np.concatenate([res.directions, app])
+    directions = np.concatenate([model_dirs, app])
     q = arm_joint_angles(directions, side)
     if timing is None:
         timing = _default_timing
@@ -263,6 +278,27 @@ WRIST_ITERATIONS = 4
 #: position and orientation: Kim, Miller, Byl, Abrams & Rosen 2012, "Redundancy resolution of
 #: the human arm and an upper limb exoskeleton", IEEE Trans. Biomed. Eng. 59:1770-1779).
 SWIVELS = np.radians(np.array([0.0] + [s * k for k in range(5, 65, 5) for s in (1, -1)]))
+
+
+def _turn_hand(directions: np.ndarray, u_end: np.ndarray, lengths: np.ndarray) -> np.ndarray:
+    """``directions`` (n, 3, 3: upper arm, forearm, hand; shoulder frame) with the hand turned
+    to ``u_end`` over the last third of the samples (a smooth blend reaching ``u_end`` at the
+    last), the hand's end kept where it was (the upper arm and forearm re-solved for the
+    moved wrist, the elbow swivelled as little as it can)."""
+    from mjwalk.arms.kinematics import two_link_ik_rows
+
+    out = np.array(directions, dtype=float)
+    n_turn = max(2, len(out) // 3)
+    tail = out[-n_turn:]
+    taus = _smooth(np.arange(1, n_turn + 1) / n_turn)
+    ends = np.einsum("nsk,s->nk", tail, lengths)
+    hands = np.array(
+        [_blend_dir(u, u_end, float(t)) for u, t in zip(tail[:, 2], taus, strict=True)]
+    )
+    wrists = ends - lengths[2] * hands
+    u1, u2 = two_link_ik_rows(wrists, lengths[0], lengths[1], tail[:, 0] * lengths[0])
+    out[-n_turn:] = np.stack([u1, u2, hands], axis=1)
+    return out
 
 
 def _wrist_feasible(ctx, q0, side, end, u_hand, u_last, lengths) -> tuple[np.ndarray, np.ndarray]:
@@ -385,6 +421,111 @@ def _holding_frames(ctx, qa: np.ndarray, qb: np.ndarray, n: int) -> np.ndarray:
     for f, p in enumerate(prof[:-1]):  # the last frame is qb itself
         frames[f] = _palms_apart(ctx, frames[f], ga + p * (gb - ga))
     return frames
+
+
+def _held_move(
+    ctx, qa: np.ndarray, qb: np.ndarray, n: int, out: np.ndarray, back: np.ndarray
+) -> np.ndarray:
+    """``n`` frames moving a held part from ``qa`` to ``qb`` (:func:`_holding_frames`), one of
+    them (``out``) the hands out at a bench or shelf, the other the carrying posture. When the
+    direct move touches the scene (a part lifted off a shelf above the shoulder and lowered
+    straight into the carrying posture: the arms swing down in an arc through the board's
+    front edge), the hands go in straight lines (:func:`_straight_holding`) by way of ``out``
+    with the hands moved by ``back`` (world, m: towards the operator, :func:`_hands_moved`),
+    pulling the part clear of the shelf before lowering it (on the way out, the reverse);
+    kept when it is clearer (:class:`~mjwalk.cycle.standoff.ArmClearance`)."""
+    direct = _holding_frames(ctx, qa, qb, n)
+    if n < 4:
+        return direct
+    check = _arm_clearance(ctx)
+    touch = check.distance(direct)
+    if touch >= 0.0:
+        return direct
+    best, best_d = direct, touch
+    n1 = n // 2
+    for share in HELD_BACK_SHARES:  # the least pull that is clear
+        mid = _hands_moved(ctx, out, share * np.asarray(back, dtype=float))
+        staged = np.vstack(
+            [_straight_holding(ctx, qa, mid, n1), _straight_holding(ctx, mid, qb, n - n1)]
+        )
+        d = check.distance(staged)
+        if d > best_d:
+            best, best_d = staged, d
+        if d == np.inf:
+            break
+    return best
+
+
+#: How far :func:`_held_move` pulls a held part back from a shelf before lowering it, tried in
+#: this order (shares of its ``back``, the pre-grasp approach's level part: 5, 10, 15 cm): the
+#: least that clears the shelf keeps the part in front of the operator's face.
+HELD_BACK_SHARES = (1.0 / 3.0, 2.0 / 3.0, 1.0)
+
+
+def _straight_holding(ctx, qa: np.ndarray, qb: np.ndarray, n: int) -> np.ndarray:
+    """:func:`_holding_frames` from ``qa`` to ``qb`` with each wrist moved onto the straight
+    line between its positions in the two poses, on the same minimum-jerk profile
+    (:func:`_hands_moved`): the hands carry the part along a line, not the arc that
+    interpolated joint angles sweep."""
+    from mjwalk.arms.kinematics import min_jerk
+
+    frames = _holding_frames(ctx, qa, qb, n)
+    wa, wb = _wrists(ctx, qa[None])[0], _wrists(ctx, qb[None])[0]
+    prof = min_jerk(np.arange(1, n + 1) / n)
+    now = _wrists(ctx, frames)
+    for f in range(n - 1):  # the last frame is qb itself
+        frames[f] = _hands_moved(ctx, frames[f], wa + prof[f] * (wb - wa) - now[f])
+    return frames
+
+
+def _wrists(ctx, qpos: np.ndarray) -> np.ndarray:
+    """(F, 2, 3) world positions (m) of the left and right wrist in the poses ``qpos``."""
+    m, jm = ctx.model, ctx.jointmap
+    data = ctx.scratch()
+    ids = [m.body(f"{jm.prefix}hand_{p}").id for p in ("l", "r")]
+    out = np.empty((len(qpos), 2, 3))
+    for f, q in enumerate(qpos):
+        data.qpos[:] = q
+        mujoco.mj_kinematics(m, data)
+        out[f] = data.xpos[ids]
+    return out
+
+
+def _hands_moved(ctx, q: np.ndarray, offset: np.ndarray) -> np.ndarray:
+    """Pose ``q`` with both hands moved by ``offset`` (world, m; (3,) for both, or (2, 3):
+    left, right), each keeping its direction, the elbow swivelled least (two-link IK in the
+    shoulder's frame, :func:`~mjwalk.arms.kinematics.two_link_ik_rows`; within the joint
+    ranges)."""
+    from mjwalk.arms.kinematics import arm_frames, arm_joint, arm_joint_angles, two_link_ik_rows
+
+    m, jm = ctx.model, ctx.jointmap
+    data = ctx.scratch()
+    offsets = np.broadcast_to(np.asarray(offset, dtype=float), (2, 3))
+    out = np.array(q, dtype=float)
+    sides: tuple[Side, Side] = ("left", "right")
+    for side, move in zip(sides, offsets, strict=True):
+        p = side_prefix(side)
+        ids = [m.body(f"{jm.prefix}{b}_{p}").id for b in ("upper_arm", "forearm", "hand")]
+        data.qpos[:] = q
+        mujoco.mj_kinematics(m, data)
+        shoulder, elbow, wrist = (data.xpos[b].copy() for b in ids)
+        u_hand = -data.xmat[ids[2]].reshape(3, 3)[:, 2]
+        # the shoulder's frame: the upper arm's with the shoulder's joints at zero
+        data.qpos[:] = q
+        for dof in ("flex", "abd", "rot"):
+            data.qpos[jm.adr(arm_joint(f"shoulder_{dof}", side))] = 0.0
+        mujoco.mj_kinematics(m, data)
+        frame = data.xmat[ids[0]].reshape(3, 3)
+        e, w = frame.T @ (elbow - shoulder), frame.T @ (wrist - shoulder)
+        u1, u2 = two_link_ik_rows(
+            (w + frame.T @ move)[None],
+            float(np.linalg.norm(e)),
+            float(np.linalg.norm(w - e)),
+            e[None],
+        )
+        angles = arm_joint_angles(np.stack([u1[0], u2[0], frame.T @ u_hand])[None], side)
+        out = arm_frames(out, jm, angles, side, np.ones(1))[0][0]
+    return out
 
 
 def _palm_gap(ctx, q: np.ndarray) -> float:
@@ -579,11 +720,12 @@ def _two_hand_reach(ctx, q0, task, approach, hold, fps, timing=None, held=None):
     if held is not None or task.kind == "pick":
         # the pre-grasp pose with the palms still the part's width apart
         pre = _palms_apart(ctx, frames[n_out - 1 - n_app], _palm_gap(ctx, grip))
+        back = np.r_[approach[:2], 0.0]  # further back from the pre-grasp point, level
     if held is not None:  # carrying posture -> above the bench -> down onto the grips
         mid = [hand_points(ctx, q[None])[0].mean(axis=0) for q in (carrying, pre, grip)]
         on, down = np.linalg.norm(np.diff(mid, axis=0), axis=1)
         n_down = int(np.clip(round(n_out * down / max(on + down, 1e-9)), 1, n_out - 2))
-        head = _holding_frames(ctx, carrying, pre, n_out - n_down)
+        head = _held_move(ctx, carrying, pre, n_out - n_down, pre, back)
         frames[:n_out] = np.vstack([head, _holding_frames(ctx, pre, grip, n_down)])
     elif task.kind == "pick":  # lifted off the bench, then into the carrying posture
         q_carry = carry_pose(ctx, q0, width)
@@ -592,7 +734,7 @@ def _two_hand_reach(ctx, q0, task, approach, hold, fps, timing=None, held=None):
         up, on = np.linalg.norm(np.diff(mid, axis=0), axis=1)
         n_lift = int(np.clip(round(n_back * up / max(up + on, 1e-9)), 1, n_back - 2))
         lift = _holding_frames(ctx, grip, pre, n_lift)
-        rest_frames = _holding_frames(ctx, pre, q_carry, n_back - n_lift)
+        rest_frames = _held_move(ctx, pre, q_carry, n_back - n_lift, pre, back)
         frames[n_out + n_hold :] = np.vstack([lift, rest_frames])
     return frames, max(el, er), rl, width
 
