@@ -112,7 +112,15 @@ unseen styles and walkers, 0.03-0.06 deg better in CV, at 10-20 times the traini
 (a 10-fold run 1100-2500 s instead of about 110: the larger networks' local linear
 designs, 10 K + 9 columns, are decomposed for every width and output form at every
 insertion), so not adopted; growing to the 60-neuron cap without early stopping did not
-finish in 45 minutes on two cores.
+finish in 45 minutes on two cores. Tried later on 2026-11-28 (right arm, DCS alone, ad hoc):
+local linear maps only for the neurons that win at least ``k (d + 1)`` training clips (a
+neuron at the data's edge fits its ten coefficients per output from a handful of clips),
+``k`` a grid (0, 1, 2, 4) chosen by PRESS like the width: 4.68 / 4.60 / 4.61 at seeds 0 /
+20 / 30 (kNN 4.69 / 4.56 / 4.63, GPR 4.70 / 4.65 / 4.55; mean 4.63 against 4.63 and 4.63),
+the gain at seed 0 from the youthful clips at the edge (7.91 against 8.07), at 2-2.5 times
+the training time; level with the baselines again, not adopted. (A fixed ``k`` of 1, 2, 4,
+9 gave 4.72, 4.66, 4.62, 4.87 at seed 0; picking one on these figures would be tuning on
+the test folds.)
 Before the dead-unit pruning and the trend fallback (earlier that day): CV 4.21, LOSO 14.50
 (feminine 21.5, masculine 14.6 -- worse than the mean trajectory --, normal 9.8, youthful
 12.9), and from seed to seed (DCS seeds + 0..40, ad hoc) the masculine fold gave 14.6-25.0,
