@@ -169,14 +169,17 @@ def test_a_part_on_a_high_shelf_is_picked_and_placed_clear_of_the_boards(shelves
 
 def test_hands_moved_keeps_the_hands_directions():
     """``_hands_moved`` moves each wrist by its offset and keeps the hand's direction."""
-    from mjwalk.cycle.reaching import _hands_moved, _wrists
+    from mjwalk.cycle.reaching import _hands_moved
+    from mjwalk.timeline.parts import hand_poses
 
     ctx = prepare(load_cycle_spec(SPEC))
+
+    def wrists(q):  # (2, 3): the hand bodies' origins in pose q
+        return hand_poses(ctx.model, ctx.jointmap, q[None])[0][0]
+
     q = carry_pose(ctx, _standing(ctx, 0.3, -0.2, 0.7), WIDTH)
     offsets = np.array([[0.05, -0.03, 0.10], [-0.02, 0.04, 0.08]])
     moved = _hands_moved(ctx, q, offsets)
-    np.testing.assert_allclose(
-        _wrists(ctx, moved[None])[0] - _wrists(ctx, q[None])[0], offsets, atol=1e-9
-    )
-    before, after = (hand_points(ctx, p[None])[0] - _wrists(ctx, p[None])[0] for p in (q, moved))
+    np.testing.assert_allclose(wrists(moved) - wrists(q), offsets, atol=1e-9)
+    before, after = (hand_points(ctx, p[None])[0] - wrists(p) for p in (q, moved))
     np.testing.assert_allclose(after, before, atol=1e-9)

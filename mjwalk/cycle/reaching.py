@@ -285,13 +285,13 @@ def _turn_hand(directions: np.ndarray, u_end: np.ndarray, lengths: np.ndarray) -
     to ``u_end`` over the last third of the samples (a smooth blend reaching ``u_end`` at the
     last), the hand's end kept where it was (the upper arm and forearm re-solved for the
     moved wrist, the elbow swivelled as little as it can)."""
-    from mjwalk.arms.kinematics import two_link_ik_rows
+    from mjwalk.arms.kinematics import end_effector, two_link_ik_rows
 
     out = np.array(directions, dtype=float)
     n_turn = max(2, len(out) // 3)
     tail = out[-n_turn:]
     taus = _smooth(np.arange(1, n_turn + 1) / n_turn)
-    ends = np.einsum("nsk,s->nk", tail, lengths)
+    ends = end_effector(tail, lengths)
     hands = np.array(
         [_blend_dir(u, u_end, float(t)) for u, t in zip(tail[:, 2], taus, strict=True)]
     )
@@ -468,27 +468,18 @@ def _straight_holding(ctx, qa: np.ndarray, qb: np.ndarray, n: int) -> np.ndarray
     (:func:`_hands_moved`): the hands carry the part along a line, not the arc that
     interpolated joint angles sweep."""
     from mjwalk.arms.kinematics import min_jerk
+    from mjwalk.timeline.parts import hand_poses
+
+    def wrists(qpos: np.ndarray) -> np.ndarray:  # (F, 2, 3): the hand bodies' origins
+        return hand_poses(ctx.model, ctx.jointmap, qpos, ctx.scratch())[0]
 
     frames = _holding_frames(ctx, qa, qb, n)
-    wa, wb = _wrists(ctx, qa[None])[0], _wrists(ctx, qb[None])[0]
+    wa, wb = wrists(qa[None])[0], wrists(qb[None])[0]
     prof = min_jerk(np.arange(1, n + 1) / n)
-    now = _wrists(ctx, frames)
+    now = wrists(frames)
     for f in range(n - 1):  # the last frame is qb itself
         frames[f] = _hands_moved(ctx, frames[f], wa + prof[f] * (wb - wa) - now[f])
     return frames
-
-
-def _wrists(ctx, qpos: np.ndarray) -> np.ndarray:
-    """(F, 2, 3) world positions (m) of the left and right wrist in the poses ``qpos``."""
-    m, jm = ctx.model, ctx.jointmap
-    data = ctx.scratch()
-    ids = [m.body(f"{jm.prefix}hand_{p}").id for p in ("l", "r")]
-    out = np.empty((len(qpos), 2, 3))
-    for f, q in enumerate(qpos):
-        data.qpos[:] = q
-        mujoco.mj_kinematics(m, data)
-        out[f] = data.xpos[ids]
-    return out
 
 
 def _hands_moved(ctx, q: np.ndarray, offset: np.ndarray) -> np.ndarray:
