@@ -93,6 +93,52 @@ def test_dcs_global_scaling_ignores_a_near_constant_noise_column():
         DCSNetwork(scaling="minmax").fit(X, Y)
 
 
+def test_dcs_point_scaling_grid_weighs_points_as_the_data_need(tmp_path):
+    # two 3-D points: a (spread 2 cm) and b (spread 30 cm). One global scale sees b alone;
+    # one scale per point weighs them alike. The grid ("global", "point") is chosen by PRESS.
+    rng = np.random.default_rng(11)
+
+    def data(n, on_a):
+        a, b = rng.normal(0, 0.02, (n, 3)), rng.normal(0, 0.3, (n, 3))
+        y = np.sin(40 * a[:, 0]) if on_a else np.sin(3 * b[:, 0])
+        return np.c_[a, b], y
+
+    def rmse(net, X, Y):
+        return float(np.sqrt(((net.predict(X) - Y) ** 2).mean()))
+
+    kw = {"rng": 0, "selection": "loo", "max_neurons": 40}
+    for on_a, expect in ((True, "point"), (False, "global")):
+        X, Y = data(200, on_a)
+        Xt, Yt = data(400, on_a)
+        nets = {s: DCSNetwork(**kw, scaling=s).fit(X, Y) for s in ("global", "point")}
+        grid = DCSNetwork(**kw, scaling=("global", "point")).fit(X, Y)
+        point = nets["point"].x_scale_
+        assert point[0] == point[2] != point[3] == point[5]
+        errs = {s: rmse(n, Xt, Yt) for s, n in nets.items()}
+        other = "global" if expect == "point" else "point"
+        # seeded: measured on a: point 0.26, global 0.60 (sd of y 0.60: b's spread swamps
+        # a); on b: global 0.20, point 0.41 (a's noise weighs as much as b)
+        assert errs[expect] < 0.7 * errs[other]
+        assert grid.scaling_ == expect
+        assert grid.selection_score_ == min(n.selection_score_ for n in nets.values())
+        np.testing.assert_allclose(grid.predict(Xt), nets[expect].predict(Xt))
+    # the averaged networks and the trend network take the chosen scaling; it is saved
+    both = DCSNetwork(**kw, scaling=("global", "point"), n_networks=2, trend_fallback=True)
+    both.fit(*data(200, True))
+    assert both.scaling_ == "point"
+    for sub in (both.members_[0], both.fallback_):
+        assert sub.scaling_ == "point"
+        np.testing.assert_allclose(sub.x_scale_, both.x_scale_)
+    both.save(tmp_path / "p.npz")
+    back = DCSNetwork.load(tmp_path / "p.npz")
+    assert back.scaling_ == "point"
+    np.testing.assert_allclose(back.predict(Xt), both.predict(Xt))
+    with pytest.raises(MjwalkError, match="3-D points"):
+        DCSNetwork(scaling="point").fit(np.zeros((10, 4)) + np.arange(10)[:, None], np.ones(10))
+    with pytest.raises(MjwalkError, match="scaling"):
+        DCSNetwork(scaling=("global", "minmax")).fit(X, Y)
+
+
 def test_dcs_width_and_ridge_grids_are_chosen_on_held_out_part(tmp_path):
     X, Y = _toy(150, 8)
     Xt, Yt = _toy(300, 9)

@@ -83,10 +83,21 @@ networks differing only in their initial conditions: Hansen & Salamon 1990, "Neu
 ensembles"). Bandai raise-hand clips, 10-fold CV with other folds and seeds (``--seed 20``):
 one network 4.42 deg, five 4.27 (kNN 4.33); seed 0: 4.21 and 4.21.
 
-Inputs are standardized internally: per column (``scaling="column"``, zero mean, unit variance)
-or with one scale for all columns (``scaling="global"``: the RMS column sd, so distances keep
+Inputs are standardized internally: per column (``scaling="column"``, zero mean, unit variance),
+with one scale for all columns (``scaling="global"``: the RMS column sd, so distances keep
 the input's units -- right for constraints that are all positions in metres, where per-column
-scaling would blow a near-constant column's noise up to the weight of the informative ones).
+scaling would blow a near-constant column's noise up to the weight of the informative ones),
+or with one scale per 3-D point (``scaling="point"``, columns 3k..3k+2: the RMS sd of the
+point's coordinates, so each point weighs alike in distances and within a point a metre stays
+a metre: "block scaling", Westerhuis, Kourti & MacGregor 1998, "Analysis of multiblock and
+hierarchical PCA and PLS models", J. Chemometrics 12:301-321). A sequence is a grid: one
+network is grown per scaling from the same seed and the lowest selection score (PRESS) wins,
+like the width. Which weighting of a reach's start posture against its end position fits
+depends on the capture: on the Bandai right-arm raises a centimetre of the start hand changes
+the movement about five times as much as a centimetre of the end hand (pairs of clips, ad hoc
+2026-11-28), and the end position's spread is six times the start's, so one global scale all
+but ignores the start posture; on the left-arm raises it does not (PRESS picks "global" there,
+"point" on the right arm, in every fold looked at).
 Widths and :meth:`DCSNetwork.distance_to_training` are in these standardized units. The saved
 file keeps the standardized training inputs (not the outputs) for that distance.
 """
@@ -112,6 +123,8 @@ DCS_VERSION = 3
 #: m samples (Harrell 2015, *Regression Modeling Strategies*, 2nd ed., §4.4). Below it the
 #: term is left out (module docstring).
 SAMPLES_PER_COEFFICIENT = 10
+#: Input scalings (module docstring).
+SCALINGS = ("column", "global", "point")
 
 
 class DCSNetwork:
@@ -131,7 +144,8 @@ class DCSNetwork:
         ridge: Tikhonov regularization of the output least squares (relative to the design
             scale), towards each neuron's mean target; a sequence is a grid like width_factor.
         rng: seed or ``numpy.random.Generator``; same seed, same network.
-        scaling: input standardization, ``"column"`` or ``"global"`` (see module docstring).
+        scaling: input standardization, ``"column"``, ``"global"`` or ``"point"``; a sequence
+            is a grid like width_factor (see module docstring).
         selection: ``"holdout"`` or ``"loo"`` (PRESS on all samples; see module docstring).
         local_linear: per-neuron local linear outputs; a sequence is a grid like width_factor.
         global_linear: add a global linear term ``T z``; a sequence is a grid like width_factor.
@@ -150,9 +164,10 @@ class DCSNetwork:
     ``edges_`` (K, K) bool adjacency, ``x_mean_``/``x_scale_`` (d,), ``n_neurons_``,
     ``train_rmse_``, ``history_`` (list of (neurons, train RMSE, held-out RMSE)), ``n_pruned_``
     (dead units removed while growing), ``fallback_`` the trend network or None,
-    ``width_factor_``, ``ridge_``, ``local_linear_``, ``global_linear_`` and ``slope_ridge_``
-    (the values used), ``slopes_`` (K, d, m) local linear terms in standardized input units, or
-    None, ``trend_`` (d, m) the global linear term in standardized input units, or None.
+    ``width_factor_``, ``ridge_``, ``local_linear_``, ``global_linear_``, ``slope_ridge_`` and
+    ``scaling_`` (the values used), ``selection_score_`` (the score they were chosen by),
+    ``slopes_`` (K, d, m) local linear terms in standardized input units, or None, ``trend_``
+    (d, m) the global linear term in standardized input units, or None.
     """
 
     def __init__(
@@ -168,7 +183,7 @@ class DCSNetwork:
         n_iter_no_change: int = 6,
         ridge: float = 1e-6,
         rng: int | np.random.Generator | None = 0,
-        scaling: str = "column",
+        scaling: str | tuple[str, ...] = "column",
         selection: str = "holdout",
         local_linear: bool | tuple[bool, ...] = False,
         global_linear: bool | tuple[bool, ...] = False,
@@ -221,25 +236,73 @@ class DCSNetwork:
             raise MjwalkError(
                 f"DCSNetwork: n_networks must be an integer >= 1, got {self.n_networks}"
             )
-        member_seeds = self._member_seeds()
-        rng = np.random.default_rng(self.rng)
-
-        self.x_mean_ = X.mean(axis=0)
-        if self.scaling not in ("column", "global"):
-            raise MjwalkError(
-                f"DCSNetwork: scaling must be 'column' or 'global', got {self.scaling!r}"
-            )
-        scale = X.std(axis=0)
-        if self.scaling == "global":  # one scale for all columns: distances keep their units
-            scale = np.full_like(scale, np.sqrt((scale**2).mean()))
-        self.x_scale_ = np.where(scale > 1e-12, scale, 1.0)
-        Z = (X - self.x_mean_) / self.x_scale_
-
-        n = len(Z)
         if self.selection not in ("holdout", "loo"):
             raise MjwalkError(
                 f"DCSNetwork: selection must be 'holdout' or 'loo', got {self.selection!r}"
             )
+        scalings = self._scalings(X.shape[1])
+        member_seeds = self._member_seeds()
+        if len(scalings) == 1:
+            self._grow_first(X, Y, scalings[0], np.random.default_rng(self.rng))
+        else:
+            # one network per input scaling, grown from the same seed; the lowest selection
+            # score (PRESS) wins, like the width (module docstring)
+            grid_seed = self.rng
+            if isinstance(grid_seed, np.random.Generator):
+                grid_seed = int(grid_seed.integers(2**63))
+            best: dict | None = None
+            for scaling in scalings:
+                self._grow_first(X, Y, scaling, np.random.default_rng(grid_seed))
+                if best is None or self.selection_score_ < best["selection_score_"] - 1e-12:
+                    best = dict(vars(self))  # each growth rebinds, never mutates, its arrays
+            assert best is not None
+            vars(self).update(best)
+        self.fallback_ = None
+        if self.trend_fallback:
+            self.fallback_ = DCSNetwork(**self._trend_params()).fit(X, Y[:, 0] if self._y_1d else Y)
+        self.members_ = [
+            DCSNetwork(
+                **{**self._params(), "scaling": self.scaling_, "n_networks": 1, "rng": seed}
+            ).fit(X, Y[:, 0] if self._y_1d else Y)
+            for seed in member_seeds
+        ]
+        return self
+
+    def _scalings(self, d: int) -> tuple[str, ...]:
+        """The input scalings to try (``scaling``: one or a sequence), checked for ``d``
+        input columns."""
+        seq = tuple(self.scaling) if isinstance(self.scaling, list | tuple) else (self.scaling,)
+        if not seq or any(s not in SCALINGS for s in seq):
+            raise MjwalkError(
+                f"DCSNetwork: scaling must be one of {', '.join(map(repr, SCALINGS))} or a "
+                f"sequence of them, got {self.scaling!r}"
+            )
+        if "point" in seq and d % 3:
+            raise MjwalkError(
+                f"DCSNetwork: scaling 'point' needs inputs made of 3-D points (a multiple of 3 "
+                f"columns), got {d} columns"
+            )
+        return seq
+
+    @staticmethod
+    def _scale(X: np.ndarray, scaling: str) -> np.ndarray:
+        """Per-column divisors of the inputs ``X`` (N, d) for ``scaling`` (module docstring)."""
+        scale = X.std(axis=0)
+        if scaling == "global":  # one scale for all columns: distances keep their units
+            scale = np.full_like(scale, np.sqrt((scale**2).mean()))
+        elif scaling == "point":  # one scale per 3-D point: each point weighs alike
+            scale = np.repeat(np.sqrt((scale.reshape(-1, 3) ** 2).mean(axis=1)), 3)
+        return np.where(scale > 1e-12, scale, 1.0)
+
+    def _grow_first(self, X, Y, scaling: str, rng: np.random.Generator) -> None:
+        """Grow one network on ``X``, ``Y`` with the input ``scaling`` and set the fitted
+        attributes (not the trend network or the averaged networks)."""
+        self.scaling_ = scaling
+        self.x_mean_ = X.mean(axis=0)
+        self.x_scale_ = self._scale(X, scaling)
+        Z = (X - self.x_mean_) / self.x_scale_
+
+        n = len(Z)
         loo = self.selection == "loo"
         n_val = round(self.validation_fraction * n) if self.validation_fraction > 0 else 0
         if n - n_val < 2 or loo:
@@ -307,6 +370,7 @@ class DCSNetwork:
 
         if select and best is not None:
             centers, ages, factor, ridge, linear = best
+        self.selection_score_ = float(best_val) if select else float(np.sqrt(resid.mean()))
         edges = ages >= 0
         self.width_factor_ = float(factor)
         self.ridge_ = float(ridge)
@@ -331,16 +395,6 @@ class DCSNetwork:
             )
         )
         self._set_training_points(Z)
-        self.fallback_ = None
-        if self.trend_fallback:
-            self.fallback_ = DCSNetwork(**self._trend_params()).fit(X, Y[:, 0] if self._y_1d else Y)
-        self.members_ = [
-            DCSNetwork(**{**self._params(), "n_networks": 1, "rng": seed}).fit(
-                X, Y[:, 0] if self._y_1d else Y
-            )
-            for seed in member_seeds
-        ]
-        return self
 
     def _score_step(self, Ztr, Ytr, Zval, Yval, centers, ages, ridges, factors, forms, loo):
         """The best (score, width factor, ridge, output form, squared training error per
@@ -389,6 +443,7 @@ class DCSNetwork:
         neurons growth starts from, constant outputs, with the global linear term."""
         params = self._params()
         params.update(
+            scaling=self.scaling_,
             max_neurons=2,
             n_iter_no_change=1,
             local_linear=False,
@@ -760,6 +815,7 @@ class DCSNetwork:
             "local_linear_": self.slopes_ is not None,
             "global_linear_": self.trend_ is not None,
             "slope_ridge_": getattr(self, "slope_ridge_", None),
+            "scaling_": getattr(self, "scaling_", None),
             "history": [[int(a), float(b), float(c)] for a, b, c in self.history_],
             "n_pruned_": int(getattr(self, "n_pruned_", 0)),
             **({} if fallback is None else {"fallback": fallback._header()}),
@@ -802,6 +858,7 @@ class DCSNetwork:
             net.global_linear_ = bool(header.get("global_linear_", False))
             net.slope_ridge_ = header.get("slope_ridge_")  # type: ignore[assignment]
             net.trend_ = np.asarray(data["trend"], dtype=float) if net.global_linear_ else None
+            net.scaling_ = header.get("scaling_") or params.get("scaling", "column")
             net.history_ = [tuple(h) for h in header.get("history", [])]
             net.n_pruned_ = int(header.get("n_pruned_", 0))
             own = np.asarray(data["train_z"] if "train_z" in data else train_z, dtype=float)
