@@ -207,7 +207,7 @@ from mjwalk.arms.armcapture import N_SAMPLES, ArmMovements, arm_movements
 from mjwalk.arms.armrep import (
     trajectory_error,
 )
-from mjwalk.arms.dcs import DCSNetwork
+from mjwalk.arms.dcs import DCSNetwork, input_scale
 from mjwalk.arms.reach import ReachModel, end_effector
 from mjwalk.arms.reachdefault import CAPTURE_DCS, DEFAULT_DCS
 from mjwalk.errors import MjwalkError
@@ -301,27 +301,18 @@ def load_raise_hand(
     return load_side(data_dir, max_clips, side, skeleton)[0]
 
 
-class GlobalScaler(StandardScaler):
-    """StandardScaler with one scale for all columns (the RMS of the column sds): the input
-    scaling of the DCS with ``scaling="global"``, so kNN sees the same distances."""
+class DCSScaler(StandardScaler):
+    """StandardScaler dividing by the DCS's own input scale for ``scaling``
+    (:func:`mjwalk.arms.dcs.input_scale`), so kNN sees the distances the DCS sees."""
+
+    def __init__(self, scaling: str = "global"):
+        super().__init__()
+        self.scaling = scaling
 
     def fit(self, X, y=None, sample_weight=None):
         super().fit(X, y, sample_weight)
-        self.scale_ = np.full_like(self.scale_, np.sqrt(np.mean(self.scale_**2)))
+        self.scale_ = input_scale(X, self.scaling)
         return self
-
-
-class PointScaler(StandardScaler):
-    """StandardScaler with one scale per 3-D point (columns 3k..3k+2, the RMS of their sds):
-    the input scaling of the DCS with ``scaling="point"``."""
-
-    def fit(self, X, y=None, sample_weight=None):
-        super().fit(X, y, sample_weight)
-        self.scale_ = np.repeat(np.sqrt((self.scale_.reshape(-1, 3) ** 2).mean(axis=1)), 3)
-        return self
-
-
-SCALERS = {"column": StandardScaler, "global": GlobalScaler, "point": PointScaler}
 
 
 def regressors(seed: int, n_inputs: int, dcs: dict):
@@ -331,7 +322,7 @@ def regressors(seed: int, n_inputs: int, dcs: dict):
     grid = tuple(grid) if isinstance(grid, list | tuple) else (grid,)
     knn = {
         f"kNN (k={K_NEIGHBOURS})" if len(grid) == 1 else f"kNN {scaling}": make_pipeline(
-            SCALERS[scaling](), KNeighborsRegressor(K_NEIGHBOURS, weights="distance")
+            DCSScaler(scaling), KNeighborsRegressor(K_NEIGHBOURS, weights="distance")
         )
         for scaling in grid
     }

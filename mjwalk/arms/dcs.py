@@ -97,7 +97,7 @@ depends on the capture: on the Bandai right-arm raises a centimetre of the start
 the movement about five times as much as a centimetre of the end hand (pairs of clips, ad hoc
 2026-11-28), and the end position's spread is six times the start's, so one global scale all
 but ignores the start posture; on the left-arm raises it does not (PRESS picks "global" there,
-"point" on the right arm, in every fold looked at).
+"point" on the right arm, in each of the three folds per arm looked at).
 Widths and :meth:`DCSNetwork.distance_to_training` are in these standardized units. The saved
 file keeps the standardized training inputs (not the outputs) for that distance.
 """
@@ -125,6 +125,18 @@ DCS_VERSION = 3
 SAMPLES_PER_COEFFICIENT = 10
 #: Input scalings (module docstring).
 SCALINGS = ("column", "global", "point")
+
+
+def input_scale(X: np.ndarray, scaling: str) -> np.ndarray:
+    """(d,) divisors of the inputs ``X`` (N, d) for ``scaling``, one of :data:`SCALINGS`
+    (module docstring; a column without spread is divided by 1). Baselines that must see the
+    DCS's distances scale by these (``benchmarks/bench_reach.py``)."""
+    scale = np.asarray(X, dtype=float).std(axis=0)
+    if scaling == "global":  # one scale for all columns: distances keep their units
+        scale = np.full_like(scale, np.sqrt((scale**2).mean()))
+    elif scaling == "point":  # one scale per 3-D point: each point weighs alike
+        scale = np.repeat(np.sqrt((scale.reshape(-1, 3) ** 2).mean(axis=1)), 3)
+    return np.where(scale > 1e-12, scale, 1.0)
 
 
 class DCSNetwork:
@@ -284,22 +296,12 @@ class DCSNetwork:
             )
         return seq
 
-    @staticmethod
-    def _scale(X: np.ndarray, scaling: str) -> np.ndarray:
-        """Per-column divisors of the inputs ``X`` (N, d) for ``scaling`` (module docstring)."""
-        scale = X.std(axis=0)
-        if scaling == "global":  # one scale for all columns: distances keep their units
-            scale = np.full_like(scale, np.sqrt((scale**2).mean()))
-        elif scaling == "point":  # one scale per 3-D point: each point weighs alike
-            scale = np.repeat(np.sqrt((scale.reshape(-1, 3) ** 2).mean(axis=1)), 3)
-        return np.where(scale > 1e-12, scale, 1.0)
-
     def _grow_first(self, X, Y, scaling: str, rng: np.random.Generator) -> None:
         """Grow one network on ``X``, ``Y`` with the input ``scaling`` and set the fitted
         attributes (not the trend network or the averaged networks)."""
         self.scaling_ = scaling
         self.x_mean_ = X.mean(axis=0)
-        self.x_scale_ = self._scale(X, scaling)
+        self.x_scale_ = input_scale(X, scaling)
         Z = (X - self.x_mean_) / self.x_scale_
 
         n = len(Z)
@@ -370,7 +372,6 @@ class DCSNetwork:
 
         if select and best is not None:
             centers, ages, factor, ridge, linear = best
-        self.selection_score_ = float(best_val) if select else float(np.sqrt(resid.mean()))
         edges = ages >= 0
         self.width_factor_ = float(factor)
         self.ridge_ = float(ridge)
@@ -394,6 +395,8 @@ class DCSNetwork:
                 .mean()
             )
         )
+        # without selection: the final network's training error (as the width grid's score)
+        self.selection_score_ = float(best_val) if select else self.train_rmse_
         self._set_training_points(Z)
 
     def _score_step(self, Ztr, Ytr, Zval, Yval, centers, ages, ridges, factors, forms, loo):
