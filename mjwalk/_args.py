@@ -98,6 +98,34 @@ def join_negative_values(argv: Sequence[str], options: Sequence[str]) -> list[st
     return out
 
 
+# ------------------------------------------------------------------ seeds
+
+
+def check_seed(seed, what: str = "seed") -> int:
+    """``seed`` as an int, raising InputError naming ``what`` unless it is a whole number >= 0
+    (numpy's SeedSequence takes non-negative integers only; mjwalk refuses a negative seed
+    everywhere, on the command line and in the API, rather than mapping it to another)."""
+    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
+        raise InputError(f"{what} must be a whole number >= 0, got {seed!r}")
+    return int(seed)
+
+
+def as_generator(rng, what: str = "rng") -> np.random.Generator:
+    """``numpy.random.default_rng(rng)`` for a Generator, a BitGenerator, a SeedSequence, None
+    or a seed (a whole number >= 0, or a list of them); anything else raises InputError
+    naming ``what`` (numpy's own message never names the argument)."""
+    if isinstance(rng, np.random.Generator):
+        return rng
+    if isinstance(rng, int | np.integer) and not isinstance(rng, bool):
+        check_seed(rng, what)
+    try:
+        return np.random.default_rng(rng)
+    except (TypeError, ValueError) as exc:
+        raise InputError(
+            f"{what} must be a numpy Generator or a seed (a whole number >= 0), got {rng!r}"
+        ) from exc
+
+
 # ------------------------------------------------------------------ argparse converters
 
 
@@ -155,6 +183,12 @@ def arg_jobs(text: str) -> int:
     if value == 0:
         raise InputError("must be a number of processes >= 1, or -1 for all cores; got 0")
     return value
+
+
+@_argtype
+def arg_seed(text: str) -> int:
+    """A random seed: a whole number >= 0 (:func:`check_seed`)."""
+    return check_seed(_number(text, int, "a whole number"), "the seed")
 
 
 @_argtype

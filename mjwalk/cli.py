@@ -15,6 +15,7 @@ from mjwalk._args import (
     arg_point,
     arg_positive_float,
     arg_positive_int,
+    arg_seed,
     arg_video_side,
     check_output_dir,
     check_output_file,
@@ -317,14 +318,19 @@ def _add_scan_parser(sub) -> None:
 
 
 def _cmd_scene_import(args: argparse.Namespace) -> int:
-    from mjwalk.world.meshimport import import_scene
+    from mjwalk.world.meshimport import check_threshold, import_scene
 
+    check_threshold(args.threshold, "--threshold")
+    check_output_file(args.output, "-o/--output", (".xml",))
     result = import_scene(
         args.source, args.output, units=args.units, up=args.up, threshold=args.threshold
     )
     for name, parts in result.parts.items():
         print(f"  {name}: concave, {parts} convex parts for MuJoCo's collision")
-    print(f"wrote {args.output} ({len(result.files)} part meshes in {result.mesh_dir})")
+    print(
+        f"wrote {args.output} ({sum(result.parts.values())} convex parts of "
+        f"{len(result.parts)} concave meshes, inline)"
+    )
     return 0
 
 
@@ -379,7 +385,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="step cost: length weighted by the energy of its pace (energy, default), the "
         "paper's straight length (chord) or the pelvis arc (path)",
     )
-    p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same walks)")
+    p.add_argument("--seed", type=arg_seed, default=0, help="random seed (same seed, same walks)")
     p.add_argument("--footprints", action="store_true", help="draw the footprints too")
     p.add_argument("--save", type=Path, help="save each walk as NAME_NNN.npz (for mjwalk render)")
     _add_walker_args(p)
@@ -389,7 +395,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("spec", type=Path, help="cycle specification (TOML), or 'station' (shipped)")
     p.add_argument("--runs", type=arg_positive_int, default=50, help="cycles to simulate (50)")
     p.add_argument("--out", type=Path, default=Path("out"), help="report folder (out/)")
-    p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same report)")
+    p.add_argument("--seed", type=arg_seed, default=0, help="random seed (same seed, same report)")
     p.add_argument("--jobs", type=arg_jobs, default=-1, help="parallel processes (-1: all cores)")
     p.add_argument(
         "--only-run",
@@ -443,7 +449,7 @@ def build_parser() -> argparse.ArgumentParser:
         "the paper keeps >= 0.95, better for small captures)",
     )
     p.add_argument("--skeleton", help="skeleton preset: bandai, cmu, cmu_bvh")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--seed", type=arg_seed, default=0)
     p.add_argument("-o", "--output", type=Path, required=True, help="model file to write")
     p.set_defaults(func=_cmd_train)
 
@@ -453,7 +459,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--asf", help="ASF skeleton for AMC files")
     p.add_argument("--skeleton", help="skeleton preset: bandai, cmu, cmu_bvh")
     p.add_argument("--json", type=Path, help="write the report as JSON here")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--seed", type=arg_seed, default=0)
     _add_walker_args(p)
     p.set_defaults(func=_cmd_validate)
     _add_scan_parser(sub)

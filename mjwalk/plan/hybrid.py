@@ -72,7 +72,7 @@ import weakref
 
 import numpy as np
 
-from mjwalk._args import finite_points, parse_point
+from mjwalk._args import as_generator, check_seed, finite_points, parse_point
 from mjwalk.anthropometry import ROM_DEG, SHIN_RADIUS, leg_geometry
 from mjwalk.conventions import DEFAULT_STATURE, SAMPLE_RATE_HZ
 from mjwalk.errors import InputError, PlanningError
@@ -894,7 +894,7 @@ def plan_walk(
         from mjwalk.gait.default import default_model
 
         model = default_model()
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng, "plan_walk: rng")
     return HybridPlanner(workplace, goal, model, **options).plan(start, rng)
 
 
@@ -914,6 +914,7 @@ def plan_walks(
     """
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 0:
         raise InputError(f"plan_walks: n must be a whole number of walks >= 0, got {n!r}")
+    seed = check_seed(seed, "plan_walks: seed")
     if model is None:
         from mjwalk.gait.default import default_model
 
