@@ -10,6 +10,7 @@ import numpy as np
 
 from mjwalk._args import (
     arg_count,
+    arg_fps,
     arg_fraction,
     arg_jobs,
     arg_point,
@@ -357,10 +358,18 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("plan", help="plan a walk between two points or sites of a scene")
     p.add_argument("scene", type=Path, help=f"MJCF scene file, or a shipped scene: {_SCENES}")
     p.add_argument(
-        "--from", dest="start", required=True, type=arg_point, help="start: X,Y (metres) or a site"
+        "--from",
+        dest="start",
+        required=True,
+        type=arg_point,
+        help="start: a site, or X,Y (metres); a site whose name reads as X,Y wins",
     )
     p.add_argument(
-        "--to", dest="goal", required=True, type=arg_point, help="goal: X,Y (metres) or a site"
+        "--to",
+        dest="goal",
+        required=True,
+        type=arg_point,
+        help="goal: a site, or X,Y (metres); a site whose name reads as X,Y wins",
     )
     p.add_argument(
         "--radius",
@@ -422,7 +431,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("-o", "--output", type=Path, required=True, help="video file to write (.mp4)")
     p.add_argument("--camera", choices=["track", "top"], default="track")
-    p.add_argument("--fps", type=arg_positive_float, default=30.0)
+    p.add_argument("--fps", type=arg_fps, default=30.0, help="frames per second, up to 240 (30)")
     p.add_argument("--width", type=arg_video_side, default=640, help="pixels, even (640)")
     p.add_argument("--height", type=arg_video_side, default=480, help="pixels, even (480)")
     p.add_argument(

@@ -289,7 +289,7 @@ def _to_world(px, py, heading, local: np.ndarray) -> np.ndarray:
 
 def _parse_pose(workplace: Workplace, where) -> tuple[np.ndarray, float | None]:
     """(x, y) and an optional yaw from a site name, "x,y[,yaw_deg]" or a tuple (x, y[, yaw])."""
-    if isinstance(where, str) and where.count(",") == 2:
+    if isinstance(where, str) and where.count(",") == 2 and where not in workplace.stations:
         xyyaw = parse_point(where, f"{workplace.name}: pose (x,y,yaw_deg)", n=3)
         if xyyaw is not None:
             return xyyaw[:2].copy(), math.radians(float(xyyaw[2]))

@@ -97,8 +97,12 @@ class Workplace:
     def point(self, where: str | np.ndarray | tuple[float, float]) -> np.ndarray:
         """A floor point (2,) from a site name, an ``"x,y"`` string or coordinates (metres).
 
-        Malformed or non-finite coordinates raise :class:`~mjwalk.errors.InputError`."""
+        A site whose name reads as coordinates (a site named "1.5,2") wins: the text is read as
+        coordinates only when no site has that name. Malformed or non-finite coordinates raise
+        :class:`~mjwalk.errors.InputError`."""
         if isinstance(where, str):
+            if where in self.stations:
+                return self.stations[where].xy.copy()
             xy = parse_point(where, f"{self.name}: point")
             return xy if xy is not None else self.station(where).xy.copy()
         try:
