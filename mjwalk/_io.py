@@ -56,9 +56,9 @@ def write_error(path: str | os.PathLike, exc: OSError):
 
     from mjwalk.errors import WriteError
 
-    why = exc.strerror or str(exc) or type(exc).__name__
-    if exc.errno in (errno.ENOSPC, errno.EDQUOT, errno.EFBIG):
-        why += " (the disk or quota is full, or a file size limit is set: ulimit -f)"
+    why = exc.strerror or str(exc).strip().split("\n")[0] or type(exc).__name__
+    if exc.errno in (errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EPIPE):
+        why += " (is the disk or quota full, or a file size limit set: ulimit -f?)"
     err = WriteError(f"cannot write {path}: {why}")
     err.errno = exc.errno
     return err

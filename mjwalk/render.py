@@ -493,7 +493,12 @@ class _Video:
     def write_bottom_up(self, buf: np.ndarray) -> None:
         """Append a frame stored bottom-up (as OpenGL reads it)."""
         np.copyto(self._flip, buf[::-1])
-        self._writer.send(self._flip)
+        try:
+            self._writer.send(self._flip)
+        except OSError as exc:  # imageio-ffmpeg's message holds ffmpeg's whole command line
+            import errno
+
+            raise BrokenPipeError(errno.EPIPE, "ffmpeg stopped writing it") from exc
 
     def close(self) -> None:
         self._writer.close()

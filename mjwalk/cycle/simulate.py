@@ -117,10 +117,10 @@ def simulate_cycle(
         PlanningError: a walk cannot be planned (the spec is checked before, so this means an
             unreachable site); MjwalkError for model files.
     """
+    rng = as_generator(rng, "simulate_cycle: rng")  # before any work
     ctx = spec if isinstance(spec, CycleContext) else prepare(spec)
     spec = ctx.spec
     check_durations(spec.tasks)
-    rng = as_generator(rng, "simulate_cycle: rng")
     # side streams spawned from the run's generator (its own draws, the walks, are unchanged):
     # the operator, the task-time factors, where the operator stands (at the start, then the
     # spot each walk aims at: plan_task_walk)
