@@ -347,7 +347,7 @@ def _edited(walk_path, tmp_path, **changes):
     [
         ({"xy": lambda a: a[:-5]}, "xy must have shape ("),
         ({"t": lambda a: a[::-1].copy()}, "t must start at 0 s"),
-        ({"t": lambda a: np.r_[a[:3], a[2], a[4:]]}, "t must increase: sample 3"),
+        ({"t": lambda a: np.r_[a[:3], a[1], a[4:]]}, "t must increase: sample 3"),
         ({"t": lambda a: a * 1e6}, "longer than 3600 s"),
         ({"step_range": lambda a: a + 10_000}, "step 0: samples"),
         ({"yaw": lambda a: np.r_[np.nan, a[1:]]}, "yaw must hold finite numbers"),

@@ -83,7 +83,7 @@ class WalkPath:
 
     def validate(self, what: str = "walk") -> None:
         """Raise InputError naming ``what`` and the array unless the walk is consistent: ``t``
-        (N,) finite, from 0 and strictly increasing, at most :data:`MAX_WALK_SECONDS` long;
+        (N,) finite, from 0 and never decreasing, at most :data:`MAX_WALK_SECONDS` long;
         ``xy`` (N, 2) and ``yaw`` (N,) finite; each step's sample range inside 0..N-1 and in
         order, its side "left" or "right", its footprints (3,) finite. An edited walk file
         otherwise failed deep in playback (a ValueError, a MemoryError, an IndexError)."""
@@ -106,10 +106,10 @@ class WalkPath:
         if abs(float(t[0])) > 1e-9:
             raise bad(f"t must start at 0 s, starts at {float(t[0]):g} s")
         dt = np.diff(t)
-        if np.any(dt <= 0):
-            k = int(np.flatnonzero(dt <= 0)[0])
+        if np.any(dt < 0):  # equal times pass: a grid route may repeat a point
+            k = int(np.flatnonzero(dt < 0)[0])
             raise bad(
-                f"t must increase: sample {k + 1} at {float(t[k + 1]):g} s does not follow "
+                f"t must increase: sample {k + 1} at {float(t[k + 1]):g} s comes before "
                 f"sample {k} at {float(t[k]):g} s"
             )
         if float(t[-1]) > MAX_WALK_SECONDS:
