@@ -199,7 +199,7 @@ def read_toml(path: str | os.PathLike, what: str, error: type[Exception]) -> tup
         if tok in "[{":
             if depth == 0:
                 k = _TOML_KEY.match(text, line_start, m.start())
-                key = k.group(1).strip() if k else None
+                key = k.group(1).strip()[:60] if k else None
             depth += 1
             if depth > MAX_TOML_DEPTH:
                 name = f"key {key!r}" if key else "a value"

@@ -34,10 +34,9 @@ CONCAVE_SHARE = 0.01
 #: Outline simplification before cutting into convex pieces, metres (well below the 2 cm
 #: clearance grid).
 SIMPLIFY_TOL = 0.002
-#: CoACD's concavity threshold range (its documented range, 0.01 to 1; Wei et al. 2022): the
-#: decomposition cuts until every part is within this share of the bounding-box diagonal of
-#: convex, so 0 (or less) never ends (``--threshold 0`` ran past 120 s) and above 1 no cut
-#: is made.
+#: CoACD's concavity threshold range (the range its README gives, 0.01 to 1; Wei et al. 2022):
+#: the decomposition cuts until every part is within this share of the bounding-box diagonal
+#: of convex, which 0 or less never allows (``--threshold 0`` was still cutting after 120 s).
 THRESHOLD_RANGE = (0.01, 1.0)
 #: Mesh file suffixes trimesh reads for scene-import.
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".off")
