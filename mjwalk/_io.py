@@ -14,13 +14,19 @@ from pathlib import Path
 def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; rename it onto ``path`` only on success.
 
-    A crash or an exception leaves no half-written file behind: the temporary file is removed.
+    A crash or an exception leaves no half-written file behind: the temporary file is removed,
+    and so are the folders made for ``path`` when they stay empty.
     An ``OSError`` while writing (a full disk, a file size limit, a folder that cannot be
     written) becomes a :class:`~mjwalk.errors.WriteError` naming ``path``.
     ``suffix`` defaults to the target's own suffix so writers that infer the format from the
     extension (imageio, matplotlib) keep working.
     """
     path = Path(path)
+    made = []  # the folders made here, deepest first: removed again when the write fails
+    folder = path.parent
+    while not folder.exists() and folder.parent != folder:
+        made.append(folder)
+        folder = folder.parent
     try:
         path.parent.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(
@@ -35,9 +41,11 @@ def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[
     os.umask(umask)
     os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600 files; give the usual permissions
     tmp_path = Path(tmp)
+    done = False
     try:
         yield tmp_path
         os.replace(tmp_path, path)
+        done = True
     except OSError as exc:
         from mjwalk.errors import WriteError
 
@@ -47,6 +55,10 @@ def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[
     finally:
         with contextlib.suppress(OSError):
             tmp_path.unlink(missing_ok=True)
+        if not done:
+            for folder in made:  # only while empty: another writer's file keeps it
+                with contextlib.suppress(OSError):
+                    folder.rmdir()
 
 
 def write_error(path: str | os.PathLike, exc: OSError):

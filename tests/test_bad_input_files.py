@@ -431,7 +431,7 @@ def test_atomic_path_leaves_nothing_on_failure(tmp_path):
 
     from mjwalk._io import atomic_path
 
-    target = tmp_path / "report.json"
+    target = tmp_path / "out" / "report.json"  # its folder is made, and removed again
     with pytest.raises(WriteError, match=rf"cannot write {target}: No space left on device"):
         with atomic_path(target) as tmp:
             tmp.write_text(json.dumps({"a": 1}))
