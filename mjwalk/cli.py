@@ -437,7 +437,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="step cost: length weighted by the energy of its pace (energy, default), the "
         "paper's straight length (chord) or the pelvis arc (path)",
     )
-    p.add_argument("--seed", type=arg_seed, default=0, help="random seed (same seed, same walks)")
+    p.add_argument(
+        "--seed",
+        type=arg_seed,
+        default=0,
+        help="random seed, a whole number >= 0 (same seed, same walks)",
+    )
     p.add_argument("--footprints", action="store_true", help="draw the footprints too")
     p.add_argument("--save", type=Path, help="save each walk as NAME_NNN.npz (for mjwalk render)")
     _add_walker_args(p)
@@ -447,7 +452,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("spec", type=Path, help="cycle specification (TOML), or 'station' (shipped)")
     p.add_argument("--runs", type=arg_positive_int, default=50, help="cycles to simulate (50)")
     p.add_argument("--out", type=Path, default=Path("out"), help="report folder (out/)")
-    p.add_argument("--seed", type=arg_seed, default=0, help="random seed (same seed, same report)")
+    p.add_argument(
+        "--seed",
+        type=arg_seed,
+        default=0,
+        help="random seed, a whole number >= 0 (same seed, same report)",
+    )
     p.add_argument("--jobs", type=arg_jobs, default=-1, help="parallel processes (-1: all cores)")
     p.add_argument(
         "--only-run",
