@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from mjwalk._args import as_generator, check_seed
 from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.cycle.handling import REACH_CASE, RETURN_CASE, reach_duration, task_factor
 from mjwalk.cycle.spec import check_durations
@@ -116,10 +117,10 @@ def simulate_cycle(
         PlanningError: a walk cannot be planned (the spec is checked before, so this means an
             unreachable site); MjwalkError for model files.
     """
+    rng = as_generator(rng, "simulate_cycle: rng")  # before any work
     ctx = spec if isinstance(spec, CycleContext) else prepare(spec)
     spec = ctx.spec
     check_durations(spec.tasks)
-    rng = np.random.default_rng(rng)
     # side streams spawned from the run's generator (its own draws, the walks, are unchanged):
     # the operator, the task-time factors, where the operator stands (at the start, then the
     # spot each walk aims at: plan_task_walk)
@@ -342,6 +343,7 @@ def simulate_cycles(
             f"simulate_cycles: run indices must lie in 0..{runs - 1} (of {runs} runs), "
             f"got {bad or 'none'}"
         )
+    seed = check_seed(seed, "simulate_cycles: seed")
     if on_error not in ("raise", "record"):
         raise InputError(f"simulate_cycles: on_error must be 'raise' or 'record', got {on_error!r}")
     jobs = (delayed(_run_one)(job_spec, k, seed, collisions, on_error) for k in indices)
