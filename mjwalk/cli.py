@@ -3,11 +3,15 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+import tempfile
+import time
 from pathlib import Path
 
 import numpy as np
 
+from mjwalk import _log
 from mjwalk._args import (
     arg_count,
     arg_fraction,
@@ -28,6 +32,7 @@ from mjwalk.errors import InputError, MjwalkError
 #: Video files ``mjwalk render`` writes (H.264 in MP4).
 VIDEO_SUFFIXES = (".mp4",)
 _SCENES = "station, corridor, open_floor"
+QUIET_HELP = "no progress messages or bars (warnings and errors only)"
 
 
 def _load_model(path: Path | None):
@@ -164,13 +169,13 @@ def _cmd_train(args: argparse.Namespace) -> int:
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
-    from mjwalk.gait.fidelity import validate_main
+    from mjwalk.gait.fidelity import format_fidelity_table, validate_main
     from mjwalk.plan.straight import planned_straight_walks
 
     if args.json:
         check_output_file(args.json, "--json")
     walker = _walker_from_args(args)
-    validate_main(
+    report = validate_main(
         args.model,
         args.against,
         args.json,
@@ -180,6 +185,7 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         walker=walker,
         planned_walks=planned_straight_walks,
     )
+    print(format_fidelity_table(report))
     return 0
 
 
@@ -402,7 +408,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--video", action="store_true", help="also render one cycle to cycle.mp4")
     p.add_argument("--camera", choices=["track", "top"], default="track")
-    p.add_argument("--quiet", action="store_true", help="no progress bars")
+    p.add_argument("--quiet", action="store_true", help=QUIET_HELP)
     p.add_argument("--json-summary", action="store_true", help=argparse.SUPPRESS)
     p.set_defaults(func=_cmd_simulate)
 
@@ -425,7 +431,7 @@ def build_parser() -> argparse.ArgumentParser:
         default=DEFAULT_STATURE,
         help="humanoid stature in metres",
     )
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--quiet", action="store_true", help=QUIET_HELP)
     p.set_defaults(func=_cmd_render)
 
     p = sub.add_parser("train", help="train a step model from capture or virtual subjects")
@@ -458,6 +464,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_validate)
     _add_scan_parser(sub)
     _add_scene_import_parser(sub)
+    for cmd in sub.choices.values():
+        if not any("--quiet" in a.option_strings for a in cmd._actions):
+            cmd.add_argument("--quiet", action="store_true", help=QUIET_HELP)
     return parser
 
 
@@ -465,6 +474,10 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else argv
     args = parser.parse_args(join_negative_values(argv, ("--from", "--to")))
+    _log.configure(quiet=args.quiet)
+    # one compile notice for the command, whichever of its processes compiles first
+    mark = Path(tempfile.gettempdir()) / f"mjwalk-notice-{os.getpid()}-{time.time_ns()}"
+    os.environ[_log.NOTICE_ENV] = str(mark)
     try:
         return args.func(args)
     except MjwalkError as exc:
@@ -473,6 +486,9 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("mjwalk: interrupted", file=sys.stderr)
         return 130
+    finally:
+        os.environ.pop(_log.NOTICE_ENV, None)
+        mark.unlink(missing_ok=True)
 
 
 if __name__ == "__main__":
