@@ -184,9 +184,10 @@ def spaghetti_png(
         for label, _ in routes:
             count[label] = count.get(label, 0) + 1
         for label, p in routes:
-            alpha = 0.9 if count[label] < 5 else max(0.2, 5.0 / count[label])
+            # many routes overlap on the grid's lines: fainter than the walks they go with
+            alpha = 0.9 if count[label] < 5 else max(0.08, 3.0 / count[label])
             ax.plot(
-                p.xy[:, 0], p.xy[:, 1], ls="--", lw=1.2, alpha=alpha, color=colors.get(label, "k")
+                p.xy[:, 0], p.xy[:, 1], ls="--", lw=1.0, alpha=alpha, color=colors.get(label, "k")
             )
         if routes:  # one neutral legend entry for all grid-A* routes
             what = "each walk's own ends" if baseline is None else "given routes"
@@ -263,14 +264,28 @@ def _route_histogram(ax, label: str, results: Sequence[CycleResult], e: dict, co
     :func:`mjwalk.report.report_dict`)."""
     walks = [w for r in results for w in r.walks if w.route == label]
     dirs = e.get("directions") or [{"from": None, "to": None, **e}]
-    edges = np.histogram_bin_edges([w.length for w in walks], bins="auto")
-    for k, d in enumerate(dirs):
-        shade = _shade(color, k, len(dirs))
-        lengths = [
+    samples = [
+        [
             w.length
             for w in walks
             if d["from"] is None or (w.start_site, w.goal_site) == (d["from"], d["to"])
         ]
+        for d in dirs
+    ]
+    # shared bins as fine as the finest direction's own ("auto") bins: the directions' lengths
+    # may lie far apart, and bins chosen for the pooled lengths would blur each of them
+    pooled = np.concatenate([np.asarray(x, dtype=float) for x in samples])
+    widths = [np.diff(np.histogram_bin_edges(x, bins="auto"))[0] for x in samples if len(x) > 1]
+    lo, hi = float(pooled.min()), float(pooled.max())
+    width = min(widths, default=0.0)
+    if width > 0 and (hi - lo) / width <= 200:
+        n = max(1, math.ceil((hi - lo) / width))
+        edges = lo + width * np.arange(n + 1)
+        edges[-1] = max(edges[-1], hi)
+    else:
+        edges = np.histogram_bin_edges(pooled, bins="auto")
+    for k, (d, lengths) in enumerate(zip(dirs, samples, strict=True)):
+        shade = _shade(color, k, len(dirs))
         name = "" if d["from"] is None else f"{d['from']} -> {d['to']}"
         ax.hist(lengths, bins=edges, color=shade, alpha=0.6, label=f"{name} ({len(lengths)})")
         ax.axvline(d["length"]["median"], color=shade, ls="--", lw=1.2)

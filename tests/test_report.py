@@ -317,7 +317,7 @@ def test_station_walks_per_direction_against_their_own_grid_route(tmp_path, scen
             assert d["walks"] == 3
             for key in ("length", "duration"):
                 assert d[key]["median"] > 0 and d[key]["iqr"] >= 0
-            assert d["without_baseline"] == 0
+            assert d["without_baseline"] == 0 and d["below_floor"] == 0
             assert d["vs_baseline"]["min"] >= d["vs_baseline_floor"]
     assert rep["baseline"]["between"].startswith("each walk's own start and end")
     # the baseline joins the walk's own ends
@@ -334,4 +334,21 @@ def test_station_walks_per_direction_against_their_own_grid_route(tmp_path, scen
         assert vs == pytest.approx(float(row["length_m"]) / base - 1, abs=1e-4)
         assert vs >= shortfall_bound(base) - 1e-4, row  # within the grid's discretisation
     md = files["markdown"].read_text()
-    assert "| T2 | both | 6 |" in md and "within the grid's discretisation" in md
+    assert "| T2 | both | 6 |" in md and "every walk within the grid's discretisation" in md
+
+
+def test_a_walk_shorter_than_the_grid_allows_is_counted(workplace):
+    """A walk 20 % shorter than its own grid-A* route is below what the grid's
+    discretisation allows (about -9 %): the report counts it and says so."""
+    results = _results(workplace, runs=4)
+    assert report_dict(results)["routes"]["T5"]["below_floor"] == 0
+    walk = results[0].walks[3]
+    results[0].walks[3] = WalkRecord(
+        walk.task, walk.route, walk.start_site, walk.goal_site, walk.path, walk.length / 0.8
+    )
+    rep = report_dict(results)
+    assert rep["routes"]["T5"]["directions"][0]["below_floor"] == 1
+    assert rep["routes"]["T5"]["below_floor"] == 1
+    assert rep["routes"]["T5"]["vs_baseline"]["min"] == pytest.approx(-0.2)
+    below = sum(d["below_floor"] for e in rep["routes"].values() for d in e["directions"])
+    assert f"{below} walk(s) below the bound" in format_markdown(rep)
