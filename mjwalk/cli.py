@@ -8,6 +8,7 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -189,6 +190,30 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     return 0
 
 
+#: Seconds to wait for a Dask scheduler to answer before ``--scheduler`` gives up.
+SCHEDULER_TIMEOUT_S = 10.0
+
+
+def _dask_client(address: str):
+    """A ``dask.distributed.Client`` of the scheduler at ``address``, or a clear error (the
+    extra not installed, the scheduler not answering) before any work."""
+    try:
+        from distributed import Client
+    except ImportError:
+        raise InputError(
+            f"--scheduler {address}: Dask is not installed here; "
+            'pip install "mjwalk[cluster]" (and mjwalk on the workers)'
+        ) from None
+    try:
+        return Client(address, timeout=SCHEDULER_TIMEOUT_S)
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
+        raise InputError(
+            f"--scheduler {address}: no Dask scheduler answered within "
+            f"{SCHEDULER_TIMEOUT_S:.0f} s ({type(exc).__name__}: {exc}); give its address as "
+            "tcp://HOST:PORT (dask scheduler prints it)"
+        ) from None
+
+
 def _cmd_simulate(args: argparse.Namespace) -> int:
     import json
 
@@ -212,20 +237,32 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         f"{which}, seed {args.seed}",
         flush=True,
     )
-    if args.dry_run:
-        print(f"  {spec.path} and --out {args.out} checked; nothing simulated (--dry-run)")
-        return 0
-    # builds (or loads) the default models once, with progress; the runs in this process reuse it
-    ctx = context_of(spec)
-    results = simulate_cycles(
-        spec,
-        args.runs,
-        seed=args.seed,
-        n_jobs=args.jobs,
-        progress=not args.quiet,
-        only=only,
-        on_error="record",  # one unplannable run does not end a long batch; the report lists it
-    )
+    client = None if args.scheduler is None else _dask_client(args.scheduler)
+    try:
+        if args.dry_run:
+            print(f"  {spec.path} and --out {args.out} checked; nothing simulated (--dry-run)")
+            return 0
+        # builds (or loads) the default models once, with progress; this process reuses them
+        ctx = context_of(spec)
+        batch: dict[str, Any] = dict(
+            seed=args.seed,
+            n_jobs=args.jobs,
+            progress=not args.quiet,
+            only=only,
+            on_error="record",  # one unplannable run does not end a long batch; the report lists it
+        )
+        if client is None:
+            results = simulate_cycles(spec, args.runs, **batch)
+        else:
+            import joblib
+
+            # the spec goes to the workers in memory; its scene and model files must be at the
+            # same paths there (a shared file system), as for any Dask job reading files
+            with joblib.parallel_config(backend="dask"):
+                results = simulate_cycles(spec, args.runs, **{**batch, "n_jobs": -1})
+    finally:
+        if client is not None:
+            client.close()
     files = write_report(results, args.out, workplace=ctx.workplace)
     print(format_summary(report_dict(results)))
     for name, path in files.items():
@@ -405,6 +442,12 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--dry-run", action="store_true", help="check the cycle and --out, simulate nothing"
+    )
+    p.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="run the batch on an existing Dask cluster (tcp://HOST:PORT of its scheduler; the "
+        "workers need mjwalk and the scene's files at the same paths); same results as a local run",
     )
     p.add_argument("--video", action="store_true", help="also render one cycle to cycle.mp4")
     p.add_argument("--camera", choices=["track", "top"], default="track")
