@@ -2,8 +2,8 @@
 
 One cycle (:func:`simulate_cycle`) walks the task list of a :class:`CycleSpec`: each ``walk`` /
 ``carry`` task is planned with the probabilistic hybrid A* (and, for the report, the grid-A*
-route between the same sites); the operator turns on the spot towards the walk's first heading
-and, at its end, towards the site's facing direction; each ``pick`` / ``place`` / ``fasten``
+route between the walk's own two ends); the operator turns on the spot towards the walk's first
+heading and, at its end, towards the site's facing direction; each ``pick`` / ``place`` / ``fasten``
 task is an arm reach from the current standing pose to the site (the :class:`ReachModel`, PCA +
 DCS, alzubi-sommer), a hold (the task's duration) and the return. Everything is laid on one
 timeline of humanoid poses (``fps`` frames per second), checked for humanoid-vs-scene contacts
@@ -170,6 +170,9 @@ def simulate_cycle(
             frames.append(turn)
             t += dt
             yaw = face
+            # the grid-A* route between the walk's own ends (not the sites' marks: the walk
+            # starts and ends where the operator stands), for the report's ``vs A*``
+            base = ctx.baseline_route(path.xy[0], path.xy[-1])
             walks.append(
                 WalkRecord(
                     task=i,
@@ -177,7 +180,8 @@ def simulate_cycle(
                     start_site=here,
                     goal_site=goal,
                     path=path,
-                    baseline_length=ctx.baseline(here, goal),
+                    baseline_length=float("nan") if base is None else base.length,
+                    baseline=base,
                 )
             )
             here = goal
