@@ -17,7 +17,7 @@ from mjwalk.cycle.simulate import (
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.errors import CycleSpecError
 
-SPEC = Path(__file__).resolve().parents[1] / "scenes" / "assembly_station_2h.toml"
+SPEC = Path(__file__).resolve().parents[2] / "scenes" / "assembly_station_2h.toml"
 #: Grip distance of the box in scenes/assembly_station_2h.xml (bench_a_box_left/_right), m.
 WIDTH = 0.40
 

@@ -150,7 +150,7 @@ def test_timeline_with_gaitpose_arms():
 #: indices in the names; saved with WalkPath.save) on which the playback grazed a wall by up to
 #: 1.7 cm with a hand or an upper arm, or cut an inner corner with the swing foot (up to 11 cm)
 #: although the planner had certified the pelvis path.
-CORRIDOR_WALKS = sorted((Path(__file__).parent / "data").glob("corridor_walk_seed0_*.npz"))
+CORRIDOR_WALKS = sorted((Path(__file__).parents[1] / "data").glob("corridor_walk_seed0_*.npz"))
 
 
 @pytest.mark.parametrize("path", CORRIDOR_WALKS, ids=lambda p: p.stem)

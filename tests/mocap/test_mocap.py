@@ -22,7 +22,7 @@ from mjwalk.mocap import (
 )
 
 #: real capture: ``$MJWALK_SHARED_DATA`` or ../shared/data beside the project
-DATA = Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[2] / "shared" / "data"))
+DATA = Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[3] / "shared" / "data"))
 
 # Toy skeleton: y up, centimetres. The walker faces +z (left hip on +x), i.e. world -y after the
 # y-up -> z-up rotation (x, -z, y): pelvis yaw -90 deg in the rest pose.

@@ -12,7 +12,7 @@ from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.errors import CycleSpecError
 from mjwalk.world import load_workplace
 
-SCENES = Path(__file__).resolve().parents[1] / "scenes"
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
 SHIPPED = SCENES / "assembly_station.toml"
 SCENE = SCENES / "assembly_station.xml"
 

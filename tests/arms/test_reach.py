@@ -204,7 +204,7 @@ def test_grasp_closes_fingers_on_object_within_5mm():
         fingers_for_aperture(0.5)
 
 
-SCENE = Path(__file__).parents[1] / "scenes" / "assembly_station.xml"
+SCENE = Path(__file__).parents[2] / "scenes" / "assembly_station.xml"
 
 
 @pytest.mark.skipif(not SCENE.is_file(), reason="scenes/assembly_station.xml absent")

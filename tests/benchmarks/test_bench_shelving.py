@@ -1,6 +1,6 @@
 """benchmarks/bench_shelving.py: its workplace loads, and in a cycle there the place into the
 low compartment (under a shelf, at knuckle height) is clear of the scene (the operator
-stoops or crouches for it: tests/test_crouch.py) with the hand on its target."""
+stoops or crouches for it: tests/cycle/test_crouch.py) with the hand on its target."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import pytest
 from mjwalk.cycle.simulate import simulate_cycles
 from mjwalk.cycle.spec import load_cycle_spec
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 import bench_shelving as bench
 
 

@@ -16,7 +16,7 @@ from mjwalk.timeline import check_collisions
 def ctx(scenes_dir):
     """The station's cycle at the step model's own pace and the 1.75 m humanoid (its
     [population] left out: these tests pin the cycle's mechanics; the workforce's operators
-    are tested in tests/test_population.py. A short operator may stop where the rack-2 tool is
+    are tested in tests/cycle/test_population.py. A short operator may stop where the rack-2 tool is
     just beyond their arm: seed 7 draws a 1.55 m operator whose hand ends 1.3 cm short of it)."""
     spec = load_cycle_spec(scenes_dir / "assembly_station.toml")
     return prepare(dataclasses.replace(spec, population=None))

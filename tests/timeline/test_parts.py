@@ -16,7 +16,7 @@ from mjwalk.cycle.simulate import prepare
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.timeline.parts import Handling, _palms_frame, part_tracks
 
-SCENES = Path(__file__).resolve().parents[1] / "scenes"
+SCENES = Path(__file__).resolve().parents[2] / "scenes"
 
 
 @pytest.fixture(scope="module")

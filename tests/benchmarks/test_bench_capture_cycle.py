@@ -11,7 +11,7 @@ import pytest
 
 from mjwalk.errors import MjwalkError
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 bench = pytest.importorskip("bench_capture_cycle")
 
 

@@ -28,7 +28,7 @@ from mjwalk.mocap.take import Take
 from mjwalk.plan.synthetic import synthetic_walk
 from mjwalk.plan.walkpath import WalkPath
 
-DATA = Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[2] / "shared" / "data"))
+DATA = Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[3] / "shared" / "data"))
 
 
 #: The synthetic walk of the library (straight or curved, no planner); the tests of this file,
@@ -231,7 +231,7 @@ def test_warp_reference_meets_its_landmarks():
 #: with WalkPath.save) on which clipped legs put a foot 0.9-3 cm into the floor: a landing
 #: behind the other foot (ankle at its dorsiflexion limit during the heel roll-down) and long
 #: steps followed by short turning ones (trailing hip at its extension limit before toe-off).
-AWKWARD_WALKS = sorted((Path(__file__).parent / "data").glob("station_walk_seed0_*.npz"))
+AWKWARD_WALKS = sorted((Path(__file__).parents[1] / "data").glob("station_walk_seed0_*.npz"))
 
 
 @pytest.mark.parametrize("path", AWKWARD_WALKS, ids=lambda p: p.stem)
@@ -395,8 +395,10 @@ def test_stance_foot_ahead_of_the_hip_keeps_its_place():
     from mjwalk.plan.hybrid import HybridPlanner
     from mjwalk.world import load_workplace
 
-    walk = WalkPath.load(Path(__file__).parent / "data" / "stance_ahead_corridor_seed0_walk3.npz")
-    wp = load_workplace(Path(__file__).parents[1] / "scenes" / "corridor.xml")
+    walk = WalkPath.load(
+        Path(__file__).parents[1] / "data" / "stance_ahead_corridor_seed0_walk3.npz"
+    )
+    wp = load_workplace(Path(__file__).parents[2] / "scenes" / "corridor.xml")
     par = HybridPlanner(wp, "exit", default_model(progress=False))._kernel_params()[0]
     legs = legs_from_walk(walk)
     pts, pitch, low = foot_points(legs)
@@ -421,7 +423,7 @@ def test_stance_foot_ahead_of_the_hip_keeps_its_place():
 #: walks 17, 16, 18, 15, 17: walk k of seed s is the k-th of its PLANNED_ROUTES walks), stored:
 #: long steps after short ones (a trailing foot 0.54-0.58 m behind its hip at toe-off) and
 #: sidesteps (short steps landing behind and beside the pelvis).
-LEG_JUMP_WALKS = sorted((Path(__file__).parent / "data").glob("legs_corridor_seed*_walk*.npz"))
+LEG_JUMP_WALKS = sorted((Path(__file__).parents[1] / "data").glob("legs_corridor_seed*_walk*.npz"))
 
 
 @pytest.fixture(scope="module")

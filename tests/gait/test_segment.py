@@ -23,7 +23,7 @@ from mjwalk.gait.segment import (
 
 #: real capture: ``$MJWALK_SHARED_DATA`` or ../shared/data beside the project
 DATA = (
-    Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[2] / "shared" / "data"))
+    Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[3] / "shared" / "data"))
     / "bandai-walk"
 )
 

@@ -16,7 +16,7 @@ from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait.model import StepModel, first_step_indices, transition_pairs
 
 #: real capture: ``$MJWALK_SHARED_DATA`` or ../shared/data beside the project
-DATA = Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[2] / "shared" / "data"))
+DATA = Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[3] / "shared" / "data"))
 
 
 @pytest.fixture(scope="module")

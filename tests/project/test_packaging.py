@@ -15,7 +15,7 @@ import pytest
 import mjwalk
 from mjwalk.shipped import CYCLES, SCENES, cycle_file, scene_dir, scene_file
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_version_comes_from_pyproject():

@@ -19,7 +19,7 @@ from mjwalk.body.humanoid import (
 )
 from mjwalk.errors import SceneError
 
-SCENES = Path(__file__).parents[1] / "scenes"
+SCENES = Path(__file__).parents[2] / "scenes"
 BOX_SCENE = """<mujoco><worldbody><geom name="floor" type="plane" size="5 5 .1"/>
 <body name="table" pos="1 0 .4"><geom name="box" type="box" size=".3 .3 .4"/></body>
 </worldbody></mujoco>"""

@@ -18,7 +18,7 @@ from mjwalk.cycle.poses import _standing, frame_contacts, hand_points
 from mjwalk.cycle.simulate import prepare, simulate_cycle
 from mjwalk.cycle.spec import load_cycle_spec
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 from bench_heights import box_at
 
 

@@ -11,7 +11,7 @@ import pytest
 from mjwalk.arms.armcapture import ArmMovements
 from mjwalk.errors import CaptureError
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 bench_reach = pytest.importorskip("bench_reach")
 
 
