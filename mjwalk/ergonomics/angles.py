@@ -160,7 +160,7 @@ def _unit(v: np.ndarray) -> np.ndarray:
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return np.einsum("...i,...i->...", a, b)
+    return (a * b).sum(axis=-1)
 
 
 def _deg(x: np.ndarray) -> np.ndarray:
@@ -314,8 +314,8 @@ def body_frames(model, jointmap, qpos: np.ndarray, bodies: list[str]):
         m = np.empty(9)
         mujoco.mju_quat2Mat(m, model.geom_quat[g])
         local[k] = m.reshape(3, 3)
-    rot = np.einsum("fgij,gkj->fgik", gmat, local)  # R_body = R_geom R_local^T
-    pos = gpos - np.einsum("fgij,gj->fgi", rot, model.geom_pos[gids])
+    rot = gmat @ local.transpose(0, 2, 1)  # R_body = R_geom R_local^T
+    pos = gpos - (rot @ model.geom_pos[gids][:, :, None])[..., 0]
     return pos, rot
 
 
@@ -343,7 +343,7 @@ def angles_from_qpos(model, jointmap, qpos: np.ndarray, walking=None) -> BodyAng
 
         g = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, palm)
         off = model.geom_pos[g] if g >= 0 else np.zeros(3)
-        hands[:, s] = pos[:, k] + np.einsum("fij,j->fi", rot[:, k], off)
+        hands[:, s] = pos[:, k] + rot[:, k] @ off
     q = np.asarray(qpos).reshape(-1, model.nq)
 
     def hinge(name: str) -> np.ndarray:
