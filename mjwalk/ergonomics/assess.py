@@ -57,7 +57,7 @@ class TaskSpan:
 class TaskErgonomics:
     """The peaks of one task: RULA 1-7, REBA 1-15, OWAS action category 1-4, the time of the
     RULA peak (s from the cycle's start), the body parts that drive the RULA and REBA peaks,
-    and the RULA peak's arm ("left"/"right")."""
+    the RULA peak's arm ("left"/"right") and the task's highest RULA upper-arm score."""
 
     index: int
     kind: str
@@ -247,7 +247,7 @@ def assess_cycle(
                 rula_driver=_driver(r_parts, RULA_PARTS, k, side),
                 reba_driver=_driver(b_parts, REBA_PARTS, kb, sb),
                 side=("left", "right")[side],
-                upper_arm=int(r_parts[side].upper_arm[k]),
+                upper_arm=int(max(r_parts[0].upper_arm[sl].max(), r_parts[1].upper_arm[sl].max())),
             )
         )
     lifts = _lifts(ang, spans, cycle_time)
