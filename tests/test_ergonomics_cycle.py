@@ -56,7 +56,7 @@ def test_a_heavier_low_pick_raises_its_lifting_index(tmp_path):
 def test_bad_coupling_names_the_key(tmp_path):
     toml = bench_heights.write_workplace(tmp_path, 1.0, "left")
     toml.write_text(toml.read_text() + 'coupling = "sticky"\n')
-    with pytest.raises(CycleSpecError, match="coupling.*good, fair, poor.*sticky"):
+    with pytest.raises(CycleSpecError, match=r"coupling.*good, fair, poor.*sticky"):
         load_cycle_spec(toml)
 
 
