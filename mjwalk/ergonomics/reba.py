@@ -3,7 +3,8 @@
 with the coupling, Table C and the activity score; the REBA score 1-15 and its risk level.
 
 Part scores follow the paper's Tables 1-7 (angles in degrees, flexion positive); the tables
-below are its Tables A, B and C. :func:`reba_score` is the published procedure on part scores,
+below are its Tables A, B and C (compared cell by cell with the REBA Employee Assessment
+Worksheet's Tables A-C: equal). :func:`reba_score` is the published procedure on part scores,
 vectorised over frames; :func:`part_scores` reads the part scores from
 :class:`~mjwalk.ergonomics.angles.BodyAngles`.
 """
