@@ -6,7 +6,8 @@ The part scores follow the paper's Figures 1-3 (angles in degrees, flexion posit
 tables are the paper's Tables A, B and C (the paper itself was not at hand; the tables agree
 with several independent implementations, while one circulating worksheet differs in a few
 cells of Table A, e.g. upper arm 6, lower arm 2, wrist 1: 7 there, 8 here).
-:func:`grand_score` is the published procedure on part scores, vectorised over frames; :func:`part_scores` reads the part scores from
+:func:`grand_score` is the published procedure on part scores, vectorised over frames;
+:func:`part_scores` reads the part scores from
 :class:`~mjwalk.ergonomics.angles.BodyAngles` (the thresholds a continuous angle needs where the
 paper shows a drawing are stated in :mod:`mjwalk.ergonomics.angles`).
 """
