@@ -85,16 +85,18 @@ def _stats(records: list[RunRecord]) -> dict:
 
 
 def _drivers(records: list[RunRecord]) -> dict:
-    """Which task and body part hold each cycle's RULA and REBA peak (counts over runs)."""
+    """Which tasks and body parts reach each cycle's RULA and REBA peak: over runs, how many
+    cycles reach their peak in each (task, body part) (a cycle counts once per task tied at its
+    peak)."""
     rula_d: Counter = Counter()
     reba_d: Counter = Counter()
     for r in records:
-        if not r.ergo.tasks:
-            continue
-        t = max(r.ergo.tasks, key=lambda x: x.rula)
-        rula_d[f"task {t.index} {t.kind} {t.site or ''}: {t.rula_driver}".strip()] += 1
-        t = max(r.ergo.tasks, key=lambda x: x.reba)
-        reba_d[f"task {t.index} {t.kind} {t.site or ''}: {t.reba_driver}".strip()] += 1
+        for t in r.ergo.tasks:
+            label = f"task {t.index} {t.kind} {t.site or ''}".strip()
+            if t.rula == r.ergo.rula_peak:
+                rula_d[f"{label}: {t.rula_driver}"] += 1
+            if t.reba == r.ergo.reba_peak:
+                reba_d[f"{label}: {t.reba_driver}"] += 1
     return {"rula": dict(rula_d.most_common()), "reba": dict(reba_d.most_common())}
 
 
@@ -267,7 +269,7 @@ def ergonomics_markdown(e: dict) -> list[str]:
             ],
         ),
         "",
-        "Where the cycles' RULA peaks lie (task: body part, cycles): "
+        "Where the cycles reach their RULA peak (task: body part, cycles; the most frequent): "
         + "; ".join(f"{k} ({v})" for k, v in list(e["drivers"]["rula"].items())[:5])
         + ".",
     ]
