@@ -3,9 +3,16 @@
 with the coupling, Table C and the activity score; the REBA score 1-15 and its risk level.
 
 Part scores follow the paper's Tables 1-7 (angles in degrees, flexion positive); the tables
-below are its Tables A, B and C (compared cell by cell with the REBA Employee Assessment
-Worksheet's Tables A-C: equal). :func:`reba_score` is the published procedure on part scores,
-vectorised over frames; :func:`part_scores` reads the part scores from
+below are its Tables A, B and C. Provenance (checked 2026-12-01): the paper's own tables could
+not be reached; Tables A, B and C equal, cell for cell, the REBA Employee Assessment Worksheet
+(based on the paper; as transcribed on scribd, doc. 731952909; the test
+``test_reba_tables_match_the_employee_worksheet`` holds that transcription in the worksheet's
+own layout), and the part-score definitions agree with the authors' own handbook chapter
+(Hignett & McAtamney, Table 42.2 "Group A Definitions", in Fundamentals and Assessment Tools
+for Occupational Ergonomics). Secondary sources only: NOT verified against the paper, and no
+worked example with published scores from the paper or the authors' chapter could be reached.
+:func:`reba_score` is the published procedure on part scores, vectorised over frames;
+:func:`part_scores` reads the part scores from
 :class:`~mjwalk.ergonomics.angles.BodyAngles`.
 """
 

@@ -3,9 +3,19 @@
 the muscle-use and force/load terms, the grand score 1-7 and its action level 1-4.
 
 The part scores follow the paper's Figures 1-3 (angles in degrees, flexion positive); the three
-tables are the paper's Tables A, B and C (the paper itself was not at hand; the tables agree
-with several independent implementations, while one circulating worksheet differs in a few
-cells of Table A, e.g. upper arm 6, lower arm 2, wrist 1: 7 there, 8 here).
+tables are the paper's Tables 1 and 2 and its grand-score table ("Table A", "Table B", "Table C"
+of the score sheet). Provenance (checked 2026-12-01): OCR excerpts of the paper's text
+(th4.ilovetranslation.com pages hZeRv4cNDav, vCKe8TzaeWW) confirm the neck, trunk and legs
+scores, the force/load score (2 for 2-10 kg static or repeated or > 10 kg intermittent, 3 for >
+10 kg static or repeated or any shock) and the meaning of grand scores 1-2, 3-4 and 5-6 as coded
+here; the paper's tables themselves could not be reached; Tables A, B and C here agree cell for
+cell with several independent public implementations (found by exact-row search of public code).
+One circulating worksheet (the "RULA Employee Assessment Worksheet", as transcribed on scribd,
+doc. 36693774) prints 7 in Table A at upper arm 6, lower arm 2, wrist 1, no twist, where every
+implementation found (and this table) has 8. The table is left as the majority has it (both
+values keep it monotone); it is NOT verified against the paper. The cell changes a score only
+for that part-score combination (score A 8 vs 7). No worked example with published scores from
+the paper itself could be reached, so none is tested.
 :func:`grand_score` is the published procedure on part scores, vectorised over frames;
 :func:`part_scores` reads the part scores from
 :class:`~mjwalk.ergonomics.angles.BodyAngles` (the thresholds a continuous angle needs where the
