@@ -147,6 +147,31 @@ def test_niosh_example_4_package_inspection():
     assert round(niosh.rwl(d, "us"), 1) == 15.3
 
 
+def test_niosh_example_2_loading_supply_rolls():
+    """Applications Manual (Waters et al. 1994), Example 2 "Loading Supply Rolls", worksheet
+    Figure 9, U.S. units, as transcribed in a third-party public test file (vitest
+    "nioshLifting" tests citing DHHS (NIOSH) 94-110; public-code index id 70275093896; the
+    manual's page itself was NOT reachable, one secondary source only): L 35 lb; origin H 15 in,
+    V 27 in; destination H 20 in, V 10 in; D 17 in; A 0; F < 0.2 lifts/min (set to 0.2);
+    <= 1 h; coupling poor. Worksheet multipliers: origin HM .67 VM .98 DM .93 AM 1.0 FM 1.0 CM
+    .90 -> RWL 28.0 lb; destination HM .50 VM .85 -> RWL 18.1 lb; LI 35/18.1 = 1.9 at the
+    destination. (The origin LI 35/28.0 = 1.25; its printed one-decimal value is not in the
+    transcription.)"""
+    kw = dict(d=17.0, a=0.0, f=0.1, duration="short", coupling="poor", units="us")
+    o = niosh.multipliers(15.0, 27.0, v_origin=27.0, **kw)
+    d = niosh.multipliers(20.0, 10.0, v_origin=27.0, **kw)
+    rounded = [round(x + 1e-12, 2) for x in (o.hm, o.vm, o.dm, o.am, o.fm, o.cm)]
+    assert rounded == [0.67, 0.98, 0.93, 1.0, 1.0, 0.90]
+    rounded = [round(x + 1e-12, 2) for x in (d.hm, d.vm, d.dm, d.am, d.fm, d.cm)]
+    assert rounded == [0.50, 0.85, 0.93, 1.0, 1.0, 0.90]
+    rwl_o = round(niosh.rwl(o, "us", round_multipliers=True), 1)
+    rwl_d = round(niosh.rwl(d, "us", round_multipliers=True), 1)
+    assert (rwl_o, rwl_d) == (28.0, 18.1)
+    assert round(35.0 / rwl_d, 1) == 1.9 and round(35.0 / rwl_o, 2) == 1.25
+    # at full precision (no rounded multipliers): 27.7 and 18.1 lb
+    assert round(niosh.rwl(o, "us"), 1) == 27.7 and round(niosh.rwl(d, "us"), 1) == 18.1
+
+
 def test_niosh_frequency_table_matches_the_worksheet_transcription():
     """Table 5 rows as printed on the manual's lifting analysis worksheet (public transcription,
     scribd doc. 53505426): columns <= 1 h V < 30 in, V >= 30; 1-2 h; 2-8 h."""
