@@ -7,10 +7,12 @@ below are its Tables A, B and C. Provenance (checked 2026-12-01): the paper's ow
 not be reached; Tables A, B and C equal, cell for cell, the REBA Employee Assessment Worksheet
 (based on the paper; as transcribed on scribd, doc. 731952909; the test
 ``test_reba_tables_match_the_employee_worksheet`` holds that transcription in the worksheet's
-own layout), and the part-score definitions agree with the authors' own handbook chapter
-(Hignett & McAtamney, Table 42.2 "Group A Definitions", in Fundamentals and Assessment Tools
-for Occupational Ergonomics). Secondary sources only: NOT verified against the paper, and no
-worked example with published scores from the paper or the authors' chapter could be reached.
+own layout; a second transcription of the worksheet in another layout (pdfcoffee.com,
+"reba-employee-assessment-worksheet") agrees in every cell of Tables A and B it shows), and the
+part-score definitions agree with the authors' own handbook chapter (Hignett & McAtamney, Table
+42.2 "Group A Definitions", in Fundamentals and Assessment Tools for Occupational Ergonomics).
+Secondary sources only: NOT verified against the paper, and no worked example with published
+scores from the paper or the authors' chapter could be reached.
 :func:`reba_score` is the published procedure on part scores, vectorised over frames;
 :func:`part_scores` reads the part scores from
 :class:`~mjwalk.ergonomics.angles.BodyAngles`.
