@@ -18,12 +18,19 @@ from mjwalk.report.figures import (
     report_dict,
     split_failed,
 )
-from mjwalk.report.files import OPERATOR_COLUMNS, REPORT_FILES, BaselineArg, write_report
+from mjwalk.report.files import (
+    ERGONOMICS_FILES,
+    OPERATOR_COLUMNS,
+    REPORT_FILES,
+    BaselineArg,
+    write_report,
+)
 from mjwalk.report.markdown import MD_PAIRS, ROUTE_COLUMNS, format_markdown, format_summary
 
 __all__ = [
     "CAPTURE_TABLE1",
     "CYCLE_PERCENTILES",
+    "ERGONOMICS_FILES",
     "MD_PAIRS",
     "OPERATOR_COLUMNS",
     "REPORT_FILES",

@@ -289,6 +289,7 @@ def report_dict(
             # tried): the reach is recorded, but the part was not where the hand was
             "short_of_target": _short_of_target(arms),
         },
+        "ergonomics": _ergonomics(results),
         "per_run": [
             {
                 "run": r.run,
@@ -301,6 +302,25 @@ def report_dict(
             for r in results
         ],
     }
+
+
+def ergonomic_records(results: Sequence[CycleResult]) -> list:
+    """The runs scored for ergonomics as :class:`mjwalk.ergonomics.summary.RunRecord`."""
+    from mjwalk.ergonomics.summary import RunRecord
+
+    return [
+        RunRecord(r.run, r.seed, r.group, None if r.operator is None else r.operator.stature, e)
+        for r in results
+        if (e := getattr(r, "ergonomics", None)) is not None
+    ]
+
+
+def _ergonomics(results: Sequence[CycleResult]) -> dict | None:
+    """The ergonomics section's figures (None when no run was scored)."""
+    from mjwalk.ergonomics.summary import ergonomics_summary
+
+    records = ergonomic_records(results)
+    return ergonomics_summary(records) if records else None
 
 
 def _baseline_note(spec) -> dict:

@@ -17,7 +17,7 @@ from mjwalk._io import atomic_path
 from mjwalk.cycle.types import TASK_KINDS, CycleResult
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
-from mjwalk.report.figures import report_dict, split_failed
+from mjwalk.report.figures import ergonomic_records, report_dict, split_failed
 from mjwalk.report.markdown import format_markdown
 
 #: The files :func:`write_report` writes, by key.
@@ -29,6 +29,10 @@ REPORT_FILES = {
     "spaghetti": "spaghetti.png",
     "histograms": "histograms.png",
 }
+
+#: The files :func:`write_report` adds when the runs were scored for ergonomics
+#: (``CycleResult.ergonomics``, :mod:`mjwalk.ergonomics`).
+ERGONOMICS_FILES = {"ergonomics_csv": "ergonomics.csv", "ergonomics_png": "ergonomics.png"}
 
 #: Operator columns of walks.csv and cycles.csv (empty without a population).
 OPERATOR_COLUMNS = ("group", "stature_m", "speed_m_s", "cadence_steps_min")
@@ -126,8 +130,10 @@ def write_report(
     :func:`report_dict`), ``walks.csv`` (one row per walk per run), ``cycles.csv`` (one row per
     run), ``report.md`` (Markdown tables), ``spaghetti.png`` (every run's walk paths on the floor
     plan, coloured by route, each with its own grid-A* route dashed) and ``histograms.png``
-    (cycle time, and walk lengths per route and direction). All are written to temporary files
-    first and renamed into place together at the end, so an error leaves none of them
+    (cycle time, and walk lengths per route and direction); with runs scored for ergonomics also
+    ``ergonomics.csv`` (one row per run and task) and ``ergonomics.png``
+    (:data:`ERGONOMICS_FILES`). All are written to temporary files first and renamed into place
+    together at the end, so an error leaves none of them
     half-written (nor any new one at all).
 
     Args:
@@ -158,7 +164,8 @@ def write_report(
                 f"got {type(value).__name__}"
             )
     out_dir = Path(out_dir)
-    targets = {key: out_dir / name for key, name in REPORT_FILES.items()}
+    names = {**REPORT_FILES, **(ERGONOMICS_FILES if rep.get("ergonomics") else {})}
+    targets = {key: out_dir / name for key, name in names.items()}
     with contextlib.ExitStack() as stack:
         tmp = {key: stack.enter_context(atomic_path(p)) for key, p in targets.items()}
         tmp["json"].write_text(json.dumps(_jsonable(rep), indent=2, allow_nan=False) + "\n")
@@ -167,6 +174,16 @@ def write_report(
         tmp["markdown"].write_text(format_markdown(rep), encoding="utf-8")
         spaghetti_png(tmp["spaghetti"], results, workplace, routes, rep)
         histograms_png(tmp["histograms"], results, rep)
+        if "ergonomics_csv" in tmp:
+            from mjwalk.ergonomics.summary import CSV_COLUMNS, ergonomics_rows
+            from mjwalk.plot import ergonomics_png
+
+            records = ergonomic_records(results)
+            with open(tmp["ergonomics_csv"], "w", newline="") as fh:
+                w = csv.writer(fh)
+                w.writerow(CSV_COLUMNS)
+                w.writerows(ergonomics_rows(records))
+            ergonomics_png(tmp["ergonomics_png"], records)
     return targets
 
 

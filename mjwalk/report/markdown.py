@@ -208,6 +208,10 @@ def format_markdown(rep: dict) -> str:
         *(["", *short] if short else []),
         "",
     ]
+    if rep.get("ergonomics"):
+        from mjwalk.ergonomics.summary import ergonomics_markdown
+
+        out += ergonomics_markdown(rep["ergonomics"])
     return "\n".join(out)
 
 
