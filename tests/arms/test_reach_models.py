@@ -200,11 +200,10 @@ def test_a_model_file_is_read_once_for_the_spec_check_and_the_cycle(
 ):
     """load_cycle_spec checks the reach model file and prepare() uses it: one read, one
     object; a rewritten file is read again."""
-    from mjwalk.arms.reach import ReachModel, _load_reach_file
+    from mjwalk.arms.reach import ReachModel
 
     left, _ = two_models
-    left.save(tmp_path / "left.npz")
-    _load_reach_file.cache_clear()
+    left.save(tmp_path / "left.npz")  # a new file: not read before
     reads = []
     real = ReachModel.load.__func__
 

@@ -14,7 +14,7 @@ import mjwalk
 from mjwalk.cycle.poses import hand_points
 from mjwalk.cycle.simulate import prepare
 from mjwalk.cycle.spec import load_cycle_spec
-from mjwalk.timeline.parts import Handling, _palms_frame, part_tracks
+from mjwalk.timeline.parts import Handling, palms_frame, part_tracks
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes"
 
@@ -61,7 +61,7 @@ def test_two_handed_box_is_carried_between_the_palms_and_put_on_bench_b(box_cycl
     # grasp (the hands' ends hold it; no jump onto the palms), centred between them
     held = np.arange(track.grasp, track.release)
     palms = hand_points(ctx, tl.qpos[held])
-    origin, axes = _palms_frame(palms)
+    origin, axes = palms_frame(palms)
     rel = np.einsum("fji,fj->fi", axes, track.pos[held] - origin)
     assert np.abs(rel - rel[0]).max() < 1e-9
     assert abs(rel[0, 1]) < 0.01  # half way between the palms, left-right
