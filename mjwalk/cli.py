@@ -277,6 +277,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
 def _cmd_scan(args: argparse.Namespace) -> int:
     from mjwalk.world.scan import scan_to_scene
 
+    check_output_file(args.output, "-o/--output")
     scene = scan_to_scene(
         args.scan,
         args.output,
@@ -285,6 +286,7 @@ def _cmd_scan(args: argparse.Namespace) -> int:
         drop_invalid=args.drop_invalid,
         resolution=args.resolution,
         sites=args.sites,
+        offset=args.offset,
     )
     lv = scene.levelling
     b = scene.plan.bounds
@@ -302,14 +304,52 @@ def _cmd_scan(args: argparse.Namespace) -> int:
     return 0
 
 
+def _scan_resolution(text: str) -> float:
+    """``--resolution``: a number of metres within the floor plan's stated range."""
+    from mjwalk.world.scan.limits import check_resolution
+
+    try:
+        return check_resolution(text, "")
+    except MjwalkError as exc:
+        raise argparse.ArgumentTypeError(str(exc).strip()) from None
+
+
+def _scan_offset(text: str) -> np.ndarray:
+    """``--offset X,Y,Z``: three finite numbers in the scan file's units and axes."""
+    try:
+        values = np.array([float(v) for v in text.split(",")])
+    except ValueError:
+        values = np.array([])
+    if values.shape != (3,) or not np.isfinite(values).all():
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: expected X,Y,Z, three finite numbers in the file's units "
+            "(write --offset=-1,2,3 when it starts with a minus)"
+        )
+    return values
+
+
 def _add_scan_parser(sub) -> None:
+    from mjwalk.world.scan.limits import RESOLUTION_RANGE
+
     p = sub.add_parser("scan", help="turn a laser scan (PLY/PCD/LAS/LAZ/E57/XYZ/PTS) into a scene")
     p.add_argument("scan", type=Path, help="point-cloud file")
     p.add_argument("-o", "--output", type=Path, required=True, help="MJCF scene to write")
     p.add_argument("--units", default="m", help="file units when it does not say: m cm mm in ft")
     p.add_argument("--up", default="+z", help="file up axis when it does not say: +z -z +y -y ...")
     p.add_argument("--sites", type=Path, help="TOML of named sites ([site.NAME] xy = [x, y])")
-    p.add_argument("--resolution", type=float, default=0.02, help="floor-plan grid, metres")
+    p.add_argument(
+        "--resolution",
+        type=_scan_resolution,
+        default=0.02,
+        help=f"floor-plan grid, metres ({RESOLUTION_RANGE[0]}-{RESOLUTION_RANGE[1]}; default 0.02)",
+    )
+    p.add_argument(
+        "--offset",
+        type=_scan_offset,
+        metavar="X,Y,Z",
+        help="subtract this point (file units and axes) from every point first, for a "
+        "georeferenced cloud far from its origin (write --offset=-X,Y,Z when negative)",
+    )
     p.add_argument(
         "--drop-invalid", action="store_true", help="leave out NaN/infinite points (else error)"
     )

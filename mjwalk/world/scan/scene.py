@@ -28,11 +28,13 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from mjwalk._args import check_output_file
 from mjwalk._io import atomic_path
 from mjwalk.errors import ScanError
-from mjwalk.world.scan.level import Levelling, find_floor
+from mjwalk.world.scan.level import Levelling, check_upright, find_floor
+from mjwalk.world.scan.limits import check_plan_size, check_resolution
 from mjwalk.world.scan.obstacles import FloorPlan, floor_plan, rectangles
-from mjwalk.world.scan.read import read_scan, to_metres_z_up
+from mjwalk.world.scan.read import check_options, read_scan, to_metres_z_up
 from mjwalk.world.workplace import OBSTACLE_Z_RANGE
 
 #: Sites are written this far above the floor (a stand site on the floor, as in the shipped
@@ -76,6 +78,8 @@ def read_sites(path: str | Path) -> list[_Site]:
         raise ScanError(f"{path}: sites file not found") from None
     except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
         raise ScanError(f"{path}: not a valid TOML sites file: {exc}") from exc
+    except RecursionError:
+        raise ScanError(f"{path}: {_deepest(path.read_text())}") from None
     extra = set(doc) - {"site"}
     if extra:
         raise ScanError(f"{path}: unknown top-level key(s) {sorted(extra)} (expected [site.NAME])")
@@ -106,9 +110,46 @@ def read_sites(path: str | Path) -> list[_Site]:
     return out
 
 
-def _matrix(levelling: Levelling, scale: float, axes: np.ndarray) -> np.ndarray:
+def _deepest(text: str) -> str:
+    """Where a TOML text nests arrays or inline tables too deeply for Python's reader (which
+    recurses once per level): the line and key of the deepest value."""
+    depth = best = 0
+    line = where = 1
+    key = "?"
+    in_str: str | None = None
+    for ch in text:
+        if ch == "\n":
+            line += 1
+        if in_str:
+            if ch == in_str:
+                in_str = None
+            continue
+        if ch in "\"'":
+            in_str = ch
+        elif ch in "[{":
+            depth += 1
+            if depth > best:
+                best, where = depth, line
+        elif ch in "]}":
+            depth -= 1
+    lines = text.splitlines()
+    if 0 < where <= len(lines) and "=" in lines[where - 1]:
+        key = lines[where - 1].split("=", 1)[0].strip()
+    return (
+        f"line {where}, key {key!r}: values nested {best} deep, deeper than a sites file "
+        "holds (xy = [x, y], scan = [x, y, z]) or Python's TOML reader can read"
+    )
+
+
+def _matrix(
+    levelling: Levelling, scale: float, axes: np.ndarray, offset: np.ndarray | None = None
+) -> np.ndarray:
+    """Scan-file point -> scene: subtract ``offset`` (file units), scale, turn the up axis
+    onto +z, level."""
     pre = np.eye(4)
     pre[:3, :3] = scale * axes
+    if offset is not None:
+        pre[:3, 3] = -(scale * axes) @ np.asarray(offset, dtype=np.float64)
     return levelling.matrix @ pre
 
 
@@ -225,30 +266,38 @@ def build_scene(
     sites: list[_Site] | None = None,
     source: str = "cloud",
     model_name: str = "scan",
+    offset: tuple[float, float, float] | np.ndarray | None = None,
     _read: tuple[np.ndarray, float, np.ndarray] | None = None,
     clock: Callable[[], float] = time.perf_counter,
 ) -> ScanScene:
-    """Make the MJCF scene of a point cloud ``points`` (N, 3) in the file's units and axes.
+    """Make the MJCF scene of a point cloud ``points`` (N, 3) in the file's units and axes
+    (``offset``, file units, subtracted first).
 
     Everything is checked, and the MJCF compiled by MuJoCo, before anything is written.
 
     Raises:
-        ScanError: empty cloud, NaN points, implausible units, no floor, sites off the floor.
+        ScanError: empty cloud, NaN points, stray points or coordinates beyond range,
+            implausible units, resolution out of range, a floor plan too large, no floor, an
+            upside-down cloud, sites off the floor.
     """
     timings: dict[str, float] = {}
+    resolution = check_resolution(resolution)
     t = clock()
     if _read is None:
+        check_options(units, up, source)
         pts, scale, axes = to_metres_z_up(
-            points, units=units, up=up, source=source, drop_invalid=drop_invalid
+            points, units=units, up=up, source=source, drop_invalid=drop_invalid, offset=offset
         )
         timings["validate"] = clock() - t
         t = clock()
     else:
         pts, scale, axes = _read
+    check_plan_size(pts, resolution, source)
     levelling = find_floor(pts, source=source)
     timings["floor"] = clock() - t
     t = clock()
     levelled = levelling.apply(pts)
+    check_upright(levelled, up, source)
     timings["level"] = clock() - t
     t = clock()
     plan = floor_plan(levelled, resolution=resolution)
@@ -256,7 +305,7 @@ def build_scene(
         raise ScanError(f"{source}: no floor found after levelling (no points at z = 0)")
     timings["floor plan"] = clock() - t
     t = clock()
-    matrix = _matrix(levelling, scale, axes)
+    matrix = _matrix(levelling, scale, axes, None if offset is None else np.asarray(offset))
     site_xyyaw: dict[str, tuple[float, float, float]] = {}
     for s in sites or []:
         if s.xy is not None:
@@ -296,10 +345,14 @@ def build_scene(
 
 
 def write_scene(scene: ScanScene, output: str | Path) -> Path:
-    """Write the scene's MJCF atomically (temporary file, then rename)."""
+    """Write the scene's MJCF atomically (temporary file, then rename). A failed write (full
+    disk, file-size limit, permissions) is a ScanError naming the file; nothing is left."""
     output = Path(output)
-    with atomic_path(output) as tmp:
-        tmp.write_text(scene.xml)
+    try:
+        with atomic_path(output) as tmp:
+            tmp.write_text(scene.xml)
+    except OSError as exc:
+        raise ScanError(f"{output}: cannot write the scene: {exc.strerror or exc}") from exc
     return output
 
 
@@ -312,16 +365,20 @@ def scan_to_scene(
     drop_invalid: bool = False,
     resolution: float = 0.02,
     sites: str | Path | None = None,
+    offset: tuple[float, float, float] | np.ndarray | None = None,
 ) -> ScanScene:
     """Read a scan file and write its MJCF scene to ``output``; returns the :class:`ScanScene`.
 
-    The sites file is read and every input checked before any work; nothing is written unless
-    the whole pipeline succeeded.
+    The output path, the options and the sites file are checked before any work; nothing is
+    written unless the whole pipeline succeeded.
     """
     scan = Path(scan)
+    check_output_file(output, "output")
+    resolution = check_resolution(resolution)
+    check_options(units, up, scan)
     site_list = read_sites(sites) if sites is not None else None
     t = time.perf_counter()
-    cloud = read_scan(scan, units=units, up=up, drop_invalid=drop_invalid)
+    cloud = read_scan(scan, units=units, up=up, drop_invalid=drop_invalid, offset=offset)
     t_read = time.perf_counter() - t
     scene = build_scene(
         cloud.points,
@@ -329,6 +386,8 @@ def scan_to_scene(
         resolution=resolution,
         sites=site_list,
         model_name=scan.stem,
+        up=up,
+        offset=cloud.offset,
         _read=(cloud.points, cloud.scale, cloud.axes),
     )
     scene.timings = {"read": t_read, **scene.timings}
