@@ -281,6 +281,7 @@ def _cmd_scan(args: argparse.Namespace) -> int:
     scene = scan_to_scene(
         args.scan,
         args.output,
+        poses=args.poses,
         units=args.units,
         up=args.up,
         drop_invalid=args.drop_invalid,
@@ -291,12 +292,13 @@ def _cmd_scan(args: argparse.Namespace) -> int:
     lv = scene.levelling
     b = scene.plan.bounds
     print(
-        f"{args.scan}: {scene.n_points} points; floor tilt {lv.tilt_deg:.3f} deg removed, "
+        f"{' + '.join(map(str, args.scan))}: {scene.n_points} points; "
+        f"floor tilt {lv.tilt_deg:.3f} deg removed, "
         f"floor x [{b[0]:.2f}, {b[2]:.2f}] y [{b[1]:.2f}, {b[3]:.2f}] m; "
         f"{scene.n_obstacle_boxes} obstacle boxes, {scene.n_void_boxes} void boxes, "
         f"{len(scene.sites)} sites"
     )
-    print("scan -> scene transform (4x4, row-major):")
+    print(f"{args.scan[0]} -> scene transform (4x4, row-major):")
     for row in scene.matrix:
         print("  " + " ".join(f"{v:10.6f}" for v in row))
     print(" ".join(f"{k} {v:.2f} s" for k, v in scene.timings.items()))
@@ -332,7 +334,20 @@ def _add_scan_parser(sub) -> None:
     from mjwalk.world.scan.limits import RESOLUTION_RANGE
 
     p = sub.add_parser("scan", help="turn a laser scan (PLY/PCD/LAS/LAZ/E57/XYZ/PTS) into a scene")
-    p.add_argument("scan", type=Path, help="point-cloud file")
+    p.add_argument(
+        "scan",
+        type=Path,
+        nargs="+",
+        help="point-cloud file(s); several scans of one hall are merged in the first one's "
+        "frame (already registered, or placed by --poses)",
+    )
+    p.add_argument(
+        "--poses",
+        type=Path,
+        metavar="JSON",
+        help='known poses: {"B.ply": 4x4 matrix} taking each named scan (metres, z up) into '
+        "the first scan's frame; scans not named are already in it",
+    )
     p.add_argument("-o", "--output", type=Path, required=True, help="MJCF scene to write")
     p.add_argument("--units", default="m", help="file units when it does not say: m cm mm in ft")
     p.add_argument("--up", default="+z", help="file up axis when it does not say: +z -z +y -y ...")

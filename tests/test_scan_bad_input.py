@@ -257,7 +257,7 @@ def no_scan_work(monkeypatch):
     def fail(*args, **kwargs):
         raise AssertionError("the scan was read before the bad option was refused")
 
-    monkeypatch.setattr("mjwalk.world.scan.scene.read_scan", fail)
+    monkeypatch.setattr("mjwalk.world.scan.merge.read_scan", fail)
 
 
 def test_output_that_is_a_folder_or_under_a_file(room, tmp_path, capsys, no_scan_work):
@@ -301,7 +301,7 @@ def test_floor_plan_too_large_names_a_resolution():
     rng = np.random.default_rng(0)
     pts = np.column_stack([rng.uniform(0, 1800, 5000), rng.uniform(0, 60, 5000), np.zeros(5000)])
     pts[:2500, 2] = rng.uniform(0, 3, 2500)
-    with pytest.raises(ScanError, match=r"cells .*use --resolution 0\.05\d* or coarser"):
+    with pytest.raises(ScanError, match=r"cells .*use --resolution 0\.06\d* or coarser"):
         build_scene(pts, resolution=0.005)
 
 

@@ -34,12 +34,13 @@ MAX_COORDINATE = 1e7
 #: 0.1 m an obstacle's outline, known to half a cell, moves by more than 5 cm, a fifth of the
 #: body radius (0.25 m) the planner keeps.
 RESOLUTION_RANGE = (0.005, 0.10)
-#: Largest floor-plan grid, cells: the grid's arrays take about 60 bytes a cell at their peak
-#: (counts, labels, two Euclidean distance transforms), so 4e7 cells is about 2.4 GB
-#: (200 m x 50 m at 2.5 cm).
-MAX_PLAN_CELLS = 40_000_000
+#: Largest floor-plan grid, cells. The grid's arrays peak at about 85 bytes a cell (counts,
+#: labels, Euclidean distance transforms): measured with tracemalloc on a 62 x 42 m floor at
+#: 1 cm (2.6e7 cells: 2.2 GB, 220 s on the 2-core build machine). 3e7 cells is about 2.6 GB,
+#: e.g. 120 m x 60 m at 2 cm.
+MAX_PLAN_CELLS = 30_000_000
 #: Bytes a floor-plan cell takes at the peak (see :data:`MAX_PLAN_CELLS`).
-PLAN_CELL_BYTES = 60
+PLAN_CELL_BYTES = 85
 
 
 def check_resolution(resolution: float, what: str = "resolution") -> float:

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import time
 import tomllib
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -33,8 +33,9 @@ from mjwalk._io import atomic_path
 from mjwalk.errors import ScanError
 from mjwalk.world.scan.level import Levelling, check_upright, find_floor
 from mjwalk.world.scan.limits import check_plan_size, check_resolution
+from mjwalk.world.scan.merge import merge_scans, read_poses
 from mjwalk.world.scan.obstacles import FloorPlan, floor_plan, rectangles
-from mjwalk.world.scan.read import check_options, read_scan, to_metres_z_up
+from mjwalk.world.scan.read import check_options, to_metres_z_up
 from mjwalk.world.workplace import OBSTACLE_Z_RANGE
 
 #: Sites are written this far above the floor (a stand site on the floor, as in the shipped
@@ -357,7 +358,7 @@ def write_scene(scene: ScanScene, output: str | Path) -> Path:
 
 
 def scan_to_scene(
-    scan: str | Path,
+    scan: str | Path | Sequence[str | Path],
     output: str | Path,
     *,
     units: str = "m",
@@ -366,29 +367,39 @@ def scan_to_scene(
     resolution: float = 0.02,
     sites: str | Path | None = None,
     offset: tuple[float, float, float] | np.ndarray | None = None,
+    poses: str | Path | dict[Path, np.ndarray] | None = None,
 ) -> ScanScene:
-    """Read a scan file and write its MJCF scene to ``output``; returns the :class:`ScanScene`.
+    """Read a scan file, or several of one hall (merged in the first file's frame,
+    :func:`~mjwalk.world.scan.merge.merge_scans`; ``poses`` a JSON file or a dict of 4 x 4
+    poses per file), and write its MJCF scene to ``output``; returns the :class:`ScanScene`
+    (its ``matrix`` maps the first file's points to the scene).
 
-    The output path, the options and the sites file are checked before any work; nothing is
-    written unless the whole pipeline succeeded.
+    The output path, the options, the poses and the sites file are checked before any work;
+    nothing is written unless the whole pipeline succeeded.
     """
-    scan = Path(scan)
+    scans = [Path(scan)] if isinstance(scan, str | Path) else [Path(s) for s in scan]
     check_output_file(output, "output")
     resolution = check_resolution(resolution)
-    check_options(units, up, scan)
+    check_options(units, up, scans[0] if scans else "scan")
+    if isinstance(poses, str | Path):
+        poses = read_poses(poses, scans)
     site_list = read_sites(sites) if sites is not None else None
     t = time.perf_counter()
-    cloud = read_scan(scan, units=units, up=up, drop_invalid=drop_invalid, offset=offset)
+    merged = merge_scans(
+        scans, units=units, up=up, drop_invalid=drop_invalid, offset=offset, poses=poses
+    )
     t_read = time.perf_counter() - t
+    first = merged.first
+    name = str(scans[0]) if len(scans) == 1 else f"{scans[0]} and {len(scans) - 1} more scans"
     scene = build_scene(
-        cloud.points,
-        source=str(scan),
+        merged.points,
+        source=name,
         resolution=resolution,
         sites=site_list,
-        model_name=scan.stem,
+        model_name=scans[0].stem,
         up=up,
-        offset=cloud.offset,
-        _read=(cloud.points, cloud.scale, cloud.axes),
+        offset=first.offset,
+        _read=(merged.points, first.scale, first.axes),
     )
     scene.timings = {"read": t_read, **scene.timings}
     t = time.perf_counter()
