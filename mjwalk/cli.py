@@ -276,12 +276,16 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
 def _cmd_scan(args: argparse.Namespace) -> int:
     from mjwalk.world.scan import scan_to_scene
+    from mjwalk.world.scan.voids import cover, save_top_view
 
     check_output_file(args.output, "-o/--output")
+    if args.png is not None:
+        check_output_file(args.png, "--png", image_suffixes())
     scene = scan_to_scene(
         args.scan,
         args.output,
         poses=args.poses,
+        voids=args.voids,
         units=args.units,
         up=args.up,
         drop_invalid=args.drop_invalid,
@@ -298,6 +302,10 @@ def _cmd_scan(args: argparse.Namespace) -> int:
         f"{scene.n_obstacle_boxes} obstacle boxes, {scene.n_void_boxes} void boxes, "
         f"{len(scene.sites)} sites"
     )
+    print(f"--voids {args.voids}: {cover(scene.plan).line()}")
+    if args.png is not None:
+        save_top_view(scene.plan, args.png)
+        print(f"wrote {args.png} (top view: floor seen, unseen, obstacles, voids)")
     print(f"{args.scan[0]} -> scene transform (4x4, row-major):")
     for row in scene.matrix:
         print("  " + " ".join(f"{v:10.6f}" for v in row))
@@ -368,6 +376,14 @@ def _add_scan_parser(sub) -> None:
     p.add_argument(
         "--drop-invalid", action="store_true", help="leave out NaN/infinite points (else error)"
     )
+    p.add_argument(
+        "--voids",
+        choices=("blocked", "fill", "free"),
+        default="blocked",
+        help="unseen floor: blocked (default: nobody walks where no floor was seen), fill "
+        "(enclosed voids up to 2 m inscribed radius are walkable), free (all walkable)",
+    )
+    p.add_argument("--png", type=Path, help="top view of the floor plan (seen, unseen, voids)")
     p.set_defaults(func=_cmd_scan)
 
 

@@ -36,6 +36,7 @@ from mjwalk.world.scan.limits import check_plan_size, check_resolution
 from mjwalk.world.scan.merge import merge_scans, read_poses
 from mjwalk.world.scan.obstacles import FloorPlan, floor_plan, rectangles
 from mjwalk.world.scan.read import check_options, to_metres_z_up
+from mjwalk.world.scan.voids import apply_policy, check_policy
 from mjwalk.world.workplace import OBSTACLE_Z_RANGE
 
 #: Sites are written this far above the floor (a stand site on the floor, as in the shipped
@@ -268,11 +269,13 @@ def build_scene(
     source: str = "cloud",
     model_name: str = "scan",
     offset: tuple[float, float, float] | np.ndarray | None = None,
+    voids: str = "blocked",
     _read: tuple[np.ndarray, float, np.ndarray] | None = None,
     clock: Callable[[], float] = time.perf_counter,
 ) -> ScanScene:
     """Make the MJCF scene of a point cloud ``points`` (N, 3) in the file's units and axes
-    (``offset``, file units, subtracted first).
+    (``offset``, file units, subtracted first). ``voids`` is the unseen-floor policy
+    (:mod:`~mjwalk.world.scan.voids`: blocked, fill, free).
 
     Everything is checked, and the MJCF compiled by MuJoCo, before anything is written.
 
@@ -283,6 +286,7 @@ def build_scene(
     """
     timings: dict[str, float] = {}
     resolution = check_resolution(resolution)
+    check_policy(voids)
     t = clock()
     if _read is None:
         check_options(units, up, source)
@@ -304,6 +308,7 @@ def build_scene(
     plan = floor_plan(levelled, resolution=resolution)
     if plan is None or not plan.floor.any():
         raise ScanError(f"{source}: no floor found after levelling (no points at z = 0)")
+    plan = apply_policy(plan, voids)
     timings["floor plan"] = clock() - t
     t = clock()
     matrix = _matrix(levelling, scale, axes, None if offset is None else np.asarray(offset))
@@ -334,7 +339,7 @@ def build_scene(
         f"  {_fmt(matrix[2])}\n  {_fmt(matrix[3])}\n"
         f"Obstacles: points {OBSTACLE_Z_RANGE[0]}-{OBSTACLE_Z_RANGE[1]} m above the floor, "
         f"{n_obst} boxes on a {resolution} m grid; voids (unscanned or no floor): {n_void} boxes "
-        f"(group 3); {plan.holes_filled} small unscanned holes counted as floor."
+        f"(group 3, policy {voids}); {plan.holes_filled} small unscanned holes counted as floor."
     )
     xml = _mjcf(plan, boxes, site_xyyaw, header, matrix, model_name)
     try:
@@ -368,6 +373,7 @@ def scan_to_scene(
     sites: str | Path | None = None,
     offset: tuple[float, float, float] | np.ndarray | None = None,
     poses: str | Path | dict[Path, np.ndarray] | None = None,
+    voids: str = "blocked",
 ) -> ScanScene:
     """Read a scan file, or several of one hall (merged in the first file's frame,
     :func:`~mjwalk.world.scan.merge.merge_scans`; ``poses`` a JSON file or a dict of 4 x 4
@@ -380,6 +386,7 @@ def scan_to_scene(
     scans = [Path(scan)] if isinstance(scan, str | Path) else [Path(s) for s in scan]
     check_output_file(output, "output")
     resolution = check_resolution(resolution)
+    check_policy(voids)
     check_options(units, up, scans[0] if scans else "scan")
     if isinstance(poses, str | Path):
         poses = read_poses(poses, scans)
@@ -399,6 +406,7 @@ def scan_to_scene(
         model_name=scans[0].stem,
         up=up,
         offset=first.offset,
+        voids=voids,
         _read=(merged.points, first.scale, first.axes),
     )
     scene.timings = {"read": t_read, **scene.timings}
