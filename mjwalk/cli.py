@@ -303,6 +303,15 @@ def _cmd_scan(args: argparse.Namespace) -> int:
         f"{len(scene.sites)} sites"
     )
     print(f"--voids {args.voids}: {cover(scene.plan).line()}")
+    if lv.surfaces:
+        shown = ", ".join(
+            f"{s.height:+.2f} m ({s.area:.1f} m² at {s.x:.1f}, {s.y:.1f})" for s in lv.surfaces[:8]
+        )
+        more = f" and {len(lv.surfaces) - 8} more" if len(lv.surfaces) > 8 else ""
+        print(
+            f"other horizontal surfaces one could stand on (one level only: they stay "
+            f"obstacles or floor): {shown}{more}"
+        )
     if args.png is not None:
         save_top_view(scene.plan, args.png)
         print(f"wrote {args.png} (top view: floor seen, unseen, obstacles, voids)")

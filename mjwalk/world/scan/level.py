@@ -43,6 +43,13 @@ FLOOR_SHARE = 0.25
 #: Voxels whose centroid is farther than this from the fitted floor plane are refit outliers,
 #: metres (6 sigma of a 5 mm range noise).
 PLANE_TOL = 0.03
+#: Smallest horizontal surface reported as one a person could stand on, square metres: a
+#: 0.6 m square, the shoulder breadth of a 95th-percentile man (about 0.52 m, DIN 33402-2)
+#: rounded up.
+STAND_AREA = 0.36
+#: Surfaces higher above the floor than this are not reported (ceilings, lamps, overhead
+#: pipework: the top of the obstacle band, ``OBSTACLE_Z_RANGE``), metres.
+MAX_SURFACE_HEIGHT = 2.0
 #: Points a voxel needs for its local-PCA normal (a plane through fewer is noise).
 MIN_VOXEL_POINTS = 5
 #: A levelled cloud is upside down when more of its points lie this far below the floor than
@@ -58,6 +65,18 @@ MAX_NORMAL_POINTS = 1_000_000
 
 
 @dataclass(frozen=True)
+class Surface:
+    """A horizontal surface other than the floor: ``height`` above the floor (metres, median
+    of its voxels), ``area`` (square metres) and its middle ``x``, ``y`` (the cloud's frame,
+    metres)."""
+
+    height: float
+    area: float
+    x: float
+    y: float
+
+
+@dataclass(frozen=True)
 class Levelling:
     """The rigid transform that levels a scan: ``p_scene = rotation @ (p - pivot) + target``.
 
@@ -69,6 +88,9 @@ class Levelling:
         tilt_deg: angle between the floor's normal and +z, degrees.
         floor_area: area of the floor's walk surface found, square metres.
         rms: rms distance of the floor voxels' centroids from the plane, metres.
+        surfaces: the other walk surfaces of at least :data:`STAND_AREA` up to the top of the
+            obstacle band (platforms, steps, pits, table tops), largest first; levels stay
+            single, so they are reported, not walked on.
     """
 
     rotation: np.ndarray
@@ -78,6 +100,7 @@ class Levelling:
     tilt_deg: float
     floor_area: float
     rms: float
+    surfaces: tuple[Surface, ...] = ()
 
     @property
     def matrix(self) -> np.ndarray:
@@ -334,6 +357,16 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
     pivot = np.array([xy[0], xy[1], pz]) + ref
     rotation = _rotation_onto_z(normal)
     tilt = float(np.degrees(np.arccos(np.clip(normal[2], -1.0, 1.0))))
+    surfaces = []
+    for k in np.argsort(-area):
+        if k == floor or area[k] < STAND_AREA:
+            continue
+        members = surf[lab == k]
+        h = float(np.median((vn.centroid[members] - centre) @ normal))
+        if h > MAX_SURFACE_HEIGHT or abs(h) <= PLANE_TOL:
+            continue
+        mx, my = np.median(vn.centroid[members, :2], axis=0) + ref[:2]
+        surfaces.append(Surface(h, float(area[k]), float(mx), float(my)))
     return Levelling(
         rotation=rotation,
         pivot=pivot,
@@ -342,6 +375,7 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
         tilt_deg=tilt,
         floor_area=float(area[floor]),
         rms=rms,
+        surfaces=tuple(surfaces),
     )
 
 
