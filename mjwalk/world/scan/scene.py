@@ -29,7 +29,7 @@ import mujoco
 import numpy as np
 
 from mjwalk._args import check_output_file
-from mjwalk._io import atomic_path
+from mjwalk._io import atomic_path, read_toml
 from mjwalk.errors import ScanError
 from mjwalk.world.scan.level import Levelling, check_upright, find_floor
 from mjwalk.world.scan.limits import check_plan_size, check_resolution
@@ -74,14 +74,10 @@ class _Site:
 def read_sites(path: str | Path) -> list[_Site]:
     """Parse a sites TOML (format in the module docstring). Raises ScanError naming the key."""
     path = Path(path)
-    try:
-        doc = tomllib.loads(path.read_text())
-    except FileNotFoundError:
-        raise ScanError(f"{path}: sites file not found") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+    try:  # missing, oversized, non-UTF-8 or too deeply nested: ScanError naming the key
+        doc, _ = read_toml(path, "sites", ScanError)
+    except tomllib.TOMLDecodeError as exc:
         raise ScanError(f"{path}: not a valid TOML sites file: {exc}") from exc
-    except RecursionError:
-        raise ScanError(f"{path}: {_deepest(path.read_text())}") from None
     extra = set(doc) - {"site"}
     if extra:
         raise ScanError(f"{path}: unknown top-level key(s) {sorted(extra)} (expected [site.NAME])")
@@ -110,37 +106,6 @@ def read_sites(path: str | Path) -> list[_Site]:
         scan = tuple(float(v) for v in val) if key == "scan" else None
         out.append(_Site(str(name), xy, scan, float(yaw)))  # type: ignore[arg-type]
     return out
-
-
-def _deepest(text: str) -> str:
-    """Where a TOML text nests arrays or inline tables too deeply for Python's reader (which
-    recurses once per level): the line and key of the deepest value."""
-    depth = best = 0
-    line = where = 1
-    key = "?"
-    in_str: str | None = None
-    for ch in text:
-        if ch == "\n":
-            line += 1
-        if in_str:
-            if ch == in_str:
-                in_str = None
-            continue
-        if ch in "\"'":
-            in_str = ch
-        elif ch in "[{":
-            depth += 1
-            if depth > best:
-                best, where = depth, line
-        elif ch in "]}":
-            depth -= 1
-    lines = text.splitlines()
-    if 0 < where <= len(lines) and "=" in lines[where - 1]:
-        key = lines[where - 1].split("=", 1)[0].strip()
-    return (
-        f"line {where}, key {key!r}: values nested {best} deep, deeper than a sites file "
-        "holds (xy = [x, y], scan = [x, y, z]) or Python's TOML reader can read"
-    )
 
 
 def _matrix(
@@ -352,13 +317,11 @@ def build_scene(
 
 def write_scene(scene: ScanScene, output: str | Path) -> Path:
     """Write the scene's MJCF atomically (temporary file, then rename). A failed write (full
-    disk, file-size limit, permissions) is a ScanError naming the file; nothing is left."""
+    disk, file-size limit, permissions) is a WriteError naming the file (:func:`atomic_path`);
+    nothing is left."""
     output = Path(output)
-    try:
-        with atomic_path(output) as tmp:
-            tmp.write_text(scene.xml)
-    except OSError as exc:
-        raise ScanError(f"{output}: cannot write the scene: {exc.strerror or exc}") from exc
+    with atomic_path(output) as tmp:
+        tmp.write_text(scene.xml)
     return output
 
 

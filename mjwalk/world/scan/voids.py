@@ -87,7 +87,7 @@ def cover(plan: FloorPlan) -> FloorCover:
 
 def save_top_view(plan: FloorPlan, path: str | Path, title: str = "") -> Path:
     """A top view of the plan (floor seen, unseen but walkable, obstacles, voids) as an
-    image, written atomically; a failed write is a ScanError naming the file."""
+    image, written atomically; a failed write is a WriteError naming the file."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -128,8 +128,6 @@ def save_top_view(plan: FloorPlan, path: str | Path, title: str = "") -> Path:
     try:
         with atomic_path(path) as tmp:
             fig.savefig(tmp, dpi=120, bbox_inches="tight")
-    except OSError as exc:
-        raise ScanError(f"{path}: cannot write the top view: {exc.strerror or exc}") from exc
     finally:
         plt.close(fig)
     return path
