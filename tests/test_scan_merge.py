@@ -115,3 +115,27 @@ def test_the_same_scan_twice_is_refused(tmp_path):
     (tmp_path / "a.xyz").write_text("0 0 0\n")
     with pytest.raises(ScanError, match="given twice"):
         merge_scans([tmp_path / "a.xyz", tmp_path / "a.xyz"])
+
+
+def test_shared_room_scan_split_in_two_views_with_poses(shared_data, tmp_path):
+    """The PCL room scan (one station) split by azimuth into two views overlapping by 60°,
+    the second moved by a known pose into a frame of its own, written as two PCDs: merged with
+    --poses it gives the scene of the whole scan, box for box."""
+    from mjwalk.world.scan import read_scan
+
+    src = shared_data / "scans" / "pcl-room-scan" / "room_scan1.pcd"
+    pts = read_scan(src).points
+    az = np.degrees(np.arctan2(pts[:, 1], pts[:, 0])) % 360
+    a, b = pts[az < 210], pts[az >= 150]
+    move = _rigid(25, [1.2, -0.7, 0.1])
+    files = [
+        _write_format(tmp_path / "a.pcd", a),
+        _write_format(tmp_path / "b.pcd", b @ move[:3, :3].T + move[:3, 3]),
+    ]
+    (tmp_path / "poses.json").write_text(json.dumps({"b.pcd": np.linalg.inv(move).tolist()}))
+    merged = scan_to_scene(files, tmp_path / "room.xml", poses=tmp_path / "poses.json")
+    whole = build_scene(np.vstack([a, b]), source="whole")
+    assert merged.levelling.tilt_deg == pytest.approx(whole.levelling.tilt_deg, abs=0.01)
+    assert merged.n_obstacle_boxes == pytest.approx(whole.n_obstacle_boxes, rel=0.02)
+    one_view = build_scene(a, source="one view")
+    assert one_view.plan.void.sum() > merged.plan.void.sum()
