@@ -439,7 +439,9 @@ def _add_scan_parser(sub) -> None:
     )
     p.add_argument("-o", "--output", type=Path, required=True, help="MJCF scene to write")
     p.add_argument("--units", default="m", help="file units when it does not say: m cm mm in ft")
-    p.add_argument("--up", default="+z", help="file up axis when it does not say: +z -z +y -y ...")
+    p.add_argument(
+        "--up", default="+z", help="file up axis when it does not say: +z, -z, +y, ... (--up=-z)"
+    )
     p.add_argument("--sites", type=Path, help="TOML of named sites ([site.NAME] xy = [x, y])")
     p.add_argument(
         "--resolution",
