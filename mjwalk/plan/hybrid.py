@@ -264,6 +264,11 @@ _HEADING_PROBES = 0.3 * np.stack([np.cos(_HEADING_ANGLES), np.sin(_HEADING_ANGLE
 #: smaller deviation angle 64 % of the time instead of 88 %, the cited logistic model 93 %).
 HEADING_WEIGHT = 5.2
 
+#: Turning speed on the spot (rad/s) of a walker who sets off facing away from the way
+#: (``plan(turn_on_spot=True)``): ASSUMPTION, a half turn in about two steps (1.06 s at
+#: 113 steps/min), as the cycle turns an operator (``mjwalk.cycle.poses.TURN_SPEED``).
+ON_SPOT_TURN_SPEED = math.pi
+
 #: Walk-to-walk spread of a person's pace with the energy cost: each walk's preferred speed is
 #: the walker's times exp(N(0, WALK_PACE_SD²)), as the virtual subjects vary theirs from bout
 #: to bout (:func:`mjwalk.gait.corpus.sample_subject`, ``speed_sd`` uniform 0.03-0.06).
@@ -628,7 +633,9 @@ class HybridPlanner:
 
     # -- search ----------------------------------------------------------------------------
 
-    def plan(self, start, rng: np.random.Generator, *, model=None, spot=None) -> WalkPath:
+    def plan(
+        self, start, rng: np.random.Generator, *, model=None, spot=None, turn_on_spot=False
+    ) -> WalkPath:
         """Plan one walk from ``start`` (site, "x,y", "x,y,yaw_deg" or (x, y[, yaw])).
 
         ``model``: sample the steps from this step model instead of the planner's (e.g. the
@@ -641,6 +648,17 @@ class HybridPlanner:
         goal discs, ``goal_within``); the point must lie in that area (where the walker means
         to stand in a stand zone: :func:`mjwalk.cycle.walking.plan_task_walk`). The distance
         field stays the goal's: a spot costs no new field.
+
+        ``turn_on_spot`` (with a start yaw): the walker stands facing the start yaw and sets
+        off as without one (its first step anywhere within :data:`START_SPREAD` of the
+        downhill heading, :meth:`default_heading`), but the turn on the spot from the start
+        yaw to the first step's heading costs its time at :data:`ON_SPOT_TURN_SPEED` times
+        the walk's pace (metres, as the steps), against the heading term
+        (:data:`HEADING_WEIGHT`) of setting off away from the goal: the search weighs turning
+        first against turning while walking. The draws are those of a walk without a yaw. Without it a start yaw is the
+        heading of the first step's frame (a walker already walking that way). The walk's
+        first sample faces where the turn ended (``yaw[0]``): the turn itself is the caller's
+        (the cycle animates it).
 
         When the open list runs dry (every sampled continuation blocked, which happens now and
         then in tight places), the search starts over with fresh samples, up to ``attempts``
@@ -662,7 +680,7 @@ class HybridPlanner:
         exhausted = 0
         for attempt in range(limit):
             try:
-                path, start_distance = self._plan_once(pose, rng, model, spot, pace)
+                path, start_distance = self._plan_once(pose, rng, model, spot, pace, turn_on_spot)
             except _Exhausted as exc:
                 exhausted += 1
                 if exhausted >= self.attempts or attempt == limit - 1:
@@ -688,7 +706,13 @@ class HybridPlanner:
         return best
 
     def _plan_once(
-        self, pose, rng: np.random.Generator, model, spot=None, pace: float = math.nan
+        self,
+        pose,
+        rng: np.random.Generator,
+        model,
+        spot=None,
+        pace: float = math.nan,
+        turn_on_spot: bool = False,
     ) -> tuple[WalkPath, float]:
         """One search: the walk and the obstacle-aware distance (m) from its start to the goal
         (to the ``spot`` of :meth:`plan`, checked there, when given). ``pose``: the start's
@@ -703,7 +727,8 @@ class HybridPlanner:
                 f"({start_xy[0]:.3f}, {start_xy[1]:.3f}) in {self.workplace.name}: no "
                 f"collision-free route for body radius {self.radius} m"
             )
-        free_heading = start_yaw is None
+        free_heading = start_yaw is None or turn_on_spot
+        facing = start_yaw  # the heading the walker stands at before any turn on the spot
         if free_heading:
             start_yaw = self.default_heading(start_xy, None if spot is None else spot[:2])
         dec = self._decoder(model)
@@ -746,6 +771,10 @@ class HybridPlanner:
         frame0 = np.full(len(z0), float(start_yaw))
         if free_heading:  # the walker may set off anywhere around the downhill heading
             frame0 += rng.uniform(-START_SPREAD, START_SPREAD, len(frame0))
+        if turn_on_spot and facing is not None:  # the turn there from the walker's heading
+            walk_pace = pace if math.isfinite(pace) else preferred_speed(model)
+            par[stepcheck.P_START_YAW] = float(facing)
+            par[stepcheck.P_TURN_COST] = walk_pace / ON_SPOT_TURN_SPEED
         weight = self.heuristic_weight
         # as stepcheck.check_steps bounds a node: the field's distance, the straight line to
         # the goal point

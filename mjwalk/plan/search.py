@@ -31,7 +31,8 @@ test by squares; the grid bound less a walk's spot offset, P_DIST_OFFSET; the en
 P_PACE and stepcheck.step_energy, not for starters and closing steps; the decoder's
 real columns by one stepcheck._decode_real; issue 38: the heading term,
 P_HEADING_WEIGHT and stepcheck.heading_factor, while the goal is in sight: the
-sight flags after the bounds in the flat distance field, stepcheck._grid_sight).
+sight flags after the bounds in the flat distance field, stepcheck._grid_sight; a
+starter's turn on the spot, P_START_YAW and P_TURN_COST).
 """
 
 from __future__ import annotations

@@ -72,8 +72,10 @@ from mjwalk.world.clearance import bilinear_at
     P_PACE,  # the walker's preferred speed (m/s) of the energy cost; nan: length cost only
     P_HEADING_WEIGHT,  # weight of the squared heading error (heading_factor); nan or 0: none
     P_HEADING_FROM,  # the heading term stops this close (m) to the goal point
+    P_START_YAW,  # the walker's heading (world radians) before a turn on the spot
+    P_TURN_COST,  # cost (m per radian) of a starter's turn on the spot from it; nan: none
     P_DISC0,  # goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal)
-) = range(42)
+) = range(44)
 #: Most discs the goal area can be cut by (:func:`in_goal`); their count is I_N_DISCS. A
 #: planner takes one fewer (``goal_within``): a walk to a spot keeps the planner's own goal
 #: area as one more disc (:meth:`~mjwalk.plan.hybrid.HybridPlanner.plan`).
@@ -662,6 +664,10 @@ def check_into(
             # landed foot) nor of a closing step, which set off from and come to a stand;
             # the duration is the decoder's last column
             seg = step_energy(seg, _decode_real(z, r, matrix, offset, 2 * m + 2), pace)
+        if par[P_TURN_COST] > 0.0 and math.isnan(node[i, 1].real):
+            # a starter set off after a turn on the spot from the walker's heading: its time
+            turned = (fr - par[P_START_YAW] + math.pi) % (2.0 * math.pi) - math.pi
+            seg += par[P_TURN_COST] * abs(turned)
         ex, ey = end.real, end.imag
         h = math.hypot(ex - goal.real, ey - goal.imag)
         if ipar[I_DIJKSTRA]:
