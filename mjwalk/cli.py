@@ -3,18 +3,25 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+import tempfile
+import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
+from mjwalk import _log
 from mjwalk._args import (
     arg_count,
+    arg_fps,
     arg_fraction,
     arg_jobs,
     arg_point,
     arg_positive_float,
     arg_positive_int,
+    arg_seed,
     arg_video_side,
     check_output_dir,
     check_output_file,
@@ -28,6 +35,7 @@ from mjwalk.errors import InputError, MjwalkError
 #: Video files ``mjwalk render`` writes (H.264 in MP4).
 VIDEO_SUFFIXES = (".mp4",)
 _SCENES = "station, corridor, open_floor"
+QUIET_HELP = "no progress messages or bars (warnings and errors only)"
 
 
 def _load_model(path: Path | None):
@@ -164,13 +172,13 @@ def _cmd_train(args: argparse.Namespace) -> int:
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
-    from mjwalk.gait.fidelity import validate_main
+    from mjwalk.gait.fidelity import format_fidelity_table, validate_main
     from mjwalk.plan.straight import planned_straight_walks
 
     if args.json:
         check_output_file(args.json, "--json")
     walker = _walker_from_args(args)
-    validate_main(
+    report = validate_main(
         args.model,
         args.against,
         args.json,
@@ -180,7 +188,32 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         walker=walker,
         planned_walks=planned_straight_walks,
     )
+    print(format_fidelity_table(report))
     return 0
+
+
+#: Seconds to wait for a Dask scheduler to answer before ``--scheduler`` gives up.
+SCHEDULER_TIMEOUT_S = 10.0
+
+
+def _dask_client(address: str):
+    """A ``dask.distributed.Client`` of the scheduler at ``address``, or a clear error (the
+    extra not installed, the scheduler not answering) before any work."""
+    try:
+        from distributed import Client
+    except ImportError:
+        raise InputError(
+            f"--scheduler {address}: Dask is not installed here; "
+            'pip install "mjwalk[cluster]" (and mjwalk on the workers)'
+        ) from None
+    try:
+        return Client(address, timeout=SCHEDULER_TIMEOUT_S)
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
+        raise InputError(
+            f"--scheduler {address}: no Dask scheduler answered within "
+            f"{SCHEDULER_TIMEOUT_S:.0f} s ({type(exc).__name__}: {exc}); give its address as "
+            "tcp://HOST:PORT (dask scheduler prints it)"
+        ) from None
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
@@ -206,20 +239,32 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         f"{which}, seed {args.seed}",
         flush=True,
     )
-    if args.dry_run:
-        print(f"  {spec.path} and --out {args.out} checked; nothing simulated (--dry-run)")
-        return 0
-    # builds (or loads) the default models once, with progress; the runs in this process reuse it
-    ctx = context_of(spec)
-    results = simulate_cycles(
-        spec,
-        args.runs,
-        seed=args.seed,
-        n_jobs=args.jobs,
-        progress=not args.quiet,
-        only=only,
-        on_error="record",  # one unplannable run does not end a long batch; the report lists it
-    )
+    client = None if args.scheduler is None else _dask_client(args.scheduler)
+    try:
+        if args.dry_run:
+            print(f"  {spec.path} and --out {args.out} checked; nothing simulated (--dry-run)")
+            return 0
+        # builds (or loads) the default models once, with progress; this process reuses them
+        ctx = context_of(spec)
+        batch: dict[str, Any] = dict(
+            seed=args.seed,
+            n_jobs=args.jobs,
+            progress=not args.quiet,
+            only=only,
+            on_error="record",  # one unplannable run does not end a long batch; the report lists it
+        )
+        if client is None:
+            results = simulate_cycles(spec, args.runs, **batch)
+        else:
+            import joblib
+
+            # the spec goes to the workers in memory; its scene and model files must be at the
+            # same paths there (a shared file system), as for any Dask job reading files
+            with joblib.parallel_config(backend="dask"):
+                results = simulate_cycles(spec, args.runs, **{**batch, "n_jobs": -1})
+    finally:
+        if client is not None:
+            client.close()
     files = write_report(results, args.out, workplace=ctx.workplace)
     print(format_summary(report_dict(results)))
     for name, path in files.items():
@@ -317,14 +362,19 @@ def _add_scan_parser(sub) -> None:
 
 
 def _cmd_scene_import(args: argparse.Namespace) -> int:
-    from mjwalk.world.meshimport import import_scene
+    from mjwalk.world.meshimport import check_threshold, import_scene
 
+    check_threshold(args.threshold, "--threshold")
+    check_output_file(args.output, "-o/--output", (".xml",))
     result = import_scene(
         args.source, args.output, units=args.units, up=args.up, threshold=args.threshold
     )
     for name, parts in result.parts.items():
         print(f"  {name}: concave, {parts} convex parts for MuJoCo's collision")
-    print(f"wrote {args.output} ({len(result.files)} part meshes in {result.mesh_dir})")
+    print(
+        f"wrote {args.output} ({sum(result.parts.values())} convex parts of "
+        f"{len(result.parts)} concave meshes, inline)"
+    )
     return 0
 
 
@@ -351,10 +401,18 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("plan", help="plan a walk between two points or sites of a scene")
     p.add_argument("scene", type=Path, help=f"MJCF scene file, or a shipped scene: {_SCENES}")
     p.add_argument(
-        "--from", dest="start", required=True, type=arg_point, help="start: X,Y (metres) or a site"
+        "--from",
+        dest="start",
+        required=True,
+        type=arg_point,
+        help="start: a site, or X,Y (metres); a site whose name reads as X,Y wins",
     )
     p.add_argument(
-        "--to", dest="goal", required=True, type=arg_point, help="goal: X,Y (metres) or a site"
+        "--to",
+        dest="goal",
+        required=True,
+        type=arg_point,
+        help="goal: a site, or X,Y (metres); a site whose name reads as X,Y wins",
     )
     p.add_argument(
         "--radius",
@@ -379,7 +437,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="step cost: length weighted by the energy of its pace (energy, default), the "
         "paper's straight length (chord) or the pelvis arc (path)",
     )
-    p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same walks)")
+    p.add_argument(
+        "--seed",
+        type=arg_seed,
+        default=0,
+        help="random seed, a whole number >= 0 (same seed, same walks)",
+    )
     p.add_argument("--footprints", action="store_true", help="draw the footprints too")
     p.add_argument("--save", type=Path, help="save each walk as NAME_NNN.npz (for mjwalk render)")
     _add_walker_args(p)
@@ -389,7 +452,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("spec", type=Path, help="cycle specification (TOML), or 'station' (shipped)")
     p.add_argument("--runs", type=arg_positive_int, default=50, help="cycles to simulate (50)")
     p.add_argument("--out", type=Path, default=Path("out"), help="report folder (out/)")
-    p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same report)")
+    p.add_argument(
+        "--seed",
+        type=arg_seed,
+        default=0,
+        help="random seed, a whole number >= 0 (same seed, same report)",
+    )
     p.add_argument("--jobs", type=arg_jobs, default=-1, help="parallel processes (-1: all cores)")
     p.add_argument(
         "--only-run",
@@ -400,9 +468,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--dry-run", action="store_true", help="check the cycle and --out, simulate nothing"
     )
+    p.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="run the batch on an existing Dask cluster (tcp://HOST:PORT of its scheduler; the "
+        "workers need mjwalk and the scene's files at the same paths); same results as a local run",
+    )
     p.add_argument("--video", action="store_true", help="also render one cycle to cycle.mp4")
     p.add_argument("--camera", choices=["track", "top"], default="track")
-    p.add_argument("--quiet", action="store_true", help="no progress bars")
+    p.add_argument("--quiet", action="store_true", help=QUIET_HELP)
     p.add_argument("--json-summary", action="store_true", help=argparse.SUPPRESS)
     p.set_defaults(func=_cmd_simulate)
 
@@ -416,7 +490,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("-o", "--output", type=Path, required=True, help="video file to write (.mp4)")
     p.add_argument("--camera", choices=["track", "top"], default="track")
-    p.add_argument("--fps", type=arg_positive_float, default=30.0)
+    p.add_argument("--fps", type=arg_fps, default=30.0, help="frames per second, up to 240 (30)")
     p.add_argument("--width", type=arg_video_side, default=640, help="pixels, even (640)")
     p.add_argument("--height", type=arg_video_side, default=480, help="pixels, even (480)")
     p.add_argument(
@@ -425,7 +499,7 @@ def build_parser() -> argparse.ArgumentParser:
         default=DEFAULT_STATURE,
         help="humanoid stature in metres",
     )
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--quiet", action="store_true", help=QUIET_HELP)
     p.set_defaults(func=_cmd_render)
 
     p = sub.add_parser("train", help="train a step model from capture or virtual subjects")
@@ -443,7 +517,7 @@ def build_parser() -> argparse.ArgumentParser:
         "the paper keeps >= 0.95, better for small captures)",
     )
     p.add_argument("--skeleton", help="skeleton preset: bandai, cmu, cmu_bvh")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--seed", type=arg_seed, default=0)
     p.add_argument("-o", "--output", type=Path, required=True, help="model file to write")
     p.set_defaults(func=_cmd_train)
 
@@ -453,11 +527,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--asf", help="ASF skeleton for AMC files")
     p.add_argument("--skeleton", help="skeleton preset: bandai, cmu, cmu_bvh")
     p.add_argument("--json", type=Path, help="write the report as JSON here")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--seed", type=arg_seed, default=0)
     _add_walker_args(p)
     p.set_defaults(func=_cmd_validate)
     _add_scan_parser(sub)
     _add_scene_import_parser(sub)
+    for cmd in sub.choices.values():
+        if not any("--quiet" in a.option_strings for a in cmd._actions):
+            cmd.add_argument("--quiet", action="store_true", help=QUIET_HELP)
     return parser
 
 
@@ -465,6 +542,10 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else argv
     args = parser.parse_args(join_negative_values(argv, ("--from", "--to")))
+    _log.configure(quiet=args.quiet)
+    # one compile notice for the command, whichever of its processes compiles first
+    mark = Path(tempfile.gettempdir()) / f"mjwalk-notice-{os.getpid()}-{time.time_ns()}"
+    os.environ[_log.NOTICE_ENV] = str(mark)
     try:
         return args.func(args)
     except MjwalkError as exc:
@@ -473,6 +554,9 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("mjwalk: interrupted", file=sys.stderr)
         return 130
+    finally:
+        os.environ.pop(_log.NOTICE_ENV, None)
+        mark.unlink(missing_ok=True)
 
 
 if __name__ == "__main__":

@@ -2,8 +2,8 @@
 
 One cycle (:func:`simulate_cycle`) walks the task list of a :class:`CycleSpec`: each ``walk`` /
 ``carry`` task is planned with the probabilistic hybrid A* (and, for the report, the grid-A*
-route between the same sites); the operator turns on the spot towards the walk's first heading
-and, at its end, towards the site's facing direction; each ``pick`` / ``place`` / ``fasten``
+route between the walk's own two ends); the operator turns on the spot towards the walk's first
+heading and, at its end, towards the site's facing direction; each ``pick`` / ``place`` / ``fasten``
 task is an arm reach from the current standing pose to the site (the :class:`ReachModel`, PCA +
 DCS, alzubi-sommer), a hold (the task's duration) and the return. Everything is laid on one
 timeline of humanoid poses (``fps`` frames per second), checked for humanoid-vs-scene contacts
@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from mjwalk._args import as_generator, check_seed
 from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.cycle.handling import REACH_CASE, RETURN_CASE, reach_duration, task_factor
 from mjwalk.cycle.spec import check_durations
@@ -116,10 +117,10 @@ def simulate_cycle(
         PlanningError: a walk cannot be planned (the spec is checked before, so this means an
             unreachable site); MjwalkError for model files.
     """
+    rng = as_generator(rng, "simulate_cycle: rng")  # before any work
     ctx = spec if isinstance(spec, CycleContext) else prepare(spec)
     spec = ctx.spec
     check_durations(spec.tasks)
-    rng = np.random.default_rng(rng)
     # side streams spawned from the run's generator (its own draws, the walks, are unchanged):
     # the operator, the task-time factors, where the operator stands (at the start, then the
     # spot each walk aims at: plan_task_walk)
@@ -170,6 +171,9 @@ def simulate_cycle(
             frames.append(turn)
             t += dt
             yaw = face
+            # the grid-A* route between the walk's own ends (not the sites' marks: the walk
+            # starts and ends where the operator stands), for the report's ``vs A*``
+            base = ctx.baseline_route(path.xy[0], path.xy[-1])
             walks.append(
                 WalkRecord(
                     task=i,
@@ -177,7 +181,8 @@ def simulate_cycle(
                     start_site=here,
                     goal_site=goal,
                     path=path,
-                    baseline_length=ctx.baseline(here, goal),
+                    baseline_length=float("nan") if base is None else base.length,
+                    baseline=base,
                 )
             )
             here = goal
@@ -343,6 +348,7 @@ def simulate_cycles(
             f"simulate_cycles: run indices must lie in 0..{runs - 1} (of {runs} runs), "
             f"got {bad or 'none'}"
         )
+    seed = check_seed(seed, "simulate_cycles: seed")
     if on_error not in ("raise", "record"):
         raise InputError(f"simulate_cycles: on_error must be 'raise' or 'record', got {on_error!r}")
     jobs = (delayed(_run_one)(job_spec, k, seed, collisions, on_error) for k in indices)

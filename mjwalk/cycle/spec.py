@@ -75,6 +75,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mjwalk._io import read_toml
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.cycle.population import HUMANOID_STATURE_RANGE, Population, parse_population
 from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task
@@ -107,6 +108,17 @@ def grip_sites(site: str, hand: str) -> list[tuple[str, str]]:
 #: an hour bounds the simulated timeline at 108 000 frames at 30 fps (about 60 MB of poses),
 #: where ``duration = 1e12`` asked for petabytes.
 MAX_CYCLE_SECONDS = 3600.0
+
+#: Longest name, site, route, part or other label in a cycle file, characters: MJCF names and
+#: report labels are identifiers and short phrases, and each is printed in the report's tables,
+#: CSV rows and plot titles (a 1 MB name took 77 s and 0.93 GB for one 4.8 s cycle).
+MAX_LABEL_CHARS = 256
+#: Longest file path (``scene``, the models), characters: Linux's PATH_MAX.
+MAX_PATH_CHARS = 4096
+#: Most tasks (and entries of any list) a cycle file may have: an hour-long cycle
+#: (:data:`MAX_CYCLE_SECONDS`) of one-second tasks.
+MAX_TASKS = 3600
+_PATH_KEYS = ("scene", "step", "reach", "reach_right")
 
 _TOP_KEYS = (
     "name", "scene", "start", "takt", "humanoid", "models", "walking", "population", "task"
@@ -274,6 +286,14 @@ class _Checker:
     def file(self, data: dict, key: str, base: Path, table: str = "") -> Path:
         rel = self.string(data, key, table)
         resolved = (base / rel).resolve()
+        if resolved.is_dir():
+            raise self.fail(
+                f"key {key!r} {self.where(table, None)}: {rel!r} is a folder, not a file "
+                f"({resolved})",
+                table,
+                None,
+                key,
+            )
         if not resolved.is_file():
             raise self.fail(
                 f"key {key!r} {self.where(table, None)}: file {rel!r} not found "
@@ -283,6 +303,64 @@ class _Checker:
                 key,
             )
         return resolved
+
+
+def _check_lengths(check: _Checker, data: dict) -> None:
+    """Raise naming the key of the first string (value or key) longer than
+    :data:`MAX_LABEL_CHARS` (:data:`MAX_PATH_CHARS` for file paths) and of a list longer than
+    :data:`MAX_TASKS`: before anything else reads or prints them."""
+
+    def visit(value, table: str, index: int | None, key: str) -> None:
+        if isinstance(value, str):
+            limit = MAX_PATH_CHARS if key in _PATH_KEYS else MAX_LABEL_CHARS
+            if len(value) > limit:
+                what = "a file path" if key in _PATH_KEYS else "a name, key or label"
+                raise check.fail(
+                    f"key {_short(key)!r} {check.where(table, index)}: a text of {len(value)} "
+                    f"characters; {what} may have at most {limit}",
+                    table,
+                    index,
+                    key,
+                )
+        elif isinstance(value, list):
+            if len(value) > MAX_TASKS:
+                raise check.fail(
+                    f"key {_short(key)!r} {check.where(table, index)} has {len(value)} entries, "
+                    f"more than {MAX_TASKS}",
+                    table,
+                    index,
+                    key,
+                )
+            for v in value:
+                visit(v, table, index, key)
+        elif isinstance(value, dict):
+            for k, v in value.items():
+                visit(k, table, index, key)  # a key is text too, named by its table
+                visit(v, table, index, k if len(k) <= MAX_LABEL_CHARS else key)
+
+    for key, value in data.items():
+        visit(key, "", None, "(a top-level key)")
+        if key == "task" and isinstance(value, list):
+            if len(value) > MAX_TASKS:
+                raise check.fail(
+                    f"{len(value)} tasks, more than the {MAX_TASKS} a cycle may have", "task"
+                )
+            for i, task in enumerate(value):
+                if isinstance(task, dict):
+                    for k, v in task.items():
+                        visit(k, "task", i, "(a key)")
+                        visit(v, "task", i, k)
+        elif isinstance(value, dict):
+            for k, v in value.items():
+                visit(k, key, None, "(a key)")
+                visit(v, key, None, k)
+        else:
+            visit(value, "", None, key)
+
+
+def _short(text: str) -> str:
+    """``text`` cut to 60 characters for a message."""
+    return text if len(text) <= 60 else f"{text[:40]}...({len(text)} characters)"
 
 
 def _site_error(
@@ -347,22 +425,22 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         CycleSpecError: ``<file>:<line>: ...`` naming the offending key (see module docstring).
     """
     path = Path(path)
-    if not path.is_file():
-        raise CycleSpecError(f"{path}: cycle spec file not found")
     try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise CycleSpecError(f"{path}: cannot read the cycle spec ({exc})") from exc
-    try:
-        data = tomllib.loads(text)
+        data, text = read_toml(path, "cycle spec", CycleSpecError)
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"line (\d+)", str(exc))
         line = int(m.group(1)) if m else 1
-        err = CycleSpecError(f"{path}:{line}: TOML syntax error: {exc}")
+        msg = f"{path}:{line}: TOML syntax error: {exc}"
+        single = re.search(r"^[ \t]*\[[ \t]*task[ \t]*\]", path.read_text("utf-8"), re.M)
+        if single:  # [task] then [[task]]: tomllib cites the second
+            at = path.read_text("utf-8").count("\n", 0, single.start()) + 1
+            msg += f"; [task] at line {at} is one table: write [[task]] for every task"
+        err = CycleSpecError(msg)
         err.path, err.line, err.key = path, line, None
         raise err from exc
 
     check = _Checker(path, _Lines(text))
+    _check_lengths(check, data)
     check.keys(data, _TOP_KEYS)
     for key in ("scene", "start", "task"):
         if key not in data:
@@ -428,6 +506,12 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
     _check_stand(check, workplace, start, radius, "", None, "start")
 
     raw_tasks = data["task"]
+    if isinstance(raw_tasks, dict):  # [task] written for [[task]]: cite the table's line
+        raise check.fail(
+            "[task] is one table; write [[task]] (double brackets: an array of tables, one "
+            "per task)",
+            "task",
+        )
     if not isinstance(raw_tasks, list) or not raw_tasks:
         raise check.fail("key 'task' must be one or more [[task]] tables", key="task")
     tasks: list[Task] = []
@@ -445,6 +529,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         check_durations(tasks)
     except CycleSpecError as exc:
         raise check.fail(str(exc), "task", len(tasks) - 1, "duration") from None
+    _check_routes(check, workplace, start, tasks, radius)
     return CycleSpec(
         path=path,
         scene=scene,
@@ -459,6 +544,41 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         population=population,
         takt=takt,
     )
+
+
+def _check_routes(
+    check: _Checker, workplace: Workplace, start: str, tasks: list[Task], radius: float
+) -> None:
+    """Raise naming the task of the first walk or carry whose site cannot be reached from
+    where the operator stands (grid A* with the walking radius, :func:`mjwalk.plan.grid.
+    plan_grid`, on the scene's shared occupancy grid: milliseconds per route): a wall or a
+    gap narrower than the body between two sites would make every run fail."""
+    from mjwalk.errors import PlanningError
+    from mjwalk.plan import grid as _grid
+
+    occupancy = None
+    stand = start
+    seen: set[tuple[str, str]] = set()
+    for i, task in enumerate(tasks):
+        if task.kind not in ("walk", "carry") or task.site is None:
+            continue
+        pair = (stand, task.site)
+        stand = task.site
+        if pair in seen:
+            continue
+        seen.add(pair)
+        if occupancy is None:
+            occupancy = _grid.shared_grid(workplace, radius=radius)
+        try:
+            _grid.plan_grid(workplace, pair[0], pair[1], radius=radius, grid=occupancy)
+        except PlanningError as exc:
+            raise check.fail(
+                f"key 'site' in task {i + 1}: no walkable route from {pair[0]!r} to "
+                f"{pair[1]!r} for the walking radius {radius:g} m ({exc})",
+                "task",
+                i,
+                "site",
+            ) from None
 
 
 def check_durations(tasks) -> None:

@@ -100,7 +100,18 @@ class TaskRecord:
 
 @dataclass
 class WalkRecord:
-    """One walk of a simulated cycle: the planned path and the grid-A* route for comparison."""
+    """One walk of a simulated cycle: the planned path and the grid-A* route for comparison.
+
+    Attributes:
+        task: index of the walk's task in the cycle.
+        route: the task's route label (several walks may share one, e.g. there and back).
+        start_site, goal_site: the sites walked from and to (the walk's direction).
+        path: the walk (pelvis path from where the operator stood to where the walk ended).
+        baseline_length: metres of the grid-A* route between the walk's own ends
+            (``path.xy[0]`` and ``path.xy[-1]``, :func:`~mjwalk.plan.grid.plan_grid`); NaN when
+            the grid planner finds none between them.
+        baseline: that route (None when not kept or not found).
+    """
 
     task: int
     route: str
@@ -108,6 +119,7 @@ class WalkRecord:
     goal_site: str
     path: WalkPath
     baseline_length: float
+    baseline: WalkPath | None = None
 
     @property
     def length(self) -> float:
@@ -116,6 +128,17 @@ class WalkRecord:
     @property
     def duration(self) -> float:
         return self.path.duration
+
+    @property
+    def direction(self) -> str:
+        """``"start_site->goal_site"``."""
+        return f"{self.start_site}->{self.goal_site}"
+
+    @property
+    def vs_baseline(self) -> float:
+        """The walk's length over its grid-A* route's, minus 1 (NaN without a route)."""
+        base = self.baseline_length
+        return self.length / base - 1.0 if base > 0 else float("nan")
 
 
 @dataclass

@@ -53,7 +53,6 @@ no pickle), written atomically.
 
 from __future__ import annotations
 
-import sys
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
@@ -62,7 +61,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from mjwalk._args import as_generator
 from mjwalk._io import check_header, load_npz, save_npz
+from mjwalk._log import log
 from mjwalk.conventions import Side
 from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait.features import StepBatch, StepFeatures, raw_features, side_array
@@ -184,7 +185,7 @@ class StepModel:
             progress: print timings to stderr.
         """
         t0 = time.perf_counter()
-        rng = np.random.default_rng(seed)
+        rng = as_generator(seed, "StepModel.fit: seed")
         steps = list(steps)
         if len(steps) < MIN_STEPS:
             raise MjwalkError(f"StepModel.fit: need at least {MIN_STEPS} steps, got {len(steps)}")
@@ -598,4 +599,4 @@ def _other(side: str) -> str:
 
 def _log(progress: bool, msg: str) -> None:
     if progress:
-        print(f"[mjwalk] {msg}", file=sys.stderr, flush=True)
+        log.info(f"{msg}")

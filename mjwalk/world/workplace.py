@@ -5,6 +5,7 @@ from __future__ import annotations
 import difflib
 import functools
 import hashlib
+import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,6 +22,10 @@ from mjwalk.world.meshimport import concave_mesh_footprints
 
 #: Default height band (metres above the floor) in which a geom counts as an obstacle.
 OBSTACLE_Z_RANGE = (0.05, 2.0)
+#: Most nodes a floor's clearance grid may have: 1e8, a 200 x 200 m hall at the default 2 cm
+#: (a large final-assembly hall). The clearance and walk fields are float64 grids of this many
+#: nodes, 0.8 GB each; a plane of size "1e6 1e6" asked for 71 PiB.
+MAX_FLOOR_NODES = 1e8
 #: Bodies whose name starts with one of these are part of a humanoid, never obstacles.
 HUMANOID_PREFIXES = ("human",)
 #: A plane is a floor when its normal's z is above this (its normal within 2.56 deg of +z):
@@ -92,8 +97,12 @@ class Workplace:
     def point(self, where: str | np.ndarray | tuple[float, float]) -> np.ndarray:
         """A floor point (2,) from a site name, an ``"x,y"`` string or coordinates (metres).
 
-        Malformed or non-finite coordinates raise :class:`~mjwalk.errors.InputError`."""
+        A site whose name reads as coordinates (a site named "1.5,2") wins: the text is read as
+        coordinates only when no site has that name. Malformed or non-finite coordinates raise
+        :class:`~mjwalk.errors.InputError`."""
         if isinstance(where, str):
+            if where in self.stations:
+                return self.stations[where].xy.copy()
             xy = parse_point(where, f"{self.name}: point")
             return xy if xy is not None else self.station(where).xy.copy()
         try:
@@ -179,11 +188,18 @@ class Workplace:
         raise SceneError(f"{self.name}: no obstacle geom named {name!r}")
 
 
+def check_scene_path(path: Path) -> None:
+    """Raise SceneError unless ``path`` is a file (a folder is named as one)."""
+    if path.is_dir():
+        raise SceneError(f"{path} is a folder, not an MJCF scene file")
+    if not path.is_file():
+        raise SceneError(f"{path}: scene file not found")
+
+
 def load_model(source: str | Path) -> mujoco.MjModel:
     """Compile an MJCF file, turning every failure into a SceneError naming the file."""
     path = Path(source)
-    if not path.is_file():
-        raise SceneError(f"{path}: scene file not found")
+    check_scene_path(path)
     try:
         return mujoco.MjModel.from_xml_path(str(path))
     except ValueError as exc:  # mujoco reports parse and compile errors as ValueError
@@ -232,6 +248,53 @@ def _find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
     return (named or sorted(planes, key=lambda g: data.geom_xpos[g][2]))[0]
 
 
+def _check_floor_nodes(bounds, resolution: float, label: str, floor: str) -> None:
+    """Raise SceneError naming the floor when its clearance grid would have more than
+    :data:`MAX_FLOOR_NODES` nodes (or its extent is not finite)."""
+    w, d = float(bounds[2] - bounds[0]), float(bounds[3] - bounds[1])
+    if not (math.isfinite(w) and math.isfinite(d)):
+        raise SceneError(f"{label}: the floor {floor!r} has no finite extent")
+    nodes = (w / resolution + 1) * (d / resolution + 1)
+    if nodes > MAX_FLOOR_NODES:
+        side = math.sqrt(MAX_FLOOR_NODES) * resolution
+        raise SceneError(
+            f"{label}: the floor {floor!r} spans {w:.6g} x {d:.6g} m; mjwalk plans on floors "
+            f"of at most {MAX_FLOOR_NODES:.0e} clearance-grid nodes ({side:.0f} x {side:.0f} m "
+            f"at {resolution:g} m): give the plane the size of the hall (MJCF size is half "
+            "the side)"
+        )
+
+
+def check_floor_size(model: mujoco.MjModel, label: str, resolution: float = 0.02) -> None:
+    """Raise SceneError when the floor :func:`load_workplace` would find in ``model`` is larger
+    than :data:`MAX_FLOOR_NODES` allow (an infinite plane: its obstacles' extent plus 2 m, as
+    there). A scene without a floor passes (load_workplace names that itself)."""
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    try:
+        floor = _find_floor(model, data, label)
+    except SceneError:
+        return
+    name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
+    fx, fy = model.geom_size[floor][:2]
+    if fx > 0 and fy > 0:
+        cx, cy = data.geom_xpos[floor][:2]
+        _check_floor_nodes((cx - fx, cy - fy, cx + fx, cy + fy), resolution, label, name)
+        return
+    floor_z = float(data.geom_xpos[floor][2])
+    z0, z1 = floor_z + OBSTACLE_Z_RANGE[0], floor_z + OBSTACLE_Z_RANGE[1]
+    boxes = [
+        fp.bounds()
+        for g in range(model.ngeom)
+        if int(model.geom_type[g]) != mujoco.mjtGeom.mjGEOM_PLANE
+        and (fp := geom_footprint(model, data, g, z0, z1)) is not None
+    ]
+    if boxes:
+        b = np.array(boxes)
+        bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
+        _check_floor_nodes(bounds, resolution, label, name)
+
+
 def workplace_from_model(
     model: mujoco.MjModel,
     *,
@@ -253,6 +316,14 @@ def workplace_from_model(
     floor = _find_floor(model, data, label)
     floor_z = float(data.geom_xpos[floor][2])
     fx, fy = model.geom_size[floor][:2]
+    if fx > 0 and fy > 0:  # a finite floor: refused before the obstacles are read
+        cx, cy = data.geom_xpos[floor][:2]
+        _check_floor_nodes(
+            (cx - fx, cy - fy, cx + fx, cy + fy),
+            resolution,
+            label,
+            mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}",
+        )
     footprints: list[Footprint] = []
     for g in range(model.ngeom):
         if g == floor or _is_humanoid_geom(model, g, humanoid_prefixes):
@@ -288,6 +359,8 @@ def workplace_from_model(
             raise SceneError(f"{label}: the floor plane is infinite and there are no obstacles")
         b = np.array([f.bounds() for f in footprints])
         bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
+    floor_name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
+    _check_floor_nodes(bounds, resolution, label, floor_name)
     key = None
     nx = int(np.floor((bounds[2] - bounds[0]) / resolution + 1e-9)) + 1
     ny = int(np.floor((bounds[3] - bounds[1]) / resolution + 1e-9)) + 1
@@ -381,7 +454,6 @@ def shared_workplace(source: str | Path) -> Workplace:
     """:func:`load_workplace` with default settings, loaded once per process and file version:
     the cycle simulator, its spec checks, playback and the report all read the same scene.
     Treat the result as read-only."""
+    check_scene_path(Path(source))
     path = Path(source).resolve()
-    if not path.is_file():
-        raise SceneError(f"{source}: scene file not found")
     return _shared(str(path), path.stat().st_mtime)
