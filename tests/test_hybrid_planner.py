@@ -253,11 +253,11 @@ def test_dead_ends_are_searched_again_up_to_attempts(scenes_dir, model, monkeypa
     calls = {"n": 0}
 
     def dead_ends(k):
-        def plan_once(pose, rng, mdl, spot=None, pace=np.nan):
+        def plan_once(pose, rng, mdl, spot=None, pace=np.nan, turn_on_spot=False):
             calls["n"] += 1
             if calls["n"] <= k:
                 raise hybrid._Exhausted("search exhausted (test)")
-            return real(pose, rng, mdl, spot, pace)
+            return real(pose, rng, mdl, spot, pace, turn_on_spot)
 
         return plan_once
 

@@ -655,8 +655,9 @@ class HybridPlanner:
         yaw to the first step's heading costs its time at :data:`ON_SPOT_TURN_SPEED` times
         the walk's pace (metres, as the steps), against the heading term
         (:data:`HEADING_WEIGHT`) of setting off away from the goal: the search weighs turning
-        first against turning while walking. The draws are those of a walk without a yaw. Without it a start yaw is the
-        heading of the first step's frame (a walker already walking that way). The walk's
+        first against turning while walking. The draws are those of a walk without a yaw.
+        Without it a start yaw is the heading of the first step's frame (a walker already
+        walking that way). The walk's
         first sample faces where the turn ended (``yaw[0]``): the turn itself is the caller's
         (the cycle animates it).
 
