@@ -233,7 +233,7 @@ FIGURES = (
 )
 
 
-def main() -> None:
+def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     default = Path(os.environ.get("MJWALK_SHARED_DATA", ROOT.parent / "shared" / "data"))
     ap.add_argument("--data", type=Path, default=default / "thor-exp12")
@@ -243,9 +243,11 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--start-heading", choices=("free", "walk"), default="free")
     ap.add_argument("--smooth", type=float, default=TRACK_SMOOTH_S, help="moving average, s")
-    args = ap.parse_args()
+    args = ap.parse_args(argv)
     if not (args.data / "walks.csv").exists():
-        raise SystemExit(f"no THÖR data at {args.data} (walks.csv)")
+        ap.error(f"no THÖR data at {args.data} (walks.csv)")
+    if args.walks_per < 0 or args.max_real < 0 or not 0.0 <= args.smooth <= 5.0:
+        ap.error("--walks-per and --max-real must be >= 0, --smooth within 0-5 s")
     stations, zone, rows, points = load_real(args.data)
     wp = load_workplace(args.data / "thor_exp1_exp2_scene.xml")
     obstacle = np.array([0.694, 0.527])  # obs0's centre in the scene (the room's one obstacle)
@@ -254,6 +256,9 @@ def main() -> None:
         by_pair[r["pair"]].append(r)
     pairs = sorted(p for p, v in by_pair.items() if len(v) >= MIN_WALKS)
     if args.pairs:
+        unknown = sorted(set(args.pairs.split(",")) - set(pairs))
+        if unknown:
+            ap.error(f"--pairs: no pair with >= {MIN_WALKS} walks named {unknown} (have {pairs})")
         pairs = [p for p in pairs if p in args.pairs.split(",")]
     model = default_model()
     rng = np.random.default_rng(args.seed)
@@ -304,6 +309,7 @@ def main() -> None:
               f"plan median {1000 * np.median(plan_s):.0f} ms", flush=True)  # fmt: skip
     print(f"({time.perf_counter() - t_start:.0f} s)")
     print_table(results)
+    return 0
 
 
 def print_table(results: dict) -> None:
@@ -338,4 +344,4 @@ def print_table(results: dict) -> None:
 
 
 if __name__ == "__main__":
-    main()
+    raise SystemExit(main())
