@@ -290,9 +290,36 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             progress=not args.quiet,
         )
         print(f"  wrote video: {video}")
+    if args.export:
+        _export_runs(args, ctx, results)
     if args.json_summary:
         print(json.dumps(report_dict(results)["cycle_time"]))
     return 0
+
+
+def _export_runs(args: argparse.Namespace, ctx, results) -> None:
+    """--export bvh/csv: each simulated run's humanoid motion (again, with its timeline) as
+    ``run_KKK.bvh`` / ``run_KKK_angles.csv`` in --out (mjwalk.ergonomics.export)."""
+    from mjwalk.cycle.simulate import simulate_cycle
+    from mjwalk.ergonomics.export import write_angles_csv, write_bvh
+
+    for r in results:
+        if r.error is not None:
+            continue
+        run = simulate_cycle(
+            ctx,
+            np.random.default_rng(np.random.SeedSequence([args.seed, r.run])),
+            run=r.run,
+            keep_timeline=True,
+            collisions=False,
+            ergonomics=False,
+        )
+        for kind in dict.fromkeys(args.export):
+            if kind == "bvh":
+                out = write_bvh(run.timeline, args.out / f"run_{r.run:03d}.bvh")
+            else:
+                out = write_angles_csv(run.timeline, args.out / f"run_{r.run:03d}_angles.csv")
+            print(f"  wrote {kind}: {out}")
 
 
 def _cmd_render(args: argparse.Namespace) -> int:
@@ -476,6 +503,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--video", action="store_true", help="also render one cycle to cycle.mp4")
     p.add_argument("--camera", choices=["track", "top"], default="track")
+    p.add_argument(
+        "--export",
+        choices=["bvh", "csv"],
+        action="append",
+        help="also write each run's (or --only-run K's) humanoid motion as run_KKK.bvh or "
+        "run_KKK_angles.csv (joint angles); repeat for both",
+    )
     p.add_argument("--quiet", action="store_true", help=QUIET_HELP)
     p.add_argument("--json-summary", action="store_true", help=argparse.SUPPRESS)
     p.set_defaults(func=_cmd_simulate)

@@ -253,6 +253,44 @@ def histograms_png(path: Path, results: Sequence[CycleResult], rep: dict) -> Non
         plt.close(fig)
 
 
+def ergonomics_png(path: Path, records: Sequence) -> None:
+    """The report's ergonomics chart: RULA and REBA over one cycle's time (the run whose peak
+    RULA is the median's) and the distributions of the cycles' peak RULA and REBA per operator
+    group (``records``: :class:`mjwalk.ergonomics.summary.RunRecord`)."""
+    fig, axes = plt.subplots(1, 3, figsize=(14, 3.6))
+    try:
+        peaks = np.array([r.ergo.rula_peak for r in records])
+        k = int(np.argsort(peaks)[len(peaks) // 2])
+        e = records[k].ergo
+        t = np.arange(len(e.rula)) / e.fps
+        ax = axes[0]
+        ax.step(t, e.rula, where="post", label="RULA", lw=1)
+        ax.step(t, e.reba, where="post", label="REBA", lw=1, alpha=0.8)
+        for task in e.tasks:
+            if task.kind in ("pick", "place", "fasten"):
+                ax.axvline(task.rula_time, color="0.8", lw=0.5, zorder=0)
+        ax.set_xlabel("time in the cycle [s]")
+        ax.set_ylabel("score")
+        ax.set_title(f"run {records[k].run}: scores over the cycle")
+        ax.legend(fontsize=7)
+        groups = sorted({r.group for r in records})
+        for ax, name, get, top in (
+            (axes[1], "peak RULA", lambda r: r.ergo.rula_peak, 7),
+            (axes[2], "peak REBA", lambda r: r.ergo.reba_peak, 15),
+        ):
+            data = [[get(r) for r in records if r.group == g] for g in groups]
+            bins = np.arange(0.5, top + 1.5)
+            ax.hist(data, bins=bins, label=[g or "all" for g in groups], stacked=True)
+            ax.set_xlabel(name)
+            ax.set_ylabel("cycles")
+            ax.set_title(f"{name} per cycle" + (" by operator group" if len(groups) > 1 else ""))
+            ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(path, dpi=100)
+    finally:
+        plt.close(fig)
+
+
 def _shade(color, k: int, n: int) -> tuple:
     """``color`` for direction ``k`` of ``n``: the first as it is, later ones darker."""
     rgb = np.asarray(matplotlib.colors.to_rgb(color))

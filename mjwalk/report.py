@@ -58,6 +58,10 @@ REPORT_FILES = {
     "histograms": "histograms.png",
 }
 
+#: The files :func:`write_report` adds when the runs were scored for ergonomics
+#: (``CycleResult.ergonomics``, :mod:`mjwalk.ergonomics`).
+ERGONOMICS_FILES = {"ergonomics_csv": "ergonomics.csv", "ergonomics_png": "ergonomics.png"}
+
 #: Contact pairs listed in report.md (all of them are in report.json).
 MD_PAIRS = 12
 
@@ -314,6 +318,7 @@ def report_dict(
             # tried): the reach is recorded, but the part was not where the hand was
             "short_of_target": _short_of_target(arms),
         },
+        "ergonomics": _ergonomics(results),
         "per_run": [
             {
                 "run": r.run,
@@ -326,6 +331,25 @@ def report_dict(
             for r in results
         ],
     }
+
+
+def _ergonomic_records(results: Sequence[CycleResult]) -> list:
+    """The runs scored for ergonomics as :class:`mjwalk.ergonomics.summary.RunRecord`."""
+    from mjwalk.ergonomics.summary import RunRecord
+
+    return [
+        RunRecord(r.run, r.seed, r.group, None if r.operator is None else r.operator.stature, e)
+        for r in results
+        if (e := getattr(r, "ergonomics", None)) is not None
+    ]
+
+
+def _ergonomics(results: Sequence[CycleResult]) -> dict | None:
+    """The ergonomics section's figures (None when no run was scored)."""
+    from mjwalk.ergonomics.summary import ergonomics_summary
+
+    records = _ergonomic_records(results)
+    return ergonomics_summary(records) if records else None
 
 
 def _baseline_note(spec) -> dict:
@@ -560,6 +584,10 @@ def format_markdown(rep: dict) -> str:
         *(["", *short] if short else []),
         "",
     ]
+    if rep.get("ergonomics"):
+        from mjwalk.ergonomics.summary import ergonomics_markdown
+
+        out += ergonomics_markdown(rep["ergonomics"])
     return "\n".join(out)
 
 
@@ -793,8 +821,10 @@ def write_report(
     :func:`report_dict`), ``walks.csv`` (one row per walk per run), ``cycles.csv`` (one row per
     run), ``report.md`` (Markdown tables), ``spaghetti.png`` (every run's walk paths on the floor
     plan, coloured by route, each with its own grid-A* route dashed) and ``histograms.png``
-    (cycle time, and walk lengths per route and direction). All are written to temporary files
-    first and renamed into place together at the end, so an error leaves none of them
+    (cycle time, and walk lengths per route and direction); with runs scored for ergonomics also
+    ``ergonomics.csv`` (one row per run and task) and ``ergonomics.png``
+    (:data:`ERGONOMICS_FILES`). All are written to temporary files first and renamed into place
+    together at the end, so an error leaves none of them
     half-written (nor any new one at all).
 
     Args:
@@ -825,7 +855,8 @@ def write_report(
                 f"got {type(value).__name__}"
             )
     out_dir = Path(out_dir)
-    targets = {key: out_dir / name for key, name in REPORT_FILES.items()}
+    names = {**REPORT_FILES, **(ERGONOMICS_FILES if rep.get("ergonomics") else {})}
+    targets = {key: out_dir / name for key, name in names.items()}
     with contextlib.ExitStack() as stack:
         tmp = {key: stack.enter_context(atomic_path(p)) for key, p in targets.items()}
         tmp["json"].write_text(json.dumps(_jsonable(rep), indent=2, allow_nan=False) + "\n")
@@ -834,6 +865,16 @@ def write_report(
         tmp["markdown"].write_text(format_markdown(rep), encoding="utf-8")
         spaghetti_png(tmp["spaghetti"], results, workplace, routes, rep)
         histograms_png(tmp["histograms"], results, rep)
+        if "ergonomics_csv" in tmp:
+            from mjwalk.ergonomics.summary import CSV_COLUMNS, ergonomics_rows
+            from mjwalk.plot import ergonomics_png
+
+            records = _ergonomic_records(results)
+            with open(tmp["ergonomics_csv"], "w", newline="") as fh:
+                w = csv.writer(fh)
+                w.writerow(CSV_COLUMNS)
+                w.writerows(ergonomics_rows(records))
+            ergonomics_png(tmp["ergonomics_png"], records)
     return targets
 
 

@@ -96,6 +96,7 @@ def simulate_cycle(
     fps: float = 30.0,
     keep_timeline: bool = False,
     collisions: bool = True,
+    ergonomics: bool = True,
 ) -> CycleResult:
     """Simulate one assembly cycle.
 
@@ -108,6 +109,8 @@ def simulate_cycle(
             tracks of the parts the hands handle (``Timeline.parts``, :mod:`mjwalk.timeline.parts`).
         collisions: run MuJoCo's collision detection over the timeline
             (:func:`~mjwalk.timeline.collisions.check_collisions` checks a result later).
+        ergonomics: score the cycle's postures and lifts (RULA, REBA, OWAS, NIOSH, ISO 11226;
+            :func:`cycle_ergonomics`) into ``result.ergonomics``.
 
     Returns:
         A :class:`CycleResult`: walks, arm motions, task times, cycle time, collisions, and the
@@ -250,6 +253,8 @@ def simulate_cycle(
         ]
         timeline.parts = part_tracks(ctx.model, ctx.jointmap, qpos, handlings, ctx.scratch())
     contacts = collision_report(timeline, data=ctx.scratch()) if collisions else []
+    ends = [*starts[1:], len(qpos)]
+    ergo = cycle_ergonomics(timeline, spec, starts, ends, t, wp) if ergonomics else None
     return CycleResult(
         spec=spec,
         run=run,
@@ -262,7 +267,38 @@ def simulate_cycle(
         collisions=contacts,
         timeline=timeline if keep_timeline else None,
         operator=walker,
+        ergonomics=ergo,
     )
+
+
+def cycle_ergonomics(timeline: Timeline, spec: CycleSpec, starts, ends, cycle_time: float, wp):
+    """The ergonomics of a cycle's timeline (:func:`mjwalk.ergonomics.assess.assess_cycle`):
+    task ``i`` of ``spec`` spans frames ``starts[i]:ends[i]``; a place or fasten handles the
+    part its hand picked last (its mass and coupling); ``wp`` the Workplace (the sites)."""
+    from mjwalk.ergonomics.angles import angles_from_timeline
+    from mjwalk.ergonomics.assess import TaskSpan, assess_cycle
+
+    n = timeline.n_frames
+    walking = np.zeros(n, dtype=bool)
+    held: dict[str, list[tuple[float, str]]] = {"left": [], "right": [], "both": []}
+    spans = []
+    for i, task in enumerate(spec.tasks):
+        s, e = int(starts[i]), int(ends[i])
+        if task.kind in ("walk", "carry"):
+            walking[s:e] = True
+        mass, coupling = 0.0, task.coupling
+        if task.kind == "pick":
+            mass = task.mass
+            held[task.hand].append((task.mass, task.coupling))
+        elif task.kind in ("place", "fasten") and held.get(task.hand):
+            mass, coupling = held[task.hand].pop()
+        pos = None
+        if task.site is not None and task.site in wp.stations:
+            pos = np.asarray(wp.stations[task.site].pos, dtype=float)
+        spans.append(TaskSpan(i, task.kind, s, e, task.hand if task.kind != "walk" else None,
+                              task.site, mass, coupling, pos))  # fmt: skip
+    ang = angles_from_timeline(timeline, walking)
+    return assess_cycle(ang, spans, cycle_time, timeline.fps)
 
 
 def _entropy(rng: np.random.Generator) -> int | list[int] | None:

@@ -38,7 +38,8 @@ kind      required                                    optional
 ========  ==========================================  ==========================================
 walk      site (a standing site on the floor)         route
 carry     site (a standing site on the floor)         route, hand, part
-pick      site (where the part lies)                  hand, part, duration (hold time)
+pick      site (where the part lies)                  hand, part, duration (hold time),
+                                                      mass (kg), coupling
 place     site (where the part goes)                  hand, part, duration (hold time)
 fasten    site (where the part is fastened)           hand, part, duration (screwing time)
 wait      duration                                    --
@@ -49,6 +50,11 @@ wait      duration                                    --
 ``S`` is the part's centre and the scene must also have the grip sites ``S_left`` and ``S_right``
 (where the operator's left and right hand hold it); both hands reach their grips together, hold
 the part while carrying, and the place releases both.
+``mass`` (kg, default 0: a part too light to count) and ``coupling`` (the grip on it: "good",
+"fair" or "poor"; default "poor", the Applications Manual's rule for the revised NIOSH lifting
+equation, Waters et al. 1994 p. 16: "if there is any doubt ... the more stressful classification
+should be selected") describe the picked part for the ergonomic scores (:mod:`mjwalk.ergonomics`):
+the load in the hand until its place or fasten, and a NIOSH lift for its pick and its place.
 ``route`` labels a walk for the report (walks with one label are pooled, like the paper's T1-T5);
 it defaults to ``"<from site>-><to site>"``. ``duration`` is seconds, >= 0; None (absent) means the
 simulator's default.
@@ -91,6 +97,13 @@ STATURE_RANGE = HUMANOID_STATURE_RANGE
 #: Allowed walking (body) radius, metres.
 RADIUS_RANGE = (0.1, 0.6)
 HANDS = ("left", "right")
+#: The heaviest part a pick may declare (kg): beyond any manual lift (the revised NIOSH
+#: equation's load constant is 23 kg).
+MAX_PART_MASS = 100.0
+#: Couplings of a part (the revised NIOSH lifting equation's Table 7) and the default (see the
+#: module docstring).
+COUPLINGS = ("good", "fair", "poor")
+DEFAULT_COUPLING = "poor"
 #: Accepted values of a task's ``hand`` ("both": two-handed, see above).
 HAND_VALUES = (*HANDS, "both")
 
@@ -131,12 +144,12 @@ _TABLE_KEYS = {
 _TASK_KEYS = {
     "walk": ("kind", "site", "route"),
     "carry": ("kind", "site", "route", "hand", "part"),
-    "pick": ("kind", "site", "hand", "part", "duration"),
+    "pick": ("kind", "site", "hand", "part", "duration", "mass", "coupling"),
     "place": ("kind", "site", "hand", "part", "duration"),
     "fasten": ("kind", "site", "hand", "part", "duration"),
     "wait": ("kind", "duration"),
 }
-_ALL_TASK_KEYS = ("kind", "site", "hand", "duration", "route", "part")
+_ALL_TASK_KEYS = ("kind", "site", "hand", "duration", "route", "part", "mass", "coupling")
 
 _HEADER_RE = re.compile(r"^\s*(\[\[|\[)\s*([^\[\]]+?)\s*(\]\]|\])\s*(#.*)?$")
 _KEY_RE = re.compile(
@@ -656,6 +669,15 @@ def _task(
         duration = check.number(raw, "duration", 0.0, MAX_CYCLE_SECONDS, "s", t, i)
     route = check.string(raw, "route", t, i) if "route" in raw else None
     part = check.string(raw, "part", t, i) if "part" in raw else None
+    mass = check.number(raw, "mass", 0.0, MAX_PART_MASS, "kg", t, i) if "mass" in raw else 0.0
+    coupling = check.string(raw, "coupling", t, i) if "coupling" in raw else DEFAULT_COUPLING
+    if coupling not in COUPLINGS:
+        raise check.fail(
+            f"key 'coupling' {where} must be one of {', '.join(COUPLINGS)}, got {coupling!r}",
+            t,
+            i,
+            "coupling",
+        )
 
     if kind in ("walk", "carry"):
         assert site is not None  # required above
@@ -738,6 +760,8 @@ def _task(
         route=route,
         part=part,
         line=check.lines.line(t, i),
+        mass=mass,
+        coupling=coupling,
     )
 
 

@@ -14,6 +14,7 @@ from mjwalk.plan.walkpath import WalkPath
 
 if TYPE_CHECKING:  # the timeline stage is above this one at run time: no import
     from mjwalk.cycle.population import Population
+    from mjwalk.ergonomics.assess import RunErgonomics
     from mjwalk.timeline.collisions import Contact
     from mjwalk.timeline.timeline import Timeline
 
@@ -35,6 +36,8 @@ class Task:
             pooled.
         part: what is handled (free text, e.g. "screw").
         line: line of the task in the TOML file (for error messages).
+        mass: the picked part's mass, kg (pick; 0: not counted), for the ergonomic scores.
+        coupling: the grip on the picked part ("good", "fair", "poor").
     """
 
     kind: str
@@ -44,6 +47,8 @@ class Task:
     route: str | None = None
     part: str | None = None
     line: int = 0
+    mass: float = 0.0
+    coupling: str = "poor"
 
 
 @dataclass
@@ -185,6 +190,8 @@ class CycleResult:
             if checked.
         timeline: the per-frame humanoid poses (kept only when asked for: it is large).
         operator: the run's operator, drawn from ``spec.population`` (None without one).
+        ergonomics: the run's ergonomic scores (:mod:`mjwalk.ergonomics.assess`; None when not
+            scored).
         error: why the run failed (``simulate_cycles(on_error="record")``): then it has no
             tasks, walks or arms and its cycle time is NaN; None for a simulated cycle.
     """
@@ -201,6 +208,7 @@ class CycleResult:
     entropy: int | list[int] | None = None
     operator: Walker | None = None
     error: str | None = None
+    ergonomics: RunErgonomics | None = None
 
     @property
     def group(self) -> str:
