@@ -64,6 +64,8 @@ class FloorPlan:
         void: cells of the floor rectangle that are neither floor nor obstacle, bool.
         bounds: (xmin, ymin, xmax, ymax) of the floor rectangle, metres.
         holes_filled: number of unscanned holes counted as floor.
+        seen: floor cells holding floor points or closed between them (:data:`FLOOR_GAP`);
+            the rest of ``floor`` is unscanned holes counted as floor, bool.
     """
 
     x0: float
@@ -75,6 +77,7 @@ class FloorPlan:
     void: np.ndarray
     bounds: tuple[float, float, float, float]
     holes_filled: int
+    seen: np.ndarray | None = None
 
 
 @njit
@@ -182,6 +185,7 @@ def floor_plan(
     iy, ix = np.nonzero(floor)
     y0i, y1i, x0i, x1i = iy.min(), iy.max() + 1, ix.min(), ix.max() + 1
     floor = floor[y0i:y1i, x0i:x1i]
+    seen = (closed | seen_floor)[y0i:y1i, x0i:x1i] & floor  # floor points, gaps closed
     obst = obst[y0i:y1i, x0i:x1i]
     top_bin = top_bin[y0i:y1i, x0i:x1i]
     olab, n = ndimage.label(obst, square)
@@ -201,7 +205,7 @@ def floor_plan(
         x0 + floor.shape[1] * resolution - half,
         y0 + floor.shape[0] * resolution - half,
     )
-    return FloorPlan(x0, y0, resolution, floor, olab, tops, void, bounds, filled)
+    return FloorPlan(x0, y0, resolution, floor, olab, tops, void, bounds, filled, seen)
 
 
 def _hull_mask(mask: np.ndarray) -> np.ndarray:
