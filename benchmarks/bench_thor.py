@@ -107,7 +107,7 @@ TRACK_SMOOTH_S = 0.8
 #: pooled over adults 20-79, about 0.13 in log).
 SPEED_LOG_SD = 0.13
 #: Route selection around a barrier (PMC7875474, walkers going around a barrier to a visible
-#: goal, mixed-effects logistic regression; as tests/test_hybrid_planner.py cites it): 75 % of
+#: goal, mixed-effects logistic regression; as tests/plan/test_hybrid.py cites it): 75 % of
 #: choices go to the side of smaller deviation angle when the two sides' angles differ by
 #: 1.65 deg, i.e. a logistic slope of ln 3 / 1.65 per degree.
 SIDE_SLOPE_PER_DEG = math.log(3.0) / 1.65

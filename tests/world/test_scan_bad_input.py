@@ -22,7 +22,7 @@ from mjwalk import cli
 from mjwalk.errors import ScanError
 from mjwalk.world.scan import build_scene, read_scan
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def _ply_ascii(path: Path, pts, declared: int | None = None, cells=None) -> Path:
