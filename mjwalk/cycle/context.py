@@ -14,11 +14,9 @@ from typing import TYPE_CHECKING
 import mujoco
 
 from mjwalk.body.humanoid import JointMap, attach_humanoid
-from mjwalk.cycle.standing import StandZone
+from mjwalk.cycle.standing import StandZone, work_zone
 from mjwalk.cycle.standoff import ArmClearance
-from mjwalk.cycle.types import (
-    CycleSpec,
-)
+from mjwalk.cycle.types import CycleSpec
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
@@ -97,9 +95,8 @@ class CycleContext:
         return self.planners[key]
 
     def zone(self, i: int, stature: float, step_length: float) -> StandZone:
-        """The stand zone of the walk that is task ``i`` (:func:`work_zone`)."""
-        from mjwalk.cycle.walking import work_zone  # the walk stage builds on the context
-
+        """The stand zone of the walk that is task ``i``
+        (:func:`~mjwalk.cycle.standing.work_zone`)."""
         # made for the key's own (rounded) stature and step length: a zone made for the exact
         # figures of the first run to ask was handed to every later run within the rounding,
         # so a run's walks depended on which runs the process had simulated before it

@@ -24,12 +24,27 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mjwalk.conventions import SAMPLE_RATE_HZ
+from mjwalk.cycle.context import (
+    GOAL_TOLERANCE,
+    CycleContext,
+    context_of,
+    operator_context,
+    prepare,
+)
 from mjwalk.cycle.handling import REACH_CASE, RETURN_CASE, reach_duration, task_factor
+from mjwalk.cycle.poses import (
+    carry_abduction,
+    carry_pose,
+    hand_points,
+    standing_pose,
+    turn_frames,
+    walk_frames,
+)
+from mjwalk.cycle.reachspot import reach_task
 from mjwalk.cycle.spec import check_durations
 from mjwalk.cycle.types import (
     ArmRecord,
@@ -38,31 +53,11 @@ from mjwalk.cycle.types import (
     TaskRecord,
     WalkRecord,
 )
+from mjwalk.cycle.walking import cycle_start, plan_cycle_walks, plan_task_walk, work_zone
 from mjwalk.errors import CycleSpecError, InputError, PlanningError
 from mjwalk.timeline.collisions import collision_report
 from mjwalk.timeline.parts import Handling, part_tracks
 from mjwalk.timeline.timeline import Timeline
-
-if TYPE_CHECKING:
-    pass  # loaded on first use (prepare)
-
-from mjwalk.cycle.context import (
-    GOAL_TOLERANCE,
-    CycleContext,
-    context_of,
-    operator_context,
-    prepare,
-)
-from mjwalk.cycle.poses import (
-    _standing,
-    _turn_frames,
-    _walk_frames,
-    carry_abduction,
-    carry_pose,
-    hand_points,
-)
-from mjwalk.cycle.reaching import _reach_task
-from mjwalk.cycle.walking import cycle_start, plan_cycle_walks, plan_task_walk, work_zone
 
 __all__ = [
     "GOAL_TOLERANCE",
@@ -135,7 +130,7 @@ def simulate_cycle(
     x, y = cycle_start(ctx, stand_rng, walker)  # in the start's stand zone, not on its mark
     home = (x, y)  # where the last walk ended: the reaches there step back or in from it
     yaw = wp.station(here).yaw
-    frames = [_standing(ctx, x, y, yaw)[None]]
+    frames = [standing_pose(ctx, x, y, yaw)[None]]
     t = 0.0
     tasks: list[TaskRecord] = []
     walks: list[WalkRecord] = []
@@ -151,13 +146,13 @@ def simulate_cycle(
             path = plan_task_walk(ctx, i, (x, y), rng, walker, stand_rng)
             # a two-handed part stays in the hands, in the carrying posture (turns included)
             pose = None if width is None else carry_pose(ctx, frames[0][0], width)
-            turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps, pose=pose)
+            turn, dt = turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps, pose=pose)
             frames.append(turn)
             t += dt
             carry = task.hand if task.kind == "carry" else None
             if width is not None:
                 carry = "both"
-            wf = _walk_frames(ctx, path, fps, carry, width)
+            wf = walk_frames(ctx, path, fps, carry, width)
             frames.append(wf)
             t += len(wf) / fps  # the walk, to the video frame
             x, y = (float(v) for v in path.xy[-1])
@@ -165,7 +160,7 @@ def simulate_cycle(
             yaw = float(path.yaw[-1])
             face = wp.station(goal).yaw
             # the last step lands knee flexed, pelvis low: the turn settles into standing
-            turn, dt = _turn_frames(ctx, x, y, yaw, face, fps, pose=pose, settle=wf[-1])
+            turn, dt = turn_frames(ctx, x, y, yaw, face, fps, pose=pose, settle=wf[-1])
             frames.append(turn)
             t += dt
             yaw = face
@@ -193,7 +188,7 @@ def simulate_cycle(
                 )
 
             assert task.site is not None  # the spec loader requires a site for reaches
-            r = _reach_task(
+            r = reach_task(
                 ctx, task, x, y, yaw, hold, fps, timing, wp.station(here).yaw, width, home
             )
             x, y, yaw = r.x, r.y, r.yaw

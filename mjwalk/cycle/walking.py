@@ -8,54 +8,19 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mjwalk.cycle.standing import StandZone, stand_zone
+from mjwalk.cycle.standing import StandZone, start_zone, work_zone
 
 if TYPE_CHECKING:
-    pass  # loaded on first use (prepare)
+    from mjwalk.cycle.context import CycleContext
 
-from mjwalk.cycle.context import CycleContext
-from mjwalk.cycle.reaching import _target
-
-
-def work_zone(ctx: CycleContext, i: int, stature: float, step_length: float) -> StandZone:
-    """Where the walk that is task ``i`` may end (:func:`mjwalk.cycle.standing.stand_zone`):
-    near its stand site, with every reach target of the work done there (the tasks after it
-    up to the next walk) within the arm's reach. A two-handed task's targets are its grip
-    sites ``<site>_left`` and ``<site>_right``."""
-    goal = ctx.spec.tasks[i].site
-    assert goal is not None  # the spec loader requires a site for walks
-    return _site_zone(ctx, goal, i + 1, stature, step_length)
-
-
-def start_zone(ctx: CycleContext, stature: float, step_length: float) -> StandZone:
-    """Where the operator stands when the cycle starts: the stand zone of the cycle's start
-    site for the work done there before the first walk (:func:`work_zone`'s rule). A cycle is
-    one of many in a shift: its operator starts where the work at the start site left them,
-    not on the site's mark."""
-    return _site_zone(ctx, ctx.spec.start, 0, stature, step_length)
-
-
-def _site_zone(
-    ctx: CycleContext, site: str, first: int, stature: float, step_length: float
-) -> StandZone:
-    """The stand zone of ``site`` for the reaches of tasks ``first, first + 1, ...`` up to
-    the next walk or carry."""
-    stand = ctx.workplace.station(site).pos
-    targets, squarely, hands = [], [], []
-    for task in ctx.spec.tasks[first:]:
-        if task.kind in ("walk", "carry"):
-            break
-        if task.kind not in ("pick", "place", "fasten") or task.site is None:
-            continue
-        sites = [f"{task.site}_left", f"{task.site}_right"] if task.hand == "both" else [task.site]
-        for name in sites:
-            pos = ctx.workplace.station(name).pos
-            targets.append(_target(ctx, task.kind, pos, float(stand[0]), float(stand[1])))
-            # the cycle faces fastenings and two-handed work squarely (simulate_cycle)
-            squarely.append(task.kind == "fasten" or task.hand == "both")
-            hands.append(None if squarely[-1] else task.hand)
-    facing = ctx.workplace.station(site).yaw
-    return stand_zone(stand[:2], targets, step_length, stature, facing, squarely, hands)
+__all__ = [
+    "cycle_start",
+    "plan_cycle_walks",
+    "plan_task_walk",
+    "standing_spot",
+    "start_zone",
+    "work_zone",
+]
 
 
 #: A standing spot keeps this much more than the body radius from obstacles (m): a walk sets

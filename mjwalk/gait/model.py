@@ -65,7 +65,13 @@ import numpy as np
 from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.conventions import Side
 from mjwalk.errors import MjwalkError, ModelFileError
-from mjwalk.gait.features import StepBatch, StepFeatures, raw_features, side_array
+from mjwalk.gait.features import (
+    StepBatch,
+    StepFeatures,
+    concat_batches,
+    raw_features,
+    side_array,
+)
 from mjwalk.gait.step import Step
 from mjwalk.gait.transition import N_INDUCING, TransitionGP
 from mjwalk.gait.walker import Walker
@@ -572,24 +578,6 @@ def _check_shapes(model: StepModel) -> None:
         arrs = (g.inducing, g.alpha, g.w, g.res_pool, model.kde_data[s])
         if not all(np.all(np.isfinite(a)) for a in arrs):
             raise ValueError(f"{s} GP/KDE arrays hold non-finite values")
-
-
-def concat_batches(batches: Sequence[StepBatch]) -> StepBatch:
-    """Concatenate step batches row-wise."""
-    return StepBatch(
-        **{
-            k: np.concatenate([getattr(b, k) for b in batches])
-            for k in (
-                "side",
-                "features",
-                "landmarks",
-                "yaw_landmarks",
-                "duration",
-                "footprint",
-                "stance",
-            )
-        }
-    )
 
 
 def _other(side: str) -> str:
