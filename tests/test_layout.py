@@ -144,8 +144,6 @@ TOO_LONG_FOR_NOW = {
     "mjwalk.plan.hybrid",
     "mjwalk.plan.stepcheck",
     "mjwalk.cycle.spec",
-    "mjwalk.arms.dcs",
-    "mjwalk.gait.corpus",
 }
 
 
