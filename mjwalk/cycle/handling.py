@@ -57,10 +57,8 @@ REACH_TMU = {
                    15.5, 16.7, 18.0, 19.2, 20.4, 21.7, 22.9]),
 }
 # fmt: on
-#: MTM-1 reach case of each task kind: a pick takes a small part from a bin of like parts
-#: (case C: search and select, the station's screws); a place or fasten brings the hand to a
-#: location that varies slightly (case B). The return is case E.
-REACH_CASE = {"pick": "C", "place": "B", "fasten": "B"}
+#: MTM-1 case of a reach's return (a hand moving to no particular location); the reach's own
+#: case is its task kind's (:data:`mjwalk.cycle.types.TASK_KINDS`).
 RETURN_CASE = "E"
 #: Coefficient of variation of the per-task lognormal factor (see the module docstring).
 TASK_CV = 0.2

@@ -18,6 +18,7 @@ from mjwalk.cycle.crouch import crouch_frames, crouch_pose, trunk_bend, trunk_ro
 from mjwalk.cycle.handling import body_motion_duration
 from mjwalk.cycle.reaching import LEAN_SPARE, default_timing, plumb_arms, time_factor
 from mjwalk.cycle.standoff import arm_clearance
+from mjwalk.cycle.types import TASK_KINDS
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
@@ -157,7 +158,8 @@ def _two_hand_reach(ctx: CycleContext, q0, task, approach, hold, fps, timing=Non
     # that line instead of swept from the carrying posture through the bench's edge
     app = _approach_frames(ctx, frames[:n_out], float(np.linalg.norm(approach)))
     n_app = min(len(app) - 1, n_out - 2, n_back - 2)
-    if held is not None or task.kind == "pick":
+    takes = TASK_KINDS[task.kind].part == "take"
+    if held is not None or takes:
         # the pre-grasp pose with the palms still the part's width apart
         pre = _palms_apart(ctx, frames[n_out - 1 - n_app], _palm_gap(ctx, grip))
         back = np.r_[approach[:2], 0.0]  # further back from the pre-grasp point, level
@@ -167,7 +169,7 @@ def _two_hand_reach(ctx: CycleContext, q0, task, approach, hold, fps, timing=Non
         n_down = int(np.clip(round(n_out * down / max(on + down, 1e-9)), 1, n_out - 2))
         head = _held_move(ctx, carrying, pre, n_out - n_down, pre, back)
         frames[:n_out] = np.vstack([head, _holding_frames(ctx, pre, grip, n_down)])
-    elif task.kind == "pick":  # lifted off the bench, then into the carrying posture
+    elif takes:  # lifted off the bench, then into the carrying posture
         q_carry = carry_pose(ctx, q0, width)
         # the return's time shared by the two moves in proportion to the palms' travel
         mid = [hand_points(ctx, q[None])[0].mean(axis=0) for q in (grip, pre, q_carry)]

@@ -17,6 +17,7 @@ from mjwalk.cycle.holding import two_hand_frames
 from mjwalk.cycle.poses import carry_pose, standing_pose, turn_frames
 from mjwalk.cycle.standoff import REACH_TOLERANCE, STEP_BACK, arm_clearance, step_back_offsets
 from mjwalk.cycle.targets import approach_offset, approach_rise, reach_target
+from mjwalk.cycle.types import TASK_KINDS
 
 if TYPE_CHECKING:
     from mjwalk.arms.reach import ReachResult
@@ -115,7 +116,7 @@ def reach_task(
     # a fastening's approach is level (approach_offset): no headroom to measure
     rise = (
         0.0
-        if task.kind == "fasten"
+        if TASK_KINDS[task.kind].approach == "surface"
         else approach_rise(ctx, reach_target(task.kind, site_pos, hx, hy))
     )
     search = _Search(
@@ -189,7 +190,7 @@ def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> Work
     # face the target (turning on the spot) before reaching for it
     d = math.hypot(target[0] - xs, target[1] - ys)
     face = math.atan2(target[1] - ys, target[0] - xs)
-    if task.hand != "both" and task.kind != "fasten":
+    if task.hand != "both" and TASK_KINDS[task.kind].approach == "shelf":
         # shelf work: bring the target ahead of the shoulder
         side = 1 if task.hand == "left" else -1
         face -= side * math.asin(min(SHOULDER_OFFSET / d, 0.5))

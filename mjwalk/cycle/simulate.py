@@ -35,7 +35,7 @@ from mjwalk.cycle.context import (
     operator_context,
     prepare,
 )
-from mjwalk.cycle.handling import REACH_CASE, RETURN_CASE, reach_duration, task_factor
+from mjwalk.cycle.handling import RETURN_CASE, reach_duration, task_factor
 from mjwalk.cycle.poses import (
     carry_abduction,
     carry_pose,
@@ -47,6 +47,7 @@ from mjwalk.cycle.poses import (
 from mjwalk.cycle.reachspot import reach_task
 from mjwalk.cycle.spec import check_durations
 from mjwalk.cycle.types import (
+    TASK_KINDS,
     ArmRecord,
     CycleResult,
     CycleSpec,
@@ -75,11 +76,6 @@ __all__ = [
     "simulate_cycles",
     "work_zone",
 ]
-
-
-#: The hold of a pick or place without a given duration (s), the median for the reference
-#: adult; reach and return times come from the reach distance (MTM-1, mjwalk.cycle.handling).
-DEFAULT_HOLD = {"pick": 0.4, "place": 0.4, "fasten": 3.0, "wait": 1.0}
 
 
 def simulate_cycle(
@@ -140,7 +136,10 @@ def simulate_cycle(
     for i, task in enumerate(spec.tasks):
         t0 = t
         starts.append(sum(len(f) for f in frames))
-        if task.kind in ("walk", "carry"):
+        kind = TASK_KINDS.get(task.kind)
+        if kind is None:  # the spec parser refuses unknown kinds; this guards hand-made specs
+            raise CycleSpecError(f"task {i}: unknown kind {task.kind!r}")
+        if kind.action == "walk":
             goal = task.site
             assert goal is not None  # the spec loader requires a site for walks
             path = plan_task_walk(ctx, i, (x, y), rng, walker, stand_rng)
@@ -149,7 +148,7 @@ def simulate_cycle(
             turn, dt = turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps, pose=pose)
             frames.append(turn)
             t += dt
-            carry = task.hand if task.kind == "carry" else None
+            carry = task.hand if kind.carries else None
             if width is not None:
                 carry = "both"
             wf = walk_frames(ctx, path, fps, carry, width)
@@ -175,11 +174,12 @@ def simulate_cycle(
                 )
             )
             here = goal
-        elif task.kind in ("pick", "place", "fasten"):
-            hold = task.duration if task.duration is not None else DEFAULT_HOLD[task.kind]
+        elif kind.action == "reach":
+            assert kind.default_hold is not None and kind.reach_case is not None
+            hold = task.duration if task.duration is not None else kind.default_hold
             factor = task_factor(hand_rng)  # lognormal, median 1 (mjwalk.cycle.handling)
             hold *= factor / pace  # the hold, like the reach, at the operator's pace
-            case = REACH_CASE[task.kind]
+            case = kind.reach_case
 
             def timing(dist, case=case, factor=factor):
                 return (
@@ -195,7 +195,7 @@ def simulate_cycle(
             frames.append(r.turn)
             t += r.turn_time
             if task.hand == "both":
-                width = r.width if task.kind == "pick" else None  # released on place/fasten
+                width = r.width if kind.part == "take" else None  # released when put down
             frames.append(r.frames)
             t += len(r.frames) / fps
             arms.append(
@@ -211,13 +211,12 @@ def simulate_cycle(
                     step_back=r.step_back,
                 )
             )
-        elif task.kind == "wait":
-            hold = task.duration if task.duration is not None else DEFAULT_HOLD["wait"]
+        elif kind.action == "wait":
+            assert kind.default_hold is not None
+            hold = task.duration if task.duration is not None else kind.default_hold
             n = max(1, round(hold * fps))
             frames.append(np.repeat(frames[-1][-1:], n, axis=0))
             t += n / fps
-        else:  # the spec parser refuses unknown kinds; this guards hand-made specs
-            raise CycleSpecError(f"task {i}: unknown kind {task.kind!r}")
         tasks.append(TaskRecord(i, task.kind, task.site, t0, t, task.route))
     qpos = np.vstack(frames)
     timeline = Timeline(
@@ -235,7 +234,7 @@ def simulate_cycle(
         handlings = [
             Handling(task.kind, task.site, task.hand, starts[i], ends[i])
             for i, task in enumerate(spec.tasks)
-            if task.kind in ("pick", "place", "fasten") and task.site is not None
+            if TASK_KINDS[task.kind].action == "reach" and task.site is not None
         ]
         timeline.parts = part_tracks(ctx.model, ctx.jointmap, qpos, handlings, ctx.scratch())
     contacts = collision_report(timeline, data=ctx.scratch()) if collisions else []

@@ -116,14 +116,6 @@ _TABLE_KEYS = {
     "models": ("step", "reach", "reach_right"),
     "walking": ("radius",),
 }
-_TASK_KEYS = {
-    "walk": ("kind", "site", "route"),
-    "carry": ("kind", "site", "route", "hand", "part"),
-    "pick": ("kind", "site", "hand", "part", "duration"),
-    "place": ("kind", "site", "hand", "part", "duration"),
-    "fasten": ("kind", "site", "hand", "part", "duration"),
-    "wait": ("kind", "duration"),
-}
 _ALL_TASK_KEYS = ("kind", "site", "hand", "duration", "route", "part")
 
 _HEADER_RE = re.compile(r"^\s*(\[\[|\[)\s*([^\[\]]+?)\s*(\]\]|\])\s*(#.*)?$")
@@ -438,7 +430,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         if not isinstance(raw, dict):
             raise check.fail(f"task {i + 1} must be a table ([[task]])", "task", i)
         tasks.append(_task(check, workplace, raw, i, radius, stand, held))
-        if tasks[-1].kind in ("walk", "carry"):
+        if TASK_KINDS[tasks[-1].kind].action == "walk":
             assert tasks[-1].site is not None  # checked by _task: walks need a site
             stand = tasks[-1].site
     try:
@@ -506,7 +498,7 @@ def _task(
             i,
             "kind",
         )
-    allowed = _TASK_KEYS[kind]
+    allowed = TASK_KINDS[kind].keys
     for key in raw:
         if key not in allowed:
             raise check.fail(
@@ -516,7 +508,8 @@ def _task(
                 i,
                 key,
             )
-    required = ("duration",) if kind == "wait" else ("site",)
+    action = TASK_KINDS[kind].action
+    required = ("duration",) if action == "wait" else ("site",)
     for key in required:
         if key not in raw:
             raise check.fail(f"missing required key {key!r} {where} ({kind} task)", t, i, key)
@@ -537,14 +530,14 @@ def _task(
     route = check.string(raw, "route", t, i) if "route" in raw else None
     part = check.string(raw, "part", t, i) if "part" in raw else None
 
-    if kind in ("walk", "carry"):
+    if action == "walk":
         assert site is not None  # required above
         if site == stand:
             raise check.fail(
                 f"key 'site' {where}: the operator already stands at {site!r}", t, i, "site"
             )
         _check_stand(check, workplace, site, radius, t, i, "site")
-        if kind == "carry":
+        if TASK_KINDS[kind].carries:
             if hand is None:
                 hand = next((h for h in HANDS if held[h] > 0), "left")
             if any(held[h] == 0 for h in _hands(hand)):
@@ -557,7 +550,7 @@ def _task(
                     key,
                 )
         route = route or f"{stand}->{site}"
-    elif kind in ("pick", "place", "fasten"):
+    elif action == "reach":
         assert site is not None  # required above
         hand = hand or "left"
         if held["both"] >= 0 and hand != "both":
@@ -591,12 +584,12 @@ def _task(
                 i,
                 "site",
             )
-        if kind == "pick":
+        if TASK_KINDS[kind].part == "take":
             for h in _hands(hand):
                 held[h] += 1
             if hand == "both":
                 held["both"] = i
-        elif any(held[h] == 0 for h in _hands(hand)):
+        elif TASK_KINDS[kind].part == "put" and any(held[h] == 0 for h in _hands(hand)):
             raise check.fail(
                 f"key 'kind' {where}: a {kind} with nothing in the {hand} hand (no part picked and "
                 "not yet "
@@ -605,7 +598,7 @@ def _task(
                 i,
                 "kind",
             )
-        else:
+        elif TASK_KINDS[kind].part == "put":
             for h in _hands(hand):
                 held[h] -= 1
             if hand == "both":

@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike
 from mjwalk.anthropometry import SEG, hand_reach
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.cycle.targets import reach_target
+from mjwalk.cycle.types import TASK_KINDS
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
@@ -168,16 +169,17 @@ def _site_zone(
     stand = ctx.workplace.station(site).pos
     targets, squarely, hands = [], [], []
     for task in ctx.spec.tasks[first:]:
-        if task.kind in ("walk", "carry"):
+        kind = TASK_KINDS[task.kind]
+        if kind.action == "walk":
             break
-        if task.kind not in ("pick", "place", "fasten") or task.site is None:
+        if kind.action != "reach" or task.site is None:
             continue
         sites = [f"{task.site}_left", f"{task.site}_right"] if task.hand == "both" else [task.site]
         for name in sites:
             pos = ctx.workplace.station(name).pos
             targets.append(reach_target(task.kind, pos, float(stand[0]), float(stand[1])))
             # the cycle faces fastenings and two-handed work squarely (simulate_cycle)
-            squarely.append(task.kind == "fasten" or task.hand == "both")
+            squarely.append(kind.approach == "surface" or task.hand == "both")
             hands.append(None if squarely[-1] else task.hand)
     facing = ctx.workplace.station(site).yaw
     return stand_zone(stand[:2], targets, step_length, stature, facing, squarely, hands)

@@ -10,6 +10,8 @@ from typing import TYPE_CHECKING
 import mujoco
 import numpy as np
 
+from mjwalk.cycle.types import TASK_KINDS
+
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
 
@@ -24,7 +26,7 @@ HEADROOM_HITS = 8
 
 
 def reach_target(kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndarray:
-    if kind == "fasten":  # stop in front of the surface, towards the operator
+    if TASK_KINDS[kind].approach == "surface":  # in front of the surface, towards the operator
         d = np.array([x, y]) - site_pos[:2]
         d /= max(np.linalg.norm(d), 1e-9)
         return site_pos + np.r_[FASTEN_STANDOFF * d, 0.0]
@@ -44,12 +46,13 @@ def approach_offset(
     work (pick, place) at a stand site facing ``facing`` (radians from +x) comes in along the
     site's facing, out of the shelf's opening, wherever in the stand zone the operator stands
     (towards the operator, an oblique approach swept the fingers across the rack's frame)."""
-    if facing is not None and kind != "fasten":
+    surface = TASK_KINDS[kind].approach == "surface"
+    if facing is not None and not surface:
         d = -np.array([math.cos(facing), math.sin(facing)])
     else:
         d = np.array([x, y]) - site_pos[:2]
         d /= max(np.linalg.norm(d), 1e-9)
-    up = 0.0 if kind == "fasten" else min(APPROACH_UP, rise)
+    up = 0.0 if surface else min(APPROACH_UP, rise)
     return np.r_[APPROACH_BACK * d, up]
 
 

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mjwalk.cycle.standing import StandZone, start_zone, work_zone
+from mjwalk.cycle.types import TASK_KINDS
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
@@ -127,7 +128,7 @@ def plan_cycle_walks(
     x, y = float(start[0]), float(start[1])
     out = []
     for i, task in enumerate(spec.tasks):
-        if task.kind in ("walk", "carry"):
+        if TASK_KINDS[task.kind].action == "walk":
             path = plan_task_walk(ctx, i, (x, y), rng, walker, spots)
             goal = str(task.site)
             out.append((i, here, goal, path))
