@@ -59,12 +59,12 @@ _MEMO: dict = {}
 def default_reach_model(progress: bool = True):
     """The :class:`~mjwalk.arms.reach.ReachModel` of start/end-constrained reaches of the left
     arm (``reachgen.generate("endpoints", N_TRAIN, seed 0)``), cached beside the step model."""
+    from mjwalk._io import cache_root
     from mjwalk.arms import reachgen
     from mjwalk.arms.kinematics import REST_HAND
     from mjwalk.arms.reach import ReachModel
-    from mjwalk.gait.default import cache_dir
 
-    path = cache_dir() / f"reach-endpoints-v{REACH_DEFAULT_VERSION}-n{N_TRAIN}.npz"
+    path = cache_root() / f"reach-endpoints-v{REACH_DEFAULT_VERSION}-n{N_TRAIN}.npz"
     if path in _MEMO:
         return _MEMO[path]
     model = None
