@@ -18,7 +18,7 @@ from mjwalk.cycle.crouch import crouch_frames, crouch_pose, trunk_bend, trunk_ro
 from mjwalk.cycle.handling import body_motion_duration
 from mjwalk.cycle.reaching import LEAN_SPARE, default_timing, plumb_arms, time_factor
 from mjwalk.cycle.standoff import arm_clearance
-from mjwalk.cycle.types import TASK_KINDS
+from mjwalk.cycle.types import TASK_KINDS, grip_sites
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
@@ -50,7 +50,6 @@ def two_hand_frames(
         return _two_hand_reach(ctx, q0, task, approach, hold, fps, timing, held)
     from mjwalk.arms.kinematics import arm_adrs
     from mjwalk.arms.reach import humanoid_arm
-    from mjwalk.cycle.spec import grip_sites
 
     body = crouch_pose(ctx, q0, drop)
     grips: list[tuple[Side, np.ndarray]] = [
@@ -108,7 +107,6 @@ def _two_hand_reach(ctx: CycleContext, q0, task, approach, hold, fps, timing=Non
     metres)."""
     from mjwalk.arms.kinematics import arm_adrs
     from mjwalk.cycle.poses import carry_pose, hand_points
-    from mjwalk.cycle.spec import grip_sites
 
     jm = ctx.jointmap
     carrying = np.array(q0, dtype=float)

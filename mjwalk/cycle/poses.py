@@ -11,6 +11,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.body.humanoid import pelvis_height
+from mjwalk.body.legs.curves import smoothstep
 from mjwalk.timeline.frames import ease_arms, frames_from_legs, room_and_away, yaw_quat
 from mjwalk.timeline.parts import hand_poses
 
@@ -136,7 +137,7 @@ def _settle(frames: np.ndarray, start: np.ndarray, r: int, hinges: np.ndarray) -
     frames' yaw and loses ``start``'s tilt (normalized linear blend of the quaternions)."""
     n = len(frames)
     s = np.arange(1, n + 1) / n
-    w = (s * s * (3.0 - 2.0 * s))[:, None]
+    w = smoothstep(s)[:, None]
     joints = np.r_[r : r + 3, np.asarray(hinges, int)]  # pelvis position, the humanoid's hinges
     frames[:, joints] = start[joints] + w * (frames[:, joints] - start[joints])
     q0 = start[r + 3 : r + 7]
@@ -224,5 +225,16 @@ def walk_frames(
     room, away = room_and_away(ctx.workplace, frames[:, jm.root : jm.root + 2])
     rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
     abd = carry_abduction(ctx, carry_width) if carry == "both" and carry_width else None
-    ease_arms(frames, t, walk.duration, jm, rest, room, carry, away, ctx.spec.stature, abd)
+    ease_arms(
+        frames,
+        t,
+        walk.duration,
+        jm,
+        rest,
+        room=room,
+        carry=carry,
+        away=away,
+        stature=ctx.spec.stature,
+        carry_abd=abd,
+    )
     return frames

@@ -15,7 +15,7 @@ import numpy as np
 
 from mjwalk.anthropometry import knee_height
 from mjwalk.body.legs.curves import smoothstep
-from mjwalk.conventions import Side, side_prefix
+from mjwalk.conventions import Side, other_side, side_prefix
 from mjwalk.cycle.crouch import bend_trunk, crouch_frames, crouch_pose, trunk_bend
 from mjwalk.cycle.handling import RETURN_CASE, body_motion_duration, reach_duration
 
@@ -230,8 +230,7 @@ def reach_frames(
     back = np.vstack([back[1:], rise, q0[None]])
     frames = np.vstack([ready, out, np.repeat(out[-1:], n_hold, axis=0), back])
     if lean or drop > 0.0:  # the other arm hangs plumb from the bending trunk
-        other: Side = "right" if side == "left" else "left"
-        frames = plumb_arms(ctx, frames, q0, np.ones(len(frames)), (other,))
+        frames = plumb_arms(ctx, frames, q0, np.ones(len(frames)), (other_side(side),))
     return frames, error, res
 
 

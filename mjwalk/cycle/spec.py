@@ -77,7 +77,7 @@ import numpy as np
 
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.cycle.population import HUMANOID_STATURE_RANGE, Population, parse_population
-from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task
+from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task, grip_sites
 from mjwalk.errors import CycleSpecError, MjwalkError, SceneError
 from mjwalk.world.workplace import Workplace, shared_workplace
 
@@ -92,14 +92,6 @@ RADIUS_RANGE = (0.1, 0.6)
 HANDS = ("left", "right")
 #: Accepted values of a task's ``hand`` ("both": two-handed, see above).
 HAND_VALUES = (*HANDS, "both")
-
-
-def grip_sites(site: str, hand: str) -> list[tuple[str, str]]:
-    """(side, site name) pairs of the hands reaching for ``site``: ``[(hand, site)]`` for one
-    hand, ``[("left", site + "_left"), ("right", site + "_right")]`` for ``hand = "both"``."""
-    if hand == "both":
-        return [("left", f"{site}_left"), ("right", f"{site}_right")]
-    return [(hand, site)]
 
 
 #: Longest a task's ``duration`` and the durations of a cycle together may be, seconds. An

@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike
 from mjwalk.anthropometry import SEG, hand_reach
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.cycle.targets import reach_target
-from mjwalk.cycle.types import TASK_KINDS
+from mjwalk.cycle.types import TASK_KINDS, grip_sites
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
@@ -174,8 +174,7 @@ def _site_zone(
             break
         if kind.action != "reach" or task.site is None:
             continue
-        sites = [f"{task.site}_left", f"{task.site}_right"] if task.hand == "both" else [task.site]
-        for name in sites:
+        for _, name in grip_sites(task.site, task.hand):
             pos = ctx.workplace.station(name).pos
             targets.append(reach_target(task.kind, pos, float(stand[0]), float(stand[1])))
             # the cycle faces fastenings and two-handed work squarely (simulate_cycle)

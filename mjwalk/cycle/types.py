@@ -6,8 +6,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Literal
 
-import numpy as np
-
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.walkpath import WalkPath
@@ -74,6 +72,14 @@ TASK_KINDS: dict[str, TaskKind] = {
         TaskKind("wait", ("kind", "duration"), "wait", default_hold=1.0),
     )
 }  # fmt: skip
+
+
+def grip_sites(site: str, hand: str) -> list[tuple[str, str]]:
+    """(side, site name) pairs of the hands reaching for ``site``: ``[(hand, site)]`` for one
+    hand, ``[("left", site + "_left"), ("right", site + "_right")]`` for ``hand = "both"``."""
+    if hand == "both":
+        return [("left", f"{site}_left"), ("right", f"{site}_right")]
+    return [(hand, site)]
 
 
 @dataclass
@@ -290,12 +296,3 @@ def operator_dict(walker: Walker | None) -> dict | None:
         "step_width": walker.step_width,
         "pace": walker.pace,
     }
-
-
-def walk_samples(results: list[CycleResult]) -> dict[str, np.ndarray]:
-    """(runs,) arrays of walk lengths per route over many results, for the report."""
-    out: dict[str, list[float]] = {}
-    for r in results:
-        for route, lengths in r.walk_lengths().items():
-            out.setdefault(route, []).extend(lengths)
-    return {k: np.array(v) for k, v in out.items()}

@@ -63,7 +63,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mjwalk._io import check_header, load_npz, save_npz
-from mjwalk.conventions import Side
+from mjwalk.conventions import Side, other_side
 from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait.features import (
     StepBatch,
@@ -250,7 +250,8 @@ class StepModel:
                 )
                 _log(
                     progress,
-                    f"{label}{s}->{_other(s)}: {counts[s]} pairs, {time.perf_counter() - t1:.1f} s",
+                    f"{label}{s}->{other_side(s)}: {counts[s]} pairs, "
+                    f"{time.perf_counter() - t1:.1f} s",
                 )
             return out, counts
 
@@ -369,7 +370,7 @@ class StepModel:
         if is_left.all() or not is_left.any():
             s = "left" if p and is_left[0] else "right"
             z = gps[s].sample(x, n, rng).reshape(p * n, d)
-            side = np.full(p * n, _other(s), dtype="<U5")
+            side = np.full(p * n, other_side(s), dtype="<U5")
         else:
             z = np.empty((p, n, d))
             for s, mask in (("left", is_left), ("right", ~is_left)):
@@ -478,7 +479,7 @@ class StepModel:
             pca_dims=self.n_dims,
             variance_kept=round(self.features.variance_kept, 5),
             kernels={
-                f"{s}->{_other(s)}": {
+                f"{s}->{other_side(s)}": {
                     "signal_var": round(g.signal_var, 5),
                     "noise_var": round(g.noise_var, 5),
                     "length_scale": [round(float(v), 4) for v in g.length_scale],
@@ -492,7 +493,7 @@ class StepModel:
                 for s, g in self.gp.items()
             },
             stop_kernels={
-                f"{s}->{_other(s)}": {
+                f"{s}->{other_side(s)}": {
                     "n_pairs": g.n_pairs,
                     "n_inducing": int(g.inducing.shape[0]),
                 }
@@ -578,10 +579,6 @@ def _check_shapes(model: StepModel) -> None:
         arrs = (g.inducing, g.alpha, g.w, g.res_pool, model.kde_data[s])
         if not all(np.all(np.isfinite(a)) for a in arrs):
             raise ValueError(f"{s} GP/KDE arrays hold non-finite values")
-
-
-def _other(side: str) -> str:
-    return "right" if side == "left" else "left"
 
 
 def _log(progress: bool, msg: str) -> None:

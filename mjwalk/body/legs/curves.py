@@ -16,6 +16,8 @@ FLAT = float(np.deg2rad(FLAT_DEG))
 
 
 def smoothstep(x: np.ndarray) -> np.ndarray:
+    """The smoothstep ``3x^2 - 2x^3`` of ``x`` clipped to [0, 1]: 0 to 1 with zero slope at
+    both ends (the one easing curve of the package's blends)."""
     x = np.clip(x, 0.0, 1.0)
     return x * x * (3 - 2 * x)
 
