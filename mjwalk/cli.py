@@ -236,6 +236,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             collisions=False,
         )
         video = args.out / "cycle.mp4"
+        assert run0.timeline is not None  # keep_timeline=True
         render_video(
             run0.timeline,
             video,

@@ -789,11 +789,11 @@ class HybridPlanner:
 
     def _assemble(self, model, nid, nodes, feats, stats) -> WalkPath:
         parent, rows, pos, frames, lefts = nodes
-        chain = []
+        ids = []
         while nid > 0:
-            chain.append(nid)
+            ids.append(nid)
             nid = parent[nid]
-        chain = np.array(chain[::-1])
+        chain = np.array(ids[::-1])
         left = lefts[chain]
         batch = model.decode(feats[rows[chain]], np.where(left, "left", "right"))
         ox = pos[parent[chain]].real

@@ -318,7 +318,7 @@ def workplace_from_model(
         source=source,
         floor=mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}",
         floor_z=floor_z,
-        floor_bounds=tuple(float(v) for v in bounds),
+        floor_bounds=(float(bounds[0]), float(bounds[1]), float(bounds[2]), float(bounds[3])),
         obstacles=footprints,
         clearance=clearance,
         stations=stations,
