@@ -11,9 +11,9 @@ from mjwalk.errors import ModelFileError
 
 #: Bump when the generator or the model changes, so the cache is rebuilt.
 REACH_DEFAULT_VERSION = "7"
-#: Generated reaches the default model is trained on: 200 over the working area up to the
-#: shoulder until 2026-11-28; 320 since it reaches up to a top shelf (reachgen.END_BOX, 1.6
-#: times as high), the same density of reaches (and so the same trained-range radius).
+#: Generated reaches the default model is trained on: over the working area up to a top shelf
+#: (reachgen.END_BOX), at the density of 200 reaches up to the shoulder, which sets the
+#: trained-range radius.
 N_TRAIN = 320
 #: Chosen by exact leave-one-out errors on the training samples (PRESS), with the network
 #: size: RBF width, output ridge, constant or local linear outputs (with the slopes' own ridge)

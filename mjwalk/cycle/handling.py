@@ -17,7 +17,7 @@ Three factors make a handling time (seconds):
    inch (the card's rule).
 2. **Pace.** The operator's pace (:attr:`mjwalk.gait.walker.Walker.pace`, speed relative to the
    reference adult): every handling time is divided by it (a slower walker is a slower worker).
-   This is mjwalk's modelling choice, named in issue 14; MTM times are for the trained
+   This is mjwalk's modelling choice: MTM times are for the trained
    average operator at standard performance, which the reference adult stands for.
 3. **Per-task variation.** Each task of each run draws one lognormal factor of median 1 and
    coefficient of variation :data:`TASK_CV` that multiplies its reach, hold and return: manual

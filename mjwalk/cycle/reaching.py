@@ -137,15 +137,14 @@ def reach_frames(
     # it as far as the wrist follows, stay on the approach's line, which comes in from the free
     # side of the target: out of a shelf's opening, from the operator at the car), or in the
     # grip face's plane; as far as the humanoid's wrist can turn it there, the elbow swivelled
-    # as it needs (_wrist_feasible). Before, the wrist was clipped after the fact and the
-    # fingers ended up to 14 cm off a fastening target
+    # as it needs (_wrist_feasible), so the fingers, not only the wrist, end on the target
     u_app = frame.T @ -np.asarray(approach_w, dtype=float)
     u_app /= max(float(np.linalg.norm(u_app)), 1e-9)
     if face is not None:
-        # in the face's plane: the approach's direction there. The model's last direction
-        # (up, for a part above the shoulder) put the wrists below the grips and the forearms
-        # through a shelf board's front edge (benchmarks/bench_heights.py, both hands, 1.55 m)
-        # (the model's, when the approach runs along the normal: grips one behind the other)
+        # in the face's plane: the approach's direction there, which keeps the wrists level
+        # with the grips and the forearms above a shelf board's front edge (the model's last
+        # direction, up for a part above the shoulder, would not); the model's own when the
+        # approach runs along the normal (grips one behind the other)
         n_s = frame.T @ np.asarray(face, dtype=float)
         u_face = u_app - (u_app @ n_s) * n_s
         if np.linalg.norm(u_face) < 0.1:
@@ -185,9 +184,8 @@ def reach_frames(
     # default model's REST_HAND: elbow bent, hand in front of the thigh), the standing arm
     # hangs straight: the first frames bend the arm into the ready posture (joint-space, the
     # hand stays by the body), their share of the reach time the share of the hand's path they
-    # cover (one pace along the path: a fixed quarter of the time moved the hand up to 3.5 m/s
-    # there), the rest follows the model's trajectory; the return ends the same way. Without
-    # it the arm snapped between the two in one frame (elbow 0 <-> 87 deg).
+    # cover (one pace along the path), the rest follows the model's trajectory; the return
+    # ends the same way, so the elbow bends into and out of the ready posture smoothly.
     share = ready_len / max(ready_len + model_len, 1e-9)
     n_ready = min(n_out - 2, max(1, round(max(share * n_out, READY_MIN * fps))))
     n_arm_ready = n_rise = n_ready
@@ -215,8 +213,8 @@ def reach_frames(
     n_back = max(1, round(reach_back * fps))
     n_back = max(2, n_back - n_arm_ready)
     # the reach retraced in the return's time: poses interpolated between the reach's frames
-    # (hinge angles; the root does not move during a reach). Rounding to the nearest frame
-    # skipped one or two frames in turn and the hand jumped (19 cm in one frame, 5.6 m/s)
+    # (hinge angles; the root does not move during a reach), so the hand moves smoothly
+    # however the return's frame count divides the reach's
     src = np.linspace(0.0, n_out - 1.0, n_back)
     i0 = np.minimum(np.floor(src).astype(int), n_out - 1)
     i1 = np.minimum(i0 + 1, n_out - 1)

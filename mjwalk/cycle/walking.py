@@ -26,9 +26,8 @@ __all__ = [
 
 #: A standing spot keeps this much more than the body radius from obstacles (m): a walk sets
 #: off with a first step that sways the pelvis sideways (the default model's first steps: 1.3
-#: cm median, 3.6 cm 99th percentile of 4000 drawn, 6.1 cm the largest), so the planner finds
-#: no first step from a spot on the radius itself (measured: 9 of 100 station cycles drawn
-#: without the margin, all within 1 cm of the radius).
+#: cm median, 3.6 cm 99th percentile, 6.1 cm the largest), so from a spot on the radius itself
+#: the planner may find no first step (docs/decisions/005-standing-spots.md).
 START_MARGIN = 0.04
 #: Candidate spots drawn at once by :func:`standing_spot` (uniform over the zone's disc); the
 #: stations' zones keep 5-40 % of their disc walkable, so 512 leave a miss below 1e-10.
@@ -68,12 +67,8 @@ def cycle_start(ctx: CycleContext, rng: np.random.Generator, walker=None) -> tup
 #: part (:func:`standing_spot`): where people stand to work is not one point, it differs between
 #: people and from one cycle to the next. The walk ends when the pelvis is within this many of
 #: the walker's step lengths of the spot: walking in whole steps, one stops at the footfall
-#: nearest the spot, within half a step of it. Measured (bench_variability, 1000 station
-#: cycles, route length IQR/median as % of agethen2018 Table 1's, T1, T2 there/back, T3
-#: there/back, T4, T5): agethen2018's participants 75, 37/46, 50/63, 53, 82 against 64,
-#: 27/60, 21/62, 33, 50 when walks ended at the first place in the zone their steps reached;
-#: the shipped workforce 79, 34/41, 43/49, 55, 60 against 82, 32/50, 20/47, 33, 33; the
-#: longest walks (99th percentile over the grid A*'s route) at most 1.21x against 1.34x.
+#: nearest the spot, within half a step of it. The routes' spread then matches agethen2018's
+#: Table 1 (``benchmarks/bench_variability.py``; docs/decisions/005-standing-spots.md).
 SPOT_REACH = 0.5
 #: Spots drawn for a walk before it aims at the zone as a whole (a spot within SPOT_REACH step
 #: lengths of the start is no walk: the operator already stands there).

@@ -45,14 +45,9 @@ CENTRE_TRIM = 0.25
 #: Version of the pace measurement: a model file whose saved pace has another is re-measured.
 PACE_VERSION = 2
 #: Steps left out at the start of a model walk (gait initiation, acceleration) and at its end.
-#: KNOWN BIAS (measured, not fixed here): a chain of the default model overshoots after its
-#: initiation and settles from about the sixth step (20 m walks, 200 seeded, median step speed
-#: by step: 0.52, 1.08, 1.28, 1.29, 1.27, 1.25, then 1.22 +- 0.01 m/s), so the steps counted
-#: here are ~2 % faster than its steady walking and a conditioned walker's long walks ~2 %
-#: slower than asked. Skipping 6 steps fixes that but lets the greedy walker's pelvis-arc
-#: detour (mjwalk.gait.straight) pick narrower, low-sway steps the longer it walks: a 0.6 m/s
-#: walker's steady step width fell to 0.80-0.87 of its stature's (test_walker asks >= 0.9;
-#: the model's own chains keep 0.99).
+#: The default model's chains settle from about the sixth step, so the steps counted are about
+#: 2 % faster than its steady walking; skipping more costs step width on slow walkers
+#: (docs/decisions/006-pace-skipped-steps.md).
 SKIP_START, SKIP_END = 2, 1
 
 

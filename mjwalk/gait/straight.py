@@ -98,12 +98,11 @@ def straight_runs(steps: Sequence[Step], straight_deg: float = 20.0) -> list[lis
 #: A captured walk starts from standing when the pelvis moves slower than this at the start
 #: of its first step (m/s, mean over the first :data:`REST_WINDOW` s), not merely when the
 #: segmenter flags that step a gait initiation (both feet on the floor since the take's first
-#: frame): a clip cut in double support starts so while walking. On the Bandai straight walks,
-#: 17 of 91 first steps are flagged initiations, and their pelvis moves at 0.40 m/s (1 walk)
-#: and 0.90-1.56 m/s (16 walks): walked from standing, they took the model ~0.4 s of gait
-#: initiation the captured walkers never did. 0.2 m/s: the shared capture's README calls a
-#: clip starting below it one starting from a stand; a standing person's pelvis sways at
-#: a few cm/s.
+#: frame): a clip cut in double support starts so while walking, and walked from standing it
+#: would add a gait initiation the captured walker never made (about 0.4 s). 0.2 m/s: the
+#: shared capture's README calls a clip starting below it one starting from a stand; a standing
+#: person's pelvis sways at a few cm/s. (On the Bandai straight walks, 17 of 91 first steps are
+#: flagged initiations, 16 of them with the pelvis at 0.90-1.56 m/s.)
 REST_SPEED = 0.2
 REST_WINDOW = 0.1
 
