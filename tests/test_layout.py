@@ -136,6 +136,23 @@ def test_no_import_cycles():
     assert cycles == []
 
 
+#: Private names a module still takes from another (each is to be made public in its owner).
+PRIVATE_FOR_NOW = {("mjwalk.plan.search", "mjwalk.plan.stepcheck", "_within")}
+
+
+def test_private_names_stay_in_their_module():
+    """A name starting with an underscore is its module's own: another module that needs it
+    needs a public name in the module that owns it."""
+    crossing = set()
+    for f in _files():
+        for node in ast.walk(ast.parse(f.read_text())):
+            if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("mjwalk"):
+                for a in node.names:
+                    if a.name.startswith("_") and not a.name.startswith("__"):
+                        crossing.add((_module(f), node.module, a.name))
+    assert crossing == PRIVATE_FOR_NOW
+
+
 #: The longest a module may be (lines): one concept per module.
 MAX_LINES = 600
 #: Modules not yet split (each is to be split, then taken off this list).

@@ -76,7 +76,7 @@ from mjwalk._args import finite_points, parse_point
 from mjwalk.anthropometry import ROM_DEG, SHIN_RADIUS, leg_geometry
 from mjwalk.conventions import DEFAULT_STATURE, SAMPLE_RATE_HZ
 from mjwalk.errors import InputError, PlanningError
-from mjwalk.gait.features import _I_DUR, StepBatch, spline_basis
+from mjwalk.gait.features import I_DUR, StepBatch, spline_basis
 from mjwalk.gait.transition import POOL_SHARPNESS
 from mjwalk.plan import search, stepcheck
 from mjwalk.plan.grid import (
@@ -338,7 +338,7 @@ class _Decoder:
                 batch.footprint[:, 2] + 1j * batch.end_yaw,
                 yaw + 0j,
                 # the duration before decode's clip at MIN_DURATION (the check clips it)
-                model.features.decode_raw(z)[:, _I_DUR] + 0j,
+                model.features.decode_raw(z)[:, I_DUR] + 0j,
             ]
         )
 
