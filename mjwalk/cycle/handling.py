@@ -62,6 +62,10 @@ REACH_TMU = {
 RETURN_CASE = "E"
 #: Coefficient of variation of the per-task lognormal factor (see the module docstring).
 TASK_CV = 0.2
+#: MTM-1 body motions (TMU): "B" bend, stoop or kneel on one knee, and "AB" arise from it
+#: (Freivalds & Niebel 2014, *Niebel's Methods, Standards, and Work Design*, 13th ed.,
+#: Table 12-1, Body, leg and foot motions: 29.0 and 31.9 TMU).
+BODY_MOTION_TMU = {"B": 29.0, "AB": 31.9}
 INCH = 0.0254
 
 
@@ -84,12 +88,6 @@ def reach_duration(distance: float, walker: Walker | None = None, case: str = "B
     pace 1): the MTM-1 time divided by the walker's pace."""
     pace = 1.0 if walker is None else walker.pace
     return reach_tmu(distance, case) * TMU / pace
-
-
-#: MTM-1 body motions (TMU): "B" bend, stoop or kneel on one knee, and "AB" arise from it
-#: (Freivalds & Niebel 2014, *Niebel's Methods, Standards, and Work Design*, 13th ed.,
-#: Table 12-1, Body, leg and foot motions: 29.0 and 31.9 TMU).
-BODY_MOTION_TMU = {"B": 29.0, "AB": 31.9}
 
 
 def body_motion_duration(motion: str, walker: Walker | None = None) -> float:

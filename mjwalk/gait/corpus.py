@@ -58,6 +58,7 @@ from mjwalk.mocap.take import TAKE_FPS, Take
 #: trained on an older corpus are rebuilt (see mjwalk.gait.default).
 CORPUS_VERSION = "2"
 
+#: Gravitational acceleration (m/s^2), the inverted pendulum's.
 G = 9.81
 #: Ankle and toe (ball of the foot) heights above the floor when the foot is planted, metres.
 ANKLE_HEIGHT = 0.08
@@ -84,6 +85,15 @@ SHORT_INITIATION = (0.6, 0.9)
 SHORT_STRETCH = (0.75, 1.15)
 SHORT_MAX_STEPS = 2
 SHORT_TURN = 30.0
+#: Paper's protocol minutes per subject: free 4, straight 2 + 2, pole 8 x 2 (agethen2018 §3.2),
+#: plus short walks (``_short_plan``), which the paper's protocol lacks: without them the model's
+#: first and closing steps barely vary and a walk to a spot about a metre away cannot end within
+#: a tight goal area except by a detour.
+PROTOCOL_MINUTES = {"free": 4.0, "straight": 4.0, "pole": 16.0, "short": 2.5}
+#: Default minutes per subject (paper: 24, without the short walks; 25.5 leaves the paper's
+#: scenarios the 23 minutes they had before the short walks). 12 subjects at this size give
+#: > 20 000 captured transitions (see benchmarks/bench_corpus.py).
+DEFAULT_MINUTES = 25.5
 
 # ---------------------------------------------------------------------------------------------
 # Step plans
@@ -437,16 +447,6 @@ def _render(
 # ---------------------------------------------------------------------------------------------
 # Protocol
 # ---------------------------------------------------------------------------------------------
-
-#: Paper's protocol minutes per subject: free 4, straight 2 + 2, pole 8 x 2 (agethen2018 §3.2),
-#: plus short walks (``_short_plan``), which the paper's protocol lacks: without them the model's
-#: first and closing steps barely vary and a walk to a spot about a metre away cannot end within
-#: a tight goal area except by a detour (issues 3/4/7).
-PROTOCOL_MINUTES = {"free": 4.0, "straight": 4.0, "pole": 16.0, "short": 2.5}
-#: Default minutes per subject (paper: 24, without the short walks; 25.5 leaves the paper's
-#: scenarios the 23 minutes they had before the short walks). 12 subjects at this size give
-#: > 20 000 captured transitions (see benchmarks/bench_corpus.py).
-DEFAULT_MINUTES = 25.5
 
 
 def subject_takes(
