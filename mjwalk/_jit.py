@@ -11,7 +11,6 @@ algorithms, so a seed gives the same numbers inside and outside them.
 
 from __future__ import annotations
 
-import sys
 from collections.abc import Callable
 from typing import cast
 
@@ -19,22 +18,17 @@ import numba
 import numba.core.event
 import numba.extending
 
+from mjwalk._log import claim_notice, log
+
 #: ``fastmath`` off by default: the arithmetic stays that of the NumPy code it replaces.
 njit = numba.njit(cache=True, nogil=True, fastmath=False)
 #: For long dot products: the sums may be reassociated (and multiply-adds fused), so they
 #: vectorize, as BLAS's do; nothing else of fastmath (NaN and inf stay IEEE).
 njit_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
 
-#: Printed (stderr, once per process) when one of mjwalk's compiled functions misses the
-#: cache and compiles: on the first plan or animation after an install or upgrade. Measured
-#: for the planner alone: 15 s on an idle 2-core machine; 44 s, 106 s and 159 s wall (44 CPU s)
-#: on one loaded by other jobs; the animation kernels (legs, reach pose fit) compile on the
-#: first animated walk or reach on top of that
-#: (load average 13: ``NUMBA_CACHE_DIR=$(mktemp -d) mjwalk plan station --from stand_rack2
-#: --to stand_car1 --n 1``); the next process loads the machine code instead (no notice).
-#: The leg synthesis's kernels alone: 8 s on the 2-core machine at load average 2, 4 s
-#: before its per-step loops were compiled (the first ``legs_from_walk`` of a 6-step
-#: synthetic walk under ``NUMBA_CACHE_DIR=$(mktemp -d)``).
+#: Logged (INFO, once per command: :func:`mjwalk._log.claim_notice`) when one of mjwalk's
+#: compiled functions misses the cache and compiles: on the first plan or animation after an
+#: install or upgrade (``benchmarks/bench_cold_start.py`` measures how long that takes).
 COMPILE_NOTICE = (
     "mjwalk: compiling the planner and the animation kernels (numba, once after an install: "
     "about a minute idle, minutes on a busy machine; cached for later runs)..."
@@ -42,7 +36,7 @@ COMPILE_NOTICE = (
 
 
 class _CompileNotice(numba.core.event.Listener):
-    """Prints :data:`COMPILE_NOTICE` when the first ``mjwalk`` function starts compiling (numba
+    """Logs :data:`COMPILE_NOTICE` when the first ``mjwalk`` function starts compiling (numba
     emits "numba:compile" only on a cache miss, never when it loads cached machine code)."""
 
     shown = False
@@ -53,7 +47,8 @@ class _CompileNotice(numba.core.event.Listener):
         func = getattr((event.data or {}).get("dispatcher"), "py_func", None)
         if (getattr(func, "__module__", None) or "").startswith("mjwalk"):
             self.shown = True
-            print(COMPILE_NOTICE, file=sys.stderr, flush=True)
+            if claim_notice():
+                log.info(COMPILE_NOTICE)
 
     def on_end(self, event) -> None:
         pass

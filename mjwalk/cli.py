@@ -3,11 +3,16 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+import tempfile
+import time
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
+from mjwalk import _log
 from mjwalk._args import (
     arg_count,
     arg_fraction,
@@ -28,6 +33,7 @@ from mjwalk.errors import InputError, MjwalkError
 #: Video files ``mjwalk render`` writes (H.264 in MP4).
 VIDEO_SUFFIXES = (".mp4",)
 _SCENES = "station, corridor, open_floor"
+QUIET_HELP = "no progress messages or bars (warnings and errors only)"
 
 
 def _load_model(path: Path | None):
@@ -164,13 +170,13 @@ def _cmd_train(args: argparse.Namespace) -> int:
 
 
 def _cmd_validate(args: argparse.Namespace) -> int:
-    from mjwalk.gait.fidelity import validate_main
+    from mjwalk.gait.fidelity import format_fidelity_table, validate_main
     from mjwalk.plan.straight import planned_straight_walks
 
     if args.json:
         check_output_file(args.json, "--json")
     walker = _walker_from_args(args)
-    validate_main(
+    report = validate_main(
         args.model,
         args.against,
         args.json,
@@ -180,7 +186,32 @@ def _cmd_validate(args: argparse.Namespace) -> int:
         walker=walker,
         planned_walks=planned_straight_walks,
     )
+    print(format_fidelity_table(report))
     return 0
+
+
+#: Seconds to wait for a Dask scheduler to answer before ``--scheduler`` gives up.
+SCHEDULER_TIMEOUT_S = 10.0
+
+
+def _dask_client(address: str):
+    """A ``dask.distributed.Client`` of the scheduler at ``address``, or a clear error (the
+    extra not installed, the scheduler not answering) before any work."""
+    try:
+        from distributed import Client
+    except ImportError:
+        raise InputError(
+            f"--scheduler {address}: Dask is not installed here; "
+            'pip install "mjwalk[cluster]" (and mjwalk on the workers)'
+        ) from None
+    try:
+        return Client(address, timeout=SCHEDULER_TIMEOUT_S)
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
+        raise InputError(
+            f"--scheduler {address}: no Dask scheduler answered within "
+            f"{SCHEDULER_TIMEOUT_S:.0f} s ({type(exc).__name__}: {exc}); give its address as "
+            "tcp://HOST:PORT (dask scheduler prints it)"
+        ) from None
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
@@ -206,20 +237,32 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         f"{which}, seed {args.seed}",
         flush=True,
     )
-    if args.dry_run:
-        print(f"  {spec.path} and --out {args.out} checked; nothing simulated (--dry-run)")
-        return 0
-    # builds (or loads) the default models once, with progress; the runs in this process reuse it
-    ctx = context_of(spec)
-    results = simulate_cycles(
-        spec,
-        args.runs,
-        seed=args.seed,
-        n_jobs=args.jobs,
-        progress=not args.quiet,
-        only=only,
-        on_error="record",  # one unplannable run does not end a long batch; the report lists it
-    )
+    client = None if args.scheduler is None else _dask_client(args.scheduler)
+    try:
+        if args.dry_run:
+            print(f"  {spec.path} and --out {args.out} checked; nothing simulated (--dry-run)")
+            return 0
+        # builds (or loads) the default models once, with progress; this process reuses them
+        ctx = context_of(spec)
+        batch: dict[str, Any] = dict(
+            seed=args.seed,
+            n_jobs=args.jobs,
+            progress=not args.quiet,
+            only=only,
+            on_error="record",  # one unplannable run does not end a long batch; the report lists it
+        )
+        if client is None:
+            results = simulate_cycles(spec, args.runs, **batch)
+        else:
+            import joblib
+
+            # the spec goes to the workers in memory; its scene and model files must be at the
+            # same paths there (a shared file system), as for any Dask job reading files
+            with joblib.parallel_config(backend="dask"):
+                results = simulate_cycles(spec, args.runs, **{**batch, "n_jobs": -1})
+    finally:
+        if client is not None:
+            client.close()
     files = write_report(results, args.out, workplace=ctx.workplace)
     print(format_summary(report_dict(results)))
     for name, path in files.items():
@@ -401,9 +444,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--dry-run", action="store_true", help="check the cycle and --out, simulate nothing"
     )
+    p.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="run the batch on an existing Dask cluster (tcp://HOST:PORT of its scheduler; the "
+        "workers need mjwalk and the scene's files at the same paths); same results as a local run",
+    )
     p.add_argument("--video", action="store_true", help="also render one cycle to cycle.mp4")
     p.add_argument("--camera", choices=["track", "top"], default="track")
-    p.add_argument("--quiet", action="store_true", help="no progress bars")
+    p.add_argument("--quiet", action="store_true", help=QUIET_HELP)
     p.add_argument("--json-summary", action="store_true", help=argparse.SUPPRESS)
     p.set_defaults(func=_cmd_simulate)
 
@@ -426,7 +475,7 @@ def build_parser() -> argparse.ArgumentParser:
         default=DEFAULT_STATURE,
         help="humanoid stature in metres",
     )
-    p.add_argument("--quiet", action="store_true", help="no progress bar")
+    p.add_argument("--quiet", action="store_true", help=QUIET_HELP)
     p.set_defaults(func=_cmd_render)
 
     p = sub.add_parser("train", help="train a step model from capture or virtual subjects")
@@ -459,6 +508,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_validate)
     _add_scan_parser(sub)
     _add_scene_import_parser(sub)
+    for cmd in sub.choices.values():
+        if not any("--quiet" in a.option_strings for a in cmd._actions):
+            cmd.add_argument("--quiet", action="store_true", help=QUIET_HELP)
     return parser
 
 
@@ -466,6 +518,10 @@ def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     argv = sys.argv[1:] if argv is None else argv
     args = parser.parse_args(join_negative_values(argv, ("--from", "--to")))
+    _log.configure(quiet=args.quiet)
+    # one compile notice for the command, whichever of its processes compiles first
+    mark = Path(tempfile.gettempdir()) / f"mjwalk-notice-{os.getpid()}-{time.time_ns()}"
+    os.environ[_log.NOTICE_ENV] = str(mark)
     try:
         return args.func(args)
     except MjwalkError as exc:
@@ -474,6 +530,9 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("mjwalk: interrupted", file=sys.stderr)
         return 130
+    finally:
+        os.environ.pop(_log.NOTICE_ENV, None)
+        mark.unlink(missing_ok=True)
 
 
 if __name__ == "__main__":

@@ -1,5 +1,6 @@
-"""simulate_cycles on a real dask.distributed cluster equals the local joblib run (issue 17,
-item 4). Needs the ``cluster`` extra (in ``test`` too); skips cleanly without it."""
+"""simulate_cycles on a real dask.distributed cluster equals the local joblib run, from Python
+and from ``mjwalk simulate --scheduler``. Needs the ``cluster`` extra (in ``test`` too); skips
+cleanly without it."""
 
 from __future__ import annotations
 
@@ -48,3 +49,35 @@ def test_local_cluster_equals_local_run(scenes_dir):
     assert [[w.length for w in r.walks] for r in remote] == [
         [w.length for w in r.walks] for r in local
     ]
+
+
+@pytest.mark.slow
+def test_cli_scheduler_option_equals_local_run(scenes_dir, tmp_path, capsys):
+    """``mjwalk simulate --scheduler ADDRESS`` sends the runs to an existing cluster and writes
+    the same cycles and walks as the local run of the same seed."""
+    from mjwalk.cli import main
+
+    spec = str(scenes_dir / "assembly_station.toml")
+    common = ["simulate", spec, "--runs", "2", "--seed", "5", "--quiet"]
+    assert main([*common, "--jobs", "1", "--out", str(tmp_path / "local")]) == 0
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, host="127.0.0.1", dashboard_address=None
+    ) as cluster:
+        address = cluster.scheduler_address
+        argv = [*common, "--scheduler", address, "--out", str(tmp_path / "remote")]
+        assert main(argv) == 0
+    for name in ("cycles.csv", "walks.csv"):
+        assert (tmp_path / "remote" / name).read_text() == (tmp_path / "local" / name).read_text()
+
+
+def test_cli_scheduler_that_does_not_answer_is_one_line_before_work(scenes_dir, tmp_path, capsys):
+    from mjwalk.cli import SCHEDULER_TIMEOUT_S, main
+
+    spec = str(scenes_dir / "assembly_station.toml")
+    out = tmp_path / "out"
+    argv = ["simulate", spec, "--runs", "2", "--out", str(out), "--scheduler", "tcp://127.0.0.1:9"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--scheduler tcp://127.0.0.1:9" in err[0], err
+    assert f"{SCHEDULER_TIMEOUT_S:.0f} s" in err[0]
+    assert not out.exists() or not any(out.iterdir())

@@ -16,7 +16,7 @@ PKG = Path(mjwalk.__file__).parent
 #: errors, file I/O, numba set-up, GL selection) sit below all of them; the report writers, the
 #: video, the plots and the command line on top.
 STAGES = ("_base", "mocap", "world", "gait", "plan", "body", "arms", "timeline", "cycle", "top")
-BASE = {"conventions", "anthropometry", "errors", "_io", "_jit", "_gl", "_args", "_version"}
+BASE = {"conventions", "anthropometry", "errors", "_io", "_jit", "_gl", "_args", "_version", "_log"}
 TOP = {"render", "viewpoint", "plot", "report", "cli", "__main__", "shipped"}
 
 

@@ -1,4 +1,4 @@
-"""Packaging (issue 17, item 2): the wheel and an editable install both carry the shipped
+"""Packaging: the wheel and an editable install both carry the shipped
 scenes and run from any folder; one version source; a licence file."""
 
 from __future__ import annotations
@@ -70,11 +70,25 @@ def _check_install(venv: Path, work: Path, expect_in: Path) -> None:
     assert "assembly_station.toml and --out out checked" in out
 
 
+def _venv_seeing_these_packages(venv: Path, cwd: Path) -> Path:
+    """A fresh virtual environment that sees the packages of the interpreter running the tests
+    (its site-packages, through a ``.pth`` file, after the new environment's own), so that
+    nothing is downloaded. ``--system-site-packages`` would not do: run from a virtual
+    environment it shows the base interpreter's packages, not this environment's."""
+    _run([sys.executable, "-m", "venv", "--without-pip", venv], cwd)
+    py = venv / "bin" / "python"
+    own = _run([py, "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"], cwd)
+    ours = [p for p in sys.path if Path(p).name in ("site-packages", "dist-packages")]
+    # plain path lines: the parent's own .pth files (its editable mjwalk among them) stay unread
+    (Path(own.strip()) / "_parent_packages.pth").write_text("\n".join(ours) + "\n")
+    return py
+
+
 @pytest.mark.slow
 def test_wheel_and_editable_install_run_from_any_folder(tmp_path):
-    """Build the wheel, install it into a fresh virtual environment (the system's packages
-    visible, so nothing is downloaded), run a plan from a temporary folder; then the same for
-    an editable install of this checkout."""
+    """Build the wheel, install it into a fresh virtual environment (the test interpreter's
+    packages visible, so nothing is downloaded), run a plan from a temporary folder; then the
+    same for an editable install of this checkout."""
     src = tmp_path / "src"  # a clean copy: the build must not rely on files outside git
     shutil.copytree(
         ROOT,
@@ -93,9 +107,10 @@ def test_wheel_and_editable_install_run_from_any_folder(tmp_path):
     assert any(n.endswith("licenses/LICENSE") for n in names)
 
     venv = tmp_path / "venv"
-    _run([sys.executable, "-m", "venv", "--without-pip", "--system-site-packages", venv], tmp_path)
-    py = venv / "bin" / "python"
-    _run([*pip, "--python", py, "install", "--no-index", "-q", wheels[0]], tmp_path)
+    py = _venv_seeing_these_packages(venv, tmp_path)
+    install = [*pip, "--python", py, "install", "--no-index", "--no-deps", "--ignore-installed"]
+    _run([*install, "-q", wheels[0]], tmp_path)
+    _run([*pip, "--python", py, "check"], tmp_path)  # its declared dependencies are all there
     work = tmp_path / "work"
     work.mkdir()
     _check_install(venv, work, venv)
@@ -104,9 +119,11 @@ def test_wheel_and_editable_install_run_from_any_folder(tmp_path):
     # plan wrote beside its modules (not in the wheel's RECORD), and that leftover folder would
     # shadow the editable install as a namespace package
     venv2 = tmp_path / "venv2"
-    _run([sys.executable, "-m", "venv", "--without-pip", "--system-site-packages", venv2], tmp_path)
-    py2 = venv2 / "bin" / "python"
-    _run([*pip, "--python", py2, "install", "--no-deps", "-q", "-e", src], tmp_path)
+    py2 = _venv_seeing_these_packages(venv2, tmp_path)
+    _run(
+        [*pip, "--python", py2, "install", "--no-deps", "--ignore-installed", "-q", "-e", src],
+        tmp_path,
+    )
     work2 = tmp_path / "work2"
     work2.mkdir()
     _check_install(venv2, work2, src)

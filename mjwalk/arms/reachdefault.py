@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import sys
 import time
 
 import numpy as np
 
+from mjwalk._log import log
 from mjwalk.errors import ModelFileError
 
 #: Bump when the generator or the model changes, so the cache is rebuilt.
@@ -76,16 +76,13 @@ def default_reach_model(progress: bool = True):
     if model is None:
         t0 = time.perf_counter()
         if progress:
-            print(f"[mjwalk] building the default reach model -> {path}", file=sys.stderr)
+            log.info(f"building the default reach model -> {path}")
         data = reachgen.generate("endpoints", N_TRAIN, np.random.default_rng(0))
         # reaches start at the generator's nominal start (the sample mean is within a mm of it)
         model = ReachModel(data.lengths, dcs=DEFAULT_DCS, rest_hand=REST_HAND)
         model.fit(data.constraints, data.directions)
         model.save(path)
         if progress:
-            print(
-                f"[mjwalk] default reach model ready ({time.perf_counter() - t0:.1f} s)",
-                file=sys.stderr,
-            )
+            log.info(f"default reach model ready ({time.perf_counter() - t0:.1f} s)")
     _MEMO[path] = model
     return model

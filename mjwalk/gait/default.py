@@ -9,12 +9,12 @@ rebuilt (and rewritten atomically).
 
 from __future__ import annotations
 
-import sys
 import time
 from collections.abc import Sequence
 from pathlib import Path
 
 from mjwalk._io import cache_root
+from mjwalk._log import log
 from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait.model import MIN_STEPS, MODEL_VERSION, StepModel
 
@@ -74,11 +74,9 @@ def train_model(
 
         steps, norm = normalize_paces(steps, key=normalize_by)
     if progress:
-        print(
-            f"[mjwalk] segmented {len(takes)} takes into {len(steps)} steps "
-            f"({time.perf_counter() - t0:.1f} s)",
-            file=sys.stderr,
-            flush=True,
+        log.info(
+            f"segmented {len(takes)} takes into {len(steps)} steps "
+            f"({time.perf_counter() - t0:.1f} s)"
         )
     if len(steps) < MIN_STEPS:
         raise MjwalkError(
@@ -107,25 +105,18 @@ def default_model(progress: bool = True) -> StepModel:
             model = StepModel.load(path)
         except ModelFileError as exc:
             if progress:
-                print(f"[mjwalk] rebuilding default model: {exc}", file=sys.stderr, flush=True)
+                log.info(f"rebuilding default model: {exc}")
     if model is None:
         from mjwalk.gait.corpus import generate_corpus
 
         t0 = time.perf_counter()
         if progress:
-            print(
-                f"[mjwalk] building the default step model ({DEFAULT_SUBJECTS} virtual "
-                f"subjects) -> {path}",
-                file=sys.stderr,
-                flush=True,
+            log.info(
+                f"building the default step model ({DEFAULT_SUBJECTS} virtual subjects) -> {path}"
             )
         takes = generate_corpus(n_subjects=DEFAULT_SUBJECTS, seed=DEFAULT_SEED)
         if progress:
-            print(
-                f"[mjwalk] corpus: {len(takes)} takes ({time.perf_counter() - t0:.1f} s)",
-                file=sys.stderr,
-                flush=True,
-            )
+            log.info(f"corpus: {len(takes)} takes ({time.perf_counter() - t0:.1f} s)")
         model, _ = train_model(
             takes, seed=DEFAULT_SEED, progress=progress, normalize_by=DEFAULT_NORMALIZE_BY
         )
@@ -133,10 +124,6 @@ def default_model(progress: bool = True) -> StepModel:
         model.pace()  # measured once, saved with the model (mjwalk.gait.pace)
         model.save(path)
         if progress:
-            print(
-                f"[mjwalk] default model ready ({time.perf_counter() - t0:.1f} s)",
-                file=sys.stderr,
-                flush=True,
-            )
+            log.info(f"default model ready ({time.perf_counter() - t0:.1f} s)")
     _MEMO[path] = model
     return model

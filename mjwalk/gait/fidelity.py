@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import glob as _glob
 import json
-import sys
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -40,6 +39,7 @@ from numpy.typing import ArrayLike
 from scipy.stats import ks_2samp
 
 from mjwalk._io import atomic_path
+from mjwalk._log import log
 from mjwalk.errors import InputError, MjwalkError
 from mjwalk.gait.features import StepBatch, concat_batches
 from mjwalk.gait.model import StepModel
@@ -374,14 +374,14 @@ def train_main(
     if not takes:
         raise MjwalkError("train: give a BVH glob, an AMC glob with its ASF, or virtual N")
     if progress:
-        print(f"[mjwalk] training on {len(takes)} takes", file=sys.stderr, flush=True)
+        log.info(f"training on {len(takes)} takes")
     model, seg = train_model(takes, seed=seed, progress=progress, **fit)
     model.pace()  # measured once, saved with the model (mjwalk.gait.pace)
     model.save(out)
     summary = model.summary()
     summary["segmentation"] = str(seg)
     if progress:
-        print(f"[mjwalk] {seg}\n[mjwalk] model written to {out}", file=sys.stderr, flush=True)
+        log.info(f"{seg}; model written to {out}")
     return summary
 
 
@@ -398,9 +398,10 @@ def validate_main(
     planned_walks=None,
 ) -> dict:
     """Fidelity of the model at ``model_path`` (None: the default model) against the takes
-    matching the glob ``against`` (``.bvh``; ``.amc`` needs ``amc_asf``). Prints the table to
-    stdout, writes the JSON report to ``json_path`` atomically when given, returns the report.
-    ``planned_walks``: see :func:`fidelity_from_steps`."""
+    matching the glob ``against`` (``.bvh``; ``.amc`` needs ``amc_asf``); writes the JSON
+    report to ``json_path`` atomically when given and returns the report
+    (:func:`format_fidelity_table` formats it). ``planned_walks``: see
+    :func:`fidelity_from_steps`."""
     from mjwalk.gait.default import default_model
 
     if str(against).lower().endswith(".amc"):
@@ -412,7 +413,6 @@ def validate_main(
     report = fidelity_report(
         model, takes, np.random.default_rng(seed), n_chains=n_chains, planned_walks=planned_walks
     )
-    print(format_fidelity_table(report))
     if json_path is not None:
         with atomic_path(json_path, suffix=".json") as tmp:
             tmp.write_text(json.dumps(report, indent=2))

@@ -53,7 +53,6 @@ no pickle), written atomically.
 
 from __future__ import annotations
 
-import sys
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
@@ -63,6 +62,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from mjwalk._io import check_header, load_npz, save_npz
+from mjwalk._log import log
 from mjwalk.conventions import Side, other_side
 from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait.features import (
@@ -583,4 +583,4 @@ def _check_shapes(model: StepModel) -> None:
 
 def _log(progress: bool, msg: str) -> None:
     if progress:
-        print(f"[mjwalk] {msg}", file=sys.stderr, flush=True)
+        log.info(f"{msg}")
