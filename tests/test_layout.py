@@ -148,7 +148,8 @@ def test_private_names_stay_in_their_module():
         for node in ast.walk(ast.parse(f.read_text())):
             if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("mjwalk"):
                 for a in node.names:
-                    if a.name.startswith("_") and not a.name.startswith("__"):
+                    private = a.name.startswith("_") and not a.name.startswith("__")
+                    if private and not _exists(f"{node.module}.{a.name}"):  # a module is public
                         crossing.add((_module(f), node.module, a.name))
     assert crossing == PRIVATE_FOR_NOW
 
