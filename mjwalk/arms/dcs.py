@@ -101,8 +101,9 @@ class DCSNetwork:
             scale), towards each neuron's mean target; a sequence is a grid like width_factor.
         rng: seed or ``numpy.random.Generator``; same seed, same network.
         scaling: input standardization, ``"column"``, ``"global"`` or ``"point"``; a sequence
-            is a grid like width_factor (see module docstring).
-        selection: ``"holdout"`` or ``"loo"`` (PRESS on all samples; see module docstring).
+            is a grid like width_factor (see :mod:`mjwalk.arms.dcsfit`).
+        selection: ``"holdout"`` or ``"loo"`` (PRESS on all samples; see
+            :mod:`mjwalk.arms.dcsfit`).
         local_linear: per-neuron local linear outputs; a sequence is a grid like width_factor.
         global_linear: add a global linear term ``T z``; a sequence is a grid like width_factor.
             Left out, like ``local_linear``, with fewer than :data:`SAMPLES_PER_COEFFICIENT`
@@ -202,7 +203,7 @@ class DCSNetwork:
             self._grow_first(X, Y, scalings[0], np.random.default_rng(self.rng))
         else:
             # one network per input scaling, grown from the same seed; the lowest selection
-            # score (PRESS) wins, like the width (module docstring)
+            # score (PRESS) wins, like the width (:mod:`mjwalk.arms.dcsfit`)
             grid_seed = self.rng
             if isinstance(grid_seed, np.random.Generator):
                 grid_seed = int(grid_seed.integers(2**63))

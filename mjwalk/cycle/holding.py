@@ -38,8 +38,8 @@ def two_hand_frames(
     """A two-handed reach (:func:`_two_hand_reach`) from ``q0``, or, with ``lean`` or
     ``drop`` (m), from ``q0`` crouched that much (:func:`~mjwalk.cycle.crouch.crouch_pose`)
     and with the trunk bent forward until both grips are within the arms' reach
-    (:func:`leaning`): a part on a pallet or a low bench, which no standing reach gets both
-    hands to. The body goes down with the arms as they are in ``q0`` (hanging, or holding the
+    (:func:`~mjwalk.cycle.reaching.leaning`): a part on a pallet or a low bench, which no
+    standing reach gets both hands to. The body goes down with the arms as they are in ``q0`` (hanging, or holding the
     part in the carrying posture), the reach runs from there, and the body comes back up with
     the arms as the reach leaves them (carrying the part it picked, hanging after a place),
     the feet planted throughout (:func:`~mjwalk.cycle.crouch.crouch_frames`). Going down and
@@ -151,7 +151,7 @@ def _two_hand_reach(ctx: CycleContext, q0, task, approach, hold, fps, timing=Non
     n_back = len(frames) - n_out - n_hold
     grip = frames[n_out - 1]  # both hands on the grips
     # the last frames of the reach bring the hands from the pre-grasp point straight onto the
-    # grips (above the bench and back towards the operator: :func:`approach_offset`); a held part
+    # grips (above the bench and back towards the operator: targets.approach_offset); a held part
     # comes and goes the same way, so it is lowered onto the bench and lifted off it along
     # that line instead of swept from the carrying posture through the bench's edge
     app = _approach_frames(ctx, frames[:n_out], float(np.linalg.norm(approach)))
