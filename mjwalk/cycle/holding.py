@@ -35,16 +35,16 @@ HELD_BACK_SHARES = (1.0 / 3.0, 2.0 / 3.0, 1.0)
 def two_hand_frames(
     ctx: CycleContext, q0, task, approach, hold, fps, timing=None, held=None, lean=False, drop=0.0
 ):
-    """A two-handed reach (:func:`_two_hand_reach`) from ``q0``, or, with ``lean`` or
-    ``drop`` (m), from ``q0`` crouched that much (:func:`~mjwalk.cycle.crouch.crouch_pose`)
-    and with the trunk bent forward until both grips are within the arms' reach
-    (:func:`~mjwalk.cycle.reaching.leaning`): a part on a pallet or a low bench, which no
-    standing reach gets both hands to. The body goes down with the arms as they are in ``q0`` (hanging, or holding the
-    part in the carrying posture), the reach runs from there, and the body comes back up with
-    the arms as the reach leaves them (carrying the part it picked, hanging after a place),
-    the feet planted throughout (:func:`~mjwalk.cycle.crouch.crouch_frames`). Going down and
-    coming up are MTM-1's body motions "B" (bend, stoop) and "AB" (arise) at the operator's
-    time factor, before and after the reach (MTM-1 adds body and hand motions). Returns what
+    """A two-handed reach (:func:`_two_hand_reach`) from ``q0``, or, with ``lean`` or ``drop`` (m),
+    from ``q0`` crouched that much (:func:`~mjwalk.cycle.crouch.crouch_pose`) and with the trunk
+    bent forward until both grips are within the arms' reach
+    (:func:`~mjwalk.cycle.reaching.leaning`): a part on a pallet or a low bench, which no standing
+    reach gets both hands to. The body goes down with the arms as they are in ``q0`` (hanging, or
+    holding the part in the carrying posture), the reach runs from there, and the body comes back up
+    with the arms as the reach leaves them (carrying the part it picked, hanging after a place), the
+    feet planted throughout (:func:`~mjwalk.cycle.crouch.crouch_frames`). Going down and coming up
+    are MTM-1's body motions "B" (bend, stoop) and "AB" (arise) at the operator's time factor,
+    before and after the reach (MTM-1 adds body and hand motions). Returns what
     :func:`_two_hand_reach` returns."""
     if not lean and drop <= 0.0:
         return _two_hand_reach(ctx, q0, task, approach, hold, fps, timing, held)
