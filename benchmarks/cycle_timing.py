@@ -7,8 +7,8 @@ Run: PYTHONPATH=<tree> python3 benchmarks/cycle_timing.py --cycles 5 --jobs 1 2 
 Prints one JSON line: per-cycle wall and CPU seconds of ``simulate_cycle`` (plan + legs + arms
 + collision check) on seeds 0..cycles-1 after one warm-up cycle (models loaded, compiled code
 cached), the split of the first measured cycles by stage (legs, arm reach, collisions,
-planning), and cycles per second of ``simulate_cycles`` for each ``--jobs``. ``--out`` saves
-the cycles' poses (qpos per frame) and contacts for comparison between trees.
+planning, ergonomics), and cycles per second of ``simulate_cycles`` for each ``--jobs``.
+``--out`` saves the cycles' poses (qpos per frame) and contacts for comparison between trees.
 """
 
 from __future__ import annotations
@@ -70,6 +70,7 @@ def main() -> None:
     _timed(acc, "arm angles", __import__("mjwalk.arms.kinematics").arms.kinematics,
            "arm_joint_angles")  # fmt: skip
     _timed(acc, "collisions", sim, "collision_report")
+    _timed(acc, "ergonomics", sim, "cycle_ergonomics")  # RULA/REBA/OWAS/NIOSH/ISO 11226
     _timed(acc, "planning", HybridPlanner, "plan")
     n_split = min(3, args.cycles)
     t0 = time.perf_counter()

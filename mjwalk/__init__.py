@@ -5,7 +5,8 @@ The whole pipeline is importable from here; modules load on first use (PEP 562),
 Stages, lowest first: capture (:mod:`mjwalk.mocap`), step model (:mod:`mjwalk.gait`), scene and
 clearance (:mod:`mjwalk.world`), walk planning (:mod:`mjwalk.plan`), humanoid and legs
 (:mod:`mjwalk.body`), arms (:mod:`mjwalk.arms`), timeline and collisions
-(:mod:`mjwalk.timeline`), cycles (:mod:`mjwalk.cycle`), reports (:mod:`mjwalk.report`), video
+(:mod:`mjwalk.timeline`), ergonomic scores (:mod:`mjwalk.ergonomics`), cycles
+(:mod:`mjwalk.cycle`), reports (:mod:`mjwalk.report`), video
 (:mod:`mjwalk.render`); see ARCHITECTURE.md.
 """
 
@@ -77,6 +78,13 @@ _LAZY: dict[str, str] = {
     "iter_frames": "mjwalk.timeline.collisions",
     "reach_in_scene": "mjwalk.timeline.reach",
     "timeline_from_walk": "mjwalk.timeline.frames",
+    # ergonomics
+    "BodyAngles": "mjwalk.ergonomics.angles",
+    "RunErgonomics": "mjwalk.ergonomics.assess",
+    "angles_from_timeline": "mjwalk.ergonomics.angles",
+    "assess_cycle": "mjwalk.ergonomics.assess",
+    "write_angles_csv": "mjwalk.ergonomics.export",
+    "write_bvh": "mjwalk.ergonomics.export",
     # cycles and reports
     "CycleResult": "mjwalk.cycle.types",
     "CycleSpec": "mjwalk.cycle.types",
@@ -99,6 +107,7 @@ __all__ = [
     "DEFAULT_STATURE",
     "SAMPLE_RATE_HZ",
     "ArmMovements",
+    "BodyAngles",
     "CaptureError",
     "ClearanceField",
     "ClearanceProbe",
@@ -117,6 +126,7 @@ __all__ = [
     "PlanningError",
     "Population",
     "ReachModel",
+    "RunErgonomics",
     "SceneError",
     "Side",
     "Step",
@@ -128,7 +138,9 @@ __all__ = [
     "Walker",
     "Workplace",
     "__version__",
+    "angles_from_timeline",
     "arm_movements",
+    "assess_cycle",
     "attach_humanoid",
     "build_humanoid",
     "capture_pace",
@@ -161,6 +173,8 @@ __all__ = [
     "simulate_cycle",
     "simulate_cycles",
     "timeline_from_walk",
+    "write_angles_csv",
+    "write_bvh",
     "write_report",
 ]
 
@@ -187,6 +201,9 @@ if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
     from mjwalk.cycle.simulate import simulate_cycle, simulate_cycles
     from mjwalk.cycle.spec import load_cycle_spec
     from mjwalk.cycle.types import CycleResult, CycleSpec
+    from mjwalk.ergonomics.angles import BodyAngles, angles_from_timeline
+    from mjwalk.ergonomics.assess import RunErgonomics, assess_cycle
+    from mjwalk.ergonomics.export import write_angles_csv, write_bvh
     from mjwalk.gait.corpus import generate_corpus
     from mjwalk.gait.default import default_model
     from mjwalk.gait.features import StepBatch

@@ -26,6 +26,10 @@ from mjwalk.errors import InputError
 #: Text that is meant as coordinates rather than a site name: digits, signs, dots, commas,
 #: exponents, spaces and the words nan/inf (site names are MJCF identifiers, which have letters).
 _NUMERIC = re.compile(r"[\s0-9.,eE+\-]*|.*\b(nan|inf|infinity)\b.*", re.IGNORECASE)
+#: Highest video frame rate, frames per second: the fastest common displays refresh at 240 Hz,
+#: so more frames are never seen, while each costs its own render and memory
+#: (``--fps 1e9`` asked for 16.6 GiB of frame times).
+MAX_FPS = 240.0
 #: Largest video frame side, pixels (H.264 level 6.2 allows 8192 x 4320).
 MAX_VIDEO_SIDE = 8192
 
@@ -98,6 +102,34 @@ def join_negative_values(argv: Sequence[str], options: Sequence[str]) -> list[st
     return out
 
 
+# ------------------------------------------------------------------ seeds
+
+
+def check_seed(seed, what: str = "seed") -> int:
+    """``seed`` as an int, raising InputError naming ``what`` unless it is a whole number >= 0
+    (numpy's SeedSequence takes non-negative integers only; mjwalk refuses a negative seed
+    everywhere, on the command line and in the API, rather than mapping it to another)."""
+    if isinstance(seed, bool) or not isinstance(seed, int | np.integer) or seed < 0:
+        raise InputError(f"{what} must be a whole number >= 0, got {seed!r}")
+    return int(seed)
+
+
+def as_generator(rng, what: str = "rng") -> np.random.Generator:
+    """``numpy.random.default_rng(rng)`` for a Generator, a BitGenerator, a SeedSequence, None
+    or a seed (a whole number >= 0, or a list of them); anything else raises InputError
+    naming ``what`` (numpy's own message never names the argument)."""
+    if isinstance(rng, np.random.Generator):
+        return rng
+    if isinstance(rng, int | np.integer) and not isinstance(rng, bool):
+        check_seed(rng, what)
+    try:
+        return np.random.default_rng(rng)
+    except (TypeError, ValueError) as exc:
+        raise InputError(
+            f"{what} must be a numpy Generator or a seed (a whole number >= 0), got {rng!r}"
+        ) from exc
+
+
 # ------------------------------------------------------------------ argparse converters
 
 
@@ -158,6 +190,12 @@ def arg_jobs(text: str) -> int:
 
 
 @_argtype
+def arg_seed(text: str) -> int:
+    """A random seed: a whole number >= 0 (:func:`check_seed`)."""
+    return check_seed(_number(text, int, "a whole number"), "the seed")
+
+
+@_argtype
 def arg_positive_float(text: str) -> float:
     value = _number(text, float, "a number")
     if value <= 0:
@@ -171,6 +209,26 @@ def arg_fraction(text: str) -> float:
     value = _number(text, float, "a number")
     if not 0.0 < value <= 1.0:
         raise InputError(f"must be a share in (0, 1], e.g. 0.95; got {value:g}")
+    return value
+
+
+@_argtype
+def arg_fps(text: str) -> float:
+    """A video frame rate: a number in (0, :data:`MAX_FPS`]."""
+    value = _number(text, float, "a number")
+    return check_fps(value, "must be")
+
+
+def check_fps(fps, what: str = "fps") -> float:
+    """``fps`` as a float, raising InputError naming ``what`` unless 0 < fps <= MAX_FPS."""
+    if isinstance(fps, bool) or not isinstance(fps, int | float | np.number):
+        raise InputError(f"{what} a frame rate in frames per second, got {fps!r}")
+    value = float(fps)
+    if not (math.isfinite(value) and 0.0 < value <= MAX_FPS):
+        raise InputError(
+            f"{what} a frame rate above 0 and at most {MAX_FPS:g} frames per second (the "
+            f"fastest displays show 240), got {value:g}"
+        )
     return value
 
 

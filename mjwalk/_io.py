@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
@@ -25,28 +26,66 @@ def cache_root() -> Path:
 def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; rename it onto ``path`` only on success.
 
-    A crash or an exception leaves no half-written file behind: the temporary file is removed.
+    A crash or an exception leaves no half-written file behind: the temporary file is removed,
+    and so are the folders made for ``path`` when they stay empty.
+    An ``OSError`` while writing (a full disk, a file size limit, a folder that cannot be
+    written) becomes a :class:`~mjwalk.errors.WriteError` naming ``path``.
     ``suffix`` defaults to the target's own suffix so writers that infer the format from the
     extension (imageio, matplotlib) keep working.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(
-        prefix=f".{path.name}.",
-        suffix=suffix if suffix is not None else path.suffix,
-        dir=path.parent,
-    )
+    made = []  # the folders made here, deepest first: removed again when the write fails
+    folder = path.parent
+    while not folder.exists() and folder.parent != folder:
+        made.append(folder)
+        folder = folder.parent
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(
+            prefix=f".{path.name}.",
+            suffix=suffix if suffix is not None else path.suffix,
+            dir=path.parent,
+        )
+    except OSError as exc:
+        raise write_error(path, exc) from exc
     os.close(fd)
     umask = os.umask(0)
     os.umask(umask)
     os.chmod(tmp, 0o666 & ~umask)  # mkstemp makes 0600 files; give the usual permissions
     tmp_path = Path(tmp)
+    done = False
     try:
         yield tmp_path
         os.replace(tmp_path, path)
+        done = True
+    except OSError as exc:
+        from mjwalk.errors import WriteError
+
+        if isinstance(exc, WriteError):
+            raise
+        raise write_error(path, exc) from exc
     finally:
-        if tmp_path.exists():
-            tmp_path.unlink()
+        with contextlib.suppress(OSError):
+            tmp_path.unlink(missing_ok=True)
+        if not done:
+            for folder in made:  # only while empty: another writer's file keeps it
+                with contextlib.suppress(OSError):
+                    folder.rmdir()
+
+
+def write_error(path: str | os.PathLike, exc: OSError):
+    """A :class:`~mjwalk.errors.WriteError` naming ``path`` for the ``OSError`` ``exc`` (one line,
+    with a hint for a full disk or a file size limit)."""
+    import errno
+
+    from mjwalk.errors import WriteError
+
+    why = exc.strerror or str(exc).strip().split("\n")[0] or type(exc).__name__
+    if exc.errno in (errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EPIPE):
+        why += " (is the disk or quota full, or a file size limit set: ulimit -f?)"
+    err = WriteError(f"cannot write {path}: {why}")
+    err.errno = exc.errno
+    return err
 
 
 def save_npz(path: str | os.PathLike, header: dict, arrays: dict) -> None:
@@ -83,6 +122,8 @@ def load_npz(path: str | os.PathLike, what: str) -> tuple[dict, dict]:
     from mjwalk.errors import ModelFileError
 
     path = Path(path)
+    if path.is_dir():
+        raise ModelFileError(f"{path} is a folder, not a {what} file")
     if not path.is_file():
         raise ModelFileError(f"{path}: no such {what} file")
     if not zipfile.is_zipfile(path):
@@ -123,3 +164,76 @@ def check_header(header: dict, source, what: str, fmt: str, version: int) -> Non
             f"{source}: {what} version {header.get('version')!r} unsupported "
             f"(this mjwalk reads version {version})"
         )
+
+
+#: Deepest nesting of arrays and inline tables a TOML file mjwalk reads may have. mjwalk's own
+#: formats go two levels deep (``task = [{...}]``, ``mix = {adult = 0.7}``); Python's tomllib
+#: parses nested values by recursion and fails with a RecursionError near 1000 levels
+#: (``x = [[[[...]]]]``), so far deeper values are refused first, naming their key.
+MAX_TOML_DEPTH = 8
+#: Largest TOML file mjwalk reads, bytes: a cycle of an hour of one-second tasks written out in
+#: full is about 300 kB (mjwalk's cycle limit is an hour); beyond, the file is not a cycle.
+MAX_TOML_BYTES = 1 << 20
+
+_TOML_TOKENS = re.compile(
+    r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:\\.|[^"\\\n])*"|\'[^\'\n]*\'|#[^\n]*|[\[\]{}\n]'
+)
+_TOML_KEY = re.compile(r"\s*((?:\"[^\"\n]*\"|'[^'\n]*'|[A-Za-z0-9_.\-\s])+?)\s*=")
+
+
+def read_toml(path: str | os.PathLike, what: str, error: type[Exception]) -> tuple[dict, str]:
+    """Read a TOML file: (its data, its text). Raises ``error`` (an MjwalkError class) naming
+    ``path`` and ``what`` it should be for a folder, a missing, unreadable, oversized
+    (:data:`MAX_TOML_BYTES`) or non-UTF-8 file, and for values nested deeper than
+    :data:`MAX_TOML_DEPTH` (naming the key and line). A UTF-8 byte-order mark (Windows
+    editors write one) is accepted. TOML syntax errors raise ``tomllib.TOMLDecodeError``
+    (the caller cites their line)."""
+    import tomllib
+
+    path = Path(path)
+    if path.is_dir():
+        raise error(f"{path} is a folder, not a {what} file")
+    if not path.is_file():
+        raise error(f"{path}: {what} file not found")
+    size = path.stat().st_size
+    if size > MAX_TOML_BYTES:
+        raise error(
+            f"{path}: {size} bytes, more than a {what} file can be "
+            f"({MAX_TOML_BYTES >> 20} MiB at most)"
+        )
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise error(
+            f"{path}: not a UTF-8 text file (byte {exc.start}): {what} files are TOML"
+        ) from None
+    except OSError as exc:
+        raise error(f"{path}: cannot read the {what} file ({exc.strerror or exc})") from exc
+    depth, line, key = 0, 1, None
+    line_start = 0
+    for m in _TOML_TOKENS.finditer(text):
+        tok = m.group()
+        if tok == "\n":
+            line += 1
+            line_start = m.end()
+            continue
+        if tok[0] in "\"'":
+            line += tok.count("\n")
+            continue
+        if tok in "[{":
+            if depth == 0:
+                k = _TOML_KEY.match(text, line_start, m.start())
+                key = k.group(1).strip()[:60] if k else None
+            depth += 1
+            if depth > MAX_TOML_DEPTH:
+                name = f"key {key!r}" if key else "a value"
+                raise error(
+                    f"{path}:{line}: {name} is nested more than {MAX_TOML_DEPTH} levels deep "
+                    f"(arrays or inline tables inside each other); a {what} file needs two"
+                )
+        elif tok in "]}":
+            depth = max(depth - 1, 0)
+    try:
+        return tomllib.loads(text), text
+    except RecursionError:  # a shape the scan above does not count
+        raise error(f"{path}: values nested too deeply to read") from None

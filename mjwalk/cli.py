@@ -15,11 +15,13 @@ import numpy as np
 from mjwalk import _log
 from mjwalk._args import (
     arg_count,
+    arg_fps,
     arg_fraction,
     arg_jobs,
     arg_point,
     arg_positive_float,
     arg_positive_int,
+    arg_seed,
     arg_video_side,
     check_output_dir,
     check_output_file,
@@ -289,9 +291,36 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             progress=not args.quiet,
         )
         print(f"  wrote video: {video}")
+    if args.export:
+        _export_runs(args, ctx, results)
     if args.json_summary:
         print(json.dumps(report_dict(results)["cycle_time"]))
     return 0
+
+
+def _export_runs(args: argparse.Namespace, ctx, results) -> None:
+    """--export bvh/csv: each simulated run's humanoid motion (again, with its timeline) as
+    ``run_KKK.bvh`` / ``run_KKK_angles.csv`` in --out (mjwalk.ergonomics.export)."""
+    from mjwalk.cycle.simulate import simulate_cycle
+    from mjwalk.ergonomics.export import write_angles_csv, write_bvh
+
+    for r in results:
+        if r.error is not None:
+            continue
+        run = simulate_cycle(
+            ctx,
+            np.random.default_rng(np.random.SeedSequence([args.seed, r.run])),
+            run=r.run,
+            keep_timeline=True,
+            collisions=False,
+            ergonomics=False,
+        )
+        for kind in dict.fromkeys(args.export):
+            if kind == "bvh":
+                out = write_bvh(run.timeline, args.out / f"run_{r.run:03d}.bvh")
+            else:
+                out = write_angles_csv(run.timeline, args.out / f"run_{r.run:03d}_angles.csv")
+            print(f"  wrote {kind}: {out}")
 
 
 def _cmd_render(args: argparse.Namespace) -> int:
@@ -361,14 +390,19 @@ def _add_scan_parser(sub) -> None:
 
 
 def _cmd_scene_import(args: argparse.Namespace) -> int:
-    from mjwalk.world.meshimport import import_scene
+    from mjwalk.world.meshimport import check_threshold, import_scene
 
+    check_threshold(args.threshold, "--threshold")
+    check_output_file(args.output, "-o/--output", (".xml",))
     result = import_scene(
         args.source, args.output, units=args.units, up=args.up, threshold=args.threshold
     )
     for name, parts in result.parts.items():
         print(f"  {name}: concave, {parts} convex parts for MuJoCo's collision")
-    print(f"wrote {args.output} ({len(result.files)} part meshes in {result.mesh_dir})")
+    print(
+        f"wrote {args.output} ({sum(result.parts.values())} convex parts of "
+        f"{len(result.parts)} concave meshes, inline)"
+    )
     return 0
 
 
@@ -395,10 +429,18 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("plan", help="plan a walk between two points or sites of a scene")
     p.add_argument("scene", type=Path, help=f"MJCF scene file, or a shipped scene: {_SCENES}")
     p.add_argument(
-        "--from", dest="start", required=True, type=arg_point, help="start: X,Y (metres) or a site"
+        "--from",
+        dest="start",
+        required=True,
+        type=arg_point,
+        help="start: a site, or X,Y (metres); a site whose name reads as X,Y wins",
     )
     p.add_argument(
-        "--to", dest="goal", required=True, type=arg_point, help="goal: X,Y (metres) or a site"
+        "--to",
+        dest="goal",
+        required=True,
+        type=arg_point,
+        help="goal: a site, or X,Y (metres); a site whose name reads as X,Y wins",
     )
     p.add_argument(
         "--radius",
@@ -423,7 +465,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="step cost: length weighted by the energy of its pace (energy, default), the "
         "paper's straight length (chord) or the pelvis arc (path)",
     )
-    p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same walks)")
+    p.add_argument(
+        "--seed",
+        type=arg_seed,
+        default=0,
+        help="random seed, a whole number >= 0 (same seed, same walks)",
+    )
     p.add_argument("--footprints", action="store_true", help="draw the footprints too")
     p.add_argument("--save", type=Path, help="save each walk as NAME_NNN.npz (for mjwalk render)")
     _add_walker_args(p)
@@ -433,7 +480,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("spec", type=Path, help="cycle specification (TOML), or 'station' (shipped)")
     p.add_argument("--runs", type=arg_positive_int, default=50, help="cycles to simulate (50)")
     p.add_argument("--out", type=Path, default=Path("out"), help="report folder (out/)")
-    p.add_argument("--seed", type=int, default=0, help="random seed (same seed, same report)")
+    p.add_argument(
+        "--seed",
+        type=arg_seed,
+        default=0,
+        help="random seed, a whole number >= 0 (same seed, same report)",
+    )
     p.add_argument("--jobs", type=arg_jobs, default=-1, help="parallel processes (-1: all cores)")
     p.add_argument(
         "--only-run",
@@ -452,6 +504,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("--video", action="store_true", help="also render one cycle to cycle.mp4")
     p.add_argument("--camera", choices=["track", "top"], default="track")
+    p.add_argument(
+        "--export",
+        choices=["bvh", "csv"],
+        action="append",
+        help="also write each run's (or --only-run K's) humanoid motion as run_KKK.bvh or "
+        "run_KKK_angles.csv (joint angles); repeat for both",
+    )
     p.add_argument("--quiet", action="store_true", help=QUIET_HELP)
     p.add_argument("--json-summary", action="store_true", help=argparse.SUPPRESS)
     p.set_defaults(func=_cmd_simulate)
@@ -466,7 +525,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument("-o", "--output", type=Path, required=True, help="video file to write (.mp4)")
     p.add_argument("--camera", choices=["track", "top"], default="track")
-    p.add_argument("--fps", type=arg_positive_float, default=30.0)
+    p.add_argument("--fps", type=arg_fps, default=30.0, help="frames per second, up to 240 (30)")
     p.add_argument("--width", type=arg_video_side, default=640, help="pixels, even (640)")
     p.add_argument("--height", type=arg_video_side, default=480, help="pixels, even (480)")
     p.add_argument(
@@ -493,7 +552,7 @@ def build_parser() -> argparse.ArgumentParser:
         "the paper keeps >= 0.95, better for small captures)",
     )
     p.add_argument("--skeleton", help="skeleton preset: bandai, cmu, cmu_bvh")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--seed", type=arg_seed, default=0)
     p.add_argument("-o", "--output", type=Path, required=True, help="model file to write")
     p.set_defaults(func=_cmd_train)
 
@@ -503,7 +562,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--asf", help="ASF skeleton for AMC files")
     p.add_argument("--skeleton", help="skeleton preset: bandai, cmu, cmu_bvh")
     p.add_argument("--json", type=Path, help="write the report as JSON here")
-    p.add_argument("--seed", type=int, default=0)
+    p.add_argument("--seed", type=arg_seed, default=0)
     _add_walker_args(p)
     p.set_defaults(func=_cmd_validate)
     _add_scan_parser(sub)

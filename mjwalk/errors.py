@@ -39,3 +39,8 @@ class InputError(MjwalkError, ValueError):
 
 class ScanError(SceneError):
     """A point cloud cannot become a scene (unreadable, empty, NaN points, units, no floor)."""
+
+
+class WriteError(MjwalkError, OSError):
+    """An output file cannot be written (disk full, file too large, permission...); the message
+    names the file. Also an ``OSError``, so code that catches those keeps working."""

@@ -151,8 +151,10 @@ def spaghetti_png(
 ) -> None:
     """The report's floor plan: the walks of ``results`` coloured by route (faint when there
     are many; at most :data:`MAX_DRAWN_PER_ROUTE` of each route, from runs evenly spaced over
-    the batch), the ``baseline`` routes (grid A*, see :func:`mjwalk.report.write_report`)
-    dashed, written as a PNG to ``path``; ``rep`` is :func:`mjwalk.report.report_dict`'s."""
+    the batch), each drawn walk's own grid-A* route (between its two ends,
+    ``WalkRecord.baseline``) dashed in the route's colour, written as a PNG to ``path``.
+    ``baseline`` (a mapping, see :func:`mjwalk.report.write_report`) draws those routes
+    instead of the walks' own; ``rep`` is :func:`mjwalk.report.report_dict`'s."""
 
     labels = list(rep["routes"])
     colors = route_colors(labels)
@@ -161,23 +163,35 @@ def spaghetti_png(
     try:
         draw_floor(ax, workplace, shade=False)
         capped = False
+        routes: list[tuple[str, WalkPath]] = []  # (route label, grid-A* route) to draw
         for label in labels:
-            paths = [w.path for r in results for w in r.walks if w.route == label]
-            if len(paths) > MAX_DRAWN_PER_ROUTE:
-                keep = np.linspace(0, len(paths) - 1, MAX_DRAWN_PER_ROUTE).round().astype(int)
-                paths = [paths[k] for k in keep]
+            walks = [w for r in results for w in r.walks if w.route == label]
+            if len(walks) > MAX_DRAWN_PER_ROUTE:
+                keep = np.linspace(0, len(walks) - 1, MAX_DRAWN_PER_ROUTE).round().astype(int)
+                walks = [walks[k] for k in keep]
                 capped = True
+            paths = [w.path for w in walks]
             alpha = 0.8 if len(paths) < 5 else max(0.15, 4.0 / len(paths))
             draw_paths(ax, paths, color=colors[label], label=label, lw=0.8, alpha=alpha)
-        leg_route = {(w.start_site, w.goal_site): w.route for r in results for w in r.walks}
-        drawn = False
-        for key, value in (baseline or {}).items():
-            label = leg_route.get(tuple(key), "") if isinstance(key, tuple) else key
-            for p in [value] if isinstance(value, WalkPath) else value:
-                ax.plot(p.xy[:, 0], p.xy[:, 1], ls="--", lw=1.8, color=colors.get(label, "k"))
-                drawn = True
-        if drawn:  # one neutral legend entry for all grid-A* routes
-            ax.plot([], [], ls="--", lw=1.8, color="k", label="grid A* (route colour)")
+            if baseline is None:
+                routes += [(label, w.baseline) for w in walks if w.baseline is not None]
+        if baseline is not None:
+            leg_route = {(w.start_site, w.goal_site): w.route for r in results for w in r.walks}
+            for key, value in baseline.items():
+                label = leg_route.get(tuple(key), "") if isinstance(key, tuple) else key
+                routes += [(label, p) for p in ([value] if isinstance(value, WalkPath) else value)]
+        count: dict[str, int] = {}
+        for label, _ in routes:
+            count[label] = count.get(label, 0) + 1
+        for label, p in routes:
+            # many routes overlap on the grid's lines: fainter than the walks they go with
+            alpha = 0.9 if count[label] < 5 else max(0.08, 3.0 / count[label])
+            ax.plot(
+                p.xy[:, 0], p.xy[:, 1], ls="--", lw=1.0, alpha=alpha, color=colors.get(label, "k")
+            )
+        if routes:  # one neutral legend entry for all grid-A* routes
+            what = "each walk's own ends" if baseline is None else "given routes"
+            ax.plot([], [], ls="--", lw=1.8, color="k", label=f"grid A* ({what}, route colour)")
         legend = ax.legend(loc="upper right", fontsize=8)
         for handle in legend.legend_handles:  # the runs are faint; their legend lines are not
             if handle is None:
@@ -196,8 +210,9 @@ def spaghetti_png(
 
 def histograms_png(path: Path, results: Sequence[CycleResult], rep: dict) -> None:
     """The report's histograms: cycle time (stacked by operator group when the population has
-    several, takt as a red line) and the walk length of every route (median dashed, grid A*
-    solid, capture dotted), written as a PNG to ``path``."""
+    several, takt as a red line) and the walk length of every route, each direction (from ->
+    to) in its own shade with its median dashed and the median of its walks' own grid-A*
+    routes solid (the capture's median dotted), written as a PNG to ``path``."""
 
     labels = list(rep["routes"])
     colors = route_colors(labels)
@@ -229,19 +244,95 @@ def histograms_png(path: Path, results: Sequence[CycleResult], rep: dict) -> Non
         ax.set_title("cycle time" + (" by operator group" if len(groups) > 1 else ""))
         ax.legend(fontsize=7)
         for ax, label in zip(axes[1:], labels, strict=False):
-            e = rep["routes"][label]
-            lengths = [w.length for r in results for w in r.walks if w.route == label]
-            ax.hist(lengths, bins="auto", color=colors[label], alpha=0.8)
-            ax.axvline(e["length"]["median"], color="k", ls="--", lw=1, label="median")
-            ax.axvline(e["baseline_length"], color="k", lw=1.5, label="grid A*")
-            if "reference" in e:
-                ax.axvline(e["reference"]["median"], color="k", ls=":", lw=1.5, label="capture")
-            ax.set_xlabel("walk length [m]")
-            ax.set_title(f"route {label} ({e['walks']} walks)")
-            ax.legend(fontsize=7)
+            _route_histogram(ax, label, results, rep["routes"][label], colors[label])
         for ax in axes[n:]:
             ax.set_visible(False)
         fig.tight_layout()
         fig.savefig(path, dpi=100)
     finally:
         plt.close(fig)
+
+
+def ergonomics_png(path: Path, records: Sequence) -> None:
+    """The report's ergonomics chart: RULA and REBA over one cycle's time (the run whose peak
+    RULA is the median's) and the distributions of the cycles' peak RULA and REBA per operator
+    group (``records``: :class:`mjwalk.ergonomics.summary.RunRecord`)."""
+    fig, axes = plt.subplots(1, 3, figsize=(14, 3.6))
+    try:
+        peaks = np.array([r.ergo.rula_peak for r in records])
+        k = int(np.argsort(peaks)[len(peaks) // 2])
+        e = records[k].ergo
+        t = np.arange(len(e.rula)) / e.fps
+        ax = axes[0]
+        ax.step(t, e.rula, where="post", label="RULA", lw=1)
+        ax.step(t, e.reba, where="post", label="REBA", lw=1, alpha=0.8)
+        for task in e.tasks:
+            if task.kind in ("pick", "place", "fasten"):
+                ax.axvline(task.rula_time, color="0.8", lw=0.5, zorder=0)
+        ax.set_xlabel("time in the cycle [s]")
+        ax.set_ylabel("score")
+        ax.set_title(f"run {records[k].run}: scores over the cycle")
+        ax.legend(fontsize=7)
+        groups = sorted({r.group for r in records})
+        for ax, name, get, top in (
+            (axes[1], "peak RULA", lambda r: r.ergo.rula_peak, 7),
+            (axes[2], "peak REBA", lambda r: r.ergo.reba_peak, 15),
+        ):
+            data = [[get(r) for r in records if r.group == g] for g in groups]
+            bins = np.arange(0.5, top + 1.5)
+            ax.hist(data, bins=bins, label=[g or "all" for g in groups], stacked=True)
+            ax.set_xlabel(name)
+            ax.set_ylabel("cycles")
+            ax.set_title(f"{name} per cycle" + (" by operator group" if len(groups) > 1 else ""))
+            ax.legend(fontsize=7)
+        fig.tight_layout()
+        fig.savefig(path, dpi=100)
+    finally:
+        plt.close(fig)
+
+
+def _shade(color, k: int, n: int) -> tuple:
+    """``color`` for direction ``k`` of ``n``: the first as it is, later ones darker."""
+    rgb = np.asarray(matplotlib.colors.to_rgb(color))
+    return tuple(rgb * (1.0 - 0.55 * k / max(1, n - 1))) if n > 1 else tuple(rgb)
+
+
+def _route_histogram(ax, label: str, results: Sequence[CycleResult], e: dict, color) -> None:
+    """One route's walk lengths on ``ax``, per direction (``e`` is the route's entry of
+    :func:`mjwalk.report.report_dict`)."""
+    walks = [w for r in results for w in r.walks if w.route == label]
+    dirs = e.get("directions") or [{"from": None, "to": None, **e}]
+    samples = [
+        [
+            w.length
+            for w in walks
+            if d["from"] is None or (w.start_site, w.goal_site) == (d["from"], d["to"])
+        ]
+        for d in dirs
+    ]
+    # shared bins as fine as the finest direction's own ("auto") bins: the directions' lengths
+    # may lie far apart, and bins chosen for the pooled lengths would blur each of them
+    pooled = np.concatenate([np.asarray(x, dtype=float) for x in samples])
+    widths = [np.diff(np.histogram_bin_edges(x, bins="auto"))[0] for x in samples if len(x) > 1]
+    lo, hi = float(pooled.min()), float(pooled.max())
+    width = min(widths, default=0.0)
+    if width > 0 and (hi - lo) / width <= 200:
+        n = max(1, math.ceil((hi - lo) / width))
+        edges = lo + width * np.arange(n + 1)
+        edges[-1] = max(edges[-1], hi)
+    else:
+        edges = np.histogram_bin_edges(pooled, bins="auto")
+    for k, (d, lengths) in enumerate(zip(dirs, samples, strict=True)):
+        shade = _shade(color, k, len(dirs))
+        name = "" if d["from"] is None else f"{d['from']} -> {d['to']}"
+        ax.hist(lengths, bins=edges, color=shade, alpha=0.6, label=f"{name} ({len(lengths)})")
+        ax.axvline(d["length"]["median"], color=shade, ls="--", lw=1.2)
+        if not math.isnan(d["baseline_length"]):
+            ax.axvline(d["baseline_length"], color=shade, lw=1.5)
+    ax.plot([], [], color="k", ls="--", lw=1.2, label="median")
+    ax.plot([], [], color="k", lw=1.5, label="grid A* (own ends, median)")
+    if "reference" in e:
+        ax.axvline(e["reference"]["median"], color="k", ls=":", lw=1.5, label="capture (pooled)")
+    ax.set_xlabel("walk length [m]")
+    ax.set_title(f"route {label} ({e['walks']} walks, {len(dirs)} direction(s))")
+    ax.legend(fontsize=6)

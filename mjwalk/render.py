@@ -21,6 +21,7 @@ _SELECTED = ensure_headless_backend()
 import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
 
+from mjwalk._args import check_fps  # noqa: E402
 from mjwalk._io import atomic_path  # noqa: E402
 from mjwalk.body.humanoid import HUMAN_GROUP  # noqa: E402
 from mjwalk.errors import InputError, MjwalkError  # noqa: E402
@@ -492,7 +493,12 @@ class _Video:
     def write_bottom_up(self, buf: np.ndarray) -> None:
         """Append a frame stored bottom-up (as OpenGL reads it)."""
         np.copyto(self._flip, buf[::-1])
-        self._writer.send(self._flip)
+        try:
+            self._writer.send(self._flip)
+        except OSError as exc:  # imageio-ffmpeg's message holds ffmpeg's whole command line
+            import errno
+
+            raise BrokenPipeError(errno.EPIPE, "ffmpeg stopped writing it") from exc
 
     def close(self) -> None:
         self._writer.close()
@@ -537,9 +543,7 @@ def render_video(
             f"render_video: size {w}x{h}: width and height must be even numbers of "
             "pixels, at least 16 (H.264)"
         )
-    fps = float(timeline.fps if fps is None else fps)
-    if not (np.isfinite(fps) and fps > 0):
-        raise InputError(f"render_video: fps must be a positive number, got {fps!r}")
+    fps = check_fps(timeline.fps if fps is None else fps, "render_video: fps must be")
     frames = video_frames(timeline, fps)
     if camera == "track" and view is None:
         view = track_view(timeline)

@@ -5,7 +5,14 @@ with tables and charts into a folder; :func:`format_summary` gives a short table
 
 Distributions are summarised as in agethen2018 Table 1: median (50th percentile) and
 inter-quartile range (75th - 25th percentile, ``numpy.percentile``'s linear interpolation), beside
-the grid-A* route length. Lengths in metres, times in seconds.
+the grid-A* route length. Lengths in metres, times in seconds. Every route is reported per
+direction (from -> to: a route walked there and back is two different walks) and, where it has
+several, pooled. Each walk is compared with the grid-A* route between its own two ends (where the
+operator stood and where the walk ended, :attr:`WalkRecord.baseline_length`): ``vs A*`` is the
+median of the walks' ``length / route - 1``. The grid's 8 directions make its route up to
+:data:`~mjwalk.plan.grid.OCTILE_RATIO` times a straight line, so a walk reads down to
+:func:`~mjwalk.plan.grid.shortfall_bound` (about -9 % for the station's walks) without being
+shorter than the shortest route between its ends.
 
 Cycle times are also given as the 5th, 50th and 95th percentiles, overall and per operator group
 (the cycle file's ``[population]``, :mod:`mjwalk.cycle.population`); with a ``takt`` the report
@@ -50,6 +57,10 @@ REPORT_FILES = {
     "spaghetti": "spaghetti.png",
     "histograms": "histograms.png",
 }
+
+#: The files :func:`write_report` adds when the runs were scored for ergonomics
+#: (``CycleResult.ergonomics``, :mod:`mjwalk.ergonomics`).
+ERGONOMICS_FILES = {"ergonomics_csv": "ergonomics.csv", "ergonomics_png": "ergonomics.png"}
 
 #: Contact pairs listed in report.md (all of them are in report.json).
 MD_PAIRS = 12
@@ -140,6 +151,43 @@ def _operators(results: Sequence[CycleResult], takt: float | None) -> dict:
     return out
 
 
+def _walk_figures(walks: Sequence) -> dict:
+    """The figures of some walks (one direction of a route, or a route pooled): their number,
+    length and duration (:func:`describe`), the median of their own grid-A* routes' lengths
+    (``baseline_length``), the median of their ``length / route - 1`` (``length_vs_baseline``)
+    with its distribution (``vs_baseline``), the lowest value the grid allows them
+    (``vs_baseline_floor``, :func:`~mjwalk.plan.grid.shortfall_bound` at their shortest route),
+    how many read lower than the bound at their own route (``below_floor``) and how many had
+    no grid route between their ends (``without_baseline``)."""
+    from mjwalk.plan.grid import shortfall_bound
+
+    base = np.array([w.baseline_length for w in walks], dtype=float)
+    has = np.isfinite(base) & (base > 0)
+    ratio = np.array([w.length for w in walks], dtype=float)[has] / base[has] - 1.0
+    vs = describe(ratio)
+    return {
+        "walks": len(walks),
+        "length": describe([w.length for w in walks]),
+        "duration": describe([w.duration for w in walks]),
+        "baseline_length": float(np.median(base[has])) if has.any() else float("nan"),
+        "length_vs_baseline": vs["median"],
+        "vs_baseline": vs,
+        "vs_baseline_floor": float(shortfall_bound(base[has].min())) if has.any() else None,
+        # walks reading lower than the bound at their own route (it holds where a straight
+        # line joins a walk's ends; around obstacles it is not proven)
+        "below_floor": int(np.sum(ratio < shortfall_bound(base[has]) - 1e-12)),
+        "without_baseline": int((~has).sum()),
+    }
+
+
+def _directions(walks: Sequence) -> dict[tuple[str, str], list]:
+    """Walks by direction (start site, goal site), in order of first appearance."""
+    out: dict[tuple[str, str], list] = {}
+    for w in walks:
+        out.setdefault((w.start_site, w.goal_site), []).append(w)
+    return out
+
+
 def _routes(results: Sequence[CycleResult]) -> list[str]:
     """Route labels in order of first appearance."""
     seen: dict[str, None] = {}
@@ -190,28 +238,16 @@ def report_dict(
     routes = {}
     for label in _routes(results):
         walks = [w for r in results for w in r.walks if w.route == label]
-        legs: dict[tuple[str, str], list] = {}
-        for w in walks:
-            legs.setdefault((w.start_site, w.goal_site), []).append(w)
-        length = describe([w.length for w in walks])
-        base = float(np.median([w.baseline_length for w in walks]))
         entry = {
-            "walks": len(walks),
-            "legs": [
-                {
-                    "from": a,
-                    "to": b,
-                    "walks": len(ws),
-                    "baseline_length": float(np.median([w.baseline_length for w in ws])),
-                    "length_median": float(np.median([w.length for w in ws])),
-                }
-                for (a, b), ws in legs.items()
+            # the route's walks pooled over its directions
+            **_walk_figures(walks),
+            # each direction (from -> to) apart: a route walked there and back is two walks
+            "directions": [
+                {"from": a, "to": b, **_walk_figures(ws)}
+                for (a, b), ws in _directions(walks).items()
             ],
-            "length": length,
-            "duration": describe([w.duration for w in walks]),
-            "baseline_length": base,
-            "length_vs_baseline": length["median"] / base - 1.0 if base > 0 else float("nan"),
         }
+        length = entry["length"]
         if reference is not None and label in reference:
             ref_median, ref_iqr = (float(v) for v in reference[label])
             entry["reference"] = {"median": ref_median, "iqr": ref_iqr}
@@ -257,6 +293,7 @@ def report_dict(
             for r in failed
         ],
         "routes": routes,
+        "baseline": _baseline_note(spec),
         "cycle_time": {
             **describe([r.cycle_time for r in results]),
             **percentiles([r.cycle_time for r in results]),
@@ -281,6 +318,7 @@ def report_dict(
             # tried): the reach is recorded, but the part was not where the hand was
             "short_of_target": _short_of_target(arms),
         },
+        "ergonomics": _ergonomics(results),
         "per_run": [
             {
                 "run": r.run,
@@ -292,6 +330,41 @@ def report_dict(
             }
             for r in results
         ],
+    }
+
+
+def _ergonomic_records(results: Sequence[CycleResult]) -> list:
+    """The runs scored for ergonomics as :class:`mjwalk.ergonomics.summary.RunRecord`."""
+    from mjwalk.ergonomics.summary import RunRecord
+
+    return [
+        RunRecord(r.run, r.seed, r.group, None if r.operator is None else r.operator.stature, e)
+        for r in results
+        if (e := getattr(r, "ergonomics", None)) is not None
+    ]
+
+
+def _ergonomics(results: Sequence[CycleResult]) -> dict | None:
+    """The ergonomics section's figures (None when no run was scored)."""
+    from mjwalk.ergonomics.summary import ergonomics_summary
+
+    records = _ergonomic_records(results)
+    return ergonomics_summary(records) if records else None
+
+
+def _baseline_note(spec) -> dict:
+    """What ``vs A*`` compares with: the grid A*'s cell and radius, the walks' ends, and the
+    constants of its tolerance (:func:`~mjwalk.plan.grid.shortfall_bound`)."""
+    from mjwalk.plan.grid import CELL_SIZE, END_EXCESS, OCTILE_RATIO
+
+    return {
+        "planner": "grid A* (8-connected)",
+        "between": "each walk's own start and end (pelvis)",
+        "cell": CELL_SIZE,
+        "radius": getattr(spec, "radius", None),
+        "octile_ratio": OCTILE_RATIO,
+        "end_excess": END_EXCESS * CELL_SIZE,
+        "floor": "(1 - end_excess / route) / octile_ratio - 1",
     }
 
 
@@ -331,36 +404,103 @@ def _f(x: float, digits: int = 2) -> str:
     return "–" if x is None or (isinstance(x, float) and math.isnan(x)) else f"{x:.{digits}f}"
 
 
+#: Columns of the route table up to ``vs A*`` (the terminal summary shows these).
+ROUTE_COLUMNS = 9
+
+
+def _pct(x: float | None) -> str:
+    return "–" if x is None or math.isnan(x) else f"{100 * x:+.1f} %"
+
+
 def _route_rows(rep: dict) -> tuple[list[str], list[list[str]]]:
+    """The route table: one row per direction of each route, and a pooled row (``both``)
+    after a route's directions where it has several; the capture's figures on the route's
+    pooled (or only) row."""
     has_ref = any("reference" in e for e in rep["routes"].values())
-    head = ["route", "walks", "grid A* [m]", "length 50th [m]", "IQR [m]"]
+    head = ["route", "from -> to", "walks", "grid A* [m]", "length 50th [m]", "IQR [m]"]
     head += ["duration 50th [s]", "IQR [s]", "vs A*"]
     if has_ref:
         head += ["capture 50th [m]", "IQR [m]", "median error", "IQR ratio"]
-    rows = []
-    for label, e in rep["routes"].items():
-        row = [
+
+    def row(label: str, what: str, e: dict, ref: dict | None) -> list[str]:
+        out = [
             label,
+            what,
             str(e["walks"]),
             _f(e["baseline_length"]),
             _f(e["length"]["median"]),
             _f(e["length"]["iqr"]),
             _f(e["duration"]["median"]),
             _f(e["duration"]["iqr"]),
-            f"{100 * e['length_vs_baseline']:+.1f} %",
+            _pct(e["length_vs_baseline"]),
         ]
         if has_ref:
-            if "reference" in e:
-                row += [
-                    _f(e["reference"]["median"]),
-                    _f(e["reference"]["iqr"]),
-                    f"{100 * e['median_error']:+.1f} %",
-                    f"{100 * e['iqr_ratio']:.0f} %",
+            if ref is not None and "reference" in ref:
+                out += [
+                    _f(ref["reference"]["median"]),
+                    _f(ref["reference"]["iqr"]),
+                    _pct(ref["median_error"]),
+                    f"{100 * ref['iqr_ratio']:.0f} %",
                 ]
             else:
-                row += ["–"] * 4
-        rows.append(row)
+                out += ["–"] * 4
+        return out
+
+    rows = []
+    for label, e in rep["routes"].items():
+        dirs = e.get("directions") or []
+        for d in dirs:
+            rows.append(row(label, f"{d['from']} -> {d['to']}", d, e if len(dirs) == 1 else None))
+        if len(dirs) != 1:  # several directions (or a report without them): the route pooled
+            rows.append(row(label, "both" if dirs else "–", e, e))
     return head, rows
+
+
+def _baseline_md(rep: dict) -> list[str]:
+    """The paragraph under the route table saying what ``vs A*`` compares and how low the
+    grid lets it read."""
+    note = rep.get("baseline")
+    if not note:
+        return []
+    dirs = [d for e in rep["routes"].values() for d in e.get("directions") or []]
+    lows = [
+        (d["vs_baseline"]["min"], d["vs_baseline_floor"]) for d in dirs if d["vs_baseline"]["n"]
+    ]
+    missing = sum(d.get("without_baseline", 0) for d in dirs)
+    example = (1.0 - note["end_excess"] / 2.4) / note["octile_ratio"] - 1.0
+    out = [
+        "`grid A*` and `vs A*`: each walk is compared with the grid-A* route between its own "
+        "start and end (where the operator stood and where the walk ended, not the sites' "
+        f"marks; {100 * note['cell']:.0f} cm cells, body radius {_f(note['radius'])} m); "
+        "`grid A*` is the median of those routes' lengths, `vs A*` the median of each walk's "
+        "length over its own route, minus 1. No walk is shorter than the shortest way between "
+        "its ends, but the grid's route moves in 8 directions: it is up to "
+        f"{100 * (note['octile_ratio'] - 1):.1f} % longer than a straight line, plus "
+        f"{1000 * note['end_excess']:.0f} mm joining the ends to the grid, so a walk may read "
+        f"down to (1 - {note['end_excess']:.3f} m / route) / {note['octile_ratio']:.4f} - 1 "
+        f"({_pct(example)} for a 2.4 m route) and still be no shorter than the shortest way "
+        "(where a straight line joins its ends).",
+    ]
+    if lows:
+        low = min(v for v, _ in lows)
+        floor = min(f for _, f in lows if f is not None)
+        below = sum(d.get("below_floor", 0) for d in dirs)
+        out += [
+            "",
+            f"Lowest `vs A*` of a walk: {_pct(low)} (the grid allows down to {_pct(floor)} for "
+            "the shortest route here); "
+            + (
+                "every walk within the grid's discretisation."
+                if not below
+                else f"{below} walk(s) below the bound at their own route (around obstacles?)."
+            ),
+        ]
+    if missing:
+        out += [
+            "",
+            f"{missing} walk(s) had no grid route between their ends (left out of `vs A*`).",
+        ]
+    return out
 
 
 def _md_table(head: list[str], rows: list[list[str]]) -> str:
@@ -382,10 +522,13 @@ def format_markdown(rep: dict) -> str:
         *_failed_md(rep),
         "## Walk paths per route",
         "",
-        "Median (50th percentile) and inter-quartile range of the walked length and duration, "
+        "Median (50th percentile) and inter-quartile range of the walked length and duration "
+        "per direction (from -> to) and, for a route walked both ways, pooled (`both`), "
         "beside the grid-A* route length (layout of agethen2018 Table 1).",
         "",
         _md_table(*_route_rows(rep)),
+        "",
+        *_baseline_md(rep),
         "",
         "## Cycle time",
         "",
@@ -441,6 +584,10 @@ def format_markdown(rep: dict) -> str:
         *(["", *short] if short else []),
         "",
     ]
+    if rep.get("ergonomics"):
+        from mjwalk.ergonomics.summary import ergonomics_markdown
+
+        out += ergonomics_markdown(rep["ergonomics"])
     return "\n".join(out)
 
 
@@ -542,7 +689,8 @@ def format_summary(rep: dict) -> str:
     """A short plain-text table of a report (from :func:`report_dict`) for the terminal."""
     ct = rep["cycle_time"]
     head, rows = _route_rows(rep)
-    head, rows = head[:8], [r[:8] for r in rows]  # the capture columns stay in report.md
+    # the capture columns stay in report.md
+    head, rows = head[:ROUTE_COLUMNS], [r[:ROUTE_COLUMNS] for r in rows]
     widths = [max(len(h), *(len(r[k]) for r in rows)) for k, h in enumerate(head)]
     fmt = "  ".join(f"{{:<{w}}}" for w in widths)
     lines = [
@@ -591,13 +739,23 @@ def _operator_cells(r: CycleResult) -> list[str]:
     return [op.group, f"{op.stature:.2f}", f"{op.speed:.4f}", f"{op.cadence:.2f}"]
 
 
+def _cell(x: float, digits: int = 4) -> str:
+    """A CSV cell: ``x`` to ``digits`` places, empty for NaN."""
+    return "" if math.isnan(x) else f"{x:.{digits}f}"
+
+
 def _write_walks_csv(path: Path, results: Sequence[CycleResult]) -> None:
+    """One row per walk: its direction (``from``, ``to``), length, duration, its own grid-A*
+    route (``baseline_length_m``: between ``start_x, start_y`` and ``end_x, end_y``, the
+    walk's ends; empty when the grid planner found none) and ``vs_baseline`` (length over that
+    route, minus 1)."""
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(
             [
                 "run", "seed", "task", "route", "from", "to",
-                "length_m", "duration_s", "baseline_length_m", "steps",
+                "length_m", "duration_s", "baseline_length_m", "vs_baseline", "steps",
+                "start_x", "start_y", "end_x", "end_y",
                 *OPERATOR_COLUMNS,
             ]
         )  # fmt: skip
@@ -613,8 +771,10 @@ def _write_walks_csv(path: Path, results: Sequence[CycleResult]) -> None:
                         wk.goal_site,
                         f"{wk.length:.4f}",
                         f"{wk.duration:.4f}",
-                        f"{wk.baseline_length:.4f}",
+                        _cell(wk.baseline_length),
+                        _cell(wk.vs_baseline, 5),
                         len(wk.path.steps),
+                        *(f"{v:.4f}" for v in (*wk.path.xy[0], *wk.path.xy[-1])),
                         *_operator_cells(r),
                     ]
                 )
@@ -660,18 +820,22 @@ def write_report(
     Files (keys of the returned dict, see :data:`REPORT_FILES`): ``report.json`` (the figures of
     :func:`report_dict`), ``walks.csv`` (one row per walk per run), ``cycles.csv`` (one row per
     run), ``report.md`` (Markdown tables), ``spaghetti.png`` (every run's walk paths on the floor
-    plan, coloured by route, grid-A* routes dashed) and ``histograms.png`` (cycle time and walk
-    lengths per route). All are written to temporary files first and renamed into place together
-    at the end, so an error leaves none of them half-written (nor any new one at all).
+    plan, coloured by route, each with its own grid-A* route dashed) and ``histograms.png``
+    (cycle time, and walk lengths per route and direction); with runs scored for ergonomics also
+    ``ergonomics.csv`` (one row per run and task) and ``ergonomics.png``
+    (:data:`ERGONOMICS_FILES`). All are written to temporary files first and renamed into place
+    together at the end, so an error leaves none of them
+    half-written (nor any new one at all).
 
     Args:
         results: the simulated cycles.
         out_dir: folder to write into.
         workplace: the scene (:class:`mjwalk.world.Workplace`) for the floor plan; default: loaded
             from the first result's ``spec.scene``.
-        baseline: grid-A* routes to draw, keyed by route label or by ``(start_site, goal_site)``;
-            each value one :class:`WalkPath` or several. Default: planned here with
-            :func:`mjwalk.plan.grid.plan_grid` for every leg walked (``{}`` draws none).
+        baseline: grid-A* routes to draw instead, keyed by route label or by
+            ``(start_site, goal_site)``; each value one :class:`WalkPath` or several. Default:
+            each drawn walk's own route (``WalkRecord.baseline``, between the walk's ends, as
+            the simulation recorded it); ``{}`` draws none.
         reference: captured (median, IQR) walk length per route, e.g. :data:`CAPTURE_TABLE1`.
     """
     from mjwalk.plot import histograms_png, spaghetti_png  # matplotlib: loaded when drawing
@@ -682,8 +846,8 @@ def write_report(
         from mjwalk.world import shared_workplace
 
         workplace = shared_workplace(results[0].spec.scene)
-    routes = _grid_routes(results, workplace) if baseline is None else baseline
-    for key, value in routes.items():
+    routes = baseline
+    for key, value in (routes or {}).items():
         paths = [value] if isinstance(value, WalkPath) else value
         if not isinstance(paths, Sequence) or not all(isinstance(p, WalkPath) for p in paths):
             raise MjwalkError(
@@ -691,7 +855,8 @@ def write_report(
                 f"got {type(value).__name__}"
             )
     out_dir = Path(out_dir)
-    targets = {key: out_dir / name for key, name in REPORT_FILES.items()}
+    names = {**REPORT_FILES, **(ERGONOMICS_FILES if rep.get("ergonomics") else {})}
+    targets = {key: out_dir / name for key, name in names.items()}
     with contextlib.ExitStack() as stack:
         tmp = {key: stack.enter_context(atomic_path(p)) for key, p in targets.items()}
         tmp["json"].write_text(json.dumps(_jsonable(rep), indent=2, allow_nan=False) + "\n")
@@ -700,29 +865,17 @@ def write_report(
         tmp["markdown"].write_text(format_markdown(rep), encoding="utf-8")
         spaghetti_png(tmp["spaghetti"], results, workplace, routes, rep)
         histograms_png(tmp["histograms"], results, rep)
+        if "ergonomics_csv" in tmp:
+            from mjwalk.ergonomics.summary import CSV_COLUMNS, ergonomics_rows
+            from mjwalk.plot import ergonomics_png
+
+            records = _ergonomic_records(results)
+            with open(tmp["ergonomics_csv"], "w", newline="") as fh:
+                w = csv.writer(fh)
+                w.writerow(CSV_COLUMNS)
+                w.writerows(ergonomics_rows(records))
+            ergonomics_png(tmp["ergonomics_png"], records)
     return targets
-
-
-def _grid_routes(
-    results: Sequence[CycleResult], workplace
-) -> dict[tuple[str, str], WalkPath | list[WalkPath]]:
-    """Grid-A* routes of every (start site, goal site) walked, for the floor plan; legs the grid
-    planner cannot plan are left out."""
-    from mjwalk.errors import PlanningError, SceneError
-    from mjwalk.plan.grid import occupancy_grid, plan_grid
-
-    radius = results[0].spec.radius
-    grid = occupancy_grid(workplace, radius=radius)
-    out: dict[tuple[str, str], WalkPath | list[WalkPath]] = {}
-    for r in results:
-        for w in r.walks:
-            leg = (w.start_site, w.goal_site)
-            if leg not in out:
-                try:
-                    out[leg] = plan_grid(workplace, *leg, radius=radius, grid=grid)
-                except (PlanningError, SceneError):
-                    out[leg] = []
-    return out
 
 
 def _jsonable(obj):

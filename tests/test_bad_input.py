@@ -231,7 +231,7 @@ def test_render_refuses_non_mp4_and_bad_sizes(capsys, no_work, tmp_path):
         err = refused([*base, str(tmp_path / "v.mp4"), opt, value], capsys, tmp_path)
         assert f"argument {opt}: must be an even number of pixels from 16 to 8192" in err
     err = refused([*base, str(tmp_path / "v.mp4"), "--fps", "0"], capsys, tmp_path)
-    assert "argument --fps: must be a positive number, got 0" in err
+    assert "argument --fps: must be a frame rate above 0 and at most 240" in err
 
 
 # ------------------------------------------------------------------ walks and scenes

@@ -9,7 +9,14 @@ import numpy as np
 import pytest
 
 from mjwalk import PlanningError
-from mjwalk.plan.grid import plan_grid
+from mjwalk.plan.grid import (
+    CELL_SIZE,
+    END_EXCESS,
+    OCTILE_RATIO,
+    occupancy_grid,
+    plan_grid,
+    shortfall_bound,
+)
 from mjwalk.world import load_workplace
 from mjwalk.world.probe import ClearanceProbe, path_clearance
 
@@ -78,6 +85,26 @@ def test_length_on_a_known_route(tmp_path):
     assert straight.length == pytest.approx(8.0, rel=0.01)
     diagonal = plan_grid(wp, "-4.0,-1.0", "-1.0,2.0")
     assert diagonal.length == pytest.approx(3 * math.sqrt(2), rel=0.01)
+
+
+def test_route_between_off_grid_points_is_within_the_octile_bound(scenes_dir):
+    """On an open floor the route between two off-grid points a straight line joins is at
+    most OCTILE_RATIO times the line plus END_EXCESS cells (the report's tolerance of
+    ``vs A*``, :func:`shortfall_bound`), and never shorter than the line."""
+    wp = load_workplace(scenes_dir / "open_floor.xml")
+    grid = occupancy_grid(wp, radius=0.25)
+    rng = np.random.default_rng(4)
+    worst = -1.0
+    for _ in range(40):
+        a = rng.uniform(-4.0, 4.0, 2)
+        b = np.clip(a + rng.uniform(-3.0, 3.0, 2), -4.0, 4.0)
+        route = plan_grid(wp, a, b, radius=0.25, grid=grid)
+        line = float(np.linalg.norm(b - a))
+        assert line - 1e-9 <= route.length <= OCTILE_RATIO * line + END_EXCESS * CELL_SIZE + 1e-9
+        worst = max(worst, (route.length - OCTILE_RATIO * line) / CELL_SIZE)
+        # a walk along the line itself reads no lower than the bound
+        assert line / route.length - 1 >= shortfall_bound(route.length) - 1e-12
+    assert worst > -0.5  # some routes come near the bound (it is not loose by cells)
 
 
 def test_bad_endpoints(scenes_dir):

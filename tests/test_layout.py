@@ -15,7 +15,10 @@ PKG = Path(mjwalk.__file__).parent
 #: The stages of the data flow, lowest first (ARCHITECTURE.md). Shared helpers (conventions,
 #: errors, file I/O, numba set-up, GL selection) sit below all of them; the report writers, the
 #: video, the plots and the command line on top.
-STAGES = ("_base", "mocap", "world", "gait", "plan", "body", "arms", "timeline", "cycle", "top")
+STAGES = (
+    "_base", "mocap", "world", "gait", "plan", "body", "arms", "timeline", "ergonomics", "cycle",
+    "top",
+)  # fmt: skip
 BASE = {"conventions", "anthropometry", "errors", "_io", "_jit", "_gl", "_args", "_version", "_log"}
 TOP = {"render", "viewpoint", "plot", "report", "cli", "__main__", "shipped"}
 

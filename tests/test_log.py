@@ -4,6 +4,7 @@ configures logging; the command shows INFO, ``--quiet`` only warnings."""
 from __future__ import annotations
 
 import logging
+import os
 import subprocess
 import sys
 
@@ -12,7 +13,10 @@ from mjwalk import _log
 
 def test_library_is_silent_until_configured():
     code = "import logging, mjwalk._log as L; L.log.info('progress'); L.log.warning('careful')"
-    res = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    env = {k: v for k, v in os.environ.items() if k not in (_log.LEVEL_ENV, _log.NOTICE_ENV)}
+    res = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env
+    )
     assert res.stdout == ""
     assert res.stderr.strip() == "careful"  # Python's own last-resort handler: warnings only
 

@@ -17,9 +17,11 @@ from mjwalk.body.humanoid import JointMap, attach_humanoid
 from mjwalk.cycle.standing import StandZone, work_zone
 from mjwalk.cycle.standoff import ArmClearance
 from mjwalk.cycle.types import CycleSpec
+from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace, shared_workplace
 
 if TYPE_CHECKING:
@@ -106,13 +108,30 @@ class CycleContext:
         return self.zones[key]
 
     def baseline(self, a: str, b: str) -> float:
+        """Metres of the grid-A* route from site ``a`` to site ``b`` (kept per pair)."""
         if (a, b) not in self.baselines:
-            if self.grid is None:
-                self.grid = occupancy_grid(self.workplace, radius=self.spec.radius)
             self.baselines[(a, b)] = plan_grid(
-                self.workplace, a, b, radius=self.spec.radius, grid=self.grid
+                self.workplace, a, b, radius=self.spec.radius, grid=self.occupancy()
             ).length
         return self.baselines[(a, b)]
+
+    def baseline_route(self, start, end) -> WalkPath | None:
+        """The grid-A* route (:func:`~mjwalk.plan.grid.plan_grid`, the cycle's body radius)
+        between two points (x, y), metres: a walk's own ends. None when the grid planner
+        finds none (an end nearer an obstacle than the radius, or no grid route between
+        them). Not kept: every walk has ends of its own."""
+        try:
+            return plan_grid(
+                self.workplace, start, end, radius=self.spec.radius, grid=self.occupancy()
+            )
+        except PlanningError:
+            return None
+
+    def occupancy(self) -> OccupancyGrid:
+        """The grid A*'s occupancy grid of the scene at the cycle's body radius (built once)."""
+        if self.grid is None:
+            self.grid = occupancy_grid(self.workplace, radius=self.spec.radius)
+        return self.grid
 
 
 def _make_room(kept: dict, limit: int = KEPT_PER_CONTEXT) -> None:

@@ -2,8 +2,8 @@
 
 One cycle (:func:`simulate_cycle`) walks the task list of a :class:`CycleSpec`: each ``walk`` /
 ``carry`` task is planned with the probabilistic hybrid A* (and, for the report, the grid-A*
-route between the same sites); the operator turns on the spot towards the walk's first heading
-and, at its end, towards the site's facing direction; each ``pick`` / ``place`` / ``fasten``
+route between the walk's own two ends); the operator turns on the spot towards the walk's first
+heading and, at its end, towards the site's facing direction; each ``pick`` / ``place`` / ``fasten``
 task is an arm reach from the current standing pose to the site (the :class:`ReachModel`, PCA +
 DCS, alzubi-sommer), a hold (the task's duration) and the return. Everything is laid on one
 timeline of humanoid poses (``fps`` frames per second), checked for humanoid-vs-scene contacts
@@ -27,6 +27,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mjwalk._args import as_generator, check_seed
 from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.cycle.context import (
     GOAL_TOLERANCE,
@@ -86,6 +87,7 @@ def simulate_cycle(
     fps: float = 30.0,
     keep_timeline: bool = False,
     collisions: bool = True,
+    ergonomics: bool = True,
 ) -> CycleResult:
     """Simulate one assembly cycle.
 
@@ -98,6 +100,8 @@ def simulate_cycle(
             tracks of the parts the hands handle (``Timeline.parts``, :mod:`mjwalk.timeline.parts`).
         collisions: run MuJoCo's collision detection over the timeline
             (:func:`~mjwalk.timeline.collisions.check_collisions` checks a result later).
+        ergonomics: score the cycle's postures and lifts (RULA, REBA, OWAS, NIOSH, ISO 11226;
+            :func:`cycle_ergonomics`) into ``result.ergonomics``.
 
     Returns:
         A :class:`CycleResult`: walks, arm motions, task times, cycle time, collisions, and the
@@ -107,10 +111,10 @@ def simulate_cycle(
         PlanningError: a walk cannot be planned (the spec is checked before, so this means an
             unreachable site); MjwalkError for model files.
     """
+    rng = as_generator(rng, "simulate_cycle: rng")  # before any work
     ctx = spec if isinstance(spec, CycleContext) else prepare(spec)
     spec = ctx.spec
     check_durations(spec.tasks)
-    rng = np.random.default_rng(rng)
     # side streams spawned from the run's generator (its own draws, the walks, are unchanged):
     # the operator, the task-time factors, where the operator stands (at the start, then the
     # spot each walk aims at: plan_task_walk)
@@ -163,6 +167,9 @@ def simulate_cycle(
             frames.append(turn)
             t += dt
             yaw = face
+            # the grid-A* route between the walk's own ends (not the sites' marks: the walk
+            # starts and ends where the operator stands), for the report's ``vs A*``
+            base = ctx.baseline_route(path.xy[0], path.xy[-1])
             walks.append(
                 WalkRecord(
                     task=i,
@@ -170,7 +177,8 @@ def simulate_cycle(
                     start_site=here,
                     goal_site=goal,
                     path=path,
-                    baseline_length=ctx.baseline(here, goal),
+                    baseline_length=float("nan") if base is None else base.length,
+                    baseline=base,
                 )
             )
             here = goal
@@ -238,6 +246,8 @@ def simulate_cycle(
         ]
         timeline.parts = part_tracks(ctx.model, ctx.jointmap, qpos, handlings, ctx.scratch())
     contacts = collision_report(timeline, data=ctx.scratch()) if collisions else []
+    ends = [*starts[1:], len(qpos)]
+    ergo = cycle_ergonomics(timeline, spec, starts, ends, t, wp) if ergonomics else None
     return CycleResult(
         spec=spec,
         run=run,
@@ -250,7 +260,38 @@ def simulate_cycle(
         collisions=contacts,
         timeline=timeline if keep_timeline else None,
         operator=walker,
+        ergonomics=ergo,
     )
+
+
+def cycle_ergonomics(timeline: Timeline, spec: CycleSpec, starts, ends, cycle_time: float, wp):
+    """The ergonomics of a cycle's timeline (:func:`mjwalk.ergonomics.assess.assess_cycle`):
+    task ``i`` of ``spec`` spans frames ``starts[i]:ends[i]``; a place or fasten handles the
+    part its hand picked last (its mass and coupling); ``wp`` the Workplace (the sites)."""
+    from mjwalk.ergonomics.angles import angles_from_timeline
+    from mjwalk.ergonomics.assess import TaskSpan, assess_cycle
+
+    n = timeline.n_frames
+    walking = np.zeros(n, dtype=bool)
+    held: dict[str, list[tuple[float, str]]] = {"left": [], "right": [], "both": []}
+    spans = []
+    for i, task in enumerate(spec.tasks):
+        s, e = int(starts[i]), int(ends[i])
+        if TASK_KINDS[task.kind].action == "walk":
+            walking[s:e] = True
+        mass, coupling = 0.0, task.coupling
+        if task.kind == "pick":
+            mass = task.mass
+            held[task.hand].append((task.mass, task.coupling))
+        elif task.kind in ("place", "fasten") and held.get(task.hand):
+            mass, coupling = held[task.hand].pop()
+        pos = None
+        if task.site is not None and task.site in wp.stations:
+            pos = np.asarray(wp.stations[task.site].pos, dtype=float)
+        spans.append(TaskSpan(i, task.kind, s, e, task.hand if task.kind != "walk" else None,
+                              task.site, mass, coupling, pos))  # fmt: skip
+    ang = angles_from_timeline(timeline, walking)
+    return assess_cycle(ang, spans, cycle_time, timeline.fps)
 
 
 def _entropy(rng: np.random.Generator) -> int | list[int] | None:
@@ -336,6 +377,7 @@ def simulate_cycles(
             f"simulate_cycles: run indices must lie in 0..{runs - 1} (of {runs} runs), "
             f"got {bad or 'none'}"
         )
+    seed = check_seed(seed, "simulate_cycles: seed")
     if on_error not in ("raise", "record"):
         raise InputError(f"simulate_cycles: on_error must be 'raise' or 'record', got {on_error!r}")
     jobs = (delayed(_run_one)(job_spec, k, seed, collisions, on_error) for k in indices)

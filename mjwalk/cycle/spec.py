@@ -38,7 +38,8 @@ kind      required                                    optional
 ========  ==========================================  ==========================================
 walk      site (a standing site on the floor)         route
 carry     site (a standing site on the floor)         route, hand, part
-pick      site (where the part lies)                  hand, part, duration (hold time)
+pick      site (where the part lies)                  hand, part, duration (hold time),
+                                                      mass (kg), coupling
 place     site (where the part goes)                  hand, part, duration (hold time)
 fasten    site (where the part is fastened)           hand, part, duration (screwing time)
 wait      duration                                    --
@@ -49,6 +50,11 @@ wait      duration                                    --
 ``S`` is the part's centre and the scene must also have the grip sites ``S_left`` and ``S_right``
 (where the operator's left and right hand hold it); both hands reach their grips together, hold
 the part while carrying, and the place releases both.
+``mass`` (kg, default 0: a part too light to count) and ``coupling`` (the grip on it: "good",
+"fair" or "poor"; default "poor", the Applications Manual's rule for the revised NIOSH lifting
+equation, Waters et al. 1994 p. 16: "if there is any doubt ... the more stressful classification
+should be selected") describe the picked part for the ergonomic scores (:mod:`mjwalk.ergonomics`):
+the load in the hand until its place or fasten, and a NIOSH lift for its pick and its place.
 ``route`` labels a walk for the report (walks with one label are pooled, like the paper's T1-T5);
 it defaults to ``"<from site>-><to site>"``. ``duration`` is seconds, >= 0; None (absent) means the
 simulator's default.
@@ -75,6 +81,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mjwalk._io import read_toml
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.cycle.population import HUMANOID_STATURE_RANGE, Population, parse_population
 from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task, grip_sites
@@ -90,6 +97,13 @@ STATURE_RANGE = HUMANOID_STATURE_RANGE
 #: Allowed walking (body) radius, metres.
 RADIUS_RANGE = (0.1, 0.6)
 HANDS = ("left", "right")
+#: The heaviest part a pick may declare (kg): beyond any manual lift (the revised NIOSH
+#: equation's load constant is 23 kg).
+MAX_PART_MASS = 100.0
+#: Couplings of a part (the revised NIOSH lifting equation's Table 7) and the default (see the
+#: module docstring).
+COUPLINGS = ("good", "fair", "poor")
+DEFAULT_COUPLING = "poor"
 #: Accepted values of a task's ``hand`` ("both": two-handed, see above).
 HAND_VALUES = (*HANDS, "both")
 
@@ -100,6 +114,17 @@ HAND_VALUES = (*HANDS, "both")
 #: where ``duration = 1e12`` asked for petabytes.
 MAX_CYCLE_SECONDS = 3600.0
 
+#: Longest name, site, route, part or other label in a cycle file, characters: MJCF names and
+#: report labels are identifiers and short phrases, and each is printed in the report's tables,
+#: CSV rows and plot titles (a 1 MB name took 77 s and 0.93 GB for one 4.8 s cycle).
+MAX_LABEL_CHARS = 256
+#: Longest file path (``scene``, the models), characters: Linux's PATH_MAX.
+MAX_PATH_CHARS = 4096
+#: Most tasks (and entries of any list) a cycle file may have: an hour-long cycle
+#: (:data:`MAX_CYCLE_SECONDS`) of one-second tasks.
+MAX_TASKS = 3600
+_PATH_KEYS = ("scene", "step", "reach", "reach_right")
+
 _TOP_KEYS = (
     "name", "scene", "start", "takt", "humanoid", "models", "walking", "population", "task"
 )  # fmt: skip
@@ -108,7 +133,7 @@ _TABLE_KEYS = {
     "models": ("step", "reach", "reach_right"),
     "walking": ("radius",),
 }
-_ALL_TASK_KEYS = ("kind", "site", "hand", "duration", "route", "part")
+_ALL_TASK_KEYS = ("kind", "site", "hand", "duration", "route", "part", "mass", "coupling")
 
 _HEADER_RE = re.compile(r"^\s*(\[\[|\[)\s*([^\[\]]+?)\s*(\]\]|\])\s*(#.*)?$")
 _KEY_RE = re.compile(
@@ -258,6 +283,14 @@ class _Checker:
     def file(self, data: dict, key: str, base: Path, table: str = "") -> Path:
         rel = self.string(data, key, table)
         resolved = (base / rel).resolve()
+        if resolved.is_dir():
+            raise self.fail(
+                f"key {key!r} {self.where(table, None)}: {rel!r} is a folder, not a file "
+                f"({resolved})",
+                table,
+                None,
+                key,
+            )
         if not resolved.is_file():
             raise self.fail(
                 f"key {key!r} {self.where(table, None)}: file {rel!r} not found "
@@ -267,6 +300,64 @@ class _Checker:
                 key,
             )
         return resolved
+
+
+def _check_lengths(check: _Checker, data: dict) -> None:
+    """Raise naming the key of the first string (value or key) longer than
+    :data:`MAX_LABEL_CHARS` (:data:`MAX_PATH_CHARS` for file paths) and of a list longer than
+    :data:`MAX_TASKS`: before anything else reads or prints them."""
+
+    def visit(value, table: str, index: int | None, key: str) -> None:
+        if isinstance(value, str):
+            limit = MAX_PATH_CHARS if key in _PATH_KEYS else MAX_LABEL_CHARS
+            if len(value) > limit:
+                what = "a file path" if key in _PATH_KEYS else "a name, key or label"
+                raise check.fail(
+                    f"key {_short(key)!r} {check.where(table, index)}: a text of {len(value)} "
+                    f"characters; {what} may have at most {limit}",
+                    table,
+                    index,
+                    key,
+                )
+        elif isinstance(value, list):
+            if len(value) > MAX_TASKS:
+                raise check.fail(
+                    f"key {_short(key)!r} {check.where(table, index)} has {len(value)} entries, "
+                    f"more than {MAX_TASKS}",
+                    table,
+                    index,
+                    key,
+                )
+            for v in value:
+                visit(v, table, index, key)
+        elif isinstance(value, dict):
+            for k, v in value.items():
+                visit(k, table, index, key)  # a key is text too, named by its table
+                visit(v, table, index, k if len(k) <= MAX_LABEL_CHARS else key)
+
+    for key, value in data.items():
+        visit(key, "", None, "(a top-level key)")
+        if key == "task" and isinstance(value, list):
+            if len(value) > MAX_TASKS:
+                raise check.fail(
+                    f"{len(value)} tasks, more than the {MAX_TASKS} a cycle may have", "task"
+                )
+            for i, task in enumerate(value):
+                if isinstance(task, dict):
+                    for k, v in task.items():
+                        visit(k, "task", i, "(a key)")
+                        visit(v, "task", i, k)
+        elif isinstance(value, dict):
+            for k, v in value.items():
+                visit(k, key, None, "(a key)")
+                visit(v, key, None, k)
+        else:
+            visit(value, "", None, key)
+
+
+def _short(text: str) -> str:
+    """``text`` cut to 60 characters for a message."""
+    return text if len(text) <= 60 else f"{text[:40]}...({len(text)} characters)"
 
 
 def _site_error(
@@ -331,22 +422,22 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         CycleSpecError: ``<file>:<line>: ...`` naming the offending key (see module docstring).
     """
     path = Path(path)
-    if not path.is_file():
-        raise CycleSpecError(f"{path}: cycle spec file not found")
     try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise CycleSpecError(f"{path}: cannot read the cycle spec ({exc})") from exc
-    try:
-        data = tomllib.loads(text)
+        data, text = read_toml(path, "cycle spec", CycleSpecError)
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"line (\d+)", str(exc))
         line = int(m.group(1)) if m else 1
-        err = CycleSpecError(f"{path}:{line}: TOML syntax error: {exc}")
+        msg = f"{path}:{line}: TOML syntax error: {exc}"
+        single = re.search(r"^[ \t]*\[[ \t]*task[ \t]*\]", path.read_text("utf-8"), re.M)
+        if single:  # [task] then [[task]]: tomllib cites the second
+            at = path.read_text("utf-8").count("\n", 0, single.start()) + 1
+            msg += f"; [task] at line {at} is one table: write [[task]] for every task"
+        err = CycleSpecError(msg)
         err.path, err.line, err.key = path, line, None
         raise err from exc
 
     check = _Checker(path, _Lines(text))
+    _check_lengths(check, data)
     check.keys(data, _TOP_KEYS)
     for key in ("scene", "start", "task"):
         if key not in data:
@@ -412,6 +503,12 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
     _check_stand(check, workplace, start, radius, "", None, "start")
 
     raw_tasks = data["task"]
+    if isinstance(raw_tasks, dict):  # [task] written for [[task]]: cite the table's line
+        raise check.fail(
+            "[task] is one table; write [[task]] (double brackets: an array of tables, one "
+            "per task)",
+            "task",
+        )
     if not isinstance(raw_tasks, list) or not raw_tasks:
         raise check.fail("key 'task' must be one or more [[task]] tables", key="task")
     tasks: list[Task] = []
@@ -429,6 +526,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         check_durations(tasks)
     except CycleSpecError as exc:
         raise check.fail(str(exc), "task", len(tasks) - 1, "duration") from None
+    _check_routes(check, workplace, start, tasks, radius)
     return CycleSpec(
         path=path,
         scene=scene,
@@ -443,6 +541,41 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         population=population,
         takt=takt,
     )
+
+
+def _check_routes(
+    check: _Checker, workplace: Workplace, start: str, tasks: list[Task], radius: float
+) -> None:
+    """Raise naming the task of the first walk or carry whose site cannot be reached from
+    where the operator stands (grid A* with the walking radius, :func:`mjwalk.plan.grid.
+    plan_grid`, on the scene's shared occupancy grid: milliseconds per route): a wall or a
+    gap narrower than the body between two sites would make every run fail."""
+    from mjwalk.errors import PlanningError
+    from mjwalk.plan import grid as _grid
+
+    occupancy = None
+    stand = start
+    seen: set[tuple[str, str]] = set()
+    for i, task in enumerate(tasks):
+        if TASK_KINDS[task.kind].action != "walk" or task.site is None:
+            continue
+        pair = (stand, task.site)
+        stand = task.site
+        if pair in seen:
+            continue
+        seen.add(pair)
+        if occupancy is None:
+            occupancy = _grid.shared_grid(workplace, radius=radius)
+        try:
+            _grid.plan_grid(workplace, pair[0], pair[1], radius=radius, grid=occupancy)
+        except PlanningError as exc:
+            raise check.fail(
+                f"key 'site' in task {i + 1}: no walkable route from {pair[0]!r} to "
+                f"{pair[1]!r} for the walking radius {radius:g} m ({exc})",
+                "task",
+                i,
+                "site",
+            ) from None
 
 
 def check_durations(tasks) -> None:
@@ -521,6 +654,15 @@ def _task(
         duration = check.number(raw, "duration", 0.0, MAX_CYCLE_SECONDS, "s", t, i)
     route = check.string(raw, "route", t, i) if "route" in raw else None
     part = check.string(raw, "part", t, i) if "part" in raw else None
+    mass = check.number(raw, "mass", 0.0, MAX_PART_MASS, "kg", t, i) if "mass" in raw else 0.0
+    coupling = check.string(raw, "coupling", t, i) if "coupling" in raw else DEFAULT_COUPLING
+    if coupling not in COUPLINGS:
+        raise check.fail(
+            f"key 'coupling' {where} must be one of {', '.join(COUPLINGS)}, got {coupling!r}",
+            t,
+            i,
+            "coupling",
+        )
 
     if action == "walk":
         assert site is not None  # required above
@@ -603,6 +745,8 @@ def _task(
         route=route,
         part=part,
         line=check.lines.line(t, i),
+        mass=mass,
+        coupling=coupling,
     )
 
 

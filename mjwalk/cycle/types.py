@@ -12,6 +12,7 @@ from mjwalk.plan.walkpath import WalkPath
 
 if TYPE_CHECKING:  # the timeline stage is above this one at run time: no import
     from mjwalk.cycle.population import Population
+    from mjwalk.ergonomics.assess import RunErgonomics
     from mjwalk.timeline.collisions import Contact
     from mjwalk.timeline.timeline import Timeline
 
@@ -63,8 +64,8 @@ TASK_KINDS: dict[str, TaskKind] = {
     for k in (
         TaskKind("walk", ("kind", "site", "route"), "walk"),
         TaskKind("carry", ("kind", "site", "route", "hand", "part"), "walk", carries=True),
-        TaskKind("pick", _REACH_KEYS, "reach", part="take", reach_case="C", default_hold=0.4,
-                 approach="shelf"),
+        TaskKind("pick", (*_REACH_KEYS, "mass", "coupling"), "reach", part="take",
+                 reach_case="C", default_hold=0.4, approach="shelf"),
         TaskKind("place", _REACH_KEYS, "reach", part="put", reach_case="B", default_hold=0.4,
                  approach="shelf"),
         TaskKind("fasten", _REACH_KEYS, "reach", part="put", reach_case="B", default_hold=3.0,
@@ -98,6 +99,8 @@ class Task:
             pooled.
         part: what is handled (free text, e.g. "screw").
         line: line of the task in the TOML file (for error messages).
+        mass: the picked part's mass, kg (pick; 0: not counted), for the ergonomic scores.
+        coupling: the grip on the picked part ("good", "fair", "poor").
     """
 
     kind: TaskKindName
@@ -107,6 +110,8 @@ class Task:
     route: str | None = None
     part: str | None = None
     line: int = 0
+    mass: float = 0.0
+    coupling: str = "poor"
 
 
 @dataclass
@@ -163,7 +168,18 @@ class TaskRecord:
 
 @dataclass
 class WalkRecord:
-    """One walk of a simulated cycle: the planned path and the grid-A* route for comparison."""
+    """One walk of a simulated cycle: the planned path and the grid-A* route for comparison.
+
+    Attributes:
+        task: index of the walk's task in the cycle.
+        route: the task's route label (several walks may share one, e.g. there and back).
+        start_site, goal_site: the sites walked from and to (the walk's direction).
+        path: the walk (pelvis path from where the operator stood to where the walk ended).
+        baseline_length: metres of the grid-A* route between the walk's own ends
+            (``path.xy[0]`` and ``path.xy[-1]``, :func:`~mjwalk.plan.grid.plan_grid`); NaN when
+            the grid planner finds none between them.
+        baseline: that route (None when not kept or not found).
+    """
 
     task: int
     route: str
@@ -171,6 +187,7 @@ class WalkRecord:
     goal_site: str
     path: WalkPath
     baseline_length: float
+    baseline: WalkPath | None = None
 
     @property
     def length(self) -> float:
@@ -179,6 +196,17 @@ class WalkRecord:
     @property
     def duration(self) -> float:
         return self.path.duration
+
+    @property
+    def direction(self) -> str:
+        """``"start_site->goal_site"``."""
+        return f"{self.start_site}->{self.goal_site}"
+
+    @property
+    def vs_baseline(self) -> float:
+        """The walk's length over its grid-A* route's, minus 1 (NaN without a route)."""
+        base = self.baseline_length
+        return self.length / base - 1.0 if base > 0 else float("nan")
 
 
 @dataclass
@@ -225,6 +253,8 @@ class CycleResult:
             if checked.
         timeline: the per-frame humanoid poses (kept only when asked for: it is large).
         operator: the run's operator, drawn from ``spec.population`` (None without one).
+        ergonomics: the run's ergonomic scores (:mod:`mjwalk.ergonomics.assess`; None when not
+            scored).
         error: why the run failed (``simulate_cycles(on_error="record")``): then it has no
             tasks, walks or arms and its cycle time is NaN; None for a simulated cycle.
     """
@@ -241,6 +271,7 @@ class CycleResult:
     entropy: int | list[int] | None = None
     operator: Walker | None = None
     error: str | None = None
+    ergonomics: RunErgonomics | None = None
 
     @property
     def group(self) -> str:

@@ -61,6 +61,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from mjwalk._args import as_generator
 from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk._log import log
 from mjwalk.conventions import Side, other_side
@@ -190,7 +191,7 @@ class StepModel:
             progress: print timings to stderr.
         """
         t0 = time.perf_counter()
-        rng = np.random.default_rng(seed)
+        rng = as_generator(seed, "StepModel.fit: seed")
         steps = list(steps)
         if len(steps) < MIN_STEPS:
             raise MjwalkError(f"StepModel.fit: need at least {MIN_STEPS} steps, got {len(steps)}")

@@ -28,6 +28,16 @@ CELL_SIZE = 0.08
 #: Walking speed (m/s) used to time the baseline's route (median speed of the Bandai walk capture).
 NOMINAL_SPEED = 1.13
 _SQRT2 = math.sqrt(2.0)
+#: The 8-connected (octile) metric's largest ratio to the straight-line distance:
+#: max over theta of cos(theta) + (sqrt(2) - 1) sin(theta) = sqrt(4 - 2 sqrt(2)) = 1.0824,
+#: 22.5 degrees off the grid's axes. A grid route between two points a straight free line joins
+#: is at most this much longer than the line, plus :data:`END_EXCESS`.
+OCTILE_RATIO = math.sqrt(4.0 - 2.0 * _SQRT2)
+#: What linking two off-grid ends to the grid adds at most over the octile distance between
+#: them, in cells (each end joins a centre of the 3 x 3 cells around it): sqrt(2) - 1. Found by
+#: exhaustive search over both ends' offsets in their cells (21 x 21 each) and 61 directions of
+#: the first octant at 3-60 cells; tests/test_grid_planner.py checks the bound on plan_grid.
+END_EXCESS = _SQRT2 - 1.0
 #: The 8-connected moves (di, dj) of the grid A*.
 MOVES_8 = [(1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1)]
 #: 16-connected moves (adds the knight moves): routes at most 2.7 % longer than straight lines.
@@ -64,6 +74,18 @@ class OccupancyGrid:
         i = int(np.clip(np.rint((xy[0] - self.x0) / self.cell), 0, nx - 1))
         j = int(np.clip(np.rint((xy[1] - self.y0) / self.cell), 0, ny - 1))
         return j, i
+
+
+def shortfall_bound(route_length, cell: float = CELL_SIZE):
+    """The lowest ``walk / route - 1`` the grid's discretisation allows a walk between the
+    ends of a grid-A* route of ``route_length`` metres (scalar or array), when a straight free
+    line joins those ends: the walk is at least that line's length L, and the route at most
+    :data:`OCTILE_RATIO` * L + :data:`END_EXCESS` * ``cell`` (so the bound is
+    ``(1 - END_EXCESS * cell / route_length) / OCTILE_RATIO - 1``: -8.9 % for a 2.4 m route on
+    8 cm cells, -7.6 % for long ones). Around obstacles the route's cells keep their own
+    clearance, which this does not bound."""
+    length = np.asarray(route_length, dtype=float)
+    return (1.0 - END_EXCESS * cell / length) / OCTILE_RATIO - 1.0
 
 
 def segment_is_free(workplace: Workplace, a: np.ndarray, b: np.ndarray, radius: float) -> bool:
@@ -317,30 +339,48 @@ def plan_grid(
     start_node, goal_node = n, n + 1
 
     def near_cells(p: np.ndarray) -> list[tuple[int, float]]:
+        """The free centres of the 3 x 3 cells around ``p`` joined to it by a free segment
+        (sampled as :func:`segment_is_free` samples it, all segments in one field lookup)."""
         j0, i0 = grid.index(p)
-        out = []
-        for j in range(max(0, j0 - 1), min(ny, j0 + 2)):
-            for i in range(max(0, i0 - 1), min(nx, i0 + 2)):
-                c = grid.centre(j, i)
-                if grid.free[j, i] and segment_is_free(workplace, p, c, radius):
-                    out.append((j * nx + i, float(np.linalg.norm(c - p))))
-        return out
+        cells = [
+            (j, i)
+            for j in range(max(0, j0 - 1), min(ny, j0 + 2))
+            for i in range(max(0, i0 - 1), min(nx, i0 + 2))
+            if grid.free[j, i]
+        ]
+        if not cells:
+            return []
+        ends = np.array([grid.centre(j, i) for j, i in cells])
+        dist = np.linalg.norm(ends - p, axis=1)
+        counts = [max(2, int(np.ceil(d / _SAMPLE_SPACING)) + 1) for d in dist]
+        pts = np.concatenate(
+            [
+                p + np.linspace(0.0, 1.0, k)[:, None] * (c - p)
+                for k, c in zip(counts, ends, strict=True)
+            ]
+        )
+        ok = workplace.walk_clearance(pts) >= radius
+        seg_ok = np.logical_and.reduceat(ok, np.cumsum([0, *counts[:-1]]))
+        return [
+            (j * nx + i, float(d))
+            for (j, i), d, good in zip(cells, dist, seg_ok, strict=True)
+            if good
+        ]
 
     start_links = near_cells(a)
     goal_links = dict(near_cells(b))
     direct = np.linalg.norm(b - a) <= 1.5 * cell and segment_is_free(workplace, a, b, radius)
 
-    gx = grid.x0 + cell * (np.arange(n) % nx)
-    gy = grid.y0 + cell * (np.arange(n) // nx)
+    x0, y0, bx, by = float(grid.x0), float(grid.y0), float(b[0]), float(b[1])
 
     def h(node: int) -> float:
         if node == goal_node:
             return 0.0
-        dx = abs(gx[node] - b[0])
-        dy = abs(gy[node] - b[1])
+        dx = abs(x0 + cell * (node % nx) - bx)
+        dy = abs(y0 + cell * (node // nx) - by)
         return max(dx, dy) + (_SQRT2 - 1.0) * min(dx, dy)  # octile: admissible on the grid
 
-    moves = grid.moves.reshape(len(_MOVES), -1)
+    moves = grid.moves.reshape(len(_MOVES), -1).T  # (cells, moves): one row per cell
     offsets = [dj * nx + di for di, dj in _MOVES]
     costs = [cell * (_SQRT2 if di and dj else 1.0) for di, dj in _MOVES]
 
@@ -367,8 +407,8 @@ def plan_grid(
         else:
             nbrs = [
                 (node + off, c)
-                for k, (off, c) in enumerate(zip(offsets, costs, strict=True))
-                if moves[k, node]
+                for off, c, ok in zip(offsets, costs, moves[node].tolist(), strict=True)
+                if ok
             ]
             if node in goal_links:
                 nbrs.append((goal_node, goal_links[node]))
@@ -392,7 +432,10 @@ def plan_grid(
         chain.append(parent[chain[-1]])
     chain.reverse()
     pts = np.array(
-        [a if v == start_node else b if v == goal_node else np.array([gx[v], gy[v]]) for v in chain]
+        [
+            a if v == start_node else b if v == goal_node else grid.centre(v // nx, v % nx)
+            for v in chain
+        ]
     )
     seg = np.diff(pts, axis=0)
     yaw = np.arctan2(seg[:, 1], seg[:, 0])

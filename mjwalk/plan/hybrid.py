@@ -72,7 +72,7 @@ import weakref
 
 import numpy as np
 
-from mjwalk._args import finite_points, parse_point
+from mjwalk._args import as_generator, check_seed, finite_points, parse_point
 from mjwalk.anthropometry import ROM_DEG, SHIN_RADIUS, leg_geometry
 from mjwalk.conventions import DEFAULT_STATURE, SAMPLE_RATE_HZ
 from mjwalk.errors import InputError, PlanningError
@@ -289,7 +289,7 @@ def _to_world(px, py, heading, local: np.ndarray) -> np.ndarray:
 
 def _parse_pose(workplace: Workplace, where) -> tuple[np.ndarray, float | None]:
     """(x, y) and an optional yaw from a site name, "x,y[,yaw_deg]" or a tuple (x, y[, yaw])."""
-    if isinstance(where, str) and where.count(",") == 2:
+    if isinstance(where, str) and where.count(",") == 2 and where not in workplace.stations:
         xyyaw = parse_point(where, f"{workplace.name}: pose (x,y,yaw_deg)", n=3)
         if xyyaw is not None:
             return xyyaw[:2].copy(), math.radians(float(xyyaw[2]))
@@ -894,7 +894,7 @@ def plan_walk(
         from mjwalk.gait.default import default_model
 
         model = default_model()
-    rng = np.random.default_rng(rng)
+    rng = as_generator(rng, "plan_walk: rng")
     return HybridPlanner(workplace, goal, model, **options).plan(start, rng)
 
 
@@ -914,6 +914,7 @@ def plan_walks(
     """
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 0:
         raise InputError(f"plan_walks: n must be a whole number of walks >= 0, got {n!r}")
+    seed = check_seed(seed, "plan_walks: seed")
     if model is None:
         from mjwalk.gait.default import default_model
 

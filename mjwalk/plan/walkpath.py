@@ -11,6 +11,9 @@ from mjwalk._io import check_header, load_npz, save_npz
 
 WALKPATH_FORMAT = "mjwalk.walkpath"
 WALKPATH_VERSION = 1
+#: Longest walk mjwalk plays, seconds: a cycle lasts at most an hour
+#: (:data:`mjwalk.cycle.spec.MAX_CYCLE_SECONDS`), and an hour at 240 fps is 864 000 frames.
+MAX_WALK_SECONDS = 3600.0
 
 
 @dataclass
@@ -78,6 +81,54 @@ class WalkPath:
             return np.zeros((0, 4))
         return np.array([[s.side == "right", *s.foot] for s in self.steps], dtype=float)
 
+    def validate(self, what: str = "walk") -> None:
+        """Raise InputError naming ``what`` and the array unless the walk is consistent: ``t``
+        (N,) finite, from 0 and never decreasing, at most :data:`MAX_WALK_SECONDS` long;
+        ``xy`` (N, 2) and ``yaw`` (N,) finite; each step's sample range inside 0..N-1 and in
+        order, its side "left" or "right", its footprints (3,) finite. An edited walk file
+        otherwise failed deep in playback (a ValueError, a MemoryError, an IndexError)."""
+        from mjwalk.errors import InputError
+
+        def bad(msg: str) -> InputError:
+            return InputError(f"{what}: {msg}")
+
+        t, xy, yaw = (np.asarray(a) for a in (self.t, self.xy, self.yaw))
+        if t.ndim != 1 or len(t) < 1:
+            raise bad(f"t must be a 1-D array of sample times (seconds), got shape {t.shape}")
+        n = len(t)
+        if xy.shape != (n, 2):
+            raise bad(f"xy must have shape ({n}, 2) (one x, y per time in t), got {xy.shape}")
+        if yaw.shape != (n,):
+            raise bad(f"yaw must have shape ({n},) (one heading per time in t), got {yaw.shape}")
+        for name, a in (("t", t), ("xy", xy), ("yaw", yaw)):
+            if not np.issubdtype(a.dtype, np.number) or not np.all(np.isfinite(a)):
+                raise bad(f"{name} must hold finite numbers")
+        if abs(float(t[0])) > 1e-9:
+            raise bad(f"t must start at 0 s, starts at {float(t[0]):g} s")
+        dt = np.diff(t)
+        if np.any(dt < 0):  # equal times pass: a grid route may repeat a point
+            k = int(np.flatnonzero(dt < 0)[0])
+            raise bad(
+                f"t must increase: sample {k + 1} at {float(t[k + 1]):g} s comes before "
+                f"sample {k} at {float(t[k]):g} s"
+            )
+        if float(t[-1]) > MAX_WALK_SECONDS:
+            raise bad(f"lasts {float(t[-1]):g} s, longer than {MAX_WALK_SECONDS:g} s")
+        prev_end = 0
+        for k, s in enumerate(self.steps):
+            if s.side not in ("left", "right"):
+                raise bad(f"step {k}: side must be 'left' or 'right', got {s.side!r}")
+            if not (0 <= s.start <= s.end < n) or s.start < prev_end:
+                raise bad(
+                    f"step {k}: samples {s.start}..{s.end} are not an in-order range of the "
+                    f"walk's samples 0..{n - 1}"
+                )
+            prev_end = s.start
+            for name, a in (("foot", s.foot), ("stance", s.stance)):
+                a = np.asarray(a)
+                if a.shape != (3,) or not np.all(np.isfinite(a)):
+                    raise bad(f"step {k}: {name} must be 3 finite numbers (x, y, yaw)")
+
     def stamp_scene(self, workplace) -> WalkPath:
         """Record the scene this walk was planned in (its name and
         :attr:`~mjwalk.world.workplace.Workplace.fingerprint`) in ``meta``; returns self."""
@@ -92,7 +143,19 @@ class WalkPath:
         from mjwalk.errors import SceneError
 
         planned = self.meta.get("scene_fingerprint")
-        if force or planned is None or planned == workplace.fingerprint:
+        if force:
+            return
+        if planned is None or planned == workplace.fingerprint:
+            off = ~np.asarray(workplace.on_floor(np.asarray(self.xy, dtype=float)))
+            if off.any():
+                k = int(np.flatnonzero(off)[0])
+                x, y = (float(v) for v in self.xy[k])
+                b = workplace.floor_bounds
+                raise SceneError(
+                    f"the walk leaves the floor of {workplace.name!r}: sample {k} at "
+                    f"({x:.6g}, {y:.6g}) m is outside x [{b[0]:g}, {b[2]:g}], y [{b[1]:g}, "
+                    f"{b[3]:g}] (an edited walk file, or another scene's)"
+                )
             return
         raise SceneError(
             f"the walk was planned in scene {self.meta.get('scene', '?')!r} (obstacle "
@@ -122,8 +185,23 @@ class WalkPath:
     @classmethod
     def load(cls, path: str | Path) -> WalkPath:
         """Read a path written by :meth:`save`; a foreign or corrupt file raises ModelFileError."""
+        from mjwalk.errors import InputError, ModelFileError
+
         header, data = load_npz(path, "walk-path")
         check_header(header, path, "walk-path", WALKPATH_FORMAT, WALKPATH_VERSION)
+        names = ("t", "xy", "yaw", "step_side", "step_range", "step_foot", "step_stance")
+        missing = [k for k in names if k not in data]
+        if missing:
+            raise ModelFileError(f"{path}: not a complete walk-path file (no {missing[0]!r})")
+        counts = {k: len(data[k]) if data[k].ndim else -1 for k in names[3:]}
+        if len(set(counts.values())) != 1 or data["step_range"].shape[1:] != (2,):
+            raise ModelFileError(
+                f"{path}: the step arrays disagree (entries: "
+                + ", ".join(f"{k} {v}" for k, v in counts.items())
+                + f"; step_range shape {data['step_range'].shape})"
+            )
+        if not isinstance(header.get("meta"), dict):
+            raise ModelFileError(f"{path}: the walk-path header has no meta table")
         steps = [
             PathStep(
                 side="right" if side else "left",
@@ -140,4 +218,9 @@ class WalkPath:
                 strict=True,
             )
         ]
-        return cls(t=data["t"], xy=data["xy"], yaw=data["yaw"], steps=steps, meta=header["meta"])
+        walk = cls(t=data["t"], xy=data["xy"], yaw=data["yaw"], steps=steps, meta=header["meta"])
+        try:
+            walk.validate(str(path))
+        except InputError as exc:
+            raise ModelFileError(str(exc)) from None
+        return walk

@@ -16,6 +16,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from mjwalk._args import check_fps
 from mjwalk.body.humanoid import JointMap, attach_humanoid, shoulder_geometry
 from mjwalk.body.legs import LegMotion, legs_from_walk
 from mjwalk.body.legs.curves import smoothstep
@@ -71,8 +72,8 @@ def timeline_from_walk(
     Returns:
         the Timeline (frames at ``t = 0, 1/fps, ...`` up to the walk's duration).
     """
-    if fps <= 0:
-        raise MjwalkError(f"timeline_from_walk: fps must be positive, got {fps!r}")
+    fps = check_fps(fps, "timeline_from_walk: fps must be")
+    walk.validate("timeline_from_walk: walk")
     model, jm = attach_humanoid(scene, stature)
     legs = legs_from_walk(walk, stature)
     t = np.arange(0.0, walk.duration + 1e-9, 1.0 / fps)

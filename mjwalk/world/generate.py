@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from mjwalk._args import as_generator
 from mjwalk.errors import SceneError
 
 #: Obstacle kinds and their default shares.
@@ -152,7 +153,7 @@ def generate_hall(
         if density < 0:
             raise SceneError(f"density must be >= 0, got {density}")
         n = round(density * width * depth)
-    rng = np.random.default_rng(seed)
+    rng = as_generator(seed, "generate_hall: seed")
     circles = _place(rng, width, depth, n, gap, margin)
     which = rng.integers(0, len(kinds), n)
     geoms = [

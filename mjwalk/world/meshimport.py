@@ -23,8 +23,10 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from mjwalk._args import check_output_file
 from mjwalk._io import atomic_path
-from mjwalk.errors import SceneError
+from mjwalk.errors import InputError, SceneError
+from mjwalk.world.floor import check_floor_size
 from mjwalk.world.footprint import Footprint
 
 #: A band footprint is concave when its convex hull exceeds it by more than this share of the
@@ -33,6 +35,10 @@ CONCAVE_SHARE = 0.01
 #: Outline simplification before cutting into convex pieces, metres (well below the 2 cm
 #: clearance grid).
 SIMPLIFY_TOL = 0.002
+#: CoACD's concavity threshold range (the range its README gives, 0.01 to 1; Wei et al. 2022):
+#: the decomposition cuts until every part is within this share of the bounding-box diagonal
+#: of convex, which 0 or less never allows (``--threshold 0`` was still cutting after 120 s).
+THRESHOLD_RANGE = (0.01, 1.0)
 #: Mesh file suffixes trimesh reads for scene-import.
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".off")
 
@@ -130,15 +136,51 @@ def concave_mesh_footprints(
     return mesh_footprints(verts, faces, z0, z1, name, g)
 
 
-def _is_concave(verts: np.ndarray, faces: np.ndarray) -> bool:
-    """Whether a mesh's volume falls short of its hull's by more than CONCAVE_SHARE."""
+def _plan_concave(verts: np.ndarray, faces: np.ndarray) -> bool:
+    """Whether the top view of a mesh's triangles falls short of its convex hull's area by
+    more than CONCAVE_SHARE (the test for meshes that enclose no volume)."""
+    import shapely
+
+    tri = verts[faces][:, :, :2]
+    area = 0.5 * np.abs(
+        (tri[:, 1, 0] - tri[:, 0, 0]) * (tri[:, 2, 1] - tri[:, 0, 1])
+        - (tri[:, 2, 0] - tri[:, 0, 0]) * (tri[:, 1, 1] - tri[:, 0, 1])
+    )
+    tri = tri[area > 1e-10]
+    if not len(tri):
+        return False
+    plan = shapely.union_all([shapely.buffer(p, 1e-6) for p in shapely.polygons(tri)])
+    hull = plan.convex_hull.area
+    return hull - plan.area > CONCAVE_SHARE * hull
+
+
+def concave_mesh(
+    verts: np.ndarray, faces: np.ndarray, rot: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """The mesh to decompose when ``(verts, faces)`` is concave, else None (``rot``: the
+    mesh frame's rotation in the world, for the top view; default identity).
+
+    A closed volume is concave when its volume falls short of its hull's by more than
+    CONCAVE_SHARE. A mesh that is not one (a missing triangle, faces wound inwards: common in
+    exported CAD) is first repaired with trimesh (``fix_normals``, ``fill_holes``) and judged
+    as a volume when that closes it; one that stays open or non-manifold (two boxes sharing an
+    edge) is judged by its top view, so MuJoCo never collides the convex hull of a U whose
+    inside is free. The mesh returned is the repaired one where the repair closed it."""
     import trimesh
 
     mesh = trimesh.Trimesh(verts, faces, process=True)
     if not mesh.is_volume:
-        return False
+        fixed = mesh.copy()
+        trimesh.repair.fix_normals(fixed)
+        trimesh.repair.fill_holes(fixed)
+        if not fixed.is_volume:
+            world = verts if rot is None else verts @ np.asarray(rot).T
+            return (verts, faces) if _plan_concave(world, faces) else None
+        mesh = fixed
     hull = mesh.convex_hull.volume
-    return hull - abs(mesh.volume) > CONCAVE_SHARE * hull
+    if hull - abs(mesh.volume) > CONCAVE_SHARE * hull:
+        return np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int64)
+    return None
 
 
 def convex_parts(
@@ -169,6 +211,19 @@ class ImportResult:
     mesh_dir: str = "inline"
 
 
+def check_threshold(threshold: float, what: str = "threshold") -> None:
+    """Raise InputError unless ``threshold`` lies in CoACD's range
+    (:data:`THRESHOLD_RANGE`)."""
+    lo, hi = THRESHOLD_RANGE
+    if isinstance(threshold, bool) or not (
+        isinstance(threshold, int | float) and lo <= threshold <= hi
+    ):
+        raise InputError(
+            f"{what} {threshold!r}: CoACD's concavity threshold must lie in [{lo:g}, {hi:g}] "
+            "(a share of the mesh's bounding-box diagonal; 0.02 is the default)"
+        )
+
+
 def _mesh_scene_spec(path: Path, units: str, up: str) -> mujoco.MjSpec:
     """An MJCF spec with a floor and the mesh file as one obstacle (its lowest point on the
     floor)."""
@@ -182,11 +237,19 @@ def _mesh_scene_spec(path: Path, units: str, up: str) -> mujoco.MjSpec:
     if key not in UP_AXES:
         raise SceneError(f"{path}: unknown up axis {up!r} (one of {', '.join(UP_AXES)})")
     try:
-        mesh = trimesh.load(str(path), force="mesh")
+        mesh = trimesh.load(str(path), force="mesh", process=False)
     except Exception as exc:  # trimesh raises many types for unreadable files
         raise SceneError(f"{path}: not a readable mesh: {exc}") from exc
     if not isinstance(mesh, trimesh.Trimesh) or len(mesh.faces) == 0:
         raise SceneError(f"{path}: no triangles in the mesh")
+    bad = ~np.all(np.isfinite(mesh.vertices), axis=1)
+    if bad.any():
+        k = int(np.flatnonzero(bad)[0])
+        raise SceneError(
+            f"{path}: vertex {k + 1} (of {len(bad)}) is not finite: "
+            f"{np.asarray(mesh.vertices[k]).tolist()} ({int(bad.sum())} such vertices)"
+        )
+    mesh.process()  # merge duplicate vertices, drop degenerate faces (as trimesh.load does)
     verts = np.asarray(mesh.vertices, float) @ (UP_AXES[key].T * UNITS[units])
     verts[:, 2] -= verts[:, 2].min()
     lo, hi = verts[:, :2].min(axis=0) - 2.0, verts[:, :2].max(axis=0) + 2.0
@@ -217,6 +280,10 @@ def import_scene(
     replaced by its convex parts (inline mesh assets, same body, pose, material and
     collision settings). Raises SceneError on an unreadable source, before writing."""
     source, output = Path(source), Path(output)
+    check_threshold(threshold)
+    check_output_file(output, "output", (".xml",))
+    if source.is_dir():
+        raise SceneError(f"{source} is a folder, not a mesh or MJCF scene file")
     if not source.is_file():
         raise SceneError(f"{source}: file not found")
     if source.suffix.lower() in MESH_SUFFIXES:
@@ -240,7 +307,18 @@ def import_scene(
         model = spec.compile()
     except ValueError as exc:
         raise SceneError(f"{source}: does not compile: {exc}") from exc
+    try:
+        check_floor_size(model, str(source))  # a floor mjwalk cannot load: refused before work
+    except SceneError as exc:
+        if source.suffix.lower() not in MESH_SUFFIXES:
+            raise
+        raise SceneError(
+            f"{exc}; the floor is the mesh's extent plus 2 m each way, so the mesh is too "
+            f"large in units {units!r} (another --units?)"
+        ) from None
     result = ImportResult(output)
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
     for g in range(model.ngeom):
         if int(model.geom_type[g]) != mujoco.mjtGeom.mjGEOM_MESH:
             continue
@@ -249,11 +327,12 @@ def import_scene(
         fa, fn = model.mesh_faceadr[mesh], model.mesh_facenum[mesh]
         verts = np.asarray(model.mesh_vert[va : va + vn], float)
         faces = np.asarray(model.mesh_face[fa : fa + fn], np.int64)
-        if not _is_concave(verts, faces):
+        concave = concave_mesh(verts, faces, data.geom_xmat[g].reshape(3, 3))
+        if concave is None:
             continue
         name = model.geom(g).name or f"geom{g}"
         geom = spec.geoms[g]
-        parts = convex_parts(verts, faces, threshold)
+        parts = convex_parts(*concave, threshold)
         body = geom.parent
         for k, (pv, pf) in enumerate(parts):
             pname = f"{name}_part{k}"

@@ -16,16 +16,16 @@ from mjwalk._args import finite_points, parse_point
 from mjwalk.errors import InputError, SceneError
 from mjwalk.world.cache import AUTO_NODES, cached_array, content_key
 from mjwalk.world.clearance import ClearanceField, build_clearance
+from mjwalk.world.floor import (
+    OBSTACLE_Z_RANGE,
+    check_floor_nodes,
+    find_floor,
+)
 from mjwalk.world.footprint import Footprint, geom_footprint
 from mjwalk.world.meshimport import concave_mesh_footprints
 
-#: Default height band (metres above the floor) in which a geom counts as an obstacle.
-OBSTACLE_Z_RANGE = (0.05, 2.0)
 #: Bodies whose name starts with one of these are part of a humanoid, never obstacles.
 HUMANOID_PREFIXES = ("human",)
-#: A plane is a floor when its normal's z is above this (its normal within 2.56 deg of +z):
-#: the clearance field and the humanoid's legs assume a level floor.
-FLOOR_MIN_NZ = 0.999
 
 
 @dataclass(frozen=True)
@@ -92,8 +92,12 @@ class Workplace:
     def point(self, where: str | np.ndarray | tuple[float, float]) -> np.ndarray:
         """A floor point (2,) from a site name, an ``"x,y"`` string or coordinates (metres).
 
-        Malformed or non-finite coordinates raise :class:`~mjwalk.errors.InputError`."""
+        A site whose name reads as coordinates (a site named "1.5,2") wins: the text is read as
+        coordinates only when no site has that name. Malformed or non-finite coordinates raise
+        :class:`~mjwalk.errors.InputError`."""
         if isinstance(where, str):
+            if where in self.stations:
+                return self.stations[where].xy.copy()
             xy = parse_point(where, f"{self.name}: point")
             return xy if xy is not None else self.station(where).xy.copy()
         try:
@@ -179,11 +183,18 @@ class Workplace:
         raise SceneError(f"{self.name}: no obstacle geom named {name!r}")
 
 
+def check_scene_path(path: Path) -> None:
+    """Raise SceneError unless ``path`` is a file (a folder is named as one)."""
+    if path.is_dir():
+        raise SceneError(f"{path} is a folder, not an MJCF scene file")
+    if not path.is_file():
+        raise SceneError(f"{path}: scene file not found")
+
+
 def load_model(source: str | Path) -> mujoco.MjModel:
     """Compile an MJCF file, turning every failure into a SceneError naming the file."""
     path = Path(source)
-    if not path.is_file():
-        raise SceneError(f"{path}: scene file not found")
+    check_scene_path(path)
     try:
         return mujoco.MjModel.from_xml_path(str(path))
     except ValueError as exc:  # mujoco reports parse and compile errors as ValueError
@@ -204,34 +215,6 @@ def _is_humanoid_geom(model: mujoco.MjModel, g: int, prefixes: tuple[str, ...]) 
     return False
 
 
-def _find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
-    planes = [
-        g
-        for g in range(model.ngeom)
-        if model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
-        and data.geom_xmat[g].reshape(3, 3)[2, 2] > FLOOR_MIN_NZ
-    ]
-    if not planes:
-        tilted = [
-            g for g in range(model.ngeom) if model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
-        ]
-        if tilted:
-            g = max(tilted, key=lambda g: data.geom_xmat[g].reshape(3, 3)[2, 2])
-            nz = float(np.clip(data.geom_xmat[g].reshape(3, 3)[2, 2], -1.0, 1.0))
-            name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
-            raise SceneError(
-                f"{label}: no level floor: plane {name!r} is tilted {np.degrees(np.arccos(nz)):.1f}"
-                f" deg from horizontal (its normal must point up within "
-                f"{np.degrees(np.arccos(FLOOR_MIN_NZ)):.1f} deg; mjwalk plans on level floors)"
-            )
-        raise SceneError(
-            f"{label}: no floor: the scene needs an upward-facing plane geom (e.g. "
-            '<geom name="floor" type="plane" size="4 3 0.1"/>)'
-        )
-    named = [g for g in planes if "floor" in (mujoco.mj_id2name(model, 5, g) or "").lower()]
-    return (named or sorted(planes, key=lambda g: data.geom_xpos[g][2]))[0]
-
-
 def workplace_from_model(
     model: mujoco.MjModel,
     *,
@@ -250,9 +233,17 @@ def workplace_from_model(
         raise SceneError(f"{label}: clearance resolution {resolution} m must be in (0, 0.02]")
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
-    floor = _find_floor(model, data, label)
+    floor = find_floor(model, data, label)
     floor_z = float(data.geom_xpos[floor][2])
     fx, fy = model.geom_size[floor][:2]
+    if fx > 0 and fy > 0:  # a finite floor: refused before the obstacles are read
+        cx, cy = data.geom_xpos[floor][:2]
+        check_floor_nodes(
+            (cx - fx, cy - fy, cx + fx, cy + fy),
+            resolution,
+            label,
+            mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}",
+        )
     footprints: list[Footprint] = []
     for g in range(model.ngeom):
         if g == floor or _is_humanoid_geom(model, g, humanoid_prefixes):
@@ -288,6 +279,8 @@ def workplace_from_model(
             raise SceneError(f"{label}: the floor plane is infinite and there are no obstacles")
         b = np.array([f.bounds() for f in footprints])
         bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
+    floor_name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
+    check_floor_nodes(bounds, resolution, label, floor_name)
     key = None
     nx = int(np.floor((bounds[2] - bounds[0]) / resolution + 1e-9)) + 1
     ny = int(np.floor((bounds[3] - bounds[1]) / resolution + 1e-9)) + 1
@@ -381,7 +374,6 @@ def shared_workplace(source: str | Path) -> Workplace:
     """:func:`load_workplace` with default settings, loaded once per process and file version:
     the cycle simulator, its spec checks, playback and the report all read the same scene.
     Treat the result as read-only."""
+    check_scene_path(Path(source))
     path = Path(source).resolve()
-    if not path.is_file():
-        raise SceneError(f"{source}: scene file not found")
     return _shared(str(path), path.stat().st_mtime)

@@ -1,0 +1,371 @@
+"""Body angles the ergonomic methods read, per frame, from the humanoid or from capture.
+
+:func:`angles_from_points` measures them from joint positions (world frame, metres, z up), so
+the same code scores mjwalk's humanoid (:func:`angles_from_timeline`: the body origins by
+MuJoCo's forward kinematics, compiled over all frames, plus the wrist and forearm hinges read
+from ``qpos``) and a capture's own joints (:func:`points_from_take`-style dictionaries).
+
+Frames. The trunk axis runs from the pelvis (hip-joint centre) to the base of the neck (C7);
+the pelvis' forward direction is the horizontal normal of the right-to-left hip line (+x of the
+humanoid's own frame). Trunk flexion is the trunk axis' inclination from the vertical in the
+pelvis' sagittal plane (forward positive), side bend in its frontal plane, twist the horizontal
+angle between the shoulder line and the hip line. The neck, the upper arms and the forearms are
+measured in the trunk's frame (up: the trunk axis; left: the shoulder line made orthogonal to
+it; forward: their cross product). All angles in degrees.
+
+Where a method describes a category by a drawing the continuous angle needs a threshold; these
+are stated here, each once: :data:`NEUTRAL_DEG`, :data:`ASYMMETRY_DEG`, :data:`ABDUCTION_PLANE_DEG`,
+:data:`WRIST_DEVIATED_DEG`, :data:`TWIST_END_SHARE`, :data:`KNEE_BENT_DEG`, :data:`FOOT_UP`.
+The humanoid has no shoulder girdle (no clavicle joint), so a raised shoulder is never
+scored (``shoulder_raised`` is False); capture is scored the same way.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+#: A joint within this many degrees of its neutral position counts as neutral ("0 deg", "upright"
+#: in RULA and REBA). The methods' worksheets are filled in by eye, to about this resolution;
+#: a chosen figure, not a published one.
+NEUTRAL_DEG = 5.0
+#: Trunk or neck twist and side bend beyond this many degrees count as "twisted" / "side bent"
+#: (ISO 11226:2000, 4.2.1 and 4.2.2: axial rotation or lateral flexion of the trunk, and
+#: lateral flexion of the head, beyond 10 deg is not acceptable as a static posture).
+ASYMMETRY_DEG = 10.0
+#: An elevated upper arm (more than 20 deg) whose plane of elevation lies more than this far from
+#: the sagittal plane towards the side counts as "abducted" (RULA, REBA +1): half-way between a
+#: forward (flexion) and a sideways (abduction) raise.
+ABDUCTION_PLANE_DEG = 45.0
+#: Radial/ulnar deviation beyond this many degrees counts as "deviated" (RULA, REBA +1).
+WRIST_DEVIATED_DEG = 10.0
+#: Forearm rotation beyond this share of the joint's range counts as "at or near the end of its
+#: range" (RULA wrist twist 2).
+TWIST_END_SHARE = 0.75
+#: Knee flexion (deg) from which a knee counts as bent (OWAS legs 4/5; REBA's first knee band
+#: starts at 30 deg, Hignett & McAtamney 2000).
+KNEE_BENT_DEG = 30.0
+#: A foot is on the floor when its ankle is at most this high (m) above its lowest height in the
+#: motion (a walking step lifts it more, standing lifts it less).
+FOOT_UP = 0.05
+#: A wrist more than this share of the upper arm's length outward of its shoulder is "out to the
+#: side of the body" (RULA lower arm +1).
+OUT_TO_SIDE_SHARE = 0.5
+
+SIDES = (0, 1)  # left, right
+
+
+@dataclass
+class BodyAngles:
+    """Body angles of F frames (degrees; arm arrays are (F, 2), left then right).
+
+    Attributes:
+        trunk_flexion, trunk_side_bend, trunk_twist: (F,) see the module docstring; side bend
+            positive to the left, twist positive when the shoulders turn left of the hips.
+        trunk_inclination: (F,) the trunk axis' angle from the vertical (ISO 11226).
+        neck_flexion, neck_side_bend, neck_twist: (F,) the head relative to the trunk.
+        upper_arm_angle: signed angle of the upper arm from the trunk's downward axis:
+            flexion/abduction positive, extension (the arm behind the trunk, raised mainly
+            backwards) negative.
+        upper_arm_elevation: angle of the upper arm from the vertical (ISO 11226), 0-180.
+        upper_arm_plane: the plane of elevation, 0 forward, 90 straight out to the side.
+        elbow_flexion: 0 straight.
+        wrist_flexion, wrist_deviation, wrist_twist: palmar flexion, ulnar deviation and forearm
+            pronation (positive); zero where the source cannot tell (joint positions only).
+        twist_range: the forearm rotation's half range (deg), for the twist's "end of range".
+        knee_flexion: 0 straight.
+        feet_down: whether each foot is on the floor.
+        walking: (F,) frames of a walk (REBA and RULA count walking as supported legs).
+        hands: (F, 2, 3) the grip points (palm centres; wrists for capture), world metres.
+        ankles: (F, 3) mid-point of the ankles, world metres.
+        forward: (F, 3) the pelvis' horizontal forward direction.
+        shoulder_raised, lower_arm_out: (F, 2) flags measured from positions.
+    """
+
+    trunk_flexion: np.ndarray
+    trunk_side_bend: np.ndarray
+    trunk_twist: np.ndarray
+    trunk_inclination: np.ndarray
+    neck_flexion: np.ndarray
+    neck_side_bend: np.ndarray
+    neck_twist: np.ndarray
+    upper_arm_angle: np.ndarray
+    upper_arm_elevation: np.ndarray
+    upper_arm_plane: np.ndarray
+    elbow_flexion: np.ndarray
+    wrist_flexion: np.ndarray
+    wrist_deviation: np.ndarray
+    wrist_twist: np.ndarray
+    twist_range: float
+    knee_flexion: np.ndarray
+    feet_down: np.ndarray
+    walking: np.ndarray
+    hands: np.ndarray
+    ankles: np.ndarray
+    forward: np.ndarray
+    shoulder_raised: np.ndarray
+    lower_arm_out: np.ndarray
+
+    @property
+    def n_frames(self) -> int:
+        return len(self.trunk_flexion)
+
+    @property
+    def trunk_twisted(self) -> np.ndarray:
+        return np.abs(self.trunk_twist) > ASYMMETRY_DEG
+
+    @property
+    def trunk_side_bent(self) -> np.ndarray:
+        return np.abs(self.trunk_side_bend) > ASYMMETRY_DEG
+
+    @property
+    def neck_twisted(self) -> np.ndarray:
+        return np.abs(self.neck_twist) > ASYMMETRY_DEG
+
+    @property
+    def neck_side_bent(self) -> np.ndarray:
+        return np.abs(self.neck_side_bend) > ASYMMETRY_DEG
+
+    @property
+    def arm_abducted(self) -> np.ndarray:
+        """(F, 2) the upper arm raised more than 20 deg mainly sideways."""
+        return (np.abs(self.upper_arm_angle) > 20) & (self.upper_arm_plane > ABDUCTION_PLANE_DEG)
+
+    @property
+    def wrist_deviated(self) -> np.ndarray:
+        return np.abs(self.wrist_deviation) > WRIST_DEVIATED_DEG
+
+    @property
+    def wrist_twist_end(self) -> np.ndarray:
+        return np.abs(self.wrist_twist) > TWIST_END_SHARE * self.twist_range
+
+    @property
+    def legs_supported(self) -> np.ndarray:
+        """(F,) both feet on the floor, or walking."""
+        return self.feet_down.all(axis=1) | self.walking
+
+    def frames(self, sl: slice | np.ndarray) -> BodyAngles:
+        """The angles of some frames (a slice or an index/mask array)."""
+        kw: dict = {}
+        for name in self.__dataclass_fields__:
+            v = getattr(self, name)
+            kw[name] = v[sl] if isinstance(v, np.ndarray) else v
+        return BodyAngles(**kw)
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    n = np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / np.where(n > 1e-12, n, 1.0)
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return (a * b).sum(axis=-1)
+
+
+def _deg(x: np.ndarray) -> np.ndarray:
+    return np.degrees(x)
+
+
+#: The joints :func:`angles_from_points` reads (each (F, 3), world metres, z up).
+POINTS = (
+    "pelvis", "neck", "head", "shoulder_l", "shoulder_r", "elbow_l", "elbow_r", "wrist_l",
+    "wrist_r", "hip_l", "hip_r", "knee_l", "knee_r", "ankle_l", "ankle_r",
+)  # fmt: skip
+
+
+def angles_from_points(
+    p: dict[str, np.ndarray],
+    *,
+    head_up: np.ndarray | None = None,
+    hands: np.ndarray | None = None,
+    wrist: np.ndarray | None = None,
+    neck_twist: np.ndarray | None = None,
+    twist_range: float = 80.0,
+    walking: np.ndarray | None = None,
+) -> BodyAngles:
+    """Body angles of F frames from joint positions ``p`` (:data:`POINTS`, each (F, 3) in
+    metres, world frame z up).
+
+    ``head_up`` (F, 3): the head's up direction (default: neck -> head). ``hands`` (F, 2, 3):
+    the grip points (default: the wrists). ``wrist`` (F, 2, 3): wrist flexion, ulnar deviation
+    and forearm pronation in degrees (default zeros: positions alone do not show them).
+    ``neck_twist`` (F,) degrees (default zeros). ``walking`` (F,) frames of a walk.
+    """
+    n = len(p["pelvis"])
+    z = np.array([0.0, 0.0, 1.0])
+    hip_left = p["hip_l"] - p["hip_r"]
+    hip_left[:, 2] = 0.0
+    hip_left = _unit(hip_left)
+    fwd = np.cross(hip_left, z)  # x = y cross z
+    # trunk
+    trunk = _unit(p["neck"] - p["pelvis"])
+    t_flex = _deg(np.arctan2(_dot(trunk, fwd), trunk[:, 2]))
+    t_side = _deg(np.arctan2(_dot(trunk, hip_left), trunk[:, 2]))
+    t_incl = _deg(np.arccos(np.clip(trunk[:, 2], -1.0, 1.0)))
+    sh = p["shoulder_l"] - p["shoulder_r"]
+    twist = np.arctan2(sh[:, 1], sh[:, 0]) - np.arctan2(hip_left[:, 1], hip_left[:, 0])
+    t_twist = _deg((twist + np.pi) % (2 * np.pi) - np.pi)
+    # the trunk's frame: up the trunk axis, left the shoulder line made orthogonal to it
+    up = trunk
+    left = _unit(sh - _dot(sh, up)[:, None] * up)
+    front = np.cross(left, up)
+    # neck
+    hu = _unit(head_up if head_up is not None else p["head"] - p["neck"])
+    n_flex = _deg(np.arctan2(_dot(hu, front), _dot(hu, up)))
+    n_side = _deg(np.arctan2(_dot(hu, left), _dot(hu, up)))
+    # arms
+    ua_angle = np.zeros((n, 2))
+    ua_elev = np.zeros((n, 2))
+    ua_plane = np.zeros((n, 2))
+    elbow = np.zeros((n, 2))
+    out = np.zeros((n, 2), dtype=bool)
+    centre = 0.5 * (p["shoulder_l"] + p["shoulder_r"])
+    for s, tag in enumerate(("l", "r")):
+        outward = left if s == 0 else -left
+        u = p[f"elbow_{tag}"] - p[f"shoulder_{tag}"]
+        f = p[f"wrist_{tag}"] - p[f"elbow_{tag}"]
+        uu = _unit(u)
+        down_c, fwd_c, out_c = -_dot(uu, up), _dot(uu, front), _dot(uu, outward)
+        elev = _deg(np.arccos(np.clip(down_c, -1.0, 1.0)))
+        plane = _deg(np.arctan2(np.abs(out_c), np.abs(fwd_c)))
+        behind = (fwd_c < 0) & (plane <= ABDUCTION_PLANE_DEG)  # raised mainly backwards
+        ua_angle[:, s] = np.where(behind, -elev, elev)
+        ua_plane[:, s] = plane
+        ua_elev[:, s] = _deg(np.arccos(np.clip(-uu[:, 2], -1.0, 1.0)))
+        elbow[:, s] = _deg(np.arccos(np.clip(_dot(uu, _unit(f)), -1.0, 1.0)))
+        lat = _dot(p[f"wrist_{tag}"] - centre, outward)  # outward of the trunk's midline
+        sh_lat = _dot(p[f"shoulder_{tag}"] - centre, outward)
+        u_len = np.linalg.norm(u, axis=-1)
+        out[:, s] = (lat < 0.0) | (lat - sh_lat > OUT_TO_SIDE_SHARE * u_len)
+    # legs
+    knee = np.zeros((n, 2))
+    down = np.zeros((n, 2), dtype=bool)
+    for s, tag in enumerate(("l", "r")):
+        th = _unit(p[f"knee_{tag}"] - p[f"hip_{tag}"])
+        sn = _unit(p[f"ankle_{tag}"] - p[f"knee_{tag}"])
+        knee[:, s] = _deg(np.arccos(np.clip(_dot(th, sn), -1.0, 1.0)))
+        az = p[f"ankle_{tag}"][:, 2]
+        down[:, s] = az <= az.min(initial=np.inf) + FOOT_UP
+    w = np.zeros((n, 2, 3)) if wrist is None else np.asarray(wrist, dtype=float)
+    return BodyAngles(
+        trunk_flexion=t_flex,
+        trunk_side_bend=t_side,
+        trunk_twist=t_twist,
+        trunk_inclination=t_incl,
+        neck_flexion=n_flex,
+        neck_side_bend=n_side,
+        neck_twist=np.zeros(n) if neck_twist is None else np.asarray(neck_twist, dtype=float),
+        upper_arm_angle=ua_angle,
+        upper_arm_elevation=ua_elev,
+        upper_arm_plane=ua_plane,
+        elbow_flexion=elbow,
+        wrist_flexion=w[:, :, 0],
+        wrist_deviation=w[:, :, 1],
+        wrist_twist=w[:, :, 2],
+        twist_range=float(twist_range),
+        knee_flexion=knee,
+        feet_down=down,
+        walking=np.zeros(n, dtype=bool) if walking is None else np.asarray(walking, dtype=bool),
+        hands=np.stack([p["wrist_l"], p["wrist_r"]], axis=1) if hands is None else hands,
+        ankles=0.5 * (p["ankle_l"] + p["ankle_r"]),
+        forward=fwd,
+        shoulder_raised=np.zeros((n, 2), dtype=bool),
+        lower_arm_out=out,
+    )
+
+
+#: Humanoid body -> the joint position it stands for (the body's origin is the joint).
+_BODY_POINTS = {
+    "pelvis": "pelvis", "neck": "neck", "upper_arm_l": "shoulder_l", "upper_arm_r": "shoulder_r",
+    "forearm_l": "elbow_l", "forearm_r": "elbow_r", "hand_l": "wrist_l", "hand_r": "wrist_r",
+    "thigh_l": "hip_l", "thigh_r": "hip_r", "shin_l": "knee_l", "shin_r": "knee_r",
+    "foot_l": "ankle_l", "foot_r": "ankle_r",
+}  # fmt: skip
+
+
+def body_frames(model, jointmap, qpos: np.ndarray, bodies: list[str]):
+    """World positions (F, B, 3) and rotations (F, B, 3, 3) of the humanoid ``bodies``
+    (unprefixed names) in the poses ``qpos`` (F, nq): MuJoCo's forward kinematics compiled over
+    frames (:func:`mjwalk.timeline.kinematics.geom_poses`) on each body's first geom, the geom's
+    own offset undone (``mj_kinematics`` frame by frame for models it does not support)."""
+    import mujoco
+
+    from mjwalk.timeline.kinematics import geom_poses, supported
+
+    prefix = jointmap.prefix
+    bids = [mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, prefix + b) for b in bodies]
+    qpos = np.asarray(qpos, dtype=float).reshape(-1, model.nq)
+    if not supported(model):
+        data = mujoco.MjData(model)
+        pos = np.empty((len(qpos), len(bids), 3))
+        rot = np.empty((len(qpos), len(bids), 3, 3))
+        for f, q in enumerate(qpos):
+            data.qpos[:] = q
+            mujoco.mj_kinematics(model, data)
+            pos[f] = data.xpos[bids]
+            rot[f] = data.xmat[bids].reshape(-1, 3, 3)
+        return pos, rot
+    gids = np.array([int(model.body_geomadr[b]) for b in bids])
+    gpos, gmat = geom_poses(model, qpos, gids)
+    gmat = gmat.reshape(len(qpos), len(gids), 3, 3)
+    local = np.empty((len(gids), 3, 3))
+    for k, g in enumerate(gids):
+        m = np.empty(9)
+        mujoco.mju_quat2Mat(m, model.geom_quat[g])
+        local[k] = m.reshape(3, 3)
+    rot = gmat @ local.transpose(0, 2, 1)  # R_body = R_geom R_local^T
+    pos = gpos - (rot @ model.geom_pos[gids][:, :, None])[..., 0]
+    return pos, rot
+
+
+def angles_from_timeline(timeline, walking: np.ndarray | None = None) -> BodyAngles:
+    """Body angles of every frame of a humanoid :class:`~mjwalk.timeline.timeline.Timeline`
+    (``walking``: (F,) frames of a walk). The wrists' flexion and deviation, the forearms'
+    pronation and the neck's rotation are the humanoid's own hinge angles."""
+    return angles_from_qpos(timeline.model, timeline.jointmap, timeline.qpos, walking)
+
+
+def angles_from_qpos(model, jointmap, qpos: np.ndarray, walking=None) -> BodyAngles:
+    """:func:`angles_from_timeline` for poses ``qpos`` (F, nq) of ``model``."""
+    bodies = list(_BODY_POINTS)
+    pos, rot = body_frames(model, jointmap, qpos, bodies)
+    p = {_BODY_POINTS[b]: pos[:, k] for k, b in enumerate(bodies)}
+    k_neck = bodies.index("neck")
+    head_up = rot[:, k_neck, :, 2]  # the neck body's z: the head's up
+    p["head"] = p["neck"] + head_up
+    # the grip points: the palms' centres, half the palm box below the wrist
+    hands = np.empty((len(qpos), 2, 3))
+    for s, tag in enumerate(("l", "r")):
+        k = bodies.index(f"hand_{tag}")
+        palm = jointmap.prefix + f"palm_{tag}"
+        import mujoco
+
+        g = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, palm)
+        off = model.geom_pos[g] if g >= 0 else np.zeros(3)
+        hands[:, s] = pos[:, k] + rot[:, k] @ off
+    q = np.asarray(qpos).reshape(-1, model.nq)
+
+    def hinge(name: str) -> np.ndarray:
+        return np.degrees(q[:, jointmap.adr(name)])
+
+    wrist = np.stack(
+        [
+            np.stack(
+                [hinge(f"wrist_{t}_flex"), hinge(f"wrist_{t}_dev"), hinge(f"forearm_{t}_pron")],
+                axis=1,
+            )
+            for t in ("l", "r")
+        ],
+        axis=1,
+    )
+    lo, hi = jointmap.limits("forearm_l_pron")
+    return angles_from_points(
+        p,
+        head_up=head_up,
+        hands=hands,
+        wrist=wrist,
+        neck_twist=hinge("neck_rot"),
+        twist_range=float(np.degrees(max(abs(lo), abs(hi)))),
+        walking=walking,
+    )

@@ -1,0 +1,73 @@
+"""ISO 11226:2000 (Ergonomics -- Evaluation of static working postures): trunk inclination and
+upper-arm elevation held as static postures, against the standard's acceptable holding times.
+
+Step 1 of the standard: trunk inclination 0-20 deg and upper-arm elevation 0-20 deg are
+acceptable; beyond 60 deg (trunk without support, upper arm) not acceptable; in 20-60 deg the
+posture is acceptable only as long as the maximum acceptable holding time (step 2, the
+standard's Figures 2 and 3: from 4 min at 20 deg to 1 min at 60 deg for the trunk, from 3 min at
+20 deg to 1 min at 60 deg for the upper arm, linear in between). Postures held less than 4 s are
+not static (the standard's scope). The holding-time curves are transcribed from the figures'
+end points, not from the standard's text (not at hand when this was written).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+#: Static postures are those held at least this long (s) (ISO 11226, scope).
+STATIC_S = 4.0
+#: (angle deg, maximum acceptable holding time s) at the ends of the 20-60 deg zone.
+TRUNK_HOLD = ((20.0, 240.0), (60.0, 60.0))
+ARM_HOLD = ((20.0, 180.0), (60.0, 60.0))
+ACCEPTABLE_DEG, LIMIT_DEG = 20.0, 60.0
+
+
+def max_holding_time(angle: float, curve=TRUNK_HOLD) -> float:
+    """The maximum acceptable holding time (s) at ``angle`` deg: inf below 20 deg, 0 above 60."""
+    (a0, t0), (a1, t1) = curve
+    if angle < a0:
+        return float("inf")
+    if angle > a1:
+        return 0.0
+    return float(np.interp(angle, [a0, a1], [t0, t1]))
+
+
+@dataclass
+class Holding:
+    """The worst static holding of one body part in a motion: the longest run (s) of frames in
+    the 20-60 deg zone or beyond, its peak angle (deg), the acceptable time at that angle (s),
+    and ``acceptable``."""
+
+    part: str
+    held: float
+    angle: float
+    limit: float
+    acceptable: bool
+
+
+def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    """[start, end) runs of True in a boolean array."""
+    m = np.concatenate([[False], mask, [False]]).astype(np.int8)
+    d = np.diff(m)
+    return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1), strict=True))
+
+
+def holding(angle: np.ndarray, fps: float, part: str, curve) -> Holding:
+    """Evaluate (F,) angles (deg) sampled at ``fps``: every run of at least :data:`STATIC_S`
+    above 20 deg is held against the holding time at its peak angle; the worst run is
+    returned (``held`` 0 when none is static)."""
+    worst = Holding(part, 0.0, 0.0, float("inf"), True)
+    worst_ratio = 0.0
+    for s, e in _runs(np.asarray(angle) > ACCEPTABLE_DEG):
+        held = (e - s) / fps
+        if held < STATIC_S:
+            continue
+        peak = float(np.max(angle[s:e]))
+        limit = max_holding_time(peak, curve)
+        ratio = held / limit if limit > 0 else float("inf")
+        if ratio >= worst_ratio:
+            worst_ratio = ratio
+            worst = Holding(part, float(held), peak, float(limit), bool(held <= limit))
+    return worst

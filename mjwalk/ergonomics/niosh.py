@@ -1,0 +1,169 @@
+"""The revised NIOSH lifting equation (Waters, Putz-Anderson, Garg & Fine 1993, Ergonomics 36(7),
+749-776; Applications Manual, Waters, Putz-Anderson & Garg 1994, DHHS (NIOSH) Publication
+No. 94-110): the recommended weight limit and the lifting index of one lift.
+
+RWL = LC x HM x VM x DM x AM x FM x CM, LI = load / RWL. Metric (cm, kg) or U.S. customary
+(in, lb) constants, as the manual gives both (they are not exact conversions of each other).
+The variable limits are the manual's (section 1.3): H below 25 cm (10 in) is set to it and
+above 63 cm (25 in) gives HM = 0; V above 175 cm (70 in) gives VM = 0; D below 25 cm (10 in)
+is set to it, above 175 cm (70 in) gives DM = 0; A above 135 deg gives AM = 0; F below 0.2
+lifts/min is set to 0.2 and FM is interpolated linearly between Table 5's rows (p. 7).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mjwalk.errors import InputError
+
+#: Constants per unit system: load constant, H0 (HM = H0/H), H max, V0 (VM optimum), VM slope,
+#: V max, DM numerator, D min, D max, the V bound of Tables 5 and 7 (Waters et al. 1993, Table 1;
+#: Applications Manual p. 7).
+UNITS = {
+    "metric": dict(lc=23.0, h0=25.0, hmax=63.0, v0=75.0, vk=0.003, vmax=175.0, dk=4.5,
+                   dmin=25.0, dmax=175.0, vsplit=75.0),
+    "us": dict(lc=51.0, h0=10.0, hmax=25.0, v0=30.0, vk=0.0075, vmax=70.0, dk=1.8,
+               dmin=10.0, dmax=70.0, vsplit=30.0),
+}  # fmt: skip
+#: Duration categories (Applications Manual 1.3.5.2): short <= 1 h (with recovery), moderate
+#: 1-2 h, long 2-8 h.
+DURATIONS = ("short", "moderate", "long")
+#: Table 5 (Frequency Multiplier): rows F (lifts/min), columns (short V<75cm, short V>=75cm,
+#: moderate V<, moderate V>=, long V<, long V>=).
+FM_F = np.array([0.2, 0.5, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15])
+FM_TABLE = np.array(
+    [
+        [1.00, 1.00, 0.95, 0.95, 0.85, 0.85],
+        [0.97, 0.97, 0.92, 0.92, 0.81, 0.81],
+        [0.94, 0.94, 0.88, 0.88, 0.75, 0.75],
+        [0.91, 0.91, 0.84, 0.84, 0.65, 0.65],
+        [0.88, 0.88, 0.79, 0.79, 0.55, 0.55],
+        [0.84, 0.84, 0.72, 0.72, 0.45, 0.45],
+        [0.80, 0.80, 0.60, 0.60, 0.35, 0.35],
+        [0.75, 0.75, 0.50, 0.50, 0.27, 0.27],
+        [0.70, 0.70, 0.42, 0.42, 0.22, 0.22],
+        [0.60, 0.60, 0.35, 0.35, 0.18, 0.18],
+        [0.52, 0.52, 0.30, 0.30, 0.00, 0.15],
+        [0.45, 0.45, 0.26, 0.26, 0.00, 0.13],
+        [0.41, 0.41, 0.00, 0.23, 0.00, 0.00],
+        [0.37, 0.37, 0.00, 0.21, 0.00, 0.00],
+        [0.00, 0.34, 0.00, 0.00, 0.00, 0.00],
+        [0.00, 0.31, 0.00, 0.00, 0.00, 0.00],
+        [0.00, 0.28, 0.00, 0.00, 0.00, 0.00],
+    ]
+)  # fmt: skip
+#: Table 7 (Coupling Multiplier): (V < 75 cm, V >= 75 cm).
+CM_TABLE = {"good": (1.00, 1.00), "fair": (0.95, 1.00), "poor": (0.90, 0.90)}
+COUPLINGS = tuple(CM_TABLE)
+
+
+@dataclass
+class Multipliers:
+    """The six multipliers of one end of a lift (dimensionless)."""
+
+    hm: float
+    vm: float
+    dm: float
+    am: float
+    fm: float
+    cm: float
+
+    def product(self) -> float:
+        return self.hm * self.vm * self.dm * self.am * self.fm * self.cm
+
+
+def frequency_multiplier(f: float, duration: str, v_origin: float, units: str = "metric") -> float:
+    """FM (Table 5) for ``f`` lifts/min, the duration category and V at the origin (p. 15)."""
+    if duration not in DURATIONS:
+        raise InputError(f"NIOSH: duration must be one of {DURATIONS}, got {duration!r}")
+    if not np.isfinite(f) or f < 0:
+        raise InputError(f"NIOSH: frequency must be >= 0 lifts/min, got {f!r}")
+    col = 2 * DURATIONS.index(duration) + int(v_origin >= UNITS[units]["vsplit"])
+    if f > FM_F[-1]:
+        return 0.0
+    return float(np.interp(max(f, FM_F[0]), FM_F, FM_TABLE[:, col]))
+
+
+def multipliers(
+    h: float, v: float, d: float, a: float, f: float, duration: str = "long",
+    coupling: str = "fair", v_origin: float | None = None, units: str = "metric",
+) -> Multipliers:  # fmt: skip
+    """The multipliers at one end of a lift: H, V (cm or in), D the vertical travel, A the
+    asymmetry angle (deg), F lifts/min; ``v_origin`` the origin's V for FM (default ``v``)."""
+    if units not in UNITS:
+        raise InputError(f"NIOSH: units must be 'metric' or 'us', got {units!r}")
+    if coupling not in CM_TABLE:
+        raise InputError(f"NIOSH: coupling must be one of {COUPLINGS}, got {coupling!r}")
+    for name, x in (("H", h), ("V", v), ("D", d), ("A", a)):
+        if not np.isfinite(x) or x < 0:
+            raise InputError(f"NIOSH: {name} must be finite and >= 0, got {x!r}")
+    c = UNITS[units]
+    hm = 0.0 if h > c["hmax"] else c["h0"] / max(h, c["h0"])
+    vm = 0.0 if v > c["vmax"] else 1.0 - c["vk"] * abs(v - c["v0"])
+    dm = 0.0 if d > c["dmax"] else 0.82 + c["dk"] / max(d, c["dmin"])
+    am = 0.0 if a > 135.0 else 1.0 - 0.0032 * a
+    fm = frequency_multiplier(f, duration, v if v_origin is None else v_origin, units)
+    cm = CM_TABLE[coupling][int(v >= c["vsplit"])]
+    return Multipliers(hm, vm, dm, am, fm, cm)
+
+
+def rwl(m: Multipliers, units: str = "metric", round_multipliers: bool = False) -> float:
+    """The recommended weight limit (kg or lb). ``round_multipliers``: each multiplier rounded to
+    two decimals first, as the manual's worksheets do (p. 29), to reproduce their figures."""
+    vals = [m.hm, m.vm, m.dm, m.am, m.fm, m.cm]
+    if round_multipliers:
+        vals = [round(x + 1e-12, 2) for x in vals]
+    return float(UNITS[units]["lc"] * np.prod(vals))
+
+
+@dataclass
+class Lift:
+    """One lift (or lowering) of a part: where the hands were at its origin and destination,
+    its recommended weight limit and its lifting index (metric: cm, kg, degrees).
+
+    Attributes:
+        task: index of the cycle task (pick or place).
+        kind: "pick" (a lift from the site) or "place" (a lowering onto it).
+        mass: the part's mass, kg.
+        h, v, a: (origin, destination) horizontal distance, height, asymmetry angle.
+        d: vertical travel, cm.
+        f: lifts per minute.
+        rwl: the recommended weight limit, kg: the origin's, and for a place (significant
+            control at the destination, Applications Manual p. 21) the lower of both ends.
+        li: mass / rwl (inf when the RWL is 0).
+        one_handed: the equation is for two-handed lifts (p. 6); a one-handed lift is scored
+            as if two-handed and flagged.
+    """
+
+    task: int
+    kind: str
+    hand: str
+    mass: float
+    h: tuple[float, float]
+    v: tuple[float, float]
+    a: tuple[float, float]
+    d: float
+    f: float
+    coupling: str
+    rwl: float
+    li: float
+    one_handed: bool
+
+
+def lift(
+    task: int, kind: str, hand: str, mass: float, h: tuple[float, float],
+    v: tuple[float, float], a: tuple[float, float], f: float, coupling: str,
+    duration: str = "long",
+) -> Lift:  # fmt: skip
+    """Score one lift in metric units (cm, deg, kg). The RWL is taken at the origin, and for a
+    place, whose destination needs control, at both ends (the lower)."""
+    d = abs(v[1] - v[0])
+    ends = (0, 1) if kind == "place" else (0,)
+    limits = [
+        rwl(multipliers(h[e], v[e], d, a[e], f, duration, coupling, v_origin=v[0])) for e in ends
+    ]
+    r = min(limits)
+    li = mass / r if r > 0 else float("inf")
+    return Lift(task, kind, hand, mass, h, v, a, d, f, coupling, r, li, hand != "both")

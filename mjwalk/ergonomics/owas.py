@@ -1,0 +1,78 @@
+"""OWAS, the Ovako Working posture Analysing System (Karhu, Kansi & Kuorinka 1977, Applied
+Ergonomics 8(4), 199-201): a four-digit posture code (back, arms, legs, load) and its action
+category 1-4 from the published classification table (Karhu et al. 1977; the table as reprinted
+by Karhu et al. 1981 and in the OWAS manual of the Finnish Institute of Occupational Health).
+
+Codes: back 1 straight, 2 bent forward/backward, 3 twisted or bent sideways, 4 bent and twisted;
+arms 1 both below shoulder level, 2 one at or above, 3 both at or above; legs 1 sitting,
+2 standing on both straight legs, 3 on one straight leg, 4 on both bent knees, 5 on one bent knee,
+6 kneeling, 7 walking; load 1 below 10 kg, 2 10-20 kg, 3 above 20 kg.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mjwalk.ergonomics.angles import KNEE_BENT_DEG, BodyAngles
+
+#: OWAS action categories: [back 1-4][arms 1-3][legs 1-7][load 1-3] (Karhu et al. 1977).
+TABLE = np.array(
+    [
+        [[[1, 1, 1], [1, 1, 1], [1, 1, 1], [2, 2, 2], [2, 2, 2], [1, 1, 1], [1, 1, 1]],
+         [[1, 1, 1], [1, 1, 1], [1, 1, 1], [2, 2, 2], [2, 2, 2], [1, 1, 1], [1, 1, 1]],
+         [[1, 1, 1], [1, 1, 1], [1, 1, 1], [2, 2, 3], [2, 2, 3], [1, 1, 1], [1, 1, 2]]],
+        [[[2, 2, 3], [2, 2, 3], [2, 2, 3], [3, 3, 3], [3, 3, 3], [2, 2, 2], [2, 3, 3]],
+         [[2, 2, 3], [2, 2, 3], [2, 3, 3], [3, 4, 4], [3, 4, 4], [3, 3, 4], [2, 3, 4]],
+         [[3, 3, 4], [2, 2, 3], [3, 3, 3], [3, 4, 4], [4, 4, 4], [4, 4, 4], [2, 3, 4]]],
+        [[[1, 1, 1], [1, 1, 1], [1, 1, 2], [3, 3, 3], [4, 4, 4], [1, 1, 1], [1, 1, 1]],
+         [[2, 2, 3], [1, 1, 1], [1, 1, 2], [4, 4, 4], [4, 4, 4], [3, 3, 3], [1, 1, 1]],
+         [[2, 2, 3], [1, 1, 1], [2, 3, 3], [4, 4, 4], [4, 4, 4], [4, 4, 4], [1, 1, 1]]],
+        [[[2, 3, 3], [2, 2, 3], [2, 2, 3], [4, 4, 4], [4, 4, 4], [4, 4, 4], [2, 3, 4]],
+         [[3, 3, 4], [2, 3, 4], [3, 3, 4], [4, 4, 4], [4, 4, 4], [4, 4, 4], [2, 3, 4]],
+         [[4, 4, 4], [2, 3, 4], [3, 3, 4], [4, 4, 4], [4, 4, 4], [4, 4, 4], [2, 3, 4]]],
+    ]
+)  # fmt: skip
+#: Back bent or twisted from this many degrees (trunk flexion/side bend, twist): the bound of
+#: ISO 11226's acceptable zone of trunk inclination (0-20 deg), applied to all three.
+BACK_DEG = 20.0
+#: Load bounds (kg) of the load code (Karhu et al. 1977).
+LOAD_KG = (10.0, 20.0)
+
+
+def action_category(back, arms, legs, load) -> np.ndarray:
+    """OWAS action category 1-4 of posture codes (scalars or arrays): 1 no action, 2 in the
+    near future, 3 as soon as possible, 4 immediately."""
+    return TABLE[
+        np.asarray(back) - 1, np.asarray(arms) - 1, np.asarray(legs) - 1, np.asarray(load) - 1
+    ]
+
+
+def load_code(load_kg: float) -> int:
+    lo, hi = LOAD_KG
+    return 1 if load_kg < lo else 2 if load_kg <= hi else 3
+
+
+def codes(ang: BodyAngles, load_kg: float = 0.0) -> np.ndarray:
+    """(F, 4) OWAS codes (back, arms, legs, load) of every frame."""
+    bent = np.abs(ang.trunk_flexion) >= BACK_DEG
+    twisted = (np.abs(ang.trunk_twist) >= BACK_DEG) | (np.abs(ang.trunk_side_bend) >= BACK_DEG)
+    back = np.select([bent & twisted, twisted, bent], [4, 3, 2], 1)
+    high = ang.upper_arm_elevation >= 90.0  # the upper arm at or above shoulder level
+    arms = 1 + high.sum(axis=1)
+    down = ang.feet_down
+    bentk = ang.knee_flexion >= KNEE_BENT_DEG
+    both = down.all(axis=1)
+    legs = np.where(
+        both,
+        np.where((bentk & down).any(axis=1), 4, 2),
+        np.where((bentk & down).any(axis=1), 5, 3),
+    )
+    legs = np.where(ang.walking, 7, legs)
+    load = np.full(ang.n_frames, load_code(load_kg))
+    return np.stack([back, arms, legs, load], axis=1)
+
+
+def owas(ang: BodyAngles, load_kg: float = 0.0) -> np.ndarray:
+    """(F,) OWAS action categories of every frame."""
+    c = codes(ang, load_kg)
+    return action_category(c[:, 0], c[:, 1], c[:, 2], c[:, 3])

@@ -1,0 +1,154 @@
+"""REBA, the Rapid Entire Body Assessment (Hignett & McAtamney 2000, Applied Ergonomics 31(2),
+201-205): trunk, neck and legs (group A) with the load, upper arm, lower arm and wrist (group B)
+with the coupling, Table C and the activity score; the REBA score 1-15 and its risk level.
+
+Part scores follow the paper's Tables 1-7 (angles in degrees, flexion positive); the tables
+below are its Tables A, B and C (compared cell by cell with the REBA Employee Assessment
+Worksheet's Tables A-C: equal). :func:`reba_score` is the published procedure on part scores,
+vectorised over frames; :func:`part_scores` reads the part scores from
+:class:`~mjwalk.ergonomics.angles.BodyAngles`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mjwalk.ergonomics.angles import KNEE_BENT_DEG, NEUTRAL_DEG, BodyAngles
+
+#: REBA Table A (Hignett & McAtamney 2000): [trunk 1-5][neck 1-3][legs 1-4] -> score A.
+TABLE_A = np.array(
+    [
+        [[1, 2, 3, 4], [1, 2, 3, 4], [3, 3, 5, 6]],
+        [[2, 3, 4, 5], [3, 4, 5, 6], [4, 5, 6, 7]],
+        [[2, 4, 5, 6], [4, 5, 6, 7], [5, 6, 7, 8]],
+        [[3, 5, 6, 7], [5, 6, 7, 8], [6, 7, 8, 9]],
+        [[4, 6, 7, 8], [6, 7, 8, 9], [7, 8, 9, 9]],
+    ]
+)  # fmt: skip
+#: REBA Table B (Hignett & McAtamney 2000): [upper arm 1-6][lower arm 1-2][wrist 1-3] -> B.
+TABLE_B = np.array(
+    [
+        [[1, 2, 2], [1, 2, 3]],
+        [[1, 2, 3], [2, 3, 4]],
+        [[3, 4, 5], [4, 5, 5]],
+        [[4, 5, 5], [5, 6, 7]],
+        [[6, 7, 8], [7, 8, 8]],
+        [[7, 8, 8], [8, 9, 9]],
+    ]
+)  # fmt: skip
+#: REBA Table C (Hignett & McAtamney 2000): [score A 1-12][score B 1-12] -> score C.
+TABLE_C = np.array(
+    [
+        [1, 1, 1, 2, 3, 3, 4, 5, 6, 7, 7, 7],
+        [1, 2, 2, 3, 4, 4, 5, 6, 6, 7, 7, 8],
+        [2, 3, 3, 3, 4, 5, 6, 7, 7, 8, 8, 8],
+        [3, 4, 4, 4, 5, 6, 7, 8, 8, 9, 9, 9],
+        [4, 4, 4, 5, 6, 7, 8, 8, 9, 9, 9, 9],
+        [6, 6, 6, 7, 8, 8, 9, 9, 10, 10, 10, 10],
+        [7, 7, 7, 8, 9, 9, 9, 10, 10, 11, 11, 11],
+        [8, 8, 8, 9, 10, 10, 10, 10, 10, 11, 11, 11],
+        [9, 9, 9, 10, 10, 10, 11, 11, 11, 12, 12, 12],
+        [10, 10, 10, 11, 11, 11, 11, 12, 12, 12, 12, 12],
+        [11, 11, 11, 11, 12, 12, 12, 12, 12, 12, 12, 12],
+        [12, 12, 12, 12, 12, 12, 12, 12, 12, 12, 12, 12],
+    ]
+)  # fmt: skip
+#: Coupling score (Hignett & McAtamney 2000, Table 6): good 0, fair 1, poor 2, unacceptable 3.
+COUPLING = {"good": 0, "fair": 1, "poor": 2, "unacceptable": 3}
+#: Load/force bounds (kg; Table 3): below 5 kg 0, 5-10 kg 1, above 10 kg 2 (+1 shock).
+LOAD_KG = (5.0, 10.0)
+
+
+@dataclass
+class RebaParts:
+    """Part scores (int arrays over frames)."""
+
+    trunk: np.ndarray
+    neck: np.ndarray
+    legs: np.ndarray
+    upper_arm: np.ndarray
+    lower_arm: np.ndarray
+    wrist: np.ndarray
+
+
+def load_score(load_kg: float, shock: bool = False) -> int:
+    """REBA's load/force score 0-3 (kg)."""
+    lo, hi = LOAD_KG
+    return (0 if load_kg < lo else 1 if load_kg <= hi else 2) + int(shock)
+
+
+def reba_score(trunk, neck, legs, upper_arm, lower_arm, wrist, load=0, coupling=0, activity=0):
+    """The REBA score 1-15 from the part scores (scalars or arrays; the published tables):
+    Table C of (Table A + load, Table B + coupling), plus the activity score."""
+    a = TABLE_A[
+        np.clip(np.asarray(trunk), 1, 5) - 1,
+        np.clip(np.asarray(neck), 1, 3) - 1,
+        np.clip(np.asarray(legs), 1, 4) - 1,
+    ]
+    b = TABLE_B[
+        np.clip(np.asarray(upper_arm), 1, 6) - 1,
+        np.clip(np.asarray(lower_arm), 1, 2) - 1,
+        np.clip(np.asarray(wrist), 1, 3) - 1,
+    ]
+    c = TABLE_C[np.clip(a + load, 1, 12) - 1, np.clip(b + coupling, 1, 12) - 1]
+    return c + activity
+
+
+def risk_level(score) -> np.ndarray:
+    """REBA action level 0-4 (1 negligible; 2-3 low; 4-7 medium; 8-10 high; 11+ very high)."""
+    s = np.asarray(score)
+    return np.select([s <= 1, s <= 3, s <= 7, s <= 10], [0, 1, 2, 3], 4)
+
+
+def part_scores(ang: BodyAngles, side: int) -> RebaParts:
+    """REBA part scores of every frame for the arm ``side`` (0 left, 1 right)."""
+    tf = ang.trunk_flexion
+    # upright 1; 0-20 deg flexion or extension 2; 20-60 flexion or > 20 extension 3; > 60 4
+    trunk = np.select([np.abs(tf) <= NEUTRAL_DEG, np.abs(tf) <= 20, tf <= 60], [1, 2, 3], 4)
+    trunk = trunk + (ang.trunk_twisted | ang.trunk_side_bent)
+    nf = ang.neck_flexion
+    neck = np.where((nf >= -NEUTRAL_DEG) & (nf <= 20), 1, 2) + (
+        ang.neck_twisted | ang.neck_side_bent
+    )
+    legs = np.where(ang.legs_supported, 1, 2)
+    # the knees of the legs that bear weight (both when both feet are down)
+    kf = np.where(ang.feet_down, ang.knee_flexion, 0.0).max(axis=1)
+    kf = np.where(ang.walking, 0.0, kf)
+    legs = legs + np.select([kf > 60, kf >= KNEE_BENT_DEG], [2, 1], 0)
+    ua_ang = ang.upper_arm_angle[:, side]
+    ua = np.select([ua_ang > 90, ua_ang > 45, (ua_ang > 20) | (ua_ang < -20)], [4, 3, 2], 1)
+    ua = ua + ang.arm_abducted[:, side] + ang.shoulder_raised[:, side]
+    el = ang.elbow_flexion[:, side]
+    la = np.where((el >= 60) & (el <= 100), 1, 2)
+    wf = np.abs(ang.wrist_flexion[:, side])
+    wr = np.where(wf <= 15, 1, 2) + (ang.wrist_deviated[:, side] | ang.wrist_twist_end[:, side])
+    return RebaParts(
+        trunk.astype(int),
+        neck.astype(int),
+        legs.astype(int),
+        ua.astype(int),
+        la.astype(int),
+        wr.astype(int),
+    )
+
+
+def reba(
+    ang: BodyAngles, side: int, load_kg: float = 0.0, coupling: str = "good",
+    static: bool = False, repeated: bool = False,
+) -> np.ndarray:  # fmt: skip
+    """(F,) REBA scores for the arm ``side`` with the load in that hand (kg), the coupling of
+    its grip and the activity (+1 static > 1 min, +1 repeated > 4 times a minute)."""
+    p = part_scores(ang, side)
+    return reba_score(
+        p.trunk,
+        p.neck,
+        p.legs,
+        p.upper_arm,
+        p.lower_arm,
+        p.wrist,
+        load_score(load_kg),
+        COUPLING[coupling],
+        int(static) + int(repeated),
+    )

@@ -1,0 +1,178 @@
+"""RULA, the Rapid Upper Limb Assessment (McAtamney & Corlett 1993, Applied Ergonomics 24(2),
+91-99): posture scores of the arm and wrist (group A) and of the neck, trunk and legs (group B),
+the muscle-use and force/load terms, the grand score 1-7 and its action level 1-4.
+
+The part scores follow the paper's Figures 1-3 (angles in degrees, flexion positive); the three
+tables are the paper's Tables A, B and C (the paper itself was not at hand; the tables agree
+with several independent implementations, while one circulating worksheet differs in a few
+cells of Table A, e.g. upper arm 6, lower arm 2, wrist 1: 7 there, 8 here).
+:func:`grand_score` is the published procedure on part scores, vectorised over frames;
+:func:`part_scores` reads the part scores from
+:class:`~mjwalk.ergonomics.angles.BodyAngles` (the thresholds a continuous angle needs where the
+paper shows a drawing are stated in :mod:`mjwalk.ergonomics.angles`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from mjwalk.ergonomics.angles import NEUTRAL_DEG, BodyAngles
+
+#: RULA Table A (McAtamney & Corlett 1993, Table 1): [upper arm 1-6][lower arm 1-3][wrist 1-4]
+#: [wrist twist 1-2] -> posture score A.
+TABLE_A = np.array(
+    [
+        [[[1, 2], [2, 2], [2, 3], [3, 3]], [[2, 2], [2, 2], [3, 3], [3, 3]], [[2, 3], [3, 3], [3, 3], [4, 4]]],  # noqa: E501
+        [[[2, 3], [3, 3], [3, 4], [4, 4]], [[3, 3], [3, 3], [3, 4], [4, 4]], [[3, 4], [4, 4], [4, 4], [5, 5]]],  # noqa: E501
+        [[[3, 3], [4, 4], [4, 4], [5, 5]], [[3, 4], [4, 4], [4, 4], [5, 5]], [[4, 4], [4, 4], [4, 5], [5, 5]]],  # noqa: E501
+        [[[4, 4], [4, 4], [4, 5], [5, 5]], [[4, 4], [4, 4], [4, 5], [5, 5]], [[4, 4], [4, 5], [5, 5], [6, 6]]],  # noqa: E501
+        [[[5, 5], [5, 5], [5, 6], [6, 7]], [[5, 6], [6, 6], [6, 7], [7, 7]], [[6, 6], [6, 7], [7, 7], [7, 8]]],  # noqa: E501
+        [[[7, 7], [7, 7], [7, 8], [8, 9]], [[8, 8], [8, 8], [8, 9], [9, 9]], [[9, 9], [9, 9], [9, 9], [9, 9]]],  # noqa: E501
+    ]
+)  # fmt: skip
+#: RULA Table B (McAtamney & Corlett 1993, Table 2): [neck 1-6][trunk 1-6][legs 1-2] -> B.
+TABLE_B = np.array(
+    [
+        [[1, 3], [2, 3], [3, 4], [5, 5], [6, 6], [7, 7]],
+        [[2, 3], [2, 3], [4, 5], [5, 5], [6, 7], [7, 7]],
+        [[3, 3], [3, 4], [4, 5], [5, 6], [6, 7], [7, 7]],
+        [[5, 5], [5, 6], [6, 7], [7, 7], [7, 7], [8, 8]],
+        [[7, 7], [7, 7], [7, 8], [8, 8], [8, 8], [8, 8]],
+        [[8, 8], [8, 8], [8, 8], [8, 9], [9, 9], [9, 9]],
+    ]
+)  # fmt: skip
+#: RULA Table C (McAtamney & Corlett 1993, Table 3): [score C 1-8+][score D 1-7+] -> grand score.
+TABLE_C = np.array(
+    [
+        [1, 2, 3, 3, 4, 5, 5],
+        [2, 2, 3, 4, 4, 5, 5],
+        [3, 3, 3, 4, 4, 5, 6],
+        [3, 3, 3, 4, 5, 6, 6],
+        [4, 4, 4, 5, 6, 7, 7],
+        [4, 4, 5, 6, 6, 7, 7],
+        [5, 5, 6, 6, 7, 7, 7],
+        [5, 5, 6, 7, 7, 7, 7],
+    ]
+)  # fmt: skip
+
+#: Force/load bounds (kg) of the force score (McAtamney & Corlett 1993, Fig. 2): below 2 kg
+#: intermittent 0; 2-10 kg intermittent 1; 2-10 kg static or repeated 2; 10 kg or more static
+#: or repeated, or shock, 3.
+FORCE_KG = (2.0, 10.0)
+
+
+@dataclass
+class RulaParts:
+    """Part scores (arrays over frames; ints) of one side's arm and the body."""
+
+    upper_arm: np.ndarray
+    lower_arm: np.ndarray
+    wrist: np.ndarray
+    wrist_twist: np.ndarray
+    neck: np.ndarray
+    trunk: np.ndarray
+    legs: np.ndarray
+
+
+def force_score(load_kg: float, static_or_repeated: bool, shock: bool = False) -> int:
+    """RULA's force/load score 0-3 of a load held in the hands (kg)."""
+    lo, hi = FORCE_KG
+    if shock or (load_kg >= hi and static_or_repeated):
+        return 3
+    if load_kg < lo:
+        return 0
+    if static_or_repeated:
+        return 2
+    return 1 if load_kg < hi else 2  # >= 10 kg intermittent: paper gives 2 (10 kg+ intermittent)
+
+
+def grand_score(
+    upper_arm,
+    lower_arm,
+    wrist,
+    wrist_twist,
+    neck,
+    trunk,
+    legs,
+    muscle_a=0,
+    force_a=0,
+    muscle_b=0,
+    force_b=0,
+) -> np.ndarray:
+    """RULA's grand score 1-7 from the part scores (scalars or arrays; the published tables)."""
+    ua = np.clip(np.asarray(upper_arm), 1, 6) - 1
+    la = np.clip(np.asarray(lower_arm), 1, 3) - 1
+    wr = np.clip(np.asarray(wrist), 1, 4) - 1
+    tw = np.clip(np.asarray(wrist_twist), 1, 2) - 1
+    a = TABLE_A[ua, la, wr, tw]
+    b = TABLE_B[
+        np.clip(np.asarray(neck), 1, 6) - 1,
+        np.clip(np.asarray(trunk), 1, 6) - 1,
+        np.clip(np.asarray(legs), 1, 2) - 1,
+    ]
+    c = np.clip(a + muscle_a + force_a, 1, 8) - 1
+    d = np.clip(b + muscle_b + force_b, 1, 7) - 1
+    return TABLE_C[c, d]
+
+
+def action_level(score) -> np.ndarray:
+    """RULA action level 1-4 of grand scores (1-2: acceptable; 3-4: investigate further;
+    5-6: investigate and change soon; 7: investigate and change immediately)."""
+    s = np.asarray(score)
+    return np.select([s <= 2, s <= 4, s <= 6], [1, 2, 3], 4)
+
+
+def part_scores(ang: BodyAngles, side: int) -> RulaParts:
+    """RULA part scores of every frame of ``ang`` for the arm ``side`` (0 left, 1 right)."""
+    ua_ang = ang.upper_arm_angle[:, side]
+    ua = np.select([ua_ang > 90, ua_ang > 45, (ua_ang > 20) | (ua_ang < -20)], [4, 3, 2], 1)
+    ua = ua + ang.shoulder_raised[:, side] + ang.arm_abducted[:, side]
+    el = ang.elbow_flexion[:, side]
+    la = np.where((el >= 60) & (el <= 100), 1, 2) + ang.lower_arm_out[:, side]
+    wf = np.abs(ang.wrist_flexion[:, side])
+    wr = np.select([wf <= NEUTRAL_DEG, wf <= 15], [1, 2], 3) + ang.wrist_deviated[:, side]
+    tw = np.where(ang.wrist_twist_end[:, side], 2, 1)
+    nf = ang.neck_flexion
+    neck = np.select([nf < -NEUTRAL_DEG, nf <= 10, nf <= 20], [4, 1, 2], 3)
+    neck = neck + ang.neck_twisted + ang.neck_side_bent
+    tf = ang.trunk_flexion
+    trunk = np.select([np.abs(tf) <= NEUTRAL_DEG, tf <= 20, tf <= 60], [1, 2, 3], 4)
+    trunk = np.where(tf < -NEUTRAL_DEG, 2, trunk)  # extension: scored as the 0-20 band
+    trunk = trunk + ang.trunk_twisted + ang.trunk_side_bent
+    legs = np.where(ang.legs_supported, 1, 2)
+    return RulaParts(
+        ua.astype(int),
+        la.astype(int),
+        wr.astype(int),
+        tw,
+        neck.astype(int),
+        trunk.astype(int),
+        legs,
+    )
+
+
+def rula(
+    ang: BodyAngles, side: int, load_kg: float = 0.0, static: bool = False,
+    repeated: bool = False,
+) -> np.ndarray:  # fmt: skip
+    """(F,) RULA grand scores of the arm ``side`` with the load in that hand (kg); muscle use
+    +1 when the posture is static (held > 1 min) or repeated (4 times a minute or more), in
+    both groups as the paper's worksheet does."""
+    p = part_scores(ang, side)
+    muscle = int(static or repeated)
+    force = force_score(load_kg, static or repeated)
+    return grand_score(
+        p.upper_arm,
+        p.lower_arm,
+        p.wrist,
+        p.wrist_twist,
+        p.neck,
+        p.trunk,
+        p.legs,
+        muscle,
+        force,
+        muscle,
+        force,
+    )
