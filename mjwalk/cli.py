@@ -226,7 +226,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             f"(--runs {args.runs})"
         )
     from mjwalk.cycle.context import context_of
-    from mjwalk.cycle.simulate import simulate_cycle, simulate_cycles
+    from mjwalk.cycle.simulate import simulate_cycles
     from mjwalk.cycle.spec import load_cycle_spec
     from mjwalk.report import format_summary, report_dict, write_report
     from mjwalk.shipped import cycle_file
@@ -273,13 +273,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         from mjwalk.render import render_video
 
         first = next(r for r in results if r.error is None)  # report_dict: at least one
-        run0 = simulate_cycle(
-            ctx,
-            np.random.default_rng(np.random.SeedSequence([args.seed, first.run])),
-            run=first.run,
-            keep_timeline=True,
-            collisions=False,
-        )
+        run0 = _replay(ctx, args.seed, first.run)
         video = args.out / "cycle.mp4"
         assert run0.timeline is not None  # keep_timeline=True
         render_video(
@@ -298,23 +292,24 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _replay(ctx, seed: int, run: int, **kwargs):
+    """Run ``run`` of the batch of ``seed`` again, keeping its timeline (the same cycle: it
+    draws from ``SeedSequence([seed, run])`` as in the batch)."""
+    from mjwalk.cycle.simulate import simulate_cycle
+
+    rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
+    return simulate_cycle(ctx, rng, run=run, keep_timeline=True, collisions=False, **kwargs)
+
+
 def _export_runs(args: argparse.Namespace, ctx, results) -> None:
     """--export bvh/csv: each simulated run's humanoid motion (again, with its timeline) as
     ``run_KKK.bvh`` / ``run_KKK_angles.csv`` in --out (mjwalk.ergonomics.export)."""
-    from mjwalk.cycle.simulate import simulate_cycle
     from mjwalk.ergonomics.export import write_angles_csv, write_bvh
 
     for r in results:
         if r.error is not None:
             continue
-        run = simulate_cycle(
-            ctx,
-            np.random.default_rng(np.random.SeedSequence([args.seed, r.run])),
-            run=r.run,
-            keep_timeline=True,
-            collisions=False,
-            ergonomics=False,
-        )
+        run = _replay(ctx, args.seed, r.run, ergonomics=False)
         for kind in dict.fromkeys(args.export):
             if kind == "bvh":
                 out = write_bvh(run.timeline, args.out / f"run_{r.run:03d}.bvh")
@@ -349,25 +344,46 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
 def _cmd_scan(args: argparse.Namespace) -> int:
     from mjwalk.world.scan import scan_to_scene
+    from mjwalk.world.scan.voids import cover, save_top_view
 
+    check_output_file(args.output, "-o/--output")
+    if args.png is not None:
+        check_output_file(args.png, "--png", image_suffixes())
     scene = scan_to_scene(
         args.scan,
         args.output,
+        poses=args.poses,
+        voids=args.voids,
         units=args.units,
         up=args.up,
         drop_invalid=args.drop_invalid,
         resolution=args.resolution,
         sites=args.sites,
+        offset=args.offset,
     )
     lv = scene.levelling
     b = scene.plan.bounds
     print(
-        f"{args.scan}: {scene.n_points} points; floor tilt {lv.tilt_deg:.3f} deg removed, "
+        f"{' + '.join(map(str, args.scan))}: {scene.n_points} points; "
+        f"floor tilt {lv.tilt_deg:.3f} deg removed, "
         f"floor x [{b[0]:.2f}, {b[2]:.2f}] y [{b[1]:.2f}, {b[3]:.2f}] m; "
         f"{scene.n_obstacle_boxes} obstacle boxes, {scene.n_void_boxes} void boxes, "
         f"{len(scene.sites)} sites"
     )
-    print("scan -> scene transform (4x4, row-major):")
+    print(f"--voids {args.voids}: {cover(scene.plan).line()}")
+    if lv.surfaces:
+        shown = ", ".join(
+            f"{s.height:+.2f} m ({s.area:.1f} m² at {s.x:.1f}, {s.y:.1f})" for s in lv.surfaces[:8]
+        )
+        more = f" and {len(lv.surfaces) - 8} more" if len(lv.surfaces) > 8 else ""
+        print(
+            f"other horizontal surfaces one could stand on (one level only: they stay "
+            f"obstacles or floor): {shown}{more}"
+        )
+    if args.png is not None:
+        save_top_view(scene.plan, args.png)
+        print(f"wrote {args.png} (top view: floor seen, unseen, obstacles, voids)")
+    print(f"{args.scan[0]} -> scene transform (4x4, row-major):")
     for row in scene.matrix:
         print("  " + " ".join(f"{v:10.6f}" for v in row))
     print(" ".join(f"{k} {v:.2f} s" for k, v in scene.timings.items()))
@@ -375,17 +391,78 @@ def _cmd_scan(args: argparse.Namespace) -> int:
     return 0
 
 
+def _scan_resolution(text: str) -> float:
+    """``--resolution``: a number of metres within the floor plan's stated range."""
+    from mjwalk.world.scan.limits import check_resolution
+
+    try:
+        return check_resolution(text, "")
+    except MjwalkError as exc:
+        raise argparse.ArgumentTypeError(str(exc).strip()) from None
+
+
+def _scan_offset(text: str) -> np.ndarray:
+    """``--offset X,Y,Z``: three finite numbers in the scan file's units and axes."""
+    try:
+        values = np.array([float(v) for v in text.split(",")])
+    except ValueError:
+        values = np.array([])
+    if values.shape != (3,) or not np.isfinite(values).all():
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: expected X,Y,Z, three finite numbers in the file's units "
+            "(write --offset=-1,2,3 when it starts with a minus)"
+        )
+    return values
+
+
 def _add_scan_parser(sub) -> None:
+    from mjwalk.world.scan.limits import RESOLUTION_RANGE
+
     p = sub.add_parser("scan", help="turn a laser scan (PLY/PCD/LAS/LAZ/E57/XYZ/PTS) into a scene")
-    p.add_argument("scan", type=Path, help="point-cloud file")
+    p.add_argument(
+        "scan",
+        type=Path,
+        nargs="+",
+        help="point-cloud file(s); several scans of one hall are merged in the first one's "
+        "frame (already registered, or placed by --poses)",
+    )
+    p.add_argument(
+        "--poses",
+        type=Path,
+        metavar="JSON",
+        help='known poses: {"B.ply": 4x4 matrix} taking each named scan (metres, z up) into '
+        "the first scan's frame; scans not named are already in it",
+    )
     p.add_argument("-o", "--output", type=Path, required=True, help="MJCF scene to write")
     p.add_argument("--units", default="m", help="file units when it does not say: m cm mm in ft")
-    p.add_argument("--up", default="+z", help="file up axis when it does not say: +z -z +y -y ...")
+    p.add_argument(
+        "--up", default="+z", help="file up axis when it does not say: +z, -z, +y, ... (--up=-z)"
+    )
     p.add_argument("--sites", type=Path, help="TOML of named sites ([site.NAME] xy = [x, y])")
-    p.add_argument("--resolution", type=float, default=0.02, help="floor-plan grid, metres")
+    p.add_argument(
+        "--resolution",
+        type=_scan_resolution,
+        default=0.02,
+        help=f"floor-plan grid, metres ({RESOLUTION_RANGE[0]}-{RESOLUTION_RANGE[1]}; default 0.02)",
+    )
+    p.add_argument(
+        "--offset",
+        type=_scan_offset,
+        metavar="X,Y,Z",
+        help="subtract this point (file units and axes) from every point first, for a "
+        "georeferenced cloud far from its origin (write --offset=-X,Y,Z when negative)",
+    )
     p.add_argument(
         "--drop-invalid", action="store_true", help="leave out NaN/infinite points (else error)"
     )
+    p.add_argument(
+        "--voids",
+        choices=("blocked", "fill", "free"),
+        default="blocked",
+        help="unseen floor: blocked (default: nobody walks where no floor was seen), fill "
+        "(enclosed voids up to 2 m inscribed radius are walkable), free (all walkable)",
+    )
+    p.add_argument("--png", type=Path, help="top view of the floor plan (seen, unseen, voids)")
     p.set_defaults(func=_cmd_scan)
 
 

@@ -165,6 +165,7 @@ TOO_LONG_FOR_NOW = {
     "mjwalk.plan.hybrid",
     "mjwalk.plan.stepcheck",
     "mjwalk.cycle.spec",
+    "mjwalk.cli",
 }
 
 

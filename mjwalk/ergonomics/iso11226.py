@@ -7,7 +7,10 @@ posture is acceptable only as long as the maximum acceptable holding time (step 
 standard's Figures 2 and 3: from 4 min at 20 deg to 1 min at 60 deg for the trunk, from 3 min at
 20 deg to 1 min at 60 deg for the upper arm, linear in between). Postures held less than 4 s are
 not static (the standard's scope). The holding-time curves are transcribed from the figures'
-end points, not from the standard's text (not at hand when this was written).
+end points, not from the standard's text (not reachable, checked 2026-12-01: only its title
+pages are in the reference stores). One independent public implementation found uses the same
+end points (trunk 240 s at 20 deg to 60 s at 60 deg, upper arm 180 s to 60 s, linear); the
+straight line between the end points is an approximation of the figures' curves, NOT verified.
 """
 
 from __future__ import annotations

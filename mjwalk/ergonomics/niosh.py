@@ -8,6 +8,17 @@ The variable limits are the manual's (section 1.3): H below 25 cm (10 in) is set
 above 63 cm (25 in) gives HM = 0; V above 175 cm (70 in) gives VM = 0; D below 25 cm (10 in)
 is set to it, above 175 cm (70 in) gives DM = 0; A above 135 deg gives AM = 0; F below 0.2
 lifts/min is set to 0.2 and FM is interpolated linearly between Table 5's rows (p. 7).
+
+HM, VM, DM and AM are computed from the formulas (the manual: "each multiplier should be
+computed from the appropriate formula", p. 7); the manual's Tables 1-4 round three rows
+differently from their formulas (Table 1: H 22 in .46, H 23 in .44; Table 3: D 130 cm .86;
+formulas .45, .43, .85), so a worksheet read from those table rows differs in the second
+decimal. Provenance (checked 2026-12-01): the manual's text could not be reached directly; the
+constants, limits, Table 5 and Table 7 and the worked-example figures used in the tests are
+from a public two-pass transcription of the manual (2021 revision, which states its formulas,
+multipliers and limits are identical to the 1994 manual's), nbarr1/ErgonomicTool
+``docs/methods/rnle.md``, and Table 5 also from a public transcription of the manual's
+lifting analysis worksheet (scribd, doc. 53505426). Secondary sources, not the manual itself.
 """
 
 from __future__ import annotations
@@ -27,8 +38,9 @@ UNITS = {
     "us": dict(lc=51.0, h0=10.0, hmax=25.0, v0=30.0, vk=0.0075, vmax=70.0, dk=1.8,
                dmin=10.0, dmax=70.0, vsplit=30.0),
 }  # fmt: skip
-#: Duration categories (Applications Manual 1.3.5.2): short <= 1 h (with recovery), moderate
-#: 1-2 h, long 2-8 h.
+#: Duration categories (Applications Manual 1.3.5.2, pp. 13-14): short <= 1 h followed by a
+#: recovery time of at least 1.0 x the work time (the 1994 edition said 1.2; the 2021 revision
+#: changed it), moderate 1-2 h with at least 0.3 x recovery, long 2-8 h.
 DURATIONS = ("short", "moderate", "long")
 #: Table 5 (Frequency Multiplier): rows F (lifts/min), columns (short V<75cm, short V>=75cm,
 #: moderate V<, moderate V>=, long V<, long V>=).

@@ -16,6 +16,12 @@ import numpy as np
 from mjwalk.ergonomics.angles import KNEE_BENT_DEG, BodyAngles
 
 #: OWAS action categories: [back 1-4][arms 1-3][legs 1-7][load 1-3] (Karhu et al. 1977).
+#: Provenance (checked 2026-12-01): the 1977/1981 papers could not be reached. Of six
+#: independent public transcriptions found (exact-row search of public code), four equal this
+#: table in all 252 cells; two others differ in two cells: back 3 (twisted), arms 3, legs 7
+#: (walking), load 3 -> 2 there (1 here), and back 4, arms 1, legs 3 (one straight leg), load 2
+#: -> 3 there (2 here). Kept as the majority has it; those two cells are NOT settled from the
+#: primary source.
 TABLE = np.array(
     [
         [[[1, 1, 1], [1, 1, 1], [1, 1, 1], [2, 2, 2], [2, 2, 2], [1, 1, 1], [1, 1, 1]],

@@ -3,9 +3,18 @@
 with the coupling, Table C and the activity score; the REBA score 1-15 and its risk level.
 
 Part scores follow the paper's Tables 1-7 (angles in degrees, flexion positive); the tables
-below are its Tables A, B and C (compared cell by cell with the REBA Employee Assessment
-Worksheet's Tables A-C: equal). :func:`reba_score` is the published procedure on part scores,
-vectorised over frames; :func:`part_scores` reads the part scores from
+below are its Tables A, B and C. Provenance (checked 2026-12-01): the paper's own tables could
+not be reached; Tables A, B and C equal, cell for cell, the REBA Employee Assessment Worksheet
+(based on the paper; as transcribed on scribd, doc. 731952909; the test
+``test_reba_tables_match_the_employee_worksheet`` holds that transcription in the worksheet's
+own layout; a second transcription of the worksheet in another layout (pdfcoffee.com,
+"reba-employee-assessment-worksheet") agrees in every cell of Tables A and B it shows), and the
+part-score definitions agree with the authors' own handbook chapter (Hignett & McAtamney, Table
+42.2 "Group A Definitions", in Fundamentals and Assessment Tools for Occupational Ergonomics).
+Secondary sources only: NOT verified against the paper, and no worked example with published
+scores from the paper or the authors' chapter could be reached.
+:func:`reba_score` is the published procedure on part scores, vectorised over frames;
+:func:`part_scores` reads the part scores from
 :class:`~mjwalk.ergonomics.angles.BodyAngles`.
 """
 
@@ -73,10 +82,12 @@ class RebaParts:
     wrist: np.ndarray
 
 
-def load_score(load_kg: float, shock: bool = False) -> int:
-    """REBA's load/force score 0-3 (kg)."""
+def load_score(load_kg, shock: bool = False):
+    """REBA's load/force score 0-3 (kg); scalars or per-frame arrays (an int for scalars)."""
     lo, hi = LOAD_KG
-    return (0 if load_kg < lo else 1 if load_kg <= hi else 2) + int(shock)
+    load = np.asarray(load_kg, dtype=float)
+    score = np.select([load > hi, load >= lo], [2, 1], 0) + int(shock)
+    return int(score) if score.ndim == 0 else score
 
 
 def reba_score(trunk, neck, legs, upper_arm, lower_arm, wrist, load=0, coupling=0, activity=0):
@@ -140,15 +151,13 @@ def reba(
 ) -> np.ndarray:  # fmt: skip
     """(F,) REBA scores for the arm ``side`` with the load in that hand (kg), the coupling of
     its grip and the activity (+1 static > 1 min, +1 repeated > 4 times a minute)."""
-    p = part_scores(ang, side)
+    activity = int(static) + int(repeated)
+    return parts_score(part_scores(ang, side), load_score(load_kg), COUPLING[coupling], activity)
+
+
+def parts_score(p: RebaParts, load=0, coupling=0, activity=0) -> np.ndarray:
+    """(F,) REBA scores of one side's part scores with the load, coupling and activity scores
+    (scalars or per frame)."""
     return reba_score(
-        p.trunk,
-        p.neck,
-        p.legs,
-        p.upper_arm,
-        p.lower_arm,
-        p.wrist,
-        load_score(load_kg),
-        COUPLING[coupling],
-        int(static) + int(repeated),
+        p.trunk, p.neck, p.legs, p.upper_arm, p.lower_arm, p.wrist, load, coupling, activity
     )

@@ -3,9 +3,19 @@
 the muscle-use and force/load terms, the grand score 1-7 and its action level 1-4.
 
 The part scores follow the paper's Figures 1-3 (angles in degrees, flexion positive); the three
-tables are the paper's Tables A, B and C (the paper itself was not at hand; the tables agree
-with several independent implementations, while one circulating worksheet differs in a few
-cells of Table A, e.g. upper arm 6, lower arm 2, wrist 1: 7 there, 8 here).
+tables are the paper's Tables 1 and 2 and its grand-score table ("Table A", "Table B", "Table C"
+of the score sheet). Provenance (checked 2026-12-01): OCR excerpts of the paper's text
+(th4.ilovetranslation.com pages hZeRv4cNDav, vCKe8TzaeWW) confirm the neck, trunk and legs
+scores, the force/load score (2 for 2-10 kg static or repeated or > 10 kg intermittent, 3 for >
+10 kg static or repeated or any shock) and the meaning of grand scores 1-2, 3-4 and 5-6 as coded
+here; the paper's tables themselves could not be reached; Tables A, B and C here agree cell for
+cell with several independent public implementations (found by exact-row search of public code).
+One circulating worksheet (the "RULA Employee Assessment Worksheet", as transcribed on scribd,
+doc. 36693774) prints 7 in Table A at upper arm 6, lower arm 2, wrist 1, no twist, where every
+implementation found (and this table) has 8. The table is left as the majority has it (both
+values keep it monotone); it is NOT verified against the paper. The cell changes a score only
+for that part-score combination (score A 8 vs 7). No worked example with published scores from
+the paper itself could be reached, so none is tested.
 :func:`grand_score` is the published procedure on part scores, vectorised over frames;
 :func:`part_scores` reads the part scores from
 :class:`~mjwalk.ergonomics.angles.BodyAngles` (the thresholds a continuous angle needs where the
@@ -76,16 +86,17 @@ class RulaParts:
     legs: np.ndarray
 
 
-def force_score(load_kg: float, static_or_repeated: bool, shock: bool = False) -> int:
-    """RULA's force/load score 0-3 of a load held in the hands (kg)."""
+def force_score(load_kg, static_or_repeated, shock: bool = False):
+    """RULA's force/load score 0-3 of a load held in the hands (kg); scalars or per-frame
+    arrays (an int for scalars)."""
     lo, hi = FORCE_KG
-    if shock or (load_kg >= hi and static_or_repeated):
-        return 3
-    if load_kg < lo:
-        return 0
-    if static_or_repeated:
-        return 2
-    return 1 if load_kg < hi else 2  # >= 10 kg intermittent: paper gives 2 (10 kg+ intermittent)
+    load = np.asarray(load_kg, dtype=float)
+    held = np.asarray(static_or_repeated, dtype=bool)
+    # >= 10 kg intermittent: the paper gives 2, static or repeated 3
+    score = np.select([load >= hi, load >= lo], [np.where(held, 3, 2), np.where(held, 2, 1)], 0)
+    if shock:
+        score = np.full_like(score, 3)
+    return int(score) if score.ndim == 0 else score
 
 
 def grand_score(
@@ -160,9 +171,14 @@ def rula(
     """(F,) RULA grand scores of the arm ``side`` with the load in that hand (kg); muscle use
     +1 when the posture is static (held > 1 min) or repeated (4 times a minute or more), in
     both groups as the paper's worksheet does."""
-    p = part_scores(ang, side)
     muscle = int(static or repeated)
-    force = force_score(load_kg, static or repeated)
+    return parts_score(part_scores(ang, side), muscle, force_score(load_kg, muscle))
+
+
+def parts_score(p: RulaParts, muscle, force) -> np.ndarray:
+    """(F,) RULA grand scores of one arm's part scores with its muscle-use (0/1) and force
+    scores (scalars or per frame), the same in the arm-and-wrist and the neck-trunk-legs
+    groups, as the worksheet applies them."""
     return grand_score(
         p.upper_arm,
         p.lower_arm,

@@ -1,10 +1,20 @@
 """Laser scans become plannable MJCF scenes (mocap-based DHM walking in as-built environments §3).
 
-``read`` reads the formats, ``level`` finds and levels the floor, ``obstacles`` turns the band
-above the floor into a floor plan of obstacle and void boxes, ``scene`` writes the MJCF.
+``read`` reads the formats, ``merge`` merges several scans of one hall, ``level`` finds and
+levels the floor, ``obstacles`` turns the band above the floor into a floor plan of obstacle
+and void boxes, ``scene`` writes the MJCF.
 """
 
+from mjwalk.world.scan.merge import MergedCloud, merge_scans
 from mjwalk.world.scan.read import ScanCloud, read_scan
 from mjwalk.world.scan.scene import ScanScene, build_scene, scan_to_scene
 
-__all__ = ["ScanCloud", "ScanScene", "build_scene", "read_scan", "scan_to_scene"]
+__all__ = [
+    "MergedCloud",
+    "ScanCloud",
+    "ScanScene",
+    "build_scene",
+    "merge_scans",
+    "read_scan",
+    "scan_to_scene",
+]

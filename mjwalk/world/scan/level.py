@@ -43,10 +43,37 @@ FLOOR_SHARE = 0.25
 #: Voxels whose centroid is farther than this from the fitted floor plane are refit outliers,
 #: metres (6 sigma of a 5 mm range noise).
 PLANE_TOL = 0.03
+#: Smallest horizontal surface reported as one a person could stand on, square metres: a
+#: 0.6 m square, the shoulder breadth of a 95th-percentile man (about 0.52 m, DIN 33402-2)
+#: rounded up.
+STAND_AREA = 0.36
+#: Surfaces higher above the floor than this are not reported (ceilings, lamps, overhead
+#: pipework: the top of the obstacle band, ``OBSTACLE_Z_RANGE``), metres.
+MAX_SURFACE_HEIGHT = 2.0
+#: Points a voxel needs for its local-PCA normal (a plane through fewer is noise).
+MIN_VOXEL_POINTS = 5
+#: A levelled cloud is upside down when more of its points lie this far below the floor than
+#: above it, metres (the lower edge of the obstacle band, ``OBSTACLE_Z_RANGE``).
+BELOW_FLOOR = 0.05
+#: Clouds farther than this from the origin are levelled about a nearby point (metres): the
+#: summed second moments of points 1e6 m out lose the millimetres a plane fit needs.
+LOCAL_FRAME = 1000.0
 #: At most this many points feed the normals; larger clouds are thinned by a regular stride
 #: (the voxel PCA needs tens of points per voxel, not thousands; a sparse large scan falls
 #: back to larger voxels, see :func:`find_floor`).
 MAX_NORMAL_POINTS = 1_000_000
+
+
+@dataclass(frozen=True)
+class Surface:
+    """A horizontal surface other than the floor: ``height`` above the floor (metres, median
+    of its voxels), ``area`` (square metres) and its middle ``x``, ``y`` (the cloud's frame,
+    metres)."""
+
+    height: float
+    area: float
+    x: float
+    y: float
 
 
 @dataclass(frozen=True)
@@ -61,6 +88,9 @@ class Levelling:
         tilt_deg: angle between the floor's normal and +z, degrees.
         floor_area: area of the floor's walk surface found, square metres.
         rms: rms distance of the floor voxels' centroids from the plane, metres.
+        surfaces: the other walk surfaces of at least :data:`STAND_AREA` up to the top of the
+            obstacle band (platforms, steps, pits, table tops), largest first; levels stay
+            single, so they are reported, not walked on.
     """
 
     rotation: np.ndarray
@@ -70,6 +100,7 @@ class Levelling:
     tilt_deg: float
     floor_area: float
     rms: float
+    surfaces: tuple[Surface, ...] = ()
 
     @property
     def matrix(self) -> np.ndarray:
@@ -99,15 +130,18 @@ class VoxelNormals:
     moments: np.ndarray  # (M, 10): n, sx, sy, sz, sxx, sxy, sxz, syy, syz, szz
 
 
-def voxel_normals(points: np.ndarray, voxel: float = VOXEL, min_points: int = 5) -> VoxelNormals:
+def voxel_normals(
+    points: np.ndarray, voxel: float = VOXEL, min_points: int = MIN_VOXEL_POINTS
+) -> VoxelNormals:
     """Local-PCA normals of ``points`` (N, 3) on a voxel grid of edge ``voxel`` metres; voxels
     with fewer than ``min_points`` points are left out."""
     origin = points.min(axis=0)
     ijk = np.floor((points - origin) / voxel).astype(np.int64)
     dims = ijk.max(axis=0) + 1
     lin = (ijk[:, 0] * dims[1] + ijk[:, 1]) * dims[2] + ijk[:, 2]
-    if int(np.prod(dims)) <= 4 * len(points) + 1_000_000:
-        counts = np.bincount(lin, minlength=int(np.prod(dims)))
+    cells_total = int(dims[0]) * int(dims[1]) * int(dims[2])  # Python ints: no overflow
+    if cells_total <= 4 * len(points) + 1_000_000:
+        counts = np.bincount(lin, minlength=cells_total)
         cells = np.flatnonzero(counts >= min_points)
         remap = np.full(len(counts), -1, dtype=np.int64)
         remap[cells] = np.arange(len(cells))
@@ -226,6 +260,33 @@ def _up_hint(vn: VoxelNormals) -> str:
     return f"; most flat surfaces face the {'xyz'[best]} axis: is the up axis {'xyz'[best]}?"
 
 
+def _largest_area(vn: VoxelNormals, labels: np.ndarray, voxel: float) -> float:
+    """Area of the largest walk surface (distinct x, y columns of its voxels), square metres."""
+    ok = labels >= 0
+    if not ok.any():
+        return 0.0
+    cols = np.unique(np.column_stack([labels[ok], vn.ijk[ok, :2]]), axis=0)
+    return float(np.bincount(cols[:, 0]).max()) * voxel**2
+
+
+def _sparse_hint(points: np.ndarray) -> str:
+    """Why no voxel size gave a floor, when the cause is too few points per voxel."""
+    parts = []
+    for voxel in (VOXEL, 4 * VOXEL):
+        ijk = np.floor((points - points.min(axis=0)) / voxel).astype(np.int64)
+        _, counts = np.unique(ijk, axis=0, return_counts=True)
+        parts.append((voxel, float(np.mean(counts < MIN_VOXEL_POINTS)), float(np.median(counts))))
+    (v0, share0, med0), (v1, share1, med1) = parts
+    if share0 < 0.5:
+        return ""
+    return (
+        f"; the scan is too sparse for local-PCA normals: {100 * share0:.0f} % of the occupied "
+        f"{v0:g} m voxels hold fewer than the {MIN_VOXEL_POINTS} points a normal needs (median "
+        f"{med0:g} points; {100 * share1:.0f} % of {v1:g} m voxels, median {med1:g}): scan at a "
+        "finer angular step, or merge more stations into the cloud"
+    )
+
+
 def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
     """Find the floor of a z-up cloud (N, 3), metres, and the transform that levels it.
 
@@ -234,18 +295,23 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
     """
     step = max(1, len(points) // MAX_NORMAL_POINTS)
     sub = points[::step] if step > 1 else points
+    ref = np.zeros(3)
+    if np.abs(sub[0]).max() > LOCAL_FRAME:  # georeferenced: level about a nearby point
+        ref = np.round(sub[0])
+        sub = sub - ref
     # A sparse scan (fewer than ~500 points/m²) leaves too few points per voxel for a normal:
-    # the neighbourhood doubles until a floor-sized walk surface shows (at most twice).
+    # the neighbourhood doubles until one walk surface as large as a floor shows (at most
+    # twice; scattered pieces of floor whose voxels between hold too few points are not one).
     for voxel in (VOXEL, 2 * VOXEL, 4 * VOXEL):
         vn = voxel_normals(sub, voxel)
         labels = walk_surfaces(vn)
-        ok = labels >= 0
-        if ok.any() and np.unique(vn.ijk[ok, :2], axis=0).shape[0] * voxel**2 >= MIN_FLOOR_AREA:
+        if _largest_area(vn, labels, voxel) >= MIN_FLOOR_AREA:
             break
     surf = np.flatnonzero(labels >= 0)
     if len(surf) == 0:
         raise ScanError(
-            f"{source}: no floor found: no horizontal surface in the cloud{_up_hint(vn)}"
+            f"{source}: no floor found: no horizontal surface in the cloud"
+            f"{_sparse_hint(sub) or _up_hint(vn)}"
         )
     lab = labels[surf]
     nlab = int(lab.max()) + 1
@@ -261,7 +327,7 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
     if not big.any():
         raise ScanError(
             f"{source}: no floor found: the largest horizontal surface is {area.max():.2f} m², "
-            f"a floor needs at least {MIN_FLOOR_AREA} m²{_up_hint(vn)}"
+            f"a floor needs at least {MIN_FLOOR_AREA} m²{_sparse_hint(sub) or _up_hint(vn)}"
         )
     floor = int(np.flatnonzero(big)[np.argmin(height[big])])
     vox = surf[lab == floor]
@@ -288,18 +354,46 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
     xy = np.median(vn.centroid[vox, :2], axis=0)
     # The plane point below (xy): solve n . (p - centre) = 0 for p_z.
     pz = centre[2] - (normal[0] * (xy[0] - centre[0]) + normal[1] * (xy[1] - centre[1])) / normal[2]
-    pivot = np.array([xy[0], xy[1], pz])
+    pivot = np.array([xy[0], xy[1], pz]) + ref
     rotation = _rotation_onto_z(normal)
     tilt = float(np.degrees(np.arccos(np.clip(normal[2], -1.0, 1.0))))
+    surfaces = []
+    for k in np.argsort(-area):
+        if k == floor or area[k] < STAND_AREA:
+            continue
+        members = surf[lab == k]
+        h = float(np.median((vn.centroid[members] - centre) @ normal))
+        if h > MAX_SURFACE_HEIGHT or abs(h) <= PLANE_TOL:
+            continue
+        mx, my = np.median(vn.centroid[members, :2], axis=0) + ref[:2]
+        surfaces.append(Surface(h, float(area[k]), float(mx), float(my)))
     return Levelling(
         rotation=rotation,
         pivot=pivot,
-        target=np.array([xy[0], xy[1], 0.0]),
+        target=np.array([pivot[0], pivot[1], 0.0]),
         normal=normal,
         tilt_deg=tilt,
         floor_area=float(area[floor]),
         rms=rms,
+        surfaces=tuple(surfaces),
     )
+
+
+def check_upright(levelled: np.ndarray, up: str = "+z", source: str = "cloud") -> None:
+    """Refuse a levelled cloud (N, 3), floor at z = 0, with more points more than
+    :data:`BELOW_FLOOR` below its floor than above it: the floor found is the top of the cloud,
+    which is upside down (its up axis is the opposite of ``up``)."""
+    z = levelled[:, 2]
+    below = int(np.count_nonzero(z < -BELOW_FLOOR))
+    above = int(np.count_nonzero(z > BELOW_FLOOR))
+    if below > above:
+        flip = ("-" if up.startswith("+") or not up.startswith("-") else "+") + up.lstrip("+-")
+        n = len(z)
+        raise ScanError(
+            f"{source}: the floor found is above the cloud's contents ({100 * below / n:.0f} % "
+            f"of the points lie over {BELOW_FLOOR} m below it, {100 * above / n:.0f} % above): "
+            f"the cloud is upside down for --up={up}; pass --up={flip}"
+        )
 
 
 def _rotation_onto_z(n: np.ndarray) -> np.ndarray:

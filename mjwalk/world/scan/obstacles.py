@@ -4,7 +4,7 @@ On a grid of ``resolution`` metres over the floor:
 
 - floor cells hold points within :data:`FLOOR_TOL` of z = 0;
 - obstacle cells hold at least :data:`MIN_BAND_POINTS` points in the obstacle band (0.05-2.0 m
-  above the floor, as for MJCF scenes, :data:`mjwalk.world.workplace.OBSTACLE_Z_RANGE`); gaps
+  above the floor, as for MJCF scenes, :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`); gaps
   of one cell are closed, and regions the obstacles enclose with no floor seen inside (the
   inside of a cabinet taller than the scanner) become obstacle too. Structure above the band
   (pipework, lamps, the ceiling) is not an obstacle;
@@ -32,7 +32,7 @@ import numpy as np
 from scipy import ndimage
 
 from mjwalk._jit import njit
-from mjwalk.world.workplace import OBSTACLE_Z_RANGE
+from mjwalk.world.floor import OBSTACLE_Z_RANGE
 
 #: A floor point is within this height of z = 0 after levelling, metres: below the band's
 #: 0.05 m, and 6 sigma of a 5 mm range noise.
@@ -64,6 +64,8 @@ class FloorPlan:
         void: cells of the floor rectangle that are neither floor nor obstacle, bool.
         bounds: (xmin, ymin, xmax, ymax) of the floor rectangle, metres.
         holes_filled: number of unscanned holes counted as floor.
+        seen: floor cells holding floor points or closed between them (:data:`FLOOR_GAP`);
+            the rest of ``floor`` is unscanned holes counted as floor, bool.
     """
 
     x0: float
@@ -75,6 +77,7 @@ class FloorPlan:
     void: np.ndarray
     bounds: tuple[float, float, float, float]
     holes_filled: int
+    seen: np.ndarray | None = None
 
 
 @njit
@@ -182,6 +185,7 @@ def floor_plan(
     iy, ix = np.nonzero(floor)
     y0i, y1i, x0i, x1i = iy.min(), iy.max() + 1, ix.min(), ix.max() + 1
     floor = floor[y0i:y1i, x0i:x1i]
+    seen = (closed | seen_floor)[y0i:y1i, x0i:x1i] & floor  # floor points, gaps closed
     obst = obst[y0i:y1i, x0i:x1i]
     top_bin = top_bin[y0i:y1i, x0i:x1i]
     olab, n = ndimage.label(obst, square)
@@ -201,7 +205,7 @@ def floor_plan(
         x0 + floor.shape[1] * resolution - half,
         y0 + floor.shape[0] * resolution - half,
     )
-    return FloorPlan(x0, y0, resolution, floor, olab, tops, void, bounds, filled)
+    return FloorPlan(x0, y0, resolution, floor, olab, tops, void, bounds, filled, seen)
 
 
 def _hull_mask(mask: np.ndarray) -> np.ndarray:

@@ -20,13 +20,23 @@ import contextlib
 import ctypes
 import sys
 import types
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from mjwalk._jit import njit
 from mjwalk.errors import ScanError
+from mjwalk.world.scan.declared import (
+    Declared,
+    check_e57,
+    check_las,
+    check_pcd,
+    check_ply,
+    check_pts,
+    check_read_count,
+)
+from mjwalk.world.scan.limits import check_extent
 
 #: Length units accepted for ``units``: metres per unit.
 UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254, "ft": 0.3048}
@@ -56,8 +66,9 @@ MIN_HEIGHT_SPAN = 0.3
 class ScanCloud:
     """Points of a scan: ``points`` (N, 3) in metres, z up, in the file's frame otherwise.
 
-    ``points = scale * (axes @ file_point)``: ``scale`` metres per file unit (``units``) and
-    ``axes`` (3, 3) the rotation of the up axis ``up`` onto +z.
+    ``points = scale * (axes @ (file_point - offset))``: ``scale`` metres per file unit
+    (``units``), ``axes`` (3, 3) the rotation of the up axis ``up`` onto +z and ``offset`` (3,)
+    the point subtracted first (file units and axes; zeros unless given).
     """
 
     source: Path
@@ -66,6 +77,7 @@ class ScanCloud:
     up: str
     scale: float
     axes: np.ndarray
+    offset: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
 
 def _open3d():
@@ -153,8 +165,59 @@ def _sniff(path: Path, suffix: str) -> None:
             raise ScanError(f"{path}: not a text point cloud (rows of 'x y z ...' numbers)")
 
 
-def read_points_raw(path: Path) -> np.ndarray:
-    """The file's points (N, 3) as stored (float64, file units and axes), NaNs kept."""
+def _read_open3d(path: Path, suffix: str, drop_invalid: bool) -> np.ndarray:
+    """Points of a PLY, PCD, XYZ* or PTS file through Open3D, after the declared count is
+    checked against the file (:mod:`.declared`): Open3D pads a short file with uninitialised
+    memory and stops an ASCII PLY at the first value RPly cannot parse (nan, inf)."""
+    declared = None
+    if suffix == ".ply":
+        declared = check_ply(path)
+    elif suffix == ".pcd":
+        declared = check_pcd(path)
+    elif suffix == ".pts":
+        declared = check_pts(path)
+    if suffix == ".ply" and declared is not None and declared.first_bad_row is not None:
+        line = declared.header_lines + declared.first_bad_row + 1
+        if not drop_invalid:
+            raise ScanError(
+                f"{path}: vertex {declared.first_bad_row} (line {line}) holds a NaN or infinite "
+                "value (pass --drop-invalid, or drop_invalid=True, to leave such points out)"
+            )
+        return _ascii_ply_xyz(path, declared)
+    o3d = _open3d()
+    fmt = {**_OPEN3D, **_OPEN3D_PTS}[suffix]
+    cloud = o3d.io.read_point_cloud(
+        str(path), format=fmt, remove_nan_points=False, remove_infinite_points=False
+    )
+    pts = np.asarray(cloud.points, dtype=np.float64)
+    if declared is not None:
+        check_read_count(path, declared.count, len(pts))
+    return pts
+
+
+def _ascii_ply_xyz(path: Path, declared: Declared) -> np.ndarray:
+    """x, y, z of an ASCII PLY whose vertex rows hold nan/inf, read by NumPy (which parses
+    them; RPly does not). The vertex element must come first, as every point-cloud PLY has it."""
+    try:
+        cols = [declared.columns.index(c) for c in ("x", "y", "z")]
+    except ValueError:
+        raise ScanError(f"{path}: the PLY vertex has no x, y and z properties") from None
+    try:
+        return np.loadtxt(
+            path,
+            skiprows=declared.header_lines,
+            max_rows=declared.count,
+            usecols=cols,
+            comments=None,
+            ndmin=2,
+        )
+    except ValueError as exc:
+        raise ScanError(f"{path}: unreadable ASCII PLY vertex rows: {exc}") from exc
+
+
+def read_points_raw(path: Path, *, drop_invalid: bool = False) -> np.ndarray:
+    """The file's points (N, 3) as stored (float64, file units and axes), NaNs kept unless an
+    ASCII PLY holds them (read without them when ``drop_invalid``, else refused)."""
     suffix = path.suffix.lower()
     if suffix not in SUFFIXES:
         raise ScanError(
@@ -164,30 +227,29 @@ def read_points_raw(path: Path) -> np.ndarray:
         raise ScanError(f"{path}: scan file not found")
     _sniff(path, suffix)
     if suffix in _OPEN3D or suffix in _OPEN3D_PTS:
-        o3d = _open3d()
-        fmt = {**_OPEN3D, **_OPEN3D_PTS}[suffix]
-        cloud = o3d.io.read_point_cloud(
-            str(path), format=fmt, remove_nan_points=False, remove_infinite_points=False
-        )
-        return np.asarray(cloud.points, dtype=np.float64)
+        return _read_open3d(path, suffix, drop_invalid)
     if suffix in (".las", ".laz"):
         import laspy
 
+        declared = check_las(path)
         try:
             las = laspy.read(str(path))
-        except (laspy.errors.LaspyException, OSError, ValueError) as exc:
-            raise ScanError(f"{path}: unreadable LAS/LAZ file: {exc}") from exc
+        except Exception as exc:  # laspy's and lazrs' own error types, and numpy's
+            raise ScanError(
+                f"{path}: unreadable LAS/LAZ file (header declares {declared} points): {exc}"
+            ) from exc
+        check_read_count(path, declared, len(las.points))
         return np.column_stack([las.x, las.y, las.z]).astype(np.float64)
     import pye57
 
+    check_e57(path)
     try:
         e57 = pye57.E57(str(path))
         parts = []
         for i in range(e57.scan_count):
             scan = e57.read_scan(i, ignore_missing_fields=True, transform=True)
-            parts.append(
-                np.column_stack([scan["cartesianX"], scan["cartesianY"], scan["cartesianZ"]])
-            )
+            xyz = np.column_stack([scan["cartesianX"], scan["cartesianY"], scan["cartesianZ"]])
+            parts.append(xyz)
     except ScanError:
         raise
     except Exception as exc:  # pye57 raises libE57's own exception types
@@ -195,29 +257,46 @@ def read_points_raw(path: Path) -> np.ndarray:
     return np.vstack(parts) if parts else np.empty((0, 3))
 
 
+#: The height span a unit is judged by, metres: a workplace storey, about 3 m. Of the units
+#: that make a cloud's span plausible, the one bringing it nearest this (on a log scale) is named.
+TYPICAL_HEIGHT = 3.0
+
+
 def check_units(points: np.ndarray, units: str, source: Path | str) -> None:
     """Refuse a cloud whose height span (z, metres after ``units``) is implausible for an indoor
-    workplace, naming the units that would make it plausible."""
+    workplace, naming the units that make it plausible (the one nearest a 3 m storey first)."""
     if len(points) < 10:
         return
     lo, hi = np.percentile(points[:, 2], [0.5, 99.5])
     span = float(hi - lo)
     if MIN_HEIGHT_SPAN <= span <= MAX_HEIGHT_SPAN:
         return
-    per_unit = UNITS[units]
-    raw = span / per_unit
-    fits = [
-        f"{u} ({raw * f:.3g} m)"
-        for u, f in UNITS.items()
-        if MIN_HEIGHT_SPAN <= raw * f <= MAX_HEIGHT_SPAN and u != units
-    ]
-    hint = f"; as {' or '.join(fits)} it would fit: pass units=" if fits else ""
-    if fits:
-        hint += repr(fits[0].split()[0])
-    raise ScanError(
-        f"{source}: the cloud spans {raw:.4g} {units} = {span:.4g} m in height, not a plausible "
-        f"indoor scan in {units} ({MIN_HEIGHT_SPAN}-{MAX_HEIGHT_SPAN} m){hint}"
+    raw = span / UNITS[units]
+    fits = sorted(
+        (u for u, f in UNITS.items() if MIN_HEIGHT_SPAN <= raw * f <= MAX_HEIGHT_SPAN),
+        key=lambda u: abs(np.log(raw * UNITS[u] / TYPICAL_HEIGHT)),
     )
+    if span == 0.0:
+        why = "all points at one height: a flat or degenerate cloud, not a room"
+    elif fits:
+        u = fits[0]
+        why = f"in {u} it spans {raw * UNITS[u]:.3g} m: pass --units {u} (units={u!r} in Python)"
+    else:
+        why = "no length unit makes it a room"
+    raise ScanError(
+        f"{source}: the cloud spans {raw:.4g} {units} = {span:.4g} m in height (99 % of its "
+        f"points), not a plausible indoor scan ({MIN_HEIGHT_SPAN}-{MAX_HEIGHT_SPAN} m); {why}"
+    )
+
+
+def check_options(units: str, up: str, source: Path | str) -> str:
+    """Refuse unknown ``units`` or ``up`` naming the choices; returns the up axis's key."""
+    if units not in UNITS:
+        raise ScanError(f"{source}: unknown units {units!r} (--units one of {', '.join(UNITS)})")
+    key = up if up.startswith(("+", "-")) else f"+{up}"
+    if key.lower() not in UP_AXES:
+        raise ScanError(f"{source}: unknown up axis {up!r} (--up one of {', '.join(UP_AXES)})")
+    return key.lower()
 
 
 @njit
@@ -237,18 +316,17 @@ def to_metres_z_up(
     up: str = "+z",
     source: Path | str = "cloud",
     drop_invalid: bool = False,
+    offset: tuple[float, float, float] | np.ndarray | None = None,
 ) -> tuple[np.ndarray, float, np.ndarray]:
     """Validate raw points and convert them to metres, z up: (points, scale, axes).
 
-    NaN or infinite coordinates are an error unless ``drop_invalid`` (organised clouds mark
-    missing returns with NaN; say so explicitly to drop them).
+    ``offset`` (3,), in the file's units and axes, is subtracted first (a georeferenced
+    cloud beyond :data:`~mjwalk.world.scan.limits.MAX_COORDINATE`). NaN or infinite
+    coordinates are an error unless ``drop_invalid`` (organised clouds mark missing returns
+    with NaN; say so explicitly to drop them). The cloud's extent and coordinates are checked
+    (:func:`~mjwalk.world.scan.limits.check_extent`), after its height span (:func:`check_units`).
     """
-    if units not in UNITS:
-        raise ScanError(f"{source}: unknown units {units!r} (one of {', '.join(UNITS)})")
-    key = up if up.startswith(("+", "-")) else f"+{up}"
-    if key.lower() not in UP_AXES:
-        raise ScanError(f"{source}: unknown up axis {up!r} (one of {', '.join(UP_AXES)})")
-    key = key.lower()
+    key = check_options(units, up, source)
     raw = np.asarray(raw, dtype=np.float64)
     if raw.ndim != 2 or raw.shape[1] != 3:
         raise ScanError(f"{source}: points must be an (N, 3) array, got shape {raw.shape}")
@@ -265,27 +343,45 @@ def to_metres_z_up(
         raw = raw[finite]
         if len(raw) == 0:
             raise ScanError(f"{source}: every point has NaN or infinite coordinates")
+    if offset is not None:
+        off = np.asarray(offset, dtype=np.float64)
+        if off.shape != (3,) or not np.isfinite(off).all():
+            raise ScanError(
+                f"{source}: offset must be 3 finite numbers (file units), got {offset!r}"
+            )
+        raw = raw - off
     scale = UNITS[units]
     axes = UP_AXES[key]
     pts = raw @ (axes.T * scale) if key != "+z" or scale != 1.0 else raw
-    check_units(pts, units, source)
+    check_units(pts, units, source)  # first: a cloud in mm is also "too large"
+    check_extent(pts, source, scale=scale, axes=axes)
     return pts, scale, axes
 
 
 def read_scan(
-    path: str | Path, *, units: str = "m", up: str = "+z", drop_invalid: bool = False
+    path: str | Path,
+    *,
+    units: str = "m",
+    up: str = "+z",
+    drop_invalid: bool = False,
+    offset: tuple[float, float, float] | np.ndarray | None = None,
 ) -> ScanCloud:
-    """Read a scan file into metres, z up. See the module docstring for formats and options.
+    """Read a scan file into metres, z up. See the module docstring for formats and options;
+    ``offset`` (file units and axes) is subtracted from every point first.
 
     Raises:
-        ScanError: unknown suffix, missing file, a file not of its format, no points, NaN
-            points (unless ``drop_invalid``), implausible units, unknown units or up axis.
+        ScanError: unknown suffix, missing file, a file not of its format, a header declaring
+            more points than the file holds, no points, NaN points (unless ``drop_invalid``),
+            stray points or coordinates beyond range, implausible units, unknown units or up
+            axis.
     """
     path = Path(path)
-    raw = read_points_raw(path)
+    check_options(units, up, path)
     if path.suffix.lower() == ".e57" and units != "m":
-        raise ScanError(f"{path}: E57 coordinates are metres by the standard; units={units!r}")
+        raise ScanError(f"{path}: E57 coordinates are metres by the standard; --units {units}")
+    raw = read_points_raw(path, drop_invalid=drop_invalid)
     pts, scale, axes = to_metres_z_up(
-        raw, units=units, up=up, source=path, drop_invalid=drop_invalid
+        raw, units=units, up=up, source=path, drop_invalid=drop_invalid, offset=offset
     )
-    return ScanCloud(path, pts, units, up, scale, axes)
+    off = np.zeros(3) if offset is None else np.asarray(offset, dtype=np.float64)
+    return ScanCloud(path, pts, units, up, scale, axes, off)

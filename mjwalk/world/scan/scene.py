@@ -21,19 +21,23 @@ from __future__ import annotations
 
 import time
 import tomllib
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import mujoco
 import numpy as np
 
-from mjwalk._io import atomic_path
+from mjwalk._args import check_output_file
+from mjwalk._io import atomic_path, read_toml
 from mjwalk.errors import ScanError
-from mjwalk.world.scan.level import Levelling, find_floor
+from mjwalk.world.floor import OBSTACLE_Z_RANGE
+from mjwalk.world.scan.level import Levelling, check_upright, find_floor
+from mjwalk.world.scan.limits import check_plan_size, check_resolution
+from mjwalk.world.scan.merge import merge_scans, read_poses
 from mjwalk.world.scan.obstacles import FloorPlan, floor_plan, rectangles
-from mjwalk.world.scan.read import read_scan, to_metres_z_up
-from mjwalk.world.workplace import OBSTACLE_Z_RANGE
+from mjwalk.world.scan.read import check_options, to_metres_z_up
+from mjwalk.world.scan.voids import apply_policy, check_policy
 
 #: Sites are written this far above the floor (a stand site on the floor, as in the shipped
 #: scenes: ``mjwalk.plot`` draws sites below 0.05 m as stand positions).
@@ -70,11 +74,9 @@ class _Site:
 def read_sites(path: str | Path) -> list[_Site]:
     """Parse a sites TOML (format in the module docstring). Raises ScanError naming the key."""
     path = Path(path)
-    try:
-        doc = tomllib.loads(path.read_text())
-    except FileNotFoundError:
-        raise ScanError(f"{path}: sites file not found") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as exc:
+    try:  # missing, oversized, non-UTF-8 or too deeply nested: ScanError naming the key
+        doc, _ = read_toml(path, "sites", ScanError)
+    except tomllib.TOMLDecodeError as exc:
         raise ScanError(f"{path}: not a valid TOML sites file: {exc}") from exc
     extra = set(doc) - {"site"}
     if extra:
@@ -106,9 +108,15 @@ def read_sites(path: str | Path) -> list[_Site]:
     return out
 
 
-def _matrix(levelling: Levelling, scale: float, axes: np.ndarray) -> np.ndarray:
+def _matrix(
+    levelling: Levelling, scale: float, axes: np.ndarray, offset: np.ndarray | None = None
+) -> np.ndarray:
+    """Scan-file point -> scene: subtract ``offset`` (file units), scale, turn the up axis
+    onto +z, level."""
     pre = np.eye(4)
     pre[:3, :3] = scale * axes
+    if offset is not None:
+        pre[:3, 3] = -(scale * axes) @ np.asarray(offset, dtype=np.float64)
     return levelling.matrix @ pre
 
 
@@ -225,38 +233,50 @@ def build_scene(
     sites: list[_Site] | None = None,
     source: str = "cloud",
     model_name: str = "scan",
+    offset: tuple[float, float, float] | np.ndarray | None = None,
+    voids: str = "blocked",
     _read: tuple[np.ndarray, float, np.ndarray] | None = None,
     clock: Callable[[], float] = time.perf_counter,
 ) -> ScanScene:
-    """Make the MJCF scene of a point cloud ``points`` (N, 3) in the file's units and axes.
+    """Make the MJCF scene of a point cloud ``points`` (N, 3) in the file's units and axes
+    (``offset``, file units, subtracted first). ``voids`` is the unseen-floor policy
+    (:mod:`~mjwalk.world.scan.voids`: blocked, fill, free).
 
     Everything is checked, and the MJCF compiled by MuJoCo, before anything is written.
 
     Raises:
-        ScanError: empty cloud, NaN points, implausible units, no floor, sites off the floor.
+        ScanError: empty cloud, NaN points, stray points or coordinates beyond range,
+            implausible units, resolution out of range, a floor plan too large, no floor, an
+            upside-down cloud, sites off the floor.
     """
     timings: dict[str, float] = {}
+    resolution = check_resolution(resolution)
+    check_policy(voids)
     t = clock()
     if _read is None:
+        check_options(units, up, source)
         pts, scale, axes = to_metres_z_up(
-            points, units=units, up=up, source=source, drop_invalid=drop_invalid
+            points, units=units, up=up, source=source, drop_invalid=drop_invalid, offset=offset
         )
         timings["validate"] = clock() - t
         t = clock()
     else:
         pts, scale, axes = _read
+    check_plan_size(pts, resolution, source)
     levelling = find_floor(pts, source=source)
     timings["floor"] = clock() - t
     t = clock()
     levelled = levelling.apply(pts)
+    check_upright(levelled, up, source)
     timings["level"] = clock() - t
     t = clock()
     plan = floor_plan(levelled, resolution=resolution)
     if plan is None or not plan.floor.any():
         raise ScanError(f"{source}: no floor found after levelling (no points at z = 0)")
+    plan = apply_policy(plan, voids)
     timings["floor plan"] = clock() - t
     t = clock()
-    matrix = _matrix(levelling, scale, axes)
+    matrix = _matrix(levelling, scale, axes, None if offset is None else np.asarray(offset))
     site_xyyaw: dict[str, tuple[float, float, float]] = {}
     for s in sites or []:
         if s.xy is not None:
@@ -284,7 +304,7 @@ def build_scene(
         f"  {_fmt(matrix[2])}\n  {_fmt(matrix[3])}\n"
         f"Obstacles: points {OBSTACLE_Z_RANGE[0]}-{OBSTACLE_Z_RANGE[1]} m above the floor, "
         f"{n_obst} boxes on a {resolution} m grid; voids (unscanned or no floor): {n_void} boxes "
-        f"(group 3); {plan.holes_filled} small unscanned holes counted as floor."
+        f"(group 3, policy {voids}); {plan.holes_filled} small unscanned holes counted as floor."
     )
     xml = _mjcf(plan, boxes, site_xyyaw, header, matrix, model_name)
     try:
@@ -296,7 +316,9 @@ def build_scene(
 
 
 def write_scene(scene: ScanScene, output: str | Path) -> Path:
-    """Write the scene's MJCF atomically (temporary file, then rename)."""
+    """Write the scene's MJCF atomically (temporary file, then rename). A failed write (full
+    disk, file-size limit, permissions) is a WriteError naming the file (:func:`atomic_path`);
+    nothing is left."""
     output = Path(output)
     with atomic_path(output) as tmp:
         tmp.write_text(scene.xml)
@@ -304,7 +326,7 @@ def write_scene(scene: ScanScene, output: str | Path) -> Path:
 
 
 def scan_to_scene(
-    scan: str | Path,
+    scan: str | Path | Sequence[str | Path],
     output: str | Path,
     *,
     units: str = "m",
@@ -312,24 +334,43 @@ def scan_to_scene(
     drop_invalid: bool = False,
     resolution: float = 0.02,
     sites: str | Path | None = None,
+    offset: tuple[float, float, float] | np.ndarray | None = None,
+    poses: str | Path | dict[Path, np.ndarray] | None = None,
+    voids: str = "blocked",
 ) -> ScanScene:
-    """Read a scan file and write its MJCF scene to ``output``; returns the :class:`ScanScene`.
+    """Read a scan file, or several of one hall (merged in the first file's frame,
+    :func:`~mjwalk.world.scan.merge.merge_scans`; ``poses`` a JSON file or a dict of 4 x 4
+    poses per file), and write its MJCF scene to ``output``; returns the :class:`ScanScene`
+    (its ``matrix`` maps the first file's points to the scene).
 
-    The sites file is read and every input checked before any work; nothing is written unless
-    the whole pipeline succeeded.
+    The output path, the options, the poses and the sites file are checked before any work;
+    nothing is written unless the whole pipeline succeeded.
     """
-    scan = Path(scan)
+    scans = [Path(scan)] if isinstance(scan, str | Path) else [Path(s) for s in scan]
+    check_output_file(output, "output")
+    resolution = check_resolution(resolution)
+    check_policy(voids)
+    check_options(units, up, scans[0] if scans else "scan")
+    if isinstance(poses, str | Path):
+        poses = read_poses(poses, scans)
     site_list = read_sites(sites) if sites is not None else None
     t = time.perf_counter()
-    cloud = read_scan(scan, units=units, up=up, drop_invalid=drop_invalid)
+    merged = merge_scans(
+        scans, units=units, up=up, drop_invalid=drop_invalid, offset=offset, poses=poses
+    )
     t_read = time.perf_counter() - t
+    first = merged.first
+    name = str(scans[0]) if len(scans) == 1 else f"{scans[0]} and {len(scans) - 1} more scans"
     scene = build_scene(
-        cloud.points,
-        source=str(scan),
+        merged.points,
+        source=name,
         resolution=resolution,
         sites=site_list,
-        model_name=scan.stem,
-        _read=(cloud.points, cloud.scale, cloud.axes),
+        model_name=scans[0].stem,
+        up=up,
+        offset=first.offset,
+        voids=voids,
+        _read=(merged.points, first.scale, first.axes),
     )
     scene.timings = {"read": t_read, **scene.timings}
     t = time.perf_counter()

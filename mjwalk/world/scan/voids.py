@@ -1,0 +1,133 @@
+"""Unseen floor as a policy the user chooses, reported in figures and a top-view picture.
+
+A scanner sees no floor behind furniture, under itself, or beyond the last station; the floor
+plan (:mod:`.obstacles`) counts small holes as floor and makes the rest *void*: a box the
+planner walks around. ``--voids`` chooses what void means:
+
+- ``blocked`` (the default): nobody walks where no floor was seen. An unseen region can hide
+  an obstacle (a pallet, a step down) that no point shows, so a plan through it is a guess;
+  the remedy is more stations (``mjwalk scan A B C``), not trust.
+- ``fill``: a void enclosed by the walkable floor and obstacles (touching no edge of the floor
+  rectangle) whose inscribed radius is at most :data:`FILL_RADIUS` is floor; larger ones stay
+  blocked.
+- ``free``: all unseen floor inside the floor rectangle is walkable.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+from scipy import ndimage
+
+from mjwalk.errors import ScanError
+from mjwalk.world.scan.obstacles import HOLE_RADIUS, FloorPlan
+
+#: The choices of ``--voids``.
+POLICIES = ("blocked", "fill", "free")
+#: ``fill`` makes enclosed voids up to this inscribed radius walkable, metres: twice the blind
+#: disc under a tripod scanner (:data:`~mjwalk.world.scan.obstacles.HOLE_RADIUS`, always floor),
+#: the shadow a bench-height occluder casts on the floor a few metres from the scanner.
+FILL_RADIUS = 2 * HOLE_RADIUS
+
+
+@dataclass(frozen=True)
+class FloorCover:
+    """Floor areas of a plan, square metres: ``seen`` (floor points), ``unseen_walkable``
+    (holes and voids counted as floor), ``blocked`` (void boxes), ``obstacles``."""
+
+    seen: float
+    unseen_walkable: float
+    blocked: float
+    obstacles: float
+
+    def line(self) -> str:
+        return (
+            f"floor seen {self.seen:.1f} m², unseen but walkable {self.unseen_walkable:.1f} m², "
+            f"unseen and blocked (void boxes) {self.blocked:.1f} m², obstacles "
+            f"{self.obstacles:.1f} m²"
+        )
+
+
+def check_policy(policy: str) -> str:
+    if policy not in POLICIES:
+        raise ScanError(f"unknown --voids {policy!r} (one of {', '.join(POLICIES)})")
+    return policy
+
+
+def apply_policy(plan: FloorPlan, policy: str) -> FloorPlan:
+    """The plan with its voids walkable as ``policy`` says (see the module docstring)."""
+    check_policy(policy)
+    if policy == "blocked" or not plan.void.any():
+        return plan
+    walk = plan.void.copy()
+    if policy == "fill":
+        lab, n = ndimage.label(plan.void, np.ones((3, 3), bool))
+        edge = np.unique(np.concatenate([lab[0], lab[-1], lab[:, 0], lab[:, -1]]))
+        radius = ndimage.distance_transform_edt(np.pad(plan.void, 1))[1:-1, 1:-1]
+        inscribed = np.asarray(ndimage.maximum(radius, lab, np.arange(1, n + 1))) * plan.resolution
+        ok = (inscribed <= FILL_RADIUS) & ~np.isin(np.arange(1, n + 1), edge)
+        walk = np.isin(lab, np.flatnonzero(ok) + 1)
+    return dataclasses.replace(plan, floor=plan.floor | walk, void=plan.void & ~walk)
+
+
+def cover(plan: FloorPlan) -> FloorCover:
+    """The areas of :class:`FloorCover` for ``plan``."""
+    a = plan.resolution**2
+    seen = plan.seen if plan.seen is not None else plan.floor
+    return FloorCover(
+        float(seen.sum() * a),
+        float((plan.floor & ~seen).sum() * a),
+        float(plan.void.sum() * a),
+        float((plan.obstacles > 0).sum() * a),
+    )
+
+
+def save_top_view(plan: FloorPlan, path: str | Path, title: str = "") -> Path:
+    """A top view of the plan (floor seen, unseen but walkable, obstacles, voids) as an
+    image, written atomically; a failed write is a WriteError naming the file."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import ListedColormap
+    from matplotlib.patches import Patch
+
+    from mjwalk._io import atomic_path
+
+    seen = plan.seen if plan.seen is not None else plan.floor
+    kind = np.where(seen, 0, np.where(plan.floor, 1, np.where(plan.obstacles > 0, 2, 3)))
+    colours = ["#d9d9d4", "#f2d675", "#6b645a", "#c0392b"]
+    names = ["floor seen", "unseen, walkable", "obstacle", "void (unseen, blocked)"]
+    ny, nx = kind.shape
+    r = plan.resolution
+    extent = (plan.x0, plan.x0 + nx * r, plan.y0, plan.y0 + ny * r)
+    fig, ax = plt.subplots(figsize=(8, 8 * ny / max(nx, 1) + 0.8))
+    ax.imshow(
+        kind,
+        origin="lower",
+        extent=extent,
+        cmap=ListedColormap(colours),
+        vmin=0,
+        vmax=3,
+        interpolation="nearest",
+    )
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_aspect("equal")
+    c = cover(plan)
+    ax.set_title(title or c.line(), fontsize=8)
+    ax.legend(
+        handles=[Patch(color=k, label=n) for k, n in zip(colours, names, strict=True)],
+        loc="upper right",
+        fontsize=7,
+    )
+    path = Path(path)
+    try:
+        with atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=120, bbox_inches="tight")
+    finally:
+        plt.close(fig)
+    return path

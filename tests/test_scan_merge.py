@@ -1,0 +1,141 @@
+"""Several scans of one hall in one scene (issue 40, deliverable 1 without registration):
+stations ray-cast separately from the shipped station, written as separate files, merged as
+already registered or placed by known poses."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from test_scan import STATION_SCANNERS, _write_format
+
+from mjwalk import cli
+from mjwalk.errors import ScanError
+from mjwalk.world.scan import build_scene, merge_scans, scan_to_scene
+
+
+@pytest.fixture(scope="module")
+def stations(scenes_dir):
+    """The four stations' clouds of the station (0.5° rays, 5 mm noise) in one frame, tilted
+    1.5° and lifted as a registered survey arrives, and that merged cloud."""
+    from mjwalk.world.scan.synthetic import synthetic_scan
+    from mjwalk.world.workplace import load_model
+
+    model = load_model(scenes_dir / "assembly_station.xml")
+    parts = [
+        synthetic_scan(model, [s], step_deg=0.5, seed=i).points
+        for i, s in enumerate(STATION_SCANNERS)
+    ]
+    return parts
+
+
+def _rigid(yaw_deg: float, t) -> np.ndarray:
+    a = np.radians(yaw_deg)
+    m = np.eye(4)
+    m[:3, :3] = [[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1]]
+    m[:3, 3] = t
+    return m
+
+
+def test_registered_scans_merge_into_the_scene_of_their_union(stations, tmp_path):
+    files = [_write_format(tmp_path / f"st{i}.ply", p) for i, p in enumerate(stations)]
+    scene = scan_to_scene(files, tmp_path / "hall.xml")
+    whole = build_scene(np.vstack(stations), source="union")
+    assert scene.n_points == sum(len(p) for p in stations)
+    assert scene.levelling.tilt_deg == pytest.approx(whole.levelling.tilt_deg, abs=1e-3)
+    assert scene.plan.obstacles.shape == whole.plan.obstacles.shape
+    same = (scene.plan.obstacles > 0) == (whole.plan.obstacles > 0)
+    assert same.mean() > 0.999
+    # one station alone leaves more of the floor unseen than the four merged
+    alone = build_scene(stations[0], source="one")
+    assert alone.plan.void.sum() > scene.plan.void.sum()
+
+
+def test_known_poses_place_unregistered_scans(stations, tmp_path, capsys):
+    moves = [
+        np.eye(4),
+        _rigid(25, [1.2, -0.7, 0.1]),
+        _rigid(-140, [3, 2, 0]),
+        _rigid(90, [0, 5, 0]),
+    ]
+    files, poses = [], {}
+    for i, (p, m) in enumerate(zip(stations, moves, strict=True)):
+        moved = p @ m[:3, :3].T + m[:3, 3]  # what station i's own frame holds
+        files.append(_write_format(tmp_path / f"st{i}.ply", moved))
+        if i:
+            poses[f"st{i}.ply"] = np.linalg.inv(m).tolist()
+    (tmp_path / "poses.json").write_text(json.dumps(poses))
+    out = tmp_path / "hall.xml"
+    argv = ["scan", *map(str, files), "-o", str(out), "--poses", str(tmp_path / "poses.json")]
+    assert cli.main(argv) == 0
+    assert "obstacle boxes" in capsys.readouterr().out
+    merged = merge_scans(
+        files, poses={f: np.linalg.inv(m) for f, m in zip(files, moves, strict=True)}
+    )
+    assert np.allclose(merged.points, np.vstack(stations), atol=2e-4)  # float32 PLY
+
+
+@pytest.mark.parametrize(
+    ("poses", "match"),
+    [
+        ({"other.ply": np.eye(4).tolist()}, "not a scan given"),
+        ({"b.xyz": (2 * np.eye(4)).tolist()}, "not a rigid pose"),
+        ({"b.xyz": [[1, 0, 0], [0, 1, 0]]}, "4 x 4 matrix"),
+        ([1, 2], "JSON object"),
+    ],
+    ids=["unknown-scan", "scaled", "shape", "list"],
+)
+def test_bad_poses_are_refused_before_reading(tmp_path, capsys, monkeypatch, poses, match):
+    def fail(*args, **kwargs):
+        raise AssertionError("a scan was read before the poses were checked")
+
+    monkeypatch.setattr("mjwalk.world.scan.merge.read_scan", fail)
+    for n in ("a.xyz", "b.xyz"):
+        (tmp_path / n).write_text("0 0 0\n1 1 1\n2 2 2\n")
+    (tmp_path / "p.json").write_text(json.dumps(poses))
+    before = set(tmp_path.iterdir())
+    code = cli.main(
+        [
+            "scan",
+            str(tmp_path / "a.xyz"),
+            str(tmp_path / "b.xyz"),
+            "-o",
+            str(tmp_path / "s.xml"),
+            "--poses",
+            str(tmp_path / "p.json"),
+        ]
+    )
+    err = capsys.readouterr().err
+    assert code == 2 and match in err and "Traceback" not in err
+    assert set(tmp_path.iterdir()) == before
+
+
+def test_the_same_scan_twice_is_refused(tmp_path):
+    (tmp_path / "a.xyz").write_text("0 0 0\n")
+    with pytest.raises(ScanError, match="given twice"):
+        merge_scans([tmp_path / "a.xyz", tmp_path / "a.xyz"])
+
+
+def test_shared_room_scan_split_in_two_views_with_poses(shared_data, tmp_path):
+    """The PCL room scan (one station) split by azimuth into two views overlapping by 60°,
+    the second moved by a known pose into a frame of its own, written as two PCDs: merged with
+    --poses it gives the scene of the whole scan, box for box."""
+    from mjwalk.world.scan import read_scan
+
+    src = shared_data / "scans" / "pcl-room-scan" / "room_scan1.pcd"
+    pts = read_scan(src).points
+    az = np.degrees(np.arctan2(pts[:, 1], pts[:, 0])) % 360
+    a, b = pts[az < 210], pts[az >= 150]
+    move = _rigid(25, [1.2, -0.7, 0.1])
+    files = [
+        _write_format(tmp_path / "a.pcd", a),
+        _write_format(tmp_path / "b.pcd", b @ move[:3, :3].T + move[:3, 3]),
+    ]
+    (tmp_path / "poses.json").write_text(json.dumps({"b.pcd": np.linalg.inv(move).tolist()}))
+    merged = scan_to_scene(files, tmp_path / "room.xml", poses=tmp_path / "poses.json")
+    whole = build_scene(np.vstack([a, b]), source="whole")
+    assert merged.levelling.tilt_deg == pytest.approx(whole.levelling.tilt_deg, abs=0.01)
+    assert merged.n_obstacle_boxes == pytest.approx(whole.n_obstacle_boxes, rel=0.02)
+    one_view = build_scene(a, source="one view")
+    assert one_view.plan.void.sum() > merged.plan.void.sum()
