@@ -59,7 +59,7 @@ def path_deviation(ctx, q0: np.ndarray, side: str, directions: np.ndarray) -> tu
     for row, p in zip(rows, plan, strict=True):
         data.qpos[:] = row
         mujoco.mj_kinematics(m, data)
-        tip = reaching._hand_tip(data, m, jm, side, lengths[2] / scale)
+        tip = reaching.hand_tip(data, m, jm, side, lengths[2] / scale)
         worst = max(worst, float(np.linalg.norm(frame.T @ (tip - shoulder) - p)))
     return worst, clipped
 
@@ -77,7 +77,7 @@ def main(argv=None) -> int:
     except MjwalkError as exc:
         print(f"bench_arm_fidelity: error: {exc}", file=sys.stderr)
         return 2
-    real = reaching._reach_frames
+    real = reaching.reach_frames
     seen: list[tuple[float, list]] = []
 
     def spy(op, q0, target_w, approach_w, hold, fps, side="left", timing=None, face=None, **kw):
@@ -86,7 +86,7 @@ def main(argv=None) -> int:
             seen.append(path_deviation(op, q0, side, out[2].directions))
         return out
 
-    reaching._reach_frames = spy
+    reaching.reach_frames = spy
     at_limit: Counter = Counter()
     frames = 0
     errors = []
@@ -108,7 +108,7 @@ def main(argv=None) -> int:
                     a, b = jm.limits(name)
                     at_limit[joint] += int(np.sum((v <= a + 1e-6) | (v >= b - 1e-6)))
     finally:
-        reaching._reach_frames = real
+        reaching.reach_frames = real
     dev = np.array([d for d, _ in seen]) * 1000
     clipped = Counter(c for _, cs in seen for c in cs)
     print(f"{Path(args.cycle).name}, seeds 0-{args.seeds - 1}: {len(seen)} reaches")

@@ -10,7 +10,7 @@ For every clip (``bandai-raise-hand``, left and right arm; README in the shared 
   the clip's score is the movement's peak;
 * reproduction: the station cycle's humanoid (1.75 m, standing, arms hanging: the clips' start
   posture) reaches with the same arm, through the cycle's own reach
-  (:func:`mjwalk.cycle.reaching._reach_frames`: the default PCA + DCS reach model and its
+  (:func:`mjwalk.cycle.reaching.reach_frames`: the default PCA + DCS reach model and its
   approach), for the clip's end hand position: the hand's end relative to the shoulder in the
   body frame of the clip's first frame, scaled by the humanoid's arm length over the clip's
   (geometric similarity, as mjwalk scales reach targets); scored the same way, joint positions
@@ -95,13 +95,13 @@ def reproduce(ctx, side: str, end_body: np.ndarray, clip_len: float) -> tuple[in
     import mujoco
 
     from mjwalk.arms.kinematics import arm_segment_lengths
-    from mjwalk.cycle.poses import _standing
-    from mjwalk.cycle.reaching import _reach_frames
+    from mjwalk.cycle.poses import standing_pose
+    from mjwalk.cycle.reaching import reach_frames
     from mjwalk.ergonomics import rula
     from mjwalk.ergonomics.angles import angles_from_qpos
 
     m, jm = ctx.model, ctx.jointmap
-    q0 = _standing(ctx, 0.0, 0.0, 0.0)  # facing +x: body frame = world axes
+    q0 = standing_pose(ctx, 0.0, 0.0, 0.0)  # facing +x: body frame = world axes
     data = mujoco.MjData(m)
     data.qpos[:] = q0
     mujoco.mj_kinematics(m, data)
@@ -109,7 +109,7 @@ def reproduce(ctx, side: str, end_body: np.ndarray, clip_len: float) -> tuple[in
     shoulder = data.xpos[m.body(f"{jm.prefix}upper_arm_{tag}").id].copy()
     scale = arm_segment_lengths(ctx.spec.stature).sum() / clip_len
     target = shoulder + end_body * scale
-    frames = _reach_frames(ctx, q0, target, np.array([0.0, 0.0, -0.05]), 0.2, 30.0, side)[0]
+    frames = reach_frames(ctx, q0, target, np.array([0.0, 0.0, -0.05]), 0.2, 30.0, side)[0]
     ang = angles_from_qpos(m, jm, frames)
     ang.wrist_flexion[:] = 0.0  # the capture has no hand orientation: score both alike
     ang.wrist_deviation[:] = 0.0

@@ -24,7 +24,7 @@ pallet ended 332 mm short and a one-handed pick 1.95 m up 1.3 m off, neither war
 Later on 2026-11-28, two-handed picks from a shelf: the hands lie on the box's
 sides pointing along their approach (in and down over the board's edge), turned to it on the
 way to the pre-grasp point, and a box lifted off a board is pulled back clear of its edge
-before it is lowered (``mjwalk.cycle.reaching._held_move``). Both hands at 1.55 m: 48 -> 0
+before it is lowered (``mjwalk.cycle.holding._held_move``). Both hands at 1.55 m: 48 -> 0
 contact frames, 3.77 -> 3.97 s; 1.85 m: 118 -> 0, 8.70 -> 4.50 s (the long pick was the hands
 turning from the reach model's upward direction onto the grips: a long path of the hand);
 1.95 m: 385 -> 8; 2.05 m: on the grips (95 mm short before), 455 contact frames, 10.5 s (a

@@ -115,7 +115,7 @@ Few clips: 13 left raises (the first 7 masculine and 6 youthful clips, a folder 
 2026-11-27): leave-one-style-out trains on 6-7 clips of one style, and the linear maps (global
 trend, local slopes: 9 coefficients per output each) were set by a handful of samples and
 ran off for the other style: DCS 31.33 deg, trend only 39.65, mean only 19.35. Fitted only
-from ten samples per input column on (``mjwalk.arms.dcs.SAMPLES_PER_COEFFICIENT``; the full
+from ten samples per input column on (``mjwalk.arms.dcsfit.SAMPLES_PER_COEFFICIENT``; the full
 sets train on 178-231 clips, 90 needed, so the tables above do not change): DCS 20.90, trend
 only 20.89; 10-fold CV 6.51 -> 5.78 (kNN 5.88, GPR 7.93).
 Right arm at other folds and seeds (``--side right --seed 20`` / ``30``, DCS and kNN rows):
@@ -207,7 +207,8 @@ from mjwalk.arms.armcapture import N_SAMPLES, ArmMovements, arm_movements
 from mjwalk.arms.armrep import (
     trajectory_error,
 )
-from mjwalk.arms.dcs import DCSNetwork, input_scale
+from mjwalk.arms.dcs import DCSNetwork
+from mjwalk.arms.dcsfit import input_scale
 from mjwalk.arms.reach import ReachModel, end_effector
 from mjwalk.arms.reachdefault import CAPTURE_DCS, DEFAULT_DCS
 from mjwalk.errors import MjwalkError
@@ -303,7 +304,7 @@ def load_raise_hand(
 
 class DCSScaler(StandardScaler):
     """StandardScaler dividing by the DCS's own input scale for ``scaling``
-    (:func:`mjwalk.arms.dcs.input_scale`), so kNN sees the distances the DCS sees."""
+    (:func:`mjwalk.arms.dcsfit.input_scale`), so kNN sees the distances the DCS sees."""
 
     def __init__(self, scaling: str = "global"):
         super().__init__()

@@ -76,7 +76,7 @@ def run_setup(sizes: list[float]) -> None:
     print("(a) workplace setup: footprints, clearance + walk field, 8- and 16-move grids")
     print(f"{'hall':>8} {'obstacles':>9} {'nodes':>11} {'mode':>7} {'seconds':>8} {'peak MB':>8}")
     with tempfile.TemporaryDirectory() as cache:
-        env = {**__import__("os").environ, "MJWALK_CACHE_DIR": cache}
+        env = {**__import__("os").environ, "MJWALK_CACHE": cache}  # workplaces in cache/workplaces
         for size in sizes:
             modes = ["cold", "store", "warm"] + (["before"] if size <= 10 else [])
             res = {}

@@ -244,9 +244,10 @@ def cycle_populations(runs: int, seed: int = 0) -> None:
 
 def straight_walks(data: Path, reps: int = 10, seed: int = 0) -> None:
     from mjwalk.gait.default import default_model
-    from mjwalk.gait.fidelity import captured_straight_walks, load_capture, model_straight_walks
+    from mjwalk.gait.fidelity import load_capture
     from mjwalk.gait.pace import capture_pace
     from mjwalk.gait.segment import segment_takes
+    from mjwalk.gait.straight import captured_straight_walks, model_straight_walks
     from mjwalk.gait.walker import Walker
     from mjwalk.plan.straight import planned_straight_walks
 
@@ -346,13 +347,13 @@ def _walk_parts(cw: list, mw: list, steps: list) -> dict[str, list]:
     """Per walk, capture and model: speed (distance / time), mean steady step length and
     duration, and the largest lateral distance (m) from the line through the walk's start and
     end."""
-    from mjwalk.gait.fidelity import _compose, straight_runs
+    from mjwalk.gait.straight import compose, straight_runs
 
     out: dict[str, list] = defaultdict(list)
     for run, w in zip(straight_runs(steps), cw, strict=True):
         pos, phi, path = np.zeros(2), 0.0, [np.zeros(2)]
         for s in run:
-            pos, phi = _compose(pos, phi, s.pelvis[-1], s.end_yaw)
+            pos, phi = compose(pos, phi, s.pelvis[-1], s.end_yaw)
             path.append(pos)
         p = np.array(path)
         u = p[-1] / np.hypot(*p[-1])

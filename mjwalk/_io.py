@@ -1,4 +1,5 @@
-"""Small I/O helpers shared by every module that writes files."""
+"""Small I/O helpers shared by every module that writes files: atomic writes, versioned
+``.npz`` files, and the cache root."""
 
 from __future__ import annotations
 
@@ -8,6 +9,17 @@ import re
 import tempfile
 from collections.abc import Iterator
 from pathlib import Path
+
+#: The environment variable naming the root of every cache mjwalk keeps (trained default models,
+#: workplace arrays under ``workplaces/``); unset: ``~/.cache/mjwalk``.
+CACHE_ENV = "MJWALK_CACHE"
+
+
+def cache_root() -> Path:
+    """The root of mjwalk's caches: ``$MJWALK_CACHE`` (``~`` expanded) or ``~/.cache/mjwalk``.
+    Deleting it is always safe: its files are rebuilt on first use."""
+    env = os.environ.get(CACHE_ENV)
+    return Path(env).expanduser() if env else Path.home() / ".cache" / "mjwalk"
 
 
 @contextlib.contextmanager

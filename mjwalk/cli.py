@@ -275,6 +275,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         first = next(r for r in results if r.error is None)  # report_dict: at least one
         run0 = _replay(ctx, args.seed, first.run)
         video = args.out / "cycle.mp4"
+        assert run0.timeline is not None  # keep_timeline=True
         render_video(
             run0.timeline,
             video,

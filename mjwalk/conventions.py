@@ -46,6 +46,6 @@ def side_of_prefix(prefix: str) -> Side:
     raise ValueError(f"side prefix must be 'l' or 'r', got {prefix!r}")
 
 
-def other_side(side: Side) -> Side:
-    """The opposite side: ``"left"`` <-> ``"right"``."""
+def other_side(side: str) -> Side:
+    """The opposite side: ``"left"`` <-> ``"right"`` (any other value: ``"left"``)."""
     return "right" if side == "left" else "left"

@@ -31,14 +31,6 @@ def arm_segment_lengths(stature: float = DEFAULT_STATURE, with_hand: bool = True
     return stature * np.asarray(shares)
 
 
-def chain_points(directions: np.ndarray, lengths: np.ndarray) -> np.ndarray:
-    """Joint positions (..., S+1, 3) from the shoulder (origin) along unit segment
-    ``directions`` (..., S, 3) with ``lengths`` (S,) metres."""
-    seg = directions * np.asarray(lengths)[:, None]
-    zero = np.zeros((*directions.shape[:-2], 1, 3))
-    return np.concatenate([zero, np.cumsum(seg, axis=-2)], axis=-2)
-
-
 def end_effector(directions: np.ndarray, lengths: np.ndarray) -> np.ndarray:
     """Hand (end of the chain) position (..., 3), metres from the shoulder."""
     return np.einsum("...sj,s->...j", directions, np.asarray(lengths))

@@ -398,7 +398,7 @@ class ReachModel:
         if not isinstance(getattr(self, "net_", None), DCSNetwork):
             raise MjwalkError("ReachModel.save: only a fitted DCS-based model can be saved")
         arrays = dict(self.rep_.to_arrays())
-        arrays.update({f"dcs_{k}": v for k, v in self.net_._arrays().items()})
+        arrays.update({f"dcs_{k}": v for k, v in self.net_.to_arrays().items()})
         arrays["lengths"] = self.lengths
         if self.rest_hand_ is not None:
             arrays["rest_hand"] = self.rest_hand_
@@ -407,7 +407,7 @@ class ReachModel:
             "version": REACH_VERSION,
             "n_modes": int(self.n_modes_),
             "variance": self.variance,
-            "dcs_header": self.net_._header(),
+            "dcs_header": self.net_.header(),
         }
         save_npz(path, header, arrays)
 

@@ -11,9 +11,9 @@ from mjwalk.errors import ModelFileError
 
 #: Bump when the generator or the model changes, so the cache is rebuilt.
 REACH_DEFAULT_VERSION = "7"
-#: Generated reaches the default model is trained on: 200 over the working area up to the
-#: shoulder until 2026-11-28; 320 since it reaches up to a top shelf (reachgen.END_BOX, 1.6
-#: times as high), the same density of reaches (and so the same trained-range radius).
+#: Generated reaches the default model is trained on: over the working area up to a top shelf
+#: (reachgen.END_BOX), at the density of 200 reaches up to the shoulder, which sets the
+#: trained-range radius.
 N_TRAIN = 320
 #: Chosen by exact leave-one-out errors on the training samples (PRESS), with the network
 #: size: RBF width, output ridge, constant or local linear outputs (with the slopes' own ridge)
@@ -59,12 +59,12 @@ _MEMO: dict = {}
 def default_reach_model(progress: bool = True):
     """The :class:`~mjwalk.arms.reach.ReachModel` of start/end-constrained reaches of the left
     arm (``reachgen.generate("endpoints", N_TRAIN, seed 0)``), cached beside the step model."""
+    from mjwalk._io import cache_root
     from mjwalk.arms import reachgen
     from mjwalk.arms.kinematics import REST_HAND
     from mjwalk.arms.reach import ReachModel
-    from mjwalk.gait.default import cache_dir
 
-    path = cache_dir() / f"reach-endpoints-v{REACH_DEFAULT_VERSION}-n{N_TRAIN}.npz"
+    path = cache_root() / f"reach-endpoints-v{REACH_DEFAULT_VERSION}-n{N_TRAIN}.npz"
     if path in _MEMO:
         return _MEMO[path]
     model = None

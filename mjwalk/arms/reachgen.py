@@ -59,10 +59,9 @@ FUNCTIONAL_WRIST = ((-40.0, 40.0), (-10.0, 30.0))
 #: work height of heavy work, Grandjean 1988, *Fitting the Task to the Man*, 4th ed., ch. 4)
 #: up to a top shelf: the standing vertical grip reach, about 1.12 of stature (Pheasant &
 #: Haslegrave 2006, *Bodyspace*, 3rd ed., Table 2.5: 1950 mm for men of 1740 mm, 50th
-#: percentile), 0.53 m above the shoulder of the default humanoid (z 0.55). Until 2026-11
-#: the box began at x 0.30, y -0.15, z -0.35: the station's fastens across the body at the
-#: car lay outside it and the model extrapolated; until 2026-11-28 it ended at z 0.15, and a
-#: pick from a shelf at 1.85 m ended 0.18 m off (1 mm now).
+#: percentile), 0.53 m above the shoulder of the default humanoid (z 0.55). The station's
+#: fastens across the body at the car and a pick from a shelf at 1.85 m lie inside it, so the
+#: model does not extrapolate to them.
 END_BOX = ((0.15, 0.55), (-0.30, 0.30), (-0.48, 0.55))
 #: Passes of the wrist-range projection in :func:`reach_trajectory` (each re-solves the arm for
 #: the turned hand).

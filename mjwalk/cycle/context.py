@@ -14,11 +14,9 @@ from typing import TYPE_CHECKING
 import mujoco
 
 from mjwalk.body.humanoid import JointMap, attach_humanoid
-from mjwalk.cycle.standing import StandZone
+from mjwalk.cycle.standing import StandZone, work_zone
 from mjwalk.cycle.standoff import ArmClearance
-from mjwalk.cycle.types import (
-    CycleSpec,
-)
+from mjwalk.cycle.types import CycleSpec
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
@@ -34,9 +32,9 @@ if TYPE_CHECKING:
 #: a cycle's walks end in their stand zones (:mod:`mjwalk.cycle.standing`).
 GOAL_TOLERANCE = 0.1
 #: Planners and stand zones a context keeps (the oldest go first). Both depend on the run's
-#: operator (stature and step length), so every run of a population adds its own: kept without
-#: bound they grew a worker by 1.6 MB per station cycle (786 MB after 300 cycles; joblib's
-#: leak guard then restarted workers mid-batch). A run uses one per walk (seven at the station).
+#: operator (stature and step length), so every run of a population adds its own, about 1.6 MB
+#: per station cycle: the bound keeps a worker's memory flat (joblib restarts a worker whose
+#: memory keeps growing). A run uses one per walk (seven at the station).
 KEPT_PER_CONTEXT = 64
 
 
@@ -99,12 +97,10 @@ class CycleContext:
         return self.planners[key]
 
     def zone(self, i: int, stature: float, step_length: float) -> StandZone:
-        """The stand zone of the walk that is task ``i`` (:func:`work_zone`)."""
-        from mjwalk.cycle.walking import work_zone  # the walk stage builds on the context
-
-        # made for the key's own (rounded) stature and step length: a zone made for the exact
-        # figures of the first run to ask was handed to every later run within the rounding,
-        # so a run's walks depended on which runs the process had simulated before it
+        """The stand zone of the walk that is task ``i``
+        (:func:`~mjwalk.cycle.standing.work_zone`)."""
+        # made for the key's own (rounded) stature and step length, not the first asker's
+        # exact figures: a run's walks must not depend on the runs simulated before it
         key = (i, round(stature, 3), round(step_length, 3))
         if key not in self.zones:
             _make_room(self.zones)

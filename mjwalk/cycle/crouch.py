@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
@@ -25,6 +26,9 @@ import numpy as np
 from mjwalk.anthropometry import ROM_DEG, leg_geometry
 from mjwalk.body.legs.kinematics import leg_ik
 from mjwalk.conventions import side_of_prefix as side_of
+
+if TYPE_CHECKING:
+    from mjwalk.cycle.context import CycleContext
 
 #: The shank's forward tilt (share of the ankle's dorsiflexion range) a crouch uses at most: a
 #: tenth of the range kept in reserve, as the legs' IK never locks a joint at its limit.
@@ -37,7 +41,7 @@ BALANCE_STEP = math.radians(2.5)
 TRUNK_FLEXION = ("lumbar_flex", "thoracic_flex")
 
 
-def bend_trunk(ctx, q0: np.ndarray, step: float, enough) -> np.ndarray:
+def bend_trunk(ctx: CycleContext, q0: np.ndarray, step: float, enough) -> np.ndarray:
     """``q0`` with the trunk bent forward ``step`` radians at a time (lumbar and thoracic
     flexion in proportion to the range each has left) until ``enough(data)`` holds for the
     pose's forward kinematics in ``ctx.scratch()``; bent as far as the ranges go when it never
@@ -60,14 +64,14 @@ def bend_trunk(ctx, q0: np.ndarray, step: float, enough) -> np.ndarray:
     return q
 
 
-def trunk_room(ctx, q0: np.ndarray) -> np.ndarray:
+def trunk_room(ctx: CycleContext, q0: np.ndarray) -> np.ndarray:
     """How far (radians) each of :data:`TRUNK_FLEXION` can still flex forward in ``q0``."""
     jm = ctx.jointmap
     q0 = np.asarray(q0, dtype=float)
     return np.maximum([jm.limits(j)[1] - q0[jm.adr(j)] for j in TRUNK_FLEXION], 0.0)
 
 
-def trunk_bend(ctx, q: np.ndarray, q0: np.ndarray) -> np.ndarray:
+def trunk_bend(ctx: CycleContext, q: np.ndarray, q0: np.ndarray) -> np.ndarray:
     """How far (radians) the trunk of pose(s) ``q`` (..., nq) is bent forward beyond ``q0``'s
     (lumbar and thoracic flexion together)."""
     k = [ctx.jointmap.adr(j) for j in TRUNK_FLEXION]
@@ -84,7 +88,7 @@ class _Stance:
     hip: dict[str, np.ndarray]
 
 
-def _stance(ctx, q0: np.ndarray) -> _Stance:
+def _stance(ctx: CycleContext, q0: np.ndarray) -> _Stance:
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
     q0 = np.asarray(q0, dtype=float)
@@ -103,7 +107,7 @@ def _stance(ctx, q0: np.ndarray) -> _Stance:
     )
 
 
-def _com_ahead(ctx, data) -> float:
+def _com_ahead(ctx: CycleContext, data) -> float:
     """How far (m) the humanoid's centre of mass lies ahead of the midpoint of its ankle joints,
     along its pelvis's heading (+x), in the pose whose kinematics ``data`` holds."""
     m, jm = ctx.model, ctx.jointmap
@@ -115,7 +119,7 @@ def _com_ahead(ctx, data) -> float:
     return float((com - 0.5 * (ankles[0] + ankles[1])) @ ahead / np.linalg.norm(ahead))
 
 
-def _lowered(ctx, stance: _Stance, drop: float) -> np.ndarray:
+def _lowered(ctx: CycleContext, stance: _Stance, drop: float) -> np.ndarray:
     """The stance's pose with the pelvis ``drop`` metres lower and back as far as the ankles'
     dorsiflexion needs, the legs solved for the feet where they stand (see the module doc)."""
     q = stance.q0.copy()
@@ -140,7 +144,7 @@ def _lowered(ctx, stance: _Stance, drop: float) -> np.ndarray:
     return q
 
 
-def crouch_pose(ctx, q0: np.ndarray, drop: float) -> np.ndarray:
+def crouch_pose(ctx: CycleContext, q0: np.ndarray, drop: float) -> np.ndarray:
     """``q0`` (a standing pose, nq) with the pelvis ``drop`` metres lower and moved back as
     far as the ankles' dorsiflexion needs, the feet flat where they are in ``q0``, and the
     trunk bent forward until the centre of mass is as far ahead of the ankles as in ``q0``
@@ -153,7 +157,9 @@ def crouch_pose(ctx, q0: np.ndarray, drop: float) -> np.ndarray:
     return bend_trunk(ctx, lowered, BALANCE_STEP, lambda data: _com_ahead(ctx, data) >= com0)
 
 
-def crouch_frames(ctx, q0: np.ndarray, target: np.ndarray, w: np.ndarray) -> np.ndarray:
+def crouch_frames(
+    ctx: CycleContext, q0: np.ndarray, target: np.ndarray, w: np.ndarray
+) -> np.ndarray:
     """Poses (len(w), nq) on the way from ``q0`` (standing) into ``target`` (a pose whose root
     and legs are :func:`crouch_pose`'s, or ``q0``'s): every joint interpolated by the weights
     ``w`` (0: ``q0``, 1: ``target``), and when the target is crouched, the pelvis lowered by

@@ -17,7 +17,7 @@ Three factors make a handling time (seconds):
    inch (the card's rule).
 2. **Pace.** The operator's pace (:attr:`mjwalk.gait.walker.Walker.pace`, speed relative to the
    reference adult): every handling time is divided by it (a slower walker is a slower worker).
-   This is mjwalk's modelling choice, named in issue 14; MTM times are for the trained
+   This is mjwalk's modelling choice: MTM times are for the trained
    average operator at standard performance, which the reference adult stands for.
 3. **Per-task variation.** Each task of each run draws one lognormal factor of median 1 and
    coefficient of variation :data:`TASK_CV` that multiplies its reach, hold and return: manual
@@ -57,13 +57,15 @@ REACH_TMU = {
                    15.5, 16.7, 18.0, 19.2, 20.4, 21.7, 22.9]),
 }
 # fmt: on
-#: MTM-1 reach case of each task kind: a pick takes a small part from a bin of like parts
-#: (case C: search and select, the station's screws); a place or fasten brings the hand to a
-#: location that varies slightly (case B). The return is case E.
-REACH_CASE = {"pick": "C", "place": "B", "fasten": "B"}
+#: MTM-1 case of a reach's return (a hand moving to no particular location); the reach's own
+#: case is its task kind's (:data:`mjwalk.cycle.types.TASK_KINDS`).
 RETURN_CASE = "E"
 #: Coefficient of variation of the per-task lognormal factor (see the module docstring).
 TASK_CV = 0.2
+#: MTM-1 body motions (TMU): "B" bend, stoop or kneel on one knee, and "AB" arise from it
+#: (Freivalds & Niebel 2014, *Niebel's Methods, Standards, and Work Design*, 13th ed.,
+#: Table 12-1, Body, leg and foot motions: 29.0 and 31.9 TMU).
+BODY_MOTION_TMU = {"B": 29.0, "AB": 31.9}
 INCH = 0.0254
 
 
@@ -86,12 +88,6 @@ def reach_duration(distance: float, walker: Walker | None = None, case: str = "B
     pace 1): the MTM-1 time divided by the walker's pace."""
     pace = 1.0 if walker is None else walker.pace
     return reach_tmu(distance, case) * TMU / pace
-
-
-#: MTM-1 body motions (TMU): "B" bend, stoop or kneel on one knee, and "AB" arise from it
-#: (Freivalds & Niebel 2014, *Niebel's Methods, Standards, and Work Design*, 13th ed.,
-#: Table 12-1, Body, leg and foot motions: 29.0 and 31.9 TMU).
-BODY_MOTION_TMU = {"B": 29.0, "AB": 31.9}
 
 
 def body_motion_duration(motion: str, walker: Walker | None = None) -> float:

@@ -1,4 +1,4 @@
-"""The operator population of a cycle: who walks each Monte-Carlo run (issue 14, item 2).
+"""The operator population of a cycle: who walks each Monte-Carlo run.
 
 A cycle file's optional ``[population]`` table says how the operator of each run is drawn: a
 mixture of named walker presets with shares, per-figure distributions of stature, speed and
@@ -54,7 +54,7 @@ with stature, :meth:`~mjwalk.gait.model.StepModel.for_walker`).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -457,8 +457,3 @@ def parse_population(table, humanoid_stature: float, fail: Fail = _default_fail)
         if not 0.0 <= width <= 0.4:
             raise fail(f"population.step_width must be within 0-0.4 m, got {width:g}", "step_width")
     return Population((OperatorGroup(group.strip(), 1.0, step_width=width, **figs),))
-
-
-def group_shares(population: Population | None) -> Mapping[str, float]:
-    """Group name -> share (empty without a population)."""
-    return {} if population is None else {g.name: g.share for g in population.groups}

@@ -11,13 +11,12 @@ import mujoco
 import numpy as np
 
 from mjwalk.body.humanoid import pelvis_height
+from mjwalk.body.legs.curves import smoothstep
 from mjwalk.timeline.frames import ease_arms, frames_from_legs, room_and_away, yaw_quat
 from mjwalk.timeline.parts import hand_poses
 
 if TYPE_CHECKING:
-    pass  # loaded on first use (prepare)
-
-from mjwalk.cycle.context import CycleContext
+    from mjwalk.cycle.context import CycleContext
 
 #: Turning speed on the spot (rad/s) and shortest turn (s) of the reference adult
 #: (:data:`~mjwalk.gait.walker.REFERENCE_CADENCE`): ASSUMPTION, a half turn in about two steps
@@ -33,7 +32,7 @@ MIN_TURN = 0.25
 STEP_SPEED = 0.6
 
 
-def _standing(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarray:
+def standing_pose(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarray:
     q = ctx.jointmap.neutral_qpos(ctx.model, ctx.spec.stature)
     r = ctx.jointmap.root
     q[r : r + 3] = [x, y, pelvis_height(ctx.spec.stature)]
@@ -41,8 +40,8 @@ def _standing(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarray:
     return q
 
 
-def _turn_frames(
-    ctx,
+def turn_frames(
+    ctx: CycleContext,
     x,
     y,
     yaw0,
@@ -72,7 +71,7 @@ def _turn_frames(
     n = max(1, round(duration * fps))
     k = np.arange(1, n + 1)
     r = ctx.jointmap.root
-    base = _standing(ctx, x, y, yaw0)
+    base = standing_pose(ctx, x, y, yaw0)
     if pose is not None:
         base[r + 7 :] = pose[r + 7 :]
     frames = np.repeat(base[None], n, axis=0)
@@ -90,12 +89,12 @@ def _turn_frames(
     return frames, n / fps
 
 
-def _touches(ctx, frames: np.ndarray) -> bool:
+def _touches(ctx: CycleContext, frames: np.ndarray) -> bool:
     """Whether any of ``frames`` (n, nq) touches the scene (:func:`frame_contacts`)."""
     return bool(frame_contacts(ctx, frames))
 
 
-def frame_contacts(ctx, frames: np.ndarray, fps: float = 30.0) -> list:
+def frame_contacts(ctx: CycleContext, frames: np.ndarray, fps: float = 30.0) -> list:
     """The humanoid-scene contacts of ``frames`` (n, nq) of ``ctx``'s model at ``fps``: the
     cycle's own contact check (:func:`~mjwalk.timeline.collisions.collision_report`, times
     from 0 s)."""
@@ -114,7 +113,7 @@ def frame_contacts(ctx, frames: np.ndarray, fps: float = 30.0) -> list:
     return collision_report(tl, data=ctx.scratch())
 
 
-def _feet_above_floor(ctx, frames: np.ndarray) -> None:
+def _feet_above_floor(ctx: CycleContext, frames: np.ndarray) -> None:
     """Raise the pelvis of ``frames`` (n, nq) in place where a blended pose puts a foot's lowest
     corner below the floor (z = 0): blending a landing pose (trailing heel raised, knee
     flexed) into the standing pose joint by joint swings that foot's toes through the floor."""
@@ -138,7 +137,7 @@ def _settle(frames: np.ndarray, start: np.ndarray, r: int, hinges: np.ndarray) -
     frames' yaw and loses ``start``'s tilt (normalized linear blend of the quaternions)."""
     n = len(frames)
     s = np.arange(1, n + 1) / n
-    w = (s * s * (3.0 - 2.0 * s))[:, None]
+    w = smoothstep(s)[:, None]
     joints = np.r_[r : r + 3, np.asarray(hinges, int)]  # pelvis position, the humanoid's hinges
     frames[:, joints] = start[joints] + w * (frames[:, joints] - start[joints])
     q0 = start[r + 3 : r + 7]
@@ -148,13 +147,13 @@ def _settle(frames: np.ndarray, start: np.ndarray, r: int, hinges: np.ndarray) -
     frames[:, r + 3 : r + 7] = q / np.linalg.norm(q, axis=1, keepdims=True)
 
 
-def hand_points(ctx, qpos: np.ndarray) -> np.ndarray:
+def hand_points(ctx: CycleContext, qpos: np.ndarray) -> np.ndarray:
     """(F, 2, 3) world positions (m) of the left and right palm (the hand geoms' centres) in
     the poses ``qpos`` (F, nq)."""
     return hand_poses(ctx.model, ctx.jointmap, qpos, ctx.scratch())[2]
 
 
-def carry_abduction(ctx, width: float) -> float:
+def carry_abduction(ctx: CycleContext, width: float) -> float:
     """Shoulder abduction (radians, both arms) of the two-handed carrying posture
     (:data:`~mjwalk.timeline.frames.CARRY_POSE` otherwise) that puts the palms ``width`` metres
     apart: the hands stay on the grips of the part while it is carried. Solved by Brent's
@@ -185,11 +184,11 @@ def carry_abduction(ctx, width: float) -> float:
     return float(brentq(gap, lo, hi, xtol=1e-4))
 
 
-def carry_pose(ctx, q: np.ndarray, width: float) -> np.ndarray:
+def carry_pose(ctx: CycleContext, q: np.ndarray, width: float) -> np.ndarray:
     """``q`` (nq,) with both arms in the two-handed carrying posture for a part whose grips are
     ``width`` metres apart: :data:`~mjwalk.timeline.frames.CARRY_POSE` with the shoulder
     abduction of :func:`carry_abduction`, the other arm joints at the standing pose (as in the
-    carrying walk's frames, :func:`_walk_frames`). Radians; a new array."""
+    carrying walk's frames, :func:`walk_frames`). Radians; a new array."""
     from mjwalk.arms.kinematics import ARM_JOINTS, arm_joint
     from mjwalk.timeline.frames import CARRY_POSE
 
@@ -204,8 +203,8 @@ def carry_pose(ctx, q: np.ndarray, width: float) -> np.ndarray:
     return out
 
 
-def _walk_frames(
-    ctx, walk, fps, carry: str | None = None, carry_width: float | None = None
+def walk_frames(
+    ctx: CycleContext, walk, fps, carry: str | None = None, carry_width: float | None = None
 ) -> np.ndarray:
     """Frames of a walk after its first sample (legs from the footprints, arm swing from the
     legs). The arms swing fully only in mid-walk: the swing fades in over the first and out
@@ -214,7 +213,7 @@ def _walk_frames(
     (elbow flexed, forearm close to the trunk) instead of swinging; "both": both hands hold a
     part whose grips are ``carry_width`` metres apart (:func:`carry_abduction`) in the carrying
     posture throughout, without fading (the hands took the part into it at the pick and keep
-    it until the place, :func:`~mjwalk.cycle.reaching._two_hand_frames`)."""
+    it until the place, :func:`~mjwalk.cycle.holding.two_hand_frames`)."""
     from mjwalk.body.legs import legs_from_walk
 
     legs = legs_from_walk(walk, ctx.spec.stature)
@@ -226,5 +225,16 @@ def _walk_frames(
     room, away = room_and_away(ctx.workplace, frames[:, jm.root : jm.root + 2])
     rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
     abd = carry_abduction(ctx, carry_width) if carry == "both" and carry_width else None
-    ease_arms(frames, t, walk.duration, jm, rest, room, carry, away, ctx.spec.stature, abd)
+    ease_arms(
+        frames,
+        t,
+        walk.duration,
+        jm,
+        rest,
+        room=room,
+        carry=carry,
+        away=away,
+        stature=ctx.spec.stature,
+        carry_abd=abd,
+    )
     return frames

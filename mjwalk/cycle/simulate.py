@@ -24,29 +24,11 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mjwalk._args import as_generator, check_seed
 from mjwalk.conventions import SAMPLE_RATE_HZ
-from mjwalk.cycle.handling import REACH_CASE, RETURN_CASE, reach_duration, task_factor
-from mjwalk.cycle.spec import check_durations
-from mjwalk.cycle.types import (
-    ArmRecord,
-    CycleResult,
-    CycleSpec,
-    TaskRecord,
-    WalkRecord,
-)
-from mjwalk.errors import CycleSpecError, InputError, PlanningError
-from mjwalk.timeline.collisions import collision_report
-from mjwalk.timeline.parts import Handling, part_tracks
-from mjwalk.timeline.timeline import Timeline
-
-if TYPE_CHECKING:
-    pass  # loaded on first use (prepare)
-
 from mjwalk.cycle.context import (
     GOAL_TOLERANCE,
     CycleContext,
@@ -54,16 +36,30 @@ from mjwalk.cycle.context import (
     operator_context,
     prepare,
 )
+from mjwalk.cycle.handling import RETURN_CASE, reach_duration, task_factor
 from mjwalk.cycle.poses import (
-    _standing,
-    _turn_frames,
-    _walk_frames,
     carry_abduction,
     carry_pose,
     hand_points,
+    standing_pose,
+    turn_frames,
+    walk_frames,
 )
-from mjwalk.cycle.reaching import _reach_task
+from mjwalk.cycle.reachspot import reach_task
+from mjwalk.cycle.spec import check_durations
+from mjwalk.cycle.types import (
+    TASK_KINDS,
+    ArmRecord,
+    CycleResult,
+    CycleSpec,
+    TaskRecord,
+    WalkRecord,
+)
 from mjwalk.cycle.walking import cycle_start, plan_cycle_walks, plan_task_walk, work_zone
+from mjwalk.errors import CycleSpecError, InputError, PlanningError
+from mjwalk.timeline.collisions import collision_report
+from mjwalk.timeline.parts import Handling, part_tracks
+from mjwalk.timeline.timeline import Timeline
 
 __all__ = [
     "GOAL_TOLERANCE",
@@ -81,11 +77,6 @@ __all__ = [
     "simulate_cycles",
     "work_zone",
 ]
-
-
-#: The hold of a pick or place without a given duration (s), the median for the reference
-#: adult; reach and return times come from the reach distance (MTM-1, mjwalk.cycle.handling).
-DEFAULT_HOLD = {"pick": 0.4, "place": 0.4, "fasten": 3.0, "wait": 1.0}
 
 
 def simulate_cycle(
@@ -139,7 +130,7 @@ def simulate_cycle(
     x, y = cycle_start(ctx, stand_rng, walker)  # in the start's stand zone, not on its mark
     home = (x, y)  # where the last walk ended: the reaches there step back or in from it
     yaw = wp.station(here).yaw
-    frames = [_standing(ctx, x, y, yaw)[None]]
+    frames = [standing_pose(ctx, x, y, yaw)[None]]
     t = 0.0
     tasks: list[TaskRecord] = []
     walks: list[WalkRecord] = []
@@ -149,20 +140,23 @@ def simulate_cycle(
     for i, task in enumerate(spec.tasks):
         t0 = t
         starts.append(sum(len(f) for f in frames))
-        if task.kind in ("walk", "carry"):
+        kind = TASK_KINDS.get(task.kind)
+        if kind is None:  # the spec parser refuses unknown kinds; this guards hand-made specs
+            raise CycleSpecError(f"task {i}: unknown kind {task.kind!r}")
+        if kind.action == "walk":
             goal = task.site
             assert goal is not None  # the spec loader requires a site for walks
             # from the heading the operator stands at: turning on the spot, then walking
             path = plan_task_walk(ctx, i, (x, y), rng, walker, stand_rng, yaw=yaw)
             # a two-handed part stays in the hands, in the carrying posture (turns included)
             pose = None if width is None else carry_pose(ctx, frames[0][0], width)
-            turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps, pose=pose)
+            turn, dt = turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps, pose=pose)
             frames.append(turn)
             t += dt
-            carry = task.hand if task.kind == "carry" else None
+            carry = task.hand if kind.carries else None
             if width is not None:
                 carry = "both"
-            wf = _walk_frames(ctx, path, fps, carry, width)
+            wf = walk_frames(ctx, path, fps, carry, width)
             frames.append(wf)
             t += len(wf) / fps  # the walk, to the video frame
             x, y = (float(v) for v in path.xy[-1])
@@ -170,7 +164,7 @@ def simulate_cycle(
             yaw = float(path.yaw[-1])
             face = wp.station(goal).yaw
             # the last step lands knee flexed, pelvis low: the turn settles into standing
-            turn, dt = _turn_frames(ctx, x, y, yaw, face, fps, pose=pose, settle=wf[-1])
+            turn, dt = turn_frames(ctx, x, y, yaw, face, fps, pose=pose, settle=wf[-1])
             frames.append(turn)
             t += dt
             yaw = face
@@ -189,11 +183,12 @@ def simulate_cycle(
                 )
             )
             here = goal
-        elif task.kind in ("pick", "place", "fasten"):
-            hold = task.duration if task.duration is not None else DEFAULT_HOLD[task.kind]
+        elif kind.action == "reach":
+            assert kind.default_hold is not None and kind.reach_case is not None
+            hold = task.duration if task.duration is not None else kind.default_hold
             factor = task_factor(hand_rng)  # lognormal, median 1 (mjwalk.cycle.handling)
             hold *= factor / pace  # the hold, like the reach, at the operator's pace
-            case = REACH_CASE[task.kind]
+            case = kind.reach_case
 
             def timing(dist, case=case, factor=factor):
                 return (
@@ -202,14 +197,14 @@ def simulate_cycle(
                 )
 
             assert task.site is not None  # the spec loader requires a site for reaches
-            r = _reach_task(
+            r = reach_task(
                 ctx, task, x, y, yaw, hold, fps, timing, wp.station(here).yaw, width, home
             )
             x, y, yaw = r.x, r.y, r.yaw
             frames.append(r.turn)
             t += r.turn_time
             if task.hand == "both":
-                width = r.width if task.kind == "pick" else None  # released on place/fasten
+                width = r.width if kind.part == "take" else None  # released when put down
             frames.append(r.frames)
             t += len(r.frames) / fps
             arms.append(
@@ -225,13 +220,12 @@ def simulate_cycle(
                     step_back=r.step_back,
                 )
             )
-        elif task.kind == "wait":
-            hold = task.duration if task.duration is not None else DEFAULT_HOLD["wait"]
+        elif kind.action == "wait":
+            assert kind.default_hold is not None
+            hold = task.duration if task.duration is not None else kind.default_hold
             n = max(1, round(hold * fps))
             frames.append(np.repeat(frames[-1][-1:], n, axis=0))
             t += n / fps
-        else:  # the spec parser refuses unknown kinds; this guards hand-made specs
-            raise CycleSpecError(f"task {i}: unknown kind {task.kind!r}")
         tasks.append(TaskRecord(i, task.kind, task.site, t0, t, task.route))
     qpos = np.vstack(frames)
     timeline = Timeline(
@@ -249,7 +243,7 @@ def simulate_cycle(
         handlings = [
             Handling(task.kind, task.site, task.hand, starts[i], ends[i])
             for i, task in enumerate(spec.tasks)
-            if task.kind in ("pick", "place", "fasten") and task.site is not None
+            if TASK_KINDS[task.kind].action == "reach" and task.site is not None
         ]
         timeline.parts = part_tracks(ctx.model, ctx.jointmap, qpos, handlings, ctx.scratch())
     contacts = collision_report(timeline, data=ctx.scratch()) if collisions else []
@@ -284,7 +278,7 @@ def cycle_ergonomics(timeline: Timeline, spec: CycleSpec, starts, ends, cycle_ti
     spans = []
     for i, task in enumerate(spec.tasks):
         s, e = int(starts[i]), int(ends[i])
-        if task.kind in ("walk", "carry"):
+        if TASK_KINDS[task.kind].action == "walk":
             walking[s:e] = True
         mass, coupling = 0.0, task.coupling
         if task.kind == "pick":

@@ -84,7 +84,16 @@ import numpy as np
 from mjwalk._io import read_toml
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.cycle.population import HUMANOID_STATURE_RANGE, Population, parse_population
-from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task
+from mjwalk.cycle.specfile import (
+    ALL_TASK_KEYS,
+    MAX_CYCLE_SECONDS,
+    TABLE_KEYS,
+    TOP_KEYS,
+    Checker,
+    KeyLines,
+    check_lengths,
+)
+from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task, grip_sites
 from mjwalk.errors import CycleSpecError, MjwalkError, SceneError
 from mjwalk.world.workplace import Workplace, shared_workplace
 
@@ -108,276 +117,8 @@ DEFAULT_COUPLING = "poor"
 HAND_VALUES = (*HANDS, "both")
 
 
-def grip_sites(site: str, hand: str) -> list[tuple[str, str]]:
-    """(side, site name) pairs of the hands reaching for ``site``: ``[(hand, site)]`` for one
-    hand, ``[("left", site + "_left"), ("right", site + "_right")]`` for ``hand = "both"``."""
-    if hand == "both":
-        return [("left", f"{site}_left"), ("right", f"{site}_right")]
-    return [(hand, site)]
-
-
-#: Longest a task's ``duration`` and the durations of a cycle together may be, seconds. An
-#: assembly cycle's tasks last seconds to minutes (the station cycle of agethen2018 about 40 s);
-#: an hour bounds the simulated timeline at 108 000 frames at 30 fps (about 60 MB of poses),
-#: where ``duration = 1e12`` asked for petabytes.
-MAX_CYCLE_SECONDS = 3600.0
-
-#: Longest name, site, route, part or other label in a cycle file, characters: MJCF names and
-#: report labels are identifiers and short phrases, and each is printed in the report's tables,
-#: CSV rows and plot titles (a 1 MB name took 77 s and 0.93 GB for one 4.8 s cycle).
-MAX_LABEL_CHARS = 256
-#: Longest file path (``scene``, the models), characters: Linux's PATH_MAX.
-MAX_PATH_CHARS = 4096
-#: Most tasks (and entries of any list) a cycle file may have: an hour-long cycle
-#: (:data:`MAX_CYCLE_SECONDS`) of one-second tasks.
-MAX_TASKS = 3600
-_PATH_KEYS = ("scene", "step", "reach", "reach_right")
-
-_TOP_KEYS = (
-    "name", "scene", "start", "takt", "humanoid", "models", "walking", "population", "task"
-)  # fmt: skip
-_TABLE_KEYS = {
-    "humanoid": ("stature",),
-    "models": ("step", "reach", "reach_right"),
-    "walking": ("radius",),
-}
-_TASK_KEYS = {
-    "walk": ("kind", "site", "route"),
-    "carry": ("kind", "site", "route", "hand", "part"),
-    "pick": ("kind", "site", "hand", "part", "duration", "mass", "coupling"),
-    "place": ("kind", "site", "hand", "part", "duration"),
-    "fasten": ("kind", "site", "hand", "part", "duration"),
-    "wait": ("kind", "duration"),
-}
-_ALL_TASK_KEYS = ("kind", "site", "hand", "duration", "route", "part", "mass", "coupling")
-
-_HEADER_RE = re.compile(r"^\s*(\[\[|\[)\s*([^\[\]]+?)\s*(\]\]|\])\s*(#.*)?$")
-_KEY_RE = re.compile(
-    r"""^\s*((?:"[^"]*"|'[^']*'|[A-Za-z0-9_-]+)(?:\s*\.\s*(?:"[^"]*"|'[^']*'|[A-Za-z0-9_-]+))*)\s*="""
-)
-
-
-class _Lines:
-    """Line numbers of TOML keys and table headers, found by scanning the text.
-
-    ``tomllib`` keeps no positions, so this scans line by line: ``[table]`` and ``[[array]]``
-    headers set the current table (the n-th ``[[task]]`` is table ``("task", n)``) and each
-    ``key =`` line is recorded under it. Multi-line strings are skipped.
-    """
-
-    def __init__(self, text: str):
-        self.headers: dict[tuple[str, int | None], int] = {}
-        self.keys: dict[tuple[str, int | None, str], int] = {}
-        counts: dict[str, int] = {}
-        table: tuple[str, int | None] = ("", None)
-        in_string = None
-        for lineno, raw in enumerate(text.splitlines(), start=1):
-            if in_string is not None:
-                if raw.count(in_string) % 2 == 1:
-                    in_string = None
-                continue
-            m = _HEADER_RE.match(raw)
-            if m:
-                name = _unquote(m.group(2))
-                if m.group(1) == "[[":
-                    idx = counts.get(name, 0)
-                    counts[name] = idx + 1
-                    table = (name, idx)
-                else:
-                    table = (name, None)
-                self.headers.setdefault(table, lineno)
-                continue
-            m = _KEY_RE.match(raw)
-            if m:
-                parts = [_unquote(p) for p in re.split(r"\s*\.\s*", m.group(1))]
-                if table == ("", None) and len(parts) > 1:  # humanoid.stature = 1.7
-                    self.keys.setdefault((parts[0], None, parts[-1]), lineno)
-                    self.headers.setdefault((parts[0], None), lineno)
-                self.keys.setdefault((*table, parts[0]), lineno)
-                rest = raw[m.end() :]
-                for quote in ('"""', "'''"):
-                    if rest.count(quote) % 2 == 1:
-                        in_string = quote
-                        break
-
-    def line(self, table: str = "", index: int | None = None, key: str | None = None) -> int:
-        """Line of ``key`` in ``table`` (``index``-th of an array of tables); falls back to the
-        table's header, then to the array's ``key = [...]`` line, then to line 1."""
-        if key is not None and (table, index, key) in self.keys:
-            return self.keys[(table, index, key)]
-        if (table, index) in self.headers:
-            return self.headers[(table, index)]
-        if table and ("", None, table) in self.keys:  # task = [{...}, ...] written inline
-            return self.keys[("", None, table)]
-        return 1
-
-
-def _unquote(s: str) -> str:
-    s = s.strip()
-    if len(s) >= 2 and s[0] == s[-1] and s[0] in "\"'":
-        return s[1:-1]
-    return s
-
-
-class _Checker:
-    """Raises CycleSpecErrors that name the file, the key and its line."""
-
-    def __init__(self, path: Path, lines: _Lines):
-        self.path = path
-        self.lines = lines
-
-    def fail(
-        self, msg: str, table: str = "", index: int | None = None, key: str | None = None
-    ) -> CycleSpecError:
-        line = self.lines.line(table, index, key)
-        exc = CycleSpecError(f"{self.path}:{line}: {msg}")
-        exc.path, exc.line, exc.key = self.path, line, key
-        return exc
-
-    def where(self, table: str, index: int | None) -> str:
-        if table == "":
-            return "at the top level"
-        if index is None:
-            return f"in [{table}]"
-        return f"in task {index + 1}"
-
-    def keys(
-        self, data: dict, allowed: tuple[str, ...], table: str = "", index: int | None = None
-    ) -> None:
-        for key in data:
-            if key not in allowed:
-                close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.5)
-                hint = f"; did you mean {close[0]!r}?" if close else ""
-                raise self.fail(
-                    f"unknown key {key!r} {self.where(table, index)}{hint} "
-                    f"(valid keys: {', '.join(allowed)})",
-                    table,
-                    index,
-                    key,
-                )
-
-    def string(self, data: dict, key: str, table: str = "", index: int | None = None) -> str:
-        value = data[key]
-        if not isinstance(value, str) or not value.strip():
-            raise self.fail(
-                f"key {key!r} {self.where(table, index)} must be a non-empty string, got {value!r}",
-                table,
-                index,
-                key,
-            )
-        return value.strip()
-
-    def number(
-        self,
-        data: dict,
-        key: str,
-        lo: float,
-        hi: float,
-        unit: str,
-        table: str = "",
-        index: int | None = None,
-    ) -> float:
-        value = data[key]
-        if isinstance(value, bool) or not isinstance(value, int | float):
-            raise self.fail(
-                f"key {key!r} {self.where(table, index)} must be a number ({unit}), got {value!r}",
-                table,
-                index,
-                key,
-            )
-        value = float(value)
-        if not math.isfinite(value) or not lo <= value <= hi:
-            rng = f"at least {lo:g}" if math.isinf(hi) else f"between {lo:g} and {hi:g}"
-            raise self.fail(
-                f"key {key!r} {self.where(table, index)} must be {rng} {unit}, got {value:g}",
-                table,
-                index,
-                key,
-            )
-        return value
-
-    def file(self, data: dict, key: str, base: Path, table: str = "") -> Path:
-        rel = self.string(data, key, table)
-        resolved = (base / rel).resolve()
-        if resolved.is_dir():
-            raise self.fail(
-                f"key {key!r} {self.where(table, None)}: {rel!r} is a folder, not a file "
-                f"({resolved})",
-                table,
-                None,
-                key,
-            )
-        if not resolved.is_file():
-            raise self.fail(
-                f"key {key!r} {self.where(table, None)}: file {rel!r} not found "
-                f"(looked for {resolved})",
-                table,
-                None,
-                key,
-            )
-        return resolved
-
-
-def _check_lengths(check: _Checker, data: dict) -> None:
-    """Raise naming the key of the first string (value or key) longer than
-    :data:`MAX_LABEL_CHARS` (:data:`MAX_PATH_CHARS` for file paths) and of a list longer than
-    :data:`MAX_TASKS`: before anything else reads or prints them."""
-
-    def visit(value, table: str, index: int | None, key: str) -> None:
-        if isinstance(value, str):
-            limit = MAX_PATH_CHARS if key in _PATH_KEYS else MAX_LABEL_CHARS
-            if len(value) > limit:
-                what = "a file path" if key in _PATH_KEYS else "a name, key or label"
-                raise check.fail(
-                    f"key {_short(key)!r} {check.where(table, index)}: a text of {len(value)} "
-                    f"characters; {what} may have at most {limit}",
-                    table,
-                    index,
-                    key,
-                )
-        elif isinstance(value, list):
-            if len(value) > MAX_TASKS:
-                raise check.fail(
-                    f"key {_short(key)!r} {check.where(table, index)} has {len(value)} entries, "
-                    f"more than {MAX_TASKS}",
-                    table,
-                    index,
-                    key,
-                )
-            for v in value:
-                visit(v, table, index, key)
-        elif isinstance(value, dict):
-            for k, v in value.items():
-                visit(k, table, index, key)  # a key is text too, named by its table
-                visit(v, table, index, k if len(k) <= MAX_LABEL_CHARS else key)
-
-    for key, value in data.items():
-        visit(key, "", None, "(a top-level key)")
-        if key == "task" and isinstance(value, list):
-            if len(value) > MAX_TASKS:
-                raise check.fail(
-                    f"{len(value)} tasks, more than the {MAX_TASKS} a cycle may have", "task"
-                )
-            for i, task in enumerate(value):
-                if isinstance(task, dict):
-                    for k, v in task.items():
-                        visit(k, "task", i, "(a key)")
-                        visit(v, "task", i, k)
-        elif isinstance(value, dict):
-            for k, v in value.items():
-                visit(k, key, None, "(a key)")
-                visit(v, key, None, k)
-        else:
-            visit(value, "", None, key)
-
-
-def _short(text: str) -> str:
-    """``text`` cut to 60 characters for a message."""
-    return text if len(text) <= 60 else f"{text[:40]}...({len(text)} characters)"
-
-
 def _site_error(
-    check: _Checker, workplace: Workplace, name: str, table: str, index: int | None, key: str
+    check: Checker, workplace: Workplace, name: str, table: str, index: int | None, key: str
 ) -> CycleSpecError:
     close = difflib.get_close_matches(name, list(workplace.stations), n=3, cutoff=0.5)
     hint = f"; did you mean {', '.join(repr(c) for c in close)}?" if close else ""
@@ -391,7 +132,7 @@ def _site_error(
 
 
 def _check_stand(
-    check: _Checker,
+    check: Checker,
     workplace: Workplace,
     name: str,
     radius: float,
@@ -452,9 +193,9 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         err.path, err.line, err.key = path, line, None
         raise err from exc
 
-    check = _Checker(path, _Lines(text))
-    _check_lengths(check, data)
-    check.keys(data, _TOP_KEYS)
+    check = Checker(path, KeyLines(text))
+    check_lengths(check, data)
+    check.keys(data, TOP_KEYS)
     for key in ("scene", "start", "task"):
         if key not in data:
             what = "at least one [[task]] table" if key == "task" else f"{key} = ..."
@@ -462,7 +203,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
     name = check.string(data, "name") if "name" in data else ""
 
     tables: dict[str, dict] = {}
-    for table, allowed in _TABLE_KEYS.items():
+    for table, allowed in TABLE_KEYS.items():
         value = data.get(table, {})
         if not isinstance(value, dict):
             raise check.fail(f"{table!r} must be a table ([{table}])", key=table)
@@ -489,7 +230,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
     base = path.resolve().parent
     # "default", a model file, or for reach_right None: the reach model mirrored
     models: dict[str, str | None] = {"step": "default", "reach": "default", "reach_right": None}
-    for key in _TABLE_KEYS["models"]:
+    for key in TABLE_KEYS["models"]:
         if key in tables["models"] and tables["models"][key] != "default":
             models[key] = str(check.file(tables["models"], key, base, "models"))
         elif key in tables["models"]:
@@ -535,7 +276,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         if not isinstance(raw, dict):
             raise check.fail(f"task {i + 1} must be a table ([[task]])", "task", i)
         tasks.append(_task(check, workplace, raw, i, radius, stand, held))
-        if tasks[-1].kind in ("walk", "carry"):
+        if TASK_KINDS[tasks[-1].kind].action == "walk":
             assert tasks[-1].site is not None  # checked by _task: walks need a site
             stand = tasks[-1].site
     try:
@@ -560,7 +301,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
 
 
 def _check_routes(
-    check: _Checker, workplace: Workplace, start: str, tasks: list[Task], radius: float
+    check: Checker, workplace: Workplace, start: str, tasks: list[Task], radius: float
 ) -> None:
     """Raise naming the task of the first walk or carry whose site cannot be reached from
     where the operator stands (grid A* with the walking radius, :func:`mjwalk.plan.grid.
@@ -573,7 +314,7 @@ def _check_routes(
     stand = start
     seen: set[tuple[str, str]] = set()
     for i, task in enumerate(tasks):
-        if task.kind not in ("walk", "carry") or task.site is None:
+        if TASK_KINDS[task.kind].action != "walk" or task.site is None:
             continue
         pair = (stand, task.site)
         stand = task.site
@@ -614,7 +355,7 @@ def check_durations(tasks) -> None:
 
 
 def _task(
-    check: _Checker,
+    check: Checker,
     workplace: Workplace,
     raw: dict,
     i: int,
@@ -626,7 +367,7 @@ def _task(
     (``held`` is updated)."""
     t = "task"
     where = check.where(t, i)
-    check.keys(raw, _ALL_TASK_KEYS, t, i)
+    check.keys(raw, ALL_TASK_KEYS, t, i)
     if "kind" not in raw:
         raise check.fail(f"missing required key 'kind' {where}", t, i, "kind")
     kind = raw["kind"]
@@ -639,7 +380,7 @@ def _task(
             i,
             "kind",
         )
-    allowed = _TASK_KEYS[kind]
+    allowed = TASK_KINDS[kind].keys
     for key in raw:
         if key not in allowed:
             raise check.fail(
@@ -649,7 +390,8 @@ def _task(
                 i,
                 key,
             )
-    required = ("duration",) if kind == "wait" else ("site",)
+    action = TASK_KINDS[kind].action
+    required = ("duration",) if action == "wait" else ("site",)
     for key in required:
         if key not in raw:
             raise check.fail(f"missing required key {key!r} {where} ({kind} task)", t, i, key)
@@ -679,14 +421,14 @@ def _task(
             "coupling",
         )
 
-    if kind in ("walk", "carry"):
+    if action == "walk":
         assert site is not None  # required above
         if site == stand:
             raise check.fail(
                 f"key 'site' {where}: the operator already stands at {site!r}", t, i, "site"
             )
         _check_stand(check, workplace, site, radius, t, i, "site")
-        if kind == "carry":
+        if TASK_KINDS[kind].carries:
             if hand is None:
                 hand = next((h for h in HANDS if held[h] > 0), "left")
             if any(held[h] == 0 for h in _hands(hand)):
@@ -699,7 +441,7 @@ def _task(
                     key,
                 )
         route = route or f"{stand}->{site}"
-    elif kind in ("pick", "place", "fasten"):
+    elif action == "reach":
         assert site is not None  # required above
         hand = hand or "left"
         if held["both"] >= 0 and hand != "both":
@@ -733,12 +475,12 @@ def _task(
                 i,
                 "site",
             )
-        if kind == "pick":
+        if TASK_KINDS[kind].part == "take":
             for h in _hands(hand):
                 held[h] += 1
             if hand == "both":
                 held["both"] = i
-        elif any(held[h] == 0 for h in _hands(hand)):
+        elif TASK_KINDS[kind].part == "put" and any(held[h] == 0 for h in _hands(hand)):
             raise check.fail(
                 f"key 'kind' {where}: a {kind} with nothing in the {hand} hand (no part picked and "
                 "not yet "
@@ -747,7 +489,7 @@ def _task(
                 i,
                 "kind",
             )
-        else:
+        elif TASK_KINDS[kind].part == "put":
             for h in _hands(hand):
                 held[h] -= 1
             if hand == "both":

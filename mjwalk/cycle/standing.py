@@ -24,12 +24,18 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from mjwalk.anthropometry import SEG, hand_reach
 from mjwalk.conventions import DEFAULT_STATURE
+from mjwalk.cycle.targets import reach_target
+from mjwalk.cycle.types import TASK_KINDS, grip_sites
+
+if TYPE_CHECKING:
+    from mjwalk.cycle.context import CycleContext
 
 #: The zone's radius in preferred step lengths (half a step: see the module docstring).
 ZONE_STEPS = 0.5
@@ -135,3 +141,44 @@ def stand_zone(
         radius=ZONE_STEPS * float(step_length),
         discs=tuple(sides) + tuple(d for _, d in discs[: MAX_DISCS - len(sides)]),
     )
+
+
+def work_zone(ctx: CycleContext, i: int, stature: float, step_length: float) -> StandZone:
+    """Where the walk that is task ``i`` may end (:func:`mjwalk.cycle.standing.stand_zone`):
+    near its stand site, with every reach target of the work done there (the tasks after it
+    up to the next walk) within the arm's reach. A two-handed task's targets are its grip
+    sites ``<site>_left`` and ``<site>_right``."""
+    goal = ctx.spec.tasks[i].site
+    assert goal is not None  # the spec loader requires a site for walks
+    return _site_zone(ctx, goal, i + 1, stature, step_length)
+
+
+def start_zone(ctx: CycleContext, stature: float, step_length: float) -> StandZone:
+    """Where the operator stands when the cycle starts: the stand zone of the cycle's start
+    site for the work done there before the first walk (:func:`work_zone`'s rule). A cycle is
+    one of many in a shift: its operator starts where the work at the start site left them,
+    not on the site's mark."""
+    return _site_zone(ctx, ctx.spec.start, 0, stature, step_length)
+
+
+def _site_zone(
+    ctx: CycleContext, site: str, first: int, stature: float, step_length: float
+) -> StandZone:
+    """The stand zone of ``site`` for the reaches of tasks ``first, first + 1, ...`` up to
+    the next walk or carry."""
+    stand = ctx.workplace.station(site).pos
+    targets, squarely, hands = [], [], []
+    for task in ctx.spec.tasks[first:]:
+        kind = TASK_KINDS[task.kind]
+        if kind.action == "walk":
+            break
+        if kind.action != "reach" or task.site is None:
+            continue
+        for _, name in grip_sites(task.site, task.hand):
+            pos = ctx.workplace.station(name).pos
+            targets.append(reach_target(task.kind, pos, float(stand[0]), float(stand[1])))
+            # the cycle faces fastenings and two-handed work squarely (simulate_cycle)
+            squarely.append(kind.approach == "surface" or task.hand == "both")
+            hands.append(None if squarely[-1] else task.hand)
+    facing = ctx.workplace.station(site).yaw
+    return stand_zone(stand[:2], targets, step_length, stature, facing, squarely, hands)

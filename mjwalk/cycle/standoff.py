@@ -1,29 +1,18 @@
 """The stand-off of a reach: where the operator stands so the reaching arm clears the scene.
 
-A walk ends anywhere within the planner's goal area around a stand site (0.1 m), and the
-operator then turns to bring the target ahead of the reaching shoulder. Both move the shoulder:
-at rack 1 of the station (turned 20 degrees against the walk T3) a walk that ends a few
-centimetres short of the shelf and the turn (the target on the far side of the body) put the
-left shoulder about 0.2 m from the shelf board's front face. The reach then lifts the hand from
-its relaxed pose (:data:`~mjwalk.arms.kinematics.REST_HAND`, wrist at about 1 m, the board's
-height) almost straight up, a few centimetres in front of the board, and the fingers, pointing
-forward and down, brush its front edge (benchmarks/bench_contacts.py, 300 cycles: 3 runs, thumb
-or index fingertip up to 6.3 mm deep). The planner cannot see this (its clearance is 2-D, a body
-radius around the pelvis); the arm can. So the cycle checks each reach with MuJoCo's collision
-detection, the arm geoms inflated by :data:`REACH_CLEARANCE`, and when it is not clear steps the
-operator back from the target in :data:`STEP_BACK` increments (up to :data:`MAX_STEP_BACK`)
-during the turn, as a worker steps back from a shelf he stands too close to; a reach whose
-target is out of arm's length from where the last one left the operator steps in first. The
-cycle's contact check (:mod:`mjwalk.timeline.collisions`) is unchanged. Measured (``python
-benchmarks/bench_contacts.py --walks 200 --cycles 1000 --jobs 1``): 29 of 14 000 reaches step
-back, each by 0.02 m; no reach of the 1000 cycles touches the scene. Re-measured 2026-11-27
-(``--jobs 2``), after the reach generator's wrist and elbow and the hand along its approach
-(mjwalk.arms.reachgen, mjwalk.cycle.reaching): 13 of 14 000 reaches step back, largest
-0.04 m (63, largest 0.06 m, just before); 2 of the 1000 runs touch the scene, as just before:
-run 364 a toe on rack 3's frame while walking (4.4 mm), run 732 an index fingertip on the car
-body while fastening (7.0 mm). With the steps measured from the walk's end, the trunk's lean
-for targets below a standing reach and the stand-zone cache made exact (the same day): 19 of
-14 000 reaches step back, largest 0.06 m; none of the 1000 runs touches the scene.
+A walk ends anywhere in its stand zone, and the operator then turns to bring the target ahead
+of the reaching shoulder. Both move the shoulder, and a shoulder close to a shelf board's front
+face lifts the hand from its relaxed pose (:data:`~mjwalk.arms.kinematics.REST_HAND`, wrist
+at about the board's height) almost straight up in front of the board, the fingers brushing its
+front edge. The planner cannot see this (its clearance is 2-D, a body radius around the
+pelvis); the arm can. So the cycle checks each reach with MuJoCo's collision detection, the arm
+geoms inflated by :data:`REACH_CLEARANCE`, and when it is not clear steps the operator back
+from the target in :data:`STEP_BACK` increments (up to :data:`MAX_STEP_BACK`) during the turn,
+as a worker steps back from a shelf he stands too close to; a reach whose target is out of arm's
+length from where the last one left the operator steps in first
+(:mod:`mjwalk.cycle.reachspot`). The cycle's contact check (:mod:`mjwalk.timeline.collisions`)
+is unchanged. How often reaches step back, and how far, is measured by
+``benchmarks/bench_contacts.py`` (docs/decisions/007-reach-standoff.md).
 
 World frame: metres, z up.
 """
@@ -31,12 +20,16 @@ World frame: metres, z up.
 from __future__ import annotations
 
 import copy
+from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
 
 from mjwalk.body.humanoid import HUMAN_GROUP, JointMap
 from mjwalk.timeline.collisions import candidate_frames, floor_geoms, repeats
+
+if TYPE_CHECKING:
+    from mjwalk.cycle.context import CycleContext
 
 #: Clearance (m) the reaching arm (upper arm to fingertips) keeps from every scene geom. The
 #: contacts it prevents were up to 6.3 mm deep (benchmarks/bench_contacts.py, 300 cycles);
@@ -126,3 +119,10 @@ def step_back_offsets() -> np.ndarray:
     :data:`MAX_STEP_BACK`."""
     n = round(MAX_STEP_BACK / STEP_BACK)
     return np.arange(n + 1) * STEP_BACK
+
+
+def arm_clearance(ctx: CycleContext) -> ArmClearance:
+    """The context's :class:`ArmClearance` of its humanoid and scene (built on first use)."""
+    if ctx.clearance is None:
+        ctx.clearance = ArmClearance(ctx.model, ctx.jointmap)
+    return ctx.clearance

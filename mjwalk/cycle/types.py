@@ -4,9 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
-
-import numpy as np
+from typing import TYPE_CHECKING, Literal
 
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.gait.walker import Walker
@@ -18,8 +16,71 @@ if TYPE_CHECKING:  # the timeline stage is above this one at run time: no import
     from mjwalk.timeline.collisions import Contact
     from mjwalk.timeline.timeline import Timeline
 
-#: Task kinds of a cycle specification.
-TASK_KINDS = ("walk", "carry", "pick", "place", "fasten", "wait")
+#: The name of a task kind (the ``kind`` key of a ``[[task]]``; :data:`TASK_KINDS`).
+TaskKindName = Literal["walk", "carry", "pick", "place", "fasten", "wait"]
+
+
+@dataclass(frozen=True)
+class TaskKind:
+    """What a task of one kind does (an entry of :data:`TASK_KINDS`).
+
+    Attributes:
+        name: the ``kind`` of a ``[[task]]``.
+        keys: the keys a task of this kind may have in the cycle TOML.
+        action: ``"walk"`` (to ``site``: a planned walk), ``"reach"`` (a hand to ``site``, held
+            there and back: :mod:`mjwalk.cycle.reachspot`) or ``"wait"`` (standing still).
+        carries: a walk with a part in the hands.
+        part: what a reach does with a part: ``"take"`` it into the hand (the hand holds it
+            afterwards), ``"put"`` it down (the hand must hold one), or None.
+        reach_case: the MTM-1 reach case (:mod:`mjwalk.cycle.handling`) of its reach; the
+            return is case E.
+        default_hold: seconds at the site (reach) or standing (wait) when the task gives no
+            ``duration``: the reference adult's median.
+        approach: how the hand comes onto a reach's target (:mod:`mjwalk.cycle.targets`):
+            ``"shelf"`` from above and in front, stopping above the site, along the stand
+            site's facing; ``"surface"`` level, from the operator, stopping in front of the
+            site, the operator facing it squarely.
+    """
+
+    name: str
+    keys: tuple[str, ...]
+    action: Literal["walk", "reach", "wait"]
+    carries: bool = False
+    part: Literal["take", "put"] | None = None
+    reach_case: str | None = None
+    default_hold: float | None = None
+    approach: Literal["shelf", "surface"] | None = None
+
+
+_REACH_KEYS = ("kind", "site", "hand", "part", "duration")
+#: Every task kind, in the order reports list them. A new kind is one entry here (and its name
+#: in :data:`TaskKindName`); a new ``action`` also needs its frames in
+#: :func:`mjwalk.cycle.simulate.simulate_cycle`. Reach cases (MTM-1): a pick takes a small part
+#: from a bin of like parts (case C: search and select, the station's screws); a place or
+#: fasten brings the hand to a location that varies slightly (case B). Default holds: a pick or
+#: place 0.4 s, a fastening 3 s, a wait 1 s.
+TASK_KINDS: dict[str, TaskKind] = {
+    k.name: k
+    for k in (
+        TaskKind("walk", ("kind", "site", "route"), "walk"),
+        TaskKind("carry", ("kind", "site", "route", "hand", "part"), "walk", carries=True),
+        TaskKind("pick", (*_REACH_KEYS, "mass", "coupling"), "reach", part="take",
+                 reach_case="C", default_hold=0.4, approach="shelf"),
+        TaskKind("place", _REACH_KEYS, "reach", part="put", reach_case="B", default_hold=0.4,
+                 approach="shelf"),
+        TaskKind("fasten", _REACH_KEYS, "reach", part="put", reach_case="B", default_hold=3.0,
+                 approach="surface"),
+        TaskKind("wait", ("kind", "duration"), "wait", default_hold=1.0),
+    )
+}  # fmt: skip
+
+
+def grip_sites(site: str, hand: str) -> list[tuple[str, str]]:
+    """(side, site name) pairs of the hands reaching for ``site``: ``[(hand, site)]`` for one
+    hand, ``[("left", site + "_left"), ("right", site + "_right")]`` for ``hand = "both"``."""
+    if hand == "both":
+        return [("left", f"{site}_left"), ("right", f"{site}_right")]
+    return [(hand, site)]
 
 
 @dataclass
@@ -27,9 +88,11 @@ class Task:
     """One task of a cycle, as written in the spec.
 
     Attributes:
-        kind: "walk" or "carry" (to ``site``), "pick"/"place"/"fasten" (at ``site``), "wait".
+        kind: "walk" or "carry" (to ``site``), "pick"/"place"/"fasten" (at ``site``), "wait"
+            (:data:`TASK_KINDS` says what each does).
         site: the target site (walk/carry: where to stand; pick/place/fasten: the part's site).
-        hand: "left" or "right" (pick/place/fasten/carry).
+        hand: "left", "right" or "both" (pick/place/fasten/carry; "both": a two-handed part
+            held at the grip sites ``<site>_left`` and ``<site>_right``).
         duration: seconds the task takes beyond the motion itself (fasten: screwing time;
             wait: the waiting time; pick/place: optional hold time). None = the default.
         route: label of the walk route for the report (e.g. "T1"); walks with the same label are
@@ -40,7 +103,7 @@ class Task:
         coupling: the grip on the picked part ("good", "fair", "poor").
     """
 
-    kind: str
+    kind: TaskKindName
     site: str | None = None
     hand: str = "left"
     duration: float | None = None
@@ -264,12 +327,3 @@ def operator_dict(walker: Walker | None) -> dict | None:
         "step_width": walker.step_width,
         "pace": walker.pace,
     }
-
-
-def walk_samples(results: list[CycleResult]) -> dict[str, np.ndarray]:
-    """(runs,) arrays of walk lengths per route over many results, for the report."""
-    out: dict[str, list[float]] = {}
-    for r in results:
-        for route, lengths in r.walk_lengths().items():
-            out.setdefault(route, []).extend(lengths)
-    return {k: np.array(v) for k, v in out.items()}

@@ -8,61 +8,26 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mjwalk.cycle.standing import StandZone, stand_zone
+from mjwalk.cycle.standing import StandZone, start_zone, work_zone
+from mjwalk.cycle.types import TASK_KINDS
 
 if TYPE_CHECKING:
-    pass  # loaded on first use (prepare)
+    from mjwalk.cycle.context import CycleContext
 
-from mjwalk.cycle.context import CycleContext
-from mjwalk.cycle.reaching import _target
-
-
-def work_zone(ctx: CycleContext, i: int, stature: float, step_length: float) -> StandZone:
-    """Where the walk that is task ``i`` may end (:func:`mjwalk.cycle.standing.stand_zone`):
-    near its stand site, with every reach target of the work done there (the tasks after it
-    up to the next walk) within the arm's reach. A two-handed task's targets are its grip
-    sites ``<site>_left`` and ``<site>_right``."""
-    goal = ctx.spec.tasks[i].site
-    assert goal is not None  # the spec loader requires a site for walks
-    return _site_zone(ctx, goal, i + 1, stature, step_length)
-
-
-def start_zone(ctx: CycleContext, stature: float, step_length: float) -> StandZone:
-    """Where the operator stands when the cycle starts: the stand zone of the cycle's start
-    site for the work done there before the first walk (:func:`work_zone`'s rule). A cycle is
-    one of many in a shift: its operator starts where the work at the start site left them,
-    not on the site's mark."""
-    return _site_zone(ctx, ctx.spec.start, 0, stature, step_length)
-
-
-def _site_zone(
-    ctx: CycleContext, site: str, first: int, stature: float, step_length: float
-) -> StandZone:
-    """The stand zone of ``site`` for the reaches of tasks ``first, first + 1, ...`` up to
-    the next walk or carry."""
-    stand = ctx.workplace.station(site).pos
-    targets, squarely, hands = [], [], []
-    for task in ctx.spec.tasks[first:]:
-        if task.kind in ("walk", "carry"):
-            break
-        if task.kind not in ("pick", "place", "fasten") or task.site is None:
-            continue
-        sites = [f"{task.site}_left", f"{task.site}_right"] if task.hand == "both" else [task.site]
-        for name in sites:
-            pos = ctx.workplace.station(name).pos
-            targets.append(_target(ctx, task.kind, pos, float(stand[0]), float(stand[1])))
-            # the cycle faces fastenings and two-handed work squarely (simulate_cycle)
-            squarely.append(task.kind == "fasten" or task.hand == "both")
-            hands.append(None if squarely[-1] else task.hand)
-    facing = ctx.workplace.station(site).yaw
-    return stand_zone(stand[:2], targets, step_length, stature, facing, squarely, hands)
+__all__ = [
+    "cycle_start",
+    "plan_cycle_walks",
+    "plan_task_walk",
+    "standing_spot",
+    "start_zone",
+    "work_zone",
+]
 
 
 #: A standing spot keeps this much more than the body radius from obstacles (m): a walk sets
 #: off with a first step that sways the pelvis sideways (the default model's first steps: 1.3
-#: cm median, 3.6 cm 99th percentile of 4000 drawn, 6.1 cm the largest), so the planner finds
-#: no first step from a spot on the radius itself (measured: 9 of 100 station cycles drawn
-#: without the margin, all within 1 cm of the radius).
+#: cm median, 3.6 cm 99th percentile, 6.1 cm the largest), so from a spot on the radius itself
+#: the planner may find no first step (docs/decisions/005-standing-spots.md).
 START_MARGIN = 0.04
 #: Candidate spots drawn at once by :func:`standing_spot` (uniform over the zone's disc); the
 #: stations' zones keep 5-40 % of their disc walkable, so 512 leave a miss below 1e-10.
@@ -102,12 +67,8 @@ def cycle_start(ctx: CycleContext, rng: np.random.Generator, walker=None) -> tup
 #: part (:func:`standing_spot`): where people stand to work is not one point, it differs between
 #: people and from one cycle to the next. The walk ends when the pelvis is within this many of
 #: the walker's step lengths of the spot: walking in whole steps, one stops at the footfall
-#: nearest the spot, within half a step of it. Measured (bench_variability, 1000 station
-#: cycles, route length IQR/median as % of agethen2018 Table 1's, T1, T2 there/back, T3
-#: there/back, T4, T5): agethen2018's participants 75, 37/46, 50/63, 53, 82 against 64,
-#: 27/60, 21/62, 33, 50 when walks ended at the first place in the zone their steps reached;
-#: the shipped workforce 79, 34/41, 43/49, 55, 60 against 82, 32/50, 20/47, 33, 33; the
-#: longest walks (99th percentile over the grid A*'s route) at most 1.21x against 1.34x.
+#: nearest the spot, within half a step of it. The routes' spread then matches agethen2018's
+#: Table 1 (``benchmarks/bench_variability.py``; docs/decisions/005-standing-spots.md).
 SPOT_REACH = 0.5
 #: Spots drawn for a walk before it aims at the zone as a whole (a spot within SPOT_REACH step
 #: lengths of the start is no walk: the operator already stands there).
@@ -171,7 +132,7 @@ def plan_cycle_walks(
     x, y = float(start[0]), float(start[1])
     out = []
     for i, task in enumerate(spec.tasks):
-        if task.kind in ("walk", "carry"):
+        if TASK_KINDS[task.kind].action == "walk":
             yaw = float(ctx.workplace.station(here).yaw)
             path = plan_task_walk(ctx, i, (x, y), rng, walker, spots, yaw=yaw)
             goal = str(task.site)

@@ -50,14 +50,15 @@ import numpy as np
 from scipy.linalg import solve_banded
 from scipy.ndimage import gaussian_filter1d
 
-from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
+from mjwalk.gait.subjects import SubjectParams, sample_subject
 from mjwalk.mocap.take import TAKE_FPS, Take
 
 #: Version of the corpus generator: bump it whenever generated takes change, so cached models
 #: trained on an older corpus are rebuilt (see mjwalk.gait.default).
 CORPUS_VERSION = "2"
 
+#: Gravitational acceleration (m/s^2), the inverted pendulum's.
 G = 9.81
 #: Ankle and toe (ball of the foot) heights above the floor when the foot is planted, metres.
 ANKLE_HEIGHT = 0.08
@@ -74,183 +75,25 @@ LINE_LENGTHS = (3.0, 4.0)
 #: the preferred step a subject stretches before taking one step more (both uniform, per walk),
 #: at most ``SHORT_MAX_STEPS`` advancing steps (then the closing step); ``SHORT_TURN``: largest
 #: heading change (degrees, uniform +-) over the advancing steps.
-#: No capture we have holds a walk from or to a stand (Bandai: 1 of 354 clips starts below
-#: 0.2 m/s, none ends so; CMU 35: none), so these ranges are not calibrated on capture: they
-#: spread the initiation and the scale of the steps about the long bouts' 0.7-0.85 and 1.0.
-#: Walks of 0.6-1.4 m in at most two advancing steps cover the station's 1.1 m route T5 (the
-#: straight and pole bouts cover 2 m and more). Every step of a short walk is short (the pelvis
-#: never reaches walking speed), and such steps followed by more short steps made the model's
-#: forward chains linger in short steps (bench_model, default model vs all Bandai, KS length
-#: 0.066 without short walks; 0.239 with walks of 0.7-1.7 m in up to 3 steps, 5 of 28 minutes);
-#: with these figures and 2.5 of 26.5 minutes: 0.077 (4 minutes: 0.106), while the station's
-#: T5 walks shorter than 1.5 m are 79 % (4 minutes: 80 %; 200 seeded walks).
+#: No capture we have holds a walk from or to a stand, so these ranges are not calibrated on
+#: capture: they spread the initiation and the scale of the steps about the long bouts' 0.7-0.85
+#: and 1.0. Walks of 0.6-1.4 m in at most two advancing steps cover the station's 1.1 m route T5
+#: (the straight and pole bouts cover 2 m and more); few and short, so the model's forward
+#: chains do not linger in short steps (docs/decisions/004-corpus-short-walks.md).
 SHORT_RANGE = (0.6, 1.4)
 SHORT_INITIATION = (0.6, 0.9)
 SHORT_STRETCH = (0.75, 1.15)
 SHORT_MAX_STEPS = 2
 SHORT_TURN = 30.0
-
-# ---------------------------------------------------------------------------------------------
-# Calibration figures (NOT data): measured with ``mjwalk.gait.segment`` on
-# ../shared/data/bandai-walk (Bandai Namco Research Motion Dataset 2, 354 clips, CC BY-NC 4.0,
-# Kobayashi et al. 2023, arXiv:2306.08861), all steps except gait initiations and
-# terminations, with the default ``segment_take`` parameters, by
-# ``python benchmarks/bench_corpus.py`` (which prints them beside the virtual corpus).
-# Per quantity: (median, 25th percentile, 75th percentile, mean, standard deviation).
-# "length": pelvis displacement over the step (m); "duration": heel strike to heel strike (s);
-# "width": ankle distance across the mean foot yaw (m; the captured ankle->toe directions are
-# noisy, which inflates this figure: the same clips give a median of 0.065 m measured across the
-# pelvis chord instead, which is what ``step_width`` of the subjects is calibrated on);
-# "sway": largest pelvis distance
-# from the step's chord (m); "yaw": pelvis yaw change over the step (deg; +-12 deg by side is the
-# transverse pelvic rotation); "speed": length / duration (m/s).
-# ---------------------------------------------------------------------------------------------
-REAL_FIGURES: dict[str, dict[str, tuple[float, float, float, float, float]]] = {
-    "walk": {  # 1332 steps from the 103 `walk` clips
-        "length": (0.692, 0.651, 0.729, 0.693, 0.061),
-        "duration": (0.550, 0.525, 0.575, 0.556, 0.038),
-        "width": (0.102, 0.037, 0.163, 0.105, 0.073),
-        "sway": (0.030, 0.026, 0.034, 0.031, 0.006),
-        "yaw": (-0.07, -12.37, 12.22, -0.06, 15.74),
-        "speed": (1.250, 1.166, 1.330, 1.248, 0.111),
-    },
-    "turn": {  # 2219 steps from the 251 `walk-turn-left/right` clips (one ~90 deg turn each)
-        "length": (0.651, 0.609, 0.687, 0.643, 0.067),
-        "duration": (0.567, 0.542, 0.592, 0.572, 0.042),
-        "width": (0.096, 0.044, 0.165, 0.112, 0.084),
-        "sway": (0.031, 0.023, 0.040, 0.033, 0.016),
-        "yaw": (0.84, -13.10, 13.46, 0.27, 22.11),
-        "speed": (1.138, 1.066, 1.207, 1.128, 0.117),
-    },
-    "all": {  # 3551 steps both groups pooled
-        "length": (0.667, 0.624, 0.704, 0.662, 0.069),
-        "duration": (0.558, 0.542, 0.592, 0.566, 0.041),
-        "width": (0.097, 0.041, 0.164, 0.109, 0.080),
-        "sway": (0.030, 0.025, 0.038, 0.032, 0.013),
-        "yaw": (0.71, -12.77, 12.84, 0.14, 19.96),
-        "speed": (1.175, 1.097, 1.257, 1.173, 0.129),
-    },
-}
-# Fidelity of the default corpus (generate_corpus(), seed 0) against these clips, two-sample KS
-# statistic over all steps except initiations/terminations (bench_corpus.py): length 0.088,
-# duration 0.081, sway 0.112, yaw 0.066, speed 0.082; the paper's scenarios alone (without the
-# short walks, whose steps never reach walking speed): length 0.069, duration 0.080, sway 0.116,
-# yaw 0.067, speed 0.064 (before the short walks: 0.072, 0.079, 0.115, 0.069, 0.064; seeds 1,
-# 2: <= 0.14 for all three); width is not matched (0.50, see above).
-#: Transverse pelvic rotation amplitude (deg) implied by the +-12.3 deg per-step yaw change.
-REAL_PELVIS_ROTATION_DEG = 6.15
-
-
-@dataclass(frozen=True)
-class SubjectParams:
-    """One virtual subject: the figures that stay fixed across their takes.
-
-    Attributes:
-        subject: subject id.
-        stature: body height, metres (agethen2018: N(1.75, 0.04)).
-        pelvis_height: standing pelvis height, metres; also the pendulum height z0.
-        step_length: preferred pelvis advance per step, metres.
-        step_duration: preferred step duration (heel strike to heel strike), seconds.
-        step_width: lateral distance between the ankle centres, metres.
-        zmp_offset: lateral distance of the single-support ZMP from the walking line, metres.
-            Calibrated (about 0.10 m) so that the pendulum pelvis sways like the captured hip
-            centre (about 3 cm per step); it exceeds half the ankle width because the captured
-            pelvis also lists sideways over the stance leg, which a point-mass LIPM lacks.
-        double_support: double-support share of a step's duration.
-        pelvis_rotation: amplitude of the transverse pelvic rotation, radians.
-        toe_out: outward rotation of each foot from the heading, radians.
-        bob: vertical pelvis amplitude, metres.
-        clearance: peak lift of the swing foot, metres.
-        foot_length: ankle to toe (ball of foot) distance, metres.
-        length_cv, duration_cv: step-to-step (intra-subject) coefficient of variation.
-        speed_sd: standard deviation of the log speed factor between bouts.
-        turn_strategy: ``"step"`` (turn on the outside foot's steps) or ``"spin"`` (inside foot).
-        turn_share: share of a turn's heading change taken on the favoured foot's steps.
-        max_turn: largest heading change of one step, radians.
-        apa: backward ZMP shift of the anticipatory postural adjustment before the first
-            step, metres.
-    """
-
-    subject: int
-    stature: float
-    pelvis_height: float
-    step_length: float
-    step_duration: float
-    step_width: float
-    zmp_offset: float
-    double_support: float
-    pelvis_rotation: float
-    toe_out: float
-    bob: float
-    clearance: float
-    foot_length: float
-    length_cv: float
-    duration_cv: float
-    speed_sd: float
-    turn_strategy: str
-    turn_share: float
-    max_turn: float
-    apa: float
-
-
-def sample_subject(rng: np.random.Generator, subject: int = 0) -> SubjectParams:
-    """Draw one virtual subject (inter-subject variance), calibrated on ``REAL_FIGURES``.
-
-    Lengths scale with stature (1.75 m reference); the spread of the preferred step length and
-    duration between subjects is about half the captured spread, the rest is intra-subject.
-    """
-    stature = float(rng.normal(DEFAULT_STATURE, 0.04))
-    scale = stature / DEFAULT_STATURE
-    return SubjectParams(
-        subject=subject,
-        stature=stature,
-        pelvis_height=0.51 * stature,
-        step_length=float(0.725 * scale * np.exp(rng.normal(0.0, 0.03))),
-        step_duration=float(0.545 * np.exp(rng.normal(0.0, 0.02))),
-        step_width=float(np.clip(rng.normal(0.06, 0.012), 0.03, 0.1) * scale),
-        zmp_offset=float(np.clip(rng.normal(0.10, 0.008), 0.07, 0.13) * scale),
-        double_support=float(rng.uniform(0.16, 0.22)),
-        pelvis_rotation=float(np.radians(rng.normal(REAL_PELVIS_ROTATION_DEG, 1.0))),
-        toe_out=float(np.radians(rng.normal(6.0, 2.5))),
-        bob=float(rng.uniform(0.008, 0.016)),
-        clearance=float(rng.uniform(0.08, 0.12)),
-        foot_length=0.14 * scale,
-        # KNOWN (measured, not changed): duration_cv and speed_sd exceed one person's (stride
-        # time CV "usually below 3 %", Beauchet et al., J NeuroEng Rehabil 6:32, 2009): the
-        # default model's 9 m straight walks vary their mean step duration 1.2-2x as much as
-        # one Bandai style's, and their within-walk step-time CV is 4.9 % against the
-        # capture's 3.3 %. Set to 2-3 % and 1.5-3 % (with the cadence SD between subjects 7 %,
-        # Perry & Burnfield 2010, to keep the pooled calibration figures), they matched
-        # (straight-walk speed IQR 0.98x the capture's, step-time CV 3.3 %), but the planner
-        # then looped on the station's short routes (bench_variability, 20 cycles: T5
-        # p99/grid-A* 2.86, T4 1.94 with the workforce; a 1.83 m fatigued operator's walk not
-        # plannable). Changing the durations alone (step-time CV 2-3 %, cadence SD 7 %) also
-        # made T5 loop (p99/grid-A* 2.15) and left the straight-walk IQR at 157 %: the short
-        # routes react to any retrained model, so retrain only with the loop bound in view.
-        # Re-measured on 2026-11-27 (bench_variability straight walks, 10 reps, planned pooled
-        # time IQR vs the capture's; 151 % as shipped): free-walk speed AR(1) innovation 0.04
-        # -> 0.02: 136 %, -> 0.01: 158 %; these CVs at 2-3 % / 1.5-3 % (with innovation 0.02):
-        # 160 %; step length and duration deviations correlated 0.3-0.7 (Dingwell et al.,
-        # PLoS Comput Biol 6:e1000856, 2010; the capture's within-walk correlation is
-        # 0.19-0.52): 136 %; straight lines of 3, 4, 8 and 12 m: 142 %. None moves it beyond
-        # the model-to-model scatter, and even with no step noise and no speed changes the
-        # corpus's straight bouts (3-4 m, mostly speeding up or slowing down) have a within-walk
-        # SD of log step speed of 0.08 against the capture's 0.04: the excess is in the
-        # transition GP's successors of a steady step (in 9 m walks the per-step log speed SD
-        # is 0.12-0.18; captured styles 0.06-0.10), which mix the corpus's regimes. Lower
-        # noise makes it worse, not better (CVs 2-3 % / 1.5-3 %, innovation 0.015: chains' step
-        # log-speed SD 0.187 against 0.164; greedy walks 209 %): the GP then learns the bouts'
-        # deterministic speed changes. Resolved in the planner instead: its energy cost holds
-        # the walk's pace as people do (mjwalk.plan.hybrid module doc: 113-121 %).
-        length_cv=float(rng.uniform(0.035, 0.05)),
-        duration_cv=float(rng.uniform(0.04, 0.05)),
-        speed_sd=float(rng.uniform(0.03, 0.06)),
-        turn_strategy=str(rng.choice(["step", "spin"])),
-        turn_share=float(rng.uniform(0.5, 0.8)),
-        max_turn=float(np.radians(rng.uniform(30.0, 45.0))),
-        apa=float(rng.uniform(0.04, 0.08)),
-    )
-
+#: Paper's protocol minutes per subject: free 4, straight 2 + 2, pole 8 x 2 (agethen2018 §3.2),
+#: plus short walks (``_short_plan``), which the paper's protocol lacks: without them the model's
+#: first and closing steps barely vary and a walk to a spot about a metre away cannot end within
+#: a tight goal area except by a detour.
+PROTOCOL_MINUTES = {"free": 4.0, "straight": 4.0, "pole": 16.0, "short": 2.5}
+#: Default minutes per subject (paper: 24, without the short walks; 25.5 leaves the paper's
+#: scenarios the 23 minutes they had before the short walks). 12 subjects at this size give
+#: > 20 000 captured transitions (see benchmarks/bench_corpus.py).
+DEFAULT_MINUTES = 25.5
 
 # ---------------------------------------------------------------------------------------------
 # Step plans
@@ -604,16 +447,6 @@ def _render(
 # ---------------------------------------------------------------------------------------------
 # Protocol
 # ---------------------------------------------------------------------------------------------
-
-#: Paper's protocol minutes per subject: free 4, straight 2 + 2, pole 8 x 2 (agethen2018 §3.2),
-#: plus short walks (``_short_plan``), which the paper's protocol lacks: without them the model's
-#: first and closing steps barely vary and a walk to a spot about a metre away cannot end within
-#: a tight goal area except by a detour (issues 3/4/7).
-PROTOCOL_MINUTES = {"free": 4.0, "straight": 4.0, "pole": 16.0, "short": 2.5}
-#: Default minutes per subject (paper: 24, without the short walks; 25.5 leaves the paper's
-#: scenarios the 23 minutes they had before the short walks). 12 subjects at this size give
-#: > 20 000 captured transitions (see benchmarks/bench_corpus.py).
-DEFAULT_MINUTES = 25.5
 
 
 def subject_takes(

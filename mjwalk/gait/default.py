@@ -1,6 +1,7 @@
 """The default step model: trained on first use from the virtual-subject corpus, then cached.
 
-The cache file lives in ``$MJWALK_CACHE`` (if set) or ``~/.cache/mjwalk/``; its name carries the
+The cache file lives in the cache root (:func:`mjwalk._io.cache_root`: ``$MJWALK_CACHE`` or
+``~/.cache/mjwalk``); its name carries the
 step-model file version and the corpus generator version, so a new mjwalk that changes either
 builds a fresh model instead of reading a stale one. A missing or unreadable cache file is
 rebuilt (and rewritten atomically).
@@ -8,11 +9,11 @@ rebuilt (and rewritten atomically).
 
 from __future__ import annotations
 
-import os
 import time
 from collections.abc import Sequence
 from pathlib import Path
 
+from mjwalk._io import cache_root
 from mjwalk._log import log
 from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait.model import MIN_STEPS, MODEL_VERSION, StepModel
@@ -34,18 +35,12 @@ def corpus_version() -> str:
     return str(getattr(corpus, "CORPUS_VERSION", "0"))
 
 
-def cache_dir() -> Path:
-    """``$MJWALK_CACHE`` or ``~/.cache/mjwalk``."""
-    env = os.environ.get("MJWALK_CACHE")
-    return Path(env).expanduser() if env else Path.home() / ".cache" / "mjwalk"
-
-
 def default_model_path() -> Path:
     """Path of the cached default model (name includes the model and corpus versions and the
     transition GPs' inducing inputs)."""
     from mjwalk.gait.transition import N_INDUCING
 
-    return cache_dir() / (
+    return cache_root() / (
         f"stepmodel-v{MODEL_VERSION}-corpus{corpus_version()}"
         f"-s{DEFAULT_SUBJECTS}-seed{DEFAULT_SEED}-m{N_INDUCING}.npz"
     )

@@ -411,3 +411,21 @@ def _as_raw(steps_or_raw) -> np.ndarray:
             raise MjwalkError(f"raw features must be (n, {N_RAW}), got {raw.shape}")
         return raw
     return raw_features(steps_or_raw)
+
+
+def concat_batches(batches: Sequence[StepBatch]) -> StepBatch:
+    """Concatenate step batches row-wise."""
+    return StepBatch(
+        **{
+            k: np.concatenate([getattr(b, k) for b in batches])
+            for k in (
+                "side",
+                "features",
+                "landmarks",
+                "yaw_landmarks",
+                "duration",
+                "footprint",
+                "stance",
+            )
+        }
+    )

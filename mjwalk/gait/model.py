@@ -64,9 +64,15 @@ import numpy as np
 from mjwalk._args import as_generator
 from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk._log import log
-from mjwalk.conventions import Side
+from mjwalk.conventions import Side, other_side
 from mjwalk.errors import MjwalkError, ModelFileError
-from mjwalk.gait.features import StepBatch, StepFeatures, raw_features, side_array
+from mjwalk.gait.features import (
+    StepBatch,
+    StepFeatures,
+    concat_batches,
+    raw_features,
+    side_array,
+)
 from mjwalk.gait.step import Step
 from mjwalk.gait.transition import N_INDUCING, TransitionGP
 from mjwalk.gait.walker import Walker
@@ -245,7 +251,8 @@ class StepModel:
                 )
                 _log(
                     progress,
-                    f"{label}{s}->{_other(s)}: {counts[s]} pairs, {time.perf_counter() - t1:.1f} s",
+                    f"{label}{s}->{other_side(s)}: {counts[s]} pairs, "
+                    f"{time.perf_counter() - t1:.1f} s",
                 )
             return out, counts
 
@@ -364,7 +371,7 @@ class StepModel:
         if is_left.all() or not is_left.any():
             s = "left" if p and is_left[0] else "right"
             z = gps[s].sample(x, n, rng).reshape(p * n, d)
-            side = np.full(p * n, _other(s), dtype="<U5")
+            side = np.full(p * n, other_side(s), dtype="<U5")
         else:
             z = np.empty((p, n, d))
             for s, mask in (("left", is_left), ("right", ~is_left)):
@@ -473,7 +480,7 @@ class StepModel:
             pca_dims=self.n_dims,
             variance_kept=round(self.features.variance_kept, 5),
             kernels={
-                f"{s}->{_other(s)}": {
+                f"{s}->{other_side(s)}": {
                     "signal_var": round(g.signal_var, 5),
                     "noise_var": round(g.noise_var, 5),
                     "length_scale": [round(float(v), 4) for v in g.length_scale],
@@ -487,7 +494,7 @@ class StepModel:
                 for s, g in self.gp.items()
             },
             stop_kernels={
-                f"{s}->{_other(s)}": {
+                f"{s}->{other_side(s)}": {
                     "n_pairs": g.n_pairs,
                     "n_inducing": int(g.inducing.shape[0]),
                 }
@@ -573,28 +580,6 @@ def _check_shapes(model: StepModel) -> None:
         arrs = (g.inducing, g.alpha, g.w, g.res_pool, model.kde_data[s])
         if not all(np.all(np.isfinite(a)) for a in arrs):
             raise ValueError(f"{s} GP/KDE arrays hold non-finite values")
-
-
-def concat_batches(batches: Sequence[StepBatch]) -> StepBatch:
-    """Concatenate step batches row-wise."""
-    return StepBatch(
-        **{
-            k: np.concatenate([getattr(b, k) for b in batches])
-            for k in (
-                "side",
-                "features",
-                "landmarks",
-                "yaw_landmarks",
-                "duration",
-                "footprint",
-                "stance",
-            )
-        }
-    )
-
-
-def _other(side: str) -> str:
-    return "right" if side == "left" else "left"
 
 
 def _log(progress: bool, msg: str) -> None:

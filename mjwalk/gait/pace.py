@@ -29,6 +29,7 @@ import numpy as np
 
 from mjwalk.errors import MjwalkError
 from mjwalk.gait.step import Step
+from mjwalk.gait.straight import model_straight_walks, step_widths, straight_runs
 
 if TYPE_CHECKING:
     from mjwalk.gait.model import StepModel
@@ -44,14 +45,9 @@ CENTRE_TRIM = 0.25
 #: Version of the pace measurement: a model file whose saved pace has another is re-measured.
 PACE_VERSION = 2
 #: Steps left out at the start of a model walk (gait initiation, acceleration) and at its end.
-#: KNOWN BIAS (measured, not fixed here): a chain of the default model overshoots after its
-#: initiation and settles from about the sixth step (20 m walks, 200 seeded, median step speed
-#: by step: 0.52, 1.08, 1.28, 1.29, 1.27, 1.25, then 1.22 +- 0.01 m/s), so the steps counted
-#: here are ~2 % faster than its steady walking and a conditioned walker's long walks ~2 %
-#: slower than asked. Skipping 6 steps fixes that but lets the greedy walker's pelvis-arc
-#: detour (mjwalk.gait.fidelity) pick narrower, low-sway steps the longer it walks: a 0.6 m/s
-#: walker's steady step width fell to 0.80-0.87 of its stature's (test_walker asks >= 0.9;
-#: the model's own chains keep 0.99).
+#: The default model's chains settle from about the sixth step, so the steps counted are about
+#: 2 % faster than its steady walking; skipping more costs step width on slow walkers
+#: (docs/decisions/006-pace-skipped-steps.md).
 SKIP_START, SKIP_END = 2, 1
 
 
@@ -102,16 +98,6 @@ class Pace:
         )
 
 
-def step_widths(end_xy: np.ndarray, footprint: np.ndarray, stance: np.ndarray) -> np.ndarray:
-    """(n,) lateral distance (m) between the landing and the stance foot across each step's
-    walking direction (the pelvis chord, start -> end): the step width. The step frame's
-    own x axis turns with the transverse pelvic rotation (about +-6 deg), the chord does not."""
-    end_xy = np.asarray(end_xy, dtype=float).reshape(-1, 2)
-    d = np.asarray(footprint, dtype=float)[:, :2] - np.asarray(stance, dtype=float)[:, :2]
-    u = end_xy / np.maximum(np.hypot(end_xy[:, 0], end_xy[:, 1]), 1e-9)[:, None]
-    return np.abs(u[:, 0] * d[:, 1] - u[:, 1] * d[:, 0])
-
-
 def _pace(lengths, durations, widths) -> Pace:
     from scipy.stats import trim_mean  # scipy.stats costs ~1 s to import: only when measuring
 
@@ -130,9 +116,7 @@ def _pace(lengths, durations, widths) -> Pace:
 
 def capture_pace(steps: Sequence[Step], straight_deg: float = 20.0) -> Pace:
     """Pace of captured ``steps``: medians over the steady steps of its straight walks
-    (:func:`mjwalk.gait.fidelity.straight_runs`; gait initiations and terminations left out)."""
-    from mjwalk.gait.fidelity import straight_runs
-
+    (:func:`mjwalk.gait.straight.straight_runs`; gait initiations and terminations left out)."""
     steady = [
         s
         for run in straight_runs(steps, straight_deg)
@@ -152,10 +136,8 @@ def capture_pace(steps: Sequence[Step], straight_deg: float = 20.0) -> Pace:
 
 def model_pace(model: StepModel, *, seed: int = 0) -> Pace:
     """Pace of ``model``: medians over the steady steps of ``PACE_WALKS`` straight walks of
-    ``PACE_DISTANCE`` metres (the greedy walker of :func:`mjwalk.gait.fidelity.
+    ``PACE_DISTANCE`` metres (the greedy walker of :func:`mjwalk.gait.straight.
     model_straight_walks`, seeded, so the figure is a property of the model)."""
-    from mjwalk.gait.fidelity import model_straight_walks
-
     walks = model_straight_walks(
         model,
         np.full(PACE_WALKS, PACE_DISTANCE),

@@ -18,23 +18,15 @@ from mjwalk.errors import MjwalkError
 from mjwalk.gait import gpdraw
 
 #: Sharpness of the choice of residual pool (module doc, step 4): inducing input j is drawn
-#: with probability ∝ k(x, z_j)^POOL_SHARPNESS. Measured on the default model: the nearest pool
-#: alone (sharpness -> inf) made the corridor's sharp turns fail (door->exit: 4 of 10 seeds of
-#: 25 walks), proportional to k (1) mixed regimes again (sway KS vs all Bandai 0.16); 10 gives
-#: 0 of 10 and KS length/duration/sway 0.066/0.079/0.109 (nearest alone 0.087/0.083/0.099).
+#: with probability ∝ k(x, z_j)^POOL_SHARPNESS: sharp enough not to mix the gait regimes
+#: (proportional to k does), soft enough that sharp turns find residuals (the nearest pool alone
+#: does not) (docs/decisions/008-transition-gp-size.md).
 POOL_SHARPNESS = 10.0
 #: Inducing inputs per transition GP (module doc of :mod:`mjwalk.gait.model`, step 2). A draw's
 #: latent variance is an m x m quadratic form (:func:`mjwalk.gait.gpdraw._quadratic`), about
-#: half of a planner expansion's time at m = 400. Measured on the default model (2026-11-27),
-#: 200 against 400: the DTC's own error, the mean Nyström residual C - k K_mm⁻¹ k over the
-#: training predecessors (:attr:`TransitionGP.nystrom`), 2.0 % / 0.8 % of the noise variance
-#: (left / right predecessors; 0.9 % / 0.4 % at 400); KS of 40-step chains against all Bandai
-#: steps, mean of 3 seeds, length/duration/sway/heading 0.080/0.093/0.082/0.061 (400:
-#: 0.087/0.088/0.082/0.075); the station's routes over 1000 cycles (bench_variability), length
-#: IQR/median and p99/grid-A* within a percentage point and 0.02 of 400's for the model, the
-#: workforce and agethen2018's participants (T5's p99: 1.31/1.33/1.34 against 1.23/1.33/1.34);
-#: and a draw 13 µs instead of 22 µs, the hybrid A* 1.6x faster on the station's routes and
-#: 0.56-0.91x the grid A*'s time at 2-32 m in the cluttered hall (bench_scale; 0.82-1.17x).
+#: half of a planner expansion's time at m = 400; 200 keep the DTC's own error around 1-2 % of
+#: the noise variance and the walks' statistics those of 400, at about 1.6x the planner's speed
+#: (docs/decisions/008-transition-gp-size.md).
 N_INDUCING = 200
 
 

@@ -282,7 +282,7 @@ def check_endpoint(workplace: Workplace, xy: np.ndarray, radius: float, what: st
         d = float(fp.signed_distance(xy[None])[0])
         dists[fp.name] = min(d, dists.get(fp.name, d))
     if dists:
-        nearest = min(dists, key=dists.get)
+        nearest = min(dists, key=dists.__getitem__)
         if dists[nearest] < 0:
             raise PlanningError(f"{label} is inside obstacle {nearest!r} of {workplace.name}")
         if dists[nearest] < radius:

@@ -1,6 +1,6 @@
 """Straight walks as the planner walks them: the time a planned walk takes over a distance.
 
-The step model's own straight walks (:func:`mjwalk.gait.fidelity.model_straight_walks`) steer
+The step model's own straight walks (:func:`mjwalk.gait.straight.model_straight_walks`) steer
 its chains greedily; the walks mjwalk plans are searched
 (:class:`~mjwalk.plan.hybrid.HybridPlanner`, its energy cost holding the walker's pace).
 :func:`planned_straight_walks` plans each distance in an empty straight hall and times it as
@@ -36,14 +36,14 @@ def planned_straight_walks(
     :data:`RUN_ON` metres beyond the distance; a walk ``in_motion`` is timed from where its
     progress passes :data:`RUN_UP` metres (it started that far before, so it is walking
     there), the others from the start. The time at a distance is read off the steps' ends
-    (``mjwalk.gait.fidelity._time_at``: interpolated within the step that crosses it).
+    (:func:`mjwalk.gait.straight.time_at`: interpolated within the step that crosses it).
     Distances must be positive and finite (else MjwalkError). A walk the planner cannot plan
     raises its PlanningError, or with ``failed_as_nan`` gives NaN (a model that does not plan
     well still gets its other figures reported)."""
     import mujoco
 
     from mjwalk.errors import MjwalkError, PlanningError
-    from mjwalk.gait.fidelity import _time_at
+    from mjwalk.gait.straight import time_at
     from mjwalk.plan.hybrid import HybridPlanner
     from mjwalk.world import workplace_from_model
 
@@ -81,6 +81,6 @@ def planned_straight_walks(
             continue
         track = [(float(walk.t[s.end]), float(walk.xy[s.end, 0] - x0)) for s in walk.steps]
         track = [(0.0, 0.0), *track]
-        t0 = _time_at(track, lead) if moving else 0.0
-        out.append(_time_at(track, lead + d) - t0)
+        t0 = time_at(track, lead) if moving else 0.0
+        out.append(time_at(track, lead + d) - t0)
     return out

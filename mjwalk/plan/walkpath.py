@@ -12,7 +12,7 @@ from mjwalk._io import check_header, load_npz, save_npz
 WALKPATH_FORMAT = "mjwalk.walkpath"
 WALKPATH_VERSION = 1
 #: Longest walk mjwalk plays, seconds: a cycle lasts at most an hour
-#: (:data:`mjwalk.cycle.spec.MAX_CYCLE_SECONDS`), and an hour at 240 fps is 864 000 frames.
+#: (:data:`mjwalk.cycle.specfile.MAX_CYCLE_SECONDS`), and an hour at 240 fps is 864 000 frames.
 MAX_WALK_SECONDS = 3600.0
 
 

@@ -19,6 +19,7 @@ import numpy as np
 from mjwalk._args import check_fps
 from mjwalk.body.humanoid import JointMap, attach_humanoid, shoulder_geometry
 from mjwalk.body.legs import LegMotion, legs_from_walk
+from mjwalk.body.legs.curves import smoothstep
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
@@ -192,10 +193,10 @@ def ease_arms(
         free = np.clip((room - ARM_ROOM[0]) / (ARM_ROOM[1] - ARM_ROOM[0]), 0.0, 1.0)
         w = np.minimum(w, free)
         tight = 1.0 - free
-        tight = tight * tight * (3.0 - 2.0 * tight)
-    w = w * w * (3.0 - 2.0 * w)  # smoothstep
+        tight = smoothstep(tight)
+    w = smoothstep(w)
     ease = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
-    ease = ease * ease * (3.0 - 2.0 * ease)
+    ease = smoothstep(ease)
     for side in "lr":
         for joint in (f"shoulder_{side}_flex", f"shoulder_{side}_abd", f"elbow_{side}"):
             k = jm.adr(joint)

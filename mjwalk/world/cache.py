@@ -7,33 +7,54 @@ everything it depends on (the footprints' geometry, the floor bounds, the resolu
 format version below), written atomically, and opened memory-mapped (copy-on-write): the
 operating system shares the pages between the processes that read it.
 
-The directory is ``$MJWALK_CACHE_DIR`` when set, else ``~/.cache/mjwalk/workplaces``. Files
-are never read when their key differs, so a changed scene simply builds (and stores) anew;
-deleting the directory is always safe.
+The directory is ``workplaces/`` under the cache root (:func:`mjwalk._io.cache_root`:
+``$MJWALK_CACHE`` or ``~/.cache/mjwalk``); ``$MJWALK_CACHE_DIR``, the directory itself, is still
+read when set, with a deprecation message. Files are never read when their key differs, so a
+changed scene simply builds (and stores) anew; deleting the directory is always safe.
 """
 
 from __future__ import annotations
 
+import functools
 import hashlib
+import logging
 import os
-import tempfile
+import warnings
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
 import numpy as np
+
+from mjwalk._io import atomic_path, cache_root
 
 #: Bump when the arrays' meaning or their algorithm changes: old files are then ignored.
 FORMAT = "mjwalk-workplace-1"
 #: Fields of at least this many nodes are cached by default (about 20 x 20 m at 0.02 m):
 #: smaller ones build in well under a second.
 AUTO_NODES = 1_000_000
+#: Deprecated: the workplace cache directory itself (use ``$MJWALK_CACHE``, the cache root).
 ENV_DIR = "MJWALK_CACHE_DIR"
 
 
 def cache_dir() -> Path:
-    """Where cached arrays live: ``$MJWALK_CACHE_DIR`` or ``~/.cache/mjwalk/workplaces``."""
+    """Where cached arrays live: ``workplaces/`` under :func:`mjwalk._io.cache_root`, or
+    ``$MJWALK_CACHE_DIR`` when set (deprecated: a DeprecationWarning and a log message)."""
     env = os.environ.get(ENV_DIR)
-    return Path(env) if env else Path.home() / ".cache" / "mjwalk" / "workplaces"
+    if env:
+        _deprecated_env()
+        return Path(env).expanduser()
+    return cache_root() / "workplaces"
+
+
+@functools.cache
+def _deprecated_env() -> None:
+    """Say once per process that ``$MJWALK_CACHE_DIR`` is deprecated."""
+    msg = (
+        f"${ENV_DIR} is deprecated: set $MJWALK_CACHE (the root of all mjwalk caches; "
+        "workplaces are cached in its workplaces/ folder)"
+    )
+    warnings.warn(msg, DeprecationWarning, stacklevel=3)
+    logging.getLogger(__name__).warning(msg)
 
 
 def content_key(*parts: object, arrays: Iterable[np.ndarray] = ()) -> str:
@@ -62,15 +83,8 @@ def cached_array(key: str, what: str, build: Callable[[], np.ndarray]) -> np.nda
             pass
     arr = build()
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(dir=path.parent, suffix=".npy.tmp")
-        try:
-            with os.fdopen(fd, "wb") as fh:
-                np.save(fh, arr)
-            os.replace(tmp, path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
+        with atomic_path(path) as tmp:
+            np.save(tmp, arr)
     except OSError:
         return arr
     return np.asarray(np.load(path, mmap_mode="c"))

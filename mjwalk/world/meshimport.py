@@ -26,6 +26,7 @@ import numpy as np
 from mjwalk._args import check_output_file
 from mjwalk._io import atomic_path
 from mjwalk.errors import InputError, SceneError
+from mjwalk.world.floor import check_floor_size
 from mjwalk.world.footprint import Footprint
 
 #: A band footprint is concave when its convex hull exceeds it by more than this share of the
@@ -306,8 +307,6 @@ def import_scene(
         model = spec.compile()
     except ValueError as exc:
         raise SceneError(f"{source}: does not compile: {exc}") from exc
-    from mjwalk.world.workplace import check_floor_size  # workplace builds on this module
-
     try:
         check_floor_size(model, str(source))  # a floor mjwalk cannot load: refused before work
     except SceneError as exc:

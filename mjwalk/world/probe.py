@@ -34,6 +34,7 @@ class ClearanceProbe:
         geoms: Sequence[str] | None = None,
         z_range: tuple[float, float] = (0.05, 2.0),
     ):
+        names: Sequence[str] | None
         if isinstance(scene, Workplace):
             if scene.source is None:
                 raise SceneError("ClearanceProbe needs a workplace loaded from an MJCF file")

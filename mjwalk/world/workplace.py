@@ -5,7 +5,6 @@ from __future__ import annotations
 import difflib
 import functools
 import hashlib
-import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -17,20 +16,16 @@ from mjwalk._args import finite_points, parse_point
 from mjwalk.errors import InputError, SceneError
 from mjwalk.world.cache import AUTO_NODES, cached_array, content_key
 from mjwalk.world.clearance import ClearanceField, build_clearance
+from mjwalk.world.floor import (
+    OBSTACLE_Z_RANGE,
+    check_floor_nodes,
+    find_floor,
+)
 from mjwalk.world.footprint import Footprint, geom_footprint
 from mjwalk.world.meshimport import concave_mesh_footprints
 
-#: Default height band (metres above the floor) in which a geom counts as an obstacle.
-OBSTACLE_Z_RANGE = (0.05, 2.0)
-#: Most nodes a floor's clearance grid may have: 1e8, a 200 x 200 m hall at the default 2 cm
-#: (a large final-assembly hall). The clearance and walk fields are float64 grids of this many
-#: nodes, 0.8 GB each; a plane of size "1e6 1e6" asked for 71 PiB.
-MAX_FLOOR_NODES = 1e8
 #: Bodies whose name starts with one of these are part of a humanoid, never obstacles.
 HUMANOID_PREFIXES = ("human",)
-#: A plane is a floor when its normal's z is above this (its normal within 2.56 deg of +z):
-#: the clearance field and the humanoid's legs assume a level floor.
-FLOOR_MIN_NZ = 0.999
 
 
 @dataclass(frozen=True)
@@ -220,81 +215,6 @@ def _is_humanoid_geom(model: mujoco.MjModel, g: int, prefixes: tuple[str, ...]) 
     return False
 
 
-def _find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
-    planes = [
-        g
-        for g in range(model.ngeom)
-        if model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
-        and data.geom_xmat[g].reshape(3, 3)[2, 2] > FLOOR_MIN_NZ
-    ]
-    if not planes:
-        tilted = [
-            g for g in range(model.ngeom) if model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
-        ]
-        if tilted:
-            g = max(tilted, key=lambda g: data.geom_xmat[g].reshape(3, 3)[2, 2])
-            nz = float(np.clip(data.geom_xmat[g].reshape(3, 3)[2, 2], -1.0, 1.0))
-            name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
-            raise SceneError(
-                f"{label}: no level floor: plane {name!r} is tilted {np.degrees(np.arccos(nz)):.1f}"
-                f" deg from horizontal (its normal must point up within "
-                f"{np.degrees(np.arccos(FLOOR_MIN_NZ)):.1f} deg; mjwalk plans on level floors)"
-            )
-        raise SceneError(
-            f"{label}: no floor: the scene needs an upward-facing plane geom (e.g. "
-            '<geom name="floor" type="plane" size="4 3 0.1"/>)'
-        )
-    named = [g for g in planes if "floor" in (mujoco.mj_id2name(model, 5, g) or "").lower()]
-    return (named or sorted(planes, key=lambda g: data.geom_xpos[g][2]))[0]
-
-
-def _check_floor_nodes(bounds, resolution: float, label: str, floor: str) -> None:
-    """Raise SceneError naming the floor when its clearance grid would have more than
-    :data:`MAX_FLOOR_NODES` nodes (or its extent is not finite)."""
-    w, d = float(bounds[2] - bounds[0]), float(bounds[3] - bounds[1])
-    if not (math.isfinite(w) and math.isfinite(d)):
-        raise SceneError(f"{label}: the floor {floor!r} has no finite extent")
-    nodes = (w / resolution + 1) * (d / resolution + 1)
-    if nodes > MAX_FLOOR_NODES:
-        side = math.sqrt(MAX_FLOOR_NODES) * resolution
-        raise SceneError(
-            f"{label}: the floor {floor!r} spans {w:.6g} x {d:.6g} m; mjwalk plans on floors "
-            f"of at most {MAX_FLOOR_NODES:.0e} clearance-grid nodes ({side:.0f} x {side:.0f} m "
-            f"at {resolution:g} m): give the plane the size of the hall (MJCF size is half "
-            "the side)"
-        )
-
-
-def check_floor_size(model: mujoco.MjModel, label: str, resolution: float = 0.02) -> None:
-    """Raise SceneError when the floor :func:`load_workplace` would find in ``model`` is larger
-    than :data:`MAX_FLOOR_NODES` allow (an infinite plane: its obstacles' extent plus 2 m, as
-    there). A scene without a floor passes (load_workplace names that itself)."""
-    data = mujoco.MjData(model)
-    mujoco.mj_kinematics(model, data)
-    try:
-        floor = _find_floor(model, data, label)
-    except SceneError:
-        return
-    name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
-    fx, fy = model.geom_size[floor][:2]
-    if fx > 0 and fy > 0:
-        cx, cy = data.geom_xpos[floor][:2]
-        _check_floor_nodes((cx - fx, cy - fy, cx + fx, cy + fy), resolution, label, name)
-        return
-    floor_z = float(data.geom_xpos[floor][2])
-    z0, z1 = floor_z + OBSTACLE_Z_RANGE[0], floor_z + OBSTACLE_Z_RANGE[1]
-    boxes = [
-        fp.bounds()
-        for g in range(model.ngeom)
-        if int(model.geom_type[g]) != mujoco.mjtGeom.mjGEOM_PLANE
-        and (fp := geom_footprint(model, data, g, z0, z1)) is not None
-    ]
-    if boxes:
-        b = np.array(boxes)
-        bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
-        _check_floor_nodes(bounds, resolution, label, name)
-
-
 def workplace_from_model(
     model: mujoco.MjModel,
     *,
@@ -313,12 +233,12 @@ def workplace_from_model(
         raise SceneError(f"{label}: clearance resolution {resolution} m must be in (0, 0.02]")
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
-    floor = _find_floor(model, data, label)
+    floor = find_floor(model, data, label)
     floor_z = float(data.geom_xpos[floor][2])
     fx, fy = model.geom_size[floor][:2]
     if fx > 0 and fy > 0:  # a finite floor: refused before the obstacles are read
         cx, cy = data.geom_xpos[floor][:2]
-        _check_floor_nodes(
+        check_floor_nodes(
             (cx - fx, cy - fy, cx + fx, cy + fy),
             resolution,
             label,
@@ -360,7 +280,7 @@ def workplace_from_model(
         b = np.array([f.bounds() for f in footprints])
         bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
     floor_name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
-    _check_floor_nodes(bounds, resolution, label, floor_name)
+    check_floor_nodes(bounds, resolution, label, floor_name)
     key = None
     nx = int(np.floor((bounds[2] - bounds[0]) / resolution + 1e-9)) + 1
     ny = int(np.floor((bounds[3] - bounds[1]) / resolution + 1e-9)) + 1
@@ -391,7 +311,7 @@ def workplace_from_model(
         source=source,
         floor=mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}",
         floor_z=floor_z,
-        floor_bounds=tuple(float(v) for v in bounds),
+        floor_bounds=(float(bounds[0]), float(bounds[1]), float(bounds[2]), float(bounds[3])),
         obstacles=footprints,
         clearance=clearance,
         stations=stations,

@@ -17,7 +17,9 @@ from mjwalk.arms.armrep import (
     segment_directions,
     trajectory_error,
 )
-from mjwalk.arms.dcs import DCS_VERSION, DCSNetwork
+from mjwalk.arms.dcs import DCSNetwork
+from mjwalk.arms.dcsfile import DCS_VERSION
+from mjwalk.arms.dcsfit import features, forward, output_form, solve_outputs, split_outputs
 from mjwalk.errors import MjwalkError, ModelFileError
 
 #: real capture: ``$MJWALK_SHARED_DATA`` or ../shared/data beside the project
@@ -396,7 +398,7 @@ def test_dcs_leave_one_out_residuals_match_refits():
     # output forms: constant, local linear, local linear with its own slope ridge and a
     # global linear term, constant with a global linear term
     for linear in (False, True, (True, True, 10.0), (False, True, 1.0)):
-        local, glob, r = DCSNetwork._form(linear)
+        local, glob, r = output_form(linear)
         net = DCSNetwork(
             rng=0,
             max_neurons=6,
@@ -408,12 +410,12 @@ def test_dcs_leave_one_out_residuals_match_refits():
         ).fit(X, Y)
         Z = (X - net.x_mean_) / net.x_scale_
         c, w, e = net.centers_, net.widths_, net.edges_
-        out, hat = net._solve_outputs(Z, Y, c, w, e, 1e-6, linear, with_hat=True)
-        fast = (Y - net._forward(Z, c, w, out, e, linear)) / (1 - hat[:, None])
+        out, hat = solve_outputs(Z, Y, c, w, e, 1e-6, linear, with_hat=True)
+        fast = (Y - forward(Z, c, w, out, e, linear)) / (1 - hat[:, None])
         for i in range(0, len(Z), 7):
             keep = np.arange(len(Z)) != i
-            o = net._solve_outputs(Z[keep], Y[keep], c, w, e, 1e-6, linear)
-            refit = Y[i] - net._forward(Z[i : i + 1], c, w, o, e, linear)[0]
+            o = solve_outputs(Z[keep], Y[keep], c, w, e, 1e-6, linear)
+            refit = Y[i] - forward(Z[i : i + 1], c, w, o, e, linear)[0]
             np.testing.assert_allclose(fast[i], refit, atol=1e-4)
     net = DCSNetwork(rng=0, selection="loo").fit(X, Y)
     assert np.isfinite([h[2] for h in net.history_]).all()
@@ -451,10 +453,10 @@ def test_dcs_slope_ridge_penalizes_slopes_relative_to_ridge():
     c, w, e = net.centers_, net.widths_, net.edges_
     k, d = len(c), X.shape[1]
     r, ridge = 30.0, 1e-2
-    out = net._solve_outputs(Z, Y, c, w, e, ridge, (True, False, r))
-    _, slopes, trend = DCSNetwork._split(out, k, d, (True, False, r))
+    out = solve_outputs(Z, Y, c, w, e, ridge, (True, False, r))
+    _, slopes, trend = split_outputs(out, k, d, (True, False, r))
     assert trend is None
-    F = DCSNetwork._features(Z, c, w, e, True)  # unscaled slope columns
+    F = features(Z, c, w, e, True)  # unscaled slope columns
     Phi = F[:, :k]
     lam = ridge * np.sum(Phi**2) / k
     bmu = np.argmax(Phi, axis=1)
@@ -601,7 +603,7 @@ def test_dcs_fits_linear_maps_only_from_ten_samples_per_input():
     # selection takes a linear term; with 12 a plane would be set by a handful of samples and
     # run off away from them, so the network and its trend keep constant outputs: far
     # outside the prediction is a convex combination of neuron outputs, not a plane
-    from mjwalk.arms.dcs import SAMPLES_PER_COEFFICIENT
+    from mjwalk.arms.dcsfit import SAMPLES_PER_COEFFICIENT
 
     assert SAMPLES_PER_COEFFICIENT == 10
     rng = np.random.default_rng(4)

@@ -344,7 +344,7 @@ def test_a_pick_from_a_shelf_above_the_head_ends_on_the_target(scenes_dir, tmp_p
     1.75 m operator's head), picked with one hand: the hand ends on it (1.95 m: it ended 1.3 m
     off, the arm clipped into extension by joint angles on the wrong Euler branch; 1.85 m:
     0.18 m off, beyond the working area the default model was trained on, reachgen.END_BOX)."""
-    from mjwalk.cycle import reaching
+    from mjwalk.cycle import reaching, reachspot
     from mjwalk.cycle.simulate import prepare
     from mjwalk.cycle.spec import load_cycle_spec
 
@@ -359,7 +359,7 @@ def test_a_pick_from_a_shelf_above_the_head_ends_on_the_target(scenes_dir, tmp_p
     )
     ctx = prepare(load_cycle_spec(tmp_path / "c.toml"))
     st = ctx.workplace.station("stand_bench_a")
-    r = reaching._reach_task(
-        ctx, ctx.spec.tasks[0], st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching._default_timing
+    r = reachspot.reach_task(
+        ctx, ctx.spec.tasks[0], st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching.default_timing
     )
     assert r.error < 0.01 and r.distance == np.inf

@@ -12,9 +12,10 @@ import numpy as np
 import pytest
 
 import mjwalk.cycle.reaching as reaching
+import mjwalk.cycle.reachspot as reachspot
 from mjwalk.cycle.crouch import _com_ahead, crouch_frames, crouch_pose, trunk_bend
 from mjwalk.cycle.handling import BODY_MOTION_TMU, TMU
-from mjwalk.cycle.poses import _standing, frame_contacts, hand_points
+from mjwalk.cycle.poses import frame_contacts, hand_points, standing_pose
 from mjwalk.cycle.simulate import prepare, simulate_cycle
 from mjwalk.cycle.spec import load_cycle_spec
 
@@ -48,7 +49,7 @@ def _com(ctx, q):
 @pytest.mark.parametrize("drop", [0.05, 0.15, 0.25])
 def test_a_crouch_lowers_the_pelvis_with_the_feet_planted_and_balanced(ctx, drop):
     jm = ctx.jointmap
-    q0 = _standing(ctx, 0.3, -0.2, 0.7)
+    q0 = standing_pose(ctx, 0.3, -0.2, 0.7)
     q = crouch_pose(ctx, q0, drop)
     assert q[jm.root + 2] == pytest.approx(q0[jm.root + 2] - drop)
     assert np.abs(_feet(ctx, q) - _feet(ctx, q0)).max() < 1e-6  # ankles where they stood
@@ -84,7 +85,7 @@ def _assert_hangs_plumb(ctx, q, sides: str) -> None:
 
 
 def test_no_drop_is_the_standing_pose(ctx):
-    q0 = _standing(ctx, 0.0, 0.0, 0.0)
+    q0 = standing_pose(ctx, 0.0, 0.0, 0.0)
     assert np.array_equal(crouch_pose(ctx, q0, 0.0), q0)
 
 
@@ -97,12 +98,12 @@ def test_a_reach_into_a_low_compartment_crouches_and_is_clear(ctx, monkeypatch):
     st = ctx.workplace.station("stand_rack1")
 
     def reach():
-        return reaching._reach_task(
-            ctx, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching._default_timing
+        return reachspot.reach_task(
+            ctx, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching.default_timing
         )
 
     with monkeypatch.context() as m:
-        m.setattr(reaching, "CROUCH_DROPS", ())
+        m.setattr(reachspot, "CROUCH_DROPS", ())
         standing = reach()
     assert standing.distance < 0.0
     assert {c.scene_geom for c in frame_contacts(ctx, standing.frames)} & {"rack1_shelf"}
@@ -145,8 +146,8 @@ def test_a_two_handed_pick_from_the_floor_crouches_with_both_hands_on_the_part(p
     jm = ctx.jointmap
     task = ctx.spec.tasks[0]
     st = ctx.workplace.station("stand_bench_a")
-    r = reaching._reach_task(
-        ctx, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching._default_timing
+    r = reachspot.reach_task(
+        ctx, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching.default_timing
     )
     assert r.error < 0.01 and r.distance == np.inf
     assert not frame_contacts(ctx, np.vstack([r.turn, r.frames]))
@@ -198,8 +199,8 @@ def test_a_two_handed_pick_deep_on_a_bench_bends_briefly(scenes_dir, tmp_path):
     task = ctx.spec.tasks[0]
 
     def reach():
-        return reaching._reach_task(
-            ctx, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching._default_timing
+        return reachspot.reach_task(
+            ctx, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching.default_timing
         )
 
     r = reach()
@@ -212,8 +213,8 @@ def test_a_two_handed_pick_deep_on_a_bench_bends_briefly(scenes_dir, tmp_path):
     down = np.flatnonzero(bend >= bend.max() - 1e-9)[0]
     assert (down + 1) / 30.0 < 0.5 * BODY_MOTION_TMU["B"] * TMU
     with pytest.MonkeyPatch.context() as m:  # upright only: short of the grips
-        m.setattr(reaching, "_leaning", lambda ctx, q0, *a: q0)
-        m.setattr(reaching, "CROUCH_DROPS", ())
+        m.setattr(reaching, "leaning", lambda ctx, q0, *a: q0)
+        m.setattr(reachspot, "CROUCH_DROPS", ())
         assert reach().error > 0.02
 
 
@@ -229,8 +230,8 @@ def test_a_one_handed_stoop_below_the_knee_takes_mtm_bend_and_arise(scenes_dir, 
     )
     ctx = prepare(load_cycle_spec(tmp_path / "c.toml"))
     st = ctx.workplace.station("stand_bench_a")
-    r = reaching._reach_task(
-        ctx, ctx.spec.tasks[0], st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching._default_timing
+    r = reachspot.reach_task(
+        ctx, ctx.spec.tasks[0], st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching.default_timing
     )
     assert r.error < 0.01 and r.distance == np.inf
     z = r.frames[:, ctx.jointmap.root + 2]

@@ -166,11 +166,11 @@ def test_turns_on_the_spot_go_at_the_operators_cadence(ctx):
     """A turn on the spot is made of steps: a walker at 90 steps/min takes 113/90 as long as
     the reference adult (113 steps/min) for the same half turn; without an operator, 1:1."""
     from mjwalk.cycle.context import operator_context
-    from mjwalk.cycle.poses import _turn_frames
+    from mjwalk.cycle.poses import turn_frames
     from mjwalk.gait.walker import REFERENCE_CADENCE, Walker
 
     assert operator_context(ctx, None) is ctx
-    _, ref = _turn_frames(ctx, 0.0, 0.0, 0.0, np.pi, 30.0)
+    _, ref = turn_frames(ctx, 0.0, 0.0, 0.0, np.pi, 30.0)
     slow = Walker(stature=ctx.spec.stature, speed=1.0, cadence=90.0)
-    _, dt = _turn_frames(operator_context(ctx, slow), 0.0, 0.0, 0.0, np.pi, 30.0)
+    _, dt = turn_frames(operator_context(ctx, slow), 0.0, 0.0, 0.0, np.pi, 30.0)
     assert dt / ref == pytest.approx(REFERENCE_CADENCE / 90.0, rel=0.05)

@@ -9,8 +9,10 @@ import numpy as np
 import pytest
 
 import mjwalk.cycle.reaching as reaching
+import mjwalk.cycle.reachspot as reachspot
+import mjwalk.cycle.targets as targets
 from mjwalk.cycle.poses import frame_contacts
-from mjwalk.cycle.reaching import _reach_task
+from mjwalk.cycle.reachspot import reach_task
 from mjwalk.cycle.simulate import prepare, simulate_cycles
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.standoff import REACH_CLEARANCE, ArmClearance
@@ -36,11 +38,11 @@ def _pick(ctx, site: str):
 
 
 def _timing(dist):
-    return reaching._default_timing(dist)
+    return reaching.default_timing(dist)
 
 
 def _reach(ctx, site, xy, yaw):
-    return _reach_task(ctx, _pick(ctx, site), xy[0], xy[1], yaw, 0.4, 30.0, _timing)
+    return reach_task(ctx, _pick(ctx, site), xy[0], xy[1], yaw, 0.4, 30.0, _timing)
 
 
 def _contacts(ctx, frames):
@@ -52,7 +54,7 @@ def test_too_close_to_a_shelf_the_operator_steps_back(ctx, monkeypatch):
     # without the stand-off (no step back allowed) the index finger touches the shelf's front
     # edge (with the old hand directions, the elbow also touched the rack's upright)
     with monkeypatch.context() as m:
-        m.setattr(reaching, "step_back_offsets", lambda: np.array([0.0]))
+        m.setattr(reachspot, "step_back_offsets", lambda: np.array([0.0]))
         stay = _reach(ctx, "rack1_screw1", CLOSE_TO_RACK1, yaw)
     assert stay.step_back == 0.0
     assert stay.distance < 0.0  # overlapping
@@ -93,8 +95,8 @@ def test_out_of_reach_the_operator_steps_in(ctx, monkeypatch):
     back = (st.pos[:2] - site[:2]) / np.linalg.norm(st.pos[:2] - site[:2])
     xy = st.pos[:2] + 0.35 * back
     with monkeypatch.context() as m:  # no steps (and no lean): the hand falls short
-        m.setattr(reaching, "step_back_offsets", lambda: np.array([0.0]))
-        m.setattr(reaching, "_leaning", lambda ctx, q0, *a: q0)
+        m.setattr(reachspot, "step_back_offsets", lambda: np.array([0.0]))
+        m.setattr(reaching, "leaning", lambda ctx, q0, *a: q0)
         stay = _reach(ctx, "rack2_screw1", xy, st.yaw)
     assert stay.step_back == 0.0 and stay.error > 0.03
     r = _reach(ctx, "rack2_screw1", xy, st.yaw)
@@ -116,7 +118,7 @@ def test_step_backs_do_not_add_up(ctx):
     site = ctx.workplace.station("rack2_screw1").pos
     back = (st.pos[:2] - site[:2]) / np.linalg.norm(st.pos[:2] - site[:2])
     here = st.pos[:2] + 0.2 * back
-    r = _reach_task(
+    r = reach_task(
         ctx,
         _pick(ctx, "rack2_screw1"),
         here[0],
@@ -146,7 +148,7 @@ def test_a_target_below_a_standing_reach_is_reached_bending_forward(low_compartm
     lumbar = jm.adr("lumbar_flex")
 
     def reach():
-        return _reach_task(low, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, _timing)
+        return reach_task(low, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, _timing)
 
     r = reach()
     assert r.error < 0.01
@@ -154,8 +156,8 @@ def test_a_target_below_a_standing_reach_is_reached_bending_forward(low_compartm
     assert r.frames[0, lumbar] < r.frames[:, lumbar].max()  # and back up at the end
     assert abs(r.frames[-1, lumbar] - r.turn[-1, lumbar]) < 1e-9
     with pytest.MonkeyPatch.context() as m:  # upright only (no lean, no crouch)
-        m.setattr(reaching, "_leaning", lambda ctx, q0, *a: q0)
-        m.setattr(reaching, "CROUCH_DROPS", ())
+        m.setattr(reaching, "leaning", lambda ctx, q0, *a: q0)
+        m.setattr(reachspot, "CROUCH_DROPS", ())
         upright = reach()
     assert upright.error > 0.03
 
@@ -234,11 +236,11 @@ def test_under_a_shelf_the_hand_comes_in_low_enough_to_clear_it(scenes_dir, tmp_
     ctx = _station_with_shelf_above(scenes_dir, tmp_path, 1.30)
     st = ctx.workplace.station("stand_rack1")
     site = ctx.workplace.station("rack1_screw1").pos
-    target = reaching._target(ctx, "pick", site, st.pos[0], st.pos[1])
+    target = targets.reach_target("pick", site, st.pos[0], st.pos[1])
     free = 1.28 - target[2]  # to the upper shelf's underside
-    assert reaching._headroom(ctx, target) == pytest.approx(free, abs=1e-6)
+    assert targets.headroom(ctx, target) == pytest.approx(free, abs=1e-6)
     assert free < arm_segment_lengths(ctx.spec.stature)[2]
-    assert reaching._approach_rise(ctx, target) == 0.0
+    assert targets.approach_rise(ctx, target) == 0.0
     r = _reach(ctx, "rack1_screw1", st.pos[:2], st.yaw)
     assert r.distance == np.inf
     assert r.error < 0.01
@@ -246,14 +248,14 @@ def test_under_a_shelf_the_hand_comes_in_low_enough_to_clear_it(scenes_dir, tmp_
     root_z = ctx.jointmap.root + 2
     assert np.allclose(r.frames[:, root_z], r.turn[-1, root_z])  # standing: no crouch needed
     with pytest.MonkeyPatch.context() as m:  # the open-shelf rise, standing (no crouch)
-        m.setattr(reaching, "_approach_rise", lambda ctx, target: reaching.APPROACH_UP)
-        m.setattr(reaching, "CROUCH_DROPS", ())
+        m.setattr(reachspot, "approach_rise", lambda ctx, target: targets.APPROACH_UP)
+        m.setattr(reachspot, "CROUCH_DROPS", ())
         old = _reach(ctx, "rack1_screw1", st.pos[:2], st.yaw)
     assert old.distance < 0.0
     # open above (the station as shipped), or under a shelf that is only drawn: the full rise
     shipped = prepare(load_cycle_spec(scenes_dir / "assembly_station.toml"))
-    assert reaching._approach_rise(shipped, target) == reaching.APPROACH_UP
+    assert targets.approach_rise(shipped, target) == targets.APPROACH_UP
     (tmp_path / "drawn").mkdir()
     drawn = _station_with_shelf_above(scenes_dir, tmp_path / "drawn", 1.30, visual_only=True)
-    assert reaching._headroom(drawn, target) == np.inf
-    assert reaching._approach_rise(drawn, target) == reaching.APPROACH_UP
+    assert targets.headroom(drawn, target) == np.inf
+    assert targets.approach_rise(drawn, target) == targets.APPROACH_UP

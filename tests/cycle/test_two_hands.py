@@ -7,12 +7,12 @@ import numpy as np
 import pytest
 
 from mjwalk.cycle.simulate import (
-    _standing,
     carry_abduction,
     carry_pose,
     hand_points,
     prepare,
     simulate_cycle,
+    standing_pose,
 )
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.errors import CycleSpecError
@@ -84,7 +84,7 @@ def test_hands_stay_on_the_part_from_pick_to_place(run):
     gap = np.linalg.norm(h[:, 0] - h[:, 1], axis=1)
     assert np.abs(gap - WIDTH).max() < 0.02, (gap.min(), gap.max())
     mid = _pelvis_frame(q[p1 : reach + 1], h[p1 - hold_end :].mean(axis=1))
-    ref_q = carry_pose(ctx, _standing(ctx, 0.0, 0.0, 0.0), WIDTH)
+    ref_q = carry_pose(ctx, standing_pose(ctx, 0.0, 0.0, 0.0), WIDTH)
     ref = _pelvis_frame(ref_q[None], hand_points(ctx, ref_q[None]).mean(axis=1))[0]
     dev = np.linalg.norm(mid - ref, axis=1)
     assert dev.max() < 0.1, dev.max()
@@ -169,7 +169,7 @@ def test_a_part_on_a_high_shelf_is_picked_and_placed_clear_of_the_boards(shelves
 
 def test_hands_moved_keeps_the_hands_directions():
     """``_hands_moved`` moves each wrist by its offset and keeps the hand's direction."""
-    from mjwalk.cycle.reaching import _hands_moved
+    from mjwalk.cycle.holding import hands_moved
     from mjwalk.timeline.parts import hand_poses
 
     ctx = prepare(load_cycle_spec(SPEC))
@@ -177,9 +177,9 @@ def test_hands_moved_keeps_the_hands_directions():
     def wrists(q):  # (2, 3): the hand bodies' origins in pose q
         return hand_poses(ctx.model, ctx.jointmap, q[None])[0][0]
 
-    q = carry_pose(ctx, _standing(ctx, 0.3, -0.2, 0.7), WIDTH)
+    q = carry_pose(ctx, standing_pose(ctx, 0.3, -0.2, 0.7), WIDTH)
     offsets = np.array([[0.05, -0.03, 0.10], [-0.02, 0.04, 0.08]])
-    moved = _hands_moved(ctx, q, offsets)
+    moved = hands_moved(ctx, q, offsets)
     np.testing.assert_allclose(wrists(moved) - wrists(q), offsets, atol=1e-9)
     before, after = (hand_points(ctx, p[None])[0] - wrists(p) for p in (q, moved))
     np.testing.assert_allclose(after, before, atol=1e-9)

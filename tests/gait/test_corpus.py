@@ -8,15 +8,9 @@ import numpy as np
 import pytest
 
 from mjwalk.errors import MjwalkError
-from mjwalk.gait.corpus import (
-    ANKLE_HEIGHT,
-    REAL_FIGURES,
-    TOE_HEIGHT,
-    SubjectParams,
-    generate_corpus,
-    sample_subject,
-)
+from mjwalk.gait.corpus import ANKLE_HEIGHT, TOE_HEIGHT, generate_corpus
 from mjwalk.gait.segment import segment_takes, step_sway
+from mjwalk.gait.subjects import REAL_FIGURES, SubjectParams, sample_subject
 from mjwalk.mocap.take import Take
 
 ARRAYS = ("pelvis", "pelvis_yaw", "ankle_l", "ankle_r", "toe_l", "toe_r")

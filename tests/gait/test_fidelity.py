@@ -11,16 +11,15 @@ from test_features import make_steps
 from mjwalk.errors import MjwalkError
 from mjwalk.gait.fidelity import (
     capture_step_metrics,
-    captured_straight_walks,
     fidelity_from_steps,
     format_fidelity_table,
     load_capture,
-    model_straight_walks,
     sway_amplitude,
     train_main,
     validate_main,
 )
 from mjwalk.gait.model import StepModel
+from mjwalk.gait.straight import captured_straight_walks, model_straight_walks
 
 
 @pytest.fixture(scope="module")

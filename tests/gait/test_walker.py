@@ -105,7 +105,7 @@ def test_walker_straight_walks_have_the_requested_speed_and_cadence(model, speed
 def test_walker_keeps_the_models_relative_step_variability(model):
     """Within-person variability scales with the pace (coefficient of variation constant):
     the CV of steady step length and duration of a slow and a fast walker agree within 20 %."""
-    from mjwalk.gait.fidelity import model_straight_walks
+    from mjwalk.gait.straight import model_straight_walks
 
     cvs = []
     for w in (Walker(speed=0.7, cadence=95.0), Walker(speed=1.6, cadence=130.0)):
@@ -158,7 +158,7 @@ def test_held_out_style_conditioned_on_its_pace_only(model, bandai_styles, style
     """Leave-one-group-out, stricter: the default model never saw any Bandai capture. Told
     only a style's speed and cadence (its steady straight pace), its steady straight steps
     match the style's: two-sample KS of step length and duration <= 0.15 (seeded)."""
-    from mjwalk.gait.fidelity import model_straight_walks, straight_runs
+    from mjwalk.gait.straight import model_straight_walks, straight_runs
 
     steps = bandai_styles[style]
     pace = capture_pace(steps)
@@ -215,7 +215,7 @@ def test_planned_straight_walks_take_as_long_as_the_captured_ones(bandai_styles)
     walk, seeds 0-2 (benchmarks/bench_variability.py): median +0.3/+0.6/+0.6 %, IQR
     117/121/113 % (the capture's own bootstrap 90 % interval is 76-135 % of its IQR)."""
     from mjwalk.gait.default import default_model
-    from mjwalk.gait.fidelity import captured_straight_walks
+    from mjwalk.gait.straight import captured_straight_walks
     from mjwalk.plan.straight import planned_straight_walks
 
     model = default_model(progress=False)

@@ -101,8 +101,9 @@ def test_validate_reports_planned_straight_walks(tmp_path):
     shorter than the bouts'; the Bandai walks, cut mid-walk, are compared in
     ``benchmarks/bench_variability.py``.)"""
     from mjwalk.gait.corpus import generate_corpus
-    from mjwalk.gait.fidelity import captured_straight_walks, fidelity_from_steps
+    from mjwalk.gait.fidelity import fidelity_from_steps
     from mjwalk.gait.segment import segment_takes
+    from mjwalk.gait.straight import captured_straight_walks
 
     steps, _ = segment_takes(generate_corpus(1, seed=3))
     model = default_model(progress=False)

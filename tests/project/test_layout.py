@@ -36,15 +36,55 @@ def _stage(module: str) -> str:
     return "_base" if head in BASE else "top" if head in TOP else head
 
 
-def _imports(path: Path, top_level_only: bool) -> list[tuple[str, int]]:
-    tree = ast.parse(path.read_text())
-    nodes = tree.body if top_level_only else ast.walk(tree)
-    out = []
-    for node in nodes:
-        if isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("mjwalk."):
-            out.append((node.module, node.lineno))
-        elif isinstance(node, ast.Import):
-            out += [(a.name, node.lineno) for a in node.names if a.name.startswith("mjwalk.")]
+def _is_type_checking(node: ast.AST) -> bool:
+    """Whether ``node`` is an ``if TYPE_CHECKING:`` block (imports for type checkers only)."""
+    if not isinstance(node, ast.If):
+        return False
+    test = node.test
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING"
+    )
+
+
+def _targets(node: ast.AST) -> list[str]:
+    """The mjwalk modules an import statement loads (``from mjwalk.cycle import reaching``
+    loads the module ``mjwalk.cycle.reaching``)."""
+    if isinstance(node, ast.Import):
+        return [a.name for a in node.names if a.name.startswith("mjwalk.")]
+    if not (isinstance(node, ast.ImportFrom) and node.module and node.module.startswith("mjwalk")):
+        return []
+    if node.module == "mjwalk":  # the lazy top level: only its submodules count
+        names = [f"mjwalk.{a.name}" for a in node.names]
+        return [n for n in names if _exists(n)]
+    subs = [f"{node.module}.{a.name}" for a in node.names if _exists(f"{node.module}.{a.name}")]
+    return [node.module, *subs]
+
+
+def _exists(module: str) -> bool:
+    rel = Path(*module.split(".")[1:])
+    return (PKG / rel).with_suffix(".py").is_file() or (PKG / rel / "__init__.py").is_file()
+
+
+def _imports(path: Path, top_level_only: bool = False, type_checking: bool = True):
+    """(module, line) of every mjwalk import in ``path``: at module level only, or everywhere
+    (function-level imports too), with or without those under ``if TYPE_CHECKING:``."""
+    out: list[tuple[str, int]] = []
+
+    def visit(node: ast.AST) -> None:
+        for child in ast.iter_child_nodes(node):
+            if _is_type_checking(child) and not type_checking:
+                for other in child.orelse:  # type: ignore[attr-defined]
+                    visit_one(other)
+                continue
+            visit_one(child)
+
+    def visit_one(node: ast.AST) -> None:
+        out.extend((t, node.lineno) for t in _targets(node))  # type: ignore[attr-defined]
+        if top_level_only and not _is_type_checking(node):
+            return
+        visit(node)
+
+    visit(ast.parse(path.read_text()))
     return out
 
 
@@ -63,24 +103,32 @@ def test_no_module_imports_upward():
         mod = _module(f)
         if mod == "mjwalk":  # the lazy top level names everything
             continue
-        for target, line in _imports(f, top_level_only=False):
+        for target, line in _imports(f):
             if STAGES.index(_stage(target)) > STAGES.index(_stage(mod)):
                 upward.append(f"{mod}:{line} imports {target}")
     assert upward == []
 
 
 def test_no_import_cycles():
+    """No module imports itself through others, counting every import a module runs (at module
+    level or inside a function: both load the module when they run), not those for type
+    checkers only."""
     graph = {}
     for f in _files():
         mod = _module(f)
-        deps = {target for target, _ in _imports(f, top_level_only=True)}
-        graph[mod] = deps - {mod}
+        if mod == "mjwalk":  # the lazy top level names everything
+            continue
+        deps = {target for target, _ in _imports(f, type_checking=False)}
+        graph[mod] = deps - {mod, "mjwalk"}
     state: dict[str, int] = {}
+    cycles: list[str] = []
 
     def visit(m: str, trail: list[str]) -> None:
         if state.get(m) == 2 or m not in graph:
             return
-        assert state.get(m) != 1, " -> ".join([*trail, m])
+        if state.get(m) == 1:
+            cycles.append(" -> ".join([*trail[trail.index(m) :], m]))
+            return
         state[m] = 1
         for d in sorted(graph[m]):
             visit(d, [*trail, m])
@@ -88,6 +136,37 @@ def test_no_import_cycles():
 
     for m in sorted(graph):
         visit(m, [])
+    assert cycles == []
+
+
+#: Private names a module still takes from another (each is to be made public in its owner).
+PRIVATE_FOR_NOW: set[tuple[str, str, str]] = set()
+
+
+def test_private_names_stay_in_their_module():
+    """A name starting with an underscore is its module's own: another module that needs it
+    needs a public name in the module that owns it."""
+    crossing = set()
+    for f in _files():
+        for node in ast.walk(ast.parse(f.read_text())):
+            if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("mjwalk"):
+                for a in node.names:
+                    private = a.name.startswith("_") and not a.name.startswith("__")
+                    if private and not _exists(f"{node.module}.{a.name}"):  # a module is public
+                        crossing.add((_module(f), node.module, a.name))
+    assert crossing == PRIVATE_FOR_NOW
+
+
+#: The longest a module may be (lines): one concept per module.
+MAX_LINES = 600
+#: Modules not yet split (each is to be split, then taken off this list).
+TOO_LONG_FOR_NOW = {"mjwalk.cli"}
+
+
+def test_modules_are_short():
+    long = {_module(f): n for f in _files() if (n := len(f.read_text().splitlines())) > MAX_LINES}
+    assert {m: n for m, n in long.items() if m not in TOO_LONG_FOR_NOW} == {}
+    assert set(long) == TOO_LONG_FOR_NOW  # the allow-list shrinks as modules are split
 
 
 def test_import_is_light_and_changes_no_environment():

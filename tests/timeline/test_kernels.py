@@ -816,7 +816,7 @@ def test_spin_hip_rotation_excess_matches_numpy(s_):
     """spin._hip_rotation_excess gives leg_ik_world's hip rotation and soft_excess's
     overshoots bit for bit on the grounded samples and leaves the others alone."""
     from mjwalk.body.legs.curves import soft_excess
-    from mjwalk.body.legs.kinematics import _ik_lengths
+    from mjwalk.body.legs.kinematics import ik_lengths
     from mjwalk.body.legs.spin import _hip_rotation_excess
 
     geom = leg_geometry(1.75)
@@ -827,7 +827,7 @@ def test_spin_hip_rotation_excess_matches_numpy(s_):
     top, bottom, w = np.deg2rad(39.0), np.deg2rad(-39.0), np.deg2rad(2.0)
     rot, up, down = np.full(n, 7.0), np.full(n, 7.0), np.full(n, 7.0)
     sgn = 1.0 if s_ == "l" else -1.0
-    args = (ankle, fyaw, pitch, root, yaw, sgn, geom.hip_y, *_ik_lengths(geom))
+    args = (ankle, fyaw, pitch, root, yaw, sgn, geom.hip_y, *ik_lengths(geom))
     _hip_rotation_excess(ground, *args, top, bottom, w, rot, up, down)
     on = np.flatnonzero(ground)
     want = leg_ik_world(ankle[on], fyaw[on], pitch[on], root[on], yaw[on], s_, geom)

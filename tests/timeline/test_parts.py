@@ -67,7 +67,7 @@ def test_two_handed_box_is_carried_between_the_palms_and_put_on_bench_b(box_cycl
     assert abs(rel[0, 1]) < 0.01  # half way between the palms, left-right
     # each palm on its face of the 0.40 m box (grip sites 0.40 m apart) from the grasp to the
     # release, the walk and both reaches (this seed's place reach opened them to 0.484 m when
-    # only the shoulder abductions kept the gap: reaching._palms_apart; measured 0.400)
+    # only the shoulder abductions kept the gap: holding._palms_apart; measured 0.400)
     lo, hi = _frames(carry, tl.fps)
     assert ((held >= lo) & (held < hi)).sum() > 30
     gap = np.linalg.norm(palms[:, 0] - palms[:, 1], axis=1)
@@ -256,14 +256,14 @@ def test_the_humanoids_own_hand_ends_on_each_target(monkeypatch):
     from mjwalk.cycle import reaching
 
     ctx = prepare(load_cycle_spec(SCENES / "assembly_station.toml"))
-    real, seen = reaching._reach_frames, []
+    real, seen = reaching.reach_frames, []
 
     def spy(op, q0, target_w, approach_w, hold, fps, side="left", timing=None, face=None, **kw):
         frames, error, res = real(op, q0, target_w, approach_w, hold, fps, side, timing, face, **kw)
         seen.append((op, side, np.array(target_w), frames, error))  # op: the run's operator's
         return frames, error, res
 
-    monkeypatch.setattr(reaching, "_reach_frames", spy)
+    monkeypatch.setattr(reaching, "reach_frames", spy)
     for seed in (0, 1):
         mjwalk.simulate_cycle(ctx, rng=seed)
     assert len(seen) >= 28  # each arm task; a stand-off (step back) reaches again

@@ -82,11 +82,12 @@ def test_grids_derived_from_the_field_equal_sampled_ones(hall10, scenes_dir):
 
 
 def test_cached_workplace_equals_a_fresh_one(hall10, tmp_path, monkeypatch):
-    monkeypatch.setenv("MJWALK_CACHE_DIR", str(tmp_path / "cache"))
+    monkeypatch.setenv("MJWALK_CACHE", str(tmp_path / "root"))
+    monkeypatch.delenv("MJWALK_CACHE_DIR", raising=False)
     fresh = load_workplace(hall10, cache=False)
     assert fresh.cache_key is None
-    first = load_workplace(hall10, cache=True)  # builds and stores
-    files = sorted(p.name for p in (tmp_path / "cache").iterdir())
+    first = load_workplace(hall10, cache=True)  # builds and stores, under the cache root
+    files = sorted(p.name for p in (tmp_path / "root" / "workplaces").iterdir())
     assert files and all(f.endswith("-clearance.npy") for f in files)
     again = load_workplace(hall10, cache=True)  # maps the stored arrays
     assert again.cache_key == first.cache_key
@@ -100,7 +101,8 @@ def test_cached_workplace_equals_a_fresh_one(hall10, tmp_path, monkeypatch):
             np.testing.assert_array_equal(g.free, f.free)
             np.testing.assert_array_equal(g.moves, f.moves)
             assert (g.x0, g.y0, g.cell) == (f.x0, f.y0, f.cell)
-    assert not any(p.name.endswith(".tmp") for p in (tmp_path / "cache").iterdir())
+    stored = [p.name for p in (tmp_path / "root" / "workplaces").iterdir()]
+    assert all(name.endswith(".npy") and not name.startswith(".") for name in stored)
     # another scene (one obstacle moved by 1 cm) gets another key
     lines = hall10.read_text().splitlines()
     k = next(i for i, ln in enumerate(lines) if "<geom" in ln and ' pos="' in ln)
@@ -112,10 +114,23 @@ def test_cached_workplace_equals_a_fresh_one(hall10, tmp_path, monkeypatch):
     assert load_workplace(moved, cache=True).cache_key != first.cache_key
 
 
+def test_the_old_cache_variable_still_works_and_says_it_is_deprecated(tmp_path, monkeypatch):
+    from mjwalk.world import cache
+
+    monkeypatch.setenv("MJWALK_CACHE", str(tmp_path / "root"))
+    monkeypatch.setenv("MJWALK_CACHE_DIR", str(tmp_path / "old"))
+    cache._deprecated_env.cache_clear()
+    with pytest.warns(DeprecationWarning, match="MJWALK_CACHE_DIR is deprecated"):
+        assert cache.cache_dir() == tmp_path / "old"
+    monkeypatch.delenv("MJWALK_CACHE_DIR")
+    assert cache.cache_dir() == tmp_path / "root" / "workplaces"
+
+
 def test_unwritable_cache_still_builds(hall10, tmp_path, monkeypatch):
     blocker = tmp_path / "file"
     blocker.write_text("not a directory")
-    monkeypatch.setenv("MJWALK_CACHE_DIR", str(blocker / "cache"))
+    monkeypatch.setenv("MJWALK_CACHE", str(blocker / "cache"))
+    monkeypatch.delenv("MJWALK_CACHE_DIR", raising=False)
     wp = load_workplace(hall10, cache=True)
     ref = load_workplace(hall10, cache=False)
     np.testing.assert_array_equal(wp.clearance.values, ref.clearance.values)

@@ -16,6 +16,8 @@ FLAT = float(np.deg2rad(FLAT_DEG))
 
 
 def smoothstep(x: np.ndarray) -> np.ndarray:
+    """The smoothstep ``3x^2 - 2x^3`` of ``x`` clipped to [0, 1]: 0 to 1 with zero slope at
+    both ends (the one easing curve of the package's blends)."""
     x = np.clip(x, 0.0, 1.0)
     return x * x * (3 - 2 * x)
 
@@ -28,11 +30,11 @@ def spread(need: np.ndarray, win: int) -> np.ndarray:
     need = np.asarray(need, dtype=float)
     if need.ndim != 1 or len(need) < 2 * win + 2:
         return gaussian_filter1d(maximum_filter1d(need, 2 * win + 1), win / 3)
-    return _spread(need, win, _gauss_kernel(win))
+    return spread_rows(need, win, gauss_kernel(win))
 
 
 @functools.lru_cache(maxsize=32)
-def _gauss_kernel(win: int) -> np.ndarray:
+def gauss_kernel(win: int) -> np.ndarray:
     """scipy.ndimage's Gaussian kernel for sigma ``win / 3`` (truncated at 4 sigma)."""
     sigma = win / 3
     radius = int(4.0 * float(sigma) + 0.5)
@@ -50,7 +52,7 @@ def _reflect(j, n):
 
 
 @njit
-def _spread(need, win, kernel):
+def spread_rows(need, win, kernel):
     """:func:`spread` for ``len(need) > 2 win + 1``: the running maximum over +-``win`` and
     the symmetric Gaussian ``kernel``, both with the reflecting boundary, as scipy.ndimage
     (the symmetric kernel summed pairwise from the centre out, as its correlate1d)."""
@@ -162,7 +164,7 @@ def clamped_cubic(x, y, d0, d1, xq) -> np.ndarray:
     vec = y.ndim == 2
     y2 = y if vec else y[:, None]
     k = y2.shape[1]
-    out = _clamped_cubic(
+    out = clamped_cubic_rows(
         np.asarray(x, dtype=float),
         np.ascontiguousarray(y2),
         np.broadcast_to(np.asarray(d0, dtype=float), (k,)).copy(),
@@ -173,7 +175,7 @@ def clamped_cubic(x, y, d0, d1, xq) -> np.ndarray:
 
 
 @njit
-def _clamped_cubic(x, y, d0, d1, xq):
+def clamped_cubic_rows(x, y, d0, d1, xq):
     n, k = y.shape
     dx = x[1:] - x[:-1]
     out = np.empty((len(xq), k))

@@ -86,12 +86,12 @@ def leg_ik(
     fy = np.ascontiguousarray(np.broadcast_to(np.asarray(foot_yaw, float), (n,)))
     fp = np.ascontiguousarray(np.broadcast_to(np.asarray(foot_pitch, float), (n,)))
     out = np.empty((n, 6))
-    _leg_ik_rows(rel, fy, fp, s, *_ik_lengths(geom), out)
+    _leg_ik_rows(rel, fy, fp, s, *ik_lengths(geom), out)
     return _named(out, side, clip)
 
 
 @functools.lru_cache(maxsize=16)
-def _ik_lengths(geom: LegGeometry) -> tuple[float, float, float, float]:
+def ik_lengths(geom: LegGeometry) -> tuple[float, float, float, float]:
     """Thigh, shank (m) and the shortest and longest hip-to-ankle distance the IK uses (m)."""
     rmax = float(geom.span(KNEE_MIN))
     rmin = float(geom.span(np.deg2rad(ROM_DEG["knee"][1])))
@@ -184,11 +184,11 @@ def _leg_ik_world_rows(ankle, foot_yaw, pitch, root, yaw, sgn, hip_y, L1, L2, rm
     relative to the pelvis wrapped to (-pi, pi], then :func:`_leg_ik_one` (``sgn`` +1 for the
     left leg, -1 for the right)."""
     for i in range(ankle.shape[0]):
-        _leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
+        leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
 
 
 @njit
-def _leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out):
+def leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out):
     """Row ``i`` of :func:`_leg_ik_world_rows` (no array views made per row)."""
     cy, sy = math.cos(yaw[i]), math.sin(yaw[i])
     d0 = ankle[i, 0] - (root[i, 0] + sgn * hip_y * -sy)
@@ -309,12 +309,12 @@ def pivot_ankle(foot: np.ndarray, pitch, geom: LegGeometry) -> np.ndarray:
     if len(pitch) not in (1, n) or len(foot) not in (1, n):
         raise ValueError(f"pivot_ankle: {len(foot)} footprints for {len(pitch)} pitches")
     out = np.empty((n, 3))
-    _pivot_rows(foot, pitch, ball_offset(geom), geom.foot_back, geom.ankle_height, out)
+    pivot_rows(foot, pitch, ball_offset(geom), geom.foot_back, geom.ankle_height, out)
     return out
 
 
 @njit
-def _pivot_rows(foot, pitch, ball, back, ah, out):
+def pivot_rows(foot, pitch, ball, back, ah, out):
     """:func:`pivot_ankle` into ``out`` (n, 3); ``foot`` (1 or n, 3), ``pitch`` (1 or n,):
     R_z(yaw) R_y(-pitch) (lever, 0, -ah) from the pivot, written out; the pivot is ``lever``
     ahead of the ankle when flat (the ball for pitch <= 0, the heel otherwise)."""
@@ -361,7 +361,7 @@ def heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
     foot = np.asarray(foot, float)
     if foot.shape == (3,) and p0.ndim == 1 and hip.shape == (len(p0), 3):  # compiled
         p = np.empty(len(p0))
-        _heel_rise_rows(
+        heel_rise_rows(
             foot,
             np.ascontiguousarray(hip),
             np.ascontiguousarray(d, dtype=float),
@@ -422,7 +422,7 @@ def _pivot_gap(foot, fx, fy, h, p, d, ball, back, ah):
 
 
 @njit
-def _heel_rise_rows(foot, hip, d, p0, ball, back, ah, lo, out):
+def heel_rise_rows(foot, hip, d, p0, ball, back, ah, lo, out):
     """:func:`heel_rise` per sample (the same steps: reach test at ``p0``, the closed-form
     roll about the ball, the 40-step bisection of a toes-up foot) into ``out`` (n,)."""
     fx, fy = math.cos(foot[2]), math.sin(foot[2])
@@ -483,7 +483,7 @@ def leg_ik_world(ankle, foot_yaw, pitch, root, yaw, side: str, geom: LegGeometry
         row(yaw),
         sgn,
         float(geom.hip_y),
-        *_ik_lengths(geom),
+        *ik_lengths(geom),
         out,
     )
     return _named(out, side_of_prefix(side), clip=False)
@@ -502,7 +502,7 @@ class LegIKCache:
 
     def buffers(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         """The previous call's inputs (n, 9) and angles (n, 6), for compiled callers of
-        ``_leg_ik_world_cached`` (new ones, every row to be solved, for another ``n``)."""
+        ``leg_ik_world_cached`` (new ones, every row to be solved, for another ``n``)."""
         if self.inputs is None or self.out is None or len(self.inputs) != n:
             self.inputs = np.full((n, 9), np.nan)  # nan: never equal, every row is solved
             self.out = np.empty((n, 6))
@@ -513,7 +513,7 @@ class LegIKCache:
         self.buffers(len(ankle))
         assert self.out is not None
         sgn = 1.0 if self.side == "l" else -1.0
-        _leg_ik_world_cached(
+        leg_ik_world_cached(
             ankle,
             np.ascontiguousarray(foot_yaw, dtype=float),
             np.ascontiguousarray(pitch, dtype=float),
@@ -521,7 +521,7 @@ class LegIKCache:
             np.ascontiguousarray(yaw, dtype=float),
             sgn,
             float(self.geom.hip_y),
-            *_ik_lengths(self.geom),
+            *ik_lengths(self.geom),
             self.inputs,
             self.out,
         )
@@ -529,7 +529,7 @@ class LegIKCache:
 
 
 @njit
-def _leg_ik_world_cached(
+def leg_ik_world_cached(
     ankle, foot_yaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs, out
 ):
     """:func:`_leg_ik_world_rows` for the rows whose inputs differ from ``inputs`` (n, 9),
@@ -555,4 +555,4 @@ def _leg_ik_world_cached(
             continue
         for k in range(9):
             inputs[i, k] = row[k]
-        _leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
+        leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)

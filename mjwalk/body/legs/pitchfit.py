@@ -8,8 +8,8 @@ arithmetic. :func:`repitch_foot` and :func:`fit_ankle_range` do the same arithme
 order, in one compiled call (the same numbers, bit for bit: tests/timeline/test_kernels.py compares
 them with the NumPy code they replace). World frame, metres, radians; a foot's pitch + toes up.
 
-The compiled rounds call the leg IK (``kinematics._leg_ik_world_cached``) and the spread
-(``curves._spread``): numba caches this module's machine code by its own source, so change a
+The compiled rounds call the leg IK (``kinematics.leg_ik_world_cached``) and the spread
+(``curves.spread_rows``): numba caches this module's machine code by its own source, so change a
 comment here when those change (else a cached copy keeps the old callees).
 """
 
@@ -21,12 +21,12 @@ import numpy as np
 
 from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
-from mjwalk.body.legs.curves import _gauss_kernel, _spread
+from mjwalk.body.legs.curves import gauss_kernel, spread_rows
 from mjwalk.body.legs.kinematics import (
     LegIKCache,
-    _ik_lengths,
-    _leg_ik_world_cached,
     ball_offset,
+    ik_lengths,
+    leg_ik_world_cached,
 )
 
 
@@ -65,7 +65,7 @@ def repitch_foot(
 
 @njit
 def _pivot_cs(x, y, fx, fy, c, s, p, ball, back, ah):
-    """One row of :func:`~mjwalk.body.legs.kinematics._pivot_rows` (the same arithmetic) on
+    """One row of :func:`~mjwalk.body.legs.kinematics.pivot_rows` (the same arithmetic) on
     the footprint at ``x``, ``y`` heading (``fx``, ``fy``) = (cos, sin) yaw, pitched by ``p``
     with (``c``, ``s``) = (cos, sin) p."""
     lever = ball if p <= 0 else -back
@@ -150,13 +150,13 @@ def fit_ankle_range(
         np.ascontiguousarray(yaw, dtype=float),
         1.0 if ik.side == "l" else -1.0,
         float(geom.hip_y),
-        *_ik_lengths(geom),
+        *ik_lengths(geom),
         inputs,
         out,
         float(dorsi_max),
         float(plantar_min),
         int(win),
-        _gauss_kernel(int(win)),
+        gauss_kernel(int(win)),
         ball_offset(geom),
         float(geom.foot_back),
         float(geom.ankle_height),
@@ -203,7 +203,7 @@ def _fit_rounds(
     c0, s0 = np.cos(pitch), np.sin(pitch)
     cp, sp = c0.copy(), s0.copy()
     for _ in range(rounds):
-        _leg_ik_world_cached(
+        leg_ik_world_cached(
             ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs, out
         )
         e_max = -np.inf
@@ -218,8 +218,8 @@ def _fit_rounds(
             need_up[i] = 1.2 * max(short, 0.0)
         if e_max <= 0 and s_max <= 0:
             break
-        down = _spread(need_down, win, kernel)
-        up = _spread(need_up, win, kernel)
+        down = spread_rows(need_down, win, kernel)
+        up = spread_rows(need_up, win, kernel)
         for i in range(n):
             p0 = pitch[i]
             p1 = p0 - (down[i] - min(up[i], max(-p0, 0.0)))

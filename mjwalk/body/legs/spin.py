@@ -10,10 +10,10 @@ from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.body.legs.curves import smoothstep, soft_excess1
 from mjwalk.body.legs.kinematics import (
-    _ik_lengths,
-    _leg_ik_world_row,
     ball_offset,
+    ik_lengths,
     leg_ik_world,
+    leg_ik_world_row,
     pivot_ankle,
     spin_print,
 )
@@ -73,7 +73,7 @@ def spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeom
             yaw_c,
             sgn,
             float(geom.hip_y),
-            *_ik_lengths(geom),
+            *ik_lengths(geom),
             float(hi - margin - soft),
             float(lo + margin + soft),
             float(soft / 2),
@@ -165,14 +165,14 @@ def spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeom
 def _hip_rotation_excess(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax,
                          top, bottom, w, rot, up, down):  # fmt: skip
     """Per grounded sample (``ground`` (n,)): the leg's hip rotation ``rot`` (unclipped IK,
-    :func:`~mjwalk.body.legs.kinematics._leg_ik_world_row`) and how far it passes ``top`` and
+    :func:`~mjwalk.body.legs.kinematics.leg_ik_world_row`) and how far it passes ``top`` and
     falls short of ``bottom`` (``up``, ``down``: :func:`~mjwalk.body.legs.curves.soft_excess`
     over ``w``), radians; the other samples are left as they are."""
     out = np.empty((ground.shape[0], 6))
     for i in range(ground.shape[0]):
         if not ground[i]:
             continue
-        _leg_ik_world_row(ankle, fyaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
+        leg_ik_world_row(ankle, fyaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
         rot[i] = out[i, 0]
         up[i] = soft_excess1(out[i, 0] - top, w)
         down[i] = soft_excess1(bottom - out[i, 0], w)

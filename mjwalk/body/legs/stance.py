@@ -13,8 +13,8 @@ Step phase ``phi`` in [0, 1] from lift-off of the swing foot's step to its landi
 leg covers gait cycle 0-50 %. World frame, metres, radians; a foot's pitch + toes up.
 
 numba caches this module's machine code by its own source, not by the compiled functions it
-calls from other modules (``kinematics._heel_rise_rows``, ``kinematics._pivot_rows``,
-``curves._clamped_cubic`` and the one-value shapes such as ``curves.smoothstep1``): change a
+calls from other modules (``kinematics.heel_rise_rows``, ``kinematics.pivot_rows``,
+``curves.clamped_cubic_rows`` and the one-value shapes such as ``curves.smoothstep1``): change a
 comment here when those change.
 """
 
@@ -28,13 +28,13 @@ from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import (
     FLAT,
-    _clamped_cubic,
+    clamped_cubic_rows,
     maximum1,
     minimum1,
     smoothstep1,
     soft_flat1,
 )
-from mjwalk.body.legs.kinematics import KNEE_MIN, _heel_rise_rows, _pivot_rows, ball_offset
+from mjwalk.body.legs.kinematics import KNEE_MIN, ball_offset, heel_rise_rows, pivot_rows
 from mjwalk.body.legs.reference import ReferenceGait
 from mjwalk.body.legs.steps import FOOT_FLAT, STANCE_KEYS, StepFrames
 
@@ -111,11 +111,11 @@ def _stance_foot(phi, p_ref, scaled, land_prev, hs_pitch, first, stance2, hip_en
     rise = np.empty(1)
     d = np.empty(1)
     d[0] = math.sqrt(span0 + span1 * math.cos(knee_end))
-    _heel_rise_rows(stance2[0], hip_end, d, p[n - 1 : n].copy(), ball, back, ah, HEEL_RISE_LO, rise)
+    heel_rise_rows(stance2[0], hip_end, d, p[n - 1 : n].copy(), ball, back, ah, HEEL_RISE_LO, rise)
     last = p[n - 1]
     for i in range(n):
         p[i] = p[i] + (rise[0] - last) * smoothstep1((phi[i] - FOOT_FLAT) / (1.0 - FOOT_FLAT))
-    _pivot_rows(stance2, p, ball, back, ah, ankle)
+    pivot_rows(stance2, p, ball, back, ah, ankle)
 
 
 def stance_knee(
@@ -167,8 +167,8 @@ _KNOTS = np.array([0.0, *STANCE_KEYS, 1.0])
 @njit
 def _stance_knee(knots, phi, k_ref, values, d0, d1, hip_xy, ankle, span0, span1, knee, z):
     """:func:`stance_knee` into ``knee`` and ``z`` (n,); ``knots`` :data:`_KNOTS` (an argument:
-    a global array is a read-only type, for which ``_clamped_cubic`` would compile again)."""
-    disp = _clamped_cubic(knots, values, d0, d1, phi)
+    a global array is a read-only type, for which ``clamped_cubic_rows`` would compile again)."""
+    disp = clamped_cubic_rows(knots, values, d0, d1, phi)
     for i in range(phi.shape[0]):
         k = min(max(k_ref[i] + disp[i, 0], KNEE_MIN), KNEE_STANCE_MAX)
         knee[i] = k
@@ -277,11 +277,11 @@ def _pelvis_height(phi, z_flat, ankle_sw, hip_sw, hip_st, knee_st, p_st, stance2
         d[k] = math.sqrt(span0 + span1 * math.cos(knee_st[i]))
         p0[k] = minimum1(p_st[i], 0.0)
     p_up = np.empty(m)
-    _heel_rise_rows(stance2[0], hip, d, p0, ball, back, ah, HEEL_RISE_LO, p_up)
+    heel_rise_rows(stance2[0], hip, d, p0, ball, back, ah, HEEL_RISE_LO, p_up)
     for k in range(m):
         if p_st[j + k] <= 0:
             p_st[j + k] = p_up[k]
-    _pivot_rows(stance2, p_st, ball, back, ah, ankle)
+    pivot_rows(stance2, p_st, ball, back, ah, ankle)
     return True
 
 

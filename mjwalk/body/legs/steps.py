@@ -18,12 +18,12 @@ from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import clamped_cubic, maximum1, smoothstep, soft_clip01, soft_flat
 from mjwalk.body.legs.kinematics import (
     KNEE_MIN,
-    _ik_lengths,
-    _leg_ik_world_row,
-    _pivot_rows,
     ball_offset,
     heel_rise,
+    ik_lengths,
+    leg_ik_world_row,
     pivot_ankle,
+    pivot_rows,
 )
 from mjwalk.body.legs.reference import ReferenceGait
 from mjwalk.conventions import side_prefix
@@ -115,7 +115,7 @@ def landing_pitches(
     leg at its heel-strike length ``d_land`` (m) under the pelvis at ``xy``, ``yaw`` of the
     landing sample would dorsiflex its ankle past ``dorsi_max`` (a foot landing under the
     hip). All steps at once; a few fixed-point rounds (compiled: :func:`_landing_rounds`)."""
-    L1, L2, rmin, rmax = _ik_lengths(geom)
+    L1, L2, rmin, rmax = ik_lengths(geom)
     land_p = np.full(len(frames), float(hs_pitch))
     _landing_rounds(
         np.array([fr.end for fr in frames], dtype=np.int64),
@@ -146,7 +146,7 @@ def _landing_rounds(b, land, sgn, xy, yaw, d_land_sq, dorsi_max, hip_y, L1, L2, 
     sample ``b``, footprint ``land`` (m, 3), ``sgn`` +1 left / -1 right) the landing ankle
     pivoted by its pitch, the pelvis height at which the leg spans ``d_land_sq`` (m²) to it
     from the hip of the upright pelvis (:func:`~.kinematics.hip_world` at height 0), and the
-    leg IK's ankle flexion there (:func:`~.kinematics._leg_ik_world_row`); a foot whose
+    leg IK's ankle flexion there (:func:`~.kinematics.leg_ik_world_row`); a foot whose
     ankle flexes past ``dorsi_max`` lands flatter by 1.2 times the excess (down to 0)."""
     m = b.shape[0]
     pos = np.empty((m, 3))
@@ -155,7 +155,7 @@ def _landing_rounds(b, land, sgn, xy, yaw, d_land_sq, dorsi_max, hip_y, L1, L2, 
     foot_yaw = land[:, 2].copy()
     out = np.empty((m, 6))
     for _ in range(4):
-        _pivot_rows(land, land_p, ball, back, ah, pos)
+        pivot_rows(land, land_p, ball, back, ah, pos)
         for i in range(m):
             k = b[i]
             c = sgn[i] * hip_y
@@ -165,7 +165,7 @@ def _landing_rounds(b, land, sgn, xy, yaw, d_land_sq, dorsi_max, hip_y, L1, L2, 
             root[i, 0], root[i, 1] = xy[k, 0], xy[k, 1]
             root[i, 2] = pos[i, 2] + math.sqrt(maximum1(d_land_sq - hz * hz, 1e-6))
             yaw_b[i] = yaw[k]
-            _leg_ik_world_row(pos, foot_yaw, land_p, root, yaw_b, i, sgn[i], hip_y, L1, L2,
+            leg_ik_world_row(pos, foot_yaw, land_p, root, yaw_b, i, sgn[i], hip_y, L1, L2,
                               rmin, rmax, out)  # fmt: skip
         done = True
         for i in range(m):

@@ -11,8 +11,8 @@ Step phase ``phi`` in [0, 1] from lift-off of the swing foot's step to its landi
 frame, metres, radians; a foot's pitch + toes up.
 
 numba caches this module's machine code by its own source, not by the compiled functions it
-calls from other modules (``kinematics._heel_rise_rows``, ``kinematics._pivot_rows``,
-``curves._clamped_cubic`` and the one-value shapes such as ``curves.smoothstep1``,
+calls from other modules (``kinematics.heel_rise_rows``, ``kinematics.pivot_rows``,
+``curves.clamped_cubic_rows`` and the one-value shapes such as ``curves.smoothstep1``,
 ``reference.ppoly_at``): change a comment here when those change.
 """
 
@@ -26,7 +26,7 @@ from mjwalk._jit import fma, njit
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import (
     FLAT,
-    _clamped_cubic,
+    clamped_cubic_rows,
     maximum1,
     minimum1,
     smoothstep1,
@@ -34,7 +34,7 @@ from mjwalk.body.legs.curves import (
     soft_flat,
     soft_flat1,
 )
-from mjwalk.body.legs.kinematics import KNEE_MIN, _heel_rise_rows, _pivot_rows, ball_offset
+from mjwalk.body.legs.kinematics import KNEE_MIN, ball_offset, heel_rise_rows, pivot_rows
 from mjwalk.body.legs.reference import ReferenceGait, ppoly_at, wrap01
 from mjwalk.body.legs.steps import (
     HEEL_RISE_MAX,
@@ -163,7 +163,7 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
         p0 = np.empty(ne)
         for i in range(ne):
             p0[i] = p[i]
-        _heel_rise_rows(lift, hip, d, p0, ball, back, ah, -HEEL_RISE_MAX, rise)
+        heel_rise_rows(lift, hip, d, p0, ball, back, ah, -HEEL_RISE_MAX, rise)
         for i in range(ne):  # (element loops: no shape checks to compile)
             p[i] = rise[i]
         held = -1
@@ -176,7 +176,7 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
             ne = 0
             while ne < n and phi[ne] <= phi_to:
                 ne += 1
-    _pivot_rows(lift2, p[:ne], ball, back, ah, pos[:ne])
+    pivot_rows(lift2, p[:ne], ball, back, ah, pos[:ne])
     if ne < n:
         _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k, knee_c,
                     knee_k, pitch_c, pitch_k, L1, L2, ball, back, ah, land_p, ne, yaw, pos,
@@ -263,7 +263,7 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
         dpos[kk, 2] = ah if ah > dpos[kk, 2] else dpos[kk, 2]
         dpit[kk, 0] = ref_pit[rows[kk]]
     land_pos = np.empty((1, 3))
-    _pivot_rows(land2, np.array([land_p]), ball, back, ah, land_pos)
+    pivot_rows(land2, np.array([land_p]), ball, back, ah, land_pos)
     for k in range(3):
         dpos[nk - 1, k] = land_pos[0, k]
     dpit[nk - 1, 0] = land_p
@@ -292,9 +292,9 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
     d0, d1 = np.empty(3), np.empty(3)
     for k in range(3):
         d0[k], d1[k] = v0[k] - dr0[k], -dr1[k]
-    sp = _clamped_cubic(knots, dpos, d0, d1, xq)
+    sp = clamped_cubic_rows(knots, dpos, d0, d1, xq)
     dp0 = (p[ne - 1] - p[ne - 2]) / h
-    spp = _clamped_cubic(knots, dpit, np.array([dp0 - dq0]), np.array([-dq1]), xq)
+    spp = clamped_cubic_rows(knots, dpit, np.array([dp0 - dq0]), np.array([-dq1]), xq)
     for j in range(m):
         for k in range(3):
             pos[ne + j, k] = ref_pos[j, k] + sp[j, k]

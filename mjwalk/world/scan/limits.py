@@ -44,7 +44,7 @@ MAX_PLAN_CELLS = 30_000_000
 PLAN_CELL_BYTES = 85
 
 
-def check_resolution(resolution: float, what: str = "resolution") -> float:
+def check_resolution(resolution: float | str, what: str = "resolution") -> float:
     """``resolution`` as a float within :data:`RESOLUTION_RANGE`, or ScanError naming it."""
     lo, hi = RESOLUTION_RANGE
     try:

@@ -4,7 +4,7 @@ On a grid of ``resolution`` metres over the floor:
 
 - floor cells hold points within :data:`FLOOR_TOL` of z = 0;
 - obstacle cells hold at least :data:`MIN_BAND_POINTS` points in the obstacle band (0.05-2.0 m
-  above the floor, as for MJCF scenes, :data:`mjwalk.world.workplace.OBSTACLE_Z_RANGE`); gaps
+  above the floor, as for MJCF scenes, :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`); gaps
   of one cell are closed, and regions the obstacles enclose with no floor seen inside (the
   inside of a cabinet taller than the scanner) become obstacle too. Structure above the band
   (pipework, lamps, the ceiling) is not an obstacle;
@@ -32,7 +32,7 @@ import numpy as np
 from scipy import ndimage
 
 from mjwalk._jit import njit
-from mjwalk.world.workplace import OBSTACLE_Z_RANGE
+from mjwalk.world.floor import OBSTACLE_Z_RANGE
 
 #: A floor point is within this height of z = 0 after levelling, metres: below the band's
 #: 0.05 m, and 6 sigma of a 5 mm range noise.

@@ -31,13 +31,13 @@ import numpy as np
 from mjwalk._args import check_output_file
 from mjwalk._io import atomic_path, read_toml
 from mjwalk.errors import ScanError
+from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.scan.level import Levelling, check_upright, find_floor
 from mjwalk.world.scan.limits import check_plan_size, check_resolution
 from mjwalk.world.scan.merge import merge_scans, read_poses
 from mjwalk.world.scan.obstacles import FloorPlan, floor_plan, rectangles
 from mjwalk.world.scan.read import check_options, to_metres_z_up
 from mjwalk.world.scan.voids import apply_policy, check_policy
-from mjwalk.world.workplace import OBSTACLE_Z_RANGE
 
 #: Sites are written this far above the floor (a stand site on the floor, as in the shipped
 #: scenes: ``mjwalk.plot`` draws sites below 0.05 m as stand positions).
