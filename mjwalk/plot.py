@@ -267,7 +267,7 @@ def ergonomics_png(path: Path, records: Sequence) -> None:
         ax.step(t, e.rula, where="post", label="RULA", lw=1)
         ax.step(t, e.reba, where="post", label="REBA", lw=1, alpha=0.8)
         for task in e.tasks:
-            if task.kind in ("pick", "place", "fasten"):
+            if task.reach:
                 ax.axvline(task.rula_time, color="0.8", lw=0.5, zorder=0)
         ax.set_xlabel("time in the cycle [s]")
         ax.set_ylabel("score")

@@ -241,9 +241,9 @@ def simulate_cycle(
     if keep_timeline:  # the parts the hands pick, carry and put down, drawn into videos
         ends = [*starts[1:], len(qpos)]
         handlings = [
-            Handling(task.kind, task.site, task.hand, starts[i], ends[i])
+            Handling(part, task.site, task.hand, starts[i], ends[i])
             for i, task in enumerate(spec.tasks)
-            if TASK_KINDS[task.kind].action == "reach" and task.site is not None
+            if (part := TASK_KINDS[task.kind].part) is not None and task.site is not None
         ]
         timeline.parts = part_tracks(ctx.model, ctx.jointmap, qpos, handlings, ctx.scratch())
     contacts = collision_report(timeline, data=ctx.scratch()) if collisions else []
@@ -278,19 +278,22 @@ def cycle_ergonomics(timeline: Timeline, spec: CycleSpec, starts, ends, cycle_ti
     spans = []
     for i, task in enumerate(spec.tasks):
         s, e = int(starts[i]), int(ends[i])
-        if TASK_KINDS[task.kind].action == "walk":
+        kind = TASK_KINDS[task.kind]
+        if kind.action == "walk":
             walking[s:e] = True
+        reach, part = kind.action == "reach", kind.part
         mass, coupling = 0.0, task.coupling
-        if task.kind == "pick":
+        if part == "take":
             mass = task.mass
             held[task.hand].append((task.mass, task.coupling))
-        elif task.kind in ("place", "fasten") and held.get(task.hand):
+        elif part == "put" and held.get(task.hand):
             mass, coupling = held[task.hand].pop()
         pos = None
         if task.site is not None and task.site in wp.stations:
             pos = np.asarray(wp.stations[task.site].pos, dtype=float)
         spans.append(TaskSpan(i, task.kind, s, e, task.hand if task.kind != "walk" else None,
-                              task.site, mass, coupling, pos))  # fmt: skip
+                              task.site, mass, coupling, pos, reach=reach, part=part,
+                              lifts=kind.lifts))  # fmt: skip
     ang = angles_from_timeline(timeline, walking)
     return assess_cycle(ang, spans, cycle_time, timeline.fps)
 

@@ -32,6 +32,9 @@ class TaskKind:
         carries: a walk with a part in the hands.
         part: what a reach does with a part: ``"take"`` it into the hand (the hand holds it
             afterwards), ``"put"`` it down (the hand must hold one), or None.
+        lifts: a reach that lifts the part from its site or lowers it onto it, scored by the
+            revised NIOSH lifting equation (:mod:`mjwalk.ergonomics.niosh`); a fastening
+            holds the part against a surface and is not a lift.
         reach_case: the MTM-1 reach case (:mod:`mjwalk.cycle.handling`) of its reach; the
             return is case E.
         default_hold: seconds at the site (reach) or standing (wait) when the task gives no
@@ -47,6 +50,7 @@ class TaskKind:
     action: Literal["walk", "reach", "wait"]
     carries: bool = False
     part: Literal["take", "put"] | None = None
+    lifts: bool = False
     reach_case: str | None = None
     default_hold: float | None = None
     approach: Literal["shelf", "surface"] | None = None
@@ -65,9 +69,9 @@ TASK_KINDS: dict[str, TaskKind] = {
         TaskKind("walk", ("kind", "site", "route"), "walk"),
         TaskKind("carry", ("kind", "site", "route", "hand", "part"), "walk", carries=True),
         TaskKind("pick", (*_REACH_KEYS, "mass", "coupling"), "reach", part="take",
-                 reach_case="C", default_hold=0.4, approach="shelf"),
-        TaskKind("place", _REACH_KEYS, "reach", part="put", reach_case="B", default_hold=0.4,
-                 approach="shelf"),
+                 lifts=True, reach_case="C", default_hold=0.4, approach="shelf"),
+        TaskKind("place", _REACH_KEYS, "reach", part="put", lifts=True, reach_case="B",
+                 default_hold=0.4, approach="shelf"),
         TaskKind("fasten", _REACH_KEYS, "reach", part="put", reach_case="B", default_hold=3.0,
                  approach="surface"),
         TaskKind("wait", ("kind", "duration"), "wait", default_hold=1.0),

@@ -1,7 +1,8 @@
 """Score one cycle's timeline task by task: what a run keeps of its ergonomics (no timeline).
 
 :func:`assess_cycle` takes the humanoid's poses (a Timeline), the cycle's tasks as frame spans
-(:class:`TaskSpan`: kind, hand, the part's mass and coupling, the site's position) and the cycle
+(:class:`TaskSpan`: hand, the part's mass and coupling, the site's position, and what the task
+kind does: a reach, taking or putting down a part, a lift) and the cycle
 time, and returns a :class:`RunErgonomics`: per task the peak RULA, REBA and OWAS scores and the
 body part that drives each peak; per lift of a part with a mass the revised NIOSH equation's
 H, V, D, A, F, C, RWL and LI; ISO 11226's static holdings of the trunk and the upper arms; and
@@ -16,6 +17,7 @@ longer than a minute in one task (a long fasten) as static.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Literal
 
 import numpy as np
 
@@ -33,14 +35,20 @@ LIFT_DURATION = "long"
 #: The RULA parts, each with its largest score (to name the part that drives a peak).
 RULA_PARTS = {"upper_arm": 6, "lower_arm": 3, "wrist": 4, "neck": 6, "trunk": 6, "legs": 2}
 REBA_PARTS = {"trunk": 5, "neck": 3, "legs": 4, "upper_arm": 6, "lower_arm": 2, "wrist": 3}
-REACHES = ("pick", "place", "fasten")
 
 
 @dataclass
 class TaskSpan:
     """One task of a cycle on its timeline: frames [start, end), the hand ("left", "right",
     "both"; None for walks), the mass (kg) and coupling of the part it handles, and for a
-    reach the site's world position (m)."""
+    reach the site's world position (m).
+
+    What the task's kind does comes with it (the cycle's task kinds table,
+    :data:`mjwalk.cycle.types.TASK_KINDS`, says it; ``kind`` is only its name for the report):
+    ``reach`` a hand to the site and back; ``part`` "take" (the hand holds the part from this
+    task on) or "put" (it puts down the part it took first), else None; ``lifts`` the reach
+    lifts the part from the site or lowers it onto it (a NIOSH lift).
+    """
 
     index: int
     kind: str
@@ -51,13 +59,18 @@ class TaskSpan:
     mass: float = 0.0
     coupling: str = "poor"
     site_pos: np.ndarray | None = None
+    reach: bool = False
+    part: Literal["take", "put"] | None = None
+    lifts: bool = False
 
 
 @dataclass
 class TaskErgonomics:
     """The peaks of one task: RULA 1-7, REBA 1-15, OWAS action category 1-4, the time of the
     RULA peak (s from the cycle's start), the body parts that drive the RULA and REBA peaks,
-    the RULA peak's arm ("left"/"right") and the task's highest RULA upper-arm score."""
+    the RULA peak's arm ("left"/"right") and the task's highest RULA upper-arm score;
+    ``reach``: the task is a reach (:attr:`TaskSpan.reach`; left out of
+    :meth:`RunErgonomics.summary`)."""
 
     index: int
     kind: str
@@ -70,6 +83,7 @@ class TaskErgonomics:
     reba_driver: str
     side: str
     upper_arm: int
+    reach: bool = False
 
 
 @dataclass
@@ -115,7 +129,7 @@ class RunErgonomics:
             "reba_risk_level": int(reba.risk_level(self.reba_peak)),
             "owas_peak": self.owas_peak,
             "max_lifting_index": self.max_li,
-            "tasks": [vars(t) for t in self.tasks],
+            "tasks": [{k: v for k, v in vars(t).items() if k != "reach"} for t in self.tasks],
             "lifts": [vars(lf) for lf in self.lifts],
             "iso11226": [vars(h) for h in self.holdings],
         }
@@ -127,12 +141,12 @@ def _loads(spans: list[TaskSpan], n: int) -> np.ndarray:
     held = [0.0, 0.0]
     for sp in spans:
         sides = [0, 1] if sp.hand == "both" else [0] if sp.hand == "left" else [1]
-        if sp.kind == "pick" and sp.hand:
+        if sp.part == "take" and sp.hand:
             for s in sides:
                 held[s] += sp.mass / len(sides)
         for s in (0, 1):
             load[sp.start : sp.end, s] = held[s]
-        if sp.kind in ("place", "fasten") and sp.hand:
+        if sp.part == "put" and sp.hand:
             for s in sides:
                 held[s] = max(held[s] - sp.mass / len(sides), 0.0)
     return load
@@ -179,15 +193,14 @@ def assess_cycle(
     load = _loads(spans, n)
     minutes = max(cycle_time, 1e-9) / 60.0
     reps = [
-        sum(1 for s in spans if s.kind in REACHES and s.hand in (side, "both"))
-        for side in ("left", "right")
+        sum(1 for s in spans if s.reach and s.hand in (side, "both")) for side in ("left", "right")
     ]
     repeated = np.array([r / minutes >= REPEATED_PER_MIN for r in reps])
     muscle = np.zeros((n, 2), dtype=int)
     muscle[:] = repeated
     coupling = np.zeros((n, 2), dtype=int)
     for sp in spans:
-        if (sp.end - sp.start) / fps > STATIC_S and sp.kind in REACHES:
+        if (sp.end - sp.start) / fps > STATIC_S and sp.reach:
             muscle[sp.start : sp.end] = 1
         if sp.mass > 0 and sp.hand:
             sides = [0, 1] if sp.hand == "both" else [0] if sp.hand == "left" else [1]
@@ -222,6 +235,7 @@ def assess_cycle(
                 reba_driver=_driver(b_parts, REBA_PARTS, kb, sb),
                 side=("left", "right")[side],
                 upper_arm=int(max(r_parts[0].upper_arm[sl].max(), r_parts[1].upper_arm[sl].max())),
+                reach=sp.reach,
             )
         )
     lifts = _lifts(ang, spans, cycle_time)
@@ -250,7 +264,7 @@ def _lift_geometry(ang: BodyAngles, k: int, hand: str) -> tuple[float, float, fl
 
 
 def _lifts(ang: BodyAngles, spans: list[TaskSpan], cycle_time: float) -> list[niosh.Lift]:
-    lifting = [s for s in spans if s.kind in ("pick", "place") and s.mass > 0 and s.hand]
+    lifting = [s for s in spans if s.lifts and s.mass > 0 and s.hand]
     if not lifting:
         return []
     f = len(lifting) / (max(cycle_time, 1e-9) / 60.0)
@@ -267,9 +281,9 @@ def _lifts(ang: BodyAngles, spans: list[TaskSpan], cycle_time: float) -> list[ni
             at = int(fr[np.argmin(np.linalg.norm(g - sp.site_pos, axis=1))])
         else:
             at = int(fr[len(fr) // 2])
-        # a pick lifts from the site to where the return ends; a place lowers from where the
-        # task starts onto the site
-        ends = (at, int(fr[-1])) if sp.kind == "pick" else (int(fr[0]), at)
+        # taking the part lifts it from the site to where the return ends; putting it down
+        # lowers it from where the task starts onto the site
+        ends = (at, int(fr[-1])) if sp.part == "take" else (int(fr[0]), at)
         geo = [_lift_geometry(ang, k, sp.hand) for k in ends]
         out.append(
             niosh.lift(
@@ -283,6 +297,7 @@ def _lifts(ang: BodyAngles, spans: list[TaskSpan], cycle_time: float) -> list[ni
                 f,
                 sp.coupling,
                 LIFT_DURATION,
+                control_at_destination=sp.part == "put",
             )
         )
     return out

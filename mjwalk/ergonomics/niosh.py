@@ -136,14 +136,16 @@ class Lift:
     its recommended weight limit and its lifting index (metric: cm, kg, degrees).
 
     Attributes:
-        task: index of the cycle task (pick or place).
-        kind: "pick" (a lift from the site) or "place" (a lowering onto it).
+        task: index of the cycle task (one that takes a part from its site or puts it down
+            there).
+        kind: the task's kind (its name, for the report).
         mass: the part's mass, kg.
         h, v, a: (origin, destination) horizontal distance, height, asymmetry angle.
         d: vertical travel, cm.
         f: lifts per minute.
-        rwl: the recommended weight limit, kg: the origin's, and for a place (significant
-            control at the destination, Applications Manual p. 21) the lower of both ends.
+        rwl: the recommended weight limit, kg: the origin's, and for a lift with significant
+            control at the destination (putting the part down onto its site, Applications
+            Manual p. 21) the lower of both ends.
         li: mass / rwl (inf when the RWL is 0).
         one_handed: the equation is for two-handed lifts (p. 6); a one-handed lift is scored
             as if two-handed and flagged.
@@ -167,12 +169,13 @@ class Lift:
 def lift(
     task: int, kind: str, hand: str, mass: float, h: tuple[float, float],
     v: tuple[float, float], a: tuple[float, float], f: float, coupling: str,
-    duration: str = "long",
+    duration: str = "long", *, control_at_destination: bool = False,
 ) -> Lift:  # fmt: skip
-    """Score one lift in metric units (cm, deg, kg). The RWL is taken at the origin, and for a
-    place, whose destination needs control, at both ends (the lower)."""
+    """Score one lift in metric units (cm, deg, kg); ``kind`` is a label. The RWL is taken at the
+    origin, and with ``control_at_destination`` (a part put down onto its site) at both ends
+    (the lower)."""
     d = abs(v[1] - v[0])
-    ends = (0, 1) if kind == "place" else (0,)
+    ends = (0, 1) if control_at_destination else (0,)
     limits = [
         rwl(multipliers(h[e], v[e], d, a[e], f, duration, coupling, v_origin=v[0])) for e in ends
     ]

@@ -136,9 +136,7 @@ def _stature(records: list[RunRecord]) -> dict | None:
     constant = np.ptp(st) == 0 or np.ptp(peaks) == 0  # rho is undefined
     rho = float("nan") if constant else spearmanr(st, peaks).statistic
     tasks = []
-    idxs = sorted(
-        {t.index for r in rec for t in r.ergo.tasks if t.kind in ("pick", "place", "fasten")}
-    )
+    idxs = sorted({t.index for r in rec for t in r.ergo.tasks if t.reach})
     for idx in idxs:
         short = [t for r in rec if r.stature <= lo for t in r.ergo.tasks if t.index == idx]
         tall = [t for r in rec if r.stature >= hi for t in r.ergo.tasks if t.index == idx]

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Literal
 
 import mujoco
 import numpy as np
@@ -61,10 +62,12 @@ class PartTrack:
 
 @dataclass
 class Handling:
-    """One pick, place or fasten as :func:`part_tracks` needs it: ``kind``, the target
-    ``site``, the ``hand`` ("left", "right" or "both") and its frames ``[start, end)``."""
+    """One reach that handles a part (a pick, place or fasten) as :func:`part_tracks` needs
+    it: ``part`` "take" (the hand takes the part at the site) or "put" (it puts down the part
+    it took first), the target ``site``, the ``hand`` ("left", "right" or "both") and its
+    frames ``[start, end)``. The cycle's task kinds table says which kinds take or put."""
 
-    kind: str
+    part: Literal["take", "put"]
     site: str
     hand: str
     start: int
@@ -132,7 +135,7 @@ def part_tracks(
         for s in range(model.nsite)
         if model.site(s).name + PART_GEOM_SUFFIX in names
     }
-    if not lying or not any(h.kind == "pick" and h.site in lying for h in handlings):
+    if not lying or not any(h.part == "take" and h.site in lying for h in handlings):
         return []
     n = len(qpos)
     data = mujoco.MjData(model) if data is None else data
@@ -155,7 +158,7 @@ def part_tracks(
             origin, axes = hand_pos[:, side], hand_mat[:, side]
         else:
             origin, axes = both_pos, both_mat
-        if h.kind == "pick":
+        if h.part == "take":
             g = lying.pop(h.site, None)
             held[h.hand].append(g)
             if g is None:
@@ -174,7 +177,7 @@ def part_tracks(
             rel_pos = axes[f].T @ (track.pos[f] - origin[f])
             track.pos[f:] = origin[f:] + np.einsum("fij,j->fi", axes[f:], rel_pos)
             track.mat[f:] = axes[f:] @ rel_mat
-        elif held[h.hand]:  # place / fasten: the first part this hand took
+        elif held[h.hand]:  # put down (place / fasten): the first part this hand took
             g = held[h.hand].pop(0)
             if g is None:
                 continue

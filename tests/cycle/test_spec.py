@@ -9,6 +9,7 @@ from pathlib import Path
 import pytest
 
 from mjwalk.cycle.spec import load_cycle_spec
+from mjwalk.cycle.types import TASK_KINDS
 from mjwalk.errors import CycleSpecError
 from mjwalk.world import load_workplace
 
@@ -236,3 +237,17 @@ def test_walk_to_where_the_operator_stands(tmp_path, workplace):
 def test_missing_spec_file(tmp_path):
     with pytest.raises(CycleSpecError, match="not found"):
         load_cycle_spec(tmp_path / "nope.toml")
+
+
+def test_task_kinds_table_says_what_the_lower_stages_read():
+    """The flags the cycle hands to the ergonomics and the timeline (reach, part, lifts) come
+    from the one table: the reaches are pick, place and fasten; a pick takes its part, a place
+    or fasten puts it down; pick and place are NIOSH lifts, a fastening is not."""
+    reach = {k for k, v in TASK_KINDS.items() if v.action == "reach"}
+    assert reach == {"pick", "place", "fasten"}
+    assert {k: v.part for k, v in TASK_KINDS.items() if v.part} == {
+        "pick": "take",
+        "place": "put",
+        "fasten": "put",
+    }
+    assert {k for k, v in TASK_KINDS.items() if v.lifts} == {"pick", "place"}

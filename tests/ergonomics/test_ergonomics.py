@@ -233,6 +233,19 @@ def test_niosh_heavier_low_pick_raises_the_lifting_index():
     assert b.rwl == pytest.approx(a.rwl) and b.li == pytest.approx(3 * a.li) and b.li > 1.0
 
 
+def test_niosh_control_at_destination_takes_the_lower_end():
+    """A part put down onto its site (control at the destination, Applications Manual p. 21):
+    the RWL is the lower of the origin's and the destination's; without it, the origin's."""
+    args = ("both", 5.0, (25.0, 50.0), (75.0, 20.0), (0.0, 0.0), 1.0, "fair")
+    free = niosh.lift(0, "place", *args)
+    put = niosh.lift(0, "place", *args, control_at_destination=True)
+    d = 55.0
+    origin = niosh.rwl(niosh.multipliers(25.0, 75.0, d, 0.0, 1.0, "long", "fair", v_origin=75.0))
+    dest = niosh.rwl(niosh.multipliers(50.0, 20.0, d, 0.0, 1.0, "long", "fair", v_origin=75.0))
+    assert dest < origin
+    assert free.rwl == pytest.approx(origin) and put.rwl == pytest.approx(dest)
+
+
 def test_iso11226_holding_times():
     assert iso11226.max_holding_time(10.0) == float("inf")
     assert iso11226.max_holding_time(20.0) == 240.0

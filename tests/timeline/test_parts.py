@@ -188,8 +188,8 @@ def test_a_pick_without_a_part_geom_draws_nothing(box_cycle):
     tl = res.timeline
     # a pick at a site that has no "<site>_geom" (the standing mark), and its place
     handlings = [
-        Handling("pick", "stand_bench_a", "left", 0, 40),
-        Handling("place", "bench_b_box", "left", 40, 80),
+        Handling("take", "stand_bench_a", "left", 0, 40),
+        Handling("put", "bench_b_box", "left", 40, 80),
     ]
     assert part_tracks(tl.model, ctx.jointmap, tl.qpos, handlings) == []
 
