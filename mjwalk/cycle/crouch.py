@@ -107,7 +107,7 @@ def _stance(ctx: CycleContext, q0: np.ndarray) -> _Stance:
     )
 
 
-def _com_ahead(ctx: CycleContext, data) -> float:
+def com_ahead(ctx: CycleContext, data) -> float:
     """How far (m) the humanoid's centre of mass lies ahead of the midpoint of its ankle joints,
     along its pelvis's heading (+x), in the pose whose kinematics ``data`` holds."""
     m, jm = ctx.model, ctx.jointmap
@@ -152,9 +152,9 @@ def crouch_pose(ctx: CycleContext, q0: np.ndarray, drop: float) -> np.ndarray:
     if drop <= 0.0:
         return np.asarray(q0, dtype=float).copy()
     stance = _stance(ctx, q0)
-    com0 = _com_ahead(ctx, ctx.scratch())  # the kinematics of q0, from _stance
+    com0 = com_ahead(ctx, ctx.scratch())  # the kinematics of q0, from _stance
     lowered = _lowered(ctx, stance, drop)
-    return bend_trunk(ctx, lowered, BALANCE_STEP, lambda data: _com_ahead(ctx, data) >= com0)
+    return bend_trunk(ctx, lowered, BALANCE_STEP, lambda data: com_ahead(ctx, data) >= com0)
 
 
 def crouch_frames(

@@ -13,7 +13,7 @@ import pytest
 
 import mjwalk.cycle.reaching as reaching
 import mjwalk.cycle.reachspot as reachspot
-from mjwalk.cycle.crouch import _com_ahead, crouch_frames, crouch_pose, trunk_bend
+from mjwalk.cycle.crouch import com_ahead, crouch_frames, crouch_pose, trunk_bend
 from mjwalk.cycle.handling import BODY_MOTION_TMU, TMU
 from mjwalk.cycle.poses import frame_contacts, hand_points, standing_pose
 from mjwalk.cycle.simulate import prepare, simulate_cycle
@@ -43,7 +43,7 @@ def _com(ctx, q):
     d = mujoco.MjData(ctx.model)
     d.qpos[:] = q
     mujoco.mj_kinematics(ctx.model, d)
-    return _com_ahead(ctx, d)
+    return com_ahead(ctx, d)
 
 
 @pytest.mark.parametrize("drop", [0.05, 0.15, 0.25])

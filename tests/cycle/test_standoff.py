@@ -37,12 +37,8 @@ def _pick(ctx, site: str):
     return next(t for t in ctx.spec.tasks if t.kind == "pick" and t.site == site)
 
 
-def _timing(dist):
-    return reaching.default_timing(dist)
-
-
 def _reach(ctx, site, xy, yaw):
-    return reach_task(ctx, _pick(ctx, site), xy[0], xy[1], yaw, 0.4, 30.0, _timing)
+    return reach_task(ctx, _pick(ctx, site), xy[0], xy[1], yaw, 0.4, 30.0, reaching.default_timing)
 
 
 def _contacts(ctx, frames):
@@ -126,7 +122,7 @@ def test_step_backs_do_not_add_up(ctx):
         st.yaw,
         0.4,
         30.0,
-        _timing,
+        reaching.default_timing,
         home=(float(st.pos[0]), float(st.pos[1])),
     )
     assert r.step_back == 0.0 and r.error < 0.01 and r.distance == np.inf
@@ -148,7 +144,9 @@ def test_a_target_below_a_standing_reach_is_reached_bending_forward(low_compartm
     lumbar = jm.adr("lumbar_flex")
 
     def reach():
-        return reach_task(low, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, _timing)
+        return reach_task(
+            low, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching.default_timing
+        )
 
     r = reach()
     assert r.error < 0.01
