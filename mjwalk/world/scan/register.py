@@ -75,10 +75,12 @@ AMBIGUITY = 0.9
 @dataclass(frozen=True)
 class Alignment:
     """Result of :func:`align`: ``matrix`` (4, 4) taking the scan's points into the
-    reference's frame (metres, z up); the ICP's ``fitness`` (share of the scan's thinned
-    points with a counterpart within :data:`ICP_DISTANCE`) and ``rmse`` (metres, of those
-    pairs); ``clash`` (the larger of the two free-space contradiction shares, :func:`clash`);
-    the best distinct runner-up's fitness (0 when none); the scan's name."""
+    reference's frame (metres, z up); the ICP's ``fitness`` (share of the scan's points,
+    thinned to :data:`VOXEL`, with a counterpart within :data:`ICP_DISTANCE`: the figure
+    checked against :data:`MIN_FITNESS`) and ``rmse`` (metres, of the pairs of the last ICP
+    on points thinned to :data:`FINE_VOXEL`); ``clash`` (the larger of the two free-space
+    contradiction shares, :func:`clash`); the best distinct runner-up's fitness (0 when
+    none); the scan's name."""
 
     matrix: np.ndarray
     fitness: float
@@ -89,8 +91,9 @@ class Alignment:
 
     def line(self) -> str:
         return (
-            f"{self.source}: registered, fitness {self.fitness:.3f} (points within "
-            f"{ICP_DISTANCE} m), RMSE {1000 * self.rmse:.1f} mm, free-space clash "
+            f"{self.source}: registered, fitness {self.fitness:.3f} (share of its points, "
+            f"thinned to {VOXEL} m, within {ICP_DISTANCE} m of the others), RMSE "
+            f"{1000 * self.rmse:.1f} mm (thinned to {FINE_VOXEL} m), free-space clash "
             f"{100 * self.clash:.1f} %"
         )
 
@@ -238,4 +241,4 @@ def align(
     )
     m = np.asarray(icp.transformation)
     total = np.linalg.inv(lev_r.matrix) @ m @ lev_p.matrix
-    return Alignment(total, float(icp.fitness), float(icp.inlier_rmse), best[2], runner_up, source)
+    return Alignment(total, best[0], float(icp.inlier_rmse), best[2], runner_up, source)
