@@ -72,8 +72,13 @@ def animation_old_vs_new(rev: str, cycles: int, runs: int) -> None:
                 out = Path(tmp) / f"{name}{rnd}.npz"
                 res[name].append(_time_tree(tree, cycles, jobs, runs, out))
         old_q, new_q = np.load(Path(tmp) / "old0.npz"), np.load(Path(tmp) / "new0.npz")
-        dq = max(float(np.abs(old_q[k] - new_q[k]).max()) for k in old_q.files)
         shapes = all(old_q[k].shape == new_q[k].shape for k in old_q.files)
+        # (cycles whose frame counts differ, e.g. other walks, have no pose difference)
+        dq = max(
+            (float(np.abs(old_q[k] - new_q[k]).max()) for k in old_q.files
+             if old_q[k].shape == new_q[k].shape),
+            default=float("nan"),
+        )  # fmt: skip
     med = {}
     for name, runs_ in res.items():
         wall = [t for r in runs_ for t in r["wall"]]

@@ -30,8 +30,8 @@ turning from the reach model's upward direction onto the grips: a long path of t
 1.95 m: 385 -> 8; 2.05 m: on the grips (95 mm short before), 455 contact frames, 10.5 s (a
 target beyond the arms' reach: the arm straight overhead, its shoulder angles wound round).
 One-handed picks unchanged (1.95 m: 63 and 62 frames, the forearm over the board's edge while
-the hand holds the part). Placing on a shelf as high over bench b (``tests/test_two_hands.py``):
-1.85 m, pick and place 108 + 59 -> 0 contact frames.
+the hand holds the part). Placing on a shelf as high over bench b
+(``tests/cycle/test_two_hands.py``): 1.85 m, pick and place 108 + 59 -> 0 contact frames.
 
 Run from the repo root:  python benchmarks/bench_heights.py [--heights 0.16,0.45,1.85]
 """

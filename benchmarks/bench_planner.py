@@ -40,7 +40,7 @@ LONG_WALK = ("-3.6,-1.0", "3.6,0.6")
 
 def sways_towards_stance(pelvis: np.ndarray, stance_xy: np.ndarray) -> bool:
     """Whether the pelvis's largest lateral excursion from the step's chord points to the side
-    of the stance foot (as tests/test_hybrid_planner.py counts it)."""
+    of the stance foot (as tests/plan/test_hybrid.py counts it)."""
     chord = pelvis[-1] - pelvis[0]
     rel = pelvis - pelvis[0]
     lat = chord[0] * rel[:, 1] - chord[1] * rel[:, 0]

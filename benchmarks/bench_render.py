@@ -71,7 +71,7 @@ def old_frames(tl, frames, size=(640, 480)):
             data.qpos[:] = tl.qpos[i]
             mujoco.mj_kinematics(model, data)
             renderer.update_scene(data, render.camera_for(tl, i, "track"), scene_option=opt)
-            render._draw_path(renderer.scene, geoms)
+            render.add_path_geoms(renderer.scene, geoms)
             yield i, renderer.render()
     finally:
         renderer.close()

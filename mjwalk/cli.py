@@ -226,7 +226,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
             f"(--runs {args.runs})"
         )
     from mjwalk.cycle.context import context_of
-    from mjwalk.cycle.simulate import simulate_cycle, simulate_cycles
+    from mjwalk.cycle.simulate import simulate_cycles
     from mjwalk.cycle.spec import load_cycle_spec
     from mjwalk.report import format_summary, report_dict, write_report
     from mjwalk.shipped import cycle_file
@@ -273,13 +273,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         from mjwalk.render import render_video
 
         first = next(r for r in results if r.error is None)  # report_dict: at least one
-        run0 = simulate_cycle(
-            ctx,
-            np.random.default_rng(np.random.SeedSequence([args.seed, first.run])),
-            run=first.run,
-            keep_timeline=True,
-            collisions=False,
-        )
+        run0 = _replay(ctx, args.seed, first.run)
         video = args.out / "cycle.mp4"
         render_video(
             run0.timeline,
@@ -297,23 +291,24 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     return 0
 
 
+def _replay(ctx, seed: int, run: int, **kwargs):
+    """Run ``run`` of the batch of ``seed`` again, keeping its timeline (the same cycle: it
+    draws from ``SeedSequence([seed, run])`` as in the batch)."""
+    from mjwalk.cycle.simulate import simulate_cycle
+
+    rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
+    return simulate_cycle(ctx, rng, run=run, keep_timeline=True, collisions=False, **kwargs)
+
+
 def _export_runs(args: argparse.Namespace, ctx, results) -> None:
     """--export bvh/csv: each simulated run's humanoid motion (again, with its timeline) as
     ``run_KKK.bvh`` / ``run_KKK_angles.csv`` in --out (mjwalk.ergonomics.export)."""
-    from mjwalk.cycle.simulate import simulate_cycle
     from mjwalk.ergonomics.export import write_angles_csv, write_bvh
 
     for r in results:
         if r.error is not None:
             continue
-        run = simulate_cycle(
-            ctx,
-            np.random.default_rng(np.random.SeedSequence([args.seed, r.run])),
-            run=r.run,
-            keep_timeline=True,
-            collisions=False,
-            ergonomics=False,
-        )
+        run = _replay(ctx, args.seed, r.run, ergonomics=False)
         for kind in dict.fromkeys(args.export):
             if kind == "bvh":
                 out = write_bvh(run.timeline, args.out / f"run_{r.run:03d}.bvh")

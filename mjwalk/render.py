@@ -172,7 +172,7 @@ def path_geoms(timeline: Timeline, width: float = 0.02, spacing: float = 0.05) -
     return geoms
 
 
-def _draw_path(scn: mujoco.MjvScene, geoms: list[tuple]) -> None:
+def add_path_geoms(scn: mujoco.MjvScene, geoms: list[tuple]) -> None:
     """Append precomputed :func:`path_geoms` to the scene as user geoms (as many as fit)."""
     box = mujoco.mjtGeom.mjGEOM_BOX
     for size, pos, mat, rgba in geoms:
@@ -309,7 +309,7 @@ class _SceneUpdater:
         self.pert = mujoco.MjvPerturb()  # nothing selected: draws nothing, as NULL would
         if self.prefix:
             scene.ngeom = 0
-            _draw_path(scene, geoms)
+            add_path_geoms(scene, geoms)
             self.n_prefix = scene.ngeom
 
     def __call__(self, data: mujoco.MjData, cam: mujoco.MjvCamera, frame: int = 0) -> None:
@@ -321,7 +321,7 @@ class _SceneUpdater:
             mujoco.mjv_makeLights(m, data, scn)
         else:
             mujoco.mjv_updateScene(m, data, self.opt, None, cam, self.catmask, scn)
-            _draw_path(scn, self.geoms)
+            add_path_geoms(scn, self.geoms)
         if self.parts:
             self._move_parts(frame)
 

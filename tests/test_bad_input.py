@@ -450,7 +450,7 @@ def test_runs_record_their_seed_and_rerun_alone(scenes_dir, tmp_path):
     import csv
 
     from mjwalk.cycle.simulate import simulate_cycle, simulate_cycles
-    from mjwalk.report import _write_cycles_csv
+    from mjwalk.report import write_report
 
     spec = scenes_dir / "assembly_station.toml"
     batch = simulate_cycles(spec, runs=3, seed=5, n_jobs=1, collisions=False, only=[1, 2])
@@ -463,8 +463,7 @@ def test_runs_record_their_seed_and_rerun_alone(scenes_dir, tmp_path):
     )
     assert again.cycle_time == batch[1].cycle_time
     assert [w.length for w in again.walks] == [w.length for w in batch[1].walks]
-    path = tmp_path / "cycles.csv"
-    _write_cycles_csv(path, batch)
+    path = write_report(batch, tmp_path / "report", baseline={})["cycles"]
     rows = list(csv.DictReader(path.open()))
     assert [(r["run"], r["seed"]) for r in rows] == [("1", "5"), ("2", "5")]
     with pytest.raises(InputError, match=r"run indices must lie in 0\.\.2"):

@@ -159,7 +159,7 @@ def test_fixed_camera_frames_identical_to_mujoco_renderer(timeline):
             data.qpos[:] = tl.qpos[i]
             mujoco.mj_kinematics(model, data)
             ref.update_scene(data, render.camera_for(tl, i, "track"), scene_option=opt)
-            render._draw_path(ref.scene, geoms)
+            render.add_path_geoms(ref.scene, geoms)
             assert np.array_equal(ref.render(), img)
     finally:
         ref.close()

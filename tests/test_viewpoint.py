@@ -10,10 +10,10 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 import mujoco
 import numpy as np
 import pytest
-from test_legs import make_walk
 
 from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.errors import MjwalkError
+from mjwalk.plan.synthetic import synthetic_walk as make_walk
 from mjwalk.timeline import timeline_from_walk
 from mjwalk.viewpoint import (
     MAX_TURN_RATE,

@@ -8,7 +8,7 @@ The residual (hand minus target, metres, shoulder frame) is that of
 four parameters (central-difference Jacobian) runs to machine precision in a few dozen
 microseconds, where scipy's ``least_squares`` (trust-region reflective, numerical Jacobian)
 took milliseconds per reach and stopped within its default tolerances (measured on station
-cycles: up to 5e-6 rad from the optimum this solver reaches; ``tests/test_fast_anim.py``).
+cycles: up to 5e-6 rad from the optimum this solver reaches; ``tests/timeline/test_kernels.py``).
 Angles in radians, lengths in metres.
 """
 

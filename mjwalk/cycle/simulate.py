@@ -152,7 +152,8 @@ def simulate_cycle(
         if task.kind in ("walk", "carry"):
             goal = task.site
             assert goal is not None  # the spec loader requires a site for walks
-            path = plan_task_walk(ctx, i, (x, y), rng, walker, stand_rng)
+            # from the heading the operator stands at: turning on the spot, then walking
+            path = plan_task_walk(ctx, i, (x, y), rng, walker, stand_rng, yaw=yaw)
             # a two-handed part stays in the hands, in the carrying posture (turns included)
             pose = None if width is None else carry_pose(ctx, frames[0][0], width)
             turn, dt = _turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps, pose=pose)

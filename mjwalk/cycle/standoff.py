@@ -49,7 +49,7 @@ STEP_BACK = 0.02
 MAX_STEP_BACK = 0.20
 #: A step back must leave the hand within this distance (m) of its target (or no farther than
 #: from where the walk ended): the cycle's reaches end on their targets within 1 cm
-#: (tests/test_cycle.py), the accuracy of the reach model fitted to its end points.
+#: (tests/cycle/test_simulate.py), the accuracy of the reach model fitted to its end points.
 REACH_TOLERANCE = 0.01
 #: Contacts with the floor count only deeper than this (m): the soles rest on it (as in
 #: :func:`mjwalk.timeline.collisions.collision_report`).

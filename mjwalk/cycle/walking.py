@@ -121,12 +121,16 @@ def plan_task_walk(
     rng: np.random.Generator,
     walker=None,
     spots: np.random.Generator | None = None,
+    yaw: float | None = None,
 ):
     """The walk of task ``i`` (a walk or carry) from ``start`` (x, y), as a cycle plans it:
     steps from the cycle's step model (conditioned on ``walker`` when given), ending within
     :data:`SPOT_REACH` step lengths of a spot of the task's stand zone (:func:`work_zone`, for
     the walker's stature and step length) drawn with ``spots`` (:func:`standing_spot`; None:
-    with ``rng``), and inside the zone."""
+    with ``rng``), and inside the zone. ``yaw`` (radians): the heading the operator stands at
+    (the task before's): the walk sets off from it, turning on the spot first as far as that
+    pays against turning while walking (``HybridPlanner.plan(turn_on_spot=True)``); None: it
+    sets off around the downhill heading."""
     task = ctx.spec.tasks[i]
     assert task.site is not None  # the spec loader requires a site for walks
     model = ctx.step_model.for_walker(walker)  # the model itself for None
@@ -135,11 +139,13 @@ def plan_task_walk(
     zone = ctx.zone(i, stature, step)
     planner = ctx.planner(task.site, zone)
     reach = SPOT_REACH * step
+    pose = tuple(start) if yaw is None else (float(start[0]), float(start[1]), float(yaw))
+    turn = yaw is not None
     for _ in range(SPOT_TRIES):
         x, y = standing_spot(ctx, zone, rng if spots is None else spots)
         if np.hypot(x - start[0], y - start[1]) > reach:
-            return planner.plan(start, rng, model=model, spot=(x, y, reach))
-    return planner.plan(start, rng, model=model)
+            return planner.plan(pose, rng, model=model, spot=(x, y, reach), turn_on_spot=turn)
+    return planner.plan(pose, rng, model=model, turn_on_spot=turn)
 
 
 def plan_cycle_walks(
@@ -154,7 +160,10 @@ def plan_cycle_walks(
     same ``start`` (x, y: the run's :func:`cycle_start`; None: the start site itself) with the
     same ``spots`` (the standing-spot stream, after the start's draw; None: ``rng``): a list
     of (task index, start site, goal site, WalkPath). Fast (no animation): for studies of the
-    routes alone (``benchmarks/bench_variability.py``)."""
+    routes alone (``benchmarks/bench_variability.py``). Each walk sets off from the heading
+    of the site the operator stands at (the start site's, then the last walk's goal's):
+    ``simulate_cycle`` sets off from the heading of the reach done there, which faces the
+    reach's target, so a walk after a reach may differ."""
     spec = ctx.spec
     here = spec.start
     if start is None:
@@ -163,7 +172,8 @@ def plan_cycle_walks(
     out = []
     for i, task in enumerate(spec.tasks):
         if task.kind in ("walk", "carry"):
-            path = plan_task_walk(ctx, i, (x, y), rng, walker, spots)
+            yaw = float(ctx.workplace.station(here).yaw)
+            path = plan_task_walk(ctx, i, (x, y), rng, walker, spots, yaw=yaw)
             goal = str(task.site)
             out.append((i, here, goal, path))
             x, y = (float(v) for v in path.xy[-1])

@@ -154,24 +154,8 @@ def _rula_frames(ang: BodyAngles, load: np.ndarray, muscle: np.ndarray):
     for s in (0, 1):
         p = rula.part_scores(ang, s)
         parts.append(p)
-        force = np.select(
-            [load[:, s] >= rula.FORCE_KG[1], load[:, s] >= rula.FORCE_KG[0]],
-            [np.where(muscle[:, s] > 0, 3, 2), np.where(muscle[:, s] > 0, 2, 1)],
-            0,
-        )
-        out[:, s] = rula.grand_score(
-            p.upper_arm,
-            p.lower_arm,
-            p.wrist,
-            p.wrist_twist,
-            p.neck,
-            p.trunk,
-            p.legs,
-            muscle[:, s],
-            force,
-            muscle[:, s],
-            force,
-        )
+        force = rula.force_score(load[:, s], muscle[:, s] > 0)
+        out[:, s] = rula.parts_score(p, muscle[:, s], force)
     return out, parts
 
 
@@ -181,18 +165,8 @@ def _reba_frames(ang: BodyAngles, load: np.ndarray, coupling: np.ndarray, activi
     for s in (0, 1):
         p = reba.part_scores(ang, s)
         parts.append(p)
-        ld = np.select([load[:, s] > reba.LOAD_KG[1], load[:, s] >= reba.LOAD_KG[0]], [2, 1], 0)
-        out[:, s] = reba.reba_score(
-            p.trunk,
-            p.neck,
-            p.legs,
-            p.upper_arm,
-            p.lower_arm,
-            p.wrist,
-            ld,
-            coupling[:, s],
-            activity[:, s],
-        )
+        load_s = reba.load_score(load[:, s])
+        out[:, s] = reba.parts_score(p, load_s, coupling[:, s], activity[:, s])
     return out, parts
 
 

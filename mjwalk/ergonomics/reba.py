@@ -82,10 +82,12 @@ class RebaParts:
     wrist: np.ndarray
 
 
-def load_score(load_kg: float, shock: bool = False) -> int:
-    """REBA's load/force score 0-3 (kg)."""
+def load_score(load_kg, shock: bool = False):
+    """REBA's load/force score 0-3 (kg); scalars or per-frame arrays (an int for scalars)."""
     lo, hi = LOAD_KG
-    return (0 if load_kg < lo else 1 if load_kg <= hi else 2) + int(shock)
+    load = np.asarray(load_kg, dtype=float)
+    score = np.select([load > hi, load >= lo], [2, 1], 0) + int(shock)
+    return int(score) if score.ndim == 0 else score
 
 
 def reba_score(trunk, neck, legs, upper_arm, lower_arm, wrist, load=0, coupling=0, activity=0):
@@ -149,15 +151,13 @@ def reba(
 ) -> np.ndarray:  # fmt: skip
     """(F,) REBA scores for the arm ``side`` with the load in that hand (kg), the coupling of
     its grip and the activity (+1 static > 1 min, +1 repeated > 4 times a minute)."""
-    p = part_scores(ang, side)
+    activity = int(static) + int(repeated)
+    return parts_score(part_scores(ang, side), load_score(load_kg), COUPLING[coupling], activity)
+
+
+def parts_score(p: RebaParts, load=0, coupling=0, activity=0) -> np.ndarray:
+    """(F,) REBA scores of one side's part scores with the load, coupling and activity scores
+    (scalars or per frame)."""
     return reba_score(
-        p.trunk,
-        p.neck,
-        p.legs,
-        p.upper_arm,
-        p.lower_arm,
-        p.wrist,
-        load_score(load_kg),
-        COUPLING[coupling],
-        int(static) + int(repeated),
+        p.trunk, p.neck, p.legs, p.upper_arm, p.lower_arm, p.wrist, load, coupling, activity
     )

@@ -86,16 +86,17 @@ class RulaParts:
     legs: np.ndarray
 
 
-def force_score(load_kg: float, static_or_repeated: bool, shock: bool = False) -> int:
-    """RULA's force/load score 0-3 of a load held in the hands (kg)."""
+def force_score(load_kg, static_or_repeated, shock: bool = False):
+    """RULA's force/load score 0-3 of a load held in the hands (kg); scalars or per-frame
+    arrays (an int for scalars)."""
     lo, hi = FORCE_KG
-    if shock or (load_kg >= hi and static_or_repeated):
-        return 3
-    if load_kg < lo:
-        return 0
-    if static_or_repeated:
-        return 2
-    return 1 if load_kg < hi else 2  # >= 10 kg intermittent: paper gives 2 (10 kg+ intermittent)
+    load = np.asarray(load_kg, dtype=float)
+    held = np.asarray(static_or_repeated, dtype=bool)
+    # >= 10 kg intermittent: the paper gives 2, static or repeated 3
+    score = np.select([load >= hi, load >= lo], [np.where(held, 3, 2), np.where(held, 2, 1)], 0)
+    if shock:
+        score = np.full_like(score, 3)
+    return int(score) if score.ndim == 0 else score
 
 
 def grand_score(
@@ -170,9 +171,14 @@ def rula(
     """(F,) RULA grand scores of the arm ``side`` with the load in that hand (kg); muscle use
     +1 when the posture is static (held > 1 min) or repeated (4 times a minute or more), in
     both groups as the paper's worksheet does."""
-    p = part_scores(ang, side)
     muscle = int(static or repeated)
-    force = force_score(load_kg, static or repeated)
+    return parts_score(part_scores(ang, side), muscle, force_score(load_kg, muscle))
+
+
+def parts_score(p: RulaParts, muscle, force) -> np.ndarray:
+    """(F,) RULA grand scores of one arm's part scores with its muscle-use (0/1) and force
+    scores (scalars or per frame), the same in the arm-and-wrist and the neck-trunk-legs
+    groups, as the worksheet applies them."""
     return grand_score(
         p.upper_arm,
         p.lower_arm,

@@ -6,7 +6,7 @@ second; as NumPy calls the draw is a dozen small operations whose overhead outwe
 arithmetic. These loops do the same arithmetic in the same order and take their random numbers
 from the caller's ``numpy.random.Generator`` in the order NumPy code would (all pool choices,
 then all pool members, then all normal deviates), so :meth:`TransitionGP.sample` gives the
-draws it gave as NumPy code (to rounding; ``tests/test_model.py`` compares with a NumPy
+draws it gave as NumPy code (to rounding; ``tests/gait/test_model.py`` compares with a NumPy
 reference).
 
 x (p, d) are predecessor features; ``gp`` is the tuple :attr:`TransitionGP.kernel` folds in

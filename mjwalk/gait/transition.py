@@ -125,7 +125,7 @@ class TransitionGP:
         y = μ(x) + √v(x)·ε + r, r from the residual pool of an inducing input drawn with
         probability ∝ k(x, z_j)^POOL_SHARPNESS (module doc). μ and v are :meth:`predict`'s
         (:meth:`_moments`: the same formulas with the constants folded in, equal to rounding;
-        tests/test_model.py checks them); the pool weights are exp(-POOL_SHARPNESS·(h - min h))
+        tests/gait/test_model.py checks them); the pool weights are exp(-POOL_SHARPNESS·(h - min h))
         for the half squared scaled distances h, that is (k / max k)^POOL_SHARPNESS without an
         underflow to all-zero weights far from the data. Compiled
         (:func:`mjwalk.gait.gpdraw.sample`); the random numbers are drawn from ``rng`` as

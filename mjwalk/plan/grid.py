@@ -36,7 +36,7 @@ OCTILE_RATIO = math.sqrt(4.0 - 2.0 * _SQRT2)
 #: What linking two off-grid ends to the grid adds at most over the octile distance between
 #: them, in cells (each end joins a centre of the 3 x 3 cells around it): sqrt(2) - 1. Found by
 #: exhaustive search over both ends' offsets in their cells (21 x 21 each) and 61 directions of
-#: the first octant at 3-60 cells; tests/test_grid_planner.py checks the bound on plan_grid.
+#: the first octant at 3-60 cells; tests/plan/test_grid.py checks the bound on plan_grid.
 END_EXCESS = _SQRT2 - 1.0
 #: The 8-connected moves (di, dj) of the grid A*.
 MOVES_8 = [(1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (1, -1), (-1, 1), (-1, -1)]

@@ -32,6 +32,30 @@ def grid_excess(offsets: tuple) -> float:
     return float(worst)
 
 
+@njit
+def _sight_cells(free, gi, gj):
+    """(ny, nx) bool: whether the straight line from each free cell's centre to cell (gj, gi)
+    (the goal's) runs through free cells only, sampled every half cell (the cells are free
+    where they keep the body radius: the walker sees and can walk straight to the goal)."""
+    ny, nx = free.shape
+    out = np.zeros((ny, nx), dtype=np.bool_)
+    for j in range(ny):
+        for i in range(nx):
+            if not free[j, i]:
+                continue
+            dx = gi - i
+            dy = gj - j
+            n = int(2 * max(abs(dx), abs(dy)))
+            ok = True
+            for k in range(1, n):
+                t = k / n
+                if not free[int(j + t * dy + 0.5), int(i + t * dx + 0.5)]:  # (both >= 0)
+                    ok = False
+                    break
+            out[j, i] = ok
+    return out
+
+
 @dataclass
 class GoalDistance:
     """Walking distance (metres) from every grid cell to the goal centre, around obstacles.
@@ -49,15 +73,27 @@ class GoalDistance:
 
     def __post_init__(self) -> None:
         self._excess = grid_excess(tuple(self.grid.offsets))
-        self._scaled = (self.cells / self._excess).ravel()  # flat, for one gather per lookup
         ny, nx = self.grid.free.shape
+        at = np.rint((self.goal - (self.grid.x0, self.grid.y0)) / self.grid.cell)
+        gi, gj = (int(v) for v in np.clip(at, 0, (nx - 1, ny - 1)))
+        self.in_sight = _sight_cells(self.grid.free, gi, gj)
+        # flat, for one gather per lookup: the bounds, then the sight flags (flat_bound)
+        self._scaled = np.concatenate(
+            [(self.cells / self._excess).ravel(), self.in_sight.ravel().astype(float)]
+        )
         self._origin = np.array([self.grid.x0, self.grid.y0])
         self._top = np.array([nx - 1.0, ny - 1.0])
 
     def flat_bound(self) -> np.ndarray:
         """Grid distances divided by the worst excess, flat (row-major over (ny, nx)): the
-        cell term of :meth:`__call__`, for compiled lookups (:mod:`mjwalk.plan.stepcheck`)."""
+        cell term of :meth:`__call__`, for compiled lookups (:mod:`mjwalk.plan.stepcheck`);
+        followed by the ny·nx flags of :attr:`in_sight` (1.0 or 0.0, same order)."""
         return self._scaled
+
+    def sees(self, xy: np.ndarray) -> bool:
+        """Whether the goal is in sight from ``xy`` (the nearest cell's :attr:`in_sight`)."""
+        j, i = self.grid.index(np.asarray(xy, dtype=float))
+        return bool(self.in_sight[j, i])
 
     def reachable(self, xy: np.ndarray) -> bool:
         j, i = self.grid.index(np.asarray(xy, dtype=float))

@@ -248,6 +248,27 @@ _HEADING_ANGLES = np.linspace(-math.pi, math.pi, 72, endpoint=False)
 _HEADING_PROBES = 0.3 * np.stack([np.cos(_HEADING_ANGLES), np.sin(_HEADING_ANGLES)], axis=1)
 
 
+#: Weight of the squared heading error in a step's cost while the goal is in sight
+#: (:func:`mjwalk.plan.stepcheck.heading_factor`: Mombaur, Truong & Laumond 2010, α4 / α0 of
+#: their inverse-optimal-control cost of human walking). Why: the walked length (and its
+#: energy) grows only with the square of a drift sideways (0.13 m off the chord over 9 m
+#: lengthens the walk by 0.4 %, less than the search's 1 % heuristic slack), so the search
+#: kept whatever heading drift the transition GP's samples carried: planned 9 m walks on the
+#: open floor deviated from their own chord by 0.13 m median (stride-averaged pelvis, 40
+#: walks, seed 3; captured straight walks 0.03-0.04 m). The term stops within the closing
+#: reach of the goal (``stop_reach``), where the walk turns to its goal heading. The term
+#: counts only where the goal is in sight (:attr:`~mjwalk.plan.heuristic.GoalDistance.in_sight`),
+#: and only on walks that see the goal from their start: where an obstacle hides it, the route
+#: around it decides (a term that set in only once the goal came into view would charge the
+#: side that sees it first: walks passing a pillar 0.1 m off their axis chose the side of the
+#: smaller deviation angle 64 % of the time instead of 88 %, the cited logistic model 93 %).
+HEADING_WEIGHT = 5.2
+
+#: Turning speed on the spot (rad/s) of a walker who sets off facing away from the way
+#: (``plan(turn_on_spot=True)``): ASSUMPTION, a half turn in about two steps (1.06 s at
+#: 113 steps/min), as the cycle turns an operator (``mjwalk.cycle.poses.TURN_SPEED``).
+ON_SPOT_TURN_SPEED = math.pi
+
 #: Walk-to-walk spread of a person's pace with the energy cost: each walk's preferred speed is
 #: the walker's times exp(N(0, WALK_PACE_SD²)), as the virtual subjects vary theirs from bout
 #: to bout (:func:`mjwalk.gait.corpus.sample_subject`, ``speed_sd`` uniform 0.03-0.06).
@@ -412,6 +433,7 @@ class HybridPlanner:
         far_weight: float = FAR_WEIGHT,
         cost: str = "energy",
         attempts: int = ATTEMPTS,
+        heading_weight: float = HEADING_WEIGHT,
         grid: OccupancyGrid | None = None,
         n_stops: int = 5,
         goal_within=(),
@@ -447,6 +469,9 @@ class HybridPlanner:
             raise PlanningError(f"cost must be 'chord', 'path' or 'energy', not {cost!r}")
         self.cost = cost
         self.attempts = max(1, int(attempts))
+        if not heading_weight >= 0.0:
+            raise PlanningError(f"heading_weight must be >= 0, not {heading_weight}")
+        self.heading_weight = float(heading_weight)
         # closing steps near the goal, when the model has them (module constant STOP_REACH)
         self.n_stops = max(0, int(n_stops)) if getattr(model, "can_stop", False) else 0
         check_endpoint(workplace, self.goal, radius, "goal")
@@ -515,6 +540,8 @@ class HybridPlanner:
             leg_clearance=leg_clearance(stature),
             dist_offset=0.0,
             pace=math.nan,
+            heading_weight=self.heading_weight,
+            heading_from=self.tolerance + STOP_REACH,
         )
         for k, (dx, dy, dr) in enumerate(self.goal_within):
             par[stepcheck.P_DISC0 + 3 * k : stepcheck.P_DISC0 + 3 * k + 3] = (dx, dy, dr)
@@ -606,7 +633,9 @@ class HybridPlanner:
 
     # -- search ----------------------------------------------------------------------------
 
-    def plan(self, start, rng: np.random.Generator, *, model=None, spot=None) -> WalkPath:
+    def plan(
+        self, start, rng: np.random.Generator, *, model=None, spot=None, turn_on_spot=False
+    ) -> WalkPath:
         """Plan one walk from ``start`` (site, "x,y", "x,y,yaw_deg" or (x, y[, yaw])).
 
         ``model``: sample the steps from this step model instead of the planner's (e.g. the
@@ -619,6 +648,18 @@ class HybridPlanner:
         goal discs, ``goal_within``); the point must lie in that area (where the walker means
         to stand in a stand zone: :func:`mjwalk.cycle.walking.plan_task_walk`). The distance
         field stays the goal's: a spot costs no new field.
+
+        ``turn_on_spot`` (with a start yaw): the walker stands facing the start yaw and sets
+        off as without one (its first step anywhere within :data:`START_SPREAD` of the
+        downhill heading, :meth:`default_heading`), but the turn on the spot from the start
+        yaw to the first step's heading costs its time at :data:`ON_SPOT_TURN_SPEED` times
+        the walk's pace (metres, as the steps), against the heading term
+        (:data:`HEADING_WEIGHT`) of setting off away from the goal: the search weighs turning
+        first against turning while walking. The draws are those of a walk without a yaw.
+        Without it a start yaw is the heading of the first step's frame (a walker already
+        walking that way). The walk's
+        first sample faces where the turn ended (``yaw[0]``): the turn itself is the caller's
+        (the cycle animates it).
 
         When the open list runs dry (every sampled continuation blocked, which happens now and
         then in tight places), the search starts over with fresh samples, up to ``attempts``
@@ -640,7 +681,7 @@ class HybridPlanner:
         exhausted = 0
         for attempt in range(limit):
             try:
-                path, start_distance = self._plan_once(pose, rng, model, spot, pace)
+                path, start_distance = self._plan_once(pose, rng, model, spot, pace, turn_on_spot)
             except _Exhausted as exc:
                 exhausted += 1
                 if exhausted >= self.attempts or attempt == limit - 1:
@@ -666,7 +707,13 @@ class HybridPlanner:
         return best
 
     def _plan_once(
-        self, pose, rng: np.random.Generator, model, spot=None, pace: float = math.nan
+        self,
+        pose,
+        rng: np.random.Generator,
+        model,
+        spot=None,
+        pace: float = math.nan,
+        turn_on_spot: bool = False,
     ) -> tuple[WalkPath, float]:
         """One search: the walk and the obstacle-aware distance (m) from its start to the goal
         (to the ``spot`` of :meth:`plan`, checked there, when given). ``pose``: the start's
@@ -681,7 +728,8 @@ class HybridPlanner:
                 f"({start_xy[0]:.3f}, {start_xy[1]:.3f}) in {self.workplace.name}: no "
                 f"collision-free route for body radius {self.radius} m"
             )
-        free_heading = start_yaw is None
+        free_heading = start_yaw is None or turn_on_spot
+        facing = start_yaw  # the heading the walker stands at before any turn on the spot
         if free_heading:
             start_yaw = self.default_heading(start_xy, None if spot is None else spot[:2])
         dec = self._decoder(model)
@@ -689,6 +737,8 @@ class HybridPlanner:
         stature = float(getattr(walker, "stature", None) or DEFAULT_STATURE)
         par, ipar = self._kernel_params(stature)
         par[stepcheck.P_PACE] = pace
+        if not self.distance.sees(start_xy):  # HEADING_WEIGHT: only for a goal in sight
+            par[stepcheck.P_HEADING_WEIGHT] = 0.0
         goal_x, goal_y, tolerance = float(self.goal[0]), float(self.goal[1]), self.tolerance
         field_distance = start_distance
         if spot is not None:  # this walk's own goal point (module doc of plan)
@@ -697,6 +747,7 @@ class HybridPlanner:
             par[stepcheck.P_GOAL_Y] = goal_y
             par[stepcheck.P_TOLERANCE] = tolerance
             par[stepcheck.P_STOP_REACH] = tolerance + STOP_REACH
+            par[stepcheck.P_HEADING_FROM] = tolerance + STOP_REACH
             # the goal's field bounds the way to the spot from below only less the way between
             # them (triangle inequality; a spot sees its goal in a stand zone)
             offset = math.hypot(goal_x - self.goal[0], goal_y - self.goal[1])
@@ -721,6 +772,10 @@ class HybridPlanner:
         frame0 = np.full(len(z0), float(start_yaw))
         if free_heading:  # the walker may set off anywhere around the downhill heading
             frame0 += rng.uniform(-START_SPREAD, START_SPREAD, len(frame0))
+        if turn_on_spot and facing is not None:  # the turn there from the walker's heading
+            walk_pace = pace if math.isfinite(pace) else preferred_speed(model)
+            par[stepcheck.P_START_YAW] = float(facing)
+            par[stepcheck.P_TURN_COST] = walk_pace / ON_SPOT_TURN_SPEED
         weight = self.heuristic_weight
         # as stepcheck.check_steps bounds a node: the field's distance, the straight line to
         # the goal point

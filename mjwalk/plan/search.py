@@ -29,7 +29,10 @@ the decode's real and imaginary sums apart; the GP kernel row's cross terms vect
 GPs picked by name; the toe's and knees' turns without a complex exp; the leg probes' cover
 test by squares; the grid bound less a walk's spot offset, P_DIST_OFFSET; the energy cost,
 P_PACE and stepcheck.step_energy, not for starters and closing steps; the decoder's
-real columns by one stepcheck._decode_real).
+real columns by one stepcheck._decode_real; issue 38: the heading term,
+P_HEADING_WEIGHT and stepcheck.heading_factor, while the goal is in sight: the
+sight flags after the bounds in the flat distance field, stepcheck._grid_sight; a
+starter's turn on the spot, P_START_YAW and P_TURN_COST).
 """
 
 from __future__ import annotations

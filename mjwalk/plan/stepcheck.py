@@ -70,8 +70,12 @@ from mjwalk.world.clearance import bilinear_at
     P_LEG_CLEARANCE,
     P_DIST_OFFSET,  # subtracted from the grid bound: a walk's spot lies this far from the goal
     P_PACE,  # the walker's preferred speed (m/s) of the energy cost; nan: length cost only
+    P_HEADING_WEIGHT,  # weight of the squared heading error (heading_factor); nan or 0: none
+    P_HEADING_FROM,  # the heading term stops this close (m) to the goal point
+    P_START_YAW,  # the walker's heading (world radians) before a turn on the spot
+    P_TURN_COST,  # cost (m per radian) of a starter's turn on the spot from it; nan: none
     P_DISC0,  # goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal)
-) = range(40)
+) = range(44)
 #: Most discs the goal area can be cut by (:func:`in_goal`); their count is I_N_DISCS. A
 #: planner takes one fewer (``goal_within``): a walk to a spot keeps the planner's own goal
 #: area as one more disc (:meth:`~mjwalk.plan.hybrid.HybridPlanner.plan`).
@@ -261,6 +265,15 @@ def _grid_bound(dist, x0, y0, cell, top_x, top_y, nx, x, y):
 
 
 @njit
+def _grid_sight(dist, x0, y0, cell, top_x, top_y, nx, x, y):
+    """Whether the goal is in sight from (``x``, ``y``): the sight flag of the nearest node of
+    the flat field ``dist`` (:meth:`GoalDistance.flat_bound`: the bounds, then the flags)."""
+    gi = min(max(np.rint((x - x0) / cell), 0.0), top_x)
+    gj = min(max(np.rint((y - y0) / cell), 0.0), top_y)
+    return dist[int((top_y + 1.0) * nx) + int(gj) * nx + int(gi)] > 0.5
+
+
+@njit
 def downhill_costs(xy, probes, clear, cx0, cy0, cres, floor, radius, dist, gx0, gy0, gcell,
                    top_x, top_y, goal_x, goal_y, offset):  # fmt: skip
     """:meth:`~mjwalk.plan.hybrid.HybridPlanner.default_heading`'s costs at ``xy + probes``
@@ -422,6 +435,25 @@ def step_energy(length, duration, pace):
     heuristic stays admissible; a step that stands still costs pace·T/2."""
     t = max(duration, MIN_DURATION) * pace
     return 0.5 * (t + length * length / t)
+
+
+@njit
+def heading_factor(heading, end, goal, weight):
+    """A step's cost factor 1 + weight·ψ² for heading towards a goal in sight: ψ (radians) is
+    the angle between the walker's ``heading`` (world radians; the search passes the mean of
+    the step's start and end frame headings, which averages out the pelvis's yaw swing
+    between left and right heel strikes) and the straight direction from the step's ``end``
+    to the ``goal`` (complex world points). People walking to a goal keep their body turned
+    towards it: in the inverse optimal control of human walking by Mombaur, Truong & Laumond
+    ("From human to humanoid locomotion - an inverse optimal control approach", Auton Robot
+    28:369-383, 2010) the cost per second is 1 (time) + ... + 5.2·ψ² (their weights α0 = 1,
+    α4 = 5.2); a step's cost, its walked metres at the preferred pace, is its time times the
+    pace, so the ratio carries over as this factor. The factor is >= 1: the heuristic stays
+    admissible."""
+    d = goal - end
+    psi = math.atan2(d.imag, d.real) - heading
+    psi = (psi + math.pi) % (2.0 * math.pi) - math.pi
+    return 1.0 + weight * psi * psi
 
 
 @njit
@@ -632,6 +664,10 @@ def check_into(
             # landed foot) nor of a closing step, which set off from and come to a stand;
             # the duration is the decoder's last column
             seg = step_energy(seg, _decode_real(z, r, matrix, offset, 2 * m + 2), pace)
+        if par[P_TURN_COST] > 0.0 and math.isnan(node[i, 1].real):
+            # a starter set off after a turn on the spot from the walker's heading: its time
+            turned = (fr - par[P_START_YAW] + math.pi) % (2.0 * math.pi) - math.pi
+            seg += par[P_TURN_COST] * abs(turned)
         ex, ey = end.real, end.imag
         h = math.hypot(ex - goal.real, ey - goal.imag)
         if ipar[I_DIJKSTRA]:
@@ -641,6 +677,14 @@ def check_into(
             ) - par[P_DIST_OFFSET]  # fmt: skip
             if bound > h:
                 h = bound
+        hw = par[P_HEADING_WEIGHT]
+        if hw > 0.0 and not closing and h > par[P_HEADING_FROM]:
+            sight = _grid_sight(
+                dist, par[P_DIST_X0], par[P_DIST_Y0], par[P_DIST_CELL], par[P_DIST_TOP_X],
+                par[P_DIST_TOP_Y], ipar[I_DIST_NX], ex, ey,
+            )  # fmt: skip
+            if sight:
+                seg *= heading_factor(fr + 0.5 * yaws.imag, end, goal, hw)
         g = node[i, 3].real + seg
         fh = par[P_WEIGHT] * h
         if h > par[P_FAR_FROM]:  # farther than FAR_FROM from the goal: the far weight too

@@ -105,7 +105,7 @@ def _slerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
     return Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([a, b])))(w).as_matrix()
 
 
-def _palms_frame(palm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def palms_frame(palm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(F, 3) origin and (F, 3, 3) axes of the two-handed grip: half way between the palms
     ``palm`` (F, 2, 3), y from the right palm to the left one (horizontal), z up."""
     y = palm[:, 0] - palm[:, 1]
@@ -138,7 +138,7 @@ def part_tracks(
     data = mujoco.MjData(model) if data is None else data
     # the scene's geoms and sites are welded to the world: any pose's kinematics places them
     hand_pos, hand_mat, palm = hand_poses(model, jm, qpos, data)
-    both_pos, both_mat = _palms_frame(palm)
+    both_pos, both_mat = palms_frame(palm)
     held: dict[str, list[int | None]] = {"left": [], "right": [], "both": []}
     tracks: dict[int, PartTrack] = {}
     lay: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # offset from its site, orientation

@@ -1,6 +1,6 @@
 """Generated factory halls: a rectangular floor cluttered with random primitives, from a seed.
 
-For scale tests and benchmarks (``benchmarks/bench_scale.py``, ``tests/test_scale.py``): the
+For scale tests and benchmarks (``benchmarks/bench_scale.py``, ``tests/world/test_scale.py``): the
 halls a planner meets are 50-200 m long with about 0.4 obstacles per square metre (issue 18).
 Obstacles are boxes (yaw-rotated), vertical cylinders and capsules (standing, or lying on the
 floor at any yaw), placed by random sequential addition so that the bounding circles of any two

@@ -5,7 +5,7 @@ pitch about its pivot on the floor, spread over the samples around, and solves t
 up to eight times per leg and pass (four passes). Each round is a few dozen NumPy operations
 on a walk's few hundred samples: in NumPy their call overhead cost about as much as the
 arithmetic. :func:`repitch_foot` and :func:`fit_ankle_range` do the same arithmetic, in the same
-order, in one compiled call (the same numbers, bit for bit: tests/test_fast_anim.py compares
+order, in one compiled call (the same numbers, bit for bit: tests/timeline/test_kernels.py compares
 them with the NumPy code they replace). World frame, metres, radians; a foot's pitch + toes up.
 
 The compiled rounds call the leg IK (``kinematics._leg_ik_world_cached``) and the spread

@@ -249,5 +249,5 @@ _WINTER = winter_reference()
 #: :func:`bandai_reference` (the Winter table warped onto the landmark figures
 #: :data:`BANDAI_LANDMARKS`; no capture samples). Its maximum difference to held-out
 #: bandai-walk clips is hip 4.8 / knee 6.9 deg, the plain Winter table's 12.4 / 16.1 deg
-#: (tests/test_legs.py::test_knee_hip_curves_vs_bandai_capture).
+#: (tests/body/test_legs.py::test_knee_hip_curves_vs_bandai_capture).
 DEFAULT_REFERENCE = bandai_reference()

@@ -4,7 +4,7 @@
 They were a few dozen NumPy operations per step on its few dozen samples, as
 :func:`~mjwalk.body.legs.synthesis.legs_from_walk`'s loop over the steps, whose call overhead
 cost more than their arithmetic. Here the same arithmetic runs in the same order in one
-compiled call each (the same numbers, bit for bit: ``tests/test_fast_anim.py`` compares them
+compiled call each (the same numbers, bit for bit: ``tests/timeline/test_kernels.py`` compares them
 with that NumPy code on walks). The reference gait's values come in as arrays (any reference
 table); the knee for a hip-to-ankle span (an arccos) and powers of NumPy scalars stay with the
 caller, as compiled code rounds them differently from NumPy here.

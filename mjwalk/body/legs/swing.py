@@ -3,7 +3,7 @@
 :func:`~mjwalk.body.legs.steps.swing_foot` is a few dozen NumPy operations on a step's few
 dozen samples, thousands of steps per station cycle: their call overhead cost several times
 their arithmetic. :func:`swing_foot` does the same arithmetic in the same order in one compiled
-call (the same numbers, bit for bit: ``tests/test_fast_anim.py`` compares the two on walks).
+call (the same numbers, bit for bit: ``tests/timeline/test_kernels.py`` compares the two on walks).
 It needs a reference gait tabulated on the unit cycle (:attr:`ReferenceGait._unit`, as the
 default and the warped references are); others take the NumPy code.
 

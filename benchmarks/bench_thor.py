@@ -1,0 +1,382 @@
+"""Planned walks against real people's between the same two ends (THÖR experiments 1 and 2,
+issue 38).
+
+Run: python3 benchmarks/bench_thor.py --data ../shared/data/thor-exp12 [--pairs 2-3,1-5]
+     [--walks-per N] [--seed 0] [--start-heading free|walk]
+
+The THÖR walks are VALIDATION ONLY: nothing in mjwalk is fitted to them.
+
+For every real VISITOR walk (``ok`` and ``in_judge``) of a station pair with at least 10 such
+walks, mjwalk plans ``--walks-per`` walks (default: ceil(100 / walks of the pair), 2-9) between
+that walk's own two ends, each moved 1 m back into its zone along the walk (the start 1 m back
+along the walk's first sample-to-sample direction, the goal 1 m on along its last; less where
+1 m would leave the floor or come too near an obstacle), so that the planned walker is moving
+when it leaves the start zone. The real walks are by several people, so each planned walk has
+its own walker: speed = the pair's real median speed (median of the walks' ``median_speed``)
+times exp(N(0, 0.13^2)) (between-person spread of comfortable walking speed: Bohannon &
+Andrews, Physiotherapy 97:182-189, 2011), cadence 113 x (speed / 1.37)^0.5 steps/min (the
+reference pace of :mod:`mjwalk.gait.walker`, cadence growing with the square root of speed),
+stature 1.75 m.
+
+Planned walks are cut and measured as the real ones: the pelvis at 120 Hz is smoothed by the
+tracks' 800 ms moving average and sampled at 2.5 Hz, then runs from the last sample inside the
+start zone (1.25 m disc about the station) to the first sample inside the goal zone. Per pair:
+path length (sum of sample-to-sample distances) median and IQR, excess of the path over the
+straight line between its own first and last sample (median), the signed lateral offset at
+half way along the station-to-station line (oriented lower to higher station id, left
+positive; IQR), duration median and IQR, and the share passing the obstacle on its left
+(the walk's offset where the obstacle's centre projects onto the station line, against the
+centre's own; pairs whose line passes within 1.5 m of the centre). Then the ratio planned /
+real of each figure, per pair and its median over the pairs.
+
+``--start-heading free``: the walker stands at the moved-back start and turns on the spot
+towards the goal (the planner's ``default_heading``; today's cycle walks). ``walk``: it starts
+facing along the real walk's first direction (its heading when it was there).
+
+Baseline (today's planner before issue 38, ``--start-heading free``, all six pairs, default
+walks per walk, seed 0; command: ``python3 benchmarks/bench_thor.py --data
+../shared/data/thor-exp12``, 17 s; per pair real | planned | ratio in the output):
+
+=================================  ============  ==========================
+figure                             median ratio  worst pair (ratio)
+=================================  ============  ==========================
+path length, median                0.98          1-5 (0.88: 3.57 vs 4.07 m)
+path length, IQR                   1.00          1-5 (3.83)
+excess over own chord, median      0.26          1-5 (0.11: 0.01 vs 0.07 m)
+lateral offset at half way, IQR    0.89          3-4 (0.48: 0.64 vs 1.35 m)
+duration, median                   0.98          3-4 (0.83)
+duration, IQR                      1.00          3-4 (0.47)
+=================================  ============  ==========================
+
+Side shares (left of the lower-to-higher line), real / planned: 1-3 0.90 / 1.00, 2-4
+0.78 / 1.00 (the other pairs' lines pass 1.5 m or more from the obstacle). Without the 800 ms
+moving average (``--smooth 0``, the issue's own measurement) the excess ratio is 0.52 and the
+others within 0.04: the pelvis's step-to-step sway, which the tracks average out, is half of
+the planned excess.
+
+After the heading term (``HEADING_WEIGHT``, issue 38 deliverable 4: empty-hall 9 m walks
+0.127 -> 0.044 m median off their chord) and the merge of main, same command:
+
+=================================  ============  ==========================
+figure                             median ratio  worst pair (ratio)
+=================================  ============  ==========================
+path length, median                0.98          1-5 (0.87)
+path length, IQR                   1.00          1-5 (3.19)
+excess over own chord, median      0.10          1-5 (0.07)
+lateral offset at half way, IQR    0.79          3-4 (0.45)
+duration, median                   0.98          3-4 (0.83)
+duration, IQR                      1.17          3-4 (0.24)
+=================================  ============  ==========================
+
+Side shares planned: 1-3 1.00, 2-4 1.00 (real 0.90, 0.78). The planned walks' straightness
+is the point of the heading term: the real walks' excess (a bow: they leave and enter the
+zones some 8 deg off their own chord, median, and are farthest from it half way) has to come
+from how they start and end and from obstacles, which the planner does not yet reproduce.
+With ``--start-heading walk`` (each planned walker setting off along the real walk's first
+direction): excess 0.09, lateral IQR 0.75: the heading term turns it onto the goal within
+a step or two, where people take the whole walk.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+import os
+import time
+from collections import defaultdict
+from pathlib import Path
+
+import numpy as np
+from scipy.ndimage import uniform_filter1d
+
+from mjwalk.conventions import SAMPLE_RATE_HZ
+from mjwalk.errors import PlanningError
+from mjwalk.gait.default import default_model
+from mjwalk.gait.walker import REFERENCE_CADENCE, REFERENCE_SPEED, Walker
+from mjwalk.plan.grid import BODY_RADIUS
+from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.world import load_workplace
+
+ROOT = Path(__file__).resolve().parents[1]
+#: THÖR's public tracks: 2.5 Hz samples of an 800 ms moving average (the data's README).
+TRACK_HZ = 2.5
+TRACK_SMOOTH_S = 0.8
+#: Between-person SD of comfortable gait speed in log (Bohannon & Andrews 2011: 1.34 +- 0.18 m/s
+#: pooled over adults 20-79, about 0.13 in log).
+SPEED_LOG_SD = 0.13
+#: Route selection around a barrier (PMC7875474, walkers going around a barrier to a visible
+#: goal, mixed-effects logistic regression; as tests/plan/test_hybrid.py cites it): 75 % of
+#: choices go to the side of smaller deviation angle when the two sides' angles differ by
+#: 1.65 deg, i.e. a logistic slope of ln 3 / 1.65 per degree.
+SIDE_SLOPE_PER_DEG = math.log(3.0) / 1.65
+#: The room's obstacle (obs0 of the scene: centre, half sizes, yaw) and the planner's body
+#: radius it is inflated by for the deviation angles.
+OBSTACLE = (np.array([0.694, 0.527]), np.array([0.401, 0.346]), math.radians(38.37))
+MIN_WALKS = 10
+MOVE_BACK = 1.0
+OBSTACLE_NEAR = 1.5
+
+
+def load_real(data: Path) -> tuple[dict, float, list[dict], dict[int, np.ndarray]]:
+    """Stations (id -> xy), zone radius, the VISITOR walks (ok, in_judge) and their samples."""
+    st = json.loads((data / "stations.json").read_text())
+    stations = {int(k): np.array(v, dtype=float) for k, v in st["stations_m"].items()}
+    rows = [
+        r
+        for r in csv.DictReader(open(data / "walks.csv"))
+        if r["role"] == "VISITOR" and r["ok"] == "True" and r["in_judge"] == "True"
+    ]
+    ids = {int(r["walk_id"]) for r in rows}
+    pts: dict[int, list] = defaultdict(list)
+    for r in csv.DictReader(open(data / "walk_points.csv")):
+        w = int(r["walk_id"])
+        if w in ids:
+            pts[w].append((float(r["t_s"]), float(r["x_m"]), float(r["y_m"])))
+    points = {w: np.array(sorted(v)) for w, v in pts.items()}
+    return stations, float(st["zone_radius_m"]), rows, points
+
+
+def cut(xy: np.ndarray, a: np.ndarray, b: np.ndarray, radius: float) -> np.ndarray | None:
+    """Samples (n, 2) from the last one inside the start zone (disc of ``radius`` about ``a``)
+    before the first one inside the goal zone (about ``b``) to that one; None if the walk
+    never enters the goal zone."""
+    in_b = np.hypot(*(xy - b).T) <= radius
+    if not in_b.any():
+        return None
+    j = int(np.argmax(in_b))
+    in_a = np.flatnonzero(np.hypot(*(xy[:j] - a).T) <= radius)
+    i = int(in_a[-1]) if len(in_a) else 0
+    return xy[i : j + 1]
+
+
+def offset_at(xy: np.ndarray, lo: np.ndarray, hi: np.ndarray, s: float) -> float:
+    """Signed offset (m, left of lo->hi positive) of the polyline where its projection onto
+    the line lo->hi first reaches the fraction ``s`` of the way (nearest sample if never)."""
+    d = hi - lo
+    length = float(np.hypot(*d))
+    u = d / length
+    rel = xy - lo
+    along = rel @ u / length
+    lat = u[0] * rel[:, 1] - u[1] * rel[:, 0]
+    if along[0] > along[-1]:  # walked hi -> lo: the same crossing, found from the other end
+        along, lat = along[::-1], lat[::-1]
+    k = np.flatnonzero((along[:-1] < s) & (along[1:] >= s))
+    if len(k) == 0:
+        return float(lat[int(np.argmin(np.abs(along - s)))])
+    k = int(k[0])
+    w = (s - along[k]) / max(along[k + 1] - along[k], 1e-12)
+    return float(lat[k] + w * (lat[k + 1] - lat[k]))
+
+
+def measure(xy: np.ndarray, lo: np.ndarray, hi: np.ndarray, obstacle: np.ndarray) -> dict:
+    """The figures of one cut walk (2.5 Hz samples)."""
+    seg = np.hypot(*np.diff(xy, axis=0).T)
+    length = float(seg.sum())
+    d = hi - lo
+    u = d / np.hypot(*d)
+    ro = obstacle - lo
+    s_obs = float(ro @ u / np.hypot(*d))
+    lat_obs = float(u[0] * ro[1] - u[1] * ro[0])
+    return {
+        "length": length,
+        "excess": length - float(np.hypot(*(xy[-1] - xy[0]))),
+        "lateral": offset_at(xy, lo, hi, 0.5),
+        "duration": (len(xy) - 1) / TRACK_HZ,
+        "left": offset_at(xy, lo, hi, s_obs) > lat_obs,
+    }
+
+
+def predicted_left(start: np.ndarray, goal: np.ndarray) -> float:
+    """The cited logistic model's probability (SIDE_SLOPE_PER_DEG) that a walker from
+    ``start`` to ``goal`` passes the obstacle on its left (of start -> goal): the deviation
+    angle of each side is how far left (right) of the goal direction the walker must head to
+    clear the obstacle's corners, inflated by the body radius, as seen from the start."""
+    centre, half, yaw = OBSTACLE
+    c, s = math.cos(yaw), math.sin(yaw)
+    h = half + BODY_RADIUS
+    corners = [
+        centre + np.array([c * dx - s * dy, s * dx + c * dy])
+        for dx in (-h[0], h[0])
+        for dy in (-h[1], h[1])
+    ]
+    base = math.atan2(goal[1] - start[1], goal[0] - start[0])
+    ang = [
+        math.degrees(math.remainder(math.atan2(q[1] - start[1], q[0] - start[0]) - base, math.tau))
+        for q in corners
+    ]
+    d_left, d_right = max(0.0, max(ang)), max(0.0, -min(ang))
+    return 1.0 / (1.0 + math.exp(-SIDE_SLOPE_PER_DEG * (d_right - d_left)))
+
+
+def as_tracked(xy120: np.ndarray, smooth_s: float = TRACK_SMOOTH_S) -> np.ndarray:
+    """A 120 Hz pelvis path (n, 2) as THÖR's copies give a track: the ``smooth_s`` moving
+    average, sampled at 2.5 Hz."""
+    size = max(1, round(smooth_s * SAMPLE_RATE_HZ))
+    smooth = uniform_filter1d(xy120, size=size, axis=0, mode="nearest")
+    return smooth[:: round(SAMPLE_RATE_HZ / TRACK_HZ)]
+
+
+def moved(wp, point: np.ndarray, direction: np.ndarray) -> np.ndarray:
+    """``point`` moved up to MOVE_BACK m along ``direction`` (unit), less where the full move
+    leaves the walkable floor (body radius plus a margin from obstacles and edges)."""
+    for f in (1.0, 0.75, 0.5, 0.25, 0.0):
+        p = point + f * MOVE_BACK * direction
+        if float(wp.walk_clearance(p[None])[0]) >= BODY_RADIUS + 0.05:
+            return p
+    return point
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    n = float(np.hypot(*v))
+    return v / n if n > 1e-9 else np.array([1.0, 0.0])
+
+
+def q(x) -> tuple[float, float]:
+    q25, q50, q75 = np.percentile(x, [25, 50, 75])
+    return float(q50), float(q75 - q25)
+
+
+def summarize(ms: list[dict]) -> dict:
+    L = q([m["length"] for m in ms])
+    D = q([m["duration"] for m in ms])
+    return {
+        "n": len(ms),
+        "len_med": L[0],
+        "len_iqr": L[1],
+        "excess": float(np.median([m["excess"] for m in ms])),
+        "lat_iqr": q([m["lateral"] for m in ms])[1],
+        "dur_med": D[0],
+        "dur_iqr": D[1],
+        "left": float(np.mean([m["left"] for m in ms])),
+        "predicted_left": float(np.mean([m.get("predicted_left", np.nan) for m in ms])),
+    }
+
+
+FIGURES = (
+    ("len_med", "path length, median"),
+    ("len_iqr", "path length, IQR"),
+    ("excess", "excess over own chord, median"),
+    ("lat_iqr", "lateral offset at half way, IQR"),
+    ("dur_med", "duration, median"),
+    ("dur_iqr", "duration, IQR"),
+)
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    default = Path(os.environ.get("MJWALK_SHARED_DATA", ROOT.parent / "shared" / "data"))
+    ap.add_argument("--data", type=Path, default=default / "thor-exp12")
+    ap.add_argument("--pairs", default="", help="comma-separated pairs (e.g. 2-3,1-5); all")
+    ap.add_argument("--walks-per", type=int, default=0, help="planned walks per real walk")
+    ap.add_argument("--max-real", type=int, default=0, help="real walks per pair (0: all)")
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--start-heading", choices=("free", "walk"), default="free")
+    ap.add_argument("--smooth", type=float, default=TRACK_SMOOTH_S, help="moving average, s")
+    args = ap.parse_args(argv)
+    if not (args.data / "walks.csv").exists():
+        ap.error(f"no THÖR data at {args.data} (walks.csv)")
+    if args.walks_per < 0 or args.max_real < 0 or not 0.0 <= args.smooth <= 5.0:
+        ap.error("--walks-per and --max-real must be >= 0, --smooth within 0-5 s")
+    stations, zone, rows, points = load_real(args.data)
+    wp = load_workplace(args.data / "thor_exp1_exp2_scene.xml")
+    obstacle = np.array([0.694, 0.527])  # obs0's centre in the scene (the room's one obstacle)
+    by_pair: dict[str, list[dict]] = defaultdict(list)
+    for r in rows:
+        by_pair[r["pair"]].append(r)
+    pairs = sorted(p for p, v in by_pair.items() if len(v) >= MIN_WALKS)
+    if args.pairs:
+        unknown = sorted(set(args.pairs.split(",")) - set(pairs))
+        if unknown:
+            ap.error(f"--pairs: no pair with >= {MIN_WALKS} walks named {unknown} (have {pairs})")
+        pairs = [p for p in pairs if p in args.pairs.split(",")]
+    model = default_model()
+    rng = np.random.default_rng(args.seed)
+    results = {}
+    t_start = time.perf_counter()
+    for pair in pairs:
+        lo_id, hi_id = (int(s) for s in pair.split("-"))
+        lo, hi = stations[lo_id], stations[hi_id]
+        walks = by_pair[pair]
+        if args.max_real:
+            walks = walks[: args.max_real]
+        per = args.walks_per or int(np.clip(math.ceil(100 / len(by_pair[pair])), 2, 9))
+        median_speed = float(np.median([float(r["median_speed"]) for r in by_pair[pair]]))
+        real, planned, failed, plan_s = [], [], 0, []
+        for r in walks:
+            xy = points[int(r["walk_id"])][:, 1:]
+            a, b = stations[int(r["start"])], stations[int(r["goal"])]
+            real.append(measure(xy, lo, hi, obstacle))
+            # the side as seen lower -> higher station: flip for walks the other way
+            p_left = predicted_left(xy[0], xy[-1])
+            real[-1]["predicted_left"] = p_left if int(r["start"]) == lo_id else 1.0 - p_left
+            head = _unit(xy[1] - xy[0])
+            start = moved(wp, xy[0], -head)
+            goal = moved(wp, xy[-1], _unit(xy[-1] - xy[-2]))
+            try:
+                planner = HybridPlanner(wp, goal, model)
+            except PlanningError:
+                failed += per
+                continue
+            for _ in range(per):
+                speed = median_speed * math.exp(SPEED_LOG_SD * rng.standard_normal())
+                cadence = REFERENCE_CADENCE * math.sqrt(speed / REFERENCE_SPEED)
+                walker_model = model.for_walker(Walker(speed=speed, cadence=cadence))
+                pose = (*start, math.atan2(head[1], head[0])) if (
+                    args.start_heading == "walk"
+                ) else start  # fmt: skip
+                try:
+                    path = planner.plan(pose, np.random.default_rng(rng.integers(2**63)),
+                                        model=walker_model)  # fmt: skip
+                except PlanningError:
+                    failed += 1
+                    continue
+                plan_s.append(path.meta["seconds"])
+                tracked = cut(as_tracked(path.xy, args.smooth), a, b, zone)
+                if tracked is None or len(tracked) < 3:
+                    failed += 1
+                    continue
+                planned.append(measure(tracked, lo, hi, obstacle))
+        results[pair] = (summarize(real), summarize(planned), failed, plan_s, lo, hi, obstacle)
+        print(f"  {pair}: {len(real)} real, {len(planned)} planned, {failed} failed, "
+              f"plan median {1000 * np.median(plan_s):.0f} ms", flush=True)  # fmt: skip
+    print(f"({time.perf_counter() - t_start:.0f} s)")
+    print_table(results)
+    return 0
+
+
+def print_table(results: dict) -> None:
+    print("\nper pair: real | planned | ratio planned/real")
+    head = "".join(f"{k:>22}" for k, _ in FIGURES)
+    print(f"{'pair':6}{head}")
+    ratios = defaultdict(list)
+    for pair, (r, p, *_rest) in results.items():
+        cells = []
+        for k, _ in FIGURES:
+            ratio = p[k] / r[k] if r[k] else math.nan
+            ratios[k].append(ratio)
+            cells.append(f"{r[k]:6.2f}|{p[k]:6.2f}|{ratio:5.2f}")
+        print(f"{pair:6}" + "".join(f"{c:>22}" for c in cells))
+    print("\nfigure                               median ratio  worst pair (ratio)")
+    pairs = list(results)
+    for k, name in FIGURES:
+        arr = np.array(ratios[k])
+        worst = int(np.argmax(np.abs(np.log(arr))))
+        print(f"{name:37}{np.median(arr):13.2f}  {pairs[worst]} ({arr[worst]:.2f})")
+    print("\nshare passing the obstacle on its left (of the lower-to-higher station line)")
+    for pair, (r, p, _f, _s, lo, hi, obstacle) in results.items():
+        d = hi - lo
+        u = d / np.hypot(*d)
+        ro = obstacle - lo
+        s_obs, lat_obs = ro @ u / np.hypot(*d), u[0] * ro[1] - u[1] * ro[0]
+        if 0.0 < s_obs < 1.0 and abs(lat_obs) < OBSTACLE_NEAR:
+            print(f"  {pair}: obstacle {lat_obs:+.2f} m off the line at {s_obs:.2f} of the "
+                  f"way: real {r['left']:.2f}, planned {p['left']:.2f}, cited logistic "
+                  f"model from the real walks' ends {r['predicted_left']:.2f}")  # fmt: skip
+        else:
+            print(f"  {pair}: obstacle off the way ({lat_obs:+.2f} m at {s_obs:.2f})")
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

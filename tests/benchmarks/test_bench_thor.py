@@ -1,0 +1,50 @@
+"""benchmarks/bench_thor.py: its measures on made-up walks, its options, and a short run on the
+THÖR walks (skipped without the shared data)."""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
+import bench_thor as bench
+
+
+def test_a_straight_walk_measures_as_its_chord():
+    lo, hi = np.array([0.0, 0.0]), np.array([6.0, 0.0])
+    xy = np.column_stack([np.linspace(1.0, 5.0, 11), np.full(11, 0.3)])
+    m = bench.measure(xy, lo, hi, obstacle=np.array([3.0, 0.0]))
+    assert m["length"] == pytest.approx(4.0) and m["excess"] == pytest.approx(0.0, abs=1e-12)
+    assert m["lateral"] == pytest.approx(0.3) and m["duration"] == pytest.approx(4.0)
+    assert m["left"]  # passes the obstacle on its left (+y of lo -> hi)
+
+
+def test_a_walk_is_cut_from_its_last_sample_in_the_start_zone_to_its_first_in_the_goal():
+    xy = np.column_stack([np.arange(-1.0, 8.01, 0.5), np.zeros(19)])
+    out = bench.cut(xy, np.array([0.0, 0.0]), np.array([7.0, 0.0]), 1.25)
+    assert out is not None and out[0, 0] == 1.0 and out[-1, 0] == 6.0
+
+
+def test_bad_options_stop_with_status_2(tmp_path, capsys):
+    with pytest.raises(SystemExit) as exc:
+        bench.main(["--data", str(tmp_path)])
+    assert exc.value.code == 2
+    assert "no THÖR data" in capsys.readouterr().err
+
+
+def test_a_short_run_reproduces_the_real_figures(shared_data, capsys):
+    """Pair 1-5's real walks measured as the data's README states (median path 4.07 m), and
+    planned walks between their ends."""
+    data = shared_data / "thor-exp12"
+    if not data.is_dir():
+        pytest.skip("no thor-exp12 in the shared data")
+    assert bench.main(["--data", str(data), "--pairs", "1-5", "--walks-per", "1"]) == 0
+    out = capsys.readouterr().out
+    row = next(line for line in out.splitlines() if line.startswith("1-5 "))
+    real_len, planned_len = (v.strip("|") for v in row.split()[1:3])
+    assert float(real_len) == pytest.approx(4.07, abs=0.01)
+    assert 3.0 < float(planned_len) < 5.0
+    assert "1-5: 11 real, 11 planned, 0 failed" in out
