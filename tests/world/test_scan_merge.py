@@ -252,3 +252,18 @@ def test_shared_room_scan_split_in_two_views_is_registered(shared_data, tmp_path
 
     scene = build_scene(merged.points, source="both views")  # the scene the CLI wrote
     _assert_plannable(scene, merged.points, out)
+
+
+def test_free_space_clash_tells_a_shifted_station_from_the_right_one(stations):
+    """The verification alone: station 2's low points over station 0's seen floor stand on
+    floor station 0 saw empty only at edges when placed right (<= MAX_CLASH), and in large
+    share when the station is shifted by 1 m or turned by 90°."""
+    from mjwalk.world.scan.level import find_floor
+    from mjwalk.world.scan.register import MAX_CLASH, clash
+
+    lev = find_floor(np.vstack([stations[0], stations[2]]))
+    a, b = lev.apply(stations[0]), lev.apply(stations[2])
+    assert clash(b, a) <= MAX_CLASH and clash(a, b) <= MAX_CLASH
+    for wrong in (_rigid(0, [1.0, 0, 0]), _rigid(90, [0, 0, 0])):
+        moved = b @ wrong[:3, :3].T + wrong[:3, 3]
+        assert max(clash(moved, a), clash(a, moved)) > 2 * MAX_CLASH
