@@ -8,7 +8,8 @@ and a small residual.
 1. Hypotheses: Open3D's FPFH features (Rusu et al. 2009) matched by RANSAC
    (``registration_ransac_based_on_feature_matching``), run :data:`RANSAC_RUNS` times with
    different seeds on clouds thinned to :data:`VOXEL`, so that a second, distinct alignment
-   (a symmetric hall) has a chance to show up.
+   (a symmetric hall) has a chance to show up; and the best of them turned by 90°, 180° and
+   270° about its middle (a rectangular hall's twin placements).
 2. Each hypothesis is refined by Open3D's point-to-plane ICP (Chen & Medioni 1992); its
    ``fitness`` (share of the scan's points with a counterpart within :data:`ICP_DISTANCE`) and
    ``inlier_rmse`` are kept.
@@ -172,6 +173,20 @@ def align(
         return pc, reg.compute_fpfh_feature(pc, kd(radius=FEATURE_RADIUS * VOXEL, max_nn=100))
 
     (pc_p, f_p), (pc_r, f_r) = prepare(p), prepare(r)
+
+    def refine(start: np.ndarray) -> tuple[float, float, float, np.ndarray]:
+        icp = reg.registration_icp(
+            pc_p,
+            pc_r,
+            ICP_DISTANCE,
+            start,
+            reg.TransformationEstimationPointToPlane(),
+            reg.ICPConvergenceCriteria(max_iteration=50),
+        )
+        m = np.asarray(icp.transformation).copy()
+        c = max(clash(_move(p, m), r), clash(_move(r, np.linalg.inv(m)), p))
+        return float(icp.fitness), float(icp.inlier_rmse), c, m
+
     hypotheses = []
     for run in range(RANSAC_RUNS):
         o3d.utility.random.seed(seed + run)
@@ -190,17 +205,17 @@ def align(
             ],
             reg.RANSACConvergenceCriteria(RANSAC_ITERATIONS, 0.999),
         )
-        icp = reg.registration_icp(
-            pc_p,
-            pc_r,
-            ICP_DISTANCE,
-            np.asarray(res.transformation),
-            reg.TransformationEstimationPointToPlane(),
-            reg.ICPConvergenceCriteria(max_iteration=50),
-        )
-        m = np.asarray(icp.transformation).copy()
-        c = max(clash(_move(p, m), r), clash(_move(r, np.linalg.inv(m)), p))
-        hypotheses.append((float(icp.fitness), float(icp.inlier_rmse), c, m))
+        hypotheses.append(refine(np.asarray(res.transformation)))
+    # The best one turned by quarter turns about the middle of its placed points: halls are
+    # often rectangular with mirror-image fittings, and RANSAC need not find the twin.
+    best_m = max(hypotheses, key=lambda h: h[0])[3]
+    middle = np.median(_move(p, best_m)[:, :2], axis=0)
+    for quarter in (1, 2, 3):
+        turn = np.eye(4)
+        a = quarter * np.pi / 2
+        turn[:2, :2] = [[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]]
+        turn[:2, 3] = middle - turn[:2, :2] @ middle
+        hypotheses.append(refine(turn @ best_m))
     hypotheses.sort(key=lambda h: -h[0])
     passed = [h for h in hypotheses if h[0] >= MIN_FITNESS and h[2] <= MAX_CLASH]
     figures = "; ".join(
