@@ -26,7 +26,7 @@ import numpy as np
 
 from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
-from mjwalk.plan import stepcheck
+from mjwalk.plan import slots, stepcheck
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.world import load_workplace
 
@@ -49,7 +49,7 @@ class _NoLean(HybridPlanner):
 
     def _kernel_params(self, stature: float = 1.75):
         par, ipar = super()._kernel_params(stature)
-        par[stepcheck.P_HIP_Y] = math.nan
+        par[slots.P_HIP_Y] = math.nan
         return par, ipar
 
 

@@ -52,7 +52,8 @@ FPS = SAMPLE_RATE_HZ
 
 _SL_XY = slice(0, 10)
 _SL_YAW = slice(10, 15)
-_I_DUR = 15
+#: Column of the step duration (s) in a raw feature row (:meth:`StepFeatures.decode_raw`).
+I_DUR = 15
 _SL_FOOT = slice(16, 19)
 _SL_STANCE = slice(19, 22)
 
@@ -102,7 +103,7 @@ def step_raw_features(step: Step) -> np.ndarray:
     out = np.empty(N_RAW)
     out[_SL_XY] = np.column_stack([x, y]).ravel()
     out[_SL_YAW] = yaw
-    out[_I_DUR] = duration
+    out[I_DUR] = duration
     out[_SL_FOOT] = np.asarray(step.footprint, dtype=float)[:3]
     out[_SL_STANCE] = np.asarray(step.stance, dtype=float)[:3]
     if not np.all(np.isfinite(out)):
@@ -236,7 +237,7 @@ def batch_from_raw(raw: np.ndarray, side, features: np.ndarray) -> StepBatch:
         features=features,
         landmarks=landmarks,
         yaw_landmarks=yaw,
-        duration=np.maximum(raw[:, _I_DUR], MIN_DURATION),
+        duration=np.maximum(raw[:, I_DUR], MIN_DURATION),
         footprint=raw[:, _SL_FOOT].copy(),
         stance=raw[:, _SL_STANCE].copy(),
     )
@@ -396,7 +397,7 @@ def raw_scale_factors(lateral: float, forward: float, time: float) -> np.ndarray
     f = np.ones(N_RAW)
     f[_SL_XY][0::2] = lateral
     f[_SL_XY][1::2] = forward
-    f[_I_DUR] = time
+    f[I_DUR] = time
     for sl in (_SL_FOOT, _SL_STANCE):
         f[sl.start] = lateral
         f[sl.start + 1] = forward

@@ -15,24 +15,12 @@ checked points each. As Python, the loop's bookkeeping (heap, closed set, node l
 much as the draws. Nodes live in growing arrays; node 0 is the start. Random numbers come from
 the caller's Generator in the order the Python loop drew them.
 
-numba's on-disk cache of :func:`search` is keyed by this file only, not by the compiled
-functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_steps`,
-:func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change here, or processes
-keep running the old machine code (its stamp is a hash of this file's text: touching it is not
-enough). Last such change: issue 18 item 2 (the leg-reach tests compare squares,
-:func:`~mjwalk.plan.stepcheck._beyond`, hypot only where the squares do not decide; the step
-checks write into buffers kept for the whole search; the GP's pool weights are powers of its
-kernel row, squared on the whole row at once; the stance-lean limits once per batch; a step
-frame's turn once per frame; distance tests to the goal by squares; downhill_costs added,
-its bilinear lookup now world.clearance.bilinear_at, its grid bound stepcheck._grid_bound;
-the decode's real and imaginary sums apart; the GP kernel row's cross terms vectorized; the
-GPs picked by name; the toe's and knees' turns without a complex exp; the leg probes' cover
-test by squares; the grid bound less a walk's spot offset, P_DIST_OFFSET; the energy cost,
-P_PACE and stepcheck.step_energy, not for starters and closing steps; the decoder's
-real columns by one stepcheck._decode_real; issue 38: the heading term,
-P_HEADING_WEIGHT and stepcheck.heading_factor, while the goal is in sight: the
-sight flags after the bounds in the flat distance field, stepcheck._grid_sight; a
-starter's turn on the spot, P_START_YAW and P_TURN_COST).
+numba's on-disk cache of :func:`search` is keyed by this file's text only, not by the compiled
+functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_into` and its helpers
+in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan.stepcost`;
+:func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change to this file's text,
+or processes keep running the old machine code (touching the file is not enough). The record of
+such changes is ``docs/decisions/106-planner-compiled-loop.md``.
 """
 
 from __future__ import annotations
@@ -45,7 +33,7 @@ from numba.typed import Dict
 
 from mjwalk._jit import njit
 from mjwalk.gait.gpdraw import sample as gp_sample
-from mjwalk.plan.stepcheck import (
+from mjwalk.plan.slots import (
     I_M,
     I_MAX_EXPANSIONS,
     I_N_STOPS,
@@ -55,12 +43,9 @@ from mjwalk.plan.stepcheck import (
     P_GOAL_Y,
     P_POOL_SHARPNESS,
     P_STOP_REACH,
-    _within,
-    cell_key,
-    check_into,
-    in_goal,
-    new_buffers,
 )
+from mjwalk.plan.stepcheck import check_into, new_buffers
+from mjwalk.plan.stepgeom import cell_key, in_goal, within
 
 #: :func:`search` outcomes.
 FOUND, EXHAUSTED, BUDGET = 0, 1, 2
@@ -166,7 +151,7 @@ def search(
         hd = head[nid]
         key = cell_key(p, hd, par, ipar)
         done = in_goal(p, hd, par, ipar)
-        near = n_stop > 0 and _within(p - goal, stop_reach)
+        near = n_stop > 0 and within(p - goal, stop_reach)
         if key in closed and not done:
             if not near:
                 continue
@@ -262,7 +247,7 @@ def search(
             if (
                 keys[c] in closed
                 and not in_goal(e, ths[c], par, ipar)
-                and not (n_stop > 0 and _within(e - goal, stop_reach))
+                and not (n_stop > 0 and within(e - goal, stop_reach))
             ):
                 continue
             parent[nn] = nid

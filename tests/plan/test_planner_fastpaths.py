@@ -7,9 +7,9 @@ import pytest
 
 from mjwalk import PlanningError
 from mjwalk.gait.default import default_model
+from mjwalk.plan.decoder import StepDecoder
 from mjwalk.plan.grid import MOVES_16, check_endpoint, occupancy_grid, shared_grid
 from mjwalk.plan.heuristic import goal_distance, grid_excess
-from mjwalk.plan.hybrid import _Decoder
 from mjwalk.world import load_workplace
 
 SCENE_NAMES = ["assembly_station", "corridor", "open_floor"]
@@ -28,12 +28,12 @@ def _points(wp, n, seed, margin=0.3):
 
 
 def _compiled_lookup(field, pts):
-    """The planner's compiled bilinear lookup (stepcheck._clearance) at points (n, 2)."""
-    from mjwalk.plan.stepcheck import _clearance
+    """The planner's compiled bilinear lookup (stepgeom.field_clearance) at points (n, 2)."""
+    from mjwalk.plan.stepgeom import field_clearance
 
     (ny, nx) = field.values.shape
     args = (field.values, field.x0, field.y0, field.resolution, nx, ny)
-    return np.array([_clearance(*args, x, y) for x, y in pts])
+    return np.array([field_clearance(*args, x, y) for x, y in pts])
 
 
 def test_compiled_field_lookup_equals_call(workplace):
@@ -107,7 +107,7 @@ def test_decoder_matches_model_decoding():
         ]
     )
     m = 16
-    dec = _Decoder(model, m)
+    dec = StepDecoder(model, m)
     got = z @ dec.matrix + dec.offset
     batch = model.decode(z, "left")
     local, _ = batch.resample(m)
@@ -194,7 +194,8 @@ def test_compiled_step_checks_agree_with_the_workplace_geometry(scenes_dir):
     bilinear rounding; every step whose pelvis comes closer is rejected. Two start poses by
     the car body: one where most steps pass, one where many run into it."""
     from mjwalk.plan import stepcheck
-    from mjwalk.plan.hybrid import FOOT_CLEARANCE, SAFETY_MARGIN, HybridPlanner, _to_world
+    from mjwalk.plan.assemble import to_world
+    from mjwalk.plan.hybrid import FOOT_CLEARANCE, SAFETY_MARGIN, HybridPlanner
 
     wp = load_workplace(scenes_dir / "assembly_station.xml")
     model = default_model()
@@ -216,9 +217,9 @@ def test_compiled_step_checks_agree_with_the_workplace_geometry(scenes_dir):
             wp.walk_field().values, pl.distance.flat_bound(),
         )  # fmt: skip
         assert drawn[0] == len(z) and accepted[0] == len(rows)
-        world = _to_world(start[0], start[1], yaw, local)
+        world = to_world(start[0], start[1], yaw, local)
         clear = wp.walk_clearance(world.reshape(-1, 2)).reshape(len(z), m).min(axis=1)
-        ankle = wp.walk_clearance(_to_world(start[0], start[1], yaw, batch.footprint[:, :2]))
+        ankle = wp.walk_clearance(to_world(start[0], start[1], yaw, batch.footprint[:, :2]))
         ok = np.zeros(len(z), bool)
         ok[rows] = True
         assert np.all(clear[ok] >= need - 0.005)

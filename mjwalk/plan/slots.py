@@ -1,0 +1,108 @@
+"""The compiled step check's parameter vectors: the slots of their floats and integers.
+
+:func:`~mjwalk.plan.stepcheck.check_steps` and :func:`~mjwalk.plan.search.search` take the
+planner's options as two flat arrays, a float vector (``P_*`` slots: metres, radians, m/s) and
+an integer vector (``I_*`` slots); :func:`params` and :func:`iparams` build them from keyword
+slots (:func:`mjwalk.plan.options.kernel_params` fills them for a planner).
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+# Slots of the float parameter vector (see :func:`params`).
+(
+    P_KNEE_LEAD,
+    P_KNEE_SIDE,
+    P_FOOT_LENGTH,
+    P_FOOT_REACH,
+    P_LIFT_REACH,
+    P_STRIDE,
+    P_GOAL_X,
+    P_GOAL_Y,
+    P_TOLERANCE,
+    P_GOAL_YAW,
+    P_YAW_TOLERANCE,
+    P_WEIGHT,
+    P_CORNER_X,
+    P_CORNER_Y,
+    P_CELL,
+    P_FIELD_X0,
+    P_FIELD_Y0,
+    P_FIELD_RES,
+    P_DIST_X0,
+    P_DIST_Y0,
+    P_DIST_CELL,
+    P_DIST_TOP_X,
+    P_DIST_TOP_Y,
+    P_KNEE_SHARE0,
+    P_KNEE_SHARE1,
+    P_STOP_REACH,
+    P_POOL_SHARPNESS,
+    P_HIP_Y,
+    P_LEG_SPAN,
+    P_EVERSION,
+    P_INVERSION,
+    P_ADDUCTION,
+    P_ABDUCTION,
+    P_FAR_WEIGHT,
+    P_FAR_FROM,
+    P_LEG_STEP,
+    P_LEG_CLEARANCE,
+    P_DIST_OFFSET,  # subtracted from the grid bound: a walk's spot lies this far from the goal
+    P_PACE,  # the walker's preferred speed (m/s) of the energy cost; nan: length cost only
+    P_HEADING_WEIGHT,  # weight of the squared heading error (heading_factor); nan or 0: none
+    P_HEADING_FROM,  # the heading term stops this close (m) to the goal point
+    P_START_YAW,  # the walker's heading (world radians) before a turn on the spot
+    P_TURN_COST,  # cost (m per radian) of a starter's turn on the spot from it; nan: none
+    P_DISC0,  # goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal)
+) = range(44)
+#: Most discs the goal area can be cut by (:func:`~mjwalk.plan.stepgeom.in_goal`); their count
+#: is I_N_DISCS. A planner takes one fewer (``goal_within``): a walk to a spot keeps the
+#: planner's own goal area as one more disc (:meth:`~mjwalk.plan.hybrid.HybridPlanner.plan`).
+MAX_GOAL_DISCS = 7
+N_PARAMS = P_DISC0 + 3 * MAX_GOAL_DISCS
+# Slots of the integer parameter vector.
+(
+    I_M,
+    I_Q,
+    I_KNEE_COL0,
+    I_KNEE_COL1,
+    I_SPAN,
+    I_BINS,
+    I_FIELD_NX,
+    I_FIELD_NY,
+    I_DIST_NX,
+    I_DIJKSTRA,
+    I_CHORD,
+    I_N_SUCCESSORS,
+    I_N_STOPS,
+    I_MAX_EXPANSIONS,
+    I_NEAR_GOAL_EXPANSIONS,
+    I_N_DISCS,
+    N_IPARAMS,
+) = range(17)
+
+
+def params(**values) -> np.ndarray:
+    """The float parameter vector from keyword slots (``knee_lead=...``, names as P_* lower)."""
+    slots = [_slot("P_", name) for name in values]
+    out = np.full(N_PARAMS, np.nan)
+    out[slots] = list(values.values())
+    return out
+
+
+def iparams(**values) -> np.ndarray:
+    """The integer parameter vector from keyword slots (names as I_* lower)."""
+    slots = [_slot("I_", name) for name in values]
+    out = np.zeros(N_IPARAMS, dtype=np.int64)
+    out[slots] = list(values.values())
+    return out
+
+
+@functools.lru_cache(maxsize=256)
+def _slot(prefix: str, name: str) -> int:
+    """The slot of keyword ``name`` (P_/I_ constants; KeyError for an unknown name)."""
+    return globals()[prefix + name.upper()]

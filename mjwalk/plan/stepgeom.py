@@ -1,0 +1,178 @@
+"""Compiled geometric tests of one sampled step: clearance lookups, distance tests, the
+closed-list key, the goal test and the landing leg's probes.
+
+Points are complex numbers x + iy (metres; world or a step's local frame, x right, y
+forward); angles are radians. The helpers are numba-compiled (:mod:`mjwalk._jit`) and called
+from :func:`~mjwalk.plan.stepcheck.check_into` and :func:`~mjwalk.plan.search.search`.
+"""
+
+from __future__ import annotations
+
+import math
+
+from mjwalk._jit import njit
+from mjwalk.plan.slots import (
+    I_BINS,
+    I_N_DISCS,
+    I_SPAN,
+    P_CELL,
+    P_CORNER_X,
+    P_CORNER_Y,
+    P_DISC0,
+    P_GOAL_X,
+    P_GOAL_Y,
+    P_GOAL_YAW,
+    P_HIP_Y,
+    P_LEG_CLEARANCE,
+    P_LEG_STEP,
+    P_TOLERANCE,
+    P_YAW_TOLERANCE,
+)
+
+
+@njit
+def field_clearance(coef, x0, y0, res, nx, ny, x, y):
+    """:meth:`ClearanceField.__call__` at one point (x, y) (metres) from the field's node
+    values ``coef`` (ny, nx): bilinear clearance, metres, as value = a + b·tx + c·ty + d·tx·ty
+    with the cell's coefficients a = v00, b = v01 - v00, c = v10 - v00,
+    d = v11 - v10 - v01 + v00 formed on the fly (a table of them held four times the field)."""
+    fx = (x - x0) / res
+    fx = min(max(fx, 0.0), nx - 1.000001)
+    fy = (y - y0) / res
+    fy = min(max(fy, 0.0), ny - 1.000001)
+    ix = int(fx)
+    iy = int(fy)
+    fx -= ix
+    fy -= iy
+    v00 = coef[iy, ix]
+    v01 = coef[iy, ix + 1]
+    v10 = coef[iy + 1, ix]
+    v11 = coef[iy + 1, ix + 1]
+    return ((v11 - v10 - v01 + v00) * fy + (v01 - v00)) * fx + v00 + fy * (v10 - v00)
+
+
+@njit
+def beyond(v, r):
+    """``abs(v) > r`` for a complex ``v``, without the hypot where the squares decide it (r > 0):
+    |v|² beyond r² by more than 1e-12 relative is beyond r, and short of it by as much is
+    not, whatever the roundings (a few ulp); only the band between (and nan) takes abs(v)."""
+    if not r > 0.0:
+        return abs(v) > r
+    sq = v.real * v.real + v.imag * v.imag
+    r2 = r * r
+    if sq > r2 * (1.0 + 1e-12):
+        return True
+    if sq < r2 * (1.0 - 1e-12):
+        return False
+    return abs(v) > r
+
+
+@njit
+def unit_turn(angle):
+    """exp(i·angle) for a real angle (radians): (cos, sin), as the complex exp computes it
+    (exp(0) = 1 times each), without the exp."""
+    return complex(math.cos(angle), math.sin(angle))
+
+
+@njit
+def within(v, r):
+    """``abs(v) <= r`` for a complex ``v``, as :func:`beyond` decides it (nan: False)."""
+    if not r > 0.0:
+        return abs(v) <= r
+    sq = v.real * v.real + v.imag * v.imag
+    r2 = r * r
+    if sq < r2 * (1.0 - 1e-12):
+        return True
+    if sq > r2 * (1.0 + 1e-12):
+        return False
+    return abs(v) <= r
+
+
+@njit
+def cell_key(p, heading, par, ipar):
+    """Closed-list key of a node at world x + iy ``p`` facing ``heading`` (radians): its grid
+    cell (i · span + j) and, with heading bins, times bins plus its heading bin."""
+    cell = par[P_CELL]
+    key = math.floor((p.real - par[P_CORNER_X]) / cell + 0.5) * ipar[I_SPAN] + math.floor(
+        (p.imag - par[P_CORNER_Y]) / cell + 0.5
+    )
+    bins = ipar[I_BINS]
+    if bins > 1:
+        two_pi = 2.0 * math.pi
+        key = key * bins + math.floor((heading % two_pi) / two_pi * bins) % bins
+    return key
+
+
+@njit
+def in_goal(p, heading, par, ipar):
+    """Whether a node at world x + iy ``p`` facing ``heading`` (radians) ends the walk: within
+    the tolerance of the goal, within each of the I_N_DISCS goal discs (x, y, radius at
+    P_DISC0 + 3k: e.g. the places from which the work there is within reach) and, with a goal
+    yaw, facing it within its tolerance."""
+    if beyond(p - complex(par[P_GOAL_X], par[P_GOAL_Y]), par[P_TOLERANCE]):
+        return False
+    for k in range(ipar[I_N_DISCS]):
+        j = P_DISC0 + 3 * k
+        if beyond(p - complex(par[j], par[j + 1]), par[j + 2]):
+            return False
+    goal_yaw = par[P_GOAL_YAW]
+    if math.isnan(goal_yaw):
+        return True
+    diff = (heading - goal_yaw + math.pi) % (2.0 * math.pi) - math.pi
+    return abs(diff) <= par[P_YAW_TOLERANCE]
+
+
+@njit
+def decode_real(z, r, matrix, offset, col):
+    """The real part of decoder column ``col`` for feature row ``r`` (``z[r] @ matrix + offset``
+    there, summed in feature order): the columns only some steps need (pelvis yaws, duration)."""
+    v = offset[col].real
+    for a in range(z.shape[1]):
+        v += z[r, a] * matrix[a, col].real
+    return v
+
+
+@njit
+def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, y0, res, nx, ny):
+    """Whether the landing leg of one step keeps ``P_LEG_CLEARANCE`` from obstacles at heel
+    strike (True when the slots are nan: no leg check).
+
+    The leg reaches from the landing ankle ``loc[m]`` up to the swing-side hip of the end
+    pelvis ``loc[m - 1]`` (``P_HIP_Y`` to its side, turned by ``end_yaw``, radians relative to
+    the step's frame); seen from above it is the segment between them. Probes lie on it every
+    ``P_LEG_STEP`` metres from the ankle (whose own check, FOOT_CLEARANCE, covers the first
+    half spacing) until the end pelvis's check covers the rest: a probe within
+    ``pelvis_thr - P_LEG_CLEARANCE`` of the end pelvis already has that clearance, since the
+    clearance is 1-Lipschitz. For the same reason every point of the segment keeps
+    ``P_LEG_CLEARANCE - P_LEG_STEP / 2`` when every probe keeps ``P_LEG_CLEARANCE``.
+
+    Args:
+        loc: the decoded step (step frame, x + iy, metres): pelvis samples, landing ankle.
+        left: whether the swing (landing) foot is the left one.
+        rot, p: the step frame's turn into the world and its origin (world x + iy).
+        pelvis_thr: the clearance the pelvis samples keep (metres).
+        coef, x0, y0, res, nx, ny: the walk field (:func:`field_clearance`).
+    """
+    step = par[P_LEG_STEP]
+    clear = par[P_LEG_CLEARANCE]
+    if math.isnan(step) or math.isnan(clear) or step <= 0.0:
+        return True
+    s = 1.0 if left else -1.0
+    ankle = loc[m]
+    end = loc[m - 1]
+    hip = end - s * par[P_HIP_Y] * complex(math.cos(end_yaw), math.sin(end_yaw))
+    span = abs(hip - ankle)
+    if span <= 0.0:
+        return True
+    u = (hip - ankle) / span
+    covered = pelvis_thr - clear  # probes this close to the end pelvis need no check
+    k = 1
+    while k * step < span:
+        q = ankle + (k * step) * u
+        if within(q - end, covered):
+            break
+        w = q * rot + p
+        if field_clearance(coef, x0, y0, res, nx, ny, w.real, w.imag) < clear:
+            return False
+        k += 1
+    return True
