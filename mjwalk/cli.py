@@ -353,6 +353,8 @@ def _cmd_scan(args: argparse.Namespace) -> int:
         args.scan,
         args.output,
         poses=args.poses,
+        register=args.register,
+        report=print,
         voids=args.voids,
         units=args.units,
         up=args.up,
@@ -424,7 +426,14 @@ def _add_scan_parser(sub) -> None:
         type=Path,
         nargs="+",
         help="point-cloud file(s); several scans of one hall are merged in the first one's "
-        "frame (already registered, or placed by --poses)",
+        "frame (already registered, placed by --poses, or aligned by --register)",
+    )
+    p.add_argument(
+        "--register",
+        action="store_true",
+        help="align the scans after the first that --poses does not place (levelled, Open3D "
+        "FPFH + RANSAC, ICP, checked against the free space each scan saw); prints fitness "
+        "and RMSE, refuses a scan it cannot align unambiguously",
     )
     p.add_argument(
         "--poses",
