@@ -157,13 +157,13 @@ def align(
             overlap, or every alignment found contradicts free space) or when two distinct
             ones do (ambiguous).
     """
-    from mjwalk.world.scan.read import _open3d
+    from mjwalk.world.scan.read import open3d_module
 
     lev_p = find_floor(points, source=source)
     lev_r = find_floor(reference, source="the scans before it")
     p = lev_p.apply(points)
     r = lev_r.apply(reference)
-    o3d = _open3d()
+    o3d = open3d_module()
     reg = o3d.pipelines.registration
     kd = o3d.geometry.KDTreeSearchParamHybrid
 
