@@ -63,9 +63,9 @@ def main() -> None:
             f"  {scene.n_obstacle_boxes} obstacle boxes, {scene.n_void_boxes} void boxes, "
             f"tilt {scene.levelling.tilt_deg:.3f} deg"
         )
-        from mjwalk.world.scan.read import _open3d, read_scan
+        from mjwalk.world.scan.read import open3d_module, read_scan
 
-        o3d = _open3d()
+        o3d = open3d_module()
         ply = Path(tmp) / "cloud.ply"
         o3d.io.write_point_cloud(str(ply), o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts)))
         t = time.perf_counter()

@@ -30,7 +30,7 @@ njit_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
 #: compiled functions misses the cache and compiles: on the first plan or animation after an
 #: install or upgrade (``benchmarks/bench_cold_start.py`` measures how long that takes).
 COMPILE_NOTICE = (
-    "mjwalk: compiling the planner and the animation kernels (numba, once after an install: "
+    "compiling the planner and the animation kernels (numba, once after an install: "
     "about a minute idle, minutes on a busy machine; cached for later runs)..."
 )
 

@@ -194,7 +194,7 @@ def test_tests_import_no_private_names():
 #: The longest a module may be (lines): one concept per module.
 MAX_LINES = 600
 #: Modules not yet split (each is to be split, then taken off this list).
-TOO_LONG_FOR_NOW = {"mjwalk.cli"}
+TOO_LONG_FOR_NOW: set[str] = set()
 
 
 def test_modules_are_short():

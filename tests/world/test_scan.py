@@ -351,9 +351,9 @@ def _write_format(path, pts):
     """Write ``pts`` (metres) in the format of ``path``'s suffix with the readers' libraries."""
     suffix = path.suffix
     if suffix in (".ply", ".pcd"):
-        from mjwalk.world.scan.read import _open3d
+        from mjwalk.world.scan.read import open3d_module
 
-        o3d = _open3d()
+        o3d = open3d_module()
         cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts))
         o3d.io.write_point_cloud(str(path), cloud, write_ascii=False, compressed=suffix == ".pcd")
     elif suffix in (".las", ".laz"):

@@ -121,10 +121,10 @@ def test_pcd_declaring_more_points_than_rows(room, tmp_path, capsys):
 
 @pytest.mark.parametrize("compressed", [False, True])
 def test_binary_pcd_cut_short(room, tmp_path, capsys, compressed):
-    from mjwalk.world.scan.read import _open3d
+    from mjwalk.world.scan.read import open3d_module
 
     full = tmp_path / "full.pcd"
-    o3d = _open3d()
+    o3d = open3d_module()
     o3d.io.write_point_cloud(
         str(full),
         o3d.geometry.PointCloud(o3d.utility.Vector3dVector(room)),

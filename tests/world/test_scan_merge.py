@@ -11,7 +11,7 @@ import pytest
 from test_scan import STATION_SCANNERS, _write_format
 
 from mjwalk import cli
-from mjwalk.errors import ScanError
+from mjwalk.errors import MjwalkError, ScanError
 from mjwalk.world.scan import build_scene, merge_scans, scan_to_scene
 
 
@@ -139,3 +139,172 @@ def test_shared_room_scan_split_in_two_views_with_poses(shared_data, tmp_path):
     assert merged.n_obstacle_boxes == pytest.approx(whole.n_obstacle_boxes, rel=0.02)
     one_view = build_scene(a, source="one view")
     assert one_view.plan.void.sum() > merged.plan.void.sum()
+
+
+# ----------------------------------------------------------------- registration (--register)
+
+
+def _pose_error(found: np.ndarray, truth: np.ndarray) -> tuple[float, float]:
+    """Translation (metres) and rotation (degrees) between two 4 x 4 poses."""
+    d = np.linalg.inv(truth) @ found
+    turn = np.degrees(np.arccos(np.clip((np.trace(d[:3, :3]) - 1) / 2, -1, 1)))
+    return float(np.linalg.norm(d[:3, 3])), float(turn)
+
+
+def _assert_plannable(scene, points: np.ndarray, xml) -> None:
+    """Issue 40's planning target on a merged scene: of 20 random pairs of free floor points
+    2-4 m apart (a person fits there: walk clearance >= the body radius, and both 0.6 m from
+    every raw obstacle point), at least 80 % are planned by the walk planner (plan_walks),
+    and every walk keeps 0.15 m from the raw obstacle points (``points`` the merged cloud)."""
+    from scipy.spatial import cKDTree
+
+    from mjwalk.conventions import BODY_RADIUS
+    from mjwalk.gait.default import default_model
+    from mjwalk.plan.hybrid import plan_walks
+    from mjwalk.world.workplace import OBSTACLE_Z_RANGE, load_workplace
+
+    levelled = scene.levelling.apply(points)
+    z = levelled[:, 2]
+    raw = cKDTree(levelled[(z >= OBSTACLE_Z_RANGE[0]) & (z <= OBSTACLE_Z_RANGE[1]), :2])
+    wp = load_workplace(xml)
+    gx, gy = wp.clearance.grid_xy()
+    xy = np.stack(np.meshgrid(gx, gy), -1).reshape(-1, 2)
+    free = xy[(wp.walk_clearance(xy) >= BODY_RADIUS) & (raw.query(xy)[0] >= 0.6)]
+    rng = np.random.default_rng(0)
+    pairs = []
+    while len(pairs) < 20:
+        i, j = rng.integers(len(free), size=2)
+        if 2.0 <= np.linalg.norm(free[i] - free[j]) <= 4.0:
+            pairs.append((free[i], free[j]))
+    model = default_model(progress=False)
+    planned, nearest = 0, []
+    for start, goal in pairs:
+        try:
+            (walk,) = plan_walks(wp, start, goal, model, n=1, seed=0)
+        except MjwalkError:
+            continue
+        planned += 1
+        nearest.append(float(raw.query(walk.xy)[0].min()))
+    print(f"plannable {planned}/{len(pairs)}, nearest raw obstacle point {min(nearest):.3f} m")
+    assert planned >= 0.8 * len(pairs)
+    assert min(nearest) >= 0.15
+
+
+@pytest.mark.slow
+def test_stations_sharing_a_room_are_registered(stations):
+    """Two ray-cast stations of the shipped station, (-3.6, -1.2) and (0.2, -1.2), the second
+    moved into a frame of its own: aligned without a pose, to a millimetre."""
+    from mjwalk.world.scan.register import align
+
+    move = _rigid(25, [1.2, -0.7, 0.1])
+    b = stations[2] @ move[:3, :3].T + move[:3, 3]
+    found = align(b, stations[0], source="st2.ply")
+    shift, turn = _pose_error(found.matrix, np.linalg.inv(move))
+    assert shift < 0.01 and turn < 0.2, (shift, turn)
+    assert found.rmse <= 0.02 and found.fitness >= 0.3 and found.clash <= 0.1
+
+
+@pytest.mark.slow
+def test_stations_barely_overlapping_are_refused_by_name(stations, tmp_path, capsys):
+    """Stations (0.2, -1.2) and (0.0, 2.75) share 3.6 % of their surface: every alignment the
+    features find matches most points yet drags walls over floor the other station saw
+    empty, so the scan is refused, by name, and nothing is written."""
+    move = _rigid(25, [1.2, -0.7, 0.1])
+    files = [
+        _write_format(tmp_path / "st2.ply", stations[2]),
+        _write_format(tmp_path / "st3.ply", stations[3] @ move[:3, :3].T + move[:3, 3]),
+    ]
+    out = tmp_path / "hall.xml"
+    code = cli.main(["scan", *map(str, files), "-o", str(out), "--register"])
+    err = capsys.readouterr().err
+    assert code == 2 and "Traceback" not in err
+    assert "st3.ply" in err and "could not be aligned" in err and "--poses" in err
+    assert not out.exists()
+
+
+@pytest.mark.slow
+def test_shared_room_scan_split_in_two_views_is_registered(shared_data, tmp_path, capsys):
+    """The PCL room scan split into two views overlapping by 60° (as above), the second moved
+    into a frame of its own and merged with --register, no pose given: registration RMSE
+    <= 2 cm, pose right to 1 cm / 0.2°, and the planning target (:func:`_assert_plannable`).
+    Both views come from one scanner position, so merging them adds no floor coverage."""
+
+    from mjwalk.world.scan import read_scan
+
+    src = shared_data / "scans" / "pcl-room-scan" / "room_scan1.pcd"
+    pts = read_scan(src).points
+    az = np.degrees(np.arctan2(pts[:, 1], pts[:, 0])) % 360
+    a, b = pts[az < 210], pts[az >= 150]
+    move = _rigid(25, [1.2, -0.7, 0.1])
+    files = [
+        _write_format(tmp_path / "a.pcd", a),
+        _write_format(tmp_path / "b.pcd", b @ move[:3, :3].T + move[:3, 3]),
+    ]
+    out = tmp_path / "room.xml"
+    assert cli.main(["scan", *map(str, files), "-o", str(out), "--register"]) == 0
+    printed = capsys.readouterr().out
+    assert "b.pcd: registered, fitness" in printed and "RMSE" in printed
+    merged = merge_scans(files, register=True)
+    (found,) = merged.alignments
+    assert found.rmse <= 0.02
+    shift, turn = _pose_error(merged.poses[1], np.linalg.inv(move))
+    assert shift < 0.01 and turn < 0.2, (shift, turn)
+
+    scene = build_scene(merged.points, source="both views")  # the scene the CLI wrote
+    _assert_plannable(scene, merged.points, out)
+
+
+def test_free_space_clash_tells_a_shifted_station_from_the_right_one(stations):
+    """The verification alone: station 2's low points over station 0's seen floor stand on
+    floor station 0 saw empty only at edges when placed right (<= MAX_CLASH), and in large
+    share when the station is shifted by 1 m or turned by 90°."""
+    from mjwalk.world.scan.level import find_floor
+    from mjwalk.world.scan.register import MAX_CLASH, clash
+
+    lev = find_floor(np.vstack([stations[0], stations[2]]))
+    a, b = lev.apply(stations[0]), lev.apply(stations[2])
+    assert clash(b, a) <= MAX_CLASH and clash(a, b) <= MAX_CLASH
+    for wrong in (_rigid(0, [1.0, 0, 0]), _rigid(90, [0, 0, 0])):
+        moved = b @ wrong[:3, :3].T + wrong[:3, 3]
+        assert max(clash(moved, a), clash(a, moved)) > 2 * MAX_CLASH
+
+
+def _symmetric_hall(rng: np.random.Generator) -> np.ndarray:
+    """Points (metres, z up, 5 mm noise, about 2000 per m²) of an 8 m x 5 m hall, 2.5 m high,
+    with two 1 m x 0.6 m x 1 m cabinets placed as mirror images through the hall's middle:
+    a half turn maps the hall onto itself."""
+
+    def face(corner, u, v, n):
+        a, b = rng.random((2, n, 1))
+        return np.asarray(corner) + a * np.asarray(u) + b * np.asarray(v)
+
+    parts = [face([0, 0, 0], [8, 0, 0], [0, 5, 0], 80000)]
+    for corner, u in (([0, 0, 0], [8, 0, 0]), ([0, 5, 0], [8, 0, 0])):
+        parts.append(face(corner, u, [0, 0, 2.5], 40000))
+    for corner, u in (([0, 0, 0], [0, 5, 0]), ([8, 0, 0], [0, 5, 0])):
+        parts.append(face(corner, u, [0, 0, 2.5], 25000))
+    for x0, y0 in ((1.5, 1.0), (8 - 1.5 - 1.0, 5 - 1.0 - 0.6)):
+        for corner, u, v in (
+            ([x0, y0, 0], [1, 0, 0], [0, 0, 1]),
+            ([x0, y0 + 0.6, 0], [1, 0, 0], [0, 0, 1]),
+            ([x0, y0, 0], [0, 0.6, 0], [0, 0, 1]),
+            ([x0 + 1, y0, 0], [0, 0.6, 0], [0, 0, 1]),
+            ([x0, y0, 1], [1, 0, 0], [0, 0.6, 0]),
+        ):
+            parts.append(face(corner, u, v, 2000))
+    pts = np.vstack(parts)
+    return pts + rng.normal(0, 0.005, pts.shape)
+
+
+@pytest.mark.slow
+def test_a_symmetric_hall_is_refused_as_ambiguous():
+    """Two scans of a hall that a half turn maps onto itself: both placements match and
+    neither contradicts free space, so the scan is refused as ambiguous, by name."""
+    from mjwalk.world.scan.register import align
+
+    rng = np.random.default_rng(0)
+    a = _symmetric_hall(rng)
+    move = _rigid(25, [1.2, -0.7, 0.1])
+    b = _symmetric_hall(rng) @ move[:3, :3].T + move[:3, 3]
+    with pytest.raises(ScanError, match=r"b\.ply: cannot be aligned .* unambiguously"):
+        align(b, a, source="b.ply")

@@ -10,27 +10,37 @@ Each file is read on its own (:func:`~mjwalk.world.scan.read.read_scan`: metres,
   the first file's frame; a JSON file ``{"B.ply": [[...4 rows...]], ...}`` for the command
   line, :func:`read_poses`) are applied.
 
-Unregistered scans without poses are not aligned here (issue 40's automatic registration is
-not done). Two prototypes were measured on two ray-cast stations of the shipped station,
-(0.2, -1.2) and (0.0, 2.75), 1.5 m high, the second moved by 25° and (1.2, -0.7, 0.1) m: Open3D's
-FPFH + RANSAC + point-to-plane ICP, and a heading search over top-view correlation verified by
-ICP. Both merged it 2.3-3.0 m wrong with 73-87 % of its points matched within 3 cm, while at the
-true pose only 3.6 % match (the two views share almost no surface): figures that cannot tell a
-wrong merge from a right one. On the shared PCL room scan split into two views overlapping by
-90°, the second prototype was right to 3.1 mm.
+- unregistered scans (``register=True``, ``mjwalk scan --register``): each scan after the
+  first that has no known pose is aligned to the merged scans before it
+  (:func:`~mjwalk.world.scan.register.align`: levelling, Open3D FPFH + RANSAC, ICP, verified
+  by free space), and refused by name when that alignment cannot be trusted.
+
+Registration is not automatic: merging scans already in one frame stays the fast path, and a
+scan whose alignment is refused must not be merged by guesswork.
+
+Registration attempts that failed (kept for whoever improves it): on two ray-cast stations of
+the shipped station, (0.2, -1.2) and (0.0, 2.75), 1.5 m high, the second moved by 25° and
+(1.2, -0.7, 0.1) m, Open3D's FPFH + RANSAC + point-to-plane ICP and a heading search over
+top-view correlation verified by ICP both merged it 2.3-3.0 m wrong with 73-87 % of its points
+matched within 3 cm, while at the true pose only 3.6 % match (the two views share almost no
+surface): fitness cannot tell a wrong merge from a right one. The free-space check of
+:mod:`~mjwalk.world.scan.register` refuses that pair (22-25 % of its low points on floor the
+other station saw empty); the heading search also missed the true heading of the shared PCL
+room scan split into two views overlapping by 60°, where FPFH + RANSAC found it.
 """
 
 from __future__ import annotations
 
 import json
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from mjwalk.errors import ScanError
 from mjwalk.world.scan.read import ScanCloud, read_scan
+from mjwalk.world.scan.register import Alignment, align
 
 #: A pose's rotation part must be orthonormal with determinant +1 to this tolerance.
 POSE_TOL = 1e-6
@@ -45,6 +55,7 @@ class MergedCloud:
     points: np.ndarray
     clouds: list[ScanCloud]
     poses: list[np.ndarray]
+    alignments: list[Alignment] = field(default_factory=list)
 
     @property
     def first(self) -> ScanCloud:
@@ -108,11 +119,16 @@ def merge_scans(
     drop_invalid: bool = False,
     offset=None,
     poses: dict[Path, np.ndarray] | None = None,
+    register: bool = False,
+    report: Callable[[str], None] | None = None,
 ) -> MergedCloud:
-    """Read ``scans`` and merge them into the first file's frame (see the module docstring).
+    """Read ``scans`` and merge them into the first file's frame (see the module docstring);
+    with ``register`` the scans after the first without a known pose are aligned to the
+    scans before them, and each alignment's line (fitness, RMSE) is passed to ``report``.
 
     Raises:
-        ScanError: any file's reading errors, a file given twice, a bad pose.
+        ScanError: any file's reading errors, a file given twice, a bad pose, a scan that
+            could not be aligned (naming it).
     """
     paths = [Path(s) for s in scans]
     if not paths:
@@ -124,11 +140,19 @@ def merge_scans(
     clouds = [
         read_scan(p, units=units, up=up, drop_invalid=drop_invalid, offset=offset) for p in paths
     ]
-    placed = []
+    placed: list[np.ndarray] = []
     applied = []
-    for cloud in clouds:
+    alignments = []
+    for i, cloud in enumerate(clouds):
         pose = poses.get(cloud.source, np.eye(4))
-        placed.append(apply_pose(cloud.points, pose) if cloud.source in poses else cloud.points)
+        if register and i and cloud.source not in poses:
+            found = align(cloud.points, np.concatenate(placed), source=str(cloud.source))
+            alignments.append(found)
+            if report is not None:
+                report(found.line())
+            pose = found.matrix
+        identity = np.array_equal(pose, np.eye(4))
+        placed.append(cloud.points if identity else apply_pose(cloud.points, pose))
         applied.append(pose)
     points = placed[0] if len(placed) == 1 else np.concatenate(placed)
-    return MergedCloud(points, clouds, applied)
+    return MergedCloud(points, clouds, applied, alignments)

@@ -80,8 +80,8 @@ class ScanCloud:
     offset: np.ndarray = field(default_factory=lambda: np.zeros(3))
 
 
-def _open3d():
-    """Import Open3D. Its Linux wheels link libusb-1.0 (for the Azure Kinect) without bundling
+def open3d_module():
+    """Open3D, imported. Its Linux wheels link libusb-1.0 (for the Azure Kinect) without bundling
     it; the ``libusb-package`` wheel ships that library, loaded here first so a machine without
     Debian's libusb-1.0-0 still imports Open3D. ``import open3d`` also imports its Plotly/Dash
     drawing helpers (Dash, Flask and IPython: 0.4 s of a 0.9 s import), which mjwalk never
@@ -184,7 +184,7 @@ def _read_open3d(path: Path, suffix: str, drop_invalid: bool) -> np.ndarray:
                 "value (pass --drop-invalid, or drop_invalid=True, to leave such points out)"
             )
         return _ascii_ply_xyz(path, declared)
-    o3d = _open3d()
+    o3d = open3d_module()
     fmt = {**_OPEN3D, **_OPEN3D_PTS}[suffix]
     cloud = o3d.io.read_point_cloud(
         str(path), format=fmt, remove_nan_points=False, remove_infinite_points=False

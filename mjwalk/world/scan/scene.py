@@ -337,10 +337,13 @@ def scan_to_scene(
     offset: tuple[float, float, float] | np.ndarray | None = None,
     poses: str | Path | dict[Path, np.ndarray] | None = None,
     voids: str = "blocked",
+    register: bool = False,
+    report: Callable[[str], None] | None = None,
 ) -> ScanScene:
     """Read a scan file, or several of one hall (merged in the first file's frame,
     :func:`~mjwalk.world.scan.merge.merge_scans`; ``poses`` a JSON file or a dict of 4 x 4
-    poses per file), and write its MJCF scene to ``output``; returns the :class:`ScanScene`
+    poses per file; ``register`` aligns the others without a pose, each alignment's line
+    passed to ``report``), and write its MJCF scene to ``output``; returns the :class:`ScanScene`
     (its ``matrix`` maps the first file's points to the scene).
 
     The output path, the options, the poses and the sites file are checked before any work;
@@ -356,7 +359,14 @@ def scan_to_scene(
     site_list = read_sites(sites) if sites is not None else None
     t = time.perf_counter()
     merged = merge_scans(
-        scans, units=units, up=up, drop_invalid=drop_invalid, offset=offset, poses=poses
+        scans,
+        units=units,
+        up=up,
+        drop_invalid=drop_invalid,
+        offset=offset,
+        poses=poses,
+        register=register,
+        report=report,
     )
     t_read = time.perf_counter() - t
     first = merged.first

@@ -29,6 +29,7 @@ from mjwalk._args import (
     join_negative_values,
 )
 from mjwalk._version import __version__
+from mjwalk.cli.scenes import add_scan_parser, add_scene_import_parser
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.errors import InputError, MjwalkError
 
@@ -342,159 +343,6 @@ def _cmd_render(args: argparse.Namespace) -> int:
     return 0
 
 
-def _cmd_scan(args: argparse.Namespace) -> int:
-    from mjwalk.world.scan import scan_to_scene
-    from mjwalk.world.scan.voids import cover, save_top_view
-
-    check_output_file(args.output, "-o/--output")
-    if args.png is not None:
-        check_output_file(args.png, "--png", image_suffixes())
-    scene = scan_to_scene(
-        args.scan,
-        args.output,
-        poses=args.poses,
-        voids=args.voids,
-        units=args.units,
-        up=args.up,
-        drop_invalid=args.drop_invalid,
-        resolution=args.resolution,
-        sites=args.sites,
-        offset=args.offset,
-    )
-    lv = scene.levelling
-    b = scene.plan.bounds
-    print(
-        f"{' + '.join(map(str, args.scan))}: {scene.n_points} points; "
-        f"floor tilt {lv.tilt_deg:.3f} deg removed, "
-        f"floor x [{b[0]:.2f}, {b[2]:.2f}] y [{b[1]:.2f}, {b[3]:.2f}] m; "
-        f"{scene.n_obstacle_boxes} obstacle boxes, {scene.n_void_boxes} void boxes, "
-        f"{len(scene.sites)} sites"
-    )
-    print(f"--voids {args.voids}: {cover(scene.plan).line()}")
-    if lv.surfaces:
-        shown = ", ".join(
-            f"{s.height:+.2f} m ({s.area:.1f} m² at {s.x:.1f}, {s.y:.1f})" for s in lv.surfaces[:8]
-        )
-        more = f" and {len(lv.surfaces) - 8} more" if len(lv.surfaces) > 8 else ""
-        print(
-            f"other horizontal surfaces one could stand on (one level only: they stay "
-            f"obstacles or floor): {shown}{more}"
-        )
-    if args.png is not None:
-        save_top_view(scene.plan, args.png)
-        print(f"wrote {args.png} (top view: floor seen, unseen, obstacles, voids)")
-    print(f"{args.scan[0]} -> scene transform (4x4, row-major):")
-    for row in scene.matrix:
-        print("  " + " ".join(f"{v:10.6f}" for v in row))
-    print(" ".join(f"{k} {v:.2f} s" for k, v in scene.timings.items()))
-    print(f"wrote {args.output}")
-    return 0
-
-
-def _scan_resolution(text: str) -> float:
-    """``--resolution``: a number of metres within the floor plan's stated range."""
-    from mjwalk.world.scan.limits import check_resolution
-
-    try:
-        return check_resolution(text, "")
-    except MjwalkError as exc:
-        raise argparse.ArgumentTypeError(str(exc).strip()) from None
-
-
-def _scan_offset(text: str) -> np.ndarray:
-    """``--offset X,Y,Z``: three finite numbers in the scan file's units and axes."""
-    try:
-        values = np.array([float(v) for v in text.split(",")])
-    except ValueError:
-        values = np.array([])
-    if values.shape != (3,) or not np.isfinite(values).all():
-        raise argparse.ArgumentTypeError(
-            f"{text!r}: expected X,Y,Z, three finite numbers in the file's units "
-            "(write --offset=-1,2,3 when it starts with a minus)"
-        )
-    return values
-
-
-def _add_scan_parser(sub) -> None:
-    from mjwalk.world.scan.limits import RESOLUTION_RANGE
-
-    p = sub.add_parser("scan", help="turn a laser scan (PLY/PCD/LAS/LAZ/E57/XYZ/PTS) into a scene")
-    p.add_argument(
-        "scan",
-        type=Path,
-        nargs="+",
-        help="point-cloud file(s); several scans of one hall are merged in the first one's "
-        "frame (already registered, or placed by --poses)",
-    )
-    p.add_argument(
-        "--poses",
-        type=Path,
-        metavar="JSON",
-        help='known poses: {"B.ply": 4x4 matrix} taking each named scan (metres, z up) into '
-        "the first scan's frame; scans not named are already in it",
-    )
-    p.add_argument("-o", "--output", type=Path, required=True, help="MJCF scene to write")
-    p.add_argument("--units", default="m", help="file units when it does not say: m cm mm in ft")
-    p.add_argument(
-        "--up", default="+z", help="file up axis when it does not say: +z, -z, +y, ... (--up=-z)"
-    )
-    p.add_argument("--sites", type=Path, help="TOML of named sites ([site.NAME] xy = [x, y])")
-    p.add_argument(
-        "--resolution",
-        type=_scan_resolution,
-        default=0.02,
-        help=f"floor-plan grid, metres ({RESOLUTION_RANGE[0]}-{RESOLUTION_RANGE[1]}; default 0.02)",
-    )
-    p.add_argument(
-        "--offset",
-        type=_scan_offset,
-        metavar="X,Y,Z",
-        help="subtract this point (file units and axes) from every point first, for a "
-        "georeferenced cloud far from its origin (write --offset=-X,Y,Z when negative)",
-    )
-    p.add_argument(
-        "--drop-invalid", action="store_true", help="leave out NaN/infinite points (else error)"
-    )
-    p.add_argument(
-        "--voids",
-        choices=("blocked", "fill", "free"),
-        default="blocked",
-        help="unseen floor: blocked (default: nobody walks where no floor was seen), fill "
-        "(enclosed voids up to 2 m inscribed radius are walkable), free (all walkable)",
-    )
-    p.add_argument("--png", type=Path, help="top view of the floor plan (seen, unseen, voids)")
-    p.set_defaults(func=_cmd_scan)
-
-
-def _cmd_scene_import(args: argparse.Namespace) -> int:
-    from mjwalk.world.meshimport import check_threshold, import_scene
-
-    check_threshold(args.threshold, "--threshold")
-    check_output_file(args.output, "-o/--output", (".xml",))
-    result = import_scene(
-        args.source, args.output, units=args.units, up=args.up, threshold=args.threshold
-    )
-    for name, parts in result.parts.items():
-        print(f"  {name}: concave, {parts} convex parts for MuJoCo's collision")
-    print(
-        f"wrote {args.output} ({sum(result.parts.values())} convex parts of "
-        f"{len(result.parts)} concave meshes, inline)"
-    )
-    return 0
-
-
-def _add_scene_import_parser(sub) -> None:
-    p = sub.add_parser(
-        "scene-import", help="import a mesh or MJCF: concave meshes get convex decompositions"
-    )
-    p.add_argument("source", type=Path, help="mesh (STL/OBJ/PLY/GLB/OFF) or MJCF scene")
-    p.add_argument("-o", "--output", type=Path, required=True, help="MJCF scene to write")
-    p.add_argument("--units", default="m", help="mesh file units: m cm mm in ft")
-    p.add_argument("--up", default="+z", help="mesh file up axis: +z +y ...")
-    p.add_argument("--threshold", type=float, default=0.02, help="CoACD concavity threshold (0.02)")
-    p.set_defaults(func=_cmd_scene_import)
-
-
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="mjwalk",
@@ -642,8 +490,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=arg_seed, default=0)
     _add_walker_args(p)
     p.set_defaults(func=_cmd_validate)
-    _add_scan_parser(sub)
-    _add_scene_import_parser(sub)
+    add_scan_parser(sub)
+    add_scene_import_parser(sub)
     for cmd in sub.choices.values():
         if not any("--quiet" in a.option_strings for a in cmd._actions):
             cmd.add_argument("--quiet", action="store_true", help=QUIET_HELP)

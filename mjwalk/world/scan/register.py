@@ -1,0 +1,259 @@
+"""Align an unregistered scan of a hall to the scans before it: level both, hypothesise with
+Open3D's feature-based global registration, refine with ICP, and verify with free space.
+
+Indoor scans share their floor, so each is first levelled on its own floor
+(:func:`~mjwalk.world.scan.level.find_floor`): what is left is a heading, a horizontal shift
+and a small residual.
+
+1. Hypotheses: Open3D's FPFH features (Rusu et al. 2009) matched by RANSAC
+   (``registration_ransac_based_on_feature_matching``), run :data:`RANSAC_RUNS` times with
+   different seeds on clouds thinned to :data:`VOXEL`, so that a second, distinct alignment
+   (a symmetric hall) has a chance to show up; and the best of them turned by 90°, 180° and
+   270° about its middle (a rectangular hall's twin placements).
+2. Each hypothesis is refined by Open3D's point-to-plane ICP (Chen & Medioni 1992); its
+   ``fitness`` (share of the scan's points with a counterpart within :data:`ICP_DISTANCE`) and
+   ``inlier_rmse`` are kept.
+3. Verification. A matching score alone cannot tell a wrong merge: on two ray-cast stations of
+   the shipped station FPFH + RANSAC + ICP was 2.27 m wrong with 87 % fitness and 1.0 cm RMSE
+   (repetitive geometry), while the true pose matched 3.6 %. So every hypothesis is also
+   checked against free space (as in occupancy mapping): where one scan saw *floor*, the
+   space above it was seen through, so the other scan must not put a low obstacle there
+   (:func:`clash`). A hypothesis is accepted when its fitness is at least :data:`MIN_FITNESS`,
+   its clash at most :data:`MAX_CLASH` both ways, and no distinct accepted hypothesis
+   matches nearly as well (:data:`AMBIGUITY`). Otherwise the scan is refused, by name, with
+   the figures, and ``--poses`` is suggested: never a silently wrong merge.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import ndimage
+
+from mjwalk.errors import ScanError
+from mjwalk.world.scan.level import find_floor
+from mjwalk.world.scan.obstacles import FLOOR_TOL
+
+#: Voxel of the clouds the features are computed on, metres: half the 0.10 m local-PCA voxel
+#: of the levelling (:data:`~mjwalk.world.scan.level.VOXEL`), ten times the 5 mm range noise of
+#: a terrestrial scanner, so a normal's neighbourhood (2 voxels) is well above the noise.
+VOXEL = 0.05
+#: Voxel of the last ICP, whose fitness and RMSE are reported, metres: 4 range-noise sigmas.
+FINE_VOXEL = 0.02
+#: Normal radius and FPFH radius in voxels (Open3D's global-registration tutorial: 2 and 5).
+NORMAL_RADIUS, FEATURE_RADIUS = 2.0, 5.0
+#: RANSAC: inlier distance 1.5 voxels (the tutorial's), runs with distinct seeds, iterations.
+RANSAC_DISTANCE = 1.5 * VOXEL
+RANSAC_RUNS = 4
+RANSAC_ITERATIONS = 100_000
+#: ICP correspondence distance, metres: six standard deviations of a 5 mm range noise (the
+#: floor-plane tolerance :data:`~mjwalk.world.scan.level.PLANE_TOL`).
+ICP_DISTANCE = 0.03
+#: Smallest fitness accepted: scans sharing less than 30 % of their surface are not
+#: registered automatically (the 3DMatch benchmark's threshold for a fragment pair to count
+#: as overlapping, Zeng et al. 2017, CVPR).
+MIN_FITNESS = 0.30
+#: Free-space check: low obstacle points, metres above the floor. Below a chair seat (0.40 m,
+#: EN 1335-1) a thing standing on the floor hides the floor under it from every scanner, so
+#: one scan's low points over the other's seen floor contradict the alignment; table tops and
+#: shelves above it may overhang floor that was seen, so they are not used.
+LOW_BAND = (0.05, 0.35)
+#: Top-view cell of the free-space check, metres, and the margin around the other scan's
+#: obstacles that is not counted as free (2 cells: an alignment error of up to 0.1 m, plus
+#: mixed cells at obstacle edges).
+CLASH_CELL, CLASH_MARGIN = 0.05, 2
+#: Largest share of one scan's low points (of those over the other scan's mapped cells) that
+#: may stand on the other's seen-free floor. A right alignment puts points there only through
+#: edge effects beyond the margin; a wrong one drags walls across the floor.
+MAX_CLASH = 0.10
+#: Distinct hypotheses: more than this shift (metres) or turn (degrees) apart.
+DISTINCT_SHIFT, DISTINCT_TURN = 0.25, 5.0
+#: Ambiguous when a distinct accepted hypothesis reaches this share of the best's fitness.
+AMBIGUITY = 0.9
+
+
+@dataclass(frozen=True)
+class Alignment:
+    """Result of :func:`align`: ``matrix`` (4, 4) taking the scan's points into the
+    reference's frame (metres, z up); the ICP's ``fitness`` (share of the scan's points,
+    thinned to :data:`VOXEL`, with a counterpart within :data:`ICP_DISTANCE`: the figure
+    checked against :data:`MIN_FITNESS`) and ``rmse`` (metres, of the pairs of the last ICP
+    on points thinned to :data:`FINE_VOXEL`); ``clash`` (the larger of the two free-space
+    contradiction shares, :func:`clash`); the best distinct runner-up's fitness (0 when
+    none); the scan's name."""
+
+    matrix: np.ndarray
+    fitness: float
+    rmse: float
+    clash: float
+    runner_up: float
+    source: str
+
+    def line(self) -> str:
+        return (
+            f"{self.source}: registered, fitness {self.fitness:.3f} (share of its points, "
+            f"thinned to {VOXEL} m, within {ICP_DISTANCE} m of the others), RMSE "
+            f"{1000 * self.rmse:.1f} mm (thinned to {FINE_VOXEL} m), free-space clash "
+            f"{100 * self.clash:.1f} %"
+        )
+
+
+def _seen_free(levelled: np.ndarray, origin: np.ndarray, shape: tuple[int, int]):
+    """Top-view masks of a levelled cloud on the grid (origin, shape): cells it mapped
+    (floor or low obstacle) and cells of floor it saw with no low obstacle near."""
+    z = levelled[:, 2]
+
+    def mask(sel):
+        m = np.zeros(shape, dtype=bool)
+        ij = np.floor((levelled[sel, :2] - origin) / CLASH_CELL).astype(np.int64)
+        ok = (ij >= 0).all(axis=1) & (ij[:, 0] < shape[1]) & (ij[:, 1] < shape[0])
+        m[ij[ok, 1], ij[ok, 0]] = True
+        return m
+
+    floor = mask(np.abs(z) <= FLOOR_TOL)
+    low = mask((z >= LOW_BAND[0]) & (z <= LOW_BAND[1]))
+    free = floor & ~ndimage.binary_dilation(low, iterations=CLASH_MARGIN)
+    return floor | low, free
+
+
+def clash(moved: np.ndarray, other: np.ndarray) -> float:
+    """Share of ``moved``'s low points (levelled, metres, :data:`LOW_BAND`) over cells the
+    ``other`` scan mapped that stand on its seen-free floor (0 when none overlap)."""
+    z = moved[:, 2]
+    low = moved[(z >= LOW_BAND[0]) & (z <= LOW_BAND[1]), :2]
+    if not len(low):
+        return 0.0
+    origin = other[:, :2].min(axis=0) - CLASH_CELL
+    shape = tuple((np.floor((other[:, :2].max(axis=0) - origin) / CLASH_CELL) + 2).astype(int))
+    mapped, free = _seen_free(other, origin, shape[::-1])
+    ij = np.floor((low - origin) / CLASH_CELL).astype(np.int64)
+    ok = (ij >= 0).all(axis=1) & (ij[:, 0] < mapped.shape[1]) & (ij[:, 1] < mapped.shape[0])
+    ij = ij[ok]
+    over = mapped[ij[:, 1], ij[:, 0]]
+    if not over.any():
+        return 0.0
+    return float(free[ij[over, 1], ij[over, 0]].sum()) / int(over.sum())
+
+
+def _distinct(a: np.ndarray, b: np.ndarray) -> bool:
+    d = np.linalg.inv(a) @ b
+    turn = np.degrees(np.arccos(np.clip((np.trace(d[:3, :3]) - 1) / 2, -1, 1)))
+    return bool(np.linalg.norm(d[:3, 3]) > DISTINCT_SHIFT or turn > DISTINCT_TURN)
+
+
+def _move(points: np.ndarray, m: np.ndarray) -> np.ndarray:
+    return points @ m[:3, :3].T + m[:3, 3]
+
+
+def align(
+    points: np.ndarray, reference: np.ndarray, *, source: str = "scan", seed: int = 0
+) -> Alignment:
+    """The rigid transform taking ``points`` (N, 3) onto ``reference`` (M, 3), both metres,
+    z up roughly (each is levelled on its own floor first). ``seed`` seeds RANSAC.
+
+    Raises:
+        ScanError: naming ``source`` when no hypothesis passes verification (too little
+            overlap, or every alignment found contradicts free space) or when two distinct
+            ones do (ambiguous).
+    """
+    from mjwalk.world.scan.read import open3d_module
+
+    lev_p = find_floor(points, source=source)
+    lev_r = find_floor(reference, source="the scans before it")
+    p = lev_p.apply(points)
+    r = lev_r.apply(reference)
+    o3d = open3d_module()
+    reg = o3d.pipelines.registration
+    kd = o3d.geometry.KDTreeSearchParamHybrid
+
+    def prepare(x: np.ndarray):
+        pc = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(x)).voxel_down_sample(VOXEL)
+        pc.estimate_normals(kd(radius=NORMAL_RADIUS * VOXEL, max_nn=30))
+        return pc, reg.compute_fpfh_feature(pc, kd(radius=FEATURE_RADIUS * VOXEL, max_nn=100))
+
+    (pc_p, f_p), (pc_r, f_r) = prepare(p), prepare(r)
+
+    def refine(start: np.ndarray) -> tuple[float, float, float, np.ndarray]:
+        icp = reg.registration_icp(
+            pc_p,
+            pc_r,
+            ICP_DISTANCE,
+            start,
+            reg.TransformationEstimationPointToPlane(),
+            reg.ICPConvergenceCriteria(max_iteration=50),
+        )
+        m = np.asarray(icp.transformation).copy()
+        c = max(clash(_move(p, m), r), clash(_move(r, np.linalg.inv(m)), p))
+        return float(icp.fitness), float(icp.inlier_rmse), c, m
+
+    hypotheses = []
+    for run in range(RANSAC_RUNS):
+        o3d.utility.random.seed(seed + run)
+        res = reg.registration_ransac_based_on_feature_matching(
+            pc_p,
+            pc_r,
+            f_p,
+            f_r,
+            True,
+            RANSAC_DISTANCE,
+            reg.TransformationEstimationPointToPoint(False),
+            3,
+            [
+                reg.CorrespondenceCheckerBasedOnEdgeLength(0.9),
+                reg.CorrespondenceCheckerBasedOnDistance(RANSAC_DISTANCE),
+            ],
+            reg.RANSACConvergenceCriteria(RANSAC_ITERATIONS, 0.999),
+        )
+        hypotheses.append(refine(np.asarray(res.transformation)))
+    # The best one turned by quarter turns about the middle of its placed points: halls are
+    # often rectangular with mirror-image fittings, and RANSAC need not find the twin.
+    best_m = max(hypotheses, key=lambda h: h[0])[3]
+    middle = np.median(_move(p, best_m)[:, :2], axis=0)
+    for quarter in (1, 2, 3):
+        turn = np.eye(4)
+        a = quarter * np.pi / 2
+        turn[:2, :2] = [[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]]
+        turn[:2, 3] = middle - turn[:2, :2] @ middle
+        hypotheses.append(refine(turn @ best_m))
+    hypotheses.sort(key=lambda h: -h[0])
+    passed = [h for h in hypotheses if h[0] >= MIN_FITNESS and h[2] <= MAX_CLASH]
+    figures = "; ".join(
+        f"fitness {f:.2f}, RMSE {1000 * e:.1f} mm, clash {100 * c:.0f} %"
+        for f, e, c, _ in hypotheses
+    )
+    if not passed:
+        raise ScanError(
+            f"{source}: could not be aligned to the scans before it: no alignment found has "
+            f"at least {100 * MIN_FITNESS:.0f} % of its points matched within {ICP_DISTANCE} m "
+            f"and at most {100 * MAX_CLASH:.0f} % of its low points on floor the other scan "
+            f"saw empty ({figures}); too little overlap? Give its pose with --poses"
+        )
+    best = passed[0]
+    rivals = [h for h in passed[1:] if _distinct(best[3], h[3])]
+    runner_up = rivals[0][0] if rivals else 0.0
+    if runner_up >= AMBIGUITY * best[0]:
+        raise ScanError(
+            f"{source}: cannot be aligned to the scans before it unambiguously: two "
+            f"alignments over {DISTINCT_SHIFT} m or {DISTINCT_TURN:g}° apart both pass "
+            f"(fitness {best[0]:.2f} and {runner_up:.2f}; a symmetric hall?); give its pose "
+            "with --poses"
+        )
+    # the figures reported: a last point-to-plane ICP on clouds thinned to FINE_VOXEL, so the
+    # RMSE measures the surfaces' agreement rather than the VOXEL spacing of the thinned points
+    fine_p, fine_r = (
+        o3d.geometry.PointCloud(o3d.utility.Vector3dVector(x)).voxel_down_sample(FINE_VOXEL)
+        for x in (p, r)
+    )
+    fine_r.estimate_normals(kd(radius=NORMAL_RADIUS * VOXEL, max_nn=30))
+    icp = reg.registration_icp(
+        fine_p,
+        fine_r,
+        ICP_DISTANCE,
+        best[3],
+        reg.TransformationEstimationPointToPlane(),
+        reg.ICPConvergenceCriteria(max_iteration=30),
+    )
+    m = np.asarray(icp.transformation)
+    total = np.linalg.inv(lev_r.matrix) @ m @ lev_p.matrix
+    return Alignment(total, best[0], float(icp.inlier_rmse), best[2], runner_up, source)
