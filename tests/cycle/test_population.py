@@ -254,7 +254,10 @@ def test_without_population_nothing_changes(short):
 def test_slower_operators_take_longer_and_handling_scales_with_pace(short):
     """Fixed adults at 0.8 and 1.6 m/s (cadence at the adult's step length), 6 seeded runs
     each: the slow one's median walk and cycle take longer; with the same seed the task-time
-    factors are the same, so an arm motion lasts 1/pace times as long (within 2 frames)."""
+    factors are the same, so an arm motion from the same place lasts 1/pace times as long
+    (within 2 frames). The walk itself depends on the pace (a turn on the spot costs its time
+    at the walker's pace), so a run whose walks end elsewhere reaches over another distance:
+    only runs whose walks end at the same place (within 1 mm) are compared, at least half."""
     _, ctx = short
     out = {}
     for speed in (0.8, 1.6):
@@ -266,7 +269,16 @@ def test_slower_operators_take_longer_and_handling_scales_with_pace(short):
     assert walk[0.8] > 1.4 * walk[1.6]
     cycle = {s: np.median([r.cycle_time for r in out[s]]) for s in out}
     assert cycle[0.8] > 1.4 * cycle[1.6]
-    for a, b in zip(slow, fast, strict=True):
+    same_place = [
+        (a, b)
+        for a, b in zip(slow, fast, strict=True)
+        if all(
+            np.allclose(wa.path.xy[-1], wb.path.xy[-1], atol=1e-3)
+            for wa, wb in zip(a.walks, b.walks, strict=True)
+        )
+    ]
+    assert len(same_place) >= len(slow) // 2
+    for a, b in same_place:
         for arm_slow, arm_fast in zip(a.arms, b.arms, strict=True):
             assert arm_slow.duration == pytest.approx(2.0 * arm_fast.duration, abs=2 / 30 * 3)
 
