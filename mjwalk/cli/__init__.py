@@ -270,11 +270,13 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     print(format_summary(report_dict(results)))
     for name, path in files.items():
         print(f"  wrote {name}: {path}")
+    replayed: dict = {}  # runs simulated again with their timelines, by run index
     if args.video:
         from mjwalk.render import render_video
 
         first = next(r for r in results if r.error is None)  # report_dict: at least one
         run0 = _replay(ctx, args.seed, first.run)
+        replayed[first.run] = run0
         video = args.out / "cycle.mp4"
         assert run0.timeline is not None  # keep_timeline=True
         render_video(
@@ -287,7 +289,7 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
         )
         print(f"  wrote video: {video}")
     if args.export:
-        _export_runs(args, ctx, results)
+        _export_runs(args, ctx, results, replayed)
     if args.json_summary:
         print(json.dumps(report_dict(results)["cycle_time"]))
     return 0
@@ -299,18 +301,22 @@ def _replay(ctx, seed: int, run: int, **kwargs):
     from mjwalk.cycle.simulate import simulate_cycle
 
     rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
-    return simulate_cycle(ctx, rng, run=run, keep_timeline=True, collisions=False, **kwargs)
+    # the video and the exports need the motion only: no collision check, no scoring
+    return simulate_cycle(
+        ctx, rng, run=run, keep_timeline=True, collisions=False, ergonomics=False, **kwargs
+    )
 
 
-def _export_runs(args: argparse.Namespace, ctx, results) -> None:
+def _export_runs(args: argparse.Namespace, ctx, results, replayed: dict) -> None:
     """--export bvh/csv: each simulated run's humanoid motion (again, with its timeline) as
-    ``run_KKK.bvh`` / ``run_KKK_angles.csv`` in --out (mjwalk.ergonomics.export)."""
+    ``run_KKK.bvh`` / ``run_KKK_angles.csv`` in --out (mjwalk.ergonomics.export); ``replayed``
+    holds runs already simulated again (the video's), by run index."""
     from mjwalk.ergonomics.export import write_angles_csv, write_bvh
 
     for r in results:
         if r.error is not None:
             continue
-        run = _replay(ctx, args.seed, r.run, ergonomics=False)
+        run = replayed.get(r.run) or _replay(ctx, args.seed, r.run)
         for kind in dict.fromkeys(args.export):
             if kind == "bvh":
                 out = write_bvh(run.timeline, args.out / f"run_{r.run:03d}.bvh")
