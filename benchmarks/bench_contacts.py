@@ -12,7 +12,7 @@ from pathlib import Path
 
 from mjwalk.cycle.simulate import simulate_cycles
 from mjwalk.gait.default import default_model
-from mjwalk.plan.hybrid import plan_walks
+from mjwalk.plan.walks import plan_walks
 from mjwalk.timeline import collision_report, timeline_from_walk
 from mjwalk.world import load_workplace
 

@@ -32,7 +32,7 @@ from mjwalk.anthropometry import ROM_DEG, leg_geometry
 from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.steps import TOE_OFF
 from mjwalk.gait.default import default_model
-from mjwalk.plan.hybrid import plan_walks
+from mjwalk.plan.walks import plan_walks
 from mjwalk.world import load_workplace
 
 ROOT = Path(__file__).resolve().parents[1]

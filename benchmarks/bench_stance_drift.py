@@ -22,7 +22,7 @@ from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.footcheck import foot_points as _fk_feet
 from mjwalk.body.legs.footcheck import stance_drift
 from mjwalk.gait.default import default_model
-from mjwalk.plan.hybrid import plan_walks
+from mjwalk.plan.walks import plan_walks
 from mjwalk.world import load_workplace
 
 ROOT = Path(__file__).parents[1]

@@ -96,6 +96,7 @@ from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import REFERENCE_CADENCE, REFERENCE_SPEED, Walker
 from mjwalk.plan.grid import BODY_RADIUS
+from mjwalk.plan.guide import minimum_jerk_guide
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.world import load_workplace
 
@@ -228,6 +229,17 @@ def moved(wp, point: np.ndarray, direction: np.ndarray) -> np.ndarray:
     return point
 
 
+def walk_guide(a, head, start, b, tail, goal) -> np.ndarray:
+    """The path a planned walk's heading follows (:mod:`mjwalk.plan.guide`): straight from its
+    moved-back ``start`` to the real walk's first sample ``a``, along its first direction
+    ``head`` (unit); the minimum-jerk curve from there, leaving along ``head``, to the real
+    walk's last sample ``b``, arriving along its last direction ``tail``; straight on to the
+    moved goal ``goal``. The planned walker so crosses each zone's edge where and as the real
+    one did: the walk's own ends and its state there, nothing else of it."""
+    mid = minimum_jerk_guide(a, b, math.atan2(head[1], head[0]), math.atan2(tail[1], tail[0]))
+    return np.vstack([np.asarray(start)[None], mid, np.asarray(goal)[None]])
+
+
 def _unit(v: np.ndarray) -> np.ndarray:
     n = float(np.hypot(*v))
     return v / n if n > 1e-9 else np.array([1.0, 0.0])
@@ -272,7 +284,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--walks-per", type=int, default=0, help="planned walks per real walk")
     ap.add_argument("--max-real", type=int, default=0, help="real walks per pair (0: all)")
     ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("--start-heading", choices=("free", "walk"), default="free")
+    ap.add_argument("--start-heading", choices=("free", "walk"), default="walk")
+    ap.add_argument("--end-heading", choices=("free", "walk"), default="walk")
     ap.add_argument("--smooth", type=float, default=TRACK_SMOOTH_S, help="moving average, s")
     args = ap.parse_args(argv)
     if not (args.data / "walks.csv").exists():
@@ -313,7 +326,11 @@ def main(argv: list[str] | None = None) -> int:
             real[-1]["predicted_left"] = p_left if int(r["start"]) == lo_id else 1.0 - p_left
             head = _unit(xy[1] - xy[0])
             start = moved(wp, xy[0], -head)
-            goal = moved(wp, xy[-1], _unit(xy[-1] - xy[-2]))
+            tail = _unit(xy[-1] - xy[-2])
+            goal = moved(wp, xy[-1], tail)
+            guide = None
+            if args.start_heading == "walk" and args.end_heading == "walk":
+                guide = walk_guide(xy[0], head, start, xy[-1], tail, goal)
             try:
                 planner = HybridPlanner(wp, goal, model)
             except PlanningError:
@@ -328,7 +345,7 @@ def main(argv: list[str] | None = None) -> int:
                 ) else start  # fmt: skip
                 try:
                     path = planner.plan(pose, np.random.default_rng(rng.integers(2**63)),
-                                        model=walker_model)  # fmt: skip
+                                        model=walker_model, guide=guide)  # fmt: skip
                 except PlanningError:
                     failed += 1
                     continue

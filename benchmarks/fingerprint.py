@@ -78,7 +78,7 @@ def main() -> None:
     from mjwalk.cycle.simulate import simulate_cycle
     from mjwalk.cycle.spec import load_cycle_spec
     from mjwalk.gait.default import default_model
-    from mjwalk.plan.hybrid import plan_walks
+    from mjwalk.plan.walks import plan_walks
     from mjwalk.world import load_workplace
 
     out: list[tuple[str, str]] = []

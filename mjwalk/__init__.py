@@ -54,9 +54,10 @@ _LAZY: dict[str, str] = {
     "HybridPlanner": "mjwalk.plan.hybrid",
     "PathStep": "mjwalk.plan.walkpath",
     "WalkPath": "mjwalk.plan.walkpath",
+    "minimum_jerk_guide": "mjwalk.plan.guide",
     "plan_grid": "mjwalk.plan.grid",
-    "plan_walk": "mjwalk.plan.hybrid",
-    "plan_walks": "mjwalk.plan.hybrid",
+    "plan_walk": "mjwalk.plan.walks",
+    "plan_walks": "mjwalk.plan.walks",
     "planned_straight_walks": "mjwalk.plan.straight",
     # humanoid and legs
     "LegMotion": "mjwalk.body.legs",
@@ -212,7 +213,9 @@ if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
     from mjwalk.gait.step import Step
     from mjwalk.mocap import Take, load_amc, load_bvh
     from mjwalk.plan.grid import plan_grid
-    from mjwalk.plan.hybrid import HybridPlanner, plan_walk, plan_walks
+    from mjwalk.plan.guide import minimum_jerk_guide
+    from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.plan.walks import plan_walk, plan_walks
     from mjwalk.plan.walkpath import PathStep, WalkPath
     from mjwalk.plot import save_plan_png
     from mjwalk.render import render_frames, render_video

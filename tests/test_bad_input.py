@@ -24,7 +24,7 @@ FAST = 10.0
 
 WORK = (
     "mjwalk.plan.grid.plan_grid",
-    "mjwalk.plan.hybrid.plan_walks",
+    "mjwalk.plan.walks.plan_walks",
     "mjwalk.cycle.simulate.prepare",
     "mjwalk.cycle.simulate.simulate_cycles",
     "mjwalk.render.render_video",
@@ -128,7 +128,8 @@ def test_bad_plan_options(argv, message, capsys, no_work, tmp_path, monkeypatch)
 def test_api_refuses_non_finite_points(scenes_dir):
     from mjwalk.gait.default import default_model
     from mjwalk.plan.grid import plan_grid
-    from mjwalk.plan.hybrid import HybridPlanner, plan_walks
+    from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.plan.walks import plan_walks
     from mjwalk.world import shared_workplace
 
     wp = shared_workplace(scenes_dir / "assembly_station.xml")
@@ -154,7 +155,7 @@ def test_api_refuses_non_finite_points(scenes_dir):
 
 def test_api_refuses_bad_radius_and_count(scenes_dir):
     from mjwalk.plan.grid import plan_grid
-    from mjwalk.plan.hybrid import plan_walks
+    from mjwalk.plan.walks import plan_walks
     from mjwalk.world import shared_workplace
 
     wp = shared_workplace(scenes_dir / "assembly_station.xml")
@@ -240,7 +241,7 @@ def test_render_refuses_non_mp4_and_bad_sizes(capsys, no_work, tmp_path):
 @pytest.fixture(scope="module")
 def station_walk(tmp_path_factory, scenes_dir):
     from mjwalk.gait.default import default_model
-    from mjwalk.plan.hybrid import plan_walks
+    from mjwalk.plan.walks import plan_walks
     from mjwalk.world import shared_workplace
 
     wp = shared_workplace(scenes_dir / "assembly_station.xml")

@@ -188,7 +188,7 @@ def test_negative_seed_is_refused_everywhere(argv, tmp_path, capsys, no_work):
 
 def test_api_names_a_bad_seed_or_rng(scenes_dir):
     from mjwalk.cycle.simulate import simulate_cycle, simulate_cycles
-    from mjwalk.plan.hybrid import plan_walk, plan_walks
+    from mjwalk.plan.walks import plan_walk, plan_walks
     from mjwalk.world import shared_workplace
 
     wp = shared_workplace(scenes_dir / "assembly_station.xml")

@@ -109,7 +109,7 @@ def _cmd_plan(args: argparse.Namespace) -> int:
     )
     paths = []
     if args.n > 0:
-        from mjwalk.plan.hybrid import plan_walks
+        from mjwalk.plan.walks import plan_walks
 
         paths = plan_walks(
             workplace,

@@ -146,8 +146,10 @@ def simulate_cycle(
         if kind.action == "walk":
             goal = task.site
             assert goal is not None  # the spec loader requires a site for walks
-            # from the heading the operator stands at: turning on the spot, then walking
-            path = plan_task_walk(ctx, i, (x, y), rng, walker, stand_rng, yaw=yaw)
+            # from the heading the operator stands at (turning on the spot, then walking) into
+            # the heading of the work at the goal
+            face = wp.station(goal).yaw
+            path = plan_task_walk(ctx, i, (x, y), rng, walker, stand_rng, yaw=yaw, face=face)
             # a two-handed part stays in the hands, in the carrying posture (turns included)
             pose = None if width is None else carry_pose(ctx, frames[0][0], width)
             turn, dt = turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps, pose=pose)
@@ -162,7 +164,6 @@ def simulate_cycle(
             x, y = (float(v) for v in path.xy[-1])
             home = (x, y)
             yaw = float(path.yaw[-1])
-            face = wp.station(goal).yaw
             # the last step lands knee flexed, pelvis low: the turn settles into standing
             turn, dt = turn_frames(ctx, x, y, yaw, face, fps, pose=pose, settle=wf[-1])
             frames.append(turn)

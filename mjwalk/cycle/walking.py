@@ -83,6 +83,7 @@ def plan_task_walk(
     walker=None,
     spots: np.random.Generator | None = None,
     yaw: float | None = None,
+    face: float | None = None,
 ):
     """The walk of task ``i`` (a walk or carry) from ``start`` (x, y), as a cycle plans it:
     steps from the cycle's step model (conditioned on ``walker`` when given), ending within
@@ -91,7 +92,10 @@ def plan_task_walk(
     with ``rng``), and inside the zone. ``yaw`` (radians): the heading the operator stands at
     (the task before's): the walk sets off from it, turning on the spot first as far as that
     pays against turning while walking (``HybridPlanner.plan(turn_on_spot=True)``); None: it
-    sets off around the downhill heading."""
+    sets off around the downhill heading. ``face`` (radians): the heading the operator works
+    at after the walk (the goal site's): the walk bends into it as people's do
+    (``HybridPlanner.plan(goal_heading=...)``, :mod:`mjwalk.plan.guide`); None: it ends as
+    it comes."""
     task = ctx.spec.tasks[i]
     assert task.site is not None  # the spec loader requires a site for walks
     model = ctx.step_model.for_walker(walker)  # the model itself for None
@@ -105,8 +109,10 @@ def plan_task_walk(
     for _ in range(SPOT_TRIES):
         x, y = standing_spot(ctx, zone, rng if spots is None else spots)
         if np.hypot(x - start[0], y - start[1]) > reach:
-            return planner.plan(pose, rng, model=model, spot=(x, y, reach), turn_on_spot=turn)
-    return planner.plan(pose, rng, model=model, turn_on_spot=turn)
+            return planner.plan(
+                pose, rng, model=model, spot=(x, y, reach), turn_on_spot=turn, goal_heading=face
+            )
+    return planner.plan(pose, rng, model=model, turn_on_spot=turn, goal_heading=face)
 
 
 def plan_cycle_walks(
@@ -134,8 +140,9 @@ def plan_cycle_walks(
     for i, task in enumerate(spec.tasks):
         if TASK_KINDS[task.kind].action == "walk":
             yaw = float(ctx.workplace.station(here).yaw)
-            path = plan_task_walk(ctx, i, (x, y), rng, walker, spots, yaw=yaw)
             goal = str(task.site)
+            face = float(ctx.workplace.station(goal).yaw)
+            path = plan_task_walk(ctx, i, (x, y), rng, walker, spots, yaw=yaw, face=face)
             out.append((i, here, goal, path))
             x, y = (float(v) for v in path.xy[-1])
             here = goal

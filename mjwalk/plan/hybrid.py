@@ -48,9 +48,9 @@ import time
 
 import numpy as np
 
-from mjwalk._args import as_generator, check_seed, finite_points, parse_point
+from mjwalk._args import finite_points, parse_point
 from mjwalk.conventions import DEFAULT_STATURE
-from mjwalk.errors import InputError, PlanningError
+from mjwalk.errors import PlanningError
 from mjwalk.plan import search, slots
 from mjwalk.plan.assemble import assemble_walk
 from mjwalk.plan.decoder import StepDecoder, decoder_of
@@ -62,6 +62,7 @@ from mjwalk.plan.grid import (
     check_endpoint,
     shared_grid,
 )
+from mjwalk.plan.guide import guide_is_clear, minimum_jerk_guide, resample_guide
 from mjwalk.plan.heuristic import GoalDistance, goal_distance
 from mjwalk.plan.options import (
     ATTEMPTS,
@@ -315,7 +316,15 @@ class HybridPlanner:
     # -- search ----------------------------------------------------------------------------
 
     def plan(
-        self, start, rng: np.random.Generator, *, model=None, spot=None, turn_on_spot=False
+        self,
+        start,
+        rng: np.random.Generator,
+        *,
+        model=None,
+        spot=None,
+        turn_on_spot=False,
+        goal_heading: float | None = None,
+        guide=None,
     ) -> WalkPath:
         """Plan one walk from ``start`` (site, "x,y", "x,y,yaw_deg" or (x, y[, yaw])).
 
@@ -342,6 +351,17 @@ class HybridPlanner:
         first sample faces where the turn ended (``yaw[0]``): the turn itself is the caller's
         (the cycle animates it).
 
+        ``goal_heading`` (world radians; None: none): the heading the walker means to arrive
+        at (facing the work after the walk). Unlike the planner's ``goal_yaw`` it is no
+        condition of the goal: it shapes the smooth path the walk's heading follows
+        (:mod:`mjwalk.plan.guide`: the minimum-jerk curve between the start pose, a walking
+        start's heading or the straight line for a standing one, and the goal pose), so the
+        walk bends into it as people's do rather than turning at the end. The guide is used
+        where it keeps the body's clearance and the goal is in sight from the start.
+        ``guide`` ((k, 2) metres, from near the start to near the goal): the caller's own
+        path for the heading to follow instead (e.g. a minimum-jerk curve between two
+        poses on the way, :func:`mjwalk.plan.guide.minimum_jerk_guide`), on the same terms.
+
         When the open list runs dry (every sampled continuation blocked, which happens now and
         then in tight places), the search starts over with fresh samples, up to ``attempts``
         times in all; a spent expansion budget ends the planning at once. A walk that loops
@@ -350,6 +370,18 @@ class HybridPlanner:
         """
         if spot is not None:  # checked once, before any search
             spot = self._check_spot(spot)
+        if goal_heading is not None:
+            try:
+                goal_heading = float(goal_heading)
+            except (TypeError, ValueError):
+                goal_heading = math.nan
+            if not math.isfinite(goal_heading):
+                raise PlanningError(f"goal_heading must be finite radians, got {goal_heading!r}")
+        if guide is not None:
+            try:
+                guide = resample_guide(guide)
+            except (TypeError, ValueError) as exc:
+                raise PlanningError(f"guide: {exc}") from None
         pose = _parse_pose(self.workplace, start)  # parsed once, before any draw
         t0 = time.perf_counter()
         model = model or self.model
@@ -362,7 +394,9 @@ class HybridPlanner:
         exhausted = 0
         for attempt in range(limit):
             try:
-                path, start_distance = self._plan_once(pose, rng, model, spot, pace, turn_on_spot)
+                path, start_distance = self._plan_once(
+                    pose, rng, model, spot, pace, turn_on_spot, goal_heading, guide
+                )
             except _Exhausted as exc:
                 exhausted += 1
                 if exhausted >= self.attempts or attempt == limit - 1:
@@ -395,6 +429,8 @@ class HybridPlanner:
         spot=None,
         pace: float = math.nan,
         turn_on_spot: bool = False,
+        goal_heading: float | None = None,
+        guide: np.ndarray | None = None,
     ) -> tuple[WalkPath, float]:
         """One search: the walk and the obstacle-aware distance (m) from its start to the goal
         (to the ``spot`` of :meth:`plan`, checked there, when given). ``pose``: the start's
@@ -442,6 +478,15 @@ class HybridPlanner:
             start_distance = max(
                 field_distance, math.hypot(start_xy[0] - goal_x, start_xy[1] - goal_y) - tolerance
             )
+        walking_yaw = None if free_heading else start_yaw  # a walker already on its way
+        if guide is None and (walking_yaw is not None or goal_heading is not None):
+            # the smooth path between the end poses (mjwalk.plan.guide)
+            guide = resample_guide(minimum_jerk_guide(
+                start_xy, (goal_x, goal_y), walking_yaw, goal_heading
+            ))  # fmt: skip
+        if guide is not None and par[slots.P_HEADING_WEIGHT] > 0.0:
+            if guide_is_clear(self.workplace, guide, self.radius):  # else the search decides
+                par[slots.P_GUIDE0 : slots.P_DISC0] = guide.ravel()
         if in_goal(complex(*start_xy), start_yaw, par, ipar):
             raise PlanningError(
                 f"start ({start_xy[0]:.3f}, {start_xy[1]:.3f}) already lies in the goal area "
@@ -533,67 +578,3 @@ class HybridPlanner:
             **stats,
         }
         return assemble_walk(model, nid, nodes, feats, meta).stamp_scene(self.workplace)
-
-
-def plan_walk(
-    workplace: Workplace,
-    start,
-    goal,
-    model=None,
-    rng: np.random.Generator | int | None = None,
-    **options,
-) -> WalkPath:
-    """Plan one varied, gait-aware, collision-free walk with the probabilistic hybrid A*.
-
-    Args:
-        workplace: the scene.
-        start: a site name, ``"x,y"``, ``"x,y,yaw_deg"`` or ``(x, y[, yaw])`` (metres, radians).
-            Without a yaw the walker starts facing the way the obstacle-aware distance to the
-            goal falls fastest (it turns on the spot before walking off).
-        goal: a site name, ``"x,y"`` or ``(x, y)``; the walk ends within ``goal_tolerance``.
-        model: a StepModel (default: :func:`mjwalk.gait.default.default_model`).
-        rng: a numpy Generator or a seed.
-        **options: see :class:`HybridPlanner` (goal_tolerance=0.25, goal_yaw=None,
-            radius=0.25, cell=0.08, heading_bins=None (1, or 8 with a goal yaw), n_starters=30,
-            n_successors=10, heuristic="dijkstra" | "euclidean", heuristic_weight=1.01,
-            far_weight=0.05 (walks from beyond LONG_WALK = 14 m, nodes beyond FAR_FROM = 4 m),
-            cost="energy" | "chord" | "path",
-            max_expansions=8000 (per search), attempts=6,
-            samples_per_step=16).
-
-    Raises:
-        PlanningError: start/goal off the floor or inside/too near an obstacle (before any
-            search), goal unreachable (before any search), or the expansion budget spent.
-    """
-    if model is None:
-        from mjwalk.gait.default import default_model
-
-        model = default_model()
-    rng = as_generator(rng, "plan_walk: rng")
-    return HybridPlanner(workplace, goal, model, **options).plan(start, rng)
-
-
-def plan_walks(
-    workplace: Workplace,
-    start,
-    goal,
-    model=None,
-    n: int = 15,
-    seed: int = 0,
-    **options,
-) -> list[WalkPath]:
-    """``n`` independent walks from ``start`` to ``goal``; the same seed gives the same walks.
-
-    Walk ``k`` uses its own random stream (``SeedSequence(seed).spawn``), so a walk does not
-    depend on how many others are planned with it.
-    """
-    if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 0:
-        raise InputError(f"plan_walks: n must be a whole number of walks >= 0, got {n!r}")
-    seed = check_seed(seed, "plan_walks: seed")
-    if model is None:
-        from mjwalk.gait.default import default_model
-
-        model = default_model()
-    planner = HybridPlanner(workplace, goal, model, **options)
-    streams = np.random.SeedSequence(seed).spawn(n)
-    return [planner.plan(start, np.random.default_rng(s)) for s in streams]

@@ -81,7 +81,7 @@ def search(
         rng: numpy Generator.
         matrix, offset, thr, par, ipar, coef, dist: as for
             :func:`~mjwalk.plan.stepcheck.check_steps` (``par``/``ipar`` with the search's
-            slots filled).
+            slots filled, the guide's among them: :mod:`mjwalk.plan.guide`).
 
     Returns:
         (outcome, goal node, [expansions, generated, rejected, stop draws], and per node:

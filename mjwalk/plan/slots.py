@@ -12,6 +12,8 @@ import functools
 
 import numpy as np
 
+from mjwalk.plan.guide import GUIDE_POINTS
+
 # Slots of the float parameter vector (see :func:`params`).
 (
     P_KNEE_LEAD,
@@ -57,8 +59,10 @@ import numpy as np
     P_HEADING_FROM,  # the heading term stops this close (m) to the goal point
     P_START_YAW,  # the walker's heading (world radians) before a turn on the spot
     P_TURN_COST,  # cost (m per radian) of a starter's turn on the spot from it; nan: none
-    P_DISC0,  # goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal)
+    P_GUIDE0,  # the guide's GUIDE_POINTS points, x y each (mjwalk.plan.guide); nan: none
 ) = range(44)
+#: Goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal), after the guide's slots.
+P_DISC0 = P_GUIDE0 + 2 * GUIDE_POINTS
 #: Most discs the goal area can be cut by (:func:`~mjwalk.plan.stepgeom.in_goal`); their count
 #: is I_N_DISCS. A planner takes one fewer (``goal_within``): a walk to a spot keeps the
 #: planner's own goal area as one more disc (:meth:`~mjwalk.plan.hybrid.HybridPlanner.plan`).

@@ -34,6 +34,7 @@ import math
 import numpy as np
 
 from mjwalk._jit import njit
+from mjwalk.plan.guide import guide_aim
 from mjwalk.plan.lean import lean_in_range, lean_limits, lean_ok, stance_lean, stance_lean_ok
 from mjwalk.plan.slots import (
     I_CHORD,
@@ -48,6 +49,7 @@ from mjwalk.plan.slots import (
     MAX_GOAL_DISCS,
     N_IPARAMS,
     N_PARAMS,
+    P_DISC0,
     P_DIST_CELL,
     P_DIST_OFFSET,
     P_DIST_TOP_X,
@@ -63,6 +65,7 @@ from mjwalk.plan.slots import (
     P_FOOT_REACH,
     P_GOAL_X,
     P_GOAL_Y,
+    P_GUIDE0,
     P_HEADING_FROM,
     P_HEADING_WEIGHT,
     P_HIP_Y,
@@ -343,7 +346,8 @@ def check_into(
                 par[P_DIST_TOP_Y], ipar[I_DIST_NX], ex, ey,
             )  # fmt: skip
             if sight:
-                seg *= heading_factor(fr + 0.5 * yaws.imag, end, goal, hw)
+                want = guide_aim(par[P_GUIDE0:P_DISC0], end, goal)
+                seg *= heading_factor(fr + 0.5 * yaws.imag, want, hw)
         g = node[i, 3].real + seg
         fh = par[P_WEIGHT] * h
         if h > par[P_FAR_FROM]:  # farther than FAR_FROM from the goal: the far weight too

@@ -75,19 +75,19 @@ def step_energy(length, duration, pace):
 
 
 @njit
-def heading_factor(heading, end, goal, weight):
+def heading_factor(heading, want, weight):
     """A step's cost factor 1 + weight·ψ² for heading towards a goal in sight: ψ (radians) is
     the angle between the walker's ``heading`` (world radians; the search passes the mean of
     the step's start and end frame headings, which averages out the pelvis's yaw swing
-    between left and right heel strikes) and the straight direction from the step's ``end``
-    to the ``goal`` (complex world points). People walking to a goal keep their body turned
-    towards it: in the inverse optimal control of human walking by Mombaur, Truong & Laumond
-    ("From human to humanoid locomotion - an inverse optimal control approach", Auton Robot
-    28:369-383, 2010) the cost per second is 1 (time) + ... + 5.2·ψ² (their weights α0 = 1,
-    α4 = 5.2); a step's cost, its walked metres at the preferred pace, is its time times the
-    pace, so the ratio carries over as this factor. The factor is >= 1: the heuristic stays
-    admissible."""
-    d = goal - end
-    psi = math.atan2(d.imag, d.real) - heading
+    between left and right heel strikes) and the heading it ``want``s there (world radians:
+    :func:`mjwalk.plan.guide.guide_aim`, the straight direction from the step's end to the
+    goal, or along the walk's smooth guide between its end poses). People walking to a goal
+    keep their body turned towards it: in the inverse optimal control of human walking by
+    Mombaur, Truong & Laumond ("From human to humanoid locomotion - an inverse optimal control
+    approach", Auton Robot 28:369-383, 2010) the cost per second is 1 (time) + ... + 5.2·ψ²
+    (their weights α0 = 1, α4 = 5.2); a step's cost, its walked metres at the preferred pace,
+    is its time times the pace, so the ratio carries over as this factor. The factor is >= 1:
+    the heuristic stays admissible."""
+    psi = want - heading
     psi = (psi + math.pi) % (2.0 * math.pi) - math.pi
     return 1.0 + weight * psi * psi

@@ -107,8 +107,8 @@ def cell_key(p, heading, par, ipar):
 def in_goal(p, heading, par, ipar):
     """Whether a node at world x + iy ``p`` facing ``heading`` (radians) ends the walk: within
     the tolerance of the goal, within each of the I_N_DISCS goal discs (x, y, radius at
-    P_DISC0 + 3k: e.g. the places from which the work there is within reach) and, with a goal
-    yaw, facing it within its tolerance."""
+    P_DISC0 + 3k, after the guide's slots: e.g. the places from which the work there is
+    within reach) and, with a goal yaw, facing it within its tolerance."""
     if beyond(p - complex(par[P_GOAL_X], par[P_GOAL_Y]), par[P_TOLERANCE]):
         return False
     for k in range(ipar[I_N_DISCS]):

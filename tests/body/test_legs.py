@@ -306,7 +306,7 @@ def planned_walks(scenes_dir):
     """20 planned walks: (scene path, walk, leg motion, FK heel/ball points, foot pitch,
     lowest foot point) each."""
     from mjwalk.gait.default import default_model
-    from mjwalk.plan.hybrid import plan_walks
+    from mjwalk.plan.walks import plan_walks
     from mjwalk.world import load_workplace
 
     model = default_model(progress=False)

@@ -13,7 +13,8 @@ from mjwalk.gait.default import default_model
 from mjwalk.gait.fidelity import sway_amplitude
 from mjwalk.gait.segment import segment_takes
 from mjwalk.plan import WalkPath
-from mjwalk.plan.hybrid import HybridPlanner, plan_walk, plan_walks
+from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.walks import plan_walk, plan_walks
 from mjwalk.world import load_workplace
 from mjwalk.world.probe import ClearanceProbe
 
@@ -253,11 +254,11 @@ def test_dead_ends_are_searched_again_up_to_attempts(scenes_dir, model, monkeypa
     calls = {"n": 0}
 
     def dead_ends(k):
-        def plan_once(pose, rng, mdl, spot=None, pace=np.nan, turn_on_spot=False):
+        def plan_once(*args):
             calls["n"] += 1
             if calls["n"] <= k:
                 raise hybrid._Exhausted("search exhausted (test)")
-            return real(pose, rng, mdl, spot, pace, turn_on_spot)
+            return real(*args)
 
         return plan_once
 

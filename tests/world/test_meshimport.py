@@ -91,7 +91,7 @@ def test_imported_u_bench_walk_is_collision_free_in_mujoco(u_scene, tmp_path):
     """scene-import decomposes the bench (CoACD); walks planned into the U keep the body
     radius by MuJoCo's own distance to the convex parts it collides with."""
     from mjwalk.gait.default import default_model
-    from mjwalk.plan.hybrid import plan_walks
+    from mjwalk.plan.walks import plan_walks
     from mjwalk.world.probe import ClearanceProbe, path_clearance
 
     out = tmp_path / "imported.xml"

@@ -143,7 +143,8 @@ def test_long_walks_through_clutter(tmp_path):
     keep the body radius; a walk starting within LONG_WALK of its goal is the same walk with
     and without the far weight."""
     from mjwalk.gait.default import default_model
-    from mjwalk.plan.hybrid import LONG_WALK, plan_walk
+    from mjwalk.plan.hybrid import LONG_WALK
+    from mjwalk.plan.walks import plan_walk
     from mjwalk.world.generate import free_points
 
     hall = generate_hall(36, 10, kinds=("box",), seed=0)

@@ -256,7 +256,7 @@ def test_walks_planned_in_the_reconstruction_keep_the_body_radius_in_the_origina
     station_round_trip,
 ):
     from mjwalk.gait.default import default_model
-    from mjwalk.plan.hybrid import plan_walks
+    from mjwalk.plan.walks import plan_walks
     from mjwalk.world.probe import ClearanceProbe, path_clearance
 
     orig, rec, _ = station_round_trip
@@ -294,7 +294,7 @@ def _floor_tilt_deg(pts: np.ndarray) -> float:
 )
 def test_real_scan(shared_data, tmp_path, rel, overhead):
     from mjwalk.gait.default import default_model
-    from mjwalk.plan.hybrid import plan_walks
+    from mjwalk.plan.walks import plan_walks
     from mjwalk.plot import save_plan_png
     from mjwalk.world.probe import ClearanceProbe, path_clearance
 

@@ -160,7 +160,7 @@ def _assert_plannable(scene, points: np.ndarray, xml) -> None:
 
     from mjwalk.conventions import BODY_RADIUS
     from mjwalk.gait.default import default_model
-    from mjwalk.plan.hybrid import plan_walks
+    from mjwalk.plan.walks import plan_walks
     from mjwalk.world.workplace import OBSTACLE_Z_RANGE, load_workplace
 
     levelled = scene.levelling.apply(points)
