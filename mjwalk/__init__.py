@@ -159,6 +159,7 @@ __all__ = [
     "load_bvh",
     "load_cycle_spec",
     "load_workplace",
+    "minimum_jerk_guide",
     "path_clearance",
     "plan_grid",
     "plan_walk",
@@ -215,8 +216,8 @@ if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
     from mjwalk.plan.grid import plan_grid
     from mjwalk.plan.guide import minimum_jerk_guide
     from mjwalk.plan.hybrid import HybridPlanner
-    from mjwalk.plan.walks import plan_walk, plan_walks
     from mjwalk.plan.walkpath import PathStep, WalkPath
+    from mjwalk.plan.walks import plan_walk, plan_walks
     from mjwalk.plot import save_plan_png
     from mjwalk.render import render_frames, render_video
     from mjwalk.report import format_markdown, format_summary, report_dict, write_report

@@ -352,3 +352,16 @@ def test_a_walk_shorter_than_the_grid_allows_is_counted(workplace):
     assert rep["routes"]["T5"]["vs_baseline"]["min"] == pytest.approx(-0.2)
     below = sum(d["below_floor"] for e in rep["routes"].values() for d in e["directions"])
     assert f"{below} walk(s) below the bound" in format_markdown(rep)
+
+
+def test_the_sources_planner_stands_beside_the_routes(workplace):
+    """A reference with the source's own planner's (median, IQR) puts both in the report's
+    data and in its route table, under a line naming the source."""
+    results = _results(workplace)
+    ref = {"T1": (2.38, 0.21, 2.41, 0.16)}
+    rep = report_dict(results, reference=ref)
+    assert rep["routes"]["T1"]["reference"]["planner_iqr"] == 0.16
+    assert "planner_iqr" not in rep["routes"]["T2"].get("reference", {})
+    md = format_markdown(rep)
+    assert "source's planner 50th [m]" in md
+    assert "| 2.41 | 0.16 |" in md

@@ -25,6 +25,13 @@ Format (every path is relative to the TOML file; lengths in metres, times in sec
     mix = { adult = 0.7, older_adult = 0.2, fatigued = 0.1 }   # or walker/figures, see
                                                 # mjwalk.cycle.population
 
+    [reference]                                 # optional: published walk lengths per route
+    source = "agethen2018 Table 1"              # free text, shown in the report
+    median = { T1 = 2.38 }                      # route label -> metres: captured median, IQR,
+    iqr = { T1 = 0.21 }                         # and (optional) the source's own planner's
+    planner_median = { T1 = 2.41 }              # median and IQR; the report sets them beside
+    planner_iqr = { T1 = 0.16 }                 # each route's figures
+
     [[task]]                                    # one table per task, in order (at least one)
     kind = "pick"                               # walk | carry | pick | place | fasten | wait
     site = "rack2_screw1"
@@ -87,6 +94,7 @@ from mjwalk.cycle.population import HUMANOID_STATURE_RANGE, Population, parse_po
 from mjwalk.cycle.specfile import (
     ALL_TASK_KEYS,
     MAX_CYCLE_SECONDS,
+    REFERENCE_KEYS,
     TABLE_KEYS,
     TOP_KEYS,
     Checker,
@@ -105,6 +113,8 @@ MAX_REACH = 0.9
 STATURE_RANGE = HUMANOID_STATURE_RANGE
 #: Allowed walking (body) radius, metres.
 RADIUS_RANGE = (0.1, 0.6)
+#: Largest walk length a [reference] table may give (m): a plausibility bound (a hall's walk).
+MAX_REFERENCE_M = 1000.0
 HANDS = ("left", "right")
 #: The heaviest part a pick may declare (kg): beyond any manual lift (the revised NIOSH
 #: equation's load constant is 23 kg).
@@ -284,6 +294,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
     except CycleSpecError as exc:
         raise check.fail(str(exc), "task", len(tasks) - 1, "duration") from None
     _check_routes(check, workplace, start, tasks, radius)
+    reference, source = _reference(check, data.get("reference"), tasks)
     return CycleSpec(
         path=path,
         scene=scene,
@@ -297,7 +308,55 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         name=name,
         population=population,
         takt=takt,
+        reference=reference,
+        reference_source=source,
     )
+
+
+def _reference(check: Checker, table, tasks: list[Task]) -> tuple[dict | None, str]:
+    """The [reference] table (format in the module doc) as route label -> (median, IQR[,
+    planner median, planner IQR]) in metres, and its source; (None, "") without one. Every
+    label must be a walk's route; median and IQR are required for each label given."""
+    if table is None:
+        return None, ""
+    if not isinstance(table, dict):
+        raise check.fail("'reference' must be a table ([reference])", key="reference")
+    check.keys(table, REFERENCE_KEYS, "reference")
+    source = check.string(table, "source", "reference") if "source" in table else ""
+    routes = {t.route or "" for t in tasks if TASK_KINDS[t.kind].action == "walk"}
+    figures: dict[str, dict[str, float]] = {}
+    for key in REFERENCE_KEYS[1:]:
+        per_route = table.get(key, {})
+        if not isinstance(per_route, dict):
+            raise check.fail(
+                f"key {key!r} in [reference] must be a table of route label -> metres "
+                "(e.g. { T1 = 2.38 })",
+                "reference",
+                None,
+                key,
+            )
+        for label in per_route:
+            if label not in routes:  # the labels of walks' own `route` keys
+                raise check.fail(
+                    f"key {key!r} in [reference] names route {label!r}, which no walk has "
+                    f"(routes: {', '.join(sorted(r for r in routes if r)) or 'none'})",
+                    "reference",
+                    None,
+                    key,
+                )
+            value = check.number(per_route, label, 0.0, MAX_REFERENCE_M, "m", "reference")
+            figures.setdefault(label, {})[key] = value
+    out = {}
+    for label, f in figures.items():
+        if "median" not in f or "iqr" not in f:
+            raise check.fail(
+                f"route {label!r} in [reference] needs both 'median' and 'iqr'", "reference"
+            )
+        row = (f["median"], f["iqr"])
+        if "planner_median" in f or "planner_iqr" in f:
+            row += (f.get("planner_median", math.nan), f.get("planner_iqr", math.nan))
+        out[label] = row
+    return out or None, source
 
 
 def _check_routes(

@@ -31,8 +31,11 @@ MAX_TASKS = 3600
 PATH_KEYS = ("scene", "step", "reach", "reach_right")
 
 TOP_KEYS = (
-    "name", "scene", "start", "takt", "humanoid", "models", "walking", "population", "task"
+    "name", "scene", "start", "takt", "humanoid", "models", "walking", "population", "task",
+    "reference",
 )  # fmt: skip
+#: Keys of the optional [reference] table: its source, then route label -> metres tables.
+REFERENCE_KEYS = ("source", "median", "iqr", "planner_median", "planner_iqr")
 TABLE_KEYS = {
     "humanoid": ("stature",),
     "models": ("step", "reach", "reach_right"),

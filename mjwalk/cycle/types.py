@@ -138,6 +138,8 @@ class CycleSpec:
         population: who operates each run (:mod:`mjwalk.cycle.population`); None: the step
             model's own pace, handling at the reference adult's pace, the ``stature`` humanoid.
         takt: the takt time, seconds (None: not given); the report gives P(cycle > takt).
+        reference, reference_source: published walk lengths per route and their source
+            (the spec's [reference] table), set beside the routes in the report.
     """
 
     path: Path
@@ -152,6 +154,11 @@ class CycleSpec:
     name: str = ""
     population: Population | None = None
     takt: float | None = None
+    #: Published walk lengths per route label, metres: (median, IQR) or (median, IQR, the
+    #: source's planner's median, its IQR; nan where not given); None: none ([reference]).
+    reference: dict[str, tuple[float, ...]] | None = None
+    #: Where :attr:`reference` comes from (free text; "" without one).
+    reference_source: str = ""
 
 
 @dataclass

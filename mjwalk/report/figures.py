@@ -186,15 +186,18 @@ def split_failed(
 def report_dict(
     results: Sequence[CycleResult],
     *,
-    reference: Mapping[str, tuple[float, float]] | None = None,
+    reference: Mapping[str, tuple[float, ...]] | None = None,
 ) -> dict:
     """The report's figures as plain data (JSON-ready).
 
     Args:
         results: simulated cycles (normally of one spec, one per Monte-Carlo run).
         reference: optional captured (median, IQR) walk length per route, metres (e.g.
-            :data:`CAPTURE_TABLE1`); adds ``reference``, ``median_error`` (relative) and
-            ``iqr_ratio`` to those routes.
+            :data:`CAPTURE_TABLE1`), optionally followed by the source's own planner's
+            (median, IQR); adds ``reference`` (``median``, ``iqr``, ``planner_median``,
+            ``planner_iqr``), ``median_error`` (relative) and ``iqr_ratio`` to those routes.
+            Default: the spec's own (:attr:`CycleSpec.reference`, its [reference] table), and
+            ``reference_source`` at the top level.
 
     Returns:
         ``{"name", "scene", "models", "runs", "routes": {label: {...}}, "cycle_time", "collisions",
@@ -204,6 +207,8 @@ def report_dict(
         raise MjwalkError("report: no cycle results to report")
     results, failed = split_failed(results)
     spec = results[0].spec
+    if reference is None:
+        reference = getattr(spec, "reference", None)
     takt = getattr(spec, "takt", None)
     population = getattr(spec, "population", None)
     routes = {}
@@ -220,8 +225,11 @@ def report_dict(
         }
         length = entry["length"]
         if reference is not None and label in reference:
-            ref_median, ref_iqr = (float(v) for v in reference[label])
+            ref_median, ref_iqr, *planner = (float(v) for v in reference[label])
             entry["reference"] = {"median": ref_median, "iqr": ref_iqr}
+            if len(planner) == 2:  # the source's own planner's figures
+                entry["reference"]["planner_median"] = planner[0]
+                entry["reference"]["planner_iqr"] = planner[1]
             entry["median_error"] = length["median"] / ref_median - 1.0
             entry["iqr_ratio"] = length["iqr"] / ref_iqr if ref_iqr > 0 else float("nan")
         routes[label] = entry
@@ -264,6 +272,7 @@ def report_dict(
             for r in failed
         ],
         "routes": routes,
+        "reference_source": getattr(spec, "reference_source", "") if reference else "",
         "baseline": _baseline_note(spec),
         "cycle_time": {
             **describe([r.cycle_time for r in results]),

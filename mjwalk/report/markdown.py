@@ -41,10 +41,13 @@ def _route_rows(rep: dict) -> tuple[list[str], list[list[str]]]:
     after a route's directions where it has several; the capture's figures on the route's
     pooled (or only) row."""
     has_ref = any("reference" in e for e in rep["routes"].values())
+    has_planner = any("planner_iqr" in e.get("reference", {}) for e in rep["routes"].values())
     head = ["route", "from -> to", "walks", "grid A* [m]", "length 50th [m]", "IQR [m]"]
     head += ["duration 50th [s]", "IQR [s]", "vs A*"]
     if has_ref:
         head += ["capture 50th [m]", "IQR [m]", "median error", "IQR ratio"]
+    if has_planner:  # the source's own planner, beside ours
+        head += ["source's planner 50th [m]", "IQR [m]"]
 
     def row(label: str, what: str, e: dict, ref: dict | None) -> list[str]:
         out = [
@@ -68,6 +71,9 @@ def _route_rows(rep: dict) -> tuple[list[str], list[list[str]]]:
                 ]
             else:
                 out += ["–"] * 4
+        if has_planner:
+            r = (ref or {}).get("reference", {})
+            out += [_f(r.get("planner_median")), _f(r.get("planner_iqr"))]
         return out
 
     rows = []
@@ -78,6 +84,20 @@ def _route_rows(rep: dict) -> tuple[list[str], list[list[str]]]:
         if len(dirs) != 1:  # several directions (or a report without them): the route pooled
             rows.append(row(label, "both" if dirs else "–", e, e))
     return head, rows
+
+
+def _reference_md(rep: dict) -> list[str]:
+    """The line under the route table naming the published figures beside it."""
+    source = rep.get("reference_source")
+    if not source:
+        return []
+    return [
+        "",
+        f"`capture` and `source's planner`: {source} (the captured walks' lengths and the "
+        "source's own planner's, pooled over a route's directions; on the route's pooled "
+        "row). A route's spread here comes from where its walks start and end (the stand "
+        "zones) and from how each walk curves between them (mjwalk.plan.guide).",
+    ]
 
 
 def _baseline_md(rep: dict) -> list[str]:
@@ -151,6 +171,7 @@ def format_markdown(rep: dict) -> str:
         "beside the grid-A* route length (layout of agethen2018 Table 1).",
         "",
         _md_table(*_route_rows(rep)),
+        *_reference_md(rep),
         "",
         *_baseline_md(rep),
         "",

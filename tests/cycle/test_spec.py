@@ -251,3 +251,25 @@ def test_task_kinds_table_says_what_the_lower_stages_read():
         "fasten": "put",
     }
     assert {k for k, v in TASK_KINDS.items() if v.lifts} == {"pick", "place"}
+
+
+def test_reference_table_is_read_and_checked(tmp_path, workplace):
+    """The shipped cycle's [reference] is agethen2018 Table 1 (captured and the paper's
+    planner); a route no walk has, a missing IQR or a negative length is named."""
+    path = tmp_path / "cycle.toml"
+    text = _shipped_text()
+    path.write_text(text)
+    spec = load_cycle_spec(path, workplace=workplace)
+    assert spec.reference is not None and set(spec.reference) == {"T1", "T2", "T3", "T4", "T5"}
+    assert spec.reference["T3"] == (3.15, 0.38, 3.11, 0.21)
+    assert "agethen2018" in spec.reference_source
+    bad = _mutate(text, "iqr = { T1 = 0.21,", "iqr = { T9 = 0.21,")
+    path.write_text(bad)
+    with pytest.raises(CycleSpecError, match="route 'T9'"):
+        load_cycle_spec(path, workplace=workplace)
+    path.write_text(_mutate(text, "iqr = { T1 = 0.21, ", "iqr = { "))
+    with pytest.raises(CycleSpecError, match="'T1' in \\[reference\\] needs both"):
+        load_cycle_spec(path, workplace=workplace)
+    path.write_text(_mutate(text, "median = { T1 = 2.38", "median = { T1 = -2.38"))
+    with pytest.raises(CycleSpecError, match="'T1'"):
+        load_cycle_spec(path, workplace=workplace)
