@@ -454,8 +454,6 @@ class HybridPlanner:
         stature = float(getattr(walker, "stature", None) or DEFAULT_STATURE)
         par, ipar = self._kernel_params(stature)
         par[slots.P_PACE] = pace
-        if not self.distance.sees(start_xy):  # HEADING_WEIGHT: only for a goal in sight
-            par[slots.P_HEADING_WEIGHT] = 0.0
         goal_x, goal_y, tolerance = float(self.goal[0]), float(self.goal[1]), self.tolerance
         field_distance = start_distance
         if spot is not None:  # this walk's own goal point (module doc of plan)
@@ -487,6 +485,9 @@ class HybridPlanner:
         if guide is not None and par[slots.P_HEADING_WEIGHT] > 0.0:
             if guide_is_clear(self.workplace, guide, self.radius):  # else the search decides
                 par[slots.P_GUIDE0 : slots.P_DISC0] = guide.ravel()
+        if math.isnan(par[slots.P_GUIDE0]) and not self.distance.sees(start_xy):
+            # HEADING_WEIGHT without a guide: only for a goal in sight from the start
+            par[slots.P_HEADING_WEIGHT] = 0.0
         if in_goal(complex(*start_xy), start_yaw, par, ipar):
             raise PlanningError(
                 f"start ({start_xy[0]:.3f}, {start_xy[1]:.3f}) already lies in the goal area "

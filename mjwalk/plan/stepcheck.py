@@ -341,7 +341,9 @@ def check_into(
                 h = bound
         hw = par[P_HEADING_WEIGHT]
         if hw > 0.0 and not closing and h > par[P_HEADING_FROM]:
-            sight = grid_sight(
+            # along a guide (clear of obstacles: mjwalk.plan.guide) everywhere; else only
+            # where the goal is in sight
+            sight = not math.isnan(par[P_GUIDE0]) or grid_sight(
                 dist, par[P_DIST_X0], par[P_DIST_Y0], par[P_DIST_CELL], par[P_DIST_TOP_X],
                 par[P_DIST_TOP_Y], ipar[I_DIST_NX], ex, ey,
             )  # fmt: skip
