@@ -126,6 +126,7 @@ from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import REFERENCE_CADENCE, REFERENCE_SPEED, Walker
+from mjwalk.plan.detour import left_share, obstacle_ends
 from mjwalk.plan.grid import BODY_RADIUS
 from mjwalk.plan.guide import minimum_jerk_guide
 from mjwalk.plan.hybrid import HybridPlanner
@@ -138,14 +139,6 @@ TRACK_SMOOTH_S = 0.8
 #: Between-person SD of comfortable gait speed in log (Bohannon & Andrews 2011: 1.34 +- 0.18 m/s
 #: pooled over adults 20-79, about 0.13 in log).
 SPEED_LOG_SD = 0.13
-#: Route selection around a barrier (PMC7875474, walkers going around a barrier to a visible
-#: goal, mixed-effects logistic regression; as tests/plan/test_hybrid.py cites it): 75 % of
-#: choices go to the side of smaller deviation angle when the two sides' angles differ by
-#: 1.65 deg, i.e. a logistic slope of ln 3 / 1.65 per degree.
-SIDE_SLOPE_PER_DEG = math.log(3.0) / 1.65
-#: The room's obstacle (obs0 of the scene: centre, half sizes, yaw) and the planner's body
-#: radius it is inflated by for the deviation angles.
-OBSTACLE = (np.array([0.694, 0.527]), np.array([0.401, 0.346]), math.radians(38.37))
 MIN_WALKS = 10
 MOVE_BACK = 1.0
 OBSTACLE_NEAR = 1.5
@@ -220,26 +213,12 @@ def measure(xy: np.ndarray, lo: np.ndarray, hi: np.ndarray, obstacle: np.ndarray
     }
 
 
-def predicted_left(start: np.ndarray, goal: np.ndarray) -> float:
-    """The cited logistic model's probability (SIDE_SLOPE_PER_DEG) that a walker from
-    ``start`` to ``goal`` passes the obstacle on its left (of start -> goal): the deviation
-    angle of each side is how far left (right) of the goal direction the walker must head to
-    clear the obstacle's corners, inflated by the body radius, as seen from the start."""
-    centre, half, yaw = OBSTACLE
-    c, s = math.cos(yaw), math.sin(yaw)
-    h = half + BODY_RADIUS
-    corners = [
-        centre + np.array([c * dx - s * dy, s * dx + c * dy])
-        for dx in (-h[0], h[0])
-        for dy in (-h[1], h[1])
-    ]
-    base = math.atan2(goal[1] - start[1], goal[0] - start[0])
-    ang = [
-        math.degrees(math.remainder(math.atan2(q[1] - start[1], q[0] - start[0]) - base, math.tau))
-        for q in corners
-    ]
-    d_left, d_right = max(0.0, max(ang)), max(0.0, -min(ang))
-    return 1.0 / (1.0 + math.exp(-SIDE_SLOPE_PER_DEG * (d_right - d_left)))
+def predicted_left(obstacle, start: np.ndarray, goal: np.ndarray) -> float:
+    """The cited logistic model's probability (:func:`mjwalk.plan.detour.left_share`:
+    PMC7875474's deviation angle and distance thresholds) that a walker from ``start`` to
+    ``goal`` passes the room's ``obstacle`` (its footprint) on its left (of start -> goal)."""
+    left, right = obstacle_ends(obstacle, start, goal)
+    return left_share(start, goal, left, right)
 
 
 def as_tracked(xy120: np.ndarray, smooth_s: float = TRACK_SMOOTH_S) -> np.ndarray:
@@ -325,7 +304,8 @@ def main(argv: list[str] | None = None) -> int:
         ap.error("--walks-per and --max-real must be >= 0, --smooth within 0-5 s")
     stations, zone, rows, points = load_real(args.data)
     wp = load_workplace(args.data / "thor_exp1_exp2_scene.xml")
-    obstacle = np.array([0.694, 0.527])  # obs0's centre in the scene (the room's one obstacle)
+    obs_fp = next(fp for fp in wp.obstacles if fp.name == "obs0")  # the room's one obstacle
+    obstacle = obs_fp.vertices.mean(axis=0)  # its centre
     by_pair: dict[str, list[dict]] = defaultdict(list)
     for r in rows:
         by_pair[r["pair"]].append(r)
@@ -353,13 +333,14 @@ def main(argv: list[str] | None = None) -> int:
             a, b = stations[int(r["start"])], stations[int(r["goal"])]
             real.append(measure(xy, lo, hi, obstacle))
             # the side as seen lower -> higher station: flip for walks the other way
-            p_left = predicted_left(xy[0], xy[-1])
+            p_left = predicted_left(obs_fp, xy[0], xy[-1])
             real[-1]["predicted_left"] = p_left if int(r["start"]) == lo_id else 1.0 - p_left
             head = _unit(xy[1] - xy[0])
             start = moved(wp, xy[0], -head)
             tail = _unit(xy[-1] - xy[-2])
             goal = moved(wp, xy[-1], tail)
             guide = None
+            end_yaw = math.atan2(tail[1], tail[0]) if args.end_heading == "walk" else None
             if args.start_heading == "walk" and args.end_heading == "walk":
                 guide = walk_guide(xy[0], head, start, xy[-1], tail, goal)
             try:
@@ -376,7 +357,8 @@ def main(argv: list[str] | None = None) -> int:
                 ) else start  # fmt: skip
                 try:
                     path = planner.plan(pose, np.random.default_rng(rng.integers(2**63)),
-                                        model=walker_model, guide=guide)  # fmt: skip
+                                        model=walker_model, guide=guide,
+                                        goal_heading=end_yaw)  # fmt: skip
                 except PlanningError:
                     failed += 1
                     continue

@@ -54,6 +54,7 @@ from mjwalk.errors import PlanningError
 from mjwalk.plan import search, slots
 from mjwalk.plan.assemble import assemble_walk
 from mjwalk.plan.decoder import StepDecoder, decoder_of
+from mjwalk.plan.detour import detour_guide
 from mjwalk.plan.grid import (
     BODY_RADIUS,
     CELL_SIZE,
@@ -388,6 +389,8 @@ class HybridPlanner:
         pace = math.nan
         if self.cost == "energy":  # this walk's own pace (WALK_PACE_SD)
             pace = preferred_speed(model) * math.exp(WALK_PACE_SD * rng.standard_normal())
+        if self.heading_weight > 0.0:  # the way the walk's heading follows
+            guide = self._guide(pose, spot, turn_on_spot, goal_heading, guide, rng, model)
         best: WalkPath | None = None
         bound = None
         limit = max(self.attempts, WANDER_SEARCHES)
@@ -476,12 +479,6 @@ class HybridPlanner:
             start_distance = max(
                 field_distance, math.hypot(start_xy[0] - goal_x, start_xy[1] - goal_y) - tolerance
             )
-        walking_yaw = None if free_heading else start_yaw  # a walker already on its way
-        if guide is None and (walking_yaw is not None or goal_heading is not None):
-            # the smooth path between the end poses (mjwalk.plan.guide)
-            guide = resample_guide(minimum_jerk_guide(
-                start_xy, (goal_x, goal_y), walking_yaw, goal_heading
-            ))  # fmt: skip
         if guide is not None and par[slots.P_HEADING_WEIGHT] > 0.0:
             if guide_is_clear(self.workplace, guide, self.radius):  # else the search decides
                 par[slots.P_GUIDE0 : slots.P_DISC0] = guide.ravel()
@@ -568,6 +565,31 @@ class HybridPlanner:
             },
         )
         return path, start_distance
+
+    def _guide(self, pose, spot, turn_on_spot, goal_heading, guide, rng, model):
+        """The path (n, 2) a walk's heading follows (None: straight at the goal): the caller's
+        ``guide``, or for a walker already walking (a start yaw without ``turn_on_spot``) or
+        with a ``goal_heading`` the minimum-jerk path between the end poses, or else the
+        straight line; where that runs into an obstacle, the way past it on a side drawn
+        from ``rng`` (:func:`mjwalk.plan.detour.detour_guide`), else itself (a straight line:
+        None)."""
+        (x, y), yaw = pose
+        walking = None if yaw is None or turn_on_spot else yaw
+        goal = self.goal if spot is None else spot[:2]
+        if math.hypot(goal[0] - x, goal[1] - y) < 1e-6:
+            return None  # no walk (refused by the search)
+        walker = getattr(model, "walker", None)
+        stature = float(getattr(walker, "stature", None) or DEFAULT_STATURE)
+        direct = guide
+        if direct is None and (walking is not None or goal_heading is not None):
+            direct = minimum_jerk_guide((x, y), goal, walking, goal_heading)
+        way = np.array([(x, y), goal], dtype=float) if direct is None else direct
+        path = detour_guide(
+            self.workplace, way, (x, y), goal, walking, goal_heading, self.radius, rng, stature
+        )
+        if path is None:
+            path = direct
+        return None if path is None else resample_guide(path)
 
     def _assemble(self, model, nid, nodes, feats, stats) -> WalkPath:
         meta = {
