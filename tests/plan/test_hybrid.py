@@ -12,6 +12,7 @@ from mjwalk.gait.corpus import generate_corpus
 from mjwalk.gait.default import default_model
 from mjwalk.gait.fidelity import sway_amplitude
 from mjwalk.gait.segment import segment_takes
+from mjwalk.gait.speedprofile import curve_speed_ratio, start_stop_distances
 from mjwalk.plan import WalkPath
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.walks import plan_walk, plan_walks
@@ -312,28 +313,10 @@ def test_a_walk_with_the_goal_behind_curves(model, scenes_dir):
     assert np.median(lateral) >= 0.3, np.median(lateral)
 
 
-def _curve_speed_ratio(xy: np.ndarray, fps: float) -> float:
-    """Median speed where the stride-averaged (1 s) direction of travel turns faster than
-    30 deg/s over the median where it turns slower than 5 deg/s, among samples at >= 60 % of
-    the walk's 95th-percentile stride-averaged speed (steady walking, not setting off or
-    stopping)."""
-    from scipy.ndimage import uniform_filter1d
-
-    n = round(fps)
-    s = uniform_filter1d(xy, n, axis=0, mode="nearest")
-    v = np.gradient(s, axis=0) * fps
-    speed = np.hypot(*v.T)
-    turn = np.abs(uniform_filter1d(np.gradient(np.unwrap(np.arctan2(v[:, 1], v[:, 0]))) * fps, n))
-    steady = speed >= 0.6 * np.percentile(speed, 95)
-    curve, straight = steady & (turn > np.radians(30)), steady & (turn < np.radians(5))
-    if curve.sum() < 5 or straight.sum() < 5:
-        return float("nan")
-    return float(np.median(speed[curve]) / np.median(speed[straight]))
-
-
 #: Speed in a 90 deg walking turn over the speed on the straight, measured as
-#: :func:`_curve_speed_ratio` on the 250 Bandai ``walk-turn-left/right`` clips (one turn of
-#: about 90 deg each; Kobayashi et al. 2023): median 0.913, IQR 0.865-0.942.
+#: :func:`~mjwalk.gait.speedprofile.curve_speed_ratio` on the 250 Bandai ``walk-turn-left/right``
+#: clips (one turn of about 90 deg each; Kobayashi et al. 2023; ``benchmarks/bench_pace.py``):
+#: median 0.913, IQR 0.865-0.942.
 CAPTURED_CURVE_SPEED = (0.865, 0.913, 0.942)
 
 
@@ -351,7 +334,7 @@ def test_walkers_slow_down_in_a_right_angle_turn(model, tmp_path):
     )
     planner = HybridPlanner(load_workplace(scene), (2.5, 5.0), model)
     ratios = [
-        _curve_speed_ratio(planner.plan((-5.0, 0.5, 0.0), np.random.default_rng(k)).xy, 120.0)
+        curve_speed_ratio(planner.plan((-5.0, 0.5, 0.0), np.random.default_rng(k)).xy, 120.0)
         for k in range(20)
     ]
     median = np.nanmedian(ratios)
@@ -385,3 +368,31 @@ def test_a_standing_walker_pays_for_its_turn_on_the_spot(model, scenes_dir):
         for k in range(20)
     ]
     assert np.median([off(y, 0.0) for y in back]) < math.radians(20.0)
+
+
+#: Distance (m) from setting off to 90 % of the steady speed, and from the last 90 % to
+#: standing, of the 103 Bandai straight ``walk`` clips (standing to standing, four styles),
+#: measured as :func:`~mjwalk.gait.speedprofile.start_stop_distances`
+#: (``benchmarks/bench_pace.py``): (25th, 50th, 75th percentile).
+CAPTURED_SPEED_UP = (0.41, 0.62, 0.77)
+CAPTURED_SLOW_DOWN = (0.20, 0.25, 0.47)
+
+
+def test_walkers_set_off_and_stop_over_the_captured_distances(model, scenes_dir):
+    """Planned 9 m walks from standing to standing reach their steady pace and come to a
+    stand over the distances captured walkers do: 12 seeded walks, median speed-up and
+    slow-down distances within the captured inter-quartile ranges (measured 0.61 and 0.35 m
+    against the capture's 0.62 and 0.25 m)."""
+    wp = load_workplace(scenes_dir / "open_floor.xml")
+    planner = HybridPlanner(wp, (4.5, 0.0), model)
+    up, down = [], []
+    for k in range(12):
+        xy = planner.plan((-4.5, 0.0), np.random.default_rng(k)).xy
+        xy = np.vstack([np.repeat(xy[:1], 120, axis=0), xy, np.repeat(xy[-1:], 120, axis=0)])
+        a, b, _ = start_stop_distances(xy, 120.0)
+        up.append(a)
+        down.append(b)
+    lo, _, hi = CAPTURED_SPEED_UP
+    assert lo <= np.median(up) <= hi, np.median(up)
+    lo, _, hi = CAPTURED_SLOW_DOWN
+    assert lo <= np.median(down) <= hi, np.median(down)

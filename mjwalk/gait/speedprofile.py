@@ -1,0 +1,68 @@
+"""How speed varies along a walk: slower in curves, speeding up from and slowing down to a stand.
+
+Two measures of a horizontal pelvis path (n, 2) in metres sampled at ``fps`` Hz, used to compare
+planned walks with captured ones (``benchmarks/bench_pace.py``, tests of the planner):
+
+- :func:`curve_speed_ratio`: the speed where the walk turns over the speed where it runs
+  straight. People slow down in curves (Vieilledent et al., Neurosci Lett 2001; Hicheur et al.,
+  Exp Brain Res 2005: the speed of walking falls with the path's curvature).
+- :func:`start_stop_distances`: the distance from setting off to reaching 90 % of the walk's
+  steady speed, and from last being at 90 % of it to standing. Gait initiation reaches the
+  steady speed within about a step, and termination takes about one (Brenière & Do, J Biomech
+  1986; Jaeger & Vanitchatchavan, J Biomech 1992); the capture mjwalk has is the reference the
+  planner is checked against (``benchmarks/bench_pace.py``).
+
+Both average the speed over a window first: the pelvis speeds up and slows down within every
+step, and the within-step swing is no change of pace.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.ndimage import uniform_filter1d
+
+__all__ = ["MOVING_SPEED", "STEP_WINDOW", "curve_speed_ratio", "start_stop_distances"]
+
+#: Speed (m/s) above which the pelvis counts as moving (standing sway is far slower).
+MOVING_SPEED = 0.1
+#: Averaging window (s) of :func:`start_stop_distances`: one step at 113 steps/min (the
+#: reference cadence of :mod:`mjwalk.gait.walker`), which removes the within-step speed swing.
+STEP_WINDOW = 60.0 / 113.0
+
+
+def curve_speed_ratio(xy: np.ndarray, fps: float) -> float:
+    """Median speed where the stride-averaged (1 s) direction of travel turns faster than
+    30 deg/s over the median where it turns slower than 5 deg/s, among samples at >= 60 % of
+    the walk's 95th-percentile stride-averaged speed (steady walking, not setting off or
+    stopping); nan when either has fewer than 5 samples."""
+    n = max(1, round(fps))
+    s = uniform_filter1d(np.asarray(xy, dtype=float), n, axis=0, mode="nearest")
+    v = np.gradient(s, axis=0) * fps
+    speed = np.hypot(*v.T)
+    turn = np.abs(uniform_filter1d(np.gradient(np.unwrap(np.arctan2(v[:, 1], v[:, 0]))) * fps, n))
+    steady = speed >= 0.6 * np.percentile(speed, 95)
+    curve, straight = steady & (turn > np.radians(30)), steady & (turn < np.radians(5))
+    if curve.sum() < 5 or straight.sum() < 5:
+        return float("nan")
+    return float(np.median(speed[curve]) / np.median(speed[straight]))
+
+
+def start_stop_distances(xy: np.ndarray, fps: float, window: float = STEP_WINDOW):
+    """(speed-up distance, slow-down distance, steady speed) of a walk from standing to
+    standing: metres walked from the first sample moving faster than :data:`MOVING_SPEED` to
+    the first at 90 % of the steady speed (the median over the middle third of the moving
+    samples), and from the last at 90 % of it to the last moving sample, speed averaged over
+    ``window`` seconds; None when the walk moves for less than two seconds."""
+    n = max(1, round(fps * window))
+    s = uniform_filter1d(np.asarray(xy, dtype=float), n, axis=0, mode="nearest")
+    v = np.hypot(*np.gradient(s, axis=0).T) * fps
+    moving = np.flatnonzero(v > MOVING_SPEED)
+    if len(moving) < 2 * fps:
+        return None
+    a, b = int(moving[0]), int(moving[-1])
+    third = (b - a) // 3
+    steady = float(np.median(v[a + third : b - third + 1]))
+    up = a + int(np.argmax(v[a:] >= 0.9 * steady))
+    down = b - int(np.argmax(v[b::-1] >= 0.9 * steady))
+    walked = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(s, axis=0).T))])
+    return float(walked[up] - walked[a]), float(walked[b] - walked[down]), steady
