@@ -4,13 +4,17 @@ Two measures of a horizontal pelvis path (n, 2) in metres sampled at ``fps`` Hz,
 planned walks with captured ones (``benchmarks/bench_pace.py``, tests of the planner):
 
 - :func:`curve_speed_ratio`: the speed where the walk turns over the speed where it runs
-  straight. People slow down in curves (Vieilledent et al., Neurosci Lett 2001; Hicheur et al.,
-  Exp Brain Res 2005: the speed of walking falls with the path's curvature).
+  straight. People slow down in curves (Vieilledent et al. 2001, Hicheur et al. 2005: the
+  speed of walking falls with the path's curvature; their laws' figures were not checked here,
+  so the reference is again the capture: 0.91 of the straight speed in a 90 deg turn).
 - :func:`start_stop_distances`: the distance from setting off to reaching 90 % of the walk's
-  steady speed, and from last being at 90 % of it to standing. Gait initiation reaches the
-  steady speed within about a step, and termination takes about one (Brenière & Do, J Biomech
-  1986; Jaeger & Vanitchatchavan, J Biomech 1992); the capture mjwalk has is the reference the
-  planner is checked against (``benchmarks/bench_pace.py``).
+  steady speed, and from last being at 90 % of it to standing. Studies of gait initiation put
+  the transition to steady gait between the end of the first step (Lepers et al. 1995, as a
+  review of gait initiation cites it) and about three steps (Mann, Hagy, White & Liddell, "The
+  initiation of gait", J Bone Joint Surg Am 61:232-239, 1979: "approximately three steps");
+  those figures were not checked against the papers here, so the capture mjwalk has is the
+  reference the planner is checked against (``benchmarks/bench_pace.py``: 0.62 m, about one
+  step, to speed up; 0.25 m to stop).
 
 Both average the speed over a window first: the pelvis speeds up and slows down within every
 step, and the within-step swing is no change of pace.
