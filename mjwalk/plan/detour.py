@@ -122,12 +122,21 @@ def _blocking(workplace, path: np.ndarray, radius: float):
     low = np.flatnonzero(clear < radius)
     if len(low) == 0 or not workplace.obstacles:
         return None
-    p = path[low[0]][None]
-    dist = [float(fp.signed_distance(p)[0]) for fp in workplace.obstacles]
-    k = int(np.argmin(dist))
-    if dist[k] >= radius:  # the floor's edge, not an obstacle
+    p = path[low[0]]
+    bounds = workplace.__dict__.get("_footprint_bounds")
+    if bounds is None or len(bounds) != len(workplace.obstacles):  # kept on the workplace
+        bounds = np.array([fp.bounds() for fp in workplace.obstacles])
+        workplace.__dict__["_footprint_bounds"] = bounds
+    near = np.flatnonzero(
+        (bounds[:, 0] - radius <= p[0])
+        & (p[0] <= bounds[:, 2] + radius)
+        & (bounds[:, 1] - radius <= p[1])
+        & (p[1] <= bounds[:, 3] + radius)
+    )  # only footprints whose box, grown by the radius, holds the point can be that near
+    dist = [float(workplace.obstacles[k].signed_distance(p[None])[0]) for k in near]
+    if not dist or min(dist) >= radius:  # the floor's edge, not an obstacle
         return None
-    return workplace.obstacles[k]
+    return workplace.obstacles[int(near[int(np.argmin(dist))])]
 
 
 def detour_guide(
