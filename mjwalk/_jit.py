@@ -11,7 +11,10 @@ algorithms, so a seed gives the same numbers inside and outside them.
 
 from __future__ import annotations
 
+import hashlib
+import os
 from collections.abc import Callable
+from pathlib import Path
 from typing import cast
 
 import numba
@@ -19,6 +22,47 @@ import numba.core.event
 import numba.extending
 
 from mjwalk._log import claim_notice, log
+
+#: Where the digest of mjwalk's sources that the cached machine code was compiled from is kept.
+SOURCES_MARK = Path(__file__).resolve().parent / "__pycache__" / "numba-sources.sha1"
+
+
+def clear_stale_caches(package: Path = SOURCES_MARK.parent.parent) -> bool:
+    """Delete numba's cached machine code beside mjwalk's modules (``__pycache__/*.nbi``,
+    ``*.nbc``) when any of the package's sources changed since it was cached; True if it did.
+
+    numba keys a compiled function's cache by its own file's stamp only, and compiles the
+    module-level constants it reads from other files (the search's parameter slots, say) into
+    the machine code: an edit to such a file alone would leave stale code that reads the wrong
+    slots. The digest of every source file's path, size and modification time, kept in
+    :data:`SOURCES_MARK`, tells an unchanged checkout (nothing to do: one ``stat`` per file)
+    from an edited one. Folders that cannot be written are left alone (an installed package
+    is replaced whole, and numba's stamps then differ anyway)."""
+    files = sorted(package.rglob("*.py"))
+    h = hashlib.sha1()
+    for f in files:
+        st = f.stat()
+        h.update(f"{f.relative_to(package)}:{st.st_size}:{st.st_mtime_ns}\n".encode())
+    digest = h.hexdigest()
+    mark = package / "__pycache__" / SOURCES_MARK.name
+    try:
+        if mark.read_text() == digest:
+            return False
+    except OSError:
+        pass
+    try:
+        for cached in (*package.rglob("__pycache__/*.nbi"), *package.rglob("__pycache__/*.nbc")):
+            cached.unlink(missing_ok=True)
+        mark.parent.mkdir(exist_ok=True)
+        tmp = mark.with_name(f"{mark.name}.{os.getpid()}")
+        tmp.write_text(digest)
+        tmp.replace(mark)
+    except OSError:
+        return False
+    return True
+
+
+clear_stale_caches()
 
 #: ``fastmath`` off by default: the arithmetic stays that of the NumPy code it replaces.
 njit = numba.njit(cache=True, nogil=True, fastmath=False)

@@ -18,9 +18,8 @@ r % per >= n_walk. Per-row ``frame``/``left`` arrays (a start node's starters ea
 own way) or per-node ones (length b) are both accepted.
 
 numba's on-disk cache of :func:`check_into` is keyed by this file's text only, not by the
-compiled functions it calls from :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and
-:mod:`~mjwalk.plan.stepcost`: a change there must come with a change to this file's text (and
-to :mod:`mjwalk.plan.search`'s), or processes keep running the old machine code.
+compiled functions it calls or the constants it reads from other modules: mjwalk clears its
+cached machine code whenever any of its sources changes (:func:`mjwalk._jit.clear_stale_caches`).
 
 The parameter vectors' slots live in :mod:`mjwalk.plan.slots`; this module re-exports what
 callers of the check use (:func:`~mjwalk.plan.slots.params`, the stance-lean and energy
