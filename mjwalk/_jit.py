@@ -64,11 +64,44 @@ def clear_stale_caches(package: Path = SOURCES_MARK.parent.parent) -> bool:
 
 clear_stale_caches()
 
-#: ``fastmath`` off by default: the arithmetic stays that of the NumPy code it replaces.
-njit = numba.njit(cache=True, nogil=True, fastmath=False)
-#: For long dot products: the sums may be reassociated (and multiply-adds fused), so they
-#: vectorize, as BLAS's do; nothing else of fastmath (NaN and inf stay IEEE).
-njit_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
+_njit = numba.njit(cache=True, nogil=True, fastmath=False)
+_njit_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
+
+
+def _cache_failures_warn(dispatcher):
+    """``dispatcher`` with its on-disk cache's writes made non-fatal: a full disk or a file
+    size limit (``ulimit -f``) while numba saves the machine code it compiled is a warning
+    (the code runs; it compiles again next time), not a traceback out of the first plan."""
+    cache = getattr(dispatcher, "_cache", None)
+    save = getattr(cache, "save_overload", None)
+    if cache is None or save is None:
+        return dispatcher
+
+    def save_overload(sig, data):
+        try:
+            save(sig, data)
+        except OSError as exc:
+            log.warning(
+                "could not cache the compiled %s (%s): it runs, and compiles again next time",
+                getattr(dispatcher, "__name__", "kernel"),
+                exc.strerror or exc,
+            )
+
+    cache.save_overload = save_overload
+    return dispatcher
+
+
+def njit(func):
+    """``numba.njit`` with mjwalk's settings (cached; ``fastmath`` off: the arithmetic stays
+    that of the NumPy code it replaces), its cache writes non-fatal."""
+    return _cache_failures_warn(_njit(func))
+
+
+def njit_sum(func):
+    """:func:`njit` for long dot products: the sums may be reassociated (and multiply-adds
+    fused), so they vectorize, as BLAS's do; nothing else of fastmath (NaN and inf stay IEEE)."""
+    return _cache_failures_warn(_njit_sum(func))
+
 
 #: Logged (INFO, once per command: :func:`mjwalk._log.claim_notice`) when one of mjwalk's
 #: compiled functions misses the cache and compiles: on the first plan or animation after an

@@ -352,7 +352,7 @@ def _reference(check: Checker, table, tasks: list[Task]) -> tuple[dict | None, s
             raise check.fail(
                 f"route {label!r} in [reference] needs both 'median' and 'iqr'", "reference"
             )
-        row = (f["median"], f["iqr"])
+        row: tuple[float, ...] = (f["median"], f["iqr"])
         if "planner_median" in f or "planner_iqr" in f:
             row += (f.get("planner_median", math.nan), f.get("planner_iqr", math.nan))
         out[label] = row

@@ -45,6 +45,7 @@ __all__ = [
     "detour_guide",
     "left_share",
     "obstacle_ends",
+    "walk_guide",
 ]
 
 #: Gap (m) people keep between themselves and an obstacle they walk round (module doc).
@@ -186,3 +187,33 @@ def detour_guide(
             if guide_is_clear(workplace, path, radius):
                 return path
     return None
+
+
+def walk_guide(
+    workplace,
+    start,
+    goal,
+    walking_yaw: float | None,
+    goal_heading: float | None,
+    guide,
+    radius: float,
+    rng: np.random.Generator,
+    stature: float = DEFAULT_STATURE,
+) -> np.ndarray | None:
+    """The path (:data:`~mjwalk.plan.guide.GUIDE_POINTS`, 2) a walk's heading follows from
+    ``start`` to ``goal`` (x, y; None: straight at the goal): the caller's ``guide`` ((k, 2)),
+    or for a walker already walking along ``walking_yaw`` or meaning to arrive along
+    ``goal_heading`` (radians) the minimum-jerk path between the end poses, or else the
+    straight line; where that runs into an obstacle, the way past it on a side drawn from
+    ``rng`` (:func:`detour_guide`), else itself (the straight line: None)."""
+    s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
+    if not np.hypot(*(g - s)) >= 1e-6:
+        return None  # no walk (the search refuses it)
+    direct = guide
+    if direct is None and (walking_yaw is not None or goal_heading is not None):
+        direct = minimum_jerk_guide(s, g, walking_yaw, goal_heading)
+    way = np.array([s, g]) if direct is None else direct
+    path = detour_guide(workplace, way, s, g, walking_yaw, goal_heading, radius, rng, stature)
+    if path is None:
+        path = direct
+    return None if path is None else resample_guide(path)

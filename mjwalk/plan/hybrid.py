@@ -54,7 +54,7 @@ from mjwalk.errors import PlanningError
 from mjwalk.plan import search, slots
 from mjwalk.plan.assemble import assemble_walk
 from mjwalk.plan.decoder import StepDecoder, decoder_of
-from mjwalk.plan.detour import detour_guide
+from mjwalk.plan.detour import walk_guide
 from mjwalk.plan.grid import (
     BODY_RADIUS,
     CELL_SIZE,
@@ -63,7 +63,7 @@ from mjwalk.plan.grid import (
     check_endpoint,
     shared_grid,
 )
-from mjwalk.plan.guide import guide_is_clear, minimum_jerk_guide, resample_guide
+from mjwalk.plan.guide import guide_is_clear, resample_guide
 from mjwalk.plan.heuristic import GoalDistance, goal_distance
 from mjwalk.plan.options import (
     ATTEMPTS,
@@ -567,29 +567,15 @@ class HybridPlanner:
         return path, start_distance
 
     def _guide(self, pose, spot, turn_on_spot, goal_heading, guide, rng, model):
-        """The path (n, 2) a walk's heading follows (None: straight at the goal): the caller's
-        ``guide``, or for a walker already walking (a start yaw without ``turn_on_spot``) or
-        with a ``goal_heading`` the minimum-jerk path between the end poses, or else the
-        straight line; where that runs into an obstacle, the way past it on a side drawn
-        from ``rng`` (:func:`mjwalk.plan.detour.detour_guide`), else itself (a straight line:
-        None)."""
+        """:func:`mjwalk.plan.detour.walk_guide` for a walk of :meth:`plan` (a start yaw is a
+        walker already walking unless ``turn_on_spot``)."""
         (x, y), yaw = pose
         walking = None if yaw is None or turn_on_spot else yaw
         goal = self.goal if spot is None else spot[:2]
-        if math.hypot(goal[0] - x, goal[1] - y) < 1e-6:
-            return None  # no walk (refused by the search)
-        walker = getattr(model, "walker", None)
-        stature = float(getattr(walker, "stature", None) or DEFAULT_STATURE)
-        direct = guide
-        if direct is None and (walking is not None or goal_heading is not None):
-            direct = minimum_jerk_guide((x, y), goal, walking, goal_heading)
-        way = np.array([(x, y), goal], dtype=float) if direct is None else direct
-        path = detour_guide(
-            self.workplace, way, (x, y), goal, walking, goal_heading, self.radius, rng, stature
+        stature = float(getattr(getattr(model, "walker", None), "stature", None) or DEFAULT_STATURE)
+        return walk_guide(
+            self.workplace, (x, y), goal, walking, goal_heading, guide, self.radius, rng, stature
         )
-        if path is None:
-            path = direct
-        return None if path is None else resample_guide(path)
 
     def _assemble(self, model, nid, nodes, feats, stats) -> WalkPath:
         meta = {
