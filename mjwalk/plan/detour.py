@@ -1,8 +1,9 @@
 """Passing an obstacle in the way: which side people choose and the berth they give it.
 
 When the smooth path between a walk's end poses (:mod:`mjwalk.plan.guide`) runs into an
-obstacle, the walk's heading follows a path around it instead: two minimum-jerk pieces through
-a waypoint beside the obstacle, on the side the walker chooses. Both come from studies of
+obstacle, the walk's heading follows a path around it instead: the minimum-jerk path through a
+waypoint beside the obstacle (Flash & Hogan's via-point solution), on the side the walker
+chooses. Both come from studies of
 people walking around obstacles to a visible goal:
 
 - **Side.** People choose between the obstacle's two ends as between two competing waypoints,
@@ -35,7 +36,7 @@ import numpy as np
 
 from mjwalk.anthropometry import SEG
 from mjwalk.conventions import DEFAULT_STATURE
-from mjwalk.plan.guide import guide_is_clear, minimum_jerk_guide, resample_guide
+from mjwalk.plan.guide import guide_is_clear, minimum_jerk_guide, resample_guide, via_point_guide
 
 __all__ = [
     "PASSING_GAP",
@@ -46,6 +47,7 @@ __all__ = [
     "left_share",
     "obstacle_ends",
     "walk_guide",
+    "walkable",
 ]
 
 #: Gap (m) people keep between themselves and an obstacle they walk round (module doc).
@@ -150,17 +152,19 @@ def detour_guide(
     radius: float,
     rng: np.random.Generator,
     stature: float = DEFAULT_STATURE,
+    step_length: float = 0.0,
 ) -> np.ndarray | None:
     """The path (k, 2) a walk's heading follows from ``start`` to ``goal`` past the first
     obstacle the path ``direct`` (k, 2: the minimum-jerk path between the two poses, or the
     caller's own) runs into (module doc): the side
     drawn from :func:`left_share` with ``rng`` (one draw), the waypoint abreast of the
     obstacle (:func:`abreast`) at half the shoulder width of a walker of ``stature`` metres
-    plus :data:`PASSING_GAP` from it, two
-    minimum-jerk pieces through it (parallel there to the way from start to goal, else along
-    the bisector of the ways in and out). None when the direct path is clear, when no
-    obstacle blocks it (the floor's edge does), or when neither piece pair keeps ``radius``
-    (the body's clearance) from every obstacle; then the route search decides."""
+    plus :data:`PASSING_GAP` from it (or the body radius plus 5 cm where that does not fit),
+    and the minimum-jerk path through it (:func:`~mjwalk.plan.guide.via_point_guide`). None
+    when the direct path is clear, when no obstacle blocks it (the floor's edge does), or when
+    the path round does not keep ``radius`` (the body's clearance) from every obstacle or
+    turns sharper than steps of ``step_length`` metres can (:func:`walkable`); then the route
+    search decides."""
     s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
     if not np.hypot(*(g - s)) > 1e-6:
         return None
@@ -172,21 +176,27 @@ def detour_guide(
     berth = 0.5 * SEG["shoulder_width"] * stature + PASSING_GAP
     for gap in (berth, radius + 0.05):  # the cited berth, or the body's where that is too wide
         way = abreast(blocker, s, g, gap, go_left)
-        chord = (g - s) / np.hypot(*(g - s))
-        bisect = (way - s) / np.hypot(*(way - s)) + (g - way) / np.hypot(*(g - way))
-        for t in (chord, bisect / max(np.hypot(*bisect), 1e-9)):
-            h = math.atan2(t[1], t[0])
-            if np.hypot(*(way - s)) < 1e-6 or np.hypot(*(g - way)) < 1e-6:
-                return None
-            path = np.vstack(
-                [
-                    minimum_jerk_guide(s, way, start_heading, h, 200),
-                    minimum_jerk_guide(way, g, h, goal_heading, 200)[1:],
-                ]
-            )
-            if guide_is_clear(workplace, path, radius):
-                return path
+        if np.hypot(*(way - s)) < 1e-6 or np.hypot(*(g - way)) < 1e-6:
+            return None
+        path = via_point_guide(s, way, g, start_heading, goal_heading)
+        if walkable(path, step_length) and guide_is_clear(workplace, path, radius):
+            return path
     return None
+
+
+def walkable(path: np.ndarray, step_length: float) -> bool:
+    """Whether ``path`` (k, 2, metres) turns no sharper than a quarter turn per step of
+    ``step_length`` metres (a radius of curvature of at least step_length / (pi / 2)): the
+    sharpest turn the step model's walking steps make (no planned step turns the pelvis by
+    90 deg or more: tests/plan/test_hybrid.py). A path sharper than that cannot be walked
+    along, only turned on: the search would fight it."""
+    if step_length <= 0.0:
+        return True
+    d = np.gradient(path, axis=0)
+    dd = np.gradient(d, axis=0)
+    speed = np.hypot(*d.T)
+    bend = np.abs(d[:, 0] * dd[:, 1] - d[:, 1] * dd[:, 0])
+    return bool(np.all(bend * step_length <= (math.pi / 2) * np.maximum(speed, 1e-12) ** 3))
 
 
 def walk_guide(
@@ -199,13 +209,15 @@ def walk_guide(
     radius: float,
     rng: np.random.Generator,
     stature: float = DEFAULT_STATURE,
+    step_length: float = 0.0,
 ) -> np.ndarray | None:
     """The path (:data:`~mjwalk.plan.guide.GUIDE_POINTS`, 2) a walk's heading follows from
     ``start`` to ``goal`` (x, y; None: straight at the goal): the caller's ``guide`` ((k, 2)),
     or for a walker already walking along ``walking_yaw`` or meaning to arrive along
     ``goal_heading`` (radians) the minimum-jerk path between the end poses, or else the
     straight line; where that runs into an obstacle, the way past it on a side drawn from
-    ``rng`` (:func:`detour_guide`), else itself (the straight line: None)."""
+    ``rng`` (:func:`detour_guide`, for a walker of ``stature`` and ``step_length`` metres),
+    else itself (the straight line: None)."""
     s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
     if not np.hypot(*(g - s)) >= 1e-6:
         return None  # no walk (the search refuses it)
@@ -213,7 +225,9 @@ def walk_guide(
     if direct is None and (walking_yaw is not None or goal_heading is not None):
         direct = minimum_jerk_guide(s, g, walking_yaw, goal_heading)
     way = np.array([s, g]) if direct is None else direct
-    path = detour_guide(workplace, way, s, g, walking_yaw, goal_heading, radius, rng, stature)
+    path = detour_guide(
+        workplace, way, s, g, walking_yaw, goal_heading, radius, rng, stature, step_length
+    )
     if path is None:
         path = direct
     return None if path is None else resample_guide(path)

@@ -43,6 +43,7 @@ __all__ = [
     "guide_is_clear",
     "minimum_jerk_guide",
     "resample_guide",
+    "via_point_guide",
 ]
 
 #: Points of the polyline the compiled search follows (evenly spaced along it): 24 segments of
@@ -81,6 +82,84 @@ def minimum_jerk_guide(
     rows = np.stack([p0, tangent(start_heading), tangent(goal_heading), p1])  # (4, 2)
     s = np.linspace(0.0, 1.0, n)
     return (s[:, None] ** np.arange(6)) @ (_H.T @ rows)
+
+
+# Quintic Hermite basis with end accelerations too, in s in [0, 1] (constant term first):
+# position 0, velocity 0 (x T), acceleration 0 (x T^2), acceleration 1 (x T^2), velocity 1
+# (x T), position 1.
+_H6 = np.array(
+    [
+        [1.0, 0.0, 0.0, -10.0, 15.0, -6.0],
+        [0.0, 1.0, 0.0, -6.0, 8.0, -3.0],
+        [0.0, 0.0, 0.5, -1.5, 1.5, -0.5],
+        [0.0, 0.0, 0.0, 0.5, -1.0, 0.5],
+        [0.0, 0.0, 0.0, -4.0, 7.0, -3.0],
+        [0.0, 0.0, 0.0, 10.0, -15.0, 6.0],
+    ]
+)
+#: Third derivatives of the :data:`_H6` basis in s: coefficients of 1, s, s^2 (6, 3).
+_JERK = _H6[:, 3:] * np.array([6.0, 24.0, 60.0])
+
+
+def _quintic(ends: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """Points (len(s), 2) of the quintic with ``ends`` (6, 2: _H6's order, scaled by the
+    piece's time) at normalized times ``s``."""
+    return (s[:, None] ** np.arange(6)) @ (_H6.T @ ends)
+
+
+def via_point_guide(
+    start, via, goal, start_heading: float | None, goal_heading: float | None, n: int = 400
+) -> np.ndarray:
+    """``n`` points (n, 2) of the minimum-jerk path from ``start`` through ``via`` to ``goal``
+    (x, y, metres): two quintic pieces joined at ``via`` with continuous velocity and
+    acceleration, chosen to minimise the integrated squared jerk (the via-point solution of
+    Flash & Hogan 1985). The ends are as :func:`minimum_jerk_guide`'s (velocities of the whole
+    length along the headings, along the way to and from ``via`` where None; zero
+    accelerations); the pieces' times are in proportion to their straight lengths."""
+    p0, w, p1 = (np.asarray(v, dtype=float)[:2] for v in (start, via, goal))
+    l1, l2 = float(np.hypot(*(w - p0))), float(np.hypot(*(p1 - w)))
+    if not (l1 > 1e-9 and l2 > 1e-9):
+        raise ValueError("via_point_guide: the via point coincides with an end")
+    length = l1 + l2
+    t1, t2 = l1 / length, l2 / length  # the pieces' normalized times
+
+    def velocity(h: float | None, d: np.ndarray) -> np.ndarray:
+        return length * (d / np.hypot(*d) if h is None else np.array([math.cos(h), math.sin(h)]))
+
+    v0, v1 = velocity(start_heading, w - p0), velocity(goal_heading, p1 - w)
+    s = np.linspace(0.0, 1.0, 64)
+    jb = _JERK @ np.stack([np.ones_like(s), s, s * s])  # (6, 64): each basis's jerk
+    # the jerk, sampled over both pieces (weighted by their times), is linear in the via
+    # velocity and acceleration: least squares per axis
+    weight = np.concatenate([np.full(64, math.sqrt(t1)), np.full(64, math.sqrt(t2))])
+    a_mat = np.stack(
+        [
+            np.concatenate([jb[4] / t1**2, jb[1] / t2**2]),  # via velocity
+            np.concatenate([jb[3] / t1, jb[2] / t2]),  # via acceleration
+        ],
+        axis=1,
+    )
+    known = np.stack(
+        [
+            np.concatenate(
+                [
+                    (jb[0] * p0[k] + jb[1] * v0[k] * t1 + jb[5] * w[k]) / t1**3,
+                    (jb[0] * w[k] + jb[4] * v1[k] * t2 + jb[5] * p1[k]) / t2**3,
+                ]
+            )
+            for k in range(2)
+        ],
+        axis=1,
+    )
+    sol = np.linalg.lstsq(a_mat * weight[:, None], -known * weight[:, None], rcond=None)[0]
+    vw, aw = sol[0], sol[1]  # (2,) each
+    zero = np.zeros(2)
+    m1 = min(n - 1, max(2, round(n * t1)))
+    first = _quintic(np.stack([p0, v0 * t1, zero, aw * t1**2, vw * t1, w]), np.linspace(0, 1, m1))
+    second = _quintic(
+        np.stack([w, vw * t2, aw * t2**2, zero, v1 * t2, p1]), np.linspace(0, 1, n - m1 + 1)
+    )
+    return np.vstack([first, second[1:]])
 
 
 def resample_guide(points, n: int = GUIDE_POINTS) -> np.ndarray:

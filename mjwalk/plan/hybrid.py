@@ -391,6 +391,8 @@ class HybridPlanner:
             pace = preferred_speed(model) * math.exp(WALK_PACE_SD * rng.standard_normal())
         if self.heading_weight > 0.0:  # the way the walk's heading follows
             guide = self._guide(pose, spot, turn_on_spot, goal_heading, guide, rng, model)
+            if guide is not None and not guide_is_clear(self.workplace, guide, self.radius):
+                guide = None  # the route search decides
         best: WalkPath | None = None
         bound = None
         limit = max(self.attempts, WANDER_SEARCHES)
@@ -402,6 +404,7 @@ class HybridPlanner:
                 )
             except _Exhausted as exc:
                 exhausted += 1
+                guide = None  # a dead end along the guide: the route search decides from now
                 if exhausted >= self.attempts or attempt == limit - 1:
                     if best is not None:
                         break
@@ -479,9 +482,8 @@ class HybridPlanner:
             start_distance = max(
                 field_distance, math.hypot(start_xy[0] - goal_x, start_xy[1] - goal_y) - tolerance
             )
-        if guide is not None and par[slots.P_HEADING_WEIGHT] > 0.0:
-            if guide_is_clear(self.workplace, guide, self.radius):  # else the search decides
-                par[slots.P_GUIDE0 : slots.P_DISC0] = guide.ravel()
+        if guide is not None and par[slots.P_HEADING_WEIGHT] > 0.0:  # clear (plan checked)
+            par[slots.P_GUIDE0 : slots.P_DISC0] = guide.ravel()
         if math.isnan(par[slots.P_GUIDE0]) and not self.distance.sees(start_xy):
             # HEADING_WEIGHT without a guide: only for a goal in sight from the start
             par[slots.P_HEADING_WEIGHT] = 0.0
@@ -572,10 +574,13 @@ class HybridPlanner:
         (x, y), yaw = pose
         walking = None if yaw is None or turn_on_spot else yaw
         goal = self.goal if spot is None else spot[:2]
-        stature = float(getattr(getattr(model, "walker", None), "stature", None) or DEFAULT_STATURE)
+        walker = getattr(model, "walker", None)
+        stature = float(getattr(walker, "stature", None) or DEFAULT_STATURE)
+        step = float(walker.step_length if walker is not None else model.pace().step_length)
         return walk_guide(
-            self.workplace, (x, y), goal, walking, goal_heading, guide, self.radius, rng, stature
-        )
+            self.workplace, (x, y), goal, walking, goal_heading, guide, self.radius, rng,
+            stature, step,
+        )  # fmt: skip
 
     def _assemble(self, model, nid, nodes, feats, stats) -> WalkPath:
         meta = {
