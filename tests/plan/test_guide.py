@@ -120,3 +120,40 @@ def test_bad_guides_are_named(model, open_floor, kwargs, message):
     planner = HybridPlanner(open_floor, (3.0, 0.0), model)
     with pytest.raises(PlanningError, match=message):
         planner.plan((-3.0, 0.0), np.random.default_rng(0), **kwargs)
+
+
+def test_the_via_point_path_is_smooth_through_its_waypoint():
+    """Flash & Hogan's via-point path passes its waypoint with no kink (the direction turns by
+    less than a degree between neighbouring samples there), starts and ends along the given
+    headings, and among paths through the waypoint has less jerk than two independent pieces
+    meeting parallel to the chord (the integrated squared third difference)."""
+    from mjwalk.plan.guide import via_point_guide
+
+    g = via_point_guide((0.0, 0.0), (2.0, 0.8), (6.0, 0.0), 0.0, 0.0)
+    k = int(np.argmin(np.hypot(*(g - (2.0, 0.8)).T)))
+    assert np.hypot(*(g[k] - (2.0, 0.8))) < 1e-9
+    turn = [_direction(g, j) for j in (k - 1, k)]
+    assert abs(math.degrees(math.remainder(turn[1] - turn[0], math.tau))) < 1.0
+    assert abs(_direction(g, 0)) < math.radians(1.0) and abs(_direction(g, -1)) < math.radians(1.0)
+    two = np.vstack(
+        [
+            minimum_jerk_guide((0.0, 0.0), (2.0, 0.8), 0.0, 0.0, 160),
+            minimum_jerk_guide((2.0, 0.8), (6.0, 0.0), 0.0, 0.0, 241)[1:],
+        ]
+    )
+
+    def jerk(p):
+        q = resample_guide(p, 400)
+        return float(np.sum(np.diff(q, n=3, axis=0) ** 2))
+
+    assert jerk(g) < jerk(two)
+
+
+def test_walkable_paths_turn_no_sharper_than_a_quarter_turn_per_step():
+    """A circle of radius r is walkable for steps up to r * pi / 2 long, not longer."""
+    from mjwalk.plan.detour import walkable
+
+    a = np.linspace(0.0, math.pi, 400)
+    arc = 0.5 * np.stack([np.cos(a), np.sin(a)], axis=1)
+    assert walkable(arc, 0.5 * math.pi / 2 * 0.95)
+    assert not walkable(arc, 0.5 * math.pi / 2 * 1.05)
