@@ -380,13 +380,16 @@ def test_real_raise_hand_dcs_beats_mean_trajectory_on_a_style_it_has_not_seen():
     # fallback carries it (benchmarks/bench_reach.py --side left, rng = fold index: DCS
     # 16.7 / 10.3 / 9.5 / 11.7 deg against the mean trajectory 51.3 / 14.1 / 10.4 / 25.1;
     # without the fallback and dead-unit pruning the masculine style gave 14.6, at other
-    # seeds 15-25)
+    # seeds 15-25). The shipped settings with two averaged networks instead of five, to keep
+    # the suite within its CI budget (68 s -> 36 s here; the benchmark runs the five): DCS
+    # 19.7 / 10.6 / 9.5 / 11.8 deg, the same side of the mean trajectory in every fold.
     from mjwalk.arms.reachdefault import CAPTURE_DCS
 
     C, U, L, S = _real_raises(1, styles=True)
     for fold, style in enumerate(np.unique(S)):
         tr, te = np.flatnonzero(S != style), np.flatnonzero(S == style)
-        errs = _dcs_and_mean_errors(C, U, L, tr, te, {**CAPTURE_DCS, "rng": fold})
+        dcs = {**CAPTURE_DCS, "rng": fold, "n_networks": 2}
+        errs = _dcs_and_mean_errors(C, U, L, tr, te, dcs)
         errs = {name: float(np.mean(e)) for name, e in errs.items()}
         assert errs["dcs"] < errs["mean"], (style, errs)
 
