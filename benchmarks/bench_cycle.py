@@ -10,7 +10,8 @@ Targets (issue 7): one cycle (plan and animate, no video) in at most 2 s; 1000 c
 animated station cycle (plan + legs + arms + collision check) timed with the baseline commit
 (default 0e99913: main before the animation work) and with this tree, each in a fresh
 subprocess running ``benchmarks/cycle_timing.py`` (the baseline exported once with
-``git archive`` to ``~/.cache/mjwalk/bench-baseline-<sha>``, its compiled code cached
+``git archive`` of ``mjwalk/`` and ``scenes/`` to ``~/.cache/mjwalk/bench-baseline-<sha>``,
+its compiled code cached
 there), in alternating rounds (old, new, old, new); prints wall and CPU
 seconds per cycle, the split by stage, cycles/s of ``simulate_cycles`` with 1 and 2 workers,
 the old/new ratios, and how far the new poses are from the old ones (max |qpos difference|
@@ -43,10 +44,12 @@ def baseline_tree(rev: str) -> Path:
         ["git", "-C", str(ROOT), "rev-parse", rev], capture_output=True, text=True, check=True
     ).stdout.strip()
     tree = Path.home() / ".cache" / "mjwalk" / f"bench-baseline-{sha[:12]}"
-    if not (tree / "mjwalk" / "__init__.py").exists():
+    if not (tree / "scenes").is_dir():  # the package and the scenes it reads
         tree.mkdir(parents=True, exist_ok=True)
         archive = subprocess.run(
-            ["git", "-C", str(ROOT), "archive", sha, "mjwalk"], capture_output=True, check=True
+            ["git", "-C", str(ROOT), "archive", sha, "mjwalk", "scenes"],
+            capture_output=True,
+            check=True,
         ).stdout
         subprocess.run(["tar", "-x", "-C", str(tree)], input=archive, check=True)
     return tree

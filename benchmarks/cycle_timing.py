@@ -53,7 +53,8 @@ def main() -> None:
     from mjwalk.cycle.spec import load_cycle_spec
     from mjwalk.plan.hybrid import HybridPlanner
 
-    spec_path = ROOT / "scenes" / "assembly_station.toml"
+    # the station of the timed tree itself (a baseline tree may not read this tree's file)
+    spec_path = Path(reach.__file__).resolve().parents[2] / "scenes" / "assembly_station.toml"
     ctx = sim.prepare(load_cycle_spec(spec_path))
     sim.simulate_cycle(ctx, 99)  # warm-up: models, compiled code
     wall, cpu, poses, contacts = [], [], {}, {}
