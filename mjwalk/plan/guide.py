@@ -39,6 +39,7 @@ from mjwalk._jit import njit
 
 __all__ = [
     "GUIDE_POINTS",
+    "guide_ahead",
     "guide_aim",
     "guide_is_clear",
     "minimum_jerk_guide",
@@ -229,3 +230,32 @@ def guide_aim(guide, p, goal):
     if gx * gx + gy * gy < 1e-12:
         return direct
     return tang + (direct - math.atan2(gy, gx))
+
+
+@njit
+def guide_ahead(guide, p):
+    """The way (metres) left along the guide ``guide`` (as :func:`guide_aim`'s; nan first:
+    none, 0) for a walker at ``p`` (x + iy): the distance to the guide's nearest point q plus
+    the guide's length from q to its end. The search takes it as its estimate of the way to
+    the goal where it is the larger (the walker means to go that way, not straight)."""
+    if math.isnan(guide[0]):
+        return 0.0
+    n = guide.shape[0] // 2
+    best_d2 = np.inf
+    best_k = 0
+    best_w = 0.0
+    for k in range(n - 1):
+        ax, ay = guide[2 * k], guide[2 * k + 1]
+        ux, uy = guide[2 * k + 2] - ax, guide[2 * k + 3] - ay
+        uu = ux * ux + uy * uy
+        w = 0.0
+        if uu > 0.0:
+            w = min(max(((p.real - ax) * ux + (p.imag - ay) * uy) / uu, 0.0), 1.0)
+        d2 = (ax + w * ux - p.real) ** 2 + (ay + w * uy - p.imag) ** 2
+        if d2 < best_d2:
+            best_d2, best_k, best_w = d2, k, w
+    rest = 0.0
+    for k in range(best_k, n - 1):
+        seg = math.hypot(guide[2 * k + 2] - guide[2 * k], guide[2 * k + 3] - guide[2 * k + 1])
+        rest += seg * (1.0 - best_w) if k == best_k else seg
+    return math.sqrt(best_d2) + rest

@@ -33,7 +33,7 @@ import math
 import numpy as np
 
 from mjwalk._jit import njit
-from mjwalk.plan.guide import guide_aim
+from mjwalk.plan.guide import guide_ahead, guide_aim
 from mjwalk.plan.lean import lean_in_range, lean_limits, lean_ok, stance_lean, stance_lean_ok
 from mjwalk.plan.slots import (
     I_CHORD,
@@ -350,6 +350,8 @@ def check_into(
                 want = guide_aim(par[P_GUIDE0:P_DISC0], end, goal)
                 seg *= heading_factor(fr + 0.5 * yaws.imag, want, hw)
         g = node[i, 3].real + seg
+        if not math.isnan(par[P_GUIDE0]):  # along a guide: the way left along it, if longer
+            h = max(h, guide_ahead(par[P_GUIDE0:P_DISC0], end))
         fh = par[P_WEIGHT] * h
         if h > par[P_FAR_FROM]:  # farther than FAR_FROM from the goal: the far weight too
             fh += par[P_FAR_WEIGHT] * (h - par[P_FAR_FROM])

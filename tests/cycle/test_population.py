@@ -256,8 +256,10 @@ def test_slower_operators_take_longer_and_handling_scales_with_pace(short):
     each: the slow one's median walk and cycle take longer; with the same seed the task-time
     factors are the same, so an arm motion from the same place lasts 1/pace times as long
     (within 2 frames). The walk itself depends on the pace (a turn on the spot costs its time
-    at the walker's pace), so a run whose walks end elsewhere reaches over another distance:
-    only runs whose walks end at the same place (within 1 mm) are compared, at least half."""
+    at the walker's pace, the search along the walk's guide weighs steps by it), so a run whose
+    walks end elsewhere reaches over another distance: the arm motions before the first walk
+    (from the same spot of the start zone) are compared in every run, the later ones in the
+    runs whose walks end at the same place (within 1 mm)."""
     _, ctx = short
     out = {}
     for speed in (0.8, 1.6):
@@ -277,10 +279,16 @@ def test_slower_operators_take_longer_and_handling_scales_with_pace(short):
             for wa, wb in zip(a.walks, b.walks, strict=True)
         )
     ]
-    assert len(same_place) >= len(slow) // 2
-    for a, b in same_place:
-        for arm_slow, arm_fast in zip(a.arms, b.arms, strict=True):
+    first_walk = min(w.task for w in slow[0].walks)
+    alike = {id(a) for a, _ in same_place}
+    compared = 0
+    for a, b in zip(slow, fast, strict=True):
+        before = [(x, y) for x, y in zip(a.arms, b.arms, strict=True) if x.task < first_walk]
+        pairs = list(zip(a.arms, b.arms, strict=True)) if id(a) in alike else before
+        for arm_slow, arm_fast in pairs:
             assert arm_slow.duration == pytest.approx(2.0 * arm_fast.duration, abs=2 / 30 * 3)
+            compared += 1
+    assert compared >= len(slow)  # at least the arm motion before the walk of every run
 
 
 @pytest.mark.parametrize("stature", [1.55, 1.95])

@@ -157,3 +157,18 @@ def test_walkable_paths_turn_no_sharper_than_a_quarter_turn_per_step():
     arc = 0.5 * np.stack([np.cos(a), np.sin(a)], axis=1)
     assert walkable(arc, 0.5 * math.pi / 2 * 0.95)
     assert not walkable(arc, 0.5 * math.pi / 2 * 1.05)
+
+
+def test_the_way_left_along_a_guide():
+    """guide_ahead: the distance to the guide plus its length from the nearest point on; 0
+    without a guide."""
+    from mjwalk.plan.guide import guide_ahead
+
+    line = resample_guide([(0.0, 0.0), (6.0, 0.0)]).ravel()
+    assert guide_ahead(line, complex(1.0, 0.5)) == pytest.approx(5.5)
+    assert guide_ahead(line, complex(6.0, 0.0)) == pytest.approx(0.0, abs=1e-12)
+    assert guide_ahead(line, complex(-1.0, 0.0)) == pytest.approx(7.0)
+    arc = resample_guide(minimum_jerk_guide((0.0, 0.0), (6.0, 0.0), math.radians(40), None))
+    length = float(np.hypot(*np.diff(arc, axis=0).T).sum())
+    assert guide_ahead(arc.ravel(), complex(*arc[0])) == pytest.approx(length)
+    assert guide_ahead(np.full(4, np.nan), complex(1.0, 1.0)) == 0.0
