@@ -86,30 +86,31 @@ direction): excess 0.09, lateral IQR 0.75: the heading term turns it onto the go
 a step or two, where people take the whole walk.
 
 After issue 38 (the walker's state at both zone edges, the default; the heading follows the
-minimum-jerk guide, out of sight too; an obstacle in the way is passed on a side drawn from the
-cited logistic model, at the cited berth: mjwalk.plan.detour), same command, 25 s:
+minimum-jerk guide, out of sight too, and the search estimates the way left along it; an
+obstacle in the way is passed on a side drawn from the cited logistic model, at the cited
+berth: mjwalk.plan.detour), same command, 25 s:
 
 =================================  ============  ==========================
 figure                             median ratio  worst pair (ratio)
 =================================  ============  ==========================
-path length, median                0.99          1-5 (0.98)
-path length, IQR                   1.21          1-5 (4.04)
-excess over own chord, median      0.58          1-3 (0.35)
-lateral offset at half way, IQR    0.98          2-4 (0.69)
-duration, median                   1.00          3-4 (0.92)
-duration, IQR                      1.25          4-5 (2.00)
+path length, median                1.00          1-5 (1.01)
+path length, IQR                   1.26          1-5 (3.98)
+excess over own chord, median      0.72          1-3 (0.43)
+lateral offset at half way, IQR    1.03          2-4 (0.68)
+duration, median                   1.00          1-5 (1.10)
+duration, IQR                      1.58          4-5 (2.00)
 =================================  ============  ==========================
 
-Seeds 1 and 2: excess 0.56 and 0.60, lateral IQR 0.95 and 0.90, duration IQR 1.42 and 1.42
-(the durations are counted in 0.4 s samples: one sample moves a pair's IQR by a third).
-Side shares (left of the lower-to-higher line), real / planned / the cited model from the
-real walks' ends: 1-3 0.90 / 0.95 / 1.00, 2-4 0.78 / 0.84 / 0.96.
+Seeds 1 and 2: excess 0.74 and 0.73, lateral IQR 1.04 and 1.03, length IQR 1.25 and 1.19,
+duration IQR 1.50 and 1.42 (the durations are counted in 0.4 s samples: one sample moves a
+pair's IQR by a third; the walkers' speeds are the Bohannon & Andrews spread the issue
+prescribes). Side shares (left of the lower-to-higher line), real / planned / the cited
+model from the real walks' ends: 1-3 0.90 / 0.95 / 1.00, 2-4 0.78 / 0.84 / 0.96.
 
-The excess stays short of the real walks': the minimum-jerk curve between a real walk's own
-zone-edge states is 0.61 of its excess (median over pairs: 0.51, 0.98, 0.60, 0.18, 0.62,
-0.70), the rest being bends finer than a smooth curve between the two ends (a cubic fit of
-each real walk's lateral offset explains 0.45-0.89 of its excess) in a room shared with other
-people and a robot; the planned walks reach 0.58, about what the smooth curves explain.
+For comparison: the minimum-jerk curve between a real walk's own zone-edge states is 0.61 of
+its excess (median over pairs: 0.51, 0.98, 0.60, 0.18, 0.62, 0.70), and a cubic fit of each
+real walk's lateral offset 0.45-0.89; the rest are bends finer than a smooth curve between
+the two ends, in a room shared with other people and a robot.
 """
 
 from __future__ import annotations
