@@ -36,7 +36,13 @@ import numpy as np
 
 from mjwalk.anthropometry import SEG
 from mjwalk.conventions import DEFAULT_STATURE
-from mjwalk.plan.guide import guide_is_clear, minimum_jerk_guide, resample_guide, via_point_guide
+from mjwalk.plan.guide import (
+    densify,
+    guide_is_clear,
+    minimum_jerk_guide,
+    resample_guide,
+    via_point_guide,
+)
 
 __all__ = [
     "PASSING_GAP",
@@ -119,8 +125,7 @@ def left_share(start, goal, left, right) -> float:
 def _blocking(workplace, path: np.ndarray, radius: float):
     """The obstacle footprint the path ``path`` (k, 2) first comes within ``radius`` of, or
     None (clear, or first short of it at the floor's edge)."""
-    length = float(np.hypot(*np.diff(path, axis=0).T).sum())
-    path = resample_guide(path, max(2, math.ceil(length / 0.05) + 1))  # every 5 cm
+    path = densify(path)  # every 5 cm
     clear = workplace.walk_clearance(path)
     low = np.flatnonzero(clear < radius)
     if len(low) == 0 or not workplace.obstacles:

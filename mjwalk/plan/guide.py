@@ -39,6 +39,7 @@ from mjwalk._jit import njit
 
 __all__ = [
     "GUIDE_POINTS",
+    "densify",
     "guide_ahead",
     "guide_aim",
     "guide_is_clear",
@@ -176,13 +177,39 @@ def resample_guide(points, n: int = GUIDE_POINTS) -> np.ndarray:
     return np.stack([np.interp(u, s, pts[:, 0]), np.interp(u, s, pts[:, 1])], axis=1)
 
 
+def densify(points, spacing: float = 0.05) -> np.ndarray:
+    """The polyline ``points`` resampled at points at most ``spacing`` metres apart (the
+    clearance checks' sampling: :func:`guide_is_clear`, :mod:`mjwalk.plan.detour`)."""
+    pts = np.asarray(points, dtype=float)
+    length = float(np.hypot(*np.diff(pts, axis=0).T).sum())
+    return resample_guide(pts, max(2, math.ceil(length / spacing) + 1))
+
+
 def guide_is_clear(workplace, points, clearance: float, spacing: float = 0.05) -> bool:
     """Whether the polyline ``points`` keeps ``clearance`` metres from the workplace's
     obstacles and floor edges (:meth:`Workplace.walk_clearance`) at points ``spacing`` apart."""
-    pts = np.asarray(points, dtype=float)
-    length = float(np.hypot(*np.diff(pts, axis=0).T).sum())
-    dense = resample_guide(pts, max(2, math.ceil(length / spacing) + 1))
-    return bool(np.all(workplace.walk_clearance(dense) >= clearance))
+    return bool(np.all(workplace.walk_clearance(densify(points, spacing)) >= clearance))
+
+
+@njit
+def _nearest(guide, p):
+    """The guide's point nearest ``p`` (x + iy): its segment k, the share w along it and the
+    squared distance (guide flat x0, y0, x1, y1, ...)."""
+    best_d2 = np.inf
+    best_k = 0
+    best_w = 0.0
+    for k in range(guide.shape[0] // 2 - 1):
+        ax, ay = guide[2 * k], guide[2 * k + 1]
+        ux, uy = guide[2 * k + 2] - ax, guide[2 * k + 3] - ay
+        uu = ux * ux + uy * uy
+        w = 0.0
+        if uu > 0.0:
+            w = min(max(((p.real - ax) * ux + (p.imag - ay) * uy) / uu, 0.0), 1.0)
+        qx, qy = ax + w * ux, ay + w * uy
+        d2 = (qx - p.real) ** 2 + (qy - p.imag) ** 2
+        if d2 < best_d2:
+            best_d2, best_k, best_w = d2, k, w
+    return best_k, best_w, best_d2
 
 
 @njit
@@ -200,21 +227,7 @@ def guide_aim(guide, p, goal):
     if math.isnan(guide[0]):
         return direct
     n = guide.shape[0] // 2
-    best_d2 = np.inf
-    best_k = 0
-    best_w = 0.0
-    for k in range(n - 1):
-        ax, ay = guide[2 * k], guide[2 * k + 1]
-        ux, uy = guide[2 * k + 2] - ax, guide[2 * k + 3] - ay
-        uu = ux * ux + uy * uy
-        w = 0.0
-        if uu > 0.0:
-            w = min(max(((p.real - ax) * ux + (p.imag - ay) * uy) / uu, 0.0), 1.0)
-        qx, qy = ax + w * ux, ay + w * uy
-        d2 = (qx - p.real) ** 2 + (qy - p.imag) ** 2
-        if d2 < best_d2:
-            best_d2, best_k, best_w = d2, k, w
-    k = best_k
+    k, best_w, _ = _nearest(guide, p)
     ax, ay = guide[2 * k], guide[2 * k + 1]
     bx, by = guide[2 * k + 2], guide[2 * k + 3]
     qx, qy = ax + best_w * (bx - ax), ay + best_w * (by - ay)
@@ -241,19 +254,7 @@ def guide_ahead(guide, p):
     if math.isnan(guide[0]):
         return 0.0
     n = guide.shape[0] // 2
-    best_d2 = np.inf
-    best_k = 0
-    best_w = 0.0
-    for k in range(n - 1):
-        ax, ay = guide[2 * k], guide[2 * k + 1]
-        ux, uy = guide[2 * k + 2] - ax, guide[2 * k + 3] - ay
-        uu = ux * ux + uy * uy
-        w = 0.0
-        if uu > 0.0:
-            w = min(max(((p.real - ax) * ux + (p.imag - ay) * uy) / uu, 0.0), 1.0)
-        d2 = (ax + w * ux - p.real) ** 2 + (ay + w * uy - p.imag) ** 2
-        if d2 < best_d2:
-            best_d2, best_k, best_w = d2, k, w
+    best_k, best_w, best_d2 = _nearest(guide, p)
     rest = 0.0
     for k in range(best_k, n - 1):
         seg = math.hypot(guide[2 * k + 2] - guide[2 * k], guide[2 * k + 3] - guide[2 * k + 1])

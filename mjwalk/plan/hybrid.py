@@ -400,7 +400,7 @@ class HybridPlanner:
         for attempt in range(limit):
             try:
                 path, start_distance = self._plan_once(
-                    pose, rng, model, spot, pace, turn_on_spot, goal_heading, guide
+                    pose, rng, model, spot, pace, turn_on_spot, guide
                 )
             except _Exhausted as exc:
                 exhausted += 1
@@ -435,7 +435,6 @@ class HybridPlanner:
         spot=None,
         pace: float = math.nan,
         turn_on_spot: bool = False,
-        goal_heading: float | None = None,
         guide: np.ndarray | None = None,
     ) -> tuple[WalkPath, float]:
         """One search: the walk and the obstacle-aware distance (m) from its start to the goal
