@@ -93,7 +93,7 @@ berth: mjwalk.plan.detour), same command, 25 s:
 =================================  ============  ==========================
 figure                             median ratio  worst pair (ratio)
 =================================  ============  ==========================
-path length, median                1.00          1-5 (1.01)
+path length, median                1.00          3-4 (0.99)
 path length, IQR                   1.26          1-5 (3.98)
 excess over own chord, median      0.72          1-3 (0.43)
 lateral offset at half way, IQR    1.03          2-4 (0.68)
