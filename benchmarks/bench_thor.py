@@ -135,6 +135,7 @@ from mjwalk.plan.detour import left_share, obstacle_ends
 from mjwalk.plan.grid import BODY_RADIUS
 from mjwalk.plan.guide import minimum_jerk_guide
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.options import WALK_PACE_SD
 from mjwalk.world import load_workplace
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -200,8 +201,27 @@ def offset_at(xy: np.ndarray, lo: np.ndarray, hi: np.ndarray, s: float) -> float
     return float(lat[k] + w * (lat[k + 1] - lat[k]))
 
 
-def measure(xy: np.ndarray, lo: np.ndarray, hi: np.ndarray, obstacle: np.ndarray) -> dict:
-    """The figures of one cut walk (2.5 Hz samples)."""
+def crossing_duration(xy: np.ndarray, a: np.ndarray, b: np.ndarray, radius: float) -> float:
+    """The time (s) from leaving the start zone (disc of ``radius`` about ``a``) to entering the
+    goal zone (about ``b``) of a cut walk (2.5 Hz samples, :func:`cut`): each crossing placed
+    between its two samples by linear interpolation of the distance from the station. The
+    issue's duration counts whole samples (0.4 s each); this one does not."""
+    ra = np.hypot(*(xy[:2] - a).T)
+    rb = np.hypot(*(xy[-2:] - b).T)
+    f0 = (radius - ra[0]) / (ra[1] - ra[0]) if ra[0] <= radius < ra[1] else 0.0
+    f1 = (rb[0] - radius) / (rb[0] - rb[1]) if rb[1] <= radius < rb[0] else 1.0
+    return (len(xy) - 2 + f1 - f0) / TRACK_HZ
+
+
+def measure(
+    xy: np.ndarray,
+    lo: np.ndarray,
+    hi: np.ndarray,
+    obstacle: np.ndarray,
+    ends: tuple[np.ndarray, np.ndarray, float] | None = None,
+) -> dict:
+    """The figures of one cut walk (2.5 Hz samples); ``ends``: its start and goal stations and
+    the zone radius, for :func:`crossing_duration`."""
     seg = np.hypot(*np.diff(xy, axis=0).T)
     length = float(seg.sum())
     d = hi - lo
@@ -215,6 +235,7 @@ def measure(xy: np.ndarray, lo: np.ndarray, hi: np.ndarray, obstacle: np.ndarray
         "lateral": offset_at(xy, lo, hi, 0.5),
         "duration": (len(xy) - 1) / TRACK_HZ,
         "left": offset_at(xy, lo, hi, s_obs) > lat_obs,
+        "crossing": math.nan if ends is None else crossing_duration(xy, *ends),
     }
 
 
@@ -278,6 +299,9 @@ def summarize(ms: list[dict]) -> dict:
         "dur_iqr": D[1],
         "left": float(np.mean([m["left"] for m in ms])),
         "predicted_left": float(np.mean([m.get("predicted_left", np.nan) for m in ms])),
+        "durations": np.array([m["duration"] for m in ms]),
+        "cross_iqr": q([m["crossing"] for m in ms])[1],
+        "logdur_sd": float(np.std(np.log([m["duration"] for m in ms]), ddof=1)),
     }
 
 
@@ -336,7 +360,7 @@ def main(argv: list[str] | None = None) -> int:
         for r in walks:
             xy = points[int(r["walk_id"])][:, 1:]
             a, b = stations[int(r["start"])], stations[int(r["goal"])]
-            real.append(measure(xy, lo, hi, obstacle))
+            real.append(measure(xy, lo, hi, obstacle, (a, b, zone)))
             # the side as seen lower -> higher station: flip for walks the other way
             p_left = predicted_left(obs_fp, xy[0], xy[-1])
             real[-1]["predicted_left"] = p_left if int(r["start"]) == lo_id else 1.0 - p_left
@@ -372,13 +396,56 @@ def main(argv: list[str] | None = None) -> int:
                 if tracked is None or len(tracked) < 3:
                     failed += 1
                     continue
-                planned.append(measure(tracked, lo, hi, obstacle))
+                planned.append(measure(tracked, lo, hi, obstacle, (a, b, zone)))
         results[pair] = (summarize(real), summarize(planned), failed, plan_s, lo, hi, obstacle)
         print(f"  {pair}: {len(real)} real, {len(planned)} planned, {failed} failed, "
               f"plan median {1000 * np.median(plan_s):.0f} ms", flush=True)  # fmt: skip
     print(f"({time.perf_counter() - t_start:.0f} s)")
     print_table(results)
+    print_duration_spread(results, args.seed)
     return 0
+
+
+def print_duration_spread(results: dict, seed: int = 0, n_boot: int = 2000) -> None:
+    """The duration spread three ways, per pair real | planned | ratio: the IQR of whole-sample
+    durations (the issue's figure), the IQR of :func:`crossing_duration` and the SD of
+    log-duration; then the 90 % bootstrap interval of the issue's median ratio over the pairs
+    when the real walks of every pair are resampled (the planned IQRs held): how far the real
+    samples alone, a few dozen walks counted in 0.4 s, move the figure."""
+    rng = np.random.default_rng(seed)
+    print("\nduration spread per pair: real | planned | ratio")
+    print(f"{'pair':6}{'IQR (issue)':>22}{'IQR, crossings':>22}{'SD of log':>22}")
+    ratios = defaultdict(list)
+    for pair, (r, p, *_rest) in results.items():
+        cells = []
+        for k in ("dur_iqr", "cross_iqr", "logdur_sd"):
+            ratio = p[k] / r[k] if r[k] else math.nan
+            ratios[k].append(ratio)
+            cells.append(f"{r[k]:6.2f}|{p[k]:6.2f}|{ratio:5.2f}")
+        print(f"{pair:6}" + "".join(f"{c:>22}" for c in cells))
+    print(f"{'median':6}" + "".join(f"{np.median(ratios[k]):>22.2f}" for k in ratios))
+    boot = []
+    for _ in range(n_boot):
+        per_pair = []
+        for r, p, *_rest in results.values():
+            d = rng.choice(r["durations"], len(r["durations"]))
+            iqr = float(np.subtract(*np.percentile(d, [75, 25])))
+            per_pair.append(p["dur_iqr"] / iqr if iqr > 0 else math.inf)
+        boot.append(np.median(per_pair))
+    lo, hi = np.percentile(boot, [5, 95])
+    print(f"issue's median ratio with the real walks resampled: 90 % interval {lo:.2f}-{hi:.2f}")
+    # the prescribed walkers alone: every walk the real median duration, its speed the
+    # population's (SPEED_LOG_SD) and each walk's own about it (WALK_PACE_SD), paths identical
+    sd = math.hypot(SPEED_LOG_SD, WALK_PACE_SD)
+    floor = [
+        r["dur_med"] * 2.0 * math.sinh(0.6745 * sd) / r["cross_iqr"] for r, *_ in results.values()
+    ]
+    print(
+        f"the prescribed speeds alone (log SD {sd:.3f}, identical paths) over the real crossing "
+        f"IQR: "
+        + ", ".join(f"{k} {f:.2f}" for k, f in zip(results, floor, strict=True))
+        + f"; median {np.median(floor):.2f}"
+    )
 
 
 def print_table(results: dict) -> None:
