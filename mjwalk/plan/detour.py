@@ -34,10 +34,11 @@ import math
 
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.anthropometry import SEG
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.plan.guide import (
-    densify,
+    first_below,
     guide_is_clear,
     minimum_jerk_guide,
     resample_guide,
@@ -125,12 +126,9 @@ def left_share(start, goal, left, right) -> float:
 def _blocking(workplace, path: np.ndarray, radius: float):
     """The obstacle footprint the path ``path`` (k, 2) first comes within ``radius`` of, or
     None (clear, or first short of it at the floor's edge)."""
-    path = densify(path)  # every 5 cm
-    clear = workplace.walk_clearance(path)
-    low = np.flatnonzero(clear < radius)
-    if len(low) == 0 or not workplace.obstacles:
+    p = first_below(workplace, path, radius)  # sampled every 5 cm
+    if p is None or not workplace.obstacles:
         return None
-    p = path[low[0]]
     bounds = workplace.__dict__.get("_footprint_bounds")
     if bounds is None or len(bounds) != len(workplace.obstacles):  # kept on the workplace
         bounds = np.array([fp.bounds() for fp in workplace.obstacles])
@@ -197,11 +195,35 @@ def walkable(path: np.ndarray, step_length: float) -> bool:
     along, only turned on: the search would fight it."""
     if step_length <= 0.0:
         return True
-    d = np.gradient(path, axis=0)
-    dd = np.gradient(d, axis=0)
-    speed = np.hypot(*d.T)
-    bend = np.abs(d[:, 0] * dd[:, 1] - d[:, 1] * dd[:, 0])
-    return bool(np.all(bend * step_length <= (math.pi / 2) * np.maximum(speed, 1e-12) ** 3))
+    return bool(_walkable(np.ascontiguousarray(path, dtype=float), float(step_length)))
+
+
+@njit
+def _gradient(f):
+    """np.gradient of ``f`` (k >= 2, 2) along its rows, unit spacing: central differences
+    inside, one-sided at the ends."""
+    k = f.shape[0]
+    out = np.empty_like(f)
+    for a in range(2):
+        out[0, a] = f[1, a] - f[0, a]
+        out[k - 1, a] = f[k - 1, a] - f[k - 2, a]
+        for i in range(1, k - 1):
+            out[i, a] = (f[i + 1, a] - f[i - 1, a]) / 2.0
+    return out
+
+
+@njit
+def _walkable(path, step_length):
+    """:func:`walkable`'s test: |x'y'' - y'x''| · step_length <= (pi / 2)·|p'|^3 at every
+    point (the curvature from np.gradient's differences)."""
+    d = _gradient(path)
+    dd = _gradient(d)
+    for i in range(path.shape[0]):
+        speed = max(math.hypot(d[i, 0], d[i, 1]), 1e-12)
+        bend = abs(d[i, 0] * dd[i, 1] - d[i, 1] * dd[i, 0])
+        if not bend * step_length <= (math.pi / 2) * speed**3:
+            return False
+    return True
 
 
 def walk_guide(

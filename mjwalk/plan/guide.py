@@ -36,10 +36,12 @@ import math
 import numpy as np
 
 from mjwalk._jit import njit
+from mjwalk.world.clearance import ClearanceField, bilinear_at
 
 __all__ = [
     "GUIDE_POINTS",
     "densify",
+    "first_below",
     "guide_ahead",
     "guide_aim",
     "guide_is_clear",
@@ -82,8 +84,7 @@ def minimum_jerk_guide(
         return chord if h is None else length * np.array([math.cos(h), math.sin(h)])
 
     rows = np.stack([p0, tangent(start_heading), tangent(goal_heading), p1])  # (4, 2)
-    s = np.linspace(0.0, 1.0, n)
-    return (s[:, None] ** np.arange(6)) @ (_H.T @ rows)
+    return _poly_points(_H.T @ rows, n)
 
 
 # Quintic Hermite basis with end accelerations too, in s in [0, 1] (constant term first):
@@ -103,10 +104,57 @@ _H6 = np.array(
 _JERK = _H6[:, 3:] * np.array([6.0, 24.0, 60.0])
 
 
-def _quintic(ends: np.ndarray, s: np.ndarray) -> np.ndarray:
-    """Points (len(s), 2) of the quintic with ``ends`` (6, 2: _H6's order, scaled by the
-    piece's time) at normalized times ``s``."""
-    return (s[:, None] ** np.arange(6)) @ (_H6.T @ ends)
+@njit
+def _poly_points(coef, m):
+    """Points (m, 2) of the polynomial with coefficients ``coef`` (6, 2: constant term first)
+    at m evenly spaced s in [0, 1] (Horner's scheme)."""
+    out = np.empty((m, 2))
+    for i in range(m):
+        t = 1.0 if i == m - 1 else i / (m - 1)
+        for a in range(2):
+            v = coef[5, a]
+            for c in range(4, -1, -1):
+                v = v * t + coef[c, a]
+            out[i, a] = v
+    return out
+
+
+@njit
+def _via_point_solve(p0, w, p1, v0, v1, t1, t2, jerk):
+    """The via point's velocity and acceleration (2, 2: rows velocity, acceleration; per
+    axis) minimising the squared jerk of :func:`via_point_guide`'s two pieces, sampled at 64
+    normalized times each and weighted by the pieces' times: the jerk is linear in them, so
+    this is least squares in two unknowns per axis, solved by its normal equations."""
+    m00 = m01 = m11 = 0.0
+    r = np.zeros((2, 2))
+    ns = 64
+    jb = np.empty(6)
+    for piece in range(2):
+        t = t1 if piece == 0 else t2
+        for i in range(ns):
+            s = i / (ns - 1)
+            for b in range(6):
+                jb[b] = jerk[b, 0] + jerk[b, 1] * s + jerk[b, 2] * s * s
+            if piece == 0:
+                a0, a1 = jb[4] / t1**2, jb[3] / t1
+            else:
+                a0, a1 = jb[1] / t2**2, jb[2] / t2
+            m00 += t * a0 * a0
+            m01 += t * a0 * a1
+            m11 += t * a1 * a1
+            for k in range(2):
+                if piece == 0:
+                    known = (jb[0] * p0[k] + jb[1] * v0[k] * t1 + jb[5] * w[k]) / t1**3
+                else:
+                    known = (jb[0] * w[k] + jb[4] * v1[k] * t2 + jb[5] * p1[k]) / t2**3
+                r[0, k] -= t * a0 * known
+                r[1, k] -= t * a1 * known
+    det = m00 * m11 - m01 * m01
+    out = np.empty((2, 2))
+    for k in range(2):
+        out[0, k] = (m11 * r[0, k] - m01 * r[1, k]) / det
+        out[1, k] = (m00 * r[1, k] - m01 * r[0, k]) / det
+    return out
 
 
 def via_point_guide(
@@ -129,38 +177,11 @@ def via_point_guide(
         return length * (d / np.hypot(*d) if h is None else np.array([math.cos(h), math.sin(h)]))
 
     v0, v1 = velocity(start_heading, w - p0), velocity(goal_heading, p1 - w)
-    s = np.linspace(0.0, 1.0, 64)
-    jb = _JERK @ np.stack([np.ones_like(s), s, s * s])  # (6, 64): each basis's jerk
-    # the jerk, sampled over both pieces (weighted by their times), is linear in the via
-    # velocity and acceleration: least squares per axis
-    weight = np.concatenate([np.full(64, math.sqrt(t1)), np.full(64, math.sqrt(t2))])
-    a_mat = np.stack(
-        [
-            np.concatenate([jb[4] / t1**2, jb[1] / t2**2]),  # via velocity
-            np.concatenate([jb[3] / t1, jb[2] / t2]),  # via acceleration
-        ],
-        axis=1,
-    )
-    known = np.stack(
-        [
-            np.concatenate(
-                [
-                    (jb[0] * p0[k] + jb[1] * v0[k] * t1 + jb[5] * w[k]) / t1**3,
-                    (jb[0] * w[k] + jb[4] * v1[k] * t2 + jb[5] * p1[k]) / t2**3,
-                ]
-            )
-            for k in range(2)
-        ],
-        axis=1,
-    )
-    sol = np.linalg.lstsq(a_mat * weight[:, None], -known * weight[:, None], rcond=None)[0]
-    vw, aw = sol[0], sol[1]  # (2,) each
+    vw, aw = _via_point_solve(p0, w, p1, v0, v1, t1, t2, _JERK)
     zero = np.zeros(2)
     m1 = min(n - 1, max(2, round(n * t1)))
-    first = _quintic(np.stack([p0, v0 * t1, zero, aw * t1**2, vw * t1, w]), np.linspace(0, 1, m1))
-    second = _quintic(
-        np.stack([w, vw * t2, aw * t2**2, zero, v1 * t2, p1]), np.linspace(0, 1, n - m1 + 1)
-    )
+    first = _poly_points(_H6.T @ np.stack([p0, v0 * t1, zero, aw * t1**2, vw * t1, w]), m1)
+    second = _poly_points(_H6.T @ np.stack([w, vw * t2, aw * t2**2, zero, v1 * t2, p1]), n - m1 + 1)
     return np.vstack([first, second[1:]])
 
 
@@ -185,10 +206,67 @@ def densify(points, spacing: float = 0.05) -> np.ndarray:
     return resample_guide(pts, max(2, math.ceil(length / spacing) + 1))
 
 
+def first_below(workplace, points, clearance: float, spacing: float = 0.05):
+    """The first point (x, y) of the polyline ``points`` (k >= 2, 2), sampled as
+    :func:`densify` samples it, where the room to walk (:meth:`Workplace.walk_clearance`) is
+    less than ``clearance`` metres; None where there is none. On a workplace whose clearance
+    is a :class:`~mjwalk.world.clearance.ClearanceField` (every loaded one) one compiled pass
+    that stops at that point, with the lookup's own arithmetic; else densify and look up."""
+    pts = np.asarray(points, dtype=float)
+    if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2 or not np.all(np.isfinite(pts)):
+        raise ValueError("a guide must be finite (x, y) points, at least two")
+    field = workplace.clearance
+    if not isinstance(field, ClearanceField):
+        dense = densify(pts, spacing)
+        low = np.flatnonzero(workplace.walk_clearance(dense) < clearance)
+        return dense[low[0]] if len(low) else None
+    xmin, ymin, xmax, ymax = (float(v) for v in workplace.floor_bounds)
+    k, x, y = _first_below(
+        np.ascontiguousarray(pts), field.values, float(field.x0), float(field.y0),
+        float(field.resolution), xmin, ymin, xmax, ymax, float(clearance), float(spacing),
+    )  # fmt: skip
+    if k == -2:
+        raise ValueError("a guide must have a length")
+    return None if k < 0 else np.array([x, y])
+
+
+@njit
+def _first_below(pts, values, x0, y0, res, xmin, ymin, xmax, ymax, clearance, spacing):
+    """:func:`first_below` on a clearance field: (index among the densified points, x, y) of
+    the first point below ``clearance``, -1 for none, -2 for a polyline of no length. The
+    points are :func:`resample_guide`'s (np.interp along the cumulative length at
+    np.linspace's stations), the room is min(bilinear clearance, distance to the floor's
+    edge) as :meth:`Workplace.walk_clearance` computes it."""
+    k = pts.shape[0]
+    cum = np.empty(k)
+    cum[0] = 0.0
+    for i in range(1, k):
+        cum[i] = cum[i - 1] + math.hypot(pts[i, 0] - pts[i - 1, 0], pts[i, 1] - pts[i - 1, 1])
+    total = cum[k - 1]
+    if total <= 1e-9:
+        return -2, math.nan, math.nan
+    n = max(2, math.ceil(total / spacing) + 1)
+    step = total / (n - 1)
+    j = 0
+    for i in range(n):
+        u = total if i == n - 1 else i * step
+        while j < k - 2 and cum[j + 1] <= u:  # np.interp: the last station at or below u
+            j += 1
+        seg = cum[j + 1] - cum[j]
+        w = (u - cum[j]) / seg if seg > 0.0 else 0.0
+        x = pts[j, 0] + w * (pts[j + 1, 0] - pts[j, 0])
+        y = pts[j, 1] + w * (pts[j + 1, 1] - pts[j, 1])
+        room = min(bilinear_at(values, x0, y0, res, x, y), x - xmin, xmax - x, y - ymin, ymax - y)
+        if room < clearance:
+            return i, x, y
+    return -1, math.nan, math.nan
+
+
 def guide_is_clear(workplace, points, clearance: float, spacing: float = 0.05) -> bool:
     """Whether the polyline ``points`` keeps ``clearance`` metres from the workplace's
-    obstacles and floor edges (:meth:`Workplace.walk_clearance`) at points ``spacing`` apart."""
-    return bool(np.all(workplace.walk_clearance(densify(points, spacing)) >= clearance))
+    obstacles and floor edges (:meth:`Workplace.walk_clearance`) at points ``spacing`` apart
+    (:func:`first_below`)."""
+    return first_below(workplace, points, clearance, spacing) is None
 
 
 @njit

@@ -172,3 +172,116 @@ def test_the_way_left_along_a_guide():
     length = float(np.hypot(*np.diff(arc, axis=0).T).sum())
     assert guide_ahead(arc.ravel(), complex(*arc[0])) == pytest.approx(length)
     assert guide_ahead(np.full(4, np.nan), complex(1.0, 1.0)) == 0.0
+
+
+def test_the_compiled_clearance_scan_finds_the_densified_lookups_first_low_point(scenes_dir):
+    """first_below (one compiled pass that stops at the first point below the limit) finds
+    the point the 5 cm densify and the workplace's own walk_clearance lookup find, on 400
+    random polylines through a station with obstacles and floor edges, or finds none where
+    they find none."""
+    from mjwalk.plan.guide import densify, first_below
+
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    xmin, ymin, xmax, ymax = wp.floor_bounds
+    rng = np.random.default_rng(5)
+    found = 0
+    for _ in range(400):
+        start = rng.uniform((xmin, ymin), (xmax, ymax))
+        pts = start + np.cumsum(rng.normal(0.0, 0.5, (int(rng.integers(2, 12)), 2)), axis=0)
+        limit = rng.uniform(0.1, 0.5)
+        dense = densify(pts)
+        low = np.flatnonzero(wp.walk_clearance(dense) < limit)
+        got = first_below(wp, pts, limit)
+        assert (got is None) == (len(low) == 0)
+        if len(low):
+            found += 1
+            assert np.allclose(got, dense[low[0]], atol=1e-9)
+    assert 50 < found < 390  # both outcomes were exercised
+    with pytest.raises(ValueError, match="length"):
+        first_below(wp, [(1.0, 1.0), (1.0, 1.0)], 0.3)
+
+
+def _quintic_basis() -> np.ndarray:
+    """Monomial coefficients (6, 6) of the quintic Hermite basis in the order position 0,
+    velocity 0, acceleration 0, acceleration 1, velocity 1, position 1, derived here from its
+    end conditions (an independent reference for mjwalk.plan.guide)."""
+    k = np.arange(6)
+    rows = [
+        (k == 0).astype(float),  # value at 0
+        (k == 1).astype(float),  # first derivative at 0
+        2.0 * (k == 2),  # second derivative at 0
+        k * (k - 1.0),  # second derivative at 1
+        k.astype(float),  # first derivative at 1
+        np.ones(6),  # value at 1
+    ]
+    return np.linalg.inv(np.array(rows))  # column j: the basis function of condition j
+
+
+def _via_point_reference(p0, w, p1, h0, h1, n=400) -> np.ndarray:
+    """The via-point minimum-jerk path by NumPy least squares over the sampled jerk (Flash &
+    Hogan 1985), from the basis derived above: what via_point_guide must give."""
+    basis = _quintic_basis()
+    l1, l2 = np.hypot(*(w - p0)), np.hypot(*(p1 - w))
+    length = l1 + l2
+    t1, t2 = l1 / length, l2 / length
+    v0 = length * (np.array([math.cos(h0), math.sin(h0)]) if h0 is not None else (w - p0) / l1)
+    v1 = length * (np.array([math.cos(h1), math.sin(h1)]) if h1 is not None else (p1 - w) / l2)
+    s = np.linspace(0.0, 1.0, 64)
+    third = np.stack([np.zeros_like(s)] * 3 + [6.0 + 0 * s, 24.0 * s, 60.0 * s * s])  # (6, 64)
+    jerk = basis.T @ third  # (6 conditions, 64): each condition's jerk in s
+
+    def pieces(vw, aw):
+        zero = np.zeros(2)
+        return (
+            np.stack([p0, v0 * t1, zero, aw * t1**2, vw * t1, w]),
+            np.stack([w, vw * t2, aw * t2**2, zero, v1 * t2, p1]),
+        )
+
+    def sampled_jerk(vw, aw):  # per axis, time-weighted, in real time units
+        a, b = pieces(vw, aw)
+        return np.concatenate(
+            [math.sqrt(t1) * jerk.T @ a / t1**3, math.sqrt(t2) * jerk.T @ b / t2**3]
+        )
+
+    base = sampled_jerk(np.zeros(2), np.zeros(2))
+    unit = np.zeros(2)
+    a_v = sampled_jerk(unit + 1.0, unit) - base  # linear in vw (same coefficient per axis)
+    a_a = sampled_jerk(unit, unit + 1.0) - base
+    sol = [
+        np.linalg.lstsq(np.stack([a_v[:, k], a_a[:, k]], axis=1), -base[:, k], rcond=None)[0]
+        for k in range(2)
+    ]
+    vw, aw = np.array([sol[0][0], sol[1][0]]), np.array([sol[0][1], sol[1][1]])
+    a, b = pieces(vw, aw)
+    m1 = min(n - 1, max(2, round(n * t1)))
+
+    def points(ends, m):
+        u = np.linspace(0.0, 1.0, m)
+        return (u[:, None] ** np.arange(6)) @ (basis @ ends)
+
+    return np.vstack([points(a, m1), points(b, n - m1 + 1)[1:]])
+
+
+def test_the_via_point_path_is_the_least_squares_one():
+    """via_point_guide's path (its via velocity and acceleration solved by the normal
+    equations of the sampled jerk, compiled) is the path NumPy's least squares gives on the
+    basis derived from the end conditions, to 1e-9 m (random poses); and walkable's compiled
+    curvature test agrees with np.gradient's."""
+    from mjwalk.plan.detour import walkable
+    from mjwalk.plan.guide import via_point_guide
+
+    rng = np.random.default_rng(2)
+    for i in range(60):
+        p0, w, p1 = rng.uniform(-4.0, 4.0, (3, 2))
+        h0 = None if i % 3 == 0 else rng.uniform(-3.0, 3.0)
+        h1 = None if i % 4 == 0 else rng.uniform(-3.0, 3.0)
+        got = via_point_guide(p0, w, p1, h0, h1)
+        assert np.allclose(got, _via_point_reference(p0, w, p1, h0, h1), atol=1e-9)
+    for _ in range(200):
+        path = np.cumsum(rng.normal(0.0, 0.3, (int(rng.integers(2, 40)), 2)), axis=0)
+        step = rng.uniform(0.05, 1.5)
+        d = np.gradient(path, axis=0)
+        dd = np.gradient(d, axis=0)
+        bend = np.abs(d[:, 0] * dd[:, 1] - d[:, 1] * dd[:, 0])
+        speed = np.maximum(np.hypot(*d.T), 1e-12)
+        assert walkable(path, step) == bool(np.all(bend * step <= (math.pi / 2) * speed**3))
