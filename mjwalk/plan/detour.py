@@ -44,6 +44,7 @@ from mjwalk.plan.guide import (
     resample_guide,
     via_point_guide,
 )
+from mjwalk.world.clearance import ClearanceField, bilinear_at
 
 __all__ = [
     "PASSING_GAP",
@@ -67,44 +68,61 @@ SIDE_SLOPE_PER_M = math.log(3.0) / 0.75
 _ROUND = 16
 
 
-def _outline(footprint, inflate: float) -> np.ndarray:
-    """Points (k, 2) on the outline of ``footprint`` grown by ``inflate`` metres (its corners
-    rounded by :data:`_ROUND` directions; the corners themselves for 0)."""
-    verts = np.asarray(footprint.vertices, dtype=float)
+def _extremes(footprint, start, goal, inflate: float) -> np.ndarray:
+    """The points (4, 2) of the outline of ``footprint`` grown by ``inflate`` metres (its
+    corners rounded by :data:`_ROUND` directions; the corners themselves for 0) at the largest
+    and smallest angle from the direction ``start`` -> ``goal`` (left positive), and farthest
+    left and right of that line."""
+    s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
+    verts = np.ascontiguousarray(footprint.vertices, dtype=float)
     grow = inflate + float(footprint.radius)
-    if grow <= 0.0:
-        return verts
-    a = np.linspace(0.0, 2.0 * math.pi, _ROUND, endpoint=False)
-    ring = grow * np.stack([np.cos(a), np.sin(a)], axis=1)
-    return (verts[:, None, :] + ring[None, :, :]).reshape(-1, 2)
+    return _outline_extremes(verts, grow, s[0], s[1], g[0], g[1], _ROUND)
 
 
-def _angle(start: np.ndarray, goal: np.ndarray, pts: np.ndarray) -> np.ndarray:
-    """Signed angles (radians, left positive) of ``pts`` from the direction start -> goal."""
-    u = (goal - start) / np.hypot(*(goal - start))
-    rel = pts - start
-    return np.arctan2(u[0] * rel[:, 1] - u[1] * rel[:, 0], rel @ u)
+@njit
+def _outline_extremes(verts, grow, sx, sy, gx, gy, n_round):
+    """:func:`_extremes` compiled: every outline point (each corner plus ``grow`` times the
+    unit vector at n_round even angles, or the corner itself for grow <= 0) scored by its
+    signed angle atan2(u x r, u . r) and lateral offset u x r from the unit direction u, the
+    first of equals kept."""
+    dx, dy = gx - sx, gy - sy
+    norm = math.hypot(dx, dy)
+    ux, uy = dx / norm, dy / norm
+    out = np.empty((4, 2))
+    best = np.array([-np.inf, np.inf, -np.inf, np.inf])
+    rounds = n_round if grow > 0.0 else 1
+    step = 2.0 * math.pi / n_round
+    for v in range(verts.shape[0]):
+        for k in range(rounds):
+            if grow > 0.0:
+                a = k * step
+                px, py = verts[v, 0] + grow * math.cos(a), verts[v, 1] + grow * math.sin(a)
+            else:
+                px, py = verts[v, 0], verts[v, 1]
+            rx, ry = px - sx, py - sy
+            lat = ux * ry - uy * rx
+            ang = math.atan2(lat, rx * ux + ry * uy)
+            for j in range(4):
+                value = ang if j < 2 else lat
+                if (value > best[j]) if j % 2 == 0 else (value < best[j]):
+                    best[j] = value
+                    out[j, 0], out[j, 1] = px, py
+    return out
 
 
 def obstacle_ends(footprint, start, goal, inflate: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """The obstacle's left and right ends (x, y) as seen from ``start`` looking at ``goal``:
     the points of its outline grown by ``inflate`` metres farthest left and right of the goal
     direction."""
-    s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
-    pts = _outline(footprint, inflate)
-    ang = _angle(s, g, pts)
-    return pts[int(np.argmax(ang))], pts[int(np.argmin(ang))]
+    ext = _extremes(footprint, start, goal, inflate)
+    return ext[0], ext[1]
 
 
 def abreast(footprint, start, goal, inflate: float, left: bool) -> np.ndarray:
     """The point (x, y) of the obstacle's outline grown by ``inflate`` metres farthest to the
     ``left`` (else right) of the line from ``start`` to ``goal``: where a walker passing on
     that side is abreast of it."""
-    s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
-    u = (g - s) / np.hypot(*(g - s))
-    pts = _outline(footprint, inflate)
-    lateral = (pts - s) @ np.array([-u[1], u[0]])
-    return pts[int(np.argmax(lateral) if left else np.argmin(lateral))]
+    return _extremes(footprint, start, goal, inflate)[2 if left else 3]
 
 
 def left_share(start, goal, left, right) -> float:
@@ -113,13 +131,19 @@ def left_share(start, goal, left, right) -> float:
     left, or right, of the goal direction the walker must head to pass the end, 0 where it
     already passes) and distance (metres) between the obstacle's ``right`` and ``left`` ends
     (x, y). An end at a smaller angle and distance draws the walker."""
-    s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
-    ends = np.array([left, right], dtype=float)
-    ang = np.degrees(_angle(s, g, ends))
+    sx, sy = (float(v) for v in np.asarray(start, dtype=float)[:2])
+    gx, gy = (float(v) for v in np.asarray(goal, dtype=float)[:2])
+    norm = math.hypot(gx - sx, gy - sy)
+    ux, uy = (gx - sx) / norm, (gy - sy) / norm
+
+    def angle_and_distance(end) -> tuple[float, float]:
+        rx, ry = float(end[0]) - sx, float(end[1]) - sy
+        return math.degrees(math.atan2(ux * ry - uy * rx, rx * ux + ry * uy)), math.hypot(rx, ry)
+
+    (a_left, d_left), (a_right, d_right) = angle_and_distance(left), angle_and_distance(right)
     # how far the walker must turn from the goal direction to pass each end (0: already clear)
-    beta = np.array([max(0.0, ang[0]), max(0.0, -ang[1])])
-    dist = np.hypot(*(ends - s).T)
-    z = SIDE_SLOPE_PER_DEG * (beta[1] - beta[0]) + SIDE_SLOPE_PER_M * (dist[1] - dist[0])
+    b_left, b_right = max(0.0, a_left), max(0.0, -a_right)
+    z = SIDE_SLOPE_PER_DEG * (b_right - b_left) + SIDE_SLOPE_PER_M * (d_right - d_left)
     return float(1.0 / (1.0 + math.exp(-z)))
 
 
@@ -139,8 +163,19 @@ def _blocking(workplace, path: np.ndarray, radius: float):
         & (bounds[:, 1] - radius <= p[1])
         & (p[1] <= bounds[:, 3] + radius)
     )  # only footprints whose box, grown by the radius, holds the point can be that near
+    if len(near) == 0:
+        return None
+    field = workplace.clearance
+    if isinstance(field, ClearanceField):
+        # the lookup that found the point: the obstacles' clearance there is the floor's
+        # edge's doing where it is enough
+        room = bilinear_at(field.values, field.x0, field.y0, field.resolution, p[0], p[1])
+        if room >= radius:
+            return None
+        if len(near) == 1:
+            return workplace.obstacles[int(near[0])]
     dist = [float(workplace.obstacles[k].signed_distance(p[None])[0]) for k in near]
-    if not dist or min(dist) >= radius:  # the floor's edge, not an obstacle
+    if min(dist) >= radius:  # the floor's edge, not an obstacle
         return None
     return workplace.obstacles[int(near[int(np.argmin(dist))])]
 

@@ -167,22 +167,49 @@ def via_point_guide(
     length along the headings, along the way to and from ``via`` where None; zero
     accelerations); the pieces' times are in proportion to their straight lengths."""
     p0, w, p1 = (np.asarray(v, dtype=float)[:2] for v in (start, via, goal))
-    l1, l2 = float(np.hypot(*(w - p0))), float(np.hypot(*(p1 - w)))
+    l1, l2 = math.hypot(*(w - p0)), math.hypot(*(p1 - w))
     if not (l1 > 1e-9 and l2 > 1e-9):
         raise ValueError("via_point_guide: the via point coincides with an end")
     length = l1 + l2
     t1, t2 = l1 / length, l2 / length  # the pieces' normalized times
 
-    def velocity(h: float | None, d: np.ndarray) -> np.ndarray:
-        return length * (d / np.hypot(*d) if h is None else np.array([math.cos(h), math.sin(h)]))
+    def velocity(h: float | None, d: np.ndarray, norm: float) -> np.ndarray:
+        return length * (d / norm if h is None else np.array([math.cos(h), math.sin(h)]))
 
-    v0, v1 = velocity(start_heading, w - p0), velocity(goal_heading, p1 - w)
-    vw, aw = _via_point_solve(p0, w, p1, v0, v1, t1, t2, _JERK)
-    zero = np.zeros(2)
+    v0, v1 = velocity(start_heading, w - p0, l1), velocity(goal_heading, p1 - w, l2)
     m1 = min(n - 1, max(2, round(n * t1)))
-    first = _poly_points(_H6.T @ np.stack([p0, v0 * t1, zero, aw * t1**2, vw * t1, w]), m1)
-    second = _poly_points(_H6.T @ np.stack([w, vw * t2, aw * t2**2, zero, v1 * t2, p1]), n - m1 + 1)
-    return np.vstack([first, second[1:]])
+    return _via_point_path(p0, w, p1, v0, v1, t1, t2, m1, n, _JERK, _H6)
+
+
+@njit
+def _via_point_path(p0, w, p1, v0, v1, t1, t2, m1, n, jerk, h6):
+    """:func:`via_point_guide`'s n points: the first piece's m1 points, then the second's
+    without its first (the via point), each piece's polynomial the :data:`_H6` basis
+    times its ends (position, velocity and acceleration scaled by the piece's time)."""
+    sol = _via_point_solve(p0, w, p1, v0, v1, t1, t2, jerk)
+    ends = np.zeros((6, 2))
+    coef = np.empty((6, 2))
+    out = np.empty((n, 2))
+    for piece in range(2):
+        t = t1 if piece == 0 else t2
+        for a in range(2):
+            if piece == 0:
+                ends[0, a], ends[1, a], ends[2, a] = p0[a], v0[a] * t, 0.0
+                ends[3, a], ends[4, a], ends[5, a] = sol[1, a] * t * t, sol[0, a] * t, w[a]
+            else:
+                ends[0, a], ends[1, a], ends[2, a] = w[a], sol[0, a] * t, sol[1, a] * t * t
+                ends[3, a], ends[4, a], ends[5, a] = 0.0, v1[a] * t, p1[a]
+            for c in range(6):
+                acc = 0.0
+                for b in range(6):
+                    acc += h6[b, c] * ends[b, a]
+                coef[c, a] = acc
+        pts = _poly_points(coef, m1 if piece == 0 else n - m1 + 1)
+        if piece == 0:
+            out[:m1] = pts
+        else:
+            out[m1:] = pts[1:]
+    return out
 
 
 def resample_guide(points, n: int = GUIDE_POINTS) -> np.ndarray:
