@@ -35,7 +35,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import make_interp_spline
+from scipy.interpolate import BSpline, PPoly, make_interp_spline
 
 from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.errors import MjwalkError
@@ -83,6 +83,20 @@ def spline_basis(m: int) -> np.ndarray:
     basis[-1] = np.eye(N_LANDMARKS)[-1]
     basis.setflags(write=False)
     return basis
+
+
+@functools.lru_cache(maxsize=1)
+def spline_pieces() -> tuple[np.ndarray, np.ndarray]:
+    """The landmark spline of :func:`spline_basis` as cubic pieces, for compiled evaluation:
+    the pieces' start times (p,) in [0, 1) and their coefficients (4, p, 6) (highest power
+    first, in u - start; one column per landmark), so that on piece j the basis is
+    sum_q coef[q, j] (u - start_j)^(3 - q). Equal to the B-spline to rounding."""
+    b = _landmark_spline()
+    pieces = [PPoly.from_spline(BSpline(b.t, b.c[:, j], b.k)) for j in range(N_LANDMARKS)]
+    x = pieces[0].x
+    keep = np.flatnonzero(np.diff(x) > 0.0)  # the knots' non-empty intervals
+    coef = np.stack([pp.c[:, keep] for pp in pieces], axis=-1)
+    return np.ascontiguousarray(x[keep]), np.ascontiguousarray(coef)
 
 
 def step_raw_features(step: Step) -> np.ndarray:

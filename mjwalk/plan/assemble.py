@@ -4,10 +4,13 @@ footfalls in the world (:func:`assemble_walk`).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.conventions import SAMPLE_RATE_HZ
-from mjwalk.gait.features import spline_basis
+from mjwalk.gait.features import spline_pieces
 from mjwalk.plan.walkpath import PathStep, WalkPath
 
 FPS = SAMPLE_RATE_HZ
@@ -19,6 +22,69 @@ def to_world(px, py, heading, local: np.ndarray) -> np.ndarray:
     s, c = np.sin(heading), np.cos(heading)
     x, y = local[..., 0], local[..., 1]
     return np.stack([px + x * s + y * c, py - x * c + y * s], axis=-1)
+
+
+@njit
+def _basis_at(u, starts, coef, out):
+    """The landmark spline's basis (6,) at normalized time ``u`` into ``out``
+    (:func:`~mjwalk.gait.features.spline_pieces`)."""
+    j = 0
+    while j + 1 < starts.shape[0] and u >= starts[j + 1]:
+        j += 1
+    d = u - starts[j]
+    for c in range(out.shape[0]):
+        out[c] = ((coef[0, j, c] * d + coef[1, j, c]) * d + coef[2, j, c]) * d + coef[3, j, c]
+
+
+@njit
+def _walk_samples(landmarks, yaw_lm, sizes, fr, ox, oy, foot, stance, starts, coef, x0, y0):
+    """The walk's pelvis samples (1 + sum(sizes - 1), 2) and yaws, and every step's landing
+    and stance foot as world poses (n, 3): step r's samples 1 .. sizes[r] - 1 of its spline
+    (:func:`~mjwalk.gait.features.spline_basis`: its first and last rows the first and last
+    landmark exactly) in its frame at (ox[r], oy[r]) heading fr[r] (:func:`to_world`);
+    sample 0 the walk's start (x0, y0) facing the first step's first yaw."""
+    n = sizes.shape[0]
+    total = 1
+    for r in range(n):
+        total += sizes[r] - 1
+    xy = np.empty((total, 2))
+    yaw = np.empty(total)
+    xy[0, 0], xy[0, 1] = x0, y0
+    basis = np.empty(landmarks.shape[1])
+    last = landmarks.shape[1] - 1
+    idx = 1
+    for r in range(n):
+        k = sizes[r]
+        s, c = math.sin(fr[r]), math.cos(fr[r])
+        for i in range(0 if r == 0 else 1, k):
+            if i == 0 or i == k - 1:
+                basis[:] = 0.0
+                basis[0 if i == 0 else last] = 1.0
+            else:
+                _basis_at(i / (k - 1), starts, coef, basis)
+            lx = ly = yw = 0.0
+            for b in range(basis.shape[0]):
+                lx += basis[b] * landmarks[r, b, 0]
+                ly += basis[b] * landmarks[r, b, 1]
+                yw += basis[b] * yaw_lm[r, b]
+            if i == 0:
+                yaw[0] = fr[0] + yw
+                continue
+            xy[idx, 0] = ox[r] + lx * s + ly * c
+            xy[idx, 1] = oy[r] - lx * c + ly * s
+            yaw[idx] = fr[r] + yw
+            idx += 1
+    feet = np.empty((n, 3))
+    own = np.empty((n, 3))
+    for r in range(n):
+        s, c = math.sin(fr[r]), math.cos(fr[r])
+        feet[r, 0] = ox[r] + foot[r, 0] * s + foot[r, 1] * c
+        feet[r, 1] = oy[r] - foot[r, 0] * c + foot[r, 1] * s
+        feet[r, 2] = fr[r] + foot[r, 2]
+        own[r, 0] = ox[r] + stance[r, 0] * s + stance[r, 1] * c
+        own[r, 1] = oy[r] - stance[r, 0] * c + stance[r, 1] * s
+        own[r, 2] = fr[r] + stance[r, 2]
+    return xy, yaw, feet, own
 
 
 def assemble_walk(model, nid: int, nodes, feats: np.ndarray, meta: dict) -> WalkPath:
@@ -46,35 +112,15 @@ def assemble_walk(model, nid: int, nodes, feats: np.ndarray, meta: dict) -> Walk
     oy = pos[parent[chain]].imag
     fr = frames[chain]
     # the steps at 120 Hz (sample 0 of each is the previous step's last), one frame each
-    # (StepBatch.trajectory: K = round(duration·fps) + 1 samples, at least 2, its spline
-    # basis looked up once per sample count)
-    n = len(chain)
-    sizes = np.maximum(np.round(batch.duration * FPS).astype(np.int64) + 1, 2).tolist()
-    local_parts, yaw_parts = [], []
-    for row, k in enumerate(sizes):
-        basis = spline_basis(k)
-        local_parts.append((basis @ batch.landmarks[row])[1:])
-        yaw_parts.append(basis @ batch.yaw_landmarks[row])
-    counts = [k - 1 for k in sizes]
-    # every sample's step, then the landing and the stance foot of every step: one turn
-    # into the world for all of them
-    of = np.concatenate([np.repeat(np.arange(n), counts), np.arange(n), np.arange(n)])
-    local = np.concatenate([*local_parts, batch.footprint[:, :2], batch.stance[:, :2]])
-    world = to_world(ox[of], oy[of], fr[of], local)
-    k = len(world) - 2 * n
-    xy = np.empty((1 + k, 2))
-    xy[0] = pos[0].real, pos[0].imag
-    xy[1:] = world[:k]
-    # sample 0 faces the first step's frame: a starter's turn on the spot (free start
-    # heading) is not part of the walk (a cycle turns the operator before it), so the
-    # pelvis yaw does not jump between samples 0 and 1
-    yaw = np.empty(len(xy))
-    yaw[0] = fr[0] + yaw_parts[0][0]
-    yaw[1:] = fr[of[:k]] + np.concatenate([y[1:] for y in yaw_parts])
-    # world poses (x, y, yaw) of every step's landing foot and of its own estimate of the
-    # stance foot
-    feet = np.column_stack([world[k : k + n], fr + batch.footprint[:, 2]])
-    own_stance = np.column_stack([world[k + n :], fr + batch.stance[:, 2]])
+    # (StepBatch.trajectory: K = round(duration·fps) + 1 samples, at least 2), and every
+    # step's landing and stance foot, turned into the world in one compiled pass
+    sizes = np.maximum(np.round(batch.duration * FPS).astype(np.int64) + 1, 2)
+    starts, coef = spline_pieces()
+    xy, yaw, feet, own_stance = _walk_samples(
+        batch.landmarks, batch.yaw_landmarks, sizes, fr, ox, oy, batch.footprint,
+        batch.stance, starts, coef, pos[0].real, pos[0].imag,
+    )  # fmt: skip
+    counts = (sizes - 1).tolist()
     steps: list[PathStep] = []
     landed: dict[bool, np.ndarray] = {}
     ends = np.cumsum(counts).tolist()

@@ -184,3 +184,18 @@ def test_bad_input_raises(steps):
     feats = StepFeatures.fit(steps)
     with pytest.raises(MjwalkError, match="dimensions"):
         feats.decode(np.zeros((2, feats.n_components + 1)), "left")
+
+
+def test_the_spline_pieces_are_the_landmark_spline():
+    """spline_pieces (the cubic pieces the planner's compiled assembly evaluates) give
+    spline_basis's rows to 1e-12 at every sample count a step can have at 120 Hz."""
+    from mjwalk.gait.features import spline_basis, spline_pieces
+
+    starts, coef = spline_pieces()
+    assert starts[0] == 0.0 and np.all(np.diff(starts) > 0) and coef.shape[0] == 4
+    for m in (3, 37, 97, 120, 241):
+        u = np.linspace(0.0, 1.0, m)[1:-1]
+        j = np.searchsorted(starts, u, side="right") - 1
+        d = (u - starts[j])[:, None]
+        got = ((coef[0, j] * d + coef[1, j]) * d + coef[2, j]) * d + coef[3, j]
+        assert np.allclose(got, spline_basis(m)[1:-1], atol=1e-12)
