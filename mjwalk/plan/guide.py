@@ -217,12 +217,37 @@ def resample_guide(points, n: int = GUIDE_POINTS) -> np.ndarray:
     pts = np.asarray(points, dtype=float)
     if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2 or not np.all(np.isfinite(pts)):
         raise ValueError("a guide must be finite (x, y) points, at least two")
-    seg = np.hypot(*np.diff(pts, axis=0).T)
-    s = np.concatenate([[0.0], np.cumsum(seg)])
-    if s[-1] <= 1e-9:
+    out = _resampled(np.ascontiguousarray(pts), int(n))
+    if len(out) == 0:
         raise ValueError("a guide must have a length")
-    u = np.linspace(0.0, s[-1], n)
-    return np.stack([np.interp(u, s, pts[:, 0]), np.interp(u, s, pts[:, 1])], axis=1)
+    return out
+
+
+@njit
+def _resampled(pts, n):
+    """:func:`resample_guide`'s points (n, 2), compiled: np.interp along the cumulative
+    length at np.linspace's stations (as :func:`_first_below` samples); (0, 2) for a
+    polyline of no length."""
+    k = pts.shape[0]
+    cum = np.empty(k)
+    cum[0] = 0.0
+    for i in range(1, k):
+        cum[i] = cum[i - 1] + math.hypot(pts[i, 0] - pts[i - 1, 0], pts[i, 1] - pts[i - 1, 1])
+    total = cum[k - 1]
+    if total <= 1e-9:
+        return np.empty((0, 2))
+    out = np.empty((n, 2))
+    step = total / (n - 1) if n > 1 else 0.0
+    j = 0
+    for i in range(n):
+        u = total if i == n - 1 else i * step
+        while j < k - 2 and cum[j + 1] <= u:
+            j += 1
+        seg = cum[j + 1] - cum[j]
+        w = (u - cum[j]) / seg if seg > 0.0 else 0.0
+        out[i, 0] = pts[j, 0] + w * (pts[j + 1, 0] - pts[j, 0])
+        out[i, 1] = pts[j, 1] + w * (pts[j + 1, 1] - pts[j, 1])
+    return out
 
 
 def densify(points, spacing: float = 0.05) -> np.ndarray:

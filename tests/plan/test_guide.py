@@ -285,3 +285,18 @@ def test_the_via_point_path_is_the_least_squares_one():
         bend = np.abs(d[:, 0] * dd[:, 1] - d[:, 1] * dd[:, 0])
         speed = np.maximum(np.hypot(*d.T), 1e-12)
         assert walkable(path, step) == bool(np.all(bend * step <= (math.pi / 2) * speed**3))
+
+
+def test_resampling_is_numpys_interpolation_along_the_length():
+    """resample_guide (compiled) gives np.interp's points at np.linspace's stations along the
+    cumulative length, to 1e-12 m, on random polylines with repeated points."""
+    rng = np.random.default_rng(4)
+    for i in range(300):
+        pts = np.cumsum(rng.normal(0.0, 0.5, (int(rng.integers(3, 40)), 2)), axis=0)
+        if i % 5 == 0:
+            pts[2] = pts[1]
+        n = int(rng.integers(2, 200))
+        s = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(pts, axis=0).T))])
+        u = np.linspace(0.0, s[-1], n)
+        ref = np.stack([np.interp(u, s, pts[:, 0]), np.interp(u, s, pts[:, 1])], axis=1)
+        assert np.allclose(resample_guide(pts, n), ref, atol=1e-12)
