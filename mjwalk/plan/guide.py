@@ -178,38 +178,11 @@ def via_point_guide(
 
     v0, v1 = velocity(start_heading, w - p0, l1), velocity(goal_heading, p1 - w, l2)
     m1 = min(n - 1, max(2, round(n * t1)))
-    return _via_point_path(p0, w, p1, v0, v1, t1, t2, m1, n, _JERK, _H6)
-
-
-@njit
-def _via_point_path(p0, w, p1, v0, v1, t1, t2, m1, n, jerk, h6):
-    """:func:`via_point_guide`'s n points: the first piece's m1 points, then the second's
-    without its first (the via point), each piece's polynomial the :data:`_H6` basis
-    times its ends (position, velocity and acceleration scaled by the piece's time)."""
-    sol = _via_point_solve(p0, w, p1, v0, v1, t1, t2, jerk)
-    ends = np.zeros((6, 2))
-    coef = np.empty((6, 2))
-    out = np.empty((n, 2))
-    for piece in range(2):
-        t = t1 if piece == 0 else t2
-        for a in range(2):
-            if piece == 0:
-                ends[0, a], ends[1, a], ends[2, a] = p0[a], v0[a] * t, 0.0
-                ends[3, a], ends[4, a], ends[5, a] = sol[1, a] * t * t, sol[0, a] * t, w[a]
-            else:
-                ends[0, a], ends[1, a], ends[2, a] = w[a], sol[0, a] * t, sol[1, a] * t * t
-                ends[3, a], ends[4, a], ends[5, a] = 0.0, v1[a] * t, p1[a]
-            for c in range(6):
-                acc = 0.0
-                for b in range(6):
-                    acc += h6[b, c] * ends[b, a]
-                coef[c, a] = acc
-        pts = _poly_points(coef, m1 if piece == 0 else n - m1 + 1)
-        if piece == 0:
-            out[:m1] = pts
-        else:
-            out[m1:] = pts[1:]
-    return out
+    vw, aw = _via_point_solve(p0, w, p1, v0, v1, t1, t2, _JERK)
+    zero = np.zeros(2)
+    first = _poly_points(_H6.T @ np.stack([p0, v0 * t1, zero, aw * t1**2, vw * t1, w]), m1)
+    second = _poly_points(_H6.T @ np.stack([w, vw * t2, aw * t2**2, zero, v1 * t2, p1]), n - m1 + 1)
+    return np.vstack([first, second[1:]])
 
 
 def resample_guide(points, n: int = GUIDE_POINTS) -> np.ndarray:
