@@ -28,6 +28,23 @@ def test_a_walk_is_cut_from_its_last_sample_in_the_start_zone_to_its_first_in_th
     assert out is not None and out[0, 0] == 1.0 and out[-1, 0] == 6.0
 
 
+def test_the_crossing_duration_places_each_zone_crossing_between_its_samples():
+    """A walk at 1 m/s sampled at 2.5 Hz (0.4 m apart) from 1.25 m zones about (0, 0) and
+    (7, 0): it leaves the start zone at x = 1.25 and enters the goal zone at x = 5.75, 4.5 s
+    apart, whatever the phase of its samples; the issue's whole-sample duration is 4.4 or
+    4.8 s."""
+    a, b = np.array([0.0, 0.0]), np.array([7.0, 0.0])
+    for phase in (0.0, 0.13, 0.29):
+        x = np.arange(-0.5 + phase, 8.0, 0.4)
+        xy = bench.cut(np.column_stack([x, np.zeros_like(x)]), a, b, 1.25)
+        assert xy is not None
+        assert bench.crossing_duration(xy, a, b, 1.25) == pytest.approx(4.5, abs=1e-9)
+        assert bench.measure(xy, a, b, np.array([3.0, 2.0]))["duration"] in (
+            pytest.approx(4.4),
+            pytest.approx(4.8),
+        )
+
+
 def test_bad_options_stop_with_status_2(tmp_path, capsys):
     with pytest.raises(SystemExit) as exc:
         bench.main(["--data", str(tmp_path)])
