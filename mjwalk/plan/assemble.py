@@ -25,6 +25,13 @@ def to_world(px, py, heading, local: np.ndarray) -> np.ndarray:
 
 
 @njit
+def _turned(px, py, s, c, x, y):
+    """:func:`to_world` of one local point (x, y) for a frame at (px, py) whose heading has
+    sine ``s`` and cosine ``c``."""
+    return px + x * s + y * c, py - x * c + y * s
+
+
+@njit
 def _basis_at(u, starts, coef, out):
     """The landmark spline's basis (6,) at normalized time ``u`` into ``out``
     (:func:`~mjwalk.gait.features.spline_pieces`)."""
@@ -70,19 +77,16 @@ def _walk_samples(landmarks, yaw_lm, sizes, fr, ox, oy, foot, stance, starts, co
             if i == 0:
                 yaw[0] = fr[0] + yw
                 continue
-            xy[idx, 0] = ox[r] + lx * s + ly * c
-            xy[idx, 1] = oy[r] - lx * c + ly * s
+            xy[idx, 0], xy[idx, 1] = _turned(ox[r], oy[r], s, c, lx, ly)
             yaw[idx] = fr[r] + yw
             idx += 1
     feet = np.empty((n, 3))
     own = np.empty((n, 3))
     for r in range(n):
         s, c = math.sin(fr[r]), math.cos(fr[r])
-        feet[r, 0] = ox[r] + foot[r, 0] * s + foot[r, 1] * c
-        feet[r, 1] = oy[r] - foot[r, 0] * c + foot[r, 1] * s
+        feet[r, 0], feet[r, 1] = _turned(ox[r], oy[r], s, c, foot[r, 0], foot[r, 1])
         feet[r, 2] = fr[r] + foot[r, 2]
-        own[r, 0] = ox[r] + stance[r, 0] * s + stance[r, 1] * c
-        own[r, 1] = oy[r] - stance[r, 0] * c + stance[r, 1] * s
+        own[r, 0], own[r, 1] = _turned(ox[r], oy[r], s, c, stance[r, 0], stance[r, 1])
         own[r, 2] = fr[r] + stance[r, 2]
     return xy, yaw, feet, own
 

@@ -43,8 +43,11 @@ __all__ = [
     "densify",
     "first_below",
     "guide_ahead",
+    "guide_ahead_at",
     "guide_aim",
+    "guide_aim_at",
     "guide_is_clear",
+    "guide_nearest",
     "minimum_jerk_guide",
     "resample_guide",
     "via_point_guide",
@@ -185,12 +188,46 @@ def via_point_guide(
     return np.vstack([first, second[1:]])
 
 
-def resample_guide(points, n: int = GUIDE_POINTS) -> np.ndarray:
-    """The polyline ``points`` (k >= 2, 2) as ``n`` points evenly spaced along it (metres)."""
+def _checked(points) -> np.ndarray:
+    """``points`` as a contiguous float (k, 2) array, or the ValueError every guide function
+    raises for anything else."""
     pts = np.asarray(points, dtype=float)
     if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2 or not np.all(np.isfinite(pts)):
         raise ValueError("a guide must be finite (x, y) points, at least two")
-    out = _resampled(np.ascontiguousarray(pts), int(n))
+    return np.ascontiguousarray(pts)
+
+
+@njit
+def _cumulative(pts):
+    """The cumulative length (k,) of the polyline ``pts`` (k, 2) at each of its points."""
+    cum = np.empty(pts.shape[0])
+    cum[0] = 0.0
+    for i in range(1, pts.shape[0]):
+        cum[i] = cum[i - 1] + math.hypot(pts[i, 0] - pts[i - 1, 0], pts[i, 1] - pts[i - 1, 1])
+    return cum
+
+
+@njit
+def _station(pts, cum, i, n, j):
+    """The i-th of n points evenly spaced along the polyline ``pts`` (cumulative length
+    ``cum``), as np.interp at np.linspace's stations gives it: (segment j, x, y), searching
+    on from segment ``j`` (the previous station's)."""
+    total = cum[cum.shape[0] - 1]
+    u = total if i == n - 1 else i * (total / (n - 1))
+    while j < pts.shape[0] - 2 and cum[j + 1] <= u:  # np.interp: the last point at or below u
+        j += 1
+    seg = cum[j + 1] - cum[j]
+    w = (u - cum[j]) / seg if seg > 0.0 else 0.0
+    return (
+        j,
+        pts[j, 0] + w * (pts[j + 1, 0] - pts[j, 0]),
+        pts[j, 1] + w * (pts[j + 1, 1] - pts[j, 1]),
+    )
+
+
+def resample_guide(points, n: int = GUIDE_POINTS) -> np.ndarray:
+    """The polyline ``points`` (k >= 2, 2) as ``n`` points evenly spaced along it (metres)."""
+    out = _resampled(_checked(points), int(n))
     if len(out) == 0:
         raise ValueError("a guide must have a length")
     return out
@@ -198,37 +235,29 @@ def resample_guide(points, n: int = GUIDE_POINTS) -> np.ndarray:
 
 @njit
 def _resampled(pts, n):
-    """:func:`resample_guide`'s points (n, 2), compiled: np.interp along the cumulative
-    length at np.linspace's stations (as :func:`_first_below` samples); (0, 2) for a
+    """:func:`resample_guide`'s points (n, 2), compiled (:func:`_station`); (0, 2) for a
     polyline of no length."""
-    k = pts.shape[0]
-    cum = np.empty(k)
-    cum[0] = 0.0
-    for i in range(1, k):
-        cum[i] = cum[i - 1] + math.hypot(pts[i, 0] - pts[i - 1, 0], pts[i, 1] - pts[i - 1, 1])
-    total = cum[k - 1]
-    if total <= 1e-9:
+    cum = _cumulative(pts)
+    if cum[-1] <= 1e-9:
         return np.empty((0, 2))
     out = np.empty((n, 2))
-    step = total / (n - 1) if n > 1 else 0.0
     j = 0
     for i in range(n):
-        u = total if i == n - 1 else i * step
-        while j < k - 2 and cum[j + 1] <= u:
-            j += 1
-        seg = cum[j + 1] - cum[j]
-        w = (u - cum[j]) / seg if seg > 0.0 else 0.0
-        out[i, 0] = pts[j, 0] + w * (pts[j + 1, 0] - pts[j, 0])
-        out[i, 1] = pts[j, 1] + w * (pts[j + 1, 1] - pts[j, 1])
+        j, out[i, 0], out[i, 1] = _station(pts, cum, i, n, j)
     return out
 
 
 def densify(points, spacing: float = 0.05) -> np.ndarray:
     """The polyline ``points`` resampled at points at most ``spacing`` metres apart (the
     clearance checks' sampling: :func:`guide_is_clear`, :mod:`mjwalk.plan.detour`)."""
-    pts = np.asarray(points, dtype=float)
-    length = float(np.hypot(*np.diff(pts, axis=0).T).sum())
-    return resample_guide(pts, max(2, math.ceil(length / spacing) + 1))
+    pts = _checked(points)
+    return resample_guide(pts, _dense_count(float(_cumulative(pts)[-1]), spacing))
+
+
+@njit
+def _dense_count(length, spacing):
+    """Points that sample a polyline of ``length`` metres at most ``spacing`` apart."""
+    return max(2, math.ceil(length / spacing) + 1)
 
 
 def first_below(workplace, points, clearance: float, spacing: float = 0.05):
@@ -237,9 +266,7 @@ def first_below(workplace, points, clearance: float, spacing: float = 0.05):
     less than ``clearance`` metres; None where there is none. On a workplace whose clearance
     is a :class:`~mjwalk.world.clearance.ClearanceField` (every loaded one) one compiled pass
     that stops at that point, with the lookup's own arithmetic; else densify and look up."""
-    pts = np.asarray(points, dtype=float)
-    if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2 or not np.all(np.isfinite(pts)):
-        raise ValueError("a guide must be finite (x, y) points, at least two")
+    pts = _checked(points)
     field = workplace.clearance
     if not isinstance(field, ClearanceField):
         dense = densify(pts, spacing)
@@ -247,8 +274,8 @@ def first_below(workplace, points, clearance: float, spacing: float = 0.05):
         return dense[low[0]] if len(low) else None
     xmin, ymin, xmax, ymax = (float(v) for v in workplace.floor_bounds)
     k, x, y = _first_below(
-        np.ascontiguousarray(pts), field.values, float(field.x0), float(field.y0),
-        float(field.resolution), xmin, ymin, xmax, ymax, float(clearance), float(spacing),
+        pts, field.values, float(field.x0), float(field.y0), float(field.resolution), xmin,
+        ymin, xmax, ymax, float(clearance), float(spacing),
     )  # fmt: skip
     if k == -2:
         raise ValueError("a guide must have a length")
@@ -259,28 +286,15 @@ def first_below(workplace, points, clearance: float, spacing: float = 0.05):
 def _first_below(pts, values, x0, y0, res, xmin, ymin, xmax, ymax, clearance, spacing):
     """:func:`first_below` on a clearance field: (index among the densified points, x, y) of
     the first point below ``clearance``, -1 for none, -2 for a polyline of no length. The
-    points are :func:`resample_guide`'s (np.interp along the cumulative length at
-    np.linspace's stations), the room is min(bilinear clearance, distance to the floor's
-    edge) as :meth:`Workplace.walk_clearance` computes it."""
-    k = pts.shape[0]
-    cum = np.empty(k)
-    cum[0] = 0.0
-    for i in range(1, k):
-        cum[i] = cum[i - 1] + math.hypot(pts[i, 0] - pts[i - 1, 0], pts[i, 1] - pts[i - 1, 1])
-    total = cum[k - 1]
-    if total <= 1e-9:
+    points are :func:`densify`'s (:func:`_station`), the room is min(bilinear clearance,
+    distance to the floor's edge) as :meth:`Workplace.walk_clearance` computes it."""
+    cum = _cumulative(pts)
+    if cum[-1] <= 1e-9:
         return -2, math.nan, math.nan
-    n = max(2, math.ceil(total / spacing) + 1)
-    step = total / (n - 1)
+    n = _dense_count(cum[-1], spacing)
     j = 0
     for i in range(n):
-        u = total if i == n - 1 else i * step
-        while j < k - 2 and cum[j + 1] <= u:  # np.interp: the last station at or below u
-            j += 1
-        seg = cum[j + 1] - cum[j]
-        w = (u - cum[j]) / seg if seg > 0.0 else 0.0
-        x = pts[j, 0] + w * (pts[j + 1, 0] - pts[j, 0])
-        y = pts[j, 1] + w * (pts[j + 1, 1] - pts[j, 1])
+        j, x, y = _station(pts, cum, i, n, j)
         room = min(bilinear_at(values, x0, y0, res, x, y), x - xmin, xmax - x, y - ymin, ymax - y)
         if room < clearance:
             return i, x, y
@@ -295,9 +309,10 @@ def guide_is_clear(workplace, points, clearance: float, spacing: float = 0.05) -
 
 
 @njit
-def _nearest(guide, p):
+def guide_nearest(guide, p):
     """The guide's point nearest ``p`` (x + iy): its segment k, the share w along it and the
-    squared distance (guide flat x0, y0, x1, y1, ...)."""
+    squared distance (guide flat x0, y0, x1, y1, ...). :func:`guide_aim_at` and
+    :func:`guide_ahead_at` take it, so a caller needing both finds it once."""
     best_d2 = np.inf
     best_k = 0
     best_w = 0.0
@@ -325,12 +340,20 @@ def guide_aim(guide, p, goal):
     q. On the guide that is its direction; off it, the walker's own way to the goal bends it,
     as much as the goal's direction differs; for a straight guide it is the direction to the
     goal."""
+    if math.isnan(guide[0]):
+        d = goal - p
+        return math.atan2(d.imag, d.real)
+    k, best_w, _ = guide_nearest(guide, p)
+    return guide_aim_at(guide, p, goal, k, best_w)
+
+
+@njit
+def guide_aim_at(guide, p, goal, k, best_w):
+    """:func:`guide_aim` along a guide, from its point nearest ``p`` (segment ``k``, share
+    ``best_w``: :func:`guide_nearest`)."""
     d = goal - p
     direct = math.atan2(d.imag, d.real)
-    if math.isnan(guide[0]):
-        return direct
     n = guide.shape[0] // 2
-    k, best_w, _ = _nearest(guide, p)
     ax, ay = guide[2 * k], guide[2 * k + 1]
     bx, by = guide[2 * k + 2], guide[2 * k + 3]
     qx, qy = ax + best_w * (bx - ax), ay + best_w * (by - ay)
@@ -356,8 +379,15 @@ def guide_ahead(guide, p):
     the goal where it is the larger (the walker means to go that way, not straight)."""
     if math.isnan(guide[0]):
         return 0.0
+    best_k, best_w, best_d2 = guide_nearest(guide, p)
+    return guide_ahead_at(guide, best_k, best_w, best_d2)
+
+
+@njit
+def guide_ahead_at(guide, best_k, best_w, best_d2):
+    """:func:`guide_ahead` along a guide, from its point nearest the walker (segment
+    ``best_k``, share ``best_w``, squared distance ``best_d2``: :func:`guide_nearest`)."""
     n = guide.shape[0] // 2
-    best_k, best_w, best_d2 = _nearest(guide, p)
     rest = 0.0
     for k in range(best_k, n - 1):
         seg = math.hypot(guide[2 * k + 2] - guide[2 * k], guide[2 * k + 3] - guide[2 * k + 1])

@@ -33,7 +33,7 @@ import math
 import numpy as np
 
 from mjwalk._jit import njit
-from mjwalk.plan.guide import guide_ahead, guide_aim
+from mjwalk.plan.guide import guide_ahead_at, guide_aim, guide_aim_at, guide_nearest
 from mjwalk.plan.lean import lean_in_range, lean_limits, lean_ok, stance_lean, stance_lean_ok
 from mjwalk.plan.slots import (
     I_CHORD,
@@ -339,19 +339,28 @@ def check_into(
             if bound > h:
                 h = bound
         hw = par[P_HEADING_WEIGHT]
+        guided = not math.isnan(par[P_GUIDE0])
+        guide = par[P_GUIDE0:P_DISC0]
+        if guided:  # the guide's point nearest the step's end, for its aim and the way left
+            gk, gw, gd2 = guide_nearest(guide, end)
+        else:
+            gk, gw, gd2 = 0, 0.0, 0.0
         if hw > 0.0 and not closing and h > par[P_HEADING_FROM]:
             # along a guide (clear of obstacles: mjwalk.plan.guide) everywhere; else only
             # where the goal is in sight
-            sight = not math.isnan(par[P_GUIDE0]) or grid_sight(
+            sight = guided or grid_sight(
                 dist, par[P_DIST_X0], par[P_DIST_Y0], par[P_DIST_CELL], par[P_DIST_TOP_X],
                 par[P_DIST_TOP_Y], ipar[I_DIST_NX], ex, ey,
             )  # fmt: skip
             if sight:
-                want = guide_aim(par[P_GUIDE0:P_DISC0], end, goal)
+                if guided:
+                    want = guide_aim_at(guide, end, goal, gk, gw)
+                else:  # straight at the goal
+                    want = guide_aim(guide, end, goal)
                 seg *= heading_factor(fr + 0.5 * yaws.imag, want, hw)
         g = node[i, 3].real + seg
-        if not math.isnan(par[P_GUIDE0]):  # along a guide: the way left along it, if longer
-            h = max(h, guide_ahead(par[P_GUIDE0:P_DISC0], end))
+        if guided:  # along a guide: the way left along it, if longer
+            h = max(h, guide_ahead_at(guide, gk, gw, gd2))
         fh = par[P_WEIGHT] * h
         if h > par[P_FAR_FROM]:  # farther than FAR_FROM from the goal: the far weight too
             fh += par[P_FAR_WEIGHT] * (h - par[P_FAR_FROM])
