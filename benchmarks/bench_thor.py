@@ -418,6 +418,20 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
+def print_ratio_rows(results: dict, keys) -> dict[str, list[float]]:
+    """One row per pair of real | planned | ratio planned / real for each figure of ``keys``;
+    returns the ratios per figure, in the pairs' order."""
+    ratios = defaultdict(list)
+    for pair, (r, p, *_rest) in results.items():
+        cells = []
+        for k in keys:
+            ratio = p[k] / r[k] if r[k] else math.nan
+            ratios[k].append(ratio)
+            cells.append(f"{r[k]:6.2f}|{p[k]:6.2f}|{ratio:5.2f}")
+        print(f"{pair:6}" + "".join(f"{c:>22}" for c in cells))
+    return ratios
+
+
 def print_duration_spread(results: dict, seed: int = 0, n_boot: int = 2000) -> None:
     """The duration spread three ways, per pair real | planned | ratio: the IQR of whole-sample
     durations (the issue's figure), the IQR of :func:`crossing_duration` and the SD of
@@ -427,14 +441,7 @@ def print_duration_spread(results: dict, seed: int = 0, n_boot: int = 2000) -> N
     rng = np.random.default_rng(seed)
     print("\nduration spread per pair: real | planned | ratio")
     print(f"{'pair':6}{'IQR (issue)':>22}{'IQR, crossings':>22}{'SD of log':>22}")
-    ratios = defaultdict(list)
-    for pair, (r, p, *_rest) in results.items():
-        cells = []
-        for k in ("dur_iqr", "cross_iqr", "logdur_sd"):
-            ratio = p[k] / r[k] if r[k] else math.nan
-            ratios[k].append(ratio)
-            cells.append(f"{r[k]:6.2f}|{p[k]:6.2f}|{ratio:5.2f}")
-        print(f"{pair:6}" + "".join(f"{c:>22}" for c in cells))
+    ratios = print_ratio_rows(results, ("dur_iqr", "cross_iqr", "logdur_sd"))
     print(f"{'median':6}" + "".join(f"{np.median(ratios[k]):>22.2f}" for k in ratios))
     boot = []
     for _ in range(n_boot):
@@ -464,14 +471,7 @@ def print_table(results: dict) -> None:
     print("\nper pair: real | planned | ratio planned/real")
     head = "".join(f"{k:>22}" for k, _ in FIGURES)
     print(f"{'pair':6}{head}")
-    ratios = defaultdict(list)
-    for pair, (r, p, *_rest) in results.items():
-        cells = []
-        for k, _ in FIGURES:
-            ratio = p[k] / r[k] if r[k] else math.nan
-            ratios[k].append(ratio)
-            cells.append(f"{r[k]:6.2f}|{p[k]:6.2f}|{ratio:5.2f}")
-        print(f"{pair:6}" + "".join(f"{c:>22}" for c in cells))
+    ratios = print_ratio_rows(results, [k for k, _ in FIGURES])
     print("\nfigure                               median ratio  worst pair (ratio)")
     pairs = list(results)
     for k, name in FIGURES:
