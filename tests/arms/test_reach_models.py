@@ -149,6 +149,7 @@ def test_a_right_model_of_another_kind_is_refused_by_name(scenes_dir, tmp_path):
         load_cycle_spec(_spec_with(scenes_dir, tmp_path, 'reach_right = "none.npz"'))
 
 
+@pytest.mark.slow
 def test_endpoint_models_trained_on_capture_drive_a_scene_reach(shared_data, scenes_dir):
     """Bandai raises of each arm (hand=True: the hand continues the forearm, the clips have no
     hand) -> an endpoint model per side -> the humanoid raises either hand in a scene to where

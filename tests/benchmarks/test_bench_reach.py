@@ -159,6 +159,7 @@ def _synthetic_side(monkeypatch, n: int, styles: list[str], seed: int) -> ArmMov
     )
 
 
+@pytest.mark.slow
 @pytest.mark.filterwarnings("ignore::sklearn.exceptions.ConvergenceWarning")  # the GP baseline
 def test_leave_one_walker_out_table(monkeypatch, capsys):
     """With clips of two skeletons, each walker is predicted by a model of the other's clips;
@@ -177,6 +178,7 @@ def test_leave_one_walker_out_table(monkeypatch, capsys):
     assert "per style (of the held-out walker)" in out
 
 
+@pytest.mark.slow
 @pytest.mark.filterwarnings("ignore::sklearn.exceptions.ConvergenceWarning")  # the GP baseline
 def test_clips_of_one_skeleton_skip_the_walker_table(monkeypatch, capsys):
     import numpy as np
@@ -202,6 +204,7 @@ def test_a_group_is_held_out_only_with_enough_clips_left_to_train_on():
     assert list(test) == [12, 13, 14, 15] and list(train) == list(range(12))
 
 
+@pytest.mark.slow
 @pytest.mark.filterwarnings("ignore::sklearn.exceptions.ConvergenceWarning")  # the GP baseline
 def test_one_style_per_skeleton_is_not_evaluated_twice(monkeypatch, capsys):
     import numpy as np
