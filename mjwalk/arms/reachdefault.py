@@ -6,8 +6,8 @@ import time
 
 import numpy as np
 
+from mjwalk._buildonce import built_once
 from mjwalk._log import log
-from mjwalk.errors import ModelFileError
 
 #: Bump when the generator or the model changes, so the cache is rebuilt.
 REACH_DEFAULT_VERSION = "7"
@@ -67,22 +67,20 @@ def default_reach_model(progress: bool = True):
     path = cache_root() / f"reach-endpoints-v{REACH_DEFAULT_VERSION}-n{N_TRAIN}.npz"
     if path in _MEMO:
         return _MEMO[path]
-    model = None
-    if path.is_file():
-        try:
-            model = ReachModel.load(path)
-        except ModelFileError:
-            model = None
-    if model is None:
+
+    def build() -> ReachModel:
         t0 = time.perf_counter()
         if progress:
             log.info(f"building the default reach model -> {path}")
         data = reachgen.generate("endpoints", N_TRAIN, np.random.default_rng(0))
         # reaches start at the generator's nominal start (the sample mean is within a mm of it)
-        model = ReachModel(data.lengths, dcs=DEFAULT_DCS, rest_hand=REST_HAND)
-        model.fit(data.constraints, data.directions)
-        model.save(path)
+        built = ReachModel(data.lengths, dcs=DEFAULT_DCS, rest_hand=REST_HAND)
+        built.fit(data.constraints, data.directions)
+        built.save(path)
         if progress:
             log.info(f"default reach model ready ({time.perf_counter() - t0:.1f} s)")
+        return built
+
+    model = built_once(path, ReachModel.load, build)
     _MEMO[path] = model
     return model

@@ -13,6 +13,7 @@ import time
 from collections.abc import Sequence
 from pathlib import Path
 
+from mjwalk._buildonce import built_once
 from mjwalk._io import cache_root
 from mjwalk._log import log
 from mjwalk.errors import MjwalkError, ModelFileError
@@ -99,14 +100,8 @@ def default_model(progress: bool = True) -> StepModel:
     path = default_model_path()
     if path in _MEMO:
         return _MEMO[path]
-    model = None
-    if path.is_file():
-        try:
-            model = StepModel.load(path)
-        except ModelFileError as exc:
-            if progress:
-                log.info(f"rebuilding default model: {exc}")
-    if model is None:
+
+    def build() -> StepModel:
         from mjwalk.gait.corpus import generate_corpus
 
         t0 = time.perf_counter()
@@ -117,13 +112,20 @@ def default_model(progress: bool = True) -> StepModel:
         takes = generate_corpus(n_subjects=DEFAULT_SUBJECTS, seed=DEFAULT_SEED)
         if progress:
             log.info(f"corpus: {len(takes)} takes ({time.perf_counter() - t0:.1f} s)")
-        model, _ = train_model(
+        built, _ = train_model(
             takes, seed=DEFAULT_SEED, progress=progress, normalize_by=DEFAULT_NORMALIZE_BY
         )
-        model.info["corpus_version"] = corpus_version()
-        model.pace()  # measured once, saved with the model (mjwalk.gait.pace)
-        model.save(path)
+        built.info["corpus_version"] = corpus_version()
+        built.pace()  # measured once, saved with the model (mjwalk.gait.pace)
+        built.save(path)
         if progress:
             log.info(f"default model ready ({time.perf_counter() - t0:.1f} s)")
+        return built
+
+    def stale(exc: ModelFileError) -> None:
+        if progress:
+            log.info(f"rebuilding default model: {exc}")
+
+    model = built_once(path, StepModel.load, build, on_stale=stale)
     _MEMO[path] = model
     return model

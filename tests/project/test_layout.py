@@ -19,7 +19,18 @@ STAGES = (
     "_base", "mocap", "world", "gait", "plan", "body", "arms", "timeline", "ergonomics", "cycle",
     "top",
 )  # fmt: skip
-BASE = {"conventions", "anthropometry", "errors", "_io", "_jit", "_gl", "_args", "_version", "_log"}
+BASE = {
+    "conventions",
+    "anthropometry",
+    "errors",
+    "_io",
+    "_buildonce",
+    "_jit",
+    "_gl",
+    "_args",
+    "_version",
+    "_log",
+}
 TOP = {"render", "viewpoint", "plot", "report", "cli", "__main__", "shipped"}
 
 
