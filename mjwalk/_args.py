@@ -1,7 +1,7 @@
 """Checks of user input, done before any work: points, counts, sizes and output paths.
 
 The command line (``mjwalk.cli``) uses the ``arg_*`` functions as argparse ``type=``
-converters (argparse prints their message with the usage and exits with status 2); the
+converters (:class:`OneLineParser` prints their message as one line and exits with status 2); the
 library uses :func:`parse_point` and :func:`finite_points` directly, which raise
 :class:`~mjwalk.errors.InputError`. Output paths are checked with :func:`check_output_file` /
 :func:`check_output_dir` before a command starts its work, so a bad ``--out`` or ``--png``
@@ -18,6 +18,7 @@ import os
 import re
 from collections.abc import Sequence
 from pathlib import Path
+from typing import NoReturn
 
 import numpy as np
 
@@ -131,6 +132,17 @@ def as_generator(rng, what: str = "rng") -> np.random.Generator:
 
 
 # ------------------------------------------------------------------ argparse converters
+
+
+class OneLineParser(argparse.ArgumentParser):
+    """An ArgumentParser whose errors are one line, like every other mjwalk error:
+    ``mjwalk: error: <argparse's message> (see <command> --help)`` on stderr, exit status 2
+    (argparse's own prints its usage block of 2-6 lines first). Sub-commands' parsers are of
+    this class too (``add_subparsers`` makes them of their parent's class)."""
+
+    def error(self, message: str) -> NoReturn:
+        root = self.prog.split()[0]
+        self.exit(2, f"{root}: error: {' '.join(message.split())} (see {self.prog} --help)\n")
 
 
 def _argtype(fn):

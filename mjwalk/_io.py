@@ -22,6 +22,40 @@ def cache_root() -> Path:
     return Path(env).expanduser() if env else Path.home() / ".cache" / "mjwalk"
 
 
+def check_cache_writable(what: str) -> Path:
+    """The cache root (:func:`cache_root`), checked to be a folder mjwalk can write, or one it
+    can make, before ``what`` (e.g. "the default step model") is built for it: building takes
+    up to a minute, and a cache that is a file or read-only would refuse it only afterwards.
+
+    The check writes (and at once deletes) a temporary file in the cache root, or in its
+    nearest existing parent when it does not exist yet: permissions alone do not tell (root
+    may write anywhere except on a read-only file system). Creates nothing.
+
+    Raises:
+        WriteError: naming the cache, ``$MJWALK_CACHE`` and the cause.
+    """
+    from mjwalk.errors import WriteError
+
+    root = cache_root()
+    named = f"${CACHE_ENV}={root}" if os.environ.get(CACHE_ENV) else f"the cache {root}"
+    fix = f"set ${CACHE_ENV} to a folder you may write (it is built there once, then reused)"
+    existing = root
+    while not existing.exists() and existing.parent != existing:
+        existing = existing.parent
+    if not existing.is_dir():
+        where = "it" if existing == root else str(existing)
+        raise WriteError(f"{named}: cannot hold {what}: {where} is a file, not a folder; {fix}")
+    try:
+        with tempfile.TemporaryFile(dir=existing):
+            pass
+    except OSError as exc:
+        why = exc.strerror or type(exc).__name__
+        raise WriteError(
+            f"{named}: cannot hold {what}: {existing} is not writable ({why}); {fix}"
+        ) from None
+    return root
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; rename it onto ``path`` only on success.

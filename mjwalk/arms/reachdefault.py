@@ -59,7 +59,7 @@ _MEMO: dict = {}
 def default_reach_model(progress: bool = True):
     """The :class:`~mjwalk.arms.reach.ReachModel` of start/end-constrained reaches of the left
     arm (``reachgen.generate("endpoints", N_TRAIN, seed 0)``), cached beside the step model."""
-    from mjwalk._io import cache_root
+    from mjwalk._io import cache_root, check_cache_writable
     from mjwalk.arms import reachgen
     from mjwalk.arms.kinematics import REST_HAND
     from mjwalk.arms.reach import ReachModel
@@ -69,6 +69,7 @@ def default_reach_model(progress: bool = True):
         return _MEMO[path]
 
     def build() -> ReachModel:
+        check_cache_writable("the default reach model")  # before building it
         t0 = time.perf_counter()
         if progress:
             log.info(f"building the default reach model -> {path}")

@@ -14,6 +14,7 @@ import numpy as np
 
 from mjwalk import _log
 from mjwalk._args import (
+    OneLineParser,
     arg_count,
     arg_fps,
     arg_fraction,
@@ -30,6 +31,7 @@ from mjwalk._args import (
 )
 from mjwalk._version import __version__
 from mjwalk.cli.scenes import add_scan_parser, add_scene_import_parser
+from mjwalk.cli.scheduler import dask_client
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.errors import InputError, MjwalkError
 
@@ -193,30 +195,6 @@ def _cmd_validate(args: argparse.Namespace) -> int:
     return 0
 
 
-#: Seconds to wait for a Dask scheduler to answer before ``--scheduler`` gives up.
-SCHEDULER_TIMEOUT_S = 10.0
-
-
-def _dask_client(address: str):
-    """A ``dask.distributed.Client`` of the scheduler at ``address``, or a clear error (the
-    extra not installed, the scheduler not answering) before any work."""
-    try:
-        from distributed import Client
-    except ImportError:
-        raise InputError(
-            f"--scheduler {address}: Dask is not installed here; "
-            'pip install "mjwalk[cluster]" (and mjwalk on the workers)'
-        ) from None
-    try:
-        return Client(address, timeout=SCHEDULER_TIMEOUT_S)
-    except (OSError, TimeoutError, ValueError, TypeError) as exc:
-        raise InputError(
-            f"--scheduler {address}: no Dask scheduler answered within "
-            f"{SCHEDULER_TIMEOUT_S:.0f} s ({type(exc).__name__}: {exc}); give its address as "
-            "tcp://HOST:PORT (dask scheduler prints it)"
-        ) from None
-
-
 def _cmd_simulate(args: argparse.Namespace) -> int:
     import json
 
@@ -232,16 +210,17 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
     from mjwalk.report import format_summary, report_dict, write_report
     from mjwalk.shipped import cycle_file
 
-    spec = load_cycle_spec(cycle_file(args.spec))
-    only = None if args.only_run is None else [args.only_run]
-    which = f"run {args.only_run} of {args.runs}" if only else f"{args.runs} runs"
-    print(
-        f"mjwalk simulate: {spec.name or spec.path.name}: {len(spec.tasks)} tasks, "
-        f"{which}, seed {args.seed}",
-        flush=True,
-    )
-    client = None if args.scheduler is None else _dask_client(args.scheduler)
+    # the scheduler answers (or is refused by name) within 10 s, before the cycle is checked
+    client = None if args.scheduler is None else dask_client(args.scheduler)
     try:
+        spec = load_cycle_spec(cycle_file(args.spec))
+        only = None if args.only_run is None else [args.only_run]
+        which = f"run {args.only_run} of {args.runs}" if only else f"{args.runs} runs"
+        print(
+            f"mjwalk simulate: {spec.name or spec.path.name}: {len(spec.tasks)} tasks, "
+            f"{which}, seed {args.seed}",
+            flush=True,
+        )
         if args.dry_run:
             print(f"  {spec.path} and --out {args.out} checked; nothing simulated (--dry-run)")
             return 0
@@ -350,7 +329,7 @@ def _cmd_render(args: argparse.Namespace) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = OneLineParser(
         prog="mjwalk",
         description="Statistically varied human walking and reaching in MuJoCo workplaces.",
     )

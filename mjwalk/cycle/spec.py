@@ -6,7 +6,8 @@ Format (every path is relative to the TOML file; lengths in metres, times in sec
     scene = "assembly_station.xml"              # required: the MJCF workplace
     start = "stand_rack2"                       # required: standing site where the operator starts
     takt = 60.0                                 # optional: seconds; the report gives the share
-                                                # of cycles over takt
+                                                # of cycles over takt (at least 1 s and the
+                                                # cycle's waits: MIN_TAKT_SECONDS)
 
     [humanoid]                                  # optional table
     stature = 1.75                              # metres, 1.4 to 2.1 (default 1.75); with a
@@ -94,6 +95,7 @@ from mjwalk.cycle.population import HUMANOID_STATURE_RANGE, Population, parse_po
 from mjwalk.cycle.specfile import (
     ALL_TASK_KEYS,
     MAX_CYCLE_SECONDS,
+    MIN_TAKT_SECONDS,
     REFERENCE_KEYS,
     TABLE_KEYS,
     TOP_KEYS,
@@ -228,8 +230,13 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
     takt = None
     if "takt" in data:
         takt = check.number(data, "takt", 0.0, MAX_CYCLE_SECONDS, "s")
-        if takt <= 0.0:
-            raise check.fail(f"key 'takt' at the top level must be > 0 s, got {takt:g}", key="takt")
+        if takt < MIN_TAKT_SECONDS:
+            raise check.fail(
+                f"key 'takt' at the top level: {takt:g} s is shorter than any cycle can be (at "
+                f"least {MIN_TAKT_SECONDS:g} s: one pick takes about a second); takt is the "
+                "seconds allowed per cycle, e.g. 60",
+                key="takt",
+            )
     population: Population | None = None
     if "population" in data:
 
@@ -293,6 +300,13 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         check_durations(tasks)
     except CycleSpecError as exc:
         raise check.fail(str(exc), "task", len(tasks) - 1, "duration") from None
+    waits = sum(t.duration or 0.0 for t in tasks if TASK_KINDS[t.kind].action == "wait")
+    if takt is not None and takt < waits:
+        raise check.fail(
+            f"key 'takt' at the top level: {takt:g} s is shorter than the cycle's waits alone "
+            f"({waits:g} s), so every cycle would be over takt",
+            key="takt",
+        )
     _check_routes(check, workplace, start, tasks, radius)
     reference, source = _reference(check, data.get("reference"), tasks)
     return CycleSpec(

@@ -18,6 +18,12 @@ from mjwalk.errors import CycleSpecError
 #: an hour bounds the simulated timeline at 108 000 frames at 30 fps (about 60 MB of poses),
 #: where ``duration = 1e12`` asked for petabytes.
 MAX_CYCLE_SECONDS = 3600.0
+#: Shortest takt a cycle file may give, seconds (besides its waits, which every cycle spends in
+#: full): the shortest task, a pick of a part 25 cm from the hand, takes 1.2 s for the reference
+#: adult (MTM-1 reach case C 0.46 s, the pick's default hold 0.4 s, the return, case E, 0.37 s:
+#: :mod:`mjwalk.cycle.handling`) and 1.0 s for a brisk operator (pace 1.2); below that no cycle
+#: fits its takt, and ``takt = 1e-9`` (a unit slip) reported 100 % of cycles over takt.
+MIN_TAKT_SECONDS = 1.0
 
 #: Longest name, site, route, part or other label in a cycle file, characters: MJCF names and
 #: report labels are identifiers and short phrases, and each is printed in the report's tables,

@@ -14,7 +14,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from mjwalk._buildonce import built_once
-from mjwalk._io import cache_root
+from mjwalk._io import cache_root, check_cache_writable
 from mjwalk._log import log
 from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait.model import MIN_STEPS, MODEL_VERSION, StepModel
@@ -103,6 +103,8 @@ def default_model(progress: bool = True) -> StepModel:
 
     def build() -> StepModel:
         from mjwalk.gait.corpus import generate_corpus
+
+        check_cache_writable("the default step model")  # before a minute of training
 
         t0 = time.perf_counter()
         if progress:
