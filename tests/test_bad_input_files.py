@@ -486,3 +486,72 @@ def test_scene_error_is_raised_for_a_folder_scene(tmp_path):
     for fn in (load_workplace, shared_workplace):
         with pytest.raises(SceneError, match="is a folder, not an MJCF scene file"):
             fn(tmp_path)
+
+
+# ------------------------------------------------------- issue 45: lifts beyond the NIOSH table
+
+TOOL_CYCLE = """name = "tool only"
+scene = "{scene}"
+start = "stand_rack2"
+takt = 90.0
+
+[[task]]
+kind = "pick"
+site = "rack2_tool"
+hand = "right"
+part = "tool"
+mass = 1.5
+coupling = "good"
+
+[[task]]
+kind = "carry"
+site = "stand_rack3"
+route = "T5"
+hand = "right"
+part = "tool"
+
+[[task]]
+kind = "place"
+site = "rack3_tool"
+hand = "right"
+part = "tool"
+"""
+
+
+def test_lifts_beyond_the_frequency_table_are_reported_without_an_index(
+    tmp_path, scenes_dir, capsys
+):
+    """Issue 45: the station's tool picked, carried and placed, cycles back to back (2 lifts in
+    about 7.5 s, some 16 lifts/min): Table 5 has no frequency multiplier there. Before:
+    lifting_index=inf, rwl_kg=0.000, 'LI P50 nan | LI P95 nan' beside 'cycles LI>1 100 %' and
+    numpy's 'invalid value encountered in scalar subtract'. Now every file says that the lifts
+    have no index and why, and nothing warns."""
+    import csv
+    import warnings
+
+    spec = tmp_path / "tool.toml"
+    spec.write_text(TOOL_CYCLE.format(scene=scenes_dir / "assembly_station.xml"))
+    out = tmp_path / "out"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        code = cli.main(["simulate", str(spec), "--runs", "2", "--out", str(out)])
+    err = capsys.readouterr().err
+    assert code == 0, err
+    assert "RuntimeWarning" not in err
+    rows = list(csv.DictReader((out / "ergonomics.csv").open()))
+    lifts = [r for r in rows if r["kind"] in ("pick", "place")]
+    assert len(lifts) == 4
+    for r in lifts:
+        assert float(r["lifts_per_min"]) > 11  # beyond the long-duration column (V >= 75 cm)
+        assert r["lifting_index"] == "" and r["rwl_kg"] == "0.000"
+        assert r["lifting_index_note"].startswith("no lifting index: lifting frequency")
+        assert "Table 5" in r["lifting_index_note"]
+    md = (out / "report.md").read_text()
+    section = md[md.index("## Ergonomics") :]
+    assert "nan" not in section and "inf" not in section.replace("information", "")
+    assert "No NIOSH lifting index for 4 of 4 lifts (2 of 2 cycles with lifts" in section
+    overall = json.loads((out / "report.json").read_text())["ergonomics"]["overall"]
+    assert overall["lifting_index"]["n"] == 0 and overall["cycles_li_over_1"]["share"] is None
+    w = overall["lifting_index_not_computed"]
+    assert (w["lifts"], w["cycles"]["k"]) == (4, 2)
+    assert all("beyond the NIOSH frequency table" in k for k in w["limits"])

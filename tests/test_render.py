@@ -1,4 +1,10 @@
-"""Offscreen rendering: frames are not blank, the humanoid shows where the camera projects it."""
+"""Offscreen rendering: frames are not blank, the humanoid shows where the camera projects it.
+
+Whether this machine can render at all is decided once, before any test runs
+(:func:`_no_gl_reason`: the backend mjwalk selects, :mod:`mjwalk._gl`, and one OpenGL context
+made with it by mujoco alone); the module is skipped, with the reason, only when it cannot. Past
+that, a render that fails (an MjwalkError included) fails its test.
+"""
 
 from __future__ import annotations
 
@@ -10,11 +16,37 @@ import mujoco
 import numpy as np
 import pytest
 
+from mjwalk import render
+from mjwalk._gl import available_backend
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.synthetic import synthetic_walk as make_walk
 from mjwalk.timeline import timeline_from_walk
 
-render = pytest.importorskip("mjwalk.render")
+
+def _no_gl_reason() -> str | None:
+    """Why no OpenGL context can render here (None: one can). Importing mjwalk.render above
+    selected the backend (a user's MUJOCO_GL, else EGL, else OSMesa); the probe makes a 16 x 16
+    context and MuJoCo's rendering context of an empty model in it with mujoco alone, so no
+    mjwalk rendering code is under test in it."""
+    backend = os.environ.get("MUJOCO_GL", "none")
+    if backend == "none":
+        return "no headless OpenGL backend: neither EGL nor OSMesa loads here"
+    ctx = None
+    try:
+        ctx = mujoco.GLContext(16, 16)
+        ctx.make_current()
+        model = mujoco.MjModel.from_xml_string("<mujoco/>")
+        mujoco.MjrContext(model, mujoco.mjtFontScale.mjFONTSCALE_100).free()
+    except Exception as exc:  # each backend raises its own (EGL, OSMesa, GLFW) error types
+        return f"MUJOCO_GL={backend}: no OpenGL context renders here ({type(exc).__name__}: {exc})"
+    finally:
+        if ctx is not None:
+            ctx.free()
+    return None
+
+
+NO_GL = _no_gl_reason()
+pytestmark = pytest.mark.skipif(NO_GL is not None, reason=NO_GL or "")
 
 SCENE = """<mujoco><worldbody><geom name="floor" type="plane" size="10 10 .1" rgba=".2 .6 .2 1"/>
 <light pos="0 0 6" dir="0 0 -1" directional="true"/></worldbody></mujoco>"""
@@ -32,11 +64,8 @@ def test_top_view_humanoid_at_projected_pixels(timeline):
     away = tl.qpos.copy()
     away[:, tl.jointmap.root + 2] -= 50.0  # same views (camera from x, y), humanoid under the floor
     bg_tl = type(tl)(**{**tl.__dict__, "qpos": away})
-    try:
-        fg = render_list(tl, frames)
-        bg = render_list(bg_tl, frames, project_from=tl)
-    except MjwalkError as exc:
-        pytest.skip(str(exc))
+    fg = render_list(tl, frames)
+    bg = render_list(bg_tl, frames, project_from=tl)
     for (img, (uv, top)), (img0, _) in zip(fg, bg, strict=True):
         assert img.std() > 5  # not blank
         mask = np.abs(img.astype(int) - img0.astype(int)).sum(-1) > 40
@@ -66,13 +95,10 @@ def render_list(tl, frames, project_from=None):
 
 def test_track_view_and_path_drawn(timeline):
     tl = timeline
-    try:
-        ((_, with_path, _),) = list(render.render_frames(tl, "top", frames=[10]))
-        ((_, without, _),) = list(render.render_frames(tl, "top", frames=[10], draw_path=False))
-        ((_, track, r),) = list(render.render_frames(tl, "track", frames=[10]))
-        uv = render.project(r, tl.root()[10][None])[0]
-    except MjwalkError as exc:
-        pytest.skip(str(exc))
+    ((_, with_path, _),) = list(render.render_frames(tl, "top", frames=[10]))
+    ((_, without, _),) = list(render.render_frames(tl, "top", frames=[10], draw_path=False))
+    ((_, track, r),) = list(render.render_frames(tl, "track", frames=[10]))
+    uv = render.project(r, tl.root()[10][None])[0]
     drawn = np.abs(with_path.astype(int) - without.astype(int)).sum(-1) > 40
     assert drawn.sum() > 500  # the path and footprints add pixels
     # drawn pixels are reddish (orange path, red/blue footprints), not the green floor
@@ -82,13 +108,11 @@ def test_track_view_and_path_drawn(timeline):
 
 
 def test_render_video_atomic(tmp_path, timeline):
-    imageio = pytest.importorskip("imageio.v2")
+    import imageio.v2 as imageio
+
     short = type(timeline)(**{**timeline.__dict__, "qpos": timeline.qpos[:8], "t": timeline.t[:8]})
     out = tmp_path / "walk.mp4"
-    try:
-        render.render_video(short, out, camera="top", size=(320, 240), progress=False)
-    except MjwalkError as exc:
-        pytest.skip(str(exc))
+    render.render_video(short, out, camera="top", size=(320, 240), progress=False)
     assert out.exists() and list(tmp_path.iterdir()) == [out]
     frames = imageio.mimread(out)
     assert len(frames) == 8 and frames[0].shape == (240, 320, 3)
@@ -97,6 +121,10 @@ def test_render_video_atomic(tmp_path, timeline):
     assert not (tmp_path / "x.mp4").exists()
 
 
+@pytest.mark.skipif(
+    available_backend() == "none",
+    reason="neither EGL nor OSMesa loads here (this test renders with MUJOCO_GL unset)",
+)
 def test_renders_headless_when_mujoco_was_imported_first():
     """MUJOCO_GL unset and mujoco imported before mjwalk.render (the scene and planning stages
     import it): importing mjwalk.render selects the headless backend and swaps its context into
@@ -104,10 +132,6 @@ def test_renders_headless_when_mujoco_was_imported_first():
     import subprocess
     import sys
 
-    from mjwalk._gl import available_backend
-
-    if available_backend() == "none":
-        pytest.skip("neither EGL nor OSMesa loads here")
     code = (
         "import os, mujoco, numpy as np\n"
         "assert 'MUJOCO_GL' not in os.environ\n"
@@ -137,10 +161,7 @@ def test_fixed_camera_frames_identical_to_mujoco_renderer(timeline):
 
     tl = timeline
     frames = [0, tl.n_frames // 3, tl.n_frames - 1]
-    try:
-        new = [img for _, img, _ in render.render_frames(tl, frames=frames, view=fixed_view(tl))]
-    except MjwalkError as exc:
-        pytest.skip(str(exc))
+    new = [img for _, img, _ in render.render_frames(tl, frames=frames, view=fixed_view(tl))]
     model = tl.model
     samples = int(model.vis.quality.offsamples)
     model.vis.quality.offsamples = 0

@@ -117,8 +117,16 @@ class RunErgonomics:
         return max((t.owas for t in self.tasks), default=1)
 
     @property
-    def max_li(self) -> float:
-        return max((lf.li for lf in self.lifts), default=0.0)
+    def max_li(self) -> float | None:
+        """The highest lifting index of the lifts that have one (0.0 without lifts; None when
+        no lift has one: see :attr:`~mjwalk.ergonomics.niosh.Lift.reason`)."""
+        lis = [lf.li for lf in self.lifts if lf.li is not None]
+        return max(lis) if lis else (None if self.lifts else 0.0)
+
+    @property
+    def lifts_without_li(self) -> list[niosh.Lift]:
+        """The lifts the NIOSH equation gives no index (RWL 0; each says why)."""
+        return [lf for lf in self.lifts if lf.li is None]
 
     def summary(self) -> dict:
         """Plain data (JSON-ready) without the per-frame scores."""

@@ -8,6 +8,12 @@ The variable limits are the manual's (section 1.3): H below 25 cm (10 in) is set
 above 63 cm (25 in) gives HM = 0; V above 175 cm (70 in) gives VM = 0; D below 25 cm (10 in)
 is set to it, above 175 cm (70 in) gives DM = 0; A above 135 deg gives AM = 0; F below 0.2
 lifts/min is set to 0.2 and FM is interpolated linearly between Table 5's rows (p. 7).
+Table 5 defines FM up to 15 lifts/min, and only the short-duration column with V at or above
+75 cm (30 in) goes that far; its other columns reach FM = 0.00 earlier (long duration: from 9
+lifts/min with V below 75 cm, from 11 with V at or above it). "Lifting above the maximum
+frequency results in a RWL of 0.0" (pp. 14-15). A lift whose RWL is 0 (a multiplier at 0: F
+beyond its column, H, V, D or A beyond its limit) has no lifting index: :func:`lift` gives it
+``li`` None and says which limit it crossed and what the table or the manual allows.
 
 HM, VM, DM and AM are computed from the formulas (the manual: "each multiplier should be
 computed from the appropriate formula", p. 7); the manual's Tables 1-4 round three rows
@@ -98,6 +104,64 @@ def frequency_multiplier(f: float, duration: str, v_origin: float, units: str = 
     return float(np.interp(max(f, FM_F[0]), FM_F, FM_TABLE[:, col]))
 
 
+def fm_zero_from(duration: str, v_origin: float, units: str = "metric") -> float | None:
+    """The lowest Table 5 frequency (lifts/min) at which FM is 0.00 for the duration category
+    and V at the origin; None where the column is non-zero up to the table's 15 lifts/min."""
+    col = 2 * DURATIONS.index(duration) + int(v_origin >= UNITS[units]["vsplit"])
+    zero = np.flatnonzero(FM_TABLE[:, col] == 0.0)
+    return float(FM_F[zero[0]]) if len(zero) else None
+
+
+def _column(duration: str, v_origin: float, units: str) -> str:
+    c = UNITS[units]
+    unit = "cm" if units == "metric" else "in"
+    hours = {"short": "<= 1 h", "moderate": "1-2 h", "long": "2-8 h"}[duration]
+    side = ">=" if v_origin >= c["vsplit"] else "<"
+    return f"{duration} duration ({hours}) with V {side} {c['vsplit']:.0f} {unit} at the origin"
+
+
+def zero_reasons(
+    h: float, v: float, d: float, a: float, f: float, duration: str, v_origin: float,
+    units: str = "metric", end: str = "origin",
+) -> list[tuple[str, str, str]]:  # fmt: skip
+    """Why :func:`multipliers` gives a multiplier of 0 (RWL 0, no lifting index) at one end of
+    a lift: (variable, value, limit) triples ("lifting frequency", "16.0 lifts/min", what the
+    manual allows for it, with its source); empty where every multiplier is above 0. ``end``
+    names the end ("origin" or "destination") for H, V and A."""
+    c = UNITS[units]
+    u = "cm" if units == "metric" else "in"
+    out = []
+    if h > c["hmax"]:
+        lim = f"above {c['hmax']:.0f} {u}, where HM = 0 (Applications Manual 1.3.1.2)"
+        out.append((f"H at the {end}", f"{h:.0f} {u}", lim))
+    if v > c["vmax"]:
+        lim = (
+            f"above {c['vmax']:.0f} {u}, the upper limit of vertical reach for lifting, where "
+            "VM = 0 (Applications Manual 1.3.2.2)"
+        )
+        out.append((f"V at the {end}", f"{v:.0f} {u}", lim))
+    if d > c["dmax"]:
+        lim = f"above {c['dmax']:.0f} {u}, where DM = 0 (Applications Manual 1.3.3.2)"
+        out.append(("vertical travel D", f"{d:.0f} {u}", lim))
+    if a > 135.0:
+        lim = "above 135 deg, where AM = 0 (Applications Manual 1.3.4.2)"
+        out.append((f"asymmetry A at the {end}", f"{a:.0f} deg", lim))
+    if frequency_multiplier(f, duration, v_origin, units) == 0.0:
+        zero = fm_zero_from(duration, v_origin, units)
+        top = f"{FM_F[-1]:.0f} lifts/min"
+        allows = (
+            f"FM > 0 only below {zero:.0f} lifts/min" if zero is not None else f"FM up to {top}"
+        )
+        lim = (
+            f"beyond the NIOSH frequency table for {_column(duration, v_origin, units)}: Table 5 "
+            f"gives {allows} there, and defines FM up to {top} at most (short duration, "
+            f"V >= {c['vsplit']:.0f} {u}); beyond, FM = 0 and RWL = 0 (Waters et al. 1994, "
+            "Applications Manual Table 5)"
+        )
+        out.append(("lifting frequency", f"{f:.1f} lifts/min", lim))
+    return out
+
+
 def multipliers(
     h: float, v: float, d: float, a: float, f: float, duration: str = "long",
     coupling: str = "fair", v_origin: float | None = None, units: str = "metric",
@@ -146,9 +210,14 @@ class Lift:
         rwl: the recommended weight limit, kg: the origin's, and for a lift with significant
             control at the destination (putting the part down onto its site, Applications
             Manual p. 21) the lower of both ends.
-        li: mass / rwl (inf when the RWL is 0).
+        li: mass / rwl; None where the RWL is 0 (a multiplier at 0): the equation gives no
+            index for the lift, ``reason`` says why.
         one_handed: the equation is for two-handed lifts (p. 6); a one-handed lift is scored
             as if two-handed and flagged.
+        reason: why ``li`` is None: each variable beyond its limit, its value and what the
+            manual allows ("" when the index is computed).
+        limit: ``reason`` without the measured values (the same for every lift that crossed
+            the same limit; for counting them).
     """
 
     task: int
@@ -162,8 +231,10 @@ class Lift:
     f: float
     coupling: str
     rwl: float
-    li: float
+    li: float | None
     one_handed: bool
+    reason: str = ""
+    limit: str = ""
 
 
 def lift(
@@ -180,5 +251,15 @@ def lift(
         rwl(multipliers(h[e], v[e], d, a[e], f, duration, coupling, v_origin=v[0])) for e in ends
     ]
     r = min(limits)
-    li = mass / r if r > 0 else float("inf")
-    return Lift(task, kind, hand, mass, h, v, a, d, f, coupling, r, li, hand != "both")
+    why: list[tuple[str, str, str]] = []
+    if r <= 0:
+        for e in ends:
+            for w in zero_reasons(h[e], v[e], d, a[e], f, duration, v[0],
+                                  end=("origin", "destination")[e]):  # fmt: skip
+                if w not in why:
+                    why.append(w)
+    reason = "; ".join(f"{var} {val} is {lim}" for var, val, lim in why)
+    limit = "; ".join(f"{var} {lim}" for var, _, lim in why)
+    li = mass / r if r > 0 else None
+    return Lift(task, kind, hand, mass, h, v, a, d, f, coupling, r, li, hand != "both", reason,
+                limit)  # fmt: skip

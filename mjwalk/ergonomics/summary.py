@@ -3,13 +3,15 @@
 :func:`ergonomics_summary` takes one :class:`RunRecord` per simulated cycle (its operator's group
 and stature, and its :class:`~mjwalk.ergonomics.assess.RunErgonomics`) and gives, overall and per
 group: P50/P95 of each cycle's peak RULA and REBA; the share of cycles reaching each RULA action
-level and REBA risk level, with its 95 % Wilson score interval (Wilson 1927; as the report's
-share over takt); the NIOSH lifting index per lift (P50/P95) and the share of cycles with a lift
-index above 1; ISO 11226's share of cycles with a static holding that is not acceptable. It
-names the tasks and body parts that drive the peaks, and measures the dependence on stature
-(Spearman's rank correlation of stature and peak RULA, and each task's median RULA for the
-shortest and the tallest third of the operators). :func:`ergonomics_rows` gives the rows of
-``ergonomics.csv`` (one per run and task), :func:`ergonomics_markdown` the report's section.
+level and REBA risk level, with its 95 % Wilson score interval (Wilson 1927; as the report's share
+over takt); the NIOSH lifting index per lift (P50/P95) and the share of cycles with a lift index
+above 1, and apart from them the lifts the equation gives no index (RWL 0: a frequency beyond Table
+5's, or H, V, D or A beyond its limit) with the limit each crossed; ISO 11226's share of cycles
+with a static holding that is not acceptable. It names the tasks and body parts that drive the
+peaks, and measures the dependence on stature (Spearman's rank correlation of stature and peak
+RULA, and each task's median RULA for the shortest and the tallest third of the operators).
+:func:`ergonomics_rows` gives the rows of ``ergonomics.csv`` (one per run and task),
+:func:`ergonomics_markdown` the report's section.
 """
 
 from __future__ import annotations
@@ -28,7 +30,8 @@ CONFIDENCE = 0.95
 CSV_COLUMNS = (
     "run", "seed", "group", "stature_m", "task", "kind", "site", "rula_peak", "rula_action_level",
     "reba_peak", "reba_risk_level", "owas_peak", "rula_time_s", "rula_driver", "reba_driver",
-    "arm", "upper_arm_score", "lifting_index", "rwl_kg", "mass_kg",
+    "arm", "upper_arm_score", "lifting_index", "rwl_kg", "mass_kg", "lifts_per_min",
+    "lifting_index_note",
 )  # fmt: skip
 
 
@@ -66,7 +69,7 @@ def _stats(records: list[RunRecord]) -> dict:
     bp = [r.ergo.reba_peak for r in records]
     ral = [int(rula.action_level(x)) for x in rp]
     brl = [int(reba.risk_level(x)) for x in bp]
-    lis = [lf.li for r in records for lf in r.ergo.lifts]
+    lis = [lf.li for r in records for lf in r.ergo.lifts if lf.li is not None]
     with_lifts = [r for r in records if r.ergo.lifts]
     return {
         "runs": n,
@@ -77,10 +80,35 @@ def _stats(records: list[RunRecord]) -> dict:
         "owas_peak": _pct([r.ergo.owas_peak for r in records]),
         "lifting_index": _pct(lis),
         "lifts_per_cycle": len(lis) / n if n else 0.0,
-        "cycles_li_over_1": share(sum(r.ergo.max_li > 1.0 for r in with_lifts), len(with_lifts)),
+        "cycles_li_over_1": _li_over_1(with_lifts),
+        "lifting_index_not_computed": _without_li(with_lifts),
         "iso11226_not_acceptable": share(
             sum(not all(h.acceptable for h in r.ergo.holdings) for r in records), n
         ),
+    }
+
+
+def _li_over_1(with_lifts: list[RunRecord]) -> dict:
+    """The share of cycles with a lift index above 1, of the cycles where that is known: a lift
+    with an index above 1, or every lift with an index (a cycle whose other lifts have none is
+    left out, and counted by :func:`_without_li`)."""
+    over = [any(lf.li is not None and lf.li > 1.0 for lf in r.ergo.lifts) for r in with_lifts]
+    known = [o or not r.ergo.lifts_without_li for o, r in zip(over, with_lifts, strict=True)]
+    return share(sum(over), sum(known))
+
+
+def _without_li(with_lifts: list[RunRecord]) -> dict:
+    """The lifts the NIOSH equation gives no index: how many of all, the share of cycles with
+    one, their lifting frequencies (lifts/min) and the limits they crossed (limit: lifts)."""
+    lifts = [lf for r in with_lifts for lf in r.ergo.lifts]
+    none = [lf for lf in lifts if lf.li is None]
+    f = [lf.f for lf in none]
+    return {
+        "lifts": len(none),
+        "of_lifts": len(lifts),
+        "cycles": share(sum(bool(r.ergo.lifts_without_li) for r in with_lifts), len(with_lifts)),
+        "lifts_per_min": [float(min(f)), float(max(f))] if f else None,
+        "limits": dict(Counter(lf.limit for lf in none).most_common()),
     }
 
 
@@ -196,8 +224,10 @@ def ergonomics_rows(records: list[RunRecord]) -> list[list]:
                     t.index, t.kind, t.site or "", t.rula, int(rula.action_level(t.rula)),
                     t.reba, int(reba.risk_level(t.reba)), t.owas, f"{t.rula_time:.3f}",
                     t.rula_driver, t.reba_driver, t.side, t.upper_arm,
-                    "" if lf is None else f"{lf.li:.3f}", "" if lf is None else f"{lf.rwl:.3f}",
-                    "" if lf is None else f"{lf.mass:.3f}",
+                    "" if lf is None or lf.li is None else f"{lf.li:.3f}",
+                    "" if lf is None else f"{lf.rwl:.3f}", "" if lf is None else f"{lf.mass:.3f}",
+                    "" if lf is None else f"{lf.f:.2f}",
+                    "" if lf is None or lf.li is not None else f"no lifting index: {lf.reason}",
                 ]
             )  # fmt: skip
     return rows
@@ -221,19 +251,37 @@ def _table(head: list[str], rows: list[list[str]]) -> list[str]:
     ]
 
 
+def _without_li_markdown(w: dict) -> list[str]:
+    """The paragraph on the lifts without a lifting index (none when every lift has one)."""
+    if not w["lifts"]:
+        return []
+    lo, hi = w["lifts_per_min"]
+    freq = f"{lo:.1f}" if round(lo, 1) == round(hi, 1) else f"{lo:.1f}-{hi:.1f}"
+    limits = "; ".join(f"{k} ({v} lifts)" for k, v in w["limits"].items())
+    return [
+        f"No NIOSH lifting index for {w['lifts']} of {w['of_lifts']} lifts "
+        f"({w['cycles']['k']} of {w['cycles']['n']} cycles with lifts; left out of LI P50, "
+        f"LI P95 and cycles LI>1): their recommended weight limit is 0 at {freq} lifts/min (a "
+        f"cycle's lifts over its cycle time, cycles back to back). Limits crossed: {limits}. "
+        "ergonomics.csv gives the reason per lift.",
+        "",
+    ]
+
+
 def ergonomics_markdown(e: dict) -> list[str]:
     """The report.md section of :func:`ergonomics_summary`'s figures."""
     blocks = [("all operators", e["overall"])] + list(e["groups"].items())
     head = ["operators", "runs", "RULA P50", "RULA P95", "RULA AL>=3", "RULA AL 4",
             "REBA P50", "REBA P95", "REBA >=3 (high)", "LI P50", "LI P95", "cycles LI>1",
-            "ISO 11226 not acc."]  # fmt: skip
+            "cycles without LI", "ISO 11226 not acc."]  # fmt: skip
     rows = [
         [
             name, str(s["runs"]), _f(s["rula_peak"]["p50"]), _f(s["rula_peak"]["p95"]),
             _share(s["rula_action_level"]["3"]), _share(s["rula_action_level"]["4"]),
             _f(s["reba_peak"]["p50"]), _f(s["reba_peak"]["p95"]), _share(s["reba_risk_level"]["3"]),
             _f(s["lifting_index"]["p50"], 2), _f(s["lifting_index"]["p95"], 2),
-            _share(s["cycles_li_over_1"]), _share(s["iso11226_not_acceptable"]),
+            _share(s["cycles_li_over_1"]), _share(s["lifting_index_not_computed"]["cycles"]),
+            _share(s["iso11226_not_acceptable"]),
         ]
         for name, s in blocks
     ]  # fmt: skip
@@ -247,6 +295,7 @@ def ergonomics_markdown(e: dict) -> list[str]:
         "",
         *_table(head, rows),
         "",
+        *_without_li_markdown(e["overall"]["lifting_index_not_computed"]),
         "Per task (P50 / P95 of the task's peak over runs) and the body part that most often "
         "drives its RULA peak:",
         "",

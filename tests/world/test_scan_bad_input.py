@@ -9,6 +9,7 @@ in the folder. Inputs are small clouds built here.
 from __future__ import annotations
 
 import errno
+import json
 import os
 import subprocess
 import sys
@@ -117,6 +118,57 @@ def test_pcd_declaring_more_points_than_rows(room, tmp_path, capsys):
     err = _scan([src, "-o", tmp_path / "s.xml"], capsys, tmp_path)
     assert f"declares 1000000 points but the file holds {len(room)} rows" in err
     assert "0 m in height" not in err
+
+
+def test_pcd_declaring_fewer_points_than_rows(room, tmp_path, capsys):
+    """Issue 45: POINTS 100 (and WIDTH 100) over all the rows: Open3D read the first 100, which
+    were then refused for the cloud's height; the count is named instead."""
+    src = _pcd_ascii(tmp_path / "fewer.pcd", room, declared=100)
+    err = _scan([src, "-o", tmp_path / "s.xml"], capsys, tmp_path)
+    assert (
+        f"declares POINTS 100 (WIDTH x HEIGHT = 100 x 1) but the file holds {len(room)} rows" in err
+    )
+    assert "in height" not in err
+
+
+def _binary_pcd(path: Path, pts, declared: int | None = None) -> Path:
+    """A binary PCD of ``pts`` (written by Open3D) whose POINTS and WIDTH say ``declared``."""
+    from mjwalk.world.scan.read import open3d_module
+
+    o3d = open3d_module()
+    cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts))
+    o3d.io.write_point_cloud(str(path), cloud, write_ascii=False)
+    if declared is not None:
+        data = path.read_bytes()
+        cut = data.index(b"DATA binary\n")
+        head = data[:cut].replace(f"WIDTH {len(pts)}\n".encode(), f"WIDTH {declared}\n".encode())
+        head = head.replace(f"POINTS {len(pts)}\n".encode(), f"POINTS {declared}\n".encode())
+        path.write_bytes(head + data[cut:])
+    return path
+
+
+def test_binary_pcd_declaring_fewer_points_than_it_holds(room, tmp_path, capsys):
+    src = _binary_pcd(tmp_path / "fewer.pcd", room, declared=100)
+    err = _scan([src, "-o", tmp_path / "s.xml"], capsys, tmp_path)
+    assert "declares POINTS 100 (WIDTH x HEIGHT = 100 x 1)" in err
+    assert f"{12 * len(room)} bytes after its header, room for {len(room)} points of 12" in err
+    ok = read_scan(_binary_pcd(tmp_path / "ok.pcd", room))  # as written: read in full
+    assert ok.points.shape == room.shape
+
+
+def test_shared_pcl_scan_with_a_header_declaring_100_points(shared_data, tmp_path, capsys):
+    """The shared PCL room scan as ASCII, its header saying 100 points over all its rows."""
+    from mjwalk.world.scan.read import open3d_module
+
+    o3d = open3d_module()
+    src = shared_data / "scans" / "pcl-room-scan" / "room_scan1.pcd"
+    pts = np.asarray(o3d.io.read_point_cloud(str(src)).points)
+    pts = pts[np.isfinite(pts).all(axis=1)]
+    bad = _pcd_ascii(tmp_path / "room100.pcd", pts, declared=100)
+    err = _scan([bad, "-o", tmp_path / "s.xml"], capsys, tmp_path)
+    assert (
+        f"declares POINTS 100 (WIDTH x HEIGHT = 100 x 1) but the file holds {len(pts)} rows" in err
+    )
 
 
 @pytest.mark.parametrize("compressed", [False, True])
@@ -391,3 +443,44 @@ def test_centimetre_cloud_names_units_cm(tmp_path, capsys):
     src = _write_xyz(tmp_path / "cm.xyz", 100 * _room_cloud(spacing=0.08))
     err = _scan([src, "-o", tmp_path / "s.xml"], capsys, tmp_path)
     assert "pass --units cm" in err
+
+
+# ------------------------------------------------- issue 45: folders and poses named
+
+
+@pytest.mark.parametrize("name", ["scans.ply", "scans"])
+def test_a_folder_given_as_a_scan_file_is_named_a_folder(room, tmp_path, capsys, name):
+    folder = tmp_path / name
+    folder.mkdir()
+    err = _scan([folder, "-o", tmp_path / "s.xml"], capsys, tmp_path)
+    assert f"{folder} is a folder, not a scan file" in err
+    assert "not found" not in err and "unknown point-cloud format" not in err
+
+
+def _two_scans_and_poses(tmp_path: Path, room, pose) -> list:
+    a = _write_xyz(tmp_path / "a.xyz", room)
+    b = _write_xyz(tmp_path / "b.xyz", room)
+    (tmp_path / "p.json").write_text(json.dumps({"b.xyz": pose}))  # NaN written as NaN
+    return [a, b, "-o", tmp_path / "s.xml", "--poses", tmp_path / "p.json"]
+
+
+@pytest.mark.parametrize(
+    ("entry", "value"), [(float("nan"), "nan"), (float("inf"), "inf"), (None, "nan")],
+    ids=["nan", "inf", "null"],
+)  # fmt: skip
+def test_a_pose_with_a_non_finite_entry_names_it(
+    room, tmp_path, capsys, no_scan_work, entry, value
+):
+    pose = np.eye(4).tolist()
+    pose[1][2] = entry
+    err = _scan(_two_scans_and_poses(tmp_path, room, pose), capsys, tmp_path)
+    assert f"p.json: pose of 'b.xyz': entry {value} at row 2, column 3" in err
+    assert "is not a finite number" in err and "got (4, 4)" not in err
+
+
+def test_a_folder_given_as_the_poses_file(room, tmp_path, capsys, no_scan_work):
+    argv = _two_scans_and_poses(tmp_path, room, np.eye(4).tolist())
+    (tmp_path / "p.json").unlink()
+    (tmp_path / "p.json").mkdir()
+    err = _scan(argv, capsys, tmp_path)
+    assert "p.json is a folder, not a poses file" in err

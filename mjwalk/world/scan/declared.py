@@ -115,6 +115,14 @@ def _declared(path: Path, n: int, what: str, held: str) -> ScanError:
     )
 
 
+def _more(path: Path, points: int, width: int, height: int, held: str) -> ScanError:
+    return ScanError(
+        f"{path}: the PCD header declares POINTS {points} (WIDTH x HEIGHT = {width} x {height}) "
+        f"but the file holds {held} (a wrong count in the header, or points appended after it "
+        "was written); nothing was read"
+    )
+
+
 def check_ply(path: Path) -> Declared:
     """Check a PLY file's declared element counts against its body. Raises ScanError when the
     body holds fewer rows (ASCII) or bytes (binary) than the header declares."""
@@ -172,7 +180,9 @@ def check_ply(path: Path) -> Declared:
 
 def check_pcd(path: Path) -> Declared:
     """Check a PCD file's POINTS (and WIDTH x HEIGHT) against its body (PCD stores missing
-    returns as nan, which Open3D reads as NaN). Raises ScanError on a short body."""
+    returns as nan, which Open3D reads as NaN). Raises ScanError on a short body, and on a body
+    holding more points than declared (Open3D would read only the declared ones): ASCII rows,
+    or at least one whole point's bytes beyond the declared ones in a binary body."""
     lines, body = _header(path, b"DATA", "PCD")
     fields: dict[str, list[str]] = {}
     for ln in lines:
@@ -201,6 +211,8 @@ def check_pcd(path: Path) -> Declared:
         rows, bad = _text_rows(path, body)
         if rows < points:
             raise _declared(path, points, "points", f"{rows} rows")
+        if rows > points:
+            raise _more(path, points, width, height, f"{rows} rows")
         return Declared(data, points, len(lines), first_bad_row=bad)
     if data == "binary":
         if held < points * row:
@@ -210,6 +222,9 @@ def check_pcd(path: Path) -> Declared:
                 f"points of {row} bytes",
                 f"{held} bytes after its header (room for {held // max(row, 1)} points)",
             )
+        if row > 0 and held - points * row >= row:
+            more = f"{held} bytes after its header, room for {held // row} points of {row} bytes"
+            raise _more(path, points, width, height, more)
         return Declared(data, points, len(lines))
     if data == "binary_compressed":
         with open(path, "rb") as fh:

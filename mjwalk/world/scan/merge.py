@@ -68,8 +68,14 @@ def check_pose(matrix, where: str) -> np.ndarray:
         m = np.asarray(matrix, dtype=np.float64)
     except (TypeError, ValueError):
         raise ScanError(f"{where}: a pose is a 4 x 4 matrix of numbers") from None
-    if m.shape != (4, 4) or not np.isfinite(m).all():
-        raise ScanError(f"{where}: a pose is a 4 x 4 matrix of finite numbers, got {m.shape}")
+    if m.shape != (4, 4):
+        raise ScanError(f"{where}: a pose is a 4 x 4 matrix of numbers, got shape {m.shape}")
+    if not np.isfinite(m).all():
+        i, j = (int(k) for k in np.argwhere(~np.isfinite(m))[0])
+        raise ScanError(
+            f"{where}: entry {m[i, j]} at row {i + 1}, column {j + 1} (counting from 1; JSON "
+            "null reads as nan) is not a finite number"
+        )
     r = m[:3, :3]
     if (
         not np.allclose(r.T @ r, np.eye(3), atol=POSE_TOL)
@@ -88,6 +94,8 @@ def read_poses(path: str | Path, scans: Sequence[Path]) -> dict[Path, np.ndarray
     names): ``{"B.ply": [[r00, r01, r02, tx], ..., [0, 0, 0, 1]]}``. Files not named keep the
     identity (they are in the first file's frame); a key naming no scan is an error."""
     path = Path(path)
+    if path.is_dir():
+        raise ScanError(f"{path} is a folder, not a poses file")
     try:
         doc = json.loads(path.read_text())
     except FileNotFoundError:

@@ -219,6 +219,8 @@ def read_points_raw(path: Path, *, drop_invalid: bool = False) -> np.ndarray:
     """The file's points (N, 3) as stored (float64, file units and axes), NaNs kept unless an
     ASCII PLY holds them (read without them when ``drop_invalid``, else refused)."""
     suffix = path.suffix.lower()
+    if path.is_dir():
+        raise ScanError(f"{path} is a folder, not a scan file (give the scan files in it)")
     if suffix not in SUFFIXES:
         raise ScanError(
             f"{path}: unknown point-cloud format {suffix!r} (read: {', '.join(SUFFIXES)})"
