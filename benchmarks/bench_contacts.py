@@ -1,7 +1,13 @@
 """Humanoid-vs-scene contacts of planned walks played back (issue 5) and of simulated station
-cycles (issue 7), by MuJoCo collision detection (feet count when > 1 cm into the floor).
+cycles (issues 7 and 45), by MuJoCo collision detection (feet count when > 1 cm into the floor).
 
-Run: python benchmarks/bench_contacts.py [--walks 20] [--cycles 40] [--seed 0] [--jobs 1]
+Run: python benchmarks/bench_contacts.py [--walks 20] [--cycles 40] [--seeds 0] [--jobs 1]
+     [--cycle scenes/assembly_station.toml ...]
+
+Issue 45 (run 32 of seed 0: the left toes brushed rack 1's upright as the swing foot came in
+obliquely to its landing, ``mjwalk.plan.stepgeom.toe_approach_clear``): ``--walks 0 --cycles 100
+--seeds 0 1 2 --cycle scenes/assembly_station.toml scenes/assembly_station_2h.toml --jobs 1``
+(600 cycles): before the fix 1 contact (station seed 0 run 32, toes_l / rack1_frame_l); after 0.
 """
 
 from __future__ import annotations
@@ -19,22 +25,17 @@ from mjwalk.world import load_workplace
 SCENES = Path(__file__).parents[1] / "scenes"
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--walks", type=int, default=20, help="walks per corridor route")
-    ap.add_argument("--cycles", type=int, default=40)
-    ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("--jobs", type=int, default=1, help="processes for the cycles (-1: all)")
-    a = ap.parse_args()
+def corridor(walks: int, seed: int) -> None:
+    """Plan ``walks`` walks per corridor route and report those that touch the scene."""
     scene = SCENES / "corridor.xml"
     wp = load_workplace(scene)
     model = default_model(progress=False)
-    walks = []
+    paths = []
     for start, goal in (("entry", "door"), ("door", "exit")):
-        walks += plan_walks(wp, start, goal, model, n=a.walks, seed=a.seed)
+        paths += plan_walks(wp, start, goal, model, n=walks, seed=seed)
     t0 = time.perf_counter()
     bad = 0
-    for k, w in enumerate(walks):
+    for k, w in enumerate(paths):
         c = collision_report(timeline_from_walk(w, scene))
         if c:
             bad += 1
@@ -43,26 +44,59 @@ def main() -> None:
                 f"  corridor walk {k}: {worst.body_part} / {worst.scene_geom} {worst.depth:.4f} m"
             )
     dt = time.perf_counter() - t0
-    print(f"corridor: {bad} of {len(walks)} planned walks touch the scene ({dt:.1f} s)")
+    print(f"corridor: {bad} of {len(paths)} planned walks touch the scene ({dt:.1f} s)")
+
+
+def cycles(spec: Path, runs: int, seed: int, jobs: int) -> tuple[int, int, int]:
+    """Simulate ``runs`` cycles of ``spec`` from ``seed``; print each contact. Returns (cycles,
+    runs with contacts, contacts)."""
     t0 = time.perf_counter()
-    res = simulate_cycles(
-        SCENES / "assembly_station.toml", runs=a.cycles, seed=a.seed, n_jobs=a.jobs
-    )
+    res = simulate_cycles(spec, runs=runs, seed=seed, n_jobs=jobs)
     dt = time.perf_counter() - t0
+    total = 0
     for r in res:
         for c in r.collisions:
+            total += 1
             print(
-                f"  cycle run {r.run}: t {c.time:.2f} s {c.body_part} / {c.scene_geom} "
-                f"{c.depth:.4f}"
+                f"  {spec.name} seed {seed} run {r.run}: t {c.time:.2f} s {c.body_part} / "
+                f"{c.scene_geom} {c.depth:.4f}"
             )
     n = sum(1 for r in res if r.collisions)
-    print(f"station cycles: {n} of {len(res)} runs with contacts ({dt:.1f} s)")
+    print(f"{spec.name} seed {seed}: {n} of {len(res)} runs with contacts, {total} ({dt:.1f} s)")
     backs = [a.step_back for r in res for a in r.arms]
     moved = [b for b in backs if b > 0]
     print(
         f"  reaches that stepped back to clear the scene (mjwalk.cycle.standoff): {len(moved)}"
-        f" of {len(backs)}" + (f", largest {max(moved):.2f} m" if moved else "")
+        f" of {len(backs)}" + (f", largest {max(moved):.2f} m" if moved else ""),
+        flush=True,
     )
+    return len(res), n, total
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--walks", type=int, default=20, help="walks per corridor route (0: none)")
+    ap.add_argument("--cycles", type=int, default=40, help="runs per cycle file and seed")
+    ap.add_argument("--seed", type=int, default=None, help="one seed (the same as --seeds S)")
+    ap.add_argument("--seeds", type=int, nargs="+", default=[0], help="seeds of the cycles")
+    ap.add_argument(
+        "--cycle",
+        type=Path,
+        nargs="+",
+        default=[SCENES / "assembly_station.toml"],
+        help="cycle files (default: the station)",
+    )
+    ap.add_argument("--jobs", type=int, default=1, help="processes for the cycles (-1: all)")
+    a = ap.parse_args()
+    seeds = [a.seed] if a.seed is not None else a.seeds
+    if a.walks > 0:
+        corridor(a.walks, seeds[0])
+    done = bad = total = 0
+    for spec in a.cycle:
+        for seed in seeds:
+            c, n, k = cycles(spec, a.cycles, seed, a.jobs)
+            done, bad, total = done + c, bad + n, total + k
+    print(f"all cycles: {bad} of {done} runs with contacts, {total} contacts")
 
 
 if __name__ == "__main__":

@@ -31,6 +31,17 @@ SAFETY_MARGIN = 0.01
 #: edge: the landing foot reaches ahead of the pelvis, into a shelf or a car body otherwise.
 FOOT_LENGTH = 0.14
 FOOT_CLEARANCE = 0.08
+#: The landing foot's way in (issue 45: run 32 of the station, seed 0, brushed rack 1's upright
+#: with its left toes one frame before landing, the step coming in 28 degrees off the foot's
+#: heading). The swing foot has its landing yaw from the phase
+#: :data:`~mjwalk.body.legs.steps.SWING_TURNED` on and covers the rest of its chord turned so;
+#: over the 66 steps of a station cycle's seven walks synthesized at 1.55, 1.75 and 1.95 m that
+#: rest was at most 0.18 of the chord (median 0.10; 0.21 m at most) and the chord up to 55 degrees
+#: off the landing yaw. Probes every ``TOE_PROBE_STEP`` metres over the chord's last
+#: ``TOE_APPROACH_SHARE`` keep the ankle and the toes FOOT_CLEARANCE
+#: (:func:`mjwalk.plan.stepgeom.toe_approach_clear`).
+TOE_APPROACH_SHARE = 0.2
+TOE_PROBE_STEP = 0.02
 #: The swing knee reaches beyond the body radius: over the swings of planned walks played back
 #: (1.75 m humanoid) the knee centre lies up to 0.21 m (95th percentile 0.25) ahead along the
 #: pelvis yaw and 0.11 m (0.15) to the swing side, and the thigh is 0.035 statures thick
@@ -193,6 +204,8 @@ def kernel_params(planner: HybridPlanner, stature: float) -> tuple[np.ndarray, n
         far_from=FAR_FROM,
         leg_step=LEG_PROBE_STEP,
         leg_clearance=leg_clearance(stature),
+        toe_share=TOE_APPROACH_SHARE,
+        toe_step=TOE_PROBE_STEP,
         dist_offset=0.0,
         pace=math.nan,
         heading_weight=planner.heading_weight,

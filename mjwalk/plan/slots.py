@@ -59,8 +59,10 @@ from mjwalk.plan.guide import GUIDE_POINTS
     P_HEADING_FROM,  # the heading term stops this close (m) to the goal point
     P_START_YAW,  # the walker's heading (world radians) before a turn on the spot
     P_TURN_COST,  # cost (m per radian) of a starter's turn on the spot from it; nan: none
+    P_TOE_SHARE,  # the chord's share the landing foot's approach is probed over; nan: none
+    P_TOE_STEP,  # spacing (m) of the approach probes (mjwalk.plan.stepgeom.toe_approach_clear)
     P_GUIDE0,  # the guide's GUIDE_POINTS points, x y each (mjwalk.plan.guide); nan: none
-) = range(44)
+) = range(46)
 #: Goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal), after the guide's slots.
 P_DISC0 = P_GUIDE0 + 2 * GUIDE_POINTS
 #: Most discs the goal area can be cut by (:func:`~mjwalk.plan.stepgeom.in_goal`); their count

@@ -89,6 +89,7 @@ from mjwalk.plan.stepgeom import (
     field_clearance,
     in_goal,
     landing_leg_clear,
+    toe_approach_clear,
     unit_turn,
 )
 
@@ -302,6 +303,12 @@ def check_into(
         if not ok:
             continue
         if beyond(loc[m] - behind, par[P_STRIDE]) or beyond(loc[m] - loc[m - 1], reach):
+            continue
+        # the landing foot's way in along the chord from the foot behind, turned to its
+        # landing yaw: a curved walk's step comes in obliquely, the toes sweeping sideways
+        toe_off = (par[P_FOOT_LENGTH] * 1j) * unit_turn(yaws.real)
+        if not toe_approach_clear(loc[m], behind, toe_off, thr[m + 1], rot, p, par, coef, fx0,
+                                  fy0, fres, fnx, fny):  # fmt: skip
             continue
         # the stance leg's sideways lean (the landed foot is this step's stance foot)
         if lean and not (math.isnan(landed.real) or math.isnan(node[i, 4].real)):

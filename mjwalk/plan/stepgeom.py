@@ -1,5 +1,5 @@
 """Compiled geometric tests of one sampled step: clearance lookups, distance tests, the
-closed-list key, the goal test and the landing leg's probes.
+closed-list key, the goal test, the landing leg's probes and the landing foot's approach.
 
 Points are complex numbers x + iy (metres; world or a step's local frame, x right, y
 forward); angles are radians. The helpers are numba-compiled (:mod:`mjwalk._jit`) and called
@@ -25,6 +25,8 @@ from mjwalk.plan.slots import (
     P_HIP_Y,
     P_LEG_CLEARANCE,
     P_LEG_STEP,
+    P_TOE_SHARE,
+    P_TOE_STEP,
     P_TOLERANCE,
     P_YAW_TOLERANCE,
 )
@@ -176,3 +178,46 @@ def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, 
             return False
         k += 1
     return True
+
+
+@njit
+def toe_approach_clear(ankle, lift, toe, clear, rot, p, par, coef, x0, y0, res, nx, ny):
+    """Whether the landing foot keeps ``clear`` metres from obstacles on its way in (True when
+    the slots are nan or the lift-off foot is unknown: no check).
+
+    The swing foot turns to its landing yaw by the step phase
+    :data:`~mjwalk.body.legs.steps.SWING_TURNED` and then comes in along the chord from its
+    lift-off footprint to its landing (:func:`mjwalk.body.legs.steps.swing_foot`). Where the
+    chord is oblique to the foot (a curved walk's step: up to 55 degrees), the foot, turned,
+    slides sideways on its way in, and its toes, 0.2 m ahead of the ankle, sweep beside the
+    landing footprint that the ankle and toe checks passed. Probes every ``P_TOE_STEP`` metres
+    back along the chord, over its last ``P_TOE_SHARE``, keep the ankle and the toes ``clear``;
+    the clearance being 1-Lipschitz, every point between keeps ``clear - P_TOE_STEP / 2``.
+
+    Args:
+        ankle, lift: the landing and lift-off footprints (the step's local frame, x + iy).
+        toe: the toe point's offset from the ankle at the landing yaw (same frame).
+        clear: the clearance (metres) each probe keeps.
+        rot, p: the step frame's turn into the world and its origin (world x + iy).
+        coef, x0, y0, res, nx, ny: the walk field (:func:`field_clearance`).
+    """
+    share = par[P_TOE_SHARE]
+    step = par[P_TOE_STEP]
+    if math.isnan(share) or math.isnan(step) or step <= 0.0 or math.isnan(lift.real):
+        return True
+    chord = ankle - lift
+    span = share * abs(chord)
+    if span <= 0.0:
+        return True
+    u = chord / abs(chord)
+    k = 1
+    while True:
+        back = min(k * step, span)
+        a = ankle - back * u
+        for q in (a, a + toe):
+            w = q * rot + p
+            if field_clearance(coef, x0, y0, res, nx, ny, w.real, w.imag) < clear:
+                return False
+        if back >= span:
+            return True
+        k += 1

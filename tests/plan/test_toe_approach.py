@@ -1,0 +1,81 @@
+"""The landing foot's way in (issue 45, item 2): station run 32 of seed 0 brushed rack 1's left
+upright with its left toes one frame before the last step of route T3 landed. The landing
+footprint kept FOOT_CLEARANCE at the ankle and the toes, but the step came in 28 degrees off the
+foot's heading, so the foot, turned to its landing yaw, slid sideways into place and its toes
+swept past the upright's front corner. The planner now probes that approach
+(:func:`mjwalk.plan.stepgeom.toe_approach_clear`) and the run has no contact any more."""
+
+from __future__ import annotations
+
+import cmath
+import math
+
+import numpy as np
+import pytest
+
+from mjwalk.plan.options import FOOT_CLEARANCE, FOOT_LENGTH, TOE_APPROACH_SHARE, TOE_PROBE_STEP
+from mjwalk.plan.slots import params
+from mjwalk.plan.stepgeom import toe_approach_clear
+from mjwalk.world import load_workplace
+
+# run 32's last step of T3 (main at 8f7a18a): the left foot lifts off at LIFT and lands at LAND
+# (ankle footprint, world x + iy, metres) facing YAW (radians from +x), 0.10 m beside rack 1's
+# left upright
+LIFT = complex(-2.47812, -1.02129)
+LAND = complex(-3.10343, -2.02832)
+YAW = -1.62589
+
+
+def _approach_clear(wp, lift, land=LAND, yaw=YAW, share=TOE_APPROACH_SHARE):
+    """toe_approach_clear in the world frame (the step frame's turn 1, origin 0)."""
+    field = wp.walk_field()
+    ny, nx = field.values.shape
+    par = params(toe_share=share, toe_step=TOE_PROBE_STEP)
+    toe = FOOT_LENGTH * cmath.exp(1j * yaw)
+    return toe_approach_clear(
+        land, lift, toe, FOOT_CLEARANCE, 1.0 + 0j, 0j, par,
+        field.values, field.x0, field.y0, field.resolution, nx, ny,
+    )  # fmt: skip
+
+
+def _clearance(wp, z: complex) -> float:
+    return float(wp.walk_clearance(np.array([[z.real, z.imag]]))[0])
+
+
+def test_run_32_oblique_landing_beside_the_upright_is_refused(scenes_dir):
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    toe = LAND + FOOT_LENGTH * cmath.exp(1j * YAW)
+    # the landing checks that were there pass: ankle and toes keep FOOT_CLEARANCE
+    assert _clearance(wp, LAND) >= FOOT_CLEARANCE
+    assert _clearance(wp, toe) >= FOOT_CLEARANCE
+    # the chord is 28 degrees off the landing yaw
+    off = abs(math.remainder(cmath.phase(LAND - LIFT) - YAW, 2 * math.pi))
+    assert math.degrees(off) == pytest.approx(28.7, abs=0.5)
+    # 5 cm before landing, on its way in, the toes are within FOOT_CLEARANCE of the upright
+    u = (LAND - LIFT) / abs(LAND - LIFT)
+    assert _clearance(wp, toe - 0.05 * u) < FOOT_CLEARANCE
+    assert not _approach_clear(wp, LIFT)
+
+
+def test_the_same_landing_reached_along_the_foots_heading_is_accepted(scenes_dir):
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    # lifted off 1.2 m straight behind the landing (the toes come in along their own axis)
+    assert _approach_clear(wp, LAND - 1.2 * cmath.exp(1j * YAW))
+
+
+def test_no_approach_check_without_its_slots_or_lift_off(scenes_dir):
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    assert _approach_clear(wp, LIFT, share=math.nan)  # slots unset: no check
+    assert _approach_clear(wp, complex(math.nan, math.nan))  # a starter: no foot behind
+
+
+@pytest.mark.slow
+def test_station_run_32_has_no_contact(scenes_dir):
+    # the whole run (about 40 s): the walk to rack 1 now ends where the swing clears the upright
+    from mjwalk.cycle.simulate import simulate_cycle
+    from mjwalk.cycle.spec import load_cycle_spec
+
+    spec = load_cycle_spec(scenes_dir / "assembly_station.toml")
+    rng = np.random.default_rng(np.random.SeedSequence([0, 32]))
+    r = simulate_cycle(spec, rng, run=32, ergonomics=False)
+    assert r.collisions == []
