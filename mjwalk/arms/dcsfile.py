@@ -1,19 +1,66 @@
 """The file form of a DCS network (:class:`~mjwalk.arms.dcs.DCSNetwork`): its arrays and
 header for one versioned ``.npz`` (:func:`mjwalk._io.save_npz`), and the network rebuilt from
 them. The trend network and the averaged networks nest under ``fallback.`` and ``member<j>.``
-prefixes; only the first network keeps the standardized training inputs."""
+prefixes; only the first network keeps the standardized training inputs.
+
+The file form knows a network by the fields it stores, :class:`DCSFields`, not by its class:
+the network's ``save`` and ``load`` call this module, and this module needs nothing of the
+network but those fields."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from collections.abc import Callable
+from typing import Protocol, Self, TypeVar
 
 import numpy as np
 
 from mjwalk._io import check_header
 from mjwalk.errors import ModelFileError
 
-if TYPE_CHECKING:
-    from mjwalk.arms.dcs import DCSNetwork
+
+class DCSFields(Protocol):
+    """The fields of a fitted DCS network the file stores, and the two methods it needs.
+
+    Arrays are in standardized input units (see :mod:`mjwalk.arms.dcs`): ``centers_`` (K, d),
+    ``outputs_`` (K, m), ``widths_`` (K,), ``edges_`` (K, K) bool, ``x_mean_``/``x_scale_``
+    (d,), ``train_z_`` (N, d) the standardized training inputs, ``slopes_`` (K, d, m) or None,
+    ``trend_`` (d, m) or None. ``fallback_`` and ``members_`` are networks of the same kind.
+    """
+
+    centers_: np.ndarray
+    outputs_: np.ndarray
+    widths_: np.ndarray
+    edges_: np.ndarray
+    x_mean_: np.ndarray
+    x_scale_: np.ndarray
+    train_z_: np.ndarray
+    slopes_: np.ndarray | None
+    trend_: np.ndarray | None
+    y_1d_: bool
+    train_rmse_: float
+    width_factor_: float
+    ridge_: float
+    local_linear_: bool
+    global_linear_: bool
+    slope_ridge_: float
+    scaling_: str
+    history_: list[tuple[int, float, float]]
+    n_pruned_: int
+    n_neurons_: int
+    fallback_: Self | None
+    members_: list[Self]
+
+    def params(self) -> dict:
+        """The constructor arguments, as the header stores them."""
+        ...
+
+    def set_training_points(self, Z: np.ndarray) -> None:
+        """Keep the standardized training inputs ``Z`` (N, d) and the trained range."""
+        ...
+
+
+#: A network type the file form rebuilds (whatever class satisfies :class:`DCSFields`).
+NetworkT = TypeVar("NetworkT", bound=DCSFields)
 
 DCS_FORMAT = "mjwalk.dcs"
 #: 2: optional global linear term (``trend``) and slope ridge; 3: dead-unit pruning and the
@@ -21,7 +68,7 @@ DCS_FORMAT = "mjwalk.dcs"
 DCS_VERSION = 3
 
 
-def network_arrays(net: DCSNetwork, with_training: bool = True) -> dict:
+def network_arrays(net: DCSFields, with_training: bool = True) -> dict:
     """The arrays :meth:`DCSNetwork.save` writes. The trend network and the averaged networks were
     fitted on the same inputs, so only the first network keeps the training inputs
     (``with_training``); they borrow them on load."""
@@ -49,7 +96,7 @@ def network_arrays(net: DCSNetwork, with_training: bool = True) -> dict:
     }
 
 
-def network_header(net: DCSNetwork) -> dict:
+def network_header(net: DCSFields) -> dict:
     """The header :meth:`DCSNetwork.save` writes: format, version, parameters, the values the
     grids chose and the growth history, and those of the trend and averaged networks."""
     params = net.params()
@@ -74,15 +121,16 @@ def network_header(net: DCSNetwork) -> dict:
 
 
 def network_from_arrays(
-    cls: type[DCSNetwork],
+    cls: Callable[..., NetworkT],
     header: dict,
     data: dict,
     source: str = "<arrays>",
     train_z: np.ndarray | None = None,
-) -> DCSNetwork:
-    """Rebuild a network of class ``cls`` from :meth:`DCSNetwork.save`'s header and arrays;
-    ``train_z``: the training inputs of the network this one belongs to (its trend network
-    or an averaged network), used when ``data`` has none."""
+) -> NetworkT:
+    """Rebuild a network of class ``cls`` (called with the header's parameters) from
+    :meth:`DCSNetwork.save`'s header and arrays; ``train_z``: the training inputs of the
+    network this one belongs to (its trend network or an averaged network), used when ``data``
+    has none."""
     version = header.get("version")  # version 1-2 files (no trend/fallback) read the same
     check_header(
         header, source, "DCS network", DCS_FORMAT, version if version in (1, 2) else DCS_VERSION

@@ -57,7 +57,6 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -73,12 +72,10 @@ from mjwalk.gait.features import (
     raw_features,
     side_array,
 )
+from mjwalk.gait.pace import PACE_VERSION, Pace, model_pace
 from mjwalk.gait.step import Step
 from mjwalk.gait.transition import N_INDUCING, TransitionGP
 from mjwalk.gait.walker import Walker
-
-if TYPE_CHECKING:
-    from mjwalk.gait.pace import Pace
 
 MODEL_FORMAT = "mjwalk.stepmodel"
 #: Bump whenever the saved arrays or their meaning change (4: the default model is trained on
@@ -410,8 +407,6 @@ class StepModel:
         seeded): measured once on first use and kept in ``info["pace"]`` (saved with the
         model). For a model conditioned with :meth:`for_walker`, the pace of the model it
         was conditioned from."""
-        from mjwalk.gait.pace import PACE_VERSION, Pace, model_pace
-
         base = self._base or self
         if base.info.get("pace", {}).get("version") != PACE_VERSION:
             base.info["pace"] = model_pace(base).as_dict()

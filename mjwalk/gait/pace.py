@@ -23,16 +23,13 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 
 from mjwalk.errors import MjwalkError
+from mjwalk.gait.sampler import StepSampler
 from mjwalk.gait.step import Step
 from mjwalk.gait.straight import model_straight_walks, step_widths, straight_runs
-
-if TYPE_CHECKING:
-    from mjwalk.gait.model import StepModel
 
 #: Straight walks the model's pace is measured on: ``PACE_WALKS`` greedy straight walks of
 #: ``PACE_DISTANCE`` metres (about 11 steps, 8 of them steady), seeded.
@@ -134,7 +131,7 @@ def capture_pace(steps: Sequence[Step], straight_deg: float = 20.0) -> Pace:
     )
 
 
-def model_pace(model: StepModel, *, seed: int = 0) -> Pace:
+def model_pace(model: StepSampler, *, seed: int = 0) -> Pace:
     """Pace of ``model``: medians over the steady steps of ``PACE_WALKS`` straight walks of
     ``PACE_DISTANCE`` metres (the greedy walker of :func:`mjwalk.gait.straight.
     model_straight_walks`, seeded, so the figure is a property of the model)."""

@@ -20,16 +20,13 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from mjwalk.gait.features import StepBatch, concat_batches
+from mjwalk.gait.sampler import StepSampler
 from mjwalk.gait.step import Step
-
-if TYPE_CHECKING:
-    from mjwalk.gait.model import StepModel
 
 #: Samples per step used for sway and path length (model and capture alike).
 PATH_SAMPLES = 25
@@ -142,7 +139,7 @@ def captured_straight_walks(
 
 
 def model_straight_walks(
-    model: StepModel,
+    model: StepSampler,
     distances: np.ndarray,
     rng: np.random.Generator,
     *,

@@ -120,17 +120,25 @@ def test_no_module_imports_upward():
     assert upward == []
 
 
+def _graph(type_checking: bool) -> dict[str, set[str]]:
+    """Module -> the mjwalk modules it imports (at module level or inside a function), with or
+    without the imports for type checkers only; the lazy top level is left out (it names
+    everything)."""
+    graph = {}
+    for f in _files():
+        mod = _module(f)
+        if mod == "mjwalk":
+            continue
+        deps = {target for target, _ in _imports(f, type_checking=type_checking)}
+        graph[mod] = deps - {mod, "mjwalk"}
+    return graph
+
+
 def test_no_import_cycles():
     """No module imports itself through others, counting every import a module runs (at module
     level or inside a function: both load the module when they run), not those for type
     checkers only."""
-    graph = {}
-    for f in _files():
-        mod = _module(f)
-        if mod == "mjwalk":  # the lazy top level names everything
-            continue
-        deps = {target for target, _ in _imports(f, type_checking=False)}
-        graph[mod] = deps - {mod, "mjwalk"}
+    graph = _graph(type_checking=False)
     state: dict[str, int] = {}
     cycles: list[str] = []
 
@@ -148,6 +156,54 @@ def test_no_import_cycles():
     for m in sorted(graph):
         visit(m, [])
     assert cycles == []
+
+
+#: Circles that only imports for type checkers (``if TYPE_CHECKING:``) close: known, issue 46,
+#: to be removed. Each is the set of modules that import one another round a circle (a strongly
+#: connected part of the import graph). A new circle, or a known one that grows, fails
+#: :func:`test_no_import_cycles_counting_type_checking_imports`; a circle broken must be taken
+#: off this list (the list only shrinks).
+TYPING_CIRCLES_FOR_NOW = {
+    # the cycle's context builds the stand zones and stand-offs, which take the context back
+    # (cycle/context -> standing/standoff/targets -> context)
+    frozenset(
+        {"mjwalk.cycle.context", "mjwalk.cycle.standing", "mjwalk.cycle.standoff",
+         "mjwalk.cycle.targets"}
+    ),
+    # options.kernel_params(planner) reads the planner back (plan/hybrid <-> options)
+    frozenset({"mjwalk.plan.hybrid", "mjwalk.plan.options"}),
+}  # fmt: skip
+
+
+def test_no_import_cycles_counting_type_checking_imports():
+    """A type annotation is a dependency too: counting the imports under ``if TYPE_CHECKING:``
+    as well, the only circles are the known ones (:data:`TYPING_CIRCLES_FOR_NOW`). Two modules
+    that need each other's names need a third home for what they share (a small module, a
+    protocol), not an import hidden from the interpreter."""
+    graph = _graph(type_checking=True)
+    runtime = _graph(type_checking=False)
+    reach: dict[str, set[str]] = {}
+    for m in graph:  # every module reachable from m along imports
+        seen: set[str] = set()
+        todo = [d for d in graph[m] if d in graph]
+        while todo:
+            d = todo.pop()
+            if d not in seen:
+                seen.add(d)
+                todo.extend(e for e in graph[d] if e in graph)
+        reach[m] = seen
+    circles = {
+        frozenset({m, *(n for n in reach[m] if m in reach[n])}) for m in graph if m in reach[m]
+    }
+    typing_only = sorted(
+        f"{m} -> {d}"
+        for c in circles - TYPING_CIRCLES_FOR_NOW
+        for m in sorted(c)
+        for d in sorted((graph[m] & c) - runtime[m])
+    )
+    new = [sorted(c) for c in circles - TYPING_CIRCLES_FOR_NOW]
+    assert new == [], f"new import circles {new}, closed by the typing-only imports {typing_only}"
+    assert circles == TYPING_CIRCLES_FOR_NOW  # a circle broken is taken off the list
 
 
 #: Private names a module still takes from another (each is to be made public in its owner).
