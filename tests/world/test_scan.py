@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from pathlib import Path
 
@@ -313,7 +314,14 @@ def test_real_scan(shared_data, tmp_path, rel, overhead):
     # without every point above the band has the same obstacles, box for box.
     above = levelled[:, 2] > overhead
     assert (above & inside).sum() > 500
-    without = build_scene(cloud.points[levelled[:, 2] <= 2.0], source="no overhead")
+    keep = levelled[:, 2] <= 2.0
+    rows = np.concatenate([[0], np.cumsum(keep)])  # the stations' rows among those kept
+    stations = [
+        dataclasses.replace(s, start=int(rows[s.start]), stop=int(rows[s.stop]))
+        for s in cloud.stations
+    ]
+    assert stations  # both files state where their scanner stood
+    without = build_scene(cloud.points[keep], source="no overhead", stations=stations)
     a, b = without.plan.obstacles > 0, scene.plan.obstacles > 0
     if a.shape == b.shape:
         iou = (a & b).sum() / (a | b).sum()
@@ -335,7 +343,9 @@ def test_real_scan(shared_data, tmp_path, rel, overhead):
         start, goal = free[i], free[j]
         if far[i, j] > 2.0:
             break
-    assert np.linalg.norm(goal - start) > 2.0
+    # The pump room's one station sees an L of floor about 3 m long and 1 m wide; the floor
+    # behind the pump, which no ray reached (sight.py), is void: 1.9 m between its free nodes.
+    assert np.linalg.norm(goal - start) > 1.5
     walks = plan_walks(wp, start, goal, default_model(progress=False), n=3, seed=0)
     assert len(walks) == 3
     assert all(w.length >= np.linalg.norm(goal - start) - 0.3 for w in walks)
