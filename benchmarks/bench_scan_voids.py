@@ -154,6 +154,17 @@ def measure(files, poses, out: Path, pairs_n: int, seed: int, label: str) -> flo
     )
     for r in sorted(set(refusals)):
         print(f"[{label}]   refused {refusals.count(r)}x: {r}")
+    # what refused them: a void box (floor the scans are said not to have seen), an obstacle
+    # box (band points 0.05-2.0 m, the scene's obstacles, wider than the pairs' 0.15-1.7 m),
+    # or the search
+    kinds = {"void": "'scan_void_", "obstacle": "'scan_obstacle_"}
+    counts = {k: sum(m in r for r in refusals) for k, m in kinds.items()}
+    counts["other"] = len(refusals) - sum(counts.values())
+    print(
+        f"[{label}] refused by a void box {counts['void']}, by an obstacle box "
+        f"{counts['obstacle']}, otherwise {counts['other']}; plannable or refused only by an "
+        f"obstacle box {100 * (planned + counts['obstacle']) / len(pairs):.0f} %"
+    )
     return share
 
 

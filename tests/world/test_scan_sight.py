@@ -12,11 +12,13 @@ from mjwalk.world.scan import build_scene, read_scan
 from mjwalk.world.scan.read import Station
 from mjwalk.world.scan.sight import MAX_HIDDEN, check_station
 
-#: A 16 x 8 m floor and one 1 m tall crate, 0.6 m wide, 3 m in front of the scanner.
+#: A 16 x 8 m floor, one 1 m tall crate, 0.6 m wide, 3 m in front of the scanner, and a 2 m
+#: tall wall 3 m wide 2.5 m behind it.
 ROOM = """
 <mujoco><worldbody>
   <geom name="floor" type="plane" size="8 4 0.1"/>
   <geom name="crate" type="box" pos="3 0 0.5" size="0.3 0.3 0.5"/>
+  <geom name="wall" type="box" pos="-2.5 0 1" size="0.05 1.5 1"/>
 </worldbody></mujoco>
 """
 
@@ -28,8 +30,11 @@ def _on_floor(scene, x: float, y: float) -> bool:
 
 def test_sparse_far_floor_is_floor_and_floor_behind_an_obstacle_stays_void():
     """One scanner 1.5 m high stepping 1°: its far floor (rings 0.37-0.5 m apart at 5.5-6.5 m,
-    (d² + h²) Δθ / h) is floor by its rays. The crate's shadow (3.3 m on, narrower than a 1 m
-    hole) is void by its rays, where floor points alone call it a small hole, i.e. floor."""
+    0.68 m at 7.5 m: (d² + h²) Δθ / h) is floor by its rays (here the hole rule mends the gaps
+    between rings for floor points alone too; the shared scan's far half shows where it does
+    not). The wall's shadow (3 m wide, 5 m long: wider than a 1 m hole) stays void by
+    either rule; the crate's (narrower than a 1 m hole) is a small hole, floor by either, as the
+    floor plan's hole rule (HOLE_RADIUS) has it."""
     from mjwalk.world.scan.synthetic import synthetic_scan
 
     model = mujoco.MjModel.from_xml_string(ROOM)
@@ -39,11 +44,13 @@ def test_sparse_far_floor_is_floor_and_floor_behind_an_obstacle_stays_void():
     points = build_scene(scan.points, source="points")
     assert "ray support from 1 scanner" in rays.sight
     assert "floor points alone" in points.sight and "states no scanner" in points.sight
-    far = [(6.0, 2.0), (-6.0, 0.0), (0.0, -3.5), (-4.5, 3.0)]
+    far = [(6.0, 2.0), (7.5, 0.5), (7.5, -1.0), (7.0, 3.0), (0.0, -3.5)]
     assert all(_on_floor(rays, x, y) for x, y in far)
-    for x in (4.0, 5.0):  # behind the crate: no ray reached that floor
+    for x in (-4.0, -5.0):  # behind the wall: no ray reached that floor
         assert not _on_floor(rays, x, 0.0)
-        assert _on_floor(points, x, 0.0)
+        assert not _on_floor(points, x, 0.0)
+    for x in (4.0, 5.0):  # behind the crate: a small hole
+        assert _on_floor(rays, x, 0.0) and _on_floor(points, x, 0.0)
 
 
 def test_shared_pcl_scan_far_half_is_floor_where_it_was_seen(shared_data):

@@ -151,13 +151,12 @@ def floor_plan(
         pts, lo[0], lo[1], resolution, nx, ny, FLOOR_TOL, z_range[0], z_range[1], TOP_STEP, nbins
     )
     seen_floor = floor_n > 0
-    shadowed = np.zeros_like(seen_floor)
+    outline = _hull_mask(seen_floor)  # of the floor points: rays through a doorway leave it
     if views:
-        by_rays, shadowed = ray_seen(
+        by_rays, _ = ray_seen(
             pts, views, lo[0], lo[1], resolution, (ny, nx), FLOOR_TOL, HOLE_RADIUS
         )
         seen_floor |= by_rays
-        shadowed &= ~seen_floor
     occupied = counts >= MIN_BAND_POINTS
 
     square = np.ones((3, 3), bool)
@@ -175,8 +174,9 @@ def floor_plan(
     # Small unscanned holes are floor.
     # Only inside the seen floor's convex outline: a hole at the floor's edge (the blind disc
     # of a scanner near the edge, a shadow behind a rack) fills up to the floor's edge.
-    # Floor behind an obstacle from every station that could see it is no hole (:mod:`.sight`).
-    unknown = ~floor & ~obst & ~shadowed & _hull_mask(seen_floor)
+    # The outline is the floor points' own: floor the rays saw through a doorway adds floor
+    # there, never a wider outline that would take the wall's far side in as a hole.
+    unknown = ~floor & ~obst & outline
     lab, n = ndimage.label(unknown, square)
     filled = 0
     if n:

@@ -17,13 +17,10 @@ cannot tell that floor from floor behind an obstacle; the rays can:
   stopped short of the cell (an obstacle's shadow), or no ray within a step (outside the field
   of view, the blind cone below the scanner, no return), leaves the cell unseen; a void is
   floor no ray of any station could have seen;
-- a cell whose ray was stopped short by something other than floor is *shadowed*: the floor
-  plan does not count it among the small unscanned holes it calls floor (behind a wall, the
-  strip a convex outline of the floor seen through a doorway takes in is not a hole in the
-  floor). The disc of ``blind`` metres around a station's foot is never shadowed: it is the
-  blind cone below the scanner and what it stands on (a tripod's legs, the table of the PCL
-  room scan), which the floor plan counts as a hole in the floor
-  (:data:`~mjwalk.world.scan.obstacles.HOLE_RADIUS`).
+- a cell whose ray was stopped short by something other than floor is *shadowed*
+  (returned for the figures); the floor plan still counts a shadow narrower than a small hole
+  (:data:`~mjwalk.world.scan.obstacles.HOLE_RADIUS`) as floor, as it does without rays: the
+  rays add floor that was seen, sparsely, and take none away.
 
 The scanner's position comes from the file (:class:`~mjwalk.world.scan.read.Station`: a PCD's
 VIEWPOINT, an E57 scan's pose). PCL writes ``VIEWPOINT 0 0 0 1 0 0 0`` into every cloud by
