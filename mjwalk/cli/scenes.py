@@ -46,6 +46,7 @@ def cmd_scan(args: argparse.Namespace) -> int:
         f"{len(scene.sites)} sites"
     )
     print(f"--voids {args.voids}: {cover(scene.plan).line()}")
+    print(scene.sight)
     if lv.surfaces:
         shown = ", ".join(
             f"{s.height:+.2f} m ({s.area:.1f} m² at {s.x:.1f}, {s.y:.1f})" for s in lv.surfaces[:8]

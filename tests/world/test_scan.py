@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from pathlib import Path
 
@@ -270,6 +271,23 @@ def test_walks_planned_in_the_reconstruction_keep_the_body_radius_in_the_origina
 # ------------------------------------------------------------------------- real scans
 
 
+def _obstacle_iou(p, q) -> float:
+    """Intersection over union of two floor plans' obstacle cells on the world grid they share
+    (their rectangles may differ by a cell where one saw a hair more floor)."""
+    r = p.resolution
+    ox, oy = round((q.x0 - p.x0) / r), round((q.y0 - p.y0) / r)  # q's origin in p's cells
+    lo = np.minimum((0, 0), (oy, ox))
+    hi = np.maximum(p.obstacles.shape, (oy + q.obstacles.shape[0], ox + q.obstacles.shape[1]))
+    a = np.zeros(tuple(hi - lo), bool)
+    b = np.zeros_like(a)
+    a[-lo[0] : -lo[0] + p.obstacles.shape[0], -lo[1] : -lo[1] + p.obstacles.shape[1]] = (
+        p.obstacles > 0
+    )
+    qy, qx = oy - lo[0], ox - lo[1]
+    b[qy : qy + q.obstacles.shape[0], qx : qx + q.obstacles.shape[1]] = q.obstacles > 0
+    return float((a & b).sum() / max((a | b).sum(), 1))
+
+
 def _floor_tilt_deg(pts: np.ndarray) -> float:
     """Tilt of the levelled floor: least squares z = ax + by + c over points within 5 cm of
     z = 0, trimmed to 2 cm then 1 cm of the fit."""
@@ -313,12 +331,15 @@ def test_real_scan(shared_data, tmp_path, rel, overhead):
     # without every point above the band has the same obstacles, box for box.
     above = levelled[:, 2] > overhead
     assert (above & inside).sum() > 500
-    without = build_scene(cloud.points[levelled[:, 2] <= 2.0], source="no overhead")
-    a, b = without.plan.obstacles > 0, scene.plan.obstacles > 0
-    if a.shape == b.shape:
-        iou = (a & b).sum() / (a | b).sum()
-    else:  # a levelling a hair different moves the floor rectangle by a cell
-        iou = 0.0
+    keep = levelled[:, 2] <= 2.0
+    rows = np.concatenate([[0], np.cumsum(keep)])  # the stations' rows among those kept
+    stations = [
+        dataclasses.replace(s, start=int(rows[s.start]), stop=int(rows[s.stop]))
+        for s in cloud.stations
+    ]
+    assert stations  # both files state where their scanner stood
+    without = build_scene(cloud.points[keep], source="no overhead", stations=stations)
+    iou = _obstacle_iou(without.plan, scene.plan)
     print(f"{src.name}: obstacle IoU with/without overhead points {iou:.4f}")
     assert iou > 0.97
     # A walk across the room: between the two free nodes farthest apart along x.

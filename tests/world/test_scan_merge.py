@@ -122,6 +122,7 @@ def test_shared_room_scan_split_in_two_views_with_poses(shared_data, tmp_path):
     the second moved by a known pose into a frame of its own, written as two PCDs: merged with
     --poses it gives the scene of the whole scan, box for box."""
     from mjwalk.world.scan import read_scan
+    from mjwalk.world.scan.read import Station
 
     src = shared_data / "scans" / "pcl-room-scan" / "room_scan1.pcd"
     pts = read_scan(src).points
@@ -134,10 +135,15 @@ def test_shared_room_scan_split_in_two_views_with_poses(shared_data, tmp_path):
     ]
     (tmp_path / "poses.json").write_text(json.dumps({"b.pcd": np.linalg.inv(move).tolist()}))
     merged = scan_to_scene(files, tmp_path / "room.xml", poses=tmp_path / "poses.json")
-    whole = build_scene(np.vstack([a, b]), source="whole")
+    # Open3D writes VIEWPOINT 0 0 0 into both files; in b's own frame the scanner stood at
+    # the move's translation, so b's stated position is refused (sight.check_station) and the
+    # floor seen is decided by a's rays: the whole cloud gets the same station.
+    assert "station 2 (PCD VIEWPOINT header): " in merged.sight and "behind" in merged.sight
+    station = Station(np.zeros(3), 0, len(a), "PCD VIEWPOINT header")
+    whole = build_scene(np.vstack([a, b]), source="whole", stations=[station])
     assert merged.levelling.tilt_deg == pytest.approx(whole.levelling.tilt_deg, abs=0.01)
     assert merged.n_obstacle_boxes == pytest.approx(whole.n_obstacle_boxes, rel=0.02)
-    one_view = build_scene(a, source="one view")
+    one_view = build_scene(a, source="one view", stations=[station])
     assert one_view.plan.void.sum() > merged.plan.void.sum()
 
 

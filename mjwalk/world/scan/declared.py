@@ -12,6 +12,7 @@ with the rows (text) or the bytes (binary) the file holds before any reader allo
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from dataclasses import dataclass
@@ -51,13 +52,16 @@ _NON_FINITE = re.compile(rb"(?i)\b[-+]?(nan|inf|infinity)\b")
 class Declared:
     """What a header declares: ``encoding`` (ascii, binary, ...), ``count`` points,
     ``header_lines`` lines before the body, ``columns`` the vertex properties in order (PLY),
-    and ``first_bad_row`` the first text row holding nan/inf (None: none, or binary)."""
+    ``first_bad_row`` the first text row holding nan/inf (None: none, or binary), and
+    ``viewpoint`` the sensor position a PCD header's VIEWPOINT gives (file units and axes;
+    None: no such line or not three finite numbers)."""
 
     encoding: str
     count: int
     header_lines: int
     columns: tuple[str, ...] = ()
     first_bad_row: int | None = None
+    viewpoint: tuple[float, float, float] | None = None
 
 
 def _header(path: Path, end: bytes, what: str) -> tuple[list[str], int]:
@@ -178,6 +182,17 @@ def check_ply(path: Path) -> Declared:
     return Declared(fmt, vertices, len(lines), tuple(columns))
 
 
+def _pcd_viewpoint(words: list[str]) -> tuple[float, float, float] | None:
+    """The translation of a PCD VIEWPOINT line (tx ty tz qw qx qy qz), or None."""
+    try:
+        xyz = tuple(float(w) for w in words[:3])
+    except ValueError:
+        return None
+    if len(xyz) != 3 or not all(map(math.isfinite, xyz)):
+        return None
+    return xyz
+
+
 def check_pcd(path: Path) -> Declared:
     """Check a PCD file's POINTS (and WIDTH x HEIGHT) against its body (PCD stores missing
     returns as nan, which Open3D reads as NaN). Raises ScanError on a short body, and on a body
@@ -205,6 +220,7 @@ def check_pcd(path: Path) -> Declared:
             f"{path}: the PCD header declares POINTS {points} but WIDTH x HEIGHT = "
             f"{width} x {height} = {width * height}; nothing was read"
         )
+    viewpoint = _pcd_viewpoint(fields.get("VIEWPOINT", []))
     row = sum(s * c for s, c in zip(size, count, strict=False))
     held = os.path.getsize(path) - body
     if data == "ascii":
@@ -213,7 +229,7 @@ def check_pcd(path: Path) -> Declared:
             raise _declared(path, points, "points", f"{rows} rows")
         if rows > points:
             raise _more(path, points, width, height, f"{rows} rows")
-        return Declared(data, points, len(lines), first_bad_row=bad)
+        return Declared(data, points, len(lines), first_bad_row=bad, viewpoint=viewpoint)
     if data == "binary":
         if held < points * row:
             raise _declared(
@@ -225,7 +241,7 @@ def check_pcd(path: Path) -> Declared:
         if row > 0 and held - points * row >= row:
             more = f"{held} bytes after its header, room for {held // row} points of {row} bytes"
             raise _more(path, points, width, height, more)
-        return Declared(data, points, len(lines))
+        return Declared(data, points, len(lines), viewpoint=viewpoint)
     if data == "binary_compressed":
         with open(path, "rb") as fh:
             fh.seek(body)
@@ -241,7 +257,7 @@ def check_pcd(path: Path) -> Declared:
                 f"points of {row} bytes ({points * row} bytes unpacked)",
                 f"{unpacked} bytes unpacked in {held - 8} of its declared {packed} packed bytes",
             )
-        return Declared(data, points, len(lines))
+        return Declared(data, points, len(lines), viewpoint=viewpoint)
     raise ScanError(f"{path}: unknown PCD DATA {data!r} (ascii, binary, binary_compressed)")
 
 

@@ -39,7 +39,7 @@ from pathlib import Path
 import numpy as np
 
 from mjwalk.errors import ScanError
-from mjwalk.world.scan.read import ScanCloud, read_scan
+from mjwalk.world.scan.read import ScanCloud, Station, read_scan
 from mjwalk.world.scan.register import Alignment, align
 
 #: A pose's rotation part must be orthonormal with determinant +1 to this tolerance.
@@ -49,13 +49,16 @@ POSE_TOL = 1e-6
 @dataclass
 class MergedCloud:
     """The merged cloud: ``points`` (N, 3) metres, z up, in the first file's frame; ``clouds``
-    the files as read; ``poses`` the 4 x 4 pose applied to each file's points (metres, z up).
+    the files as read; ``poses`` the 4 x 4 pose applied to each file's points (metres, z up);
+    ``stations`` the scanner positions the files state, moved into that frame with their rows
+    of ``points`` (a file that states none adds none).
     """
 
     points: np.ndarray
     clouds: list[ScanCloud]
     poses: list[np.ndarray]
     alignments: list[Alignment] = field(default_factory=list)
+    stations: list[Station] = field(default_factory=list)
 
     @property
     def first(self) -> ScanCloud:
@@ -163,4 +166,9 @@ def merge_scans(
         placed.append(cloud.points if identity else apply_pose(cloud.points, pose))
         applied.append(pose)
     points = placed[0] if len(placed) == 1 else np.concatenate(placed)
-    return MergedCloud(points, clouds, applied, alignments)
+    stations = []
+    shift = 0
+    for cloud, pose, part in zip(clouds, applied, placed, strict=True):
+        stations += [s.moved(pose, shift) for s in cloud.stations]
+        shift += len(part)
+    return MergedCloud(points, clouds, applied, alignments, stations)

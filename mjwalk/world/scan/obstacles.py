@@ -2,7 +2,9 @@
 
 On a grid of ``resolution`` metres over the floor:
 
-- floor cells hold points within :data:`FLOOR_TOL` of z = 0;
+- floor cells hold points within :data:`FLOOR_TOL` of z = 0, or, where the scan says where
+  its scanner stood, are cells a ray of the scan reached on the floor (:mod:`.sight`: floor
+  seen sparsely far from the scanner is floor);
 - obstacle cells hold at least :data:`MIN_BAND_POINTS` points in the obstacle band (0.05-2.0 m
   above the floor, as for MJCF scenes, :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`); gaps
   of one cell are closed, and regions the obstacles enclose with no floor seen inside (the
@@ -26,6 +28,7 @@ fewest row-run rectangles, standing on the floor up to the obstacle's highest ba
 from __future__ import annotations
 
 import itertools
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,6 +36,7 @@ from scipy import ndimage
 
 from mjwalk._jit import njit
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
+from mjwalk.world.scan.sight import View, ray_seen
 
 #: A floor point is within this height of z = 0 after levelling, metres: below the band's
 #: 0.05 m, and 6 sigma of a 5 mm range noise.
@@ -128,9 +132,11 @@ def floor_plan(
     *,
     resolution: float = 0.02,
     z_range: tuple[float, float] = OBSTACLE_Z_RANGE,
+    views: Sequence[View] = (),
 ) -> FloorPlan | None:
     """The floor plan of levelled points (N, 3), metres, floor at z = 0; None without floor
-    points."""
+    points. ``views``: the stations whose rays decide which floor was seen besides the cells
+    holding floor points (:mod:`.sight`); none: the floor points alone."""
     pts = np.ascontiguousarray(points, dtype=np.float64)
     box = _floor_box(pts, FLOOR_TOL)
     if not np.isfinite(box).all():
@@ -145,6 +151,12 @@ def floor_plan(
         pts, lo[0], lo[1], resolution, nx, ny, FLOOR_TOL, z_range[0], z_range[1], TOP_STEP, nbins
     )
     seen_floor = floor_n > 0
+    outline = _hull_mask(seen_floor)  # of the floor points: rays through a doorway leave it
+    if views:
+        by_rays, _ = ray_seen(
+            pts, views, lo[0], lo[1], resolution, (ny, nx), FLOOR_TOL, HOLE_RADIUS
+        )
+        seen_floor |= by_rays
     occupied = counts >= MIN_BAND_POINTS
 
     square = np.ones((3, 3), bool)
@@ -162,7 +174,9 @@ def floor_plan(
     # Small unscanned holes are floor.
     # Only inside the seen floor's convex outline: a hole at the floor's edge (the blind disc
     # of a scanner near the edge, a shadow behind a rack) fills up to the floor's edge.
-    unknown = ~floor & ~obst & _hull_mask(seen_floor)
+    # The outline is the floor points' own: floor the rays saw through a doorway adds floor
+    # there, never a wider outline that would take the wall's far side in as a hole.
+    unknown = ~floor & ~obst & outline
     lab, n = ndimage.label(unknown, square)
     filled = 0
     if n:

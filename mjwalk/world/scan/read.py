@@ -62,13 +62,33 @@ MAX_HEIGHT_SPAN = 60.0
 MIN_HEIGHT_SPAN = 0.3
 
 
+@dataclass(frozen=True)
+class Station:
+    """Where a scanner stood and which points it returned: ``viewpoint`` (3,) in the frame of
+    the points it goes with (metres, z up, once read), the points ``start:stop`` of that
+    cloud, and ``origin`` naming where the position came from (a PCD VIEWPOINT header, an E57
+    pose, a synthetic scan)."""
+
+    viewpoint: np.ndarray
+    start: int
+    stop: int
+    origin: str
+
+    def moved(self, pose: np.ndarray, shift: int) -> Station:
+        """The station with its viewpoint moved by the 4 x 4 ``pose`` and its points ``shift``
+        rows later (a cloud merged after others)."""
+        vp = pose[:3, :3] @ self.viewpoint + pose[:3, 3]
+        return Station(vp, self.start + shift, self.stop + shift, self.origin)
+
+
 @dataclass
 class ScanCloud:
     """Points of a scan: ``points`` (N, 3) in metres, z up, in the file's frame otherwise.
 
     ``points = scale * (axes @ (file_point - offset))``: ``scale`` metres per file unit
     (``units``), ``axes`` (3, 3) the rotation of the up axis ``up`` onto +z and ``offset`` (3,)
-    the point subtracted first (file units and axes; zeros unless given).
+    the point subtracted first (file units and axes; zeros unless given). ``stations``: the
+    scanner positions the file states, in the same frame (empty when it states none).
     """
 
     source: Path
@@ -78,6 +98,7 @@ class ScanCloud:
     scale: float
     axes: np.ndarray
     offset: np.ndarray = field(default_factory=lambda: np.zeros(3))
+    stations: list[Station] = field(default_factory=list)
 
 
 def open3d_module():
@@ -165,7 +186,14 @@ def _sniff(path: Path, suffix: str) -> None:
             raise ScanError(f"{path}: not a text point cloud (rows of 'x y z ...' numbers)")
 
 
-def _read_open3d(path: Path, suffix: str, drop_invalid: bool) -> np.ndarray:
+#: A raw station: the viewpoint (3,) in the file's units and axes, its origin, and how many
+#: of the file's rows (in order) it returned.
+_RawStation = tuple[np.ndarray, str, int]
+
+
+def _read_open3d(
+    path: Path, suffix: str, drop_invalid: bool
+) -> tuple[np.ndarray, list[_RawStation]]:
     """Points of a PLY, PCD, XYZ* or PTS file through Open3D, after the declared count is
     checked against the file (:mod:`.declared`): Open3D pads a short file with uninitialised
     memory and stops an ASCII PLY at the first value RPly cannot parse (nan, inf)."""
@@ -183,7 +211,7 @@ def _read_open3d(path: Path, suffix: str, drop_invalid: bool) -> np.ndarray:
                 f"{path}: vertex {declared.first_bad_row} (line {line}) holds a NaN or infinite "
                 "value (pass --drop-invalid, or drop_invalid=True, to leave such points out)"
             )
-        return _ascii_ply_xyz(path, declared)
+        return _ascii_ply_xyz(path, declared), []
     o3d = open3d_module()
     fmt = {**_OPEN3D, **_OPEN3D_PTS}[suffix]
     cloud = o3d.io.read_point_cloud(
@@ -192,7 +220,9 @@ def _read_open3d(path: Path, suffix: str, drop_invalid: bool) -> np.ndarray:
     pts = np.asarray(cloud.points, dtype=np.float64)
     if declared is not None:
         check_read_count(path, declared.count, len(pts))
-    return pts
+    if declared is not None and declared.viewpoint is not None:
+        return pts, [(np.array(declared.viewpoint), "PCD VIEWPOINT header", len(pts))]
+    return pts, []
 
 
 def _ascii_ply_xyz(path: Path, declared: Declared) -> np.ndarray:
@@ -218,6 +248,12 @@ def _ascii_ply_xyz(path: Path, declared: Declared) -> np.ndarray:
 def read_points_raw(path: Path, *, drop_invalid: bool = False) -> np.ndarray:
     """The file's points (N, 3) as stored (float64, file units and axes), NaNs kept unless an
     ASCII PLY holds them (read without them when ``drop_invalid``, else refused)."""
+    return _read_with_stations(path, drop_invalid)[0]
+
+
+def _read_with_stations(path: Path, drop_invalid: bool) -> tuple[np.ndarray, list[_RawStation]]:
+    """:func:`read_points_raw`'s points and the scanner positions the file states: a PCD's
+    VIEWPOINT, each E57 scan's pose translation (file units and axes)."""
     suffix = path.suffix.lower()
     if path.is_dir():
         raise ScanError(f"{path} is a folder, not a scan file (give the scan files in it)")
@@ -241,22 +277,30 @@ def read_points_raw(path: Path, *, drop_invalid: bool = False) -> np.ndarray:
                 f"{path}: unreadable LAS/LAZ file (header declares {declared} points): {exc}"
             ) from exc
         check_read_count(path, declared, len(las.points))
-        return np.column_stack([las.x, las.y, las.z]).astype(np.float64)
+        return np.column_stack([las.x, las.y, las.z]).astype(np.float64), []
     import pye57
 
     check_e57(path)
     try:
         e57 = pye57.E57(str(path))
         parts = []
+        stations: list[_RawStation] = []
         for i in range(e57.scan_count):
             scan = e57.read_scan(i, ignore_missing_fields=True, transform=True)
             xyz = np.column_stack([scan["cartesianX"], scan["cartesianY"], scan["cartesianZ"]])
             parts.append(xyz)
+            # read_scan(transform=True) moves the points by this pose: its translation is
+            # where the scanner stood, in the file's frame.
+            vp = np.asarray(e57.get_header(i).translation, dtype=np.float64)
+            if vp.shape == (3,) and np.isfinite(vp).all():
+                stations.append((vp, f"E57 pose of scan {i}", len(xyz)))
+            else:
+                stations.append((np.full(3, np.nan), "", len(xyz)))
     except ScanError:
         raise
     except Exception as exc:  # pye57 raises libE57's own exception types
         raise ScanError(f"{path}: unreadable E57 file: {exc}") from exc
-    return np.vstack(parts) if parts else np.empty((0, 3))
+    return (np.vstack(parts) if parts else np.empty((0, 3))), stations
 
 
 #: The height span a unit is judged by, metres: a workplace storey, about 3 m. Of the units
@@ -381,9 +425,18 @@ def read_scan(
     check_options(units, up, path)
     if path.suffix.lower() == ".e57" and units != "m":
         raise ScanError(f"{path}: E57 coordinates are metres by the standard; --units {units}")
-    raw = read_points_raw(path, drop_invalid=drop_invalid)
+    raw, raw_stations = _read_with_stations(path, drop_invalid)
+    kept = np.isfinite(raw).all(axis=1) if raw_stations and drop_invalid else None
     pts, scale, axes = to_metres_z_up(
         raw, units=units, up=up, source=path, drop_invalid=drop_invalid, offset=offset
     )
     off = np.zeros(3) if offset is None else np.asarray(offset, dtype=np.float64)
-    return ScanCloud(path, pts, units, up, scale, axes, off)
+    stations = []
+    start = stop = 0
+    for vp, origin, rows in raw_stations:
+        n = rows if kept is None else int(kept[stop : stop + rows].sum())
+        stop += rows
+        if origin:  # a scan of an E57 file without a usable pose has no station
+            stations.append(Station(scale * (axes @ (vp - off)), start, start + n, origin))
+        start += n
+    return ScanCloud(path, pts, units, up, scale, axes, off, stations)

@@ -36,7 +36,8 @@ from mjwalk.world.scan.level import Levelling, check_upright, find_floor
 from mjwalk.world.scan.limits import check_plan_size, check_resolution
 from mjwalk.world.scan.merge import merge_scans, read_poses
 from mjwalk.world.scan.obstacles import FloorPlan, floor_plan, rectangles
-from mjwalk.world.scan.read import check_options, to_metres_z_up
+from mjwalk.world.scan.read import Station, check_options, to_metres_z_up
+from mjwalk.world.scan.sight import View, check_station
 from mjwalk.world.scan.voids import apply_policy, check_policy
 
 #: Sites are written this far above the floor (a stand site on the floor, as in the shipped
@@ -49,7 +50,8 @@ class ScanScene:
     """The result of :func:`build_scene`: the MJCF text and what it was made from.
 
     ``matrix`` (4, 4) takes scan-file points to the scene; ``timings`` holds wall-clock seconds
-    per stage.
+    per stage; ``sight`` says how the floor seen was decided (by which stations' rays, or by
+    floor points alone and why).
     """
 
     xml: str
@@ -61,6 +63,7 @@ class ScanScene:
     n_void_boxes: int
     sites: dict[str, tuple[float, float, float]]
     timings: dict[str, float] = field(default_factory=dict)
+    sight: str = ""
 
 
 @dataclass(frozen=True)
@@ -223,6 +226,36 @@ def _boxes(plan: FloorPlan) -> tuple[list, int, int]:
     return out, n_obst, len(out) - n_obst
 
 
+def _views(
+    levelled: np.ndarray, stations: Sequence[Station], levelling: Levelling
+) -> tuple[list[View], str]:
+    """The stations the cloud agrees with (:func:`~mjwalk.world.scan.sight.check_station`) in
+    the levelled frame, and one line saying how the floor seen is decided."""
+    from mjwalk.world.scan.obstacles import FLOOR_TOL
+
+    views, refused = [], []
+    for k, st in enumerate(stations):
+        vp = levelling.apply(np.asarray(st.viewpoint, dtype=np.float64)[None])[0]
+        step, why = check_station(levelled[st.start : st.stop], vp, FLOOR_TOL)
+        if why:
+            refused.append(f"station {k + 1} ({st.origin}): {why}")
+        else:
+            views.append(View(vp, st.start, st.stop, step, st.origin))
+    fallback = "by floor points alone (sparse floor far from a scanner may be void)"
+    if not views:
+        why = "; ".join(refused) if refused else "the scan states no scanner position"
+        return views, f"floor seen decided {fallback}: {why}"
+    origins = ", ".join(sorted({v.origin for v in views}))
+    steps = ", ".join(f"{np.degrees(v.step):.2f}" for v in views)
+    line = (
+        f"floor seen decided by ray support from {len(views)} scanner position(s) ({origins}; "
+        f"angular step {steps} deg)"
+    )
+    if refused:
+        line += f"; not used: {'; '.join(refused)}"
+    return views, line
+
+
 def build_scene(
     points: np.ndarray,
     *,
@@ -235,12 +268,15 @@ def build_scene(
     model_name: str = "scan",
     offset: tuple[float, float, float] | np.ndarray | None = None,
     voids: str = "blocked",
+    stations: Sequence[Station] = (),
     _read: tuple[np.ndarray, float, np.ndarray] | None = None,
     clock: Callable[[], float] = time.perf_counter,
 ) -> ScanScene:
     """Make the MJCF scene of a point cloud ``points`` (N, 3) in the file's units and axes
     (``offset``, file units, subtracted first). ``voids`` is the unseen-floor policy
-    (:mod:`~mjwalk.world.scan.voids`: blocked, fill, free).
+    (:mod:`~mjwalk.world.scan.voids`: blocked, fill, free). ``stations``: where scanners
+    stood and which rows of ``points`` each returned (viewpoints in the frame of ``points``);
+    their rays decide which floor was seen (:mod:`~mjwalk.world.scan.sight`).
 
     Everything is checked, and the MJCF compiled by MuJoCo, before anything is written.
 
@@ -260,6 +296,13 @@ def build_scene(
         )
         timings["validate"] = clock() - t
         t = clock()
+        if len(pts) != len(points):  # rows dropped (drop_invalid): no row ranges to trust
+            stations = ()
+        off = np.zeros(3) if offset is None else np.asarray(offset, dtype=np.float64)
+        stations = [
+            Station(scale * (axes @ (np.asarray(s.viewpoint) - off)), s.start, s.stop, s.origin)
+            for s in stations
+        ]
     else:
         pts, scale, axes = _read
     check_plan_size(pts, resolution, source)
@@ -270,7 +313,10 @@ def build_scene(
     check_upright(levelled, up, source)
     timings["level"] = clock() - t
     t = clock()
-    plan = floor_plan(levelled, resolution=resolution)
+    views, sight = _views(levelled, stations, levelling)
+    timings["sight"] = clock() - t
+    t = clock()
+    plan = floor_plan(levelled, resolution=resolution, views=views)
     if plan is None or not plan.floor.any():
         raise ScanError(f"{source}: no floor found after levelling (no points at z = 0)")
     plan = apply_policy(plan, voids)
@@ -304,7 +350,8 @@ def build_scene(
         f"  {_fmt(matrix[2])}\n  {_fmt(matrix[3])}\n"
         f"Obstacles: points {OBSTACLE_Z_RANGE[0]}-{OBSTACLE_Z_RANGE[1]} m above the floor, "
         f"{n_obst} boxes on a {resolution} m grid; voids (unscanned or no floor): {n_void} boxes "
-        f"(group 3, policy {voids}); {plan.holes_filled} small unscanned holes counted as floor."
+        f"(group 3, policy {voids}); {plan.holes_filled} small unscanned holes counted as floor.\n"
+        f"{sight[0].upper()}{sight[1:]}."
     )
     xml = _mjcf(plan, boxes, site_xyyaw, header, matrix, model_name)
     try:
@@ -312,7 +359,9 @@ def build_scene(
     except ValueError as exc:  # a bug here, not bad input: say so plainly
         raise ScanError(f"{source}: the generated scene does not compile: {exc}") from exc
     timings["mjcf"] = clock() - t
-    return ScanScene(xml, plan, levelling, matrix, len(pts), n_obst, n_void, site_xyyaw, timings)
+    return ScanScene(
+        xml, plan, levelling, matrix, len(pts), n_obst, n_void, site_xyyaw, timings, sight
+    )
 
 
 def write_scene(scene: ScanScene, output: str | Path) -> Path:
@@ -380,6 +429,7 @@ def scan_to_scene(
         up=up,
         offset=first.offset,
         voids=voids,
+        stations=merged.stations,
         _read=(merged.points, first.scale, first.axes),
     )
     scene.timings = {"read": t_read, **scene.timings}
