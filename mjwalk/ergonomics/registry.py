@@ -47,6 +47,10 @@ def register(score: Score) -> Score:
     """Add ``score`` to :data:`SCORES` (after the others); remove it with
     ``SCORES.pop(score.name)``.
 
+    Only this process sees it: runs that joblib farms out to worker processes
+    (``simulate_cycles(n_jobs > 1)``, a Dask scheduler) import the registry afresh and score
+    without it; a method for every run is an entry in :data:`SCORES` itself.
+
     Args:
         score: an instance of a :class:`~mjwalk.ergonomics.score.Score` subclass.
 
