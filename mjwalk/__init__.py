@@ -81,7 +81,7 @@ _LAZY: dict[str, str] = {
     "timeline_from_walk": "mjwalk.timeline.frames",
     # ergonomics
     "BodyAngles": "mjwalk.ergonomics.angles",
-    "RunErgonomics": "mjwalk.ergonomics.assess",
+    "RunErgonomics": "mjwalk.ergonomics.results",
     "angles_from_timeline": "mjwalk.ergonomics.angles",
     "assess_cycle": "mjwalk.ergonomics.assess",
     "write_angles_csv": "mjwalk.ergonomics.export",
@@ -204,8 +204,9 @@ if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
     from mjwalk.cycle.spec import load_cycle_spec
     from mjwalk.cycle.types import CycleResult, CycleSpec
     from mjwalk.ergonomics.angles import BodyAngles, angles_from_timeline
-    from mjwalk.ergonomics.assess import RunErgonomics, assess_cycle
+    from mjwalk.ergonomics.assess import assess_cycle
     from mjwalk.ergonomics.export import write_angles_csv, write_bvh
+    from mjwalk.ergonomics.results import RunErgonomics
     from mjwalk.gait.corpus import generate_corpus
     from mjwalk.gait.default import default_model
     from mjwalk.gait.features import StepBatch

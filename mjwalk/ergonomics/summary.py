@@ -1,7 +1,7 @@
 """The workforce's ergonomics: distributions of many runs' scores, overall and per operator group.
 
 :func:`ergonomics_summary` takes one :class:`RunRecord` per simulated cycle (its operator's group
-and stature, and its :class:`~mjwalk.ergonomics.assess.RunErgonomics`) and gives, overall and per
+and stature, and its :class:`~mjwalk.ergonomics.results.RunErgonomics`) and gives, overall and per
 group: P50/P95 of each cycle's peak RULA and REBA; the share of cycles reaching each RULA action
 level and REBA risk level, with its 95 % Wilson score interval (Wilson 1927; as the report's share
 over takt); the NIOSH lifting index per lift (P50/P95) and the share of cycles with a lift index
@@ -12,6 +12,11 @@ peaks, and measures the dependence on stature (Spearman's rank correlation of st
 RULA, and each task's median RULA for the shortest and the tallest third of the operators).
 :func:`ergonomics_rows` gives the rows of ``ergonomics.csv`` (one per run and task),
 :func:`ergonomics_markdown` the report's section.
+
+Each method's figures, its columns of the operator groups' table, its notes and its
+ergonomics.csv columns come from the registry (:data:`mjwalk.ergonomics.registry.SCORES`,
+through the hooks of :class:`~mjwalk.ergonomics.score.Score`); the per-task table, the peaks'
+drivers and the stature dependence read the RULA and REBA peaks.
 """
 
 from __future__ import annotations
@@ -21,18 +26,20 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mjwalk.ergonomics import reba, rula
-from mjwalk.ergonomics.assess import RunErgonomics
+from mjwalk.ergonomics.registry import SCORES, STATS_ORDER, TASK_COLUMNS, csv_columns, in_order
+from mjwalk.ergonomics.results import RunErgonomics
+from mjwalk.ergonomics.score import CONFIDENCE, fmt, percentiles, share
 
-#: Confidence level of the shares.
-CONFIDENCE = 0.95
-#: Columns of ergonomics.csv.
-CSV_COLUMNS = (
-    "run", "seed", "group", "stature_m", "task", "kind", "site", "rula_peak", "rula_action_level",
-    "reba_peak", "reba_risk_level", "owas_peak", "rula_time_s", "rula_driver", "reba_driver",
-    "arm", "upper_arm_score", "lifting_index", "rwl_kg", "mass_kg", "lifts_per_min",
-    "lifting_index_note",
-)  # fmt: skip
+
+def csv_header() -> list[str]:
+    """The columns of ergonomics.csv: :data:`~mjwalk.ergonomics.registry.TASK_COLUMNS`, then
+    the registered methods' (:func:`~mjwalk.ergonomics.registry.csv_columns`)."""
+    return [*TASK_COLUMNS, *(c.name for c in csv_columns())]
+
+
+#: Columns of ergonomics.csv with the built-in methods (:func:`csv_header` reads the registry
+#: as it is when called).
+CSV_COLUMNS = tuple(csv_header())
 
 
 @dataclass
@@ -46,70 +53,13 @@ class RunRecord:
     ergo: RunErgonomics
 
 
-def _pct(x) -> dict:
-    x = np.asarray(x, dtype=float)
-    if not len(x):
-        return {"p50": None, "p95": None, "n": 0}
-    return {"p50": float(np.percentile(x, 50)), "p95": float(np.percentile(x, 95)), "n": len(x)}
-
-
-def share(k: int, n: int, confidence: float = CONFIDENCE) -> dict:
-    """``k`` of ``n`` as a share with its Wilson score interval."""
-    from scipy.stats import binomtest
-
-    if n == 0:
-        return {"share": None, "low": None, "high": None, "k": 0, "n": 0}
-    ci = binomtest(k, n).proportion_ci(confidence_level=confidence, method="wilson")
-    return {"share": k / n, "low": float(ci.low), "high": float(ci.high), "k": k, "n": n}
-
-
 def _stats(records: list[RunRecord]) -> dict:
-    n = len(records)
-    rp = [r.ergo.rula_peak for r in records]
-    bp = [r.ergo.reba_peak for r in records]
-    ral = [int(rula.action_level(x)) for x in rp]
-    brl = [int(reba.risk_level(x)) for x in bp]
-    lis = [lf.li for r in records for lf in r.ergo.lifts if lf.li is not None]
-    with_lifts = [r for r in records if r.ergo.lifts]
-    return {
-        "runs": n,
-        "rula_peak": _pct(rp),
-        "reba_peak": _pct(bp),
-        "rula_action_level": {str(lv): share(sum(a >= lv for a in ral), n) for lv in (1, 2, 3, 4)},
-        "reba_risk_level": {str(lv): share(sum(a >= lv for a in brl), n) for lv in (1, 2, 3, 4)},
-        "owas_peak": _pct([r.ergo.owas_peak for r in records]),
-        "lifting_index": _pct(lis),
-        "lifts_per_cycle": len(lis) / n if n else 0.0,
-        "cycles_li_over_1": _li_over_1(with_lifts),
-        "lifting_index_not_computed": _without_li(with_lifts),
-        "iso11226_not_acceptable": share(
-            sum(not all(h.acceptable for h in r.ergo.holdings) for r in records), n
-        ),
-    }
-
-
-def _li_over_1(with_lifts: list[RunRecord]) -> dict:
-    """The share of cycles with a lift index above 1, of the cycles where that is known: a lift
-    with an index above 1, or every lift with an index (a cycle whose other lifts have none is
-    left out, and counted by :func:`_without_li`)."""
-    over = [any(lf.li is not None and lf.li > 1.0 for lf in r.ergo.lifts) for r in with_lifts]
-    known = [o or not r.ergo.lifts_without_li for o, r in zip(over, with_lifts, strict=True)]
-    return share(sum(over), sum(known))
-
-
-def _without_li(with_lifts: list[RunRecord]) -> dict:
-    """The lifts the NIOSH equation gives no index: how many of all, the share of cycles with
-    one, their lifting frequencies (lifts/min) and the limits they crossed (limit: lifts)."""
-    lifts = [lf for r in with_lifts for lf in r.ergo.lifts]
-    none = [lf for lf in lifts if lf.li is None]
-    f = [lf.f for lf in none]
-    return {
-        "lifts": len(none),
-        "of_lifts": len(lifts),
-        "cycles": share(sum(bool(r.ergo.lifts_without_li) for r in with_lifts), len(with_lifts)),
-        "lifts_per_min": [float(min(f)), float(max(f))] if f else None,
-        "limits": dict(Counter(lf.limit for lf in none).most_common()),
-    }
+    """Every registered method's figures of a group of runs, in report.json's order."""
+    runs = [r.ergo for r in records]
+    out: dict = {"runs": len(records)}
+    for s in SCORES.values():
+        out.update(s.stats(runs))
+    return {k: out[k] for k in in_order(out, STATS_ORDER)}
 
 
 def _drivers(records: list[RunRecord]) -> dict:
@@ -142,8 +92,8 @@ def _tasks(records: list[RunRecord]) -> list[dict]:
                 "task": idx,
                 "kind": t0.kind,
                 "site": t0.site,
-                "rula": _pct([t.rula for _, t in rows]),
-                "reba": _pct([t.reba for _, t in rows]),
+                "rula": percentiles([t.rula for _, t in rows]),
+                "reba": percentiles([t.reba for _, t in rows]),
                 "rula_driver": Counter(t.rula_driver for _, t in rows).most_common(1)[0][0],
             }
         )
@@ -196,11 +146,7 @@ def ergonomics_summary(records: list[RunRecord]) -> dict:
         groups.setdefault(r.group, []).append(r)
     return {
         "methods": {
-            "rula": "McAtamney & Corlett 1993; action levels 1 (1-2) 2 (3-4) 3 (5-6) 4 (7)",
-            "reba": "Hignett & McAtamney 2000; risk levels 0 (1) 1 (2-3) 2 (4-7) 3 (8-10) 4 (11+)",
-            "owas": "Karhu et al. 1977; action categories 1-4",
-            "niosh": "revised NIOSH lifting equation, Waters et al. 1993 / 1994",
-            "iso11226": "ISO 11226:2000 static trunk and upper-arm postures",
+            **{name: sc.source for name, sc in SCORES.items()},
             "shares": "cycles reaching at least the level, with 95 % Wilson score interval",
         },
         "overall": _stats(records),
@@ -212,35 +158,18 @@ def ergonomics_summary(records: list[RunRecord]) -> dict:
 
 
 def ergonomics_rows(records: list[RunRecord]) -> list[list]:
-    """Rows of ergonomics.csv (:data:`CSV_COLUMNS`): one per run and task."""
+    """Rows of ergonomics.csv (:func:`csv_header`): one per run and task."""
+    cols = csv_columns()
     rows = []
     for r in records:
-        lifts = {lf.task: lf for lf in r.ergo.lifts}
         for t in r.ergo.tasks:
-            lf = lifts.get(t.index)
             rows.append(
                 [
                     r.run, r.seed, r.group, "" if r.stature is None else f"{r.stature:.3f}",
-                    t.index, t.kind, t.site or "", t.rula, int(rula.action_level(t.rula)),
-                    t.reba, int(reba.risk_level(t.reba)), t.owas, f"{t.rula_time:.3f}",
-                    t.rula_driver, t.reba_driver, t.side, t.upper_arm,
-                    "" if lf is None or lf.li is None else f"{lf.li:.3f}",
-                    "" if lf is None else f"{lf.rwl:.3f}", "" if lf is None else f"{lf.mass:.3f}",
-                    "" if lf is None else f"{lf.f:.2f}",
-                    "" if lf is None or lf.li is not None else f"no lifting index: {lf.reason}",
+                    t.index, t.kind, t.site or "", *(c.cell(r.ergo, t) for c in cols),
                 ]
             )  # fmt: skip
     return rows
-
-
-def _f(x, d: int = 1) -> str:
-    return "-" if x is None else f"{x:.{d}f}"
-
-
-def _share(e: dict) -> str:
-    if e["share"] is None:
-        return "-"
-    return f"{100 * e['share']:.0f} % ({100 * e['low']:.0f}-{100 * e['high']:.0f})"
 
 
 def _table(head: list[str], rows: list[list[str]]) -> list[str]:
@@ -251,40 +180,12 @@ def _table(head: list[str], rows: list[list[str]]) -> list[str]:
     ]
 
 
-def _without_li_markdown(w: dict) -> list[str]:
-    """The paragraph on the lifts without a lifting index (none when every lift has one)."""
-    if not w["lifts"]:
-        return []
-    lo, hi = w["lifts_per_min"]
-    freq = f"{lo:.1f}" if round(lo, 1) == round(hi, 1) else f"{lo:.1f}-{hi:.1f}"
-    limits = "; ".join(f"{k} ({v} lifts)" for k, v in w["limits"].items())
-    return [
-        f"No NIOSH lifting index for {w['lifts']} of {w['of_lifts']} lifts "
-        f"({w['cycles']['k']} of {w['cycles']['n']} cycles with lifts; left out of LI P50, "
-        f"LI P95 and cycles LI>1): their recommended weight limit is 0 at {freq} lifts/min (a "
-        f"cycle's lifts over its cycle time, cycles back to back). Limits crossed: {limits}. "
-        "ergonomics.csv gives the reason per lift.",
-        "",
-    ]
-
-
 def ergonomics_markdown(e: dict) -> list[str]:
     """The report.md section of :func:`ergonomics_summary`'s figures."""
     blocks = [("all operators", e["overall"])] + list(e["groups"].items())
-    head = ["operators", "runs", "RULA P50", "RULA P95", "RULA AL>=3", "RULA AL 4",
-            "REBA P50", "REBA P95", "REBA >=3 (high)", "LI P50", "LI P95", "cycles LI>1",
-            "cycles without LI", "ISO 11226 not acc."]  # fmt: skip
-    rows = [
-        [
-            name, str(s["runs"]), _f(s["rula_peak"]["p50"]), _f(s["rula_peak"]["p95"]),
-            _share(s["rula_action_level"]["3"]), _share(s["rula_action_level"]["4"]),
-            _f(s["reba_peak"]["p50"]), _f(s["reba_peak"]["p95"]), _share(s["reba_risk_level"]["3"]),
-            _f(s["lifting_index"]["p50"], 2), _f(s["lifting_index"]["p95"], 2),
-            _share(s["cycles_li_over_1"]), _share(s["lifting_index_not_computed"]["cycles"]),
-            _share(s["iso11226_not_acceptable"]),
-        ]
-        for name, s in blocks
-    ]  # fmt: skip
+    table = [c for sc in SCORES.values() for c in sc.table]
+    head = ["operators", "runs", *(c.name for c in table)]
+    rows = [[name, str(s["runs"]), *(c.cell(s) for c in table)] for name, s in blocks]
     out = [
         "## Ergonomics",
         "",
@@ -295,7 +196,7 @@ def ergonomics_markdown(e: dict) -> list[str]:
         "",
         *_table(head, rows),
         "",
-        *_without_li_markdown(e["overall"]["lifting_index_not_computed"]),
+        *(line for sc in SCORES.values() for line in sc.notes(e["overall"])),
         "Per task (P50 / P95 of the task's peak over runs) and the body part that most often "
         "drives its RULA peak:",
         "",
@@ -306,10 +207,10 @@ def ergonomics_markdown(e: dict) -> list[str]:
                     str(t["task"]),
                     t["kind"],
                     t["site"] or "",
-                    _f(t["rula"]["p50"]),
-                    _f(t["rula"]["p95"]),
-                    _f(t["reba"]["p50"]),
-                    _f(t["reba"]["p95"]),
+                    fmt(t["rula"]["p50"]),
+                    fmt(t["rula"]["p95"]),
+                    fmt(t["reba"]["p50"]),
+                    fmt(t["reba"]["p95"]),
                     t["rula_driver"],
                 ]
                 for t in e["tasks"]
@@ -325,7 +226,7 @@ def ergonomics_markdown(e: dict) -> list[str]:
         out += [
             "",
             "Stature: Spearman's rho of stature and peak RULA "
-            f"{_f(st['spearman_rho_stature_rula_peak'], 2)}; "
+            f"{fmt(st['spearman_rho_stature_rula_peak'], 2)}; "
             f"per reach, the median RULA (upper-arm score) of operators up to "
             f"{st['short_below_m']:.2f} m and from {st['tall_above_m']:.2f} m:",
             "",
@@ -344,13 +245,25 @@ def ergonomics_markdown(e: dict) -> list[str]:
                         str(t["task"]),
                         t["kind"],
                         t["site"] or "",
-                        _f(t["rula_short"]),
-                        _f(t["rula_tall"]),
-                        _f(t["upper_arm_short"]),
-                        _f(t["upper_arm_tall"]),
+                        fmt(t["rula_short"]),
+                        fmt(t["rula_tall"]),
+                        fmt(t["upper_arm_short"]),
+                        fmt(t["upper_arm_tall"]),
                     ]
                     for t in st["tasks"]
                 ],
             ),
         ]
     return [*out, ""]
+
+
+__all__ = [
+    "CONFIDENCE",
+    "CSV_COLUMNS",
+    "RunRecord",
+    "csv_header",
+    "ergonomics_markdown",
+    "ergonomics_rows",
+    "ergonomics_summary",
+    "share",
+]

@@ -175,13 +175,13 @@ def write_report(
         spaghetti_png(tmp["spaghetti"], results, workplace, routes, rep)
         histograms_png(tmp["histograms"], results, rep)
         if "ergonomics_csv" in tmp:
-            from mjwalk.ergonomics.summary import CSV_COLUMNS, ergonomics_rows
+            from mjwalk.ergonomics.summary import csv_header, ergonomics_rows
             from mjwalk.plot import ergonomics_png
 
             records = ergonomic_records(results)
             with open(tmp["ergonomics_csv"], "w", newline="") as fh:
                 w = csv.writer(fh)
-                w.writerow(CSV_COLUMNS)
+                w.writerow(csv_header())
                 w.writerows(ergonomics_rows(records))
             ergonomics_png(tmp["ergonomics_png"], records)
     return targets

@@ -1,0 +1,209 @@
+"""The posture methods as :class:`~mjwalk.ergonomics.score.Score` s: RULA, REBA and OWAS frame by
+frame with each task's peak and the body part that drives it, and ISO 11226's static holdings.
+
+Force and activity terms come from the cycle's :class:`~mjwalk.ergonomics.score.ScoreContext`:
+the load in a hand is the mass of the part it holds; RULA's muscle use and REBA's activity are
+its ``muscle``; REBA's coupling its ``coupling``; OWAS's load the mass in both hands.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from mjwalk.ergonomics import iso11226, owas, reba, rula
+from mjwalk.ergonomics.angles import BodyAngles
+from mjwalk.ergonomics.results import RunErgonomics
+from mjwalk.ergonomics.score import (
+    Column,
+    Score,
+    ScoreContext,
+    TaskSpan,
+    fmt,
+    fmt_share,
+    percentiles,
+    share,
+)
+
+#: The RULA parts, each with its largest score (to name the part that drives a peak).
+RULA_PARTS = {"upper_arm": 6, "lower_arm": 3, "wrist": 4, "neck": 6, "trunk": 6, "legs": 2}
+REBA_PARTS = {"trunk": 5, "neck": 3, "legs": 4, "upper_arm": 6, "lower_arm": 2, "wrist": 3}
+#: The arms, by index of the (F, 2) per-arm arrays.
+ARMS = ("left", "right")
+
+
+@dataclass(frozen=True)
+class ArmFrames:
+    """A per-arm method's frames: ``arm`` (F, 2) the grand score of each arm's side,
+    ``parts`` each side's part scores, ``frame`` (F,) the higher of the two."""
+
+    arm: np.ndarray
+    parts: list
+    frame: np.ndarray
+
+
+def _driver(parts, maxima: dict[str, int], k: int, side: int) -> str:
+    """The body part with the highest score relative to its largest at frame ``k``."""
+    best, name = -1.0, ""
+    for p, m in maxima.items():
+        v = getattr(parts[side], p)[k] / m
+        if v > best:
+            best, name = v, p
+    return name
+
+
+def _peak(f: ArmFrames, span: TaskSpan) -> tuple[int, int]:
+    """(frame, arm) of the task's peak: the first frame of its highest score, the higher arm."""
+    k = span.start + int(np.argmax(f.frame[span.start : span.end]))
+    return k, int(np.argmax(f.arm[k]))
+
+
+def _levels(values: Sequence[int]) -> dict:
+    """The share of ``values`` at each level 1-4 or above."""
+    return {str(lv): share(sum(a >= lv for a in values), len(values)) for lv in (1, 2, 3, 4)}
+
+
+class RulaScore(Score):
+    """RULA (:mod:`mjwalk.ergonomics.rula`): the grand score 1-7 per frame (the higher arm);
+    per task its peak, the peak's time, arm and driving part, and the highest upper-arm score."""
+
+    name = "rula"
+    source = "McAtamney & Corlett 1993; action levels 1 (1-2) 2 (3-4) 3 (5-6) 4 (7)"
+    columns = (
+        Column("rula_peak", lambda run, t: t.rula),
+        Column("rula_action_level", lambda run, t: int(rula.action_level(t.rula))),
+        Column("rula_time_s", lambda run, t: f"{t.rula_time:.3f}"),
+        Column("rula_driver", lambda run, t: t.rula_driver),
+        Column("arm", lambda run, t: t.side),
+        Column("upper_arm_score", lambda run, t: t.upper_arm),
+    )
+    table = (
+        Column("RULA P50", lambda s: fmt(s["rula_peak"]["p50"])),
+        Column("RULA P95", lambda s: fmt(s["rula_peak"]["p95"])),
+        Column("RULA AL>=3", lambda s: fmt_share(s["rula_action_level"]["3"])),
+        Column("RULA AL 4", lambda s: fmt_share(s["rula_action_level"]["4"])),
+    )
+
+    def per_frame(self, ang: BodyAngles, ctx: ScoreContext) -> ArmFrames:
+        out = np.zeros((ang.n_frames, 2), dtype=int)
+        parts = []
+        for s in (0, 1):
+            p = rula.part_scores(ang, s)
+            parts.append(p)
+            force = rula.force_score(ctx.load[:, s], ctx.muscle[:, s] > 0)
+            out[:, s] = rula.parts_score(p, ctx.muscle[:, s], force)
+        return ArmFrames(out, parts, out.max(axis=1))
+
+    def per_task(self, frames: ArmFrames, span: TaskSpan, ctx: ScoreContext) -> dict[str, Any]:
+        k, side = _peak(frames, span)
+        sl = slice(span.start, span.end)
+        upper = max(frames.parts[0].upper_arm[sl].max(), frames.parts[1].upper_arm[sl].max())
+        return {
+            "rula": int(frames.frame[k]),
+            "rula_time": k / ctx.fps,
+            "rula_driver": _driver(frames.parts, RULA_PARTS, k, side),
+            "side": ARMS[side],
+            "upper_arm": int(upper),
+        }
+
+    def per_run(self, frames: ArmFrames, ang: BodyAngles, ctx: ScoreContext) -> dict[str, Any]:
+        return {"rula": frames.frame.astype(np.int8)}
+
+    def stats(self, runs: Sequence[RunErgonomics]) -> dict[str, Any]:
+        peaks = [r.rula_peak for r in runs]
+        return {
+            "rula_peak": percentiles(peaks),
+            "rula_action_level": _levels([int(rula.action_level(x)) for x in peaks]),
+        }
+
+
+class RebaScore(Score):
+    """REBA (:mod:`mjwalk.ergonomics.reba`): the score 1-15 per frame (the higher side); per
+    task its peak and the part that drives it."""
+
+    name = "reba"
+    source = "Hignett & McAtamney 2000; risk levels 0 (1) 1 (2-3) 2 (4-7) 3 (8-10) 4 (11+)"
+    columns = (
+        Column("reba_peak", lambda run, t: t.reba),
+        Column("reba_risk_level", lambda run, t: int(reba.risk_level(t.reba))),
+        Column("reba_driver", lambda run, t: t.reba_driver),
+    )
+    table = (
+        Column("REBA P50", lambda s: fmt(s["reba_peak"]["p50"])),
+        Column("REBA P95", lambda s: fmt(s["reba_peak"]["p95"])),
+        Column("REBA >=3 (high)", lambda s: fmt_share(s["reba_risk_level"]["3"])),
+    )
+
+    def per_frame(self, ang: BodyAngles, ctx: ScoreContext) -> ArmFrames:
+        out = np.zeros((ang.n_frames, 2), dtype=int)
+        parts = []
+        for s in (0, 1):
+            p = reba.part_scores(ang, s)
+            parts.append(p)
+            load_s = reba.load_score(ctx.load[:, s])
+            out[:, s] = reba.parts_score(p, load_s, ctx.coupling[:, s], ctx.muscle[:, s])
+        return ArmFrames(out, parts, out.max(axis=1))
+
+    def per_task(self, frames: ArmFrames, span: TaskSpan, ctx: ScoreContext) -> dict[str, Any]:
+        k, side = _peak(frames, span)
+        return {
+            "reba": int(frames.frame[k]),
+            "reba_driver": _driver(frames.parts, REBA_PARTS, k, side),
+        }
+
+    def per_run(self, frames: ArmFrames, ang: BodyAngles, ctx: ScoreContext) -> dict[str, Any]:
+        return {"reba": frames.frame.astype(np.int8)}
+
+    def stats(self, runs: Sequence[RunErgonomics]) -> dict[str, Any]:
+        peaks = [r.reba_peak for r in runs]
+        return {
+            "reba_peak": percentiles(peaks),
+            "reba_risk_level": _levels([int(reba.risk_level(x)) for x in peaks]),
+        }
+
+
+class OwasScore(Score):
+    """OWAS (:mod:`mjwalk.ergonomics.owas`): the action category 1-4 per frame, with the mass
+    in both hands as its load; per task the highest."""
+
+    name = "owas"
+    source = "Karhu et al. 1977; action categories 1-4"
+    columns = (Column("owas_peak", lambda run, t: t.owas),)
+
+    def per_frame(self, ang: BodyAngles, ctx: ScoreContext) -> np.ndarray:
+        codes = owas.codes(ang)
+        codes[:, 3] = [owas.load_code(x) for x in ctx.load.sum(axis=1)]
+        return owas.action_category(*codes.T)
+
+    def per_task(self, frames: np.ndarray, span: TaskSpan, ctx: ScoreContext) -> dict[str, Any]:
+        return {"owas": int(frames[span.start : span.end].max())}
+
+    def stats(self, runs: Sequence[RunErgonomics]) -> dict[str, Any]:
+        return {"owas_peak": percentiles([r.owas_peak for r in runs])}
+
+
+class Iso11226Score(Score):
+    """ISO 11226 (:mod:`mjwalk.ergonomics.iso11226`): the worst static holding of the trunk's
+    inclination and of each upper arm's elevation over the cycle."""
+
+    name = "iso11226"
+    source = "ISO 11226:2000 static trunk and upper-arm postures"
+    table = (Column("ISO 11226 not acc.", lambda s: fmt_share(s["iso11226_not_acceptable"])),)
+
+    def per_run(self, frames: None, ang: BodyAngles, ctx: ScoreContext) -> dict[str, Any]:
+        fps = ctx.fps
+        holdings = [iso11226.holding(ang.trunk_inclination, fps, "trunk", iso11226.TRUNK_HOLD)]
+        for s, tag in enumerate(ARMS):
+            holdings.append(
+                iso11226.holding(
+                    ang.upper_arm_elevation[:, s], fps, f"upper_arm_{tag}", iso11226.ARM_HOLD
+                )
+            )
+        return {"holdings": holdings}
+
+    def stats(self, runs: Sequence[RunErgonomics]) -> dict[str, Any]:
+        bad = sum(not all(h.acceptable for h in r.holdings) for r in runs)
+        return {"iso11226_not_acceptable": share(bad, len(runs))}
