@@ -409,19 +409,28 @@ def _limited(argv, limit_bytes, cwd):
     )
 
 
+def _errors(stderr: str) -> list[str]:
+    """stderr's lines but the warnings of kernels whose compiled code could not be cached: the
+    file size limit stops those writes too when this process is the first to compile them (a
+    cold cache, tests/test_jit.py), and they run regardless."""
+    return [
+        line for line in stderr.strip().splitlines() if "could not cache the compiled" not in line
+    ]
+
+
 def test_write_failure_names_the_file(tmp_path, station_walk):
     png = tmp_path / "plan.png"
     argv = ["plan", "station", "--from", "stand_rack2", "--to", "stand_car1", "--n", "0"]
     r = _limited([*argv, "--png", png], 20_000, tmp_path)
     assert r.returncode == 2, r.stderr
-    lines = r.stderr.strip().splitlines()
+    lines = _errors(r.stderr)
     assert len(lines) == 1, r.stderr
     assert lines[0].startswith(f"mjwalk: error: cannot write {png}: File too large")
     video = tmp_path / "v.mp4"
     argv = ["render", station_walk, "--scene", "station", "-o", video, "--quiet"]
     r = _limited(argv, 20_000, tmp_path)
     assert r.returncode == 2, r.stderr
-    assert len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert len(_errors(r.stderr)) == 1, r.stderr
     assert f"mjwalk: error: cannot write {video}: ffmpeg stopped writing it" in r.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == []
 
