@@ -27,18 +27,20 @@ and a small residual.
 
 Why the placement is the same on every machine (issue 45). RANSAC's hypotheses need not be:
 each run is seeded (``o3d.utility.random.seed``), but the samples a seed gives may differ
-between Open3D builds (a parallel loop over one generator; ``std::uniform_int_distribution``
-is defined by the C++ library), and FPFH matching turns a last-bit difference in the input
-(another MuJoCo or NumPy) into another hypothesis. So nothing here relies on the hypotheses
-being equal. It relies on two things measured on two stations of the shipped station:
-(a) the refinement converges to one pose from any hypothesis in its basin: the six of sixteen
-seeded hypotheses 0.03-0.23 m and 0.8-4° off all end on the same pose, 0.1 mm and 0.003° from
-the truth, where the former single 3 cm ICP (50 iterations, no kernel) ended 1, 58, 61 or 143
-mm off depending on the start (the issue's 61 mm among them); and (b) runs continue until two
-reach the best verified placement, so that basin is found whatever the hypotheses (a run finds
-it about one time in three). What stays machine-dependent is only the chance that no run of
-:data:`RANSAC_MAX_RUNS` finds it (about 0.6 % at that rate); the scan is then refused or takes
-another placement that passes verification, never a shifted copy of the right one.
+between Open3D builds (a parallel loop over one generator; ``std::uniform_int_distribution`` is
+defined by the C++ library), and FPFH matching turns a last-bit difference in the input
+(another MuJoCo or NumPy) into another hypothesis: with the former refinement, a 1 µm jitter of
+the moved station gave the issue's exact failure (61 mm off), or a refusal. So nothing here
+relies on the hypotheses being equal. It relies on two things measured on two stations of the
+shipped station: (a) the refinement converges to one pose from any hypothesis in its basin: the
+six of sixteen seeded hypotheses 0.03-0.23 m and 0.8-4° off all end on the same pose, 0.1 mm
+and 0.003° from the truth, where the former single 3 cm ICP (50 iterations, no kernel) ended 1,
+58, 61 or 143 mm off depending on the start (the issue's 61 mm among them); and (b) runs
+continue until two reach the best verified placement, so that basin is found whatever the
+hypotheses (a run finds it about one time in three). What stays machine-dependent is only the
+chance that no run of :data:`RANSAC_MAX_RUNS` finds it (about 0.6 % at that rate); the scan is
+then refused or takes another placement that passes verification, never a shifted copy of the
+right one.
 """
 
 from __future__ import annotations
