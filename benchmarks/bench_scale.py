@@ -125,6 +125,7 @@ def run_spread(lengths: list[float], n_pairs: int, n_walks: int, **options) -> N
     from mjwalk.errors import PlanningError
     from mjwalk.gait.default import default_model
     from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.plan.options import PlannerOptions
     from mjwalk.world import load_workplace
     from mjwalk.world.generate import generate_hall
 
@@ -138,7 +139,7 @@ def run_spread(lengths: list[float], n_pairs: int, n_walks: int, **options) -> N
     for length in lengths:
         iqrs, sways, fails, exp = [], [], 0, []
         for a, b in _pairs(hall, length, n_pairs, rng):
-            planner = HybridPlanner(wp, b, model, **options)
+            planner = HybridPlanner(wp, b, model, PlannerOptions(**options))
             lens = []
             for k in range(n_walks):
                 try:
@@ -166,6 +167,7 @@ def run_walks(lengths: list[float], n_walks: int, **options) -> None:
     from mjwalk.gait.default import default_model
     from mjwalk.plan.grid import occupancy_grid, plan_grid
     from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.plan.options import PlannerOptions
     from mjwalk.world import load_workplace
     from mjwalk.world.generate import generate_hall
 
@@ -185,7 +187,7 @@ def run_walks(lengths: list[float], n_walks: int, **options) -> None:
         pairs = _pairs(hall, length, n_walks, rng)
         exp, times, gtimes, gexp, ratios, lens, sways, fails = [], [], [], [], [], [], [], 0
         for k, (a, b) in enumerate(pairs):
-            planner = HybridPlanner(wp, b, model, **options)
+            planner = HybridPlanner(wp, b, model, PlannerOptions(**options))
             if not warm:
                 planner.plan(a, np.random.default_rng(0))
                 warm = True

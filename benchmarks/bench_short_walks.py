@@ -30,6 +30,7 @@ from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model, default_model_path
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.options import PlannerOptions
 from mjwalk.world import load_workplace
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -51,7 +52,9 @@ def main() -> None:
     )
     for name in args.routes.split(","):
         a, b = ROUTES[name]
-        planner = HybridPlanner(wp, b, model, radius=spec.radius, goal_tolerance=GOAL_TOLERANCE)
+        planner = HybridPlanner(
+            wp, b, model, PlannerOptions(radius=spec.radius, goal_tolerance=GOAL_TOLERANCE)
+        )
         streams = np.random.SeedSequence(args.seed).spawn(args.runs)
         walks, failed = [], 0
         for s in streams:

@@ -28,6 +28,7 @@ from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.plan import slots, stepcheck
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.params import KernelParams
 from mjwalk.world import load_workplace
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -44,13 +45,22 @@ EXTRA_ROUTES = (
 )
 
 
-class _NoLean(HybridPlanner):
-    """The planner without the stance-lean check (its slots NaN: the kernel skips it)."""
+class _NoLeanParams(KernelParams):
+    """The kernel vectors without the stance-lean check (its slots NaN: the kernel skips it)."""
 
-    def _kernel_params(self, stature: float = 1.75):
-        par, ipar = super()._kernel_params(stature)
+    def vectors(self, stature: float = 1.75):
+        par, ipar = super().vectors(stature)
         par[slots.P_HIP_Y] = math.nan
         return par, ipar
+
+
+class _NoLean(HybridPlanner):
+    """The planner without the stance-lean check."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        p = self.params
+        self.params = _NoLeanParams(p.options, p.goal, p.discs, p.grid, p.walk_field, p.distance)
 
 
 def refused_steps(walk, par) -> int:
@@ -75,7 +85,7 @@ def run_set(name, jobs, model) -> None:
     par = None
     for wp, start, goal, seed, n in jobs:
         planners = {"with": HybridPlanner(wp, goal, model), "without": _NoLean(wp, goal, model)}
-        par = planners["with"]._kernel_params()[0]
+        par = planners["with"].params.vectors()[0]
         streams = np.random.SeedSequence(seed).spawn(n)
         for s in streams:
             for key, pl in planners.items():

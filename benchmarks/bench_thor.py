@@ -148,6 +148,7 @@ from mjwalk.plan.grid import BODY_RADIUS
 from mjwalk.plan.guide import minimum_jerk_guide
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.options import WALK_PACE_SD
+from mjwalk.plan.request import WalkRequest
 from mjwalk.world import load_workplace
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -397,9 +398,8 @@ def main(argv: list[str] | None = None) -> int:
                     args.start_heading == "walk"
                 ) else start  # fmt: skip
                 try:
-                    path = planner.plan(pose, np.random.default_rng(rng.integers(2**63)),
-                                        model=walker_model, guide=guide,
-                                        goal_heading=end_yaw)  # fmt: skip
+                    request = WalkRequest(pose, walker_model, guide=guide, goal_heading=end_yaw)
+                    path = planner.plan(request, np.random.default_rng(rng.integers(2**63)))
                 except PlanningError:
                     failed += 1
                     continue

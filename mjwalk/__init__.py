@@ -52,6 +52,8 @@ _LAZY: dict[str, str] = {
     "path_clearance": "mjwalk.world.probe",
     # walk planning
     "HybridPlanner": "mjwalk.plan.hybrid",
+    "PlannerOptions": "mjwalk.plan.options",
+    "WalkRequest": "mjwalk.plan.request",
     "PathStep": "mjwalk.plan.walkpath",
     "WalkPath": "mjwalk.plan.walkpath",
     "minimum_jerk_guide": "mjwalk.plan.guide",
@@ -124,6 +126,7 @@ __all__ = [
     "ModelFileError",
     "Pace",
     "PathStep",
+    "PlannerOptions",
     "PlanningError",
     "Population",
     "ReachModel",
@@ -136,6 +139,7 @@ __all__ = [
     "Take",
     "Timeline",
     "WalkPath",
+    "WalkRequest",
     "Walker",
     "Workplace",
     "__version__",
@@ -217,6 +221,8 @@ if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
     from mjwalk.plan.grid import plan_grid
     from mjwalk.plan.guide import minimum_jerk_guide
     from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.plan.options import PlannerOptions
+    from mjwalk.plan.request import WalkRequest
     from mjwalk.plan.walkpath import PathStep, WalkPath
     from mjwalk.plan.walks import plan_walk, plan_walks
     from mjwalk.plot import save_plan_png

@@ -111,17 +111,12 @@ def _cmd_plan(args: argparse.Namespace) -> int:
     )
     paths = []
     if args.n > 0:
+        from mjwalk.plan.options import PlannerOptions
         from mjwalk.plan.walks import plan_walks
 
+        options = PlannerOptions(radius=args.radius, cost=args.cost)
         paths = plan_walks(
-            workplace,
-            args.start,
-            args.goal,
-            model,
-            n=args.n,
-            seed=args.seed,
-            radius=args.radius,
-            cost=args.cost,
+            workplace, args.start, args.goal, model, n=args.n, seed=args.seed, options=options
         )
         lm, li = _quartiles([p.length for p in paths])
         dm, di = _quartiles([p.duration for p in paths])

@@ -21,6 +21,7 @@ from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace, shared_workplace
 
@@ -84,16 +85,14 @@ class CycleContext:
         key = (goal, zone)
         if key not in self.planners:
             _make_room(self.planners)
-            self.planners[key] = HybridPlanner(
-                self.workplace,
-                goal,
-                self.step_model,
+            options = PlannerOptions(
                 radius=self.spec.radius,
                 goal_tolerance=GOAL_TOLERANCE if zone is None else zone.radius,
                 goal_within=() if zone is None else zone.discs,
                 # one distance field per site whatever the operator's zone
                 field_tolerance=GOAL_TOLERANCE,
             )
+            self.planners[key] = HybridPlanner(self.workplace, goal, self.step_model, options)
         return self.planners[key]
 
     def zone(self, i: int, stature: float, step_length: float) -> StandZone:

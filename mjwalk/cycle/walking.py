@@ -10,6 +10,7 @@ import numpy as np
 
 from mjwalk.cycle.standing import StandZone, start_zone, work_zone
 from mjwalk.cycle.types import TASK_KINDS
+from mjwalk.plan.request import WalkRequest
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
@@ -91,10 +92,10 @@ def plan_task_walk(
     the walker's stature and step length) drawn with ``spots`` (:func:`standing_spot`; None:
     with ``rng``), and inside the zone. ``yaw`` (radians): the heading the operator stands at
     (the task before's): the walk sets off from it, turning on the spot first as far as that
-    pays against turning while walking (``HybridPlanner.plan(turn_on_spot=True)``); None: it
+    pays against turning while walking (``WalkRequest(turn_on_spot=True)``); None: it
     sets off around the downhill heading. ``face`` (radians): the heading the operator works
     at after the walk (the goal site's): the walk bends into it as people's do
-    (``HybridPlanner.plan(goal_heading=...)``, :mod:`mjwalk.plan.guide`); None: it ends as
+    (``WalkRequest(goal_heading=...)``, :mod:`mjwalk.plan.guide`); None: it ends as
     it comes."""
     task = ctx.spec.tasks[i]
     assert task.site is not None  # the spec loader requires a site for walks
@@ -109,10 +110,9 @@ def plan_task_walk(
     for _ in range(SPOT_TRIES):
         x, y = standing_spot(ctx, zone, rng if spots is None else spots)
         if np.hypot(x - start[0], y - start[1]) > reach:
-            return planner.plan(
-                pose, rng, model=model, spot=(x, y, reach), turn_on_spot=turn, goal_heading=face
-            )
-    return planner.plan(pose, rng, model=model, turn_on_spot=turn, goal_heading=face)
+            request = WalkRequest(pose, model, (x, y, reach), turn, face)
+            return planner.plan(request, rng)
+    return planner.plan(WalkRequest(pose, model, turn_on_spot=turn, goal_heading=face), rng)
 
 
 def plan_cycle_walks(

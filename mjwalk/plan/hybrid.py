@@ -45,47 +45,31 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import replace
 
 import numpy as np
 
 from mjwalk._args import finite_points, parse_point
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import PlanningError
-from mjwalk.plan import search, slots
+from mjwalk.plan import search
 from mjwalk.plan.assemble import assemble_walk
 from mjwalk.plan.decoder import StepDecoder, decoder_of
 from mjwalk.plan.detour import walk_guide
-from mjwalk.plan.grid import (
-    BODY_RADIUS,
-    CELL_SIZE,
-    MOVES_16,
-    OccupancyGrid,
-    check_endpoint,
-    shared_grid,
-)
-from mjwalk.plan.guide import guide_is_clear, resample_guide
+from mjwalk.plan.grid import MOVES_16, check_endpoint, shared_grid
+from mjwalk.plan.guide import guide_is_clear
 from mjwalk.plan.heuristic import GoalDistance, goal_distance
 from mjwalk.plan.options import (
-    ATTEMPTS,
     FAR_FROM,
-    FAR_WEIGHT,
-    FOOT_CLEARANCE,
-    HEADING_WEIGHT,
-    KNEE_CLEARANCE,
     LONG_WALK,
-    MAX_EXPANSIONS,
-    ON_SPOT_TURN_SPEED,
-    SAFETY_MARGIN,
     START_SPREAD,
-    STOP_REACH,
     WALK_PACE_SD,
     WANDER_FACTOR,
     WANDER_SEARCHES,
-    kernel_params,
+    PlannerOptions,
 )
-from mjwalk.plan.options import LEG_PROBE_STEP as LEG_PROBE_STEP  # re-exported
-from mjwalk.plan.options import lean_params as lean_params  # re-exported
-from mjwalk.plan.options import leg_clearance as leg_clearance  # re-exported
+from mjwalk.plan.params import KernelParams, WalkTerms, spot_offset
+from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.stepcost import downhill_costs
 from mjwalk.plan.stepgeom import in_goal
 from mjwalk.plan.walkpath import WalkPath
@@ -102,17 +86,10 @@ class _Exhausted(PlanningError):
     """The open list ran dry (all sampled continuations blocked): worth a fresh search."""
 
 
-def _goal_discs(discs, goal: np.ndarray) -> np.ndarray:
-    """(k, 3) goal discs (x, y, radius; metres) checked: finite, positive radii, at most
-    :data:`~mjwalk.plan.slots.MAX_GOAL_DISCS` less one, and the goal itself inside every
-    one (the goal area must not be empty where the walk is aimed)."""
-    arr = np.asarray(discs, dtype=float).reshape(-1, 3) if len(discs) else np.zeros((0, 3))
-    if len(arr) > slots.MAX_GOAL_DISCS - 1:  # one kept for a spot's walk (plan)
-        raise PlanningError(
-            f"goal_within: at most {slots.MAX_GOAL_DISCS - 1} discs, got {len(arr)}"
-        )
-    if not np.all(np.isfinite(arr)) or np.any(arr[:, 2] <= 0):
-        raise PlanningError("goal_within: discs are (x, y, radius) with finite x, y and radius > 0")
+def _goal_discs(options: PlannerOptions, goal: np.ndarray) -> np.ndarray:
+    """(k, 3) goal discs of ``options`` (x, y, radius; metres; checked there), the goal itself
+    inside every one (the goal area must not be empty where the walk is aimed)."""
+    arr = np.array(options.goal_within, dtype=float).reshape(-1, 3)
     out = np.hypot(arr[:, 0] - goal[0], arr[:, 1] - goal[1]) > arr[:, 2]
     if out.any():
         k = int(np.flatnonzero(out)[0])
@@ -155,124 +132,61 @@ class HybridPlanner:
     :meth:`plan` then only samples and searches. :func:`plan_walk` and :func:`plan_walks` wrap
     it.
 
-    ``field_tolerance`` (metres; None: ``goal_tolerance``): the goal cells the distance field
-    starts from. The field measures the way to the goal centre either way; planners of one goal
-    with different goal areas (a stand zone per operator) share one field when they give the
-    same ``field_tolerance`` (:func:`~mjwalk.plan.heuristic.goal_distance` keeps a field per
-    goal cells: in a 100 m hall a field takes about a second).
+    Args:
+        workplace: the scene.
+        goal: a site name, ``"x,y"`` or ``(x, y)`` (metres); walks end within
+            ``options.goal_tolerance`` of it.
+        model: the :class:`~mjwalk.gait.model.StepModel` the steps are drawn from.
+        options: how to plan (:class:`~mjwalk.plan.options.PlannerOptions`; None: the
+            defaults). Planners of one goal with different goal areas (a stand zone per
+            operator) share one distance field when they give the same ``field_tolerance``
+            (:func:`~mjwalk.plan.heuristic.goal_distance` keeps a field per goal cells: in a
+            100 m hall a field takes about a second).
+
+    Raises:
+        PlanningError: the goal off the floor, in or too near an obstacle, or outside one of
+            the goal discs (before any search).
     """
 
-    def __init__(
-        self,
-        workplace: Workplace,
-        goal,
-        model,
-        *,
-        goal_tolerance: float = 0.25,
-        goal_yaw: float | None = None,
-        goal_yaw_tolerance: float = math.radians(30.0),
-        radius: float = BODY_RADIUS,
-        cell: float = CELL_SIZE,
-        heading_bins: int | None = None,
-        n_starters: int = 30,
-        n_successors: int = 10,
-        heuristic: str = "dijkstra",
-        max_expansions: int = MAX_EXPANSIONS,
-        samples_per_step: int = 16,
-        heuristic_weight: float = 1.01,
-        far_weight: float = FAR_WEIGHT,
-        cost: str = "energy",
-        attempts: int = ATTEMPTS,
-        heading_weight: float = HEADING_WEIGHT,
-        grid: OccupancyGrid | None = None,
-        n_stops: int = 5,
-        goal_within=(),
-        field_tolerance: float | None = None,
-    ):
-        if heuristic not in ("dijkstra", "euclidean"):
-            raise PlanningError(f"heuristic must be 'dijkstra' or 'euclidean', not {heuristic!r}")
+    def __init__(self, workplace: Workplace, goal, model, options: PlannerOptions | None = None):
+        options = PlannerOptions() if options is None else options
+        if options.n_stops and not getattr(model, "can_stop", False):
+            options = replace(options, n_stops=0)  # closing steps only where the model has them
+        self.options = options
         self.workplace = workplace
         self.model = model
         goal_xy, _ = _parse_pose(workplace, goal)
         self.goal = goal_xy
-        self.goal_yaw = goal_yaw
-        self.goal_yaw_tolerance = goal_yaw_tolerance
-        self.tolerance = goal_tolerance
-        self.goal_within = _goal_discs(goal_within, self.goal)
-        self.radius = radius
-        self.cell = cell
-        if heading_bins is None:  # a goal heading needs nodes of other headings kept apart
-            heading_bins = 1 if goal_yaw is None else 8
-        self.heading_bins = max(1, int(heading_bins))
-        self.n_starters = n_starters
-        self.n_successors = n_successors
-        self.heuristic = heuristic
-        self.max_expansions = max_expansions
-        self.samples_per_step = samples_per_step
-        if heuristic_weight < 1.0:
-            raise PlanningError(f"heuristic_weight must be >= 1, not {heuristic_weight}")
-        self.heuristic_weight = heuristic_weight
-        if far_weight < 0.0:
-            raise PlanningError(f"far_weight must be >= 0, not {far_weight}")
-        self.far_weight = far_weight
-        if cost not in ("chord", "path", "energy"):
-            raise PlanningError(f"cost must be 'chord', 'path' or 'energy', not {cost!r}")
-        self.cost = cost
-        self.attempts = max(1, int(attempts))
-        if not heading_weight >= 0.0:
-            raise PlanningError(f"heading_weight must be >= 0, not {heading_weight}")
-        self.heading_weight = float(heading_weight)
-        # closing steps near the goal, when the model has them (module constant STOP_REACH)
-        self.n_stops = max(0, int(n_stops)) if getattr(model, "can_stop", False) else 0
-        check_endpoint(workplace, self.goal, radius, "goal")
-        if grid is None or grid.cell != cell or grid.radius != radius:
-            grid = shared_grid(workplace, cell, radius, MOVES_16)
-        self.grid = grid
-        self.distance: GoalDistance = goal_distance(
-            grid, self.goal, goal_tolerance if field_tolerance is None else field_tolerance
-        )
+        self.goal_within = _goal_discs(options, self.goal)
+        self.radius = options.radius
+        check_endpoint(workplace, self.goal, self.radius, "goal")
+        self.grid = shared_grid(workplace, options.cell, self.radius, MOVES_16)
+        self.distance: GoalDistance = goal_distance(self.grid, self.goal, options.field_cells)
         self.walk_field = workplace.walk_field()  # its clearance field
-        # per checked point of a successor: m pelvis samples, the landing ankle and its toes,
-        # the swing knee at half and three quarters of the step
-        self._thresholds = np.array(
-            [radius + SAFETY_MARGIN] * samples_per_step
-            + [FOOT_CLEARANCE] * 2
-            + [KNEE_CLEARANCE] * 2
+        self.params = KernelParams(
+            options, self.goal, self.goal_within, self.grid, self.walk_field, self.distance
         )
-        self._params: dict[float, tuple[np.ndarray, np.ndarray]] = {}
-        self._kernel_params()  # the default walker's, with the distance field: per goal
+        self.params.vectors()  # the default walker's, with the distance field: per goal
 
-    def _kernel_params(self, stature: float = DEFAULT_STATURE) -> tuple[np.ndarray, np.ndarray]:
-        """The float and integer parameter vectors of :func:`~mjwalk.plan.stepcheck.check_steps`
-        for a walker of ``stature`` metres (the landing leg's clearance scales with it); fresh
-        copies of the ones made on this planner's first plan for that stature."""
-        held = self._params.get(stature)
-        if held is None:
-            held = self._params[stature] = kernel_params(self, stature)
-        return held[0].copy(), held[1].copy()
-
-    def _check_spot(self, spot) -> tuple[float, float, float]:
-        """``spot`` of :meth:`plan` as floats, checked: finite, a positive tolerance, and in
-        the planner's goal area (within its tolerance of the goal and inside every goal disc)."""
-        try:
-            x, y, tol = (float(v) for v in spot)
-        except (TypeError, ValueError):
-            raise PlanningError(f"spot must be (x, y, tolerance) in metres, got {spot!r}") from None
-        if not (math.isfinite(x) and math.isfinite(y) and math.isfinite(tol) and tol > 0):
-            raise PlanningError(f"spot must be finite with a tolerance > 0, got {spot!r}")
-        inside = math.hypot(x - self.goal[0], y - self.goal[1]) <= self.tolerance + 1e-9 and all(
+    def _check_spot(self, spot: tuple[float, float, float]) -> None:
+        """Refuse a walk's ``spot`` (:class:`~mjwalk.plan.request.WalkRequest`) outside the
+        planner's goal area (within its tolerance of the goal and inside every goal disc)."""
+        x, y, _ = spot
+        tolerance = self.options.goal_tolerance
+        inside = math.hypot(x - self.goal[0], y - self.goal[1]) <= tolerance + 1e-9 and all(
             math.hypot(x - dx, y - dy) <= dr + 1e-9 for dx, dy, dr in self.goal_within
         )
         if not inside:
             raise PlanningError(
                 f"spot ({x:.3f}, {y:.3f}) lies outside the goal area of the planner (within "
-                f"{self.tolerance} m of ({self.goal[0]:.3f}, {self.goal[1]:.3f}) and its "
+                f"{tolerance} m of ({self.goal[0]:.3f}, {self.goal[1]:.3f}) and its "
                 f"{len(self.goal_within)} goal discs)"
             )
-        return x, y, tol
 
-    def _decoder(self, model=None) -> StepDecoder:
-        return decoder_of(self.model if model is None else model, self.samples_per_step)
+    def decoder(self, model=None) -> StepDecoder:
+        """The affine map of ``model``'s step features (None: the planner's model) to the
+        checked geometry of a step of ``samples_per_step`` samples."""
+        return decoder_of(self.model if model is None else model, self.options.samples_per_step)
 
     # -- helpers ---------------------------------------------------------------------------
 
@@ -280,11 +194,11 @@ class HybridPlanner:
         """Weighted heuristic (metres) at points (..., 2): ``heuristic_weight`` times h, plus
         ``far_weight`` times its excess over :data:`FAR_FROM` (the search adds the latter
         only on walks starting beyond :data:`LONG_WALK`)."""
-        h = self._h(xy)
-        return self.heuristic_weight * h + self.far_weight * np.maximum(h - FAR_FROM, 0.0)
+        h, o = self._h(xy), self.options
+        return o.heuristic_weight * h + o.far_weight * np.maximum(h - FAR_FROM, 0.0)
 
     def _h(self, xy: np.ndarray) -> np.ndarray:
-        if self.heuristic == "dijkstra":
+        if self.options.heuristic == "dijkstra":
             return self.distance(xy)
         return np.hypot(xy[..., 0] - self.goal[0], xy[..., 1] - self.goal[1])
 
@@ -316,96 +230,76 @@ class HybridPlanner:
 
     # -- search ----------------------------------------------------------------------------
 
-    def plan(
-        self,
-        start,
-        rng: np.random.Generator,
-        *,
-        model=None,
-        spot=None,
-        turn_on_spot=False,
-        goal_heading: float | None = None,
-        guide=None,
-    ) -> WalkPath:
-        """Plan one walk from ``start`` (site, "x,y", "x,y,yaw_deg" or (x, y[, yaw])).
+    def plan(self, walk, rng: np.random.Generator) -> WalkPath:
+        """Plan one walk: ``walk`` is a :class:`~mjwalk.plan.request.WalkRequest` or its start
+        alone (site, "x,y", "x,y,yaw_deg" or (x, y[, yaw]); metres, radians).
 
-        ``model``: sample the steps from this step model instead of the planner's (e.g. the
-        planner's model conditioned on the run's operator, :meth:`StepModel.for_walker`); the
-        goal's distance field and grid are shared. It must have the planner model's feature
-        dimensions and GPs (a conditioned copy does).
+        The request's ``model`` samples the steps instead of the planner's; the goal's distance
+        field and grid are shared. A ``spot`` ends the walk within its tolerance of its point
+        and in the planner's goal area (within its goal tolerance of its goal and its goal
+        discs, ``goal_within``; where the walker means to stand in a stand zone:
+        :func:`mjwalk.cycle.walking.plan_task_walk`); the distance field stays the goal's, a
+        spot costs no new field.
 
-        ``spot``: (x, y, tolerance), metres: this walk ends within ``tolerance`` of the point
-        (x, y) and in the planner's goal area (within its goal tolerance of its goal and its
-        goal discs, ``goal_within``); the point must lie in that area (where the walker means
-        to stand in a stand zone: :func:`mjwalk.cycle.walking.plan_task_walk`). The distance
-        field stays the goal's: a spot costs no new field.
-
-        ``turn_on_spot`` (with a start yaw): the walker stands facing the start yaw and sets
+        With ``turn_on_spot`` and a start yaw the walker stands facing the start yaw and sets
         off as without one (its first step anywhere within :data:`START_SPREAD` of the
-        downhill heading, :meth:`default_heading`), but the turn on the spot from the start
-        yaw to the first step's heading costs its time at :data:`ON_SPOT_TURN_SPEED` times
-        the walk's pace (metres, as the steps), against the heading term
-        (:data:`HEADING_WEIGHT`) of setting off away from the goal: the search weighs turning
-        first against turning while walking. The draws are those of a walk without a yaw.
-        Without it a start yaw is the heading of the first step's frame (a walker already
-        walking that way). The walk's
-        first sample faces where the turn ended (``yaw[0]``): the turn itself is the caller's
-        (the cycle animates it).
+        downhill heading, :meth:`default_heading`), but the turn on the spot from the start yaw
+        to the first step's heading costs its time at
+        :data:`~mjwalk.plan.options.ON_SPOT_TURN_SPEED` times the walk's pace (metres, as the
+        steps), against the heading term (:data:`~mjwalk.plan.options.HEADING_WEIGHT`) of
+        setting off away from the goal: the search weighs turning first against turning while
+        walking. The draws are those of a walk without a yaw. Without it a start yaw is the
+        heading of the first step's frame (a walker already walking that way). The walk's first
+        sample faces where the turn ended (``yaw[0]``): the turn itself is the caller's (the
+        cycle animates it).
 
-        ``goal_heading`` (world radians; None: none): the heading the walker means to arrive
-        at (facing the work after the walk). Unlike the planner's ``goal_yaw`` it is no
-        condition of the goal: it shapes the smooth path the walk's heading follows
-        (:mod:`mjwalk.plan.guide`: the minimum-jerk curve between the start pose, a walking
-        start's heading or the straight line for a standing one, and the goal pose), so the
-        walk bends into it as people's do rather than turning at the end. The guide is used
-        where it keeps the body's clearance and the goal is in sight from the start.
-        ``guide`` ((k, 2) metres, from near the start to near the goal): the caller's own
-        path for the heading to follow instead (e.g. a minimum-jerk curve between two
-        poses on the way, :func:`mjwalk.plan.guide.minimum_jerk_guide`), on the same terms.
+        A ``goal_heading``, unlike the options' ``goal_yaw``, is no condition of the goal: it
+        shapes the smooth path the walk's heading follows (:mod:`mjwalk.plan.guide`: the
+        minimum-jerk curve between the start pose, a walking start's heading or the straight
+        line for a standing one, and the goal pose), so the walk bends into it as people's do
+        rather than turning at the end. The guide is used where it keeps the body's clearance
+        and the goal is in sight from the start. A request's own ``guide`` (e.g. a minimum-jerk
+        curve between two poses on the way, :func:`mjwalk.plan.guide.minimum_jerk_guide`) is
+        followed instead, on the same terms.
 
         When the open list runs dry (every sampled continuation blocked, which happens now and
         then in tight places), the search starts over with fresh samples, up to ``attempts``
         times in all; a spent expansion budget ends the planning at once. A walk that loops
         (:data:`WANDER_FACTOR`) is searched again too, up to :data:`WANDER_SEARCHES` searches
         in all, and the shortest is kept.
+
+        Raises:
+            InputError: a malformed request (:class:`~mjwalk.plan.request.WalkRequest`).
+            PlanningError: a spot outside the goal area, a start off the floor or too near an
+                obstacle, no route, the start already in the goal area (all before any search),
+                or no walk found.
         """
-        if spot is not None:  # checked once, before any search
-            spot = self._check_spot(spot)
-        if goal_heading is not None:
-            try:
-                goal_heading = float(goal_heading)
-            except (TypeError, ValueError):
-                goal_heading = math.nan
-            if not math.isfinite(goal_heading):
-                raise PlanningError(f"goal_heading must be finite radians, got {goal_heading!r}")
-        if guide is not None:
-            try:
-                guide = resample_guide(guide)
-            except (TypeError, ValueError) as exc:
-                raise PlanningError(f"guide: {exc}") from None
-        pose = _parse_pose(self.workplace, start)  # parsed once, before any draw
+        request = walk if isinstance(walk, WalkRequest) else WalkRequest(walk)
+        if request.spot is not None:  # checked once, before any search
+            self._check_spot(request.spot)
+        pose = _parse_pose(self.workplace, request.start)  # parsed once, before any draw
         t0 = time.perf_counter()
-        model = model or self.model
+        o = self.options
+        model = request.model or self.model
         pace = math.nan
-        if self.cost == "energy":  # this walk's own pace (WALK_PACE_SD)
+        if o.cost == "energy":  # this walk's own pace (WALK_PACE_SD)
             pace = preferred_speed(model) * math.exp(WALK_PACE_SD * rng.standard_normal())
-        if self.heading_weight > 0.0:  # the way the walk's heading follows
-            guide = self._guide(pose, spot, turn_on_spot, goal_heading, guide, rng, model)
+        guide = None
+        if o.heading_weight > 0.0:  # the way the walk's heading follows
+            guide = self._guide(pose, request, rng, model)
             if guide is not None and not guide_is_clear(self.workplace, guide, self.radius):
                 guide = None  # the route search decides
         best: WalkPath | None = None
         bound = None
-        limit = max(self.attempts, WANDER_SEARCHES)
+        limit = max(o.attempts, WANDER_SEARCHES)
         exhausted = 0
         for attempt in range(limit):
             try:
-                path, start_distance = self._plan_once(
-                    pose, rng, model, spot, pace, turn_on_spot, guide
-                )
+                path, start_distance = self._plan_once(pose, rng, request, model, pace, guide)
             except _Exhausted as exc:
                 exhausted += 1
                 guide = None  # a dead end along the guide: the route search decides from now
-                if exhausted >= self.attempts or attempt == limit - 1:
+                if exhausted >= o.attempts or attempt == limit - 1:
                     if best is not None:
                         break
                     raise PlanningError(
@@ -415,7 +309,7 @@ class HybridPlanner:
             path.meta["attempts"] = attempt + 1
             path.meta["seconds"] = time.perf_counter() - t0  # all searches, not the last one
             if bound is None:
-                tolerance = self.tolerance if spot is None else spot[2]
+                tolerance = o.goal_tolerance if request.spot is None else request.spot[2]
                 bound = WANDER_FACTOR * max(start_distance, tolerance)
             path.meta["wandering"] = bool(path.length > bound)
             if not path.meta["wandering"]:
@@ -431,15 +325,16 @@ class HybridPlanner:
         self,
         pose,
         rng: np.random.Generator,
+        request: WalkRequest,
         model,
-        spot=None,
-        pace: float = math.nan,
-        turn_on_spot: bool = False,
-        guide: np.ndarray | None = None,
+        pace: float,
+        guide: np.ndarray | None,
     ) -> tuple[WalkPath, float]:
         """One search: the walk and the obstacle-aware distance (m) from its start to the goal
-        (to the ``spot`` of :meth:`plan`, checked there, when given). ``pose``: the start's
-        (x, y) and optional yaw, as :meth:`plan` parsed it."""
+        (to the request's spot, checked by :meth:`plan`, when given). ``pose``: the start's
+        (x, y) and optional yaw, as :meth:`plan` parsed it; ``pace``: the walk's preferred
+        speed (m/s; nan: no energy cost); ``guide``: the path its heading follows, or None."""
+        o, spot = self.options, request.spot
         start_xy, start_yaw = pose
         check_endpoint(self.workplace, start_xy, self.radius, "start")
         # infinite exactly where GoalDistance.reachable is False (the same nearest cell)
@@ -450,42 +345,38 @@ class HybridPlanner:
                 f"({start_xy[0]:.3f}, {start_xy[1]:.3f}) in {self.workplace.name}: no "
                 f"collision-free route for body radius {self.radius} m"
             )
-        free_heading = start_yaw is None or turn_on_spot
+        free_heading = start_yaw is None or request.turn_on_spot
         facing = start_yaw  # the heading the walker stands at before any turn on the spot
         if free_heading:
             start_yaw = self.default_heading(start_xy, None if spot is None else spot[:2])
-        dec = self._decoder(model)
+        dec = self.decoder(model)
         walker = getattr(model, "walker", None)  # a model conditioned on the run's operator
         stature = float(getattr(walker, "stature", None) or DEFAULT_STATURE)
-        par, ipar = self._kernel_params(stature)
-        par[slots.P_PACE] = pace
-        goal_x, goal_y, tolerance = float(self.goal[0]), float(self.goal[1]), self.tolerance
+        goal_x, goal_y, tolerance = float(self.goal[0]), float(self.goal[1]), o.goal_tolerance
         field_distance = start_distance
         if spot is not None:  # this walk's own goal point (module doc of plan)
             goal_x, goal_y, tolerance = spot
-            par[slots.P_GOAL_X] = goal_x
-            par[slots.P_GOAL_Y] = goal_y
-            par[slots.P_TOLERANCE] = tolerance
-            par[slots.P_STOP_REACH] = tolerance + STOP_REACH
-            par[slots.P_HEADING_FROM] = tolerance + STOP_REACH
-            # the goal's field bounds the way to the spot from below only less the way between
-            # them (triangle inequality; a spot sees its goal in a stand zone)
-            offset = math.hypot(goal_x - self.goal[0], goal_y - self.goal[1])
-            par[slots.P_DIST_OFFSET] = offset
-            field_distance -= offset
-            # ... and the walk still ends in the planner's own goal area: one more disc
-            k = int(ipar[slots.I_N_DISCS])
-            j = slots.P_DISC0 + 3 * k
-            par[j : j + 3] = (float(self.goal[0]), float(self.goal[1]), self.tolerance)
-            ipar[slots.I_N_DISCS] = k + 1
+            field_distance -= spot_offset(self.goal, spot)
             start_distance = max(
                 field_distance, math.hypot(start_xy[0] - goal_x, start_xy[1] - goal_y) - tolerance
             )
-        if guide is not None and par[slots.P_HEADING_WEIGHT] > 0.0:  # clear (plan checked)
-            par[slots.P_GUIDE0 : slots.P_DISC0] = guide.ravel()
-        if math.isnan(par[slots.P_GUIDE0]) and not self.distance.sees(start_xy):
-            # HEADING_WEIGHT without a guide: only for a goal in sight from the start
-            par[slots.P_HEADING_WEIGHT] = 0.0
+        # as stepcheck.check_steps bounds a node: the field's distance, the straight line to
+        # the goal point
+        h0 = field_distance if o.heuristic == "dijkstra" else 0.0
+        euclid = float(math.hypot(start_xy[0] - goal_x, start_xy[1] - goal_y))
+        h_start = max(h0, euclid)
+        far = o.far_weight if h_start > LONG_WALK else 0.0  # only long walks
+        turn = request.turn_on_spot and facing is not None  # the turn there from the heading
+        terms = WalkTerms(
+            start_xy=start_xy,
+            pace=pace,
+            spot=spot,
+            guide=guide,
+            facing=facing if turn else None,
+            turn_pace=(pace if math.isfinite(pace) else preferred_speed(model)) if turn else 0.0,
+            far_weight=far,
+        )
+        par, ipar = self.params.for_walk(stature, terms)
         if in_goal(complex(*start_xy), start_yaw, par, ipar):
             raise PlanningError(
                 f"start ({start_xy[0]:.3f}, {start_xy[1]:.3f}) already lies in the goal area "
@@ -493,28 +384,16 @@ class HybridPlanner:
                 "there is no walk to plan"
             )
         # the starters, for the first expansion (the start node's)
-        z0, side0 = model.sample_first_features(self.n_starters, rng)
+        z0, side0 = model.sample_first_features(o.n_starters, rng)
         frame0 = np.full(len(z0), float(start_yaw))
         if free_heading:  # the walker may set off anywhere around the downhill heading
             frame0 += rng.uniform(-START_SPREAD, START_SPREAD, len(frame0))
-        if turn_on_spot and facing is not None:  # the turn there from the walker's heading
-            walk_pace = pace if math.isfinite(pace) else preferred_speed(model)
-            par[slots.P_START_YAW] = float(facing)
-            par[slots.P_TURN_COST] = walk_pace / ON_SPOT_TURN_SPEED
-        weight = self.heuristic_weight
-        # as stepcheck.check_steps bounds a node: the field's distance, the straight line to
-        # the goal point
-        h0 = field_distance if self.heuristic == "dijkstra" else 0.0
-        euclid = float(math.hypot(start_xy[0] - goal_x, start_xy[1] - goal_y))
-        h_start = max(h0, euclid)
-        far = self.far_weight if h_start > LONG_WALK else 0.0  # only long walks
-        par[slots.P_FAR_WEIGHT] = far
-        f0 = weight * h_start  # as stepcheck.check_steps scores a node
+        f0 = o.heuristic_weight * h_start  # as stepcheck.check_steps scores a node
         if h_start > FAR_FROM:
             f0 += far * (h_start - FAR_FROM)
         gps = (model.gp["left"].kernel, model.gp["right"].kernel)
         stops = (model.stop_gp["left"].kernel, model.stop_gp["right"].kernel) if (
-            self.n_stops
+            o.n_stops
         ) else gps  # fmt: skip
         outcome, goal_node, stats, *nodes = search.search(
             np.ascontiguousarray(z0, dtype=float),
@@ -528,7 +407,7 @@ class HybridPlanner:
             rng,
             dec.matrix,
             dec.offset,
-            self._thresholds,
+            self.params.thresholds,
             par,
             ipar,
             self.walk_field.values,
@@ -537,7 +416,7 @@ class HybridPlanner:
         expansions, generated, rejected, stop_draws = stats.tolist()
         if outcome == search.BUDGET:
             raise PlanningError(
-                f"expansion budget of {self.max_expansions} spent before reaching the "
+                f"expansion budget of {o.max_expansions} spent before reaching the "
                 f"goal ({goal_x:.3f}, {goal_y:.3f}) from "
                 f"({start_xy[0]:.3f}, {start_xy[1]:.3f}); {generated} steps sampled, "
                 f"{rejected} rejected"
@@ -567,27 +446,27 @@ class HybridPlanner:
         )
         return path, start_distance
 
-    def _guide(self, pose, spot, turn_on_spot, goal_heading, guide, rng, model):
+    def _guide(self, pose, request: WalkRequest, rng, model):
         """:func:`mjwalk.plan.detour.walk_guide` for a walk of :meth:`plan` (a start yaw is a
         walker already walking unless ``turn_on_spot``)."""
         (x, y), yaw = pose
-        walking = None if yaw is None or turn_on_spot else yaw
-        goal = self.goal if spot is None else spot[:2]
+        walking = None if yaw is None or request.turn_on_spot else yaw
+        goal = self.goal if request.spot is None else request.spot[:2]
         walker = getattr(model, "walker", None)
         stature = float(getattr(walker, "stature", None) or DEFAULT_STATURE)
         step = float(walker.step_length if walker is not None else model.pace().step_length)
         return walk_guide(
-            self.workplace, (x, y), goal, walking, goal_heading, guide, self.radius, rng,
-            stature, step,
+            self.workplace, (x, y), goal, walking, request.goal_heading, request.guide,
+            self.radius, rng, stature, step,
         )  # fmt: skip
 
     def _assemble(self, model, nid, nodes, feats, stats) -> WalkPath:
         meta = {
             "planner": "hybrid_astar",
             "goal": self.goal.tolist(),
-            "goal_tolerance": self.tolerance,
+            "goal_tolerance": self.options.goal_tolerance,
             "radius": self.radius,
-            "heuristic": self.heuristic,
+            "heuristic": self.options.heuristic,
             **stats,
         }
         return assemble_walk(model, nid, nodes, feats, meta).stamp_scene(self.workplace)

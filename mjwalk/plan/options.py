@@ -1,27 +1,24 @@
-"""The hybrid A*'s limits and defaults, and the compiled kernels' parameters made from them.
+"""The hybrid A*'s limits and defaults: :class:`PlannerOptions` and the constants behind them.
 
 Clearances and reach limits of the body (metres), the search's weights, budgets and retries,
 each with its source; the evidence behind the measured ones is in ``docs/decisions/101``-``106``
-and the benchmarks named there. :func:`kernel_params` turns a
-:class:`~mjwalk.plan.hybrid.HybridPlanner`'s options into the parameter vectors of
-:func:`~mjwalk.plan.stepcheck.check_steps` and :func:`~mjwalk.plan.search.search`
-(:mod:`mjwalk.plan.slots`).
+and the benchmarks named there. A planner's choices are one frozen :class:`PlannerOptions`
+(every option with its default and meaning); :class:`~mjwalk.plan.params.KernelParams` encodes
+them into the compiled kernels' parameter vectors (:mod:`mjwalk.plan.slots`).
 """
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from mjwalk.anthropometry import ROM_DEG, SHIN_RADIUS, leg_geometry
-from mjwalk.conventions import DEFAULT_STATURE
-from mjwalk.gait.transition import POOL_SHARPNESS
+from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
+from mjwalk.errors import InputError
 from mjwalk.plan import slots
-
-if TYPE_CHECKING:
-    from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.grid import CELL_SIZE
 
 #: Extra clearance (metres) demanded of the sampled trajectory points: it covers the bilinear
 #: field's error (< 4 mm) and the curve between two of the 16 checked samples of a step, so the
@@ -164,74 +161,98 @@ def lean_params() -> dict[str, float]:
     }
 
 
-def kernel_params(planner: HybridPlanner, stature: float) -> tuple[np.ndarray, np.ndarray]:
-    """The float and integer parameter vectors (:func:`~mjwalk.plan.slots.params`,
-    :func:`~mjwalk.plan.slots.iparams`) of ``planner``'s compiled search for a walker of
-    ``stature`` metres (the landing leg's clearance scales with it)."""
-    m = planner.samples_per_step
-    knee_cols = (m // 2, (3 * m) // 4)  # the swing-knee probes' pelvis samples
-    walk, gd = planner.walk_field, planner.distance
-    par = slots.params(
-        knee_lead=KNEE_LEAD,
-        knee_side=KNEE_SIDE,
-        foot_length=FOOT_LENGTH,
-        foot_reach=MAX_FOOT_REACH,
-        lift_reach=MAX_LIFT_REACH,
-        stride=MAX_STRIDE,
-        goal_x=planner.goal[0],
-        goal_y=planner.goal[1],
-        tolerance=planner.tolerance,
-        goal_yaw=math.nan if planner.goal_yaw is None else planner.goal_yaw,
-        yaw_tolerance=planner.goal_yaw_tolerance,
-        weight=planner.heuristic_weight,
-        corner_x=planner.grid.x0,
-        corner_y=planner.grid.y0,
-        cell=planner.cell,
-        field_x0=walk.x0,
-        field_y0=walk.y0,
-        field_res=walk.resolution,
-        dist_x0=planner.grid.x0,
-        dist_y0=planner.grid.y0,
-        dist_cell=planner.grid.cell,
-        dist_top_x=planner.grid.free.shape[1] - 1.0,
-        dist_top_y=planner.grid.free.shape[0] - 1.0,
-        knee_share0=knee_cols[0] / (m - 1),  # the probes' share of the step
-        knee_share1=knee_cols[1] / (m - 1),
-        stop_reach=planner.tolerance + STOP_REACH,
-        pool_sharpness=POOL_SHARPNESS,
-        **lean_params(),
-        far_weight=planner.far_weight,
-        far_from=FAR_FROM,
-        leg_step=LEG_PROBE_STEP,
-        leg_clearance=leg_clearance(stature),
-        toe_share=TOE_APPROACH_SHARE,
-        toe_step=TOE_PROBE_STEP,
-        dist_offset=0.0,
-        pace=math.nan,
-        heading_weight=planner.heading_weight,
-        heading_from=planner.tolerance + STOP_REACH,
-    )
-    for k, (dx, dy, dr) in enumerate(planner.goal_within):
-        par[slots.P_DISC0 + 3 * k : slots.P_DISC0 + 3 * k + 3] = (dx, dy, dr)
-    ipar = slots.iparams(
-        m=m,
-        q=max(2, m // 4),  # samples of a step's first quarter (the foot behind lifts off)
-        knee_col0=knee_cols[0],
-        knee_col1=knee_cols[1],
-        # closed cells as one integer: (i * span + j) * bins + heading bin, with span
-        # larger than any cell row index j of a point a step can reach (the grid's rows
-        # plus a margin)
-        span=4 * max(planner.grid.free.shape) + 1000,
-        bins=planner.heading_bins,
-        field_nx=walk.values.shape[1],
-        field_ny=walk.values.shape[0],
-        dist_nx=gd.grid.free.shape[1],
-        dijkstra=planner.heuristic == "dijkstra",
-        chord=planner.cost != "path",
-        n_successors=planner.n_successors,
-        n_stops=planner.n_stops,
-        max_expansions=planner.max_expansions,
-        near_goal_expansions=NEAR_GOAL_EXPANSIONS,
-        n_discs=len(planner.goal_within),
-    )
-    return par, ipar
+@dataclass(frozen=True)
+class PlannerOptions:
+    """How a :class:`~mjwalk.plan.hybrid.HybridPlanner` plans: every option, with its default.
+
+    Metres, radians (yaw from +x). Checked on construction (:class:`~mjwalk.errors.InputError`,
+    before any planning work); ``dataclasses.replace`` makes a variant.
+    """
+
+    #: The goal area's radius (m) about the goal point.
+    goal_tolerance: float = 0.25
+    #: The heading (radians) a walk must end at, None: any.
+    goal_yaw: float | None = None
+    #: How far (radians) from ``goal_yaw`` the walk's last heading may be.
+    goal_yaw_tolerance: float = math.radians(30.0)
+    #: The body radius (m) the pelvis path keeps from obstacles and the floor's edge.
+    radius: float = BODY_RADIUS
+    #: The closed-cell grid's cell (m) and the occupancy grid's.
+    cell: float = CELL_SIZE
+    #: Heading bins of a closed cell; None: 1, or 8 with a ``goal_yaw`` (:attr:`bins`).
+    heading_bins: int | None = None
+    #: Gait-initiation steps drawn from the model's KDE for the start node.
+    n_starters: int = 30
+    #: Continuations drawn from the transition GP per expansion.
+    n_successors: int = 10
+    #: ``"dijkstra"`` (the obstacle-aware bound) or ``"euclidean"`` (the straight line).
+    heuristic: str = "dijkstra"
+    #: Expansions one search may spend (:data:`MAX_EXPANSIONS`).
+    max_expansions: int = MAX_EXPANSIONS
+    #: Pelvis samples of a step the clearance check tests.
+    samples_per_step: int = 16
+    #: Weight of the heuristic (weighted A*: a walk is at most 1 % longer than the best
+    #: continuation of the sampled steps; 1.0 is the paper's plain A*).
+    heuristic_weight: float = 1.01
+    #: Extra heuristic weight far from the goal on long walks (:data:`FAR_WEIGHT`).
+    far_weight: float = FAR_WEIGHT
+    #: A step's cost: ``"energy"`` (chord times the metabolic cost of its speed), ``"chord"``
+    #: (agethen2018's) or ``"path"`` (the pelvis arc).
+    cost: str = "energy"
+    #: Searches a walk gets when the open list runs dry (:data:`ATTEMPTS`; at least 1).
+    attempts: int = ATTEMPTS
+    #: Weight of the squared heading error while the goal is in sight (:data:`HEADING_WEIGHT`).
+    heading_weight: float = HEADING_WEIGHT
+    #: Closing steps drawn per node near the goal, when the model has them (at least 0).
+    n_stops: int = 5
+    #: Discs (x, y, radius; metres) the goal area is cut by, at most
+    #: :data:`~mjwalk.plan.slots.MAX_GOAL_DISCS` less one (a walk to a spot keeps one).
+    goal_within: tuple[tuple[float, float, float], ...] = field(default=())
+    #: The goal cells (m) the distance field starts from; None: ``goal_tolerance``. Planners of
+    #: one goal with the same ``field_tolerance`` share one field.
+    field_tolerance: float | None = None
+
+    def __post_init__(self):
+        if self.heuristic not in ("dijkstra", "euclidean"):
+            raise InputError(f"heuristic must be 'dijkstra' or 'euclidean', not {self.heuristic!r}")
+        if not self.heuristic_weight >= 1.0:
+            raise InputError(f"heuristic_weight must be >= 1, not {self.heuristic_weight}")
+        if not self.far_weight >= 0.0:
+            raise InputError(f"far_weight must be >= 0, not {self.far_weight}")
+        if self.cost not in ("chord", "path", "energy"):
+            raise InputError(f"cost must be 'chord', 'path' or 'energy', not {self.cost!r}")
+        if not self.heading_weight >= 0.0:
+            raise InputError(f"heading_weight must be >= 0, not {self.heading_weight}")
+        object.__setattr__(self, "heading_weight", float(self.heading_weight))
+        object.__setattr__(self, "attempts", max(1, int(self.attempts)))
+        object.__setattr__(self, "n_stops", max(0, int(self.n_stops)))
+        object.__setattr__(self, "goal_within", _checked_discs(self.goal_within))
+
+    @property
+    def bins(self) -> int:
+        """Heading bins of a closed cell: ``heading_bins``, or 1 (8 with a goal yaw, whose
+        nodes of other headings must be kept apart)."""
+        bins = self.heading_bins
+        if bins is None:
+            bins = 1 if self.goal_yaw is None else 8
+        return max(1, int(bins))
+
+    @property
+    def field_cells(self) -> float:
+        """The goal cells' radius (m) the distance field starts from."""
+        return self.goal_tolerance if self.field_tolerance is None else self.field_tolerance
+
+
+def _checked_discs(discs) -> tuple[tuple[float, float, float], ...]:
+    """``goal_within`` as (x, y, radius) float triples, checked: finite, positive radii, at
+    most :data:`~mjwalk.plan.slots.MAX_GOAL_DISCS` less one (whether the goal lies inside
+    each is the planner's check: :func:`mjwalk.plan.hybrid.goal_discs`)."""
+    try:
+        arr = np.asarray(discs, dtype=float).reshape(-1, 3) if len(discs) else np.zeros((0, 3))
+    except (TypeError, ValueError):
+        raise InputError(f"goal_within: discs are (x, y, radius) triples, got {discs!r}") from None
+    if len(arr) > slots.MAX_GOAL_DISCS - 1:  # one kept for a spot's walk (plan)
+        raise InputError(f"goal_within: at most {slots.MAX_GOAL_DISCS - 1} discs, got {len(arr)}")
+    if not np.all(np.isfinite(arr)) or np.any(arr[:, 2] <= 0):
+        raise InputError("goal_within: discs are (x, y, radius) with finite x, y and radius > 0")
+    return tuple((float(x), float(y), float(r)) for x, y, r in arr)

@@ -3,7 +3,7 @@
 :func:`~mjwalk.plan.stepcheck.check_steps` and :func:`~mjwalk.plan.search.search` take the
 planner's options as two flat arrays, a float vector (``P_*`` slots: metres, radians, m/s) and
 an integer vector (``I_*`` slots); :func:`params` and :func:`iparams` build them from keyword
-slots (:func:`mjwalk.plan.options.kernel_params` fills them for a planner).
+slots (:class:`mjwalk.plan.params.KernelParams` fills them for a planner and its walks).
 """
 
 from __future__ import annotations

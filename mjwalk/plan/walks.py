@@ -9,6 +9,7 @@ import numpy as np
 from mjwalk._args import as_generator, check_seed
 from mjwalk.errors import InputError
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace
 
@@ -21,7 +22,7 @@ def plan_walk(
     goal,
     model=None,
     rng: np.random.Generator | int | None = None,
-    **options,
+    options: PlannerOptions | None = None,
 ) -> WalkPath:
     """Plan one varied, gait-aware, collision-free walk with the probabilistic hybrid A*.
 
@@ -30,16 +31,15 @@ def plan_walk(
         start: a site name, ``"x,y"``, ``"x,y,yaw_deg"`` or ``(x, y[, yaw])`` (metres, radians).
             Without a yaw the walker starts facing the way the obstacle-aware distance to the
             goal falls fastest (it turns on the spot before walking off).
-        goal: a site name, ``"x,y"`` or ``(x, y)``; the walk ends within ``goal_tolerance``.
+        goal: a site name, ``"x,y"`` or ``(x, y)``; the walk ends within the options'
+            ``goal_tolerance`` (0.25 m by default).
         model: a StepModel (default: :func:`mjwalk.gait.default.default_model`).
         rng: a numpy Generator or a seed.
-        **options: see :class:`HybridPlanner` (goal_tolerance=0.25, goal_yaw=None,
-            radius=0.25, cell=0.08, heading_bins=None (1, or 8 with a goal yaw), n_starters=30,
-            n_successors=10, heuristic="dijkstra" | "euclidean", heuristic_weight=1.01,
-            far_weight=0.05 (walks from beyond LONG_WALK = 14 m, nodes beyond FAR_FROM = 4 m),
-            cost="energy" | "chord" | "path",
-            max_expansions=8000 (per search), attempts=6,
-            samples_per_step=16).
+        options: how to plan (:class:`~mjwalk.plan.options.PlannerOptions`: goal area, body
+            radius, search weights, cost, budgets; None: the defaults).
+
+    Returns:
+        The walk (120 Hz pelvis positions and yaw, its steps).
 
     Raises:
         PlanningError: start/goal off the floor or inside/too near an obstacle (before any
@@ -50,7 +50,7 @@ def plan_walk(
 
         model = default_model()
     rng = as_generator(rng, "plan_walk: rng")
-    return HybridPlanner(workplace, goal, model, **options).plan(start, rng)
+    return HybridPlanner(workplace, goal, model, options).plan(start, rng)
 
 
 def plan_walks(
@@ -60,12 +60,12 @@ def plan_walks(
     model=None,
     n: int = 15,
     seed: int = 0,
-    **options,
+    options: PlannerOptions | None = None,
 ) -> list[WalkPath]:
     """``n`` independent walks from ``start`` to ``goal``; the same seed gives the same walks.
 
     Walk ``k`` uses its own random stream (``SeedSequence(seed).spawn``), so a walk does not
-    depend on how many others are planned with it.
+    depend on how many others are planned with it. ``options``: as :func:`plan_walk`'s.
     """
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 0:
         raise InputError(f"plan_walks: n must be a whole number of walks >= 0, got {n!r}")
@@ -74,6 +74,6 @@ def plan_walks(
         from mjwalk.gait.default import default_model
 
         model = default_model()
-    planner = HybridPlanner(workplace, goal, model, **options)
+    planner = HybridPlanner(workplace, goal, model, options)
     streams = np.random.SeedSequence(seed).spawn(n)
     return [planner.plan(start, np.random.default_rng(s)) for s in streams]

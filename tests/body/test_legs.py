@@ -399,7 +399,7 @@ def test_stance_foot_ahead_of_the_hip_keeps_its_place():
         Path(__file__).parents[1] / "data" / "stance_ahead_corridor_seed0_walk3.npz"
     )
     wp = load_workplace(Path(__file__).parents[2] / "scenes" / "corridor.xml")
-    par = HybridPlanner(wp, "exit", default_model(progress=False))._kernel_params()[0]
+    par = HybridPlanner(wp, "exit", default_model(progress=False)).params.vectors()[0]
     legs = legs_from_walk(walk)
     pts, pitch, low = foot_points(legs)
     refused = []

@@ -9,7 +9,9 @@ from mjwalk.anthropometry import hand_reach
 from mjwalk.cycle.simulate import plan_cycle_walks, prepare
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.standing import REACH_MARGIN, SIDE_SLACK, ZONE_STEPS, stand_zone
-from mjwalk.errors import PlanningError
+from mjwalk.errors import InputError, PlanningError
+from mjwalk.plan.options import PlannerOptions
+from mjwalk.plan.request import WalkRequest
 
 
 def test_hand_reach_grows_with_stature_and_lean_and_shrinks_below_the_shoulder():
@@ -48,9 +50,14 @@ def test_planner_refuses_goal_discs_that_exclude_the_goal(scenes_dir):
 
     wp = load_workplace(scenes_dir / "open_floor.xml")
     with pytest.raises(PlanningError, match="outside disc 0"):
-        HybridPlanner(wp, (2.0, 0.0), default_model(progress=False), goal_within=[(5.0, 5.0, 0.5)])
-    with pytest.raises(PlanningError, match="radius > 0"):
-        HybridPlanner(wp, (2.0, 0.0), default_model(progress=False), goal_within=[(2, 0, -1)])
+        HybridPlanner(
+            wp,
+            (2.0, 0.0),
+            default_model(progress=False),
+            PlannerOptions(goal_within=((5.0, 5.0, 0.5),)),
+        )
+    with pytest.raises(InputError, match="radius > 0"):
+        PlannerOptions(goal_within=((2, 0, -1),))
 
 
 @pytest.fixture(scope="module")
@@ -106,7 +113,7 @@ def test_operators_zones_share_one_distance_field_per_site(station_walks):
     i = next(k for k, _, goal, _ in walks if goal == "stand_car1")
     short = ctx.planner("stand_car1", ctx.zone(i, 1.60, 0.55))
     long = ctx.planner("stand_car1", ctx.zone(i, 1.90, 0.80))
-    assert short.tolerance != pytest.approx(long.tolerance)
+    assert short.options.goal_tolerance != pytest.approx(long.options.goal_tolerance)
     assert short.distance.cells is long.distance.cells
 
 
@@ -116,14 +123,16 @@ def test_planner_walks_to_a_spot_of_its_goal_area_only(scenes_dir):
     from mjwalk.world import load_workplace
 
     wp = load_workplace(scenes_dir / "open_floor.xml")
-    planner = HybridPlanner(wp, (2.0, 0.0), default_model(progress=False), goal_tolerance=0.5)
-    path = planner.plan((-2.0, 0.0), np.random.default_rng(0), spot=(2.3, 0.2, 0.1))
+    planner = HybridPlanner(
+        wp, (2.0, 0.0), default_model(progress=False), PlannerOptions(goal_tolerance=0.5)
+    )
+    path = planner.plan(WalkRequest((-2.0, 0.0), spot=(2.3, 0.2, 0.1)), np.random.default_rng(0))
     assert np.hypot(path.xy[-1, 0] - 2.3, path.xy[-1, 1] - 0.2) <= 0.1
     assert path.meta["spot"] == [2.3, 0.2]
     with pytest.raises(PlanningError, match="outside the goal area"):
-        planner.plan((-2.0, 0.0), np.random.default_rng(0), spot=(3.0, 0.0, 0.1))
-    with pytest.raises(PlanningError, match="tolerance > 0"):
-        planner.plan((-2.0, 0.0), np.random.default_rng(0), spot=(2.1, 0.0, 0.0))
+        planner.plan(WalkRequest((-2.0, 0.0), spot=(3.0, 0.0, 0.1)), np.random.default_rng(0))
+    with pytest.raises(InputError, match="tolerance > 0"):
+        WalkRequest((-2.0, 0.0), spot=(2.1, 0.0, 0.0))
 
 
 @pytest.fixture(scope="module")
@@ -170,7 +179,9 @@ def test_wandering_walks_are_planned_again(scenes_dir, monkeypatch):
     monkeypatch.setattr(hybrid, "WANDER_FACTOR", 0.5)  # every walk "wanders"
     walk = planner.plan("stand_rack2", np.random.default_rng(0))
     assert walk.meta["wandering"] is True and walk.meta["searches"] == hybrid.WANDER_SEARCHES
-    assert hybrid.WANDER_SEARCHES >= planner.attempts  # loops get as many searches as dead ends
+    assert (
+        hybrid.WANDER_SEARCHES >= planner.options.attempts
+    )  # loops get as many searches as dead ends
 
 
 def test_cycle_starts_anywhere_in_the_start_zone_and_every_start_sets_off(scenes_dir):

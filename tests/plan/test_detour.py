@@ -12,6 +12,7 @@ from mjwalk.anthropometry import SEG
 from mjwalk.gait.default import default_model
 from mjwalk.plan.detour import PASSING_GAP, detour_guide, left_share, obstacle_ends
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.options import PlannerOptions
 from mjwalk.world import load_workplace
 
 
@@ -72,7 +73,7 @@ def test_walkers_keep_to_the_side_the_model_gives(tmp_path, model, offset):
     start's side of the pillar is nearer), within 0.15 over 80 seeded walks (4 binomial SDs
     at 0.5), so each walk keeps to its drawn side: no late switches."""
     wp = _pillar(tmp_path)
-    planner = HybridPlanner(wp, (3.0, offset), model, radius=0.25)
+    planner = HybridPlanner(wp, (3.0, offset), model, PlannerOptions(radius=0.25))
     left, right = obstacle_ends(wp.obstacles[0], (-3.0, offset), (3.0, offset))
     predicted = left_share((-3.0, offset), (3.0, offset), left, right)
     sides = []

@@ -15,6 +15,8 @@ from mjwalk.gait.segment import segment_takes
 from mjwalk.gait.speedprofile import curve_speed_ratio, start_stop_distances
 from mjwalk.plan import WalkPath
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.options import ATTEMPTS, PlannerOptions
+from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.walks import plan_walk, plan_walks
 from mjwalk.world import load_workplace
 from mjwalk.world.probe import ClearanceProbe
@@ -146,7 +148,12 @@ def test_walkpath_roundtrip(model, scenes_dir, tmp_path):
 def test_goal_heading(model, scenes_dir):
     wp = load_workplace(scenes_dir / "open_floor.xml")
     p = plan_walk(
-        wp, "-2,0,0", "2,0", model, rng=3, goal_yaw=np.pi / 2, goal_yaw_tolerance=np.radians(30)
+        wp,
+        "-2,0,0",
+        "2,0",
+        model,
+        rng=3,
+        options=PlannerOptions(goal_yaw=np.pi / 2, goal_yaw_tolerance=np.radians(30)),
     )
     diff = (p.yaw[-1] - np.pi / 2 + np.pi) % (2 * np.pi) - np.pi
     assert abs(diff) <= np.radians(30) + 1e-9
@@ -177,7 +184,7 @@ def test_goal_inside_obstacle_refused_before_search(model, scenes_dir):
 
 def test_budget_spent_is_reported(model, scenes_dir):
     wp = load_workplace(scenes_dir / "corridor.xml")
-    planner = HybridPlanner(wp, "exit", model, max_expansions=5)
+    planner = HybridPlanner(wp, "exit", model, PlannerOptions(max_expansions=5))
     with pytest.raises(PlanningError, match="budget of 5"):
         planner.plan("entry", np.random.default_rng(0))
 
@@ -198,7 +205,8 @@ def test_short_walk_to_a_tight_goal_stops_with_closing_steps(model, scenes_dir):
 
     wp = load_workplace(scenes_dir / "assembly_station.xml")
     goal = wp.station("stand_rack3").pos[:2]
-    planner = HybridPlanner(wp, "stand_rack3", model, radius=0.30, goal_tolerance=GOAL_TOLERANCE)
+    planner = options = PlannerOptions(radius=0.30, goal_tolerance=GOAL_TOLERANCE)
+    planner = HybridPlanner(wp, "stand_rack3", model, options)
     start = tuple(wp.station("stand_rack2").pos[:2])
     walks = [planner.plan(start, np.random.default_rng(s)) for s in range(60)]
     for w in walks:
@@ -232,7 +240,7 @@ def test_walkers_pass_a_pillar_on_either_side_as_people_choose(tmp_path, model, 
         "</worldbody></mujoco>"
     )
     wp = load_workplace(scene)
-    planner = HybridPlanner(wp, (3.0, offset), model, radius=RADIUS)
+    planner = HybridPlanner(wp, (3.0, offset), model, PlannerOptions(radius=RADIUS))
     sides = []
     for k in range(120):
         p = planner.plan((-3.0, offset), np.random.default_rng(k))
@@ -263,12 +271,12 @@ def test_dead_ends_are_searched_again_up_to_attempts(scenes_dir, model, monkeypa
 
         return plan_once
 
-    monkeypatch.setattr(planner, "_plan_once", dead_ends(hybrid.ATTEMPTS - 1))
+    monkeypatch.setattr(planner, "_plan_once", dead_ends(ATTEMPTS - 1))
     walk = planner.plan("west", np.random.default_rng(0))
-    assert walk.meta["attempts"] == hybrid.ATTEMPTS
+    assert walk.meta["attempts"] == ATTEMPTS
     calls["n"] = 0
-    monkeypatch.setattr(planner, "_plan_once", dead_ends(hybrid.ATTEMPTS))
-    with pytest.raises(PlanningError, match=f"{hybrid.ATTEMPTS} searches with fresh samples"):
+    monkeypatch.setattr(planner, "_plan_once", dead_ends(ATTEMPTS))
+    with pytest.raises(PlanningError, match=f"{ATTEMPTS} searches with fresh samples"):
         planner.plan("west", np.random.default_rng(0))
 
 
@@ -358,13 +366,17 @@ def test_a_standing_walker_pays_for_its_turn_on_the_spot(model, scenes_dir):
     facing = math.radians(50.0)
     turned, free = [], []
     for k in range(20):
-        a = planner.plan((-2.0, 0.0, facing), np.random.default_rng(k), turn_on_spot=True)
+        a = planner.plan(
+            WalkRequest((-2.0, 0.0, facing), turn_on_spot=True), np.random.default_rng(k)
+        )
         b = planner.plan((-2.0, 0.0), np.random.default_rng(k))
         turned.append(off(a.yaw[0], facing))
         free.append(off(b.yaw[0], facing))
     assert np.median(turned) < np.median(free), (np.median(turned), np.median(free))
     back = [
-        planner.plan((-2.0, 0.0, math.pi), np.random.default_rng(k), turn_on_spot=True).yaw[0]
+        planner.plan(
+            WalkRequest((-2.0, 0.0, math.pi), turn_on_spot=True), np.random.default_rng(k)
+        ).yaw[0]
         for k in range(20)
     ]
     assert np.median([off(y, 0.0) for y in back]) < math.radians(20.0)

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from mjwalk.plan import stepcheck
-from mjwalk.plan.hybrid import FOOT_CLEARANCE, LEG_PROBE_STEP, lean_params, leg_clearance
+from mjwalk.plan.options import FOOT_CLEARANCE, LEG_PROBE_STEP, lean_params, leg_clearance
 from mjwalk.world import load_workplace
 
 M = 16

@@ -10,7 +10,8 @@ import pytest
 from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import Walker
 from mjwalk.plan import stepcheck
-from mjwalk.plan.hybrid import WALK_PACE_SD, HybridPlanner, preferred_speed
+from mjwalk.plan.hybrid import HybridPlanner, preferred_speed
+from mjwalk.plan.options import WALK_PACE_SD, PlannerOptions
 from mjwalk.world import load_workplace
 
 
@@ -125,14 +126,14 @@ def test_validate_reports_planned_straight_walks(tmp_path):
 def test_cost_options(hall):
     """An unknown cost is refused by name; the paper's chord cost and the arc still plan; a
     model not conditioned on a walker holds its own steady pace."""
-    from mjwalk.errors import PlanningError
+    from mjwalk.errors import InputError
 
     model = default_model(progress=False)
     assert preferred_speed(model) == pytest.approx(model.pace().speed)
-    with pytest.raises(PlanningError, match="cost must be 'chord', 'path' or 'energy'"):
-        HybridPlanner(hall, (3.0, 0.0), model, cost="time")
+    with pytest.raises(InputError, match="cost must be 'chord', 'path' or 'energy'"):
+        PlannerOptions(cost="time")
     for cost in ("chord", "path", "energy"):
-        walk = HybridPlanner(hall, (3.0, 0.0), model, cost=cost).plan(
+        walk = HybridPlanner(hall, (3.0, 0.0), model, PlannerOptions(cost=cost)).plan(
             "-3,0,0", np.random.default_rng(0)
         )
         assert np.hypot(walk.xy[-1, 0] - 3.0, walk.xy[-1, 1]) <= 0.25 + 1e-9

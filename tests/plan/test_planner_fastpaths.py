@@ -195,14 +195,15 @@ def test_compiled_step_checks_agree_with_the_workplace_geometry(scenes_dir):
     the car body: one where most steps pass, one where many run into it."""
     from mjwalk.plan import stepcheck
     from mjwalk.plan.assemble import to_world
-    from mjwalk.plan.hybrid import FOOT_CLEARANCE, SAFETY_MARGIN, HybridPlanner
+    from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.plan.options import FOOT_CLEARANCE, SAFETY_MARGIN
 
     wp = load_workplace(scenes_dir / "assembly_station.xml")
     model = default_model()
     pl = HybridPlanner(wp, "stand_car1", model)
-    par, ipar = pl._kernel_params()
-    dec = pl._decoder()
-    m = pl.samples_per_step
+    par, ipar = pl.params.vectors()
+    dec = pl.decoder()
+    m = pl.options.samples_per_step
     rng = np.random.default_rng(3)
     z = model.sample_next_features(model.sample_first(1, rng, "right").features, "right", 400, rng)
     batch = model.decode(z, "left")
@@ -213,7 +214,7 @@ def test_compiled_step_checks_agree_with_the_workplace_geometry(scenes_dir):
         node = np.array([[complex(*start), np.nan, np.nan, 0.0]])
         rows, *_, accepted, drawn = stepcheck.check_steps(
             z, dec.matrix, dec.offset, len(z), len(z), np.array([yaw]), np.array([True]),
-            np.zeros(1, bool), node, pl._thresholds, par, ipar,
+            np.zeros(1, bool), node, pl.params.thresholds, par, ipar,
             wp.walk_field().values, pl.distance.flat_bound(),
         )  # fmt: skip
         assert drawn[0] == len(z) and accepted[0] == len(rows)

@@ -10,7 +10,8 @@ import pytest
 
 from mjwalk.body.humanoid import leg_geometry
 from mjwalk.plan import stepcheck
-from mjwalk.plan.hybrid import HybridPlanner, lean_params
+from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.options import lean_params
 
 M = 16
 #: A step frame heading +y (world): the step's local frame (x right, y forward) is the world's.
@@ -115,8 +116,8 @@ def test_check_steps_refuses_the_steps_the_stance_leg_cannot_follow(scenes_dir, 
     model = default_model()
     wp = load_workplace(scenes_dir / "open_floor.xml")
     pl = HybridPlanner(wp, "east", model)
-    par, ipar = pl._kernel_params()
-    dec = pl._decoder()
+    par, ipar = pl.params.vectors()
+    dec = pl.decoder()
     rng = np.random.default_rng(2)
     z = model.sample_next_features(model.sample_first(1, rng, "right").features, "right", 300, rng)
     batch = model.decode(z, "left")  # swing left: the right foot stands
@@ -124,7 +125,7 @@ def test_check_steps_refuses_the_steps_the_stance_leg_cannot_follow(scenes_dir, 
     stance = np.array([foot_x, 0.05, FRAME])  # the landed right foot, beside the start
     args = (dec.matrix, dec.offset, len(z), len(z), np.array([FRAME]), np.array([True]),
             np.zeros(1, bool))  # fmt: skip
-    rest = (pl._thresholds, par, ipar, wp.walk_field().values, pl.distance.flat_bound())
+    rest = (pl.params.thresholds, par, ipar, wp.walk_field().values, pl.distance.flat_bound())
     node = np.array([[0j, complex(stance[0], stance[1]), np.nan, 0.0, stance[2]]])
     rows = stepcheck.check_steps(z, *args, node, *rest)[0]
     node[0, 4] = np.nan

@@ -170,8 +170,6 @@ TYPING_CIRCLES_FOR_NOW = {
         {"mjwalk.cycle.context", "mjwalk.cycle.standing", "mjwalk.cycle.standoff",
          "mjwalk.cycle.targets"}
     ),
-    # options.kernel_params(planner) reads the planner back (plan/hybrid <-> options)
-    frozenset({"mjwalk.plan.hybrid", "mjwalk.plan.options"}),
 }  # fmt: skip
 
 

@@ -8,6 +8,7 @@ import pytest
 
 from mjwalk import SceneError
 from mjwalk.plan.grid import MOVES_16, occupancy_grid, occupancy_grid_sampled, shared_grid
+from mjwalk.plan.options import PlannerOptions
 from mjwalk.world import load_workplace
 from mjwalk.world.clearance import build_clearance_bruteforce
 from mjwalk.world.generate import generate_hall
@@ -143,7 +144,7 @@ def test_long_walks_through_clutter(tmp_path):
     keep the body radius; a walk starting within LONG_WALK of its goal is the same walk with
     and without the far weight."""
     from mjwalk.gait.default import default_model
-    from mjwalk.plan.hybrid import LONG_WALK
+    from mjwalk.plan.options import LONG_WALK
     from mjwalk.plan.walks import plan_walk
     from mjwalk.world.generate import free_points
 
@@ -161,5 +162,5 @@ def test_long_walks_through_clutter(tmp_path):
     c = pts[(np.hypot(*(pts - a).T) > 5.0) & (np.hypot(*(pts - a).T) < 7.0)][0]
     assert np.hypot(*(c - a)) < LONG_WALK
     w1 = plan_walk(wp, a, c, model, rng=5)
-    w2 = plan_walk(wp, a, c, model, rng=5, far_weight=0.0)
+    w2 = plan_walk(wp, a, c, model, rng=5, options=PlannerOptions(far_weight=0.0))
     np.testing.assert_array_equal(w1.xy, w2.xy)

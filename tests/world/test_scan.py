@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from mjwalk.errors import MjwalkError, ScanError
+from mjwalk.plan.options import PlannerOptions
 from mjwalk.world import load_workplace
 from mjwalk.world.scan import build_scene, read_scan, scan_to_scene
 from mjwalk.world.scan.scene import write_scene
@@ -264,7 +265,7 @@ def test_walks_planned_in_the_reconstruction_keep_the_body_radius_in_the_origina
     probe = ClearanceProbe(orig)
     model = default_model(progress=False)
     for a, b in (("stand_rack2", "stand_car1"), ("stand_rack1", "stand_rack2")):
-        for walk in plan_walks(rec, a, b, model, n=3, seed=3, radius=0.25):
+        for walk in plan_walks(rec, a, b, model, n=3, seed=3, options=PlannerOptions(radius=0.25)):
             assert path_clearance(probe, walk.xy, spacing=0.02).min() >= 0.25 - 0.005
 
 

@@ -1,0 +1,72 @@
+"""PlannerOptions: one frozen, checked record of a planner's choices (mjwalk.plan.options)."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import pytest
+
+from mjwalk.errors import InputError
+from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.options import ATTEMPTS, MAX_EXPANSIONS, PlannerOptions
+from mjwalk.plan.slots import MAX_GOAL_DISCS
+from mjwalk.world import load_workplace
+
+
+@pytest.mark.parametrize(
+    ("change", "message"),
+    [
+        ({"heuristic": "manhattan"}, "heuristic must be 'dijkstra' or 'euclidean'"),
+        ({"heuristic_weight": 0.9}, "heuristic_weight must be >= 1"),
+        ({"heuristic_weight": math.nan}, "heuristic_weight must be >= 1"),
+        ({"far_weight": -0.1}, "far_weight must be >= 0"),
+        ({"cost": "time"}, "cost must be 'chord', 'path' or 'energy'"),
+        ({"heading_weight": math.nan}, "heading_weight must be >= 0"),
+        ({"goal_within": ((0.0, 0.0, 1.0),) * MAX_GOAL_DISCS}, "at most 6 discs"),
+        ({"goal_within": ((0.0, math.inf, 1.0),)}, "radius > 0"),
+        ({"goal_within": ((0.0, 0.0, 0.0),)}, "radius > 0"),
+        ({"goal_within": ((0.0, 1.0),)}, r"\(x, y, radius\) triples"),
+    ],
+)
+def test_bad_options_are_refused_on_construction(change, message):
+    with pytest.raises(InputError, match=message) as err:
+        PlannerOptions(**change)
+    assert "\n" not in str(err.value)  # one line
+
+
+def test_options_are_frozen_and_normalized():
+    options = PlannerOptions(attempts=0, n_stops=-2, heading_weight=3, goal_within=[[1, 2, 0.5]])
+    assert options.attempts == 1 and options.n_stops == 0
+    assert options.heading_weight == 3.0 and isinstance(options.heading_weight, float)
+    assert options.goal_within == ((1.0, 2.0, 0.5),)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        options.radius = 0.3  # type: ignore[misc]
+    default = PlannerOptions()
+    assert (default.attempts, default.max_expansions) == (ATTEMPTS, MAX_EXPANSIONS)
+    assert default == PlannerOptions() and hash(default) == hash(PlannerOptions())
+
+
+def test_heading_bins_follow_the_goal_yaw_unless_given():
+    assert PlannerOptions().bins == 1
+    assert PlannerOptions(goal_yaw=0.5).bins == 8  # nodes of other headings kept apart
+    assert PlannerOptions(goal_yaw=0.5, heading_bins=3).bins == 3
+    # a variant re-derives the bins from its own goal yaw
+    assert dataclasses.replace(PlannerOptions(), goal_yaw=1.0).bins == 8
+    assert PlannerOptions(goal_tolerance=0.4).field_cells == 0.4
+    assert PlannerOptions(goal_tolerance=0.4, field_tolerance=0.1).field_cells == 0.1
+
+
+def test_a_planner_keeps_its_options_and_draws_closing_steps_only_from_a_model_that_has_them(
+    scenes_dir,
+):
+    wp = load_workplace(scenes_dir / "open_floor.xml")
+    options = PlannerOptions(radius=0.3, n_stops=4)
+
+    class Stops:
+        can_stop = True
+
+    planner = HybridPlanner(wp, (2.0, 0.0), Stops(), options)
+    assert planner.options is options and planner.radius == 0.3
+    assert HybridPlanner(wp, (2.0, 0.0), object(), options).options.n_stops == 0
+    assert HybridPlanner(wp, (2.0, 0.0), object()).options == PlannerOptions(n_stops=0)
