@@ -24,7 +24,7 @@ Nothing in it is a free parameter: with both headings along the straight line it
 straight line, and the heading term (:func:`mjwalk.plan.stepcost.heading_factor`) reduces to
 aiming at the goal (Mombaur, Truong & Laumond 2010). The search follows the guide as a
 polyline of :data:`GUIDE_POINTS` points (:func:`resample_guide`; a caller may give its own,
-``HybridPlanner.plan(guide=...)``), and only where it keeps the body's clearance from every
+``WalkRequest(guide=...)``), and only where it keeps the body's clearance from every
 obstacle (:func:`guide_is_clear`); around obstacles the route search decides. Metres, radians
 (world frame, yaw from +x).
 """

@@ -132,7 +132,7 @@ ATTEMPTS = 6
 #: start: where an obstacle hides it, the route around it decides (``docs/decisions/105``).
 HEADING_WEIGHT = 5.2
 #: Turning speed on the spot (rad/s) of a walker who sets off facing away from the way
-#: (``plan(turn_on_spot=True)``): ASSUMPTION, a half turn in about two steps (1.06 s at
+#: (``WalkRequest(turn_on_spot=True)``): ASSUMPTION, a half turn in about two steps (1.06 s at
 #: 113 steps/min), as the cycle turns an operator (``mjwalk.cycle.poses.TURN_SPEED``).
 ON_SPOT_TURN_SPEED = math.pi
 #: Walk-to-walk spread of a person's pace with the energy cost: each walk's preferred speed is
