@@ -10,8 +10,6 @@ import time
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from mjwalk import _log
 from mjwalk._args import (
     OneLineParser,

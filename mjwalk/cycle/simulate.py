@@ -113,7 +113,7 @@ def simulate_cycle(
     rng = as_generator(rng, "simulate_cycle: rng")  # before any work
     ctx = spec if isinstance(spec, CycleContext) else prepare(spec)
     check_durations(ctx.spec.tasks)
-    actions = [_action(i, task) for i, task in enumerate(ctx.spec.tasks)]
+    actions = [_action(ctx, i, task) for i, task in enumerate(ctx.spec.tasks)]
     run_, state = _start(ctx, rng, fps)
     frames = [state.pose[None]]
     starts: list[int] = []  # first frame of each task
@@ -153,12 +153,15 @@ def simulate_cycle(
     )  # fmt: skip
 
 
-def _action(i: int, task) -> Action:
-    """The action of task ``i`` (its kind's :class:`~mjwalk.cycle.actions.base.Action`)."""
+def _action(ctx: CycleContext, i: int, task) -> Action:
+    """The action of task ``i`` (its kind's :class:`~mjwalk.cycle.actions.base.Action`),
+    checked against the scene."""
     kind = TASK_KINDS.get(task.kind)
     if kind is None:  # the spec parser refuses unknown kinds; this guards hand-made specs
         raise CycleSpecError(f"task {i}: unknown kind {task.kind!r}")
-    return action_class(kind)(task, kind, i)
+    action = action_class(kind)(task, kind, i)
+    action.check(ctx)
+    return action
 
 
 def _start(ctx: CycleContext, rng: np.random.Generator, fps: float) -> tuple[CycleRun, CycleState]:

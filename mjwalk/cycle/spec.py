@@ -440,7 +440,8 @@ def _task(
     (``held`` is updated)."""
     t = "task"
     where = check.where(t, i)
-    check.keys(raw, ALL_TASK_KEYS, t, i)
+    own = (k for kind in TASK_KINDS.values() for k in kind.keys if k not in ALL_TASK_KEYS)
+    check.keys(raw, (*ALL_TASK_KEYS, *dict.fromkeys(own)), t, i)
     if "kind" not in raw:
         raise check.fail(f"missing required key 'kind' {where}", t, i, "kind")
     kind = raw["kind"]
@@ -577,6 +578,7 @@ def _task(
         line=check.lines.line(t, i),
         mass=mass,
         coupling=coupling,
+        options={k: v for k, v in raw.items() if k not in ALL_TASK_KEYS},
     )
 
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.gait.walker import Walker
@@ -111,6 +111,8 @@ class Task:
         line: line of the task in the TOML file (for error messages).
         mass: the picked part's mass, kg (pick; 0: not counted), for the ergonomic scores.
         coupling: the grip on the picked part ("good", "fair", "poor").
+        options: the task's keys beyond the common ones (a new kind's own, e.g. an
+            ``inspect``'s ``look``), as written in the TOML.
     """
 
     kind: TaskKindName
@@ -122,6 +124,7 @@ class Task:
     line: int = 0
     mass: float = 0.0
     coupling: str = "poor"
+    options: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass

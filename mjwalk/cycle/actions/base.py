@@ -5,7 +5,8 @@ A task kind (:data:`mjwalk.cycle.types.TASK_KINDS`) names the action that simula
 class's name (``TaskKind.action``, e.g. ``"Walk"``); every subclass of :class:`Action` is
 known by its name as soon as it is defined (:func:`action_class`). The cycle
 (:func:`mjwalk.cycle.simulate.simulate_cycle`) is a loop: for each task it builds the kind's
-action, calls :meth:`Action.plan` (the draws and decisions made before moving) and then
+action, calls :meth:`Action.check` (before any work), :meth:`Action.plan` (the draws and decisions
+made before moving) and then
 :meth:`Action.perform` (the humanoid's frames, how long each piece lasts, where the operator
 ends up and what the hands hold), and lays the frames end to end.
 
@@ -133,6 +134,10 @@ class Action:
         self.task = task
         self.kind = kind
         self.index = index
+
+    def check(self, ctx: CycleContext) -> None:
+        """Raise :class:`~mjwalk.errors.CycleSpecError` when the task cannot be performed in
+        ``ctx``'s scene (called for every task before the cycle starts). Nothing by default."""
 
     def plan(self, run: CycleRun, state: CycleState) -> Any:
         """What the action draws or decides before moving (a walk's path, a reach's hold
