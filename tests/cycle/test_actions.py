@@ -82,7 +82,6 @@ def test_built_in_tasks_have_no_options():
     assert all(t.options == {} for t in spec.tasks)
 
 
-@pytest.mark.slow  # ~35 s: loads the cycle's models and plans and checks a walk
 def test_readme_inspect_example_runs(monkeypatch):
     """The README's "Adding a task kind" example, as written: its Inspect action walks to
     stand_car1 and turns to face car_screw1 (its own test asserts the walk, the time and the
