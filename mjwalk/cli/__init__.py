@@ -10,8 +10,6 @@ import time
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from mjwalk import _log
 from mjwalk._args import (
     OneLineParser,
@@ -272,9 +270,10 @@ def _cmd_simulate(args: argparse.Namespace) -> int:
 def _replay(ctx, seed: int, run: int, **kwargs):
     """Run ``run`` of the batch of ``seed`` again, keeping its timeline (the same cycle: it
     draws from ``SeedSequence([seed, run])`` as in the batch)."""
+    from mjwalk.cycle.seeding import run_generator
     from mjwalk.cycle.simulate import simulate_cycle
 
-    rng = np.random.default_rng(np.random.SeedSequence([seed, run]))
+    rng = run_generator(seed, run)
     # the video and the exports need the motion only: no collision check, no scoring
     return simulate_cycle(
         ctx, rng, run=run, keep_timeline=True, collisions=False, ergonomics=False, **kwargs

@@ -29,6 +29,7 @@ import numpy as np
 
 from mjwalk._args import as_generator, check_seed
 from mjwalk.conventions import SAMPLE_RATE_HZ
+from mjwalk.cycle.actions import Action, CycleRun, CycleState, action_class
 from mjwalk.cycle.context import (
     GOAL_TOLERANCE,
     CycleContext,
@@ -36,16 +37,14 @@ from mjwalk.cycle.context import (
     operator_context,
     prepare,
 )
-from mjwalk.cycle.handling import RETURN_CASE, reach_duration, task_factor
-from mjwalk.cycle.poses import (
-    carry_abduction,
-    carry_pose,
-    hand_points,
-    standing_pose,
-    turn_frames,
-    walk_frames,
+from mjwalk.cycle.poses import carry_abduction, carry_pose, hand_points, standing_pose
+from mjwalk.cycle.seeding import (
+    batch_operator,
+    draw_operator,
+    rng_entropy,
+    run_generator,
+    run_streams,
 )
-from mjwalk.cycle.reachspot import reach_task
 from mjwalk.cycle.spec import check_durations
 from mjwalk.cycle.types import (
     TASK_KINDS,
@@ -113,157 +112,119 @@ def simulate_cycle(
     """
     rng = as_generator(rng, "simulate_cycle: rng")  # before any work
     ctx = spec if isinstance(spec, CycleContext) else prepare(spec)
-    spec = ctx.spec
-    check_durations(spec.tasks)
-    # side streams spawned from the run's generator (its own draws, the walks, are unchanged):
-    # the operator, the task-time factors, where the operator stands (at the start, then the
-    # spot each walk aims at: plan_task_walk)
-    op_rng, hand_rng, stand_rng = rng.spawn(3)
-    entropy = _entropy(rng)
-    # the run's operator (None without a [population]: the step model's own pace, handling at
-    # the reference adult's pace): their humanoid, their steps, their handling pace
-    walker = spec.population.draw(op_rng) if spec.population is not None else None
-    ctx = operator_context(ctx, walker)
-    pace = 1.0 if walker is None else walker.pace
-    wp = ctx.workplace
-    here = spec.start
-    x, y = cycle_start(ctx, stand_rng, walker)  # in the start's stand zone, not on its mark
-    home = (x, y)  # where the last walk ended: the reaches there step back or in from it
-    yaw = wp.station(here).yaw
-    frames = [standing_pose(ctx, x, y, yaw)[None]]
-    t = 0.0
+    check_durations(ctx.spec.tasks)
+    actions = [_action(ctx, i, task) for i, task in enumerate(ctx.spec.tasks)]
+    run_, state = _start(ctx, rng, fps)
+    frames = [state.pose[None]]
+    starts: list[int] = []  # first frame of each task
     tasks: list[TaskRecord] = []
     walks: list[WalkRecord] = []
     arms: list[ArmRecord] = []
-    width: float | None = None  # grip distance (m) of the two-handed part in the hands
-    starts: list[int] = []  # first frame of each task
-    for i, task in enumerate(spec.tasks):
-        t0 = t
+    for action in actions:
         starts.append(sum(len(f) for f in frames))
-        kind = TASK_KINDS.get(task.kind)
-        if kind is None:  # the spec parser refuses unknown kinds; this guards hand-made specs
-            raise CycleSpecError(f"task {i}: unknown kind {task.kind!r}")
-        if kind.action == "walk":
-            goal = task.site
-            assert goal is not None  # the spec loader requires a site for walks
-            # from the heading the operator stands at (turning on the spot, then walking) into
-            # the heading of the work at the goal
-            face = wp.station(goal).yaw
-            path = plan_task_walk(ctx, i, (x, y), rng, walker, stand_rng, yaw=yaw, face=face)
-            # a two-handed part stays in the hands, in the carrying posture (turns included)
-            pose = None if width is None else carry_pose(ctx, frames[0][0], width)
-            turn, dt = turn_frames(ctx, x, y, yaw, float(path.yaw[0]), fps, pose=pose)
-            frames.append(turn)
-            t += dt
-            carry = task.hand if kind.carries else None
-            if width is not None:
-                carry = "both"
-            wf = walk_frames(ctx, path, fps, carry, width)
-            frames.append(wf)
-            t += len(wf) / fps  # the walk, to the video frame
-            x, y = (float(v) for v in path.xy[-1])
-            home = (x, y)
-            yaw = float(path.yaw[-1])
-            # the last step lands knee flexed, pelvis low: the turn settles into standing
-            turn, dt = turn_frames(ctx, x, y, yaw, face, fps, pose=pose, settle=wf[-1])
-            frames.append(turn)
-            t += dt
-            yaw = face
-            # the grid-A* route between the walk's own ends (not the sites' marks: the walk
-            # starts and ends where the operator stands), for the report's ``vs A*``
-            base = ctx.baseline_route(path.xy[0], path.xy[-1])
-            walks.append(
-                WalkRecord(
-                    task=i,
-                    route=task.route or f"{here}->{goal}",
-                    start_site=here,
-                    goal_site=goal,
-                    path=path,
-                    baseline_length=float("nan") if base is None else base.length,
-                    baseline=base,
-                )
-            )
-            here = goal
-        elif kind.action == "reach":
-            assert kind.default_hold is not None and kind.reach_case is not None
-            hold = task.duration if task.duration is not None else kind.default_hold
-            factor = task_factor(hand_rng)  # lognormal, median 1 (mjwalk.cycle.handling)
-            hold *= factor / pace  # the hold, like the reach, at the operator's pace
-            case = kind.reach_case
-
-            def timing(dist, case=case, factor=factor):
-                return (
-                    reach_duration(dist, walker, case) * factor,
-                    reach_duration(dist, walker, RETURN_CASE) * factor,
-                )
-
-            assert task.site is not None  # the spec loader requires a site for reaches
-            r = reach_task(
-                ctx, task, x, y, yaw, hold, fps, timing, wp.station(here).yaw, width, home
-            )
-            x, y, yaw = r.x, r.y, r.yaw
-            frames.append(r.turn)
-            t += r.turn_time
-            if task.hand == "both":
-                width = r.width if kind.part == "take" else None  # released when put down
-            frames.append(r.frames)
-            t += len(r.frames) / fps
-            arms.append(
-                ArmRecord(
-                    task=i,
-                    kind=task.kind,
-                    site=task.site,
-                    hand=task.hand,
-                    duration=len(r.frames) / fps,
-                    hand_error=r.error,
-                    outside=bool(r.result.outside),
-                    warnings=list(r.result.warnings),
-                    step_back=r.step_back,
-                )
-            )
-        elif kind.action == "wait":
-            assert kind.default_hold is not None
-            hold = task.duration if task.duration is not None else kind.default_hold
-            n = max(1, round(hold * fps))
-            frames.append(np.repeat(frames[-1][-1:], n, axis=0))
-            t += n / fps
-        tasks.append(TaskRecord(i, task.kind, task.site, t0, t, task.route))
-    qpos = np.vstack(frames)
-    timeline = Timeline(
-        model=ctx.model,
-        jointmap=ctx.jointmap,
-        fps=fps,
-        t=np.arange(len(qpos)) / fps,
-        qpos=qpos,
-        scene=str(spec.scene),
-        stature=ctx.spec.stature,
-    )
-    timeline.walk = combined_walk([w.path for w in walks])  # drawn into videos
-    if keep_timeline:  # the parts the hands pick, carry and put down, drawn into videos
-        ends = [*starts[1:], len(qpos)]
-        handlings = [
-            Handling(part, task.site, task.hand, starts[i], ends[i])
-            for i, task in enumerate(spec.tasks)
-            if (part := TASK_KINDS[task.kind].part) is not None and task.site is not None
-        ]
-        timeline.parts = part_tracks(ctx.model, ctx.jointmap, qpos, handlings, ctx.scratch())
-    contacts = collision_report(timeline, data=ctx.scratch()) if collisions else []
-    ends = [*starts[1:], len(qpos)]
-    ergo = cycle_ergonomics(timeline, spec, starts, ends, t, wp) if ergonomics else None
-    return CycleResult(
-        spec=spec,
+        done = action.perform(run_, state, action.plan(run_, state))
+        t = state.t
+        for piece, seconds in done.pieces:
+            frames.append(piece)
+            t += seconds
+        task = action.task
+        tasks.append(TaskRecord(action.index, task.kind, task.site, state.t, t, task.route))
+        if isinstance(done.record, WalkRecord):
+            walks.append(done.record)
+        elif isinstance(done.record, ArmRecord):
+            arms.append(done.record)
+        state = done.state.moved(t=t, pose=frames[-1][-1])
+    timeline = _timeline(run_.ctx, np.vstack(frames), fps, walks)
+    entropy = rng_entropy(rng)
+    result = CycleResult(
+        spec=ctx.spec,
         run=run,
         seed=entropy[0] if isinstance(entropy, list) else entropy,
         entropy=entropy,
         tasks=tasks,
         walks=walks,
         arms=arms,
-        cycle_time=t,
-        collisions=contacts,
-        timeline=timeline if keep_timeline else None,
-        operator=walker,
-        ergonomics=ergo,
+        cycle_time=state.t,
+        operator=run_.walker,
     )
+    return _finish(
+        run_.ctx, timeline, starts, result, keep=keep_timeline, collisions=collisions,
+        ergonomics=ergonomics,
+    )  # fmt: skip
+
+
+def _action(ctx: CycleContext, i: int, task) -> Action:
+    """The action of task ``i`` (its kind's :class:`~mjwalk.cycle.actions.base.Action`),
+    checked against the scene."""
+    kind = TASK_KINDS.get(task.kind)
+    if kind is None:  # the spec parser refuses unknown kinds; this guards hand-made specs
+        raise CycleSpecError(f"task {i}: unknown kind {task.kind!r}")
+    action = action_class(kind)(task, kind, i)
+    action.check(ctx)
+    return action
+
+
+def _start(ctx: CycleContext, rng: np.random.Generator, fps: float) -> tuple[CycleRun, CycleState]:
+    """The run's operator and streams (:mod:`mjwalk.cycle.seeding`) and where the cycle
+    starts: in the start site's stand zone (not on its mark), facing the site's heading."""
+    streams = run_streams(rng)
+    # the run's operator (None without a [population]: the step model's own pace, handling at
+    # the reference adult's pace): their humanoid, their steps, their handling pace
+    walker = draw_operator(ctx.spec, streams)
+    ctx = operator_context(ctx, walker)
+    here = ctx.spec.start
+    x, y = cycle_start(ctx, streams.standing, walker)
+    yaw = ctx.workplace.station(here).yaw
+    pose = standing_pose(ctx, x, y, yaw)
+    run = CycleRun(ctx, walker, fps, rng, streams.handling, streams.standing, pose)
+    return run, CycleState(x=x, y=y, yaw=yaw, here=here, home=(x, y), pose=pose)
+
+
+def _timeline(ctx: CycleContext, qpos: np.ndarray, fps: float, walks: list) -> Timeline:
+    """The cycle's humanoid timeline, with its walks laid end to end (drawn into videos)."""
+    timeline = Timeline(
+        model=ctx.model,
+        jointmap=ctx.jointmap,
+        fps=fps,
+        t=np.arange(len(qpos)) / fps,
+        qpos=qpos,
+        scene=str(ctx.spec.scene),
+        stature=ctx.spec.stature,
+    )
+    timeline.walk = combined_walk([w.path for w in walks])
+    return timeline
+
+
+def _finish(
+    ctx: CycleContext,
+    timeline: Timeline,
+    starts: list[int],
+    result: CycleResult,
+    *,
+    keep: bool,
+    collisions: bool,
+    ergonomics: bool,
+) -> CycleResult:
+    """``result`` with what was asked for: the timeline and the tracks of the parts the hands
+    handle (``keep``), the humanoid-vs-scene contacts, the ergonomic scores. Task ``i`` spans
+    frames ``starts[i]`` up to the next task's first frame."""
+    spec = result.spec
+    ends = [*starts[1:], len(timeline.qpos)]
+    if keep:  # the parts the hands pick, carry and put down, drawn into videos
+        handlings = [
+            Handling(part, task.site, task.hand, starts[i], ends[i])
+            for i, task in enumerate(spec.tasks)
+            if (part := TASK_KINDS[task.kind].part) is not None and task.site is not None
+        ]
+        qpos = timeline.qpos
+        timeline.parts = part_tracks(ctx.model, ctx.jointmap, qpos, handlings, ctx.scratch())
+        result.timeline = timeline
+    if collisions:
+        result.collisions = collision_report(timeline, data=ctx.scratch())
+    if ergonomics:
+        wp, t = ctx.workplace, result.cycle_time
+        result.ergonomics = cycle_ergonomics(timeline, spec, starts, ends, t, wp)
+    return result
 
 
 def cycle_ergonomics(timeline: Timeline, spec: CycleSpec, starts, ends, cycle_time: float, wp):
@@ -280,9 +241,9 @@ def cycle_ergonomics(timeline: Timeline, spec: CycleSpec, starts, ends, cycle_ti
     for i, task in enumerate(spec.tasks):
         s, e = int(starts[i]), int(ends[i])
         kind = TASK_KINDS[task.kind]
-        if kind.action == "walk":
+        if kind.motion == "walk":
             walking[s:e] = True
-        reach, part = kind.action == "reach", kind.part
+        reach, part = kind.motion == "reach", kind.part
         mass, coupling = 0.0, task.coupling
         if part == "take":
             mass = task.mass
@@ -299,34 +260,17 @@ def cycle_ergonomics(timeline: Timeline, spec: CycleSpec, starts, ends, cycle_ti
     return assess_cycle(ang, spans, cycle_time, timeline.fps)
 
 
-def _entropy(rng: np.random.Generator) -> int | list[int] | None:
-    """The entropy of the SeedSequence behind ``rng``: ``default_rng(SeedSequence(entropy))``
-    draws the same numbers (``[seed, run]`` for a run of :func:`simulate_cycles`, the seed for
-    ``default_rng(seed)``, the OS's draw for ``default_rng()``). None for a generator built from
-    a spawned sequence or without one (it cannot be recreated from an entropy alone)."""
-    seq = getattr(rng.bit_generator, "seed_seq", None)
-    if not isinstance(seq, np.random.SeedSequence) or seq.spawn_key:
-        return None
-    ent = seq.entropy
-    if isinstance(ent, list | tuple | np.ndarray):
-        return [int(v) for v in ent]
-    return None if ent is None else int(ent)  # type: ignore[arg-type]
-
-
 def _run_one(
     spec: CycleSpec | str, run: int, seed: int, collisions: bool, on_error: str = "raise"
 ) -> CycleResult:
     ctx = context_of(spec)
-    ss = np.random.SeedSequence([seed, run])
     try:
-        return simulate_cycle(ctx, np.random.default_rng(ss), run=run, collisions=collisions)
+        return simulate_cycle(ctx, run_generator(seed, run), run=run, collisions=collisions)
     except PlanningError as e:
         if on_error == "raise":
             raise
-        # the operator this run drew (as simulate_cycle draws it: the first spawned stream)
-        op_rng = np.random.default_rng(ss).spawn(3)[0]
         spec = ctx.spec
-        walker = spec.population.draw(op_rng) if spec.population is not None else None
+        walker = batch_operator(spec, seed, run)  # the operator this run drew
         return CycleResult(
             spec=spec,
             run=run,

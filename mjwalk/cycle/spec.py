@@ -293,14 +293,14 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         if not isinstance(raw, dict):
             raise check.fail(f"task {i + 1} must be a table ([[task]])", "task", i)
         tasks.append(_task(check, workplace, raw, i, radius, stand, held))
-        if TASK_KINDS[tasks[-1].kind].action == "walk":
+        if TASK_KINDS[tasks[-1].kind].motion == "walk":
             assert tasks[-1].site is not None  # checked by _task: walks need a site
             stand = tasks[-1].site
     try:
         check_durations(tasks)
     except CycleSpecError as exc:
         raise check.fail(str(exc), "task", len(tasks) - 1, "duration") from None
-    waits = sum(t.duration or 0.0 for t in tasks if TASK_KINDS[t.kind].action == "wait")
+    waits = sum(t.duration or 0.0 for t in tasks if TASK_KINDS[t.kind].motion == "wait")
     if takt is not None and takt < waits:
         raise check.fail(
             f"key 'takt' at the top level: {takt:g} s is shorter than the cycle's waits alone "
@@ -337,7 +337,7 @@ def _reference(check: Checker, table, tasks: list[Task]) -> tuple[dict | None, s
         raise check.fail("'reference' must be a table ([reference])", key="reference")
     check.keys(table, REFERENCE_KEYS, "reference")
     source = check.string(table, "source", "reference") if "source" in table else ""
-    routes = {t.route or "" for t in tasks if TASK_KINDS[t.kind].action == "walk"}
+    routes = {t.route or "" for t in tasks if TASK_KINDS[t.kind].motion == "walk"}
     figures: dict[str, dict[str, float]] = {}
     for key in REFERENCE_KEYS[1:]:
         per_route = table.get(key, {})
@@ -387,7 +387,7 @@ def _check_routes(
     stand = start
     seen: set[tuple[str, str]] = set()
     for i, task in enumerate(tasks):
-        if TASK_KINDS[task.kind].action != "walk" or task.site is None:
+        if TASK_KINDS[task.kind].motion != "walk" or task.site is None:
             continue
         pair = (stand, task.site)
         stand = task.site
@@ -440,7 +440,8 @@ def _task(
     (``held`` is updated)."""
     t = "task"
     where = check.where(t, i)
-    check.keys(raw, ALL_TASK_KEYS, t, i)
+    own = (k for kind in TASK_KINDS.values() for k in kind.keys if k not in ALL_TASK_KEYS)
+    check.keys(raw, (*ALL_TASK_KEYS, *dict.fromkeys(own)), t, i)
     if "kind" not in raw:
         raise check.fail(f"missing required key 'kind' {where}", t, i, "kind")
     kind = raw["kind"]
@@ -463,8 +464,8 @@ def _task(
                 i,
                 key,
             )
-    action = TASK_KINDS[kind].action
-    required = ("duration",) if action == "wait" else ("site",)
+    motion = TASK_KINDS[kind].motion
+    required = ("duration",) if motion == "wait" else ("site",)
     for key in required:
         if key not in raw:
             raise check.fail(f"missing required key {key!r} {where} ({kind} task)", t, i, key)
@@ -494,7 +495,7 @@ def _task(
             "coupling",
         )
 
-    if action == "walk":
+    if motion == "walk":
         assert site is not None  # required above
         if site == stand:
             raise check.fail(
@@ -514,7 +515,7 @@ def _task(
                     key,
                 )
         route = route or f"{stand}->{site}"
-    elif action == "reach":
+    elif motion == "reach":
         assert site is not None  # required above
         hand = hand or "left"
         if held["both"] >= 0 and hand != "both":
@@ -577,6 +578,7 @@ def _task(
         line=check.lines.line(t, i),
         mass=mass,
         coupling=coupling,
+        options={k: v for k, v in raw.items() if k not in ALL_TASK_KEYS},
     )
 
 

@@ -170,9 +170,9 @@ def _site_zone(
     targets, squarely, hands = [], [], []
     for task in ctx.spec.tasks[first:]:
         kind = TASK_KINDS[task.kind]
-        if kind.action == "walk":
+        if kind.motion == "walk":
             break
-        if kind.action != "reach" or task.site is None:
+        if kind.motion != "reach" or task.site is None:
             continue
         for _, name in grip_sites(task.site, task.hand):
             pos = ctx.workplace.station(name).pos

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.gait.walker import Walker
@@ -27,8 +27,11 @@ class TaskKind:
     Attributes:
         name: the ``kind`` of a ``[[task]]``.
         keys: the keys a task of this kind may have in the cycle TOML.
-        action: ``"walk"`` (to ``site``: a planned walk), ``"reach"`` (a hand to ``site``, held
-            there and back: :mod:`mjwalk.cycle.reachspot`) or ``"wait"`` (standing still).
+        motion: what the spec checks, the stand zones and the walks take the task for:
+            ``"walk"`` (to ``site``: the operator leaves where they stand), ``"reach"`` (a hand
+            to ``site``, held there and back) or ``"wait"`` (standing still).
+        action: the name of the :class:`~mjwalk.cycle.actions.base.Action` subclass that
+            simulates it (``"Walk"``, ``"Reach"``, ``"Wait"``, :mod:`mjwalk.cycle.actions`).
         carries: a walk with a part in the hands.
         part: what a reach does with a part: ``"take"`` it into the hand (the hand holds it
             afterwards), ``"put"`` it down (the hand must hold one), or None.
@@ -47,7 +50,8 @@ class TaskKind:
 
     name: str
     keys: tuple[str, ...]
-    action: Literal["walk", "reach", "wait"]
+    motion: Literal["walk", "reach", "wait"]
+    action: str
     carries: bool = False
     part: Literal["take", "put"] | None = None
     lifts: bool = False
@@ -58,23 +62,25 @@ class TaskKind:
 
 _REACH_KEYS = ("kind", "site", "hand", "part", "duration")
 #: Every task kind, in the order reports list them. A new kind is one entry here (and its name
-#: in :data:`TaskKindName`); a new ``action`` also needs its frames in
-#: :func:`mjwalk.cycle.simulate.simulate_cycle`. Reach cases (MTM-1): a pick takes a small part
-#: from a bin of like parts (case C: search and select, the station's screws); a place or
-#: fasten brings the hand to a location that varies slightly (case B). Default holds: a pick or
-#: place 0.4 s, a fastening 3 s, a wait 1 s.
+#: in :data:`TaskKindName`); a new action is one module with its
+#: :class:`~mjwalk.cycle.actions.base.Action` subclass, which the entry names (README, "Adding
+#: a task kind"). Reach cases (MTM-1): a pick takes a small part from a bin of like parts
+#: (case C: search and select, the station's screws); a place or fasten brings the hand to a
+#: location that varies slightly (case B). Default holds: a pick or place 0.4 s, a fastening
+#: 3 s, a wait 1 s.
 TASK_KINDS: dict[str, TaskKind] = {
     k.name: k
     for k in (
-        TaskKind("walk", ("kind", "site", "route"), "walk"),
-        TaskKind("carry", ("kind", "site", "route", "hand", "part"), "walk", carries=True),
-        TaskKind("pick", (*_REACH_KEYS, "mass", "coupling"), "reach", part="take",
+        TaskKind("walk", ("kind", "site", "route"), "walk", "Walk"),
+        TaskKind("carry", ("kind", "site", "route", "hand", "part"), "walk", "Walk",
+                 carries=True),
+        TaskKind("pick", (*_REACH_KEYS, "mass", "coupling"), "reach", "Reach", part="take",
                  lifts=True, reach_case="C", default_hold=0.4, approach="shelf"),
-        TaskKind("place", _REACH_KEYS, "reach", part="put", lifts=True, reach_case="B",
-                 default_hold=0.4, approach="shelf"),
-        TaskKind("fasten", _REACH_KEYS, "reach", part="put", reach_case="B", default_hold=3.0,
-                 approach="surface"),
-        TaskKind("wait", ("kind", "duration"), "wait", default_hold=1.0),
+        TaskKind("place", _REACH_KEYS, "reach", "Reach", part="put", lifts=True,
+                 reach_case="B", default_hold=0.4, approach="shelf"),
+        TaskKind("fasten", _REACH_KEYS, "reach", "Reach", part="put", reach_case="B",
+                 default_hold=3.0, approach="surface"),
+        TaskKind("wait", ("kind", "duration"), "wait", "Wait", default_hold=1.0),
     )
 }  # fmt: skip
 
@@ -105,6 +111,8 @@ class Task:
         line: line of the task in the TOML file (for error messages).
         mass: the picked part's mass, kg (pick; 0: not counted), for the ergonomic scores.
         coupling: the grip on the picked part ("good", "fair", "poor").
+        options: the task's keys beyond the common ones (a new kind's own, e.g. an
+            ``inspect``'s ``look``), as written in the TOML.
     """
 
     kind: TaskKindName
@@ -116,6 +124,7 @@ class Task:
     line: int = 0
     mass: float = 0.0
     coupling: str = "poor"
+    options: dict[str, Any] = field(default_factory=dict)
 
 
 @dataclass

@@ -138,7 +138,7 @@ def plan_cycle_walks(
     x, y = float(start[0]), float(start[1])
     out = []
     for i, task in enumerate(spec.tasks):
-        if TASK_KINDS[task.kind].action == "walk":
+        if TASK_KINDS[task.kind].motion == "walk":
             yaw = float(ctx.workplace.station(here).yaw)
             goal = str(task.site)
             face = float(ctx.workplace.station(goal).yaw)

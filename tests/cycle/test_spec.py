@@ -243,7 +243,7 @@ def test_task_kinds_table_says_what_the_lower_stages_read():
     """The flags the cycle hands to the ergonomics and the timeline (reach, part, lifts) come
     from the one table: the reaches are pick, place and fasten; a pick takes its part, a place
     or fasten puts it down; pick and place are NIOSH lifts, a fastening is not."""
-    reach = {k for k, v in TASK_KINDS.items() if v.action == "reach"}
+    reach = {k for k, v in TASK_KINDS.items() if v.motion == "reach"}
     assert reach == {"pick", "place", "fasten"}
     assert {k: v.part for k, v in TASK_KINDS.items() if v.part} == {
         "pick": "take",

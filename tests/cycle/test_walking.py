@@ -26,7 +26,7 @@ def test_walks_arrive_nearer_the_heading_of_the_work(scenes_dir):
     for k in range(10):
         here = spec.start
         for i, task in enumerate(spec.tasks):
-            if TASK_KINDS[task.kind].action != "walk":
+            if TASK_KINDS[task.kind].motion != "walk":
                 continue
             site, face = wp.station(here), float(wp.station(task.site).yaw)
             for use in (True, False):
