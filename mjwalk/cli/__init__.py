@@ -95,7 +95,8 @@ def _cmd_plan(args: argparse.Namespace) -> int:
     if args.save:
         check_output_file(args.save.with_suffix(".npz"), "--save")
     walker = _walker_from_args(args)
-    from mjwalk.plan.grid import check_endpoint, plan_grid
+    from mjwalk.plan.grid import plan_grid
+    from mjwalk.plan.occupancy import check_endpoint
     from mjwalk.shipped import scene_file
     from mjwalk.world import load_workplace
 
