@@ -172,7 +172,7 @@ def _cmd_train(args: argparse.Namespace) -> int:
 
 def _cmd_validate(args: argparse.Namespace) -> int:
     from mjwalk.gait.fidelity import format_fidelity_table, validate_main
-    from mjwalk.plan.straight import planned_straight_walks
+    from mjwalk.plan.walktimes import planned_straight_walks
 
     if args.json:
         check_output_file(args.json, "--json")
