@@ -22,8 +22,9 @@ from pathlib import Path
 import numpy as np
 
 from mjwalk.gait.default import default_model
-from mjwalk.plan.grid import MOVES_16, occupancy_grid, plan_grid, shared_grid
+from mjwalk.plan.grid import plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.occupancy import MOVES_16, occupancy_grid, shared_grid
 from mjwalk.world import load_workplace
 
 ROOT = Path(__file__).resolve().parents[1]

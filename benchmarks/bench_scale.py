@@ -39,7 +39,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 def setup_one(size: float, mode: str) -> dict:
     """Build one hall's workplace in this process; ``mode`` cold | warm | before."""
-    from mjwalk.plan.grid import MOVES_16, occupancy_grid_sampled, shared_grid
+    from mjwalk.plan.occupancy import MOVES_16, occupancy_grid_sampled, shared_grid
     from mjwalk.world import load_workplace
     from mjwalk.world.clearance import build_clearance_bruteforce
     from mjwalk.world.generate import generate_hall
@@ -165,8 +165,9 @@ def run_spread(lengths: list[float], n_pairs: int, n_walks: int, **options) -> N
 def run_walks(lengths: list[float], n_walks: int, **options) -> None:
     from mjwalk.errors import PlanningError
     from mjwalk.gait.default import default_model
-    from mjwalk.plan.grid import occupancy_grid, plan_grid
+    from mjwalk.plan.grid import plan_grid
     from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.plan.occupancy import occupancy_grid
     from mjwalk.plan.options import PlannerOptions
     from mjwalk.world import load_workplace
     from mjwalk.world.generate import generate_hall

@@ -139,12 +139,11 @@ from pathlib import Path
 import numpy as np
 from scipy.ndimage import uniform_filter1d
 
-from mjwalk.conventions import SAMPLE_RATE_HZ
+from mjwalk.conventions import BODY_RADIUS, SAMPLE_RATE_HZ
 from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import REFERENCE_CADENCE, REFERENCE_SPEED, Walker
 from mjwalk.plan.detour import left_share, obstacle_ends
-from mjwalk.plan.grid import BODY_RADIUS
 from mjwalk.plan.guide import minimum_jerk_guide
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.options import WALK_PACE_SD

@@ -27,7 +27,7 @@ Run: python3 benchmarks/bench_variability.py [--cycles 200] [--data ../shared/da
    standing (``starts_at_rest``); median time and IQR, capture vs model, per style and pooled
    (one walk per captured walk left the model's IQR to chance: 71-160 % of the captured for one
    style over ten seeds); a ``planned`` line walks them as mjwalk plans walks (the hybrid A*
-   in an empty straight hall, ``mjwalk.plan.straight``, :data:`PLANNED_REPEATS` per
+   in an empty straight hall, ``mjwalk.plan.walktimes``, :data:`PLANNED_REPEATS` per
    captured walk; the greedy walker's paths wander, the planner's do not, and its energy cost
    holds the walker's pace: the planned line is what a cycle walks). The captured IQR
    is itself uncertain (91 walks): its bootstrap interval is printed, and the IQR expected of
@@ -249,7 +249,7 @@ def straight_walks(data: Path, reps: int = 10, seed: int = 0) -> None:
     from mjwalk.gait.segment import segment_takes
     from mjwalk.gait.straight import captured_straight_walks, model_straight_walks
     from mjwalk.gait.walker import Walker
-    from mjwalk.plan.straight import planned_straight_walks
+    from mjwalk.plan.walktimes import planned_straight_walks
 
     model = default_model(progress=False)
     print(

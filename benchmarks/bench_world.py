@@ -9,7 +9,8 @@ import statistics
 import time
 from pathlib import Path
 
-from mjwalk.plan.grid import occupancy_grid, plan_grid
+from mjwalk.plan.grid import plan_grid
+from mjwalk.plan.occupancy import occupancy_grid
 from mjwalk.world import load_model, workplace_from_model
 
 ROOT = Path(__file__).resolve().parents[1]

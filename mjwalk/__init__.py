@@ -60,7 +60,7 @@ _LAZY: dict[str, str] = {
     "plan_grid": "mjwalk.plan.grid",
     "plan_walk": "mjwalk.plan.walks",
     "plan_walks": "mjwalk.plan.walks",
-    "planned_straight_walks": "mjwalk.plan.straight",
+    "planned_straight_walks": "mjwalk.plan.walktimes",
     # humanoid and legs
     "LegMotion": "mjwalk.body.legs",
     "attach_humanoid": "mjwalk.body.humanoid",

@@ -93,7 +93,8 @@ def _cmd_plan(args: argparse.Namespace) -> int:
     if args.save:
         check_output_file(args.save.with_suffix(".npz"), "--save")
     walker = _walker_from_args(args)
-    from mjwalk.plan.grid import check_endpoint, plan_grid
+    from mjwalk.plan.grid import plan_grid
+    from mjwalk.plan.occupancy import check_endpoint
     from mjwalk.shipped import scene_file
     from mjwalk.world import load_workplace
 
@@ -169,7 +170,7 @@ def _cmd_train(args: argparse.Namespace) -> int:
 
 def _cmd_validate(args: argparse.Namespace) -> int:
     from mjwalk.gait.fidelity import format_fidelity_table, validate_main
-    from mjwalk.plan.straight import planned_straight_walks
+    from mjwalk.plan.walktimes import planned_straight_walks
 
     if args.json:
         check_output_file(args.json, "--json")

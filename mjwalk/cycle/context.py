@@ -19,8 +19,9 @@ from mjwalk.cycle.standoff import ArmClearance
 from mjwalk.cycle.types import CycleSpec
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
-from mjwalk.plan.grid import OccupancyGrid, occupancy_grid, plan_grid
+from mjwalk.plan.grid import plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.occupancy import OccupancyGrid, occupancy_grid
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace, shared_workplace

@@ -382,6 +382,7 @@ def _check_routes(
     gap narrower than the body between two sites would make every run fail."""
     from mjwalk.errors import PlanningError
     from mjwalk.plan import grid as _grid
+    from mjwalk.plan import occupancy as _occupancy
 
     occupancy = None
     stand = start
@@ -395,7 +396,7 @@ def _check_routes(
             continue
         seen.add(pair)
         if occupancy is None:
-            occupancy = _grid.shared_grid(workplace, radius=radius)
+            occupancy = _occupancy.shared_grid(workplace, radius=radius)
         try:
             _grid.plan_grid(workplace, pair[0], pair[1], radius=radius, grid=occupancy)
         except PlanningError as exc:

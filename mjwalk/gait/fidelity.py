@@ -133,7 +133,7 @@ def fidelity_from_steps(
 ) -> dict:
     """Fidelity report against already segmented captured ``steps`` (see module docstring).
 
-    ``planned_walks``: :func:`mjwalk.plan.straight.planned_straight_walks` (the planner sits
+    ``planned_walks``: :func:`mjwalk.plan.walktimes.planned_straight_walks` (the planner sits
     above this module; the command line passes it), to time every captured straight walk as
     ``planned`` planned walks too (``straight_walks["planned"]``); None: not."""
     if len(steps) == 0:

@@ -12,7 +12,7 @@ from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import dijkstra
 
 from mjwalk._jit import njit
-from mjwalk.plan.grid import OccupancyGrid
+from mjwalk.plan.occupancy import OccupancyGrid
 
 
 @functools.lru_cache(maxsize=8)

@@ -56,9 +56,9 @@ from mjwalk.plan import search
 from mjwalk.plan.assemble import assemble_walk
 from mjwalk.plan.decoder import StepDecoder, decoder_of
 from mjwalk.plan.detour import walk_guide
-from mjwalk.plan.grid import MOVES_16, check_endpoint, shared_grid
 from mjwalk.plan.guide import guide_is_clear
 from mjwalk.plan.heuristic import GoalDistance, goal_distance
+from mjwalk.plan.occupancy import MOVES_16, check_endpoint, shared_grid
 from mjwalk.plan.options import (
     FAR_FROM,
     LONG_WALK,
@@ -128,7 +128,7 @@ class HybridPlanner:
     """Reusable planning context for one workplace, model and goal.
 
     Building it costs the Dijkstra distance field (and, once per workplace, cell size and
-    radius, the 16-connected occupancy grid: :func:`~mjwalk.plan.grid.shared_grid`);
+    radius, the 16-connected occupancy grid: :func:`~mjwalk.plan.occupancy.shared_grid`);
     :meth:`plan` then only samples and searches. :func:`plan_walk` and :func:`plan_walks` wrap
     it.
 

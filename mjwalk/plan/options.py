@@ -18,7 +18,7 @@ from mjwalk.anthropometry import ROM_DEG, SHIN_RADIUS, leg_geometry
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.errors import InputError
 from mjwalk.plan import slots
-from mjwalk.plan.grid import CELL_SIZE
+from mjwalk.plan.occupancy import CELL_SIZE
 
 #: Extra clearance (metres) demanded of the sampled trajectory points: it covers the bilinear
 #: field's error (< 4 mm) and the curve between two of the 16 checked samples of a step, so the

@@ -18,8 +18,8 @@ import numpy as np
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.gait.transition import POOL_SHARPNESS
 from mjwalk.plan import slots
-from mjwalk.plan.grid import OccupancyGrid
 from mjwalk.plan.heuristic import GoalDistance
+from mjwalk.plan.occupancy import OccupancyGrid
 from mjwalk.plan.options import (
     FAR_FROM,
     FOOT_CLEARANCE,

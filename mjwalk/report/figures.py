@@ -335,7 +335,8 @@ def _ergonomics(results: Sequence[CycleResult]) -> dict | None:
 def _baseline_note(spec) -> dict:
     """What ``vs A*`` compares with: the grid A*'s cell and radius, the walks' ends, and the
     constants of its tolerance (:func:`~mjwalk.plan.grid.shortfall_bound`)."""
-    from mjwalk.plan.grid import CELL_SIZE, END_EXCESS, OCTILE_RATIO
+    from mjwalk.plan.grid import END_EXCESS, OCTILE_RATIO
+    from mjwalk.plan.occupancy import CELL_SIZE
 
     return {
         "planner": "grid A* (8-connected)",

@@ -77,7 +77,7 @@ def bilinear_at(values, x0, y0, res, x, y):
     """:meth:`ClearanceField.__call__` at one point (``x``, ``y``, metres) of a field's
     ``values`` (origin ``x0``, ``y0``, spacing ``res``), compiled for the planners' loops: the
     same arithmetic in the same order. (numba caches a caller by its own source: edit a
-    comment in the callers, ``plan/grid.py`` and ``plan/stepcheck.py``, if this changes.)"""
+    comment in the callers, ``plan/occupancy.py`` and ``plan/stepcheck.py``, if this changes.)"""
     ny, nx = values.shape
     fx = min(max((x - x0) / res, 0.0), nx - 1.000001)
     fy = min(max((y - y0) / res, 0.0), ny - 1.000001)

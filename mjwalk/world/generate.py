@@ -25,7 +25,7 @@ KINDS = ("box", "cylinder", "capsule")
 #: Obstacle footprint size range: radius of the bounding circle, metres.
 SIZE_RANGE = (0.1, 0.3)
 #: Clear space between the bounding circles of two obstacles (m): twice the planners' default
-#: body radius (0.25, mjwalk.plan.grid.BODY_RADIUS) plus 0.2 m, so that every gap is passable
+#: body radius (0.25, mjwalk.conventions.BODY_RADIUS) plus 0.2 m, so that every gap is passable
 #: (the bounding circles are conservative: a box's sides lie inside its circle).
 GAP = 0.7
 #: Clear band along the floor's edges (m): more than the body radius.

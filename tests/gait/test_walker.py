@@ -216,7 +216,7 @@ def test_planned_straight_walks_take_as_long_as_the_captured_ones(bandai_styles)
     117/121/113 % (the capture's own bootstrap 90 % interval is 76-135 % of its IQR)."""
     from mjwalk.gait.default import default_model
     from mjwalk.gait.straight import captured_straight_walks
-    from mjwalk.plan.straight import planned_straight_walks
+    from mjwalk.plan.walktimes import planned_straight_walks
 
     model = default_model(progress=False)
     rng = np.random.default_rng(0)

@@ -9,14 +9,8 @@ import numpy as np
 import pytest
 
 from mjwalk import PlanningError
-from mjwalk.plan.grid import (
-    CELL_SIZE,
-    END_EXCESS,
-    OCTILE_RATIO,
-    occupancy_grid,
-    plan_grid,
-    shortfall_bound,
-)
+from mjwalk.plan.grid import END_EXCESS, OCTILE_RATIO, plan_grid, shortfall_bound
+from mjwalk.plan.occupancy import CELL_SIZE, occupancy_grid
 from mjwalk.world import load_workplace
 from mjwalk.world.probe import ClearanceProbe, path_clearance
 

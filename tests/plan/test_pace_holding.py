@@ -75,25 +75,6 @@ def test_planned_straight_walks_hold_the_walkers_pace(hall):
     assert 0.02 <= means <= 0.07, (means, WALK_PACE_SD)
 
 
-def test_planned_straight_walks_take_the_walkers_time():
-    """20 planned 6 m walks (10 from rest, 10 in motion) of a 1.3 m/s walker: in motion about
-    6 / 1.3 = 4.6 s (median within 5 %); from rest longer (gait initiation); bad distances are
-    refused before any planning."""
-    from mjwalk.errors import MjwalkError
-    from mjwalk.plan.straight import planned_straight_walks
-
-    model = default_model(progress=False).for_walker(Walker(speed=1.3, cadence=112.0))
-    rng = np.random.default_rng(0)
-    times = np.array(planned_straight_walks(model, [6.0] * 20, [False] * 10 + [True] * 10, rng))
-    assert np.median(times[10:]) == pytest.approx(6.0 / 1.3, rel=0.05)
-    assert np.median(times[:10]) > np.median(times[10:])
-    for bad in ([-1.0], [np.nan], [np.inf]):
-        with pytest.raises(MjwalkError, match="positive and finite"):
-            planned_straight_walks(model, bad, [False], rng)
-    with pytest.raises(MjwalkError, match="in_motion"):
-        planned_straight_walks(model, [1.0, 2.0], [False], rng)
-
-
 def test_validate_reports_planned_straight_walks(tmp_path):
     """The fidelity report (``mjwalk validate``) times the captured straight walks as the
     planner walks them too, beside the greedy walks: per walk ``planned`` plans, their median
@@ -108,7 +89,7 @@ def test_validate_reports_planned_straight_walks(tmp_path):
 
     steps, _ = segment_takes(generate_corpus(1, seed=3))
     model = default_model(progress=False)
-    from mjwalk.plan.straight import planned_straight_walks
+    from mjwalk.plan.walktimes import planned_straight_walks
 
     rng = np.random.default_rng(0)
     rep = fidelity_from_steps(

@@ -8,8 +8,8 @@ import pytest
 from mjwalk import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.plan.decoder import StepDecoder
-from mjwalk.plan.grid import MOVES_16, check_endpoint, occupancy_grid, shared_grid
 from mjwalk.plan.heuristic import goal_distance, grid_excess
+from mjwalk.plan.occupancy import MOVES_16, check_endpoint, occupancy_grid, shared_grid
 from mjwalk.world import load_workplace
 
 SCENE_NAMES = ["assembly_station", "corridor", "open_floor"]
@@ -58,11 +58,11 @@ def test_walk_field_never_exceeds_walk_clearance(workplace):
 
 def test_quick_endpoint_accept_never_passes_a_bad_point(workplace):
     """check_endpoint accepts through the field only points the exact test accepts too."""
-    from mjwalk.plan import grid as grid_mod
+    from mjwalk.plan import occupancy as occupancy_mod
 
     for xy in _points(workplace, 400, 2):
         for radius in (0.05, 0.25):
-            if grid_mod._clearly_free(workplace, xy, radius):
+            if occupancy_mod._clearly_free(workplace, xy, radius):
                 dist = min(
                     (float(f.signed_distance(xy[None])[0]) for f in workplace.obstacles),
                     default=np.inf,

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from mjwalk import SceneError
-from mjwalk.plan.grid import MOVES_16, occupancy_grid, occupancy_grid_sampled, shared_grid
+from mjwalk.plan.occupancy import MOVES_16, occupancy_grid, occupancy_grid_sampled, shared_grid
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.world import load_workplace
 from mjwalk.world.clearance import build_clearance_bruteforce
