@@ -202,7 +202,7 @@ def test_a_reach_is_timed_by_the_hands_true_path(monkeypatch):
     straight line)."""
     from mjwalk.arms.kinematics import arm_segment_lengths
     from mjwalk.body.humanoid import PALM_SHARE
-    from mjwalk.cycle import simulate as sim
+    from mjwalk.cycle.actions import reach_for as sim  # where a reach's time is looked up
 
     spec = load_cycle_spec(SCENES / "assembly_station.toml")
     ctx = prepare(spec)
