@@ -171,7 +171,7 @@ def zone_bound(draws: int = 1500, seed: int = 0) -> None:
         spec = dataclasses.replace(base, radius=radius)
         ctx = prepare(spec)
         step = ctx.step_model.pace().step_length
-        prev, here = start_zone(ctx, spec.stature, step), spec.start
+        prev, here = start_zone(ctx.spec, ctx.workplace, spec.stature, step), spec.start
         for i, task in enumerate(spec.tasks):
             if task.kind not in ("walk", "carry"):
                 continue

@@ -14,7 +14,8 @@ from typing import TYPE_CHECKING
 import mujoco
 
 from mjwalk.body.humanoid import JointMap, attach_humanoid
-from mjwalk.cycle.standing import StandZone, work_zone
+from mjwalk.cycle.memo import Memo
+from mjwalk.cycle.standing import StandZone, StandZones
 from mjwalk.cycle.standoff import ArmClearance
 from mjwalk.cycle.types import CycleSpec
 from mjwalk.errors import PlanningError
@@ -40,9 +41,99 @@ GOAL_TOLERANCE = 0.1
 KEPT_PER_CONTEXT = 64
 
 
-@dataclass
+class Planners:
+    """The hybrid-A* planners of a cycle's walks, kept by the key (goal site, stand zone), at
+    most :data:`KEPT_PER_CONTEXT` of them (:meth:`get`).
+
+    Args:
+        workplace: the scene.
+        step_model: the step model every planner walks with.
+        radius: the cycle's body radius (m).
+    """
+
+    def __init__(self, workplace: Workplace, step_model: StepModel, radius: float):
+        self._workplace, self._step_model, self._radius = workplace, step_model, radius
+        self._memo: Memo[tuple[str, StandZone | None], HybridPlanner] = Memo(
+            self._make, KEPT_PER_CONTEXT
+        )
+
+    def get(self, goal: str, zone: StandZone | None = None) -> HybridPlanner:
+        """The planner of walks to site ``goal`` ending in ``zone`` (None: within
+        :data:`GOAL_TOLERANCE` of the site)."""
+        return self._memo.get((goal, zone))
+
+    def _make(self, key: tuple[str, StandZone | None]) -> HybridPlanner:
+        goal, zone = key
+        options = PlannerOptions(
+            radius=self._radius,
+            goal_tolerance=GOAL_TOLERANCE if zone is None else zone.radius,
+            goal_within=() if zone is None else zone.discs,
+            # one distance field per site whatever the operator's zone
+            field_tolerance=GOAL_TOLERANCE,
+        )
+        return HybridPlanner(self._workplace, goal, self._step_model, options)
+
+
+class GridRoutes:
+    """The grid-A* routes (:func:`~mjwalk.plan.grid.plan_grid`) of a scene at the cycle's body
+    radius: the occupancy grid (built on first use) and the route lengths between sites, kept
+    by the key (site, site).
+
+    Args:
+        workplace: the scene.
+        radius: the cycle's body radius (m).
+    """
+
+    def __init__(self, workplace: Workplace, radius: float):
+        self._workplace, self._radius = workplace, radius
+        self._grid: Memo[None, OccupancyGrid] = Memo(
+            lambda _: occupancy_grid(workplace, radius=radius)
+        )
+        self._lengths: Memo[tuple[str, str], float] = Memo(
+            lambda ab: plan_grid(workplace, ab[0], ab[1], radius=radius, grid=self.grid()).length
+        )
+
+    def grid(self) -> OccupancyGrid:
+        """The occupancy grid of the scene at the body radius (built once)."""
+        return self._grid.get(None)
+
+    def length(self, a: str, b: str) -> float:
+        """Metres of the grid-A* route from site ``a`` to site ``b``."""
+        return self._lengths.get((a, b))
+
+    def route(self, start, end) -> WalkPath | None:
+        """The grid-A* route between two points (x, y), metres: a walk's own ends (not kept).
+        None when the grid planner finds none (an end nearer an obstacle than the radius, or
+        no grid route between them)."""
+        try:
+            return plan_grid(self._workplace, start, end, radius=self._radius, grid=self.grid())
+        except PlanningError:
+            return None
+
+
+@dataclass(frozen=True)
 class CycleContext:
-    """Everything a cycle needs that does not change between runs (built once per process)."""
+    """Everything a cycle needs that does not change between runs (built once per process):
+    the cycle, its scene and models, the humanoid (a frozen record), and the caches its walks
+    fill (:class:`Planners`, :class:`~mjwalk.cycle.standing.StandZones`, :class:`GridRoutes`:
+    held, never replaced, shared by the operators' contexts of :func:`operator_context`).
+
+    Args:
+        spec: the cycle.
+        workplace: its scene.
+        step_model: the step model of the cycle's humanoid.
+        reach_model: the left arm's reach model.
+        model: the scene with the humanoid attached.
+        jointmap: the humanoid's joint map.
+        clearance: the reach's clearance check of ``model``
+            (:class:`~mjwalk.cycle.standoff.ArmClearance`).
+        planners: the walks' planners.
+        zones: the walks' stand zones.
+        routes: the grid-A* routes.
+        turn_rate: the operator's turning speed on the spot over the reference adult's.
+        reach_model_right: the right arm's reach model (``[models] reach_right``), None:
+            ``reach_model`` mirrored.
+    """
 
     spec: CycleSpec
     workplace: Workplace
@@ -50,20 +141,18 @@ class CycleContext:
     reach_model: object
     model: mujoco.MjModel
     jointmap: JointMap
-    planners: dict = field(default_factory=dict)
-    zones: dict = field(default_factory=dict)
-    baselines: dict = field(default_factory=dict)
-    grid: OccupancyGrid | None = None  # the grid-A* occupancy grid, built on first use
-    clearance: ArmClearance | None = None  # the reach's clearance check, built on first use
-    #: the operator's turning speed on the spot over the reference adult's (operator_context)
+    clearance: ArmClearance
+    planners: Planners
+    zones: StandZones
+    routes: GridRoutes
     turn_rate: float = 1.0
-    #: the right arm's reach model (``[models] reach_right``), None: ``reach_model`` mirrored
     reach_model_right: object | None = None
-    # the scratch MjData and the model it was made for (not copied by dataclasses.replace:
-    # an operator's context has its own humanoid model)
-    _data: tuple[mujoco.MjModel, mujoco.MjData] | None = field(
-        default=None, init=False, repr=False, compare=False
-    )
+    # the scratch MjData of ``model`` (made with the context, never replaced; not copied by
+    # dataclasses.replace: an operator's context has its own humanoid model)
+    _data: mujoco.MjData = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_data", mujoco.MjData(self.model))
 
     def reach_model_for(self, side: str):
         """The reach model of the ``side`` arm ("left" or "right"): both are left-arm-frame
@@ -74,70 +163,32 @@ class CycleContext:
         return self.reach_model
 
     def scratch(self) -> mujoco.MjData:
-        """One MjData of ``model`` for this context's forward kinematics (building one takes
-        about a millisecond; every user sets the whole qpos before each use)."""
-        if self._data is None or self._data[0] is not self.model:
-            self._data = (self.model, mujoco.MjData(self.model))
-        return self._data[1]
+        """The MjData of ``model`` for this context's forward kinematics (every user sets the
+        whole qpos before each use)."""
+        return self._data
 
     def planner(self, goal: str, zone: StandZone | None = None) -> HybridPlanner:
         """The planner of walks to ``goal``, ending in ``zone`` (:mod:`mjwalk.cycle.standing`;
         None: within :data:`GOAL_TOLERANCE` of the site). One per goal and zone."""
-        key = (goal, zone)
-        if key not in self.planners:
-            _make_room(self.planners)
-            options = PlannerOptions(
-                radius=self.spec.radius,
-                goal_tolerance=GOAL_TOLERANCE if zone is None else zone.radius,
-                goal_within=() if zone is None else zone.discs,
-                # one distance field per site whatever the operator's zone
-                field_tolerance=GOAL_TOLERANCE,
-            )
-            self.planners[key] = HybridPlanner(self.workplace, goal, self.step_model, options)
-        return self.planners[key]
+        return self.planners.get(goal, zone)
 
     def zone(self, i: int, stature: float, step_length: float) -> StandZone:
         """The stand zone of the walk that is task ``i``
         (:func:`~mjwalk.cycle.standing.work_zone`)."""
-        # made for the key's own (rounded) stature and step length, not the first asker's
-        # exact figures: a run's walks must not depend on the runs simulated before it
-        key = (i, round(stature, 3), round(step_length, 3))
-        if key not in self.zones:
-            _make_room(self.zones)
-            self.zones[key] = work_zone(self, i, key[1], key[2])
-        return self.zones[key]
+        return self.zones.get(i, stature, step_length)
 
     def baseline(self, a: str, b: str) -> float:
         """Metres of the grid-A* route from site ``a`` to site ``b`` (kept per pair)."""
-        if (a, b) not in self.baselines:
-            self.baselines[(a, b)] = plan_grid(
-                self.workplace, a, b, radius=self.spec.radius, grid=self.occupancy()
-            ).length
-        return self.baselines[(a, b)]
+        return self.routes.length(a, b)
 
     def baseline_route(self, start, end) -> WalkPath | None:
         """The grid-A* route (:func:`~mjwalk.plan.grid.plan_grid`, the cycle's body radius)
-        between two points (x, y), metres: a walk's own ends. None when the grid planner
-        finds none (an end nearer an obstacle than the radius, or no grid route between
-        them). Not kept: every walk has ends of its own."""
-        try:
-            return plan_grid(
-                self.workplace, start, end, radius=self.spec.radius, grid=self.occupancy()
-            )
-        except PlanningError:
-            return None
+        between two points (x, y), metres (:meth:`GridRoutes.route`)."""
+        return self.routes.route(start, end)
 
     def occupancy(self) -> OccupancyGrid:
         """The grid A*'s occupancy grid of the scene at the cycle's body radius (built once)."""
-        if self.grid is None:
-            self.grid = occupancy_grid(self.workplace, radius=self.spec.radius)
-        return self.grid
-
-
-def _make_room(kept: dict, limit: int = KEPT_PER_CONTEXT) -> None:
-    """Drop the oldest entries of ``kept`` until one more fits ``limit`` entries."""
-    while len(kept) >= limit:
-        kept.pop(next(iter(kept)))
+        return self.routes.grid()
 
 
 def _load_step_model(spec: CycleSpec):
@@ -186,7 +237,8 @@ def context_of(spec: CycleSpec | str | Path) -> CycleContext:
     ctx = _SPEC_CONTEXTS.get(key)
     if ctx is None:
         ctx = prepare(spec)
-        _make_room(_SPEC_CONTEXTS, _SPEC_CONTEXTS_KEPT)
+        while len(_SPEC_CONTEXTS) >= _SPEC_CONTEXTS_KEPT:  # the oldest goes first
+            _SPEC_CONTEXTS.pop(next(iter(_SPEC_CONTEXTS)))
         _SPEC_CONTEXTS[key] = ctx
     return ctx
 
@@ -233,14 +285,19 @@ def prepare(spec: CycleSpec) -> CycleContext:
     """Load the scene, the models and the humanoid of ``spec`` (reused by every run)."""
     workplace = shared_workplace(spec.scene)
     model, jm = attach_humanoid(spec.scene, spec.stature)
+    step_model = _load_step_model(spec)
     return CycleContext(
         spec=spec,
         workplace=workplace,
-        step_model=_load_step_model(spec),
+        step_model=step_model,
         reach_model=_load_reach_model(spec.reach_model),
         reach_model_right=(
             None if spec.reach_model_right is None else _load_reach_model(spec.reach_model_right)
         ),
         model=model,
         jointmap=jm,
+        clearance=ArmClearance(model, jm),
+        planners=Planners(workplace, step_model, spec.radius),
+        zones=StandZones(spec, workplace, KEPT_PER_CONTEXT),
+        routes=GridRoutes(workplace, spec.radius),
     )

@@ -17,7 +17,6 @@ from mjwalk.cycle import reaching
 from mjwalk.cycle.crouch import crouch_frames, crouch_pose, trunk_bend, trunk_room
 from mjwalk.cycle.handling import body_motion_duration
 from mjwalk.cycle.reaching import LEAN_SPARE, default_timing, plumb_arms, time_factor
-from mjwalk.cycle.standoff import arm_clearance
 from mjwalk.cycle.types import TASK_KINDS, grip_sites
 
 if TYPE_CHECKING:
@@ -222,7 +221,7 @@ def _held_move(
     direct = _holding_frames(ctx, qa, qb, n)
     if n < 4:
         return direct
-    check = arm_clearance(ctx)
+    check = ctx.clearance
     touch = check.distance(direct)
     if touch >= 0.0:
         return direct

@@ -15,7 +15,7 @@ from mjwalk.conventions import Side
 from mjwalk.cycle import reaching
 from mjwalk.cycle.holding import two_hand_frames
 from mjwalk.cycle.poses import carry_pose, standing_pose, turn_frames
-from mjwalk.cycle.standoff import REACH_TOLERANCE, STEP_BACK, arm_clearance, step_back_offsets
+from mjwalk.cycle.standoff import REACH_TOLERANCE, STEP_BACK, step_back_offsets
 from mjwalk.cycle.targets import approach_offset, approach_rise, reach_target
 from mjwalk.cycle.types import TASK_KINDS
 
@@ -117,7 +117,9 @@ def reach_task(
     rise = (
         0.0
         if TASK_KINDS[task.kind].approach == "surface"
-        else approach_rise(ctx, reach_target(task.kind, site_pos, hx, hy))
+        else approach_rise(
+            ctx.model, ctx.scratch(), ctx.spec.stature, reach_target(task.kind, site_pos, hx, hy)
+        )
     )
     search = _Search(
         ctx=ctx,
@@ -210,7 +212,7 @@ def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> Work
         rf, err, res = reaching.reach_frames(
             ctx, q0, target, approach, hold, fps, arm, timing=timing, lean=lean, drop=drop
         )
-    dist = arm_clearance(ctx).distance(np.vstack([turn, rf]))
+    dist = ctx.clearance.distance(np.vstack([turn, rf]))
     return WorkingReach(xs, ys, face, float(s), turn, dt, rf, err, res, width, dist)
 
 

@@ -31,11 +31,13 @@ from numpy.typing import ArrayLike
 
 from mjwalk.anthropometry import SEG, hand_reach
 from mjwalk.conventions import DEFAULT_STATURE
+from mjwalk.cycle.memo import Memo
 from mjwalk.cycle.targets import reach_target
 from mjwalk.cycle.types import TASK_KINDS, grip_sites
 
 if TYPE_CHECKING:
-    from mjwalk.cycle.context import CycleContext
+    from mjwalk.cycle.types import CycleSpec
+    from mjwalk.world.workplace import Workplace
 
 #: The zone's radius in preferred step lengths (half a step: see the module docstring).
 ZONE_STEPS = 0.5
@@ -143,42 +145,85 @@ def stand_zone(
     )
 
 
-def work_zone(ctx: CycleContext, i: int, stature: float, step_length: float) -> StandZone:
-    """Where the walk that is task ``i`` may end (:func:`mjwalk.cycle.standing.stand_zone`):
-    near its stand site, with every reach target of the work done there (the tasks after it
-    up to the next walk) within the arm's reach. A two-handed task's targets are its grip
-    sites ``<site>_left`` and ``<site>_right``."""
-    goal = ctx.spec.tasks[i].site
+def work_zone(
+    spec: CycleSpec, workplace: Workplace, i: int, stature: float, step_length: float
+) -> StandZone:
+    """Where the walk that is task ``i`` of ``spec`` may end (:func:`stand_zone`): near its
+    stand site, with every reach target of the work done there (the tasks after it up to the
+    next walk) within the arm's reach. A two-handed task's targets are its grip sites
+    ``<site>_left`` and ``<site>_right``.
+
+    Args:
+        spec: the cycle.
+        workplace: its scene.
+        i: the index of the walk in ``spec.tasks``.
+        stature: the operator's stature (m).
+        step_length: the operator's step length (m).
+
+    Returns:
+        The stand zone (world frame, metres).
+    """
+    goal = spec.tasks[i].site
     assert goal is not None  # the spec loader requires a site for walks
-    return _site_zone(ctx, goal, i + 1, stature, step_length)
+    return _site_zone(spec, workplace, goal, i + 1, stature, step_length)
 
 
-def start_zone(ctx: CycleContext, stature: float, step_length: float) -> StandZone:
+def start_zone(
+    spec: CycleSpec, workplace: Workplace, stature: float, step_length: float
+) -> StandZone:
     """Where the operator stands when the cycle starts: the stand zone of the cycle's start
-    site for the work done there before the first walk (:func:`work_zone`'s rule). A cycle is
-    one of many in a shift: its operator starts where the work at the start site left them,
-    not on the site's mark."""
-    return _site_zone(ctx, ctx.spec.start, 0, stature, step_length)
+    site for the work done there before the first walk (:func:`work_zone`'s rule; the same
+    arguments but the walk's index). A cycle is one of many in a shift: its operator starts
+    where the work at the start site left them, not on the site's mark."""
+    return _site_zone(spec, workplace, spec.start, 0, stature, step_length)
 
 
 def _site_zone(
-    ctx: CycleContext, site: str, first: int, stature: float, step_length: float
+    spec: CycleSpec,
+    workplace: Workplace,
+    site: str,
+    first: int,
+    stature: float,
+    step_length: float,
 ) -> StandZone:
     """The stand zone of ``site`` for the reaches of tasks ``first, first + 1, ...`` up to
     the next walk or carry."""
-    stand = ctx.workplace.station(site).pos
+    stand = workplace.station(site).pos
     targets, squarely, hands = [], [], []
-    for task in ctx.spec.tasks[first:]:
+    for task in spec.tasks[first:]:
         kind = TASK_KINDS[task.kind]
         if kind.motion == "walk":
             break
         if kind.motion != "reach" or task.site is None:
             continue
         for _, name in grip_sites(task.site, task.hand):
-            pos = ctx.workplace.station(name).pos
+            pos = workplace.station(name).pos
             targets.append(reach_target(task.kind, pos, float(stand[0]), float(stand[1])))
             # the cycle faces fastenings and two-handed work squarely (simulate_cycle)
             squarely.append(kind.approach == "surface" or task.hand == "both")
             hands.append(None if squarely[-1] else task.hand)
-    facing = ctx.workplace.station(site).yaw
+    facing = workplace.station(site).yaw
     return stand_zone(stand[:2], targets, step_length, stature, facing, squarely, hands)
+
+
+class StandZones:
+    """The stand zones of a cycle's walks (:func:`work_zone`), kept by the key (walk index,
+    stature rounded to the millimetre, step length rounded to the millimetre), at most
+    ``limit`` of them. A zone is made for its key's own rounded figures, not the first
+    asker's exact ones: a run's walks must not depend on the runs simulated before it.
+
+    Args:
+        spec: the cycle (its tasks and sites; the stature is the key's).
+        workplace: its scene.
+        limit: how many zones are kept (the oldest go first).
+    """
+
+    def __init__(self, spec: CycleSpec, workplace: Workplace, limit: int):
+        self._memo: Memo[tuple[int, float, float], StandZone] = Memo(
+            lambda key: work_zone(spec, workplace, *key), limit
+        )
+
+    def get(self, i: int, stature: float, step_length: float) -> StandZone:
+        """The stand zone of walk ``i`` for an operator of ``stature`` and ``step_length``
+        (metres)."""
+        return self._memo.get((i, round(stature, 3), round(step_length, 3)))

@@ -20,16 +20,12 @@ World frame: metres, z up.
 from __future__ import annotations
 
 import copy
-from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
 
 from mjwalk.body.humanoid import HUMAN_GROUP, JointMap
 from mjwalk.timeline.collisions import candidate_frames, floor_geoms, repeats
-
-if TYPE_CHECKING:
-    from mjwalk.cycle.context import CycleContext
 
 #: Clearance (m) the reaching arm (upper arm to fingertips) keeps from every scene geom. The
 #: contacts it prevents were up to 6.3 mm deep (benchmarks/bench_contacts.py, 300 cycles);
@@ -119,10 +115,3 @@ def step_back_offsets() -> np.ndarray:
     :data:`MAX_STEP_BACK`."""
     n = round(MAX_STEP_BACK / STEP_BACK)
     return np.arange(n + 1) * STEP_BACK
-
-
-def arm_clearance(ctx: CycleContext) -> ArmClearance:
-    """The context's :class:`ArmClearance` of its humanoid and scene (built on first use)."""
-    if ctx.clearance is None:
-        ctx.clearance = ArmClearance(ctx.model, ctx.jointmap)
-    return ctx.clearance

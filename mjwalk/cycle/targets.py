@@ -5,15 +5,11 @@ shared by the stand zones of the walks (:mod:`mjwalk.cycle.walking`) and the rea
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
 
 from mjwalk.cycle.types import TASK_KINDS
-
-if TYPE_CHECKING:
-    from mjwalk.cycle.context import CycleContext
 
 #: The hand stops this far above a pick/place site (m) and this far in front of a fasten site.
 PICK_CLEARANCE = 0.06
@@ -56,8 +52,12 @@ def approach_offset(
     return np.r_[APPROACH_BACK * d, up]
 
 
-def approach_rise(ctx: CycleContext, target: np.ndarray) -> float:
-    """How far (m) the pre-grasp point may rise above ``target`` (world): :data:`APPROACH_UP`
+def approach_rise(
+    model: mujoco.MjModel, data: mujoco.MjData, stature: float, target: np.ndarray
+) -> float:
+    """How far (m) the pre-grasp point may rise above ``target`` (world) for an operator of
+    ``stature`` metres in the scene ``model`` (``data`` a scratch MjData of it, as
+    :func:`headroom`): :data:`APPROACH_UP`
     in the open; under a shelf, only so far that the hand at its pre-grasp point still has its
     own length free above it (the hand may point anywhere from level to straight down along
     its approach, and the wrist's range turns it further where the arm comes in steeply: a
@@ -65,18 +65,18 @@ def approach_rise(ctx: CycleContext, target: np.ndarray) -> float:
     20-30 mm deep), none when the compartment is lower than that."""
     from mjwalk.arms.kinematics import arm_segment_lengths
 
-    hand = float(arm_segment_lengths(ctx.spec.stature)[2])
-    return float(np.clip(headroom(ctx, target) - hand, 0.0, APPROACH_UP))
+    hand = float(arm_segment_lengths(stature)[2])
+    return float(np.clip(headroom(model, data, target) - hand, 0.0, APPROACH_UP))
 
 
-def headroom(ctx: CycleContext, point: np.ndarray) -> float:
-    """Free height (m) straight up from ``point`` (world) to the first scene geom that
-    collides (geoms with neither contype nor conaffinity, and the humanoid's, let the ray
-    through); ``inf`` when nothing is above."""
+def headroom(model: mujoco.MjModel, data: mujoco.MjData, point: np.ndarray) -> float:
+    """Free height (m) straight up from ``point`` (world) to the first scene geom of ``model``
+    that collides (geoms with neither contype nor conaffinity, and the humanoid's, let the ray
+    through); ``inf`` when nothing is above. ``data`` is a scratch MjData of ``model``: its
+    kinematics are computed here (the humanoid's pose does not count)."""
     from mjwalk.body.humanoid import HUMAN_GROUP
 
-    m = ctx.model
-    data = ctx.scratch()
+    m = model
     mujoco.mj_kinematics(m, data)  # the scene's geoms in place (the humanoid's do not count)
     groups = np.ones(6, dtype=np.uint8)
     groups[HUMAN_GROUP] = 0

@@ -61,7 +61,7 @@ def cycle_start(ctx: CycleContext, rng: np.random.Generator, walker=None) -> tup
     drawn with ``rng`` (``simulate_cycle``'s standing-spot stream)."""
     stature = walker.stature if walker is not None else ctx.spec.stature
     step = walker.step_length if walker is not None else ctx.step_model.pace().step_length
-    return standing_spot(ctx, start_zone(ctx, stature, step), rng)
+    return standing_spot(ctx, start_zone(ctx.spec, ctx.workplace, stature, step), rng)
 
 
 #: Where an operator means to stand in a stand zone is a spot drawn uniformly over its walkable

@@ -192,7 +192,7 @@ def test_cycle_starts_anywhere_in_the_start_zone_and_every_start_sets_off(scenes
 
     ctx = prepare(load_cycle_spec(scenes_dir / "assembly_station.toml"))
     step = ctx.step_model.pace().step_length
-    zone = start_zone(ctx, ctx.spec.stature, step)
+    zone = start_zone(ctx.spec, ctx.workplace, ctx.spec.stature, step)
     field = ctx.workplace.walk_field()
     starts = []
     for run in range(60):

@@ -236,9 +236,9 @@ def test_under_a_shelf_the_hand_comes_in_low_enough_to_clear_it(scenes_dir, tmp_
     site = ctx.workplace.station("rack1_screw1").pos
     target = targets.reach_target("pick", site, st.pos[0], st.pos[1])
     free = 1.28 - target[2]  # to the upper shelf's underside
-    assert targets.headroom(ctx, target) == pytest.approx(free, abs=1e-6)
+    assert targets.headroom(ctx.model, ctx.scratch(), target) == pytest.approx(free, abs=1e-6)
     assert free < arm_segment_lengths(ctx.spec.stature)[2]
-    assert targets.approach_rise(ctx, target) == 0.0
+    assert targets.approach_rise(ctx.model, ctx.scratch(), ctx.spec.stature, target) == 0.0
     r = _reach(ctx, "rack1_screw1", st.pos[:2], st.yaw)
     assert r.distance == np.inf
     assert r.error < 0.01
@@ -246,14 +246,20 @@ def test_under_a_shelf_the_hand_comes_in_low_enough_to_clear_it(scenes_dir, tmp_
     root_z = ctx.jointmap.root + 2
     assert np.allclose(r.frames[:, root_z], r.turn[-1, root_z])  # standing: no crouch needed
     with pytest.MonkeyPatch.context() as m:  # the open-shelf rise, standing (no crouch)
-        m.setattr(reachspot, "approach_rise", lambda ctx, target: targets.APPROACH_UP)
+        m.setattr(reachspot, "approach_rise", lambda *_: targets.APPROACH_UP)
         m.setattr(reachspot, "CROUCH_DROPS", ())
         old = _reach(ctx, "rack1_screw1", st.pos[:2], st.yaw)
     assert old.distance < 0.0
     # open above (the station as shipped), or under a shelf that is only drawn: the full rise
     shipped = prepare(load_cycle_spec(scenes_dir / "assembly_station.toml"))
-    assert targets.approach_rise(shipped, target) == targets.APPROACH_UP
+    assert (
+        targets.approach_rise(shipped.model, shipped.scratch(), shipped.spec.stature, target)
+        == targets.APPROACH_UP
+    )
     (tmp_path / "drawn").mkdir()
     drawn = _station_with_shelf_above(scenes_dir, tmp_path / "drawn", 1.30, visual_only=True)
-    assert targets.headroom(drawn, target) == np.inf
-    assert targets.approach_rise(drawn, target) == targets.APPROACH_UP
+    assert targets.headroom(drawn.model, drawn.scratch(), target) == np.inf
+    assert (
+        targets.approach_rise(drawn.model, drawn.scratch(), drawn.spec.stature, target)
+        == targets.APPROACH_UP
+    )
