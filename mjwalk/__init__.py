@@ -48,6 +48,7 @@ _LAZY: dict[str, str] = {
     "ClearanceField": "mjwalk.world.clearance",
     "ClearanceProbe": "mjwalk.world.probe",
     "Workplace": "mjwalk.world.workplace",
+    "WorkplaceOptions": "mjwalk.world.workplace",
     "load_workplace": "mjwalk.world.workplace",
     "path_clearance": "mjwalk.world.probe",
     # walk planning
@@ -142,6 +143,7 @@ __all__ = [
     "WalkRequest",
     "Walker",
     "Workplace",
+    "WorkplaceOptions",
     "__version__",
     "angles_from_timeline",
     "arm_movements",
@@ -239,4 +241,4 @@ if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
     from mjwalk.timeline.timeline import Event, Timeline
     from mjwalk.world.clearance import ClearanceField
     from mjwalk.world.probe import ClearanceProbe, path_clearance
-    from mjwalk.world.workplace import Workplace, load_workplace
+    from mjwalk.world.workplace import Workplace, WorkplaceOptions, load_workplace

@@ -45,7 +45,7 @@ def planned_straight_walks(
     from mjwalk.errors import MjwalkError, PlanningError
     from mjwalk.gait.straight import time_at
     from mjwalk.plan.hybrid import HybridPlanner
-    from mjwalk.world import workplace_from_model
+    from mjwalk.world import WorkplaceOptions, workplace_from_model
 
     distances = [float(d) for d in distances]
     if len(distances) != len(in_motion):
@@ -66,7 +66,9 @@ def planned_straight_walks(
         f'<geom name="floor" type="plane" size="{lx} {ly} 0.05"/>'
         "</worldbody></mujoco>"
     )
-    wp = workplace_from_model(mujoco.MjModel.from_xml_string(xml), cache=False)
+    wp = workplace_from_model(
+        mujoco.MjModel.from_xml_string(xml), options=WorkplaceOptions(cache=False)
+    )
     x0 = -lx + HALL_MARGIN
     out = []
     for d, moving in zip(distances, in_motion, strict=True):

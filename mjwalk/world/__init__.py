@@ -5,6 +5,7 @@ from mjwalk.world.footprint import Footprint, geom_footprint
 from mjwalk.world.workplace import (
     Station,
     Workplace,
+    WorkplaceOptions,
     load_model,
     load_workplace,
     shared_workplace,
@@ -16,6 +17,7 @@ __all__ = [
     "Footprint",
     "Station",
     "Workplace",
+    "WorkplaceOptions",
     "build_clearance",
     "geom_footprint",
     "load_model",

@@ -5,6 +5,7 @@ from __future__ import annotations
 import difflib
 import functools
 import hashlib
+import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -24,8 +25,60 @@ from mjwalk.world.floor import (
 from mjwalk.world.footprint import Footprint, geom_footprint
 from mjwalk.world.meshimport import concave_mesh_footprints
 
-#: Bodies whose name starts with one of these are part of a humanoid, never obstacles.
+#: Bodies whose name starts with one of these are part of a humanoid, never obstacles (the
+#: humanoid mjwalk attaches names its bodies :data:`mjwalk.body.humanoid.HUMAN_PREFIX`).
 HUMANOID_PREFIXES = ("human",)
+#: Coarsest clearance grid spacing, metres: the 2 cm the occupancy grids, the walk field and the
+#: floor-size limit (:data:`mjwalk.world.floor.MAX_FLOOR_NODES`) are built and checked at.
+MAX_RESOLUTION = 0.02
+
+
+@dataclass(frozen=True)
+class WorkplaceOptions:
+    """How an MJCF scene is read into a :class:`Workplace`: which geoms are obstacles and how
+    the clearance field is built. Checked on construction (InputError, one line).
+
+    Attributes:
+        resolution: clearance grid spacing, metres, in (0, :data:`MAX_RESOLUTION`].
+        z_range: a geom is an obstacle when its vertical extent overlaps this band of heights
+            above the floor (metres, low < high); its footprint is the part inside the band.
+            Default :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`.
+        groups: only geoms in these MuJoCo geom groups are obstacles (None: all groups).
+        include, exclude: regular expressions on geom names selecting/rejecting obstacles
+            (``re.search``; None: no filter).
+        humanoid_prefixes: bodies (and their children) whose names start with one of these are
+            a humanoid and never obstacles (default :data:`HUMANOID_PREFIXES`).
+        cache: keep the clearance field, walk field and occupancy grids on disk, keyed by the
+            footprints' geometry, and map them into memory (:mod:`mjwalk.world.cache`; workers
+            planning in one hall then share one copy). None: for fields of at least
+            :data:`mjwalk.world.cache.AUTO_NODES` nodes (about 20 x 20 m).
+    """
+
+    resolution: float = MAX_RESOLUTION
+    z_range: tuple[float, float] = OBSTACLE_Z_RANGE
+    groups: set[int] | None = None
+    include: str | None = None
+    exclude: str | None = None
+    humanoid_prefixes: tuple[str, ...] = HUMANOID_PREFIXES
+    cache: bool | None = None
+
+    def __post_init__(self) -> None:
+        if not 0 < self.resolution <= MAX_RESOLUTION:
+            raise InputError(
+                f"clearance resolution {self.resolution} m must be in (0, {MAX_RESOLUTION}]"
+            )
+        lo, hi = self.z_range
+        if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+            raise InputError(f"obstacle z_range {self.z_range} m must be finite, low < high")
+        for name in ("include", "exclude"):
+            pattern = getattr(self, name)
+            if pattern is not None:
+                try:
+                    re.compile(pattern)
+                except re.error as exc:
+                    raise InputError(
+                        f"{name}={pattern!r} is not a regular expression: {exc}"
+                    ) from exc
 
 
 @dataclass(frozen=True)
@@ -219,18 +272,26 @@ def workplace_from_model(
     model: mujoco.MjModel,
     *,
     source: Path | None = None,
-    resolution: float = 0.02,
-    z_range: tuple[float, float] = OBSTACLE_Z_RANGE,
-    groups: set[int] | None = None,
-    include: str | None = None,
-    exclude: str | None = None,
-    humanoid_prefixes: tuple[str, ...] = HUMANOID_PREFIXES,
-    cache: bool | None = None,
+    options: WorkplaceOptions | None = None,
 ) -> Workplace:
-    """Prepare a compiled model for planning. See :func:`load_workplace` for the arguments."""
+    """Prepare a compiled model for planning.
+
+    Args:
+        model: the compiled scene.
+        source: the MJCF file it came from, named in errors (None for an in-memory model).
+        options: obstacle selection and clearance field settings (None: the defaults).
+
+    Returns:
+        The workplace: floor, obstacle footprints, clearance field and named sites.
+
+    Raises:
+        SceneError: no floor, a floor too large, unsupported obstacle geom.
+    """
     label = str(source) if source else "scene"
-    if resolution <= 0 or resolution > 0.02:
-        raise SceneError(f"{label}: clearance resolution {resolution} m must be in (0, 0.02]")
+    if options is None:
+        options = WorkplaceOptions()
+    resolution, z_range = options.resolution, options.z_range
+    groups, include, exclude = options.groups, options.include, options.exclude
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     floor = find_floor(model, data, label)
@@ -246,7 +307,7 @@ def workplace_from_model(
         )
     footprints: list[Footprint] = []
     for g in range(model.ngeom):
-        if g == floor or _is_humanoid_geom(model, g, humanoid_prefixes):
+        if g == floor or _is_humanoid_geom(model, g, options.humanoid_prefixes):
             continue
         gname = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
         if groups is not None and model.geom_group[g] not in groups:
@@ -284,7 +345,7 @@ def workplace_from_model(
     key = None
     nx = int(np.floor((bounds[2] - bounds[0]) / resolution + 1e-9)) + 1
     ny = int(np.floor((bounds[3] - bounds[1]) / resolution + 1e-9)) + 1
-    if cache if cache is not None else nx * ny >= AUTO_NODES:
+    if options.cache if options.cache is not None else nx * ny >= AUTO_NODES:
         key = content_key(
             "clearance",
             tuple(float(v) for v in bounds),
@@ -322,47 +383,36 @@ def workplace_from_model(
 
 def load_workplace(
     source: str | Path,
+    options: WorkplaceOptions | None = None,
     *,
-    resolution: float = 0.02,
-    z_range: tuple[float, float] = OBSTACLE_Z_RANGE,
     groups: set[int] | None = None,
     include: str | None = None,
     exclude: str | None = None,
-    humanoid_prefixes: tuple[str, ...] = HUMANOID_PREFIXES,
     cache: bool | None = None,
 ) -> Workplace:
     """Load an MJCF workplace: its floor, obstacle geoms, clearance field and named sites.
 
     Args:
         source: path of the MJCF file.
-        resolution: clearance grid spacing, metres (at most 0.02).
-        z_range: a geom is an obstacle when its vertical extent overlaps this band of heights
-            above the floor (metres); its footprint is the part inside the band.
-        groups: only geoms in these MuJoCo geom groups are obstacles (default: all groups).
-        include, exclude: regular expressions on geom names selecting/rejecting obstacles.
-        humanoid_prefixes: bodies (and their children) whose names start with one of these are
-            a humanoid and never obstacles.
-        cache: keep the clearance field, walk field and occupancy grids on disk, keyed by the
-            footprints' geometry, and map them into memory (:mod:`mjwalk.world.cache`; workers
-            planning in one hall then share one copy). None (default): for fields of at least
-            a million nodes (about 20 x 20 m).
+        options: obstacle selection and clearance field settings (None: the defaults).
+        groups, include, exclude, cache: shorthand for the :class:`WorkplaceOptions` fields of
+            those names, for calls without ``options``.
+
+    Returns:
+        The workplace (:func:`workplace_from_model` of the compiled file).
 
     Raises:
+        InputError: ``options`` together with a shorthand, or a bad option value.
         SceneError: missing file, malformed MJCF, no floor, unsupported obstacle geom.
     """
+    shorthand = (groups, include, exclude, cache)
+    if options is None:
+        options = WorkplaceOptions(groups=groups, include=include, exclude=exclude, cache=cache)
+    elif any(v is not None for v in shorthand):
+        raise InputError("load_workplace: give options= or groups/include/exclude/cache, not both")
     path = Path(source)
     model = load_model(path)
-    return workplace_from_model(
-        model,
-        source=path,
-        resolution=resolution,
-        z_range=z_range,
-        groups=groups,
-        include=include,
-        exclude=exclude,
-        humanoid_prefixes=humanoid_prefixes,
-        cache=cache,
-    )
+    return workplace_from_model(model, source=path, options=options)
 
 
 @functools.lru_cache(maxsize=8)

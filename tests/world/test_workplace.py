@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from mjwalk import SceneError
-from mjwalk.world import load_workplace
+from mjwalk import InputError, SceneError, WorkplaceOptions
+from mjwalk.world import load_model, load_workplace, workplace_from_model
 from mjwalk.world.probe import ClearanceProbe, covered
 
 SCENE_NAMES = ["assembly_station", "corridor", "open_floor"]
@@ -67,6 +67,11 @@ def test_obstacle_selection(scenes_dir):
     assert {f.name for f in only_car.obstacles} == {n for n in names if n.startswith("car_")}
     no_racks = load_workplace(scenes_dir / "assembly_station.xml", exclude=r"^rack")
     assert not any(f.name.startswith("rack") for f in no_racks.obstacles)
+    # The shorthand keywords and the options object select the same obstacles.
+    via_options = load_workplace(
+        scenes_dir / "assembly_station.xml", WorkplaceOptions(exclude=r"^rack")
+    )
+    assert [f.name for f in via_options.obstacles] == [f.name for f in no_racks.obstacles]
     # Something overhead (above 2 m) is not an obstacle; something low (below 5 cm) neither.
     assert wp.clearance.resolution <= 0.02
 
@@ -136,3 +141,36 @@ def test_bad_scenes(tmp_path, text, match):
     with pytest.raises(SceneError, match=match) as info:
         load_workplace(f)
     assert "bad.xml" in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("changes", "message"),
+    [
+        ({"resolution": 0.0}, "clearance resolution 0.0 m must be in (0, 0.02]"),
+        ({"resolution": 0.05}, "clearance resolution 0.05 m must be in (0, 0.02]"),
+        ({"z_range": (2.0, 0.05)}, "obstacle z_range (2.0, 0.05) m must be finite, low < high"),
+        ({"z_range": (0.05, float("nan"))}, "must be finite, low < high"),
+        ({"include": "rack("}, "include='rack(' is not a regular expression"),
+        ({"exclude": "[x"}, "exclude='[x' is not a regular expression"),
+    ],
+)
+def test_options_refuse_bad_values(changes, message):
+    with pytest.raises(InputError) as err:
+        WorkplaceOptions(**changes)
+    assert message in str(err.value)
+    assert "\n" not in str(err.value)
+
+
+def test_options_object_is_what_both_loaders_read(scenes_dir):
+    path = scenes_dir / "assembly_station.xml"
+    options = WorkplaceOptions(z_range=(0.05, 1.0), resolution=0.01, cache=False)
+    loaded = load_workplace(path, options)
+    built = workplace_from_model(load_model(path), source=path, options=options)
+    assert loaded.clearance.resolution == built.clearance.resolution == 0.01
+    assert loaded.z_range == (0.05, 1.0)
+    assert loaded.fingerprint == built.fingerprint
+    assert loaded.fingerprint != load_workplace(path).fingerprint  # the band changed footprints
+    with pytest.raises(InputError, match="not both"):
+        load_workplace(path, options, include=r"^car_")
+    with pytest.raises(AttributeError):
+        options.cache = True  # type: ignore[misc]
