@@ -219,10 +219,17 @@ def _context_cached(spec_key: str) -> CycleContext:
     return prepare(load_cycle_spec(spec_key))
 
 
-#: Contexts of in-memory specs, by a digest of the pickled spec (a CycleSpec holds lists, so it
-#: is not hashable); the last few are kept, like :func:`_context_cached`.
-_SPEC_CONTEXTS: dict[str, CycleContext] = {}
-_SPEC_CONTEXTS_KEPT = 4
+@dataclass(frozen=True)
+class _PickledSpec:
+    """An in-memory spec as a memo key: equal by the digest of its pickle (a CycleSpec holds
+    lists, so it is not hashable itself), carrying the spec to prepare."""
+
+    digest: str
+    spec: CycleSpec = field(compare=False)
+
+
+#: Contexts of in-memory specs; the last few are kept, like :func:`_context_cached`.
+_SPEC_CONTEXTS: Memo[_PickledSpec, CycleContext] = Memo(lambda key: prepare(key.spec), limit=4)
 
 
 def context_of(spec: CycleSpec | str | Path) -> CycleContext:
@@ -233,14 +240,7 @@ def context_of(spec: CycleSpec | str | Path) -> CycleContext:
     with its edits, not with the file it was read from."""
     if not isinstance(spec, CycleSpec):
         return _context_cached(str(spec))
-    key = hashlib.sha1(pickle.dumps(spec)).hexdigest()
-    ctx = _SPEC_CONTEXTS.get(key)
-    if ctx is None:
-        ctx = prepare(spec)
-        while len(_SPEC_CONTEXTS) >= _SPEC_CONTEXTS_KEPT:  # the oldest goes first
-            _SPEC_CONTEXTS.pop(next(iter(_SPEC_CONTEXTS)))
-        _SPEC_CONTEXTS[key] = ctx
-    return ctx
+    return _SPEC_CONTEXTS.get(_PickledSpec(hashlib.sha1(pickle.dumps(spec)).hexdigest(), spec))
 
 
 @functools.lru_cache(maxsize=16)

@@ -246,7 +246,7 @@ class PlannerOptions:
 def _checked_discs(discs) -> tuple[tuple[float, float, float], ...]:
     """``goal_within`` as (x, y, radius) float triples, checked: finite, positive radii, at
     most :data:`~mjwalk.plan.slots.MAX_GOAL_DISCS` less one (whether the goal lies inside
-    each is the planner's check: :func:`mjwalk.plan.hybrid.goal_discs`)."""
+    each is the planner's check, in :mod:`mjwalk.plan.hybrid`)."""
     try:
         arr = np.asarray(discs, dtype=float).reshape(-1, 3) if len(discs) else np.zeros((0, 3))
     except (TypeError, ValueError):
