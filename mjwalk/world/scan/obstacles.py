@@ -153,10 +153,7 @@ def floor_plan(
     seen_floor = floor_n > 0
     outline = _hull_mask(seen_floor)  # of the floor points: rays through a doorway leave it
     if views:
-        by_rays, _ = ray_seen(
-            pts, views, lo[0], lo[1], resolution, (ny, nx), FLOOR_TOL, HOLE_RADIUS
-        )
-        seen_floor |= by_rays
+        seen_floor |= ray_seen(pts, views, lo[0], lo[1], resolution, (ny, nx), FLOOR_TOL)
     occupied = counts >= MIN_BAND_POINTS
 
     square = np.ones((3, 3), bool)

@@ -17,10 +17,9 @@ cannot tell that floor from floor behind an obstacle; the rays can:
   stopped short of the cell (an obstacle's shadow), or no ray within a step (outside the field
   of view, the blind cone below the scanner, no return), leaves the cell unseen; a void is
   floor no ray of any station could have seen;
-- a cell whose ray was stopped short by something other than floor is *shadowed*
-  (returned for the figures); the floor plan still counts a shadow narrower than a small hole
-  (:data:`~mjwalk.world.scan.obstacles.HOLE_RADIUS`) as floor, as it does without rays: the
-  rays add floor that was seen, sparsely, and take none away.
+- the rays add floor that was seen, sparsely, and take none away: the floor plan still counts
+  an unseen hole narrower than :data:`~mjwalk.world.scan.obstacles.HOLE_RADIUS` (an obstacle's
+  shadow among them) as floor, as it does without rays.
 
 The scanner's position comes from the file (:class:`~mjwalk.world.scan.read.Station`: a PCD's
 VIEWPOINT, an E57 scan's pose). PCL writes ``VIEWPOINT 0 0 0 1 0 0 0`` into every cloud by
@@ -138,17 +137,14 @@ def ray_seen(
     resolution: float,
     shape: tuple[int, int],
     floor_tol: float,
-    blind: float,
-) -> tuple[np.ndarray, np.ndarray]:
+) -> np.ndarray:
     """The floor-plan cells (``shape`` = (ny, nx), lower corner ``(x0, y0)``, metres) some
-    station's rays reached, and those a station's ray was stopped short of by something other
-    than floor (see the module docstring): two bool (ny, nx)."""
+    station's rays reached (see the module docstring): bool (ny, nx)."""
     ny, nx = shape
     seen = np.zeros(shape, bool)
-    shadowed = np.zeros(shape, bool)
     for v in views:
         pts = points[v.start : v.stop]
-        u, rng = _directions(pts, v.viewpoint)
+        u, _ = _directions(pts, v.viewpoint)
         floor = np.abs(pts[np.linalg.norm(pts - v.viewpoint, axis=1) > 1e-6, 2]) <= floor_tol
         if not floor.any():
             continue
@@ -165,16 +161,11 @@ def ray_seen(
         )
         cells = np.column_stack([gx.ravel(), gy.ravel(), np.zeros(gx.size)])
         hit = np.zeros(len(cells), bool)
-        short = np.zeros(len(cells), bool)
         bound = 2 * np.sin(v.step / 2)
         for k in range(0, len(cells), BATCH):
-            cu, crng = _directions(cells[k : k + BATCH], v.viewpoint)
+            cu, _ = _directions(cells[k : k + BATCH], v.viewpoint)
             d, idx = tree.query(cu, k=1, distance_upper_bound=bound)
             found = np.flatnonzero(np.isfinite(d))
             hit[k + found] = floor[idx[found]]
-            short[k + found] = ~floor[idx[found]] & (rng[idx[found]] < crng[found] - BEHIND)
-        foot = np.hypot(cells[:, 0] - v.viewpoint[0], cells[:, 1] - v.viewpoint[1])
-        short &= foot > blind
         seen[j0:j1, i0:i1] |= hit.reshape(gx.shape)
-        shadowed[j0:j1, i0:i1] |= short.reshape(gx.shape)
-    return seen, shadowed & ~seen
+    return seen
