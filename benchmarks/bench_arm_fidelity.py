@@ -29,7 +29,7 @@ import mujoco
 import numpy as np
 
 import mjwalk.cycle.reaching as reaching
-from mjwalk.arms.kinematics import arm_frames, arm_joint_angles, end_effector
+from mjwalk.arms.chain import arm_frames, arm_joint_angles, end_effector
 from mjwalk.arms.reach import humanoid_arm
 from mjwalk.conventions import side_prefix
 from mjwalk.cycle.context import context_of

@@ -94,7 +94,7 @@ def reproduce(ctx, side: str, end_body: np.ndarray, clip_len: float) -> tuple[in
     """(peak RULA, peak upper-arm score) of the humanoid reaching the scaled end position."""
     import mujoco
 
-    from mjwalk.arms.kinematics import arm_segment_lengths
+    from mjwalk.arms.chain import arm_segment_lengths
     from mjwalk.cycle.poses import standing_pose
     from mjwalk.cycle.reaching import reach_frames
     from mjwalk.ergonomics import rula

@@ -9,7 +9,7 @@ of seed 0, 640x480, 30 frames/s, H.264) with
 - ``new, fixed camera``: :func:`mjwalk.render.render_video` with the same camera (checks the
   frames are pixel-identical to the old loop's);
 - ``new, clear view``: :func:`mjwalk.render.render_video` as the CLI runs it (tracking camera
-  chosen by :func:`mjwalk.viewpoint.track_view`, its cost included).
+  chosen by :func:`mjwalk.render.viewpoint.track_view`, its cost included).
 
 Prints frames/s (wall clock; the goal is >= 30) and CPU milliseconds per frame (this process,
 all threads, plus the ffmpeg child: robust to other load on the machine), and the ratios.
@@ -32,9 +32,9 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 import mujoco
 import numpy as np
 
-from mjwalk import render
 from mjwalk.body.humanoid import HUMAN_GROUP
-from mjwalk.viewpoint import fixed_view
+from mjwalk.render import video as render
+from mjwalk.render.viewpoint import fixed_view
 
 ROOT = Path(__file__).parents[1]
 

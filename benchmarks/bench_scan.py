@@ -19,8 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
-from mjwalk.world.scan.scene import build_scene, write_scene
-from mjwalk.world.scan.synthetic import synthetic_scan
+from mjwalk.scan.raycast import synthetic_scan
+from mjwalk.scan.scene import build_scene, write_scene
 from mjwalk.world.workplace import load_model
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -63,7 +63,7 @@ def main() -> None:
             f"  {scene.n_obstacle_boxes} obstacle boxes, {scene.n_void_boxes} void boxes, "
             f"tilt {scene.levelling.tilt_deg:.3f} deg"
         )
-        from mjwalk.world.scan.read import open3d_module, read_scan
+        from mjwalk.scan.read import open3d_module, read_scan
 
         o3d = open3d_module()
         ply = Path(tmp) / "cloud.ply"

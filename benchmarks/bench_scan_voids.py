@@ -39,8 +39,8 @@ from scipy import ndimage
 from scipy.spatial import cKDTree
 
 from mjwalk.errors import MjwalkError
-from mjwalk.world.scan import merge_scans, read_scan, scan_to_scene
-from mjwalk.world.scan.voids import cover
+from mjwalk.scan import merge_scans, read_scan, scan_to_scene
+from mjwalk.scan.voids import cover
 
 SCAN = Path(__file__).resolve().parents[2] / "shared" / "data" / "scans" / "pcl-room-scan"
 #: The virtual stations, in the real scan's frame (metres; z = 0 is the real scanner's height).

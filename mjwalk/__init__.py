@@ -80,7 +80,7 @@ _LAZY: dict[str, str] = {
     "check_collisions": "mjwalk.timeline.collisions",
     "collision_report": "mjwalk.timeline.collisions",
     "iter_frames": "mjwalk.timeline.collisions",
-    "reach_in_scene": "mjwalk.timeline.reach",
+    "reach_in_scene": "mjwalk.timeline.reachscene",
     "timeline_from_walk": "mjwalk.timeline.frames",
     # ergonomics
     "BodyAngles": "mjwalk.ergonomics.angles",
@@ -103,7 +103,7 @@ _LAZY: dict[str, str] = {
     # video and plots
     "render_frames": "mjwalk.render",
     "render_video": "mjwalk.render",
-    "save_plan_png": "mjwalk.plot",
+    "save_plan_png": "mjwalk.render.plot",
 }
 
 __all__ = [
@@ -227,8 +227,8 @@ if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
     from mjwalk.plan.request import WalkRequest
     from mjwalk.plan.walkpath import PathStep, WalkPath
     from mjwalk.plan.walks import plan_walk, plan_walks
-    from mjwalk.plot import save_plan_png
     from mjwalk.render import render_frames, render_video
+    from mjwalk.render.plot import save_plan_png
     from mjwalk.report import format_markdown, format_summary, report_dict, write_report
     from mjwalk.timeline.collisions import (
         Contact,
@@ -237,7 +237,7 @@ if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
         iter_frames,
     )
     from mjwalk.timeline.frames import timeline_from_walk
-    from mjwalk.timeline.reach import reach_in_scene
+    from mjwalk.timeline.reachscene import reach_in_scene
     from mjwalk.timeline.timeline import Event, Timeline
     from mjwalk.world.clearance import ClearanceField
     from mjwalk.world.probe import ClearanceProbe, path_clearance

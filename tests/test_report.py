@@ -191,9 +191,9 @@ def test_no_half_written_files(tmp_path, workplace, monkeypatch):
     def broken(*args, **kwargs):
         raise RuntimeError("disk full")
 
-    import mjwalk.plot
+    import mjwalk.render.plot
 
-    monkeypatch.setattr(mjwalk.plot, "histograms_png", broken)
+    monkeypatch.setattr(mjwalk.render.plot, "histograms_png", broken)
     out = tmp_path / "out"
     with pytest.raises(RuntimeError, match="disk full"):
         write_report(results, out, workplace=workplace)
@@ -268,7 +268,7 @@ def test_simulate_cycles_records_a_failed_run(monkeypatch, scenes_dir):
 def test_spaghetti_draws_at_most_a_cap_of_walks_per_route(tmp_path, workplace, monkeypatch):
     """A long batch's floor plan draws a capped, evenly spread sample of each route's walks
     (the statistics and CSVs keep every walk)."""
-    import mjwalk.plot as plot
+    import mjwalk.render.plot as plot
     from mjwalk.report import report_dict
 
     results = _results(workplace, runs=12)

@@ -6,7 +6,7 @@ One clip becomes one movement of the arm model (Al-Zubi & Sommer §4.1), as
 
 * frame: the moving arm's shoulder at the origin in every frame, axes of the body frame of the
   first frame (x forward, y left, z up; the pelvis yaw of frame 0), metres; a right arm is
-  mirrored through the sagittal plane (y -> -y, :data:`~mjwalk.arms.kinematics.MIRROR_Y`) into
+  mirrored through the sagittal plane (y -> -y, :data:`~mjwalk.arms.chain.MIRROR_Y`) into
   the left arm's frame: the reach model is a left-arm model, mirrored back for the right arm;
 * time alignment: the one movement holding the fastest hand frame, from rest to the first stop
   (5 % of the peak hand speed, :func:`~mjwalk.arms.armrep.movement_span`), optionally before
@@ -32,7 +32,7 @@ predicts) do not depend on it, but positions do. Each movement's constraint is s
 reference arm (``ArmMovements.lengths``: the clips' mean upper-arm and forearm lengths unless
 given), as if the same movement were made by an arm of that length: geometric similarity of
 the arm, whose segments are fixed shares of stature (Winter 2009, *Biomechanics and Motor
-Control of Human Movement*, Table 4.1; :data:`~mjwalk.arms.kinematics.ARM_SEGMENT_SHARES`). A
+Control of Human Movement*, Table 4.1; :data:`~mjwalk.arms.chain.ARM_SEGMENT_SHARES`). A
 simulated operator's targets are scaled into the model's size the same way
 (:mod:`mjwalk.cycle.reaching`), so a tall and a short walker making the same movement give the
 same training pair.
@@ -46,7 +46,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mjwalk.arms.armrep import movement_span, resample_trajectory, segment_directions
-from mjwalk.arms.kinematics import ARM_SEGMENT_SHARES, MIRROR_Y
+from mjwalk.arms.chain import ARM_SEGMENT_SHARES, MIRROR_Y
 from mjwalk.conventions import Side
 from mjwalk.errors import CaptureError, MjwalkError
 from mjwalk.mocap.take import Take
@@ -87,7 +87,7 @@ HAND_ENDS: dict[str, dict[str, str]] = {
     "cmu": {"left": "lfingers_end", "right": "rfingers_end"},
 }
 #: Hand length over forearm length, for a hand the capture does not hold (Winter 2009, Table
-#: 4.1: hand 0.108 H, forearm 0.146 H; :data:`~mjwalk.arms.kinematics.ARM_SEGMENT_SHARES`).
+#: 4.1: hand 0.108 H, forearm 0.146 H; :data:`~mjwalk.arms.chain.ARM_SEGMENT_SHARES`).
 HAND_TO_FOREARM = ARM_SEGMENT_SHARES[2] / ARM_SEGMENT_SHARES[1]
 #: A hand-end joint nearer the wrist than this (m, median over the take) is no hand: the
 #: capture holds none (a zero-offset ``End Site``). A real hand is 15-20 cm.

@@ -10,7 +10,7 @@ Pipeline of :meth:`ReachModel.predict`:
    is refit so the hand starts and ends there (the paper's "fitted to a start and end
    position"), then a final analytic IK correction, blended over the movement with a
    minimum-jerk profile, moves the hand onto both points exactly (well within 1 cm);
-4. :func:`~mjwalk.arms.kinematics.arm_joint_angles` turns directions (+ forearm roll) into
+4. :func:`~mjwalk.arms.chain.arm_joint_angles` turns directions (+ forearm roll) into
    the humanoid's joint angles.
 
 Frames: the body frame at the shoulder of the moving arm, metres, x forward, y left, z up
@@ -33,8 +33,7 @@ from scipy.optimize import least_squares
 
 from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk.arms.armrep import ArmRepresentation, apply_pose
-from mjwalk.arms.dcs import DCSNetwork
-from mjwalk.arms.kinematics import (
+from mjwalk.arms.chain import (
     MIRROR_Y,
     REST_HAND,
     arm_segment_lengths,
@@ -42,6 +41,7 @@ from mjwalk.arms.kinematics import (
     min_jerk,
     two_link_ik_rows,
 )
+from mjwalk.arms.dcs import DCSNetwork
 from mjwalk.arms.posefit import fit_endpoint_pose
 from mjwalk.conventions import Side
 from mjwalk.errors import MjwalkError, ModelFileError
@@ -79,7 +79,7 @@ def _load_reach_file(path: str, size: int, mtime_ns: int) -> ReachModel:
 
 def check_endpoint_model(model: ReachModel, source: str = "reach model") -> None:
     """Raise :class:`~mjwalk.errors.MjwalkError` unless ``model`` is what
-    :func:`reach_for_side`, :func:`~mjwalk.timeline.reach.reach_in_scene` and the cycle ask
+    :func:`reach_for_side`, :func:`~mjwalk.timeline.reachscene.reach_in_scene` and the cycle ask
     of it: a start/end hand constraint (6,) mapped to the humanoid's upper arm, forearm and
     hand (3 segments), such as :func:`~mjwalk.arms.reachdefault.default_reach_model`."""
     n_in, n_seg = model.n_inputs, len(model.lengths)
@@ -226,7 +226,7 @@ class ReachModel:
     def rest_hand(self) -> np.ndarray:
         """(3,) hand position (m, left shoulder frame; the same rest posture for a mirrored
         right arm) where the reaches of a cycle and of
-        :func:`~mjwalk.timeline.reach.reach_in_scene` start: given to the constructor, else the
+        :func:`~mjwalk.timeline.reachscene.reach_in_scene` start: given to the constructor, else the
         mean start hand of an endpoint model's training constraints (a model trained on capture
         starts where the clips' reaches start), else :data:`REST_HAND` (the generated default
         model's nominal start, and models saved before this was kept)."""

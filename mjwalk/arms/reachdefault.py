@@ -61,7 +61,7 @@ def default_reach_model(progress: bool = True):
     arm (``reachgen.generate("endpoints", N_TRAIN, seed 0)``), cached beside the step model."""
     from mjwalk._io import cache_root, check_cache_writable
     from mjwalk.arms import reachgen
-    from mjwalk.arms.kinematics import REST_HAND
+    from mjwalk.arms.chain import REST_HAND
     from mjwalk.arms.reach import ReachModel
 
     path = cache_root() / f"reach-endpoints-v{REACH_DEFAULT_VERSION}-n{N_TRAIN}.npz"

@@ -19,7 +19,7 @@ path lifts over the obstacle with its peak above it;
 extras = grip aperture (m) and forearm roll (rad) per sample.
 
 Frame: left shoulder at the origin, metres, x forward, y left, z up. The "hand position" is the
-end of the hand segment (see :func:`mjwalk.arms.kinematics.end_effector`).
+end of the hand segment (see :func:`mjwalk.arms.chain.end_effector`).
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mjwalk.anthropometry import ROM_DEG
-from mjwalk.arms.kinematics import (
+from mjwalk.arms.chain import (
     ARM_JOINTS,
     REST_HAND,
     arm_joint_angles,
@@ -173,7 +173,7 @@ def _arm(wrist: np.ndarray, lengths: np.ndarray, swivel: float) -> tuple[np.ndar
     return u1, u2
 
 
-#: The left arm's joint ranges (radians, order of :data:`~mjwalk.arms.kinematics.ARM_JOINTS`).
+#: The left arm's joint ranges (radians, order of :data:`~mjwalk.arms.chain.ARM_JOINTS`).
 _ROM = np.radians([ROM_DEG[j] for j in ARM_JOINTS]).T
 
 

@@ -134,7 +134,7 @@ def _cmd_plan(args: argparse.Namespace) -> int:
                 p.save(args.save.with_name(f"{args.save.stem}_{k:03d}.npz"))
             print(f"wrote {len(paths)} walk files {args.save.stem}_NNN.npz")
     if args.png:
-        from mjwalk.plot import save_plan_png  # matplotlib: imported only when drawing
+        from mjwalk.render.plot import save_plan_png  # matplotlib: imported only when drawing
 
         save_plan_png(
             args.png,

@@ -1,5 +1,5 @@
 """The ``mjwalk scan`` and ``mjwalk scene-import`` commands: scenes from laser scans and from
-concave CAD meshes (:mod:`mjwalk.world.scan`, :mod:`mjwalk.world.meshimport`)."""
+concave CAD meshes (:mod:`mjwalk.scan`, :mod:`mjwalk.world.meshimport`)."""
 
 from __future__ import annotations
 
@@ -16,8 +16,8 @@ from mjwalk.errors import MjwalkError
 
 
 def cmd_scan(args: argparse.Namespace) -> int:
-    from mjwalk.world.scan import scan_to_scene
-    from mjwalk.world.scan.voids import cover, save_top_view
+    from mjwalk.scan import scan_to_scene
+    from mjwalk.scan.voids import cover, save_top_view
 
     check_output_file(args.output, "-o/--output")
     if args.png is not None:
@@ -69,7 +69,7 @@ def cmd_scan(args: argparse.Namespace) -> int:
 
 def _scan_resolution(text: str) -> float:
     """``--resolution``: a number of metres within the floor plan's stated range."""
-    from mjwalk.world.scan.limits import check_resolution
+    from mjwalk.scan.limits import check_resolution
 
     try:
         return check_resolution(text, "")
@@ -92,7 +92,7 @@ def _scan_offset(text: str) -> np.ndarray:
 
 
 def add_scan_parser(sub) -> None:
-    from mjwalk.world.scan.limits import RESOLUTION_RANGE
+    from mjwalk.scan.limits import RESOLUTION_RANGE
 
     p = sub.add_parser("scan", help="turn a laser scan (PLY/PCD/LAS/LAZ/E57/XYZ/PTS) into a scene")
     p.add_argument(

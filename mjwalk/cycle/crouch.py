@@ -5,7 +5,7 @@ or stooping shoulder without the forearm sloping down through the shelf's front 
 bend the knees to bring the shoulder down to the opening (a squat or semi-squat). Here the
 pelvis drops by ``drop`` metres with the feet flat where they stand; it moves back only as far
 as the ankle's dorsiflexion range needs (the shank tilts forward by at most that range, the
-thigh takes the rest), the legs solved by :func:`~mjwalk.body.legs.kinematics.leg_ik`; then
+thigh takes the rest), the legs solved by :func:`~mjwalk.body.legs.ik.leg_ik`; then
 the trunk bends forward (lumbar and thoracic flexion in proportion to their ranges, as the
 reach's lean) until the body's centre of mass is as far forward of the ankles as standing --
 static balance over the feet, since a pelvis behind the ankles would otherwise tip the body
@@ -24,7 +24,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.anthropometry import ROM_DEG, leg_geometry
-from mjwalk.body.legs.kinematics import leg_ik
+from mjwalk.body.legs.ik import leg_ik
 from mjwalk.conventions import side_of_prefix as side_of
 
 if TYPE_CHECKING:
@@ -182,6 +182,6 @@ def crouch_frames(
 
 
 def _leg_joints() -> list[str]:
-    from mjwalk.body.legs.kinematics import LEG_JOINTS
+    from mjwalk.body.legs.ik import LEG_JOINTS
 
     return [j.format(p) for j in LEG_JOINTS if not j.startswith("toe") for p in "lr"]

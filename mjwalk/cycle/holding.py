@@ -47,7 +47,7 @@ def two_hand_frames(
     :func:`_two_hand_reach` returns."""
     if not lean and drop <= 0.0:
         return _two_hand_reach(ctx, q0, task, approach, hold, fps, timing, held)
-    from mjwalk.arms.kinematics import arm_adrs
+    from mjwalk.arms.chain import arm_adrs
     from mjwalk.arms.reach import humanoid_arm
 
     body = crouch_pose(ctx, q0, drop)
@@ -104,7 +104,7 @@ def _two_hand_reach(ctx: CycleContext, q0, task, approach, hold, fps, timing=Non
     the palms keep their distance (:func:`_holding_frames`). Returns (frames, the larger hand
     error in metres, the left arm's ReachResult with both arms' warnings, the grip distance in
     metres)."""
-    from mjwalk.arms.kinematics import arm_adrs
+    from mjwalk.arms.chain import arm_adrs
     from mjwalk.cycle.poses import carry_pose, hand_points
 
     jm = ctx.jointmap
@@ -197,7 +197,7 @@ def _holding_frames(ctx: CycleContext, qa: np.ndarray, qb: np.ndarray, n: int) -
     both shoulder abductions shifted together in each frame (:func:`_palms_apart`) so the palms'
     distance (m) follows the same profile from ``qa``'s to ``qb``'s: the hands keep the grips
     of the part they carry between the bench and the carrying posture."""
-    from mjwalk.arms.kinematics import min_jerk
+    from mjwalk.arms.chain import min_jerk
 
     ga, gb = _palm_gap(ctx, qa), _palm_gap(ctx, qb)
     prof = min_jerk(np.arange(1, n + 1) / n)
@@ -245,7 +245,7 @@ def _straight_holding(ctx: CycleContext, qa: np.ndarray, qb: np.ndarray, n: int)
     line between its positions in the two poses, on the same minimum-jerk profile
     (:func:`hands_moved`): the hands carry the part along a line, not the arc that
     interpolated joint angles sweep."""
-    from mjwalk.arms.kinematics import min_jerk
+    from mjwalk.arms.chain import min_jerk
     from mjwalk.timeline.parts import hand_poses
 
     def wrists(qpos: np.ndarray) -> np.ndarray:  # (F, 2, 3): the hand bodies' origins
@@ -263,9 +263,9 @@ def _straight_holding(ctx: CycleContext, qa: np.ndarray, qb: np.ndarray, n: int)
 def hands_moved(ctx: CycleContext, q: np.ndarray, offset: np.ndarray) -> np.ndarray:
     """Pose ``q`` with both hands moved by ``offset`` (world, m; (3,) for both, or (2, 3):
     left, right), each keeping its direction, the elbow swivelled least (two-link IK in the
-    shoulder's frame, :func:`~mjwalk.arms.kinematics.two_link_ik_rows`; within the joint
+    shoulder's frame, :func:`~mjwalk.arms.chain.two_link_ik_rows`; within the joint
     ranges)."""
-    from mjwalk.arms.kinematics import arm_frames, arm_joint, arm_joint_angles, two_link_ik_rows
+    from mjwalk.arms.chain import arm_frames, arm_joint, arm_joint_angles, two_link_ik_rows
 
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()

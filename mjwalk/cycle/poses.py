@@ -189,7 +189,7 @@ def carry_pose(ctx: CycleContext, q: np.ndarray, width: float) -> np.ndarray:
     ``width`` metres apart: :data:`~mjwalk.timeline.frames.CARRY_POSE` with the shoulder
     abduction of :func:`carry_abduction`, the other arm joints at the standing pose (as in the
     carrying walk's frames, :func:`walk_frames`). Radians; a new array."""
-    from mjwalk.arms.kinematics import ARM_JOINTS, arm_joint
+    from mjwalk.arms.chain import ARM_JOINTS, arm_joint
     from mjwalk.timeline.frames import CARRY_POSE
 
     jm = ctx.jointmap

@@ -95,7 +95,7 @@ def reach_frames(
     along the normal), so the palm, not only the hand's end, comes onto the face.
 
     Returns (frames, hand error in metres, ReachResult of the model part)."""
-    from mjwalk.arms.kinematics import (
+    from mjwalk.arms.chain import (
         arm_frames,
         arm_joint_angles,
         min_jerk,
@@ -263,7 +263,7 @@ def _turn_hand(directions: np.ndarray, u_end: np.ndarray, lengths: np.ndarray) -
     to ``u_end`` over the last third of the samples (a smooth blend reaching ``u_end`` at the
     last), the hand's end kept where it was (the upper arm and forearm re-solved for the
     moved wrist, the elbow swivelled as little as it can)."""
-    from mjwalk.arms.kinematics import end_effector, two_link_ik_rows
+    from mjwalk.arms.chain import end_effector, two_link_ik_rows
 
     out = np.array(directions, dtype=float)
     n_turn = max(2, len(out) // 3)
@@ -287,10 +287,10 @@ def _wrist_feasible(
     ranges there; else ``u_hand`` with the elbow swivelled about the shoulder-wrist axis (the
     nearest of :data:`SWIVELS` that keeps every joint in range: people turn the elbow out or in
     to orient the hand); else the hand turned only as far as the humanoid's wrist ranges allow,
-    the arm re-solved for that hand (:func:`~mjwalk.arms.kinematics.wrist_in_range`)."""
+    the arm re-solved for that hand (:func:`~mjwalk.arms.chain.wrist_in_range`)."""
     from scipy.spatial.transform import Rotation
 
-    from mjwalk.arms.kinematics import (
+    from mjwalk.arms.chain import (
         arm_frames,
         arm_joint_angles,
         two_link_ik_rows,
@@ -340,7 +340,7 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
     ``knuckle``: its distance (m) from the wrist along the hand (the operator's size).
     ``base``: the pose the arm's angles are set in (q0 bent forward, for a leaning reach).
     Computes in the context's scratch data."""
-    from mjwalk.arms.kinematics import arm_frames
+    from mjwalk.arms.chain import arm_frames
 
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()

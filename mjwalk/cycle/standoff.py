@@ -2,7 +2,7 @@
 
 A walk ends anywhere in its stand zone, and the operator then turns to bring the target ahead
 of the reaching shoulder. Both move the shoulder, and a shoulder close to a shelf board's front
-face lifts the hand from its relaxed pose (:data:`~mjwalk.arms.kinematics.REST_HAND`, wrist
+face lifts the hand from its relaxed pose (:data:`~mjwalk.arms.chain.REST_HAND`, wrist
 at about the board's height) almost straight up in front of the board, the fingers brushing its
 front edge. The planner cannot see this (its clearance is 2-D, a body radius around the
 pelvis); the arm can. So the cycle checks each reach with MuJoCo's collision detection, the arm

@@ -63,7 +63,7 @@ def approach_rise(
     its approach, and the wrist's range turns it further where the arm comes in steeply: a
     compartment's upper shelf otherwise took the thumb, palm and forearm of a reach into it,
     20-30 mm deep), none when the compartment is lower than that."""
-    from mjwalk.arms.kinematics import arm_segment_lengths
+    from mjwalk.arms.chain import arm_segment_lengths
 
     hand = float(arm_segment_lengths(stature)[2])
     return float(np.clip(headroom(model, data, target) - hand, 0.0, APPROACH_UP))

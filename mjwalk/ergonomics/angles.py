@@ -287,11 +287,11 @@ _BODY_POINTS = {
 def body_frames(model, jointmap, qpos: np.ndarray, bodies: list[str]):
     """World positions (F, B, 3) and rotations (F, B, 3, 3) of the humanoid ``bodies``
     (unprefixed names) in the poses ``qpos`` (F, nq): MuJoCo's forward kinematics compiled over
-    frames (:func:`mjwalk.timeline.kinematics.geom_poses`) on each body's first geom, the geom's
+    frames (:func:`mjwalk.timeline.geomposes.geom_poses`) on each body's first geom, the geom's
     own offset undone (``mj_kinematics`` frame by frame for models it does not support)."""
     import mujoco
 
-    from mjwalk.timeline.kinematics import geom_poses, supported
+    from mjwalk.timeline.geomposes import geom_poses, supported
 
     prefix = jointmap.prefix
     bids = [mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, prefix + b) for b in bodies]

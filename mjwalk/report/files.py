@@ -147,7 +147,7 @@ def write_report(
             the simulation recorded it); ``{}`` draws none.
         reference: captured (median, IQR) walk length per route, e.g. :data:`CAPTURE_TABLE1`.
     """
-    from mjwalk.plot import histograms_png, spaghetti_png  # matplotlib: loaded when drawing
+    from mjwalk.render.plot import histograms_png, spaghetti_png  # matplotlib: loaded when drawing
 
     rep = report_dict(results, reference=reference)
     results = split_failed(results)[0]  # the failed runs are listed in the report only
@@ -176,7 +176,7 @@ def write_report(
         histograms_png(tmp["histograms"], results, rep)
         if "ergonomics_csv" in tmp:
             from mjwalk.ergonomics.summary import csv_header, ergonomics_rows
-            from mjwalk.plot import ergonomics_png
+            from mjwalk.render.plot import ergonomics_png
 
             records = ergonomic_records(results)
             with open(tmp["ergonomics_csv"], "w", newline="") as fh:

@@ -1,11 +1,12 @@
 """The timeline stage: per-frame humanoid poses of walks and reaches in a scene
-(:mod:`~mjwalk.timeline.timeline`, :mod:`~mjwalk.timeline.frames`, :mod:`~mjwalk.timeline.reach`),
-playback and humanoid-vs-scene collision checks (:mod:`~mjwalk.timeline.collisions`)."""
+(:mod:`~mjwalk.timeline.timeline`, :mod:`~mjwalk.timeline.frames`,
+:mod:`~mjwalk.timeline.reachscene`), playback and humanoid-vs-scene collision checks
+(:mod:`~mjwalk.timeline.collisions`)."""
 
 from mjwalk.timeline.collisions import Contact, check_collisions, collision_report, iter_frames
 from mjwalk.timeline.frames import frames_from_legs, timeline_from_walk
 from mjwalk.timeline.parts import PartTrack, part_tracks
-from mjwalk.timeline.reach import reach_in_scene
+from mjwalk.timeline.reachscene import reach_in_scene
 from mjwalk.timeline.timeline import Event, Timeline
 
 __all__ = [

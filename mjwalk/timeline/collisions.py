@@ -23,7 +23,7 @@ from mjwalk._jit import njit
 from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
-from mjwalk.timeline.kinematics import geom_poses, supported
+from mjwalk.timeline.geomposes import geom_poses, supported
 from mjwalk.timeline.timeline import Timeline
 
 
@@ -196,7 +196,7 @@ def candidate_frames(
 
     Scene geoms on moving bodies, and floors that are not planes, make every frame a
     candidate. Forward kinematics of every pose, compiled over all frames
-    (:func:`mjwalk.timeline.kinematics.geom_poses`; with mocap bodies by ``mj_kinematics``
+    (:func:`mjwalk.timeline.geomposes.geom_poses`; with mocap bodies by ``mj_kinematics``
     in ``data``, default a new MjData, frame by frame)."""
     n = len(qpos)
     hid = np.flatnonzero(human)

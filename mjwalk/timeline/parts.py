@@ -34,7 +34,7 @@ from typing import Literal
 import mujoco
 import numpy as np
 
-from mjwalk.arms.kinematics import min_jerk
+from mjwalk.arms.chain import min_jerk
 from mjwalk.body.humanoid import JointMap
 
 #: Name suffix of the scene geom that shows the part lying at a pick site.

@@ -2,7 +2,7 @@
 
 A :class:`Timeline` holds the compiled scene-with-humanoid model and one ``qpos`` row per video
 frame (default 30 fps); :mod:`mjwalk.timeline.frames` builds one from a walk,
-:mod:`mjwalk.timeline.reach` from a reach, :mod:`mjwalk.cycle.simulate` from a whole cycle.
+:mod:`mjwalk.timeline.reachscene` from a reach, :mod:`mjwalk.cycle.simulate` from a whole cycle.
 
 World frame: metres, seconds, radians, z up, yaw from +x CCW.
 """

@@ -28,6 +28,7 @@ from mjwalk._io import atomic_path
 from mjwalk.errors import InputError, SceneError
 from mjwalk.world.floor import check_floor_size
 from mjwalk.world.footprint import Footprint
+from mjwalk.world.units import UNITS, UP_AXES
 
 #: A band footprint is concave when its convex hull exceeds it by more than this share of the
 #: hull's area (below, the hull footprint is as good and cheaper).
@@ -228,8 +229,6 @@ def _mesh_scene_spec(path: Path, units: str, up: str) -> mujoco.MjSpec:
     """An MJCF spec with a floor and the mesh file as one obstacle (its lowest point on the
     floor)."""
     import trimesh
-
-    from mjwalk.world.scan.read import UNITS, UP_AXES
 
     if units not in UNITS:
         raise SceneError(f"{path}: unknown units {units!r} (one of {', '.join(UNITS)})")

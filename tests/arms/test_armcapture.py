@@ -14,7 +14,7 @@ from mjwalk.arms.armcapture import (
     arm_movements,
 )
 from mjwalk.arms.armrep import movement_span, resample_trajectory, segment_directions
-from mjwalk.arms.kinematics import min_jerk
+from mjwalk.arms.chain import min_jerk
 from mjwalk.errors import CaptureError, MjwalkError
 from mjwalk.mocap.take import Take
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from mjwalk.arms import reachgen
-from mjwalk.arms.kinematics import arm_joint_angles, end_effector, wrist_in_range
+from mjwalk.arms.chain import arm_joint_angles, end_effector, wrist_in_range
 from mjwalk.arms.reach import ReachModel
 from mjwalk.arms.reachdefault import DEFAULT_DCS
 from mjwalk.errors import MjwalkError, ModelFileError
@@ -58,7 +58,7 @@ def test_generated_reaches_keep_a_human_wrist_and_elbow():
     deg back from the forearm at the start and 81 deg mid-reach (beyond the humanoid's 70 deg),
     and the elbow started 9 cm medial of the shoulder (adducted 16 deg, median)."""
     from mjwalk.anthropometry import ROM_DEG
-    from mjwalk.arms.kinematics import ARM_JOINTS
+    from mjwalk.arms.chain import ARM_JOINTS
 
     data = reachgen.generate("endpoints", 80, np.random.default_rng(3))
     q = np.degrees(np.array([arm_joint_angles(u) for u in data.directions]))  # (p, n, 7)
@@ -271,7 +271,7 @@ def test_right_arm_reach_is_the_mirror_of_the_left(endpoint_model):
     """Mirror symmetry: the right-arm reach to a target equals the left-arm reach to the target
     mirrored through the sagittal plane, mirrored back, and its joint angles equal the left
     arm's (the humanoid's joint signs are anatomical, the same for both sides)."""
-    from mjwalk.arms.kinematics import MIRROR_Y, REST_HAND
+    from mjwalk.arms.chain import MIRROR_Y, REST_HAND
     from mjwalk.arms.reach import mirror_result
 
     model, _ = endpoint_model

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from mjwalk.arms import reachgen
-from mjwalk.arms.kinematics import REST_HAND, arm_segment_lengths
+from mjwalk.arms.chain import REST_HAND, arm_segment_lengths
 from mjwalk.arms.reach import ReachModel, arm_scale, reach_for_side
 from mjwalk.conventions import side_prefix
 from mjwalk.cycle.simulate import prepare, simulate_cycle

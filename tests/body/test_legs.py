@@ -37,7 +37,7 @@ make_walk = synthetic_walk
 
 
 def _ball_xy(foot):
-    from mjwalk.body.legs.kinematics import ball_offset as _ball
+    from mjwalk.body.legs.ik import ball_offset as _ball
 
     b = _ball(leg_geometry())
     return np.asarray(foot[:2]) + b * np.array([np.cos(foot[2]), np.sin(foot[2])])

@@ -229,7 +229,7 @@ def test_under_a_shelf_the_hand_comes_in_low_enough_to_clear_it(scenes_dir, tmp_
     1.30 m): the pre-grasp point does not rise (the space above the target is less than a
     hand's length), and the reach is clear by MuJoCo's collision check; with the open-shelf
     rise of 10 cm the thumb and forearm touched the upper shelf (16 mm deep)."""
-    from mjwalk.arms.kinematics import arm_segment_lengths
+    from mjwalk.arms.chain import arm_segment_lengths
 
     ctx = _station_with_shelf_above(scenes_dir, tmp_path, 1.30)
     st = ctx.workplace.station("stand_rack1")

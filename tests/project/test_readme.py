@@ -32,7 +32,7 @@ def readme_blocks() -> list[tuple[int, str, str | None]]:
 
 def test_readme_has_examples_and_skips_only_the_cluster_and_scan_ones():
     """Only examples that need something a checkout lacks (a Dask scheduler, the user's own
-    scan file) are skipped; tests/world/test_scan.py runs scan_to_scene itself."""
+    scan file) are skipped; tests/scan/test_scene.py runs scan_to_scene itself."""
     blocks = readme_blocks()
     assert len(blocks) >= 4
     reasons = [reason for _, _, reason in blocks if reason]

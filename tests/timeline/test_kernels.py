@@ -22,11 +22,11 @@ from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
 from mjwalk.arms.armrep import angular_scale, apply_pose
-from mjwalk.arms.kinematics import arm_joint_angles, end_effector, two_link_ik_rows
+from mjwalk.arms.chain import arm_joint_angles, end_effector, two_link_ik_rows
 from mjwalk.arms.posefit import fit_endpoint_pose
 from mjwalk.body.humanoid import HUMAN_GROUP, ROM_DEG, leg_geometry
 from mjwalk.body.legs.curves import clamped_cubic, spread
-from mjwalk.body.legs.kinematics import (
+from mjwalk.body.legs.ik import (
     KNEE_MIN,
     LegIKCache,
     ball_offset,
@@ -479,7 +479,7 @@ def test_geom_poses_match_mujoco():
     """The compiled forward kinematics of the broad phase leaves the geoms where
     ``mj_kinematics`` does (round-off): on a humanoid walk, and on a model with free, ball,
     hinge and slide joints, anchors off the body origin and a joint reference angle."""
-    from mjwalk.timeline.kinematics import geom_poses, supported
+    from mjwalk.timeline.geomposes import geom_poses, supported
 
     rng = np.random.default_rng(9)
     spec = mujoco.MjSpec.from_string(SCENE.format(x=2.0, y=0.0))
@@ -816,7 +816,7 @@ def test_spin_hip_rotation_excess_matches_numpy(s_):
     """spin._hip_rotation_excess gives leg_ik_world's hip rotation and soft_excess's
     overshoots bit for bit on the grounded samples and leaves the others alone."""
     from mjwalk.body.legs.curves import soft_excess
-    from mjwalk.body.legs.kinematics import ik_lengths
+    from mjwalk.body.legs.ik import ik_lengths
     from mjwalk.body.legs.spin import _hip_rotation_excess
 
     geom = leg_geometry(1.75)

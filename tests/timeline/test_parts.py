@@ -200,7 +200,7 @@ def test_a_reach_is_timed_by_the_hands_true_path(monkeypatch):
     then travels in the timeline (from the task's first frame to the hold, within 5 %),
     more than 1.15 times the straight line between its ends at the station (1.0 before: the
     straight line)."""
-    from mjwalk.arms.kinematics import arm_segment_lengths
+    from mjwalk.arms.chain import arm_segment_lengths
     from mjwalk.body.humanoid import PALM_SHARE
     from mjwalk.cycle.actions import reach_for as sim  # where a reach's time is looked up
 
@@ -251,7 +251,7 @@ def test_the_humanoids_own_hand_ends_on_each_target(monkeypatch):
     Before, the error was taken along the planned hand direction: the fastens at the car asked
     for more wrist flexion and deviation than the humanoid has, the wrist was clipped, and the
     fingers ended up to 14 cm off the target while the report said 0 mm."""
-    from mjwalk.arms.kinematics import arm_segment_lengths
+    from mjwalk.arms.chain import arm_segment_lengths
     from mjwalk.conventions import side_prefix
     from mjwalk.cycle import reaching
 

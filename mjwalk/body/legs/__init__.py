@@ -1,6 +1,6 @@
 """Leg motion of a planned walk: reference gait tables (:mod:`~mjwalk.body.legs.reference`),
 gait analysis of capture (:mod:`~mjwalk.body.legs.analysis`), leg kinematics
-(:mod:`~mjwalk.body.legs.kinematics`), the steps' frames and curves
+(:mod:`~mjwalk.body.legs.ik`), the steps' frames and curves
 (:mod:`~mjwalk.body.legs.steps`, :mod:`~mjwalk.body.legs.spin`) and the synthesis of joint
 angles from a WalkPath's footprints (:func:`~mjwalk.body.legs.synthesis.legs_from_walk`)."""
 
@@ -10,7 +10,7 @@ from mjwalk.body.legs.analysis import (
     reference_from_takes,
     sagittal_angles,
 )
-from mjwalk.body.legs.kinematics import LEG_JOINTS, foot_lowest, leg_fk, leg_ik
+from mjwalk.body.legs.ik import LEG_JOINTS, foot_lowest, leg_fk, leg_ik
 from mjwalk.body.legs.reference import (
     BANDAI_LANDMARKS,
     DEFAULT_REFERENCE,

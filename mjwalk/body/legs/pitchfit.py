@@ -22,7 +22,7 @@ import numpy as np
 from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import gauss_kernel, spread_rows
-from mjwalk.body.legs.kinematics import (
+from mjwalk.body.legs.ik import (
     LegIKCache,
     ball_offset,
     ik_lengths,
@@ -42,7 +42,7 @@ def repitch_foot(
 ) -> tuple[np.ndarray, np.ndarray]:
     """A foot's ankle targets (n, 3) and pitches (n,) with the pitch lowered by ``dp`` (n,):
     on the floor (``ground``) about the pivot of its footprint ``prints`` (n, 3) (the heel
-    while toes up, the ball while heel up, :func:`~mjwalk.body.legs.kinematics.pivot_ankle`),
+    while toes up, the ball while heel up, :func:`~mjwalk.body.legs.ik.pivot_ankle`),
     in the air by the same motion of the ankle relative to the foot, as if it stood on a
     footprint under it (headings ``fyaw`` (n,)). ``toe`` (n,) keeps the toes' angle to the
     floor while the heel is up (updated in place). New arrays; the inputs are not changed."""
@@ -65,7 +65,7 @@ def repitch_foot(
 
 @njit
 def _pivot_cs(x, y, fx, fy, c, s, p, ball, back, ah):
-    """One row of :func:`~mjwalk.body.legs.kinematics.pivot_rows` (the same arithmetic) on
+    """One row of :func:`~mjwalk.body.legs.ik.pivot_rows` (the same arithmetic) on
     the footprint at ``x``, ``y`` heading (``fx``, ``fy``) = (cos, sin) yaw, pitched by ``p``
     with (``c``, ``s``) = (cos, sin) p."""
     lever = ball if p <= 0 else -back

@@ -9,7 +9,7 @@ import numpy as np
 from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.body.legs.curves import smoothstep, soft_excess1
-from mjwalk.body.legs.kinematics import (
+from mjwalk.body.legs.ik import (
     ball_offset,
     ik_lengths,
     leg_ik_world,
@@ -165,7 +165,7 @@ def spin_turns(ankle, fyaw, pitch, toe, ground, print_, root, yaw, geom: LegGeom
 def _hip_rotation_excess(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax,
                          top, bottom, w, rot, up, down):  # fmt: skip
     """Per grounded sample (``ground`` (n,)): the leg's hip rotation ``rot`` (unclipped IK,
-    :func:`~mjwalk.body.legs.kinematics.leg_ik_world_row`) and how far it passes ``top`` and
+    :func:`~mjwalk.body.legs.ik.leg_ik_world_row`) and how far it passes ``top`` and
     falls short of ``bottom`` (``up``, ``down``: :func:`~mjwalk.body.legs.curves.soft_excess`
     over ``w``), radians; the other samples are left as they are."""
     out = np.empty((ground.shape[0], 6))

@@ -34,13 +34,13 @@ from mjwalk.body.legs.curves import (
     smoothstep1,
     soft_flat1,
 )
-from mjwalk.body.legs.kinematics import KNEE_MIN, ball_offset, heel_rise_rows, pivot_rows
+from mjwalk.body.legs.ik import KNEE_MIN, ball_offset, heel_rise_rows, pivot_rows
 from mjwalk.body.legs.reference import ReferenceGait
 from mjwalk.body.legs.steps import FOOT_FLAT, STANCE_KEYS, StepFrames
 
 #: The stance knee's upper bound (radians, 80 deg): the synthesis's clip of the stance spline.
 KNEE_STANCE_MAX = float(np.deg2rad(80))
-#: :func:`~mjwalk.body.legs.kinematics.heel_rise`'s default lowest pitch (radians).
+#: :func:`~mjwalk.body.legs.ik.heel_rise`'s default lowest pitch (radians).
 HEEL_RISE_LO = -1.0472
 
 

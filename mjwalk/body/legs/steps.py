@@ -16,7 +16,7 @@ import numpy as np
 from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import clamped_cubic, maximum1, smoothstep, soft_clip01, soft_flat
-from mjwalk.body.legs.kinematics import (
+from mjwalk.body.legs.ik import (
     KNEE_MIN,
     ball_offset,
     heel_rise,

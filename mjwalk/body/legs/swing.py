@@ -34,7 +34,7 @@ from mjwalk.body.legs.curves import (
     soft_flat,
     soft_flat1,
 )
-from mjwalk.body.legs.kinematics import KNEE_MIN, ball_offset, heel_rise_rows, pivot_rows
+from mjwalk.body.legs.ik import KNEE_MIN, ball_offset, heel_rise_rows, pivot_rows
 from mjwalk.body.legs.reference import ReferenceGait, ppoly_at, wrap01
 from mjwalk.body.legs.steps import (
     HEEL_RISE_MAX,

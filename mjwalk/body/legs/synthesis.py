@@ -41,7 +41,7 @@ import numpy as np
 
 from mjwalk.body.humanoid import ROM_DEG, leg_geometry
 from mjwalk.body.legs.curves import spread
-from mjwalk.body.legs.kinematics import (
+from mjwalk.body.legs.ik import (
     KNEE_MIN,
     LegIKCache,
     foot_lowest,

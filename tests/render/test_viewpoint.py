@@ -14,8 +14,7 @@ import pytest
 from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.synthetic import synthetic_walk as make_walk
-from mjwalk.timeline import timeline_from_walk
-from mjwalk.viewpoint import (
+from mjwalk.render.viewpoint import (
     MAX_TURN_RATE,
     TARGETS,
     TRACK_ELEVATION,
@@ -24,6 +23,7 @@ from mjwalk.viewpoint import (
     sight_lines,
     track_view,
 )
+from mjwalk.timeline import timeline_from_walk
 
 FLOOR = """<geom name="floor" type="plane" size="10 10 .1" rgba=".2 .6 .2 1"/>
 <light pos="0 0 6" dir="0 0 -1" directional="true"/>"""
@@ -70,7 +70,7 @@ def test_wall_between_camera_and_walker_is_avoided(walled):
 
 
 def test_chosen_camera_shows_the_feet_in_the_image(walled):
-    render = pytest.importorskip("mjwalk.render")
+    render = pytest.importorskip("mjwalk.render.video")
     tl = walled
     i = tl.n_frames // 2
     view = track_view(tl)

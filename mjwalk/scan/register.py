@@ -2,7 +2,7 @@
 Open3D's feature-based global registration, refine with ICP, and verify with free space.
 
 Indoor scans share their floor, so each is first levelled on its own floor
-(:func:`~mjwalk.world.scan.level.find_floor`): what is left is a heading, a horizontal shift
+(:func:`~mjwalk.scan.level.find_floor`): what is left is a heading, a horizontal shift
 and a small residual.
 
 1. Hypotheses: Open3D's FPFH features (Rusu et al. 2009) matched by RANSAC
@@ -51,11 +51,11 @@ import numpy as np
 from scipy import ndimage
 
 from mjwalk.errors import ScanError
-from mjwalk.world.scan.level import find_floor
-from mjwalk.world.scan.obstacles import FLOOR_TOL
+from mjwalk.scan.level import find_floor
+from mjwalk.scan.obstacles import FLOOR_TOL
 
 #: Voxel of the clouds the features are computed on, metres: half the 0.10 m local-PCA voxel
-#: of the levelling (:data:`~mjwalk.world.scan.level.VOXEL`), ten times the 5 mm range noise of
+#: of the levelling (:data:`~mjwalk.scan.level.VOXEL`), ten times the 5 mm range noise of
 #: a terrestrial scanner, so a normal's neighbourhood (2 voxels) is well above the noise.
 VOXEL = 0.05
 #: Voxel of the last ICP, whose fitness and RMSE are reported, metres: 4 range-noise sigmas.
@@ -72,7 +72,7 @@ RANSAC_ITERATIONS = 100_000
 #: runs miss it with probability 0.18, twelve with 0.006.
 RANSAC_RUNS, RANSAC_MAX_RUNS, AGREEING_RUNS = 4, 12, 2
 #: ICP correspondence distance, metres: six standard deviations of a 5 mm range noise (the
-#: floor-plane tolerance :data:`~mjwalk.world.scan.level.PLANE_TOL`).
+#: floor-plane tolerance :data:`~mjwalk.scan.level.PLANE_TOL`).
 ICP_DISTANCE = 0.03
 #: Refinement: point-to-plane ICP with correspondence distances shrinking 4x, 2x, 1x
 #: :data:`ICP_DISTANCE` (coarse to fine, so a hypothesis 0.2 m / 4° off is pulled in), each
@@ -205,7 +205,7 @@ def align(
             overlap, or every alignment found contradicts free space) or when two distinct
             ones do (ambiguous).
     """
-    from mjwalk.world.scan.read import open3d_module
+    from mjwalk.scan.read import open3d_module
 
     lev_p = find_floor(points, source=source)
     lev_r = find_floor(reference, source="the scans before it")

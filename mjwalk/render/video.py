@@ -1,9 +1,10 @@
 """Offscreen video of a Timeline: tracking or top camera, the planned path drawn into the scene.
 
-Importing this module selects a headless OpenGL backend (:func:`mjwalk._gl.ensure_headless_backend`:
-a ``MUJOCO_GL`` the user set, else ``egl`` when libEGL loads, else ``osmesa`` when libOSMesa
-loads), also when mujoco was imported before. If no backend works, rendering raises an
-MjwalkError that names the Debian package to install (``libegl1`` or ``libosmesa6``).
+Importing this module selects a headless OpenGL backend
+(:func:`mjwalk.render._gl.ensure_headless_backend`: a ``MUJOCO_GL`` the user set, else ``egl``
+when libEGL loads, else ``osmesa`` when libOSMesa loads), also when mujoco was imported before.
+If no backend works, rendering raises an MjwalkError that names the Debian package to install
+(``libegl1`` or ``libosmesa6``).
 
 World frame: metres, z up; image pixels (u right, v down) from the top-left corner.
 """
@@ -12,7 +13,7 @@ from __future__ import annotations
 
 import os
 
-from mjwalk._gl import available_backend, ensure_headless_backend
+from mjwalk.render._gl import available_backend, ensure_headless_backend
 
 #: the backend chosen at import ("none" when neither EGL nor OSMesa loads).
 _SELECTED = ensure_headless_backend()
@@ -25,9 +26,7 @@ from mjwalk._args import check_fps  # noqa: E402
 from mjwalk._io import atomic_path  # noqa: E402
 from mjwalk.body.humanoid import HUMAN_GROUP  # noqa: E402
 from mjwalk.errors import InputError, MjwalkError  # noqa: E402
-from mjwalk.timeline.parts import PartTrack  # noqa: E402
-from mjwalk.timeline.timeline import Timeline  # noqa: E402
-from mjwalk.viewpoint import (  # noqa: E402
+from mjwalk.render.viewpoint import (  # noqa: E402
     LOOKAT_HEIGHT,
     TRACK_DISTANCE,
     TRACK_ELEVATION,
@@ -35,6 +34,8 @@ from mjwalk.viewpoint import (  # noqa: E402
     preferred_azimuth,
     track_view,
 )
+from mjwalk.timeline.parts import PartTrack  # noqa: E402
+from mjwalk.timeline.timeline import Timeline  # noqa: E402
 
 #: Colour of the drawn path (RGBA) and of the drawn footprints (left, right).
 PATH_RGBA = np.array([1.0, 0.55, 0.0, 1.0], dtype=np.float32)
@@ -54,8 +55,8 @@ def camera_for(
 ) -> mujoco.MjvCamera:
     """The free camera of ``camera`` ("track" or "top") at ``frame``.
 
-    ``track`` looks at the pelvis from :data:`~mjwalk.viewpoint.TRACK_DISTANCE` (3.5 m), from
-    the azimuth and elevation of ``view`` (:func:`~mjwalk.viewpoint.track_view`) or, without
+    ``track`` looks at the pelvis from :data:`~mjwalk.render.viewpoint.TRACK_DISTANCE` (3.5 m), from
+    the azimuth and elevation of ``view`` (:func:`~mjwalk.render.viewpoint.track_view`) or, without
     one, from 15 deg above on the walker's left side (relative to the start heading of the
     walk). ``top`` looks straight down on the whole walk (path and the humanoid's whole
     extent), +x to the right and +y up in the image.
@@ -524,7 +525,7 @@ def render_video(
         timeline: the poses to show.
         path: output video file (written to a temporary file, renamed on success).
         camera: ``"track"`` (follows the pelvis with a clear view of the legs, see
-            :func:`~mjwalk.viewpoint.track_view`) or ``"top"`` (whole walk from above).
+            :func:`~mjwalk.render.viewpoint.track_view`) or ``"top"`` (whole walk from above).
         size: (width, height) in pixels.
         fps: video frame rate; defaults to the timeline's; frames are picked to keep real time.
         progress: show a tqdm progress bar.

@@ -31,17 +31,17 @@ import numpy as np
 from mjwalk._args import check_output_file
 from mjwalk._io import atomic_path, read_toml
 from mjwalk.errors import ScanError
+from mjwalk.scan.level import Levelling, check_upright, find_floor
+from mjwalk.scan.limits import check_plan_size, check_resolution
+from mjwalk.scan.merge import merge_scans, read_poses
+from mjwalk.scan.obstacles import FloorPlan, floor_plan, rectangles
+from mjwalk.scan.read import Station, check_options, to_metres_z_up
+from mjwalk.scan.sight import View, check_station
+from mjwalk.scan.voids import apply_policy, check_policy
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
-from mjwalk.world.scan.level import Levelling, check_upright, find_floor
-from mjwalk.world.scan.limits import check_plan_size, check_resolution
-from mjwalk.world.scan.merge import merge_scans, read_poses
-from mjwalk.world.scan.obstacles import FloorPlan, floor_plan, rectangles
-from mjwalk.world.scan.read import Station, check_options, to_metres_z_up
-from mjwalk.world.scan.sight import View, check_station
-from mjwalk.world.scan.voids import apply_policy, check_policy
 
 #: Sites are written this far above the floor (a stand site on the floor, as in the shipped
-#: scenes: ``mjwalk.plot`` draws sites below 0.05 m as stand positions).
+#: scenes: ``mjwalk.render.plot`` draws sites below 0.05 m as stand positions).
 SITE_Z = 0.0
 
 
@@ -229,9 +229,9 @@ def _boxes(plan: FloorPlan) -> tuple[list, int, int]:
 def _views(
     levelled: np.ndarray, stations: Sequence[Station], levelling: Levelling
 ) -> tuple[list[View], str]:
-    """The stations the cloud agrees with (:func:`~mjwalk.world.scan.sight.check_station`) in
+    """The stations the cloud agrees with (:func:`~mjwalk.scan.sight.check_station`) in
     the levelled frame, and one line saying how the floor seen is decided."""
-    from mjwalk.world.scan.obstacles import FLOOR_TOL
+    from mjwalk.scan.obstacles import FLOOR_TOL
 
     views, refused = [], []
     for k, st in enumerate(stations):
@@ -274,9 +274,9 @@ def build_scene(
 ) -> ScanScene:
     """Make the MJCF scene of a point cloud ``points`` (N, 3) in the file's units and axes
     (``offset``, file units, subtracted first). ``voids`` is the unseen-floor policy
-    (:mod:`~mjwalk.world.scan.voids`: blocked, fill, free). ``stations``: where scanners
+    (:mod:`~mjwalk.scan.voids`: blocked, fill, free). ``stations``: where scanners
     stood and which rows of ``points`` each returned (viewpoints in the frame of ``points``);
-    their rays decide which floor was seen (:mod:`~mjwalk.world.scan.sight`).
+    their rays decide which floor was seen (:mod:`~mjwalk.scan.sight`).
 
     Everything is checked, and the MJCF compiled by MuJoCo, before anything is written.
 
@@ -390,7 +390,7 @@ def scan_to_scene(
     report: Callable[[str], None] | None = None,
 ) -> ScanScene:
     """Read a scan file, or several of one hall (merged in the first file's frame,
-    :func:`~mjwalk.world.scan.merge.merge_scans`; ``poses`` a JSON file or a dict of 4 x 4
+    :func:`~mjwalk.scan.merge.merge_scans`; ``poses`` a JSON file or a dict of 4 x 4
     poses per file; ``register`` aligns the others without a pose, each alignment's line
     passed to ``report``), and write its MJCF scene to ``output``; returns the :class:`ScanScene`
     (its ``matrix`` maps the first file's points to the scene).

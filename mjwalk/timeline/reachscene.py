@@ -8,8 +8,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike
 
+from mjwalk.arms.chain import arm_frames, arm_joint_angles
 from mjwalk.arms.hands import finger_trajectory
-from mjwalk.arms.kinematics import arm_frames, arm_joint_angles
 from mjwalk.arms.reach import ReachModel, humanoid_arm, reach_for_side
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 from mjwalk.errors import MjwalkError
@@ -43,7 +43,7 @@ def reach_in_scene(
     (facing the site's +x) and reaching its ``side`` hand to ``target_site`` (+
     ``target_offset``, world metres): the hand starts where the model's reaches start
     (:attr:`~mjwalk.arms.reach.ReachModel.rest_hand`: for the generated models
-    :data:`~mjwalk.arms.kinematics.REST_HAND`, relaxed, elbow slightly bent) and ends on the
+    :data:`~mjwalk.arms.chain.REST_HAND`, relaxed, elbow slightly bent) and ends on the
     target within 1 cm; joint angles
     outside the humanoid's ranges are clipped (noted in ``meta``).
 

@@ -20,7 +20,7 @@ import numpy as np
 
 from mjwalk._jit import njit
 from mjwalk.errors import ScanError
-from mjwalk.world.scan.obstacles import HOLE_RADIUS
+from mjwalk.scan.obstacles import HOLE_RADIUS
 
 #: Largest span of a cloud along any axis, metres: the longest assembly halls are about
 #: 1.6 km (Boeing's Everett plant, 1.0 km; Tesla's Austin plant, 1.1 km); 2 km leaves room.
@@ -31,7 +31,7 @@ MAX_EXTENT = 2000.0
 MAX_COORDINATE = 1e7
 #: Floor-plan grid edge, metres. Below 5 mm a cell is finer than the range noise of
 #: terrestrial phase scanners (1-2 mm at 10 m, 5 mm assumed throughout, see
-#: :data:`mjwalk.world.scan.level.PLANE_TOL`) and the grid grows as 1/r^2 for nothing; above
+#: :data:`mjwalk.scan.level.PLANE_TOL`) and the grid grows as 1/r^2 for nothing; above
 #: 0.1 m an obstacle's outline, known to half a cell, moves by more than 5 cm, a fifth of the
 #: body radius (0.25 m) the planner keeps.
 RESOLUTION_RANGE = (0.005, 0.10)

@@ -5,7 +5,7 @@ A terrestrial scanner casts rays on a regular grid of directions (azimuth x elev
 angular step). On the floor, neighbouring rays land (d² + h²) Δθ / h apart along the range and
 d Δφ apart across it (d the horizontal distance, h the scanner's height): a floor seen at 4 m
 from a 1.27 m high scanner stepping 1° lies in rings 0.23 m apart, and the floor plan's fixed
-closing (:data:`~mjwalk.world.scan.obstacles.FLOOR_GAP`) leaves most of it void. Counting points
+closing (:data:`~mjwalk.scan.obstacles.FLOOR_GAP`) leaves most of it void. Counting points
 cannot tell that floor from floor behind an obstacle; the rays can:
 
 - the scan's angular step is measured on its own returns, as seen from its scanner (the median
@@ -18,10 +18,10 @@ cannot tell that floor from floor behind an obstacle; the rays can:
   of view, the blind cone below the scanner, no return), leaves the cell unseen; a void is
   floor no ray of any station could have seen;
 - the rays add floor that was seen, sparsely, and take none away: the floor plan still counts
-  an unseen hole narrower than :data:`~mjwalk.world.scan.obstacles.HOLE_RADIUS` (an obstacle's
+  an unseen hole narrower than :data:`~mjwalk.scan.obstacles.HOLE_RADIUS` (an obstacle's
   shadow among them) as floor, as it does without rays.
 
-The scanner's position comes from the file (:class:`~mjwalk.world.scan.read.Station`: a PCD's
+The scanner's position comes from the file (:class:`~mjwalk.scan.read.Station`: a PCD's
 VIEWPOINT, an E57 scan's pose). PCL writes ``VIEWPOINT 0 0 0 1 0 0 0`` into every cloud by
 default, whether a scanner stood there or not, so a position is used only when the cloud agrees
 that a scanner stood there (:func:`check_station`): it stands above the floor, and its returns
@@ -51,7 +51,7 @@ BEHIND = 0.05
 #: an angular step (mixed pixels at edges, multiple returns); a position that hides more is not
 #: where the scanner stood. Measured on the shared PCL room scan (step 0.97°): 0.1 % from its
 #: scanner; from positions 0.1, 0.2, 0.3 m beside it 2.9, 4.5, 5.6 %, 0.5 m below it 15 %
-#: (tests/world/test_scan_sight.py). A position within about 0.1 m of the scanner's moves
+#: (tests/scan/test_sight.py). A position within about 0.1 m of the scanner's moves
 #: a floor cell's ray by a fraction of a step at the ranges of a room.
 MAX_HIDDEN = 0.02
 #: Returns checked for :data:`MAX_HIDDEN` (a regular stride through them).

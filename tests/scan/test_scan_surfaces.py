@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_scan import _room_cloud, _tilt
+from test_scene import _room_cloud, _tilt
 
 from mjwalk import cli
-from mjwalk.world.scan import build_scene
+from mjwalk.scan import build_scene
 
 
 def _room_with_platform(height: float = 0.2) -> np.ndarray:

@@ -23,12 +23,12 @@ import numpy as np
 from scipy import ndimage
 
 from mjwalk.errors import ScanError
-from mjwalk.world.scan.obstacles import HOLE_RADIUS, FloorPlan
+from mjwalk.scan.obstacles import HOLE_RADIUS, FloorPlan
 
 #: The choices of ``--voids``.
 POLICIES = ("blocked", "fill", "free")
 #: ``fill`` makes enclosed voids up to this inscribed radius walkable, metres: twice the blind
-#: disc under a tripod scanner (:data:`~mjwalk.world.scan.obstacles.HOLE_RADIUS`, always floor),
+#: disc under a tripod scanner (:data:`~mjwalk.scan.obstacles.HOLE_RADIUS`, always floor),
 #: the shadow a bench-height occluder casts on the floor a few metres from the scanner.
 FILL_RADIUS = 2 * HOLE_RADIUS
 

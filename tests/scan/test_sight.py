@@ -1,5 +1,5 @@
 """Scan voids that follow what was seen, not how densely (issue 45, deliverable 3): where a scan
-says where its scanner stood, its rays decide which floor was seen (mjwalk.world.scan.sight)."""
+says where its scanner stood, its rays decide which floor was seen (mjwalk.scan.sight)."""
 
 from __future__ import annotations
 
@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
-from mjwalk.world.scan import build_scene, read_scan
-from mjwalk.world.scan.read import Station
-from mjwalk.world.scan.sight import MAX_HIDDEN, check_station
+from mjwalk.scan import build_scene, read_scan
+from mjwalk.scan.read import Station
+from mjwalk.scan.sight import MAX_HIDDEN, check_station
 
 #: A 16 x 8 m floor, one 1 m tall crate, 0.6 m wide, 3 m in front of the scanner, and a 2 m
 #: tall wall 3 m wide 2.5 m behind it.
@@ -35,7 +35,7 @@ def test_sparse_far_floor_is_floor_and_floor_behind_an_obstacle_stays_void():
     not). The wall's shadow (3 m wide, 5 m long: wider than a 1 m hole) stays void by
     either rule; the crate's (narrower than a 1 m hole) is a small hole, floor by either, as the
     floor plan's hole rule (HOLE_RADIUS) has it."""
-    from mjwalk.world.scan.synthetic import synthetic_scan
+    from mjwalk.scan.raycast import synthetic_scan
 
     model = mujoco.MjModel.from_xml_string(ROOM)
     scan = synthetic_scan(model, [(0.0, 0.0, 1.5)], step_deg=1.0, tilt_deg=0.0, floor_height=0)

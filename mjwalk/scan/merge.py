@@ -1,7 +1,7 @@
 """Several scans of one hall as one cloud (the seed paper's pipeline starts from the merged,
 registered scans, §3 A1).
 
-Each file is read on its own (:func:`~mjwalk.world.scan.read.read_scan`: metres, z up, the same
+Each file is read on its own (:func:`~mjwalk.scan.read.read_scan`: metres, z up, the same
 ``units``, ``up`` and ``offset`` for every file), then brought into the first file's frame:
 
 - already registered scans (one frame, as scanner software exports them; an E57 file's own
@@ -12,7 +12,7 @@ Each file is read on its own (:func:`~mjwalk.world.scan.read.read_scan`: metres,
 
 - unregistered scans (``register=True``, ``mjwalk scan --register``): each scan after the
   first that has no known pose is aligned to the merged scans before it
-  (:func:`~mjwalk.world.scan.register.align`: levelling, Open3D FPFH + RANSAC, ICP, verified
+  (:func:`~mjwalk.scan.register.align`: levelling, Open3D FPFH + RANSAC, ICP, verified
   by free space), and refused by name when that alignment cannot be trusted.
 
 Registration is not automatic: merging scans already in one frame stays the fast path, and a
@@ -24,7 +24,7 @@ the shipped station, (0.2, -1.2) and (0.0, 2.75), 1.5 m high, the second moved b
 top-view correlation verified by ICP both merged it 2.3-3.0 m wrong with 73-87 % of its points
 matched within 3 cm, while at the true pose only 3.6 % match (the two views share almost no
 surface): fitness cannot tell a wrong merge from a right one. The free-space check of
-:mod:`~mjwalk.world.scan.register` refuses that pair (22-25 % of its low points on floor the
+:mod:`~mjwalk.scan.register` refuses that pair (22-25 % of its low points on floor the
 other station saw empty); the heading search also missed the true heading of the shared PCL
 room scan split into two views overlapping by 60°, where FPFH + RANSAC found it.
 """
@@ -39,8 +39,8 @@ from pathlib import Path
 import numpy as np
 
 from mjwalk.errors import ScanError
-from mjwalk.world.scan.read import ScanCloud, Station, read_scan
-from mjwalk.world.scan.register import Alignment, align
+from mjwalk.scan.read import ScanCloud, Station, read_scan
+from mjwalk.scan.register import Alignment, align
 
 #: A pose's rotation part must be orthonormal with determinant +1 to this tolerance.
 POSE_TOL = 1e-6

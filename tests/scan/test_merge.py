@@ -9,18 +9,18 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from test_scan import STATION_SCANNERS, _write_format
+from test_scene import STATION_SCANNERS, _write_format
 
 from mjwalk import cli
 from mjwalk.errors import MjwalkError, ScanError
-from mjwalk.world.scan import build_scene, merge_scans, scan_to_scene
+from mjwalk.scan import build_scene, merge_scans, scan_to_scene
 
 
 @pytest.fixture(scope="module")
 def stations(scenes_dir):
     """The four stations' clouds of the station (0.5° rays, 5 mm noise) in one frame, tilted
     1.5° and lifted as a registered survey arrives, and that merged cloud."""
-    from mjwalk.world.scan.synthetic import synthetic_scan
+    from mjwalk.scan.raycast import synthetic_scan
     from mjwalk.world.workplace import load_model
 
     model = load_model(scenes_dir / "assembly_station.xml")
@@ -91,7 +91,7 @@ def test_bad_poses_are_refused_before_reading(tmp_path, capsys, monkeypatch, pos
     def fail(*args, **kwargs):
         raise AssertionError("a scan was read before the poses were checked")
 
-    monkeypatch.setattr("mjwalk.world.scan.merge.read_scan", fail)
+    monkeypatch.setattr("mjwalk.scan.merge.read_scan", fail)
     for n in ("a.xyz", "b.xyz"):
         (tmp_path / n).write_text("0 0 0\n1 1 1\n2 2 2\n")
     (tmp_path / "p.json").write_text(json.dumps(poses))
@@ -122,8 +122,8 @@ def test_shared_room_scan_split_in_two_views_with_poses(shared_data, tmp_path):
     """The PCL room scan (one station) split by azimuth into two views overlapping by 60°,
     the second moved by a known pose into a frame of its own, written as two PCDs: merged with
     --poses it gives the scene of the whole scan, box for box."""
-    from mjwalk.world.scan import read_scan
-    from mjwalk.world.scan.read import Station
+    from mjwalk.scan import read_scan
+    from mjwalk.scan.read import Station
 
     src = shared_data / "scans" / "pcl-room-scan" / "room_scan1.pcd"
     pts = read_scan(src).points
@@ -201,7 +201,7 @@ def _assert_plannable(scene, points: np.ndarray, xml) -> None:
 def test_stations_sharing_a_room_are_registered(stations):
     """Two ray-cast stations of the shipped station, (-3.6, -1.2) and (0.2, -1.2), the second
     moved into a frame of its own: aligned without a pose, to a millimetre."""
-    from mjwalk.world.scan.register import align
+    from mjwalk.scan.register import align
 
     move = _rigid(25, [1.2, -0.7, 0.1])
     b = stations[2] @ move[:3, :3].T + move[:3, 3]
@@ -236,7 +236,7 @@ def test_shared_room_scan_split_in_two_views_is_registered(shared_data, tmp_path
     <= 2 cm, pose right to 1 cm / 0.2°, and the planning target (:func:`_assert_plannable`).
     Both views come from one scanner position, so merging them adds no floor coverage."""
 
-    from mjwalk.world.scan import read_scan
+    from mjwalk.scan import read_scan
 
     src = shared_data / "scans" / "pcl-room-scan" / "room_scan1.pcd"
     pts = read_scan(src).points
@@ -265,8 +265,8 @@ def test_free_space_clash_tells_a_shifted_station_from_the_right_one(stations):
     """The verification alone: station 2's low points over station 0's seen floor stand on
     floor station 0 saw empty only at edges when placed right (<= MAX_CLASH), and in large
     share when the station is shifted by 1 m or turned by 90°."""
-    from mjwalk.world.scan.level import find_floor
-    from mjwalk.world.scan.register import MAX_CLASH, clash
+    from mjwalk.scan.level import find_floor
+    from mjwalk.scan.register import MAX_CLASH, clash
 
     lev = find_floor(np.vstack([stations[0], stations[2]]))
     a, b = lev.apply(stations[0]), lev.apply(stations[2])
@@ -307,7 +307,7 @@ def _symmetric_hall(rng: np.random.Generator) -> np.ndarray:
 def test_a_symmetric_hall_is_refused_as_ambiguous():
     """Two scans of a hall that a half turn maps onto itself: both placements match and
     neither contradicts free space, so the scan is refused as ambiguous, by name."""
-    from mjwalk.world.scan.register import align
+    from mjwalk.scan.register import align
 
     rng = np.random.default_rng(0)
     a = _symmetric_hall(rng)
@@ -320,7 +320,7 @@ def test_a_symmetric_hall_is_refused_as_ambiguous():
 _ALIGN_IN_A_FRESH_PROCESS = """
 import json, sys
 import numpy as np
-from mjwalk.world.scan.register import align
+from mjwalk.scan.register import align
 found = align(np.load(sys.argv[1]), np.load(sys.argv[2]), source="st2.ply", seed=int(sys.argv[3]))
 print(json.dumps(found.matrix.tolist()))
 """

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from mjwalk import cli
-from mjwalk.world.scan import build_scene
-from mjwalk.world.scan.voids import FILL_RADIUS, cover
+from mjwalk.scan import build_scene
+from mjwalk.scan.voids import FILL_RADIUS, cover
 
 
 def _hall(holes, seed: int = 0) -> np.ndarray:
@@ -79,7 +79,7 @@ def test_bad_voids_and_png_are_refused_before_work(tmp_path, capsys, monkeypatch
     def fail(*args, **kwargs):
         raise AssertionError("the scan was read before the bad option was refused")
 
-    monkeypatch.setattr("mjwalk.world.scan.merge.read_scan", fail)
+    monkeypatch.setattr("mjwalk.scan.merge.read_scan", fail)
     src = tmp_path / "a.xyz"
     src.write_text("0 0 0\n")
     for extra, match in (

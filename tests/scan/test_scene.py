@@ -1,4 +1,4 @@
-"""Laser scans -> MJCF scenes (mjwalk.world.scan): synthetic round trips, real scans, bad input."""
+"""Laser scans -> MJCF scenes (mjwalk.scan): synthetic round trips, real scans, bad input."""
 
 from __future__ import annotations
 
@@ -11,9 +11,9 @@ import pytest
 
 from mjwalk.errors import MjwalkError, ScanError
 from mjwalk.plan.options import PlannerOptions
+from mjwalk.scan import build_scene, read_scan, scan_to_scene
+from mjwalk.scan.scene import write_scene
 from mjwalk.world import load_workplace
-from mjwalk.world.scan import build_scene, read_scan, scan_to_scene
-from mjwalk.world.scan.scene import write_scene
 
 # ---------------------------------------------------------------- small synthetic clouds
 
@@ -79,7 +79,7 @@ def test_small_room_levels_and_finds_the_box(tmp_path):
 
 @pytest.mark.parametrize(("units", "up"), [("cm", "+z"), ("m", "+y"), ("mm", "-y")])
 def test_units_and_up_axes(tmp_path, units, up):
-    from mjwalk.world.scan.read import UNITS, UP_AXES
+    from mjwalk.scan.read import UNITS, UP_AXES
 
     pts = _room_cloud(spacing=0.04)
     raw = pts @ UP_AXES[up] / UNITS[units]  # what a file in those units and axes holds
@@ -200,7 +200,7 @@ STATION_SCANNERS = [(-3.6, -1.2, 1.5), (3.7, -2.6, 1.5), (0.2, -1.2, 1.5), (0.0,
 
 @pytest.fixture(scope="module")
 def station_round_trip(tmp_path_factory, scenes_dir):
-    from mjwalk.world.scan.synthetic import synthetic_scan
+    from mjwalk.scan.raycast import synthetic_scan
     from mjwalk.world.workplace import load_model
 
     src = scenes_dir / "assembly_station.xml"
@@ -214,7 +214,7 @@ def station_round_trip(tmp_path_factory, scenes_dir):
         seed=0,
     )
     orig = load_workplace(src)
-    from mjwalk.world.scan.scene import _Site
+    from mjwalk.scan.scene import _Site
 
     sites = [
         _Site(n, tuple(orig.station(n).xy), None, 0.0)
@@ -314,7 +314,7 @@ def _floor_tilt_deg(pts: np.ndarray) -> float:
 def test_real_scan(shared_data, tmp_path, rel, overhead):
     from mjwalk.gait.default import default_model
     from mjwalk.plan.walks import plan_walks
-    from mjwalk.plot import save_plan_png
+    from mjwalk.render.plot import save_plan_png
     from mjwalk.world.probe import ClearanceProbe, path_clearance
 
     src = shared_data / rel
@@ -373,7 +373,7 @@ def _write_format(path, pts):
     """Write ``pts`` (metres) in the format of ``path``'s suffix with the readers' libraries."""
     suffix = path.suffix
     if suffix in (".ply", ".pcd"):
-        from mjwalk.world.scan.read import open3d_module
+        from mjwalk.scan.read import open3d_module
 
         o3d = open3d_module()
         cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts))

@@ -17,11 +17,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from test_scan import _room_cloud, _tilt, _write_xyz
+from test_scene import _room_cloud, _tilt, _write_xyz
 
 from mjwalk import cli
 from mjwalk.errors import ScanError
-from mjwalk.world.scan import build_scene, read_scan
+from mjwalk.scan import build_scene, read_scan
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -133,7 +133,7 @@ def test_pcd_declaring_fewer_points_than_rows(room, tmp_path, capsys):
 
 def _binary_pcd(path: Path, pts, declared: int | None = None) -> Path:
     """A binary PCD of ``pts`` (written by Open3D) whose POINTS and WIDTH say ``declared``."""
-    from mjwalk.world.scan.read import open3d_module
+    from mjwalk.scan.read import open3d_module
 
     o3d = open3d_module()
     cloud = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(pts))
@@ -158,7 +158,7 @@ def test_binary_pcd_declaring_fewer_points_than_it_holds(room, tmp_path, capsys)
 
 def test_shared_pcl_scan_with_a_header_declaring_100_points(shared_data, tmp_path, capsys):
     """The shared PCL room scan as ASCII, its header saying 100 points over all its rows."""
-    from mjwalk.world.scan.read import open3d_module
+    from mjwalk.scan.read import open3d_module
 
     o3d = open3d_module()
     src = shared_data / "scans" / "pcl-room-scan" / "room_scan1.pcd"
@@ -173,7 +173,7 @@ def test_shared_pcl_scan_with_a_header_declaring_100_points(shared_data, tmp_pat
 
 @pytest.mark.parametrize("compressed", [False, True])
 def test_binary_pcd_cut_short(room, tmp_path, capsys, compressed):
-    from mjwalk.world.scan.read import open3d_module
+    from mjwalk.scan.read import open3d_module
 
     full = tmp_path / "full.pcd"
     o3d = open3d_module()
@@ -211,7 +211,7 @@ def test_valid_ascii_ply_and_pcd_still_read(room, tmp_path):
 
 
 def test_las_cut_at_a_record_boundary(room, tmp_path, capsys):
-    from test_scan import _write_format
+    from test_scene import _write_format
 
     full = _write_format(tmp_path / "full.las", room)
     import laspy
@@ -227,7 +227,7 @@ def test_las_cut_at_a_record_boundary(room, tmp_path, capsys):
 
 
 def test_laz_cut_short(room, tmp_path, capsys):
-    from test_scan import _write_format
+    from test_scene import _write_format
 
     full = _write_format(tmp_path / "full.laz", room)
     cut = tmp_path / "cut.laz"
@@ -239,7 +239,7 @@ def test_laz_cut_short(room, tmp_path, capsys):
 
 
 def test_e57_cut_short(room, tmp_path, capsys):
-    from test_scan import _write_format
+    from test_scene import _write_format
 
     full = _write_format(tmp_path / "full.e57", room)
     data = full.read_bytes()
@@ -309,7 +309,7 @@ def no_scan_work(monkeypatch):
     def fail(*args, **kwargs):
         raise AssertionError("the scan was read before the bad option was refused")
 
-    monkeypatch.setattr("mjwalk.world.scan.merge.read_scan", fail)
+    monkeypatch.setattr("mjwalk.scan.merge.read_scan", fail)
 
 
 def test_output_that_is_a_folder_or_under_a_file(room, tmp_path, capsys, no_scan_work):

@@ -5,9 +5,9 @@ levels the floor, ``obstacles`` turns the band above the floor into a floor plan
 and void boxes, ``scene`` writes the MJCF.
 """
 
-from mjwalk.world.scan.merge import MergedCloud, merge_scans
-from mjwalk.world.scan.read import ScanCloud, read_scan
-from mjwalk.world.scan.scene import ScanScene, build_scene, scan_to_scene
+from mjwalk.scan.merge import MergedCloud, merge_scans
+from mjwalk.scan.read import ScanCloud, read_scan
+from mjwalk.scan.scene import ScanScene, build_scene, scan_to_scene
 
 __all__ = [
     "MergedCloud",

@@ -1,7 +1,7 @@
 """Offscreen rendering: frames are not blank, the humanoid shows where the camera projects it.
 
 Whether this machine can render at all is decided once, before any test runs
-(:func:`_no_gl_reason`: the backend mjwalk selects, :mod:`mjwalk._gl`, and one OpenGL context
+(:func:`_no_gl_reason`: the backend mjwalk selects, :mod:`mjwalk.render._gl`, and one OpenGL context
 made with it by mujoco alone); the module is skipped, with the reason, only when it cannot. Past
 that, a render that fails (an MjwalkError included) fails its test.
 """
@@ -16,10 +16,10 @@ import mujoco
 import numpy as np
 import pytest
 
-from mjwalk import render
-from mjwalk._gl import available_backend
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.synthetic import synthetic_walk as make_walk
+from mjwalk.render import video as render
+from mjwalk.render._gl import available_backend
 from mjwalk.timeline import timeline_from_walk
 
 
@@ -157,7 +157,7 @@ def test_fixed_camera_frames_identical_to_mujoco_renderer(timeline):
     slots, reused buffers) draws exactly what mujoco.Renderer + update_scene + the path added
     after it drew before."""
     from mjwalk.body.humanoid import HUMAN_GROUP
-    from mjwalk.viewpoint import fixed_view
+    from mjwalk.render.viewpoint import fixed_view
 
     tl = timeline
     frames = [0, tl.n_frames // 3, tl.n_frames - 1]

@@ -27,7 +27,7 @@ import numpy as np
 
 from mjwalk._jit import njit
 from mjwalk.errors import ScanError
-from mjwalk.world.scan.declared import (
+from mjwalk.scan.declared import (
     Declared,
     check_e57,
     check_las,
@@ -36,20 +36,9 @@ from mjwalk.world.scan.declared import (
     check_pts,
     check_read_count,
 )
-from mjwalk.world.scan.limits import check_extent
+from mjwalk.scan.limits import check_extent
+from mjwalk.world.units import UNITS, UP_AXES
 
-#: Length units accepted for ``units``: metres per unit.
-UNITS = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254, "ft": 0.3048}
-#: Up axes accepted for ``up``: the rotation taking file coordinates to z-up coordinates
-#: (right-handed; for +y up, the file's -z becomes +y, as glTF/Blender exports are converted).
-UP_AXES = {
-    "+z": np.eye(3),
-    "-z": np.diag([1.0, -1.0, -1.0]),
-    "+y": np.array([[1.0, 0, 0], [0, 0, -1.0], [0, 1.0, 0]]),
-    "-y": np.array([[1.0, 0, 0], [0, 0, 1.0], [0, -1.0, 0]]),
-    "+x": np.array([[0, 0, -1.0], [0, 1.0, 0], [1.0, 0, 0]]),
-    "-x": np.array([[0, 0, 1.0], [0, 1.0, 0], [-1.0, 0, 0]]),
-}
 #: Suffixes read by Open3D, and the formats Open3D's reader expects for them.
 _OPEN3D = {".ply": "ply", ".pcd": "pcd", ".xyz": "xyz", ".xyzn": "xyzn", ".xyzrgb": "xyzrgb"}
 _OPEN3D_PTS = {".pts": "pts"}
@@ -367,10 +356,10 @@ def to_metres_z_up(
     """Validate raw points and convert them to metres, z up: (points, scale, axes).
 
     ``offset`` (3,), in the file's units and axes, is subtracted first (a georeferenced
-    cloud beyond :data:`~mjwalk.world.scan.limits.MAX_COORDINATE`). NaN or infinite
+    cloud beyond :data:`~mjwalk.scan.limits.MAX_COORDINATE`). NaN or infinite
     coordinates are an error unless ``drop_invalid`` (organised clouds mark missing returns
     with NaN; say so explicitly to drop them). The cloud's extent and coordinates are checked
-    (:func:`~mjwalk.world.scan.limits.check_extent`), after its height span (:func:`check_units`).
+    (:func:`~mjwalk.scan.limits.check_extent`), after its height span (:func:`check_units`).
     """
     key = check_options(units, up, source)
     raw = np.asarray(raw, dtype=np.float64)

@@ -35,8 +35,8 @@ import numpy as np
 from scipy import ndimage
 
 from mjwalk._jit import njit
+from mjwalk.scan.sight import View, ray_seen
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
-from mjwalk.world.scan.sight import View, ray_seen
 
 #: A floor point is within this height of z = 0 after levelling, metres: below the band's
 #: 0.05 m, and 6 sigma of a 5 mm range noise.
