@@ -118,20 +118,12 @@ def _marker_contact(
     return (speed < thr_v) & (height < thr_h)
 
 
-def foot_contact(
-    take: Take,
-    *,
-    sigma: float = 1.0,
-    threshold_sigma: float = 60.0,
-    speed_offset: float = 0.5,
-    min_speed: float = 0.08,
-    height_offset: float = 0.05,
-    min_phase: float = 0.08,
-) -> np.ndarray:
-    """(T, 2) bool foot contact (left, right) of a take; see the module docstring.
+@dataclass(frozen=True)
+class ContactOptions:
+    """How :func:`foot_contact` detects foot contact (the defaults are agethen2018 §3.3's
+    scheme tuned on the 120 Hz Bandai and virtual captures).
 
-    Args:
-        take: the take (metres, z up).
+    Attributes:
         sigma: Gaussian smoothing of speed and height, frames.
         threshold_sigma: Gaussian window of the adaptive speed level, frames (0.5 s at 120 Hz).
         speed_offset: the speed threshold sits this fraction of the way from the 5th percentile
@@ -140,13 +132,39 @@ def foot_contact(
         height_offset: height threshold above the 5th percentile of the marker height, metres.
         min_phase: contact and swing phases shorter than this (seconds) are removed.
     """
-    n = max(1, round(min_phase * take.fps))
+
+    sigma: float = 1.0
+    threshold_sigma: float = 60.0
+    speed_offset: float = 0.5
+    min_speed: float = 0.08
+    height_offset: float = 0.05
+    min_phase: float = 0.08
+
+
+def foot_contact(take: Take, options: ContactOptions = ContactOptions()) -> np.ndarray:
+    """(T, 2) bool foot contact (left, right) of a take; see the module docstring.
+
+    Args:
+        take: the take (metres, z up).
+        options: the contact detection's smoothing, thresholds and shortest phase.
+
+    Returns:
+        (T, 2) bool array, column 0 the left foot, column 1 the right, True while in contact.
+    """
+    o = options
+    n = max(1, round(o.min_phase * take.fps))
     out = np.zeros((take.n_frames, 2), bool)
     for j, (ankle, toe) in enumerate(((take.ankle_l, take.toe_l), (take.ankle_r, take.toe_r))):
         c = np.zeros(take.n_frames, bool)
         for marker in (ankle, toe):
             c |= _marker_contact(
-                marker, take.fps, sigma, threshold_sigma, speed_offset, min_speed, height_offset
+                marker,
+                take.fps,
+                o.sigma,
+                o.threshold_sigma,
+                o.speed_offset,
+                o.min_speed,
+                o.height_offset,
             )
         if n > 1:
             structure = np.ones(n, bool)
@@ -205,12 +223,7 @@ def _to_local(d: np.ndarray, yaw0: float) -> np.ndarray:
 def segment_take(
     take: Take,
     *,
-    sigma: float = 1.0,
-    threshold_sigma: float = 60.0,
-    speed_offset: float = 0.5,
-    min_speed: float = 0.08,
-    height_offset: float = 0.05,
-    min_phase: float = 0.08,
+    contact: ContactOptions = ContactOptions(),
     min_duration: float = 0.25,
     max_duration: float = 1.5,
     max_length: float = 1.2,
@@ -221,10 +234,10 @@ def segment_take(
 
     Args:
         take: a :class:`~mjwalk.mocap.take.Take` (metres, z up, any fps; 120 Hz expected).
-        sigma, threshold_sigma, speed_offset, min_speed, height_offset, min_phase: contact
-            detection, see :func:`foot_contact`.
-        min_duration, max_duration: plausible step durations, seconds; others are dropped
-            as ``too_short`` / ``too_long``.
+        contact: contact detection options, see :func:`foot_contact`.
+        min_duration: shortest plausible step, seconds; shorter ones are dropped as
+            ``too_short``.
+        max_duration: longest plausible step, seconds; longer ones are dropped as ``too_long``.
         max_length: steps whose pelvis displacement or swing-foot-to-stance-foot distance
             exceeds this many metres are dropped as ``absurd_length``.
 
@@ -237,49 +250,16 @@ def segment_take(
     """
     _check_take(take)
     fps = float(take.fps)
-    contact = foot_contact(
-        take,
-        sigma=sigma,
-        threshold_sigma=threshold_sigma,
-        speed_offset=speed_offset,
-        min_speed=min_speed,
-        height_offset=height_offset,
-        min_phase=min_phase,
-    )
+    in_contact = foot_contact(take, contact)
     hs, to = {}, {}
     for j, side in enumerate(SIDES):
-        hs[side], to[side] = _edges(contact[:, j])
+        hs[side], to[side] = _edges(in_contact[:, j])
     events = sorted((int(f), j) for j, side in enumerate(SIDES) for f in hs[side])
-    ankles = (take.ankle_l, take.ankle_r)
-    toes = (take.toe_l, take.toe_r)
     n_avg = max(1, round(0.1 * fps))
     dropped: Counter[str] = Counter({r: 0 for r in DROP_REASONS})
-
-    # Double-support time = toe-off of the swing foot minus the previous heel strike.
-    ds = []
-    for (f0, j0), (f1, j1) in itertools.pairwise(events):
-        if j0 != j1:
-            t_off = to[SIDES[j1]]
-            t_off = t_off[(t_off > f0) & (t_off < f1)]
-            if t_off.size:
-                ds.append(t_off[0] - f0)
-    ds_med = int(np.median(ds)) if ds else round(0.12 * fps)
-
-    # Candidate steps as (start frame, end frame, swing foot, index, initiation).
-    cands: list[tuple[int, int, int, int, bool]] = []
-    if events:
-        f1, j1 = events[0]
-        other = 1 - j1
-        t_off = to[SIDES[j1]]
-        t_off = t_off[t_off < f1]
-        if t_off.size and contact[: f1 + 1, other].all() and contact[: t_off[-1], j1].all():
-            cands.append((max(0, int(t_off[-1]) - ds_med), f1, j1, 0, True))
-    for k in range(1, len(events)):
-        (f0, j0), (f1, j1) = events[k - 1], events[k]
-        cands.append((f0, f1, j1, k, False))
-
+    ds_med = _median_double_support(events, to, fps)
     steps: list[Step] = []
-    for a, b, j, k, init in cands:
+    for a, b, j, k, init in _candidates(events, to, in_contact, ds_med):
         if not init and events[k - 1][1] == j:
             dropped["no_alternation"] += 1
             continue
@@ -290,39 +270,94 @@ def segment_take(
         if dur > max_duration:
             dropped["too_long"] += 1
             continue
-        origin = take.pelvis[a, :2]
-        yaw0 = float(take.pelvis_yaw[a])
-        pelvis = _to_local(take.pelvis[a : b + 1, :2] - origin, yaw0)
-        foot = _foot_pose(ankles[j], toes[j], b, n_avg, origin, yaw0)
-        stance = _foot_pose(ankles[1 - j], toes[1 - j], a, n_avg, origin, yaw0)
-        if np.hypot(*pelvis[-1]) > max_length or np.hypot(*(foot[:2] - stance[:2])) > max_length:
+        # Termination: the last heel strike of a take that ends standing (both feet in contact).
+        term = k == len(events) - 1 and bool(in_contact[b:].all())
+        step = _cut_step(take, (a, b, j, k, init), n_avg, term, max_length)
+        if step is None:
             dropped["absurd_length"] += 1
             continue
-        meta = {k2: v for k2, v in take.meta.items() if isinstance(v, (str, int, float, bool))}
-        # Termination: the last heel strike of a take that ends standing (both feet in contact).
-        term = k == len(events) - 1 and bool(contact[b:].all())
-        meta.update(start_frame=a, end_frame=b, initiation=init, termination=term)
-        steps.append(
-            Step(
-                side=SIDES[j],
-                fps=fps,
-                pelvis=pelvis,
-                yaw=np.asarray(take.pelvis_yaw[a : b + 1], float) - yaw0,
-                footprint=foot,
-                stance=stance,
-                take=take.name,
-                index=k,
-                meta=meta,
-            )
-        )
+        steps.append(step)
     return Segmentation(
         take=take.name,
         fps=fps,
-        contact=contact,
+        contact=in_contact,
         heel_strikes=hs,
         toe_offs=to,
         steps=steps,
         dropped=dict(dropped),
+    )
+
+
+def _median_double_support(
+    events: list[tuple[int, int]], to: dict[Side, np.ndarray], fps: float
+) -> int:
+    """Median double-support time, frames: the toe-off of the swing foot minus the previous
+    heel strike (of the other foot), over the take; 0.12 s when no such pair exists."""
+    ds = []
+    for (f0, j0), (f1, j1) in itertools.pairwise(events):
+        if j0 != j1:
+            t_off = to[SIDES[j1]]
+            t_off = t_off[(t_off > f0) & (t_off < f1)]
+            if t_off.size:
+                ds.append(t_off[0] - f0)
+    return int(np.median(ds)) if ds else round(0.12 * fps)
+
+
+def _candidates(
+    events: list[tuple[int, int]],
+    to: dict[Side, np.ndarray],
+    contact: np.ndarray,
+    ds_med: int,
+) -> list[tuple[int, int, int, int, bool]]:
+    """Candidate steps as (start frame, end frame, swing foot, index, initiation): a gait
+    initiation before the first heel strike of a take that starts standing, then one step
+    between every two consecutive heel strikes (``events``: sorted (frame, foot))."""
+    cands: list[tuple[int, int, int, int, bool]] = []
+    if events:
+        f1, j1 = events[0]
+        other = 1 - j1
+        t_off = to[SIDES[j1]]
+        t_off = t_off[t_off < f1]
+        if t_off.size and contact[: f1 + 1, other].all() and contact[: t_off[-1], j1].all():
+            cands.append((max(0, int(t_off[-1]) - ds_med), f1, j1, 0, True))
+    for k in range(1, len(events)):
+        (f0, _), (f1, j1) = events[k - 1], events[k]
+        cands.append((f0, f1, j1, k, False))
+    return cands
+
+
+def _cut_step(
+    take: Take,
+    cand: tuple[int, int, int, int, bool],
+    n_avg: int,
+    term: bool,
+    max_length: float,
+) -> Step | None:
+    """The :class:`Step` of candidate ``cand`` (see :func:`_candidates`) in the local frame of
+    its first sample, or None when it is longer than ``max_length`` metres (pelvis displacement
+    or swing-foot-to-stance-foot distance)."""
+    a, b, j, k, init = cand
+    ankles = (take.ankle_l, take.ankle_r)
+    toes = (take.toe_l, take.toe_r)
+    origin = take.pelvis[a, :2]
+    yaw0 = float(take.pelvis_yaw[a])
+    pelvis = _to_local(take.pelvis[a : b + 1, :2] - origin, yaw0)
+    foot = _foot_pose(ankles[j], toes[j], b, n_avg, origin, yaw0)
+    stance = _foot_pose(ankles[1 - j], toes[1 - j], a, n_avg, origin, yaw0)
+    if np.hypot(*pelvis[-1]) > max_length or np.hypot(*(foot[:2] - stance[:2])) > max_length:
+        return None
+    meta = {k2: v for k2, v in take.meta.items() if isinstance(v, (str, int, float, bool))}
+    meta.update(start_frame=a, end_frame=b, initiation=init, termination=term)
+    return Step(
+        side=SIDES[j],
+        fps=float(take.fps),
+        pelvis=pelvis,
+        yaw=np.asarray(take.pelvis_yaw[a : b + 1], float) - yaw0,
+        footprint=foot,
+        stance=stance,
+        take=take.name,
+        index=k,
+        meta=meta,
     )
 
 

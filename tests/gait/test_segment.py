@@ -13,8 +13,10 @@ import pytest
 from mjwalk.errors import CaptureError
 from mjwalk.gait.corpus import generate_corpus
 from mjwalk.gait.segment import (
+    ContactOptions,
     SegmentationSummary,
     count_transitions,
+    foot_contact,
     segment_take,
     segment_takes,
     step_sway,
@@ -117,6 +119,19 @@ def test_straight_steps_heading_sway_width(takes):
     assert 0.01 < np.median(sway) < 0.05
     width = np.median([step_width(s) for s in mid])
     assert abs(width - params["step_width"]) < 0.02
+
+
+def test_contact_options_drive_detection(takes):
+    take = takes[0]
+    default = foot_contact(take)
+    assert default.shape == (take.n_frames, 2) and default.dtype == bool
+    assert np.array_equal(default, foot_contact(take, ContactOptions()))
+    assert np.array_equal(segment_take(take).contact, default)
+    # a height threshold below the planted ankle/toe noise floor finds less contact
+    strict = foot_contact(take, ContactOptions(height_offset=-0.05))
+    assert strict.sum() < default.sum()
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        ContactOptions().sigma = 2.0  # type: ignore[misc]
 
 
 def test_drops_are_counted_by_reason(takes):
