@@ -17,7 +17,12 @@ from mjwalk._buildonce import built_once
 from mjwalk._io import cache_root, check_cache_writable
 from mjwalk._log import log
 from mjwalk.errors import MjwalkError, ModelFileError
+from mjwalk.gait import corpus
+from mjwalk.gait.corpus import generate_corpus
 from mjwalk.gait.model import MIN_STEPS, MODEL_VERSION, StepModel
+from mjwalk.gait.pace import normalize_paces
+from mjwalk.gait.segment import segment_takes
+from mjwalk.gait.transition import N_INDUCING
 
 #: Corpus generation used for the default model (agethen2018: 12 subjects).
 DEFAULT_SUBJECTS = 12
@@ -31,16 +36,12 @@ _MEMO: dict[Path, StepModel] = {}
 
 def corpus_version() -> str:
     """Version string of the corpus generator (``mjwalk.gait.corpus.CORPUS_VERSION``)."""
-    from mjwalk.gait import corpus
-
     return str(getattr(corpus, "CORPUS_VERSION", "0"))
 
 
 def default_model_path() -> Path:
     """Path of the cached default model (name includes the model and corpus versions and the
     transition GPs' inducing inputs)."""
-    from mjwalk.gait.transition import N_INDUCING
-
     return cache_root() / (
         f"stepmodel-v{MODEL_VERSION}-corpus{corpus_version()}"
         f"-s{DEFAULT_SUBJECTS}-seed{DEFAULT_SEED}-m{N_INDUCING}.npz"
@@ -65,14 +66,10 @@ def train_model(
     Returns:
         (model, SegmentationSummary).
     """
-    from mjwalk.gait.segment import segment_takes
-
     t0 = time.perf_counter()
     steps, summary = segment_takes(takes)
     norm: dict = {}
     if normalize_by:
-        from mjwalk.gait.pace import normalize_paces
-
         steps, norm = normalize_paces(steps, key=normalize_by)
     if progress:
         log.info(
@@ -102,8 +99,6 @@ def default_model(progress: bool = True) -> StepModel:
         return _MEMO[path]
 
     def build() -> StepModel:
-        from mjwalk.gait.corpus import generate_corpus
-
         check_cache_writable("the default step model")  # before a minute of training
 
         t0 = time.perf_counter()

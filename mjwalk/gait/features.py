@@ -305,8 +305,9 @@ class StepFeatures:
 
         ``variance=1.0`` keeps every component (exact inverse).
         """
-        from sklearn.decomposition import PCA  # only for fitting (import cost: mjwalk plan)
-        from sklearn.preprocessing import StandardScaler
+        # deferred: sklearn is slow to import and only fitting needs it (`mjwalk plan` does not)
+        from sklearn.decomposition import PCA  # deferred: as above
+        from sklearn.preprocessing import StandardScaler  # deferred: as above
 
         raw = _as_raw(steps_or_raw)
         if raw.shape[0] < 3:

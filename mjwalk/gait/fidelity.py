@@ -43,6 +43,8 @@ from mjwalk._log import log
 from mjwalk.errors import InputError, MjwalkError
 from mjwalk.gait.features import StepBatch, concat_batches
 from mjwalk.gait.model import StepModel
+from mjwalk.gait.pace import capture_pace, model_pace
+from mjwalk.gait.segment import segment_takes
 from mjwalk.gait.step import Step
 from mjwalk.gait.straight import (
     PATH_SAMPLES,
@@ -50,6 +52,7 @@ from mjwalk.gait.straight import (
     model_straight_walks,
     resample_step,
 )
+from mjwalk.mocap import load_amc, load_bvh
 
 METRICS = ("length", "duration", "sway", "heading")
 _UNITS = {"length": "m", "duration": "s", "sway": "m", "heading": "rad"}
@@ -189,8 +192,6 @@ def fidelity_from_steps(
             "capture": _describe([w["n_steps"] for w in cw]),
             "model": _describe([w["n_steps"] for w in mw]),
         }
-    from mjwalk.gait.pace import capture_pace, model_pace
-
     try:
         cap_pace: dict | None = capture_pace(steps, straight_deg).as_dict()
     except MjwalkError:  # no straight walking in the capture
@@ -236,8 +237,6 @@ def fidelity_report(
     straight-walk time / path-length medians and IQRs (``straight_walks``). The caller writes
     it (atomically) if wanted; :func:`format_fidelity_table` renders it.
     """
-    from mjwalk.gait.segment import segment_takes
-
     steps, summary = segment_takes(takes)
     report = fidelity_from_steps(
         model,
@@ -324,8 +323,6 @@ def load_capture(
     skeleton: str | None = None,
 ) -> list:
     """Takes from a BVH glob and/or an AMC glob with its ASF skeleton; sorted by file name."""
-    from mjwalk.mocap import load_amc, load_bvh
-
     takes = []
     if bvh:
         files = sorted(_glob.glob(str(bvh)))

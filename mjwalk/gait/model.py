@@ -63,13 +63,14 @@ import numpy as np
 from mjwalk._args import as_generator
 from mjwalk._io import check_header, load_npz, save_npz
 from mjwalk._log import log
-from mjwalk.conventions import Side, other_side
+from mjwalk.conventions import DEFAULT_STATURE, Side, other_side
 from mjwalk.errors import MjwalkError, ModelFileError
 from mjwalk.gait.features import (
     StepBatch,
     StepFeatures,
     concat_batches,
     raw_features,
+    raw_scale_factors,
     side_array,
 )
 from mjwalk.gait.pace import PACE_VERSION, Pace, model_pace
@@ -216,7 +217,8 @@ class StepModel:
                 raise MjwalkError(
                     f"StepModel.fit: only {len(idx)} {s} steps for a {d}-D KDE; need more data"
                 )
-            from scipy.stats import gaussian_kde  # only for fitting
+            # deferred: scipy.stats costs ~1 s to import and only fitting needs it
+            from scipy.stats import gaussian_kde
 
             kde = gaussian_kde(z[idx].T)
             kde_data[s] = z[idx].T.copy()
@@ -430,9 +432,6 @@ class StepModel:
         the decoding changes (:meth:`StepFeatures.scaled`), so a conditioned model costs
         nothing to build beyond the model's pace, which is measured once.
         """
-        from mjwalk.conventions import DEFAULT_STATURE
-        from mjwalk.gait.features import raw_scale_factors
-
         base = self._base or self
         if walker is None:
             return base

@@ -22,7 +22,7 @@ with body size (Perry & Burnfield 2010, ch. 1: step width 7-10 cm for adults).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -96,7 +96,8 @@ class Pace:
 
 
 def _pace(lengths, durations, widths) -> Pace:
-    from scipy.stats import trim_mean  # scipy.stats costs ~1 s to import: only when measuring
+    # deferred: scipy.stats costs ~1 s to import and only measuring a pace needs it
+    from scipy.stats import trim_mean
 
     lengths, durations, widths = (np.asarray(x, dtype=float) for x in (lengths, durations, widths))
     if lengths.size < 3:
@@ -153,8 +154,6 @@ def stretch_step(step: Step, lateral: float, forward: float, time: float) -> Ste
     """``step`` stretched in its local frame: x (right) by ``lateral``, y (forward) by
     ``forward``, its duration by ``time`` (the samples stay, their rate changes); yaws stay.
     The inverse of what :meth:`~mjwalk.gait.model.StepModel.for_walker` does to decoded steps."""
-    from dataclasses import replace
-
     xy = np.array([lateral, forward])
     foot = np.asarray(step.footprint, dtype=float).copy()
     stance = np.asarray(step.stance, dtype=float).copy()

@@ -142,11 +142,16 @@ class TransitionGP:
 
         ``n_residual``: residuals pooled per inducing input; None: ``ceil(N / m)``, at least 5.
         """
-        from scipy.spatial import cKDTree
-        from sklearn.cluster import KMeans
-        from sklearn.exceptions import ConvergenceWarning
-        from sklearn.gaussian_process import GaussianProcessRegressor
-        from sklearn.gaussian_process.kernels import RBF, ConstantKernel, WhiteKernel
+        # deferred: sklearn (and scipy.spatial) are slow to import and only fitting needs them
+        from scipy.spatial import cKDTree  # deferred: as above
+        from sklearn.cluster import KMeans  # deferred: as above
+        from sklearn.exceptions import ConvergenceWarning  # deferred: as above
+        from sklearn.gaussian_process import GaussianProcessRegressor  # deferred: as above
+        from sklearn.gaussian_process.kernels import (  # deferred: as above
+            RBF,
+            ConstantKernel,
+            WhiteKernel,
+        )
 
         n, d = x.shape
         if n < 5:
@@ -252,7 +257,7 @@ class TransitionGP:
 
 def _lbfgs(obj_func, initial_theta, bounds):
     """L-BFGS-B on the negative LML (as sklearn's default) with a bounded iteration budget."""
-    from scipy.optimize import minimize
+    from scipy.optimize import minimize  # deferred: slow to import, only fitting needs it
 
     res = minimize(
         obj_func,
