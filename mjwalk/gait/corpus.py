@@ -44,25 +44,19 @@ All outputs: 120 Hz, metres, z up, yaw radians CCW from +x (world frame).
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from dataclasses import asdict
 
 import numpy as np
-from scipy.linalg import solve_banded
-from scipy.ndimage import gaussian_filter1d
 
 from mjwalk.errors import MjwalkError
+from mjwalk.gait.bout import BoutPlan, render_bout
 from mjwalk.gait.subjects import SubjectParams, sample_subject
-from mjwalk.mocap.take import TAKE_FPS, Take
+from mjwalk.mocap.take import Take
 
 #: Version of the corpus generator: bump it whenever generated takes change, so cached models
 #: trained on an older corpus are rebuilt (see mjwalk.gait.default).
 CORPUS_VERSION = "2"
 
-#: Gravitational acceleration (m/s^2), the inverted pendulum's.
-G = 9.81
-#: Ankle and toe (ball of the foot) heights above the floor when the foot is planted, metres.
-ANKLE_HEIGHT = 0.08
-TOE_HEIGHT = 0.02
 #: Floor space of the free-walking scenario, metres. The paper's tracking space is 3.3 m x 3.2 m
 #: (agethen2018 §3.2); walking freely in so small a space turns nearly every step, far more than
 #: the captured clips we calibrate on, so the virtual subjects walk freely in a 6 m x 6 m hall.
@@ -100,17 +94,6 @@ DEFAULT_MINUTES = 25.5
 # ---------------------------------------------------------------------------------------------
 
 
-@dataclass
-class _Plan:
-    """Per-step arrays of one bout: forward/lateral advance of the walking line (m, in the
-    mid-step heading frame), heading change (rad), duration (s)."""
-
-    fwd: list[float]
-    lat: list[float]
-    dtheta: list[float]
-    dur: list[float]
-
-
 def _turn_profile(angle: float, p: SubjectParams, rng: np.random.Generator) -> np.ndarray:
     """Heading changes (rad) spreading ``angle`` over enough steps, bell-shaped."""
     m = max(1, math.ceil(abs(angle) / p.max_turn))
@@ -128,7 +111,7 @@ def _speed(p: SubjectParams, f: np.ndarray, rng: np.random.Generator) -> tuple:
 
 def _bout_plan(
     p: SubjectParams, rng: np.random.Generator, distance: float, turn: float = 0.0
-) -> _Plan:
+) -> BoutPlan:
     """Straight walk of about ``distance`` metres, optionally turning by ``turn`` radians half
     way (the pole protocol); begins with a gait initiation and ends with a closing step."""
     f0 = float(np.exp(rng.normal(0.0, p.speed_sd)))
@@ -157,10 +140,10 @@ def _bout_plan(
     dur[0] *= rng.uniform(1.0, 1.1)
     length[-1] *= rng.uniform(0.45, 0.6)
     dtheta[0] = dtheta[-1] = 0.0
-    return _Plan(list(length), [0.0] * n, list(dtheta), list(dur))
+    return BoutPlan(list(length), [0.0] * n, list(dtheta), list(dur))
 
 
-def _short_plan(p: SubjectParams, rng: np.random.Generator, distance: float) -> _Plan:
+def _short_plan(p: SubjectParams, rng: np.random.Generator, distance: float) -> BoutPlan:
     """A short walk from standing to standing to a spot ``distance`` metres away along the
     walking line (start stance centre to end stance centre), with *step-length targeting*:
     people walking a short way take the number of steps that fits and scale them, rather than
@@ -195,13 +178,13 @@ def _short_plan(p: SubjectParams, rng: np.random.Generator, distance: float) -> 
     w = rng.uniform(0.5, 1.5, k)
     dtheta[:k] += turn * w / w.sum()
     dtheta[-1] = 0.0
-    # the closing step lands beside the other foot (see _render): it advances the line by 0
-    return _Plan([*length, 0.0], [0.0] * (k + 1), list(dtheta), list(dur))
+    # the closing step lands beside the other foot (see render_bout): it advances the line by 0
+    return BoutPlan([*length, 0.0], [0.0] * (k + 1), list(dtheta), list(dur))
 
 
 def _free_plan(
     p: SubjectParams, rng: np.random.Generator, seconds: float, start: np.ndarray, theta: float
-) -> _Plan:
+) -> BoutPlan:
     """Free walking in the tracking space for about ``seconds``: speed and curvature vary
     (AR(1) per step), occasional side steps and on-the-spot turns; steers back to the centre
     near the area's border."""
@@ -260,188 +243,7 @@ def _free_plan(
     lat.append(0.0)
     dth.append(0.0)
     dur.append(p.step_duration)
-    return _Plan(fwd, lat, dth, dur)
-
-
-# ---------------------------------------------------------------------------------------------
-# Plan -> take
-# ---------------------------------------------------------------------------------------------
-
-
-def _progress(u: np.ndarray) -> np.ndarray:
-    """Swing progress 0->1 with a cycloid-like speed profile that leaves and lands with a
-    quarter of the mean swing speed (a heel strike is an impact, not a soft landing)."""
-    beta = 0.75
-    return u - beta * np.sin(2 * np.pi * u) / (2 * np.pi)
-
-
-def _lipm(p_ref: np.ndarray, z0: float, fps: float) -> np.ndarray:
-    """Pelvis (N, 2) from the ZMP (N, 2) by the LIPM x'' = g/z0 (x - p) as a boundary-value
-    problem, x = p at both ends, central differences on the frame grid (tridiagonal solve)."""
-    n = p_ref.shape[0]
-    w2 = G / z0 / fps**2
-    ab = np.empty((3, n))
-    ab[0, :] = 1.0
-    ab[1, :] = -(2.0 + w2)
-    ab[2, :] = 1.0
-    ab[0, 1] = 0.0
-    ab[1, 0] = ab[1, -1] = 1.0
-    ab[2, -2] = 0.0
-    rhs = -w2 * p_ref
-    rhs[0], rhs[-1] = p_ref[0], p_ref[-1]
-    return solve_banded((1, 1), ab, rhs)
-
-
-def _render(
-    plan: _Plan,
-    p: SubjectParams,
-    rng: np.random.Generator,
-    name: str,
-    start: np.ndarray,
-    theta0: float,
-    meta: dict,
-    fps: float = TAKE_FPS,
-) -> Take:
-    """Turn a step plan into a 120 Hz take (feet, contact timing, LIPM pelvis)."""
-    n = len(plan.fwd)
-    fwd, lat = np.asarray(plan.fwd), np.asarray(plan.lat)
-    dth = np.asarray(plan.dtheta)
-    theta = theta0 + np.cumsum(dth)  # heading after each step
-    th_mid = theta - 0.5 * dth
-    adv = fwd[:, None] * np.stack([np.cos(th_mid), np.sin(th_mid)], 1) + lat[:, None] * np.stack(
-        [np.sin(th_mid), -np.cos(th_mid)], 1
-    )
-    centre = start + np.cumsum(adv, axis=0)  # walking-line point of each step's landing
-    first = int(rng.integers(2))  # 0: left foot swings first
-    side = (first + np.arange(n)) % 2  # 0 left, 1 right
-    sgn = np.where(side == 0, -1.0, 1.0)  # left foot is on the left (-right direction)
-    right = np.stack([np.sin(theta), -np.cos(theta)], 1)
-    width = np.where(np.abs(lat) > 1e-9, np.maximum(p.step_width, np.abs(lat) + 0.1), p.step_width)
-    width = np.maximum(width + 0.02 * rng.standard_normal(n), 0.02)
-    land = centre + (sgn * 0.5 * width)[:, None] * right
-    land_yaw = theta - sgn * p.toe_out
-    # Closing step: land beside the other foot, same heading.
-    land[-1] = centre[-2] + sgn[-1] * 0.5 * p.step_width * right[-2]
-    land_yaw[-1] = theta[-2] - sgn[-1] * p.toe_out
-    theta[-1] = theta[-2]
-
-    # Initial stance: feet side by side around start, heading theta0.
-    r0 = np.array([math.sin(theta0), -math.cos(theta0)])
-    init = {
-        0: np.array([*(start - 0.5 * p.step_width * r0), theta0 + p.toe_out]),
-        1: np.array([*(start + 0.5 * p.step_width * r0), theta0 - p.toe_out]),
-    }
-
-    # Timing in frames: HS[-1] = end of the initial standing; HS[k] = HS[k-1] + T_k.
-    dur_f = np.maximum(np.round(np.asarray(plan.dur) * fps).astype(int), 20)
-    ds_f = np.maximum(np.round(p.double_support * dur_f).astype(int), 6)
-    # Gait initiation: a longer weight shift before the first swing, then a normal swing.
-    ds_f[0] = max(round(rng.uniform(0.3, 0.4) * fps), 6)
-    dur_f[0] = ds_f[0] + round((1.0 - p.double_support) * dur_f[0])
-    hs_start = round(rng.uniform(0.5, 0.9) * fps)
-    hs = hs_start + np.cumsum(dur_f)
-    to = np.concatenate([[hs_start], hs[:-1]]) + ds_f
-    end_ds = int(ds_f[-1])
-    n_frames = int(hs[-1] + end_ds + round(rng.uniform(0.8, 1.1) * fps))
-    frames = np.arange(n_frames)
-
-    # Feet: poses per landing; swing k moves foot side[k] from its previous pose to land[k].
-    poses = np.concatenate([land, land_yaw[:, None]], 1)
-    feet = {}
-    truth_hs, truth_to = {}, {}
-    for j in (0, 1):
-        ks = np.flatnonzero(side == j)
-        prev = np.vstack([init[j], poses[ks[:-1]]]) if ks.size else init[j][None]
-        nxt = poses[ks]
-        t_off, t_hs = to[ks], hs[ks]
-        idx = np.searchsorted(t_off, frames, side="right") - 1
-        out = np.repeat(init[j][None], n_frames, 0)
-        lift = np.zeros(n_frames)
-        m = idx >= 0
-        if m.any():
-            i = idx[m]
-            u = np.clip((frames[m] - t_off[i] + 1) / (t_hs[i] - t_off[i] + 1), 0.0, 1.0)
-            s = _progress(u)
-            d = nxt[i] - prev[i]
-            d[:, 2] = (d[:, 2] + np.pi) % (2 * np.pi) - np.pi
-            out[m] = prev[i] + s[:, None] * d
-            lift[m] = (p.clearance * np.sin(np.pi * u)) * ((u > 0) & (u < 1))
-        ankle = np.column_stack([out[:, 0], out[:, 1], ANKLE_HEIGHT + lift])
-        toe = ankle + np.column_stack(
-            [
-                p.foot_length * np.cos(out[:, 2]),
-                p.foot_length * np.sin(out[:, 2]),
-                np.full(n_frames, TOE_HEIGHT - ANKLE_HEIGHT),
-            ]
-        )
-        feet[j] = (ankle, toe)
-        key = "left" if j == 0 else "right"
-        truth_hs[key], truth_to[key] = t_hs.astype(int), t_off.astype(int)
-
-    # ZMP knots: standing midpoint -> stance foot (heel to forefoot in single support) -> ...
-    def zmp(k: int, along: float) -> np.ndarray:
-        """ZMP under the stance foot of step k (the foot that landed at step k-1)."""
-        if k == 0:
-            c, th = start, theta0
-        else:
-            c, th = centre[k - 1], theta[k - 1]
-        s_ = -sgn[k]  # the stance foot is the other one
-        return (
-            c
-            + s_ * p.zmp_offset * np.array([math.sin(th), -math.cos(th)])
-            + along * np.array([math.cos(th), math.sin(th)])
-        )
-
-    # Gait initiation: anticipatory postural adjustment, the ZMP first moves backwards and
-    # towards the swing foot, which launches the pelvis forwards onto the stance foot.
-    h0 = np.array([math.cos(theta0), math.sin(theta0)])
-    apa = start - p.apa * h0 + sgn[0] * 0.3 * p.step_width * r0
-    kt, kp = [0, hs_start, hs_start + int(ds_f[0]) // 2], [start, start, apa]
-    for k in range(n):
-        kt += [int(to[k]), int(hs[k])]
-        kp += [zmp(k, -0.02), zmp(k, 0.10)]
-    end_mid = 0.5 * (land[-1] + land[-2]) if n > 1 else land[-1]
-    kt += [int(hs[-1] + end_ds), n_frames - 1]
-    kp += [end_mid, end_mid]
-    kt_a, kp_a = np.asarray(kt, float), np.asarray(kp)
-    p_ref = np.column_stack(
-        [np.interp(frames, kt_a, kp_a[:, 0]), np.interp(frames, kt_a, kp_a[:, 1])]
-    )
-    # Solve on a grid padded by 2 s of standing at both ends (about 7 pendulum time constants)
-    # so that the boundary conditions do not pull the pelvis: it settles over the feet.
-    pad = round(2.0 * fps)
-    p_pad = np.pad(p_ref, ((pad, pad), (0, 0)), mode="edge")
-    pelvis_xy = _lipm(p_pad, p.pelvis_height, fps)[pad:-pad]
-
-    # Pelvis height: low in double support, high in single support.
-    zt, zv = [0, hs_start], [0.0, 0.0]
-    for k in range(n):
-        zt += [int(hs[k - 1] if k else hs_start) + int(ds_f[k]) // 2, int((to[k] + hs[k]) // 2)]
-        zv += [-p.bob, p.bob]
-    zt += [int(hs[-1] + end_ds), n_frames - 1]
-    zv += [0.0, 0.0]
-    z = p.pelvis_height + gaussian_filter1d(np.interp(frames, zt, zv), 0.04 * fps, mode="nearest")
-
-    # Pelvis yaw: heading at heel strikes + transverse rotation (extreme at heel strikes).
-    yt = np.concatenate([[0, hs_start], hs, [hs[-1] + end_ds, n_frames - 1]]).astype(float)
-    rot = sgn * p.pelvis_rotation * (1 + 0.1 * rng.standard_normal(n))
-    rot[-1] *= 0.5
-    yv = np.concatenate([[theta0, theta0], theta + rot, [theta[-1], theta[-1]]])
-    yaw = gaussian_filter1d(np.interp(frames, yt, yv), 0.05 * fps, mode="nearest")
-
-    meta = dict(meta)
-    meta.update(heel_strikes=truth_hs, toe_offs=truth_to, n_steps=n, first_side=int(first))
-    return Take(
-        name=name,
-        fps=fps,
-        pelvis=np.column_stack([pelvis_xy, z]),
-        pelvis_yaw=yaw,
-        ankle_l=feet[0][0],
-        ankle_r=feet[1][0],
-        toe_l=feet[0][1],
-        toe_r=feet[1][1],
-        meta=meta,
-    )
+    return BoutPlan(fwd, lat, dth, dur)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -458,9 +260,9 @@ def subject_takes(
     takes: list[Take] = []
     base = {"subject": p.subject, "params": asdict(p)}
 
-    def emit(plan: _Plan, protocol: str, extra: dict, start, theta0) -> float:
+    def emit(plan: BoutPlan, protocol: str, extra: dict, start, theta0) -> float:
         name = f"virtual-s{p.subject:02d}-{protocol}-{len(takes):04d}"
-        take = _render(
+        take = render_bout(
             plan,
             p,
             rng,

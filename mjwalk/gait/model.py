@@ -73,6 +73,7 @@ from mjwalk.gait.features import (
     raw_scale_factors,
     side_array,
 )
+from mjwalk.gait.fitting import GPFitter, first_step_indices, fit_starters, transition_pairs
 from mjwalk.gait.pace import PACE_VERSION, Pace, model_pace
 from mjwalk.gait.step import Step
 from mjwalk.gait.transition import N_INDUCING, TransitionGP
@@ -95,28 +96,6 @@ _SIDES = ("left", "right")
 # --------------------------------------------------------------------------------------------
 # Step model
 # --------------------------------------------------------------------------------------------
-
-
-def first_step_indices(steps: Sequence[Step]) -> np.ndarray:
-    """Indices into ``steps`` of the first step of every take (smallest ``index`` per take)."""
-    best: dict[str, int] = {}
-    for i, s in enumerate(steps):
-        j = best.get(s.take)
-        if j is None or s.index < steps[j].index:
-            best[s.take] = i
-    return np.array(sorted(best.values()), dtype=np.int64)
-
-
-def transition_pairs(steps: Sequence[Step]) -> tuple[np.ndarray, np.ndarray]:
-    """(prev, next) indices of captured transitions: same take, index i -> i+1, sides alternate."""
-    lookup = {(s.take, s.index): i for i, s in enumerate(steps)}
-    prev, nxt = [], []
-    for i, s in enumerate(steps):
-        j = lookup.get((s.take, s.index + 1))
-        if j is not None and steps[j].side != s.side:
-            prev.append(i)
-            nxt.append(j)
-    return np.array(prev, dtype=np.int64), np.array(nxt, dtype=np.int64)
 
 
 @dataclass
@@ -197,67 +176,23 @@ class StepModel:
         sides = side_array(steps)
         feats = StepFeatures.fit(raw, variance=variance)
         z = feats.encode_raw(raw)
-        d = feats.n_components
         _log(
             progress,
-            f"features: {len(steps)} steps -> {d} PCA dims "
+            f"features: {len(steps)} steps -> {feats.n_components} PCA dims "
             f"({100 * feats.variance_kept:.1f} % variance)",
         )
-
         first = first_step_indices(steps)
-        min_first = max(2 * (d + 1), 10)
-        kde_data, kde_factor, kde_source = {}, {}, {}
-        for s in _SIDES:
-            idx = first[sides[first] == s]
-            src = "first steps"
-            if len(idx) < min_first:
-                idx = np.flatnonzero(sides == s)
-                src = "all steps (too few first steps)"
-            if len(idx) <= d + 1:
-                raise MjwalkError(
-                    f"StepModel.fit: only {len(idx)} {s} steps for a {d}-D KDE; need more data"
-                )
-            # deferred: scipy.stats costs ~1 s to import and only fitting needs it
-            from scipy.stats import gaussian_kde
-
-            kde = gaussian_kde(z[idx].T)
-            kde_data[s] = z[idx].T.copy()
-            kde_factor[s] = float(kde.factor)
-            kde_source[s] = {"source": src, "n": len(idx)}
+        kde_data, kde_factor, kde_source = fit_starters(z, sides, first)
 
         prev, nxt = transition_pairs(steps)
         # No step follows a gait termination: transitions into one are not modelled (module doc).
         term = np.array([bool(steps[j].meta.get("termination")) for j in nxt], dtype=bool)
         stop_prev, stop_nxt = prev[term], nxt[term]
         prev, nxt = prev[~term], nxt[~term]
-
-        def fit_gps(label, pp, nn, min_pairs, inducing, residual):
-            """One transition GP per predecessor side on the pairs (pp, nn) of a regime."""
-            out, counts = {}, {}
-            for s in _SIDES:
-                sel = sides[pp] == s
-                counts[s] = int(sel.sum())
-                if counts[s] < min_pairs:
-                    continue
-                t1 = time.perf_counter()
-                out[s] = TransitionGP.fit(
-                    z[pp[sel]],
-                    z[nn[sel]],
-                    rng=rng,
-                    n_hyper=n_hyper,
-                    n_inducing=inducing(counts[s]),
-                    n_residual=residual,
-                )
-                _log(
-                    progress,
-                    f"{label}{s}->{other_side(s)}: {counts[s]} pairs, "
-                    f"{time.perf_counter() - t1:.1f} s",
-                )
-            return out, counts
-
-        gps, n_trans = fit_gps("GP ", prev, nxt, 0, lambda n: n_inducing, n_residual)
+        fitter = GPFitter(z, sides, rng, n_hyper, progress)
+        gps, n_trans = fitter.fit("GP ", prev, nxt, 0, lambda n: n_inducing, n_residual)
         # ... they are their own regime: a stop GP per side, drawn by sample_stop (module doc)
-        stop_gps, n_stop = fit_gps(
+        stop_gps, n_stop = fitter.fit(
             "stop GP ",
             stop_prev,
             stop_nxt,

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import itertools
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -159,39 +160,91 @@ def model_straight_walks(
     chains (a KDE starter and one successor before them, not counted) instead of starters."""
     distances = np.asarray(distances, dtype=float)
     w = len(distances)
-    goal = np.column_stack([np.zeros(w), distances])
-    pos = np.zeros((w, 2))
-    phi = np.zeros(w)
-    time_ = np.zeros(w)
-    plen = np.zeros(w)
-    n_steps = np.zeros(w, dtype=int)
-    per_step: list[list[tuple[float, float, float]]] = [[] for _ in range(w)]
-    # (time, progress along the start -> goal line) after every step of every walk
-    track: list[list[tuple[float, float]]] = [[(0.0, 0.0)] for _ in range(w)]
-    lateral: list[list[float]] = [[0.0] for _ in range(w)]  # x after every step (m)
-    active = np.ones(w, dtype=bool)
+    walks = _Walks.start(distances)
     current: StepBatch | None = None
     max_steps = int(np.ceil(distances.max() / 0.2)) + 10 if w else 0
     for it in range(max_steps):
-        idx = np.flatnonzero(active)
+        idx = np.flatnonzero(walks.active)
         if idx.size == 0:
             break
         if it == 0:
-            cand = model.sample_first(n_candidates * w, rng)
-            order = rng.permuted(np.arange(n_candidates * w)).reshape(w, n_candidates)
-            cand = cand.take(order.ravel())
-            moving = np.zeros(w, bool) if in_motion is None else np.asarray(in_motion, bool)
-            if moving.any():
-                rows_m = (
-                    np.flatnonzero(moving)[:, None] * n_candidates + np.arange(n_candidates)
-                ).ravel()
-                warm = model.sample_next(model.sample_next(cand.take(rows_m), 1, rng), 1, rng)
-                cand = concat_batches([cand.take(np.setdiff1d(np.arange(len(cand)), rows_m)), warm])
-                back = np.concatenate([np.setdiff1d(np.arange(len(cand)), rows_m), rows_m])
-                cand = cand.take(np.argsort(back))
+            cand = _first_candidates(model, w, n_candidates, in_motion, rng)
         else:
             assert current is not None  # set by the first iteration
             cand = model.sample_next(current, n_candidates, rng)
+        current = walks.advance(idx, cand, n_candidates, heading_weight, record_steps)
+    return [walks.record(i, record_steps) for i in range(w)]
+
+
+def _first_candidates(
+    model: StepSampler,
+    w: int,
+    n_candidates: int,
+    in_motion: ArrayLike | None,
+    rng: np.random.Generator,
+) -> StepBatch:
+    """The first ``n_candidates`` candidates of each of ``w`` walks (rows walk-major): KDE
+    starters in a random order; for the walks ``in_motion``, the third steps of chains."""
+    cand = model.sample_first(n_candidates * w, rng)
+    order = rng.permuted(np.arange(n_candidates * w)).reshape(w, n_candidates)
+    cand = cand.take(order.ravel())
+    moving = np.zeros(w, bool) if in_motion is None else np.asarray(in_motion, bool)
+    if moving.any():
+        rows_m = (np.flatnonzero(moving)[:, None] * n_candidates + np.arange(n_candidates)).ravel()
+        warm = model.sample_next(model.sample_next(cand.take(rows_m), 1, rng), 1, rng)
+        cand = concat_batches([cand.take(np.setdiff1d(np.arange(len(cand)), rows_m)), warm])
+        back = np.concatenate([np.setdiff1d(np.arange(len(cand)), rows_m), rows_m])
+        cand = cand.take(np.argsort(back))
+    return cand
+
+
+@dataclass
+class _Walks:
+    """State of the greedy straight walks of :func:`model_straight_walks`, one row per walk:
+    goal and position (m, start frame: goal straight ahead on +y), heading (rad from +y CCW),
+    time (s), pelvis path length (m), steps taken, per-step records and the track."""
+
+    distances: np.ndarray
+    goal: np.ndarray
+    pos: np.ndarray
+    phi: np.ndarray
+    time_: np.ndarray
+    plen: np.ndarray
+    n_steps: np.ndarray
+    per_step: list[list[tuple[float, float, float]]]
+    # (time, progress along the start -> goal line) after every step of every walk
+    track: list[list[tuple[float, float]]]
+    lateral: list[list[float]]  # x after every step (m)
+    active: np.ndarray
+
+    @classmethod
+    def start(cls, distances: np.ndarray) -> _Walks:
+        w = len(distances)
+        return cls(
+            distances=distances,
+            goal=np.column_stack([np.zeros(w), distances]),
+            pos=np.zeros((w, 2)),
+            phi=np.zeros(w),
+            time_=np.zeros(w),
+            plen=np.zeros(w),
+            n_steps=np.zeros(w, dtype=int),
+            per_step=[[] for _ in range(w)],
+            track=[[(0.0, 0.0)] for _ in range(w)],
+            lateral=[[0.0] for _ in range(w)],
+            active=np.ones(w, dtype=bool),
+        )
+
+    def advance(
+        self,
+        idx: np.ndarray,
+        cand: StepBatch,
+        n_candidates: int,
+        heading_weight: float,
+        record_steps: bool,
+    ) -> StepBatch:
+        """Each active walk ``idx`` takes its best candidate (``n_candidates`` rows per walk)
+        or stops when it would not get closer; returns the steps taken (order of ``idx``)."""
+        pos, phi, goal = self.pos, self.phi, self.goal
         k = len(idx)
         end, phi_new = compose(
             pos[idx, None, :],
@@ -211,44 +264,46 @@ def model_straight_walks(
         best = np.argmin(score, axis=1)
         rows = np.arange(k) * n_candidates + best
         d_new = d_cand[np.arange(k), best]
-        go = (d_new < d_now) | (n_steps[idx] == 0)
+        go = (d_new < d_now) | (self.n_steps[idx] == 0)
         chosen = cand.take(rows)
         pelvis = cand_pelvis[rows]
         g = idx[go]
         pos[g] = end[np.arange(k), best][go]
         phi[g] = phi_new[np.arange(k), best][go]
-        time_[g] += chosen.duration[go]
+        self.time_[g] += chosen.duration[go]
         for j in g:
-            track[j].append((float(time_[j]), float(pos[j, 1])))
-            lateral[j].append(float(pos[j, 0]))
-        plen[g] += path_length(pelvis)[go]
-        n_steps[g] += 1
+            self.track[j].append((float(self.time_[j]), float(pos[j, 1])))
+            self.lateral[j].append(float(pos[j, 0]))
+        self.plen[g] += path_length(pelvis)[go]
+        self.n_steps[g] += 1
         if record_steps:
             widths = step_widths(chosen.end_xy, chosen.footprint, chosen.stance)
             for j in np.flatnonzero(go):
-                per_step[idx[j]].append(
+                self.per_step[idx[j]].append(
                     (float(chosen.length[j]), float(chosen.duration[j]), float(widths[j]))
                 )
-        active[idx[~go]] = False
-        # keep the chosen steps of the walks still going as predecessors (same order as idx)
-        current = chosen.take(np.flatnonzero(go))
-        active[idx[go]] = True
-    out: list[dict] = []
-    for i in range(w):
+        self.active[idx[~go]] = False
+        self.active[idx[go]] = True
+        # the chosen steps of the walks still going are the next predecessors (order of idx)
+        return chosen.take(np.flatnonzero(go))
+
+    def record(self, i: int, record_steps: bool) -> dict:
+        """Walk ``i``'s dict (see :func:`model_straight_walks`)."""
+        distance = float(self.distances[i])
         walk: dict = {
-            "distance": float(distances[i]),
-            "time": time_at(track[i], float(distances[i])),
-            "step_time": float(time_[i]),
-            "path_length": float(plen[i]),
-            "n_steps": int(n_steps[i]),
-            "end_error": float(np.hypot(*(goal[i] - pos[i]))),
+            "distance": distance,
+            "time": time_at(self.track[i], distance),
+            "step_time": float(self.time_[i]),
+            "path_length": float(self.plen[i]),
+            "n_steps": int(self.n_steps[i]),
+            "end_error": float(np.hypot(*(self.goal[i] - self.pos[i]))),
         }
         if record_steps:
-            rec = np.asarray(per_step[i], dtype=float).reshape(-1, 3)
+            rec = np.asarray(self.per_step[i], dtype=float).reshape(-1, 3)
             walk.update(lengths=rec[:, 0], durations=rec[:, 1], widths=rec[:, 2])
-            walk["track"] = np.column_stack([np.asarray(track[i], dtype=float), lateral[i]])
-        out.append(walk)
-    return out
+            track = np.asarray(self.track[i], dtype=float)
+            walk["track"] = np.column_stack([track, self.lateral[i]])
+        return walk
 
 
 def time_at(track: list[tuple[float, float]], distance: float) -> float:

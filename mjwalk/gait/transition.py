@@ -142,42 +142,16 @@ class TransitionGP:
 
         ``n_residual``: residuals pooled per inducing input; None: ``ceil(N / m)``, at least 5.
         """
-        # deferred: sklearn (and scipy.spatial) are slow to import and only fitting needs them
-        from scipy.spatial import cKDTree  # deferred: as above
+        # deferred: scipy.spatial and sklearn are slow to import and only fitting needs them
+        from scipy.spatial import cKDTree
         from sklearn.cluster import KMeans  # deferred: as above
-        from sklearn.exceptions import ConvergenceWarning  # deferred: as above
-        from sklearn.gaussian_process import GaussianProcessRegressor  # deferred: as above
-        from sklearn.gaussian_process.kernels import (  # deferred: as above
-            RBF,
-            ConstantKernel,
-            WhiteKernel,
-        )
 
         n, d = x.shape
         if n < 5:
             raise MjwalkError(f"transition GP: need at least 5 step pairs, got {n}")
         seed = int(rng.integers(2**31 - 1))
         sub = rng.choice(n, size=min(n_hyper, n), replace=False)
-        kernel = ConstantKernel(1.0, (1e-2, 1e2)) * RBF(np.full(d, 2.0), (1e-2, 1e3)) + WhiteKernel(
-            0.3, (1e-4, 1e1)
-        )
-        gpr = GaussianProcessRegressor(
-            kernel,
-            optimizer=_lbfgs,
-            normalize_y=False,
-            n_restarts_optimizer=0,
-            random_state=seed,
-        )
-        with warnings.catch_warnings():
-            # A length scale at its upper bound just means "this input is irrelevant".
-            warnings.simplefilter("ignore", ConvergenceWarning)
-            gpr.fit(x[sub], y[sub])
-        k = gpr.kernel_
-        c = float(k.k1.k1.constant_value)
-        ls = np.broadcast_to(np.asarray(k.k1.k2.length_scale, dtype=float), (d,)).copy()
-        s2 = float(k.k2.noise_level)
-        lml = float(gpr.log_marginal_likelihood_value_)
-
+        c, ls, s2, lml = _hyperparameters(x[sub], y[sub], seed)
         m = min(n_inducing, n)
         if m < n:
             km = KMeans(n_clusters=m, n_init=1, max_iter=50, random_state=seed).fit(x)
@@ -196,22 +170,7 @@ class TransitionGP:
             n_hyper=len(sub),
             lml=lml,
         )
-        kmm = proto.kernel_rows(z)
-        kmm[np.diag_indices(m)] += 1e-6 * c
-        lmm = cholesky(kmm, lower=True)
-        # V = L⁻¹ K_mn in chunks of rows of x (memory: m × N).
-        v = solve_triangular(lmm, proto.kernel_rows(x).T, lower=True)
-        nystrom = float(np.mean(c - np.einsum("mn,mn->n", v, v)) / s2)
-        b = np.eye(m) + (v @ v.T) / s2
-        lb = cholesky(b, lower=True)
-        # alpha = L⁻ᵀ B⁻¹ V Y / σ²
-        alpha = solve_triangular(lmm.T, cho_solve((lb, True), v @ y), lower=False) / s2
-        # W = K_mm⁻¹ - Σ = L⁻ᵀ (I - B⁻¹) L⁻¹
-        linv = solve_triangular(lmm, np.eye(m), lower=True)
-        w = linv.T @ (np.eye(m) - cho_solve((lb, True), np.eye(m))) @ linv
-        w = 0.5 * (w + w.T)
-        proto.alpha = alpha
-        proto.w = w
+        proto.alpha, proto.w, nystrom = _dtc_posterior(proto, x, y)
         resid = y - proto.predict(x)[0]
         k_res = min(n, n_residual or max(5, -(-n // m)))
         _, near = cKDTree(x / ls).query(z / ls, k=k_res)
@@ -253,6 +212,66 @@ class TransitionGP:
             lml=float(sc[4]),
             nystrom=float(sc[5]) if sc.size > 5 else float("nan"),
         )
+
+
+def _hyperparameters(
+    x: np.ndarray, y: np.ndarray, seed: int
+) -> tuple[float, np.ndarray, float, float]:
+    """Signal variance C, RBF length scales (d,), noise variance σ² and log-marginal
+    likelihood of ``C·RBF + White`` fitted to the pairs ``x`` -> ``y`` (n, d) by maximizing
+    the LML (module doc of :mod:`mjwalk.gait.model`, step 1)."""
+    # deferred: sklearn is slow to import and only fitting needs it
+    from sklearn.exceptions import ConvergenceWarning
+    from sklearn.gaussian_process import GaussianProcessRegressor  # deferred: as above
+    from sklearn.gaussian_process.kernels import (  # deferred: as above
+        RBF,
+        ConstantKernel,
+        WhiteKernel,
+    )
+
+    d = x.shape[1]
+    kernel = ConstantKernel(1.0, (1e-2, 1e2)) * RBF(np.full(d, 2.0), (1e-2, 1e3)) + WhiteKernel(
+        0.3, (1e-4, 1e1)
+    )
+    gpr = GaussianProcessRegressor(
+        kernel,
+        optimizer=_lbfgs,
+        normalize_y=False,
+        n_restarts_optimizer=0,
+        random_state=seed,
+    )
+    with warnings.catch_warnings():
+        # A length scale at its upper bound just means "this input is irrelevant".
+        warnings.simplefilter("ignore", ConvergenceWarning)
+        gpr.fit(x, y)
+    k = gpr.kernel_
+    c = float(k.k1.k1.constant_value)
+    ls = np.broadcast_to(np.asarray(k.k1.k2.length_scale, dtype=float), (d,)).copy()
+    return c, ls, float(k.k2.noise_level), float(gpr.log_marginal_likelihood_value_)
+
+
+def _dtc_posterior(
+    proto: TransitionGP, x: np.ndarray, y: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, float]:
+    """The DTC posterior's alpha (m, d) and W (m, m) conditioned on all pairs ``x`` -> ``y``
+    (N, d), with the hyper-parameters and inducing inputs of ``proto``, and the mean Nyström
+    residual as a share of σ² (module doc of :mod:`mjwalk.gait.model`, step 3)."""
+    z, c, s2 = proto.inducing, proto.signal_var, proto.noise_var
+    m = z.shape[0]
+    kmm = proto.kernel_rows(z)
+    kmm[np.diag_indices(m)] += 1e-6 * c
+    lmm = cholesky(kmm, lower=True)
+    # V = L⁻¹ K_mn in chunks of rows of x (memory: m × N).
+    v = solve_triangular(lmm, proto.kernel_rows(x).T, lower=True)
+    nystrom = float(np.mean(c - np.einsum("mn,mn->n", v, v)) / s2)
+    b = np.eye(m) + (v @ v.T) / s2
+    lb = cholesky(b, lower=True)
+    # alpha = L⁻ᵀ B⁻¹ V Y / σ²
+    alpha = solve_triangular(lmm.T, cho_solve((lb, True), v @ y), lower=False) / s2
+    # W = K_mm⁻¹ - Σ = L⁻ᵀ (I - B⁻¹) L⁻¹
+    linv = solve_triangular(lmm, np.eye(m), lower=True)
+    w = linv.T @ (np.eye(m) - cho_solve((lb, True), np.eye(m))) @ linv
+    return alpha, 0.5 * (w + w.T), nystrom
 
 
 def _lbfgs(obj_func, initial_theta, bounds):

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from mjwalk.errors import MjwalkError
-from mjwalk.gait.corpus import ANKLE_HEIGHT, TOE_HEIGHT, generate_corpus
+from mjwalk.gait.bout import ANKLE_HEIGHT, TOE_HEIGHT
+from mjwalk.gait.corpus import generate_corpus
 from mjwalk.gait.segment import segment_takes, step_sway
 from mjwalk.gait.subjects import REAL_FIGURES, SubjectParams, sample_subject
 from mjwalk.mocap.take import Take

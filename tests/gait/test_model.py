@@ -13,7 +13,8 @@ import pytest
 from test_features import make_steps
 
 from mjwalk.errors import MjwalkError, ModelFileError
-from mjwalk.gait.model import StepModel, first_step_indices, transition_pairs
+from mjwalk.gait.fitting import first_step_indices, transition_pairs
+from mjwalk.gait.model import StepModel
 
 #: real capture: ``$MJWALK_SHARED_DATA`` or ../shared/data beside the project
 DATA = Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[3] / "shared" / "data"))
@@ -43,14 +44,6 @@ def test_fit_is_quick_and_summarized(model, steps):
     k = s["kernels"]["left->right"]
     assert len(k["length_scale"]) == model.n_dims and k["noise_var"] > 0
     json.dumps(s)  # JSON-serializable
-
-
-def test_pairs_and_first_steps(steps):
-    prev, nxt = transition_pairs(steps)
-    assert len(prev) == 80 * 14
-    assert all(steps[i].side != steps[j].side for i, j in zip(prev, nxt, strict=True))
-    first = first_step_indices(steps)
-    assert len(first) == 80 and all(steps[i].index == 0 for i in first)
 
 
 def test_kde_first_steps_reproduce_length_statistics(model, steps):
