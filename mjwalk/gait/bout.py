@@ -105,7 +105,25 @@ def render_bout(
     meta: dict,
     fps: float = TAKE_FPS,
 ) -> Take:
-    """Turn a step plan into a 120 Hz take (feet, contact timing, LIPM pelvis)."""
+    """Turn a step plan into a take (feet, contact timing, LIPM pelvis).
+
+    Draws from ``rng``, in order: the first swing foot, the step-width noise, the initiation's
+    weight shift, the initial and the final standing times, the pelvic-rotation noise.
+
+    Args:
+        plan: the bout's steps.
+        p: the subject walking it.
+        rng: random generator.
+        name: the take's name.
+        start: (2,) start of the walking line, metres (world frame).
+        theta0: initial heading, radians CCW from +x.
+        meta: the take's ``meta``; the true ``heel_strikes`` / ``toe_offs`` (side -> frames),
+            ``n_steps`` and ``first_side`` are added.
+        fps: frames per second.
+
+    Returns:
+        The :class:`~mjwalk.mocap.take.Take` (metres, z up).
+    """
     fs = _footsteps(plan, p, rng, start, theta0)
     tm = _timing(plan, p, rng, fps)
     feet, truth_hs, truth_to = _feet(fs, tm, p)

@@ -35,13 +35,21 @@ _MEMO: dict[Path, StepModel] = {}
 
 
 def corpus_version() -> str:
-    """Version string of the corpus generator (``mjwalk.gait.corpus.CORPUS_VERSION``)."""
+    """Version string of the corpus generator (``mjwalk.gait.corpus.CORPUS_VERSION``).
+
+    Returns:
+        The version, e.g. ``"2"``.
+    """
     return str(getattr(corpus, "CORPUS_VERSION", "0"))
 
 
 def default_model_path() -> Path:
     """Path of the cached default model (name includes the model and corpus versions and the
-    transition GPs' inducing inputs)."""
+    transition GPs' inducing inputs).
+
+    Returns:
+        The ``.npz`` path in the cache root.
+    """
     return cache_root() / (
         f"stepmodel-v{MODEL_VERSION}-corpus{corpus_version()}"
         f"-s{DEFAULT_SUBJECTS}-seed{DEFAULT_SEED}-m{N_INDUCING}.npz"
@@ -58,10 +66,15 @@ def train_model(
 ):
     """Segment ``takes`` into steps and fit a :class:`StepModel`.
 
-    ``normalize_by``: a take ``meta`` key naming the walker (``"subject"`` for the virtual
-    corpus): the steps of every walker are first brought to one common pace
-    (:func:`mjwalk.gait.pace.normalize_paces`), so the model learns the variance within a
-    person and a population's walkers (:meth:`StepModel.for_walker`) supply the rest.
+    Args:
+        takes: captured or virtual takes (metres, z up).
+        seed: seed of :meth:`StepModel.fit`.
+        progress: log timings.
+        normalize_by: a take ``meta`` key naming the walker (``"subject"`` for the virtual
+            corpus): the steps of every walker are first brought to one common pace
+            (:func:`mjwalk.gait.pace.normalize_paces`), so the model learns the variance within
+            a person and a population's walkers (:meth:`StepModel.for_walker`) supply the rest.
+        **fit_kwargs: passed to :meth:`StepModel.fit`.
 
     Returns:
         (model, SegmentationSummary).
@@ -92,7 +105,13 @@ def default_model(progress: bool = True) -> StepModel:
     """The default :class:`StepModel`, loaded from the cache or built and cached on first use.
 
     Building generates the virtual corpus (``generate_corpus(12, seed=0)``), segments it and
-    fits the model (about a minute); progress goes to stderr.
+    fits the model (about a minute).
+
+    Args:
+        progress: log progress to stderr while building.
+
+    Returns:
+        The model (memoized per cache path).
     """
     path = default_model_path()
     if path in _MEMO:

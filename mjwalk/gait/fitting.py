@@ -23,7 +23,14 @@ _SIDES: tuple[str, str] = ("left", "right")
 
 
 def first_step_indices(steps: Sequence[Step]) -> np.ndarray:
-    """Indices into ``steps`` of the first step of every take (smallest ``index`` per take)."""
+    """Indices into ``steps`` of the first step of every take (smallest ``index`` per take).
+
+    Args:
+        steps: aligned steps.
+
+    Returns:
+        (n_takes,) int64 indices, ascending.
+    """
     best: dict[str, int] = {}
     for i, s in enumerate(steps):
         j = best.get(s.take)
@@ -33,7 +40,14 @@ def first_step_indices(steps: Sequence[Step]) -> np.ndarray:
 
 
 def transition_pairs(steps: Sequence[Step]) -> tuple[np.ndarray, np.ndarray]:
-    """(prev, next) indices of captured transitions: same take, index i -> i+1, sides alternate."""
+    """Captured transitions: same take, index i -> i+1, sides alternate.
+
+    Args:
+        steps: aligned steps.
+
+    Returns:
+        (prev, next): two (n_pairs,) int64 index arrays into ``steps``.
+    """
     lookup = {(s.take, s.index): i for i, s in enumerate(steps)}
     prev, nxt = [], []
     for i, s in enumerate(steps):
@@ -47,9 +61,21 @@ def transition_pairs(steps: Sequence[Step]) -> tuple[np.ndarray, np.ndarray]:
 def fit_starters(
     z: np.ndarray, sides: np.ndarray, first: np.ndarray
 ) -> tuple[dict[str, np.ndarray], dict[str, float], dict[str, dict]]:
-    """Per side, the KDE starters' dataset (d, n), Scott factor and source (module doc): the
-    first steps ``first`` of that side, or all its steps when it has too few first steps.
-    ``z`` (N, d) standardized features, ``sides`` (N,) swing sides."""
+    """The KDE starters per side (module doc of :mod:`mjwalk.gait.model`): fitted on the side's
+    first steps, or on all its steps when it has fewer than ``max(2(d+1), 10)`` first steps.
+
+    Args:
+        z: (N, d) standardized features of the steps.
+        sides: (N,) swing side of each step.
+        first: indices of the first steps (:func:`first_step_indices`).
+
+    Returns:
+        (data, factor, source) per side: the KDE dataset (d, n), its Scott factor and
+        ``{"source": ..., "n": n}``.
+
+    Raises:
+        MjwalkError: a side has too few steps for a d-dimensional KDE.
+    """
     d = z.shape[1]
     min_first = max(2 * (d + 1), 10)
     kde_data, kde_factor, kde_source = {}, {}, {}
@@ -93,8 +119,19 @@ class GPFitter:
         inducing: Callable[[int], int],
         residual: int | None,
     ) -> tuple[dict[str, TransitionGP], dict[str, int]]:
-        """One transition GP per predecessor side on the pairs (pp, nn) of a regime (sides with
-        fewer than ``min_pairs`` pairs get none); the pair counts per side."""
+        """One transition GP per predecessor side on the pairs (pp, nn) of a regime.
+
+        Args:
+            label: prefix of the progress line.
+            pp: (P,) indices of the predecessors into ``z``.
+            nn: (P,) indices of their successors.
+            min_pairs: sides with fewer pairs get no GP.
+            inducing: pairs of a side -> its inducing inputs.
+            residual: residuals pooled per inducing input (None: pairs / inducing inputs).
+
+        Returns:
+            (gps, counts): side -> :class:`TransitionGP`, and side -> pairs of that side.
+        """
         out, counts = {}, {}
         for s in _SIDES:
             sel = self.sides[pp] == s

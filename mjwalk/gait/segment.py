@@ -362,7 +362,14 @@ def _cut_step(
 
 
 def count_transitions(steps: list[Step]) -> int:
-    """Number of captured transitions: pairs of steps ``k``, ``k + 1`` of the same take."""
+    """Number of captured transitions: pairs of steps ``k``, ``k + 1`` of the same take.
+
+    Args:
+        steps: steps in take order.
+
+    Returns:
+        The count of consecutive pairs with alternating sides.
+    """
     n = 0
     for s0, s1 in itertools.pairwise(steps):
         n += s0.take == s1.take and s1.index == s0.index + 1 and s0.side != s1.side
@@ -371,6 +378,10 @@ def count_transitions(steps: list[Step]) -> int:
 
 def segment_takes(takes: Iterable[Take], **kwargs) -> tuple[list[Step], SegmentationSummary]:
     """Segment many takes (:func:`segment_take` keyword arguments pass through).
+
+    Args:
+        takes: the takes.
+        **kwargs: :func:`segment_take` options.
 
     Returns:
         All plausible steps in take order, and a :class:`SegmentationSummary` with the counts
@@ -394,8 +405,15 @@ def segment_takes(takes: Iterable[Take], **kwargs) -> tuple[list[Step], Segmenta
 
 
 def step_sway(step: Step) -> float:
-    """Lateral pelvis sway of a step, metres: the largest distance of the pelvis path from the
-    chord joining its first and last sample (the pelvis swings over the stance foot)."""
+    """Lateral pelvis sway of a step: the largest distance of the pelvis path from the chord
+    joining its first and last sample (the pelvis swings over the stance foot).
+
+    Args:
+        step: the step.
+
+    Returns:
+        The sway, metres.
+    """
     p = step.pelvis
     chord = p[-1] - p[0]
     n = np.hypot(*chord)
@@ -405,9 +423,16 @@ def step_sway(step: Step) -> float:
 
 
 def step_width(step: Step) -> float:
-    """Step width, metres: lateral distance between the landing footprint and the stance foot
-    across the line of progression, whose direction is the mean of the two foot yaws (toe-out
-    of the left and right foot cancels)."""
+    """Step width: lateral distance between the landing footprint and the stance foot across
+    the line of progression, whose direction is the mean of the two foot yaws (toe-out of the
+    left and right foot cancels).
+
+    Args:
+        step: the step.
+
+    Returns:
+        The width, metres.
+    """
     yaw = step.stance[2] + 0.5 * _wrap(step.footprint[2] - step.stance[2])
     d = step.footprint[:2] - step.stance[:2]
     return float(abs(d[0] * np.cos(yaw) + d[1] * np.sin(yaw)))
