@@ -34,7 +34,15 @@ PATH_SAMPLES = 25
 
 
 def resample_step(step: Step, m: int = PATH_SAMPLES) -> np.ndarray:
-    """(m, 2) pelvis positions of ``step`` at ``m`` evenly spaced instants (m, step frame)."""
+    """Pelvis positions of ``step`` at ``m`` evenly spaced instants.
+
+    Args:
+        step: the step.
+        m: samples.
+
+    Returns:
+        (m, 2) pelvis x, y, metres (step frame).
+    """
     t = np.arange(step.n_samples) / step.fps
     tm = np.linspace(0.0, t[-1], m)
     return np.column_stack(
@@ -43,13 +51,29 @@ def resample_step(step: Step, m: int = PATH_SAMPLES) -> np.ndarray:
 
 
 def path_length(pelvis: np.ndarray) -> np.ndarray:
-    """(n, m, 2) -> (n,) polyline lengths."""
+    """Polyline lengths.
+
+    Args:
+        pelvis: (n, m, 2) paths, metres.
+
+    Returns:
+        (n,) lengths, metres.
+    """
     return np.linalg.norm(np.diff(pelvis, axis=1), axis=2).sum(axis=1)
 
 
 def compose(pos, phi, local_xy, local_yaw):
-    """Append steps given in local frames (x right, y forward) to world states (heading phi
-    measured CCW from +y)."""
+    """Append steps given in local frames (x right, y forward) to world states.
+
+    Args:
+        pos: (..., 2) world positions, metres.
+        phi: (...) headings, radians CCW from +y.
+        local_xy: (..., 2) step end positions in the local frames.
+        local_yaw: (...) heading changes of the steps, radians.
+
+    Returns:
+        (world (..., 2), phi + local_yaw).
+    """
     c, s = np.cos(phi), np.sin(phi)
     x, y = local_xy[..., 0], local_xy[..., 1]
     world = pos + np.stack([c * x - s * y, s * x + c * y], axis=-1)
@@ -57,9 +81,18 @@ def compose(pos, phi, local_xy, local_yaw):
 
 
 def step_widths(end_xy: np.ndarray, footprint: np.ndarray, stance: np.ndarray) -> np.ndarray:
-    """(n,) lateral distance (m) between the landing and the stance foot across each step's
-    walking direction (the pelvis chord, start -> end): the step width. The step frame's
-    own x axis turns with the transverse pelvic rotation (about +-6 deg), the chord does not."""
+    """The step width: lateral distance between the landing and the stance foot across each
+    step's walking direction (the pelvis chord, start -> end). The step frame's own x axis turns
+    with the transverse pelvic rotation (about +-6 deg), the chord does not.
+
+    Args:
+        end_xy: (n, 2) pelvis at the end of each step, metres (step frame).
+        footprint: (n, 3) landing foot x, y (m), yaw.
+        stance: (n, 3) stance foot x, y (m), yaw.
+
+    Returns:
+        (n,) widths, metres.
+    """
     end_xy = np.asarray(end_xy, dtype=float).reshape(-1, 2)
     d = np.asarray(footprint, dtype=float)[:, :2] - np.asarray(stance, dtype=float)[:, :2]
     u = end_xy / np.maximum(np.hypot(end_xy[:, 0], end_xy[:, 1]), 1e-9)[:, None]
@@ -69,7 +102,15 @@ def step_widths(end_xy: np.ndarray, footprint: np.ndarray, stance: np.ndarray) -
 def straight_runs(steps: Sequence[Step], straight_deg: float = 20.0) -> list[list[Step]]:
     """The capture's straight walks as step lists: per take, its longest run of consecutive
     steps (alternating sides), kept when it has at least 2 steps and its total heading change
-    is below ``straight_deg`` degrees."""
+    is below ``straight_deg`` degrees.
+
+    Args:
+        steps: segmented steps.
+        straight_deg: largest total heading change, degrees.
+
+    Returns:
+        One step list per straight take, in index order.
+    """
     by_take: dict[str, list[Step]] = {}
     for s in steps:
         by_take.setdefault(s.take, []).append(s)
@@ -107,7 +148,14 @@ REST_WINDOW = 0.1
 
 def starts_at_rest(step: Step) -> bool:
     """Whether a captured ``step`` starts from standing: a gait initiation (``Step.meta``)
-    whose pelvis moves slower than :data:`REST_SPEED` over its first :data:`REST_WINDOW` s."""
+    whose pelvis moves slower than :data:`REST_SPEED` over its first :data:`REST_WINDOW` s.
+
+    Args:
+        step: the first step of a walk.
+
+    Returns:
+        True when the walk starts from standing.
+    """
     if not step.meta.get("initiation"):
         return False
     k = max(1, min(len(step.pelvis) - 1, round(REST_WINDOW * step.fps)))
@@ -118,9 +166,16 @@ def starts_at_rest(step: Step) -> bool:
 def captured_straight_walks(
     steps: Sequence[Step], straight_deg: float = 20.0
 ) -> list[dict[str, float]]:
-    """Straight walks of the capture (:func:`straight_runs`): distance, time, path length,
-    step count and ``in_motion`` (1.0 unless the walk starts from standing,
-    :func:`starts_at_rest`) each."""
+    """Straight walks of the capture (:func:`straight_runs`).
+
+    Args:
+        steps: segmented steps.
+        straight_deg: largest total heading change, degrees.
+
+    Returns:
+        Per walk: ``distance`` (m), ``time`` (s), ``path_length`` (m), ``n_steps`` and
+        ``in_motion`` (1.0 unless the walk starts from standing, :func:`starts_at_rest`).
+    """
     walks = []
     for run in straight_runs(steps, straight_deg):
         pos, phi = np.zeros(2), 0.0
@@ -149,15 +204,28 @@ def model_straight_walks(
     record_steps: bool = False,
     in_motion: ArrayLike | None = None,
 ) -> list[dict]:
-    """Walk the model straight to a goal at each distance (m) with the greedy steering rule of
-    the module docstring; all walks advance together (vectorized). ``record_steps``: each
-    walk's dict also holds its steps' ``lengths`` (m), ``durations`` (s) and ``widths`` (m:
-    lateral distance of the landing foot from the stance foot), in walking order, and its
-    ``track`` ((n + 1, 3): time s, progress along the start-goal line m, lateral offset m, at
-    the start and after every step). ``in_motion`` (per walk, bool): that walk starts already
-    walking, like a captured walk that does not start from standing
-    (:func:`starts_at_rest`): its first candidates are the third steps of
-    chains (a KDE starter and one successor before them, not counted) instead of starters."""
+    """Walk the model straight to a goal at each distance with the greedy steering rule of
+    the module docstring; all walks advance together (vectorized).
+
+    Args:
+        model: the step sampler.
+        distances: (w,) goal distances, metres (goal straight ahead, +y).
+        rng: random generator.
+        n_candidates: candidates drawn per walk and step.
+        heading_weight: weight of the end-heading error to the goal bearing, m/rad.
+        record_steps: each walk's dict also holds its steps' ``lengths`` (m), ``durations``
+            (s) and ``widths`` (m: lateral distance of the landing foot from the stance foot),
+            in walking order, and its ``track`` ((n + 1, 3): time s, progress along the
+            start-goal line m, lateral offset m, at the start and after every step).
+        in_motion: (w,) bool, that walk starts already walking, like a captured walk that does
+            not start from standing (:func:`starts_at_rest`): its first candidates are the
+            third steps of chains (a KDE starter and one successor before them, not counted)
+            instead of starters.
+
+    Returns:
+        Per walk: ``distance``, ``time`` (:func:`time_at`), ``step_time``, ``path_length``,
+        ``n_steps``, ``end_error`` (m to the goal), and the recorded steps when asked.
+    """
     distances = np.asarray(distances, dtype=float)
     w = len(distances)
     walks = _Walks.start(distances)
@@ -307,9 +375,17 @@ class _Walks:
 
 
 def time_at(track: list[tuple[float, float]], distance: float) -> float:
-    """When a walk's progress along its line reached ``distance`` (s): interpolated within the
-    step that crossed it, or extrapolated at the last step's pace when the walk stopped short
-    (it stops within half a step of the goal, a captured walk is cut at the distance itself)."""
+    """When a walk's progress along its line reached ``distance``: interpolated within the step
+    that crossed it, or extrapolated at the last step's pace when the walk stopped short (it
+    stops within half a step of the goal, a captured walk is cut at the distance itself).
+
+    Args:
+        track: (time s, progress m) at the start and after every step.
+        distance: metres.
+
+    Returns:
+        The time, seconds.
+    """
     t = np.array([a for a, _ in track])
     x = np.array([b for _, b in track])
     if len(t) < 2:
