@@ -255,7 +255,17 @@ def subject_takes(
     p: SubjectParams, rng: np.random.Generator, minutes: float = DEFAULT_MINUTES
 ) -> list[Take]:
     """All takes of one subject: the paper's three scenarios in its time proportions, then the
-    short walks (``PROTOCOL_MINUTES``)."""
+    short walks (``PROTOCOL_MINUTES``).
+
+    Args:
+        p: the subject's gait parameters.
+        rng: generator for every random draw (start poses, bouts, noise), used in order.
+        minutes: capture time of the subject, minutes, split over the scenarios.
+
+    Returns:
+        The subject's takes at 120 Hz (world frame, metres, z up), named
+        ``virtual-sNN-<protocol>-NNNN``, with ``meta`` as :func:`generate_corpus`.
+    """
     total = sum(PROTOCOL_MINUTES.values())
     takes: list[Take] = []
     base = {"subject": p.subject, "params": asdict(p)}

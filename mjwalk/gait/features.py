@@ -75,6 +75,12 @@ def spline_basis(m: int) -> np.ndarray:
     The spline runs over normalized time u in [0, 1] with the 6 landmarks at u = 0, 0.2, ..., 1;
     samples are at ``u = linspace(0, 1, m)``. Row 0 is exactly (1, 0, ..., 0) and row m-1
     exactly (0, ..., 0, 1), so decoded paths start at the origin and end at the last landmark.
+
+    Args:
+        m: number of samples, >= 2.
+
+    Returns:
+        (m, 6) read-only basis (cached per ``m``).
     """
     if m < 2:
         raise MjwalkError(f"spline_basis: need at least 2 samples, got m={m}")
@@ -87,10 +93,15 @@ def spline_basis(m: int) -> np.ndarray:
 
 @functools.lru_cache(maxsize=1)
 def spline_pieces() -> tuple[np.ndarray, np.ndarray]:
-    """The landmark spline of :func:`spline_basis` as cubic pieces, for compiled evaluation:
-    the pieces' start times (p,) in [0, 1) and their coefficients (4, p, 6) (highest power
-    first, in u - start; one column per landmark), so that on piece j the basis is
-    sum_q coef[q, j] (u - start_j)^(3 - q). Equal to the B-spline to rounding."""
+    """The landmark spline of :func:`spline_basis` as cubic pieces, for compiled evaluation.
+
+    On piece j the basis is sum_q coef[q, j] (u - start_j)^(3 - q), u in [0, 1] normalized
+    time; equal to the B-spline to rounding.
+
+    Returns:
+        (start, coef): the pieces' start times (p,) in [0, 1) and their coefficients
+        (4, p, 6), highest power first, one column per landmark.
+    """
     b = _landmark_spline()
     pieces = [PPoly.from_spline(BSpline(b.t, b.c[:, j], b.k)) for j in range(N_LANDMARKS)]
     x = pieces[0].x
@@ -100,7 +111,16 @@ def spline_pieces() -> tuple[np.ndarray, np.ndarray]:
 
 
 def step_raw_features(step: Step) -> np.ndarray:
-    """(N_RAW,) raw feature vector of one step (local frame; metres, seconds, radians)."""
+    """Raw feature vector of one step (see the module docstring for the layout).
+
+    Landmarks are the pelvis x, y and yaw linearly interpolated at t = T/5, ..., T.
+
+    Args:
+        step: a step in its local frame (x right, y forward, metres; yaw radians, 0 = +y).
+
+    Returns:
+        (N_RAW,) raw features: metres, seconds, radians.
+    """
     k = step.n_samples
     if k < 2 or step.pelvis.shape != (k, 2) or step.yaw.shape != (k,):
         raise MjwalkError(
@@ -126,14 +146,28 @@ def step_raw_features(step: Step) -> np.ndarray:
 
 
 def raw_features(steps: Sequence[Step]) -> np.ndarray:
-    """(n, N_RAW) raw feature matrix of ``steps``."""
+    """Raw feature matrix of ``steps`` (:func:`step_raw_features` per row).
+
+    Args:
+        steps: n steps.
+
+    Returns:
+        (n, N_RAW) raw features; (0, N_RAW) for no steps.
+    """
     if len(steps) == 0:
         return np.zeros((0, N_RAW))
     return np.stack([step_raw_features(s) for s in steps])
 
 
 def side_array(steps: Sequence[Step]) -> np.ndarray:
-    """(n,) array of side strings ("left"/"right") of ``steps``."""
+    """Side strings of ``steps``.
+
+    Args:
+        steps: n steps.
+
+    Returns:
+        (n,) "left"/"right" strings (dtype <U5).
+    """
     sides = np.array([s.side for s in steps], dtype="<U5")
     bad = ~np.isin(sides, ["left", "right"])
     if bad.any():
@@ -183,20 +217,42 @@ class StepBatch:
         return np.hypot(self.end_xy[:, 0], self.end_xy[:, 1])
 
     def n_samples(self, i: int, fps: float = FPS) -> int:
-        """Number of samples K = round(duration·fps) + 1 of step ``i`` at ``fps``."""
+        """Number of samples K = round(duration·fps) + 1 of step ``i`` at ``fps``.
+
+        Args:
+            i: row index.
+            fps: sampling rate, Hz.
+
+        Returns:
+            K.
+        """
         return round(float(self.duration[i]) * fps) + 1
 
     def trajectory(self, i: int, fps: float = FPS) -> tuple[np.ndarray, np.ndarray]:
-        """Pelvis (K, 2) metres and yaw (K,) radians of step ``i`` at ``fps`` (local frame).
+        """Pelvis path and yaw of step ``i`` at ``fps`` (local frame).
 
         K = round(duration·fps) + 1 samples evenly spaced over [0, duration]; sample 0 is
         exactly the origin with yaw 0, sample K-1 exactly the end landmark.
+
+        Args:
+            i: row index.
+            fps: sampling rate, Hz.
+
+        Returns:
+            (pelvis (K, 2) metres, yaw (K,) radians).
         """
         basis = spline_basis(max(self.n_samples(i, fps), 2))
         return basis @ self.landmarks[i], basis @ self.yaw_landmarks[i]
 
     def resample(self, m: int) -> tuple[np.ndarray, np.ndarray]:
-        """Every step at ``m`` samples evenly spaced in time: pelvis (n, m, 2), yaw (n, m)."""
+        """Every step at ``m`` samples evenly spaced in its own duration (local frames).
+
+        Args:
+            m: samples per step, >= 2.
+
+        Returns:
+            (pelvis (n, m, 2) metres, yaw (n, m) radians).
+        """
         basis = spline_basis(m)
         return (
             np.einsum("mk,nkc->nmc", basis, self.landmarks),
@@ -204,7 +260,14 @@ class StepBatch:
         )
 
     def take(self, idx) -> StepBatch:
-        """Sub-batch of the rows ``idx`` (index array, slice or boolean mask)."""
+        """Sub-batch of the rows ``idx``.
+
+        Args:
+            idx: index array, slice or boolean mask over the n rows.
+
+        Returns:
+            A new batch of the selected rows.
+        """
         return StepBatch(
             side=self.side[idx],
             features=self.features[idx],
@@ -216,7 +279,14 @@ class StepBatch:
         )
 
     def to_steps(self, fps: float = FPS) -> list[Step]:
-        """The batch as :class:`Step` objects sampled at ``fps`` (for playback and analysis)."""
+        """The batch as :class:`Step` objects (for playback and analysis).
+
+        Args:
+            fps: sampling rate, Hz.
+
+        Returns:
+            n steps in their local frames, take "decoded", index = row.
+        """
         out = []
         for i in range(len(self)):
             pelvis, yaw = self.trajectory(i, fps)
@@ -236,7 +306,16 @@ class StepBatch:
 
 
 def batch_from_raw(raw: np.ndarray, side, features: np.ndarray) -> StepBatch:
-    """StepBatch from (n, N_RAW) raw features; durations are clipped to >= MIN_DURATION."""
+    """StepBatch from raw features; durations are clipped to >= :data:`MIN_DURATION`.
+
+    Args:
+        raw: (n, N_RAW) raw features (metres, seconds, radians).
+        side: (n,) or one value: "left"/"right" strings, or booleans (True = "right").
+        features: (n, d) standardized features stored with the batch.
+
+    Returns:
+        The n decoded steps.
+    """
     n = raw.shape[0]
     landmarks = np.zeros((n, N_LANDMARKS, 2))
     landmarks[:, 1:] = raw[:, _SL_XY].reshape(n, N_LANDMARKS - 1, 2)
@@ -301,9 +380,15 @@ class StepFeatures:
 
     @classmethod
     def fit(cls, steps_or_raw, *, variance: float = 0.95) -> StepFeatures:
-        """Fit on a list of steps or an (n, N_RAW) raw matrix; keep >= ``variance`` (0..1].
+        """Fit the z-score -> PCA -> StandardScaler chain.
 
-        ``variance=1.0`` keeps every component (exact inverse).
+        Args:
+            steps_or_raw: a list of steps or an (n, N_RAW) raw matrix, n >= 3.
+            variance: fraction of the z-scored variance to keep, in (0, 1]; ``1.0`` keeps every
+                component (exact inverse). Zero-variance components are dropped.
+
+        Returns:
+            The fitted chain.
         """
         # deferred: sklearn is slow to import and only fitting needs it (`mjwalk plan` does not)
         from sklearn.decomposition import PCA  # deferred: as above
@@ -335,19 +420,48 @@ class StepFeatures:
         )
 
     def encode_raw(self, raw: np.ndarray) -> np.ndarray:
-        """(n, N_RAW) raw features -> (n, d) standardized features."""
+        """Standardized features z = raw @ enc_matrix - enc_offset.
+
+        Args:
+            raw: (n, N_RAW) raw features.
+
+        Returns:
+            (n, d) standardized features.
+        """
         return raw @ self.enc_matrix - self.enc_offset
 
     def decode_raw(self, z: np.ndarray) -> np.ndarray:
-        """(n, d) standardized features -> (n, N_RAW) raw features."""
+        """Raw features raw = z @ dec_matrix + dec_offset.
+
+        Args:
+            z: (n, d) standardized features.
+
+        Returns:
+            (n, N_RAW) raw features.
+        """
         return z @ self.dec_matrix + self.dec_offset
 
     def encode(self, steps: Sequence[Step]) -> np.ndarray:
-        """Steps -> (n, d) standardized features."""
+        """Standardized features of steps.
+
+        Args:
+            steps: n steps.
+
+        Returns:
+            (n, d) standardized features.
+        """
         return self.encode_raw(raw_features(steps))
 
     def decode(self, z: np.ndarray, side) -> StepBatch:
-        """(n, d) standardized features -> :class:`StepBatch` (``side``: (n,) or one value)."""
+        """Decode standardized features to steps.
+
+        Args:
+            z: (n, d) or (d,) standardized features.
+            side: (n,) or one value, as :func:`batch_from_raw`.
+
+        Returns:
+            The decoded :class:`StepBatch` (durations clipped to >= MIN_DURATION).
+        """
         z = np.atleast_2d(np.asarray(z, dtype=float))
         if z.shape[1] != self.n_components:
             raise MjwalkError(
@@ -356,13 +470,19 @@ class StepFeatures:
         return batch_from_raw(self.decode_raw(z), side, z)
 
     def scaled(self, factor: np.ndarray) -> StepFeatures:
-        """The same chain with every decoded raw feature multiplied by ``factor`` (N_RAW,).
+        """The same chain with every decoded raw feature multiplied by ``factor``.
 
         ``decode`` of the result is ``factor`` times this chain's decode, and ``encode`` of
         scaled raw features gives back the same z: scaling the first z-score's mean and scale
         by ``factor`` is all it takes (the PCA and the final scaler act on z-scored values).
         The model space (the KDEs, the transition GPs) is untouched; see
         :func:`raw_scale_factors` and :meth:`mjwalk.gait.model.StepModel.for_walker`.
+
+        Args:
+            factor: (N_RAW,) positive finite factors.
+
+        Returns:
+            A new chain.
         """
         f = np.asarray(factor, dtype=float)
         if f.shape != (N_RAW,) or not np.all(np.isfinite(f)) or np.any(f <= 0):
@@ -378,7 +498,14 @@ class StepFeatures:
         )
 
     def arrays(self, prefix: str = "feat_") -> dict[str, np.ndarray]:
-        """The fitted parameters as named arrays (for saving)."""
+        """The fitted parameters as named arrays (for saving).
+
+        Args:
+            prefix: prepended to each field name.
+
+        Returns:
+            ``{prefix + field: array}`` for the 7 fitted fields.
+        """
         return {
             f"{prefix}{k}": getattr(self, k)
             for k in (
@@ -394,7 +521,15 @@ class StepFeatures:
 
     @classmethod
     def from_arrays(cls, data, prefix: str = "feat_") -> StepFeatures:
-        """Inverse of :meth:`arrays`."""
+        """Inverse of :meth:`arrays`.
+
+        Args:
+            data: mapping (dict or npz) holding the ``prefix``-named arrays.
+            prefix: the prefix used by :meth:`arrays`.
+
+        Returns:
+            The chain.
+        """
         return cls(
             **{
                 k[len(prefix) :]: np.asarray(data[k], dtype=float)
@@ -405,10 +540,21 @@ class StepFeatures:
 
 
 def raw_scale_factors(lateral: float, forward: float, time: float) -> np.ndarray:
-    """(N_RAW,) factors that stretch a step in its local frame: ``lateral`` multiplies every
-    x (to the walker's right: pelvis landmarks, footprint, stance foot), ``forward`` every y,
-    ``time`` the duration; yaws stay. Both frames' axes are the step's own (x right, y
-    forward), so the stretch is well defined for every step, turning ones included."""
+    """Factors that stretch a step in its local frame (for :meth:`StepFeatures.scaled`).
+
+    ``lateral`` multiplies every x (to the walker's right: pelvis landmarks, footprint, stance
+    foot), ``forward`` every y, ``time`` the duration; yaws stay. Both frames' axes are the
+    step's own (x right, y forward), so the stretch is well defined for every step, turning
+    ones included.
+
+    Args:
+        lateral: factor on x coordinates.
+        forward: factor on y coordinates.
+        time: factor on the duration.
+
+    Returns:
+        (N_RAW,) factors.
+    """
     f = np.ones(N_RAW)
     f[_SL_XY][0::2] = lateral
     f[_SL_XY][1::2] = forward
@@ -429,7 +575,14 @@ def _as_raw(steps_or_raw) -> np.ndarray:
 
 
 def concat_batches(batches: Sequence[StepBatch]) -> StepBatch:
-    """Concatenate step batches row-wise."""
+    """Concatenate step batches row-wise.
+
+    Args:
+        batches: batches with the same feature dimension d.
+
+    Returns:
+        One batch of all rows, in order.
+    """
     return StepBatch(
         **{
             k: np.concatenate([getattr(b, k) for b in batches])

@@ -64,10 +64,17 @@ _UNITS = {"length": "m", "duration": "s", "sway": "m", "heading": "rad"}
 
 
 def sway_amplitude(pelvis: np.ndarray) -> np.ndarray:
-    """Half peak-to-peak lateral pelvis excursion from the chord, metres.
+    """Half peak-to-peak lateral pelvis excursion from the chord.
 
-    ``pelvis``: (n, m, 2) or (m, 2) paths (metres, any planar frame). The lateral coordinate is
-    the signed distance from the straight line through the first and the last sample.
+    With the chord c = p_{m-1} - p_0, the lateral coordinate of sample j is
+    d_j = (c_x (p_j - p_0)_y - c_y (p_j - p_0)_x) / |c| (positive to the left of the chord), and
+    the amplitude is (max_j d_j - min_j d_j) / 2.
+
+    Args:
+        pelvis: (n, m, 2) or (m, 2) paths, metres (any planar frame).
+
+    Returns:
+        (n,) amplitudes, metres, or a scalar for one (m, 2) path.
     """
     p = np.asarray(pelvis, dtype=float)
     single = p.ndim == 2
@@ -81,7 +88,15 @@ def sway_amplitude(pelvis: np.ndarray) -> np.ndarray:
 
 
 def capture_step_metrics(steps: Sequence[Step]) -> dict[str, np.ndarray]:
-    """Per-step length (m), duration (s), sway (m) and heading change (rad) of captured steps."""
+    """Per-step length, duration, sway and heading change of captured steps.
+
+    Args:
+        steps: n captured steps (local frames).
+
+    Returns:
+        ``{"length", "duration", "sway", "heading"}`` -> (n,) arrays: metres, seconds,
+        metres (:func:`sway_amplitude` on :data:`PATH_SAMPLES` samples), radians.
+    """
     paths = np.stack([resample_step(s) for s in steps]) if steps else np.zeros((0, 2, 2))
     return {
         "length": np.array([s.length for s in steps]),
@@ -92,8 +107,16 @@ def capture_step_metrics(steps: Sequence[Step]) -> dict[str, np.ndarray]:
 
 
 def batch_step_metrics(batch: StepBatch, fps: float | None = None) -> dict[str, np.ndarray]:
-    """The same metrics for decoded model steps; with ``fps``, durations are those of the steps
-    played back at ``fps`` (whole frames, :meth:`StepBatch.n_samples`)."""
+    """The metrics of :func:`capture_step_metrics` for decoded model steps.
+
+    Args:
+        batch: n decoded steps.
+        fps: when given, durations are those of the steps played back at ``fps`` Hz (whole
+            frames, round(T·fps) / fps, as :meth:`StepBatch.n_samples`); None: the raw T.
+
+    Returns:
+        ``{"length", "duration", "sway", "heading"}`` -> (n,) arrays: m, s, m, rad.
+    """
     pelvis, _ = batch.resample(PATH_SAMPLES)
     duration = batch.duration.copy() if fps is None else np.round(batch.duration * fps) / fps
     return {
@@ -136,9 +159,26 @@ def fidelity_from_steps(
 ) -> dict:
     """Fidelity report against already segmented captured ``steps`` (see module docstring).
 
-    ``planned_walks``: :func:`mjwalk.plan.walktimes.planned_straight_walks` (the planner sits
-    above this module; the command line passes it), to time every captured straight walk as
-    ``planned`` planned walks too (``straight_walks["planned"]``); None: not."""
+    Args:
+        model: the step model to assess.
+        steps: segmented captured steps (their ``meta`` marks initiations/terminations).
+        rng: generator for the model's chains and walks.
+        n_chains: sampled chains.
+        chain_length: steps per chain, >= 2 (the first is the KDE starter).
+        straight_deg: largest total heading change of a straight walk, degrees.
+        planned: planned walks per captured straight walk (0: none).
+        planned_walks: :func:`mjwalk.plan.walktimes.planned_straight_walks` (the planner sits
+            above this module; the command line passes it), to time every captured straight
+            walk as ``planned`` planned walks too (``straight_walks["planned"]``); None: not.
+
+    Returns:
+        JSON-serializable dict: ``model`` (summary), ``pace`` (capture, model),
+        ``n_capture_steps``, ``n_model_steps``, ``steps`` and ``initiation`` (per metric KS
+        statistic, p-value and summaries), ``straight_walks`` (medians and IQRs, capture and model).
+
+    Raises:
+        MjwalkError: on no steps, ``chain_length < 2`` or no steady-state captured step.
+    """
     if len(steps) == 0:
         raise MjwalkError("fidelity: no captured steps to compare against")
     if chain_length < 2:
@@ -233,9 +273,19 @@ def fidelity_report(
 ) -> dict:
     """Compare step chains of ``model`` with the captured ``takes`` (segmented here).
 
-    Returns a JSON-serializable dict: per-step KS statistics and summaries (``steps``) and
-    straight-walk time / path-length medians and IQRs (``straight_walks``). The caller writes
-    it (atomically) if wanted; :func:`format_fidelity_table` renders it.
+    The caller writes the report (atomically) if wanted; :func:`format_fidelity_table` renders it.
+
+    Args:
+        model: the step model to assess.
+        takes: captured takes (:class:`mjwalk.mocap.take.Take`).
+        rng: generator for the model's chains and walks.
+        n_chains: sampled chains.
+        chain_length: steps per chain, >= 2.
+        straight_deg: largest total heading change of a straight walk, degrees.
+        planned_walks: as :func:`fidelity_from_steps` (with its default ``planned``).
+
+    Returns:
+        The :func:`fidelity_from_steps` dict plus ``segmentation`` (the segmentation summary).
     """
     steps, summary = segment_takes(takes)
     report = fidelity_from_steps(
@@ -252,7 +302,14 @@ def fidelity_report(
 
 
 def format_fidelity_table(report: dict) -> str:
-    """Plain-text table of a :func:`fidelity_report`."""
+    """Plain-text table of a :func:`fidelity_report`.
+
+    Args:
+        report: the report dict.
+
+    Returns:
+        The table, lines joined by newlines.
+    """
     lines = [
         f"steady-state steps: capture n={report['n_capture_steps']} (no initiations or "
         f"terminations), model n={report['n_model_steps']} (chain steps after the starter)",
@@ -322,7 +379,20 @@ def load_capture(
     *,
     skeleton: str | None = None,
 ) -> list:
-    """Takes from a BVH glob and/or an AMC glob with its ASF skeleton; sorted by file name."""
+    """Takes from a BVH glob and/or an AMC glob with its ASF skeleton; sorted by file name.
+
+    Args:
+        bvh: glob of ``.bvh`` files, or None.
+        amc: glob of ``.amc`` files, or None.
+        asf: the ``.asf`` skeleton of the AMC files (required with ``amc``).
+        skeleton: skeleton preset name; default ``"bandai"`` for BVH, ``"cmu"`` for AMC.
+
+    Returns:
+        The BVH takes, then the AMC takes (metres, z up).
+
+    Raises:
+        MjwalkError: when a glob matches nothing or ``amc`` comes without ``asf``.
+    """
     takes = []
     if bvh:
         files = sorted(_glob.glob(str(bvh)))

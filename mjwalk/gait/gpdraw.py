@@ -26,9 +26,16 @@ from mjwalk._jit import njit, njit_sum
 
 
 def pack_upper(w: np.ndarray) -> np.ndarray:
-    """The upper triangle of the symmetric (m, m) ``w``, row by row, off-diagonal entries
-    doubled: Σ_i e_i Σ_{j>=i} P_ij e_j = e W eᵀ, reading half of W (which does not fit a core's
-    cache at m = 400; the default model has m = 200)."""
+    """The upper triangle of the symmetric ``w``, row by row, off-diagonal entries doubled:
+    Σ_i e_i Σ_{j>=i} P_ij e_j = e W eᵀ, reading half of W (which does not fit a core's
+    cache at m = 400; the default model has m = 200).
+
+    Args:
+        w: (m, m) symmetric matrix.
+
+    Returns:
+        (m(m+1)/2,) packed entries P.
+    """
     i, j = np.triu_indices(w.shape[0])  # row by row
     return np.where(i == j, 1.0, 2.0) * w[i, j]
 
@@ -69,9 +76,18 @@ def _quadratic(e, c2_w, packed):
 
 @njit
 def moments(x, gp):
-    """Posterior mean (p, d), latent variance (p,) (not clipped at 0) and the half squared
-    scaled distances h (p, m) to the inducing inputs (kernel rows C·exp(-h)); ``gp`` is
-    :attr:`TransitionGP.kernel`."""
+    """Posterior mean, latent variance and half squared scaled distances to the inducing inputs.
+
+    h_ij = |x_i/ℓ - z_j/ℓ|²/2 (clipped at 0), kernel rows C·exp(-h);
+    mean_i = Σ_j exp(-h_ij) (C·α)_j, var_i = C - e_i (C²·W) e_iᵀ with e_i = exp(-h_i).
+
+    Args:
+        x: (p, d) predecessor features.
+        gp: :attr:`TransitionGP.kernel`.
+
+    Returns:
+        (mean (p, d), var (p,) not clipped at 0, h (p, m)).
+    """
     mean, var, h, _ = _moments(x, gp)
     return mean, var, h
 
@@ -112,11 +128,24 @@ def _moments(x, gp):
 
 @njit
 def sample(x, n, rng, gp, sharp):
-    """(p, n, d) successors y = μ(x) + √v(x)·ε + r of each predecessor x[i]: r from the pool
-    of inducing input j, drawn with probability ∝ exp(-sharp·(h_j - min h)) = (k_j/max k)^sharp
-    (the power for a whole sharpness: equal to rounding, so a choice could only differ where
-    the uniform number falls within a few roundings of a boundary between two inducing
-    inputs), and a uniform member of it; ε standard normal. ``gp``: :attr:`TransitionGP.kernel`."""
+    """Successors y = μ(x) + √v(x)·ε + r of each predecessor x[i].
+
+    r is from the pool of inducing input j, drawn with probability
+    ∝ exp(-sharp·(h_j - min h)) = (k_j/max k)^sharp (the power for a whole sharpness: equal to
+    rounding, so a choice could only differ where the uniform number falls within a few
+    roundings of a boundary between two inducing inputs), and a uniform member of it;
+    ε standard normal.
+
+    Args:
+        x: (p, d) predecessor features.
+        n: successors per predecessor.
+        rng: ``numpy.random.Generator``: p·n uniforms, p·n integers, then p·n·d normals.
+        gp: :attr:`TransitionGP.kernel`.
+        sharp: sharpness of the pool choice (>= 0; 0: uniform over the inducing inputs).
+
+    Returns:
+        (p, n, d) successor features.
+    """
     pool = gp[7]
     k = gp[8]
     p = x.shape[0]

@@ -166,6 +166,8 @@ class StepModel:
                 (:data:`~mjwalk.gait.transition.N_INDUCING`, which says why 200).
             n_residual: residuals pooled per inducing point (None: pairs / inducing points).
             progress: print timings to stderr.
+        Returns:
+            The fitted model (``info`` holds data sizes, seed and fit time).
         """
         t0 = time.perf_counter()
         rng = as_generator(seed, "StepModel.fit: seed")
@@ -228,17 +230,35 @@ class StepModel:
         return self.features.n_components
 
     def encode(self, steps: Sequence[Step]) -> np.ndarray:
-        """Steps -> (n, d) standardized features."""
+        """Standardized features of ``steps``.
+
+        Args:
+            steps: n steps.
+        Returns:
+            (n, d) features.
+        """
         return self.features.encode(steps)
 
     def decode(self, z: np.ndarray, side) -> StepBatch:
-        """(n, d) standardized features -> StepBatch with ``side`` ((n,) or one value)."""
+        """Decode standardized features (:meth:`StepFeatures.decode`).
+
+        Args:
+            z: (n, d) features.
+            side: swing sides, (n,) or one value.
+        Returns:
+            The steps in their local frames.
+        """
         return self.features.decode(z, side)
 
     def sample_first(self, n: int, rng: np.random.Generator, side: Side | None = None) -> StepBatch:
         """``n`` gait-initiation steps from the KDE.
 
-        ``side=None``: ``n - n//2`` left then ``n//2`` right steps; else all of ``side``.
+        Args:
+            n: steps.
+            rng: the random generator.
+            side: None: ``n - n//2`` left then ``n//2`` right steps; else all of ``side``.
+        Returns:
+            The n steps in their local frames.
         """
         z, sides = self.sample_first_features(n, rng, side)
         return self.features.decode(z, sides)
@@ -246,8 +266,16 @@ class StepModel:
     def sample_first_features(
         self, n: int, rng: np.random.Generator, side: Side | None = None
     ) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`sample_first`'s standardized features (n, d) and swing sides (n,), the same
-        draws, not decoded (the planner decodes only the steps of the walk it returns)."""
+        """:meth:`sample_first`'s draws, not decoded (the planner decodes only the steps of the
+        walk it returns); arguments as :meth:`sample_first`.
+
+        Args:
+            n: steps.
+            rng: the random generator.
+            side: swing side, or None for both.
+        Returns:
+            (features (n, d), swing sides (n,)).
+        """
         if side is None:
             counts = {"left": n - n // 2, "right": n // 2}
         elif side in _SIDES:
@@ -272,9 +300,14 @@ class StepModel:
         return self.kde_data[side][:, idx].T + offset
 
     def sample_next(self, prev: StepBatch, n: int, rng: np.random.Generator) -> StepBatch:
-        """``n`` successors of every step in ``prev`` (rows i·n .. i·n+n-1 follow ``prev[i]``).
+        """``n`` successors of every step in ``prev``: they swing the other foot and keep walking.
 
-        Successors swing the other foot and keep walking. Vectorized over predecessors.
+        Args:
+            prev: p predecessor steps (their features are used).
+            n: successors per predecessor.
+            rng: the random generator.
+        Returns:
+            p·n steps; rows i·n .. i·n+n-1 follow ``prev[i]``.
         """
         return self._sample(self.gp, prev, n, rng, "sample_next")
 
@@ -285,9 +318,17 @@ class StepModel:
 
     def sample_stop(self, prev: StepBatch, n: int, rng: np.random.Generator) -> StepBatch:
         """``n`` closing steps after every step in ``prev``: the step that brings the walk to a
-        stand (gait termination, usually shorter and slower), from the stop GPs. Same layout
-        as :meth:`sample_next`. Raises MjwalkError when the model has none (:attr:`can_stop`:
-        the training data had fewer than :data:`MIN_STOP_PAIRS` terminations per side)."""
+        stand (gait termination, usually shorter and slower), from the stop GPs. Raises
+        MjwalkError when the model has none (:attr:`can_stop`: the training data had fewer than
+        :data:`MIN_STOP_PAIRS` terminations per side).
+
+        Args:
+            prev: p predecessor steps.
+            n: successors per predecessor.
+            rng: the random generator.
+        Returns:
+            p·n steps, laid out as :meth:`sample_next`'s.
+        """
         if not self.can_stop:
             raise MjwalkError(
                 "sample_stop: this step model has no stop GPs (its training data held fewer "
@@ -317,11 +358,18 @@ class StepModel:
     def sample_next_features(
         self, x: np.ndarray, side: str, n: int, rng: np.random.Generator, stop: bool = False
     ) -> np.ndarray:
-        """The inner routine of :meth:`sample_next` (``stop=True``: of :meth:`sample_stop`),
-        without decoding: (p·n, d) standardized features of ``n`` successors of each of the
-        predecessors ``x`` (p, d), all of whose swing foot is ``side`` (rows i·n .. i·n+n-1
-        follow ``x[i]``; same draws as :meth:`sample_next`). For callers that decode only some
-        successors (the planner)."""
+        """The inner routine of :meth:`sample_next` (of :meth:`sample_stop` with ``stop``), without
+        decoding, for callers that decode only some successors (the planner); same draws.
+
+        Args:
+            x: (p, d) predecessor features.
+            side: swing foot of every predecessor.
+            n: successors per predecessor.
+            rng: the random generator.
+            stop: draw closing steps (the stop GPs).
+        Returns:
+            (p·n, d) successor features; rows i·n .. i·n+n-1 follow ``x[i]``.
+        """
         gps = self.stop_gp if stop else self.gp
         if side not in gps:
             raise MjwalkError(f"sample_next_features: no {'stop ' if stop else ''}GP for {side!r}")
@@ -330,7 +378,15 @@ class StepModel:
     def sample_chain(
         self, n_steps: int, rng: np.random.Generator, side: Side | None = None
     ) -> StepBatch:
-        """One walk of ``n_steps`` steps: a KDE starter, then one GP successor after another."""
+        """One walk: a KDE starter, then one GP successor after another.
+
+        Args:
+            n_steps: steps in the walk.
+            rng: the random generator.
+            side: swing side of the starter; None: drawn from ``rng``, even odds.
+        Returns:
+            The ``n_steps`` steps, each in its own local frame.
+        """
         first = self.sample_first(1, rng, side=side or ("left" if rng.random() < 0.5 else "right"))
         parts = [first]
         for _ in range(n_steps - 1):
@@ -343,7 +399,11 @@ class StepModel:
         """The model's own steady straight-walking pace (:func:`mjwalk.gait.pace.model_pace`,
         seeded): measured once on first use and kept in ``info["pace"]`` (saved with the
         model). For a model conditioned with :meth:`for_walker`, the pace of the model it
-        was conditioned from."""
+        was conditioned from.
+
+        Returns:
+            The pace.
+        """
         base = self._base or self
         if base.info.get("pace", {}).get("version") != PACE_VERSION:
             base.info["pace"] = model_pace(base).as_dict()
@@ -358,14 +418,19 @@ class StepModel:
         """This model conditioned on ``walker``: its steps, stretched in their local frames so
         that the steady straight walking of the result has the walker's preferred step length
         (``walker.speed * 60 / walker.cadence``) and step duration (``60 / walker.cadence``)
-        as medians, and the walker's step width (``walker.step_width``; when None, the model's
-        width scaled by ``walker.stature / model stature``, Perry & Burnfield 2010). Shapes,
-        turning and the variance relative to the pace are the model's (:mod:`mjwalk.gait.pace`
-        says why). ``walker=None`` gives the unconditioned model back.
+        as centres (:class:`~mjwalk.gait.pace.Pace`), and the walker's step width
+        (``walker.step_width``; when None, the model's width scaled by ``walker.stature / model
+        stature``, Perry & Burnfield 2010). Shapes, turning and the variance relative to the pace
+        are the model's (:mod:`mjwalk.gait.pace` says why).
 
         The KDE starters and the transition GPs are shared (they live in feature space); only
         the decoding changes (:meth:`StepFeatures.scaled`), so a conditioned model costs
         nothing to build beyond the model's pace, which is measured once.
+
+        Args:
+            walker: the walker; None gives the unconditioned model back.
+        Returns:
+            The conditioned model (the last one is cached on the base model).
         """
         base = self._base or self
         if walker is None:
@@ -403,7 +468,12 @@ class StepModel:
     # -- persistence -------------------------------------------------------------------------
 
     def summary(self) -> dict:
-        """Figures of the fitted model: data sizes, PCA dims, variance kept, kernel parameters."""
+        """Figures of the fitted model.
+
+        Returns:
+            ``info`` plus ``pca_dims``, ``variance_kept`` and per-direction ``kernels`` and
+            ``stop_kernels`` (kernel parameters, data sizes).
+        """
         out = dict(self.info)
         out.update(
             pca_dims=self.n_dims,
@@ -435,7 +505,11 @@ class StepModel:
     def save(self, path: str | Path) -> None:
         """Write the model to one versioned ``.npz`` file, atomically. A model conditioned on
         a walker (:meth:`for_walker`) writes the model it was conditioned from: the walker is a
-        choice made when planning, not part of the learned model."""
+        choice made when planning, not part of the learned model.
+
+        Args:
+            path: the file.
+        """
         base = self._base
         if base is not None:
             base.save(path)
@@ -457,7 +531,13 @@ class StepModel:
 
     @classmethod
     def load(cls, path: str | Path) -> StepModel:
-        """Read a model written by :meth:`save`; any problem raises ``ModelFileError``."""
+        """Read a model written by :meth:`save`; any problem raises ``ModelFileError``.
+
+        Args:
+            path: the file.
+        Returns:
+            The (unconditioned) model.
+        """
         header, data = load_npz(path, "step-model")
         check_header(header, path, "step-model", MODEL_FORMAT, MODEL_VERSION)
         try:

@@ -75,6 +75,12 @@ class Pace:
         return 60.0 / self.step_duration
 
     def as_dict(self) -> dict[str, float]:
+        """The pace as a JSON-ready dict.
+
+        Returns:
+            ``speed`` (m/s), ``cadence`` (steps/min), ``step_length`` (m), ``step_duration`` (s),
+            ``step_width`` (m), all rounded, ``n_steps`` and ``version`` (:data:`PACE_VERSION`).
+        """
         return {
             "speed": round(self.speed, 4),
             "cadence": round(self.cadence, 3),
@@ -87,6 +93,14 @@ class Pace:
 
     @classmethod
     def from_dict(cls, d: dict) -> Pace:
+        """Inverse of :meth:`as_dict` (derived ``speed``, ``cadence`` and ``version`` ignored).
+
+        Args:
+            d: a dict with ``step_length``, ``step_duration``, ``step_width``, ``n_steps``.
+
+        Returns:
+            The pace.
+        """
         return cls(
             float(d["step_length"]),
             float(d["step_duration"]),
@@ -113,8 +127,19 @@ def _pace(lengths, durations, widths) -> Pace:
 
 
 def capture_pace(steps: Sequence[Step], straight_deg: float = 20.0) -> Pace:
-    """Pace of captured ``steps``: medians over the steady steps of its straight walks
-    (:func:`mjwalk.gait.straight.straight_runs`; gait initiations and terminations left out)."""
+    """Pace of captured ``steps``: interquartile means over the steady steps of its straight walks
+    (:func:`mjwalk.gait.straight.straight_runs`; gait initiations and terminations left out).
+
+    Args:
+        steps: segmented captured steps.
+        straight_deg: largest total heading change of a straight walk, degrees.
+
+    Returns:
+        The pace.
+
+    Raises:
+        MjwalkError: with fewer than 3 steady straight steps.
+    """
     steady = [
         s
         for run in straight_runs(steps, straight_deg)
@@ -133,9 +158,18 @@ def capture_pace(steps: Sequence[Step], straight_deg: float = 20.0) -> Pace:
 
 
 def model_pace(model: StepSampler, *, seed: int = 0) -> Pace:
-    """Pace of ``model``: medians over the steady steps of ``PACE_WALKS`` straight walks of
-    ``PACE_DISTANCE`` metres (the greedy walker of :func:`mjwalk.gait.straight.
-    model_straight_walks`, seeded, so the figure is a property of the model)."""
+    """Pace of ``model``: interquartile means over the steady steps (:data:`SKIP_START` and
+    :data:`SKIP_END` left out) of :data:`PACE_WALKS` straight walks of :data:`PACE_DISTANCE`
+    metres (the greedy walker of :func:`mjwalk.gait.straight.model_straight_walks`, seeded, so
+    the figure is a property of the model).
+
+    Args:
+        model: the step sampler.
+        seed: seed of the walks' generator.
+
+    Returns:
+        The pace.
+    """
     walks = model_straight_walks(
         model,
         np.full(PACE_WALKS, PACE_DISTANCE),
@@ -151,9 +185,22 @@ def model_pace(model: StepSampler, *, seed: int = 0) -> Pace:
 
 
 def stretch_step(step: Step, lateral: float, forward: float, time: float) -> Step:
-    """``step`` stretched in its local frame: x (right) by ``lateral``, y (forward) by
-    ``forward``, its duration by ``time`` (the samples stay, their rate changes); yaws stay.
-    The inverse of what :meth:`~mjwalk.gait.model.StepModel.for_walker` does to decoded steps."""
+    """``step`` stretched in its local frame; yaws stay.
+
+    x (right) of the pelvis and both feet times ``lateral``, y (forward) times ``forward``; the
+    samples stay and their rate becomes fps / ``time``, so the duration is multiplied by
+    ``time``. The inverse of what :meth:`~mjwalk.gait.model.StepModel.for_walker` does to decoded
+    steps.
+
+    Args:
+        step: the step.
+        lateral: factor on x.
+        forward: factor on y.
+        time: factor on the duration.
+
+    Returns:
+        A new step (the other fields shared).
+    """
     xy = np.array([lateral, forward])
     foot = np.asarray(step.footprint, dtype=float).copy()
     stance = np.asarray(step.stance, dtype=float).copy()
@@ -175,10 +222,17 @@ def normalize_paces(
     each group's :func:`capture_pace` is measured on its own straight walking and the group is
     stretched (:func:`stretch_step`) to the median of the groups' paces (step length,
     duration and width separately). Steps without the key, and groups with fewer than
-    ``min_steps`` steady straight steps, are left as they are.
+    ``min_steps`` steady straight steps, are left as they are; with fewer than 2 such groups
+    nothing is stretched.
+
+    Args:
+        steps: segmented steps.
+        key: the ``Step.meta`` key naming the walker.
+        min_steps: fewest steady straight steps for a group to be stretched.
 
     Returns:
-        (steps, info): the steps in their order; info per group: its pace and factors.
+        (steps, info): the steps in their order; info per group (key as str): its pace
+        (:meth:`Pace.as_dict`) and its ``lateral``, ``forward`` and ``time`` factors.
     """
     groups: dict[object, list[int]] = {}
     for i, s in enumerate(steps):

@@ -35,10 +35,20 @@ STEP_WINDOW = 60.0 / 113.0
 
 
 def curve_speed_ratio(xy: np.ndarray, fps: float) -> float:
-    """Median speed where the stride-averaged (1 s) direction of travel turns faster than
+    """Speed ratio of curved to straight walking.
+
+    Median speed where the stride-averaged (1 s) direction of travel turns faster than
     30 deg/s over the median where it turns slower than 5 deg/s, among samples at >= 60 % of
     the walk's 95th-percentile stride-averaged speed (steady walking, not setting off or
-    stopping); nan when either has fewer than 5 samples."""
+    stopping).
+
+    Args:
+        xy: (n, 2) horizontal pelvis path, metres.
+        fps: sampling rate, Hz.
+
+    Returns:
+        The ratio; nan when either set has fewer than 5 samples.
+    """
     n = max(1, round(fps))
     s = uniform_filter1d(np.asarray(xy, dtype=float), n, axis=0, mode="nearest")
     v = np.gradient(s, axis=0) * fps
@@ -52,11 +62,21 @@ def curve_speed_ratio(xy: np.ndarray, fps: float) -> float:
 
 
 def start_stop_distances(xy: np.ndarray, fps: float, window: float = STEP_WINDOW):
-    """(speed-up distance, slow-down distance, steady speed) of a walk from standing to
-    standing: metres walked from the first sample moving faster than :data:`MOVING_SPEED` to
-    the first at 90 % of the steady speed (the median over the middle third of the moving
-    samples), and from the last at 90 % of it to the last moving sample, speed averaged over
-    ``window`` seconds; None when the walk moves for less than two seconds."""
+    """Speed-up and slow-down distances of a walk from standing to standing.
+
+    Metres walked from the first sample moving faster than :data:`MOVING_SPEED` to the first
+    at 90 % of the steady speed (the median over the middle third of the moving samples), and
+    from the last at 90 % of it to the last moving sample, speed averaged over ``window``.
+
+    Args:
+        xy: (n, 2) horizontal pelvis path, metres.
+        fps: sampling rate, Hz.
+        window: averaging window, seconds.
+
+    Returns:
+        (speed-up distance m, slow-down distance m, steady speed m/s); None when the walk
+        moves for less than two seconds.
+    """
     n = max(1, round(fps * window))
     s = uniform_filter1d(np.asarray(xy, dtype=float), n, axis=0, mode="nearest")
     v = np.hypot(*np.gradient(s, axis=0).T) * fps

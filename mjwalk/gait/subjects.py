@@ -110,6 +110,13 @@ def sample_subject(rng: np.random.Generator, subject: int = 0) -> SubjectParams:
 
     Lengths scale with stature (1.75 m reference); the spread of the preferred step length and
     duration between subjects is about half the captured spread, the rest is intra-subject.
+
+    Args:
+        rng: generator; its draws are taken in the field order of :class:`SubjectParams`.
+        subject: the subject's id.
+
+    Returns:
+        The subject's parameters (metres, seconds, radians).
     """
     stature = float(rng.normal(DEFAULT_STATURE, 0.04))
     scale = stature / DEFAULT_STATURE

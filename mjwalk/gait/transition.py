@@ -87,7 +87,14 @@ class TransitionGP:
         )
 
     def kernel_rows(self, x: np.ndarray) -> np.ndarray:
-        """(P, m) signal kernel C·RBF between ``x`` (P, d) and the inducing inputs."""
+        """Signal kernel k(x, z_j) = C·exp(-|x/ℓ - z_j/ℓ|²/2) to the inducing inputs.
+
+        Args:
+            x: (P, d) standardized features.
+
+        Returns:
+            (P, m) kernel rows.
+        """
         xs = x / self.length_scale
         sq = np.einsum("pd,pd->p", xs, xs)[:, None] + self._zs2[None, :] - 2.0 * (xs @ self._zs.T)
         np.maximum(sq, 0.0, out=sq)
@@ -100,7 +107,14 @@ class TransitionGP:
         return mean, np.maximum(var, 0.0), k
 
     def predict(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Posterior mean (P, d) and latent variance (P,) at predecessor features ``x`` (P, d)."""
+        """Posterior mean μ(x) = k(x, Z)·α and latent variance v(x) = C - k W kᵀ (clipped at 0).
+
+        Args:
+            x: (P, d) predecessor features (standardized).
+
+        Returns:
+            (mean (P, d), variance (P,)).
+        """
         mean, var, _ = self._predict(x)
         return mean, var
 
@@ -112,7 +126,7 @@ class TransitionGP:
         return gpdraw.moments(np.ascontiguousarray(x, dtype=float), self.kernel)
 
     def sample(self, x: np.ndarray, n: int, rng: np.random.Generator) -> np.ndarray:
-        """(P, n, d) successor features: n draws for each of the P predecessors.
+        """n successor draws for each of the P predecessors.
 
         y = μ(x) + √v(x)·ε + r, r from the residual pool of an inducing input drawn with
         probability ∝ k(x, z_j)^POOL_SHARPNESS (module doc). μ and v are :meth:`predict`'s
@@ -122,6 +136,14 @@ class TransitionGP:
         underflow to all-zero weights far from the data. Compiled
         (:func:`mjwalk.gait.gpdraw.sample`); the random numbers are drawn from ``rng`` as
         NumPy would: all pool choices (uniform), all pool members, then all normal deviates.
+
+        Args:
+            x: (P, d) predecessor features (standardized).
+            n: draws per predecessor.
+            rng: the random generator.
+
+        Returns:
+            (P, n, d) successor features.
         """
         return gpdraw.sample(
             np.ascontiguousarray(x, dtype=float), int(n), rng, self.kernel, POOL_SHARPNESS
@@ -138,9 +160,22 @@ class TransitionGP:
         n_inducing: int = N_INDUCING,
         n_residual: int | None = None,
     ) -> TransitionGP:
-        """Fit on pairs ``x`` (N, d) -> ``y`` (N, d) (standardized features); see module doc.
+        """Fit on step pairs (standardized features); see module doc.
 
-        ``n_residual``: residuals pooled per inducing input; None: ``ceil(N / m)``, at least 5.
+        Args:
+            x: (N, d) predecessor features, N >= 5.
+            y: (N, d) successor features.
+            rng: draws the hyper-parameter subset and the k-means/GP seed.
+            n_hyper: pairs in the subset for the LML fit of the hyper-parameters.
+            n_inducing: inducing inputs m (k-means centres; all x when m >= N).
+            n_residual: residuals pooled per inducing input; None: ``ceil(N / m)``, at least 5
+                (at most N).
+
+        Returns:
+            The fitted predictor.
+
+        Raises:
+            MjwalkError: with fewer than 5 pairs.
         """
         # deferred: scipy.spatial and sklearn are slow to import and only fitting needs them
         from scipy.spatial import cKDTree
@@ -178,6 +213,15 @@ class TransitionGP:
         return replace(proto, res_pool=resid[np.asarray(near).reshape(m, k_res)], nystrom=nystrom)
 
     def arrays(self, prefix: str) -> dict[str, np.ndarray]:
+        """The fitted parameters as named arrays (for saving).
+
+        Args:
+            prefix: prepended to each name.
+
+        Returns:
+            ``inducing``, ``alpha``, ``w``, ``length_scale``, ``res_pool`` and ``scalars``
+            (signal_var, noise_var, n_pairs, n_hyper, lml, nystrom), each under ``prefix``.
+        """
         return {
             f"{prefix}inducing": self.inducing,
             f"{prefix}alpha": self.alpha,
@@ -198,6 +242,15 @@ class TransitionGP:
 
     @classmethod
     def from_arrays(cls, data, prefix: str) -> TransitionGP:
+        """Inverse of :meth:`arrays` (a missing ``nystrom``, older files, reads as NaN).
+
+        Args:
+            data: mapping (dict or npz) holding the ``prefix``-named arrays.
+            prefix: the prefix used by :meth:`arrays`.
+
+        Returns:
+            The predictor.
+        """
         sc = np.asarray(data[f"{prefix}scalars"], dtype=float)
         return cls(
             inducing=np.asarray(data[f"{prefix}inducing"], dtype=float),

@@ -88,12 +88,27 @@ class Walker:
         return self.speed / REFERENCE_SPEED
 
     def with_(self, **changes) -> Walker:
-        """A copy with some figures changed (validated again)."""
+        """A copy with some figures changed (validated again).
+
+        Args:
+            **changes: field names and their new values.
+
+        Returns:
+            The new walker.
+        """
         return replace(self, **changes)
 
     @classmethod
     def preset(cls, name: str, **changes) -> Walker:
-        """The typical (mean) walker of a named :data:`PRESETS` group, with ``changes``."""
+        """The typical (mean) walker of a named :data:`PRESETS` group, with ``changes``.
+
+        Args:
+            name: the preset group.
+            **changes: fields overriding the preset's means (validated).
+
+        Returns:
+            The walker, ``group`` set to ``name``.
+        """
         p = get_preset(name)
         base = cls(
             stature=p.stature[0],
@@ -183,7 +198,17 @@ PRESETS: dict[str, WalkerPreset] = {
 
 
 def get_preset(name: str) -> WalkerPreset:
-    """The :data:`PRESETS` entry ``name``; an unknown name raises :class:`WalkerError`."""
+    """The :data:`PRESETS` entry ``name``.
+
+    Args:
+        name: preset group name.
+
+    Returns:
+        The preset.
+
+    Raises:
+        WalkerError: for an unknown name.
+    """
     try:
         return PRESETS[name]
     except KeyError:
