@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from mjwalk._io import check_header, load_npz, save_npz
+from mjwalk.errors import InputError, ModelFileError, SceneError
 
 WALKPATH_FORMAT = "mjwalk.walkpath"
 WALKPATH_VERSION = 1
@@ -87,7 +88,6 @@ class WalkPath:
         ``xy`` (N, 2) and ``yaw`` (N,) finite; each step's sample range inside 0..N-1 and in
         order, its side "left" or "right", its footprints (3,) finite. An edited walk file
         otherwise failed deep in playback (a ValueError, a MemoryError, an IndexError)."""
-        from mjwalk.errors import InputError
 
         def bad(msg: str) -> InputError:
             return InputError(f"{what}: {msg}")
@@ -140,8 +140,6 @@ class WalkPath:
         """Raise SceneError when the walk was planned in a scene whose obstacle geometry
         differs from ``workplace``'s (played there it would pass through obstacles or leave
         the floor), unless ``force``. Walks without a recorded scene pass."""
-        from mjwalk.errors import SceneError
-
         planned = self.meta.get("scene_fingerprint")
         if force:
             return
@@ -185,8 +183,6 @@ class WalkPath:
     @classmethod
     def load(cls, path: str | Path) -> WalkPath:
         """Read a path written by :meth:`save`; a foreign or corrupt file raises ModelFileError."""
-        from mjwalk.errors import InputError, ModelFileError
-
         header, data = load_npz(path, "walk-path")
         check_header(header, path, "walk-path", WALKPATH_FORMAT, WALKPATH_VERSION)
         names = ("t", "xy", "yaw", "step_side", "step_range", "step_foot", "step_stance")

@@ -8,6 +8,7 @@ import numpy as np
 
 from mjwalk._args import as_generator, check_seed
 from mjwalk.errors import InputError
+from mjwalk.gait.default import default_model
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.walkpath import WalkPath
@@ -46,8 +47,6 @@ def plan_walk(
             search), goal unreachable (before any search), or the expansion budget spent.
     """
     if model is None:
-        from mjwalk.gait.default import default_model
-
         model = default_model()
     rng = as_generator(rng, "plan_walk: rng")
     return HybridPlanner(workplace, goal, model, options).plan(start, rng)
@@ -71,8 +70,6 @@ def plan_walks(
         raise InputError(f"plan_walks: n must be a whole number of walks >= 0, got {n!r}")
     seed = check_seed(seed, "plan_walks: seed")
     if model is None:
-        from mjwalk.gait.default import default_model
-
         model = default_model()
     planner = HybridPlanner(workplace, goal, model, options)
     streams = np.random.SeedSequence(seed).spawn(n)
