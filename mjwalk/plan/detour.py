@@ -31,6 +31,7 @@ frame, yaw from +x).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -50,6 +51,7 @@ __all__ = [
     "PASSING_GAP",
     "SIDE_SLOPE_PER_DEG",
     "SIDE_SLOPE_PER_M",
+    "GuideBody",
     "abreast",
     "detour_guide",
     "left_share",
@@ -180,6 +182,22 @@ def _blocking(workplace, path: np.ndarray, radius: float):
     return workplace.obstacles[int(near[int(np.argmin(dist))])]
 
 
+@dataclass(frozen=True)
+class GuideBody:
+    """The walker a guide is drawn for: the clearance it keeps and the figures it walks with.
+
+    Attributes:
+        radius: the body's clearance from obstacles, metres (the planner's body radius).
+        stature: the walker's body height, metres (its shoulder width sets the berth).
+        step_length: the walker's step length, metres (the sharpest turn a guide may make,
+            :func:`walkable`; 0: any).
+    """
+
+    radius: float
+    stature: float = DEFAULT_STATURE
+    step_length: float = 0.0
+
+
 def detour_guide(
     workplace,
     direct,
@@ -187,37 +205,51 @@ def detour_guide(
     goal,
     start_heading: float | None,
     goal_heading: float | None,
-    radius: float,
+    body: GuideBody,
     rng: np.random.Generator,
-    stature: float = DEFAULT_STATURE,
-    step_length: float = 0.0,
 ) -> np.ndarray | None:
-    """The path (k, 2) a walk's heading follows from ``start`` to ``goal`` past the first
-    obstacle the path ``direct`` (k, 2: the minimum-jerk path between the two poses, or the
-    caller's own) runs into (module doc): the side
-    drawn from :func:`left_share` with ``rng`` (one draw), the waypoint abreast of the
-    obstacle (:func:`abreast`) at half the shoulder width of a walker of ``stature`` metres
-    plus :data:`PASSING_GAP` from it (or the body radius plus 5 cm where that does not fit),
-    and the minimum-jerk path through it (:func:`~mjwalk.plan.guide.via_point_guide`). None
-    when the direct path is clear, when no obstacle blocks it (the floor's edge does), or when
-    the path round does not keep ``radius`` (the body's clearance) from every obstacle or
-    turns sharper than steps of ``step_length`` metres can (:func:`walkable`); then the route
-    search decides."""
+    """The path a walk's heading follows past the first obstacle ``direct`` runs into.
+
+    The path goes from ``start`` to ``goal`` past the first obstacle the path ``direct`` runs
+    into (module doc): the side drawn from :func:`left_share` with ``rng`` (one draw), the
+    waypoint abreast of the obstacle (:func:`abreast`) at half the shoulder width of a walker
+    of ``body.stature`` plus :data:`PASSING_GAP` from it (or ``body.radius`` plus 5 cm where
+    that does not fit), and the minimum-jerk path through it
+    (:func:`~mjwalk.plan.guide.via_point_guide`).
+
+    Args:
+        workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
+        direct: (k, 2) the path to check, metres: the minimum-jerk path between the two poses,
+            or the caller's own.
+        start: the walk's start (x, y), metres, world frame.
+        goal: the walk's goal (x, y), metres, world frame.
+        start_heading: the heading (radians, from +x CCW) the walker sets off along; None: free.
+        goal_heading: the heading (radians) the walker arrives along; None: free.
+        body: the walker's clearance radius, stature and step length.
+        rng: the random stream the side is drawn from (one draw when an obstacle blocks).
+
+    Returns:
+        The (k, 2) path round the obstacle (metres), or None when the direct path is clear,
+        when no obstacle blocks it (the floor's edge does), or when the path round does not keep
+        ``body.radius`` from every obstacle or turns sharper than steps of ``body.step_length``
+        can (:func:`walkable`); then the route search decides.
+    """
     s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
     if not np.hypot(*(g - s)) > 1e-6:
         return None
+    radius = body.radius
     blocker = _blocking(workplace, np.asarray(direct, dtype=float), radius)
     if blocker is None:
         return None
     left, right = obstacle_ends(blocker, s, g)
     go_left = bool(rng.random() < left_share(s, g, left, right))
-    berth = 0.5 * SEG["shoulder_width"] * stature + PASSING_GAP
+    berth = 0.5 * SEG["shoulder_width"] * body.stature + PASSING_GAP
     for gap in (berth, radius + 0.05):  # the cited berth, or the body's where that is too wide
         way = abreast(blocker, s, g, gap, go_left)
         if np.hypot(*(way - s)) < 1e-6 or np.hypot(*(g - way)) < 1e-6:
             return None
         path = via_point_guide(s, way, g, start_heading, goal_heading)
-        if walkable(path, step_length) and guide_is_clear(workplace, path, radius):
+        if walkable(path, body.step_length) and guide_is_clear(workplace, path, radius):
             return path
     return None
 
@@ -268,18 +300,31 @@ def walk_guide(
     walking_yaw: float | None,
     goal_heading: float | None,
     guide,
-    radius: float,
+    body: GuideBody,
     rng: np.random.Generator,
-    stature: float = DEFAULT_STATURE,
-    step_length: float = 0.0,
 ) -> np.ndarray | None:
-    """The path (:data:`~mjwalk.plan.guide.GUIDE_POINTS`, 2) a walk's heading follows from
-    ``start`` to ``goal`` (x, y; None: straight at the goal): the caller's ``guide`` ((k, 2)),
-    or for a walker already walking along ``walking_yaw`` or meaning to arrive along
-    ``goal_heading`` (radians) the minimum-jerk path between the end poses, or else the
+    """The path a walk's heading follows from ``start`` to ``goal``.
+
+    The caller's ``guide``, or for a walker already walking along ``walking_yaw`` or meaning to
+    arrive along ``goal_heading`` the minimum-jerk path between the end poses, or else the
     straight line; where that runs into an obstacle, the way past it on a side drawn from
-    ``rng`` (:func:`detour_guide`, for a walker of ``stature`` and ``step_length`` metres),
-    else itself (the straight line: None)."""
+    ``rng`` (:func:`detour_guide`), else itself (the straight line: None).
+
+    Args:
+        workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
+        start: the walk's start (x, y), metres, world frame.
+        goal: the walk's goal (x, y), metres, world frame.
+        walking_yaw: the heading (radians, from +x CCW) of a walker already walking; None: one
+            setting off from a stand.
+        goal_heading: the heading (radians) the walker means to arrive along; None: free.
+        guide: the caller's (k, 2) path (metres) to follow, or None.
+        body: the walker's clearance radius, stature and step length (:class:`GuideBody`).
+        rng: the random stream of the detour's side (:func:`detour_guide`).
+
+    Returns:
+        The (:data:`~mjwalk.plan.guide.GUIDE_POINTS`, 2) path (metres), or None: straight at
+        the goal (also when start and goal coincide).
+    """
     s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
     if not np.hypot(*(g - s)) >= 1e-6:
         return None  # no walk (the search refuses it)
@@ -287,9 +332,7 @@ def walk_guide(
     if direct is None and (walking_yaw is not None or goal_heading is not None):
         direct = minimum_jerk_guide(s, g, walking_yaw, goal_heading)
     way = np.array([s, g]) if direct is None else direct
-    path = detour_guide(
-        workplace, way, s, g, walking_yaw, goal_heading, radius, rng, stature, step_length
-    )
+    path = detour_guide(workplace, way, s, g, walking_yaw, goal_heading, body, rng)
     if path is None:
         path = direct
     return None if path is None else resample_guide(path)
