@@ -282,8 +282,15 @@ def _check_acyclic(bones: dict[str, AsfBone], path) -> None:
 def parse_amc(path: str | os.PathLike, asf: Asf) -> tuple[dict[str, np.ndarray], bool]:
     """Read an AMC motion for ``asf``: per bone (and ``"root"``) a (T, n_dof) array of values.
 
-    Returns the arrays and whether angles are in degrees (``:DEGREES``, else the ASF unit).
     Every frame must list every bone that has dofs, with exactly its dof count.
+
+    Args:
+        path: the ``.amc`` file.
+        asf: the skeleton it was captured with (:func:`parse_asf`).
+
+    Returns:
+        The (T, n_dof) arrays by bone name (root: its ``root_order`` channels, translations in
+        ASF length units), and whether angles are in degrees (``:DEGREES``, else the ASF unit).
     """
     path = Path(path)
     lines = _read_lines(path, "AMC")
@@ -352,7 +359,17 @@ def _bone_frame(bone: AsfBone, degrees: bool) -> np.ndarray:
 def amc_forward_kinematics(
     asf: Asf, motion: dict[str, np.ndarray], degrees: bool
 ) -> tuple[np.ndarray, list[str]]:
-    """World joint positions (T, J, 3) in ASF units/axes and their names (see module doc)."""
+    """World joint positions in ASF units and axes, and their names (see module doc).
+
+    Args:
+        asf: the skeleton (:func:`parse_asf`).
+        motion: its motion by bone name, (T, n_dof) each (:func:`parse_amc`).
+        degrees: whether the motion's angles are in degrees (else radians).
+
+    Returns:
+        (T, J, 3) joint positions (ASF length units, ASF axes) and the J joint names
+        (``"root"``, each bone's start, ``<leaf>_end`` for leaf bones' ends).
+    """
     n = motion["root"].shape[0]
     root = motion["root"]
     trans = np.tile(asf.root_position, (n, 1))
@@ -430,6 +447,9 @@ def load_amc(
     Raises:
         CaptureError: missing/malformed files, wrong value counts, a truncated last frame, or
             a joint named by ``skeleton`` that the ASF lacks.
+
+    Returns:
+        The take at ``fps`` Hz: metres, z up, yaw from +x CCW.
     """
     skel = get_skeleton(skeleton)
     asf = parse_asf(asf_path)

@@ -326,6 +326,12 @@ def bvh_forward_kinematics(bvh: Bvh) -> np.ndarray:
     """World positions of every joint, (T, J, 3), in file units and the file's frame.
 
     Vectorized over frames: one Euler conversion and one batched matrix product per joint.
+
+    Args:
+        bvh: the parsed file (:func:`parse_bvh`).
+
+    Returns:
+        (T, J, 3) joint positions in the file's units and axes, joints in file order.
     """
     n = bvh.motion.shape[0]
     n_joints = len(bvh.names)
@@ -392,7 +398,16 @@ def load_bvh(
 
 def take_from_bvh(bvh: Bvh, skeleton: SkeletonMap | str = "bandai", fps: float = TAKE_FPS) -> Take:
     """The :class:`Take` of a parsed BVH file (:func:`parse_bvh`): :func:`load_bvh` without
-    reading the file again (for callers that also need the hierarchy, e.g. its OFFSETs)."""
+    reading the file again (for callers that also need the hierarchy, e.g. its OFFSETs).
+
+    Args:
+        bvh: the parsed file.
+        skeleton: a :class:`SkeletonMap` or preset name naming the pelvis, hips, ankles, toes.
+        fps: the take's sampling rate (Hz).
+
+    Returns:
+        The take at ``fps`` Hz: metres, z up, yaw from +x CCW.
+    """
     skel = get_skeleton(skeleton)
     check_joints(skel, bvh.names, bvh.path)
     if bvh.motion.shape[0] == 0:
