@@ -115,7 +115,17 @@ def _outline_extremes(verts, grow, sx, sy, gx, gy, n_round):
 def obstacle_ends(footprint, start, goal, inflate: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """The obstacle's left and right ends (x, y) as seen from ``start`` looking at ``goal``:
     the points of its outline grown by ``inflate`` metres farthest left and right of the goal
-    direction."""
+    direction.
+
+    Args:
+        footprint: the obstacle's :class:`~mjwalk.world.footprint.Footprint`.
+        start: the walker's point (x, y), metres, world frame.
+        goal: the goal point (x, y), metres.
+        inflate: how far the outline is grown, metres.
+
+    Returns:
+        The left end and the right end, (2,) each, metres.
+    """
     ext = _extremes(footprint, start, goal, inflate)
     return ext[0], ext[1]
 
@@ -123,7 +133,18 @@ def obstacle_ends(footprint, start, goal, inflate: float = 0.0) -> tuple[np.ndar
 def abreast(footprint, start, goal, inflate: float, left: bool) -> np.ndarray:
     """The point (x, y) of the obstacle's outline grown by ``inflate`` metres farthest to the
     ``left`` (else right) of the line from ``start`` to ``goal``: where a walker passing on
-    that side is abreast of it."""
+    that side is abreast of it.
+
+    Args:
+        footprint: the obstacle's :class:`~mjwalk.world.footprint.Footprint`.
+        start: the walker's point (x, y), metres, world frame.
+        goal: the goal point (x, y), metres.
+        inflate: how far the outline is grown, metres.
+        left: the side the walker passes on (True: left of the line).
+
+    Returns:
+        (2,) the point, metres.
+    """
     return _extremes(footprint, start, goal, inflate)[2 if left else 3]
 
 
@@ -132,7 +153,18 @@ def left_share(start, goal, left, right) -> float:
     (module doc): the logistic model on the differences of deviation angle (degrees: how far
     left, or right, of the goal direction the walker must head to pass the end, 0 where it
     already passes) and distance (metres) between the obstacle's ``right`` and ``left`` ends
-    (x, y). An end at a smaller angle and distance draws the walker."""
+    (x, y). An end at a smaller angle and distance draws the walker.
+
+    Args:
+        start: the walker's point (x, y), metres, world frame.
+        goal: the goal point (x, y), metres.
+        left: the obstacle's left end (x, y), metres (:func:`obstacle_ends`).
+        right: its right end (x, y), metres.
+
+    Returns:
+        The probability 1 / (1 + exp(-z)), z = :data:`SIDE_SLOPE_PER_DEG`·(b_right - b_left) +
+        :data:`SIDE_SLOPE_PER_M`·(d_right - d_left).
+    """
     sx, sy = (float(v) for v in np.asarray(start, dtype=float)[:2])
     gx, gy = (float(v) for v in np.asarray(goal, dtype=float)[:2])
     norm = math.hypot(gx - sx, gy - sy)
@@ -259,7 +291,15 @@ def walkable(path: np.ndarray, step_length: float) -> bool:
     ``step_length`` metres (a radius of curvature of at least step_length / (pi / 2)): the
     sharpest turn the step model's walking steps make (no planned step turns the pelvis by
     90 deg or more: tests/plan/test_hybrid.py). A path sharper than that cannot be walked
-    along, only turned on: the search would fight it."""
+    along, only turned on: the search would fight it.
+
+    Args:
+        path: (k, 2) the path, metres.
+        step_length: the walker's step length, metres (<= 0: any path is walkable).
+
+    Returns:
+        Whether |x'y'' - y'x''|·step_length <= (pi / 2)·|p'|^3 at every point.
+    """
     if step_length <= 0.0:
         return True
     return bool(_walkable(np.ascontiguousarray(path, dtype=float), float(step_length)))

@@ -50,7 +50,15 @@ def shortfall_bound(route_length, cell: float = CELL_SIZE):
     :data:`OCTILE_RATIO` * L + :data:`END_EXCESS` * ``cell`` (so the bound is
     ``(1 - END_EXCESS * cell / route_length) / OCTILE_RATIO - 1``: -8.9 % for a 2.4 m route on
     8 cm cells, -7.6 % for long ones). Around obstacles the route's cells keep their own
-    clearance, which this does not bound."""
+    clearance, which this does not bound.
+
+    Args:
+        route_length: the grid route's length, metres (scalar or array).
+        cell: the grid's cell size, metres.
+
+    Returns:
+        The bound (a fraction, same shape as ``route_length``).
+    """
     length = np.asarray(route_length, dtype=float)
     return (1.0 - END_EXCESS * cell / length) / OCTILE_RATIO - 1.0
 
@@ -69,7 +77,8 @@ def plan_grid(
 
     Args:
         workplace: the scene.
-        start, goal: a site name, an ``"x,y"`` string or (x, y) in metres.
+        start: a site name, an ``"x,y"`` string or (x, y) in metres.
+        goal: the same for the goal.
         cell: grid cell size, metres.
         radius: body radius, metres: the route keeps this clearance from obstacles and the
             floor's edge.

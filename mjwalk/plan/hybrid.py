@@ -225,7 +225,14 @@ class HybridPlanner:
 
     def decoder(self, model=None) -> StepDecoder:
         """The affine map of ``model``'s step features (None: the planner's model) to the
-        checked geometry of a step of ``samples_per_step`` samples."""
+        checked geometry of a step of ``samples_per_step`` samples.
+
+        Args:
+            model: the step model; None: the planner's.
+
+        Returns:
+            The model's :class:`~mjwalk.plan.decoder.StepDecoder` (shared, :func:`decoder_of`).
+        """
         return decoder_of(self.model if model is None else model, self.options.samples_per_step)
 
     # -- helpers ---------------------------------------------------------------------------
@@ -233,7 +240,14 @@ class HybridPlanner:
     def h(self, xy: np.ndarray) -> np.ndarray:
         """Weighted heuristic (metres) at points (..., 2): ``heuristic_weight`` times h, plus
         ``far_weight`` times its excess over :data:`FAR_FROM` (the search adds the latter
-        only on walks starting beyond :data:`LONG_WALK`)."""
+        only on walks starting beyond :data:`LONG_WALK`).
+
+        Args:
+            xy: (..., 2) points, metres, world frame.
+
+        Returns:
+            (...) the weighted heuristic, metres.
+        """
         h, o = self._h(xy), self.options
         return o.heuristic_weight * h + o.far_weight * np.maximum(h - FAR_FROM, 0.0)
 
@@ -245,7 +259,15 @@ class HybridPlanner:
     def default_heading(self, xy: np.ndarray, goal=None) -> float:
         """Direction in which the obstacle-aware distance to the goal falls fastest (radians):
         the larger of the goal's field and the straight line to the goal point (``goal``: x, y
-        of another point in the goal area, a walk's spot; None: the planner's goal)."""
+        of another point in the goal area, a walk's spot; None: the planner's goal).
+
+        Args:
+            xy: (2,) the walker's point, metres, world frame.
+            goal: (x, y) of another point in the goal area, metres; None: the planner's goal.
+
+        Returns:
+            The heading, radians from +x CCW (one of 72 directions).
+        """
         gx, gy = (float(self.goal[0]), float(self.goal[1])) if goal is None else goal
         # the field measures the way to the planner's goal; the way to another point is at
         # least that less the straight line between the two (triangle inequality; a spot and
@@ -307,6 +329,14 @@ class HybridPlanner:
         times in all; a spent expansion budget ends the planning at once. A walk that loops
         (:data:`WANDER_FACTOR`) is searched again too, up to :data:`WANDER_SEARCHES` searches
         in all, and the shortest is kept.
+
+        Args:
+            walk: a :class:`~mjwalk.plan.request.WalkRequest`, or its start alone.
+            rng: the random stream of the walk's draws (its pace, the guide's side, the steps).
+
+        Returns:
+            The walk (120 Hz pelvis positions and yaw, world frame; its steps; ``meta`` with the
+            search's counts, attempts and seconds, and whether it wanders).
 
         Raises:
             InputError: a malformed request (:class:`~mjwalk.plan.request.WalkRequest`).

@@ -65,6 +65,18 @@ def plan_walks(
 
     Walk ``k`` uses its own random stream (``SeedSequence(seed).spawn``), so a walk does not
     depend on how many others are planned with it. ``options``: as :func:`plan_walk`'s.
+
+    Args:
+        workplace: the scene.
+        start: a site name, ``"x,y"``, ``"x,y,yaw_deg"`` or (x, y[, yaw]); metres, radians.
+        goal: a site name, ``"x,y"`` or (x, y), metres.
+        model: the step model; None: the default one (:func:`~mjwalk.gait.default.default_model`).
+        n: the number of walks (a whole number >= 0).
+        seed: the seed of the walks' streams.
+        options: the planner's options; None: the defaults.
+
+    Returns:
+        The ``n`` walks, in stream order.
     """
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 0:
         raise InputError(f"plan_walks: n must be a whole number of walks >= 0, got {n!r}")

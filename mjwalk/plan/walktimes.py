@@ -45,7 +45,18 @@ def planned_straight_walks(
     (:func:`mjwalk.gait.straight.time_at`: interpolated within the step that crosses it).
     Distances must be positive and finite (else MjwalkError). A walk the planner cannot plan
     raises its PlanningError, or with ``failed_as_nan`` gives NaN (a model that does not plan
-    well still gets its other figures reported)."""
+    well still gets its other figures reported).
+
+    Args:
+        model: the step model.
+        distances: the distances to time, metres (positive, finite).
+        in_motion: per distance, whether the walker is already walking at its start.
+        rng: the random stream of the plans.
+        failed_as_nan: give NaN for a walk that cannot be planned instead of raising.
+
+    Returns:
+        The time per distance, seconds (NaN: not planned, with ``failed_as_nan``).
+    """
     distances = [float(d) for d in distances]
     if len(distances) != len(in_motion):
         raise MjwalkError(
