@@ -96,117 +96,157 @@ def _order(token: str, path, lineno: int) -> str:
     return order
 
 
-def parse_asf(path: str | os.PathLike) -> Asf:
-    """Read an ASF skeleton; malformed files raise :class:`CaptureError` naming file and line."""
-    path = Path(path)
-    lines = _read_lines(path, "ASF")
-    section = None
-    length_unit, degrees = 1.0, True
-    root_order = ["tx", "ty", "tz", "rx", "ry", "rz"]
-    root_axis = "XYZ"
-    root_pos, root_ori = np.zeros(3), np.zeros(3)
-    bones: dict[str, AsfBone] = {}
-    current: dict | None = None
-    in_hierarchy = False
-    seen_hierarchy = False
+class _AsfReader:
+    """An ASF file's sections as they are read line by line (:func:`parse_asf`): the units, the
+    root, the bones and the hierarchy. Every error names the file and the line."""
 
-    for lineno, raw in enumerate(lines, start=1):
-        line = raw.split("#", 1)[0].strip()
-        if not line:
-            continue
-        parts = line.split()
-        key = parts[0].lower()
-        if key.startswith(":"):
-            if current is not None:
-                raise CaptureError(f"{path}, line {lineno}: {parts[0]} inside an unfinished bone")
-            section = key
-            if section == ":units" and len(parts) > 1:
-                parts = parts[1:]
-                key = parts[0].lower()
-            else:
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        self.length_unit, self.degrees = 1.0, True
+        self.root_order = ["tx", "ty", "tz", "rx", "ry", "rz"]
+        self.root_axis = "XYZ"
+        self.root_pos, self.root_ori = np.zeros(3), np.zeros(3)
+        self.bones: dict[str, AsfBone] = {}
+        self.current: dict | None = None  # the bone between begin and end
+        self.in_hierarchy = False
+        self.seen_hierarchy = False
+
+    def _error(self, lineno: int, msg: str) -> CaptureError:
+        return CaptureError(f"{self.path}, line {lineno}: {msg}")
+
+    def read(self, lines: list[str]) -> Asf:
+        """Read ``lines`` (the whole file) and check the skeleton is complete."""
+        path = self.path
+        section = None
+        for lineno, raw in enumerate(lines, start=1):
+            line = raw.split("#", 1)[0].strip()
+            if not line:
                 continue
-        if section == ":units":
-            if key == "length":
-                length_unit = float(_floats(parts[1:], 1, path, lineno, "units length")[0])
-                if length_unit <= 0:
-                    raise CaptureError(f"{path}, line {lineno}: units length must be positive")
-            elif key == "angle":
-                degrees = not (len(parts) > 1 and parts[1].lower().startswith("rad"))
-        elif section == ":root":
-            if key == "order":
-                root_order = [p.lower() for p in parts[1:]]
-                bad = [p for p in root_order if p not in ("tx", "ty", "tz", "rx", "ry", "rz")]
-                if bad:
-                    raise CaptureError(f"{path}, line {lineno}: unknown root channel {bad[0]!r}")
-            elif key == "axis":
-                root_axis = _order(parts[1] if len(parts) > 1 else "", path, lineno)
-            elif key == "position":
-                root_pos = _floats(parts[1:], 3, path, lineno, "root position")
-            elif key == "orientation":
-                root_ori = _floats(parts[1:], 3, path, lineno, "root orientation")
-        elif section == ":bonedata":
-            if key == "begin":
-                if current is not None:
-                    raise CaptureError(f"{path}, line {lineno}: 'begin' inside a bone")
-                current = {"line": lineno}
-            elif key == "end":
-                if current is None:
-                    raise CaptureError(f"{path}, line {lineno}: 'end' without 'begin'")
-                bone = _finish_bone(current, path, lineno)
-                if bone.name in bones or bone.name == "root":
-                    raise CaptureError(f"{path}, line {lineno}: bone {bone.name!r} defined twice")
-                bones[bone.name] = bone
-                current = None
-            elif current is None:
-                raise CaptureError(f"{path}, line {lineno}: {parts[0]!r} outside begin/end")
-            elif key == "name":
-                current["name"] = parts[1] if len(parts) > 1 else ""
-            elif key == "direction":
-                current["direction"] = _floats(parts[1:], 3, path, lineno, "direction")
-            elif key == "length":
-                current["length"] = float(_floats(parts[1:], 1, path, lineno, "length")[0])
-            elif key == "axis":
-                current["axis"] = _floats(parts[1:], 3, path, lineno, "axis")
-                current["axis_order"] = _order(parts[4] if len(parts) > 4 else "XYZ", path, lineno)
-            elif key == "dof":
-                dof = [p.lower() for p in parts[1:]]
-                bad = [d for d in dof if d not in _ROT_DOFS]
-                if bad:
-                    raise CaptureError(
-                        f"{path}, line {lineno}: unsupported dof {bad[0]!r} "
-                        f"(only rotations rx/ry/rz are supported)"
+            parts = line.split()
+            key = parts[0].lower()
+            if key.startswith(":"):
+                if self.current is not None:
+                    raise self._error(lineno, f"{parts[0]} inside an unfinished bone")
+                section = key
+                if section == ":units" and len(parts) > 1:
+                    parts = parts[1:]
+                    key = parts[0].lower()
+                else:
+                    continue
+            if section == ":units":
+                self._units(key, parts, lineno)
+            elif section == ":root":
+                self._root(key, parts, lineno)
+            elif section == ":bonedata":
+                self._bonedata(key, parts, lineno)
+            elif section == ":hierarchy":
+                self._hierarchy(key, parts, lineno)
+        if self.current is not None:
+            raise self._error(
+                len(lines), f"file ends inside bone begun at line {self.current['line']}"
+            )
+        if not self.seen_hierarchy:
+            raise CaptureError(f"{path}: no :hierarchy section")
+        orphans = [b.name for b in self.bones.values() if b.parent is None]
+        if orphans:
+            raise CaptureError(f"{path}: bone {orphans[0]!r} is missing from :hierarchy")
+        _check_acyclic(self.bones, path)
+        return Asf(
+            path, self.length_unit, self.degrees, self.root_order, self.root_axis,
+            self.root_pos, self.root_ori, self.bones,
+        )  # fmt: skip
+
+    def _units(self, key: str, parts: list[str], lineno: int) -> None:
+        if key == "length":
+            self.length_unit = float(_floats(parts[1:], 1, self.path, lineno, "units length")[0])
+            if self.length_unit <= 0:
+                raise self._error(lineno, "units length must be positive")
+        elif key == "angle":
+            self.degrees = not (len(parts) > 1 and parts[1].lower().startswith("rad"))
+
+    def _root(self, key: str, parts: list[str], lineno: int) -> None:
+        path = self.path
+        if key == "order":
+            self.root_order = [p.lower() for p in parts[1:]]
+            bad = [p for p in self.root_order if p not in ("tx", "ty", "tz", "rx", "ry", "rz")]
+            if bad:
+                raise self._error(lineno, f"unknown root channel {bad[0]!r}")
+        elif key == "axis":
+            self.root_axis = _order(parts[1] if len(parts) > 1 else "", path, lineno)
+        elif key == "position":
+            self.root_pos = _floats(parts[1:], 3, path, lineno, "root position")
+        elif key == "orientation":
+            self.root_ori = _floats(parts[1:], 3, path, lineno, "root orientation")
+
+    def _bonedata(self, key: str, parts: list[str], lineno: int) -> None:
+        path, current = self.path, self.current
+        if key == "begin":
+            if current is not None:
+                raise self._error(lineno, "'begin' inside a bone")
+            self.current = {"line": lineno}
+        elif key == "end":
+            if current is None:
+                raise self._error(lineno, "'end' without 'begin'")
+            bone = _finish_bone(current, path, lineno)
+            if bone.name in self.bones or bone.name == "root":
+                raise self._error(lineno, f"bone {bone.name!r} defined twice")
+            self.bones[bone.name] = bone
+            self.current = None
+        elif current is None:
+            raise self._error(lineno, f"{parts[0]!r} outside begin/end")
+        elif key == "name":
+            current["name"] = parts[1] if len(parts) > 1 else ""
+        elif key == "direction":
+            current["direction"] = _floats(parts[1:], 3, path, lineno, "direction")
+        elif key == "length":
+            current["length"] = float(_floats(parts[1:], 1, path, lineno, "length")[0])
+        elif key == "axis":
+            current["axis"] = _floats(parts[1:], 3, path, lineno, "axis")
+            current["axis_order"] = _order(parts[4] if len(parts) > 4 else "XYZ", path, lineno)
+        elif key == "dof":
+            dof = [p.lower() for p in parts[1:]]
+            bad = [d for d in dof if d not in _ROT_DOFS]
+            if bad:
+                raise self._error(
+                    lineno,
+                    f"unsupported dof {bad[0]!r} (only rotations rx/ry/rz are supported)",
+                )
+            current["dof"] = dof
+        # id, limits and their continuation lines, bodymass, cofmass: not needed
+
+    def _hierarchy(self, key: str, parts: list[str], lineno: int) -> None:
+        bones = self.bones
+        if key == "begin":
+            self.in_hierarchy, self.seen_hierarchy = True, True
+        elif key == "end":
+            self.in_hierarchy = False
+        elif self.in_hierarchy:
+            parent = parts[0]
+            if parent != "root" and parent not in bones:
+                raise self._error(lineno, f"unknown parent bone {parent!r}")
+            for child in parts[1:]:
+                if child not in bones:
+                    raise self._error(lineno, f"unknown bone {child!r}")
+                if bones[child].parent is not None:
+                    raise self._error(
+                        lineno,
+                        f"bone {child!r} has two parents ({bones[child].parent!r} and {parent!r})",
                     )
-                current["dof"] = dof
-            # id, limits and their continuation lines, bodymass, cofmass: not needed
-        elif section == ":hierarchy":
-            if key == "begin":
-                in_hierarchy, seen_hierarchy = True, True
-            elif key == "end":
-                in_hierarchy = False
-            elif in_hierarchy:
-                parent = parts[0]
-                if parent != "root" and parent not in bones:
-                    raise CaptureError(f"{path}, line {lineno}: unknown parent bone {parent!r}")
-                for child in parts[1:]:
-                    if child not in bones:
-                        raise CaptureError(f"{path}, line {lineno}: unknown bone {child!r}")
-                    if bones[child].parent is not None:
-                        raise CaptureError(
-                            f"{path}, line {lineno}: bone {child!r} has two parents "
-                            f"({bones[child].parent!r} and {parent!r})"
-                        )
-                    bones[child].parent = parent
-    if current is not None:
-        raise CaptureError(
-            f"{path}, line {len(lines)}: file ends inside bone begun at line {current['line']}"
-        )
-    if not seen_hierarchy:
-        raise CaptureError(f"{path}: no :hierarchy section")
-    orphans = [b.name for b in bones.values() if b.parent is None]
-    if orphans:
-        raise CaptureError(f"{path}: bone {orphans[0]!r} is missing from :hierarchy")
-    _check_acyclic(bones, path)
-    return Asf(path, length_unit, degrees, root_order, root_axis, root_pos, root_ori, bones)
+                bones[child].parent = parent
+
+
+def parse_asf(path: str | os.PathLike) -> Asf:
+    """Read an ASF skeleton; malformed files raise :class:`CaptureError` naming file and line.
+
+    Args:
+        path: the ``.asf`` file.
+
+    Returns:
+        The skeleton: units, the root's channel order, axis and rest pose, and its bones
+        (rest direction, length in the file's length units, axis, rotation dofs, parent).
+    """
+    path = Path(path)
+    return _AsfReader(path).read(_read_lines(path, "ASF"))
 
 
 def _finish_bone(current: dict, path, lineno: int) -> AsfBone:
@@ -242,8 +282,15 @@ def _check_acyclic(bones: dict[str, AsfBone], path) -> None:
 def parse_amc(path: str | os.PathLike, asf: Asf) -> tuple[dict[str, np.ndarray], bool]:
     """Read an AMC motion for ``asf``: per bone (and ``"root"``) a (T, n_dof) array of values.
 
-    Returns the arrays and whether angles are in degrees (``:DEGREES``, else the ASF unit).
     Every frame must list every bone that has dofs, with exactly its dof count.
+
+    Args:
+        path: the ``.amc`` file.
+        asf: the skeleton it was captured with (:func:`parse_asf`).
+
+    Returns:
+        The (T, n_dof) arrays by bone name (root: its ``root_order`` channels, translations in
+        ASF length units), and whether angles are in degrees (``:DEGREES``, else the ASF unit).
     """
     path = Path(path)
     lines = _read_lines(path, "AMC")
@@ -312,7 +359,17 @@ def _bone_frame(bone: AsfBone, degrees: bool) -> np.ndarray:
 def amc_forward_kinematics(
     asf: Asf, motion: dict[str, np.ndarray], degrees: bool
 ) -> tuple[np.ndarray, list[str]]:
-    """World joint positions (T, J, 3) in ASF units/axes and their names (see module doc)."""
+    """World joint positions in ASF units and axes, and their names (see module doc).
+
+    Args:
+        asf: the skeleton (:func:`parse_asf`).
+        motion: its motion by bone name, (T, n_dof) each (:func:`parse_amc`).
+        degrees: whether the motion's angles are in degrees (else radians).
+
+    Returns:
+        (T, J, 3) joint positions (ASF length units, ASF axes) and the J joint names
+        (``"root"``, each bone's start, ``<leaf>_end`` for leaf bones' ends).
+    """
     n = motion["root"].shape[0]
     root = motion["root"]
     trans = np.tile(asf.root_position, (n, 1))
@@ -390,6 +447,9 @@ def load_amc(
     Raises:
         CaptureError: missing/malformed files, wrong value counts, a truncated last frame, or
             a joint named by ``skeleton`` that the ASF lacks.
+
+    Returns:
+        The take at ``fps`` Hz: metres, z up, yaw from +x CCW.
     """
     skel = get_skeleton(skeleton)
     asf = parse_asf(asf_path)

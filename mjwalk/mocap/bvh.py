@@ -77,10 +77,152 @@ def _float(tok: str, path, lineno: int, what: str) -> float:
         raise CaptureError(f"{path}, line {lineno}: {what}: {tok!r} is not a number") from None
 
 
+class _Hierarchy:
+    """The joints of a BVH file's HIERARCHY section as it is read token by token: names,
+    parents, offsets, channels, and the open blocks (``stack``; ``pending``: a joint named but
+    its ``{`` not yet read). Every error names the file and the line."""
+
+    def __init__(self, path: Path, toks) -> None:
+        self.path, self.toks = path, toks
+        self.names: list[str] = []
+        self.parents: list[int] = []
+        self.offsets: list[list[float] | None] = []
+        self.channels: list[list[str]] = []
+        self.is_end: list[bool] = []
+        self.opened_at: list[int] = []
+        self.stack: list[int] = []
+        self.pending: int | None = None
+
+    def _error(self, lineno: int, msg: str) -> CaptureError:
+        return CaptureError(f"{self.path}, line {lineno}: {msg}")
+
+    def take(self, expect: str) -> tuple[str, int]:
+        """The next token and its line; the file's end here raises CaptureError."""
+        try:
+            return next(self.toks)
+        except StopIteration:
+            raise CaptureError(
+                f"{self.path}: file ends inside HIERARCHY (expected {expect})"
+            ) from None
+
+    def read(self) -> int | None:
+        """Read up to ``MOTION``; return its line (None: the file ended first)."""
+        for tok, lineno in self.toks:
+            key = tok.upper()
+            if key in ("ROOT", "JOINT", "END"):
+                self._joint(tok, key, lineno)
+            elif tok == "{":
+                if self.pending is None:
+                    raise self._error(lineno, "'{' without ROOT/JOINT/End Site")
+                self.stack.append(self.pending)
+                self.pending = None
+            elif tok == "}":
+                if not self.stack:
+                    raise self._error(lineno, "unmatched '}'")
+                j = self.stack.pop()
+                if self.offsets[j] is None:
+                    raise self._error(lineno, f"joint {self.names[j]!r} has no OFFSET")
+            elif key == "OFFSET":
+                self._offset(lineno)
+            elif key == "CHANNELS":
+                self._channels(lineno)
+            elif key == "MOTION":
+                return lineno
+            else:
+                raise self._error(lineno, f"unexpected {tok!r} in HIERARCHY")
+        return None
+
+    def _joint(self, tok: str, key: str, lineno: int) -> None:
+        """A ``ROOT``, ``JOINT`` or ``End Site`` and its name."""
+        names, stack = self.names, self.stack
+        if self.pending is not None:
+            raise self._error(lineno, f"{tok} before the '{{' of joint {names[self.pending]!r}")
+        if key == "ROOT" and stack:
+            raise self._error(lineno, f"ROOT inside joint {names[stack[-1]]!r}")
+        if key != "ROOT" and not stack:
+            raise self._error(lineno, f"{tok} outside any ROOT")
+        name, nl = self.take("a joint name")
+        if key == "END":
+            if name.upper() != "SITE":
+                raise self._error(nl, f"expected 'End Site', found {name!r}")
+            name = f"{names[stack[-1]]}_end"
+        elif name in ("{", "}"):
+            raise self._error(lineno, f"{tok} without a name")
+        if name in names:
+            raise self._error(lineno, f"joint {name!r} defined twice")
+        names.append(name)
+        self.parents.append(stack[-1] if stack else -1)
+        self.offsets.append(None)
+        self.channels.append([])
+        self.is_end.append(key == "END")
+        self.opened_at.append(lineno)
+        self.pending = len(names) - 1
+
+    def _offset(self, lineno: int) -> None:
+        """An ``OFFSET`` of the open joint: three numbers."""
+        if not self.stack or self.pending is not None:
+            raise self._error(lineno, "OFFSET outside a joint block")
+        j = self.stack[-1]
+        self.offsets[j] = [
+            _float(
+                self.take("an OFFSET value")[0], self.path, lineno, f"OFFSET of {self.names[j]!r}"
+            )
+            for _ in range(3)
+        ]
+
+    def _channels(self, lineno: int) -> None:
+        """A ``CHANNELS`` line of the open joint: its count and names."""
+        if not self.stack or self.pending is not None:
+            raise self._error(lineno, "CHANNELS outside a joint block")
+        j = self.stack[-1]
+        name = self.names[j]
+        if self.is_end[j]:
+            raise self._error(lineno, f"End Site of {name!r} has CHANNELS")
+        ntok, _ = self.take("the channel count")
+        try:
+            n = int(ntok)
+        except ValueError:
+            n = -1
+        if n < 0:
+            raise self._error(lineno, f"joint {name!r}: bad channel count {ntok!r}")
+        for _ in range(n):
+            ch, cl = self.take("a channel name")
+            if ch.lower() not in _CHANNEL_NAMES:
+                raise self._error(
+                    cl,
+                    f"joint {name!r}: unknown channel {ch!r} "
+                    f"(CHANNELS {n} but only {len(self.channels[j])} channel names?)",
+                )
+            self.channels[j].append(ch.lower())
+
+    def check_complete(self, motion_line: int | None, n_lines: int) -> int:
+        """Check that MOTION was found after every block closed and a joint; return its line."""
+        if motion_line is None:
+            raise CaptureError(f"{self.path}: no MOTION section (file ends at line {n_lines})")
+        if self.pending is not None or self.stack:
+            j = self.pending if self.pending is not None else self.stack[-1]
+            raise self._error(
+                motion_line,
+                f"MOTION before joint {self.names[j]!r} (opened at line {self.opened_at[j]}) "
+                "is closed",
+            )
+        if not self.names:
+            raise self._error(motion_line, "HIERARCHY defines no joint")
+        return motion_line
+
+
 def parse_bvh(path: str | os.PathLike) -> Bvh:
     """Read a BVH file; malformed, truncated or inconsistent files raise :class:`CaptureError`.
 
     Every error message names the file and the line (or the joint) at fault.
+
+    Args:
+        path: the ``.bvh`` file.
+
+    Returns:
+        The parsed hierarchy (joint names, parents, offsets in the file's units, channels) and
+        its motion: (frames, channels) values as written (positions in the file's units,
+        rotations in degrees).
     """
     path = Path(path)
     try:
@@ -88,124 +230,23 @@ def parse_bvh(path: str | os.PathLike) -> Bvh:
     except OSError as exc:
         raise CaptureError(f"{path}: cannot read BVH file ({exc.strerror or exc})") from None
     lines = text.splitlines()
-
-    names: list[str] = []
-    parents: list[int] = []
-    offsets: list[list[float] | None] = []
-    channels: list[list[str]] = []
-    is_end: list[bool] = []
-    opened_at: list[int] = []
-    stack: list[int] = []
-    pending: int | None = None
-    motion_line = None
     toks = _tokens(lines)
-
-    def take(expect: str) -> tuple[str, int]:
-        try:
-            return next(toks)
-        except StopIteration:
-            raise CaptureError(f"{path}: file ends inside HIERARCHY (expected {expect})") from None
-
     first = next(toks, None)
     if first is None or first[0].upper() != "HIERARCHY":
         where = f"line {first[1]}" if first else "line 1"
         got = first[0] if first else "an empty file"
         raise CaptureError(f"{path}, {where}: expected 'HIERARCHY', found {got!r}")
-
-    for tok, lineno in toks:
-        key = tok.upper()
-        if key in ("ROOT", "JOINT", "END"):
-            if pending is not None:
-                raise CaptureError(
-                    f"{path}, line {lineno}: {tok} before the '{{' of joint {names[pending]!r}"
-                )
-            if key == "ROOT" and stack:
-                raise CaptureError(f"{path}, line {lineno}: ROOT inside joint {names[stack[-1]]!r}")
-            if key != "ROOT" and not stack:
-                raise CaptureError(f"{path}, line {lineno}: {tok} outside any ROOT")
-            name, nl = take("a joint name")
-            if key == "END":
-                if name.upper() != "SITE":
-                    raise CaptureError(f"{path}, line {nl}: expected 'End Site', found {name!r}")
-                name = f"{names[stack[-1]]}_end"
-            elif name in ("{", "}"):
-                raise CaptureError(f"{path}, line {lineno}: {tok} without a name")
-            if name in names:
-                raise CaptureError(f"{path}, line {lineno}: joint {name!r} defined twice")
-            names.append(name)
-            parents.append(stack[-1] if stack else -1)
-            offsets.append(None)
-            channels.append([])
-            is_end.append(key == "END")
-            opened_at.append(lineno)
-            pending = len(names) - 1
-        elif tok == "{":
-            if pending is None:
-                raise CaptureError(f"{path}, line {lineno}: '{{' without ROOT/JOINT/End Site")
-            stack.append(pending)
-            pending = None
-        elif tok == "}":
-            if not stack:
-                raise CaptureError(f"{path}, line {lineno}: unmatched '}}'")
-            j = stack.pop()
-            if offsets[j] is None:
-                raise CaptureError(f"{path}, line {lineno}: joint {names[j]!r} has no OFFSET")
-        elif key == "OFFSET":
-            if not stack or pending is not None:
-                raise CaptureError(f"{path}, line {lineno}: OFFSET outside a joint block")
-            offsets[stack[-1]] = [
-                _float(take("an OFFSET value")[0], path, lineno, f"OFFSET of {names[stack[-1]]!r}")
-                for _ in range(3)
-            ]
-        elif key == "CHANNELS":
-            if not stack or pending is not None:
-                raise CaptureError(f"{path}, line {lineno}: CHANNELS outside a joint block")
-            j = stack[-1]
-            if is_end[j]:
-                raise CaptureError(f"{path}, line {lineno}: End Site of {names[j]!r} has CHANNELS")
-            ntok, _ = take("the channel count")
-            try:
-                n = int(ntok)
-            except ValueError:
-                n = -1
-            if n < 0:
-                raise CaptureError(
-                    f"{path}, line {lineno}: joint {names[j]!r}: bad channel count {ntok!r}"
-                )
-            for _ in range(n):
-                ch, cl = take("a channel name")
-                if ch.lower() not in _CHANNEL_NAMES:
-                    raise CaptureError(
-                        f"{path}, line {cl}: joint {names[j]!r}: unknown channel {ch!r} "
-                        f"(CHANNELS {n} but only {len(channels[j])} channel names?)"
-                    )
-                channels[j].append(ch.lower())
-        elif key == "MOTION":
-            motion_line = lineno
-            break
-        else:
-            raise CaptureError(f"{path}, line {lineno}: unexpected {tok!r} in HIERARCHY")
-
-    if motion_line is None:
-        raise CaptureError(f"{path}: no MOTION section (file ends at line {len(lines)})")
-    if pending is not None or stack:
-        j = pending if pending is not None else stack[-1]
-        raise CaptureError(
-            f"{path}, line {motion_line}: MOTION before joint {names[j]!r} "
-            f"(opened at line {opened_at[j]}) is closed"
-        )
-    if not names:
-        raise CaptureError(f"{path}, line {motion_line}: HIERARCHY defines no joint")
-
+    joints = _Hierarchy(path, toks)
+    motion_line = joints.check_complete(joints.read(), len(lines))
     n_frames, frame_time, data_start = _motion_header(lines, motion_line, path)
-    n_channels = sum(len(c) for c in channels)
+    n_channels = sum(len(c) for c in joints.channels)
     motion = _motion_data(lines, data_start, n_frames, n_channels, path)
     return Bvh(
         path=path,
-        names=names,
-        parents=parents,
-        offsets=np.array(offsets, dtype=float).reshape(-1, 3),
-        channels=channels,
+        names=joints.names,
+        parents=joints.parents,
+        offsets=np.array(joints.offsets, dtype=float).reshape(-1, 3),
+        channels=joints.channels,
         frame_time=frame_time,
         motion=motion,
     )
@@ -285,6 +326,12 @@ def bvh_forward_kinematics(bvh: Bvh) -> np.ndarray:
     """World positions of every joint, (T, J, 3), in file units and the file's frame.
 
     Vectorized over frames: one Euler conversion and one batched matrix product per joint.
+
+    Args:
+        bvh: the parsed file (:func:`parse_bvh`).
+
+    Returns:
+        (T, J, 3) joint positions in the file's units and axes, joints in file order.
     """
     n = bvh.motion.shape[0]
     n_joints = len(bvh.names)
@@ -351,7 +398,16 @@ def load_bvh(
 
 def take_from_bvh(bvh: Bvh, skeleton: SkeletonMap | str = "bandai", fps: float = TAKE_FPS) -> Take:
     """The :class:`Take` of a parsed BVH file (:func:`parse_bvh`): :func:`load_bvh` without
-    reading the file again (for callers that also need the hierarchy, e.g. its OFFSETs)."""
+    reading the file again (for callers that also need the hierarchy, e.g. its OFFSETs).
+
+    Args:
+        bvh: the parsed file.
+        skeleton: a :class:`SkeletonMap` or preset name naming the pelvis, hips, ankles, toes.
+        fps: the take's sampling rate (Hz).
+
+    Returns:
+        The take at ``fps`` Hz: metres, z up, yaw from +x CCW.
+    """
     skel = get_skeleton(skeleton)
     check_joints(skel, bvh.names, bvh.path)
     if bvh.motion.shape[0] == 0:

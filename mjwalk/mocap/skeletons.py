@@ -59,7 +59,11 @@ class SkeletonMap:
             )
 
     def required_joints(self) -> dict[str, str]:
-        """Role -> joint name for every joint the importers look up."""
+        """Role -> joint name for every joint the importers look up.
+
+        Returns:
+            The joint name by role (pelvis, ankle_l, ankle_r, toe_l, toe_r, hip_l, hip_r).
+        """
         return {
             "pelvis": self.pelvis,
             "ankle_l": self.ankle_l,
@@ -121,7 +125,14 @@ SKELETONS: dict[str, SkeletonMap] = {s.name: s for s in (BANDAI, CMU, CMU_BVH)}
 
 
 def get_skeleton(skeleton: SkeletonMap | str) -> SkeletonMap:
-    """Return ``skeleton`` itself or the preset of that name; unknown names raise CaptureError."""
+    """Return ``skeleton`` itself or the preset of that name; unknown names raise CaptureError.
+
+    Args:
+        skeleton: a :class:`SkeletonMap`, or a preset name of :data:`SKELETONS` (any case).
+
+    Returns:
+        The skeleton map.
+    """
     if isinstance(skeleton, SkeletonMap):
         return skeleton
     try:
@@ -144,7 +155,15 @@ def _to_z_up(p, up: str):
 def hip_line_yaw(hip_l: np.ndarray, hip_r: np.ndarray) -> np.ndarray:
     """Pelvis heading (radians, CCW from +x, unwrapped) from (T, 3) z-up hip positions.
 
-    The forward direction is the right-to-left hip vector rotated by -90 deg in the xy plane.
+    The forward direction is the right-to-left hip vector rotated by -90 deg in the xy plane:
+    yaw = unwrap(atan2(-d_x, d_y)), d = hip_l - hip_r.
+
+    Args:
+        hip_l: (T, 3) left hip positions, metres, z up.
+        hip_r: (T, 3) right hip positions, metres, z up.
+
+    Returns:
+        (T,) heading, radians from +x CCW, unwrapped.
     """
     d = hip_l - hip_r
     return np.unwrap(np.arctan2(-d[:, 0], d[:, 1]))
@@ -172,6 +191,9 @@ def take_from_positions(
         name: the Take's name (usually the file name).
         scale: metres per file unit; defaults to ``skeleton.scale``.
         meta: extra provenance for ``Take.meta``.
+
+    Returns:
+        The take at ``fps`` Hz: metres, z up, yaw from +x CCW.
     """
     scale = skeleton.scale if scale is None else scale
     world = _to_z_up(np.asarray(positions, dtype=float), skeleton.up) * scale
@@ -202,7 +224,13 @@ def take_from_positions(
 
 
 def check_joints(skeleton: SkeletonMap, names: list[str], path) -> None:
-    """Raise CaptureError (file and joint named) if ``skeleton`` names a joint not in ``names``."""
+    """Raise CaptureError (file and joint named) if ``skeleton`` names a joint not in ``names``.
+
+    Args:
+        skeleton: the map whose :meth:`SkeletonMap.required_joints` must be present.
+        names: the joint names the file defines.
+        path: the file, for the message.
+    """
     have = set(names)
     for role, joint in skeleton.required_joints().items():
         if joint not in have:

@@ -18,7 +18,17 @@ FPS = SAMPLE_RATE_HZ
 
 def to_world(px, py, heading, local: np.ndarray) -> np.ndarray:
     """Local step coordinates (x right, y forward) -> world, for a frame at (px, py) heading
-    ``heading`` (radians from +x). ``local`` (..., 2); px, py, heading broadcast against it."""
+    ``heading`` (radians from +x). ``local`` (..., 2); px, py, heading broadcast against it.
+
+    Args:
+        px: the frame's origin x, metres, world frame (scalar or broadcasting array).
+        py: the frame's origin y, metres.
+        heading: the frame's heading, radians from +x CCW.
+        local: (..., 2) points in the step frame (x right, y forward), metres.
+
+    Returns:
+        (..., 2) the points in the world frame: (px + x·sin h + y·cos h, py - x·cos h + y·sin h).
+    """
     s, c = np.sin(heading), np.cos(heading)
     x, y = local[..., 0], local[..., 1]
     return np.stack([px + x * s + y * c, py - x * c + y * s], axis=-1)
@@ -103,6 +113,10 @@ def assemble_walk(model, nid: int, nodes, feats: np.ndarray, meta: dict) -> Walk
             the step's swing foot is the left one.
         feats: the sampled features (rows, d).
         meta: the walk's ``meta``.
+
+    Returns:
+        The walk sampled at :data:`FPS` (world frame, metres, radians) with its steps and
+        ``meta``.
     """
     parent, rows, pos, frames, lefts = nodes
     ids = []

@@ -25,6 +25,13 @@ class StepDecoder:
     evaluating the landmark spline are both affine (see :mod:`mjwalk.gait.features`), so the
     map is read off the model's own decoder at z = 0 and the unit vectors, then checked on
     random features: a model whose decoding is not affine is refused, not mis-planned.
+
+    Args:
+        model: the step model (its ``n_dims`` features, ``decode`` and ``features``).
+        m: pelvis samples per step.
+
+    Raises:
+        PlanningError: the model's decoding is not affine in its features.
     """
 
     def __init__(self, model, m: int):
@@ -65,7 +72,15 @@ def decoder_of(model, m: int) -> StepDecoder:
 
     Building one decodes and checks 23 feature rows (about 0.15 ms, as much as a short walk's
     whole search); planners are made per goal (a cycle's walks, a benchmark's start/goal
-    pairs), models per operator (:meth:`StepModel.for_walker`), so it is shared by model."""
+    pairs), models per operator (:meth:`StepModel.for_walker`), so it is shared by model.
+
+    Args:
+        model: the step model (:class:`~mjwalk.gait.model.StepModel`).
+        m: pelvis samples per step.
+
+    Returns:
+        The model's decoder, shared by model and ``m`` (the model held weakly).
+    """
     key = (id(model), int(m))
     hit = _DECODERS.get(key)
     if hit is not None and hit[0]() is model:

@@ -31,6 +31,7 @@ frame, yaw from +x).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -50,6 +51,7 @@ __all__ = [
     "PASSING_GAP",
     "SIDE_SLOPE_PER_DEG",
     "SIDE_SLOPE_PER_M",
+    "GuideBody",
     "abreast",
     "detour_guide",
     "left_share",
@@ -113,7 +115,17 @@ def _outline_extremes(verts, grow, sx, sy, gx, gy, n_round):
 def obstacle_ends(footprint, start, goal, inflate: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """The obstacle's left and right ends (x, y) as seen from ``start`` looking at ``goal``:
     the points of its outline grown by ``inflate`` metres farthest left and right of the goal
-    direction."""
+    direction.
+
+    Args:
+        footprint: the obstacle's :class:`~mjwalk.world.footprint.Footprint`.
+        start: the walker's point (x, y), metres, world frame.
+        goal: the goal point (x, y), metres.
+        inflate: how far the outline is grown, metres.
+
+    Returns:
+        The left end and the right end, (2,) each, metres.
+    """
     ext = _extremes(footprint, start, goal, inflate)
     return ext[0], ext[1]
 
@@ -121,7 +133,18 @@ def obstacle_ends(footprint, start, goal, inflate: float = 0.0) -> tuple[np.ndar
 def abreast(footprint, start, goal, inflate: float, left: bool) -> np.ndarray:
     """The point (x, y) of the obstacle's outline grown by ``inflate`` metres farthest to the
     ``left`` (else right) of the line from ``start`` to ``goal``: where a walker passing on
-    that side is abreast of it."""
+    that side is abreast of it.
+
+    Args:
+        footprint: the obstacle's :class:`~mjwalk.world.footprint.Footprint`.
+        start: the walker's point (x, y), metres, world frame.
+        goal: the goal point (x, y), metres.
+        inflate: how far the outline is grown, metres.
+        left: the side the walker passes on (True: left of the line).
+
+    Returns:
+        (2,) the point, metres.
+    """
     return _extremes(footprint, start, goal, inflate)[2 if left else 3]
 
 
@@ -130,7 +153,18 @@ def left_share(start, goal, left, right) -> float:
     (module doc): the logistic model on the differences of deviation angle (degrees: how far
     left, or right, of the goal direction the walker must head to pass the end, 0 where it
     already passes) and distance (metres) between the obstacle's ``right`` and ``left`` ends
-    (x, y). An end at a smaller angle and distance draws the walker."""
+    (x, y). An end at a smaller angle and distance draws the walker.
+
+    Args:
+        start: the walker's point (x, y), metres, world frame.
+        goal: the goal point (x, y), metres.
+        left: the obstacle's left end (x, y), metres (:func:`obstacle_ends`).
+        right: its right end (x, y), metres.
+
+    Returns:
+        The probability 1 / (1 + exp(-z)), z = :data:`SIDE_SLOPE_PER_DEG`·(b_right - b_left) +
+        :data:`SIDE_SLOPE_PER_M`·(d_right - d_left).
+    """
     sx, sy = (float(v) for v in np.asarray(start, dtype=float)[:2])
     gx, gy = (float(v) for v in np.asarray(goal, dtype=float)[:2])
     norm = math.hypot(gx - sx, gy - sy)
@@ -180,6 +214,22 @@ def _blocking(workplace, path: np.ndarray, radius: float):
     return workplace.obstacles[int(near[int(np.argmin(dist))])]
 
 
+@dataclass(frozen=True)
+class GuideBody:
+    """The walker a guide is drawn for: the clearance it keeps and the figures it walks with.
+
+    Attributes:
+        radius: the body's clearance from obstacles, metres (the planner's body radius).
+        stature: the walker's body height, metres (its shoulder width sets the berth).
+        step_length: the walker's step length, metres (the sharpest turn a guide may make,
+            :func:`walkable`; 0: any).
+    """
+
+    radius: float
+    stature: float = DEFAULT_STATURE
+    step_length: float = 0.0
+
+
 def detour_guide(
     workplace,
     direct,
@@ -187,37 +237,51 @@ def detour_guide(
     goal,
     start_heading: float | None,
     goal_heading: float | None,
-    radius: float,
+    body: GuideBody,
     rng: np.random.Generator,
-    stature: float = DEFAULT_STATURE,
-    step_length: float = 0.0,
 ) -> np.ndarray | None:
-    """The path (k, 2) a walk's heading follows from ``start`` to ``goal`` past the first
-    obstacle the path ``direct`` (k, 2: the minimum-jerk path between the two poses, or the
-    caller's own) runs into (module doc): the side
-    drawn from :func:`left_share` with ``rng`` (one draw), the waypoint abreast of the
-    obstacle (:func:`abreast`) at half the shoulder width of a walker of ``stature`` metres
-    plus :data:`PASSING_GAP` from it (or the body radius plus 5 cm where that does not fit),
-    and the minimum-jerk path through it (:func:`~mjwalk.plan.guide.via_point_guide`). None
-    when the direct path is clear, when no obstacle blocks it (the floor's edge does), or when
-    the path round does not keep ``radius`` (the body's clearance) from every obstacle or
-    turns sharper than steps of ``step_length`` metres can (:func:`walkable`); then the route
-    search decides."""
+    """The path a walk's heading follows past the first obstacle ``direct`` runs into.
+
+    The path goes from ``start`` to ``goal`` past the first obstacle the path ``direct`` runs
+    into (module doc): the side drawn from :func:`left_share` with ``rng`` (one draw), the
+    waypoint abreast of the obstacle (:func:`abreast`) at half the shoulder width of a walker
+    of ``body.stature`` plus :data:`PASSING_GAP` from it (or ``body.radius`` plus 5 cm where
+    that does not fit), and the minimum-jerk path through it
+    (:func:`~mjwalk.plan.guide.via_point_guide`).
+
+    Args:
+        workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
+        direct: (k, 2) the path to check, metres: the minimum-jerk path between the two poses,
+            or the caller's own.
+        start: the walk's start (x, y), metres, world frame.
+        goal: the walk's goal (x, y), metres, world frame.
+        start_heading: the heading (radians, from +x CCW) the walker sets off along; None: free.
+        goal_heading: the heading (radians) the walker arrives along; None: free.
+        body: the walker's clearance radius, stature and step length.
+        rng: the random stream the side is drawn from (one draw when an obstacle blocks).
+
+    Returns:
+        The (k, 2) path round the obstacle (metres), or None when the direct path is clear,
+        when no obstacle blocks it (the floor's edge does), or when the path round does not keep
+        ``body.radius`` from every obstacle or turns sharper than steps of ``body.step_length``
+        can (:func:`walkable`); then the route search decides.
+    """
     s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
     if not np.hypot(*(g - s)) > 1e-6:
         return None
+    radius = body.radius
     blocker = _blocking(workplace, np.asarray(direct, dtype=float), radius)
     if blocker is None:
         return None
     left, right = obstacle_ends(blocker, s, g)
     go_left = bool(rng.random() < left_share(s, g, left, right))
-    berth = 0.5 * SEG["shoulder_width"] * stature + PASSING_GAP
+    berth = 0.5 * SEG["shoulder_width"] * body.stature + PASSING_GAP
     for gap in (berth, radius + 0.05):  # the cited berth, or the body's where that is too wide
         way = abreast(blocker, s, g, gap, go_left)
         if np.hypot(*(way - s)) < 1e-6 or np.hypot(*(g - way)) < 1e-6:
             return None
         path = via_point_guide(s, way, g, start_heading, goal_heading)
-        if walkable(path, step_length) and guide_is_clear(workplace, path, radius):
+        if walkable(path, body.step_length) and guide_is_clear(workplace, path, radius):
             return path
     return None
 
@@ -227,7 +291,15 @@ def walkable(path: np.ndarray, step_length: float) -> bool:
     ``step_length`` metres (a radius of curvature of at least step_length / (pi / 2)): the
     sharpest turn the step model's walking steps make (no planned step turns the pelvis by
     90 deg or more: tests/plan/test_hybrid.py). A path sharper than that cannot be walked
-    along, only turned on: the search would fight it."""
+    along, only turned on: the search would fight it.
+
+    Args:
+        path: (k, 2) the path, metres.
+        step_length: the walker's step length, metres (<= 0: any path is walkable).
+
+    Returns:
+        Whether |x'y'' - y'x''|·step_length <= (pi / 2)·|p'|^3 at every point.
+    """
     if step_length <= 0.0:
         return True
     return bool(_walkable(np.ascontiguousarray(path, dtype=float), float(step_length)))
@@ -268,18 +340,31 @@ def walk_guide(
     walking_yaw: float | None,
     goal_heading: float | None,
     guide,
-    radius: float,
+    body: GuideBody,
     rng: np.random.Generator,
-    stature: float = DEFAULT_STATURE,
-    step_length: float = 0.0,
 ) -> np.ndarray | None:
-    """The path (:data:`~mjwalk.plan.guide.GUIDE_POINTS`, 2) a walk's heading follows from
-    ``start`` to ``goal`` (x, y; None: straight at the goal): the caller's ``guide`` ((k, 2)),
-    or for a walker already walking along ``walking_yaw`` or meaning to arrive along
-    ``goal_heading`` (radians) the minimum-jerk path between the end poses, or else the
+    """The path a walk's heading follows from ``start`` to ``goal``.
+
+    The caller's ``guide``, or for a walker already walking along ``walking_yaw`` or meaning to
+    arrive along ``goal_heading`` the minimum-jerk path between the end poses, or else the
     straight line; where that runs into an obstacle, the way past it on a side drawn from
-    ``rng`` (:func:`detour_guide`, for a walker of ``stature`` and ``step_length`` metres),
-    else itself (the straight line: None)."""
+    ``rng`` (:func:`detour_guide`), else itself (the straight line: None).
+
+    Args:
+        workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
+        start: the walk's start (x, y), metres, world frame.
+        goal: the walk's goal (x, y), metres, world frame.
+        walking_yaw: the heading (radians, from +x CCW) of a walker already walking; None: one
+            setting off from a stand.
+        goal_heading: the heading (radians) the walker means to arrive along; None: free.
+        guide: the caller's (k, 2) path (metres) to follow, or None.
+        body: the walker's clearance radius, stature and step length (:class:`GuideBody`).
+        rng: the random stream of the detour's side (:func:`detour_guide`).
+
+    Returns:
+        The (:data:`~mjwalk.plan.guide.GUIDE_POINTS`, 2) path (metres), or None: straight at
+        the goal (also when start and goal coincide).
+    """
     s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
     if not np.hypot(*(g - s)) >= 1e-6:
         return None  # no walk (the search refuses it)
@@ -287,9 +372,7 @@ def walk_guide(
     if direct is None and (walking_yaw is not None or goal_heading is not None):
         direct = minimum_jerk_guide(s, g, walking_yaw, goal_heading)
     way = np.array([s, g]) if direct is None else direct
-    path = detour_guide(
-        workplace, way, s, g, walking_yaw, goal_heading, radius, rng, stature, step_length
-    )
+    path = detour_guide(workplace, way, s, g, walking_yaw, goal_heading, body, rng)
     if path is None:
         path = direct
     return None if path is None else resample_guide(path)

@@ -50,7 +50,15 @@ def shortfall_bound(route_length, cell: float = CELL_SIZE):
     :data:`OCTILE_RATIO` * L + :data:`END_EXCESS` * ``cell`` (so the bound is
     ``(1 - END_EXCESS * cell / route_length) / OCTILE_RATIO - 1``: -8.9 % for a 2.4 m route on
     8 cm cells, -7.6 % for long ones). Around obstacles the route's cells keep their own
-    clearance, which this does not bound."""
+    clearance, which this does not bound.
+
+    Args:
+        route_length: the grid route's length, metres (scalar or array).
+        cell: the grid's cell size, metres.
+
+    Returns:
+        The bound (a fraction, same shape as ``route_length``).
+    """
     length = np.asarray(route_length, dtype=float)
     return (1.0 - END_EXCESS * cell / length) / OCTILE_RATIO - 1.0
 
@@ -69,7 +77,8 @@ def plan_grid(
 
     Args:
         workplace: the scene.
-        start, goal: a site name, an ``"x,y"`` string or (x, y) in metres.
+        start: a site name, an ``"x,y"`` string or (x, y) in metres.
+        goal: the same for the goal.
         cell: grid cell size, metres.
         radius: body radius, metres: the route keeps this clearance from obstacles and the
             floor's edge.
@@ -95,91 +104,12 @@ def plan_grid(
     ny, nx = grid.shape
     n = nx * ny
     start_node, goal_node = n, n + 1
-
-    def near_cells(p: np.ndarray) -> list[tuple[int, float]]:
-        """The free centres of the 3 x 3 cells around ``p`` joined to it by a free segment
-        (sampled as :func:`segment_is_free` samples it, all segments in one field lookup)."""
-        j0, i0 = grid.index(p)
-        cells = [
-            (j, i)
-            for j in range(max(0, j0 - 1), min(ny, j0 + 2))
-            for i in range(max(0, i0 - 1), min(nx, i0 + 2))
-            if grid.free[j, i]
-        ]
-        if not cells:
-            return []
-        ends = np.array([grid.centre(j, i) for j, i in cells])
-        dist = np.linalg.norm(ends - p, axis=1)
-        counts = [max(2, int(np.ceil(d / SAMPLE_SPACING)) + 1) for d in dist]
-        pts = np.concatenate(
-            [
-                p + np.linspace(0.0, 1.0, k)[:, None] * (c - p)
-                for k, c in zip(counts, ends, strict=True)
-            ]
-        )
-        ok = workplace.walk_clearance(pts) >= radius
-        seg_ok = np.logical_and.reduceat(ok, np.cumsum([0, *counts[:-1]]))
-        return [
-            (j * nx + i, float(d))
-            for (j, i), d, good in zip(cells, dist, seg_ok, strict=True)
-            if good
-        ]
-
-    start_links = near_cells(a)
-    goal_links = dict(near_cells(b))
+    start_links = _near_cells(workplace, grid, a, radius)
+    goal_links = dict(_near_cells(workplace, grid, b, radius))
     direct = np.linalg.norm(b - a) <= 1.5 * cell and segment_is_free(workplace, a, b, radius)
-
-    x0, y0, bx, by = float(grid.x0), float(grid.y0), float(b[0]), float(b[1])
-
-    def h(node: int) -> float:
-        if node == goal_node:
-            return 0.0
-        dx = abs(x0 + cell * (node % nx) - bx)
-        dy = abs(y0 + cell * (node // nx) - by)
-        return max(dx, dy) + (_SQRT2 - 1.0) * min(dx, dy)  # octile: admissible on the grid
-
-    moves = grid.moves.reshape(len(_MOVES), -1).T  # (cells, moves): one row per cell
-    offsets = [dj * nx + di for di, dj in _MOVES]
-    costs = [cell * (_SQRT2 if di and dj else 1.0) for di, dj in _MOVES]
-
-    g_cost = {start_node: 0.0}
-    parent: dict[int, int] = {}
-    heap: list[tuple[float, int, int]] = [(0.0, 0, start_node)]
-    closed = set()
-    counter = 1
-    expansions = 0
-    found = False
-    while heap:
-        _, _, node = heapq.heappop(heap)
-        if node in closed:
-            continue
-        closed.add(node)
-        expansions += 1
-        if node == goal_node:
-            found = True
-            break
-        if node == start_node:
-            nbrs = list(start_links)
-            if direct:
-                nbrs.append((goal_node, float(np.linalg.norm(b - a))))
-        else:
-            nbrs = [
-                (node + off, c)
-                for off, c, ok in zip(offsets, costs, moves[node].tolist(), strict=True)
-                if ok
-            ]
-            if node in goal_links:
-                nbrs.append((goal_node, goal_links[node]))
-        g0 = g_cost[node]
-        for nb, c in nbrs:
-            if nb in closed:
-                continue
-            g1 = g0 + c
-            if g1 < g_cost.get(nb, math.inf):
-                g_cost[nb] = g1
-                parent[nb] = node
-                heapq.heappush(heap, (g1 + h(nb), counter, nb))
-                counter += 1
+    if direct:
+        start_links.append((goal_node, float(np.linalg.norm(b - a))))
+    parent, expansions, found = _astar(grid, b, start_links, goal_links)
     if not found:
         raise PlanningError(
             f"goal ({b[0]:.3f}, {b[1]:.3f}) is unreachable from start ({a[0]:.3f}, {a[1]:.3f}) "
@@ -211,3 +141,96 @@ def plan_grid(
             "seconds": time.perf_counter() - t0,
         },
     ).stamp_scene(workplace)
+
+
+def _near_cells(
+    workplace: Workplace, grid: OccupancyGrid, p: np.ndarray, radius: float
+) -> list[tuple[int, float]]:
+    """The free centres (node index, distance in metres) of the 3 x 3 cells around ``p``
+    joined to it by a free segment (sampled as :func:`segment_is_free` samples it, all
+    segments in one field lookup)."""
+    ny, nx = grid.shape
+    j0, i0 = grid.index(p)
+    cells = [
+        (j, i)
+        for j in range(max(0, j0 - 1), min(ny, j0 + 2))
+        for i in range(max(0, i0 - 1), min(nx, i0 + 2))
+        if grid.free[j, i]
+    ]
+    if not cells:
+        return []
+    ends = np.array([grid.centre(j, i) for j, i in cells])
+    dist = np.linalg.norm(ends - p, axis=1)
+    counts = [max(2, int(np.ceil(d / SAMPLE_SPACING)) + 1) for d in dist]
+    pts = np.concatenate(
+        [p + np.linspace(0.0, 1.0, k)[:, None] * (c - p) for k, c in zip(counts, ends, strict=True)]
+    )
+    ok = workplace.walk_clearance(pts) >= radius
+    seg_ok = np.logical_and.reduceat(ok, np.cumsum([0, *counts[:-1]]))
+    return [
+        (j * nx + i, float(d)) for (j, i), d, good in zip(cells, dist, seg_ok, strict=True) if good
+    ]
+
+
+def _astar(
+    grid: OccupancyGrid,
+    b: np.ndarray,
+    start_links: list[tuple[int, float]],
+    goal_links: dict[int, float],
+) -> tuple[dict[int, int], int, bool]:
+    """A* over the grid's cells, from the start node (index cells) to the goal node (cells + 1)
+    at ``b`` (x, y, metres), the start joined to ``start_links`` (node, metres; the goal node
+    among them where the straight line is free) and the cells of ``goal_links`` to the goal.
+    Returns each reached node's parent, the number of expansions and whether the goal was
+    reached."""
+    ny, nx = grid.shape
+    cell = grid.cell
+    start_node = nx * ny
+    goal_node = start_node + 1
+    x0, y0, bx, by = float(grid.x0), float(grid.y0), float(b[0]), float(b[1])
+
+    def h(node: int) -> float:
+        if node == goal_node:
+            return 0.0
+        dx = abs(x0 + cell * (node % nx) - bx)
+        dy = abs(y0 + cell * (node // nx) - by)
+        return max(dx, dy) + (_SQRT2 - 1.0) * min(dx, dy)  # octile: admissible on the grid
+
+    moves = grid.moves.reshape(len(_MOVES), -1).T  # (cells, moves): one row per cell
+    offsets = [dj * nx + di for di, dj in _MOVES]
+    costs = [cell * (_SQRT2 if di and dj else 1.0) for di, dj in _MOVES]
+    g_cost = {start_node: 0.0}
+    parent: dict[int, int] = {}
+    heap: list[tuple[float, int, int]] = [(0.0, 0, start_node)]
+    closed = set()
+    counter = 1
+    expansions = 0
+    while heap:
+        _, _, node = heapq.heappop(heap)
+        if node in closed:
+            continue
+        closed.add(node)
+        expansions += 1
+        if node == goal_node:
+            return parent, expansions, True
+        if node == start_node:
+            nbrs = list(start_links)
+        else:
+            nbrs = [
+                (node + off, c)
+                for off, c, ok in zip(offsets, costs, moves[node].tolist(), strict=True)
+                if ok
+            ]
+            if node in goal_links:
+                nbrs.append((goal_node, goal_links[node]))
+        g0 = g_cost[node]
+        for nb, c in nbrs:
+            if nb in closed:
+                continue
+            g1 = g0 + c
+            if g1 < g_cost.get(nb, math.inf):
+                g_cost[nb] = g1
+                parent[nb] = node
+                heapq.heappush(heap, (g1 + h(nb), counter, nb))
+                counter += 1
+    return parent, expansions, False

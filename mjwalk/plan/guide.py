@@ -75,7 +75,18 @@ def minimum_jerk_guide(
     """``n`` points (n, 2) of the minimum-jerk path (module doc) from ``start`` to ``goal``
     (x, y, metres), leaving along ``start_heading`` and arriving along ``goal_heading`` (world
     radians; None: along the straight line, a walker who stands or a goal without a
-    heading), at evenly spaced normalized times."""
+    heading), at evenly spaced normalized times.
+
+    Args:
+        start: the start point (x, y), metres, world frame.
+        goal: the goal point (x, y), metres.
+        start_heading: the heading to leave along, radians from +x CCW; None: the straight line.
+        goal_heading: the heading to arrive along, radians; None: the straight line.
+        n: the number of points.
+
+    Returns:
+        (n, 2) the path's points, metres.
+    """
     p0 = np.asarray(start, dtype=float)[:2]
     p1 = np.asarray(goal, dtype=float)[:2]
     chord = p1 - p0
@@ -168,7 +179,19 @@ def via_point_guide(
     acceleration, chosen to minimise the integrated squared jerk (the via-point solution of
     Flash & Hogan 1985). The ends are as :func:`minimum_jerk_guide`'s (velocities of the whole
     length along the headings, along the way to and from ``via`` where None; zero
-    accelerations); the pieces' times are in proportion to their straight lengths."""
+    accelerations); the pieces' times are in proportion to their straight lengths.
+
+    Args:
+        start: the start point (x, y), metres, world frame.
+        via: the point to pass through (x, y), metres.
+        goal: the goal point (x, y), metres.
+        start_heading: the heading to leave along, radians from +x CCW; None: towards ``via``.
+        goal_heading: the heading to arrive along, radians; None: from ``via``.
+        n: the number of points.
+
+    Returns:
+        (n, 2) the path's points, metres.
+    """
     p0, w, p1 = (np.asarray(v, dtype=float)[:2] for v in (start, via, goal))
     l1, l2 = math.hypot(*(w - p0)), math.hypot(*(p1 - w))
     if not (l1 > 1e-9 and l2 > 1e-9):
@@ -226,7 +249,15 @@ def _station(pts, cum, i, n, j):
 
 
 def resample_guide(points, n: int = GUIDE_POINTS) -> np.ndarray:
-    """The polyline ``points`` (k >= 2, 2) as ``n`` points evenly spaced along it (metres)."""
+    """The polyline ``points`` (k >= 2, 2) as ``n`` points evenly spaced along it (metres).
+
+    Args:
+        points: (k >= 2, 2) the polyline, metres.
+        n: the number of points.
+
+    Returns:
+        (n, 2) points evenly spaced by arc length, the ends kept, metres.
+    """
     out = _resampled(_checked(points), int(n))
     if len(out) == 0:
         raise ValueError("a guide must have a length")
@@ -249,7 +280,15 @@ def _resampled(pts, n):
 
 def densify(points, spacing: float = 0.05) -> np.ndarray:
     """The polyline ``points`` resampled at points at most ``spacing`` metres apart (the
-    clearance checks' sampling: :func:`guide_is_clear`, :mod:`mjwalk.plan.detour`)."""
+    clearance checks' sampling: :func:`guide_is_clear`, :mod:`mjwalk.plan.detour`).
+
+    Args:
+        points: (k >= 2, 2) the polyline, metres.
+        spacing: the largest gap between points, metres.
+
+    Returns:
+        (k', 2) the resampled points, metres, the ends kept.
+    """
     pts = _checked(points)
     return resample_guide(pts, _dense_count(float(_cumulative(pts)[-1]), spacing))
 
@@ -265,7 +304,14 @@ def first_below(workplace, points, clearance: float, spacing: float = 0.05):
     :func:`densify` samples it, where the room to walk (:meth:`Workplace.walk_clearance`) is
     less than ``clearance`` metres; None where there is none. On a workplace whose clearance
     is a :class:`~mjwalk.world.clearance.ClearanceField` (every loaded one) one compiled pass
-    that stops at that point, with the lookup's own arithmetic; else densify and look up."""
+    that stops at that point, with the lookup's own arithmetic; else densify and look up.
+
+    Args:
+        workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
+        points: (k >= 2, 2) the polyline, metres, world frame.
+        clearance: the room to walk required, metres.
+        spacing: the largest gap between checked points, metres.
+    """
     pts = _checked(points)
     field = workplace.clearance
     if not isinstance(field, ClearanceField):
@@ -304,7 +350,17 @@ def _first_below(pts, values, x0, y0, res, xmin, ymin, xmax, ymax, clearance, sp
 def guide_is_clear(workplace, points, clearance: float, spacing: float = 0.05) -> bool:
     """Whether the polyline ``points`` keeps ``clearance`` metres from the workplace's
     obstacles and floor edges (:meth:`Workplace.walk_clearance`) at points ``spacing`` apart
-    (:func:`first_below`)."""
+    (:func:`first_below`).
+
+    Args:
+        workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
+        points: (k >= 2, 2) the polyline, metres, world frame.
+        clearance: the room to walk required, metres.
+        spacing: the largest gap between checked points, metres.
+
+    Returns:
+        Whether no checked point is short of ``clearance``.
+    """
     return first_below(workplace, points, clearance, spacing) is None
 
 
@@ -312,7 +368,12 @@ def guide_is_clear(workplace, points, clearance: float, spacing: float = 0.05) -
 def guide_nearest(guide, p):
     """The guide's point nearest ``p`` (x + iy): its segment k, the share w along it and the
     squared distance (guide flat x0, y0, x1, y1, ...). :func:`guide_aim_at` and
-    :func:`guide_ahead_at` take it, so a caller needing both finds it once."""
+    :func:`guide_ahead_at` take it, so a caller needing both finds it once.
+
+    Args:
+        guide: the guide, flat (x0, y0, x1, y1, ...), metres, world frame.
+        p: the walker's point, x + iy, metres.
+    """
     best_d2 = np.inf
     best_k = 0
     best_w = 0.0
@@ -339,7 +400,13 @@ def guide_aim(guide, p, goal):
     midpoints), turned by the angle between the goal's directions seen from ``p`` and from
     q. On the guide that is its direction; off it, the walker's own way to the goal bends it,
     as much as the goal's direction differs; for a straight guide it is the direction to the
-    goal."""
+    goal.
+
+    Args:
+        guide: the guide, flat (x0, y0, x1, y1, ...), metres; nan first: none.
+        p: the walker's point, x + iy, metres, world frame.
+        goal: the goal point, x + iy, metres.
+    """
     if math.isnan(guide[0]):
         d = goal - p
         return math.atan2(d.imag, d.real)
@@ -350,7 +417,15 @@ def guide_aim(guide, p, goal):
 @njit
 def guide_aim_at(guide, p, goal, k, best_w):
     """:func:`guide_aim` along a guide, from its point nearest ``p`` (segment ``k``, share
-    ``best_w``: :func:`guide_nearest`)."""
+    ``best_w``: :func:`guide_nearest`).
+
+    Args:
+        guide: the guide, flat (x0, y0, x1, y1, ...), metres.
+        p: the walker's point, x + iy, metres, world frame.
+        goal: the goal point, x + iy, metres.
+        k: the segment of the guide's point nearest ``p``.
+        best_w: the share (0..1) along segment ``k`` of that point.
+    """
     d = goal - p
     direct = math.atan2(d.imag, d.real)
     n = guide.shape[0] // 2
@@ -376,7 +451,12 @@ def guide_ahead(guide, p):
     """The way (metres) left along the guide ``guide`` (as :func:`guide_aim`'s; nan first:
     none, 0) for a walker at ``p`` (x + iy): the distance to the guide's nearest point q plus
     the guide's length from q to its end. The search takes it as its estimate of the way to
-    the goal where it is the larger (the walker means to go that way, not straight)."""
+    the goal where it is the larger (the walker means to go that way, not straight).
+
+    Args:
+        guide: the guide, flat (x0, y0, x1, y1, ...), metres; nan first: none.
+        p: the walker's point, x + iy, metres, world frame.
+    """
     if math.isnan(guide[0]):
         return 0.0
     best_k, best_w, best_d2 = guide_nearest(guide, p)
@@ -386,7 +466,14 @@ def guide_ahead(guide, p):
 @njit
 def guide_ahead_at(guide, best_k, best_w, best_d2):
     """:func:`guide_ahead` along a guide, from its point nearest the walker (segment
-    ``best_k``, share ``best_w``, squared distance ``best_d2``: :func:`guide_nearest`)."""
+    ``best_k``, share ``best_w``, squared distance ``best_d2``: :func:`guide_nearest`).
+
+    Args:
+        guide: the guide, flat (x0, y0, x1, y1, ...), metres.
+        best_k: the segment of the guide's point nearest the walker.
+        best_w: the share (0..1) along it of that point.
+        best_d2: the squared distance (m^2) from the walker to that point.
+    """
     n = guide.shape[0] // 2
     rest = 0.0
     for k in range(best_k, n - 1):

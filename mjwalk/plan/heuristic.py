@@ -18,7 +18,14 @@ from mjwalk.plan.occupancy import OccupancyGrid
 @functools.lru_cache(maxsize=8)
 def grid_excess(offsets: tuple) -> float:
     """Largest ratio of the shortest route over grid moves ``offsets`` to the straight line
-    (1.0824 for 8 moves, 1.0263 for 16). Dividing grid distances by it keeps them admissible."""
+    (1.0824 for 8 moves, 1.0263 for 16). Dividing grid distances by it keeps them admissible.
+
+    Args:
+        offsets: the grid moves (di, dj), as a tuple (hashable: the result is cached).
+
+    Returns:
+        The worst route-to-straight-line ratio (>= 1).
+    """
     vec = np.array(offsets, dtype=float)
     vec = vec[np.argsort(np.arctan2(vec[:, 1], vec[:, 0]))]
     worst = 1.0
@@ -87,15 +94,34 @@ class GoalDistance:
     def flat_bound(self) -> np.ndarray:
         """Grid distances divided by the worst excess, flat (row-major over (ny, nx)): the
         cell term of :meth:`__call__`, for compiled lookups (:mod:`mjwalk.plan.stepcheck`);
-        followed by the ny·nx flags of :attr:`in_sight` (1.0 or 0.0, same order)."""
+        followed by the ny·nx flags of :attr:`in_sight` (1.0 or 0.0, same order).
+
+        Returns:
+            (2·ny·nx,) the scaled grid distances (metres), then the sight flags.
+        """
         return self._scaled
 
     def sees(self, xy: np.ndarray) -> bool:
-        """Whether the goal is in sight from ``xy`` (the nearest cell's :attr:`in_sight`)."""
+        """Whether the goal is in sight from ``xy`` (the nearest cell's :attr:`in_sight`).
+
+        Args:
+            xy: (2,) a point, metres, world frame.
+
+        Returns:
+            Whether the goal is in sight from the nearest cell.
+        """
         j, i = self.grid.index(np.asarray(xy, dtype=float))
         return bool(self.in_sight[j, i])
 
     def reachable(self, xy: np.ndarray) -> bool:
+        """Whether a route leads from the cell containing ``xy`` to the goal.
+
+        Args:
+            xy: (2,) a point, metres, world frame.
+
+        Returns:
+            Whether the nearest cell's grid distance is finite.
+        """
         j, i = self.grid.index(np.asarray(xy, dtype=float))
         return bool(np.isfinite(self.cells[j, i]))
 
@@ -131,6 +157,14 @@ def goal_distance(grid: OccupancyGrid, goal: np.ndarray, tolerance: float) -> Go
     The cells inside the goal area are joined to a virtual goal node by their straight-line
     distance to the goal centre; Dijkstra runs from that node over the reversed move graph.
     The field of the same grid, goal and goal cells is computed once per process.
+
+    Args:
+        grid: the occupancy grid (16-connected for the planner).
+        goal: (2,) the goal centre, metres, world frame.
+        tolerance: the goal area's radius, metres (cells within it join the goal node).
+
+    Returns:
+        The goal's :class:`GoalDistance` field (shared per grid, goal and goal cells).
     """
     ny, nx = grid.free.shape
     gx = grid.x0 + grid.cell * np.arange(nx)

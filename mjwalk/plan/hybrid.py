@@ -52,10 +52,11 @@ import numpy as np
 from mjwalk._args import finite_points, parse_point
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import PlanningError
+from mjwalk.gait.model import StepModel
 from mjwalk.plan import search
 from mjwalk.plan.assemble import assemble_walk
 from mjwalk.plan.decoder import StepDecoder, decoder_of
-from mjwalk.plan.detour import walk_guide
+from mjwalk.plan.detour import GuideBody, walk_guide
 from mjwalk.plan.guide import guide_is_clear
 from mjwalk.plan.heuristic import GoalDistance, goal_distance
 from mjwalk.plan.occupancy import MOVES_16, check_endpoint, shared_grid
@@ -114,14 +115,51 @@ def _parse_pose(workplace: Workplace, where) -> tuple[np.ndarray, float | None]:
     return workplace.point(where), None
 
 
-def preferred_speed(model) -> float:
-    """The preferred straight-walk speed (m/s) the energy cost is least at: the walker's a
-    model was conditioned on (:meth:`~mjwalk.gait.model.StepModel.for_walker`), else the
-    model's own steady pace (:meth:`~mjwalk.gait.model.StepModel.pace`)."""
-    walker = getattr(model, "walker", None)
+def preferred_speed(model: StepModel) -> float:
+    """The preferred straight-walk speed the energy cost is least at.
+
+    Args:
+        model: the step model; its :attr:`~mjwalk.gait.model.StepModel.walker` is the walker
+            it was conditioned on (:meth:`~mjwalk.gait.model.StepModel.for_walker`) or None.
+
+    Returns:
+        The conditioning walker's speed (m/s), else the model's own steady pace's
+        (:meth:`~mjwalk.gait.model.StepModel.pace`).
+    """
+    walker = model.walker
     if walker is not None:
         return float(walker.speed)
     return float(model.pace().speed)
+
+
+def walker_stature(model: StepModel) -> float:
+    """The stature the planner checks a walk's body for.
+
+    Args:
+        model: the step model; its :attr:`~mjwalk.gait.model.StepModel.walker` is the walker
+            it was conditioned on or None.
+
+    Returns:
+        The conditioning walker's stature (m), else :data:`~mjwalk.conventions.DEFAULT_STATURE`.
+    """
+    walker = model.walker
+    return DEFAULT_STATURE if walker is None else float(walker.stature)
+
+
+def walker_step_length(model: StepModel) -> float:
+    """The step length a walk's guide may turn no sharper than (:func:`~mjwalk.plan.detour.
+    walkable`).
+
+    Args:
+        model: the step model; its :attr:`~mjwalk.gait.model.StepModel.walker` is the walker
+            it was conditioned on or None.
+
+    Returns:
+        The conditioning walker's preferred step length (m), else the model's own steady
+        pace's.
+    """
+    walker = model.walker
+    return float(walker.step_length if walker is not None else model.pace().step_length)
 
 
 class HybridPlanner:
@@ -148,7 +186,9 @@ class HybridPlanner:
             the goal discs (before any search).
     """
 
-    def __init__(self, workplace: Workplace, goal, model, options: PlannerOptions | None = None):
+    def __init__(
+        self, workplace: Workplace, goal, model: StepModel, options: PlannerOptions | None = None
+    ):
         options = PlannerOptions() if options is None else options
         if options.n_stops and not getattr(model, "can_stop", False):
             options = replace(options, n_stops=0)  # closing steps only where the model has them
@@ -185,7 +225,14 @@ class HybridPlanner:
 
     def decoder(self, model=None) -> StepDecoder:
         """The affine map of ``model``'s step features (None: the planner's model) to the
-        checked geometry of a step of ``samples_per_step`` samples."""
+        checked geometry of a step of ``samples_per_step`` samples.
+
+        Args:
+            model: the step model; None: the planner's.
+
+        Returns:
+            The model's :class:`~mjwalk.plan.decoder.StepDecoder` (shared, :func:`decoder_of`).
+        """
         return decoder_of(self.model if model is None else model, self.options.samples_per_step)
 
     # -- helpers ---------------------------------------------------------------------------
@@ -193,7 +240,14 @@ class HybridPlanner:
     def h(self, xy: np.ndarray) -> np.ndarray:
         """Weighted heuristic (metres) at points (..., 2): ``heuristic_weight`` times h, plus
         ``far_weight`` times its excess over :data:`FAR_FROM` (the search adds the latter
-        only on walks starting beyond :data:`LONG_WALK`)."""
+        only on walks starting beyond :data:`LONG_WALK`).
+
+        Args:
+            xy: (..., 2) points, metres, world frame.
+
+        Returns:
+            (...) the weighted heuristic, metres.
+        """
         h, o = self._h(xy), self.options
         return o.heuristic_weight * h + o.far_weight * np.maximum(h - FAR_FROM, 0.0)
 
@@ -205,7 +259,15 @@ class HybridPlanner:
     def default_heading(self, xy: np.ndarray, goal=None) -> float:
         """Direction in which the obstacle-aware distance to the goal falls fastest (radians):
         the larger of the goal's field and the straight line to the goal point (``goal``: x, y
-        of another point in the goal area, a walk's spot; None: the planner's goal)."""
+        of another point in the goal area, a walk's spot; None: the planner's goal).
+
+        Args:
+            xy: (2,) the walker's point, metres, world frame.
+            goal: (x, y) of another point in the goal area, metres; None: the planner's goal.
+
+        Returns:
+            The heading, radians from +x CCW (one of 72 directions).
+        """
         gx, gy = (float(self.goal[0]), float(self.goal[1])) if goal is None else goal
         # the field measures the way to the planner's goal; the way to another point is at
         # least that less the straight line between the two (triangle inequality; a spot and
@@ -268,6 +330,14 @@ class HybridPlanner:
         (:data:`WANDER_FACTOR`) is searched again too, up to :data:`WANDER_SEARCHES` searches
         in all, and the shortest is kept.
 
+        Args:
+            walk: a :class:`~mjwalk.plan.request.WalkRequest`, or its start alone.
+            rng: the random stream of the walk's draws (its pace, the guide's side, the steps).
+
+        Returns:
+            The walk (120 Hz pelvis positions and yaw, world frame; its steps; ``meta`` with the
+            search's counts, attempts and seconds, and whether it wanders).
+
         Raises:
             InputError: a malformed request (:class:`~mjwalk.plan.request.WalkRequest`).
             PlanningError: a spot outside the goal area, a start off the floor or too near an
@@ -326,7 +396,7 @@ class HybridPlanner:
         pose,
         rng: np.random.Generator,
         request: WalkRequest,
-        model,
+        model: StepModel,
         pace: float,
         guide: np.ndarray | None,
     ) -> tuple[WalkPath, float]:
@@ -336,35 +406,14 @@ class HybridPlanner:
         speed (m/s; nan: no energy cost); ``guide``: the path its heading follows, or None."""
         o, spot = self.options, request.spot
         start_xy, start_yaw = pose
-        check_endpoint(self.workplace, start_xy, self.radius, "start")
-        # infinite exactly where GoalDistance.reachable is False (the same nearest cell)
-        start_distance = float(self.distance(start_xy))
-        if not math.isfinite(start_distance):
-            raise PlanningError(
-                f"goal ({self.goal[0]:.3f}, {self.goal[1]:.3f}) is unreachable from start "
-                f"({start_xy[0]:.3f}, {start_xy[1]:.3f}) in {self.workplace.name}: no "
-                f"collision-free route for body radius {self.radius} m"
-            )
+        start_distance = self._start_distance(start_xy)
         free_heading = start_yaw is None or request.turn_on_spot
         facing = start_yaw  # the heading the walker stands at before any turn on the spot
         if free_heading:
             start_yaw = self.default_heading(start_xy, None if spot is None else spot[:2])
         dec = self.decoder(model)
-        walker = getattr(model, "walker", None)  # a model conditioned on the run's operator
-        stature = float(getattr(walker, "stature", None) or DEFAULT_STATURE)
-        goal_x, goal_y, tolerance = float(self.goal[0]), float(self.goal[1]), o.goal_tolerance
-        field_distance = start_distance
-        if spot is not None:  # this walk's own goal point (module doc of plan)
-            goal_x, goal_y, tolerance = spot
-            field_distance -= spot_offset(self.goal, spot)
-            start_distance = max(
-                field_distance, math.hypot(start_xy[0] - goal_x, start_xy[1] - goal_y) - tolerance
-            )
-        # as stepcheck.check_steps bounds a node: the field's distance, the straight line to
-        # the goal point
-        h0 = field_distance if o.heuristic == "dijkstra" else 0.0
-        euclid = float(math.hypot(start_xy[0] - goal_x, start_xy[1] - goal_y))
-        h_start = max(h0, euclid)
+        stature = walker_stature(model)  # a model conditioned on the run's operator
+        aim, start_distance, h_start = self._aim(start_xy, spot, start_distance)
         far = o.far_weight if h_start > LONG_WALK else 0.0  # only long walks
         turn = request.turn_on_spot and facing is not None  # the turn there from the heading
         terms = WalkTerms(
@@ -380,8 +429,7 @@ class HybridPlanner:
         if in_goal(complex(*start_xy), start_yaw, par, ipar):
             raise PlanningError(
                 f"start ({start_xy[0]:.3f}, {start_xy[1]:.3f}) already lies in the goal area "
-                f"(within {tolerance} m of ({goal_x:.3f}, {goal_y:.3f})): "
-                "there is no walk to plan"
+                f"(within {aim[2]} m of ({aim[0]:.3f}, {aim[1]:.3f})): there is no walk to plan"
             )
         # the starters, for the first expansion (the start node's)
         z0, side0 = model.sample_first_features(o.n_starters, rng)
@@ -391,6 +439,68 @@ class HybridPlanner:
         f0 = o.heuristic_weight * h_start  # as stepcheck.check_steps scores a node
         if h_start > FAR_FROM:
             f0 += far * (h_start - FAR_FROM)
+        starters = (z0, frame0, side0, complex(*start_xy), float(start_yaw), f0)
+        goal_node, stats, nodes = self._search(model, dec, starters, rng, par, ipar, aim)
+        closing = nodes[-1]
+        rows = nodes[1]
+        path = self._assemble(
+            model,
+            goal_node,
+            nodes[:5],
+            nodes[5],
+            {
+                **stats,
+                # whether the walk ends with a closing step (StepModel.sample_stop)
+                "closing_step": bool(closing[rows[goal_node]]),
+                **({} if spot is None else {"spot": list(aim[:2]), "spot_tolerance": aim[2]}),
+            },
+        )
+        return path, start_distance
+
+    def _start_distance(self, start_xy: np.ndarray) -> float:
+        """The field's distance (m) from ``start_xy`` to the goal, after checking the start
+        (off the floor, in or too near an obstacle, no route: PlanningError)."""
+        check_endpoint(self.workplace, start_xy, self.radius, "start")
+        # infinite exactly where GoalDistance.reachable is False (the same nearest cell)
+        start_distance = float(self.distance(start_xy))
+        if not math.isfinite(start_distance):
+            raise PlanningError(
+                f"goal ({self.goal[0]:.3f}, {self.goal[1]:.3f}) is unreachable from start "
+                f"({start_xy[0]:.3f}, {start_xy[1]:.3f}) in {self.workplace.name}: no "
+                f"collision-free route for body radius {self.radius} m"
+            )
+        return start_distance
+
+    def _aim(
+        self, start_xy: np.ndarray, spot, start_distance: float
+    ) -> tuple[tuple[float, float, float], float, float]:
+        """The walk's goal point and tolerance (x, y, tol: the planner's goal, or ``spot``),
+        its distance (m) from ``start_xy`` (the field's ``start_distance``, or for a spot the
+        larger of that less the spot's offset and the straight line less its tolerance) and
+        the start node's unweighted heuristic (m, as stepcheck.check_steps bounds a node)."""
+        o = self.options
+        goal_x, goal_y, tolerance = float(self.goal[0]), float(self.goal[1]), o.goal_tolerance
+        field_distance = start_distance
+        if spot is not None:  # this walk's own goal point (module doc of plan)
+            goal_x, goal_y, tolerance = spot
+            field_distance -= spot_offset(self.goal, spot)
+            start_distance = max(
+                field_distance, math.hypot(start_xy[0] - goal_x, start_xy[1] - goal_y) - tolerance
+            )
+        # as stepcheck.check_steps bounds a node: the field's distance, the straight line to
+        # the goal point
+        h0 = field_distance if o.heuristic == "dijkstra" else 0.0
+        euclid = float(math.hypot(start_xy[0] - goal_x, start_xy[1] - goal_y))
+        return (goal_x, goal_y, tolerance), start_distance, max(h0, euclid)
+
+    def _search(self, model: StepModel, dec: StepDecoder, starters, rng, par, ipar, aim):
+        """Run the compiled search (:func:`mjwalk.plan.search.search`) from ``starters`` (z0,
+        frame0, side0, start point as complex, start yaw, start node's f) towards ``aim``
+        (x, y, tolerance). Returns the goal node, the search's counts (a dict) and the node
+        arrays (parent, rows, pos, frames, lefts, feats, closing); a spent budget raises
+        PlanningError, an open list run dry :class:`_Exhausted`."""
+        o = self.options
+        z0, frame0, side0, start, start_yaw, f0 = starters
         gps = (model.gp["left"].kernel, model.gp["right"].kernel)
         stops = (model.stop_gp["left"].kernel, model.stop_gp["right"].kernel) if (
             o.n_stops
@@ -399,8 +509,8 @@ class HybridPlanner:
             np.ascontiguousarray(z0, dtype=float),
             frame0,
             np.ascontiguousarray(side0 == "left"),
-            complex(*start_xy),
-            float(start_yaw),
+            start,
+            start_yaw,
             f0,
             gps,
             stops,
@@ -414,37 +524,27 @@ class HybridPlanner:
             self.distance.flat_bound(),
         )
         expansions, generated, rejected, stop_draws = stats.tolist()
+        goal_x, goal_y, _ = aim
+        where = f"({start.real:.3f}, {start.imag:.3f})"
         if outcome == search.BUDGET:
             raise PlanningError(
                 f"expansion budget of {o.max_expansions} spent before reaching the "
-                f"goal ({goal_x:.3f}, {goal_y:.3f}) from "
-                f"({start_xy[0]:.3f}, {start_xy[1]:.3f}); {generated} steps sampled, "
+                f"goal ({goal_x:.3f}, {goal_y:.3f}) from {where}; {generated} steps sampled, "
                 f"{rejected} rejected"
             )
         if outcome == search.EXHAUSTED:
             raise _Exhausted(
                 f"search exhausted after {expansions} expansions: no sequence of sampled "
-                f"steps reached the goal ({goal_x:.3f}, {goal_y:.3f}) from "
-                f"({start_xy[0]:.3f}, {start_xy[1]:.3f}) without coming closer than "
-                f"{self.radius} m to an obstacle"
+                f"steps reached the goal ({goal_x:.3f}, {goal_y:.3f}) from {where} without "
+                f"coming closer than {self.radius} m to an obstacle"
             )
-        parent, rows, pos, frames, lefts, feats, closing = nodes
-        path = self._assemble(
-            model,
-            goal_node,
-            (parent, rows, pos, frames, lefts),
-            feats,
-            {
-                "expansions": expansions,
-                "generated": generated,
-                "rejected": rejected,
-                "stop_draws": stop_draws,
-                # whether the walk ends with a closing step (StepModel.sample_stop)
-                "closing_step": bool(closing[rows[goal_node]]),
-                **({} if spot is None else {"spot": [goal_x, goal_y], "spot_tolerance": tolerance}),
-            },
-        )
-        return path, start_distance
+        counts = {
+            "expansions": expansions,
+            "generated": generated,
+            "rejected": rejected,
+            "stop_draws": stop_draws,
+        }
+        return goal_node, counts, nodes
 
     def _guide(self, pose, request: WalkRequest, rng, model):
         """:func:`mjwalk.plan.detour.walk_guide` for a walk of :meth:`plan` (a start yaw is a
@@ -452,13 +552,10 @@ class HybridPlanner:
         (x, y), yaw = pose
         walking = None if yaw is None or request.turn_on_spot else yaw
         goal = self.goal if request.spot is None else request.spot[:2]
-        walker = getattr(model, "walker", None)
-        stature = float(getattr(walker, "stature", None) or DEFAULT_STATURE)
-        step = float(walker.step_length if walker is not None else model.pace().step_length)
+        body = GuideBody(self.radius, walker_stature(model), walker_step_length(model))
         return walk_guide(
-            self.workplace, (x, y), goal, walking, request.goal_heading, request.guide,
-            self.radius, rng, stature, step,
-        )  # fmt: skip
+            self.workplace, (x, y), goal, walking, request.goal_heading, request.guide, body, rng
+        )
 
     def _assemble(self, model, nid, nodes, feats, stats) -> WalkPath:
         meta = {

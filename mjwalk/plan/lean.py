@@ -28,8 +28,9 @@ def stance_lean(
     (NumPy; the reference of the compiled check, and for walks already planned).
 
     Args:
-        pelvis: (k, 2) pelvis positions, yaw: (k,) pelvis headings (radians), stance: the stance
-            foot (x, y, heading), all in one frame (metres, radians from +x).
+        pelvis: (k, 2) pelvis positions, metres.
+        yaw: (k,) pelvis headings, radians from +x, in the same frame.
+        stance: (3,) the stance foot (x, y, heading), metres and radians, in the same frame.
         stance_left: whether the stance foot is the left one.
         par: :func:`~mjwalk.plan.slots.params` with the P_HIP_Y and P_LEG_SPAN slots.
 
@@ -50,7 +51,16 @@ def stance_lean(
 
 
 def lean_in_range(inv: np.ndarray, abd: np.ndarray, par: np.ndarray) -> bool:
-    """Whether every lean of :func:`stance_lean` is within the P_EVERSION .. P_ABDUCTION ranges."""
+    """Whether every lean of :func:`stance_lean` is within the P_EVERSION .. P_ABDUCTION ranges.
+
+    Args:
+        inv: (k,) ankle inversions, radians (negative: eversion).
+        abd: (k,) hip abductions, radians (negative: adduction).
+        par: :func:`~mjwalk.plan.slots.params` with the P_EVERSION .. P_ABDUCTION slots.
+
+    Returns:
+        Whether every lean lies within its range.
+    """
     return bool(
         np.all((inv >= -par[P_EVERSION]) & (inv <= par[P_INVERSION]))
         and np.all((abd >= -par[P_ADDUCTION]) & (abd <= par[P_ABDUCTION]))
@@ -72,10 +82,13 @@ def stance_lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_lef
     straight, unrotated leg, ``asin(p_y / span)``.
 
     Args:
-        z, r: the standardized features and the row of the step.
-        matrix, offset: the decoder, with the pelvis yaw at the m samples in columns
-            m + 2 .. 2m + 1 (real parts, radians relative to the step's frame).
+        z: (n, d) the standardized features.
+        r: the row of the step.
+        matrix: (d, 2m + 3) the decoder's complex matrix, with the pelvis yaw at the m samples
+            in columns m + 2 .. 2m + 1 (real parts, radians relative to the step's frame).
+        offset: (2m + 3,) the decoder's complex offset.
         loc: the decoded pelvis samples (m,) of the row, step frame (x right, y forward).
+        m: pelvis samples per step.
         ankle: the stance foot (the point under its ankle), step frame, x + iy.
         foot_heading: the stance foot's heading relative to the step's frame (radians).
         stance_left: whether the stance foot is the left one.
@@ -90,7 +103,12 @@ def stance_lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_lef
 @njit
 def lean_limits(par):
     """The stance-lean limits of ``par`` as slopes (atan2(y, h) and asin(y / span) are
-    monotonic in y): tan of the eversion and inversion, sin of the adduction and abduction."""
+    monotonic in y): tan of the eversion and inversion, sin of the adduction and abduction.
+
+    Args:
+        par: :func:`~mjwalk.plan.slots.params` with the P_EVERSION .. P_ABDUCTION slots
+            (radians).
+    """
     return (
         math.tan(par[P_EVERSION]),
         math.tan(par[P_INVERSION]),
@@ -101,7 +119,21 @@ def lean_limits(par):
 
 @njit
 def lean_ok(z, r, matrix, offset, loc, m, ankle, foot_heading, stance_left, par, limits):
-    """:func:`stance_lean_ok` with :func:`lean_limits` made once per batch of steps."""
+    """:func:`stance_lean_ok` with :func:`lean_limits` made once per batch of steps.
+
+    Args:
+        z: (n, d) the standardized features.
+        r: the row of the step.
+        matrix: (d, 2m + 3) the decoder's complex matrix.
+        offset: (2m + 3,) the decoder's complex offset.
+        loc: the decoded pelvis samples (m,) of the row, step frame, x + iy, metres.
+        m: pelvis samples per step.
+        ankle: the stance foot (the point under its ankle), step frame, x + iy, metres.
+        foot_heading: the stance foot's heading relative to the step's frame, radians.
+        stance_left: whether the stance foot is the left one.
+        par: :func:`~mjwalk.plan.slots.params` with the P_HIP_Y .. P_ABDUCTION slots.
+        limits: :func:`lean_limits` of ``par``.
+    """
     s = 1.0 if stance_left else -1.0
     hip_y = par[P_HIP_Y]
     span = par[P_LEG_SPAN]

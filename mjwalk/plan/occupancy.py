@@ -54,10 +54,26 @@ class OccupancyGrid:
         return self.free.shape
 
     def centre(self, j: int, i: int) -> np.ndarray:
+        """The centre of a cell.
+
+        Args:
+            j: the cell's row (along y).
+            i: the cell's column (along x).
+
+        Returns:
+            (2,) its centre (x0 + i·cell, y0 + j·cell), metres, world frame.
+        """
         return np.array([self.x0 + i * self.cell, self.y0 + j * self.cell])
 
     def index(self, xy: np.ndarray) -> tuple[int, int]:
-        """(row j, column i) of the cell containing ``xy``, clipped to the grid."""
+        """(row j, column i) of the cell containing ``xy``, clipped to the grid.
+
+        Args:
+            xy: (2,) a point, metres, world frame.
+
+        Returns:
+            (j, i) the nearest cell's row and column.
+        """
         ny, nx = self.free.shape
         i = int(np.clip(np.rint((xy[0] - self.x0) / self.cell), 0, nx - 1))
         j = int(np.clip(np.rint((xy[1] - self.y0) / self.cell), 0, ny - 1))
@@ -65,7 +81,17 @@ class OccupancyGrid:
 
 
 def segment_is_free(workplace: Workplace, a: np.ndarray, b: np.ndarray, radius: float) -> bool:
-    """Whether every point of the segment a-b keeps ``radius`` of walking clearance."""
+    """Whether every point of the segment a-b keeps ``radius`` of walking clearance.
+
+    Args:
+        workplace: the scene.
+        a: (2,) one end, metres, world frame.
+        b: (2,) the other end, metres.
+        radius: the clearance to keep, metres.
+
+    Returns:
+        Whether every sample, :data:`SAMPLE_SPACING` apart, keeps ``radius``.
+    """
     n = max(2, int(np.ceil(np.linalg.norm(b - a) / SAMPLE_SPACING)) + 1)
     pts = a + np.linspace(0.0, 1.0, n)[:, None] * (b - a)
     return bool(np.all(workplace.walk_clearance(pts) >= radius))
@@ -120,6 +146,15 @@ def occupancy_grid(
     edge distance 1-Lipschitz, so a move of length L whose two end cells both keep
     ``radius + sqrt(2) L / 2`` is free throughout. Only the cells near obstacles and the
     floor's edge are sampled, with the same points and arithmetic as before (the same grid).
+
+    Args:
+        workplace: the scene.
+        cell: the cell size, metres.
+        radius: the body radius the cells and moves keep, metres.
+        moves: the moves (di, dj) in cells.
+
+    Returns:
+        The grid: origin, cell size, radius, free mask (ny, nx) and move validity.
     """
     xmin, ymin, xmax, ymax = workplace.floor_bounds
     nx = int(np.floor((xmax - xmin) / cell))
@@ -165,7 +200,17 @@ def occupancy_grid_sampled(
     moves: list[tuple[int, int]] = MOVES_8,
 ) -> OccupancyGrid:
     """:func:`occupancy_grid` the way it was first written (kept as the reference of tests and
-    ``benchmarks/bench_scale.py``): every move of every cell sampled every centimetre."""
+    ``benchmarks/bench_scale.py``): every move of every cell sampled every centimetre.
+
+    Args:
+        workplace: the scene.
+        cell: the cell size, metres.
+        radius: the body radius the cells and moves keep, metres.
+        moves: the moves (di, dj) in cells.
+
+    Returns:
+        The same grid as :func:`occupancy_grid`'s.
+    """
     xmin, ymin, xmax, ymax = workplace.floor_bounds
     nx = int(np.floor((xmax - xmin) / cell))
     ny = int(np.floor((ymax - ymin) / cell))
@@ -217,7 +262,17 @@ def shared_grid(
 ) -> OccupancyGrid:
     """:func:`occupancy_grid`, built once per workplace, cell size, radius and moves and kept
     on the workplace (planners to several goals of one scene share it). A workplace whose
-    clearance field is replaced gets a new grid."""
+    clearance field is replaced gets a new grid.
+
+    Args:
+        workplace: the scene (the grid is kept on it).
+        cell: the cell size, metres.
+        radius: the body radius the cells and moves keep, metres.
+        moves: the moves (di, dj) in cells.
+
+    Returns:
+        The workplace's grid for these figures.
+    """
     cache = workplace.__dict__.setdefault("_grids", {})
     key = (float(cell), float(radius), tuple(moves), id(workplace.clearance))
     if key not in cache:
@@ -241,7 +296,14 @@ def shared_grid(
 
 def check_endpoint(workplace: Workplace, xy: np.ndarray, radius: float, what: str) -> None:
     """Raise PlanningError when a start or goal point is off the floor, inside an obstacle or
-    closer to one than the body radius."""
+    closer to one than the body radius.
+
+    Args:
+        workplace: the scene.
+        xy: (2,) the point, metres, world frame.
+        radius: the body radius, metres (not a positive number: InputError).
+        what: the point's name in the message ("start", "goal").
+    """
     if isinstance(radius, bool | str) or not (math.isfinite(radius) and radius > 0):
         raise InputError(f"body radius must be a positive number of metres, got {radius!r}")
     if _clearly_free(workplace, xy, radius):

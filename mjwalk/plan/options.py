@@ -143,14 +143,26 @@ WALK_PACE_SD = 0.045
 
 def leg_clearance(stature: float = DEFAULT_STATURE) -> float:
     """Clearance (m) the landing leg's probes keep for a walker of ``stature`` metres: the
-    shin radius plus SAFETY_MARGIN plus half of LEG_PROBE_STEP."""
+    shin radius plus SAFETY_MARGIN plus half of LEG_PROBE_STEP.
+
+    Args:
+        stature: the walker's body height, metres.
+
+    Returns:
+        The clearance, metres.
+    """
     return SHIN_RADIUS * stature + SAFETY_MARGIN + 0.5 * LEG_PROBE_STEP
 
 
 def lean_params() -> dict[str, float]:
     """The stance-lean check's slots of :func:`mjwalk.plan.slots.params`: hip offset and
     straight-leg length (m) of :data:`LEAN_GEOMETRY`, and the ankle eversion/inversion and hip
-    adduction/abduction limits (radians) of ``ROM_DEG``."""
+    adduction/abduction limits (radians) of ``ROM_DEG``.
+
+    Returns:
+        The slot values by slot name (hip_y, leg_span, eversion, inversion, adduction,
+        abduction).
+    """
     return {
         "hip_y": LEAN_GEOMETRY.hip_y,
         "leg_span": LEAN_GEOMETRY.thigh + LEAN_GEOMETRY.shank,

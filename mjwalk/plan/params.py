@@ -108,7 +108,15 @@ class KernelParams:
 
     def vectors(self, stature: float = DEFAULT_STATURE) -> tuple[np.ndarray, np.ndarray]:
         """The float and integer vectors for a walker of ``stature`` metres (the landing leg's
-        clearance scales with it): fresh copies of the ones made on first use."""
+        clearance scales with it): fresh copies of the ones made on first use.
+
+        Args:
+            stature: the walker's body height, metres.
+
+        Returns:
+            The float vector (:data:`~mjwalk.plan.slots.N_PARAMS`,) and the integer vector
+            (:data:`~mjwalk.plan.slots.N_IPARAMS`,).
+        """
         held = self._held.get(stature)
         if held is None:
             held = self._held[stature] = (self._floats(stature), self._integers())
@@ -118,6 +126,13 @@ class KernelParams:
         """:meth:`vectors` with what ``walk`` sets: its pace, its spot (its own goal point and
         tolerance, the goal's field offset by the way between the two, and the planner's goal
         area as one more disc), its guide, the cost of its turn on the spot and its far weight.
+
+        Args:
+            stature: the walker's body height, metres.
+            walk: the walk's terms (:class:`WalkTerms`).
+
+        Returns:
+            The float and integer vectors for the walk (fresh copies).
         """
         par, ipar = self.vectors(stature)
         par[slots.P_PACE] = walk.pace
@@ -222,7 +237,15 @@ class KernelParams:
 def spot_offset(goal: np.ndarray, spot: tuple[float, float, float]) -> float:
     """Metres between the goal point and a walk's ``spot`` (x, y, tolerance): the goal's
     distance field bounds the way to the spot from below only less this (triangle
-    inequality)."""
+    inequality).
+
+    Args:
+        goal: (2,) the goal point, metres, world frame.
+        spot: (x, y, tolerance) of the walk's spot, metres.
+
+    Returns:
+        The distance between the two, metres.
+    """
     return math.hypot(spot[0] - goal[0], spot[1] - goal[1])
 
 

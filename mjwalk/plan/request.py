@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mjwalk.errors import InputError
+from mjwalk.gait.model import StepModel
 from mjwalk.plan.guide import resample_guide
 
 
@@ -41,7 +42,7 @@ class WalkRequest:
     """
 
     start: object
-    model: object = None
+    model: StepModel | None = None
     spot: tuple[float, float, float] | None = None
     turn_on_spot: bool = False
     goal_heading: float | None = None

@@ -73,15 +73,23 @@ def search(
     """Search from ``start`` (world x + iy, facing ``heading``) to the goal of ``par``.
 
     Args:
-        z0, frame0, left0: the starters (features, frame heading, swing foot is left) for the
-            first expansion.
-        f0: the start node's f.
-        gps, stops: :attr:`TransitionGP.kernel` of the walking and the closing-step GPs, for
-            a left and a right predecessor (``stops`` unused when ``ipar`` has no stops).
+        z0: (s, d) the starters' standardized features, for the first expansion.
+        frame0: (s,) the starters' frame headings, radians from +x CCW.
+        left0: (s,) whether each starter's swing foot is the left one.
+        start: the start point, world x + iy, metres.
+        heading: the start heading, radians from +x CCW.
+        f0: the start node's f, metres.
+        gps: :attr:`TransitionGP.kernel` of the walking GPs, for a left and a right predecessor.
+        stops: the same of the closing-step GPs (unused when ``ipar`` has no stops).
         rng: numpy Generator.
-        matrix, offset, thr, par, ipar, coef, dist: as for
-            :func:`~mjwalk.plan.stepcheck.check_steps` (``par``/``ipar`` with the search's
-            slots filled, the guide's among them: :mod:`mjwalk.plan.guide`).
+        matrix: the decoder's complex matrix, as for :func:`~mjwalk.plan.stepcheck.check_steps`.
+        offset: the decoder's complex offset.
+        thr: the clearance limits, as for :func:`~mjwalk.plan.stepcheck.check_steps`.
+        par: the float slots, the search's filled (the guide's among them:
+            :mod:`mjwalk.plan.guide`).
+        ipar: the integer slots, the search's filled.
+        coef: the walk field's node values (ny, nx), metres.
+        dist: the goal distance's flat grid bound (:meth:`GoalDistance.flat_bound`).
 
     Returns:
         (outcome, goal node, [expansions, generated, rejected, stop draws], and per node:

@@ -93,7 +93,14 @@ N_PARAMS = P_DISC0 + 3 * MAX_GOAL_DISCS
 
 
 def params(**values) -> np.ndarray:
-    """The float parameter vector from keyword slots (``knee_lead=...``, names as P_* lower)."""
+    """The float parameter vector from keyword slots (``knee_lead=...``, names as P_* lower).
+
+    Args:
+        **values: slot values by name (P_* constant names in lower case; unknown: KeyError).
+
+    Returns:
+        (:data:`N_PARAMS`,) floats, nan where no value is given.
+    """
     slots = [_slot("P_", name) for name in values]
     out = np.full(N_PARAMS, np.nan)
     out[slots] = list(values.values())
@@ -101,7 +108,14 @@ def params(**values) -> np.ndarray:
 
 
 def iparams(**values) -> np.ndarray:
-    """The integer parameter vector from keyword slots (names as I_* lower)."""
+    """The integer parameter vector from keyword slots (names as I_* lower).
+
+    Args:
+        **values: slot values by name (I_* constant names in lower case; unknown: KeyError).
+
+    Returns:
+        (:data:`N_IPARAMS`,) int64, 0 where no value is given.
+    """
     slots = [_slot("I_", name) for name in values]
     out = np.zeros(N_IPARAMS, dtype=np.int64)
     out[slots] = list(values.values())

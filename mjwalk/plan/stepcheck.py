@@ -122,13 +122,16 @@ def check_steps(
     """Decode, check and score the sampled steps ``z`` (n, d) of b = n // per predecessors.
 
     Args:
-        z: standardized features; matrix (d, 2m + 3) and offset (2m + 3,): the complex affine
-            decode (:class:`~mjwalk.plan.decoder.StepDecoder`; the pelvis-yaw columns only with the
+        z: (n, d) standardized features.
+        matrix: (d, 2m + 3) the complex affine decode
+            (:class:`~mjwalk.plan.decoder.StepDecoder`; the pelvis-yaw columns only with the
             stance-lean slots set, the duration column only with P_PACE set).
-        per, n_walk: rows per predecessor, and how many of them are walking steps (the rest
-            are closing steps).
-        frame, left: heading (radians) of each step's local frame and whether its swing foot
-            is the left one, per row (n,) or per predecessor (b,).
+        offset: (2m + 3,) the decode's complex offset.
+        per: rows per predecessor.
+        n_walk: how many of them are walking steps (the rest are closing steps).
+        frame: heading (radians) of each step's local frame, per row (n,) or per
+            predecessor (b,).
+        left: whether each step's swing foot is the left one, per row or per predecessor.
         near: (b,) whether the predecessor may stop (else its closing rows are dropped
             uncounted).
         node: (b, 4) or (b, 5) complex per predecessor: end point p, the foot its step
@@ -140,7 +143,8 @@ def check_steps(
             (:func:`stance_lean_ok`).
         thr: (m + 4,) clearance limits of the pelvis samples, ankle, toes and the two knees
             (the landing leg's probes keep P_LEG_CLEARANCE: :func:`landing_leg_clear`).
-        par, ipar: :func:`params` / :func:`iparams`.
+        par: the float slots (:func:`params`).
+        ipar: the integer slots (:func:`iparams`).
         coef: the walk field's node values (ny, nx) (:meth:`Workplace.walk_field`).
         dist: the goal distance's flat grid bound (:class:`~mjwalk.plan.heuristic.GoalDistance`).
 
@@ -178,7 +182,12 @@ def check_steps(
 @njit
 def new_buffers(n, m):
     """:func:`check_into`'s output buffers for up to ``n`` steps of ``m`` pelvis samples: rows,
-    keys, f, g, end, heading, frame, foot, foot heading, left (n,) and the decode row (m + 2,)."""
+    keys, f, g, end, heading, frame, foot, foot heading, left (n,) and the decode row (m + 2,).
+
+    Args:
+        n: the most steps the buffers take.
+        m: pelvis samples per step.
+    """
     return (
         np.empty(n, dtype=np.int64),
         np.empty(n, dtype=np.int64),
@@ -202,7 +211,27 @@ def check_into(
     """:func:`check_steps` into buffers: ``out`` from :func:`new_buffers` (at least n rows)
     takes the accepted steps in its first rows, ``accepted`` and ``drawn`` (at least b, set
     to 0 here) the per-predecessor counts; returns the number of accepted steps. The search
-    keeps one set of buffers instead of a dozen new arrays per expansion."""
+    keeps one set of buffers instead of a dozen new arrays per expansion.
+
+    Args:
+        z: as for :func:`check_steps`.
+        matrix: as for :func:`check_steps`.
+        offset: as for :func:`check_steps`.
+        per: as for :func:`check_steps`.
+        n_walk: as for :func:`check_steps`.
+        frame: as for :func:`check_steps`.
+        left: as for :func:`check_steps`.
+        near: as for :func:`check_steps`.
+        node: as for :func:`check_steps`.
+        thr: as for :func:`check_steps`.
+        par: as for :func:`check_steps`.
+        ipar: as for :func:`check_steps`.
+        coef: as for :func:`check_steps`.
+        dist: as for :func:`check_steps`.
+        out: the buffers of :func:`new_buffers`.
+        accepted: (>= b,) int, the accepted count per predecessor.
+        drawn: (>= b,) int, the drawn (not dropped) count per predecessor.
+    """
     n = z.shape[0]
     d = z.shape[1]
     b = n // per if per > 0 else 0

@@ -17,7 +17,19 @@ from mjwalk.world.clearance import bilinear_at
 def grid_bound(dist, x0, y0, cell, top_x, top_y, nx, x, y):
     """:meth:`GoalDistance.__call__`'s grid bound at (``x``, ``y``) (metres) on the flat field
     ``dist`` (origin ``x0``, ``y0``, spacing ``cell``, last column/row ``top_x``/``top_y``,
-    ``nx`` columns): the nearest node's distance to the goal less the way to that node."""
+    ``nx`` columns): the nearest node's distance to the goal less the way to that node.
+
+    Args:
+        dist: the flat field (:meth:`GoalDistance.flat_bound`), metres.
+        x0: the field's origin x, metres, world frame.
+        y0: its origin y, metres.
+        cell: its spacing, metres.
+        top_x: its last column index (as a float).
+        top_y: its last row index (as a float).
+        nx: its number of columns.
+        x: the point's x, metres.
+        y: the point's y, metres.
+    """
     gi = min(max(np.rint((x - x0) / cell), 0.0), top_x)
     gj = min(max(np.rint((y - y0) / cell), 0.0), top_y)
     off = math.hypot(x - (x0 + gi * cell), y - (y0 + gj * cell))
@@ -27,7 +39,19 @@ def grid_bound(dist, x0, y0, cell, top_x, top_y, nx, x, y):
 @njit
 def grid_sight(dist, x0, y0, cell, top_x, top_y, nx, x, y):
     """Whether the goal is in sight from (``x``, ``y``): the sight flag of the nearest node of
-    the flat field ``dist`` (:meth:`GoalDistance.flat_bound`: the bounds, then the flags)."""
+    the flat field ``dist`` (:meth:`GoalDistance.flat_bound`: the bounds, then the flags).
+
+    Args:
+        dist: the flat field (:meth:`GoalDistance.flat_bound`: the bounds, then the flags).
+        x0: the field's origin x, metres, world frame.
+        y0: its origin y, metres.
+        cell: its spacing, metres.
+        top_x: its last column index (as a float).
+        top_y: its last row index (as a float).
+        nx: its number of columns.
+        x: the point's x, metres.
+        y: the point's y, metres.
+    """
     gi = min(max(np.rint((x - x0) / cell), 0.0), top_x)
     gj = min(max(np.rint((y - y0) / cell), 0.0), top_y)
     return dist[int((top_y + 1.0) * nx) + int(gj) * nx + int(gi)] > 0.5
@@ -42,7 +66,27 @@ def downhill_costs(xy, probes, clear, cx0, cy0, cres, floor, radius, dist, gx0, 
     (xmin, ymin, xmax, ymax), and :meth:`GoalDistance.__call__` on the flat grid bound
     ``dist`` (origin gx0, gy0, cell gcell, last column/row top_x, top_y) less ``offset``, or
     the straight line to (``goal_x``, ``goal_y``) where longer: the distance to the goal,
-    plus 1e3 where the walking clearance is short of ``radius`` (metres)."""
+    plus 1e3 where the walking clearance is short of ``radius`` (metres).
+
+    Args:
+        xy: (2,) the walker's point, metres, world frame.
+        probes: (k, 2) offsets of the probes from it, metres.
+        clear: the obstacle clearance field's node values (ny, nx), metres.
+        cx0: its origin x, metres.
+        cy0: its origin y, metres.
+        cres: its spacing, metres.
+        floor: (4,) the floor's bounds (xmin, ymin, xmax, ymax), metres.
+        radius: the body radius, metres.
+        dist: the goal's flat grid bound (:meth:`GoalDistance.flat_bound`), metres.
+        gx0: the grid's origin x, metres.
+        gy0: its origin y, metres.
+        gcell: its cell size, metres.
+        top_x: its last column index (as a float).
+        top_y: its last row index (as a float).
+        goal_x: the goal point's x, metres.
+        goal_y: its y, metres.
+        offset: what the field's distance is lowered by, metres (a spot's offset).
+    """
     n = probes.shape[0]
     out = np.empty(n)
     for k in range(n):
@@ -69,7 +113,13 @@ def step_energy(length, duration, pace):
     metre, least at v* = sqrt(a/b) (1.23 m/s there), and people walk at about that speed
     (ibid.; Zarrugh, Todd & Ralston, Eur J Appl Physiol 33:293-306, 1974); the walker's own
     preferred speed stands for v*. c >= 1, so the walked length is still a lower bound and the
-    heuristic stays admissible; a step that stands still costs pace·T/2."""
+    heuristic stays admissible; a step that stands still costs pace·T/2.
+
+    Args:
+        length: the step's length L, metres.
+        duration: its duration T, seconds.
+        pace: the walker's preferred speed, m/s.
+    """
     t = max(duration, MIN_DURATION) * pace
     return 0.5 * (t + length * length / t)
 
@@ -87,7 +137,13 @@ def heading_factor(heading, want, weight):
     approach", Auton Robot 28:369-383, 2010) the cost per second is 1 (time) + ... + 5.2·ψ²
     (their weights α0 = 1, α4 = 5.2); a step's cost, its walked metres at the preferred pace,
     is its time times the pace, so the ratio carries over as this factor. The factor is >= 1:
-    the heuristic stays admissible."""
+    the heuristic stays admissible.
+
+    Args:
+        heading: the walker's heading, radians from +x CCW.
+        want: the heading it wants, radians.
+        weight: the weight per squared radian.
+    """
     psi = want - heading
     psi = (psi + math.pi) % (2.0 * math.pi) - math.pi
     return 1.0 + weight * psi * psi

@@ -37,7 +37,18 @@ def field_clearance(coef, x0, y0, res, nx, ny, x, y):
     """:meth:`ClearanceField.__call__` at one point (x, y) (metres) from the field's node
     values ``coef`` (ny, nx): bilinear clearance, metres, as value = a + b·tx + c·ty + d·tx·ty
     with the cell's coefficients a = v00, b = v01 - v00, c = v10 - v00,
-    d = v11 - v10 - v01 + v00 formed on the fly (a table of them held four times the field)."""
+    d = v11 - v10 - v01 + v00 formed on the fly (a table of them held four times the field).
+
+    Args:
+        coef: the field's node values (ny, nx), metres.
+        x0: its origin x, metres, world frame.
+        y0: its origin y, metres.
+        res: its spacing, metres.
+        nx: its number of columns.
+        ny: its number of rows.
+        x: the point's x, metres.
+        y: the point's y, metres.
+    """
     fx = (x - x0) / res
     fx = min(max(fx, 0.0), nx - 1.000001)
     fy = (y - y0) / res
@@ -57,7 +68,12 @@ def field_clearance(coef, x0, y0, res, nx, ny, x, y):
 def beyond(v, r):
     """``abs(v) > r`` for a complex ``v``, without the hypot where the squares decide it (r > 0):
     |v|² beyond r² by more than 1e-12 relative is beyond r, and short of it by as much is
-    not, whatever the roundings (a few ulp); only the band between (and nan) takes abs(v)."""
+    not, whatever the roundings (a few ulp); only the band between (and nan) takes abs(v).
+
+    Args:
+        v: a complex number (x + iy, metres).
+        r: the radius, metres.
+    """
     if not r > 0.0:
         return abs(v) > r
     sq = v.real * v.real + v.imag * v.imag
@@ -72,13 +88,22 @@ def beyond(v, r):
 @njit
 def unit_turn(angle):
     """exp(i·angle) for a real angle (radians): (cos, sin), as the complex exp computes it
-    (exp(0) = 1 times each), without the exp."""
+    (exp(0) = 1 times each), without the exp.
+
+    Args:
+        angle: the angle, radians.
+    """
     return complex(math.cos(angle), math.sin(angle))
 
 
 @njit
 def within(v, r):
-    """``abs(v) <= r`` for a complex ``v``, as :func:`beyond` decides it (nan: False)."""
+    """``abs(v) <= r`` for a complex ``v``, as :func:`beyond` decides it (nan: False).
+
+    Args:
+        v: a complex number (x + iy, metres).
+        r: the radius, metres.
+    """
     if not r > 0.0:
         return abs(v) <= r
     sq = v.real * v.real + v.imag * v.imag
@@ -93,7 +118,14 @@ def within(v, r):
 @njit
 def cell_key(p, heading, par, ipar):
     """Closed-list key of a node at world x + iy ``p`` facing ``heading`` (radians): its grid
-    cell (i · span + j) and, with heading bins, times bins plus its heading bin."""
+    cell (i · span + j) and, with heading bins, times bins plus its heading bin.
+
+    Args:
+        p: the node's point, x + iy, metres, world frame.
+        heading: its heading, radians from +x CCW.
+        par: the float slots (:func:`~mjwalk.plan.slots.params`: the grid's origin and cell).
+        ipar: the integer slots (:func:`~mjwalk.plan.slots.iparams`: span, heading bins).
+    """
     cell = par[P_CELL]
     key = math.floor((p.real - par[P_CORNER_X]) / cell + 0.5) * ipar[I_SPAN] + math.floor(
         (p.imag - par[P_CORNER_Y]) / cell + 0.5
@@ -110,7 +142,14 @@ def in_goal(p, heading, par, ipar):
     """Whether a node at world x + iy ``p`` facing ``heading`` (radians) ends the walk: within
     the tolerance of the goal, within each of the I_N_DISCS goal discs (x, y, radius at
     P_DISC0 + 3k, after the guide's slots: e.g. the places from which the work there is
-    within reach) and, with a goal yaw, facing it within its tolerance."""
+    within reach) and, with a goal yaw, facing it within its tolerance.
+
+    Args:
+        p: the node's point, x + iy, metres, world frame.
+        heading: its heading, radians from +x CCW.
+        par: the float slots (goal point, tolerance, discs, goal yaw).
+        ipar: the integer slots (I_N_DISCS).
+    """
     if beyond(p - complex(par[P_GOAL_X], par[P_GOAL_Y]), par[P_TOLERANCE]):
         return False
     for k in range(ipar[I_N_DISCS]):
@@ -127,7 +166,15 @@ def in_goal(p, heading, par, ipar):
 @njit
 def decode_real(z, r, matrix, offset, col):
     """The real part of decoder column ``col`` for feature row ``r`` (``z[r] @ matrix + offset``
-    there, summed in feature order): the columns only some steps need (pelvis yaws, duration)."""
+    there, summed in feature order): the columns only some steps need (pelvis yaws, duration).
+
+    Args:
+        z: (n, d) standardized features.
+        r: the row.
+        matrix: (d, 2m + 3) the decoder's complex matrix.
+        offset: (2m + 3,) its complex offset.
+        col: the column.
+    """
     v = offset[col].real
     for a in range(z.shape[1]):
         v += z[r, a] * matrix[a, col].real
@@ -150,10 +197,19 @@ def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, 
 
     Args:
         loc: the decoded step (step frame, x + iy, metres): pelvis samples, landing ankle.
+        m: pelvis samples per step.
         left: whether the swing (landing) foot is the left one.
-        rot, p: the step frame's turn into the world and its origin (world x + iy).
+        end_yaw: the end pelvis yaw relative to the step's frame, radians.
+        rot: the step frame's turn into the world (a unit complex).
+        p: the step frame's origin, world x + iy, metres.
         pelvis_thr: the clearance the pelvis samples keep (metres).
-        coef, x0, y0, res, nx, ny: the walk field (:func:`field_clearance`).
+        par: the float slots (P_LEG_CLEARANCE, P_HIP_Y, P_LEG_STEP).
+        coef: the walk field's node values (ny, nx), metres (:func:`field_clearance`).
+        x0: the field's origin x, metres.
+        y0: its origin y, metres.
+        res: its spacing, metres.
+        nx: its number of columns.
+        ny: its number of rows.
     """
     step = par[P_LEG_STEP]
     clear = par[P_LEG_CLEARANCE]
@@ -195,11 +251,19 @@ def toe_approach_clear(ankle, lift, toe, clear, rot, p, par, coef, x0, y0, res, 
     the clearance being 1-Lipschitz, every point between keeps ``clear - P_TOE_STEP / 2``.
 
     Args:
-        ankle, lift: the landing and lift-off footprints (the step's local frame, x + iy).
+        ankle: the landing footprint (the step's local frame, x + iy, metres).
+        lift: the lift-off footprint (same frame; nan: unknown).
         toe: the toe point's offset from the ankle at the landing yaw (same frame).
         clear: the clearance (metres) each probe keeps.
-        rot, p: the step frame's turn into the world and its origin (world x + iy).
-        coef, x0, y0, res, nx, ny: the walk field (:func:`field_clearance`).
+        rot: the step frame's turn into the world (a unit complex).
+        p: the step frame's origin, world x + iy, metres.
+        par: the float slots (P_TOE_STEP, P_TOE_SHARE).
+        coef: the walk field's node values (ny, nx), metres (:func:`field_clearance`).
+        x0: the field's origin x, metres.
+        y0: its origin y, metres.
+        res: its spacing, metres.
+        nx: its number of columns.
+        ny: its number of rows.
     """
     share = par[P_TOE_SHARE]
     step = par[P_TOE_STEP]

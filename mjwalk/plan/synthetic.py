@@ -24,10 +24,10 @@ def synthetic_walk(
     sway: float = 0.03,
     radius: float | None = None,
     start: ArrayLike = (0.0, 0.0, 0.0),
-    fps: float = SAMPLE_RATE_HZ,
     hold: float = 0.25,
 ) -> WalkPath:
-    """A walk of ``n_steps`` steps from standing, without planning.
+    """A walk of ``n_steps`` steps from standing, without planning, sampled as planned walks are
+    (:data:`~mjwalk.conventions.SAMPLE_RATE_HZ`).
 
     Args:
         n_steps: steps after the standing start (>= 1); the first is a half step.
@@ -37,17 +37,17 @@ def synthetic_walk(
         sway: sideways pelvis excursion towards the stance foot, metres (half a sine per step).
         radius: None for a straight walk, else the radius (m) of a left arc (negative: right).
         start: (x, y, heading) of the start: metres, radians from +x.
-        fps: sample rate (Hz).
         hold: seconds the final pose is held after the last step (0: the walk ends with it).
 
     Returns:
         the WalkPath: the first stance foot is the right one; ``meta["planner"]`` is
         ``"synthetic"``.
     """
-    if n_steps < 1 or step_time <= 0 or fps <= 0 or hold < 0:
+    fps = SAMPLE_RATE_HZ
+    if n_steps < 1 or step_time <= 0 or hold < 0:
         raise MjwalkError(
-            f"synthetic_walk: need n_steps >= 1, step_time > 0, fps > 0 and hold >= 0, got "
-            f"{n_steps}, {step_time}, {fps}, {hold}"
+            f"synthetic_walk: need n_steps >= 1, step_time > 0 and hold >= 0, got "
+            f"{n_steps}, {step_time}, {hold}"
         )
     x0, y0, h0 = (float(v) for v in np.asarray(start, float))
 

@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from mjwalk._io import check_header, load_npz, save_npz
+from mjwalk.errors import InputError, ModelFileError, SceneError
 
 WALKPATH_FORMAT = "mjwalk.walkpath"
 WALKPATH_VERSION = 1
@@ -76,7 +77,11 @@ class WalkPath:
         return self.xy[-1]
 
     def footprints(self) -> np.ndarray:
-        """(S, 4) per step: side (0 left, 1 right), x, y, yaw of the landing foot."""
+        """(S, 4) per step: side (0 left, 1 right), x, y, yaw of the landing foot.
+
+        Returns:
+            (S, 4) side, x, y (metres, world frame), yaw (radians from +x CCW).
+        """
         if not self.steps:
             return np.zeros((0, 4))
         return np.array([[s.side == "right", *s.foot] for s in self.steps], dtype=float)
@@ -86,8 +91,11 @@ class WalkPath:
         (N,) finite, from 0 and never decreasing, at most :data:`MAX_WALK_SECONDS` long;
         ``xy`` (N, 2) and ``yaw`` (N,) finite; each step's sample range inside 0..N-1 and in
         order, its side "left" or "right", its footprints (3,) finite. An edited walk file
-        otherwise failed deep in playback (a ValueError, a MemoryError, an IndexError)."""
-        from mjwalk.errors import InputError
+        otherwise failed deep in playback (a ValueError, a MemoryError, an IndexError).
+
+        Args:
+            what: the walk's name in the message (e.g. its file).
+        """
 
         def bad(msg: str) -> InputError:
             return InputError(f"{what}: {msg}")
@@ -131,7 +139,14 @@ class WalkPath:
 
     def stamp_scene(self, workplace) -> WalkPath:
         """Record the scene this walk was planned in (its name and
-        :attr:`~mjwalk.world.workplace.Workplace.fingerprint`) in ``meta``; returns self."""
+        :attr:`~mjwalk.world.workplace.Workplace.fingerprint`) in ``meta``; returns self.
+
+        Args:
+            workplace: the scene the walk was planned in.
+
+        Returns:
+            This walk.
+        """
         self.meta["scene"] = workplace.name
         self.meta["scene_fingerprint"] = workplace.fingerprint
         return self
@@ -139,9 +154,12 @@ class WalkPath:
     def check_scene(self, workplace, force: bool = False) -> None:
         """Raise SceneError when the walk was planned in a scene whose obstacle geometry
         differs from ``workplace``'s (played there it would pass through obstacles or leave
-        the floor), unless ``force``. Walks without a recorded scene pass."""
-        from mjwalk.errors import SceneError
+        the floor), unless ``force``. Walks without a recorded scene pass.
 
+        Args:
+            workplace: the scene the walk is to be played in.
+            force: play it anyway (no check).
+        """
         planned = self.meta.get("scene_fingerprint")
         if force:
             return
@@ -166,7 +184,11 @@ class WalkPath:
         )
 
     def save(self, path: str | Path) -> None:
-        """Write the path to one ``.npz`` file (atomically)."""
+        """Write the path to one ``.npz`` file (atomically).
+
+        Args:
+            path: the ``.npz`` file to write.
+        """
         steps = self.steps
         arrays = {
             "t": self.t,
@@ -184,9 +206,14 @@ class WalkPath:
 
     @classmethod
     def load(cls, path: str | Path) -> WalkPath:
-        """Read a path written by :meth:`save`; a foreign or corrupt file raises ModelFileError."""
-        from mjwalk.errors import InputError, ModelFileError
+        """Read a path written by :meth:`save`; a foreign or corrupt file raises ModelFileError.
 
+        Args:
+            path: the ``.npz`` file.
+
+        Returns:
+            The walk.
+        """
         header, data = load_npz(path, "walk-path")
         check_header(header, path, "walk-path", WALKPATH_FORMAT, WALKPATH_VERSION)
         names = ("t", "xy", "yaw", "step_side", "step_range", "step_foot", "step_stance")

@@ -8,6 +8,7 @@ import numpy as np
 
 from mjwalk._args import as_generator, check_seed
 from mjwalk.errors import InputError
+from mjwalk.gait.default import default_model
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.walkpath import WalkPath
@@ -46,8 +47,6 @@ def plan_walk(
             search), goal unreachable (before any search), or the expansion budget spent.
     """
     if model is None:
-        from mjwalk.gait.default import default_model
-
         model = default_model()
     rng = as_generator(rng, "plan_walk: rng")
     return HybridPlanner(workplace, goal, model, options).plan(start, rng)
@@ -66,13 +65,23 @@ def plan_walks(
 
     Walk ``k`` uses its own random stream (``SeedSequence(seed).spawn``), so a walk does not
     depend on how many others are planned with it. ``options``: as :func:`plan_walk`'s.
+
+    Args:
+        workplace: the scene.
+        start: a site name, ``"x,y"``, ``"x,y,yaw_deg"`` or (x, y[, yaw]); metres, radians.
+        goal: a site name, ``"x,y"`` or (x, y), metres.
+        model: the step model; None: the default one (:func:`~mjwalk.gait.default.default_model`).
+        n: the number of walks (a whole number >= 0).
+        seed: the seed of the walks' streams.
+        options: the planner's options; None: the defaults.
+
+    Returns:
+        The ``n`` walks, in stream order.
     """
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 0:
         raise InputError(f"plan_walks: n must be a whole number of walks >= 0, got {n!r}")
     seed = check_seed(seed, "plan_walks: seed")
     if model is None:
-        from mjwalk.gait.default import default_model
-
         model = default_model()
     planner = HybridPlanner(workplace, goal, model, options)
     streams = np.random.SeedSequence(seed).spawn(n)

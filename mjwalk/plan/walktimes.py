@@ -12,7 +12,13 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
+import mujoco
 import numpy as np
+
+from mjwalk.errors import MjwalkError, PlanningError
+from mjwalk.gait.straight import time_at
+from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.world import WorkplaceOptions, workplace_from_model
 
 #: The straight hall's half-width (m) and the floor it leaves behind the start and beyond the
 #: goal (m); its length fits the longest walk.
@@ -39,14 +45,18 @@ def planned_straight_walks(
     (:func:`mjwalk.gait.straight.time_at`: interpolated within the step that crosses it).
     Distances must be positive and finite (else MjwalkError). A walk the planner cannot plan
     raises its PlanningError, or with ``failed_as_nan`` gives NaN (a model that does not plan
-    well still gets its other figures reported)."""
-    import mujoco
+    well still gets its other figures reported).
 
-    from mjwalk.errors import MjwalkError, PlanningError
-    from mjwalk.gait.straight import time_at
-    from mjwalk.plan.hybrid import HybridPlanner
-    from mjwalk.world import WorkplaceOptions, workplace_from_model
+    Args:
+        model: the step model.
+        distances: the distances to time, metres (positive, finite).
+        in_motion: per distance, whether the walker is already walking at its start.
+        rng: the random stream of the plans.
+        failed_as_nan: give NaN for a walk that cannot be planned instead of raising.
 
+    Returns:
+        The time per distance, seconds (NaN: not planned, with ``failed_as_nan``).
+    """
     distances = [float(d) for d in distances]
     if len(distances) != len(in_motion):
         raise MjwalkError(

@@ -10,7 +10,13 @@ import pytest
 
 from mjwalk.anthropometry import SEG
 from mjwalk.gait.default import default_model
-from mjwalk.plan.detour import PASSING_GAP, detour_guide, left_share, obstacle_ends
+from mjwalk.plan.detour import (
+    PASSING_GAP,
+    GuideBody,
+    detour_guide,
+    left_share,
+    obstacle_ends,
+)
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.world import load_workplace
@@ -53,7 +59,7 @@ def test_the_way_round_keeps_the_cited_berth(tmp_path):
     wp = _pillar(tmp_path)
     rng = np.random.default_rng(0)
     line = np.array([(-3.0, 0.0), (3.0, 0.0)])
-    path = detour_guide(wp, line, (-3.0, 0.0), (3.0, 0.0), None, None, 0.25, rng)
+    path = detour_guide(wp, line, (-3.0, 0.0), (3.0, 0.0), None, None, GuideBody(0.25), rng)
     assert path is not None
     berth = 0.5 * SEG["shoulder_width"] * 1.75 + PASSING_GAP
     gap = float(wp.obstacles[0].signed_distance(path).min())
@@ -61,7 +67,9 @@ def test_the_way_round_keeps_the_cited_berth(tmp_path):
     assert abreast == pytest.approx(berth, abs=0.02), (abreast, berth)
     assert 0.9 * berth <= gap <= berth + 0.01, (gap, berth)
     clear = np.array([(-3.0, 2.0), (3.0, 2.0)])
-    assert detour_guide(wp, clear, (-3.0, 2.0), (3.0, 2.0), None, None, 0.25, rng) is None
+    assert (
+        detour_guide(wp, clear, (-3.0, 2.0), (3.0, 2.0), None, None, GuideBody(0.25), rng) is None
+    )
     left, right = obstacle_ends(wp.obstacles[0], (-3.0, 0.0), (3.0, 0.0))
     assert left[1] == pytest.approx(0.3) and right[1] == pytest.approx(-0.3)
 

@@ -9,26 +9,9 @@ import pytest
 
 from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import Walker
-from mjwalk.plan import stepcheck
 from mjwalk.plan.hybrid import HybridPlanner, preferred_speed
 from mjwalk.plan.options import WALK_PACE_SD, PlannerOptions
 from mjwalk.world import load_workplace
-
-
-def test_step_energy_is_least_at_the_preferred_speed():
-    """c(v) = (v*/v + v/v*)/2 per metre: 1 at the preferred speed, the same at v and v*²/v,
-    2.5 % more at 0.8 v*; a step that stands still costs v*·T/2."""
-    pace, dur = 1.3, 0.55
-    at_pace = stepcheck.step_energy(pace * dur, dur, pace)
-    assert at_pace == pytest.approx(pace * dur)
-    for f in (0.5, 0.8, 0.95, 1.05, 1.25, 2.0):
-        length = f * pace * dur
-        c = stepcheck.step_energy(length, dur, pace) / length
-        assert c == pytest.approx(0.5 * (1 / f + f)) and c > 1.0
-    assert stepcheck.step_energy(0.8 * 0.8 * pace * dur, 0.8 * dur, pace) / (
-        0.8 * 0.8 * pace * dur
-    ) == pytest.approx(1.025, abs=1e-3)
-    assert stepcheck.step_energy(0.0, dur, pace) == pytest.approx(0.5 * pace * dur)
 
 
 @pytest.fixture(scope="module")

@@ -7,8 +7,6 @@ import pytest
 
 from mjwalk import PlanningError
 from mjwalk.gait.default import default_model
-from mjwalk.plan.decoder import StepDecoder
-from mjwalk.plan.heuristic import goal_distance, grid_excess
 from mjwalk.plan.occupancy import MOVES_16, check_endpoint, occupancy_grid, shared_grid
 from mjwalk.world import load_workplace
 
@@ -73,51 +71,6 @@ def test_quick_endpoint_accept_never_passes_a_bad_point(workplace):
                     check_endpoint(workplace, xy, radius, "start")
                 except PlanningError:
                     pass
-
-
-def test_goal_distance_bound(workplace):
-    """The obstacle-aware distance is the larger of the straight line and the cell's grid
-    distance over the worst detour factor minus the point's offset from the cell centre."""
-    grid = occupancy_grid(workplace)
-    goal = np.array(workplace.floor_bounds[:2]) + 1.0
-    gd = goal_distance(grid, goal, 0.25)
-    pts = _points(workplace, 3000, 3, margin=0.0)
-    ny, nx = grid.free.shape
-    i = np.clip(np.rint((pts[:, 0] - grid.x0) / grid.cell), 0, nx - 1).astype(int)
-    j = np.clip(np.rint((pts[:, 1] - grid.y0) / grid.cell), 0, ny - 1).astype(int)
-    offset = np.hypot(pts[:, 0] - (grid.x0 + i * grid.cell), pts[:, 1] - (grid.y0 + j * grid.cell))
-    want = np.maximum(
-        np.hypot(*(pts - goal).T), gd.cells[j, i] / grid_excess(tuple(grid.offsets)) - offset
-    )
-    np.testing.assert_array_equal(gd(pts), want)
-
-
-def test_decoder_matches_model_decoding():
-    """The planner's affine map gives the model's decoded pelvis samples, landing foot and
-    yaws (to rounding) for sampled features, including the far tails."""
-    model = default_model()
-    rng = np.random.default_rng(4)
-    z = np.vstack(
-        [
-            model.sample_first(20, rng).features,
-            model.sample_next_features(
-                model.sample_first(2, rng, "left").features, "left", 50, rng
-            ),
-            3.0 * rng.standard_normal((20, model.n_dims)),
-        ]
-    )
-    m = 16
-    dec = StepDecoder(model, m)
-    got = z @ dec.matrix + dec.offset
-    batch = model.decode(z, "left")
-    local, _ = batch.resample(m)
-    np.testing.assert_allclose(got[:, :m].real, local[..., 0], atol=1e-9)
-    np.testing.assert_allclose(got[:, :m].imag, local[..., 1], atol=1e-9)
-    np.testing.assert_allclose(got[:, 0], 0.0, atol=1e-12)  # every step starts at its origin
-    np.testing.assert_allclose(got[:, m].real, batch.footprint[:, 0], atol=1e-9)
-    np.testing.assert_allclose(got[:, m].imag, batch.footprint[:, 1], atol=1e-9)
-    np.testing.assert_allclose(got[:, m + 1].real, batch.footprint[:, 2], atol=1e-9)
-    np.testing.assert_allclose(got[:, m + 1].imag, batch.end_yaw, atol=1e-9)
 
 
 def test_sample_next_features_are_sample_next_draws():

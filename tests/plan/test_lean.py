@@ -1,16 +1,15 @@
-"""The planner's stance-lean check (plan/stepcheck.py): the stance leg must follow the pelvis
-within the ankle's eversion/inversion and the hip's adduction/abduction ranges."""
+"""The planner's stance-lean check (mjwalk.plan.lean, used by mjwalk.plan.stepcheck): the stance
+leg must follow the pelvis within the ankle's eversion/inversion and the hip's
+adduction/abduction ranges."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
-import pytest
 
 from mjwalk.body.humanoid import leg_geometry
-from mjwalk.plan import stepcheck
-from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan import lean, stepcheck
 from mjwalk.plan.options import lean_params
 
 M = 16
@@ -30,7 +29,7 @@ def _compiled(pelvis, yaw, stance, stance_left, par) -> bool:
     offset[M + 2 :] = np.asarray(yaw) - FRAME
     loc = np.zeros(M + 2, complex)
     loc[:M] = pelvis[:, 0] + 1j * pelvis[:, 1]
-    return stepcheck.stance_lean_ok(
+    return lean.stance_lean_ok(
         np.zeros((1, 1)), 0, np.zeros((1, 2 * M + 2), complex), offset, loc, M,
         complex(stance[0], stance[1]), stance[2] - FRAME, stance_left, par,
     )  # fmt: skip
@@ -51,7 +50,7 @@ def test_lean_is_the_ankle_inversion_of_the_leg_ik():
     g, par = leg_geometry(), _par()
     for x in (-0.3, -0.1, 0.0, 0.1, 0.35):
         pelvis, yaw, stance = _straight(x)
-        inv, _ = stepcheck.stance_lean(pelvis, yaw, stance, False, par)
+        inv, _ = lean.stance_lean(pelvis, yaw, stance, False, par)
         hip = pelvis + [g.hip_y, 0.0]  # the right hip, heading +y
         d = stance[:2] - hip
         h = np.sqrt((g.thigh + g.shank - 1e-9) ** 2 - (d**2).sum(1))
@@ -70,12 +69,12 @@ def test_hand_made_placements_beyond_the_lean_range_are_refused():
     cases = {0.1: True, 0.0: True, -0.25: False, 0.6: False}
     for x, ok in cases.items():
         pelvis, yaw, stance = _straight(x)
-        inv, abd = stepcheck.stance_lean(pelvis, yaw, stance, False, par)
-        assert stepcheck.lean_in_range(inv, abd, par) is ok, (x, np.degrees(inv).round(1))
+        inv, abd = lean.stance_lean(pelvis, yaw, stance, False, par)
+        assert lean.lean_in_range(inv, abd, par) is ok, (x, np.degrees(inv).round(1))
         assert _compiled(pelvis, yaw, stance, False, par) is ok, x
     pelvis, yaw, stance = _straight(0.15)
     stance[2] += math.radians(60)  # turned left: the hip now lies lateral of the foot's axis
-    assert not stepcheck.lean_in_range(*stepcheck.stance_lean(pelvis, yaw, stance, False, par), par)
+    assert not lean.lean_in_range(*lean.stance_lean(pelvis, yaw, stance, False, par), par)
     assert not _compiled(pelvis, yaw, stance, False, par)
     # mirrored: a left stance foot
     pelvis, yaw, stance = _straight(-0.1)
@@ -98,47 +97,7 @@ def test_compiled_lean_check_agrees_with_numpy():
         stance = np.array([rng.uniform(-0.4, 0.4), rng.uniform(-0.2, 0.6), FRAME])
         stance[2] += rng.uniform(-1.2, 1.2)
         left = bool(rng.integers(2))
-        want = stepcheck.lean_in_range(*stepcheck.stance_lean(pelvis, yaw, stance, left, par), par)
+        want = lean.lean_in_range(*lean.stance_lean(pelvis, yaw, stance, left, par), par)
         assert _compiled(pelvis, yaw, stance, left, par) is want
         refused += not want
     assert 300 < refused < 1700  # both verdicts well represented
-
-
-@pytest.mark.parametrize("foot_x", [0.1, -0.2])
-def test_check_steps_refuses_the_steps_the_stance_leg_cannot_follow(scenes_dir, foot_x, request):
-    """In the planner's step check (sampled steps, decoded by the planner's affine map) a step
-    is refused exactly when its stance leg leans out of range, by the NumPy form on the
-    model's own decoding; the stance foot is the node's landed foot (column 4: its heading).
-    Without a heading (a start node) the check is skipped."""
-    from mjwalk.gait.default import default_model
-    from mjwalk.world import load_workplace
-
-    model = default_model()
-    wp = load_workplace(scenes_dir / "open_floor.xml")
-    pl = HybridPlanner(wp, "east", model)
-    par, ipar = pl.params.vectors()
-    dec = pl.decoder()
-    rng = np.random.default_rng(2)
-    z = model.sample_next_features(model.sample_first(1, rng, "right").features, "right", 300, rng)
-    batch = model.decode(z, "left")  # swing left: the right foot stands
-    local, yaw = batch.resample(M)
-    stance = np.array([foot_x, 0.05, FRAME])  # the landed right foot, beside the start
-    args = (dec.matrix, dec.offset, len(z), len(z), np.array([FRAME]), np.array([True]),
-            np.zeros(1, bool))  # fmt: skip
-    rest = (pl.params.thresholds, par, ipar, wp.walk_field().values, pl.distance.flat_bound())
-    node = np.array([[0j, complex(stance[0], stance[1]), np.nan, 0.0, stance[2]]])
-    rows = stepcheck.check_steps(z, *args, node, *rest)[0]
-    node[0, 4] = np.nan
-    free = stepcheck.check_steps(z, *args, node, *rest)[0]
-    want = [
-        r
-        for r in free
-        if stepcheck.lean_in_range(
-            *stepcheck.stance_lean(local[r], FRAME + yaw[r], stance, False, par), par
-        )
-    ]
-    np.testing.assert_array_equal(rows, want)
-    if foot_x > 0:  # a foot under the hip: (measured) all but a few steps pass
-        assert len(rows) > 0.9 * len(free)
-    else:  # a foot crossed under the other: most are refused
-        assert len(rows) < 0.5 * len(free)

@@ -1,4 +1,6 @@
-"""The landing foot's way in (issue 45, item 2): station run 32 of seed 0 brushed rack 1's left
+"""The planner's step geometry (mjwalk.plan.stepgeom).
+
+The landing foot's way in (issue 45, item 2): station run 32 of seed 0 brushed rack 1's left
 upright with its left toes one frame before the last step of route T3 landed. The landing
 footprint kept FOOT_CLEARANCE at the ankle and the toes, but the step came in 28 degrees off the
 foot's heading, so the foot, turned to its landing yaw, slid sideways into place and its toes
@@ -15,7 +17,7 @@ import pytest
 
 from mjwalk.plan.options import FOOT_CLEARANCE, FOOT_LENGTH, TOE_APPROACH_SHARE, TOE_PROBE_STEP
 from mjwalk.plan.slots import params
-from mjwalk.plan.stepgeom import toe_approach_clear
+from mjwalk.plan.stepgeom import beyond, toe_approach_clear, unit_turn, within
 from mjwalk.world import load_workplace
 
 # run 32's last step of T3 (main at 8f7a18a): the left foot lifts off at LIFT and lands at LAND
@@ -79,3 +81,18 @@ def test_station_run_32_has_no_contact(scenes_dir):
     rng = np.random.default_rng(np.random.SeedSequence([0, 32]))
     r = simulate_cycle(spec, rng, run=32, ergonomics=False)
     assert r.collisions == []
+
+
+def test_beyond_and_within_agree_with_abs_off_the_band():
+    rng = np.random.default_rng(1)
+    v = rng.normal(size=200) + 1j * rng.normal(size=200)
+    for z in v:
+        assert beyond(z, 1.0) == (abs(z) > 1.0)
+        assert within(z, 1.0) == (abs(z) <= 1.0)
+    assert not beyond(complex(np.nan, 0.0), 1.0) and not within(complex(np.nan, 0.0), 1.0)
+
+
+def test_unit_turn_is_exp_i_angle():
+    for angle in (0.0, 0.5, -2.0, math.pi):
+        assert unit_turn(angle) == complex(math.cos(angle), math.sin(angle))
+        assert abs(unit_turn(angle) - cmath.exp(1j * angle)) < 1e-15

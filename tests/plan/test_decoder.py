@@ -1,0 +1,44 @@
+"""The planner's affine step decoder (mjwalk.plan.decoder): features to checked geometry."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mjwalk.gait.default import default_model
+from mjwalk.plan.decoder import StepDecoder, decoder_of
+
+
+def test_decoder_matches_model_decoding():
+    """The planner's affine map gives the model's decoded pelvis samples, landing foot and
+    yaws (to rounding) for sampled features, including the far tails."""
+    model = default_model()
+    rng = np.random.default_rng(4)
+    z = np.vstack(
+        [
+            model.sample_first(20, rng).features,
+            model.sample_next_features(
+                model.sample_first(2, rng, "left").features, "left", 50, rng
+            ),
+            3.0 * rng.standard_normal((20, model.n_dims)),
+        ]
+    )
+    m = 16
+    dec = StepDecoder(model, m)
+    got = z @ dec.matrix + dec.offset
+    batch = model.decode(z, "left")
+    local, _ = batch.resample(m)
+    np.testing.assert_allclose(got[:, :m].real, local[..., 0], atol=1e-9)
+    np.testing.assert_allclose(got[:, :m].imag, local[..., 1], atol=1e-9)
+    np.testing.assert_allclose(got[:, 0], 0.0, atol=1e-12)  # every step starts at its origin
+    np.testing.assert_allclose(got[:, m].real, batch.footprint[:, 0], atol=1e-9)
+    np.testing.assert_allclose(got[:, m].imag, batch.footprint[:, 1], atol=1e-9)
+    np.testing.assert_allclose(got[:, m + 1].real, batch.footprint[:, 2], atol=1e-9)
+    np.testing.assert_allclose(got[:, m + 1].imag, batch.end_yaw, atol=1e-9)
+
+
+def test_decoder_of_keeps_one_decoder_per_model_and_size():
+    model = default_model()
+    a = decoder_of(model, 16)
+    assert decoder_of(model, 16) is a
+    assert a.matrix.shape == (model.n_dims, 2 * 16 + 3) and a.offset.shape == (2 * 16 + 3,)
+    assert decoder_of(model, 8).matrix.shape == (model.n_dims, 2 * 8 + 3)
