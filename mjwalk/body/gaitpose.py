@@ -16,6 +16,7 @@ from __future__ import annotations
 import functools
 from dataclasses import dataclass
 
+import mujoco
 import numpy as np
 from sklearn.decomposition import PCA
 from sklearn.gaussian_process import GaussianProcessRegressor
@@ -24,6 +25,7 @@ from sklearn.neighbors import KNeighborsClassifier
 from sklearn.pipeline import Pipeline, make_pipeline
 from sklearn.preprocessing import StandardScaler
 
+from mjwalk.body.humanoid import humanoid_model
 from mjwalk.body.legs import LegMotion, legs_from_walk
 from mjwalk.conventions import DEFAULT_STATURE, SAMPLE_RATE_HZ
 from mjwalk.errors import MjwalkError
@@ -258,10 +260,6 @@ def foot_skating(
     when its sole site is the lower one and below ``contact_height`` metres in two consecutive
     frames. A perfect walk has 0 (planted feet do not slide).
     """
-    import mujoco
-
-    from mjwalk.body.humanoid import humanoid_model
-
     model, jm = humanoid_model(stature)
     data = mujoco.MjData(model)
     col = {n: i for i, n in enumerate(NAMES)}

@@ -28,6 +28,8 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from mjwalk._io import atomic_path
+
 # The humanoid's body figures live in mjwalk.anthropometry (lower stages need them too).
 from mjwalk.anthropometry import (  # noqa: F401  re-exported
     FINGERS,
@@ -448,8 +450,6 @@ def attach_humanoid(
 
 def write_humanoid_xml(path: str | Path, stature: float = DEFAULT_STATURE) -> None:
     """Write the humanoid MJCF (the file ``scenes/humanoid.xml`` is produced by this)."""
-    from mjwalk._io import atomic_path
-
     spec = build_humanoid(stature)
     floor = spec.worldbody.add_geom(name="floor")
     floor.type = mujoco.mjtGeom.mjGEOM_PLANE

@@ -10,6 +10,7 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+from scipy.signal import find_peaks
 
 from mjwalk.body.legs.reference import ReferenceGait
 from mjwalk.conventions import Side, side_prefix
@@ -31,8 +32,6 @@ def heel_strikes(pitch: np.ndarray, fps: float) -> np.ndarray:
     """Sample indices of heel strikes: the foot's toes-up pitch peaks (radians, (T,)), at least
     0.6 s apart and 10 deg prominent. The foot lands heel first with the toes highest, then
     rolls down."""
-    from scipy.signal import find_peaks
-
     peaks, _ = find_peaks(pitch, distance=max(1, int(0.6 * fps)), prominence=np.deg2rad(10))
     return peaks
 

@@ -14,6 +14,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.anthropometry import leg_geometry
+from mjwalk.body.humanoid import humanoid_model
 from mjwalk.conventions import DEFAULT_STATURE
 
 
@@ -22,8 +23,6 @@ def posed(legs, stature: float = DEFAULT_STATURE):
     :class:`~mjwalk.body.legs.synthesis.LegMotion`): the humanoid of ``stature`` metres in its
     neutral pose with the legs' root, yaw and joint angles of that frame, after MuJoCo forward
     kinematics (``data`` is reused from frame to frame)."""
-    from mjwalk.body.humanoid import humanoid_model
-
     model, jm = humanoid_model(stature)
     data = mujoco.MjData(model)
     for i in range(len(legs.t)):
