@@ -21,6 +21,7 @@ comment here when those change.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -118,24 +119,54 @@ def _stance_foot(phi, p_ref, scaled, land_prev, hs_pitch, first, stance2, hip_en
     pivot_rows(stance2, p, ball, back, ah, ankle)
 
 
+@dataclass(frozen=True)
+class KneeEnds:
+    """The stance knee spline's boundary conditions (:func:`stance_knee`).
+
+    Attributes:
+        th0: the knee flexion at step phase 0 (the current posture), radians.
+        v0: its velocity there, radians per unit step phase.
+        th1: the knee flexion at step phase 1 (the target posture), radians.
+        v1: its velocity there, radians per unit step phase.
+    """
+
+    th0: float
+    v0: float
+    th1: float
+    v1: float
+
+
 def stance_knee(
     ref: ReferenceGait,
     phi: np.ndarray,
     k_ref: np.ndarray,
-    th0: float,
-    v0: float,
-    th1: float,
-    v1: float,
+    ends: KneeEnds,
     hip_xy: np.ndarray,
     ankle: np.ndarray,
     geom: LegGeometry,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The stance knee (n,) over a step (:func:`~mjwalk.body.legs.steps.stance_angle`: the
-    reference knee ``k_ref`` (n,) at gait cycle ``0.5 phi`` plus a clamped cubic-spline
-    displacement meeting ``th0``, ``v0`` at ``phi = 0`` and ``th1``, ``v1`` at ``phi = 1``,
-    velocities per unit phase; clipped to [:data:`KNEE_MIN`, :data:`KNEE_STANCE_MAX`]) and the
-    pelvis height (n,) at which that leg reaches its ankle (n, 3) from the hip at ``hip_xy``
-    (n, 2), metres."""
+    """The stance knee over a step and the pelvis height it gives.
+
+    The knee is :func:`~mjwalk.body.legs.steps.stance_angle`'s: the reference knee ``k_ref``
+    at gait cycle ``0.5 phi`` plus a clamped cubic-spline displacement, zero at
+    :data:`~mjwalk.body.legs.steps.STANCE_KEYS`, meeting ``ends`` at ``phi = 0`` and 1;
+    clipped to [:data:`KNEE_MIN`, :data:`KNEE_STANCE_MAX`]. The pelvis height is
+    :math:`z = a_z + \\sqrt{\\max(s(k)^2 - h^2, 10^{-6})}` with :math:`s(k)` the leg's
+    hip-to-ankle span at knee :math:`k` and :math:`h` the horizontal hip-to-ankle distance.
+
+    Args:
+        ref: the reference gait (its knee curve and velocities).
+        phi: (n,) step phases in [0, 1].
+        k_ref: (n,) the reference knee at gait cycle ``0.5 phi``, radians.
+        ends: the spline's boundary angles and velocities.
+        hip_xy: (n, 2) the stance hip's (x, y), metres, world frame.
+        ankle: (n, 3) the stance ankle, metres, world frame.
+        geom: the leg lengths.
+
+    Returns:
+        the knee flexion (n,, radians) and the pelvis height (n,, metres).
+    """
+    th0, v0, th1, v1 = ends.th0, ends.v0, ends.th1, ends.v1
     r0, r1 = float(ref("knee", 0.0)), float(ref("knee", 0.5))
     d0 = v0 - 0.5 * float(ref("knee", 0.0, True))
     d1 = v1 - 0.5 * float(ref("knee", 0.5, True))
@@ -178,34 +209,76 @@ def _stance_knee(knots, phi, k_ref, values, d0, d1, hip_xy, ankle, span0, span1,
         z[i] = ankle[i, 2] + math.sqrt(maximum1(s * s - h * h, 1e-6))
 
 
+@dataclass(frozen=True)
+class StanceLeg:
+    """The stance leg over a step's n samples, as :func:`pelvis_height` needs it.
+
+    Attributes:
+        hip_xy: (n, 2) the stance hip's (x, y), metres, world frame.
+        knee: (n,) the stance knee flexion, radians.
+        pitch: (n,) the stance foot's pitch, radians, + toes up (:func:`pelvis_height` updates
+            it in place).
+    """
+
+    hip_xy: np.ndarray
+    knee: np.ndarray
+    pitch: np.ndarray
+
+
+@dataclass(frozen=True)
+class LandingEase:
+    """The swing leg's reach during a walk (:func:`pelvis_height`).
+
+    Attributes:
+        d_max_sq: the swing leg's longest hip-to-ankle distance, squared (m²).
+        d_land: its hip-to-ankle distance at heel strike (m).
+        ease_from: the step phase from which the leg eases into ``d_land``.
+    """
+
+    d_max_sq: float
+    d_land: float
+    ease_from: float
+
+
 def pelvis_height(
     phi: np.ndarray,
     z_flat: np.ndarray,
     ankle_sw: np.ndarray,
     hip_sw: np.ndarray,
-    hip_st: np.ndarray,
-    knee_st: np.ndarray,
-    p_st: np.ndarray,
+    stance: StanceLeg,
     fr: StepFrames,
-    d_max_sq: float,
-    d_land: float,
-    ease_from: float,
+    ease: LandingEase,
     geom: LegGeometry,
 ) -> tuple[np.ndarray, np.ndarray | None]:
-    """The pelvis height (n,) over a step: the stance leg's ``z_flat`` (n,), capped where the
-    swing leg (ankle ``ankle_sw`` (n, 3), hip at ``hip_sw`` (n, 2)) could not reach its foot
-    at its longest span (``d_max_sq``, m²); from step phase ``ease_from`` (at least three
-    samples, not the first) the swing leg's hip-to-ankle distance eases into its heel-strike
-    length ``d_land`` (m, zero velocity) along a cubic from its length and velocity there, and
-    the pelvis height follows from it. Where the pelvis then rises, the trailing (stance) leg
-    keeps its knee ``knee_st`` (n,): its heel rises further about the ball of its footprint
-    (``p_st`` (n,) updated in place, hip at ``hip_st`` (n, 2)); returns the stance ankle
-    (n, 3) for the new pitches then, else None."""
+    """The pelvis height over a step: the stance leg's ``z_flat``, capped where the swing leg
+    could not reach its foot at its longest span (``ease.d_max_sq``); from step phase
+    ``ease.ease_from`` (at least three samples, not the first) the swing leg's hip-to-ankle
+    distance eases into its heel-strike length ``ease.d_land`` (zero velocity) along a cubic
+    from its length and velocity there, and the pelvis height follows from it. Where the
+    pelvis then rises, the trailing (stance) leg keeps its knee: its heel rises further about
+    the ball of its footprint.
+
+    Args:
+        phi: (n,) step phases in [0, 1].
+        z_flat: (n,) the pelvis height the stance leg gives (:func:`stance_knee`), metres.
+        ankle_sw: (n, 3) the swing ankle, metres, world frame.
+        hip_sw: (n, 2) the swing hip's (x, y), metres, world frame.
+        stance: the stance leg; its ``pitch`` is updated in place where the heel rises.
+        fr: the step (its stance footprint).
+        ease: the swing leg's longest and landing spans and the ease's start phase.
+        geom: the leg lengths.
+
+    Returns:
+        the pelvis height (n,, metres) and the stance ankle (n, 3, metres) for the new
+        pitches where the landing eased, else None.
+    """
+    hip_st, knee_st, p_st = stance.hip_xy, stance.knee, stance.pitch
+    d_max_sq, d_land, ease_from = ease.d_max_sq, ease.d_land, ease.ease_from
     lj = np.flatnonzero(phi >= ease_from)
-    ease = len(lj) >= 3 and lj[0] > 0
-    j = int(lj[0]) if ease else -1
+    easing = len(lj) >= 3 and lj[0] > 0
+    j = int(lj[0]) if easing else -1
     # u³ by NumPy (its power rounds unlike a compiled one)
-    u3 = ((phi[lj] - phi[j]) / (1.0 - phi[j])) ** 3 if ease else np.empty(0)
+    u3 = ((phi[lj] - phi[j]) / (1.0 - phi[j])) ** 3 if easing else np.empty(0)
     L1, L2 = float(geom.thigh), float(geom.shank)
     n = len(phi)
     z, ankle = np.empty(n), np.empty((n, 3))

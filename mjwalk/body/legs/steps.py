@@ -77,6 +77,30 @@ class StepFrames:
     p_end: float | None = None
 
 
+@dataclass(frozen=True)
+class FootTracks:
+    """Both feet's per-sample targets over a walk, as the leg synthesis builds them: each field
+    maps a side's joint-name letter ("l"/"r") to an array over the walk's n samples (world
+    frame, metres, radians). The dicts and arrays are shared with the caller: the functions
+    that take a FootTracks update them in place where they say so.
+
+    Attributes:
+        ankle: (n, 3) ankle-joint targets.
+        fyaw: (n,) foot headings, from +x CCW.
+        pitch: (n,) foot pitch to the floor, + toes up.
+        toe: (n,) toe-joint angle (+ flexion).
+        ground: (n,) bool, the foot on the floor (pivoting on a footprint).
+        prints: (n, 3) the footprint (x, y, yaw) it stands on where ``ground``.
+    """
+
+    ankle: dict[str, np.ndarray]
+    fyaw: dict[str, np.ndarray]
+    pitch: dict[str, np.ndarray]
+    toe: dict[str, np.ndarray]
+    ground: dict[str, np.ndarray]
+    prints: dict[str, np.ndarray]
+
+
 def step_frames(walk: WalkPath) -> list[StepFrames]:
     """Per step: swing side, lift-off and landing footprints, stance footprint."""
     steps = walk.steps
