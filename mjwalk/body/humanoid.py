@@ -395,24 +395,53 @@ class JointMap:
         return name in self._index
 
     def index(self, name: str) -> int:
-        """Position of ``name`` in :attr:`names`; unknown names raise SceneError."""
+        """Position of ``name`` in :attr:`names`; unknown names raise SceneError.
+
+        Args:
+            name: a joint name without the prefix, e.g. ``"knee_l"``.
+
+        Returns:
+            the index into :attr:`names`, :attr:`qposadr` and :attr:`range`.
+        """
         try:
             return self._index[name]
         except KeyError:
             raise SceneError(f"humanoid has no joint {name!r}") from None
 
     def adr(self, name: str) -> int:
-        """qpos address of joint ``name``."""
+        """qpos address of joint ``name``.
+
+        Args:
+            name: a joint name without the prefix.
+
+        Returns:
+            the index into ``qpos``.
+        """
         return int(self.qposadr[self.index(name)])
 
     def limits(self, name: str) -> tuple[float, float]:
-        """(lo, hi) range of joint ``name`` in radians."""
+        """Range of joint ``name``.
+
+        Args:
+            name: a joint name without the prefix.
+
+        Returns:
+            (lo, hi), radians.
+        """
         lo, hi = self.range[self.index(name)]
         return float(lo), float(hi)
 
     @classmethod
     def from_model(cls, model: mujoco.MjModel, prefix: str = "") -> JointMap:
-        """Collect the humanoid joints (names starting with ``prefix``) of a compiled model."""
+        """Collect the humanoid joints (names starting with ``prefix``) of a compiled model.
+
+        Args:
+            model: a compiled model holding the humanoid (alone or attached to a scene).
+            prefix: the humanoid's name prefix in ``model``.
+
+        Returns:
+            the map of its hinges (free root excluded); SceneError without a root joint.
+        """
         names, adrs, ranges, root = [], [], [], None
         for j in range(model.njnt):
             full = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or ""
@@ -431,7 +460,15 @@ class JointMap:
         return cls(tuple(names), np.array(adrs, dtype=int), np.array(ranges), root, prefix)
 
     def neutral_qpos(self, model: mujoco.MjModel, stature: float = DEFAULT_STATURE) -> np.ndarray:
-        """``model.qpos0`` with the humanoid standing upright at the origin facing +x."""
+        """``model.qpos0`` with the humanoid standing upright at the origin facing +x.
+
+        Args:
+            model: the compiled model the map was made from.
+            stature: the humanoid's stature, metres (sets the pelvis height).
+
+        Returns:
+            (nq,) qpos: root at (0, 0, :func:`pelvis_height`), identity quaternion, joints at 0.
+        """
         q = model.qpos0.copy()
         q[self.root : self.root + 7] = [0, 0, pelvis_height(stature), 1, 0, 0, 0]
         q[self.qposadr] = 0.0
@@ -439,7 +476,14 @@ class JointMap:
 
 
 def humanoid_model(stature: float = DEFAULT_STATURE) -> tuple[mujoco.MjModel, JointMap]:
-    """Compile the bare humanoid (with a floor plane for viewing) and its JointMap."""
+    """Compile the bare humanoid and its JointMap.
+
+    Args:
+        stature: the humanoid's stature, metres.
+
+    Returns:
+        the compiled model and its JointMap (no prefix).
+    """
     spec = build_humanoid(stature)
     model = spec.compile()
     return model, JointMap.from_model(model)
@@ -481,7 +525,13 @@ def attach_humanoid(
 
 
 def write_humanoid_xml(path: str | Path, stature: float = DEFAULT_STATURE) -> None:
-    """Write the humanoid MJCF (the file ``scenes/humanoid.xml`` is produced by this)."""
+    """Write the humanoid MJCF with a floor plane and a light (the file
+    ``scenes/humanoid.xml`` is produced by this), atomically, mode 0644.
+
+    Args:
+        path: the output file.
+        stature: the humanoid's stature, metres.
+    """
     spec = build_humanoid(stature)
     floor = spec.worldbody.add_geom(name="floor")
     floor.type = mujoco.mjtGeom.mjGEOM_PLANE

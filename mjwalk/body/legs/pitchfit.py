@@ -42,12 +42,26 @@ def repitch_foot(
     dp: np.ndarray,
     geom: LegGeometry,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """A foot's ankle targets (n, 3) and pitches (n,) with the pitch lowered by ``dp`` (n,):
-    on the floor (``ground``) about the pivot of its footprint ``prints`` (n, 3) (the heel
-    while toes up, the ball while heel up, :func:`~mjwalk.body.legs.ik.pivot_ankle`),
-    in the air by the same motion of the ankle relative to the foot, as if it stood on a
-    footprint under it (headings ``fyaw`` (n,)). ``toe`` (n,) keeps the toes' angle to the
-    floor while the heel is up (updated in place). New arrays; the inputs are not changed."""
+    """A foot's ankle targets and pitches with the pitch lowered by ``dp``: on the floor
+    (``ground``) about the pivot of its footprint (the heel while toes up, the ball while heel
+    up, :func:`~mjwalk.body.legs.ik.pivot_ankle`), in the air by the same motion of the
+    ankle relative to the foot, as if it stood on a footprint under it. New arrays; the
+    inputs are not changed except ``toe``.
+
+    Args:
+        ankle: (n, 3) ankle targets, metres, world frame.
+        pitch: (n,) pitches, radians, + toes up.
+        toe: (n,) toe angles, radians; updated in place (the toes keep their angle to the floor
+            while the heel is up).
+        fyaw: (n,) foot headings, radians from +x CCW.
+        ground: (n,) bool, the foot on the floor.
+        prints: (n, 3) the footprints it stands on.
+        dp: (n,) the pitch decrease, radians.
+        geom: the leg and foot lengths.
+
+    Returns:
+        the new ankle targets (n, 3) and pitches (n,).
+    """
     ankle = np.array(ankle, dtype=float, order="C")
     pitch = np.array(pitch, dtype=float)
     _repitch_rows(

@@ -55,9 +55,9 @@ def stance_foot(
     knee_end: float,
     geom: LegGeometry,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The stance foot's pitch (n,) and ankle (n, 3) over a step: heel-strike roll-down, flat,
-    heel rise after the reference, and the heel rising further (about the ball) towards the
-    end where the leg with ``knee_end`` flexion would not reach the hip at the target posture.
+    """The stance foot's pitch and ankle over a step: heel-strike roll-down, flat, heel rise
+    after the reference, and the heel rising further (about the ball) towards the end where
+    the leg with ``knee_end`` flexion would not reach the hip at the target posture.
 
     Args:
         fr: the step (stance footprint, ``first``).
@@ -69,6 +69,9 @@ def stance_foot(
         hip_end: (3,) the stance hip joint centre at the step's end (target posture), metres.
         knee_end: the stance knee flexion there (radians).
         geom: the leg lengths.
+
+    Returns:
+        the pitch (n,), radians, + toes up, and the ankle (n, 3), metres, world frame.
     """
     L1, L2 = float(geom.thigh), float(geom.shank)
     n = len(phi)
@@ -366,11 +369,21 @@ def reach_deficit(
     reach_sq: dict[str, np.ndarray],
     geom: LegGeometry,
 ) -> np.ndarray:
-    """(n,) how far (m) the pelvis at ``root`` (n, 3) with heading ``yaw`` (n,) stands above
-    the height from which each grounded leg (``ground`` per side "l"/"r", (n,) bool) reaches
-    its ankle (``ankle`` per side, (n, 3)) with the hip-to-ankle span whose square is
-    ``reach_sq`` (per side, (n,), m²): the larger of the legs' deficits, 0 where neither is
-    grounded or the grounded legs reach."""
+    """How far the pelvis stands above the height from which each grounded leg reaches its
+    ankle with a given span: the larger of the legs' deficits, 0 where neither is grounded or
+    the grounded legs reach.
+
+    Args:
+        root: (n, 3) pelvis positions, metres, world frame.
+        yaw: (n,) pelvis yaw, radians from +x CCW.
+        ankle: per side ("l"/"r") the (n, 3) ankle targets, metres.
+        ground: per side the (n,) bool foot-on-the-floor flags.
+        reach_sq: per side the (n,) squared hip-to-ankle spans, m².
+        geom: the leg geometry (``hip_y``).
+
+    Returns:
+        (n,) the deficit, metres (>= 0).
+    """
     out = np.zeros(len(yaw))
     for s_ in "lr":
         _reach_deficit(

@@ -103,7 +103,16 @@ class FootTracks:
 
 
 def step_frames(walk: WalkPath) -> list[StepFrames]:
-    """Per step: swing side, lift-off and landing footprints, stance footprint."""
+    """Per step: swing side, lift-off and landing footprints, stance footprint. The first
+    step lifts a foot mirrored beside the stance foot about the pelvis (standing start); the
+    others lift the foot the previous step stood on.
+
+    Args:
+        walk: a WalkPath with steps.
+
+    Returns:
+        one :class:`StepFrames` per step, in order (``land_p`` not set yet).
+    """
     steps = walk.steps
     frames = []
     for i, st in enumerate(steps):
@@ -135,11 +144,21 @@ def step_frames(walk: WalkPath) -> list[StepFrames]:
 def landing_pitches(
     frames: list[StepFrames], xy, yaw, hs_pitch, d_land, dorsi_max, geom: LegGeometry
 ) -> None:
-    """Per step (``frames``, in place: ``land_p``), the pitch (radians, + toes up) the swing
-    foot lands with: the reference's ``hs_pitch``, or flatter (down to 0) where the landing
-    leg at its heel-strike length ``d_land`` (m) under the pelvis at ``xy``, ``yaw`` of the
-    landing sample would dorsiflex its ankle past ``dorsi_max`` (a foot landing under the
-    hip). All steps at once; a few fixed-point rounds (compiled: :func:`_landing_rounds`)."""
+    """Per step (``frames``, in place: ``land_p``), the pitch the swing foot lands with: the
+    reference's ``hs_pitch``, or flatter (down to 0) where the landing leg at its heel-strike
+    length ``d_land`` under the pelvis of the landing sample would dorsiflex its ankle past
+    ``dorsi_max`` (a foot landing under the hip). All steps at once; a few fixed-point rounds
+    (compiled: :func:`_landing_rounds`).
+
+    Args:
+        frames: the walk's steps; their ``land_p`` is set.
+        xy: (N, 2) the pelvis positions of the walk's samples, metres.
+        yaw: (N,) the pelvis yaw, radians from +x CCW.
+        hs_pitch: the reference's heel-strike pitch, radians, + toes up.
+        d_land: the landing leg's hip-to-ankle distance, metres.
+        dorsi_max: the highest ankle flexion, radians.
+        geom: the leg lengths.
+    """
     L1, L2, rmin, rmax = ik_lengths(geom)
     land_p = np.full(len(frames), float(hs_pitch))
     _landing_rounds(
@@ -205,15 +224,28 @@ def _landing_rounds(b, land, sgn, xy, yaw, d_land_sq, dorsi_max, hip_y, L1, L2, 
 
 
 def stance_angle(ref: ReferenceGait, name: str, phi, th0, v0, th1, v1) -> np.ndarray:
-    """Stance-leg angle ``name`` (radians) at step phases ``phi``: the reference's own curve
-    over cycle 0-50 % plus a cubic-spline displacement that is zero at the key frames
-    :data:`STANCE_KEYS` (so the angle coincides with the reference key-frame angles there) and
-    meets the current posture's angle ``th0`` / velocity ``v0`` at ``phi = 0`` and the target
-    posture's ``th1`` / ``v1`` at ``phi = 1`` (velocities per unit phase).
+    """Stance-leg angle ``name`` at step phases ``phi``: the reference's own curve over cycle
+    0-50 % plus a cubic-spline displacement that is zero at the key frames
+    :data:`STANCE_KEYS` (so the angle coincides with the reference key-frame angles there)
+    and meets the current posture's angle ``th0`` / velocity ``v0`` at ``phi = 0`` and the
+    target posture's ``th1`` / ``v1`` at ``phi = 1``.
 
     Between the keys and the boundaries the result keeps the reference's shape (its loading
     response, say) instead of the bare cubic through five points, which cuts the reference's
-    curves short (motion warping, Witkin & Popovic 1995, applied to the paper's spline)."""
+    curves short (motion warping, Witkin & Popovic 1995, applied to the paper's spline).
+
+    Args:
+        ref: the reference gait.
+        name: "hip", "knee" or "pitch".
+        phi: step phases in [0, 1] (any shape).
+        th0: the angle at ``phi = 0``, radians.
+        v0: its velocity there, radians per unit phase.
+        th1: the angle at ``phi = 1``, radians.
+        v1: its velocity there, radians per unit phase.
+
+    Returns:
+        the angle, radians, the shape of ``phi``.
+    """
     r0, r1 = float(ref(name, 0.0)), float(ref(name, 0.5))
     d0 = v0 - 0.5 * float(ref(name, 0.0, True))
     d1 = v1 - 0.5 * float(ref(name, 0.5, True))
