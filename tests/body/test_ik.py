@@ -1,4 +1,4 @@
-"""Leg kinematics (mjwalk.body.legs.ik): rotations, the analytic IK, FK and the foot pivots."""
+"""Leg kinematics (mjwalk.body.legs.ik): rotations, the analytic IK and FK."""
 
 from __future__ import annotations
 
@@ -7,17 +7,7 @@ import numpy as np
 import pytest
 
 from mjwalk.body.humanoid import humanoid_model, leg_geometry
-from mjwalk.body.legs.ik import (
-    ball_offset,
-    foot_lowest,
-    heel_rise,
-    leg_fk,
-    leg_ik,
-    pivot_ankle,
-    rot_x,
-    rot_y,
-    rot_z,
-)
+from mjwalk.body.legs.ik import foot_lowest, leg_fk, leg_ik, rot_x, rot_y, rot_z
 from mjwalk.conventions import side_of_prefix
 
 
@@ -35,40 +25,6 @@ def test_rotations_are_right_handed_and_batched():
     assert np.allclose(rot_z(q) @ [1, 0, 0], [0, 1, 0])
     assert np.allclose(rot_y(q) @ [0, 0, 1], [1, 0, 0])
     assert np.allclose(rot_x(q) @ [0, 1, 0], [0, 0, 1])
-
-
-def test_pivot_ankle_keeps_the_pivot_on_the_floor():
-    """A flat foot's ankle is at ankle height over the footprint; toes up it turns about the
-    heel, heel up about the ball: the pivot stays put and the ankle stays at its distance."""
-    g = leg_geometry()
-    foot = np.array([0.3, -0.1, 0.4])
-    flat = pivot_ankle(foot, np.array([0.0]), g)
-    assert np.allclose(flat, [[0.3, -0.1, g.ankle_height]])
-    fwd = np.array([np.cos(0.4), np.sin(0.4), 0.0])
-    heel = np.array([0.3, -0.1, 0.0]) - g.foot_back * fwd
-    ball = np.array([0.3, -0.1, 0.0]) + ball_offset(g) * fwd
-    up, down = pivot_ankle(foot, np.array([0.3, -0.5]), g)
-    r_heel = np.linalg.norm(flat[0] - heel)
-    r_ball = np.linalg.norm(flat[0] - ball)
-    assert np.linalg.norm(up - heel) == pytest.approx(r_heel)
-    assert np.linalg.norm(down - ball) == pytest.approx(r_ball)
-    assert up[2] > g.ankle_height and down[2] > g.ankle_height
-
-
-def test_heel_rise_only_where_the_leg_cannot_reach():
-    """heel_rise leaves the pitch where the hip is within reach of the flat foot's ankle, and
-    raises the heel (pitch below 0, not under its bound) for a hip 3 cm out of reach ahead,
-    bringing the ankle closer to it."""
-    g = leg_geometry()
-    foot = np.array([0.0, 0.0, 0.0])
-    d = float(g.span(0.1))
-    near = np.array([0.0, 0.0, g.ankle_height + 0.9 * d])
-    assert heel_rise(foot, near, 0.1, 0.0, g) == pytest.approx(0.0)
-    far = np.array([0.5, 0.0, g.ankle_height + np.sqrt((d + 0.03) ** 2 - 0.25)])
-    p = heel_rise(foot, far, 0.1, 0.0, g)
-    assert -1.0472 - 1e-9 <= p < 0.0
-    gap = np.linalg.norm(far - pivot_ankle(foot, np.array([p]), g)[0]) - d
-    assert gap < 0.03 - 1e-3
 
 
 def test_ik_round_trip():

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from mjwalk.body.humanoid import leg_geometry, pelvis_height
-from mjwalk.body.legs.ik import ball_offset, pivot_ankle
+from mjwalk.body.legs.footpivot import ball_offset, pivot_ankle
 from mjwalk.body.legs.spin import SPIN_HEEL, spin_turns
 from mjwalk.body.legs.steps import FootTracks
 

@@ -7,7 +7,7 @@ import pytest
 
 from mjwalk.body.humanoid import leg_geometry, pelvis_height
 from mjwalk.body.legs import steps
-from mjwalk.body.legs.ik import pivot_ankle
+from mjwalk.body.legs.footpivot import pivot_ankle
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE
 from mjwalk.body.legs.steps import TOE_OFF, step_frames
 from mjwalk.body.legs.swing import swing_foot

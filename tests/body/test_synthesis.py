@@ -10,7 +10,7 @@ import pytest
 
 from mjwalk.body.humanoid import humanoid_model, leg_geometry
 from mjwalk.body.legs.footcheck import foot_points, stance_drift
-from mjwalk.body.legs.ik import ball_offset
+from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.synthesis import LegMotion, legs_from_walk
 from mjwalk.errors import PlanningError
 from mjwalk.plan.synthetic import synthetic_walk

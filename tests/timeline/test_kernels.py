@@ -26,16 +26,14 @@ from mjwalk.arms.chain import arm_joint_angles, end_effector, two_link_ik_rows
 from mjwalk.arms.posefit import fit_endpoint_pose
 from mjwalk.body.humanoid import HUMAN_GROUP, ROM_DEG, leg_geometry
 from mjwalk.body.legs.curves import clamped_cubic, spread
+from mjwalk.body.legs.footpivot import ball_offset, heel_rise, pivot_ankle
 from mjwalk.body.legs.ik import (
     KNEE_MIN,
     LegIKCache,
-    ball_offset,
     generic_joint,
-    heel_rise,
     hip_world,
     leg_ik,
     leg_ik_world,
-    pivot_ankle,
     rot_x,
     rot_y,
     rot_z,

@@ -23,12 +23,8 @@ import numpy as np
 from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import gauss_kernel, spread_rows
-from mjwalk.body.legs.ik import (
-    LegIKCache,
-    ball_offset,
-    ik_lengths,
-    leg_ik_world_cached,
-)
+from mjwalk.body.legs.footpivot import ball_offset
+from mjwalk.body.legs.ik import LegIKCache, ik_lengths, leg_ik_world_cached
 from mjwalk.body.legs.steps import FootTracks
 
 
@@ -44,7 +40,7 @@ def repitch_foot(
 ) -> tuple[np.ndarray, np.ndarray]:
     """A foot's ankle targets and pitches with the pitch lowered by ``dp``: on the floor
     (``ground``) about the pivot of its footprint (the heel while toes up, the ball while heel
-    up, :func:`~mjwalk.body.legs.ik.pivot_ankle`), in the air by the same motion of the
+    up, :func:`~mjwalk.body.legs.footpivot.pivot_ankle`), in the air by the same motion of the
     ankle relative to the foot, as if it stood on a footprint under it. New arrays; the
     inputs are not changed except ``toe``.
 
@@ -81,7 +77,7 @@ def repitch_foot(
 
 @njit
 def _pivot_cs(x, y, fx, fy, c, s, p, ball, back, ah):
-    """One row of :func:`~mjwalk.body.legs.ik.pivot_rows` (the same arithmetic) on
+    """One row of :func:`~mjwalk.body.legs.footpivot.pivot_rows` (the same arithmetic) on
     the footprint at ``x``, ``y`` heading (``fx``, ``fy``) = (cos, sin) yaw, pitched by ``p``
     with (``c``, ``s``) = (cos, sin) p."""
     lever = ball if p <= 0 else -back

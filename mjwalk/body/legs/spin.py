@@ -11,14 +11,8 @@ import numpy as np
 from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.body.legs.curves import smoothstep, soft_excess1
-from mjwalk.body.legs.ik import (
-    ball_offset,
-    ik_lengths,
-    leg_ik_world,
-    leg_ik_world_row,
-    pivot_ankle,
-    spin_print,
-)
+from mjwalk.body.legs.footpivot import ball_offset, pivot_ankle, spin_print
+from mjwalk.body.legs.ik import ik_lengths, leg_ik_world, leg_ik_world_row
 from mjwalk.body.legs.steps import SWING_TURNED, FootTracks
 
 #: Spin turns (degrees): a grounded foot whose hip would rotate past its range less

@@ -13,7 +13,7 @@ Step phase ``phi`` in [0, 1] from lift-off of the swing foot's step to its landi
 leg covers gait cycle 0-50 %. World frame, metres, radians; a foot's pitch + toes up.
 
 numba caches this module's machine code by its own source, not by the compiled functions it
-calls from other modules (``kinematics.heel_rise_rows``, ``kinematics.pivot_rows``,
+calls from other modules (``footpivot.heel_rise_rows``, ``footpivot.pivot_rows``,
 ``curves.clamped_cubic_rows`` and the one-value shapes such as ``curves.smoothstep1``): change a
 comment here when those change.
 """
@@ -35,13 +35,14 @@ from mjwalk.body.legs.curves import (
     smoothstep1,
     soft_flat1,
 )
-from mjwalk.body.legs.ik import KNEE_MIN, ball_offset, heel_rise_rows, pivot_rows
+from mjwalk.body.legs.footpivot import ball_offset, heel_rise_rows, pivot_rows
+from mjwalk.body.legs.ik import KNEE_MIN
 from mjwalk.body.legs.reference import ReferenceGait
 from mjwalk.body.legs.steps import FOOT_FLAT, STANCE_KEYS, StepFrames
 
 #: The stance knee's upper bound (radians, 80 deg): the synthesis's clip of the stance spline.
 KNEE_STANCE_MAX = float(np.deg2rad(80))
-#: :func:`~mjwalk.body.legs.ik.heel_rise`'s default lowest pitch (radians).
+#: :func:`~mjwalk.body.legs.footpivot.heel_rise`'s default lowest pitch (radians).
 HEEL_RISE_LO = -1.0472
 
 

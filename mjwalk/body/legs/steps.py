@@ -17,15 +17,8 @@ import numpy as np
 from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import clamped_cubic, maximum1, smoothstep, soft_clip01, soft_flat
-from mjwalk.body.legs.ik import (
-    KNEE_MIN,
-    ball_offset,
-    heel_rise,
-    ik_lengths,
-    leg_ik_world_row,
-    pivot_ankle,
-    pivot_rows,
-)
+from mjwalk.body.legs.footpivot import ball_offset, heel_rise, pivot_ankle, pivot_rows
+from mjwalk.body.legs.ik import KNEE_MIN, ik_lengths, leg_ik_world_row
 from mjwalk.body.legs.reference import ReferenceGait
 from mjwalk.conventions import side_prefix
 from mjwalk.plan.walkpath import WalkPath

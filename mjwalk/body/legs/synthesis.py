@@ -41,14 +41,8 @@ import numpy as np
 
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry, leg_geometry
 from mjwalk.body.legs.curves import spread
-from mjwalk.body.legs.ik import (
-    KNEE_MIN,
-    LegIKCache,
-    foot_lowest,
-    generic_joint,
-    hip_world,
-    pivot_ankle,
-)
+from mjwalk.body.legs.footpivot import pivot_ankle
+from mjwalk.body.legs.ik import KNEE_MIN, LegIKCache, foot_lowest, generic_joint, hip_world
 from mjwalk.body.legs.pitchfit import AnkleFit, fit_ankle_range, repitch_foot
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
