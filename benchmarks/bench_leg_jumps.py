@@ -3,7 +3,7 @@
 
 Run: PYTHONPATH=. python3 benchmarks/bench_leg_jumps.py [--seeds 0-5] [--n 5]
 
-Walks: the leg tests' four routes (tests/body/test_legs.py PLANNED_ROUTES: three station routes and
+Walks: the leg tests' four routes (tests/body/test_synthesis.py PLANNED_ROUTES: three station routes and
 the corridor), ``--n`` walks each for every seed in ``--seeds`` (seed 0 is the leg tests'
 fixture: its walk k is the fixture's walk k, route-major). For every step of every walk, the
 largest change of any :func:`~mjwalk.body.legs.legs_from_walk` joint angle or of the pelvis yaw
@@ -26,7 +26,7 @@ from pathlib import Path
 from unittest import mock
 
 import numpy as np
-from bench_stance_lean import LEG_ROUTES  # tests/body/test_legs.py PLANNED_ROUTES
+from bench_stance_lean import LEG_ROUTES  # tests/body/test_synthesis.py PLANNED_ROUTES
 
 from mjwalk.anthropometry import ROM_DEG, leg_geometry
 from mjwalk.body.legs import legs_from_walk
@@ -36,7 +36,7 @@ from mjwalk.plan.walks import plan_walks
 from mjwalk.world import load_workplace
 
 ROOT = Path(__file__).resolve().parents[1]
-#: tests/body/test_legs.py MAX_STEP_DEG: the largest leg-joint change between two 120 Hz samples.
+#: tests/body/test_synthesis.py MAX_STEP_DEG: the largest leg-joint change between two 120 Hz samples.
 MAX_STEP_DEG = 6.0
 
 

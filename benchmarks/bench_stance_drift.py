@@ -16,7 +16,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from bench_stance_lean import LEG_ROUTES as PLANNED_ROUTES  # tests/body/test_legs.py's routes
+from bench_stance_lean import LEG_ROUTES as PLANNED_ROUTES  # tests/body/test_synthesis.py's routes
 
 from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.footcheck import foot_points as _fk_feet

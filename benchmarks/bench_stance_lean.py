@@ -3,7 +3,7 @@ walks: the same seeded walks planned with and without it, in the same process.
 
 Run: PYTHONPATH=. python3 benchmarks/bench_stance_lean.py [--seeds 0-10] [--n 5] [--extra 10]
 
-Walk sets: the leg tests' four routes (tests/body/test_legs.py PLANNED_ROUTES: three station routes
+Walk sets: the leg tests' four routes (tests/body/test_synthesis.py PLANNED_ROUTES: three station routes
 and the corridor) for every seed in ``--seeds`` with ``--n`` walks each (seed 0 is the leg
 tests' fixture, seeds 1-10 benchmarks/bench_stance_drift.py's set), and ``--extra`` walks
 (seed 0) on each of three more routes in three scenes (open floor, corridor to the door, the
@@ -32,7 +32,7 @@ from mjwalk.plan.params import KernelParams
 from mjwalk.world import load_workplace
 
 ROOT = Path(__file__).resolve().parents[1]
-LEG_ROUTES = (  # tests/body/test_legs.py PLANNED_ROUTES
+LEG_ROUTES = (  # tests/body/test_synthesis.py PLANNED_ROUTES
     ("assembly_station", "stand_rack2", "stand_car1"),
     ("assembly_station", "stand_car1", "stand_rack3"),
     ("assembly_station", "stand_rack1", "stand_car2"),

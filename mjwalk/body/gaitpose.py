@@ -16,6 +16,7 @@ from __future__ import annotations
 import functools
 from dataclasses import dataclass
 
+import mujoco
 import numpy as np
 from sklearn.decomposition import PCA
 from sklearn.gaussian_process import GaussianProcessRegressor
@@ -24,6 +25,7 @@ from sklearn.neighbors import KNeighborsClassifier
 from sklearn.pipeline import Pipeline, make_pipeline
 from sklearn.preprocessing import StandardScaler
 
+from mjwalk.body.humanoid import humanoid_model
 from mjwalk.body.legs import LegMotion, legs_from_walk
 from mjwalk.conventions import DEFAULT_STATURE, SAMPLE_RATE_HZ
 from mjwalk.errors import MjwalkError
@@ -90,9 +92,7 @@ class GaitPoseModel:
         z0: np.ndarray | None = None,
         reset: bool = True,
     ) -> tuple[np.ndarray, np.ndarray]:
-        """Generate ``n_frames`` poses by iterating the mean dynamics from ``z0`` ((2, q): latent
-        pose and latent velocity per frame; default: a training start point chosen with
-        ``rng``, or the first one).
+        """Generate ``n_frames`` poses by iterating the mean dynamics from ``z0``.
 
         Iterated GP means contract: trained on walks of several step lengths and amplitudes,
         the mean step averages neighbouring cycles and a free rollout's swing shrinks to a
@@ -100,6 +100,12 @@ class GaitPoseModel:
         training data at every switch into double support (heel strike): onto the training
         heel-strike state (latent pose and velocity, :attr:`start`) nearest to it, a phase
         reset at the contact event; between heel strikes the rollout is the GP's mean.
+
+        Args:
+            n_frames: the number of poses, >= 1 (else MjwalkError).
+            rng: chooses the training start point when ``z0`` is None (None: the first one).
+            z0: (2, q) latent pose and latent velocity per frame to start from.
+            reset: put the state back on the training heel-strike states at each heel strike.
 
         Returns:
             poses (n_frames, D) in the units of :attr:`names` and contact states (n_frames,).
@@ -155,6 +161,12 @@ def training_poses(
     Each walk draws a step length (0.55-0.75 m), step time (0.50-0.60 s), pelvis sway and arm /
     torso amplitudes from ``rng``; the first two steps (gait start) are dropped.
 
+    Args:
+        rng: the random draws (in the order above, per walk).
+        n_walks: the number of synthetic walks.
+        fps: the pose rate, frames per second.
+        stature: the humanoid's stature, metres.
+
     Returns:
         poses (T, D) in the channels :data:`NAMES`, contact states (T,), walk ids (T,).
     """
@@ -201,12 +213,27 @@ def fit_gaitpose(
     max_points: int = 300,
     rng: np.random.Generator | None = None,
 ) -> GaitPoseModel:
-    """Fit the latent space (standardised poses, PCA keeping ``variance``; 99.5 % because the
-    foot position is sensitive to truncation, the paper's Fig. 1) and the GP dynamics (zero
-    mean, constant * RBF + white noise, hyper-parameters by maximum marginal likelihood), one
-    per contact state when ``switching``. The GP input is the latent pose and its velocity
-    (weighted :data:`VEL_WEIGHT`), the output the next latent step. Each GP sees at most
-    ``max_points`` transitions (a random subset drawn with ``rng``)."""
+    """Fit the latent space and the GP dynamics of a gait-pose model.
+
+    The latent space: standardised poses, PCA keeping ``variance`` (99.5 % because the foot
+    position is sensitive to truncation, the paper's Fig. 1). The GP dynamics: zero mean,
+    constant * RBF + white noise, hyper-parameters by maximum marginal likelihood, one per
+    contact state when ``switching``. The GP input is the latent pose and its velocity
+    (weighted :data:`VEL_WEIGHT`), the output the next latent step.
+
+    Args:
+        poses: (T, D) poses in the channels :data:`NAMES`.
+        states: (T,) contact states (0 left stance, 1 right stance, 2 double support).
+        walk_ids: (T,) walk of each pose (transitions do not cross walks).
+        switching: one GP per contact state (else one for all).
+        variance: the share of the pose variance the PCA keeps.
+        fps: the pose rate, frames per second.
+        max_points: the most transitions each GP sees (a random subset drawn with ``rng``).
+        rng: the subset draws (default seed 0).
+
+    Returns:
+        the fitted :class:`GaitPoseModel`.
+    """
     rng = rng or np.random.default_rng(0)
     poses = np.asarray(poses, float)
     pca = make_pipeline(StandardScaler(), PCA(n_components=variance, svd_solver="full"))
@@ -239,7 +266,15 @@ def fit_gaitpose(
 
 @functools.lru_cache(maxsize=4)
 def default_gaitpose(switching: bool = True, seed: int = 0) -> GaitPoseModel:
-    """The model fitted on :func:`training_poses` with ``seed`` (cached per process)."""
+    """The model fitted on :func:`training_poses` with ``seed`` (cached per process).
+
+    Args:
+        switching: one GP per contact state.
+        seed: seed of the training walks and the GP subsets.
+
+    Returns:
+        the fitted :class:`GaitPoseModel`.
+    """
     rng = np.random.default_rng(seed)
     poses, states, ids = training_poses(rng, n_walks=6)
     return fit_gaitpose(poses, states, ids, switching=switching, rng=rng)
@@ -251,17 +286,22 @@ def foot_skating(
     stature: float = DEFAULT_STATURE,
     contact_height: float = 0.02,
 ) -> float:
-    """Mean horizontal speed (m/s) of the lower foot's sole while it touches the floor.
+    """Mean horizontal speed of the lower foot's sole while it touches the floor.
 
     The root moves forward at the pose's ``root_speed`` (integrated), at height ``root_z``;
     joint angles go through the humanoid's forward kinematics (MuJoCo). A foot counts as touching
     when its sole site is the lower one and below ``contact_height`` metres in two consecutive
     frames. A perfect walk has 0 (planted feet do not slide).
+
+    Args:
+        poses: (T, D) poses in the channels :data:`NAMES`.
+        fps: the pose rate, frames per second.
+        stature: the humanoid's stature, metres.
+        contact_height: the sole site's height below which it touches, metres.
+
+    Returns:
+        the mean sliding speed, m/s (NaN if no foot touches in two consecutive frames).
     """
-    import mujoco
-
-    from mjwalk.body.humanoid import humanoid_model
-
     model, jm = humanoid_model(stature)
     data = mujoco.MjData(model)
     col = {n: i for i, n in enumerate(NAMES)}
@@ -341,6 +381,12 @@ def upper_body_from_legs(
 
     The rollout's gait phase (from its contact states) is matched to the legs' phase (from
     their contact states), so arm swing stays in step with the feet over any walk length.
+
+    Args:
+        legs: the leg motion (its times and contact states).
+        t: (F,) the output times, seconds.
+        rng: chooses the rollout's start (see :meth:`GaitPoseModel.rollout`).
+        model: the gait-pose model (default :func:`default_gaitpose`).
 
     Returns:
         joint name -> (F,) angles in radians at the times ``t`` (seconds).

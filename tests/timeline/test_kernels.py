@@ -26,20 +26,19 @@ from mjwalk.arms.chain import arm_joint_angles, end_effector, two_link_ik_rows
 from mjwalk.arms.posefit import fit_endpoint_pose
 from mjwalk.body.humanoid import HUMAN_GROUP, ROM_DEG, leg_geometry
 from mjwalk.body.legs.curves import clamped_cubic, spread
+from mjwalk.body.legs.footpivot import ball_offset, heel_rise, pivot_ankle
 from mjwalk.body.legs.ik import (
     KNEE_MIN,
     LegIKCache,
-    ball_offset,
     generic_joint,
-    heel_rise,
     hip_world,
     leg_ik,
     leg_ik_world,
-    pivot_ankle,
     rot_x,
     rot_y,
     rot_z,
 )
+from mjwalk.body.legs.steps import FootTracks
 from mjwalk.conventions import side_prefix
 from mjwalk.plan.synthetic import synthetic_walk
 from mjwalk.timeline import collision_report, timeline_from_walk
@@ -566,7 +565,10 @@ def test_compiled_pitch_fit_matches_numpy(side):
         args = (fyaw, pitch, toe, ground, prints, root, yaw, dorsi, plantar, 3)
         ref = _fit_ref(ik_ref, ankle, *args, geom)
         toe_c = toe.copy()
-        fit = pitchfit.fit_ankle_range(ik_c, ankle, fyaw, pitch, toe_c, *args[3:], 8)
+        feet = FootTracks(*({side: a} for a in (ankle, fyaw, pitch, toe_c, ground, prints)))
+        fit = pitchfit.fit_ankle_range(
+            ik_c, feet, root, yaw, pitchfit.AnkleFit(dorsi, plantar, 3, 8)
+        )
         assert fit is not None
         for x, y in zip(ref, (*fit, toe_c), strict=True):
             assert np.array_equal(x, y)
@@ -576,8 +578,9 @@ def test_compiled_pitch_fit_matches_numpy(side):
     assert rounds == 2  # both cases were corrected
     # too short for the compiled spread: the caller's NumPy rounds
     ankle, fyaw, pitch, ground, prints, root, yaw = _leg_case(rng, 7, geom)
-    short = (ankle, fyaw, pitch, np.zeros(7), ground, prints, root, yaw, dorsi, plantar, 3, 8)
-    assert pitchfit.fit_ankle_range(LegIKCache(side, geom), *short) is None
+    short = FootTracks(*({side: a} for a in (ankle, fyaw, pitch, np.zeros(7), ground, prints)))
+    bounds = pitchfit.AnkleFit(dorsi, plantar, 3, 8)
+    assert pitchfit.fit_ankle_range(LegIKCache(side, geom), short, root, yaw, bounds) is None
 
 
 def test_end_slopes_match_numpy_gradient():
@@ -670,10 +673,11 @@ def _stance_foot_ref(fr, phi, p_ref, land_prev, hs_pitch, hip_end, knee_end, geo
     return p_st, pivot_ankle(fr.stance, p_st, geom)
 
 
-def _stance_knee_ref(ref, phi, k_ref, th0, v0, th1, v1, hip_xy, ankle, geom):
+def _stance_knee_ref(ref, phi, k_ref, ends, hip_xy, ankle, geom):
     """The stance knee and pelvis height as legs_from_walk computed them in NumPy."""
     from mjwalk.body.legs.steps import stance_angle
 
+    th0, v0, th1, v1 = ends.th0, ends.v0, ends.th1, ends.v1
     assert np.array_equal(k_ref, ref("knee", 0.5 * phi))
     knee = np.clip(stance_angle(ref, "knee", phi, th0, v0, th1, v1), KNEE_MIN, np.deg2rad(80))
     h = np.linalg.norm(hip_xy - ankle[:, :2], axis=-1)
@@ -732,15 +736,18 @@ def test_compiled_stance_leg_matches_numpy(monkeypatch, reference):
         seen["knee"] += 1
         return got
 
-    def height(*args):
-        p_ref = args[6].copy()
-        got = stance.pelvis_height(*args)
-        want = _pelvis_height_ref(*args[:6], p_ref, *args[7:])
+    def height(phi, z_flat, pos, hip_sw, leg, fr, ease, geom):
+        p_ref = leg.pitch.copy()
+        got = stance.pelvis_height(phi, z_flat, pos, hip_sw, leg, fr, ease, geom)
+        want = _pelvis_height_ref(
+            phi, z_flat, pos, hip_sw, leg.hip_xy, leg.knee, p_ref, fr, ease.d_max_sq,
+            ease.d_land, ease.ease_from, geom,
+        )  # fmt: skip
         assert np.array_equal(want[0], got[0])
         assert (want[1] is None) == (got[1] is None)
         if got[1] is not None:
             assert np.array_equal(want[1], got[1])
-            assert np.array_equal(p_ref, args[6])
+            assert np.array_equal(p_ref, leg.pitch)
             seen["eased"] += 1
         seen["height"] += 1
         return got

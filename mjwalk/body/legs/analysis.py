@@ -10,6 +10,7 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+from scipy.signal import find_peaks
 
 from mjwalk.body.legs.reference import ReferenceGait
 from mjwalk.conventions import Side, side_prefix
@@ -17,8 +18,19 @@ from mjwalk.errors import CaptureError
 
 
 def sagittal_angles(hip, knee, ankle, toe, yaw):
-    """Hip (thigh) flexion, knee flexion and raw foot pitch (ankle -> toe vs floor), radians,
-    of one leg in the walking plane, from (T, 3) joint positions and the (T,) heading yaw."""
+    """Hip (thigh) flexion, knee flexion and raw foot pitch (ankle -> toe vs floor) of one
+    leg in the walking plane (the vertical plane along the heading).
+
+    Args:
+        hip: (T, 3) hip joint positions, metres, world frame (z up).
+        knee: (T, 3) knee positions.
+        ankle: (T, 3) ankle positions.
+        toe: (T, 3) toe positions.
+        yaw: (T,) the heading, radians from +x CCW.
+
+    Returns:
+        (hip flexion, knee flexion, foot pitch), each (T,), radians (flexion +, toes up +).
+    """
     fwd = np.column_stack([np.cos(yaw), np.sin(yaw), np.zeros_like(yaw)])
     th, sh, ft = knee - hip, ankle - knee, toe - ankle
     hipf = np.arctan2((th * fwd).sum(1), -th[:, 2])
@@ -28,11 +40,16 @@ def sagittal_angles(hip, knee, ankle, toe, yaw):
 
 
 def heel_strikes(pitch: np.ndarray, fps: float) -> np.ndarray:
-    """Sample indices of heel strikes: the foot's toes-up pitch peaks (radians, (T,)), at least
-    0.6 s apart and 10 deg prominent. The foot lands heel first with the toes highest, then
-    rolls down."""
-    from scipy.signal import find_peaks
+    """Sample indices of heel strikes: the foot's toes-up pitch peaks, at least 0.6 s apart
+    and 10 deg prominent. The foot lands heel first with the toes highest, then rolls down.
 
+    Args:
+        pitch: (T,) foot pitch, radians, + toes up.
+        fps: the sample rate, frames per second.
+
+    Returns:
+        (H,) increasing sample indices.
+    """
     peaks, _ = find_peaks(pitch, distance=max(1, int(0.6 * fps)), prominence=np.deg2rad(10))
     return peaks
 
@@ -78,7 +95,17 @@ def gait_cycles(
 def reference_from_takes(
     takes, side: Side = "left", names: str = "UpperLeg_{},LowerLeg_{},Foot_{},Toes_{}"
 ) -> ReferenceGait:
-    """A reference gait from captured straight walks: the mean of their gait cycles."""
+    """A reference gait from captured straight walks: the mean of their gait cycles.
+
+    Args:
+        takes: captures with the leg joints ``names`` (see :func:`gait_cycles`).
+        side: the leg, "left" or "right".
+        names: comma-separated joint-name patterns (hip, knee, ankle, toe).
+
+    Returns:
+        the :class:`ReferenceGait` (hip, knee, pitch over the cycle, radians); CaptureError
+        without a complete cycle.
+    """
     cyc = [c for t in takes for c in gait_cycles(t, side, names)]
     if not cyc:
         raise CaptureError("reference_from_takes: no complete gait cycle in the takes")

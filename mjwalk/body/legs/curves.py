@@ -16,17 +16,34 @@ FLAT = float(np.deg2rad(FLAT_DEG))
 
 
 def smoothstep(x: np.ndarray) -> np.ndarray:
-    """The smoothstep ``3x^2 - 2x^3`` of ``x`` clipped to [0, 1]: 0 to 1 with zero slope at
-    both ends (the one easing curve of the package's blends)."""
+    """The smoothstep of ``x`` clipped to [0, 1]: 0 to 1 with zero slope at both ends (the
+    one easing curve of the package's blends).
+
+    :math:`s(x) = 3u^2 - 2u^3` with :math:`u = \\min(\\max(x, 0), 1)`.
+
+    Args:
+        x: values (any shape).
+
+    Returns:
+        s(x), the shape of ``x``, in [0, 1].
+    """
     x = np.clip(x, 0.0, 1.0)
     return x * x * (3 - 2 * x)
 
 
 def spread(need: np.ndarray, win: int) -> np.ndarray:
-    """A smooth (n,) envelope of the non-negative per-sample amounts ``need`` (n,): their
-    running maximum over +-``win`` samples, Gaussian-smoothed (sigma ``win / 3``), so a
-    correction needed at some samples fades in and out over the samples around instead of
-    acting on them alone (a jump)."""
+    """A smooth envelope of the non-negative per-sample amounts ``need``: their running
+    maximum over +-``win`` samples, Gaussian-smoothed (sigma ``win / 3``), so a correction
+    needed at some samples fades in and out over the samples around instead of acting on them
+    alone (a jump).
+
+    Args:
+        need: (n,) non-negative amounts per sample.
+        win: half-width of the running maximum (samples).
+
+    Returns:
+        (n,) the envelope (scipy.ndimage's reflecting boundary).
+    """
     need = np.asarray(need, dtype=float)
     if need.ndim != 1 or len(need) < 2 * win + 2:
         return gaussian_filter1d(maximum_filter1d(need, 2 * win + 1), win / 3)
@@ -35,7 +52,14 @@ def spread(need: np.ndarray, win: int) -> np.ndarray:
 
 @functools.lru_cache(maxsize=32)
 def gauss_kernel(win: int) -> np.ndarray:
-    """scipy.ndimage's Gaussian kernel for sigma ``win / 3`` (truncated at 4 sigma)."""
+    """scipy.ndimage's Gaussian kernel for sigma ``win / 3`` (truncated at 4 sigma).
+
+    Args:
+        win: the spread's half-width (samples).
+
+    Returns:
+        (2 r + 1,) weights summing to 1, r = int(4 sigma + 0.5).
+    """
     sigma = win / 3
     radius = int(4.0 * float(sigma) + 0.5)
     x = np.arange(-radius, radius + 1)
@@ -55,7 +79,16 @@ def _reflect(j, n):
 def spread_rows(need, win, kernel):
     """:func:`spread` for ``len(need) > 2 win + 1``: the running maximum over +-``win`` and
     the symmetric Gaussian ``kernel``, both with the reflecting boundary, as scipy.ndimage
-    (the symmetric kernel summed pairwise from the centre out, as its correlate1d)."""
+    (the symmetric kernel summed pairwise from the centre out, as its correlate1d).
+
+    Args:
+        need: (n,) non-negative amounts per sample.
+        win: half-width of the running maximum (samples).
+        kernel: the Gaussian weights of :func:`gauss_kernel`.
+
+    Returns:
+        (n,) the envelope.
+    """
     n = len(need)
     out = np.zeros(n)
     for i in range(n):
@@ -89,20 +122,45 @@ def spread_rows(need, win, kernel):
 
 def soft_clip01(x: np.ndarray, w: float) -> np.ndarray:
     """``x`` clamped to [0, 1] with rounded corners (C1): unchanged in [w, 1 - w], quadratic
-    blends over ``w`` either side of 0 and 1, constant beyond (``w`` <= 0.5)."""
+    blends over ``w`` either side of 0 and 1, constant beyond.
+
+    Args:
+        x: values (any shape).
+        w: half-width of the rounded corners, <= 0.5.
+
+    Returns:
+        the clamped values, the shape of ``x``.
+    """
     x = np.asarray(x, float)
     lo = np.where(x < -w, 0.0, np.where(x < w, (x + w) ** 2 / (4 * w), x))
     return np.where(lo > 1 + w, 1.0, np.where(lo > 1 - w, 1 - (1 + w - lo) ** 2 / (4 * w), lo))
 
 
 def soft_flat(p: np.ndarray) -> np.ndarray:
-    """Pitches within +-FLAT_DEG become exactly 0 (flat foot), continuously."""
+    """Pitches within +-FLAT_DEG become exactly 0 (flat foot), continuously:
+    ``sign(p) max(|p| - FLAT, 0)``.
+
+    Args:
+        p: pitches, radians (any shape).
+
+    Returns:
+        the pitches shrunk towards 0 by FLAT, radians.
+    """
     t = np.deg2rad(FLAT_DEG)
     return np.sign(p) * np.maximum(np.abs(p) - t, 0.0)
 
 
 def soft_excess(x: np.ndarray, w: float) -> np.ndarray:
-    """max(x, 0) rounded over ``[0, 2 w]`` (C1): 0 for x <= 0, x - w for x >= 2 w."""
+    """max(x, 0) rounded over ``[0, 2 w]`` (C1): 0 for x <= 0, x^2 / (4 w) below 2 w,
+    x - w from 2 w on.
+
+    Args:
+        x: values (any shape).
+        w: the rounding width (> 0).
+
+    Returns:
+        the soft excess, the shape of ``x``.
+    """
     x = np.maximum(x, 0.0)
     return np.where(x < 2 * w, x * x / (4 * w), x - w)
 
@@ -112,40 +170,87 @@ def soft_excess(x: np.ndarray, w: float) -> np.ndarray:
 
 @njit
 def smoothstep1(x):
-    """:func:`smoothstep` of one value."""
+    """:func:`smoothstep` of one value.
+
+    Args:
+        x: the value.
+
+    Returns:
+        3u^2 - 2u^3 for u = x clipped to [0, 1].
+    """
     x = min(max(x, 0.0), 1.0)
     return x * x * (3 - 2 * x)
 
 
 @njit
 def maximum1(a, b):
-    """``np.maximum`` of two values (the first on ties and NaN)."""
+    """``np.maximum`` of two values (the first on ties and NaN).
+
+    Args:
+        a: first value.
+        b: second value.
+
+    Returns:
+        the larger value.
+    """
     return a if a >= b or a != a else b
 
 
 @njit
 def minimum1(a, b):
-    """``np.minimum`` of two values (the first on ties and NaN)."""
+    """``np.minimum`` of two values (the first on ties and NaN).
+
+    Args:
+        a: first value.
+        b: second value.
+
+    Returns:
+        the smaller value.
+    """
     return a if a <= b or a != a else b
 
 
 @njit
 def soft_flat1(p, flat):
-    """:func:`soft_flat` of one pitch (``flat`` its threshold, rad)."""
+    """:func:`soft_flat` of one pitch.
+
+    Args:
+        p: the pitch, radians.
+        flat: the flat threshold, radians.
+
+    Returns:
+        the pitch shrunk towards 0 by ``flat`` (NaN stays NaN).
+    """
     sign = 1.0 if p > 0 else (-1.0 if p < 0 else (0.0 if p == 0 else p))
     return sign * maximum1(abs(p) - flat, 0.0)
 
 
 @njit
 def soft_excess1(x, w):
-    """:func:`soft_excess` of one value."""
+    """:func:`soft_excess` of one value.
+
+    Args:
+        x: the value.
+        w: the rounding width (> 0).
+
+    Returns:
+        the soft excess.
+    """
     x = maximum1(x, 0.0)
     return x * x / (4 * w) if x < 2 * w else x - w
 
 
 @njit
 def soft_clip01_1(x, w):
-    """:func:`soft_clip01` of one value."""
+    """:func:`soft_clip01` of one value.
+
+    Args:
+        x: the value.
+        w: half-width of the rounded corners, <= 0.5.
+
+    Returns:
+        the softly clamped value.
+    """
     lo = 0.0 if x < -w else ((x + w) * (x + w) / (4 * w) if x < w else x)
     if lo > 1 + w:
         return 1.0
@@ -155,11 +260,22 @@ def soft_clip01_1(x, w):
 
 
 def clamped_cubic(x, y, d0, d1, xq) -> np.ndarray:
-    """The cubic spline through knots ``x`` (m,) with values ``y`` (m,) or (m, k) and first
-    derivatives ``d0`` / ``d1`` at the ends, evaluated at ``xq`` (q,) (extrapolated beyond the
-    knots): scipy's ``CubicSpline(x, y, bc_type=((1, d0), (1, d1)))(xq)`` (same equations,
-    slopes from the tridiagonal system, power-sum evaluation) in one compiled call, without
-    scipy's per-spline set-up cost (the leg synthesis builds three splines per step)."""
+    """The cubic spline through knots ``x`` with values ``y`` and first derivatives ``d0`` /
+    ``d1`` at the ends, evaluated at ``xq`` (extrapolated beyond the knots): scipy's
+    ``CubicSpline(x, y, bc_type=((1, d0), (1, d1)))(xq)`` (same equations, slopes from the
+    tridiagonal system, power-sum evaluation) in one compiled call, without scipy's per-spline
+    set-up cost (the leg synthesis builds three splines per step).
+
+    Args:
+        x: (m,) increasing knots.
+        y: (m,) or (m, k) values at the knots.
+        d0: the first derivative at ``x[0]`` (scalar or (k,)).
+        d1: the first derivative at ``x[-1]`` (scalar or (k,)).
+        xq: (q,) query points.
+
+    Returns:
+        (q,) for (m,) values, else (q, k).
+    """
     y = np.asarray(y, dtype=float)
     vec = y.ndim == 2
     y2 = y if vec else y[:, None]
@@ -176,6 +292,18 @@ def clamped_cubic(x, y, d0, d1, xq) -> np.ndarray:
 
 @njit
 def clamped_cubic_rows(x, y, d0, d1, xq):
+    """The arithmetic of :func:`clamped_cubic` for column values.
+
+    Args:
+        x: (m,) increasing knots, m >= 2.
+        y: (m, k) values at the knots.
+        d0: (k,) first derivatives at ``x[0]``.
+        d1: (k,) first derivatives at ``x[-1]``.
+        xq: (q,) query points.
+
+    Returns:
+        (q, k) the splines at ``xq``.
+    """
     n, k = y.shape
     dx = x[1:] - x[:-1]
     out = np.empty((len(xq), k))

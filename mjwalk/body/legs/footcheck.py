@@ -14,16 +14,22 @@ import mujoco
 import numpy as np
 
 from mjwalk.anthropometry import leg_geometry
+from mjwalk.body.humanoid import humanoid_model
 from mjwalk.conventions import DEFAULT_STATURE
 
 
 def posed(legs, stature: float = DEFAULT_STATURE):
-    """Yield ``(i, model, data)`` for every frame ``i`` of ``legs`` (a
-    :class:`~mjwalk.body.legs.synthesis.LegMotion`): the humanoid of ``stature`` metres in its
-    neutral pose with the legs' root, yaw and joint angles of that frame, after MuJoCo forward
-    kinematics (``data`` is reused from frame to frame)."""
-    from mjwalk.body.humanoid import humanoid_model
+    """Pose the humanoid frame by frame: its neutral pose with the legs' root, yaw and joint
+    angles of that frame, after MuJoCo forward kinematics (``data`` is reused from frame to
+    frame).
 
+    Args:
+        legs: a :class:`~mjwalk.body.legs.synthesis.LegMotion`.
+        stature: the humanoid's stature, metres.
+
+    Yields:
+        ``(i, model, data)`` for every frame ``i``.
+    """
     model, jm = humanoid_model(stature)
     data = mujoco.MjData(model)
     for i in range(len(legs.t)):
@@ -42,8 +48,17 @@ _CORNERS = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
 
 
 def lowest_point(model: mujoco.MjModel, data: mujoco.MjData, geoms) -> float:
-    """Height (m) of the lowest corner of the box geoms ``geoms`` (ids) in ``data``'s pose
-    (after forward kinematics): the feet's lowest point."""
+    """Height of the lowest corner of box geoms in ``data``'s pose (after forward kinematics):
+    the feet's lowest point.
+
+    Args:
+        model: the compiled model.
+        data: its data after forward kinematics.
+        geoms: ids of box geoms.
+
+    Returns:
+        the height, metres, world frame.
+    """
     return min(
         float(
             (
@@ -56,10 +71,17 @@ def lowest_point(model: mujoco.MjModel, data: mujoco.MjData, geoms) -> float:
 
 
 def foot_points(legs, stature: float = DEFAULT_STATURE):
-    """Heel and ball world positions (N, 2, 2, 3) [frame, side l/r, heel/ball], foot pitch
-    (N, 2, radians, + toes up) and the lowest foot point (N,) of ``legs`` (a
-    :class:`~mjwalk.body.legs.synthesis.LegMotion`), by MuJoCo forward kinematics of the
-    humanoid of ``stature`` metres."""
+    """Heel and ball world positions, foot pitch and the lowest foot point of ``legs``, by
+    MuJoCo forward kinematics of the humanoid.
+
+    Args:
+        legs: a :class:`~mjwalk.body.legs.synthesis.LegMotion` with N frames.
+        stature: the humanoid's stature, metres.
+
+    Returns:
+        points (N, 2, 2, 3) [frame, side l/r, heel/ball] in metres, pitch (N, 2) in radians
+        (+ toes up), lowest foot point (N,) in metres.
+    """
     n = len(legs.t)
     pts, pitch, low = np.zeros((n, 2, 2, 3)), np.zeros((n, 2)), np.zeros(n)
     back = leg_geometry(stature).foot_back
@@ -76,10 +98,19 @@ def foot_points(legs, stature: float = DEFAULT_STATURE):
 
 
 def stance_drift(walk, pts: np.ndarray, pitch: np.ndarray, eps: float = 1e-4) -> float:
-    """Worst drift (m) of the stance foot's contact point during each step of ``walk`` (a
-    :class:`~mjwalk.plan.walkpath.WalkPath`), from :func:`foot_points`'s ``pts`` and
-    ``pitch``: the heel while the foot is flat or toes-up, the ball while flat or heel-up (both
-    pivots stay put)."""
+    """Worst drift of the stance foot's contact point during each step: the heel while the
+    foot is flat or toes-up, the ball while flat or heel-up (both pivots stay put); a drift is
+    twice the largest distance from the point's mean over the stance.
+
+    Args:
+        walk: a :class:`~mjwalk.plan.walkpath.WalkPath` (its steps' sides and sample ranges).
+        pts: :func:`foot_points`'s points (N, 2, 2, 3).
+        pitch: :func:`foot_points`'s pitch (N, 2), radians.
+        eps: the pitch tolerance of "flat", radians.
+
+    Returns:
+        the worst drift, metres.
+    """
     worst = 0.0
     for st in walk.steps:
         k = 1 if st.side == "left" else 0  # the stance foot is the other one

@@ -1,5 +1,6 @@
 """Leg kinematics of the humanoid: analytic IK and FK of one leg in the pelvis frame, the foot's
-lowest point, and the geometry of a foot rolling about its heel or ball on a footprint.
+lowest point (the foot rolling about its heel or ball on a footprint is
+:mod:`~mjwalk.body.legs.footpivot`).
 
 Pelvis frame: x forward, y left, z up, pelvis upright. World frame: metres, z up, yaw from +x
 CCW. Footprint ``(x, y, yaw)``: the floor point under the ankle joint with the foot flat, and the
@@ -18,6 +19,7 @@ import numpy as np
 
 from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
+from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.conventions import Side, side_of_prefix, side_prefix
 
 #: Smallest knee flexion the IK uses when a leg must stretch (radians): never lock the knee.
@@ -35,6 +37,14 @@ LEG_JOINTS = (
 
 
 def rot_z(a: np.ndarray) -> np.ndarray:
+    """Rotation matrices about +z by ``a`` (right-handed: +x turns towards +y).
+
+    Args:
+        a: angles, radians (any shape S).
+
+    Returns:
+        (*S, 3, 3) rotation matrices.
+    """
     c, s = np.cos(a), np.sin(a)
     z, o = np.zeros_like(a), np.ones_like(a)
     return np.stack(
@@ -43,6 +53,14 @@ def rot_z(a: np.ndarray) -> np.ndarray:
 
 
 def rot_y(a: np.ndarray) -> np.ndarray:
+    """Rotation matrices about +y by ``a`` (right-handed: +z turns towards +x).
+
+    Args:
+        a: angles, radians (any shape S).
+
+    Returns:
+        (*S, 3, 3) rotation matrices.
+    """
     c, s = np.cos(a), np.sin(a)
     z, o = np.zeros_like(a), np.ones_like(a)
     return np.stack(
@@ -51,6 +69,14 @@ def rot_y(a: np.ndarray) -> np.ndarray:
 
 
 def rot_x(a: np.ndarray) -> np.ndarray:
+    """Rotation matrices about +x by ``a`` (right-handed: +y turns towards +z).
+
+    Args:
+        a: angles, radians (any shape S).
+
+    Returns:
+        (*S, 3, 3) rotation matrices.
+    """
     c, s = np.cos(a), np.sin(a)
     z, o = np.zeros_like(a), np.ones_like(a)
     return np.stack(
@@ -74,11 +100,13 @@ def leg_ik(
         foot_pitch: (N,) foot pitch relative to the floor, radians, + toes up.
         side: "left" or "right".
         geom: the leg lengths.
+        clip: clip the angles to the humanoid's ranges (``ROM_DEG``).
 
     Returns:
         joint name -> (N,) angle in radians (hip rotation/flexion/abduction, knee, ankle
-        flexion/inversion), anatomical signs, clipped to the humanoid's ranges. Unreachable
-        targets are met as closely as the leg allows (stretched to :data:`KNEE_MIN`).
+        flexion/inversion), anatomical signs, clipped to the humanoid's ranges if ``clip``.
+        Unreachable targets are met as closely as the leg allows (stretched to
+        :data:`KNEE_MIN`).
     """
     s = 1.0 if side == "left" else -1.0
     rel = np.ascontiguousarray(np.atleast_2d(np.asarray(ankle_rel, float)))
@@ -92,7 +120,15 @@ def leg_ik(
 
 @functools.lru_cache(maxsize=16)
 def ik_lengths(geom: LegGeometry) -> tuple[float, float, float, float]:
-    """Thigh, shank (m) and the shortest and longest hip-to-ankle distance the IK uses (m)."""
+    """Thigh, shank and the shortest and longest hip-to-ankle distance the IK uses.
+
+    Args:
+        geom: the leg lengths.
+
+    Returns:
+        (thigh, shank, rmin, rmax) in metres: rmin at the knee's largest flexion, rmax at
+        :data:`KNEE_MIN`.
+    """
     rmax = float(geom.span(KNEE_MIN))
     rmin = float(geom.span(np.deg2rad(ROM_DEG["knee"][1])))
     return float(geom.thigh), float(geom.shank), rmin, rmax
@@ -189,7 +225,26 @@ def _leg_ik_world_rows(ankle, foot_yaw, pitch, root, yaw, sgn, hip_y, L1, L2, rm
 
 @njit
 def leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out):
-    """Row ``i`` of :func:`_leg_ik_world_rows` (no array views made per row)."""
+    """Row ``i`` of :func:`_leg_ik_world_rows` (no array views made per row): the ankle
+    target relative to the hip, turned into the pelvis frame by :math:`R_z(-yaw)`, and the
+    foot yaw relative to the pelvis, through the analytic IK.
+
+    Args:
+        ankle: (n, 3) ankle targets, metres, world frame.
+        foot_yaw: (n,) foot headings, radians from +x CCW.
+        pitch: (n,) foot pitches to the floor, radians, + toes up.
+        root: (n, 3) pelvis (root) positions, metres.
+        yaw: (n,) pelvis yaws, radians from +x CCW.
+        i: the row to solve.
+        sgn: +1 for the left leg, -1 for the right.
+        hip_y: the hip joint centre's lateral offset from the pelvis centre, metres.
+        L1: thigh length, metres.
+        L2: shank length, metres.
+        rmin: the shortest hip-to-ankle distance, metres (:func:`ik_lengths`).
+        rmax: the longest hip-to-ankle distance, metres.
+        out: (n, 6) unclipped angles, radians (hip rotation, flexion, abduction, knee, ankle
+            flexion, inversion); row ``i`` is written.
+    """
     cy, sy = math.cos(yaw[i]), math.sin(yaw[i])
     d0 = ankle[i, 0] - (root[i, 0] + sgn * hip_y * -sy)
     d1 = ankle[i, 1] - (root[i, 1] + sgn * hip_y * cy)
@@ -227,10 +282,19 @@ def leg_fk(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry):
 
 
 def foot_lowest(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry) -> np.ndarray:
-    """(N,) height (m) of the lowest point of the foot's collision boxes (sole and toes, as
-    built by :func:`~mjwalk.body.humanoid.build_humanoid`) above the hip joint centre, from the
-    leg angles (``toe_l`` / ``toe_r`` included); add the hip height for the height above the
-    floor."""
+    """Height of the lowest point of the foot's collision boxes (sole and toes, as built by
+    :func:`~mjwalk.body.humanoid.build_humanoid`) above the hip joint centre, from the leg
+    angles; add the hip height for the height above the floor.
+
+    Args:
+        angles: joint name -> (N,) angles, radians, the ``side``'s :data:`LEG_JOINTS`
+            (``toe_l`` / ``toe_r`` included).
+        side: "left" or "right".
+        geom: the leg lengths.
+
+    Returns:
+        (N,) heights, metres (negative: below the hip).
+    """
     ah, ball, hw = geom.ankle_height, ball_offset(geom), geom.foot_width / 2
     corners = np.array(list(itertools.product((0.0, 1.0), (-hw, hw), (0.0, 1.0))))
     # sole box: x from the heel to the ball, 0.8 ankle heights tall from the sole
@@ -291,178 +355,52 @@ def _foot_lowest_rows(q, s, thigh, shank, foot, toes, ball, ah):
 
 
 def generic_joint(name: str) -> str:
+    """A joint name without its side letter, the key of ``ROM_DEG``.
+
+    Args:
+        name: a joint name such as ``"hip_l_flex"``.
+
+    Returns:
+        the name without the "l"/"r" part, e.g. ``"hip_flex"``.
+    """
     return "_".join(p for p in name.split("_") if p not in ("l", "r"))
 
 
-def ball_offset(geom: LegGeometry) -> float:
-    """Distance of the ball of the foot (toe joint) ahead of the ankle, metres."""
-    return geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)
-
-
-def pivot_ankle(foot: np.ndarray, pitch, geom: LegGeometry) -> np.ndarray:
-    """(n, 3) ankle positions of a foot on footprint ``foot`` ((3,) or per sample (n, 3))
-    pitched by ``pitch`` (radians): negative (heel up) rolls about the ball, positive (toes up)
-    about the heel; the pivot stays where it is on the floor when the foot is flat."""
-    pitch = np.atleast_1d(np.asarray(pitch, float))
-    foot = np.atleast_2d(np.asarray(foot, float))
-    n = 0 if 0 in (len(pitch), len(foot)) else max(len(pitch), len(foot))
-    if len(pitch) not in (1, n) or len(foot) not in (1, n):
-        raise ValueError(f"pivot_ankle: {len(foot)} footprints for {len(pitch)} pitches")
-    out = np.empty((n, 3))
-    pivot_rows(foot, pitch, ball_offset(geom), geom.foot_back, geom.ankle_height, out)
-    return out
-
-
-@njit
-def pivot_rows(foot, pitch, ball, back, ah, out):
-    """:func:`pivot_ankle` into ``out`` (n, 3); ``foot`` (1 or n, 3), ``pitch`` (1 or n,):
-    R_z(yaw) R_y(-pitch) (lever, 0, -ah) from the pivot, written out; the pivot is ``lever``
-    ahead of the ankle when flat (the ball for pitch <= 0, the heel otherwise)."""
-    one_f, one_p = foot.shape[0] == 1, pitch.shape[0] == 1
-    for i in range(out.shape[0]):
-        f = 0 if one_f else i
-        p = pitch[0 if one_p else i]
-        lever = ball if p <= 0 else -back
-        yaw = foot[f, 2]
-        fx, fy = math.cos(yaw), math.sin(yaw)
-        c, s = math.cos(p), math.sin(p)
-        along = lever * (c - 1) + ah * s
-        out[i, 0] = foot[f, 0] - along * fx
-        out[i, 1] = foot[f, 1] - along * fy
-        out[i, 2] = ah * c - lever * s
-
-
-def spin_print(foot: np.ndarray, spin, geom: LegGeometry, lever: float | None = None):
-    """(n, 3) footprints of a foot on ``foot`` (3,) turned by ``spin`` (n,) radians about the
-    point ``lever`` metres ahead of the ankle on its sole (default the ball; ``-foot_back``:
-    the heel). That point stays on the floor where it is; the rest of the foot swings round."""
-    b = ball_offset(geom) if lever is None else lever
-    spin = np.asarray(spin, float)
-    piv = foot[:2] + b * np.array([np.cos(foot[2]), np.sin(foot[2])])
-    yaw = foot[2] + spin
-    return np.column_stack([piv[0] - b * np.cos(yaw), piv[1] - b * np.sin(yaw), yaw])
-
-
-def heel_rise(foot, hip, knee, p0, geom: LegGeometry, lo: float = -1.0472):
-    """Foot pitch <= ``p0`` (radians, rolled about the ball) at which the leg with ``knee``
-    flexion reaches from the ankle to ``hip`` (3,); ``p0`` if it reaches already. Where it
-    reaches at no pitch, the pitch in [``lo``, ``p0``] that brings the ankle closest to the
-    hip: rolled about the ball the ankle moves on a circle, so past the point of the circle
-    nearest the hip a higher heel takes it away again (a foot ahead of the hip gets there
-    long before ``lo``, a trailing foot not before).
-
-    Vectorized: ``hip`` (n, 3), ``knee`` (n,) and ``p0`` (n,) give (n,) pitches (one bisection
-    for all samples); scalar ``knee`` and ``p0`` with ``hip`` (3,) give a float."""
-    scalar = np.ndim(p0) == 0
-    hip = np.atleast_2d(np.asarray(hip, float))
-    p0 = np.atleast_1d(np.asarray(p0, float))
-    knee = np.broadcast_to(np.asarray(knee, float), p0.shape)
-    d = geom.span(knee)
-    foot = np.asarray(foot, float)
-    if foot.shape == (3,) and p0.ndim == 1 and hip.shape == (len(p0), 3):  # compiled
-        p = np.empty(len(p0))
-        heel_rise_rows(
-            foot,
-            np.ascontiguousarray(hip),
-            np.ascontiguousarray(d, dtype=float),
-            p0,
-            ball_offset(geom),
-            geom.foot_back,
-            geom.ankle_height,
-            float(lo),
-            p,
-        )
-        return float(p[0]) if scalar else p
-
-    def gap(h, p, dd=d):
-        return np.linalg.norm(h - pivot_ankle(foot, p, geom), axis=-1) - dd
-
-    p = p0.copy()
-    j = np.flatnonzero(gap(hip, p0) > 0)  # the samples that do not reach at p0
-    if not len(j):
-        return float(p[0]) if scalar else p
-    hj, dj = hip[j], d[j]
-    # rolled about the ball B by p <= 0 the ankle is B + rho (-cos t f, sin t z), t = beta - p
-    # (f the foot's heading): |hip - ankle| = d is closed-form in t, the first root as the
-    # heel rises; without a root the clipped arcsin gives the t nearest the hip
-    ball, ah = ball_offset(geom), geom.ankle_height
-    rho, beta = np.hypot(ball, ah), np.arctan2(ah, ball)
-    f = np.array([np.cos(foot[2]), np.sin(foot[2])])
-    rel = hj - np.array([foot[0] + ball * f[0], foot[1] + ball * f[1], 0.0])
-    a_, c_ = rel[:, :2] @ f, rel[:, 2]
-    k_ = ((rel**2).sum(1) + rho**2 - dj**2) / (2 * rho)
-    t = np.arctan2(a_, c_) + np.arcsin(np.clip(k_ / np.hypot(a_, c_), -1.0, 1.0))
-    p[j] = np.clip(beta - t, lo, np.minimum(p0[j], 0.0))
-    # toes up at p0 and reaching with the foot flat: bisect between flat and p0 (the roll
-    # pivots on the heel there); not reaching flat, the ball roll above holds
-    up = j[p0[j] > 0]
-    up = up[gap(hip[up], np.zeros(len(up)), d[up]) <= 0]
-    if len(up):
-        hu, du = hip[up], d[up]
-        a, b = np.zeros(len(up)), p0[up]  # gap(a) <= 0 < gap(b)
-        for _ in range(40):
-            m = 0.5 * (a + b)
-            out = gap(hu, m, du) > 0
-            b = np.where(out, m, b)
-            a = np.where(out, a, m)
-        p[up] = 0.5 * (a + b)
-    return float(p[0]) if scalar else p
-
-
-@njit
-def _pivot_gap(foot, fx, fy, h, p, d, ball, back, ah):
-    """|hip ``h`` - ankle of the foot pitched by ``p``| - ``d`` (:func:`pivot_ankle`)."""
-    lever = ball if p <= 0 else -back
-    c, s = math.cos(p), math.sin(p)
-    along = lever * (c - 1) + ah * s
-    dx = h[0] - (foot[0] - along * fx)
-    dy = h[1] - (foot[1] - along * fy)
-    dz = h[2] - (ah * c - lever * s)
-    return math.sqrt(dx * dx + dy * dy + dz * dz) - d
-
-
-@njit
-def heel_rise_rows(foot, hip, d, p0, ball, back, ah, lo, out):
-    """:func:`heel_rise` per sample (the same steps: reach test at ``p0``, the closed-form
-    roll about the ball, the 40-step bisection of a toes-up foot) into ``out`` (n,)."""
-    fx, fy = math.cos(foot[2]), math.sin(foot[2])
-    rho, beta = math.hypot(ball, ah), math.atan2(ah, ball)
-    bx, by = foot[0] + ball * fx, foot[1] + ball * fy
-    for i in range(len(p0)):
-        h = hip[i]
-        q0 = p0[i]
-        if not _pivot_gap(foot, fx, fy, h, q0, d[i], ball, back, ah) > 0:
-            out[i] = q0
-            continue
-        r0, r1, r2 = h[0] - bx, h[1] - by, h[2] - 0.0
-        a_, c_ = r0 * fx + r1 * fy, r2
-        k_ = ((r0**2 + r1**2 + r2**2) + rho**2 - d[i] ** 2) / (2 * rho)
-        t = math.atan2(a_, c_) + math.asin(min(max(k_ / math.hypot(a_, c_), -1.0), 1.0))
-        q = min(max(beta - t, lo), min(q0, 0.0))
-        if q0 > 0 and _pivot_gap(foot, fx, fy, h, 0.0, d[i], ball, back, ah) <= 0:
-            a, b = 0.0, q0  # gap(a) <= 0 < gap(b)
-            for _ in range(40):
-                m = 0.5 * (a + b)
-                if _pivot_gap(foot, fx, fy, h, m, d[i], ball, back, ah) > 0:
-                    b = m
-                else:
-                    a = m
-            q = 0.5 * (a + b)
-        out[i] = q
-
-
 def hip_world(root: np.ndarray, yaw: np.ndarray, side: str, geom: LegGeometry) -> np.ndarray:
-    """(n, 3) world position of the ``side`` hip joint centre of an upright pelvis at
-    ``root`` (n, 3) with heading ``yaw`` (n,), metres."""
+    """World position of the ``side`` hip joint centre of an upright pelvis:
+    ``root + s hip_y (-sin yaw, cos yaw, 0)``, s = +1 left, -1 right.
+
+    Args:
+        root: (n, 3) pelvis positions, metres.
+        yaw: (n,) pelvis yaws, radians from +x CCW.
+        side: "l" or "r".
+        geom: the leg geometry (``hip_y``).
+
+    Returns:
+        (n, 3) hip joint centres, metres.
+    """
     sgn = 1.0 if side == "l" else -1.0
     lat = np.column_stack([-np.sin(yaw), np.cos(yaw), np.zeros_like(yaw)])
     return root + sgn * geom.hip_y * lat
 
 
 def leg_ik_world(ankle, foot_yaw, pitch, root, yaw, side: str, geom: LegGeometry) -> dict:
-    """Unclipped :func:`leg_ik` angles of the ``side`` leg for world ankle targets (n, 3), foot
-    headings (n,) and pitches (n,) under the pelvis ``root`` (n, 3), ``yaw`` (n,) (compiled:
-    the synthesis calls it dozens of times per walk)."""
+    """Unclipped :func:`leg_ik` angles of the ``side`` leg for world ankle targets under the
+    pelvis (compiled: the synthesis calls it dozens of times per walk).
+
+    Args:
+        ankle: (n, 3) ankle targets, metres, world frame.
+        foot_yaw: (n,) (or broadcastable) foot headings, radians from +x CCW.
+        pitch: (n,) foot pitches to the floor, radians, + toes up.
+        root: (n, 3) pelvis (root) positions, metres.
+        yaw: (n,) pelvis yaws, radians from +x CCW.
+        side: "l" or "r".
+        geom: the leg lengths.
+
+    Returns:
+        joint name -> (n,) angle, radians (hip rotation/flexion/abduction, knee, ankle
+        flexion/inversion), anatomical signs, not clipped.
+    """
     ankle = np.ascontiguousarray(ankle, dtype=float)
     root = np.ascontiguousarray(root, dtype=float)
     n = len(ankle)
@@ -496,13 +434,26 @@ class LegIKCache:
     are solved again; the results are those of :func:`leg_ik_world`."""
 
     def __init__(self, side: str, geom: LegGeometry):
+        """An empty cache (the first call solves every sample).
+
+        Args:
+            side: "l" or "r".
+            geom: the leg lengths.
+        """
         self.side, self.geom = side, geom
         self.inputs: np.ndarray | None = None  # (n, 9) of the previous call
         self.out: np.ndarray | None = None  # (n, 6) its angles
 
     def buffers(self, n: int) -> tuple[np.ndarray, np.ndarray]:
-        """The previous call's inputs (n, 9) and angles (n, 6), for compiled callers of
-        ``leg_ik_world_cached`` (new ones, every row to be solved, for another ``n``)."""
+        """The previous call's inputs and angles, for compiled callers of
+        ``leg_ik_world_cached`` (new ones, every row to be solved, for another ``n``).
+
+        Args:
+            n: the number of samples.
+
+        Returns:
+            inputs (n, 9) (ankle, foot yaw, pitch, root, yaw per row) and angles (n, 6), radians.
+        """
         if self.inputs is None or self.out is None or len(self.inputs) != n:
             self.inputs = np.full((n, 9), np.nan)  # nan: never equal, every row is solved
             self.out = np.empty((n, 6))
@@ -532,8 +483,24 @@ class LegIKCache:
 def leg_ik_world_cached(
     ankle, foot_yaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs, out
 ):
-    """:func:`_leg_ik_world_rows` for the rows whose inputs differ from ``inputs`` (n, 9),
-    which are updated; the other rows of ``out`` (n, 6) are kept."""
+    """:func:`_leg_ik_world_rows` for the rows whose inputs differ from ``inputs``, which
+    are updated; the other rows of ``out`` are kept.
+
+    Args:
+        ankle: (n, 3) ankle targets, metres, world frame.
+        foot_yaw: (n,) foot headings, radians from +x CCW.
+        pitch: (n,) foot pitches to the floor, radians, + toes up.
+        root: (n, 3) pelvis (root) positions, metres.
+        yaw: (n,) pelvis yaws, radians from +x CCW.
+        sgn: +1 for the left leg, -1 for the right.
+        hip_y: the hip joint centre's lateral offset from the pelvis centre, metres.
+        L1: thigh length, metres.
+        L2: shank length, metres.
+        rmin: the shortest hip-to-ankle distance, metres (:func:`ik_lengths`).
+        rmax: the longest hip-to-ankle distance, metres.
+        inputs: (n, 9) the inputs of the previous call per row, updated.
+        out: (n, 6) unclipped angles, radians, updated where the inputs changed.
+    """
     for i in range(ankle.shape[0]):
         row = (
             ankle[i, 0],

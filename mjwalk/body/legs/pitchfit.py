@@ -16,18 +16,16 @@ comment here when those change (else a cached copy keeps the old callees).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import gauss_kernel, spread_rows
-from mjwalk.body.legs.ik import (
-    LegIKCache,
-    ball_offset,
-    ik_lengths,
-    leg_ik_world_cached,
-)
+from mjwalk.body.legs.footpivot import ball_offset
+from mjwalk.body.legs.ik import LegIKCache, ik_lengths, leg_ik_world_cached
+from mjwalk.body.legs.steps import FootTracks
 
 
 def repitch_foot(
@@ -40,12 +38,26 @@ def repitch_foot(
     dp: np.ndarray,
     geom: LegGeometry,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """A foot's ankle targets (n, 3) and pitches (n,) with the pitch lowered by ``dp`` (n,):
-    on the floor (``ground``) about the pivot of its footprint ``prints`` (n, 3) (the heel
-    while toes up, the ball while heel up, :func:`~mjwalk.body.legs.ik.pivot_ankle`),
-    in the air by the same motion of the ankle relative to the foot, as if it stood on a
-    footprint under it (headings ``fyaw`` (n,)). ``toe`` (n,) keeps the toes' angle to the
-    floor while the heel is up (updated in place). New arrays; the inputs are not changed."""
+    """A foot's ankle targets and pitches with the pitch lowered by ``dp``: on the floor
+    (``ground``) about the pivot of its footprint (the heel while toes up, the ball while heel
+    up, :func:`~mjwalk.body.legs.footpivot.pivot_ankle`), in the air by the same motion of the
+    ankle relative to the foot, as if it stood on a footprint under it. New arrays; the
+    inputs are not changed except ``toe``.
+
+    Args:
+        ankle: (n, 3) ankle targets, metres, world frame.
+        pitch: (n,) pitches, radians, + toes up.
+        toe: (n,) toe angles, radians; updated in place (the toes keep their angle to the floor
+            while the heel is up).
+        fyaw: (n,) foot headings, radians from +x CCW.
+        ground: (n,) bool, the foot on the floor.
+        prints: (n, 3) the footprints it stands on.
+        dp: (n,) the pitch decrease, radians.
+        geom: the leg and foot lengths.
+
+    Returns:
+        the new ankle targets (n, 3) and pitches (n,).
+    """
     ankle = np.array(ankle, dtype=float, order="C")
     pitch = np.array(pitch, dtype=float)
     _repitch_rows(
@@ -65,7 +77,7 @@ def repitch_foot(
 
 @njit
 def _pivot_cs(x, y, fx, fy, c, s, p, ball, back, ah):
-    """One row of :func:`~mjwalk.body.legs.ik.pivot_rows` (the same arithmetic) on
+    """One row of :func:`~mjwalk.body.legs.footpivot.pivot_rows` (the same arithmetic) on
     the footprint at ``x``, ``y`` heading (``fx``, ``fy``) = (cos, sin) yaw, pitched by ``p``
     with (``c``, ``s``) = (cos, sin) p."""
     lever = ball if p <= 0 else -back
@@ -109,58 +121,80 @@ def _repitch_rows(ankle, pitch, toe, fyaw, ground, prints, dp, ball, back, ah):
         )  # fmt: skip
 
 
+@dataclass(frozen=True)
+class AnkleFit:
+    """The bounds of the synthesis's ankle-range fit (:func:`fit_ankle_range`).
+
+    Attributes:
+        dorsi_max: the highest ankle flexion (dorsiflexion) of a grounded foot, radians.
+        plantar_min: the lowest ankle flexion of a heel-up grounded foot, radians.
+        win: half-width of the spread of a correction over the samples around (samples).
+        rounds: the most rounds of corrections.
+    """
+
+    dorsi_max: float
+    plantar_min: float
+    win: int
+    rounds: int
+
+
 def fit_ankle_range(
     ik: LegIKCache,
-    ankle: np.ndarray,
-    fyaw: np.ndarray,
-    pitch: np.ndarray,
-    toe: np.ndarray,
-    ground: np.ndarray,
-    prints: np.ndarray,
+    feet: FootTracks,
     root: np.ndarray,
     yaw: np.ndarray,
-    dorsi_max: float,
-    plantar_min: float,
-    win: int,
-    rounds: int,
+    fit: AnkleFit,
 ) -> tuple[np.ndarray, np.ndarray] | None:
-    """Up to ``rounds`` rounds of the synthesis's ankle-range fit of one leg (its ``ik``
+    """Up to ``fit.rounds`` rounds of the synthesis's ankle-range fit of one leg (its ``ik``
     cache): solve the leg (:meth:`LegIKCache.__call__`); a grounded foot whose ankle flexes
     past ``dorsi_max`` pitches down by 1.2 times the excess, one heel-up foot whose ankle
     extends past ``plantar_min`` lowers its heel by 1.2 times the shortfall (down to flat),
     both spread over +-``win`` samples (:func:`~mjwalk.body.legs.curves.spread`), by
-    :func:`repitch_foot`; stop when no grounded ankle is out of range. Returns the new ankle
-    targets (n, 3) and pitches (n,) (``toe`` updated in place), or None for walks shorter than
-    the compiled spread handles (2 ``win`` + 2 samples): the caller runs the NumPy rounds."""
-    n = len(ankle)
+    :func:`repitch_foot`; stop when no grounded ankle is out of range.
+
+    Args:
+        ik: the leg's IK cache (its ``side`` selects the foot of ``feet``).
+        feet: the feet's tracks over n samples; the ``ik.side`` foot's ``toe`` is updated in
+            place, its ``ankle`` and ``pitch`` are not changed.
+        root: (n, 3) pelvis position, metres, world frame.
+        yaw: (n,) pelvis yaw, radians from +x CCW.
+        fit: the ankle bounds (radians), spread window and rounds.
+
+    Returns:
+        the new ankle targets (n, 3, metres) and pitches (n,, radians), or None for walks
+        shorter than the compiled spread handles (2 ``win`` + 2 samples): the caller runs the
+        NumPy rounds.
+    """
+    s_, win = ik.side, fit.win
+    n = len(feet.ankle[s_])
     if n < 2 * win + 2:
         return None
     inputs, out = ik.buffers(n)
-    ankle = np.array(ankle, dtype=float, order="C")
-    pitch = np.array(pitch, dtype=float)
+    ankle = np.array(feet.ankle[s_], dtype=float, order="C")
+    pitch = np.array(feet.pitch[s_], dtype=float)
     geom = ik.geom
     _fit_rounds(
         ankle,
-        np.ascontiguousarray(fyaw, dtype=float),
+        np.ascontiguousarray(feet.fyaw[s_], dtype=float),
         pitch,
-        toe,
-        np.ascontiguousarray(ground, dtype=np.bool_),
-        np.ascontiguousarray(prints, dtype=float),
+        feet.toe[s_],
+        np.ascontiguousarray(feet.ground[s_], dtype=np.bool_),
+        np.ascontiguousarray(feet.prints[s_], dtype=float),
         np.ascontiguousarray(root, dtype=float),
         np.ascontiguousarray(yaw, dtype=float),
-        1.0 if ik.side == "l" else -1.0,
+        1.0 if s_ == "l" else -1.0,
         float(geom.hip_y),
         *ik_lengths(geom),
         inputs,
         out,
-        float(dorsi_max),
-        float(plantar_min),
+        float(fit.dorsi_max),
+        float(fit.plantar_min),
         int(win),
         gauss_kernel(int(win)),
         ball_offset(geom),
         float(geom.foot_back),
         float(geom.ankle_height),
-        int(rounds),
+        int(fit.rounds),
     )
     return ankle, pitch
 

@@ -106,7 +106,17 @@ def _ppoly_eval(coef, knots, xs, nu):
 def ppoly_at(coef, knots, x, nu):
     """One value of :func:`_ppoly_eval` (for compiled callers): scipy's ``PPoly`` arithmetic
     (interval with knots[i] <= x < knots[i+1], the last one closed; the power sum with its
-    running power and derivative prefactors)."""
+    running power and derivative prefactors).
+
+    Args:
+        coef: (4, m - 1) cubic coefficients per interval, highest power first.
+        knots: (m,) increasing breakpoints.
+        x: the query point.
+        nu: the derivative order (0 = the value).
+
+    Returns:
+        the polynomial's ``nu``-th derivative at ``x``.
+    """
     m = len(knots)
     i = np.searchsorted(knots, x, side="right") - 1
     i = min(max(i, 0), m - 2)
@@ -128,7 +138,14 @@ def ppoly_at(coef, knots, x, nu):
 @njit
 def wrap01(c):
     """``np.mod(c, 1.0)`` of one float (the cycle fraction :meth:`ReferenceGait.__call__`
-    evaluates): NumPy's floor-mod arithmetic (fmod, then shifted into [0, 1))."""
+    evaluates): NumPy's floor-mod arithmetic (fmod, then shifted into [0, 1)).
+
+    Args:
+        c: a cycle fraction (any real).
+
+    Returns:
+        c mod 1, in [0, 1).
+    """
     r = np.fmod(c, 1.0)
     if r != 0.0:
         if r < 0.0:
@@ -139,7 +156,11 @@ def wrap01(c):
 
 
 def winter_reference() -> ReferenceGait:
-    """The default reference gait :data:`WINTER_GAIT` (literature values, radians)."""
+    """The reference gait of the table :data:`WINTER_GAIT` (literature values).
+
+    Returns:
+        a :class:`ReferenceGait` (hip, knee and foot pitch over the cycle, radians).
+    """
     g = WINTER_GAIT
     return ReferenceGait(
         cycle=g["cycle"],
@@ -232,14 +253,27 @@ def warp_reference(
 
 def bandai_reference() -> ReferenceGait:
     """The Winter reference warped onto :data:`BANDAI_LANDMARKS` (a generated gait calibrated
-    on the figures of the bandai-walk "normal" actor; no capture samples are used)."""
+    on the figures of the bandai-walk "normal" actor; no capture samples are used).
+
+    Returns:
+        the warped :class:`ReferenceGait` (the package default, :data:`DEFAULT_REFERENCE`).
+    """
     return warp_reference(
         BANDAI_LANDMARKS, source="bandai-walk normal 001-003 landmarks (BANDAI_LANDMARKS)"
     )
 
 
 def reference_angle(joint: str, cycle, derivative: bool = False):
-    """Default-reference angle (radians) of ``joint`` ("hip", "knee", "pitch") at cycle(s)."""
+    """Default-reference angle of ``joint`` at cycle(s).
+
+    Args:
+        joint: "hip", "knee" or "pitch".
+        cycle: gait-cycle fraction(s), 0 = heel strike (scalar or array; wrapped into [0, 1)).
+        derivative: the derivative per unit cycle instead of the angle.
+
+    Returns:
+        the angle(s) in radians (or radians per cycle), the shape of ``cycle``.
+    """
     return DEFAULT_REFERENCE(joint, cycle, derivative)
 
 
@@ -249,5 +283,5 @@ _WINTER = winter_reference()
 #: :func:`bandai_reference` (the Winter table warped onto the landmark figures
 #: :data:`BANDAI_LANDMARKS`; no capture samples). Its maximum difference to held-out
 #: bandai-walk clips is hip 4.8 / knee 6.9 deg, the plain Winter table's 12.4 / 16.1 deg
-#: (tests/body/test_legs.py::test_knee_hip_curves_vs_bandai_capture).
+#: (tests/body/test_analysis.py::test_knee_hip_curves_vs_bandai_capture).
 DEFAULT_REFERENCE = bandai_reference()

@@ -13,7 +13,7 @@ Step phase ``phi`` in [0, 1] from lift-off of the swing foot's step to its landi
 leg covers gait cycle 0-50 %. World frame, metres, radians; a foot's pitch + toes up.
 
 numba caches this module's machine code by its own source, not by the compiled functions it
-calls from other modules (``kinematics.heel_rise_rows``, ``kinematics.pivot_rows``,
+calls from other modules (``footpivot.heel_rise_rows``, ``footpivot.pivot_rows``,
 ``curves.clamped_cubic_rows`` and the one-value shapes such as ``curves.smoothstep1``): change a
 comment here when those change.
 """
@@ -21,6 +21,7 @@ comment here when those change.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -34,13 +35,14 @@ from mjwalk.body.legs.curves import (
     smoothstep1,
     soft_flat1,
 )
-from mjwalk.body.legs.ik import KNEE_MIN, ball_offset, heel_rise_rows, pivot_rows
+from mjwalk.body.legs.footpivot import ball_offset, heel_rise_rows, pivot_rows
+from mjwalk.body.legs.ik import KNEE_MIN
 from mjwalk.body.legs.reference import ReferenceGait
 from mjwalk.body.legs.steps import FOOT_FLAT, STANCE_KEYS, StepFrames
 
 #: The stance knee's upper bound (radians, 80 deg): the synthesis's clip of the stance spline.
 KNEE_STANCE_MAX = float(np.deg2rad(80))
-#: :func:`~mjwalk.body.legs.ik.heel_rise`'s default lowest pitch (radians).
+#: :func:`~mjwalk.body.legs.footpivot.heel_rise`'s default lowest pitch (radians).
 HEEL_RISE_LO = -1.0472
 
 
@@ -54,9 +56,9 @@ def stance_foot(
     knee_end: float,
     geom: LegGeometry,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The stance foot's pitch (n,) and ankle (n, 3) over a step: heel-strike roll-down, flat,
-    heel rise after the reference, and the heel rising further (about the ball) towards the
-    end where the leg with ``knee_end`` flexion would not reach the hip at the target posture.
+    """The stance foot's pitch and ankle over a step: heel-strike roll-down, flat, heel rise
+    after the reference, and the heel rising further (about the ball) towards the end where
+    the leg with ``knee_end`` flexion would not reach the hip at the target posture.
 
     Args:
         fr: the step (stance footprint, ``first``).
@@ -68,6 +70,9 @@ def stance_foot(
         hip_end: (3,) the stance hip joint centre at the step's end (target posture), metres.
         knee_end: the stance knee flexion there (radians).
         geom: the leg lengths.
+
+    Returns:
+        the pitch (n,), radians, + toes up, and the ankle (n, 3), metres, world frame.
     """
     L1, L2 = float(geom.thigh), float(geom.shank)
     n = len(phi)
@@ -118,24 +123,54 @@ def _stance_foot(phi, p_ref, scaled, land_prev, hs_pitch, first, stance2, hip_en
     pivot_rows(stance2, p, ball, back, ah, ankle)
 
 
+@dataclass(frozen=True)
+class KneeEnds:
+    """The stance knee spline's boundary conditions (:func:`stance_knee`).
+
+    Attributes:
+        th0: the knee flexion at step phase 0 (the current posture), radians.
+        v0: its velocity there, radians per unit step phase.
+        th1: the knee flexion at step phase 1 (the target posture), radians.
+        v1: its velocity there, radians per unit step phase.
+    """
+
+    th0: float
+    v0: float
+    th1: float
+    v1: float
+
+
 def stance_knee(
     ref: ReferenceGait,
     phi: np.ndarray,
     k_ref: np.ndarray,
-    th0: float,
-    v0: float,
-    th1: float,
-    v1: float,
+    ends: KneeEnds,
     hip_xy: np.ndarray,
     ankle: np.ndarray,
     geom: LegGeometry,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The stance knee (n,) over a step (:func:`~mjwalk.body.legs.steps.stance_angle`: the
-    reference knee ``k_ref`` (n,) at gait cycle ``0.5 phi`` plus a clamped cubic-spline
-    displacement meeting ``th0``, ``v0`` at ``phi = 0`` and ``th1``, ``v1`` at ``phi = 1``,
-    velocities per unit phase; clipped to [:data:`KNEE_MIN`, :data:`KNEE_STANCE_MAX`]) and the
-    pelvis height (n,) at which that leg reaches its ankle (n, 3) from the hip at ``hip_xy``
-    (n, 2), metres."""
+    """The stance knee over a step and the pelvis height it gives.
+
+    The knee is :func:`~mjwalk.body.legs.steps.stance_angle`'s: the reference knee ``k_ref``
+    at gait cycle ``0.5 phi`` plus a clamped cubic-spline displacement, zero at
+    :data:`~mjwalk.body.legs.steps.STANCE_KEYS`, meeting ``ends`` at ``phi = 0`` and 1;
+    clipped to [:data:`KNEE_MIN`, :data:`KNEE_STANCE_MAX`]. The pelvis height is
+    :math:`z = a_z + \\sqrt{\\max(s(k)^2 - h^2, 10^{-6})}` with :math:`s(k)` the leg's
+    hip-to-ankle span at knee :math:`k` and :math:`h` the horizontal hip-to-ankle distance.
+
+    Args:
+        ref: the reference gait (its knee curve and velocities).
+        phi: (n,) step phases in [0, 1].
+        k_ref: (n,) the reference knee at gait cycle ``0.5 phi``, radians.
+        ends: the spline's boundary angles and velocities.
+        hip_xy: (n, 2) the stance hip's (x, y), metres, world frame.
+        ankle: (n, 3) the stance ankle, metres, world frame.
+        geom: the leg lengths.
+
+    Returns:
+        the knee flexion (n,, radians) and the pelvis height (n,, metres).
+    """
+    th0, v0, th1, v1 = ends.th0, ends.v0, ends.th1, ends.v1
     r0, r1 = float(ref("knee", 0.0)), float(ref("knee", 0.5))
     d0 = v0 - 0.5 * float(ref("knee", 0.0, True))
     d1 = v1 - 0.5 * float(ref("knee", 0.5, True))
@@ -178,34 +213,76 @@ def _stance_knee(knots, phi, k_ref, values, d0, d1, hip_xy, ankle, span0, span1,
         z[i] = ankle[i, 2] + math.sqrt(maximum1(s * s - h * h, 1e-6))
 
 
+@dataclass(frozen=True)
+class StanceLeg:
+    """The stance leg over a step's n samples, as :func:`pelvis_height` needs it.
+
+    Attributes:
+        hip_xy: (n, 2) the stance hip's (x, y), metres, world frame.
+        knee: (n,) the stance knee flexion, radians.
+        pitch: (n,) the stance foot's pitch, radians, + toes up (:func:`pelvis_height` updates
+            it in place).
+    """
+
+    hip_xy: np.ndarray
+    knee: np.ndarray
+    pitch: np.ndarray
+
+
+@dataclass(frozen=True)
+class LandingEase:
+    """The swing leg's reach during a walk (:func:`pelvis_height`).
+
+    Attributes:
+        d_max_sq: the swing leg's longest hip-to-ankle distance, squared (m²).
+        d_land: its hip-to-ankle distance at heel strike (m).
+        ease_from: the step phase from which the leg eases into ``d_land``.
+    """
+
+    d_max_sq: float
+    d_land: float
+    ease_from: float
+
+
 def pelvis_height(
     phi: np.ndarray,
     z_flat: np.ndarray,
     ankle_sw: np.ndarray,
     hip_sw: np.ndarray,
-    hip_st: np.ndarray,
-    knee_st: np.ndarray,
-    p_st: np.ndarray,
+    stance: StanceLeg,
     fr: StepFrames,
-    d_max_sq: float,
-    d_land: float,
-    ease_from: float,
+    ease: LandingEase,
     geom: LegGeometry,
 ) -> tuple[np.ndarray, np.ndarray | None]:
-    """The pelvis height (n,) over a step: the stance leg's ``z_flat`` (n,), capped where the
-    swing leg (ankle ``ankle_sw`` (n, 3), hip at ``hip_sw`` (n, 2)) could not reach its foot
-    at its longest span (``d_max_sq``, m²); from step phase ``ease_from`` (at least three
-    samples, not the first) the swing leg's hip-to-ankle distance eases into its heel-strike
-    length ``d_land`` (m, zero velocity) along a cubic from its length and velocity there, and
-    the pelvis height follows from it. Where the pelvis then rises, the trailing (stance) leg
-    keeps its knee ``knee_st`` (n,): its heel rises further about the ball of its footprint
-    (``p_st`` (n,) updated in place, hip at ``hip_st`` (n, 2)); returns the stance ankle
-    (n, 3) for the new pitches then, else None."""
+    """The pelvis height over a step: the stance leg's ``z_flat``, capped where the swing leg
+    could not reach its foot at its longest span (``ease.d_max_sq``); from step phase
+    ``ease.ease_from`` (at least three samples, not the first) the swing leg's hip-to-ankle
+    distance eases into its heel-strike length ``ease.d_land`` (zero velocity) along a cubic
+    from its length and velocity there, and the pelvis height follows from it. Where the
+    pelvis then rises, the trailing (stance) leg keeps its knee: its heel rises further about
+    the ball of its footprint.
+
+    Args:
+        phi: (n,) step phases in [0, 1].
+        z_flat: (n,) the pelvis height the stance leg gives (:func:`stance_knee`), metres.
+        ankle_sw: (n, 3) the swing ankle, metres, world frame.
+        hip_sw: (n, 2) the swing hip's (x, y), metres, world frame.
+        stance: the stance leg; its ``pitch`` is updated in place where the heel rises.
+        fr: the step (its stance footprint).
+        ease: the swing leg's longest and landing spans and the ease's start phase.
+        geom: the leg lengths.
+
+    Returns:
+        the pelvis height (n,, metres) and the stance ankle (n, 3, metres) for the new
+        pitches where the landing eased, else None.
+    """
+    hip_st, knee_st, p_st = stance.hip_xy, stance.knee, stance.pitch
+    d_max_sq, d_land, ease_from = ease.d_max_sq, ease.d_land, ease.ease_from
     lj = np.flatnonzero(phi >= ease_from)
-    ease = len(lj) >= 3 and lj[0] > 0
-    j = int(lj[0]) if ease else -1
+    easing = len(lj) >= 3 and lj[0] > 0
+    j = int(lj[0]) if easing else -1
     # u³ by NumPy (its power rounds unlike a compiled one)
-    u3 = ((phi[lj] - phi[j]) / (1.0 - phi[j])) ** 3 if ease else np.empty(0)
+    u3 = ((phi[lj] - phi[j]) / (1.0 - phi[j])) ** 3 if easing else np.empty(0)
     L1, L2 = float(geom.thigh), float(geom.shank)
     n = len(phi)
     z, ankle = np.empty(n), np.empty((n, 3))
@@ -293,11 +370,21 @@ def reach_deficit(
     reach_sq: dict[str, np.ndarray],
     geom: LegGeometry,
 ) -> np.ndarray:
-    """(n,) how far (m) the pelvis at ``root`` (n, 3) with heading ``yaw`` (n,) stands above
-    the height from which each grounded leg (``ground`` per side "l"/"r", (n,) bool) reaches
-    its ankle (``ankle`` per side, (n, 3)) with the hip-to-ankle span whose square is
-    ``reach_sq`` (per side, (n,), m²): the larger of the legs' deficits, 0 where neither is
-    grounded or the grounded legs reach."""
+    """How far the pelvis stands above the height from which each grounded leg reaches its
+    ankle with a given span: the larger of the legs' deficits, 0 where neither is grounded or
+    the grounded legs reach.
+
+    Args:
+        root: (n, 3) pelvis positions, metres, world frame.
+        yaw: (n,) pelvis yaw, radians from +x CCW.
+        ankle: per side ("l"/"r") the (n, 3) ankle targets, metres.
+        ground: per side the (n,) bool foot-on-the-floor flags.
+        reach_sq: per side the (n,) squared hip-to-ankle spans, m².
+        geom: the leg geometry (``hip_y``).
+
+    Returns:
+        (n,) the deficit, metres (>= 0).
+    """
     out = np.zeros(len(yaw))
     for s_ in "lr":
         _reach_deficit(

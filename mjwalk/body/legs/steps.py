@@ -9,6 +9,7 @@ half a gait cycle. World frame, metres, radians.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,15 +17,8 @@ import numpy as np
 from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import clamped_cubic, maximum1, smoothstep, soft_clip01, soft_flat
-from mjwalk.body.legs.ik import (
-    KNEE_MIN,
-    ball_offset,
-    heel_rise,
-    ik_lengths,
-    leg_ik_world_row,
-    pivot_ankle,
-    pivot_rows,
-)
+from mjwalk.body.legs.footpivot import ball_offset, heel_rise, pivot_ankle, pivot_rows
+from mjwalk.body.legs.ik import KNEE_MIN, ik_lengths, leg_ik_world_row
 from mjwalk.body.legs.reference import ReferenceGait
 from mjwalk.conventions import side_prefix
 from mjwalk.plan.walkpath import WalkPath
@@ -77,8 +71,41 @@ class StepFrames:
     p_end: float | None = None
 
 
+@dataclass(frozen=True)
+class FootTracks:
+    """Both feet's per-sample targets over a walk, as the leg synthesis builds them: each field
+    maps a side's joint-name letter ("l"/"r") to an array over the walk's n samples (world
+    frame, metres, radians). The dicts and arrays are shared with the caller: the functions
+    that take a FootTracks update them in place where they say so.
+
+    Attributes:
+        ankle: (n, 3) ankle-joint targets.
+        fyaw: (n,) foot headings, from +x CCW.
+        pitch: (n,) foot pitch to the floor, + toes up.
+        toe: (n,) toe-joint angle (+ flexion).
+        ground: (n,) bool, the foot on the floor (pivoting on a footprint).
+        prints: (n, 3) the footprint (x, y, yaw) it stands on where ``ground``.
+    """
+
+    ankle: dict[str, np.ndarray]
+    fyaw: dict[str, np.ndarray]
+    pitch: dict[str, np.ndarray]
+    toe: dict[str, np.ndarray]
+    ground: dict[str, np.ndarray]
+    prints: dict[str, np.ndarray]
+
+
 def step_frames(walk: WalkPath) -> list[StepFrames]:
-    """Per step: swing side, lift-off and landing footprints, stance footprint."""
+    """Per step: swing side, lift-off and landing footprints, stance footprint. The first
+    step lifts a foot mirrored beside the stance foot about the pelvis (standing start); the
+    others lift the foot the previous step stood on.
+
+    Args:
+        walk: a WalkPath with steps.
+
+    Returns:
+        one :class:`StepFrames` per step, in order (``land_p`` not set yet).
+    """
     steps = walk.steps
     frames = []
     for i, st in enumerate(steps):
@@ -110,11 +137,21 @@ def step_frames(walk: WalkPath) -> list[StepFrames]:
 def landing_pitches(
     frames: list[StepFrames], xy, yaw, hs_pitch, d_land, dorsi_max, geom: LegGeometry
 ) -> None:
-    """Per step (``frames``, in place: ``land_p``), the pitch (radians, + toes up) the swing
-    foot lands with: the reference's ``hs_pitch``, or flatter (down to 0) where the landing
-    leg at its heel-strike length ``d_land`` (m) under the pelvis at ``xy``, ``yaw`` of the
-    landing sample would dorsiflex its ankle past ``dorsi_max`` (a foot landing under the
-    hip). All steps at once; a few fixed-point rounds (compiled: :func:`_landing_rounds`)."""
+    """Per step (``frames``, in place: ``land_p``), the pitch the swing foot lands with: the
+    reference's ``hs_pitch``, or flatter (down to 0) where the landing leg at its heel-strike
+    length ``d_land`` under the pelvis of the landing sample would dorsiflex its ankle past
+    ``dorsi_max`` (a foot landing under the hip). All steps at once; a few fixed-point rounds
+    (compiled: :func:`_landing_rounds`).
+
+    Args:
+        frames: the walk's steps; their ``land_p`` is set.
+        xy: (N, 2) the pelvis positions of the walk's samples, metres.
+        yaw: (N,) the pelvis yaw, radians from +x CCW.
+        hs_pitch: the reference's heel-strike pitch, radians, + toes up.
+        d_land: the landing leg's hip-to-ankle distance, metres.
+        dorsi_max: the highest ankle flexion, radians.
+        geom: the leg lengths.
+    """
     L1, L2, rmin, rmax = ik_lengths(geom)
     land_p = np.full(len(frames), float(hs_pitch))
     _landing_rounds(
@@ -180,15 +217,28 @@ def _landing_rounds(b, land, sgn, xy, yaw, d_land_sq, dorsi_max, hip_y, L1, L2, 
 
 
 def stance_angle(ref: ReferenceGait, name: str, phi, th0, v0, th1, v1) -> np.ndarray:
-    """Stance-leg angle ``name`` (radians) at step phases ``phi``: the reference's own curve
-    over cycle 0-50 % plus a cubic-spline displacement that is zero at the key frames
-    :data:`STANCE_KEYS` (so the angle coincides with the reference key-frame angles there) and
-    meets the current posture's angle ``th0`` / velocity ``v0`` at ``phi = 0`` and the target
-    posture's ``th1`` / ``v1`` at ``phi = 1`` (velocities per unit phase).
+    """Stance-leg angle ``name`` at step phases ``phi``: the reference's own curve over cycle
+    0-50 % plus a cubic-spline displacement that is zero at the key frames
+    :data:`STANCE_KEYS` (so the angle coincides with the reference key-frame angles there)
+    and meets the current posture's angle ``th0`` / velocity ``v0`` at ``phi = 0`` and the
+    target posture's ``th1`` / ``v1`` at ``phi = 1``.
 
     Between the keys and the boundaries the result keeps the reference's shape (its loading
     response, say) instead of the bare cubic through five points, which cuts the reference's
-    curves short (motion warping, Witkin & Popovic 1995, applied to the paper's spline)."""
+    curves short (motion warping, Witkin & Popovic 1995, applied to the paper's spline).
+
+    Args:
+        ref: the reference gait.
+        name: "hip", "knee" or "pitch".
+        phi: step phases in [0, 1] (any shape).
+        th0: the angle at ``phi = 0``, radians.
+        v0: its velocity there, radians per unit phase.
+        th1: the angle at ``phi = 1``, radians.
+        v1: its velocity there, radians per unit phase.
+
+    Returns:
+        the angle, radians, the shape of ``phi``.
+    """
     r0, r1 = float(ref(name, 0.0)), float(ref(name, 0.5))
     d0 = v0 - 0.5 * float(ref(name, 0.0, True))
     d1 = v1 - 0.5 * float(ref(name, 0.5, True))
@@ -205,38 +255,57 @@ def _end_slopes(f: np.ndarray, x: np.ndarray) -> np.ndarray:
     return np.stack([(f[1] - f[0]) / (x[1] - x[0]), (f[-1] - f[-2]) / (x[-1] - x[-2])])
 
 
+@dataclass(frozen=True)
+class _SwingStep:
+    """The inputs of :func:`swing_foot` (its helpers share them)."""
+
+    fr: StepFrames
+    phi: np.ndarray
+    idx: np.ndarray
+    z_hip: np.ndarray
+    hip_pos: Callable[..., np.ndarray]
+    ref: ReferenceGait
+    geom: LegGeometry
+    land_p: float
+
+
 def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeometry, land_p):
-    """Swing foot: ankle (n, 3), pitch (n,), toe angle (n,), yaw (n,) over the step, and the
-    step phase of its toe-off: :data:`TOE_OFF`, or earlier where the pre-swing heel rise
-    reaches :data:`HEEL_RISE_MAX` and the leg still cannot reach the foot with the
-    reference knee (a trailing foot far behind its hip): the toes leave the floor there and
-    the foot goes with the leg (held on the floor, the stretched leg's knee would straighten
-    until toe-off, then flex to the swing's within a few samples)."""
-    ah, L1, L2 = geom.ankle_height, geom.thigh, geom.shank
+    """Swing foot over the step (A9) and the step phase of its toe-off: :data:`TOE_OFF`, or
+    earlier where the pre-swing heel rise reaches :data:`HEEL_RISE_MAX` and the leg still
+    cannot reach the foot with the reference knee (a trailing foot far behind its hip): the
+    toes leave the floor there and the foot goes with the leg (held on the floor, the
+    stretched leg's knee would straighten until toe-off, then flex to the swing's within a
+    few samples).
+
+    Args:
+        fr: the step (swing side, lift-off and landing footprints, first step, ``p_start``).
+        phi: (n,) increasing step phases of the step's samples, 0 to 1.
+        idx: (n,) the samples' indices into the walk (passed to ``hip_pos``).
+        z_hip: (n,) the pelvis height, metres.
+        hip_pos: ``hip_pos(idx, side, zz=None)``: the ``side`` hip's (x, y) (m, 2) at
+            samples ``idx``, with the height ``zz`` as a third column if given, metres.
+        ref: the reference gait.
+        geom: the leg lengths.
+        land_p: the pitch the foot lands with, radians, + toes up.
+
+    Returns:
+        ankle (n, 3, metres, world frame), pitch (n,), toe angle (n,), yaw (n,, from +x CCW),
+        radians, and the toe-off step phase.
+    """
+    st = _SwingStep(fr, phi, idx, z_hip, hip_pos, ref, geom, land_p)
     lift, land = fr.lift, fr.land
-    sw = fr.side
     yaw = lift[2] + np.angle(np.exp(1j * (land[2] - lift[2]))) * smoothstep(
         (phi - TOE_OFF) / (SWING_TURNED - TOE_OFF)
     )
-
-    def roll_pitch(ph):
-        p = soft_flat(np.minimum(ref("pitch", 0.5 + 0.5 * ph), 0.0))
-        if fr.first:
-            p = p * smoothstep(ph / TOE_OFF)
-        elif fr.p_start is not None:  # continue from the stance's extra heel rise
-            p0 = soft_flat(np.minimum(ref("pitch", 0.5), 0.0))
-            p = p + min(fr.p_start - p0, 0.0) * (1 - smoothstep(ph / TOE_OFF))
-        return p
-
     pos = np.zeros((len(phi), 3))
     p = np.zeros(len(phi))
     early = phi <= TOE_OFF
-    p[early] = roll_pitch(phi[early])
+    p[early] = _roll_pitch(fr, ref, phi[early])
     phi_to = TOE_OFF
     if not fr.first:
         # pre-swing: the knee follows the reference; the heel rises as far as that needs
         je = np.flatnonzero(early)
-        hip = hip_pos(idx[je], sw, z_hip[je])
+        hip = hip_pos(idx[je], fr.side, z_hip[je])
         knee = np.maximum(ref("knee", 0.5 + 0.5 * phi[je]), float(KNEE_MIN))
         p[je] = heel_rise(lift, hip, knee, p[je], geom, lo=-HEEL_RISE_MAX)
         held = np.flatnonzero(p[je] <= -HEEL_RISE_MAX + 1e-9)
@@ -246,78 +315,113 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     pos[early] = pivot_ankle(lift, p[early], geom)
     late = ~early
     if late.any():
-        je = np.flatnonzero(early)[-2:]
-        h = float(phi[je[1]] - phi[je[0]])
-        p_to = p[je[::-1]]
-        a0 = pos[je[::-1]]
-        v0 = (a0[0] - a0[1]) / h
-        # the reference swing: the reference hip/knee angles of each gait-cycle instant placed
-        # at the current hip (forward progress and height), along the line from the lift-off
-        # to the landing footprint
-        jl = np.flatnonzero(late)
-        c = 0.5 + 0.5 * phi[jl]
-        hf, kf = ref("hip", c), ref("knee", c)
-        fwd = L1 * np.sin(hf) + L2 * np.sin(hf - kf)
-        down = L1 * np.cos(hf) + L2 * np.cos(hf - kf)
-        heading = np.column_stack([np.cos(yaw[jl]), np.sin(yaw[jl])])
-        target = hip_pos(idx[jl], sw) + fwd[:, None] * heading
-        seg = land[:2] - lift[:2]
-        # progress along the chord, clamped to the footprints softly (C1): a hard clamp where
-        # the reference passes the landing footprint (short steps) kinks the ankle's path
-        s = soft_clip01((target - lift[:2]) @ seg / max(float(seg @ seg), 1e-9), 0.1)
-        chord = lift[:2] + s[:, None] * seg
-        # sideways, the foot swings under its hip: where the step turns, the hip's track bends
-        # away from the chord (and from an inner corner the pelvis was planned clear of)
-        nrm = np.array([-seg[1], seg[0]]) / max(float(np.linalg.norm(seg)), 1e-9)
-        off = (hip_pos(idx[jl], sw) - chord) @ nrm
-        xy = chord + (off * np.sin(np.pi * s))[:, None] * nrm
-        ref_pos = np.column_stack([xy, z_hip[jl] - down])
-        ref_pit = np.clip(ref("pitch", c), np.deg2rad(-70), np.deg2rad(30))
-        # key positions at SWING_KEYS: the reference, lifted where the ankle would be lower
-        # than standing height; the reference shape is kept between the keys and the
-        # boundaries (lift-off state at toe-off, the landing pose with zero velocity) by a
-        # cubic-spline displacement (as the stance angles, :func:`stance_angle`)
-        knots, dpos, dpit = [float(phi[je[1]])], [a0[0]], [p_to[0]]
-        for ph in SWING_KEYS[1:]:
-            m = int(np.argmin(np.abs(phi[jl] - ph)))
-            knots.append(float(phi[jl[m]]))
-            key = ref_pos[m].copy()
-            key[2] = max(key[2], ah)
-            dpos.append(key)
-            dpit.append(ref_pit[m])
-        knots.append(1.0)
-        dpos.append(pivot_ankle(land, land_p, geom)[0])
-        dpit.append(land_p)
-        # the reference at the knots; the toe-off knot (the last pre-swing sample) lies before
-        # the first swing sample: extrapolated linearly with the reference's velocity there (the
-        # first sample's value would offset the whole reference by one sample's motion, and the
-        # foot would move back by it right after toe-off)
-        rk = np.column_stack([np.interp(knots, phi[jl], ref_pos[:, k]) for k in range(3)])
-        rp = np.interp(knots, phi[jl], ref_pit)
-        # (the reference's slopes at both ends: np.gradient's one-sided end differences)
-        dr = _end_slopes(ref_pos, phi[jl]) if len(jl) > 1 else np.zeros((1, 3))
-        dq = _end_slopes(ref_pit, phi[jl]) if len(jl) > 1 else np.zeros(1)
-        lead = float(phi[jl[0]]) - knots[0]
-        rk[0] -= lead * dr[0]
-        rp[0] -= lead * dq[0]
-        sp = clamped_cubic(knots, np.array(dpos) - rk, v0 - dr[0], -dr[-1], phi[late])
-        dp0 = (p_to[0] - p_to[1]) / h
-        spp = clamped_cubic(knots, np.array(dpit) - rp, dp0 - dq[0], -dq[-1], phi[late])
-        pos[late], p[late] = ref_pos + sp, ref_pit + spp
+        _swing_path(st, pos, p, early, yaw)
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[early][-1] if early.any() else 0.0
     toe = np.where(early, -p, -p_end * (1 - smoothstep((phi - phi_to) / TOE_STRAIGHTEN)))
     if late.any():
-        # keep heel, ball and toe tip off the floor (lift the ankle where they would dip); the
-        # toe tip is on the toes, bent by the toe angle (flat on the floor at toe-off: a tip
-        # rigid with the pitched foot would dip below it and jolt the ankle up)
-        pl, tl = p[late], toe[late]
-        ball = ball_offset(geom)
-        ball_z = ball * np.sin(pl) - ah * np.cos(pl)
-        for tip in (
-            -geom.foot_back * np.sin(pl) - ah * np.cos(pl),
-            ball_z,
-            ball_z + (geom.foot_front - ball) * np.sin(pl + tl),
-        ):
-            pos[late, 2] += np.maximum(0.0, -(pos[late, 2] + tip))
+        _clear_floor(pos, p, toe, late, geom)
     return pos, p, toe, yaw, phi_to
+
+
+def _roll_pitch(fr: StepFrames, ref: ReferenceGait, ph: np.ndarray) -> np.ndarray:
+    """The swing foot's pitch (radians) rolling about its ball before toe-off, at step
+    phases ``ph``: the reference's heel rise (toes down only, softly flat), faded in on a
+    standing start, continuing the stance's extra heel rise otherwise."""
+    p = soft_flat(np.minimum(ref("pitch", 0.5 + 0.5 * ph), 0.0))
+    if fr.first:
+        p = p * smoothstep(ph / TOE_OFF)
+    elif fr.p_start is not None:  # continue from the stance's extra heel rise
+        p0 = soft_flat(np.minimum(ref("pitch", 0.5), 0.0))
+        p = p + min(fr.p_start - p0, 0.0) * (1 - smoothstep(ph / TOE_OFF))
+    return p
+
+
+def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray):
+    """The reference swing at samples ``jl`` after toe-off: the reference hip/knee angles of
+    each gait-cycle instant placed at the current hip (forward progress and height), along
+    the line from the lift-off to the landing footprint; returns the ankle (m, 3) and the
+    clipped reference pitch (m,)."""
+    fr, phi, ref, geom = st.fr, st.phi, st.ref, st.geom
+    L1, L2 = geom.thigh, geom.shank
+    lift, land, sw = fr.lift, fr.land, fr.side
+    c = 0.5 + 0.5 * phi[jl]
+    hf, kf = ref("hip", c), ref("knee", c)
+    fwd = L1 * np.sin(hf) + L2 * np.sin(hf - kf)
+    down = L1 * np.cos(hf) + L2 * np.cos(hf - kf)
+    heading = np.column_stack([np.cos(yaw[jl]), np.sin(yaw[jl])])
+    target = st.hip_pos(st.idx[jl], sw) + fwd[:, None] * heading
+    seg = land[:2] - lift[:2]
+    # progress along the chord, clamped to the footprints softly (C1): a hard clamp where
+    # the reference passes the landing footprint (short steps) kinks the ankle's path
+    s = soft_clip01((target - lift[:2]) @ seg / max(float(seg @ seg), 1e-9), 0.1)
+    chord = lift[:2] + s[:, None] * seg
+    # sideways, the foot swings under its hip: where the step turns, the hip's track bends
+    # away from the chord (and from an inner corner the pelvis was planned clear of)
+    nrm = np.array([-seg[1], seg[0]]) / max(float(np.linalg.norm(seg)), 1e-9)
+    off = (st.hip_pos(st.idx[jl], sw) - chord) @ nrm
+    xy = chord + (off * np.sin(np.pi * s))[:, None] * nrm
+    ref_pos = np.column_stack([xy, st.z_hip[jl] - down])
+    ref_pit = np.clip(ref("pitch", c), np.deg2rad(-70), np.deg2rad(30))
+    return ref_pos, ref_pit
+
+
+def _swing_path(st: _SwingStep, pos, p, early, yaw) -> None:
+    """The swing after toe-off into ``pos`` and ``p`` (in place, where not ``early``): the
+    reference swing plus a clamped cubic-spline displacement through the key positions."""
+    phi, geom, late = st.phi, st.geom, ~early
+    je = np.flatnonzero(early)[-2:]
+    h = float(phi[je[1]] - phi[je[0]])
+    p_to = p[je[::-1]]
+    a0 = pos[je[::-1]]
+    v0 = (a0[0] - a0[1]) / h
+    jl = np.flatnonzero(late)
+    ref_pos, ref_pit = _reference_swing(st, jl, yaw)
+    # key positions at SWING_KEYS: the reference, lifted where the ankle would be lower
+    # than standing height; the reference shape is kept between the keys and the
+    # boundaries (lift-off state at toe-off, the landing pose with zero velocity) by a
+    # cubic-spline displacement (as the stance angles, :func:`stance_angle`)
+    knots, dpos, dpit = [float(phi[je[1]])], [a0[0]], [p_to[0]]
+    for ph in SWING_KEYS[1:]:
+        m = int(np.argmin(np.abs(phi[jl] - ph)))
+        knots.append(float(phi[jl[m]]))
+        key = ref_pos[m].copy()
+        key[2] = max(key[2], geom.ankle_height)
+        dpos.append(key)
+        dpit.append(ref_pit[m])
+    knots.append(1.0)
+    dpos.append(pivot_ankle(st.fr.land, st.land_p, geom)[0])
+    dpit.append(st.land_p)
+    # the reference at the knots; the toe-off knot (the last pre-swing sample) lies before
+    # the first swing sample: extrapolated linearly with the reference's velocity there (the
+    # first sample's value would offset the whole reference by one sample's motion, and the
+    # foot would move back by it right after toe-off)
+    rk = np.column_stack([np.interp(knots, phi[jl], ref_pos[:, k]) for k in range(3)])
+    rp = np.interp(knots, phi[jl], ref_pit)
+    # (the reference's slopes at both ends: np.gradient's one-sided end differences)
+    dr = _end_slopes(ref_pos, phi[jl]) if len(jl) > 1 else np.zeros((1, 3))
+    dq = _end_slopes(ref_pit, phi[jl]) if len(jl) > 1 else np.zeros(1)
+    lead = float(phi[jl[0]]) - knots[0]
+    rk[0] -= lead * dr[0]
+    rp[0] -= lead * dq[0]
+    sp = clamped_cubic(knots, np.array(dpos) - rk, v0 - dr[0], -dr[-1], phi[late])
+    dp0 = (p_to[0] - p_to[1]) / h
+    spp = clamped_cubic(knots, np.array(dpit) - rp, dp0 - dq[0], -dq[-1], phi[late])
+    pos[late], p[late] = ref_pos + sp, ref_pit + spp
+
+
+def _clear_floor(pos, p, toe, late, geom: LegGeometry) -> None:
+    """Keep heel, ball and toe tip off the floor after toe-off (lift the ankle ``pos`` where
+    they would dip, in place)."""
+    # the toe tip is on the toes, bent by the toe angle (flat on the floor at toe-off: a tip
+    # rigid with the pitched foot would dip below it and jolt the ankle up)
+    ah = geom.ankle_height
+    pl, tl = p[late], toe[late]
+    ball = ball_offset(geom)
+    ball_z = ball * np.sin(pl) - ah * np.cos(pl)
+    for tip in (
+        -geom.foot_back * np.sin(pl) - ah * np.cos(pl),
+        ball_z,
+        ball_z + (geom.foot_front - ball) * np.sin(pl + tl),
+    ):
+        pos[late, 2] += np.maximum(0.0, -(pos[late, 2] + tip))

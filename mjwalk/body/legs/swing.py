@@ -11,7 +11,7 @@ Step phase ``phi`` in [0, 1] from lift-off of the swing foot's step to its landi
 frame, metres, radians; a foot's pitch + toes up.
 
 numba caches this module's machine code by its own source, not by the compiled functions it
-calls from other modules (``kinematics.heel_rise_rows``, ``kinematics.pivot_rows``,
+calls from other modules (``footpivot.heel_rise_rows``, ``footpivot.pivot_rows``,
 ``curves.clamped_cubic_rows`` and the one-value shapes such as ``curves.smoothstep1``,
 ``reference.ppoly_at``): change a comment here when those change.
 """
@@ -34,7 +34,8 @@ from mjwalk.body.legs.curves import (
     soft_flat,
     soft_flat1,
 )
-from mjwalk.body.legs.ik import KNEE_MIN, ball_offset, heel_rise_rows, pivot_rows
+from mjwalk.body.legs.footpivot import ball_offset, heel_rise_rows, pivot_rows
+from mjwalk.body.legs.ik import KNEE_MIN
 from mjwalk.body.legs.reference import ReferenceGait, ppoly_at, wrap01
 from mjwalk.body.legs.steps import (
     HEEL_RISE_MAX,

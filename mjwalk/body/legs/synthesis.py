@@ -39,21 +39,29 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mjwalk.body.humanoid import ROM_DEG, leg_geometry
+from mjwalk.body.humanoid import ROM_DEG, LegGeometry, leg_geometry
 from mjwalk.body.legs.curves import spread
-from mjwalk.body.legs.ik import (
-    KNEE_MIN,
-    LegIKCache,
-    foot_lowest,
-    generic_joint,
-    hip_world,
-    pivot_ankle,
-)
-from mjwalk.body.legs.pitchfit import fit_ankle_range, repitch_foot
+from mjwalk.body.legs.footpivot import pivot_ankle
+from mjwalk.body.legs.ik import KNEE_MIN, LegIKCache, foot_lowest, generic_joint, hip_world
+from mjwalk.body.legs.pitchfit import AnkleFit, fit_ankle_range, repitch_foot
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
-from mjwalk.body.legs.stance import pelvis_height, reach_deficit, stance_foot, stance_knee
-from mjwalk.body.legs.steps import landing_pitches, step_frames, swing_foot
+from mjwalk.body.legs.stance import (
+    KneeEnds,
+    LandingEase,
+    StanceLeg,
+    pelvis_height,
+    reach_deficit,
+    stance_foot,
+    stance_knee,
+)
+from mjwalk.body.legs.steps import (
+    FootTracks,
+    StepFrames,
+    landing_pitches,
+    step_frames,
+    swing_foot,
+)
 from mjwalk.body.legs.swing import swing_foot as swing_foot_compiled
 from mjwalk.conventions import DEFAULT_STATURE, side_of_prefix
 from mjwalk.errors import PlanningError
@@ -122,8 +130,6 @@ def legs_from_walk(
     ref = reference or DEFAULT_REFERENCE
     geom = leg_geometry(stature)
     n = len(walk.t)
-    xy = np.asarray(walk.xy, float)
-    yaw = np.asarray(walk.yaw, float)
     frames = step_frames(walk)
     for k, fr in enumerate(frames):
         if not (0 <= fr.start < fr.end < n):
@@ -131,153 +137,241 @@ def legs_from_walk(
                 f"legs_from_walk: step {k} has sample range {fr.start}..{fr.end} outside "
                 f"the path's {n} samples"
             )
-    ah = geom.ankle_height
-    ankle = {s: np.zeros((n, 3)) for s in "lr"}
-    fyaw = {s: np.zeros(n) for s in "lr"}
-    pitch = {s: np.zeros(n) for s in "lr"}
-    toe = {s: np.zeros(n) for s in "lr"}
-    contact = np.full(n, 2, dtype=int)
-    phase = np.zeros(n)
-    z = np.full(n, np.nan)
-    ground = {s: np.zeros(n, bool) for s in "lr"}  # foot on the floor (pivoting on a print)
-    print_ = {s: np.zeros((n, 3)) for s in "lr"}  # ... on this footprint
-    cyc = {s: np.zeros(n) for s in "lr"}  # the leg's gait-cycle fraction (0 = heel strike)
-
-    # each hip's offset from the pelvis centre (m) at every sample, for hip_pos
-    side_dir = np.stack([-np.sin(yaw), np.cos(yaw)], -1)
-    hip_off = {s_: (1.0 if s_ == "l" else -1.0) * geom.hip_y * side_dir for s_ in "lr"}
-    hip_xy = {s_: xy + hip_off[s_] for s_ in "lr"}  # each hip's (x, y) (m), as hip_pos's
-
-    def hip_pos(idx, side, zz=None):
-        # idx: sample indices, or a slice of them (a view of hip_xy: the same numbers)
-        h = hip_xy[side][idx]
-        return h if zz is None else np.column_stack([h, zz])
-
-    def knee_for(i: int, side: str, foot_pos, zz) -> float:
-        # the knee flexion that puts the ankle foot_pos (3,) at the hip of sample i with the
-        # pelvis at height zz: |hip - ankle| as np.linalg.norm sums it, in Python floats
-        # (the same IEEE arithmetic without array calls), the arccos NumPy's
-        dx = float(hip_xy[side][i, 0]) - float(foot_pos[0])
-        dy = float(hip_xy[side][i, 1]) - float(foot_pos[1])
-        dz = float(zz) - float(foot_pos[2])
-        return float(geom.knee_for_span(np.array([math.sqrt(dx * dx + dy * dy + dz * dz)]))[0])
-
-    hs_pitch = max(0.0, float(ref("pitch", 0.0)))
-    dorsi_max = np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0)
-    plantar_min = np.deg2rad(ROM_DEG["ankle_flex"][0] + 1.0)
+    sy = _start(walk, ref, geom)
+    landing_pitches(frames, sy.xy, sy.yaw, sy.hs_pitch, sy.d_land, sy.dorsi_max, geom)
     knee_prev = None  # (angle, velocity per unit phase) of the next stance leg at its landing
-    d_land = geom.span(max(ref("knee", 0.0), KNEE_MIN))
-    landing_pitches(frames, xy, yaw, hs_pitch, d_land, dorsi_max, geom)
-    d_max_sq = geom.span(KNEE_MIN) ** 2  # the swing leg's longest hip-to-ankle distance, squared
-    for k, fr in enumerate(frames):
-        fr.p_start = frames[k - 1].p_end if k > 0 else None
-        a, b = fr.start, fr.end
-        idx = np.arange(a, b + 1)
-        ids = slice(a, b + 1)  # the same samples, indexed without a copy
-        phi = (idx - a) / (b - a)
-        phase[ids] = phi
-        cyc[fr.other][ids], cyc[fr.side][ids] = 0.5 * phi, 0.5 + 0.5 * phi
-        sw, st = fr.side, fr.other
-        # --- stance foot: heel strike roll-down, flat, heel rise (reference pitch); the
-        # roll-down starts from the pitch it landed with; a standing start is flat already
-        c_st = 0.5 * phi
-        # --- target posture at phi = 1 (A7): the landing leg at the reference heel-strike knee
-        # sets the pelvis height; the trailing (stance) leg takes the reference knee of
-        # cycle 50 %, its heel rising further (about the ball) if it cannot reach otherwise.
-        # The foot lands toes up as the reference's, or flatter where the ankle's range
-        # does not allow that pitch (a foot landing under the hip): rolled down on the floor
-        # after landing instead, it would drop the ankle and jolt the knee
-        land_p = fr.land_p  # the last step too: the final pose is held as it lands
-        land_pos = pivot_ankle(fr.land, land_p, geom)
-        # (|hip - landing ankle| in (x, y) as np.linalg.norm sums it, without array calls)
-        dx, dy = hip_xy[sw][b] - land_pos[0, :2]
-        hz = np.sqrt(dx * dx + dy * dy)
-        z_end = land_pos[0, 2] + np.sqrt(max(d_land**2 - hz**2, 1e-6))
-        hip_end = np.array([*hip_xy[st][b], z_end])
-        land_prev = frames[k - 1].land_p if k > 0 and hs_pitch > 0 else None
-        th1 = max(float(ref("knee", 0.5)), float(KNEE_MIN))
-        p_st, ankle_st = stance_foot(
-            fr, phi, ref("pitch", c_st), land_prev, hs_pitch, hip_end, th1, geom
-        )  # (compiled: stance.stance_foot)
-        fr.p_end = float(p_st[-1])
-        ankle[st][ids] = ankle_st
-        ground[st][ids], print_[st][ids] = True, fr.stance
-        pitch[st][ids], toe[st][ids], fyaw[st][ids] = p_st, -np.minimum(p_st, 0), fr.stance[2]
-        th1 = knee_for(b, st, ankle_st[-1], z_end)
-        if knee_prev is None:
-            th0, v0 = float(ref("knee", 0.0)), 0.5 * float(ref("knee", 0.0, True))
-        else:
-            th0, v0 = knee_prev
-        v1 = 0.5 * float(ref("knee", 0.5, True))
-        # the stance knee (steps.stance_angle, clipped) and the pelvis height it gives
-        knee_st, z_flat = stance_knee(
-            ref, phi, ref("knee", c_st), th0, v0, th1, v1, hip_xy[st][ids], ankle_st, geom
-        )  # (compiled: stance.stance_knee)
-        # --- swing foot (A9)
-        if ref._unit:  # compiled (the same numbers); other tables through scipy's splines
-            swing = swing_foot_compiled(fr, phi, hip_xy[sw][ids], z_flat, ref, geom, land_p)
-        else:
-            swing = swing_foot(fr, phi, idx, z_flat, hip_pos, ref, geom, land_p)
-        pos, p_sw, toe_sw, yw, phi_to = swing
-        contact[ids] = np.where(phi <= phi_to, 2, 0 if st == "l" else 1)
-        ankle[sw][ids], pitch[sw][ids], toe[sw][ids], fyaw[sw][ids] = pos, p_sw, toe_sw, yw
-        pre_swing = idx[phi <= phi_to]
-        ground[sw][pre_swing], print_[sw][pre_swing] = True, fr.lift
-        # the pelvis height: capped where the swing leg could not reach its foot; landing
-        # approach: from LAND_EASE the swing leg's hip-to-ankle distance eases into its
-        # heel-strike length (zero velocity) along a cubic from its length and velocity
-        # there, and the pelvis height follows from it. Capping the pelvis only where the
-        # swing leg is fully stretched would snap the knee straight (near full extension a
-        # millimetre of leg length is several degrees of knee). The trailing leg keeps its
-        # planned knee where the pelvis now rises faster: its heel rises further (about the
-        # ball) instead of the leg stretching straight (compiled: stance.pelvis_height)
-        z[ids], ankle_up = pelvis_height(
-            phi, z_flat, pos, hip_xy[sw][ids], hip_xy[st][ids], knee_st, p_st, fr, d_max_sq,
-            d_land, LAND_EASE, geom,
-        )  # fmt: skip
-        if ankle_up is not None:
-            fr.p_end = float(p_st[-1])
-            ankle[st][ids] = ankle_up
-            pitch[st][ids], toe[st][ids] = p_st, -np.minimum(p_st, 0)
-        # the swing leg's knee at landing starts the next stance spline; its velocity is the
-        # reference's (loading response: the knee flexes right after heel strike)
-        knee_prev = (knee_for(b, sw, pos[-1], z[b]), 0.5 * float(ref("knee", 0.0, True)))
+    for k in range(len(frames)):
+        knee_prev = _synth_step(sy, frames, k, knee_prev)
     # where the pelvis turns further than a grounded foot's hip can rotate, the foot spins
     # about its ball; its next swing starts from the turned footprint
-    spin_turns(ankle, fyaw, pitch, toe, ground, print_, np.column_stack([xy, z]), yaw, geom)
-    # before the first step: stand on both feet; after the last: hold the final pose
-    first, last = frames[0], frames[-1]
+    spin_turns(sy.feet, np.column_stack([sy.xy, sy.z]), sy.yaw, geom)
+    _hold_ends(sy, frames[0], frames[-1])
+    win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
+    ik = {s_: LegIKCache(s_, geom) for s_ in "lr"}  # the loops below re-solve changed samples
+    _fit_ankles(sy, ik, win)
+    root = np.column_stack([sy.xy, sy.z])
+    angles = _clear_floor(sy, ik, root, win)
+    feet = sy.feet
+    return LegMotion(
+        t=np.asarray(walk.t, float),
+        root=root,
+        yaw=sy.yaw,
+        angles=angles,
+        ankle={side_of_prefix(s_): v for s_, v in feet.ankle.items()},
+        pitch={side_of_prefix(s_): v for s_, v in feet.pitch.items()},
+        contact=sy.contact,
+        phase=sy.phase,
+        meta={"stature": stature, "reference": ref.source},
+    )
+
+
+@dataclass
+class _Synth:
+    """The leg synthesis's state over a walk's n samples (world frame, metres, radians):
+    the reference and leg geometry, the pelvis track (``xy`` (n, 2), ``yaw``, ``z`` (n,)),
+    each hip's (x, y) per side, the feet's tracks, each leg's gait-cycle fraction ``cyc``
+    (0 = heel strike), the contact state and step phase, and the ankle bounds and leg spans
+    every step shares."""
+
+    ref: ReferenceGait
+    geom: LegGeometry
+    xy: np.ndarray
+    yaw: np.ndarray
+    z: np.ndarray
+    hip_xy: dict[str, np.ndarray]
+    feet: FootTracks
+    cyc: dict[str, np.ndarray]
+    contact: np.ndarray
+    phase: np.ndarray
+    hs_pitch: float
+    dorsi_max: float
+    plantar_min: float
+    d_land: float
+    d_max_sq: float
+
+    def hip_pos(self, idx, side, zz=None):
+        """The ``side`` hip's (x, y) at samples ``idx`` (indices or a slice: a view of
+        ``hip_xy``, the same numbers), with the height ``zz`` as a third column if given."""
+        h = self.hip_xy[side][idx]
+        return h if zz is None else np.column_stack([h, zz])
+
+    def knee_for(self, i: int, side: str, foot_pos, zz) -> float:
+        """The knee flexion that puts the ankle ``foot_pos`` (3,) at the hip of sample ``i``
+        with the pelvis at height ``zz``."""
+        # |hip - ankle| as np.linalg.norm sums it, in Python floats (the same IEEE arithmetic
+        # without array calls), the arccos NumPy's
+        dx = float(self.hip_xy[side][i, 0]) - float(foot_pos[0])
+        dy = float(self.hip_xy[side][i, 1]) - float(foot_pos[1])
+        dz = float(zz) - float(foot_pos[2])
+        span = np.array([math.sqrt(dx * dx + dy * dy + dz * dz)])
+        return float(self.geom.knee_for_span(span)[0])
+
+    def repitch(self, s_: str, dp: np.ndarray) -> None:
+        """Lower the ``s_`` foot's pitch by ``dp`` (n,) radians, in place."""
+        # on the floor about its footprint's pivot (the heel while toes up, the ball while heel
+        # up), in the air by the same motion of the ankle relative to the foot, as if it stood
+        # on a footprint under it (pivot_ankle is continuous through the flat foot: a pivot
+        # switched by the pitch's sign would move an airborne ankle by centimetres where the
+        # pitch crosses zero); the toes keep their angle to the floor while the heel is up
+        # (compiled: pitchfit.repitch_foot)
+        f = self.feet
+        f.ankle[s_], f.pitch[s_] = repitch_foot(
+            f.ankle[s_], f.pitch[s_], f.toe[s_], f.fyaw[s_], f.ground[s_], f.prints[s_], dp,
+            self.geom,
+        )  # fmt: skip
+
+
+def _start(walk: WalkPath, ref: ReferenceGait, geom: LegGeometry) -> _Synth:
+    """The synthesis's state before the first step: empty tracks, the hips' (x, y), the
+    ankle's range less a degree each way and the legs' landing and longest spans."""
+    n = len(walk.t)
+    xy = np.asarray(walk.xy, float)
+    yaw = np.asarray(walk.yaw, float)
+    feet = FootTracks(
+        ankle={s: np.zeros((n, 3)) for s in "lr"},
+        fyaw={s: np.zeros(n) for s in "lr"},
+        pitch={s: np.zeros(n) for s in "lr"},
+        toe={s: np.zeros(n) for s in "lr"},
+        ground={s: np.zeros(n, bool) for s in "lr"},  # foot on the floor (pivoting on a print)
+        prints={s: np.zeros((n, 3)) for s in "lr"},  # ... on this footprint
+    )
+    # each hip's offset from the pelvis centre (m) at every sample
+    side_dir = np.stack([-np.sin(yaw), np.cos(yaw)], -1)
+    hip_off = {s_: (1.0 if s_ == "l" else -1.0) * geom.hip_y * side_dir for s_ in "lr"}
+    return _Synth(
+        ref=ref,
+        geom=geom,
+        xy=xy,
+        yaw=yaw,
+        z=np.full(n, np.nan),
+        hip_xy={s_: xy + hip_off[s_] for s_ in "lr"},
+        feet=feet,
+        cyc={s: np.zeros(n) for s in "lr"},
+        contact=np.full(n, 2, dtype=int),
+        phase=np.zeros(n),
+        hs_pitch=max(0.0, float(ref("pitch", 0.0))),
+        dorsi_max=np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0),
+        plantar_min=np.deg2rad(ROM_DEG["ankle_flex"][0] + 1.0),
+        d_land=geom.span(max(ref("knee", 0.0), KNEE_MIN)),
+        # the swing leg's longest hip-to-ankle distance, squared
+        d_max_sq=geom.span(KNEE_MIN) ** 2,
+    )
+
+
+def _stance_leg(sy: _Synth, fr: StepFrames, phi: np.ndarray, land_prev: float | None):
+    """The stance foot of step ``fr`` (A8): its pitch and ankle into the tracks; returns the
+    pitch (n,), the ankle (n, 3) and the pelvis height at the target posture (m)."""
+    # heel strike roll-down, flat, heel rise (reference pitch); the roll-down starts from the
+    # pitch it landed with; a standing start is flat already.
+    # Target posture at phi = 1 (A7): the landing leg at the reference heel-strike knee sets
+    # the pelvis height; the trailing (stance) leg takes the reference knee of cycle 50 %,
+    # its heel rising further (about the ball) if it cannot reach otherwise. The foot lands
+    # toes up as the reference's, or flatter where the ankle's range does not allow that
+    # pitch (a foot landing under the hip): rolled down on the floor after landing instead,
+    # it would drop the ankle and jolt the knee
+    ref, geom, f = sy.ref, sy.geom, sy.feet
+    sw, st, b, ids = fr.side, fr.other, fr.end, slice(fr.start, fr.end + 1)
+    c_st = 0.5 * phi
+    land_pos = pivot_ankle(fr.land, fr.land_p, geom)  # the last step too: its pose is held
+    # (|hip - landing ankle| in (x, y) as np.linalg.norm sums it, without array calls)
+    dx, dy = sy.hip_xy[sw][b] - land_pos[0, :2]
+    hz = np.sqrt(dx * dx + dy * dy)
+    z_end = land_pos[0, 2] + np.sqrt(max(sy.d_land**2 - hz**2, 1e-6))
+    hip_end = np.array([*sy.hip_xy[st][b], z_end])
+    th1 = max(float(ref("knee", 0.5)), float(KNEE_MIN))
+    p_st, ankle_st = stance_foot(
+        fr, phi, ref("pitch", c_st), land_prev, sy.hs_pitch, hip_end, th1, geom
+    )  # (compiled: stance.stance_foot)
+    fr.p_end = float(p_st[-1])
+    f.ankle[st][ids] = ankle_st
+    f.ground[st][ids], f.prints[st][ids] = True, fr.stance
+    f.pitch[st][ids], f.toe[st][ids], f.fyaw[st][ids] = p_st, -np.minimum(p_st, 0), fr.stance[2]
+    return p_st, ankle_st, z_end
+
+
+def _synth_step(sy: _Synth, frames: list[StepFrames], k: int, knee_prev):
+    """Step ``k`` of ``frames`` into the tracks: stance foot and knee (A8), swing foot (A9),
+    pelvis height; returns the landing knee's (angle, velocity per unit phase), which starts
+    the next stance spline."""
+    ref, geom, f, fr = sy.ref, sy.geom, sy.feet, frames[k]
+    fr.p_start = frames[k - 1].p_end if k > 0 else None
+    a, b = fr.start, fr.end
+    idx = np.arange(a, b + 1)
+    ids = slice(a, b + 1)  # the same samples, indexed without a copy
+    phi = (idx - a) / (b - a)
+    sy.phase[ids] = phi
+    sy.cyc[fr.other][ids], sy.cyc[fr.side][ids] = 0.5 * phi, 0.5 + 0.5 * phi
+    sw, st = fr.side, fr.other
+    land_prev = frames[k - 1].land_p if k > 0 and sy.hs_pitch > 0 else None
+    p_st, ankle_st, z_end = _stance_leg(sy, fr, phi, land_prev)
+    th1 = sy.knee_for(b, st, ankle_st[-1], z_end)
+    if knee_prev is None:
+        th0, v0 = float(ref("knee", 0.0)), 0.5 * float(ref("knee", 0.0, True))
+    else:
+        th0, v0 = knee_prev
+    v1 = 0.5 * float(ref("knee", 0.5, True))
+    # the stance knee (steps.stance_angle, clipped) and the pelvis height it gives
+    knee_st, z_flat = stance_knee(
+        ref, phi, ref("knee", 0.5 * phi), KneeEnds(th0, v0, th1, v1), sy.hip_xy[st][ids],
+        ankle_st, geom,
+    )  # (compiled: stance.stance_knee)  # fmt: skip
+    # --- swing foot (A9)
+    if ref._unit:  # compiled (the same numbers); other tables through scipy's splines
+        swing = swing_foot_compiled(fr, phi, sy.hip_xy[sw][ids], z_flat, ref, geom, fr.land_p)
+    else:
+        swing = swing_foot(fr, phi, idx, z_flat, sy.hip_pos, ref, geom, fr.land_p)
+    pos, p_sw, toe_sw, yw, phi_to = swing
+    sy.contact[ids] = np.where(phi <= phi_to, 2, 0 if st == "l" else 1)
+    f.ankle[sw][ids], f.pitch[sw][ids], f.toe[sw][ids], f.fyaw[sw][ids] = pos, p_sw, toe_sw, yw
+    pre_swing = idx[phi <= phi_to]
+    f.ground[sw][pre_swing], f.prints[sw][pre_swing] = True, fr.lift
+    # the pelvis height: capped where the swing leg could not reach its foot; landing
+    # approach: from LAND_EASE the swing leg's hip-to-ankle distance eases into its
+    # heel-strike length (zero velocity) along a cubic from its length and velocity
+    # there, and the pelvis height follows from it. Capping the pelvis only where the
+    # swing leg is fully stretched would snap the knee straight (near full extension a
+    # millimetre of leg length is several degrees of knee). The trailing leg keeps its
+    # planned knee where the pelvis now rises faster: its heel rises further (about the
+    # ball) instead of the leg stretching straight (compiled: stance.pelvis_height)
+    sy.z[ids], ankle_up = pelvis_height(
+        phi, z_flat, pos, sy.hip_xy[sw][ids], StanceLeg(sy.hip_xy[st][ids], knee_st, p_st), fr,
+        LandingEase(sy.d_max_sq, sy.d_land, LAND_EASE), geom,
+    )  # fmt: skip
+    if ankle_up is not None:
+        fr.p_end = float(p_st[-1])
+        f.ankle[st][ids] = ankle_up
+        f.pitch[st][ids], f.toe[st][ids] = p_st, -np.minimum(p_st, 0)
+    # the swing leg's knee at landing starts the next stance spline; its velocity is the
+    # reference's (loading response: the knee flexes right after heel strike)
+    return (sy.knee_for(b, sw, pos[-1], sy.z[b]), 0.5 * float(ref("knee", 0.0, True)))
+
+
+def _hold_ends(sy: _Synth, first: StepFrames, last: StepFrames) -> None:
+    """Before the first step: stand on both feet; after the last: hold the final pose."""
+    f, n = sy.feet, len(sy.z)
     pre = np.arange(0, first.start)
     if len(pre):
-        for s_, f in ((first.side, first.lift), (first.other, first.stance)):
-            ankle[s_][pre] = [f[0], f[1], ah]
-            fyaw[s_][pre] = f[2]
-        z[pre] = z[first.start]
+        for s_, fp in ((first.side, first.lift), (first.other, first.stance)):
+            f.ankle[s_][pre] = [fp[0], fp[1], sy.geom.ankle_height]
+            f.fyaw[s_][pre] = fp[2]
+        sy.z[pre] = sy.z[first.start]
     post = np.arange(last.end + 1, n)
     if len(post):
         e = last.end
-        for arr in (*ankle.values(), *fyaw.values(), *pitch.values(), *toe.values(), z):
+        for arr in (*f.ankle.values(), *f.fyaw.values(), *f.pitch.values(), *f.toe.values(), sy.z):
             arr[post] = arr[e]
-        contact[post] = 2
-    win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
+        sy.contact[post] = 2
 
-    def repitch(s_: str, dp: np.ndarray) -> None:
-        # lower the ``s_`` foot's pitch by dp (n,) radians: on the floor about its footprint's
-        # pivot (the heel while toes up, the ball while heel up), in the air by the same
-        # motion of the ankle relative to the foot, as if it stood on a footprint under it
-        # (pivot_ankle is continuous through the flat foot: a pivot switched by the pitch's
-        # sign would move an airborne ankle by centimetres where the pitch crosses zero); the
-        # toes keep their angle to the floor while the heel is up (compiled: pitchfit.repitch_foot)
-        ankle[s_], pitch[s_] = repitch_foot(
-            ankle[s_], pitch[s_], toe[s_], fyaw[s_], ground[s_], print_[s_], dp, geom
-        )
 
-    angles: dict[str, np.ndarray] = {}
-    ik = {s_: LegIKCache(s_, geom) for s_ in "lr"}  # the loops below re-solve changed samples
-    k_floor = {s_: np.clip(ref("knee", cyc[s_]), KNEE_MIN, np.deg2rad(KNEE_SOFT)) for s_ in "lr"}
+def _fit_ankles(sy: _Synth, ik: dict[str, LegIKCache], win: int) -> None:
+    """Keep the grounded ankles in their range by pitching the feet, and lower the pelvis
+    where a grounded leg then cannot reach its foot (up to four passes), in place."""
+    ref, geom, f = sy.ref, sy.geom, sy.feet
+    k_floor = {s_: np.clip(ref("knee", sy.cyc[s_]), KNEE_MIN, np.deg2rad(KNEE_SOFT)) for s_ in "lr"}
     reach_sq = {s_: geom.span(k_floor[s_]) ** 2 for s_ in "lr"}  # (m²) with those knees
+    bounds = AnkleFit(sy.dorsi_max, sy.plantar_min, win, ANKLE_ROUNDS)
     for _ in range(4):
-        root = np.column_stack([xy, z])
+        root = np.column_stack([sy.xy, sy.z])
         for s_ in "lr":
             # a grounded foot whose ankle would dorsiflex past its range pitches down
             # instead: a toes-up foot rolls down about its heel, a flat one onto its ball
@@ -288,65 +382,67 @@ def legs_from_walk(
             # pelvis lowers below. The roll is spread over the samples around (in the air
             # too, about the same point), so a landing or lift-off does not jolt the leg
             # (compiled: pitchfit.fit_ankle_range; the rounds below for very short walks)
-            fit = fit_ankle_range(
-                ik[s_], ankle[s_], fyaw[s_], pitch[s_], toe[s_], ground[s_], print_[s_],
-                root, yaw, dorsi_max, plantar_min, win, ANKLE_ROUNDS,
-            )  # fmt: skip
+            fit = fit_ankle_range(ik[s_], f, root, sy.yaw, bounds)
             if fit is not None:
-                ankle[s_], pitch[s_] = fit
+                f.ankle[s_], f.pitch[s_] = fit
                 continue
-            for _ in range(ANKLE_ROUNDS):
-                raw = ik[s_](ankle[s_], fyaw[s_], pitch[s_], root, yaw)
-                flex = raw[f"ankle_{s_}_flex"]
-                excess = np.where(ground[s_], flex - dorsi_max, 0.0)
-                short = np.where(ground[s_] & (pitch[s_] < 0), plantar_min - flex, 0.0)
-                if excess.max() <= 0 and short.max() <= 0:
-                    break
-                down = spread(1.2 * np.maximum(excess, 0.0), win)
-                up = spread(1.2 * np.maximum(short, 0.0), win)
-                repitch(s_, down - np.minimum(up, np.maximum(-pitch[s_], 0.0)))
+            _fit_ankle_rounds(sy, ik[s_], root, win)
         # rolling a heel-strike foot down (or turning it about the ball) lowers its ankle:
         # where a grounded leg then cannot reach its foot with the knee flexed at least as
         # the reference's (up to KNEE_SOFT), the pelvis lowers (smoothly). Near full
         # extension a millimetre of leg length is several degrees of knee: a leg stretched
         # straight by the pelvis would flick its knee
         # (compiled: stance.reach_deficit)
-        deficit = reach_deficit(root, yaw, ankle, ground, reach_sq, geom)
+        deficit = reach_deficit(root, sy.yaw, f.ankle, f.ground, reach_sq, geom)
         if deficit.max() <= 1e-3:
             break
-        z = z - spread(np.maximum(deficit, 0.0), win)
-    root = np.column_stack([xy, z])
+        sy.z = sy.z - spread(np.maximum(deficit, 0.0), win)
+
+
+def _fit_ankle_rounds(sy: _Synth, ik: LegIKCache, root: np.ndarray, win: int) -> None:
+    """:func:`~mjwalk.body.legs.pitchfit.fit_ankle_range`'s rounds in NumPy, for walks too
+    short for the compiled spread (in place)."""
+    f, s_ = sy.feet, ik.side
+    for _ in range(ANKLE_ROUNDS):
+        raw = ik(f.ankle[s_], f.fyaw[s_], f.pitch[s_], root, sy.yaw)
+        flex = raw[f"ankle_{s_}_flex"]
+        excess = np.where(f.ground[s_], flex - sy.dorsi_max, 0.0)
+        short = np.where(f.ground[s_] & (f.pitch[s_] < 0), sy.plantar_min - flex, 0.0)
+        if excess.max() <= 0 and short.max() <= 0:
+            break
+        down = spread(1.2 * np.maximum(excess, 0.0), win)
+        up = spread(1.2 * np.maximum(short, 0.0), win)
+        sy.repitch(s_, down - np.minimum(up, np.maximum(-f.pitch[s_], 0.0)))
+
+
+def _clear_floor(
+    sy: _Synth, ik: dict[str, LegIKCache], root: np.ndarray, win: int
+) -> dict[str, np.ndarray]:
+    """The legs' joint angles, clipped to their ranges, with each foot kept above
+    -:data:`FLOOR_TOLERANCE` (ankle targets lifted or feet pitched down, in place)."""
+    geom, f = sy.geom, sy.feet
+    angles: dict[str, np.ndarray] = {}
     for s_ in "lr":
-        hip = hip_world(root, yaw, s_, geom)
+        hip = hip_world(root, sy.yaw, s_, geom)
         # where the joint ranges still keep the foot from its target (a trailing foot too far
         # behind for the hip's extension, say), the clipped leg would put the sole below the
         # floor: lift the ankle target by the depth (or, where the ankle is at its
         # dorsiflexion limit and lifting would tilt the toes down further, pitch the foot
         # down) and solve again, so the foot stays above -FLOOR_TOLERANCE by construction
         for _ in range(FLOOR_ITERATIONS):
-            raw = ik[s_](ankle[s_], fyaw[s_], pitch[s_], root, yaw)
+            raw = ik[s_](f.ankle[s_], f.fyaw[s_], f.pitch[s_], root, sy.yaw)
             ang = {k: np.clip(v, *np.deg2rad(ROM_DEG[generic_joint(k)])) for k, v in raw.items()}
-            ang[f"toe_{s_}"] = np.clip(toe[s_], *np.deg2rad(ROM_DEG["toe"]))
+            ang[f"toe_{s_}"] = np.clip(f.toe[s_], *np.deg2rad(ROM_DEG["toe"]))
             low = hip[:, 2] + foot_lowest(ang, side_of_prefix(s_), geom)
             bad = low < -FLOOR_TOLERANCE
             if not bad.any():
                 break
             # (both spread over the samples around, as above)
-            excess = raw[f"ankle_{s_}_flex"] - dorsi_max
+            excess = raw[f"ankle_{s_}_flex"] - sy.dorsi_max
             tilt = bad & (excess > 0)
             if tilt.any():
-                repitch(s_, spread(np.where(tilt, 1.2 * excess, 0.0), win))
+                sy.repitch(s_, spread(np.where(tilt, 1.2 * excess, 0.0), win))
             lift = bad & ~tilt
-            ankle[s_][:, 2] += spread(np.where(lift, -low, 0.0), win)
+            f.ankle[s_][:, 2] += spread(np.where(lift, -low, 0.0), win)
         angles.update(ang)
-    return LegMotion(
-        t=np.asarray(walk.t, float),
-        root=root,
-        yaw=yaw,
-        angles=angles,
-        ankle={side_of_prefix(s_): v for s_, v in ankle.items()},
-        pitch={side_of_prefix(s_): v for s_, v in pitch.items()},
-        contact=contact,
-        phase=phase,
-        meta={"stature": stature, "reference": ref.source},
-    )
+    return angles

@@ -1,45 +1,27 @@
-"""Legs from footprints: foot contact, floor, joint ranges, gait curves vs capture."""
+"""Legs from footprints (mjwalk.body.legs.synthesis): foot contact, floor, joint ranges, no
+jumps, on synthetic, planned and stored awkward walks."""
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
-import mujoco
 import numpy as np
 import pytest
 
 from mjwalk.body.humanoid import humanoid_model, leg_geometry
-from mjwalk.body.legs import (
-    WINTER_GAIT,
-    bandai_reference,
-    gait_cycles,
-    heel_strikes,
-    leg_ik,
-    legs_from_walk,
-    reference_angle,
-    reference_from_takes,
-    sagittal_angles,
-    winter_reference,
-)
-from mjwalk.body.legs.footcheck import foot_points, posed, stance_drift
+from mjwalk.body.legs.footcheck import foot_points, stance_drift
+from mjwalk.body.legs.footpivot import ball_offset
+from mjwalk.body.legs.synthesis import LegMotion, legs_from_walk
 from mjwalk.errors import PlanningError
-from mjwalk.mocap.take import Take
 from mjwalk.plan.synthetic import synthetic_walk
 from mjwalk.plan.walkpath import WalkPath
 
-DATA = Path(os.environ.get("MJWALK_SHARED_DATA", Path(__file__).parents[3] / "shared" / "data"))
-
-
-#: The synthetic walk of the library (straight or curved, no planner); the tests of this file,
-#: test_playback and test_render use it under this name.
+#: The synthetic walk of the library (straight or curved, no planner).
 make_walk = synthetic_walk
 
 
 def _ball_xy(foot):
-    from mjwalk.body.legs.ik import ball_offset as _ball
-
-    b = _ball(leg_geometry())
+    b = ball_offset(leg_geometry())
     return np.asarray(foot[:2]) + b * np.array([np.cos(foot[2]), np.sin(foot[2])])
 
 
@@ -47,6 +29,7 @@ def _ball_xy(foot):
 def test_stance_foot_fixed_floor_and_ranges(radius):
     walk = make_walk(n_steps=6, radius=radius)
     legs = legs_from_walk(walk)
+    assert isinstance(legs, LegMotion) and legs.root.shape == (len(walk.t), 3)
     pts, pitch, low = foot_points(legs)
     worst = stance_drift(walk, pts, pitch)
     assert worst <= 0.01, f"stance foot drifted {worst * 100:.2f} cm"
@@ -83,36 +66,6 @@ def test_turning_uses_hip_rotation():
         assert np.abs(straight.angles[f"hip_{s}_rot"]).max() < np.deg2rad(10)
 
 
-def test_ik_round_trip():
-    g = leg_geometry()
-    model, jm = humanoid_model()
-    data = mujoco.MjData(model)
-    rng = np.random.default_rng(0)
-    checked = 0
-    for _ in range(40):
-        target = np.array(
-            [rng.uniform(-0.25, 0.25), g.hip_y + rng.uniform(-0.05, 0.05), -rng.uniform(0.55, 0.78)]
-        )
-        yaw, pitch = rng.uniform(-0.3, 0.3), rng.uniform(-0.2, 0.1)
-        ang = leg_ik(
-            (target - [0, g.hip_y, 0])[None], np.array([yaw]), np.array([pitch]), "left", g
-        )
-        if any(np.isclose(v[0], jm.limits(k)).any() for k, v in ang.items()):
-            continue  # clipped at a joint limit: the pose is not reachable exactly
-        checked += 1
-        q = jm.neutral_qpos(model)
-        q[:3] = 0
-        for k, v in ang.items():
-            q[jm.adr(k)] = v[0]
-        data.qpos[:] = q
-        mujoco.mj_kinematics(model, data)
-        assert np.allclose(data.xpos[model.body("foot_l").id], target, atol=1e-6)
-        R = data.xmat[model.body("foot_l").id].reshape(3, 3)
-        assert abs(np.arcsin(R[2, 0]) - pitch) < 0.01  # foot x axis rises by the pitch
-        assert abs(R[2, 1]) < 0.01  # sole level sideways (2-DOF ankle: tiny yaw residual)
-    assert checked >= 5
-
-
 def test_no_steps_is_an_error():
     walk = make_walk(n_steps=2)
     walk.steps = []
@@ -125,106 +78,6 @@ def test_step_outside_the_path_is_an_error():
     walk.steps[-1].end = len(walk.t) + 5
     with pytest.raises(PlanningError, match=rf"step 1 has sample range \d+\.\.{len(walk.t) + 5}"):
         legs_from_walk(walk)
-
-
-def test_reference_gait_table():
-    assert max(WINTER_GAIT["knee"]) == pytest.approx(63)  # peak swing flexion 60-65 deg
-    # the default is the generated reference: through BANDAI_LANDMARKS' heel-strike figures
-    assert np.rad2deg(reference_angle("hip", 0.0)) == pytest.approx(22)
-    assert np.rad2deg(reference_angle("knee", 1.0)) == pytest.approx(1)
-    assert np.rad2deg(winter_reference()("hip", 0.3)) == pytest.approx(10)
-
-
-def _model_cycles(walk, stature, reference=None):
-    """Gait cycles (C, 3, 101) of the model's left leg, through MuJoCo FK and the same
-    :func:`gait_cycles` used on the capture (like-for-like)."""
-    legs = legs_from_walk(walk, stature, reference=reference)
-    bodies = ("thigh_l", "shin_l", "foot_l", "toes_l")
-    pos = np.zeros((len(legs.t), 4, 3))
-    for i, model, data in posed(legs, stature):
-        pos[i] = [data.xpos[model.body(b).id] for b in bodies]
-    joints = dict(
-        zip(("UpperLeg_L", "LowerLeg_L", "Foot_L", "Toes_L"), pos.swapaxes(0, 1), strict=True)
-    )
-    take = Take(
-        "model",
-        120.0,
-        legs.root,
-        legs.yaw,
-        pos[:, 2],
-        pos[:, 2],
-        pos[:, 3],
-        pos[:, 3],
-        joints=joints,
-    )
-    return gait_cycles(take)
-
-
-def test_knee_hip_curves_vs_bandai_capture():
-    """Mean knee/hip flexion over a straight-walk cycle vs bandai-walk (normal style).
-
-    Reference gait from clips 1-3 (the paper's gait DB), compared with held-out clips 4-6 of
-    the same style; the walk (step length, cadence) and the leg length match those clips."""
-    files = sorted((DATA / "bandai-walk").glob("dataset-2_walk_normal_*.bvh"))[:6]
-    if len(files) < 6:
-        pytest.skip("../shared/data/bandai-walk not available")
-    mocap = pytest.importorskip("mjwalk.mocap")
-    takes = [mocap.load_bvh(f, skeleton="bandai") for f in files]
-    train, test = takes[:3], takes[3:]
-    cap = np.concatenate([gait_cycles(t) for t in test])
-    assert len(cap) >= 6
-    cap = cap.mean(0)
-    j = test[0].joints
-    leg = np.median(np.linalg.norm(j["UpperLeg_L"] - j["LowerLeg_L"], axis=1)) + np.median(
-        np.linalg.norm(j["LowerLeg_L"] - j["Foot_L"], axis=1)
-    )
-    stature = leg / 0.491  # thigh + shank = 0.491 stature (Winter)
-    speed = np.mean(
-        [np.linalg.norm(np.diff(t.pelvis[:, :2], axis=0), axis=1).sum() / t.duration for t in test]
-    )
-    period = []
-    for t in test:
-        _, _, pitch = sagittal_angles(
-            *(t.joints[k] for k in ("UpperLeg_L", "LowerLeg_L", "Foot_L", "Toes_L")), t.pelvis_yaw
-        )
-        period.extend(np.diff(heel_strikes(pitch, t.fps)) / t.fps)
-    T = float(np.median(period))
-    walk = make_walk(n_steps=14, step_len=speed * T / 2, step_time=T / 2)
-    figures = {}
-    refs = (
-        ("default (generated, Bandai landmarks)", None),
-        ("Winter table", winter_reference()),
-        ("capture clips 1-3", reference_from_takes(train)),
-    )
-    for name, ref in refs:
-        mod = _model_cycles(walk, stature, ref).mean(0)
-        d = np.degrees(np.abs(mod - cap)).max(1)
-        figures[name] = d
-        print(
-            f"\nvs bandai-walk normal 4-6, reference {name}: max diff hip {d[0]:.1f} deg "
-            f"(target 5), knee {d[1]:.1f} deg (target 10), foot pitch {d[2]:.1f} deg"
-        )
-    # measured: generated (BANDAI_LANDMARKS, calibrated on clips 1-3) hip 4.8, knee 6.9 deg;
-    # capture reference hip 4.2, knee 7.2 deg; Winter table hip 12.4, knee 16.1 deg (the
-    # literature gait, not this actor's). Targets: the paper's 5 / 10 deg.
-    for name in ("default (generated, Bandai landmarks)", "capture clips 1-3"):
-        hip, knee, _ = figures[name]
-        assert hip <= 5.0 and knee <= 10.0, name
-
-
-def test_warp_reference_meets_its_landmarks():
-    """The generated (warped) reference passes through every landmark figure and stays a
-    smooth periodic gait; bad landmark order is refused."""
-    from mjwalk.body.legs import BANDAI_LANDMARKS, warp_reference
-
-    ref = bandai_reference()
-    for name, pairs in BANDAI_LANDMARKS.items():
-        for _, (c, deg) in pairs:
-            assert np.rad2deg(ref(name, c / 100.0)) == pytest.approx(deg, abs=0.3), (name, c)
-    x = np.linspace(0, 1, 401)
-    assert np.abs(np.diff(np.rad2deg(ref("knee", x)))).max() < 2.0  # < 2 deg per 0.25 %
-    with pytest.raises(ValueError, match="increase"):
-        warp_reference({**BANDAI_LANDMARKS, "knee": BANDAI_LANDMARKS["knee"][::-1]})
 
 
 #: Walks the hybrid A* planned in the assembly-station cycle (seed 0, runs 3, 9 and 13, saved
@@ -247,48 +100,6 @@ def test_feet_stay_above_floor_on_awkward_steps(path):
     for name, v in legs.angles.items():
         lo, hi = jm.limits(name)
         assert v.min() >= lo - 1e-9 and v.max() <= hi + 1e-9, name
-
-
-def test_leg_fk_matches_mujoco():
-    """leg_fk / foot_lowest agree with MuJoCo's forward kinematics of the humanoid."""
-    from mjwalk.body.legs import foot_lowest, leg_fk
-    from mjwalk.conventions import side_of_prefix
-
-    g = leg_geometry()
-    model, jm = humanoid_model()
-    data = mujoco.MjData(model)
-    rng = np.random.default_rng(1)
-    for side in "lr":
-        ang = {
-            n.format(side): rng.uniform(*np.radians(r), size=20)
-            for n, r in (
-                ("hip_{}_rot", (-30, 30)),
-                ("hip_{}_flex", (-25, 60)),
-                ("hip_{}_abd", (-10, 20)),
-                ("knee_{}", (0, 90)),
-                ("ankle_{}_flex", (-40, 15)),
-                ("ankle_{}_inv", (-10, 20)),
-                ("toe_{}", (-20, 50)),
-            )
-        }
-        ankle, R = leg_fk(ang, side_of_prefix(side), g)
-        low = foot_lowest(ang, side_of_prefix(side), g)
-        for i in range(20):
-            q = jm.neutral_qpos(model)
-            q[:3] = [0, 0, 2.0]
-            for k, v in ang.items():
-                q[jm.adr(k)] = v[i]
-            data.qpos[:] = q
-            mujoco.mj_kinematics(model, data)
-            hip = data.xpos[model.body(f"thigh_{side}").id]
-            assert np.allclose(data.xpos[model.body(f"foot_{side}").id] - hip, ankle[i], atol=1e-9)
-            assert np.allclose(data.xmat[model.body(f"foot_{side}").id].reshape(3, 3), R[i])
-            z = []
-            for gname in (f"foot_{side}", f"toes_{side}"):
-                gid = model.geom(gname).id
-                Rg = data.geom_xmat[gid].reshape(3, 3)
-                z.append(data.geom_xpos[gid][2] - np.abs(Rg[2] * model.geom_size[gid]).sum())
-            assert min(z) - hip[2] == pytest.approx(low[i], abs=1e-9)
 
 
 #: Planned paths for issue 5's leg test: hybrid-A* walks (default model, seed 0, 5 each) on

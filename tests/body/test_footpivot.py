@@ -1,0 +1,57 @@
+"""The foot on the floor (mjwalk.body.legs.footpivot): pivots, spins and heel rise."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjwalk.body.humanoid import leg_geometry
+from mjwalk.body.legs.footpivot import ball_offset, heel_rise, pivot_ankle, spin_print
+
+
+def test_spin_print_keeps_its_pivot():
+    """Turned about the ball (default) or the heel, that point of the sole stays put and
+    the footprint's heading turns by the spin."""
+    g = leg_geometry()
+    foot = np.array([0.2, -0.3, 0.5])
+    spin = np.array([0.0, 0.3, -0.6])
+    for lever in (None, -g.foot_back):
+        b = ball_offset(g) if lever is None else lever
+        fp = spin_print(foot, spin, g, lever)
+        assert np.allclose(fp[:, 2], foot[2] + spin)
+        piv = fp[:, :2] + b * np.column_stack([np.cos(fp[:, 2]), np.sin(fp[:, 2])])
+        assert np.allclose(piv, piv[0]) and np.allclose(fp[0], foot)
+
+
+def test_pivot_ankle_keeps_the_pivot_on_the_floor():
+    """A flat foot's ankle is at ankle height over the footprint; toes up it turns about the
+    heel, heel up about the ball: the pivot stays put and the ankle stays at its distance."""
+    g = leg_geometry()
+    foot = np.array([0.3, -0.1, 0.4])
+    flat = pivot_ankle(foot, np.array([0.0]), g)
+    assert np.allclose(flat, [[0.3, -0.1, g.ankle_height]])
+    fwd = np.array([np.cos(0.4), np.sin(0.4), 0.0])
+    heel = np.array([0.3, -0.1, 0.0]) - g.foot_back * fwd
+    ball = np.array([0.3, -0.1, 0.0]) + ball_offset(g) * fwd
+    up, down = pivot_ankle(foot, np.array([0.3, -0.5]), g)
+    r_heel = np.linalg.norm(flat[0] - heel)
+    r_ball = np.linalg.norm(flat[0] - ball)
+    assert np.linalg.norm(up - heel) == pytest.approx(r_heel)
+    assert np.linalg.norm(down - ball) == pytest.approx(r_ball)
+    assert up[2] > g.ankle_height and down[2] > g.ankle_height
+
+
+def test_heel_rise_only_where_the_leg_cannot_reach():
+    """heel_rise leaves the pitch where the hip is within reach of the flat foot's ankle, and
+    raises the heel (pitch below 0, not under its bound) for a hip 3 cm out of reach ahead,
+    bringing the ankle closer to it."""
+    g = leg_geometry()
+    foot = np.array([0.0, 0.0, 0.0])
+    d = float(g.span(0.1))
+    near = np.array([0.0, 0.0, g.ankle_height + 0.9 * d])
+    assert heel_rise(foot, near, 0.1, 0.0, g) == pytest.approx(0.0)
+    far = np.array([0.5, 0.0, g.ankle_height + np.sqrt((d + 0.03) ** 2 - 0.25)])
+    p = heel_rise(foot, far, 0.1, 0.0, g)
+    assert -1.0472 - 1e-9 <= p < 0.0
+    gap = np.linalg.norm(far - pivot_ankle(foot, np.array([p]), g)[0]) - d
+    assert gap < 0.03 - 1e-3

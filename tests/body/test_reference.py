@@ -1,0 +1,48 @@
+"""Reference gaits (mjwalk.body.legs.reference): the Winter table, the generated default and
+the Bandai landmarks it is warped through."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjwalk.body.legs.reference import (
+    BANDAI_LANDMARKS,
+    WINTER_GAIT,
+    bandai_reference,
+    reference_angle,
+    warp_reference,
+    winter_reference,
+    wrap01,
+)
+
+
+def test_reference_is_periodic_and_wraps_like_numpy():
+    """The reference is a gait cycle: cycle fractions c and c + 1 give the same angle, and
+    wrap01 is NumPy's floor-mod for negative, zero and whole values."""
+    ref = bandai_reference()
+    c = np.linspace(0, 1, 9)
+    assert np.allclose(ref("knee", c), ref("knee", c + 1.0))
+    for x in (-0.25, 0.0, 1.0, 2.75, -3.0):
+        assert wrap01(x) == np.mod(x, 1.0)
+
+
+def test_reference_gait_table():
+    assert max(WINTER_GAIT["knee"]) == pytest.approx(63)  # peak swing flexion 60-65 deg
+    # the default is the generated reference: through BANDAI_LANDMARKS' heel-strike figures
+    assert np.rad2deg(reference_angle("hip", 0.0)) == pytest.approx(22)
+    assert np.rad2deg(reference_angle("knee", 1.0)) == pytest.approx(1)
+    assert np.rad2deg(winter_reference()("hip", 0.3)) == pytest.approx(10)
+
+
+def test_warp_reference_meets_its_landmarks():
+    """The generated (warped) reference passes through every landmark figure and stays a
+    smooth periodic gait; bad landmark order is refused."""
+    ref = bandai_reference()
+    for name, pairs in BANDAI_LANDMARKS.items():
+        for _, (c, deg) in pairs:
+            assert np.rad2deg(ref(name, c / 100.0)) == pytest.approx(deg, abs=0.3), (name, c)
+    x = np.linspace(0, 1, 401)
+    assert np.abs(np.diff(np.rad2deg(ref("knee", x)))).max() < 2.0  # < 2 deg per 0.25 %
+    with pytest.raises(ValueError, match="increase"):
+        warp_reference({**BANDAI_LANDMARKS, "knee": BANDAI_LANDMARKS["knee"][::-1]})

@@ -1,0 +1,71 @@
+"""The stance leg of one step, compiled (mjwalk.body.legs.stance)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjwalk.body.humanoid import leg_geometry
+from mjwalk.body.legs.reference import DEFAULT_REFERENCE
+from mjwalk.body.legs.stance import (
+    KneeEnds,
+    LandingEase,
+    StanceLeg,
+    pelvis_height,
+    reach_deficit,
+    stance_knee,
+)
+from mjwalk.body.legs.steps import step_frames
+from mjwalk.plan.synthetic import synthetic_walk
+
+PHI = np.array([0.0, 0.2, 0.4, 0.5, 0.6, 0.8, 1.0])
+
+
+def _stance_case():
+    g = leg_geometry(1.75)
+    n = len(PHI)
+    ankle = np.column_stack([np.zeros((n, 2)), np.full(n, g.ankle_height)])
+    k_ref = DEFAULT_REFERENCE("knee", 0.5 * PHI)
+    ends = KneeEnds(th0=0.2, v0=0.0, th1=0.15, v1=0.0)
+    knee, z = stance_knee(DEFAULT_REFERENCE, PHI, k_ref, ends, np.zeros((n, 2)), ankle, g)
+    return g, ankle, k_ref, knee, z
+
+
+def test_stance_knee_meets_its_ends_and_the_reference_keys():
+    """The knee starts at th0, ends at th1 and equals the reference at the key frames
+    (phi 0.4, 0.5, 0.6); with the hip over the ankle the pelvis is a leg span above it."""
+    g, ankle, k_ref, knee, z = _stance_case()
+    assert knee[0] == pytest.approx(0.2) and knee[-1] == pytest.approx(0.15)
+    assert np.allclose(knee[2:5], k_ref[2:5])
+    assert np.allclose(z, ankle[:, 2] + g.span(knee))
+
+
+def test_pelvis_height_caps_at_the_swing_legs_reach():
+    """Without the landing ease, the pelvis height is the stance leg's, capped where the
+    swing leg's ankle (here 0.6 m ahead) is out of its longest reach; nothing is eased."""
+    g, ankle, _, knee, z_flat = _stance_case()
+    fr = step_frames(synthetic_walk(n_steps=2))[1]
+    n = len(PHI)
+    ankle_sw = ankle + [0.6, 0.0, 0.0]
+    d_max = float(g.span(0.05))
+    leg = StanceLeg(np.zeros((n, 2)), knee, np.zeros(n))
+    z, eased = pelvis_height(PHI, z_flat, ankle_sw, np.zeros((n, 2)), leg, fr,
+                             LandingEase(d_max**2, d_max, 2.0), g)  # fmt: skip
+    assert eased is None
+    cap = g.ankle_height + np.sqrt(d_max**2 - 0.36)
+    assert np.allclose(z, np.minimum(z_flat, cap))
+    assert np.any(z < z_flat)
+
+
+def test_reach_deficit_is_zero_off_the_floor_and_measures_overreach():
+    g = leg_geometry(1.75)
+    n = 3
+    ankle = {s: np.column_stack([np.zeros((n, 2)), np.full(n, g.ankle_height)]) for s in "lr"}
+    reach_sq = {s: np.full(n, 0.8**2) for s in "lr"}
+    root = np.column_stack([np.zeros((n, 2)), g.ankle_height + np.array([0.7, 0.8, 0.9])])
+    off = {s: np.zeros(n, bool) for s in "lr"}
+    assert np.all(reach_deficit(root, np.zeros(n), ankle, off, reach_sq, g) == 0)
+    on = {"l": np.ones(n, bool), "r": np.zeros(n, bool)}
+    d = reach_deficit(root, np.zeros(n), ankle, on, reach_sq, g)
+    cap = g.ankle_height + np.sqrt(0.8**2 - g.hip_y**2)
+    assert np.allclose(d, np.maximum(root[:, 2] - cap, 0.0))
