@@ -70,6 +70,23 @@ def describe(values) -> dict[str, float]:
     }
 
 
+def walks_summary(paths: Sequence) -> dict[str, dict[str, float]]:
+    """Length, duration and planning time of planned walks, each summarised by :func:`describe`.
+
+    Args:
+        paths: the walks (:class:`~mjwalk.plan.walkpath.WalkPath`, with ``meta["seconds"]``).
+
+    Returns:
+        ``{"length": ... (m), "duration": ... (s), "planning_ms": ... (ms)}``, each
+        :func:`describe`'s dict (``median``, ``iqr``, ...).
+    """
+    return {
+        "length": describe([p.length for p in paths]),
+        "duration": describe([p.duration for p in paths]),
+        "planning_ms": describe([1000 * p.meta["seconds"] for p in paths]),
+    }
+
+
 def percentiles(values, qs=CYCLE_PERCENTILES) -> dict[str, float]:
     """``{"n", "p5", "p50", "p95"}`` of ``values`` (NaN when empty)."""
     x = np.asarray(values, dtype=float).ravel()
