@@ -16,8 +16,9 @@ from mjwalk.errors import MjwalkError
 
 
 def cmd_scan(args: argparse.Namespace) -> int:
+    # deferred: mjwalk.scan loads numba and the cloud readers (~2 s), only for `mjwalk scan`
     from mjwalk.scan import scan_to_scene
-    from mjwalk.scan.voids import cover, save_top_view
+    from mjwalk.scan.voids import cover, save_top_view  # deferred: as the line above
 
     check_output_file(args.output, "-o/--output")
     if args.png is not None:
@@ -69,7 +70,7 @@ def cmd_scan(args: argparse.Namespace) -> int:
 
 def _scan_resolution(text: str) -> float:
     """``--resolution``: a number of metres within the floor plan's stated range."""
-    from mjwalk.scan.limits import check_resolution
+    from mjwalk.scan.limits import check_resolution  # deferred: mjwalk.scan loads numba (~2 s)
 
     try:
         return check_resolution(text, "")
@@ -92,7 +93,7 @@ def _scan_offset(text: str) -> np.ndarray:
 
 
 def add_scan_parser(sub) -> None:
-    from mjwalk.scan.limits import RESOLUTION_RANGE
+    from mjwalk.scan.limits import RESOLUTION_RANGE  # deferred: mjwalk.scan loads numba (~2 s)
 
     p = sub.add_parser("scan", help="turn a laser scan (PLY/PCD/LAS/LAZ/E57/XYZ/PTS) into a scene")
     p.add_argument(
@@ -150,6 +151,7 @@ def add_scan_parser(sub) -> None:
 
 
 def cmd_scene_import(args: argparse.Namespace) -> int:
+    # deferred: mujoco loads only for `mjwalk scene-import` (trimesh/CoACD when it runs)
     from mjwalk.world.meshimport import check_threshold, import_scene
 
     check_threshold(args.threshold, "--threshold")

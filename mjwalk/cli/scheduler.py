@@ -175,8 +175,9 @@ def _more(sock: socket.socket, n: int = 16) -> bytes:
 
 def _greeting(sock: socket.socket, where: str, deadline: float) -> None:
     """Read the peer's first message and raise SchedulerError unless it is a Dask handshake."""
+    # deferred: dask.distributed is optional (the cluster extra) and slow to import
     from distributed.protocol import loads
-    from distributed.protocol.utils import unpack_frames
+    from distributed.protocol.utils import unpack_frames  # deferred: optional dask.distributed
 
     not_dask = f"{where} is not a Dask scheduler:"
     try:
@@ -217,8 +218,9 @@ def _answer(sock: socket.socket) -> None:
     """Send a client's handshake: a scheduler then sees a complete connection (it logs none
     closed before its handshake), and many other servers answer it at once with an error
     (an HTTP server's ``400 Bad Request``), which the greeting's check quotes."""
+    # deferred: dask.distributed is optional (the cluster extra) and slow to import
     from distributed.protocol import dumps
-    from distributed.protocol.utils import pack_frames
+    from distributed.protocol.utils import pack_frames  # deferred: optional dask.distributed
 
     mine = {
         "compression": None,
@@ -259,7 +261,7 @@ def dask_client(address: str):
     :class:`SchedulerError` naming why not (the extra not installed, the causes of
     :func:`probe_scheduler`), within :data:`SCHEDULER_TIMEOUT_S`, before any work."""
     try:
-        from distributed import Client
+        from distributed import Client  # deferred: optional dask.distributed, slow to import
     except ImportError:
         raise InputError(
             f"--scheduler {address}: Dask is not installed here; "

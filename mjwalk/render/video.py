@@ -11,7 +11,10 @@ World frame: metres, z up; image pixels (u right, v down) from the top-left corn
 
 from __future__ import annotations
 
+import errno
 import os
+import queue
+import threading
 
 from mjwalk.render._gl import available_backend, ensure_headless_backend
 
@@ -19,8 +22,10 @@ from mjwalk.render._gl import available_backend, ensure_headless_backend
 _SELECTED = ensure_headless_backend()
 
 
+import imageio_ffmpeg  # noqa: E402
 import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
+from tqdm import tqdm  # noqa: E402
 
 from mjwalk._args import check_fps  # noqa: E402
 from mjwalk._io import atomic_path  # noqa: E402
@@ -366,8 +371,6 @@ def render_frames(
 
 def _scenes(timeline, camera, size, frames, draw_path, progress, fast, view):
     """Yield ``(frame_index, Offscreen)`` with the scene of each frame ready to draw."""
-    from tqdm import tqdm
-
     if camera not in CAMERAS:
         raise MjwalkError(f"render: unknown camera {camera!r}; use one of {CAMERAS}")
     model = timeline.model
@@ -421,8 +424,6 @@ class _Drawer:
     through ``free``. An exception is handed over instead of a frame."""
 
     def __init__(self, timeline, camera, size, frames, geoms, view, lock):
-        import queue
-
         self.args = (timeline, camera, size, frames, geoms, view, lock)
         w, h = int(size[0]), int(size[1])
         self.bufs = [np.empty((h, w, 3), np.uint8) for _ in range(N_BUFFERS)]
@@ -434,8 +435,6 @@ class _Drawer:
         self.stopping = False
 
     def start(self) -> None:
-        import threading
-
         self.thread = threading.Thread(target=self._run, name="mjwalk-draw", daemon=True)
         self.thread.start()
 
@@ -475,8 +474,6 @@ class _Video:
     (the write releases the GIL; ffmpeg encodes in its own process)."""
 
     def __init__(self, path, size: tuple[int, int], fps: float):
-        import imageio_ffmpeg
-
         w, h = int(size[0]), int(size[1])
         self._flip = np.empty((h, w, 3), np.uint8)
         self._writer = imageio_ffmpeg.write_frames(
@@ -497,8 +494,6 @@ class _Video:
         try:
             self._writer.send(self._flip)
         except OSError as exc:  # imageio-ffmpeg's message holds ffmpeg's whole command line
-            import errno
-
             raise BrokenPipeError(errno.EPIPE, "ffmpeg stopped writing it") from exc
 
     def close(self) -> None:
@@ -532,10 +527,6 @@ def render_video(
         draw_path: draw the planned path and footprints into the scene.
         view: the tracking camera's viewpoints (computed when None).
     """
-    import threading
-
-    from tqdm import tqdm
-
     if camera not in CAMERAS:
         raise MjwalkError(f"render_video: unknown camera {camera!r}; use one of {CAMERAS}")
     w, h = (int(v) for v in size)

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
+from scipy.ndimage import gaussian_filter1d
 
 from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.errors import MjwalkError
@@ -168,8 +169,6 @@ def track_view(timeline: Timeline) -> TrackView:
     See the module docstring for the method. Costs about 5 ray casts per candidate camera
     (72) every 0.2 s of timeline, a fraction of a second for a minute-long cycle.
     """
-    from scipy.ndimage import gaussian_filter1d
-
     n = timeline.n_frames
     pref = preferred_azimuth(timeline)
     step = max(1, round(SAMPLE_DT * timeline.fps))

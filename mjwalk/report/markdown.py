@@ -7,6 +7,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from mjwalk.ergonomics.summary import ergonomics_markdown
+
 #: Contact pairs listed in report.md (all of them are in report.json).
 MD_PAIRS = 12
 
@@ -230,8 +232,6 @@ def format_markdown(rep: dict) -> str:
         "",
     ]
     if rep.get("ergonomics"):
-        from mjwalk.ergonomics.summary import ergonomics_markdown
-
         out += ergonomics_markdown(rep["ergonomics"])
     return "\n".join(out)
 
