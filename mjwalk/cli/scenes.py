@@ -16,6 +16,15 @@ from mjwalk.errors import MjwalkError
 
 
 def cmd_scan(args: argparse.Namespace) -> int:
+    """``mjwalk scan``: a scene from laser scans (:func:`mjwalk.scan.scan_to_scene`); prints
+    the floor found, the voids' cover, what the scanners saw and the transform.
+
+    Args:
+        args: the parsed ``scan`` options.
+
+    Returns:
+        The exit status, 0.
+    """
     # deferred: mjwalk.scan loads numba and the cloud readers (~2 s), only for `mjwalk scan`
     from mjwalk.scan import scan_to_scene
     from mjwalk.scan.voids import cover, save_top_view  # deferred: as the line above
@@ -93,6 +102,11 @@ def _scan_offset(text: str) -> np.ndarray:
 
 
 def add_scan_parser(sub) -> None:
+    """Add the ``scan`` sub-command.
+
+    Args:
+        sub: the main parser's sub-parsers (``add_subparsers()``).
+    """
     from mjwalk.scan.limits import RESOLUTION_RANGE  # deferred: mjwalk.scan loads numba (~2 s)
 
     p = sub.add_parser("scan", help="turn a laser scan (PLY/PCD/LAS/LAZ/E57/XYZ/PTS) into a scene")
@@ -151,6 +165,15 @@ def add_scan_parser(sub) -> None:
 
 
 def cmd_scene_import(args: argparse.Namespace) -> int:
+    """``mjwalk scene-import``: a mesh or MJCF scene with its concave meshes decomposed
+    (:func:`mjwalk.world.meshimport.import_scene`); prints the parts of each.
+
+    Args:
+        args: the parsed ``scene-import`` options.
+
+    Returns:
+        The exit status, 0.
+    """
     # deferred: mujoco loads only for `mjwalk scene-import` (trimesh/CoACD when it runs)
     from mjwalk.world.meshimport import check_threshold, import_scene
 
@@ -169,6 +192,11 @@ def cmd_scene_import(args: argparse.Namespace) -> int:
 
 
 def add_scene_import_parser(sub) -> None:
+    """Add the ``scene-import`` sub-command.
+
+    Args:
+        sub: the main parser's sub-parsers (``add_subparsers()``).
+    """
     p = sub.add_parser(
         "scene-import", help="import a mesh or MJCF: concave meshes get convex decompositions"
     )

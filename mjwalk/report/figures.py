@@ -52,9 +52,15 @@ TAKT_CONFIDENCE = 0.95
 
 
 def describe(values) -> dict[str, float]:
-    """n, median, q25, q75, iqr, min, max, mean and sd (ddof 1; 0 for one value) of ``values``.
+    """Summary figures of a sample.
 
-    Empty input gives n = 0 and NaN figures.
+    Args:
+        values: the sample (any shape, flattened).
+
+    Returns:
+        ``{"n", "median", "q25", "q75", "iqr", "min", "max", "mean", "sd"}``: percentiles by
+        ``numpy.percentile``'s linear interpolation, iqr = q75 - q25, sd with ddof 1 (0 for
+        one value). Empty input gives n = 0 and NaN figures.
     """
     x = np.asarray(values, dtype=float).ravel()
     if x.size == 0:
@@ -93,7 +99,16 @@ def walks_summary(paths: Sequence) -> dict[str, dict[str, float]]:
 
 
 def percentiles(values, qs=CYCLE_PERCENTILES) -> dict[str, float]:
-    """``{"n", "p5", "p50", "p95"}`` of ``values`` (NaN when empty)."""
+    """Percentiles of a sample.
+
+    Args:
+        values: the sample (any shape, flattened).
+        qs: the percentiles to give, in [0, 100] (default :data:`CYCLE_PERCENTILES`).
+
+    Returns:
+        ``{"n", "p5", "p50", "p95"}`` for the default ``qs`` (``"p{q}"`` for each), NaN when
+        empty.
+    """
     x = np.asarray(values, dtype=float).ravel()
     out: dict[str, float] = {"n": int(x.size)}
     ps = np.percentile(x, qs) if x.size else [float("nan")] * len(qs)
@@ -102,8 +117,18 @@ def percentiles(values, qs=CYCLE_PERCENTILES) -> dict[str, float]:
 
 
 def over_takt(cycle_times, takt: float, confidence: float = TAKT_CONFIDENCE) -> dict:
-    """Share of ``cycle_times`` (s) longer than ``takt`` (s), with its Wilson score interval:
-    ``{"takt", "runs", "over", "share", "ci_low", "ci_high", "confidence"}``."""
+    """Share of cycles longer than the takt, with its Wilson score interval.
+
+    Args:
+        cycle_times: the cycles' times, seconds.
+        takt: the takt time, seconds.
+        confidence: confidence level of the interval.
+
+    Returns:
+        ``{"takt", "runs", "over", "share", "ci_low", "ci_high", "confidence"}``: ``over`` of
+        ``runs`` cycles took longer than ``takt``, share = over / runs (NaN, with its interval,
+        when there are no runs).
+    """
     x = np.asarray(cycle_times, dtype=float).ravel()
     n, k = int(x.size), int(np.sum(x > takt))
     out = {"takt": float(takt), "runs": n, "over": k, "confidence": confidence}
@@ -189,8 +214,18 @@ def _routes(results: Sequence[CycleResult]) -> list[str]:
 def split_failed(
     results: Sequence[CycleResult],
 ) -> tuple[list[CycleResult], list[CycleResult]]:
-    """The simulated cycles and the failed runs (``result.error`` set, from
-    ``simulate_cycles(on_error="record")``); MjwalkError when every run failed."""
+    """The simulated cycles and the failed runs apart, each in the given order.
+
+    Args:
+        results: a batch's results; failed runs have ``result.error`` set
+            (``simulate_cycles(on_error="record")``).
+
+    Returns:
+        ``(simulated, failed)``.
+
+    Raises:
+        MjwalkError: every run failed (naming the first one's error).
+    """
     ok = [r for r in results if getattr(r, "error", None) is None]
     failed = [r for r in results if getattr(r, "error", None) is not None]
     if not ok:
@@ -352,7 +387,15 @@ def _arm_figures(arms: Sequence) -> dict:
 
 
 def ergonomic_records(results: Sequence[CycleResult]) -> list:
-    """The runs scored for ergonomics as :class:`mjwalk.ergonomics.summary.RunRecord`."""
+    """The runs scored for ergonomics, as the ergonomics summary reads them.
+
+    Args:
+        results: simulated cycles (runs without ``ergonomics`` are left out).
+
+    Returns:
+        One :class:`mjwalk.ergonomics.summary.RunRecord` per scored run (run, seed, operator
+        group, stature in metres or None, its ergonomics), in order.
+    """
     return [
         RunRecord(r.run, r.seed, r.group, None if r.operator is None else r.operator.stature, e)
         for r in results

@@ -148,6 +148,10 @@ def write_report(
             each drawn walk's own route (``WalkRecord.baseline``, between the walk's ends, as
             the simulation recorded it); ``{}`` draws none.
         reference: captured (median, IQR) walk length per route, e.g. :data:`CAPTURE_TABLE1`.
+
+    Returns:
+        The path of each file written, by its key in :data:`REPORT_FILES` (and
+        :data:`ERGONOMICS_FILES`).
     """
     # deferred: matplotlib loads only when a report is drawn
     from mjwalk.render.plot import histograms_png, spaghetti_png
