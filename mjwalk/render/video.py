@@ -65,6 +65,16 @@ def camera_for(
     one, from 15 deg above on the walker's left side (relative to the start heading of the
     walk). ``top`` looks straight down on the whole walk (path and the humanoid's whole
     extent), +x to the right and +y up in the image.
+
+    Args:
+        timeline: the poses to film.
+        frame: the frame's index.
+        camera: ``"track"`` or ``"top"``.
+        size: image (width, height), pixels (the top camera's framing).
+        view: the tracking camera's angles per frame, or None.
+
+    Returns:
+        The free camera.
     """
     if camera not in CAMERAS:
         raise MjwalkError(f"render: unknown camera {camera!r}; use one of {CAMERAS}")
@@ -103,7 +113,15 @@ def _set_camera(cam, timeline: Timeline, frame: int, camera: str, size, view) ->
 
 def project(renderer: mujoco.Renderer, points: np.ndarray) -> np.ndarray:
     """(N, 2) pixel coordinates (u right, v down) of world points (N, 3) in the last rendered
-    view of ``renderer`` (after ``update_scene``), from its OpenGL camera frustum."""
+    view of ``renderer`` (after ``update_scene``), from its OpenGL camera frustum.
+
+    Args:
+        renderer: a renderer (or :class:`Offscreen`) whose scene was updated.
+        points: world points (N, 3), metres.
+
+    Returns:
+        (N, 2) pixel coordinates.
+    """
     scn = renderer.scene
     gl = scn.camera[0]
     pos, fwd, up = np.array(gl.pos), np.array(gl.forward), np.array(gl.up)
@@ -138,6 +156,15 @@ def path_geoms(timeline: Timeline, width: float = 0.02, spacing: float = 0.05) -
     segment a box ``width`` wide and 2 mm thick lying 3 mm above the floor; each footprint a
     0.24 x 0.09 m box. Flat boxes have 12 triangles where capsules have hundreds, and the list is
     computed once per timeline: drawing it costs about 1 ms per frame instead of about 10 ms.
+
+    Args:
+        timeline: the timeline; its ``walk`` (None: no geoms) gives path and footprints.
+        width: the path's width, metres.
+        spacing: arc length between path samples, metres.
+
+    Returns:
+        One ``(size (3,), pos (3,), mat (9,), rgba (4,))`` per box: half-sizes and position in
+        metres (world frame), row-major rotation.
     """
     walk = timeline.walk
     if walk is None:
@@ -179,7 +206,12 @@ def path_geoms(timeline: Timeline, width: float = 0.02, spacing: float = 0.05) -
 
 
 def add_path_geoms(scn: mujoco.MjvScene, geoms: list[tuple]) -> None:
-    """Append precomputed :func:`path_geoms` to the scene as user geoms (as many as fit)."""
+    """Append precomputed :func:`path_geoms` to the scene as user geoms (as many as fit).
+
+    Args:
+        scn: the scene, after ``mjv_updateScene``.
+        geoms: :func:`path_geoms`'s boxes.
+    """
     box = mujoco.mjtGeom.mjGEOM_BOX
     for size, pos, mat, rgba in geoms:
         if scn.ngeom >= scn.maxgeom:
@@ -234,7 +266,14 @@ class Offscreen:
 
     def read_into(self, buf: np.ndarray) -> np.ndarray:
         """Draw the scene and read the RGB frame into ``buf`` ((H, W, 3) uint8, C-contiguous),
-        rows bottom-up as OpenGL stores them (``buf[::-1]`` is the image)."""
+        rows bottom-up as OpenGL stores them (``buf[::-1]`` is the image).
+
+        Args:
+            buf: the (H, W, 3) uint8 buffer to fill.
+
+        Returns:
+            ``buf``.
+        """
         assert self._gl is not None
         self._gl.make_current()
         mujoco.mjr_render(self.rect, self.scene, self._con)
@@ -242,7 +281,11 @@ class Offscreen:
         return buf
 
     def render(self) -> np.ndarray:
-        """Draw the scene; a new (H, W, 3) uint8 image, rows top-down."""
+        """Draw the scene; a new (H, W, 3) uint8 image, rows top-down.
+
+        Returns:
+            The image, (H, W, 3) uint8, rows top-down.
+        """
         buf = np.empty((self.height, self.width, 3), np.uint8)
         return np.ascontiguousarray(self.read_into(buf)[::-1])
 
@@ -364,6 +407,16 @@ def render_frames(
     reflections off (about 8x faster on software OpenGL: 640x480 at ~25 fps instead of ~3 on
     this project's 2-core test machine). The ``track`` camera follows :func:`track_view`
     (a clear line of sight to the legs), computed here unless ``view`` is given.
+
+    Args:
+        timeline: the poses to film.
+        camera: ``"track"`` or ``"top"``.
+        size: image (width, height), pixels.
+        frames: the frame indices to draw (None: all).
+        draw_path: draw the planned path and footprints.
+        progress: show a progress bar.
+        fast: no multisampling, shadows or reflections.
+        view: the tracking camera's angles per frame (None: computed).
     """
     for i, r in _scenes(timeline, camera, size, frames, draw_path, progress, fast, view):
         yield i, r.render(), r
@@ -410,7 +463,16 @@ VIDEO_PRESET = "veryfast"
 
 
 def video_frames(timeline: Timeline, fps: float) -> np.ndarray:
-    """Indices of the timeline frames shown at ``fps`` frames per second, in real time."""
+    """Indices of the timeline frames shown at ``fps`` frames per second, in real time.
+
+    Args:
+        timeline: the timeline (its duration in seconds and its frame rate).
+        fps: the video's frame rate, frames per second.
+
+    Returns:
+        (n,) int indices into the timeline's frames, ``round(k / fps * timeline.fps)`` clipped
+        to the last frame, for k = 0 ... floor(duration * fps).
+    """
     n_out = max(1, int(np.floor(timeline.duration * fps + 1e-9)) + 1)
     return np.clip(
         np.round(np.arange(n_out) / fps * timeline.fps).astype(int), 0, timeline.n_frames - 1
