@@ -28,7 +28,7 @@ WORK = (
     "mjwalk.cycle.simulate.prepare",
     "mjwalk.cycle.simulate.simulate_cycles",
     "mjwalk.render.render_video",
-    "mjwalk.gait.fidelity.train_main",
+    "mjwalk.gait.training.train_model_file",
 )
 
 

@@ -16,8 +16,18 @@ from mjwalk.errors import MjwalkError
 
 
 def cmd_scan(args: argparse.Namespace) -> int:
+    """``mjwalk scan``: a scene from laser scans (:func:`mjwalk.scan.scan_to_scene`); prints
+    the floor found, the voids' cover, what the scanners saw and the transform.
+
+    Args:
+        args: the parsed ``scan`` options.
+
+    Returns:
+        The exit status, 0.
+    """
+    # deferred: mjwalk.scan loads numba and the cloud readers (~2 s), only for `mjwalk scan`
     from mjwalk.scan import scan_to_scene
-    from mjwalk.scan.voids import cover, save_top_view
+    from mjwalk.scan.voids import cover, save_top_view  # deferred: as the line above
 
     check_output_file(args.output, "-o/--output")
     if args.png is not None:
@@ -69,7 +79,7 @@ def cmd_scan(args: argparse.Namespace) -> int:
 
 def _scan_resolution(text: str) -> float:
     """``--resolution``: a number of metres within the floor plan's stated range."""
-    from mjwalk.scan.limits import check_resolution
+    from mjwalk.scan.limits import check_resolution  # deferred: mjwalk.scan loads numba (~2 s)
 
     try:
         return check_resolution(text, "")
@@ -92,7 +102,12 @@ def _scan_offset(text: str) -> np.ndarray:
 
 
 def add_scan_parser(sub) -> None:
-    from mjwalk.scan.limits import RESOLUTION_RANGE
+    """Add the ``scan`` sub-command.
+
+    Args:
+        sub: the main parser's sub-parsers (``add_subparsers()``).
+    """
+    from mjwalk.scan.limits import RESOLUTION_RANGE  # deferred: mjwalk.scan loads numba (~2 s)
 
     p = sub.add_parser("scan", help="turn a laser scan (PLY/PCD/LAS/LAZ/E57/XYZ/PTS) into a scene")
     p.add_argument(
@@ -150,6 +165,16 @@ def add_scan_parser(sub) -> None:
 
 
 def cmd_scene_import(args: argparse.Namespace) -> int:
+    """``mjwalk scene-import``: a mesh or MJCF scene with its concave meshes decomposed
+    (:func:`mjwalk.world.meshimport.import_scene`); prints the parts of each.
+
+    Args:
+        args: the parsed ``scene-import`` options.
+
+    Returns:
+        The exit status, 0.
+    """
+    # deferred: mujoco loads only for `mjwalk scene-import` (trimesh/CoACD when it runs)
     from mjwalk.world.meshimport import check_threshold, import_scene
 
     check_threshold(args.threshold, "--threshold")
@@ -167,6 +192,11 @@ def cmd_scene_import(args: argparse.Namespace) -> int:
 
 
 def add_scene_import_parser(sub) -> None:
+    """Add the ``scene-import`` sub-command.
+
+    Args:
+        sub: the main parser's sub-parsers (``add_subparsers()``).
+    """
     p = sub.add_parser(
         "scene-import", help="import a mesh or MJCF: concave meshes get convex decompositions"
     )

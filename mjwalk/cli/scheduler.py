@@ -46,6 +46,12 @@ class SchedulerError(InputError):
 def parse_scheduler_address(address: str) -> tuple[str, int]:
     """``tcp://HOST:PORT`` (or ``HOST:PORT``; ``[v6]:PORT`` for IPv6) as (host, port).
 
+    Args:
+        address: the ``--scheduler`` text (surrounding blanks ignored; scheme case-insensitive).
+
+    Returns:
+        ``(host, port)``: the host without IPv6 brackets, the port in 1-65535.
+
     Raises:
         SchedulerError: naming what is malformed (no port, a port that is not 1-65535, another
             scheme than tcp://, a path after the port).
@@ -175,8 +181,9 @@ def _more(sock: socket.socket, n: int = 16) -> bytes:
 
 def _greeting(sock: socket.socket, where: str, deadline: float) -> None:
     """Read the peer's first message and raise SchedulerError unless it is a Dask handshake."""
+    # deferred: dask.distributed is optional (the cluster extra) and slow to import
     from distributed.protocol import loads
-    from distributed.protocol.utils import unpack_frames
+    from distributed.protocol.utils import unpack_frames  # deferred: optional dask.distributed
 
     not_dask = f"{where} is not a Dask scheduler:"
     try:
@@ -217,8 +224,9 @@ def _answer(sock: socket.socket) -> None:
     """Send a client's handshake: a scheduler then sees a complete connection (it logs none
     closed before its handshake), and many other servers answer it at once with an error
     (an HTTP server's ``400 Bad Request``), which the greeting's check quotes."""
+    # deferred: dask.distributed is optional (the cluster extra) and slow to import
     from distributed.protocol import dumps
-    from distributed.protocol.utils import pack_frames
+    from distributed.protocol.utils import pack_frames  # deferred: optional dask.distributed
 
     mine = {
         "compression": None,
@@ -231,6 +239,9 @@ def _answer(sock: socket.socket) -> None:
 
 def probe_scheduler(address: str) -> float:
     """Check that a Dask scheduler answers at ``address`` within :data:`SCHEDULER_TIMEOUT_S`.
+
+    Args:
+        address: the scheduler's address, as :func:`parse_scheduler_address` reads it.
 
     Returns:
         The seconds left of the time allowed (for the Client's own connection).
@@ -255,11 +266,21 @@ def probe_scheduler(address: str) -> float:
 
 
 def dask_client(address: str):
-    """A ``distributed.Client`` of the scheduler at ``address``, or a one-line
-    :class:`SchedulerError` naming why not (the extra not installed, the causes of
-    :func:`probe_scheduler`), within :data:`SCHEDULER_TIMEOUT_S`, before any work."""
+    """A client of the Dask scheduler at ``address``, checked before any work.
+
+    Args:
+        address: the scheduler's address (``tcp://HOST:PORT``).
+
+    Returns:
+        A connected ``distributed.Client``.
+
+    Raises:
+        InputError: dask.distributed (the ``cluster`` extra) is not installed.
+        SchedulerError: one line naming why no client could be made (the causes of
+            :func:`probe_scheduler`), within :data:`SCHEDULER_TIMEOUT_S`.
+    """
     try:
-        from distributed import Client
+        from distributed import Client  # deferred: optional dask.distributed, slow to import
     except ImportError:
         raise InputError(
             f"--scheduler {address}: Dask is not installed here; "

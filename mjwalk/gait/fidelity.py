@@ -29,18 +29,13 @@ reported, capture beside model.
 from __future__ import annotations
 
 import glob as _glob
-import json
 from collections.abc import Sequence
-from pathlib import Path
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 from scipy.stats import ks_2samp
 
-from mjwalk._io import atomic_path
-from mjwalk._log import log
-from mjwalk.errors import InputError, MjwalkError
+from mjwalk.errors import MjwalkError
 from mjwalk.gait.features import StepBatch, concat_batches
 from mjwalk.gait.model import StepModel
 from mjwalk.gait.pace import capture_pace, model_pace
@@ -407,80 +402,3 @@ def load_capture(
             raise MjwalkError(f"no AMC files match {amc!r}")
         takes += [load_amc(f, asf, skeleton=skeleton or "cmu") for f in files]
     return takes
-
-
-def train_main(
-    out: str | Path,
-    *,
-    bvh: str | None = None,
-    amc: str | None = None,
-    asf: str | None = None,
-    virtual: int | None = None,
-    seed: int = 0,
-    skeleton: str | None = None,
-    progress: bool = True,
-    variance: float | None = None,
-) -> dict:
-    """Train a step model and save it to ``out``; returns its summary.
-
-    Data: a BVH glob, an AMC glob (+ ``asf``), and/or ``virtual`` N virtual subjects
-    (``generate_corpus(N, seed)``); at least one is required. ``variance``: the share of the
-    step features' variance the PCA keeps, in (0, 1] (None: :meth:`StepModel.fit`'s default,
-    0.99; the paper keeps >= 0.95, which suits small captures, see there).
-    """
-    if variance is not None and not 0.0 < variance <= 1.0:
-        raise InputError(f"train: the PCA variance to keep must be in (0, 1], got {variance!r}")
-    fit: dict[str, Any] = {} if variance is None else {"variance": float(variance)}
-    from mjwalk.gait.default import train_model
-
-    takes = load_capture(bvh, amc, asf, skeleton=skeleton)
-    if virtual:
-        from mjwalk.gait.corpus import generate_corpus
-
-        takes += generate_corpus(n_subjects=int(virtual), seed=seed)
-    if not takes:
-        raise MjwalkError("train: give a BVH glob, an AMC glob with its ASF, or virtual N")
-    if progress:
-        log.info(f"training on {len(takes)} takes")
-    model, seg = train_model(takes, seed=seed, progress=progress, **fit)
-    model.pace()  # measured once, saved with the model (mjwalk.gait.pace)
-    model.save(out)
-    summary = model.summary()
-    summary["segmentation"] = str(seg)
-    if progress:
-        log.info(f"{seg}; model written to {out}")
-    return summary
-
-
-def validate_main(
-    model_path: str | Path | None,
-    against: str,
-    json_path: str | Path | None = None,
-    *,
-    amc_asf: str | None = None,
-    seed: int = 0,
-    n_chains: int = 400,
-    skeleton: str | None = None,
-    walker=None,
-    planned_walks=None,
-) -> dict:
-    """Fidelity of the model at ``model_path`` (None: the default model) against the takes
-    matching the glob ``against`` (``.bvh``; ``.amc`` needs ``amc_asf``); writes the JSON
-    report to ``json_path`` atomically when given and returns the report
-    (:func:`format_fidelity_table` formats it). ``planned_walks``: see
-    :func:`fidelity_from_steps`."""
-    from mjwalk.gait.default import default_model
-
-    if str(against).lower().endswith(".amc"):
-        takes = load_capture(amc=against, asf=amc_asf, skeleton=skeleton)
-    else:
-        takes = load_capture(bvh=against, skeleton=skeleton)
-    model = default_model() if model_path is None else StepModel.load(model_path)
-    model = model.for_walker(walker)
-    report = fidelity_report(
-        model, takes, np.random.default_rng(seed), n_chains=n_chains, planned_walks=planned_walks
-    )
-    if json_path is not None:
-        with atomic_path(json_path, suffix=".json") as tmp:
-            tmp.write_text(json.dumps(report, indent=2))
-    return report

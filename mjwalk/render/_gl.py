@@ -41,9 +41,9 @@ def _swap_context(backend: str) -> None:
     """Make an already imported mujoco create ``backend`` contexts (its renderer looks the
     context class up on its gl_context module at construction)."""
     if backend == "egl":
-        from mujoco.egl import GLContext
+        from mujoco.egl import GLContext  # deferred: loads libEGL; only the chosen backend
     elif backend == "osmesa":
-        from mujoco.osmesa import GLContext
+        from mujoco.osmesa import GLContext  # deferred: loads libOSMesa; only the chosen one
     else:
         return
     for name in _CONTEXT_MODULES:

@@ -21,7 +21,14 @@ from mjwalk.world.workplace import Workplace
 
 
 def draw_floor(ax, workplace: Workplace, *, shade: bool = True, sites: bool = True) -> None:
-    """Draw the floor outline, clearance shading, obstacle footprints and stand sites on ``ax``."""
+    """Draw the floor outline, clearance shading, obstacle footprints and stand sites on ``ax``.
+
+    Args:
+        ax: the matplotlib axes (x and y in metres, world frame).
+        workplace: the scene.
+        shade: shade the clearance field (0-1.5 m) with its colour bar.
+        sites: mark and name the sites below 0.05 m (stand positions).
+    """
     xmin, ymin, xmax, ymax = workplace.floor_bounds
     if shade:
         f = workplace.clearance
@@ -74,7 +81,18 @@ def draw_paths(
     lw: float = 1.0,
     alpha: float = 0.8,
 ) -> None:
-    """Draw walk paths (and optionally their footprints) on ``ax``."""
+    """Draw walk paths (and optionally their footprints) on ``ax``.
+
+    Args:
+        ax: the matplotlib axes (world frame, metres).
+        paths: the walks; the first one's start (square) and end (star) are marked.
+        color: their colour (None: matplotlib's next).
+        label: legend label, given to the first walk only.
+        footprints: also draw each walk's footprints as arrows along the foot's yaw (left red,
+            right green).
+        lw: line width, points.
+        alpha: line opacity.
+    """
     for k, p in enumerate(paths):
         ax.plot(
             p.xy[:, 0], p.xy[:, 1], color=color, lw=lw, alpha=alpha, label=label if k == 0 else None
@@ -107,7 +125,16 @@ def save_plan_png(
     title: str | None = None,
     footprints: bool = False,
 ) -> None:
-    """Write a top-view PNG of ``workplace`` with ``paths`` (and a baseline route), atomically."""
+    """Write a top-view PNG of ``workplace`` with ``paths`` (and a baseline route), atomically.
+
+    Args:
+        path: image file to write (the suffix picks the format: .png, .svg, ...).
+        workplace: the scene (floor, clearance shading, obstacles, sites).
+        paths: the planned walks.
+        baseline: a grid-A* route to draw beside them, or None.
+        title: the figure's title (default: the scene's name).
+        footprints: also draw the walks' footprints.
+    """
     xmin, ymin, xmax, ymax = workplace.floor_bounds
     width = 10.0
     fig, ax = plt.subplots(figsize=(width, width * (ymax - ymin) / (xmax - xmin) * 0.9 + 0.6))
@@ -135,7 +162,14 @@ def save_plan_png(
 
 # ---------------------------------------------------------------- report charts
 def route_colors(labels: Sequence[str]) -> dict[str, tuple]:
-    """A tab10 colour per route label, in order."""
+    """A tab10 colour per route label, in order.
+
+    Args:
+        labels: the route labels.
+
+    Returns:
+        ``{label: RGBA tuple}``, tab10's colours in order, repeating after ten.
+    """
     cmap = matplotlib.colormaps["tab10"]
     return {label: cmap(k % 10) for k, label in enumerate(labels)}
 
@@ -154,7 +188,15 @@ def spaghetti_png(
     the batch), each drawn walk's own grid-A* route (between its two ends,
     ``WalkRecord.baseline``) dashed in the route's colour, written as a PNG to ``path``.
     ``baseline`` (a mapping, see :func:`mjwalk.report.write_report`) draws those routes
-    instead of the walks' own; ``rep`` is :func:`mjwalk.report.report_dict`'s."""
+    instead of the walks' own; ``rep`` is :func:`mjwalk.report.report_dict`'s.
+
+    Args:
+        path: PNG file to write.
+        results: the simulated cycles.
+        workplace: their scene.
+        baseline: routes to draw instead of the walks' own, or None.
+        rep: the report's figures (its route labels).
+    """
 
     labels = list(rep["routes"])
     colors = route_colors(labels)
@@ -212,7 +254,13 @@ def histograms_png(path: Path, results: Sequence[CycleResult], rep: dict) -> Non
     """The report's histograms: cycle time (stacked by operator group when the population has
     several, takt as a red line) and the walk length of every route, each direction (from ->
     to) in its own shade with its median dashed and the median of its walks' own grid-A*
-    routes solid (the capture's median dotted), written as a PNG to ``path``."""
+    routes solid (the capture's median dotted), written as a PNG to ``path``.
+
+    Args:
+        path: PNG file to write.
+        results: the simulated cycles.
+        rep: the report's figures (:func:`mjwalk.report.report_dict`).
+    """
 
     labels = list(rep["routes"])
     colors = route_colors(labels)
@@ -256,7 +304,12 @@ def histograms_png(path: Path, results: Sequence[CycleResult], rep: dict) -> Non
 def ergonomics_png(path: Path, records: Sequence) -> None:
     """The report's ergonomics chart: RULA and REBA over one cycle's time (the run whose peak
     RULA is the median's) and the distributions of the cycles' peak RULA and REBA per operator
-    group (``records``: :class:`mjwalk.ergonomics.summary.RunRecord`)."""
+    group (``records``: :class:`mjwalk.ergonomics.summary.RunRecord`).
+
+    Args:
+        path: PNG file to write.
+        records: the scored runs, at least one.
+    """
     fig, axes = plt.subplots(1, 3, figsize=(14, 3.6))
     try:
         peaks = np.array([r.ergo.rula_peak for r in records])

@@ -11,7 +11,10 @@ World frame: metres, z up; image pixels (u right, v down) from the top-left corn
 
 from __future__ import annotations
 
+import errno
 import os
+import queue
+import threading
 
 from mjwalk.render._gl import available_backend, ensure_headless_backend
 
@@ -19,13 +22,19 @@ from mjwalk.render._gl import available_backend, ensure_headless_backend
 _SELECTED = ensure_headless_backend()
 
 
+import imageio_ffmpeg  # noqa: E402
 import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
+from tqdm import tqdm  # noqa: E402
 
 from mjwalk._args import check_fps  # noqa: E402
 from mjwalk._io import atomic_path  # noqa: E402
 from mjwalk.body.humanoid import HUMAN_GROUP  # noqa: E402
 from mjwalk.errors import InputError, MjwalkError  # noqa: E402
+from mjwalk.render.pathgeoms import (  # noqa: E402
+    add_path_geoms,
+    path_geoms,
+)
 from mjwalk.render.viewpoint import (  # noqa: E402
     LOOKAT_HEIGHT,
     TRACK_DISTANCE,
@@ -37,12 +46,6 @@ from mjwalk.render.viewpoint import (  # noqa: E402
 from mjwalk.timeline.parts import PartTrack  # noqa: E402
 from mjwalk.timeline.timeline import Timeline  # noqa: E402
 
-#: Colour of the drawn path (RGBA) and of the drawn footprints (left, right).
-PATH_RGBA = np.array([1.0, 0.55, 0.0, 1.0], dtype=np.float32)
-FOOT_RGBA = (
-    np.array([0.9, 0.2, 0.2, 0.9], dtype=np.float32),
-    np.array([0.2, 0.4, 0.95, 0.9], dtype=np.float32),
-)
 CAMERAS = ("track", "top")
 
 
@@ -60,6 +63,16 @@ def camera_for(
     one, from 15 deg above on the walker's left side (relative to the start heading of the
     walk). ``top`` looks straight down on the whole walk (path and the humanoid's whole
     extent), +x to the right and +y up in the image.
+
+    Args:
+        timeline: the poses to film.
+        frame: the frame's index.
+        camera: ``"track"`` or ``"top"``.
+        size: image (width, height), pixels (the top camera's framing).
+        view: the tracking camera's angles per frame, or None.
+
+    Returns:
+        The free camera.
     """
     if camera not in CAMERAS:
         raise MjwalkError(f"render: unknown camera {camera!r}; use one of {CAMERAS}")
@@ -98,7 +111,15 @@ def _set_camera(cam, timeline: Timeline, frame: int, camera: str, size, view) ->
 
 def project(renderer: mujoco.Renderer, points: np.ndarray) -> np.ndarray:
     """(N, 2) pixel coordinates (u right, v down) of world points (N, 3) in the last rendered
-    view of ``renderer`` (after ``update_scene``), from its OpenGL camera frustum."""
+    view of ``renderer`` (after ``update_scene``), from its OpenGL camera frustum.
+
+    Args:
+        renderer: a renderer (or :class:`Offscreen`) whose scene was updated.
+        points: world points (N, 3), metres.
+
+    Returns:
+        (N, 2) pixel coordinates.
+    """
     scn = renderer.scene
     gl = scn.camera[0]
     pos, fwd, up = np.array(gl.pos), np.array(gl.forward), np.array(gl.up)
@@ -117,70 +138,6 @@ def project(renderer: mujoco.Renderer, points: np.ndarray) -> np.ndarray:
     u = renderer.width * (xn - left) / (rightb - left)
     v = renderer.height * (gl.frustum_top - yn) / (gl.frustum_top - gl.frustum_bottom)
     return np.column_stack([u, v])
-
-
-def _yaw_mat(yaw: np.ndarray) -> np.ndarray:
-    """(N, 9) row-major rotation matrices about z by ``yaw`` (radians)."""
-    c, s = np.cos(yaw), np.sin(yaw)
-    z, o = np.zeros_like(c), np.ones_like(c)
-    return np.column_stack([c, -s, z, s, c, z, z, z, o])
-
-
-def path_geoms(timeline: Timeline, width: float = 0.02, spacing: float = 0.05) -> list[tuple]:
-    """The planned path and footprints as flat boxes, ``(size, pos, mat, rgba)`` per geom.
-
-    The path is resampled every ``spacing`` metres of arc length (at most 400 segments), each
-    segment a box ``width`` wide and 2 mm thick lying 3 mm above the floor; each footprint a
-    0.24 x 0.09 m box. Flat boxes have 12 triangles where capsules have hundreds, and the list is
-    computed once per timeline: drawing it costs about 1 ms per frame instead of about 10 ms.
-    """
-    walk = timeline.walk
-    if walk is None:
-        return []
-    pts = np.asarray(walk.xy, dtype=float)
-    seg = np.linalg.norm(np.diff(pts, axis=0), axis=1)
-    arc = np.concatenate([[0.0], np.cumsum(seg)])
-    geoms: list[tuple] = []
-    if arc[-1] > 1e-6:
-        n = int(np.clip(np.ceil(arc[-1] / spacing), 1, 400))
-        s = np.linspace(0.0, arc[-1], n + 1)
-        xy = np.column_stack([np.interp(s, arc, pts[:, 0]), np.interp(s, arc, pts[:, 1])])
-        a, b = xy[:-1], xy[1:]
-        d = b - a
-        half = 0.5 * np.linalg.norm(d, axis=1) + 0.5 * width  # overlap hides the joints
-        mid = 0.5 * (a + b)
-        mats = _yaw_mat(np.arctan2(d[:, 1], d[:, 0]))
-        for k in range(len(a)):
-            geoms.append(
-                (
-                    np.array([half[k], 0.5 * width, 0.001]),
-                    np.array([mid[k, 0], mid[k, 1], 0.003]),
-                    mats[k],
-                    PATH_RGBA,
-                )
-            )
-    for st in walk.steps:
-        x, y, yaw = st.foot
-        c, s_ = np.cos(yaw), np.sin(yaw)
-        geoms.append(
-            (
-                np.array([0.12, 0.045, 0.002]),
-                np.array([x + 0.03 * c, y + 0.03 * s_, 0.002]),
-                _yaw_mat(np.array([yaw]))[0],
-                FOOT_RGBA[st.side == "right"],
-            )
-        )
-    return geoms
-
-
-def add_path_geoms(scn: mujoco.MjvScene, geoms: list[tuple]) -> None:
-    """Append precomputed :func:`path_geoms` to the scene as user geoms (as many as fit)."""
-    box = mujoco.mjtGeom.mjGEOM_BOX
-    for size, pos, mat, rgba in geoms:
-        if scn.ngeom >= scn.maxgeom:
-            break
-        mujoco.mjv_initGeom(scn.geoms[scn.ngeom], box, size, pos, mat, rgba)
-        scn.ngeom += 1
 
 
 class Offscreen:
@@ -229,7 +186,14 @@ class Offscreen:
 
     def read_into(self, buf: np.ndarray) -> np.ndarray:
         """Draw the scene and read the RGB frame into ``buf`` ((H, W, 3) uint8, C-contiguous),
-        rows bottom-up as OpenGL stores them (``buf[::-1]`` is the image)."""
+        rows bottom-up as OpenGL stores them (``buf[::-1]`` is the image).
+
+        Args:
+            buf: the (H, W, 3) uint8 buffer to fill.
+
+        Returns:
+            ``buf``.
+        """
         assert self._gl is not None
         self._gl.make_current()
         mujoco.mjr_render(self.rect, self.scene, self._con)
@@ -237,7 +201,11 @@ class Offscreen:
         return buf
 
     def render(self) -> np.ndarray:
-        """Draw the scene; a new (H, W, 3) uint8 image, rows top-down."""
+        """Draw the scene; a new (H, W, 3) uint8 image, rows top-down.
+
+        Returns:
+            The image, (H, W, 3) uint8, rows top-down.
+        """
         buf = np.empty((self.height, self.width, 3), np.uint8)
         return np.ascontiguousarray(self.read_into(buf)[::-1])
 
@@ -359,6 +327,16 @@ def render_frames(
     reflections off (about 8x faster on software OpenGL: 640x480 at ~25 fps instead of ~3 on
     this project's 2-core test machine). The ``track`` camera follows :func:`track_view`
     (a clear line of sight to the legs), computed here unless ``view`` is given.
+
+    Args:
+        timeline: the poses to film.
+        camera: ``"track"`` or ``"top"``.
+        size: image (width, height), pixels.
+        frames: the frame indices to draw (None: all).
+        draw_path: draw the planned path and footprints.
+        progress: show a progress bar.
+        fast: no multisampling, shadows or reflections.
+        view: the tracking camera's angles per frame (None: computed).
     """
     for i, r in _scenes(timeline, camera, size, frames, draw_path, progress, fast, view):
         yield i, r.render(), r
@@ -366,8 +344,6 @@ def render_frames(
 
 def _scenes(timeline, camera, size, frames, draw_path, progress, fast, view):
     """Yield ``(frame_index, Offscreen)`` with the scene of each frame ready to draw."""
-    from tqdm import tqdm
-
     if camera not in CAMERAS:
         raise MjwalkError(f"render: unknown camera {camera!r}; use one of {CAMERAS}")
     model = timeline.model
@@ -407,7 +383,16 @@ VIDEO_PRESET = "veryfast"
 
 
 def video_frames(timeline: Timeline, fps: float) -> np.ndarray:
-    """Indices of the timeline frames shown at ``fps`` frames per second, in real time."""
+    """Indices of the timeline frames shown at ``fps`` frames per second, in real time.
+
+    Args:
+        timeline: the timeline (its duration in seconds and its frame rate).
+        fps: the video's frame rate, frames per second.
+
+    Returns:
+        (n,) int indices into the timeline's frames, ``round(k / fps * timeline.fps)`` clipped
+        to the last frame, for k = 0 ... floor(duration * fps).
+    """
     n_out = max(1, int(np.floor(timeline.duration * fps + 1e-9)) + 1)
     return np.clip(
         np.round(np.arange(n_out) / fps * timeline.fps).astype(int), 0, timeline.n_frames - 1
@@ -421,8 +406,6 @@ class _Drawer:
     through ``free``. An exception is handed over instead of a frame."""
 
     def __init__(self, timeline, camera, size, frames, geoms, view, lock):
-        import queue
-
         self.args = (timeline, camera, size, frames, geoms, view, lock)
         w, h = int(size[0]), int(size[1])
         self.bufs = [np.empty((h, w, 3), np.uint8) for _ in range(N_BUFFERS)]
@@ -434,8 +417,6 @@ class _Drawer:
         self.stopping = False
 
     def start(self) -> None:
-        import threading
-
         self.thread = threading.Thread(target=self._run, name="mjwalk-draw", daemon=True)
         self.thread.start()
 
@@ -475,8 +456,6 @@ class _Video:
     (the write releases the GIL; ffmpeg encodes in its own process)."""
 
     def __init__(self, path, size: tuple[int, int], fps: float):
-        import imageio_ffmpeg
-
         w, h = int(size[0]), int(size[1])
         self._flip = np.empty((h, w, 3), np.uint8)
         self._writer = imageio_ffmpeg.write_frames(
@@ -497,8 +476,6 @@ class _Video:
         try:
             self._writer.send(self._flip)
         except OSError as exc:  # imageio-ffmpeg's message holds ffmpeg's whole command line
-            import errno
-
             raise BrokenPipeError(errno.EPIPE, "ffmpeg stopped writing it") from exc
 
     def close(self) -> None:
@@ -532,10 +509,6 @@ def render_video(
         draw_path: draw the planned path and footprints into the scene.
         view: the tracking camera's viewpoints (computed when None).
     """
-    import threading
-
-    from tqdm import tqdm
-
     if camera not in CAMERAS:
         raise MjwalkError(f"render_video: unknown camera {camera!r}; use one of {CAMERAS}")
     w, h = (int(v) for v in size)

@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
+from scipy.ndimage import gaussian_filter1d
 
 from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.errors import MjwalkError
@@ -82,7 +83,14 @@ class TrackView:
 
 
 def preferred_azimuth(timeline: Timeline) -> float:
-    """The fixed camera's azimuth (deg): the walker's left side at the start heading."""
+    """The fixed camera's azimuth (deg): the walker's left side at the start heading.
+
+    Args:
+        timeline: the timeline (its first frame's root orientation gives the heading yaw0).
+
+    Returns:
+        yaw0 in degrees minus 90.
+    """
     r = timeline.jointmap.root
     q = timeline.qpos[0, r + 3 : r + 7]
     yaw0 = 2 * np.arctan2(q[3], q[0])
@@ -91,7 +99,17 @@ def preferred_azimuth(timeline: Timeline) -> float:
 
 def camera_positions(lookat: np.ndarray, azimuth, elevation, distance=TRACK_DISTANCE):
     """(..., 3) positions (m) of free cameras looking at ``lookat`` from ``azimuth`` and
-    ``elevation`` (deg) at ``distance`` (m), as ``mjv_updateCamera`` places them."""
+    ``elevation`` (deg) at ``distance`` (m), as ``mjv_updateCamera`` places them.
+
+    Args:
+        lookat: the look-at point(s), (..., 3), metres (world frame).
+        azimuth: azimuths, degrees (broadcast against ``elevation``).
+        elevation: elevations, degrees.
+        distance: distance from the look-at point, metres.
+
+    Returns:
+        ``lookat - distance * (cos el cos az, cos el sin az, sin el)``.
+    """
     az, el = np.deg2rad(np.asarray(azimuth, float)), np.deg2rad(np.asarray(elevation, float))
     fwd = np.stack([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)], axis=-1)
     return np.asarray(lookat, float) - distance * fwd
@@ -150,7 +168,18 @@ class _SightLines:
 
 def sight_lines(timeline: Timeline, frames, azimuth, elevation) -> np.ndarray:
     """(len(frames), len(TARGETS)) whether a tracking camera at ``azimuth``/``elevation``
-    (deg, scalars or per frame of ``frames``) sees each target body at those frames."""
+    (deg, scalars or per frame of ``frames``) sees each target body at those frames.
+
+    Args:
+        timeline: the timeline.
+        frames: the frame indices.
+        azimuth: camera azimuth(s), degrees.
+        elevation: camera elevation(s), degrees.
+
+    Returns:
+        Booleans, True where the ray from the target body to the camera is clear (the
+        humanoid's own geoms excluded).
+    """
     sl = _SightLines(timeline)
     frames = np.asarray(frames, int)
     az = np.broadcast_to(np.asarray(azimuth, float), frames.shape)
@@ -167,9 +196,14 @@ def track_view(timeline: Timeline) -> TrackView:
 
     See the module docstring for the method. Costs about 5 ray casts per candidate camera
     (72) every 0.2 s of timeline, a fraction of a second for a minute-long cycle.
-    """
-    from scipy.ndimage import gaussian_filter1d
 
+    Args:
+        timeline: the timeline to film.
+
+    Returns:
+        The angles per frame, the preferred azimuth, and the sight lines at the sample frames
+        for the chosen and the preferred camera.
+    """
     n = timeline.n_frames
     pref = preferred_azimuth(timeline)
     step = max(1, round(SAMPLE_DT * timeline.fps))
@@ -234,7 +268,14 @@ def track_view(timeline: Timeline) -> TrackView:
 
 def fixed_view(timeline: Timeline) -> TrackView:
     """The fixed tracking camera (preferred azimuth, default elevation) as a TrackView (the
-    camera before sight lines were checked; for comparisons)."""
+    camera before sight lines were checked; for comparisons).
+
+    Args:
+        timeline: the timeline to film.
+
+    Returns:
+        The fixed camera's angles per frame and its sight lines at the sample frames.
+    """
     n = timeline.n_frames
     pref = preferred_azimuth(timeline)
     samples = np.arange(0, n, max(1, round(SAMPLE_DT * timeline.fps)))

@@ -26,9 +26,14 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 
 import numpy as np
+from scipy.stats import binomtest
 
+from mjwalk.cycle.standoff import REACH_TOLERANCE
 from mjwalk.cycle.types import TASK_KINDS, CycleResult, operator_dict
+from mjwalk.ergonomics.summary import RunRecord, ergonomics_summary
 from mjwalk.errors import MjwalkError
+from mjwalk.plan.grid import END_EXCESS, OCTILE_RATIO, shortfall_bound
+from mjwalk.plan.occupancy import CELL_SIZE
 
 #: Captured walk-path lengths of the paper's cycle (agethen2018 Table 1, "Baseline" columns):
 #: route -> (median, IQR), metres. Pass as ``reference=`` for the assembly station's cycle.
@@ -47,9 +52,15 @@ TAKT_CONFIDENCE = 0.95
 
 
 def describe(values) -> dict[str, float]:
-    """n, median, q25, q75, iqr, min, max, mean and sd (ddof 1; 0 for one value) of ``values``.
+    """Summary figures of a sample.
 
-    Empty input gives n = 0 and NaN figures.
+    Args:
+        values: the sample (any shape, flattened).
+
+    Returns:
+        ``{"n", "median", "q25", "q75", "iqr", "min", "max", "mean", "sd"}``: percentiles by
+        ``numpy.percentile``'s linear interpolation, iqr = q75 - q25, sd with ddof 1 (0 for
+        one value). Empty input gives n = 0 and NaN figures.
     """
     x = np.asarray(values, dtype=float).ravel()
     if x.size == 0:
@@ -70,8 +81,34 @@ def describe(values) -> dict[str, float]:
     }
 
 
+def walks_summary(paths: Sequence) -> dict[str, dict[str, float]]:
+    """Length, duration and planning time of planned walks, each summarised by :func:`describe`.
+
+    Args:
+        paths: the walks (:class:`~mjwalk.plan.walkpath.WalkPath`, with ``meta["seconds"]``).
+
+    Returns:
+        ``{"length": ... (m), "duration": ... (s), "planning_ms": ... (ms)}``, each
+        :func:`describe`'s dict (``median``, ``iqr``, ...).
+    """
+    return {
+        "length": describe([p.length for p in paths]),
+        "duration": describe([p.duration for p in paths]),
+        "planning_ms": describe([1000 * p.meta["seconds"] for p in paths]),
+    }
+
+
 def percentiles(values, qs=CYCLE_PERCENTILES) -> dict[str, float]:
-    """``{"n", "p5", "p50", "p95"}`` of ``values`` (NaN when empty)."""
+    """Percentiles of a sample.
+
+    Args:
+        values: the sample (any shape, flattened).
+        qs: the percentiles to give, in [0, 100] (default :data:`CYCLE_PERCENTILES`).
+
+    Returns:
+        ``{"n", "p5", "p50", "p95"}`` for the default ``qs`` (``"p{q}"`` for each), NaN when
+        empty.
+    """
     x = np.asarray(values, dtype=float).ravel()
     out: dict[str, float] = {"n": int(x.size)}
     ps = np.percentile(x, qs) if x.size else [float("nan")] * len(qs)
@@ -80,10 +117,18 @@ def percentiles(values, qs=CYCLE_PERCENTILES) -> dict[str, float]:
 
 
 def over_takt(cycle_times, takt: float, confidence: float = TAKT_CONFIDENCE) -> dict:
-    """Share of ``cycle_times`` (s) longer than ``takt`` (s), with its Wilson score interval:
-    ``{"takt", "runs", "over", "share", "ci_low", "ci_high", "confidence"}``."""
-    from scipy.stats import binomtest
+    """Share of cycles longer than the takt, with its Wilson score interval.
 
+    Args:
+        cycle_times: the cycles' times, seconds.
+        takt: the takt time, seconds.
+        confidence: confidence level of the interval.
+
+    Returns:
+        ``{"takt", "runs", "over", "share", "ci_low", "ci_high", "confidence"}``: ``over`` of
+        ``runs`` cycles took longer than ``takt``, share = over / runs (NaN, with its interval,
+        when there are no runs).
+    """
     x = np.asarray(cycle_times, dtype=float).ravel()
     n, k = int(x.size), int(np.sum(x > takt))
     out = {"takt": float(takt), "runs": n, "over": k, "confidence": confidence}
@@ -130,8 +175,6 @@ def _walk_figures(walks: Sequence) -> dict:
     (``vs_baseline_floor``, :func:`~mjwalk.plan.grid.shortfall_bound` at their shortest route),
     how many read lower than the bound at their own route (``below_floor``) and how many had
     no grid route between their ends (``without_baseline``)."""
-    from mjwalk.plan.grid import shortfall_bound
-
     base = np.array([w.baseline_length for w in walks], dtype=float)
     has = np.isfinite(base) & (base > 0)
     ratio = np.array([w.length for w in walks], dtype=float)[has] / base[has] - 1.0
@@ -171,8 +214,18 @@ def _routes(results: Sequence[CycleResult]) -> list[str]:
 def split_failed(
     results: Sequence[CycleResult],
 ) -> tuple[list[CycleResult], list[CycleResult]]:
-    """The simulated cycles and the failed runs (``result.error`` set, from
-    ``simulate_cycles(on_error="record")``); MjwalkError when every run failed."""
+    """The simulated cycles and the failed runs apart, each in the given order.
+
+    Args:
+        results: a batch's results; failed runs have ``result.error`` set
+            (``simulate_cycles(on_error="record")``).
+
+    Returns:
+        ``(simulated, failed)``.
+
+    Raises:
+        MjwalkError: every run failed (naming the first one's error).
+    """
     ok = [r for r in results if getattr(r, "error", None) is None]
     failed = [r for r in results if getattr(r, "error", None) is not None]
     if not ok:
@@ -211,6 +264,58 @@ def report_dict(
         reference = getattr(spec, "reference", None)
     takt = getattr(spec, "takt", None)
     population = getattr(spec, "population", None)
+    return {
+        "name": spec.name,
+        "spec": str(spec.path),
+        "scene": str(spec.scene),
+        "models": {  # "default" or the model files the runs used
+            "step": str(getattr(spec, "step_model", "default")),
+            "reach": str(getattr(spec, "reach_model", "default")),
+            "reach_right": getattr(spec, "reach_model_right", None),  # None: reach mirrored
+        },
+        "runs": len(results),
+        "failed_runs": [
+            {
+                "run": r.run,
+                "entropy": getattr(r, "entropy", None),
+                "error": r.error,
+                "operator": operator_dict(r.operator),
+            }
+            for r in failed
+        ],
+        "routes": _route_figures(results, reference),
+        "reference_source": getattr(spec, "reference_source", "") if reference else "",
+        "baseline": _baseline_note(spec),
+        "cycle_time": {
+            **describe([r.cycle_time for r in results]),
+            **percentiles([r.cycle_time for r in results]),
+        },
+        "takt": takt,
+        "over_takt": None if takt is None else over_takt([r.cycle_time for r in results], takt),
+        "population": None if population is None else population.describe(),
+        "groups": _operators(results, takt) if population is not None else {},
+        "collisions": _collision_figures(results),
+        "task_time": _task_times(results),
+        "arms": _arm_figures([a for r in results for a in r.arms]),
+        "ergonomics": _ergonomics(results),
+        "per_run": [
+            {
+                "run": r.run,
+                "seed": r.seed,
+                "entropy": getattr(r, "entropy", None),
+                "cycle_time": r.cycle_time,
+                "collisions": len(r.collisions),
+                "operator": operator_dict(r.operator),
+            }
+            for r in results
+        ],
+    }
+
+
+def _route_figures(
+    results: Sequence[CycleResult], reference: Mapping[str, tuple[float, ...]] | None
+) -> dict:
+    """Each route's walk figures, pooled and per direction, beside its reference when given."""
     routes = {}
     for label in _routes(results):
         walks = [w for r in results for w in r.walks if w.route == label]
@@ -233,14 +338,28 @@ def report_dict(
             entry["median_error"] = length["median"] / ref_median - 1.0
             entry["iqr_ratio"] = length["iqr"] / ref_iqr if ref_iqr > 0 else float("nan")
         routes[label] = entry
+    return routes
 
+
+def _collision_figures(results: Sequence[CycleResult]) -> dict:
+    """Collisions: total, runs with any, per run, and by body part vs scene geom (most first)."""
     per_run_collisions = [len(r.collisions) for r in results]
     pairs: dict[str, int] = {}
     for r in results:
         for c in r.collisions:
             key = f"{getattr(c, 'body_part', '?')} vs {getattr(c, 'scene_geom', '?')}"
             pairs[key] = pairs.get(key, 0) + 1
+    return {
+        "total": int(sum(per_run_collisions)),
+        "runs_with_collisions": int(sum(n > 0 for n in per_run_collisions)),
+        "per_run": describe(per_run_collisions),
+        "by_pair": dict(sorted(pairs.items(), key=lambda kv: -kv[1])),
+    }
 
+
+def _task_times(results: Sequence[CycleResult]) -> dict:
+    """Per task kind (in :data:`TASK_KINDS` order, kinds done only): how many per cycle, and
+    the times of one task and of all of that kind in a cycle (s)."""
     kinds = [k for k in TASK_KINDS if any(t.kind == k for r in results for t in r.tasks)]
     task_time = {}
     for kind in kinds:
@@ -251,72 +370,32 @@ def report_dict(
             "task": describe(spans),
             "per_cycle": describe(per_cycle),
         }
-    arms = [a for r in results for a in r.arms]
+    return task_time
+
+
+def _arm_figures(arms: Sequence) -> dict:
+    """The arm motions: how many, the hands' errors (m), how many left the model's range."""
     return {
-        "name": spec.name,
-        "spec": str(spec.path),
-        "scene": str(spec.scene),
-        "models": {  # "default" or the model files the runs used
-            "step": str(getattr(spec, "step_model", "default")),
-            "reach": str(getattr(spec, "reach_model", "default")),
-            "reach_right": getattr(spec, "reach_model_right", None),  # None: reach mirrored
-        },
-        "runs": len(results),
-        "failed_runs": [
-            {
-                "run": r.run,
-                "entropy": getattr(r, "entropy", None),
-                "error": r.error,
-                "operator": operator_dict(r.operator),
-            }
-            for r in failed
-        ],
-        "routes": routes,
-        "reference_source": getattr(spec, "reference_source", "") if reference else "",
-        "baseline": _baseline_note(spec),
-        "cycle_time": {
-            **describe([r.cycle_time for r in results]),
-            **percentiles([r.cycle_time for r in results]),
-        },
-        "takt": takt,
-        "over_takt": None if takt is None else over_takt([r.cycle_time for r in results], takt),
-        "population": None if population is None else population.describe(),
-        "groups": _operators(results, takt) if population is not None else {},
-        "collisions": {
-            "total": int(sum(per_run_collisions)),
-            "runs_with_collisions": int(sum(n > 0 for n in per_run_collisions)),
-            "per_run": describe(per_run_collisions),
-            "by_pair": dict(sorted(pairs.items(), key=lambda kv: -kv[1])),
-        },
-        "task_time": task_time,
-        "arms": {
-            "motions": len(arms),
-            "max_hand_error": max((a.hand_error for a in arms), default=0.0),
-            "median_hand_error": float(np.median([a.hand_error for a in arms])) if arms else 0.0,
-            "outside_range": int(sum(a.outside for a in arms)),
-            # hands that ended off their target (out of the operator's reach from every spot
-            # tried): the reach is recorded, but the part was not where the hand was
-            "short_of_target": _short_of_target(arms),
-        },
-        "ergonomics": _ergonomics(results),
-        "per_run": [
-            {
-                "run": r.run,
-                "seed": r.seed,
-                "entropy": getattr(r, "entropy", None),
-                "cycle_time": r.cycle_time,
-                "collisions": len(r.collisions),
-                "operator": operator_dict(r.operator),
-            }
-            for r in results
-        ],
+        "motions": len(arms),
+        "max_hand_error": max((a.hand_error for a in arms), default=0.0),
+        "median_hand_error": float(np.median([a.hand_error for a in arms])) if arms else 0.0,
+        "outside_range": int(sum(a.outside for a in arms)),
+        # hands that ended off their target (out of the operator's reach from every spot
+        # tried): the reach is recorded, but the part was not where the hand was
+        "short_of_target": _short_of_target(arms),
     }
 
 
 def ergonomic_records(results: Sequence[CycleResult]) -> list:
-    """The runs scored for ergonomics as :class:`mjwalk.ergonomics.summary.RunRecord`."""
-    from mjwalk.ergonomics.summary import RunRecord
+    """The runs scored for ergonomics, as the ergonomics summary reads them.
 
+    Args:
+        results: simulated cycles (runs without ``ergonomics`` are left out).
+
+    Returns:
+        One :class:`mjwalk.ergonomics.summary.RunRecord` per scored run (run, seed, operator
+        group, stature in metres or None, its ergonomics), in order.
+    """
     return [
         RunRecord(r.run, r.seed, r.group, None if r.operator is None else r.operator.stature, e)
         for r in results
@@ -326,8 +405,6 @@ def ergonomic_records(results: Sequence[CycleResult]) -> list:
 
 def _ergonomics(results: Sequence[CycleResult]) -> dict | None:
     """The ergonomics section's figures (None when no run was scored)."""
-    from mjwalk.ergonomics.summary import ergonomics_summary
-
     records = ergonomic_records(results)
     return ergonomics_summary(records) if records else None
 
@@ -335,9 +412,6 @@ def _ergonomics(results: Sequence[CycleResult]) -> dict | None:
 def _baseline_note(spec) -> dict:
     """What ``vs A*`` compares with: the grid A*'s cell and radius, the walks' ends, and the
     constants of its tolerance (:func:`~mjwalk.plan.grid.shortfall_bound`)."""
-    from mjwalk.plan.grid import END_EXCESS, OCTILE_RATIO
-    from mjwalk.plan.occupancy import CELL_SIZE
-
     return {
         "planner": "grid A* (8-connected)",
         "between": "each walk's own start and end (pelvis)",
@@ -353,8 +427,6 @@ def _short_of_target(arms: Sequence) -> dict:
     """The arm motions whose hand ended farther than
     :data:`~mjwalk.cycle.standoff.REACH_TOLERANCE` from its target: how many, by site (most
     first), and the largest miss (m)."""
-    from mjwalk.cycle.standoff import REACH_TOLERANCE
-
     short = [a for a in arms if a.hand_error > REACH_TOLERANCE]
     sites: dict[str, int] = {}
     for a in short:

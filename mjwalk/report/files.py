@@ -15,10 +15,12 @@ import numpy as np
 
 from mjwalk._io import atomic_path
 from mjwalk.cycle.types import TASK_KINDS, CycleResult
+from mjwalk.ergonomics.summary import csv_header, ergonomics_rows
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.report.figures import ergonomic_records, report_dict, split_failed
 from mjwalk.report.markdown import format_markdown
+from mjwalk.world import shared_workplace
 
 #: The files :func:`write_report` writes, by key.
 REPORT_FILES = {
@@ -146,14 +148,17 @@ def write_report(
             each drawn walk's own route (``WalkRecord.baseline``, between the walk's ends, as
             the simulation recorded it); ``{}`` draws none.
         reference: captured (median, IQR) walk length per route, e.g. :data:`CAPTURE_TABLE1`.
+
+    Returns:
+        The path of each file written, by its key in :data:`REPORT_FILES` (and
+        :data:`ERGONOMICS_FILES`).
     """
-    from mjwalk.render.plot import histograms_png, spaghetti_png  # matplotlib: loaded when drawing
+    # deferred: matplotlib loads only when a report is drawn
+    from mjwalk.render.plot import histograms_png, spaghetti_png
 
     rep = report_dict(results, reference=reference)
     results = split_failed(results)[0]  # the failed runs are listed in the report only
     if workplace is None:
-        from mjwalk.world import shared_workplace
-
         workplace = shared_workplace(results[0].spec.scene)
     routes = baseline
     for key, value in (routes or {}).items():
@@ -175,8 +180,7 @@ def write_report(
         spaghetti_png(tmp["spaghetti"], results, workplace, routes, rep)
         histograms_png(tmp["histograms"], results, rep)
         if "ergonomics_csv" in tmp:
-            from mjwalk.ergonomics.summary import csv_header, ergonomics_rows
-            from mjwalk.render.plot import ergonomics_png
+            from mjwalk.render.plot import ergonomics_png  # deferred: matplotlib, when drawing
 
             records = ergonomic_records(results)
             with open(tmp["ergonomics_csv"], "w", newline="") as fh:

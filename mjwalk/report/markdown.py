@@ -7,6 +7,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from mjwalk.ergonomics.summary import ergonomics_markdown
+
 #: Contact pairs listed in report.md (all of them are in report.json).
 MD_PAIRS = 12
 
@@ -154,7 +156,16 @@ def _md_table(head: list[str], rows: list[list[str]]) -> str:
 
 
 def format_markdown(rep: dict) -> str:
-    """The report as Markdown (the content of ``report.md``)."""
+    """The report as Markdown (the content of ``report.md``).
+
+    Args:
+        rep: the report's figures (:func:`~mjwalk.report.figures.report_dict`).
+
+    Returns:
+        The Markdown text: title, models and failed runs, then the sections on walk paths per
+        route, cycle time (and operators, with a population), time per task kind, collisions,
+        arms and, when scored, ergonomics.
+    """
     ct = rep["cycle_time"]
     col = rep["collisions"]
     out = [
@@ -230,8 +241,6 @@ def format_markdown(rep: dict) -> str:
         "",
     ]
     if rep.get("ergonomics"):
-        from mjwalk.ergonomics.summary import ergonomics_markdown
-
         out += ergonomics_markdown(rep["ergonomics"])
     return "\n".join(out)
 
@@ -331,7 +340,15 @@ def _operators_md(rep: dict) -> list[str]:
 
 
 def format_summary(rep: dict) -> str:
-    """A short plain-text table of a report (from :func:`report_dict`) for the terminal."""
+    """A short plain-text table of a report for the terminal.
+
+    Args:
+        rep: the report's figures (:func:`~mjwalk.report.figures.report_dict`).
+
+    Returns:
+        The lines to print: name and runs, cycle time, the route table (without the capture
+        columns) and any warnings.
+    """
     ct = rep["cycle_time"]
     head, rows = _route_rows(rep)
     # the capture columns stay in report.md

@@ -15,8 +15,6 @@ from mjwalk.gait.fidelity import (
     format_fidelity_table,
     load_capture,
     sway_amplitude,
-    train_main,
-    validate_main,
 )
 from mjwalk.gait.model import StepModel
 from mjwalk.gait.straight import captured_straight_walks, model_straight_walks
@@ -99,7 +97,3 @@ def test_entry_points_errors(tmp_path):
         load_capture(bvh=str(tmp_path / "*.bvh"))
     with pytest.raises(MjwalkError, match="without its ASF"):
         load_capture(amc=str(tmp_path / "*.amc"))
-    with pytest.raises(MjwalkError, match="give a BVH glob"):
-        train_main(tmp_path / "m.npz")
-    with pytest.raises(MjwalkError, match="no BVH files match"):
-        validate_main(None, str(tmp_path / "*.bvh"))

@@ -1,31 +1,32 @@
-"""The cycle report on synthetic results with known walk lengths and durations."""
+"""The report's figures (mjwalk.report.figures) on synthetic results with known walk lengths
+and durations; the synthetic results are shared with the other report tests."""
 
 from __future__ import annotations
 
 import csv
-import json
 from pathlib import Path
 
-import imageio.v3 as iio
 import numpy as np
 import pytest
 
 from mjwalk.cycle.types import ArmRecord, CycleResult, CycleSpec, TaskRecord, WalkRecord
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
-from mjwalk.report import (
+from mjwalk.report.figures import (
     CAPTURE_TABLE1,
-    REPORT_FILES,
     describe,
-    format_markdown,
-    format_summary,
+    over_takt,
+    percentiles,
     report_dict,
-    write_report,
+    split_failed,
+    walks_summary,
 )
+from mjwalk.report.files import write_report
+from mjwalk.report.markdown import format_markdown, format_summary
 from mjwalk.timeline import Contact
 from mjwalk.world import load_workplace
 
-SCENE = Path(__file__).resolve().parents[1] / "scenes" / "assembly_station.xml"
+SCENE = Path(__file__).resolve().parents[2] / "scenes" / "assembly_station.xml"
 # (label, from, to, direction of the straight synthetic walk, mean length m, grid-A* length m)
 LEGS = [
     ("T1", "stand_rack2", "stand_car1", (-0.6, 0.8), 2.4, 2.45),
@@ -145,71 +146,9 @@ def test_report_figures(workplace):
     assert "max 30 mm" in format_markdown(rep)
 
 
-def test_write_report_files(tmp_path, workplace):
-    results = _results(workplace)
-    baseline = {
-        ("stand_rack2", "stand_car1"): _line(
-            workplace.stations["stand_rack2"].xy, (-0.6, 0.8), 2.45, 1.0
-        ),
-        "T5": [_line(workplace.stations["stand_rack2"].xy, (1, 0), 1.05, 1.0)],
-    }
-    files = write_report(
-        results, tmp_path / "out", workplace=workplace, baseline=baseline, reference=CAPTURE_TABLE1
-    )
-    assert set(files) == set(REPORT_FILES)
-    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == sorted(REPORT_FILES.values())
-    rep = json.loads(files["json"].read_text())
-    lengths = [w.length for r in results for w in r.walks if w.route == "T1"]
-    q = np.percentile(lengths, [25, 50, 75])
-    assert rep["routes"]["T1"]["length"]["median"] == pytest.approx(q[1], abs=1e-12)
-    assert rep["routes"]["T1"]["length"]["iqr"] == pytest.approx(q[2] - q[0], abs=1e-12)
-    with open(files["walks"]) as fh:
-        walks = list(csv.DictReader(fh))
-    assert len(walks) == 12 * len(LEGS)
-    assert float(walks[0]["length_m"]) == pytest.approx(results[0].walks[0].length, abs=1e-4)
-    with open(files["cycles"]) as fh:
-        cycles = list(csv.DictReader(fh))
-    assert len(cycles) == 12
-    assert [int(c["collisions"]) for c in cycles] == [r % 3 for r in range(12)]
-    assert float(cycles[5]["fasten_time_s"]) == pytest.approx(
-        sum(t.duration for t in results[5].tasks if t.kind == "fasten"), abs=1e-4
-    )
-    md = files["markdown"].read_text()
-    assert "| T1 | stand_rack2 -> stand_car1 | 12 | 2.45 |" in md
-    assert "## Cycle time" in md and "capture 50th" in md
-    for key in ("spaghetti", "histograms"):
-        img = iio.imread(files[key])
-        assert img.ndim == 3 and img.shape[0] > 200 and img.shape[1] > 300
-        assert img[..., :3].std() > 10  # not blank
-    summary = format_summary(rep)
-    assert "T5" in summary and "cycle time" in summary and "12 run(s)" in summary
-
-
-def test_no_half_written_files(tmp_path, workplace, monkeypatch):
-    results = _results(workplace, runs=3)
-
-    def broken(*args, **kwargs):
-        raise RuntimeError("disk full")
-
-    import mjwalk.render.plot
-
-    monkeypatch.setattr(mjwalk.render.plot, "histograms_png", broken)
-    out = tmp_path / "out"
-    with pytest.raises(RuntimeError, match="disk full"):
-        write_report(results, out, workplace=workplace)
-    assert not out.exists() or list(out.iterdir()) == []  # neither targets nor temporary files
-
-
 def test_no_results():
     with pytest.raises(MjwalkError, match="no cycle results"):
         report_dict([])
-
-
-def test_baseline_must_be_paths(tmp_path, workplace):
-    results = _results(workplace, runs=2)
-    with pytest.raises(MjwalkError, match=r"baseline\[\('a', 'b'\)\] must be a WalkPath"):
-        write_report(results, tmp_path / "out", workplace=workplace, baseline={("a", "b"): 2.4})
-    assert not (tmp_path / "out").exists() or list((tmp_path / "out").iterdir()) == []
 
 
 def _failed(spec: CycleSpec, run: int) -> CycleResult:
@@ -265,78 +204,6 @@ def test_simulate_cycles_records_a_failed_run(monkeypatch, scenes_dir):
         sim.simulate_cycles(spec, runs=3, on_error="ignore")
 
 
-def test_spaghetti_draws_at_most_a_cap_of_walks_per_route(tmp_path, workplace, monkeypatch):
-    """A long batch's floor plan draws a capped, evenly spread sample of each route's walks
-    (the statistics and CSVs keep every walk)."""
-    import mjwalk.render.plot as plot
-    from mjwalk.report import report_dict
-
-    results = _results(workplace, runs=12)
-    drawn: dict[str, int] = {}
-    real = plot.draw_paths
-
-    def counting(ax, paths, *args, label=None, **kw):
-        drawn[label] = len(paths)
-        return real(ax, paths, *args, label=label, **kw)
-
-    monkeypatch.setattr(plot, "draw_paths", counting)
-    monkeypatch.setattr(plot, "MAX_DRAWN_PER_ROUTE", 5)
-    rep = report_dict(results)
-    plot.spaghetti_png(tmp_path / "s.png", results, workplace, None, rep)
-    assert drawn and all(n == 5 for n in drawn.values())  # 12 runs, each route walked 12+ times
-    assert (tmp_path / "s.png").stat().st_size > 0
-
-
-def test_station_walks_per_direction_against_their_own_grid_route(tmp_path, scenes_dir):
-    """Three runs of the station's cycle: report.json gives each direction of a route its
-    length and duration median and IQR (T2 and T3 are walked there and back, each pooled too);
-    every walk is compared with the grid-A* route between its own two ends, and no walk reads
-    lower than the grid's discretisation allows (:func:`~mjwalk.plan.grid.shortfall_bound`:
-    about -9 % for these 1-4 m walks on 8 cm cells)."""
-    from mjwalk.cycle.simulate import simulate_cycles
-    from mjwalk.plan.grid import shortfall_bound
-
-    results = simulate_cycles(
-        scenes_dir / "assembly_station.toml", runs=3, seed=2, collisions=False
-    )
-    files = write_report(results, tmp_path / "out")
-    rep = json.loads(files["json"].read_text())
-    expected = {
-        "T1": [("stand_rack2", "stand_car1")],
-        "T2": [("stand_car1", "stand_rack3"), ("stand_rack3", "stand_car2")],
-        "T3": [("stand_car2", "stand_rack1"), ("stand_rack1", "stand_car3")],
-        "T4": [("stand_car3", "stand_rack2")],
-        "T5": [("stand_rack2", "stand_rack3")],
-    }
-    assert {
-        k: [(d["from"], d["to"]) for d in e["directions"]] for k, e in rep["routes"].items()
-    } == expected
-    for label, e in rep["routes"].items():
-        assert e["walks"] == 3 * len(expected[label])
-        for d in e["directions"]:
-            assert d["walks"] == 3
-            for key in ("length", "duration"):
-                assert d[key]["median"] > 0 and d[key]["iqr"] >= 0
-            assert d["without_baseline"] == 0 and d["below_floor"] == 0
-            assert d["vs_baseline"]["min"] >= d["vs_baseline_floor"]
-    assert rep["baseline"]["between"].startswith("each walk's own start and end")
-    # the baseline joins the walk's own ends
-    for r in results:
-        for w in r.walks:
-            assert w.baseline is not None
-            np.testing.assert_array_equal(w.baseline.xy[0], w.path.xy[0])
-            np.testing.assert_array_equal(w.baseline.xy[-1], w.path.xy[-1])
-            assert w.baseline_length >= np.linalg.norm(w.path.xy[-1] - w.path.xy[0]) - 1e-9
-    rows = list(csv.DictReader(files["walks"].open()))
-    assert len(rows) == 3 * 7
-    for row in rows:
-        base, vs = float(row["baseline_length_m"]), float(row["vs_baseline"])
-        assert vs == pytest.approx(float(row["length_m"]) / base - 1, abs=1e-4)
-        assert vs >= shortfall_bound(base) - 1e-4, row  # within the grid's discretisation
-    md = files["markdown"].read_text()
-    assert "| T2 | both | 6 |" in md and "every walk within the grid's discretisation" in md
-
-
 def test_a_walk_shorter_than_the_grid_allows_is_counted(workplace):
     """A walk 20 % shorter than its own grid-A* route is below what the grid's
     discretisation allows (about -9 %): the report counts it and says so."""
@@ -354,14 +221,30 @@ def test_a_walk_shorter_than_the_grid_allows_is_counted(workplace):
     assert f"{below} walk(s) below the bound" in format_markdown(rep)
 
 
-def test_the_sources_planner_stands_beside_the_routes(workplace):
-    """A reference with the source's own planner's (median, IQR) puts both in the report's
-    data and in its route table, under a line naming the source."""
-    results = _results(workplace)
-    ref = {"T1": (2.38, 0.21, 2.41, 0.16)}
-    rep = report_dict(results, reference=ref)
-    assert rep["routes"]["T1"]["reference"]["planner_iqr"] == 0.16
-    assert "planner_iqr" not in rep["routes"]["T2"].get("reference", {})
-    md = format_markdown(rep)
-    assert "source's planner 50th [m]" in md
-    assert "| 2.41 | 0.16 |" in md
+def test_walks_summary_is_describe_of_each_figure(workplace):
+    paths = [_line((0.0, 0.0), (1.0, 0.0), 1.0 + 0.1 * k, 1.0 + 0.2 * k) for k in range(5)]
+    for k, p in enumerate(paths):
+        p.meta["seconds"] = 0.01 * (k + 1)
+    s = walks_summary(paths)
+    assert s["length"] == describe([p.length for p in paths])
+    assert s["length"]["median"] == pytest.approx(1.2, abs=0.02)
+    assert s["duration"]["median"] == pytest.approx(1.4)
+    assert s["planning_ms"]["median"] == pytest.approx(30.0) and s["planning_ms"]["iqr"] == 20.0
+
+
+def test_percentiles_and_over_takt():
+    x = np.arange(1.0, 101.0)
+    p = percentiles(x)
+    assert p["n"] == 100 and p["p50"] == pytest.approx(50.5) and p["p5"] < p["p95"]
+    assert np.isnan(percentiles([])["p50"])
+    o = over_takt(x, takt=90.0)
+    assert (o["runs"], o["over"], o["share"]) == (100, 10, 0.1)
+    assert o["ci_low"] < 0.1 < o["ci_high"] and o["confidence"] == 0.95
+    assert np.isnan(over_takt([], 1.0)["share"])
+
+
+def test_split_failed_keeps_order(workplace):
+    ok = _results(workplace, runs=3)
+    bad = _failed(ok[0].spec, 9)
+    good, failed = split_failed([ok[0], bad, ok[1], ok[2]])
+    assert [r.run for r in good] == [0, 1, 2] and failed == [bad]
