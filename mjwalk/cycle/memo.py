@@ -1,7 +1,8 @@
 """A bounded memo: values made once per key and kept, the oldest dropped first
 (:class:`Memo`). The cycle's caches are memos with a key of their own, each owned by the
-module that makes its values (the planners and grid-A* routes by :mod:`mjwalk.cycle.context`,
-the stand zones by :mod:`mjwalk.cycle.standing`)."""
+module that makes its values (the planners and grid-A* routes, the prepared contexts and the
+operators' humanoids by :mod:`mjwalk.cycle.context`, the stand zones by
+:mod:`mjwalk.cycle.standing`)."""
 
 from __future__ import annotations
 
