@@ -24,7 +24,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.anthropometry import ROM_DEG, leg_geometry
-from mjwalk.body.legs.ik import leg_ik
+from mjwalk.body.legs.ik import LEG_JOINTS, leg_ik
 from mjwalk.conventions import side_of_prefix as side_of
 
 if TYPE_CHECKING:
@@ -182,6 +182,4 @@ def crouch_frames(
 
 
 def _leg_joints() -> list[str]:
-    from mjwalk.body.legs.ik import LEG_JOINTS
-
     return [j.format(p) for j in LEG_JOINTS if not j.startswith("toe") for p in "lr"]

@@ -9,11 +9,17 @@ from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
+from scipy.optimize import brentq
 
+from mjwalk.arms.chain import ARM_JOINTS, arm_joint
 from mjwalk.body.humanoid import pelvis_height
+from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.curves import smoothstep
-from mjwalk.timeline.frames import ease_arms, frames_from_legs, room_and_away, yaw_quat
+from mjwalk.body.legs.footcheck import lowest_point
+from mjwalk.timeline.collisions import collision_report
+from mjwalk.timeline.frames import CARRY_POSE, ease_arms, frames_from_legs, room_and_away, yaw_quat
 from mjwalk.timeline.parts import hand_poses
+from mjwalk.timeline.timeline import Timeline
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
@@ -42,8 +48,7 @@ def standing_pose(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarr
 
 def turn_frames(
     ctx: CycleContext,
-    x,
-    y,
+    at: tuple[float, float],
     yaw0,
     yaw1,
     fps,
@@ -51,7 +56,7 @@ def turn_frames(
     pose: np.ndarray | None = None,
     settle: np.ndarray | None = None,
 ) -> tuple[np.ndarray, float]:
-    """Frames of turning on the spot ``(x, y)`` from ``yaw0`` to ``yaw1`` (radians) at
+    """Frames of turning on the spot ``at`` = (x, y) from ``yaw0`` to ``yaw1`` (radians) at
     :data:`TURN_SPEED`; with ``to`` = (x1, y1) the pelvis moves there during the turn (a short
     step back, :mod:`mjwalk.cycle.standoff`; the turn lasts at least as long as that step at
     :data:`STEP_SPEED`). The body's joints hold ``pose`` (nq,; e.g. the two-handed carrying
@@ -62,6 +67,7 @@ def turn_frames(
     standing pose: the joints and the pelvis height go from ``settle`` to the turn's own pose
     with a smoothstep over the turn (at least :data:`MIN_TURN`), instead of snapping there in
     one frame. Returns (frames, duration in seconds)."""
+    x, y = at
     d = (yaw1 - yaw0 + math.pi) % (2 * math.pi) - math.pi
     duration = max(MIN_TURN, abs(d) / TURN_SPEED) / ctx.turn_rate  # at the operator's cadence
     x1, y1 = (x, y) if to is None else to
@@ -98,9 +104,6 @@ def frame_contacts(ctx: CycleContext, frames: np.ndarray, fps: float = 30.0) -> 
     """The humanoid-scene contacts of ``frames`` (n, nq) of ``ctx``'s model at ``fps``: the
     cycle's own contact check (:func:`~mjwalk.timeline.collisions.collision_report`, times
     from 0 s)."""
-    from mjwalk.timeline.collisions import collision_report
-    from mjwalk.timeline.timeline import Timeline
-
     tl = Timeline(
         model=ctx.model,
         jointmap=ctx.jointmap,
@@ -117,8 +120,6 @@ def _feet_above_floor(ctx: CycleContext, frames: np.ndarray) -> None:
     """Raise the pelvis of ``frames`` (n, nq) in place where a blended pose puts a foot's lowest
     corner below the floor (z = 0): blending a landing pose (trailing heel raised, knee
     flexed) into the standing pose joint by joint swings that foot's toes through the floor."""
-    from mjwalk.body.legs.footcheck import lowest_point
-
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
     feet = [m.geom(f"{jm.prefix}{g}").id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
@@ -159,10 +160,6 @@ def carry_abduction(ctx: CycleContext, width: float) -> float:
     apart: the hands stay on the grips of the part while it is carried. Solved by Brent's
     method within the joint's range (clipped to it when the part is wider or narrower than the
     arms can span)."""
-    from scipy.optimize import brentq
-
-    from mjwalk.timeline.frames import CARRY_POSE
-
     jm = ctx.jointmap
     q = jm.neutral_qpos(ctx.model, ctx.spec.stature)
     for side in "lr":
@@ -189,9 +186,6 @@ def carry_pose(ctx: CycleContext, q: np.ndarray, width: float) -> np.ndarray:
     ``width`` metres apart: :data:`~mjwalk.timeline.frames.CARRY_POSE` with the shoulder
     abduction of :func:`carry_abduction`, the other arm joints at the standing pose (as in the
     carrying walk's frames, :func:`walk_frames`). Radians; a new array."""
-    from mjwalk.arms.chain import ARM_JOINTS, arm_joint
-    from mjwalk.timeline.frames import CARRY_POSE
-
     jm = ctx.jointmap
     rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
     out = np.array(q, dtype=float)
@@ -214,8 +208,6 @@ def walk_frames(
     part whose grips are ``carry_width`` metres apart (:func:`carry_abduction`) in the carrying
     posture throughout, without fading (the hands took the part into it at the pick and keep
     it until the place, :func:`~mjwalk.cycle.holding.two_hand_frames`)."""
-    from mjwalk.body.legs import legs_from_walk
-
     legs = legs_from_walk(walk, ctx.spec.stature)
     t = np.arange(1, math.floor(walk.duration * fps) + 1) / fps
     if len(t) == 0 or t[-1] < walk.duration - 1e-9:

@@ -26,6 +26,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
+from joblib import Parallel, delayed
 
 from mjwalk._args import as_generator, check_seed
 from mjwalk.conventions import SAMPLE_RATE_HZ
@@ -55,7 +56,10 @@ from mjwalk.cycle.types import (
     WalkRecord,
 )
 from mjwalk.cycle.walking import cycle_start, plan_cycle_walks, plan_task_walk, work_zone
+from mjwalk.ergonomics.angles import angles_from_timeline
+from mjwalk.ergonomics.assess import TaskSpan, assess_cycle
 from mjwalk.errors import CycleSpecError, InputError, PlanningError
+from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.timeline.collisions import collision_report
 from mjwalk.timeline.parts import Handling, part_tracks
 from mjwalk.timeline.timeline import Timeline
@@ -231,9 +235,6 @@ def cycle_ergonomics(timeline: Timeline, spec: CycleSpec, starts, ends, cycle_ti
     """The ergonomics of a cycle's timeline (:func:`mjwalk.ergonomics.assess.assess_cycle`):
     task ``i`` of ``spec`` spans frames ``starts[i]:ends[i]``; a place or fasten handles the
     part its hand picked last (its mass and coupling); ``wp`` the Workplace (the sites)."""
-    from mjwalk.ergonomics.angles import angles_from_timeline
-    from mjwalk.ergonomics.assess import TaskSpan, assess_cycle
-
     n = timeline.n_frames
     walking = np.zeros(n, dtype=bool)
     held: dict[str, list[tuple[float, str]]] = {"left": [], "right": [], "both": []}
@@ -313,8 +314,6 @@ def simulate_cycles(
     ``joblib.parallel_config(backend="dask")`` or ``"ray"`` the runs go to that cluster
     unchanged.
     """
-    from joblib import Parallel, delayed
-
     # a CycleSpec goes to the workers as it is (edits made in memory count), a path as a string
     job_spec: CycleSpec | str = spec if isinstance(spec, CycleSpec) else str(spec)
     if isinstance(runs, bool) or not isinstance(runs, int | np.integer) or runs < 1:
@@ -331,6 +330,7 @@ def simulate_cycles(
         raise InputError(f"simulate_cycles: on_error must be 'raise' or 'record', got {on_error!r}")
     jobs = (delayed(_run_one)(job_spec, k, seed, collisions, on_error) for k in indices)
     if progress:
+        # deferred: tqdm is optional (not a declared dependency), only needed for progress=True
         from tqdm import tqdm
 
         out = []
@@ -344,8 +344,6 @@ def simulate_cycles(
 def combined_walk(paths: list):
     """Walk paths laid end to end as one WalkPath (a cycle's route, drawn into its video);
     None without any walk."""
-    from mjwalk.plan.walkpath import PathStep, WalkPath
-
     if not paths:
         return None
     xy, yaw, t, steps = [], [], [], []

@@ -9,6 +9,8 @@ import math
 import mujoco
 import numpy as np
 
+from mjwalk.arms.chain import arm_segment_lengths
+from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.cycle.types import TASK_KINDS
 
 #: The hand stops this far above a pick/place site (m) and this far in front of a fasten site.
@@ -63,8 +65,6 @@ def approach_rise(
     its approach, and the wrist's range turns it further where the arm comes in steeply: a
     compartment's upper shelf otherwise took the thumb, palm and forearm of a reach into it,
     20-30 mm deep), none when the compartment is lower than that."""
-    from mjwalk.arms.chain import arm_segment_lengths
-
     hand = float(arm_segment_lengths(stature)[2])
     return float(np.clip(headroom(model, data, target) - hand, 0.0, APPROACH_UP))
 
@@ -74,8 +74,6 @@ def headroom(model: mujoco.MjModel, data: mujoco.MjData, point: np.ndarray) -> f
     that collides (geoms with neither contype nor conaffinity, and the humanoid's, let the ray
     through); ``inf`` when nothing is above. ``data`` is a scratch MjData of ``model``: its
     kinematics are computed here (the humanoid's pose does not count)."""
-    from mjwalk.body.humanoid import HUMAN_GROUP
-
     m = model
     mujoco.mj_kinematics(m, data)  # the scene's geoms in place (the humanoid's do not count)
     groups = np.ones(6, dtype=np.uint8)

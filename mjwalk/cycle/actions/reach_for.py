@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from mjwalk.cycle.actions.base import Action, CycleRun, CycleState, Performed
 from mjwalk.cycle.handling import RETURN_CASE, reach_duration, task_factor
-from mjwalk.cycle.reachspot import reach_task
+from mjwalk.cycle.reaching import ReachPace
+from mjwalk.cycle.reachspot import ReachStart, reach_task
 from mjwalk.cycle.types import ArmRecord
 
 
@@ -39,10 +40,8 @@ class Reach(Action):
 
         ctx, fps = run.ctx, run.fps
         facing = ctx.workplace.station(state.here).yaw
-        r = reach_task(
-            ctx, task, state.x, state.y, state.yaw, hold, fps, timing, facing, state.grip,
-            state.home,
-        )  # fmt: skip
+        start = ReachStart(state.x, state.y, state.yaw, facing, state.grip, state.home)
+        r = reach_task(ctx, task, start, ReachPace(hold, fps, timing))
         grip = state.grip
         if task.hand == "both":
             grip = r.width if self.kind.part == "take" else None  # released when put down

@@ -36,14 +36,18 @@ class Walk(Action):
         ctx, fps, path, width = run.ctx, run.fps, plan, state.grip
         face = ctx.workplace.station(self.goal).yaw
         pose = None if width is None else carry_pose(ctx, run.first_pose, width)
-        turn, dt = turn_frames(ctx, state.x, state.y, state.yaw, float(path.yaw[0]), fps, pose=pose)
+        turn, dt = turn_frames(
+            ctx, (state.x, state.y), state.yaw, float(path.yaw[0]), fps, pose=pose
+        )
         carry = self.task.hand if self.kind.carries else None
         if width is not None:
             carry = "both"
         wf = walk_frames(ctx, path, fps, carry, width)
         x, y = (float(v) for v in path.xy[-1])
         # the last step lands knee flexed, pelvis low: the turn settles into standing
-        end, dt2 = turn_frames(ctx, x, y, float(path.yaw[-1]), face, fps, pose=pose, settle=wf[-1])
+        end, dt2 = turn_frames(
+            ctx, (x, y), float(path.yaw[-1]), face, fps, pose=pose, settle=wf[-1]
+        )
         after = state.moved(x=x, y=y, yaw=face, home=(x, y), here=self.goal)
         pieces = ((turn, dt), (wf, len(wf) / fps), (end, dt2))
         return Performed(pieces, after, self.record(run, state.here, path))
