@@ -57,8 +57,16 @@ class Planners:
         )
 
     def get(self, goal: str, zone: StandZone | None = None) -> HybridPlanner:
-        """The planner of walks to site ``goal`` ending in ``zone`` (None: within
-        :data:`GOAL_TOLERANCE` of the site)."""
+        """The planner of walks to site ``goal`` ending in ``zone`` (made on first use, kept by the
+        key (goal, zone)).
+
+        Args:
+            goal: the goal site's name.
+            zone: the stand zone the walk ends in; None: within :data:`GOAL_TOLERANCE` of the site.
+
+        Returns:
+            The :class:`~mjwalk.plan.hybrid.HybridPlanner`.
+        """
         return self._memo.get((goal, zone))
 
     def _make(self, key: tuple[str, StandZone | None]) -> HybridPlanner:
@@ -93,17 +101,36 @@ class GridRoutes:
         )
 
     def grid(self) -> OccupancyGrid:
-        """The occupancy grid of the scene at the body radius (built once)."""
+        """The occupancy grid of the scene at the body radius (built once).
+
+        Returns:
+            The :class:`~mjwalk.plan.occupancy.OccupancyGrid`.
+        """
         return self._grid.get(None)
 
     def length(self, a: str, b: str) -> float:
-        """Metres of the grid-A* route from site ``a`` to site ``b``."""
+        """Metres of the grid-A* route from site ``a`` to site ``b`` (kept per pair).
+
+        Args:
+            a: the start site's name.
+            b: the goal site's name.
+
+        Returns:
+            The route's length (m).
+        """
         return self._lengths.get((a, b))
 
     def route(self, start, end) -> WalkPath | None:
-        """The grid-A* route between two points (x, y), metres: a walk's own ends (not kept).
-        None when the grid planner finds none (an end nearer an obstacle than the radius, or
-        no grid route between them)."""
+        """The grid-A* route between two points, a walk's own ends (not kept).
+
+        Args:
+            start: (x, y) world frame, metres.
+            end: (x, y) world frame, metres.
+
+        Returns:
+            The route, or None when the grid planner finds none (an end nearer an obstacle than
+            the radius, or no grid route between them).
+        """
         try:
             return plan_grid(self._workplace, start, end, radius=self._radius, grid=self.grid())
         except PlanningError:
@@ -154,39 +181,86 @@ class CycleContext:
         object.__setattr__(self, "_data", mujoco.MjData(self.model))
 
     def reach_model_for(self, side: str):
-        """The reach model of the ``side`` arm ("left" or "right"): both are left-arm-frame
-        models, a right arm's reach mirrors the one it gets
-        (:func:`~mjwalk.arms.reach.reach_for_side`)."""
+        """The reach model of the ``side`` arm: both are left-arm-frame models, a right arm's reach
+        mirrors the one it gets (:func:`~mjwalk.arms.reach.reach_for_side`).
+
+        Args:
+            side: "left" or "right".
+
+        Returns:
+            ``reach_model_right`` for the right arm when the spec gives one, else ``reach_model``.
+        """
         if side == "right" and self.reach_model_right is not None:
             return self.reach_model_right
         return self.reach_model
 
     def scratch(self) -> mujoco.MjData:
-        """The MjData of ``model`` for this context's forward kinematics (every user sets the
-        whole qpos before each use)."""
+        """The MjData of ``model`` for this context's forward kinematics (every user sets the whole
+        qpos before each use).
+
+        Returns:
+            The context's scratch :class:`mujoco.MjData`.
+        """
         return self._data
 
     def planner(self, goal: str, zone: StandZone | None = None) -> HybridPlanner:
-        """The planner of walks to ``goal``, ending in ``zone`` (:mod:`mjwalk.cycle.standing`;
-        None: within :data:`GOAL_TOLERANCE` of the site). One per goal and zone."""
+        """The planner of walks to ``goal``, ending in ``zone`` (:mod:`mjwalk.cycle.standing`). One
+        per goal and zone (:class:`Planners`).
+
+        Args:
+            goal: the goal site's name.
+            zone: the stand zone; None: within :data:`GOAL_TOLERANCE` of the site.
+
+        Returns:
+            The :class:`~mjwalk.plan.hybrid.HybridPlanner`.
+        """
         return self.planners.get(goal, zone)
 
     def zone(self, i: int, stature: float, step_length: float) -> StandZone:
-        """The stand zone of the walk that is task ``i``
-        (:func:`~mjwalk.cycle.standing.work_zone`)."""
+        """The stand zone of the walk that is task ``i`` (:func:`~mjwalk.cycle.standing.work_zone`),
+        kept per operator size.
+
+        Args:
+            i: the walk's index in ``spec.tasks``.
+            stature: the operator's stature (m).
+            step_length: the operator's step length (m).
+
+        Returns:
+            The :class:`~mjwalk.cycle.standing.StandZone`.
+        """
         return self.zones.get(i, stature, step_length)
 
     def baseline(self, a: str, b: str) -> float:
-        """Metres of the grid-A* route from site ``a`` to site ``b`` (kept per pair)."""
+        """Metres of the grid-A* route from site ``a`` to site ``b`` (kept per pair).
+
+        Args:
+            a: the start site's name.
+            b: the goal site's name.
+
+        Returns:
+            The route's length (m).
+        """
         return self.routes.length(a, b)
 
     def baseline_route(self, start, end) -> WalkPath | None:
-        """The grid-A* route (:func:`~mjwalk.plan.grid.plan_grid`, the cycle's body radius)
-        between two points (x, y), metres (:meth:`GridRoutes.route`)."""
+        """The grid-A* route (:func:`~mjwalk.plan.grid.plan_grid`, the cycle's body radius) between
+        two points (:meth:`GridRoutes.route`).
+
+        Args:
+            start: (x, y) world frame, metres.
+            end: (x, y) world frame, metres.
+
+        Returns:
+            The route, or None when there is none.
+        """
         return self.routes.route(start, end)
 
     def occupancy(self) -> OccupancyGrid:
-        """The grid A*'s occupancy grid of the scene at the cycle's body radius (built once)."""
+        """The grid A*'s occupancy grid of the scene at the cycle's body radius (built once).
+
+        Returns:
+            The :class:`~mjwalk.plan.occupancy.OccupancyGrid`.
+        """
         return self.routes.grid()
 
 
@@ -351,7 +425,14 @@ def operator_context(ctx: CycleContext, walker: Walker | None) -> CycleContext:
 
 
 def prepare(spec: CycleSpec) -> CycleContext:
-    """Load the scene, the models and the humanoid of ``spec`` (reused by every run)."""
+    """Load the scene, the models and the humanoid of ``spec`` (reused by every run).
+
+    Args:
+        spec: the cycle.
+
+    Returns:
+        Its :class:`CycleContext`, with empty caches.
+    """
     workplace = shared_workplace(spec.scene)
     model, jm = attach_humanoid(spec.scene, spec.stature)
     step_model = _load_step_model(spec)

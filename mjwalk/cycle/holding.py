@@ -303,10 +303,18 @@ def _straight_holding(ctx: CycleContext, qa: np.ndarray, qb: np.ndarray, n: int)
 
 
 def hands_moved(ctx: CycleContext, q: np.ndarray, offset: np.ndarray) -> np.ndarray:
-    """Pose ``q`` with both hands moved by ``offset`` (world, m; (3,) for both, or (2, 3):
-    left, right), each keeping its direction, the elbow swivelled least (two-link IK in the
-    shoulder's frame, :func:`~mjwalk.arms.chain.two_link_ik_rows`; within the joint
-    ranges)."""
+    """Pose ``q`` with both hands moved by ``offset``, each keeping its direction, the elbow
+    swivelled least (two-link IK in the shoulder's frame,
+    :func:`~mjwalk.arms.chain.two_link_ik_rows`; within the joint ranges).
+
+    Args:
+        ctx: the cycle context (its scratch data is used).
+        q: (nq,) the pose.
+        offset: world frame, metres: (3,) for both hands, or (2, 3) left, right.
+
+    Returns:
+        (nq,) the pose with the arms re-solved (a new array).
+    """
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
     offsets = np.broadcast_to(np.asarray(offset, dtype=float), (2, 3))

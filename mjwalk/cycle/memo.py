@@ -30,7 +30,15 @@ class Memo(Generic[K, V]):
         self._kept: dict[K, V] = {}
 
     def get(self, key: K) -> V:
-        """The value of ``key`` (made now when it is not kept)."""
+        """The value of ``key`` (made now when it is not kept, dropping the oldest kept value when
+        the memo is full).
+
+        Args:
+            key: the value's key.
+
+        Returns:
+            ``make(key)``, made once while it is kept.
+        """
         if key not in self._kept:
             if self._limit is not None:
                 while len(self._kept) >= self._limit:

@@ -67,15 +67,28 @@ READY_MIN = 0.15
 
 
 def default_timing(dist: float) -> tuple[float, float]:
-    """The reference adult's reach (MTM-1 case B) and return (case E) times, seconds, for a
-    hand movement of ``dist`` metres."""
+    """The reference adult's reach (MTM-1 case B) and return (case E) times for a hand movement
+    of ``dist`` metres.
+
+    Args:
+        dist: the hand's path, metres.
+
+    Returns:
+        (reach seconds, return seconds).
+    """
     return reach_duration(dist, None, "B"), reach_duration(dist, None, RETURN_CASE)
 
 
 def time_factor(timing: Timing | None) -> float:
-    """The operator's time factor of a ``timing(distance)`` (None: the reference adult): the
-    return time over the reference adult's (factor / pace), which times the body's bend and
-    arise."""
+    """The operator's time factor of a timing: the return time of a 1 m movement over the
+    reference adult's (factor / pace), which times the body's bend and arise.
+
+    Args:
+        timing: ``timing(distance) -> (reach s, return s)``; None: the reference adult.
+
+    Returns:
+        The factor (1 for the reference adult).
+    """
     return 1.0 if timing is None else timing(1.0)[1] / default_timing(1.0)[1]
 
 
@@ -364,9 +377,19 @@ def _retraced(out: np.ndarray, n_back: int) -> np.ndarray:
 
 def leaning(ctx: CycleContext, q0: np.ndarray, targets, reach: float) -> np.ndarray:
     """``q0`` with the trunk bent forward just far enough that every ``(side, target)`` of
-    ``targets`` (the target in world coordinates, m) lies within ``reach`` metres of that side's
-    shoulder (lumbar and thoracic flexion, within their ranges, :data:`LEAN_STEP` at a time:
-    :func:`~mjwalk.cycle.crouch.bend_trunk`); bent as far as they go when that is not enough."""
+    ``targets`` lies within ``reach`` metres of that side's shoulder (lumbar and thoracic
+    flexion, within their ranges, :data:`LEAN_STEP` at a time:
+    :func:`~mjwalk.cycle.crouch.bend_trunk`); bent as far as they go when that is not enough.
+
+    Args:
+        ctx: the cycle context.
+        q0: (nq,) the pose to bend.
+        targets: (side, (3,) target in the world frame, m) pairs.
+        reach: the distance (m) each target must come within of its shoulder.
+
+    Returns:
+        (nq,) the leaning pose.
+    """
     prefix = ctx.jointmap.prefix
     arms = [
         (ctx.model.body(f"{prefix}upper_arm_{side_prefix(side)}").id, np.asarray(t, dtype=float))
@@ -383,7 +406,18 @@ def leaning(ctx: CycleContext, q0: np.ndarray, targets, reach: float) -> np.ndar
 def hand_tip(data, m, jm, side, hand_length: float) -> np.ndarray:
     """World position of the end of ``side``'s hand in the pose ``data`` holds (kinematics
     done): the hand body's origin (the wrist) plus ``hand_length`` m along its -z axis, the
-    direction the humanoid's hand points (:mod:`mjwalk.body.humanoid`)."""
+    direction the humanoid's hand points (:mod:`mjwalk.body.humanoid`).
+
+    Args:
+        data: MjData of ``m`` with the kinematics done.
+        m: the humanoid's model.
+        jm: its joint map (for the name prefix).
+        side: "left" or "right".
+        hand_length: metres from the wrist along the hand.
+
+    Returns:
+        (3,) world frame, metres.
+    """
     b = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
     return data.xpos[b] - hand_length * data.xmat[b].reshape(3, 3)[:, 2]
 
@@ -480,7 +514,17 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
 
 
 def blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
-    """Unit vector between unit vectors ``a`` (``tau`` = 0) and ``b`` (``tau`` = 1)."""
+    """Unit vector between unit vectors ``a`` (``tau`` = 0) and ``b`` (``tau`` = 1): the
+    normalized linear blend :math:`((1 - \tau) a + \tau b) / \\|(1 - \tau) a + \tau b\\|`.
+
+    Args:
+        a: (3,) unit vector.
+        b: (3,) unit vector.
+        tau: the blend, 0 to 1.
+
+    Returns:
+        (3,) unit vector.
+    """
     v = (1.0 - tau) * a + tau * b
     return v / max(float(np.linalg.norm(v)), 1e-9)
 
@@ -492,10 +536,20 @@ def plumb_arms(
     share: np.ndarray,
     sides=("left", "right"),
 ) -> np.ndarray:
-    """``frames`` (F, nq) with the shoulder flexions of ``sides`` raised by ``share`` (F,)
-    times the trunk's forward bend beyond ``q0``'s (lumbar and thoracic flexion, radians;
-    within the shoulder's range): at share 1 an arm hanging in ``q0`` hangs plumb from the
-    bent trunk."""
+    """``frames`` with the shoulder flexions of ``sides`` raised by ``share`` times the trunk's
+    forward bend beyond ``q0``'s (lumbar and thoracic flexion; within the shoulder's range): at
+    share 1 an arm hanging in ``q0`` hangs plumb from the bent trunk.
+
+    Args:
+        ctx: the cycle context.
+        frames: (F, nq) poses.
+        q0: (nq,) the upright pose the bend is measured from.
+        share: (F,) how much of the bend each frame's arms make up for, 0 to 1.
+        sides: the arms, "left" and/or "right".
+
+    Returns:
+        (F, nq) the poses (a new array).
+    """
     jm = ctx.jointmap
     bend = trunk_bend(ctx, frames, q0)
     out = frames.copy()

@@ -96,30 +96,39 @@ def reach_task(
     ctx: CycleContext, task: Task, start: ReachStart, pace: reaching.ReachPace
 ) -> WorkingReach:
     """Turn towards the target of a pick/place/fasten ``task`` and reach for it from the spot
-    ``(x, y)`` where the walk ended (facing ``yaw``); when the arm would come closer to the
-    scene than :data:`~mjwalk.cycle.standoff.REACH_CLEARANCE` (or the body touch it), step back
-    from the target during the turn, :data:`~mjwalk.cycle.standoff.STEP_BACK` at a time, until
-    it is clear: the first clear spot whose hand error (m) stays within
+    ``(start.x, start.y)`` where the walk ended (facing ``start.yaw``); when the arm would come
+    closer to the scene than :data:`~mjwalk.cycle.standoff.REACH_CLEARANCE` (or the body touch
+    it), step back from the target during the turn, :data:`~mjwalk.cycle.standoff.STEP_BACK` at
+    a time, until it is clear: the first clear spot whose hand error (m) stays within
     :data:`~mjwalk.cycle.standoff.REACH_TOLERANCE` (or within the error at the walk's end
     spot, when that is larger); the clearest such spot when none within
     :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear. When the hand falls short of the
-    target from ``(x, y)`` (a spot a step back for the reach before left, a short operator), the
+    target from there (a spot a step back for the reach before left, a short operator), the
     operator first steps in towards it, by as much as the hand falls short: the first spot from
     which the hand is on its target and clear. A step never brings the pelvis closer to an
     obstacle or the floor's edge than the planner's body radius (or than it was).
-    ``timing(distance)``: the (reach, return) durations (s) of a hand movement of ``distance``
-    metres (None: the reference adult's, :func:`~mjwalk.cycle.reaching.default_timing`).
-    ``facing``: the stand site's facing (radians), along which shelf work comes in
-    (:func:`~mjwalk.cycle.targets.approach_offset`). ``held``: grip distance (m) of a
-    two-handed part in the hands (a two-handed place turns and starts its reach in the carrying
-    posture). ``home``: where the walk ended (x, y), when the operator stands elsewhere now (a
-    step for the reach before): the steps are measured from there, so each reach at a stand
-    steps back or in as far as it needs from the walk's end, and step-backs do not add up
-    (default: ``(x, y)``). When no spot brings the target (both grips of a two-handed part)
-    within the arms' reach (low, below a standing reach), the search runs again with the trunk
-    bent forward as far as the target needs (:func:`~mjwalk.cycle.reaching.leaning`), and that
-    reach is kept when it brings the hand closer; one that still touches the scene or falls
-    short crouches (:func:`_crouching_reach`)."""
+
+    The steps are measured from ``start.home`` (where the walk ended, when the operator stands
+    elsewhere now: a step for the reach before), so each reach at a stand steps back or in as
+    far as it needs from the walk's end, and step-backs do not add up. A two-handed place
+    (``start.held``) turns and starts its reach in the carrying posture; shelf work comes in
+    along ``start.facing`` (:func:`~mjwalk.cycle.targets.approach_offset`). When no spot brings
+    the target (both grips of a two-handed part) within the arms' reach (low, below a standing
+    reach), the search runs again with the trunk bent forward as far as the target needs
+    (:func:`~mjwalk.cycle.reaching.leaning`), and that reach is kept when it brings the hand
+    closer; one that still touches the scene or falls short crouches (:func:`_crouching_reach`).
+
+    Args:
+        ctx: the run's cycle context.
+        task: the pick, place or fasten.
+        start: where the operator stands, faces and what they hold (world frame, m, radians).
+        pace: the hold time, frame rate and ``timing(distance)`` of the reach (None timing:
+            the reference adult's, :func:`~mjwalk.cycle.reaching.default_timing`).
+
+    Returns:
+        The :class:`WorkingReach`: where the operator stood, the turn's and the reach's frames,
+        the hand's error and the clearance.
+    """
     assert task.site is not None  # the spec loader requires a site for reaches
     x, y, home = start.x, start.y, start.home
     site_pos = ctx.workplace.station(task.site).pos

@@ -378,7 +378,14 @@ def _check_routes(
 def check_durations(tasks) -> None:
     """Raise CycleSpecError when the tasks' ``duration``s (seconds) add up to more than
     :data:`MAX_CYCLE_SECONDS` (or one is negative or not finite): checked before a cycle's
-    timeline is laid out, also for specs built in Python."""
+    timeline is laid out, also for specs built in Python.
+
+    Args:
+        tasks: the cycle's tasks (their ``duration``, seconds or None).
+
+    Raises:
+        CycleSpecError: naming the task with a bad duration, or the total.
+    """
     total = 0.0
     for i, task in enumerate(tasks):
         if task.duration is None:
