@@ -80,9 +80,10 @@ def main(argv=None) -> int:
     real = reaching.reach_frames
     seen: list[tuple[float, list]] = []
 
-    def spy(op, q0, target_w, approach_w, hold, fps, side="left", timing=None, face=None, **kw):
-        out = real(op, q0, target_w, approach_w, hold, fps, side, timing, face, **kw)
-        if not kw.get("lean"):  # a leaning reach's shoulder is not q0's (none at the station)
+    def spy(op, q0, target_w, approach_w, pace, side="left", face=None, **kw):
+        out = real(op, q0, target_w, approach_w, pace, side, face, **kw)
+        # a leaning reach's shoulder is not q0's (none at the station)
+        if not kw.get("lowering", reaching.STANDING).lean:
             seen.append(path_deviation(op, q0, side, out[2].directions))
         return out
 

@@ -96,7 +96,7 @@ def reproduce(ctx, side: str, end_body: np.ndarray, clip_len: float) -> tuple[in
 
     from mjwalk.arms.chain import arm_segment_lengths
     from mjwalk.cycle.poses import standing_pose
-    from mjwalk.cycle.reaching import reach_frames
+    from mjwalk.cycle.reaching import ReachPace, reach_frames
     from mjwalk.ergonomics import rula
     from mjwalk.ergonomics.angles import angles_from_qpos
 
@@ -109,7 +109,9 @@ def reproduce(ctx, side: str, end_body: np.ndarray, clip_len: float) -> tuple[in
     shoulder = data.xpos[m.body(f"{jm.prefix}upper_arm_{tag}").id].copy()
     scale = arm_segment_lengths(ctx.spec.stature).sum() / clip_len
     target = shoulder + end_body * scale
-    frames = reach_frames(ctx, q0, target, np.array([0.0, 0.0, -0.05]), 0.2, 30.0, side)[0]
+    frames = reach_frames(ctx, q0, target, np.array([0.0, 0.0, -0.05]), ReachPace(0.2, 30.0), side)[
+        0
+    ]
     ang = angles_from_qpos(m, jm, frames)
     ang.wrist_flexion[:] = 0.0  # the capture has no hand orientation: score both alike
     ang.wrist_deviation[:] = 0.0

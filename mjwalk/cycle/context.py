@@ -4,32 +4,31 @@
 
 from __future__ import annotations
 
-import functools
 import hashlib
 import pickle
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import mujoco
 
+from mjwalk.arms.reach import load_endpoint_model
+from mjwalk.arms.reachdefault import default_reach_model
 from mjwalk.body.humanoid import JointMap, attach_humanoid
 from mjwalk.cycle.memo import Memo
+from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.standing import StandZone, StandZones
 from mjwalk.cycle.standoff import ArmClearance
 from mjwalk.cycle.types import CycleSpec
 from mjwalk.errors import PlanningError
-from mjwalk.gait.walker import Walker
+from mjwalk.gait.default import default_model
+from mjwalk.gait.model import StepModel
+from mjwalk.gait.walker import REFERENCE_CADENCE, Walker
 from mjwalk.plan.grid import plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.occupancy import OccupancyGrid, occupancy_grid
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace, shared_workplace
-
-if TYPE_CHECKING:
-    from mjwalk.gait.model import StepModel  # loaded on first use (prepare)
-
 
 #: The goal area (m) of a planner built without a stand zone (:meth:`CycleContext.planner`);
 #: a cycle's walks end in their stand zones (:mod:`mjwalk.cycle.standing`).
@@ -58,8 +57,16 @@ class Planners:
         )
 
     def get(self, goal: str, zone: StandZone | None = None) -> HybridPlanner:
-        """The planner of walks to site ``goal`` ending in ``zone`` (None: within
-        :data:`GOAL_TOLERANCE` of the site)."""
+        """The planner of walks to site ``goal`` ending in ``zone`` (made on first use, kept by the
+        key (goal, zone)).
+
+        Args:
+            goal: the goal site's name.
+            zone: the stand zone the walk ends in; None: within :data:`GOAL_TOLERANCE` of the site.
+
+        Returns:
+            The :class:`~mjwalk.plan.hybrid.HybridPlanner`.
+        """
         return self._memo.get((goal, zone))
 
     def _make(self, key: tuple[str, StandZone | None]) -> HybridPlanner:
@@ -94,17 +101,36 @@ class GridRoutes:
         )
 
     def grid(self) -> OccupancyGrid:
-        """The occupancy grid of the scene at the body radius (built once)."""
+        """The occupancy grid of the scene at the body radius (built once).
+
+        Returns:
+            The :class:`~mjwalk.plan.occupancy.OccupancyGrid`.
+        """
         return self._grid.get(None)
 
     def length(self, a: str, b: str) -> float:
-        """Metres of the grid-A* route from site ``a`` to site ``b``."""
+        """Metres of the grid-A* route from site ``a`` to site ``b`` (kept per pair).
+
+        Args:
+            a: the start site's name.
+            b: the goal site's name.
+
+        Returns:
+            The route's length (m).
+        """
         return self._lengths.get((a, b))
 
     def route(self, start, end) -> WalkPath | None:
-        """The grid-A* route between two points (x, y), metres: a walk's own ends (not kept).
-        None when the grid planner finds none (an end nearer an obstacle than the radius, or
-        no grid route between them)."""
+        """The grid-A* route between two points, a walk's own ends (not kept).
+
+        Args:
+            start: (x, y) world frame, metres.
+            end: (x, y) world frame, metres.
+
+        Returns:
+            The route, or None when the grid planner finds none (an end nearer an obstacle than
+            the radius, or no grid route between them).
+        """
         try:
             return plan_grid(self._workplace, start, end, radius=self._radius, grid=self.grid())
         except PlanningError:
@@ -155,68 +181,100 @@ class CycleContext:
         object.__setattr__(self, "_data", mujoco.MjData(self.model))
 
     def reach_model_for(self, side: str):
-        """The reach model of the ``side`` arm ("left" or "right"): both are left-arm-frame
-        models, a right arm's reach mirrors the one it gets
-        (:func:`~mjwalk.arms.reach.reach_for_side`)."""
+        """The reach model of the ``side`` arm: both are left-arm-frame models, a right arm's reach
+        mirrors the one it gets (:func:`~mjwalk.arms.reach.reach_for_side`).
+
+        Args:
+            side: "left" or "right".
+
+        Returns:
+            ``reach_model_right`` for the right arm when the spec gives one, else ``reach_model``.
+        """
         if side == "right" and self.reach_model_right is not None:
             return self.reach_model_right
         return self.reach_model
 
     def scratch(self) -> mujoco.MjData:
-        """The MjData of ``model`` for this context's forward kinematics (every user sets the
-        whole qpos before each use)."""
+        """The MjData of ``model`` for this context's forward kinematics (every user sets the whole
+        qpos before each use).
+
+        Returns:
+            The context's scratch :class:`mujoco.MjData`.
+        """
         return self._data
 
     def planner(self, goal: str, zone: StandZone | None = None) -> HybridPlanner:
-        """The planner of walks to ``goal``, ending in ``zone`` (:mod:`mjwalk.cycle.standing`;
-        None: within :data:`GOAL_TOLERANCE` of the site). One per goal and zone."""
+        """The planner of walks to ``goal``, ending in ``zone`` (:mod:`mjwalk.cycle.standing`). One
+        per goal and zone (:class:`Planners`).
+
+        Args:
+            goal: the goal site's name.
+            zone: the stand zone; None: within :data:`GOAL_TOLERANCE` of the site.
+
+        Returns:
+            The :class:`~mjwalk.plan.hybrid.HybridPlanner`.
+        """
         return self.planners.get(goal, zone)
 
     def zone(self, i: int, stature: float, step_length: float) -> StandZone:
-        """The stand zone of the walk that is task ``i``
-        (:func:`~mjwalk.cycle.standing.work_zone`)."""
+        """The stand zone of the walk that is task ``i`` (:func:`~mjwalk.cycle.standing.work_zone`),
+        kept per operator size.
+
+        Args:
+            i: the walk's index in ``spec.tasks``.
+            stature: the operator's stature (m).
+            step_length: the operator's step length (m).
+
+        Returns:
+            The :class:`~mjwalk.cycle.standing.StandZone`.
+        """
         return self.zones.get(i, stature, step_length)
 
     def baseline(self, a: str, b: str) -> float:
-        """Metres of the grid-A* route from site ``a`` to site ``b`` (kept per pair)."""
+        """Metres of the grid-A* route from site ``a`` to site ``b`` (kept per pair).
+
+        Args:
+            a: the start site's name.
+            b: the goal site's name.
+
+        Returns:
+            The route's length (m).
+        """
         return self.routes.length(a, b)
 
     def baseline_route(self, start, end) -> WalkPath | None:
-        """The grid-A* route (:func:`~mjwalk.plan.grid.plan_grid`, the cycle's body radius)
-        between two points (x, y), metres (:meth:`GridRoutes.route`)."""
+        """The grid-A* route (:func:`~mjwalk.plan.grid.plan_grid`, the cycle's body radius) between
+        two points (:meth:`GridRoutes.route`).
+
+        Args:
+            start: (x, y) world frame, metres.
+            end: (x, y) world frame, metres.
+
+        Returns:
+            The route, or None when there is none.
+        """
         return self.routes.route(start, end)
 
     def occupancy(self) -> OccupancyGrid:
-        """The grid A*'s occupancy grid of the scene at the cycle's body radius (built once)."""
+        """The grid A*'s occupancy grid of the scene at the cycle's body radius (built once).
+
+        Returns:
+            The :class:`~mjwalk.plan.occupancy.OccupancyGrid`.
+        """
         return self.routes.grid()
 
 
-def _load_step_model(spec: CycleSpec):
+def _load_step_model(spec: CycleSpec) -> StepModel:
     if spec.step_model == "default":
-        from mjwalk.gait.default import default_model
-
         return default_model()
-    from mjwalk.gait.model import StepModel
-
     return StepModel.load(spec.step_model)
 
 
 def _load_reach_model(path: str):
-    from mjwalk.arms.reach import load_endpoint_model
-
     if path == "default":
-        from mjwalk.arms.reachdefault import default_reach_model
-
         return default_reach_model()
     # the spec checked this file when it was loaded: the same object comes back
     return load_endpoint_model(path, f"reach model {path}")
-
-
-@functools.lru_cache(maxsize=4)
-def _context_cached(spec_key: str) -> CycleContext:
-    from mjwalk.cycle.spec import load_cycle_spec
-
-    return prepare(load_cycle_spec(spec_key))
 
 
 @dataclass(frozen=True)
@@ -228,61 +286,153 @@ class _PickledSpec:
     spec: CycleSpec = field(compare=False)
 
 
-#: Contexts of in-memory specs; the last few are kept, like :func:`_context_cached`.
-_SPEC_CONTEXTS: Memo[_PickledSpec, CycleContext] = Memo(lambda key: prepare(key.spec), limit=4)
+class SpecContexts:
+    """The prepared contexts (:func:`prepare`) of this process, the last ``limit`` of each kind
+    of key: a spec file by its path as given (``str(path)``, read with
+    :func:`~mjwalk.cycle.spec.load_cycle_spec`), an in-memory :class:`CycleSpec` by the SHA-1
+    digest of its pickle (so an edited copy is a new key). A joblib worker prepares each spec
+    once and reuses it for every run it is given.
+
+    Safe across runs: a context is made from its spec alone, is frozen, and what it keeps
+    (planners, stand zones, grid routes: :class:`CycleContext`) are values of their own keys,
+    so a run finds the same context whichever runs came before it.
+
+    Args:
+        limit: how many contexts of each kind of key are kept (the oldest go first).
+    """
+
+    def __init__(self, limit: int):
+        self._files: Memo[str, CycleContext] = Memo(
+            lambda path: prepare(load_cycle_spec(path)), limit
+        )
+        self._specs: Memo[_PickledSpec, CycleContext] = Memo(lambda key: prepare(key.spec), limit)
+
+    def get(self, spec: CycleSpec | str | Path) -> CycleContext:
+        """The context of ``spec`` (prepared now when it is not kept).
+
+        Args:
+            spec: a spec file's path, or a :class:`CycleSpec` used as it is in memory.
+
+        Returns:
+            The kept (or newly prepared) :class:`CycleContext`.
+        """
+        if not isinstance(spec, CycleSpec):
+            return self._files.get(str(spec))
+        return self._specs.get(_PickledSpec(hashlib.sha1(pickle.dumps(spec)).hexdigest(), spec))
+
+
+class Humanoids:
+    """The humanoids of this process's operators, by the key (scene path as a string, stature in
+    metres rounded to the millimetre): the scene with the humanoid attached
+    (:func:`~mjwalk.body.humanoid.attach_humanoid`) and its reach clearance check
+    (:class:`~mjwalk.cycle.standoff.ArmClearance`), the last ``limit`` of each. A population's
+    statures come in centimetres and attaching one takes about 15 ms, so a worker builds each
+    stature once.
+
+    Safe across runs: a value depends on its key alone (the scene file and the stature), and
+    callers share the models read-only (every user of a model's MjData sets the whole qpos
+    before each use), so a run gets the same humanoid whichever runs came before it.
+
+    Args:
+        limit: how many humanoids (and clearance checks) are kept (the oldest go first).
+    """
+
+    def __init__(self, limit: int):
+        self._models: Memo[tuple[str, float], tuple[mujoco.MjModel, JointMap]] = Memo(
+            lambda key: attach_humanoid(Path(key[0]), key[1]), limit
+        )
+        self._clearances: Memo[tuple[str, float], ArmClearance] = Memo(
+            lambda key: ArmClearance(*self._models.get(key)), limit
+        )
+
+    def model(self, scene: str, stature: float) -> tuple[mujoco.MjModel, JointMap]:
+        """The scene with a humanoid of ``stature`` attached.
+
+        Args:
+            scene: the scene's MJCF path, as a string.
+            stature: the humanoid's stature (m), rounded to the millimetre by the caller.
+
+        Returns:
+            (model, joint map) of the scene with the humanoid.
+        """
+        return self._models.get((scene, stature))
+
+    def clearance(self, scene: str, stature: float) -> ArmClearance:
+        """The reach's clearance check of the humanoid of :meth:`model`.
+
+        Args:
+            scene: the scene's MJCF path, as a string.
+            stature: the humanoid's stature (m), rounded to the millimetre by the caller.
+
+        Returns:
+            The :class:`~mjwalk.cycle.standoff.ArmClearance` of that humanoid in the scene.
+        """
+        return self._clearances.get((scene, stature))
+
+
+#: The contexts of the specs this process ran (:func:`context_of`), the last 4 of each kind.
+SPEC_CONTEXTS = SpecContexts(limit=4)
+#: The operators' humanoids of this process (:func:`operator_context`), the last 16 statures.
+HUMANOIDS = Humanoids(limit=16)
 
 
 def context_of(spec: CycleSpec | str | Path) -> CycleContext:
-    """The context of ``spec`` for a worker (prepared once per process and spec).
+    """The context of ``spec`` for a worker (prepared once per process and spec:
+    :data:`SPEC_CONTEXTS`).
 
     A path is read with :func:`~mjwalk.cycle.spec.load_cycle_spec`; a :class:`CycleSpec` is used
     as it is, so a spec edited in memory (``dataclasses.replace(spec, reach_model=...)``) runs
-    with its edits, not with the file it was read from."""
-    if not isinstance(spec, CycleSpec):
-        return _context_cached(str(spec))
-    return _SPEC_CONTEXTS.get(_PickledSpec(hashlib.sha1(pickle.dumps(spec)).hexdigest(), spec))
+    with its edits, not with the file it was read from.
 
+    Args:
+        spec: a spec file's path, or a :class:`CycleSpec`.
 
-@functools.lru_cache(maxsize=16)
-def _humanoid(scene: str, stature: float) -> tuple[mujoco.MjModel, JointMap]:
-    """The scene with a humanoid of ``stature`` metres (kept for the last 16 statures of this
-    process: a population's statures come in centimetres, attaching one takes about 15 ms)."""
-    return attach_humanoid(Path(scene), stature)
+    Returns:
+        The spec's :class:`CycleContext`.
+    """
+    return SPEC_CONTEXTS.get(spec)
 
 
 def operator_context(ctx: CycleContext, walker: Walker | None) -> CycleContext:
     """``ctx`` for a run of ``walker``: the humanoid (and ``spec.stature``) of the walker's
-    stature, and their turning speed (``turn_rate``: a turn on the spot is made of steps, so it
-    goes at the walker's cadence over :data:`~mjwalk.gait.walker.REFERENCE_CADENCE`); planners,
-    grid-A* baselines and models are shared with ``ctx``. ``ctx`` itself without a walker."""
+    stature (:data:`HUMANOIDS`), and their turning speed (``turn_rate``: a turn on the spot is
+    made of steps, so it goes at the walker's cadence over
+    :data:`~mjwalk.gait.walker.REFERENCE_CADENCE`); planners, grid-A* baselines and models are
+    shared with ``ctx``.
+
+    Args:
+        ctx: the cycle's context.
+        walker: the run's operator; None: ``ctx`` itself.
+
+    Returns:
+        The operator's :class:`CycleContext`.
+    """
     if walker is None:
         return ctx
-    from mjwalk.gait.walker import REFERENCE_CADENCE
-
     rate = walker.cadence / REFERENCE_CADENCE
     if abs(walker.stature - ctx.spec.stature) < 1e-9:
         return replace(ctx, turn_rate=rate)
-    model, jm = _humanoid(str(ctx.spec.scene), round(walker.stature, 3))
+    scene, stature = str(ctx.spec.scene), round(walker.stature, 3)
+    model, jm = HUMANOIDS.model(scene, stature)
     return replace(
         ctx,
         spec=replace(ctx.spec, stature=walker.stature),
         model=model,
         jointmap=jm,
-        clearance=_clearance_of(str(ctx.spec.scene), round(walker.stature, 3)),
+        clearance=HUMANOIDS.clearance(scene, stature),
         turn_rate=rate,
     )
 
 
-@functools.lru_cache(maxsize=16)
-def _clearance_of(scene: str, stature: float) -> ArmClearance:
-    """The reach's clearance check (:class:`~mjwalk.cycle.standoff.ArmClearance`) of the
-    humanoid of ``stature`` metres in ``scene`` (kept like :func:`_humanoid`)."""
-    model, jm = _humanoid(scene, stature)
-    return ArmClearance(model, jm)
-
-
 def prepare(spec: CycleSpec) -> CycleContext:
-    """Load the scene, the models and the humanoid of ``spec`` (reused by every run)."""
+    """Load the scene, the models and the humanoid of ``spec`` (reused by every run).
+
+    Args:
+        spec: the cycle.
+
+    Returns:
+        Its :class:`CycleContext`, with empty caches.
+    """
     workplace = shared_workplace(spec.scene)
     model, jm = attach_humanoid(spec.scene, spec.stature)
     step_model = _load_step_model(spec)

@@ -24,7 +24,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.anthropometry import ROM_DEG, leg_geometry
-from mjwalk.body.legs.ik import leg_ik
+from mjwalk.body.legs.ik import LEG_JOINTS, leg_ik
 from mjwalk.conventions import side_of_prefix as side_of
 
 if TYPE_CHECKING:
@@ -45,8 +45,18 @@ def bend_trunk(ctx: CycleContext, q0: np.ndarray, step: float, enough) -> np.nda
     """``q0`` with the trunk bent forward ``step`` radians at a time (lumbar and thoracic
     flexion in proportion to the range each has left) until ``enough(data)`` holds for the
     pose's forward kinematics in ``ctx.scratch()``; bent as far as the ranges go when it never
-    does. The reach's lean (:func:`mjwalk.cycle.reaching._leaning`) and the crouch's balance
-    both bend this way."""
+    does. The reach's lean (:func:`mjwalk.cycle.reaching.leaning`) and the crouch's balance
+    both bend this way.
+
+    Args:
+        ctx: the cycle context (its humanoid and scratch data).
+        q0: (nq,) the pose to bend.
+        step: the bend's increment, radians (lumbar and thoracic flexion together).
+        enough: ``enough(data) -> bool`` on the bent pose's kinematics.
+
+    Returns:
+        (nq,) the bent pose (a new array).
+    """
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
     q0 = np.asarray(q0, dtype=float)
@@ -65,15 +75,32 @@ def bend_trunk(ctx: CycleContext, q0: np.ndarray, step: float, enough) -> np.nda
 
 
 def trunk_room(ctx: CycleContext, q0: np.ndarray) -> np.ndarray:
-    """How far (radians) each of :data:`TRUNK_FLEXION` can still flex forward in ``q0``."""
+    """How far each of :data:`TRUNK_FLEXION` can still flex forward in ``q0``.
+
+    Args:
+        ctx: the cycle context (its joint map's ranges).
+        q0: (nq,) the pose.
+
+    Returns:
+        (2,) radians left to each joint's upper limit (lumbar, thoracic; at least 0).
+    """
     jm = ctx.jointmap
     q0 = np.asarray(q0, dtype=float)
     return np.maximum([jm.limits(j)[1] - q0[jm.adr(j)] for j in TRUNK_FLEXION], 0.0)
 
 
 def trunk_bend(ctx: CycleContext, q: np.ndarray, q0: np.ndarray) -> np.ndarray:
-    """How far (radians) the trunk of pose(s) ``q`` (..., nq) is bent forward beyond ``q0``'s
-    (lumbar and thoracic flexion together)."""
+    """How far the trunk of pose(s) ``q`` is bent forward beyond ``q0``'s (lumbar and thoracic
+    flexion together).
+
+    Args:
+        ctx: the cycle context (its joint map).
+        q: (..., nq) the poses.
+        q0: (nq,) the reference pose.
+
+    Returns:
+        (...,) the extra flexion, radians.
+    """
     k = [ctx.jointmap.adr(j) for j in TRUNK_FLEXION]
     return np.asarray(q)[..., k].sum(axis=-1) - np.asarray(q0)[k].sum()
 
@@ -108,8 +135,17 @@ def _stance(ctx: CycleContext, q0: np.ndarray) -> _Stance:
 
 
 def com_ahead(ctx: CycleContext, data) -> float:
-    """How far (m) the humanoid's centre of mass lies ahead of the midpoint of its ankle joints,
-    along its pelvis's heading (+x), in the pose whose kinematics ``data`` holds."""
+    """How far the humanoid's centre of mass lies ahead of the midpoint of its ankle joints,
+    along its pelvis's heading (+x), in the pose whose kinematics ``data`` holds.
+
+    Args:
+        ctx: the cycle context (its humanoid model).
+        data: MjData of ``ctx.model`` with the kinematics done (its ``subtree_com`` is
+            computed here).
+
+    Returns:
+        The horizontal distance, metres (negative: behind the ankles).
+    """
     m, jm = ctx.model, ctx.jointmap
     mujoco.mj_comPos(m, data)
     pelvis = m.body(f"{jm.prefix}pelvis").id
@@ -145,10 +181,19 @@ def _lowered(ctx: CycleContext, stance: _Stance, drop: float) -> np.ndarray:
 
 
 def crouch_pose(ctx: CycleContext, q0: np.ndarray, drop: float) -> np.ndarray:
-    """``q0`` (a standing pose, nq) with the pelvis ``drop`` metres lower and moved back as
-    far as the ankles' dorsiflexion needs, the feet flat where they are in ``q0``, and the
-    trunk bent forward until the centre of mass is as far ahead of the ankles as in ``q0``
-    (see the module docstring). ``drop`` 0 returns ``q0``."""
+    """``q0`` with the pelvis ``drop`` metres lower and moved back as far as the ankles'
+    dorsiflexion needs, the feet flat where they are in ``q0``, and the trunk bent forward
+    until the centre of mass is as far ahead of the ankles as in ``q0`` (see the module
+    docstring).
+
+    Args:
+        ctx: the cycle context.
+        q0: (nq,) a standing pose.
+        drop: how far the pelvis goes down, metres (0 or less: ``q0``).
+
+    Returns:
+        (nq,) the crouched pose (a new array).
+    """
     if drop <= 0.0:
         return np.asarray(q0, dtype=float).copy()
     stance = _stance(ctx, q0)
@@ -160,11 +205,20 @@ def crouch_pose(ctx: CycleContext, q0: np.ndarray, drop: float) -> np.ndarray:
 def crouch_frames(
     ctx: CycleContext, q0: np.ndarray, target: np.ndarray, w: np.ndarray
 ) -> np.ndarray:
-    """Poses (len(w), nq) on the way from ``q0`` (standing) into ``target`` (a pose whose root
-    and legs are :func:`crouch_pose`'s, or ``q0``'s): every joint interpolated by the weights
-    ``w`` (0: ``q0``, 1: ``target``), and when the target is crouched, the pelvis lowered by
-    that share of its drop and the legs solved for it at each pose, so the feet stay planted
-    all the way."""
+    """Poses on the way from ``q0`` (standing) into ``target`` (a pose whose root and legs are
+    :func:`crouch_pose`'s, or ``q0``'s): every joint interpolated by the weights ``w`` (0:
+    ``q0``, 1: ``target``), and when the target is crouched, the pelvis lowered by that share
+    of its drop and the legs solved for it at each pose, so the feet stay planted all the way.
+
+    Args:
+        ctx: the cycle context.
+        q0: (nq,) the standing pose.
+        target: (nq,) the pose to go into.
+        w: (n,) the weights of ``target``, 0 to 1.
+
+    Returns:
+        (n, nq) the poses.
+    """
     jm = ctx.jointmap
     r = jm.root
     q0 = np.asarray(q0, dtype=float)
@@ -182,6 +236,4 @@ def crouch_frames(
 
 
 def _leg_joints() -> list[str]:
-    from mjwalk.body.legs.ik import LEG_JOINTS
-
     return [j.format(p) for j in LEG_JOINTS if not j.startswith("toe") for p in "lr"]

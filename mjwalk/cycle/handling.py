@@ -70,7 +70,19 @@ INCH = 0.0254
 
 
 def reach_tmu(distance: float, case: str = "B") -> float:
-    """MTM-1 reach time (TMU) of a hand movement of ``distance`` metres, case A/B/C/E."""
+    """MTM-1 reach time of a hand movement of ``distance`` metres: the data card's table
+    interpolated in inches, extrapolated linearly beyond its last row.
+
+    Args:
+        distance: the hand's path, metres (finite, >= 0).
+        case: the MTM-1 reach case, "A", "B", "C" or "E".
+
+    Returns:
+        The time in TMU (1 TMU = 0.036 s).
+
+    Raises:
+        MjwalkError: an unknown case or a negative or non-finite distance.
+    """
     if case not in REACH_TMU:
         raise MjwalkError(f"unknown MTM-1 reach case {case!r} (A, B, C or E)")
     if not math.isfinite(distance) or distance < 0:
@@ -84,15 +96,34 @@ def reach_tmu(distance: float, case: str = "B") -> float:
 
 
 def reach_duration(distance: float, walker: Walker | None = None, case: str = "B") -> float:
-    """Seconds a reach of ``distance`` metres takes ``walker`` (None: the reference adult,
-    pace 1): the MTM-1 time divided by the walker's pace."""
+    r"""Seconds a reach of ``distance`` metres takes ``walker``: the MTM-1 time divided by the
+    walker's pace, :math:`t = \mathrm{TMU}(d) \cdot 0.036 / \mathrm{pace}`.
+
+    Args:
+        distance: the hand's path, metres.
+        walker: the operator; None: the reference adult (pace 1).
+        case: the MTM-1 reach case, "A", "B", "C" or "E".
+
+    Returns:
+        The duration, seconds.
+    """
     pace = 1.0 if walker is None else walker.pace
     return reach_tmu(distance, case) * TMU / pace
 
 
 def body_motion_duration(motion: str, walker: Walker | None = None) -> float:
-    """Seconds the MTM-1 body motion ``motion`` ("B" or "AB") takes ``walker`` (None: the
-    reference adult, pace 1)."""
+    """Seconds the MTM-1 body motion ``motion`` takes ``walker``.
+
+    Args:
+        motion: "B" (bend, stoop) or "AB" (arise).
+        walker: the operator; None: the reference adult (pace 1).
+
+    Returns:
+        The duration, seconds.
+
+    Raises:
+        MjwalkError: an unknown motion.
+    """
     if motion not in BODY_MOTION_TMU:
         raise MjwalkError(f"unknown MTM-1 body motion {motion!r}; known: {sorted(BODY_MOTION_TMU)}")
     pace = 1.0 if walker is None else walker.pace
@@ -100,6 +131,15 @@ def body_motion_duration(motion: str, walker: Walker | None = None) -> float:
 
 
 def task_factor(rng: np.random.Generator, cv: float = TASK_CV) -> float:
-    """One task's lognormal time factor: median 1, coefficient of variation ``cv``."""
+    r"""One task's lognormal time factor: median 1, coefficient of variation ``cv``,
+    :math:`f = e^{z}` with :math:`z \sim N(0, \sigma^2)`, :math:`\sigma^2 = \ln(1 + cv^2)`.
+
+    Args:
+        rng: the generator drawn from (one normal draw).
+        cv: the coefficient of variation.
+
+    Returns:
+        The factor (> 0).
+    """
     sigma = math.sqrt(math.log1p(cv * cv))
     return float(math.exp(rng.normal(0.0, sigma)))

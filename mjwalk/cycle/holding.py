@@ -5,19 +5,40 @@ metres, z up; frames at ``fps`` per second."""
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
+from scipy.optimize import brentq
 
 from mjwalk.anthropometry import knee_height
+from mjwalk.arms.chain import (
+    arm_adrs,
+    arm_frames,
+    arm_joint,
+    arm_joint_angles,
+    min_jerk,
+    two_link_ik_rows,
+)
+from mjwalk.arms.reach import humanoid_arm
 from mjwalk.body.legs.curves import smoothstep
 from mjwalk.conventions import Side, side_prefix
 from mjwalk.cycle import reaching
 from mjwalk.cycle.crouch import crouch_frames, crouch_pose, trunk_bend, trunk_room
 from mjwalk.cycle.handling import body_motion_duration
-from mjwalk.cycle.reaching import LEAN_SPARE, default_timing, plumb_arms, time_factor
-from mjwalk.cycle.types import TASK_KINDS, grip_sites
+from mjwalk.cycle.poses import carry_pose, hand_points
+from mjwalk.cycle.reaching import (
+    LEAN_SPARE,
+    STANDING,
+    Lowering,
+    ReachPace,
+    default_timing,
+    plumb_arms,
+    time_factor,
+)
+from mjwalk.cycle.types import TASK_KINDS, Task, grip_sites
+from mjwalk.timeline.parts import hand_poses
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
@@ -32,24 +53,44 @@ HELD_BACK_SHARES = (1.0 / 3.0, 2.0 / 3.0, 1.0)
 
 
 def two_hand_frames(
-    ctx: CycleContext, q0, task, approach, hold, fps, timing=None, held=None, lean=False, drop=0.0
+    ctx: CycleContext,
+    q0: np.ndarray,
+    task: Task,
+    approach: np.ndarray,
+    pace: ReachPace,
+    held: float | None = None,
+    lowering: Lowering = STANDING,
 ):
-    """A two-handed reach (:func:`_two_hand_reach`) from ``q0``, or, with ``lean`` or ``drop`` (m),
-    from ``q0`` crouched that much (:func:`~mjwalk.cycle.crouch.crouch_pose`) and with the trunk
-    bent forward until both grips are within the arms' reach
+    """A two-handed reach (:func:`_two_hand_reach`) from ``q0``, or, with ``lowering.lean`` or
+    ``lowering.drop`` (m), from ``q0`` crouched that much
+    (:func:`~mjwalk.cycle.crouch.crouch_pose`) and with the trunk bent forward until both grips
+    are within the arms' reach
     (:func:`~mjwalk.cycle.reaching.leaning`): a part on a pallet or a low bench, which no standing
     reach gets both hands to. The body goes down with the arms as they are in ``q0`` (hanging, or
     holding the part in the carrying posture), the reach runs from there, and the body comes back up
     with the arms as the reach leaves them (carrying the part it picked, hanging after a place), the
     feet planted throughout (:func:`~mjwalk.cycle.crouch.crouch_frames`). Going down and coming up
     are MTM-1's body motions "B" (bend, stoop) and "AB" (arise) at the operator's time factor,
-    before and after the reach (MTM-1 adds body and hand motions). Returns what
-    :func:`_two_hand_reach` returns."""
-    if not lean and drop <= 0.0:
-        return _two_hand_reach(ctx, q0, task, approach, hold, fps, timing, held)
-    from mjwalk.arms.chain import arm_adrs
-    from mjwalk.arms.reach import humanoid_arm
+    before and after the reach (MTM-1 adds body and hand motions).
 
+    Args:
+        ctx: the run's cycle context.
+        q0: (nq,) the pose the reach starts and ends in (standing, or carrying with ``held``).
+        task: the two-handed pick or place (``hand = "both"``; its site's grip sites
+            ``<site>_left`` and ``<site>_right``).
+        approach: (3,) the pre-grasp point's offset from the grips, world frame (m).
+        pace: the hold time, frame rate and timing of the reach.
+        held: grip distance (m) of a part in the hands (a place), None: hands free (a pick).
+        lowering: the trunk's lean and the crouch the reach comes down with.
+
+    Returns:
+        What :func:`_two_hand_reach` returns: (frames (F, nq), the larger hand error (m), the
+        left arm's ReachResult with both arms' warnings, the grip distance (m)).
+    """
+    assert task.site is not None  # the spec loader requires a site for reaches
+    lean, drop = lowering.lean, lowering.drop
+    if not lean and drop <= 0.0:
+        return _two_hand_reach(ctx, q0, task, approach, pace, held)
     body = crouch_pose(ctx, q0, drop)
     grips: list[tuple[Side, np.ndarray]] = [
         ("right" if s == "right" else "left", ctx.workplace.station(n).pos)
@@ -58,8 +99,9 @@ def two_hand_frames(
     if lean:
         scale, lengths = humanoid_arm(ctx.reach_model_for("left"), ctx.spec.stature)
         body = reaching.leaning(ctx, body, grips, float(lengths.sum()) / scale - LEAN_SPARE)
-    frames, error, res, width = _two_hand_reach(ctx, body, task, approach, hold, fps, timing, held)
-    factor = time_factor(timing)
+    frames, error, res, width = _two_hand_reach(ctx, body, task, approach, pace, held)
+    fps = pace.fps
+    factor = time_factor(pace.timing)
     share = 1.0
     if drop <= 0.0 and min(float(g[2]) for _, g in grips) >= knee_height(ctx.spec.stature):
         # MTM-1's bend is the one that lets the hands reach below the knee; a shallower bend
@@ -94,7 +136,14 @@ def two_hand_frames(
     return plumb_arms(ctx, seq, q0, free), error, res, width
 
 
-def _two_hand_reach(ctx: CycleContext, q0, task, approach, hold, fps, timing=None, held=None):
+def _two_hand_reach(
+    ctx: CycleContext,
+    q0: np.ndarray,
+    task: Task,
+    approach: np.ndarray,
+    pace: ReachPace,
+    held: float | None = None,
+):
     """A two-handed reach (``hand = "both"``): the left arm to the grip site ``<site>_left``, the
     right arm (the mirrored model) to ``<site>_right``, at the same time, holding and returning
     together. A pick's return brings the part into the carrying posture
@@ -104,9 +153,7 @@ def _two_hand_reach(ctx: CycleContext, q0, task, approach, hold, fps, timing=Non
     the palms keep their distance (:func:`_holding_frames`). Returns (frames, the larger hand
     error in metres, the left arm's ReachResult with both arms' warnings, the grip distance in
     metres)."""
-    from mjwalk.arms.chain import arm_adrs
-    from mjwalk.cycle.poses import carry_pose, hand_points
-
+    assert task.site is not None  # the spec loader requires a site for reaches
     jm = ctx.jointmap
     carrying = np.array(q0, dtype=float)
     if held is not None:  # the reach model starts from rest: the arms at the standing pose
@@ -119,6 +166,7 @@ def _two_hand_reach(ctx: CycleContext, q0, task, approach, hold, fps, timing=Non
     # Both hands of a bimanual reach start and arrive together (Kelso, Southard & Goodman 1979,
     # Science 203: 1029-1031): the second arm takes the first arm's durations.
     first: list[tuple[float, float]] = []
+    timing, hold, fps = pace.timing, pace.hold, pace.fps
 
     def shared(dist: float) -> tuple[float, float]:
         if not first:
@@ -135,7 +183,7 @@ def _two_hand_reach(ctx: CycleContext, q0, task, approach, hold, fps, timing=Non
         parts[side] = (
             grip,
             *reaching.reach_frames(
-                ctx, q0, grip, approach, hold, fps, side, timing=shared, face=normal
+                ctx, q0, grip, approach, replace(pace, timing=shared), side, face=normal
             ),
         )
     (gl, fl, el, rl), (gr, fr, er, rr) = parts["left"], parts["right"]
@@ -183,8 +231,6 @@ def _approach_frames(ctx: CycleContext, reach: np.ndarray, length: float) -> np.
     which both palms move along the straight pre-grasp approach of ``length`` metres: from the
     last frame with a palm at least 90 % of that length from its final position to the end
     (at least the last frame)."""
-    from mjwalk.cycle.poses import hand_points
-
     h = hand_points(ctx, reach)
     d = np.linalg.norm(h - h[-1][None], axis=2).max(axis=1)
     far = np.flatnonzero(d >= 0.9 * length)
@@ -197,8 +243,6 @@ def _holding_frames(ctx: CycleContext, qa: np.ndarray, qb: np.ndarray, n: int) -
     both shoulder abductions shifted together in each frame (:func:`_palms_apart`) so the palms'
     distance (m) follows the same profile from ``qa``'s to ``qb``'s: the hands keep the grips
     of the part they carry between the bench and the carrying posture."""
-    from mjwalk.arms.chain import min_jerk
-
     ga, gb = _palm_gap(ctx, qa), _palm_gap(ctx, qb)
     prof = min_jerk(np.arange(1, n + 1) / n)
     frames = qa[None] + prof[:, None] * (qb - qa)[None]
@@ -245,8 +289,6 @@ def _straight_holding(ctx: CycleContext, qa: np.ndarray, qb: np.ndarray, n: int)
     line between its positions in the two poses, on the same minimum-jerk profile
     (:func:`hands_moved`): the hands carry the part along a line, not the arc that
     interpolated joint angles sweep."""
-    from mjwalk.arms.chain import min_jerk
-    from mjwalk.timeline.parts import hand_poses
 
     def wrists(qpos: np.ndarray) -> np.ndarray:  # (F, 2, 3): the hand bodies' origins
         return hand_poses(ctx.model, ctx.jointmap, qpos, ctx.scratch())[0]
@@ -261,12 +303,18 @@ def _straight_holding(ctx: CycleContext, qa: np.ndarray, qb: np.ndarray, n: int)
 
 
 def hands_moved(ctx: CycleContext, q: np.ndarray, offset: np.ndarray) -> np.ndarray:
-    """Pose ``q`` with both hands moved by ``offset`` (world, m; (3,) for both, or (2, 3):
-    left, right), each keeping its direction, the elbow swivelled least (two-link IK in the
-    shoulder's frame, :func:`~mjwalk.arms.chain.two_link_ik_rows`; within the joint
-    ranges)."""
-    from mjwalk.arms.chain import arm_frames, arm_joint, arm_joint_angles, two_link_ik_rows
+    """Pose ``q`` with both hands moved by ``offset``, each keeping its direction, the elbow
+    swivelled least (two-link IK in the shoulder's frame,
+    :func:`~mjwalk.arms.chain.two_link_ik_rows`; within the joint ranges).
 
+    Args:
+        ctx: the cycle context (its scratch data is used).
+        q: (nq,) the pose.
+        offset: world frame, metres: (3,) for both hands, or (2, 3) left, right.
+
+    Returns:
+        (nq,) the pose with the arms re-solved (a new array).
+    """
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
     offsets = np.broadcast_to(np.asarray(offset, dtype=float), (2, 3))
@@ -299,8 +347,6 @@ def hands_moved(ctx: CycleContext, q: np.ndarray, offset: np.ndarray) -> np.ndar
 
 def _palm_gap(ctx: CycleContext, q: np.ndarray) -> float:
     """Distance (m) between the palms in pose ``q``."""
-    from mjwalk.cycle.poses import hand_points
-
     h = hand_points(ctx, q[None])[0]
     return float(np.linalg.norm(h[0] - h[1]))
 
@@ -322,8 +368,6 @@ def _shift_to_gap(ctx: CycleContext, q: np.ndarray, want: float, joint: str):
     """(pose with both ``shoulder_<side>_<joint>`` angles shifted together, within
     :data:`HOLD_SHIFT` and the joint limits, so the palms lie ``want`` metres apart, or None
     when no shift reaches it; the pose at the end of the shift range nearest ``want``)."""
-    from scipy.optimize import brentq
-
     jm = ctx.jointmap
     ks = [jm.adr(f"shoulder_{p}_{joint}") for p in "lr"]
     lims = [jm.limits(f"shoulder_{p}_{joint}") for p in "lr"]

@@ -1,7 +1,8 @@
 """A bounded memo: values made once per key and kept, the oldest dropped first
 (:class:`Memo`). The cycle's caches are memos with a key of their own, each owned by the
-module that makes its values (the planners and grid-A* routes by :mod:`mjwalk.cycle.context`,
-the stand zones by :mod:`mjwalk.cycle.standing`)."""
+module that makes its values (the planners and grid-A* routes, the prepared contexts and the
+operators' humanoids by :mod:`mjwalk.cycle.context`, the stand zones by
+:mod:`mjwalk.cycle.standing`)."""
 
 from __future__ import annotations
 
@@ -29,7 +30,15 @@ class Memo(Generic[K, V]):
         self._kept: dict[K, V] = {}
 
     def get(self, key: K) -> V:
-        """The value of ``key`` (made now when it is not kept)."""
+        """The value of ``key`` (made now when it is not kept, dropping the oldest kept value when
+        the memo is full).
+
+        Args:
+            key: the value's key.
+
+        Returns:
+            ``make(key)``, made once while it is kept.
+        """
         if key not in self._kept:
             if self._limit is not None:
                 while len(self._kept) >= self._limit:

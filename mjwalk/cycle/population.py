@@ -120,7 +120,14 @@ class Distribution:
         return (f(self.lo) - self.mu) / self.sigma, (f(self.hi) - self.mu) / self.sigma
 
     def ppf(self, u: float) -> float:
-        """The value at quantile ``u`` (0-1) of the truncated distribution."""
+        """The value at quantile ``u`` of the truncated distribution.
+
+        Args:
+            u: the quantile, 0 to 1.
+
+        Returns:
+            The value in the figure's unit, within ``[lo, hi]`` (``mu`` for a fixed figure).
+        """
         if self.kind == "fixed" or self.sigma == 0.0:
             return float(self.mu)
         a, b = self._ab()
@@ -129,14 +136,22 @@ class Distribution:
         return float(np.clip(math.exp(x) if self._log else x, self.lo, self.hi))
 
     def mass(self) -> float:
-        """Share of the untruncated distribution inside ``[lo, hi]``."""
+        """Share of the untruncated distribution inside ``[lo, hi]``.
+
+        Returns:
+            The probability, 0 to 1 (a fixed figure: 1 inside the bounds, else 0).
+        """
         if self.kind == "fixed" or self.sigma == 0.0:
             return 1.0 if self.lo <= self.mu <= self.hi else 0.0
         a, b = self._ab()
         return float(ndtr(b) - ndtr(a))
 
     def moments(self) -> tuple[float, float]:
-        """Mean and standard deviation of the truncated distribution (figure's unit)."""
+        """Mean and standard deviation of the truncated distribution.
+
+        Returns:
+            (mean, sd) in the figure's unit.
+        """
         if self.kind == "fixed" or self.sigma == 0.0:
             return float(self.mu), 0.0
         a, b = self._ab()
@@ -155,7 +170,12 @@ class Distribution:
         return m1, math.sqrt(max(m2 - m1 * m1, 0.0))
 
     def cv(self) -> float:
-        """Coefficient of variation of the untruncated distribution (0 for a fixed figure)."""
+        r"""Coefficient of variation of the untruncated distribution: :math:`\sigma / |\mu|` for a
+        normal, :math:`\sqrt{e^{\sigma^2} - 1}` for a lognormal.
+
+        Returns:
+            The coefficient (0 for a fixed figure, ``inf`` for a normal of mean 0).
+        """
         if self.kind == "fixed" or self.sigma == 0.0:
             return 0.0
         if self._log:
@@ -163,7 +183,14 @@ class Distribution:
         return self.sigma / abs(self.mu) if self.mu != 0.0 else math.inf
 
     def describe(self, unit: str = "") -> str:
-        """Short text, e.g. ``normal(1.38, 0.17) m/s in 0.3-2.5``."""
+        """Short text, e.g. ``normal(1.38, 0.17) m/s in 0.3-2.5``.
+
+        Args:
+            unit: the figure's unit.
+
+        Returns:
+            The text.
+        """
         if self.kind == "fixed":
             return f"{self.mu:g} {unit}".strip()
         if self._log:
@@ -184,7 +211,14 @@ def _truncnorm_ppf(u: float, a: float, b: float) -> float:
 
 
 def fixed(value: float) -> Distribution:
-    """A figure that does not vary."""
+    """A figure that does not vary.
+
+    Args:
+        value: the figure's value (its unit).
+
+    Returns:
+        The "fixed" :class:`Distribution` at ``value``.
+    """
     return Distribution("fixed", float(value), 0.0, float(value), float(value))
 
 
@@ -207,15 +241,25 @@ class OperatorGroup:
     step_width: float | None = None
 
     def speed_cadence_rho(self) -> float:
-        """Correlation of the speed and cadence draws (Gaussian copula): ``cv_cadence /
-        cv_speed`` capped at 1, from step length and cadence varying independently between
-        people (module docstring); 0 when either figure is fixed."""
+        """Correlation of the speed and cadence draws (Gaussian copula): ``cv_cadence / cv_speed``
+        capped at 1, from step length and cadence varying independently between people (module
+        docstring).
+
+        Returns:
+            The correlation, 0 to 1 (0 when either figure is fixed).
+        """
         cs, cc = self.speed.cv(), self.cadence.cv()
         if cs == 0.0 or cc == 0.0:
             return 0.0
         return min(cc / cs, 1.0)
 
     def describe(self) -> dict[str, str | float | None]:
+        """The group as plain data (for the report).
+
+        Returns:
+            group, share, each figure's :meth:`Distribution.describe`, the speed-cadence
+            correlation and the step width (m or None).
+        """
         return {
             "group": self.name,
             "share": self.share,
@@ -233,10 +277,17 @@ class Population:
     groups: tuple[OperatorGroup, ...]
 
     def draw(self, rng: np.random.Generator) -> Walker:
-        """One operator: the group by its share, then each figure at a quantile of its
-        truncated distribution: stature at an independent uniform quantile, speed and cadence
-        at quantiles correlated by :meth:`OperatorGroup.speed_cadence_rho` (Gaussian copula).
-        Four uniforms from ``rng`` in every case. Stature is rounded to :data:`STATURE_STEP`."""
+        """One operator: the group by its share, then each figure at a quantile of its truncated
+        distribution: stature at an independent uniform quantile, speed and cadence at quantiles
+        correlated by :meth:`OperatorGroup.speed_cadence_rho` (Gaussian copula). Four uniforms
+        from ``rng`` in every case. Stature is rounded to :data:`STATURE_STEP`.
+
+        Args:
+            rng: the run's operator stream.
+
+        Returns:
+            The :class:`~mjwalk.gait.walker.Walker` (stature m, speed m/s, cadence steps/min).
+        """
         u = rng.random(4)
         cum = np.cumsum([g.share for g in self.groups])
         k = min(int(np.searchsorted(cum, u[0] * cum[-1], side="right")), len(self.groups) - 1)
@@ -259,7 +310,11 @@ class Population:
         return [g.name for g in self.groups]
 
     def describe(self) -> list[dict[str, str | float | None]]:
-        """The groups as plain data (for the report)."""
+        """The groups as plain data (for the report).
+
+        Returns:
+            One :meth:`OperatorGroup.describe` dict per group.
+        """
         return [g.describe() for g in self.groups]
 
 
@@ -298,7 +353,20 @@ def _check_range(value: float, figure: str, where: str, key: str, fail: Fail) ->
 
 
 def parse_distribution(value, figure: str, fail: Fail = _default_fail) -> Distribution:
-    """A figure of ``[population]``: a plain number (fixed) or a ``{dist = ...}`` table."""
+    """A figure of ``[population]``: a plain number (fixed) or a ``{dist = ...}`` table.
+
+    Args:
+        value: the figure's value as read from the TOML.
+        figure: "stature", "speed" or "cadence".
+        fail: builds the error to raise from a message and the offending key.
+
+    Returns:
+        The figure's :class:`Distribution`.
+
+    Raises:
+        CycleSpecError: an unknown distribution or key, a value outside the human range, or a
+            distribution with too little of its mass in the range.
+    """
     where = f"population.{figure}"
     if not isinstance(value, dict):
         v = _num(value, where, figure, fail)
@@ -371,7 +439,16 @@ def parse_distribution(value, figure: str, fail: Fail = _default_fail) -> Distri
 
 
 def preset_group(name: str, share: float = 1.0) -> OperatorGroup:
-    """The group of a :data:`PRESETS` entry: each figure normal(mean, sd), truncated."""
+    """The group of a :data:`PRESETS` entry: each figure normal(mean, sd), truncated to its
+    human range (fixed when its sd is 0).
+
+    Args:
+        name: the preset's name.
+        share: the group's share of the runs.
+
+    Returns:
+        The :class:`OperatorGroup`.
+    """
     p = PRESETS[name]
     figs = {}
     for f in FIGURES:
@@ -388,6 +465,9 @@ def parse_population(table, humanoid_stature: float, fail: Fail = _default_fail)
         table: the parsed TOML table.
         humanoid_stature: the ``[humanoid]`` stature (m), used when no figure gives one.
         fail: builds the error to raise from a message and the offending key.
+
+    Returns:
+        The population (one group per preset of ``mix``, else one group).
 
     Raises:
         CycleSpecError: unknown keys, presets or distributions; shares that are not positive;

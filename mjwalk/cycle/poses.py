@@ -9,11 +9,17 @@ from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
+from scipy.optimize import brentq
 
+from mjwalk.arms.chain import ARM_JOINTS, arm_joint
 from mjwalk.body.humanoid import pelvis_height
+from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.curves import smoothstep
-from mjwalk.timeline.frames import ease_arms, frames_from_legs, room_and_away, yaw_quat
+from mjwalk.body.legs.footcheck import lowest_point
+from mjwalk.timeline.collisions import collision_report
+from mjwalk.timeline.frames import CARRY_POSE, ease_arms, frames_from_legs, room_and_away, yaw_quat
 from mjwalk.timeline.parts import hand_poses
+from mjwalk.timeline.timeline import Timeline
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
@@ -33,6 +39,18 @@ STEP_SPEED = 0.6
 
 
 def standing_pose(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarray:
+    """The humanoid's standing pose (its neutral joint angles) at ``(x, y)`` facing ``yaw``,
+    the pelvis at its standing height.
+
+    Args:
+        ctx: the cycle context (the humanoid and its stature).
+        x: the pelvis's position, world frame (m).
+        y: the pelvis's position, world frame (m).
+        yaw: the heading, radians from +x (counter-clockwise).
+
+    Returns:
+        (nq,) the pose.
+    """
     q = ctx.jointmap.neutral_qpos(ctx.model, ctx.spec.stature)
     r = ctx.jointmap.root
     q[r : r + 3] = [x, y, pelvis_height(ctx.spec.stature)]
@@ -42,8 +60,7 @@ def standing_pose(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarr
 
 def turn_frames(
     ctx: CycleContext,
-    x,
-    y,
+    at: tuple[float, float],
     yaw0,
     yaw1,
     fps,
@@ -51,17 +68,34 @@ def turn_frames(
     pose: np.ndarray | None = None,
     settle: np.ndarray | None = None,
 ) -> tuple[np.ndarray, float]:
-    """Frames of turning on the spot ``(x, y)`` from ``yaw0`` to ``yaw1`` (radians) at
-    :data:`TURN_SPEED`; with ``to`` = (x1, y1) the pelvis moves there during the turn (a short
-    step back, :mod:`mjwalk.cycle.standoff`; the turn lasts at least as long as that step at
-    :data:`STEP_SPEED`). The body's joints hold ``pose`` (nq,; e.g. the two-handed carrying
-    posture, :func:`carry_pose`), the standing pose by default; only the root moves.
+    r"""Frames of turning on the spot ``at`` from ``yaw0`` to ``yaw1`` (the shorter way),
+    lasting :math:`\max(\mathrm{MIN\_TURN}, |\Delta\psi| / \mathrm{TURN\_SPEED}) /
+    \mathrm{turn\_rate}` seconds (the context's ``turn_rate``); with ``to`` the pelvis moves
+    there during the turn (a short step back, :mod:`mjwalk.cycle.standoff`; the turn lasts
+    at least as long as that step at :data:`STEP_SPEED`). The body's joints hold ``pose``
+    (e.g. the two-handed carrying posture, :func:`carry_pose`), the standing pose by default;
+    only the root moves.
 
-    ``settle`` (nq,): the pose the body is in when the turn starts (a walk's last frame: the
-    last step's landing, knee flexed and pelvis low). The turn then also settles into the
-    standing pose: the joints and the pelvis height go from ``settle`` to the turn's own pose
-    with a smoothstep over the turn (at least :data:`MIN_TURN`), instead of snapping there in
-    one frame. Returns (frames, duration in seconds)."""
+    With ``settle`` (the pose the body is in when the turn starts: a walk's last frame, the
+    last step's landing, knee flexed and pelvis low) the turn also settles into the standing
+    pose: the joints and the pelvis height go from ``settle`` to the turn's own pose with a
+    smoothstep over the turn, instead of snapping there in one frame (unless the settling leg
+    would touch the scene).
+
+    Args:
+        ctx: the cycle context.
+        at: (x, y) where the operator stands, world frame (m).
+        yaw0: the heading at the start, radians.
+        yaw1: the heading at the end, radians.
+        fps: frames per second.
+        to: (x1, y1) where the pelvis ends, world frame (m); None: ``at``.
+        pose: (nq,) the joint angles held (its root ignored); None: the standing pose.
+        settle: (nq,) the pose before the turn to settle from; None: none.
+
+    Returns:
+        (frames (n, nq), duration in seconds = n / fps).
+    """
+    x, y = at
     d = (yaw1 - yaw0 + math.pi) % (2 * math.pi) - math.pi
     duration = max(MIN_TURN, abs(d) / TURN_SPEED) / ctx.turn_rate  # at the operator's cadence
     x1, y1 = (x, y) if to is None else to
@@ -95,12 +129,17 @@ def _touches(ctx: CycleContext, frames: np.ndarray) -> bool:
 
 
 def frame_contacts(ctx: CycleContext, frames: np.ndarray, fps: float = 30.0) -> list:
-    """The humanoid-scene contacts of ``frames`` (n, nq) of ``ctx``'s model at ``fps``: the
-    cycle's own contact check (:func:`~mjwalk.timeline.collisions.collision_report`, times
-    from 0 s)."""
-    from mjwalk.timeline.collisions import collision_report
-    from mjwalk.timeline.timeline import Timeline
+    """The humanoid-scene contacts of ``frames`` of ``ctx``'s model: the cycle's own contact
+    check (:func:`~mjwalk.timeline.collisions.collision_report`, times from 0 s).
 
+    Args:
+        ctx: the cycle context.
+        frames: (n, nq) poses.
+        fps: their frame rate (for the contacts' times).
+
+    Returns:
+        The contacts (:class:`~mjwalk.timeline.collisions.Contact`), empty when none.
+    """
     tl = Timeline(
         model=ctx.model,
         jointmap=ctx.jointmap,
@@ -117,8 +156,6 @@ def _feet_above_floor(ctx: CycleContext, frames: np.ndarray) -> None:
     """Raise the pelvis of ``frames`` (n, nq) in place where a blended pose puts a foot's lowest
     corner below the floor (z = 0): blending a landing pose (trailing heel raised, knee
     flexed) into the standing pose joint by joint swings that foot's toes through the floor."""
-    from mjwalk.body.legs.footcheck import lowest_point
-
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
     feet = [m.geom(f"{jm.prefix}{g}").id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
@@ -148,21 +185,33 @@ def _settle(frames: np.ndarray, start: np.ndarray, r: int, hinges: np.ndarray) -
 
 
 def hand_points(ctx: CycleContext, qpos: np.ndarray) -> np.ndarray:
-    """(F, 2, 3) world positions (m) of the left and right palm (the hand geoms' centres) in
-    the poses ``qpos`` (F, nq)."""
+    """World positions of the left and right palm (the hand geoms' centres) in the poses
+    ``qpos``.
+
+    Args:
+        ctx: the cycle context.
+        qpos: (F, nq) poses.
+
+    Returns:
+        (F, 2, 3) metres, world frame (left, right).
+    """
     return hand_poses(ctx.model, ctx.jointmap, qpos, ctx.scratch())[2]
 
 
 def carry_abduction(ctx: CycleContext, width: float) -> float:
-    """Shoulder abduction (radians, both arms) of the two-handed carrying posture
-    (:data:`~mjwalk.timeline.frames.CARRY_POSE` otherwise) that puts the palms ``width`` metres
-    apart: the hands stay on the grips of the part while it is carried. Solved by Brent's
-    method within the joint's range (clipped to it when the part is wider or narrower than the
-    arms can span)."""
-    from scipy.optimize import brentq
+    """Shoulder abduction (both arms) of the two-handed carrying posture
+    (:data:`~mjwalk.timeline.frames.CARRY_POSE` otherwise) that puts the palms ``width``
+    metres apart: the hands stay on the grips of the part while it is carried. Solved by
+    Brent's method within the joint's range (at most 1.2 rad; clipped to it when the part is
+    wider or narrower than the arms can span).
 
-    from mjwalk.timeline.frames import CARRY_POSE
+    Args:
+        ctx: the cycle context.
+        width: the part's grip distance (m).
 
+    Returns:
+        The abduction, radians.
+    """
     jm = ctx.jointmap
     q = jm.neutral_qpos(ctx.model, ctx.spec.stature)
     for side in "lr":
@@ -185,13 +234,19 @@ def carry_abduction(ctx: CycleContext, width: float) -> float:
 
 
 def carry_pose(ctx: CycleContext, q: np.ndarray, width: float) -> np.ndarray:
-    """``q`` (nq,) with both arms in the two-handed carrying posture for a part whose grips are
+    """``q`` with both arms in the two-handed carrying posture for a part whose grips are
     ``width`` metres apart: :data:`~mjwalk.timeline.frames.CARRY_POSE` with the shoulder
     abduction of :func:`carry_abduction`, the other arm joints at the standing pose (as in the
-    carrying walk's frames, :func:`walk_frames`). Radians; a new array."""
-    from mjwalk.arms.chain import ARM_JOINTS, arm_joint
-    from mjwalk.timeline.frames import CARRY_POSE
+    carrying walk's frames, :func:`walk_frames`).
 
+    Args:
+        ctx: the cycle context.
+        q: (nq,) the pose (root, trunk and legs kept).
+        width: the part's grip distance (m).
+
+    Returns:
+        (nq,) the pose, radians (a new array).
+    """
     jm = ctx.jointmap
     rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
     out = np.array(q, dtype=float)
@@ -208,14 +263,22 @@ def walk_frames(
 ) -> np.ndarray:
     """Frames of a walk after its first sample (legs from the footprints, arm swing from the
     legs). The arms swing fully only in mid-walk: the swing fades in over the first and out
-    over the last :data:`ARM_EASE` seconds, so they are at rest when the operator stops at a
-    rack or the car. ``carry`` ("left"/"right"): that hand holds the part in front of the body
-    (elbow flexed, forearm close to the trunk) instead of swinging; "both": both hands hold a
-    part whose grips are ``carry_width`` metres apart (:func:`carry_abduction`) in the carrying
-    posture throughout, without fading (the hands took the part into it at the pick and keep
-    it until the place, :func:`~mjwalk.cycle.holding.two_hand_frames`)."""
-    from mjwalk.body.legs import legs_from_walk
+    over the last :data:`~mjwalk.timeline.frames.ARM_EASE` seconds, so they are at rest when
+    the operator stops at a rack or the car.
 
+    Args:
+        ctx: the cycle context.
+        walk: the walk (:class:`~mjwalk.plan.walkpath.WalkPath`).
+        fps: frames per second.
+        carry: "left"/"right": that hand holds the part in front of the body (elbow flexed,
+            forearm close to the trunk) instead of swinging; "both": both hands hold a part
+            whose grips are ``carry_width`` metres apart in the carrying posture throughout,
+            without fading (:func:`carry_abduction`); None: both arms swing.
+        carry_width: the two-handed part's grip distance (m), with ``carry="both"``.
+
+    Returns:
+        (n, nq) the frames, at ``1/fps`` s apart from the walk's start (the last at its end).
+    """
     legs = legs_from_walk(walk, ctx.spec.stature)
     t = np.arange(1, math.floor(walk.duration * fps) + 1) / fps
     if len(t) == 0 or t[-1] < walk.duration - 1e-9:

@@ -8,12 +8,25 @@ second."""
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
 
 import mujoco
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 from mjwalk.anthropometry import knee_height
+from mjwalk.arms import reach as armreach  # reach_for_side looked up per call (tests spy on it)
+from mjwalk.arms.chain import (
+    arm_frames,
+    arm_joint_angles,
+    end_effector,
+    min_jerk,
+    two_link_ik_rows,
+    wrist_in_range,
+)
+from mjwalk.arms.reach import humanoid_arm
+from mjwalk.body.humanoid import PALM_SHARE
 from mjwalk.body.legs.curves import smoothstep
 from mjwalk.conventions import Side, other_side, side_prefix
 from mjwalk.cycle.crouch import bend_trunk, crouch_frames, crouch_pose, trunk_bend
@@ -54,16 +67,77 @@ READY_MIN = 0.15
 
 
 def default_timing(dist: float) -> tuple[float, float]:
-    """The reference adult's reach (MTM-1 case B) and return (case E) times, seconds, for a
-    hand movement of ``dist`` metres."""
+    """The reference adult's reach (MTM-1 case B) and return (case E) times for a hand movement
+    of ``dist`` metres.
+
+    Args:
+        dist: the hand's path, metres.
+
+    Returns:
+        (reach seconds, return seconds).
+    """
     return reach_duration(dist, None, "B"), reach_duration(dist, None, RETURN_CASE)
 
 
 def time_factor(timing: Timing | None) -> float:
-    """The operator's time factor of a ``timing(distance)`` (None: the reference adult): the
-    return time over the reference adult's (factor / pace), which times the body's bend and
-    arise."""
+    """The operator's time factor of a timing: the return time of a 1 m movement over the
+    reference adult's (factor / pace), which times the body's bend and arise.
+
+    Args:
+        timing: ``timing(distance) -> (reach s, return s)``; None: the reference adult.
+
+    Returns:
+        The factor (1 for the reference adult).
+    """
     return 1.0 if timing is None else timing(1.0)[1] / default_timing(1.0)[1]
+
+
+@dataclass(frozen=True)
+class ReachPace:
+    """How long a reach lasts and how finely it is sampled.
+
+    Attributes:
+        hold: seconds the hand stays on the target between the reach and the return.
+        fps: frames per second of the reach's frames.
+        timing: ``timing(distance)``, the (reach, return) durations in seconds of a hand
+            movement of ``distance`` metres; None: the reference adult's
+            (:func:`default_timing`).
+    """
+
+    hold: float
+    fps: float
+    timing: Timing | None = None
+
+
+@dataclass(frozen=True)
+class Lowering:
+    """How the body comes down for a reach.
+
+    Attributes:
+        lean: the trunk bends forward until the target is within the arm's reach
+            (:func:`leaning`).
+        drop: metres the pelvis is lowered in a crouch (:func:`~mjwalk.cycle.crouch.crouch_pose`);
+            0: standing.
+    """
+
+    lean: bool = False
+    drop: float = 0.0
+
+
+#: A reach standing upright (no lean, no crouch).
+STANDING = Lowering()
+
+
+@dataclass(frozen=True)
+class _Arm:
+    """The reaching arm: its side, the reach model of that side, and the humanoid's arm at the
+    model's size (``scale`` and the upper arm, forearm and hand ``lengths``,
+    :func:`~mjwalk.arms.reach.humanoid_arm`)."""
+
+    side: Side
+    model: Any
+    scale: float
+    lengths: np.ndarray
 
 
 def reach_frames(
@@ -71,51 +145,79 @@ def reach_frames(
     q0: np.ndarray,
     target_w: np.ndarray,
     approach_w: np.ndarray,
-    hold: float,
-    fps: float,
+    pace: ReachPace,
     side: Side = "left",
-    timing: Timing | None = None,
     face: np.ndarray | None = None,
-    lean: bool = False,
-    drop: float = 0.0,
+    lowering: Lowering = STANDING,
 ):
     """Frames of reaching from pose ``q0`` to ``target_w`` (world, m), holding, returning.
 
-    ``timing(distance)`` gives the (reach, return) durations in seconds of a hand movement of
-    ``distance`` metres (the hand's true path at the index knuckle, as MTM-1 measures a reach:
-    from where the hand is in ``q0`` along the planned movement to the target); default: the
-    reference adult's MTM-1 case B reach and case E return (:mod:`mjwalk.cycle.handling`).
+    ``pace.timing(distance)`` gives the (reach, return) durations in seconds of a hand movement
+    of ``distance`` metres (the hand's true path at the index knuckle, as MTM-1 measures a
+    reach: from where the hand is in ``q0`` along the planned movement to the target); default:
+    the reference adult's MTM-1 case B reach and case E return (:mod:`mjwalk.cycle.handling`).
 
     The reach model (PCA + DCS) brings the hand from rest to the pre-grasp point
     ``target_w + approach_w``; the hand then moves straight onto the target along
     ``-approach_w`` with a minimum-jerk profile (two-link IK, hand direction kept), so it comes
-    over a shelf's front edge instead of through it. The return retraces the motion. ``face``
-    (world unit vector, the normal of a grip face such as a box's side): during the approach
-    the hand also turns to lie flat on that face (the approach's direction less its component
-    along the normal), so the palm, not only the hand's end, comes onto the face.
+    over a shelf's front edge instead of through it. The return retraces the motion.
 
-    Returns (frames, hand error in metres, ReachResult of the model part)."""
-    from mjwalk.arms.chain import (
-        arm_frames,
-        arm_joint_angles,
-        min_jerk,
-        two_link_ik_rows,
-    )
-    from mjwalk.arms.reach import humanoid_arm, reach_for_side
-    from mjwalk.body.humanoid import PALM_SHARE
+    Args:
+        ctx: the run's cycle context (the humanoid, its reach models).
+        q0: (nq,) the standing pose the reach starts and ends in.
+        target_w: (3,) the hand's target, world frame (m).
+        approach_w: (3,) the pre-grasp point's offset from the target, world frame (m).
+        pace: the hold time, frame rate and timing of the reach.
+        side: the reaching arm, "left" or "right" (the right mirrors the left-arm model).
+        face: (3,) world unit normal of a grip face (a box's side): during the approach the
+            hand also turns to lie flat on that face (the approach's direction less its
+            component along the normal), so the palm comes onto the face; None: no face.
+        lowering: the trunk's lean and the crouch the reach comes down with (the other arm
+            then hangs plumb from the bending trunk).
 
-    m, jm, model = ctx.model, ctx.jointmap, ctx.reach_model_for(side)
+    Returns:
+        (frames (F, nq) of the reach, hold and return; the hand's end's distance (m) from
+        ``target_w`` at the end of the reach, as the humanoid holds it; the reach model's
+        ReachResult).
+    """
+    model = ctx.reach_model_for(side)
     # the reach is solved at the reach model's arm lengths; an operator of another stature has
     # the same arm shape scaled (Winter's shares), so the targets are scaled into the model's
     # size (directions, hence joint angles, do not change with the scale)
     scale, lengths = humanoid_arm(model, ctx.spec.stature)
+    arm = _Arm(side, model, scale, lengths)
     # ``base``: q0, or q0 bent forward at the trunk (the lean comes in with the ready phase and
     # goes with the return; the arm's poses are solved from the leaning shoulder)
     base = q0
-    if drop > 0.0:  # crouched: the pelvis lower, the trunk bent for balance (mjwalk.cycle.crouch)
-        base = crouch_pose(ctx, q0, drop)
-    if lean:
+    if lowering.drop > 0.0:  # crouched: the pelvis lower, the trunk bent (mjwalk.cycle.crouch)
+        base = crouch_pose(ctx, q0, lowering.drop)
+    if lowering.lean:
         base = leaning(ctx, base, [(side, target_w)], float(lengths.sum()) / scale - LEAN_SPARE)
+    q, res = _solve_arm(ctx, arm, base, target_w, approach_w, face)
+    timing = default_timing if pace.timing is None else pace.timing
+    low = lowering.drop > 0.0 or (lowering.lean and target_w[2] < knee_height(ctx.spec.stature))
+    frames, error = _reach_motion(
+        ctx, arm, q0, base, q, target_w, replace(pace, timing=timing), low
+    )
+    if lowering.lean or lowering.drop > 0.0:  # the other arm hangs plumb from the bending trunk
+        frames = plumb_arms(ctx, frames, q0, np.ones(len(frames)), (other_side(side),))
+    return frames, error, res
+
+
+def _solve_arm(
+    ctx: CycleContext,
+    arm: _Arm,
+    base: np.ndarray,
+    target_w: np.ndarray,
+    approach_w: np.ndarray,
+    face: np.ndarray | None,
+):
+    """The arm's joint angles (n, 7) of a reach from pose ``base`` to ``target_w`` by way of
+    the pre-grasp point ``target_w + approach_w`` (world, m): the reach model's trajectory to
+    the pre-grasp point, then the straight approach onto the target (:func:`reach_frames`),
+    and the reach model's ReachResult."""
+    side, model, scale, lengths = arm.side, arm.model, arm.scale, arm.lengths
+    m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
     data.qpos[:] = base
     mujoco.mj_kinematics(m, data)
@@ -127,7 +229,7 @@ def reach_frames(
     start = model.rest_hand  # where the model's reaches start (the ready posture)
     # a right arm mirrors the left-arm model; the fit puts the humanoid's own hand on the
     # points (the model's clips may have had arms of other proportions)
-    res = reach_for_side(model, pre, side, start, arm_lengths=lengths)
+    res = armreach.reach_for_side(model, pre, side, start, arm_lengths=lengths)
     u_last = res.directions[-1]
     n_app = max(4, len(res.directions) // 2)
     app = np.repeat(u_last[None], n_app, axis=0)
@@ -141,18 +243,8 @@ def reach_frames(
     u_app = frame.T @ -np.asarray(approach_w, dtype=float)
     u_app /= max(float(np.linalg.norm(u_app)), 1e-9)
     if face is not None:
-        # in the face's plane: the approach's direction there, which keeps the wrists level
-        # with the grips and the forearms above a shelf board's front edge (the model's last
-        # direction, up for a part above the shoulder, would not); the model's own when the
-        # approach runs along the normal (grips one behind the other)
-        n_s = frame.T @ np.asarray(face, dtype=float)
-        u_face = u_app - (u_app @ n_s) * n_s
-        if np.linalg.norm(u_face) < 0.1:
-            u_face = u_last[2] - (u_last[2] @ n_s) * n_s
-        u_face /= max(float(np.linalg.norm(u_face)), 1e-9)
-    u_end, elbow_end = _wrist_feasible(
-        ctx, base, side, end, u_face if face is not None else u_app, u_last, lengths
-    )
+        u_app = _in_face(u_app, frame.T @ np.asarray(face, dtype=float), u_last)
+    u_end, elbow_end = _wrist_feasible(ctx, base, side, end, u_app, u_last, lengths)
     model_dirs = res.directions
     if face is not None:
         # a grip face: the hand turns to it during the last third of the movement to the
@@ -169,15 +261,83 @@ def reach_frames(
     hints = np.array([blend_dir(u_last[0], elbow_end, tau) for tau in taus]) * lengths[0]
     app[:, 0], app[:, 1] = two_link_ik_rows(wrists, lengths[0], lengths[1], hints)  # (row-wise)
     directions = np.concatenate([model_dirs, app])
-    q = arm_joint_angles(directions, side)
-    if timing is None:
-        timing = default_timing
+    return arm_joint_angles(directions, side), res
+
+
+def _in_face(u_app: np.ndarray, n_s: np.ndarray, u_last: np.ndarray) -> np.ndarray:
+    """The hand's direction (unit, shoulder frame) on a grip face of normal ``n_s``: in the
+    face's plane, the approach's direction ``u_app`` there, which keeps the wrists level with
+    the grips and the forearms above a shelf board's front edge (the model's last direction,
+    up for a part above the shoulder, would not); the model's own (``u_last``'s hand) when the
+    approach runs along the normal (grips one behind the other)."""
+    u_face = u_app - (u_app @ n_s) * n_s
+    if np.linalg.norm(u_face) < 0.1:
+        u_face = u_last[2] - (u_last[2] @ n_s) * n_s
+    u_face /= max(float(np.linalg.norm(u_face)), 1e-9)
+    return u_face
+
+
+def _reach_motion(
+    ctx: CycleContext,
+    arm: _Arm,
+    q0: np.ndarray,
+    base: np.ndarray,
+    q: np.ndarray,
+    target_w: np.ndarray,
+    pace: ReachPace,
+    low: bool,
+) -> tuple[np.ndarray, float]:
+    """The frames (F, nq) of a reach with the arm's joint angles ``q`` from ``base`` (``q0``
+    leaning or crouched), at ``pace`` (its timing given), ``low``: coming down with a crouch
+    or a stoop below the knee; and the hand's error (m) from ``target_w``."""
+    m, jm, fps, side = ctx.model, ctx.jointmap, pace.fps, arm.side
+    assert pace.timing is not None
+    n_ready, n_out, n_rise, n_arm_ready, reach_back = _phase_counts(
+        ctx, arm, q0, base, q, pace, low
+    )
+    ready_pose = arm_frames(base, jm, q[:1], side, np.ones(1))[0][0]
+    w = smoothstep(np.arange(1, n_ready + 1) / (n_ready + 1))
+    # the feet stay planted while the pelvis lowers (the legs solved at every pose)
+    ready = crouch_frames(ctx, q0, ready_pose, w)
+    n_out -= n_ready
+    out, _ = arm_frames(base, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
+    data = ctx.scratch()
+    data.qpos[:] = out[-1]
+    mujoco.mj_kinematics(m, data)
+    # the hand's end as the humanoid holds it (its hand body's -z axis, after the joint ranges)
+    tip = hand_tip(data, m, jm, side, arm.lengths[2] / arm.scale)
+    error = float(np.linalg.norm(tip - target_w))
+    n_hold = max(0, round(pace.hold * fps))
+    n_back = max(1, round(reach_back * fps))
+    n_back = max(2, n_back - n_arm_ready)
+    back = _retraced(out, n_back)
+    rise = ready[::-1]  # ... the ready posture, hanging (standing up from a crouch)
+    if n_rise != n_ready:
+        w = smoothstep(np.arange(1, n_rise + 1) / (n_rise + 1))[::-1]
+        rise = crouch_frames(ctx, q0, ready_pose, w)
+    back = np.vstack([back[1:], rise, q0[None]])
+    return np.vstack([ready, out, np.repeat(out[-1:], n_hold, axis=0), back]), error
+
+
+def _phase_counts(
+    ctx: CycleContext,
+    arm: _Arm,
+    q0: np.ndarray,
+    base: np.ndarray,
+    q: np.ndarray,
+    pace: ReachPace,
+    low: bool,
+) -> tuple[int, int, int, int, float]:
+    """Frame counts of a reach's phases: (ready phase with any crouch, reach out including
+    the ready phase, rise, the arm's own ready phase) and the return's duration (s)."""
+    assert pace.timing is not None
+    timing, fps = pace.timing, pace.fps
     # MTM-1 times a reach by the true path of the hand, not the straight line from start to
     # end (MTM-1 data card, Reach: "distance moved ... is the true path"; Freivalds & Niebel
     # 2014, ch. 12): the humanoid's index knuckle from where it is in q0 (the ready phase bends
     # the arm into the model's start), along the model's trajectory and the approach
-    knuckle = PALM_SHARE * lengths[2] / scale
-    ready_len, model_len = _hand_path(ctx, q0, q, side, knuckle, base)
+    knuckle = PALM_SHARE * arm.lengths[2] / arm.scale
+    ready_len, model_len = _hand_path(ctx, q0, q, arm.side, knuckle, base)
     reach_out, reach_back = timing(ready_len + model_len)
     n_out = max(2, round(reach_out * fps))
     # The reach model's trajectories start at its ready posture (ReachModel.rest_hand; the
@@ -189,7 +349,7 @@ def reach_frames(
     share = ready_len / max(ready_len + model_len, 1e-9)
     n_ready = min(n_out - 2, max(1, round(max(share * n_out, READY_MIN * fps))))
     n_arm_ready = n_rise = n_ready
-    if drop > 0.0 or (lean and target_w[2] < knee_height(ctx.spec.stature)):
+    if low:
         # the crouch (or a stoop for a target below the knee: MTM-1's bend) comes with the
         # ready phase and the rise with the return's, each taking at least MTM-1's bend /
         # arise at the operator's time factor (its return time over the reference adult's:
@@ -199,44 +359,37 @@ def reach_frames(
         n_ready = max(n_ready, n_down)
         n_out += n_ready - n_arm_ready
         n_rise = max(n_arm_ready, round(body_motion_duration("AB") * factor * fps))
-    ready_pose = arm_frames(base, jm, q[:1], side, np.ones(1))[0][0]
-    w = smoothstep(np.arange(1, n_ready + 1) / (n_ready + 1))
-    # the feet stay planted while the pelvis lowers (the legs solved at every pose)
-    ready = crouch_frames(ctx, q0, ready_pose, w)
-    n_out -= n_ready
-    out, _ = arm_frames(base, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
-    data.qpos[:] = out[-1]
-    mujoco.mj_kinematics(m, data)
-    # the hand's end as the humanoid holds it (its hand body's -z axis, after the joint ranges)
-    error = float(np.linalg.norm(hand_tip(data, m, jm, side, lengths[2] / scale) - target_w))
-    n_hold = max(0, round(hold * fps))
-    n_back = max(1, round(reach_back * fps))
-    n_back = max(2, n_back - n_arm_ready)
-    # the reach retraced in the return's time: poses interpolated between the reach's frames
-    # (hinge angles; the root does not move during a reach), so the hand moves smoothly
-    # however the return's frame count divides the reach's
+    return n_ready, n_out, n_rise, n_arm_ready, reach_back
+
+
+def _retraced(out: np.ndarray, n_back: int) -> np.ndarray:
+    """``n_back`` poses retracing the reach's frames ``out`` (F, nq) backwards: poses
+    interpolated between the reach's frames (hinge angles; the root does not move during a
+    reach), so the hand moves smoothly however the return's frame count divides the reach's."""
+    n_out = len(out)
     src = np.linspace(0.0, n_out - 1.0, n_back)
     i0 = np.minimum(np.floor(src).astype(int), n_out - 1)
     i1 = np.minimum(i0 + 1, n_out - 1)
     w = (src - i0)[:, None]
     rev = out[::-1]
-    back = (1.0 - w) * rev[i0] + w * rev[i1]
-    rise = ready[::-1]  # ... the ready posture, hanging (standing up from a crouch)
-    if n_rise != n_ready:
-        w = smoothstep(np.arange(1, n_rise + 1) / (n_rise + 1))[::-1]
-        rise = crouch_frames(ctx, q0, ready_pose, w)
-    back = np.vstack([back[1:], rise, q0[None]])
-    frames = np.vstack([ready, out, np.repeat(out[-1:], n_hold, axis=0), back])
-    if lean or drop > 0.0:  # the other arm hangs plumb from the bending trunk
-        frames = plumb_arms(ctx, frames, q0, np.ones(len(frames)), (other_side(side),))
-    return frames, error, res
+    return (1.0 - w) * rev[i0] + w * rev[i1]
 
 
 def leaning(ctx: CycleContext, q0: np.ndarray, targets, reach: float) -> np.ndarray:
     """``q0`` with the trunk bent forward just far enough that every ``(side, target)`` of
-    ``targets`` (the target in world coordinates, m) lies within ``reach`` metres of that side's
-    shoulder (lumbar and thoracic flexion, within their ranges, :data:`LEAN_STEP` at a time:
-    :func:`~mjwalk.cycle.crouch.bend_trunk`); bent as far as they go when that is not enough."""
+    ``targets`` lies within ``reach`` metres of that side's shoulder (lumbar and thoracic
+    flexion, within their ranges, :data:`LEAN_STEP` at a time:
+    :func:`~mjwalk.cycle.crouch.bend_trunk`); bent as far as they go when that is not enough.
+
+    Args:
+        ctx: the cycle context.
+        q0: (nq,) the pose to bend.
+        targets: (side, (3,) target in the world frame, m) pairs.
+        reach: the distance (m) each target must come within of its shoulder.
+
+    Returns:
+        (nq,) the leaning pose.
+    """
     prefix = ctx.jointmap.prefix
     arms = [
         (ctx.model.body(f"{prefix}upper_arm_{side_prefix(side)}").id, np.asarray(t, dtype=float))
@@ -253,7 +406,18 @@ def leaning(ctx: CycleContext, q0: np.ndarray, targets, reach: float) -> np.ndar
 def hand_tip(data, m, jm, side, hand_length: float) -> np.ndarray:
     """World position of the end of ``side``'s hand in the pose ``data`` holds (kinematics
     done): the hand body's origin (the wrist) plus ``hand_length`` m along its -z axis, the
-    direction the humanoid's hand points (:mod:`mjwalk.body.humanoid`)."""
+    direction the humanoid's hand points (:mod:`mjwalk.body.humanoid`).
+
+    Args:
+        data: MjData of ``m`` with the kinematics done.
+        m: the humanoid's model.
+        jm: its joint map (for the name prefix).
+        side: "left" or "right".
+        hand_length: metres from the wrist along the hand.
+
+    Returns:
+        (3,) world frame, metres.
+    """
     b = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
     return data.xpos[b] - hand_length * data.xmat[b].reshape(3, 3)[:, 2]
 
@@ -263,8 +427,6 @@ def _turn_hand(directions: np.ndarray, u_end: np.ndarray, lengths: np.ndarray) -
     to ``u_end`` over the last third of the samples (a smooth blend reaching ``u_end`` at the
     last), the hand's end kept where it was (the upper arm and forearm re-solved for the
     moved wrist, the elbow swivelled as little as it can)."""
-    from mjwalk.arms.chain import end_effector, two_link_ik_rows
-
     out = np.array(directions, dtype=float)
     n_turn = max(2, len(out) // 3)
     tail = out[-n_turn:]
@@ -288,15 +450,6 @@ def _wrist_feasible(
     nearest of :data:`SWIVELS` that keeps every joint in range: people turn the elbow out or in
     to orient the hand); else the hand turned only as far as the humanoid's wrist ranges allow,
     the arm re-solved for that hand (:func:`~mjwalk.arms.chain.wrist_in_range`)."""
-    from scipy.spatial.transform import Rotation
-
-    from mjwalk.arms.chain import (
-        arm_frames,
-        arm_joint_angles,
-        two_link_ik_rows,
-        wrist_in_range,
-    )
-
     u = _within_reach(np.asarray(u_hand, dtype=float), end, lengths)
     hint = u_last[0] * lengths[0]
     wrist = end - lengths[2] * u
@@ -340,8 +493,6 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
     ``knuckle``: its distance (m) from the wrist along the hand (the operator's size).
     ``base``: the pose the arm's angles are set in (q0 bent forward, for a leaning reach).
     Computes in the context's scratch data."""
-    from mjwalk.arms.chain import arm_frames
-
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
     base = q0 if base is None else base
@@ -363,7 +514,17 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
 
 
 def blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
-    """Unit vector between unit vectors ``a`` (``tau`` = 0) and ``b`` (``tau`` = 1)."""
+    """Unit vector between unit vectors ``a`` (``tau`` = 0) and ``b`` (``tau`` = 1): the
+    normalized linear blend :math:`((1 - \tau) a + \tau b) / \\|(1 - \tau) a + \tau b\\|`.
+
+    Args:
+        a: (3,) unit vector.
+        b: (3,) unit vector.
+        tau: the blend, 0 to 1.
+
+    Returns:
+        (3,) unit vector.
+    """
     v = (1.0 - tau) * a + tau * b
     return v / max(float(np.linalg.norm(v)), 1e-9)
 
@@ -375,10 +536,20 @@ def plumb_arms(
     share: np.ndarray,
     sides=("left", "right"),
 ) -> np.ndarray:
-    """``frames`` (F, nq) with the shoulder flexions of ``sides`` raised by ``share`` (F,)
-    times the trunk's forward bend beyond ``q0``'s (lumbar and thoracic flexion, radians;
-    within the shoulder's range): at share 1 an arm hanging in ``q0`` hangs plumb from the
-    bent trunk."""
+    """``frames`` with the shoulder flexions of ``sides`` raised by ``share`` times the trunk's
+    forward bend beyond ``q0``'s (lumbar and thoracic flexion; within the shoulder's range): at
+    share 1 an arm hanging in ``q0`` hangs plumb from the bent trunk.
+
+    Args:
+        ctx: the cycle context.
+        frames: (F, nq) poses.
+        q0: (nq,) the upright pose the bend is measured from.
+        share: (F,) how much of the bend each frame's arms make up for, 0 to 1.
+        sides: the arms, "left" and/or "right".
+
+    Returns:
+        (F, nq) the poses (a new array).
+    """
     jm = ctx.jointmap
     bend = trunk_bend(ctx, frames, q0)
     out = frames.copy()

@@ -22,7 +22,6 @@ from mjwalk.cycle.types import TASK_KINDS
 if TYPE_CHECKING:
     from mjwalk.arms.reach import ReachResult
     from mjwalk.cycle.context import CycleContext
-    from mjwalk.cycle.reaching import Timing
     from mjwalk.cycle.types import Task
 
 #: Lateral offset of the shoulder from the pelvis centre (m, stature 1.75 m; Winter: 0.1·H).
@@ -70,45 +69,68 @@ class WorkingReach:
     distance: float
 
 
+@dataclass(frozen=True)
+class ReachStart:
+    """Where the operator stands and what they hold when a reach task starts (world frame,
+    metres, radians).
+
+    Attributes:
+        x, y: where the operator stands (the walk's end, or a spot a reach before stepped to).
+        yaw: the direction they face (radians from +x, counter-clockwise).
+        facing: the stand site's facing (radians), along which shelf work comes in
+            (:func:`~mjwalk.cycle.targets.approach_offset`); None: none.
+        held: grip distance (m) of a two-handed part in the hands, None: none.
+        home: where the walk ended (x, y), when the operator stands elsewhere now; None:
+            ``(x, y)``.
+    """
+
+    x: float
+    y: float
+    yaw: float
+    facing: float | None = None
+    held: float | None = None
+    home: tuple[float, float] | None = None
+
+
 def reach_task(
-    ctx: CycleContext,
-    task: Task,
-    x: float,
-    y: float,
-    yaw: float,
-    hold: float,
-    fps: float,
-    timing: Timing | None,
-    facing: float | None = None,
-    held: float | None = None,
-    home: tuple[float, float] | None = None,
+    ctx: CycleContext, task: Task, start: ReachStart, pace: reaching.ReachPace
 ) -> WorkingReach:
     """Turn towards the target of a pick/place/fasten ``task`` and reach for it from the spot
-    ``(x, y)`` where the walk ended (facing ``yaw``); when the arm would come closer to the
-    scene than :data:`~mjwalk.cycle.standoff.REACH_CLEARANCE` (or the body touch it), step back
-    from the target during the turn, :data:`~mjwalk.cycle.standoff.STEP_BACK` at a time, until
-    it is clear: the first clear spot whose hand error (m) stays within
+    ``(start.x, start.y)`` where the walk ended (facing ``start.yaw``); when the arm would come
+    closer to the scene than :data:`~mjwalk.cycle.standoff.REACH_CLEARANCE` (or the body touch
+    it), step back from the target during the turn, :data:`~mjwalk.cycle.standoff.STEP_BACK` at
+    a time, until it is clear: the first clear spot whose hand error (m) stays within
     :data:`~mjwalk.cycle.standoff.REACH_TOLERANCE` (or within the error at the walk's end
     spot, when that is larger); the clearest such spot when none within
     :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear. When the hand falls short of the
-    target from ``(x, y)`` (a spot a step back for the reach before left, a short operator), the
+    target from there (a spot a step back for the reach before left, a short operator), the
     operator first steps in towards it, by as much as the hand falls short: the first spot from
     which the hand is on its target and clear. A step never brings the pelvis closer to an
     obstacle or the floor's edge than the planner's body radius (or than it was).
-    ``timing(distance)``: the (reach, return) durations (s) of a hand movement of ``distance``
-    metres (None: the reference adult's, :func:`~mjwalk.cycle.reaching.default_timing`).
-    ``facing``: the stand site's facing (radians), along which shelf work comes in
-    (:func:`~mjwalk.cycle.targets.approach_offset`). ``held``: grip distance (m) of a
-    two-handed part in the hands (a two-handed place turns and starts its reach in the carrying
-    posture). ``home``: where the walk ended (x, y), when the operator stands elsewhere now (a
-    step for the reach before): the steps are measured from there, so each reach at a stand
-    steps back or in as far as it needs from the walk's end, and step-backs do not add up
-    (default: ``(x, y)``). When no spot brings the target (both grips of a two-handed part)
-    within the arms' reach (low, below a standing reach), the search runs again with the trunk
-    bent forward as far as the target needs (:func:`~mjwalk.cycle.reaching.leaning`), and that
-    reach is kept when it brings the hand closer; one that still touches the scene or falls
-    short crouches (:func:`_crouching_reach`)."""
+
+    The steps are measured from ``start.home`` (where the walk ended, when the operator stands
+    elsewhere now: a step for the reach before), so each reach at a stand steps back or in as
+    far as it needs from the walk's end, and step-backs do not add up. A two-handed place
+    (``start.held``) turns and starts its reach in the carrying posture; shelf work comes in
+    along ``start.facing`` (:func:`~mjwalk.cycle.targets.approach_offset`). When no spot brings
+    the target (both grips of a two-handed part) within the arms' reach (low, below a standing
+    reach), the search runs again with the trunk bent forward as far as the target needs
+    (:func:`~mjwalk.cycle.reaching.leaning`), and that reach is kept when it brings the hand
+    closer; one that still touches the scene or falls short crouches (:func:`_crouching_reach`).
+
+    Args:
+        ctx: the run's cycle context.
+        task: the pick, place or fasten.
+        start: where the operator stands, faces and what they hold (world frame, m, radians).
+        pace: the hold time, frame rate and ``timing(distance)`` of the reach (None timing:
+            the reference adult's, :func:`~mjwalk.cycle.reaching.default_timing`).
+
+    Returns:
+        The :class:`WorkingReach`: where the operator stood, the turn's and the reach's frames,
+        the hand's error and the clearance.
+    """
     assert task.site is not None  # the spec loader requires a site for reaches
+    x, y, home = start.x, start.y, start.home
     site_pos = ctx.workplace.station(task.site).pos
     hx, hy = (float(x), float(y)) if home is None else (float(home[0]), float(home[1]))
     back = np.array([hx, hy]) - reach_target(task.kind, site_pos, hx, hy)[:2]
@@ -126,12 +148,10 @@ def reach_task(
         task=task,
         x=float(x),
         y=float(y),
-        yaw=float(yaw),
-        hold=hold,
-        fps=fps,
-        timing=timing,
-        facing=facing,
-        held=held,
+        yaw=float(start.yaw),
+        pace=pace,
+        facing=start.facing,
+        held=start.held,
         home=(hx, hy),
         back=back,
         site_pos=site_pos,
@@ -164,9 +184,7 @@ class _Search:
     x: float
     y: float
     yaw: float
-    hold: float
-    fps: float
-    timing: Timing | None
+    pace: reaching.ReachPace
     facing: float | None
     held: float | None
     home: tuple[float, float]
@@ -181,7 +199,7 @@ def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> Work
     trunk forward as far as the target needs; ``drop``: crouched, the pelvis that much lower);
     None when the spot is not clear for the next walk (the planner's body radius, or the room
     there was)."""
-    ctx, task, fps = search.ctx, search.task, search.fps
+    ctx, task, fps = search.ctx, search.task, search.pace.fps
     x, y, yaw = search.x, search.y, search.yaw
     hx, hy = search.home
     xs, ys = float(hx + s * search.back[0]), float(hy + s * search.back[1])
@@ -198,19 +216,19 @@ def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> Work
         face -= side * math.asin(min(SHOULDER_OFFSET / d, 0.5))
     grip = search.held if task.hand == "both" else None
     pose = None if grip is None else carry_pose(ctx, standing_pose(ctx, x, y, yaw), grip)
-    turn, dt = turn_frames(ctx, x, y, yaw, face, fps, to=(xs, ys), pose=pose)
+    turn, dt = turn_frames(ctx, (x, y), yaw, face, fps, to=(xs, ys), pose=pose)
     approach = approach_offset(task.kind, search.site_pos, xs, ys, search.facing, search.rise)
     q0 = turn[-1]
     width = None
-    timing, hold = search.timing, search.hold
+    pace, lowering = search.pace, reaching.Lowering(lean, drop)
     if task.hand == "both":
         rf, err, res, width = two_hand_frames(
-            ctx, q0, task, approach, hold, fps, timing=timing, held=grip, lean=lean, drop=drop
+            ctx, q0, task, approach, pace, held=grip, lowering=lowering
         )
     else:
         arm: Side = "right" if task.hand == "right" else "left"
         rf, err, res = reaching.reach_frames(
-            ctx, q0, target, approach, hold, fps, arm, timing=timing, lean=lean, drop=drop
+            ctx, q0, target, approach, pace, arm, lowering=lowering
         )
     dist = ctx.clearance.distance(np.vstack([turn, rf]))
     return WorkingReach(xs, ys, face, float(s), turn, dt, rf, err, res, width, dist)

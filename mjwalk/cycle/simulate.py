@@ -26,6 +26,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
+from joblib import Parallel, delayed
 
 from mjwalk._args import as_generator, check_seed
 from mjwalk.conventions import SAMPLE_RATE_HZ
@@ -55,7 +56,10 @@ from mjwalk.cycle.types import (
     WalkRecord,
 )
 from mjwalk.cycle.walking import cycle_start, plan_cycle_walks, plan_task_walk, work_zone
+from mjwalk.ergonomics.angles import angles_from_timeline
+from mjwalk.ergonomics.assess import TaskSpan, assess_cycle
 from mjwalk.errors import CycleSpecError, InputError, PlanningError
+from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.timeline.collisions import collision_report
 from mjwalk.timeline.parts import Handling, part_tracks
 from mjwalk.timeline.timeline import Timeline
@@ -228,12 +232,20 @@ def _finish(
 
 
 def cycle_ergonomics(timeline: Timeline, spec: CycleSpec, starts, ends, cycle_time: float, wp):
-    """The ergonomics of a cycle's timeline (:func:`mjwalk.ergonomics.assess.assess_cycle`):
-    task ``i`` of ``spec`` spans frames ``starts[i]:ends[i]``; a place or fasten handles the
-    part its hand picked last (its mass and coupling); ``wp`` the Workplace (the sites)."""
-    from mjwalk.ergonomics.angles import angles_from_timeline
-    from mjwalk.ergonomics.assess import TaskSpan, assess_cycle
+    """The ergonomics of a cycle's timeline (:func:`mjwalk.ergonomics.assess.assess_cycle`): a
+    place or fasten handles the part its hand picked last (its mass and coupling).
 
+    Args:
+        timeline: the cycle's humanoid timeline.
+        spec: the cycle.
+        starts: (n_tasks,) each task's first frame.
+        ends: (n_tasks,) each task's end frame (exclusive).
+        cycle_time: the cycle's duration, seconds.
+        wp: the Workplace (the sites' positions).
+
+    Returns:
+        The run's ergonomic scores (:class:`~mjwalk.ergonomics.assess.RunErgonomics`).
+    """
     n = timeline.n_frames
     walking = np.zeros(n, dtype=bool)
     held: dict[str, list[tuple[float, str]]] = {"left": [], "right": [], "both": []}
@@ -309,12 +321,25 @@ def simulate_cycles(
     alone (``mjwalk simulate ... --only-run K``). Workers load the spec and models once each
     (the default models come from the on-disk cache). A :class:`CycleSpec` is simulated as it
     is in memory (``dataclasses.replace(spec, reach_model=...)`` runs the new model), a path is
-    read in each worker. Under
-    ``joblib.parallel_config(backend="dask")`` or ``"ray"`` the runs go to that cluster
-    unchanged.
-    """
-    from joblib import Parallel, delayed
+    read in each worker. Under ``joblib.parallel_config(backend="dask")`` or ``"ray"`` the runs
+    go to that cluster unchanged.
 
+    Args:
+        spec: the cycle, or its spec file.
+        runs: how many runs the batch has (>= 1).
+        seed: the batch's root seed.
+        n_jobs: joblib's number of workers.
+        collisions: check each run's humanoid for contacts with the scene.
+        progress: show a progress bar (tqdm).
+        only: the indices of the runs to simulate (each in ``0..runs-1``); None: all.
+        on_error: "raise" or "record" (see above).
+
+    Returns:
+        One :class:`CycleResult` per simulated run, in the order of the indices.
+
+    Raises:
+        InputError: bad ``runs``, ``only``, ``seed`` or ``on_error``.
+    """
     # a CycleSpec goes to the workers as it is (edits made in memory count), a path as a string
     job_spec: CycleSpec | str = spec if isinstance(spec, CycleSpec) else str(spec)
     if isinstance(runs, bool) or not isinstance(runs, int | np.integer) or runs < 1:
@@ -331,6 +356,7 @@ def simulate_cycles(
         raise InputError(f"simulate_cycles: on_error must be 'raise' or 'record', got {on_error!r}")
     jobs = (delayed(_run_one)(job_spec, k, seed, collisions, on_error) for k in indices)
     if progress:
+        # deferred: tqdm is optional (not a declared dependency), only needed for progress=True
         from tqdm import tqdm
 
         out = []
@@ -342,10 +368,15 @@ def simulate_cycles(
 
 
 def combined_walk(paths: list):
-    """Walk paths laid end to end as one WalkPath (a cycle's route, drawn into its video);
-    None without any walk."""
-    from mjwalk.plan.walkpath import PathStep, WalkPath
+    """Walk paths laid end to end as one WalkPath (a cycle's route, drawn into its video): each
+    path's times shifted to start one sample after the last one's end.
 
+    Args:
+        paths: the walks (:class:`~mjwalk.plan.walkpath.WalkPath`), in order.
+
+    Returns:
+        The combined WalkPath, or None without any walk.
+    """
     if not paths:
         return None
     xy, yaw, t, steps = [], [], [], []

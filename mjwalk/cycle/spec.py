@@ -72,28 +72,25 @@ The checks, each raising :class:`~mjwalk.errors.CycleSpecError` whose message st
 missing required keys; wrong types and values; sites the scene lacks (with close names); missing
 scene or model files; and impossible tasks, found by following the operator through the cycle from
 ``start``: a walk/carry to a site that is not a standing place (site higher than
-:data:`STAND_MAX_Z` or closer to an obstacle or the floor's edge than the walking radius), a
-walk/carry to where the operator already stands, a pick/place/fasten farther than
-:data:`MAX_REACH` (horizontally) from where the operator stands, and a place/fasten/carry with
-nothing in that hand (picks add a part to the hand; places and fastens take one away), and a
-one-handed pick/place/fasten while both hands hold a two-handed part.
+:data:`~mjwalk.cycle.spectask.STAND_MAX_Z` or closer to an obstacle or the floor's edge than the
+walking radius), a walk/carry to where the operator already stands, a pick/place/fasten farther
+than :data:`~mjwalk.cycle.spectask.MAX_REACH` (horizontally) from where the operator stands, and
+a place/fasten/carry with nothing in that hand (picks add a part to the hand; places and fastens
+take one away), and a one-handed pick/place/fasten while both hands hold a two-handed part.
 """
 
 from __future__ import annotations
 
-import difflib
 import math
 import re
 import tomllib
 from pathlib import Path
 
-import numpy as np
-
 from mjwalk._io import read_toml
+from mjwalk.arms.reach import load_endpoint_model
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.cycle.population import HUMANOID_STATURE_RANGE, Population, parse_population
 from mjwalk.cycle.specfile import (
-    ALL_TASK_KEYS,
     MAX_CYCLE_SECONDS,
     MIN_TAKT_SECONDS,
     REFERENCE_KEYS,
@@ -103,75 +100,21 @@ from mjwalk.cycle.specfile import (
     KeyLines,
     check_lengths,
 )
-from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task, grip_sites
-from mjwalk.errors import CycleSpecError, MjwalkError, SceneError
+from mjwalk.cycle.spectask import HANDS, check_stand, check_task, site_error
+from mjwalk.cycle.types import TASK_KINDS, CycleSpec, Task
+from mjwalk.errors import CycleSpecError, MjwalkError, PlanningError, SceneError
+
+# the grid planner looked up per call (tests replace plan_grid to show no work starts)
+from mjwalk.plan import grid as _grid
+from mjwalk.plan import occupancy as _occupancy
 from mjwalk.world.workplace import Workplace, shared_workplace
 
-#: Highest a standing site may lie above the floor, metres.
-STAND_MAX_Z = 0.05
-#: Farthest horizontal distance from the standing site to a handled site (arm's reach), metres.
-MAX_REACH = 0.9
 #: Allowed humanoid stature, metres.
 STATURE_RANGE = HUMANOID_STATURE_RANGE
 #: Allowed walking (body) radius, metres.
 RADIUS_RANGE = (0.1, 0.6)
 #: Largest walk length a [reference] table may give (m): a plausibility bound (a hall's walk).
 MAX_REFERENCE_M = 1000.0
-HANDS = ("left", "right")
-#: The heaviest part a pick may declare (kg): beyond any manual lift (the revised NIOSH
-#: equation's load constant is 23 kg).
-MAX_PART_MASS = 100.0
-#: Couplings of a part (the revised NIOSH lifting equation's Table 7) and the default (see the
-#: module docstring).
-COUPLINGS = ("good", "fair", "poor")
-DEFAULT_COUPLING = "poor"
-#: Accepted values of a task's ``hand`` ("both": two-handed, see above).
-HAND_VALUES = (*HANDS, "both")
-
-
-def _site_error(
-    check: Checker, workplace: Workplace, name: str, table: str, index: int | None, key: str
-) -> CycleSpecError:
-    close = difflib.get_close_matches(name, list(workplace.stations), n=3, cutoff=0.5)
-    hint = f"; did you mean {', '.join(repr(c) for c in close)}?" if close else ""
-    return check.fail(
-        f"key {key!r} {check.where(table, index)}: the scene {workplace.name!r} has no site "
-        f"named {name!r}{hint}",
-        table,
-        index,
-        key,
-    )
-
-
-def _check_stand(
-    check: Checker,
-    workplace: Workplace,
-    name: str,
-    radius: float,
-    table: str,
-    index: int | None,
-    key: str,
-) -> None:
-    """Raise unless site ``name`` is a place on the floor with room for the body."""
-    st = workplace.stations[name]
-    height = float(st.pos[2] - workplace.floor_z)
-    if height > STAND_MAX_Z:
-        raise check.fail(
-            f"key {key!r} {check.where(table, index)}: site {name!r} is {height:.2f} m above the "
-            f"floor, not a standing place (standing sites lie within {STAND_MAX_Z} m of the floor)",
-            table,
-            index,
-            key,
-        )
-    room = float(workplace.walk_clearance(np.asarray(st.xy)))
-    if room < radius:
-        raise check.fail(
-            f"key {key!r} {check.where(table, index)}: site {name!r} is {room:.2f} m from an "
-            f"obstacle or the floor's edge, closer than the walking radius {radius:g} m",
-            table,
-            index,
-            key,
-        )
 
 
 def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> CycleSpec:
@@ -191,20 +134,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         CycleSpecError: ``<file>:<line>: ...`` naming the offending key (see module docstring).
     """
     path = Path(path)
-    try:
-        data, text = read_toml(path, "cycle spec", CycleSpecError)
-    except tomllib.TOMLDecodeError as exc:
-        m = re.search(r"line (\d+)", str(exc))
-        line = int(m.group(1)) if m else 1
-        msg = f"{path}:{line}: TOML syntax error: {exc}"
-        single = re.search(r"^[ \t]*\[[ \t]*task[ \t]*\]", path.read_text("utf-8"), re.M)
-        if single:  # [task] then [[task]]: tomllib cites the second
-            at = path.read_text("utf-8").count("\n", 0, single.start()) + 1
-            msg += f"; [task] at line {at} is one table: write [[task]] for every task"
-        err = CycleSpecError(msg)
-        err.path, err.line, err.key = path, line, None
-        raise err from exc
-
+    data, text = _read(path)
     check = Checker(path, KeyLines(text))
     check_lengths(check, data)
     check.keys(data, TOP_KEYS)
@@ -213,30 +143,14 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
             what = "at least one [[task]] table" if key == "task" else f"{key} = ..."
             raise check.fail(f"missing required key {key!r} at the top level ({what})", key=key)
     name = check.string(data, "name") if "name" in data else ""
-
-    tables: dict[str, dict] = {}
-    for table, allowed in TABLE_KEYS.items():
-        value = data.get(table, {})
-        if not isinstance(value, dict):
-            raise check.fail(f"{table!r} must be a table ([{table}])", key=table)
-        check.keys(value, allowed, table)
-        tables[table] = value
+    tables = _tables(check, data)
     stature = DEFAULT_STATURE
     if "stature" in tables["humanoid"]:
         stature = check.number(tables["humanoid"], "stature", *STATURE_RANGE, "m", "humanoid")
     radius = BODY_RADIUS
     if "radius" in tables["walking"]:
         radius = check.number(tables["walking"], "radius", *RADIUS_RANGE, "m", "walking")
-    takt = None
-    if "takt" in data:
-        takt = check.number(data, "takt", 0.0, MAX_CYCLE_SECONDS, "s")
-        if takt < MIN_TAKT_SECONDS:
-            raise check.fail(
-                f"key 'takt' at the top level: {takt:g} s is shorter than any cycle can be (at "
-                f"least {MIN_TAKT_SECONDS:g} s: one pick takes about a second); takt is the "
-                "seconds allowed per cycle, e.g. 60",
-                key="takt",
-            )
+    takt = _takt(check, data)
     population: Population | None = None
     if "population" in data:
 
@@ -245,25 +159,7 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
 
         population = parse_population(data["population"], stature, pop_fail)
     base = path.resolve().parent
-    # "default", a model file, or for reach_right None: the reach model mirrored
-    models: dict[str, str | None] = {"step": "default", "reach": "default", "reach_right": None}
-    for key in TABLE_KEYS["models"]:
-        if key in tables["models"] and tables["models"][key] != "default":
-            models[key] = str(check.file(tables["models"], key, base, "models"))
-        elif key in tables["models"]:
-            models[key] = "default"
-    for key in ("reach", "reach_right"):
-        file = models[key]
-        if file is None or file == "default":
-            continue
-        # the kind of model, before any work (a few ms)
-        from mjwalk.arms.reach import load_endpoint_model
-
-        try:
-            load_endpoint_model(file)
-        except MjwalkError as exc:
-            raise check.fail(f"key {key!r} in [models]: {exc}", "models", None, key) from None
-
+    models = _models(check, tables["models"], base)
     scene = check.file(data, "scene", base)
     if workplace is None:
         try:
@@ -273,33 +169,9 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
 
     start = check.string(data, "start")
     if start not in workplace.stations:
-        raise _site_error(check, workplace, start, "", None, "start")
-    _check_stand(check, workplace, start, radius, "", None, "start")
-
-    raw_tasks = data["task"]
-    if isinstance(raw_tasks, dict):  # [task] written for [[task]]: cite the table's line
-        raise check.fail(
-            "[task] is one table; write [[task]] (double brackets: an array of tables, one "
-            "per task)",
-            "task",
-        )
-    if not isinstance(raw_tasks, list) or not raw_tasks:
-        raise check.fail("key 'task' must be one or more [[task]] tables", key="task")
-    tasks: list[Task] = []
-    stand = start
-    held = dict.fromkeys(HANDS, 0)
-    held["both"] = -1  # the task index of the two-handed part in the hands, -1: none
-    for i, raw in enumerate(raw_tasks):
-        if not isinstance(raw, dict):
-            raise check.fail(f"task {i + 1} must be a table ([[task]])", "task", i)
-        tasks.append(_task(check, workplace, raw, i, radius, stand, held))
-        if TASK_KINDS[tasks[-1].kind].motion == "walk":
-            assert tasks[-1].site is not None  # checked by _task: walks need a site
-            stand = tasks[-1].site
-    try:
-        check_durations(tasks)
-    except CycleSpecError as exc:
-        raise check.fail(str(exc), "task", len(tasks) - 1, "duration") from None
+        raise site_error(check, workplace, start, "", None, "start")
+    check_stand(check, workplace, start, radius, "", None, "start")
+    tasks = _tasks(check, workplace, data["task"], start, radius)
     waits = sum(t.duration or 0.0 for t in tasks if TASK_KINDS[t.kind].motion == "wait")
     if takt is not None and takt < waits:
         raise check.fail(
@@ -325,6 +197,104 @@ def load_cycle_spec(path: str | Path, *, workplace: Workplace | None = None) -> 
         reference=reference,
         reference_source=source,
     )
+
+
+def _read(path: Path) -> tuple[dict, str]:
+    """The TOML file's data and text; a syntax error as a CycleSpecError citing its line (and
+    a ``[task]`` written for ``[[task]]``)."""
+    try:
+        return read_toml(path, "cycle spec", CycleSpecError)
+    except tomllib.TOMLDecodeError as exc:
+        m = re.search(r"line (\d+)", str(exc))
+        line = int(m.group(1)) if m else 1
+        msg = f"{path}:{line}: TOML syntax error: {exc}"
+        single = re.search(r"^[ \t]*\[[ \t]*task[ \t]*\]", path.read_text("utf-8"), re.M)
+        if single:  # [task] then [[task]]: tomllib cites the second
+            at = path.read_text("utf-8").count("\n", 0, single.start()) + 1
+            msg += f"; [task] at line {at} is one table: write [[task]] for every task"
+        err = CycleSpecError(msg)
+        err.path, err.line, err.key = path, line, None
+        raise err from exc
+
+
+def _tables(check: Checker, data: dict) -> dict[str, dict]:
+    """The optional tables ([humanoid], [models], [walking], ...), each checked to be a table
+    of known keys (empty when absent)."""
+    tables: dict[str, dict] = {}
+    for table, allowed in TABLE_KEYS.items():
+        value = data.get(table, {})
+        if not isinstance(value, dict):
+            raise check.fail(f"{table!r} must be a table ([{table}])", key=table)
+        check.keys(value, allowed, table)
+        tables[table] = value
+    return tables
+
+
+def _takt(check: Checker, data: dict) -> float | None:
+    """The top-level ``takt`` (seconds), None without one; at least :data:`MIN_TAKT_SECONDS`."""
+    takt = None
+    if "takt" in data:
+        takt = check.number(data, "takt", 0.0, MAX_CYCLE_SECONDS, "s")
+        if takt < MIN_TAKT_SECONDS:
+            raise check.fail(
+                f"key 'takt' at the top level: {takt:g} s is shorter than any cycle can be (at "
+                f"least {MIN_TAKT_SECONDS:g} s: one pick takes about a second); takt is the "
+                "seconds allowed per cycle, e.g. 60",
+                key="takt",
+            )
+    return takt
+
+
+def _models(check: Checker, table: dict, base: Path) -> dict[str, str | None]:
+    """The [models] table as model name -> "default", an absolute file path (relative to
+    ``base``), or for reach_right None: the reach model mirrored. Each reach model file is
+    loaded once to check its kind, before any work (a few ms)."""
+    models: dict[str, str | None] = {"step": "default", "reach": "default", "reach_right": None}
+    for key in TABLE_KEYS["models"]:
+        if key in table and table[key] != "default":
+            models[key] = str(check.file(table, key, base, "models"))
+        elif key in table:
+            models[key] = "default"
+    for key in ("reach", "reach_right"):
+        file = models[key]
+        if file is None or file == "default":
+            continue
+        try:
+            load_endpoint_model(file)
+        except MjwalkError as exc:
+            raise check.fail(f"key {key!r} in [models]: {exc}", "models", None, key) from None
+    return models
+
+
+def _tasks(
+    check: Checker, workplace: Workplace, raw_tasks, start: str, radius: float
+) -> list[Task]:
+    """The [[task]] tables checked in order (:func:`~mjwalk.cycle.spectask.check_task`),
+    following the operator from ``start`` and what the hands hold; then their durations."""
+    if isinstance(raw_tasks, dict):  # [task] written for [[task]]: cite the table's line
+        raise check.fail(
+            "[task] is one table; write [[task]] (double brackets: an array of tables, one "
+            "per task)",
+            "task",
+        )
+    if not isinstance(raw_tasks, list) or not raw_tasks:
+        raise check.fail("key 'task' must be one or more [[task]] tables", key="task")
+    tasks: list[Task] = []
+    stand = start
+    held = dict.fromkeys(HANDS, 0)
+    held["both"] = -1  # the task index of the two-handed part in the hands, -1: none
+    for i, raw in enumerate(raw_tasks):
+        if not isinstance(raw, dict):
+            raise check.fail(f"task {i + 1} must be a table ([[task]])", "task", i)
+        tasks.append(check_task(check, workplace, raw, i, radius, stand, held))
+        if TASK_KINDS[tasks[-1].kind].motion == "walk":
+            assert tasks[-1].site is not None  # checked by check_task: walks need a site
+            stand = tasks[-1].site
+    try:
+        check_durations(tasks)
+    except CycleSpecError as exc:
+        raise check.fail(str(exc), "task", len(tasks) - 1, "duration") from None
+    return tasks
 
 
 def _reference(check: Checker, table, tasks: list[Task]) -> tuple[dict | None, str]:
@@ -380,10 +350,6 @@ def _check_routes(
     where the operator stands (grid A* with the walking radius, :func:`mjwalk.plan.grid.
     plan_grid`, on the scene's shared occupancy grid: milliseconds per route): a wall or a
     gap narrower than the body between two sites would make every run fail."""
-    from mjwalk.errors import PlanningError
-    from mjwalk.plan import grid as _grid
-    from mjwalk.plan import occupancy as _occupancy
-
     occupancy = None
     stand = start
     seen: set[tuple[str, str]] = set()
@@ -412,7 +378,14 @@ def _check_routes(
 def check_durations(tasks) -> None:
     """Raise CycleSpecError when the tasks' ``duration``s (seconds) add up to more than
     :data:`MAX_CYCLE_SECONDS` (or one is negative or not finite): checked before a cycle's
-    timeline is laid out, also for specs built in Python."""
+    timeline is laid out, also for specs built in Python.
+
+    Args:
+        tasks: the cycle's tasks (their ``duration``, seconds or None).
+
+    Raises:
+        CycleSpecError: naming the task with a bad duration, or the total.
+    """
     total = 0.0
     for i, task in enumerate(tasks):
         if task.duration is None:
@@ -426,163 +399,3 @@ def check_durations(tasks) -> None:
             f"the tasks' durations add up to {total:g} s, more than the longest cycle mjwalk "
             f"simulates ({MAX_CYCLE_SECONDS:g} s)"
         )
-
-
-def _task(
-    check: Checker,
-    workplace: Workplace,
-    raw: dict,
-    i: int,
-    radius: float,
-    stand: str,
-    held: dict[str, int],
-) -> Task:
-    """Check the ``i``-th task given where the operator stands and what each hand holds
-    (``held`` is updated)."""
-    t = "task"
-    where = check.where(t, i)
-    own = (k for kind in TASK_KINDS.values() for k in kind.keys if k not in ALL_TASK_KEYS)
-    check.keys(raw, (*ALL_TASK_KEYS, *dict.fromkeys(own)), t, i)
-    if "kind" not in raw:
-        raise check.fail(f"missing required key 'kind' {where}", t, i, "kind")
-    kind = raw["kind"]
-    if kind not in TASK_KINDS:
-        close = difflib.get_close_matches(str(kind), TASK_KINDS, n=1, cutoff=0.5)
-        hint = f"; did you mean {close[0]!r}?" if close else ""
-        raise check.fail(
-            f"key 'kind' {where}: {kind!r} is not a task kind ({' | '.join(TASK_KINDS)}){hint}",
-            t,
-            i,
-            "kind",
-        )
-    allowed = TASK_KINDS[kind].keys
-    for key in raw:
-        if key not in allowed:
-            raise check.fail(
-                f"key {key!r} {where} does not apply to a {kind!r} task "
-                f"(keys of a {kind} task: {', '.join(allowed)})",
-                t,
-                i,
-                key,
-            )
-    motion = TASK_KINDS[kind].motion
-    required = ("duration",) if motion == "wait" else ("site",)
-    for key in required:
-        if key not in raw:
-            raise check.fail(f"missing required key {key!r} {where} ({kind} task)", t, i, key)
-
-    site = check.string(raw, "site", t, i) if "site" in raw else None
-    if site is not None and site not in workplace.stations:
-        raise _site_error(check, workplace, site, t, i, "site")
-    hand = None
-    if "hand" in raw:
-        hand = raw["hand"]
-        if hand not in HAND_VALUES:
-            raise check.fail(
-                f"key 'hand' {where} must be 'left', 'right' or 'both', got {hand!r}", t, i, "hand"
-            )
-    duration = None
-    if "duration" in raw:
-        duration = check.number(raw, "duration", 0.0, MAX_CYCLE_SECONDS, "s", t, i)
-    route = check.string(raw, "route", t, i) if "route" in raw else None
-    part = check.string(raw, "part", t, i) if "part" in raw else None
-    mass = check.number(raw, "mass", 0.0, MAX_PART_MASS, "kg", t, i) if "mass" in raw else 0.0
-    coupling = check.string(raw, "coupling", t, i) if "coupling" in raw else DEFAULT_COUPLING
-    if coupling not in COUPLINGS:
-        raise check.fail(
-            f"key 'coupling' {where} must be one of {', '.join(COUPLINGS)}, got {coupling!r}",
-            t,
-            i,
-            "coupling",
-        )
-
-    if motion == "walk":
-        assert site is not None  # required above
-        if site == stand:
-            raise check.fail(
-                f"key 'site' {where}: the operator already stands at {site!r}", t, i, "site"
-            )
-        _check_stand(check, workplace, site, radius, t, i, "site")
-        if TASK_KINDS[kind].carries:
-            if hand is None:
-                hand = next((h for h in HANDS if held[h] > 0), "left")
-            if any(held[h] == 0 for h in _hands(hand)):
-                key = "hand" if "hand" in raw else "kind"
-                raise check.fail(
-                    f"key {key!r} {where}: a carry with nothing in the {hand} hand (pick a part "
-                    "first, or use kind = 'walk')",
-                    t,
-                    i,
-                    key,
-                )
-        route = route or f"{stand}->{site}"
-    elif motion == "reach":
-        assert site is not None  # required above
-        hand = hand or "left"
-        if held["both"] >= 0 and hand != "both":
-            # both hands are on the grips of a large part (agethen2018's two-handed parts): a
-            # one-handed reach would need a hand the part cannot spare
-            raise check.fail(
-                f"key 'hand' {where}: a one-handed {kind} ({hand} hand) while both hands hold "
-                f"the two-handed part picked at task {held['both']}; place it (hand = 'both') "
-                "first",
-                t,
-                i,
-                "hand" if "hand" in raw else "kind",
-            )
-        if hand == "both":
-            for _, grip in grip_sites(site, hand):
-                if grip not in workplace.stations:
-                    raise check.fail(
-                        f"key 'site' {where}: a two-handed {kind} (hand = 'both') needs the grip "
-                        f"sites {site + '_left'!r} and {site + '_right'!r} in the scene; "
-                        f"{grip!r} is missing",
-                        t,
-                        i,
-                        "site",
-                    )
-        dist = float(np.linalg.norm(workplace.stations[site].xy - workplace.stations[stand].xy))
-        if dist > MAX_REACH:
-            raise check.fail(
-                f"key 'site' {where}: {site!r} is {dist:.2f} m (horizontally) from where the "
-                f"operator stands ({stand!r}), beyond arm's reach ({MAX_REACH} m)",
-                t,
-                i,
-                "site",
-            )
-        if TASK_KINDS[kind].part == "take":
-            for h in _hands(hand):
-                held[h] += 1
-            if hand == "both":
-                held["both"] = i
-        elif TASK_KINDS[kind].part == "put" and any(held[h] == 0 for h in _hands(hand)):
-            raise check.fail(
-                f"key 'kind' {where}: a {kind} with nothing in the {hand} hand (no part picked and "
-                "not yet "
-                "placed or fastened)",
-                t,
-                i,
-                "kind",
-            )
-        elif TASK_KINDS[kind].part == "put":
-            for h in _hands(hand):
-                held[h] -= 1
-            if hand == "both":
-                held["both"] = -1
-    return Task(
-        kind=kind,
-        site=site,
-        hand=hand or "left",
-        duration=duration,
-        route=route,
-        part=part,
-        line=check.lines.line(t, i),
-        mass=mass,
-        coupling=coupling,
-        options={k: v for k, v in raw.items() if k not in ALL_TASK_KEYS},
-    )
-
-
-def _hands(hand: str) -> tuple[str, ...]:
-    """The hands of a task's ``hand`` value ("both": left and right)."""
-    return HANDS if hand == "both" else (hand,)

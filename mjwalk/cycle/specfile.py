@@ -61,6 +61,9 @@ class KeyLines:
     ``tomllib`` keeps no positions, so this scans line by line: ``[table]`` and ``[[array]]``
     headers set the current table (the n-th ``[[task]]`` is table ``("task", n)``) and each
     ``key =`` line is recorded under it. Multi-line strings are skipped.
+
+    Args:
+        text: the TOML file's text.
     """
 
     def __init__(self, text: str):
@@ -100,7 +103,16 @@ class KeyLines:
 
     def line(self, table: str = "", index: int | None = None, key: str | None = None) -> int:
         """Line of ``key`` in ``table`` (``index``-th of an array of tables); falls back to the
-        table's header, then to the array's ``key = [...]`` line, then to line 1."""
+        table's header, then to the array's ``key = [...]`` line, then to line 1.
+
+        Args:
+            table: the table's name ("" for the top level).
+            index: the table's index in an array of tables, None for a plain table.
+            key: the key; None: the table's own line.
+
+        Returns:
+            The line number (from 1).
+        """
         if key is not None and (table, index, key) in self.keys:
             return self.keys[(table, index, key)]
         if (table, index) in self.headers:
@@ -111,6 +123,14 @@ class KeyLines:
 
 
 def unquote(s: str) -> str:
+    """``s`` stripped of whitespace and of one pair of matching quotes around it.
+
+    Args:
+        s: a TOML key or header name as written.
+
+    Returns:
+        The bare name.
+    """
     s = s.strip()
     if len(s) >= 2 and s[0] == s[-1] and s[0] in "\"'":
         return s[1:-1]
@@ -118,7 +138,12 @@ def unquote(s: str) -> str:
 
 
 class Checker:
-    """Raises CycleSpecErrors that name the file, the key and its line."""
+    """Raises CycleSpecErrors that name the file, the key and its line.
+
+    Args:
+        path: the spec file.
+        lines: the lines of its keys.
+    """
 
     def __init__(self, path: Path, lines: KeyLines):
         self.path = path
@@ -127,12 +152,33 @@ class Checker:
     def fail(
         self, msg: str, table: str = "", index: int | None = None, key: str | None = None
     ) -> CycleSpecError:
+        """The error ``<file>:<line>: msg`` for ``key`` of ``table`` (its ``path``, ``line`` and
+        ``key`` attributes set).
+
+        Args:
+            msg: what is wrong.
+            table: the key's table ("" for the top level).
+            index: the table's index in an array of tables, None otherwise.
+            key: the key; None: the table's line.
+
+        Returns:
+            The :class:`~mjwalk.errors.CycleSpecError` to raise.
+        """
         line = self.lines.line(table, index, key)
         exc = CycleSpecError(f"{self.path}:{line}: {msg}")
         exc.path, exc.line, exc.key = self.path, line, key
         return exc
 
     def where(self, table: str, index: int | None) -> str:
+        """Where a key is, for a message.
+
+        Args:
+            table: the key's table ("" for the top level).
+            index: the table's index in an array of tables (a task's), None otherwise.
+
+        Returns:
+            "at the top level", "in [table]" or "in task <index + 1>".
+        """
         if table == "":
             return "at the top level"
         if index is None:
@@ -142,6 +188,14 @@ class Checker:
     def keys(
         self, data: dict, allowed: tuple[str, ...], table: str = "", index: int | None = None
     ) -> None:
+        """Raise naming the first key of ``data`` not in ``allowed`` (with the closest valid key).
+
+        Args:
+            data: the table read from the file.
+            allowed: its valid keys.
+            table: the table's name ("" for the top level).
+            index: the table's index in an array of tables, None otherwise.
+        """
         for key in data:
             if key not in allowed:
                 close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.5)
@@ -155,6 +209,17 @@ class Checker:
                 )
 
     def string(self, data: dict, key: str, table: str = "", index: int | None = None) -> str:
+        """The non-empty string at ``data[key]``, stripped; raise naming the key otherwise.
+
+        Args:
+            data: the table read from the file.
+            key: the key.
+            table: the table's name ("" for the top level).
+            index: the table's index in an array of tables, None otherwise.
+
+        Returns:
+            The string.
+        """
         value = data[key]
         if not isinstance(value, str) or not value.strip():
             raise self.fail(
@@ -175,6 +240,21 @@ class Checker:
         table: str = "",
         index: int | None = None,
     ) -> float:
+        """The finite number at ``data[key]`` within ``lo`` to ``hi``; raise naming the key
+        otherwise (a bool is not a number).
+
+        Args:
+            data: the table read from the file.
+            key: the key.
+            lo: the smallest value allowed.
+            hi: the largest value allowed (``inf``: no bound).
+            unit: the value's unit, for the message ("m", "s", "kg").
+            table: the table's name ("" for the top level).
+            index: the table's index in an array of tables, None otherwise.
+
+        Returns:
+            The value as a float.
+        """
         value = data[key]
         if isinstance(value, bool) or not isinstance(value, int | float):
             raise self.fail(
@@ -195,6 +275,18 @@ class Checker:
         return value
 
     def file(self, data: dict, key: str, base: Path, table: str = "") -> Path:
+        """The existing file named by the string at ``data[key]``, relative to ``base``; raise
+        naming the key when it is missing or a folder.
+
+        Args:
+            data: the table read from the file.
+            key: the key.
+            base: the folder relative paths start from (the spec file's).
+            table: the table's name ("" for the top level).
+
+        Returns:
+            The resolved (absolute) path.
+        """
         rel = self.string(data, key, table)
         resolved = (base / rel).resolve()
         if resolved.is_dir():
@@ -219,7 +311,12 @@ class Checker:
 def check_lengths(check: Checker, data: dict) -> None:
     """Raise naming the key of the first string (value or key) longer than
     :data:`MAX_LABEL_CHARS` (:data:`MAX_PATH_CHARS` for file paths) and of a list longer than
-    :data:`MAX_TASKS`: before anything else reads or prints them."""
+    :data:`MAX_TASKS`: before anything else reads or prints them.
+
+    Args:
+        check: the spec file's checker.
+        data: the file's parsed TOML.
+    """
 
     def visit(value, table: str, index: int | None, key: str) -> None:
         if isinstance(value, str):
@@ -270,5 +367,12 @@ def check_lengths(check: Checker, data: dict) -> None:
 
 
 def short(text: str) -> str:
-    """``text`` cut to 60 characters for a message."""
+    """``text`` cut to 60 characters for a message.
+
+    Args:
+        text: any text.
+
+    Returns:
+        ``text`` itself up to 60 characters, else its first 40 and its length.
+    """
     return text if len(text) <= 60 else f"{text[:40]}...({len(text)} characters)"

@@ -76,7 +76,14 @@ class StandZone:
     discs: tuple[tuple[float, float, float], ...]
 
     def contains(self, xy) -> bool:
-        """Whether the floor point ``xy`` lies in the zone."""
+        """Whether the floor point ``xy`` lies in the zone (within 1e-9 m of its bounds).
+
+        Args:
+            xy: (x, y[, z]) world frame, metres (z ignored).
+
+        Returns:
+            True when within ``radius`` of ``centre`` and within every disc.
+        """
         p = np.asarray(xy, dtype=float)[:2]
         if np.hypot(*(p - self.centre)) > self.radius + 1e-9:
             return False
@@ -92,18 +99,30 @@ def stand_zone(
     squarely: ArrayLike | None = None,
     hands: Sequence[str | None] | None = None,
 ) -> StandZone:
-    """The zone around the stand site ``centre`` (x, y) for work on ``targets`` (k, 3) by a
-    walker of preferred ``step_length`` and ``stature`` (metres), facing ``facing`` (radians
-    from +x; None: towards the targets' centroid). ``squarely`` (k,) marks targets reached
-    facing them squarely (:func:`~mjwalk.anthropometry.hand_reach` ``turned=False``);
-    ``hands`` (k,) the hand of each target ("left", "right"; else faced squarely), for the
-    sides of the zone (:data:`SIDE_SLACK`).
+    """The zone around the stand site ``centre`` for work on ``targets`` by a walker of
+    preferred ``step_length`` and ``stature``.
 
     Each target's disc has the arm's reach at its height less :data:`REACH_MARGIN`, but never
     excludes the stand site itself (a site placed beyond comfortable reach keeps its own
     distance: the zone then asks no more than the site). Two half-planes keep the body in front
     of the work (:data:`SIDE_SLACK`). With more targets than discs left, the ones farthest from
-    the site are kept (they bound the zone)."""
+    the site are kept (they bound the zone).
+
+    Args:
+        centre: (x, y) the stand site, world frame (m).
+        targets: (k, 3) the reach targets, world frame (m).
+        step_length: the walker's preferred step length (m).
+        stature: the walker's stature (m).
+        facing: the heading the work is done at (radians from +x, counter-clockwise); None:
+            towards the targets' centroid.
+        squarely: (k,) marks targets reached facing them squarely
+            (:func:`~mjwalk.anthropometry.hand_reach` ``turned=False``); None: none.
+        hands: (k,) the hand of each target ("left", "right"; else faced squarely), for the
+            sides of the zone (:data:`SIDE_SLACK`); None: none.
+
+    Returns:
+        The :class:`StandZone` (world frame, metres).
+    """
     c = np.asarray(centre, dtype=float)[:2]
     pts = np.asarray(targets, dtype=float).reshape(-1, 3)
     discs = []
@@ -171,10 +190,20 @@ def work_zone(
 def start_zone(
     spec: CycleSpec, workplace: Workplace, stature: float, step_length: float
 ) -> StandZone:
-    """Where the operator stands when the cycle starts: the stand zone of the cycle's start
-    site for the work done there before the first walk (:func:`work_zone`'s rule; the same
-    arguments but the walk's index). A cycle is one of many in a shift: its operator starts
-    where the work at the start site left them, not on the site's mark."""
+    """Where the operator stands when the cycle starts: the stand zone of the cycle's start site
+    for the work done there before the first walk (:func:`work_zone`'s rule). A cycle is one
+    of many in a shift: its operator starts where the work at the start site left them, not on
+    the site's mark.
+
+    Args:
+        spec: the cycle.
+        workplace: its scene.
+        stature: the operator's stature (m).
+        step_length: the operator's step length (m).
+
+    Returns:
+        The stand zone (world frame, metres).
+    """
     return _site_zone(spec, workplace, spec.start, 0, stature, step_length)
 
 
@@ -224,6 +253,15 @@ class StandZones:
         )
 
     def get(self, i: int, stature: float, step_length: float) -> StandZone:
-        """The stand zone of walk ``i`` for an operator of ``stature`` and ``step_length``
-        (metres)."""
+        """The stand zone of walk ``i`` for an operator of ``stature`` and ``step_length``, made for
+        the key's rounded figures (millimetres) and kept.
+
+        Args:
+            i: the walk's index in the cycle's tasks.
+            stature: the operator's stature (m).
+            step_length: the operator's step length (m).
+
+        Returns:
+            The :class:`StandZone`.
+        """
         return self._memo.get((i, round(stature, 3), round(step_length, 3)))

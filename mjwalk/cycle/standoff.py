@@ -74,14 +74,22 @@ class ArmClearance:
         self.floor = floor_geoms(m)
 
     def distance(self, qpos: np.ndarray, broad_phase: bool = True) -> float:
-        """The smallest distance (m) of the humanoid to the scene over the poses ``qpos``
-        (F, nq) among the pairs closer than their margin (an arm geom within ``clearance``,
-        any other humanoid geom overlapping, the floor deeper than
-        :data:`FLOOR_TOLERANCE`); ``inf`` when no pair is that close (the poses are clear).
-        Negative: overlap. With ``broad_phase`` MuJoCo's collision detection runs only on the
-        poses where such a pair can be (:func:`~mjwalk.timeline.collisions.candidate_frames`,
-        the margins included), and once for a run of equal poses (a reach's hold: about half
-        a cycle's poses); the result is that of every pose (``broad_phase=False``)."""
+        """The smallest distance of the humanoid to the scene over the poses ``qpos`` among the
+        pairs closer than their margin (an arm geom within ``clearance``, any other humanoid geom
+        overlapping, the floor deeper than :data:`FLOOR_TOLERANCE`). With ``broad_phase``
+        MuJoCo's collision detection runs only on the poses where such a pair can be
+        (:func:`~mjwalk.timeline.collisions.candidate_frames`, the margins included), and once for
+        a run of equal poses (a reach's hold: about half a cycle's poses); the result is that of
+        every pose (``broad_phase=False``).
+
+        Args:
+            qpos: (F, nq) or (nq,) the poses.
+            broad_phase: skip the poses no close pair can be in.
+
+        Returns:
+            The distance, metres (negative: overlap); ``inf`` when no pair is that close (the poses
+            are clear).
+        """
         m, d = self.model, self.data
         best = np.inf
         poses = np.atleast_2d(qpos)
@@ -105,13 +113,24 @@ class ArmClearance:
         return best
 
     def clear(self, qpos: np.ndarray) -> bool:
-        """True when every pose of ``qpos`` keeps the arms ``clearance`` metres from the scene
-        and nothing else of the humanoid touches it."""
+        """Whether every pose keeps the arms ``clearance`` metres from the scene and nothing else of
+        the humanoid touches it.
+
+        Args:
+            qpos: (F, nq) or (nq,) the poses.
+
+        Returns:
+            True when :meth:`distance` is ``inf``.
+        """
         return self.distance(qpos) == np.inf
 
 
 def step_back_offsets() -> np.ndarray:
-    """The step-back distances (m) tried in order: 0, :data:`STEP_BACK`, ... up to
-    :data:`MAX_STEP_BACK`."""
+    """The step-back distances tried in order: 0, :data:`STEP_BACK`, ... up to
+    :data:`MAX_STEP_BACK`.
+
+    Returns:
+        (n,) metres.
+    """
     n = round(MAX_STEP_BACK / STEP_BACK)
     return np.arange(n + 1) * STEP_BACK

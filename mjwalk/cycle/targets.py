@@ -9,6 +9,8 @@ import math
 import mujoco
 import numpy as np
 
+from mjwalk.arms.chain import arm_segment_lengths
+from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.cycle.types import TASK_KINDS
 
 #: The hand stops this far above a pick/place site (m) and this far in front of a fasten site.
@@ -22,6 +24,19 @@ HEADROOM_HITS = 8
 
 
 def reach_target(kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndarray:
+    """Where the hand aims for a task at ``site_pos``: :data:`PICK_CLEARANCE` above a pick or
+    place site; :data:`FASTEN_STANDOFF` in front of a fasten site, horizontally towards the
+    operator.
+
+    Args:
+        kind: the task's kind ("pick", "place", "fasten").
+        site_pos: (3,) the site, world frame (m).
+        x: the operator's position, world frame (m).
+        y: the operator's position, world frame (m).
+
+    Returns:
+        (3,) the hand's target, world frame (m).
+    """
     if TASK_KINDS[kind].approach == "surface":  # in front of the surface, towards the operator
         d = np.array([x, y]) - site_pos[:2]
         d /= max(np.linalg.norm(d), 1e-9)
@@ -37,11 +52,25 @@ def approach_offset(
     facing: float | None = None,
     rise: float = APPROACH_UP,
 ) -> np.ndarray:
-    """Pre-grasp offset (world, m): back towards the operator, and up for shelf work (by
-    ``rise``, at most :data:`APPROACH_UP`: less under a shelf, :func:`approach_rise`). Shelf
-    work (pick, place) at a stand site facing ``facing`` (radians from +x) comes in along the
-    site's facing, out of the shelf's opening, wherever in the stand zone the operator stands
-    (towards the operator, an oblique approach swept the fingers across the rack's frame)."""
+    """Pre-grasp offset: back towards the operator, and up for shelf work (by ``rise``, at most
+    :data:`APPROACH_UP`: less under a shelf, :func:`approach_rise`). Shelf work (pick, place)
+    at a stand site facing ``facing`` comes in along the site's facing, out of the shelf's
+    opening, wherever in the stand zone the operator stands (towards the operator, an oblique
+    approach swept the fingers across the rack's frame).
+
+    Args:
+        kind: the task's kind ("pick", "place", "fasten").
+        site_pos: (3,) the site, world frame (m).
+        x: the operator's position, world frame (m).
+        y: the operator's position, world frame (m).
+        facing: the stand site's facing (radians from +x, counter-clockwise); None: towards
+            the operator.
+        rise: how far the pre-grasp point may rise above the target (m).
+
+    Returns:
+        (3,) the offset of the pre-grasp point from the target, world frame (m):
+        :data:`APPROACH_BACK` horizontally, then up (0 for a fasten).
+    """
     surface = TASK_KINDS[kind].approach == "surface"
     if facing is not None and not surface:
         d = -np.array([math.cos(facing), math.sin(facing)])
@@ -55,27 +84,40 @@ def approach_offset(
 def approach_rise(
     model: mujoco.MjModel, data: mujoco.MjData, stature: float, target: np.ndarray
 ) -> float:
-    """How far (m) the pre-grasp point may rise above ``target`` (world) for an operator of
-    ``stature`` metres in the scene ``model`` (``data`` a scratch MjData of it, as
-    :func:`headroom`): :data:`APPROACH_UP`
-    in the open; under a shelf, only so far that the hand at its pre-grasp point still has its
-    own length free above it (the hand may point anywhere from level to straight down along
-    its approach, and the wrist's range turns it further where the arm comes in steeply: a
-    compartment's upper shelf otherwise took the thumb, palm and forearm of a reach into it,
-    20-30 mm deep), none when the compartment is lower than that."""
-    from mjwalk.arms.chain import arm_segment_lengths
+    r"""How far the pre-grasp point may rise above ``target`` for an operator of ``stature``:
+    :data:`APPROACH_UP` in the open; under a shelf, only so far that the hand at its
+    pre-grasp point still has its own length free above it (the hand may point anywhere from
+    level to straight down along its approach, and the wrist's range turns it further where
+    the arm comes in steeply: a compartment's upper shelf otherwise took the thumb, palm and
+    forearm of a reach into it, 20-30 mm deep), none when the compartment is lower than that:
+    :math:`\mathrm{clip}(h - l_{hand}, 0, \mathrm{APPROACH\_UP})`.
 
+    Args:
+        model: the scene (with the humanoid).
+        data: a scratch MjData of ``model`` (as :func:`headroom`).
+        stature: the operator's stature (m).
+        target: (3,) the hand's target, world frame (m).
+
+    Returns:
+        The rise, metres.
+    """
     hand = float(arm_segment_lengths(stature)[2])
     return float(np.clip(headroom(model, data, target) - hand, 0.0, APPROACH_UP))
 
 
 def headroom(model: mujoco.MjModel, data: mujoco.MjData, point: np.ndarray) -> float:
-    """Free height (m) straight up from ``point`` (world) to the first scene geom of ``model``
-    that collides (geoms with neither contype nor conaffinity, and the humanoid's, let the ray
-    through); ``inf`` when nothing is above. ``data`` is a scratch MjData of ``model``: its
-    kinematics are computed here (the humanoid's pose does not count)."""
-    from mjwalk.body.humanoid import HUMAN_GROUP
+    """Free height straight up from ``point`` to the first scene geom of ``model`` that collides
+    (geoms with neither contype nor conaffinity, and the humanoid's, let the ray through).
 
+    Args:
+        model: the scene.
+        data: a scratch MjData of ``model``: its kinematics are computed here (the humanoid's
+            pose does not count).
+        point: (3,) the point, world frame (m).
+
+    Returns:
+        The height, metres; ``inf`` when nothing is above.
+    """
     m = model
     mujoco.mj_kinematics(m, data)  # the scene's geoms in place (the humanoid's do not count)
     groups = np.ones(6, dtype=np.uint8)

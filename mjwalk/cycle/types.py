@@ -86,8 +86,16 @@ TASK_KINDS: dict[str, TaskKind] = {
 
 
 def grip_sites(site: str, hand: str) -> list[tuple[str, str]]:
-    """(side, site name) pairs of the hands reaching for ``site``: ``[(hand, site)]`` for one
-    hand, ``[("left", site + "_left"), ("right", site + "_right")]`` for ``hand = "both"``."""
+    """The (side, site name) pairs of the hands reaching for ``site``.
+
+    Args:
+        site: the task's site.
+        hand: "left", "right" or "both".
+
+    Returns:
+        ``[(hand, site)]`` for one hand, ``[("left", site + "_left"), ("right", site +
+        "_right")]`` for ``hand = "both"``.
+    """
     if hand == "both":
         return [("left", f"{site}_left"), ("right", f"{site}_right")]
     return [(hand, site)]
@@ -299,14 +307,25 @@ class CycleResult:
         return "" if self.operator is None else self.operator.group
 
     def walk_lengths(self) -> dict[str, list[float]]:
-        """Walk lengths (metres) by route label."""
+        """Walk lengths by route label.
+
+        Returns:
+            Route label -> the lengths (m) of the run's walks with that label, in order.
+        """
         out: dict[str, list[float]] = {}
         for w in self.walks:
             out.setdefault(w.route, []).append(w.length)
         return out
 
     def summary(self) -> dict:
-        """Plain-data summary (JSON-ready)."""
+        """Plain-data summary (JSON-ready).
+
+        Returns:
+            A dict: run, seed, entropy, cycle time (s), operator (:func:`operator_dict`), walks
+            (route, sites, length m, duration s, grid-A* length m), tasks (index, kind, site, start
+            and end s), the number of collisions, the largest hand error (m) and the number of
+            reaches outside the model's range.
+        """
         return {
             "run": self.run,
             "seed": self.seed,
@@ -335,8 +354,15 @@ class CycleResult:
 
 
 def operator_dict(walker: Walker | None) -> dict | None:
-    """A run's operator as plain data: group, stature (m), speed (m/s), cadence (steps/min),
-    step_width (m or None), pace (speed / reference speed); None without one."""
+    """A run's operator as plain data.
+
+    Args:
+        walker: the operator; None: none (the reference adult).
+
+    Returns:
+        group, stature (m), speed (m/s), cadence (steps/min), step_width (m or None), pace
+        (speed / reference speed); None without an operator.
+    """
     if walker is None:
         return None
     return {

@@ -38,10 +38,18 @@ SPOT_DRAWS = 512
 def standing_spot(
     ctx: CycleContext, zone: StandZone, rng: np.random.Generator
 ) -> tuple[float, float]:
-    """A spot (x, y) drawn uniformly from the walkable part of ``zone``: in the zone and at
-    least the cycle's body radius (plus :data:`START_MARGIN`, to set off from) from every
-    obstacle and the floor's edge. The zone's own centre (the site) when no draw lands
-    there."""
+    """A spot drawn uniformly from the walkable part of ``zone``: in the zone and at least the
+    cycle's body radius (plus :data:`START_MARGIN`, to set off from) from every obstacle and
+    the floor's edge.
+
+    Args:
+        ctx: the cycle context (its scene's walk field, the body radius).
+        zone: the stand zone.
+        rng: the generator drawn from (:data:`SPOT_DRAWS` candidates at once).
+
+    Returns:
+        (x, y) world frame, metres; the zone's own centre (the site) when no draw lands there.
+    """
     field = ctx.workplace.walk_field()
     r = zone.radius * np.sqrt(rng.uniform(size=SPOT_DRAWS))
     a = rng.uniform(0.0, 2.0 * np.pi, SPOT_DRAWS)
@@ -56,9 +64,17 @@ def standing_spot(
 
 
 def cycle_start(ctx: CycleContext, rng: np.random.Generator, walker=None) -> tuple[float, float]:
-    """Where the cycle's operator (``walker``; None: the cycle's own humanoid and step
-    model) stands at the start (x, y), metres: a :func:`standing_spot` of :func:`start_zone`
-    drawn with ``rng`` (``simulate_cycle``'s standing-spot stream)."""
+    """Where the cycle's operator stands at the start: a :func:`standing_spot` of
+    :func:`start_zone` drawn with ``rng`` (``simulate_cycle``'s standing-spot stream).
+
+    Args:
+        ctx: the cycle context.
+        rng: the generator drawn from.
+        walker: the operator; None: the cycle's own humanoid and step model.
+
+    Returns:
+        (x, y) world frame, metres.
+    """
     stature = walker.stature if walker is not None else ctx.spec.stature
     step = walker.step_length if walker is not None else ctx.step_model.pace().step_length
     return standing_spot(ctx, start_zone(ctx.spec, ctx.workplace, stature, step), rng)
@@ -86,17 +102,29 @@ def plan_task_walk(
     yaw: float | None = None,
     face: float | None = None,
 ):
-    """The walk of task ``i`` (a walk or carry) from ``start`` (x, y), as a cycle plans it:
-    steps from the cycle's step model (conditioned on ``walker`` when given), ending within
+    """The walk of task ``i`` (a walk or carry) from ``start``, as a cycle plans it: steps from
+    the cycle's step model (conditioned on ``walker`` when given), ending within
     :data:`SPOT_REACH` step lengths of a spot of the task's stand zone (:func:`work_zone`, for
-    the walker's stature and step length) drawn with ``spots`` (:func:`standing_spot`; None:
-    with ``rng``), and inside the zone. ``yaw`` (radians): the heading the operator stands at
-    (the task before's): the walk sets off from it, turning on the spot first as far as that
-    pays against turning while walking (``WalkRequest(turn_on_spot=True)``); None: it
-    sets off around the downhill heading. ``face`` (radians): the heading the operator works
-    at after the walk (the goal site's): the walk bends into it as people's do
-    (``WalkRequest(goal_heading=...)``, :mod:`mjwalk.plan.guide`); None: it ends as
-    it comes."""
+    the walker's stature and step length) drawn with ``spots`` (:func:`standing_spot`), and
+    inside the zone.
+
+    Args:
+        ctx: the cycle context.
+        i: the task's index in ``ctx.spec.tasks``.
+        start: (x, y) where the operator stands, world frame (m).
+        rng: the run's generator (the planner's draws).
+        walker: the operator; None: the cycle's own step model.
+        spots: the standing-spot stream; None: ``rng``.
+        yaw: the heading the operator stands at (radians; the task before's): the walk sets off
+            from it, turning on the spot first as far as that pays against turning while walking
+            (``WalkRequest(turn_on_spot=True)``); None: it sets off around the downhill heading.
+        face: the heading the operator works at after the walk (radians; the goal site's): the
+            walk bends into it as people's do (``WalkRequest(goal_heading=...)``,
+            :mod:`mjwalk.plan.guide`); None: it ends as it comes.
+
+    Returns:
+        The planned :class:`~mjwalk.plan.walkpath.WalkPath`.
+    """
     task = ctx.spec.tasks[i]
     assert task.site is not None  # the spec loader requires a site for walks
     model = ctx.step_model.for_walker(walker)  # the model itself for None
@@ -122,15 +150,23 @@ def plan_cycle_walks(
     start=None,
     spots: np.random.Generator | None = None,
 ) -> list:
-    """Only the walks of one cycle, in order, as :func:`simulate_cycle` plans them with the
-    same ``rng`` (the run's generator; arms and handling draw from spawned streams) from the
-    same ``start`` (x, y: the run's :func:`cycle_start`; None: the start site itself) with the
-    same ``spots`` (the standing-spot stream, after the start's draw; None: ``rng``): a list
-    of (task index, start site, goal site, WalkPath). Fast (no animation): for studies of the
-    routes alone (``benchmarks/bench_variability.py``). Each walk sets off from the heading
+    """Only the walks of one cycle, in order, as :func:`simulate_cycle` plans them with the same
+    ``rng`` (arms and handling draw from spawned streams). Fast (no animation): for studies of
+    the routes alone (``benchmarks/bench_variability.py``). Each walk sets off from the heading
     of the site the operator stands at (the start site's, then the last walk's goal's):
     ``simulate_cycle`` sets off from the heading of the reach done there, which faces the
-    reach's target, so a walk after a reach may differ."""
+    reach's target, so a walk after a reach may differ.
+
+    Args:
+        ctx: the cycle context.
+        rng: the run's generator.
+        walker: the operator; None: the cycle's own step model.
+        start: (x, y) the run's :func:`cycle_start`, world frame (m); None: the start site.
+        spots: the standing-spot stream, after the start's draw; None: ``rng``.
+
+    Returns:
+        A list of (task index, start site, goal site, WalkPath).
+    """
     spec = ctx.spec
     here = spec.start
     if start is None:

@@ -360,6 +360,9 @@ def test_a_pick_from_a_shelf_above_the_head_ends_on_the_target(scenes_dir, tmp_p
     ctx = prepare(load_cycle_spec(tmp_path / "c.toml"))
     st = ctx.workplace.station("stand_bench_a")
     r = reachspot.reach_task(
-        ctx, ctx.spec.tasks[0], st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching.default_timing
+        ctx,
+        ctx.spec.tasks[0],
+        reachspot.ReachStart(st.pos[0], st.pos[1], st.yaw),
+        reaching.ReachPace(0.4, 30.0, reaching.default_timing),
     )
     assert r.error < 0.01 and r.distance == np.inf

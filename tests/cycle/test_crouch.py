@@ -99,7 +99,10 @@ def test_a_reach_into_a_low_compartment_crouches_and_is_clear(ctx, monkeypatch):
 
     def reach():
         return reachspot.reach_task(
-            ctx, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching.default_timing
+            ctx,
+            task,
+            reachspot.ReachStart(st.pos[0], st.pos[1], st.yaw),
+            reaching.ReachPace(0.4, 30.0, reaching.default_timing),
         )
 
     with monkeypatch.context() as m:
@@ -147,7 +150,10 @@ def test_a_two_handed_pick_from_the_floor_crouches_with_both_hands_on_the_part(p
     task = ctx.spec.tasks[0]
     st = ctx.workplace.station("stand_bench_a")
     r = reachspot.reach_task(
-        ctx, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching.default_timing
+        ctx,
+        task,
+        reachspot.ReachStart(st.pos[0], st.pos[1], st.yaw),
+        reaching.ReachPace(0.4, 30.0, reaching.default_timing),
     )
     assert r.error < 0.01 and r.distance == np.inf
     assert not frame_contacts(ctx, np.vstack([r.turn, r.frames]))
@@ -200,7 +206,10 @@ def test_a_two_handed_pick_deep_on_a_bench_bends_briefly(scenes_dir, tmp_path):
 
     def reach():
         return reachspot.reach_task(
-            ctx, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching.default_timing
+            ctx,
+            task,
+            reachspot.ReachStart(st.pos[0], st.pos[1], st.yaw),
+            reaching.ReachPace(0.4, 30.0, reaching.default_timing),
         )
 
     r = reach()
@@ -231,7 +240,10 @@ def test_a_one_handed_stoop_below_the_knee_takes_mtm_bend_and_arise(scenes_dir, 
     ctx = prepare(load_cycle_spec(tmp_path / "c.toml"))
     st = ctx.workplace.station("stand_bench_a")
     r = reachspot.reach_task(
-        ctx, ctx.spec.tasks[0], st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching.default_timing
+        ctx,
+        ctx.spec.tasks[0],
+        reachspot.ReachStart(st.pos[0], st.pos[1], st.yaw),
+        reaching.ReachPace(0.4, 30.0, reaching.default_timing),
     )
     assert r.error < 0.01 and r.distance == np.inf
     z = r.frames[:, ctx.jointmap.root + 2]

@@ -170,7 +170,7 @@ def test_turns_on_the_spot_go_at_the_operators_cadence(ctx):
     from mjwalk.gait.walker import REFERENCE_CADENCE, Walker
 
     assert operator_context(ctx, None) is ctx
-    _, ref = turn_frames(ctx, 0.0, 0.0, 0.0, np.pi, 30.0)
+    _, ref = turn_frames(ctx, (0.0, 0.0), 0.0, np.pi, 30.0)
     slow = Walker(stature=ctx.spec.stature, speed=1.0, cadence=90.0)
-    _, dt = turn_frames(operator_context(ctx, slow), 0.0, 0.0, 0.0, np.pi, 30.0)
+    _, dt = turn_frames(operator_context(ctx, slow), (0.0, 0.0), 0.0, np.pi, 30.0)
     assert dt / ref == pytest.approx(REFERENCE_CADENCE / 90.0, rel=0.05)

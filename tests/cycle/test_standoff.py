@@ -12,7 +12,7 @@ import mjwalk.cycle.reaching as reaching
 import mjwalk.cycle.reachspot as reachspot
 import mjwalk.cycle.targets as targets
 from mjwalk.cycle.poses import frame_contacts
-from mjwalk.cycle.reachspot import reach_task
+from mjwalk.cycle.reachspot import ReachStart, reach_task
 from mjwalk.cycle.simulate import prepare, simulate_cycles
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.standoff import REACH_CLEARANCE, ArmClearance
@@ -28,6 +28,10 @@ from mjwalk.cycle.standoff import REACH_CLEARANCE, ArmClearance
 CLOSE_TO_RACK1 = (-2.66876101, -1.70230865)
 
 
+#: The reaches' hold (s), frame rate and the reference adult's timing.
+PACE = reaching.ReachPace(0.4, 30.0, reaching.default_timing)
+
+
 @pytest.fixture(scope="module")
 def ctx(scenes_dir):
     return prepare(load_cycle_spec(scenes_dir / "assembly_station.toml"))
@@ -38,7 +42,7 @@ def _pick(ctx, site: str):
 
 
 def _reach(ctx, site, xy, yaw):
-    return reach_task(ctx, _pick(ctx, site), xy[0], xy[1], yaw, 0.4, 30.0, reaching.default_timing)
+    return reach_task(ctx, _pick(ctx, site), ReachStart(xy[0], xy[1], yaw), PACE)
 
 
 def _contacts(ctx, frames):
@@ -117,13 +121,8 @@ def test_step_backs_do_not_add_up(ctx):
     r = reach_task(
         ctx,
         _pick(ctx, "rack2_screw1"),
-        here[0],
-        here[1],
-        st.yaw,
-        0.4,
-        30.0,
-        reaching.default_timing,
-        home=(float(st.pos[0]), float(st.pos[1])),
+        ReachStart(here[0], here[1], st.yaw, home=(float(st.pos[0]), float(st.pos[1]))),
+        PACE,
     )
     assert r.step_back == 0.0 and r.error < 0.01 and r.distance == np.inf
     np.testing.assert_allclose((r.x, r.y), st.pos[:2], atol=1e-12)
@@ -144,9 +143,7 @@ def test_a_target_below_a_standing_reach_is_reached_bending_forward(low_compartm
     lumbar = jm.adr("lumbar_flex")
 
     def reach():
-        return reach_task(
-            low, task, st.pos[0], st.pos[1], st.yaw, 0.4, 30.0, reaching.default_timing
-        )
+        return reach_task(low, task, ReachStart(st.pos[0], st.pos[1], st.yaw), PACE)
 
     r = reach()
     assert r.error < 0.01

@@ -258,8 +258,8 @@ def test_the_humanoids_own_hand_ends_on_each_target(monkeypatch):
     ctx = prepare(load_cycle_spec(SCENES / "assembly_station.toml"))
     real, seen = reaching.reach_frames, []
 
-    def spy(op, q0, target_w, approach_w, hold, fps, side="left", timing=None, face=None, **kw):
-        frames, error, res = real(op, q0, target_w, approach_w, hold, fps, side, timing, face, **kw)
+    def spy(op, q0, target_w, approach_w, pace, side="left", face=None, **kw):
+        frames, error, res = real(op, q0, target_w, approach_w, pace, side, face, **kw)
         seen.append((op, side, np.array(target_w), frames, error))  # op: the run's operator's
         return frames, error, res
 

@@ -55,7 +55,14 @@ class CycleState:
     t: float = 0.0
 
     def moved(self, **changes: Any) -> CycleState:
-        """This state with ``changes`` (a new one: a state never changes)."""
+        """This state with ``changes`` (a new one: a state never changes).
+
+        Args:
+            **changes: new values of fields, by name (e.g. ``x=1.2, here="stand_rack1"``).
+
+        Returns:
+            A new :class:`CycleState`.
+        """
         return replace(self, **changes)
 
 
@@ -137,20 +144,47 @@ class Action:
 
     def check(self, ctx: CycleContext) -> None:
         """Raise :class:`~mjwalk.errors.CycleSpecError` when the task cannot be performed in
-        ``ctx``'s scene (called for every task before the cycle starts). Nothing by default."""
+        ``ctx``'s scene (called for every task before the cycle starts). Nothing by default.
+
+        Args:
+            ctx: the prepared cycle.
+        """
 
     def plan(self, run: CycleRun, state: CycleState) -> Any:
-        """What the action draws or decides before moving (a walk's path, a reach's hold
-        time); passed to :meth:`perform`. None by default."""
+        """What the action draws or decides before moving (a walk's path, a reach's hold time);
+        passed to :meth:`perform`. None by default.
+
+        Args:
+            run: what stays the same through the run.
+            state: where the operator is before the task.
+
+        Returns:
+            The action's plan (None by default).
+        """
         return None
 
     def perform(self, run: CycleRun, state: CycleState, plan: Any) -> Performed:
-        """The action's frames, how long each piece lasts, the state it leaves and its record."""
+        """The action's frames, how long each piece lasts, the state it leaves and its record.
+
+        Args:
+            run: what stays the same through the run.
+            state: where the operator is before the task.
+            plan: what :meth:`plan` returned.
+
+        Returns:
+            What the action did (:class:`Performed`).
+        """
         raise NotImplementedError(f"{type(self).__name__}.perform")
 
 
 def action_class(kind: TaskKind) -> type[Action]:
     """The :class:`Action` subclass that ``kind.action`` names.
+
+    Args:
+        kind: the task kind.
+
+    Returns:
+        The action class.
 
     Raises:
         CycleSpecError: no action of that name is defined.

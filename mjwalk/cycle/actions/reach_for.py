@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from mjwalk.cycle.actions.base import Action, CycleRun, CycleState, Performed
 from mjwalk.cycle.handling import RETURN_CASE, reach_duration, task_factor
-from mjwalk.cycle.reachspot import reach_task
+from mjwalk.cycle.reaching import ReachPace
+from mjwalk.cycle.reachspot import ReachStart, reach_task
 from mjwalk.cycle.types import ArmRecord
 
 
@@ -16,8 +17,17 @@ class Reach(Action):
     two-handed take leaves the part in the hands (the state's ``grip``); a put frees them."""
 
     def plan(self, run: CycleRun, state: CycleState) -> tuple[float, float]:
-        """(hold seconds, task-time factor): the factor drawn from the handling stream; the
-        hold is the task's ``duration`` (else the kind's default) at the operator's pace."""
+        """The reach's hold time and its task-time factor: the factor drawn from the run's handling
+        stream (lognormal, median 1); the hold is the task's ``duration`` (else the kind's
+        default) times the factor over the operator's pace.
+
+        Args:
+            run: what stays the same through the run (its handling stream is drawn from).
+            state: where the operator is (unused: the draw does not depend on it).
+
+        Returns:
+            (hold seconds, task-time factor).
+        """
         kind, task = self.kind, self.task
         assert kind.default_hold is not None
         hold = task.duration if task.duration is not None else kind.default_hold
@@ -26,7 +36,18 @@ class Reach(Action):
         return hold, factor
 
     def perform(self, run: CycleRun, state: CycleState, plan: tuple[float, float]) -> Performed:
-        """The turn (with any step) and the reach, hold and return (its two pieces)."""
+        """The turn (with any step) and the reach, hold and return (its two pieces), at the
+        operator's MTM-1 reach and return times times the plan's factor.
+
+        Args:
+            run: what stays the same through the run.
+            state: where the operator stands and what the hands hold.
+            plan: (hold seconds, task-time factor) from :meth:`plan`.
+
+        Returns:
+            The two pieces (turn, reach), the state after (where the operator stands, the
+            two-handed grip held or released) and the :class:`~mjwalk.cycle.types.ArmRecord`.
+        """
         hold, factor = plan
         case, walker, task = self.kind.reach_case, run.walker, self.task
         assert case is not None and task.site is not None  # reach kinds have both
@@ -39,10 +60,8 @@ class Reach(Action):
 
         ctx, fps = run.ctx, run.fps
         facing = ctx.workplace.station(state.here).yaw
-        r = reach_task(
-            ctx, task, state.x, state.y, state.yaw, hold, fps, timing, facing, state.grip,
-            state.home,
-        )  # fmt: skip
+        start = ReachStart(state.x, state.y, state.yaw, facing, state.grip, state.home)
+        r = reach_task(ctx, task, start, ReachPace(hold, fps, timing))
         grip = state.grip
         if task.hand == "both":
             grip = r.width if self.kind.part == "take" else None  # released when put down

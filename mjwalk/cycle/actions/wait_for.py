@@ -12,7 +12,17 @@ class Wait(Action):
     to the video frame (at least one frame)."""
 
     def perform(self, run: CycleRun, state: CycleState, plan: None) -> Performed:
-        """The last pose repeated (one piece)."""
+        """The last pose repeated for the task's ``duration`` (else the kind's default), rounded to
+        the frame (at least one frame): one piece.
+
+        Args:
+            run: what stays the same through the run (its ``fps``).
+            state: where the operator is (its ``pose`` is held).
+            plan: None (a wait plans nothing).
+
+        Returns:
+            One piece of (n, nq) frames lasting n / fps seconds, ``state`` unchanged, no record.
+        """
         assert self.kind.default_hold is not None
         hold = self.task.duration if self.task.duration is not None else self.kind.default_hold
         n = max(1, round(hold * run.fps))

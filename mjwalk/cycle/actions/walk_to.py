@@ -16,8 +16,16 @@ class Walk(Action):
     posture, turns included. Its record is the walk with its grid-A* route for the report."""
 
     def plan(self, run: CycleRun, state: CycleState) -> WalkPath:
-        """The walk from where the operator stands, in the heading they face, to a spot in
-        the site's stand zone (drawn from the run's generator and standing stream)."""
+        """The walk from where the operator stands, in the heading they face, to a spot in the
+        site's stand zone (drawn from the run's generator and standing stream).
+
+        Args:
+            run: what stays the same through the run (its generators and walker).
+            state: where the operator stands and faces.
+
+        Returns:
+            The planned walk (world frame, m, s).
+        """
         ctx, goal = run.ctx, self.goal
         face = ctx.workplace.station(goal).yaw
         xy = (state.x, state.y)
@@ -32,25 +40,50 @@ class Walk(Action):
         return self.task.site
 
     def perform(self, run: CycleRun, state: CycleState, plan: WalkPath) -> Performed:
-        """Turn, walk ``plan`` and turn into the site's facing (its three pieces)."""
+        """Turn, walk ``plan`` and turn into the site's facing (its three pieces); the last turn
+        settles from the walk's last step into standing.
+
+        Args:
+            run: what stays the same through the run.
+            state: where the operator stands before the walk (and any two-handed grip).
+            plan: the walk from :meth:`plan`.
+
+        Returns:
+            The three pieces, the state at the site (facing its yaw, ``home`` the walk's end) and
+            the :class:`~mjwalk.cycle.types.WalkRecord`.
+        """
         ctx, fps, path, width = run.ctx, run.fps, plan, state.grip
         face = ctx.workplace.station(self.goal).yaw
         pose = None if width is None else carry_pose(ctx, run.first_pose, width)
-        turn, dt = turn_frames(ctx, state.x, state.y, state.yaw, float(path.yaw[0]), fps, pose=pose)
+        turn, dt = turn_frames(
+            ctx, (state.x, state.y), state.yaw, float(path.yaw[0]), fps, pose=pose
+        )
         carry = self.task.hand if self.kind.carries else None
         if width is not None:
             carry = "both"
         wf = walk_frames(ctx, path, fps, carry, width)
         x, y = (float(v) for v in path.xy[-1])
         # the last step lands knee flexed, pelvis low: the turn settles into standing
-        end, dt2 = turn_frames(ctx, x, y, float(path.yaw[-1]), face, fps, pose=pose, settle=wf[-1])
+        end, dt2 = turn_frames(
+            ctx, (x, y), float(path.yaw[-1]), face, fps, pose=pose, settle=wf[-1]
+        )
         after = state.moved(x=x, y=y, yaw=face, home=(x, y), here=self.goal)
         pieces = ((turn, dt), (wf, len(wf) / fps), (end, dt2))
         return Performed(pieces, after, self.record(run, state.here, path))
 
     def record(self, run: CycleRun, start: str, path: WalkPath) -> WalkRecord:
-        """The walk from site ``start`` with the grid-A* route between the walk's own ends (not
-        the sites' marks: the walk starts and ends where the operator stands)."""
+        """The walk from site ``start`` with the grid-A* route between the walk's own ends (not the
+        sites' marks: the walk starts and ends where the operator stands).
+
+        Args:
+            run: what stays the same through the run (its context plans the grid route).
+            start: the site the walk leaves.
+            path: the walk.
+
+        Returns:
+            The :class:`~mjwalk.cycle.types.WalkRecord` (``baseline_length`` NaN when the grid
+            planner finds no route).
+        """
         base = run.ctx.baseline_route(path.xy[0], path.xy[-1])
         return WalkRecord(
             task=self.index,

@@ -1,4 +1,4 @@
-"""Two-handed pick / carry / place (issue 16 item 1, ``hand = "both"``)."""
+"""Two-handed pick / carry / place (issue 16 item 1, ``hand = "both"``; mjwalk.cycle.holding)."""
 
 import sys
 from pathlib import Path
@@ -6,6 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from mjwalk.cycle.holding import hands_moved
 from mjwalk.cycle.simulate import (
     carry_abduction,
     carry_pose,
@@ -16,6 +17,7 @@ from mjwalk.cycle.simulate import (
 )
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.errors import CycleSpecError
+from mjwalk.timeline.parts import hand_poses
 
 SPEC = Path(__file__).resolve().parents[2] / "scenes" / "assembly_station_2h.toml"
 #: Grip distance of the box in scenes/assembly_station_2h.xml (bench_a_box_left/_right), m.
@@ -168,10 +170,7 @@ def test_a_part_on_a_high_shelf_is_picked_and_placed_clear_of_the_boards(shelves
 
 
 def test_hands_moved_keeps_the_hands_directions():
-    """``_hands_moved`` moves each wrist by its offset and keeps the hand's direction."""
-    from mjwalk.cycle.holding import hands_moved
-    from mjwalk.timeline.parts import hand_poses
-
+    """``hands_moved`` moves each wrist by its offset and keeps the hand's direction."""
     ctx = prepare(load_cycle_spec(SPEC))
 
     def wrists(q):  # (2, 3): the hand bodies' origins in pose q

@@ -1,6 +1,6 @@
-"""The cycle's actions (mjwalk.cycle.actions): each task kind names its Action class, the state
-passed from action to action is immutable, and the README's worked example of a new task kind
-(an ``inspect`` action) runs as written."""
+"""The cycle's actions (mjwalk.cycle.actions, their base in mjwalk.cycle.actions.base): each
+task kind names its Action class, the state passed from action to action is immutable, and the
+README's worked example of a new task kind (an ``inspect`` action) runs as written."""
 
 from __future__ import annotations
 
@@ -10,7 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from mjwalk.cycle.actions import Action, CycleState, Reach, Wait, Walk, action_class
+from mjwalk.cycle.actions import Reach, Wait, Walk
+from mjwalk.cycle.actions.base import Action, CycleState, action_class
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.types import TASK_KINDS, TaskKind
 from mjwalk.errors import CycleSpecError, InputError

@@ -1,0 +1,48 @@
+"""mjwalk.cycle.context: a process prepares each spec once (by path, or by the pickle of an
+in-memory spec), builds each operator's humanoid once per stature, and an operator's context
+shares the cycle's caches."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+
+from mjwalk.cycle.context import HUMANOIDS, context_of, operator_context
+from mjwalk.gait.walker import REFERENCE_CADENCE, Walker
+
+
+@pytest.fixture(scope="module")
+def station(scenes_dir):
+    return scenes_dir / "assembly_station.toml"
+
+
+def test_a_spec_is_prepared_once_per_path_and_per_content(station):
+    ctx = context_of(station)
+    assert context_of(str(station)) is ctx  # the key is the path as a string
+    same = context_of(dataclasses.replace(ctx.spec))  # an equal copy: one key (its pickle)
+    assert context_of(dataclasses.replace(ctx.spec)) is same
+    assert same.spec == ctx.spec and same is not ctx
+
+
+def test_an_operators_context_has_their_humanoid_and_shares_the_caches(station):
+    ctx = context_of(station)
+    assert operator_context(ctx, None) is ctx
+    tall = operator_context(ctx, Walker(stature=1.9, speed=1.2, cadence=100.0))
+    assert tall.spec.stature == 1.9 and tall.turn_rate == pytest.approx(100.0 / REFERENCE_CADENCE)
+    assert tall.model.nq == ctx.model.nq and tall.model is not ctx.model
+    assert (tall.planners, tall.zones, tall.routes) == (ctx.planners, ctx.zones, ctx.routes)
+    scene = str(ctx.spec.scene)
+    assert tall.model is HUMANOIDS.model(scene, 1.9)[0]  # built once for that stature
+    assert tall.clearance is HUMANOIDS.clearance(scene, 1.9)
+    again = operator_context(ctx, Walker(stature=1.9, speed=1.0, cadence=90.0))
+    assert again.model is tall.model and again.turn_rate != tall.turn_rate
+    same = operator_context(ctx, Walker(stature=ctx.spec.stature, speed=1.0, cadence=90.0))
+    assert same.model is ctx.model  # the cycle's own stature: its own humanoid
+
+
+def test_grid_routes_are_kept_per_pair_of_sites(station):
+    ctx = context_of(station)
+    d = ctx.baseline("stand_rack1", "stand_rack2")
+    assert d > 0.0 and ctx.baseline("stand_rack1", "stand_rack2") == d
+    assert ctx.occupancy() is ctx.occupancy()  # the grid is built once
