@@ -3,9 +3,9 @@
 
 Run: PYTHONPATH=. python3 benchmarks/bench_leg_jumps.py [--seeds 0-5] [--n 5]
 
-Walks: the leg tests' four routes (tests/body/test_synthesis.py PLANNED_ROUTES: three station routes and
-the corridor), ``--n`` walks each for every seed in ``--seeds`` (seed 0 is the leg tests'
-fixture: its walk k is the fixture's walk k, route-major). For every step of every walk, the
+Walks: the leg tests' four routes (tests/body/test_synthesis.py PLANNED_ROUTES: three station
+routes and the corridor), ``--n`` walks each for every seed in ``--seeds`` (seed 0 is the leg
+tests' fixture: its walk k is the fixture's walk k, route-major). For every step of every walk, the
 largest change of any :func:`~mjwalk.body.legs.legs_from_walk` joint angle or of the pelvis yaw
 between two samples; for the steps above MAX_STEP_DEG: the joint, whether it belongs to the
 stance or the swing leg, the step phase of the jump, the joint's angle just before it, the step
@@ -36,7 +36,8 @@ from mjwalk.plan.walks import plan_walks
 from mjwalk.world import load_workplace
 
 ROOT = Path(__file__).resolve().parents[1]
-#: tests/body/test_synthesis.py MAX_STEP_DEG: the largest leg-joint change between two 120 Hz samples.
+#: tests/body/test_synthesis.py MAX_STEP_DEG: the largest leg-joint change between two 120 Hz
+#: samples.
 MAX_STEP_DEG = 6.0
 
 

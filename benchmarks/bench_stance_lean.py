@@ -3,8 +3,8 @@ walks: the same seeded walks planned with and without it, in the same process.
 
 Run: PYTHONPATH=. python3 benchmarks/bench_stance_lean.py [--seeds 0-10] [--n 5] [--extra 10]
 
-Walk sets: the leg tests' four routes (tests/body/test_synthesis.py PLANNED_ROUTES: three station routes
-and the corridor) for every seed in ``--seeds`` with ``--n`` walks each (seed 0 is the leg
+Walk sets: the leg tests' four routes (tests/body/test_synthesis.py PLANNED_ROUTES: three station
+routes and the corridor) for every seed in ``--seeds`` with ``--n`` walks each (seed 0 is the leg
 tests' fixture, seeds 1-10 benchmarks/bench_stance_drift.py's set), and ``--extra`` walks
 (seed 0) on each of three more routes in three scenes (open floor, corridor to the door, the
 station's 8 m walk). For each set: walks that differ (any pelvis sample more than 1e-9 m
