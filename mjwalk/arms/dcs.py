@@ -55,6 +55,7 @@ standardized training inputs (not the outputs) for that distance.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -70,6 +71,8 @@ from mjwalk.arms.dcsfile import (
 from mjwalk.arms.dcsfit import (
     SAMPLES_PER_COEFFICIENT,
     SCALINGS,
+    SelectionGrids,
+    SelectionSamples,
     design,
     forward,
     grid,
@@ -80,6 +83,7 @@ from mjwalk.arms.dcsfit import (
     solve_outputs,
     split_outputs,
 )
+from mjwalk.arms.dcsoptions import DCSOptions
 from mjwalk.errors import MjwalkError
 
 
@@ -87,35 +91,13 @@ class DCSNetwork:
     """Growing normalized-RBF network with competitive-Hebbian lateral edges.
 
     Args:
-        max_neurons: upper bound on the number of neurons.
-        error_threshold: stop growing once the training RMSE (output units) is below this.
-        max_age: lateral edges not refreshed for more than this many winning presentations of
-            their endpoint are removed.
-        width_factor: sigma_i = width_factor * mean distance of neuron i to its lateral
-            neighbours; a sequence is a grid chosen on the held-out part (see module docstring).
-        eps_winner, eps_neighbour: Kohonen learning rates of the winner and its neighbours.
-        n_epochs: presentations of the whole training set per growth step.
-        validation_fraction: share of samples held out to select the network size (0 disables).
-        n_iter_no_change: insertions without held-out improvement before growth stops.
-        ridge: Tikhonov regularization of the output least squares (relative to the design
-            scale), towards each neuron's mean target; a sequence is a grid like width_factor.
+        options: the growth and selection settings (:class:`~mjwalk.arms.dcsoptions.DCSOptions`,
+            whose docstring gives each default and its source); None: the defaults.
         rng: seed or ``numpy.random.Generator``; same seed, same network.
-        scaling: input standardization, ``"column"``, ``"global"`` or ``"point"``; a sequence
-            is a grid like width_factor (see :mod:`mjwalk.arms.dcsfit`).
-        selection: ``"holdout"`` or ``"loo"`` (PRESS on all samples; see
-            :mod:`mjwalk.arms.dcsfit`).
-        local_linear: per-neuron local linear outputs; a sequence is a grid like width_factor.
-        global_linear: add a global linear term ``T z``; a sequence is a grid like width_factor.
-            Left out, like ``local_linear``, with fewer than :data:`SAMPLES_PER_COEFFICIENT`
-            samples per input column.
-        slope_ridge: penalty of the local slopes relative to ``ridge`` (> 0); a sequence is a
-            grid like width_factor (used only with local linear outputs).
-        min_wins: neurons winning fewer training samples after an adaptation pass are removed
-            (dead units; 0 keeps every neuron).
-        trend_fallback: blend into the trend network outside the trained range (see the
-            module docstring).
-        n_networks: networks grown from independent seeds and averaged (see the module
-            docstring); the fitted attributes describe the first, ``members_`` the others.
+        **settings: fields of :class:`~mjwalk.arms.dcsoptions.DCSOptions` overriding
+            ``options`` (``DCSNetwork(max_neurons=8, rng=0)``; an unknown name raises
+            TypeError). ``n_networks > 1``: the fitted attributes describe the first network,
+            ``members_`` the others.
 
     Fitted attributes: ``centers_`` (K, d) standardized, ``outputs_`` (K, m), ``widths_`` (K,),
     ``edges_`` (K, K) bool adjacency, ``x_mean_``/``x_scale_`` (d,), ``n_neurons_``,
@@ -129,45 +111,13 @@ class DCSNetwork:
 
     def __init__(
         self,
-        max_neurons: int = 30,
-        error_threshold: float = 0.0,
-        max_age: int = 30,
-        width_factor: float = 1.0,
-        eps_winner: float = 0.05,
-        eps_neighbour: float = 0.005,
-        n_epochs: int = 3,
-        validation_fraction: float = 0.2,
-        n_iter_no_change: int = 6,
-        ridge: float = 1e-6,
+        options: DCSOptions | None = None,
+        *,
         rng: int | np.random.Generator | None = 0,
-        scaling: str | tuple[str, ...] = "column",
-        selection: str = "holdout",
-        local_linear: bool | tuple[bool, ...] = False,
-        global_linear: bool | tuple[bool, ...] = False,
-        slope_ridge: float | tuple[float, ...] = 1.0,
-        min_wins: int = 1,
-        trend_fallback: bool = False,
-        n_networks: int = 1,
+        **settings,
     ):
-        self.max_neurons = max_neurons
-        self.error_threshold = error_threshold
-        self.max_age = max_age
-        self.width_factor = width_factor
-        self.eps_winner = eps_winner
-        self.eps_neighbour = eps_neighbour
-        self.n_epochs = n_epochs
-        self.validation_fraction = validation_fraction
-        self.n_iter_no_change = n_iter_no_change
-        self.ridge = ridge
+        self.options = replace(options if options is not None else DCSOptions(), **settings)
         self.rng = rng
-        self.scaling = scaling
-        self.selection = selection
-        self.local_linear = local_linear
-        self.global_linear = global_linear
-        self.slope_ridge = slope_ridge
-        self.min_wins = min_wins
-        self.trend_fallback = trend_fallback
-        self.n_networks = n_networks
 
     # ------------------------------------------------------------------ fitting
     def fit(self, X: np.ndarray, Y: np.ndarray) -> DCSNetwork:
@@ -185,18 +135,7 @@ class DCSNetwork:
             raise MjwalkError(f"DCSNetwork.fit: need at least 2 samples, got {len(X)}")
         if not (np.isfinite(X).all() and np.isfinite(Y).all()):
             raise MjwalkError("DCSNetwork.fit: X or Y holds NaN or infinite values")
-        if self.max_neurons < 2:
-            raise MjwalkError(f"DCSNetwork: max_neurons must be >= 2, got {self.max_neurons}")
-        if int(self.min_wins) != self.min_wins or self.min_wins < 0:
-            raise MjwalkError(f"DCSNetwork: min_wins must be an integer >= 0, got {self.min_wins}")
-        if int(self.n_networks) != self.n_networks or self.n_networks < 1:
-            raise MjwalkError(
-                f"DCSNetwork: n_networks must be an integer >= 1, got {self.n_networks}"
-            )
-        if self.selection not in ("holdout", "loo"):
-            raise MjwalkError(
-                f"DCSNetwork: selection must be 'holdout' or 'loo', got {self.selection!r}"
-            )
+        self.options.check()
         scalings = self._scalings(X.shape[1])
         member_seeds = self._member_seeds()
         if len(scalings) == 1:
@@ -215,7 +154,7 @@ class DCSNetwork:
             assert best is not None
             vars(self).update(best)
         self.fallback_ = None
-        if self.trend_fallback:
+        if self.options.trend_fallback:
             self.fallback_ = DCSNetwork(**self._trend_params()).fit(X, Y[:, 0] if self.y_1d_ else Y)
         self.members_ = [
             DCSNetwork(
@@ -228,11 +167,15 @@ class DCSNetwork:
     def _scalings(self, d: int) -> tuple[str, ...]:
         """The input scalings to try (``scaling``: one or a sequence), checked for ``d``
         input columns."""
-        seq = tuple(self.scaling) if isinstance(self.scaling, list | tuple) else (self.scaling,)
+        seq = (
+            tuple(self.options.scaling)
+            if isinstance(self.options.scaling, list | tuple)
+            else (self.options.scaling,)
+        )
         if not seq or any(s not in SCALINGS for s in seq):
             raise MjwalkError(
                 f"DCSNetwork: scaling must be one of {', '.join(map(repr, SCALINGS))} or a "
-                f"sequence of them, got {self.scaling!r}"
+                f"sequence of them, got {self.options.scaling!r}"
             )
         if "point" in seq and d % 3:
             raise MjwalkError(
@@ -248,55 +191,70 @@ class DCSNetwork:
         self.x_mean_ = X.mean(axis=0)
         self.x_scale_ = input_scale(X, scaling)
         Z = (X - self.x_mean_) / self.x_scale_
+        samples = self._split(Z, Y, rng)
+        centers, ages = _start_neurons(samples.train_z, rng)
+        self.history_: list[tuple[int, float, float]] = []
+        self.n_pruned_ = 0
+        grids = self._grids(len(samples.train_z), Z.shape[1])
+        centers, ages, factor, ridge, linear, best_val = self._grow_loop(
+            samples, grids, centers, ages, rng
+        )
+        self._set_outputs(Z, Y, centers, ages, (factor, ridge, linear))
+        # without selection: the final network's training error (as the width grid's score)
+        self.selection_score_ = float(best_val) if samples.selects else self.train_rmse_
+        self.set_training_points(Z)
 
+    def _split(self, Z, Y, rng: np.random.Generator) -> SelectionSamples:
+        """Hold out ``validation_fraction`` of the samples (none with ``selection="loo"`` or
+        when fewer than two would be left to train on), drawn by one permutation."""
         n = len(Z)
-        loo = self.selection == "loo"
-        n_val = round(self.validation_fraction * n) if self.validation_fraction > 0 else 0
+        loo = self.options.selection == "loo"
+        fraction = self.options.validation_fraction
+        n_val = round(fraction * n) if fraction > 0 else 0
         if n - n_val < 2 or loo:
             n_val = 0
-        select = bool(n_val) or loo
         perm = rng.permutation(n)
         val_idx, tr_idx = perm[:n_val], perm[n_val:]
-        Ztr, Ytr = Z[tr_idx], Y[tr_idx]
+        return SelectionSamples(Z[tr_idx], Y[tr_idx], Z[val_idx], Y[val_idx], loo)
 
-        # Two neurons at distinct random training samples, joined by an edge.
-        first = rng.choice(len(Ztr), size=2, replace=False)
-        centers = Ztr[first].copy()
-        if np.allclose(centers[0], centers[1]):
-            centers[1] = centers[1] + 1e-3
-        ages = np.full((2, 2), -1, dtype=np.int64)  # -1: no edge
-        ages[0, 1] = ages[1, 0] = 0
+    def _grids(self, n_train: int, d: int) -> SelectionGrids:
+        """The width factors, ridges and output forms (local linear, global linear, slope
+        ridge) each growth step chooses among, for ``n_train`` samples of ``d`` inputs."""
+        factors = self._factors()
+        ridges = self._ridges()
+        # a linear map (global or per neuron) has one coefficient per input and output
+        linear_ok = n_train >= SAMPLES_PER_COEFFICIENT * d
+        # output forms (local linear, global linear, slope ridge), chosen like the width
+        forms = [
+            (local, glob, r)
+            for local in (grid(self.options.local_linear) if linear_ok else (False,))
+            for glob in (grid(self.options.global_linear) if linear_ok else (False,))
+            for r in (self._slope_ridges() if local else (1.0,))
+        ]
+        return SelectionGrids(factors, ridges, forms)
 
+    def _grow_loop(self, samples: SelectionSamples, grids: SelectionGrids, centers, ages, rng):
+        """Adapt, prune, score and insert until a stopping rule holds (module docstring).
+        Returns the centres, edge ages, width factor, ridge and output form of the network
+        kept (the best scored one when the steps are selected on, else the last) and the best
+        selection score."""
+        opts = self.options
+        Ztr, select = samples.train_z, samples.selects
         best = None
         best_val = np.inf
         no_change = 0
         stalled = 0  # insertions in a row whose neuron died at once
         parents: tuple[int, int] | None = None
         resid = np.zeros(len(Ztr))  # squared training error per sample, set by every step
-        self.history_ = []
-        self.n_pruned_ = 0
-        factors = self._factors()
-        ridges = self._ridges()
-        # a linear map (global or per neuron) has one coefficient per input and output
-        linear_ok = len(Ztr) >= SAMPLES_PER_COEFFICIENT * Z.shape[1]
-        # output forms (local linear, global linear, slope ridge), chosen like the width
-        forms = [
-            (local, glob, r)
-            for local in (grid(self.local_linear) if linear_ok else (False,))
-            for glob in (grid(self.global_linear) if linear_ok else (False,))
-            for r in (self._slope_ridges() if local else (1.0,))
-        ]
         while True:
             centers, ages = self._adapt(Ztr, centers, ages, rng)
             centers, ages, newest_died = self._prune(Ztr, centers, ages, parents)
             stalled = stalled + 1 if newest_died else 0
             if newest_died:  # nothing new to score; insert elsewhere (the parents' edge is cut)
-                if stalled >= max(self.n_iter_no_change, 1):
+                if stalled >= max(opts.n_iter_no_change, 1):
                     break
             else:
-                val_rmse, factor, ridge, linear, resid = score_step(
-                    Ztr, Ytr, Z[val_idx], Y[val_idx], centers, ages, ridges, factors, forms, loo
-                )
+                val_rmse, factor, ridge, linear, resid = score_step(samples, grids, centers, ages)
                 train_rmse = float(np.sqrt(resid.mean()))
                 self.history_.append((len(centers), train_rmse, val_rmse if select else np.nan))
                 if val_rmse < best_val - 1e-12:
@@ -306,17 +264,22 @@ class DCSNetwork:
                 else:
                     no_change += 1
                 if (
-                    train_rmse <= self.error_threshold
-                    or len(centers) >= self.max_neurons
+                    train_rmse <= opts.error_threshold
+                    or len(centers) >= opts.max_neurons
                     or len(centers) >= len(Ztr)
-                    or (select and no_change >= self.n_iter_no_change)
+                    or (select and no_change >= opts.n_iter_no_change)
                 ):
                     break
             parents = self._insert_at_largest_error(Ztr, centers, ages, resid)
             centers, ages = self._grow(centers, ages, *parents)
-
         if select and best is not None:
             centers, ages, factor, ridge, linear = best
+        return centers, ages, factor, ridge, linear, best_val
+
+    def _set_outputs(self, Z, Y, centers, ages, chosen) -> None:
+        """Set the fitted network: the grids' ``chosen`` (width factor, ridge, output form),
+        the widths, and the output vectors solved on every sample (train + held-out)."""
+        factor, ridge, linear = chosen
         edges = ages >= 0
         self.width_factor_ = float(factor)
         self.ridge_ = float(ridge)
@@ -324,7 +287,6 @@ class DCSNetwork:
         self.global_linear_ = bool(linear[1])
         self.slope_ridge_ = float(linear[2])
         widths = neuron_widths(centers, edges, factor)
-        # Final output vectors on every sample (train + held-out).
         self.centers_ = centers
         self.edges_ = edges
         self.widths_ = widths
@@ -338,24 +300,23 @@ class DCSNetwork:
                 ((forward(Z, centers, widths, stacked, edges, linear) - Y) ** 2).sum(axis=1).mean()
             )
         )
-        # without selection: the final network's training error (as the width grid's score)
-        self.selection_score_ = float(best_val) if select else self.train_rmse_
-        self.set_training_points(Z)
 
     def _member_seeds(self) -> list[int]:
         """Seeds of the networks after the first (``n_networks - 1``): spawned from an integer
         seed without drawing from it (the first network is the one ``n_networks=1`` grows),
         else drawn from the generator first."""
-        if self.n_networks <= 1:
+        if self.options.n_networks <= 1:
             return []
         if isinstance(self.rng, np.random.Generator):
             entropy = int(self.rng.integers(2**63))
             return [
                 int(x)
-                for x in np.random.default_rng(entropy).integers(2**31, size=self.n_networks - 1)
+                for x in np.random.default_rng(entropy).integers(
+                    2**31, size=self.options.n_networks - 1
+                )
             ]
         seq = np.random.SeedSequence(self.rng)
-        return [int(c.generate_state(1)[0]) for c in seq.spawn(self.n_networks - 1)]
+        return [int(c.generate_state(1)[0]) for c in seq.spawn(self.options.n_networks - 1)]
 
     def _trend_params(self) -> dict:
         """The trend network's settings: this network's, grown no further than the two
@@ -403,10 +364,10 @@ class DCSNetwork:
         """Remove dead units (fewer than ``min_wins`` wins), keeping at least two neurons.
         Returns the centres, the edge ages and whether the neuron inserted last (between
         ``parents``) died; then the parents' edge is cut, as no data joins them."""
-        if self.min_wins <= 0 or len(centers) <= 2:
+        if self.options.min_wins <= 0 or len(centers) <= 2:
             return centers, ages, False
         wins = np.bincount(np.argmin(cdist(Z, centers), axis=1), minlength=len(centers))
-        keep = wins >= self.min_wins
+        keep = wins >= self.options.min_wins
         if keep.all() or keep.sum() < 2:
             return centers, ages, False
         self.n_pruned_ += int((~keep).sum())
@@ -424,7 +385,9 @@ class DCSNetwork:
         centers = centers.copy()
         ages = ages.copy()
         k = len(centers)
-        for _ in range(self.n_epochs):
+        opts = self.options
+        max_age, eps_w, eps_n = opts.max_age, opts.eps_winner, opts.eps_neighbour
+        for _ in range(opts.n_epochs):
             for x in Z[rng.permutation(len(Z))]:
                 d = np.einsum("ij,ij->i", centers - x, centers - x)
                 if k > 2:
@@ -436,22 +399,22 @@ class DCSNetwork:
                 ages[w, row] += 1
                 ages[row, w] += 1
                 ages[w, s] = ages[s, w] = 0
-                old = ages[w] > self.max_age
+                old = ages[w] > max_age
                 ages[w, old] = -1
                 ages[old, w] = -1
                 nb = ages[w] >= 0
-                centers[w] += self.eps_winner * (x - centers[w])
-                centers[nb] += self.eps_neighbour * (x - centers[nb])
+                centers[w] += eps_w * (x - centers[w])
+                centers[nb] += eps_n * (x - centers[nb])
         return centers, ages
 
     def _factors(self) -> tuple[float, ...]:
-        return grid_values("width_factor", self.width_factor, False)
+        return grid_values("width_factor", self.options.width_factor, False)
 
     def _ridges(self) -> tuple[float, ...]:
-        return grid_values("ridge", self.ridge, True)
+        return grid_values("ridge", self.options.ridge, True)
 
     def _slope_ridges(self) -> tuple[float, ...]:
-        return grid_values("slope_ridge", self.slope_ridge, False)
+        return grid_values("slope_ridge", self.options.slope_ridge, False)
 
     def set_training_points(self, Z):
         self.train_z_ = Z
@@ -545,30 +508,9 @@ class DCSNetwork:
         """The arrays :meth:`save` writes (:func:`~mjwalk.arms.dcsfile.network_arrays`)."""
         return network_arrays(self, with_training)
 
-    _PARAMS = (
-        "max_neurons",
-        "error_threshold",
-        "max_age",
-        "width_factor",
-        "eps_winner",
-        "eps_neighbour",
-        "n_epochs",
-        "validation_fraction",
-        "n_iter_no_change",
-        "ridge",
-        "scaling",
-        "selection",
-        "local_linear",
-        "global_linear",
-        "slope_ridge",
-        "min_wins",
-        "trend_fallback",
-        "n_networks",
-    )
-
     def params(self) -> dict:
         """The constructor arguments (a seed as is; a Generator as None)."""
-        params = {k: getattr(self, k) for k in self._PARAMS}
+        params = self.options.as_dict()
         rs = self.rng
         params["rng"] = rs if isinstance(rs, int | None) else None
         return params
@@ -596,3 +538,16 @@ class DCSNetwork:
         """Read a network written by :meth:`save`; corrupt/foreign files raise ModelFileError."""
         header, data = load_npz(path, "DCS network")
         return cls.from_arrays(header, data, source=str(path))
+
+
+def _start_neurons(Z, rng: np.random.Generator):
+    """Two neurons at distinct random samples of ``Z`` (n, d), joined by an edge: their
+    centres (2, d) (nudged apart by 1e-3 when the samples coincide) and edge ages (2, 2),
+    -1 meaning no edge."""
+    first = rng.choice(len(Z), size=2, replace=False)
+    centers = Z[first].copy()
+    if np.allclose(centers[0], centers[1]):
+        centers[1] = centers[1] + 1e-3
+    ages = np.full((2, 2), -1, dtype=np.int64)  # -1: no edge
+    ages[0, 1] = ages[1, 0] = 0
+    return centers, ages

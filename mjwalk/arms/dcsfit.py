@@ -49,6 +49,7 @@ depends on the capture (docs/decisions/002-dcs-input-scaling.md). Widths and
 from __future__ import annotations
 
 import itertools
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.spatial.distance import cdist
@@ -76,14 +77,68 @@ def input_scale(X: np.ndarray, scaling: str) -> np.ndarray:
     return np.where(scale > 1e-12, scale, 1.0)
 
 
-def score_step(Ztr, Ytr, Zval, Yval, centers, ages, ridges, factors, forms, loo):
-    """The best (score, width factor, ridge, output form, squared training error per
-    sample) of the current centres over the grids: scored by PRESS (``loo``), on the
-    held-out samples ``Zval`` when there are any, else by the training error (RMSE)."""
+@dataclass(frozen=True)
+class SelectionSamples:
+    """The samples one growth step is fitted and scored on, in standardized input units.
+
+    Attributes:
+        train_z: (n, d) training inputs (the centres adapt to these).
+        train_y: (n, m) training targets.
+        val_z: (v, d) held-out inputs, v = 0 without a held-out part.
+        val_y: (v, m) held-out targets.
+        loo: score by PRESS (leave-one-out residuals) on the training samples.
+    """
+
+    train_z: np.ndarray
+    train_y: np.ndarray
+    val_z: np.ndarray
+    val_y: np.ndarray
+    loo: bool
+
+    @property
+    def selects(self) -> bool:
+        """Whether the steps are scored on data the outputs did not see (held out or PRESS)."""
+        return bool(len(self.val_z)) or self.loo
+
+
+@dataclass(frozen=True)
+class SelectionGrids:
+    """The candidates each growth step chooses among.
+
+    Attributes:
+        factors: width factors (> 0).
+        ridges: output ridges (>= 0).
+        forms: output forms ``(local linear, global linear, slope ridge)``
+            (:func:`output_form`).
+    """
+
+    factors: tuple[float, ...]
+    ridges: tuple[float, ...]
+    forms: list[tuple[bool, bool, float]]
+
+
+def score_step(samples: SelectionSamples, grids: SelectionGrids, centers, ages):
+    """The best candidate of the current centres over the grids.
+
+    Scored by PRESS (``samples.loo``), on the held-out samples when there are any, else by
+    the training error (RMSE, output units).
+
+    Args:
+        samples: the training and held-out samples (standardized inputs).
+        grids: the width factors, ridges and output forms to try.
+        centers: (K, d) neuron centres, standardized input units.
+        ages: (K, K) int edge ages, -1 where there is no edge.
+
+    Returns:
+        ``(score, width factor, ridge, output form, resid)``, ``resid`` (n,) the squared
+        training error per sample of the best candidate.
+    """
+    Ztr, Ytr, Zval, Yval = samples.train_z, samples.train_y, samples.val_z, samples.val_y
+    ridges = grids.ridges
     edges = ages >= 0
     base = neuron_widths(centers, edges, 1.0)
     best = None
-    for factor, linear in itertools.product(factors, forms):
+    for factor, linear in itertools.product(grids.factors, grids.forms):
         widths = factor * base
         F = features(Ztr, centers, widths, edges, linear)
         Fv = features(Zval, centers, widths, edges, linear) if len(Zval) else None
@@ -91,7 +146,7 @@ def score_step(Ztr, Ytr, Zval, Yval, centers, ages, ridges, factors, forms, loo)
             ridges, ridge_path(F, Ytr, len(centers), ridges), strict=True
         ):
             resid = ((F @ outputs - Ytr) ** 2).sum(axis=1)
-            if loo:  # leave-one-out residuals of the output least squares (PRESS)
+            if samples.loo:  # leave-one-out residuals of the output least squares (PRESS)
                 lev = np.minimum(hat, 1.0 - 1e-6)
                 score = float(np.sqrt((resid / (1.0 - lev) ** 2).mean()))
             elif Fv is not None:

@@ -44,7 +44,7 @@ def test_dcs_learns_smooth_map_and_beats_mean():
     base = np.sqrt(((Yt - Y.mean(0)) ** 2).sum(1).mean())
     # seeded: held-out RMSE well below the constant predictor (0.84); measured 0.16
     assert rmse < 0.3 * base
-    assert 3 <= net.n_neurons_ <= net.max_neurons
+    assert 3 <= net.n_neurons_ <= net.options.max_neurons
     assert net.edges_.shape == (net.n_neurons_,) * 2
     assert (net.edges_ == net.edges_.T).all() and not net.edges_.diagonal().any()
 
