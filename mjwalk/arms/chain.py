@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from mjwalk.anthropometry import ROM_DEG
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 
 #: Anthropometric segment lengths as shares of stature H (Winter): upper arm, forearm, hand.
@@ -196,7 +197,6 @@ def _shoulder_branch(a: np.ndarray, b: np.ndarray, c: np.ndarray, s: float):
     of 180 deg, beyond their ranges (the clipped pose then pointed the arm backwards: a
     reach to a top shelf ended 1.3 m off). Ranges: :data:`mjwalk.anthropometry.ROM_DEG`;
     ``s`` +1 for the left arm, -1 for the right."""
-    from mjwalk.anthropometry import ROM_DEG
 
     def excess(a, b, c):  # radians beyond the ranges of flexion, abduction and rotation
         out = np.zeros_like(a)

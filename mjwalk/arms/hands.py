@@ -8,8 +8,11 @@ from __future__ import annotations
 
 import functools
 
+import mujoco
 import numpy as np
+from scipy.optimize import brentq
 
+from mjwalk.body.humanoid import humanoid_model
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 from mjwalk.errors import MjwalkError
 
@@ -20,10 +23,6 @@ _OPEN_CMC, _CLOSED_FLEX = 1.1, 1.0
 
 @functools.lru_cache(maxsize=4)
 def _hand_model(stature: float):
-    import mujoco
-
-    from mjwalk.body.humanoid import humanoid_model
-
     model, jmap = humanoid_model(stature)
     return model, jmap, mujoco.MjData(model)
 
@@ -50,8 +49,6 @@ def pinch_aperture(
 ) -> float:
     """Distance (m) between the thumb tip and the index fingertip of the humanoid hand for the
     given finger joint angles (forward kinematics of mjwalk.body.humanoid in MuJoCo)."""
-    import mujoco
-
     model, jmap, data = _hand_model(round(float(stature), 4))
     p = side_prefix(side)
     q = jmap.neutral_qpos(model, stature)
@@ -72,8 +69,6 @@ def fingers_for_aperture(
 ) -> dict:
     """Finger joint angles (rad) whose thumb-index distance equals ``aperture`` metres (to
     0.1 mm) along the grip synergy; apertures outside the hand's range raise MjwalkError."""
-    from scipy.optimize import brentq
-
     lo = pinch_aperture(grip_synergy(1.0, side), side, stature)
     hi = pinch_aperture(grip_synergy(0.0, side), side, stature)
     if not lo <= aperture <= hi:
