@@ -121,7 +121,15 @@ class DCSNetwork:
 
     # ------------------------------------------------------------------ fitting
     def fit(self, X: np.ndarray, Y: np.ndarray) -> DCSNetwork:
-        """Grow the network on inputs ``X`` (N, d) and targets ``Y`` (N, m) or (N,)."""
+        """Grow the network on inputs ``X`` (N, d) and targets ``Y`` (N, m) or (N,).
+
+        Args:
+            X: (N, d) inputs, N >= 2, or (N,) for d = 1.
+            Y: (N, m) or (N,) targets.
+
+        Returns:
+            this network, fitted.
+        """
         X = np.asarray(X, dtype=float)
         Y = np.asarray(Y, dtype=float)
         if X.ndim == 1:
@@ -417,6 +425,11 @@ class DCSNetwork:
         return grid_values("slope_ridge", self.options.slope_ridge, False)
 
     def set_training_points(self, Z):
+        """Keep the standardized training inputs and the trained-range radius ``range_radius_``.
+
+        Args:
+            Z: (N, d) standardized training inputs.
+        """
         self.train_z_ = Z
         self._tree = cKDTree(Z)
         if len(Z) > 1:
@@ -446,7 +459,14 @@ class DCSNetwork:
 
     def predict(self, X: np.ndarray) -> np.ndarray:
         """Outputs (N, m) for inputs ``X`` (N, d) by the normalized RBF of eq. 2 (blended into
-        the trend network outside the trained range when it has one, see the module doc)."""
+        the trend network outside the trained range when it has one, see the module doc).
+
+        Args:
+            X: (N, d) inputs; a 1-D array is one input (d > 1) or N inputs (d = 1).
+
+        Returns:
+            (N, m) outputs, or (N,) when fitted on 1-D targets.
+        """
         self._check_fitted()
         # one weight for all networks: they share the training inputs, hence d and r
         g = self.network_weight(X) if self._fallback() is not None else None
@@ -469,7 +489,14 @@ class DCSNetwork:
     def network_weight(self, X: np.ndarray) -> np.ndarray:
         """(N,) weight of the full network in :meth:`predict`: ``exp(-d^2 / (2 r^2))``,
         ``d`` the distance to the nearest training input, ``r = range_radius_``; 1 without a
-        trend fallback."""
+        trend fallback.
+
+        Args:
+            X: (N, d) inputs.
+
+        Returns:
+            (N,) weights in (0, 1].
+        """
         self._check_fitted()
         if self._fallback() is None:
             return np.ones(len(self._standardize(X)))
@@ -490,13 +517,27 @@ class DCSNetwork:
 
     def distance_to_training(self, X: np.ndarray) -> np.ndarray:
         """(N,) distance of each input to its nearest training input, in standardized units
-        (training standard deviations). Compare with ``range_radius_`` to flag extrapolation."""
+        (training standard deviations). Compare with ``range_radius_`` to flag extrapolation.
+
+        Args:
+            X: (N, d) inputs.
+
+        Returns:
+            (N,) distances, standardized units.
+        """
         self._check_fitted()
         d, _ = self._tree.query(self._standardize(X), k=1)
         return np.atleast_1d(d).astype(float)
 
     def is_outside(self, X: np.ndarray) -> np.ndarray:
-        """(N,) True where the input lies outside the trained range (see ``range_radius_``)."""
+        """(N,) True where the input lies outside the trained range (see ``range_radius_``).
+
+        Args:
+            X: (N, d) inputs.
+
+        Returns:
+            (N,) bool.
+        """
         return self.distance_to_training(X) > self.range_radius_
 
     # ------------------------------------------------------------------ persistence
@@ -505,22 +546,41 @@ class DCSNetwork:
         return getattr(self, "fallback_", None)
 
     def to_arrays(self, with_training: bool = True) -> dict:
-        """The arrays :meth:`save` writes (:func:`~mjwalk.arms.dcsfile.network_arrays`)."""
+        """The arrays :meth:`save` writes (:func:`~mjwalk.arms.dcsfile.network_arrays`).
+
+        Args:
+            with_training: include the standardized training inputs.
+
+        Returns:
+            ``{name: array}``.
+        """
         return network_arrays(self, with_training)
 
     def params(self) -> dict:
-        """The constructor arguments (a seed as is; a Generator as None)."""
+        """The constructor arguments (a seed as is; a Generator as None).
+
+        Returns:
+            the :class:`~mjwalk.arms.dcsoptions.DCSOptions` fields in order, then ``rng``.
+        """
         params = self.options.as_dict()
         rs = self.rng
         params["rng"] = rs if isinstance(rs, int | None) else None
         return params
 
     def header(self) -> dict:
-        """The header :meth:`save` writes (:func:`~mjwalk.arms.dcsfile.network_header`)."""
+        """The header :meth:`save` writes (:func:`~mjwalk.arms.dcsfile.network_header`).
+
+        Returns:
+            the header dict (JSON-serializable).
+        """
         return network_header(self)
 
     def save(self, path: str | Path) -> None:
-        """Write the fitted network to one versioned ``.npz`` file (atomically)."""
+        """Write the fitted network to one versioned ``.npz`` file (atomically).
+
+        Args:
+            path: the ``.npz`` file to write.
+        """
         self._check_fitted()
         save_npz(path, network_header(self), network_arrays(self))
 
@@ -530,12 +590,29 @@ class DCSNetwork:
     ) -> DCSNetwork:
         """Rebuild a network from :meth:`save`'s header and arrays (used by composite models);
         ``train_z``: the training inputs of the network this one belongs to (its trend network
-        or an averaged network), used when ``data`` has none."""
+        or an averaged network), used when ``data`` has none.
+
+        Args:
+            header: the header :meth:`header` returns.
+            data: the arrays :meth:`to_arrays` returns.
+            source: name of the source in errors.
+            train_z: (N, d) standardized training inputs, or None.
+
+        Returns:
+            the fitted network.
+        """
         return network_from_arrays(cls, header, data, source, train_z)
 
     @classmethod
     def load(cls, path: str | Path) -> DCSNetwork:
-        """Read a network written by :meth:`save`; corrupt/foreign files raise ModelFileError."""
+        """Read a network written by :meth:`save`; corrupt/foreign files raise ModelFileError.
+
+        Args:
+            path: the ``.npz`` file.
+
+        Returns:
+            the fitted network.
+        """
         header, data = load_npz(path, "DCS network")
         return cls.from_arrays(header, data, source=str(path))
 

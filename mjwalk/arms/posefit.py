@@ -156,7 +156,19 @@ def fit_endpoint_pose(
     aligned directions ``a`` (K, S, 3) (the samples to fit, segment ``lengths`` (S,) metres)
     closest to ``targets`` (K, 3) in least squares, from ``x0``; the log scale kept within
     ``log_scale_bounds``. Returns (pose, converged); a pose on a bound also reports False,
-    so the caller can hand that case to a solver that treats bounds exactly."""
+    so the caller can hand that case to a solver that treats bounds exactly.
+
+    Args:
+        center: (3,) unit centre of the angular scaling.
+        a: (K, S, 3) aligned directions of the samples to fit.
+        lengths: (S,) segment lengths, metres.
+        targets: (K, 3) hand targets, metres, shoulder frame.
+        x0: (4,) initial pose.
+        log_scale_bounds: (lo, hi) bounds of the log scale.
+
+    Returns:
+        ``(pose (4,), converged)``.
+    """
     lo, hi = log_scale_bounds
     x, ok = _solve(
         np.ascontiguousarray(center, dtype=float),

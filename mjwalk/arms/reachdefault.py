@@ -62,7 +62,14 @@ _MEMO: dict = {}
 
 def default_reach_model(progress: bool = True):
     """The :class:`~mjwalk.arms.reach.ReachModel` of start/end-constrained reaches of the left
-    arm (``reachgen.generate("endpoints", N_TRAIN, seed 0)``), cached beside the step model."""
+    arm (``reachgen.generate("endpoints", N_TRAIN, seed 0)``), cached beside the step model.
+
+    Args:
+        progress: log when the model is built.
+
+    Returns:
+        the cached model (shared between calls).
+    """
     path = cache_root() / f"reach-endpoints-v{REACH_DEFAULT_VERSION}-n{N_TRAIN}.npz"
     if path in _MEMO:
         return _MEMO[path]
