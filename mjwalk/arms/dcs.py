@@ -60,7 +60,6 @@ from pathlib import Path
 
 import numpy as np
 from scipy.spatial import cKDTree
-from scipy.spatial.distance import cdist
 
 from mjwalk._io import load_npz, save_npz
 from mjwalk.arms.dcsfile import (
@@ -83,6 +82,7 @@ from mjwalk.arms.dcsfit import (
     solve_outputs,
     split_outputs,
 )
+from mjwalk.arms.dcsgrow import adapt, insert_neuron, insertion_pair, prune, start_neurons
 from mjwalk.arms.dcsoptions import DCSOptions
 from mjwalk.errors import MjwalkError
 
@@ -200,7 +200,7 @@ class DCSNetwork:
         self.x_scale_ = input_scale(X, scaling)
         Z = (X - self.x_mean_) / self.x_scale_
         samples = self._split(Z, Y, rng)
-        centers, ages = _start_neurons(samples.train_z, rng)
+        centers, ages = start_neurons(samples.train_z, rng)
         self.history_: list[tuple[int, float, float]] = []
         self.n_pruned_ = 0
         grids = self._grids(len(samples.train_z), Z.shape[1])
@@ -255,8 +255,9 @@ class DCSNetwork:
         parents: tuple[int, int] | None = None
         resid = np.zeros(len(Ztr))  # squared training error per sample, set by every step
         while True:
-            centers, ages = self._adapt(Ztr, centers, ages, rng)
-            centers, ages, newest_died = self._prune(Ztr, centers, ages, parents)
+            centers, ages = adapt(Ztr, centers, ages, rng, opts)
+            centers, ages, newest_died, removed = prune(Ztr, centers, ages, parents, opts.min_wins)
+            self.n_pruned_ += removed
             stalled = stalled + 1 if newest_died else 0
             if newest_died:  # nothing new to score; insert elsewhere (the parents' edge is cut)
                 if stalled >= max(opts.n_iter_no_change, 1):
@@ -278,8 +279,8 @@ class DCSNetwork:
                     or (select and no_change >= opts.n_iter_no_change)
                 ):
                     break
-            parents = self._insert_at_largest_error(Ztr, centers, ages, resid)
-            centers, ages = self._grow(centers, ages, *parents)
+            parents = insertion_pair(Ztr, centers, ages, resid)
+            centers, ages = insert_neuron(centers, ages, *parents)
         if select and best is not None:
             centers, ages, factor, ridge, linear = best
         return centers, ages, factor, ridge, linear, best_val
@@ -340,80 +341,6 @@ class DCSNetwork:
             n_networks=1,
         )
         return params
-
-    @staticmethod
-    def _insert_at_largest_error(Z, centers, ages, resid) -> tuple[int, int]:
-        """Growth: the neuron ``q`` with the largest accumulated squared error over the samples
-        it wins and its lateral neighbour ``f`` with the largest (the nearest neuron when ``q``
-        has no edge); the new neuron goes half way between them."""
-        bmu = np.argmin(cdist(Z, centers), axis=1)
-        err = np.bincount(bmu, weights=resid, minlength=len(centers))
-        q = int(np.argmax(err))
-        nbrs = np.flatnonzero(ages[q] >= 0)
-        if len(nbrs) == 0:
-            d = np.linalg.norm(centers - centers[q], axis=1)
-            d[q] = np.inf
-            nbrs = np.array([int(np.argmin(d))])
-        return q, int(nbrs[np.argmax(err[nbrs])])
-
-    @staticmethod
-    def _grow(centers, ages, q: int, f: int):
-        """Insert a neuron half way between ``q`` and ``f``, replacing their edge by two."""
-        k = len(centers)
-        centers = np.vstack([centers, 0.5 * (centers[q] + centers[f])])
-        grown = np.full((k + 1, k + 1), -1, dtype=np.int64)
-        grown[:k, :k] = ages
-        grown[q, f] = grown[f, q] = -1
-        grown[q, k] = grown[k, q] = 0
-        grown[f, k] = grown[k, f] = 0
-        return centers, grown
-
-    def _prune(self, Z, centers, ages, parents):
-        """Remove dead units (fewer than ``min_wins`` wins), keeping at least two neurons.
-        Returns the centres, the edge ages and whether the neuron inserted last (between
-        ``parents``) died; then the parents' edge is cut, as no data joins them."""
-        if self.options.min_wins <= 0 or len(centers) <= 2:
-            return centers, ages, False
-        wins = np.bincount(np.argmin(cdist(Z, centers), axis=1), minlength=len(centers))
-        keep = wins >= self.options.min_wins
-        if keep.all() or keep.sum() < 2:
-            return centers, ages, False
-        self.n_pruned_ += int((~keep).sum())
-        newest_died = parents is not None and not keep[-1]
-        centers, ages = centers[keep], ages[np.ix_(keep, keep)].copy()
-        if newest_died:
-            index = np.cumsum(keep) - 1
-            q, f = parents
-            if keep[q] and keep[f]:
-                ages[index[q], index[f]] = ages[index[f], index[q]] = -1
-        return centers, ages, bool(newest_died)
-
-    def _adapt(self, Z, centers, ages, rng):
-        """Competitive Hebbian edges + Kohonen adaptation of centres, ``n_epochs`` passes."""
-        centers = centers.copy()
-        ages = ages.copy()
-        k = len(centers)
-        opts = self.options
-        max_age, eps_w, eps_n = opts.max_age, opts.eps_winner, opts.eps_neighbour
-        for _ in range(opts.n_epochs):
-            for x in Z[rng.permutation(len(Z))]:
-                d = np.einsum("ij,ij->i", centers - x, centers - x)
-                if k > 2:
-                    two = np.argpartition(d, 1)[:2]
-                    w, s = two if d[two[0]] <= d[two[1]] else two[::-1]
-                else:
-                    w, s = (0, 1) if d[0] <= d[1] else (1, 0)
-                row = ages[w] >= 0
-                ages[w, row] += 1
-                ages[row, w] += 1
-                ages[w, s] = ages[s, w] = 0
-                old = ages[w] > max_age
-                ages[w, old] = -1
-                ages[old, w] = -1
-                nb = ages[w] >= 0
-                centers[w] += eps_w * (x - centers[w])
-                centers[nb] += eps_n * (x - centers[nb])
-        return centers, ages
 
     def _factors(self) -> tuple[float, ...]:
         return grid_values("width_factor", self.options.width_factor, False)
@@ -615,16 +542,3 @@ class DCSNetwork:
         """
         header, data = load_npz(path, "DCS network")
         return cls.from_arrays(header, data, source=str(path))
-
-
-def _start_neurons(Z, rng: np.random.Generator):
-    """Two neurons at distinct random samples of ``Z`` (n, d), joined by an edge: their
-    centres (2, d) (nudged apart by 1e-3 when the samples coincide) and edge ages (2, 2),
-    -1 meaning no edge."""
-    first = rng.choice(len(Z), size=2, replace=False)
-    centers = Z[first].copy()
-    if np.allclose(centers[0], centers[1]):
-        centers[1] = centers[1] + 1e-3
-    ages = np.full((2, 2), -1, dtype=np.int64)  # -1: no edge
-    ages[0, 1] = ages[1, 0] = 0
-    return centers, ages

@@ -1,5 +1,5 @@
 """The endpoint fit of a synthesized arm movement, compiled: the pose (rotation vector + log
-angular scale, :func:`~mjwalk.arms.armrep.apply_pose`) that brings the hand at the first and
+angular scale, :func:`~mjwalk.arms.armpose.apply_pose`) that brings the hand at the first and
 last sample closest to the given start and end positions (Al-Zubi & Sommer: the movement
 "fitted to a start and end position").
 
@@ -20,7 +20,7 @@ import numpy as np
 
 from mjwalk._jit import njit
 
-#: |sphere log| below which a direction counts as the centre (armrep._EPS).
+#: |sphere log| below which a direction counts as the centre (armpose._EPS).
 _EPS = 1e-12
 #: Central-difference step of the Jacobian (radians / log scale): truncation error ~h^2.
 _STEP = 1e-6
@@ -31,7 +31,7 @@ _MAX_ITER = 200
 
 @njit
 def _rotvec_matrix(r0, r1, r2):
-    """Row-major 9-tuple of :func:`mjwalk.arms.armrep.rotvec_matrix` (through the unit
+    """Row-major 9-tuple of :func:`mjwalk.arms.armpose.rotvec_matrix` (through the unit
     quaternion, Taylor series below 1e-3 rad)."""
     angle = math.sqrt(r0 * r0 + r1 * r1 + r2 * r2)
     if angle <= 1e-3:

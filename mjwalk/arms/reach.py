@@ -32,7 +32,8 @@ from numpy.typing import ArrayLike
 from scipy.optimize import least_squares
 
 from mjwalk._io import check_header, load_npz, save_npz
-from mjwalk.arms.armrep import ArmRepresentation, apply_pose
+from mjwalk.arms.armpose import apply_pose
+from mjwalk.arms.armrep import ArmRepresentation
 from mjwalk.arms.chain import (
     MIRROR_Y,
     REST_HAND,

@@ -1,5 +1,5 @@
 """The arm trajectory representation (mjwalk.arms.armrep): directions and angles, the movement
-span, the alignment pose and the PCA of aligned trajectories."""
+span and the PCA of aligned trajectories."""
 
 import numpy as np
 import pytest
@@ -8,10 +8,8 @@ from scipy.spatial.transform import Rotation
 from mjwalk.arms.armrep import (
     ArmRepresentation,
     angles_to_directions,
-    apply_pose,
     directions_to_angles,
     movement_span,
-    remove_pose,
     resample_trajectory,
     segment_directions,
     trajectory_error,
@@ -77,13 +75,6 @@ def test_movement_span_cuts_rest_and_creeping_hold():
     assert np.abs(old - spans[0]).max() > 0.2
     with pytest.raises(MjwalkError, match="hand path"):
         movement_span(np.zeros((1, 3)))
-
-
-def test_pose_apply_remove_is_exact_inverse():
-    U = _synthetic_set(1, 0)[0]
-    c = np.array([0.0, 0.6, -0.8])
-    pose = np.array([0.2, -0.1, 0.3, 0.15])
-    np.testing.assert_allclose(remove_pose(c, apply_pose(c, U, pose), pose), U, atol=1e-12)
 
 
 def test_representation_alignment_pca_and_exact_inverse():

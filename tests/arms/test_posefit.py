@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from mjwalk.arms.armrep import apply_pose
+from mjwalk.arms.armpose import apply_pose
 from mjwalk.arms.chain import end_effector
 from mjwalk.arms.posefit import fit_endpoint_pose
 
