@@ -126,7 +126,17 @@ def arm_chain(take: Take, side: Side, skeleton: str = "bandai", hand: bool = Fal
     joint names from :data:`ARM_JOINTS`; with ``hand`` (T, 4, 3), the hand's end last: the
     :data:`HAND_ENDS` joint, or where the take has none (or one on the wrist), the forearm
     continued by :data:`HAND_TO_FOREARM` of its length. A take without the arm's joints raises
-    CaptureError naming them."""
+    CaptureError naming them.
+
+    Args:
+        take: the capture take.
+        side: "left" or "right".
+        skeleton: key of :data:`ARM_JOINTS` naming the joints.
+        hand: append the hand's end.
+
+    Returns:
+        (T, 3, 3) or (T, 4, 3) positions, world frame, metres.
+    """
     if skeleton not in ARM_JOINTS:
         raise MjwalkError(
             f"arm joints: unknown skeleton {skeleton!r} (choose from {sorted(ARM_JOINTS)})"
@@ -168,6 +178,16 @@ def arm_movement(
     and end of the hand's end for a 4-joint one; the movement is timed on the chain's last
     joint. ``until_highest``: the movement ends by that joint's highest frame (a raise held and
     creeping upwards while held).
+
+    Args:
+        chain: (T, 3, 3) or (T, 4, 3) joint positions, world frame, metres, z up.
+        yaw: body heading at the first frame, radians CCW from +x.
+        side: the arm; a right arm is mirrored into the left arm's frame.
+        n: samples of the movement.
+        until_highest: end the movement by the last joint's highest frame.
+
+    Returns:
+        ``(constraint, directions, lengths)`` as above, or None.
     """
     P = np.asarray(chain, dtype=float)
     if P.ndim != 3 or P.shape[1:] not in ((3, 3), (4, 3)) or len(P) < 2:
@@ -209,7 +229,21 @@ def arm_movements(
     one are left out), constraints scaled to the reference arm ``lengths`` (S,) m (default:
     the mean over the clips). ``groups``: one label per take (style or walker). ``hand``: the
     chain goes on to the hand's end and the constraint is its start and end (6,): an endpoint
-    model for cycles (module docstring)."""
+    model for cycles (module docstring).
+
+    Args:
+        takes: capture takes.
+        side: "left" or "right".
+        skeleton: key of :data:`ARM_JOINTS`.
+        groups: one label per take, or None.
+        lengths: (S,) reference segment lengths, metres, or None (the mean).
+        n: samples per movement.
+        until_highest: as in :func:`arm_movement`.
+        hand: chain to the hand's end, endpoint constraint (6,).
+
+    Returns:
+        the training pairs (:class:`ArmMovements`).
+    """
     if groups is not None and len(groups) != len(takes):
         raise MjwalkError(f"arm_movements: {len(groups)} groups for {len(takes)} takes")
     n_seg, n_con = (3, 6) if hand else (2, 9)

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from mjwalk.anthropometry import ROM_DEG
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 
 #: Anthropometric segment lengths as shares of stature H (Winter): upper arm, forearm, hand.
@@ -26,18 +27,41 @@ REST_HAND = (0.15, 0.02, -0.60)
 
 
 def arm_segment_lengths(stature: float = DEFAULT_STATURE, with_hand: bool = True) -> np.ndarray:
-    """Upper arm, forearm (and hand) lengths in metres for a person of ``stature`` metres."""
+    """Upper arm, forearm (and hand) lengths in metres for a person of ``stature`` metres.
+
+    Args:
+        stature: body height, metres.
+        with_hand: include the hand segment.
+
+    Returns:
+        (3,) or (2,) segment lengths, metres.
+    """
     shares = ARM_SEGMENT_SHARES if with_hand else ARM_SEGMENT_SHARES[:2]
     return stature * np.asarray(shares)
 
 
 def end_effector(directions: np.ndarray, lengths: np.ndarray) -> np.ndarray:
-    """Hand (end of the chain) position (..., 3), metres from the shoulder."""
+    """Hand (end of the chain) position (..., 3), metres from the shoulder.
+
+    Args:
+        directions: (..., S, 3) unit segment directions, shoulder frame.
+        lengths: (S,) segment lengths, metres.
+
+    Returns:
+        (..., 3) position of the chain's end, metres from the shoulder.
+    """
     return np.einsum("...sj,s->...j", directions, np.asarray(lengths))
 
 
 def min_jerk(tau: np.ndarray) -> np.ndarray:
-    """Minimum-jerk profile 10 t^3 - 15 t^4 + 6 t^5 on t in [0, 1]."""
+    """Minimum-jerk profile 10 t^3 - 15 t^4 + 6 t^5 on t in [0, 1].
+
+    Args:
+        tau: normalized time, clipped to [0, 1].
+
+    Returns:
+        the profile, 0 at tau <= 0 and 1 at tau >= 1, same shape as ``tau``.
+    """
     tau = np.clip(tau, 0.0, 1.0)
     return tau**3 * (10 - 15 * tau + 6 * tau**2)
 
@@ -52,7 +76,17 @@ def two_link_ik(
 ) -> tuple[np.ndarray, np.ndarray]:
     """Unit directions (upper arm, forearm) putting the wrist at ``target`` (3,) from the
     shoulder, with the elbow in the plane of the shoulder-wrist axis and ``elbow_hint`` (the
-    swivel angle of the hint is kept). Unreachable targets are clamped to the workspace."""
+    swivel angle of the hint is kept). Unreachable targets are clamped to the workspace.
+
+    Args:
+        target: (3,) wrist position, metres from the shoulder.
+        l1: upper arm length, metres.
+        l2: forearm length, metres.
+        elbow_hint: (3,) direction the elbow bends towards.
+
+    Returns:
+        ``(upper, fore)`` (3,) unit directions.
+    """
     upper, fore = two_link_ik_rows(np.asarray(target)[None], l1, l2, np.asarray(elbow_hint)[None])
     return upper[0], fore[0]
 
@@ -61,7 +95,17 @@ def two_link_ik_rows(
     target: np.ndarray, l1: float, l2: float, elbow_hint: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
     """:func:`two_link_ik` for many wrist targets (n, 3) and elbow hints (n, 3) at once:
-    unit directions (n, 3) of the upper arm and of the forearm."""
+    unit directions (n, 3) of the upper arm and of the forearm.
+
+    Args:
+        target: (n, 3) wrist positions, metres from the shoulder.
+        l1: upper arm length, metres.
+        l2: forearm length, metres.
+        elbow_hint: (n, 3) directions the elbows bend towards.
+
+    Returns:
+        ``(upper, fore)`` (n, 3) unit directions.
+    """
     target = np.asarray(target, dtype=float)
     hint = np.asarray(elbow_hint, dtype=float)
     norm = np.sqrt(_dot(target, target))
@@ -96,13 +140,29 @@ ARM_JOINTS = (
 
 def arm_joint(name: str, side: Side) -> str:
     """The humanoid's joint of ``side``'s arm for an :data:`ARM_JOINTS` name
-    (``"shoulder_flex"`` -> ``"shoulder_l_flex"``)."""
+    (``"shoulder_flex"`` -> ``"shoulder_l_flex"``).
+
+    Args:
+        name: an :data:`ARM_JOINTS` name.
+        side: "left" or "right".
+
+    Returns:
+        the humanoid joint name.
+    """
     part, *rest = name.split("_")
     return "_".join([part, side_prefix(side), *rest])
 
 
 def arm_adrs(jm, sides: tuple[Side, ...] = ("left", "right")) -> list[int]:
-    """``qpos`` addresses of the :data:`ARM_JOINTS` of ``sides``' arms (jointmap ``jm``)."""
+    """``qpos`` addresses of the :data:`ARM_JOINTS` of ``sides``' arms (jointmap ``jm``).
+
+    Args:
+        jm: the humanoid's joint map (:func:`mjwalk.body.humanoid.humanoid_model`).
+        sides: arms, in output order.
+
+    Returns:
+        7 addresses per side, in :data:`ARM_JOINTS` order.
+    """
     return [jm.adr(arm_joint(name, side)) for side in sides for name in ARM_JOINTS]
 
 
@@ -118,6 +178,14 @@ def arm_joint_angles(
     s = +1 for the left and -1 for the right arm. The upper arm's twist is the one that puts
     the forearm in the elbow's flexion plane; when the elbow is straight it is carried over
     from the previous frame.
+
+    Args:
+        directions: (n, S, 3) unit segment directions, thorax frame.
+        side: "left" or "right".
+        roll: (n,) forearm pronation, radians, or None (0).
+
+    Returns:
+        (n, 7) joint angles, radians, :data:`ARM_JOINTS` order.
     """
     s = 1.0 if side == "left" else -1.0
     U = np.asarray(directions, dtype=float)
@@ -162,7 +230,18 @@ def hand_directions(
     """Unit hand directions (n, 3) of arms with upper arm ``u1`` and forearm ``u2`` (n, 3; thorax
     frame) and the wrist at ``flex`` / ``dev`` (n,), radians, no forearm pronation: the inverse
     of the wrist part of :func:`arm_joint_angles` (``arm_joint_angles`` of the result gives
-    ``flex`` and ``dev`` back, for |dev| < 90 deg and a bent elbow)."""
+    ``flex`` and ``dev`` back, for |dev| < 90 deg and a bent elbow).
+
+    Args:
+        u1: (n, 3) unit upper-arm directions, thorax frame.
+        u2: (n, 3) unit forearm directions.
+        flex: (n,) wrist flexion, radians.
+        dev: (n,) wrist deviation, radians.
+        side: "left" or "right".
+
+    Returns:
+        (n, 3) unit hand directions, thorax frame.
+    """
     s = 1.0 if side == "left" else -1.0
     u1 = np.asarray(u1, dtype=float)
     u2 = np.asarray(u2, dtype=float)
@@ -196,7 +275,6 @@ def _shoulder_branch(a: np.ndarray, b: np.ndarray, c: np.ndarray, s: float):
     of 180 deg, beyond their ranges (the clipped pose then pointed the arm backwards: a
     reach to a top shelf ended 1.3 m off). Ranges: :data:`mjwalk.anthropometry.ROM_DEG`;
     ``s`` +1 for the left arm, -1 for the right."""
-    from mjwalk.anthropometry import ROM_DEG
 
     def excess(a, b, c):  # radians beyond the ranges of flexion, abduction and rotation
         out = np.zeros_like(a)
@@ -256,7 +334,20 @@ def wrist_in_range(
     39.5 deg where 21.9 do); then the least turn is found by bisection along the arc from
     ``hand_dir`` to that hand (:data:`WRIST_BISECTIONS` halvings; the wrist's angles vary
     continuously along it, so the wrist ends on its range's edge). ``lengths``: (3,) upper arm,
-    forearm, hand (m)."""
+    forearm, hand (m).
+
+    Args:
+        end: (n, 3) hand-end targets, metres from the shoulder.
+        hand_dir: (n, 3) wanted unit hand directions.
+        lengths: (3,) upper arm, forearm, hand lengths, metres.
+        elbow_hint: (n, 3) directions the elbows bend towards.
+        limits: (2, 2) wrist flexion and deviation ranges (lo, hi), radians.
+        side: "left" or "right".
+        iterations: bisection rounds of the re-solve (0: no turn).
+
+    Returns:
+        (n, 3, 3) unit directions of upper arm, forearm and hand.
+    """
     end = np.asarray(end, dtype=float)
     want = np.asarray(hand_dir, dtype=float)
     lo, hi = np.asarray(limits, dtype=float).T
@@ -303,7 +394,18 @@ def arm_frames(
 ) -> tuple[np.ndarray, list[str]]:
     """Poses (len(times), nq): ``q0`` with one arm's joint angles ``q`` (n, 7), order
     :data:`ARM_JOINTS`, radians) sampled evenly over [0, 1], interpolated at ``times`` in [0, 1]
-    and clipped to the humanoid's joint ranges; and the names of the joints that were clipped."""
+    and clipped to the humanoid's joint ranges; and the names of the joints that were clipped.
+
+    Args:
+        q0: (nq,) base pose.
+        jm: the humanoid's joint map.
+        q: (n, 7) joint angles, radians, :data:`ARM_JOINTS` order.
+        side: "left" or "right".
+        times: (m,) normalized times in [0, 1].
+
+    Returns:
+        ``(poses, clipped)``: (m, nq) poses and the names of the clipped joints.
+    """
     src = np.linspace(0.0, 1.0, len(q))
     out = np.repeat(np.asarray(q0)[None], len(times), axis=0)
     clipped = []

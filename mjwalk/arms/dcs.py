@@ -55,11 +55,11 @@ standardized training inputs (not the outputs) for that distance.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 from scipy.spatial import cKDTree
-from scipy.spatial.distance import cdist
 
 from mjwalk._io import load_npz, save_npz
 from mjwalk.arms.dcsfile import (
@@ -70,6 +70,8 @@ from mjwalk.arms.dcsfile import (
 from mjwalk.arms.dcsfit import (
     SAMPLES_PER_COEFFICIENT,
     SCALINGS,
+    SelectionGrids,
+    SelectionSamples,
     design,
     forward,
     grid,
@@ -80,6 +82,8 @@ from mjwalk.arms.dcsfit import (
     solve_outputs,
     split_outputs,
 )
+from mjwalk.arms.dcsgrow import adapt, insert_neuron, insertion_pair, prune, start_neurons
+from mjwalk.arms.dcsoptions import DCSOptions
 from mjwalk.errors import MjwalkError
 
 
@@ -87,35 +91,13 @@ class DCSNetwork:
     """Growing normalized-RBF network with competitive-Hebbian lateral edges.
 
     Args:
-        max_neurons: upper bound on the number of neurons.
-        error_threshold: stop growing once the training RMSE (output units) is below this.
-        max_age: lateral edges not refreshed for more than this many winning presentations of
-            their endpoint are removed.
-        width_factor: sigma_i = width_factor * mean distance of neuron i to its lateral
-            neighbours; a sequence is a grid chosen on the held-out part (see module docstring).
-        eps_winner, eps_neighbour: Kohonen learning rates of the winner and its neighbours.
-        n_epochs: presentations of the whole training set per growth step.
-        validation_fraction: share of samples held out to select the network size (0 disables).
-        n_iter_no_change: insertions without held-out improvement before growth stops.
-        ridge: Tikhonov regularization of the output least squares (relative to the design
-            scale), towards each neuron's mean target; a sequence is a grid like width_factor.
+        options: the growth and selection settings (:class:`~mjwalk.arms.dcsoptions.DCSOptions`,
+            whose docstring gives each default and its source); None: the defaults.
         rng: seed or ``numpy.random.Generator``; same seed, same network.
-        scaling: input standardization, ``"column"``, ``"global"`` or ``"point"``; a sequence
-            is a grid like width_factor (see :mod:`mjwalk.arms.dcsfit`).
-        selection: ``"holdout"`` or ``"loo"`` (PRESS on all samples; see
-            :mod:`mjwalk.arms.dcsfit`).
-        local_linear: per-neuron local linear outputs; a sequence is a grid like width_factor.
-        global_linear: add a global linear term ``T z``; a sequence is a grid like width_factor.
-            Left out, like ``local_linear``, with fewer than :data:`SAMPLES_PER_COEFFICIENT`
-            samples per input column.
-        slope_ridge: penalty of the local slopes relative to ``ridge`` (> 0); a sequence is a
-            grid like width_factor (used only with local linear outputs).
-        min_wins: neurons winning fewer training samples after an adaptation pass are removed
-            (dead units; 0 keeps every neuron).
-        trend_fallback: blend into the trend network outside the trained range (see the
-            module docstring).
-        n_networks: networks grown from independent seeds and averaged (see the module
-            docstring); the fitted attributes describe the first, ``members_`` the others.
+        **settings: fields of :class:`~mjwalk.arms.dcsoptions.DCSOptions` overriding
+            ``options`` (``DCSNetwork(max_neurons=8, rng=0)``; an unknown name raises
+            TypeError). ``n_networks > 1``: the fitted attributes describe the first network,
+            ``members_`` the others.
 
     Fitted attributes: ``centers_`` (K, d) standardized, ``outputs_`` (K, m), ``widths_`` (K,),
     ``edges_`` (K, K) bool adjacency, ``x_mean_``/``x_scale_`` (d,), ``n_neurons_``,
@@ -129,49 +111,25 @@ class DCSNetwork:
 
     def __init__(
         self,
-        max_neurons: int = 30,
-        error_threshold: float = 0.0,
-        max_age: int = 30,
-        width_factor: float = 1.0,
-        eps_winner: float = 0.05,
-        eps_neighbour: float = 0.005,
-        n_epochs: int = 3,
-        validation_fraction: float = 0.2,
-        n_iter_no_change: int = 6,
-        ridge: float = 1e-6,
+        options: DCSOptions | None = None,
+        *,
         rng: int | np.random.Generator | None = 0,
-        scaling: str | tuple[str, ...] = "column",
-        selection: str = "holdout",
-        local_linear: bool | tuple[bool, ...] = False,
-        global_linear: bool | tuple[bool, ...] = False,
-        slope_ridge: float | tuple[float, ...] = 1.0,
-        min_wins: int = 1,
-        trend_fallback: bool = False,
-        n_networks: int = 1,
+        **settings,
     ):
-        self.max_neurons = max_neurons
-        self.error_threshold = error_threshold
-        self.max_age = max_age
-        self.width_factor = width_factor
-        self.eps_winner = eps_winner
-        self.eps_neighbour = eps_neighbour
-        self.n_epochs = n_epochs
-        self.validation_fraction = validation_fraction
-        self.n_iter_no_change = n_iter_no_change
-        self.ridge = ridge
+        self.options = replace(options if options is not None else DCSOptions(), **settings)
         self.rng = rng
-        self.scaling = scaling
-        self.selection = selection
-        self.local_linear = local_linear
-        self.global_linear = global_linear
-        self.slope_ridge = slope_ridge
-        self.min_wins = min_wins
-        self.trend_fallback = trend_fallback
-        self.n_networks = n_networks
 
     # ------------------------------------------------------------------ fitting
     def fit(self, X: np.ndarray, Y: np.ndarray) -> DCSNetwork:
-        """Grow the network on inputs ``X`` (N, d) and targets ``Y`` (N, m) or (N,)."""
+        """Grow the network on inputs ``X`` (N, d) and targets ``Y`` (N, m) or (N,).
+
+        Args:
+            X: (N, d) inputs, N >= 2, or (N,) for d = 1.
+            Y: (N, m) or (N,) targets.
+
+        Returns:
+            this network, fitted.
+        """
         X = np.asarray(X, dtype=float)
         Y = np.asarray(Y, dtype=float)
         if X.ndim == 1:
@@ -185,18 +143,7 @@ class DCSNetwork:
             raise MjwalkError(f"DCSNetwork.fit: need at least 2 samples, got {len(X)}")
         if not (np.isfinite(X).all() and np.isfinite(Y).all()):
             raise MjwalkError("DCSNetwork.fit: X or Y holds NaN or infinite values")
-        if self.max_neurons < 2:
-            raise MjwalkError(f"DCSNetwork: max_neurons must be >= 2, got {self.max_neurons}")
-        if int(self.min_wins) != self.min_wins or self.min_wins < 0:
-            raise MjwalkError(f"DCSNetwork: min_wins must be an integer >= 0, got {self.min_wins}")
-        if int(self.n_networks) != self.n_networks or self.n_networks < 1:
-            raise MjwalkError(
-                f"DCSNetwork: n_networks must be an integer >= 1, got {self.n_networks}"
-            )
-        if self.selection not in ("holdout", "loo"):
-            raise MjwalkError(
-                f"DCSNetwork: selection must be 'holdout' or 'loo', got {self.selection!r}"
-            )
+        self.options.check()
         scalings = self._scalings(X.shape[1])
         member_seeds = self._member_seeds()
         if len(scalings) == 1:
@@ -215,7 +162,7 @@ class DCSNetwork:
             assert best is not None
             vars(self).update(best)
         self.fallback_ = None
-        if self.trend_fallback:
+        if self.options.trend_fallback:
             self.fallback_ = DCSNetwork(**self._trend_params()).fit(X, Y[:, 0] if self.y_1d_ else Y)
         self.members_ = [
             DCSNetwork(
@@ -228,11 +175,15 @@ class DCSNetwork:
     def _scalings(self, d: int) -> tuple[str, ...]:
         """The input scalings to try (``scaling``: one or a sequence), checked for ``d``
         input columns."""
-        seq = tuple(self.scaling) if isinstance(self.scaling, list | tuple) else (self.scaling,)
+        seq = (
+            tuple(self.options.scaling)
+            if isinstance(self.options.scaling, list | tuple)
+            else (self.options.scaling,)
+        )
         if not seq or any(s not in SCALINGS for s in seq):
             raise MjwalkError(
                 f"DCSNetwork: scaling must be one of {', '.join(map(repr, SCALINGS))} or a "
-                f"sequence of them, got {self.scaling!r}"
+                f"sequence of them, got {self.options.scaling!r}"
             )
         if "point" in seq and d % 3:
             raise MjwalkError(
@@ -248,55 +199,71 @@ class DCSNetwork:
         self.x_mean_ = X.mean(axis=0)
         self.x_scale_ = input_scale(X, scaling)
         Z = (X - self.x_mean_) / self.x_scale_
+        samples = self._split(Z, Y, rng)
+        centers, ages = start_neurons(samples.train_z, rng)
+        self.history_: list[tuple[int, float, float]] = []
+        self.n_pruned_ = 0
+        grids = self._grids(len(samples.train_z), Z.shape[1])
+        centers, ages, factor, ridge, linear, best_val = self._grow_loop(
+            samples, grids, centers, ages, rng
+        )
+        self._set_outputs(Z, Y, centers, ages, (factor, ridge, linear))
+        # without selection: the final network's training error (as the width grid's score)
+        self.selection_score_ = float(best_val) if samples.selects else self.train_rmse_
+        self.set_training_points(Z)
 
+    def _split(self, Z, Y, rng: np.random.Generator) -> SelectionSamples:
+        """Hold out ``validation_fraction`` of the samples (none with ``selection="loo"`` or
+        when fewer than two would be left to train on), drawn by one permutation."""
         n = len(Z)
-        loo = self.selection == "loo"
-        n_val = round(self.validation_fraction * n) if self.validation_fraction > 0 else 0
+        loo = self.options.selection == "loo"
+        fraction = self.options.validation_fraction
+        n_val = round(fraction * n) if fraction > 0 else 0
         if n - n_val < 2 or loo:
             n_val = 0
-        select = bool(n_val) or loo
         perm = rng.permutation(n)
         val_idx, tr_idx = perm[:n_val], perm[n_val:]
-        Ztr, Ytr = Z[tr_idx], Y[tr_idx]
+        return SelectionSamples(Z[tr_idx], Y[tr_idx], Z[val_idx], Y[val_idx], loo)
 
-        # Two neurons at distinct random training samples, joined by an edge.
-        first = rng.choice(len(Ztr), size=2, replace=False)
-        centers = Ztr[first].copy()
-        if np.allclose(centers[0], centers[1]):
-            centers[1] = centers[1] + 1e-3
-        ages = np.full((2, 2), -1, dtype=np.int64)  # -1: no edge
-        ages[0, 1] = ages[1, 0] = 0
+    def _grids(self, n_train: int, d: int) -> SelectionGrids:
+        """The width factors, ridges and output forms (local linear, global linear, slope
+        ridge) each growth step chooses among, for ``n_train`` samples of ``d`` inputs."""
+        factors = self._factors()
+        ridges = self._ridges()
+        # a linear map (global or per neuron) has one coefficient per input and output
+        linear_ok = n_train >= SAMPLES_PER_COEFFICIENT * d
+        # output forms (local linear, global linear, slope ridge), chosen like the width
+        forms = [
+            (local, glob, r)
+            for local in (grid(self.options.local_linear) if linear_ok else (False,))
+            for glob in (grid(self.options.global_linear) if linear_ok else (False,))
+            for r in (self._slope_ridges() if local else (1.0,))
+        ]
+        return SelectionGrids(factors, ridges, forms)
 
+    def _grow_loop(self, samples: SelectionSamples, grids: SelectionGrids, centers, ages, rng):
+        """Adapt, prune, score and insert until a stopping rule holds (module docstring).
+        Returns the centres, edge ages, width factor, ridge and output form of the network
+        kept (the best scored one when the steps are selected on, else the last) and the best
+        selection score."""
+        opts = self.options
+        Ztr, select = samples.train_z, samples.selects
         best = None
         best_val = np.inf
         no_change = 0
         stalled = 0  # insertions in a row whose neuron died at once
         parents: tuple[int, int] | None = None
         resid = np.zeros(len(Ztr))  # squared training error per sample, set by every step
-        self.history_ = []
-        self.n_pruned_ = 0
-        factors = self._factors()
-        ridges = self._ridges()
-        # a linear map (global or per neuron) has one coefficient per input and output
-        linear_ok = len(Ztr) >= SAMPLES_PER_COEFFICIENT * Z.shape[1]
-        # output forms (local linear, global linear, slope ridge), chosen like the width
-        forms = [
-            (local, glob, r)
-            for local in (grid(self.local_linear) if linear_ok else (False,))
-            for glob in (grid(self.global_linear) if linear_ok else (False,))
-            for r in (self._slope_ridges() if local else (1.0,))
-        ]
         while True:
-            centers, ages = self._adapt(Ztr, centers, ages, rng)
-            centers, ages, newest_died = self._prune(Ztr, centers, ages, parents)
+            centers, ages = adapt(Ztr, centers, ages, rng, opts)
+            centers, ages, newest_died, removed = prune(Ztr, centers, ages, parents, opts.min_wins)
+            self.n_pruned_ += removed
             stalled = stalled + 1 if newest_died else 0
             if newest_died:  # nothing new to score; insert elsewhere (the parents' edge is cut)
-                if stalled >= max(self.n_iter_no_change, 1):
+                if stalled >= max(opts.n_iter_no_change, 1):
                     break
             else:
-                val_rmse, factor, ridge, linear, resid = score_step(
-                    Ztr, Ytr, Z[val_idx], Y[val_idx], centers, ages, ridges, factors, forms, loo
-                )
+                val_rmse, factor, ridge, linear, resid = score_step(samples, grids, centers, ages)
                 train_rmse = float(np.sqrt(resid.mean()))
                 self.history_.append((len(centers), train_rmse, val_rmse if select else np.nan))
                 if val_rmse < best_val - 1e-12:
@@ -306,17 +273,22 @@ class DCSNetwork:
                 else:
                     no_change += 1
                 if (
-                    train_rmse <= self.error_threshold
-                    or len(centers) >= self.max_neurons
+                    train_rmse <= opts.error_threshold
+                    or len(centers) >= opts.max_neurons
                     or len(centers) >= len(Ztr)
-                    or (select and no_change >= self.n_iter_no_change)
+                    or (select and no_change >= opts.n_iter_no_change)
                 ):
                     break
-            parents = self._insert_at_largest_error(Ztr, centers, ages, resid)
-            centers, ages = self._grow(centers, ages, *parents)
-
+            parents = insertion_pair(Ztr, centers, ages, resid)
+            centers, ages = insert_neuron(centers, ages, *parents)
         if select and best is not None:
             centers, ages, factor, ridge, linear = best
+        return centers, ages, factor, ridge, linear, best_val
+
+    def _set_outputs(self, Z, Y, centers, ages, chosen) -> None:
+        """Set the fitted network: the grids' ``chosen`` (width factor, ridge, output form),
+        the widths, and the output vectors solved on every sample (train + held-out)."""
+        factor, ridge, linear = chosen
         edges = ages >= 0
         self.width_factor_ = float(factor)
         self.ridge_ = float(ridge)
@@ -324,7 +296,6 @@ class DCSNetwork:
         self.global_linear_ = bool(linear[1])
         self.slope_ridge_ = float(linear[2])
         widths = neuron_widths(centers, edges, factor)
-        # Final output vectors on every sample (train + held-out).
         self.centers_ = centers
         self.edges_ = edges
         self.widths_ = widths
@@ -338,24 +309,23 @@ class DCSNetwork:
                 ((forward(Z, centers, widths, stacked, edges, linear) - Y) ** 2).sum(axis=1).mean()
             )
         )
-        # without selection: the final network's training error (as the width grid's score)
-        self.selection_score_ = float(best_val) if select else self.train_rmse_
-        self.set_training_points(Z)
 
     def _member_seeds(self) -> list[int]:
         """Seeds of the networks after the first (``n_networks - 1``): spawned from an integer
         seed without drawing from it (the first network is the one ``n_networks=1`` grows),
         else drawn from the generator first."""
-        if self.n_networks <= 1:
+        if self.options.n_networks <= 1:
             return []
         if isinstance(self.rng, np.random.Generator):
             entropy = int(self.rng.integers(2**63))
             return [
                 int(x)
-                for x in np.random.default_rng(entropy).integers(2**31, size=self.n_networks - 1)
+                for x in np.random.default_rng(entropy).integers(
+                    2**31, size=self.options.n_networks - 1
+                )
             ]
         seq = np.random.SeedSequence(self.rng)
-        return [int(c.generate_state(1)[0]) for c in seq.spawn(self.n_networks - 1)]
+        return [int(c.generate_state(1)[0]) for c in seq.spawn(self.options.n_networks - 1)]
 
     def _trend_params(self) -> dict:
         """The trend network's settings: this network's, grown no further than the two
@@ -372,88 +342,21 @@ class DCSNetwork:
         )
         return params
 
-    @staticmethod
-    def _insert_at_largest_error(Z, centers, ages, resid) -> tuple[int, int]:
-        """Growth: the neuron ``q`` with the largest accumulated squared error over the samples
-        it wins and its lateral neighbour ``f`` with the largest (the nearest neuron when ``q``
-        has no edge); the new neuron goes half way between them."""
-        bmu = np.argmin(cdist(Z, centers), axis=1)
-        err = np.bincount(bmu, weights=resid, minlength=len(centers))
-        q = int(np.argmax(err))
-        nbrs = np.flatnonzero(ages[q] >= 0)
-        if len(nbrs) == 0:
-            d = np.linalg.norm(centers - centers[q], axis=1)
-            d[q] = np.inf
-            nbrs = np.array([int(np.argmin(d))])
-        return q, int(nbrs[np.argmax(err[nbrs])])
-
-    @staticmethod
-    def _grow(centers, ages, q: int, f: int):
-        """Insert a neuron half way between ``q`` and ``f``, replacing their edge by two."""
-        k = len(centers)
-        centers = np.vstack([centers, 0.5 * (centers[q] + centers[f])])
-        grown = np.full((k + 1, k + 1), -1, dtype=np.int64)
-        grown[:k, :k] = ages
-        grown[q, f] = grown[f, q] = -1
-        grown[q, k] = grown[k, q] = 0
-        grown[f, k] = grown[k, f] = 0
-        return centers, grown
-
-    def _prune(self, Z, centers, ages, parents):
-        """Remove dead units (fewer than ``min_wins`` wins), keeping at least two neurons.
-        Returns the centres, the edge ages and whether the neuron inserted last (between
-        ``parents``) died; then the parents' edge is cut, as no data joins them."""
-        if self.min_wins <= 0 or len(centers) <= 2:
-            return centers, ages, False
-        wins = np.bincount(np.argmin(cdist(Z, centers), axis=1), minlength=len(centers))
-        keep = wins >= self.min_wins
-        if keep.all() or keep.sum() < 2:
-            return centers, ages, False
-        self.n_pruned_ += int((~keep).sum())
-        newest_died = parents is not None and not keep[-1]
-        centers, ages = centers[keep], ages[np.ix_(keep, keep)].copy()
-        if newest_died:
-            index = np.cumsum(keep) - 1
-            q, f = parents
-            if keep[q] and keep[f]:
-                ages[index[q], index[f]] = ages[index[f], index[q]] = -1
-        return centers, ages, bool(newest_died)
-
-    def _adapt(self, Z, centers, ages, rng):
-        """Competitive Hebbian edges + Kohonen adaptation of centres, ``n_epochs`` passes."""
-        centers = centers.copy()
-        ages = ages.copy()
-        k = len(centers)
-        for _ in range(self.n_epochs):
-            for x in Z[rng.permutation(len(Z))]:
-                d = np.einsum("ij,ij->i", centers - x, centers - x)
-                if k > 2:
-                    two = np.argpartition(d, 1)[:2]
-                    w, s = two if d[two[0]] <= d[two[1]] else two[::-1]
-                else:
-                    w, s = (0, 1) if d[0] <= d[1] else (1, 0)
-                row = ages[w] >= 0
-                ages[w, row] += 1
-                ages[row, w] += 1
-                ages[w, s] = ages[s, w] = 0
-                old = ages[w] > self.max_age
-                ages[w, old] = -1
-                ages[old, w] = -1
-                nb = ages[w] >= 0
-                centers[w] += self.eps_winner * (x - centers[w])
-                centers[nb] += self.eps_neighbour * (x - centers[nb])
-        return centers, ages
-
     def _factors(self) -> tuple[float, ...]:
-        return grid_values("width_factor", self.width_factor, False)
+        return grid_values("width_factor", self.options.width_factor, False)
 
     def _ridges(self) -> tuple[float, ...]:
-        return grid_values("ridge", self.ridge, True)
+        return grid_values("ridge", self.options.ridge, True)
 
     def _slope_ridges(self) -> tuple[float, ...]:
-        return grid_values("slope_ridge", self.slope_ridge, False)
+        return grid_values("slope_ridge", self.options.slope_ridge, False)
 
     def set_training_points(self, Z):
+        """Keep the standardized training inputs and the trained-range radius ``range_radius_``.
+
+        Args:
+            Z: (N, d) standardized training inputs.
+        """
         self.train_z_ = Z
         self._tree = cKDTree(Z)
         if len(Z) > 1:
@@ -483,7 +386,14 @@ class DCSNetwork:
 
     def predict(self, X: np.ndarray) -> np.ndarray:
         """Outputs (N, m) for inputs ``X`` (N, d) by the normalized RBF of eq. 2 (blended into
-        the trend network outside the trained range when it has one, see the module doc)."""
+        the trend network outside the trained range when it has one, see the module doc).
+
+        Args:
+            X: (N, d) inputs; a 1-D array is one input (d > 1) or N inputs (d = 1).
+
+        Returns:
+            (N, m) outputs, or (N,) when fitted on 1-D targets.
+        """
         self._check_fitted()
         # one weight for all networks: they share the training inputs, hence d and r
         g = self.network_weight(X) if self._fallback() is not None else None
@@ -506,7 +416,14 @@ class DCSNetwork:
     def network_weight(self, X: np.ndarray) -> np.ndarray:
         """(N,) weight of the full network in :meth:`predict`: ``exp(-d^2 / (2 r^2))``,
         ``d`` the distance to the nearest training input, ``r = range_radius_``; 1 without a
-        trend fallback."""
+        trend fallback.
+
+        Args:
+            X: (N, d) inputs.
+
+        Returns:
+            (N,) weights in (0, 1].
+        """
         self._check_fitted()
         if self._fallback() is None:
             return np.ones(len(self._standardize(X)))
@@ -527,13 +444,27 @@ class DCSNetwork:
 
     def distance_to_training(self, X: np.ndarray) -> np.ndarray:
         """(N,) distance of each input to its nearest training input, in standardized units
-        (training standard deviations). Compare with ``range_radius_`` to flag extrapolation."""
+        (training standard deviations). Compare with ``range_radius_`` to flag extrapolation.
+
+        Args:
+            X: (N, d) inputs.
+
+        Returns:
+            (N,) distances, standardized units.
+        """
         self._check_fitted()
         d, _ = self._tree.query(self._standardize(X), k=1)
         return np.atleast_1d(d).astype(float)
 
     def is_outside(self, X: np.ndarray) -> np.ndarray:
-        """(N,) True where the input lies outside the trained range (see ``range_radius_``)."""
+        """(N,) True where the input lies outside the trained range (see ``range_radius_``).
+
+        Args:
+            X: (N, d) inputs.
+
+        Returns:
+            (N,) bool.
+        """
         return self.distance_to_training(X) > self.range_radius_
 
     # ------------------------------------------------------------------ persistence
@@ -542,43 +473,41 @@ class DCSNetwork:
         return getattr(self, "fallback_", None)
 
     def to_arrays(self, with_training: bool = True) -> dict:
-        """The arrays :meth:`save` writes (:func:`~mjwalk.arms.dcsfile.network_arrays`)."""
+        """The arrays :meth:`save` writes (:func:`~mjwalk.arms.dcsfile.network_arrays`).
+
+        Args:
+            with_training: include the standardized training inputs.
+
+        Returns:
+            ``{name: array}``.
+        """
         return network_arrays(self, with_training)
 
-    _PARAMS = (
-        "max_neurons",
-        "error_threshold",
-        "max_age",
-        "width_factor",
-        "eps_winner",
-        "eps_neighbour",
-        "n_epochs",
-        "validation_fraction",
-        "n_iter_no_change",
-        "ridge",
-        "scaling",
-        "selection",
-        "local_linear",
-        "global_linear",
-        "slope_ridge",
-        "min_wins",
-        "trend_fallback",
-        "n_networks",
-    )
-
     def params(self) -> dict:
-        """The constructor arguments (a seed as is; a Generator as None)."""
-        params = {k: getattr(self, k) for k in self._PARAMS}
+        """The constructor arguments (a seed as is; a Generator as None).
+
+        Returns:
+            the :class:`~mjwalk.arms.dcsoptions.DCSOptions` fields in order, then ``rng``.
+        """
+        params = self.options.as_dict()
         rs = self.rng
         params["rng"] = rs if isinstance(rs, int | None) else None
         return params
 
     def header(self) -> dict:
-        """The header :meth:`save` writes (:func:`~mjwalk.arms.dcsfile.network_header`)."""
+        """The header :meth:`save` writes (:func:`~mjwalk.arms.dcsfile.network_header`).
+
+        Returns:
+            the header dict (JSON-serializable).
+        """
         return network_header(self)
 
     def save(self, path: str | Path) -> None:
-        """Write the fitted network to one versioned ``.npz`` file (atomically)."""
+        """Write the fitted network to one versioned ``.npz`` file (atomically).
+
+        Args:
+            path: the ``.npz`` file to write.
+        """
         self._check_fitted()
         save_npz(path, network_header(self), network_arrays(self))
 
@@ -588,11 +517,28 @@ class DCSNetwork:
     ) -> DCSNetwork:
         """Rebuild a network from :meth:`save`'s header and arrays (used by composite models);
         ``train_z``: the training inputs of the network this one belongs to (its trend network
-        or an averaged network), used when ``data`` has none."""
+        or an averaged network), used when ``data`` has none.
+
+        Args:
+            header: the header :meth:`header` returns.
+            data: the arrays :meth:`to_arrays` returns.
+            source: name of the source in errors.
+            train_z: (N, d) standardized training inputs, or None.
+
+        Returns:
+            the fitted network.
+        """
         return network_from_arrays(cls, header, data, source, train_z)
 
     @classmethod
     def load(cls, path: str | Path) -> DCSNetwork:
-        """Read a network written by :meth:`save`; corrupt/foreign files raise ModelFileError."""
+        """Read a network written by :meth:`save`; corrupt/foreign files raise ModelFileError.
+
+        Args:
+            path: the ``.npz`` file.
+
+        Returns:
+            the fitted network.
+        """
         header, data = load_npz(path, "DCS network")
         return cls.from_arrays(header, data, source=str(path))

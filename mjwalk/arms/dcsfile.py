@@ -51,11 +51,19 @@ class DCSFields(Protocol):
     members_: list[Self]
 
     def params(self) -> dict:
-        """The constructor arguments, as the header stores them."""
+        """The constructor arguments, as the header stores them.
+
+        Returns:
+            the constructor arguments.
+        """
         ...
 
     def set_training_points(self, Z: np.ndarray) -> None:
-        """Keep the standardized training inputs ``Z`` (N, d) and the trained range."""
+        """Keep the standardized training inputs ``Z`` (N, d) and the trained range.
+
+        Args:
+            Z: (N, d) standardized training inputs.
+        """
         ...
 
 
@@ -71,7 +79,15 @@ DCS_VERSION = 3
 def network_arrays(net: DCSFields, with_training: bool = True) -> dict:
     """The arrays :meth:`DCSNetwork.save` writes. The trend network and the averaged networks were
     fitted on the same inputs, so only the first network keeps the training inputs
-    (``with_training``); they borrow them on load."""
+    (``with_training``); they borrow them on load.
+
+    Args:
+        net: the fitted network.
+        with_training: include the standardized training inputs ``train_z``.
+
+    Returns:
+        ``{name: array}``, nested networks under ``fallback.`` and ``member<j>.``.
+    """
     fallback = getattr(net, "fallback_", None)
     return {
         "centers": net.centers_,
@@ -98,7 +114,14 @@ def network_arrays(net: DCSFields, with_training: bool = True) -> dict:
 
 def network_header(net: DCSFields) -> dict:
     """The header :meth:`DCSNetwork.save` writes: format, version, parameters, the values the
-    grids chose and the growth history, and those of the trend and averaged networks."""
+    grids chose and the growth history, and those of the trend and averaged networks.
+
+    Args:
+        net: the fitted network.
+
+    Returns:
+        the header dict (JSON-serializable).
+    """
     params = net.params()
     fallback = getattr(net, "fallback_", None)
     return {
@@ -130,7 +153,18 @@ def network_from_arrays(
     """Rebuild a network of class ``cls`` (called with the header's parameters) from
     :meth:`DCSNetwork.save`'s header and arrays; ``train_z``: the training inputs of the
     network this one belongs to (its trend network or an averaged network), used when ``data``
-    has none."""
+    has none.
+
+    Args:
+        cls: the network class (or factory) called with the header's ``params``.
+        header: the header :func:`network_header` wrote.
+        data: the arrays :func:`network_arrays` wrote.
+        source: name of the source in errors.
+        train_z: (N, d) standardized training inputs, or None.
+
+    Returns:
+        the fitted network; a corrupt header or arrays raise :class:`~mjwalk.errors.ModelFileError`.
+    """
     version = header.get("version")  # version 1-2 files (no trend/fallback) read the same
     check_header(
         header, source, "DCS network", DCS_FORMAT, version if version in (1, 2) else DCS_VERSION

@@ -49,6 +49,7 @@ depends on the capture (docs/decisions/002-dcs-input-scaling.md). Widths and
 from __future__ import annotations
 
 import itertools
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.spatial.distance import cdist
@@ -67,7 +68,15 @@ SCALINGS = ("column", "global", "point")
 def input_scale(X: np.ndarray, scaling: str) -> np.ndarray:
     """(d,) divisors of the inputs ``X`` (N, d) for ``scaling``, one of :data:`SCALINGS`
     (module docstring; a column without spread is divided by 1). Baselines that must see the
-    DCS's distances scale by these (``benchmarks/bench_reach.py``)."""
+    DCS's distances scale by these (``benchmarks/bench_reach.py``).
+
+    Args:
+        X: (N, d) inputs.
+        scaling: one of :data:`SCALINGS`.
+
+    Returns:
+        (d,) positive divisors, in the units of ``X``.
+    """
     scale = np.asarray(X, dtype=float).std(axis=0)
     if scaling == "global":  # one scale for all columns: distances keep their units
         scale = np.full_like(scale, np.sqrt((scale**2).mean()))
@@ -76,14 +85,68 @@ def input_scale(X: np.ndarray, scaling: str) -> np.ndarray:
     return np.where(scale > 1e-12, scale, 1.0)
 
 
-def score_step(Ztr, Ytr, Zval, Yval, centers, ages, ridges, factors, forms, loo):
-    """The best (score, width factor, ridge, output form, squared training error per
-    sample) of the current centres over the grids: scored by PRESS (``loo``), on the
-    held-out samples ``Zval`` when there are any, else by the training error (RMSE)."""
+@dataclass(frozen=True)
+class SelectionSamples:
+    """The samples one growth step is fitted and scored on, in standardized input units.
+
+    Attributes:
+        train_z: (n, d) training inputs (the centres adapt to these).
+        train_y: (n, m) training targets.
+        val_z: (v, d) held-out inputs, v = 0 without a held-out part.
+        val_y: (v, m) held-out targets.
+        loo: score by PRESS (leave-one-out residuals) on the training samples.
+    """
+
+    train_z: np.ndarray
+    train_y: np.ndarray
+    val_z: np.ndarray
+    val_y: np.ndarray
+    loo: bool
+
+    @property
+    def selects(self) -> bool:
+        """Whether the steps are scored on data the outputs did not see (held out or PRESS)."""
+        return bool(len(self.val_z)) or self.loo
+
+
+@dataclass(frozen=True)
+class SelectionGrids:
+    """The candidates each growth step chooses among.
+
+    Attributes:
+        factors: width factors (> 0).
+        ridges: output ridges (>= 0).
+        forms: output forms ``(local linear, global linear, slope ridge)``
+            (:func:`output_form`).
+    """
+
+    factors: tuple[float, ...]
+    ridges: tuple[float, ...]
+    forms: list[tuple[bool, bool, float]]
+
+
+def score_step(samples: SelectionSamples, grids: SelectionGrids, centers, ages):
+    """The best candidate of the current centres over the grids.
+
+    Scored by PRESS (``samples.loo``), on the held-out samples when there are any, else by
+    the training error (RMSE, output units).
+
+    Args:
+        samples: the training and held-out samples (standardized inputs).
+        grids: the width factors, ridges and output forms to try.
+        centers: (K, d) neuron centres, standardized input units.
+        ages: (K, K) int edge ages, -1 where there is no edge.
+
+    Returns:
+        ``(score, width factor, ridge, output form, resid)``, ``resid`` (n,) the squared
+        training error per sample of the best candidate.
+    """
+    Ztr, Ytr, Zval, Yval = samples.train_z, samples.train_y, samples.val_z, samples.val_y
+    ridges = grids.ridges
     edges = ages >= 0
     base = neuron_widths(centers, edges, 1.0)
     best = None
-    for factor, linear in itertools.product(factors, forms):
+    for factor, linear in itertools.product(grids.factors, grids.forms):
         widths = factor * base
         F = features(Ztr, centers, widths, edges, linear)
         Fv = features(Zval, centers, widths, edges, linear) if len(Zval) else None
@@ -91,7 +154,7 @@ def score_step(Ztr, Ytr, Zval, Yval, centers, ages, ridges, factors, forms, loo)
             ridges, ridge_path(F, Ytr, len(centers), ridges), strict=True
         ):
             resid = ((F @ outputs - Ytr) ** 2).sum(axis=1)
-            if loo:  # leave-one-out residuals of the output least squares (PRESS)
+            if samples.loo:  # leave-one-out residuals of the output least squares (PRESS)
                 lev = np.minimum(hat, 1.0 - 1e-6)
                 score = float(np.sqrt((resid / (1.0 - lev) ** 2).mean()))
             elif Fv is not None:
@@ -113,6 +176,15 @@ def ridge_path(F, Y, k, ridges):
     (rather than towards zero) and the local slopes towards zero: outputs
     ``G @ Y`` with ``G = (F.T F + lam I)^-1 (F.T + lam P)``, ``P @ Y`` the prior. The hat
     diagonal ``diag(F G)`` gives the exact leave-one-out residuals ``r_i / (1 - H_ii)``.
+
+    Args:
+        F: (N, cols) features (:func:`features`).
+        Y: (N, m) targets.
+        k: number of neurons (RBF weight columns).
+        ridges: ridges to solve for (>= 0).
+
+    Returns:
+        one ``(outputs (cols, m), hat diagonal (N,))`` per ridge.
     """
     n, cols = F.shape
     Phi = F[:, :k]
@@ -146,13 +218,40 @@ def solve_outputs(Z, Y, centers, widths, edges, ridge, linear=False, with_hat=Fa
     """Stacked output rows (K, m), or (K (1 + d), m) with local linear terms, by ridge
     least squares; with ``with_hat`` also the diagonal (N,) of the hat matrix (prediction
     = H @ Y, the ridge prior being a linear function of Y too), for the leave-one-out
-    residuals ``r_i / (1 - H_ii)``."""
+    residuals ``r_i / (1 - H_ii)``.
+
+    Args:
+        Z: (N, d) standardized inputs.
+        Y: (N, m) targets.
+        centers: (K, d) neuron centres.
+        widths: (K,) neuron widths.
+        edges: (K, K) bool lateral edges.
+        ridge: the output ridge.
+        linear: output form (:func:`output_form`).
+        with_hat: also return the hat diagonal.
+
+    Returns:
+        the stacked output rows, or ``(rows, hat diagonal (N,))``.
+    """
     F = features(Z, centers, widths, edges, linear)
     ((out, hat),) = ridge_path(F, Y, len(centers), (ridge,))
     return (out, hat) if with_hat else out
 
 
 def forward(Z, centers, widths, outputs, edges, linear=False):
+    """Network outputs ``features @ outputs`` for standardized inputs.
+
+    Args:
+        Z: (N, d) standardized inputs.
+        centers: (K, d) neuron centres.
+        widths: (K,) neuron widths.
+        outputs: stacked output rows (:func:`solve_outputs`).
+        edges: (K, K) bool lateral edges.
+        linear: output form (:func:`output_form`).
+
+    Returns:
+        (N, m) outputs.
+    """
     return features(Z, centers, widths, edges, linear) @ outputs
 
 
@@ -160,7 +259,18 @@ def features(Z, centers, widths, edges, linear):
     """(N, K) normalized RBF weights, then with local linear outputs (see
     :func:`output_form`) the weights times the offsets ``z - c_i`` over the square root of the
     slope ridge (so one ridge penalizes the slopes ``slope_ridge`` times more), then with a
-    global linear term the inputs ``z``."""
+    global linear term the inputs ``z``.
+
+    Args:
+        Z: (N, d) standardized inputs.
+        centers: (K, d) neuron centres.
+        widths: (K,) neuron widths.
+        edges: (K, K) bool lateral edges.
+        linear: output form (:func:`output_form`).
+
+    Returns:
+        (N, K), (N, K (1 + d)) or with the global term d more columns.
+    """
     Phi = design(Z, centers, widths, edges)
     local, glob, r = output_form(linear)
     cols = [Phi]
@@ -173,7 +283,17 @@ def features(Z, centers, widths, edges, linear):
 
 
 def design(Z, centers, widths, edges):
-    """(N, K) normalized RBF weights over each sample's winner and its lateral neighbours."""
+    """(N, K) normalized RBF weights over each sample's winner and its lateral neighbours.
+
+    Args:
+        Z: (N, d) standardized inputs.
+        centers: (K, d) neuron centres.
+        widths: (K,) Gaussian widths.
+        edges: (K, K) bool lateral edges.
+
+    Returns:
+        (N, K) weights, each row summing to 1.
+    """
     d = cdist(Z, centers)
     bmu = np.argmin(d, axis=1)
     active = edges[bmu].copy()
@@ -185,6 +305,17 @@ def design(Z, centers, widths, edges):
 
 
 def neuron_widths(centers, edges, factor):
+    """Gaussian width of each neuron: ``factor`` times its mean distance to its lateral neighbours
+    (to its nearest neuron when it has none), at least 1e-6.
+
+    Args:
+        centers: (K, d) neuron centres, standardized units.
+        edges: (K, K) bool lateral edges.
+        factor: the width factor.
+
+    Returns:
+        (K,) widths, standardized units.
+    """
     d = cdist(centers, centers)
     widths = np.empty(len(centers))
     for i in range(len(centers)):
@@ -200,7 +331,14 @@ def neuron_widths(centers, edges, factor):
 
 def output_form(linear) -> tuple[bool, bool, float]:
     """Output form ``(local linear, global linear, slope ridge)``; a bool is the local
-    flag alone (constant or local linear outputs, no trend, slope ridge 1)."""
+    flag alone (constant or local linear outputs, no trend, slope ridge 1).
+
+    Args:
+        linear: a bool or a ``(local, global, slope ridge)`` tuple.
+
+    Returns:
+        ``(local linear, global linear, slope ridge)``.
+    """
     if isinstance(linear, tuple):
         return bool(linear[0]), bool(linear[1]), float(linear[2])
     return bool(linear), False, 1.0
@@ -208,7 +346,17 @@ def output_form(linear) -> tuple[bool, bool, float]:
 
 def split_outputs(stacked, k, d, linear):
     """Stacked output rows -> (``outputs`` (K, m), ``slopes`` (K, d, m) or None,
-    ``trend`` (d, m) or None)."""
+    ``trend`` (d, m) or None).
+
+    Args:
+        stacked: stacked output rows (:func:`solve_outputs`).
+        k: number of neurons K.
+        d: number of inputs.
+        linear: output form (:func:`output_form`).
+
+    Returns:
+        ``(outputs, slopes, trend)``.
+    """
     local, glob, r = output_form(linear)
     m = stacked.shape[1]
     slopes = stacked[k : k + k * d].reshape(k, d, m) / np.sqrt(r) if local else None
@@ -218,7 +366,16 @@ def split_outputs(stacked, k, d, linear):
 
 def grid_values(name: str, value, zero_ok: bool) -> tuple[float, ...]:
     """A number or a list of candidates as a tuple of floats, checked: at least one, all
-    > 0 (>= 0 with ``zero_ok``)."""
+    > 0 (>= 0 with ``zero_ok``).
+
+    Args:
+        name: the setting, for the error message.
+        value: a number or a sequence of numbers.
+        zero_ok: allow 0.
+
+    Returns:
+        the candidates as floats.
+    """
     out = tuple(float(x) for x in (value if isinstance(value, list | tuple) else (value,)))
     if not out or min(out) < 0 or (min(out) == 0 and not zero_ok):
         bound = ">= 0" if zero_ok else "> 0"
@@ -227,5 +384,13 @@ def grid_values(name: str, value, zero_ok: bool) -> tuple[float, ...]:
 
 
 def grid(flag) -> tuple[bool, ...]:
+    """A flag or a sequence of flags as a tuple of bools (``(False,)`` when empty).
+
+    Args:
+        flag: a bool or a sequence of bools.
+
+    Returns:
+        the candidates.
+    """
     seq = flag if isinstance(flag, list | tuple) else (flag,)
     return tuple(bool(x) for x in seq) or (False,)

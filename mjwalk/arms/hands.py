@@ -8,8 +8,11 @@ from __future__ import annotations
 
 import functools
 
+import mujoco
 import numpy as np
+from scipy.optimize import brentq
 
+from mjwalk.body.humanoid import humanoid_model
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 from mjwalk.errors import MjwalkError
 
@@ -20,10 +23,6 @@ _OPEN_CMC, _CLOSED_FLEX = 1.1, 1.0
 
 @functools.lru_cache(maxsize=4)
 def _hand_model(stature: float):
-    import mujoco
-
-    from mjwalk.body.humanoid import humanoid_model
-
     model, jmap = humanoid_model(stature)
     return model, jmap, mujoco.MjData(model)
 
@@ -31,7 +30,15 @@ def _hand_model(stature: float):
 def grip_synergy(closure: float, side: Side = "left") -> dict[str, float]:
     """Finger joint angles (rad) of the grip synergy at ``closure`` in [0, 1]: the thumb's
     opposition (CMC) closes from 63 deg to 0 while the four fingers flex (MCP = PIP = phi,
-    DIP = 0.7 phi, phi up to 57 deg) and the thumb MCP/IP flex to half that."""
+    DIP = 0.7 phi, phi up to 57 deg) and the thumb MCP/IP flex to half that.
+
+    Args:
+        closure: grip closure, clipped to [0, 1] (0 open).
+        side: "left" or "right".
+
+    Returns:
+        ``{joint name: angle}``, radians.
+    """
     g = float(np.clip(closure, 0.0, 1.0))
     phi = _CLOSED_FLEX * g
     p = side_prefix(side)  # joint names: "thumb_l_cmc"
@@ -49,9 +56,16 @@ def pinch_aperture(
     finger_q: dict[str, float], side: Side = "left", stature: float = DEFAULT_STATURE
 ) -> float:
     """Distance (m) between the thumb tip and the index fingertip of the humanoid hand for the
-    given finger joint angles (forward kinematics of mjwalk.body.humanoid in MuJoCo)."""
-    import mujoco
+    given finger joint angles (forward kinematics of mjwalk.body.humanoid in MuJoCo).
 
+    Args:
+        finger_q: ``{joint name: angle}`` in radians (other joints neutral).
+        side: "left" or "right".
+        stature: body height, metres.
+
+    Returns:
+        the aperture, metres.
+    """
     model, jmap, data = _hand_model(round(float(stature), 4))
     p = side_prefix(side)
     q = jmap.neutral_qpos(model, stature)
@@ -71,9 +85,16 @@ def fingers_for_aperture(
     aperture: float, side: Side = "left", stature: float = DEFAULT_STATURE
 ) -> dict:
     """Finger joint angles (rad) whose thumb-index distance equals ``aperture`` metres (to
-    0.1 mm) along the grip synergy; apertures outside the hand's range raise MjwalkError."""
-    from scipy.optimize import brentq
+    0.1 mm) along the grip synergy; apertures outside the hand's range raise MjwalkError.
 
+    Args:
+        aperture: thumb-index distance, metres.
+        side: "left" or "right".
+        stature: body height, metres.
+
+    Returns:
+        ``{joint name: angle}``, radians.
+    """
     lo = pinch_aperture(grip_synergy(1.0, side), side, stature)
     hi = pinch_aperture(grip_synergy(0.0, side), side, stature)
     if not lo <= aperture <= hi:
@@ -94,7 +115,16 @@ def finger_trajectory(
     apertures: np.ndarray, side: Side = "left", stature: float = DEFAULT_STATURE
 ) -> dict:
     """Finger joint angles over time: {joint name: (n,) radians} for grip ``apertures`` (n,)
-    metres (clipped to the hand's range)."""
+    metres (clipped to the hand's range).
+
+    Args:
+        apertures: (n,) grip apertures, metres.
+        side: "left" or "right".
+        stature: body height, metres.
+
+    Returns:
+        ``{joint name: (n,) angles}``, radians.
+    """
     lo = pinch_aperture(grip_synergy(0.95, side), side, stature)
     hi = pinch_aperture(grip_synergy(0.0, side), side, stature)
     frames = [fingers_for_aperture(float(np.clip(a, lo, hi)), side, stature) for a in apertures]

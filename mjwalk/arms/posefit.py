@@ -1,5 +1,5 @@
 """The endpoint fit of a synthesized arm movement, compiled: the pose (rotation vector + log
-angular scale, :func:`~mjwalk.arms.armrep.apply_pose`) that brings the hand at the first and
+angular scale, :func:`~mjwalk.arms.armpose.apply_pose`) that brings the hand at the first and
 last sample closest to the given start and end positions (Al-Zubi & Sommer: the movement
 "fitted to a start and end position").
 
@@ -20,7 +20,7 @@ import numpy as np
 
 from mjwalk._jit import njit
 
-#: |sphere log| below which a direction counts as the centre (armrep._EPS).
+#: |sphere log| below which a direction counts as the centre (armpose._EPS).
 _EPS = 1e-12
 #: Central-difference step of the Jacobian (radians / log scale): truncation error ~h^2.
 _STEP = 1e-6
@@ -31,7 +31,7 @@ _MAX_ITER = 200
 
 @njit
 def _rotvec_matrix(r0, r1, r2):
-    """Row-major 9-tuple of :func:`mjwalk.arms.armrep.rotvec_matrix` (through the unit
+    """Row-major 9-tuple of :func:`mjwalk.arms.armpose.rotvec_matrix` (through the unit
     quaternion, Taylor series below 1e-3 rad)."""
     angle = math.sqrt(r0 * r0 + r1 * r1 + r2 * r2)
     if angle <= 1e-3:
@@ -156,7 +156,19 @@ def fit_endpoint_pose(
     aligned directions ``a`` (K, S, 3) (the samples to fit, segment ``lengths`` (S,) metres)
     closest to ``targets`` (K, 3) in least squares, from ``x0``; the log scale kept within
     ``log_scale_bounds``. Returns (pose, converged); a pose on a bound also reports False,
-    so the caller can hand that case to a solver that treats bounds exactly."""
+    so the caller can hand that case to a solver that treats bounds exactly.
+
+    Args:
+        center: (3,) unit centre of the angular scaling.
+        a: (K, S, 3) aligned directions of the samples to fit.
+        lengths: (S,) segment lengths, metres.
+        targets: (K, 3) hand targets, metres, shoulder frame.
+        x0: (4,) initial pose.
+        log_scale_bounds: (lo, hi) bounds of the log scale.
+
+    Returns:
+        ``(pose (4,), converged)``.
+    """
     lo, hi = log_scale_bounds
     x, ok = _solve(
         np.ascontiguousarray(center, dtype=float),

@@ -32,7 +32,8 @@ from numpy.typing import ArrayLike
 from scipy.optimize import least_squares
 
 from mjwalk._io import check_header, load_npz, save_npz
-from mjwalk.arms.armrep import ArmRepresentation, apply_pose
+from mjwalk.arms.armpose import apply_pose
+from mjwalk.arms.armrep import ArmRepresentation
 from mjwalk.arms.chain import (
     MIRROR_Y,
     REST_HAND,
@@ -60,7 +61,15 @@ def load_endpoint_model(path: str | Path, source: str | None = None) -> ReachMod
 
     The file is read once per content: a cycle spec checks it when it is loaded and the
     cycle uses it later, so both get the same :class:`ReachModel` object as long as the
-    file's size and modification time are unchanged (treat it as read-only)."""
+    file's size and modification time are unchanged (treat it as read-only).
+
+    Args:
+        path: the reach model file.
+        source: name in the error, or None for the path.
+
+    Returns:
+        the model (shared; treat as read-only).
+    """
     file = Path(path).resolve()
     if file.is_file():
         stat = file.stat()
@@ -81,7 +90,12 @@ def check_endpoint_model(model: ReachModel, source: str = "reach model") -> None
     """Raise :class:`~mjwalk.errors.MjwalkError` unless ``model`` is what
     :func:`reach_for_side`, :func:`~mjwalk.timeline.reachscene.reach_in_scene` and the cycle ask
     of it: a start/end hand constraint (6,) mapped to the humanoid's upper arm, forearm and
-    hand (3 segments), such as :func:`~mjwalk.arms.reachdefault.default_reach_model`."""
+    hand (3 segments), such as :func:`~mjwalk.arms.reachdefault.default_reach_model`.
+
+    Args:
+        model: the reach model.
+        source: name of the model in the error.
+    """
     n_in, n_seg = model.n_inputs, len(model.lengths)
     if n_in == ENDPOINT_INPUTS and n_seg == HUMANOID_ARM_SEGMENTS:
         return
@@ -135,7 +149,14 @@ def mirror_result(res: ReachResult) -> ReachResult:
     """The mirror image of a reach through the body's sagittal plane (y -> -y in the shoulder
     frame): a left-arm movement becomes the right arm's and back. Directions and hand path are
     reflected; the extra channels (grip aperture, forearm roll in the anatomical sign
-    convention, which is the same for both sides) are kept."""
+    convention, which is the same for both sides) are kept.
+
+    Args:
+        res: a reach in one arm's shoulder frame.
+
+    Returns:
+        the reflected reach.
+    """
     return replace(
         res,
         directions=res.directions * MIRROR_Y,
@@ -150,7 +171,15 @@ def arm_scale(model: ReachModel, stature: float) -> float:
     it places; Winter's shares for the humanoid; 1 at the stature the model's lengths are of).
     A scene reach is solved at the model's size: targets (m, shoulder frame) are multiplied
     by it, and segment directions, hence joint angles, are the same at every size (geometric
-    similarity)."""
+    similarity).
+
+    Args:
+        model: the reach model.
+        stature: body height, metres.
+
+    Returns:
+        the dimensionless scale.
+    """
     lengths = np.asarray(model.lengths, dtype=float)
     return float(lengths.sum() / arm_segment_lengths(stature)[: len(lengths)].sum())
 
@@ -159,7 +188,15 @@ def humanoid_arm(model: ReachModel, stature: float) -> tuple[float, np.ndarray]:
     """``(scale, arm_lengths)`` of a humanoid of ``stature`` metres reaching with ``model``:
     :func:`arm_scale`, and its upper arm, forearm and hand at the model's size (Winter's
     shares times the scale): the segments the endpoint fit puts the humanoid's hand on the
-    target with, where the model's clips had arms of other proportions."""
+    target with, where the model's clips had arms of other proportions.
+
+    Args:
+        model: the reach model.
+        stature: body height, metres.
+
+    Returns:
+        ``(scale, arm_lengths (3,) metres)``.
+    """
     scale = arm_scale(model, stature)
     return scale, arm_segment_lengths(stature)[: len(model.lengths)] * scale
 
@@ -178,7 +215,19 @@ def reach_for_side(
     The model is a left-arm model; the body is symmetric about its sagittal plane, so a
     right-arm reach is the left-arm reach to the mirrored target (:data:`MIRROR_Y`), mirrored
     back (:func:`mirror_result`). ``arm_lengths``: the moving arm's segments at the model's
-    size (see :meth:`ReachModel.predict`; :func:`humanoid_arm` for a humanoid's)."""
+    size (see :meth:`ReachModel.predict`; :func:`humanoid_arm` for a humanoid's).
+
+    Args:
+        model: a left-arm endpoint model.
+        end: (3,) hand end, metres, moving arm's shoulder frame.
+        side: "left" or "right".
+        start: (3,) hand start, metres, left arm's frame, or None.
+        object_size: grasped object size, metres, or None.
+        arm_lengths: (3,) moving arm segments, metres, or None.
+
+    Returns:
+        the reach in the moving arm's shoulder frame.
+    """
     check_endpoint_model(model)
     start = np.asarray(model.rest_hand if start is None else start, dtype=float)
     if arm_lengths is not None:
@@ -242,7 +291,17 @@ class ReachModel:
         rep: ArmRepresentation | None = None,
     ) -> ReachModel:
         """Fit on constraints (p, d) and direction trajectories (p, n, S, 3) [+ extras];
-        ``rep`` reuses an ArmRepresentation already fitted on the same trajectories."""
+        ``rep`` reuses an ArmRepresentation already fitted on the same trajectories.
+
+        Args:
+            constraints: (p, d) constraint vectors.
+            directions: (p, n, S, 3) unit directions, shoulder frame.
+            extras: (p, n, C) extra channels, or None.
+            rep: a fitted representation to reuse, or None.
+
+        Returns:
+            this model, fitted.
+        """
         C = np.asarray(constraints, dtype=float)
         if C.ndim == 1:
             C = C[:, None]
@@ -301,7 +360,19 @@ class ReachModel:
         minimum-jerk profile, to close exactly on the object at the end. ``arm_lengths`` (S,)
         m: the segments of the arm that makes the movement (default: the model's ``lengths``),
         for the fit to ``start``/``end`` and ``hand``: an arm of other proportions than the
-        clips' (a humanoid's, at the model's size) puts its own hand on the points."""
+        clips' (a humanoid's, at the model's size) puts its own hand on the points.
+
+        Args:
+            constraint: (d,) constraint vector.
+            start: (3,) hand start, metres, shoulder frame, or None.
+            end: (3,) hand end, metres, shoulder frame, or None.
+            strict: raise outside the trained range instead of warning.
+            object_size: object size, metres, or None.
+            arm_lengths: (S,) segment lengths, metres, or None (the model's).
+
+        Returns:
+            the synthesized movement.
+        """
         L = self.lengths if arm_lengths is None else np.asarray(arm_lengths, dtype=float)
         if L.shape != self.lengths.shape or not (L > 0).all():
             raise MjwalkError(
@@ -394,7 +465,11 @@ class ReachModel:
 
     # ------------------------------------------------------------ persistence
     def save(self, path: str | Path) -> None:
-        """Write the model (representation + DCS) to one versioned ``.npz`` (atomically)."""
+        """Write the model (representation + DCS) to one versioned ``.npz`` (atomically).
+
+        Args:
+            path: the ``.npz`` file to write.
+        """
         if not isinstance(getattr(self, "net_", None), DCSNetwork):
             raise MjwalkError("ReachModel.save: only a fitted DCS-based model can be saved")
         arrays = dict(self.rep_.to_arrays())
@@ -413,7 +488,14 @@ class ReachModel:
 
     @classmethod
     def load(cls, path: str | Path) -> ReachModel:
-        """Read a model written by :meth:`save`; corrupt/foreign files raise ModelFileError."""
+        """Read a model written by :meth:`save`; corrupt/foreign files raise ModelFileError.
+
+        Args:
+            path: the ``.npz`` file.
+
+        Returns:
+            the fitted model.
+        """
         header, data = load_npz(path, "reach-model")
         check_header(header, path, "reach-model", REACH_FORMAT, REACH_VERSION)
         try:

@@ -7,7 +7,11 @@ import time
 import numpy as np
 
 from mjwalk._buildonce import built_once
+from mjwalk._io import cache_root, check_cache_writable
 from mjwalk._log import log
+from mjwalk.arms import reachgen
+from mjwalk.arms.chain import REST_HAND
+from mjwalk.arms.reach import ReachModel
 
 #: Bump when the generator or the model changes, so the cache is rebuilt.
 REACH_DEFAULT_VERSION = "7"
@@ -58,12 +62,14 @@ _MEMO: dict = {}
 
 def default_reach_model(progress: bool = True):
     """The :class:`~mjwalk.arms.reach.ReachModel` of start/end-constrained reaches of the left
-    arm (``reachgen.generate("endpoints", N_TRAIN, seed 0)``), cached beside the step model."""
-    from mjwalk._io import cache_root, check_cache_writable
-    from mjwalk.arms import reachgen
-    from mjwalk.arms.chain import REST_HAND
-    from mjwalk.arms.reach import ReachModel
+    arm (``reachgen.generate("endpoints", N_TRAIN, seed 0)``), cached beside the step model.
 
+    Args:
+        progress: log when the model is built.
+
+    Returns:
+        the cached model (shared between calls).
+    """
     path = cache_root() / f"reach-endpoints-v{REACH_DEFAULT_VERSION}-n{N_TRAIN}.npz"
     if path in _MEMO:
         return _MEMO[path]

@@ -91,7 +91,17 @@ def grip_aperture(
     tau: np.ndarray, size: float, peak: float = 0.7, rest: float = 0.02
 ) -> np.ndarray:
     """Grip aperture (m) over normalized time ``tau``: opens from ``rest`` to the maximum
-    0.8*size + 0.035 at ``peak`` and closes onto ``size`` at the end."""
+    0.8*size + 0.035 at ``peak`` and closes onto ``size`` at the end.
+
+    Args:
+        tau: (n,) normalized time in [0, 1].
+        size: object size, metres.
+        peak: normalized time of the maximum aperture.
+        rest: aperture at the start, metres.
+
+    Returns:
+        (n,) apertures, metres.
+    """
     mga = 0.8 * size + 0.035
     a = np.where(
         tau < peak,
@@ -115,6 +125,19 @@ def reach_trajectory(
 
     ``curvature`` is the peak lift as a share of the start-end distance (used when ``lift``, a
     lift in metres, is None); ``bump_at`` places the peak along the path (0..1).
+
+    Args:
+        start: (3,) hand start, metres, shoulder frame.
+        end: (3,) hand end, metres.
+        lengths: (3,) segment lengths, metres.
+        rng: random generator (draws the elbow swivel).
+        n: samples.
+        curvature: peak lift over the start-end distance.
+        bump_at: normalized time of the peak lift.
+        lift: peak lift, metres, or None.
+
+    Returns:
+        ``(directions (n, 3, 3), hand (n, 3))``.
     """
     tau = np.linspace(0.0, 1.0, n)
     m = min_jerk(tau)
@@ -191,7 +214,18 @@ def _reachable(p, lengths):
 def generate(
     space: str, p: int, rng: np.random.Generator, n: int = 20, stature: float = DEFAULT_STATURE
 ) -> ReachData:
-    """Generate ``p`` reaches of constraint ``space`` (one of :data:`SPACES`)."""
+    """Generate ``p`` reaches of constraint ``space`` (one of :data:`SPACES`).
+
+    Args:
+        space: one of :data:`SPACES`.
+        p: number of reaches.
+        rng: random generator (start, end, curvature and swivel noise).
+        n: samples per reach.
+        stature: body height, metres.
+
+    Returns:
+        the reaches (:class:`ReachData`).
+    """
     if space not in SPACES:
         raise MjwalkError(f"reachgen: unknown constraint space {space!r} (choose from {SPACES})")
     L = arm_segment_lengths(stature)

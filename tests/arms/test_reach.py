@@ -1,4 +1,4 @@
-"""ReachModel and the reach generator (mjwalk.arms.reach, mjwalk.arms.reachgen)."""
+"""ReachModel (mjwalk.arms.reach) trained on generated reaches."""
 
 from pathlib import Path
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from mjwalk.arms import reachgen
-from mjwalk.arms.chain import arm_joint_angles, end_effector, wrist_in_range
+from mjwalk.arms.chain import arm_joint_angles
 from mjwalk.arms.reach import ReachModel
 from mjwalk.arms.reachdefault import DEFAULT_DCS
 from mjwalk.errors import MjwalkError, ModelFileError
@@ -26,19 +26,6 @@ def endpoint_model():
     return model, data
 
 
-def test_generator_shapes_and_grasp_aperture():
-    data = reachgen.generate("grasp", 20, np.random.default_rng(1))
-    assert data.directions.shape == (20, 20, 3, 3)
-    np.testing.assert_allclose(end_effector(data.directions, data.lengths), data.hand, atol=1e-9)
-    size = data.constraints[:, 0]
-    ap = data.extras[:, :, 0]
-    # aperture closes on the object (+-2 mm noise) after opening wider than it
-    assert np.abs(ap[:, -1] - size).max() < 0.01
-    assert (ap.max(1) > size + 0.005).all()  # MGA = 0.8 size + 3.5 cm
-    with pytest.raises(MjwalkError, match="unknown constraint space"):
-        reachgen.generate("dance", 3, np.random.default_rng(0))
-
-
 def test_prediction_reaches_targets_within_1cm(endpoint_model):
     model, data = endpoint_model
     for i in range(160, 170):
@@ -49,72 +36,6 @@ def test_prediction_reaches_targets_within_1cm(endpoint_model):
         # seeded: held-out joint-direction error, measured 1.3-13.6 deg, mean 5.2
         err = np.degrees(np.arccos(np.clip((r.directions * data.directions[i]).sum(-1), -1, 1)))
         assert err.mean() < 20.0
-
-
-def test_generated_reaches_keep_a_human_wrist_and_elbow():
-    """The generator's reaches start with a neutral wrist, keep it in its functional range
-    (Ryu et al. 1991), every joint within the humanoid's range of motion, and the elbow swung
-    out (abducted) from the hanging arm, not in towards the chest. Before: the hand hung 51
-    deg back from the forearm at the start and 81 deg mid-reach (beyond the humanoid's 70 deg),
-    and the elbow started 9 cm medial of the shoulder (adducted 16 deg, median)."""
-    from mjwalk.anthropometry import ROM_DEG
-    from mjwalk.arms.chain import ARM_JOINTS
-
-    data = reachgen.generate("endpoints", 80, np.random.default_rng(3))
-    q = np.degrees(np.array([arm_joint_angles(u) for u in data.directions]))  # (p, n, 7)
-    (flex_lo, flex_hi), (dev_lo, dev_hi) = reachgen.FUNCTIONAL_WRIST
-    assert np.abs(q[:, 0, 5:7]).max() < 1.0  # a neutral wrist at the start
-    assert flex_lo - 1e-6 <= q[..., 5].min() and q[..., 5].max() <= flex_hi + 1e-6
-    assert dev_lo - 1e-6 <= q[..., 6].min() and q[..., 6].max() <= dev_hi + 1e-6
-    for k, joint in enumerate(ARM_JOINTS):
-        lo, hi = ROM_DEG[joint]
-        assert lo - 1e-6 <= q[..., k].min() and q[..., k].max() <= hi + 1e-6, joint
-    assert np.median(q[:, 0, 1]) > 5.0  # shoulder abduction at the start (measured 13 deg)
-    assert np.median(data.directions[:, 0, 0, 1]) > 0.0  # the elbow lateral (+y, left arm)
-    # the ends cover the working area, across the body's midline
-    lo, hi = np.array(reachgen.END_BOX).T
-    ends = data.hand[:, -1]
-    assert ((ends >= lo) & (ends <= hi)).all()
-    assert (ends[:, 1] < -0.2).any()
-
-
-@pytest.mark.parametrize("side", ["left", "right"])
-def test_wrist_in_range_turns_the_hand_to_the_limit_and_keeps_its_end(side):
-    """A hand direction the wrist cannot hold is turned to the range's edge (not past it, not
-    short of it), the arm re-solved so the hand's end stays on the target; a direction within
-    the range is kept as it is."""
-    rng = np.random.default_rng(3)
-    lengths = np.array([0.30, 0.27, 0.18])
-    s = 1.0 if side == "left" else -1.0
-    n = 40
-    end = np.column_stack(
-        [rng.uniform(0.25, 0.5, n), s * rng.uniform(-0.1, 0.25, n), rng.uniform(-0.4, 0.0, n)]
-    )
-    hand = rng.normal(size=(n, 3))
-    hand /= np.linalg.norm(hand, axis=1, keepdims=True)
-    hint = np.tile([0.0, s * 0.3, -1.0], (n, 1))
-    limits = np.radians(reachgen.FUNCTIONAL_WRIST)
-    arm = wrist_in_range(end, hand, lengths, hint, limits, side, iterations=20)
-    assert np.allclose(np.linalg.norm(arm, axis=2), 1.0)
-    assert np.abs(end_effector(arm, lengths) - end).max() < 1e-6
-    q = arm_joint_angles(arm, side)[:, 5:7]
-    lo, hi = limits.T
-    assert ((q >= lo - 1e-3) & (q <= hi + 1e-3)).all()
-    q_free = arm_joint_angles(wrist_in_range(end, hand, lengths, hint, limits, side, 0), side)
-    inside = ((q_free[:, 5:7] >= lo) & (q_free[:, 5:7] <= hi)).all(axis=1)
-    assert 0 < inside.sum() < n  # both kinds among the random directions
-    assert np.allclose(arm[inside, 2], hand[inside])
-    # outside: the least turn, so the wrist ends on its range's edge in one of its two angles
-    edge = np.minimum(np.abs(q - lo), np.abs(q - hi)).min(axis=1)
-    assert edge[~inside].max() < np.radians(0.1)
-    # and no direction between the wanted one and the result is in range: 10 points along it
-    for t in np.linspace(0.0, 0.99, 10):
-        h = (1 - t) * hand[~inside] + t * arm[~inside, 2]
-        h /= np.linalg.norm(h, axis=1, keepdims=True)
-        qt = arm_joint_angles(
-            wrist_in_range(end[~inside], h, lengths, hint[~inside], limits, side, 0), side
-        )[:, 5:7]
-        assert (((qt < lo - 1e-9) | (qt > hi + 1e-9)).any(axis=1)).all()
 
 
 def test_outside_constraint_is_flagged_never_silent(endpoint_model):
@@ -305,36 +226,6 @@ def test_a_scene_reach_refuses_a_model_of_another_kind():
     assert r.directions.shape == (20, 2, 3)
     with pytest.raises(MjwalkError, match="not fitted"):
         check_endpoint_model(ReachModel(data.lengths))
-
-
-@pytest.mark.parametrize("side", ["left", "right"])
-def test_arm_joint_angles_recover_poses_across_the_shoulders_range(side):
-    """Upper arm and forearm directions made by the humanoid's shoulder chain (R = Ry(-flex)
-    Rx(s abd) Rz(-s rot), the arm along -z, the elbow Ry(-elbow)) from angles anywhere in the
-    joints' ranges give those angles back -- an arm raised sideways above the shoulder
-    (abduction beyond 90 deg) too, which came back as 180 deg flexion and rotation, beyond
-    their ranges (a reach to a 1.95 m shelf ended 1.3 m off)."""
-    from scipy.spatial.transform import Rotation
-
-    from mjwalk.anthropometry import ROM_DEG
-
-    s = 1.0 if side == "left" else -1.0
-    rng = np.random.default_rng(7)
-    names = ("shoulder_flex", "shoulder_abd", "shoulder_rot")
-    lo, hi = np.radians([ROM_DEG[j] for j in names]).T
-    q = rng.uniform(lo, hi, size=(400, 3))
-    q = q[np.abs(q[:, 1] - np.pi / 2) > np.radians(5.0)]  # away from the gimbal pose
-    assert (q[:, 1] > np.radians(100.0)).sum() > 50  # raised sideways above the shoulder
-    elbow = rng.uniform(np.radians(20.0), np.radians(140.0), size=len(q))
-    dirs = np.empty((len(q), 3, 3))
-    down = np.array([0.0, 0.0, -1.0])
-    for k, (flex, abd, rot) in enumerate(q):
-        r = Rotation.from_euler("YXZ", [-flex, s * abd, -s * rot]).as_matrix()
-        fore = r @ Rotation.from_euler("Y", -elbow[k]).as_matrix() @ down
-        dirs[k] = [r @ down, fore, fore]
-    got = np.array([arm_joint_angles(d[None], side)[0] for d in dirs])
-    np.testing.assert_allclose(got[:, :3], q, atol=1e-6)
-    np.testing.assert_allclose(got[:, 3], elbow, atol=1e-6)
 
 
 @pytest.mark.parametrize("hand", ["left", "right"])

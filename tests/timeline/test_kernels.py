@@ -21,7 +21,7 @@ from scipy.ndimage import gaussian_filter1d, maximum_filter1d
 from scipy.optimize import least_squares
 from scipy.spatial.transform import Rotation
 
-from mjwalk.arms.armrep import angular_scale, apply_pose
+from mjwalk.arms.armpose import angular_scale, apply_pose
 from mjwalk.arms.chain import arm_joint_angles, end_effector, two_link_ik_rows
 from mjwalk.arms.posefit import fit_endpoint_pose
 from mjwalk.body.humanoid import HUMAN_GROUP, ROM_DEG, leg_geometry

@@ -1,0 +1,104 @@
+"""The arm chain (mjwalk.arms.chain): joint angles from segment directions, the wrist kept in
+its range, and the hand's end (forward kinematics)."""
+
+import numpy as np
+import pytest
+from scipy.spatial.transform import Rotation
+
+from mjwalk.anthropometry import ROM_DEG
+from mjwalk.arms import reachgen
+from mjwalk.arms.chain import (
+    ARM_SEGMENT_SHARES,
+    arm_joint,
+    arm_joint_angles,
+    arm_segment_lengths,
+    end_effector,
+    min_jerk,
+    two_link_ik,
+    wrist_in_range,
+)
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_wrist_in_range_turns_the_hand_to_the_limit_and_keeps_its_end(side):
+    """A hand direction the wrist cannot hold is turned to the range's edge (not past it, not
+    short of it), the arm re-solved so the hand's end stays on the target; a direction within
+    the range is kept as it is."""
+    rng = np.random.default_rng(3)
+    lengths = np.array([0.30, 0.27, 0.18])
+    s = 1.0 if side == "left" else -1.0
+    n = 40
+    end = np.column_stack(
+        [rng.uniform(0.25, 0.5, n), s * rng.uniform(-0.1, 0.25, n), rng.uniform(-0.4, 0.0, n)]
+    )
+    hand = rng.normal(size=(n, 3))
+    hand /= np.linalg.norm(hand, axis=1, keepdims=True)
+    hint = np.tile([0.0, s * 0.3, -1.0], (n, 1))
+    limits = np.radians(reachgen.FUNCTIONAL_WRIST)
+    arm = wrist_in_range(end, hand, lengths, hint, limits, side, iterations=20)
+    assert np.allclose(np.linalg.norm(arm, axis=2), 1.0)
+    assert np.abs(end_effector(arm, lengths) - end).max() < 1e-6
+    q = arm_joint_angles(arm, side)[:, 5:7]
+    lo, hi = limits.T
+    assert ((q >= lo - 1e-3) & (q <= hi + 1e-3)).all()
+    q_free = arm_joint_angles(wrist_in_range(end, hand, lengths, hint, limits, side, 0), side)
+    inside = ((q_free[:, 5:7] >= lo) & (q_free[:, 5:7] <= hi)).all(axis=1)
+    assert 0 < inside.sum() < n  # both kinds among the random directions
+    assert np.allclose(arm[inside, 2], hand[inside])
+    # outside: the least turn, so the wrist ends on its range's edge in one of its two angles
+    edge = np.minimum(np.abs(q - lo), np.abs(q - hi)).min(axis=1)
+    assert edge[~inside].max() < np.radians(0.1)
+    # and no direction between the wanted one and the result is in range: 10 points along it
+    for t in np.linspace(0.0, 0.99, 10):
+        h = (1 - t) * hand[~inside] + t * arm[~inside, 2]
+        h /= np.linalg.norm(h, axis=1, keepdims=True)
+        qt = arm_joint_angles(
+            wrist_in_range(end[~inside], h, lengths, hint[~inside], limits, side, 0), side
+        )[:, 5:7]
+        assert (((qt < lo - 1e-9) | (qt > hi + 1e-9)).any(axis=1)).all()
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_arm_joint_angles_recover_poses_across_the_shoulders_range(side):
+    """Upper arm and forearm directions made by the humanoid's shoulder chain (R = Ry(-flex)
+    Rx(s abd) Rz(-s rot), the arm along -z, the elbow Ry(-elbow)) from angles anywhere in the
+    joints' ranges give those angles back -- an arm raised sideways above the shoulder
+    (abduction beyond 90 deg) too, which came back as 180 deg flexion and rotation, beyond
+    their ranges (a reach to a 1.95 m shelf ended 1.3 m off)."""
+    s = 1.0 if side == "left" else -1.0
+    rng = np.random.default_rng(7)
+    names = ("shoulder_flex", "shoulder_abd", "shoulder_rot")
+    lo, hi = np.radians([ROM_DEG[j] for j in names]).T
+    q = rng.uniform(lo, hi, size=(400, 3))
+    q = q[np.abs(q[:, 1] - np.pi / 2) > np.radians(5.0)]  # away from the gimbal pose
+    assert (q[:, 1] > np.radians(100.0)).sum() > 50  # raised sideways above the shoulder
+    elbow = rng.uniform(np.radians(20.0), np.radians(140.0), size=len(q))
+    dirs = np.empty((len(q), 3, 3))
+    down = np.array([0.0, 0.0, -1.0])
+    for k, (flex, abd, rot) in enumerate(q):
+        r = Rotation.from_euler("YXZ", [-flex, s * abd, -s * rot]).as_matrix()
+        fore = r @ Rotation.from_euler("Y", -elbow[k]).as_matrix() @ down
+        dirs[k] = [r @ down, fore, fore]
+    got = np.array([arm_joint_angles(d[None], side)[0] for d in dirs])
+    np.testing.assert_allclose(got[:, :3], q, atol=1e-6)
+    np.testing.assert_allclose(got[:, 3], elbow, atol=1e-6)
+
+
+def test_end_effector_min_jerk_and_segment_lengths():
+    lengths = np.array([0.3, 0.25])
+    dirs = np.array([[[0.0, 0.0, -1.0], [1.0, 0.0, 0.0]]])  # upper arm down, forearm forward
+    np.testing.assert_allclose(end_effector(dirs, lengths), [[0.25, 0.0, -0.3]])
+    t = np.array([-0.5, 0.0, 0.5, 1.0, 2.0])
+    np.testing.assert_allclose(min_jerk(t), [0.0, 0.0, 0.5, 1.0, 1.0])
+    np.testing.assert_allclose(arm_segment_lengths(2.0), 2.0 * np.array(ARM_SEGMENT_SHARES))
+    assert len(arm_segment_lengths(with_hand=False)) == 2
+    assert arm_joint("shoulder_flex", "right") == "shoulder_r_flex"
+
+
+def test_two_link_ik_puts_the_wrist_on_a_reachable_target_and_clamps_a_far_one():
+    up, fore = two_link_ik(np.array([0.2, 0.1, -0.3]), 0.3, 0.25, np.array([0.0, 1.0, 0.0]))
+    np.testing.assert_allclose(0.3 * up + 0.25 * fore, [0.2, 0.1, -0.3], atol=1e-12)
+    assert np.isclose(np.linalg.norm(up), 1.0) and np.isclose(np.linalg.norm(fore), 1.0)
+    assert up[1] > 0  # the elbow towards the hint
+    up, fore = two_link_ik(np.array([0.0, 0.0, -2.0]), 0.3, 0.25, np.array([0.0, 1.0, 0.0]))
+    np.testing.assert_allclose(0.3 * up + 0.25 * fore, [0.0, 0.0, -0.55], atol=1e-5)
