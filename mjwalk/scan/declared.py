@@ -298,7 +298,7 @@ def check_las(path: Path) -> int:
     """Check an uncompressed LAS file's point count against its size (LAS 1.4 §2.3: the point
     records start at ``offset_to_point_data``, ``point_data_record_length`` bytes each);
     returns the declared count. LAZ is checked after reading (:func:`check_read_count`)."""
-    import laspy
+    import laspy  # deferred: laspy is optional (LAS/LAZ only)
 
     try:
         with laspy.open(str(path)) as fh:

@@ -299,14 +299,7 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
     if np.abs(sub[0]).max() > LOCAL_FRAME:  # georeferenced: level about a nearby point
         ref = np.round(sub[0])
         sub = sub - ref
-    # A sparse scan (fewer than ~500 points/m²) leaves too few points per voxel for a normal:
-    # the neighbourhood doubles until one walk surface as large as a floor shows (at most
-    # twice; scattered pieces of floor whose voxels between hold too few points are not one).
-    for voxel in (VOXEL, 2 * VOXEL, 4 * VOXEL):
-        vn = voxel_normals(sub, voxel)
-        labels = walk_surfaces(vn)
-        if _largest_area(vn, labels, voxel) >= MIN_FLOOR_AREA:
-            break
+    vn, labels, voxel = _surfaces_at_some_voxel(sub)
     surf = np.flatnonzero(labels >= 0)
     if len(surf) == 0:
         raise ScanError(
@@ -331,6 +324,46 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
         )
     floor = int(np.flatnonzero(big)[np.argmin(height[big])])
     vox = surf[lab == floor]
+    vox, centre, normal = _floor_plane(vn, vox, sub)
+    rms = float(np.sqrt(np.mean(((vn.centroid[vox] - centre) @ normal) ** 2)))
+    xy = np.median(vn.centroid[vox, :2], axis=0)
+    # The plane point below (xy): solve n . (p - centre) = 0 for p_z.
+    pz = centre[2] - (normal[0] * (xy[0] - centre[0]) + normal[1] * (xy[1] - centre[1])) / normal[2]
+    pivot = np.array([xy[0], xy[1], pz]) + ref
+    rotation = _rotation_onto_z(normal)
+    tilt = float(np.degrees(np.arccos(np.clip(normal[2], -1.0, 1.0))))
+    surfaces = _other_surfaces(vn, (surf, lab), area, floor, (centre, normal), ref)
+    return Levelling(
+        rotation=rotation,
+        pivot=pivot,
+        target=np.array([pivot[0], pivot[1], 0.0]),
+        normal=normal,
+        tilt_deg=tilt,
+        floor_area=float(area[floor]),
+        rms=rms,
+        surfaces=tuple(surfaces),
+    )
+
+
+def _surfaces_at_some_voxel(sub: np.ndarray) -> tuple[VoxelNormals, np.ndarray, float]:
+    """Voxel normals and walk-surface labels of ``sub``, and the voxel edge they took.
+
+    A sparse scan (fewer than ~500 points/m²) leaves too few points per voxel for a normal:
+    the neighbourhood doubles until one walk surface as large as a floor shows (at most
+    twice; scattered pieces of floor whose voxels between hold too few points are not one)."""
+    for voxel in (VOXEL, 2 * VOXEL, 4 * VOXEL):
+        vn = voxel_normals(sub, voxel)
+        labels = walk_surfaces(vn)
+        if _largest_area(vn, labels, voxel) >= MIN_FLOOR_AREA:
+            break
+    return vn, labels, voxel
+
+
+def _floor_plane(
+    vn: VoxelNormals, vox: np.ndarray, sub: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The floor's voxels within :data:`PLANE_TOL` of their plane, and the plane (a point and
+    its upward unit normal) refitted on every point of ``sub`` near it."""
     centre, normal = _plane(vn.moments[vox].sum(axis=0))
     for _ in range(2):
         dist = (vn.centroid[vox] - centre) @ normal
@@ -350,13 +383,22 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
         d = near - centre
         normal = np.linalg.eigh(d.T @ d)[1][:, 0]
         normal = normal if normal[2] >= 0 else -normal
-    rms = float(np.sqrt(np.mean(((vn.centroid[vox] - centre) @ normal) ** 2)))
-    xy = np.median(vn.centroid[vox, :2], axis=0)
-    # The plane point below (xy): solve n . (p - centre) = 0 for p_z.
-    pz = centre[2] - (normal[0] * (xy[0] - centre[0]) + normal[1] * (xy[1] - centre[1])) / normal[2]
-    pivot = np.array([xy[0], xy[1], pz]) + ref
-    rotation = _rotation_onto_z(normal)
-    tilt = float(np.degrees(np.arccos(np.clip(normal[2], -1.0, 1.0))))
+    return vox, centre, normal
+
+
+def _other_surfaces(
+    vn: VoxelNormals,
+    labelled: tuple[np.ndarray, np.ndarray],
+    area: np.ndarray,
+    floor: int,
+    plane: tuple[np.ndarray, np.ndarray],
+    ref: np.ndarray,
+) -> list[Surface]:
+    """The horizontal surfaces besides the floor one could stand on, largest first:
+    ``labelled`` the surface voxels and their labels, ``plane`` the floor's point and normal,
+    ``ref`` the local frame's origin added back to their positions."""
+    surf, lab = labelled
+    centre, normal = plane
     surfaces = []
     for k in np.argsort(-area):
         if k == floor or area[k] < STAND_AREA:
@@ -367,16 +409,7 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
             continue
         mx, my = np.median(vn.centroid[members, :2], axis=0) + ref[:2]
         surfaces.append(Surface(h, float(area[k]), float(mx), float(my)))
-    return Levelling(
-        rotation=rotation,
-        pivot=pivot,
-        target=np.array([pivot[0], pivot[1], 0.0]),
-        normal=normal,
-        tilt_deg=tilt,
-        floor_area=float(area[floor]),
-        rms=rms,
-        surfaces=tuple(surfaces),
-    )
+    return surfaces
 
 
 def check_upright(levelled: np.ndarray, up: str = "+z", source: str = "cloud") -> None:

@@ -130,15 +130,15 @@ def _without_plotly_drawing():
 
 def _import_open3d():
     try:
-        import open3d
+        import open3d  # deferred: open3d is optional and slow to import
     except ImportError as exc:
         if "libusb" not in str(exc):
             raise ScanError(f"Open3D cannot be imported: {exc}") from exc
         try:
-            import libusb_package
+            import libusb_package  # deferred: optional, only when open3d lacks libusb
 
             ctypes.CDLL(str(libusb_package.get_library_path()), mode=ctypes.RTLD_GLOBAL)
-            import open3d
+            import open3d  # deferred: open3d is optional and slow to import
         except (ImportError, OSError) as exc2:
             raise ScanError(
                 f"Open3D needs libusb-1.0 ({exc2}); pip install libusb-package "
@@ -256,7 +256,7 @@ def _read_with_stations(path: Path, drop_invalid: bool) -> tuple[np.ndarray, lis
     if suffix in _OPEN3D or suffix in _OPEN3D_PTS:
         return _read_open3d(path, suffix, drop_invalid)
     if suffix in (".las", ".laz"):
-        import laspy
+        import laspy  # deferred: laspy is optional (LAS/LAZ only)
 
         declared = check_las(path)
         try:
@@ -267,7 +267,7 @@ def _read_with_stations(path: Path, drop_invalid: bool) -> tuple[np.ndarray, lis
             ) from exc
         check_read_count(path, declared, len(las.points))
         return np.column_stack([las.x, las.y, las.z]).astype(np.float64), []
-    import pye57
+    import pye57  # deferred: pye57 is optional (E57 only)
 
     check_e57(path)
     try:

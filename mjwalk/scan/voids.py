@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 from scipy import ndimage
 
+from mjwalk._io import atomic_path
 from mjwalk.errors import ScanError
 from mjwalk.scan.obstacles import HOLE_RADIUS, FloorPlan
 
@@ -88,14 +89,12 @@ def cover(plan: FloorPlan) -> FloorCover:
 def save_top_view(plan: FloorPlan, path: str | Path, title: str = "") -> Path:
     """A top view of the plan (floor seen, unseen but walkable, obstacles, voids) as an
     image, written atomically; a failed write is a WriteError naming the file."""
-    import matplotlib
+    import matplotlib  # deferred: matplotlib is slow to import, only the top view needs it
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.colors import ListedColormap
-    from matplotlib.patches import Patch
-
-    from mjwalk._io import atomic_path
+    import matplotlib.pyplot as plt  # deferred: after matplotlib.use('Agg')
+    from matplotlib.colors import ListedColormap  # deferred: matplotlib is slow to import
+    from matplotlib.patches import Patch  # deferred: matplotlib is slow to import
 
     seen = plan.seen if plan.seen is not None else plan.floor
     kind = np.where(seen, 0, np.where(plan.floor, 1, np.where(plan.obstacles > 0, 2, 3)))
