@@ -124,7 +124,7 @@ def _clip_hull_to_slab(points: np.ndarray, z0: float, z1: float) -> np.ndarray:
     inside = points[(points[:, 2] >= z0) & (points[:, 2] <= z1)]
     if points[:, 2].min() >= z0 and points[:, 2].max() <= z1:
         return points
-    from scipy.spatial import ConvexHull, QhullError  # lazy: ~1 s import
+    from scipy.spatial import ConvexHull, QhullError  # deferred: scipy.spatial, ~1 s import
 
     try:
         hull = ConvexHull(points)
@@ -197,7 +197,7 @@ def geom_footprint(
     if len(clipped) == 0:
         return None
     xy = clipped[:, :2]
-    from scipy.spatial import ConvexHull, QhullError  # lazy: ~1 s import
+    from scipy.spatial import ConvexHull, QhullError  # deferred: scipy.spatial, ~1 s import
 
     try:
         hull = ConvexHull(xy)

@@ -290,21 +290,53 @@ def workplace_from_model(
     label = str(source) if source else "scene"
     if options is None:
         options = WorkplaceOptions()
-    resolution, z_range = options.resolution, options.z_range
-    groups, include, exclude = options.groups, options.include, options.exclude
+    resolution = options.resolution
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     floor = find_floor(model, data, label)
     floor_z = float(data.geom_xpos[floor][2])
+    floor_name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
     fx, fy = model.geom_size[floor][:2]
     if fx > 0 and fy > 0:  # a finite floor: refused before the obstacles are read
         cx, cy = data.geom_xpos[floor][:2]
-        check_floor_nodes(
-            (cx - fx, cy - fy, cx + fx, cy + fy),
-            resolution,
-            label,
-            mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}",
-        )
+        check_floor_nodes((cx - fx, cy - fy, cx + fx, cy + fy), resolution, label, floor_name)
+    footprints = _obstacle_footprints(model, data, floor, options, label)
+    if fx > 0 and fy > 0:
+        cx, cy = data.geom_xpos[floor][:2]
+        bounds = (cx - fx, cy - fy, cx + fx, cy + fy)
+    else:  # an infinite plane: the obstacles' extent plus 2 m
+        if not footprints:
+            raise SceneError(f"{label}: the floor plane is infinite and there are no obstacles")
+        b = np.array([f.bounds() for f in footprints])
+        bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
+    check_floor_nodes(bounds, resolution, label, floor_name)
+    key, clearance = _clearance(footprints, bounds, options)
+    return Workplace(
+        model=model,
+        source=source,
+        floor=floor_name,
+        floor_z=floor_z,
+        floor_bounds=(float(bounds[0]), float(bounds[1]), float(bounds[2]), float(bounds[3])),
+        obstacles=footprints,
+        clearance=clearance,
+        stations=_stations(model, data),
+        z_range=options.z_range,
+        cache_key=key,
+    )
+
+
+def _obstacle_footprints(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    floor: int,
+    options: WorkplaceOptions,
+    label: str,
+) -> list[Footprint]:
+    """The footprints of the obstacle geoms ``options`` selects (not the floor, not a
+    humanoid's, not planes), cut to its height band above the floor."""
+    groups, include, exclude = options.groups, options.include, options.exclude
+    z_range = options.z_range
+    floor_z = float(data.geom_xpos[floor][2])
     footprints: list[Footprint] = []
     for g in range(model.ngeom):
         if g == floor or _is_humanoid_geom(model, g, options.humanoid_prefixes):
@@ -332,16 +364,16 @@ def workplace_from_model(
         fp = geom_footprint(model, data, g, z0, z1)
         if fp is not None:
             footprints.append(fp)
-    if fx > 0 and fy > 0:
-        cx, cy = data.geom_xpos[floor][:2]
-        bounds = (cx - fx, cy - fy, cx + fx, cy + fy)
-    else:  # an infinite plane: the obstacles' extent plus 2 m
-        if not footprints:
-            raise SceneError(f"{label}: the floor plane is infinite and there are no obstacles")
-        b = np.array([f.bounds() for f in footprints])
-        bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
-    floor_name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
-    check_floor_nodes(bounds, resolution, label, floor_name)
+    return footprints
+
+
+def _clearance(
+    footprints: list[Footprint],
+    bounds: tuple[float, float, float, float],
+    options: WorkplaceOptions,
+) -> tuple[str | None, ClearanceField]:
+    """The clearance field over ``bounds`` and its cache key (None: not cached)."""
+    resolution = options.resolution
     key = None
     nx = int(np.floor((bounds[2] - bounds[0]) / resolution + 1e-9)) + 1
     ny = int(np.floor((bounds[3] - bounds[1]) / resolution + 1e-9)) + 1
@@ -356,9 +388,12 @@ def workplace_from_model(
         values = cached_array(
             key, "clearance", lambda: build_clearance(footprints, bounds, resolution).values
         )
-        clearance = ClearanceField(bounds[0], bounds[1], resolution, values)
-    else:
-        clearance = build_clearance(footprints, bounds, resolution)
+        return key, ClearanceField(bounds[0], bounds[1], resolution, values)
+    return key, build_clearance(footprints, bounds, resolution)
+
+
+def _stations(model: mujoco.MjModel, data: mujoco.MjData) -> dict[str, Station]:
+    """The model's named sites: position and the yaw of their local +x axis."""
     stations = {}
     for s in range(model.nsite):
         sname = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_SITE, s)
@@ -367,18 +402,7 @@ def workplace_from_model(
             stations[sname] = Station(
                 sname, data.site_xpos[s].copy(), float(np.arctan2(xmat[1, 0], xmat[0, 0]))
             )
-    return Workplace(
-        model=model,
-        source=source,
-        floor=mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}",
-        floor_z=floor_z,
-        floor_bounds=(float(bounds[0]), float(bounds[1]), float(bounds[2]), float(bounds[3])),
-        obstacles=footprints,
-        clearance=clearance,
-        stations=stations,
-        z_range=z_range,
-        cache_key=key,
-    )
+    return stations
 
 
 def load_workplace(
