@@ -111,7 +111,14 @@ class Levelling:
         return m
 
     def apply(self, points: np.ndarray) -> np.ndarray:
-        """Levelled copies of ``points`` (..., 3)."""
+        """Levelled copies of points.
+
+        Args:
+            points: (..., 3) points in the input frame, metres.
+
+        Returns:
+            (..., 3) ``rotation @ (p - pivot) + target`` per point: scene frame, floor at z = 0.
+        """
         out = np.asarray(points) @ self.rotation.T  # one (N, 3) array, shifted in place
         out += self.target - self.rotation @ self.pivot
         return out
@@ -133,8 +140,17 @@ class VoxelNormals:
 def voxel_normals(
     points: np.ndarray, voxel: float = VOXEL, min_points: int = MIN_VOXEL_POINTS
 ) -> VoxelNormals:
-    """Local-PCA normals of ``points`` (N, 3) on a voxel grid of edge ``voxel`` metres; voxels
-    with fewer than ``min_points`` points are left out."""
+    """Local-PCA normals of a cloud on a voxel grid.
+
+    Args:
+        points: (N, 3) points, metres.
+        voxel: the voxel edge, metres.
+        min_points: voxels with fewer points are left out.
+
+    Returns:
+        Per occupied voxel: index, count, centroid, unit normal (z >= 0), covariance eigenvalues
+        and moments.
+    """
     origin = points.min(axis=0)
     ijk = np.floor((points - origin) / voxel).astype(np.int64)
     dims = ijk.max(axis=0) + 1
@@ -196,12 +212,19 @@ def _shift_moments(mom: np.ndarray, o: np.ndarray) -> np.ndarray:
 
 
 def walk_surfaces(vn: VoxelNormals, max_angle_deg: float = HORIZONTAL_DEG) -> np.ndarray:
-    """Region growing over the walk-surface voxels: a label per voxel (-1: not a walk surface).
+    """Region growing over the walk-surface voxels.
 
     A voxel is a walk surface when its normal is within ``max_angle_deg`` of up and its points
     spread in two directions (middle eigenvalue at least a tenth of the largest: a single scan
     line crossing a voxel gives no plane). Walk-surface voxels sharing a face, edge or corner are
     one surface.
+
+    Args:
+        vn: the voxel normals (:func:`voxel_normals`).
+        max_angle_deg: the largest angle of a walk surface's normal from +z, degrees.
+
+    Returns:
+        (M,) a surface label per voxel (0, 1, ...; -1: not a walk surface).
     """
     ev = vn.eigval
     flat = (vn.normal[:, 2] >= np.cos(np.radians(max_angle_deg))) & (ev[:, 1] >= 0.1 * ev[:, 2])
@@ -288,7 +311,15 @@ def _sparse_hint(points: np.ndarray) -> str:
 
 
 def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
-    """Find the floor of a z-up cloud (N, 3), metres, and the transform that levels it.
+    """Find the floor of a z-up cloud and the transform that levels it.
+
+    Args:
+        points: (N, 3) points, metres, z up roughly.
+        source: the cloud's name in errors.
+
+    Returns:
+        The levelling: its floor is the lowest walk surface among the largest ones, fitted as a
+        plane on every point near it; the other walk surfaces one could stand on are listed.
 
     Raises:
         ScanError: no walk surface of at least :data:`MIN_FLOOR_AREA` square metres.
@@ -413,9 +444,19 @@ def _other_surfaces(
 
 
 def check_upright(levelled: np.ndarray, up: str = "+z", source: str = "cloud") -> None:
-    """Refuse a levelled cloud (N, 3), floor at z = 0, with more points more than
-    :data:`BELOW_FLOOR` below its floor than above it: the floor found is the top of the cloud,
-    which is upside down (its up axis is the opposite of ``up``)."""
+    """Refuse a levelled cloud that is upside down.
+
+    A cloud with more points more than :data:`BELOW_FLOOR` below its floor than above it has
+    its floor found at the top of its contents: its up axis is the opposite of ``up``.
+
+    Args:
+        levelled: (N, 3) levelled points, metres, floor at z = 0.
+        up: the up axis the cloud was read with (the error suggests its opposite).
+        source: the cloud's name in errors.
+
+    Raises:
+        ScanError: the cloud is upside down.
+    """
     z = levelled[:, 2]
     below = int(np.count_nonzero(z < -BELOW_FLOOR))
     above = int(np.count_nonzero(z > BELOW_FLOOR))

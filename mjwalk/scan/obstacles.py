@@ -134,9 +134,18 @@ def floor_plan(
     z_range: tuple[float, float] = OBSTACLE_Z_RANGE,
     views: Sequence[View] = (),
 ) -> FloorPlan | None:
-    """The floor plan of levelled points (N, 3), metres, floor at z = 0; None without floor
-    points. ``views``: the stations whose rays decide which floor was seen besides the cells
-    holding floor points (:mod:`.sight`); none: the floor points alone."""
+    """The floor plan of a levelled cloud.
+
+    Args:
+        points: (N, 3) levelled points, metres, floor at z = 0.
+        resolution: the grid edge, metres.
+        z_range: the obstacle band above the floor, metres (low, high).
+        views: the stations whose rays decide which floor was seen besides the cells holding
+            floor points (:mod:`.sight`); none: the floor points alone.
+
+    Returns:
+        The plan (floor, obstacle labels and tops, voids), or None without floor points.
+    """
     pts = np.ascontiguousarray(points, dtype=np.float64)
     box = _floor_box(pts, FLOOR_TOL)
     if not np.isfinite(box).all():
@@ -270,9 +279,16 @@ def _hull_mask(mask: np.ndarray) -> np.ndarray:
 
 
 def rectangles(labels: np.ndarray) -> list[tuple[int, int, int, int, int]]:
-    """Cover each labelled region of ``labels`` (ny, nx; 0 = empty) with axis-aligned
-    rectangles of cells: runs of equal label along each row, stacked while the same run
-    repeats on the next row. Returns (iy0, iy1, ix0, ix1, label) with exclusive ends."""
+    """Cover each labelled region with axis-aligned rectangles of cells.
+
+    Runs of equal label along each row, stacked while the same run repeats on the next row.
+
+    Args:
+        labels: (ny, nx) integer labels, 0 = empty.
+
+    Returns:
+        (iy0, iy1, ix0, ix1, label) per rectangle, ends exclusive.
+    """
     ny, nx = labels.shape
     out: list[tuple[int, int, int, int, int]] = []
     active: dict[tuple[int, int, int], int] = {}

@@ -128,6 +128,11 @@ class Alignment:
     source: str
 
     def line(self) -> str:
+        """One line for the report.
+
+        Returns:
+            The scan's name, fitness, RMSE (mm) and free-space clash (%).
+        """
         return (
             f"{self.source}: registered, fitness {self.fitness:.3f} (share of its points, "
             f"thinned to {VOXEL} m, within {ICP_DISTANCE} m of the others), RMSE "
@@ -155,8 +160,16 @@ def _seen_free(levelled: np.ndarray, origin: np.ndarray, shape: tuple[int, int])
 
 
 def clash(moved: np.ndarray, other: np.ndarray) -> float:
-    """Share of ``moved``'s low points (levelled, metres, :data:`LOW_BAND`) over cells the
-    ``other`` scan mapped that stand on its seen-free floor (0 when none overlap)."""
+    """Share of one scan's low points standing on floor the other saw free.
+
+    Args:
+        moved: (N, 3) levelled points of the scan placed, metres.
+        other: (M, 3) levelled points of the other scan, metres.
+
+    Returns:
+        The share of ``moved``'s low points (:data:`LOW_BAND`) over cells ``other`` mapped that
+        stand on its seen-free floor, in [0, 1] (0 when none overlap).
+    """
     z = moved[:, 2]
     low = moved[(z >= LOW_BAND[0]) & (z <= LOW_BAND[1]), :2]
     if not len(low):

@@ -78,4 +78,4 @@ def _offset(offset: object) -> tuple[float, float, float]:
         values = ()
     if len(values) != 3 or not all(math.isfinite(v) for v in values):
         raise ScanOptionsError(f"offset must be 3 finite numbers (file units), got {offset!r}")
-    return values  # type: ignore[return-value]
+    return values[0], values[1], values[2]

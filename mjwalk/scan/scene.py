@@ -77,7 +77,17 @@ class _Site:
 
 
 def read_sites(path: str | Path) -> list[_Site]:
-    """Parse a sites TOML (format in the module docstring). Raises ScanError naming the key."""
+    """Parse a sites TOML (format in the module docstring).
+
+    Args:
+        path: the TOML file.
+
+    Returns:
+        The sites, in file order.
+
+    Raises:
+        ScanError: a malformed file or site, naming the key.
+    """
     path = Path(path)
     try:  # missing, oversized, non-UTF-8 or too deeply nested: ScanError naming the key
         doc, _ = read_toml(path, "sites", ScanError)
@@ -416,9 +426,16 @@ def _header(
 
 
 def write_scene(scene: ScanScene, output: str | Path) -> Path:
-    """Write the scene's MJCF atomically (temporary file, then rename). A failed write (full
-    disk, file-size limit, permissions) is a WriteError naming the file (:func:`atomic_path`);
-    nothing is left."""
+    """Write the scene's MJCF atomically (temporary file, then rename).
+
+    Args:
+        scene: the scene built.
+        output: the file to write.
+
+    Returns:
+        ``output`` as a path. A failed write (full disk, file-size limit, permissions) is a
+        WriteError naming the file (:func:`~mjwalk._io.atomic_path`); nothing is left.
+    """
     output = Path(output)
     with atomic_path(output) as tmp:
         tmp.write_text(scene.xml)
@@ -474,10 +491,11 @@ def scan_to_scene(
     )
     t_read = time.perf_counter() - t
     first = merged.first
+    offset = (float(first.offset[0]), float(first.offset[1]), float(first.offset[2]))
     name = str(scans[0]) if len(scans) == 1 else f"{scans[0]} and {len(scans) - 1} more scans"
     scene = build_scene(
         merged.points,
-        dataclasses.replace(opts, offset=first.offset),
+        dataclasses.replace(opts, offset=offset),
         source=name,
         sites=site_list,
         model_name=scans[0].stem,
