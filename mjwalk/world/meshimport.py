@@ -88,9 +88,21 @@ def _band_polygon(verts: np.ndarray, faces: np.ndarray, z0: float, z1: float):
 def mesh_footprints(
     verts: np.ndarray, faces: np.ndarray, z0: float, z1: float, name: str, geom_id: int
 ) -> list[Footprint] | None:
-    """Convex pieces of a mesh's band footprint (``verts`` world metres, ``faces`` (F, 3));
-    None when the footprint is convex (to within :data:`CONCAVE_SHARE`) or empty, so the
-    caller keeps the hull footprint."""
+    """Convex pieces of a mesh's band footprint.
+
+    Args:
+        verts: (V, 3) vertices, world metres.
+        faces: (F, 3) vertex indices.
+        z0: the band's bottom, world z, metres.
+        z1: the band's top, world z, metres.
+        name: the geom's name, given to each piece.
+        geom_id: the geom's id, given to each piece.
+
+    Returns:
+        Triangles of the band footprint (simplified, constrained Delaunay), or None when the
+        footprint is convex (to within :data:`CONCAVE_SHARE`) or empty, so the caller keeps
+        the hull footprint.
+    """
     import shapely  # deferred: shapely is slow to import; only concave meshes need it
 
     poly = _band_polygon(verts, faces, z0, z1)
@@ -116,7 +128,16 @@ def mesh_footprints(
 
 
 def geom_mesh_world(model: mujoco.MjModel, data: mujoco.MjData, g: int):
-    """(vertices (V, 3) in world metres, faces (F, 3)) of mesh geom ``g``."""
+    """A mesh geom's vertices in the world.
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done.
+        g: the mesh geom's id.
+
+    Returns:
+        (vertices (V, 3) world metres, faces (F, 3)).
+    """
     mesh = int(model.geom_dataid[g])
     va, vn = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
     fa, fn = model.mesh_faceadr[mesh], model.mesh_facenum[mesh]
@@ -129,7 +150,18 @@ def geom_mesh_world(model: mujoco.MjModel, data: mujoco.MjData, g: int):
 def concave_mesh_footprints(
     model: mujoco.MjModel, data: mujoco.MjData, g: int, z0: float, z1: float
 ) -> list[Footprint] | None:
-    """:func:`mesh_footprints` of mesh geom ``g`` (None when not a mesh or not concave)."""
+    """:func:`mesh_footprints` of a mesh geom.
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done.
+        g: the geom id.
+        z0: the band's bottom, world z, metres.
+        z1: the band's top, world z, metres.
+
+    Returns:
+        The convex pieces, or None when the geom is not a mesh or not concave.
+    """
     if int(model.geom_type[g]) != mujoco.mjtGeom.mjGEOM_MESH:
         return None
     verts, faces = geom_mesh_world(model, data, g)
@@ -158,15 +190,23 @@ def _plan_concave(verts: np.ndarray, faces: np.ndarray) -> bool:
 def concave_mesh(
     verts: np.ndarray, faces: np.ndarray, rot: np.ndarray | None = None
 ) -> tuple[np.ndarray, np.ndarray] | None:
-    """The mesh to decompose when ``(verts, faces)`` is concave, else None (``rot``: the
-    mesh frame's rotation in the world, for the top view; default identity).
+    """The mesh to decompose when a mesh is concave, else None.
 
     A closed volume is concave when its volume falls short of its hull's by more than
     CONCAVE_SHARE. A mesh that is not one (a missing triangle, faces wound inwards: common in
     exported CAD) is first repaired with trimesh (``fix_normals``, ``fill_holes``) and judged
     as a volume when that closes it; one that stays open or non-manifold (two boxes sharing an
     edge) is judged by its top view, so MuJoCo never collides the convex hull of a U whose
-    inside is free. The mesh returned is the repaired one where the repair closed it."""
+    inside is free.
+
+    Args:
+        verts: (V, 3) vertices in the mesh frame, metres.
+        faces: (F, 3) vertex indices.
+        rot: (3, 3) the mesh frame's rotation in the world, for the top view (None: identity).
+
+    Returns:
+        (vertices, faces) to decompose (the repaired mesh where the repair closed it), or None.
+    """
     import trimesh  # deferred: trimesh is slow to import; only meshes need it
 
     mesh = trimesh.Trimesh(verts, faces, process=True)
@@ -187,10 +227,18 @@ def concave_mesh(
 def convex_parts(
     verts: np.ndarray, faces: np.ndarray, threshold: float = 0.02, seed: int = 0
 ) -> list[tuple[np.ndarray, np.ndarray]]:
-    """CoACD convex decomposition of a mesh: a list of (vertices, faces) convex parts.
+    """CoACD convex decomposition of a mesh.
 
-    ``threshold`` is CoACD's concavity bound relative to the mesh's bounding-box diagonal
-    (0.02: 4 cm on a 2 m bench, below the planner's 0.25 m body radius by an order)."""
+    Args:
+        verts: (V, 3) vertices, metres.
+        faces: (F, 3) vertex indices.
+        threshold: CoACD's concavity bound relative to the mesh's bounding-box diagonal (0.02:
+            4 cm on a 2 m bench, below the planner's 0.25 m body radius by an order).
+        seed: CoACD's seed.
+
+    Returns:
+        The convex parts, (vertices (V_k, 3), faces (F_k, 3)) each.
+    """
     import coacd  # deferred: coacd is slow to import; only scene-import needs it
 
     coacd.set_log_level("error")
@@ -213,8 +261,15 @@ class ImportResult:
 
 
 def check_threshold(threshold: float, what: str = "threshold") -> None:
-    """Raise InputError unless ``threshold`` lies in CoACD's range
-    (:data:`THRESHOLD_RANGE`)."""
+    """Refuse a concavity threshold outside CoACD's range.
+
+    Args:
+        threshold: the value given.
+        what: its name in the message.
+
+    Raises:
+        InputError: not a number within :data:`THRESHOLD_RANGE`.
+    """
     lo, hi = THRESHOLD_RANGE
     if isinstance(threshold, bool) or not (
         isinstance(threshold, int | float) and lo <= threshold <= hi

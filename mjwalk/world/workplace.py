@@ -134,7 +134,17 @@ class Workplace:
         return self.source.stem if self.source else "scene"
 
     def station(self, name: str) -> Station:
-        """The site called ``name``; an unknown name raises SceneError listing near matches."""
+        """A named site.
+
+        Args:
+            name: the site's name.
+
+        Returns:
+            The site's station (position, yaw).
+
+        Raises:
+            SceneError: an unknown name, listing near matches.
+        """
         try:
             return self.stations[name]
         except KeyError:
@@ -143,11 +153,21 @@ class Workplace:
             raise SceneError(f"{self.name}: no site named {name!r}{hint}") from None
 
     def point(self, where: str | np.ndarray | tuple[float, float]) -> np.ndarray:
-        """A floor point (2,) from a site name, an ``"x,y"`` string or coordinates (metres).
+        """A floor point from a site name, an ``"x,y"`` string or coordinates (metres).
 
         A site whose name reads as coordinates (a site named "1.5,2") wins: the text is read as
-        coordinates only when no site has that name. Malformed or non-finite coordinates raise
-        :class:`~mjwalk.errors.InputError`."""
+        coordinates only when no site has that name.
+
+        Args:
+            where: a site name, ``"x,y"`` or (x, y), world metres.
+
+        Returns:
+            (2,) world x, y, metres.
+
+        Raises:
+            InputError: malformed or non-finite coordinates.
+            SceneError: an unknown site, or fewer than two coordinates.
+        """
         if isinstance(where, str):
             if where in self.stations:
                 return self.stations[where].xy.copy()
@@ -179,7 +199,14 @@ class Workplace:
         return cached
 
     def edge_distance(self, xy: np.ndarray) -> np.ndarray:
-        """Signed distance (metres) from points (..., 2) to the floor's edge, positive on it."""
+        """Signed distance from points to the floor's edge.
+
+        Args:
+            xy: (..., 2) world x, y, metres.
+
+        Returns:
+            (...) metres, positive on the floor.
+        """
         xy = np.asarray(xy, dtype=float)
         xmin, ymin, xmax, ymax = self.floor_bounds
         return np.minimum.reduce(
@@ -187,12 +214,25 @@ class Workplace:
         )
 
     def on_floor(self, xy: np.ndarray) -> np.ndarray:
-        """Whether points (..., 2) lie on the floor."""
+        """Whether points lie on the floor.
+
+        Args:
+            xy: (..., 2) world x, y, metres.
+
+        Returns:
+            (...) bool.
+        """
         return self.edge_distance(xy) >= 0.0
 
     def walk_clearance(self, xy: np.ndarray) -> np.ndarray:
-        """Room to walk at points (..., 2): the smaller of obstacle clearance and distance to the
-        floor's edge, metres."""
+        """Room to walk at points.
+
+        Args:
+            xy: (..., 2) world x, y, metres.
+
+        Returns:
+            (...) the smaller of obstacle clearance and distance to the floor's edge, metres.
+        """
         return np.minimum(self.clearance(xy), self.edge_distance(xy))
 
     def walk_field(self) -> ClearanceField:
@@ -207,6 +247,9 @@ class Workplace:
         border nodes' values, at most one node spacing (the border's distance to the floor's
         edge): any test against a clearance above the spacing rejects them, as
         :meth:`walk_clearance` does.
+
+        Returns:
+            The field on the clearance field's nodes, metres.
         """
         cached = getattr(self, "_walk_field", None)
         if cached is None:
@@ -230,6 +273,17 @@ class Workplace:
         return cached
 
     def footprint(self, name: str) -> Footprint:
+        """The footprint of an obstacle geom.
+
+        Args:
+            name: the geom's name.
+
+        Returns:
+            Its (first) footprint.
+
+        Raises:
+            SceneError: no obstacle of that name.
+        """
         for fp in self.obstacles:
             if fp.name == name:
                 return fp
@@ -237,7 +291,14 @@ class Workplace:
 
 
 def check_scene_path(path: Path) -> None:
-    """Raise SceneError unless ``path`` is a file (a folder is named as one)."""
+    """Refuse a path that is not a scene file.
+
+    Args:
+        path: the MJCF path.
+
+    Raises:
+        SceneError: a folder (named as one) or a missing file.
+    """
     if path.is_dir():
         raise SceneError(f"{path} is a folder, not an MJCF scene file")
     if not path.is_file():
@@ -245,7 +306,17 @@ def check_scene_path(path: Path) -> None:
 
 
 def load_model(source: str | Path) -> mujoco.MjModel:
-    """Compile an MJCF file, turning every failure into a SceneError naming the file."""
+    """Compile an MJCF file.
+
+    Args:
+        source: the MJCF path.
+
+    Returns:
+        The compiled model.
+
+    Raises:
+        SceneError: a missing file, or MuJoCo's parse or compile error, naming the file.
+    """
     path = Path(source)
     check_scene_path(path)
     try:
@@ -419,8 +490,10 @@ def load_workplace(
     Args:
         source: path of the MJCF file.
         options: obstacle selection and clearance field settings (None: the defaults).
-        groups, include, exclude, cache: shorthand for the :class:`WorkplaceOptions` fields of
-            those names, for calls without ``options``.
+        groups: shorthand for :attr:`WorkplaceOptions.groups`, for calls without ``options``.
+        include: shorthand for :attr:`WorkplaceOptions.include`.
+        exclude: shorthand for :attr:`WorkplaceOptions.exclude`.
+        cache: shorthand for :attr:`WorkplaceOptions.cache`.
 
     Returns:
         The workplace (:func:`workplace_from_model` of the compiled file).
@@ -445,9 +518,16 @@ def _shared(path: str, mtime: float) -> Workplace:
 
 
 def shared_workplace(source: str | Path) -> Workplace:
-    """:func:`load_workplace` with default settings, loaded once per process and file version:
-    the cycle simulator, its spec checks, playback and the report all read the same scene.
-    Treat the result as read-only."""
+    """:func:`load_workplace` with default settings, loaded once per process and file
+    version: the cycle simulator, its spec checks, playback and the report all read the same
+    scene. Treat the result as read-only.
+
+    Args:
+        source: the MJCF path.
+
+    Returns:
+        The shared workplace.
+    """
     check_scene_path(Path(source))
     path = Path(source).resolve()
     return _shared(str(path), path.stat().st_mtime)
