@@ -51,6 +51,8 @@ _LAZY: dict[str, str] = {
     "WorkplaceOptions": "mjwalk.world.workplace",
     "load_workplace": "mjwalk.world.workplace",
     "path_clearance": "mjwalk.world.probe",
+    # scans
+    "ScanOptions": "mjwalk.scan.scanoptions",
     # walk planning
     "HybridPlanner": "mjwalk.plan.hybrid",
     "PlannerOptions": "mjwalk.plan.options",
@@ -132,6 +134,7 @@ __all__ = [
     "Population",
     "ReachModel",
     "RunErgonomics",
+    "ScanOptions",
     "SceneError",
     "Side",
     "Step",

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,6 +14,32 @@ from mjwalk._args import (
     image_suffixes,
 )
 from mjwalk.errors import MjwalkError
+
+if TYPE_CHECKING:
+    from mjwalk.scan.scanoptions import ScanOptions
+
+
+def scan_options(args: argparse.Namespace) -> ScanOptions:
+    """The :class:`~mjwalk.scan.scanoptions.ScanOptions` of ``mjwalk scan``'s flags: the one
+    place the command's flags become the pipeline's options.
+
+    Args:
+        args: the parsed ``mjwalk scan`` command line.
+
+    Returns:
+        The options (units, up axis, invalid points, resolution, offset, voids, register).
+    """
+    from mjwalk.scan.scanoptions import ScanOptions  # deferred: mjwalk.scan loads mujoco and numba
+
+    return ScanOptions(
+        units=args.units,
+        up=args.up,
+        drop_invalid=args.drop_invalid,
+        resolution=args.resolution,
+        offset=args.offset,
+        voids=args.voids,
+        register=args.register,
+    )
 
 
 def cmd_scan(args: argparse.Namespace) -> int:
@@ -35,16 +62,10 @@ def cmd_scan(args: argparse.Namespace) -> int:
     scene = scan_to_scene(
         args.scan,
         args.output,
+        scan_options(args),
         poses=args.poses,
-        register=args.register,
         report=print,
-        voids=args.voids,
-        units=args.units,
-        up=args.up,
-        drop_invalid=args.drop_invalid,
-        resolution=args.resolution,
         sites=args.sites,
-        offset=args.offset,
     )
     lv = scene.levelling
     b = scene.plan.bounds
@@ -108,6 +129,7 @@ def add_scan_parser(sub) -> None:
         sub: the main parser's sub-parsers (``add_subparsers()``).
     """
     from mjwalk.scan.limits import RESOLUTION_RANGE  # deferred: mjwalk.scan loads numba (~2 s)
+    from mjwalk.scan.scanoptions import ScanOptions  # deferred: as the line above
 
     p = sub.add_parser("scan", help="turn a laser scan (PLY/PCD/LAS/LAZ/E57/XYZ/PTS) into a scene")
     p.add_argument(
@@ -132,16 +154,22 @@ def add_scan_parser(sub) -> None:
         "the first scan's frame; scans not named are already in it",
     )
     p.add_argument("-o", "--output", type=Path, required=True, help="MJCF scene to write")
-    p.add_argument("--units", default="m", help="file units when it does not say: m cm mm in ft")
+    defaults = ScanOptions()
     p.add_argument(
-        "--up", default="+z", help="file up axis when it does not say: +z, -z, +y, ... (--up=-z)"
+        "--units", default=defaults.units, help="file units when it does not say: m cm mm in ft"
+    )
+    p.add_argument(
+        "--up",
+        default=defaults.up,
+        help="file up axis when it does not say: +z, -z, +y, ... (--up=-z)",
     )
     p.add_argument("--sites", type=Path, help="TOML of named sites ([site.NAME] xy = [x, y])")
     p.add_argument(
         "--resolution",
         type=_scan_resolution,
-        default=0.02,
-        help=f"floor-plan grid, metres ({RESOLUTION_RANGE[0]}-{RESOLUTION_RANGE[1]}; default 0.02)",
+        default=defaults.resolution,
+        help=f"floor-plan grid, metres ({RESOLUTION_RANGE[0]}-{RESOLUTION_RANGE[1]}; "
+        f"default {defaults.resolution})",
     )
     p.add_argument(
         "--offset",
@@ -156,7 +184,7 @@ def add_scan_parser(sub) -> None:
     p.add_argument(
         "--voids",
         choices=("blocked", "fill", "free"),
-        default="blocked",
+        default=defaults.voids,
         help="unseen floor: blocked (default: nobody walks where no floor was seen), fill "
         "(enclosed voids up to 2 m inscribed radius are walkable), free (all walkable)",
     )

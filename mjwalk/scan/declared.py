@@ -128,8 +128,18 @@ def _more(path: Path, points: int, width: int, height: int, held: str) -> ScanEr
 
 
 def check_ply(path: Path) -> Declared:
-    """Check a PLY file's declared element counts against its body. Raises ScanError when the
-    body holds fewer rows (ASCII) or bytes (binary) than the header declares."""
+    """Check a PLY file's declared element counts against its body.
+
+    Args:
+        path: the PLY file.
+
+    Returns:
+        What the header declares (encoding, vertex count, header lines, vertex columns, first
+        text row holding nan/inf).
+
+    Raises:
+        ScanError: the body holds fewer rows (ASCII) or bytes (binary) than the header declares.
+    """
     lines, body = _header(path, b"end_header", "PLY")
     fmt = ""
     elements: list[tuple[str, int, int, bool]] = []  # name, count, min row bytes, has lists
@@ -194,10 +204,22 @@ def _pcd_viewpoint(words: list[str]) -> tuple[float, float, float] | None:
 
 
 def check_pcd(path: Path) -> Declared:
-    """Check a PCD file's POINTS (and WIDTH x HEIGHT) against its body (PCD stores missing
-    returns as nan, which Open3D reads as NaN). Raises ScanError on a short body, and on a body
-    holding more points than declared (Open3D would read only the declared ones): ASCII rows,
-    or at least one whole point's bytes beyond the declared ones in a binary body."""
+    """Check a PCD file's POINTS (and WIDTH x HEIGHT) against its body.
+
+    PCD stores missing returns as nan, which Open3D reads as NaN.
+
+    Args:
+        path: the PCD file.
+
+    Returns:
+        What the header declares (DATA encoding, point count, header lines, first text row
+        holding nan/inf, the VIEWPOINT position in file units and axes or None).
+
+    Raises:
+        ScanError: an incomplete header, POINTS unequal to WIDTH x HEIGHT, a short body, or a body
+            holding more points than declared (Open3D would read only the declared ones): ASCII
+            rows, or at least one whole point's bytes beyond the declared ones in a binary body.
+    """
     lines, body = _header(path, b"DATA", "PCD")
     fields: dict[str, list[str]] = {}
     for ln in lines:
@@ -262,7 +284,17 @@ def check_pcd(path: Path) -> Declared:
 
 
 def check_pts(path: Path) -> Declared:
-    """Check a PTS file's leading point count against its rows."""
+    """Check a PTS file's leading point count against its rows.
+
+    Args:
+        path: the PTS file.
+
+    Returns:
+        What it declares (ascii, the count, one header line, first row holding nan/inf).
+
+    Raises:
+        ScanError: no leading count, or fewer rows than it says.
+    """
     with open(path, "rb") as fh:
         first = fh.readline()
         body = len(first)
@@ -279,8 +311,15 @@ def check_pts(path: Path) -> Declared:
 
 
 def check_e57(path: Path) -> None:
-    """Refuse an E57 file shorter than the physical length its header declares (ASTM E2807
-    §8.2: bytes 16-23 of the file, little-endian), before libE57 reads it."""
+    """Refuse an E57 file shorter than the physical length its header declares (ASTM
+    E2807 §8.2: bytes 16-23 of the file, little-endian), before libE57 reads it.
+
+    Args:
+        path: the E57 file.
+
+    Raises:
+        ScanError: a file shorter than its header, or than the length it declares.
+    """
     with open(path, "rb") as fh:
         head = fh.read(24)
     if len(head) < 24:
@@ -295,10 +334,19 @@ def check_e57(path: Path) -> None:
 
 
 def check_las(path: Path) -> int:
-    """Check an uncompressed LAS file's point count against its size (LAS 1.4 §2.3: the point
-    records start at ``offset_to_point_data``, ``point_data_record_length`` bytes each);
-    returns the declared count. LAZ is checked after reading (:func:`check_read_count`)."""
-    import laspy
+    """Check an uncompressed LAS file's point count against its size.
+
+    LAS 1.4 §2.3: the point records start at ``offset_to_point_data``,
+    ``point_data_record_length`` bytes each. LAZ is checked after reading
+    (:func:`check_read_count`).
+
+    Args:
+        path: the LAS or LAZ file.
+
+    Returns:
+        The declared point count.
+    """
+    import laspy  # deferred: laspy is optional (LAS/LAZ only)
 
     try:
         with laspy.open(str(path)) as fh:
@@ -320,6 +368,16 @@ def check_las(path: Path) -> int:
 
 
 def check_read_count(path: Path, declared: int, read: int, what: str = "points") -> None:
-    """Refuse a file whose reader returned fewer points than its header declares."""
+    """Refuse a file whose reader returned fewer points than its header declares.
+
+    Args:
+        path: the file, named in the error.
+        declared: the count its header declares.
+        read: the count the reader returned.
+        what: what is counted, for the message.
+
+    Raises:
+        ScanError: ``read`` < ``declared``.
+    """
     if read < declared:
         raise _declared(path, declared, what, f"{read} readable {what}")

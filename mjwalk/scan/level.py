@@ -111,7 +111,14 @@ class Levelling:
         return m
 
     def apply(self, points: np.ndarray) -> np.ndarray:
-        """Levelled copies of ``points`` (..., 3)."""
+        """Levelled copies of points.
+
+        Args:
+            points: (..., 3) points in the input frame, metres.
+
+        Returns:
+            (..., 3) ``rotation @ (p - pivot) + target`` per point: scene frame, floor at z = 0.
+        """
         out = np.asarray(points) @ self.rotation.T  # one (N, 3) array, shifted in place
         out += self.target - self.rotation @ self.pivot
         return out
@@ -133,8 +140,17 @@ class VoxelNormals:
 def voxel_normals(
     points: np.ndarray, voxel: float = VOXEL, min_points: int = MIN_VOXEL_POINTS
 ) -> VoxelNormals:
-    """Local-PCA normals of ``points`` (N, 3) on a voxel grid of edge ``voxel`` metres; voxels
-    with fewer than ``min_points`` points are left out."""
+    """Local-PCA normals of a cloud on a voxel grid.
+
+    Args:
+        points: (N, 3) points, metres.
+        voxel: the voxel edge, metres.
+        min_points: voxels with fewer points are left out.
+
+    Returns:
+        Per occupied voxel: index, count, centroid, unit normal (z >= 0), covariance eigenvalues
+        and moments.
+    """
     origin = points.min(axis=0)
     ijk = np.floor((points - origin) / voxel).astype(np.int64)
     dims = ijk.max(axis=0) + 1
@@ -196,12 +212,19 @@ def _shift_moments(mom: np.ndarray, o: np.ndarray) -> np.ndarray:
 
 
 def walk_surfaces(vn: VoxelNormals, max_angle_deg: float = HORIZONTAL_DEG) -> np.ndarray:
-    """Region growing over the walk-surface voxels: a label per voxel (-1: not a walk surface).
+    """Region growing over the walk-surface voxels.
 
     A voxel is a walk surface when its normal is within ``max_angle_deg`` of up and its points
     spread in two directions (middle eigenvalue at least a tenth of the largest: a single scan
     line crossing a voxel gives no plane). Walk-surface voxels sharing a face, edge or corner are
     one surface.
+
+    Args:
+        vn: the voxel normals (:func:`voxel_normals`).
+        max_angle_deg: the largest angle of a walk surface's normal from +z, degrees.
+
+    Returns:
+        (M,) a surface label per voxel (0, 1, ...; -1: not a walk surface).
     """
     ev = vn.eigval
     flat = (vn.normal[:, 2] >= np.cos(np.radians(max_angle_deg))) & (ev[:, 1] >= 0.1 * ev[:, 2])
@@ -288,7 +311,15 @@ def _sparse_hint(points: np.ndarray) -> str:
 
 
 def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
-    """Find the floor of a z-up cloud (N, 3), metres, and the transform that levels it.
+    """Find the floor of a z-up cloud and the transform that levels it.
+
+    Args:
+        points: (N, 3) points, metres, z up roughly.
+        source: the cloud's name in errors.
+
+    Returns:
+        The levelling: its floor is the lowest walk surface among the largest ones, fitted as a
+        plane on every point near it; the other walk surfaces one could stand on are listed.
 
     Raises:
         ScanError: no walk surface of at least :data:`MIN_FLOOR_AREA` square metres.
@@ -299,14 +330,7 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
     if np.abs(sub[0]).max() > LOCAL_FRAME:  # georeferenced: level about a nearby point
         ref = np.round(sub[0])
         sub = sub - ref
-    # A sparse scan (fewer than ~500 points/m²) leaves too few points per voxel for a normal:
-    # the neighbourhood doubles until one walk surface as large as a floor shows (at most
-    # twice; scattered pieces of floor whose voxels between hold too few points are not one).
-    for voxel in (VOXEL, 2 * VOXEL, 4 * VOXEL):
-        vn = voxel_normals(sub, voxel)
-        labels = walk_surfaces(vn)
-        if _largest_area(vn, labels, voxel) >= MIN_FLOOR_AREA:
-            break
+    vn, labels, voxel = _surfaces_at_some_voxel(sub)
     surf = np.flatnonzero(labels >= 0)
     if len(surf) == 0:
         raise ScanError(
@@ -331,6 +355,46 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
         )
     floor = int(np.flatnonzero(big)[np.argmin(height[big])])
     vox = surf[lab == floor]
+    vox, centre, normal = _floor_plane(vn, vox, sub)
+    rms = float(np.sqrt(np.mean(((vn.centroid[vox] - centre) @ normal) ** 2)))
+    xy = np.median(vn.centroid[vox, :2], axis=0)
+    # The plane point below (xy): solve n . (p - centre) = 0 for p_z.
+    pz = centre[2] - (normal[0] * (xy[0] - centre[0]) + normal[1] * (xy[1] - centre[1])) / normal[2]
+    pivot = np.array([xy[0], xy[1], pz]) + ref
+    rotation = _rotation_onto_z(normal)
+    tilt = float(np.degrees(np.arccos(np.clip(normal[2], -1.0, 1.0))))
+    surfaces = _other_surfaces(vn, (surf, lab), area, floor, (centre, normal), ref)
+    return Levelling(
+        rotation=rotation,
+        pivot=pivot,
+        target=np.array([pivot[0], pivot[1], 0.0]),
+        normal=normal,
+        tilt_deg=tilt,
+        floor_area=float(area[floor]),
+        rms=rms,
+        surfaces=tuple(surfaces),
+    )
+
+
+def _surfaces_at_some_voxel(sub: np.ndarray) -> tuple[VoxelNormals, np.ndarray, float]:
+    """Voxel normals and walk-surface labels of ``sub``, and the voxel edge they took.
+
+    A sparse scan (fewer than ~500 points/m²) leaves too few points per voxel for a normal:
+    the neighbourhood doubles until one walk surface as large as a floor shows (at most
+    twice; scattered pieces of floor whose voxels between hold too few points are not one)."""
+    for voxel in (VOXEL, 2 * VOXEL, 4 * VOXEL):
+        vn = voxel_normals(sub, voxel)
+        labels = walk_surfaces(vn)
+        if _largest_area(vn, labels, voxel) >= MIN_FLOOR_AREA:
+            break
+    return vn, labels, voxel
+
+
+def _floor_plane(
+    vn: VoxelNormals, vox: np.ndarray, sub: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The floor's voxels within :data:`PLANE_TOL` of their plane, and the plane (a point and
+    its upward unit normal) refitted on every point of ``sub`` near it."""
     centre, normal = _plane(vn.moments[vox].sum(axis=0))
     for _ in range(2):
         dist = (vn.centroid[vox] - centre) @ normal
@@ -350,13 +414,22 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
         d = near - centre
         normal = np.linalg.eigh(d.T @ d)[1][:, 0]
         normal = normal if normal[2] >= 0 else -normal
-    rms = float(np.sqrt(np.mean(((vn.centroid[vox] - centre) @ normal) ** 2)))
-    xy = np.median(vn.centroid[vox, :2], axis=0)
-    # The plane point below (xy): solve n . (p - centre) = 0 for p_z.
-    pz = centre[2] - (normal[0] * (xy[0] - centre[0]) + normal[1] * (xy[1] - centre[1])) / normal[2]
-    pivot = np.array([xy[0], xy[1], pz]) + ref
-    rotation = _rotation_onto_z(normal)
-    tilt = float(np.degrees(np.arccos(np.clip(normal[2], -1.0, 1.0))))
+    return vox, centre, normal
+
+
+def _other_surfaces(
+    vn: VoxelNormals,
+    labelled: tuple[np.ndarray, np.ndarray],
+    area: np.ndarray,
+    floor: int,
+    plane: tuple[np.ndarray, np.ndarray],
+    ref: np.ndarray,
+) -> list[Surface]:
+    """The horizontal surfaces besides the floor one could stand on, largest first:
+    ``labelled`` the surface voxels and their labels, ``plane`` the floor's point and normal,
+    ``ref`` the local frame's origin added back to their positions."""
+    surf, lab = labelled
+    centre, normal = plane
     surfaces = []
     for k in np.argsort(-area):
         if k == floor or area[k] < STAND_AREA:
@@ -367,22 +440,23 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
             continue
         mx, my = np.median(vn.centroid[members, :2], axis=0) + ref[:2]
         surfaces.append(Surface(h, float(area[k]), float(mx), float(my)))
-    return Levelling(
-        rotation=rotation,
-        pivot=pivot,
-        target=np.array([pivot[0], pivot[1], 0.0]),
-        normal=normal,
-        tilt_deg=tilt,
-        floor_area=float(area[floor]),
-        rms=rms,
-        surfaces=tuple(surfaces),
-    )
+    return surfaces
 
 
 def check_upright(levelled: np.ndarray, up: str = "+z", source: str = "cloud") -> None:
-    """Refuse a levelled cloud (N, 3), floor at z = 0, with more points more than
-    :data:`BELOW_FLOOR` below its floor than above it: the floor found is the top of the cloud,
-    which is upside down (its up axis is the opposite of ``up``)."""
+    """Refuse a levelled cloud that is upside down.
+
+    A cloud with more points more than :data:`BELOW_FLOOR` below its floor than above it has
+    its floor found at the top of its contents: its up axis is the opposite of ``up``.
+
+    Args:
+        levelled: (N, 3) levelled points, metres, floor at z = 0.
+        up: the up axis the cloud was read with (the error suggests its opposite).
+        source: the cloud's name in errors.
+
+    Raises:
+        ScanError: the cloud is upside down.
+    """
     z = levelled[:, 2]
     below = int(np.count_nonzero(z < -BELOW_FLOOR))
     above = int(np.count_nonzero(z > BELOW_FLOOR))

@@ -45,7 +45,18 @@ PLAN_CELL_BYTES = 85
 
 
 def check_resolution(resolution: float | str, what: str = "resolution") -> float:
-    """``resolution`` as a float within :data:`RESOLUTION_RANGE`, or ScanError naming it."""
+    """A floor-plan resolution, checked.
+
+    Args:
+        resolution: metres, a number or its text.
+        what: the name in the message ("" for a command-line value).
+
+    Returns:
+        The resolution as a float within :data:`RESOLUTION_RANGE`, metres.
+
+    Raises:
+        ScanError: not a number, or out of range.
+    """
     lo, hi = RESOLUTION_RANGE
     try:
         r = float(resolution)
@@ -93,10 +104,19 @@ def check_extent(
     scale: float = 1.0,
     axes: np.ndarray | None = None,
 ) -> None:
-    """Refuse a cloud (N, 3), metres, spanning more than :data:`MAX_EXTENT` along an axis
-    (stray points, named with their count) or lying beyond :data:`MAX_COORDINATE` (with the
-    offset to subtract, in the file's units and axes: ``scale`` metres per file unit,
-    ``axes`` the up-axis rotation)."""
+    """Refuse a cloud with stray points or coordinates beyond range.
+
+    Args:
+        points: (N, 3) points, metres.
+        source: the cloud's name in errors.
+        scale: metres per file unit (for the offset suggested).
+        axes: (3, 3) the up-axis rotation of the file (None: the identity).
+
+    Raises:
+        ScanError: a span over :data:`MAX_EXTENT` along an axis (stray points, named with their
+            count) or coordinates beyond :data:`MAX_COORDINATE` (with the offset to subtract, in
+            the file's units and axes).
+    """
     lo, hi = _bounds(np.ascontiguousarray(points, dtype=np.float64))
     span = hi - lo
     if (span > MAX_EXTENT).any():
@@ -122,9 +142,17 @@ def check_extent(
 
 
 def check_plan_size(points: np.ndarray, resolution: float, source: object) -> None:
-    """Refuse a cloud whose horizontal extent makes a floor plan of more than
-    :data:`MAX_PLAN_CELLS` cells at ``resolution`` metres, naming the coarsest resolution that
-    fits."""
+    """Refuse a cloud whose floor plan would be too large.
+
+    Args:
+        points: (N, 3) points, metres, z up.
+        resolution: the floor-plan grid edge, metres.
+        source: the cloud's name in errors.
+
+    Raises:
+        ScanError: the horizontal extent makes more than :data:`MAX_PLAN_CELLS` cells; the
+            message names the coarsest resolution that fits (or says to crop).
+    """
     lo, hi = _bounds(np.ascontiguousarray(points, dtype=np.float64))
     span = (hi - lo)[:2] + 2 * HOLE_RADIUS
     cells = float(np.prod(np.ceil(span / resolution) + 1))

@@ -66,7 +66,19 @@ class MergedCloud:
 
 
 def check_pose(matrix, where: str) -> np.ndarray:
-    """``matrix`` as a rigid 4 x 4 transform, or ScanError naming ``where``."""
+    """A pose, checked.
+
+    Args:
+        matrix: a 4 x 4 matrix of numbers (nested lists or an array).
+        where: the pose's name in errors.
+
+    Returns:
+        (4, 4) float64 rigid transform.
+
+    Raises:
+        ScanError: not 4 x 4 numbers, a non-finite entry (named by row and column), or not rigid
+            (rotation orthonormal with determinant 1 within :data:`POSE_TOL`, last row 0 0 0 1).
+    """
     try:
         m = np.asarray(matrix, dtype=np.float64)
     except (TypeError, ValueError):
@@ -93,9 +105,21 @@ def check_pose(matrix, where: str) -> np.ndarray:
 
 
 def read_poses(path: str | Path, scans: Sequence[Path]) -> dict[Path, np.ndarray]:
-    """Poses from a JSON object keyed by the scan files' names (as given, or their base
-    names): ``{"B.ply": [[r00, r01, r02, tx], ..., [0, 0, 0, 1]]}``. Files not named keep the
-    identity (they are in the first file's frame); a key naming no scan is an error."""
+    """Poses from a JSON file keyed by the scan files' names.
+
+    ``{"B.ply": [[r00, r01, r02, tx], ..., [0, 0, 0, 1]]}``, metres, z up. Files not named keep
+    the identity (they are in the first file's frame).
+
+    Args:
+        path: the JSON file.
+        scans: the scan files given; keys name them as given or by their base names.
+
+    Returns:
+        The (4, 4) pose of each named scan.
+
+    Raises:
+        ScanError: a missing or malformed file, a key naming no scan, a bad pose.
+    """
     path = Path(path)
     if path.is_dir():
         raise ScanError(f"{path} is a folder, not a poses file")
@@ -118,7 +142,15 @@ def read_poses(path: str | Path, scans: Sequence[Path]) -> dict[Path, np.ndarray
 
 
 def apply_pose(points: np.ndarray, pose: np.ndarray) -> np.ndarray:
-    """``points`` (N, 3) moved by the 4 x 4 ``pose``."""
+    """Points moved by a pose.
+
+    Args:
+        points: (N, 3) points, metres.
+        pose: (4, 4) rigid transform.
+
+    Returns:
+        (N, 3) ``R p + t``.
+    """
     return points @ pose[:3, :3].T + pose[:3, 3]
 
 
@@ -133,9 +165,20 @@ def merge_scans(
     register: bool = False,
     report: Callable[[str], None] | None = None,
 ) -> MergedCloud:
-    """Read ``scans`` and merge them into the first file's frame (see the module docstring);
-    with ``register`` the scans after the first without a known pose are aligned to the
-    scans before them, and each alignment's line (fitness, RMSE) is passed to ``report``.
+    """Read scans and merge them into the first file's frame (module docstring).
+
+    Args:
+        scans: the scan files of one hall, the first one's frame the merge's.
+        units: the files' length unit when they do not say.
+        up: the files' up axis when they do not say.
+        drop_invalid: leave out NaN or infinite points instead of refusing them.
+        offset: (3,) subtracted from every file's points first, file units and axes (None: none).
+        poses: (4, 4) pose per file (metres, z up) into the first one's frame; others identity.
+        register: align the scans after the first without a pose to the scans before them.
+        report: called with each alignment's line (fitness, RMSE).
+
+    Returns:
+        The merged cloud (metres, z up, first file's frame), its clouds, alignments and stations.
 
     Raises:
         ScanError: any file's reading errors, a file given twice, a bad pose, a scan that

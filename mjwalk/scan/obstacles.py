@@ -134,9 +134,18 @@ def floor_plan(
     z_range: tuple[float, float] = OBSTACLE_Z_RANGE,
     views: Sequence[View] = (),
 ) -> FloorPlan | None:
-    """The floor plan of levelled points (N, 3), metres, floor at z = 0; None without floor
-    points. ``views``: the stations whose rays decide which floor was seen besides the cells
-    holding floor points (:mod:`.sight`); none: the floor points alone."""
+    """The floor plan of a levelled cloud.
+
+    Args:
+        points: (N, 3) levelled points, metres, floor at z = 0.
+        resolution: the grid edge, metres.
+        z_range: the obstacle band above the floor, metres (low, high).
+        views: the stations whose rays decide which floor was seen besides the cells holding
+            floor points (:mod:`.sight`); none: the floor points alone.
+
+    Returns:
+        The plan (floor, obstacle labels and tops, voids), or None without floor points.
+    """
     pts = np.ascontiguousarray(points, dtype=np.float64)
     box = _floor_box(pts, FLOOR_TOL)
     if not np.isfinite(box).all():
@@ -155,56 +164,20 @@ def floor_plan(
     if views:
         seen_floor |= ray_seen(pts, views, lo[0], lo[1], resolution, (ny, nx), FLOOR_TOL)
     occupied = counts >= MIN_BAND_POINTS
-
-    square = np.ones((3, 3), bool)
-    obst = ndimage.binary_closing(occupied, square) | occupied
-    # Enclosed regions without a floor point inside are the inside of an obstacle.
-    enclosed = ndimage.binary_fill_holes(obst) & ~obst
-    lab, n = ndimage.label(enclosed, square)
-    if n:
-        has_floor = ndimage.sum(seen_floor, lab, np.arange(1, n + 1)) > 0
-        obst |= np.isin(lab, np.flatnonzero(~has_floor) + 1)
-    # Sparse floor evidence (the rings of far floor points) closed over gaps up to 2 FLOOR_GAP.
-    spread = ndimage.distance_transform_edt(~seen_floor) * resolution <= FLOOR_GAP
-    closed = ndimage.distance_transform_edt(spread) * resolution > FLOOR_GAP
-    floor = (closed | seen_floor) & ~obst
-    # Small unscanned holes are floor.
-    # Only inside the seen floor's convex outline: a hole at the floor's edge (the blind disc
-    # of a scanner near the edge, a shadow behind a rack) fills up to the floor's edge.
-    # The outline is the floor points' own: floor the rays saw through a doorway adds floor
-    # there, never a wider outline that would take the wall's far side in as a hole.
-    unknown = ~floor & ~obst & outline
-    lab, n = ndimage.label(unknown, square)
-    filled = 0
-    if n:
-        radius = ndimage.distance_transform_edt(unknown) * resolution
-        inscribed = ndimage.maximum(radius, lab, np.arange(1, n + 1))
-        small = np.asarray(inscribed) <= HOLE_RADIUS
-        floor |= np.isin(lab, np.flatnonzero(small) + 1)
-        filled = int(small.sum())
-    # The walkable floor: the largest connected floor region. Floor seen in pockets walled in
-    # by obstacles (under a car body raised on its wheels, inside a fenced cell) is not
-    # reachable on foot and becomes void; obstacles are kept where they touch the floor.
-    lab, n = ndimage.label(floor, square)
-    if n == 0:
+    obst = _obstacle_cells(occupied, seen_floor)
+    floor, closed, filled = _floor_cells(seen_floor, obst, outline, resolution)
+    if floor is None:
         return None
-    sizes = ndimage.sum(floor, lab, np.arange(1, n + 1))
-    floor = lab == int(np.argmax(sizes)) + 1
-    olab, n = ndimage.label(obst, square)
-    touching = np.unique(olab[ndimage.binary_dilation(floor, square) & obst])
+    # obstacles are kept where they touch the walkable floor
+    olab, _ = ndimage.label(obst, _SQUARE)
+    touching = np.unique(olab[ndimage.binary_dilation(floor, _SQUARE) & obst])
     obst = np.isin(olab, touching[touching > 0])
     iy, ix = np.nonzero(floor)
     y0i, y1i, x0i, x1i = iy.min(), iy.max() + 1, ix.min(), ix.max() + 1
     floor = floor[y0i:y1i, x0i:x1i]
     seen = (closed | seen_floor)[y0i:y1i, x0i:x1i] & floor  # floor points, gaps closed
     obst = obst[y0i:y1i, x0i:x1i]
-    top_bin = top_bin[y0i:y1i, x0i:x1i]
-    olab, n = ndimage.label(obst, square)
-    tops = np.zeros(n + 1)
-    if n:
-        tb = ndimage.maximum(top_bin, olab, np.arange(1, n + 1))
-        tb = np.maximum(np.asarray(tb), 0)
-        tops[1:] = np.minimum(z_range[0] + (tb + 1) * TOP_STEP, z_range[1])
+    olab, tops = _obstacle_tops(obst, top_bin[y0i:y1i, x0i:x1i], z_range)
     x0 = float(lo[0] + x0i * resolution)
     y0 = float(lo[1] + y0i * resolution)
     void = ~floor & ~obst
@@ -219,9 +192,75 @@ def floor_plan(
     return FloorPlan(x0, y0, resolution, floor, olab, tops, void, bounds, filled, seen)
 
 
+#: 8-connectivity of the floor plan's cells.
+_SQUARE = np.ones((3, 3), bool)
+
+
+def _obstacle_cells(occupied: np.ndarray, seen_floor: np.ndarray) -> np.ndarray:
+    """Obstacle cells: the occupied ones closed over one-cell gaps, and the enclosed regions
+    without a floor point inside (the inside of an obstacle)."""
+    obst = ndimage.binary_closing(occupied, _SQUARE) | occupied
+    enclosed = ndimage.binary_fill_holes(obst) & ~obst
+    lab, n = ndimage.label(enclosed, _SQUARE)
+    if n:
+        has_floor = ndimage.sum(seen_floor, lab, np.arange(1, n + 1)) > 0
+        obst |= np.isin(lab, np.flatnonzero(~has_floor) + 1)
+    return obst
+
+
+def _floor_cells(
+    seen_floor: np.ndarray, obst: np.ndarray, outline: np.ndarray, resolution: float
+) -> tuple[np.ndarray | None, np.ndarray, int]:
+    """The walkable floor (None: no floor), the floor evidence with its gaps closed, and how
+    many small unscanned holes were counted as floor."""
+    # Sparse floor evidence (the rings of far floor points) closed over gaps up to 2 FLOOR_GAP.
+    spread = ndimage.distance_transform_edt(~seen_floor) * resolution <= FLOOR_GAP
+    closed = ndimage.distance_transform_edt(spread) * resolution > FLOOR_GAP
+    floor = (closed | seen_floor) & ~obst
+    # Small unscanned holes are floor.
+    # Only inside the seen floor's convex outline: a hole at the floor's edge (the blind disc
+    # of a scanner near the edge, a shadow behind a rack) fills up to the floor's edge.
+    # The outline is the floor points' own: floor the rays saw through a doorway adds floor
+    # there, never a wider outline that would take the wall's far side in as a hole.
+    unknown = ~floor & ~obst & outline
+    lab, n = ndimage.label(unknown, _SQUARE)
+    filled = 0
+    if n:
+        radius = ndimage.distance_transform_edt(unknown) * resolution
+        inscribed = ndimage.maximum(radius, lab, np.arange(1, n + 1))
+        small = np.asarray(inscribed) <= HOLE_RADIUS
+        floor |= np.isin(lab, np.flatnonzero(small) + 1)
+        filled = int(small.sum())
+    # The walkable floor: the largest connected floor region. Floor seen in pockets walled in
+    # by obstacles (under a car body raised on its wheels, inside a fenced cell) is not
+    # reachable on foot and becomes void.
+    lab, n = ndimage.label(floor, _SQUARE)
+    if n == 0:
+        return None, closed, filled
+    sizes = ndimage.sum(floor, lab, np.arange(1, n + 1))
+    return lab == int(np.argmax(sizes)) + 1, closed, filled
+
+
+def _obstacle_tops(
+    obst: np.ndarray, top_bin: np.ndarray, z_range: tuple[float, float]
+) -> tuple[np.ndarray, np.ndarray]:
+    """Obstacle labels (0: none) and each label's top height, metres (index 0 unused): the top
+    of its highest band bin, at most the band's top."""
+    olab, n = ndimage.label(obst, _SQUARE)
+    tops = np.zeros(n + 1)
+    if n:
+        tb = ndimage.maximum(top_bin, olab, np.arange(1, n + 1))
+        tb = np.maximum(np.asarray(tb), 0)
+        tops[1:] = np.minimum(z_range[0] + (tb + 1) * TOP_STEP, z_range[1])
+    return olab, tops
+
+
 def _hull_mask(mask: np.ndarray) -> np.ndarray:
     """Cells inside the convex hull of the set cells of ``mask``."""
-    from scipy.spatial import ConvexHull, QhullError
+    from scipy.spatial import (
+        ConvexHull,
+        QhullError,
+    )  # deferred: scipy.spatial adds ~0.2 s to start-up
 
     iy, ix = np.nonzero(mask)
     pts = np.column_stack([ix, iy]).astype(float)
@@ -240,9 +279,16 @@ def _hull_mask(mask: np.ndarray) -> np.ndarray:
 
 
 def rectangles(labels: np.ndarray) -> list[tuple[int, int, int, int, int]]:
-    """Cover each labelled region of ``labels`` (ny, nx; 0 = empty) with axis-aligned
-    rectangles of cells: runs of equal label along each row, stacked while the same run
-    repeats on the next row. Returns (iy0, iy1, ix0, ix1, label) with exclusive ends."""
+    """Cover each labelled region with axis-aligned rectangles of cells.
+
+    Runs of equal label along each row, stacked while the same run repeats on the next row.
+
+    Args:
+        labels: (ny, nx) integer labels, 0 = empty.
+
+    Returns:
+        (iy0, iy1, ix0, ix1, label) per rectangle, ends exclusive.
+    """
     ny, nx = labels.shape
     out: list[tuple[int, int, int, int, int]] = []
     active: dict[tuple[int, int, int], int] = {}

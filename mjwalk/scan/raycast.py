@@ -38,8 +38,19 @@ def cast(
     noise: float = 0.005,
     cutoff: float = 30.0,
 ) -> np.ndarray:
-    """The hits (K, 3) of one scanner at ``position`` (metres): rays every ``step_deg`` in
-    azimuth and elevation, range noise N(0, ``noise``) metres; rays that hit nothing are lost."""
+    """The hits of one scanner.
+
+    Args:
+        model: the scene.
+        position: (3,) the scanner's position, metres, world frame.
+        step_deg: the angular step in azimuth and elevation, degrees.
+        rng: draws the range noise.
+        noise: the range noise's standard deviation, metres (normal, zero mean).
+        cutoff: the rays' range, metres.
+
+    Returns:
+        (K, 3) hit points, metres; rays that hit nothing are lost.
+    """
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     az = np.radians(np.arange(0.0, 360.0, step_deg))
@@ -67,9 +78,24 @@ def synthetic_scan(
     floor_height: float = -1.37,
     seed: int = 0,
 ) -> SyntheticScan:
-    """Scan ``model`` from each scanner position (x, y, z metres), merge, then tilt the cloud by
-    ``tilt_deg`` about a horizontal axis at ``tilt_axis_deg`` from +x through the origin on the
-    floor, and move the floor to z = ``floor_height``."""
+    """Scan a scene from several positions, merge, tilt and lift the cloud.
+
+    The cloud is tilted by ``tilt_deg`` about a horizontal axis at ``tilt_axis_deg`` from +x
+    through the origin on the floor, and the floor moved to z = ``floor_height``.
+
+    Args:
+        model: the scene.
+        scanners: scanner positions (x, y, z), metres.
+        step_deg: the angular step, degrees.
+        noise: range noise, metres.
+        tilt_deg: the tilt, degrees.
+        tilt_axis_deg: the tilt axis's direction from +x, CCW, degrees.
+        floor_height: where the floor ends up, metres.
+        seed: seeds the range noise.
+
+    Returns:
+        The merged points, the (4, 4) transform back to the scene and the scanner positions.
+    """
     rng = np.random.default_rng(seed)
     pts = np.vstack([cast(model, np.asarray(p), step_deg, rng=rng, noise=noise) for p in scanners])
     ax = np.radians(tilt_axis_deg)

@@ -64,8 +64,15 @@ class Station:
     origin: str
 
     def moved(self, pose: np.ndarray, shift: int) -> Station:
-        """The station with its viewpoint moved by the 4 x 4 ``pose`` and its points ``shift``
-        rows later (a cloud merged after others)."""
+        """The station moved into another frame and later rows.
+
+        Args:
+            pose: (4, 4) rigid transform applied to the viewpoint.
+            shift: rows added before its points (a cloud merged after others).
+
+        Returns:
+            The moved station.
+        """
         vp = pose[:3, :3] @ self.viewpoint + pose[:3, 3]
         return Station(vp, self.start + shift, self.stop + shift, self.origin)
 
@@ -130,15 +137,15 @@ def _without_plotly_drawing():
 
 def _import_open3d():
     try:
-        import open3d
+        import open3d  # deferred: open3d is optional and slow to import
     except ImportError as exc:
         if "libusb" not in str(exc):
             raise ScanError(f"Open3D cannot be imported: {exc}") from exc
         try:
-            import libusb_package
+            import libusb_package  # deferred: optional, only when open3d lacks libusb
 
             ctypes.CDLL(str(libusb_package.get_library_path()), mode=ctypes.RTLD_GLOBAL)
-            import open3d
+            import open3d  # deferred: open3d is optional and slow to import
         except (ImportError, OSError) as exc2:
             raise ScanError(
                 f"Open3D needs libusb-1.0 ({exc2}); pip install libusb-package "
@@ -235,8 +242,15 @@ def _ascii_ply_xyz(path: Path, declared: Declared) -> np.ndarray:
 
 
 def read_points_raw(path: Path, *, drop_invalid: bool = False) -> np.ndarray:
-    """The file's points (N, 3) as stored (float64, file units and axes), NaNs kept unless an
-    ASCII PLY holds them (read without them when ``drop_invalid``, else refused)."""
+    """A file's points as stored.
+
+    Args:
+        path: the scan file.
+        drop_invalid: read an ASCII PLY without its NaN rows (else they are refused).
+
+    Returns:
+        (N, 3) float64 points in file units and axes, NaNs kept unless an ASCII PLY holds them.
+    """
     return _read_with_stations(path, drop_invalid)[0]
 
 
@@ -256,7 +270,7 @@ def _read_with_stations(path: Path, drop_invalid: bool) -> tuple[np.ndarray, lis
     if suffix in _OPEN3D or suffix in _OPEN3D_PTS:
         return _read_open3d(path, suffix, drop_invalid)
     if suffix in (".las", ".laz"):
-        import laspy
+        import laspy  # deferred: laspy is optional (LAS/LAZ only)
 
         declared = check_las(path)
         try:
@@ -267,7 +281,7 @@ def _read_with_stations(path: Path, drop_invalid: bool) -> tuple[np.ndarray, lis
             ) from exc
         check_read_count(path, declared, len(las.points))
         return np.column_stack([las.x, las.y, las.z]).astype(np.float64), []
-    import pye57
+    import pye57  # deferred: pye57 is optional (E57 only)
 
     check_e57(path)
     try:
@@ -298,8 +312,17 @@ TYPICAL_HEIGHT = 3.0
 
 
 def check_units(points: np.ndarray, units: str, source: Path | str) -> None:
-    """Refuse a cloud whose height span (z, metres after ``units``) is implausible for an indoor
-    workplace, naming the units that make it plausible (the one nearest a 3 m storey first)."""
+    """Refuse a cloud whose height span is implausible for an indoor workplace.
+
+    Args:
+        points: (N, 3) points, metres after ``units``, z up.
+        units: the units the file was read in.
+        source: the cloud's name in errors.
+
+    Raises:
+        ScanError: the span of 99 % of its heights is outside the plausible range; the message
+            names the units that make it plausible (the one nearest a 3 m storey first).
+    """
     if len(points) < 10:
         return
     lo, hi = np.percentile(points[:, 2], [0.5, 99.5])
@@ -325,7 +348,19 @@ def check_units(points: np.ndarray, units: str, source: Path | str) -> None:
 
 
 def check_options(units: str, up: str, source: Path | str) -> str:
-    """Refuse unknown ``units`` or ``up`` naming the choices; returns the up axis's key."""
+    """Refuse unknown units or up axis, naming the choices.
+
+    Args:
+        units: a key of :data:`mjwalk.world.units.UNITS`.
+        up: a key of :data:`mjwalk.world.units.UP_AXES` (a bare axis reads as +, any case).
+        source: named in errors.
+
+    Returns:
+        The up axis's key in :data:`mjwalk.world.units.UP_AXES`.
+
+    Raises:
+        ScanError: unknown units or up axis.
+    """
     if units not in UNITS:
         raise ScanError(f"{source}: unknown units {units!r} (--units one of {', '.join(UNITS)})")
     key = up if up.startswith(("+", "-")) else f"+{up}"
@@ -353,13 +388,25 @@ def to_metres_z_up(
     drop_invalid: bool = False,
     offset: tuple[float, float, float] | np.ndarray | None = None,
 ) -> tuple[np.ndarray, float, np.ndarray]:
-    """Validate raw points and convert them to metres, z up: (points, scale, axes).
+    """Validate raw points and convert them to metres, z up.
 
-    ``offset`` (3,), in the file's units and axes, is subtracted first (a georeferenced
-    cloud beyond :data:`~mjwalk.scan.limits.MAX_COORDINATE`). NaN or infinite
-    coordinates are an error unless ``drop_invalid`` (organised clouds mark missing returns
-    with NaN; say so explicitly to drop them). The cloud's extent and coordinates are checked
-    (:func:`~mjwalk.scan.limits.check_extent`), after its height span (:func:`check_units`).
+    NaN or infinite coordinates are an error unless ``drop_invalid`` (organised clouds mark
+    missing returns with NaN; say so explicitly to drop them). The cloud's extent and
+    coordinates are checked (:func:`~mjwalk.scan.limits.check_extent`), after its height span
+    (:func:`check_units`).
+
+    Args:
+        raw: (N, 3) points in the file's units and axes.
+        units: the file's length unit.
+        up: the file's up axis.
+        source: the cloud's name in errors.
+        drop_invalid: leave out NaN or infinite rows instead of refusing them.
+        offset: (3,) file units and axes, subtracted first (a georeferenced cloud beyond
+            :data:`~mjwalk.scan.limits.MAX_COORDINATE`); None: nothing subtracted.
+
+    Returns:
+        (points (M, 3) metres z up, scale metres per file unit, axes (3, 3) up-axis rotation):
+        ``points = scale * axes @ (raw - offset)``.
     """
     key = check_options(units, up, source)
     raw = np.asarray(raw, dtype=np.float64)
@@ -401,8 +448,20 @@ def read_scan(
     drop_invalid: bool = False,
     offset: tuple[float, float, float] | np.ndarray | None = None,
 ) -> ScanCloud:
-    """Read a scan file into metres, z up. See the module docstring for formats and options;
-    ``offset`` (file units and axes) is subtracted from every point first.
+    """Read a scan file into metres, z up.
+
+    See the module docstring for formats and options.
+
+    Args:
+        path: the scan file.
+        units: its length unit when it does not say.
+        up: its up axis when it does not say.
+        drop_invalid: leave out NaN or infinite points instead of refusing them.
+        offset: (3,) subtracted from every point first, file units and axes (None: nothing).
+
+    Returns:
+        The cloud: points (N, 3) metres z up, how they were converted, and the scanner stations
+        the file states.
 
     Raises:
         ScanError: unknown suffix, missing file, a file not of its format, a header declaring

@@ -45,6 +45,7 @@ right one.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -53,6 +54,7 @@ from scipy import ndimage
 from mjwalk.errors import ScanError
 from mjwalk.scan.level import find_floor
 from mjwalk.scan.obstacles import FLOOR_TOL
+from mjwalk.scan.read import open3d_module
 
 #: Voxel of the clouds the features are computed on, metres: half the 0.10 m local-PCA voxel
 #: of the levelling (:data:`~mjwalk.scan.level.VOXEL`), ten times the 5 mm range noise of
@@ -126,6 +128,11 @@ class Alignment:
     source: str
 
     def line(self) -> str:
+        """One line for the report.
+
+        Returns:
+            The scan's name, fitness, RMSE (mm) and free-space clash (%).
+        """
         return (
             f"{self.source}: registered, fitness {self.fitness:.3f} (share of its points, "
             f"thinned to {VOXEL} m, within {ICP_DISTANCE} m of the others), RMSE "
@@ -153,8 +160,16 @@ def _seen_free(levelled: np.ndarray, origin: np.ndarray, shape: tuple[int, int])
 
 
 def clash(moved: np.ndarray, other: np.ndarray) -> float:
-    """Share of ``moved``'s low points (levelled, metres, :data:`LOW_BAND`) over cells the
-    ``other`` scan mapped that stand on its seen-free floor (0 when none overlap)."""
+    """Share of one scan's low points standing on floor the other saw free.
+
+    Args:
+        moved: (N, 3) levelled points of the scan placed, metres.
+        other: (M, 3) levelled points of the other scan, metres.
+
+    Returns:
+        The share of ``moved``'s low points (:data:`LOW_BAND`) over cells ``other`` mapped that
+        stand on its seen-free floor, in [0, 1] (0 when none overlap).
+    """
     z = moved[:, 2]
     low = moved[(z >= LOW_BAND[0]) & (z <= LOW_BAND[1]), :2]
     if not len(low):
@@ -197,44 +212,82 @@ def _move(points: np.ndarray, m: np.ndarray) -> np.ndarray:
 def align(
     points: np.ndarray, reference: np.ndarray, *, source: str = "scan", seed: int = 0
 ) -> Alignment:
-    """The rigid transform taking ``points`` (N, 3) onto ``reference`` (M, 3), both metres,
-    z up roughly (each is levelled on its own floor first). ``seed`` seeds RANSAC.
+    """The rigid transform taking ``points`` onto ``reference``.
+
+    Both clouds are levelled on their own floors first; RANSAC on FPFH features proposes
+    alignments, ICP refines them, free space verifies them (see the module docstring).
+
+    Args:
+        points: (N, 3) points, metres, z up roughly.
+        reference: (M, 3) points of the scans before it, metres, z up roughly.
+        source: the scan's name in errors and in the alignment's line.
+        seed: seeds RANSAC (run ``k`` uses ``seed + k``).
+
+    Returns:
+        The alignment: its (4, 4) matrix takes ``points`` into the frame of ``reference``.
 
     Raises:
         ScanError: naming ``source`` when no hypothesis passes verification (too little
             overlap, or every alignment found contradicts free space) or when two distinct
             ones do (ambiguous).
     """
-    from mjwalk.scan.read import open3d_module
-
     lev_p = find_floor(points, source=source)
     lev_r = find_floor(reference, source="the scans before it")
     p = lev_p.apply(points)
     r = lev_r.apply(reference)
     o3d = open3d_module()
-    reg = o3d.pipelines.registration
-    kd = o3d.geometry.KDTreeSearchParamHybrid
-
-    def prepare(x: np.ndarray):
-        pc = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(x)).voxel_down_sample(VOXEL)
-        pc.estimate_normals(kd(radius=NORMAL_RADIUS * VOXEL, max_nn=30))
-        return pc, reg.compute_fpfh_feature(pc, kd(radius=FEATURE_RADIUS * VOXEL, max_nn=100))
-
-    (pc_p, f_p), (pc_r, f_r) = prepare(p), prepare(r)
-
-    def tukey(distance: float):
-        return reg.TransformationEstimationPointToPlane(reg.TukeyLoss(k=TUKEY_SHARE * distance))
+    (pc_p, f_p), (pc_r, f_r) = _features(o3d, p), _features(o3d, r)
 
     def refine(start: np.ndarray) -> tuple[float, float, float, np.ndarray]:
-        m = start
-        for distance in ICP_SCHEDULE:
-            icp = reg.registration_icp(
-                pc_p, pc_r, distance, m, tukey(distance), reg.ICPConvergenceCriteria(*ICP_STOP)
-            )
-            m = np.asarray(icp.transformation).copy()
-        c = max(clash(_move(p, m), r), clash(_move(r, np.linalg.inv(m)), p))
-        return float(icp.fitness), float(icp.inlier_rmse), c, m
+        return _refine(o3d, (pc_p, pc_r), p, r, start)
 
+    hypotheses = _ransac(o3d, (pc_p, f_p), (pc_r, f_r), refine, seed)
+    hypotheses += _quarter_turns(p, max(hypotheses, key=lambda h: h[0])[3], refine)
+    hypotheses.sort(key=lambda h: -h[0])
+    best, runner_up = _choose(hypotheses, source)
+    rmse, m = _fine_icp(o3d, p, r, best[3])
+    total = np.linalg.inv(lev_r.matrix) @ m @ lev_p.matrix
+    return Alignment(total, best[0], rmse, best[2], runner_up, source)
+
+
+def _features(o3d, x: np.ndarray):
+    """The cloud ``x`` thinned to :data:`VOXEL`, with normals, and its FPFH features."""
+    reg = o3d.pipelines.registration
+    kd = o3d.geometry.KDTreeSearchParamHybrid
+    pc = o3d.geometry.PointCloud(o3d.utility.Vector3dVector(x)).voxel_down_sample(VOXEL)
+    pc.estimate_normals(kd(radius=NORMAL_RADIUS * VOXEL, max_nn=30))
+    return pc, reg.compute_fpfh_feature(pc, kd(radius=FEATURE_RADIUS * VOXEL, max_nn=100))
+
+
+def _tukey(o3d, distance: float):
+    """Point-to-plane estimation with a Tukey loss scaled to the correspondence ``distance``."""
+    reg = o3d.pipelines.registration
+    return reg.TransformationEstimationPointToPlane(reg.TukeyLoss(k=TUKEY_SHARE * distance))
+
+
+def _refine(
+    o3d, clouds: tuple, p: np.ndarray, r: np.ndarray, start: np.ndarray
+) -> tuple[float, float, float, np.ndarray]:
+    """ICP over :data:`ICP_SCHEDULE` from ``start`` between the thinned ``clouds``; the
+    hypothesis (fitness, RMSE, free-space clash both ways, matrix)."""
+    reg = o3d.pipelines.registration
+    pc_p, pc_r = clouds
+    m = start
+    for distance in ICP_SCHEDULE:
+        icp = reg.registration_icp(
+            pc_p, pc_r, distance, m, _tukey(o3d, distance), reg.ICPConvergenceCriteria(*ICP_STOP)
+        )
+        m = np.asarray(icp.transformation).copy()
+    c = max(clash(_move(p, m), r), clash(_move(r, np.linalg.inv(m)), p))
+    return float(icp.fitness), float(icp.inlier_rmse), c, m
+
+
+def _ransac(
+    o3d, moving: tuple, fixed: tuple, refine: Callable, seed: int
+) -> list[tuple[float, float, float, np.ndarray]]:
+    """RANSAC runs on the (cloud, features) pairs, each refined, until they settle."""
+    reg = o3d.pipelines.registration
+    (pc_p, f_p), (pc_r, f_r) = moving, fixed
     hypotheses: list[tuple[float, float, float, np.ndarray]] = []
     for run in range(RANSAC_MAX_RUNS):
         if run >= RANSAC_RUNS and _settled(hypotheses):
@@ -256,17 +309,30 @@ def align(
             reg.RANSACConvergenceCriteria(RANSAC_ITERATIONS, 0.999),
         )
         hypotheses.append(refine(np.asarray(res.transformation)))
-    # The best one turned by quarter turns about the middle of its placed points: halls are
-    # often rectangular with mirror-image fittings, and RANSAC need not find the twin.
-    best_m = max(hypotheses, key=lambda h: h[0])[3]
+    return hypotheses
+
+
+def _quarter_turns(
+    p: np.ndarray, best_m: np.ndarray, refine: Callable
+) -> list[tuple[float, float, float, np.ndarray]]:
+    """The best one turned by quarter turns about the middle of its placed points, refined:
+    halls are often rectangular with mirror-image fittings, and RANSAC need not find the twin."""
     middle = np.median(_move(p, best_m)[:, :2], axis=0)
+    out = []
     for quarter in (1, 2, 3):
         turn = np.eye(4)
         a = quarter * np.pi / 2
         turn[:2, :2] = [[np.cos(a), -np.sin(a)], [np.sin(a), np.cos(a)]]
         turn[:2, 3] = middle - turn[:2, :2] @ middle
-        hypotheses.append(refine(turn @ best_m))
-    hypotheses.sort(key=lambda h: -h[0])
+        out.append(refine(turn @ best_m))
+    return out
+
+
+def _choose(
+    hypotheses: list[tuple[float, float, float, np.ndarray]], source: str
+) -> tuple[tuple[float, float, float, np.ndarray], float]:
+    """The best passing hypothesis (``hypotheses`` sorted by fitness, best first) and the
+    runner-up's fitness; ScanError when none passes or two distinct ones do."""
     passed = [h for h in hypotheses if _passes(h)]
     figures = "; ".join(
         f"fitness {f:.2f}, RMSE {1000 * e:.1f} mm, clash {100 * c:.0f} %"
@@ -289,8 +355,15 @@ def align(
             f"(fitness {best[0]:.2f} and {runner_up:.2f}; a symmetric hall?); give its pose "
             "with --poses"
         )
-    # the figures reported: a last point-to-plane ICP on clouds thinned to FINE_VOXEL, so the
-    # RMSE measures the surfaces' agreement rather than the VOXEL spacing of the thinned points
+    return best, runner_up
+
+
+def _fine_icp(o3d, p: np.ndarray, r: np.ndarray, m: np.ndarray) -> tuple[float, np.ndarray]:
+    """The figures reported: a last point-to-plane ICP from ``m`` on clouds thinned to
+    :data:`FINE_VOXEL`, so the RMSE measures the surfaces' agreement rather than the
+    :data:`VOXEL` spacing of the thinned points; (RMSE metres, (4, 4) matrix)."""
+    reg = o3d.pipelines.registration
+    kd = o3d.geometry.KDTreeSearchParamHybrid
     fine_p, fine_r = (
         o3d.geometry.PointCloud(o3d.utility.Vector3dVector(x)).voxel_down_sample(FINE_VOXEL)
         for x in (p, r)
@@ -300,10 +373,8 @@ def align(
         fine_p,
         fine_r,
         ICP_DISTANCE,
-        best[3],
-        tukey(ICP_DISTANCE),
+        m,
+        _tukey(o3d, ICP_DISTANCE),
         reg.ICPConvergenceCriteria(*ICP_STOP),
     )
-    m = np.asarray(icp.transformation)
-    total = np.linalg.inv(lev_r.matrix) @ m @ lev_p.matrix
-    return Alignment(total, best[0], float(icp.inlier_rmse), best[2], runner_up, source)
+    return float(icp.inlier_rmse), np.asarray(icp.transformation)

@@ -19,6 +19,7 @@ Sites TOML (``sites=``): one table per site under ``[site]``, in metres::
 
 from __future__ import annotations
 
+import dataclasses
 import time
 import tomllib
 from collections.abc import Callable, Sequence
@@ -32,12 +33,13 @@ from mjwalk._args import check_output_file
 from mjwalk._io import atomic_path, read_toml
 from mjwalk.errors import ScanError
 from mjwalk.scan.level import Levelling, check_upright, find_floor
-from mjwalk.scan.limits import check_plan_size, check_resolution
+from mjwalk.scan.limits import check_plan_size
 from mjwalk.scan.merge import merge_scans, read_poses
-from mjwalk.scan.obstacles import FloorPlan, floor_plan, rectangles
-from mjwalk.scan.read import Station, check_options, to_metres_z_up
+from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan, floor_plan, rectangles
+from mjwalk.scan.read import Station, to_metres_z_up
+from mjwalk.scan.scanoptions import ScanOptions
 from mjwalk.scan.sight import View, check_station
-from mjwalk.scan.voids import apply_policy, check_policy
+from mjwalk.scan.voids import apply_policy
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 
 #: Sites are written this far above the floor (a stand site on the floor, as in the shipped
@@ -75,7 +77,17 @@ class _Site:
 
 
 def read_sites(path: str | Path) -> list[_Site]:
-    """Parse a sites TOML (format in the module docstring). Raises ScanError naming the key."""
+    """Parse a sites TOML (format in the module docstring).
+
+    Args:
+        path: the TOML file.
+
+    Returns:
+        The sites, in file order.
+
+    Raises:
+        ScanError: a malformed file or site, naming the key.
+    """
     path = Path(path)
     try:  # missing, oversized, non-UTF-8 or too deeply nested: ScanError naming the key
         doc, _ = read_toml(path, "sites", ScanError)
@@ -231,8 +243,6 @@ def _views(
 ) -> tuple[list[View], str]:
     """The stations the cloud agrees with (:func:`~mjwalk.scan.sight.check_station`) in
     the levelled frame, and one line saying how the floor seen is decided."""
-    from mjwalk.scan.obstacles import FLOOR_TOL
-
     views, refused = [], []
     for k, st in enumerate(stations):
         vp = levelling.apply(np.asarray(st.viewpoint, dtype=np.float64)[None])[0]
@@ -258,73 +268,117 @@ def _views(
 
 def build_scene(
     points: np.ndarray,
+    options: ScanOptions | None = None,
     *,
-    units: str = "m",
-    up: str = "+z",
-    drop_invalid: bool = False,
-    resolution: float = 0.02,
     sites: list[_Site] | None = None,
     source: str = "cloud",
     model_name: str = "scan",
-    offset: tuple[float, float, float] | np.ndarray | None = None,
-    voids: str = "blocked",
     stations: Sequence[Station] = (),
     _read: tuple[np.ndarray, float, np.ndarray] | None = None,
     clock: Callable[[], float] = time.perf_counter,
 ) -> ScanScene:
-    """Make the MJCF scene of a point cloud ``points`` (N, 3) in the file's units and axes
-    (``offset``, file units, subtracted first). ``voids`` is the unseen-floor policy
-    (:mod:`~mjwalk.scan.voids`: blocked, fill, free). ``stations``: where scanners
-    stood and which rows of ``points`` each returned (viewpoints in the frame of ``points``);
-    their rays decide which floor was seen (:mod:`~mjwalk.scan.sight`).
+    """Make the MJCF scene of a point cloud.
 
     Everything is checked, and the MJCF compiled by MuJoCo, before anything is written.
 
+    Args:
+        points: (N, 3) points in the file's units and axes.
+        options: units, up axis, invalid points, resolution, offset (file units, subtracted
+            first) and unseen-floor policy (None: the defaults; ``register`` is not used here).
+        sites: named sites to place (:func:`read_sites`); None: no sites.
+        source: the cloud's name in errors and in the scene's header comment.
+        model_name: the MJCF model's name.
+        stations: where scanners stood and which rows of ``points`` each returned (viewpoints
+            in the frame of ``points``); their rays decide which floor was seen
+            (:mod:`~mjwalk.scan.sight`).
+        _read: (points in metres z up, metres per file unit, (3, 3) up-axis rotation) when
+            the points were already read and checked (:func:`scan_to_scene`); ``points`` and
+            ``stations`` are then in metres, z up.
+        clock: the wall clock the stage timings are taken with, seconds.
+
+    Returns:
+        The scene: MJCF text, floor plan, levelling, (4, 4) scan-to-scene matrix, counts,
+        sites (x, y metres, yaw radians) and per-stage timings (seconds).
+
     Raises:
         ScanError: empty cloud, NaN points, stray points or coordinates beyond range,
-            implausible units, resolution out of range, a floor plan too large, no floor, an
-            upside-down cloud, sites off the floor.
+            implausible units, a floor plan too large, no floor, an upside-down cloud, sites
+            off the floor.
     """
+    opts = ScanOptions() if options is None else options
     timings: dict[str, float] = {}
-    resolution = check_resolution(resolution)
-    check_policy(voids)
     t = clock()
     if _read is None:
-        check_options(units, up, source)
         pts, scale, axes = to_metres_z_up(
-            points, units=units, up=up, source=source, drop_invalid=drop_invalid, offset=offset
+            points,
+            units=opts.units,
+            up=opts.up,
+            source=source,
+            drop_invalid=opts.drop_invalid,
+            offset=opts.offset,
         )
         timings["validate"] = clock() - t
         t = clock()
-        if len(pts) != len(points):  # rows dropped (drop_invalid): no row ranges to trust
-            stations = ()
-        off = np.zeros(3) if offset is None else np.asarray(offset, dtype=np.float64)
-        stations = [
-            Station(scale * (axes @ (np.asarray(s.viewpoint) - off)), s.start, s.stop, s.origin)
-            for s in stations
-        ]
+        stations = _file_stations(stations, len(pts) != len(points), scale, axes, opts.offset)
     else:
         pts, scale, axes = _read
-    check_plan_size(pts, resolution, source)
+    check_plan_size(pts, opts.resolution, source)
     levelling = find_floor(pts, source=source)
     timings["floor"] = clock() - t
     t = clock()
     levelled = levelling.apply(pts)
-    check_upright(levelled, up, source)
+    check_upright(levelled, opts.up, source)
     timings["level"] = clock() - t
     t = clock()
     views, sight = _views(levelled, stations, levelling)
     timings["sight"] = clock() - t
     t = clock()
-    plan = floor_plan(levelled, resolution=resolution, views=views)
+    plan = floor_plan(levelled, resolution=opts.resolution, views=views)
     if plan is None or not plan.floor.any():
         raise ScanError(f"{source}: no floor found after levelling (no points at z = 0)")
-    plan = apply_policy(plan, voids)
+    plan = apply_policy(plan, opts.voids)
     timings["floor plan"] = clock() - t
     t = clock()
-    matrix = _matrix(levelling, scale, axes, None if offset is None else np.asarray(offset))
+    offset = None if opts.offset is None else np.asarray(opts.offset)
+    matrix = _matrix(levelling, scale, axes, offset)
+    site_xyyaw = _place_sites(sites or [], plan, matrix, source)
+    boxes, n_obst, n_void = _boxes(plan)
+    header = _header(source, len(pts), levelling, matrix, (n_obst, n_void), plan, opts, sight)
+    xml = _mjcf(plan, boxes, site_xyyaw, header, matrix, model_name)
+    try:
+        mujoco.MjModel.from_xml_string(xml)
+    except ValueError as exc:  # a bug here, not bad input: say so plainly
+        raise ScanError(f"{source}: the generated scene does not compile: {exc}") from exc
+    timings["mjcf"] = clock() - t
+    return ScanScene(
+        xml, plan, levelling, matrix, len(pts), n_obst, n_void, site_xyyaw, timings, sight
+    )
+
+
+def _file_stations(
+    stations: Sequence[Station],
+    dropped: bool,
+    scale: float,
+    axes: np.ndarray,
+    offset: tuple[float, float, float] | None,
+) -> list[Station]:
+    """Stations given in the file's units and axes, moved into metres z up like the points;
+    none when rows were ``dropped`` (drop_invalid: no row ranges to trust)."""
+    if dropped:
+        stations = ()
+    off = np.zeros(3) if offset is None else np.asarray(offset, dtype=np.float64)
+    return [
+        Station(scale * (axes @ (np.asarray(s.viewpoint) - off)), s.start, s.stop, s.origin)
+        for s in stations
+    ]
+
+
+def _place_sites(
+    sites: list[_Site], plan: FloorPlan, matrix: np.ndarray, source: str
+) -> dict[str, tuple[float, float, float]]:
+    """Each site's scene (x, y, yaw radians); a site not on the scanned floor is a ScanError."""
     site_xyyaw: dict[str, tuple[float, float, float]] = {}
-    for s in sites or []:
+    for s in sites:
         if s.xy is not None:
             xy = np.array(s.xy)
         else:
@@ -340,34 +394,48 @@ def build_scene(
                 "obstacles and voids excluded)"
             )
         site_xyyaw[s.name] = (float(xy[0]), float(xy[1]), float(np.radians(s.yaw_deg)))
-    boxes, n_obst, n_void = _boxes(plan)
-    header = (
-        f"mjwalk scan of {source}: {len(pts)} points, metres, z up, floor at z = 0.\n"
+    return site_xyyaw
+
+
+def _header(
+    source: str,
+    n_points: int,
+    levelling: Levelling,
+    matrix: np.ndarray,
+    n_boxes: tuple[int, int],
+    plan: FloorPlan,
+    opts: ScanOptions,
+    sight: str,
+) -> str:
+    """The scene's header comment: what the scan was, the transform, the boxes (``n_boxes``:
+    obstacle and void boxes), the sight."""
+    n_obst, n_void = n_boxes
+    return (
+        f"mjwalk scan of {source}: {n_points} points, metres, z up, floor at z = 0.\n"
         f"Floor tilt removed: {levelling.tilt_deg:.3f} deg (normal {_fmt(levelling.normal)} in "
         f"the scan), floor plane rms {1000 * levelling.rms:.1f} mm.\n"
         f"Scan file point -> scene point: 4x4 matrix (row-major, also in custom numeric "
         f"mjwalk_scan_transform):\n  {_fmt(matrix[0])}\n  {_fmt(matrix[1])}\n"
         f"  {_fmt(matrix[2])}\n  {_fmt(matrix[3])}\n"
         f"Obstacles: points {OBSTACLE_Z_RANGE[0]}-{OBSTACLE_Z_RANGE[1]} m above the floor, "
-        f"{n_obst} boxes on a {resolution} m grid; voids (unscanned or no floor): {n_void} boxes "
-        f"(group 3, policy {voids}); {plan.holes_filled} small unscanned holes counted as floor.\n"
+        f"{n_obst} boxes on a {opts.resolution} m grid; voids (unscanned or no floor): "
+        f"{n_void} boxes (group 3, policy {opts.voids}); {plan.holes_filled} small unscanned "
+        f"holes counted as floor.\n"
         f"{sight[0].upper()}{sight[1:]}."
-    )
-    xml = _mjcf(plan, boxes, site_xyyaw, header, matrix, model_name)
-    try:
-        mujoco.MjModel.from_xml_string(xml)
-    except ValueError as exc:  # a bug here, not bad input: say so plainly
-        raise ScanError(f"{source}: the generated scene does not compile: {exc}") from exc
-    timings["mjcf"] = clock() - t
-    return ScanScene(
-        xml, plan, levelling, matrix, len(pts), n_obst, n_void, site_xyyaw, timings, sight
     )
 
 
 def write_scene(scene: ScanScene, output: str | Path) -> Path:
-    """Write the scene's MJCF atomically (temporary file, then rename). A failed write (full
-    disk, file-size limit, permissions) is a WriteError naming the file (:func:`atomic_path`);
-    nothing is left."""
+    """Write the scene's MJCF atomically (temporary file, then rename).
+
+    Args:
+        scene: the scene built.
+        output: the file to write.
+
+    Returns:
+        ``output`` as a path. A failed write (full disk, file-size limit, permissions) is a
+        WriteError naming the file (:func:`~mjwalk._io.atomic_path`); nothing is left.
+    """
     output = Path(output)
     with atomic_path(output) as tmp:
         tmp.write_text(scene.xml)
@@ -377,58 +445,60 @@ def write_scene(scene: ScanScene, output: str | Path) -> Path:
 def scan_to_scene(
     scan: str | Path | Sequence[str | Path],
     output: str | Path,
+    options: ScanOptions | None = None,
     *,
-    units: str = "m",
-    up: str = "+z",
-    drop_invalid: bool = False,
-    resolution: float = 0.02,
     sites: str | Path | None = None,
-    offset: tuple[float, float, float] | np.ndarray | None = None,
     poses: str | Path | dict[Path, np.ndarray] | None = None,
-    voids: str = "blocked",
-    register: bool = False,
     report: Callable[[str], None] | None = None,
 ) -> ScanScene:
-    """Read a scan file, or several of one hall (merged in the first file's frame,
-    :func:`~mjwalk.scan.merge.merge_scans`; ``poses`` a JSON file or a dict of 4 x 4
-    poses per file; ``register`` aligns the others without a pose, each alignment's line
-    passed to ``report``), and write its MJCF scene to ``output``; returns the :class:`ScanScene`
-    (its ``matrix`` maps the first file's points to the scene).
+    """Read a scan file, or several of one hall, and write its MJCF scene.
 
-    The output path, the options, the poses and the sites file are checked before any work;
-    nothing is written unless the whole pipeline succeeded.
+    Several files are merged in the first file's frame (:func:`~mjwalk.scan.merge.merge_scans`).
+    The output path, the poses and the sites file are checked before any work; nothing is
+    written unless the whole pipeline succeeded.
+
+    Args:
+        scan: the scan file, or the files of one hall (the first one's frame is the merge's).
+        output: the MJCF file to write (atomically).
+        options: how the scan becomes a scene (:class:`ScanOptions`; None: the defaults).
+        sites: a sites TOML (format in the module docstring); None: no sites.
+        poses: a JSON file or a dict of (4, 4) poses (metres, z up) taking each named scan into
+            the first one's frame; scans not named are already in it.
+        report: called with each alignment's line when ``options.register`` aligns scans.
+
+    Returns:
+        The scene written (its ``matrix`` maps the first file's points to the scene).
+
+    Raises:
+        ScanError: a reading, merging or scene error (see :func:`build_scene`).
     """
+    opts = ScanOptions() if options is None else options
     scans = [Path(scan)] if isinstance(scan, str | Path) else [Path(s) for s in scan]
     check_output_file(output, "output")
-    resolution = check_resolution(resolution)
-    check_policy(voids)
-    check_options(units, up, scans[0] if scans else "scan")
     if isinstance(poses, str | Path):
         poses = read_poses(poses, scans)
     site_list = read_sites(sites) if sites is not None else None
     t = time.perf_counter()
     merged = merge_scans(
         scans,
-        units=units,
-        up=up,
-        drop_invalid=drop_invalid,
-        offset=offset,
+        units=opts.units,
+        up=opts.up,
+        drop_invalid=opts.drop_invalid,
+        offset=opts.offset,
         poses=poses,
-        register=register,
+        register=opts.register,
         report=report,
     )
     t_read = time.perf_counter() - t
     first = merged.first
+    offset = (float(first.offset[0]), float(first.offset[1]), float(first.offset[2]))
     name = str(scans[0]) if len(scans) == 1 else f"{scans[0]} and {len(scans) - 1} more scans"
     scene = build_scene(
         merged.points,
+        dataclasses.replace(opts, offset=offset),
         source=name,
-        resolution=resolution,
         sites=site_list,
         model_name=scans[0].stem,
-        up=up,
-        offset=first.offset,
-        voids=voids,
         stations=merged.stations,
         _read=(merged.points, first.scale, first.axes),
     )

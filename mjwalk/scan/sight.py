@@ -81,8 +81,15 @@ def _directions(points: np.ndarray, viewpoint: np.ndarray) -> tuple[np.ndarray, 
 
 
 def angular_step(directions: np.ndarray) -> float:
-    """The scan's angular step, radians: the median angle from a return's direction (unit
-    vectors (K, 3)) to its 4th nearest distinct neighbour; NaN with fewer than 5 directions."""
+    """The scan's angular step.
+
+    Args:
+        directions: (K, 3) unit vectors from the scanner to its returns.
+
+    Returns:
+        Radians: the median angle from a return's direction to its 4th nearest distinct
+        neighbour; NaN with fewer than 5 directions.
+    """
     u = np.unique(np.round(directions, 7), axis=0)
     if len(u) < 5:
         return float("nan")
@@ -93,8 +100,17 @@ def angular_step(directions: np.ndarray) -> float:
 
 
 def hidden_share(points: np.ndarray, viewpoint: np.ndarray, step: float) -> float:
-    """The share of ``points`` (K, 3) lying more than :data:`BEHIND` farther from
-    ``viewpoint`` than another of them within half an angular ``step`` of its direction."""
+    """The share of returns hidden behind others.
+
+    Args:
+        points: (K, 3) returns, metres.
+        viewpoint: (3,) the scanner's position, metres.
+        step: the angular step, radians.
+
+    Returns:
+        The share (in [0, 1], of a sample) of ``points`` lying more than :data:`BEHIND` farther
+        from ``viewpoint`` than another within half a ``step`` of its direction; 1 without points.
+    """
     u, rng = _directions(points, viewpoint)
     if len(u) == 0:
         return 1.0
@@ -108,9 +124,16 @@ def hidden_share(points: np.ndarray, viewpoint: np.ndarray, step: float) -> floa
 
 
 def check_station(points: np.ndarray, viewpoint: np.ndarray, floor_tol: float) -> tuple[float, str]:
-    """The angular step (radians) of the station whose returns are ``points`` (K, 3, levelled,
-    metres) and whose scanner stood at ``viewpoint``, and "" when the cloud agrees a scanner
-    stood there; else NaN and why not (one clause)."""
+    """Whether the cloud agrees a scanner stood at a position.
+
+    Args:
+        points: (K, 3) the station's returns, levelled, metres.
+        viewpoint: (3,) the scanner's position, levelled, metres.
+        floor_tol: a floor point's largest distance from z = 0, metres.
+
+    Returns:
+        (angular step radians, "") when it agrees; else (NaN, why not in one clause).
+    """
     h = float(viewpoint[2])
     if h < MIN_STATION_HEIGHT:
         return float("nan"), f"{h:+.2f} m above the floor, not a scanner's height"
@@ -138,8 +161,21 @@ def ray_seen(
     shape: tuple[int, int],
     floor_tol: float,
 ) -> np.ndarray:
-    """The floor-plan cells (``shape`` = (ny, nx), lower corner ``(x0, y0)``, metres) some
-    station's rays reached (see the module docstring): bool (ny, nx)."""
+    """The floor-plan cells some station's rays reached (module docstring).
+
+    Args:
+        points: (N, 3) levelled points, metres.
+        views: the stations, each with its rows of ``points``.
+        x0: the grid's lower corner x, metres.
+        y0: the grid's lower corner y, metres.
+        resolution: the cell edge, metres.
+        shape: (ny, nx) of the grid.
+        floor_tol: a floor point's largest distance from z = 0, metres.
+
+    Returns:
+        (ny, nx) bool: True where, from some station, the return nearest in direction to the
+        cell's centre (within its angular step) is a floor return.
+    """
     ny, nx = shape
     seen = np.zeros(shape, bool)
     for v in views:

@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 from scipy import ndimage
 
+from mjwalk._io import atomic_path
 from mjwalk.errors import ScanError
 from mjwalk.scan.obstacles import HOLE_RADIUS, FloorPlan
 
@@ -44,6 +45,11 @@ class FloorCover:
     obstacles: float
 
     def line(self) -> str:
+        """One line for the report.
+
+        Returns:
+            The four areas, square metres.
+        """
         return (
             f"floor seen {self.seen:.1f} m², unseen but walkable {self.unseen_walkable:.1f} m², "
             f"unseen and blocked (void boxes) {self.blocked:.1f} m², obstacles "
@@ -52,13 +58,33 @@ class FloorCover:
 
 
 def check_policy(policy: str) -> str:
+    """Refuse an unknown unseen-floor policy.
+
+    Args:
+        policy: one of :data:`POLICIES`.
+
+    Returns:
+        ``policy``.
+
+    Raises:
+        ScanError: naming the choices.
+    """
     if policy not in POLICIES:
         raise ScanError(f"unknown --voids {policy!r} (one of {', '.join(POLICIES)})")
     return policy
 
 
 def apply_policy(plan: FloorPlan, policy: str) -> FloorPlan:
-    """The plan with its voids walkable as ``policy`` says (see the module docstring)."""
+    """The plan with its voids walkable as ``policy`` says (module docstring).
+
+    Args:
+        plan: the floor plan.
+        policy: blocked (unchanged), fill (enclosed voids up to :data:`FILL_RADIUS` inscribed
+            radius become floor) or free (every void becomes floor).
+
+    Returns:
+        The plan, a new one when voids changed.
+    """
     check_policy(policy)
     if policy == "blocked" or not plan.void.any():
         return plan
@@ -74,7 +100,14 @@ def apply_policy(plan: FloorPlan, policy: str) -> FloorPlan:
 
 
 def cover(plan: FloorPlan) -> FloorCover:
-    """The areas of :class:`FloorCover` for ``plan``."""
+    """The areas of :class:`FloorCover` for a plan.
+
+    Args:
+        plan: the floor plan.
+
+    Returns:
+        Its floor seen, unseen but walkable, blocked and obstacle areas, square metres.
+    """
     a = plan.resolution**2
     seen = plan.seen if plan.seen is not None else plan.floor
     return FloorCover(
@@ -86,16 +119,23 @@ def cover(plan: FloorPlan) -> FloorCover:
 
 
 def save_top_view(plan: FloorPlan, path: str | Path, title: str = "") -> Path:
-    """A top view of the plan (floor seen, unseen but walkable, obstacles, voids) as an
-    image, written atomically; a failed write is a WriteError naming the file."""
-    import matplotlib
+    """A top view of the plan (floor seen, unseen but walkable, obstacles,
+    voids) as an image, written atomically.
+
+    Args:
+        plan: the floor plan.
+        path: the image file.
+        title: the figure's title ("": a default naming the areas).
+
+    Returns:
+        ``path`` as a path. A failed write is a WriteError naming the file.
+    """
+    import matplotlib  # deferred: matplotlib is slow to import, only the top view needs it
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.colors import ListedColormap
-    from matplotlib.patches import Patch
-
-    from mjwalk._io import atomic_path
+    import matplotlib.pyplot as plt  # deferred: after matplotlib.use('Agg')
+    from matplotlib.colors import ListedColormap  # deferred: matplotlib is slow to import
+    from matplotlib.patches import Patch  # deferred: matplotlib is slow to import
 
     seen = plan.seen if plan.seen is not None else plan.floor
     kind = np.where(seen, 0, np.where(plan.floor, 1, np.where(plan.obstacles > 0, 2, 3)))

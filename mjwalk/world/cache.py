@@ -37,8 +37,12 @@ ENV_DIR = "MJWALK_CACHE_DIR"
 
 
 def cache_dir() -> Path:
-    """Where cached arrays live: ``workplaces/`` under :func:`mjwalk._io.cache_root`, or
-    ``$MJWALK_CACHE_DIR`` when set (deprecated: a DeprecationWarning and a log message)."""
+    """Where cached arrays live.
+
+    Returns:
+        ``workplaces/`` under :func:`mjwalk._io.cache_root`, or ``$MJWALK_CACHE_DIR`` when set
+        (deprecated: a DeprecationWarning and a log message).
+    """
     env = os.environ.get(ENV_DIR)
     if env:
         _deprecated_env()
@@ -58,8 +62,15 @@ def _deprecated_env() -> None:
 
 
 def content_key(*parts: object, arrays: Iterable[np.ndarray] = ()) -> str:
-    """SHA-256 (hex) of the format version, ``parts`` (their repr) and the arrays' bytes,
-    dtypes and shapes."""
+    """The cache key of everything an array depends on.
+
+    Args:
+        *parts: values hashed by their repr (bounds, resolution, counts...).
+        arrays: arrays hashed by their bytes, dtype and shape.
+
+    Returns:
+        SHA-256 (64 hex digits) of the format version, ``parts`` and ``arrays``.
+    """
     h = hashlib.sha256(FORMAT.encode())
     for p in parts:
         h.update(repr(p).encode())
@@ -72,9 +83,19 @@ def content_key(*parts: object, arrays: Iterable[np.ndarray] = ()) -> str:
 
 
 def cached_array(key: str, what: str, build: Callable[[], np.ndarray]) -> np.ndarray:
-    """The array stored under ``key``/``what``, memory-mapped; built by ``build()`` and stored
-    (atomically) on a miss. A cache that cannot be written (read-only home, full disk) is
-    skipped: the built array is returned as is."""
+    """The array stored under a key, memory-mapped; built and stored on a miss.
+
+    A cache that cannot be written (read-only home, full disk) is skipped: the built array is
+    returned as is. A damaged file is rebuilt over.
+
+    Args:
+        key: the content key (:func:`content_key`).
+        what: which array of the key ("clearance", "walk"...), part of the file name.
+        build: makes the array on a miss.
+
+    Returns:
+        The array, copy-on-write memory-mapped from ``{key[:32]}-{what}.npy`` when stored.
+    """
     path = cache_dir() / f"{key[:32]}-{what}.npy"
     if path.is_file():
         try:

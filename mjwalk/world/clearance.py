@@ -43,7 +43,11 @@ class ClearanceField:
         )
 
     def grid_xy(self) -> tuple[np.ndarray, np.ndarray]:
-        """The node coordinates: x (nx,) and y (ny,), metres."""
+        """The node coordinates.
+
+        Returns:
+            (x (nx,), y (ny,)), metres.
+        """
         ny, nx = self.values.shape
         return (
             self.x0 + self.resolution * np.arange(nx),
@@ -74,10 +78,21 @@ class ClearanceField:
 
 @njit
 def bilinear_at(values, x0, y0, res, x, y):
-    """:meth:`ClearanceField.__call__` at one point (``x``, ``y``, metres) of a field's
-    ``values`` (origin ``x0``, ``y0``, spacing ``res``), compiled for the planners' loops: the
-    same arithmetic in the same order. (numba caches a caller by its own source: edit a
-    comment in the callers, ``plan/occupancy.py`` and ``plan/stepcheck.py``, if this changes.)"""
+    """:meth:`ClearanceField.__call__` at one point, compiled for the planners' loops:
+    the same arithmetic in the same order. (numba caches a caller by its own source: edit a
+    comment in the callers, ``plan/occupancy.py`` and ``plan/stepcheck.py``, if this changes.)
+
+    Args:
+        values: (ny, nx) the field's node values, metres.
+        x0: x of node (0, 0), metres.
+        y0: y of node (0, 0), metres.
+        res: node spacing, metres.
+        x: the point's x, metres.
+        y: the point's y, metres.
+
+    Returns:
+        The bilinear clearance, metres; beyond the grid the nearest border's.
+    """
     ny, nx = values.shape
     fx = min(max((x - x0) / res, 0.0), nx - 1.000001)
     fy = min(max((y - y0) / res, 0.0), ny - 1.000001)
@@ -292,14 +307,23 @@ def build_clearance(
     *,
     far: float = 100.0,
 ) -> ClearanceField:
-    """Sample the clearance to ``footprints`` over ``bounds`` = (xmin, ymin, xmax, ymax).
+    """Sample the clearance to footprints over a floor rectangle.
 
     Exact signed distances (to within the footprints' tessellation) at every node, the
-    minimum over the footprints (``far`` where there is no obstacle at all), computed in a
-    compiled loop tile by tile (0.5 m tiles): each tile evaluates only the footprints that can
-    be nearest to one of its nodes (bounding-circle tests), so the work grows with the floor
-    area times the few obstacles around each place, not with floor area times obstacles.
-    Same values as :func:`build_clearance_bruteforce`, to rounding (1e-15 m).
+    minimum over the footprints, computed in a compiled loop tile by tile (0.5 m tiles): each
+    tile evaluates only the footprints that can be nearest to one of its nodes (bounding-circle
+    tests), so the work grows with the floor area times the few obstacles around each place,
+    not with floor area times obstacles. Same values as :func:`build_clearance_bruteforce`, to
+    rounding (1e-15 m).
+
+    Args:
+        footprints: the obstacle footprints.
+        bounds: (xmin, ymin, xmax, ymax), metres.
+        resolution: node spacing, metres.
+        far: the value where there is no obstacle at all, metres.
+
+    Returns:
+        The field, nodes from (xmin, ymin) every ``resolution``.
     """
     xmin, ymin, xmax, ymax = bounds
     nx = int(np.floor((xmax - xmin) / resolution + 1e-9)) + 1
@@ -318,13 +342,20 @@ def build_clearance_bruteforce(
     *,
     far: float = 100.0,
 ) -> ClearanceField:
-    """:func:`build_clearance` the way it was first written (kept as the reference of tests and
-    ``benchmarks/bench_scale.py``): NumPy over the whole floor for every footprint.
+    """:func:`build_clearance` the way it was first written (kept as the reference of
+    tests and ``benchmarks/bench_scale.py``): NumPy over the whole floor for every footprint.
 
-    Exact signed distances (to within the footprints' tessellation) at every node; ``far`` is
-    the value where there is no obstacle at all. Each footprint is evaluated only where it can
-    still lower the running minimum (a cheap bounding-circle test), which keeps the build fast
-    for scenes with many small geoms.
+    Each footprint is evaluated only where it can still lower the running minimum (a cheap
+    bounding-circle test).
+
+    Args:
+        footprints: the obstacle footprints.
+        bounds: (xmin, ymin, xmax, ymax), metres.
+        resolution: node spacing, metres.
+        far: the value where there is no obstacle at all, metres.
+
+    Returns:
+        The field (the same nodes as :func:`build_clearance`).
     """
     xmin, ymin, xmax, ymax = bounds
     nx = int(np.floor((xmax - xmin) / resolution + 1e-9)) + 1

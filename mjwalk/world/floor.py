@@ -24,9 +24,22 @@ FLOOR_MIN_NZ = 0.999
 
 
 def find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
-    """The floor geom of ``model`` (kinematics done in ``data``): a plane whose normal points up
-    (:data:`FLOOR_MIN_NZ`), the one named like "floor" first, else the lowest; SceneError naming
-    the problem when there is none (``label``: the scene, for the message)."""
+    """The floor geom of a model.
+
+    A plane whose normal points up (:data:`FLOOR_MIN_NZ`), the one named like "floor" first,
+    else the lowest.
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done.
+        label: the scene, for messages.
+
+    Returns:
+        The floor's geom id.
+
+    Raises:
+        SceneError: no plane, or only tilted ones (naming the tilt).
+    """
     planes = [
         g
         for g in range(model.ngeom)
@@ -55,8 +68,17 @@ def find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
 
 
 def check_floor_nodes(bounds, resolution: float, label: str, floor: str) -> None:
-    """Raise SceneError naming the floor when its clearance grid would have more than
-    :data:`MAX_FLOOR_NODES` nodes (or its extent is not finite)."""
+    """Refuse a floor whose clearance grid would be too large.
+
+    Args:
+        bounds: (xmin, ymin, xmax, ymax) of the floor, metres.
+        resolution: the clearance grid spacing, metres.
+        label: the scene, for messages.
+        floor: the floor geom's name, for messages.
+
+    Raises:
+        SceneError: more than :data:`MAX_FLOOR_NODES` nodes, or an extent that is not finite.
+    """
     w, d = float(bounds[2] - bounds[0]), float(bounds[3] - bounds[1])
     if not (math.isfinite(w) and math.isfinite(d)):
         raise SceneError(f"{label}: the floor {floor!r} has no finite extent")
@@ -72,9 +94,19 @@ def check_floor_nodes(bounds, resolution: float, label: str, floor: str) -> None
 
 
 def check_floor_size(model: mujoco.MjModel, label: str, resolution: float = 0.02) -> None:
-    """Raise SceneError when the floor :func:`load_workplace` would find in ``model`` is larger
-    than :data:`MAX_FLOOR_NODES` allow (an infinite plane: its obstacles' extent plus 2 m, as
-    there). A scene without a floor passes (load_workplace names that itself)."""
+    """Refuse a model whose floor :func:`load_workplace` could not plan on.
+
+    An infinite plane's floor is its obstacles' extent plus 2 m, as there. A scene without a
+    floor passes (load_workplace names that itself).
+
+    Args:
+        model: the compiled scene.
+        label: the scene, for messages.
+        resolution: the clearance grid spacing, metres.
+
+    Raises:
+        SceneError: the floor is larger than :data:`MAX_FLOOR_NODES` allow.
+    """
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     try:

@@ -40,13 +40,24 @@ class Footprint:
         return self.radius == 0.0
 
     def bounds(self) -> tuple[float, float, float, float]:
-        """(xmin, ymin, xmax, ymax) of the footprint, metres."""
+        """The footprint's bounding box.
+
+        Returns:
+            (xmin, ymin, xmax, ymax), metres.
+        """
         lo = self.vertices.min(axis=0) - self.radius
         hi = self.vertices.max(axis=0) + self.radius
         return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
 
     def signed_distance(self, pts: np.ndarray) -> np.ndarray:
-        """Signed distance (metres) from points (..., 2) to the footprint; negative inside."""
+        """Signed distance from points to the footprint.
+
+        Args:
+            pts: (..., 2) world x, y, metres.
+
+        Returns:
+            (...) metres; negative inside.
+        """
         pts = np.asarray(pts, dtype=float)
         if not self.is_polygon:
             return _segment_distance(pts, self.vertices[0], self.vertices[-1]) - self.radius
@@ -124,7 +135,7 @@ def _clip_hull_to_slab(points: np.ndarray, z0: float, z1: float) -> np.ndarray:
     inside = points[(points[:, 2] >= z0) & (points[:, 2] <= z1)]
     if points[:, 2].min() >= z0 and points[:, 2].max() <= z1:
         return points
-    from scipy.spatial import ConvexHull, QhullError  # lazy: ~1 s import
+    from scipy.spatial import ConvexHull, QhullError  # deferred: scipy.spatial, ~1 s import
 
     try:
         hull = ConvexHull(points)
@@ -150,8 +161,19 @@ def _clip_hull_to_slab(points: np.ndarray, z0: float, z1: float) -> np.ndarray:
 def geom_footprint(
     model: mujoco.MjModel, data: mujoco.MjData, g: int, z0: float, z1: float
 ) -> Footprint | None:
-    """Footprint of geom ``g`` within the slab ``z0 <= z <= z1`` (world metres), or None when the
-    geom does not reach into the slab. ``data`` must hold the kinematics (``mj_kinematics``)."""
+    """Footprint of a geom within a horizontal slab.
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done (``mj_kinematics``).
+        g: the geom id.
+        z0: the slab's bottom, world z, metres.
+        z1: the slab's top, world z, metres.
+
+    Returns:
+        The convex footprint of the part of the geom in ``z0 <= z <= z1`` (world x, y), or None
+        when the geom does not reach into the slab.
+    """
     name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
     pos = data.geom_xpos[g].copy()
     rot = data.geom_xmat[g].reshape(3, 3)
@@ -197,7 +219,7 @@ def geom_footprint(
     if len(clipped) == 0:
         return None
     xy = clipped[:, :2]
-    from scipy.spatial import ConvexHull, QhullError  # lazy: ~1 s import
+    from scipy.spatial import ConvexHull, QhullError  # deferred: scipy.spatial, ~1 s import
 
     try:
         hull = ConvexHull(xy)

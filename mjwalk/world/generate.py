@@ -41,7 +41,14 @@ class Hall:
     circles: np.ndarray
 
     def write(self, path: str | Path) -> Path:
-        """Write the MJCF to ``path`` (atomically) and return the path."""
+        """Write the MJCF (through a temporary file, then rename).
+
+        Args:
+            path: the file to write.
+
+        Returns:
+            ``path`` as a path.
+        """
         path = Path(path)
         tmp = path.with_name(path.name + ".tmp")
         tmp.write_text(self.xml)
@@ -136,9 +143,20 @@ def generate_hall(
     gap: float = GAP,
     margin: float = MARGIN,
 ) -> Hall:
-    """A ``width`` x ``depth`` m hall (depth defaults to width) with ``n`` obstacles (default
-    ``density`` per square metre of floor), kinds drawn evenly from ``kinds``; the same seed
-    gives the same hall.
+    """A random hall of separated obstacles; the same seed gives the same hall.
+
+    Args:
+        width: the floor's x extent, metres.
+        depth: the floor's y extent, metres (None: ``width``).
+        density: obstacles per square metre of floor, when ``n`` is None.
+        n: the number of obstacles (None: from ``density``).
+        kinds: obstacle kinds, drawn evenly (from :data:`KINDS`).
+        seed: seeds the placement.
+        gap: the smallest gap between obstacles' bounding circles, metres.
+        margin: the clear band along the floor's edges, metres.
+
+    Returns:
+        The hall: its MJCF text (floor centred on the origin), size and bounding circles.
 
     Raises:
         SceneError: a bad size, density or kind, or more obstacles than fit with the gaps.
@@ -176,8 +194,17 @@ def generate_hall(
 
 
 def free_points(hall: Hall, n: int, rng: np.random.Generator, clearance: float = 0.5) -> np.ndarray:
-    """``n`` random floor points (n, 2) at least ``clearance`` metres from every obstacle's
-    bounding circle and from the floor's edge."""
+    """Random floor points clear of every obstacle.
+
+    Args:
+        hall: the hall.
+        n: how many points.
+        rng: draws them (uniform over the floor less ``clearance``, rejected when too close).
+        clearance: the least distance to every bounding circle and to the floor's edge, metres.
+
+    Returns:
+        (n, 2) points, metres.
+    """
     w, d = hall.size
     out: list[np.ndarray] = []
     c = hall.circles

@@ -47,9 +47,9 @@ MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".off")
 def _band_polygon(verts: np.ndarray, faces: np.ndarray, z0: float, z1: float):
     """The projection onto z = 0 of the mesh surface between heights z0 and z1, plus its
     cross-sections there, as one shapely geometry (world metres); None when empty."""
-    import shapely
-    import trimesh
-    from trimesh.intersections import slice_faces_plane
+    import shapely  # deferred: shapely is slow to import; only concave meshes need it
+    import trimesh  # deferred: trimesh is slow to import; only meshes need it
+    from trimesh.intersections import slice_faces_plane  # deferred: trimesh is slow to import
 
     if verts[:, 2].max() < z0 or verts[:, 2].min() > z1:
         return None
@@ -88,10 +88,22 @@ def _band_polygon(verts: np.ndarray, faces: np.ndarray, z0: float, z1: float):
 def mesh_footprints(
     verts: np.ndarray, faces: np.ndarray, z0: float, z1: float, name: str, geom_id: int
 ) -> list[Footprint] | None:
-    """Convex pieces of a mesh's band footprint (``verts`` world metres, ``faces`` (F, 3));
-    None when the footprint is convex (to within :data:`CONCAVE_SHARE`) or empty, so the
-    caller keeps the hull footprint."""
-    import shapely
+    """Convex pieces of a mesh's band footprint.
+
+    Args:
+        verts: (V, 3) vertices, world metres.
+        faces: (F, 3) vertex indices.
+        z0: the band's bottom, world z, metres.
+        z1: the band's top, world z, metres.
+        name: the geom's name, given to each piece.
+        geom_id: the geom's id, given to each piece.
+
+    Returns:
+        Triangles of the band footprint (simplified, constrained Delaunay), or None when the
+        footprint is convex (to within :data:`CONCAVE_SHARE`) or empty, so the caller keeps
+        the hull footprint.
+    """
+    import shapely  # deferred: shapely is slow to import; only concave meshes need it
 
     poly = _band_polygon(verts, faces, z0, z1)
     if poly is None or poly.area <= 0:
@@ -116,7 +128,16 @@ def mesh_footprints(
 
 
 def geom_mesh_world(model: mujoco.MjModel, data: mujoco.MjData, g: int):
-    """(vertices (V, 3) in world metres, faces (F, 3)) of mesh geom ``g``."""
+    """A mesh geom's vertices in the world.
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done.
+        g: the mesh geom's id.
+
+    Returns:
+        (vertices (V, 3) world metres, faces (F, 3)).
+    """
     mesh = int(model.geom_dataid[g])
     va, vn = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
     fa, fn = model.mesh_faceadr[mesh], model.mesh_facenum[mesh]
@@ -129,7 +150,18 @@ def geom_mesh_world(model: mujoco.MjModel, data: mujoco.MjData, g: int):
 def concave_mesh_footprints(
     model: mujoco.MjModel, data: mujoco.MjData, g: int, z0: float, z1: float
 ) -> list[Footprint] | None:
-    """:func:`mesh_footprints` of mesh geom ``g`` (None when not a mesh or not concave)."""
+    """:func:`mesh_footprints` of a mesh geom.
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done.
+        g: the geom id.
+        z0: the band's bottom, world z, metres.
+        z1: the band's top, world z, metres.
+
+    Returns:
+        The convex pieces, or None when the geom is not a mesh or not concave.
+    """
     if int(model.geom_type[g]) != mujoco.mjtGeom.mjGEOM_MESH:
         return None
     verts, faces = geom_mesh_world(model, data, g)
@@ -140,7 +172,7 @@ def concave_mesh_footprints(
 def _plan_concave(verts: np.ndarray, faces: np.ndarray) -> bool:
     """Whether the top view of a mesh's triangles falls short of its convex hull's area by
     more than CONCAVE_SHARE (the test for meshes that enclose no volume)."""
-    import shapely
+    import shapely  # deferred: shapely is slow to import; only concave meshes need it
 
     tri = verts[faces][:, :, :2]
     area = 0.5 * np.abs(
@@ -158,16 +190,24 @@ def _plan_concave(verts: np.ndarray, faces: np.ndarray) -> bool:
 def concave_mesh(
     verts: np.ndarray, faces: np.ndarray, rot: np.ndarray | None = None
 ) -> tuple[np.ndarray, np.ndarray] | None:
-    """The mesh to decompose when ``(verts, faces)`` is concave, else None (``rot``: the
-    mesh frame's rotation in the world, for the top view; default identity).
+    """The mesh to decompose when a mesh is concave, else None.
 
     A closed volume is concave when its volume falls short of its hull's by more than
     CONCAVE_SHARE. A mesh that is not one (a missing triangle, faces wound inwards: common in
     exported CAD) is first repaired with trimesh (``fix_normals``, ``fill_holes``) and judged
     as a volume when that closes it; one that stays open or non-manifold (two boxes sharing an
     edge) is judged by its top view, so MuJoCo never collides the convex hull of a U whose
-    inside is free. The mesh returned is the repaired one where the repair closed it."""
-    import trimesh
+    inside is free.
+
+    Args:
+        verts: (V, 3) vertices in the mesh frame, metres.
+        faces: (F, 3) vertex indices.
+        rot: (3, 3) the mesh frame's rotation in the world, for the top view (None: identity).
+
+    Returns:
+        (vertices, faces) to decompose (the repaired mesh where the repair closed it), or None.
+    """
+    import trimesh  # deferred: trimesh is slow to import; only meshes need it
 
     mesh = trimesh.Trimesh(verts, faces, process=True)
     if not mesh.is_volume:
@@ -187,11 +227,19 @@ def concave_mesh(
 def convex_parts(
     verts: np.ndarray, faces: np.ndarray, threshold: float = 0.02, seed: int = 0
 ) -> list[tuple[np.ndarray, np.ndarray]]:
-    """CoACD convex decomposition of a mesh: a list of (vertices, faces) convex parts.
+    """CoACD convex decomposition of a mesh.
 
-    ``threshold`` is CoACD's concavity bound relative to the mesh's bounding-box diagonal
-    (0.02: 4 cm on a 2 m bench, below the planner's 0.25 m body radius by an order)."""
-    import coacd
+    Args:
+        verts: (V, 3) vertices, metres.
+        faces: (F, 3) vertex indices.
+        threshold: CoACD's concavity bound relative to the mesh's bounding-box diagonal (0.02:
+            4 cm on a 2 m bench, below the planner's 0.25 m body radius by an order).
+        seed: CoACD's seed.
+
+    Returns:
+        The convex parts, (vertices (V_k, 3), faces (F_k, 3)) each.
+    """
+    import coacd  # deferred: coacd is slow to import; only scene-import needs it
 
     coacd.set_log_level("error")
     parts = coacd.run_coacd(
@@ -213,8 +261,15 @@ class ImportResult:
 
 
 def check_threshold(threshold: float, what: str = "threshold") -> None:
-    """Raise InputError unless ``threshold`` lies in CoACD's range
-    (:data:`THRESHOLD_RANGE`)."""
+    """Refuse a concavity threshold outside CoACD's range.
+
+    Args:
+        threshold: the value given.
+        what: its name in the message.
+
+    Raises:
+        InputError: not a number within :data:`THRESHOLD_RANGE`.
+    """
     lo, hi = THRESHOLD_RANGE
     if isinstance(threshold, bool) or not (
         isinstance(threshold, int | float) and lo <= threshold <= hi
@@ -228,7 +283,7 @@ def check_threshold(threshold: float, what: str = "threshold") -> None:
 def _mesh_scene_spec(path: Path, units: str, up: str) -> mujoco.MjSpec:
     """An MJCF spec with a floor and the mesh file as one obstacle (its lowest point on the
     floor)."""
-    import trimesh
+    import trimesh  # deferred: trimesh is slow to import; only meshes need it
 
     if units not in UNITS:
         raise SceneError(f"{path}: unknown units {units!r} (one of {', '.join(UNITS)})")
@@ -277,10 +332,61 @@ def import_scene(
 ) -> ImportResult:
     """Write ``output``: the MJCF (or mesh file) ``source`` with every concave mesh geom
     replaced by its convex parts (inline mesh assets, same body, pose, material and
-    collision settings). Raises SceneError on an unreadable source, before writing."""
+    collision settings).
+
+    Args:
+        source: an MJCF scene (.xml) or a mesh file (:data:`MESH_SUFFIXES`; it becomes one
+            mesh geom on a floor of its extent plus 2 m each way).
+        output: the MJCF file to write (.xml, atomically).
+        units: a mesh file's length unit (:data:`mjwalk.world.units.UNITS`).
+        up: a mesh file's up axis (:data:`mjwalk.world.units.UP_AXES`).
+        threshold: CoACD's concavity threshold (see :func:`check_threshold`).
+
+    Returns:
+        The output path and the number of convex parts per replaced geom name.
+
+    Raises:
+        SceneError: an unreadable source or a scene that does not compile, before writing.
+    """
     source, output = Path(source), Path(output)
     check_threshold(threshold)
     check_output_file(output, "output", (".xml",))
+    spec = _source_spec(source, units, up)
+    model = _compile_source(spec, source, units)
+    result = ImportResult(output)
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    for g in range(model.ngeom):
+        if int(model.geom_type[g]) != mujoco.mjtGeom.mjGEOM_MESH:
+            continue
+        mesh = int(model.geom_dataid[g])
+        va, vn = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
+        fa, fn = model.mesh_faceadr[mesh], model.mesh_facenum[mesh]
+        verts = np.asarray(model.mesh_vert[va : va + vn], float)
+        faces = np.asarray(model.mesh_face[fa : fa + fn], np.int64)
+        concave = concave_mesh(verts, faces, data.geom_xmat[g].reshape(3, 3))
+        if concave is None:
+            continue
+        name = model.geom(g).name or f"geom{g}"
+        geom = spec.geoms[g]
+        parts = convex_parts(*concave, threshold)
+        for k, (pv, pf) in enumerate(parts):
+            _add_part(spec, model, (g, geom), f"{name}_part{k}", (pv, pf))
+        spec.delete(geom)
+        result.parts[name] = len(parts)
+    try:
+        spec.compile()
+        xml = spec.to_xml()
+    except ValueError as exc:
+        raise SceneError(f"{source}: the imported scene does not compile: {exc}") from exc
+    with atomic_path(output) as tmp:
+        tmp.write_text(xml)
+    return result
+
+
+def _source_spec(source: Path, units: str, up: str) -> mujoco.MjSpec:
+    """The editable spec of ``source`` (an MJCF file, or a mesh file on a floor); SceneError
+    on a folder, a missing file, an unknown suffix or malformed MJCF."""
     if source.is_dir():
         raise SceneError(f"{source} is a folder, not a mesh or MJCF scene file")
     if not source.is_file():
@@ -302,6 +408,12 @@ def import_scene(
             folder = getattr(spec.compiler, attr, None)
             if folder is not None:
                 setattr(spec.compiler, attr, str((source.parent / folder).resolve()) + "/")
+    return spec
+
+
+def _compile_source(spec: mujoco.MjSpec, source: Path, units: str) -> mujoco.MjModel:
+    """``spec`` compiled, its floor checked as :func:`~mjwalk.world.floor.check_floor_size`
+    does before any work; SceneError naming ``source`` (and the units, for a mesh file)."""
     try:
         model = spec.compile()
     except ValueError as exc:
@@ -315,46 +427,32 @@ def import_scene(
             f"{exc}; the floor is the mesh's extent plus 2 m each way, so the mesh is too "
             f"large in units {units!r} (another --units?)"
         ) from None
-    result = ImportResult(output)
-    data = mujoco.MjData(model)
-    mujoco.mj_kinematics(model, data)
-    for g in range(model.ngeom):
-        if int(model.geom_type[g]) != mujoco.mjtGeom.mjGEOM_MESH:
-            continue
-        mesh = int(model.geom_dataid[g])
-        va, vn = model.mesh_vertadr[mesh], model.mesh_vertnum[mesh]
-        fa, fn = model.mesh_faceadr[mesh], model.mesh_facenum[mesh]
-        verts = np.asarray(model.mesh_vert[va : va + vn], float)
-        faces = np.asarray(model.mesh_face[fa : fa + fn], np.int64)
-        concave = concave_mesh(verts, faces, data.geom_xmat[g].reshape(3, 3))
-        if concave is None:
-            continue
-        name = model.geom(g).name or f"geom{g}"
-        geom = spec.geoms[g]
-        parts = convex_parts(*concave, threshold)
-        body = geom.parent
-        for k, (pv, pf) in enumerate(parts):
-            pname = f"{name}_part{k}"
-            pm = spec.add_mesh(name=pname)
-            pm.uservert = pv.ravel().tolist()
-            pm.userface = pf.ravel().tolist()
-            pg = body.add_geom(name=pname, type=mujoco.mjtGeom.mjGEOM_MESH, meshname=pname)
-            # The part's vertices are in the compiled mesh's frame, which the compiled geom
-            # pose places in the body.
-            pg.pos = model.geom_pos[g].copy()
-            pg.quat = model.geom_quat[g].copy()
-            pg.rgba = model.geom_rgba[g].copy()
-            pg.contype, pg.conaffinity = int(model.geom_contype[g]), int(model.geom_conaffinity[g])
-            pg.group = int(model.geom_group[g])
-            if geom.material:
-                pg.material = geom.material
-        spec.delete(geom)
-        result.parts[name] = len(parts)
-    try:
-        spec.compile()
-        xml = spec.to_xml()
-    except ValueError as exc:
-        raise SceneError(f"{source}: the imported scene does not compile: {exc}") from exc
-    with atomic_path(output) as tmp:
-        tmp.write_text(xml)
-    return result
+    return model
+
+
+def _add_part(
+    spec: mujoco.MjSpec,
+    model: mujoco.MjModel,
+    source_geom: tuple[int, mujoco.MjsGeom],
+    pname: str,
+    part: tuple[np.ndarray, np.ndarray],
+) -> None:
+    """Add one convex part (vertices, faces) of ``source_geom`` (its id in ``model``, its spec
+    element) as mesh asset and geom ``pname`` in the geom's body, with its pose, colour,
+    collision settings, group and material."""
+    pv, pf = part
+    g, geom = source_geom
+    body = geom.parent
+    pm = spec.add_mesh(name=pname)
+    pm.uservert = pv.ravel().tolist()
+    pm.userface = pf.ravel().tolist()
+    pg = body.add_geom(name=pname, type=mujoco.mjtGeom.mjGEOM_MESH, meshname=pname)
+    # The part's vertices are in the compiled mesh's frame, which the compiled geom
+    # pose places in the body.
+    pg.pos = model.geom_pos[g].copy()
+    pg.quat = model.geom_quat[g].copy()
+    pg.rgba = model.geom_rgba[g].copy()
+    pg.contype, pg.conaffinity = int(model.geom_contype[g]), int(model.geom_conaffinity[g])
+    pg.group = int(model.geom_group[g])
+    if geom.material:
+        pg.material = geom.material

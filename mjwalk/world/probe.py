@@ -71,8 +71,16 @@ class ClearanceProbe:
         self._fromto = np.zeros(6)
 
     def distances(self, xy: np.ndarray, distmax: float = 20.0) -> np.ndarray:
-        """(N, G) distance in metres from each probe point (N, 2) to each geom; negative when the
-        probe line passes through a geom (MuJoCo's penetration depth)."""
+        """Distances from probes to each geom.
+
+        Args:
+            xy: (N, 2) probe positions, world metres.
+            distmax: distances are searched up to this, metres.
+
+        Returns:
+            (N, G) metres from each probe to each of :attr:`geoms`; negative when the probe line
+            passes through a geom (MuJoCo's penetration depth).
+        """
         xy = np.atleast_2d(np.asarray(xy, dtype=float))
         out = np.empty((len(xy), len(self.geoms)))
         m, d = self.model, self.data
@@ -83,14 +91,32 @@ class ClearanceProbe:
         return out + _PROBE_RADIUS
 
     def clearance(self, xy: np.ndarray, distmax: float = 20.0) -> np.ndarray:
-        """(N,) distance from each probe point to the nearest geom, metres."""
+        """Distance from probes to the nearest geom.
+
+        Args:
+            xy: (N, 2) probe positions, world metres.
+            distmax: distances are searched up to this, metres (returned when there are no geoms).
+
+        Returns:
+            (N,) metres.
+        """
         if not self.geoms:
             return np.full(len(np.atleast_2d(xy)), distmax)
         return self.distances(xy, distmax).min(axis=1)
 
 
 def path_clearance(probe: ClearanceProbe, points: np.ndarray, spacing: float = 0.01) -> np.ndarray:
-    """Clearance (metres) along a polyline ``points`` (N, 2), sampled every ``spacing`` metres."""
+    """Clearance along a polyline.
+
+    Args:
+        probe: the probe.
+        points: (N, 2) the polyline's vertices, world metres.
+        spacing: the largest step between samples, metres.
+
+    Returns:
+        (M,) metres at the first vertex and at even steps of at most ``spacing`` along each
+        segment.
+    """
     points = np.asarray(points, dtype=float)
     seg = np.diff(points, axis=0)
     lengths = np.linalg.norm(seg, axis=1)
@@ -110,10 +136,18 @@ def _ray(m: mujoco.MjModel, d: mujoco.MjData, g: int, pnt: np.ndarray, vec: np.n
 
 
 def covered(probe: ClearanceProbe, xy: np.ndarray, z_range: tuple[float, float] = (0.05, 2.0)):
-    """(N,) whether the vertical line at each floor point meets a geom inside the height band.
+    """Whether the vertical line at each floor point meets a geom inside the height band.
 
     Uses ``mju_rayGeom``/``mj_rayMesh``: a ray up from far below and a ray down from far above give
     the interval of the line inside each (convex) geom.
+
+    Args:
+        probe: the probe (its model and geoms).
+        xy: (N, 2) floor points, world metres.
+        z_range: the band, world z, metres (low, high).
+
+    Returns:
+        (N,) bool.
     """
     xy = np.atleast_2d(np.asarray(xy, dtype=float))
     m, d = probe.model, probe.data

@@ -134,7 +134,17 @@ class Workplace:
         return self.source.stem if self.source else "scene"
 
     def station(self, name: str) -> Station:
-        """The site called ``name``; an unknown name raises SceneError listing near matches."""
+        """A named site.
+
+        Args:
+            name: the site's name.
+
+        Returns:
+            The site's station (position, yaw).
+
+        Raises:
+            SceneError: an unknown name, listing near matches.
+        """
         try:
             return self.stations[name]
         except KeyError:
@@ -143,11 +153,21 @@ class Workplace:
             raise SceneError(f"{self.name}: no site named {name!r}{hint}") from None
 
     def point(self, where: str | np.ndarray | tuple[float, float]) -> np.ndarray:
-        """A floor point (2,) from a site name, an ``"x,y"`` string or coordinates (metres).
+        """A floor point from a site name, an ``"x,y"`` string or coordinates (metres).
 
         A site whose name reads as coordinates (a site named "1.5,2") wins: the text is read as
-        coordinates only when no site has that name. Malformed or non-finite coordinates raise
-        :class:`~mjwalk.errors.InputError`."""
+        coordinates only when no site has that name.
+
+        Args:
+            where: a site name, ``"x,y"`` or (x, y), world metres.
+
+        Returns:
+            (2,) world x, y, metres.
+
+        Raises:
+            InputError: malformed or non-finite coordinates.
+            SceneError: an unknown site, or fewer than two coordinates.
+        """
         if isinstance(where, str):
             if where in self.stations:
                 return self.stations[where].xy.copy()
@@ -179,7 +199,14 @@ class Workplace:
         return cached
 
     def edge_distance(self, xy: np.ndarray) -> np.ndarray:
-        """Signed distance (metres) from points (..., 2) to the floor's edge, positive on it."""
+        """Signed distance from points to the floor's edge.
+
+        Args:
+            xy: (..., 2) world x, y, metres.
+
+        Returns:
+            (...) metres, positive on the floor.
+        """
         xy = np.asarray(xy, dtype=float)
         xmin, ymin, xmax, ymax = self.floor_bounds
         return np.minimum.reduce(
@@ -187,12 +214,25 @@ class Workplace:
         )
 
     def on_floor(self, xy: np.ndarray) -> np.ndarray:
-        """Whether points (..., 2) lie on the floor."""
+        """Whether points lie on the floor.
+
+        Args:
+            xy: (..., 2) world x, y, metres.
+
+        Returns:
+            (...) bool.
+        """
         return self.edge_distance(xy) >= 0.0
 
     def walk_clearance(self, xy: np.ndarray) -> np.ndarray:
-        """Room to walk at points (..., 2): the smaller of obstacle clearance and distance to the
-        floor's edge, metres."""
+        """Room to walk at points.
+
+        Args:
+            xy: (..., 2) world x, y, metres.
+
+        Returns:
+            (...) the smaller of obstacle clearance and distance to the floor's edge, metres.
+        """
         return np.minimum(self.clearance(xy), self.edge_distance(xy))
 
     def walk_field(self) -> ClearanceField:
@@ -207,6 +247,9 @@ class Workplace:
         border nodes' values, at most one node spacing (the border's distance to the floor's
         edge): any test against a clearance above the spacing rejects them, as
         :meth:`walk_clearance` does.
+
+        Returns:
+            The field on the clearance field's nodes, metres.
         """
         cached = getattr(self, "_walk_field", None)
         if cached is None:
@@ -230,6 +273,17 @@ class Workplace:
         return cached
 
     def footprint(self, name: str) -> Footprint:
+        """The footprint of an obstacle geom.
+
+        Args:
+            name: the geom's name.
+
+        Returns:
+            Its (first) footprint.
+
+        Raises:
+            SceneError: no obstacle of that name.
+        """
         for fp in self.obstacles:
             if fp.name == name:
                 return fp
@@ -237,7 +291,14 @@ class Workplace:
 
 
 def check_scene_path(path: Path) -> None:
-    """Raise SceneError unless ``path`` is a file (a folder is named as one)."""
+    """Refuse a path that is not a scene file.
+
+    Args:
+        path: the MJCF path.
+
+    Raises:
+        SceneError: a folder (named as one) or a missing file.
+    """
     if path.is_dir():
         raise SceneError(f"{path} is a folder, not an MJCF scene file")
     if not path.is_file():
@@ -245,7 +306,17 @@ def check_scene_path(path: Path) -> None:
 
 
 def load_model(source: str | Path) -> mujoco.MjModel:
-    """Compile an MJCF file, turning every failure into a SceneError naming the file."""
+    """Compile an MJCF file.
+
+    Args:
+        source: the MJCF path.
+
+    Returns:
+        The compiled model.
+
+    Raises:
+        SceneError: a missing file, or MuJoCo's parse or compile error, naming the file.
+    """
     path = Path(source)
     check_scene_path(path)
     try:
@@ -290,21 +361,53 @@ def workplace_from_model(
     label = str(source) if source else "scene"
     if options is None:
         options = WorkplaceOptions()
-    resolution, z_range = options.resolution, options.z_range
-    groups, include, exclude = options.groups, options.include, options.exclude
+    resolution = options.resolution
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     floor = find_floor(model, data, label)
     floor_z = float(data.geom_xpos[floor][2])
+    floor_name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
     fx, fy = model.geom_size[floor][:2]
     if fx > 0 and fy > 0:  # a finite floor: refused before the obstacles are read
         cx, cy = data.geom_xpos[floor][:2]
-        check_floor_nodes(
-            (cx - fx, cy - fy, cx + fx, cy + fy),
-            resolution,
-            label,
-            mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}",
-        )
+        check_floor_nodes((cx - fx, cy - fy, cx + fx, cy + fy), resolution, label, floor_name)
+    footprints = _obstacle_footprints(model, data, floor, options, label)
+    if fx > 0 and fy > 0:
+        cx, cy = data.geom_xpos[floor][:2]
+        bounds = (cx - fx, cy - fy, cx + fx, cy + fy)
+    else:  # an infinite plane: the obstacles' extent plus 2 m
+        if not footprints:
+            raise SceneError(f"{label}: the floor plane is infinite and there are no obstacles")
+        b = np.array([f.bounds() for f in footprints])
+        bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
+    check_floor_nodes(bounds, resolution, label, floor_name)
+    key, clearance = _clearance(footprints, bounds, options)
+    return Workplace(
+        model=model,
+        source=source,
+        floor=floor_name,
+        floor_z=floor_z,
+        floor_bounds=(float(bounds[0]), float(bounds[1]), float(bounds[2]), float(bounds[3])),
+        obstacles=footprints,
+        clearance=clearance,
+        stations=_stations(model, data),
+        z_range=options.z_range,
+        cache_key=key,
+    )
+
+
+def _obstacle_footprints(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    floor: int,
+    options: WorkplaceOptions,
+    label: str,
+) -> list[Footprint]:
+    """The footprints of the obstacle geoms ``options`` selects (not the floor, not a
+    humanoid's, not planes), cut to its height band above the floor."""
+    groups, include, exclude = options.groups, options.include, options.exclude
+    z_range = options.z_range
+    floor_z = float(data.geom_xpos[floor][2])
     footprints: list[Footprint] = []
     for g in range(model.ngeom):
         if g == floor or _is_humanoid_geom(model, g, options.humanoid_prefixes):
@@ -332,16 +435,16 @@ def workplace_from_model(
         fp = geom_footprint(model, data, g, z0, z1)
         if fp is not None:
             footprints.append(fp)
-    if fx > 0 and fy > 0:
-        cx, cy = data.geom_xpos[floor][:2]
-        bounds = (cx - fx, cy - fy, cx + fx, cy + fy)
-    else:  # an infinite plane: the obstacles' extent plus 2 m
-        if not footprints:
-            raise SceneError(f"{label}: the floor plane is infinite and there are no obstacles")
-        b = np.array([f.bounds() for f in footprints])
-        bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
-    floor_name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
-    check_floor_nodes(bounds, resolution, label, floor_name)
+    return footprints
+
+
+def _clearance(
+    footprints: list[Footprint],
+    bounds: tuple[float, float, float, float],
+    options: WorkplaceOptions,
+) -> tuple[str | None, ClearanceField]:
+    """The clearance field over ``bounds`` and its cache key (None: not cached)."""
+    resolution = options.resolution
     key = None
     nx = int(np.floor((bounds[2] - bounds[0]) / resolution + 1e-9)) + 1
     ny = int(np.floor((bounds[3] - bounds[1]) / resolution + 1e-9)) + 1
@@ -356,9 +459,12 @@ def workplace_from_model(
         values = cached_array(
             key, "clearance", lambda: build_clearance(footprints, bounds, resolution).values
         )
-        clearance = ClearanceField(bounds[0], bounds[1], resolution, values)
-    else:
-        clearance = build_clearance(footprints, bounds, resolution)
+        return key, ClearanceField(bounds[0], bounds[1], resolution, values)
+    return key, build_clearance(footprints, bounds, resolution)
+
+
+def _stations(model: mujoco.MjModel, data: mujoco.MjData) -> dict[str, Station]:
+    """The model's named sites: position and the yaw of their local +x axis."""
     stations = {}
     for s in range(model.nsite):
         sname = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_SITE, s)
@@ -367,18 +473,7 @@ def workplace_from_model(
             stations[sname] = Station(
                 sname, data.site_xpos[s].copy(), float(np.arctan2(xmat[1, 0], xmat[0, 0]))
             )
-    return Workplace(
-        model=model,
-        source=source,
-        floor=mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}",
-        floor_z=floor_z,
-        floor_bounds=(float(bounds[0]), float(bounds[1]), float(bounds[2]), float(bounds[3])),
-        obstacles=footprints,
-        clearance=clearance,
-        stations=stations,
-        z_range=z_range,
-        cache_key=key,
-    )
+    return stations
 
 
 def load_workplace(
@@ -395,8 +490,10 @@ def load_workplace(
     Args:
         source: path of the MJCF file.
         options: obstacle selection and clearance field settings (None: the defaults).
-        groups, include, exclude, cache: shorthand for the :class:`WorkplaceOptions` fields of
-            those names, for calls without ``options``.
+        groups: shorthand for :attr:`WorkplaceOptions.groups`, for calls without ``options``.
+        include: shorthand for :attr:`WorkplaceOptions.include`.
+        exclude: shorthand for :attr:`WorkplaceOptions.exclude`.
+        cache: shorthand for :attr:`WorkplaceOptions.cache`.
 
     Returns:
         The workplace (:func:`workplace_from_model` of the compiled file).
@@ -421,9 +518,16 @@ def _shared(path: str, mtime: float) -> Workplace:
 
 
 def shared_workplace(source: str | Path) -> Workplace:
-    """:func:`load_workplace` with default settings, loaded once per process and file version:
-    the cycle simulator, its spec checks, playback and the report all read the same scene.
-    Treat the result as read-only."""
+    """:func:`load_workplace` with default settings, loaded once per process and file
+    version: the cycle simulator, its spec checks, playback and the report all read the same
+    scene. Treat the result as read-only.
+
+    Args:
+        source: the MJCF path.
+
+    Returns:
+        The shared workplace.
+    """
     check_scene_path(Path(source))
     path = Path(source).resolve()
     return _shared(str(path), path.stat().st_mtime)

@@ -14,6 +14,7 @@ from test_scene import STATION_SCANNERS, _write_format
 from mjwalk import cli
 from mjwalk.errors import MjwalkError, ScanError
 from mjwalk.scan import build_scene, merge_scans, scan_to_scene
+from mjwalk.scan.merge import apply_pose, check_pose
 
 
 @pytest.fixture(scope="module")
@@ -365,3 +366,15 @@ def test_registration_is_the_same_in_fresh_processes_whatever_the_threads_and_se
     for pose in poses:
         shift, turn = _pose_error(pose, np.linalg.inv(move))
         assert shift < 0.01 and turn < 0.2, (shift, turn)
+
+
+def test_poses_are_rigid_4x4_and_move_points():
+    turn = np.array(
+        [[0.0, -1.0, 0.0, 1.0], [1.0, 0.0, 0.0, 2.0], [0.0, 0.0, 1.0, 0.0], [0, 0, 0, 1]]
+    )
+    np.testing.assert_array_equal(check_pose(turn.tolist(), "p"), turn)
+    np.testing.assert_allclose(apply_pose(np.array([[1.0, 0.0, 0.5]]), turn), [[1.0, 3.0, 0.5]])
+    with pytest.raises(ScanError, match="p: not a rigid pose"):
+        check_pose(2 * np.eye(4), "p")
+    with pytest.raises(ScanError, match=r"got shape \(3, 3\)"):
+        check_pose(np.eye(3), "p")

@@ -21,7 +21,7 @@ from test_scene import _room_cloud, _tilt, _write_xyz
 
 from mjwalk import cli
 from mjwalk.errors import ScanError
-from mjwalk.scan import build_scene, read_scan
+from mjwalk.scan import ScanOptions, build_scene, read_scan
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -274,7 +274,7 @@ def test_cloud_offset_by_1e9_names_the_offset_and_runs_with_it(room, tmp_path, c
     near = build_scene(room, source="near").levelling.tilt_deg
     assert f"floor tilt {near:.3f} deg removed" in text
     # The transform in the scene still takes a scan-file point to the scene.
-    scene = build_scene(room + off, offset=off, source="far")
+    scene = build_scene(room + off, ScanOptions(offset=off), source="far")
     p = scene.matrix @ np.array([*(room[0] + off), 1.0])
     assert abs(p[2] - 0.0) < 0.03  # a floor point
 
@@ -345,7 +345,7 @@ def test_resolution_out_of_range(room, tmp_path, capsys, no_scan_work, value):
 
 def test_resolution_out_of_range_in_python(room):
     with pytest.raises(ScanError, match="resolution 0 m is outside"):
-        build_scene(room, resolution=0)
+        build_scene(room, ScanOptions(resolution=0))
 
 
 def test_floor_plan_too_large_names_a_resolution():
@@ -354,7 +354,7 @@ def test_floor_plan_too_large_names_a_resolution():
     pts = np.column_stack([rng.uniform(0, 1800, 5000), rng.uniform(0, 60, 5000), np.zeros(5000)])
     pts[:2500, 2] = rng.uniform(0, 3, 2500)
     with pytest.raises(ScanError, match=r"cells .*use --resolution 0\.06\d* or coarser"):
-        build_scene(pts, resolution=0.005)
+        build_scene(pts, ScanOptions(resolution=0.005))
 
 
 def test_write_failure_is_one_line_naming_the_file(room, tmp_path, capsys, monkeypatch):

@@ -11,7 +11,7 @@ import pytest
 
 from mjwalk.errors import MjwalkError, ScanError
 from mjwalk.plan.options import PlannerOptions
-from mjwalk.scan import build_scene, read_scan, scan_to_scene
+from mjwalk.scan import ScanOptions, build_scene, read_scan, scan_to_scene
 from mjwalk.scan.scene import write_scene
 from mjwalk.world import load_workplace
 
@@ -85,7 +85,7 @@ def test_units_and_up_axes(tmp_path, units, up):
     raw = pts @ UP_AXES[up] / UNITS[units]  # what a file in those units and axes holds
     path = _write_xyz(tmp_path / "room.xyz", raw)
     out = tmp_path / "room.xml"
-    scene = scan_to_scene(path, out, units=units, up=up)
+    scene = scan_to_scene(path, out, ScanOptions(units=units, up=up))
     assert scene.levelling.tilt_deg < 0.1
     wp = load_workplace(out)
     assert wp.floor_bounds[2] - wp.floor_bounds[0] == pytest.approx(4.0, abs=0.05)
@@ -175,7 +175,7 @@ def test_bad_input_is_a_named_error_and_writes_nothing(tmp_path, make, match):
 
 def test_nan_points_can_be_dropped(tmp_path):
     src = _write_xyz(tmp_path / "nan.xyz", np.vstack([_room_cloud(spacing=0.05), [[np.nan, 0, 0]]]))
-    scene = scan_to_scene(src, tmp_path / "s.xml", drop_invalid=True)
+    scene = scan_to_scene(src, tmp_path / "s.xml", ScanOptions(drop_invalid=True))
     assert scene.n_points == len(_room_cloud(spacing=0.05))
 
 

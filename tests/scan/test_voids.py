@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from mjwalk import cli
-from mjwalk.scan import build_scene
+from mjwalk.scan import ScanOptions, build_scene
 from mjwalk.scan.voids import FILL_RADIUS, cover
 
 
@@ -48,7 +48,7 @@ def test_policies_on_enclosed_voids():
     3 m (above it): blocked keeps both void, fill opens the small one, free both."""
     assert 1.0 < 1.5 < FILL_RADIUS < 3.0
     pts = _hall([(8.5, 2.5, 1.5), (5.0, 5.5, 3.0)])
-    got = {p: build_scene(pts, voids=p, source=p) for p in ("blocked", "fill", "free")}
+    got = {p: build_scene(pts, ScanOptions(voids=p), source=p) for p in ("blocked", "fill", "free")}
     assert not _walkable(got["blocked"], 8.5, 2.5) and not _walkable(got["blocked"], 5.0, 5.5)
     assert _walkable(got["fill"], 8.5, 2.5) and not _walkable(got["fill"], 5.0, 5.5)
     assert _walkable(got["free"], 8.5, 2.5) and _walkable(got["free"], 5.0, 5.5)

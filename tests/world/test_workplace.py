@@ -8,6 +8,7 @@ import pytest
 from mjwalk import InputError, SceneError, WorkplaceOptions
 from mjwalk.world import load_model, load_workplace, workplace_from_model
 from mjwalk.world.probe import ClearanceProbe, covered
+from mjwalk.world.workplace import HUMANOID_PREFIXES, MAX_RESOLUTION
 
 SCENE_NAMES = ["assembly_station", "corridor", "open_floor"]
 
@@ -174,3 +175,9 @@ def test_options_object_is_what_both_loaders_read(scenes_dir):
         load_workplace(path, options, include=r"^car_")
     with pytest.raises(AttributeError):
         options.cache = True  # type: ignore[misc]
+
+
+def test_default_options_are_the_documented_constants():
+    opts = WorkplaceOptions()
+    assert opts.resolution == MAX_RESOLUTION == 0.02
+    assert opts.humanoid_prefixes == HUMANOID_PREFIXES == ("human",)

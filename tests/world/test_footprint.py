@@ -1,0 +1,37 @@
+"""mjwalk.world.footprint: convex footprints, their signed distance, and geom footprints."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from mjwalk.world.footprint import Footprint, geom_footprint
+
+
+def test_polygon_and_rounded_segment_signed_distances():
+    square = Footprint("sq", 0, np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]))
+    assert square.is_polygon
+    assert square.bounds() == (0.0, 0.0, 1.0, 1.0)
+    d = square.signed_distance(np.array([[0.5, 0.5], [2.0, 0.5], [2.0, 2.0]]))
+    np.testing.assert_allclose(d, [-0.5, 1.0, np.sqrt(2.0)])
+    stadium = Footprint("cap", 1, np.array([[0.0, 0.0], [2.0, 0.0]]), radius=0.5)
+    assert not stadium.is_polygon
+    assert stadium.bounds() == (-0.5, -0.5, 2.5, 0.5)
+    np.testing.assert_allclose(
+        stadium.signed_distance(np.array([[1.0, 2.0], [3.0, 0.0]])), [1.5, 0.5]
+    )
+
+
+def test_box_geom_footprint_is_its_rotated_rectangle():
+    xml = """<mujoco><worldbody>
+      <geom name="floor" type="plane" size="5 5 0.1"/>
+      <geom name="box" type="box" pos="1 2 0.5" size="0.5 0.25 0.5" euler="0 0 90"/>
+      <geom name="lamp" type="sphere" pos="0 0 3" size="0.1"/>
+    </worldbody></mujoco>"""
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    fp = geom_footprint(model, data, 1, 0.05, 2.0)
+    assert fp is not None and fp.name == "box" and fp.geom_id == 1
+    np.testing.assert_allclose(fp.bounds(), (0.75, 1.5, 1.25, 2.5), atol=1e-9)
+    assert geom_footprint(model, data, 2, 0.05, 2.0) is None  # above the band

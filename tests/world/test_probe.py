@@ -1,0 +1,35 @@
+"""mjwalk.world.probe: MuJoCo's own distance from floor probes to the scene's geoms."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjwalk.world.probe import ClearanceProbe, path_clearance
+
+SCENE = """<mujoco><worldbody>
+  <geom name="floor" type="plane" size="3 3 0.1"/>
+  <geom name="post" type="cylinder" pos="1 0 0.5" size="0.2 0.5"/>
+  <geom name="shelf" type="box" pos="-1 0 0.5" size="0.1 0.1 0.5"/>
+</worldbody></mujoco>"""
+
+
+@pytest.fixture(scope="module")
+def probe(tmp_path_factory):
+    path = tmp_path_factory.mktemp("probe") / "scene.xml"
+    path.write_text(SCENE)
+    return ClearanceProbe(path)
+
+
+def test_distances_per_geom_and_the_nearest(probe):
+    assert probe.names == ["post", "shelf"]
+    d = probe.distances(np.array([[0.0, 0.0], [1.0, 1.0]]))
+    assert d.shape == (2, 2)
+    np.testing.assert_allclose(d[0], [0.8, 0.9], atol=1e-6)
+    np.testing.assert_allclose(probe.clearance(np.array([[1.0, 1.0]])), [0.8], atol=1e-6)
+
+
+def test_path_clearance_samples_the_polyline(probe):
+    c = path_clearance(probe, np.array([[0.0, -1.0], [0.0, 1.0]]), spacing=0.1)
+    assert c.shape == (21,)  # the start and 20 samples
+    assert c.min() == pytest.approx(0.8, abs=1e-6)  # at (0, 0)
