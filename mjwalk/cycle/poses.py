@@ -12,7 +12,14 @@ import numpy as np
 
 from mjwalk.body.humanoid import pelvis_height
 from mjwalk.body.legs.curves import smoothstep
-from mjwalk.timeline.frames import ease_arms, frames_from_legs, room_and_away, yaw_quat
+from mjwalk.timeline.frames import (
+    Carry,
+    Clearance,
+    ease_arms,
+    frames_from_legs,
+    room_and_away,
+    yaw_quat,
+)
 from mjwalk.timeline.parts import hand_poses
 
 if TYPE_CHECKING:
@@ -231,10 +238,8 @@ def walk_frames(
         walk.duration,
         jm,
         rest,
-        room=room,
-        carry=carry,
-        away=away,
+        Clearance(room, away),
+        None if carry is None else Carry(carry, abd),
         stature=ctx.spec.stature,
-        carry_abd=abd,
     )
     return frames

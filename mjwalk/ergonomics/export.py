@@ -26,6 +26,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from mjwalk._io import atomic_path
+from mjwalk.ergonomics.angles import angles_from_timeline
 from mjwalk.errors import MjwalkError
 
 #: Humanoid frame -> BVH frame (rows: BVH X, Y, Z in humanoid coordinates).
@@ -144,8 +145,6 @@ def bvh_hinge_angles(bvh, model, jointmap) -> dict[str, np.ndarray]:
 
 def write_angles_csv(timeline, path: str | Path, walking: np.ndarray | None = None) -> Path:
     """Write the motion of a Timeline as a joint-angle CSV (see the module docstring); atomic."""
-    from mjwalk.ergonomics.angles import angles_from_timeline
-
     model, jm = timeline.model, timeline.jointmap
     q = np.asarray(timeline.qpos, dtype=float)
     hinges = [

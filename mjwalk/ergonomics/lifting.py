@@ -86,12 +86,10 @@ def cycle_lifts(ang: BodyAngles, spans: Sequence[TaskSpan], cycle_time: float) -
                 sp.kind,
                 sp.hand,
                 sp.mass,
-                (geo[0][0], geo[1][0]),
-                (geo[0][1], geo[1][1]),
-                (geo[0][2], geo[1][2]),
-                f,
-                sp.coupling,
-                LIFT_DURATION,
+                niosh.LiftEnds(
+                    (geo[0][0], geo[1][0]), (geo[0][1], geo[1][1]), (geo[0][2], geo[1][2])
+                ),
+                niosh.LiftConditions(f, LIFT_DURATION, sp.coupling),
                 control_at_destination=sp.part == "put",
             )
         )

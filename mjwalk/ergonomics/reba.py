@@ -90,18 +90,32 @@ def load_score(load_kg, shock: bool = False):
     return int(score) if score.ndim == 0 else score
 
 
-def reba_score(trunk, neck, legs, upper_arm, lower_arm, wrist, load=0, coupling=0, activity=0):
-    """The REBA score 1-15 from the part scores (scalars or arrays; the published tables):
-    Table C of (Table A + load, Table B + coupling), plus the activity score."""
+def reba_score(parts: RebaParts, load=0, coupling=0, activity=0) -> np.ndarray:
+    """The REBA score 1-15 from the part scores (the published tables, vectorised).
+
+    Score A is Table A of the trunk, neck and legs scores, B Table B of the upper arm, lower
+    arm and wrist scores; the REBA score is Table C of :math:`A + load` and
+    :math:`B + coupling` (each clipped to 1-12) plus the activity score. Part scores beyond a
+    table's range are clipped into it.
+
+    Args:
+        parts: the part scores (ints, scalars or per-frame arrays of one shape).
+        load: load/force score 0-3 (:func:`load_score`).
+        coupling: coupling score 0-3 (:data:`COUPLING`).
+        activity: activity score 0-3.
+
+    Returns:
+        The REBA scores, shaped like the part scores.
+    """
     a = TABLE_A[
-        np.clip(np.asarray(trunk), 1, 5) - 1,
-        np.clip(np.asarray(neck), 1, 3) - 1,
-        np.clip(np.asarray(legs), 1, 4) - 1,
+        np.clip(np.asarray(parts.trunk), 1, 5) - 1,
+        np.clip(np.asarray(parts.neck), 1, 3) - 1,
+        np.clip(np.asarray(parts.legs), 1, 4) - 1,
     ]
     b = TABLE_B[
-        np.clip(np.asarray(upper_arm), 1, 6) - 1,
-        np.clip(np.asarray(lower_arm), 1, 2) - 1,
-        np.clip(np.asarray(wrist), 1, 3) - 1,
+        np.clip(np.asarray(parts.upper_arm), 1, 6) - 1,
+        np.clip(np.asarray(parts.lower_arm), 1, 2) - 1,
+        np.clip(np.asarray(parts.wrist), 1, 3) - 1,
     ]
     c = TABLE_C[np.clip(a + load, 1, 12) - 1, np.clip(b + coupling, 1, 12) - 1]
     return c + activity
@@ -158,6 +172,4 @@ def reba(
 def parts_score(p: RebaParts, load=0, coupling=0, activity=0) -> np.ndarray:
     """(F,) REBA scores of one side's part scores with the load, coupling and activity scores
     (scalars or per frame)."""
-    return reba_score(
-        p.trunk, p.neck, p.legs, p.upper_arm, p.lower_arm, p.wrist, load, coupling, activity
-    )
+    return reba_score(p, load, coupling, activity)

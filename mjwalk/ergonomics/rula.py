@@ -99,29 +99,33 @@ def force_score(load_kg, static_or_repeated, shock: bool = False):
     return int(score) if score.ndim == 0 else score
 
 
-def grand_score(
-    upper_arm,
-    lower_arm,
-    wrist,
-    wrist_twist,
-    neck,
-    trunk,
-    legs,
-    muscle_a=0,
-    force_a=0,
-    muscle_b=0,
-    force_b=0,
-) -> np.ndarray:
-    """RULA's grand score 1-7 from the part scores (scalars or arrays; the published tables)."""
-    ua = np.clip(np.asarray(upper_arm), 1, 6) - 1
-    la = np.clip(np.asarray(lower_arm), 1, 3) - 1
-    wr = np.clip(np.asarray(wrist), 1, 4) - 1
-    tw = np.clip(np.asarray(wrist_twist), 1, 2) - 1
+def grand_score(parts: RulaParts, muscle_a=0, force_a=0, muscle_b=0, force_b=0) -> np.ndarray:
+    """RULA's grand score 1-7 from the part scores (the published tables, vectorised).
+
+    Score A is Table A of the arm and wrist scores, B Table B of the neck, trunk and legs
+    scores; the grand score is Table C of :math:`C = A + m_A + f_A` (clipped to 1-8) and
+    :math:`D = B + m_B + f_B` (clipped to 1-7). Part scores beyond a table's range are
+    clipped into it.
+
+    Args:
+        parts: the part scores (ints, scalars or per-frame arrays of one shape).
+        muscle_a: muscle-use score (0/1) of group A, the arm and wrist.
+        force_a: force/load score (0-3) of group A.
+        muscle_b: muscle-use score (0/1) of group B, the neck, trunk and legs.
+        force_b: force/load score (0-3) of group B.
+
+    Returns:
+        The grand scores 1-7, shaped like the part scores.
+    """
+    ua = np.clip(np.asarray(parts.upper_arm), 1, 6) - 1
+    la = np.clip(np.asarray(parts.lower_arm), 1, 3) - 1
+    wr = np.clip(np.asarray(parts.wrist), 1, 4) - 1
+    tw = np.clip(np.asarray(parts.wrist_twist), 1, 2) - 1
     a = TABLE_A[ua, la, wr, tw]
     b = TABLE_B[
-        np.clip(np.asarray(neck), 1, 6) - 1,
-        np.clip(np.asarray(trunk), 1, 6) - 1,
-        np.clip(np.asarray(legs), 1, 2) - 1,
+        np.clip(np.asarray(parts.neck), 1, 6) - 1,
+        np.clip(np.asarray(parts.trunk), 1, 6) - 1,
+        np.clip(np.asarray(parts.legs), 1, 2) - 1,
     ]
     c = np.clip(a + muscle_a + force_a, 1, 8) - 1
     d = np.clip(b + muscle_b + force_b, 1, 7) - 1
@@ -179,16 +183,4 @@ def parts_score(p: RulaParts, muscle, force) -> np.ndarray:
     """(F,) RULA grand scores of one arm's part scores with its muscle-use (0/1) and force
     scores (scalars or per frame), the same in the arm-and-wrist and the neck-trunk-legs
     groups, as the worksheet applies them."""
-    return grand_score(
-        p.upper_arm,
-        p.lower_arm,
-        p.wrist,
-        p.wrist_twist,
-        p.neck,
-        p.trunk,
-        p.legs,
-        muscle,
-        force,
-        muscle,
-        force,
-    )
+    return grand_score(p, muscle, force, muscle, force)

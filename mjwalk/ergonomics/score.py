@@ -261,7 +261,7 @@ def share(k: int, n: int, confidence: float = CONFIDENCE) -> dict:
     Returns:
         ``share``, ``low``, ``high`` (None when ``n`` is 0), ``k`` and ``n``.
     """
-    from scipy.stats import binomtest  # scipy.stats takes ~0.3 s to import: only when needed
+    from scipy.stats import binomtest  # deferred: scipy.stats takes ~0.3 s to import
 
     if n == 0:
         return {"share": None, "low": None, "high": None, "k": 0, "n": 0}

@@ -103,7 +103,7 @@ def _tasks(records: list[RunRecord]) -> list[dict]:
 def _stature(records: list[RunRecord]) -> dict | None:
     """Stature dependence: Spearman's rho of stature and peak RULA; per reach task the median
     RULA and upper-arm score of the shortest and tallest thirds."""
-    from scipy.stats import spearmanr
+    from scipy.stats import spearmanr  # deferred: scipy.stats takes ~0.3 s to import
 
     rec = [r for r in records if r.stature is not None]
     if len(rec) < 6:

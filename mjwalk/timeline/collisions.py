@@ -23,8 +23,10 @@ from mjwalk._jit import njit
 from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
+from mjwalk.timeline.frames import timeline_from_walk
 from mjwalk.timeline.geomposes import geom_poses, supported
 from mjwalk.timeline.timeline import Timeline
+from mjwalk.world.workplace import shared_workplace
 
 
 @dataclass
@@ -340,9 +342,6 @@ def check_collisions(
     played in ``scene``): time (s), body part, scene geom, depth (m), by MuJoCo's collision
     detection. A CycleResult must have been simulated with ``keep_timeline=True``. A WalkPath
     planned in another scene (other obstacle geometry) raises SceneError unless ``force``."""
-    from mjwalk.timeline.frames import timeline_from_walk
-    from mjwalk.world.workplace import shared_workplace
-
     obj = result_or_timeline
     if not isinstance(obj, Timeline | WalkPath) and hasattr(obj, "timeline"):  # a CycleResult
         if obj.timeline is None:

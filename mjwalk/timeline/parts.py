@@ -33,6 +33,7 @@ from typing import Literal
 
 import mujoco
 import numpy as np
+from scipy.spatial.transform import Rotation, Slerp
 
 from mjwalk.arms.chain import min_jerk
 from mjwalk.body.humanoid import JointMap
@@ -103,8 +104,6 @@ HOLD_STILL = 1e-3
 
 def _slerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
     """Rotation matrices (n, 3, 3) from ``a`` to ``b`` (3, 3) at shares ``w`` (n,) (SLERP)."""
-    from scipy.spatial.transform import Rotation, Slerp
-
     return Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([a, b])))(w).as_matrix()
 
 
