@@ -29,7 +29,15 @@ from mjwalk.world.workplace import shared_workplace
 
 
 def yaw_quat(yaw: np.ndarray) -> np.ndarray:
-    """(N, 4) unit quaternions (w, x, y, z) of rotations by ``yaw`` radians about +z."""
+    """Unit quaternions of rotations by ``yaw`` about +z:
+    :math:`q = (\\cos(\\psi/2), 0, 0, \\sin(\\psi/2))`.
+
+    Args:
+        yaw: (N,) yaw angles, radians (CCW from +x).
+
+    Returns:
+        (N, 4) quaternions (w, x, y, z).
+    """
     yaw = np.asarray(yaw, float)
     return np.column_stack(
         [np.cos(yaw / 2), np.zeros_like(yaw), np.zeros_like(yaw), np.sin(yaw / 2)]
@@ -40,7 +48,15 @@ def arm_swing(angles: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     """Counter-swing of the arms from the leg angles (radians): each shoulder flexes opposite to
     its own hip (the arm swings with the other leg), about 0.45 of the hip excursion, elbows
     slightly bent (15 deg plus a third of the shoulder flexion), arms 6 deg abducted. A cheap
-    stand-in for the gait-pose dynamics (:mod:`mjwalk.body.gaitpose`)."""
+    stand-in for the gait-pose dynamics (:mod:`mjwalk.body.gaitpose`).
+
+    Args:
+        angles: the leg joint angles by unprefixed name, each (F,) radians; reads
+            ``hip_l_flex`` and ``hip_r_flex``.
+
+    Returns:
+        ``shoulder_{l,r}_flex``, ``shoulder_{l,r}_abd`` and ``elbow_{l,r}``, each (F,) radians.
+    """
     out = {}
     for s in "lr":
         hip = angles[f"hip_{s}_flex"]
@@ -149,6 +165,9 @@ def trunk_turn(
     reaches ``a |cos d| + r`` towards an obstacle in a direction ``d`` from it; the trunk turns
     by the least angle that brings this within ``room - SHOULDER_MARGIN``, up to
     :data:`TRUNK_TURN`. Zero where there is room.
+
+    Returns:
+        (F,) trunk rotation, radians, within :data:`TRUNK_TURN`.
     """
     a, r = shoulder_geometry(stature)
     c = np.clip((room - SHOULDER_MARGIN - r) / a, 0.0, 1.0)
@@ -270,8 +289,18 @@ def ease_arms(
 
 
 def room_and_away(workplace, xy: np.ndarray, h: float = 0.02) -> tuple[np.ndarray, np.ndarray]:
-    """Clearance (m) at pelvis positions ``xy`` (F, 2) and unit vectors away from the nearest
-    obstacle (central differences of the clearance field, step ``h`` metres)."""
+    """Clearance at pelvis positions and the directions away from the nearest obstacle
+    (central differences of the clearance field).
+
+    Args:
+        workplace: the scene's :class:`~mjwalk.world.workplace.Workplace`.
+        xy: (F, 2) pelvis positions, world metres.
+        h: the differences' step, metres.
+
+    Returns:
+        ``(room, away)``: (F,) clearance in metres and (F, 2) unit vectors away from the
+        nearest obstacle (+x where the gradient vanishes).
+    """
     xy = np.asarray(xy, float)
     room = workplace.clearance(xy)
     ex, ey = np.array([h, 0.0]), np.array([0.0, h])
@@ -286,8 +315,16 @@ def room_and_away(workplace, xy: np.ndarray, h: float = 0.02) -> tuple[np.ndarra
 
 
 def room_in_scene(scene, xy: np.ndarray) -> tuple[np.ndarray | None, np.ndarray | None]:
-    """Room (m) around pelvis positions ``xy`` in ``scene`` and the directions away from the
-    nearest obstacle (None, None for an in-memory MjSpec)."""
+    """Room around pelvis positions in ``scene`` and the directions away from the nearest
+    obstacle (:func:`room_and_away` of the scene's shared workplace).
+
+    Args:
+        scene: an MJCF scene file or an MjSpec.
+        xy: (F, 2) pelvis positions, world metres.
+
+    Returns:
+        ``(room, away)`` as :func:`room_and_away`; ``(None, None)`` for an in-memory MjSpec.
+    """
     if isinstance(scene, mujoco.MjSpec):
         return None, None
     return room_and_away(shared_workplace(scene), xy)
@@ -302,9 +339,24 @@ def frames_from_legs(
     arms: str,
     rng: np.random.Generator | None,
 ) -> np.ndarray:
-    """(len(t), nq) qpos of the humanoid in ``model`` at times ``t`` (s): root and legs
-    interpolated from ``legs``, arms and torso by ``arms`` ("swing", "gaitpose" or "none", see
-    :func:`timeline_from_walk`), every angle clipped to its joint range."""
+    """The humanoid's poses at times ``t``: root and legs interpolated from ``legs``, arms and
+    torso by ``arms``, every angle clipped to its joint range.
+
+    Args:
+        model: the compiled scene with the humanoid.
+        jm: the humanoid's joint map.
+        legs: the leg motion of a walk.
+        t: (F,) frame times, seconds.
+        stature: the humanoid's stature, metres.
+        arms: "swing", "gaitpose" or "none" (see :func:`timeline_from_walk`).
+        rng: picks the gait-pose rollout's start (``arms="gaitpose"``).
+
+    Returns:
+        (F, nq) qpos.
+
+    Raises:
+        MjwalkError: an unknown ``arms``.
+    """
     qpos = np.tile(jm.neutral_qpos(model, stature), (len(t), 1))
     r = jm.root
     for k in range(3):
