@@ -149,7 +149,14 @@ class BodyAngles:
         return self.feet_down.all(axis=1) | self.walking
 
     def frames(self, sl: slice | np.ndarray) -> BodyAngles:
-        """The angles of some frames (a slice or an index/mask array)."""
+        """The angles of some frames.
+
+        Args:
+            sl: a slice, or an index or boolean mask array over the F frames.
+
+        Returns:
+            A :class:`BodyAngles` of the selected frames (``twist_range`` kept).
+        """
         kw: dict = {}
         for name in self.__dataclass_fields__:
             v = getattr(self, name)
@@ -316,10 +323,20 @@ _BODY_POINTS = {
 
 
 def body_frames(model, jointmap, qpos: np.ndarray, bodies: list[str]):
-    """World positions (F, B, 3) and rotations (F, B, 3, 3) of the humanoid ``bodies``
-    (unprefixed names) in the poses ``qpos`` (F, nq): MuJoCo's forward kinematics compiled over
-    frames (:func:`mjwalk.timeline.geomposes.geom_poses`) on each body's first geom, the geom's
-    own offset undone (``mj_kinematics`` frame by frame for models it does not support)."""
+    """World poses of humanoid bodies: MuJoCo's forward kinematics compiled over frames
+    (:func:`mjwalk.timeline.geomposes.geom_poses`) on each body's first geom, the geom's own
+    offset undone, :math:`R_{body} = R_{geom} R_{local}^T`, :math:`p_{body} = p_{geom} -
+    R_{body} p_{local}` (``mj_kinematics`` frame by frame for models it does not support).
+
+    Args:
+        model: the compiled model with the humanoid.
+        jointmap: the humanoid's joint map (its prefix names the bodies).
+        qpos: (F, nq) poses.
+        bodies: B unprefixed body names.
+
+    Returns:
+        ``(pos, rot)``: (F, B, 3) world positions, metres, and (F, B, 3, 3) rotations.
+    """
     prefix = jointmap.prefix
     bids = [mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, prefix + b) for b in bodies]
     qpos = np.asarray(qpos, dtype=float).reshape(-1, model.nq)
@@ -347,14 +364,33 @@ def body_frames(model, jointmap, qpos: np.ndarray, bodies: list[str]):
 
 
 def angles_from_timeline(timeline, walking: np.ndarray | None = None) -> BodyAngles:
-    """Body angles of every frame of a humanoid :class:`~mjwalk.timeline.timeline.Timeline`
-    (``walking``: (F,) frames of a walk). The wrists' flexion and deviation, the forearms'
-    pronation and the neck's rotation are the humanoid's own hinge angles."""
+    """Body angles of every frame of a humanoid :class:`~mjwalk.timeline.timeline.Timeline`.
+    The wrists' flexion and deviation, the forearms' pronation and the neck's rotation are the
+    humanoid's own hinge angles.
+
+    Args:
+        timeline: the humanoid's timeline.
+        walking: (F,) frames of a walk (default none).
+
+    Returns:
+        The :class:`BodyAngles` of its F frames.
+    """
     return angles_from_qpos(timeline.model, timeline.jointmap, timeline.qpos, walking)
 
 
 def angles_from_qpos(model, jointmap, qpos: np.ndarray, walking=None) -> BodyAngles:
-    """:func:`angles_from_timeline` for poses ``qpos`` (F, nq) of ``model``."""
+    """:func:`angles_from_timeline` for poses of a model: joint positions from the bodies'
+    origins, the head's up the neck body's z, the grip points the palms' centres.
+
+    Args:
+        model: the compiled model with the humanoid.
+        jointmap: the humanoid's joint map.
+        qpos: (F, nq) poses.
+        walking: (F,) frames of a walk (default none).
+
+    Returns:
+        The :class:`BodyAngles` of the F frames.
+    """
     bodies = list(_BODY_POINTS)
     pos, rot = body_frames(model, jointmap, qpos, bodies)
     p = {_BODY_POINTS[b]: pos[:, k] for k, b in enumerate(bodies)}

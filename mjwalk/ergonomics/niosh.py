@@ -130,7 +130,21 @@ class LiftEnds:
 
 
 def frequency_multiplier(f: float, duration: str, v_origin: float, units: str = "metric") -> float:
-    """FM (Table 5) for ``f`` lifts/min, the duration category and V at the origin (p. 15)."""
+    """FM (Table 5), interpolated linearly between its rows (F below 0.2 taken as 0.2; 0
+    beyond 15 lifts/min).
+
+    Args:
+        f: lifting frequency, lifts/min.
+        duration: the duration category, one of :data:`DURATIONS`.
+        v_origin: V at the origin, cm (or in), which selects the column.
+        units: "metric" or "us".
+
+    Returns:
+        FM, dimensionless.
+
+    Raises:
+        InputError: an unknown duration, or a frequency not finite and >= 0.
+    """
     if duration not in DURATIONS:
         raise InputError(f"NIOSH: duration must be one of {DURATIONS}, got {duration!r}")
     if not np.isfinite(f) or f < 0:
@@ -142,8 +156,16 @@ def frequency_multiplier(f: float, duration: str, v_origin: float, units: str = 
 
 
 def fm_zero_from(duration: str, v_origin: float, units: str = "metric") -> float | None:
-    """The lowest Table 5 frequency (lifts/min) at which FM is 0.00 for the duration category
-    and V at the origin; None where the column is non-zero up to the table's 15 lifts/min."""
+    """The lowest Table 5 frequency at which FM is 0.00 for a duration category and V.
+
+    Args:
+        duration: the duration category, one of :data:`DURATIONS`.
+        v_origin: V at the origin, cm (or in).
+        units: "metric" or "us".
+
+    Returns:
+        Lifts/min; None where the column is non-zero up to the table's 15 lifts/min.
+    """
     col = 2 * DURATIONS.index(duration) + int(v_origin >= UNITS[units]["vsplit"])
     zero = np.flatnonzero(FM_TABLE[:, col] == 0.0)
     return float(FM_F[zero[0]]) if len(zero) else None
@@ -254,8 +276,18 @@ def multipliers(
 
 
 def rwl(m: Multipliers, units: str = "metric", round_multipliers: bool = False) -> float:
-    """The recommended weight limit (kg or lb). ``round_multipliers``: each multiplier rounded to
-    two decimals first, as the manual's worksheets do (p. 29), to reproduce their figures."""
+    """The recommended weight limit, :math:`RWL = LC \\cdot HM \\cdot VM \\cdot DM \\cdot AM
+    \\cdot FM \\cdot CM`.
+
+    Args:
+        m: the multipliers.
+        units: "metric" (LC 23 kg) or "us" (LC 51 lb).
+        round_multipliers: round each multiplier to two decimals first, as the manual's
+            worksheets do (p. 29), to reproduce their figures.
+
+    Returns:
+        The RWL, kg (or lb).
+    """
     vals = [m.hm, m.vm, m.dm, m.am, m.fm, m.cm]
     if round_multipliers:
         vals = [round(x + 1e-12, 2) for x in vals]

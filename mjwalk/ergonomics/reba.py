@@ -83,7 +83,16 @@ class RebaParts:
 
 
 def load_score(load_kg, shock: bool = False):
-    """REBA's load/force score 0-3 (kg); scalars or per-frame arrays (an int for scalars)."""
+    """REBA's load/force score (:data:`LOAD_KG`): 0 below 5 kg, 1 for 5-10 kg, 2 above 10 kg,
+    +1 with shock.
+
+    Args:
+        load_kg: the load, kg (scalar or per frame).
+        shock: shock or rapid build-up of force.
+
+    Returns:
+        An int for scalars, else an array of scores.
+    """
     lo, hi = LOAD_KG
     load = np.asarray(load_kg, dtype=float)
     score = np.select([load > hi, load >= lo], [2, 1], 0) + int(shock)
@@ -122,13 +131,29 @@ def reba_score(parts: RebaParts, load=0, coupling=0, activity=0) -> np.ndarray:
 
 
 def risk_level(score) -> np.ndarray:
-    """REBA action level 0-4 (1 negligible; 2-3 low; 4-7 medium; 8-10 high; 11+ very high)."""
+    """REBA action level 0-4 (1 negligible; 2-3 low; 4-7 medium; 8-10 high; 11+ very high).
+
+    Args:
+        score: REBA scores (scalar or array).
+
+    Returns:
+        The levels 0-4, shaped like ``score``.
+    """
     s = np.asarray(score)
     return np.select([s <= 1, s <= 3, s <= 7, s <= 10], [0, 1, 2, 3], 4)
 
 
 def part_scores(ang: BodyAngles, side: int) -> RebaParts:
-    """REBA part scores of every frame for the arm ``side`` (0 left, 1 right)."""
+    """REBA part scores of every frame for one arm (thresholds in
+    :mod:`mjwalk.ergonomics.angles`).
+
+    Args:
+        ang: the body angles of F frames.
+        side: the arm, 0 left, 1 right.
+
+    Returns:
+        The :class:`RebaParts`, each (F,).
+    """
     tf = ang.trunk_flexion
     # upright 1; 0-20 deg flexion or extension 2; 20-60 flexion or > 20 extension 3; > 60 4
     trunk = np.select([np.abs(tf) <= NEUTRAL_DEG, np.abs(tf) <= 20, tf <= 60], [1, 2, 3], 4)
@@ -163,13 +188,34 @@ def reba(
     ang: BodyAngles, side: int, load_kg: float = 0.0, coupling: str = "good",
     static: bool = False, repeated: bool = False,
 ) -> np.ndarray:  # fmt: skip
-    """(F,) REBA scores for the arm ``side`` with the load in that hand (kg), the coupling of
-    its grip and the activity (+1 static > 1 min, +1 repeated > 4 times a minute)."""
+    """REBA scores of one arm with the load in that hand, the coupling of its grip and the
+    activity (+1 static > 1 min, +1 repeated > 4 times a minute).
+
+    Args:
+        ang: the body angles of F frames.
+        side: the arm, 0 left, 1 right.
+        load_kg: the load in that hand, kg.
+        coupling: the grip's coupling, a key of :data:`COUPLING`.
+        static: the posture is held longer than a minute.
+        repeated: the posture is repeated more than 4 times a minute.
+
+    Returns:
+        (F,) REBA scores.
+    """
     activity = int(static) + int(repeated)
     return parts_score(part_scores(ang, side), load_score(load_kg), COUPLING[coupling], activity)
 
 
 def parts_score(p: RebaParts, load=0, coupling=0, activity=0) -> np.ndarray:
-    """(F,) REBA scores of one side's part scores with the load, coupling and activity scores
-    (scalars or per frame)."""
+    """REBA scores of one side's part scores (:func:`reba_score`).
+
+    Args:
+        p: the part scores.
+        load: load/force score (scalar or per frame).
+        coupling: coupling score (scalar or per frame).
+        activity: activity score (scalar or per frame).
+
+    Returns:
+        (F,) REBA scores.
+    """
     return reba_score(p, load, coupling, activity)

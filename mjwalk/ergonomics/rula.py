@@ -87,8 +87,16 @@ class RulaParts:
 
 
 def force_score(load_kg, static_or_repeated, shock: bool = False):
-    """RULA's force/load score 0-3 of a load held in the hands (kg); scalars or per-frame
-    arrays (an int for scalars)."""
+    """RULA's force/load score 0-3 of a load held in the hands.
+
+    Args:
+        load_kg: the load, kg (scalar or per frame).
+        static_or_repeated: the load is held static or repeated (scalar or per frame).
+        shock: shock or rapid build-up of force (3 throughout).
+
+    Returns:
+        An int for scalars, else an array of scores shaped like the inputs.
+    """
     lo, hi = FORCE_KG
     load = np.asarray(load_kg, dtype=float)
     held = np.asarray(static_or_repeated, dtype=bool)
@@ -134,13 +142,29 @@ def grand_score(parts: RulaParts, muscle_a=0, force_a=0, muscle_b=0, force_b=0) 
 
 def action_level(score) -> np.ndarray:
     """RULA action level 1-4 of grand scores (1-2: acceptable; 3-4: investigate further;
-    5-6: investigate and change soon; 7: investigate and change immediately)."""
+    5-6: investigate and change soon; 7: investigate and change immediately).
+
+    Args:
+        score: grand scores 1-7 (scalar or array).
+
+    Returns:
+        The action levels, shaped like ``score``.
+    """
     s = np.asarray(score)
     return np.select([s <= 2, s <= 4, s <= 6], [1, 2, 3], 4)
 
 
 def part_scores(ang: BodyAngles, side: int) -> RulaParts:
-    """RULA part scores of every frame of ``ang`` for the arm ``side`` (0 left, 1 right)."""
+    """RULA part scores of every frame for one arm (thresholds in
+    :mod:`mjwalk.ergonomics.angles`).
+
+    Args:
+        ang: the body angles of F frames.
+        side: the arm, 0 left, 1 right.
+
+    Returns:
+        The :class:`RulaParts`, each (F,).
+    """
     ua_ang = ang.upper_arm_angle[:, side]
     ua = np.select([ua_ang > 90, ua_ang > 45, (ua_ang > 20) | (ua_ang < -20)], [4, 3, 2], 1)
     ua = ua + ang.shoulder_raised[:, side] + ang.arm_abducted[:, side]
@@ -172,15 +196,34 @@ def rula(
     ang: BodyAngles, side: int, load_kg: float = 0.0, static: bool = False,
     repeated: bool = False,
 ) -> np.ndarray:  # fmt: skip
-    """(F,) RULA grand scores of the arm ``side`` with the load in that hand (kg); muscle use
-    +1 when the posture is static (held > 1 min) or repeated (4 times a minute or more), in
-    both groups as the paper's worksheet does."""
+    """RULA grand scores of one arm with the load in that hand. Muscle use is +1 when the
+    posture is static (held > 1 min) or repeated (4 times a minute or more), in both groups as
+    the paper's worksheet does.
+
+    Args:
+        ang: the body angles of F frames.
+        side: the arm, 0 left, 1 right.
+        load_kg: the load in that hand, kg.
+        static: the posture is held longer than a minute.
+        repeated: the posture is repeated 4 times a minute or more.
+
+    Returns:
+        (F,) grand scores 1-7.
+    """
     muscle = int(static or repeated)
     return parts_score(part_scores(ang, side), muscle, force_score(load_kg, muscle))
 
 
 def parts_score(p: RulaParts, muscle, force) -> np.ndarray:
-    """(F,) RULA grand scores of one arm's part scores with its muscle-use (0/1) and force
-    scores (scalars or per frame), the same in the arm-and-wrist and the neck-trunk-legs
-    groups, as the worksheet applies them."""
+    """RULA grand scores of one arm's part scores with the same muscle-use and force scores in
+    the arm-and-wrist and the neck-trunk-legs groups, as the worksheet applies them.
+
+    Args:
+        p: the part scores.
+        muscle: muscle-use score 0/1 (scalar or per frame).
+        force: force/load score 0-3 (scalar or per frame).
+
+    Returns:
+        (F,) grand scores 1-7.
+    """
     return grand_score(p, muscle, force, muscle, force)
