@@ -17,7 +17,15 @@ from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.curves import smoothstep
 from mjwalk.body.legs.footcheck import lowest_point
 from mjwalk.timeline.collisions import collision_report
-from mjwalk.timeline.frames import CARRY_POSE, ease_arms, frames_from_legs, room_and_away, yaw_quat
+from mjwalk.timeline.frames import (
+    CARRY_POSE,
+    Carry,
+    Clearance,
+    ease_arms,
+    frames_from_legs,
+    room_and_away,
+    yaw_quat,
+)
 from mjwalk.timeline.parts import hand_poses
 from mjwalk.timeline.timeline import Timeline
 
@@ -294,10 +302,8 @@ def walk_frames(
         walk.duration,
         jm,
         rest,
-        room=room,
-        carry=carry,
-        away=away,
+        Clearance(room, away),
+        None if carry is None else Carry(carry, abd),
         stature=ctx.spec.stature,
-        carry_abd=abd,
     )
     return frames

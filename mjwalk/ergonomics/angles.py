@@ -24,7 +24,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import mujoco
 import numpy as np
+
+from mjwalk.timeline.geomposes import geom_poses, supported
 
 #: A joint within this many degrees of its neutral position counts as neutral ("0 deg", "upright"
 #: in RULA and REBA). The methods' worksheets are filled in by eye, to about this resolution;
@@ -146,7 +149,14 @@ class BodyAngles:
         return self.feet_down.all(axis=1) | self.walking
 
     def frames(self, sl: slice | np.ndarray) -> BodyAngles:
-        """The angles of some frames (a slice or an index/mask array)."""
+        """The angles of some frames.
+
+        Args:
+            sl: a slice, or an index or boolean mask array over the F frames.
+
+        Returns:
+            A :class:`BodyAngles` of the selected frames (``twist_range`` kept).
+        """
         kw: dict = {}
         for name in self.__dataclass_fields__:
             v = getattr(self, name)
@@ -174,31 +184,14 @@ POINTS = (
 )  # fmt: skip
 
 
-def angles_from_points(
-    p: dict[str, np.ndarray],
-    *,
-    head_up: np.ndarray | None = None,
-    hands: np.ndarray | None = None,
-    wrist: np.ndarray | None = None,
-    neck_twist: np.ndarray | None = None,
-    twist_range: float = 80.0,
-    walking: np.ndarray | None = None,
-) -> BodyAngles:
-    """Body angles of F frames from joint positions ``p`` (:data:`POINTS`, each (F, 3) in
-    metres, world frame z up).
-
-    ``head_up`` (F, 3): the head's up direction (default: neck -> head). ``hands`` (F, 2, 3):
-    the grip points (default: the wrists). ``wrist`` (F, 2, 3): wrist flexion, ulnar deviation
-    and forearm pronation in degrees (default zeros: positions alone do not show them).
-    ``neck_twist`` (F,) degrees (default zeros). ``walking`` (F,) frames of a walk.
-    """
-    n = len(p["pelvis"])
+def _trunk_angles(p: dict[str, np.ndarray]) -> tuple[np.ndarray, ...]:
+    """The pelvis' left and forward axes and the trunk's flexion, side bend, inclination and
+    twist (degrees) of joint positions ``p``, with the trunk axis and the shoulder line."""
     z = np.array([0.0, 0.0, 1.0])
     hip_left = p["hip_l"] - p["hip_r"]
     hip_left[:, 2] = 0.0
     hip_left = _unit(hip_left)
     fwd = np.cross(hip_left, z)  # x = y cross z
-    # trunk
     trunk = _unit(p["neck"] - p["pelvis"])
     t_flex = _deg(np.arctan2(_dot(trunk, fwd), trunk[:, 2]))
     t_side = _deg(np.arctan2(_dot(trunk, hip_left), trunk[:, 2]))
@@ -206,15 +199,15 @@ def angles_from_points(
     sh = p["shoulder_l"] - p["shoulder_r"]
     twist = np.arctan2(sh[:, 1], sh[:, 0]) - np.arctan2(hip_left[:, 1], hip_left[:, 0])
     t_twist = _deg((twist + np.pi) % (2 * np.pi) - np.pi)
-    # the trunk's frame: up the trunk axis, left the shoulder line made orthogonal to it
-    up = trunk
-    left = _unit(sh - _dot(sh, up)[:, None] * up)
-    front = np.cross(left, up)
-    # neck
-    hu = _unit(head_up if head_up is not None else p["head"] - p["neck"])
-    n_flex = _deg(np.arctan2(_dot(hu, front), _dot(hu, up)))
-    n_side = _deg(np.arctan2(_dot(hu, left), _dot(hu, up)))
-    # arms
+    return fwd, trunk, sh, t_flex, t_side, t_incl, t_twist
+
+
+def _arm_angles(
+    p: dict[str, np.ndarray], up: np.ndarray, left: np.ndarray, front: np.ndarray
+) -> tuple[np.ndarray, ...]:
+    """(F, 2) upper-arm angle, elevation and plane, elbow flexion (degrees) and the
+    lower-arm-out flag of both arms in the trunk's frame (``up``, ``left``, ``front``)."""
+    n = len(up)
     ua_angle = np.zeros((n, 2))
     ua_elev = np.zeros((n, 2))
     ua_plane = np.zeros((n, 2))
@@ -238,7 +231,12 @@ def angles_from_points(
         sh_lat = _dot(p[f"shoulder_{tag}"] - centre, outward)
         u_len = np.linalg.norm(u, axis=-1)
         out[:, s] = (lat < 0.0) | (lat - sh_lat > OUT_TO_SIDE_SHARE * u_len)
-    # legs
+    return ua_angle, ua_elev, ua_plane, elbow, out
+
+
+def _leg_angles(p: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """(F, 2) knee flexion (degrees) and feet-on-the-floor flags of both legs."""
+    n = len(p["pelvis"])
     knee = np.zeros((n, 2))
     down = np.zeros((n, 2), dtype=bool)
     for s, tag in enumerate(("l", "r")):
@@ -247,6 +245,46 @@ def angles_from_points(
         knee[:, s] = _deg(np.arccos(np.clip(_dot(th, sn), -1.0, 1.0)))
         az = p[f"ankle_{tag}"][:, 2]
         down[:, s] = az <= az.min(initial=np.inf) + FOOT_UP
+    return knee, down
+
+
+def angles_from_points(
+    p: dict[str, np.ndarray],
+    *,
+    head_up: np.ndarray | None = None,
+    hands: np.ndarray | None = None,
+    wrist: np.ndarray | None = None,
+    neck_twist: np.ndarray | None = None,
+    twist_range: float = 80.0,
+    walking: np.ndarray | None = None,
+) -> BodyAngles:
+    """Body angles of F frames from joint positions (frames as in the module docstring).
+
+    Args:
+        p: the joints :data:`POINTS`, each (F, 3), metres, world frame z up.
+        head_up: (F, 3) the head's up direction (default: neck -> head).
+        hands: (F, 2, 3) the grip points, world metres (default: the wrists).
+        wrist: (F, 2, 3) wrist flexion, ulnar deviation and forearm pronation, degrees
+            (default zeros: positions alone do not show them).
+        neck_twist: (F,) the neck's axial rotation, degrees (default zeros).
+        twist_range: the forearm rotation's half range, degrees.
+        walking: (F,) frames of a walk (default none).
+
+    Returns:
+        The :class:`BodyAngles` of the F frames.
+    """
+    n = len(p["pelvis"])
+    fwd, trunk, sh, t_flex, t_side, t_incl, t_twist = _trunk_angles(p)
+    # the trunk's frame: up the trunk axis, left the shoulder line made orthogonal to it
+    up = trunk
+    left = _unit(sh - _dot(sh, up)[:, None] * up)
+    front = np.cross(left, up)
+    # neck
+    hu = _unit(head_up if head_up is not None else p["head"] - p["neck"])
+    n_flex = _deg(np.arctan2(_dot(hu, front), _dot(hu, up)))
+    n_side = _deg(np.arctan2(_dot(hu, left), _dot(hu, up)))
+    ua_angle, ua_elev, ua_plane, elbow, out = _arm_angles(p, up, left, front)
+    knee, down = _leg_angles(p)
     w = np.zeros((n, 2, 3)) if wrist is None else np.asarray(wrist, dtype=float)
     return BodyAngles(
         trunk_flexion=t_flex,
@@ -285,14 +323,20 @@ _BODY_POINTS = {
 
 
 def body_frames(model, jointmap, qpos: np.ndarray, bodies: list[str]):
-    """World positions (F, B, 3) and rotations (F, B, 3, 3) of the humanoid ``bodies``
-    (unprefixed names) in the poses ``qpos`` (F, nq): MuJoCo's forward kinematics compiled over
-    frames (:func:`mjwalk.timeline.geomposes.geom_poses`) on each body's first geom, the geom's
-    own offset undone (``mj_kinematics`` frame by frame for models it does not support)."""
-    import mujoco
+    """World poses of humanoid bodies: MuJoCo's forward kinematics compiled over frames
+    (:func:`mjwalk.timeline.geomposes.geom_poses`) on each body's first geom, the geom's own
+    offset undone, :math:`R_{body} = R_{geom} R_{local}^T`, :math:`p_{body} = p_{geom} -
+    R_{body} p_{local}` (``mj_kinematics`` frame by frame for models it does not support).
 
-    from mjwalk.timeline.geomposes import geom_poses, supported
+    Args:
+        model: the compiled model with the humanoid.
+        jointmap: the humanoid's joint map (its prefix names the bodies).
+        qpos: (F, nq) poses.
+        bodies: B unprefixed body names.
 
+    Returns:
+        ``(pos, rot)``: (F, B, 3) world positions, metres, and (F, B, 3, 3) rotations.
+    """
     prefix = jointmap.prefix
     bids = [mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, prefix + b) for b in bodies]
     qpos = np.asarray(qpos, dtype=float).reshape(-1, model.nq)
@@ -320,14 +364,33 @@ def body_frames(model, jointmap, qpos: np.ndarray, bodies: list[str]):
 
 
 def angles_from_timeline(timeline, walking: np.ndarray | None = None) -> BodyAngles:
-    """Body angles of every frame of a humanoid :class:`~mjwalk.timeline.timeline.Timeline`
-    (``walking``: (F,) frames of a walk). The wrists' flexion and deviation, the forearms'
-    pronation and the neck's rotation are the humanoid's own hinge angles."""
+    """Body angles of every frame of a humanoid :class:`~mjwalk.timeline.timeline.Timeline`.
+    The wrists' flexion and deviation, the forearms' pronation and the neck's rotation are the
+    humanoid's own hinge angles.
+
+    Args:
+        timeline: the humanoid's timeline.
+        walking: (F,) frames of a walk (default none).
+
+    Returns:
+        The :class:`BodyAngles` of its F frames.
+    """
     return angles_from_qpos(timeline.model, timeline.jointmap, timeline.qpos, walking)
 
 
 def angles_from_qpos(model, jointmap, qpos: np.ndarray, walking=None) -> BodyAngles:
-    """:func:`angles_from_timeline` for poses ``qpos`` (F, nq) of ``model``."""
+    """:func:`angles_from_timeline` for poses of a model: joint positions from the bodies'
+    origins, the head's up the neck body's z, the grip points the palms' centres.
+
+    Args:
+        model: the compiled model with the humanoid.
+        jointmap: the humanoid's joint map.
+        qpos: (F, nq) poses.
+        walking: (F,) frames of a walk (default none).
+
+    Returns:
+        The :class:`BodyAngles` of the F frames.
+    """
     bodies = list(_BODY_POINTS)
     pos, rot = body_frames(model, jointmap, qpos, bodies)
     p = {_BODY_POINTS[b]: pos[:, k] for k, b in enumerate(bodies)}
@@ -339,8 +402,6 @@ def angles_from_qpos(model, jointmap, qpos: np.ndarray, walking=None) -> BodyAng
     for s, tag in enumerate(("l", "r")):
         k = bodies.index(f"hand_{tag}")
         palm = jointmap.prefix + f"palm_{tag}"
-        import mujoco
-
         g = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, palm)
         off = model.geom_pos[g] if g >= 0 else np.zeros(3)
         hands[:, s] = pos[:, k] + rot[:, k] @ off

@@ -26,6 +26,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from mjwalk._io import atomic_path
+from mjwalk.ergonomics.angles import angles_from_timeline
 from mjwalk.errors import MjwalkError
 
 #: Humanoid frame -> BVH frame (rows: BVH X, Y, Z in humanoid coordinates).
@@ -82,7 +83,15 @@ def _skeleton(model, jointmap) -> list[_Joint]:
 
 
 def write_bvh(timeline, path: str | Path) -> Path:
-    """Write the humanoid's motion of a Timeline as BVH (see the module docstring); atomic."""
+    """Write the humanoid's motion of a Timeline as BVH (see the module docstring); atomic.
+
+    Args:
+        timeline: the humanoid's timeline.
+        path: the BVH file to write.
+
+    Returns:
+        ``path`` as a Path.
+    """
     model, jm = timeline.model, timeline.jointmap
     joints = _skeleton(model, jm)
     q = np.asarray(timeline.qpos, dtype=float)
@@ -126,8 +135,19 @@ def write_bvh(timeline, path: str | Path) -> Path:
 
 
 def bvh_hinge_angles(bvh, model, jointmap) -> dict[str, np.ndarray]:
-    """The humanoid's hinge angles (radians, (F,) each, by unprefixed joint name) in a BVH file
-    written by :func:`write_bvh` and read by :func:`mjwalk.mocap.bvh.parse_bvh`."""
+    """The humanoid's hinge angles in a BVH file written by :func:`write_bvh`.
+
+    Args:
+        bvh: the file as read by :func:`mjwalk.mocap.bvh.parse_bvh`.
+        model: the compiled model with the humanoid.
+        jointmap: the humanoid's joint map.
+
+    Returns:
+        Each hinge's (F,) angles, radians, by unprefixed joint name.
+
+    Raises:
+        MjwalkError: a joint's channel is not the one :func:`write_bvh` writes.
+    """
     joints = {jt.name: jt for jt in _skeleton(model, jointmap)}
     out: dict[str, np.ndarray] = {}
     col = 0
@@ -143,9 +163,16 @@ def bvh_hinge_angles(bvh, model, jointmap) -> dict[str, np.ndarray]:
 
 
 def write_angles_csv(timeline, path: str | Path, walking: np.ndarray | None = None) -> Path:
-    """Write the motion of a Timeline as a joint-angle CSV (see the module docstring); atomic."""
-    from mjwalk.ergonomics.angles import angles_from_timeline
+    """Write the motion of a Timeline as a joint-angle CSV (see the module docstring); atomic.
 
+    Args:
+        timeline: the humanoid's timeline.
+        path: the CSV file to write.
+        walking: (F,) frames of a walk (for the body angles, :func:`angles_from_timeline`).
+
+    Returns:
+        ``path`` as a Path.
+    """
     model, jm = timeline.model, timeline.jointmap
     q = np.asarray(timeline.qpos, dtype=float)
     hinges = [

@@ -28,7 +28,15 @@ ACCEPTABLE_DEG, LIMIT_DEG = 20.0, 60.0
 
 
 def max_holding_time(angle: float, curve=TRUNK_HOLD) -> float:
-    """The maximum acceptable holding time (s) at ``angle`` deg: inf below 20 deg, 0 above 60."""
+    """The maximum acceptable holding time at an angle, linear between the curve's end points.
+
+    Args:
+        angle: trunk inclination or upper-arm elevation, degrees.
+        curve: ((a0, t0), (a1, t1)): :data:`TRUNK_HOLD` or :data:`ARM_HOLD` (deg, s).
+
+    Returns:
+        Seconds: inf below ``a0`` (20 deg), 0 above ``a1`` (60 deg).
+    """
     (a0, t0), (a1, t1) = curve
     if angle < a0:
         return float("inf")
@@ -58,9 +66,19 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
 
 
 def holding(angle: np.ndarray, fps: float, part: str, curve) -> Holding:
-    """Evaluate (F,) angles (deg) sampled at ``fps``: every run of at least :data:`STATIC_S`
-    above 20 deg is held against the holding time at its peak angle; the worst run is
-    returned (``held`` 0 when none is static)."""
+    """The worst static holding of a body part: every run of at least :data:`STATIC_S` above
+    20 deg is held against the holding time at its peak angle; the worst run (highest ratio of
+    held to acceptable time) is returned.
+
+    Args:
+        angle: (F,) angles, degrees.
+        fps: their frame rate, frames/s.
+        part: the body part's name (kept in the result).
+        curve: the holding-time curve (:data:`TRUNK_HOLD` or :data:`ARM_HOLD`).
+
+    Returns:
+        The :class:`Holding` (``held`` 0 and acceptable when no run is static).
+    """
     worst = Holding(part, 0.0, 0.0, float("inf"), True)
     worst_ratio = 0.0
     for s, e in _runs(np.asarray(angle) > ACCEPTABLE_DEG):

@@ -86,12 +86,10 @@ def cycle_lifts(ang: BodyAngles, spans: Sequence[TaskSpan], cycle_time: float) -
                 sp.kind,
                 sp.hand,
                 sp.mass,
-                (geo[0][0], geo[1][0]),
-                (geo[0][1], geo[1][1]),
-                (geo[0][2], geo[1][2]),
-                f,
-                sp.coupling,
-                LIFT_DURATION,
+                niosh.LiftEnds(
+                    (geo[0][0], geo[1][0]), (geo[0][1], geo[1][1]), (geo[0][2], geo[1][2])
+                ),
+                niosh.LiftConditions(f, LIFT_DURATION, sp.coupling),
                 control_at_destination=sp.part == "put",
             )
         )
@@ -169,9 +167,31 @@ class NioshScore(Score):
     )
 
     def per_run(self, frames: None, ang: BodyAngles, ctx: ScoreContext) -> dict[str, Any]:
+        """The cycle's NIOSH lifts (:func:`cycle_lifts`).
+
+        Args:
+            frames: what :meth:`per_frame` returned.
+            ang: the body angles of the cycle's F frames.
+            ctx: the cycle's task context.
+
+        Returns:
+            ``lifts``: one :class:`~mjwalk.ergonomics.niosh.Lift` per lifting task.
+        """
         return {"lifts": cycle_lifts(ang, ctx.spans, ctx.cycle_time)}
 
     def stats(self, runs: Sequence[RunErgonomics]) -> dict[str, Any]:
+        """The NIOSH figures of a group of runs.
+
+        Args:
+            runs: the group's scored cycles.
+
+        Returns:
+            ``lifting_index`` (percentiles of the indices computed), ``lifts_per_cycle``
+            (lifts with an index per run), ``cycles_li_over_1`` (the share of the cycles with
+            lifts where an index is above 1, of those where that is known) and
+            ``lifting_index_not_computed`` (the lifts without an index: counts, share of
+            cycles, frequencies, limits crossed).
+        """
         lis = [lf.li for r in runs for lf in r.lifts if lf.li is not None]
         with_lifts = [r for r in runs if r.lifts]
         return {
@@ -182,7 +202,14 @@ class NioshScore(Score):
         }
 
     def notes(self, stats: dict[str, Any]) -> list[str]:
-        """The paragraph on the lifts without a lifting index (none when every lift has one)."""
+        """The paragraph on the lifts without a lifting index.
+
+        Args:
+            stats: all operators' figures (with this method's :meth:`stats`).
+
+        Returns:
+            Markdown lines; none when every lift has an index.
+        """
         w = stats["lifting_index_not_computed"]
         if not w["lifts"]:
             return []

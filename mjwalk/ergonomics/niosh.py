@@ -89,11 +89,62 @@ class Multipliers:
     cm: float
 
     def product(self) -> float:
+        """The product of the six multipliers.
+
+        Returns:
+            :math:`HM \\cdot VM \\cdot DM \\cdot AM \\cdot FM \\cdot CM`, dimensionless.
+        """
         return self.hm * self.vm * self.dm * self.am * self.fm * self.cm
 
 
+@dataclass(frozen=True)
+class LiftConditions:
+    """How a lift is done, the same at both of its ends.
+
+    Attributes:
+        f: lifting frequency, lifts/min (below 0.2 taken as 0.2, Table 5).
+        duration: the duration category, one of :data:`DURATIONS`.
+        coupling: the hand-to-object coupling, one of :data:`COUPLINGS`.
+        units: "metric" (cm, kg) or "us" (in, lb), a key of :data:`UNITS`.
+    """
+
+    f: float
+    duration: str = "long"
+    coupling: str = "fair"
+    units: str = "metric"
+
+
+@dataclass(frozen=True)
+class LiftEnds:
+    """Where the hands are at the (origin, destination) of a lift.
+
+    Attributes:
+        h: horizontal distance of the hands from the ankles' mid-point, cm (or in).
+        v: height of the hands above the floor, cm (or in).
+        a: asymmetry angle, degrees.
+    """
+
+    h: tuple[float, float]
+    v: tuple[float, float]
+    a: tuple[float, float]
+
+
 def frequency_multiplier(f: float, duration: str, v_origin: float, units: str = "metric") -> float:
-    """FM (Table 5) for ``f`` lifts/min, the duration category and V at the origin (p. 15)."""
+    """FM (Table 5), interpolated linearly between its rows (F below 0.2 taken as 0.2; 0
+    beyond 15 lifts/min).
+
+    Args:
+        f: lifting frequency, lifts/min.
+        duration: the duration category, one of :data:`DURATIONS`.
+        v_origin: V at the origin, cm (or in), which selects the column.
+        units: "metric" or "us".
+
+    Returns:
+        FM, dimensionless.
+
+    Raises:
+        InputError: an unknown duration, or a frequency not finite and >= 0.
+    """
     if duration not in DURATIONS:
         raise InputError(f"NIOSH: duration must be one of {DURATIONS}, got {duration!r}")
     if not np.isfinite(f) or f < 0:
@@ -105,8 +156,16 @@ def frequency_multiplier(f: float, duration: str, v_origin: float, units: str = 
 
 
 def fm_zero_from(duration: str, v_origin: float, units: str = "metric") -> float | None:
-    """The lowest Table 5 frequency (lifts/min) at which FM is 0.00 for the duration category
-    and V at the origin; None where the column is non-zero up to the table's 15 lifts/min."""
+    """The lowest Table 5 frequency at which FM is 0.00 for a duration category and V.
+
+    Args:
+        duration: the duration category, one of :data:`DURATIONS`.
+        v_origin: V at the origin, cm (or in).
+        units: "metric" or "us".
+
+    Returns:
+        Lifts/min; None where the column is non-zero up to the table's 15 lifts/min.
+    """
     col = 2 * DURATIONS.index(duration) + int(v_origin >= UNITS[units]["vsplit"])
     zero = np.flatnonzero(FM_TABLE[:, col] == 0.0)
     return float(FM_F[zero[0]]) if len(zero) else None
@@ -121,13 +180,26 @@ def _column(duration: str, v_origin: float, units: str) -> str:
 
 
 def zero_reasons(
-    h: float, v: float, d: float, a: float, f: float, duration: str, v_origin: float,
-    units: str = "metric", end: str = "origin",
+    h: float, v: float, d: float, a: float, cond: LiftConditions, v_origin: float,
+    end: str = "origin",
 ) -> list[tuple[str, str, str]]:  # fmt: skip
     """Why :func:`multipliers` gives a multiplier of 0 (RWL 0, no lifting index) at one end of
-    a lift: (variable, value, limit) triples ("lifting frequency", "16.0 lifts/min", what the
-    manual allows for it, with its source); empty where every multiplier is above 0. ``end``
-    names the end ("origin" or "destination") for H, V and A."""
+    a lift.
+
+    Args:
+        h: horizontal distance at this end, cm (or in, per ``cond.units``).
+        v: height of the hands at this end, cm (or in).
+        d: vertical travel of the lift, cm (or in).
+        a: asymmetry angle at this end, degrees.
+        cond: frequency, duration category and units of the lift (its coupling is not read).
+        v_origin: V at the origin, which selects the Table 5 column.
+        end: names the end ("origin" or "destination") for H, V and A.
+
+    Returns:
+        (variable, value, limit) triples ("lifting frequency", "16.0 lifts/min", what the
+        manual allows for it, with its source); empty where every multiplier is above 0.
+    """
+    f, duration, units = cond.f, cond.duration, cond.units
     c = UNITS[units]
     u = "cm" if units == "metric" else "in"
     out = []
@@ -163,11 +235,29 @@ def zero_reasons(
 
 
 def multipliers(
-    h: float, v: float, d: float, a: float, f: float, duration: str = "long",
-    coupling: str = "fair", v_origin: float | None = None, units: str = "metric",
-) -> Multipliers:  # fmt: skip
-    """The multipliers at one end of a lift: H, V (cm or in), D the vertical travel, A the
-    asymmetry angle (deg), F lifts/min; ``v_origin`` the origin's V for FM (default ``v``)."""
+    h: float, v: float, d: float, a: float, cond: LiftConditions, v_origin: float | None = None
+) -> Multipliers:
+    """The multipliers at one end of a lift (Waters et al. 1993; the Applications Manual, p. 7).
+
+    :math:`HM = H_0 / \\max(H, H_0)`, :math:`VM = 1 - k_V |V - V_0|`,
+    :math:`DM = 0.82 + k_D / \\max(D, D_{min})`, :math:`AM = 1 - 0.0032 A`, each 0 beyond its
+    limit (:data:`UNITS`); FM from Table 5 and CM from Table 7.
+
+    Args:
+        h: horizontal distance of the hands from the ankles' mid-point, cm (or in).
+        v: height of the hands above the floor, cm (or in).
+        d: vertical travel of the lift, cm (or in).
+        a: asymmetry angle, degrees.
+        cond: frequency, duration category, coupling and units of the lift.
+        v_origin: the origin's V for FM (default ``v``).
+
+    Returns:
+        The six multipliers.
+
+    Raises:
+        InputError: unknown units, coupling or duration, or H, V, D, A not finite and >= 0.
+    """
+    f, duration, coupling, units = cond.f, cond.duration, cond.coupling, cond.units
     if units not in UNITS:
         raise InputError(f"NIOSH: units must be 'metric' or 'us', got {units!r}")
     if coupling not in CM_TABLE:
@@ -186,8 +276,18 @@ def multipliers(
 
 
 def rwl(m: Multipliers, units: str = "metric", round_multipliers: bool = False) -> float:
-    """The recommended weight limit (kg or lb). ``round_multipliers``: each multiplier rounded to
-    two decimals first, as the manual's worksheets do (p. 29), to reproduce their figures."""
+    """The recommended weight limit, :math:`RWL = LC \\cdot HM \\cdot VM \\cdot DM \\cdot AM
+    \\cdot FM \\cdot CM`.
+
+    Args:
+        m: the multipliers.
+        units: "metric" (LC 23 kg) or "us" (LC 51 lb).
+        round_multipliers: round each multiplier to two decimals first, as the manual's
+            worksheets do (p. 29), to reproduce their figures.
+
+    Returns:
+        The RWL, kg (or lb).
+    """
     vals = [m.hm, m.vm, m.dm, m.am, m.fm, m.cm]
     if round_multipliers:
         vals = [round(x + 1e-12, 2) for x in vals]
@@ -238,28 +338,38 @@ class Lift:
 
 
 def lift(
-    task: int, kind: str, hand: str, mass: float, h: tuple[float, float],
-    v: tuple[float, float], a: tuple[float, float], f: float, coupling: str,
-    duration: str = "long", *, control_at_destination: bool = False,
+    task: int, kind: str, hand: str, mass: float, ends: LiftEnds, cond: LiftConditions, *,
+    control_at_destination: bool = False,
 ) -> Lift:  # fmt: skip
-    """Score one lift in metric units (cm, deg, kg); ``kind`` is a label. The RWL is taken at the
-    origin, and with ``control_at_destination`` (a part put down onto its site) at both ends
-    (the lower)."""
+    """Score one lift. The RWL is taken at the origin, and with ``control_at_destination`` (a
+    part put down onto its site) at both ends (the lower); :math:`LI = mass / RWL`.
+
+    Args:
+        task: index of the cycle task.
+        kind: the task's kind (a label).
+        hand: "left", "right" or "both"; a one-handed lift is flagged.
+        mass: the part's mass, kg (or lb with ``cond.units`` "us").
+        ends: the hands' H, V (cm) and A (deg) at the origin and the destination.
+        cond: frequency, duration category, coupling and units of the lift.
+        control_at_destination: the RWL is also taken at the destination.
+
+    Returns:
+        The :class:`Lift`, with ``li`` None and the reason where the RWL is 0.
+    """
+    h, v, a = ends.h, ends.v, ends.a
     d = abs(v[1] - v[0])
-    ends = (0, 1) if control_at_destination else (0,)
-    limits = [
-        rwl(multipliers(h[e], v[e], d, a[e], f, duration, coupling, v_origin=v[0])) for e in ends
-    ]
+    pts = (0, 1) if control_at_destination else (0,)
+    limits = [rwl(multipliers(h[e], v[e], d, a[e], cond, v_origin=v[0]), cond.units) for e in pts]
     r = min(limits)
     why: list[tuple[str, str, str]] = []
     if r <= 0:
-        for e in ends:
-            for w in zero_reasons(h[e], v[e], d, a[e], f, duration, v[0],
+        for e in pts:
+            for w in zero_reasons(h[e], v[e], d, a[e], cond, v[0],
                                   end=("origin", "destination")[e]):  # fmt: skip
                 if w not in why:
                     why.append(w)
     reason = "; ".join(f"{var} {val} is {lim}" for var, val, lim in why)
     limit = "; ".join(f"{var} {lim}" for var, _, lim in why)
     li = mass / r if r > 0 else None
-    return Lift(task, kind, hand, mass, h, v, a, d, f, coupling, r, li, hand != "both", reason,
-                limit)  # fmt: skip
+    return Lift(task, kind, hand, mass, h, v, a, d, cond.f, cond.coupling, r, li, hand != "both",
+                reason, limit)  # fmt: skip

@@ -46,20 +46,46 @@ LOAD_KG = (10.0, 20.0)
 
 
 def action_category(back, arms, legs, load) -> np.ndarray:
-    """OWAS action category 1-4 of posture codes (scalars or arrays): 1 no action, 2 in the
-    near future, 3 as soon as possible, 4 immediately."""
+    """OWAS action category 1-4 of posture codes: 1 no action, 2 in the near future, 3 as soon
+    as possible, 4 immediately (:data:`TABLE`).
+
+    Args:
+        back: back code 1-4 (scalar or array).
+        arms: arms code 1-3.
+        legs: legs code 1-7.
+        load: load code 1-3.
+
+    Returns:
+        The action categories, shaped like the codes.
+    """
     return TABLE[
         np.asarray(back) - 1, np.asarray(arms) - 1, np.asarray(legs) - 1, np.asarray(load) - 1
     ]
 
 
 def load_code(load_kg: float) -> int:
+    """OWAS load code of a load (:data:`LOAD_KG`).
+
+    Args:
+        load_kg: the load, kg.
+
+    Returns:
+        1 below 10 kg, 2 for 10-20 kg, 3 above 20 kg.
+    """
     lo, hi = LOAD_KG
     return 1 if load_kg < lo else 2 if load_kg <= hi else 3
 
 
 def codes(ang: BodyAngles, load_kg: float = 0.0) -> np.ndarray:
-    """(F, 4) OWAS codes (back, arms, legs, load) of every frame."""
+    """OWAS posture codes of every frame.
+
+    Args:
+        ang: the body angles of F frames.
+        load_kg: the load handled, kg (the same in every frame).
+
+    Returns:
+        (F, 4) codes (back, arms, legs, load).
+    """
     bent = np.abs(ang.trunk_flexion) >= BACK_DEG
     twisted = (np.abs(ang.trunk_twist) >= BACK_DEG) | (np.abs(ang.trunk_side_bend) >= BACK_DEG)
     back = np.select([bent & twisted, twisted, bent], [4, 3, 2], 1)
@@ -79,6 +105,14 @@ def codes(ang: BodyAngles, load_kg: float = 0.0) -> np.ndarray:
 
 
 def owas(ang: BodyAngles, load_kg: float = 0.0) -> np.ndarray:
-    """(F,) OWAS action categories of every frame."""
+    """OWAS action categories of every frame (:func:`codes`, :func:`action_category`).
+
+    Args:
+        ang: the body angles of F frames.
+        load_kg: the load handled, kg.
+
+    Returns:
+        (F,) action categories 1-4.
+    """
     c = codes(ang, load_kg)
     return action_category(c[:, 0], c[:, 1], c[:, 2], c[:, 3])

@@ -88,6 +88,16 @@ class RulaScore(Score):
     )
 
     def per_frame(self, ang: BodyAngles, ctx: ScoreContext) -> ArmFrames:
+        """Each arm's RULA grand score per frame, with the load in that hand (force score) and
+        its muscle use in both groups.
+
+        Args:
+            ang: the body angles of the cycle's F frames.
+            ctx: the cycle's loads (per hand), couplings and muscle use.
+
+        Returns:
+            :class:`ArmFrames`: (F, 2) scores, each side's part scores, (F,) the higher arm's.
+        """
         out = np.zeros((ang.n_frames, 2), dtype=int)
         parts = []
         for s in (0, 1):
@@ -98,6 +108,18 @@ class RulaScore(Score):
         return ArmFrames(out, parts, out.max(axis=1))
 
     def per_task(self, frames: ArmFrames, span: TaskSpan, ctx: ScoreContext) -> dict[str, Any]:
+        """The task's RULA peak: its first frame of the highest score and the higher arm there.
+
+        Args:
+            frames: what :meth:`per_frame` returned.
+            span: the task and its frames ``[span.start, span.end)``.
+            ctx: the cycle's task context (its frame rate).
+
+        Returns:
+            ``rula`` (1-7), ``rula_time`` (s from the cycle's start), ``rula_driver`` (the part
+            scoring highest against its largest score), ``side`` ("left"/"right") and
+            ``upper_arm`` (the highest upper-arm score of either arm over the task).
+        """
         k, side = _peak(frames, span)
         sl = slice(span.start, span.end)
         upper = max(frames.parts[0].upper_arm[sl].max(), frames.parts[1].upper_arm[sl].max())
@@ -110,9 +132,28 @@ class RulaScore(Score):
         }
 
     def per_run(self, frames: ArmFrames, ang: BodyAngles, ctx: ScoreContext) -> dict[str, Any]:
+        """The cycle's per-frame RULA scores.
+
+        Args:
+            frames: what :meth:`per_frame` returned.
+            ang: the body angles of the cycle's F frames.
+            ctx: the cycle's task context.
+
+        Returns:
+            ``rula``: (F,) int8 scores (the higher arm).
+        """
         return {"rula": frames.frame.astype(np.int8)}
 
     def stats(self, runs: Sequence[RunErgonomics]) -> dict[str, Any]:
+        """The RULA figures of a group of runs.
+
+        Args:
+            runs: the group's scored cycles.
+
+        Returns:
+            ``rula_peak`` (percentiles of the runs' peaks) and ``rula_action_level`` (the share of
+            runs at each action level 1-4 or above).
+        """
         peaks = [r.rula_peak for r in runs]
         return {
             "rula_peak": percentiles(peaks),
@@ -138,6 +179,16 @@ class RebaScore(Score):
     )
 
     def per_frame(self, ang: BodyAngles, ctx: ScoreContext) -> ArmFrames:
+        """Each side's REBA score per frame, with the load in that hand, its grip's coupling and
+        its activity (muscle use).
+
+        Args:
+            ang: the body angles of the cycle's F frames.
+            ctx: the cycle's loads (per hand), couplings and muscle use.
+
+        Returns:
+            :class:`ArmFrames`: (F, 2) scores, each side's part scores, (F,) the higher side's.
+        """
         out = np.zeros((ang.n_frames, 2), dtype=int)
         parts = []
         for s in (0, 1):
@@ -148,6 +199,16 @@ class RebaScore(Score):
         return ArmFrames(out, parts, out.max(axis=1))
 
     def per_task(self, frames: ArmFrames, span: TaskSpan, ctx: ScoreContext) -> dict[str, Any]:
+        """The task's REBA peak and the part that drives it.
+
+        Args:
+            frames: what :meth:`per_frame` returned.
+            span: the task and its frames ``[span.start, span.end)``.
+            ctx: the cycle's task context (its frame rate).
+
+        Returns:
+            ``reba`` (1-15) and ``reba_driver``.
+        """
         k, side = _peak(frames, span)
         return {
             "reba": int(frames.frame[k]),
@@ -155,9 +216,28 @@ class RebaScore(Score):
         }
 
     def per_run(self, frames: ArmFrames, ang: BodyAngles, ctx: ScoreContext) -> dict[str, Any]:
+        """The cycle's per-frame REBA scores.
+
+        Args:
+            frames: what :meth:`per_frame` returned.
+            ang: the body angles of the cycle's F frames.
+            ctx: the cycle's task context.
+
+        Returns:
+            ``reba``: (F,) int8 scores (the higher side).
+        """
         return {"reba": frames.frame.astype(np.int8)}
 
     def stats(self, runs: Sequence[RunErgonomics]) -> dict[str, Any]:
+        """The REBA figures of a group of runs.
+
+        Args:
+            runs: the group's scored cycles.
+
+        Returns:
+            ``reba_peak`` (percentiles of the runs' peaks) and ``reba_risk_level`` (the share of
+            runs at each risk level 1-4 or above).
+        """
         peaks = [r.reba_peak for r in runs]
         return {
             "reba_peak": percentiles(peaks),
@@ -174,14 +254,41 @@ class OwasScore(Score):
     columns = (Column("owas_peak", lambda run, t: t.owas),)
 
     def per_frame(self, ang: BodyAngles, ctx: ScoreContext) -> np.ndarray:
+        """The OWAS action category per frame, the load code from the mass in both hands.
+
+        Args:
+            ang: the body angles of the cycle's F frames.
+            ctx: the cycle's loads (per hand), couplings and muscle use.
+
+        Returns:
+            (F,) action categories 1-4.
+        """
         codes = owas.codes(ang)
         codes[:, 3] = [owas.load_code(x) for x in ctx.load.sum(axis=1)]
         return owas.action_category(*codes.T)
 
     def per_task(self, frames: np.ndarray, span: TaskSpan, ctx: ScoreContext) -> dict[str, Any]:
+        """The task's highest OWAS action category.
+
+        Args:
+            frames: what :meth:`per_frame` returned.
+            span: the task and its frames ``[span.start, span.end)``.
+            ctx: the cycle's task context (its frame rate).
+
+        Returns:
+            ``owas`` (1-4).
+        """
         return {"owas": int(frames[span.start : span.end].max())}
 
     def stats(self, runs: Sequence[RunErgonomics]) -> dict[str, Any]:
+        """The OWAS figures of a group of runs.
+
+        Args:
+            runs: the group's scored cycles.
+
+        Returns:
+            ``owas_peak``: percentiles of the runs' highest action categories.
+        """
         return {"owas_peak": percentiles([r.owas_peak for r in runs])}
 
 
@@ -194,6 +301,18 @@ class Iso11226Score(Score):
     table = (Column("ISO 11226 not acc.", lambda s: fmt_share(s["iso11226_not_acceptable"])),)
 
     def per_run(self, frames: None, ang: BodyAngles, ctx: ScoreContext) -> dict[str, Any]:
+        """The worst static holdings of the cycle: trunk inclination and each upper arm's
+        elevation.
+
+        Args:
+            frames: what :meth:`per_frame` returned.
+            ang: the body angles of the cycle's F frames.
+            ctx: the cycle's task context.
+
+        Returns:
+            ``holdings``: the trunk's, the left and the right upper arm's
+            :class:`~mjwalk.ergonomics.iso11226.Holding`.
+        """
         fps = ctx.fps
         holdings = [iso11226.holding(ang.trunk_inclination, fps, "trunk", iso11226.TRUNK_HOLD)]
         for s, tag in enumerate(ARMS):
@@ -205,5 +324,13 @@ class Iso11226Score(Score):
         return {"holdings": holdings}
 
     def stats(self, runs: Sequence[RunErgonomics]) -> dict[str, Any]:
+        """The ISO 11226 figures of a group of runs.
+
+        Args:
+            runs: the group's scored cycles.
+
+        Returns:
+            ``iso11226_not_acceptable``: the share of runs with a holding not acceptable.
+        """
         bad = sum(not all(h.acceptable for h in r.holdings) for r in runs)
         return {"iso11226_not_acceptable": share(bad, len(runs))}

@@ -83,38 +83,77 @@ class RebaParts:
 
 
 def load_score(load_kg, shock: bool = False):
-    """REBA's load/force score 0-3 (kg); scalars or per-frame arrays (an int for scalars)."""
+    """REBA's load/force score (:data:`LOAD_KG`): 0 below 5 kg, 1 for 5-10 kg, 2 above 10 kg,
+    +1 with shock.
+
+    Args:
+        load_kg: the load, kg (scalar or per frame).
+        shock: shock or rapid build-up of force.
+
+    Returns:
+        An int for scalars, else an array of scores.
+    """
     lo, hi = LOAD_KG
     load = np.asarray(load_kg, dtype=float)
     score = np.select([load > hi, load >= lo], [2, 1], 0) + int(shock)
     return int(score) if score.ndim == 0 else score
 
 
-def reba_score(trunk, neck, legs, upper_arm, lower_arm, wrist, load=0, coupling=0, activity=0):
-    """The REBA score 1-15 from the part scores (scalars or arrays; the published tables):
-    Table C of (Table A + load, Table B + coupling), plus the activity score."""
+def reba_score(parts: RebaParts, load=0, coupling=0, activity=0) -> np.ndarray:
+    """The REBA score 1-15 from the part scores (the published tables, vectorised).
+
+    Score A is Table A of the trunk, neck and legs scores, B Table B of the upper arm, lower
+    arm and wrist scores; the REBA score is Table C of :math:`A + load` and
+    :math:`B + coupling` (each clipped to 1-12) plus the activity score. Part scores beyond a
+    table's range are clipped into it.
+
+    Args:
+        parts: the part scores (ints, scalars or per-frame arrays of one shape).
+        load: load/force score 0-3 (:func:`load_score`).
+        coupling: coupling score 0-3 (:data:`COUPLING`).
+        activity: activity score 0-3.
+
+    Returns:
+        The REBA scores, shaped like the part scores.
+    """
     a = TABLE_A[
-        np.clip(np.asarray(trunk), 1, 5) - 1,
-        np.clip(np.asarray(neck), 1, 3) - 1,
-        np.clip(np.asarray(legs), 1, 4) - 1,
+        np.clip(np.asarray(parts.trunk), 1, 5) - 1,
+        np.clip(np.asarray(parts.neck), 1, 3) - 1,
+        np.clip(np.asarray(parts.legs), 1, 4) - 1,
     ]
     b = TABLE_B[
-        np.clip(np.asarray(upper_arm), 1, 6) - 1,
-        np.clip(np.asarray(lower_arm), 1, 2) - 1,
-        np.clip(np.asarray(wrist), 1, 3) - 1,
+        np.clip(np.asarray(parts.upper_arm), 1, 6) - 1,
+        np.clip(np.asarray(parts.lower_arm), 1, 2) - 1,
+        np.clip(np.asarray(parts.wrist), 1, 3) - 1,
     ]
     c = TABLE_C[np.clip(a + load, 1, 12) - 1, np.clip(b + coupling, 1, 12) - 1]
     return c + activity
 
 
 def risk_level(score) -> np.ndarray:
-    """REBA action level 0-4 (1 negligible; 2-3 low; 4-7 medium; 8-10 high; 11+ very high)."""
+    """REBA action level 0-4 (1 negligible; 2-3 low; 4-7 medium; 8-10 high; 11+ very high).
+
+    Args:
+        score: REBA scores (scalar or array).
+
+    Returns:
+        The levels 0-4, shaped like ``score``.
+    """
     s = np.asarray(score)
     return np.select([s <= 1, s <= 3, s <= 7, s <= 10], [0, 1, 2, 3], 4)
 
 
 def part_scores(ang: BodyAngles, side: int) -> RebaParts:
-    """REBA part scores of every frame for the arm ``side`` (0 left, 1 right)."""
+    """REBA part scores of every frame for one arm (thresholds in
+    :mod:`mjwalk.ergonomics.angles`).
+
+    Args:
+        ang: the body angles of F frames.
+        side: the arm, 0 left, 1 right.
+
+    Returns:
+        The :class:`RebaParts`, each (F,).
+    """
     tf = ang.trunk_flexion
     # upright 1; 0-20 deg flexion or extension 2; 20-60 flexion or > 20 extension 3; > 60 4
     trunk = np.select([np.abs(tf) <= NEUTRAL_DEG, np.abs(tf) <= 20, tf <= 60], [1, 2, 3], 4)
@@ -149,15 +188,34 @@ def reba(
     ang: BodyAngles, side: int, load_kg: float = 0.0, coupling: str = "good",
     static: bool = False, repeated: bool = False,
 ) -> np.ndarray:  # fmt: skip
-    """(F,) REBA scores for the arm ``side`` with the load in that hand (kg), the coupling of
-    its grip and the activity (+1 static > 1 min, +1 repeated > 4 times a minute)."""
+    """REBA scores of one arm with the load in that hand, the coupling of its grip and the
+    activity (+1 static > 1 min, +1 repeated > 4 times a minute).
+
+    Args:
+        ang: the body angles of F frames.
+        side: the arm, 0 left, 1 right.
+        load_kg: the load in that hand, kg.
+        coupling: the grip's coupling, a key of :data:`COUPLING`.
+        static: the posture is held longer than a minute.
+        repeated: the posture is repeated more than 4 times a minute.
+
+    Returns:
+        (F,) REBA scores.
+    """
     activity = int(static) + int(repeated)
     return parts_score(part_scores(ang, side), load_score(load_kg), COUPLING[coupling], activity)
 
 
 def parts_score(p: RebaParts, load=0, coupling=0, activity=0) -> np.ndarray:
-    """(F,) REBA scores of one side's part scores with the load, coupling and activity scores
-    (scalars or per frame)."""
-    return reba_score(
-        p.trunk, p.neck, p.legs, p.upper_arm, p.lower_arm, p.wrist, load, coupling, activity
-    )
+    """REBA scores of one side's part scores (:func:`reba_score`).
+
+    Args:
+        p: the part scores.
+        load: load/force score (scalar or per frame).
+        coupling: coupling score (scalar or per frame).
+        activity: activity score (scalar or per frame).
+
+    Returns:
+        (F,) REBA scores.
+    """
+    return reba_score(p, load, coupling, activity)

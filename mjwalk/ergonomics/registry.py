@@ -71,7 +71,15 @@ def register(score: Score) -> Score:
 
 
 def in_order(names: Iterable[str], established: tuple[str, ...]) -> list[str]:
-    """``names`` with those of ``established`` first, in its order, then the others in theirs."""
+    """Names with those of an established order first, in its order, then the others in theirs.
+
+    Args:
+        names: the names.
+        established: the established order.
+
+    Returns:
+        The names, reordered.
+    """
     names = list(names)
     rank = {n: i for i, n in enumerate(established)}
     first = sorted((n for n in names if n in rank), key=rank.__getitem__)
@@ -80,6 +88,10 @@ def in_order(names: Iterable[str], established: tuple[str, ...]) -> list[str]:
 
 def csv_columns() -> list[Column]:
     """The registered methods' ergonomics.csv columns, in the file's order (after
-    :data:`TASK_COLUMNS`)."""
+    :data:`TASK_COLUMNS`).
+
+    Returns:
+        The :class:`~mjwalk.ergonomics.score.Column` s, :data:`CSV_ORDER` first.
+    """
     cols = {c.name: c for s in SCORES.values() for c in s.columns}
     return [cols[n] for n in in_order(cols, CSV_ORDER)]

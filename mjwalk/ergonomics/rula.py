@@ -87,8 +87,16 @@ class RulaParts:
 
 
 def force_score(load_kg, static_or_repeated, shock: bool = False):
-    """RULA's force/load score 0-3 of a load held in the hands (kg); scalars or per-frame
-    arrays (an int for scalars)."""
+    """RULA's force/load score 0-3 of a load held in the hands.
+
+    Args:
+        load_kg: the load, kg (scalar or per frame).
+        static_or_repeated: the load is held static or repeated (scalar or per frame).
+        shock: shock or rapid build-up of force (3 throughout).
+
+    Returns:
+        An int for scalars, else an array of scores shaped like the inputs.
+    """
     lo, hi = FORCE_KG
     load = np.asarray(load_kg, dtype=float)
     held = np.asarray(static_or_repeated, dtype=bool)
@@ -99,29 +107,33 @@ def force_score(load_kg, static_or_repeated, shock: bool = False):
     return int(score) if score.ndim == 0 else score
 
 
-def grand_score(
-    upper_arm,
-    lower_arm,
-    wrist,
-    wrist_twist,
-    neck,
-    trunk,
-    legs,
-    muscle_a=0,
-    force_a=0,
-    muscle_b=0,
-    force_b=0,
-) -> np.ndarray:
-    """RULA's grand score 1-7 from the part scores (scalars or arrays; the published tables)."""
-    ua = np.clip(np.asarray(upper_arm), 1, 6) - 1
-    la = np.clip(np.asarray(lower_arm), 1, 3) - 1
-    wr = np.clip(np.asarray(wrist), 1, 4) - 1
-    tw = np.clip(np.asarray(wrist_twist), 1, 2) - 1
+def grand_score(parts: RulaParts, muscle_a=0, force_a=0, muscle_b=0, force_b=0) -> np.ndarray:
+    """RULA's grand score 1-7 from the part scores (the published tables, vectorised).
+
+    Score A is Table A of the arm and wrist scores, B Table B of the neck, trunk and legs
+    scores; the grand score is Table C of :math:`C = A + m_A + f_A` (clipped to 1-8) and
+    :math:`D = B + m_B + f_B` (clipped to 1-7). Part scores beyond a table's range are
+    clipped into it.
+
+    Args:
+        parts: the part scores (ints, scalars or per-frame arrays of one shape).
+        muscle_a: muscle-use score (0/1) of group A, the arm and wrist.
+        force_a: force/load score (0-3) of group A.
+        muscle_b: muscle-use score (0/1) of group B, the neck, trunk and legs.
+        force_b: force/load score (0-3) of group B.
+
+    Returns:
+        The grand scores 1-7, shaped like the part scores.
+    """
+    ua = np.clip(np.asarray(parts.upper_arm), 1, 6) - 1
+    la = np.clip(np.asarray(parts.lower_arm), 1, 3) - 1
+    wr = np.clip(np.asarray(parts.wrist), 1, 4) - 1
+    tw = np.clip(np.asarray(parts.wrist_twist), 1, 2) - 1
     a = TABLE_A[ua, la, wr, tw]
     b = TABLE_B[
-        np.clip(np.asarray(neck), 1, 6) - 1,
-        np.clip(np.asarray(trunk), 1, 6) - 1,
-        np.clip(np.asarray(legs), 1, 2) - 1,
+        np.clip(np.asarray(parts.neck), 1, 6) - 1,
+        np.clip(np.asarray(parts.trunk), 1, 6) - 1,
+        np.clip(np.asarray(parts.legs), 1, 2) - 1,
     ]
     c = np.clip(a + muscle_a + force_a, 1, 8) - 1
     d = np.clip(b + muscle_b + force_b, 1, 7) - 1
@@ -130,13 +142,29 @@ def grand_score(
 
 def action_level(score) -> np.ndarray:
     """RULA action level 1-4 of grand scores (1-2: acceptable; 3-4: investigate further;
-    5-6: investigate and change soon; 7: investigate and change immediately)."""
+    5-6: investigate and change soon; 7: investigate and change immediately).
+
+    Args:
+        score: grand scores 1-7 (scalar or array).
+
+    Returns:
+        The action levels, shaped like ``score``.
+    """
     s = np.asarray(score)
     return np.select([s <= 2, s <= 4, s <= 6], [1, 2, 3], 4)
 
 
 def part_scores(ang: BodyAngles, side: int) -> RulaParts:
-    """RULA part scores of every frame of ``ang`` for the arm ``side`` (0 left, 1 right)."""
+    """RULA part scores of every frame for one arm (thresholds in
+    :mod:`mjwalk.ergonomics.angles`).
+
+    Args:
+        ang: the body angles of F frames.
+        side: the arm, 0 left, 1 right.
+
+    Returns:
+        The :class:`RulaParts`, each (F,).
+    """
     ua_ang = ang.upper_arm_angle[:, side]
     ua = np.select([ua_ang > 90, ua_ang > 45, (ua_ang > 20) | (ua_ang < -20)], [4, 3, 2], 1)
     ua = ua + ang.shoulder_raised[:, side] + ang.arm_abducted[:, side]
@@ -168,27 +196,34 @@ def rula(
     ang: BodyAngles, side: int, load_kg: float = 0.0, static: bool = False,
     repeated: bool = False,
 ) -> np.ndarray:  # fmt: skip
-    """(F,) RULA grand scores of the arm ``side`` with the load in that hand (kg); muscle use
-    +1 when the posture is static (held > 1 min) or repeated (4 times a minute or more), in
-    both groups as the paper's worksheet does."""
+    """RULA grand scores of one arm with the load in that hand. Muscle use is +1 when the
+    posture is static (held > 1 min) or repeated (4 times a minute or more), in both groups as
+    the paper's worksheet does.
+
+    Args:
+        ang: the body angles of F frames.
+        side: the arm, 0 left, 1 right.
+        load_kg: the load in that hand, kg.
+        static: the posture is held longer than a minute.
+        repeated: the posture is repeated 4 times a minute or more.
+
+    Returns:
+        (F,) grand scores 1-7.
+    """
     muscle = int(static or repeated)
     return parts_score(part_scores(ang, side), muscle, force_score(load_kg, muscle))
 
 
 def parts_score(p: RulaParts, muscle, force) -> np.ndarray:
-    """(F,) RULA grand scores of one arm's part scores with its muscle-use (0/1) and force
-    scores (scalars or per frame), the same in the arm-and-wrist and the neck-trunk-legs
-    groups, as the worksheet applies them."""
-    return grand_score(
-        p.upper_arm,
-        p.lower_arm,
-        p.wrist,
-        p.wrist_twist,
-        p.neck,
-        p.trunk,
-        p.legs,
-        muscle,
-        force,
-        muscle,
-        force,
-    )
+    """RULA grand scores of one arm's part scores with the same muscle-use and force scores in
+    the arm-and-wrist and the neck-trunk-legs groups, as the worksheet applies them.
+
+    Args:
+        p: the part scores.
+        muscle: muscle-use score 0/1 (scalar or per frame).
+        force: force/load score 0-3 (scalar or per frame).
+
+    Returns:
+        (F,) grand scores 1-7.
+    """
+    return grand_score(p, muscle, force, muscle, force)

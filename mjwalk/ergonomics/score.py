@@ -243,7 +243,14 @@ class Score:
 
 
 def percentiles(x: Sequence[float] | np.ndarray) -> dict:
-    """P50 and P95 of ``x`` and its size (None and 0 when empty)."""
+    """P50 and P95 of some values and their number.
+
+    Args:
+        x: the values.
+
+    Returns:
+        ``p50``, ``p95`` (None when empty) and ``n``.
+    """
     x = np.asarray(x, dtype=float)
     if not len(x):
         return {"p50": None, "p95": None, "n": 0}
@@ -261,7 +268,7 @@ def share(k: int, n: int, confidence: float = CONFIDENCE) -> dict:
     Returns:
         ``share``, ``low``, ``high`` (None when ``n`` is 0), ``k`` and ``n``.
     """
-    from scipy.stats import binomtest  # scipy.stats takes ~0.3 s to import: only when needed
+    from scipy.stats import binomtest  # deferred: scipy.stats takes ~0.3 s to import
 
     if n == 0:
         return {"share": None, "low": None, "high": None, "k": 0, "n": 0}
@@ -270,12 +277,27 @@ def share(k: int, n: int, confidence: float = CONFIDENCE) -> dict:
 
 
 def fmt(x: float | None, d: int = 1) -> str:
-    """A table cell: ``x`` to ``d`` places, "-" for None."""
+    """A table cell of a number.
+
+    Args:
+        x: the number, or None.
+        d: decimal places.
+
+    Returns:
+        ``x`` to ``d`` places, "-" for None.
+    """
     return "-" if x is None else f"{x:.{d}f}"
 
 
 def fmt_share(e: dict) -> str:
-    """A table cell of a :func:`share`: "40 % (20-63)", "-" without one."""
+    """A table cell of a :func:`share`, in percent with its interval.
+
+    Args:
+        e: the share (``share``, ``low``, ``high``).
+
+    Returns:
+        e.g. "40 % (20-63)"; "-" without a share.
+    """
     if e["share"] is None:
         return "-"
     return f"{100 * e['share']:.0f} % ({100 * e['low']:.0f}-{100 * e['high']:.0f})"

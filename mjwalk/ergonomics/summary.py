@@ -33,7 +33,11 @@ from mjwalk.ergonomics.score import CONFIDENCE, fmt, percentiles, share
 
 def csv_header() -> list[str]:
     """The columns of ergonomics.csv: :data:`~mjwalk.ergonomics.registry.TASK_COLUMNS`, then
-    the registered methods' (:func:`~mjwalk.ergonomics.registry.csv_columns`)."""
+    the registered methods' (:func:`~mjwalk.ergonomics.registry.csv_columns`).
+
+    Returns:
+        The column names, as the registry is when called.
+    """
     return [*TASK_COLUMNS, *(c.name for c in csv_columns())]
 
 
@@ -103,7 +107,7 @@ def _tasks(records: list[RunRecord]) -> list[dict]:
 def _stature(records: list[RunRecord]) -> dict | None:
     """Stature dependence: Spearman's rho of stature and peak RULA; per reach task the median
     RULA and upper-arm score of the shortest and tallest thirds."""
-    from scipy.stats import spearmanr
+    from scipy.stats import spearmanr  # deferred: scipy.stats takes ~0.3 s to import
 
     rec = [r for r in records if r.stature is not None]
     if len(rec) < 6:
@@ -140,7 +144,15 @@ def _stature(records: list[RunRecord]) -> dict | None:
 
 
 def ergonomics_summary(records: list[RunRecord]) -> dict:
-    """The report's ergonomics figures (plain, JSON-ready data); see the module docstring."""
+    """The report's ergonomics figures (see the module docstring).
+
+    Args:
+        records: the scored runs.
+
+    Returns:
+        Plain, JSON-ready data: ``methods``, ``overall`` and per-group figures, ``drivers``,
+        ``tasks`` and ``stature``.
+    """
     groups: dict[str, list[RunRecord]] = {}
     for r in records:
         groups.setdefault(r.group, []).append(r)
@@ -158,7 +170,14 @@ def ergonomics_summary(records: list[RunRecord]) -> dict:
 
 
 def ergonomics_rows(records: list[RunRecord]) -> list[list]:
-    """Rows of ergonomics.csv (:func:`csv_header`): one per run and task."""
+    """Rows of ergonomics.csv (:func:`csv_header`): one per run and task.
+
+    Args:
+        records: the scored runs.
+
+    Returns:
+        The rows, each a list of cells in the header's order.
+    """
     cols = csv_columns()
     rows = []
     for r in records:
@@ -181,7 +200,14 @@ def _table(head: list[str], rows: list[list[str]]) -> list[str]:
 
 
 def ergonomics_markdown(e: dict) -> list[str]:
-    """The report.md section of :func:`ergonomics_summary`'s figures."""
+    """The report.md section of the ergonomics figures.
+
+    Args:
+        e: :func:`ergonomics_summary`'s figures.
+
+    Returns:
+        Markdown lines.
+    """
     blocks = [("all operators", e["overall"])] + list(e["groups"].items())
     table = [c for sc in SCORES.values() for c in sc.table]
     head = ["operators", "runs", *(c.name for c in table)]

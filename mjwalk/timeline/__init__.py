@@ -6,13 +6,14 @@
 from mjwalk.timeline.collisions import Contact, check_collisions, collision_report, iter_frames
 from mjwalk.timeline.frames import frames_from_legs, timeline_from_walk
 from mjwalk.timeline.parts import PartTrack, part_tracks
-from mjwalk.timeline.reachscene import reach_in_scene
+from mjwalk.timeline.reachscene import SceneReachOptions, reach_in_scene
 from mjwalk.timeline.timeline import Event, Timeline
 
 __all__ = [
     "Contact",
     "Event",
     "PartTrack",
+    "SceneReachOptions",
     "Timeline",
     "check_collisions",
     "collision_report",

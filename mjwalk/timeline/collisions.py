@@ -23,8 +23,10 @@ from mjwalk._jit import njit
 from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
+from mjwalk.timeline.frames import timeline_from_walk
 from mjwalk.timeline.geomposes import geom_poses, supported
 from mjwalk.timeline.timeline import Timeline
+from mjwalk.world.workplace import shared_workplace
 
 
 @dataclass
@@ -47,7 +49,15 @@ class Contact:
 
 
 def iter_frames(timeline: Timeline, data: mujoco.MjData | None = None) -> Iterator[mujoco.MjData]:
-    """Play the timeline: set each frame's qpos, run forward kinematics, yield the MjData."""
+    """Play the timeline: set each frame's qpos, run forward kinematics, yield the MjData.
+
+    Args:
+        timeline: the timeline to play.
+        data: an MjData of the timeline's model to play in (default: a new one).
+
+    Yields:
+        ``data`` at each frame in turn, after ``mj_kinematics`` (the same object every time).
+    """
     model = timeline.model
     data = data if data is not None else mujoco.MjData(model)
     for q in timeline.qpos:
@@ -83,6 +93,12 @@ def collision_report(
 
     Returns:
         contacts in time order (one per geom pair and frame), depth in metres.
+
+    Args:
+        timeline: the timeline to check.
+        floor_tolerance: floor contacts shallower than this (metres) are left out.
+        broad_phase: skip the frames without a candidate contact (same result, faster).
+        data: an MjData of the timeline's model to work in (default: a new one).
     """
     model = timeline.model
     data = data if data is not None else mujoco.MjData(model)
@@ -158,8 +174,15 @@ def _geom_names(model: mujoco.MjModel) -> tuple[list[str], np.ndarray]:
 
 
 def repeats(qpos: np.ndarray) -> np.ndarray:
-    """(F,) whether each pose of ``qpos`` (F, nq) equals the one before it (a hold): its
-    contacts, and its distances, are those of that pose."""
+    """(F,) whether each pose of ``qpos`` equals the one before it (a hold): its
+    contacts, and its distances, are those of that pose.
+
+    Args:
+        qpos: (F, nq) poses.
+
+    Returns:
+        (F,) bool; the first frame is never a repeat.
+    """
     same = np.zeros(len(qpos), dtype=bool)
     if len(qpos) > 1:
         same[1:] = np.all(qpos[1:] == qpos[:-1], axis=1)
@@ -167,8 +190,15 @@ def repeats(qpos: np.ndarray) -> np.ndarray:
 
 
 def floor_geoms(model: mujoco.MjModel) -> np.ndarray:
-    """(ngeom,) read-only mask of ``model``'s floors: the geom named ``"floor"`` and every
-    plane (their shallow contacts with the humanoid are standing, not collisions)."""
+    """The floors of ``model``: the geom named ``"floor"`` and every plane (their
+    shallow contacts with the humanoid are standing, not collisions).
+
+    Args:
+        model: the compiled scene (with or without the humanoid).
+
+    Returns:
+        (ngeom,) read-only bool mask.
+    """
     return _geom_names(model)[1]
 
 
@@ -197,7 +227,19 @@ def candidate_frames(
     Scene geoms on moving bodies, and floors that are not planes, make every frame a
     candidate. Forward kinematics of every pose, compiled over all frames
     (:func:`mjwalk.timeline.geomposes.geom_poses`; with mocap bodies by ``mj_kinematics``
-    in ``data``, default a new MjData, frame by frame)."""
+    in ``data``, default a new MjData, frame by frame).
+
+    Args:
+        model: the compiled scene with the humanoid.
+        qpos: (F, nq) poses.
+        human: (ngeom,) bool mask of the humanoid's geoms.
+        floorish: (ngeom,) bool mask of the floors (:func:`floor_geoms`).
+        floor_tolerance: floor contacts shallower than this (metres) are not reported.
+        data: an MjData of ``model`` for models the compiled kinematics does not support.
+
+    Returns:
+        (F,) bool: True where MuJoCo's collision detection must run.
+    """
     n = len(qpos)
     hid = np.flatnonzero(human)
     sid = np.flatnonzero(~human & (model.geom_contype | model.geom_conaffinity).astype(bool))
@@ -337,12 +379,21 @@ def check_collisions(
     result_or_timeline, scene: str | Path | None = None, *, force: bool = False
 ) -> list[Contact]:
     """Every humanoid-vs-scene contact of a simulated cycle (or of a Timeline, or of a WalkPath
-    played in ``scene``): time (s), body part, scene geom, depth (m), by MuJoCo's collision
-    detection. A CycleResult must have been simulated with ``keep_timeline=True``. A WalkPath
-    planned in another scene (other obstacle geometry) raises SceneError unless ``force``."""
-    from mjwalk.timeline.frames import timeline_from_walk
-    from mjwalk.world.workplace import shared_workplace
+    played in ``scene``) by MuJoCo's collision detection (:func:`collision_report`).
 
+    Args:
+        result_or_timeline: a CycleResult simulated with ``keep_timeline=True``, a Timeline or
+            a WalkPath.
+        scene: the scene a WalkPath is played in (an MJCF file); not used otherwise.
+        force: play a WalkPath planned in another scene (other obstacle geometry) instead of
+            raising SceneError.
+
+    Returns:
+        The contacts in time order: time (s), body part, scene geom, depth (m), world point.
+
+    Raises:
+        MjwalkError: a result without a timeline, a WalkPath without a scene, or another type.
+    """
     obj = result_or_timeline
     if not isinstance(obj, Timeline | WalkPath) and hasattr(obj, "timeline"):  # a CycleResult
         if obj.timeline is None:

@@ -11,6 +11,7 @@ World frame: metres, seconds, radians, z up, yaw from +x CCW.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 import mujoco
@@ -24,10 +25,19 @@ from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.timeline.timeline import Event, Timeline
+from mjwalk.world.workplace import shared_workplace
 
 
 def yaw_quat(yaw: np.ndarray) -> np.ndarray:
-    """(N, 4) unit quaternions (w, x, y, z) of rotations by ``yaw`` radians about +z."""
+    """Unit quaternions of rotations by ``yaw`` about +z:
+    :math:`q = (\\cos(\\psi/2), 0, 0, \\sin(\\psi/2))`.
+
+    Args:
+        yaw: (N,) yaw angles, radians (CCW from +x).
+
+    Returns:
+        (N, 4) quaternions (w, x, y, z).
+    """
     yaw = np.asarray(yaw, float)
     return np.column_stack(
         [np.cos(yaw / 2), np.zeros_like(yaw), np.zeros_like(yaw), np.sin(yaw / 2)]
@@ -38,7 +48,15 @@ def arm_swing(angles: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     """Counter-swing of the arms from the leg angles (radians): each shoulder flexes opposite to
     its own hip (the arm swings with the other leg), about 0.45 of the hip excursion, elbows
     slightly bent (15 deg plus a third of the shoulder flexion), arms 6 deg abducted. A cheap
-    stand-in for the gait-pose dynamics (:mod:`mjwalk.body.gaitpose`)."""
+    stand-in for the gait-pose dynamics (:mod:`mjwalk.body.gaitpose`).
+
+    Args:
+        angles: the leg joint angles by unprefixed name, each (F,) radians; reads
+            ``hip_l_flex`` and ``hip_r_flex``.
+
+    Returns:
+        ``shoulder_{l,r}_flex``, ``shoulder_{l,r}_abd`` and ``elbow_{l,r}``, each (F,) radians.
+    """
     out = {}
     for s in "lr":
         hip = angles[f"hip_{s}_flex"]
@@ -81,7 +99,8 @@ def timeline_from_walk(
     if arms != "none":
         room, away = room_in_scene(scene, qpos[:, jm.root : jm.root + 2])
         rest = jm.neutral_qpos(model, stature)
-        ease_arms(qpos, t, walk.duration, jm, rest, room, away=away, stature=stature)
+        clearance = None if room is None else Clearance(room, away)
+        ease_arms(qpos, t, walk.duration, jm, rest, clearance, stature=stature)
     events = []
     for st in walk.steps:
         side = st.side
@@ -146,6 +165,9 @@ def trunk_turn(
     reaches ``a |cos d| + r`` towards an obstacle in a direction ``d`` from it; the trunk turns
     by the least angle that brings this within ``room - SHOULDER_MARGIN``, up to
     :data:`TRUNK_TURN`. Zero where there is room.
+
+    Returns:
+        (F,) trunk rotation, radians, within :data:`TRUNK_TURN`.
     """
     a, r = shoulder_geometry(stature)
     c = np.clip((room - SHOULDER_MARGIN - r) / a, 0.0, 1.0)
@@ -163,30 +185,70 @@ def trunk_turn(
     return turn
 
 
+@dataclass(frozen=True)
+class Clearance:
+    """The room around the pelvis positions of a walk's frames.
+
+    Attributes:
+        room: (F,) metres from the pelvis to the nearest obstacle.
+        away: (F, 2) unit vectors (world x, y) away from the nearest obstacle, or None.
+    """
+
+    room: np.ndarray
+    away: np.ndarray | None = None
+
+
+@dataclass(frozen=True)
+class Carry:
+    """What the hands hold during a walk.
+
+    Attributes:
+        hands: "left", "right" or "both": the hands in the carrying posture.
+        abduction: shoulder abduction (radians) of a two-handed carry (None: :data:`CARRY_POSE`).
+    """
+
+    hands: str
+    abduction: float | None = None
+
+
 def ease_arms(
     qpos: np.ndarray,
     t: np.ndarray,
     duration: float,
     jm: JointMap,
     rest: np.ndarray,
-    room: np.ndarray | None = None,
-    carry: str | None = None,
-    away: np.ndarray | None = None,
+    clearance: Clearance | None = None,
+    carry: Carry | None = None,
     stature: float = DEFAULT_STATURE,
-    carry_abd: float | None = None,
 ) -> np.ndarray:
     """Shape the arm motion of walking frames ``qpos`` (F, nq) in place and return it.
 
-    The swing (or, for ``carry`` = "left"/"right", that hand's carrying posture) fades in over
+    The swing (or, for a one-handed ``carry``, that hand's carrying posture) fades in over
     the first and out over the last :data:`ARM_EASE` seconds, so the arms hang at rest when the
-    walker stops, and shrinks where ``room`` (F,) — metres from the pelvis to the nearest
-    obstacle — falls below :data:`ARM_ROOM`; there the hanging hands turn their thumbs forward
-    (:data:`TUCK_PRONATION`). For ``carry`` = "both" both arms hold the carrying posture, with
-    the shoulder abduction ``carry_abd`` (radians) when given, over the whole walk without
-    fading or shrinking: the hands stay on a two-handed part's grips, which they took before
-    the walk and leave after it. With ``away`` ((F, 2) unit vectors away from the nearest
-    obstacle) the trunk also turns its shoulders clear of it (:func:`trunk_turn`).
+    walker stops, and shrinks where the clearance's room falls below :data:`ARM_ROOM`; there
+    the hanging hands turn their thumbs forward (:data:`TUCK_PRONATION`). For a carry with
+    both hands both arms hold the carrying posture, with the carry's shoulder abduction when
+    given, over the whole walk without fading or shrinking: the hands stay on a two-handed
+    part's grips, which they took before the walk and leave after it. With the clearance's
+    ``away`` the trunk also turns its shoulders clear of the obstacle (:func:`trunk_turn`).
+
+    Args:
+        qpos: (F, nq) the walk's frames, edited in place.
+        t: (F,) frame times, seconds from the walk's start.
+        duration: the walk's duration, seconds.
+        jm: the humanoid's joint map.
+        rest: (nq,) the standing pose the arms hang in.
+        clearance: room and away directions at the frames (None: no obstacle term).
+        carry: what the hands hold (None: both arms swing).
+        stature: the humanoid's stature, metres (its shoulder width for the trunk turn).
+
+    Returns:
+        ``qpos``, shaped.
     """
+    room = None if clearance is None else clearance.room
+    away = None if clearance is None else clearance.away
+    carry_abd = None if carry is None else carry.abduction
+    hands = None if carry is None else carry.hands
     w = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
     tight = np.zeros(len(t))
     if room is not None:
@@ -201,16 +263,16 @@ def ease_arms(
         for joint in (f"shoulder_{side}_flex", f"shoulder_{side}_abd", f"elbow_{side}"):
             k = jm.adr(joint)
             target = qpos[:, k]
-            holds = carry is not None and (carry == "both" or side == carry[0])
+            holds = hands is not None and (hands == "both" or side == hands[0])
             if holds:
                 name = joint.replace(f"_{side}", "")
                 pose = CARRY_POSE[name]
-                if carry == "both" and carry_abd is not None and name == "shoulder_abd":
+                if hands == "both" and carry_abd is not None and name == "shoulder_abd":
                     pose = carry_abd
                 target = np.full_like(target, pose)
-            wk = np.ones_like(w) if carry == "both" else w
+            wk = np.ones_like(w) if hands == "both" else w
             qpos[:, k] = rest[k] + wk * (target - rest[k])
-        if carry is None or not (carry == "both" or side == carry[0]):
+        if hands is None or not (hands == "both" or side == hands[0]):
             # the tuck narrows a swinging arm: it eases in and out with the swing (a hanging
             # arm at the start and the end of the walk is the standing pose, untucked)
             k = jm.adr(f"forearm_{side}_pron")
@@ -227,8 +289,18 @@ def ease_arms(
 
 
 def room_and_away(workplace, xy: np.ndarray, h: float = 0.02) -> tuple[np.ndarray, np.ndarray]:
-    """Clearance (m) at pelvis positions ``xy`` (F, 2) and unit vectors away from the nearest
-    obstacle (central differences of the clearance field, step ``h`` metres)."""
+    """Clearance at pelvis positions and the directions away from the nearest obstacle
+    (central differences of the clearance field).
+
+    Args:
+        workplace: the scene's :class:`~mjwalk.world.workplace.Workplace`.
+        xy: (F, 2) pelvis positions, world metres.
+        h: the differences' step, metres.
+
+    Returns:
+        ``(room, away)``: (F,) clearance in metres and (F, 2) unit vectors away from the
+        nearest obstacle (+x where the gradient vanishes).
+    """
     xy = np.asarray(xy, float)
     room = workplace.clearance(xy)
     ex, ey = np.array([h, 0.0]), np.array([0.0, h])
@@ -243,12 +315,18 @@ def room_and_away(workplace, xy: np.ndarray, h: float = 0.02) -> tuple[np.ndarra
 
 
 def room_in_scene(scene, xy: np.ndarray) -> tuple[np.ndarray | None, np.ndarray | None]:
-    """Room (m) around pelvis positions ``xy`` in ``scene`` and the directions away from the
-    nearest obstacle (None, None for an in-memory MjSpec)."""
+    """Room around pelvis positions in ``scene`` and the directions away from the nearest
+    obstacle (:func:`room_and_away` of the scene's shared workplace).
+
+    Args:
+        scene: an MJCF scene file or an MjSpec.
+        xy: (F, 2) pelvis positions, world metres.
+
+    Returns:
+        ``(room, away)`` as :func:`room_and_away`; ``(None, None)`` for an in-memory MjSpec.
+    """
     if isinstance(scene, mujoco.MjSpec):
         return None, None
-    from mjwalk.world.workplace import shared_workplace
-
     return room_and_away(shared_workplace(scene), xy)
 
 
@@ -261,9 +339,24 @@ def frames_from_legs(
     arms: str,
     rng: np.random.Generator | None,
 ) -> np.ndarray:
-    """(len(t), nq) qpos of the humanoid in ``model`` at times ``t`` (s): root and legs
-    interpolated from ``legs``, arms and torso by ``arms`` ("swing", "gaitpose" or "none", see
-    :func:`timeline_from_walk`), every angle clipped to its joint range."""
+    """The humanoid's poses at times ``t``: root and legs interpolated from ``legs``, arms and
+    torso by ``arms``, every angle clipped to its joint range.
+
+    Args:
+        model: the compiled scene with the humanoid.
+        jm: the humanoid's joint map.
+        legs: the leg motion of a walk.
+        t: (F,) frame times, seconds.
+        stature: the humanoid's stature, metres.
+        arms: "swing", "gaitpose" or "none" (see :func:`timeline_from_walk`).
+        rng: picks the gait-pose rollout's start (``arms="gaitpose"``).
+
+    Returns:
+        (F, nq) qpos.
+
+    Raises:
+        MjwalkError: an unknown ``arms``.
+    """
     qpos = np.tile(jm.neutral_qpos(model, stature), (len(t), 1))
     r = jm.root
     for k in range(3):
@@ -273,6 +366,7 @@ def frames_from_legs(
     if arms == "swing":
         angles.update(arm_swing(angles))
     elif arms == "gaitpose":
+        # deferred: mjwalk.body.gaitpose imports scikit-learn (slow), only for arms="gaitpose"
         from mjwalk.body.gaitpose import upper_body_from_legs
 
         angles.update(upper_body_from_legs(legs, t, rng=rng))

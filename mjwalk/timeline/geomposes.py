@@ -30,17 +30,32 @@ _FREE, _BALL, _SLIDE, _HINGE = (
 
 
 def supported(model: mujoco.MjModel) -> bool:
-    """True when :func:`geom_poses` reproduces ``mj_kinematics`` for ``model`` (no mocap
-    bodies)."""
+    """Whether :func:`geom_poses` reproduces ``mj_kinematics`` for ``model``.
+
+    Args:
+        model: a compiled model.
+
+    Returns:
+        True when the model has no mocap bodies.
+    """
     return int(model.nmocap) == 0
 
 
 def geom_poses(
     model: mujoco.MjModel, qpos: np.ndarray, geoms: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
-    """World positions (F, G, 3) and rotation matrices (F, G, 9, row-major) of the geoms
-    ``geoms`` (G,) in the poses ``qpos`` (F, nq), as ``mj_kinematics`` would leave them in
-    ``geom_xpos`` and ``geom_xmat`` (to round-off). Metres."""
+    """Geom poses in many frames, as ``mj_kinematics`` would leave them in ``geom_xpos`` and
+    ``geom_xmat`` (to round-off), compiled over all frames.
+
+    Args:
+        model: a compiled model (:func:`supported`).
+        qpos: (F, nq) poses.
+        geoms: (G,) geom ids.
+
+    Returns:
+        ``(xpos, xmat)``: (F, G, 3) world positions, metres, and (F, G, 9) rotation matrices
+        (row-major).
+    """
     qpos = np.ascontiguousarray(qpos, dtype=float).reshape(-1, model.nq)
     geoms = np.asarray(geoms, dtype=np.int64)
     return _geom_poses(

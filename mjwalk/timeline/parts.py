@@ -33,6 +33,7 @@ from typing import Literal
 
 import mujoco
 import numpy as np
+from scipy.spatial.transform import Rotation, Slerp
 
 from mjwalk.arms.chain import min_jerk
 from mjwalk.body.humanoid import JointMap
@@ -77,10 +78,19 @@ class Handling:
 def hand_poses(
     model: mujoco.MjModel, jm: JointMap, qpos: np.ndarray, data: mujoco.MjData | None = None
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(F, 2, 3) world positions (m) and (F, 2, 3, 3) orientations of the hand bodies (left,
-    right) and (F, 2, 3) their palms' centres (each hand's first geom) in the poses ``qpos``
-    (F, nq), by forward kinematics in ``data`` (a new MjData when None; its pose is the last
-    one's afterwards)."""
+    """The hands' poses by forward kinematics.
+
+    Args:
+        model: the compiled scene with the humanoid.
+        jm: the humanoid's joint map.
+        qpos: (F, nq) poses (or one (nq,)).
+        data: an MjData of ``model`` to compute in (a new one when None; its pose is the last
+            frame's afterwards).
+
+    Returns:
+        ``(pos, mat, palm)``: (F, 2, 3) world positions (m) and (F, 2, 3, 3) orientations of the
+        hand bodies (left, right), and (F, 2, 3) their palms' centres (each hand's first geom).
+    """
     data = mujoco.MjData(model) if data is None else data
     bodies = [model.body(f"{jm.prefix}hand_{p}").id for p in ("l", "r")]
     palms = [int(np.flatnonzero(model.geom_bodyid == b)[0]) for b in bodies]
@@ -103,14 +113,19 @@ HOLD_STILL = 1e-3
 
 def _slerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
     """Rotation matrices (n, 3, 3) from ``a`` to ``b`` (3, 3) at shares ``w`` (n,) (SLERP)."""
-    from scipy.spatial.transform import Rotation, Slerp
-
     return Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([a, b])))(w).as_matrix()
 
 
 def palms_frame(palm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(F, 3) origin and (F, 3, 3) axes of the two-handed grip: half way between the palms
-    ``palm`` (F, 2, 3), y from the right palm to the left one (horizontal), z up."""
+    """The frame of a two-handed grip: half way between the palms, y from the right palm to the
+    left one (horizontal), z up, x = y x z.
+
+    Args:
+        palm: (F, 2, 3) palm centres (left, right), world metres.
+
+    Returns:
+        ``(origin, axes)``: (F, 3) origins, metres, and (F, 3, 3) axes as columns.
+    """
     y = palm[:, 0] - palm[:, 1]
     y[:, 2] = 0.0
     y /= np.maximum(np.linalg.norm(y, axis=1, keepdims=True), 1e-9)
@@ -126,9 +141,18 @@ def part_tracks(
     handlings: Sequence[Handling],
     data: mujoco.MjData | None = None,
 ) -> list[PartTrack]:
-    """The tracks of the scene geoms handled in a timeline of poses ``qpos`` (F, nq) by the
-    picks, places and fastens ``handlings`` (in time order); see the module docstring.
-    ``data``: an MjData of ``model`` to compute in (a new one when None)."""
+    """The tracks of the scene geoms handled in a timeline (see the module docstring).
+
+    Args:
+        model: the compiled scene with the humanoid.
+        jm: the humanoid's joint map.
+        qpos: (F, nq) poses of the timeline.
+        handlings: the picks, places and fastens, in time order.
+        data: an MjData of ``model`` to compute in (a new one when None).
+
+    Returns:
+        One :class:`PartTrack` per handled part.
+    """
     names = {model.geom(g).name: g for g in range(model.ngeom)}
     lying = {  # site -> geom lying there
         model.site(s).name: names[model.site(s).name + PART_GEOM_SUFFIX]

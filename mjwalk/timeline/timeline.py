@@ -73,10 +73,21 @@ class Timeline:
         return float(self.t[-1]) if len(self.t) else 0.0
 
     def root(self) -> np.ndarray:
-        """(F, 3) root (pelvis) positions in metres."""
+        """The root (pelvis) positions.
+
+        Returns:
+            (F, 3) world positions, metres.
+        """
         r = self.jointmap.root
         return self.qpos[:, r : r + 3]
 
     def angle(self, name: str) -> np.ndarray:
-        """(F,) angle of joint ``name`` (unprefixed, e.g. ``"knee_l"``) in radians."""
+        """The angle of one joint in every frame.
+
+        Args:
+            name: the joint's unprefixed name, e.g. ``"knee_l"``.
+
+        Returns:
+            (F,) angles, radians (metres for a slide joint).
+        """
         return self.qpos[:, self.jointmap.adr(name)]

@@ -1,8 +1,7 @@
-"""Timeline from a walk, playback and the humanoid-vs-scene collision report."""
+"""mjwalk.timeline.frames: the timeline of a walk (legs, arm swing, gait-pose arms, arms and
+trunk kept clear of obstacles) and its playback."""
 
 from __future__ import annotations
-
-from pathlib import Path
 
 import mujoco
 import numpy as np
@@ -10,8 +9,8 @@ import pytest
 
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.synthetic import synthetic_walk as make_walk
-from mjwalk.timeline import collision_report, iter_frames, timeline_from_walk
-from mjwalk.timeline.frames import ARM_EASE
+from mjwalk.timeline import iter_frames, timeline_from_walk
+from mjwalk.timeline.frames import ARM_EASE, Carry, Clearance, ease_arms
 
 SCENE = """<mujoco><worldbody><geom name="floor" type="plane" size="10 10 .1"/>
 <body name="shelf" pos="{x} {y} .6"><geom name="box" type="box" size=".25 .25 .6"/></body>
@@ -44,26 +43,6 @@ def test_timeline_shapes_and_root():
     assert sum(1 for _ in iter_frames(tl)) == tl.n_frames
 
 
-def test_clear_walk_has_no_contacts():
-    tl = timeline_from_walk(make_walk(n_steps=6), _scene(20.0))
-    assert collision_report(tl) == []
-
-
-def test_walk_into_box_is_reported():
-    # the path passes through a box at x = 2 m (the walk covers ~3.6 m along +x)
-    tl = timeline_from_walk(make_walk(n_steps=6), _scene(2.0))
-    contacts = collision_report(tl)
-    assert contacts, "walking through a box must be reported"
-    assert {c.scene_geom for c in contacts} == {"box"}
-    first = min(c.time for c in contacts)
-    root_x = np.interp(first, tl.t, tl.root()[:, 0])
-    assert 1.0 < root_x < 1.9  # the leading toes, ~0.6 m ahead, reach the face at x = 1.75
-    assert max(c.depth for c in contacts) > 0.05
-    assert all(not c.body_part.startswith("human/") for c in contacts)
-    # a box beside the path (1 m to the left) is not touched
-    assert collision_report(timeline_from_walk(make_walk(n_steps=6), _scene(2.0, 1.0))) == []
-
-
 def test_bad_arms_option():
     with pytest.raises(MjwalkError, match="arms"):
         timeline_from_walk(make_walk(n_steps=2), _scene(20.0), arms="flail")
@@ -83,22 +62,6 @@ def test_timeline_with_gaitpose_arms():
     assert np.corrcoef(sh, tl.angle("hip_l_flex"))[0, 1] < 0
 
 
-#: Hybrid-A* walks through the corridor (plan_walks entry->door / door->exit, seed 0, walk
-#: indices in the names; saved with WalkPath.save) on which the playback grazed a wall by up to
-#: 1.7 cm with a hand or an upper arm, or cut an inner corner with the swing foot (up to 11 cm)
-#: although the planner had certified the pelvis path.
-CORRIDOR_WALKS = sorted((Path(__file__).parents[1] / "data").glob("corridor_walk_seed0_*.npz"))
-
-
-@pytest.mark.parametrize("path", CORRIDOR_WALKS, ids=lambda p: p.stem)
-def test_certified_corridor_walks_touch_no_wall(path, scenes_dir):
-    from mjwalk.plan.walkpath import WalkPath
-
-    walk = WalkPath.load(path)
-    contacts = collision_report(timeline_from_walk(walk, scenes_dir / "corridor.xml"))
-    assert contacts == [], [(c.body_part, c.scene_geom, round(c.depth, 4)) for c in contacts]
-
-
 def test_trunk_turns_shoulders_clear_of_a_wall():
     """The shoulder line turns just enough to keep ``room - SHOULDER_MARGIN`` to a wall beside
     the walker, not at all with room to spare."""
@@ -115,3 +78,20 @@ def test_trunk_turns_shoulders_clear_of_a_wall():
     assert np.all(reach[ok] <= room[ok] - SHOULDER_MARGIN + 1e-9)
     assert np.all(turn[room > a + r + SHOULDER_MARGIN] == 0)
     assert np.abs(turn).max() > np.deg2rad(10)
+
+
+def test_ease_arms_holds_a_two_handed_carry_and_tucks_tight_arms():
+    """A two-handed carry holds the carrying posture (with the given abduction) over the whole
+    walk; a swinging arm in little room turns its thumb forward, less at the walk's ends."""
+    walk = make_walk(n_steps=4)
+    tl = timeline_from_walk(walk, _scene(20.0), arms="none")
+    jm, t = tl.jointmap, tl.t
+    rest = jm.neutral_qpos(tl.model)
+    held = ease_arms(tl.qpos.copy(), t, walk.duration, jm, rest, carry=Carry("both", 0.3))
+    assert np.allclose(held[:, jm.adr("shoulder_l_abd")], 0.3)
+    assert np.allclose(held[:, jm.adr("shoulder_r_abd")], 0.3)
+    tight = Clearance(np.full(len(t), 0.05))
+    q = ease_arms(tl.qpos.copy(), t, walk.duration, jm, rest, tight)
+    pron = q[:, jm.adr("forearm_l_pron")] - rest[jm.adr("forearm_l_pron")]
+    mid = len(t) // 2
+    assert abs(pron[mid]) > abs(pron[0]) and abs(pron[0]) < 1e-9

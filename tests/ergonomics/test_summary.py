@@ -11,8 +11,8 @@ import warnings
 
 import numpy as np
 import pytest
+from test_niosh import lift_at
 
-from mjwalk.ergonomics import niosh
 from mjwalk.ergonomics.assess import RunErgonomics, TaskErgonomics
 from mjwalk.ergonomics.summary import (
     CSV_COLUMNS,
@@ -23,61 +23,11 @@ from mjwalk.ergonomics.summary import (
 )
 
 
-@pytest.mark.parametrize(
-    ("duration", "v", "zero"),
-    [("short", 50, 13), ("short", 80, None), ("moderate", 50, 11), ("moderate", 80, 13),
-     ("long", 50, 9), ("long", 80, 11)],
-)  # fmt: skip
-def test_each_table_5_column_ends_where_its_fm_reaches_zero(duration, v, zero):
-    """fm_zero_from agrees with frequency_multiplier: FM > 0 just below the first 0.00 row, 0
-    from it; only the short-duration column with V >= 75 cm runs to 15 lifts/min."""
-    assert niosh.fm_zero_from(duration, v) == zero
-    top = 15.0 if zero is None else zero
-    assert niosh.frequency_multiplier(top - 0.01, duration, v) > 0
-    if zero is not None:
-        assert niosh.frequency_multiplier(zero, duration, v) == 0.0
-    assert niosh.frequency_multiplier(15.01, duration, v) == 0.0
-
-
-def _lift(f: float, duration: str = "long", v0: float = 80.0, **kw) -> niosh.Lift:
-    return niosh.lift(0, "pick", "right", 1.5, (30.0, 30.0), (v0, v0 + 10.0), (0.0, 0.0), f,
-                      "good", duration, **kw)  # fmt: skip
-
-
-def test_a_lift_beyond_the_frequency_table_has_no_index_and_says_why():
-    lf = _lift(16.0)  # the issue's tool: 2 lifts in 7.5 s
-    assert lf.li is None and lf.rwl == 0.0
-    assert lf.reason.startswith("lifting frequency 16.0 lifts/min is beyond the NIOSH frequency")
-    for part in ("long duration (2-8 h) with V >= 75 cm at the origin",
-                 "FM > 0 only below 11 lifts/min there", "defines FM up to 15 lifts/min at most",
-                 "Table 5"):  # fmt: skip
-        assert part in lf.reason
-    assert "16.0" not in lf.limit and lf.limit.startswith("lifting frequency beyond")
-    # the short-duration column with V >= 75 cm is the one that reaches 15 lifts/min
-    short = _lift(14.0, "short")
-    assert short.li == pytest.approx(1.5 / short.rwl) and short.reason == ""
-    over = _lift(16.0, "short")
-    assert over.li is None and "FM up to 15 lifts/min there" in over.reason
-    fine = _lift(10.0)
-    assert fine.li is not None and np.isfinite(fine.li) and fine.reason == "" == fine.limit
-
-
-def test_each_multiplier_at_zero_is_named_at_its_end():
-    lf = niosh.lift(0, "place", "both", 5.0, (70.0, 30.0), (80.0, 190.0), (0.0, 140.0), 1.0,
-                    "fair", control_at_destination=True)  # fmt: skip
-    assert lf.li is None and lf.rwl == 0.0
-    assert "H at the origin 70 cm is above 63 cm, where HM = 0" in lf.reason
-    assert "V at the destination 190 cm is above 175 cm" in lf.reason
-    assert "asymmetry A at the destination 140 deg is above 135 deg" in lf.reason
-    assert "lifting frequency" not in lf.reason  # 1 lift/min is in the table
-    assert "70 cm" not in lf.limit and "H at the origin above 63 cm" in lf.limit
-
-
 def _record(run: int, lis: list[float | None]) -> RunRecord:
     """A cycle with one pick per entry of ``lis``: a finite index, or None (16 lifts/min)."""
     lifts = []
     for k, li in enumerate(lis):
-        lf = _lift(16.0) if li is None else _lift(1.0)
+        lf = lift_at(16.0) if li is None else lift_at(1.0)
         if li is not None:
             lf.li = li
         lf.task = k

@@ -1,0 +1,75 @@
+"""mjwalk.timeline.collisions: humanoid-vs-scene contacts of a timeline by MuJoCo's collision
+detection, its broad phase's helpers and check_collisions on walks and timelines."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import mujoco
+import numpy as np
+import pytest
+from test_frames import _scene
+
+from mjwalk.errors import MjwalkError
+from mjwalk.plan.synthetic import synthetic_walk as make_walk
+from mjwalk.timeline import collision_report, timeline_from_walk
+from mjwalk.timeline.collisions import check_collisions, floor_geoms, repeats
+
+
+def test_clear_walk_has_no_contacts():
+    tl = timeline_from_walk(make_walk(n_steps=6), _scene(20.0))
+    assert collision_report(tl) == []
+
+
+def test_walk_into_box_is_reported():
+    # the path passes through a box at x = 2 m (the walk covers ~3.6 m along +x)
+    tl = timeline_from_walk(make_walk(n_steps=6), _scene(2.0))
+    contacts = collision_report(tl)
+    assert contacts, "walking through a box must be reported"
+    assert {c.scene_geom for c in contacts} == {"box"}
+    first = min(c.time for c in contacts)
+    root_x = np.interp(first, tl.t, tl.root()[:, 0])
+    assert 1.0 < root_x < 1.9  # the leading toes, ~0.6 m ahead, reach the face at x = 1.75
+    assert max(c.depth for c in contacts) > 0.05
+    assert all(not c.body_part.startswith("human/") for c in contacts)
+    # a box beside the path (1 m to the left) is not touched
+    assert collision_report(timeline_from_walk(make_walk(n_steps=6), _scene(2.0, 1.0))) == []
+
+
+#: Hybrid-A* walks through the corridor (plan_walks entry->door / door->exit, seed 0, walk
+#: indices in the names; saved with WalkPath.save) on which the playback grazed a wall by up to
+#: 1.7 cm with a hand or an upper arm, or cut an inner corner with the swing foot (up to 11 cm)
+#: although the planner had certified the pelvis path.
+CORRIDOR_WALKS = sorted((Path(__file__).parents[1] / "data").glob("corridor_walk_seed0_*.npz"))
+
+
+@pytest.mark.parametrize("path", CORRIDOR_WALKS, ids=lambda p: p.stem)
+def test_certified_corridor_walks_touch_no_wall(path, scenes_dir):
+    from mjwalk.plan.walkpath import WalkPath
+
+    walk = WalkPath.load(path)
+    contacts = collision_report(timeline_from_walk(walk, scenes_dir / "corridor.xml"))
+    assert contacts == [], [(c.body_part, c.scene_geom, round(c.depth, 4)) for c in contacts]
+
+
+def test_repeats_and_floor_geoms():
+    q = np.array([[0.0, 1.0], [0.0, 1.0], [0.5, 1.0], [0.5, 1.0], [0.5, 1.0]])
+    assert repeats(q).tolist() == [False, True, False, True, True]
+    m = _scene(2.0).compile()
+    floor = floor_geoms(m)
+    assert floor.dtype == bool and floor.shape == (m.ngeom,)
+    assert floor[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, "floor")]
+    assert not floor[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, "box")]
+
+
+def test_check_collisions_of_a_timeline_and_of_a_walk_in_a_scene(tmp_path):
+    path = tmp_path / "box.xml"
+    path.write_text(_scene(2.0).to_xml())
+    walk = make_walk(n_steps=6)
+    tl = timeline_from_walk(walk, path)
+    got, want = check_collisions(tl), collision_report(tl)
+    assert want and [(c.time, c.scene_geom) for c in got] == [(c.time, c.scene_geom) for c in want]
+    with pytest.raises(MjwalkError, match="needs the scene"):
+        check_collisions(walk)
+    with pytest.raises(MjwalkError, match="cannot check"):
+        check_collisions(42)

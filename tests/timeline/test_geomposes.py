@@ -1,0 +1,34 @@
+"""mjwalk.timeline.geomposes: the compiled forward kinematics of geoms against MuJoCo's, and the
+models it supports."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from mjwalk.timeline.geomposes import geom_poses, supported
+
+CHAIN = """<mujoco><worldbody>
+<body name="a" pos=".1 .2 1"><freejoint/><geom type="box" size=".1 .2 .3" pos=".05 0 0"/>
+ <body name="b" pos="0 .3 .1" euler="10 20 30"><joint type="hinge" axis="0 .6 .8" ref="15"/>
+  <geom type="capsule" size=".05 .2" pos=".1 0 0" euler="30 0 10"/></body></body>
+</worldbody></mujoco>"""
+
+
+def test_geom_poses_of_a_free_body_and_a_hinge_match_mj_kinematics():
+    m = mujoco.MjModel.from_xml_string(CHAIN)
+    assert supported(m)
+    qpos = m.qpos0 + np.random.default_rng(3).normal(scale=0.5, size=(6, m.nq))
+    xpos, xmat = geom_poses(m, qpos, np.array([1, 0]))
+    assert xpos.shape == (6, 2, 3) and xmat.shape == (6, 2, 9)
+    d = mujoco.MjData(m)
+    for f, q in enumerate(qpos):
+        d.qpos[:] = q
+        mujoco.mj_kinematics(m, d)
+        np.testing.assert_allclose(xpos[f], d.geom_xpos[[1, 0]], atol=1e-12)
+        np.testing.assert_allclose(xmat[f], d.geom_xmat[[1, 0]], atol=1e-12)
+
+
+def test_mocap_bodies_are_not_supported():
+    mocap = '<mujoco><worldbody><body mocap="true"><geom size=".1"/></body></worldbody></mujoco>'
+    assert not supported(mujoco.MjModel.from_xml_string(mocap))
