@@ -16,6 +16,7 @@ from mjwalk.gait.stairs import (
     OH_PARK_DOWN_STEP_TIME,
     OH_PARK_UP_STEP_TIME,
     STEP_TO,
+    Direction,
     StairGeometry,
     stair_gait,
 )
@@ -34,7 +35,9 @@ def draw(group: str, seed: int = 47, n: int = N_DRAWS) -> list[Walker]:
     return [pop.draw(rng) for _ in range(n)]
 
 
-def mean_gait(group: str, direction: str, stair: StairGeometry = STAIR) -> tuple[float, float]:
+def mean_gait(
+    group: str, direction: Direction, stair: StairGeometry = STAIR
+) -> tuple[float, float]:
     """Group mean of (time per step s, speed along the slope m/s)."""
     gaits = [stair_gait(w, stair, direction) for w in draw(group)]
     return (
@@ -101,7 +104,8 @@ def test_a_flight_takes_one_step_per_tread_and_step_to_two():
     w = Walker.preset("adult")
     up = stair_gait(w, STAIR, "up")
     f = up.flight(6)
-    assert (f.steps, f.run, f.rise) == (6, pytest.approx(1.68), pytest.approx(1.02))
+    assert f.steps == 6
+    assert f.run == pytest.approx(1.68) and f.rise == pytest.approx(1.02)
     assert f.duration == pytest.approx(6 * up.step_time)
     slow = stair_gait(w, STAIR, "up", pattern=STEP_TO).flight(6)
     assert slow.steps == 12 and slow.duration == pytest.approx(2.0 * f.duration)
@@ -165,11 +169,12 @@ def test_descent_is_faster_than_ascent(group):
 
 
 def test_older_and_fatigued_are_slower_than_adults():
-    adult = {d: mean_gait("adult", d)[0] for d in ("up", "down")}
+    directions: tuple[Direction, ...] = ("up", "down")
+    adult = {d: mean_gait("adult", d)[0] for d in directions}
     for group in ("older_adult", "elderly", "fatigued"):
-        for d in ("up", "down"):
+        for d in directions:
             assert mean_gait(group, d)[0] > 1.05 * adult[d], (group, d)
-    for d in ("up", "down"):
+    for d in directions:
         assert mean_gait("elderly", d)[0] > mean_gait("older_adult", d)[0]
         assert mean_gait("brisk", d)[0] < adult[d]
 
