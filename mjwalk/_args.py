@@ -262,7 +262,7 @@ def arg_video_side(text: str) -> int:
 def image_suffixes() -> tuple[str, ...]:
     """The file suffixes matplotlib can save figures as (".png", ".svg", ...), from its
     backend registry (imports matplotlib: call it only when an image is to be written)."""
-    from matplotlib.backend_bases import FigureCanvasBase
+    from matplotlib.backend_bases import FigureCanvasBase  # deferred: matplotlib is heavy
 
     return tuple(sorted(f".{ext}" for ext in FigureCanvasBase.get_supported_filetypes()))
 

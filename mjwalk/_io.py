@@ -4,11 +4,19 @@
 from __future__ import annotations
 
 import contextlib
+import errno
+import json
 import os
 import re
 import tempfile
+import tomllib
+import zipfile
 from collections.abc import Iterator
 from pathlib import Path
+
+import numpy as np
+
+from mjwalk.errors import ModelFileError, WriteError
 
 #: The environment variable naming the root of every cache mjwalk keeps (trained default models,
 #: workplace arrays under ``workplaces/``); unset: ``~/.cache/mjwalk``.
@@ -34,8 +42,6 @@ def check_cache_writable(what: str) -> Path:
     Raises:
         WriteError: naming the cache, ``$MJWALK_CACHE`` and the cause.
     """
-    from mjwalk.errors import WriteError
-
     root = cache_root()
     named = f"${CACHE_ENV}={root}" if os.environ.get(CACHE_ENV) else f"the cache {root}"
     fix = f"set ${CACHE_ENV} to a folder you may write (it is built there once, then reused)"
@@ -93,8 +99,6 @@ def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[
         os.replace(tmp_path, path)
         done = True
     except OSError as exc:
-        from mjwalk.errors import WriteError
-
         if isinstance(exc, WriteError):
             raise
         raise write_error(path, exc) from exc
@@ -110,10 +114,6 @@ def atomic_path(path: str | os.PathLike, suffix: str | None = None) -> Iterator[
 def write_error(path: str | os.PathLike, exc: OSError):
     """A :class:`~mjwalk.errors.WriteError` naming ``path`` for the ``OSError`` ``exc`` (one line,
     with a hint for a full disk or a file size limit)."""
-    import errno
-
-    from mjwalk.errors import WriteError
-
     why = exc.strerror or str(exc).strip().split("\n")[0] or type(exc).__name__
     if exc.errno in (errno.ENOSPC, errno.EDQUOT, errno.EFBIG, errno.EPIPE):
         why += " (is the disk or quota full, or a file size limit set: ulimit -f?)"
@@ -125,9 +125,6 @@ def write_error(path: str | os.PathLike, exc: OSError):
 def save_npz(path: str | os.PathLike, header: dict, arrays: dict) -> None:
     """Write ``arrays`` and a JSON ``header`` (format name, version, metadata) to one compressed
     ``.npz`` file, atomically. ``default`` turns numpy scalars/arrays in the header into JSON."""
-    import json
-
-    import numpy as np
 
     def default(obj):
         if isinstance(obj, np.generic):
@@ -148,13 +145,6 @@ def load_npz(path: str | os.PathLike, what: str) -> tuple[dict, dict]:
     ``what`` it should have been (e.g. "step-model"); :func:`check_header` checks the format
     and version.
     """
-    import json
-    import zipfile
-
-    import numpy as np
-
-    from mjwalk.errors import ModelFileError
-
     path = Path(path)
     if path.is_dir():
         raise ModelFileError(f"{path} is a folder, not a {what} file")
@@ -187,8 +177,6 @@ def load_npz(path: str | os.PathLike, what: str) -> tuple[dict, dict]:
 def check_header(header: dict, source, what: str, fmt: str, version: int) -> None:
     """Raise ``ModelFileError`` naming ``source`` unless ``header`` is of format ``fmt`` and
     version ``version`` (the header :func:`save_npz` wrote, or one nested inside it)."""
-    from mjwalk.errors import ModelFileError
-
     if header.get("format") != fmt:
         raise ModelFileError(
             f"{source}: format {header.get('format')!r} is not {fmt!r} (a {what} file)"
@@ -222,8 +210,6 @@ def read_toml(path: str | os.PathLike, what: str, error: type[Exception]) -> tup
     :data:`MAX_TOML_DEPTH` (naming the key and line). A UTF-8 byte-order mark (Windows
     editors write one) is accepted. TOML syntax errors raise ``tomllib.TOMLDecodeError``
     (the caller cites their line)."""
-    import tomllib
-
     path = Path(path)
     if path.is_dir():
         raise error(f"{path} is a folder, not a {what} file")

@@ -79,13 +79,26 @@ FINGERS = ("index", "middle", "ring", "little")
 
 
 def pelvis_height(stature: float = DEFAULT_STATURE) -> float:
-    """Root (hip-joint-centre) height in metres in the neutral pose: 0.530 * stature (Winter)."""
+    r"""Root (hip-joint-centre) height in the neutral pose, :math:`h = 0.530\,H` (Winter).
+
+    Args:
+        stature: body height :math:`H` in metres.
+
+    Returns:
+        The height of the hip joint centres above the floor in metres.
+    """
     return SEG["hip_height"] * stature
 
 
 def knee_height(stature: float = DEFAULT_STATURE) -> float:
-    """Knee joint height in metres standing: ankle height plus shank, 0.285 * stature
-    (Winter)."""
+    r"""Knee joint height standing: ankle height plus shank, :math:`h = 0.285\,H` (Winter).
+
+    Args:
+        stature: body height :math:`H` in metres.
+
+    Returns:
+        The height of the knee joint centre above the floor in metres.
+    """
     return (SEG["ankle_height"] + SEG["shank"]) * stature
 
 
@@ -109,14 +122,28 @@ class LegGeometry:
     foot_width: float = 0.0
 
     def span(self, knee):
-        """Hip-to-ankle distance (m) at knee flexion ``knee`` (radians, 0 = straight; the law
-        of cosines on thigh and shank)."""
+        r"""Hip-to-ankle distance at a knee flexion, by the law of cosines on thigh :math:`L_1` and
+        shank :math:`L_2`: :math:`d = \sqrt{L_1^2 + L_2^2 + 2 L_1 L_2 \cos\kappa}`.
+
+        Args:
+            knee: knee flexion :math:`\kappa` in radians (0 = straight); a float or an array.
+
+        Returns:
+            The hip-to-ankle distance in metres, shaped like ``knee``.
+        """
         L1, L2 = self.thigh, self.shank
         return np.sqrt(L1**2 + L2**2 + 2 * L1 * L2 * np.cos(knee))
 
     def knee_for_span(self, d):
-        """Knee flexion (radians) that puts the ankle ``d`` metres from the hip (the inverse
-        of :meth:`span`, clipped to straight and fully folded)."""
+        """Knee flexion that puts the ankle ``d`` metres from the hip (the inverse of
+        :meth:`span`, clipped to straight and fully folded).
+
+        Args:
+            d: hip-to-ankle distance in metres; a float or an array.
+
+        Returns:
+            The knee flexion in radians (0 = straight, up to pi), shaped like ``d``.
+        """
         L1, L2 = self.thigh, self.shank
         return np.arccos(np.clip((d**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
 
@@ -128,7 +155,14 @@ SHIN_RADIUS = 0.027
 
 
 def leg_geometry(stature: float = DEFAULT_STATURE) -> LegGeometry:
-    """The leg lengths of :func:`build_humanoid` for ``stature`` metres."""
+    """The leg lengths of :func:`~mjwalk.body.humanoid.build_humanoid` for a stature.
+
+    Args:
+        stature: body height in metres; every length scales with it (Winter's table :data:`SEG`).
+
+    Returns:
+        The leg geometry in metres, pelvis frame (x forward, y left, z up).
+    """
     H = stature
     fl = SEG["foot_length"] * H
     return LegGeometry(
@@ -143,8 +177,15 @@ def leg_geometry(stature: float = DEFAULT_STATURE) -> LegGeometry:
 
 
 def shoulder_geometry(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
-    """(shoulder joint centre from the trunk axis, upper-arm capsule radius), metres, of
-    :func:`build_humanoid`: together the half-width of the body at the shoulders."""
+    """The shoulder geometry of :func:`~mjwalk.body.humanoid.build_humanoid` for a stature.
+
+    Args:
+        stature: body height in metres.
+
+    Returns:
+        ``(offset, radius)`` in metres: the shoulder joint centre's distance from the trunk axis
+        and the upper-arm capsule radius; together the half-width of the body at the shoulders.
+    """
     return 0.5 * SEG["shoulder_width"] * stature, UPPER_ARM_RADIUS * stature
 
 
@@ -172,7 +213,19 @@ def hand_reach(
     lies beside the line to the target, as the cycle turns the operator before a reach, and the
     arm (upper arm, forearm and half the hand) is stretched towards it; ``turned=False``: the
     body faces the target squarely (the cycle's fastening), the shoulder beside the line, so
-    the arm reaches across. Returns 0 when the point is out of the arm's reach."""
+    the arm reaches across.
+
+    Args:
+        height: height of the target point above the floor in metres.
+        stature: body height in metres (segment lengths from :data:`SEG`).
+        lean_deg: forward trunk inclination in degrees.
+        turned: whether the body turns so the reaching shoulder lies beside the line to the
+            target (True) or faces the target squarely (False).
+
+    Returns:
+        The farthest horizontal distance in metres from the pelvis axis; 0 when the point is out
+        of the arm's reach.
+    """
     H = stature
     lean = np.radians(lean_deg)
     trunk = (SEG["shoulder_height"] - SEG["hip_height"]) * H

@@ -26,9 +26,17 @@ SIDES: tuple[Side, Side] = ("left", "right")
 
 
 def side_prefix(side: str) -> Literal["l", "r"]:
-    """The one-letter side of MJCF joint and body names (``"knee_l"``): ``"l"`` or ``"r"``.
+    """The one-letter side of MJCF joint and body names (``"knee_l"``).
 
-    Raises ValueError for anything but ``"left"`` / ``"right"``."""
+    Args:
+        side: ``"left"`` or ``"right"``.
+
+    Returns:
+        ``"l"`` or ``"r"``.
+
+    Raises:
+        ValueError: for anything but ``"left"`` / ``"right"``.
+    """
     if side == "left":
         return "l"
     if side == "right":
@@ -37,8 +45,17 @@ def side_prefix(side: str) -> Literal["l", "r"]:
 
 
 def side_of_prefix(prefix: str) -> Side:
-    """The side of a one-letter joint-name side ``"l"`` / ``"r"`` (inverse of
-    :func:`side_prefix`)."""
+    """The side of a one-letter joint-name side (the inverse of :func:`side_prefix`).
+
+    Args:
+        prefix: ``"l"`` or ``"r"``.
+
+    Returns:
+        ``"left"`` or ``"right"``.
+
+    Raises:
+        ValueError: for anything but ``"l"`` / ``"r"``.
+    """
     if prefix == "l":
         return "left"
     if prefix == "r":
@@ -47,5 +64,12 @@ def side_of_prefix(prefix: str) -> Side:
 
 
 def other_side(side: str) -> Side:
-    """The opposite side: ``"left"`` <-> ``"right"`` (any other value: ``"left"``)."""
+    """The opposite side.
+
+    Args:
+        side: ``"left"`` or ``"right"``.
+
+    Returns:
+        ``"right"`` for ``"left"``; ``"left"`` for ``"right"`` (and for any other value).
+    """
     return "right" if side == "left" else "left"

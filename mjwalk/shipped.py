@@ -25,8 +25,15 @@ CYCLES = {"station": "assembly_station.toml", "assembly_station": "assembly_stat
 
 
 def scene_dir() -> Path:
-    """The folder of the shipped scenes: ``mjwalk/scenes`` in an installed wheel, else the
-    checkout's top-level ``scenes/`` (a source tree or an editable install)."""
+    """The folder of the shipped scenes.
+
+    Returns:
+        ``mjwalk/scenes`` in an installed wheel, else the checkout's top-level ``scenes/`` (a
+        source tree or an editable install).
+
+    Raises:
+        SceneError: when neither folder holds the shipped scenes.
+    """
     here = Path(__file__).resolve().parent
     for folder in (here / "scenes", here.parent / "scenes"):
         if (folder / "assembly_station.xml").is_file():
@@ -50,12 +57,32 @@ def _resolve(name: str | os.PathLike, table: dict[str, str], what: str, error) -
 
 
 def scene_file(name: str | os.PathLike) -> Path:
-    """An MJCF scene path: ``name`` itself when such a file exists (or it looks like a path),
-    else the shipped scene of that short name (:data:`SCENES`)."""
+    """An MJCF scene path from a path or a shipped scene's short name.
+
+    Args:
+        name: a file path, or a short name of :data:`SCENES` (``"station"``, ``"corridor"``...).
+
+    Returns:
+        ``name`` itself when such a file exists (or it looks like a path), else the shipped
+        scene of that short name.
+
+    Raises:
+        SceneError: ``name`` is neither an existing file nor a shipped scene's name.
+    """
     return _resolve(name, SCENES, "scene", SceneError)
 
 
 def cycle_file(name: str | os.PathLike) -> Path:
-    """A cycle specification path: ``name`` itself when such a file exists (or it looks like
-    a path), else the shipped cycle of that short name (:data:`CYCLES`)."""
+    """A cycle specification path from a path or a shipped cycle's short name.
+
+    Args:
+        name: a file path, or a short name of :data:`CYCLES` (``"station"``).
+
+    Returns:
+        ``name`` itself when such a file exists (or it looks like a path), else the shipped
+        cycle of that short name.
+
+    Raises:
+        CycleSpecError: ``name`` is neither an existing file nor a shipped cycle's name.
+    """
     return _resolve(name, CYCLES, "cycle", CycleSpecError)

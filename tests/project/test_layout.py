@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import ast
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -291,3 +292,191 @@ def test_top_level_exports_the_pipeline():
     assert not hasattr(mjwalk, "no_such_name")
     for name in mjwalk.__all__:  # every lazy name resolves
         assert getattr(mjwalk, name) is not None
+
+
+# ------------------------------------------------------------------ small functions, tests, docs
+
+#: The longest a function may be (lines from ``def`` to its end, its docstring not counted) and
+#: the most parameters it may take (``self``/``cls`` not counted; ``*args``/``**kwargs`` count).
+MAX_FUNCTION_LINES = 80
+MAX_PARAMETERS = 8
+
+
+def _is_kernel(fn: ast.FunctionDef | ast.AsyncFunctionDef) -> bool:
+    """Whether ``fn`` is a compiled numba kernel (``@njit``, ``@jit(...)``, ``@vectorize``...):
+    a kernel takes its arrays one by one and runs as one loop, so the size rules do not apply."""
+    return any(
+        re.search(r"\b(n?jit|vectorize|guvectorize|cfunc)\b", ast.unparse(d))
+        for d in fn.decorator_list
+    )
+
+
+def _parameters(fn: ast.FunctionDef | ast.AsyncFunctionDef) -> list[str]:
+    a = fn.args
+    names = [
+        x.arg for x in (*a.posonlyargs, *a.args, *a.kwonlyargs) if x.arg not in ("self", "cls")
+    ]
+    if a.vararg:
+        names.append(f"*{a.vararg.arg}")
+    if a.kwarg:
+        names.append(f"**{a.kwarg.arg}")
+    return names
+
+
+def _docstring_lines(fn: ast.FunctionDef | ast.AsyncFunctionDef) -> int:
+    first = fn.body[0]
+    is_doc = isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant)
+    return (
+        first.end_lineno - first.lineno + 1 if is_doc and isinstance(first.value.value, str) else 0
+    )  # type: ignore[union-attr, operator]
+
+
+def _functions(tree: ast.AST):
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            yield node
+
+
+def test_functions_are_short_and_take_few_parameters():
+    """No ordinary function is longer than :data:`MAX_FUNCTION_LINES` or takes more than
+    :data:`MAX_PARAMETERS` parameters: a longer one is several steps that want names, a wider
+    one a record its values belong to. Compiled kernels are excepted (:func:`_is_kernel`)."""
+    long, wide = [], []
+    for f in _files():
+        for fn in _functions(ast.parse(f.read_text())):
+            if _is_kernel(fn):
+                continue
+            lines = fn.end_lineno - fn.lineno + 1 - _docstring_lines(fn)  # type: ignore[operator]
+            if lines > MAX_FUNCTION_LINES:
+                long.append(f"{_module(f)}.{fn.name} ({lines} lines)")
+            if len(_parameters(fn)) > MAX_PARAMETERS:
+                wide.append(f"{_module(f)}.{fn.name} ({len(_parameters(fn))} parameters)")
+    assert long == []
+    assert wide == []
+
+
+def _public(f: Path) -> bool:
+    """Whether ``f`` is a public module: no part of its path below ``mjwalk/`` is private."""
+    return not any(p.startswith("_") and p != "__init__.py" for p in f.relative_to(PKG).parts)
+
+
+def test_every_public_module_has_its_test_file():
+    """``mjwalk/<stage>/.../<name>.py`` is tested in ``tests/<stage>/test_<name>.py`` (a top-level
+    module in ``tests/test_<name>.py``), which imports it by name."""
+    root = PKG.parent
+    missing = []
+    for f in _files():
+        if not _public(f) or f.name == "__init__.py":
+            continue
+        rel = f.relative_to(PKG)
+        test = root / "tests" / Path(*rel.parts[:-1][:1]) / f"test_{f.stem}.py"
+        module = _module(f)
+        parent, name = module.rsplit(".", 1)
+        found = test.is_file() and any(
+            (isinstance(n, ast.Import) and any(a.name == module for a in n.names))
+            or (
+                isinstance(n, ast.ImportFrom)
+                and (
+                    n.module == module
+                    or (n.module == parent and any(a.name == name for a in n.names))
+                )
+            )
+            for n in ast.walk(ast.parse(test.read_text()))
+        )
+        if not found:
+            missing.append(f"{module}: {test.relative_to(root)}")
+    assert missing == []
+
+
+DEFERRED = "# deferred:"
+
+
+def test_function_level_imports_say_why():
+    """An import inside a function hides a dependency from the module's head: it is there only
+    to break an import circle or to defer a heavy or optional dependency, and says which in a
+    ``# deferred: <reason>`` comment on its line or the line above."""
+    unexplained = []
+    for f in _files():
+        lines = f.read_text().splitlines()
+        for fn in _functions(ast.parse("\n".join(lines))):
+            for node in ast.walk(fn):
+                if not isinstance(node, (ast.Import, ast.ImportFrom)):
+                    continue
+                near = lines[node.lineno - 2 : node.end_lineno]  # type: ignore[misc]
+                if not any(DEFERRED in line for line in near):
+                    unexplained.append(
+                        f"{_module(f)}:{node.lineno} {lines[node.lineno - 1].strip()}"
+                    )
+    assert unexplained == []
+
+
+def _section(doc: str, header: str) -> set[str] | None:
+    """The names a Google docstring section lists (``name:`` or ``name (type):`` at the section's
+    first indent), or None when there is no such section."""
+    m = re.search(rf"^\s*{header}:\s*$", doc, re.M)
+    if not m:
+        return None
+    names: set[str] = set()
+    indent = None
+    for line in doc[m.end() :].splitlines():
+        if not line.strip():
+            continue
+        ind = len(line) - len(line.lstrip())
+        if indent is not None and ind < indent:
+            break
+        indent = ind if indent is None else indent
+        if ind == indent and (item := re.match(r"^\s*(\*{0,2}\w+)\s*(\([^)]*\))?\s*:", line)):
+            names.add(item.group(1).lstrip("*"))
+    return names
+
+
+def _undocumented(fn: ast.FunctionDef | ast.AsyncFunctionDef, doc: str, init: bool) -> list[str]:
+    problems = []
+    params = [p.lstrip("*") for p in _parameters(fn)]
+    if params:
+        listed = _section(doc, "Args")
+        if listed is None:
+            problems.append("no Args:")
+        elif missing := [p for p in params if p not in listed]:
+            problems.append(f"Args: lacks {', '.join(missing)}")
+    returns = fn.returns is not None and ast.unparse(fn.returns) not in ("None", "NoReturn")
+    if returns and not init and not re.search(r"^\s*(Returns|Yields):", doc, re.M):
+        problems.append("no Returns:")
+    return problems
+
+
+def _skipped(fn: ast.FunctionDef | ast.AsyncFunctionDef) -> bool:
+    decorators = [ast.unparse(d) for d in fn.decorator_list]
+    return any(
+        d in ("property", "overload", "typing.overload", "functools.cached_property")
+        or d.endswith(".setter")
+        for d in decorators
+    )
+
+
+def test_public_api_is_documented():
+    """Every public function and method (and a public class's ``__init__``) of a public module
+    documents its parameters in a Google ``Args:`` section and what it returns in ``Returns:``
+    (or ``Yields:``); the texts state units and frames."""
+    found = []
+    for f in _files():
+        if not _public(f):
+            continue
+        tree = ast.parse(f.read_text())
+        for node in tree.body:
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                if not node.name.startswith("_") and not _skipped(node):
+                    for p in _undocumented(node, ast.get_docstring(node) or "", init=False):
+                        found.append(f"{_module(f)}.{node.name}: {p}")
+            if isinstance(node, ast.ClassDef) and not node.name.startswith("_"):
+                for m in node.body:
+                    if not isinstance(m, (ast.FunctionDef, ast.AsyncFunctionDef)) or _skipped(m):
+                        continue
+                    doc = ast.get_docstring(m) or ""
+                    if m.name == "__init__":
+                        doc = doc if "Args:" in doc else f"{ast.get_docstring(node) or ''}\n{doc}"
+                    elif m.name.startswith("_"):
+                        continue
+                    for p in _undocumented(m, doc, init=m.name == "__init__"):
+                        found.append(f"{_module(f)}.{node.name}.{m.name}: {p}")
+    assert found == []
