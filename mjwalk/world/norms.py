@@ -1,0 +1,75 @@
+"""Cited figures for walk surfaces, steps, stairs, ramps and headroom (metres, radians).
+
+One place for the numbers :mod:`mjwalk.world.surfaces` and :mod:`mjwalk.world.levels` decide with,
+and that planners and gait models on several levels can compare a walker with. Each figure names
+its source; where a source could not be checked from here the comment says so. ASR A1.8
+"Verkehrswege" (2012, amended 2018) refers stair geometry to DIN 18065; the DIN 18065 figures
+below were checked against public summaries of the 2015/2020 editions, not the standard itself.
+"""
+
+from __future__ import annotations
+
+import math
+
+# --- stairs and steps -------------------------------------------------------------------------
+#: Smallest and largest riser (Steigung) of a building stair, metres: DIN 18065:2020 Table 1,
+#: "Gebäude im Allgemeinen" (workplaces, offices, public buildings), 140-190 mm; ASR A1.8 §4.5
+#: takes the same range for workplace stairs (the ASR table itself not verifiable here).
+MIN_RISER = 0.14
+MAX_RISER = 0.19
+#: Smallest and largest tread (Auftritt) of a building stair, metres: DIN 18065:2020 Table 1,
+#: buildings in general, 260-370 mm. A horizontal surface no deeper than ``MAX_TREAD`` is a tread.
+MIN_TREAD = 0.26
+MAX_TREAD = 0.37
+#: Step rule (Schrittmaßregel) 2 s + a, metres: 0.59-0.65 m, DIN 18065 (required) and ASR A1.8
+#: §4.5 (recommended), the mean step length of a walker; ASR A1.8 names s = 0.17, a = 0.29 as
+#: particularly safe (2 s + a = 0.63 m).
+STEP_RULE = (0.59, 0.65)
+#: Most a riser or tread of one flight may differ from its nominal value and from its neighbour,
+#: metres: DIN 18065 tolerance, 5 mm.
+STAIR_TOLERANCE = 0.005
+#: Fewest risers of a flight (Treppenlauf): DIN 18065 defines a flight as at least three risers;
+#: one or two are single steps.
+MIN_STAIR_RISERS = 3
+
+# --- level and touching surfaces --------------------------------------------------------------
+#: Largest height difference between two touching surfaces that still counts as one level,
+#: metres: ASR A1.5/1,2 "Fußböden" §3.4, height differences over 4 mm are already trip points.
+LEVEL_TOLERANCE = 0.004
+#: Widest gap between two surfaces' edges that still joins them, metres: ASR A1.5/1,2, gaps in a
+#: floor wider than 20 mm are trip points (so narrower gaps are walked over).
+CONTACT_GAP = 0.02
+#: Largest slope of a surface that counts as horizontal (rise over run): DIN 18065 tolerates
+#: treads deviating at most 1 % from the horizontal.
+HORIZONTAL_SLOPE = 0.01
+
+# --- ramps ------------------------------------------------------------------------------------
+#: Steepest walk surface that is a ramp, radians: 10 deg. ISO 14122-1/-2 (permanent means of
+#: access to machinery) choose a ramp for 0-20 deg and prefer at most 10 deg (steeper ramps need
+#: cleats). ASR A1.8's own ramp limit could not be verified here.
+MAX_RAMP_SLOPE = math.radians(10.0)
+#: Steepest barrier-free ramp, radians: DIN 18040-1:2010 §4.3.8, at most 6 % (atan 0.06,
+#: 3.43 deg), for walkers with rollators or wheelchairs; a stricter limit a planner may apply.
+BARRIER_FREE_RAMP_SLOPE = math.atan(0.06)
+
+# --- standing room and headroom ---------------------------------------------------------------
+#: Narrowest surface a person stands on across the shoulders, metres: the shoulder breadth of a
+#: 95th-percentile man, about 0.52 m (DIN 33402-2), rounded up to 0.6 m, as the scan's
+#: ``mjwalk.scan.level.STAND_AREA`` (0.6 m square) is.
+STAND_WIDTH = 0.60
+#: Clear headroom over a walk surface, metres: DIN 18065 lichte Treppendurchgangshöhe, at least
+#: 2.00 m; ASR A1.8 asks the same clear height over walkways (not verified here).
+CLEAR_HEADROOM = 2.00
+#: What a walker's head needs above the stature, metres: shoes add up to 45 mm (women's; 25 mm
+#: for men) and a protective helmet 35 mm (Pheasant & Haslegrave, "Bodyspace", corrections to
+#: standing dimensions), 0.045 + 0.035 = 0.08 m.
+HEAD_MARGIN = 0.08
+#: Free heights below this are obstacles for every walker, not ceilings some walk under, metres:
+#: the shortest stature mjwalk draws (``mjwalk.gait.walker.STATURE_RANGE``, 1.2 m).
+OVERHEAD_MIN = 1.20
+#: How far above a surface geoms are looked for, metres: the tallest stature mjwalk draws (2.2 m)
+#: plus :data:`HEAD_MARGIN`, rounded up; nothing within it means an open ceiling (inf).
+HEADROOM_SCAN = 2.5
+#: The foot of the obstacle band (``mjwalk.world.floor.OBSTACLE_Z_RANGE``): a surface beyond an
+#: edge counts as one to step onto only where more than this is free above it, metres.
+EXPOSED_MIN = 0.05

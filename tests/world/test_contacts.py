@@ -1,0 +1,51 @@
+"""Contacts between walk surfaces: where edges meet, the rise across them, what is reachable."""
+
+from __future__ import annotations
+
+import mujoco
+import pytest
+
+from mjwalk.errors import InputError
+from mjwalk.world.contacts import MIN_CROSSING, reachable, surface_contacts
+from mjwalk.world.surfaces import SurfaceOptions, find_walk_surfaces
+
+
+def surfaces(geoms: str, **options):
+    model = mujoco.MjModel.from_xml_string(
+        f'<mujoco><worldbody><geom name="floor" type="plane" size="5 5 0.1"/>{geoms}'
+        "</worldbody></mujoco>"
+    )
+    return find_walk_surfaces(model, None, SurfaceOptions(**options))
+
+
+def test_a_box_on_the_floor_meets_it_along_its_edges():
+    ss = surfaces('<geom name="pad" type="box" size="0.5 0.4 0.075" pos="0 0 0.075"/>')
+    down = [c for c in surface_contacts(ss) if c.a == 1]
+    assert len(down) == 4  # all four sides of the pad, each at least a body wide
+    assert all(c.b == 0 and c.rise == pytest.approx(-0.15) for c in down)
+    assert sorted(round(c.length, 6) for c in down) == [0.8, 0.8, 1.0, 1.0]
+
+
+def test_narrow_crossings_and_blocked_edges_are_left_out():
+    # the pad's west side is against a wall: no contact there; its 0.3 m sides are too narrow
+    ss = surfaces(
+        '<geom name="pad" type="box" size="0.5 0.15 0.075" pos="0 0 0.075"/>'
+        '<geom name="wall" type="box" size="0.05 1 1" pos="-0.55 0 1"/>'
+    )
+    down = [c for c in surface_contacts(ss) if c.a == 1]
+    assert 0.3 < MIN_CROSSING
+    assert sorted(round(c.edge[0][1], 6) for c in down) == [-0.15, 0.15]  # south and north
+    assert all(c.length == pytest.approx(1.0) for c in down)
+
+
+def test_reachable_and_arguments():
+    ss = surfaces(
+        '<geom name="low" type="box" size="0.5 0.5 0.075" pos="2 0 0.075"/>'
+        '<geom name="high" type="box" size="0.5 0.5 0.15" pos="3 0 0.15"/>',
+        max_riser=0.19,
+    )
+    cs = surface_contacts(ss)
+    assert reachable(len(ss), cs) == {0, 1, 2}
+    assert reachable(len(ss), [c for c in cs if {c.a, c.b} != {1, 2}]) == {0, 1}
+    with pytest.raises(InputError, match="gap"):
+        surface_contacts(ss, gap=0.0)

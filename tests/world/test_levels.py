@@ -1,0 +1,151 @@
+"""Levels and links: the shipped multi-level station's step, ramp and stair, and the rules that
+refuse a link (a riser above the limit, irregular risers), reach per walker, head clearance."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import pytest
+
+from mjwalk.errors import InputError
+from mjwalk.world.levels import LevelOptions, describe_levels, level_graph
+from mjwalk.world.surfaces import SurfaceOptions, find_walk_surfaces
+
+
+def scene(geoms: str) -> mujoco.MjModel:
+    return mujoco.MjModel.from_xml_string(
+        f'<mujoco><worldbody><geom name="floor" type="plane" size="5 5 0.1"/>{geoms}'
+        "</worldbody></mujoco>"
+    )
+
+
+def flight(risers: list[float], tread: float = 0.28) -> str:
+    """Boxes standing on the floor, one per tread, rising towards +x, then a landing."""
+    out, z, x = [], 0.0, 0.0
+    for k, r in enumerate(risers[:-1]):
+        z += r
+        out.append(
+            f'<geom name="t{k + 1}" type="box" size="{tread / 2} 0.5 {z / 2}" '
+            f'pos="{x + tread / 2} 0 {z / 2}"/>'
+        )
+        x += tread
+    z += risers[-1]
+    out.append(f'<geom name="landing" type="box" size="1 1 {z / 2}" pos="{x + 1} 0 {z / 2}"/>')
+    return "".join(out)
+
+
+@pytest.fixture(scope="module")
+def station(scenes_dir):
+    model = mujoco.MjModel.from_xml_path(str(scenes_dir / "multilevel_station.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    return model, data, level_graph(find_walk_surfaces(model, data))
+
+
+def level_named(graph, name):
+    i = [s.name for s in graph.surfaces].index(name)
+    return graph.level_of[i]
+
+
+def test_station_levels_and_links(station):
+    _, _, g = station
+    heights = sorted(round(lv.height, 3) for lv in g.levels)
+    assert heights == [0.0, 0.17, 0.17, 0.34, 0.34, 0.51, 0.68, 0.85, 1.02]
+    assert g.levels[0].kind == "floor"
+    floor, step, plat = 0, level_named(g, "platform_step"), level_named(g, "platform")
+    mezz = level_named(g, "mezzanine")
+    by_kind = {k: [lk for lk in g.links if lk.kind == k] for k in ("step", "ramp", "stair")}
+    steps = {(lk.lower, lk.upper): lk for lk in by_kind["step"]}
+    assert set(steps) == {(floor, step), (step, plat)}
+    for lk in steps.values():
+        assert lk.risers == pytest.approx((0.17,), abs=1e-3)
+    (ramp,) = by_kind["ramp"]
+    assert (ramp.lower, ramp.upper) == (floor, plat)
+    assert math.degrees(ramp.slope) == pytest.approx(5.5, abs=0.01)
+    assert ramp.rise == pytest.approx(0.34, abs=1e-3)
+    assert g.surfaces[ramp.via[0]].name == "platform_ramp"
+    (stair,) = by_kind["stair"]
+    assert (stair.lower, stair.upper) == (floor, mezz)
+    assert stair.risers == pytest.approx((0.17,) * 6, abs=1e-3)
+    assert stair.tread == pytest.approx(0.28, abs=1e-3)
+    assert [g.surfaces[i].name for i in stair.via] == [f"stair_tread{k}" for k in range(1, 6)]
+    # the stair's first riser at y = -0.10, its last at the mezzanine's edge y = -1.5
+    assert stair.lower_edge[0][1] == pytest.approx(-0.10, abs=0.03)
+    assert stair.upper_edge[0][1] == pytest.approx(-1.50, abs=0.03)
+
+
+def test_sites_stand_on_their_levels(station):
+    model, data, g = station
+    where = {}
+    for name in ("stand_car1", "stand_platform1", "stand_mezz_rack", "stand_stair"):
+        pos = data.site_xpos[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_SITE, name)]
+        where[name] = g.surfaces[g.surface_at(pos[:2], pos[2])].name
+    assert where == {
+        "stand_car1": "floor",
+        "stand_platform1": "platform",
+        "stand_mezz_rack": "mezzanine",
+        "stand_stair": "floor",
+    }
+
+
+def test_reach_depends_on_the_walkers_riser(station):
+    _, _, g = station
+    plat, mezz = level_named(g, "platform"), level_named(g, "mezzanine")
+    assert {plat, mezz} <= g.reachable()
+    low = g.reachable(max_riser=0.15)  # a walker stepping at most 0.15 m takes the ramp only
+    assert plat in low and mezz not in low
+
+
+def test_a_riser_above_the_limit_gives_no_link():
+    # surfaces found with a 0.25 m step limit; the default level options link at most 0.19 m
+    model = scene('<geom name="box" type="box" size="1 1 0.105" pos="2 0 0.105"/>')
+    surfaces = find_walk_surfaces(model, None, SurfaceOptions(max_riser=0.25))
+    assert [s.name for s in surfaces] == ["floor", "box"]
+    g = level_graph(surfaces)
+    assert len(g.levels) == 2 and g.links == ()
+    links = level_graph(surfaces, LevelOptions(max_riser=0.25)).links
+    assert len(links) == 4 and {lk.kind for lk in links} == {"step"}  # each side of the box
+
+
+def test_regular_flight_is_a_stair_irregular_one_stays_steps():
+    g = level_graph(find_walk_surfaces(scene(flight([0.17] * 4)), None))
+    assert [lk.kind for lk in g.links] == ["stair"]
+    assert g.links[0].risers == pytest.approx((0.17,) * 4, abs=1e-6)
+    g = level_graph(find_walk_surfaces(scene(flight([0.15, 0.17, 0.19, 0.17])), None))
+    assert [lk.kind for lk in g.links] == ["step"] * 4
+    g = level_graph(find_walk_surfaces(scene(flight([0.17, 0.17])), None))
+    assert [lk.kind for lk in g.links] == ["step"] * 2  # two risers: single steps (DIN 18065)
+
+
+@pytest.mark.parametrize("name", ["assembly_station", "corridor", "open_floor"])
+def test_flat_shipped_scenes_have_one_level(scenes_dir, name):
+    model = mujoco.MjModel.from_xml_path(str(scenes_dir / f"{name}.xml"))
+    g = level_graph(find_walk_surfaces(model, None))
+    assert len(g.levels) == 1 and g.links == ()
+
+
+def test_head_clearance_refuses_the_tall_walker_only():
+    deck = '<geom name="deck" type="box" size="1 0.5 0.085" pos="0 0 0.085"/>'
+    beam = '<geom name="beam" type="box" size="0.1 0.7 0.1" pos="0.5 0 2.17"/>'
+    g = level_graph(find_walk_surfaces(scene(deck + beam), None))
+    assert g.levels[1].lowest_ceiling == pytest.approx(1.9, abs=1e-9)
+    assert not g.head_fits((0.5, 0.0), 0.17, 1.90)
+    assert g.head_fits((0.5, 0.0), 0.17, 1.60)
+    assert g.head_fits((-0.5, 0.0), 0.17, 1.90)
+
+
+def test_describe_levels(station):
+    text = describe_levels(station[2])
+    assert text.splitlines()[0] == "levels: 9, links: 4"
+    assert "ramp  L0 -> L3  slope 5.50 deg (9.6 %), rise 0.340 m" in text
+    assert "stair L0 -> L8  6 risers x 0.170 m, tread 0.280 m (2h+g 0.620 m)" in text
+
+
+def test_level_options_are_checked():
+    with pytest.raises(InputError, match="level_tol"):
+        LevelOptions(level_tol=0.0)
+    with pytest.raises(InputError, match="riser_range"):
+        LevelOptions(riser_range=(0.2, 0.1))
+    with pytest.raises(InputError, match="no walk surfaces"):
+        level_graph(())

@@ -1,0 +1,155 @@
+"""Walk surfaces found in MJCF scenes: the shipped multi-level station, flat scenes, and small
+scenes for each rule (reach, size, slope, headroom, hidden, options)."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+import pytest
+
+from mjwalk.errors import InputError
+from mjwalk.world import surfaces as surfaces_module
+from mjwalk.world.surfaces import SurfaceOptions, find_walk_surfaces
+from mjwalk.world.walksurface import head_fits
+from mjwalk.world.workplace import HUMANOID_PREFIXES
+
+
+def scene(geoms: str) -> mujoco.MjModel:
+    """A 10 x 10 m floor with the given geoms."""
+    return mujoco.MjModel.from_xml_string(
+        f'<mujoco><worldbody><geom name="floor" type="plane" size="5 5 0.1"/>{geoms}'
+        "</worldbody></mujoco>"
+    )
+
+
+def names(model: mujoco.MjModel, options: SurfaceOptions | None = None) -> list[str]:
+    return [s.name for s in find_walk_surfaces(model, None, options)]
+
+
+@pytest.fixture(scope="module")
+def multilevel(scenes_dir):
+    model = mujoco.MjModel.from_xml_path(str(scenes_dir / "multilevel_station.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    return {s.name: s for s in find_walk_surfaces(model, data)}
+
+
+def test_multilevel_station_surfaces_at_their_heights(multilevel):
+    expect = {
+        "floor": ("floor", 0.0),
+        "platform_step": ("tread", 0.17),
+        "platform": ("platform", 0.34),
+        "mezzanine": ("platform", 1.02),
+        **{f"stair_tread{k}": ("tread", 0.17 * k) for k in range(1, 6)},
+    }
+    assert set(multilevel) == set(expect) | {"platform_ramp"}
+    for name, (kind, z) in expect.items():
+        s = multilevel[name]
+        assert s.kind == kind, name
+        assert s.z == pytest.approx(z, abs=1e-3), name
+        assert s.slope == 0.0
+    ramp = multilevel["platform_ramp"]
+    assert ramp.kind == "ramp"
+    assert (ramp.z_low, ramp.z_high) == pytest.approx((0.0, 0.34), abs=1e-3)
+    assert math.degrees(ramp.slope) == pytest.approx(5.5, abs=0.01)
+    assert math.cos(ramp.uphill) == pytest.approx(-1.0, abs=1e-6)  # rises towards -x
+    # its top face, 0.34 / tan(5.5 deg) = 3.53 m long and 1.0 m wide
+    assert ramp.area == pytest.approx(0.34 / math.tan(math.radians(5.5)) * 1.0, rel=1e-3)
+    assert float(ramp.height_at(np.array([2.2, 3.2]))) == pytest.approx(0.34, abs=1e-3)
+    assert multilevel["stair_tread3"].depth == pytest.approx(0.28, abs=1e-6)
+
+
+@pytest.mark.parametrize(
+    "name", ["assembly_station", "assembly_station_2h", "corridor", "open_floor"]
+)
+def test_flat_shipped_scenes_give_only_the_floor(scenes_dir, name):
+    # table, rack and car tops are candidates, but no step of at most 0.19 m reaches them
+    model = mujoco.MjModel.from_xml_path(str(scenes_dir / f"{name}.xml"))
+    assert names(model) == ["floor"]
+
+
+def test_a_top_is_a_surface_only_when_a_step_reaches_it():
+    table = '<geom name="table" type="box" size="0.6 0.4 0.375" pos="0 0 0.375"/>'
+    assert names(scene(table)) == ["floor"]  # 0.75 m above the floor
+    stair = (
+        '<geom name="low" type="box" size="0.5 0.5 0.075" pos="2 0 0.075"/>'
+        '<geom name="high" type="box" size="0.5 0.5 0.15" pos="3 0 0.15"/>'
+    )
+    assert names(scene(stair)) == ["floor", "low", "high"]  # 0.15 then 0.15
+
+
+def test_too_small_too_steep_or_hidden_tops_are_no_surfaces():
+    small = '<geom name="small" type="box" size="0.1 0.5 0.05" pos="0 0 0.05"/>'  # 0.2 m deep
+    steep = '<geom name="steep" type="box" size="1 0.5 0.05" pos="2 0 0.1" euler="0 15 0"/>'
+    hidden = (
+        '<geom name="outer" type="box" size="1 1 0.075" pos="-2 -2 0.075"/>'
+        '<geom name="inner" type="box" size="0.5 0.5 0.05" pos="-2 -2 0.05"/>'
+    )
+    assert names(scene(small + steep + hidden)) == ["floor", "outer"]
+
+
+def test_yawed_box_keeps_its_rectangle():
+    model = scene(
+        '<geom name="pad" type="box" size="0.6 0.4 0.075" pos="1 1 0.075" euler="0 0 30"/>'
+    )
+    pad = find_walk_surfaces(model, None)[1]
+    assert pad.kind == "platform"
+    assert pad.area == pytest.approx(1.2 * 0.8, rel=1e-9)
+    assert (pad.depth, pad.width) == pytest.approx((0.8, 1.2), abs=1e-9)
+    along = np.array([math.cos(math.radians(30)), math.sin(math.radians(30))])  # its local +x
+    assert bool(pad.contains(np.array([1.0, 1.0]) + 0.55 * along))
+    assert not bool(pad.contains(np.array([1.0, 1.0]) + 0.65 * along))  # beyond its short side
+
+
+BEAM_PLATFORM = '<geom name="deck" type="box" size="1 0.5 0.085" pos="0 0 0.085"/>'
+
+
+def test_a_surface_under_a_low_beam_is_refused():
+    # a beam over the whole deck, its underside 1.9 m above it: less than the 2.0 m clear
+    # headroom (DIN 18065) anywhere on it
+    beam = '<geom name="beam" type="box" size="1.2 0.7 0.1" pos="0 0 2.17"/>'
+    assert names(scene(BEAM_PLATFORM + beam)) == ["floor"]
+    assert names(scene(BEAM_PLATFORM + beam), SurfaceOptions(min_headroom=1.8)) == ["floor", "deck"]
+
+
+def test_head_clearance_under_a_beam_depends_on_stature():
+    # a 0.2 m beam across the deck, its underside 1.9 m above the deck's top (0.17 m)
+    beam = '<geom name="beam" type="box" size="0.1 0.7 0.1" pos="0.5 0 2.17"/>'
+    deck = find_walk_surfaces(scene(BEAM_PLATFORM + beam), None)[1]
+    under, beside = np.array([0.5, 0.0]), np.array([-0.5, 0.0])
+    assert float(deck.free_height(under)) == pytest.approx(1.9, abs=1e-9)
+    assert math.isinf(float(deck.free_height(beside)))
+    assert not bool(head_fits(deck, under, 1.90))
+    assert bool(head_fits(deck, under, 1.60))
+    assert bool(head_fits(deck, beside, 1.90))
+    assert deck.lowest_ceiling == pytest.approx(1.9, abs=1e-9)
+    assert deck.headroom.at(under) == pytest.approx(1.9, abs=1e-9)
+
+
+def test_options_select_and_check():
+    two = (
+        '<geom name="pad_a" type="box" size="0.5 0.5 0.075" pos="2 0 0.075" group="1"/>'
+        '<geom name="pad_b" type="box" size="0.5 0.5 0.075" pos="-2 0 0.075"/>'
+    )
+    model = scene(two)
+    assert names(model, SurfaceOptions(exclude="_a$")) == ["floor", "pad_b"]
+    assert names(model, SurfaceOptions(include="_a$")) == ["floor", "pad_a"]
+    assert names(model, SurfaceOptions(groups={1})) == ["floor", "pad_a"]
+    with pytest.raises(InputError, match="max_ramp_slope"):
+        SurfaceOptions(max_ramp_slope=0.0)
+    with pytest.raises(InputError, match="regular expression"):
+        SurfaceOptions(include="(")
+    with pytest.raises(InputError, match="min_depth"):
+        SurfaceOptions(min_depth=-1.0)
+
+
+def test_without_the_ramp_the_platform_is_still_reached_by_its_step(scenes_dir):
+    model = mujoco.MjModel.from_xml_path(str(scenes_dir / "multilevel_station.xml"))
+    found = names(model, SurfaceOptions(exclude="ramp"))
+    assert "platform" in found and "platform_ramp" not in found
+
+
+def test_humanoid_prefixes_match_the_workplace():
+    assert surfaces_module.HUMANOID_PREFIXES == HUMANOID_PREFIXES
