@@ -44,11 +44,11 @@ from mjwalk._jit import njit
 from mjwalk.anthropometry import SEG
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.plan.guide import (
+    densify,
     first_below,
     guide_is_clear,
     minimum_jerk_guide,
     resample_guide,
-    via_point_guide,
     via_points_guide,
 )
 from mjwalk.plan.sides import side_gap, side_log_odds
@@ -79,6 +79,8 @@ SIDE_SLOPE_PER_DEG = math.log(3.0) / 1.65
 SIDE_SLOPE_PER_M = math.log(3.0) / 0.75
 #: The most obstacles one walk's guide passes (:func:`pass_on_side`).
 MAX_PASSED = 4
+#: Spacing (m) of the points of each side's route the gap is measured along (:func:`choose_side`).
+GAP_SPACING = 0.1
 #: Directions sampled round each corner of an obstacle for its inflated outline.
 _ROUND = 16
 
@@ -301,22 +303,22 @@ def detour_guide(
     if blocker is None:
         return None
     headings = (start_heading, goal_heading)
-    go_left = choose_side(workplace, blocker, (s, g), headings, body, rng)
+    go_left = choose_side(workplace, blocker, (s, g), body, rng)
     return pass_on_side(workplace, blocker, (s, g), headings, body, go_left)
 
 
-def choose_side(workplace, blocker, ends, headings, body: GuideBody, rng) -> bool:
+def choose_side(workplace, blocker, ends, body: GuideBody, rng) -> bool:
     """Draw the side a walker passes ``blocker`` on, once, at the walk's start: the logistic
     of :func:`mjwalk.plan.sides.side_log_odds`, the open-space log-odds of the obstacle's two
     ends (:func:`left_log_odds`) with the gap each side's route leaves beside it
     (:func:`mjwalk.plan.sides.side_gap`: walls and other obstacles), the route being the
-    minimum-jerk path through the waypoint at the cited berth on that side.
+    straight legs through the waypoint at the cited berth on that side (beside the obstacle
+    the minimum-jerk path runs within a few centimetres of them).
 
     Args:
         workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
         blocker: the obstacle's :class:`~mjwalk.world.footprint.Footprint`.
         ends: the walk's start and goal, (2,) each, metres, world frame.
-        headings: the start and goal headings (radians from +x CCW; None: free).
         body: the walker (its stature sets shoulder width and berth).
         rng: the random stream (one draw).
 
@@ -327,12 +329,8 @@ def choose_side(workplace, blocker, ends, headings, body: GuideBody, rng) -> boo
     shoulder = SEG["shoulder_width"] * body.stature
     berth = 0.5 * shoulder + PASSING_GAP
     gaps = []
-    for left in (True, False):
-        way = abreast(blocker, s, g, berth, left)
-        try:
-            route = via_point_guide(s, way, g, *headings)
-        except ValueError:  # the waypoint at an end: the straight legs
-            route = np.array([s, way, g])
+    for left in (True, False):  # the route: straight legs through the waypoint, densified
+        route = densify(np.array([s, abreast(blocker, s, g, berth, left), g]), GAP_SPACING)
         gaps.append(side_gap(workplace, blocker, route, s, g))
     z = side_log_odds(
         left_log_odds(s, g, *obstacle_ends(blocker, s, g)), gaps[0], gaps[1], shoulder
