@@ -12,8 +12,11 @@ people walking around obstacles to a visible goal:
   around a barrier to a visible goal, N = 19 and 15, mixed-effects logistic regression of
   Left/Right choices on Δβ and Δd; the 75 % choice threshold is 1.65 deg for Δβ and 0.75 m for
   Δd, from 50 % at no difference). The logistic model with those two slopes, ln 3 / 1.65 per
-  degree and ln 3 / 0.75 per metre, and no side bias, is :func:`left_share`; the walker draws
-  its side from it once per walk, and the guide keeps it to that side (no late switches).
+  degree and ln 3 / 0.75 per metre, and no side bias, is :func:`left_share` (open space). Where
+  a wall or another obstacle stands beside the obstacle, the gap it leaves on that side weighs
+  in as well (:mod:`mjwalk.plan.sides`: the critical aperture of Hackney & Cinelli 2013 and
+  Warren & Whang 1987). The walker draws its side once per walk, at its start
+  (:func:`choose_side`), and the guide keeps it to that side (no late switches).
 - **Berth.** People who step around obstacles in their path keep a consistent protective gap
   of about 0.30 m between themselves and the obstacles at the time of crossing
   (doi:10.1080/17470218.2012.730532, Q J Exp Psychol 66, 2013: young adults walking to a goal
@@ -22,9 +25,11 @@ people walking around obstacles to a visible goal:
   (:data:`mjwalk.anthropometry.SEG` ``shoulder_width``, Drillis & Contini via Winter), i.e. the
   pelvis's distance from the surface.
 
-Only the first obstacle the path runs into is passed this way; where the path around it
-meets another obstacle, or the walker's end is the obstacle's own neighbourhood (a walk to
-and from a workbench), no guide is given and the route search decides. Metres, radians (world
+Every further obstacle the path round runs into is passed on the same side of the line from
+start to goal (the side is the walk's, decided once: :func:`pass_on_side`), up to
+:data:`MAX_PASSED`; where no such path keeps the body's clearance, or the walker's end is the
+obstacle's own neighbourhood (a walk to and from a workbench), no guide is given and the route
+search decides. Metres, radians (world
 frame, yaw from +x).
 """
 
@@ -39,23 +44,29 @@ from mjwalk._jit import njit
 from mjwalk.anthropometry import SEG
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.plan.guide import (
+    densify,
     first_below,
     guide_is_clear,
     minimum_jerk_guide,
     resample_guide,
-    via_point_guide,
+    via_points_guide,
 )
+from mjwalk.plan.sides import side_gap, side_log_odds
 from mjwalk.world.clearance import ClearanceField, bilinear_at
 
 __all__ = [
+    "MAX_PASSED",
     "PASSING_GAP",
     "SIDE_SLOPE_PER_DEG",
     "SIDE_SLOPE_PER_M",
     "GuideBody",
     "abreast",
+    "choose_side",
     "detour_guide",
+    "left_log_odds",
     "left_share",
     "obstacle_ends",
+    "pass_on_side",
     "walk_guide",
     "walkable",
 ]
@@ -66,6 +77,10 @@ PASSING_GAP = 0.30
 #: difference and per metre of distance difference between the obstacle's two ends.
 SIDE_SLOPE_PER_DEG = math.log(3.0) / 1.65
 SIDE_SLOPE_PER_M = math.log(3.0) / 0.75
+#: The most obstacles one walk's guide passes (:func:`pass_on_side`).
+MAX_PASSED = 4
+#: Spacing (m) of the points of each side's route the gap is measured along (:func:`choose_side`).
+GAP_SPACING = 0.1
 #: Directions sampled round each corner of an obstacle for its inflated outline.
 _ROUND = 16
 
@@ -150,10 +165,7 @@ def abreast(footprint, start, goal, inflate: float, left: bool) -> np.ndarray:
 
 def left_share(start, goal, left, right) -> float:
     """The probability that a walker from ``start`` to ``goal`` passes an obstacle on its left
-    (module doc): the logistic model on the differences of deviation angle (degrees: how far
-    left, or right, of the goal direction the walker must head to pass the end, 0 where it
-    already passes) and distance (metres) between the obstacle's ``right`` and ``left`` ends
-    (x, y). An end at a smaller angle and distance draws the walker.
+    in open space (module doc): the logistic of :func:`left_log_odds`.
 
     Args:
         start: the walker's point (x, y), metres, world frame.
@@ -162,8 +174,27 @@ def left_share(start, goal, left, right) -> float:
         right: its right end (x, y), metres.
 
     Returns:
-        The probability 1 / (1 + exp(-z)), z = :data:`SIDE_SLOPE_PER_DEG`·(b_right - b_left) +
-        :data:`SIDE_SLOPE_PER_M`·(d_right - d_left).
+        The probability 1 / (1 + exp(-z)), z = :func:`left_log_odds`.
+    """
+    return float(1.0 / (1.0 + math.exp(-left_log_odds(start, goal, left, right))))
+
+
+def left_log_odds(start, goal, left, right) -> float:
+    """The log-odds that a walker from ``start`` to ``goal`` passes an obstacle on its left
+    in open space (module doc): the logistic model on the differences of deviation angle
+    (degrees: how far left, or right, of the goal direction the walker must head to pass the
+    end, 0 where it already passes) and distance (metres) between the obstacle's ``right`` and
+    ``left`` ends (x, y). An end at a smaller angle and distance draws the walker.
+
+    Args:
+        start: the walker's point (x, y), metres, world frame.
+        goal: the goal point (x, y), metres.
+        left: the obstacle's left end (x, y), metres (:func:`obstacle_ends`).
+        right: its right end (x, y), metres.
+
+    Returns:
+        z = :data:`SIDE_SLOPE_PER_DEG`·(b_right - b_left) + :data:`SIDE_SLOPE_PER_M`·(d_right -
+        d_left).
     """
     sx, sy = (float(v) for v in np.asarray(start, dtype=float)[:2])
     gx, gy = (float(v) for v in np.asarray(goal, dtype=float)[:2])
@@ -177,8 +208,7 @@ def left_share(start, goal, left, right) -> float:
     (a_left, d_left), (a_right, d_right) = angle_and_distance(left), angle_and_distance(right)
     # how far the walker must turn from the goal direction to pass each end (0: already clear)
     b_left, b_right = max(0.0, a_left), max(0.0, -a_right)
-    z = SIDE_SLOPE_PER_DEG * (b_right - b_left) + SIDE_SLOPE_PER_M * (d_right - d_left)
-    return float(1.0 / (1.0 + math.exp(-z)))
+    return SIDE_SLOPE_PER_DEG * (b_right - b_left) + SIDE_SLOPE_PER_M * (d_right - d_left)
 
 
 def _blocking(workplace, path: np.ndarray, radius: float):
@@ -240,14 +270,14 @@ def detour_guide(
     body: GuideBody,
     rng: np.random.Generator,
 ) -> np.ndarray | None:
-    """The path a walk's heading follows past the first obstacle ``direct`` runs into.
+    """The path a walk's heading follows past the obstacles ``direct`` runs into.
 
     The path goes from ``start`` to ``goal`` past the first obstacle the path ``direct`` runs
-    into (module doc): the side drawn from :func:`left_share` with ``rng`` (one draw), the
-    waypoint abreast of the obstacle (:func:`abreast`) at half the shoulder width of a walker
-    of ``body.stature`` plus :data:`PASSING_GAP` from it (or ``body.radius`` plus 5 cm where
-    that does not fit), and the minimum-jerk path through it
-    (:func:`~mjwalk.plan.guide.via_point_guide`).
+    into (module doc) on a side drawn once with ``rng`` (:func:`choose_side`: the ends'
+    angles and distances and the gap each side leaves), through a waypoint abreast of it
+    (:func:`abreast`) at half the shoulder width of a walker of ``body.stature`` plus
+    :data:`PASSING_GAP` from it, and past every further obstacle that path runs into on the
+    same side of the line ``start`` -> ``goal`` (:func:`pass_on_side`).
 
     Args:
         workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
@@ -261,29 +291,129 @@ def detour_guide(
         rng: the random stream the side is drawn from (one draw when an obstacle blocks).
 
     Returns:
-        The (k, 2) path round the obstacle (metres), or None when the direct path is clear,
-        when no obstacle blocks it (the floor's edge does), or when the path round does not keep
-        ``body.radius`` from every obstacle or turns sharper than steps of ``body.step_length``
-        can (:func:`walkable`); then the route search decides.
+        The (k, 2) path round the obstacles (metres), or None when the direct path is clear,
+        when no obstacle blocks it (the floor's edge does), or when no path round on the drawn
+        side keeps ``body.radius`` from every obstacle and turns no sharper than steps of
+        ``body.step_length`` can (:func:`walkable`); then the route search decides.
     """
     s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
     if not np.hypot(*(g - s)) > 1e-6:
         return None
-    radius = body.radius
-    blocker = _blocking(workplace, np.asarray(direct, dtype=float), radius)
+    blocker = _blocking(workplace, np.asarray(direct, dtype=float), body.radius)
     if blocker is None:
         return None
-    left, right = obstacle_ends(blocker, s, g)
-    go_left = bool(rng.random() < left_share(s, g, left, right))
-    berth = 0.5 * SEG["shoulder_width"] * body.stature + PASSING_GAP
-    for gap in (berth, radius + 0.05):  # the cited berth, or the body's where that is too wide
-        way = abreast(blocker, s, g, gap, go_left)
-        if np.hypot(*(way - s)) < 1e-6 or np.hypot(*(g - way)) < 1e-6:
+    headings = (start_heading, goal_heading)
+    go_left = choose_side(workplace, blocker, (s, g), body, rng)
+    return pass_on_side(workplace, blocker, (s, g), headings, body, go_left)
+
+
+def choose_side(workplace, blocker, ends, body: GuideBody, rng) -> bool:
+    """Draw the side a walker passes ``blocker`` on, once, at the walk's start: the logistic
+    of :func:`mjwalk.plan.sides.side_log_odds`, the open-space log-odds of the obstacle's two
+    ends (:func:`left_log_odds`) with the gap each side's route leaves beside it
+    (:func:`mjwalk.plan.sides.side_gap`: walls and other obstacles), the route being the
+    straight legs through the waypoint at the cited berth on that side (beside the obstacle
+    the minimum-jerk path runs within a few centimetres of them).
+
+    Args:
+        workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
+        blocker: the obstacle's :class:`~mjwalk.world.footprint.Footprint`.
+        ends: the walk's start and goal, (2,) each, metres, world frame.
+        body: the walker (its stature sets shoulder width and berth).
+        rng: the random stream (one draw).
+
+    Returns:
+        Whether the walker passes on the left of the line start -> goal.
+    """
+    s, g = ends
+    shoulder = SEG["shoulder_width"] * body.stature
+    berth = 0.5 * shoulder + PASSING_GAP
+    gaps = []
+    for left in (True, False):  # the route: straight legs through the waypoint, densified
+        route = densify(np.array([s, abreast(blocker, s, g, berth, left), g]), GAP_SPACING)
+        gaps.append(side_gap(workplace, blocker, route, s, g))
+    z = side_log_odds(
+        left_log_odds(s, g, *obstacle_ends(blocker, s, g)), gaps[0], gaps[1], shoulder
+    )
+    share = 1.0 / (1.0 + math.exp(-z)) if z > -700.0 else 0.0
+    return bool(rng.random() < share)
+
+
+def pass_on_side(workplace, first, ends, headings, body: GuideBody, left: bool):
+    """The smooth path from the walk's start past ``first`` and every further obstacle that
+    path runs into (up to :data:`MAX_PASSED` in all), each on the ``left`` (else right) of
+    the line start -> goal: through waypoints abreast of each (:func:`abreast`, in order along
+    the line; :func:`~mjwalk.plan.guide.via_points_guide`) at the cited berth (half the
+    shoulder width plus :data:`PASSING_GAP`), or at ``body.radius`` plus 5 cm from an
+    obstacle where the berth does not fit, or from all where the path turns too sharply.
+
+    Args:
+        workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
+        first: the first obstacle in the way (:class:`~mjwalk.world.footprint.Footprint`).
+        ends: the walk's start and goal, (2,) each, metres, world frame.
+        headings: the start and goal headings (radians from +x CCW; None: free).
+        body: the walker's clearance radius, stature and step length.
+        left: the side chosen (:func:`choose_side`).
+
+    Returns:
+        (k, 2) the path (metres), or None where none keeps ``body.radius`` from every
+        obstacle and the floor's edge and is :func:`walkable`.
+    """
+    s, g = ends
+    u = (g - s) / float(np.hypot(*(g - s)))
+    tight = body.radius + 0.05
+    passed: list = []
+    gaps: list[float] = []
+    blocker = first
+    while True:
+        # in the way again, or the path meets the neighbour that forms the gap beside it
+        # (their extents along the line overlap): the cited berth does not fit there
+        hit = [i for i, fp in enumerate(passed) if _overlap(fp, blocker, s, u)]
+        if hit:
+            if all(gaps[i] <= tight for i in hit):
+                return None
+            for i in hit:
+                gaps[i] = tight
+        elif blocker is not None:
+            if len(passed) == MAX_PASSED:
+                return None
+            passed.append(blocker)
+            gaps.append(0.5 * SEG["shoulder_width"] * body.stature + PASSING_GAP)
+        ways = np.array(
+            [abreast(fp, s, g, gap, left) for fp, gap in zip(passed, gaps, strict=True)]
+        )
+        ways = ways[np.argsort((ways - s) @ u, kind="stable")]
+        if np.hypot(*(ways - s).T).min() < 1e-6 or np.hypot(*(ways - g).T).min() < 1e-6:
             return None
-        path = via_point_guide(s, way, g, start_heading, goal_heading)
-        if walkable(path, body.step_length) and guide_is_clear(workplace, path, radius):
+        try:
+            path = via_points_guide(s, ways, g, *headings)
+        except ValueError:
+            return None
+        blocker = _blocking(workplace, path, body.radius)
+        if blocker is not None:
+            continue
+        if walkable(path, body.step_length) and guide_is_clear(workplace, path, body.radius):
             return path
-    return None
+        if max(gaps) <= tight:
+            return None
+        gaps = [tight] * len(gaps)  # the floor's edge or too sharp a turn: the body's berth
+
+
+def _overlap(passed, blocker, s: np.ndarray, u: np.ndarray) -> bool:
+    """Whether ``blocker`` is the obstacle ``passed`` itself or one whose extent along the
+    unit direction ``u`` from ``s`` overlaps that of ``passed`` (beside it: the two form a
+    gap); False for None."""
+    if blocker is None:
+        return False
+    if blocker is passed:
+        return True
+
+    def extent(fp) -> tuple[float, float]:
+        along = (np.asarray(fp.vertices, dtype=float) - s) @ u
+        return float(along.min()) - fp.radius, float(along.max()) + fp.radius
+
+    (a0, a1), (b0, b1) = extent(passed), extent(blocker)
+    return a0 <= b1 and b0 <= a1
 
 
 def walkable(path: np.ndarray, step_length: float) -> bool:

@@ -51,6 +51,7 @@ __all__ = [
     "minimum_jerk_guide",
     "resample_guide",
     "via_point_guide",
+    "via_points_guide",
 ]
 
 #: Points of the polyline the compiled search follows (evenly spaced along it): 24 segments of
@@ -209,6 +210,48 @@ def via_point_guide(
     first = _poly_points(_H6.T @ np.stack([p0, v0 * t1, zero, aw * t1**2, vw * t1, w]), m1)
     second = _poly_points(_H6.T @ np.stack([w, vw * t2, aw * t2**2, zero, v1 * t2, p1]), n - m1 + 1)
     return np.vstack([first, second[1:]])
+
+
+def via_points_guide(
+    start, vias, goal, start_heading: float | None, goal_heading: float | None, n: int = 400
+) -> np.ndarray:
+    """About ``n`` points of a smooth path from ``start`` through the points ``vias`` (in
+    order) to ``goal`` (x, y, metres): :func:`via_point_guide` for one via point; for more, a
+    chain of minimum-jerk pieces (:func:`minimum_jerk_guide`) joined at the via points along
+    the direction from the point before to the point after (continuous direction, zero
+    acceleration at the joins: the chain's jerk is near the joint solution's for via points
+    a piece's length apart or more).
+
+    Args:
+        start: the start point (x, y), metres, world frame.
+        vias: (m >= 1, 2) the points to pass through, in order, metres.
+        goal: the goal point (x, y), metres.
+        start_heading: the heading to leave along, radians from +x CCW; None: towards the
+            first via point.
+        goal_heading: the heading to arrive along, radians; None: from the last via point.
+        n: about the number of points (each piece gets its share by straight length).
+
+    Returns:
+        (k, 2) the path's points, metres.
+    """
+    ways = np.asarray(vias, dtype=float).reshape(-1, 2)
+    if len(ways) == 1:
+        return via_point_guide(start, ways[0], goal, start_heading, goal_heading, n)
+    pts = np.vstack([np.asarray(start, dtype=float)[None, :2], ways, np.asarray(goal)[None, :2]])
+    lengths = np.hypot(*np.diff(pts, axis=0).T)
+    if not np.all(lengths > 1e-9):
+        raise ValueError("via_points_guide: two consecutive points coincide")
+    headings: list[float | None] = [start_heading]
+    for k in range(1, len(pts) - 1):
+        d = pts[k + 1] - pts[k - 1]
+        headings.append(math.atan2(d[1], d[0]))
+    headings.append(goal_heading)
+    pieces = []
+    for k in range(len(pts) - 1):
+        m = max(8, round(n * lengths[k] / lengths.sum()))
+        piece = minimum_jerk_guide(pts[k], pts[k + 1], headings[k], headings[k + 1], m)
+        pieces.append(piece if k == 0 else piece[1:])
+    return np.vstack(pieces)
 
 
 def _checked(points) -> np.ndarray:

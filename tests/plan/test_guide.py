@@ -10,7 +10,14 @@ import pytest
 
 from mjwalk import InputError
 from mjwalk.gait.default import default_model
-from mjwalk.plan.guide import guide_aim, guide_is_clear, minimum_jerk_guide, resample_guide
+from mjwalk.plan.guide import (
+    guide_aim,
+    guide_is_clear,
+    minimum_jerk_guide,
+    resample_guide,
+    via_point_guide,
+    via_points_guide,
+)
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.request import WalkRequest
 from mjwalk.world import load_workplace
@@ -306,3 +313,20 @@ def test_resampling_is_numpys_interpolation_along_the_length():
         u = np.linspace(0.0, s[-1], n)
         ref = np.stack([np.interp(u, s, pts[:, 0]), np.interp(u, s, pts[:, 1])], axis=1)
         assert np.allclose(resample_guide(pts, n), ref, atol=1e-12)
+
+
+def test_a_guide_through_several_points_passes_each_smoothly():
+    """Through two via points: the path starts and ends at the ends, passes within 1 cm of
+    each via point, along the direction from the point before to the point after, and its
+    direction turns by less than 10 deg between neighbouring points (no kinks); one via point
+    is via_point_guide's path."""
+    vias = np.array([(-1.5, 0.8), (1.5, 0.9)])
+    path = via_points_guide((-4.0, 0.0), vias, (4.0, 0.0), 0.0, 0.0)
+    assert np.allclose(path[0], (-4.0, 0.0)) and np.allclose(path[-1], (4.0, 0.0))
+    for w in vias:
+        assert np.hypot(*(path - w).T).min() < 0.01
+    d = np.diff(path, axis=0)
+    turn = np.diff(np.unwrap(np.arctan2(d[:, 1], d[:, 0])))
+    assert np.abs(turn).max() < np.radians(10.0)
+    one = via_points_guide((-4.0, 0.0), vias[:1], (4.0, 0.0), None, None)
+    assert np.allclose(one, via_point_guide((-4.0, 0.0), vias[0], (4.0, 0.0), None, None))
