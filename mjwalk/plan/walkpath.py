@@ -26,6 +26,9 @@ class PathStep:
         start, end: indices into the path samples where the step begins and ends (inclusive).
         foot: (3,) landing footprint x, y (metres) and yaw (radians from +x, CCW).
         stance: (3,) the other (supporting) foot's x, y, yaw during the step.
+        foot_z: height of the walk surface the swing foot lands on, metres above the floor
+            (0 on the floor; a platform's, tread's or ramp's height where it lands there).
+        stance_z: height of the walk surface under the stance foot, metres.
     """
 
     side: str
@@ -33,6 +36,8 @@ class PathStep:
     end: int
     foot: np.ndarray
     stance: np.ndarray
+    foot_z: float = 0.0
+    stance_z: float = 0.0
 
 
 @dataclass
@@ -45,6 +50,9 @@ class WalkPath:
         yaw: (N,) pelvis heading, radians from +x, counter-clockwise (unwrapped).
         steps: the steps, in order (empty for the grid-A* baseline, which has no gait).
         meta: provenance (planner, seed, expansions, planning time...).
+        z: (N,) height of the walk surface under the pelvis at each sample, metres above the
+            floor; None on one level (the floor: every height 0). A walk over platforms,
+            ramps and stairs carries it (issue 47).
     """
 
     t: np.ndarray
@@ -52,6 +60,18 @@ class WalkPath:
     yaw: np.ndarray
     steps: list[PathStep] = field(default_factory=list)
     meta: dict = field(default_factory=dict)
+    z: np.ndarray | None = None
+
+    @property
+    def ground(self) -> np.ndarray:
+        """(N,) height of the walk surface under the pelvis, metres (zeros on the floor)."""
+        return np.zeros(len(self.t)) if self.z is None else np.asarray(self.z, dtype=float)
+
+    @property
+    def is_flat(self) -> bool:
+        """Whether the whole walk stays on the floor (no height anywhere)."""
+        heights = [s.foot_z for s in self.steps] + [s.stance_z for s in self.steps]
+        return (self.z is None or not np.any(self.z)) and not any(heights)
 
     @property
     def points(self) -> np.ndarray:
@@ -111,6 +131,12 @@ class WalkPath:
         for name, a in (("t", t), ("xy", xy), ("yaw", yaw)):
             if not np.issubdtype(a.dtype, np.number) or not np.all(np.isfinite(a)):
                 raise bad(f"{name} must hold finite numbers")
+        if self.z is not None:
+            z = np.asarray(self.z)
+            if z.shape != (n,) or not np.issubdtype(z.dtype, np.number):
+                raise bad(f"z must have shape ({n},) (one height per time in t), got {z.shape}")
+            if not np.all(np.isfinite(z)):
+                raise bad("z must hold finite numbers")
         if abs(float(t[0])) > 1e-9:
             raise bad(f"t must start at 0 s, starts at {float(t[0]):g} s")
         dt = np.diff(t)
@@ -136,6 +162,8 @@ class WalkPath:
                 a = np.asarray(a)
                 if a.shape != (3,) or not np.all(np.isfinite(a)):
                     raise bad(f"step {k}: {name} must be 3 finite numbers (x, y, yaw)")
+            if not (np.isfinite(s.foot_z) and np.isfinite(s.stance_z)):
+                raise bad(f"step {k}: foot_z and stance_z must be finite heights (metres)")
 
     def stamp_scene(self, workplace) -> WalkPath:
         """Record the scene this walk was planned in (its name and
@@ -201,6 +229,11 @@ class WalkPath:
             "step_foot": np.array([s.foot for s in steps], dtype=float).reshape(-1, 3),
             "step_stance": np.array([s.stance for s in steps], dtype=float).reshape(-1, 3),
         }
+        if not self.is_flat:  # a flat walk's file stays as it was before levels existed
+            arrays["z"] = self.ground
+            arrays["step_z"] = np.array(
+                [[s.foot_z, s.stance_z] for s in steps], dtype=float
+            ).reshape(-1, 2)
         header = {"format": WALKPATH_FORMAT, "version": WALKPATH_VERSION, "meta": self.meta}
         save_npz(path, header, arrays)
 
@@ -245,7 +278,19 @@ class WalkPath:
                 strict=True,
             )
         ]
-        walk = cls(t=data["t"], xy=data["xy"], yaw=data["yaw"], steps=steps, meta=header["meta"])
+        if "step_z" in data:
+            if data["step_z"].shape != (len(steps), 2):
+                raise ModelFileError(f"{path}: step_z has shape {data['step_z'].shape}")
+            for s, (fz, sz) in zip(steps, data["step_z"], strict=True):
+                s.foot_z, s.stance_z = float(fz), float(sz)
+        walk = cls(
+            t=data["t"],
+            xy=data["xy"],
+            yaw=data["yaw"],
+            steps=steps,
+            meta=header["meta"],
+            z=data["z"] if "z" in data else None,
+        )
         try:
             walk.validate(str(path))
         except InputError as exc:

@@ -55,3 +55,22 @@ def test_walkpath_load_refuses_a_foreign_file(tmp_path):
     np.savez(path, x=np.zeros(3))
     with pytest.raises(ModelFileError):
         WalkPath.load(path)
+
+
+def test_heights_over_levels_round_trip_and_are_checked(tmp_path):
+    flat = synthetic_walk(n_steps=4)
+    assert flat.is_flat and not flat.ground.any()
+    flat.save(tmp_path / "flat.npz")
+    with np.load(tmp_path / "flat.npz") as f:
+        assert "z" not in f and "step_z" not in f  # a flat walk's file is as before levels
+    up = synthetic_walk(n_steps=4)
+    up.z = np.linspace(0.0, 0.34, len(up.t))  # a ramp onto a platform
+    up.steps[-1].foot_z = 0.34
+    assert not up.is_flat
+    up.save(tmp_path / "up.npz")
+    back = WalkPath.load(tmp_path / "up.npz")
+    np.testing.assert_array_equal(back.ground, up.z)
+    assert back.steps[-1].foot_z == 0.34 and back.steps[0].stance_z == 0.0
+    up.z = up.z[:-1]
+    with pytest.raises(InputError, match="z must have shape"):
+        up.validate()
