@@ -1,4 +1,5 @@
-"""Fidelity of a :class:`StepModel` against captured walking, plus train/validate entry points.
+"""Fidelity of a :class:`StepModel` against captured walking (`mjwalk validate` runs it through
+:mod:`mjwalk.gait.training`).
 
 Two comparisons (agethen2018 §5.2 reports path-length medians and IQRs the same way):
 
