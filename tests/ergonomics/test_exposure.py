@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -67,3 +69,37 @@ def test_frames_and_spread():
     assert f.angle("upper_arm_left").tolist() == [0.0, 90.0]
     assert f.angle("upper_arm_right").tolist() == [5.0, 5.0]
     assert spread([])["p50"] is None and spread([1.0, 3.0])["max"] == 3.0
+
+
+SHELF_CYCLE = """name = "one pick"
+scene = "{scene}"
+start = "stand_rack1"
+[humanoid]
+stature = {stature}
+[[task]]
+kind = "pick"
+site = "{site}"
+hand = "left"
+"""
+
+
+@pytest.mark.slow
+def test_a_higher_shelf_raises_short_operators_arms_longer_than_tall_ones(tmp_path):
+    """Real cycles at the shipped shelving station (seeded): the same pick from the 1.06 m and
+    the 1.56 m shelf by a short (1.55 m) and a tall (1.90 m) operator; the higher shelf adds
+    more seconds above 60 deg of arm elevation to the short operator's pick (the motion's
+    doing: nothing in the scoring reads the stature)."""
+    from mjwalk.cycle.simulate import simulate_cycles  # deferred: the cycle stage loads MuJoCo
+    from mjwalk.cycle.spec import load_cycle_spec  # deferred: as above
+
+    scene = Path(__file__).resolve().parents[2] / "scenes" / "shelving_station.xml"
+    over = {}
+    for stature in (1.55, 1.90):
+        for site in ("rack1_waist", "rack1_high"):
+            f = tmp_path / f"c{stature}{site}.toml"
+            f.write_text(SHELF_CYCLE.format(scene=scene, stature=stature, site=site))
+            rs = simulate_cycles(load_cycle_spec(f), 3, 49, n_jobs=1)
+            over[stature, site] = np.median([r.ergonomics.extra["arm_over60_s"] for r in rs])
+    short = over[1.55, "rack1_high"] - over[1.55, "rack1_waist"]
+    tall = over[1.90, "rack1_high"] - over[1.90, "rack1_waist"]
+    assert short > tall + 0.1, over
