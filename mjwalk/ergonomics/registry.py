@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
+from mjwalk.ergonomics.exposure import ExposureScore
 from mjwalk.ergonomics.lifting import NioshScore
 from mjwalk.ergonomics.postures import Iso11226Score, OwasScore, RebaScore, RulaScore
 from mjwalk.ergonomics.score import Column, Score
@@ -21,8 +22,11 @@ from mjwalk.errors import MjwalkError
 
 #: The methods by name, in the report's order (its table's columns, its notes).
 SCORES: dict[str, Score] = {
-    s.name: s for s in (RulaScore(), RebaScore(), OwasScore(), NioshScore(), Iso11226Score())
-}
+    s.name: s
+    for s in (
+        RulaScore(), RebaScore(), OwasScore(), NioshScore(), Iso11226Score(), ExposureScore()
+    )
+}  # fmt: skip
 #: The columns of ergonomics.csv before any method's: the run, its operator and the task.
 TASK_COLUMNS = ("run", "seed", "group", "stature_m", "task", "kind", "site")
 #: ergonomics.csv's established column order (the built-in methods' columns, interleaved).

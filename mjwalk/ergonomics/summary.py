@@ -29,6 +29,7 @@ import numpy as np
 from mjwalk.ergonomics.registry import SCORES, STATS_ORDER, TASK_COLUMNS, csv_columns, in_order
 from mjwalk.ergonomics.results import RunErgonomics
 from mjwalk.ergonomics.score import CONFIDENCE, fmt, percentiles, share
+from mjwalk.ergonomics.workforce import exposure_markdown, exposure_summary
 
 
 def csv_header() -> list[str]:
@@ -143,20 +144,23 @@ def _stature(records: list[RunRecord]) -> dict | None:
     }
 
 
-def ergonomics_summary(records: list[RunRecord]) -> dict:
+def ergonomics_summary(records: list[RunRecord], takt: float | None = None) -> dict:
     """The report's ergonomics figures (see the module docstring).
 
     Args:
         records: the scored runs.
+        takt: the cycle's takt, s (None: none given); a shift's cycles for the exposure.
 
     Returns:
-        Plain, JSON-ready data: ``methods``, ``overall`` and per-group figures, ``drivers``,
+        Plain, JSON-ready data: ``exposure`` (:func:`~mjwalk.ergonomics.workforce.
+        exposure_summary`), ``methods``, ``overall`` and per-group figures, ``drivers``,
         ``tasks`` and ``stature``.
     """
     groups: dict[str, list[RunRecord]] = {}
     for r in records:
         groups.setdefault(r.group, []).append(r)
     return {
+        "exposure": exposure_summary(records, takt),
         "methods": {
             **{name: sc.source for name, sc in SCORES.items()},
             "shares": "cycles reaching at least the level, with 95 % Wilson score interval",
@@ -215,6 +219,7 @@ def ergonomics_markdown(e: dict) -> list[str]:
     out = [
         "## Ergonomics",
         "",
+        *exposure_markdown(e.get("exposure")),
         "Each cycle's peak score over its timeline: RULA (McAtamney & Corlett 1993), REBA "
         "(Hignett & McAtamney 2000), the revised NIOSH lifting index per lift of a part with a "
         "mass (Waters et al. 1993), ISO 11226 static postures. Shares are of cycles reaching "

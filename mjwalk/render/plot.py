@@ -302,46 +302,98 @@ def histograms_png(path: Path, results: Sequence[CycleResult], rep: dict) -> Non
 
 
 def ergonomics_png(path: Path, records: Sequence) -> None:
-    """The report's ergonomics chart: RULA and REBA over one cycle's time (the run whose peak
-    RULA is the median's) and the distributions of the cycles' peak RULA and REBA per operator
-    group (``records``: :class:`mjwalk.ergonomics.summary.RunRecord`).
+    """The report's ergonomics chart. Top: RULA and REBA over one cycle's time (the run whose
+    peak RULA is the median's) and the distributions of the cycles' peak RULA and REBA per
+    operator group. Bottom, for runs scored for continuous exposure
+    (:mod:`mjwalk.ergonomics.exposure`): that run's arm elevation and trunk flexion over the
+    cycle against the zone limits, and each run's seconds above 60 deg of arm elevation
+    against its operator's stature (one point per run) with the binned median
+    (``records``: :class:`mjwalk.ergonomics.summary.RunRecord`).
 
     Args:
         path: PNG file to write.
         records: the scored runs, at least one.
     """
-    fig, axes = plt.subplots(1, 3, figsize=(14, 3.6))
+    exposed = [r for r in records if "exposure_trace" in r.ergo.extra]
+    fig, axes = plt.subplots(2 if exposed else 1, 3, figsize=(14, 7.2 if exposed else 3.6))
+    top = axes[0] if exposed else axes
     try:
         peaks = np.array([r.ergo.rula_peak for r in records])
         k = int(np.argsort(peaks)[len(peaks) // 2])
-        e = records[k].ergo
-        t = np.arange(len(e.rula)) / e.fps
-        ax = axes[0]
-        ax.step(t, e.rula, where="post", label="RULA", lw=1)
-        ax.step(t, e.reba, where="post", label="REBA", lw=1, alpha=0.8)
-        for task in e.tasks:
-            if task.reach:
-                ax.axvline(task.rula_time, color="0.8", lw=0.5, zorder=0)
-        ax.set_xlabel("time in the cycle [s]")
-        ax.set_ylabel("score")
-        ax.set_title(f"run {records[k].run}: scores over the cycle")
-        ax.legend(fontsize=7)
-        groups = sorted({r.group for r in records})
-        for ax, name, get, top in (
-            (axes[1], "peak RULA", lambda r: r.ergo.rula_peak, 7),
-            (axes[2], "peak REBA", lambda r: r.ergo.reba_peak, 15),
-        ):
-            data = [[get(r) for r in records if r.group == g] for g in groups]
-            bins = np.arange(0.5, top + 1.5)
-            ax.hist(data, bins=bins, label=[g or "all" for g in groups], stacked=True)
-            ax.set_xlabel(name)
-            ax.set_ylabel("cycles")
-            ax.set_title(f"{name} per cycle" + (" by operator group" if len(groups) > 1 else ""))
-            ax.legend(fontsize=7)
+        _score_panels(top, records, k)
+        if exposed:
+            _exposure_panels(fig, axes[1], records[k], records)
         fig.tight_layout()
         fig.savefig(path, dpi=100)
     finally:
         plt.close(fig)
+
+
+def _score_panels(axes, records: Sequence, k: int) -> None:
+    """RULA/REBA over run ``k``'s cycle and the peaks' distributions per group."""
+    e = records[k].ergo
+    t = np.arange(len(e.rula)) / e.fps
+    ax = axes[0]
+    ax.step(t, e.rula, where="post", label="RULA", lw=1)
+    ax.step(t, e.reba, where="post", label="REBA", lw=1, alpha=0.8)
+    for task in e.tasks:
+        if task.reach:
+            ax.axvline(task.rula_time, color="0.8", lw=0.5, zorder=0)
+    ax.set_xlabel("time in the cycle [s]")
+    ax.set_ylabel("score")
+    ax.set_title(f"run {records[k].run}: scores over the cycle")
+    ax.legend(fontsize=7)
+    groups = sorted({r.group for r in records})
+    for ax, name, get, top in (
+        (axes[1], "peak RULA", lambda r: r.ergo.rula_peak, 7),
+        (axes[2], "peak REBA", lambda r: r.ergo.reba_peak, 15),
+    ):
+        data = [[get(r) for r in records if r.group == g] for g in groups]
+        bins = np.arange(0.5, top + 1.5)
+        ax.hist(data, bins=bins, label=[g or "all" for g in groups], stacked=True)
+        ax.set_xlabel(name)
+        ax.set_ylabel("cycles")
+        ax.set_title(f"{name} per cycle" + (" by operator group" if len(groups) > 1 else ""))
+        ax.legend(fontsize=7)
+
+
+def _exposure_panels(fig, axes, rec, records: Sequence) -> None:
+    """Run ``rec``'s exposure timeline (two panels wide) and the arm's seconds above 60 deg
+    against stature, one point per run, with the binned median."""
+    gs = axes[0].get_subplotspec().get_gridspec()
+    axes[0].remove()
+    axes[1].remove()
+    ax = fig.add_subplot(gs[1, :2])
+    tr = rec.ergo.extra["exposure_trace"]
+    t = np.arange(len(tr)) / rec.ergo.fps
+    ax.plot(t, tr[:, 0], lw=1, label="upper-arm elevation (higher arm)")
+    ax.plot(t, tr[:, 1], lw=1, label="trunk flexion")
+    for lim in (20, 60):
+        ax.axhline(lim, color="0.5", ls="--", lw=0.7)
+    ax.set_xlabel("time in the cycle [s]")
+    ax.set_ylabel("deg")
+    ax.set_title(
+        f"run {rec.run}: exposure over the cycle (EN 1005-4 / ISO 11226 zones at 20 and 60 deg; "
+        f"{rec.ergo.extra['exposure_verdict']})"
+    )
+    ax.legend(fontsize=7)
+    ax = axes[2]
+    pts = [r for r in records if r.stature is not None and "arm_over60_s" in r.ergo.extra]
+    for g in sorted({r.group for r in pts}):
+        sel = [r for r in pts if r.group == g]
+        ax.scatter([r.stature for r in sel], [r.ergo.extra["arm_over60_s"] for r in sel],
+                   s=12, label=g or "all")  # fmt: skip
+    if len(pts) >= 6:
+        st = np.array([r.stature for r in pts])
+        y = np.array([r.ergo.extra["arm_over60_s"] for r in pts])
+        parts = np.array_split(np.argsort(st, kind="stable"), min(5, len(pts) // 3))
+        ax.plot([np.median(st[i]) for i in parts], [np.median(y[i]) for i in parts], "k-",
+                lw=1.5, label="binned median")  # fmt: skip
+    ax.set_xlabel("stature [m]")
+    ax.set_ylabel("arm above 60 deg per cycle [s]")
+    ax.set_title("exposure against stature (one point per run)")
+    if pts:
+        ax.legend(fontsize=7)
 
 
 def _shade(color, k: int, n: int) -> tuple:

@@ -297,7 +297,7 @@ def report_dict(
         "collisions": _collision_figures(results),
         "task_time": _task_times(results),
         "arms": _arm_figures([a for r in results for a in r.arms]),
-        "ergonomics": _ergonomics(results),
+        "ergonomics": _ergonomics(results, takt),
         "per_run": [
             {
                 "run": r.run,
@@ -403,10 +403,10 @@ def ergonomic_records(results: Sequence[CycleResult]) -> list:
     ]
 
 
-def _ergonomics(results: Sequence[CycleResult]) -> dict | None:
+def _ergonomics(results: Sequence[CycleResult], takt: float | None) -> dict | None:
     """The ergonomics section's figures (None when no run was scored)."""
     records = ergonomic_records(results)
-    return ergonomics_summary(records) if records else None
+    return ergonomics_summary(records, takt) if records else None
 
 
 def _baseline_note(spec) -> dict:

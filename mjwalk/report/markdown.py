@@ -353,7 +353,8 @@ def format_summary(rep: dict) -> str:
     head, rows = _route_rows(rep)
     # the capture columns stay in report.md
     head, rows = head[:ROUTE_COLUMNS], [r[:ROUTE_COLUMNS] for r in rows]
-    widths = [max(len(h), *(len(r[k]) for r in rows)) for k, h in enumerate(head)]
+    # a cycle without walks has no rows
+    widths = [max([len(h), *(len(r[k]) for r in rows)]) for k, h in enumerate(head)]
     fmt = "  ".join(f"{{:<{w}}}" for w in widths)
     lines = [
         f"{rep['name'] or Path(rep['spec']).stem}: {rep['runs']} run(s)",

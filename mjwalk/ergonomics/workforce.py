@@ -1,0 +1,261 @@
+"""The workforce's continuous exposure (:mod:`mjwalk.ergonomics.exposure`): per operator group and
+along stature, over a cycle and over a shift, and the tasks and body parts that drive it.
+
+:func:`exposure_summary` reads one record per run (``run``, ``group``, ``stature`` in metres or
+None, ``ergo`` a :class:`~mjwalk.ergonomics.results.RunErgonomics` scored with the exposure
+method) and gives:
+
+- per group and overall: the share of operators (runs) in each worst verdict with its 95 %
+  Wilson score interval, and P5/P50/P95 of the seconds per cycle above 60 deg of arm elevation
+  and above 20 deg of trunk flexion, and of those seconds over a shift;
+- along stature: the stature range the runs cover, the binned median of the arm's seconds above
+  60 deg (equal-count bins, :data:`STATURE_BINS`), the shortest and the tallest third's medians
+  and the least-squares slope (s per 10 cm) with a seeded bootstrap 95 % interval
+  (:data:`BOOTSTRAP`, :data:`BOOTSTRAP_SEED`);
+- drivers: per task the median seconds above 60 deg of arm elevation and above 20 deg of trunk
+  flexion, and per body part and standard how many cycles it makes not acceptable.
+
+A shift is :data:`SHIFT_S` of work; its cycles are the shift over the takt (cycles start at the
+takt), else over the runs' median cycle time (cycles back to back).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from mjwalk.ergonomics.en1005 import VERDICTS
+from mjwalk.ergonomics.exposure import PARTS, spread
+from mjwalk.ergonomics.score import fmt, fmt_share, share
+
+#: Working time of a shift, s: 8 h less 30 min of breaks (the German Working Hours Act,
+#: ArbZG section 4: at least 30 min of breaks for 6 to 9 h of work) = 7.5 h.
+SHIFT_S = 7.5 * 3600.0
+#: Equal-count stature bins of the binned median trend (fewer when there are fewer than
+#: 3 runs a bin).
+STATURE_BINS = 5
+#: Bootstrap resamples and seed of the stature slope's interval.
+BOOTSTRAP = 2000
+BOOTSTRAP_SEED = 0
+
+
+def _scored(records: Sequence) -> list:
+    """The records whose runs the exposure method scored."""
+    return [r for r in records if "exposure_verdict" in r.ergo.extra]
+
+
+def _group(records: Sequence, per_shift: float) -> dict[str, Any]:
+    """A group's verdict shares and exposure over a cycle and over a shift."""
+    n = len(records)
+    verdicts = [r.ergo.extra["exposure_verdict"] for r in records]
+    arm = np.array([r.ergo.extra["arm_over60_s"] for r in records])
+    trunk = np.array([r.ergo.extra["trunk_over20_s"] for r in records])
+    st = [r.stature for r in records if r.stature is not None]
+    return {
+        "runs": n,
+        "verdicts": {v: share(verdicts.count(v), n) for v in VERDICTS},
+        "arm_over60_s": spread(arm),
+        "trunk_over20_s": spread(trunk),
+        "arm_over60_shift_min": spread(arm * per_shift / 60.0),
+        "trunk_over20_shift_min": spread(trunk * per_shift / 60.0),
+        "stature_m": spread(st),
+    }
+
+
+def stature_trend(stature: np.ndarray, y: np.ndarray) -> dict[str, Any] | None:
+    """How an exposure figure follows stature (module docstring).
+
+    Args:
+        stature: (N,) metres.
+        y: (N,) the figure per run.
+
+    Returns:
+        ``range_m``, ``bins`` (each ``from_m``, ``to_m``, ``median``, ``n``), ``short_third``
+        and ``tall_third`` (``up_to_m``/``from_m``, ``median``), ``slope_per_10cm`` with
+        ``low``/``high`` (bootstrap 95 %); None with fewer than 6 runs or one stature.
+    """
+    x, y = np.asarray(stature, dtype=float), np.asarray(y, dtype=float)
+    if len(x) < 6 or np.ptp(x) == 0:
+        return None
+    order = np.argsort(x, kind="stable")
+    k = max(1, min(STATURE_BINS, len(x) // 3))
+    bins = [
+        {
+            "from_m": float(x[i].min()),
+            "to_m": float(x[i].max()),
+            "median": float(np.median(y[i])),
+            "n": len(i),
+        }
+        for i in np.array_split(order, k)
+    ]
+    lo, hi = np.percentile(x, [100 / 3, 200 / 3])
+    rng = np.random.default_rng(BOOTSTRAP_SEED)
+    idx = rng.integers(0, len(x), size=(BOOTSTRAP, len(x)))
+    xs, ys = x[idx], y[idx]
+    xc = xs - xs.mean(axis=1, keepdims=True)
+    den = (xc**2).sum(axis=1)
+    ok = den > 0
+    slopes = (xc * (ys - ys.mean(axis=1, keepdims=True))).sum(axis=1)[ok] / den[ok]
+    slope = float(np.polyfit(x, y, 1)[0])
+    return {
+        "range_m": [float(x.min()), float(x.max())],
+        "bins": bins,
+        "short_third": {"up_to_m": float(lo), "median": float(np.median(y[x <= lo]))},
+        "tall_third": {"from_m": float(hi), "median": float(np.median(y[x >= hi]))},
+        "slope_per_10cm": 0.1 * slope,
+        "low": 0.1 * float(np.percentile(slopes, 2.5)),
+        "high": 0.1 * float(np.percentile(slopes, 97.5)),
+        "confidence": 0.95,
+    }
+
+
+def _drivers(records: Sequence) -> dict[str, Any]:
+    """Per task the median seconds beyond the limits; per part and standard the cycles it makes
+    not acceptable."""
+    by: dict[int, list] = {}
+    for r in records:
+        for t in r.ergo.tasks:
+            by.setdefault(t.index, []).append(t)
+    tasks = [
+        {
+            "task": i,
+            "kind": ts[0].kind,
+            "site": ts[0].site,
+            "arm_over60_s": float(np.median([t.extra["arm_over60_s"] for t in ts])),
+            "trunk_over20_s": float(np.median([t.extra["trunk_over20_s"] for t in ts])),
+            "arm_peak_deg": float(np.median([t.extra["arm_peak_deg"] for t in ts])),
+        }
+        for i, ts in sorted(by.items())
+    ]
+    tasks.sort(key=lambda t: (-t["arm_over60_s"], -t["trunk_over20_s"]))
+    parts = {
+        f"{p} {std}": sum(r.ergo.extra["exposure"][p][std] == VERDICTS[2] for r in records)
+        for p in PARTS
+        for std in ("en1005", "iso11226")
+    }
+    return {"tasks": tasks, "not_acceptable_cycles": parts}
+
+
+def exposure_summary(records: Sequence, takt: float | None = None) -> dict[str, Any] | None:
+    """The workforce's exposure figures (module docstring).
+
+    Args:
+        records: the scored runs (``run``, ``group``, ``stature``, ``ergo``).
+        takt: the takt, s (None: cycles back to back).
+
+    Returns:
+        Plain data: ``shift`` (``working_s``, ``cycles``, ``basis``), ``overall``, ``groups``,
+        ``stature`` (of the arm's seconds above 60 deg; None without enough statures) and
+        ``drivers``; None when no run was scored for exposure.
+    """
+    rec = _scored(records)
+    if not rec:
+        return None
+    cycle = float(np.median([r.ergo.extra["cycle_time_s"] for r in rec]))
+    basis = "takt" if takt else "median cycle time"
+    per_shift = SHIFT_S / (takt or max(cycle, 1e-9))
+    groups: dict[str, list] = {}
+    for r in rec:
+        groups.setdefault(r.group, []).append(r)
+    st = [r for r in rec if r.stature is not None]
+    trend = stature_trend(
+        np.array([r.stature for r in st]), np.array([r.ergo.extra["arm_over60_s"] for r in st])
+    )
+    return {
+        "shift": {
+            "working_s": SHIFT_S,
+            "cycles": per_shift,
+            "basis": basis,
+            "source": "8 h less 30 min breaks (ArbZG section 4)",
+        },
+        "overall": _group(rec, per_shift),
+        "groups": {g: _group(rs, per_shift) for g, rs in groups.items() if g},
+        "stature": trend,
+        "drivers": _drivers(rec),
+    }
+
+
+def _row(name: str, g: dict) -> str:
+    """A markdown row of a group's verdict shares and exposure."""
+    v, a, s = g["verdicts"], g["arm_over60_s"], g["stature_m"]
+    cells = [
+        name, str(g["runs"]),
+        "-" if s["min"] is None else f"{s['min']:.2f}-{s['max']:.2f}",
+        *(fmt_share(v[k]) for k in VERDICTS),
+        f"{fmt(a['p50'])} ({fmt(a['p5'])}-{fmt(a['p95'])})",
+        fmt(g["trunk_over20_s"]["p50"]),
+        fmt(g["arm_over60_shift_min"]["p50"]),
+    ]  # fmt: skip
+    return "| " + " | ".join(cells) + " |"
+
+
+def exposure_markdown(e: dict[str, Any] | None) -> list[str]:
+    """report.md's opening of the ergonomics section: verdict shares per group, the stature
+    trend and the drivers.
+
+    Args:
+        e: :func:`exposure_summary`'s figures (None: no lines).
+
+    Returns:
+        Markdown lines.
+    """
+    if not e:
+        return []
+    sh = e["shift"]
+    out = [
+        "Continuous exposure of the upper arms and the trunk (EN 1005-4 zones and frequencies, "
+        "ISO 11226 holding times; each cycle's worst verdict over both standards and body "
+        "parts). Shares of operators (runs) with their 95 % Wilson interval; seconds per cycle "
+        f"(P50, P5-P95); a shift is {sh['working_s'] / 3600:.1f} h of work, "
+        f"{sh['cycles']:.0f} cycles at the {sh['basis']}.",
+        "",
+        "| operators | runs | stature m | acceptable | conditionally acc. | not acceptable "
+        "| arm >60 deg s | trunk >20 deg s | arm >60 deg min/shift |",
+        "|---|---|---|---|---|---|---|---|---|",
+        _row("all operators", e["overall"]),
+        *(_row(g, v) for g, v in e["groups"].items()),
+        "",
+    ]
+    t = e["stature"]
+    if t:
+        bins = "; ".join(
+            f"{b['from_m']:.2f}-{b['to_m']:.2f} m: {b['median']:.1f} s" for b in t["bins"]
+        )
+        out += [
+            f"Along stature ({t['range_m'][0]:.2f}-{t['range_m'][1]:.2f} m), the arm's seconds "
+            f"above 60 deg per cycle: binned median {bins}; shortest third (to "
+            f"{t['short_third']['up_to_m']:.2f} m) {t['short_third']['median']:.1f} s, tallest "
+            f"third (from {t['tall_third']['from_m']:.2f} m) {t['tall_third']['median']:.1f} s; "
+            f"slope {t['slope_per_10cm']:+.2f} s per 10 cm (95 % {t['low']:+.2f} to "
+            f"{t['high']:+.2f}).",
+            "",
+        ]
+    d = e["drivers"]
+    top = [x for x in d["tasks"] if x["arm_over60_s"] > 0 or x["trunk_over20_s"] > 0][:3]
+    if top:
+        out += [
+            "Tasks that drive it (median s above 60 deg arm / 20 deg trunk): "
+            + "; ".join(
+                f"task {x['task']} {x['kind']} {x['site'] or ''}: {x['arm_over60_s']:.1f} / "
+                f"{x['trunk_over20_s']:.1f}"
+                for x in top
+            )
+            + ". Cycles not acceptable by body part and standard: "
+            + ", ".join(f"{k} {v}" for k, v in d["not_acceptable_cycles"].items() if v)
+            + ".",
+            "",
+        ]
+    return out
+
+
+__all__ = [
+    "BOOTSTRAP",
+    "BOOTSTRAP_SEED",
+    "SHIFT_S",
+    "STATURE_BINS",
+    "exposure_markdown",
+    "exposure_summary",
+    "stature_trend",
+]

@@ -1,0 +1,66 @@
+"""The workforce's exposure: verdict shares with their intervals, the stature trend, the shift."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from mjwalk.ergonomics.results import RunErgonomics
+from mjwalk.ergonomics.summary import RunRecord
+from mjwalk.ergonomics.workforce import SHIFT_S, exposure_markdown, exposure_summary, stature_trend
+
+PART = {"en1005": "acceptable", "iso11226": "acceptable"}
+
+
+def record(run: int, verdict: str, arm_s: float, stature: float | None = None, group: str = ""):
+    """A scored run with the exposure method's values (no frames)."""
+    extra = {
+        "exposure_verdict": verdict,
+        "arm_over60_s": arm_s,
+        "trunk_over20_s": 1.0,
+        "cycle_time_s": 30.0,
+        "exposure": {p: dict(PART) for p in ("upper_arm_left", "upper_arm_right", "trunk")},
+    }
+    e = RunErgonomics([], [], [], 30.0, np.ones(3, np.int8), np.ones(3, np.int8), extra=extra)
+    return RunRecord(run, run, group, stature, e)
+
+
+def test_the_verdict_shares_intervals_cover_the_true_share_at_the_stated_rate():
+    # seeded: 300 workforces of 40 operators, each not acceptable with probability 0.3
+    rng = np.random.default_rng(49)
+    p, n, trials, covered = 0.3, 40, 300, 0
+    for _ in range(trials):
+        bad = rng.random(n) < p
+        recs = [record(k, "not acceptable" if b else "acceptable", 1.0) for k, b in enumerate(bad)]
+        s = exposure_summary(recs)["overall"]["verdicts"]["not acceptable"]
+        covered += s["low"] <= p <= s["high"]
+    # a 95 % interval: coverage 0.95; 300 trials give a binomial SD of 1.3 points
+    assert 0.91 <= covered / trials <= 0.99
+
+
+def test_the_stature_trend_follows_the_runs_not_a_formula():
+    rng = np.random.default_rng(0)
+    st = rng.uniform(1.55, 1.90, 60)
+    y = np.clip(40.0 * (1.85 - st), 0, None) + rng.normal(0, 0.3, 60)  # shorter: longer raised
+    t = stature_trend(st, y)
+    assert t["range_m"] == [pytest.approx(st.min()), pytest.approx(st.max())]
+    assert t["short_third"]["median"] > t["tall_third"]["median"]
+    assert t["low"] <= t["slope_per_10cm"] <= t["high"] < 0  # the interval excludes none
+    assert len(t["bins"]) == 5 and sum(b["n"] for b in t["bins"]) == 60
+    assert stature_trend(np.full(8, 1.7), np.ones(8)) is None
+
+
+def test_the_summary_has_groups_a_shift_and_a_markdown_table():
+    recs = [record(k, ["acceptable", "not acceptable"][k % 2], float(k), 1.6 + 0.02 * k,
+                   "adult" if k < 6 else "older") for k in range(10)]  # fmt: skip
+    e = exposure_summary(recs, takt=60.0)
+    json.dumps(e, allow_nan=False)
+    assert e["shift"]["cycles"] == pytest.approx(SHIFT_S / 60.0) and e["shift"]["basis"] == "takt"
+    assert set(e["groups"]) == {"adult", "older"}
+    assert e["overall"]["arm_over60_shift_min"]["p50"] == pytest.approx(4.5 * SHIFT_S / 60 / 60)
+    assert e["groups"]["adult"]["verdicts"]["not acceptable"]["k"] == 3
+    md = "\n".join(exposure_markdown(e))
+    assert "| adult | 6 |" in md and "Along stature (1.60-1.78 m)" in md
+    assert exposure_summary([]) is None and exposure_markdown(None) == []
