@@ -24,6 +24,9 @@ people walking around obstacles to a visible goal:
   that far from the obstacle's surface plus half the walker's shoulder width
   (:data:`mjwalk.anthropometry.SEG` ``shoulder_width``, Drillis & Contini via Winter), i.e. the
   pelvis's distance from the surface.
+- **The berth grows with speed and differs between people, and is kept from obstacles beside
+  the way too** (:mod:`mjwalk.plan.sides`: :func:`~mjwalk.plan.sides.passing_gap`,
+  :func:`~mjwalk.plan.sides.intruding`); the heading round is set from the walk's start.
 
 Every further obstacle the path round runs into is passed on the same side of the line from
 start to goal (the side is the walk's, decided once: :func:`pass_on_side`), up to
@@ -51,7 +54,13 @@ from mjwalk.plan.guide import (
     resample_guide,
     via_points_guide,
 )
-from mjwalk.plan.sides import side_gap, side_log_odds
+from mjwalk.plan.sides import (
+    PASSING_GAP,
+    intruding,
+    passing_berth,
+    side_gap,
+    side_log_odds,
+)
 from mjwalk.world.clearance import ClearanceField, bilinear_at
 
 __all__ = [
@@ -71,8 +80,6 @@ __all__ = [
     "walkable",
 ]
 
-#: Gap (m) people keep between themselves and an obstacle they walk round (module doc).
-PASSING_GAP = 0.30
 #: Logistic slopes of the side choice (module doc, PMC7875474): per degree of deviation angle
 #: difference and per metre of distance difference between the obstacle's two ends.
 SIDE_SLOPE_PER_DEG = math.log(3.0) / 1.65
@@ -253,11 +260,14 @@ class GuideBody:
         stature: the walker's body height, metres (its shoulder width sets the berth).
         step_length: the walker's step length, metres (the sharpest turn a guide may make,
             :func:`walkable`; 0: any).
+        speed: the walker's pace on this walk, m/s (its berth,
+            :func:`~mjwalk.plan.sides.passing_gap`; 0: the reference pace's).
     """
 
     radius: float
     stature: float = DEFAULT_STATURE
     step_length: float = 0.0
+    speed: float = 0.0
 
 
 def detour_guide(
@@ -273,10 +283,12 @@ def detour_guide(
     """The path a walk's heading follows past the obstacles ``direct`` runs into.
 
     The path goes from ``start`` to ``goal`` past the first obstacle the path ``direct`` runs
-    into (module doc) on a side drawn once with ``rng`` (:func:`choose_side`: the ends'
-    angles and distances and the gap each side leaves), through a waypoint abreast of it
-    (:func:`abreast`) at half the shoulder width of a walker of ``body.stature`` plus
-    :data:`PASSING_GAP` from it, and past every further obstacle that path runs into on the
+    into (module doc), or else the first it passes nearer than the walker's berth
+    (:func:`~mjwalk.plan.sides.intruding`), on a side drawn once with ``rng``
+    (:func:`choose_side`: the ends' angles and distances and the gap each side leaves),
+    through a waypoint abreast of it (:func:`abreast`) at the walker's berth
+    (:func:`~mjwalk.plan.sides.passing_berth` of ``body.stature`` at ``body.speed``), and past
+    every further obstacle that path runs into on the
     same side of the line ``start`` -> ``goal`` (:func:`pass_on_side`).
 
     Args:
@@ -291,15 +303,18 @@ def detour_guide(
         rng: the random stream the side is drawn from (one draw when an obstacle blocks).
 
     Returns:
-        The (k, 2) path round the obstacles (metres), or None when the direct path is clear,
-        when no obstacle blocks it (the floor's edge does), or when no path round on the drawn
-        side keeps ``body.radius`` from every obstacle and turns no sharper than steps of
+        The (k, 2) path round the obstacles (metres), or None when the direct path is clear
+        and passes no obstacle within the berth, when no obstacle blocks it (the floor's edge
+        does), or when no path round on the drawn side keeps ``body.radius`` from every
+        obstacle and turns no sharper than steps of
         ``body.step_length`` can (:func:`walkable`); then the route search decides.
     """
     s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
     if not np.hypot(*(g - s)) > 1e-6:
         return None
     blocker = _blocking(workplace, np.asarray(direct, dtype=float), body.radius)
+    if blocker is None:  # none in the way: one passed within the berth, if any
+        blocker = intruding(workplace, direct, (s, g), passing_berth(body.stature, body.speed))
     if blocker is None:
         return None
     headings = (start_heading, goal_heading)
@@ -327,7 +342,7 @@ def choose_side(workplace, blocker, ends, body: GuideBody, rng) -> bool:
     """
     s, g = ends
     shoulder = SEG["shoulder_width"] * body.stature
-    berth = 0.5 * shoulder + PASSING_GAP
+    berth = passing_berth(body.stature, body.speed)
     gaps = []
     for left in (True, False):  # the route: straight legs through the waypoint, densified
         route = densify(np.array([s, abreast(blocker, s, g, berth, left), g]), GAP_SPACING)
@@ -343,8 +358,8 @@ def pass_on_side(workplace, first, ends, headings, body: GuideBody, left: bool):
     """The smooth path from the walk's start past ``first`` and every further obstacle that
     path runs into (up to :data:`MAX_PASSED` in all), each on the ``left`` (else right) of
     the line start -> goal: through waypoints abreast of each (:func:`abreast`, in order along
-    the line; :func:`~mjwalk.plan.guide.via_points_guide`) at the cited berth (half the
-    shoulder width plus :data:`PASSING_GAP`), or at ``body.radius`` plus 5 cm from an
+    the line; :func:`~mjwalk.plan.guide.via_points_guide`) at the walker's berth
+    (:func:`~mjwalk.plan.sides.passing_berth`), or at ``body.radius`` plus 5 cm from an
     obstacle where the berth does not fit, or from all where the path turns too sharply.
 
     Args:
@@ -378,7 +393,7 @@ def pass_on_side(workplace, first, ends, headings, body: GuideBody, left: bool):
             if len(passed) == MAX_PASSED:
                 return None
             passed.append(blocker)
-            gaps.append(0.5 * SEG["shoulder_width"] * body.stature + PASSING_GAP)
+            gaps.append(passing_berth(body.stature, body.speed))
         ways = np.array(
             [abreast(fp, s, g, gap, left) for fp, gap in zip(passed, gaps, strict=True)]
         )

@@ -356,7 +356,7 @@ class HybridPlanner:
             pace = preferred_speed(model) * math.exp(WALK_PACE_SD * rng.standard_normal())
         guide = None
         if o.heading_weight > 0.0:  # the way the walk's heading follows
-            guide = self._guide(pose, request, rng, model)
+            guide = self._guide(pose, request, rng, model, pace)
             if guide is not None and not guide_is_clear(self.workplace, guide, self.radius):
                 guide = None  # the route search decides
         best: WalkPath | None = None
@@ -546,13 +546,15 @@ class HybridPlanner:
         }
         return goal_node, counts, nodes
 
-    def _guide(self, pose, request: WalkRequest, rng, model):
+    def _guide(self, pose, request: WalkRequest, rng, model, pace: float):
         """:func:`mjwalk.plan.detour.walk_guide` for a walk of :meth:`plan` (a start yaw is a
-        walker already walking unless ``turn_on_spot``)."""
+        walker already walking unless ``turn_on_spot``) at the walk's ``pace`` (m/s; nan: the
+        walker's preferred speed), which sets its berth."""
         (x, y), yaw = pose
         walking = None if yaw is None or request.turn_on_spot else yaw
         goal = self.goal if request.spot is None else request.spot[:2]
-        body = GuideBody(self.radius, walker_stature(model), walker_step_length(model))
+        speed = pace if math.isfinite(pace) else preferred_speed(model)
+        body = GuideBody(self.radius, walker_stature(model), walker_step_length(model), speed)
         return walk_guide(
             self.workplace, (x, y), goal, walking, request.goal_heading, request.guide, body, rng
         )

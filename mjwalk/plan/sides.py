@@ -10,7 +10,7 @@ must fit through. The aperture studies give when people do:
   two obstacles whose gap was narrower than 1.4 times their shoulder width (the critical
   point), and through it when it was wider (Hackney & Cinelli, Q J Exp Psychol 66:1104-1112,
   2013, doi:10.1080/17470218.2012.730532; N = 12, apertures 0.6-1.8 shoulder widths). The
-  same study's protective zone, 0.30 m, is the berth (:data:`mjwalk.plan.detour.PASSING_GAP`).
+  same study's protective zone, 0.30 m, is the berth (:data:`PASSING_GAP`).
 - **Its spread.** In a confined space (a doorway) the point where people start to rotate
   their shoulders is 1.3 shoulder widths (Warren & Whang, J Exp Psychol Hum Percept Perform
   13:371-383, 1987): the same body-scaled decision, 0.1 shoulder widths lower. mjwalk takes
@@ -26,7 +26,39 @@ of passing on the left (:func:`mjwalk.plan.detour.left_log_odds`) by the ratio o
 sides' gap weights (:func:`side_log_odds`): at equal lengths a side as narrow as the critical
 aperture against a wide one is taken by one walker in three, one at 1.3 shoulder widths by
 one in four and narrower ones almost never; two sides both wider than about 2 shoulder widths
-(0.9 m for a 1.75 m walker) leave the lengths to decide. Metres, world frame.
+(0.9 m for a 1.75 m walker) leave the lengths to decide.
+
+The distance a walker passes an obstacle at, its **berth**, is half its shoulder width plus
+the protective gap (:data:`PASSING_GAP`: Hackney & Cinelli 2013, 0.30 m):
+
+- **The berth grows with speed and differs between people** (:func:`passing_gap`). The space a
+  walker claims grows with its speed: in single file, the distance people keep is 0.36 m plus
+  1.06 s times their speed (Seyfried, Steffen, Klingsch & Boltes, J Stat Mech P10002, 2005;
+  Weidmann's 1993 fundamental diagram has the same form), and pedestrians bypassing an
+  obstacle at high speed keep more room from it than at normal speed (Experimental study on
+  pedestrians' collision avoidance, IEEE 2014, qualitative). mjwalk scales the 0.30 m gap,
+  measured at a comfortable pace (:data:`~mjwalk.gait.walker.REFERENCE_SPEED`, 1.37 m/s), by
+  that space's ratio at the walker's speed to the reference's: 0.24 m at 1.0 m/s, 0.34 m at
+  1.6 m/s. Taking the single-file relation sideways is mjwalk's assumption, and the studies
+  disagree: Gérin-Lajoie, Richards, Fung & McFadyen (Gait Posture 27:239-247, 2008, N = 10)
+  found the personal space kept round a cylinder of one size at slow, natural and fast
+  speeds; the growth taken here is the larger of the two estimates. The berth differs
+  between people through their speed (each walk's own pace, Bohannon & Andrews 2011's
+  spread) and their shoulder width (their stature); no further draw: the cited studies give
+  means only.
+- **An obstacle passed within the berth is passed at it** (:func:`intruding`): people keep
+  that room from obstacles beside their way, not only from those they would hit, so a
+  guide that passes a compact obstacle (one whose extent along the walk lies within it: not
+  a wall the walk runs along, nor the obstacle a walk starts or ends beside) nearer than the
+  walker's berth becomes the path through the waypoint at the berth, as for one in the way.
+  That path, like every detour, is the minimum-jerk path over the whole walk (the via-point
+  solution), so its heading is set from the walk's start, well before the obstacle: people
+  start avoiding an obstacle 2-3 steps ahead (Vallis & McFadyen, Exp Brain Res 152:409-414,
+  2003) and within a protective zone that reaches 3.80 m ahead along the path (Hackney &
+  Cinelli 2013, above). Where the path at the berth is not walkable or not clear, the walk
+  keeps its own guide (it keeps the body's clearance).
+
+Metres, seconds, world frame.
 """
 
 from __future__ import annotations
@@ -35,11 +67,21 @@ import math
 
 import numpy as np
 
+from mjwalk.anthropometry import SEG
+from mjwalk.gait.walker import REFERENCE_SPEED
+from mjwalk.plan.guide import densify, first_below
+
 __all__ = [
     "CONFINED_APERTURE",
     "CRITICAL_APERTURE",
     "GAP_OPEN",
+    "PASSING_GAP",
+    "SPACE_BODY",
+    "SPACE_TIME",
     "gap_log_weight",
+    "intruding",
+    "passing_berth",
+    "passing_gap",
     "side_gap",
     "side_log_odds",
 ]
@@ -53,6 +95,15 @@ CONFINED_APERTURE = 1.3
 #: Gaps are looked for this far (m) from the obstacle: wider is open space for any walker
 #: (the weight of a gap 1.5 m wide is 1 - 1e-30 for a 0.45 m shoulder width).
 GAP_OPEN = 1.5
+#: Gap (m) people keep between themselves and an obstacle they walk round at a comfortable
+#: pace, :data:`~mjwalk.gait.walker.REFERENCE_SPEED` (module doc).
+PASSING_GAP = 0.30
+#: The space a walker claims at speed v is SPACE_BODY + SPACE_TIME·v (metres; v in m/s):
+#: Seyfried et al. 2005's single-file distance (module doc).
+SPACE_BODY = 0.36
+SPACE_TIME = 1.06
+#: Spacing (m) of the points a path is checked at for obstacles within the berth.
+BERTH_SPACING = 0.1
 _SLOPE = math.log(3.0) / (CRITICAL_APERTURE - CONFINED_APERTURE)  # per shoulder width
 
 
@@ -136,3 +187,72 @@ def side_gap(workplace, blocker, route, start, goal) -> float:
             continue  # too far from the route to narrow it
         other = np.minimum(other, fp.signed_distance(beside))
     return float(np.min(own + other))  # negative depth inside another obstacle narrows it
+
+
+def passing_gap(speed: float) -> float:
+    """The gap (m) a walker at ``speed`` keeps from an obstacle it passes (module doc):
+    :data:`PASSING_GAP` times the ratio of the space claimed at that speed to the space
+    claimed at :data:`~mjwalk.gait.walker.REFERENCE_SPEED` (:data:`SPACE_BODY` +
+    :data:`SPACE_TIME`·v).
+
+    Args:
+        speed: the walking speed, m/s (<= 0 or not finite: the reference speed).
+
+    Returns:
+        The gap, metres (0.30 at 1.37 m/s).
+    """
+    v = speed if math.isfinite(speed) and speed > 0.0 else REFERENCE_SPEED
+    return PASSING_GAP * (SPACE_BODY + SPACE_TIME * v) / (SPACE_BODY + SPACE_TIME * REFERENCE_SPEED)
+
+
+def passing_berth(stature: float, speed: float) -> float:
+    """The distance (m) from an obstacle's surface at which a walker passes it: half its
+    shoulder width plus :func:`passing_gap` at its speed.
+
+    Args:
+        stature: the walker's body height, metres (its shoulder width).
+        speed: the walker's speed, m/s (:func:`passing_gap`).
+
+    Returns:
+        The berth, metres (the pelvis's distance from the surface).
+    """
+    return 0.5 * SEG["shoulder_width"] * stature + passing_gap(speed)
+
+
+def intruding(workplace, path, ends, berth: float):
+    """The first obstacle along ``path`` that it passes nearer than ``berth`` metres and that
+    the walk passes by (module doc): a footprint whose extent along the line start -> goal
+    lies within the walk's (berth included) and that neither end stands within the berth of.
+
+    Args:
+        workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
+        path: (k >= 2, 2) the path, metres, world frame.
+        ends: the walk's start and goal, (2,) each, metres.
+        berth: the distance kept, metres (:func:`passing_berth`).
+
+    Returns:
+        The footprint, or None (none intrudes, or the path comes that near only walls,
+        floor edges and the ends' own obstacles).
+    """
+    pts = np.asarray(path, dtype=float)
+    if not workplace.obstacles or first_below(workplace, pts, berth) is None:
+        return None  # nothing within the berth anywhere: the one compiled pass
+    s, g = (np.asarray(v, dtype=float)[:2] for v in ends)
+    length = float(np.hypot(*(g - s)))
+    u = (g - s) / length
+    dense = densify(pts, BERTH_SPACING)
+    lo, hi = dense.min(axis=0) - berth, dense.max(axis=0) + berth
+    best, first = None, len(dense)
+    for fp in workplace.obstacles:
+        bx0, by0, bx1, by1 = fp.bounds()
+        if bx1 < lo[0] or bx0 > hi[0] or by1 < lo[1] or by0 > hi[1]:
+            continue
+        along = (np.asarray(fp.vertices, dtype=float) - s) @ u
+        if along.min() - fp.radius < -berth or along.max() + fp.radius > length + berth:
+            continue  # not passed by: a wall the walk runs along, or behind an end
+        if float(fp.signed_distance(np.stack([s, g])).min()) < berth:
+            continue  # an end's own obstacle (a walk to or from a bench)
+        near = np.flatnonzero(fp.signed_distance(dense) < berth)
+        if len(near) and near[0] < first:
+            best, first = fp, int(near[0])
+    return best

@@ -330,3 +330,25 @@ def test_a_guide_through_several_points_passes_each_smoothly():
     assert np.abs(turn).max() < np.radians(10.0)
     one = via_points_guide((-4.0, 0.0), vias[:1], (4.0, 0.0), None, None)
     assert np.allclose(one, via_point_guide((-4.0, 0.0), vias[0], (4.0, 0.0), None, None))
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="issue 48 target not met: the search's sampled steps drift 0.04-0.12 m off the "
+    "chord (0.02-0.10 m after the tracks' 800 ms average); the guide itself is the chord",
+)
+def test_straight_walks_in_an_empty_hall_stay_within_6_cm_of_their_chord(open_floor, model):
+    """A smooth path over the whole way has nothing to bend for in an empty hall (issue 48):
+    12 seeded 5 m walks across the open floor, from a stand and already walking along the
+    chord, are to keep the pelvis within 0.06 m of the chord between their ends. Measured:
+    worst 0.124 m (seeds 5, 7, 11 over 0.1 m), so the target is marked as not met."""
+    (x0, y0, x1, y1) = (float(v) for v in open_floor.floor_bounds)
+    cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+    s, g = (cx - 2.5, cy), (cx + 2.5, cy)
+    planner = HybridPlanner(open_floor, g, model)
+    worst = 0.0
+    for k in range(WALKS):
+        start = s if k % 2 else (*s, 0.0)  # from a stand; walking along the chord
+        p = planner.plan(start, np.random.default_rng(k))
+        worst = max(worst, float(np.abs(p.xy[:, 1] - cy).max()))
+    assert worst <= 0.06, worst
