@@ -4,6 +4,7 @@ and the written scene's own level graph agrees (issue 47)."""
 from __future__ import annotations
 
 import mujoco
+import numpy as np
 import pytest
 from test_scanlevels import LEVELS_XML, SCANNERS
 
@@ -77,3 +78,53 @@ def test_flat_scan_has_no_levels():
     pts = find_floor(scan.points).apply(scan.points)
     assert scan_levels(pts, floor_plan(pts)) is None
     assert build_scene(scan.points).levels is None
+
+
+#: Scanner positions in scenes/multilevel_station.xml (x, y, height), metres: round the car,
+#: before the step and the stair, on the platform's side and over the mezzanine.
+STATION_SCANNERS = [
+    (-3.3, 1.6, 1.6), (-4.9, 1.2, 1.6), (3.3, 0.0, 1.6), (0.2, -1.2, 1.6),
+    (-2.8, 3.2, 1.9), (4.5, 2.0, 1.6), (-4.9, -3.0, 2.6),
+]  # fmt: skip
+
+
+@pytest.mark.slow
+def test_multilevel_station_scan_levels_within_2cm(scenes_dir, tmp_path):
+    """Seeded synthetic scan of the multi-level station (0.3 deg rays, 5 mm range noise, 1.5 deg
+    tilt): the platform (0.34 m), the step (0.17 m), the stair's five treads and the mezzanine
+    (1.02 m) are levels within 2 cm (measured: 0.5 mm); the stair is six risers of 0.17 m with
+    0.28 m treads (measured 0.282 m); mjwalk scan prints and draws them; the written scene's own
+    level graph has the same levels and connections. (The ramp stays obstacle boxes.)"""
+    from mjwalk import cli
+    from mjwalk.world.workplace import load_model
+
+    scan = synthetic_scan(
+        load_model(scenes_dir / "multilevel_station.xml"), STATION_SCANNERS, step_deg=0.3, seed=0
+    )
+    src = tmp_path / "station.xyz"
+    np.savetxt(src, scan.points, fmt="%.4f")
+    out, png = tmp_path / "station.xml", tmp_path / "top.png"
+    assert cli.main(["scan", str(src), "-o", str(out), "--png", str(png)]) == 0
+    assert png.stat().st_size > 0
+    graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_path(str(out))))
+    truth = [0.0, 0.17, 0.17, 0.34, 0.34, 0.51, 0.68, 0.85, 1.02]
+    assert sorted(lv.height for lv in graph.levels) == pytest.approx(truth, abs=0.02)
+    links = _links(graph.links, [lv.height for lv in graph.levels])
+    assert links == [("stair", 0.0, 1.02, 6), ("step", 0.0, 0.17, 1), ("step", 0.17, 0.34, 1)]
+    stair = next(k for k in graph.links if k.kind == "stair")
+    assert stair.tread == pytest.approx(0.28, abs=0.01)
+    assert np.ptp(stair.risers) < 1e-6 and stair.risers[0] == pytest.approx(0.17, abs=0.005)
+
+
+def test_cli_prints_levels_and_links(tmp_path, capsys):
+    from mjwalk import cli
+
+    model = mujoco.MjModel.from_xml_string(LEVELS_XML)
+    scan = synthetic_scan(model, SCANNERS, step_deg=0.4, noise=0.005, seed=3)
+    src = tmp_path / "hall.xyz"
+    np.savetxt(src, scan.points, fmt="%.4f")
+    assert cli.main(["scan", str(src), "-o", str(tmp_path / "hall.xml")]) == 0
+    out = capsys.readouterr().out
+    assert "levels: 6, links: 2" in out
+    assert "stair L0 -> L5  4 risers x 0.170 m" in out
+    assert "+0.75 m" in out  # the table: a surface no step reaches, still printed
