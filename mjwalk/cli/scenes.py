@@ -54,6 +54,8 @@ def cmd_scan(args: argparse.Namespace) -> int:
     """
     # deferred: mjwalk.scan loads numba and the cloud readers (~2 s), only for `mjwalk scan`
     from mjwalk.scan import scan_to_scene
+    from mjwalk.scan.levelboxes import describe  # deferred: as the line above
+    from mjwalk.scan.obstacles import FLOOR_TOL  # deferred: as the line above
     from mjwalk.scan.voids import cover, save_top_view  # deferred: as the line above
 
     check_output_file(args.output, "-o/--output")
@@ -78,18 +80,24 @@ def cmd_scan(args: argparse.Namespace) -> int:
     )
     print(f"--voids {args.voids}: {cover(scene.plan).line()}")
     print(scene.sight)
-    if lv.surfaces:
+    levels = scene.levels
+    if levels is not None:
+        print(describe(levels))
+    heights = [] if levels is None else levels.heights
+    others = [s for s in lv.surfaces if all(abs(s.height - h) > FLOOR_TOL for h in heights)]
+    if others:
         shown = ", ".join(
-            f"{s.height:+.2f} m ({s.area:.1f} m² at {s.x:.1f}, {s.y:.1f})" for s in lv.surfaces[:8]
+            f"{s.height:+.2f} m ({s.area:.1f} m² at {s.x:.1f}, {s.y:.1f})" for s in others[:8]
         )
-        more = f" and {len(lv.surfaces) - 8} more" if len(lv.surfaces) > 8 else ""
+        more = f" and {len(others) - 8} more" if len(others) > 8 else ""
         print(
-            f"other horizontal surfaces one could stand on (one level only: they stay "
-            f"obstacles or floor): {shown}{more}"
+            f"other horizontal surfaces one could stand on (not reached by steps from the "
+            f"floor: they stay obstacles or floor): {shown}{more}"
         )
     if args.png is not None:
-        save_top_view(scene.plan, args.png)
-        print(f"wrote {args.png} (top view: floor seen, unseen, obstacles, voids)")
+        save_top_view(scene.plan, args.png, levels=levels)
+        what = "" if levels is None else ", levels with heights and links"
+        print(f"wrote {args.png} (top view: floor seen, unseen, obstacles, voids{what})")
     print(f"{args.scan[0]} -> scene transform (4x4, row-major):")
     for row in scene.matrix:
         print("  " + " ".join(f"{v:10.6f}" for v in row))

@@ -33,6 +33,7 @@ from mjwalk._args import check_output_file
 from mjwalk._io import atomic_path, read_toml
 from mjwalk.errors import ScanError
 from mjwalk.scan.level import Levelling, check_upright, find_floor
+from mjwalk.scan.levelboxes import LEVEL_MATERIAL, LevelPlan, scan_levels
 from mjwalk.scan.limits import check_plan_size
 from mjwalk.scan.merge import merge_scans, read_poses
 from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan, floor_plan, rectangles
@@ -53,7 +54,8 @@ class ScanScene:
 
     ``matrix`` (4, 4) takes scan-file points to the scene; ``timings`` holds wall-clock seconds
     per stage; ``sight`` says how the floor seen was decided (by which stations' rays, or by
-    floor points alone and why).
+    floor points alone and why); ``levels`` the raised walk-surface levels written as boxes
+    (:mod:`~mjwalk.scan.levelboxes`; None: one level, the floor).
     """
 
     xml: str
@@ -66,6 +68,7 @@ class ScanScene:
     sites: dict[str, tuple[float, float, float]]
     timings: dict[str, float] = field(default_factory=dict)
     sight: str = ""
+    levels: LevelPlan | None = None
 
 
 @dataclass(frozen=True)
@@ -141,7 +144,7 @@ def _fmt(v) -> str:
 
 def _mjcf(
     plan: FloorPlan,
-    boxes: list[tuple[str, np.ndarray, np.ndarray, str]],
+    boxes: list[tuple],
     sites: dict[str, tuple[float, float, float]],
     header: str,
     matrix: np.ndarray,
@@ -166,17 +169,25 @@ def _mjcf(
         f'{max(1, round(2 * hy))}"/>',
         '    <material name="scan_obstacle" rgba="0.62 0.58 0.52 1"/>',
         '    <material name="scan_void" rgba="0.55 0.25 0.25 0.25"/>',
+        *(
+            [f'    <material name="{LEVEL_MATERIAL}" rgba="0.50 0.58 0.50 1"/>']
+            if any(b[3] == LEVEL_MATERIAL for b in boxes)
+            else []
+        ),
         "  </asset>",
         "  <worldbody>",
         f'    <light pos="{cx:.4f} {cy:.4f} 6" dir="0 0 -1"/>',
         f'    <geom name="floor" type="plane" pos="{cx:.4f} {cy:.4f} 0" size="{hx:.4f} {hy:.4f} '
         '0.05" material="floor"/>',
     ]
-    for name, pos, half, material in boxes:
+    for box in boxes:  # (name, centre, half sizes, material[, yaw radians])
+        name, pos, half, material = box[:4]
+        yaw = float(box[4]) if len(box) > 4 else 0.0
         group = ' group="3"' if material == "scan_void" else ""
+        turn = f' euler="0 0 {np.degrees(yaw):.8g}"' if yaw else ""
         lines.append(
             f'    <geom name="{name}" type="box" pos="{_fmt(np.round(pos, 5))}" '
-            f'size="{_fmt(np.round(half, 5))}" material="{material}"{group}/>'
+            f'size="{_fmt(np.round(half, 5))}" material="{material}"{group}{turn}/>'
         )
     for name, (x, y, yaw) in sites.items():
         lines.append(
@@ -339,10 +350,16 @@ def build_scene(
     plan = apply_policy(plan, opts.voids)
     timings["floor plan"] = clock() - t
     t = clock()
+    levels = scan_levels(levelled, plan)
+    plan = plan if levels is None else levels.plan
+    timings["levels"] = clock() - t
+    t = clock()
     offset = None if opts.offset is None else np.asarray(opts.offset)
     matrix = _matrix(levelling, scale, axes, offset)
     site_xyyaw = _place_sites(sites or [], plan, matrix, source)
     boxes, n_obst, n_void = _boxes(plan)
+    if levels is not None:
+        boxes += levels.boxes
     header = _header(source, len(pts), levelling, matrix, (n_obst, n_void), plan, opts, sight)
     xml = _mjcf(plan, boxes, site_xyyaw, header, matrix, model_name)
     try:
@@ -351,7 +368,7 @@ def build_scene(
         raise ScanError(f"{source}: the generated scene does not compile: {exc}") from exc
     timings["mjcf"] = clock() - t
     return ScanScene(
-        xml, plan, levelling, matrix, len(pts), n_obst, n_void, site_xyyaw, timings, sight
+        xml, plan, levelling, matrix, len(pts), n_obst, n_void, site_xyyaw, timings, sight, levels
     )
 
 

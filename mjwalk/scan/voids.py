@@ -24,6 +24,7 @@ from scipy import ndimage
 
 from mjwalk._io import atomic_path
 from mjwalk.errors import ScanError
+from mjwalk.scan.levelboxes import LevelPlan, draw_levels
 from mjwalk.scan.obstacles import HOLE_RADIUS, FloorPlan
 
 #: The choices of ``--voids``.
@@ -118,7 +119,9 @@ def cover(plan: FloorPlan) -> FloorCover:
     )
 
 
-def save_top_view(plan: FloorPlan, path: str | Path, title: str = "") -> Path:
+def save_top_view(
+    plan: FloorPlan, path: str | Path, title: str = "", levels: LevelPlan | None = None
+) -> Path:
     """A top view of the plan (floor seen, unseen but walkable, obstacles,
     voids) as an image, written atomically.
 
@@ -126,6 +129,8 @@ def save_top_view(plan: FloorPlan, path: str | Path, title: str = "") -> Path:
         plan: the floor plan.
         path: the image file.
         title: the figure's title ("": a default naming the areas).
+        levels: the raised levels drawn over it with their heights and links
+            (:func:`mjwalk.scan.levelboxes.draw_levels`); None: none.
 
     Returns:
         ``path`` as a path. A failed write is a WriteError naming the file.
@@ -139,8 +144,11 @@ def save_top_view(plan: FloorPlan, path: str | Path, title: str = "") -> Path:
 
     seen = plan.seen if plan.seen is not None else plan.floor
     kind = np.where(seen, 0, np.where(plan.floor, 1, np.where(plan.obstacles > 0, 2, 3)))
-    colours = ["#d9d9d4", "#f2d675", "#6b645a", "#c0392b"]
+    colours = ["#d9d9d4", "#f2d675", "#6b645a", "#c0392b", "#ffffff"]
     names = ["floor seen", "unseen, walkable", "obstacle", "void (unseen, blocked)"]
+    if levels is not None:  # under the raised levels: neither floor, obstacle nor void
+        kind = np.where((kind == 3) & ~plan.void, 4, kind)
+        names.append("raised level")
     ny, nx = kind.shape
     r = plan.resolution
     extent = (plan.x0, plan.x0 + nx * r, plan.y0, plan.y0 + ny * r)
@@ -149,9 +157,9 @@ def save_top_view(plan: FloorPlan, path: str | Path, title: str = "") -> Path:
         kind,
         origin="lower",
         extent=extent,
-        cmap=ListedColormap(colours),
+        cmap=ListedColormap(colours[: len(names)]),
         vmin=0,
-        vmax=3,
+        vmax=len(names) - 1,
         interpolation="nearest",
     )
     ax.set_xlabel("x (m)")
@@ -159,8 +167,10 @@ def save_top_view(plan: FloorPlan, path: str | Path, title: str = "") -> Path:
     ax.set_aspect("equal")
     c = cover(plan)
     ax.set_title(title or c.line(), fontsize=8)
+    if levels is not None:
+        draw_levels(ax, levels)
     ax.legend(
-        handles=[Patch(color=k, label=n) for k, n in zip(colours, names, strict=True)],
+        handles=[Patch(color=k, label=n) for k, n in zip(colours, names, strict=False)],
         loc="upper right",
         fontsize=7,
     )

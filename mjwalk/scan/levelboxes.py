@@ -1,0 +1,414 @@
+"""Scan levels as MJCF boxes: stairs fitted as regular flights, each level a walkable box.
+
+:func:`scan_levels` takes the levels of :func:`mjwalk.scan.scanlevels.find_levels` to the scene:
+
+- **Stairs.** A chain from a level over single treads to a level, with at least
+  ``norms.MIN_STAIR_RISERS`` risers, is fitted as one regular flight, as stairs are built
+  (DIN 18065 allows 5 mm, ``norms.STAIR_TOLERANCE``): the riser is the rise between the two end
+  levels over the number of risers; the tread depth and the first riser's place a least-squares
+  line through the treads' front and back edges along the climb (the top level's axis nearest
+  the treads' run). The chain is a stair when each tread's fitted height and edges lie within
+  the scan's tolerance of the flight (:data:`HEIGHT_TOL`, :data:`EDGE_TOL`) and the flight is
+  within the norms (riser ``MIN_RISER``-``MAX_RISER``, tread ``MIN_TREAD``-``MAX_TREAD``, step
+  rule ``STEP_RULE``); its treads become exact boxes, and the top level's edge is put on the last
+  riser. Other chains are steps.
+- **Boxes.** Every level but the floor is a solid box standing on the floor up to its height
+  (as the shipped multi-level scene builds them), over its cells' minimum-area rectangle; a
+  level reached by a step from below reaches under the higher one by the cells that touch it,
+  so the two edges meet (``norms.CONTACT_GAP``). What stands on a level higher than
+  ``OBSTACLE_Z_RANGE[0]`` above it is an obstacle box on it; the sides of a higher level
+  (points no higher than its top, within a few cells of it) are not obstacles of the lower one.
+
+Then ``mjwalk.world.find_walk_surfaces`` and ``level_graph`` on the written scene find the same
+levels and links. Metres, scene frame (floor at z = 0), yaw from +x CCW.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import ndimage
+
+from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, TOP_STEP, FloorPlan, rectangles
+from mjwalk.scan.scanlevels import (
+    Layers,
+    ScanLevel,
+    ScanLink,
+    find_levels,
+    min_rectangle,
+    rectangle_size,
+)
+from mjwalk.world.floor import OBSTACLE_Z_RANGE
+from mjwalk.world.norms import (
+    CONTACT_GAP,
+    MAX_RISER,
+    MAX_TREAD,
+    MIN_RISER,
+    MIN_STAIR_RISERS,
+    MIN_TREAD,
+    STAIR_TOLERANCE,
+    STEP_RULE,
+)
+
+#: Most a tread's fitted height may differ from its regular flight's, metres: the build
+#: tolerance ``STAIR_TOLERANCE`` (5 mm, DIN 18065) plus the scan's range noise (5 mm, the sigma
+#: ``mjwalk.scan.obstacles.FLOOR_TOL`` is six of).
+HEIGHT_TOL = STAIR_TOLERANCE + FLOOR_TOL / 6
+#: Most a tread's edge may differ from its flight's, in cells of the floor plan, besides
+#: ``STAIR_TOLERANCE``: an edge lies somewhere in its outermost cell, one more for the riser's
+#: cell that its points block.
+EDGE_CELLS = 2
+#: Material of the level boxes.
+LEVEL_MATERIAL = "scan_level"
+
+
+@dataclass
+class LevelPlan:
+    """The levels of a scan ready to write.
+
+    Attributes:
+        levels: the levels, the floor first (:class:`~mjwalk.scan.scanlevels.ScanLevel`).
+        links: steps and stairs between them, steps first.
+        heights: each level's box height, metres (a stair's treads: the regular flight's).
+        rects: each level's box outline (4, 2) counter-clockwise, metres (None for the floor).
+        plan: the floor plan with the levels and their sides taken out of its obstacles and
+            voids.
+        boxes: the boxes on the levels: (name, centre (3,), half sizes (3,), material, yaw).
+        n_level_boxes: how many of ``boxes`` are the levels themselves (they come first).
+    """
+
+    levels: list[ScanLevel]
+    links: list[ScanLink]
+    heights: list[float]
+    rects: list[np.ndarray | None]
+    plan: FloorPlan
+    boxes: list[tuple[str, np.ndarray, np.ndarray, str, float]]
+    n_level_boxes: int
+
+
+def _chains(levels: list[ScanLevel], pairs: list[tuple[int, int]]) -> list[list[int]]:
+    """Chains of levels from a non-tread over single treads to a non-tread, bottom up."""
+    up: dict[int, list[int]] = {}
+    for i, j in pairs:
+        up.setdefault(i, []).append(j)
+    out = []
+    for i, j in pairs:
+        if levels[i].kind == "tread" or levels[j].kind != "tread":
+            continue
+        chain = [i, j]
+        while levels[chain[-1]].kind == "tread":
+            nxt = [k for k in up.get(chain[-1], []) if k not in chain]
+            if len(nxt) != 1:
+                break
+            chain.append(nxt[0])
+        if levels[chain[-1]].kind != "tread" and len(chain) - 1 >= MIN_STAIR_RISERS:
+            out.append(chain)
+    return out
+
+
+def _centres(cells: np.ndarray, plan: FloorPlan) -> np.ndarray:
+    iy, ix = np.nonzero(cells)
+    r = plan.resolution
+    return np.column_stack([plan.x0 + (ix + 0.5) * r, plan.y0 + (iy + 0.5) * r])
+
+
+def _axis(rect: np.ndarray, run: np.ndarray) -> np.ndarray:
+    """The rectangle's axis (unit, signed) nearest a direction ``run``."""
+    axes = [rect[1] - rect[0], rect[3] - rect[0]]
+    axes = [a / np.hypot(*a) for a in axes]
+    a = max(axes, key=lambda v: abs(float(v @ run)))
+    return a if a @ run > 0 else -a
+
+
+def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dict | None:
+    """A chain of levels fitted as one regular flight, or None when it is not a stair.
+
+    Args:
+        chain: level indices bottom up: a level, the treads, a level.
+        levels: the levels.
+        plan: the floor plan (its grid).
+
+    Returns:
+        None, or: ``riser`` and ``tread`` (metres), ``heights`` of the treads, ``rects`` (4, 2)
+        of the treads, ``top_edge`` (the last riser's place along ``run``), ``run`` (the unit
+        climb direction) and the largest deviations ``dz``, ``dxy`` (metres).
+    """
+    n = len(chain) - 1
+    bottom, top, treads = levels[chain[0]], levels[chain[-1]], [levels[i] for i in chain[1:-1]]
+    riser = (top.height - bottom.height) / n
+    heights = [bottom.height + (k + 1) * riser for k in range(n - 1)]
+    dz = max(abs(t.height - h) for t, h in zip(treads, heights, strict=True))
+    mids = [_centres(t.cells, plan).mean(axis=0) for t in treads]
+    top_rect = min_rectangle(top.cells, plan.x0, plan.y0, plan.resolution)
+    run = _axis(top_rect, mids[-1] - mids[0])
+    side = np.array([-run[1], run[0]])
+    rows, rhs, lefts, rights = [], [], [], []
+    for k, t in enumerate(treads):
+        c = _centres(t.cells, plan)
+        along, across = c @ run, c @ side
+        rows += [[1.0, 0.0, k], [0.0, 1.0, k]]
+        rhs += [along.min(), along.max()]
+        lefts.append(across.min())
+        rights.append(across.max())
+    a = np.array(rows)
+    coef, *_ = np.linalg.lstsq(a, np.array(rhs), rcond=None)
+    dxy = float(np.abs(a @ coef - rhs).max())
+    first, tread = float(coef[0]), float(coef[2])
+    ok = (
+        dz <= HEIGHT_TOL
+        and dxy <= STAIR_TOLERANCE + EDGE_CELLS * plan.resolution
+        and MIN_RISER - 1e-9 <= riser <= MAX_RISER + 1e-9
+        and MIN_TREAD - 1e-9 <= tread <= MAX_TREAD + 1e-9
+        and STEP_RULE[0] - 1e-9 <= 2 * riser + tread <= STEP_RULE[1] + 1e-9
+    )
+    if not ok:
+        return None
+    w0, w1 = float(np.median(lefts)), float(np.median(rights))
+    rects = []
+    for k in range(n - 1):
+        s0, s1 = first + k * tread, first + (k + 1) * tread
+        corners = [(s0, w0), (s1, w0), (s1, w1), (s0, w1)]
+        rects.append(np.array([u * run + v * side for u, v in corners]))
+    return {
+        "riser": riser, "tread": tread, "heights": heights, "rects": rects, "run": run,
+        "top_edge": first + (n - 1) * tread, "top_rect": top_rect, "dz": dz, "dxy": dxy,
+    }  # fmt: skip
+
+
+def _snap_edge(rect: np.ndarray, run: np.ndarray, at: float) -> np.ndarray:
+    """A rectangle (4, 2) whose edge facing ``-run`` (an axis of it) is moved to ``at`` along
+    ``run``; its far edge stays."""
+    q = rect @ run
+    lo, hi = float(q.min()), float(q.max())
+    out = rect.copy()
+    near = np.abs(q - lo) < 0.5 * (hi - lo)
+    out[near] += (at - lo) * run
+    return out
+
+
+def _covers(rects: list[np.ndarray | None], plan: FloorPlan) -> list[np.ndarray]:
+    """Per rectangle, the grid cells whose centre lies inside it (bool (ny, nx))."""
+    ny, nx = plan.floor.shape
+    r = plan.resolution
+    gx, gy = np.meshgrid(plan.x0 + (np.arange(nx) + 0.5) * r, plan.y0 + (np.arange(ny) + 0.5) * r)
+    out = []
+    for rect in rects:
+        if rect is None:
+            out.append(np.zeros((ny, nx), bool))
+            continue
+        e1, e2 = rect[1] - rect[0], rect[3] - rect[0]
+        u = (gx - rect[0, 0]) * e1[0] + (gy - rect[0, 1]) * e1[1]
+        v = (gx - rect[0, 0]) * e2[0] + (gy - rect[0, 1]) * e2[1]
+        out.append((u >= 0) & (u <= e1 @ e1) & (v >= 0) & (v <= e2 @ e2))
+    return out
+
+
+def _rects(
+    levels: list[ScanLevel], pairs: list[tuple[int, int]], plan: FloorPlan
+) -> list[np.ndarray | None]:
+    """Each level's box outline: its cells, and the cells of the levels a step above it that
+    touch it, in a minimum-area rectangle (None for the floor)."""
+    d = math.ceil(CONTACT_GAP / plan.resolution) + 2
+    out: list[np.ndarray | None] = [None]
+    for lv in levels[1:]:
+        cells = lv.cells.copy()
+        near = ndimage.binary_dilation(lv.cells, np.ones((3, 3), bool), iterations=d)
+        for i, j in pairs:
+            if i == lv.index:
+                cells |= near & levels[j].cells
+        out.append(min_rectangle(cells, plan.x0, plan.y0, plan.resolution))
+    return out
+
+
+def _links_and_stairs(
+    levels: list[ScanLevel], pairs: list[tuple[int, int]], plan: FloorPlan
+) -> tuple[list[ScanLink], list[tuple[list[int], dict]]]:
+    """The step and stair links, and each stair's chain with its fit."""
+    stairs = []
+    for chain in _chains(levels, pairs):
+        fit = fit_stair(chain, levels, plan)
+        if fit is not None:
+            stairs.append((chain, fit))
+    in_stair = {(c[k], c[k + 1]) for c, _ in stairs for k in range(len(c) - 1)}
+    links = [
+        ScanLink("step", i, j, (levels[j].height - levels[i].height,))
+        for i, j in pairs
+        if (i, j) not in in_stair
+    ]
+    for chain, fit in stairs:
+        n = len(chain) - 1
+        links.append(
+            ScanLink("stair", chain[0], chain[-1], (fit["riser"],) * n, fit["tread"],
+                     tuple(chain[1:-1]))
+        )  # fmt: skip
+    return links, stairs
+
+
+def _top(top: np.ndarray, base: float) -> float:
+    """An obstacle's top: its highest band point rounded up to the band's bins
+    (``TOP_STEP`` from ``base + OBSTACLE_Z_RANGE[0]``, as the floor plan's), within the band."""
+    z0, z1 = base + OBSTACLE_Z_RANGE[0], base + OBSTACLE_Z_RANGE[1]
+    b = max(0, int((float(top) - z0) / TOP_STEP))
+    return min(z0 + (b + 1) * TOP_STEP, z1)
+
+
+def _obstacle_boxes(
+    mask: np.ndarray, top: np.ndarray, base: float, plan: FloorPlan, prefix: str
+) -> list[tuple[str, np.ndarray, np.ndarray, str, float]]:
+    """Boxes over the obstacle cells ``mask`` standing on height ``base``, each connected
+    obstacle up to its highest band point (``top`` per cell)."""
+    lab, n = ndimage.label(mask, np.ones((3, 3), bool))
+    if n == 0:
+        return []
+    tops = ndimage.maximum(top, lab, np.arange(1, n + 1))
+    r = plan.resolution
+    out: list[tuple[str, np.ndarray, np.ndarray, str, float]] = []
+    for iy0, iy1, ix0, ix1, k in rectangles(lab):
+        z1 = _top(tops[k - 1], base)
+        lo = np.array([plan.x0 + ix0 * r, plan.y0 + iy0 * r, base])
+        hi = np.array([plan.x0 + ix1 * r, plan.y0 + iy1 * r, z1])
+        out.append((f"{prefix}_{len(out)}", 0.5 * (lo + hi), 0.5 * (hi - lo), "scan_obstacle", 0.0))
+    return out
+
+
+def _level_box(
+    i: int, rect: np.ndarray, h: float
+) -> tuple[str, np.ndarray, np.ndarray, str, float]:
+    e1, e2 = rect[1] - rect[0], rect[3] - rect[0]
+    c = rect.mean(axis=0)
+    half = np.array([0.5 * np.hypot(*e1), 0.5 * np.hypot(*e2), 0.5 * h])
+    return (
+        f"scan_level_{i}",
+        np.array([c[0], c[1], 0.5 * h]),
+        half,
+        LEVEL_MATERIAL,
+        float(math.atan2(e1[1], e1[0])),
+    )
+
+
+def scan_levels(levelled: np.ndarray, plan: FloorPlan) -> LevelPlan | None:
+    """The levels of a levelled scan as boxes, or None for a scan with one level.
+
+    Args:
+        levelled: (N, 3) points, metres, floor at z = 0.
+        plan: its floor plan (after the void policy).
+
+    Returns:
+        None when no raised level is reachable from the floor (the scene is written as
+        before); else the levels, links, boxes and the floor plan without them.
+    """
+    levels, pairs, layers = find_levels(levelled, plan)
+    if len(levels) == 1:
+        return None
+    links, stairs = _links_and_stairs(levels, pairs, plan)
+    heights = [lv.height for lv in levels]
+    rects = _rects(levels, pairs, plan)
+    for chain, fit in stairs:
+        for k, i in enumerate(chain[1:-1]):
+            rects[i], heights[i] = fit["rects"][k], fit["heights"][k]
+        top = rects[chain[-1]]
+        if top is not None:
+            rects[chain[-1]] = _snap_edge(top, fit["run"], fit["top_edge"])
+    return _assemble(levels, links, heights, rects, plan, layers)
+
+
+def _assemble(
+    levels: list[ScanLevel],
+    links: list[ScanLink],
+    heights: list[float],
+    rects: list[np.ndarray | None],
+    plan: FloorPlan,
+    layers: Layers,
+) -> LevelPlan:
+    """The boxes and the floor plan without the levels (see :func:`scan_levels`)."""
+    covers = _covers(rects, plan)
+    d = math.ceil(CONTACT_GAP / plan.resolution) + 2
+    grown = [ndimage.binary_dilation(c, np.ones((3, 3), bool), iterations=d) for c in covers]
+    boxes = [_level_box(i, rects[i], heights[i]) for i in range(1, len(levels))]  # type: ignore[arg-type]
+    n_levels = len(boxes)
+
+    def free_of_higher(i: int, top: np.ndarray) -> np.ndarray:
+        """Cells of level ``i``'s band that are a higher level or its sides."""
+        out = np.zeros(plan.floor.shape, bool)
+        for j in range(1, len(levels)):
+            if heights[j] > heights[i] + OBSTACLE_Z_RANGE[0] - FLOOR_TOL:
+                out |= covers[j] | (grown[j] & (top <= heights[j] + FLOOR_TOL))
+        return out
+
+    gone = free_of_higher(0, layers.top[0])
+    obst = (plan.obstacles > 0) & ~gone
+    olab, n = ndimage.label(obst, np.ones((3, 3), bool))
+    tops = np.zeros(n + 1)
+    if n:
+        tops[1:] = [_top(t, 0.0) for t in ndimage.maximum(layers.top[0], olab, np.arange(1, n + 1))]
+    void = plan.void & ~gone
+    new_plan = dataclasses.replace(plan, obstacles=olab, tops=tops, void=void)
+    for i in range(1, len(levels)):
+        k = levels[i].peak
+        mask = (layers.band[k] >= MIN_BAND_POINTS) & covers[i]
+        mask &= ~free_of_higher(i, layers.top[k])
+        boxes += _obstacle_boxes(mask, layers.top[k], heights[i], plan, f"scan_on_level{i}")
+    return LevelPlan(levels, links, heights, rects, new_plan, boxes, n_levels)
+
+
+def draw_levels(ax, lp: LevelPlan) -> None:
+    """Draw the levels on a top view: each box outline filled by its height, labelled
+    ``L<i> +h m``, and each link as an arrow from the lower level up, labelled with its risers.
+
+    Args:
+        ax: a matplotlib axes in world x, y metres.
+        lp: the scan's levels.
+
+    Returns:
+        None; draws on ``ax``.
+    """
+    from matplotlib import colormaps  # deferred: matplotlib is slow to import, top view only
+
+    cmap = colormaps["viridis"]
+    top = max(lp.heights) or 1.0
+    for lv, h, rect in zip(lp.levels, lp.heights, lp.rects, strict=True):
+        if rect is None:
+            continue
+        ax.fill(*rect.T, color=cmap(h / top), alpha=0.55, lw=0.8, ec="k")
+        c = rect.mean(axis=0)
+        ax.annotate(f"L{lv.index} {h:+.2f} m", c, fontsize=6, ha="center", va="center")
+    for k in lp.links:
+        a, b = (lp.rects[i] for i in (k.lower, k.upper))
+        p = a.mean(axis=0) if a is not None else b.mean(axis=0) - 0.5  # type: ignore[union-attr]
+        q = b.mean(axis=0) if b is not None else p
+        ax.annotate("", q, p, arrowprops={"arrowstyle": "->", "color": "#b03a2e", "lw": 1.0})
+        what = f"{len(k.risers)} x {k.risers[0]:.2f}" if k.kind == "stair" else f"{k.rise:.2f}"
+        ax.annotate(f"{k.kind} {what} m", 0.5 * (p + q), fontsize=5, color="#b03a2e")
+
+
+def describe(lp: LevelPlan) -> str:
+    """The levels and links of a scan, one line each (``mjwalk scan`` prints it).
+
+    Args:
+        lp: the scan's levels.
+
+    Returns:
+        The text, no trailing newline.
+    """
+    lines = [f"levels: {len(lp.levels)}, links: {len(lp.links)} (heights fitted to the scan)"]
+    for lv, h, rect in zip(lp.levels, lp.heights, lp.rects, strict=True):
+        if rect is None:
+            lines.append(f"  L{lv.index} floor    +0.000 m {lv.area:7.2f} m2")
+            continue
+        depth, width = rectangle_size(rect)
+        c = rect.mean(axis=0)
+        lines.append(
+            f"  L{lv.index} {lv.kind:<8} {h:+.3f} m {depth * width:7.2f} m2  {depth:.2f} x "
+            f"{width:.2f} m at ({c[0]:.2f}, {c[1]:.2f}), plane rms {1000 * lv.rms:.1f} mm"
+        )
+    for k in lp.links:
+        if k.kind == "step":
+            what = f"riser {k.rise:.3f} m"
+        else:
+            r, g = k.risers[0], k.tread or 0.0
+            what = f"{len(k.risers)} risers x {r:.3f} m, tread {g:.3f} m (2h+g {2 * r + g:.3f} m)"
+        lines.append(f"  {k.kind:<5} L{k.lower} -> L{k.upper}  {what}")
+    return "\n".join(lines)

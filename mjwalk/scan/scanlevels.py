@@ -1,0 +1,448 @@
+"""The walk-surface levels of a levelled scan: platforms, steps and stairs (issue 47).
+
+The seed paper (mocap-based DHM walking in as-built environments, §3 A2) extracts walk-surface
+points (normal within 20° of up) and groups them by region growing; its Fig. 9 shows floors and
+stair treads as separate walk surfaces. Region growing over 0.1 m voxels in 3-D (as
+:func:`mjwalk.scan.level.walk_surfaces` does for the floor) joins a 0.17 m step to the floor
+through diagonal voxels, so here levels are found in two passes:
+
+1. **Heights**: the upward-facing voxels (the local-PCA normals of :func:`~mjwalk.scan.level.
+   voxel_normals`, within the paper's 20° of up) between the obstacle band's foot and the top of
+   the band vote with their centroid height into a 1 cm histogram; its peaks, strongest first and
+   at least :data:`PEAK_SEPARATION` apart, are the candidate heights. A histogram, not Open3D's
+   RANSAC plane segmentation: RANSAC finds one plane at a time over the whole cloud (each
+   treads' 0.28 m² is lost next to the floor's 100 m² unless the floor is removed and the search
+   repeated per plane) and is random; the histogram is one deterministic pass.
+2. **Regions**: per candidate height ``h``, on the floor plan's grid, a cell is surface when it
+   holds a point within :data:`~mjwalk.scan.obstacles.FLOOR_TOL` of ``h`` and fewer than
+   :data:`~mjwalk.scan.obstacles.MIN_BAND_POINTS` points in its own obstacle band (0.05-2.0 m
+   above ``h``, :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`); connected cells (8-neighbourhood)
+   are one region, its height a least-squares plane through its points (trimmed at 3 rms),
+   kept when that plane is horizontal (``norms.HORIZONTAL_SLOPE`` plus three standard errors
+   of the fit) and the region is a tread deep and a person wide (``norms.MIN_TREAD`` by
+   ``norms.STAND_WIDTH``, less a cell each side for the cells its edges cut).
+
+Regions whose edges touch (within ``norms.CONTACT_GAP`` and a cell) along at least a body's
+width (``mjwalk.world.contacts.MIN_CROSSING``) with a riser of at most ``norms.MAX_RISER`` are
+joined; the levels are the regions reachable from the floor so (a table top stays an obstacle).
+Stairs: a chain of at least ``norms.MIN_STAIR_RISERS`` risers over single treads (regions no
+deeper than ``norms.MAX_TREAD``) with risers and treads regular within the scan's measuring
+tolerance is fitted as one regular flight (:mod:`mjwalk.scan.levelboxes`). Metres, scene frame
+(floor at z = 0).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import ndimage
+
+from mjwalk._jit import njit
+from mjwalk.scan.level import HORIZONTAL_DEG, MAX_SURFACE_HEIGHT, VOXEL, voxel_normals
+from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, FloorPlan
+from mjwalk.world.contacts import MIN_CROSSING
+from mjwalk.world.floor import OBSTACLE_Z_RANGE
+from mjwalk.world.norms import (
+    CONTACT_GAP,
+    HORIZONTAL_SLOPE,
+    MAX_RISER,
+    MAX_TREAD,
+    MIN_TREAD,
+    STAND_WIDTH,
+)
+
+#: Bin of the height histogram, metres.
+HIST_BIN = 0.01
+#: Two candidate heights closer than this are one (metres): the foot of the obstacle band
+#: (``OBSTACLE_Z_RANGE[0]``): anything lower on a surface is part of it, not an obstacle.
+PEAK_SEPARATION = OBSTACLE_Z_RANGE[0]
+#: Least area of upward voxels a candidate height needs, square metres: half the least surface
+#: (``MIN_TREAD`` x ``STAND_WIDTH``), for the voxels its edges cut.
+PEAK_AREA = 0.5 * MIN_TREAD * STAND_WIDTH
+#: A voxel is planar when its middle covariance eigenvalue is at least this share of the
+#: largest (a scan line crossing a voxel spans one direction only; as ``level.walk_surfaces``).
+PLANAR_SHARE = 0.1
+#: Trim of the plane fits: residuals beyond this many rms are dropped (twice).
+TRIM_SIGMAS = 3.0
+
+#: Kinds of scan level.
+LEVEL_KINDS = ("floor", "tread", "platform")
+
+
+@dataclass(frozen=True)
+class ScanLevel:
+    """One walk-surface region of a scan.
+
+    Attributes:
+        index: its place in :attr:`ScanLevels.levels` (0: the floor).
+        kind: "floor", "tread" (no deeper than ``norms.MAX_TREAD``) or "platform".
+        height: the fitted plane's height at the region's centroid, metres above the floor.
+        rms: rms distance of its points from the plane, metres.
+        slope: the fitted plane's inclination, radians.
+        cells: (ny, nx) bool, its cells on the floor plan's grid, holes filled.
+        area: the cells' area, square metres.
+        depth, width: its least extent and the extent across it (minimum-area rectangle of the
+            cells' centres), metres.
+        peak: index of the candidate height it was found at (-1: the floor).
+    """
+
+    index: int
+    kind: str
+    height: float
+    rms: float
+    slope: float
+    cells: np.ndarray
+    area: float
+    depth: float
+    width: float
+    peak: int
+
+
+@dataclass(frozen=True)
+class ScanLink:
+    """Where a walker gets from one scan level to another.
+
+    Attributes:
+        kind: "step" (one riser) or "stair" (a regular flight).
+        lower, upper: the levels' indices.
+        risers: each riser's height, bottom up, metres (a stair's: its regular riser).
+        tread: a stair's tread depth, metres (None for a step).
+        via: a stair's tread levels, bottom up (empty for a step).
+    """
+
+    kind: str
+    lower: int
+    upper: int
+    risers: tuple[float, ...]
+    tread: float | None = None
+    via: tuple[int, ...] = ()
+
+    @property
+    def rise(self) -> float:
+        """Height from the lower level to the upper, metres."""
+        return float(sum(self.risers))
+
+
+@dataclass
+class Layers:
+    """The cloud rasterised per candidate height ``heights`` (K,) on the floor plan's grid:
+    ``near`` (K, ny, nx) points within ``FLOOR_TOL``, ``band`` points in the obstacle band above,
+    ``top`` the highest band point (metres; -inf: none)."""
+
+    heights: np.ndarray
+    near: np.ndarray
+    band: np.ndarray
+    top: np.ndarray
+
+
+def candidate_heights(levelled: np.ndarray) -> np.ndarray:
+    """The heights where upward-facing surfaces of a levelled cloud lie, strongest first.
+
+    Args:
+        levelled: (N, 3) points, metres, floor at z = 0.
+
+    Returns:
+        (K,) heights above the floor, metres, each the mean of its upward voxels' centroids
+        within ``FLOOR_TOL`` of its histogram peak; between ``PEAK_SEPARATION`` and
+        ``MAX_SURFACE_HEIGHT``.
+    """
+    lo, hi = PEAK_SEPARATION, MAX_SURFACE_HEIGHT
+    sel = levelled[(levelled[:, 2] > lo - VOXEL) & (levelled[:, 2] <= hi + VOXEL)]
+    if len(sel) < 10:
+        return np.zeros(0)
+    vn = voxel_normals(sel, VOXEL)
+    ev = vn.eigval
+    up = (vn.normal[:, 2] >= math.cos(math.radians(HORIZONTAL_DEG))) & (
+        ev[:, 1] >= PLANAR_SHARE * ev[:, 2]
+    )
+    z = vn.centroid[up, 2]
+    z = z[(z > lo) & (z <= hi)]
+    nb = math.ceil((hi - lo) / HIST_BIN)
+    hist = np.bincount(((z - lo) / HIST_BIN).astype(np.int64), minlength=nb)[:nb].astype(float)
+    half = round(FLOOR_TOL / HIST_BIN)
+    window = np.convolve(hist, np.ones(2 * half + 1), mode="same") * VOXEL**2  # m² per window
+    out: list[float] = []
+    while window.size and window.max() >= PEAK_AREA:
+        b = int(np.argmax(window))
+        h0 = lo + (b + 0.5) * HIST_BIN
+        near = z[np.abs(z - h0) <= FLOOR_TOL]
+        h = float(near.mean()) if len(near) else h0
+        out.append(h)
+        gone = np.abs(lo + (np.arange(nb) + 0.5) * HIST_BIN - h) < PEAK_SEPARATION
+        window[gone] = 0.0
+    return np.array(out)
+
+
+@njit
+def _rasterize_layers(points, heights, x0, y0, res, nx, ny, tol, band_lo, band_hi):
+    """Per height k and cell: points within ``tol`` of ``heights[k]``, points in the band
+    (``heights[k] + band_lo``, ``heights[k] + band_hi``], and the highest of those."""
+    k_n = heights.shape[0]
+    near = np.zeros((k_n, ny, nx), dtype=np.int32)
+    band = np.zeros((k_n, ny, nx), dtype=np.int32)
+    top = np.full((k_n, ny, nx), -np.inf, dtype=np.float32)
+    for p in range(points.shape[0]):
+        i = int(np.floor((points[p, 0] - x0) / res))
+        j = int(np.floor((points[p, 1] - y0) / res))
+        if i < 0 or i >= nx or j < 0 or j >= ny:
+            continue
+        z = points[p, 2]
+        for k in range(k_n):
+            d = z - heights[k]
+            if abs(d) <= tol:
+                near[k, j, i] += 1
+            elif band_lo < d <= band_hi:
+                band[k, j, i] += 1
+                if z > top[k, j, i]:
+                    top[k, j, i] = z
+    return near, band, top
+
+
+def rasterize_layers(levelled: np.ndarray, heights: np.ndarray, plan: FloorPlan) -> Layers:
+    """The cloud per candidate height on the floor plan's grid (:class:`Layers`).
+
+    Args:
+        levelled: (N, 3) points, metres, floor at z = 0.
+        heights: (K,) candidate heights, metres; the floor's 0 is prepended.
+        plan: the floor plan whose grid is used.
+
+    Returns:
+        The layers, the floor's first.
+    """
+    hs = np.concatenate([[0.0], np.asarray(heights, dtype=np.float64)])
+    ny, nx = plan.floor.shape
+    near, band, top = _rasterize_layers(
+        np.ascontiguousarray(levelled, dtype=np.float64), hs, plan.x0, plan.y0,
+        plan.resolution, nx, ny, FLOOR_TOL, OBSTACLE_Z_RANGE[0], OBSTACLE_Z_RANGE[1],
+    )  # fmt: skip
+    return Layers(hs, near, band, top)
+
+
+def fit_plane(xyz: np.ndarray) -> tuple[float, float, float, float]:
+    """A least-squares plane z = h + a (x - cx) + b (y - cy) through points, trimmed at
+    :data:`TRIM_SIGMAS` robust sigmas (1.4826 median absolute residuals: a riser's points near
+    the nosing are a minority and do not widen the cut).
+
+    Args:
+        xyz: (M, 3) points, metres, M >= 3.
+
+    Returns:
+        (h: the height at the points' centroid, rms: of the kept points' residuals, slope: the
+        plane's tan inclination, slope_err: its standard error); metres and rise over run.
+    """
+    keep = np.ones(len(xyz), bool)
+    for _ in range(4):
+        p = xyz[keep]
+        c = p[:, :2].mean(axis=0)
+        a = np.column_stack([np.ones(len(p)), p[:, 0] - c[0], p[:, 1] - c[1]])
+        coef, *_ = np.linalg.lstsq(a, p[:, 2], rcond=None)
+        res = p[:, 2] - a @ coef
+        rms = float(np.sqrt(np.mean(res**2)))
+        full = xyz[:, 2] - (coef[0] + coef[1] * (xyz[:, 0] - c[0]) + coef[2] * (xyz[:, 1] - c[1]))
+        sigma = 1.4826 * float(np.median(np.abs(full - np.median(full))))
+        new = np.abs(full) <= max(TRIM_SIGMAS * sigma, 1e-4)
+        if new.sum() < 3 or (new == keep).all():
+            break
+        keep = new
+    cov = rms**2 * np.linalg.pinv(a.T @ a)
+    err = float(np.sqrt(max(cov[1, 1] + cov[2, 2], 0.0)))
+    return float(coef[0]), rms, float(math.hypot(coef[1], coef[2])), err
+
+
+def min_rectangle(cells: np.ndarray, x0: float, y0: float, res: float) -> np.ndarray:
+    """The minimum-area rectangle round the centres of a region's cells.
+
+    Args:
+        cells: (ny, nx) bool.
+        x0: the grid's lower x, metres.
+        y0: the grid's lower y, metres.
+        res: the cell edge, metres.
+
+    Returns:
+        (4, 2) corners, counter-clockwise, metres (the first edge is the rectangle's first axis).
+    """
+    from scipy.spatial import ConvexHull, QhullError  # deferred: scipy.spatial's slow import
+
+    iy, ix = np.nonzero(cells)
+    pts = np.column_stack([x0 + (ix + 0.5) * res, y0 + (iy + 0.5) * res])
+    try:
+        hull = pts[ConvexHull(pts).vertices]
+    except QhullError:  # a line of cells: a rectangle half a cell wide round it
+        hull = pts
+    best = (math.inf, np.eye(2), np.zeros(2), np.zeros(2))
+    for i in range(len(hull)):
+        e = hull[(i + 1) % len(hull)] - hull[i]
+        n = float(np.hypot(*e))
+        if n < 1e-12:
+            continue
+        rot = np.array([e / n, [-e[1] / n, e[0] / n]])  # rows: the rectangle's axes
+        q = hull @ rot.T
+        lo, hi = q.min(axis=0), q.max(axis=0)
+        area = float(np.prod(np.maximum(hi - lo, 0.5 * res)))
+        if area < best[0] - 1e-12:
+            best = (area, rot, lo, hi)
+    _, rot, lo, hi = best
+    mid = 0.5 * (lo + hi)
+    lo, hi = np.minimum(lo, mid - 0.25 * res), np.maximum(hi, mid + 0.25 * res)
+    corners = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]])
+    return corners @ rot
+
+
+def rectangle_size(corners: np.ndarray) -> tuple[float, float]:
+    """(depth: the shorter side, width: the longer) of a rectangle (4, 2), metres.
+
+    Args:
+        corners: (4, 2) corners in order.
+
+    Returns:
+        Its two side lengths, shorter first, metres.
+    """
+    a = float(np.hypot(*(corners[1] - corners[0])))
+    b = float(np.hypot(*(corners[2] - corners[1])))
+    return min(a, b), max(a, b)
+
+
+def regions_at(
+    levelled: np.ndarray, layers: Layers, k: int, plan: FloorPlan
+) -> list[tuple[np.ndarray, tuple[float, float, float, float]]]:
+    """The horizontal walk-surface regions at candidate height ``k`` (``layers.heights[k]``).
+
+    Args:
+        levelled: (N, 3) points, metres, floor at z = 0.
+        layers: the rasterised cloud.
+        k: the candidate's index in ``layers`` (>= 1; 0 is the floor).
+        plan: the floor plan (its grid).
+
+    Returns:
+        Per region kept: its cells (holes filled) and its plane fit (:func:`fit_plane`).
+    """
+    res = plan.resolution
+    surface = (layers.near[k] > 0) & (layers.band[k] < MIN_BAND_POINTS)
+    lab, n = ndimage.label(surface, np.ones((3, 3), bool))
+    if n == 0:
+        return []
+    h0 = layers.heights[k]
+    pts = levelled[np.abs(levelled[:, 2] - h0) <= FLOOR_TOL]
+    ix = np.floor((pts[:, 0] - plan.x0) / res).astype(np.int64)
+    iy = np.floor((pts[:, 1] - plan.y0) / res).astype(np.int64)
+    ny, nx = surface.shape
+    inside = (ix >= 0) & (ix < nx) & (iy >= 0) & (iy < ny)
+    pts, ix, iy = pts[inside], ix[inside], iy[inside]
+    plab = lab[iy, ix]
+    order = np.argsort(plab, kind="stable")
+    bounds = np.searchsorted(plab[order], np.arange(n + 2))
+    sizes = np.bincount(lab.ravel(), minlength=n + 1)
+    least = MIN_TREAD * STAND_WIDTH
+    out = []
+    for r in range(1, n + 1):
+        if sizes[r] * res * res < 0.5 * least:
+            continue
+        cells = ndimage.binary_fill_holes(lab == r)
+        depth, width = rectangle_size(min_rectangle(cells, plan.x0, plan.y0, res))
+        if depth < MIN_TREAD - 2 * res or width < STAND_WIDTH - 2 * res:
+            continue
+        p = pts[order[bounds[r] : bounds[r + 1]]]
+        if len(p) < 3:
+            continue
+        fit = fit_plane(p)
+        if fit[2] > HORIZONTAL_SLOPE + TRIM_SIGMAS * fit[3]:
+            continue  # a sloped region: a ramp's strip at this height
+        cells = _inlier_cells(p, fit, plan, cells)
+        depth, width = rectangle_size(min_rectangle(cells, plan.x0, plan.y0, res))
+        if depth < MIN_TREAD - 2 * res or width < STAND_WIDTH - 2 * res:
+            continue
+        out.append((cells, fit))
+    return out
+
+
+def _inlier_cells(
+    p: np.ndarray, fit: tuple[float, float, float, float], plan: FloorPlan, cells: np.ndarray
+) -> np.ndarray:
+    """The region's cells holding a point within :data:`TRIM_SIGMAS` rms of its horizontal
+    plane: its largest connected part, holes filled (a ramp's strip joined at the region's
+    edge within ``FLOOR_TOL`` falls away)."""
+    h, rms = fit[0], fit[1]
+    q = p[np.abs(p[:, 2] - h) <= max(TRIM_SIGMAS * rms, 1e-3)]
+    res = plan.resolution
+    ix = np.floor((q[:, 0] - plan.x0) / res).astype(np.int64)
+    iy = np.floor((q[:, 1] - plan.y0) / res).astype(np.int64)
+    hit = np.zeros_like(cells)
+    hit[iy, ix] = True
+    hit &= cells
+    lab, n = ndimage.label(hit, np.ones((3, 3), bool))
+    if n == 0:
+        return hit
+    big = int(np.argmax(np.bincount(lab.ravel())[1:])) + 1
+    return ndimage.binary_fill_holes(lab == big)
+
+
+def touching(lower: np.ndarray, upper: np.ndarray, res: float) -> bool:
+    """Whether two regions' edges touch along at least a body's width.
+
+    Args:
+        lower: (ny, nx) bool cells of the lower region.
+        upper: (ny, nx) bool cells of the upper region.
+        res: the cell edge, metres.
+
+    Returns:
+        True when the cells of ``upper``'s rim within ``CONTACT_GAP`` and two cells of
+        ``lower`` span at least ``MIN_CROSSING``.
+    """
+    d = math.ceil(CONTACT_GAP / res) + 2
+    near = ndimage.binary_dilation(lower, np.ones((3, 3), bool), iterations=d)
+    rim = upper & ~ndimage.binary_erosion(upper, np.ones((3, 3), bool))
+    return float((rim & near).sum()) * res >= MIN_CROSSING
+
+
+def find_levels(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel], list, Layers]:
+    """The walk-surface levels of a levelled scan reachable from its floor.
+
+    Args:
+        levelled: (N, 3) points, metres, floor at z = 0.
+        plan: its floor plan (:func:`mjwalk.scan.obstacles.floor_plan`).
+
+    Returns:
+        The levels (the floor first, then by height; only the floor when the scan is flat), the
+        steps between them as (lower, upper) index pairs, and the rasterised layers (the
+        floor's and each level's candidate height).
+    """
+    heights = candidate_heights(levelled)
+    layers = rasterize_layers(levelled, heights, plan)
+    res = plan.resolution
+    a_floor = float(plan.floor.sum()) * res * res
+    floor = ScanLevel(0, "floor", 0.0, 0.0, 0.0, plan.floor, a_floor, 0.0, 0.0, -1)
+    found = [floor]
+    for k in range(1, len(layers.heights)):
+        for cells, (h, rms, slope, _) in regions_at(levelled, layers, k, plan):
+            rect = min_rectangle(cells, plan.x0, plan.y0, res)
+            depth, width = rectangle_size(rect)
+            kind = "tread" if depth <= MAX_TREAD + res else "platform"
+            area = float(cells.sum()) * res * res
+            found.append(ScanLevel(0, kind, h, rms, math.atan(slope), cells, area, depth, width, k))
+    steps = []
+    for i, a in enumerate(found):
+        for j, b in enumerate(found):
+            if 0 < b.height - a.height <= MAX_RISER and touching(a.cells, b.cells, res):
+                steps.append((i, j))
+    seen, todo = {0}, [0]
+    while todo:
+        cur = todo.pop()
+        for i, j in steps:
+            for x, y in ((i, j), (j, i)):
+                if x == cur and y not in seen:
+                    seen.add(y)
+                    todo.append(y)
+    keep = [0, *sorted((i for i in seen if i), key=lambda i: (found[i].height, i))]
+    new = {old: n for n, old in enumerate(keep)}
+    levels = [_reindex(found[old], n) for n, old in enumerate(keep)]
+    pairs = [(new[i], new[j]) for i, j in steps if i in new and j in new]
+    return levels, sorted(pairs), layers
+
+
+def _reindex(level: ScanLevel, index: int) -> ScanLevel:
+    return ScanLevel(
+        index, level.kind, level.height, level.rms, level.slope, level.cells, level.area,
+        level.depth, level.width, level.peak,
+    )  # fmt: skip

@@ -1,0 +1,130 @@
+"""mjwalk.scan.levelboxes: stairs fitted as regular flights, levels written as walkable boxes,
+and the written scene's own level graph agrees (issue 47)."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+import pytest
+from test_scanlevels import LEVELS_XML, SCANNERS
+
+from mjwalk.scan import build_scene
+from mjwalk.scan.level import find_floor
+from mjwalk.scan.levelboxes import describe, scan_levels
+from mjwalk.scan.obstacles import floor_plan
+from mjwalk.scan.raycast import synthetic_scan
+from mjwalk.world.levels import level_graph
+from mjwalk.world.surfaces import find_walk_surfaces
+
+
+@pytest.fixture(scope="module")
+def hall_scene():
+    model = mujoco.MjModel.from_xml_string(LEVELS_XML)
+    scan = synthetic_scan(model, SCANNERS, step_deg=0.4, noise=0.005, seed=3)
+    return build_scene(scan.points, source="hall")
+
+
+def _links(graph_links, heights):
+    """The distinct connections (kind, lower height, upper height, risers): the MJCF graph
+    links a step once per edge crossed (a dais free on four sides: four links), the scan once
+    per pair of levels."""
+    return sorted(
+        {
+            (k.kind, round(heights[k.lower], 2), round(heights[k.upper], 2), len(k.risers))
+            for k in graph_links
+        }
+    )
+
+
+def test_stair_is_recognised_as_one_regular_flight(hall_scene):
+    lp = hall_scene.levels
+    assert lp is not None
+    stairs = [k for k in lp.links if k.kind == "stair"]
+    assert len(stairs) == 1
+    s = stairs[0]
+    assert len(s.risers) == 4 and s.risers[0] == pytest.approx(0.17, abs=0.005)
+    assert s.tread == pytest.approx(0.28, abs=0.01)
+    assert [k.kind for k in lp.links].count("step") == 1  # floor -> dais
+    assert "stair L0 -> L" in describe(lp)
+
+
+def test_written_scene_has_the_same_levels_and_links(hall_scene):
+    lp = hall_scene.levels
+    graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_string(hall_scene.xml)))
+    assert sorted(lv.height for lv in graph.levels) == pytest.approx(sorted(lp.heights), abs=1e-3)
+    scan_links = _links(lp.links, lp.heights)
+    mjcf_links = _links(graph.links, [lv.height for lv in graph.levels])
+    assert scan_links == mjcf_links
+    assert 'material="scan_level"' in hall_scene.xml
+
+
+def test_table_stays_an_obstacle_and_floor_obstacles_spare_the_levels(hall_scene):
+    plan = hall_scene.plan
+    r = plan.resolution
+    ix = int((-1.9 - plan.x0) / r)
+    iy = int((-1.6 - plan.y0) / r)
+    assert plan.obstacles[iy, ix] > 0  # the table
+    ix = int((1.6 - plan.x0) / r)
+    iy = int((0.0 - plan.y0) / r)
+    assert plan.obstacles[iy, ix] == 0 and not plan.void[iy, ix]  # under the deck's box
+
+
+def test_flat_scan_has_no_levels():
+    model = mujoco.MjModel.from_xml_string(
+        """<mujoco><worldbody><geom name="floor" type="plane" size="3 3 0.05"/>
+        <geom name="box" type="box" pos="1 0 0.5" size="0.3 0.3 0.5"/></worldbody></mujoco>"""
+    )
+    scan = synthetic_scan(model, [(-1.0, 0.0, 1.5)], step_deg=0.5, noise=0.005, seed=1)
+    pts = find_floor(scan.points).apply(scan.points)
+    assert scan_levels(pts, floor_plan(pts)) is None
+    assert build_scene(scan.points).levels is None
+
+
+#: Scanner positions in scenes/multilevel_station.xml (x, y, height), metres: round the car,
+#: before the step and the stair, on the platform's side and over the mezzanine.
+STATION_SCANNERS = [
+    (-3.3, 1.6, 1.6), (-4.9, 1.2, 1.6), (3.3, 0.0, 1.6), (0.2, -1.2, 1.6),
+    (-2.8, 3.2, 1.9), (4.5, 2.0, 1.6), (-4.9, -3.0, 2.6),
+]  # fmt: skip
+
+
+@pytest.mark.slow
+def test_multilevel_station_scan_levels_within_2cm(scenes_dir, tmp_path):
+    """Seeded synthetic scan of the multi-level station (0.3 deg rays, 5 mm range noise, 1.5 deg
+    tilt): the platform (0.34 m), the step (0.17 m), the stair's five treads and the mezzanine
+    (1.02 m) are levels within 2 cm (measured: 0.5 mm); the stair is six risers of 0.17 m with
+    0.28 m treads (measured 0.282 m); mjwalk scan prints and draws them; the written scene's own
+    level graph has the same levels and connections. (The ramp stays obstacle boxes.)"""
+    from mjwalk import cli
+    from mjwalk.world.workplace import load_model
+
+    scan = synthetic_scan(
+        load_model(scenes_dir / "multilevel_station.xml"), STATION_SCANNERS, step_deg=0.3, seed=0
+    )
+    src = tmp_path / "station.xyz"
+    np.savetxt(src, scan.points, fmt="%.4f")
+    out, png = tmp_path / "station.xml", tmp_path / "top.png"
+    assert cli.main(["scan", str(src), "-o", str(out), "--png", str(png)]) == 0
+    assert png.stat().st_size > 0
+    graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_path(str(out))))
+    truth = [0.0, 0.17, 0.17, 0.34, 0.34, 0.51, 0.68, 0.85, 1.02]
+    assert sorted(lv.height for lv in graph.levels) == pytest.approx(truth, abs=0.02)
+    links = _links(graph.links, [lv.height for lv in graph.levels])
+    assert links == [("stair", 0.0, 1.02, 6), ("step", 0.0, 0.17, 1), ("step", 0.17, 0.34, 1)]
+    stair = next(k for k in graph.links if k.kind == "stair")
+    assert stair.tread == pytest.approx(0.28, abs=0.01)
+    assert np.ptp(stair.risers) < 1e-6 and stair.risers[0] == pytest.approx(0.17, abs=0.005)
+
+
+def test_cli_prints_levels_and_links(tmp_path, capsys):
+    from mjwalk import cli
+
+    model = mujoco.MjModel.from_xml_string(LEVELS_XML)
+    scan = synthetic_scan(model, SCANNERS, step_deg=0.4, noise=0.005, seed=3)
+    src = tmp_path / "hall.xyz"
+    np.savetxt(src, scan.points, fmt="%.4f")
+    assert cli.main(["scan", str(src), "-o", str(tmp_path / "hall.xml")]) == 0
+    out = capsys.readouterr().out
+    assert "levels: 6, links: 2" in out
+    assert "stair L0 -> L5  4 risers x 0.170 m" in out
+    assert "+0.75 m" in out  # the table: a surface no step reaches, still printed

@@ -1,0 +1,88 @@
+"""mjwalk.scan.scanlevels: walk-surface levels of a scan at their fitted heights (issue 47)."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+import pytest
+
+from mjwalk.scan.level import find_floor
+from mjwalk.scan.obstacles import floor_plan
+from mjwalk.scan.raycast import synthetic_scan
+from mjwalk.scan.scanlevels import (
+    candidate_heights,
+    find_levels,
+    fit_plane,
+    min_rectangle,
+    rectangle_size,
+)
+
+#: A small hall: a stair of four 0.17 m risers and 0.28 m treads rising towards +x to a 0.68 m
+#: platform, a 0.17 m dais reached by one step, and a 0.75 m table that is no level.
+LEVELS_XML = """<mujoco><worldbody>
+  <geom name="floor" type="plane" size="4 3 0.05"/>
+  <geom name="t1" type="box" pos="0.14 0 0.085" size="0.14 0.5 0.085"/>
+  <geom name="t2" type="box" pos="0.42 0 0.17" size="0.14 0.5 0.17"/>
+  <geom name="t3" type="box" pos="0.70 0 0.255" size="0.14 0.5 0.255"/>
+  <geom name="deck" type="box" pos="1.59 0 0.34" size="0.75 1.0 0.34"/>
+  <geom name="dais" type="box" pos="-1.9 1.5 0.085" size="0.6 0.8 0.085"/>
+  <geom name="table" type="box" pos="-1.9 -1.6 0.375" size="0.5 0.3 0.375"/>
+</worldbody></mujoco>"""
+SCANNERS = [(-1.0, 0.3, 1.6), (-2.5, -0.3, 1.7), (1.8, 0.5, 2.4)]
+#: The true heights of the walk surfaces reachable from the floor.
+TRUE = [0.0, 0.17, 0.17, 0.34, 0.51, 0.68]
+
+
+@pytest.fixture(scope="module")
+def hall():
+    """A seeded synthetic scan (0.4 deg rays, 5 mm range noise, 1.5 deg tilt), levelled, and
+    its floor plan."""
+    model = mujoco.MjModel.from_xml_string(LEVELS_XML)
+    scan = synthetic_scan(model, SCANNERS, step_deg=0.4, noise=0.005, seed=3)
+    lv = find_floor(scan.points)
+    pts = lv.apply(scan.points)
+    return pts, floor_plan(pts)
+
+
+def test_candidate_heights_hold_every_tread(hall):
+    pts, _ = hall
+    hs = candidate_heights(pts)
+    for h in TRUE[1:]:
+        assert np.abs(hs - h).min() < 0.02
+    assert np.abs(hs - 0.75).min() < 0.02  # the table's top is a candidate too
+
+
+def test_levels_within_2cm_and_the_table_is_no_level(hall):
+    pts, plan = hall
+    levels, pairs, _ = find_levels(pts, plan)
+    heights = sorted(lv.height for lv in levels)
+    assert heights == pytest.approx(TRUE, abs=0.02)
+    assert [lv.kind for lv in levels].count("tread") == 3  # t1-t3; the dais is a platform
+    assert levels[0].kind == "floor"
+    deck = max(levels, key=lambda lv: lv.height)
+    assert deck.kind == "platform" and deck.depth == pytest.approx(1.5, abs=0.06)
+    # steps: floor-t1, t1-t2, t2-t3, t3-deck and floor-dais
+    rises = sorted(round(levels[j].height - levels[i].height, 2) for i, j in pairs)
+    assert rises == [0.17] * 5
+
+
+def test_fit_plane_ignores_a_riser_edge():
+    rng = np.random.default_rng(0)
+    xy = rng.uniform(0, 0.28, (400, 2)) * [1, 3]
+    top = np.column_stack([xy, 0.34 + rng.normal(0, 0.004, 400)])
+    riser = np.column_stack([np.zeros(60), rng.uniform(0, 0.84, 60), rng.uniform(0.31, 0.34, 60)])
+    h, rms, slope, err = fit_plane(np.vstack([top, riser]))
+    assert h == pytest.approx(0.34, abs=0.002)
+    assert rms < 0.006 and slope < 0.01 + 3 * err
+
+
+def test_min_rectangle_of_a_turned_region():
+    res, ang = 0.02, math.radians(30)
+    gx, gy = np.meshgrid((np.arange(200) + 0.5) * res, (np.arange(200) + 0.5) * res)
+    u = (gx - 2) * math.cos(ang) + (gy - 2) * math.sin(ang)
+    v = -(gx - 2) * math.sin(ang) + (gy - 2) * math.cos(ang)
+    cells = (np.abs(u) <= 0.6) & (np.abs(v) <= 0.2)
+    depth, width = rectangle_size(min_rectangle(cells, 0.0, 0.0, res))
+    assert depth == pytest.approx(0.4, abs=2 * res) and width == pytest.approx(1.2, abs=2 * res)
