@@ -153,6 +153,13 @@ def arm_joint(name: str, side: Side) -> str:
     return "_".join([part, side_prefix(side), *rest])
 
 
+#: The humanoid's arm joint names per side, in :data:`ARM_JOINTS` order (built once: the
+#: per-frame code asks for them in every call).
+ARM_JOINT_NAMES: dict[str, tuple[str, ...]] = {
+    side: tuple(arm_joint(name, side) for name in ARM_JOINTS) for side in ("left", "right")
+}
+
+
 def arm_adrs(jm, sides: tuple[Side, ...] = ("left", "right")) -> list[int]:
     """``qpos`` addresses of the :data:`ARM_JOINTS` of ``sides``' arms (jointmap ``jm``).
 
@@ -203,7 +210,7 @@ def arm_joint_angles(
         xt = x[t - 1] if t > 0 else np.array([1.0, 0.0, 0.0])
         xt = xt - (xt @ z[t]) * z[t]
         x[t] = xt / np.linalg.norm(xt)
-    y = np.cross(z, x)
+    y = _cross(z, x)
     r_sh = np.stack([x, y, z], axis=-1)  # (n, 3, 3), columns x, y, z
     a, b, c = _shoulder_branch(*_euler_yxz(r_sh), s)
     elbow = np.arccos(np.clip(_dot(u1, u2), -1, 1))
@@ -219,9 +226,20 @@ def arm_joint_angles(
         beta = np.arcsin(np.clip(h[:, 1], -1, 1))
         q[:, 5] = np.arctan2(h[:, 0], -h[:, 2])
         q[:, 6] = s * beta
-    q[:, 0] = np.unwrap(q[:, 0])
-    q[:, 2] = np.unwrap(q[:, 2])
+    if n > 1:  # (one frame: nothing to unwrap)
+        q[:, 0] = np.unwrap(q[:, 0])
+        q[:, 2] = np.unwrap(q[:, 2])
     return q
+
+
+def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Row-wise cross products (n, 3) of (n, 3) arrays: the products and differences of
+    ``np.cross``, without its axis handling (called per frame)."""
+    out = np.empty_like(u)
+    out[:, 0] = u[:, 1] * v[:, 2] - u[:, 2] * v[:, 1]
+    out[:, 1] = u[:, 2] * v[:, 0] - u[:, 0] * v[:, 2]
+    out[:, 2] = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+    return out
 
 
 def hand_directions(
@@ -266,6 +284,12 @@ def hand_directions(
 _GIMBAL = 1.0 - 1e-7
 
 
+#: The shoulder's ranges in radians (:data:`mjwalk.anthropometry.ROM_DEG`), converted once.
+_SHOULDER_RANGES = {
+    name: np.radians(ROM_DEG[name]) for name in ("shoulder_flex", "shoulder_abd", "shoulder_rot")
+}
+
+
 def _shoulder_branch(a: np.ndarray, b: np.ndarray, c: np.ndarray, s: float):
     """The shoulder's Y-X-Z angles (a, b, c) of :func:`_euler_yxz` (whose ``b`` lies within
     +-90 deg), or per frame the other set for the same rotation, ``(a + pi, sign(b) pi - b,
@@ -283,7 +307,7 @@ def _shoulder_branch(a: np.ndarray, b: np.ndarray, c: np.ndarray, s: float):
             (s * b, "shoulder_abd"),
             (-s * c, "shoulder_rot"),
         ):
-            lo, hi = np.radians(ROM_DEG[name])
+            lo, hi = _SHOULDER_RANGES[name]
             out += np.maximum(lo - value, 0.0) + np.maximum(value - hi, 0.0)
         return out
 
@@ -406,14 +430,36 @@ def arm_frames(
     Returns:
         ``(poses, clipped)``: (m, nq) poses and the names of the clipped joints.
     """
+    names = ARM_JOINT_NAMES[side]
+    idx = [jm.index(jn) for jn in names]
+    lo, hi = jm.range[idx, 0], jm.range[idx, 1]
     src = np.linspace(0.0, 1.0, len(q))
     out = np.repeat(np.asarray(q0)[None], len(times), axis=0)
-    clipped = []
-    for k, name in enumerate(ARM_JOINTS):
-        jn = arm_joint(name, side)
-        qi = np.interp(times, src, q[:, k])
-        lo, hi = jm.limits(jn)
-        if (qi < lo - 1e-6).any() or (qi > hi + 1e-6).any():
-            clipped.append(jn)
-        out[:, jm.adr(jn)] = np.clip(qi, lo, hi)
-    return out, clipped
+    qi = np.empty((len(times), len(names)))
+    for k in range(len(names)):
+        qi[:, k] = np.interp(times, src, q[:, k])
+    out[:, jm.qposadr[idx]] = np.clip(qi, lo, hi)
+    return out, _outside(qi, lo, hi, names)
+
+
+def clipped_joints(jm, q: np.ndarray, side: Side) -> list[str]:
+    """The joints of ``side``'s arm whose angles in ``q`` lie beyond the humanoid's ranges (by
+    more than 1e-6 rad): the joints :func:`arm_frames` clips, without building the poses.
+
+    Args:
+        jm: the humanoid's joint map.
+        q: (n, 7) joint angles, radians, :data:`ARM_JOINTS` order.
+        side: "left" or "right".
+
+    Returns:
+        The clipped joints' names, :data:`ARM_JOINTS` order.
+    """
+    names = ARM_JOINT_NAMES[side]
+    idx = [jm.index(jn) for jn in names]
+    return _outside(np.asarray(q, dtype=float), jm.range[idx, 0], jm.range[idx, 1], names)
+
+
+def _outside(qi: np.ndarray, lo: np.ndarray, hi: np.ndarray, names) -> list[str]:
+    """``names`` of the columns of ``qi`` (n, 7) with a value beyond (lo, hi) by over 1e-6."""
+    bad = ((qi < lo - 1e-6) | (qi > hi + 1e-6)).any(axis=0)
+    return [names[k] for k in np.flatnonzero(bad)]

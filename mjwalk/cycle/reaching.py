@@ -20,6 +20,7 @@ from mjwalk.arms import reach as armreach  # reach_for_side looked up per call (
 from mjwalk.arms.chain import (
     arm_frames,
     arm_joint_angles,
+    clipped_joints,
     end_effector,
     min_jerk,
     two_link_ik_rows,
@@ -458,7 +459,7 @@ def _wrist_feasible(
     for h in Rotation.from_rotvec(SWIVELS[:, None] * axis).apply(hint):
         u1, u2 = two_link_ik_rows(wrist[None], lengths[0], lengths[1], h[None])
         q = arm_joint_angles(np.stack([u1[0], u2[0], u])[None], side)
-        if not arm_frames(q0, ctx.jointmap, q, side, np.ones(1))[1]:
+        if not clipped_joints(ctx.jointmap, q, side):
             return u, u1[0]
     # no swivel will do: the wrist at the humanoid's range limits, the arm re-solved for it
     limits = np.array(
@@ -502,12 +503,18 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
     steps = np.linspace(0.0, 1.0, PATH_SUBSTEPS * (len(q) - 1) + 1)
     move, _ = arm_frames(base, jm, q, side, steps)
 
+    hand = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
+
     def length(poses: np.ndarray) -> float:
-        points = np.empty((len(poses), 3))
+        # the hand body's origin and -z axis in every pose, then :func:`hand_tip`'s point
+        # ``knuckle`` m along the hand for all of them at once
+        origin, axis = np.empty((len(poses), 3)), np.empty((len(poses), 3))
         for k, pose in enumerate(poses):
             data.qpos[:] = pose
             mujoco.mj_kinematics(m, data)
-            points[k] = hand_tip(data, m, jm, side, knuckle)  # ``knuckle`` m along the hand
+            origin[k] = data.xpos[hand]
+            axis[k] = data.xmat[hand, 2::3]
+        points = origin - knuckle * axis
         return float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
 
     return length(ready), length(move)

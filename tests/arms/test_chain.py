@@ -8,15 +8,20 @@ from scipy.spatial.transform import Rotation
 from mjwalk.anthropometry import ROM_DEG
 from mjwalk.arms import reachgen
 from mjwalk.arms.chain import (
+    ARM_JOINT_NAMES,
+    ARM_JOINTS,
     ARM_SEGMENT_SHARES,
+    arm_frames,
     arm_joint,
     arm_joint_angles,
     arm_segment_lengths,
+    clipped_joints,
     end_effector,
     min_jerk,
     two_link_ik,
     wrist_in_range,
 )
+from mjwalk.body.humanoid import humanoid_model
 
 
 @pytest.mark.parametrize("side", ["left", "right"])
@@ -102,3 +107,25 @@ def test_two_link_ik_puts_the_wrist_on_a_reachable_target_and_clamps_a_far_one()
     assert up[1] > 0  # the elbow towards the hint
     up, fore = two_link_ik(np.array([0.0, 0.0, -2.0]), 0.3, 0.25, np.array([0.0, 1.0, 0.0]))
     np.testing.assert_allclose(0.3 * up + 0.25 * fore, [0.0, 0.0, -0.55], atol=1e-5)
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_arm_frames_interpolate_clip_and_name_the_clipped_joints(side):
+    """arm_frames interpolates the arm's angles over [0, 1], clips them to the humanoid's ranges
+    and names the joints it clipped; clipped_joints names the same joints without the poses;
+    the rest of the pose is the base pose's."""
+    model, jm = humanoid_model()
+    names = ARM_JOINT_NAMES[side]
+    assert names == tuple(arm_joint(n, side) for n in ARM_JOINTS)
+    lo, hi = np.array([jm.limits(n) for n in names]).T
+    q = np.tile(0.5 * (lo + hi), (3, 1))
+    q[:, 3] = [lo[3], 0.5 * (lo[3] + hi[3]), hi[3]]  # the elbow across its range
+    q[2, 0] = hi[0] + 1.0  # the shoulder's flexion beyond its range at the end
+    q0 = model.qpos0.copy()
+    poses, clipped = arm_frames(q0, jm, q, side, np.array([0.0, 0.25, 1.0]))
+    assert clipped == [names[0]] == clipped_joints(jm, q[2:], side)
+    assert clipped_joints(jm, q[:2], side) == []
+    assert poses[1, jm.adr(names[3])] == pytest.approx(0.75 * lo[3] + 0.25 * hi[3])
+    assert poses[2, jm.adr(names[0])] == hi[0]  # clipped to the range
+    others = np.setdiff1d(np.arange(model.nq), [jm.adr(n) for n in names])
+    assert np.array_equal(poses[:, others], np.tile(q0[others], (3, 1)))
