@@ -68,8 +68,12 @@ def main() -> None:
     acc: Counter = Counter()
     _timed(acc, "legs", legs, "legs_from_walk")
     _timed(acc, "reach", reach, "reach_for_side")
-    _timed(acc, "arm angles", __import__("mjwalk.arms.chain").arms.kinematics,
-           "arm_joint_angles")  # fmt: skip
+    _timed(
+        acc,
+        "arm angles",
+        __import__("mjwalk.timeline.reachscene").timeline.reachscene,
+        "arm_joint_angles",
+    )  # fmt: skip  (moved from mjwalk.arms.kinematics)
     _timed(acc, "collisions", sim, "collision_report")
     _timed(acc, "ergonomics", sim, "cycle_ergonomics")  # RULA/REBA/OWAS/NIOSH/ISO 11226
     _timed(acc, "planning", HybridPlanner, "plan")

@@ -232,22 +232,28 @@ def exposure_markdown(e: dict[str, Any] | None) -> list[str]:
             f"{t['high']:+.2f}).",
             "",
         ]
-    d = e["drivers"]
+    return out + _drivers_lines(e["drivers"])
+
+
+def _drivers_lines(d: dict[str, Any]) -> list[str]:
+    """The drivers' sentence: the three tasks longest beyond the limits and the body parts that
+    make cycles not acceptable ("none" when no cycle is)."""
     top = [x for x in d["tasks"] if x["arm_over60_s"] > 0 or x["trunk_over20_s"] > 0][:3]
-    if top:
-        out += [
-            "Tasks that drive it (median s above 60 deg arm / 20 deg trunk): "
-            + "; ".join(
-                f"task {x['task']} {x['kind']} {x['site'] or ''}: {x['arm_over60_s']:.1f} / "
-                f"{x['trunk_over20_s']:.1f}"
-                for x in top
-            )
-            + ". Cycles not acceptable by body part and standard: "
-            + ", ".join(f"{k} {v}" for k, v in d["not_acceptable_cycles"].items() if v)
-            + ".",
-            "",
-        ]
-    return out
+    if not top:
+        return []
+    parts = ", ".join(f"{k} {v}" for k, v in d["not_acceptable_cycles"].items() if v)
+    return [
+        "Tasks that drive it (median s above 60 deg arm / 20 deg trunk): "
+        + "; ".join(
+            f"task {x['task']} {x['kind']} {x['site'] or ''}: {x['arm_over60_s']:.1f} / "
+            f"{x['trunk_over20_s']:.1f}"
+            for x in top
+        )
+        + ". Cycles not acceptable by body part and standard: "
+        + (parts or "none")
+        + ".",
+        "",
+    ]
 
 
 __all__ = [

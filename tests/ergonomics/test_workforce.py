@@ -64,3 +64,20 @@ def test_the_summary_has_groups_a_shift_and_a_markdown_table():
     md = "\n".join(exposure_markdown(e))
     assert "| adult | 6 |" in md and "Along stature (1.60-1.78 m)" in md
     assert exposure_summary([]) is None and exposure_markdown(None) == []
+
+
+def test_the_drivers_sentence_says_none_when_no_cycle_is_not_acceptable():
+    """Tasks beyond the limits but every cycle acceptable: the sentence closes on "none", not on
+    an empty list."""
+    from mjwalk.ergonomics.results import TaskErgonomics
+
+    recs = []
+    for k in range(4):
+        r = record(k, "conditionally acceptable", 2.0, 1.7)
+        t = TaskErgonomics(0, "pick", "rack", 3, 3, 2, 0.0, "", "", "left", 2)
+        t.extra.update(arm_over60_s=2.0, trunk_over20_s=0.5, arm_peak_deg=80.0)
+        r.ergo.tasks.append(t)
+        recs.append(r)
+    md = "\n".join(exposure_markdown(exposure_summary(recs)))
+    assert "task 0 pick rack: 2.0 / 0.5" in md
+    assert "Cycles not acceptable by body part and standard: none." in md
