@@ -17,6 +17,17 @@ trunk is side bent or twisted beyond 10 deg (ISO 11226 4.2.1: not acceptable as 
 posture) and the neck flexed beyond 20 deg (RULA's neck band 2 starts at 20 deg, McAtamney &
 Corlett 1993); and a compact trace (uint8 degrees, both arms' higher elevation and the trunk's
 flexion) for the report's timeline plot.
+
+Upper-arm elevation is the angle between the upper arm and the vertical (the line of gravity),
+whatever the trunk does, as inclinometry measures it (Jackson et al. 2015, Appl. Ergon.
+47:242-252, "standard inclinometry of set upper arm elevation angles"). The secondary sources
+reachable here (searched 2026-12-03: DELMIA's transcription of EN 1005-4's "upper arms angle"
+zones, Delleman & Dul 2007's summary, catalogue pages of ISO 11226) do not say that either
+standard measures it from the trunk instead, so the vertical is kept. It matters little where it
+is disputed: an arm held forward horizontally from a trunk stooped 45 deg reads 90 deg from the
+vertical and 135 deg from the trunk, in the > 60 deg zone either way (tests/ergonomics/
+test_angles.py). On the shared raise-hand capture the reproduction's elevation at the reach's
+end is within 5.9 deg (median) of the capture's (``benchmarks/bench_ergonomics.py``).
 """
 
 from __future__ import annotations

@@ -39,6 +39,40 @@ STATURE_BINS = 5
 #: Bootstrap resamples and seed of the stature slope's interval.
 BOOTSTRAP = 2000
 BOOTSTRAP_SEED = 0
+#: The smooth trend's span: the share of the runs nearest each stature that its local line
+#: weighs (LOWESS, Cleveland 1979, J. Am. Stat. Assoc. 74:829-836: f = 2/3 is his default).
+LOWESS_SPAN = 2.0 / 3.0
+#: Statures the smooth trend is given at (evenly spaced over the runs' range).
+LOWESS_POINTS = 9
+
+
+def lowess(x: np.ndarray, y: np.ndarray, at: np.ndarray, span: float = LOWESS_SPAN) -> np.ndarray:
+    """A smooth trend of ``y`` along ``x``: at each point of ``at`` the weighted least-squares
+    line through the ``span`` share of the runs nearest it, tricube weights on the distance
+    over the farthest of them's (Cleveland 1979, one pass, no robustness iterations).
+
+    Args:
+        x: (N,) e.g. statures, metres.
+        y: (N,) the figure per run.
+        at: (M,) where to give the trend.
+        span: the share of the N runs each local line weighs (0-1].
+
+    Returns:
+        (M,) the trend's values.
+    """
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    k = min(len(x), max(3, int(np.ceil(span * len(x)))))
+    out = np.empty(len(at))
+    for i, a in enumerate(np.asarray(at, dtype=float)):
+        d = np.abs(x - a)
+        h = max(float(np.sort(d)[k - 1]), 1e-12)
+        w = np.clip(1.0 - (d / h) ** 3, 0.0, None) ** 3
+        sw = w.sum()
+        xm, ym = (w * x).sum() / sw, (w * y).sum() / sw
+        den = (w * (x - xm) ** 2).sum()
+        b = (w * (x - xm) * (y - ym)).sum() / den if den > 1e-15 else 0.0
+        out[i] = ym + b * (a - xm)
+    return out
 
 
 def _scored(records: Sequence) -> list:
@@ -74,7 +108,9 @@ def stature_trend(stature: np.ndarray, y: np.ndarray) -> dict[str, Any] | None:
     Returns:
         ``range_m``, ``bins`` (each ``from_m``, ``to_m``, ``median``, ``n``), ``short_third``
         and ``tall_third`` (``up_to_m``/``from_m``, ``median``), ``slope_per_10cm`` with
-        ``low``/``high`` (bootstrap 95 %); None with fewer than 6 runs or one stature.
+        ``low``/``high`` (bootstrap 95 %), ``smooth`` (:func:`lowess` at
+        :data:`LOWESS_POINTS` statures: ``stature_m``, ``value``); None with fewer than 6 runs
+        or one stature.
     """
     x, y = np.asarray(stature, dtype=float), np.asarray(y, dtype=float)
     if len(x) < 6 or np.ptp(x) == 0:
@@ -99,6 +135,9 @@ def stature_trend(stature: np.ndarray, y: np.ndarray) -> dict[str, Any] | None:
     ok = den > 0
     slopes = (xc * (ys - ys.mean(axis=1, keepdims=True))).sum(axis=1)[ok] / den[ok]
     slope = float(np.polyfit(x, y, 1)[0])
+    at = np.linspace(x.min(), x.max(), LOWESS_POINTS)
+    fit = lowess(x, y, at)
+    smooth = [{"stature_m": float(a), "value": float(v)} for a, v in zip(at, fit, strict=True)]
     return {
         "range_m": [float(x.min()), float(x.max())],
         "bins": bins,
@@ -108,6 +147,7 @@ def stature_trend(stature: np.ndarray, y: np.ndarray) -> dict[str, Any] | None:
         "low": 0.1 * float(np.percentile(slopes, 2.5)),
         "high": 0.1 * float(np.percentile(slopes, 97.5)),
         "confidence": 0.95,
+        "smooth": smooth,
     }
 
 
@@ -232,30 +272,39 @@ def exposure_markdown(e: dict[str, Any] | None) -> list[str]:
             f"{t['high']:+.2f}).",
             "",
         ]
-    d = e["drivers"]
+    return out + _drivers_lines(e["drivers"])
+
+
+def _drivers_lines(d: dict[str, Any]) -> list[str]:
+    """The drivers' sentence: the three tasks longest beyond the limits and the body parts that
+    make cycles not acceptable ("none" when no cycle is)."""
     top = [x for x in d["tasks"] if x["arm_over60_s"] > 0 or x["trunk_over20_s"] > 0][:3]
-    if top:
-        out += [
-            "Tasks that drive it (median s above 60 deg arm / 20 deg trunk): "
-            + "; ".join(
-                f"task {x['task']} {x['kind']} {x['site'] or ''}: {x['arm_over60_s']:.1f} / "
-                f"{x['trunk_over20_s']:.1f}"
-                for x in top
-            )
-            + ". Cycles not acceptable by body part and standard: "
-            + ", ".join(f"{k} {v}" for k, v in d["not_acceptable_cycles"].items() if v)
-            + ".",
-            "",
-        ]
-    return out
+    if not top:
+        return []
+    parts = ", ".join(f"{k} {v}" for k, v in d["not_acceptable_cycles"].items() if v)
+    return [
+        "Tasks that drive it (median s above 60 deg arm / 20 deg trunk): "
+        + "; ".join(
+            f"task {x['task']} {x['kind']} {x['site'] or ''}: {x['arm_over60_s']:.1f} / "
+            f"{x['trunk_over20_s']:.1f}"
+            for x in top
+        )
+        + ". Cycles not acceptable by body part and standard: "
+        + (parts or "none")
+        + ".",
+        "",
+    ]
 
 
 __all__ = [
     "BOOTSTRAP",
     "BOOTSTRAP_SEED",
+    "LOWESS_POINTS",
+    "LOWESS_SPAN",
     "SHIFT_S",
     "STATURE_BINS",
     "exposure_markdown",
     "exposure_summary",
+    "lowess",
     "stature_trend",
 ]

@@ -89,3 +89,25 @@ def test_angles_from_points_of_an_upright_capture():
     np.testing.assert_allclose(a.forward[0], [1.0, 0.0, 0.0])
     np.testing.assert_array_equal(a.hands[0], [pts["wrist_l"], pts["wrist_r"]])
     assert not a.wrist_flexion.any() and a.feet_down.all() and a.legs_supported[0]
+
+
+def test_arm_elevation_is_from_the_vertical_whatever_the_trunk_does():
+    """A person stooped 45 deg forward (x forward, y left): an arm hanging plumb is elevated
+    0 deg from the vertical (what exposure.py and ISO 11226's inclinometric reading judge) and
+    45 deg from the trunk's downward axis (RULA's upper-arm angle); an arm held straight forward,
+    horizontally (reaching into a low shelf from the stoop) is elevated 90 deg from the vertical
+    and 135 deg from the trunk: a stooped reach passes 60 deg by either definition."""
+    z, s = 1.0, np.sqrt(0.5)
+    neck = np.array([0.5 * s, 0.0, z + 0.5 * s])  # the trunk axis 45 deg forward
+    pts = {
+        "pelvis": (0, 0, z), "neck": neck, "head": neck + (0.2 * s, 0, 0.2 * s),
+        "shoulder_l": neck + (0, 0.2, 0), "shoulder_r": neck + (0, -0.2, 0),
+        "elbow_l": neck + (0, 0.2, -0.3), "elbow_r": neck + (0.3, -0.2, 0),
+        "wrist_l": neck + (0, 0.2, -0.55), "wrist_r": neck + (0.55, -0.2, 0),
+        "hip_l": (0, 0.1, z), "hip_r": (0, -0.1, z), "knee_l": (0, 0.1, 0.5),
+        "knee_r": (0, -0.1, 0.5), "ankle_l": (0, 0.1, 0.08), "ankle_r": (0, -0.1, 0.08),
+    }  # fmt: skip
+    a = angles_from_points({k: np.array([v], dtype=float) for k, v in pts.items()})
+    assert a.trunk_flexion[0] == pytest.approx(45.0)
+    np.testing.assert_allclose(a.upper_arm_elevation[0], [0.0, 90.0], atol=1e-9)
+    np.testing.assert_allclose(a.upper_arm_angle[0], [45.0, 135.0], atol=1e-9)

@@ -64,3 +64,40 @@ def test_the_summary_has_groups_a_shift_and_a_markdown_table():
     md = "\n".join(exposure_markdown(e))
     assert "| adult | 6 |" in md and "Along stature (1.60-1.78 m)" in md
     assert exposure_summary([]) is None and exposure_markdown(None) == []
+
+
+def test_the_drivers_sentence_says_none_when_no_cycle_is_not_acceptable():
+    """Tasks beyond the limits but every cycle acceptable: the sentence closes on "none", not on
+    an empty list."""
+    from mjwalk.ergonomics.results import TaskErgonomics
+
+    recs = []
+    for k in range(4):
+        r = record(k, "conditionally acceptable", 2.0, 1.7)
+        t = TaskErgonomics(0, "pick", "rack", 3, 3, 2, 0.0, "", "", "left", 2)
+        t.extra.update(arm_over60_s=2.0, trunk_over20_s=0.5, arm_peak_deg=80.0)
+        r.ergo.tasks.append(t)
+        recs.append(r)
+    md = "\n".join(exposure_markdown(exposure_summary(recs)))
+    assert "task 0 pick rack: 2.0 / 0.5" in md
+    assert "Cycles not acceptable by body part and standard: none." in md
+
+
+def test_the_smooth_trend_follows_a_bend_that_the_straight_line_misses():
+    """Seeded: a figure flat to 1.70 m, then falling 1 s per cm, with noise of 0.2 s; the
+    LOWESS trend is within 0.5 s of the true curve at 1.62 and 1.85 m (a straight line misses
+    by more), and a straight line is given back exactly."""
+    from mjwalk.ergonomics.workforce import lowess
+
+    rng = np.random.default_rng(0)
+    x = np.sort(rng.uniform(1.55, 1.95, 200))
+    truth = np.where(x < 1.70, 20.0, 20.0 - 100.0 * (x - 1.70))
+    y = truth + rng.normal(0.0, 0.2, len(x))
+    at = np.array([1.62, 1.85])
+    fit = lowess(x, y, at, span=0.3)
+    np.testing.assert_allclose(fit, [20.0, 5.0], atol=0.5)
+    line = np.polyval(np.polyfit(x, y, 1), at)
+    assert np.abs(line - [20.0, 5.0]).max() > 1.0
+    np.testing.assert_allclose(lowess(x, 3.0 * x + 1.0, at), 3.0 * at + 1.0)
+    t = stature_trend(x, y)
+    assert len(t["smooth"]) == 9 and t["smooth"][0]["stature_m"] == pytest.approx(x.min())
