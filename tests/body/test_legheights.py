@@ -4,10 +4,11 @@ import numpy as np
 import pytest
 
 from mjwalk.body.legs import legs_from_walk
+from mjwalk.body.legs.edgeswing import STAIR_TOE_CLEARANCE
 from mjwalk.body.legs.legheights import (
+    HIP_PEAK_DOWN,
     KNEE_PEAK_DOWN,
     KNEE_PEAK_UP,
-    STAIR_TOE_CLEARANCE,
     StepSurfaces,
     step_surfaces,
     surface_pitch,
@@ -16,13 +17,10 @@ from mjwalk.plan.synthetic import synthetic_ramp_walk, synthetic_stair_walk, syn
 
 
 def _peaks(walk, motion, joint):
-    """The peak flexion (deg) of ``joint`` over the stair's steps (not the first or last)."""
+    """The peak flexion (deg) of ``joint`` (a key with ``{}`` for the side) over the stair's
+    steps (not the first or last)."""
     a, b = walk.steps[1].start, walk.steps[-2].end
-    return float(
-        np.rad2deg(
-            max(motion.angles[f"{joint}_l"][a:b].max(), motion.angles[f"{joint}_r"][a:b].max())
-        )
-    )
+    return float(np.rad2deg(max(motion.angles[joint.format(s)][a:b].max() for s in "lr")))
 
 
 def test_step_surfaces_of_a_stair():
@@ -51,14 +49,16 @@ def test_stair_ascent_pelvis_clearance_and_knee():
     # the pelvis ends one flight (1.02 m) above where it started
     assert motion.root[-1, 2] - motion.root[0, 2] == pytest.approx(1.02, abs=0.03)
     assert motion.meta["edge_clearance"] >= STAIR_TOE_CLEARANCE - 1e-3
-    assert KNEE_PEAK_UP[0] <= _peaks(walk, motion, "knee") <= KNEE_PEAK_UP[1]
+    assert KNEE_PEAK_UP[0] <= _peaks(walk, motion, "knee_{}") <= KNEE_PEAK_UP[1]
 
 
 @pytest.mark.xfail(
-    reason="descent swing not tuned yet: knee peak ~122 deg, clearance 5 mm", strict=True
+    reason="descent knee peak ~106 deg, hip ~52 deg (cited 80-100 / 20-45): pelvis height "
+    "and forefoot landing in descent not modelled yet",
+    strict=True,
 )
-def test_stair_descent_knee_and_clearance():
+def test_stair_descent_knee_and_hip():
     walk = synthetic_stair_walk(0.17, 0.28, 6, "down")
     motion = legs_from_walk(walk)
-    assert motion.meta["edge_clearance"] >= STAIR_TOE_CLEARANCE - 1e-3
-    assert KNEE_PEAK_DOWN[0] <= _peaks(walk, motion, "knee") <= KNEE_PEAK_DOWN[1]
+    assert KNEE_PEAK_DOWN[0] <= _peaks(walk, motion, "knee_{}") <= KNEE_PEAK_DOWN[1]
+    assert HIP_PEAK_DOWN[0] <= _peaks(walk, motion, "hip_{}_flex") <= HIP_PEAK_DOWN[1]

@@ -30,7 +30,6 @@ The knee and hip flexion this gives on a stair is not prescribed: it follows fro
 
 from __future__ import annotations
 
-import itertools
 import math
 from dataclasses import dataclass
 
@@ -38,26 +37,13 @@ import numpy as np
 
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.body.legs.curves import smoothstep, spread
+from mjwalk.body.legs.edgeswing import FLAT_PITCH, StepSurfaces, edge_swing
 from mjwalk.body.legs.ik import KNEE_MIN, generic_joint, leg_ik_world
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import FootTracks, StepFrames
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.norms import MAX_RAMP_SLOPE
 
-#: Least vertical clearance of the swing foot's sole over a step edge (nosing), metres. Young
-#: adults' minimum foot clearance over stair nosings is a few centimetres: Hamel, Okita,
-#: Higginson & Cavanagh, "Foot clearance during stair descent: effects of age and
-#: illumination", Gait Posture 21:135-140 (2005) count clearances under 5 mm as the risky ones
-#: (abstract verified here); Francksen et al., "Negotiating stairs with an inconsistent riser",
-#: Applied Ergonomics (2022) report that a 10 mm higher riser cuts ascent clearance by ~9 mm
-#: (highlights verified here), a trip risk, so the usual clearance is not much larger; the
-#: group means of 3-4 cm usually quoted from these studies are NOT verified here. 3 cm.
-STAIR_TOE_CLEARANCE = 0.03
-#: Height differences below this between a step's surfaces are one level, metres (the
-#: surfaces' own tolerance, :data:`mjwalk.world.norms.LEVEL_TOLERANCE`, with room for rounding).
-LEVEL_STEP = 0.01
-#: A surface pitch (radians) below this is level (0.3 deg: under norms.HORIZONTAL_SLOPE's 1 %).
-FLAT_PITCH = math.radians(0.3)
 #: Footprint neighbourhood (m) over which the walk's ground slope under a foot is estimated.
 SLOPE_REACH = 0.3
 
@@ -78,46 +64,6 @@ KNEE_PEAK_DOWN = (80.0, 100.0)
 #: verified); ranges as those studies report them (NOT verified beyond the abstracts).
 HIP_PEAK_UP = (55.0, 75.0)
 HIP_PEAK_DOWN = (20.0, 45.0)
-
-
-@dataclass(frozen=True)
-class StepSurfaces:
-    """The surfaces one step of a walk touches (metres above the floor, radians).
-
-    Attributes:
-        lift: height under the swing foot before it lifts.
-        stance: height under the stance foot.
-        land: height under the swing foot where it lands.
-        lift_pitch: the lift surface's slope along the swing foot's heading (+ uphill).
-        stance_pitch: the stance surface's slope along the stance foot's heading.
-        land_pitch: the landing surface's slope along the landing heading.
-    """
-
-    lift: float
-    stance: float
-    land: float
-    lift_pitch: float = 0.0
-    stance_pitch: float = 0.0
-    land_pitch: float = 0.0
-
-    @property
-    def edged(self) -> bool:
-        """Whether the step crosses a step edge: its surfaces differ in height and none is a
-        ramp (on a ramp the heights change without an edge)."""
-        zs = (self.lift, self.stance, self.land)
-        ramp = any(abs(p) > FLAT_PITCH for p in (self.lift_pitch, self.land_pitch))
-        return (max(zs) - min(zs)) > LEVEL_STEP and not ramp
-
-    def pelvis_level(self) -> tuple[float, float]:
-        """The pelvis's surface height at the step's start and end (double support).
-
-        Returns:
-            (start, end), metres: the lower foot's surface on steps and stairs, the mean of
-            the feet's on ramps and level ground.
-        """
-        if self.edged:
-            return min(self.lift, self.stance), min(self.stance, self.land)
-        return 0.5 * (self.lift + self.stance), 0.5 * (self.stance + self.land)
 
 
 def surface_pitch(walk: WalkPath, print_: np.ndarray) -> float:
@@ -184,184 +130,6 @@ def step_surfaces(walk: WalkPath) -> list[StepSurfaces]:
             )
         )
     return out
-
-
-def _sole_points(ankle, pitch, toe, yaw, geom: LegGeometry) -> np.ndarray:
-    """(m, 3, 3) the heel, ball and toe tip of the foot (world x, y, z, metres) for ankles
-    ``ankle`` (m, 3), pitches, toe angles and headings (m,) (radians, pitch + toes up)."""
-    ah, back, front = geom.ankle_height, geom.foot_back, geom.foot_front
-    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)  # footpivot.ball_offset
-    cp, sp = np.cos(pitch), np.sin(pitch)
-    # foot frame (forward, up) rotated by the pitch: x' = x cos p - z sin p, z' = x sin p + z cos p
-    heel = (-back * cp + ah * sp, -back * sp - ah * cp)
-    bl = (ball * cp + ah * sp, ball * sp - ah * cp)
-    tip = (
-        bl[0] + (front - ball) * np.cos(pitch + toe),
-        bl[1] + (front - ball) * np.sin(pitch + toe),
-    )
-    f = np.stack([np.cos(yaw), np.sin(yaw)], -1)
-    pts = np.empty((len(ankle), 3, 3))
-    for k, (fw, up) in enumerate((heel, bl, tip)):
-        pts[:, k, :2] = ankle[:, :2] + fw[:, None] * f
-        pts[:, k, 2] = ankle[:, 2] + up
-    return pts
-
-
-@dataclass(frozen=True)
-class _Edges:
-    """The step edges a swing crosses, along its chord from the lift footprint (metres):
-    ``lo``/``hi`` (e,) where each edge may lie, ``z`` (e,) its height; ``cut`` (r - 1,) the
-    boundaries between the surfaces ``zr`` (r,) under the chord."""
-
-    lo: np.ndarray
-    hi: np.ndarray
-    z: np.ndarray
-    cut: np.ndarray
-    zr: np.ndarray
-
-
-def _step_edges(fr: StepFrames, surf: StepSurfaces, geom: LegGeometry) -> _Edges:
-    """The edges of an edged step: between the surfaces of the lift, stance and landing
-    footprints in their order along the chord, each from the toe of the foot behind to the
-    heel of the foot ahead (their midpoint where those overlap)."""
-    seg = fr.land[:2] - fr.lift[:2]
-    length = max(float(np.hypot(*seg)), 1e-9)
-    e = seg / length
-    x_s = float((fr.stance[:2] - fr.lift[:2]) @ e)
-    regions = [(0.0, surf.lift)]
-    if 0.0 < x_s < length:
-        regions.append((x_s, surf.stance))
-    regions.append((length, surf.land))
-    merged = [regions[0]]
-    for x, z in regions[1:]:
-        if abs(z - merged[-1][1]) > LEVEL_STEP:
-            merged.append((x, z))
-    lo, hi, ze, cut = [], [], [], []
-    for (x0, z0), (x1, z1) in itertools.pairwise(merged):
-        a, b = x0 + geom.foot_front, x1 - geom.foot_back
-        if a > b:
-            a = b = 0.5 * (x0 + x1)
-        lo.append(a)
-        hi.append(b)
-        ze.append(max(z0, z1))
-        cut.append(0.5 * (a + b))
-    return _Edges(
-        np.array(lo), np.array(hi), np.array(ze), np.array(cut), np.array([z for _, z in merged])
-    )
-
-
-def _clearance_deficit(pts: np.ndarray, fr: StepFrames, edges: _Edges, clearance: float) -> float:
-    """How far (m) the sole ``pts`` (m, 3, 3) dips below ``clearance`` over an edge it spans
-    or below the surface under a sole point, at worst (0 if nowhere)."""
-    seg = fr.land[:2] - fr.lift[:2]
-    e = seg / max(float(np.hypot(*seg)), 1e-9)
-    x = (pts[..., :2] - fr.lift[:2]) @ e  # (m, 3) chord coordinates
-    z = pts[..., 2]
-    worst = 0.0
-    # a sole point over a surface stays above it (the landing foot sinks into nothing)
-    zr = edges.zr[np.searchsorted(edges.cut, x)]
-    worst = max(worst, float(np.max(zr - 1e-3 - z)))
-    for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
-        for a, b in ((0, 1), (1, 2)):  # the heel-ball and ball-toe segments of the sole
-            xa, xb, za, zb = x[:, a], x[:, b], z[:, a], z[:, b]
-            for xe in (lo, hi):
-                over = (np.minimum(xa, xb) < xe - 1e-3) & (xe + 1e-3 < np.maximum(xa, xb))
-                if not over.any():
-                    continue
-                w = np.clip(
-                    (xe - xa[over]) / np.where(xb[over] != xa[over], xb[over] - xa[over], 1.0), 0, 1
-                )
-                zs = za[over] + w * (zb[over] - za[over])
-                worst = max(worst, float(np.max(ze + clearance - zs)))
-    return worst
-
-
-def _profile(tau: np.ndarray, z_a: float, z_b: float, apex: float) -> np.ndarray:
-    """The swing ankle's height over ``tau`` (0 at the last grounded sample, 1 at landing):
-    up from ``z_a`` to ``apex``, held, down to ``z_b`` (smoothsteps); the rise and the fall
-    take time in proportion to their heights (at least 15 % of the swing each)."""
-    r1, r2 = apex - z_a, apex - z_b
-    big = max(r1, r2, 1e-9)
-    t1 = max(0.15, 0.45 * r1 / big)
-    t2 = 1.0 - max(0.15, 0.45 * r2 / big)
-    up = z_a + r1 * smoothstep(tau / t1)
-    down = apex - r2 * smoothstep((tau - t2) / (1.0 - t2))
-    return np.where(tau <= t1, up, np.where(tau >= t2, down, apex))
-
-
-def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: LegGeometry,
-               clearance: float = STAIR_TOE_CLEARANCE):  # fmt: skip
-    """The swing foot of an edged step (a step or a stair) over its airborne samples: it rises
-    to clear the highest edge by ``clearance``, travels forward only while its sole clears the
-    first edge and is past the last before it lowers (the flat swing's path, re-timed, for the
-    horizontal motion; its pitch, toes and heading kept); raised further where the sole would
-    still come closer to an edge than ``clearance``.
-
-    Args:
-        ankle: (m, 3) the flat swing's ankle from the last grounded sample before lift-off
-            to the landing, metres, world frame (with the surfaces' heights added at both ends).
-        pitch: (m,) the foot's pitch, radians, + toes up.
-        toe: (m,) the toe angle, radians.
-        yaw: (m,) the foot's heading, radians from +x CCW.
-        fr: the step (lift, stance and landing footprints).
-        surf: the step's surfaces.
-        geom: the leg and foot lengths.
-        clearance: the least clearance over an edge, metres.
-
-    Returns:
-        (m, 3) the new ankle positions, metres, and the least clearance over the edges
-        reached (metres; ``clearance`` or more where the design holds).
-    """
-    m = len(ankle)
-    tau = np.arange(m) / max(m - 1, 1)
-    edges = _step_edges(fr, surf, geom)
-    seg = fr.land[:2] - fr.lift[:2]
-    length = max(float(np.hypot(*seg)), 1e-9)
-    e = seg / length
-    u_f = np.maximum.accumulate(np.clip((ankle[:, :2] - fr.lift[:2]) @ e / length, 0, 1))
-    u_f[-1] = max(u_f[-1], u_f[-2] + 1e-9) if m > 1 else u_f[-1]
-    u_f = u_f + np.arange(m) * 1e-12  # strictly increasing for np.interp
-    z_a, z_b = float(ankle[0, 2]), float(ankle[-1, 2])
-    lift_sole = geom.ankle_height + 0.005
-    extra, out, need = 0.0, ankle.copy(), 0.0
-    for _ in range(3):
-        first = edges.z[0] + clearance + lift_sole
-        last = edges.z[-1] + clearance + lift_sole
-        apex = max(float(edges.z.max()) + clearance + lift_sole, z_a, z_b) + extra
-        z = _profile(tau, z_a, z_b, apex)
-        t_a = float(tau[np.argmax(z >= first - 1e-9)]) if first > z_a else 0.0
-        t_b = float(tau[m - 1 - np.argmax(z[::-1] >= last - 1e-9)]) if last > z_b else 1.0
-        u = smoothstep((tau - t_a) / max(t_b - t_a, 1e-9))
-        out = np.column_stack([np.interp(u, u_f, ankle[:, 0]), np.interp(u, u_f, ankle[:, 1]), z])
-        _keep_behind_edges(out, z, (first, last), pitch, toe, edges, fr, geom)
-        out[0], out[-1] = ankle[0], ankle[-1]
-        need = _clearance_deficit(_sole_points(out[1:-1], pitch[1:-1], toe[1:-1], yaw[1:-1], geom),
-                                  fr, edges, clearance)  # fmt: skip
-        if need <= 1e-4:
-            break
-        extra += need + 0.005
-    return out, clearance - need
-
-
-def _keep_behind_edges(out, z, levels, pitch, toe, edges: _Edges, fr: StepFrames,
-                       geom: LegGeometry) -> None:  # fmt: skip
-    """Hold the swing foot's toe tip behind the first edge while the ankle is below
-    ``levels[0]``, and its heel past the last edge once it is below ``levels[1]`` on the way
-    down (the ankles ``out`` (m, 3) moved along the chord, in place): a foot flattening after
-    lift-off turns about its toes instead of pushing them into the riser."""
-    seg = fr.land[:2] - fr.lift[:2]
-    e = seg / max(float(np.hypot(*seg)), 1e-9)
-    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)
-    ah = geom.ankle_height
-    tip = ball * np.cos(pitch) + ah * np.sin(pitch) + (geom.foot_front - ball) * np.cos(pitch + toe)
-    heel = -geom.foot_back * np.cos(pitch) + ah * np.sin(pitch)
-    x = (out[:, :2] - fr.lift[:2]) @ e
-    top = int(np.argmax(z))
-    rising = (np.arange(len(z)) <= top) & (z < levels[0])
-    falling = (np.arange(len(z)) > top) & (z < levels[1])
-    x_new = np.where(rising, np.minimum(x, edges.lo[0] - tip), x)
-    x_new = np.where(falling, np.maximum(x_new, edges.hi[-1] - heel), x_new)
-    out[:, :2] += (x_new - x)[:, None] * e
 
 
 @dataclass
