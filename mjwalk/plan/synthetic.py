@@ -13,6 +13,8 @@ from scipy.interpolate import PchipInterpolator
 
 from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.errors import MjwalkError
+from mjwalk.gait.stairs import StairGeometry, stair_gait
+from mjwalk.gait.walker import Walker
 from mjwalk.plan.walkpath import PathStep, WalkPath
 
 
@@ -105,3 +107,131 @@ def synthetic_walk(
         )
     xy = p + lat[:, None] * np.stack([-np.sin(h), np.cos(h)], -1)
     return WalkPath(t=t, xy=xy, yaw=h, steps=steps, meta={"planner": "synthetic"})
+
+
+def synthetic_stair_walk(
+    riser: float = 0.17,
+    tread: float = 0.28,
+    n: int = 6,
+    direction: str = "up",
+    step_time: float | None = None,
+    width: float = 0.18,
+    start: ArrayLike = (0.0, 0.0, 0.0),
+    setback: float = 0.0665,
+) -> WalkPath:
+    """A step-over-step walk up or down a straight stair of ``n`` risers, without planning:
+    from standing on the floor (up) or the top landing (down) with the stance foot on the tread
+    centre before the first riser, every step lands on the next tread's centre; a last step
+    brings the trailing foot beside it on the landing. The walk carries its heights
+    (``WalkPath.z``, ``PathStep.foot_z``/``stance_z``).
+
+    Args:
+        riser: rise per step, metres.
+        tread: going per step, metres.
+        n: risers (>= 1).
+        direction: "up" or "down".
+        step_time: seconds per step; default the reference adult's on that stair
+            (:func:`mjwalk.gait.stairs.stair_gait`: 0.58 s up, 0.46 s down).
+        width: step width, metres.
+        start: (x, y, heading): the first riser's edge line crosses the heading ``tread / 2``
+            ahead of this point (the centre of the tread the walk starts on), metres, radians.
+        setback: how far each footprint (the point under the ankle) lies behind the tread's
+            centre, metres, so that the foot, not the ankle, is centred on the tread: half the
+            foot's front less its back, 0.0665 m for the default 1.75 m humanoid
+            (``mjwalk.body.humanoid.leg_geometry``: 0.1995 m ahead of the ankle, 0.0665 m
+            behind it).
+
+    Returns:
+        the WalkPath; ``meta["stair"]`` holds riser, tread, n, direction and the first riser's
+        distance along the heading from ``start``.
+    """
+    if n < 1 or direction not in ("up", "down") or riser <= 0 or tread <= 0:
+        raise MjwalkError(
+            f"synthetic_stair_walk: need n >= 1, direction 'up' or 'down', riser and tread > 0, "
+            f"got {n}, {direction!r}, {riser}, {tread}"
+        )
+    if step_time is None:
+        stair = StairGeometry(riser, tread)
+        step_time = stair_gait(Walker(), stair, "up" if direction == "up" else "down").step_time
+    fps = SAMPLE_RATE_HZ
+    x0, y0, h0 = (float(v) for v in np.asarray(start, float))
+    fwd, left = np.array([np.cos(h0), np.sin(h0)]), np.array([-np.sin(h0), np.cos(h0)])
+    top = n * riser
+
+    def height(s):  # the surface height at distance s along the heading
+        k = np.clip(np.floor((np.asarray(s, float) - 0.5 * tread) / tread) + 1, 0, n)
+        return k * riser if direction == "up" else top - k * riser
+
+    # footprint k on tread k (0: the start tread); the last one beside footprint n
+    s_f = np.r_[np.arange(n + 1) * tread, n * tread]
+    sides = ["right"] + ["left" if k % 2 else "right" for k in range(1, n + 2)]
+
+    def footprint(k):
+        lat = (0.5 if sides[k] == "left" else -0.5) * width
+        along = s_f[k] - setback
+        return np.array([*(np.array([x0, y0]) + along * fwd + lat * left), h0])
+
+    n_steps = n + 1
+    bounds = np.round(np.arange(n_steps + 1) * step_time * fps).astype(int)
+    n_hold = round(0.25 * fps)  # the final pose held a quarter second, as synthetic_walk's
+    m = bounds[-1] + n_hold + 1
+    t = np.arange(m) / fps
+    sp = [0.0] + [0.5 * (s_f[i - 1] + s_f[i]) if i > 1 else 0.25 * tread for i in range(1, n_steps)]
+    sp = [*sp, s_f[-1]]
+    knots_t, knots_s = t[bounds], np.asarray(sp)
+    if n_hold:
+        knots_t, knots_s = np.r_[knots_t, t[-1]], np.r_[knots_s, knots_s[-1]]
+    s_of_t = PchipInterpolator(knots_t, knots_s)(t)
+    steps = [
+        PathStep(
+            side=sides[i + 1],
+            start=int(bounds[i]),
+            end=int(bounds[i + 1]),
+            foot=footprint(i + 1),
+            stance=footprint(i),
+            foot_z=float(height(s_f[i + 1])),
+            stance_z=float(height(s_f[i])),
+        )
+        for i in range(n_steps)
+    ]
+    xy = np.array([x0, y0]) + s_of_t[:, None] * fwd
+    meta = {
+        "planner": "synthetic",
+        "stair": {"riser": riser, "tread": tread, "n": n, "direction": direction,
+                  "first_riser": 0.5 * tread},
+    }  # fmt: skip
+    return WalkPath(t=t, xy=xy, yaw=np.full(m, h0), steps=steps, meta=meta, z=height(s_of_t))
+
+
+def synthetic_ramp_walk(
+    angle: float,
+    n_steps: int = 6,
+    step_len: float = 0.6,
+    step_time: float = 0.55,
+    start: ArrayLike = (0.0, 0.0, 0.0),
+) -> WalkPath:
+    """A straight walk (:func:`synthetic_walk`) on a ramp rising along the heading from the
+    start: the ground's height is ``tan(angle)`` times the distance along the heading.
+
+    Args:
+        angle: the ramp's slope, radians (+ up along the heading, - down).
+        n_steps: steps.
+        step_len: distance between successive footprints, metres.
+        step_time: seconds per step.
+        start: (x, y, heading), metres and radians; the ramp's height is 0 there.
+
+    Returns:
+        the WalkPath with its heights.
+    """
+    walk = synthetic_walk(n_steps=n_steps, step_len=step_len, step_time=step_time, start=start)
+    x0, y0, h0 = (float(v) for v in np.asarray(start, float))
+    fwd = np.array([np.cos(h0), np.sin(h0)])
+
+    def height(p):
+        return np.tan(angle) * ((np.asarray(p, float)[..., :2] - [x0, y0]) @ fwd)
+
+    walk.z = height(walk.xy)
+    for s in walk.steps:
+        s.foot_z, s.stance_z = float(height(s.foot)), float(height(s.stance))
+    walk.meta["ramp"] = {"angle": angle}
+    return walk

@@ -38,3 +38,24 @@ def test_curved_walk_stays_on_its_arc(radius):
 def test_bad_arguments_are_refused():
     with pytest.raises(MjwalkError, match="n_steps >= 1"):
         synthetic_walk(n_steps=0)
+
+
+def test_synthetic_stair_walk_heights_and_timing():
+    from mjwalk.plan.synthetic import synthetic_stair_walk
+
+    up = synthetic_stair_walk(0.17, 0.28, 6, "up")
+    up.validate()
+    assert [s.foot_z for s in up.steps] == pytest.approx([0.17 * k for k in range(1, 7)] + [1.02])
+    assert abs(up.steps[1].end - up.steps[1].start - 0.58 * 120) <= 1  # the reference ascent step
+    down = synthetic_stair_walk(0.17, 0.28, 6, "down")
+    assert down.steps[0].stance_z == pytest.approx(1.02) and down.steps[-1].foot_z == 0.0
+    assert float(down.z[0]) == pytest.approx(1.02) and float(down.z[-1]) == 0.0
+
+
+def test_synthetic_ramp_walk_rises_along_the_heading():
+    from mjwalk.plan.synthetic import synthetic_ramp_walk
+
+    w = synthetic_ramp_walk(np.deg2rad(5.5), start=(1.0, 2.0, np.pi / 2))
+    s = w.steps[-1]
+    assert s.foot_z == pytest.approx(np.tan(np.deg2rad(5.5)) * (s.foot[1] - 2.0))
+    assert not w.is_flat

@@ -43,6 +43,7 @@ from mjwalk.body.humanoid import ROM_DEG, LegGeometry, leg_geometry
 from mjwalk.body.legs.curves import spread
 from mjwalk.body.legs.footpivot import pivot_ankle
 from mjwalk.body.legs.ik import KNEE_MIN, LegIKCache, foot_lowest, generic_joint, hip_world
+from mjwalk.body.legs.legheights import lift_to_levels
 from mjwalk.body.legs.pitchfit import AnkleFit, fit_ankle_range, repitch_foot
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
@@ -152,6 +153,11 @@ def legs_from_walk(
     root = np.column_stack([sy.xy, sy.z])
     angles = _clear_floor(sy, ik, root, win)
     feet = sy.feet
+    meta = {"stature": stature, "reference": ref.source}
+    if not walk.is_flat:  # platforms, steps, stairs, ramps (issue 47): the flat legs lifted
+        root, angles, meta["edge_clearance"] = lift_to_levels(
+            walk, frames, feet, root, sy.yaw, geom
+        )
     return LegMotion(
         t=np.asarray(walk.t, float),
         root=root,
@@ -161,7 +167,7 @@ def legs_from_walk(
         pitch={side_of_prefix(s_): v for s_, v in feet.pitch.items()},
         contact=sy.contact,
         phase=sy.phase,
-        meta={"stature": stature, "reference": ref.source},
+        meta=meta,
     )
 
 

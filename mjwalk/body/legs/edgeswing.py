@@ -1,0 +1,369 @@
+"""The swing foot over step edges (issue 47, deliverable 4): where a step's footprints stand
+at different heights (a step or a stair), the swing foot rises, travels and lowers so that its
+sole clears every edge (nosing) between them by :data:`STAIR_TOE_CLEARANCE` (:func:`edge_swing`);
+:class:`StepSurfaces` holds the heights a step touches. Used by
+:mod:`mjwalk.body.legs.legheights`. World frame, metres, radians.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from mjwalk.body.humanoid import LegGeometry
+from mjwalk.body.legs.curves import smoothstep
+from mjwalk.body.legs.steps import StepFrames
+
+#: Least vertical clearance of the swing foot's sole over a step edge (nosing), metres. Young
+#: adults' minimum foot clearance over stair nosings is a few centimetres: Hamel, Okita,
+#: Higginson & Cavanagh, "Foot clearance during stair descent: effects of age and
+#: illumination", Gait Posture 21:135-140 (2005) count clearances under 5 mm as the risky ones
+#: (abstract verified here); Francksen et al., "Negotiating stairs with an inconsistent riser",
+#: Applied Ergonomics (2022) report that a 10 mm higher riser cuts ascent clearance by ~9 mm
+#: (highlights verified here), a trip risk, so the usual clearance is not much larger; the
+#: group means of 3-4 cm usually quoted from these studies are NOT verified here. 3 cm.
+STAIR_TOE_CLEARANCE = 0.03
+#: Height differences below this between a step's surfaces are one level, metres (the
+#: surfaces' own tolerance, :data:`mjwalk.world.norms.LEVEL_TOLERANCE`, with room for rounding).
+LEVEL_STEP = 0.01
+#: A surface pitch (radians) below this is level (0.3 deg: under norms.HORIZONTAL_SLOPE's 1 %).
+FLAT_PITCH = math.radians(0.3)
+
+
+@dataclass(frozen=True)
+class StepSurfaces:
+    """The surfaces one step of a walk touches (metres above the floor, radians).
+
+    Attributes:
+        lift: height under the swing foot before it lifts.
+        stance: height under the stance foot.
+        land: height under the swing foot where it lands.
+        lift_pitch: the lift surface's slope along the swing foot's heading (+ uphill).
+        stance_pitch: the stance surface's slope along the stance foot's heading.
+        land_pitch: the landing surface's slope along the landing heading.
+    """
+
+    lift: float
+    stance: float
+    land: float
+    lift_pitch: float = 0.0
+    stance_pitch: float = 0.0
+    land_pitch: float = 0.0
+
+    @property
+    def edged(self) -> bool:
+        """Whether the step crosses a step edge: its surfaces differ in height and none is a
+        ramp (on a ramp the heights change without an edge)."""
+        zs = (self.lift, self.stance, self.land)
+        ramp = any(abs(p) > FLAT_PITCH for p in (self.lift_pitch, self.land_pitch))
+        return (max(zs) - min(zs)) > LEVEL_STEP and not ramp
+
+    def pelvis_level(self) -> tuple[float, float]:
+        """The pelvis's surface height at the step's start and end (double support).
+
+        Returns:
+            (start, end), metres: the lower foot's surface on steps and stairs, the mean of
+            the feet's on ramps and level ground.
+        """
+        if self.edged:
+            return min(self.lift, self.stance), min(self.stance, self.land)
+        return 0.5 * (self.lift + self.stance), 0.5 * (self.stance + self.land)
+
+
+def _sole_points(ankle, pitch, toe, yaw, geom: LegGeometry) -> np.ndarray:
+    """(m, 3, 3) the heel, ball and toe tip of the foot (world x, y, z, metres) for ankles
+    ``ankle`` (m, 3), pitches, toe angles and headings (m,) (radians, pitch + toes up)."""
+    ah, back, front = geom.ankle_height, geom.foot_back, geom.foot_front
+    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)  # footpivot.ball_offset
+    cp, sp = np.cos(pitch), np.sin(pitch)
+    # foot frame (forward, up) rotated by the pitch: x' = x cos p - z sin p, z' = x sin p + z cos p
+    heel = (-back * cp + ah * sp, -back * sp - ah * cp)
+    bl = (ball * cp + ah * sp, ball * sp - ah * cp)
+    tip = (
+        bl[0] + (front - ball) * np.cos(pitch + toe),
+        bl[1] + (front - ball) * np.sin(pitch + toe),
+    )
+    f = np.stack([np.cos(yaw), np.sin(yaw)], -1)
+    pts = np.empty((len(ankle), 3, 3))
+    for k, (fw, up) in enumerate((heel, bl, tip)):
+        pts[:, k, :2] = ankle[:, :2] + fw[:, None] * f
+        pts[:, k, 2] = ankle[:, 2] + up
+    return pts
+
+
+@dataclass(frozen=True)
+class _Edges:
+    """The step edges a swing crosses, along its chord from the lift footprint (metres):
+    ``lo``/``hi`` (e,) where each edge may lie, ``z`` (e,) its height; ``cut`` (r - 1,) the
+    boundaries between the surfaces ``zr`` (r,) under the chord."""
+
+    lo: np.ndarray
+    hi: np.ndarray
+    z: np.ndarray
+    cut: np.ndarray
+    zr: np.ndarray
+
+
+def _step_edges(fr: StepFrames, surf: StepSurfaces, geom: LegGeometry) -> _Edges:
+    """The edges of an edged step: between the surfaces of the lift, stance and landing
+    footprints in their order along the chord, each from the toe of the foot behind to the
+    heel of the foot ahead (their midpoint where those overlap)."""
+    seg = fr.land[:2] - fr.lift[:2]
+    length = max(float(np.hypot(*seg)), 1e-9)
+    e = seg / length
+    x_s = float((fr.stance[:2] - fr.lift[:2]) @ e)
+    regions = [(0.0, surf.lift)]
+    if 0.0 < x_s < length:
+        regions.append((x_s, surf.stance))
+    regions.append((length, surf.land))
+    merged = [regions[0]]
+    for x, z in regions[1:]:
+        if abs(z - merged[-1][1]) > LEVEL_STEP:
+            merged.append((x, z))
+    lo, hi, ze, cut = [], [], [], []
+    for (x0, z0), (x1, z1) in itertools.pairwise(merged):
+        a, b = x0 + geom.foot_front, x1 - geom.foot_back
+        if a > b:
+            a = b = 0.5 * (x0 + x1)
+        lo.append(a)
+        hi.append(b)
+        ze.append(max(z0, z1))
+        cut.append(0.5 * (a + b))
+    return _Edges(
+        np.array(lo), np.array(hi), np.array(ze), np.array(cut), np.array([z for _, z in merged])
+    )
+
+
+def _edges_off_grounded(edges: _Edges, ends: np.ndarray, fr: StepFrames) -> _Edges:
+    """The edges moved off the grounded feet: the foot at lift-off stands on its surface, so
+    the first edge lies ahead of its sole's foremost point (its toe tip in the toe-off pose,
+    which reaches past the toe of the flat foot), and the landed foot stands on its surface,
+    so the last edge lies behind its sole's rearmost point. ``ends`` (2, 3, 3): the sole's
+    heel, ball and toe at the last grounded sample before lift-off and at landing."""
+    seg = fr.land[:2] - fr.lift[:2]
+    e = seg / max(float(np.hypot(*seg)), 1e-9)
+    x = (ends[..., :2] - fr.lift[:2]) @ e  # (2, 3)
+    lo, hi = edges.lo.copy(), edges.hi.copy()
+    lo[0] = max(lo[0], float(x[0].max()) + 1e-3)
+    hi[0] = max(hi[0], lo[0])
+    hi[-1] = min(hi[-1], float(x[1].min()) - 1e-3)
+    lo[-1] = min(lo[-1], hi[-1])
+    return _Edges(lo, hi, edges.z, 0.5 * (lo + hi), edges.zr)
+
+
+def _clearance_deficit(pts: np.ndarray, fr: StepFrames, edges: _Edges, clearance: float) -> float:
+    """How far (m) the sole ``pts`` (m, 3, 3) dips below ``clearance`` over an edge it spans
+    or below the surface under a sole point, at worst (0 if nowhere)."""
+    seg = fr.land[:2] - fr.lift[:2]
+    e = seg / max(float(np.hypot(*seg)), 1e-9)
+    x = (pts[..., :2] - fr.lift[:2]) @ e  # (m, 3) chord coordinates
+    z = pts[..., 2]
+    worst = 0.0
+    # a sole point over a surface stays above it (the landing foot sinks into nothing)
+    zr = edges.zr[np.searchsorted(edges.cut, x)]
+    worst = max(worst, float(np.max(zr - 1e-3 - z)))
+    for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
+        for a, b in ((0, 1), (1, 2)):  # the heel-ball and ball-toe segments of the sole
+            xa, xb, za, zb = x[:, a], x[:, b], z[:, a], z[:, b]
+            for xe in (lo, hi):
+                over = (np.minimum(xa, xb) < xe - 1e-3) & (xe + 1e-3 < np.maximum(xa, xb))
+                if not over.any():
+                    continue
+                w = np.clip(
+                    (xe - xa[over]) / np.where(xb[over] != xa[over], xb[over] - xa[over], 1.0), 0, 1
+                )
+                zs = za[over] + w * (zb[over] - za[over])
+                worst = max(worst, float(np.max(ze + clearance - zs)))
+    return worst
+
+
+def _profile(tau: np.ndarray, z_a: float, z_b: float, apex: float) -> np.ndarray:
+    """The swing ankle's height over ``tau`` (0 at the last grounded sample, 1 at landing):
+    up from ``z_a`` to ``apex``, held, down to ``z_b`` (smoothsteps); the rise and the fall
+    take time in proportion to their heights (at least 15 % of the swing each)."""
+    r1, r2 = apex - z_a, apex - z_b
+    big = max(r1, r2, 1e-9)
+    t1 = max(0.15, 0.45 * r1 / big)
+    t2 = 1.0 - max(0.15, 0.45 * r2 / big)
+    up = z_a + r1 * smoothstep(tau / t1)
+    down = apex - r2 * smoothstep((tau - t2) / (1.0 - t2))
+    return np.where(tau <= t1, up, np.where(tau >= t2, down, apex))
+
+
+def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: LegGeometry,
+               clearance: float = STAIR_TOE_CLEARANCE):  # fmt: skip
+    """The swing foot of an edged step (a step or a stair) over its airborne samples: it rises
+    to clear the highest edge by ``clearance``, travels forward only while its sole clears the
+    first edge and is past the last before it lowers (the flat swing's path, re-timed, for the
+    horizontal motion; its pitch, toes and heading kept); raised further where the sole would
+    still come closer to an edge than ``clearance``.
+
+    Args:
+        ankle: (m, 3) the flat swing's ankle from the last grounded sample before lift-off
+            to the landing, metres, world frame (with the surfaces' heights added at both ends).
+        pitch: (m,) the foot's pitch, radians, + toes up.
+        toe: (m,) the toe angle, radians.
+        yaw: (m,) the foot's heading, radians from +x CCW.
+        fr: the step (lift, stance and landing footprints).
+        surf: the step's surfaces.
+        geom: the leg and foot lengths.
+        clearance: the least clearance over an edge, metres.
+
+    Returns:
+        (m, 3) the new ankle positions, metres, and the least clearance over the edges
+        reached (metres; ``clearance`` or more where the design holds).
+    """
+    m = len(ankle)
+    tau = np.arange(m) / max(m - 1, 1)
+    ends = [0, m - 1]
+    edges = _edges_off_grounded(
+        _step_edges(fr, surf, geom),
+        _sole_points(ankle[ends], pitch[ends], toe[ends], yaw[ends], geom),
+        fr,
+    )
+    seg = fr.land[:2] - fr.lift[:2]
+    length = max(float(np.hypot(*seg)), 1e-9)
+    e = seg / length
+    u_f = np.maximum.accumulate(np.clip((ankle[:, :2] - fr.lift[:2]) @ e / length, 0, 1))
+    u_f[-1] = max(u_f[-1], u_f[-2] + 1e-9) if m > 1 else u_f[-1]
+    u_f = u_f + np.arange(m) * 1e-12  # strictly increasing for np.interp
+    z_a, z_b = float(ankle[0, 2]), float(ankle[-1, 2])
+    lift_sole = geom.ankle_height + 0.005
+    tip_z, heel_z = _toe_heel(pitch, toe, geom)[1::2]
+    extra, out, need = 0.0, ankle.copy(), 0.0
+    descent = bool(edges.z[0] > edges.z[-1] + LEVEL_STEP)
+    for _ in range(3):
+        if descent:
+            out = _descent_path(ankle, (u_f, tau), (pitch, toe), edges, fr, geom,
+                                (clearance, clearance + lift_sole + extra))  # fmt: skip
+        else:
+            apex = max(float(edges.z.max()) + clearance + lift_sole, z_a, z_b) + extra
+            z = _profile(tau, z_a, z_b, apex)
+            # forward once the toe tip clears the first edge, down once the heel clears the last
+            up_ok = z + tip_z >= edges.z[0] + clearance - 1e-9
+            down_ok = z + heel_z >= edges.z[-1] + clearance - 1e-9
+            top = float(tau[int(np.argmax(z))])
+            t_a = 0.0 if up_ok[0] else float(tau[np.argmax(up_ok)]) if up_ok.any() else top
+            t_b = 1.0 if down_ok[-1] else float(tau[m - 1 - np.argmax(down_ok[::-1])])
+            t_b = t_b if down_ok.any() and t_b > t_a else max(top, t_a + 1e-3)
+            u = smoothstep((tau - t_a) / max(t_b - t_a, 1e-9))
+            out = np.column_stack(
+                [np.interp(u, u_f, ankle[:, 0]), np.interp(u, u_f, ankle[:, 1]), z]
+            )
+            _keep_behind_edges(out, z, clearance, pitch, toe, edges, fr, geom)
+        out[0], out[-1] = ankle[0], ankle[-1]
+        need = _clearance_deficit(_sole_points(out[1:-1], pitch[1:-1], toe[1:-1], yaw[1:-1], geom),
+                                  fr, edges, clearance)  # fmt: skip
+        if need <= 1e-4:
+            break
+        extra += need + 0.005
+    return out, clearance - need
+
+
+#: Share of a descent swing's time by which the foot is over its landing tread; the rest it
+#: lowers onto it. McFadyen & Winter (1988, J Biomech 21:733-744) divide the descent swing
+#: into leg pull-through and foot placement (the leg reaching down to the step below); the
+#: share is this module's choice, not a published figure.
+DESCENT_PULL_THROUGH = 0.7
+
+
+def _descent_swing(ankle, u_f, tau, edges: _Edges, heel_x, lift, floor: float,
+                   t_a: float = 0.0) -> np.ndarray:  # fmt: skip
+    """The swing ankle of a step down (a stair descended, a step down): it moves forward over
+    the first ``DESCENT_PULL_THROUGH`` of the swing (the flat swing's path re-timed) while its
+    height follows the edges it passes -- its sole ``floor`` above the edge its heel has not
+    yet passed, lowered to the next edge's height over the first half of the tread after it
+    (the foot reaching down along the stair's pitch line, as stair descent's swing does
+    rather than carrying the foot at the upper tread's height) -- then lowers onto the
+    landing tread; it starts at the toe-off ankle height, blended into that path over 15 %.
+
+    Args:
+        ankle: (m, 3) the flat swing's ankle, landing included (world, metres).
+        u_f: (m,) its progress along the chord (0..1, strictly increasing).
+        tau: (m,) the swing's time fraction (0..1).
+        edges: the step's edges (chord metres, heights metres).
+        heel_x: (m,) the heel's forward offset from the ankle, metres.
+        lift: (lift footprint (x, y), chord unit vector).
+        floor: the ankle's height over an edge's height (clearance + ankle), metres.
+        t_a: the swing's time fraction at which the foot starts forward (its toe tip clear
+            of the lift tread's nosing).
+
+    Returns:
+        (m, 3) the ankle positions, metres.
+    """
+    u = smoothstep((tau - t_a) / max(DESCENT_PULL_THROUGH - t_a, 1e-3))
+    xy = np.column_stack([np.interp(u, u_f, ankle[:, 0]), np.interp(u, u_f, ankle[:, 1])])
+    x_heel = (xy - lift[0]) @ lift[1] + heel_x
+    px, pz = [], []
+    for k, (hi, ze) in enumerate(zip(edges.hi, edges.z, strict=True)):
+        px.append(hi)
+        pz.append(ze + floor)
+        if k + 1 < len(edges.hi):
+            px.append(hi + 0.5 * (edges.hi[k + 1] - hi))
+            pz.append(edges.z[k + 1] + floor)
+    z = np.interp(x_heel, px, pz)
+    z_a, z_b = float(ankle[0, 2]), float(ankle[-1, 2])
+    z = z + (z_a - z[0]) * (1.0 - smoothstep(tau / 0.15))
+    past = np.flatnonzero(x_heel >= edges.hi[-1])
+    t_pass = float(tau[past[0]]) if len(past) else float(tau[-1])
+    w = smoothstep((tau - t_pass) / max(1.0 - t_pass, 1e-9))
+    z = z + w * (z_b - z)
+    return np.column_stack([xy, z])
+
+
+def _descent_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeometry,
+                  levels) -> np.ndarray:  # fmt: skip
+    """:func:`_descent_swing` started once the toe tip clears the lift tread's nosing (held
+    behind it while the foot flattens, then eased back onto the path without a jump).
+    ``time`` = (u_f, tau), ``foot`` = (pitch, toe) per sample, ``levels`` = (clearance,
+    the ankle's height over an edge); returns (m, 3) ankles, metres."""
+    (u_f, tau), (pitch, toe), (clearance, floor) = time, foot, levels
+    _, tip_z, heel_x, _ = _toe_heel(pitch, toe, geom)
+    seg = fr.land[:2] - fr.lift[:2]
+    lift = (fr.lift[:2], seg / max(float(np.hypot(*seg)), 1e-9))
+    out = _descent_swing(ankle, u_f, tau, edges, heel_x, lift, floor)
+    clear = out[:, 2] + tip_z >= edges.z[0] + clearance - 1e-9
+    t_a = 0.0 if clear[0] or not clear.any() else float(tau[np.argmax(clear)])
+    out = _descent_swing(ankle, u_f, tau, edges, heel_x, lift, floor, t_a)
+    free = out[:, :2].copy()
+    _keep_behind_edges(out, out[:, 2], clearance, pitch, toe, edges, fr, geom)
+    held = np.flatnonzero(np.any(out[:, :2] != free, axis=1) & (tau < 0.5))
+    if len(held):
+        r = held[-1]
+        ease = 1.0 - smoothstep((tau[r + 1 :] - tau[r]) / 0.15)
+        out[r + 1 :, :2] += (out[r, :2] - free[r])[None, :] * ease[:, None]
+    return out
+
+
+def _toe_heel(pitch, toe, geom: LegGeometry):
+    """The toe tip's and the heel's positions relative to the ankle in the foot's vertical
+    plane (forward, up; metres) for pitches and toe angles (radians, + toes up): (tip_x,
+    tip_z, heel_x, heel_z), as :func:`_sole_points` places them."""
+    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)
+    ah = geom.ankle_height
+    cp, sp = np.cos(pitch), np.sin(pitch)
+    tip_x = ball * cp + ah * sp + (geom.foot_front - ball) * np.cos(pitch + toe)
+    tip_z = ball * sp - ah * cp + (geom.foot_front - ball) * np.sin(pitch + toe)
+    return tip_x, tip_z, -geom.foot_back * cp + ah * sp, -geom.foot_back * sp - ah * cp
+
+
+def _keep_behind_edges(out, z, clearance, pitch, toe, edges: _Edges, fr: StepFrames,
+                       geom: LegGeometry) -> None:  # fmt: skip
+    """Hold the swing foot's toe tip behind the first edge until it clears that edge by
+    ``clearance`` on the way up, and its heel past the last edge once it is below that edge
+    plus ``clearance`` on the way down (the ankles ``out`` (m, 3) at heights ``z`` moved along
+    the chord, in place): a foot flattening after lift-off turns about its toes instead of
+    pushing them into the riser or over the nosing."""
+    seg = fr.land[:2] - fr.lift[:2]
+    e = seg / max(float(np.hypot(*seg)), 1e-9)
+    tip, tip_z, heel, heel_z = _toe_heel(pitch, toe, geom)
+    x = (out[:, :2] - fr.lift[:2]) @ e
+    # before the toe tip first clears the first edge; after the heel last clears the last
+    rising = ~np.logical_or.accumulate(z + tip_z >= edges.z[0] + clearance)
+    falling = ~np.logical_or.accumulate((z + heel_z >= edges.z[-1] + clearance)[::-1])[::-1]
+    x_new = np.where(rising, np.minimum(x, edges.lo[0] - tip), x)
+    x_new = np.where(falling, np.maximum(x_new, edges.hi[-1] - heel), x_new)
+    out[:, :2] += (x_new - x)[:, None] * e

@@ -1,0 +1,270 @@
+"""The legs on walk surfaces of several heights (issue 47, deliverable 4): the flat leg
+synthesis's tracks lifted onto platforms, steps, stairs and ramps.
+
+:func:`~mjwalk.body.legs.synthesis.legs_from_walk` synthesises every walk as if on the floor;
+a walk that leaves the floor (:attr:`WalkPath.is_flat <mjwalk.plan.walkpath.WalkPath.is_flat>`
+false) then passes through :func:`lift_to_levels`:
+
+* **Feet on their surfaces.** A grounded foot stands on the height of its footprint's surface
+  (``PathStep.foot_z`` / ``stance_z``); on a ramp it is pitched to the slope (turned about its
+  footprint point in the vertical plane of its heading), as the slope's pitch along the foot.
+* **Swing over step edges.** Where a step's footprints stand at different heights (a step or a
+  stair), the swing foot rises, travels and lowers (:func:`edge_swing`): it moves forward only
+  once its sole clears the first edge by :data:`STAIR_TOE_CLEARANCE`, and lowers below the
+  last edge only once past it; the edges lie between the footprints' surfaces (the toe of the
+  foot behind, the heel of the foot ahead: on a stair with footprints on the treads' centres,
+  the nosings). Steps whose surfaces are a ramp or level keep the flat swing, carried on the
+  heights of its ends.
+* **The pelvis follows the level.** Its height is the flat synthesis's plus the lower of the
+  two feet's surfaces in double support (on a ramp their mean), changing over the single
+  support of each step (smoothstep): up a stair the pelvis rises while the leading leg pulls up
+  (a riser per step), down a stair it lowers while the stance leg yields. Where a grounded leg
+  then cannot reach its foot, the pelvis lowers (smoothly).
+* **Joint angles** by the same leg IK as the flat synthesis, clipped to the joint ranges.
+
+The knee and hip flexion this gives on a stair is not prescribed: it follows from the geometry
+(a leg that lands one riser up flexes its knee and hip by the riser). The published peaks are
+:data:`KNEE_PEAK_UP` and the others below; ``tests/body/test_legheights.py`` and
+``benchmarks/bench_levels.py`` hold the synthesis to them. World frame, metres, radians.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from mjwalk.body.humanoid import ROM_DEG, LegGeometry
+from mjwalk.body.legs.curves import smoothstep, spread
+from mjwalk.body.legs.edgeswing import FLAT_PITCH, StepSurfaces, edge_swing
+from mjwalk.body.legs.ik import KNEE_MIN, generic_joint, leg_ik_world
+from mjwalk.body.legs.stance import reach_deficit
+from mjwalk.body.legs.steps import FootTracks, StepFrames
+from mjwalk.plan.walkpath import WalkPath
+from mjwalk.world.norms import MAX_RAMP_SLOPE
+
+#: Footprint neighbourhood (m) over which the walk's ground slope under a foot is estimated.
+SLOPE_REACH = 0.3
+
+#: Peak knee flexion over a stride on a stair of about 30 deg, degrees, ascent and descent.
+#: Protopapadaki et al., "Hip, knee, ankle kinematics and kinetics during stair ascent and
+#: descent in healthy young individuals", Clin Biomech 22:203-210 (2007), 18/28.5 cm stair:
+#: knee flexion greater in ascent than descent by 3.4 deg (SD 7.2) (abstract verified here);
+#: a single 20.3 cm step is ascended with 90.5 deg lead-knee flexion ("Hip and knee flexion of
+#: lead and trail limbs during ascent of a step of different heights by normal adults",
+#: abstract verified here). The ranges span the peaks reported by Riener, Rabuffetti & Frigo,
+#: Gait Posture 15:32-44 (2002) at 24-42 deg, McFadyen & Winter, J Biomech 21:733-744 (1988)
+#: and Protopapadaki et al. (2007) (about 83-105 deg up, 80-100 deg down; NOT verified here
+#: beyond the abstracts).
+KNEE_PEAK_UP = (83.0, 105.0)
+KNEE_PEAK_DOWN = (80.0, 100.0)
+#: Peak hip flexion, degrees: greater up than down by 28.1 deg (SD 4.1) (Protopapadaki et al.
+#: 2007, abstract verified here); 66.3 deg lead-hip flexion up a 20.3 cm step (abstract above,
+#: verified); ranges as those studies report them (NOT verified beyond the abstracts).
+HIP_PEAK_UP = (55.0, 75.0)
+HIP_PEAK_DOWN = (20.0, 45.0)
+
+
+def surface_pitch(walk: WalkPath, print_: np.ndarray) -> float:
+    """The slope of the walk's ground along a footprint's heading, from the walk's ground
+    heights (:attr:`WalkPath.z <mjwalk.plan.walkpath.WalkPath.z>`) near the footprint: the
+    median of the height's gradient along the path there, projected on the foot's heading. A
+    stair's ground is level between its risers (median 0) and a gradient steeper than a ramp
+    (:data:`~mjwalk.world.norms.MAX_RAMP_SLOPE`, plus 2 deg) is a stair's pitch line, not a
+    slope to stand on: both give 0.
+
+    Args:
+        walk: the walk.
+        print_: (3,) the footprint (x, y, yaw), metres and radians.
+
+    Returns:
+        the slope, radians, + uphill along the heading.
+    """
+    if walk.z is None:
+        return 0.0
+    xy, z = np.asarray(walk.xy, float), np.asarray(walk.z, float)
+    d = np.diff(xy, axis=0)
+    ds = np.hypot(d[:, 0], d[:, 1])
+    mid = 0.5 * (xy[1:] + xy[:-1])
+    near = (np.hypot(*(mid - print_[:2]).T) < SLOPE_REACH) & (ds > 1e-5)
+    if not near.any():
+        return 0.0
+    heading = np.array([math.cos(print_[2]), math.sin(print_[2])])
+    along = (d[near] @ heading) / ds[near]  # cos of the path's angle to the heading
+    grad = float(np.median(np.diff(z)[near] / ds[near] * along))
+    pitch = math.atan(grad)
+    if abs(pitch) < FLAT_PITCH or abs(pitch) > MAX_RAMP_SLOPE + math.radians(2.0):
+        return 0.0
+    return pitch
+
+
+def step_surfaces(walk: WalkPath) -> list[StepSurfaces]:
+    """Per step of ``walk`` its surfaces' heights and slopes (the first step lifts its foot from
+    the stance foot's surface: a standing start).
+
+    Args:
+        walk: a walk with steps.
+
+    Returns:
+        one :class:`StepSurfaces` per step.
+    """
+    out = []
+    pitches = [
+        (
+            surface_pitch(walk, np.asarray(s.foot, float)),
+            surface_pitch(walk, np.asarray(s.stance, float)),
+        )
+        for s in walk.steps
+    ]
+    for k, s in enumerate(walk.steps):
+        prev = walk.steps[k - 1] if k else None
+        out.append(
+            StepSurfaces(
+                lift=float(prev.stance_z if prev else s.stance_z),
+                stance=float(s.stance_z),
+                land=float(s.foot_z),
+                lift_pitch=pitches[k - 1][1] if k else pitches[k][1],
+                stance_pitch=pitches[k][1],
+                land_pitch=pitches[k][0],
+            )
+        )
+    return out
+
+
+@dataclass
+class LevelTracks:
+    """Per side ("l"/"r") over a walk's n samples: the surface height under the foot (``z``,
+    metres), its slope along the foot (``pitch``, radians) and whether the foot is in the air
+    (``air``); ``level`` (n,) the pelvis's surface height, metres."""
+
+    z: dict[str, np.ndarray]
+    pitch: dict[str, np.ndarray]
+    air: dict[str, np.ndarray]
+    level: np.ndarray
+
+
+def level_tracks(
+    frames: list[StepFrames], surfs: list[StepSurfaces], ground, n: int
+) -> LevelTracks:
+    """The surfaces under the feet and the pelvis over a walk, from its steps.
+
+    Args:
+        frames: the walk's steps as the leg synthesis sees them.
+        surfs: their surfaces (:func:`step_surfaces`).
+        ground: per side the flat synthesis's (n,) foot-on-the-ground flags.
+        n: the number of samples.
+
+    Returns:
+        the tracks (a swing foot's ``z``/``pitch`` are its lift surface's until it lands).
+    """
+    z = {s: np.zeros(n) for s in "lr"}
+    p = {s: np.zeros(n) for s in "lr"}
+    air = {s: np.zeros(n, bool) for s in "lr"}
+    level = np.zeros(n)
+    f0, s0 = frames[0], surfs[0]
+    head = slice(0, f0.start + 1)
+    z[f0.side][head], p[f0.side][head] = s0.lift, s0.lift_pitch
+    z[f0.other][head], p[f0.other][head] = s0.stance, s0.stance_pitch
+    level[head] = s0.pelvis_level()[0]
+    for fr, sf in zip(frames, surfs, strict=True):
+        a, b = fr.start, fr.end
+        ids = slice(a, b + 1)
+        z[fr.other][ids], p[fr.other][ids] = sf.stance, sf.stance_pitch
+        z[fr.side][ids], p[fr.side][ids] = sf.lift, sf.lift_pitch
+        air[fr.side][a:b] = ~np.asarray(ground[fr.side][a:b], bool)
+        air[fr.other][ids] = False
+        z[fr.side][b], p[fr.side][b] = sf.land, sf.land_pitch
+        l0, l1 = sf.pelvis_level()
+        level[ids] = l0 + (l1 - l0) * smoothstep(np.linspace(0.0, 1.0, b - a + 1))
+    fl, sl = frames[-1], surfs[-1]
+    tail = slice(fl.end, n)
+    z[fl.side][tail], p[fl.side][tail] = sl.land, sl.land_pitch
+    z[fl.other][tail], p[fl.other][tail] = sl.stance, sl.stance_pitch
+    level[tail] = sl.pelvis_level()[1]
+    return LevelTracks(z, p, air, level)
+
+
+def _tilt(ankle: np.ndarray, yaw: np.ndarray, slope: np.ndarray) -> np.ndarray:
+    """Ankles (m, 3) turned by ``slope`` (m,, radians, + toes up) about the point under them on
+    the floor, in the vertical plane of the headings ``yaw`` (m,)."""
+    f = np.stack([np.cos(yaw), np.sin(yaw)], -1)
+    h = ankle[:, 2]
+    out = ankle.copy()
+    out[:, :2] -= (h * np.sin(slope))[:, None] * f
+    out[:, 2] = h * np.cos(slope)
+    return out
+
+
+def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, root: np.ndarray,
+                   yaw: np.ndarray, geom: LegGeometry):  # fmt: skip
+    """The flat leg synthesis of a walk that leaves the floor, put on its surfaces: feet on
+    their footprints' heights (pitched to a ramp), the swing over step edges
+    (:func:`edge_swing`), the pelvis on the level (:meth:`StepSurfaces.pelvis_level`), lowered
+    where a grounded leg cannot reach; the leg IK again.
+
+    Args:
+        walk: the walk (its steps' ``foot_z``/``stance_z`` and ground heights ``z``).
+        frames: its steps as the flat synthesis saw them.
+        feet: the flat synthesis's foot tracks (``ankle`` and ``pitch`` are updated in place).
+        root: (n, 3) the flat synthesis's pelvis positions, metres.
+        yaw: (n,) the pelvis yaw, radians from +x CCW.
+        geom: the leg geometry.
+
+    Returns:
+        the pelvis positions (n, 3, metres), the joint angles (name -> (n,) radians, clipped
+        to their ranges) and the least clearance over a step edge (metres; inf without edges).
+    """
+    n = len(root)
+    surfs = step_surfaces(walk)
+    tr = level_tracks(frames, surfs, feet.ground, n)
+    flat_ankle = {s: feet.ankle[s].copy() for s in "lr"}
+    for s in "lr":
+        on = ~tr.air[s]
+        a = _tilt(flat_ankle[s][on], feet.fyaw[s][on], tr.pitch[s][on])
+        a[:, 2] += tr.z[s][on]
+        feet.ankle[s][on] = a
+        feet.pitch[s][on] = feet.pitch[s][on] + tr.pitch[s][on]
+    least = math.inf
+    for fr, sf in zip(frames, surfs, strict=True):
+        s = fr.side
+        j = np.flatnonzero(tr.air[s][fr.start : fr.end]) + fr.start
+        if not len(j):
+            continue
+        k = np.r_[j[0] - 1, j, fr.end]
+        if sf.edged:
+            # the foot held level through the swing (toes and sole straighten after lift-off,
+            # the landing pitch taken at the end), as stair gait does: a foot pitched toes
+            # down would need the whole foot lifted by its toes' drop over every edge
+            tau = np.arange(len(k)) / (len(k) - 1)
+            ease = 1.0 - smoothstep(tau / 0.25)
+            land = smoothstep((tau - 0.8) / 0.2)
+            feet.pitch[s][k] = feet.pitch[s][k[0]] * ease + feet.pitch[s][k[-1]] * land
+            feet.toe[s][k] = feet.toe[s][k[0]] * ease + feet.toe[s][k[-1]] * land
+            out, clear = edge_swing(feet.ankle[s][k], feet.pitch[s][k], feet.toe[s][k],
+                                    feet.fyaw[s][k], fr, sf, geom)  # fmt: skip
+            feet.ankle[s][j] = out[1:-1]
+            least = min(least, clear)
+            continue
+        seg = fr.land[:2] - fr.lift[:2]
+        u = np.clip((flat_ankle[s][j, :2] - fr.lift[:2]) @ seg / max(float(seg @ seg), 1e-12), 0, 1)
+        feet.ankle[s][j, 2] += sf.lift + (sf.land - sf.lift) * u
+        feet.pitch[s][j] += sf.lift_pitch + (sf.land_pitch - sf.lift_pitch) * u
+    new_root = root.copy()
+    new_root[:, 2] += tr.level
+    win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))
+    reach_sq = {s: np.full(n, geom.span(KNEE_MIN) ** 2) for s in "lr"}
+    grounded = {s: ~tr.air[s] for s in "lr"}
+    for _ in range(4):
+        deficit = reach_deficit(new_root, yaw, feet.ankle, grounded, reach_sq, geom)
+        if deficit.max() <= 1e-3:
+            break
+        new_root[:, 2] -= spread(np.maximum(deficit, 0.0) + 2e-3, win)
+    angles: dict[str, np.ndarray] = {}
+    for s in "lr":
+        raw = leg_ik_world(feet.ankle[s], feet.fyaw[s], feet.pitch[s], new_root, yaw, s, geom)
+        angles.update(
+            {k: np.clip(v, *np.deg2rad(ROM_DEG[generic_joint(k)])) for k, v in raw.items()}
+        )
+        angles[f"toe_{s}"] = np.clip(feet.toe[s], *np.deg2rad(ROM_DEG["toe"]))
+    return new_root, angles, least
