@@ -11,7 +11,7 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
 2. on each level the hybrid A* unchanged (:class:`~mjwalk.plan.hybrid.HybridPlanner`) in the
    level's view (:func:`mjwalk.world.levelview.level_view`: its surfaces, its obstacles up to
    the walker's head), from the start or a crossing's stance to the next crossing's stance
-   (arriving facing up or down it, ending within :data:`STANCE_TOLERANCE` of it) or the goal;
+   (arriving facing up or down it, ending in the planner's goal area about it) or the goal;
 3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`);
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
@@ -52,8 +52,7 @@ from mjwalk.world.levelview import level_at, level_view
 from mjwalk.world.norms import EXPOSED_MIN, HEAD_MARGIN
 from mjwalk.world.workplace import Workplace
 
-#: A level walk ends within this of the crossing's stance it walks to, metres: a quarter of a
-#: step, so the crossing's first step starts where its layout expects.
+#: Route legs shorter than this are not walked (the walker stands there already), metres.
 STANCE_TOLERANCE = 0.15
 
 
@@ -184,12 +183,10 @@ def level_route(
     for v, (lv, xy) in enumerate(nodes):
         if v == 0:
             continue  # nothing walks to the start
-        view = level_view(workplace, lv, head)
-        grid = shared_grid(view, options.cell, options.radius, MOVES_16)
-        field = goal_distance(grid, xy, options.field_cells)
+        field = _node_field(workplace, lv, xy, head, options)
         for u, (lu, uxy) in enumerate(nodes):
             if u != v and lu == lv and u != 1:
-                d = float(field(uxy))
+                d = _distance(workplace, field, uxy) if v >= 2 and u >= 2 else float(field(uxy))
                 if math.isfinite(d):
                     edges.setdefault(u, []).append((v, d / walker.speed))
     path, _ = dijkstra(len(nodes), edges, 0, 1)
@@ -199,6 +196,30 @@ def level_route(
             f"this walker (step-up limit {max_riser:.2f} m, stature {walker.stature:.2f} m)"
         )
     return _legs(path, nodes, usable)
+
+
+def _node_field(workplace: Workplace, level: int, xy: np.ndarray, head: float, options):
+    """The distance field (:func:`mjwalk.plan.heuristic.goal_distance`) to a route node on its
+    level's view, kept on the workplace per node, head height and planner grid."""
+    cache = workplace.__dict__.setdefault("_node_fields", {})
+    key = (
+        level, float(xy[0]), float(xy[1]), round(head, 3), options.radius, options.cell,
+        options.field_cells,
+    )  # fmt: skip
+    if key not in cache:
+        view = level_view(workplace, level, head)
+        grid = shared_grid(view, options.cell, options.radius, MOVES_16)
+        cache[key] = goal_distance(grid, xy, options.field_cells)
+    return cache[key]
+
+
+def _distance(workplace: Workplace, field, xy: np.ndarray) -> float:
+    """``field(xy)`` between two crossing stances, kept on the workplace."""
+    cache = workplace.__dict__.setdefault("_node_distances", {})
+    key = (id(field), float(xy[0]), float(xy[1]))
+    if key not in cache:
+        cache[key] = float(field(xy))
+    return cache[key]
 
 
 def _crossings(workplace: Workplace, clear: float) -> list[Crossing]:
@@ -251,8 +272,10 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     assert c is not None
     heading = c.yaw if nxt.direction == "up" else c.yaw + math.pi
     planner = HybridPlanner(view, leg.end, model, options)
-    spot = (float(leg.end[0]), float(leg.end[1]), min(STANCE_TOLERANCE, options.goal_tolerance))
-    return planner.plan(WalkRequest(start, spot=spot, goal_heading=heading), rng)
+    try:
+        return planner.plan(WalkRequest(start, goal_heading=heading), rng)
+    except PlanningError:  # a tight approach: the route search alone, the crossing aligns
+        return planner.plan(WalkRequest(start), rng)
 
 
 def plan_level_walk(
