@@ -44,21 +44,29 @@ def cmd_plan(args: argparse.Namespace) -> int:
     # deferred: mujoco/numba load only for the command that needs them
     from mjwalk.gait.training import load_model
     from mjwalk.plan.grid import plan_grid  # deferred: mujoco/numba, as above
+    from mjwalk.plan.levelplan import needs_levels  # deferred: numba, as above
     from mjwalk.plan.occupancy import check_endpoint  # deferred: mujoco/numba, as above
     from mjwalk.shipped import scene_file  # deferred: mujoco/numba, as above
     from mjwalk.world import load_workplace  # deferred: mujoco/numba, as above
 
     workplace = load_workplace(scene_file(args.scene))
-    for where, what in ((args.start, "start"), (args.goal, "goal")):
-        # unknown sites, points off the floor or in an obstacle fail here, before planning
-        check_endpoint(workplace, workplace.point(where), args.radius, what)
+    levels = needs_levels(workplace, args.start, args.goal, args.radius)
+    baseline = None
+    if levels:  # a walk over levels: the level planner places and checks both ends
+        print(_level_summary(workplace, args.start, args.goal))
+    else:
+        for where, what in ((args.start, "start"), (args.goal, "goal")):
+            # unknown sites, points off the floor or in an obstacle fail here, before planning
+            check_endpoint(workplace, workplace.point(where), args.radius, what)
+        baseline = plan_grid(workplace, args.start, args.goal, radius=args.radius)
+        print(
+            f"grid A*  {args.start} -> {args.goal}: length {baseline.length:.3f} m, "
+            f"{baseline.meta['expansions']} expansions, {1000 * baseline.meta['seconds']:.1f} ms"
+        )
     model = load_model(args.model).for_walker(walker) if args.n > 0 else None
-    baseline = plan_grid(workplace, args.start, args.goal, radius=args.radius)
-    print(
-        f"grid A*  {args.start} -> {args.goal}: length {baseline.length:.3f} m, "
-        f"{baseline.meta['expansions']} expansions, {1000 * baseline.meta['seconds']:.1f} ms"
-    )
     paths = [] if model is None else _hybrid_walks(args, workplace, model, walker)
+    if levels and paths:
+        print(_level_walk_summary(paths))
     if args.png:
         from mjwalk.render.plot import save_plan_png  # deferred: matplotlib, only when drawing
 
@@ -72,6 +80,35 @@ def cmd_plan(args: argparse.Namespace) -> int:
         )
         print(f"wrote {args.png}")
     return 0
+
+
+def _level_summary(workplace, start, goal) -> str:
+    """The levels of the scene (:func:`mjwalk.world.levels.describe_levels`) and where the
+    walk's ends stand."""
+    from mjwalk.plan.levelplan import endpoint  # deferred: numba, only when planning
+    from mjwalk.world.levels import describe_levels  # deferred: mujoco, as above
+
+    a, b = endpoint(workplace, start, "start"), endpoint(workplace, goal, "goal")
+    return (
+        f"{describe_levels(workplace.levels)}\n"
+        f"walk over levels  {start} (L{a.level}) -> {goal} (L{b.level})"
+    )
+
+
+def _level_walk_summary(paths: list) -> str:
+    """The first walk's route over levels and the walks' mean seconds and steps per kind."""
+    route = paths[0].meta["levels"]["route"]
+    names = [
+        f"L{r['level']}" if r["kind"] == "level" else f"{r['kind']} {r['direction']}" for r in route
+    ]
+    kinds: dict[str, list[float]] = {}
+    for p in paths:
+        for kind, row in p.meta["levels"]["per_kind"].items():
+            kinds.setdefault(kind, [0.0, 0.0])
+            kinds[kind][0] += row["seconds"] / len(paths)
+            kinds[kind][1] += row["steps"] / len(paths)
+    per_kind = ", ".join(f"{k} {v[0]:.2f} s / {v[1]:.1f} steps" for k, v in kinds.items())
+    return f"route (walk 0): {' -> '.join(names)}\nmean per kind: {per_kind}"
 
 
 def _hybrid_walks(args: argparse.Namespace, workplace, model, walker) -> list:

@@ -10,6 +10,7 @@ from mjwalk._args import as_generator, check_seed
 from mjwalk.errors import InputError
 from mjwalk.gait.default import default_model
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.levelplan import needs_levels, plan_level_walk
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace
@@ -39,8 +40,14 @@ def plan_walk(
         options: how to plan (:class:`~mjwalk.plan.options.PlannerOptions`: goal area, body
             radius, search weights, cost, budgets; None: the defaults).
 
+    A start or goal on a raised level of a scene on several levels (a platform, a mezzanine:
+    :attr:`Workplace.levels <mjwalk.world.workplace.Workplace.levels>`) makes the walk one over
+    levels, by steps, ramps and stairs the walker takes
+    (:func:`mjwalk.plan.levelplan.plan_level_walk`); walks on the floor plan as in a flat scene.
+
     Returns:
-        The walk (120 Hz pelvis positions and yaw, its steps).
+        The walk (120 Hz pelvis positions and yaw, its steps; over levels also the surface
+        heights, :attr:`~mjwalk.plan.walkpath.WalkPath.z`).
 
     Raises:
         PlanningError: start/goal off the floor or inside/too near an obstacle (before any
@@ -49,6 +56,9 @@ def plan_walk(
     if model is None:
         model = default_model()
     rng = as_generator(rng, "plan_walk: rng")
+    radius = (options or PlannerOptions()).radius
+    if needs_levels(workplace, start, goal, radius):
+        return plan_level_walk(workplace, start, goal, model, rng, options)
     return HybridPlanner(workplace, goal, model, options).plan(start, rng)
 
 
@@ -83,6 +93,12 @@ def plan_walks(
     seed = check_seed(seed, "plan_walks: seed")
     if model is None:
         model = default_model()
-    planner = HybridPlanner(workplace, goal, model, options)
     streams = np.random.SeedSequence(seed).spawn(n)
+    radius = (options or PlannerOptions()).radius
+    if needs_levels(workplace, start, goal, radius):  # as plan_walk: a walk over levels
+        return [
+            plan_level_walk(workplace, start, goal, model, np.random.default_rng(s), options)
+            for s in streams
+        ]
+    planner = HybridPlanner(workplace, goal, model, options)
     return [planner.plan(start, np.random.default_rng(s)) for s in streams]

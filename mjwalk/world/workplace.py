@@ -23,7 +23,9 @@ from mjwalk.world.floor import (
     find_floor,
 )
 from mjwalk.world.footprint import Footprint, geom_footprint
+from mjwalk.world.levels import LevelGraph, level_graph
 from mjwalk.world.meshimport import concave_mesh_footprints
+from mjwalk.world.surfaces import SurfaceOptions, find_walk_surfaces
 
 #: Bodies whose name starts with one of these are part of a humanoid, never obstacles (the
 #: humanoid mjwalk attaches names its bodies :data:`mjwalk.body.humanoid.HUMAN_PREFIX`).
@@ -123,6 +125,30 @@ class Workplace:
     #: Content key of the arrays cached on disk (:mod:`mjwalk.world.cache`), None when the
     #: workplace is not cached.
     cache_key: str | None = None
+    #: How the scene was read (None: the defaults); level views (:mod:`mjwalk.world.levelview`)
+    #: select their obstacles alike.
+    options: WorkplaceOptions | None = None
+
+    @property
+    def levels(self) -> LevelGraph:
+        """The scene's walk surfaces grouped into levels and joined by steps, ramps and stairs
+        (:func:`mjwalk.world.levels.level_graph`), found once on first use (about 0.1-0.3 s) and
+        kept; a flat scene has exactly one level, the floor. The surfaces are selected by the
+        same groups and name patterns as the obstacles."""
+        cached = getattr(self, "_levels", None)
+        if cached is None:
+            o = self.options or WorkplaceOptions()
+            groups = None if o.groups is None else frozenset(o.groups)
+            surface_options = SurfaceOptions(
+                groups=groups,
+                include=o.include,
+                exclude=o.exclude,
+                humanoid_prefixes=o.humanoid_prefixes,
+            )
+            cached = self._levels = level_graph(
+                find_walk_surfaces(self.model, None, surface_options)
+            )
+        return cached
 
     @property
     def obstacle_geoms(self) -> list[int]:
@@ -371,7 +397,7 @@ def workplace_from_model(
     if fx > 0 and fy > 0:  # a finite floor: refused before the obstacles are read
         cx, cy = data.geom_xpos[floor][:2]
         check_floor_nodes((cx - fx, cy - fy, cx + fx, cy + fy), resolution, label, floor_name)
-    footprints = _obstacle_footprints(model, data, floor, options, label)
+    footprints = obstacle_footprints(model, data, floor, options, label)
     if fx > 0 and fy > 0:
         cx, cy = data.geom_xpos[floor][:2]
         bounds = (cx - fx, cy - fy, cx + fx, cy + fy)
@@ -393,24 +419,44 @@ def workplace_from_model(
         stations=_stations(model, data),
         z_range=options.z_range,
         cache_key=key,
+        options=options,
     )
 
 
-def _obstacle_footprints(
+def obstacle_footprints(
     model: mujoco.MjModel,
     data: mujoco.MjData,
     floor: int,
     options: WorkplaceOptions,
     label: str,
+    base: float | None = None,
+    skip: frozenset[int] = frozenset(),
 ) -> list[Footprint]:
     """The footprints of the obstacle geoms ``options`` selects (not the floor, not a
-    humanoid's, not planes), cut to its height band above the floor."""
+    humanoid's, not planes), cut to its height band above the floor (or above ``base``).
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done.
+        floor: the floor geom's id.
+        options: the selection (groups, name patterns, humanoid prefixes) and the height band.
+        label: the scene's name in errors.
+        base: world height the band is measured from, metres (None: the floor's; a level's
+            height for :mod:`mjwalk.world.levelview`).
+        skip: further geom ids that are never obstacles (a level's own surfaces).
+
+    Returns:
+        The footprints, in geom order (a concave mesh gives several pieces).
+
+    Raises:
+        SceneError: a height field or SDF geom among the selected ones.
+    """
     groups, include, exclude = options.groups, options.include, options.exclude
     z_range = options.z_range
-    floor_z = float(data.geom_xpos[floor][2])
+    floor_z = float(data.geom_xpos[floor][2]) if base is None else float(base)
     footprints: list[Footprint] = []
     for g in range(model.ngeom):
-        if g == floor or _is_humanoid_geom(model, g, options.humanoid_prefixes):
+        if g == floor or g in skip or _is_humanoid_geom(model, g, options.humanoid_prefixes):
             continue
         gname = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
         if groups is not None and model.geom_group[g] not in groups:

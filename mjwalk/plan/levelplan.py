@@ -1,0 +1,343 @@
+"""Walks over several levels: a hierarchical plan (issue 47).
+
+:func:`plan_level_walk` plans a walk whose start or goal stands on a raised surface -- a
+platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
+<mjwalk.world.workplace.Workplace.levels>`):
+
+1. the route over levels (:func:`mjwalk.plan.levelroute.level_route`): a Dijkstra over the
+   crossings' stances, each level's obstacle-aware distance at the walker's speed, each crossing
+   at its gait's time, a step or stair only where every riser fits the walker's step-up limit
+   and the walker's head has room (a walker below a riser takes the ramp);
+2. on each level the hybrid A* unchanged (:class:`~mjwalk.plan.hybrid.HybridPlanner`) in the
+   level's view (:func:`mjwalk.world.levelview.level_view`: its surfaces, its obstacles up to
+   the walker's head), from the start or a crossing's stance to the next crossing's stance
+   (arriving facing up or down it, ending in the planner's goal area about it) or the goal;
+3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`);
+
+stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
+under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
+length and steps of the walk per level and per kind (``level``, ``stairs``, ``ramps``,
+``steps``). A walk whose start and goal both stand on the floor is not this module's: it is
+planned exactly as in a flat scene (:func:`needs_levels`). Metres, seconds, radians.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from mjwalk.errors import PlanningError
+from mjwalk.gait.walker import Walker
+from mjwalk.plan.heuristic import goal_distance
+from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.levelcross import cross_walk, crossing_time
+from mjwalk.plan.levelroute import (
+    Crossing,
+    RouteLeg,
+    crossings,
+    dijkstra,
+    head_fits_crossing,
+    step_up_limit,
+)
+from mjwalk.plan.levelstitch import level_meta, stitch
+from mjwalk.plan.occupancy import CELL_SIZE, MOVES_16, shared_grid
+from mjwalk.plan.options import PlannerOptions
+from mjwalk.plan.request import WalkRequest
+from mjwalk.plan.walkpath import WalkPath
+from mjwalk.world.levelview import level_at, level_view
+from mjwalk.world.norms import EXPOSED_MIN, HEAD_MARGIN
+from mjwalk.world.workplace import Workplace
+
+#: Route legs shorter than this are not walked (the walker stands there already), metres.
+STANCE_TOLERANCE = 0.15
+
+
+@dataclass(frozen=True)
+class Endpoint:
+    """A walk's start or goal placed on a level.
+
+    Attributes:
+        where: as the caller gave it (site, "x,y[,yaw_deg]", tuple).
+        xy: world xy, metres.
+        level: the level it stands on.
+    """
+
+    where: object
+    xy: np.ndarray
+    level: int
+
+
+def _site_z(workplace: Workplace, where) -> float | None:
+    """The world height of a named site, else None."""
+    if isinstance(where, str) and where in workplace.stations:
+        return float(workplace.stations[where].pos[2])
+    return None
+
+
+def _xy(workplace: Workplace, where) -> np.ndarray:
+    """World xy of a site, "x,y[,yaw_deg]" or (x, y[, yaw])."""
+    if isinstance(where, str) and where not in workplace.stations and where.count(",") == 2:
+        return workplace.point(",".join(where.split(",")[:2]))
+    if not isinstance(where, str):
+        return workplace.point(np.asarray(where, dtype=float).ravel()[:2])
+    return workplace.point(where)
+
+
+def needs_levels(workplace: Workplace, start, goal, radius: float) -> bool:
+    """Whether a walk needs the level planner: its start or goal stands on a surface above the
+    floor. A point clear on the floor (and a site no higher than
+    :data:`mjwalk.world.norms.EXPOSED_MIN` above it) is on the floor without looking at the
+    levels, so flat scenes never build them.
+
+    Args:
+        workplace: the scene.
+        start: as :func:`mjwalk.plan.walks.plan_walk` takes it.
+        goal: as :func:`mjwalk.plan.walks.plan_walk` takes it.
+        radius: the body radius, metres.
+
+    Returns:
+        True when either end stands on another level than the floor's.
+    """
+    for where in (goal, start):  # the goal first, as the planner parses them
+        xy = _xy(workplace, where)
+        z = _site_z(workplace, where)
+        high = z is not None and z - workplace.floor_z > EXPOSED_MIN
+        if not high and float(workplace.walk_clearance(xy)) >= radius:
+            continue
+        if len(workplace.levels.levels) > 1 and level_at(workplace, xy, z) not in (0, None):
+            return True
+    return False
+
+
+def endpoint(workplace: Workplace, where, what: str) -> Endpoint:
+    """Place a start or goal on its level.
+
+    Args:
+        workplace: the scene.
+        where: a site, "x,y[,yaw_deg]" or (x, y[, yaw]).
+        what: "start" or "goal", for messages.
+
+    Returns:
+        The endpoint.
+
+    Raises:
+        PlanningError: the point stands on no level (on a ramp, or on no surface).
+    """
+    xy = _xy(workplace, where)
+    z = _site_z(workplace, where)
+    high = z is not None and z - workplace.floor_z > EXPOSED_MIN
+    if not high and float(workplace.walk_clearance(xy)) > 0.0:
+        return Endpoint(where, xy, 0)
+    lv = level_at(workplace, xy, z)
+    if lv is None:
+        raise PlanningError(
+            f"{what} ({xy[0]:.3f}, {xy[1]:.3f}) stands on no level of {workplace.name} (on a ramp "
+            "or on no walk surface)"
+        )
+    return Endpoint(where, xy, int(lv))
+
+
+def level_route(
+    workplace: Workplace,
+    start: Endpoint,
+    goal: Endpoint,
+    walker: Walker,
+    options: PlannerOptions,
+    max_riser: float,
+) -> list[RouteLeg]:
+    """The route over levels (module docstring, 1.).
+
+    Args:
+        workplace: the scene.
+        start: the walk's start on its level.
+        goal: the walk's goal on its level.
+        walker: the walker (speed, stature, stair and ramp gait).
+        options: the planner's options (body radius, goal field cells).
+        max_riser: the walker's step-up limit, metres.
+
+    Returns:
+        The legs: walks on levels and crossings, in order.
+
+    Raises:
+        PlanningError: no route the walker can take.
+    """
+    head = walker.stature + HEAD_MARGIN
+    usable = [
+        c
+        for c in _crossings(workplace, options.radius + CELL_SIZE)
+        if c.fits(max_riser) and _head_fits(workplace, c, walker.stature)
+    ]
+    # nodes: 0 start, 1 goal, then each crossing's lower and upper stance
+    nodes = [(start.level, start.xy), (goal.level, goal.xy)]
+    for c in usable:
+        nodes += [(c.lower, c.end(c.lower)), (c.upper, c.end(c.upper))]
+    edges: dict[int, list[tuple[int, float]]] = {}
+    for k, c in enumerate(usable):
+        lo, hi = 2 + 2 * k, 3 + 2 * k
+        edges.setdefault(lo, []).append((hi, crossing_time(c, "up", walker)))
+        edges.setdefault(hi, []).append((lo, crossing_time(c, "down", walker)))
+    for v, (lv, xy) in enumerate(nodes):
+        if v == 0:
+            continue  # nothing walks to the start
+        field = _node_field(workplace, lv, xy, head, options)
+        for u, (lu, uxy) in enumerate(nodes):
+            if u != v and lu == lv and u != 1:
+                d = _distance(workplace, field, uxy) if v >= 2 and u >= 2 else float(field(uxy))
+                if math.isfinite(d):
+                    edges.setdefault(u, []).append((v, d / walker.speed))
+    path, _ = dijkstra(len(nodes), edges, 0, 1)
+    if path is None:
+        raise PlanningError(
+            f"no route from level L{start.level} to level L{goal.level} of {workplace.name} for "
+            f"this walker (step-up limit {max_riser:.2f} m, stature {walker.stature:.2f} m)"
+        )
+    return _legs(path, nodes, usable)
+
+
+def _node_field(workplace: Workplace, level: int, xy: np.ndarray, head: float, options):
+    """The distance field (:func:`mjwalk.plan.heuristic.goal_distance`) to a route node on its
+    level's view, kept on the workplace per node, head height and planner grid."""
+    cache = workplace.__dict__.setdefault("_node_fields", {})
+    key = (
+        level, float(xy[0]), float(xy[1]), round(head, 3), options.radius, options.cell,
+        options.field_cells,
+    )  # fmt: skip
+    if key not in cache:
+        view = level_view(workplace, level, head)
+        grid = shared_grid(view, options.cell, options.radius, MOVES_16)
+        cache[key] = goal_distance(grid, xy, options.field_cells)
+    return cache[key]
+
+
+def _distance(workplace: Workplace, field, xy: np.ndarray) -> float:
+    """``field(xy)`` between two crossing stances, kept on the workplace."""
+    cache = workplace.__dict__.setdefault("_node_distances", {})
+    key = (id(field), float(xy[0]), float(xy[1]))
+    if key not in cache:
+        cache[key] = float(field(xy))
+    return cache[key]
+
+
+def _crossings(workplace: Workplace, clear: float) -> list[Crossing]:
+    """:func:`mjwalk.plan.levelroute.crossings` of the workplace's levels, kept on it."""
+    cache = workplace.__dict__.setdefault("_crossings", {})
+    key = round(clear, 6)
+    if key not in cache:
+        cache[key] = crossings(workplace.levels, clear)
+    return cache[key]
+
+
+def _head_fits(workplace: Workplace, c: Crossing, stature: float) -> bool:
+    """:func:`mjwalk.plan.levelroute.head_fits_crossing`, kept on the workplace per stature."""
+    cache = workplace.__dict__.setdefault("_crossing_heads", {})
+    key = (id(c), round(stature, 3))
+    if key not in cache:
+        cache[key] = head_fits_crossing(workplace.levels, c, stature)
+    return cache[key]
+
+
+def _legs(path: list[int], nodes, usable: list[Crossing]) -> list[RouteLeg]:
+    """The route's legs from its Dijkstra nodes."""
+    legs = []
+    for u, v in itertools.pairwise(path):
+        (lu, uxy), (_, vxy) = nodes[u], nodes[v]
+        if u >= 2 and v >= 2 and (u - 2) // 2 == (v - 2) // 2:
+            c = usable[(u - 2) // 2]
+            direction = "up" if lu == c.lower else "down"
+            legs.append(RouteLeg("cross", lu, uxy, vxy, c, direction))
+        else:
+            legs.append(RouteLeg("level", lu, uxy, vxy))
+    return legs
+
+
+def _walker(model) -> Walker:
+    """The walker a model was conditioned on, else the reference adult."""
+    walker = getattr(model, "walker", None)
+    return walker if isinstance(walker, Walker) else Walker()
+
+
+def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng, options, head):
+    """The hybrid-A* walk of one level leg; None when its ends are within reach already."""
+    view = level_view(workplace, leg.level, head)
+    if float(np.hypot(*(leg.end - leg.start))) <= STANCE_TOLERANCE:
+        return None
+    if nxt is None:  # to the walk's goal
+        planner = HybridPlanner(view, leg.end, model, options)
+        return planner.plan(WalkRequest(start), rng)
+    c = nxt.crossing
+    assert c is not None
+    heading = c.yaw if nxt.direction == "up" else c.yaw + math.pi
+    planner = HybridPlanner(view, leg.end, model, options)
+    try:
+        return planner.plan(WalkRequest(start, goal_heading=heading), rng)
+    except PlanningError:  # a tight approach: the route search alone, the crossing aligns
+        return planner.plan(WalkRequest(start), rng)
+
+
+def plan_level_walk(
+    workplace: Workplace,
+    start,
+    goal,
+    model,
+    rng: np.random.Generator,
+    options: PlannerOptions | None = None,
+    max_riser: float | None = None,
+) -> WalkPath:
+    """Plan a walk between points on any levels (module docstring).
+
+    Args:
+        workplace: the scene.
+        start: a site, "x,y", "x,y,yaw_deg" or (x, y[, yaw]) (metres, radians), on any level.
+        goal: a site, "x,y" or (x, y), on any level.
+        model: the step model (its walker, if conditioned, gives speed, stature and gait).
+        rng: the random stream of the level walks.
+        options: the planner's options (None: the defaults).
+        max_riser: the walker's step-up limit, metres (None:
+            :func:`mjwalk.plan.levelroute.step_up_limit`'s default).
+
+    Returns:
+        The stitched walk: 120 Hz pelvis xy, yaw and surface height, the steps with their feet's
+        heights, ``meta["levels"]`` (route, and time, length, steps per level and kind).
+
+    Raises:
+        PlanningError: an end on no level, no route for the walker, or a level walk not found.
+    """
+    t0 = time.perf_counter()
+    options = PlannerOptions() if options is None else options
+    walker = _walker(model)
+    limit = step_up_limit(walker, max_riser)
+    head = walker.stature + HEAD_MARGIN
+    a, b = endpoint(workplace, start, "start"), endpoint(workplace, goal, "goal")
+    if a.level == b.level:
+        legs = [RouteLeg("level", a.level, a.xy, b.xy)]
+    else:
+        legs = level_route(workplace, a, b, walker, options, limit)
+    parts: list[tuple[RouteLeg, WalkPath]] = []
+    pose: object = start
+    for k, leg in enumerate(legs):
+        if leg.kind == "level":
+            nxt = legs[k + 1] if k + 1 < len(legs) else None
+            walk = _level_leg(workplace, leg, nxt, pose, model, rng, options, head)
+            if walk is not None:
+                parts.append((leg, walk))
+            continue
+        c = leg.crossing
+        assert c is not None
+        prev = parts[-1][1] if parts else None
+        here = (prev.xy[-1], float(prev.yaw[-1])) if prev is not None else (leg.start, c.yaw)
+        last = prev.steps[-1] if prev is not None and prev.steps else None
+        walk = cross_walk(c, leg.direction, walker, here, last, workplace.floor_z)
+        parts.append((leg, walk))
+        end_yaw = c.yaw if leg.direction == "up" else c.yaw + math.pi
+        pose = (float(leg.end[0]), float(leg.end[1]), end_yaw)
+    if not parts:
+        raise PlanningError("start and goal are within reach already: there is no walk to plan")
+    path = stitch(workplace, parts)
+    path.meta["levels"] = level_meta(workplace, parts, limit)
+    path.meta["goal"] = np.asarray(b.xy, dtype=float).tolist()
+    path.meta["seconds"] = time.perf_counter() - t0  # the route, the level walks, the crossings
+    return path.stamp_scene(workplace)

@@ -1,0 +1,352 @@
+"""Where a walker crosses between levels, and the route over levels a walk takes.
+
+A :class:`Crossing` is a way from one level to another a walker walks in one go: a stair, a
+ramp, or one or more single steps (step links through single treads, the levels of kind "tread"
+that have no room to stand on between them, e.g. a step of one tread up to a platform). It is
+laid out along its axis (the horizontal direction up it, perpendicular to its first riser or up
+the ramp): the stance where the walker stands before it on the lower level
+(:attr:`Crossing.approach`), the footfalls on its treads or along the ramp, and the stance on
+the upper level (:attr:`Crossing.exit`), both a body clearance from the level's edge so the
+level planners start and end there. :func:`crossings` finds them in a
+:class:`~mjwalk.world.levels.LevelGraph`; :func:`level_route` is the hierarchical route: a
+Dijkstra over the start, the goal and the crossings' stances, joined on each level by the
+obstacle-aware distance (the occupancy grid's distance field of the level's view,
+:func:`mjwalk.world.levelview.level_view`) and across levels by the crossings a walker may take:
+every riser at most the walker's step-up limit (:func:`step_up_limit`; a walker below a riser
+takes the ramp), with the head's room over every footfall. Costs are seconds: level distance at
+the walker's speed, crossings at their stair or ramp gait (:mod:`mjwalk.plan.levelcross`).
+Metres, radians, world frame.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from mjwalk.errors import PlanningError
+from mjwalk.gait.walker import Walker
+from mjwalk.world.levels import LevelGraph, LevelLink
+from mjwalk.world.norms import HEAD_MARGIN, MAX_RISER
+
+#: The tread ASR A1.8 §4.5 names particularly safe, 0.29 m (with a 0.17 m riser): a foot landing
+#: on a level from a single step lands half of it beyond the riser, as it would on a tread.
+SAFE_TREAD = 0.29
+#: A walker's default step-up limit, metres: the highest riser of a building stair, 0.19 m
+#: (DIN 18065:2020 Table 1; ASR A1.8 §4.5; :data:`mjwalk.world.norms.MAX_RISER`): every operator
+#: is expected to climb what a workplace stair may ask. Walkers who cannot (rollator users: a
+#: barrier-free route has no steps at all, DIN 18040-1 §4.3.2, "stufenlos") are given their own
+#: limit (0: ramps only).
+DEFAULT_STEP_UP = MAX_RISER
+
+
+def step_up_limit(walker: Walker | None, limit: float | None = None) -> float:
+    """The highest riser a walker steps up or down, metres.
+
+    Args:
+        walker: the walker (None: the reference adult).
+        limit: the walker's own limit, metres (None: :data:`DEFAULT_STEP_UP`).
+
+    Returns:
+        The limit, metres (>= 0).
+
+    Raises:
+        PlanningError: a negative or non-finite limit.
+    """
+    del walker  # every profile shares the cited default; a profile's own limit is given
+    value = DEFAULT_STEP_UP if limit is None else float(limit)
+    if not (math.isfinite(value) and value >= 0.0):
+        raise PlanningError(f"step-up limit {limit!r} m must be a number >= 0")
+    return value
+
+
+@dataclass(frozen=True, eq=False)
+class Crossing:
+    """A way between two levels, laid out along its axis (module docstring).
+
+    Attributes:
+        kind: "step" (one or more single steps), "stair" or "ramp".
+        lower, upper: the levels it joins (indices in the graph's levels).
+        risers: each riser's height bottom up, metres (a ramp: none).
+        origin: world xy of the middle of its first riser or the ramp's foot, metres.
+        axis: (2,) unit vector up it, horizontal.
+        track: (k,) positions along the axis of the footfalls a flight has, metres from the
+            origin: half a tread before the first riser, each tread's middle, half a tread past
+            the last riser (steps and stairs); the ramp's foot and head (ramps).
+        track_z: (k,) world heights of the surfaces at those footfalls, metres.
+        approach, exit: where the walker stands before it on the lower level and after it on
+            the upper, metres along the axis (a body clearance off the edges).
+        z_lower, z_upper: the two levels' world heights, metres.
+        tread: the stair's or steps' tread depth, metres (a ramp: its run).
+        slope: a ramp's inclination, radians (0 otherwise).
+    """
+
+    kind: str
+    lower: int
+    upper: int
+    risers: tuple[float, ...]
+    origin: np.ndarray
+    axis: np.ndarray
+    track: np.ndarray
+    track_z: np.ndarray
+    approach: float
+    exit: float
+    z_lower: float
+    z_upper: float
+    tread: float
+    slope: float
+
+    def point(self, s) -> np.ndarray:
+        """World xy at positions along the axis.
+
+        Args:
+            s: position(s) along the axis from the origin, metres.
+
+        Returns:
+            (..., 2) world xy, metres.
+        """
+        return self.origin + np.multiply.outer(np.asarray(s, dtype=float), self.axis)
+
+    def end(self, level: int) -> np.ndarray:
+        """Where the walker stands at one end.
+
+        Args:
+            level: ``lower`` or ``upper``.
+
+        Returns:
+            (2,) world xy of the approach (lower) or exit (upper) stance, metres.
+        """
+        return self.point(self.approach if level == self.lower else self.exit)
+
+    def height_at(self, s) -> np.ndarray:
+        """Surface height under positions along the axis (world metres): the lower level before
+        the first riser, each tread's between risers, the upper level past the last; on a ramp
+        its plane between foot and head.
+
+        Args:
+            s: position(s) along the axis, metres.
+
+        Returns:
+            Heights, world metres, shaped as ``s``.
+        """
+        s = np.asarray(s, dtype=float)
+        if self.kind == "ramp":
+            run = float(self.track[-1])
+            frac = np.clip(s / run, 0.0, 1.0)
+            return self.z_lower + frac * (self.z_upper - self.z_lower)
+        edges = 0.5 * (self.track[:-1] + self.track[1:])  # the risers between footfalls
+        return self.track_z[np.searchsorted(edges, s, side="right")]
+
+    @property
+    def yaw(self) -> float:
+        """The axis' heading, radians from +x (up the crossing)."""
+        return float(math.atan2(self.axis[1], self.axis[0]))
+
+    def fits(self, max_riser: float) -> bool:
+        """Whether every riser is at most ``max_riser`` metres (a ramp always fits).
+
+        Args:
+            max_riser: the walker's step-up limit, metres.
+
+        Returns:
+            True when the walker takes it.
+        """
+        return all(r <= max_riser + 1e-9 for r in self.risers)
+
+
+def _mid(seg) -> np.ndarray:
+    return 0.5 * (np.asarray(seg[0], dtype=float) + np.asarray(seg[1], dtype=float))
+
+
+def _axis_up(graph: LevelGraph, edge, upper_surfaces: Sequence[int]) -> np.ndarray:
+    """The unit normal of ``edge`` pointing onto the surfaces above it."""
+    a, b = (np.asarray(p, dtype=float) for p in edge)
+    d = (b - a) / max(float(np.linalg.norm(b - a)), 1e-12)
+    n = np.array([-d[1], d[0]])
+    probe = _mid(edge) + 0.05 * n
+    if any(bool(graph.surfaces[i].contains(probe)) for i in upper_surfaces):
+        return n
+    return -n
+
+
+def _step_chains(graph: LevelGraph) -> list[list[LevelLink]]:
+    """Chains of step links from a non-tread level up over tread levels to a non-tread one."""
+    kind = [lv.kind for lv in graph.levels]
+    steps = [k for k in graph.links if k.kind == "step"]
+    out = []
+    for first in steps:
+        if kind[first.lower] == "tread":
+            continue
+        todo = [[first]]
+        while todo:
+            chain = todo.pop()
+            top = chain[-1].upper
+            if kind[top] != "tread":
+                out.append(chain)
+                continue
+            if len(chain) >= len(steps):
+                continue
+            todo.extend(chain + [k] for k in steps if k.lower == top)
+    return out
+
+
+def _flight(graph: LevelGraph, edges, risers, lower: int, upper: int, kind: str, clear: float):
+    """A step or stair crossing over ``edges`` (bottom up) with ``risers``."""
+    above = _surfaces_above(graph, edges[0], lower)
+    axis = _axis_up(graph, edges[0], above)
+    origin = _mid(edges[0])
+    d = np.array([float((_mid(e) - origin) @ axis) for e in edges])
+    tread = float(np.mean(np.diff(d))) if len(d) > 1 else SAFE_TREAD
+    half = 0.5 * tread
+    track = np.concatenate([[d[0] - half], 0.5 * (d[:-1] + d[1:]), [d[-1] + half]])
+    z0 = graph.levels[lower].height
+    track_z = z0 + np.concatenate([[0.0], np.cumsum(risers)])
+    return Crossing(
+        kind, lower, upper, tuple(float(r) for r in risers), origin, axis, track, track_z,
+        -clear, float(d[-1]) + clear, z0, graph.levels[upper].height, tread, 0.0,
+    )  # fmt: skip
+
+
+def _surfaces_above(graph: LevelGraph, edge, lower: int) -> list[int]:
+    """The surfaces that touch ``edge`` and are not on level ``lower``."""
+    probe = _mid(edge)
+    near = []
+    for i, s in enumerate(graph.surfaces):
+        if graph.level_of[i] == lower:
+            continue
+        if float(s.footprint.signed_distance(probe[None])[0]) <= 0.03:
+            near.append(i)
+    return near
+
+
+def _ramp(graph: LevelGraph, link: LevelLink, clear: float) -> Crossing:
+    """The crossing of a ramp link."""
+    s = graph.surfaces[link.via[0]]
+    axis = np.array([math.cos(s.uphill), math.sin(s.uphill)])
+    origin = _mid(link.lower_edge)
+    run = float((_mid(link.upper_edge) - origin) @ axis)
+    z0, z1 = graph.levels[link.lower].height, graph.levels[link.upper].height
+    return Crossing(
+        "ramp", link.lower, link.upper, (), origin, axis, np.array([0.0, run]),
+        np.array([z0, z1]), -clear, run + clear, z0, z1, run, float(link.slope or 0.0),
+    )  # fmt: skip
+
+
+def crossings(graph: LevelGraph, clear: float) -> list[Crossing]:
+    """The crossings of a level graph: its stairs and ramps, and its chains of single steps
+    over tread levels (module docstring).
+
+    Args:
+        graph: the scene's levels and links.
+        clear: how far from a level's edge the walker stands before and after a crossing,
+            metres (the body radius and a grid cell).
+
+    Returns:
+        The crossings, stairs and ramps in the graph's order, then the step chains.
+    """
+    out = []
+    for k in graph.links:
+        if k.kind == "ramp":
+            out.append(_ramp(graph, k, clear))
+        elif k.kind == "stair":
+            edges = [k.lower_edge]
+            for i in k.via:  # each tread's far edge is the next riser
+                edges.append(_riser_after(graph.surfaces[i], edges[-1]))
+            out.append(_flight(graph, edges, k.risers, k.lower, k.upper, "stair", clear))
+    for chain in _step_chains(graph):
+        edges = [c.lower_edge for c in chain]
+        risers = [c.rise for c in chain]
+        out.append(_flight(graph, edges, risers, chain[0].lower, chain[-1].upper, "step", clear))
+    return out
+
+
+def _riser_after(tread, below) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The far edge of a stair tread (the next riser's), parallel to the riser ``below``:
+    ``below`` moved across the tread by its depth."""
+    a, b = (np.asarray(p, dtype=float) for p in below)
+    d = (b - a) / max(float(np.linalg.norm(b - a)), 1e-12)
+    n = np.array([-d[1], d[0]])
+    centre = np.asarray(tread.centre, dtype=float)
+    off = float((centre - _mid(below)) @ n)
+    shift = 2.0 * off * n  # the tread's centre lies half its depth beyond its near edge
+    (x0, y0), (x1, y1) = a + shift, b + shift
+    return ((float(x0), float(y0)), (float(x1), float(y1)))
+
+
+@dataclass(frozen=True)
+class RouteLeg:
+    """One part of a route over levels.
+
+    Attributes:
+        kind: "level" (a walk on one level) or "cross" (a crossing).
+        level: the level walked on (a "level" leg) or the level left (a "cross" leg).
+        start, end: world xy where it starts and ends, metres.
+        crossing: the crossing (a "cross" leg), else None.
+        direction: "up" or "down" (a "cross" leg), else "".
+    """
+
+    kind: str
+    level: int
+    start: np.ndarray
+    end: np.ndarray
+    crossing: Crossing | None = None
+    direction: str = ""
+
+
+def head_fits_crossing(graph: LevelGraph, c: Crossing, stature: float) -> bool:
+    """Whether a walker's head has room over every footfall and stance of a crossing.
+
+    Args:
+        graph: the level graph.
+        c: the crossing.
+        stature: the walker's stature, metres.
+
+    Returns:
+        True when the free height at every point is at least stature plus
+        :data:`mjwalk.world.norms.HEAD_MARGIN`.
+    """
+    s = np.concatenate([[c.approach], c.track, [c.exit]])
+    for p, z in zip(c.point(s), c.height_at(s), strict=True):
+        i = graph.surface_at(p, float(z))
+        if i is None:
+            continue  # the edge between two surfaces: its neighbours decide
+        if float(graph.surfaces[i].free_height(p)) < stature + HEAD_MARGIN:
+            return False
+    return True
+
+
+def dijkstra(n: int, edges: dict[int, list[tuple[int, float]]], source: int, target: int):
+    """Least-cost path in a small graph.
+
+    Args:
+        n: number of nodes.
+        edges: for each node, its (neighbour, cost) pairs.
+        source: the first node's index.
+        target: the last node's index.
+
+    Returns:
+        The nodes from source to target, or None when the target is unreachable; and the cost.
+    """
+    dist = [math.inf] * n
+    prev = [-1] * n
+    dist[source] = 0.0
+    heap = [(0.0, source)]
+    while heap:
+        d, u = heapq.heappop(heap)
+        if d > dist[u]:
+            continue
+        if u == target:
+            break
+        for v, w in edges.get(u, []):
+            if d + w < dist[v]:
+                dist[v], prev[v] = d + w, u
+                heapq.heappush(heap, (d + w, v))
+    if not math.isfinite(dist[target]):
+        return None, math.inf
+    path = [target]
+    while path[-1] != source:
+        path.append(prev[path[-1]])
+    return path[::-1], dist[target]

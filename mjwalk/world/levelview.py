@@ -1,0 +1,181 @@
+"""One level of a multi-level workplace seen as a flat workplace, for the planners.
+
+A :class:`~mjwalk.world.workplace.Workplace` knows its levels (:attr:`Workplace.levels
+<mjwalk.world.workplace.Workplace.levels>`). :func:`level_view` makes the
+:class:`~mjwalk.world.workplace.Workplace` of one level that the clearance field, the occupancy
+grid, the grid-A* baseline and the hybrid A* work on unchanged:
+
+- its walkable region is the level's surfaces: the floor bounds are their extent, and where the
+  surfaces do not cover that extent (an L-shaped platform) the clearance field holds the distance
+  to the surfaces' edge, so every edge of the level is a wall; a walker leaves a level only over
+  a link, which the level planner (:mod:`mjwalk.plan.levelplan`) walks itself;
+- its obstacles are the geoms in the height band above the level's height, the band's foot the
+  workplace's (0.05 m) and its top the walker's head: stature plus
+  :data:`mjwalk.world.norms.HEAD_MARGIN` (a beam or a mezzanine's underside lower than that is an
+  obstacle for this walker and not for a shorter one). Without a head height the band is the
+  workplace's own (0.05-2.0 m).
+
+The floor's view with the workplace's own band is the workplace itself: flat scenes plan exactly
+as before. Views are built once per level and set of obstacles and kept on the workplace (walkers
+of nearby statures share a view when no geom's underside lies between their heads).
+:func:`level_at` tells which level a point stands on. Metres, world frame.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+from dataclasses import replace
+
+import mujoco
+import numpy as np
+from scipy import ndimage
+
+from mjwalk.errors import InputError, SceneError
+from mjwalk.world.clearance import ClearanceField, build_clearance
+from mjwalk.world.floor import find_floor
+from mjwalk.world.norms import CONTACT_GAP, EXPOSED_MIN, HEADROOM_SCAN
+from mjwalk.world.workplace import Workplace, WorkplaceOptions, obstacle_footprints
+
+#: The key under which a workplace keeps its level views.
+_VIEWS = "_level_views"
+
+
+def level_at(workplace: Workplace, xy, z: float | None = None) -> int | None:
+    """The level a point stands on.
+
+    Args:
+        workplace: the scene.
+        xy: world point (x, y), metres.
+        z: the point's world height (a site's), metres; None: the highest surface there with
+            room above it.
+
+    Returns:
+        The level's index in ``workplace.levels.levels`` (0: the floor's), or None when the
+        point is on a ramp or on no surface.
+    """
+    graph = workplace.levels
+    x, y = (float(v) for v in np.asarray(xy, dtype=float)[:2])
+    s = graph.surface_at((x, y), z)
+    return None if s is None else graph.level_of[s]
+
+
+def _band_top(head: float | None, default: float) -> float:
+    """The obstacle band's top above a level, metres (checked)."""
+    if head is None:
+        return default
+    if not (math.isfinite(head) and EXPOSED_MIN < head <= HEADROOM_SCAN):
+        raise InputError(f"head height {head!r} m must be in ({EXPOSED_MIN}, {HEADROOM_SCAN}]")
+    return float(head)
+
+
+def level_view(workplace: Workplace, level: int, head: float | None = None) -> Workplace:
+    """The workplace of one level (module docstring), built once and kept on ``workplace``.
+
+    Args:
+        workplace: the scene.
+        level: the level's index in ``workplace.levels.levels`` (0: the floor).
+        head: the walker's head height above the level (stature plus
+            :data:`mjwalk.world.norms.HEAD_MARGIN`), metres; the top of the obstacle band.
+            None: the workplace's own band.
+
+    Returns:
+        The level's workplace: its surfaces' extent as floor bounds, the obstacles in its band,
+        the level's edges as walls in the clearance field; ``floor_z`` the level's height. The
+        floor's view with the workplace's band is ``workplace`` itself.
+
+    Raises:
+        InputError: an unknown level or a head height out of range.
+    """
+    graph = workplace.levels
+    if isinstance(level, bool) or not 0 <= int(level) < len(graph.levels):
+        raise InputError(f"{workplace.name}: no level {level!r} (it has {len(graph.levels)})")
+    lv = graph.levels[int(level)]
+    base = workplace.options or WorkplaceOptions()
+    top = _band_top(head, workplace.z_range[1])
+    if lv.index == 0 and top == workplace.z_range[1]:
+        return workplace
+    views = workplace.__dict__.setdefault(_VIEWS, {})
+    known = views.get((lv.index, round(top, 3)))  # this level and band seen before
+    if known is not None:
+        return views[known]
+    options = replace(base, z_range=(workplace.z_range[0], top), cache=False)
+    model = workplace.model
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    floor = find_floor(model, data, workplace.name)
+    own = frozenset(graph.surfaces[i].geom_id for i in lv.surfaces)
+    footprints = obstacle_footprints(
+        model, data, floor, options, workplace.name, base=lv.height, skip=own
+    )
+    key = _view_key(lv.index, footprints)
+    if key not in views:
+        views[key] = _build_view(workplace, lv.index, footprints, options)
+    views[(lv.index, round(top, 3))] = key
+    return views[key]
+
+
+def _view_key(level: int, footprints) -> str:
+    """A key for a level's set of obstacle footprints (views with equal keys are equal)."""
+    h = hashlib.sha256(str(level).encode())
+    for fp in footprints:
+        h.update(fp.name.encode())
+        h.update(np.round(np.asarray(fp.vertices, dtype=float), 4).tobytes())
+        h.update(np.round(np.array([fp.radius]), 4).tobytes())
+    return h.hexdigest()
+
+
+def _build_view(
+    workplace: Workplace, level: int, footprints, options: WorkplaceOptions
+) -> Workplace:
+    """The view of ``level`` with ``footprints`` as obstacles (:func:`level_view`)."""
+    graph = workplace.levels
+    lv = graph.levels[level]
+    resolution = workplace.clearance.resolution
+    if level == 0:
+        bounds = workplace.floor_bounds
+    else:
+        b = np.array([graph.surfaces[i].footprint.bounds() for i in lv.surfaces])
+        bounds = (
+            float(b[:, 0].min()),
+            float(b[:, 1].min()),
+            float(b[:, 2].max()),
+            float(b[:, 3].max()),
+        )
+    field = build_clearance(footprints, bounds, resolution)
+    if level != 0:
+        edge = _edge_field(graph, lv, field)
+        field = ClearanceField(field.x0, field.y0, field.resolution, np.minimum(field.values, edge))
+    return Workplace(
+        model=workplace.model,
+        source=workplace.source,
+        floor=workplace.floor,
+        floor_z=lv.height,
+        floor_bounds=bounds,
+        obstacles=footprints,
+        clearance=field,
+        stations=workplace.stations,
+        z_range=options.z_range,
+        cache_key=None,
+        options=options,
+    )
+
+
+def _edge_field(graph, lv, field: ClearanceField) -> np.ndarray:
+    """Distance from each node of ``field`` to the edge of the level's surfaces, metres
+    (negative off them): the surfaces joined across gaps up to
+    :data:`mjwalk.world.norms.CONTACT_GAP`, rasterised on the nodes, measured by a Euclidean
+    distance transform (exact to half a node)."""
+    gx, gy = field.grid_xy()
+    xy = np.stack(np.meshgrid(gx, gy), axis=-1)
+    sd = np.full(xy.shape[:2], np.inf)
+    for i in lv.surfaces:
+        sd = np.minimum(sd, graph.surfaces[i].footprint.signed_distance(xy))
+    inside = sd <= 0.5 * CONTACT_GAP
+    if not inside.any():
+        raise SceneError(f"level L{lv.index} has no node on its surfaces")
+    res = field.resolution
+    padded = np.pad(inside, 1, constant_values=False)  # beyond the extent: off the level
+    inner = ndimage.distance_transform_edt(padded)[1:-1, 1:-1] * res - 0.5 * res
+    outer = ndimage.distance_transform_edt(~inside) * res - 0.5 * res
+    return np.where(inside, inner, -outer)

@@ -1,0 +1,56 @@
+"""A walk over one crossing (mjwalk.plan.levelcross): footfalls on treads, stair and ramp timing."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjwalk.gait.slope import slope_gait
+from mjwalk.gait.stairs import ASCENT_STEP_TIME, DESCENT_STEP_TIME
+from mjwalk.gait.walker import Walker
+from mjwalk.plan.levelcross import cross_walk, crossing_time
+from mjwalk.plan.levelroute import crossings
+from mjwalk.world import load_workplace
+
+
+@pytest.fixture(scope="module")
+def by_kind(scenes_dir):
+    wp = load_workplace(scenes_dir / "multilevel_station.xml")
+    return {c.kind: c for c in crossings(wp.levels, 0.33)}
+
+
+@pytest.mark.parametrize("direction", ["up", "down"])
+def test_stair_walk_puts_a_foot_on_every_tread_at_the_stair_cadence(by_kind, direction):
+    stair, walker = by_kind["stair"], Walker()
+    start = stair.end(stair.lower if direction == "up" else stair.upper)
+    walk = cross_walk(stair, direction, walker, (start, stair.yaw), None, 0.0)
+    walk.validate()
+    heights = sorted({round(z, 3) for s in walk.steps for z in (s.foot_z, s.stance_z)})
+    assert heights == pytest.approx([0.0, 0.17, 0.34, 0.51, 0.68, 0.85, 1.02])
+    climbing = [s for s in walk.steps if abs(s.foot_z - s.stance_z) > 1e-6]
+    assert len(climbing) == 6  # one riser per step, never two
+    step_time = ASCENT_STEP_TIME if direction == "up" else DESCENT_STEP_TIME
+    for s in climbing:
+        assert (s.end - s.start) / 120.0 == pytest.approx(step_time, abs=1 / 120)
+    assert walk.ground[-1] == pytest.approx(1.02 if direction == "up" else 0.0)
+    assert crossing_time(stair, direction, walker) == pytest.approx(walk.duration, abs=0.05)
+
+
+def test_slower_walkers_take_longer_on_the_stair(by_kind):
+    stair = by_kind["stair"]
+    fast = crossing_time(stair, "up", Walker(speed=1.5))
+    slow = crossing_time(stair, "up", Walker(speed=0.9))
+    assert slow > fast
+
+
+def test_ramp_walk_follows_the_plane_at_the_ramp_pace(by_kind):
+    ramp, walker = by_kind["ramp"], Walker()
+    walk = cross_walk(ramp, "up", walker, (ramp.end(ramp.lower), ramp.yaw), None, 0.0)
+    walk.validate()
+    gait = slope_gait(walker, ramp.slope)
+    for s in walk.steps:
+        assert (s.end - s.start) / 120.0 == pytest.approx(gait.step_time, abs=1 / 120)
+        x = float(s.foot[0])
+        expected = float(np.clip((5.731033 - x) * np.tan(ramp.slope), 0.0, 0.34))
+        assert s.foot_z == pytest.approx(expected, abs=0.01)
+    assert walk.ground[-1] == pytest.approx(0.34)

@@ -1,0 +1,149 @@
+"""Walks over levels (mjwalk.plan.levelplan): the route takes the step, ramp or stair the walker
+can, the footfalls stand on the surfaces, flat walks plan as before. Seeded."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjwalk.errors import PlanningError
+from mjwalk.gait.default import default_model
+from mjwalk.gait.walker import Walker
+from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.levelplan import endpoint, needs_levels, plan_level_walk
+from mjwalk.plan.walks import plan_walk, plan_walks
+from mjwalk.world import load_workplace
+from mjwalk.world.norms import MAX_RISER
+
+#: A platform 0.34 m high reached from the west by a step of one 0.17 m tread and from the east
+#: by a 5.5 deg ramp (the multi-level station's); with ``beam``, a beam 2.25 m above the floor
+#: over the step, 1.91 m above the platform where the step lands.
+BEAM_SCENE = """<mujoco model="beam_platform"><worldbody>
+<geom name="floor" type="plane" size="5.25 2 0.05" pos="1.25 0 0"/>
+<geom name="platform" type="box" size="2.2 0.8 0.17" pos="0 0 0.17"/>
+<geom name="step" type="box" size="0.15 0.6 0.085" pos="-2.35 0 0.085"/>
+{ramp}{beam}
+<site name="west" pos="-3.3 0 0"/><site name="on_platform" pos="1.0 0 0.34"/>
+</worldbody></mujoco>"""
+RAMP = (
+    '<geom name="ramp" type="box" size="1.773683 0.8 0.05" pos="3.960725 0 0.120230" '
+    'euler="0 5.5 0"/>'
+)
+BEAM = '<geom name="beam" type="box" size="0.6 1.5 0.05" pos="-2.2 0 2.30"/>'
+
+
+@pytest.fixture(scope="module")
+def model():
+    return default_model(progress=False)
+
+
+@pytest.fixture(scope="module")
+def station(scenes_dir):
+    return load_workplace(scenes_dir / "multilevel_station.xml")
+
+
+def _scene(tmp_path, ramp: bool, beam: bool):
+    path = tmp_path / f"beam_{ramp}_{beam}.xml"
+    path.write_text(BEAM_SCENE.format(ramp=RAMP if ramp else "", beam=BEAM if beam else ""))
+    return load_workplace(path)
+
+
+def _kinds(walk) -> list[str]:
+    return [r["kind"] for r in walk.meta["levels"]["route"]]
+
+
+def _check_heights(wp, walk) -> None:
+    """Every footfall's height is the surface's under it (1 cm); no step rises or falls more
+    than a riser from the stance foot; the walk is consistent."""
+    walk.validate()
+    graph = wp.levels
+    for s in walk.steps:
+        for pose, z in ((s.foot, s.foot_z), (s.stance, s.stance_z)):
+            i = graph.surface_at(pose[:2], z + wp.floor_z)
+            assert i is not None, f"foot at {pose[:2]} on no surface"
+            surface_z = float(graph.surfaces[i].height_at(np.asarray(pose[:2]))) - wp.floor_z
+            assert abs(surface_z - z) <= 0.01
+        assert abs(s.foot_z - s.stance_z) <= MAX_RISER + 1e-9
+    assert np.all(np.abs(np.diff(walk.ground)) < 0.05)  # the pelvis height moves smoothly
+
+
+def test_sites_on_platforms_are_placed_on_their_level(station):
+    assert endpoint(station, "stand_step", "start").level == 0
+    assert station.levels.levels[endpoint(station, "stand_platform1", "goal").level].kind == (
+        "platform"
+    )
+    assert needs_levels(station, "stand_step", "stand_platform1", 0.25)
+    assert not needs_levels(station, "stand_step", "stand_stair", 0.25)
+
+
+def test_walk_onto_the_platform_takes_the_step_or_the_ramp(station, model):
+    west = plan_walk(station, "stand_step", "stand_platform1", model, rng=3)
+    assert _kinds(west) == ["level", "step", "level"]
+    east = plan_walk(station, "stand_ramp", "stand_platform2", model, rng=3)
+    assert "ramp" in _kinds(east) and "step" not in _kinds(east)
+    for walk in (west, east):
+        _check_heights(station, walk)
+        assert walk.ground[-1] == pytest.approx(0.34, abs=1e-9)
+        assert walk.is_flat is False
+
+
+def test_a_walker_below_the_riser_takes_the_ramp(station, model):
+    walk = plan_level_walk(
+        station, "stand_step", "stand_platform1", model, np.random.default_rng(4), max_riser=0.15
+    )
+    assert "ramp" in _kinds(walk) and "step" not in _kinds(walk)
+    assert walk.meta["levels"]["max_riser"] == 0.15
+    _check_heights(station, walk)
+    with pytest.raises(PlanningError, match="no route"):  # the mezzanine has only its stair
+        plan_level_walk(
+            station, "stand_step", "stand_mezz_rack", model, np.random.default_rng(4),
+            max_riser=0.15,
+        )  # fmt: skip
+
+
+def test_walk_to_the_mezzanine_puts_one_foot_on_each_tread(station, model):
+    walk = plan_walk(station, "stand_stair", "stand_mezz_rack", model, rng=5)
+    assert _kinds(walk) == ["level", "stair", "level"]
+    _check_heights(station, walk)
+    graph = station.levels
+    treads = [s for s in graph.surfaces if s.kind == "tread" and s.name.startswith("stair")]
+    for tread in treads:
+        on = [s for s in walk.steps if bool(tread.contains(s.foot[:2])) and s.foot_z > 0.1]
+        assert len(on) == 1, f"{tread.name}: {len(on)} footfalls"
+        assert on[0].foot_z == pytest.approx(tread.z, abs=0.01)
+    stair = walk.meta["levels"]["per_kind"]["stairs"]
+    assert stair["steps"] == 8  # 5 treads, the landing, a level step and the closing step
+    assert walk.ground[-1] == pytest.approx(1.02, abs=1e-9)
+
+
+def test_walk_record_splits_time_length_and_steps(station, model):
+    walk = plan_walk(station, "stand_step", "stand_mezz_rack", model, rng=6)
+    rec = walk.meta["levels"]
+    total = sum(r["seconds"] for r in rec["route"])
+    assert total == pytest.approx(walk.duration, abs=0.02)
+    assert sum(r["steps"] for r in rec["per_kind"].values()) == len(walk.steps)
+    assert set(rec["per_level"]) == {"L0", f"L{len(station.levels.levels) - 1}"}
+
+
+def test_head_clearance_refuses_the_step_under_a_beam_for_a_tall_walker_only(tmp_path, model):
+    wp = _scene(tmp_path, ramp=True, beam=True)
+    short = plan_walk(wp, "west", "on_platform", model.for_walker(Walker(stature=1.65)), rng=1)
+    assert "step" in _kinds(short)
+    tall_model = model.for_walker(Walker(stature=1.95))
+    tall = plan_walk(wp, "west", "on_platform", tall_model, rng=1)
+    assert "ramp" in _kinds(tall) and "step" not in _kinds(tall)
+    no_ramp = _scene(tmp_path, ramp=False, beam=True)
+    with pytest.raises(PlanningError, match="no route"):
+        plan_walk(no_ramp, "west", "on_platform", tall_model, rng=1)
+    assert "step" in _kinds(plan_walk(no_ramp, "west", "on_platform", model, rng=1))
+
+
+def test_flat_scenes_plan_exactly_as_before(scenes_dir, model):
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    assert not needs_levels(wp, "stand_rack2", "stand_car1", 0.25)
+    walk = plan_walk(wp, "stand_rack2", "stand_car1", model, rng=7)
+    ref = HybridPlanner(wp, "stand_car1", model).plan("stand_rack2", np.random.default_rng(7))
+    np.testing.assert_array_equal(walk.xy, ref.xy)
+    assert walk.z is None and walk.meta["scene_fingerprint"] == ref.meta["scene_fingerprint"]
+    walks = plan_walks(wp, "stand_rack2", "stand_car1", model, n=2, seed=1)
+    assert all(w.z is None for w in walks)

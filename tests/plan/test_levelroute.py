@@ -1,0 +1,56 @@
+"""Crossings between levels and the route helpers (mjwalk.plan.levelroute)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjwalk.errors import PlanningError
+from mjwalk.plan.levelroute import (
+    DEFAULT_STEP_UP,
+    crossings,
+    dijkstra,
+    head_fits_crossing,
+    step_up_limit,
+)
+from mjwalk.world import load_workplace
+
+
+@pytest.fixture(scope="module")
+def station(scenes_dir):
+    return load_workplace(scenes_dir / "multilevel_station.xml")
+
+
+def test_the_station_has_a_step_a_ramp_and_a_stair(station):
+    by_kind = {c.kind: c for c in crossings(station.levels, 0.33)}
+    assert set(by_kind) == {"step", "ramp", "stair"}
+    stair = by_kind["stair"]
+    assert len(stair.risers) == 6 and stair.tread == pytest.approx(0.28, abs=1e-6)
+    # footfalls: half a tread before the first riser, the five tread centres, half a tread on top
+    np.testing.assert_allclose(np.diff(stair.track), 0.28, atol=1e-6)
+    np.testing.assert_allclose(stair.track_z, np.arange(7) * 0.17, atol=1e-6)
+    np.testing.assert_allclose(stair.point(stair.track[1])[1], -0.24, atol=1e-6)  # tread 1
+    step = by_kind["step"]
+    assert step.risers == pytest.approx((0.17, 0.17)) and step.lower == 0
+    assert step.height_at(np.array([-0.2, 0.1, 0.4])) == pytest.approx([0.0, 0.17, 0.34])
+    ramp = by_kind["ramp"]
+    assert ramp.slope == pytest.approx(np.radians(5.5), abs=1e-6)
+    assert float(ramp.height_at(ramp.track[-1] / 2)) == pytest.approx(0.17, abs=1e-6)
+    for c in by_kind.values():
+        assert c.exit - c.track[-1] > 0 and c.approach < 0
+
+
+def test_step_up_limit_and_fits(station):
+    assert step_up_limit(None) == DEFAULT_STEP_UP == 0.19
+    assert step_up_limit(None, 0.1) == 0.1
+    with pytest.raises(PlanningError, match="step-up limit"):
+        step_up_limit(None, -1.0)
+    kinds = {c.kind: c for c in crossings(station.levels, 0.33)}
+    assert kinds["ramp"].fits(0.0) and not kinds["stair"].fits(0.15)
+    assert head_fits_crossing(station.levels, kinds["stair"], 1.75)
+
+
+def test_dijkstra_finds_the_cheapest_path():
+    edges = {0: [(1, 5.0), (2, 1.0)], 2: [(1, 1.0)], 1: []}
+    assert dijkstra(3, edges, 0, 1) == ([0, 2, 1], 2.0)
+    assert dijkstra(3, {0: []}, 0, 1) == (None, float("inf"))
