@@ -20,7 +20,13 @@ false) then passes through :func:`lift_to_levels`:
   support of each step (smoothstep): up a stair the pelvis rises while the leading leg pulls up
   (a riser per step), down a stair it lowers while the stance leg yields. Where a grounded leg
   then cannot reach its foot, the pelvis lowers (smoothly).
-* **Joint angles** by the same leg IK as the flat synthesis, clipped to the joint ranges.
+* **Stepping down** (a stair descended, a drop of :data:`FOREFOOT_DROP` or more) the foot
+  lands on its forefoot (:data:`DESCENT_CONTACT_PITCH`) and lowers its heel in weight
+  acceptance (:func:`forefoot_landing`); the pelvis holds its height through forward
+  continuance and lowers in late single support (:data:`DESCENT_LOWER_FROM`).
+* **Joint angles** by the same leg IK as the flat synthesis, clipped to the joint ranges;
+  where a grounded ankle would dorsiflex past its range, the heel rises about the ball
+  (:func:`heel_rise`) instead of the ball sinking into the surface.
 
 The knee and hip flexion this gives on a stair is not prescribed: it follows from the geometry
 (a leg that lands one riser up flexes its knee and hip by the riser). The published peaks are
@@ -37,7 +43,7 @@ import numpy as np
 
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.body.legs.curves import smoothstep, spread
-from mjwalk.body.legs.edgeswing import FLAT_PITCH, StepSurfaces, edge_swing
+from mjwalk.body.legs.edgeswing import FLAT_PITCH, LEVEL_STEP, StepSurfaces, edge_swing
 from mjwalk.body.legs.ik import KNEE_MIN, generic_joint, leg_ik_world
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import FootTracks, StepFrames
@@ -64,6 +70,29 @@ KNEE_PEAK_DOWN = (80.0, 100.0)
 #: verified); ranges as those studies report them (NOT verified beyond the abstracts).
 HIP_PEAK_UP = (55.0, 75.0)
 HIP_PEAK_DOWN = (20.0, 45.0)
+
+#: Foot pitch at initial contact on a step down onto a lower tread, radians (toes down): stair
+#: descent lands on the forefoot with the ankle plantarflexed and lowers the heel in weight
+#: acceptance (McFadyen & Winter, J Biomech 21:733-744 (1988); Riener et al. 2002; forefoot and
+#: rearfoot strikes in stair descent compared by Jeon et al., J Mech Med Biol 19:1940031
+#: (2019), abstract verified here). About 20 deg plantarflexion at contact is read from the
+#: ankle curves of those studies as usually reproduced (NOT verified here): -20 deg.
+DESCENT_CONTACT_PITCH = math.radians(-20.0)
+#: A swing foot lands forefoot first where it lands this much (m) or more below where it lifted
+#: off: single steps down are landed rearfoot first at 5 and 15 cm and forefoot first at 25 and
+#: 35 cm (Frontiers Bioeng Biotechnol 12:1431988 (2024), "Evaluating plantar biomechanics
+#: while descending a single step with different heights", abstract verified here); a stair's
+#: swing foot drops two risers (0.34 m on a 0.17 m stair). 0.2 m: between 15 and 25 cm.
+FOREFOOT_DROP = 0.20
+#: Share of a step down's time (double support at its start, then the stance leg's single
+#: support) before the pelvis lowers onto the next tread. Stair descent's stance divides into
+#: weight acceptance (to ~14 % of the cycle), forward continuance (the body moves forward over
+#: the stance foot, to ~34 %) and controlled lowering (the stance knee flexes and lowers the
+#: body) (McFadyen & Winter 1988; the phase names are verified in secondary sources, the
+#: percentages as usually quoted are NOT verified here). A step is half a cycle from the stance
+#: foot's landing, so lowering starts at 34 / 50 = 0.68 of the step and ends at the next
+#: landing (late single support).
+DESCENT_LOWER_FROM = 0.68
 
 
 def surface_pitch(walk: WalkPath, print_: np.ndarray) -> float:
@@ -176,7 +205,10 @@ def level_tracks(
         air[fr.other][ids] = False
         z[fr.side][b], p[fr.side][b] = sf.land, sf.land_pitch
         l0, l1 = sf.pelvis_level()
-        level[ids] = l0 + (l1 - l0) * smoothstep(np.linspace(0.0, 1.0, b - a + 1))
+        u = np.linspace(0.0, 1.0, b - a + 1)
+        if sf.edged and l1 < l0 - LEVEL_STEP:  # down: forward continuance, then lowering
+            u = (u - DESCENT_LOWER_FROM) / (1.0 - DESCENT_LOWER_FROM)
+        level[ids] = l0 + (l1 - l0) * smoothstep(u)
     fl, sl = frames[-1], surfs[-1]
     tail = slice(fl.end, n)
     z[fl.side][tail], p[fl.side][tail] = sl.land, sl.land_pitch
@@ -194,6 +226,73 @@ def _tilt(ankle: np.ndarray, yaw: np.ndarray, slope: np.ndarray) -> np.ndarray:
     out[:, :2] -= (h * np.sin(slope))[:, None] * f
     out[:, 2] = h * np.cos(slope)
     return out
+
+
+def forefoot_landing(feet: FootTracks, fr: StepFrames, air: np.ndarray, geom: LegGeometry) -> None:
+    """A step down landed forefoot first: the landing foot touches its tread with the ball,
+    pitched :data:`DESCENT_CONTACT_PITCH` (toes down, the toes flat on the tread), and turns
+    about the ball onto its heel over the double support after landing (weight acceptance);
+    ``feet`` updated in place from the landing sample on.
+
+    Args:
+        feet: the foot tracks, their grounded samples already on their surfaces.
+        fr: the step (its swing side lands at ``fr.end``).
+        air: (n,) whether the landing foot is in the air; the other foot leaves the ground
+            at the end of the double support.
+        geom: the foot's lengths.
+    """
+    s, b = fr.side, fr.end
+    other_air = np.flatnonzero(air[b:])
+    w = b + (int(other_air[0]) if len(other_air) else max(len(air) - 1 - b, 0))
+    if w <= b:
+        return
+    idx = np.arange(b, w + 1)
+    p = DESCENT_CONTACT_PITCH * (1.0 - smoothstep((idx - b) / (w - b)))
+    flat = feet.ankle[s][w].copy()
+    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)  # footpivot.ball_offset
+    ah = geom.ankle_height
+    yaw = feet.fyaw[s][idx]
+    f = np.stack([np.cos(yaw), np.sin(yaw)], -1)
+    fw = ball - ball * np.cos(p) - ah * np.sin(p)  # the ankle's offset from its flat place
+    feet.ankle[s][idx, :2] = flat[:2] + fw[:, None] * f
+    feet.ankle[s][idx, 2] = flat[2] - ah - ball * np.sin(p) + ah * np.cos(p)
+    feet.pitch[s][idx] = p
+    feet.toe[s][idx] = -p
+
+
+def heel_rise(feet: FootTracks, s: str, dorsi: np.ndarray, grounded: np.ndarray,
+              geom: LegGeometry) -> bool:  # fmt: skip
+    """Where a grounded foot's ankle would dorsiflex past its range (the stance leg flexed
+    over a foot on a stair or a ramp), the heel rises instead: the foot turns toes down about
+    its ball by the excess (the toes kept on the surface), so that clipping the ankle does not
+    push the ball below the surface. ``feet`` updated in place.
+
+    Args:
+        feet: the foot tracks.
+        s: the side ("l"/"r").
+        dorsi: (n,) the IK's ankle flexion, radians (+ dorsiflexion), before clipping.
+        grounded: (n,) whether the foot is on its surface.
+        geom: the foot's lengths.
+
+    Returns:
+        whether any sample changed.
+    """
+    excess = np.where(grounded, dorsi - math.radians(ROM_DEG["ankle_flex"][1]), 0.0)
+    idx = np.flatnonzero(excess > 1e-4)
+    if not len(idx):
+        return False
+    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)  # footpivot.ball_offset
+    ah, p = geom.ankle_height, feet.pitch[s][idx]
+    p2 = p - excess[idx]
+    f = np.stack([np.cos(feet.fyaw[s][idx]), np.sin(feet.fyaw[s][idx])], -1)
+    # the ball's place in the foot's (forward, up) plane, kept while the pitch changes
+    dx = ball * (np.cos(p) - np.cos(p2)) + ah * (np.sin(p) - np.sin(p2))
+    dz = ball * (np.sin(p) - np.sin(p2)) - ah * (np.cos(p) - np.cos(p2))
+    feet.ankle[s][idx, :2] += dx[:, None] * f
+    feet.ankle[s][idx, 2] += dz
+    feet.pitch[s][idx] = p2
+    feet.toe[s][idx] = feet.toe[s][idx] + excess[idx]
+    return True
 
 
 def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, root: np.ndarray,
@@ -232,6 +331,9 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
         if not len(j):
             continue
         k = np.r_[j[0] - 1, j, fr.end]
+        forefoot = sf.edged and sf.lift - sf.land >= FOREFOOT_DROP
+        if forefoot:
+            forefoot_landing(feet, fr, tr.air[fr.other], geom)
         if sf.edged:
             # the foot held level through the swing (toes and sole straighten after lift-off,
             # the landing pitch taken at the end), as stair gait does: a foot pitched toes
@@ -263,6 +365,10 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
     angles: dict[str, np.ndarray] = {}
     for s in "lr":
         raw = leg_ik_world(feet.ankle[s], feet.fyaw[s], feet.pitch[s], new_root, yaw, s, geom)
+        for _ in range(3):
+            if not heel_rise(feet, s, raw[f"ankle_{s}_flex"], grounded[s], geom):
+                break
+            raw = leg_ik_world(feet.ankle[s], feet.fyaw[s], feet.pitch[s], new_root, yaw, s, geom)
         angles.update(
             {k: np.clip(v, *np.deg2rad(ROM_DEG[generic_joint(k)])) for k, v in raw.items()}
         )
