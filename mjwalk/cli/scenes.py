@@ -85,6 +85,17 @@ def cmd_scan(args: argparse.Namespace) -> int:
         print(describe(levels))
     heights = [] if levels is None else levels.heights
     others = [s for s in lv.surfaces if all(abs(s.height - h) > FLOOR_TOL for h in heights)]
+    pits = [s for s in others if s.height < -FLOOR_TOL]
+    others = [s for s in others if s.height >= -FLOOR_TOL]
+    if pits:
+        shown = ", ".join(
+            f"{s.height:+.2f} m ({s.area:.1f} m² at {s.x:.1f}, {s.y:.1f})" for s in pits
+        )
+        print(
+            f"surfaces below the floor (pits) are not supported as levels: {shown}; the scene "
+            "has no walk surface there and unscanned cells of it may be filled as floor (small "
+            "holes are): check the top view (--png) and fence the pit before planning near it"
+        )
     if others:
         shown = ", ".join(
             f"{s.height:+.2f} m ({s.area:.1f} m² at {s.x:.1f}, {s.y:.1f})" for s in others[:8]

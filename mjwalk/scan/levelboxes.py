@@ -37,10 +37,12 @@ from mjwalk.scan.scanlevels import (
     Layers,
     ScanLevel,
     ScanLink,
-    find_levels,
+    find_regions,
+    keep_reachable,
     min_rectangle,
     rectangle_size,
 )
+from mjwalk.scan.scanramps import ScanRamp, find_ramps, ramp_box, renumber
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.norms import (
     CONTACT_GAP,
@@ -76,8 +78,12 @@ class LevelPlan:
         rects: each level's box outline (4, 2) counter-clockwise, metres (None for the floor).
         plan: the floor plan with the levels and their sides taken out of its obstacles and
             voids.
-        boxes: the boxes on the levels: (name, centre (3,), half sizes (3,), material, yaw).
-        n_level_boxes: how many of ``boxes`` are the levels themselves (they come first).
+        boxes: the boxes on the levels: (name, centre (3,), half sizes (3,), material, yaw
+            radians or, for a tilted ramp, xyaxes (6,)).
+        n_level_boxes: how many of ``boxes`` are the levels and ramps themselves (they come
+            first, the levels' before the ramps').
+        ramps: the ramps between levels (:mod:`~mjwalk.scan.scanramps`), in the order of their
+            links.
     """
 
     levels: list[ScanLevel]
@@ -85,8 +91,9 @@ class LevelPlan:
     heights: list[float]
     rects: list[np.ndarray | None]
     plan: FloorPlan
-    boxes: list[tuple[str, np.ndarray, np.ndarray, str, float]]
+    boxes: list[tuple]
     n_level_boxes: int
+    ramps: list[ScanRamp] = dataclasses.field(default_factory=list)
 
 
 def _chains(levels: list[ScanLevel], pairs: list[tuple[int, int]]) -> list[list[int]]:
@@ -300,10 +307,14 @@ def scan_levels(levelled: np.ndarray, plan: FloorPlan) -> LevelPlan | None:
         None when no raised level is reachable from the floor (the scene is written as
         before); else the levels, links, boxes and the floor plan without them.
     """
-    levels, pairs, layers = find_levels(levelled, plan)
+    found, steps, layers = find_regions(levelled, plan)
+    ramps = find_ramps(levelled, plan, found)
+    levels, pairs, new = keep_reachable(found, steps, [(r.lower, r.upper) for r in ramps])
+    ramps = [renumber(r, new) for r in ramps if r.lower in new and r.upper in new]
     if len(levels) == 1:
         return None
     links, stairs = _links_and_stairs(levels, pairs, plan)
+    links += [ScanLink("ramp", r.lower, r.upper, (), slope=r.slope, run=r.length) for r in ramps]
     heights = [lv.height for lv in levels]
     rects = _rects(levels, pairs, plan)
     for chain, fit in stairs:
@@ -312,7 +323,12 @@ def scan_levels(levelled: np.ndarray, plan: FloorPlan) -> LevelPlan | None:
         top = rects[chain[-1]]
         if top is not None:
             rects[chain[-1]] = _snap_edge(top, fit["run"], fit["top_edge"])
-    return _assemble(levels, links, heights, rects, plan, layers)
+    for r in ramps:  # a level's edge where a ramp's end meets it
+        if (up := rects[r.upper]) is not None:
+            rects[r.upper] = _snap_edge(up, r.run, r.s_hi)
+        if (down := rects[r.lower]) is not None:
+            rects[r.lower] = _snap_edge(down, -r.run, -r.s_lo)
+    return _assemble(levels, links, heights, rects, plan, layers, ramps)
 
 
 def _assemble(
@@ -322,17 +338,20 @@ def _assemble(
     rects: list[np.ndarray | None],
     plan: FloorPlan,
     layers: Layers,
+    ramps: list[ScanRamp],
 ) -> LevelPlan:
-    """The boxes and the floor plan without the levels (see :func:`scan_levels`)."""
+    """The boxes and the floor plan without the levels and ramps (see :func:`scan_levels`)."""
     covers = _covers(rects, plan)
     d = math.ceil(CONTACT_GAP / plan.resolution) + 2
     grown = [ndimage.binary_dilation(c, np.ones((3, 3), bool), iterations=d) for c in covers]
-    boxes = [_level_box(i, rects[i], heights[i]) for i in range(1, len(levels))]  # type: ignore[arg-type]
+    boxes: list[tuple] = [_level_box(i, rects[i], heights[i]) for i in range(1, len(levels))]  # type: ignore[arg-type]
+    boxes += [ramp_box(r, f"scan_ramp_{k}") for k, r in enumerate(ramps)]
     n_levels = len(boxes)
+    on_ramps = _ramp_tops(ramps, plan)
 
     def free_of_higher(i: int, top: np.ndarray) -> np.ndarray:
-        """Cells of level ``i``'s band that are a higher level or its sides."""
-        out = np.zeros(plan.floor.shape, bool)
+        """Cells of level ``i``'s band that are a higher level or its sides, or a ramp."""
+        out = np.isfinite(on_ramps) & (top <= on_ramps + FLOOR_TOL)
         for j in range(1, len(levels)):
             if heights[j] > heights[i] + OBSTACLE_Z_RANGE[0] - FLOOR_TOL:
                 out |= covers[j] | (grown[j] & (top <= heights[j] + FLOOR_TOL))
@@ -351,12 +370,59 @@ def _assemble(
         mask = (layers.band[k] >= MIN_BAND_POINTS) & covers[i]
         mask &= ~free_of_higher(i, layers.top[k])
         boxes += _obstacle_boxes(mask, layers.top[k], heights[i], plan, f"scan_on_level{i}")
-    return LevelPlan(levels, links, heights, rects, new_plan, boxes, n_levels)
+    return LevelPlan(levels, links, heights, rects, new_plan, boxes, n_levels, ramps)
+
+
+def _ramp_tops(ramps: list[ScanRamp], plan: FloorPlan) -> np.ndarray:
+    """Per grid cell, the highest ramp surface over it or within ``CONTACT_GAP`` and two cells
+    of it (its sides' points), metres; -inf: none."""
+    ny, nx = plan.floor.shape
+    r = plan.resolution
+    gx, gy = np.meshgrid(plan.x0 + (np.arange(nx) + 0.5) * r, plan.y0 + (np.arange(ny) + 0.5) * r)
+    out = np.full((ny, nx), -np.inf)
+    d = CONTACT_GAP + 2 * r
+    for rp in ramps:
+        s = gx * rp.run[0] + gy * rp.run[1]
+        w = -gx * rp.run[1] + gy * rp.run[0]
+        near = (s >= rp.s_lo - d) & (s <= rp.s_hi + d) & (w >= rp.w_lo - d) & (w <= rp.w_hi + d)
+        z = rp.h_lo + np.clip(s - rp.s_lo, 0.0, rp.length) * math.tan(rp.slope)
+        out = np.where(near, np.maximum(out, z), out)
+    return out
+
+
+def levels_at(lp: LevelPlan, xy: np.ndarray) -> list[tuple[int, float]]:
+    """The raised levels a point stands on: inside a level's box outline and outside the
+    obstacle boxes standing on that level.
+
+    Args:
+        lp: the scan's levels.
+        xy: (2,) scene x, y, metres.
+
+    Returns:
+        (level index, written height in metres) for each such level, lowest index first; empty
+        when the point is on none (the floor is the caller's).
+    """
+    p = np.asarray(xy, dtype=np.float64)
+    out = []
+    for i in range(1, len(lp.levels)):
+        rect = lp.rects[i]
+        if rect is None:
+            continue
+        e1, e2 = rect[1] - rect[0], rect[3] - rect[0]
+        u, v = float((p - rect[0]) @ e1), float((p - rect[0]) @ e2)
+        if not (0 <= u <= e1 @ e1 and 0 <= v <= e2 @ e2):
+            continue
+        on = (b for b in lp.boxes[lp.n_level_boxes :] if b[0].startswith(f"scan_on_level{i}_"))
+        if any((np.abs(p - b[1][:2]) <= b[2][:2]).all() for b in on):
+            continue
+        out.append((i, lp.heights[i]))
+    return out
 
 
 def draw_levels(ax, lp: LevelPlan) -> None:
     """Draw the levels on a top view: each box outline filled by its height, labelled
-    ``L<i> +h m``, and each link as an arrow from the lower level up, labelled with its risers.
+    ``L<i> +h m``, each ramp hatched, and each link as an arrow from the lower level up,
+    labelled with its risers (a ramp's: along it, with its slope and rise).
 
     Args:
         ax: a matplotlib axes in world x, y metres.
@@ -375,7 +441,19 @@ def draw_levels(ax, lp: LevelPlan) -> None:
         ax.fill(*rect.T, color=cmap(h / top), alpha=0.55, lw=0.8, ec="k")
         c = rect.mean(axis=0)
         ax.annotate(f"L{lv.index} {h:+.2f} m", c, fontsize=6, ha="center", va="center")
+    for rp in lp.ramps:
+        ax.fill(*rp.rect.T, color=cmap(0.5 * (rp.h_lo + rp.h_hi) / top), alpha=0.55, lw=0.8,
+                ec="k", hatch="///")  # fmt: skip
+    ramps = iter(lp.ramps)
     for k in lp.links:
+        if k.kind == "ramp":
+            rp = next(ramps)
+            side = np.array([-rp.run[1], rp.run[0]]) * 0.5 * (rp.w_lo + rp.w_hi)
+            p, q = rp.s_lo * rp.run + side, rp.s_hi * rp.run + side
+            ax.annotate("", q, p, arrowprops={"arrowstyle": "->", "color": "#b03a2e", "lw": 1.0})
+            label = f"ramp {math.degrees(rp.slope):.1f}° {k.rise:.2f} m"
+            ax.annotate(label, 0.5 * (p + q), fontsize=5, color="#b03a2e")
+            continue
         a, b = (lp.rects[i] for i in (k.lower, k.upper))
         p = a.mean(axis=0) if a is not None else b.mean(axis=0) - 0.5  # type: ignore[union-attr]
         q = b.mean(axis=0) if b is not None else p
@@ -404,9 +482,17 @@ def describe(lp: LevelPlan) -> str:
             f"  L{lv.index} {lv.kind:<8} {h:+.3f} m {depth * width:7.2f} m2  {depth:.2f} x "
             f"{width:.2f} m at ({c[0]:.2f}, {c[1]:.2f}), plane rms {1000 * lv.rms:.1f} mm"
         )
+    ramps = iter(lp.ramps)
     for k in lp.links:
         if k.kind == "step":
             what = f"riser {k.rise:.3f} m"
+        elif k.kind == "ramp":
+            rp, deg = next(ramps), math.degrees(k.slope or 0.0)
+            what = (
+                f"rise {k.rise:.3f} m over {rp.length:.2f} m, slope {deg:.2f} deg "
+                f"({100 * math.tan(k.slope or 0.0):.1f} %), {rp.width:.2f} m wide, plane rms "
+                f"{1000 * rp.rms:.1f} mm"
+            )
         else:
             r, g = k.risers[0], k.tread or 0.0
             what = f"{len(k.risers)} risers x {r:.3f} m, tread {g:.3f} m (2h+g {2 * r + g:.3f} m)"

@@ -34,6 +34,7 @@ tolerance is fitted as one regular flight (:mod:`mjwalk.scan.levelboxes`). Metre
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -105,11 +106,14 @@ class ScanLink:
     """Where a walker gets from one scan level to another.
 
     Attributes:
-        kind: "step" (one riser) or "stair" (a regular flight).
+        kind: "step" (one riser), "stair" (a regular flight) or "ramp".
         lower, upper: the levels' indices.
-        risers: each riser's height, bottom up, metres (a stair's: its regular riser).
-        tread: a stair's tread depth, metres (None for a step).
-        via: a stair's tread levels, bottom up (empty for a step).
+        risers: each riser's height, bottom up, metres (a stair's: its regular riser; a ramp:
+            none).
+        tread: a stair's tread depth, metres (None otherwise).
+        via: a stair's tread levels, bottom up (empty otherwise).
+        slope: a ramp's inclination, radians (None otherwise).
+        run: a ramp's horizontal length, metres (None otherwise).
     """
 
     kind: str
@@ -118,10 +122,14 @@ class ScanLink:
     risers: tuple[float, ...]
     tread: float | None = None
     via: tuple[int, ...] = ()
+    slope: float | None = None
+    run: float | None = None
 
     @property
     def rise(self) -> float:
         """Height from the lower level to the upper, metres."""
+        if self.slope is not None and self.run is not None:
+            return self.run * math.tan(self.slope)
         return float(sum(self.risers))
 
 
@@ -232,6 +240,20 @@ def fit_plane(xyz: np.ndarray) -> tuple[float, float, float, float]:
         (h: the height at the points' centroid, rms: of the kept points' residuals, slope: the
         plane's tan inclination, slope_err: its standard error); metres and rise over run.
     """
+    _, h, grad, rms, err = plane_fit(xyz)
+    return h, rms, float(math.hypot(*grad)), err
+
+
+def plane_fit(xyz: np.ndarray) -> tuple[np.ndarray, float, np.ndarray, float, float]:
+    """The trimmed plane fit of :func:`fit_plane` with its gradient.
+
+    Args:
+        xyz: (M, 3) points, metres, M >= 3.
+
+    Returns:
+        (centre: (2,) the kept points' xy centroid, h: the height there, grad: (2,) dz/dx and
+        dz/dy, rms: of the kept residuals, slope_err: the gradient's standard error); metres.
+    """
     keep = np.ones(len(xyz), bool)
     for _ in range(4):
         p = xyz[keep]
@@ -248,7 +270,7 @@ def fit_plane(xyz: np.ndarray) -> tuple[float, float, float, float]:
         keep = new
     cov = rms**2 * np.linalg.pinv(a.T @ a)
     err = float(np.sqrt(max(cov[1, 1] + cov[2, 2], 0.0)))
-    return float(coef[0]), rms, float(math.hypot(coef[1], coef[2])), err
+    return c, float(coef[0]), np.array([coef[1], coef[2]]), rms, err
 
 
 def min_rectangle(cells: np.ndarray, x0: float, y0: float, res: float) -> np.ndarray:
@@ -396,17 +418,17 @@ def touching(lower: np.ndarray, upper: np.ndarray, res: float) -> bool:
     return float((rim & near).sum()) * res >= MIN_CROSSING
 
 
-def find_levels(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel], list, Layers]:
-    """The walk-surface levels of a levelled scan reachable from its floor.
+def find_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel], list, Layers]:
+    """Every horizontal walk-surface region of a levelled scan, reachable from the floor or not.
 
     Args:
         levelled: (N, 3) points, metres, floor at z = 0.
         plan: its floor plan (:func:`mjwalk.scan.obstacles.floor_plan`).
 
     Returns:
-        The levels (the floor first, then by height; only the floor when the scan is flat), the
-        steps between them as (lower, upper) index pairs, and the rasterised layers (the
-        floor's and each level's candidate height).
+        The regions (the floor first, ``index`` not yet set), the steps between them as
+        (lower, upper) index pairs (a riser of at most ``norms.MAX_RISER`` along touching
+        edges), and the rasterised layers (the floor's and each candidate height).
     """
     heights = candidate_heights(levelled)
     layers = rasterize_layers(levelled, heights, plan)
@@ -426,10 +448,30 @@ def find_levels(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel],
         for j, b in enumerate(found):
             if 0 < b.height - a.height <= MAX_RISER and touching(a.cells, b.cells, res):
                 steps.append((i, j))
+    return found, steps, layers
+
+
+def keep_reachable(
+    found: list[ScanLevel],
+    steps: list[tuple[int, int]],
+    ramps: Sequence[tuple[int, int]] = (),
+) -> tuple[list[ScanLevel], list[tuple[int, int]], dict[int, int]]:
+    """The regions reachable from the floor (``found[0]``) by steps or ramps, as levels.
+
+    Args:
+        found: the regions (:func:`find_regions`), the floor first.
+        steps: (lower, upper) pairs of regions a step apart.
+        ramps: (lower, upper) pairs of regions a ramp joins (:mod:`mjwalk.scan.scanramps`).
+
+    Returns:
+        The levels (the floor first, then by height, ``index`` set), the steps between them as
+        (lower, upper) level indices, and the map from region index to level index.
+    """
     seen, todo = {0}, [0]
+    joins = [*steps, *ramps]
     while todo:
         cur = todo.pop()
-        for i, j in steps:
+        for i, j in joins:
             for x, y in ((i, j), (j, i)):
                 if x == cur and y not in seen:
                     seen.add(y)
@@ -438,7 +480,24 @@ def find_levels(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel],
     new = {old: n for n, old in enumerate(keep)}
     levels = [_reindex(found[old], n) for n, old in enumerate(keep)]
     pairs = [(new[i], new[j]) for i, j in steps if i in new and j in new]
-    return levels, sorted(pairs), layers
+    return levels, sorted(pairs), new
+
+
+def find_levels(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel], list, Layers]:
+    """The walk-surface levels of a levelled scan reachable from its floor by steps.
+
+    Args:
+        levelled: (N, 3) points, metres, floor at z = 0.
+        plan: its floor plan (:func:`mjwalk.scan.obstacles.floor_plan`).
+
+    Returns:
+        The levels (the floor first, then by height; only the floor when the scan is flat), the
+        steps between them as (lower, upper) index pairs, and the rasterised layers (the
+        floor's and each level's candidate height).
+    """
+    found, steps, layers = find_regions(levelled, plan)
+    levels, pairs, _ = keep_reachable(found, steps)
+    return levels, pairs, layers
 
 
 def _reindex(level: ScanLevel, index: int) -> ScanLevel:

@@ -33,12 +33,13 @@ from mjwalk._args import check_output_file
 from mjwalk._io import atomic_path, read_toml
 from mjwalk.errors import ScanError
 from mjwalk.scan.level import Levelling, check_upright, find_floor
-from mjwalk.scan.levelboxes import LEVEL_MATERIAL, LevelPlan, scan_levels
+from mjwalk.scan.levelboxes import LEVEL_MATERIAL, LevelPlan, levels_at, scan_levels
 from mjwalk.scan.limits import check_plan_size
 from mjwalk.scan.merge import merge_scans, read_poses
 from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan, floor_plan, rectangles
 from mjwalk.scan.read import Station, to_metres_z_up
 from mjwalk.scan.scanoptions import ScanOptions
+from mjwalk.scan.scanramps import RAMP_MATERIAL
 from mjwalk.scan.sight import View, check_station
 from mjwalk.scan.voids import apply_policy
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
@@ -55,7 +56,8 @@ class ScanScene:
     ``matrix`` (4, 4) takes scan-file points to the scene; ``timings`` holds wall-clock seconds
     per stage; ``sight`` says how the floor seen was decided (by which stations' rays, or by
     floor points alone and why); ``levels`` the raised walk-surface levels written as boxes
-    (:mod:`~mjwalk.scan.levelboxes`; None: one level, the floor).
+    (:mod:`~mjwalk.scan.levelboxes`; None: one level, the floor); ``site_z`` each site's
+    height, metres (the height of the level it stands on).
     """
 
     xml: str
@@ -69,6 +71,7 @@ class ScanScene:
     timings: dict[str, float] = field(default_factory=dict)
     sight: str = ""
     levels: LevelPlan | None = None
+    site_z: dict[str, float] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -149,6 +152,7 @@ def _mjcf(
     header: str,
     matrix: np.ndarray,
     model_name: str,
+    site_z: dict[str, float],
 ) -> str:
     xmin, ymin, xmax, ymax = plan.bounds
     cx, cy = 0.5 * (xmin + xmax), 0.5 * (ymin + ymax)
@@ -174,24 +178,34 @@ def _mjcf(
             if any(b[3] == LEVEL_MATERIAL for b in boxes)
             else []
         ),
+        *(
+            [f'    <material name="{RAMP_MATERIAL}" rgba="0.56 0.62 0.48 1"/>']
+            if any(b[3] == RAMP_MATERIAL for b in boxes)
+            else []
+        ),
         "  </asset>",
         "  <worldbody>",
         f'    <light pos="{cx:.4f} {cy:.4f} 6" dir="0 0 -1"/>',
         f'    <geom name="floor" type="plane" pos="{cx:.4f} {cy:.4f} 0" size="{hx:.4f} {hy:.4f} '
         '0.05" material="floor"/>',
     ]
-    for box in boxes:  # (name, centre, half sizes, material[, yaw radians])
+    for box in boxes:  # (name, centre, half sizes, material[, yaw radians or xyaxes (6,)])
         name, pos, half, material = box[:4]
-        yaw = float(box[4]) if len(box) > 4 else 0.0
+        turn = ""
+        if len(box) > 4 and np.ndim(box[4]):  # a tilted box (a ramp)
+            turn = f' xyaxes="{_fmt(np.round(box[4], 8))}"'
+        elif len(box) > 4 and box[4]:
+            turn = f' euler="0 0 {np.degrees(float(box[4])):.8g}"'
         group = ' group="3"' if material == "scan_void" else ""
-        turn = f' euler="0 0 {np.degrees(yaw):.8g}"' if yaw else ""
         lines.append(
             f'    <geom name="{name}" type="box" pos="{_fmt(np.round(pos, 5))}" '
             f'size="{_fmt(np.round(half, 5))}" material="{material}"{group}{turn}/>'
         )
     for name, (x, y, yaw) in sites.items():
+        z = site_z.get(name, SITE_Z)
+        zs = f"{z:.4f}" if z != SITE_Z else f"{SITE_Z}"
         lines.append(
-            f'    <site name="{name}" pos="{x:.4f} {y:.4f} {SITE_Z}" size="0.05" '
+            f'    <site name="{name}" pos="{x:.4f} {y:.4f} {zs}" size="0.05" '
             f'euler="0 0 {np.degrees(yaw):.6g}"/>'  # MJCF angles are degrees by default
         )
     lines += ["  </worldbody>", "</mujoco>", ""]
@@ -356,20 +370,21 @@ def build_scene(
     t = clock()
     offset = None if opts.offset is None else np.asarray(opts.offset)
     matrix = _matrix(levelling, scale, axes, offset)
-    site_xyyaw = _place_sites(sites or [], plan, matrix, source)
+    site_xyyaw, site_z = _place_sites(sites or [], plan, matrix, source, levels)
     boxes, n_obst, n_void = _boxes(plan)
     if levels is not None:
         boxes += levels.boxes
     header = _header(source, len(pts), levelling, matrix, (n_obst, n_void), plan, opts, sight)
-    xml = _mjcf(plan, boxes, site_xyyaw, header, matrix, model_name)
+    xml = _mjcf(plan, boxes, site_xyyaw, header, matrix, model_name, site_z)
     try:
         mujoco.MjModel.from_xml_string(xml)
     except ValueError as exc:  # a bug here, not bad input: say so plainly
         raise ScanError(f"{source}: the generated scene does not compile: {exc}") from exc
     timings["mjcf"] = clock() - t
     return ScanScene(
-        xml, plan, levelling, matrix, len(pts), n_obst, n_void, site_xyyaw, timings, sight, levels
-    )
+        xml, plan, levelling, matrix, len(pts), n_obst, n_void, site_xyyaw, timings, sight, levels,
+        site_z,
+    )  # fmt: skip
 
 
 def _file_stations(
@@ -391,27 +406,42 @@ def _file_stations(
 
 
 def _place_sites(
-    sites: list[_Site], plan: FloorPlan, matrix: np.ndarray, source: str
-) -> dict[str, tuple[float, float, float]]:
-    """Each site's scene (x, y, yaw radians); a site not on the scanned floor is a ScanError."""
+    sites: list[_Site],
+    plan: FloorPlan,
+    matrix: np.ndarray,
+    source: str,
+    levels: LevelPlan | None = None,
+) -> tuple[dict[str, tuple[float, float, float]], dict[str, float]]:
+    """Each site's scene (x, y, yaw radians) and height: on the scanned floor (z = 0) or on a
+    raised level (its height; of several there, the highest, or for a site picked in the scan
+    the one nearest the picked point's height); elsewhere a ScanError."""
     site_xyyaw: dict[str, tuple[float, float, float]] = {}
+    site_z: dict[str, float] = {}
     for s in sites:
+        z_pick = None
         if s.xy is not None:
             xy = np.array(s.xy)
         else:
-            xy = (matrix @ np.array([*(s.scan or ()), 1.0]))[:2]
+            xyz = (matrix @ np.array([*(s.scan or ()), 1.0]))[:3]
+            xy, z_pick = xyz[:2], float(xyz[2])
         ix = int(np.floor((xy[0] - plan.x0) / plan.resolution))
         iy = int(np.floor((xy[1] - plan.y0) / plan.resolution))
         ny, nx = plan.floor.shape
-        if not (0 <= ix < nx and 0 <= iy < ny) or not plan.floor[iy, ix]:
+        on = [] if levels is None else levels_at(levels, xy)
+        if 0 <= ix < nx and 0 <= iy < ny and plan.floor[iy, ix]:
+            on.append((0, SITE_Z))
+        if not on:
             b = plan.bounds
             raise ScanError(
                 f"{source}: site {s.name!r} at ({xy[0]:.3f}, {xy[1]:.3f}) is not on the scanned "
-                f"floor (x in [{b[0]:.2f}, {b[2]:.2f}], y in [{b[1]:.2f}, {b[3]:.2f}] m, "
-                "obstacles and voids excluded)"
+                f"floor{' or a level' if levels is not None else ''} (x in [{b[0]:.2f}, "
+                f"{b[2]:.2f}], y in [{b[1]:.2f}, {b[3]:.2f}] m, obstacles and voids excluded)"
             )
+        heights = np.array([h for _, h in on])
+        best = np.argmax(heights) if z_pick is None else np.argmin(np.abs(heights - z_pick))
+        site_z[s.name] = float(heights[best])
         site_xyyaw[s.name] = (float(xy[0]), float(xy[1]), float(np.radians(s.yaw_deg)))
-    return site_xyyaw
+    return site_xyyaw, site_z
 
 
 def _header(

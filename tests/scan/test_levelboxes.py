@@ -89,12 +89,13 @@ STATION_SCANNERS = [
 
 
 @pytest.mark.slow
-def test_multilevel_station_scan_levels_within_2cm(scenes_dir, tmp_path):
+def test_multilevel_station_scan_levels_within_2cm(scenes_dir, tmp_path, capsys):
     """Seeded synthetic scan of the multi-level station (0.3 deg rays, 5 mm range noise, 1.5 deg
     tilt): the platform (0.34 m), the step (0.17 m), the stair's five treads and the mezzanine
     (1.02 m) are levels within 2 cm (measured: 0.5 mm); the stair is six risers of 0.17 m with
-    0.28 m treads (measured 0.282 m); mjwalk scan prints and draws them; the written scene's own
-    level graph has the same levels and connections. (The ramp stays obstacle boxes.)"""
+    0.28 m treads (measured 0.282 m); the 5.5 deg ramp joins the floor to the platform (measured
+    5.50 deg in the scan, 5.50 deg in the written scene); mjwalk scan prints and draws them; the
+    written scene's own level graph has the same levels and connections."""
     from mjwalk import cli
     from mjwalk.world.workplace import load_model
 
@@ -106,11 +107,17 @@ def test_multilevel_station_scan_levels_within_2cm(scenes_dir, tmp_path):
     out, png = tmp_path / "station.xml", tmp_path / "top.png"
     assert cli.main(["scan", str(src), "-o", str(out), "--png", str(png)]) == 0
     assert png.stat().st_size > 0
+    assert "ramp  L0 -> L4  rise 0.340 m over 3.53 m, slope 5.50 deg" in capsys.readouterr().out
     graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_path(str(out))))
     truth = [0.0, 0.17, 0.17, 0.34, 0.34, 0.51, 0.68, 0.85, 1.02]
     assert sorted(lv.height for lv in graph.levels) == pytest.approx(truth, abs=0.02)
     links = _links(graph.links, [lv.height for lv in graph.levels])
-    assert links == [("stair", 0.0, 1.02, 6), ("step", 0.0, 0.17, 1), ("step", 0.17, 0.34, 1)]
+    assert links == [
+        ("ramp", 0.0, 0.34, 0), ("stair", 0.0, 1.02, 6), ("step", 0.0, 0.17, 1),
+        ("step", 0.17, 0.34, 1),
+    ]  # fmt: skip
+    (ramp,) = [k for k in graph.links if k.kind == "ramp"]
+    assert np.degrees(ramp.slope) == pytest.approx(5.5, abs=0.5)
     stair = next(k for k in graph.links if k.kind == "stair")
     assert stair.tread == pytest.approx(0.28, abs=0.01)
     assert np.ptp(stair.risers) < 1e-6 and stair.risers[0] == pytest.approx(0.17, abs=0.005)
@@ -128,3 +135,27 @@ def test_cli_prints_levels_and_links(tmp_path, capsys):
     assert "levels: 6, links: 2" in out
     assert "stair L0 -> L5  4 risers x 0.170 m" in out
     assert "+0.75 m" in out  # the table: a surface no step reaches, still printed
+
+
+def test_cli_says_pits_are_not_levels(tmp_path, capsys):
+    """A 2 x 2 m pit 0.8 m deep: a surface below the floor, said unsupported, not silently
+    dropped."""
+    from mjwalk import cli
+
+    model = mujoco.MjModel.from_xml_string(
+        """<mujoco><worldbody>
+        <geom type="box" pos="0 -1.75 -0.05" size="4 1.25 0.05"/>
+        <geom type="box" pos="0 2.25 -0.05" size="4 0.75 0.05"/>
+        <geom type="box" pos="-2.5 0.5 -0.05" size="1.5 1 0.05"/>
+        <geom type="box" pos="2.5 0.5 -0.05" size="1.5 1 0.05"/>
+        <geom type="box" pos="3 -2.5 1.0" size="0.5 0.4 1.0"/>
+        <geom type="box" pos="-3 2.5 1.0" size="0.5 0.4 1.0"/>
+        <geom name="pit" type="box" pos="0 0.5 -0.85" size="1 1 0.05"/>
+        </worldbody></mujoco>"""
+    )
+    scan = synthetic_scan(model, [(-2.5, -1.5, 1.6), (2.5, 2.0, 1.6)], step_deg=0.4, seed=1)
+    src = tmp_path / "pit.xyz"
+    np.savetxt(src, scan.points, fmt="%.4f")
+    assert cli.main(["scan", str(src), "-o", str(tmp_path / "pit.xml")]) == 0
+    out = capsys.readouterr().out
+    assert "surfaces below the floor (pits) are not supported as levels: -0.80 m" in out

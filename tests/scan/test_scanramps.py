@@ -1,0 +1,143 @@
+"""mjwalk.scan.scanramps: ramps of a scan fitted, written as tilted boxes, linked (issue 47)."""
+
+from __future__ import annotations
+
+import math
+
+import mujoco
+import numpy as np
+import pytest
+
+from mjwalk.errors import ScanError
+from mjwalk.scan import build_scene
+from mjwalk.scan.level import find_floor
+from mjwalk.scan.levelboxes import describe
+from mjwalk.scan.obstacles import floor_plan
+from mjwalk.scan.raycast import synthetic_scan
+from mjwalk.scan.scanlevels import find_levels, find_regions
+from mjwalk.scan.scanramps import ScanRamp, find_ramps, ramp_box
+from mjwalk.scan.scene import read_sites
+from mjwalk.world.levels import level_graph
+from mjwalk.world.surfaces import find_walk_surfaces
+
+
+def _hall(deg: float) -> str:
+    """A deck 0.30 m high (x -2.5..-0.5, y -1..1) reached only by a ramp of ``deg`` degrees
+    down towards +x (a 0.1 m slab, 1.0 m wide), and a 0.75 m table."""
+    th = math.radians(deg)
+    run = 0.3 / math.tan(th)
+    xm = -0.5 + 0.5 * run
+    pos = (xm - 0.05 * math.sin(th), 0.0, 0.15 - 0.05 * math.cos(th))
+    half = 0.5 * run / math.cos(th)
+    return f"""<mujoco><worldbody>
+  <geom name="floor" type="plane" size="5 3 0.05"/>
+  <geom name="deck" type="box" pos="-1.5 0 0.15" size="1.0 1.0 0.15"/>
+  <geom name="ramp" type="box" pos="{pos[0]:.6f} 0 {pos[2]:.6f}" size="{half:.6f} 0.5 0.05"
+        euler="0 {deg} 0"/>
+  <geom name="table" type="box" pos="1.0 -2.0 0.375" size="0.5 0.3 0.375"/>
+</worldbody></mujoco>"""
+
+
+SCANNERS = [(1.5, 1.5, 1.6), (-1.5, -1.8, 1.7), (3.5, -0.6, 1.6), (-3.2, 1.5, 1.6)]
+
+
+def _scan(deg: float):
+    model = mujoco.MjModel.from_xml_string(_hall(deg))
+    return synthetic_scan(model, SCANNERS, step_deg=0.4, noise=0.005, seed=5)
+
+
+@pytest.fixture(scope="module")
+def ramp_scan():
+    """A seeded synthetic scan (0.4 deg rays, 5 mm range noise, 1.5 deg tilt) of the hall with
+    a 6 deg ramp."""
+    return _scan(6.0)
+
+
+def test_ramp_is_fitted_between_floor_and_deck(ramp_scan):
+    pts = find_floor(ramp_scan.points).apply(ramp_scan.points)
+    plan = floor_plan(pts)
+    regions, _, _ = find_regions(pts, plan)
+    ramps = find_ramps(pts, plan, regions)
+    assert len(ramps) == 1
+    r = ramps[0]
+    assert regions[r.lower].height == 0.0
+    assert regions[r.upper].height == pytest.approx(0.30, abs=0.01)
+    assert math.degrees(r.slope) == pytest.approx(6.0, abs=0.5)
+    assert r.run @ [-1.0, 0.0] == pytest.approx(1.0, abs=1e-6)  # climbs towards -x
+    assert -r.s_hi == pytest.approx(-0.5, abs=0.03)  # meets the deck's edge
+    assert -r.s_lo == pytest.approx(-0.5 + 0.3 / math.tan(math.radians(6)), abs=0.1)
+    assert r.width == pytest.approx(1.0, abs=0.06)
+    # by steps alone the deck is no level: the ramp is its only way up
+    assert len(find_levels(pts, plan)[0]) == 1
+
+
+def test_ramp_link_in_the_scan_and_in_the_written_scene(ramp_scan):
+    scene = build_scene(ramp_scan.points, source="ramp hall")
+    lp = scene.levels
+    assert lp is not None and [lv.kind for lv in lp.levels] == ["floor", "platform"]
+    (link,) = lp.links
+    assert link.kind == "ramp" and (link.lower, link.upper) == (0, 1)
+    assert math.degrees(link.slope) == pytest.approx(6.0, abs=0.5)
+    assert link.rise == pytest.approx(lp.heights[1], abs=1e-9)
+    assert "ramp  L0 -> L1  rise 0.30" in describe(lp)
+    assert 'material="scan_ramp"' in scene.xml and "xyaxes=" in scene.xml
+    graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_string(scene.xml)))
+    ramps = [k for k in graph.links if k.kind == "ramp"]
+    assert len(ramps) == 1
+    assert math.degrees(ramps[0].slope) == pytest.approx(6.0, abs=0.5)
+    assert sorted(lv.height for lv in graph.levels) == pytest.approx(lp.heights, abs=1e-3)
+    # the ramp's floor obstacles are gone; the table stays one
+    plan = scene.plan
+    r = plan.resolution
+    for x, y, obstacle in ((1.0, 0.0, False), (1.0, -2.0, True)):
+        ix, iy = int((x - plan.x0) / r), int((y - plan.y0) / r)
+        assert (plan.obstacles[iy, ix] > 0) == obstacle
+
+
+def test_too_steep_a_ramp_is_no_ramp():
+    """15 deg is steeper than norms.MAX_RAMP_SLOPE (10 deg): it stays an obstacle, the deck no
+    level."""
+    scan = _scan(15.0)
+    assert build_scene(scan.points).levels is None
+
+
+def test_ramp_box_top_face_meets_both_levels():
+    ramp = ScanRamp(0, 1, np.array([0.6, 0.8]), 1.0, 4.0, -0.5, 0.5, 0.1, 0.4, 0.003, 0.1)
+    _, pos, half, material, xyaxes = ramp_box(ramp, "r")
+    ex, ey = xyaxes[:3], xyaxes[3:]
+    ez = np.cross(ex, ey)
+    top = pos + half[2] * ez
+    low, high = top - half[0] * ex, top + half[0] * ex
+    assert low[:2] @ ramp.run == pytest.approx(1.0) and low[2] == pytest.approx(0.1)
+    assert high[:2] @ ramp.run == pytest.approx(4.0) and high[2] == pytest.approx(0.4)
+    assert 2 * half[1] == pytest.approx(1.0) and material == "scan_ramp"
+    bottom_high = high - 2 * half[2] * ez  # under the high end the box reaches the lower level
+    assert bottom_high[2] == pytest.approx(0.1)
+    assert math.degrees(ramp.slope) == pytest.approx(math.degrees(math.atan(0.1)))
+
+
+def _sites(tmp_path, text: str):
+    path = tmp_path / "sites.toml"
+    path.write_text(text)
+    return read_sites(path)
+
+
+def test_sites_stand_on_levels(ramp_scan, tmp_path):
+    """A site on the deck is written at the deck's height, one on the floor at 0; a site picked
+    in the scan on the deck too; one on the ramp or the table is refused."""
+    sites = _sites(tmp_path, "[site.deck]\nxy = [-1.5, 0.3]\n[site.floor]\nxy = [2.0, 2.0]\n")
+    scene = build_scene(ramp_scan.points, sites=sites)
+    h = scene.levels.heights[1]
+    assert scene.site_z == {"deck": pytest.approx(h), "floor": 0.0}
+    assert f'<site name="deck" pos="-1.5000 0.3000 {h:.4f}"' in scene.xml
+    assert '<site name="floor" pos="2.0000 2.0000 0.0"' in scene.xml
+    model = mujoco.MjModel.from_xml_string(scene.xml)
+    assert model.site("deck").pos[2] == pytest.approx(0.30, abs=0.01)
+    picked = np.linalg.solve(scene.matrix, [-1.5, 0.3, 0.3, 1.0])[:3]  # in the scan's frame
+    text = f"[site.p]\nscan = [{picked[0]:.6f}, {picked[1]:.6f}, {picked[2]:.6f}]\n"
+    by_scan = build_scene(ramp_scan.points, sites=_sites(tmp_path, text))
+    assert by_scan.site_z["p"] == pytest.approx(h)
+    for x, y in ((1.0, 0.0), (1.0, -2.0)):  # the ramp, the table
+        bad = _sites(tmp_path, f"[site.x]\nxy = [{x}, {y}]\n")
+        with pytest.raises(ScanError, match="not on the scanned floor or a level"):
+            build_scene(ramp_scan.points, sites=bad)
