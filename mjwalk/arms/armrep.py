@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import numpy as np
 from scipy.interpolate import CubicSpline
-from sklearn.decomposition import PCA
 
 from mjwalk.arms.armpose import apply_pose, fit_pose, fit_poses, remove_pose, remove_poses
 from mjwalk.errors import MjwalkError
@@ -183,6 +182,70 @@ def _normalize(v: np.ndarray) -> np.ndarray:
 
 
 # ---------------------------------------------------------------- the representation
+class LoadedPCA:
+    """A PCA read from a model file (:meth:`ArmRepresentation.from_arrays`): its arrays at once,
+    scikit-learn's ``PCA`` made from them on the first :meth:`transform` or
+    :meth:`inverse_transform`. Importing scikit-learn (and scipy.stats with it) takes ~1 s, 3.5 s
+    on a loaded machine, in every process that loads a reach model, and a cycle only decodes
+    (``b @ components_ + mean_``, :meth:`ArmRepresentation.from_modes`).
+
+    Args:
+        components: (q, d) the principal axes.
+        mean: (d,) the features' mean.
+        variance: (q,) each axis's explained variance.
+        variance_ratio: (q,) each axis's share of the variance.
+    """
+
+    whiten = False
+
+    def __init__(self, components, mean, variance, variance_ratio):
+        self.components_, self.mean_ = components, mean
+        self.explained_variance_, self.explained_variance_ratio_ = variance, variance_ratio
+        self.n_components_, self.n_features_in_ = components.shape
+        self._pca = None
+
+    def sklearn(self):
+        """The same PCA as a fitted scikit-learn ``PCA`` (made on first use).
+
+        Returns:
+            The ``sklearn.decomposition.PCA`` with these arrays.
+        """
+        if self._pca is None:
+            # deferred: scikit-learn takes ~1 s to import; only fitting and encoding need it
+            from sklearn.decomposition import PCA
+
+            pca = PCA(n_components=self.n_components_, svd_solver="full")
+            pca.components_, pca.mean_ = self.components_, self.mean_
+            pca.explained_variance_ = self.explained_variance_
+            pca.explained_variance_ratio_ = self.explained_variance_ratio_
+            pca.n_components_, pca.n_features_in_ = self.n_components_, self.n_features_in_
+            pca.whiten = False
+            self._pca = pca
+        return self._pca
+
+    def transform(self, X):
+        """PCA coefficients of features (scikit-learn's ``PCA.transform``).
+
+        Args:
+            X: (p, d) features.
+
+        Returns:
+            (p, q) coefficients.
+        """
+        return self.sklearn().transform(X)
+
+    def inverse_transform(self, b):
+        """Features of PCA coefficients (scikit-learn's ``PCA.inverse_transform``, its checks).
+
+        Args:
+            b: (p, q) coefficients.
+
+        Returns:
+            (p, d) features.
+        """
+        return self.sklearn().inverse_transform(b)
+
+
 class ArmRepresentation:
     """Aligned spherical-angle trajectories + PCA (Al-Zubi & Sommer §4.1, eq. 1).
 
@@ -275,6 +338,9 @@ class ArmRepresentation:
         n_comp = self.variance
         if isinstance(n_comp, float) and n_comp >= 1.0:
             n_comp = min(X.shape)
+        # a loaded model decodes with LoadedPCA, without scikit-learn
+        from sklearn.decomposition import PCA  # deferred: ~1 s import, only fitting needs it
+
         self.pca_ = PCA(n_components=n_comp, svd_solver="full").fit(X)
         self.n_modes_ = int(self.pca_.n_components_)
         return self
@@ -452,14 +518,12 @@ class ArmRepresentation:
         comps = np.asarray(data["rep_pca_components"], dtype=float)
         if comps.shape[1] != n * S * 2 + n * rep.n_extras_:
             raise ValueError(f"PCA components {comps.shape} do not match trajectories {(n, S)}")
-        pca = PCA(n_components=comps.shape[0], svd_solver="full")
-        pca.components_ = comps
-        pca.mean_ = np.asarray(data["rep_pca_mean"], dtype=float)
-        pca.explained_variance_ = np.asarray(data["rep_pca_var"], dtype=float)
-        pca.explained_variance_ratio_ = np.asarray(data["rep_pca_var_ratio"], dtype=float)
-        pca.n_components_ = comps.shape[0]
-        pca.n_features_in_ = comps.shape[1]
-        pca.whiten = False
+        pca = LoadedPCA(
+            comps,
+            np.asarray(data["rep_pca_mean"], dtype=float),
+            np.asarray(data["rep_pca_var"], dtype=float),
+            np.asarray(data["rep_pca_var_ratio"], dtype=float),
+        )
         rep.pca_ = pca
         rep.n_modes_ = comps.shape[0]
         return rep

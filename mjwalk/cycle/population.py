@@ -59,7 +59,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.special import ndtr, ndtri
-from scipy.stats import truncnorm
 
 from mjwalk.errors import CycleSpecError
 from mjwalk.gait.walker import CADENCE_RANGE, PRESETS, SPEED_RANGE, Walker
@@ -156,6 +155,9 @@ class Distribution:
             return float(self.mu), 0.0
         a, b = self._ab()
         if not self._log:
+            # deferred: scipy.stats takes ~1 s to import and only this summary needs it
+            from scipy.stats import truncnorm
+
             m, v = truncnorm.stats(a, b, loc=self.mu, scale=self.sigma, moments="mv")
             return float(m), float(math.sqrt(v))
 

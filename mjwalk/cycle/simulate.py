@@ -15,14 +15,17 @@ humanoid is built at the operator's stature (:func:`operator_context`), the walk
 from the step model conditioned on the operator (:meth:`StepModel.for_walker`), and reach,
 hold and return times are divided by the operator's pace (:mod:`mjwalk.cycle.handling`).
 
-Many cycles (:func:`simulate_cycles`) run through joblib, so ``n_jobs`` processes share the
-work; inside ``joblib.parallel_config(backend="dask")`` (or ``"ray"``) the same call runs on a
-Dask or Ray cluster unchanged (see the README).
+Many cycles (:func:`simulate_cycles`) run in ``n_jobs`` processes: by default (on Linux) warm
+workers forked from this process once it has prepared the cycle and run its first run
+(:mod:`mjwalk.cycle.workers`: no import, preparation or kernel loading per worker); inside
+``joblib.parallel_config(backend="dask")`` (or ``"ray"``) the same call runs on a Dask or Ray
+cluster unchanged (see the README), through joblib.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
+from functools import partial
 from pathlib import Path
 
 import numpy as np
@@ -56,6 +59,7 @@ from mjwalk.cycle.types import (
     WalkRecord,
 )
 from mjwalk.cycle.walking import cycle_start, plan_cycle_walks, plan_task_walk, work_zone
+from mjwalk.cycle.workers import forked_workers, map_forked
 from mjwalk.ergonomics.angles import angles_from_timeline
 from mjwalk.ergonomics.assess import TaskSpan, assess_cycle
 from mjwalk.errors import CycleSpecError, InputError, PlanningError
@@ -318,8 +322,12 @@ def simulate_cycles(
 
     Run ``k`` draws from ``SeedSequence([seed, k])`` (``result.entropy``): results do not
     depend on ``n_jobs`` or on the backend, and ``only=[k]`` re-simulates run ``k`` of a batch
-    alone (``mjwalk simulate ... --only-run K``). Workers load the spec and models once each
-    (the default models come from the on-disk cache). A :class:`CycleSpec` is simulated as it
+    alone (``mjwalk simulate ... --only-run K``). Without a joblib backend of the caller's
+    choosing (on Linux) this process prepares the cycle and simulates the first run, then
+    forks the workers for the others (:mod:`mjwalk.cycle.workers`): they start with its
+    models and compiled kernels. Under a backend the caller chose, joblib's workers load the
+    spec and models once each (the default models come from the on-disk cache). A
+    :class:`CycleSpec` is simulated as it
     is in memory (``dataclasses.replace(spec, reach_model=...)`` runs the new model), a path is
     read in each worker. Under ``joblib.parallel_config(backend="dask")`` or ``"ray"`` the runs
     go to that cluster unchanged.
@@ -328,7 +336,7 @@ def simulate_cycles(
         spec: the cycle, or its spec file.
         runs: how many runs the batch has (>= 1).
         seed: the batch's root seed.
-        n_jobs: joblib's number of workers.
+        n_jobs: the number of worker processes, as joblib reads it (-1: all cores).
         collisions: check each run's humanoid for contacts with the scene.
         progress: show a progress bar (tqdm).
         only: the indices of the runs to simulate (each in ``0..runs-1``); None: all.
@@ -354,17 +362,19 @@ def simulate_cycles(
     seed = check_seed(seed, "simulate_cycles: seed")
     if on_error not in ("raise", "record"):
         raise InputError(f"simulate_cycles: on_error must be 'raise' or 'record', got {on_error!r}")
-    jobs = (delayed(_run_one)(job_spec, k, seed, collisions, on_error) for k in indices)
+    one = partial(_run_one, job_spec, seed=seed, collisions=collisions, on_error=on_error)
+    workers = forked_workers(n_jobs, len(indices))
+    if workers:  # warm workers: forked from this process once it has run the first run
+        gen: Iterable[CycleResult] = map_forked(one, indices, workers)
+    else:  # joblib's: one job in this process, or the backend the user chose (Dask, Ray)
+        as_ = "generator" if progress else "list"
+        gen = Parallel(n_jobs=n_jobs, return_as=as_)(delayed(one)(k) for k in indices)
     if progress:
         # deferred: tqdm is optional (not a declared dependency), only needed for progress=True
         from tqdm import tqdm
 
-        out = []
-        gen = Parallel(n_jobs=n_jobs, return_as="generator")(jobs)
-        for r in tqdm(gen, total=len(indices), desc="cycles", unit="cycle"):
-            out.append(r)
-        return out
-    return list(Parallel(n_jobs=n_jobs)(jobs))
+        gen = tqdm(gen, total=len(indices), desc="cycles", unit="cycle")
+    return list(gen)
 
 
 def combined_walk(paths: list):

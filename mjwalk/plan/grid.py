@@ -7,12 +7,12 @@ polyline through cell centres, from the exact start point to the exact goal poin
 
 from __future__ import annotations
 
-import heapq
 import math
 import time
 
 import numpy as np
 
+from mjwalk._jit import njit
 from mjwalk.conventions import BODY_RADIUS
 from mjwalk.errors import PlanningError
 from mjwalk.plan.occupancy import (
@@ -117,7 +117,7 @@ def plan_grid(
         )
     chain = [goal_node]
     while chain[-1] != start_node:
-        chain.append(parent[chain[-1]])
+        chain.append(int(parent[chain[-1]]))
     chain.reverse()
     pts = np.array(
         [
@@ -177,60 +177,136 @@ def _astar(
     b: np.ndarray,
     start_links: list[tuple[int, float]],
     goal_links: dict[int, float],
-) -> tuple[dict[int, int], int, bool]:
+) -> tuple[np.ndarray, int, bool]:
     """A* over the grid's cells, from the start node (index cells) to the goal node (cells + 1)
     at ``b`` (x, y, metres), the start joined to ``start_links`` (node, metres; the goal node
     among them where the straight line is free) and the cells of ``goal_links`` to the goal.
-    Returns each reached node's parent, the number of expansions and whether the goal was
-    reached."""
-    ny, nx = grid.shape
+    Returns each reached node's parent (-1: none), the number of expansions and whether the
+    goal was reached (the compiled :func:`_astar_kernel`)."""
+    nx = grid.shape[1]
     cell = grid.cell
-    start_node = nx * ny
-    goal_node = start_node + 1
-    x0, y0, bx, by = float(grid.x0), float(grid.y0), float(b[0]), float(b[1])
+    moves = np.ascontiguousarray(grid.moves.reshape(len(_MOVES), -1))  # (moves, cells)
+    offsets = np.array([dj * nx + di for di, dj in _MOVES], dtype=np.int64)
+    costs = np.array([cell * (_SQRT2 if di and dj else 1.0) for di, dj in _MOVES])
+    s_nodes = np.array([v for v, _ in start_links], dtype=np.int64)
+    s_costs = np.array([c for _, c in start_links], dtype=float)
+    g_nodes = np.array(list(goal_links), dtype=np.int64)
+    g_costs = np.array(list(goal_links.values()), dtype=float)
+    xy = np.array([float(grid.x0), float(grid.y0), float(b[0]), float(b[1]), float(cell)])
+    parent, expansions, found = _astar_kernel(
+        moves, offsets, costs, s_nodes, s_costs, g_nodes, g_costs, xy, nx
+    )
+    return parent, int(expansions), bool(found)
 
-    def h(node: int) -> float:
-        if node == goal_node:
-            return 0.0
-        dx = abs(x0 + cell * (node % nx) - bx)
-        dy = abs(y0 + cell * (node // nx) - by)
-        return max(dx, dy) + (_SQRT2 - 1.0) * min(dx, dy)  # octile: admissible on the grid
 
-    moves = grid.moves.reshape(len(_MOVES), -1).T  # (cells, moves): one row per cell
-    offsets = [dj * nx + di for di, dj in _MOVES]
-    costs = [cell * (_SQRT2 if di and dj else 1.0) for di, dj in _MOVES]
-    g_cost = {start_node: 0.0}
-    parent: dict[int, int] = {}
-    heap: list[tuple[float, int, int]] = [(0.0, 0, start_node)]
-    closed = set()
+@njit
+def _astar_kernel(moves, offsets, costs, s_nodes, s_costs, g_nodes, g_costs, xy, nx):
+    """The grid A* loop: an open list ordered by (f, push count) as ``heapq`` orders the
+    tuples (f, count, node) (the count is unique, so every correct heap pops the same order),
+    the octile heuristic to ``xy[2:4]`` (admissible on the grid), arithmetic in the order of
+    the original Python loop so the routes are the same to the last bit."""
+    n = moves.shape[1]
+    start_node, goal_node = n, n + 1
+    x0, y0, bx, by, cell = xy[0], xy[1], xy[2], xy[3], xy[4]
+    g_cost = np.full(n + 2, np.inf)
+    parent = np.full(n + 2, -1, dtype=np.int64)
+    closed = np.zeros(n + 2, dtype=np.bool_)
+    cap = 1024
+    hf = np.empty(cap)
+    hc = np.empty(cap, dtype=np.int64)
+    hn = np.empty(cap, dtype=np.int64)
+    size = 1
+    hf[0], hc[0], hn[0] = 0.0, 0, start_node
+    g_cost[start_node] = 0.0
     counter = 1
     expansions = 0
-    while heap:
-        _, _, node = heapq.heappop(heap)
-        if node in closed:
+    nb_nodes = np.empty(len(offsets) + len(s_nodes) + 1, dtype=np.int64)
+    nb_costs = np.empty(len(offsets) + len(s_nodes) + 1)
+    while size > 0:
+        node = hn[0]
+        size -= 1  # pop: the last entry sifts down from the root
+        if size > 0:
+            _sift_down(hf, hc, hn, size, hf[size], hc[size], hn[size])
+        if closed[node]:
             continue
-        closed.add(node)
+        closed[node] = True
         expansions += 1
         if node == goal_node:
             return parent, expansions, True
+        m = 0
         if node == start_node:
-            nbrs = list(start_links)
+            for k in range(len(s_nodes)):
+                nb_nodes[m], nb_costs[m] = s_nodes[k], s_costs[k]
+                m += 1
         else:
-            nbrs = [
-                (node + off, c)
-                for off, c, ok in zip(offsets, costs, moves[node].tolist(), strict=True)
-                if ok
-            ]
-            if node in goal_links:
-                nbrs.append((goal_node, goal_links[node]))
+            for k in range(len(offsets)):
+                if moves[k, node]:
+                    nb_nodes[m], nb_costs[m] = node + offsets[k], costs[k]
+                    m += 1
+            for k in range(len(g_nodes)):
+                if g_nodes[k] == node:
+                    nb_nodes[m], nb_costs[m] = goal_node, g_costs[k]
+                    m += 1
         g0 = g_cost[node]
-        for nb, c in nbrs:
-            if nb in closed:
+        for k in range(m):
+            nb = nb_nodes[k]
+            if closed[nb]:
                 continue
-            g1 = g0 + c
-            if g1 < g_cost.get(nb, math.inf):
+            g1 = g0 + nb_costs[k]
+            if g1 < g_cost[nb]:
                 g_cost[nb] = g1
                 parent[nb] = node
-                heapq.heappush(heap, (g1 + h(nb), counter, nb))
+                if nb == goal_node:
+                    h = 0.0
+                else:
+                    dx = abs(x0 + cell * (nb % nx) - bx)
+                    dy = abs(y0 + cell * (nb // nx) - by)
+                    h = max(dx, dy) + (_SQRT2 - 1.0) * min(dx, dy)
+                if size == cap:
+                    cap *= 2
+                    hf, hc, hn = _grown(hf, cap), _grown(hc, cap), _grown(hn, cap)
+                _sift_up(hf, hc, hn, size, g1 + h, counter, nb)
+                size += 1
                 counter += 1
     return parent, expansions, False
+
+
+@njit
+def _grown(a, cap):
+    """``a`` copied into an array of ``cap`` entries (the open list's room, doubled)."""
+    out = np.empty(cap, dtype=a.dtype)
+    out[: len(a)] = a
+    return out
+
+
+@njit
+def _sift_up(hf, hc, hn, i, f, c, v):
+    """Put the entry (f, c, v) at slot ``i`` of the open list and move it up to its place."""
+    while i > 0:
+        up = (i - 1) >> 1
+        if hf[up] < f or (hf[up] == f and hc[up] < c):
+            break
+        hf[i], hc[i], hn[i] = hf[up], hc[up], hn[up]
+        i = up
+    hf[i], hc[i], hn[i] = f, c, v
+
+
+@njit
+def _sift_down(hf, hc, hn, size, f, c, v):
+    """Put the entry (f, c, v) at the root of the open list of ``size`` entries and move it
+    down to its place."""
+    i = 0
+    while True:
+        child = 2 * i + 1
+        if child >= size:
+            break
+        right = child + 1
+        if right < size and (
+            hf[right] < hf[child] or (hf[right] == hf[child] and hc[right] < hc[child])
+        ):
+            child = right
+        if f < hf[child] or (f == hf[child] and c < hc[child]):
+            break
+        hf[i], hc[i], hn[i] = hf[child], hc[child], hn[child]
+        i = child
+    hf[i], hc[i], hn[i] = f, c, v

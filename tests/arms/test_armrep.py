@@ -99,3 +99,45 @@ def test_representation_extras_roundtrip():
     b, poses = rep.transform(U, E)
     _, E2 = rep.inverse_transform(b, poses)
     np.testing.assert_allclose(E2, E, atol=1e-9)
+
+
+def test_loaded_pca_decodes_without_scikit_learn_and_encodes_as_it_did(tmp_path):
+    """A representation read back from its arrays holds a LoadedPCA: the same arrays, the same
+    coefficients from transform and features from inverse_transform as the fitted PCA, and
+    loading it imports no scikit-learn (a fresh process loads the default reach model)."""
+    import subprocess
+    import sys
+
+    from mjwalk.arms.armrep import LoadedPCA
+
+    rng = np.random.default_rng(3)
+    X = rng.normal(size=(40, 12))
+    fitted = _fitted_pca(X)
+    arrays = {
+        "rep_pca_mean": fitted.mean_,
+        "rep_pca_components": fitted.components_,
+        "rep_pca_var": fitted.explained_variance_,
+        "rep_pca_var_ratio": fitted.explained_variance_ratio_,
+    }
+    loaded = LoadedPCA(
+        arrays["rep_pca_components"],
+        arrays["rep_pca_mean"],
+        arrays["rep_pca_var"],
+        arrays["rep_pca_var_ratio"],
+    )
+    np.testing.assert_array_equal(loaded.transform(X), fitted.transform(X))
+    b = fitted.transform(X[:3])
+    np.testing.assert_array_equal(loaded.inverse_transform(b), fitted.inverse_transform(b))
+    assert loaded.n_components_ == fitted.n_components_ and not loaded.whiten
+    code = (
+        "import sys; from mjwalk.arms.reachdefault import default_reach_model; "
+        "m = default_reach_model(); print(type(m.rep_.pca_).__name__, 'sklearn' in sys.modules)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.split() == ["LoadedPCA", "False"]
+
+
+def _fitted_pca(X):
+    from sklearn.decomposition import PCA
+
+    return PCA(n_components=5, svd_solver="full").fit(X)

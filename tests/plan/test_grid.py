@@ -118,3 +118,66 @@ def test_unreachable_goal_fails_fast(caged_station):
     with pytest.raises(PlanningError, match="unreachable"):
         plan_grid(wp, "stand_rack2", "3.0,0.9")
     assert time.perf_counter() - t0 < 2.0
+
+
+def _heapq_route(grid, b, start_links, goal_links):
+    """The grid A* as a plain heapq loop (the planner before it was compiled): the nodes it
+    pops, in order, and the parent of each reached node."""
+    import heapq
+
+    ny, nx = grid.shape
+    start, goal = nx * ny, nx * ny + 1
+    moves = grid.moves.reshape(len(grid.offsets), -1).T
+    offsets = [dj * nx + di for di, dj in grid.offsets]
+    costs = [grid.cell * (math.sqrt(2.0) if di and dj else 1.0) for di, dj in grid.offsets]
+
+    def h(v):
+        if v == goal:
+            return 0.0
+        dx = abs(grid.x0 + grid.cell * (v % nx) - b[0])
+        dy = abs(grid.y0 + grid.cell * (v // nx) - b[1])
+        return max(dx, dy) + (math.sqrt(2.0) - 1.0) * min(dx, dy)
+
+    g, parent, heap, closed, count, popped = {start: 0.0}, {}, [(0.0, 0, start)], set(), 1, []
+    while heap:
+        v = heapq.heappop(heap)[2]
+        if v in closed:
+            continue
+        closed.add(v)
+        popped.append(v)
+        if v == goal:
+            break
+        nbrs = (
+            list(start_links)
+            if v == start
+            else [(v + o, c) for o, c, ok in zip(offsets, costs, moves[v], strict=True) if ok]
+            + ([(goal, goal_links[v])] if v in goal_links else [])
+        )
+        for w, c in nbrs:
+            if w not in closed and g[v] + c < g.get(w, math.inf):
+                g[w], parent[w] = g[v] + c, v
+                heapq.heappush(heap, (g[w] + h(w), count, w))
+                count += 1
+    return popped, parent
+
+
+def test_compiled_search_pops_as_heapq_does(scenes_dir):
+    """The compiled open list pops the cells in heapq's order of (f, push count): the same
+    expansions and the same parents (routes equal to the last bit), ties included (the
+    station's routes cross open floor where many cells share f)."""
+    from mjwalk.plan.grid import _astar  # the search alone, without the route around it
+
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    grid = occupancy_grid(wp, radius=0.25)
+    nx = grid.shape[1]
+    for a, b in ROUTES["assembly_station"]:
+        pa, pb = wp.point(a), wp.point(b)
+        ja, ia = grid.index(pa)
+        jb, ib = grid.index(pb)
+        start_links = [(ja * nx + ia, float(np.linalg.norm(grid.centre(ja, ia) - pa)))]
+        goal_links = {jb * nx + ib: float(np.linalg.norm(grid.centre(jb, ib) - pb))}
+        popped, parent = _heapq_route(grid, pb, start_links, goal_links)
+        got, expansions, found = _astar(grid, pb, start_links, goal_links)
+        assert found and expansions == len(popped)
+        reached = np.flatnonzero(got >= 0)
+        assert {int(v): int(got[v]) for v in reached} == parent
