@@ -43,6 +43,15 @@ change (pairs 1-3, 2-4): the remaining shortfall of excess is on pairs whose way
 obstacle, where the guide between the honest end poses is nearly the chord (0.02 m excess
 against the real 0.07-0.11 m).
 
+After walkers steer for their guide's point two steps on (issue 48 deliverable 3,
+:data:`mjwalk.plan.guide.PURSUIT_AHEAD`; the straight line is now a guide too), main | branch
+in one session, honest ends (29 s): length median 0.99 | 0.99, length IQR 1.26 | 1.24, excess
+0.48 | 0.44, lateral IQR 0.98 | 1.05, duration median 1.00 | 1.00, duration IQR 1.42 | 1.58;
+``--pinned-guide``: 1.00 | 1.00, 1.27 | 1.34, 0.70 | 0.69, 1.03 | 1.11, 1.00 | 1.00,
+1.42 | 1.42. The pull back onto the guide takes the sampled steps' drift out of the walks
+(empty hall: worst 0.124 -> 0.089 m off the chord), so the excess on pairs with no obstacle
+on the way falls a little further short: people's excess there is not drift but bends.
+
 The THÖR walks are VALIDATION ONLY: nothing in mjwalk is fitted to them.
 
 For every real VISITOR walk (``ok`` and ``in_judge``) of a station pair with at least 10 such

@@ -188,6 +188,40 @@ def zone_bound(draws: int = 1500, seed: int = 0) -> None:
         print(f"{key:<34}" + "".join(cells))
 
 
+def route_turns(table: dict) -> None:
+    """Where the captured walks vary that the planned ones do not (issue 48, station spread):
+    per direction, the turn from the heading the operator stands at (the start site's yaw,
+    facing the work) onto the chord between the sites, the turn from the chord into the goal
+    site's yaw, and the planned median length beside the captured median. The planned walks
+    are their chords plus a few centimetres (:func:`length_makeup`) and stand zones alone give
+    T2 and T4 at most 40-46 % of the captured IQR (:func:`zone_bound`); where the captured
+    walks are much longer than the planned, their length (and its spread) lies in how people
+    turn from facing the work into the walk, which the planner does on the spot."""
+    import math
+
+    spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
+    wp = prepare(spec).workplace
+    print(
+        f"\nturns into and out of each walk (site yaw vs chord) and lengths vs captured\n"
+        f"{'route':<34}{'chord':>7}{'turn in':>9}{'turn out':>9}{'median':>8}{'captured':>9}"
+        f"{'ratio':>7}"
+    )
+    for key in sorted(k for k in table if " " in k):
+        route, way = key.split()
+        here, goal = way.split("->")
+        a, b = wp.station(here), wp.station(goal)
+        d = b.pos[:2] - a.pos[:2]
+        chord = math.atan2(d[1], d[0])
+        turn_in = math.degrees(math.remainder(chord - a.yaw, math.tau))
+        turn_out = math.degrees(math.remainder(b.yaw - chord, math.tau))
+        med = float(np.median(table[key][0]))
+        cap = CAPTURED[route][0]
+        print(
+            f"{key:<34}{np.hypot(*d):>7.2f}{turn_in:>8.0f}°{turn_out:>8.0f}°{med:>8.2f}"
+            f"{cap:>9.2f}{med / cap:>7.2f}"
+        )
+
+
 def print_routes(table: dict) -> None:
     print(
         f"{'route':<34}{'n':>5}{'median':>8}{'IQR':>7}{'IQR/med':>9}{'captured':>10}"
@@ -413,6 +447,7 @@ def main() -> None:
     table = route_table(args.cycles, args.seed)
     print(f"routes of {args.cycles} station cycles ({time.perf_counter() - t0:.1f} s)")
     print_routes(table)
+    route_turns(table)
     t0 = time.perf_counter()
     table = route_table(args.cycles, args.seed, population=True)
     print(f"\nthe same with the shipped workforce ({time.perf_counter() - t0:.1f} s)")

@@ -493,7 +493,9 @@ def walk_guide(
     The caller's ``guide``, or for a walker already walking along ``walking_yaw`` or meaning to
     arrive along ``goal_heading`` the minimum-jerk path between the end poses, or else the
     straight line; where that runs into an obstacle, the way past it on a side drawn from
-    ``rng`` (:func:`detour_guide`), else itself (the straight line: None).
+    ``rng`` (:func:`detour_guide`), else itself. The straight line too is a guide (issue 48):
+    the search's steps are drawn back onto it (:data:`~mjwalk.plan.guide.PURSUIT_AHEAD`), so a
+    straight walk in an empty hall keeps to its chord rather than drifting with its samples.
 
     Args:
         workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
@@ -507,8 +509,8 @@ def walk_guide(
         rng: the random stream of the detour's side (:func:`detour_guide`).
 
     Returns:
-        The (:data:`~mjwalk.plan.guide.GUIDE_POINTS`, 2) path (metres), or None: straight at
-        the goal (also when start and goal coincide).
+        The (:data:`~mjwalk.plan.guide.GUIDE_POINTS`, 2) path (metres), or None when start
+        and goal coincide.
     """
     s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
     if not np.hypot(*(g - s)) >= 1e-6:
@@ -519,5 +521,5 @@ def walk_guide(
     way = np.array([s, g]) if direct is None else direct
     path = detour_guide(workplace, way, s, g, walking_yaw, goal_heading, body, rng)
     if path is None:
-        path = direct
-    return None if path is None else resample_guide(path)
+        path = way
+    return resample_guide(path)

@@ -36,10 +36,12 @@ import math
 import numpy as np
 
 from mjwalk._jit import njit
+from mjwalk.gait.walker import REFERENCE_CADENCE, REFERENCE_SPEED
 from mjwalk.world.clearance import ClearanceField, bilinear_at
 
 __all__ = [
     "GUIDE_POINTS",
+    "PURSUIT_AHEAD",
     "densify",
     "first_below",
     "guide_ahead",
@@ -57,6 +59,21 @@ __all__ = [
 #: Points of the polyline the compiled search follows (evenly spaced along it): 24 segments of
 #: a walk of a few metres are a few dozen centimetres each, a few degrees of turn at most.
 GUIDE_POINTS = 25
+
+#: How far along the guide (m) the point lies that a walker off it steers for: two steps of an
+#: adult at a comfortable pace (REFERENCE_SPEED / cadence: 1.37 m/s at 113 steps/min, 0.73 m a
+#: step). People walking where they must place their feet look about two steps ahead (Patla &
+#: Vickers, "How far ahead do we look when required to step on specific locations in the travel
+#: path during locomotion?", Exp Brain Res 148:133-138, 2003; Matthis & Fajen, "Visual control
+#: of foot placement when walking over complex terrain", J Exp Psychol Hum Percept Perform
+#: 40:106-115, 2014), and their heading is drawn to the point they steer for as to a goal
+#: (Fajen & Warren, "Behavioral dynamics of steering, obstacle avoidance, and route selection",
+#: J Exp Psychol Hum Percept Perform 29:343-362, 2003: the goal an attractor of heading).
+#: Steering for a point on the way two steps on turns a sideways offset s into a heading error
+#: atan(s / PURSUIT_AHEAD), which the heading term then costs as any other: a walk drifting off
+#: its guide is drawn back within a few steps, as people's stepping corrects their position on
+#: the way step by step (Dingwell & Cusumano, PLoS Comput Biol 15:e1006850, 2019).
+PURSUIT_AHEAD = 2.0 * REFERENCE_SPEED / (REFERENCE_CADENCE / 60.0)
 
 # Quintic Hermite basis with zero end accelerations (Flash & Hogan 1985), as polynomial
 # coefficients in s (constant term first): position 0, tangent 0, tangent 1, position 1.
@@ -441,9 +458,11 @@ def guide_aim(guide, p, goal):
     points; nan first: no guide, the straight direction to the goal): the guide's direction
     at its point q nearest ``p`` (the segments' directions, blended linearly between their
     midpoints), turned by the angle between the goal's directions seen from ``p`` and from
-    q. On the guide that is its direction; off it, the walker's own way to the goal bends it,
-    as much as the goal's direction differs; for a straight guide it is the direction to the
-    goal.
+    q, and back towards the guide by atan(s / a) for a walker s metres off it, a =
+    :data:`PURSUIT_AHEAD` (or the way left to the goal, if shorter): the walker steers for
+    the guide's point two steps on. On the guide that is its direction; off it, the walker's
+    own way to the goal bends it, as much as the goal's direction differs, and the pull
+    back onto the guide; on a straight guide it is the direction to the goal on the guide.
 
     Args:
         guide: the guide, flat (x0, y0, x1, y1, ...), metres; nan first: none.
@@ -486,7 +505,11 @@ def guide_aim_at(guide, p, goal, k, best_w):
     gx, gy = goal.real - qx, goal.imag - qy
     if gx * gx + gy * gy < 1e-12:
         return direct
-    return tang + (direct - math.atan2(gy, gx))
+    # the point the walker steers for, PURSUIT_AHEAD on along the guide: off it by s (signed,
+    # left of its direction positive), that point lies atan(s / ahead) back towards it
+    side = math.cos(tang) * (p.imag - qy) - math.sin(tang) * (p.real - qx)
+    ahead = min(PURSUIT_AHEAD, math.sqrt(gx * gx + gy * gy))
+    return tang + (direct - math.atan2(gy, gx)) - math.atan2(side, ahead)
 
 
 @njit

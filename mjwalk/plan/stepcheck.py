@@ -389,7 +389,7 @@ def check_into(
                 par[P_DIST_TOP_Y], ipar[I_DIST_NX], ex, ey,
             )  # fmt: skip
             if sight:
-                if guided:
+                if guided:  # steering for the guide's point two steps on (PURSUIT_AHEAD)
                     want = guide_aim_at(guide, end, goal, gk, gw)
                 else:  # straight at the goal
                     want = guide_aim(guide, end, goal)

@@ -7,10 +7,12 @@ import math
 
 import numpy as np
 import pytest
+from scipy.ndimage import uniform_filter1d
 
 from mjwalk import InputError
 from mjwalk.gait.default import default_model
 from mjwalk.plan.guide import (
+    PURSUIT_AHEAD,
     guide_aim,
     guide_is_clear,
     minimum_jerk_guide,
@@ -54,9 +56,11 @@ def test_the_guide_leaves_and_arrives_along_its_headings():
         minimum_jerk_guide((1.0, 1.0), (1.0, 1.0), 0.0, 0.0)
 
 
-def test_the_aim_is_the_guides_direction_on_it_and_the_goals_for_a_straight_guide():
-    """On the guide the aim is its direction (within the polyline's few degrees); for a
-    straight guide it is the direction to the goal from anywhere."""
+def test_the_aim_is_the_guides_direction_on_it_and_steers_back_onto_a_straight_guide():
+    """On the guide the aim is its direction (within the polyline's few degrees); off a
+    straight guide by s it is the direction to the goal turned back towards the guide by
+    atan(s / PURSUIT_AHEAD) (the guide's point two steps on), and without a guide the
+    direction to the goal."""
     g = resample_guide(minimum_jerk_guide((0.0, 0.0), (6.0, 0.0), math.radians(40), None))
     goal = complex(6.0, 0.0)
     for k in (2, 8, 14, 20):
@@ -64,9 +68,20 @@ def test_the_aim_is_the_guides_direction_on_it_and_the_goals_for_a_straight_guid
         seg = _direction(g, k)
         assert abs(math.remainder(aim - seg, math.tau)) < math.radians(4.0), k
     line = resample_guide([(0.0, 0.0), (6.0, 0.0)]).ravel()
-    for p in (complex(1.0, 0.7), complex(3.0, -1.2), complex(5.0, 0.3)):
+    assert PURSUIT_AHEAD == pytest.approx(1.455, abs=1e-3)  # two 0.73 m steps
+    for p in (complex(1.0, 0.7), complex(3.0, -1.2), complex(4.0, 0.3)):
         d = goal - p
-        assert guide_aim(line, p, goal) == pytest.approx(math.atan2(d.imag, d.real), abs=1e-9)
+        back = math.atan2(p.imag, PURSUIT_AHEAD)  # left of the line: turned right
+        want = math.atan2(d.imag, d.real) - back
+        assert guide_aim(line, p, goal) == pytest.approx(want, abs=1e-9)
+        assert guide_aim(np.array([np.nan]), p, goal) == pytest.approx(
+            math.atan2(d.imag, d.real), abs=1e-9
+        )
+    # near the goal it steers for the goal point itself: within PURSUIT_AHEAD of it
+    p = complex(5.5, 0.1)
+    assert guide_aim(line, p, goal) == pytest.approx(
+        math.atan2(-0.1, 0.5) - math.atan2(0.1, 0.5), abs=1e-9
+    )
 
 
 def test_a_walking_start_bends_towards_the_goal_over_the_walk(model, open_floor):
@@ -332,23 +347,49 @@ def test_a_guide_through_several_points_passes_each_smoothly():
     assert np.allclose(one, via_point_guide((-4.0, 0.0), vias[0], (4.0, 0.0), None, None))
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 48 target not met: the search's sampled steps drift 0.04-0.12 m off the "
-    "chord (0.02-0.10 m after the tracks' 800 ms average); the guide itself is the chord",
-)
-def test_straight_walks_in_an_empty_hall_stay_within_6_cm_of_their_chord(open_floor, model):
-    """A smooth path over the whole way has nothing to bend for in an empty hall (issue 48):
-    12 seeded 5 m walks across the open floor, from a stand and already walking along the
-    chord, are to keep the pelvis within 0.06 m of the chord between their ends. Measured:
-    worst 0.124 m (seeds 5, 7, 11 over 0.1 m), so the target is marked as not met."""
+@pytest.fixture(scope="module")
+def empty_hall_offsets(open_floor, model):
+    """12 seeded 5 m walks across the open floor, from a stand (odd seeds) and already walking
+    along the chord (even): per walk the pelvis's largest offset from the chord (m), raw and
+    after the tracks' 800 ms moving average (THOR's, benchmarks/bench_thor.py: how people's
+    walked paths are measured, the step-to-step sway averaged out)."""
     (x0, y0, x1, y1) = (float(v) for v in open_floor.floor_bounds)
     cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
     s, g = (cx - 2.5, cy), (cx + 2.5, cy)
     planner = HybridPlanner(open_floor, g, model)
-    worst = 0.0
+    raw, smooth = [], []
     for k in range(WALKS):
-        start = s if k % 2 else (*s, 0.0)  # from a stand; walking along the chord
+        start = s if k % 2 else (*s, 0.0)
         p = planner.plan(start, np.random.default_rng(k))
-        worst = max(worst, float(np.abs(p.xy[:, 1] - cy).max()))
-    assert worst <= 0.06, worst
+        size = max(1, round(0.8 / float(np.median(np.diff(p.t)))))
+        averaged = uniform_filter1d(p.xy[:, 1], size=size, mode="nearest")
+        raw.append(float(np.abs(p.xy[:, 1] - cy).max()))
+        smooth.append(float(np.abs(averaged - cy).max()))
+    return np.array(raw), np.array(smooth)
+
+
+def test_straight_walks_in_an_empty_hall_are_drawn_back_to_their_chord(empty_hall_offsets):
+    """Steering for the guide's point two steps on (PURSUIT_AHEAD) draws a walk that drifts
+    with its sampled steps back onto its chord: of the 12 walks the worst stays within 0.10 m
+    of it (measured 0.089 m; 0.124 m before, when nothing drew it back), and within 0.075 m
+    after the tracks' 800 ms average (measured 0.063 m; before up to 0.10 m); the median walk
+    within 0.06 m (measured 0.053 m)."""
+    raw, smooth = empty_hall_offsets
+    assert raw.max() <= 0.10, raw
+    assert smooth.max() <= 0.075, smooth
+    assert np.median(raw) <= 0.06, raw
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="issue 48 target not met: the walks' first steps from a stand and the pelvis's "
+    "step-to-step sway (2-3 cm) leave the worst walk 0.089 m off its chord (0.063 m after "
+    "the tracks' 800 ms average)",
+)
+def test_straight_walks_in_an_empty_hall_stay_within_6_cm_of_their_chord(empty_hall_offsets):
+    """A smooth path over the whole way has nothing to bend for in an empty hall (issue 48):
+    the 12 walks are to keep the pelvis within 0.06 m of the chord between their ends.
+    Measured: worst 0.089 m (seed 7, a wide second step from a stand; seed 11 0.077 m), so
+    the target is marked as not met."""
+    raw, _ = empty_hall_offsets
+    assert raw.max() <= 0.06, raw
