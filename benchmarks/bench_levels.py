@@ -22,6 +22,12 @@ as hurrying walkers should be); elderly time per step 0.866 s up / 0.686 s down 
 Oh-Park's 0.70-1.07 / 0.66-1.23 s). The six-riser flight: adult 3.5 s up, 2.8 s down; elderly
 5.2 s / 4.1 s. The 5.5 deg ramp: adult 1.00 m/s up (0.71 of level), 1.40 m/s down.
 
+Legs on the stair (``--draws 50 --walks 0``): knee peak up 95.9-97.5 deg (cited 83-105), hip
+58.8-60.0 (55-75); down knee 91.9-93.0 (80-100), hip 40.9-42.7 (20-45) over the five presets
+(the elderly, shortest, highest). The clearance printed is the swing path's target's (3 cm):
+played in MuJoCo the ankle clipped at 20 deg dorsiflexion pitches the swing foot toes down and
+its toes touch the next tread (tests/timeline/test_collisions.py, strict xfail).
+
 Planning cost measured (``--draws 10 --walks 10``, loaded 2-core machine): walks over levels
 17.9-30.6 ms against 9.6-13.6 ms for flat walks of the same length, ratio 1.66-2.62 for the step,
 ramp and stair walks; stand_platform1 -> stand_car1 (down the step and round the car, 8 m) 155 ms,
@@ -39,6 +45,9 @@ from pathlib import Path
 
 import numpy as np
 
+from mjwalk.body.legs import legs_from_walk
+from mjwalk.body.legs.edgeswing import STAIR_TOE_CLEARANCE
+from mjwalk.body.legs.legheights import HIP_PEAK_DOWN, HIP_PEAK_UP, KNEE_PEAK_DOWN, KNEE_PEAK_UP
 from mjwalk.cycle.population import Population, preset_group
 from mjwalk.gait.default import default_model
 from mjwalk.gait.slope import slope_gait
@@ -51,6 +60,7 @@ from mjwalk.gait.stairs import (
     stair_gait,
 )
 from mjwalk.gait.walker import PRESETS
+from mjwalk.plan.synthetic import synthetic_stair_walk
 from mjwalk.plan.walks import plan_walk
 from mjwalk.world import load_workplace
 
@@ -103,6 +113,45 @@ def stair_table(draws: int, seed: int) -> None:
                 f"{_stats([g.slope_speed for g in gaits])} "
                 f"{_stats([g.horizontal_speed for g in gaits])} "
                 f"{_stats([g.flight(RISERS).duration for g in gaits])} {_norm(group, d)}"
+            )
+
+
+def body_table(draws: int, seed: int) -> None:
+    """Print the legs on the stair per preset: the group's mean walker (mean stature, mean
+    step time) played up and down the stair (synthetic_stair_walk, legs_from_walk); knee and
+    hip flexion peaks over the flight's inner steps and the least toe clearance over a nosing,
+    beside the cited ranges (mjwalk.body.legs.legheights, edgeswing).
+
+    Args:
+        draws: walkers per preset.
+        seed: the draws' seed.
+    """
+    print(f"\nLegs on the stair, each group's mean walker ({draws} draws per group)")
+    head = (
+        f"{'group':12} {'dir':4} {'stature m':10} {'knee deg':9} {'hip deg':8} {'clear cm':9} norm"
+    )
+    print(head)
+    print("-" * len(head))
+    for group in PRESETS:
+        pop = Population((preset_group(group),))
+        rng = np.random.default_rng(seed)
+        walkers = [pop.draw(rng) for _ in range(draws)]
+        stature = float(np.mean([w.stature for w in walkers]))
+        for d in ("up", "down"):
+            step = float(np.mean([stair_gait(w, STAIR, d).step_time for w in walkers]))
+            walk = synthetic_stair_walk(STAIR.riser, STAIR.tread, RISERS, d, step_time=step)
+            motion = legs_from_walk(walk, stature=stature)
+            a, b = walk.steps[1].start, walk.steps[-2].end
+            knee, hip = (
+                float(np.rad2deg(max(motion.angles[j.format(s)][a:b].max() for s in "lr")))
+                for j in ("knee_{}", "hip_{}_flex")
+            )
+            kn, hp = (KNEE_PEAK_UP, HIP_PEAK_UP) if d == "up" else (KNEE_PEAK_DOWN, HIP_PEAK_DOWN)
+            print(
+                f"{group:12} {d:4} {stature:<10.3f} {knee:<9.1f} {hip:<8.1f} "
+                f"{100 * motion.meta['edge_clearance']:<9.1f} knee {kn[0]:.0f}-{kn[1]:.0f}, "
+                f"hip {hp[0]:.0f}-{hp[1]:.0f} deg, clearance >= "
+                f"{100 * STAIR_TOE_CLEARANCE:.0f} cm"
             )
 
 
@@ -197,6 +246,7 @@ def main() -> None:
     ap.add_argument("--walks", type=int, default=10, help="seeds per walk over levels")
     args = ap.parse_args()
     stair_table(args.draws, args.seed)
+    body_table(args.draws, args.seed)
     ramp_table(args.draws, args.seed)
     if args.walks > 0:
         planning_cost(args.walks)

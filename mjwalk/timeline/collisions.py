@@ -26,6 +26,7 @@ from mjwalk.plan.walkpath import WalkPath
 from mjwalk.timeline.frames import timeline_from_walk
 from mjwalk.timeline.geomposes import geom_poses, supported
 from mjwalk.timeline.timeline import Timeline
+from mjwalk.world.norms import MAX_RAMP_SLOPE
 from mjwalk.world.workplace import shared_workplace
 
 
@@ -80,7 +81,11 @@ def collision_report(
 
     Only pairs of one humanoid geom (group 5) and one scene geom count. Contacts with the floor
     (the geom named ``"floor"`` or any plane) are left out unless they penetrate deeper than
-    ``floor_tolerance`` metres, so ordinary foot contact is not reported.
+    ``floor_tolerance`` metres, so ordinary foot contact is not reported. In a scene on several
+    levels (:func:`walk_tops`) a sole (``foot_*``, ``toes_*``) standing on the top face of a
+    walk surface (a platform, a tread, a ramp) is left out the same way: a contact no deeper
+    than ``floor_tolerance`` whose normal is within :data:`TOP_NORMAL_TILT` of vertical (a
+    foot against a riser or an edge is still reported). Flat scenes: as before.
 
     With ``broad_phase`` (default) MuJoCo's collision detection runs only on the frames where
     a contact can be reported (:func:`candidate_frames`: some humanoid geom's bounding sphere
@@ -105,6 +110,8 @@ def collision_report(
     human = model.geom_group == HUMAN_GROUP
     plen = len(timeline.jointmap.prefix)
     names, floorish = _geom_names(model)
+    tops = walk_tops(timeline)
+    soles = human & np.array([n[plen:].startswith(("foot_", "toes_")) for n in names])
     qpos = np.asarray(timeline.qpos)
     same = repeats(qpos) if broad_phase else np.zeros(len(qpos), dtype=bool)
     if broad_phase and len(qpos) > 1:
@@ -136,7 +143,11 @@ def collision_report(
         h1, h2 = human[g[:, 0]], human[g[:, 1]]
         hg = np.where(h1, g[:, 0], g[:, 1])
         sg = np.where(h1, g[:, 1], g[:, 0])
-        keep = (h1 != h2) & ~(floorish[sg] & (depth <= floor_tolerance))
+        shallow = depth <= floor_tolerance
+        keep = (h1 != h2) & ~(floorish[sg] & shallow)
+        if tops is not None:  # soles standing on a walk surface's top face
+            up = np.abs(np.asarray(con.frame[:n])[:, 2]) >= math.cos(TOP_NORMAL_TILT)
+            keep &= ~(tops[sg] & soles[hg] & shallow & up)
         best: dict[tuple[int, int], tuple[float, np.ndarray]] = {}
         for k in np.flatnonzero(keep):
             key = (int(hg[k]), int(sg[k]))
@@ -145,6 +156,37 @@ def collision_report(
         found = [(names[h][plen:], names[s_], d, pos) for (h, s_), (d, pos) in best.items()]
         out += [Contact(float(timeline.t[i]), h, s_, d, p.copy()) for h, s_, d, p in found]
     return out
+
+
+#: Largest tilt of a contact normal from vertical (radians) for a sole's contact with a walk
+#: surface to count as standing on its top face: the steepest walkable ramp
+#: (``mjwalk.world.norms.MAX_RAMP_SLOPE``) plus 10 deg for the contact normal of a box corner
+#: on a face (MuJoCo's box-box normals follow the faces).
+TOP_NORMAL_TILT = MAX_RAMP_SLOPE + math.radians(10.0)
+
+
+def walk_tops(timeline: Timeline) -> np.ndarray | None:
+    """The scene geoms of a timeline's model whose top faces are walk surfaces other than the
+    floor (platforms, treads, ramps: :attr:`Workplace.levels
+    <mjwalk.world.workplace.Workplace.levels>`), when its scene is an MJCF file on several
+    levels (some link between levels); None otherwise (a flat scene, a scene built from an
+    MjSpec), so that flat scenes check as they always did.
+
+    Args:
+        timeline: the timeline (its ``scene`` file and ``model``).
+
+    Returns:
+        (ngeom,) bool mask over the timeline's model, or None.
+    """
+    scene = Path(timeline.scene) if timeline.scene and timeline.scene != "<MjSpec>" else None
+    if scene is None or not scene.is_file():
+        return None
+    graph = shared_workplace(scene).levels
+    if not graph.links:
+        return None
+    names = _geom_names(timeline.model)[0]
+    top = {s.name for s in graph.surfaces if s.kind != "floor" and s.name}
+    return np.array([n in top for n in names])
 
 
 #: :func:`_geom_names` of the models seen (a cycle checks its frames in a few models, again

@@ -73,3 +73,62 @@ def test_check_collisions_of_a_timeline_and_of_a_walk_in_a_scene(tmp_path):
         check_collisions(walk)
     with pytest.raises(MjwalkError, match="cannot check"):
         check_collisions(42)
+
+
+_MULTI = Path(__file__).resolve().parents[2] / "scenes" / "multilevel_station.xml"
+
+
+def _stair_walk(direction):
+    """A walk up or down the shipped stair (6 x 0.17/0.28 m, heading -y from y = 0.04)."""
+    from mjwalk.plan.synthetic import synthetic_stair_walk  # deferred: only these tests use it
+
+    if direction == "up":
+        return synthetic_stair_walk(0.17, 0.28, 6, "up", start=(-4.9, 0.04, -np.pi / 2))
+    return synthetic_stair_walk(0.17, 0.28, 6, "down", start=(-4.9, -1.64, np.pi / 2))
+
+
+def test_walk_tops_only_in_scenes_on_several_levels():
+    """The stair's treads and the mezzanine are walk tops of the multi-level station; a flat
+    scene has none (its contacts are checked as before)."""
+    from mjwalk.timeline.collisions import (
+        walk_tops,
+    )  # deferred: keeps the imports above as they were
+
+    tl = timeline_from_walk(_stair_walk("up"), _MULTI)
+    tops = walk_tops(tl)
+    names = [
+        mujoco.mj_id2name(tl.model, mujoco.mjtObj.mjOBJ_GEOM, g) for g in range(tl.model.ngeom)
+    ]
+    on = {n for n, t in zip(names, tops, strict=True) if t}
+    assert {"stair_tread1", "stair_tread5", "mezzanine", "platform"} <= on
+    assert "floor" not in on and "stair_wall_w" not in on
+    assert walk_tops(timeline_from_walk(make_walk(n_steps=2), _scene(20.0))) is None  # MjSpec
+    flat = _MULTI.parent / "assembly_station.xml"
+    assert walk_tops(timeline_from_walk(make_walk(n_steps=2), flat)) is None
+
+
+@pytest.mark.parametrize("direction", ["up", "down"])
+def test_soles_on_treads_are_standing_not_contacts(direction):
+    """Up and down the shipped stair no sole contact left in the report lies on a tread's top
+    face within the floor tolerance, 1 cm or more inside its edges (those are standing); what
+    is left is deeper, on an edge or against a riser."""
+    tl = timeline_from_walk(_stair_walk(direction), _MULTI)
+    m = tl.model
+    for c in collision_report(tl):
+        if c.body_part.startswith(("foot_", "toes_")) and c.depth <= 0.01:
+            g = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, c.scene_geom)
+            top = m.geom_pos[g][2] + m.geom_size[g][2]
+            inside = np.all(np.abs(c.pos[:2] - m.geom_pos[g][:2]) < m.geom_size[g][:2] - 0.01)
+            assert not (abs(c.pos[2] - top) < 0.005 and inside)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="the swing foot is held level but its ankle is clipped at 20 deg dorsiflexion "
+    "(the IK asks up to 50 deg up, 45 deg down): the foot pitches toes down and its toes "
+    "enter the next tread by up to 4.6 cm (up) / 6.6 cm (down); raising the ankle by the toe "
+    "drop clears them but lifts the knee peak to 118 deg (cited 83-105)",
+)
+@pytest.mark.parametrize("direction", ["up", "down"])
+def test_stair_walk_has_no_contacts(direction):
+    assert collision_report(timeline_from_walk(_stair_walk(direction), _MULTI)) == []
