@@ -106,6 +106,24 @@ def join_negative_values(argv: Sequence[str], options: Sequence[str]) -> list[st
 # ------------------------------------------------------------------ seeds
 
 
+def check_patterns(**patterns: str | None) -> None:
+    """Check that each given name-filter pattern is a regular expression (``re.search`` syntax).
+
+    Args:
+        **patterns: the patterns by option name (e.g. ``include=..., exclude=...``); None
+            means no filter and passes.
+
+    Raises:
+        InputError: naming the option and the pattern, with ``re``'s reason.
+    """
+    for name, pattern in patterns.items():
+        if pattern is not None:
+            try:
+                re.compile(pattern)
+            except re.error as exc:
+                raise InputError(f"{name}={pattern!r} is not a regular expression: {exc}") from exc
+
+
 def check_seed(seed, what: str = "seed") -> int:
     """``seed`` as an int, raising InputError naming ``what`` unless it is a whole number >= 0
     (numpy's SeedSequence takes non-negative integers only; mjwalk refuses a negative seed

@@ -52,18 +52,20 @@ def cmd_plan(args: argparse.Namespace) -> int:
     workplace = load_workplace(scene_file(args.scene))
     levels = needs_levels(workplace, args.start, args.goal, args.radius)
     baseline = None
-    if levels:  # a walk over levels: the level planner places and checks both ends
-        print(_level_summary(workplace, args.start, args.goal))
-    else:
+    if not levels:  # a walk over levels: the level planner places and checks both ends
         for where, what in ((args.start, "start"), (args.goal, "goal")):
             # unknown sites, points off the floor or in an obstacle fail here, before planning
             check_endpoint(workplace, workplace.point(where), args.radius, what)
+    # a bad model file (or an unwritable cache for the default one) is refused before planning
+    model = load_model(args.model).for_walker(walker) if args.n > 0 else None
+    if levels:
+        print(_level_summary(workplace, args.start, args.goal))
+    else:
         baseline = plan_grid(workplace, args.start, args.goal, radius=args.radius)
         print(
             f"grid A*  {args.start} -> {args.goal}: length {baseline.length:.3f} m, "
             f"{baseline.meta['expansions']} expansions, {1000 * baseline.meta['seconds']:.1f} ms"
         )
-    model = load_model(args.model).for_walker(walker) if args.n > 0 else None
     paths = [] if model is None else _hybrid_walks(args, workplace, model, walker)
     if levels and paths:
         print(_level_walk_summary(paths))

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from mjwalk._args import check_patterns
 from mjwalk.errors import InputError
 from mjwalk.world.contacts import reachable, surface_contacts
 from mjwalk.world.floor import find_floor
@@ -114,15 +115,7 @@ class SurfaceOptions:
             raise InputError(f"min_depth {self.min_depth} m must not exceed min_width")
         if self.min_headroom > HEADROOM_SCAN:
             raise InputError(f"min_headroom {self.min_headroom} m must be <= {HEADROOM_SCAN}")
-        for name in ("include", "exclude"):
-            pattern = getattr(self, name)
-            if pattern is not None:
-                try:
-                    re.compile(pattern)
-                except re.error as exc:
-                    raise InputError(
-                        f"{name}={pattern!r} is not a regular expression: {exc}"
-                    ) from exc
+        check_patterns(include=self.include, exclude=self.exclude)
 
 
 def _geom_name(model: mujoco.MjModel, g: int) -> str:

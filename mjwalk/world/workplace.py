@@ -13,7 +13,7 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
-from mjwalk._args import finite_points, parse_point
+from mjwalk._args import check_patterns, finite_points, parse_point
 from mjwalk.errors import InputError, SceneError
 from mjwalk.world.cache import AUTO_NODES, cached_array, content_key
 from mjwalk.world.clearance import ClearanceField, build_clearance
@@ -72,15 +72,7 @@ class WorkplaceOptions:
         lo, hi = self.z_range
         if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
             raise InputError(f"obstacle z_range {self.z_range} m must be finite, low < high")
-        for name in ("include", "exclude"):
-            pattern = getattr(self, name)
-            if pattern is not None:
-                try:
-                    re.compile(pattern)
-                except re.error as exc:
-                    raise InputError(
-                        f"{name}={pattern!r} is not a regular expression: {exc}"
-                    ) from exc
+        check_patterns(include=self.include, exclude=self.exclude)
 
 
 @dataclass(frozen=True)
