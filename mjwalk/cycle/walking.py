@@ -94,6 +94,9 @@ SPOT_REACH = 0.5
 #: Spots drawn for a walk before it aims at the zone as a whole (a spot within SPOT_REACH step
 #: lengths of the start is no walk: the operator already stands there).
 SPOT_TRIES = 8
+#: The goal area (m) of a walk over levels at most: the default planner's
+#: (:class:`~mjwalk.plan.options.PlannerOptions`), which the level planner's legs end in.
+GOAL_AREA = PlannerOptions().goal_tolerance
 
 
 def plan_task_walk(
@@ -161,7 +164,9 @@ def _level_walk(ctx: CycleContext, start, goal, model, rng, within):
     ``within[1]`` (their group's step-up limit, :func:`~mjwalk.cycle.stepup.step_up_of`)."""
     reach, walker = within
     pose = (float(start[0]), float(start[1]))
-    options = PlannerOptions(radius=ctx.spec.radius, goal_tolerance=reach)
+    # the planner's own goal area: it applies to every level leg, so the crossings' stances are
+    # reached as the level planner means them (a wider area ends a leg before its crossing)
+    options = PlannerOptions(radius=ctx.spec.radius, goal_tolerance=min(reach, GOAL_AREA))
     limit = step_up_of(ctx.spec.population, walker)
     return plan_level_walk(ctx.workplace, pose, goal, model, rng, options, limit)
 
