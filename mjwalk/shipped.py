@@ -19,9 +19,16 @@ SCENES = {
     "assembly_station": "assembly_station.xml",
     "corridor": "corridor.xml",
     "open_floor": "open_floor.xml",
+    "multilevel": "multilevel_station.xml",
+    "multilevel_station": "multilevel_station.xml",
 }
 #: Short names of the shipped cycle specifications -> file names.
-CYCLES = {"station": "assembly_station.toml", "assembly_station": "assembly_station.toml"}
+CYCLES = {
+    "station": "assembly_station.toml",
+    "assembly_station": "assembly_station.toml",
+    "multilevel": "multilevel_station.toml",
+    "multilevel_station": "multilevel_station.toml",
+}
 
 
 def scene_dir() -> Path:

@@ -14,11 +14,12 @@ import mujoco
 from mjwalk.arms.reach import load_endpoint_model
 from mjwalk.arms.reachdefault import default_reach_model
 from mjwalk.body.humanoid import JointMap, attach_humanoid
+from mjwalk.cycle.levelsite import ground_height, spec_on_levels
 from mjwalk.cycle.memo import Memo
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.standing import StandZone, StandZones
 from mjwalk.cycle.standoff import ArmClearance
-from mjwalk.cycle.types import CycleSpec
+from mjwalk.cycle.types import TASK_KINDS, CycleSpec
 from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.gait.model import StepModel
@@ -159,6 +160,9 @@ class CycleContext:
         turn_rate: the operator's turning speed on the spot over the reference adult's.
         reach_model_right: the right arm's reach model (``[models] reach_right``), None:
             ``reach_model`` mirrored.
+        on_levels: whether a standing site of the cycle stands on a raised level (a platform,
+            a mezzanine: :func:`~mjwalk.cycle.levelsite.spec_on_levels`); False for every
+            cycle of a flat scene, which then never builds the scene's levels.
     """
 
     spec: CycleSpec
@@ -173,6 +177,7 @@ class CycleContext:
     routes: GridRoutes
     turn_rate: float = 1.0
     reach_model_right: object | None = None
+    on_levels: bool = False
     # the scratch MjData of ``model`` (made with the context, never replaced; not copied by
     # dataclasses.replace: an operator's context has its own humanoid model)
     _data: mujoco.MjData = field(init=False, repr=False, compare=False)
@@ -254,6 +259,18 @@ class CycleContext:
             The route, or None when there is none.
         """
         return self.routes.route(start, end)
+
+    def ground(self, xy) -> float:
+        """The height above the floor of the walk surface under a standing operator
+        (:func:`~mjwalk.cycle.levelsite.ground_height`; 0 in a flat cycle).
+
+        Args:
+            xy: (x, y) world, metres.
+
+        Returns:
+            Metres above the floor.
+        """
+        return ground_height(self.workplace, xy, self.on_levels)
 
     def occupancy(self) -> OccupancyGrid:
         """The grid A*'s occupancy grid of the scene at the cycle's body radius (built once).
@@ -450,4 +467,11 @@ def prepare(spec: CycleSpec) -> CycleContext:
         planners=Planners(workplace, step_model, spec.radius),
         zones=StandZones(spec, workplace, KEPT_PER_CONTEXT),
         routes=GridRoutes(workplace, spec.radius),
+        on_levels=spec_on_levels(workplace, _standing_sites(spec)),
     )
+
+
+def _standing_sites(spec: CycleSpec) -> list[str]:
+    """The cycle's start site and every walk's goal site."""
+    walks = [t.site for t in spec.tasks if TASK_KINDS[t.kind].motion == "walk" and t.site]
+    return [spec.start, *walks]

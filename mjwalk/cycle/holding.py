@@ -103,7 +103,8 @@ def two_hand_frames(
     fps = pace.fps
     factor = time_factor(pace.timing)
     share = 1.0
-    if drop <= 0.0 and min(float(g[2]) for _, g in grips) >= knee_height(ctx.spec.stature):
+    ground = ctx.ground(body[ctx.jointmap.root : ctx.jointmap.root + 2])  # the surface stood on
+    if drop <= 0.0 and min(float(g[2]) for _, g in grips) - ground >= knee_height(ctx.spec.stature):
         # MTM-1's bend is the one that lets the hands reach below the knee; a shallower bend
         # (a deep bench) assists the reach: it goes down and up at a full bend's pace (the
         # trunk's flexion range in the bend's time), for as long as its angle needs

@@ -23,6 +23,7 @@ Format (lengths in metres, speeds in metres per second, cadences in steps per mi
     speed = { dist = "truncnorm", mean = 1.3, sd = 0.2, min = 0.8, max = 1.8 }
     cadence = { dist = "lognormal", median = 110.0, cv = 0.08 }   # or mean = .., sd = ..
     step_width = 0.10           # optional, fixed (default: the step model's, scaled by stature)
+    step_up = 0.0               # optional, any form: metres, or { group = metres } (stepup.py)
 
 ``mix``: preset names of :data:`mjwalk.gait.walker.PRESETS` (adult, older_adult, elderly,
 fatigued, brisk) with positive relative shares (normalised to sum to 1); each group draws every
@@ -55,11 +56,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy.special import ndtr, ndtri
 
+from mjwalk.cycle.stepup import parse_step_up
 from mjwalk.errors import CycleSpecError
 from mjwalk.gait.walker import CADENCE_RANGE, PRESETS, SPEED_RANGE, Walker
 from mjwalk.gait.walker import STATURE_RANGE as WALKER_STATURE_RANGE
@@ -85,7 +87,7 @@ STATURE_STEP = 0.01
 #: The group label of per-figure draws without a preset or a ``group``.
 POPULATION_GROUP = "population"
 DISTS = ("fixed", "normal", "truncnorm", "lognormal")
-_POP_KEYS = ("mix", "walker", "group", "stature", "speed", "cadence", "step_width")
+_POP_KEYS = ("mix", "walker", "group", "stature", "speed", "cadence", "step_width", "step_up")
 _DIST_KEYS = {
     "fixed": ("dist", "value"),
     "normal": ("dist", "mean", "sd"),
@@ -277,6 +279,8 @@ class Population:
     per-figure distributions)."""
 
     groups: tuple[OperatorGroup, ...]
+    #: (group, step-up limit in metres) of the groups that have one (:mod:`mjwalk.cycle.stepup`).
+    step_up: tuple[tuple[str, float], ...] = ()
 
     def draw(self, rng: np.random.Generator) -> Walker:
         """One operator: the group by its share, then each figure at a quantile of its truncated
@@ -477,6 +481,10 @@ def parse_population(table, humanoid_stature: float, fail: Fail = _default_fail)
     """
     if not isinstance(table, dict):
         raise fail("'population' must be a table ([population])", "population")
+    if "step_up" in table:  # besides any form: the groups' limits (mjwalk.cycle.stepup)
+        rest = {k: v for k, v in table.items() if k != "step_up"}
+        pop = parse_population(rest, humanoid_stature, fail)
+        return replace(pop, step_up=parse_step_up(table["step_up"], pop.group_names, fail))
     for key in table:
         if key not in _POP_KEYS:
             raise fail(

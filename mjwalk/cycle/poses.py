@@ -48,7 +48,9 @@ STEP_SPEED = 0.6
 
 def standing_pose(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarray:
     """The humanoid's standing pose (its neutral joint angles) at ``(x, y)`` facing ``yaw``,
-    the pelvis at its standing height.
+    the pelvis at its standing height over the walk surface there (:meth:`CycleContext.ground
+    <mjwalk.cycle.context.CycleContext.ground>`: the floor in a flat cycle, a platform's or
+    mezzanine's height in a cycle over levels).
 
     Args:
         ctx: the cycle context (the humanoid and its stature).
@@ -61,7 +63,7 @@ def standing_pose(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarr
     """
     q = ctx.jointmap.neutral_qpos(ctx.model, ctx.spec.stature)
     r = ctx.jointmap.root
-    q[r : r + 3] = [x, y, pelvis_height(ctx.spec.stature)]
+    q[r : r + 3] = [x, y, pelvis_height(ctx.spec.stature) + ctx.ground((x, y))]
     q[r + 3 : r + 7] = yaw_quat(np.array([yaw]))[0]
     return q
 
@@ -162,17 +164,19 @@ def frame_contacts(ctx: CycleContext, frames: np.ndarray, fps: float = 30.0) -> 
 
 def _feet_above_floor(ctx: CycleContext, frames: np.ndarray) -> None:
     """Raise the pelvis of ``frames`` (n, nq) in place where a blended pose puts a foot's lowest
-    corner below the floor (z = 0): blending a landing pose (trailing heel raised, knee
-    flexed) into the standing pose joint by joint swings that foot's toes through the floor."""
+    corner below the walk surface it stands on (the floor, z = 0, in a flat cycle): blending a
+    landing pose (trailing heel raised, knee flexed) into the standing pose joint by joint
+    swings that foot's toes through the floor."""
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
     feet = [m.geom(f"{jm.prefix}{g}").id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
+    ground = ctx.ground(frames[-1, jm.root : jm.root + 2]) if len(frames) else 0.0
     for q in frames:
         data.qpos[:] = q
         mujoco.mj_kinematics(m, data)
         low = lowest_point(m, data, feet)
-        if low < 0.0:
-            q[jm.root + 2] -= low
+        if low < ground:
+            q[jm.root + 2] += ground - low
 
 
 def _settle(frames: np.ndarray, start: np.ndarray, r: int, hinges: np.ndarray) -> None:

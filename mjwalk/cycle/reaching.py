@@ -196,7 +196,9 @@ def reach_frames(
         base = leaning(ctx, base, [(side, target_w)], float(lengths.sum()) / scale - LEAN_SPARE)
     q, res = _solve_arm(ctx, arm, base, target_w, approach_w, face)
     timing = default_timing if pace.timing is None else pace.timing
-    low = lowering.drop > 0.0 or (lowering.lean and target_w[2] < knee_height(ctx.spec.stature))
+    r = ctx.jointmap.root
+    over = target_w[2] - ctx.ground(q0[r : r + 2])  # above the surface the operator stands on
+    low = lowering.drop > 0.0 or (lowering.lean and over < knee_height(ctx.spec.stature))
     frames, error = _reach_motion(
         ctx, arm, q0, base, q, target_w, replace(pace, timing=timing), low
     )

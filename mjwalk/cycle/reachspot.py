@@ -14,6 +14,7 @@ import numpy as np
 from mjwalk.conventions import Side
 from mjwalk.cycle import reaching
 from mjwalk.cycle.holding import two_hand_frames
+from mjwalk.cycle.levelsite import level_room
 from mjwalk.cycle.poses import carry_pose, standing_pose, turn_frames
 from mjwalk.cycle.standoff import REACH_TOLERANCE, STEP_BACK, step_back_offsets
 from mjwalk.cycle.targets import approach_offset, approach_rise, reach_target
@@ -156,7 +157,7 @@ def reach_task(
         back=back,
         site_pos=site_pos,
         rise=rise,
-        room=float(ctx.workplace.walk_clearance(np.array([hx, hy]))[()]),
+        room=level_room(ctx.workplace, (hx, hy), ctx.on_levels),
     )
     upright = _settle(search, lean=False)
     best = upright
@@ -203,7 +204,7 @@ def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> Work
     x, y, yaw = search.x, search.y, search.yaw
     hx, hy = search.home
     xs, ys = float(hx + s * search.back[0]), float(hy + s * search.back[1])
-    room = float(ctx.workplace.walk_clearance(np.array([xs, ys]))[()])
+    room = level_room(ctx.workplace, (xs, ys), ctx.on_levels, home=(hx, hy))
     if s != 0 and room < min(ctx.spec.radius, search.room):
         return None
     target = reach_target(task.kind, search.site_pos, xs, ys)

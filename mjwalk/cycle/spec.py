@@ -44,8 +44,8 @@ Keys of a task, by kind (``kind`` is always required):
 ========  ==========================================  ==========================================
 kind      required                                    optional
 ========  ==========================================  ==========================================
-walk      site (a standing site on the floor)         route
-carry     site (a standing site on the floor)         route, hand, part
+walk      site (a standing site on a walk surface)    route
+carry     site (a standing site on a walk surface)    route, hand, part
 pick      site (where the part lies)                  hand, part, duration (hold time),
                                                       mass (kg), coupling
 place     site (where the part goes)                  hand, part, duration (hold time)
@@ -72,8 +72,9 @@ The checks, each raising :class:`~mjwalk.errors.CycleSpecError` whose message st
 missing required keys; wrong types and values; sites the scene lacks (with close names); missing
 scene or model files; and impossible tasks, found by following the operator through the cycle from
 ``start``: a walk/carry to a site that is not a standing place (site higher than
-:data:`~mjwalk.cycle.spectask.STAND_MAX_Z` or closer to an obstacle or the floor's edge than the
-walking radius), a walk/carry to where the operator already stands, a pick/place/fasten farther
+:data:`~mjwalk.cycle.levelsite.STAND_MAX_Z` above the floor and above every level of a scene
+on several levels, or closer to an obstacle or its level's edge than the walking radius), a
+walk/carry to where the operator already stands, a pick/place/fasten farther
 than :data:`~mjwalk.cycle.spectask.MAX_REACH` (horizontally) from where the operator stands, and
 a place/fasten/carry with nothing in that hand (picks add a part to the hand; places and fastens
 take one away), and a one-handed pick/place/fasten while both hands hold a two-handed part.
@@ -89,6 +90,7 @@ from pathlib import Path
 from mjwalk._io import read_toml
 from mjwalk.arms.reach import load_endpoint_model
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
+from mjwalk.cycle.levelsite import site_level
 from mjwalk.cycle.population import HUMANOID_STATURE_RANGE, Population, parse_population
 from mjwalk.cycle.specfile import (
     MAX_CYCLE_SECONDS,
@@ -349,7 +351,9 @@ def _check_routes(
     """Raise naming the task of the first walk or carry whose site cannot be reached from
     where the operator stands (grid A* with the walking radius, :func:`mjwalk.plan.grid.
     plan_grid`, on the scene's shared occupancy grid: milliseconds per route): a wall or a
-    gap narrower than the body between two sites would make every run fail."""
+    gap narrower than the body between two sites would make every run fail. A walk to or from a
+    site on a raised level needs its levels joined by steps, ramps or stairs
+    (:meth:`~mjwalk.world.levels.LevelGraph.reachable`)."""
     occupancy = None
     stand = start
     seen: set[tuple[str, str]] = set()
@@ -361,6 +365,17 @@ def _check_routes(
         if pair in seen:
             continue
         seen.add(pair)
+        levels = (site_level(workplace, pair[0]), site_level(workplace, pair[1]))
+        if levels != (0, 0):  # a site on a raised level: the levels must connect them
+            if levels[1] not in workplace.levels.reachable(levels[0] or 0):
+                raise check.fail(
+                    f"key 'site' in task {i + 1}: no steps, ramp or stair lead from {pair[0]!r} "
+                    f"(level L{levels[0]}) to {pair[1]!r} (level L{levels[1]})",
+                    "task",
+                    i,
+                    "site",
+                )
+            continue
         if occupancy is None:
             occupancy = _occupancy.shared_grid(workplace, radius=radius)
         try:

@@ -11,13 +11,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from mjwalk.cycle.levelsite import STAND_MAX_Z, level_workplace, site_level
 from mjwalk.cycle.specfile import ALL_TASK_KEYS, MAX_CYCLE_SECONDS, Checker
 from mjwalk.cycle.types import TASK_KINDS, Task, TaskKindName, grip_sites
 from mjwalk.errors import CycleSpecError
 from mjwalk.world.workplace import Workplace
 
-#: Highest a standing site may lie above the floor, metres.
-STAND_MAX_Z = 0.05
 #: Farthest horizontal distance from the standing site to a handled site (arm's reach), metres.
 MAX_REACH = 0.9
 HANDS = ("left", "right")
@@ -70,9 +69,10 @@ def check_stand(
     index: int | None,
     key: str,
 ) -> None:
-    """Raise unless site ``name`` is a place on the floor with room for the body: at most
-    :data:`STAND_MAX_Z` metres above the floor, and at least ``radius`` metres from an
-    obstacle or the floor's edge.
+    """Raise unless site ``name`` is a place on a walk surface with room for the body: at most
+    :data:`~mjwalk.cycle.levelsite.STAND_MAX_Z` metres above the floor or above a level of a
+    scene on several levels (a platform, a mezzanine: :func:`~mjwalk.cycle.levelsite.
+    site_level`), and at least ``radius`` metres from an obstacle or the edge of its level.
 
     Args:
         check: the spec file's checker.
@@ -88,19 +88,22 @@ def check_stand(
     """
     st = workplace.stations[name]
     height = float(st.pos[2] - workplace.floor_z)
-    if height > STAND_MAX_Z:
+    level = site_level(workplace, name)
+    if level is None:
         raise check.fail(
             f"key {key!r} {check.where(table, index)}: site {name!r} is {height:.2f} m above the "
-            f"floor, not a standing place (standing sites lie within {STAND_MAX_Z} m of the floor)",
+            f"floor, not a standing place (standing sites lie within {STAND_MAX_Z} m of the floor "
+            "or of a walk surface's top)",
             table,
             index,
             key,
         )
-    room = float(workplace.walk_clearance(np.asarray(st.xy)))
+    room = float(level_workplace(workplace, level).walk_clearance(np.asarray(st.xy)))
     if room < radius:
+        edge = "the floor's edge" if level == 0 else f"the edge of level L{level}"
         raise check.fail(
             f"key {key!r} {check.where(table, index)}: site {name!r} is {room:.2f} m from an "
-            f"obstacle or the floor's edge, closer than the walking radius {radius:g} m",
+            f"obstacle or {edge}, closer than the walking radius {radius:g} m",
             table,
             index,
             key,

@@ -8,8 +8,12 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from mjwalk.cycle.levelsite import level_field
 from mjwalk.cycle.standing import StandZone, start_zone, work_zone
+from mjwalk.cycle.stepup import step_up_of
 from mjwalk.cycle.types import TASK_KINDS
+from mjwalk.plan.levelplan import needs_levels, plan_level_walk
+from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
 
 if TYPE_CHECKING:
@@ -50,7 +54,7 @@ def standing_spot(
     Returns:
         (x, y) world frame, metres; the zone's own centre (the site) when no draw lands there.
     """
-    field = ctx.workplace.walk_field()
+    field = level_field(ctx.workplace, zone.centre, ctx.on_levels)  # the zone's level's
     r = zone.radius * np.sqrt(rng.uniform(size=SPOT_DRAWS))
     a = rng.uniform(0.0, 2.0 * np.pi, SPOT_DRAWS)
     pts = np.asarray(zone.centre) + np.column_stack([r * np.cos(a), r * np.sin(a)])
@@ -90,6 +94,9 @@ SPOT_REACH = 0.5
 #: Spots drawn for a walk before it aims at the zone as a whole (a spot within SPOT_REACH step
 #: lengths of the start is no walk: the operator already stands there).
 SPOT_TRIES = 8
+#: The goal area (m) of a walk over levels at most: the default planner's
+#: (:class:`~mjwalk.plan.options.PlannerOptions`), which the level planner's legs end in.
+GOAL_AREA = PlannerOptions().goal_tolerance
 
 
 def plan_task_walk(
@@ -131,16 +138,37 @@ def plan_task_walk(
     stature = walker.stature if walker is not None else ctx.spec.stature
     step = walker.step_length if walker is not None else ctx.step_model.pace().step_length
     zone = ctx.zone(i, stature, step)
-    planner = ctx.planner(task.site, zone)
     reach = SPOT_REACH * step
     pose = tuple(start) if yaw is None else (float(start[0]), float(start[1]), float(yaw))
     turn = yaw is not None
+    levels = ctx.on_levels and needs_levels(ctx.workplace, pose, task.site, ctx.spec.radius)
+    planner = None if levels else ctx.planner(task.site, zone)
     for _ in range(SPOT_TRIES):
         x, y = standing_spot(ctx, zone, rng if spots is None else spots)
         if np.hypot(x - start[0], y - start[1]) > reach:
+            if levels:
+                return _level_walk(ctx, start, (x, y), model, rng, (reach, walker))
             request = WalkRequest(pose, model, (x, y, reach), turn, face)
+            assert planner is not None
             return planner.plan(request, rng)
+    if levels:
+        return _level_walk(ctx, start, zone.centre, model, rng, (zone.radius, walker))
+    assert planner is not None
     return planner.plan(WalkRequest(pose, model, turn_on_spot=turn, goal_heading=face), rng)
+
+
+def _level_walk(ctx: CycleContext, start, goal, model, rng, within):
+    """A walk over levels (:func:`~mjwalk.plan.levelplan.plan_level_walk`) from ``start`` (x, y:
+    it sets off around the heading the search finds, the cycle turns the operator there on the
+    spot first) to end within ``within[0]`` metres of the spot ``goal``, for the operator
+    ``within[1]`` (their group's step-up limit, :func:`~mjwalk.cycle.stepup.step_up_of`)."""
+    reach, walker = within
+    pose = (float(start[0]), float(start[1]))
+    # the planner's own goal area: it applies to every level leg, so the crossings' stances are
+    # reached as the level planner means them (a wider area ends a leg before its crossing)
+    options = PlannerOptions(radius=ctx.spec.radius, goal_tolerance=min(reach, GOAL_AREA))
+    limit = step_up_of(ctx.spec.population, walker)
+    return plan_level_walk(ctx.workplace, pose, goal, model, rng, options, limit)
 
 
 def plan_cycle_walks(

@@ -26,7 +26,7 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -330,6 +330,11 @@ def plan_level_walk(
         prev = parts[-1][1] if parts else None
         here = (prev.xy[-1], float(prev.yaw[-1])) if prev is not None else (leg.start, c.yaw)
         last = prev.steps[-1] if prev is not None and prev.steps else None
+        if last is not None and prev is not None and prev.z is None:
+            # a level walk's steps stand on its level (stitch lifts them later): the crossing's
+            # first step keeps that height under its stance foot, not the floor's
+            h = workplace.levels.levels[parts[-1][0].level].height - workplace.floor_z
+            last = replace(last, foot_z=h, stance_z=h)
         walk = cross_walk(c, leg.direction, walker, here, last, workplace.floor_z)
         parts.append((leg, walk))
         end_yaw = c.yaw if leg.direction == "up" else c.yaw + math.pi

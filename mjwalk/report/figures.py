@@ -34,6 +34,7 @@ from mjwalk.ergonomics.summary import RunRecord, ergonomics_summary
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.grid import END_EXCESS, OCTILE_RATIO, shortfall_bound
 from mjwalk.plan.occupancy import CELL_SIZE
+from mjwalk.report.levelsplit import level_split
 
 #: Captured walk-path lengths of the paper's cycle (agethen2018 Table 1, "Baseline" columns):
 #: route -> (median, IQR), metres. Pass as ``reference=`` for the assembly station's cycle.
@@ -298,6 +299,7 @@ def report_dict(
         "task_time": _task_times(results),
         "arms": _arm_figures([a for r in results for a in r.arms]),
         "ergonomics": _ergonomics(results, takt),
+        **_levels(results),
         "per_run": [
             {
                 "run": r.run,
@@ -310,6 +312,13 @@ def report_dict(
             for r in results
         ],
     }
+
+
+def _levels(results: Sequence[CycleResult]) -> dict:
+    """``{"levels": split}`` when a walk leaves the floor (:mod:`mjwalk.report.levelsplit`),
+    else nothing: a flat cycle's report is as before."""
+    split = level_split(results)
+    return {} if split is None else {"levels": split}
 
 
 def _route_figures(

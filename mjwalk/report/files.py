@@ -19,6 +19,7 @@ from mjwalk.ergonomics.summary import csv_header, ergonomics_rows
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.report.figures import ergonomic_records, report_dict, split_failed
+from mjwalk.report.levelsplit import KINDS, crossings_of, walk_kinds
 from mjwalk.report.markdown import format_markdown
 from mjwalk.world import shared_workplace
 
@@ -59,7 +60,9 @@ def _write_walks_csv(path: Path, results: Sequence[CycleResult]) -> None:
     """One row per walk: its direction (``from``, ``to``), length, duration, its own grid-A*
     route (``baseline_length_m``: between ``start_x, start_y`` and ``end_x, end_y``, the
     walk's ends; empty when the grid planner found none) and ``vs_baseline`` (length over that
-    route, minus 1)."""
+    route, minus 1). When a walk leaves the floor, also its seconds per kind
+    (:data:`~mjwalk.report.levelsplit.KINDS`) and the crossings it takes."""
+    levels = any(wk.path.meta.get("levels") for r in results for wk in r.walks)
     with open(path, "w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(
@@ -68,6 +71,7 @@ def _write_walks_csv(path: Path, results: Sequence[CycleResult]) -> None:
                 "length_m", "duration_s", "baseline_length_m", "vs_baseline", "steps",
                 "start_x", "start_y", "end_x", "end_y",
                 *OPERATOR_COLUMNS,
+                *([f"{k}_s" for k in KINDS] + ["crossings"] if levels else []),
             ]
         )  # fmt: skip
         for r in results:
@@ -87,8 +91,15 @@ def _write_walks_csv(path: Path, results: Sequence[CycleResult]) -> None:
                         len(wk.path.steps),
                         *(f"{v:.4f}" for v in (*wk.path.xy[0], *wk.path.xy[-1])),
                         *_operator_cells(r),
+                        *(_level_cells(wk.path) if levels else []),
                     ]
                 )
+
+
+def _level_cells(path: WalkPath) -> list[str]:
+    """A walk's seconds per kind and its crossings (walks.csv's level columns)."""
+    kinds = walk_kinds(path)
+    return [*(f"{kinds[k]:.4f}" for k in KINDS), crossings_of(path)]
 
 
 def _write_cycles_csv(path: Path, results: Sequence[CycleResult]) -> None:

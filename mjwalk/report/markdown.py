@@ -8,6 +8,7 @@ import math
 from pathlib import Path
 
 from mjwalk.ergonomics.summary import ergonomics_markdown
+from mjwalk.report.levelsplit import split_markdown
 
 #: Contact pairs listed in report.md (all of them are in report.json).
 MD_PAIRS = 12
@@ -196,6 +197,7 @@ def format_markdown(rep: dict) -> str:
         "",
         *_takt_md(rep),
         *_operators_md(rep),
+        *split_markdown(rep.get("levels")),
         "## Time per task kind",
         "",
         _md_table(

@@ -1,0 +1,131 @@
+"""Cycle sites on a scene's levels (issue 47): which level a standing site stands on, the ground
+height under the operator, and the walk room there.
+
+A cycle of a flat scene never builds the levels: every standing site lies within
+:data:`STAND_MAX_Z` of the floor, :func:`spec_on_levels` is False, the ground is the floor
+(0 m) and the walk room is the workplace's own. A cycle with a standing site on a platform or a
+mezzanine (:attr:`Workplace.levels <mjwalk.world.workplace.Workplace.levels>`) stands the
+operator on the level's height (root z = level height + the pelvis height), and the walk room
+is the level's own (:func:`mjwalk.world.levelview.level_view`: its surfaces' extent, its edges as
+walls). World frame: metres above the floor, z up.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mjwalk.world.clearance import ClearanceField
+from mjwalk.world.levelview import level_at, level_view
+from mjwalk.world.workplace import Workplace
+
+#: Highest a standing site may lie above the surface it stands on, metres (a site on the floor
+#: within it is on the floor without looking at the levels).
+STAND_MAX_Z = 0.05
+
+
+def site_level(workplace: Workplace, name: str) -> int | None:
+    """The level a standing site stands on.
+
+    Args:
+        workplace: the scene.
+        name: the site's name (one of ``workplace.stations``).
+
+    Returns:
+        0 for a site within :data:`STAND_MAX_Z` of the floor (the levels are not built); else
+        the index in ``workplace.levels.levels`` of the level whose height lies within
+        :data:`STAND_MAX_Z` below the site; None when the site stands on no level.
+    """
+    st = workplace.stations[name]
+    height = float(st.pos[2] - workplace.floor_z)
+    if height <= STAND_MAX_Z:
+        return 0
+    lv = level_at(workplace, np.asarray(st.xy, dtype=float), float(st.pos[2]))
+    if lv is None:
+        return None
+    if not 0.0 <= float(st.pos[2]) - workplace.levels.levels[lv].height <= STAND_MAX_Z:
+        return None
+    return int(lv)
+
+
+def level_workplace(workplace: Workplace, level: int) -> Workplace:
+    """The workplace a walker stands in on a level.
+
+    Args:
+        workplace: the scene.
+        level: the level's index (0: the floor).
+
+    Returns:
+        ``workplace`` itself for the floor, else the level's view (its surfaces' extent, its
+        edges as walls, its obstacles; ``floor_z`` the level's height).
+    """
+    return workplace if level == 0 else level_view(workplace, level)
+
+
+def spec_on_levels(workplace: Workplace, sites) -> bool:
+    """Whether any of a cycle's standing sites stands above the floor.
+
+    Args:
+        workplace: the scene.
+        sites: the standing sites' names (the start site and every walk's goal).
+
+    Returns:
+        True when a site stands on a raised level (a cycle over levels).
+    """
+    return any(site_level(workplace, s) not in (0, None) for s in sites)
+
+
+def ground_height(workplace: Workplace, xy, on_levels: bool) -> float:
+    """The height above the floor of the surface a standing operator's pelvis is over.
+
+    Args:
+        workplace: the scene.
+        xy: (x, y) world, metres.
+        on_levels: whether the cycle stands on levels (:func:`spec_on_levels`); False: 0.
+
+    Returns:
+        Metres above the floor (0 on the floor, on no level or off the levels' surfaces).
+    """
+    if not on_levels:
+        return 0.0
+    lv = level_at(workplace, np.asarray(xy, dtype=float)[:2])
+    if lv in (0, None):
+        return 0.0
+    return float(workplace.levels.levels[int(lv)].height - workplace.floor_z)
+
+
+def level_field(workplace: Workplace, xy, on_levels: bool) -> ClearanceField:
+    """The walk-room field (:meth:`Workplace.walk_field`) of the level under a point.
+
+    Args:
+        workplace: the scene.
+        xy: (x, y) world, metres (a site or where the operator stands).
+        on_levels: whether the cycle stands on levels; False: the workplace's own field.
+
+    Returns:
+        The level's walk field, metres to the nearest obstacle or edge of the level.
+    """
+    if not on_levels:
+        return workplace.walk_field()
+    lv = level_at(workplace, np.asarray(xy, dtype=float)[:2])
+    return level_workplace(workplace, 0 if lv is None else int(lv)).walk_field()
+
+
+def level_room(workplace: Workplace, xy, on_levels: bool, home=None) -> float:
+    """Room to walk at a point on its level (:meth:`Workplace.walk_clearance` of its view).
+
+    Args:
+        workplace: the scene.
+        xy: (x, y) world, metres.
+        on_levels: whether the cycle stands on levels; False: the workplace's own room.
+        home: (x, y) world, metres, where the operator stands: the level is the one there (a step
+            back off a platform's edge has no room); None: the level under ``xy``.
+
+    Returns:
+        Metres to the nearest obstacle or edge of the level there.
+    """
+    p = np.asarray(xy, dtype=float)[:2]
+    if not on_levels:
+        return float(workplace.walk_clearance(p)[()])
+    lv = level_at(workplace, p if home is None else np.asarray(home, dtype=float)[:2])
+    view = level_workplace(workplace, 0 if lv is None else int(lv))
+    return float(view.walk_clearance(p)[()])
