@@ -3,6 +3,8 @@ can, the footfalls stand on the surfaces, flat walks plan as before. Seeded."""
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 
@@ -10,7 +12,7 @@ from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.hybrid import HybridPlanner
-from mjwalk.plan.levelplan import endpoint, needs_levels, plan_level_walk
+from mjwalk.plan.levelplan import endpoint, needs_levels, next_foot, plan_level_walk
 from mjwalk.plan.walks import plan_walk, plan_walks
 from mjwalk.world import load_workplace
 from mjwalk.world.norms import MAX_RISER
@@ -147,3 +149,42 @@ def test_flat_scenes_plan_exactly_as_before(scenes_dir, model):
     assert walk.z is None and walk.meta["scene_fingerprint"] == ref.meta["scene_fingerprint"]
     walks = plan_walks(wp, "stand_rack2", "stand_car1", model, n=2, seed=1)
     assert all(w.z is None for w in walks)
+
+
+@pytest.mark.parametrize(
+    ("start", "goal", "seed"),
+    [
+        ("stand_step", "stand_platform1", 1),
+        ("stand_ramp", "stand_platform2", 2),
+        ("stand_stair", "stand_mezz_rack", 3),
+        ("stand_platform1", "stand_car1", 4),
+        ("stand_step", "stand_mezz_rack", 6),
+    ],
+)
+def test_feet_alternate_through_every_crossing(station, model, start, goal, seed):
+    walk = plan_walk(station, start, goal, model, rng=seed)
+    route = walk.meta["levels"]["route"]
+    assert any(r["kind"] != "level" for r in route)
+    sides = [s.side for s in walk.steps]
+    # step over step: no foot swings twice in a row, into, over and out of each crossing
+    assert all(a != b for a, b in itertools.pairwise(sides)), sides
+    ends = np.cumsum([r["steps"] for r in route])
+    for r, end in zip(route[:-1], ends[:-1], strict=True):
+        if r["kind"] != "level":  # the walk after a crossing sets off with the other foot
+            assert sides[end] == next_foot(sides[end - 1])
+
+
+def test_next_foot_alternates():
+    assert next_foot("left") == "right"
+    assert next_foot("right") == "left"
+    assert next_foot(None) is None
+
+
+def test_repeated_walks_reuse_the_legs_planners_and_stay_seeded(station, model):
+    first = plan_walk(station, "stand_stair", "stand_mezz_rack", model, rng=11)
+    again = plan_walk(station, "stand_stair", "stand_mezz_rack", model, rng=11)
+    np.testing.assert_array_equal(first.xy, again.xy)
+    assert [s.side for s in first.steps] == [s.side for s in again.steps]
+    floor = station  # the floor's view for the default walker's head is its own band view
+    kept = [v for v in station.__dict__.get("_level_views", {}).values() if not isinstance(v, str)]
+    assert any(v.__dict__.get("_leg_planners") for v in [floor, *kept])
