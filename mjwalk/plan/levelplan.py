@@ -17,7 +17,8 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    goal. After a crossing the walker stands on both feet: the leg is a standing start (a turn
    on the spot costed) whose first step swings the other foot than the crossing's last
    (:func:`next_foot`: step over step through every crossing);
-3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`);
+3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`), where along
+   its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`);
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
@@ -49,6 +50,7 @@ from mjwalk.plan.levelroute import (
     crossings,
     dijkstra,
     head_fits_crossing,
+    place_on_edge,
     step_up_limit,
 )
 from mjwalk.plan.levelstitch import level_meta, stitch
@@ -271,6 +273,25 @@ def _legs(path: list[int], nodes, usable: list[Crossing]) -> list[RouteLeg]:
     return legs
 
 
+def _placed(workplace: Workplace, legs: list[RouteLeg], options, head: float) -> list[RouteLeg]:
+    """The route's crossings walked nearest the walk (:func:`mjwalk.plan.levelroute.
+    place_on_edge`, the body radius from their sides) where every moved stance keeps the body
+    radius in its level's view and the head has room over the moved crossing; else the
+    crossings' middles."""
+    placed = place_on_edge(legs, options.radius)
+    for leg in placed:
+        c = leg.crossing
+        if c is None:
+            continue
+        for lv in (c.lower, c.upper):
+            view = level_view(workplace, lv, head)
+            if float(view.walk_clearance(c.end(lv))) < options.radius:
+                return legs
+        if not head_fits_crossing(workplace.levels, c, head - HEAD_MARGIN):
+            return legs
+    return placed
+
+
 def _walker(model) -> Walker:
     """The walker a model was conditioned on, else the reference adult."""
     walker = getattr(model, "walker", None)
@@ -395,7 +416,9 @@ def plan_level_walk(
     if a.level == b.level:
         legs = [RouteLeg("level", a.level, a.xy, b.xy)]
     else:
-        legs = level_route(workplace, a, b, walker, options, limit)
+        legs = _placed(
+            workplace, level_route(workplace, a, b, walker, options, limit), options, head
+        )
     parts: list[tuple[RouteLeg, WalkPath]] = []
     pose: object = start
     foot: str | None = None  # the first step's side after a crossing

@@ -188,3 +188,17 @@ def test_repeated_walks_reuse_the_legs_planners_and_stay_seeded(station, model):
     floor = station  # the floor's view for the default walker's head is its own band view
     kept = [v for v in station.__dict__.get("_level_views", {}).values() if not isinstance(v, str)]
     assert any(v.__dict__.get("_leg_planners") for v in [floor, *kept])
+
+
+def test_the_stair_is_walked_on_the_side_nearest_the_walk(station, model):
+    walk = plan_walk(station, "stand_rack1", "stand_mezz_rack", model, rng=2)
+    assert _kinds(walk) == ["level", "stair", "level"]
+    _check_heights(station, walk)
+    stair = [s for s in station.levels.surfaces if s.kind == "tread" and s.name.startswith("stair")]
+    first = walk.meta["levels"]["route"][0]["steps"]
+    on_treads = walk.steps[first : first + len(stair)]
+    # the flight spans x -5.4..-4.4; stand_rack1 lies east of it: the walker keeps to the east
+    # half, its middle the body radius (0.25 m) from the side
+    # (each foot half a step width, 0.06 m, either side of it)
+    assert all(abs(s.foot[0] + 4.65) <= 0.07 for s in on_treads)
+    assert all(-5.4 + 0.1 < s.foot[0] < -4.4 - 0.1 for s in on_treads)
