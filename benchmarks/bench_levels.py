@@ -53,7 +53,7 @@ from mjwalk.gait.stairs import (
 )
 from mjwalk.gait.walker import PRESETS, Walker
 from mjwalk.plan.hybrid import HybridPlanner
-from mjwalk.plan.levelplan import STANCE_TOLERANCE, endpoint, level_route
+from mjwalk.plan.levelplan import STANCE_TOLERANCE, endpoint, level_route, place_crossings
 from mjwalk.plan.levelroute import step_up_limit
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
@@ -169,8 +169,10 @@ def _legs_alone(wp, start, goal, model, seed: int) -> float:
     no approach heading, no route, no crossings: the search cost of the levels' own shapes."""
     walker = model.walker or Walker()
     a, b = endpoint(wp, start, "start"), endpoint(wp, goal, "goal")
-    legs = level_route(wp, a, b, walker, PlannerOptions(), step_up_limit(walker))
     head = walker.stature + HEAD_MARGIN
+    options = PlannerOptions()
+    route = level_route(wp, a, b, walker, options, step_up_limit(walker))
+    legs = place_crossings(wp, route, options, head)
     rng = np.random.default_rng(seed)
     t0 = time.perf_counter()
     for leg in legs:

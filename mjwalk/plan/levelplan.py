@@ -273,11 +273,24 @@ def _legs(path: list[int], nodes, usable: list[Crossing]) -> list[RouteLeg]:
     return legs
 
 
-def _placed(workplace: Workplace, legs: list[RouteLeg], options, head: float) -> list[RouteLeg]:
+def place_crossings(
+    workplace: Workplace, legs: list[RouteLeg], options: PlannerOptions, head: float
+) -> list[RouteLeg]:
     """The route's crossings walked nearest the walk (:func:`mjwalk.plan.levelroute.
     place_on_edge`, the body radius from their sides) where every moved stance keeps the body
-    radius in its level's view and the head has room over the moved crossing; else the
-    crossings' middles."""
+    radius in its level's view and the head has room over the moved crossing.
+
+    Args:
+        workplace: the scene.
+        legs: the route (:func:`level_route`).
+        options: the planner's options (the body radius).
+        head: the walker's head height above a level (stature plus
+            :data:`mjwalk.world.norms.HEAD_MARGIN`), metres.
+
+    Returns:
+        The legs with the crossings moved, or ``legs`` (the crossings' middles) when a moved
+        one does not fit.
+    """
     placed = place_on_edge(legs, options.radius)
     for leg in placed:
         c = leg.crossing
@@ -416,7 +429,7 @@ def plan_level_walk(
     if a.level == b.level:
         legs = [RouteLeg("level", a.level, a.xy, b.xy)]
     else:
-        legs = _placed(
+        legs = place_crossings(
             workplace, level_route(workplace, a, b, walker, options, limit), options, head
         )
     parts: list[tuple[RouteLeg, WalkPath]] = []

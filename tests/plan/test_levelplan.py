@@ -12,10 +12,18 @@ from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.hybrid import HybridPlanner
-from mjwalk.plan.levelplan import endpoint, needs_levels, next_foot, plan_level_walk
+from mjwalk.plan.levelplan import (
+    endpoint,
+    level_route,
+    needs_levels,
+    next_foot,
+    place_crossings,
+    plan_level_walk,
+)
+from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.walks import plan_walk, plan_walks
 from mjwalk.world import load_workplace
-from mjwalk.world.norms import MAX_RISER
+from mjwalk.world.norms import HEAD_MARGIN, MAX_RISER
 
 #: A platform 0.34 m high reached from the west by a step of one 0.17 m tread and from the east
 #: by a 5.5 deg ramp (the multi-level station's); with ``beam``, a beam 2.25 m above the floor
@@ -202,3 +210,17 @@ def test_the_stair_is_walked_on_the_side_nearest_the_walk(station, model):
     # (each foot half a step width, 0.06 m, either side of it)
     assert all(abs(s.foot[0] + 4.65) <= 0.07 for s in on_treads)
     assert all(-5.4 + 0.1 < s.foot[0] < -4.4 - 0.1 for s in on_treads)
+
+
+def test_place_crossings_keeps_the_middle_where_a_moved_stance_does_not_fit(station, model):
+    walker = Walker()
+    options = PlannerOptions()
+    a, b = endpoint(station, "stand_rack1", "start"), endpoint(station, "stand_mezz_rack", "goal")
+    route = level_route(station, a, b, walker, options, MAX_RISER)
+    head = walker.stature + HEAD_MARGIN
+    placed = place_crossings(station, route, options, head)
+    assert placed[1].crossing is not route[1].crossing  # moved toward stand_rack1
+    np.testing.assert_allclose(placed[0].end, placed[1].start)
+    # a body as wide as the flight: nothing to move across, the middles stay
+    wide = PlannerOptions(radius=0.5)
+    assert place_crossings(station, route, wide, head) == route
