@@ -184,6 +184,18 @@ def level_route(
     Raises:
         PlanningError: no route the walker can take.
     """
+    cache = workplace.__dict__.setdefault("_routes", {})  # walks repeat their ends
+    key = (
+        start.level, *np.round(start.xy, 6), goal.level, *np.round(goal.xy, 6), walker,
+        options, round(max_riser, 6),
+    )  # fmt: skip
+    if key not in cache:
+        cache[key] = _route(workplace, start, goal, walker, options, max_riser)
+    return list(cache[key])
+
+
+def _route(workplace, start: Endpoint, goal: Endpoint, walker: Walker, options, max_riser):
+    """:func:`level_route` without its cache."""
     head = walker.stature + HEAD_MARGIN
     usable = [
         c
@@ -291,6 +303,22 @@ def place_crossings(
         The legs with the crossings moved, or ``legs`` (the crossings' middles) when a moved
         one does not fit.
     """
+    cache = workplace.__dict__.setdefault("_placed_routes", {})  # walks repeat their routes
+    key = (
+        tuple(
+            (leg.kind, leg.level, *np.round(leg.start, 6), *np.round(leg.end, 6), id(leg.crossing))
+            for leg in legs
+        ),
+        options.radius,
+        round(head, 3),
+    )
+    if key not in cache:
+        cache[key] = _placed(workplace, legs, options, head)
+    return cache[key]
+
+
+def _placed(workplace: Workplace, legs: list[RouteLeg], options, head: float) -> list[RouteLeg]:
+    """:func:`place_crossings` without its cache."""
     placed = place_on_edge(legs, options.radius)
     for leg in placed:
         c = leg.crossing
