@@ -8,11 +8,17 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    crossings' stances, each level's obstacle-aware distance at the walker's speed, each crossing
    at its gait's time, a step or stair only where every riser fits the walker's step-up limit
    and the walker's head has room (a walker below a riser takes the ramp);
-2. on each level the hybrid A* unchanged (:class:`~mjwalk.plan.hybrid.HybridPlanner`) in the
+2. on each level the hybrid A* unchanged (:class:`~mjwalk.plan.hybrid.HybridPlanner`, kept
+   per level view, goal, step model and options, so a route's legs are set up once) in the
    level's view (:func:`mjwalk.world.levelview.level_view`: its surfaces, its obstacles up to
    the walker's head), from the start or a crossing's stance to the next crossing's stance
-   (arriving facing up or down it, ending in the planner's goal area about it) or the goal;
-3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`);
+   (ending in the planner's goal area about it; the heading up or down it a preference, its
+   guide searched on :data:`HEADING_BUDGET` expansions before the route search alone) or the
+   goal. After a crossing the walker stands on both feet: the leg is a standing start (a turn
+   on the spot costed) whose first step swings the other foot than the crossing's last
+   (:func:`next_foot`: step over step through every crossing);
+3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`), where along
+   its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`);
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
@@ -23,9 +29,12 @@ planned exactly as in a flat scene (:func:`needs_levels`). Metres, seconds, radi
 
 from __future__ import annotations
 
+import copy
+import functools
 import itertools
 import math
 import time
+import weakref
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -41,6 +50,7 @@ from mjwalk.plan.levelroute import (
     crossings,
     dijkstra,
     head_fits_crossing,
+    place_on_edge,
     step_up_limit,
 )
 from mjwalk.plan.levelstitch import level_meta, stitch
@@ -54,6 +64,15 @@ from mjwalk.world.workplace import Workplace
 
 #: Route legs shorter than this are not walked (the walker stands there already), metres.
 STANCE_TOLERANCE = 0.15
+#: Expansions a level leg aimed at a crossing with its approach heading may spend before it is
+#: searched again without (the heading's guide can lead into a tight approach the route search
+#: finds at once): a twentieth of :data:`mjwalk.plan.options.MAX_EXPANSIONS`'s 8000; the legs of
+#: the shipped multi-level station that succeed with the heading spend at most 150
+#: (``python3 benchmarks/bench_levels.py``; a cost bound, no behaviour of walkers).
+HEADING_BUDGET = 400
+#: Level-leg planners kept per level view (:func:`_planner`): a route's goals (crossing stances
+#: and sites) for a few walkers and option sets; a memory bound, no behaviour.
+LEG_PLANNERS = 64
 
 
 @dataclass(frozen=True)
@@ -165,6 +184,18 @@ def level_route(
     Raises:
         PlanningError: no route the walker can take.
     """
+    cache = workplace.__dict__.setdefault("_routes", {})  # walks repeat their ends
+    key = (
+        start.level, *np.round(start.xy, 6), goal.level, *np.round(goal.xy, 6), walker,
+        options, round(max_riser, 6),
+    )  # fmt: skip
+    if key not in cache:
+        cache[key] = _route(workplace, start, goal, walker, options, max_riser)
+    return list(cache[key])
+
+
+def _route(workplace, start: Endpoint, goal: Endpoint, walker: Walker, options, max_riser):
+    """:func:`level_route` without its cache."""
     head = walker.stature + HEAD_MARGIN
     usable = [
         c
@@ -254,28 +285,139 @@ def _legs(path: list[int], nodes, usable: list[Crossing]) -> list[RouteLeg]:
     return legs
 
 
+def place_crossings(
+    workplace: Workplace, legs: list[RouteLeg], options: PlannerOptions, head: float
+) -> list[RouteLeg]:
+    """The route's crossings walked nearest the walk (:func:`mjwalk.plan.levelroute.
+    place_on_edge`, the body radius from their sides) where every moved stance keeps the body
+    radius in its level's view and the head has room over the moved crossing.
+
+    Args:
+        workplace: the scene.
+        legs: the route (:func:`level_route`).
+        options: the planner's options (the body radius).
+        head: the walker's head height above a level (stature plus
+            :data:`mjwalk.world.norms.HEAD_MARGIN`), metres.
+
+    Returns:
+        The legs with the crossings moved, or ``legs`` (the crossings' middles) when a moved
+        one does not fit.
+    """
+    cache = workplace.__dict__.setdefault("_placed_routes", {})  # walks repeat their routes
+    key = (
+        tuple(
+            (leg.kind, leg.level, *np.round(leg.start, 6), *np.round(leg.end, 6), id(leg.crossing))
+            for leg in legs
+        ),
+        options.radius,
+        round(head, 3),
+    )
+    if key not in cache:
+        cache[key] = _placed(workplace, legs, options, head)
+    return cache[key]
+
+
+def _placed(workplace: Workplace, legs: list[RouteLeg], options, head: float) -> list[RouteLeg]:
+    """:func:`place_crossings` without its cache."""
+    placed = place_on_edge(legs, options.radius)
+    for leg in placed:
+        c = leg.crossing
+        if c is None:
+            continue
+        for lv in (c.lower, c.upper):
+            view = level_view(workplace, lv, head)
+            if float(view.walk_clearance(c.end(lv))) < options.radius:
+                return legs
+        if not head_fits_crossing(workplace.levels, c, head - HEAD_MARGIN):
+            return legs
+    return placed
+
+
 def _walker(model) -> Walker:
     """The walker a model was conditioned on, else the reference adult."""
     walker = getattr(model, "walker", None)
     return walker if isinstance(walker, Walker) else Walker()
 
 
+def _planner(view: Workplace, goal: np.ndarray, model, options: PlannerOptions) -> HybridPlanner:
+    """The hybrid planner of one level leg's goal, kept on the level's view per goal, step model
+    and options: a route's legs end at the same crossing stances walk after walk, so the goal's
+    distance field, sight cells and kernel vectors are set up once (the planner holds nothing of
+    a walk: :meth:`HybridPlanner.plan` draws from the walk's own random stream)."""
+    cache = view.__dict__.setdefault("_leg_planners", {})
+    key = (float(goal[0]), float(goal[1]), id(model), options)
+    hit = cache.get(key)
+    if hit is not None and hit[0]() is model:
+        return hit[1]
+    planner = HybridPlanner(view, goal, model, options)
+    while len(cache) >= LEG_PLANNERS:  # the oldest first (a cycle's operators come and go)
+        cache.pop(next(iter(cache)))
+    cache[key] = (weakref.ref(model), planner)
+    return planner
+
+
+def next_foot(last_side: str | None) -> str | None:
+    """The foot that swings first after a crossing: the other one than the crossing's last step
+    (gait continuity: feet alternate, step over step, also where a walk sets off again).
+
+    Args:
+        last_side: "left" or "right", the side of the crossing's last step; None: no crossing.
+
+    Returns:
+        "right" after "left", "left" after "right", None (either foot) after no crossing.
+    """
+    if last_side is None:
+        return None
+    return "right" if last_side == "left" else "left"
+
+
+def _foot_model(model, side: str | None):
+    """``model`` whose gait-initiation draws (``sample_first_features``) swing ``side`` only,
+    kept per model and side (its decoder too is then shared); ``model`` itself for None."""
+    if side is None:
+        return model
+    key = (id(model), side)
+    hit = _FOOT_MODELS.get(key)
+    if hit is not None and hit[0]() is model:
+        return hit[1]
+    first = copy.copy(model)  # shallow: the same KDEs, GPs and walker
+    # an instance attribute before the class's method: the draws swing ``side`` only
+    vars(first)["sample_first_features"] = functools.partial(model.sample_first_features, side=side)
+    _FOOT_MODELS[key] = (weakref.ref(model), first)
+    return first
+
+
+#: The start-foot models of :func:`_foot_model`, by (id(model), side); the model held weakly.
+_FOOT_MODELS: dict[tuple[int, str], tuple[weakref.ref, object]] = {}
+
+
 def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng, options, head):
-    """The hybrid-A* walk of one level leg; None when its ends are within reach already."""
+    """The hybrid-A* walk of one level leg; None when its ends are within reach already.
+
+    ``start`` is (pose, foot): the walk's start, or after a crossing the stance beyond it
+    (x, y, yaw), where the walker stands on both feet: a standing start that may turn on the
+    spot (its turn costed), its first step with ``foot`` (:func:`next_foot`)."""
     view = level_view(workplace, leg.level, head)
     if float(np.hypot(*(leg.end - leg.start))) <= STANCE_TOLERANCE:
         return None
+    pose, foot = start
+    standing = foot is not None
+    walker_model = _foot_model(model, foot)
+    planner = _planner(view, leg.end, model, options)
+    request = WalkRequest(pose, model=walker_model, turn_on_spot=standing)
     if nxt is None:  # to the walk's goal
-        planner = HybridPlanner(view, leg.end, model, options)
-        return planner.plan(WalkRequest(start), rng)
+        return planner.plan(request, rng)
     c = nxt.crossing
     assert c is not None
     heading = c.yaw if nxt.direction == "up" else c.yaw + math.pi
-    planner = HybridPlanner(view, leg.end, model, options)
+    # the approach heading is a preference: its guide searched on a small budget, else the
+    # route search alone (the crossing's first step turns the walker onto its axis)
+    budget = min(options.max_expansions, HEADING_BUDGET)
+    aimed = _planner(view, leg.end, model, replace(options, max_expansions=budget))
     try:
-        return planner.plan(WalkRequest(start, goal_heading=heading), rng)
-    except PlanningError:  # a tight approach: the route search alone, the crossing aligns
-        return planner.plan(WalkRequest(start), rng)
+        return aimed.plan(replace(request, goal_heading=heading), rng)
+    except PlanningError:
+        return planner.plan(request, rng)
 
 
 def plan_level_walk(
@@ -315,13 +457,16 @@ def plan_level_walk(
     if a.level == b.level:
         legs = [RouteLeg("level", a.level, a.xy, b.xy)]
     else:
-        legs = level_route(workplace, a, b, walker, options, limit)
+        legs = place_crossings(
+            workplace, level_route(workplace, a, b, walker, options, limit), options, head
+        )
     parts: list[tuple[RouteLeg, WalkPath]] = []
     pose: object = start
+    foot: str | None = None  # the first step's side after a crossing
     for k, leg in enumerate(legs):
         if leg.kind == "level":
             nxt = legs[k + 1] if k + 1 < len(legs) else None
-            walk = _level_leg(workplace, leg, nxt, pose, model, rng, options, head)
+            walk = _level_leg(workplace, leg, nxt, (pose, foot), model, rng, options, head)
             if walk is not None:
                 parts.append((leg, walk))
             continue
@@ -339,6 +484,7 @@ def plan_level_walk(
         parts.append((leg, walk))
         end_yaw = c.yaw if leg.direction == "up" else c.yaw + math.pi
         pose = (float(leg.end[0]), float(leg.end[1]), end_yaw)
+        foot = next_foot(walk.steps[-1].side if walk.steps else None)
     if not parts:
         raise PlanningError("start and goal are within reach already: there is no walk to plan")
     path = stitch(workplace, parts)

@@ -23,7 +23,7 @@ from __future__ import annotations
 import heapq
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -82,6 +82,8 @@ class Crossing:
         z_lower, z_upper: the two levels' world heights, metres.
         tread: the stair's or steps' tread depth, metres (a ramp: its run).
         slope: a ramp's inclination, radians (0 otherwise).
+        half_width: half the width of its first riser or the ramp's foot, metres (0: unknown,
+            the walker keeps to its middle).
     """
 
     kind: str
@@ -98,6 +100,7 @@ class Crossing:
     z_upper: float
     tread: float
     slope: float
+    half_width: float = 0.0
 
     def point(self, s) -> np.ndarray:
         """World xy at positions along the axis.
@@ -145,6 +148,21 @@ class Crossing:
         """The axis' heading, radians from +x (up the crossing)."""
         return float(math.atan2(self.axis[1], self.axis[0]))
 
+    def shifted(self, offset: float) -> Crossing:
+        """The same crossing walked ``offset`` metres to the left of its middle (left of the
+        axis): origin moved across the axis, everything along it unchanged.
+
+        Args:
+            offset: lateral shift, metres (positive: left of the way up).
+
+        Returns:
+            The shifted crossing (``self`` for 0).
+        """
+        if offset == 0.0:
+            return self
+        left = np.array([-self.axis[1], self.axis[0]])
+        return replace(self, origin=self.origin + float(offset) * left)
+
     def fits(self, max_riser: float) -> bool:
         """Whether every riser is at most ``max_riser`` metres (a ramp always fits).
 
@@ -155,6 +173,11 @@ class Crossing:
             True when the walker takes it.
         """
         return all(r <= max_riser + 1e-9 for r in self.risers)
+
+
+def _length(seg) -> float:
+    """A segment's length, metres."""
+    return float(np.linalg.norm(np.asarray(seg[1], dtype=float) - np.asarray(seg[0], dtype=float)))
 
 
 def _mid(seg) -> np.ndarray:
@@ -207,6 +230,7 @@ def _flight(graph: LevelGraph, edges, risers, lower: int, upper: int, kind: str,
     return Crossing(
         kind, lower, upper, tuple(float(r) for r in risers), origin, axis, track, track_z,
         -clear, float(d[-1]) + clear, z0, graph.levels[upper].height, tread, 0.0,
+        0.5 * _length(edges[0]),
     )  # fmt: skip
 
 
@@ -232,6 +256,7 @@ def _ramp(graph: LevelGraph, link: LevelLink, clear: float) -> Crossing:
     return Crossing(
         "ramp", link.lower, link.upper, (), origin, axis, np.array([0.0, run]),
         np.array([z0, z1]), -clear, run + clear, z0, z1, run, float(link.slope or 0.0),
+        0.5 * _length(link.lower_edge),
     )  # fmt: skip
 
 
@@ -350,3 +375,50 @@ def dijkstra(n: int, edges: dict[int, list[tuple[int, float]]], source: int, tar
     while path[-1] != source:
         path.append(prev[path[-1]])
     return path[::-1], dist[target]
+
+
+def place_on_edge(legs: Sequence[RouteLeg], margin: float, step: float = 0.05) -> list[RouteLeg]:
+    """Each crossing of a route walked where it is nearest the walk: along a wide stair, step
+    or ramp the walker keeps to the side it comes from and goes to rather than its middle.
+
+    The lateral offset (multiples of ``step`` from the middle, at most the crossing's half
+    width less ``margin`` either way, so the body stays within its width) that makes the
+    straight lines from the leg before it to its first stance and from its last stance to the
+    leg after it shortest; the legs next to it start and end at the shifted stances.
+
+    Args:
+        legs: the route's legs (:func:`mjwalk.plan.levelplan.level_route`).
+        margin: how far the walker's middle stays from a crossing's sides, metres (the body
+            radius).
+        step: the offsets' spacing, metres (the stances are goals whose fields are kept).
+
+    Returns:
+        The legs, each crossing shifted (:meth:`Crossing.shifted`) and its neighbours' ends
+        moved with it.
+    """
+    out = list(legs)
+    for k, leg in enumerate(out):
+        c = leg.crossing
+        if c is None or c.half_width - margin < step:
+            continue
+        room = math.floor((c.half_width - margin) / step + 1e-9)
+        before = out[k - 1].start if k > 0 else leg.start
+        after = out[k + 1].end if k + 1 < len(out) else leg.end
+        left = np.array([-c.axis[1], c.axis[0]])
+        offsets = step * np.arange(-room, room + 1)
+        near = np.abs(offsets) + 0.0  # ties: the middle
+        cost = [
+            float(
+                np.hypot(*(leg.start + o * left - before)) + np.hypot(*(after - leg.end - o * left))
+            )
+            + 1e-6 * n
+            for o, n in zip(offsets, near, strict=True)
+        ]
+        shifted = c.shifted(float(offsets[int(np.argmin(cost))]))
+        a, b = shifted.end(leg.level), shifted.end(c.upper if leg.level == c.lower else c.lower)
+        out[k] = replace(leg, start=a, end=b, crossing=shifted)
+        if k > 0:
+            out[k - 1] = replace(out[k - 1], end=a)
+        if k + 1 < len(out):
+            out[k + 1] = replace(out[k + 1], start=b)
+    return out

@@ -18,7 +18,8 @@ grid, the grid-A* baseline and the hybrid A* work on unchanged:
 The floor's view with the workplace's own band is the workplace itself: flat scenes plan exactly
 as before. Views are built once per level and set of obstacles and kept on the workplace (walkers
 of nearby statures share a view when no geom's underside lies between their heads).
-:func:`level_at` tells which level a point stands on. Metres, world frame.
+:func:`level_at` tells which level a point stands on (kept on the workplace per point).
+Metres, world frame.
 """
 
 from __future__ import annotations
@@ -39,6 +40,8 @@ from mjwalk.world.workplace import Workplace, WorkplaceOptions, obstacle_footpri
 
 #: The key under which a workplace keeps its level views.
 _VIEWS = "_level_views"
+#: The key under which a workplace keeps the levels of the points :func:`level_at` was asked.
+_AT = "_level_at"
 
 
 def level_at(workplace: Workplace, xy, z: float | None = None) -> int | None:
@@ -56,8 +59,12 @@ def level_at(workplace: Workplace, xy, z: float | None = None) -> int | None:
     """
     graph = workplace.levels
     x, y = (float(v) for v in np.asarray(xy, dtype=float)[:2])
-    s = graph.surface_at((x, y), z)
-    return None if s is None else graph.level_of[s]
+    cache = workplace.__dict__.setdefault(_AT, {})  # walks start and end at the same sites
+    key = (x, y, None if z is None else float(z))
+    if key not in cache:
+        s = graph.surface_at((x, y), z)
+        cache[key] = None if s is None else graph.level_of[s]
+    return cache[key]
 
 
 def _band_top(head: float | None, default: float) -> float:

@@ -3,6 +3,8 @@ can, the footfalls stand on the surfaces, flat walks plan as before. Seeded."""
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 
@@ -10,10 +12,18 @@ from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.hybrid import HybridPlanner
-from mjwalk.plan.levelplan import endpoint, needs_levels, plan_level_walk
+from mjwalk.plan.levelplan import (
+    endpoint,
+    level_route,
+    needs_levels,
+    next_foot,
+    place_crossings,
+    plan_level_walk,
+)
+from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.walks import plan_walk, plan_walks
 from mjwalk.world import load_workplace
-from mjwalk.world.norms import MAX_RISER
+from mjwalk.world.norms import HEAD_MARGIN, MAX_RISER
 
 #: A platform 0.34 m high reached from the west by a step of one 0.17 m tread and from the east
 #: by a 5.5 deg ramp (the multi-level station's); with ``beam``, a beam 2.25 m above the floor
@@ -147,3 +157,70 @@ def test_flat_scenes_plan_exactly_as_before(scenes_dir, model):
     assert walk.z is None and walk.meta["scene_fingerprint"] == ref.meta["scene_fingerprint"]
     walks = plan_walks(wp, "stand_rack2", "stand_car1", model, n=2, seed=1)
     assert all(w.z is None for w in walks)
+
+
+@pytest.mark.parametrize(
+    ("start", "goal", "seed"),
+    [
+        ("stand_step", "stand_platform1", 1),
+        ("stand_ramp", "stand_platform2", 2),
+        ("stand_stair", "stand_mezz_rack", 3),
+        ("stand_platform1", "stand_car1", 4),
+        ("stand_step", "stand_mezz_rack", 6),
+    ],
+)
+def test_feet_alternate_through_every_crossing(station, model, start, goal, seed):
+    walk = plan_walk(station, start, goal, model, rng=seed)
+    route = walk.meta["levels"]["route"]
+    assert any(r["kind"] != "level" for r in route)
+    sides = [s.side for s in walk.steps]
+    # step over step: no foot swings twice in a row, into, over and out of each crossing
+    assert all(a != b for a, b in itertools.pairwise(sides)), sides
+    ends = np.cumsum([r["steps"] for r in route])
+    for r, end in zip(route[:-1], ends[:-1], strict=True):
+        if r["kind"] != "level":  # the walk after a crossing sets off with the other foot
+            assert sides[end] == next_foot(sides[end - 1])
+
+
+def test_next_foot_alternates():
+    assert next_foot("left") == "right"
+    assert next_foot("right") == "left"
+    assert next_foot(None) is None
+
+
+def test_repeated_walks_reuse_the_legs_planners_and_stay_seeded(station, model):
+    first = plan_walk(station, "stand_stair", "stand_mezz_rack", model, rng=11)
+    again = plan_walk(station, "stand_stair", "stand_mezz_rack", model, rng=11)
+    np.testing.assert_array_equal(first.xy, again.xy)
+    assert [s.side for s in first.steps] == [s.side for s in again.steps]
+    floor = station  # the floor's view for the default walker's head is its own band view
+    kept = [v for v in station.__dict__.get("_level_views", {}).values() if not isinstance(v, str)]
+    assert any(v.__dict__.get("_leg_planners") for v in [floor, *kept])
+
+
+def test_the_stair_is_walked_on_the_side_nearest_the_walk(station, model):
+    walk = plan_walk(station, "stand_rack1", "stand_mezz_rack", model, rng=2)
+    assert _kinds(walk) == ["level", "stair", "level"]
+    _check_heights(station, walk)
+    stair = [s for s in station.levels.surfaces if s.kind == "tread" and s.name.startswith("stair")]
+    first = walk.meta["levels"]["route"][0]["steps"]
+    on_treads = walk.steps[first : first + len(stair)]
+    # the flight spans x -5.4..-4.4; stand_rack1 lies east of it: the walker keeps to the east
+    # half, its middle the body radius (0.25 m) from the side
+    # (each foot half a step width, 0.06 m, either side of it)
+    assert all(abs(s.foot[0] + 4.65) <= 0.07 for s in on_treads)
+    assert all(-5.4 + 0.1 < s.foot[0] < -4.4 - 0.1 for s in on_treads)
+
+
+def test_place_crossings_keeps_the_middle_where_a_moved_stance_does_not_fit(station, model):
+    walker = Walker()
+    options = PlannerOptions()
+    a, b = endpoint(station, "stand_rack1", "start"), endpoint(station, "stand_mezz_rack", "goal")
+    route = level_route(station, a, b, walker, options, MAX_RISER)
+    head = walker.stature + HEAD_MARGIN
+    placed = place_crossings(station, route, options, head)
+    assert placed[1].crossing is not route[1].crossing  # moved toward stand_rack1
+    np.testing.assert_allclose(placed[0].end, placed[1].start)
+    # a body as wide as the flight: nothing to move across, the middles stay
+    wide = PlannerOptions(radius=0.5)
+    assert place_crossings(station, route, wide, head) == route

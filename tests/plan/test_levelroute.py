@@ -8,9 +8,11 @@ import pytest
 from mjwalk.errors import PlanningError
 from mjwalk.plan.levelroute import (
     DEFAULT_STEP_UP,
+    RouteLeg,
     crossings,
     dijkstra,
     head_fits_crossing,
+    place_on_edge,
     step_up_limit,
 )
 from mjwalk.world import load_workplace
@@ -54,3 +56,44 @@ def test_dijkstra_finds_the_cheapest_path():
     edges = {0: [(1, 5.0), (2, 1.0)], 2: [(1, 1.0)], 1: []}
     assert dijkstra(3, edges, 0, 1) == ([0, 2, 1], 2.0)
     assert dijkstra(3, {0: []}, 0, 1) == (None, float("inf"))
+
+
+def test_crossings_know_their_width_and_shift_across_it(station):
+    by_kind = {c.kind: c for c in crossings(station.levels, 0.33)}
+    assert by_kind["stair"].half_width == pytest.approx(0.5)  # the 1.0 m flight
+    assert by_kind["ramp"].half_width == pytest.approx(0.5)
+    assert by_kind["step"].half_width == pytest.approx(0.4)
+    stair = by_kind["stair"]
+    moved = stair.shifted(0.2)
+    left = np.array([-stair.axis[1], stair.axis[0]])
+    np.testing.assert_allclose(moved.end(stair.lower) - stair.end(stair.lower), 0.2 * left)
+    np.testing.assert_allclose(moved.track, stair.track)  # along the axis: unchanged
+    assert stair.shifted(0.0) is stair
+
+
+def test_place_on_edge_walks_the_side_nearest_the_walk(station):
+    stair = {c.kind: c for c in crossings(station.levels, 0.33)}["stair"]
+    left = np.array([-stair.axis[1], stair.axis[0]])
+    lo, hi = stair.end(stair.lower), stair.end(stair.upper)
+    start = lo + 3.0 * left - 1.0 * stair.axis  # far off to the stair's left
+    goal = hi + 0.1 * left + 1.0 * stair.axis
+    legs = [
+        RouteLeg("level", stair.lower, start, lo),
+        RouteLeg("cross", stair.lower, lo, hi, stair, "up"),
+        RouteLeg("level", stair.upper, hi, goal),
+    ]
+    placed = place_on_edge(legs, margin=0.25)
+    offset = float((placed[1].crossing.origin - stair.origin) @ left)
+    assert offset == pytest.approx(0.25)  # as far left as the body stays within the width
+    np.testing.assert_allclose(placed[0].end, placed[1].start)
+    np.testing.assert_allclose(placed[1].end, placed[2].start)
+    np.testing.assert_allclose(placed[0].start, start)
+    np.testing.assert_allclose(placed[2].end, goal)
+    # a walk straight up the middle stays in the middle; a narrow crossing is never moved
+    straight = [
+        RouteLeg("level", stair.lower, lo - stair.axis, lo),
+        RouteLeg("cross", stair.lower, lo, hi, stair, "up"),
+        RouteLeg("level", stair.upper, hi, hi + stair.axis),
+    ]
+    assert place_on_edge(straight, margin=0.25)[1].crossing is stair
+    assert place_on_edge(legs, margin=0.5)[1].crossing is stair
