@@ -21,6 +21,13 @@ from mjwalk.world.workplace import Workplace
 #: Highest a standing site may lie above the surface it stands on, metres (a site on the floor
 #: within it is on the floor without looking at the levels).
 STAND_MAX_Z = 0.05
+#: A standing spot keeps this much more than the body radius from obstacles (m): a walk sets
+#: off with a first step that sways the pelvis sideways (the default model's first steps: 1.3
+#: cm median, 3.6 cm 99th percentile, 6.1 cm the largest), so from a spot on the radius itself
+#: the planner may find no first step (docs/decisions/005-standing-spots.md). A walk over
+#: levels sets off without turning on the spot first (:mod:`mjwalk.plan.levelplan`), so in a
+#: cycle over levels a spot a reach steps to keeps this margin too (:func:`reach_room`).
+START_MARGIN = 0.04
 
 
 def site_level(workplace: Workplace, name: str) -> int | None:
@@ -129,3 +136,26 @@ def level_room(workplace: Workplace, xy, on_levels: bool, home=None) -> float:
     lv = level_at(workplace, p if home is None else np.asarray(home, dtype=float)[:2])
     view = level_workplace(workplace, 0 if lv is None else int(lv))
     return float(view.walk_clearance(p)[()])
+
+
+def reach_room(radius: float, on_levels: bool, here: float) -> float:
+    """The least room (:func:`level_room`) a spot the operator steps to for a reach keeps, so
+    that the next walk can set off from it.
+
+    A flat cycle's walks turn on the spot before their first step, so a spot there keeps the
+    body radius (today's rule). A walk over levels sets off without that turn, like a walk from
+    a drawn standing spot, so in a cycle over levels the spot keeps the radius plus
+    :data:`START_MARGIN` (issue 47: a step in of 0.14 m towards a fastening left the operator
+    0.252 m from the platform's edge and the next walk found no first step). Neither asks more
+    than the room where the operator already stands.
+
+    Args:
+        radius: the cycle's body radius, metres.
+        on_levels: whether the cycle stands on levels (:func:`spec_on_levels`).
+        here: the room where the operator stands before the step, metres.
+
+    Returns:
+        Metres to the nearest obstacle or edge of the level the spot must keep at least.
+    """
+    need = radius + START_MARGIN if on_levels else radius
+    return min(need, here)

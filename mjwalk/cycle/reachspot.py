@@ -14,7 +14,7 @@ import numpy as np
 from mjwalk.conventions import Side
 from mjwalk.cycle import reaching
 from mjwalk.cycle.holding import two_hand_frames
-from mjwalk.cycle.levelsite import level_room
+from mjwalk.cycle.levelsite import level_room, reach_room
 from mjwalk.cycle.poses import carry_pose, standing_pose, turn_frames
 from mjwalk.cycle.standoff import REACH_TOLERANCE, STEP_BACK, step_back_offsets
 from mjwalk.cycle.targets import approach_offset, approach_rise, reach_target
@@ -198,14 +198,14 @@ class _Search:
 def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> WorkingReach | None:
     """The reach from ``s`` metres back (in: < 0) from the walk's end (``lean``: bending the
     trunk forward as far as the target needs; ``drop``: crouched, the pelvis that much lower);
-    None when the spot is not clear for the next walk (the planner's body radius, or the room
-    there was)."""
+    None when the spot is not clear for the next walk (:func:`~mjwalk.cycle.levelsite.
+    reach_room`: the body radius, on levels plus the start margin, or the room there was)."""
     ctx, task, fps = search.ctx, search.task, search.pace.fps
     x, y, yaw = search.x, search.y, search.yaw
     hx, hy = search.home
     xs, ys = float(hx + s * search.back[0]), float(hy + s * search.back[1])
     room = level_room(ctx.workplace, (xs, ys), ctx.on_levels, home=(hx, hy))
-    if s != 0 and room < min(ctx.spec.radius, search.room):
+    if s != 0 and room < reach_room(ctx.spec.radius, ctx.on_levels, search.room):
         return None
     target = reach_target(task.kind, search.site_pos, xs, ys)
     # face the target (turning on the spot) before reaching for it

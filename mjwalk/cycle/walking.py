@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mjwalk.cycle.levelsite import level_field
+from mjwalk.cycle.levelsite import START_MARGIN, level_field
 from mjwalk.cycle.standing import StandZone, start_zone, work_zone
 from mjwalk.cycle.stepup import step_up_of
 from mjwalk.cycle.types import TASK_KINDS
@@ -20,6 +20,7 @@ if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
 
 __all__ = [
+    "START_MARGIN",
     "cycle_start",
     "plan_cycle_walks",
     "plan_task_walk",
@@ -29,11 +30,6 @@ __all__ = [
 ]
 
 
-#: A standing spot keeps this much more than the body radius from obstacles (m): a walk sets
-#: off with a first step that sways the pelvis sideways (the default model's first steps: 1.3
-#: cm median, 3.6 cm 99th percentile, 6.1 cm the largest), so from a spot on the radius itself
-#: the planner may find no first step (docs/decisions/005-standing-spots.md).
-START_MARGIN = 0.04
 #: Candidate spots drawn at once by :func:`standing_spot` (uniform over the zone's disc); the
 #: stations' zones keep 5-40 % of their disc walkable, so 512 leave a miss below 1e-10.
 SPOT_DRAWS = 512

@@ -4,16 +4,22 @@ never builds the levels."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
+from mjwalk.cycle.context import prepare
 from mjwalk.cycle.levelsite import (
+    START_MARGIN,
     ground_height,
     level_room,
     level_workplace,
+    reach_room,
     site_level,
     spec_on_levels,
 )
 from mjwalk.cycle.spec import load_cycle_spec
+from mjwalk.cycle.types import TASK_KINDS
+from mjwalk.cycle.walking import standing_spot, start_zone
 from mjwalk.errors import CycleSpecError
 from mjwalk.world.workplace import load_workplace
 
@@ -71,3 +77,51 @@ def test_a_spec_with_a_site_on_a_level_is_accepted(tmp_path, scenes_dir):
 def test_a_site_on_no_walk_surface_is_refused(tmp_path, scenes_dir):
     with pytest.raises(CycleSpecError, match="not a standing place"):
         load_cycle_spec(_spec(tmp_path, scenes_dir, "car_roof1"))
+
+
+def test_a_reach_step_keeps_the_start_margin_on_levels_only(station):
+    """The stand-off's least room: the body radius in a flat cycle (today's rule), the radius
+    plus START_MARGIN in a cycle over levels (its walks set off without turning on the spot),
+    never more than the room where the operator stands."""
+    assert reach_room(0.25, False, 0.43) == 0.25
+    assert reach_room(0.25, True, 0.43) == pytest.approx(0.25 + START_MARGIN)
+    assert reach_room(0.25, True, 0.27) == 0.27
+    assert reach_room(0.25, False, 0.20) == 0.20
+    # issue 47, run 1 of `mjwalk simulate scenes/multilevel_station.toml --runs 5`: the fastening
+    # from stand_platform1 stepped in 0.14 m to (-1.113, 2.952), 0.252 m from the platform's edge,
+    # and the next walk found no first step; that spot is now refused
+    home, spot = (-1.138, 3.130), (-1.113, 2.952)
+    here = level_room(station, home, True)
+    assert level_room(station, spot, True, home=home) < reach_room(0.25, True, here)
+
+
+def test_spots_drawn_on_a_level_keep_the_levels_clearance(scenes_dir):
+    """Seeded: spots drawn in every stand zone of the multi-level cycle (on the floor, the
+    platform and the mezzanine), 40 draws each, keep the body radius plus START_MARGIN from
+    their own level's edges and obstacles, measured in the level's view (level_view)."""
+    ctx = prepare(load_cycle_spec(scenes_dir / "multilevel_station.toml"))
+    assert ctx.on_levels
+    step = ctx.step_model.pace().step_length
+    stature = ctx.spec.stature
+    zones = [start_zone(ctx.spec, ctx.workplace, stature, step)]
+    for i, task in enumerate(ctx.spec.tasks):
+        if TASK_KINDS[task.kind].motion == "walk":
+            zones.append(ctx.zone(i, stature, step))
+    levels = set()
+    need = ctx.spec.radius + START_MARGIN
+    for zone in zones:
+        levels.add(site_level(ctx.workplace, _site_at(ctx, zone.centre)))
+        for seed in range(40):
+            xy = standing_spot(ctx, zone, np.random.default_rng(seed))
+            assert zone.contains(xy)
+            room = level_room(ctx.workplace, xy, True, home=zone.centre)
+            assert room >= need - 1e-9, (zone.centre, xy, room)
+    assert len(levels) >= 3  # the floor, the platform and the mezzanine
+
+
+def _site_at(ctx, xy) -> str:
+    """The standing site whose stand zone is centred at ``xy``."""
+    for name, st in ctx.workplace.stations.items():
+        if np.hypot(*(np.asarray(st.xy, dtype=float)[:2] - xy)) < 1e-9:
+            return name
+    raise AssertionError(f"no site at {xy}")
