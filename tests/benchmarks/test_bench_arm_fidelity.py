@@ -31,6 +31,8 @@ def test_the_hand_follows_the_planned_path(scenes_dir, capsys):
     assert "beyond their ranges (reaches): none" in out
     # the wrist rarely needs its range's edge (turned there, not past it: wrist_in_range);
     # 16.5 % / 8.2 % of frames with the generator before 2026-11-27, 0.2 % of deviation with
-    # the default model trained up to a top shelf (reach model v7)
+    # the default model trained up to a top shelf (reach model v7); 1.1 % of flexion (20 of
+    # 1761 frames) since the walks steer back to their guide (issue 48 moved seed 0's stands a
+    # little): a guard against the generator's 16.5 %, not a published limit
     flex, dev = map(float, re.search(r"flexion ([\d.]+)%, deviation ([\d.]+)%", out).groups())
-    assert flex <= 1.0 and dev <= 1.0, out
+    assert flex <= 2.0 and dev <= 2.0, out
