@@ -83,6 +83,13 @@ RAMP_DEG = 5.5
 RAMP_RISE = 0.34
 
 
+def _walkers(group: str, draws: int, seed: int) -> list[Walker]:
+    """``draws`` walkers of one preset operator group, drawn as a cycle draws them (seeded)."""
+    pop = Population((preset_group(group),))
+    rng = np.random.default_rng(seed)
+    return [pop.draw(rng) for _ in range(draws)]
+
+
 def _stats(values: list[float]) -> str:
     a = np.asarray(values)
     lo, hi = np.percentile(a, [5, 95])
@@ -115,9 +122,7 @@ def stair_table(draws: int, seed: int) -> None:
     print(head)
     print("-" * len(head))
     for group in PRESETS:
-        pop = Population((preset_group(group),))
-        rng = np.random.default_rng(seed)
-        walkers = [pop.draw(rng) for _ in range(draws)]
+        walkers = _walkers(group, draws, seed)
         for d in ("up", "down"):
             gaits = [stair_gait(w, STAIR, d) for w in walkers]
             print(
@@ -146,9 +151,7 @@ def body_table(draws: int, seed: int) -> None:
     print(head)
     print("-" * len(head))
     for group in PRESETS:
-        pop = Population((preset_group(group),))
-        rng = np.random.default_rng(seed)
-        walkers = [pop.draw(rng) for _ in range(draws)]
+        walkers = _walkers(group, draws, seed)
         stature = float(np.mean([w.stature for w in walkers]))
         for d in ("up", "down"):
             step = float(np.mean([stair_gait(w, STAIR, d).step_time for w in walkers]))
@@ -187,9 +190,7 @@ def ramp_table(draws: int, seed: int) -> None:
     print(head)
     print("-" * len(head))
     for group in PRESETS:
-        pop = Population((preset_group(group),))
-        rng = np.random.default_rng(seed)
-        walkers = [pop.draw(rng) for _ in range(draws)]
+        walkers = _walkers(group, draws, seed)
         for deg in (0.0, RAMP_DEG, -RAMP_DEG):
             gaits = [slope_gait(w, math.radians(deg)) for w in walkers]
             print(
