@@ -9,6 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from mjwalk.world.footprint import Footprint
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 import bench_thor as bench
 
@@ -43,6 +45,32 @@ def test_the_crossing_duration_places_each_zone_crossing_between_its_samples():
             pytest.approx(4.4),
             pytest.approx(4.8),
         )
+
+
+def test_a_chord_passing_the_obstacle_within_the_berth_counts_as_on_it():
+    """A pillar of 0.2 m radius 0.5 m off a 6 m chord: its surface 0.3 m from it, within a
+    walker's berth at 1.2 m/s (about 0.47 m: half of 0.45 m shoulders plus the speed-scaled
+    0.30 m gap); 1.5 m off, beyond it."""
+    s, g = np.array([0.0, 0.0]), np.array([6.0, 0.0])
+    near = Footprint("p", 0, np.array([[3.0, 0.5], [3.0, 0.5]]), 0.2)
+    far = Footprint("p", 0, np.array([[3.0, 1.5], [3.0, 1.5]]), 0.2)
+    assert bench.on_chord(near, s, g, 1.2)
+    assert not bench.on_chord(far, s, g, 1.2)
+
+
+def test_the_guide_excess_is_nil_for_aligned_ends_and_grows_with_their_angle():
+    """The minimum-jerk guide between ends heading along their chord is the chord (no
+    excess); with both ends 10 deg off it in a bow, a few centimetres over the 5 m between
+    the zones, more uncut between the same ends than cut at the 1.25 m zones."""
+    a, b = np.array([0.0, 0.0]), np.array([7.5, 0.0])
+    s, g = np.array([0.25, 0.0]), np.array([7.25, 0.0])
+    along = np.array([1.0, 0.0])
+    assert bench.guide_excess(s, g, along, along, 1.2, (a, b, 1.25)) == pytest.approx(0, abs=1e-9)
+    t = np.radians(10.0)
+    head, tail = np.array([np.cos(t), np.sin(t)]), np.array([np.cos(t), -np.sin(t)])
+    cut = bench.guide_excess(s, g, head, tail, 1.2, (a, b, 1.25))
+    whole = bench.guide_excess(s, g, head, tail, 1.2, None)
+    assert 0.005 < cut < whole < 0.2, (cut, whole)
 
 
 def test_bad_options_stop_with_status_2(tmp_path, capsys):
