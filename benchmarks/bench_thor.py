@@ -52,15 +52,16 @@ in one session, honest ends (29 s): length median 0.99 | 0.99, length IQR 1.26 |
 (empty hall: worst 0.124 -> 0.089 m off the chord), so the excess on pairs with no obstacle
 on the way falls a little further short: people's excess there is not drift but bends.
 
-Where the excess falls short (issue 48 deliverable 3; printed after the side shares, honest
-ends, seed 0, ``--walks-per 1``, planner unchanged): per pair, the walks whose honest chord
+Where the excess falls short (issue 48 deliverable 3; printed after the side shares; seed 0,
+default walks per walk, planner unchanged, 108 s loaded): per pair, the walks whose honest chord
 passes the room's obstacle within the berth (:func:`on_chord`) and the others, each with the
 real excess | the minimum-jerk guide between the real walk's own first and last samples along
 its end directions (edge) | the same curve between the honest ends, cut at the zones as a
 track is (:func:`guide_excess`: the planner's own guide where no obstacle bends it) | the
 planned walks. Median over pairs of the ratios to the real: no obstacle on the chord (six
-pairs) edge 0.55, honest 0.31, planned 0.48; obstacle on the chord (three pairs) 0.52, 0.37,
-0.64. The planned walks follow their guide (90th percentile of the pelvis's distance from it
+pairs) edge 0.55, honest 0.31, planned 0.43 (``--pinned-guide``: 0.67); obstacle on the chord
+(three pairs) 0.52, 0.37, 0.61 (0.66). All other figures are as above (honest excess 0.44,
+pinned 0.69). The planned walks follow their guide (90th percentile of the pelvis's distance from it
 0.05 m on every pair, 2 walks per real walk: they do not snap back to the chord); what they
 lack is in the guide, for two reasons neither of which a walker's model may remove: (1) the
 smooth path the cited principle gives between the real walks' own zone-edge states carries
