@@ -15,11 +15,16 @@ false) then passes through :func:`lift_to_levels`:
   foot behind, the heel of the foot ahead: on a stair with footprints on the treads' centres,
   the nosings). Steps whose surfaces are a ramp or level keep the flat swing, carried on the
   heights of its ends.
+* **The swing foot as its ankle holds it** (steps up): where the leg IK would ask the swing
+  ankle for more dorsiflexion than its range (the shank leaning back behind a flexed knee),
+  the foot hangs toes down by the excess and the swing is planned again with that pitch
+  (:func:`_swing_pitch`); a step up lands flat (:func:`flat_landing`), not on the heel.
 * **The pelvis follows the level.** Its height is the flat synthesis's plus the lower of the
   two feet's surfaces in double support (on a ramp their mean), changing over the single
-  support of each step (smoothstep): up a stair the pelvis rises while the leading leg pulls up
-  (a riser per step), down a stair it lowers while the stance leg yields. Where a grounded leg
-  then cannot reach its foot, the pelvis lowers (smoothly).
+  support of each step (smoothstep): up a stair the pelvis rises in weight acceptance and
+  pull-up (by :data:`ASCENT_PULL_UP_END` of the step, a riser per step), down a stair it
+  lowers while the stance leg yields. Where a grounded leg then cannot reach its foot, the
+  pelvis lowers (smoothly).
 * **Stepping down** (a stair descended, a drop of :data:`FOREFOOT_DROP` or more) the foot
   lands on its forefoot (:data:`DESCENT_CONTACT_PITCH`) and lowers its heel in weight
   acceptance (:func:`forefoot_landing`); the pelvis holds its height through forward
@@ -93,6 +98,14 @@ FOREFOOT_DROP = 0.20
 #: foot's landing, so lowering starts at 34 / 50 = 0.68 of the step and ends at the next
 #: landing (late single support).
 DESCENT_LOWER_FROM = 0.68
+#: Share of a step up's time (from the stance foot's landing) by which the pelvis has risen
+#: onto the stance foot's tread. Stair ascent's stance divides into weight acceptance, pull-up
+#: (the stance leg extends and lifts the body a riser) and forward continuance (McFadyen &
+#: Winter 1988; the phase names are verified in secondary sources, the boundaries quoted
+#: there, pull-up ending at about 32 % of the cycle, are NOT verified here): a step is half a
+#: cycle from the stance foot's landing, so the rise ends at 32 / 50 = 0.64 of the step, and
+#: the swing foot passes the nosing with the stance leg extended beneath the pelvis.
+ASCENT_PULL_UP_END = 0.64
 
 
 def surface_pitch(walk: WalkPath, print_: np.ndarray) -> float:
@@ -208,6 +221,8 @@ def level_tracks(
         u = np.linspace(0.0, 1.0, b - a + 1)
         if sf.edged and l1 < l0 - LEVEL_STEP:  # down: forward continuance, then lowering
             u = (u - DESCENT_LOWER_FROM) / (1.0 - DESCENT_LOWER_FROM)
+        elif sf.edged and l1 > l0 + LEVEL_STEP:  # up: weight acceptance and pull-up
+            u = u / ASCENT_PULL_UP_END
         level[ids] = l0 + (l1 - l0) * smoothstep(u)
     fl, sl = frames[-1], surfs[-1]
     tail = slice(fl.end, n)
@@ -295,12 +310,124 @@ def heel_rise(feet: FootTracks, s: str, dorsi: np.ndarray, grounded: np.ndarray,
     return True
 
 
+def flat_landing(feet: FootTracks, fr: StepFrames, air: np.ndarray) -> None:
+    """A step up landed flat: the landing foot touches its tread with the whole sole at the
+    place and heading it stands on once flat (no heel strike with the toes up, which up a stair
+    would leave the foot pitched over the riser edge); ``feet`` updated in place from the
+    landing sample until the foot is flat in the flat synthesis, or the other foot lifts off.
+    Stair ascent is landed on the forefoot or the whole foot, not the heel (McFadyen & Winter,
+    J Biomech 21:733-744 (1988); Riener et al., Gait Posture 15:32-44 (2002): the ankle is
+    dorsiflexed at initial contact; NOT verified here beyond the abstracts).
+
+    Args:
+        feet: the foot tracks, their grounded samples already on their surfaces.
+        fr: the step (its swing side lands at ``fr.end``).
+        air: (n,) whether the other foot is in the air.
+    """
+    s, b = fr.side, fr.end
+    flat = np.flatnonzero(np.abs(feet.pitch[s][b:]) < 1e-4)
+    other_air = np.flatnonzero(air[b:])
+    ends = [int(v[0]) for v in (flat, other_air) if len(v)]
+    w = b + (min(ends) if ends else 0)
+    if w <= b:
+        return
+    idx = np.arange(b, w)
+    feet.ankle[s][idx] = feet.ankle[s][w]
+    feet.pitch[s][idx] = feet.pitch[s][w]
+    feet.toe[s][idx] = feet.toe[s][w]
+
+
+def _place_swings(frames, surfs, tr: LevelTracks, feet: FootTracks, flat_ankle,
+                  geom: LegGeometry) -> list:  # fmt: skip
+    """The swing feet on their surfaces (in place): a swing between level or ramp surfaces is
+    the flat swing carried on its ends' heights; a step down is landed on the forefoot, a step
+    up flat; the pitch of a swing over step edges starts level. Returns the edged swings to
+    plan, as (step, surfaces, samples from the last grounded one to the landing, the flat
+    swing's ankles there (k, 3))."""
+    plans = []
+    for fr, sf in zip(frames, surfs, strict=True):
+        s = fr.side
+        j = np.flatnonzero(tr.air[s][fr.start : fr.end]) + fr.start
+        if not len(j):
+            continue
+        k = np.r_[j[0] - 1, j, fr.end]
+        if sf.edged:
+            if sf.lift - sf.land >= FOREFOOT_DROP:
+                forefoot_landing(feet, fr, tr.air[fr.other], geom)
+            elif sf.land > sf.lift + LEVEL_STEP:
+                flat_landing(feet, fr, tr.air[fr.other])
+            # the foot levelled after lift-off (toes and sole straighten), the landing pitch
+            # taken at the end; :func:`_swing_pitch` then turns it toes down where the ankle
+            # cannot dorsiflex that far
+            tau = np.arange(len(k)) / (len(k) - 1)
+            ease = 1.0 - smoothstep(tau / 0.25)
+            land = smoothstep((tau - 0.8) / 0.2)
+            feet.pitch[s][k] = feet.pitch[s][k[0]] * ease + feet.pitch[s][k[-1]] * land
+            feet.toe[s][k] = feet.toe[s][k[0]] * ease + feet.toe[s][k[-1]] * land
+            plans.append((fr, sf, k, feet.ankle[s][k].copy()))
+            continue
+        seg = fr.land[:2] - fr.lift[:2]
+        u = np.clip((flat_ankle[s][j, :2] - fr.lift[:2]) @ seg / max(float(seg @ seg), 1e-12), 0, 1)
+        feet.ankle[s][j, 2] += sf.lift + (sf.land - sf.lift) * u
+        feet.pitch[s][j] += sf.lift_pitch + (sf.land_pitch - sf.lift_pitch) * u
+    return plans
+
+
+def _plan_edged(plans: list, feet: FootTracks, geom: LegGeometry) -> float:
+    """The edged swings of ``plans`` (:func:`_place_swings`) over their edges with the feet's
+    current pitch (:func:`edge_swing`), in place; returns the least clearance, metres."""
+    least = math.inf
+    for fr, sf, k, ankle in plans:
+        s = fr.side
+        out, clear = edge_swing(ankle, feet.pitch[s][k], feet.toe[s][k], feet.fyaw[s][k], fr, sf,
+                                geom)  # fmt: skip
+        feet.ankle[s][k[1:-1]] = out[1:-1]
+        least = min(least, clear)
+    return least
+
+
+#: Passes of :func:`_swing_pitch` (plan the swing, solve the leg, pitch the foot to what the
+#: ankle reaches, plan again); the pitch settles within a few tenths of a degree by the third.
+SWING_PASSES = 8
+
+
+def _swing_pitch(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarray,
+                 geom: LegGeometry) -> float:  # fmt: skip
+    """The edged swings planned with the foot pitch the ankle can hold: where the leg IK asks
+    the swing ankle for more dorsiflexion than its range (the shank leaning back behind a
+    flexed knee while the foot would be level), the foot hangs toes down by the excess, and the
+    swing is planned again so that the toes and the heel of that pitched foot clear the edges
+    (the swing rises where they would not). In place; returns the least clearance, metres."""
+    up = [p for p in plans if p[1].land > p[1].lift + LEVEL_STEP]
+    rest = _plan_edged([p for p in plans if p[1].land <= p[1].lift + LEVEL_STEP], feet, geom)
+    least = _plan_edged(up, feet, geom)
+    top = math.radians(ROM_DEG["ankle_flex"][1])
+    for _ in range(SWING_PASSES if up else 0):
+        moved = False
+        for s in "lr":
+            mine = [k[1:-1] for fr, _, k, _ in up if fr.side == s]
+            if not mine:
+                continue
+            j = np.concatenate(mine)
+            raw = leg_ik_world(feet.ankle[s][j], feet.fyaw[s][j], feet.pitch[s][j], root[j],
+                               yaw[j], s, geom)  # fmt: skip
+            excess = raw[f"ankle_{s}_flex"] - top
+            if excess.max() > 1e-3:
+                feet.pitch[s][j] -= np.maximum(excess, 0.0)
+                moved = True
+        if not moved:
+            break
+        least = _plan_edged(up, feet, geom)
+    return min(least, rest)
+
+
 def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, root: np.ndarray,
                    yaw: np.ndarray, geom: LegGeometry):  # fmt: skip
     """The flat leg synthesis of a walk that leaves the floor, put on its surfaces: feet on
-    their footprints' heights (pitched to a ramp), the swing over step edges
-    (:func:`edge_swing`), the pelvis on the level (:meth:`StepSurfaces.pelvis_level`), lowered
-    where a grounded leg cannot reach; the leg IK again.
+    their footprints' heights (pitched to a ramp), the swing over step edges with the foot
+    pitch its ankle can hold (:func:`edge_swing`, :func:`_swing_pitch`), the pelvis on the
+    level (:meth:`StepSurfaces.pelvis_level`), lowered where a grounded leg cannot reach; the
+    leg IK again.
 
     Args:
         walk: the walk (its steps' ``foot_z``/``stance_z`` and ground heights ``z``).
@@ -324,34 +451,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
         a[:, 2] += tr.z[s][on]
         feet.ankle[s][on] = a
         feet.pitch[s][on] = feet.pitch[s][on] + tr.pitch[s][on]
-    least = math.inf
-    for fr, sf in zip(frames, surfs, strict=True):
-        s = fr.side
-        j = np.flatnonzero(tr.air[s][fr.start : fr.end]) + fr.start
-        if not len(j):
-            continue
-        k = np.r_[j[0] - 1, j, fr.end]
-        forefoot = sf.edged and sf.lift - sf.land >= FOREFOOT_DROP
-        if forefoot:
-            forefoot_landing(feet, fr, tr.air[fr.other], geom)
-        if sf.edged:
-            # the foot held level through the swing (toes and sole straighten after lift-off,
-            # the landing pitch taken at the end), as stair gait does: a foot pitched toes
-            # down would need the whole foot lifted by its toes' drop over every edge
-            tau = np.arange(len(k)) / (len(k) - 1)
-            ease = 1.0 - smoothstep(tau / 0.25)
-            land = smoothstep((tau - 0.8) / 0.2)
-            feet.pitch[s][k] = feet.pitch[s][k[0]] * ease + feet.pitch[s][k[-1]] * land
-            feet.toe[s][k] = feet.toe[s][k[0]] * ease + feet.toe[s][k[-1]] * land
-            out, clear = edge_swing(feet.ankle[s][k], feet.pitch[s][k], feet.toe[s][k],
-                                    feet.fyaw[s][k], fr, sf, geom)  # fmt: skip
-            feet.ankle[s][j] = out[1:-1]
-            least = min(least, clear)
-            continue
-        seg = fr.land[:2] - fr.lift[:2]
-        u = np.clip((flat_ankle[s][j, :2] - fr.lift[:2]) @ seg / max(float(seg @ seg), 1e-12), 0, 1)
-        feet.ankle[s][j, 2] += sf.lift + (sf.land - sf.lift) * u
-        feet.pitch[s][j] += sf.lift_pitch + (sf.land_pitch - sf.lift_pitch) * u
+    plans = _place_swings(frames, surfs, tr, feet, flat_ankle, geom)
     new_root = root.copy()
     new_root[:, 2] += tr.level
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))
@@ -362,15 +462,24 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
         if deficit.max() <= 1e-3:
             break
         new_root[:, 2] -= spread(np.maximum(deficit, 0.0) + 2e-3, win)
+    least = _swing_pitch(plans, feet, new_root, yaw, geom) if plans else math.inf
+    raw = {s: _heel_rises(feet, s, new_root, yaw, grounded[s], geom) for s in "lr"}
     angles: dict[str, np.ndarray] = {}
     for s in "lr":
-        raw = leg_ik_world(feet.ankle[s], feet.fyaw[s], feet.pitch[s], new_root, yaw, s, geom)
-        for _ in range(3):
-            if not heel_rise(feet, s, raw[f"ankle_{s}_flex"], grounded[s], geom):
-                break
-            raw = leg_ik_world(feet.ankle[s], feet.fyaw[s], feet.pitch[s], new_root, yaw, s, geom)
         angles.update(
-            {k: np.clip(v, *np.deg2rad(ROM_DEG[generic_joint(k)])) for k, v in raw.items()}
+            {k: np.clip(v, *np.deg2rad(ROM_DEG[generic_joint(k)])) for k, v in raw[s].items()}
         )
         angles[f"toe_{s}"] = np.clip(feet.toe[s], *np.deg2rad(ROM_DEG["toe"]))
     return new_root, angles, least
+
+
+def _heel_rises(feet: FootTracks, s: str, root: np.ndarray, yaw: np.ndarray,
+                grounded: np.ndarray, geom: LegGeometry) -> dict:  # fmt: skip
+    """The ``s`` leg's unclipped IK angles after :func:`heel_rise` (up to 3 passes; ``feet``
+    updated in place), for the pelvis ``root`` (n, 3, metres) and ``yaw`` (n,, radians)."""
+    raw = leg_ik_world(feet.ankle[s], feet.fyaw[s], feet.pitch[s], root, yaw, s, geom)
+    for _ in range(3):
+        if not heel_rise(feet, s, raw[f"ankle_{s}_flex"], grounded, geom):
+            break
+        raw = leg_ik_world(feet.ankle[s], feet.fyaw[s], feet.pitch[s], root, yaw, s, geom)
+    return raw
