@@ -324,7 +324,8 @@ def test_a_standing_walker_pays_for_its_turn_on_the_spot(model, scenes_dir):
     """Standing 50 deg off the way to its goal, a walker planned with ``turn_on_spot`` sets
     off turned less far than one planned without its heading (whose first step faces
     anywhere within START_SPREAD of the way at no cost), and turns the rest while walking;
-    facing away (180 deg) it turns on the spot all but a one-step direction change
+    facing away (180 deg) it turns on the spot to within 20 deg of the way; standing at the
+    work it faced (``at_work``) it turns on the spot all but a one-step direction change
     (:mod:`mjwalk.plan.turnsplit`: 30-60 deg, Patla et al. 1991) and sets off that far from
     the way, turning the rest along its first steps (issue 48). 20 seeded walks each (seeds
     shared: the same draws)."""
@@ -346,8 +347,16 @@ def test_a_standing_walker_pays_for_its_turn_on_the_spot(model, scenes_dir):
         turned.append(off(a.yaw[0], facing))
         free.append(off(b.yaw[0], facing))
     assert np.median(turned) < np.median(free), (np.median(turned), np.median(free))
-    back = [
+    whole = [
         planner.plan(WalkRequest((-2.0, 0.0, math.pi), turn_on_spot=True), np.random.default_rng(k))
+        for k in range(20)
+    ]  # not at work (e.g. past a stair): the search turns it all on the spot, as before
+    assert np.median([off(p.yaw[0], 0.0) for p in whole]) < math.radians(20.0)
+    back = [
+        planner.plan(
+            WalkRequest((-2.0, 0.0, math.pi), turn_on_spot=True, at_work=True),
+            np.random.default_rng(k),
+        )
         for k in range(20)
     ]
     first = np.degrees([off(p.yaw[0], 0.0) for p in back])
