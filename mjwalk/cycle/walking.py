@@ -120,7 +120,9 @@ def plan_task_walk(
         spots: the standing-spot stream; None: ``rng``.
         yaw: the heading the operator stands at (radians; the task before's): the walk sets off
             from it, turning on the spot first as far as that pays against turning while walking
-            (``WalkRequest(turn_on_spot=True)``); None: it sets off around the downhill heading.
+            (``WalkRequest(turn_on_spot=True)``), a turn of more than a quarter split between
+            the spot and the first steps (``at_work``, :mod:`mjwalk.plan.turnsplit`); None: it
+            sets off around the downhill heading.
         face: the heading the operator works at after the walk (radians; the goal site's): the
             walk bends into it as people's do (``WalkRequest(goal_heading=...)``,
             :mod:`mjwalk.plan.guide`); None: it ends as it comes.
@@ -144,13 +146,14 @@ def plan_task_walk(
         if np.hypot(x - start[0], y - start[1]) > reach:
             if levels:
                 return _level_walk(ctx, start, (x, y), model, rng, (reach, walker))
-            request = WalkRequest(pose, model, (x, y, reach), turn, face)
+            request = WalkRequest(pose, model, (x, y, reach), turn, face, at_work=turn)
             assert planner is not None
             return planner.plan(request, rng)
     if levels:
         return _level_walk(ctx, start, zone.centre, model, rng, (zone.radius, walker))
     assert planner is not None
-    return planner.plan(WalkRequest(pose, model, turn_on_spot=turn, goal_heading=face), rng)
+    request = WalkRequest(pose, model, turn_on_spot=turn, goal_heading=face, at_work=turn)
+    return planner.plan(request, rng)
 
 
 def _level_walk(ctx: CycleContext, start, goal, model, rng, within):

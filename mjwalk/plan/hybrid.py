@@ -73,6 +73,7 @@ from mjwalk.plan.params import KernelParams, WalkTerms, spot_offset
 from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.stepcost import downhill_costs
 from mjwalk.plan.stepgeom import in_goal
+from mjwalk.plan.turnsplit import starter_frames
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.clearance import ClearanceField
 from mjwalk.world.workplace import Workplace
@@ -310,7 +311,11 @@ class HybridPlanner:
         :data:`~mjwalk.plan.options.ON_SPOT_TURN_SPEED` times the walk's pace (metres, as the
         steps), against the heading term (:data:`~mjwalk.plan.options.HEADING_WEIGHT`) of
         setting off away from the goal: the search weighs turning first against turning while
-        walking. The draws are those of a walk without a yaw. Without it a start yaw is the
+        walking. With ``at_work`` (a walker standing at the work it faced) a turn of more than
+        a quarter is split (:mod:`mjwalk.plan.turnsplit`): the walker turns on the spot all but
+        a one-step direction change and sets off that far from the way, turning the rest along
+        its first steps. The draws are otherwise those of a walk without a yaw. Without it a
+        start yaw is the
         heading of the first step's frame (a walker already walking that way). The walk's first
         sample faces where the turn ended (``yaw[0]``): the turn itself is the caller's (the
         cycle animates it).
@@ -434,7 +439,12 @@ class HybridPlanner:
         # the starters, for the first expansion (the start node's)
         z0, side0 = model.sample_first_features(o.n_starters, rng)
         frame0 = np.full(len(z0), float(start_yaw))
-        if free_heading:  # the walker may set off anywhere around the downhill heading
+        split = (
+            starter_frames(facing, start_yaw, len(z0), rng) if turn and request.at_work else None
+        )
+        if split is not None:  # a large turn: its last part is made along the first steps
+            frame0 = split
+        elif free_heading:  # the walker may set off anywhere around the downhill heading
             frame0 += rng.uniform(-START_SPREAD, START_SPREAD, len(frame0))
         f0 = o.heuristic_weight * h_start  # as stepcheck.check_steps scores a node
         if h_start > FAR_FROM:

@@ -35,6 +35,11 @@ class WalkRequest:
         turn_on_spot: with a start yaw, the walker stands facing it and turns on the spot
             before the first step, the turn costed by its time; without, a start yaw is the
             heading of a walker already walking.
+        at_work: with ``turn_on_spot``, the walker stands at the work it faced (a cycle's
+            stand site): a turn of more than a quarter is split, all but a one-step direction
+            change on the spot and the rest along the first steps
+            (:mod:`mjwalk.plan.turnsplit`); without, the search weighs the whole turn as
+            before.
         goal_heading: the heading (radians) the walker means to arrive at; it shapes the path
             the walk's heading follows (:mod:`mjwalk.plan.guide`), no condition of the goal.
         guide: a (k, 2) path (metres) from near the start to near the goal for the heading to
@@ -47,6 +52,7 @@ class WalkRequest:
     turn_on_spot: bool = False
     goal_heading: float | None = None
     guide: np.ndarray | None = None
+    at_work: bool = False
 
     def __post_init__(self):
         if self.spot is not None:

@@ -324,8 +324,11 @@ def test_a_standing_walker_pays_for_its_turn_on_the_spot(model, scenes_dir):
     """Standing 50 deg off the way to its goal, a walker planned with ``turn_on_spot`` sets
     off turned less far than one planned without its heading (whose first step faces
     anywhere within START_SPREAD of the way at no cost), and turns the rest while walking;
-    facing away (180 deg) it turns on the spot to within 20 deg of the way. 20 seeded walks
-    each (seeds shared: the same draws)."""
+    facing away (180 deg) it turns on the spot to within 20 deg of the way; standing at the
+    work it faced (``at_work``) it turns on the spot all but a one-step direction change
+    (:mod:`mjwalk.plan.turnsplit`: 30-60 deg, Patla et al. 1991) and sets off that far from
+    the way, turning the rest along its first steps (issue 48). 20 seeded walks each (seeds
+    shared: the same draws)."""
     import math
 
     wp = load_workplace(scenes_dir / "open_floor.xml")
@@ -344,13 +347,26 @@ def test_a_standing_walker_pays_for_its_turn_on_the_spot(model, scenes_dir):
         turned.append(off(a.yaw[0], facing))
         free.append(off(b.yaw[0], facing))
     assert np.median(turned) < np.median(free), (np.median(turned), np.median(free))
+    whole = [
+        planner.plan(WalkRequest((-2.0, 0.0, math.pi), turn_on_spot=True), np.random.default_rng(k))
+        for k in range(20)
+    ]  # not at work (e.g. past a stair): the search turns it all on the spot, as before
+    assert np.median([off(p.yaw[0], 0.0) for p in whole]) < math.radians(20.0)
     back = [
         planner.plan(
-            WalkRequest((-2.0, 0.0, math.pi), turn_on_spot=True), np.random.default_rng(k)
-        ).yaw[0]
+            WalkRequest((-2.0, 0.0, math.pi), turn_on_spot=True, at_work=True),
+            np.random.default_rng(k),
+        )
         for k in range(20)
     ]
-    assert np.median([off(y, 0.0) for y in back]) < math.radians(20.0)
+    first = np.degrees([off(p.yaw[0], 0.0) for p in back])
+    assert 20.0 <= np.median(first) <= 70.0, first
+    # the rest is turned while walking: a metre on, the walk heads within 20 deg of the way
+    along = [np.r_[0.0, np.cumsum(np.hypot(*np.diff(p.xy, axis=0).T))] for p in back]
+    later = np.degrees(
+        [off(p.yaw[np.searchsorted(a, 1.0)], 0.0) for p, a in zip(back, along, strict=True)]
+    )
+    assert np.median(later) < 20.0, later
 
 
 #: Distance (m) from setting off to 90 % of the steady speed, and from the last 90 % to

@@ -43,6 +43,8 @@ def test_a_request_holds_its_values_checked():
     np.testing.assert_allclose(np.diff(guided.guide[:, 0]), 3.0 / (GUIDE_POINTS - 1))
     with pytest.raises(AttributeError):
         request.spot = None  # type: ignore[misc]
+    # a turn is split between the spot and the first steps only for a walker at work
+    assert not request.at_work and WalkRequest("west", turn_on_spot=True, at_work=True).at_work
 
 
 def test_a_start_alone_plans_as_its_request(scenes_dir):
