@@ -18,6 +18,14 @@ Run: PYTHONPATH=. python3 benchmarks/bench_scale.py [--sizes 10 40 100] [--walks
     IQR (relative to the median) and sway share (steps whose largest lateral excursion points
     to the stance foot).
 (c) Cycles per second of ``simulate_cycles`` on the station spec with 1 and 2 workers.
+
+(b) times both planners in CPU seconds (``time.process_time``) since branch plan-cost: wall
+times on the shared 2-core machine ran 5-30x the CPU time. Measured there (20 walks a length,
+CPU): hybrid 2.3 / 2.8 / 5.5 / 12.6 / 13.2 ms at 2 / 4 / 8 / 16 / 32 m (main before it:
+3.6 / 3.7 / 6.0 / 14.3 / 14.3 ms, expansions identical), grid A* 0.6 / 0.7 / 0.9 / 1.8 / 3.9 ms:
+hybrid/grid 4.1-4.3 / 3.8 / 5.8-6.0 / 6.0-6.4 / 3.6-3.7. The grid A* has been compiled since
+64666d3 (6x faster by its own commit's figure); the ratios of issue 48 (1.79 ... 0.45) were
+taken against the interpreted grid A*.
 """
 
 from __future__ import annotations
