@@ -85,7 +85,10 @@ _HEADING_PROBES = 0.3 * np.stack([np.cos(_HEADING_ANGLES), np.sin(_HEADING_ANGLE
 
 
 class _Exhausted(PlanningError):
-    """The open list ran dry (all sampled continuations blocked): worth a fresh search."""
+    """The open list ran dry (all sampled continuations blocked): worth a fresh search.
+    ``expansions``: what the search spent."""
+
+    expansions = 0
 
 
 def _goal_discs(options: PlannerOptions, goal: np.ndarray) -> np.ndarray:
@@ -341,7 +344,9 @@ class HybridPlanner:
 
         Returns:
             The walk (120 Hz pelvis positions and yaw, world frame; its steps; ``meta`` with the
-            search's counts, attempts and seconds, and whether it wanders).
+            last search's counts, attempts and seconds (of all searches), whether it wanders,
+            and ``expansions_all``: the expansions of all its searches, those run dry and those
+            whose walk looped included: the planning cost).
 
         Raises:
             InputError: a malformed request (:class:`~mjwalk.plan.request.WalkRequest`).
@@ -368,10 +373,12 @@ class HybridPlanner:
         bound = None
         limit = max(o.attempts, WANDER_SEARCHES)
         exhausted = 0
+        spent = 0  # expansions over all searches (meta "expansions_all")
         for attempt in range(limit):
             try:
                 path, start_distance = self._plan_once(pose, rng, request, model, pace, guide)
             except _Exhausted as exc:
+                spent += exc.expansions
                 exhausted += 1
                 guide = None  # a dead end along the guide: the route search decides from now
                 if exhausted >= o.attempts or attempt == limit - 1:
@@ -382,6 +389,8 @@ class HybridPlanner:
                     ) from None
                 continue
             path.meta["attempts"] = attempt + 1
+            spent += path.meta["expansions"]
+            path.meta["expansions_all"] = spent
             path.meta["seconds"] = time.perf_counter() - t0  # all searches, not the last one
             if bound is None:
                 tolerance = o.goal_tolerance if request.spot is None else request.spot[2]
@@ -394,6 +403,7 @@ class HybridPlanner:
         assert best is not None  # a search returned, or the last attempt raised
         best.meta["seconds"] = time.perf_counter() - t0
         best.meta["searches"] = attempt + 1
+        best.meta["expansions_all"] = spent
         return best
 
     def _plan_once(
@@ -543,11 +553,13 @@ class HybridPlanner:
                 f"{rejected} rejected"
             )
         if outcome == search.EXHAUSTED:
-            raise _Exhausted(
+            dry = _Exhausted(
                 f"search exhausted after {expansions} expansions: no sequence of sampled "
                 f"steps reached the goal ({goal_x:.3f}, {goal_y:.3f}) from {where} without "
                 f"coming closer than {self.radius} m to an obstacle"
             )
+            dry.expansions = expansions
+            raise dry
         counts = {
             "expansions": expansions,
             "generated": generated,

@@ -417,7 +417,10 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     try:
         return aimed.plan(replace(request, goal_heading=heading), rng)
     except PlanningError:
-        return planner.plan(request, rng)
+        walk = planner.plan(request, rng)
+        # the aimed search's spent budget counts (any earlier searches of it not)
+        walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + budget
+        return walk
 
 
 def plan_level_walk(
@@ -443,7 +446,8 @@ def plan_level_walk(
 
     Returns:
         The stitched walk: 120 Hz pelvis xy, yaw and surface height, the steps with their feet's
-        heights, ``meta["levels"]`` (route, and time, length, steps per level and kind).
+        heights, ``meta["levels"]`` (route, and time, length, steps per level and kind),
+        ``meta["expansions_all"]`` (the level walks' expansions over all their searches).
 
     Raises:
         PlanningError: an end on no level, no route for the walker, or a level walk not found.
@@ -489,6 +493,10 @@ def plan_level_walk(
         raise PlanningError("start and goal are within reach already: there is no walk to plan")
     path = stitch(workplace, parts)
     path.meta["levels"] = level_meta(workplace, parts, limit)
+    # the level walks' searches (the planning cost: :func:`_level_leg`)
+    path.meta["expansions_all"] = sum(
+        int(w.meta.get("expansions_all", 0)) for leg, w in parts if leg.kind == "level"
+    )
     path.meta["goal"] = np.asarray(b.xy, dtype=float).tolist()
     path.meta["seconds"] = time.perf_counter() - t0  # the route, the level walks, the crossings
     return path.stamp_scene(workplace)

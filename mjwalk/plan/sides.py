@@ -144,6 +144,41 @@ def side_log_odds(
     )
 
 
+def obstacle_bounds(workplace) -> np.ndarray:
+    """The bounding boxes of the scene's obstacle footprints, one row each (kept on the
+    workplace: the side choice asks for them once per obstacle per walk, and building them
+    anew took 40 % of a walk's planning on a 144-box hall, ``benchmarks/bench_scale.py``).
+
+    Args:
+        workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
+
+    Returns:
+        (n, 4) each footprint's (xmin, ymin, xmax, ymax), metres, in ``workplace.obstacles``'
+        order.
+    """
+    bounds = workplace.__dict__.get("_footprint_bounds")
+    if bounds is None or len(bounds) != len(workplace.obstacles):
+        bounds = np.array([fp.bounds() for fp in workplace.obstacles]).reshape(-1, 4)
+        workplace.__dict__["_footprint_bounds"] = bounds
+    return bounds
+
+
+def boxes_meeting(workplace, box) -> np.ndarray:
+    """The indices of the obstacles whose bounding box meets ``box`` (edges included), in
+    ``workplace.obstacles``' order.
+
+    Args:
+        workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
+        box: (xmin, ymin, xmax, ymax), metres.
+
+    Returns:
+        The obstacles' indices, ascending.
+    """
+    b = obstacle_bounds(workplace)
+    x0, y0, x1, y1 = (float(v) for v in box)
+    return np.flatnonzero((b[:, 2] >= x0) & (b[:, 0] <= x1) & (b[:, 3] >= y0) & (b[:, 1] <= y1))
+
+
 def side_gap(workplace, blocker, route, start, goal) -> float:
     """The narrowest free width (m) along ``route`` while it is abreast of ``blocker`` (module
     doc): over the route's points whose projection on the line ``start`` -> ``goal`` lies within
@@ -179,12 +214,10 @@ def side_gap(workplace, blocker, route, start, goal) -> float:
     other = np.minimum(other, GAP_OPEN)
     x0, y0 = beside.min(axis=0) - GAP_OPEN
     x1, y1 = beside.max(axis=0) + GAP_OPEN
-    for fp in workplace.obstacles:
+    for k in boxes_meeting(workplace, (x0, y0, x1, y1)):  # the others too far cannot narrow it
+        fp = workplace.obstacles[k]
         if fp is blocker:
             continue
-        bx0, by0, bx1, by1 = fp.bounds()
-        if bx1 < x0 or bx0 > x1 or by1 < y0 or by0 > y1:
-            continue  # too far from the route to narrow it
         other = np.minimum(other, fp.signed_distance(beside))
     return float(np.min(own + other))  # negative depth inside another obstacle narrows it
 
@@ -243,10 +276,8 @@ def intruding(workplace, path, ends, berth: float):
     dense = densify(pts, BERTH_SPACING)
     lo, hi = dense.min(axis=0) - berth, dense.max(axis=0) + berth
     best, first = None, len(dense)
-    for fp in workplace.obstacles:
-        bx0, by0, bx1, by1 = fp.bounds()
-        if bx1 < lo[0] or bx0 > hi[0] or by1 < lo[1] or by0 > hi[1]:
-            continue
+    for k in boxes_meeting(workplace, (lo[0], lo[1], hi[0], hi[1])):
+        fp = workplace.obstacles[k]
         along = (np.asarray(fp.vertices, dtype=float) - s) @ u
         if along.min() - fp.radius < -berth or along.max() + fp.radius > length + berth:
             continue  # not passed by: a wall the walk runs along, or behind an end

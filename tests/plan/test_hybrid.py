@@ -395,3 +395,26 @@ def test_walkers_set_off_and_stop_over_the_captured_distances(model, scenes_dir)
     assert lo <= np.median(up) <= hi, np.median(up)
     lo, _, hi = CAPTURED_SLOW_DOWN
     assert lo <= np.median(down) <= hi, np.median(down)
+
+
+def test_expansions_all_counts_every_search(model, scenes_dir, monkeypatch):
+    """``meta["expansions_all"]`` is the sum of the expansions of all of a walk's searches (a
+    walk searched again after a loop counts both): the planning cost the benchmarks report."""
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    spent: list[int] = []
+    search_once = HybridPlanner._plan_once
+
+    def counted(self, *args):
+        path, start_distance = search_once(self, *args)
+        spent.append(path.meta["expansions"])
+        return path, start_distance
+
+    monkeypatch.setattr(HybridPlanner, "_plan_once", counted)
+    planner = HybridPlanner(wp, "stand_car1", model)
+    searches = 0
+    for seed in range(12):
+        spent.clear()
+        walk = planner.plan("stand_rack1", np.random.default_rng(seed))
+        assert walk.meta["expansions_all"] == sum(spent) >= walk.meta["expansions"]
+        searches = max(searches, len(spent))
+    assert searches >= 1

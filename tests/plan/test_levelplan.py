@@ -224,3 +224,11 @@ def test_place_crossings_keeps_the_middle_where_a_moved_stance_does_not_fit(stat
     # a body as wide as the flight: nothing to move across, the middles stay
     wide = PlannerOptions(radius=0.5)
     assert place_crossings(station, route, wide, head) == route
+
+
+def test_a_level_walk_counts_its_legs_expansions(station, model):
+    """A walk over levels reports the expansions of its level legs' searches (the step's
+    route has a level leg on the floor and one on the platform: each spends some)."""
+    walk = plan_walk(station, "stand_step", "stand_platform1", model, rng=3)
+    assert [r["kind"] for r in walk.meta["levels"]["route"]] == ["level", "step", "level"]
+    assert walk.meta["expansions_all"] >= 2

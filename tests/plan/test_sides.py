@@ -16,8 +16,10 @@ from mjwalk.plan.sides import (
     CONFINED_APERTURE,
     CRITICAL_APERTURE,
     PASSING_GAP,
+    boxes_meeting,
     gap_log_weight,
     intruding,
+    obstacle_bounds,
     passing_berth,
     passing_gap,
     side_gap,
@@ -52,6 +54,21 @@ def test_the_gap_weight_has_the_cited_points():
     assert gap_log_weight(-1.0, SHOULDER) < -30.0  # no overflow for a closed side
     z = side_log_odds(0.0, 2.0, CRITICAL_APERTURE * SHOULDER, SHOULDER)
     assert z == pytest.approx(math.log(2.0))
+
+
+def test_obstacle_boxes_are_kept_and_met_as_each_footprint_bounds_them(tmp_path):
+    """The kept bounds are each footprint's own; a query box meets exactly the footprints
+    whose bounds it overlaps (edges included), in the scene's order."""
+    wp = pillar_by_wall(tmp_path, 0.6)
+    b = obstacle_bounds(wp)
+    assert b.tolist() == [list(fp.bounds()) for fp in wp.obstacles]
+    assert obstacle_bounds(wp) is b  # kept on the workplace
+    names = [fp.name for fp in wp.obstacles]
+    pillar, wall = names.index("pillar"), names.index("wall")
+    assert boxes_meeting(wp, (-5.0, -3.0, 5.0, 3.0)).tolist() == sorted([pillar, wall])
+    assert boxes_meeting(wp, (0.3, -0.1, 0.5, 0.1)).tolist() == [pillar]  # touches its edge
+    assert boxes_meeting(wp, (0.31, -0.1, 0.5, 0.1)).tolist() == []
+    assert boxes_meeting(wp, (-0.5, 1.0, 0.5, 1.2)).tolist() == [wall]
 
 
 def test_the_gap_beside_an_obstacle_is_the_free_width(tmp_path):
