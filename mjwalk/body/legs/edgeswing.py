@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mjwalk.body.humanoid import LegGeometry
-from mjwalk.body.legs.curves import smoothstep
+from mjwalk.body.legs.curves import smoothstep, spread
 from mjwalk.body.legs.steps import StepFrames
 
 #: Least vertical clearance of the swing foot's sole over a step edge (nosing), metres. Young
@@ -367,3 +367,49 @@ def _keep_behind_edges(out, z, clearance, pitch, toe, edges: _Edges, fr: StepFra
     x_new = np.where(rising, np.minimum(x, edges.lo[0] - tip), x)
     x_new = np.where(falling, np.maximum(x_new, edges.hi[-1] - heel), x_new)
     out[:, :2] += (x_new - x)[:, None] * e
+
+
+def sole_rise(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: LegGeometry,
+              margin: float = 0.002) -> np.ndarray:  # fmt: skip
+    """How far the swing ankle of an edged step must rise so that no point of its sole (heel,
+    ball, toe tip, at the foot's pitch and toe angle) lies below the surface under it: over
+    the span where an edge may lie (:func:`_step_edges`, moved off the grounded feet) the
+    higher of its two surfaces counts. The rise is smoothed over the samples around (a
+    running maximum over +-2 samples, Gaussian) and is nil at both ends (grounded).
+
+    Args:
+        ankle: (m, 3) the swing ankle from the last grounded sample to the landing, metres.
+        pitch: (m,) the foot's pitch, radians, + toes up.
+        toe: (m,) the toe angle, radians.
+        yaw: (m,) the foot's heading, radians from +x CCW.
+        fr: the step.
+        surf: its surfaces.
+        geom: the leg and foot lengths.
+        margin: the least height of a sole point over its surface, metres.
+
+    Returns:
+        (m,) the rise per sample, metres (>= 0).
+    """
+    m = len(ankle)
+    if m < 3:
+        return np.zeros(m)
+    ends = [0, m - 1]
+    edges = _edges_off_grounded(
+        _step_edges(fr, surf, geom),
+        _sole_points(ankle[ends], pitch[ends], toe[ends], yaw[ends], geom),
+        fr,
+    )
+    seg = fr.land[:2] - fr.lift[:2]
+    e = seg / max(float(np.hypot(*seg)), 1e-9)
+    pts = _sole_points(ankle, pitch, toe, yaw, geom)
+    x = (pts[..., :2] - fr.lift[:2]) @ e  # (m, 3)
+    under = edges.zr[np.searchsorted(edges.cut, x)]
+    for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
+        under = np.where((x >= lo - 1e-3) & (x <= hi + 1e-3), np.maximum(under, ze), under)
+    need = np.maximum((under + margin - pts[..., 2]).max(axis=1), 0.0)
+    need[ends] = 0.0
+    if not need.any():
+        return need
+    rise = np.maximum(spread(need, 2), need)
+    rise[ends] = 0.0
+    return rise

@@ -48,7 +48,13 @@ import numpy as np
 
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.body.legs.curves import smoothstep, spread
-from mjwalk.body.legs.edgeswing import FLAT_PITCH, LEVEL_STEP, StepSurfaces, edge_swing
+from mjwalk.body.legs.edgeswing import (
+    FLAT_PITCH,
+    LEVEL_STEP,
+    StepSurfaces,
+    edge_swing,
+    sole_rise,
+)
 from mjwalk.body.legs.ik import KNEE_MIN, generic_joint, leg_ik_world
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import FootTracks, StepFrames
@@ -421,6 +427,46 @@ def _swing_pitch(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
     return min(least, rest)
 
 
+#: Passes of :func:`_soles_clear` (lift the soles over their surfaces, pitch the foot to what
+#: the ankle reaches at the new height).
+SOLE_PASSES = 3
+
+
+def _ankle_pitch(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarray,
+                 geom: LegGeometry) -> None:  # fmt: skip
+    """The airborne samples of the swings ``plans`` pitched toes down by whatever dorsiflexion
+    the leg IK asks of the ankle beyond its range (in place)."""
+    top = math.radians(ROM_DEG["ankle_flex"][1])
+    for s in "lr":
+        mine = [k[1:-1] for fr, _, k, _ in plans if fr.side == s]
+        if not mine:
+            continue
+        j = np.concatenate(mine)
+        raw = leg_ik_world(feet.ankle[s][j], feet.fyaw[s][j], feet.pitch[s][j], root[j], yaw[j],
+                           s, geom)  # fmt: skip
+        feet.pitch[s][j] -= np.maximum(raw[f"ankle_{s}_flex"] - top, 0.0)
+
+
+def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarray,
+                 geom: LegGeometry) -> None:  # fmt: skip
+    """The swing feet of the edged swings ``plans`` kept above their surfaces at the pitch the
+    ankle holds: where a sole point (heel, ball, toe tip) of the foot so pitched would lie
+    below the tread under it (the toes of a foot hanging toes down as it lowers onto a tread),
+    the ankle rises by the depth (:func:`~mjwalk.body.legs.edgeswing.sole_rise`), and the
+    foot is pitched again to what the ankle reaches there; in place."""
+    for _ in range(SOLE_PASSES):
+        _ankle_pitch(plans, feet, root, yaw, geom)
+        moved = False
+        for fr, sf, k, _ in plans:
+            s = fr.side
+            rise = sole_rise(feet.ankle[s][k], feet.pitch[s][k], feet.toe[s][k], feet.fyaw[s][k],
+                             fr, sf, geom)  # fmt: skip
+            feet.ankle[s][k, 2] += rise
+            moved = moved or bool(rise.max() > 1e-4)
+        if not moved:
+            break
+
+
 def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, root: np.ndarray,
                    yaw: np.ndarray, geom: LegGeometry):  # fmt: skip
     """The flat leg synthesis of a walk that leaves the floor, put on its surfaces: feet on
@@ -463,6 +509,9 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
             break
         new_root[:, 2] -= spread(np.maximum(deficit, 0.0) + 2e-3, win)
     least = _swing_pitch(plans, feet, new_root, yaw, geom) if plans else math.inf
+    up = [p for p in plans if p[1].land > p[1].lift + LEVEL_STEP]
+    if up:  # descent: raising the held-back foot lifts the knee peak past KNEE_PEAK_DOWN
+        _soles_clear(up, feet, new_root, yaw, geom)
     raw = {s: _heel_rises(feet, s, new_root, yaw, grounded[s], geom) for s in "lr"}
     angles: dict[str, np.ndarray] = {}
     for s in "lr":
