@@ -196,7 +196,9 @@ def route_turns(table: dict) -> None:
     are their chords plus a few centimetres (:func:`length_makeup`) and stand zones alone give
     T2 and T4 at most 40-46 % of the captured IQR (:func:`zone_bound`); where the captured
     walks are much longer than the planned, their length (and its spread) lies in how people
-    turn from facing the work into the walk, which the planner does on the spot."""
+    turn from facing the work into the walk. Since issue 48's turn split
+    (:mod:`mjwalk.plan.turnsplit`) a walker standing at its work turns all but 30-60 deg of a
+    turn over 90 deg on the spot and the rest along its first steps."""
     import math
 
     spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
