@@ -149,6 +149,10 @@ def save_top_view(
     if levels is not None:  # under the raised levels: neither floor, obstacle nor void
         kind = np.where((kind == 3) & ~plan.void, 4, kind)
         names.append("raised level")
+    if plan.gaps is not None and plan.gaps.any():  # the floor missing (mjwalk.scan.scanpits)
+        kind = np.where(plan.gaps, len(names), kind)
+        colours = [*colours[: len(names)], "#e67e22"]
+        names.append("gap (floor missing): obstacle")
     ny, nx = kind.shape
     r = plan.resolution
     extent = (plan.x0, plan.x0 + nx * r, plan.y0, plan.y0 + ny * r)

@@ -20,6 +20,7 @@ def test_defaults_and_their_exports():
     assert (opts.units, opts.up, opts.drop_invalid) == ("m", "+z", False)
     assert opts.resolution == DEFAULT_RESOLUTION == 0.02
     assert (opts.offset, opts.voids, opts.register) == (None, "blocked", False)
+    assert opts.gaps == "obstacle"
     assert mjwalk.ScanOptions is ScanOptions
     with pytest.raises(dataclasses.FrozenInstanceError):
         opts.units = "mm"  # type: ignore[misc]
