@@ -70,8 +70,8 @@ class ScanPit:
         bottom: the walk surface at its bottom (height negative), None when none was scanned.
         link: how the floor reaches the bottom (``lower``: the bottom's index in ``levels``,
             ``upper``: 0, the floor), None when nothing reaches it.
-        levels: the regions of the link, the floor first, then the bottom and the treads by
-            height (empty without a link).
+        levels: the scan's levels below the floor that the floor reaches, the floor first,
+            then by height; ``link`` indexes them (empty without a link).
     """
 
     cells: np.ndarray
