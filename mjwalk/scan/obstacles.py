@@ -258,6 +258,7 @@ def _floor_cells(
     missing at, module docstring)."""
     # Sparse floor evidence (the rings of far floor points) closed over gaps up to 2 FLOOR_GAP;
     # not over cells with points below the floor (the closing bridges a trench that narrow).
+    drop = _drop_evidence(drop, resolution)
     spread = ndimage.distance_transform_edt(~seen_floor) * resolution <= FLOOR_GAP
     closed = ndimage.distance_transform_edt(spread) * resolution > FLOOR_GAP
     closed &= ~drop
@@ -299,17 +300,6 @@ def _gap_cells(unknown: np.ndarray, drop: np.ndarray, resolution: float) -> np.n
     out = np.zeros_like(unknown)
     if not drop.any():
         return out
-    # Evidence is a wall or a bottom seen along a foot's width, not stray points: a real scan's
-    # range noise leaves single cells of two points 5-10 cm below the floor (the shared PCL
-    # room scan: 70 such cells, none touching another).
-    dlab, _ = ndimage.label(ndimage.binary_dilation(drop, _SQUARE), _SQUARE)  # a cell apart
-    spans = [
-        max(s[0].stop - s[0].start, s[1].stop - s[1].start) for s in ndimage.find_objects(dlab)
-    ]
-    wide = np.flatnonzero((np.array(spans) - 2) * resolution >= GAP_WIDTH) + 1
-    drop &= np.isin(dlab, wide)
-    if not drop.any():
-        return out
     lab, _ = ndimage.label(unknown, _SQUARE)
     hit = np.unique(lab[ndimage.binary_dilation(drop, _SQUARE) & unknown])
     hit = hit[hit > 0]
@@ -319,6 +309,22 @@ def _gap_cells(unknown: np.ndarray, drop: np.ndarray, resolution: float) -> np.n
     inscribed = np.asarray(ndimage.maximum(radius, lab, hit))
     # a run of k cells has k // 2 + 1 cells to its edge's centre: width about 2 r - 1 cell
     return np.isin(lab, hit[2 * inscribed - resolution >= GAP_WIDTH])
+
+
+def _drop_evidence(drop: np.ndarray, resolution: float) -> np.ndarray:
+    """The cells of points below the floor that show the floor missing: clusters (cells at most
+    one cell apart) spanning a foot's width (:data:`GAP_WIDTH`)."""
+    if not drop.any():
+        return drop
+    # Evidence is a wall or a bottom seen along a foot's width, not stray points: a real scan's
+    # range noise leaves single cells of two points 5-10 cm below the floor (the shared PCL
+    # room scan: 70 such cells, none touching another).
+    dlab, _ = ndimage.label(ndimage.binary_dilation(drop, _SQUARE), _SQUARE)  # a cell apart
+    spans = [
+        max(s[0].stop - s[0].start, s[1].stop - s[1].start) for s in ndimage.find_objects(dlab)
+    ]
+    wide = np.flatnonzero((np.array(spans) - 2) * resolution >= GAP_WIDTH) + 1
+    return drop & np.isin(dlab, wide)
 
 
 def _obstacle_tops(

@@ -208,3 +208,19 @@ def test_flat_scans_give_exactly_todays_xml():
                               noise=0.005, seed=seed)  # fmt: skip
         out = build_scene(scan.points, opts, source=name).xml
         assert hashlib.sha256(out.encode()).hexdigest()[:16] == TODAY[name], name
+
+
+@pytest.mark.parametrize(
+    "name", ["pcl-room-scan/room_scan1.pcd", "e57-pump-room/pumpAVisualReferenceImage.e57"]
+)
+def test_real_scans_noise_below_the_floor_is_no_gap(shared_data, name):
+    """The shared real scans are flat: their few points 5-10 cm below the floor (range noise,
+    single cells) make no gap, and their floor plans are those without gaps looked for."""
+    from mjwalk.scan.read import read_scan
+
+    cloud = read_scan(shared_data / "scans" / name)
+    pts = find_floor(cloud.points).apply(cloud.points)
+    plan, old = floor_plan(pts), floor_plan(pts, gaps=False)
+    assert not plan.gaps.any() and not find_pits(pts, plan)
+    assert (plan.floor == old.floor).all() and (plan.void == old.void).all()
+    assert plan.holes_filled == old.holes_filled
