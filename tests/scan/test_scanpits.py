@@ -143,6 +143,9 @@ def test_written_scene_guards_the_gap_and_refuses_a_site_in_it(scans, tmp_path):
         build_scene(scans["hole"], source="hole", sites=read_sites(sites))
     filled = build_scene(scans["hole"], ScanOptions(gaps="floor"), source="hole")
     assert "scan_pit" not in filled.xml and not filled.pits
+    free = build_scene(scans["hole"], ScanOptions(voids="free"), source="hole")
+    assert "scan_pit_0" in free.xml  # no void policy makes a gap walkable
+    assert not free.plan.floor[_cell(free.plan, CENTRE)]
 
 
 def test_a_slot_narrower_than_a_foot_stays_floor():
