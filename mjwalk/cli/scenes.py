@@ -112,7 +112,7 @@ def cmd_scan(args: argparse.Namespace) -> int:
             f"floor: they stay obstacles or floor): {shown}{more}"
         )
     if args.png is not None:
-        save_top_view(scene.plan, args.png, levels=levels)
+        save_top_view(scene.plan, args.png, levels=levels, pits=scene.pits)
         what = "" if levels is None else ", levels with heights and links"
         print(f"wrote {args.png} (top view: floor seen, unseen, obstacles, voids{what})")
     print(f"{args.scan[0]} -> scene transform (4x4, row-major):")
