@@ -27,7 +27,8 @@ def scan_options(args: argparse.Namespace) -> ScanOptions:
         args: the parsed ``mjwalk scan`` command line.
 
     Returns:
-        The options (units, up axis, invalid points, resolution, offset, voids, register).
+        The options (units, up axis, invalid points, resolution, offset, voids, register,
+        gaps).
     """
     from mjwalk.scan.scanoptions import ScanOptions  # deferred: mjwalk.scan loads mujoco and numba
 
@@ -39,6 +40,7 @@ def scan_options(args: argparse.Namespace) -> ScanOptions:
         offset=args.offset,
         voids=args.voids,
         register=args.register,
+        gaps=args.gaps,
     )
 
 
@@ -56,6 +58,7 @@ def cmd_scan(args: argparse.Namespace) -> int:
     from mjwalk.scan import scan_to_scene
     from mjwalk.scan.levelboxes import describe  # deferred: as the line above
     from mjwalk.scan.obstacles import FLOOR_TOL  # deferred: as the line above
+    from mjwalk.scan.scanpits import describe_pits  # deferred: as the line above
     from mjwalk.scan.voids import cover, save_top_view  # deferred: as the line above
 
     check_output_file(args.output, "-o/--output")
@@ -87,14 +90,17 @@ def cmd_scan(args: argparse.Namespace) -> int:
     others = [s for s in lv.surfaces if all(abs(s.height - h) > FLOOR_TOL for h in heights)]
     pits = [s for s in others if s.height < -FLOOR_TOL]
     others = [s for s in others if s.height >= -FLOOR_TOL]
-    if pits:
+    if scene.pits:
+        print(describe_pits(scene.pits))
+    elif pits:
         shown = ", ".join(
             f"{s.height:+.2f} m ({s.area:.1f} m² at {s.x:.1f}, {s.y:.1f})" for s in pits
         )
         print(
-            f"surfaces below the floor (pits) are not supported as levels: {shown}; the scene "
-            "has no walk surface there and unscanned cells of it may be filled as floor (small "
-            "holes are): check the top view (--png) and fence the pit before planning near it"
+            f"surfaces below the floor (pits) that are no gap (--gaps {args.gaps}): {shown}; "
+            "the scene has no walk surface there and unscanned cells of it may be filled as "
+            "floor (small holes are): check the top view (--png) and fence the pit before "
+            "planning near it"
         )
     if others:
         shown = ", ".join(
@@ -106,7 +112,7 @@ def cmd_scan(args: argparse.Namespace) -> int:
             f"floor: they stay obstacles or floor): {shown}{more}"
         )
     if args.png is not None:
-        save_top_view(scene.plan, args.png, levels=levels)
+        save_top_view(scene.plan, args.png, levels=levels, pits=scene.pits)
         what = "" if levels is None else ", levels with heights and links"
         print(f"wrote {args.png} (top view: floor seen, unseen, obstacles, voids{what})")
     print(f"{args.scan[0]} -> scene transform (4x4, row-major):")
@@ -206,6 +212,13 @@ def add_scan_parser(sub) -> None:
         default=defaults.voids,
         help="unseen floor: blocked (default: nobody walks where no floor was seen), fill "
         "(enclosed voids up to 2 m inscribed radius are walkable), free (all walkable)",
+    )
+    p.add_argument(
+        "--gaps",
+        choices=("obstacle", "floor"),
+        default=defaults.gaps,
+        help="unscanned floor over points below it (a pit, a trench): obstacle (default: "
+        "written as a guard-rail box, a hazard the planner sees), floor (filled like any hole)",
     )
     p.add_argument("--png", type=Path, help="top view of the floor plan (seen, unseen, voids)")
     p.set_defaults(func=cmd_scan)

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage
 
+from mjwalk.scan.levelparts import level_parts
 from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, TOP_STEP, FloorPlan, rectangles
 from mjwalk.scan.scanlevels import (
     Layers,
@@ -84,6 +85,8 @@ class LevelPlan:
             first, the levels' before the ramps').
         ramps: the ramps between levels (:mod:`~mjwalk.scan.scanramps`), in the order of their
             links.
+        parts: per level, the rectangles (4, 2) its box is written as when its outline holds
+            air a walker could stand on (:mod:`~mjwalk.scan.levelparts`); empty: the outline.
     """
 
     levels: list[ScanLevel]
@@ -94,6 +97,21 @@ class LevelPlan:
     boxes: list[tuple]
     n_level_boxes: int
     ramps: list[ScanRamp] = dataclasses.field(default_factory=list)
+    parts: list[list[np.ndarray]] = dataclasses.field(default_factory=list)
+
+    def outlines(self, i: int) -> list[np.ndarray]:
+        """Level ``i``'s box outlines: its parts, or its one outline (none for the floor).
+
+        Args:
+            i: the level's index.
+
+        Returns:
+            The rectangles (4, 2), metres.
+        """
+        if i < len(self.parts) and len(self.parts[i]) > 1:
+            return self.parts[i]
+        rect = self.rects[i]
+        return [] if rect is None else [rect]
 
 
 def _chains(levels: list[ScanLevel], pairs: list[tuple[int, int]]) -> list[list[int]]:
@@ -215,11 +233,12 @@ def _covers(rects: list[np.ndarray | None], plan: FloorPlan) -> list[np.ndarray]
 
 def _rects(
     levels: list[ScanLevel], pairs: list[tuple[int, int]], plan: FloorPlan
-) -> list[np.ndarray | None]:
+) -> tuple[list[np.ndarray | None], list[np.ndarray]]:
     """Each level's box outline: its cells, and the cells of the levels a step above it that
-    touch it, in a minimum-area rectangle (None for the floor)."""
+    touch it, in a minimum-area rectangle (None for the floor); and those cells."""
     d = math.ceil(CONTACT_GAP / plan.resolution) + 2
     out: list[np.ndarray | None] = [None]
+    grid = [levels[0].cells]
     for lv in levels[1:]:
         cells = lv.cells.copy()
         near = ndimage.binary_dilation(lv.cells, np.ones((3, 3), bool), iterations=d)
@@ -227,7 +246,8 @@ def _rects(
             if i == lv.index:
                 cells |= near & levels[j].cells
         out.append(min_rectangle(cells, plan.x0, plan.y0, plan.resolution))
-    return out
+        grid.append(cells)
+    return out, grid
 
 
 def _links_and_stairs(
@@ -282,13 +302,13 @@ def _obstacle_boxes(
 
 
 def _level_box(
-    i: int, rect: np.ndarray, h: float
+    i: int, rect: np.ndarray, h: float, part: str = ""
 ) -> tuple[str, np.ndarray, np.ndarray, str, float]:
     e1, e2 = rect[1] - rect[0], rect[3] - rect[0]
     c = rect.mean(axis=0)
     half = np.array([0.5 * np.hypot(*e1), 0.5 * np.hypot(*e2), 0.5 * h])
     return (
-        f"scan_level_{i}",
+        f"scan_level_{i}{part}",
         np.array([c[0], c[1], 0.5 * h]),
         half,
         LEVEL_MATERIAL,
@@ -316,7 +336,8 @@ def scan_levels(levelled: np.ndarray, plan: FloorPlan) -> LevelPlan | None:
     links, stairs = _links_and_stairs(levels, pairs, plan)
     links += [ScanLink("ramp", r.lower, r.upper, (), slope=r.slope, run=r.length) for r in ramps]
     heights = [lv.height for lv in levels]
-    rects = _rects(levels, pairs, plan)
+    rects, cells = _rects(levels, pairs, plan)
+    built = list(rects)
     for chain, fit in stairs:
         for k, i in enumerate(chain[1:-1]):
             rects[i], heights[i] = fit["rects"][k], fit["heights"][k]
@@ -328,7 +349,13 @@ def scan_levels(levelled: np.ndarray, plan: FloorPlan) -> LevelPlan | None:
             rects[r.upper] = _snap_edge(up, r.run, r.s_hi)
         if (down := rects[r.lower]) is not None:
             rects[r.lower] = _snap_edge(down, -r.run, -r.s_lo)
-    return _assemble(levels, links, heights, rects, plan, layers, ramps)
+    treads = {i for chain, _ in stairs for i in chain[1:-1]}
+    parts = [
+        [] if (rect := rects[i]) is None or i in treads else level_parts(cells[i], rect, plan,
+                                                                         built[i])
+        for i in range(len(levels))
+    ]  # fmt: skip
+    return _assemble(levels, links, heights, rects, plan, layers, ramps, parts)
 
 
 def _assemble(
@@ -339,12 +366,19 @@ def _assemble(
     plan: FloorPlan,
     layers: Layers,
     ramps: list[ScanRamp],
+    parts: list[list[np.ndarray]],
 ) -> LevelPlan:
     """The boxes and the floor plan without the levels and ramps (see :func:`scan_levels`)."""
     covers = _covers(rects, plan)
+    boxes: list[tuple] = []
+    for i in range(1, len(levels)):
+        if len(parts[i]) <= 1:
+            boxes.append(_level_box(i, rects[i], heights[i]))  # type: ignore[arg-type]
+            continue
+        boxes += [_level_box(i, p, heights[i], f"_{k}") for k, p in enumerate(parts[i])]
+        covers[i] = np.logical_or.reduce(_covers(list(parts[i]), plan))
     d = math.ceil(CONTACT_GAP / plan.resolution) + 2
     grown = [ndimage.binary_dilation(c, np.ones((3, 3), bool), iterations=d) for c in covers]
-    boxes: list[tuple] = [_level_box(i, rects[i], heights[i]) for i in range(1, len(levels))]  # type: ignore[arg-type]
     boxes += [ramp_box(r, f"scan_ramp_{k}") for k, r in enumerate(ramps)]
     n_levels = len(boxes)
     on_ramps = _ramp_tops(ramps, plan)
@@ -370,7 +404,7 @@ def _assemble(
         mask = (layers.band[k] >= MIN_BAND_POINTS) & covers[i]
         mask &= ~free_of_higher(i, layers.top[k])
         boxes += _obstacle_boxes(mask, layers.top[k], heights[i], plan, f"scan_on_level{i}")
-    return LevelPlan(levels, links, heights, rects, new_plan, boxes, n_levels, ramps)
+    return LevelPlan(levels, links, heights, rects, new_plan, boxes, n_levels, ramps, parts)
 
 
 def _ramp_tops(ramps: list[ScanRamp], plan: FloorPlan) -> np.ndarray:
@@ -405,18 +439,20 @@ def levels_at(lp: LevelPlan, xy: np.ndarray) -> list[tuple[int, float]]:
     p = np.asarray(xy, dtype=np.float64)
     out = []
     for i in range(1, len(lp.levels)):
-        rect = lp.rects[i]
-        if rect is None:
-            continue
-        e1, e2 = rect[1] - rect[0], rect[3] - rect[0]
-        u, v = float((p - rect[0]) @ e1), float((p - rect[0]) @ e2)
-        if not (0 <= u <= e1 @ e1 and 0 <= v <= e2 @ e2):
+        if not any(_inside(rect, p) for rect in lp.outlines(i)):
             continue
         on = (b for b in lp.boxes[lp.n_level_boxes :] if b[0].startswith(f"scan_on_level{i}_"))
         if any((np.abs(p - b[1][:2]) <= b[2][:2]).all() for b in on):
             continue
         out.append((i, lp.heights[i]))
     return out
+
+
+def _inside(rect: np.ndarray, p: np.ndarray) -> bool:
+    """Whether a point (2,) lies in a rectangle (4, 2)."""
+    e1, e2 = rect[1] - rect[0], rect[3] - rect[0]
+    u, v = float((p - rect[0]) @ e1), float((p - rect[0]) @ e2)
+    return 0 <= u <= e1 @ e1 and 0 <= v <= e2 @ e2
 
 
 def draw_levels(ax, lp: LevelPlan) -> None:
@@ -438,7 +474,8 @@ def draw_levels(ax, lp: LevelPlan) -> None:
     for lv, h, rect in zip(lp.levels, lp.heights, lp.rects, strict=True):
         if rect is None:
             continue
-        ax.fill(*rect.T, color=cmap(h / top), alpha=0.55, lw=0.8, ec="k")
+        for part in lp.outlines(lv.index):
+            ax.fill(*part.T, color=cmap(h / top), alpha=0.55, lw=0.8, ec="k")
         c = rect.mean(axis=0)
         ax.annotate(f"L{lv.index} {h:+.2f} m", c, fontsize=6, ha="center", va="center")
     for rp in lp.ramps:
@@ -478,9 +515,11 @@ def describe(lp: LevelPlan) -> str:
             continue
         depth, width = rectangle_size(rect)
         c = rect.mean(axis=0)
+        n = len(lp.outlines(lv.index))
+        shape = f" (not rectangular: {n} boxes, {lv.area:.2f} m2 scanned)" if n > 1 else ""
         lines.append(
             f"  L{lv.index} {lv.kind:<8} {h:+.3f} m {depth * width:7.2f} m2  {depth:.2f} x "
-            f"{width:.2f} m at ({c[0]:.2f}, {c[1]:.2f}), plane rms {1000 * lv.rms:.1f} mm"
+            f"{width:.2f} m at ({c[0]:.2f}, {c[1]:.2f}), plane rms {1000 * lv.rms:.1f} mm{shape}"
         )
     ramps = iter(lp.ramps)
     for k in lp.links:

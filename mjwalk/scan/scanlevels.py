@@ -145,18 +145,21 @@ class Layers:
     top: np.ndarray
 
 
-def candidate_heights(levelled: np.ndarray) -> np.ndarray:
+def candidate_heights(
+    levelled: np.ndarray, span: tuple[float, float] = (PEAK_SEPARATION, MAX_SURFACE_HEIGHT)
+) -> np.ndarray:
     """The heights where upward-facing surfaces of a levelled cloud lie, strongest first.
 
     Args:
         levelled: (N, 3) points, metres, floor at z = 0.
+        span: (lowest, highest) height looked at, metres; the default: the raised surfaces
+            (below the floor, :mod:`mjwalk.scan.scanpits` looks at pits).
 
     Returns:
-        (K,) heights above the floor, metres, each the mean of its upward voxels' centroids
-        within ``FLOOR_TOL`` of its histogram peak; between ``PEAK_SEPARATION`` and
-        ``MAX_SURFACE_HEIGHT``.
+        (K,) heights, metres, each the mean of its upward voxels' centroids within
+        ``FLOOR_TOL`` of its histogram peak; within ``span``.
     """
-    lo, hi = PEAK_SEPARATION, MAX_SURFACE_HEIGHT
+    lo, hi = span
     sel = levelled[(levelled[:, 2] > lo - VOXEL) & (levelled[:, 2] <= hi + VOXEL)]
     if len(sel) < 10:
         return np.zeros(0)

@@ -18,6 +18,8 @@ from mjwalk.scan.voids import check_policy
 #: Default floor-plan grid edge, metres: the 2 cm the occupancy grids, the walk field and the
 #: clearance field are built at (:data:`mjwalk.world.workplace.MAX_RESOLUTION`).
 DEFAULT_RESOLUTION = 0.02
+#: The choices of :attr:`ScanOptions.gaps`.
+GAP_POLICIES = ("obstacle", "floor")
 
 
 class ScanOptionsError(ScanError, InputError):
@@ -49,6 +51,10 @@ class ScanOptions:
         register: align the scans after the first that no pose places
             (:func:`mjwalk.scan.register.align`). Default False: registration is never
             automatic; scans already in one frame are merged as they are.
+        gaps: what a gap in the floor is (:data:`GAP_POLICIES`; an unscanned region over
+            points below the floor: a pit, a trench, :mod:`mjwalk.scan.obstacles`). Default
+            ``obstacle``: a hazard the planner must see, written as a guard-rail box; ``floor``:
+            filled as floor like any unscanned hole (the plan before gaps were looked for).
     """
 
     units: str = "m"
@@ -58,8 +64,11 @@ class ScanOptions:
     offset: tuple[float, float, float] | None = None
     voids: str = "blocked"
     register: bool = False
+    gaps: str = "obstacle"
 
     def __post_init__(self) -> None:
+        if self.gaps not in GAP_POLICIES:
+            raise ScanOptionsError(f"unknown gaps {self.gaps!r} (one of {', '.join(GAP_POLICIES)})")
         try:
             object.__setattr__(self, "resolution", check_resolution(self.resolution))
             check_policy(self.voids)

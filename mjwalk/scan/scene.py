@@ -39,6 +39,7 @@ from mjwalk.scan.merge import merge_scans, read_poses
 from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan, floor_plan, rectangles
 from mjwalk.scan.read import Station, to_metres_z_up
 from mjwalk.scan.scanoptions import ScanOptions
+from mjwalk.scan.scanpits import PIT_MATERIAL, ScanPit, describe_pits, find_pits, gap_boxes
 from mjwalk.scan.scanramps import RAMP_MATERIAL
 from mjwalk.scan.sight import View, check_station
 from mjwalk.scan.voids import apply_policy
@@ -57,7 +58,8 @@ class ScanScene:
     per stage; ``sight`` says how the floor seen was decided (by which stations' rays, or by
     floor points alone and why); ``levels`` the raised walk-surface levels written as boxes
     (:mod:`~mjwalk.scan.levelboxes`; None: one level, the floor); ``site_z`` each site's
-    height, metres (the height of the level it stands on).
+    height, metres (the height of the level it stands on); ``pits`` the gaps in the floor
+    (:mod:`~mjwalk.scan.scanpits`), written as guard-rail boxes.
     """
 
     xml: str
@@ -72,6 +74,7 @@ class ScanScene:
     sight: str = ""
     levels: LevelPlan | None = None
     site_z: dict[str, float] = field(default_factory=dict)
+    pits: list[ScanPit] = field(default_factory=list)
 
 
 @dataclass(frozen=True)
@@ -181,6 +184,11 @@ def _mjcf(
         *(
             [f'    <material name="{RAMP_MATERIAL}" rgba="0.56 0.62 0.48 1"/>']
             if any(b[3] == RAMP_MATERIAL for b in boxes)
+            else []
+        ),
+        *(
+            [f'    <material name="{PIT_MATERIAL}" rgba="0.85 0.55 0.10 0.6"/>']
+            if any(b[3] == PIT_MATERIAL for b in boxes)
             else []
         ),
         "  </asset>",
@@ -358,7 +366,8 @@ def build_scene(
     views, sight = _views(levelled, stations, levelling)
     timings["sight"] = clock() - t
     t = clock()
-    plan = floor_plan(levelled, resolution=opts.resolution, views=views)
+    gaps = opts.gaps == "obstacle"
+    plan = floor_plan(levelled, resolution=opts.resolution, views=views, gaps=gaps)
     if plan is None or not plan.floor.any():
         raise ScanError(f"{source}: no floor found after levelling (no points at z = 0)")
     plan = apply_policy(plan, opts.voids)
@@ -366,6 +375,7 @@ def build_scene(
     t = clock()
     levels = scan_levels(levelled, plan)
     plan = plan if levels is None else levels.plan
+    pits = find_pits(levelled, plan)
     timings["levels"] = clock() - t
     t = clock()
     offset = None if opts.offset is None else np.asarray(opts.offset)
@@ -374,7 +384,10 @@ def build_scene(
     boxes, n_obst, n_void = _boxes(plan)
     if levels is not None:
         boxes += levels.boxes
+    boxes += gap_boxes(plan)
     header = _header(source, len(pts), levelling, matrix, (n_obst, n_void), plan, opts, sight)
+    if pits:
+        header += "\n" + describe_pits(pits, "ScanOptions(gaps='floor')")
     xml = _mjcf(plan, boxes, site_xyyaw, header, matrix, model_name, site_z)
     try:
         mujoco.MjModel.from_xml_string(xml)
@@ -383,7 +396,7 @@ def build_scene(
     timings["mjcf"] = clock() - t
     return ScanScene(
         xml, plan, levelling, matrix, len(pts), n_obst, n_void, site_xyyaw, timings, sight, levels,
-        site_z,
+        site_z, pits,
     )  # fmt: skip
 
 

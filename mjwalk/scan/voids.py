@@ -26,6 +26,7 @@ from mjwalk._io import atomic_path
 from mjwalk.errors import ScanError
 from mjwalk.scan.levelboxes import LevelPlan, draw_levels
 from mjwalk.scan.obstacles import HOLE_RADIUS, FloorPlan
+from mjwalk.scan.scanpits import ScanPit
 
 #: The choices of ``--voids``.
 POLICIES = ("blocked", "fill", "free")
@@ -120,7 +121,11 @@ def cover(plan: FloorPlan) -> FloorCover:
 
 
 def save_top_view(
-    plan: FloorPlan, path: str | Path, title: str = "", levels: LevelPlan | None = None
+    plan: FloorPlan,
+    path: str | Path,
+    title: str = "",
+    levels: LevelPlan | None = None,
+    pits: list[ScanPit] | None = None,
 ) -> Path:
     """A top view of the plan (floor seen, unseen but walkable, obstacles,
     voids) as an image, written atomically.
@@ -131,6 +136,8 @@ def save_top_view(
         title: the figure's title ("": a default naming the areas).
         levels: the raised levels drawn over it with their heights and links
             (:func:`mjwalk.scan.levelboxes.draw_levels`); None: none.
+        pits: the gaps in the floor, each labelled with its bottom and how it is reached
+            (:mod:`mjwalk.scan.scanpits`); None: none.
 
     Returns:
         ``path`` as a path. A failed write is a WriteError naming the file.
@@ -149,6 +156,10 @@ def save_top_view(
     if levels is not None:  # under the raised levels: neither floor, obstacle nor void
         kind = np.where((kind == 3) & ~plan.void, 4, kind)
         names.append("raised level")
+    if plan.gaps is not None and plan.gaps.any():  # the floor missing (mjwalk.scan.scanpits)
+        kind = np.where(plan.gaps, len(names), kind)
+        colours = [*colours[: len(names)], "#e67e22"]
+        names.append("gap (floor missing): obstacle")
     ny, nx = kind.shape
     r = plan.resolution
     extent = (plan.x0, plan.x0 + nx * r, plan.y0, plan.y0 + ny * r)
@@ -169,6 +180,11 @@ def save_top_view(
     ax.set_title(title or c.line(), fontsize=8)
     if levels is not None:
         draw_levels(ax, levels)
+    for k, p in enumerate(pits or []):
+        what = "no bottom seen" if p.bottom is None else f"bottom {p.bottom.height:+.2f} m"
+        if p.link is not None:
+            what += f", {p.link.kind} {len(p.link.risers)} x {p.link.risers[0]:.2f} m"
+        ax.annotate(f"gap {k + 1}: {what}", p.centre, fontsize=6, ha="center", va="center")
     ax.legend(
         handles=[Patch(color=k, label=n) for k, n in zip(colours, names, strict=False)],
         loc="upper right",

@@ -138,8 +138,8 @@ def test_cli_prints_levels_and_links(tmp_path, capsys):
 
 
 def test_cli_says_pits_are_not_levels(tmp_path, capsys):
-    """A 2 x 2 m pit 0.8 m deep: a surface below the floor, said unsupported, not silently
-    dropped."""
+    """A 2 x 2 m pit 0.8 m deep that nothing leads down into: an obstacle, said so, not
+    silently dropped (tests/scan/test_scanpits.py has the pits)."""
     from mjwalk import cli
 
     model = mujoco.MjModel.from_xml_string(
@@ -158,4 +158,4 @@ def test_cli_says_pits_are_not_levels(tmp_path, capsys):
     np.savetxt(src, scan.points, fmt="%.4f")
     assert cli.main(["scan", str(src), "-o", str(tmp_path / "pit.xml")]) == 0
     out = capsys.readouterr().out
-    assert "surfaces below the floor (pits) are not supported as levels: -0.80 m" in out
+    assert "pit, bottom -0.800 m, no step or stair reaches it: obstacle" in out

@@ -20,6 +20,7 @@ def test_defaults_and_their_exports():
     assert (opts.units, opts.up, opts.drop_invalid) == ("m", "+z", False)
     assert opts.resolution == DEFAULT_RESOLUTION == 0.02
     assert (opts.offset, opts.voids, opts.register) == (None, "blocked", False)
+    assert opts.gaps == "obstacle"
     assert mjwalk.ScanOptions is ScanOptions
     with pytest.raises(dataclasses.FrozenInstanceError):
         opts.units = "mm"  # type: ignore[misc]
@@ -37,6 +38,7 @@ def test_values_are_normalised():
     [
         ({"resolution": 0}, "resolution 0 m is outside 0.005-0.1 m"),
         ({"voids": "open"}, "unknown --voids 'open' (one of blocked, fill, free)"),
+        ({"gaps": "fence"}, "unknown gaps 'fence' (one of obstacle, floor)"),
         ({"units": "furlong"}, "scan options: unknown units 'furlong'"),
         ({"up": "w"}, "scan options: unknown up axis 'w'"),
         ({"offset": (1.0, 2.0)}, "offset must be 3 finite numbers (file units), got (1.0, 2.0)"),
@@ -67,6 +69,8 @@ def test_the_scan_command_builds_its_options_in_one_place():
             "fill",
             "--register",
             "--drop-invalid",
+            "--gaps",
+            "floor",
         ]
     )
     assert scan_options(args) == ScanOptions(
@@ -77,6 +81,7 @@ def test_the_scan_command_builds_its_options_in_one_place():
         offset=(1.0, 2.0, 3.0),
         voids="fill",
         register=True,
+        gaps="floor",
     )
     defaults = build_parser().parse_args(["scan", "a.ply", "-o", "a.xml"])
     assert scan_options(defaults) == ScanOptions()

@@ -1,0 +1,229 @@
+"""mjwalk.scan.scanpits: a pit in a scan is a level when a stair reaches it, an obstacle
+otherwise, and an unscanned hole over points below the floor is never filled as floor (issue 47).
+
+Seeded synthetic scans (0.4 deg rays, 5 mm range noise, 1.5 deg tilt) of an 8 x 6 m hall whose
+floor is four boxes round a 2 x 2 m opening at x in [-1, 1], y in [-0.5, 1.5]."""
+
+from __future__ import annotations
+
+import hashlib
+
+import mujoco
+import numpy as np
+import pytest
+
+from mjwalk.errors import ScanError
+from mjwalk.scan import ScanOptions, build_scene
+from mjwalk.scan.level import find_floor
+from mjwalk.scan.obstacles import GAP_WIDTH, floor_plan
+from mjwalk.scan.raycast import synthetic_scan
+from mjwalk.scan.scanpits import GUARD_HEIGHT, describe_pits, find_pits, gap_boxes
+from mjwalk.scan.scene import read_sites
+
+HALL = """<mujoco><worldbody>
+<geom type="box" pos="0 -1.75 -0.05" size="4 1.25 0.05"/>
+<geom type="box" pos="0 2.25 -0.05" size="4 0.75 0.05"/>
+<geom type="box" pos="-2.5 0.5 -0.05" size="1.5 1 0.05"/>
+<geom type="box" pos="2.5 0.5 -0.05" size="1.5 1 0.05"/>
+<geom type="box" pos="3 -2.5 1.0" size="0.5 0.4 1.0"/>
+<geom type="box" pos="-3 2.5 1.0" size="0.5 0.4 1.0"/>
+%s
+</worldbody></mujoco>"""
+#: The opening's bottom 0.80 m down, nothing leading into it.
+PIT = '<geom name="pit" type="box" pos="0 0.5 -0.85" size="1 1 0.05"/>'
+#: The bottom 0.51 m down, reached by a stair of three 0.17 m risers and 0.28 m treads
+#: descending along +x from the opening's edge at x = -1.
+STAIR = """<geom name="pit" type="box" pos="0.14 0.5 -0.56" size="0.86 1 0.05"/>
+<geom name="s1" type="box" pos="-0.86 0.5 -0.35" size="0.14 1 0.18"/>
+<geom name="s2" type="box" pos="-0.58 0.5 -0.43" size="0.14 1 0.09"/>"""
+#: A shaft 2.5 m deep, walled, its bottom never reached by a ray: only its walls show it; the
+#: hall's two long walls (without them the scan has as many points below the floor as above
+#: and is refused as upside down, ``mjwalk.scan.level.check_upright``).
+SHAFT = """<geom type="box" pos="-1.05 0.5 -1.3" size="0.05 1 1.2"/>
+<geom type="box" pos="1.05 0.5 -1.3" size="0.05 1 1.2"/>
+<geom type="box" pos="0 -0.55 -1.3" size="1 0.05 1.2"/>
+<geom type="box" pos="0 1.55 -1.3" size="1 0.05 1.2"/>
+<geom type="box" pos="0 3.05 1.5" size="4 0.05 1.5"/>
+<geom type="box" pos="0 -3.05 1.5" size="4 0.05 1.5"/>"""
+SCANNERS = [(-2.5, -1.5, 1.6), (2.5, 2.0, 1.6)]
+#: A third scanner looks down the stair from the opening's far side.
+STAIR_SCANNERS = [*SCANNERS, (2.3, 0.5, 1.7)]
+CENTRE = (0.0, 0.5)
+
+
+def _scan(body: str, scanners=SCANNERS, seed: int = 1) -> np.ndarray:
+    model = mujoco.MjModel.from_xml_string(HALL % body)
+    return synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=seed).points
+
+
+@pytest.fixture(scope="module")
+def scans():
+    return {
+        "pit": _scan(PIT),
+        "stair": _scan(STAIR, STAIR_SCANNERS),
+        "hole": _scan(SHAFT),
+    }
+
+
+def _pits(points):
+    pts = find_floor(points).apply(points)
+    plan = floor_plan(pts)
+    return plan, find_pits(pts, plan)
+
+
+def _cell(plan, xy):
+    return int((xy[1] - plan.y0) / plan.resolution), int((xy[0] - plan.x0) / plan.resolution)
+
+
+def test_pit_with_a_stair_is_a_level(scans):
+    plan, pits = _pits(scans["stair"])
+    (pit,) = pits
+    assert pit.kind == "level"
+    assert pit.bottom is not None and pit.bottom.height == pytest.approx(-0.51, abs=0.02)
+    link = pit.link
+    assert link is not None and link.kind == "stair" and link.upper == 0
+    assert len(link.risers) == 3 and link.risers[0] == pytest.approx(0.17, abs=0.005)
+    assert link.tread == pytest.approx(0.28, abs=0.01)
+    assert sorted(round(lv.height, 2) for lv in pit.levels) == [-0.51, -0.34, -0.17, 0.0]
+    assert "pit level, bottom -0.510 m, reached from the floor by stair 3 risers" in (
+        describe_pits(pits)
+    )
+    assert not plan.floor[_cell(plan, CENTRE)]  # guarded in the scene: never floor
+
+
+def test_the_same_pit_seen_without_its_stair_is_an_obstacle(scans):
+    """Without the scanner that looks down the stair its treads are not seen: the bottom is
+    reached by nothing the scan shows, so the pit is an obstacle."""
+    _, pits = _pits(_scan(STAIR))
+    (pit,) = pits
+    assert pit.kind == "pit" and pit.link is None
+
+
+def test_pit_without_a_stair_is_an_obstacle_never_floor(scans):
+    plan, pits = _pits(scans["pit"])
+    (pit,) = pits
+    assert pit.kind == "pit" and pit.link is None
+    assert pit.bottom is not None and pit.bottom.height == pytest.approx(-0.80, abs=0.02)
+    assert pit.size == pytest.approx((2.0, 2.0), abs=0.08)  # measured 1.96-2.00 m
+    assert pit.area == pytest.approx(4.0, rel=0.05)
+    cell = _cell(plan, CENTRE)
+    assert plan.gaps[cell] and not plan.floor[cell] and not plan.void[cell]
+    boxes = gap_boxes(plan)
+    assert all(b[2][2] == pytest.approx(GUARD_HEIGHT / 2) for b in boxes)
+    assert any((np.abs(np.array(CENTRE) - b[1][:2]) <= b[2][:2]).all() for b in boxes)
+    area = sum(4 * b[2][0] * b[2][1] for b in boxes)
+    assert area == pytest.approx(pit.area, rel=0.05)
+    # today's plan, asked for: the pit filled as floor (the hazard the default removes)
+    pts = find_floor(scans["pit"]).apply(scans["pit"])
+    old = floor_plan(pts, gaps=False)
+    assert old.floor[_cell(old, CENTRE)] and old.gaps is None
+
+
+def test_unscanned_hole_is_an_obstacle(scans):
+    """No ray reaches the shaft's bottom: only its walls below the floor show it; 2 x 2 m is
+    within the 1 m inscribed radius that unscanned holes are filled up to, and it is an obstacle
+    all the same."""
+    plan, pits = _pits(scans["hole"])
+    (pit,) = pits
+    assert pit.kind == "gap" and pit.bottom is None
+    assert pit.area == pytest.approx(4.0, rel=0.05)
+    assert plan.gaps[_cell(plan, CENTRE)] and not plan.floor[_cell(plan, CENTRE)]
+    assert "no bottom scanned: obstacle" in describe_pits(pits)
+
+
+def test_written_scene_guards_the_gap_and_refuses_a_site_in_it(scans, tmp_path):
+    scene = build_scene(scans["hole"], source="hole")
+    model = mujoco.MjModel.from_xml_string(scene.xml)
+    names = [model.geom(g).name for g in range(model.ngeom)]
+    assert any(n.startswith("scan_pit_") for n in names)
+    assert "gaps in the floor" in scene.xml and scene.pits
+    sites = tmp_path / "sites.toml"
+    sites.write_text("[site.in_pit]\nxy = [0.0, 0.5]\n")
+    with pytest.raises(ScanError, match="not on the scanned floor"):
+        build_scene(scans["hole"], source="hole", sites=read_sites(sites))
+    filled = build_scene(scans["hole"], ScanOptions(gaps="floor"), source="hole")
+    assert "scan_pit" not in filled.xml and not filled.pits
+    free = build_scene(scans["hole"], ScanOptions(voids="free"), source="hole")
+    assert "scan_pit_0" in free.xml  # no void policy makes a gap walkable
+    assert not free.plan.floor[_cell(free.plan, CENTRE)]
+
+
+def test_a_slot_narrower_than_a_foot_stays_floor():
+    """A 6 cm cable channel 0.3 m deep is below :data:`GAP_WIDTH` (a small foot's width)."""
+    assert GAP_WIDTH == pytest.approx(0.0825)
+    model = mujoco.MjModel.from_xml_string(
+        """<mujoco><worldbody>
+        <geom type="box" pos="0 -1.53 -0.05" size="3 1.5 0.05"/>
+        <geom type="box" pos="0 1.53 -0.05" size="3 1.5 0.05"/>
+        <geom type="box" pos="0 0 -0.35" size="3 0.1 0.05"/>
+        </worldbody></mujoco>"""
+    )
+    pts = synthetic_scan(model, [(-1.5, -1.0, 1.6), (1.5, 1.0, 1.6)], step_deg=0.4, seed=2).points
+    lv = find_floor(pts).apply(pts)
+    plan = floor_plan(lv)
+    assert not find_pits(lv, plan)
+    assert plan.floor[_cell(plan, (0.0, 0.0))]
+
+
+def test_cli_prints_the_gaps(tmp_path, capsys, scans):
+    from mjwalk import cli
+
+    src = tmp_path / "stair.xyz"
+    np.savetxt(src, scans["stair"], fmt="%.4f")
+    png = tmp_path / "top.png"
+    assert cli.main(["scan", str(src), "-o", str(tmp_path / "s.xml"), "--png", str(png)]) == 0
+    out = capsys.readouterr().out
+    assert "gaps in the floor (unscanned, points below it): 1, written as obstacles" in out
+    assert "stair 3 risers x 0.170 m, tread 0.28" in out
+    assert png.stat().st_size > 0
+    assert cli.main(["scan", str(src), "-o", str(tmp_path / "f.xml"), "--gaps", "floor"]) == 0
+    out = capsys.readouterr().out
+    assert "gaps in the floor" not in out and "-0.51 m" in out  # still said, as before
+
+
+#: sha256 (first 16 hex digits) of the MJCF ``build_scene`` wrote on 5553d3d, before gaps and
+#: level parts, for seeded synthetic scans: a flat room with a box, the same seen from two
+#: scanners with ``voids="fill"``, the small hall of rectangular levels and a stair
+#: (tests/scan/test_scanlevels.py), and the pit with ``gaps="floor"`` (the old pipeline).
+TODAY = {
+    "flat": "17bc9f9046e05b9e",
+    "flat_fill": "da0a36f9f269703b",
+    "hall": "4e2a66566879992b",
+    "pit_gaps_floor": "87631e028a55bb8b",
+}
+
+
+def test_flat_scans_give_exactly_todays_xml():
+    from test_scanlevels import LEVELS_XML
+    from test_scanlevels import SCANNERS as HALL_SCANNERS
+
+    flat = """<mujoco><worldbody><geom name="floor" type="plane" size="3 3 0.05"/>
+        <geom name="box" type="box" pos="1 0 0.5" size="0.3 0.3 0.5"/></worldbody></mujoco>"""
+    cases = {
+        "flat": (flat, [(-1.0, 0.0, 1.5)], 1, ScanOptions()),
+        "flat_fill": (flat, [(-1.0, 0.0, 1.5), (2.0, 2.0, 1.6)], 1, ScanOptions(voids="fill")),
+        "hall": (LEVELS_XML, HALL_SCANNERS, 3, ScanOptions()),
+        "pit_gaps_floor": (HALL % PIT, SCANNERS, 1, ScanOptions(gaps="floor")),
+    }
+    for name, (xml, scanners, seed, opts) in cases.items():
+        model = mujoco.MjModel.from_xml_string(xml)
+        scan = synthetic_scan(model, scanners, step_deg=0.5 if "flat" in name else 0.4,
+                              noise=0.005, seed=seed)  # fmt: skip
+        out = build_scene(scan.points, opts, source=name).xml
+        assert hashlib.sha256(out.encode()).hexdigest()[:16] == TODAY[name], name
+
+
+@pytest.mark.parametrize(
+    "name", ["pcl-room-scan/room_scan1.pcd", "e57-pump-room/pumpAVisualReferenceImage.e57"]
+)
+def test_real_scans_noise_below_the_floor_is_no_gap(shared_data, name):
+    """The shared real scans are flat: their few points 5-10 cm below the floor (range noise,
+    single cells) make no gap, and their floor plans are those without gaps looked for."""
+    from mjwalk.scan.read import read_scan
+
+    cloud = read_scan(shared_data / "scans" / name)
+    pts = find_floor(cloud.points).apply(cloud.points)
+    plan, old = floor_plan(pts), floor_plan(pts, gaps=False)
+    assert not plan.gaps.any() and not find_pits(pts, plan)
+    assert (plan.floor == old.floor).all() and (plan.void == old.void).all()
+    assert plan.holes_filled == old.holes_filled
