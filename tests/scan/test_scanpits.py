@@ -6,7 +6,7 @@ floor is four boxes round a 2 x 2 m opening at x in [-1, 1], y in [-0.5, 1.5].""
 
 from __future__ import annotations
 
-import hashlib
+from dataclasses import replace
 
 import mujoco
 import numpy as np
@@ -181,19 +181,15 @@ def test_cli_prints_the_gaps(tmp_path, capsys, scans):
     assert "gaps in the floor" not in out and "-0.51 m" in out  # still said, as before
 
 
-#: sha256 (first 16 hex digits) of the MJCF ``build_scene`` wrote on 5553d3d, before gaps and
-#: level parts, for seeded synthetic scans: a flat room with a box, the same seen from two
-#: scanners with ``voids="fill"``, the small hall of rectangular levels and a stair
-#: (tests/scan/test_scanlevels.py), and the pit with ``gaps="floor"`` (the old pipeline).
-TODAY = {
-    "flat": "17bc9f9046e05b9e",
-    "flat_fill": "da0a36f9f269703b",
-    "hall": "4e2a66566879992b",
-    "pit_gaps_floor": "87631e028a55bb8b",
-}
-
-
 def test_flat_scans_give_exactly_todays_xml():
+    """Where a scan has no gap, looking for gaps changes nothing: the MJCF is byte-identical to
+    the one written with ``gaps="floor"`` (the pipeline before gaps were looked for, which
+    :func:`mjwalk.scan.obstacles.floor_plan` keeps exactly with ``gaps=False``), for seeded
+    synthetic scans: a flat room with a box, the same seen from two scanners with
+    ``voids="fill"``, and the small hall of rectangular levels and a stair
+    (tests/scan/test_scanlevels.py). On 5553d3d the three were also checked byte-identical to
+    that tree's output (sha256 17bc9f90, da0a36f9, 4e2a6656 in this venv); the digests are not
+    asserted here because they depend on the MuJoCo and NumPy versions pip installs."""
     from test_scanlevels import LEVELS_XML
     from test_scanlevels import SCANNERS as HALL_SCANNERS
 
@@ -203,14 +199,14 @@ def test_flat_scans_give_exactly_todays_xml():
         "flat": (flat, [(-1.0, 0.0, 1.5)], 1, ScanOptions()),
         "flat_fill": (flat, [(-1.0, 0.0, 1.5), (2.0, 2.0, 1.6)], 1, ScanOptions(voids="fill")),
         "hall": (LEVELS_XML, HALL_SCANNERS, 3, ScanOptions()),
-        "pit_gaps_floor": (HALL % PIT, SCANNERS, 1, ScanOptions(gaps="floor")),
     }
     for name, (xml, scanners, seed, opts) in cases.items():
         model = mujoco.MjModel.from_xml_string(xml)
         scan = synthetic_scan(model, scanners, step_deg=0.5 if "flat" in name else 0.4,
                               noise=0.005, seed=seed)  # fmt: skip
         out = build_scene(scan.points, opts, source=name).xml
-        assert hashlib.sha256(out.encode()).hexdigest()[:16] == TODAY[name], name
+        old = build_scene(scan.points, replace(opts, gaps="floor"), source=name).xml
+        assert out == old, name
 
 
 @pytest.mark.parametrize(
