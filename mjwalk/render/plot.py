@@ -16,6 +16,7 @@ from matplotlib.patches import Circle, Polygon, Rectangle
 
 from mjwalk._io import atomic_path
 from mjwalk.cycle.types import CycleResult
+from mjwalk.ergonomics.workforce import stature_trend
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace
 
@@ -307,8 +308,9 @@ def ergonomics_png(path: Path, records: Sequence) -> None:
     operator group. Bottom, for runs scored for continuous exposure
     (:mod:`mjwalk.ergonomics.exposure`): that run's arm elevation and trunk flexion over the
     cycle against the zone limits, and each run's seconds above 60 deg of arm elevation
-    against its operator's stature (one point per run) with the binned median
-    (``records``: :class:`mjwalk.ergonomics.summary.RunRecord`).
+    against its operator's stature (one point per run) with the smooth trend and its 95 % band
+    (:func:`mjwalk.ergonomics.workforce.stature_trend`; ``records``:
+    :class:`mjwalk.ergonomics.summary.RunRecord`).
 
     Args:
         path: PNG file to write.
@@ -359,7 +361,7 @@ def _score_panels(axes, records: Sequence, k: int) -> None:
 
 def _exposure_panels(fig, axes, rec, records: Sequence) -> None:
     """Run ``rec``'s exposure timeline (two panels wide) and the arm's seconds above 60 deg
-    against stature, one point per run, with the binned median."""
+    against stature, one point per run, with the smooth trend and its 95 % band."""
     gs = axes[0].get_subplotspec().get_gridspec()
     axes[0].remove()
     axes[1].remove()
@@ -383,12 +385,15 @@ def _exposure_panels(fig, axes, rec, records: Sequence) -> None:
         sel = [r for r in pts if r.group == g]
         ax.scatter([r.stature for r in sel], [r.ergo.extra["arm_over60_s"] for r in sel],
                    s=12, label=g or "all")  # fmt: skip
-    if len(pts) >= 6:
-        st = np.array([r.stature for r in pts])
-        y = np.array([r.ergo.extra["arm_over60_s"] for r in pts])
-        parts = np.array_split(np.argsort(st, kind="stable"), min(5, len(pts) // 3))
-        ax.plot([np.median(st[i]) for i in parts], [np.median(y[i]) for i in parts], "k-",
-                lw=1.5, label="binned median")  # fmt: skip
+    trend = stature_trend(
+        np.array([r.stature for r in pts]), np.array([r.ergo.extra["arm_over60_s"] for r in pts])
+    )
+    if trend:
+        sm = trend["smooth"]
+        at = [x["stature_m"] for x in sm]
+        ax.fill_between(at, [x["low"] for x in sm], [x["high"] for x in sm], color="0.6",
+                        alpha=0.3, lw=0, label="95 % band (bootstrap)")  # fmt: skip
+        ax.plot(at, [x["value"] for x in sm], "k-", lw=1.5, label="trend (LOWESS)")
     ax.set_xlabel("stature [m]")
     ax.set_ylabel("arm above 60 deg per cycle [s]")
     ax.set_title("exposure against stature (one point per run)")
