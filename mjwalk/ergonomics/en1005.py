@@ -29,6 +29,18 @@ from the standard but could NOT be verified here, so mjwalk uses the transcribed
 both body parts (the stricter reading). "Conditionally acceptable" for a static posture in
 20-60 deg means: acceptable only as long as ISO 11226's maximum holding time
 (:func:`iso11226_verdict`).
+
+What the frequency counts (checked 2026-12-04): movements into the zone, not all movements of
+the arm: for > 60 deg the excursions beyond 60 deg, for 20-60 deg those beyond 20 deg (a raise
+above 60 deg passes through it), per minute of the cycle, a dip back across the limit by less
+than :data:`HYSTERESIS_DEG` not ending the excursion. The 10/min was searched for again (web
+pages, documentation and code stores: DELMIA's page still gives 2/min; a copy of DIN EN
+1005-4:2009 shows only its front matter) and is still not verified, so 2/min stays. It would
+not tell short from tall on the shipped scenes/shelving_station.toml either (40 runs, seed 0):
+the right arm goes above 60 deg exactly 3 times in every cycle (twice into the low
+compartment, once onto the top shelf), 8.0-18.0 times a minute (median 12.2); the rate follows
+the cycle time (r = -0.97), not stature (r = -0.02). At 2/min every cycle is not acceptable; at
+10/min 35 of the 40 would be, the 5 others being the slowest cycles.
 """
 
 from __future__ import annotations
