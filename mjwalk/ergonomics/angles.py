@@ -165,12 +165,15 @@ class BodyAngles:
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
-    n = np.linalg.norm(v, axis=-1, keepdims=True)
+    n = np.sqrt(_dot(v, v))[..., None]  # np.linalg.norm's sum, in its order, without its reduce
     return v / np.where(n > 1e-12, n, 1.0)
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    return (a * b).sum(axis=-1)
+    # the three products added in the order ``(a * b).sum(axis=-1)`` adds them: a reduction
+    # over an axis of 3 costs numpy about 5x more than the two additions
+    # (benchmarks/cycle_timing.py, "ergonomics: angles")
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
 
 
 def _deg(x: np.ndarray) -> np.ndarray:
@@ -352,14 +355,20 @@ def body_frames(model, jointmap, qpos: np.ndarray, bodies: list[str]):
         return pos, rot
     gids = np.array([int(model.body_geomadr[b]) for b in bids])
     gpos, gmat = geom_poses(model, qpos, gids)
-    gmat = gmat.reshape(len(qpos), len(gids), 3, 3)
-    local = np.empty((len(gids), 3, 3))
+    n = len(qpos)
+    rot = gmat.reshape(n, len(gids), 3, 3)  # R_body = R_geom R_local^T, in place below
+    pos = np.empty_like(gpos)
+    m = np.empty(9)
+    # one (3F x 3) product per body, not F stacked 3x3 products (numpy's stacked matmul costs
+    # about 3x more: benchmarks/cycle_timing.py, "ergonomics: angles"); the same sums, so the
+    # same floats
     for k, g in enumerate(gids):
-        m = np.empty(9)
-        mujoco.mju_quat2Mat(m, model.geom_quat[g])
-        local[k] = m.reshape(3, 3)
-    rot = gmat @ local.transpose(0, 2, 1)  # R_body = R_geom R_local^T
-    pos = gpos - (rot @ model.geom_pos[gids][:, :, None])[..., 0]
+        r = np.ascontiguousarray(rot[:, k]).reshape(3 * n, 3)
+        if np.any(model.geom_quat[g] != (1.0, 0.0, 0.0, 0.0)):  # R_local is not the identity
+            mujoco.mju_quat2Mat(m, model.geom_quat[g])
+            r = r @ m.reshape(3, 3).T
+            rot[:, k] = r.reshape(n, 3, 3)
+        pos[:, k] = gpos[:, k] - (r @ model.geom_pos[g]).reshape(n, 3)
     return pos, rot
 
 

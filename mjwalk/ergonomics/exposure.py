@@ -143,6 +143,23 @@ def part_exposure(f: ExposureFrames, part: str, fps: float) -> dict[str, Any]:
     }
 
 
+def arm_at_top(f: ExposureFrames) -> float:
+    """The upper-arm elevation at the cycle's highest grasp: that of the arm whose hand is
+    highest, in the frame where it is highest (how far an operator raises the arm to the
+    station's top shelf: the figure that follows stature, where the verdicts may not).
+
+    Args:
+        f: the frames' exposure.
+
+    Returns:
+        Degrees from the vertical (0 without frames).
+    """
+    if not len(f.hand_height):
+        return 0.0
+    frame, side = np.unravel_index(int(np.argmax(f.hand_height)), f.hand_height.shape)
+    return float(f.arm[frame, side])
+
+
 def _cell(x: float | None, d: int) -> float | str:
     """An ergonomics.csv cell: ``x`` rounded to ``d`` places, "" without a value."""
     return "" if x is None else round(float(x), d)
@@ -223,7 +240,9 @@ class ExposureScore(Score):
         Returns:
             ``exposure`` (per body part, :func:`part_exposure`), ``exposure_verdict`` (the
             worst of both standards over the parts), ``arm_over60_s`` (either arm),
-            ``trunk_over20_s``, ``trunk_asym_s``, ``neck_flexed_s``, ``cycle_time_s`` and
+            ``trunk_over20_s``, ``trunk_asym_s``, ``neck_flexed_s``, ``cycle_time_s``,
+            ``arm_over60_per_min`` (the higher of the arms' excursions above 60 deg a minute,
+            what EN 1005-4's frequency step judges), ``arm_top_deg`` (:func:`arm_at_top`) and
             ``exposure_trace`` (:func:`_trace`).
         """
         fps = ctx.fps
@@ -240,6 +259,10 @@ class ExposureScore(Score):
             "trunk_asym_s": float(asym.sum() / fps),
             "neck_flexed_s": float((frames.neck_flexion > NECK_FLEXED_DEG).sum() / fps),
             "cycle_time_s": float(ctx.cycle_time),
+            "arm_over60_per_min": max(
+                parts[p]["zones"][2]["per_min"] for p in ("upper_arm_left", "upper_arm_right")
+            ),
+            "arm_top_deg": arm_at_top(frames),
             "exposure_trace": _trace(frames),
         }
 
@@ -302,6 +325,7 @@ __all__ = [
     "TRUNK_BENT_DEG",
     "ExposureFrames",
     "ExposureScore",
+    "arm_at_top",
     "part_exposure",
     "spread",
 ]

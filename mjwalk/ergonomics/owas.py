@@ -76,6 +76,20 @@ def load_code(load_kg: float) -> int:
     return 1 if load_kg < lo else 2 if load_kg <= hi else 3
 
 
+def load_codes(load_kg: np.ndarray) -> np.ndarray:
+    """:func:`load_code` of every frame's load at once.
+
+    Args:
+        load_kg: (F,) loads, kg.
+
+    Returns:
+        (F,) load codes 1-3.
+    """
+    lo, hi = LOAD_KG
+    kg = np.asarray(load_kg, dtype=float)
+    return np.where(kg < lo, 1, np.where(kg <= hi, 2, 3))
+
+
 def codes(ang: BodyAngles, load_kg: float = 0.0) -> np.ndarray:
     """OWAS posture codes of every frame.
 

@@ -264,7 +264,7 @@ class OwasScore(Score):
             (F,) action categories 1-4.
         """
         codes = owas.codes(ang)
-        codes[:, 3] = [owas.load_code(x) for x in ctx.load.sum(axis=1)]
+        codes[:, 3] = owas.load_codes(ctx.load.sum(axis=1))
         return owas.action_category(*codes.T)
 
     def per_task(self, frames: np.ndarray, span: TaskSpan, ctx: ScoreContext) -> dict[str, Any]:

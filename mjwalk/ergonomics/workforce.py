@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from mjwalk.ergonomics.en1005 import VERDICTS
+from mjwalk.ergonomics.en1005 import HIGH_FREQ_PER_MIN, VERDICTS
 from mjwalk.ergonomics.exposure import PARTS, spread
 from mjwalk.ergonomics.score import fmt, fmt_share, share
 
@@ -75,6 +75,42 @@ def lowess(x: np.ndarray, y: np.ndarray, at: np.ndarray, span: float = LOWESS_SP
     return out
 
 
+def lowess_band(
+    x: np.ndarray, y: np.ndarray, at: np.ndarray, seed: int = BOOTSTRAP_SEED
+) -> tuple[np.ndarray, np.ndarray]:
+    """The smooth trend's 95 % band: :func:`lowess` over :data:`BOOTSTRAP` resamples of the
+    runs (drawn with replacement, seeded), the 2.5th and 97.5th percentiles at each point.
+
+    Args:
+        x: (N,) e.g. statures, metres.
+        y: (N,) the figure per run.
+        at: (M,) where to give the band.
+        seed: the resamples' seed.
+
+    Returns:
+        ``(low, high)``, each (M,).
+    """
+    x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    idx = np.random.default_rng(seed).integers(0, len(x), size=(BOOTSTRAP, len(x)))
+    xs, ys = x[idx], y[idx]
+    k = min(len(x), max(3, int(np.ceil(LOWESS_SPAN * len(x)))))
+    fits = np.empty((BOOTSTRAP, len(at)))
+    for i, a in enumerate(np.asarray(at, dtype=float)):  # :func:`lowess`, all resamples at once
+        d = np.abs(xs - a)
+        h = np.maximum(np.partition(d, k - 1, axis=1)[:, k - 1 : k], 1e-12)
+        w = np.clip(1.0 - (d / h) ** 3, 0.0, None) ** 3
+        # a resample whose nearest runs all lie at the span's edge (one run drawn k times)
+        # weighs them alike instead of not at all
+        w = np.where(w.sum(axis=1, keepdims=True) > 0, w, (d <= h).astype(float))
+        sw = w.sum(axis=1, keepdims=True)
+        xm, ym = (w * xs).sum(axis=1, keepdims=True) / sw, (w * ys).sum(axis=1, keepdims=True) / sw
+        den = (w * (xs - xm) ** 2).sum(axis=1)
+        num = (w * (xs - xm) * (ys - ym)).sum(axis=1)
+        b = np.where(den > 1e-15, num / np.where(den > 1e-15, den, 1.0), 0.0)
+        fits[:, i] = ym[:, 0] + b * (a - xm[:, 0])
+    return np.percentile(fits, 2.5, axis=0), np.percentile(fits, 97.5, axis=0)
+
+
 def _scored(records: Sequence) -> list:
     """The records whose runs the exposure method scored."""
     return [r for r in records if "exposure_verdict" in r.ergo.extra]
@@ -91,6 +127,9 @@ def _group(records: Sequence, per_shift: float) -> dict[str, Any]:
         "runs": n,
         "verdicts": {v: share(verdicts.count(v), n) for v in VERDICTS},
         "arm_over60_s": spread(arm),
+        "arm_over60_per_min": spread(
+            [r.ergo.extra.get("arm_over60_per_min", 0.0) for r in records]
+        ),
         "trunk_over20_s": spread(trunk),
         "arm_over60_shift_min": spread(arm * per_shift / 60.0),
         "trunk_over20_shift_min": spread(trunk * per_shift / 60.0),
@@ -109,11 +148,11 @@ def stature_trend(stature: np.ndarray, y: np.ndarray) -> dict[str, Any] | None:
         ``range_m``, ``bins`` (each ``from_m``, ``to_m``, ``median``, ``n``), ``short_third``
         and ``tall_third`` (``up_to_m``/``from_m``, ``median``), ``slope_per_10cm`` with
         ``low``/``high`` (bootstrap 95 %), ``smooth`` (:func:`lowess` at
-        :data:`LOWESS_POINTS` statures: ``stature_m``, ``value``); None with fewer than 6 runs
-        or one stature.
+        :data:`LOWESS_POINTS` statures: ``stature_m``, ``value`` and its 95 % band ``low``,
+        ``high``, :func:`lowess_band`); None with fewer than 6 runs or one stature.
     """
     x, y = np.asarray(stature, dtype=float), np.asarray(y, dtype=float)
-    if len(x) < 6 or np.ptp(x) == 0:
+    if len(x) < 6 or np.ptp(x) == 0 or not np.isfinite(y).all():
         return None
     order = np.argsort(x, kind="stable")
     k = max(1, min(STATURE_BINS, len(x) // 3))
@@ -137,7 +176,11 @@ def stature_trend(stature: np.ndarray, y: np.ndarray) -> dict[str, Any] | None:
     slope = float(np.polyfit(x, y, 1)[0])
     at = np.linspace(x.min(), x.max(), LOWESS_POINTS)
     fit = lowess(x, y, at)
-    smooth = [{"stature_m": float(a), "value": float(v)} for a, v in zip(at, fit, strict=True)]
+    band = lowess_band(x, y, at)
+    smooth = [
+        {"stature_m": float(a), "value": float(v), "low": float(lo_), "high": float(hi_)}
+        for a, v, lo_, hi_ in zip(at, fit, *band, strict=True)
+    ]
     return {
         "range_m": [float(x.min()), float(x.max())],
         "bins": bins,
@@ -187,8 +230,10 @@ def exposure_summary(records: Sequence, takt: float | None = None) -> dict[str, 
 
     Returns:
         Plain data: ``shift`` (``working_s``, ``cycles``, ``basis``), ``overall``, ``groups``,
-        ``stature`` (of the arm's seconds above 60 deg; None without enough statures) and
-        ``drivers``; None when no run was scored for exposure.
+        ``stature`` (of the arm's seconds above 60 deg; None without enough statures),
+        ``stature_arm_top`` (of the arm's elevation at the highest grasp,
+        :func:`mjwalk.ergonomics.exposure.arm_at_top`) and ``drivers``; None when no run was
+        scored for exposure.
     """
     rec = _scored(records)
     if not rec:
@@ -200,9 +245,9 @@ def exposure_summary(records: Sequence, takt: float | None = None) -> dict[str, 
     for r in rec:
         groups.setdefault(r.group, []).append(r)
     st = [r for r in rec if r.stature is not None]
-    trend = stature_trend(
-        np.array([r.stature for r in st]), np.array([r.ergo.extra["arm_over60_s"] for r in st])
-    )
+    x = np.array([r.stature for r in st])
+    trend = stature_trend(x, np.array([r.ergo.extra["arm_over60_s"] for r in st]))
+    top = stature_trend(x, np.array([r.ergo.extra.get("arm_top_deg", np.nan) for r in st]))
     return {
         "shift": {
             "working_s": SHIFT_S,
@@ -213,6 +258,7 @@ def exposure_summary(records: Sequence, takt: float | None = None) -> dict[str, 
         "overall": _group(rec, per_shift),
         "groups": {g: _group(rs, per_shift) for g, rs in groups.items() if g},
         "stature": trend,
+        "stature_arm_top": top,
         "drivers": _drivers(rec),
     }
 
@@ -225,6 +271,7 @@ def _row(name: str, g: dict) -> str:
         "-" if s["min"] is None else f"{s['min']:.2f}-{s['max']:.2f}",
         *(fmt_share(v[k]) for k in VERDICTS),
         f"{fmt(a['p50'])} ({fmt(a['p5'])}-{fmt(a['p95'])})",
+        fmt(g["arm_over60_per_min"]["p50"]),
         fmt(g["trunk_over20_s"]["p50"]),
         fmt(g["arm_over60_shift_min"]["p50"]),
     ]  # fmt: skip
@@ -252,11 +299,12 @@ def exposure_markdown(e: dict[str, Any] | None) -> list[str]:
         f"{sh['cycles']:.0f} cycles at the {sh['basis']}.",
         "",
         "| operators | runs | stature m | acceptable | conditionally acc. | not acceptable "
-        "| arm >60 deg s | trunk >20 deg s | arm >60 deg min/shift |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| arm >60 deg s | arm >60 deg entries/min | trunk >20 deg s | arm >60 deg min/shift |",
+        "|---|---|---|---|---|---|---|---|---|---|",
         _row("all operators", e["overall"]),
         *(_row(g, v) for g, v in e["groups"].items()),
         "",
+        *_same_verdict_lines(e),
     ]
     t = e["stature"]
     if t:
@@ -271,8 +319,53 @@ def exposure_markdown(e: dict[str, Any] | None) -> list[str]:
             f"slope {t['slope_per_10cm']:+.2f} s per 10 cm (95 % {t['low']:+.2f} to "
             f"{t['high']:+.2f}).",
             "",
+            *_trend_table(t, e.get("stature_arm_top")),
         ]
     return out + _drivers_lines(e["drivers"])
+
+
+def _same_verdict_lines(e: dict[str, Any]) -> list[str]:
+    """A sentence when every run has the same verdict: the stature effect is then in the
+    continuous figures (none otherwise)."""
+    v = e["overall"]["verdicts"]
+    same = [k for k in VERDICTS if v[k]["share"] == 1.0]
+    if not same or e["overall"]["runs"] < 2:
+        return []
+    f = e["overall"]["arm_over60_per_min"]
+    return [
+        f"Every run is {same[0]}: the verdicts do not tell operators apart here (the arm goes "
+        f"above 60 deg {fmt(f['p5'])}-{fmt(f['p95'])} times a minute, P5-P95, against EN "
+        f"1005-4's high frequency from {HIGH_FREQ_PER_MIN:g}/min); how far and how long the arm "
+        "is raised, below, follow stature.",
+        "",
+    ]
+
+
+def _trend_table(t: dict[str, Any], top: dict[str, Any] | None) -> list[str]:
+    """The smooth trends along stature (LOWESS with its bootstrap 95 % band) at every other
+    stature of :data:`LOWESS_POINTS`: the arm's seconds above 60 deg and, where known, its
+    elevation at the highest grasp; the latter's slope."""
+    rows = [
+        "| stature m | arm >60 deg s per cycle (95 %) | arm at the highest grasp deg (95 %) |",
+        "|---|---|---|",
+    ]
+    for i in range(0, len(t["smooth"]), 2):
+        a = t["smooth"][i]
+        b = top["smooth"][i] if top else None
+        cell = f"{b['value']:.0f} ({b['low']:.0f}-{b['high']:.0f})" if b else "-"
+        rows.append(
+            f"| {a['stature_m']:.2f} | {a['value']:.1f} ({a['low']:.1f}-{a['high']:.1f}) | {cell} |"
+        )
+    if top:
+        rows += [
+            "",
+            f"Smooth trends (LOWESS, span {LOWESS_SPAN:.2f}; bootstrap 95 % band). The arm's "
+            f"elevation at the highest grasp changes by {top['slope_per_10cm']:+.1f} deg per "
+            f"10 cm of stature (95 % {top['low']:+.1f} to {top['high']:+.1f}); shortest third "
+            f"{top['short_third']['median']:.0f} deg, tallest third "
+            f"{top['tall_third']['median']:.0f} deg.",
+        ]
+    return [*rows, ""]
 
 
 def _drivers_lines(d: dict[str, Any]) -> list[str]:
@@ -306,5 +399,6 @@ __all__ = [
     "exposure_markdown",
     "exposure_summary",
     "lowess",
+    "lowess_band",
     "stature_trend",
 ]

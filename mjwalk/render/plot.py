@@ -16,6 +16,7 @@ from matplotlib.patches import Circle, Polygon, Rectangle
 
 from mjwalk._io import atomic_path
 from mjwalk.cycle.types import CycleResult
+from mjwalk.ergonomics.workforce import stature_trend
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace
 
@@ -306,9 +307,11 @@ def ergonomics_png(path: Path, records: Sequence) -> None:
     peak RULA is the median's) and the distributions of the cycles' peak RULA and REBA per
     operator group. Bottom, for runs scored for continuous exposure
     (:mod:`mjwalk.ergonomics.exposure`): that run's arm elevation and trunk flexion over the
-    cycle against the zone limits, and each run's seconds above 60 deg of arm elevation
-    against its operator's stature (one point per run) with the binned median
-    (``records``: :class:`mjwalk.ergonomics.summary.RunRecord`).
+    cycle against the zone limits, and each run's seconds above 60 deg of arm elevation and
+    the arm's elevation at the highest grasp against its operator's stature (one point per
+    run) with the smooth trend and its 95 % band
+    (:func:`mjwalk.ergonomics.workforce.stature_trend`; ``records``:
+    :class:`mjwalk.ergonomics.summary.RunRecord`).
 
     Args:
         path: PNG file to write.
@@ -358,8 +361,9 @@ def _score_panels(axes, records: Sequence, k: int) -> None:
 
 
 def _exposure_panels(fig, axes, rec, records: Sequence) -> None:
-    """Run ``rec``'s exposure timeline (two panels wide) and the arm's seconds above 60 deg
-    against stature, one point per run, with the binned median."""
+    """Run ``rec``'s exposure timeline (two panels wide) and, against stature, one point per
+    run with the smooth trend and its 95 % band: the arm's seconds above 60 deg and its
+    elevation at the highest grasp."""
     gs = axes[0].get_subplotspec().get_gridspec()
     axes[0].remove()
     axes[1].remove()
@@ -377,23 +381,43 @@ def _exposure_panels(fig, axes, rec, records: Sequence) -> None:
         f"{rec.ergo.extra['exposure_verdict']})"
     )
     ax.legend(fontsize=7)
-    ax = axes[2]
+    axes[2].remove()
+    sub = gs[1, 2].subgridspec(2, 1, hspace=0.08)
     pts = [r for r in records if r.stature is not None and "arm_over60_s" in r.ergo.extra]
+    for i, (key, label) in enumerate(
+        (
+            ("arm_over60_s", "arm >60 deg\nper cycle [s]"),
+            ("arm_top_deg", "arm at highest\ngrasp [deg]"),
+        )
+    ):
+        ax = fig.add_subplot(sub[i])
+        _stature_panel(ax, [r for r in pts if key in r.ergo.extra], key, legend=i == 0)
+        ax.set_ylabel(label, fontsize=8)
+        if i == 0:
+            ax.set_title("exposure against stature (one point per run)")
+            ax.tick_params(labelbottom=False)
+        else:
+            ax.set_xlabel("stature [m]")
+
+
+def _stature_panel(ax, pts: Sequence, key: str, legend: bool) -> None:
+    """One exposure figure of the runs against stature: a point per run by group, the smooth
+    trend and its 95 % band."""
     for g in sorted({r.group for r in pts}):
         sel = [r for r in pts if r.group == g]
-        ax.scatter([r.stature for r in sel], [r.ergo.extra["arm_over60_s"] for r in sel],
-                   s=12, label=g or "all")  # fmt: skip
-    if len(pts) >= 6:
-        st = np.array([r.stature for r in pts])
-        y = np.array([r.ergo.extra["arm_over60_s"] for r in pts])
-        parts = np.array_split(np.argsort(st, kind="stable"), min(5, len(pts) // 3))
-        ax.plot([np.median(st[i]) for i in parts], [np.median(y[i]) for i in parts], "k-",
-                lw=1.5, label="binned median")  # fmt: skip
-    ax.set_xlabel("stature [m]")
-    ax.set_ylabel("arm above 60 deg per cycle [s]")
-    ax.set_title("exposure against stature (one point per run)")
-    if pts:
-        ax.legend(fontsize=7)
+        ax.scatter([r.stature for r in sel], [r.ergo.extra[key] for r in sel], s=10,
+                   label=g or "all")  # fmt: skip
+    trend = stature_trend(
+        np.array([r.stature for r in pts]), np.array([r.ergo.extra[key] for r in pts])
+    )
+    if trend:
+        sm = trend["smooth"]
+        at = [x["stature_m"] for x in sm]
+        ax.fill_between(at, [x["low"] for x in sm], [x["high"] for x in sm], color="0.6",
+                        alpha=0.3, lw=0, label="95 % band (bootstrap)")  # fmt: skip
+        ax.plot(at, [x["value"] for x in sm], "k-", lw=1.5, label="trend (LOWESS)")
+    if legend and pts:
+        ax.legend(fontsize=6)
 
 
 def _shade(color, k: int, n: int) -> tuple:

@@ -51,3 +51,15 @@ def test_worst_and_runs():
     )
     assert en1005.runs_above(np.array([0, 30, 30, 0, 30]), 20) == [(1, 3), (4, 5)]
     assert en1005.zone_verdict(2, 1, 0.5, 1) == "not acceptable"  # static above 60 deg
+
+
+def test_a_dip_across_the_limit_is_not_a_second_excursion():
+    # a raise above 60 deg that dips to 57 deg for 0.1 s: one excursion (hysteresis 5 deg);
+    # a return to 50 deg between two raises: two
+    dip = trace((10, 5), (75, 1), (57, 0.1), (75, 1), (10, 5))
+    back = trace((10, 5), (75, 1), (50, 0.5), (75, 1), (10, 5))
+    assert en1005.HYSTERESIS_DEG == 5.0
+    assert en1005.runs_above(dip, 60) == [(150, 213)]
+    assert len(en1005.runs_above(dip, 60, hysteresis=0.0)) == 2
+    assert len(en1005.runs_above(back, 60)) == 2
+    assert en1005.zones(dip, FPS)[2].excursions == 1

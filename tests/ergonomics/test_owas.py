@@ -16,3 +16,8 @@ def test_owas_table_known_cells():
     # not settled from Karhu et al.): pinned so that a change is deliberate
     assert owas.action_category(3, 3, 7, 3) == 1
     assert owas.action_category(4, 1, 3, 2) == 2
+
+
+def test_load_codes_match_the_scalar_code_frame_by_frame():
+    kg = [0.0, 9.99, 10.0, 15.0, 20.0, 20.01, 35.0]
+    assert owas.load_codes(kg).tolist() == [owas.load_code(x) for x in kg]
