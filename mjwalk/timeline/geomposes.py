@@ -76,6 +76,44 @@ def geom_poses(
     )
 
 
+def body_poses(
+    model: mujoco.MjModel, qpos: np.ndarray, bodies: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Body poses in many frames, as ``mj_kinematics`` would leave them in ``xpos`` and
+    ``xmat`` (to round-off), compiled over all frames (:func:`geom_poses` with a frame at each
+    body's origin).
+
+    Args:
+        model: a compiled model (:func:`supported`).
+        qpos: (F, nq) poses.
+        bodies: (B,) body ids.
+
+    Returns:
+        ``(xpos, xmat)``: (F, B, 3) world positions, metres, and (F, B, 9) rotation matrices
+        (row-major).
+    """
+    qpos = np.ascontiguousarray(qpos, dtype=float).reshape(-1, model.nq)
+    bodies = np.asarray(bodies, dtype=np.int64)
+    here = np.zeros((len(bodies), 4))
+    here[:, 0] = 1.0  # the identity rotation: the body's own frame
+    return _geom_poses(
+        qpos,
+        model.qpos0,
+        model.body_parentid.astype(np.int64),
+        model.body_jntadr.astype(np.int64),
+        model.body_jntnum.astype(np.int64),
+        model.body_pos,
+        model.body_quat,
+        model.jnt_type.astype(np.int64),
+        model.jnt_qposadr.astype(np.int64),
+        model.jnt_axis,
+        model.jnt_pos,
+        bodies,
+        np.zeros((len(bodies), 3)),
+        here,
+    )
+
+
 @njit
 def _mul_quat(a0, a1, a2, a3, b0, b1, b2, b3):
     """The quaternion product a * b (w, x, y, z)."""
