@@ -111,7 +111,7 @@ def collision_report(
     plen = len(timeline.jointmap.prefix)
     names, floorish = _geom_names(model)
     tops = walk_tops(timeline)
-    soles = human & np.array([n[plen:].startswith(("foot_", "toes_")) for n in names])
+    soles = human & _soles(model, plen)
     qpos = np.asarray(timeline.qpos)
     same = repeats(qpos) if broad_phase else np.zeros(len(qpos), dtype=bool)
     if broad_phase and len(qpos) > 1:
@@ -176,17 +176,40 @@ def walk_tops(timeline: Timeline) -> np.ndarray | None:
         timeline: the timeline (its ``scene`` file and ``model``).
 
     Returns:
-        (ngeom,) bool mask over the timeline's model, or None.
+        (ngeom,) read-only bool mask over the timeline's model, or None.
     """
     scene = Path(timeline.scene) if timeline.scene and timeline.scene != "<MjSpec>" else None
     if scene is None or not scene.is_file():
         return None
-    graph = shared_workplace(scene).levels
-    if not graph.links:
-        return None
-    names = _geom_names(timeline.model)[0]
-    top = {s.name for s in graph.surfaces if s.kind != "floor" and s.name}
-    return np.array([n in top for n in names])
+    # kept per model and scene file version (a cycle checks its frames several times)
+    key = (str(scene), scene.stat().st_mtime)
+    kept = _TOPS.setdefault(timeline.model, {})
+    if key not in kept:
+        graph = shared_workplace(scene).levels
+        names = _geom_names(timeline.model)[0]
+        top = {s.name for s in graph.surfaces if s.kind != "floor" and s.name}
+        mask = np.array([n in top for n in names])
+        mask.setflags(write=False)
+        kept[key] = mask if graph.links else None
+    return kept[key]
+
+
+#: :func:`walk_tops` per model, by scene file and its modification time.
+_TOPS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+#: :func:`_soles` per model, by the length of the humanoid's name prefix.
+_SOLES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _soles(model: mujoco.MjModel, plen: int) -> np.ndarray:
+    """(ngeom,) read-only mask of the geoms whose names, after ``plen`` characters of prefix,
+    start with ``foot_`` or ``toes_`` (the soles), kept per model."""
+    kept = _SOLES.setdefault(model, {})
+    if plen not in kept:
+        names = _geom_names(model)[0]
+        mask = np.array([n[plen:].startswith(("foot_", "toes_")) for n in names])
+        mask.setflags(write=False)
+        kept[plen] = mask
+    return kept[plen]
 
 
 #: :func:`_geom_names` of the models seen (a cycle checks its frames in a few models, again

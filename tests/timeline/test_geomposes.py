@@ -46,3 +46,18 @@ def test_body_poses_match_mj_kinematics():
         mujoco.mj_kinematics(m, d)
         np.testing.assert_allclose(xpos[f], d.xpos[[2, 1]], atol=1e-12)
         np.testing.assert_allclose(xmat[f], d.xmat[[2, 1]], atol=1e-12)
+
+
+def test_bodies_that_did_not_move_keep_the_same_numbers():
+    """Frames where only the hinge moves, or nothing does, give exactly the poses each frame
+    gives alone (the kernel reuses the unmoved bodies' poses), for a subset of geoms too."""
+    m = mujoco.MjModel.from_xml_string(CHAIN)
+    rng = np.random.default_rng(6)
+    qpos = np.repeat(m.qpos0[None] + rng.normal(scale=0.5, size=(1, m.nq)), 6, axis=0)
+    qpos[2:4, 7] += [0.3, 0.6]  # the hinge turns, the free body stays
+    qpos[5, :3] += 0.1  # the free body moves
+    for geoms in (np.array([0, 1]), np.array([1])):
+        xpos, xmat = geom_poses(m, qpos, geoms)
+        for f, q in enumerate(qpos):
+            alone = geom_poses(m, q[None], geoms)
+            assert np.array_equal(xpos[f], alone[0][0]) and np.array_equal(xmat[f], alone[1][0])
