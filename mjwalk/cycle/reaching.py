@@ -259,10 +259,10 @@ def _solve_arm(
         u_last = model_dirs[-1]
         app[:] = u_last
     elif not np.allclose(u_end, u_last[2]):
-        app[:, 2] = [blend_dir(u_last[2], u_end, tau) for tau in taus]
+        app[:, 2] = blend_dirs(u_last[2], u_end, taus)
     wrists = hands - lengths[2] * app[:, 2]
     # the elbow swivels from where the model left it to where the hand's end pose needs it
-    hints = np.array([blend_dir(u_last[0], elbow_end, tau) for tau in taus]) * lengths[0]
+    hints = blend_dirs(u_last[0], elbow_end, taus) * lengths[0]
     app[:, 0], app[:, 1] = two_link_ik_rows(wrists, lengths[0], lengths[1], hints)  # (row-wise)
     directions = np.concatenate([model_dirs, app])
     return arm_joint_angles(directions, side), res
@@ -436,7 +436,7 @@ def _turn_hand(directions: np.ndarray, u_end: np.ndarray, lengths: np.ndarray) -
     tail = out[-n_turn:]
     taus = smoothstep(np.arange(1, n_turn + 1) / n_turn)
     ends = end_effector(tail, lengths)
-    hands = np.array([blend_dir(u, u_end, float(t)) for u, t in zip(tail[:, 2], taus, strict=True)])
+    hands = blend_dirs(tail[:, 2], u_end, taus)
     wrists = ends - lengths[2] * hands
     u1, u2 = two_link_ik_rows(wrists, lengths[0], lengths[1], tail[:, 0] * lengths[0])
     out[-n_turn:] = np.stack([u1, u2, hands], axis=1)
@@ -546,6 +546,25 @@ def blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
     """
     v = (1.0 - tau) * a + tau * b
     return v / max(float(np.linalg.norm(v)), 1e-9)
+
+
+def blend_dirs(a: np.ndarray, b: np.ndarray, taus: np.ndarray) -> np.ndarray:
+    """:func:`blend_dir` for many blends at once, the same numbers row by row: unit vectors
+    between ``a`` (one (3,) or one per row (n, 3)) and ``b`` (3,) at ``taus`` (n,).
+
+    Args:
+        a: (3,) or (n, 3) unit vectors (``tau`` = 0).
+        b: (3,) unit vector (``tau`` = 1).
+        taus: (n,) the blends, 0 to 1.
+
+    Returns:
+        (n, 3) unit vectors.
+    """
+    t = np.asarray(taus, dtype=float)[:, None]
+    v = (1.0 - t) * np.asarray(a, dtype=float) + t * np.asarray(b, dtype=float)
+    # (the norm summed left to right, as np.linalg.norm of one vector sums it)
+    norm = np.sqrt(v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1] + v[:, 2] * v[:, 2])
+    return v / np.maximum(norm, 1e-9)[:, None]
 
 
 def plumb_arms(
