@@ -174,7 +174,10 @@ def arm_adrs(jm, sides: tuple[Side, ...] = ("left", "right")) -> list[int]:
 
 
 def arm_joint_angles(
-    directions: np.ndarray, side: Side = "left", roll: np.ndarray | None = None
+    directions: np.ndarray,
+    side: Side = "left",
+    roll: np.ndarray | None = None,
+    independent: bool = False,
 ) -> np.ndarray:
     """Humanoid arm joint angles (n, 7) in radians, order :data:`ARM_JOINTS`, from segment
     directions (n, S, 3) in the thorax frame (x forward, y left, z up; S = 2 or 3) and an
@@ -186,10 +189,15 @@ def arm_joint_angles(
     the forearm in the elbow's flexion plane; when the elbow is straight it is carried over
     from the previous frame.
 
+    With ``independent`` the rows are not frames of one movement but alternatives (a batch of
+    candidate arms): each row gets exactly the angles it gets alone (``n`` = 1): a straight
+    elbow's twist starts from x, and the angles are not unwrapped across rows.
+
     Args:
         directions: (n, S, 3) unit segment directions, thorax frame.
         side: "left" or "right".
         roll: (n,) forearm pronation, radians, or None (0).
+        independent: the rows are alternatives, each solved as if alone.
 
     Returns:
         (n, 7) joint angles, radians, :data:`ARM_JOINTS` order.
@@ -207,7 +215,7 @@ def arm_joint_angles(
     straight = norm < 1e-3
     x[~straight] /= norm[~straight, None]
     for t in np.flatnonzero(straight):  # rare, and each depends on the frame before
-        xt = x[t - 1] if t > 0 else np.array([1.0, 0.0, 0.0])
+        xt = x[t - 1] if t > 0 and not independent else np.array([1.0, 0.0, 0.0])
         xt = xt - (xt @ z[t]) * z[t]
         x[t] = xt / np.linalg.norm(xt)
     y = _cross(z, x)
@@ -226,7 +234,7 @@ def arm_joint_angles(
         beta = np.arcsin(np.clip(h[:, 1], -1, 1))
         q[:, 5] = np.arctan2(h[:, 0], -h[:, 2])
         q[:, 6] = s * beta
-    if n > 1:  # (one frame: nothing to unwrap)
+    if n > 1 and not independent:  # (one frame: nothing to unwrap)
         q[:, 0] = np.unwrap(q[:, 0])
         q[:, 2] = np.unwrap(q[:, 2])
     return q
@@ -457,6 +465,24 @@ def clipped_joints(jm, q: np.ndarray, side: Side) -> list[str]:
     names = ARM_JOINT_NAMES[side]
     idx = [jm.index(jn) for jn in names]
     return _outside(np.asarray(q, dtype=float), jm.range[idx, 0], jm.range[idx, 1], names)
+
+
+def rows_in_range(jm, q: np.ndarray, side: Side) -> np.ndarray:
+    """Per row of ``q``, whether every joint of ``side``'s arm lies within the humanoid's
+    ranges (to 1e-6 rad): the rows :func:`clipped_joints` finds nothing to clip in.
+
+    Args:
+        jm: the humanoid's joint map.
+        q: (n, 7) joint angles, radians, :data:`ARM_JOINTS` order.
+        side: "left" or "right".
+
+    Returns:
+        (n,) bool.
+    """
+    idx = [jm.index(jn) for jn in ARM_JOINT_NAMES[side]]
+    lo, hi = jm.range[idx, 0], jm.range[idx, 1]
+    qi = np.asarray(q, dtype=float)
+    return ~((qi < lo - 1e-6) | (qi > hi + 1e-6)).any(axis=1)
 
 
 def _outside(qi: np.ndarray, lo: np.ndarray, hi: np.ndarray, names) -> list[str]:

@@ -20,9 +20,9 @@ from mjwalk.arms import reach as armreach  # reach_for_side looked up per call (
 from mjwalk.arms.chain import (
     arm_frames,
     arm_joint_angles,
-    clipped_joints,
     end_effector,
     min_jerk,
+    rows_in_range,
     two_link_ik_rows,
     wrist_in_range,
 )
@@ -32,6 +32,7 @@ from mjwalk.body.legs.curves import smoothstep
 from mjwalk.conventions import Side, other_side, side_prefix
 from mjwalk.cycle.crouch import bend_trunk, crouch_frames, crouch_pose, trunk_bend
 from mjwalk.cycle.handling import RETURN_CASE, body_motion_duration, reach_duration
+from mjwalk.timeline.geomposes import body_poses, supported
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
@@ -258,10 +259,10 @@ def _solve_arm(
         u_last = model_dirs[-1]
         app[:] = u_last
     elif not np.allclose(u_end, u_last[2]):
-        app[:, 2] = [blend_dir(u_last[2], u_end, tau) for tau in taus]
+        app[:, 2] = blend_dirs(u_last[2], u_end, taus)
     wrists = hands - lengths[2] * app[:, 2]
     # the elbow swivels from where the model left it to where the hand's end pose needs it
-    hints = np.array([blend_dir(u_last[0], elbow_end, tau) for tau in taus]) * lengths[0]
+    hints = blend_dirs(u_last[0], elbow_end, taus) * lengths[0]
     app[:, 0], app[:, 1] = two_link_ik_rows(wrists, lengths[0], lengths[1], hints)  # (row-wise)
     directions = np.concatenate([model_dirs, app])
     return arm_joint_angles(directions, side), res
@@ -435,7 +436,7 @@ def _turn_hand(directions: np.ndarray, u_end: np.ndarray, lengths: np.ndarray) -
     tail = out[-n_turn:]
     taus = smoothstep(np.arange(1, n_turn + 1) / n_turn)
     ends = end_effector(tail, lengths)
-    hands = np.array([blend_dir(u, u_end, float(t)) for u, t in zip(tail[:, 2], taus, strict=True)])
+    hands = blend_dirs(tail[:, 2], u_end, taus)
     wrists = ends - lengths[2] * hands
     u1, u2 = two_link_ik_rows(wrists, lengths[0], lengths[1], tail[:, 0] * lengths[0])
     out[-n_turn:] = np.stack([u1, u2, hands], axis=1)
@@ -457,12 +458,15 @@ def _wrist_feasible(
     hint = u_last[0] * lengths[0]
     wrist = end - lengths[2] * u
     axis = wrist / max(float(np.linalg.norm(wrist)), 1e-9)
-    # the elbow hint turned by each swivel about the shoulder-wrist axis
-    for h in Rotation.from_rotvec(SWIVELS[:, None] * axis).apply(hint):
-        u1, u2 = two_link_ik_rows(wrist[None], lengths[0], lengths[1], h[None])
-        q = arm_joint_angles(np.stack([u1[0], u2[0], u])[None], side)
-        if not clipped_joints(ctx.jointmap, q, side):
-            return u, u1[0]
+    # the elbow hint turned by each swivel about the shoulder-wrist axis, all swivels solved
+    # at once (each row as if alone), the nearest in range taken
+    hints = Rotation.from_rotvec(SWIVELS[:, None] * axis).apply(hint)
+    wrists = np.repeat(wrist[None], len(hints), axis=0)
+    u1, u2 = two_link_ik_rows(wrists, lengths[0], lengths[1], hints)
+    dirs = np.stack([u1, u2, np.repeat(u[None], len(hints), axis=0)], axis=1)
+    ok = np.flatnonzero(rows_in_range(ctx.jointmap, arm_joint_angles(dirs, side, None, True), side))
+    if len(ok):
+        return u, u1[ok[0]]
     # no swivel will do: the wrist at the humanoid's range limits, the arm re-solved for it
     limits = np.array(
         [ctx.jointmap.limits(f"wrist_{side_prefix(side)}_{dof}") for dof in ("flex", "dev")]
@@ -495,9 +499,9 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
     (n, 7), each interval split as the frames interpolate it), after the joint ranges.
     ``knuckle``: its distance (m) from the wrist along the hand (the operator's size).
     ``base``: the pose the arm's angles are set in (q0 bent forward, for a leaning reach).
-    Computes in the context's scratch data."""
+    Forward kinematics compiled over all poses (:func:`~mjwalk.timeline.geomposes.body_poses`;
+    in the context's scratch data, pose by pose, for a model it does not support)."""
     m, jm = ctx.model, ctx.jointmap
-    data = ctx.scratch()
     base = q0 if base is None else base
     first = arm_frames(base, jm, q[:1], side, np.ones(1))[0][0]
     w = np.linspace(0.0, 1.0, PATH_POSES)[:, None]
@@ -508,14 +512,20 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
     hand = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
 
     def length(poses: np.ndarray) -> float:
-        # the hand body's origin and -z axis in every pose, then :func:`hand_tip`'s point
-        # ``knuckle`` m along the hand for all of them at once
-        origin, axis = np.empty((len(poses), 3)), np.empty((len(poses), 3))
-        for k, pose in enumerate(poses):
-            data.qpos[:] = pose
-            mujoco.mj_kinematics(m, data)
-            origin[k] = data.xpos[hand]
-            axis[k] = data.xmat[hand, 2::3]
+        # the hand body's origin and -z axis in every pose (compiled kinematics over all poses
+        # where the model allows it), then :func:`hand_tip`'s point ``knuckle`` m along the
+        # hand for all of them at once
+        if supported(m):
+            xpos, xmat = body_poses(m, poses, np.array([hand]))
+            origin, axis = xpos[:, 0], xmat[:, 0, 2::3]
+        else:
+            data = ctx.scratch()
+            origin, axis = np.empty((len(poses), 3)), np.empty((len(poses), 3))
+            for k, pose in enumerate(poses):
+                data.qpos[:] = pose
+                mujoco.mj_kinematics(m, data)
+                origin[k] = data.xpos[hand]
+                axis[k] = data.xmat[hand, 2::3]
         points = origin - knuckle * axis
         return float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
 
@@ -536,6 +546,25 @@ def blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
     """
     v = (1.0 - tau) * a + tau * b
     return v / max(float(np.linalg.norm(v)), 1e-9)
+
+
+def blend_dirs(a: np.ndarray, b: np.ndarray, taus: np.ndarray) -> np.ndarray:
+    """:func:`blend_dir` for many blends at once, the same numbers row by row: unit vectors
+    between ``a`` (one (3,) or one per row (n, 3)) and ``b`` (3,) at ``taus`` (n,).
+
+    Args:
+        a: (3,) or (n, 3) unit vectors (``tau`` = 0).
+        b: (3,) unit vector (``tau`` = 1).
+        taus: (n,) the blends, 0 to 1.
+
+    Returns:
+        (n, 3) unit vectors.
+    """
+    t = np.asarray(taus, dtype=float)[:, None]
+    v = (1.0 - t) * np.asarray(a, dtype=float) + t * np.asarray(b, dtype=float)
+    # (the norm summed left to right, as np.linalg.norm of one vector sums it)
+    norm = np.sqrt(v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1] + v[:, 2] * v[:, 2])
+    return v / np.maximum(norm, 1e-9)[:, None]
 
 
 def plumb_arms(

@@ -111,7 +111,7 @@ def collision_report(
     plen = len(timeline.jointmap.prefix)
     names, floorish = _geom_names(model)
     tops = walk_tops(timeline)
-    soles = human & np.array([n[plen:].startswith(("foot_", "toes_")) for n in names])
+    soles = human & _soles(model, plen)
     qpos = np.asarray(timeline.qpos)
     same = repeats(qpos) if broad_phase else np.zeros(len(qpos), dtype=bool)
     if broad_phase and len(qpos) > 1:
@@ -123,15 +123,9 @@ def collision_report(
     else:
         check = np.ones(len(qpos), dtype=bool)
     out: list[Contact] = []
-    found: list[tuple[str, str, float, np.ndarray]] = []  # the last checked frame's contacts
-    for i, q in enumerate(qpos):
-        if same[i]:  # the pose of the frame before: its contacts again
-            out += [Contact(float(timeline.t[i]), h, s_, d, p.copy()) for h, s_, d, p in found]
-            continue
-        found = []
-        if not check[i]:
-            continue
-        data.qpos[:] = q
+    t = timeline.t
+    for i in np.flatnonzero(check).tolist():  # (a repeated pose is never checked itself)
+        data.qpos[:] = qpos[i]
         mujoco.mj_kinematics(model, data)
         mujoco.mj_collision(model, data)
         n = data.ncon
@@ -154,7 +148,12 @@ def collision_report(
             if depth[k] > best.get(key, (-np.inf,))[0]:
                 best[key] = (float(depth[k]), np.array(con.pos[k]))
         found = [(names[h][plen:], names[s_], d, pos) for (h, s_), (d, pos) in best.items()]
-        out += [Contact(float(timeline.t[i]), h, s_, d, p.copy()) for h, s_, d, p in found]
+        j = i
+        while True:  # the frame, then the frames after it that repeat its pose: its contacts
+            out += [Contact(float(t[j]), h, s_, d, p.copy()) for h, s_, d, p in found]
+            j += 1
+            if j >= len(qpos) or not same[j]:
+                break
     return out
 
 
@@ -176,17 +175,40 @@ def walk_tops(timeline: Timeline) -> np.ndarray | None:
         timeline: the timeline (its ``scene`` file and ``model``).
 
     Returns:
-        (ngeom,) bool mask over the timeline's model, or None.
+        (ngeom,) read-only bool mask over the timeline's model, or None.
     """
     scene = Path(timeline.scene) if timeline.scene and timeline.scene != "<MjSpec>" else None
     if scene is None or not scene.is_file():
         return None
-    graph = shared_workplace(scene).levels
-    if not graph.links:
-        return None
-    names = _geom_names(timeline.model)[0]
-    top = {s.name for s in graph.surfaces if s.kind != "floor" and s.name}
-    return np.array([n in top for n in names])
+    # kept per model and scene file version (a cycle checks its frames several times)
+    key = (str(scene), scene.stat().st_mtime)
+    kept = _TOPS.setdefault(timeline.model, {})
+    if key not in kept:
+        graph = shared_workplace(scene).levels
+        names = _geom_names(timeline.model)[0]
+        top = {s.name for s in graph.surfaces if s.kind != "floor" and s.name}
+        mask = np.array([n in top for n in names])
+        mask.setflags(write=False)
+        kept[key] = mask if graph.links else None
+    return kept[key]
+
+
+#: :func:`walk_tops` per model, by scene file and its modification time.
+_TOPS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+#: :func:`_soles` per model, by the length of the humanoid's name prefix.
+_SOLES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _soles(model: mujoco.MjModel, plen: int) -> np.ndarray:
+    """(ngeom,) read-only mask of the geoms whose names, after ``plen`` characters of prefix,
+    start with ``foot_`` or ``toes_`` (the soles), kept per model."""
+    kept = _SOLES.setdefault(model, {})
+    if plen not in kept:
+        names = _geom_names(model)[0]
+        mask = np.array([n[plen:].startswith(("foot_", "toes_")) for n in names])
+        mask.setflags(write=False)
+        kept[plen] = mask
+    return kept[plen]
 
 
 #: :func:`_geom_names` of the models seen (a cycle checks its frames in a few models, again
@@ -283,25 +305,16 @@ def candidate_frames(
         (F,) bool: True where MuJoCo's collision detection must run.
     """
     n = len(qpos)
-    hid = np.flatnonzero(human)
-    sid = np.flatnonzero(~human & (model.geom_contype | model.geom_conaffinity).astype(bool))
-    plane = mujoco.mjtGeom.mjGEOM_PLANE
-    floors = sid[floorish[sid]]
-    solids = sid[~floorish[sid]]
-    if (
-        n == 0
-        or (model.body_weldid[model.geom_bodyid[sid]] != 0).any()
-        or (model.geom_type[floors] != plane).any()
-    ):
+    scene = _static_scene(model, np.asarray(human, dtype=bool), np.asarray(floorish, dtype=bool))
+    if n == 0 or scene is None:
         return np.ones(n, dtype=bool)
+    hid = scene.hid
     if len(hid) == 0:  # no humanoid: nothing to report
         return np.zeros(n, dtype=bool)
-    data = data if data is not None else mujoco.MjData(model)
-    if supported(model):  # compiled over all frames; the scene's static geoms from one pose
+    if supported(model):  # compiled over all frames
         xpos, xmat = geom_poses(model, qpos, hid)
-        data.qpos[:] = qpos[0]
-        mujoco.mj_kinematics(model, data)
     else:
+        data = data if data is not None else mujoco.MjData(model)
         lo, hi = int(hid.min()), int(hid.max()) + 1  # the humanoid's geoms are one block
         xpos = np.empty((n, hi - lo, 3))
         xmat = np.empty((n, hi - lo, 9))
@@ -313,16 +326,8 @@ def candidate_frames(
             xmat[f] = gm
         if hi - lo != len(hid):  # not one block after all: keep the humanoid's rows
             xpos, xmat = xpos[:, hid - lo], xmat[:, hid - lo]
-    slack = model.geom_margin[hid].max(initial=0.0) + BROAD_SLACK
-    reach = model.geom_rbound[hid] + model.geom_margin[hid] + slack
-    # the scene's boxes (static: welded to the world) in world axes
-    R = data.geom_xmat[solids].reshape(-1, 3, 3)
-    aabb = model.geom_aabb[solids]
-    centre = data.geom_xpos[solids] + np.einsum("gij,gj->gi", R, aabb[:, :3])
-    half = np.einsum("gij,gj->gi", np.abs(R), aabb[:, 3:])
-    reach_solid = reach + model.geom_margin[solids].max(initial=0.0)
-    normals = np.array([data.geom_xmat[g].reshape(3, 3)[:, 2] for g in floors]).reshape(-1, 3)
-    origins = data.geom_xpos[floors].reshape(-1, 3)
+    centre, half, reach_solid = scene.centre, scene.half, scene.reach_solid
+    normals, origins = scene.normals, scene.origins
     # a floor contact's distance is the geometry's, margins do not enter it (they only let
     # MuJoCo report pairs that are apart): a contact deeper than floor_tolerance needs the
     # lowest point that deep, less the slack for round-off
@@ -330,9 +335,9 @@ def candidate_frames(
     return _touching(
         xpos,
         xmat,
-        model.geom_type[hid].astype(np.int64),
-        model.geom_size[hid],
-        model.geom_rbound[hid],
+        scene.types,
+        scene.size,
+        scene.rbound,
         reach_solid,
         centre,
         half,
@@ -340,6 +345,80 @@ def candidate_frames(
         origins,
         depth,
     )
+
+
+@dataclass(frozen=True)
+class StaticScene:
+    """What :func:`candidate_frames` needs of a model besides the poses, the same for every
+    call (the scene geoms are welded to the world): the humanoid's geoms and their bounds, and
+    the scene's boxes and floor planes in world axes (metres).
+
+    Attributes:
+        hid: (G,) the humanoid's geom ids.
+        types: (G,) their MuJoCo geom types.
+        size: (G, 3) their sizes.
+        rbound: (G,) their bounding-sphere radii.
+        reach_solid: (G,) how near (m) each may come to a scene box before a frame counts.
+        centre: (S, 3) the scene boxes' centres.
+        half: (S, 3) their half-extents along the world axes.
+        normals: (P, 3) the floor planes' normals.
+        origins: (P, 3) points on them.
+    """
+
+    hid: np.ndarray
+    types: np.ndarray
+    size: np.ndarray
+    rbound: np.ndarray
+    reach_solid: np.ndarray
+    centre: np.ndarray
+    half: np.ndarray
+    normals: np.ndarray
+    origins: np.ndarray
+
+
+#: :func:`_static_scene` per model, by the masks and the geoms' margins it was built for.
+_STATIC: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _static_scene(
+    model: mujoco.MjModel, human: np.ndarray, floorish: np.ndarray
+) -> StaticScene | None:
+    """The :class:`StaticScene` of ``model`` for the ``human`` and ``floorish`` masks, kept per
+    model (the margins in the key: a clearance check inflates its copy's); None when every
+    frame is a candidate (scene geoms on moving bodies, a floor that is not a plane)."""
+    key = (human.tobytes(), floorish.tobytes(), model.geom_margin.tobytes())
+    kept = _STATIC.setdefault(model, {})
+    if key in kept:
+        return kept[key]
+    hid = np.flatnonzero(human)
+    sid = np.flatnonzero(~human & (model.geom_contype | model.geom_conaffinity).astype(bool))
+    floors = sid[floorish[sid]]
+    solids = sid[~floorish[sid]]
+    if (model.body_weldid[model.geom_bodyid[sid]] != 0).any() or (
+        model.geom_type[floors] != mujoco.mjtGeom.mjGEOM_PLANE
+    ).any():
+        kept[key] = None
+        return None
+    data = mujoco.MjData(model)  # the scene's geoms are static: any pose places them
+    mujoco.mj_kinematics(model, data)
+    slack = model.geom_margin[hid].max(initial=0.0) + BROAD_SLACK
+    reach = model.geom_rbound[hid] + model.geom_margin[hid] + slack
+    # the scene's boxes (static: welded to the world) in world axes
+    R = data.geom_xmat[solids].reshape(-1, 3, 3)
+    aabb = model.geom_aabb[solids]
+    normals = np.array([data.geom_xmat[g].reshape(3, 3)[:, 2] for g in floors]).reshape(-1, 3)
+    kept[key] = StaticScene(
+        hid=hid,
+        types=model.geom_type[hid].astype(np.int64),
+        size=model.geom_size[hid],
+        rbound=model.geom_rbound[hid],
+        reach_solid=reach + model.geom_margin[solids].max(initial=0.0),
+        centre=data.geom_xpos[solids] + np.einsum("gij,gj->gi", R, aabb[:, :3]),
+        half=np.einsum("gij,gj->gi", np.abs(R), aabb[:, 3:]),
+        normals=normals,
+        origins=data.geom_xpos[floors].reshape(-1, 3),
+    )
+    return kept[key]
 
 
 #: MuJoCo's geom type codes the floor test handles exactly (others: the bounding sphere).

@@ -73,7 +73,59 @@ def geom_poses(
         model.geom_bodyid[geoms].astype(np.int64),
         model.geom_pos[geoms],
         model.geom_quat[geoms],
+        _chains(model, model.geom_bodyid[geoms]),
     )
+
+
+def body_poses(
+    model: mujoco.MjModel, qpos: np.ndarray, bodies: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Body poses in many frames, as ``mj_kinematics`` would leave them in ``xpos`` and
+    ``xmat`` (to round-off), compiled over all frames (:func:`geom_poses` with a frame at each
+    body's origin).
+
+    Args:
+        model: a compiled model (:func:`supported`).
+        qpos: (F, nq) poses.
+        bodies: (B,) body ids.
+
+    Returns:
+        ``(xpos, xmat)``: (F, B, 3) world positions, metres, and (F, B, 9) rotation matrices
+        (row-major).
+    """
+    qpos = np.ascontiguousarray(qpos, dtype=float).reshape(-1, model.nq)
+    bodies = np.asarray(bodies, dtype=np.int64)
+    here = np.zeros((len(bodies), 4))
+    here[:, 0] = 1.0  # the identity rotation: the body's own frame
+    return _geom_poses(
+        qpos,
+        model.qpos0,
+        model.body_parentid.astype(np.int64),
+        model.body_jntadr.astype(np.int64),
+        model.body_jntnum.astype(np.int64),
+        model.body_pos,
+        model.body_quat,
+        model.jnt_type.astype(np.int64),
+        model.jnt_qposadr.astype(np.int64),
+        model.jnt_axis,
+        model.jnt_pos,
+        bodies,
+        np.zeros((len(bodies), 3)),
+        here,
+        _chains(model, bodies),
+    )
+
+
+def _chains(model: mujoco.MjModel, bodies: np.ndarray) -> np.ndarray:
+    """(nbody,) bool: ``bodies`` and every body above them (the bodies whose poses they
+    need; the kernel skips the others)."""
+    parent = model.body_parentid
+    need = np.zeros(model.nbody, dtype=np.bool_)
+    for b in np.asarray(bodies, dtype=np.int64).tolist():
+        while b > 0 and not need[b]:
+            need[b] = True
+            b = int(parent[b])
+    return need
 
 
 @njit
@@ -139,8 +191,11 @@ def _geom_poses(
     gbody,
     gpos,
     gquat,
+    need,
 ):
-    """The kernel of :func:`geom_poses` (model arrays as MuJoCo names them)."""
+    """The kernel of :func:`geom_poses` (model arrays as MuJoCo names them). Only the bodies
+    in ``need`` are placed, and a body whose joints and parent did not move since the frame
+    before keeps its pose (and its geoms theirs): the same numbers, not computed again."""
     n_f, n_b, n_g = qpos.shape[0], parent.shape[0], gbody.shape[0]
     out_pos = np.empty((n_f, n_g, 3))
     out_mat = np.empty((n_f * n_g, 9))
@@ -151,11 +206,29 @@ def _geom_poses(
     last = np.full(jnt_type.shape[0], np.nan)  # a hinge's angle in the frame before
     sin_h = np.zeros(jnt_type.shape[0])
     cos_h = np.zeros(jnt_type.shape[0])
+    moved = np.ones(n_b, dtype=np.bool_)  # the body's pose changed in this frame
+    moved[0] = False
     xquat[0, 0] = 1.0
     xmat[0, 0] = xmat[0, 4] = xmat[0, 8] = 1.0
     for f in range(n_f):
         for b in range(1, n_b):
+            if not need[b]:
+                continue
             ja, jn = jntadr[b], jntnum[b]
+            if f > 0:
+                mv = moved[parent[b]]
+                for j in range(ja, ja + jn):
+                    if mv:
+                        break
+                    a = jnt_qposadr[j]
+                    w = 7 if jnt_type[j] == _FREE else (4 if jnt_type[j] == _BALL else 1)
+                    for i in range(a, a + w):
+                        if qpos[f, i] != qpos[f - 1, i]:
+                            mv = True
+                            break
+                moved[b] = mv
+                if not mv:
+                    continue
             if jn == 1 and jnt_type[ja] == _FREE:
                 a = jnt_qposadr[ja]
                 p0, p1, p2 = qpos[f, a], qpos[f, a + 1], qpos[f, a + 2]
@@ -224,6 +297,12 @@ def _geom_poses(
             _quat2mat(t0, t1, t2, t3, xmat, b)
         for g in range(n_g):
             b = gbody[g]
+            if f > 0 and not moved[b]:  # the body, hence the geom, where it was
+                for i in range(3):
+                    out_pos[f, g, i] = out_pos[f - 1, g, i]
+                for i in range(9):
+                    out_mat[f * n_g + g, i] = out_mat[(f - 1) * n_g + g, i]
+                continue
             v0, v1, v2 = _rot(xmat, b, gpos[g, 0], gpos[g, 1], gpos[g, 2])
             out_pos[f, g, 0] = xpos[b, 0] + v0
             out_pos[f, g, 1] = xpos[b, 1] + v1

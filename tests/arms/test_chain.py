@@ -18,6 +18,7 @@ from mjwalk.arms.chain import (
     clipped_joints,
     end_effector,
     min_jerk,
+    rows_in_range,
     two_link_ik,
     wrist_in_range,
 )
@@ -129,3 +130,31 @@ def test_arm_frames_interpolate_clip_and_name_the_clipped_joints(side):
     assert poses[2, jm.adr(names[0])] == hi[0]  # clipped to the range
     others = np.setdiff1d(np.arange(model.nq), [jm.adr(n) for n in names])
     assert np.array_equal(poses[:, others], np.tile(q0[others], (3, 1)))
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_independent_rows_get_the_angles_each_gets_alone(side):
+    """With ``independent`` a batch of alternative arms (one with a straight elbow, angles
+    that would unwrap across rows) gives each row exactly the angles it gives alone; without
+    it the rows are frames of one movement (unwrapped, the straight elbow's twist carried)."""
+    rng = np.random.default_rng(5)
+    dirs = rng.normal(size=(40, 3, 3))
+    dirs /= np.linalg.norm(dirs, axis=2, keepdims=True)
+    dirs[7, 1] = dirs[7, 0]  # a straight elbow
+    alone = np.array([arm_joint_angles(d[None], side)[0] for d in dirs])
+    batch = arm_joint_angles(dirs, side, None, True)
+    assert np.array_equal(batch, alone)
+    assert not np.array_equal(arm_joint_angles(dirs, side), alone)
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_rows_in_range_agrees_with_clipped_joints_row_by_row(side):
+    """rows_in_range is True exactly for the rows clipped_joints finds nothing to clip in."""
+    _, jm = humanoid_model()
+    lo, hi = np.array([jm.limits(n) for n in ARM_JOINT_NAMES[side]]).T
+    q = lo + np.random.default_rng(2).uniform(-0.3, 1.3, size=(60, 7)) * (hi - lo)
+    q[0] = 0.5 * (lo + hi)
+    q[1] = hi + 5e-7  # within the 1e-6 rad tolerance
+    want = np.array([not clipped_joints(jm, row[None], side) for row in q])
+    assert want[:2].all() and not want.all()
+    assert np.array_equal(rows_in_range(jm, q, side), want)

@@ -11,11 +11,27 @@ from mjwalk.cycle.poses import standing_pose
 from mjwalk.cycle.reaching import (
     ReachPace,
     blend_dir,
+    blend_dirs,
     default_timing,
     reach_frames,
     time_factor,
 )
 from mjwalk.cycle.targets import approach_offset, reach_target
+
+
+def test_blend_dirs_gives_blend_dirs_numbers_row_by_row():
+    """The batch gives exactly what blend_dir gives for each blend, with one start or one
+    start per row (the reach's approach and hand turn use both)."""
+    rng = np.random.default_rng(8)
+    starts = rng.normal(size=(500, 3))
+    starts /= np.linalg.norm(starts, axis=1, keepdims=True)
+    b = starts[0]
+    taus = rng.uniform(0.0, 1.0, 500)
+    taus[:2] = [0.0, 1.0]
+    alone = np.array([blend_dir(a, b, float(t)) for a, t in zip(starts, taus, strict=True)])
+    assert np.array_equal(blend_dirs(starts, b, taus), alone)
+    one = np.array([blend_dir(starts[1], b, t) for t in taus])
+    assert np.array_equal(blend_dirs(starts[1], b, taus), one)
 
 
 def test_blend_dir_runs_between_unit_vectors():

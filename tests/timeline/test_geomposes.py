@@ -6,7 +6,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from mjwalk.timeline.geomposes import geom_poses, supported
+from mjwalk.timeline.geomposes import body_poses, geom_poses, supported
 
 CHAIN = """<mujoco><worldbody>
 <body name="a" pos=".1 .2 1"><freejoint/><geom type="box" size=".1 .2 .3" pos=".05 0 0"/>
@@ -32,3 +32,32 @@ def test_geom_poses_of_a_free_body_and_a_hinge_match_mj_kinematics():
 def test_mocap_bodies_are_not_supported():
     mocap = '<mujoco><worldbody><body mocap="true"><geom size=".1"/></body></worldbody></mujoco>'
     assert not supported(mujoco.MjModel.from_xml_string(mocap))
+
+
+def test_body_poses_match_mj_kinematics():
+    """body_poses gives the bodies' xpos and xmat as mj_kinematics leaves them (round-off)."""
+    m = mujoco.MjModel.from_xml_string(CHAIN)
+    qpos = m.qpos0 + np.random.default_rng(4).normal(scale=0.5, size=(5, m.nq))
+    xpos, xmat = body_poses(m, qpos, np.array([2, 1]))
+    assert xpos.shape == (5, 2, 3) and xmat.shape == (5, 2, 9)
+    d = mujoco.MjData(m)
+    for f, q in enumerate(qpos):
+        d.qpos[:] = q
+        mujoco.mj_kinematics(m, d)
+        np.testing.assert_allclose(xpos[f], d.xpos[[2, 1]], atol=1e-12)
+        np.testing.assert_allclose(xmat[f], d.xmat[[2, 1]], atol=1e-12)
+
+
+def test_bodies_that_did_not_move_keep_the_same_numbers():
+    """Frames where only the hinge moves, or nothing does, give exactly the poses each frame
+    gives alone (the kernel reuses the unmoved bodies' poses), for a subset of geoms too."""
+    m = mujoco.MjModel.from_xml_string(CHAIN)
+    rng = np.random.default_rng(6)
+    qpos = np.repeat(m.qpos0[None] + rng.normal(scale=0.5, size=(1, m.nq)), 6, axis=0)
+    qpos[2:4, 7] += [0.3, 0.6]  # the hinge turns, the free body stays
+    qpos[5, :3] += 0.1  # the free body moves
+    for geoms in (np.array([0, 1]), np.array([1])):
+        xpos, xmat = geom_poses(m, qpos, geoms)
+        for f, q in enumerate(qpos):
+            alone = geom_poses(m, q[None], geoms)
+            assert np.array_equal(xpos[f], alone[0][0]) and np.array_equal(xmat[f], alone[1][0])
