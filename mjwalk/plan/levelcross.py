@@ -32,6 +32,13 @@ from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelroute import Crossing
 from mjwalk.plan.walkpath import PathStep, WalkPath
 
+#: How far (m) a walker standing before a crossing (no step brought it there) may stand from
+#: the crossing's stance and start on it from where it stands: a grid cell of the planner's
+#: occupancy grid (:data:`mjwalk.plan.occupancy.CELL_SIZE`, 0.05 m), the resolution the stance
+#: itself is found at. Farther off, the walker steps to the stance first, one foot and then the
+#: other (as the level planner's legs, which end within their goal area of the stance, are too
+#: short to walk there).
+STANCE_SLACK = 0.05
 #: Lateral distance between the feet's centres when the walker gives none, metres: 0.12 m, within
 #: the 0.08-0.13 m step widths adults walk with (Perry & Burnfield, "Gait Analysis", 2nd ed.
 #: 2010, ch. 1, as quoted in gait texts; NOT verified here).
@@ -82,7 +89,8 @@ def cross_walk(
         start: the pelvis' world xy (metres) and heading (radians) where the walk begins, at
             or near the crossing's stance on the level it leaves.
         last: the step that brought the walker there (its landing foot stays the stance foot
-            of the first step here), or None (standing with the feet side by side).
+            of the first step here), or None (standing with the feet side by side; more than
+            :data:`STANCE_SLACK` from the stance, two level steps bring the feet onto it).
         floor_z: the floor's world height, metres (heights are given above it).
         step_width: lateral distance of the feet, metres (None: the walker's, else
             :data:`DEFAULT_STEP_WIDTH`).
@@ -99,6 +107,10 @@ def cross_walk(
     xy0, yaw0 = np.asarray(start[0], dtype=float), float(start[1])
     yaw = yaw0 + (yaw - yaw0 + math.pi) % (2 * math.pi) - math.pi  # the nearer turn
     begin = c.approach if direction == "up" else c.exit
+    if last is None and float(np.hypot(*(c.point(begin) - xy0))) > STANCE_SLACK:
+        # standing off the stance: both feet step onto it first, at the level step time
+        s = np.concatenate([[begin, begin], s])
+        times = np.concatenate([[walker.step_duration] * 2, times])
     if last is not None:
         side = "left" if last.side == "right" else "right"
         feet = {last.side: (np.asarray(last.foot, dtype=float), float(last.foot_z) + floor_z)}
