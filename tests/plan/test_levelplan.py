@@ -124,7 +124,9 @@ def test_walk_to_the_mezzanine_puts_one_foot_on_each_tread(station, model):
         assert len(on) == 1, f"{tread.name}: {len(on)} footfalls"
         assert on[0].foot_z == pytest.approx(tread.z, abs=0.01)
     stair = walk.meta["levels"]["per_kind"]["stairs"]
-    assert stair["steps"] == 8  # 5 treads, the landing, a level step and the closing step
+    # a level step half a tread before the first riser, 5 treads, the landing, a level step
+    # and the closing step
+    assert stair["steps"] == 9
     assert walk.ground[-1] == pytest.approx(1.02, abs=1e-9)
 
 
@@ -243,7 +245,9 @@ def test_a_walk_from_within_the_stances_goal_area_steps_onto_it(station, model):
         assert all(s.foot_z == 0.0 for s in onto)
         mid = 0.5 * (onto[0].foot[:2] + onto[1].foot[:2])
         np.testing.assert_allclose(mid, c.end(c.lower), atol=1e-9)
-        assert walk.steps[2].foot_z == pytest.approx(0.17)
+        # then half a tread before the first riser, the foot centred on that depth, and up
+        assert walk.steps[2].foot_z == 0.0
+        assert walk.steps[3].foot_z == pytest.approx(0.17)
         _check_heights(station, walk)
 
 
