@@ -245,7 +245,8 @@ def _legs_alone(wp, start, goal, model, seed: int) -> float:
     rng = np.random.default_rng(seed)
     t0 = time.process_time()
     for leg in legs:
-        if leg.kind == "level" and float(np.hypot(*(leg.end - leg.start))) > STANCE_TOLERANCE:
+        skip = max(STANCE_TOLERANCE, options.goal_tolerance)  # as plan_level_walk's legs
+        if leg.kind == "level" and float(np.hypot(*(leg.end - leg.start))) > skip:
             view = level_view(wp, leg.level, head)
             try:
                 HybridPlanner(view, leg.end, model).plan(WalkRequest(leg.start), rng)

@@ -7,6 +7,7 @@ leg lengths and the joint ranges. Metres, degrees where named ``_DEG``.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -187,6 +188,30 @@ def shoulder_geometry(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
         and the upper-arm capsule radius; together the half-width of the body at the shoulders.
     """
     return 0.5 * SEG["shoulder_width"] * stature, UPPER_ARM_RADIUS * stature
+
+
+#: Abduction of the arms in the walking arm swing, degrees: they hang 6 deg out from the trunk
+#: (:func:`mjwalk.timeline.frames.arm_swing`).
+ARM_SWING_ABDUCTION_DEG = 6.0
+
+
+def swing_half_width(stature: float = DEFAULT_STATURE) -> float:
+    """Half the width of a walker with its arms swinging, from the body's axis to the outside of
+    the hand: the shoulder joint's offset (half the bi-acromial width, :data:`SEG`), the arm
+    (upper arm, forearm and hand) hanging :data:`ARM_SWING_ABDUCTION_DEG` out from it, and the
+    upper-arm capsule's radius (the arm's thickest part). 0.1995 of the stature: 0.35 m at
+    1.75 m, a little wider than half of Fruin's 0.61 m body ellipse (Fruin, "Pedestrian Planning
+    and Design", 1971: shoulder breadth with clothing) as the hands swing out.
+
+    Args:
+        stature: body height in metres.
+
+    Returns:
+        The half-width in metres.
+    """
+    arm = (SEG["upper_arm"] + SEG["forearm"] + SEG["hand"]) * stature
+    out = arm * math.sin(math.radians(ARM_SWING_ABDUCTION_DEG))
+    return 0.5 * SEG["shoulder_width"] * stature + out + UPPER_ARM_RADIUS * stature
 
 
 #: Forward trunk inclination (degrees) a standing reach may use. ISO 11226:2000 (evaluation of

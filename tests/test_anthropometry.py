@@ -12,6 +12,7 @@ from mjwalk.anthropometry import (
     leg_geometry,
     pelvis_height,
     shoulder_geometry,
+    swing_half_width,
 )
 
 
@@ -47,3 +48,12 @@ def test_hand_reach():
     assert hand_reach(1.1, stature=1.9) > hand_reach(1.1, stature=1.55)
     assert hand_reach(1.1, lean_deg=20) > hand_reach(1.1, lean_deg=0)
     assert hand_reach(3.5) == 0.0  # out of reach overhead
+
+
+def test_swing_half_width_adds_the_abducted_arm_to_the_shoulders():
+    off, rad = shoulder_geometry(1.75)
+    width = swing_half_width(1.75)
+    # the hand hangs 6 deg out over an arm of 0.44 statures: 8 cm beyond the shoulder
+    assert width - off - rad == pytest.approx(0.44 * 1.75 * np.sin(np.radians(6.0)), abs=1e-6)
+    assert 0.305 < width < 0.36  # wider than half of Fruin's 0.61 m body ellipse
+    assert swing_half_width(1.9) / width == pytest.approx(1.9 / 1.75)

@@ -2,12 +2,14 @@
 its footfalls, their timing and the 120 Hz pelvis path, as a :class:`~mjwalk.plan.walkpath.
 WalkPath` the level planner stitches between its level walks.
 
-- **Stairs and steps**: one tread per step (step-over-step): the feet land on the tread centres
-  in turn (the last riser's step half a tread onto the upper level), then one level step and a
-  closing step bring the walker to stand a body clearance beyond the edge; down, the same in
-  reverse. A step that climbs or descends a riser takes the stair gait's time for that riser
-  and tread (:func:`mjwalk.gait.stairs.stair_gait`: cadence from the reference adult's, scaled by
-  the walker's pace); a step on the level takes the walker's level step time.
+- **Stairs and steps**: one tread per step (step-over-step): a level step from the stance to
+  half a tread before the first riser, then the feet land centred on the treads in turn
+  (:func:`tread_setback`; the last riser's step half a tread onto the upper level), then one
+  level step and a closing step bring the walker to stand a body clearance beyond the edge;
+  down, the same in reverse. A step that climbs or descends a riser takes the stair gait's
+  time for that riser and tread (:func:`mjwalk.gait.stairs.stair_gait`: cadence from the
+  reference adult's, scaled by the walker's pace); a step on the level takes the walker's level
+  step time.
 - **Ramps**: equal steps from the stance before the foot to the stance after the head, each no
   longer than the ramp gait's step (:func:`mjwalk.gait.slope.slope_gait`, up or down the slope)
   and timed by it, the heights along the ramp's plane.
@@ -25,6 +27,7 @@ import math
 
 import numpy as np
 
+from mjwalk.anthropometry import leg_geometry
 from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.gait.slope import slope_gait
 from mjwalk.gait.stairs import MIN_TREAD, StairGeometry, stair_gait
@@ -32,6 +35,13 @@ from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelroute import Crossing
 from mjwalk.plan.walkpath import PathStep, WalkPath
 
+#: How far (m) a walker standing before a crossing (no step brought it there) may stand from
+#: the crossing's stance and start on it from where it stands: a grid cell of the planner's
+#: occupancy grid (:data:`mjwalk.plan.occupancy.CELL_SIZE`, 0.05 m), the resolution the stance
+#: itself is found at. Farther off, the walker steps to the stance first, one foot and then the
+#: other (as the level planner's legs, which end within their goal area of the stance, are too
+#: short to walk there).
+STANCE_SLACK = 0.05
 #: Lateral distance between the feet's centres when the walker gives none, metres: 0.12 m, within
 #: the 0.08-0.13 m step widths adults walk with (Perry & Burnfield, "Gait Analysis", 2nd ed.
 #: 2010, ch. 1, as quoted in gait texts; NOT verified here).
@@ -50,11 +60,13 @@ def _footfalls(c: Crossing, direction: str, walker: Walker) -> tuple[np.ndarray,
             s = c.exit - (s - c.approach)
         s = np.append(s, s[-1])
         return s, np.full(len(s), gait.step_time)
+    # every footfall of the track: the one half a tread before the first riser (descending: past
+    # the last) too, so that no step spans the stance's clearance and two treads at once
     if direction == "up":
-        s = np.concatenate([c.track[1:], [c.exit, c.exit]])
+        s = np.concatenate([c.track, [c.exit, c.exit]])
         start = c.approach
     else:
-        s = np.concatenate([c.track[:-1][::-1], [c.approach, c.approach]])
+        s = np.concatenate([c.track[::-1], [c.approach, c.approach]])
         start = c.exit
     z = c.height_at(s)
     geometry = StairGeometry(max(c.risers), max(c.tread, MIN_TREAD))
@@ -62,6 +74,32 @@ def _footfalls(c: Crossing, direction: str, walker: Walker) -> tuple[np.ndarray,
     before = np.concatenate([[c.height_at(start)], z[:-1]])
     times = np.where(np.abs(z - before) > 1e-6, climb, walker.step_duration)
     return s, times
+
+
+def tread_setback(c: Crossing, s: np.ndarray, stature: float) -> np.ndarray:
+    """How far behind each footfall's tread centre (against the walking direction) the point
+    under the ankle is put so that the foot, not the ankle, is centred on its tread: half the
+    foot's length ahead of the ankle less its length behind
+    (:func:`mjwalk.anthropometry.leg_geometry`: 0.0665 m at 1.75 m), as
+    :func:`mjwalk.plan.synthetic.synthetic_stair_walk` places its footprints. Without it the
+    toes of a foot on a 0.28 m tread stand 6 cm into the next riser going up (measured, the
+    multi-level station's stair). The footfalls half a tread before the first riser and past
+    the last are centred on that half tread's depth the same way; the stances and ramps: 0.
+
+    Args:
+        c: the crossing.
+        s: (k,) footfall positions along its axis, metres.
+        stature: the walker's stature, metres.
+
+    Returns:
+        (k,) the setbacks, metres (>= 0).
+    """
+    s = np.asarray(s, dtype=float)
+    if c.kind == "ramp":
+        return np.zeros(len(s))
+    g = leg_geometry(stature)
+    on_track = (s >= c.track[0] - 1e-9) & (s <= c.track[-1] + 1e-9)
+    return np.where(on_track, 0.5 * (g.foot_front - g.foot_back), 0.0)
 
 
 def cross_walk(
@@ -82,7 +120,8 @@ def cross_walk(
         start: the pelvis' world xy (metres) and heading (radians) where the walk begins, at
             or near the crossing's stance on the level it leaves.
         last: the step that brought the walker there (its landing foot stays the stance foot
-            of the first step here), or None (standing with the feet side by side).
+            of the first step here), or None (standing with the feet side by side; more than
+            :data:`STANCE_SLACK` from the stance, two level steps bring the feet onto it).
         floor_z: the floor's world height, metres (heights are given above it).
         step_width: lateral distance of the feet, metres (None: the walker's, else
             :data:`DEFAULT_STEP_WIDTH`).
@@ -99,6 +138,10 @@ def cross_walk(
     xy0, yaw0 = np.asarray(start[0], dtype=float), float(start[1])
     yaw = yaw0 + (yaw - yaw0 + math.pi) % (2 * math.pi) - math.pi  # the nearer turn
     begin = c.approach if direction == "up" else c.exit
+    if last is None and float(np.hypot(*(c.point(begin) - xy0))) > STANCE_SLACK:
+        # standing off the stance: both feet step onto it first, at the level step time
+        s = np.concatenate([[begin, begin], s])
+        times = np.concatenate([[walker.step_duration] * 2, times])
     if last is not None:
         side = "left" if last.side == "right" else "right"
         feet = {last.side: (np.asarray(last.foot, dtype=float), float(last.foot_z) + floor_z)}
@@ -118,9 +161,10 @@ def cross_walk(
     zs.append(pelvis_z)
     yaws.append(yaw0)
     n = 0
+    back = tread_setback(c, s, walker.stature) * (1.0 if direction == "up" else -1.0)
     for k, (pos, dt) in enumerate(zip(s, times, strict=True)):
         sign = 1.0 if side == "left" else -1.0
-        foot_xy = c.point(pos) + sign * 0.5 * width * left
+        foot_xy = c.point(pos - back[k]) + sign * 0.5 * width * left
         foot = np.array([*foot_xy, yaw])
         fz = float(c.height_at(pos))
         other = "right" if side == "left" else "left"

@@ -18,7 +18,8 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    on the spot costed) whose first step swings the other foot than the crossing's last
    (:func:`next_foot`: step over step through every crossing);
 3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`), where along
-   its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`);
+   its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`), the
+   walker's swinging arms a cited clearance from its sides (:func:`side_margin`);
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
@@ -39,6 +40,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from mjwalk.anthropometry import swing_half_width
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.heuristic import goal_distance
@@ -59,7 +61,7 @@ from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.levelview import level_at, level_view
-from mjwalk.world.norms import EXPOSED_MIN, HEAD_MARGIN
+from mjwalk.world.norms import EXPOSED_MIN, HEAD_MARGIN, SIDE_CLEARANCE
 from mjwalk.world.workplace import Workplace
 
 #: Route legs shorter than this are not walked (the walker stands there already), metres.
@@ -289,8 +291,9 @@ def place_crossings(
     workplace: Workplace, legs: list[RouteLeg], options: PlannerOptions, head: float
 ) -> list[RouteLeg]:
     """The route's crossings walked nearest the walk (:func:`mjwalk.plan.levelroute.
-    place_on_edge`, the body radius from their sides) where every moved stance keeps the body
-    radius in its level's view and the head has room over the moved crossing.
+    place_on_edge`) where every moved stance keeps the body radius in its level's view and the
+    head has room over the moved crossing. The walker's middle keeps :func:`side_margin` from
+    a crossing's sides: its swinging arms clear a stair's walls.
 
     Args:
         workplace: the scene.
@@ -319,7 +322,7 @@ def place_crossings(
 
 def _placed(workplace: Workplace, legs: list[RouteLeg], options, head: float) -> list[RouteLeg]:
     """:func:`place_crossings` without its cache."""
-    placed = place_on_edge(legs, options.radius)
+    placed = place_on_edge(legs, side_margin(head - HEAD_MARGIN, options.radius))
     for leg in placed:
         c = leg.crossing
         if c is None:
@@ -331,6 +334,22 @@ def _placed(workplace: Workplace, legs: list[RouteLeg], options, head: float) ->
         if not head_fits_crossing(workplace.levels, c, head - HEAD_MARGIN):
             return legs
     return placed
+
+
+def side_margin(stature: float, radius: float) -> float:
+    """How far a walker's middle stays from the sides of a stair, ramp or step it walks on:
+    half its width with the arms swinging (:func:`mjwalk.anthropometry.swing_half_width`) and
+    the room people leave to a stair's wall or the side of its treads
+    (:data:`mjwalk.world.norms.SIDE_CLEARANCE`), at least the body radius.
+
+    Args:
+        stature: the walker's stature, metres.
+        radius: the planner's body radius, metres.
+
+    Returns:
+        The margin, metres (0.50 m at 1.75 m: a 1.0 m flight is walked in its middle).
+    """
+    return max(float(radius), swing_half_width(stature) + SIDE_CLEARANCE)
 
 
 def _walker(model) -> Walker:
@@ -398,8 +417,8 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     (x, y, yaw), where the walker stands on both feet: a standing start that may turn on the
     spot (its turn costed), its first step with ``foot`` (:func:`next_foot`)."""
     view = level_view(workplace, leg.level, head)
-    if float(np.hypot(*(leg.end - leg.start))) <= STANCE_TOLERANCE:
-        return None
+    if float(np.hypot(*(leg.end - leg.start))) <= max(STANCE_TOLERANCE, options.goal_tolerance):
+        return None  # the walker stands in the leg's goal area already: no level walk
     pose, foot = start
     standing = foot is not None
     walker_model = _foot_model(model, foot)
@@ -477,7 +496,12 @@ def plan_level_walk(
         c = leg.crossing
         assert c is not None
         prev = parts[-1][1] if parts else None
-        here = (prev.xy[-1], float(prev.yaw[-1])) if prev is not None else (leg.start, c.yaw)
+        # no walk before it: the walker stands where the walk starts (the level leg to the
+        # crossing's stance was within its goal area), facing up or down it after the turn on
+        # the spot the cycle makes before a walk; the crossing's walk steps to its stance first
+        standing = legs[k - 1].start if k > 0 else leg.start
+        facing = c.yaw if leg.direction == "up" else c.yaw + math.pi
+        here = (prev.xy[-1], float(prev.yaw[-1])) if prev is not None else (standing, facing)
         last = prev.steps[-1] if prev is not None and prev.steps else None
         if last is not None and prev is not None and prev.z is None:
             # a level walk's steps stand on its level (stitch lifts them later): the crossing's

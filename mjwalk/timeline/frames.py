@@ -18,6 +18,7 @@ import mujoco
 import numpy as np
 
 from mjwalk._args import check_fps
+from mjwalk.anthropometry import ARM_SWING_ABDUCTION_DEG
 from mjwalk.body.humanoid import JointMap, attach_humanoid, shoulder_geometry
 from mjwalk.body.legs import LegMotion, legs_from_walk
 from mjwalk.body.legs.curves import smoothstep
@@ -62,7 +63,7 @@ def arm_swing(angles: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
         hip = angles[f"hip_{s}_flex"]
         sh = -0.45 * (hip - np.mean(hip))
         out[f"shoulder_{s}_flex"] = sh
-        out[f"shoulder_{s}_abd"] = np.full_like(hip, np.deg2rad(6))
+        out[f"shoulder_{s}_abd"] = np.full_like(hip, np.deg2rad(ARM_SWING_ABDUCTION_DEG))
         out[f"elbow_{s}"] = np.deg2rad(15) + np.clip(sh, 0, None) / 3
     return out
 

@@ -32,6 +32,13 @@ STAIR_TOLERANCE = 0.005
 #: one or two are single steps.
 MIN_STAIR_RISERS = 3
 
+#: Room people leave between their body and the side of a stair (a wall or the side of the
+#: treads), metres: the boundary layer of Pauls' effective-width model, 0.15 m for "stairways,
+#: wall or side of tread" (Pauls 1980; SFPE Handbook of Fire Protection Engineering, "Emergency
+#: Movement", table of boundary-layer widths; 0.09 m from a handrail's centreline; NOT verified
+#: here). A walker on a stair, ramp or step keeps its swinging arms this far from its sides.
+SIDE_CLEARANCE = 0.15
+
 # --- level and touching surfaces --------------------------------------------------------------
 #: Largest height difference between two touching surfaces that still counts as one level,
 #: metres: ASR A1.5/1,2 "Fußböden" §3.4, height differences over 4 mm are already trip points.

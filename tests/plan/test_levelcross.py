@@ -5,10 +5,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from mjwalk.anthropometry import leg_geometry
 from mjwalk.gait.slope import slope_gait
 from mjwalk.gait.stairs import ASCENT_STEP_TIME, DESCENT_STEP_TIME
 from mjwalk.gait.walker import Walker
-from mjwalk.plan.levelcross import cross_walk, crossing_time
+from mjwalk.plan.levelcross import cross_walk, crossing_time, tread_setback
 from mjwalk.plan.levelroute import crossings
 from mjwalk.world import load_workplace
 
@@ -54,3 +55,36 @@ def test_ramp_walk_follows_the_plane_at_the_ramp_pace(by_kind):
         expected = float(np.clip((5.731033 - x) * np.tan(ramp.slope), 0.0, 0.34))
         assert s.foot_z == pytest.approx(expected, abs=0.01)
     assert walk.ground[-1] == pytest.approx(0.34)
+
+
+@pytest.mark.parametrize("direction", ["up", "down"])
+def test_stair_feet_are_centred_on_their_treads(by_kind, direction):
+    """Every foot on the flight -- the treads and the half treads before the first riser and
+    past the last -- stands heel to toe tip within its tread's depth (the ankle set back by half
+    the foot's front less its back: :func:`tread_setback`), and no step spans the stance's
+    clearance and a tread at once: each foot moves at most two treads' depth."""
+    stair, walker = by_kind["stair"], Walker()
+    start = stair.end(stair.lower if direction == "up" else stair.upper)
+    walk = cross_walk(stair, direction, walker, (start, stair.yaw), None, 0.0)
+    g = leg_geometry(walker.stature)
+    assert tread_setback(stair, stair.track, walker.stature) == pytest.approx(
+        0.5 * (g.foot_front - g.foot_back)
+    )
+    ahead = 1.0 if direction == "up" else -1.0  # the walking direction along the axis
+    edges = 0.5 * (stair.track[:-1] + stair.track[1:])  # the risers
+    bounds = np.concatenate([[edges[0] - stair.tread], edges, [edges[-1] + stair.tread]])
+    on_flight = 0
+    for s in walk.steps:
+        along = float((s.foot[:2] - stair.origin) @ stair.axis)
+        heel, toe = along - ahead * g.foot_back, along + ahead * g.foot_front
+        k = np.searchsorted(bounds, along)
+        if 1 <= k < len(bounds):  # on a tread or a half tread of the track
+            on_flight += 1
+            lo, hi = bounds[k - 1], bounds[k]
+            assert lo - 1e-9 <= min(heel, toe) and max(heel, toe) <= hi + 1e-9
+    assert on_flight == len(stair.track)
+    feet = {}
+    for s in walk.steps:
+        if s.side in feet:
+            assert np.hypot(*(s.foot[:2] - feet[s.side])) <= 2 * stair.tread + 1e-9
+        feet[s.side] = s.foot[:2]

@@ -8,6 +8,7 @@ import itertools
 import numpy as np
 import pytest
 
+from mjwalk.anthropometry import swing_half_width
 from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import Walker
@@ -19,11 +20,12 @@ from mjwalk.plan.levelplan import (
     next_foot,
     place_crossings,
     plan_level_walk,
+    side_margin,
 )
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.walks import plan_walk, plan_walks
 from mjwalk.world import load_workplace
-from mjwalk.world.norms import HEAD_MARGIN, MAX_RISER
+from mjwalk.world.norms import HEAD_MARGIN, MAX_RISER, SIDE_CLEARANCE
 
 #: A platform 0.34 m high reached from the west by a step of one 0.17 m tread and from the east
 #: by a 5.5 deg ramp (the multi-level station's); with ``beam``, a beam 2.25 m above the floor
@@ -122,7 +124,9 @@ def test_walk_to_the_mezzanine_puts_one_foot_on_each_tread(station, model):
         assert len(on) == 1, f"{tread.name}: {len(on)} footfalls"
         assert on[0].foot_z == pytest.approx(tread.z, abs=0.01)
     stair = walk.meta["levels"]["per_kind"]["stairs"]
-    assert stair["steps"] == 8  # 5 treads, the landing, a level step and the closing step
+    # a level step half a tread before the first riser, 5 treads, the landing, a level step
+    # and the closing step
+    assert stair["steps"] == 9
     assert walk.ground[-1] == pytest.approx(1.02, abs=1e-9)
 
 
@@ -198,18 +202,53 @@ def test_repeated_walks_reuse_the_legs_planners_and_stay_seeded(station, model):
     assert any(v.__dict__.get("_leg_planners") for v in [floor, *kept])
 
 
-def test_the_stair_is_walked_on_the_side_nearest_the_walk(station, model):
+def test_the_stair_is_walked_where_the_swinging_arms_clear_its_walls(station, model):
     walk = plan_walk(station, "stand_rack1", "stand_mezz_rack", model, rng=2)
     assert _kinds(walk) == ["level", "stair", "level"]
     _check_heights(station, walk)
     stair = [s for s in station.levels.surfaces if s.kind == "tread" and s.name.startswith("stair")]
     first = walk.meta["levels"]["route"][0]["steps"]
     on_treads = walk.steps[first : first + len(stair)]
-    # the flight spans x -5.4..-4.4; stand_rack1 lies east of it: the walker keeps to the east
-    # half, its middle the body radius (0.25 m) from the side
+    # the flight spans x -5.4..-4.4 between walls; stand_rack1 lies east of it, but a walker of
+    # 1.75 m keeps half its width with the arms swinging (0.35 m) and 0.15 m (Pauls' boundary
+    # layer) from each wall: 0.50 m, the flight's half width, so it climbs in the middle
     # (each foot half a step width, 0.06 m, either side of it)
-    assert all(abs(s.foot[0] + 4.65) <= 0.07 for s in on_treads)
-    assert all(-5.4 + 0.1 < s.foot[0] < -4.4 - 0.1 for s in on_treads)
+    assert side_margin(1.75, 0.25) == pytest.approx(0.5, abs=0.005)
+    assert all(abs(s.foot[0] + 4.9) <= 0.07 for s in on_treads)
+    xs = [s.foot[0] for s in on_treads]
+    middle = 0.5 * (min(xs) + max(xs))  # between the left and right feet
+    assert min(middle + 5.4, -4.4 - middle) >= swing_half_width(1.75) + SIDE_CLEARANCE - 0.005
+
+
+def test_a_walk_from_within_the_stances_goal_area_steps_onto_it(station, model):
+    """A walk that starts within the goal area of the crossing's stance (the operator already
+    stands there: 0.15-0.25 m off) has no level walk before the stair: the walker turns on the
+    spot to face up it (the walk's first heading), steps onto the stance with both feet and
+    climbs (issue 47: `simulate multilevel_station.toml --runs 5` failed its run 4 here)."""
+    walker = Walker()
+    options = PlannerOptions(radius=0.25, goal_tolerance=0.25)
+    a, b = endpoint(station, "stand_stair", "start"), endpoint(station, "stand_mezz_rack", "goal")
+    route = level_route(station, a, b, walker, options, MAX_RISER)
+    c = place_crossings(station, route, options, walker.stature + HEAD_MARGIN)[1].crossing
+    left = np.array([-c.axis[1], c.axis[0]])
+    start = c.end(c.lower) - 0.2 * c.axis + 0.08 * left  # 0.215 m off the stance
+    for seed in range(3):
+        walk = plan_level_walk(
+            station, start, "stand_mezz_rack", model, np.random.default_rng(seed), options
+        )
+        walk.validate()
+        assert _kinds(walk) == ["stair", "level"]
+        np.testing.assert_allclose(walk.xy[0], start, atol=1e-9)
+        assert walk.yaw[0] == pytest.approx(c.yaw)  # faces up the flight from the first sample
+        onto = walk.steps[:2]  # both feet onto the stance, on the floor, then the first tread
+        assert [s.side for s in onto] == ["left", "right"]
+        assert all(s.foot_z == 0.0 for s in onto)
+        mid = 0.5 * (onto[0].foot[:2] + onto[1].foot[:2])
+        np.testing.assert_allclose(mid, c.end(c.lower), atol=1e-9)
+        # then half a tread before the first riser, the foot centred on that depth, and up
+        assert walk.steps[2].foot_z == 0.0
+        assert walk.steps[3].foot_z == pytest.approx(0.17)
+        _check_heights(station, walk)
 
 
 def test_place_crossings_keeps_the_middle_where_a_moved_stance_does_not_fit(station, model):
@@ -217,13 +256,13 @@ def test_place_crossings_keeps_the_middle_where_a_moved_stance_does_not_fit(stat
     options = PlannerOptions()
     a, b = endpoint(station, "stand_rack1", "start"), endpoint(station, "stand_mezz_rack", "goal")
     route = level_route(station, a, b, walker, options, MAX_RISER)
-    head = walker.stature + HEAD_MARGIN
-    placed = place_crossings(station, route, options, head)
+    short = 1.5 + HEAD_MARGIN  # a 1.5 m walker's arms leave room to move off the middle
+    placed = place_crossings(station, route, options, short)
     assert placed[1].crossing is not route[1].crossing  # moved toward stand_rack1
     np.testing.assert_allclose(placed[0].end, placed[1].start)
     # a body as wide as the flight: nothing to move across, the middles stay
     wide = PlannerOptions(radius=0.5)
-    assert place_crossings(station, route, wide, head) == route
+    assert place_crossings(station, route, wide, short) == route
 
 
 def test_a_level_walk_counts_its_legs_expansions(station, model):

@@ -22,3 +22,9 @@ def test_ramp_and_headroom_figures_are_consistent():
     assert norms.HORIZONTAL_SLOPE < math.tan(norms.MAX_RAMP_SLOPE)
     assert norms.OVERHEAD_MIN < norms.CLEAR_HEADROOM <= norms.HEADROOM_SCAN
     assert 2.2 + norms.HEAD_MARGIN <= norms.HEADROOM_SCAN  # the tallest walker fits the scan
+
+
+def test_side_clearance_leaves_a_building_stair_room_for_a_walker():
+    # a 1.0 m flight (DIN 18065's least usable width for buildings in general; the shipped
+    # one) less the room to both sides leaves 0.7 m, more than the 0.61 m of Fruin's body ellipse
+    assert 1.0 - 2 * norms.SIDE_CLEARANCE >= 0.61
