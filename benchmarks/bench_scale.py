@@ -267,6 +267,7 @@ def main() -> None:
     ap.add_argument("--setup-one", nargs=2, help=argparse.SUPPRESS)
     ap.add_argument("--weight", type=float, help="heuristic_weight (default: the planner's)")
     ap.add_argument("--far-weight", type=float, help="far_weight (0: the search before issue 18)")
+    ap.add_argument("--field-sway", action="store_true", help="PlannerOptions.field_sway")
     args = ap.parse_args()
     if args.setup_one:
         print(json.dumps(setup_one(float(args.setup_one[0]), args.setup_one[1])))
@@ -279,6 +280,8 @@ def main() -> None:
             opts["far_weight"] = args.far_weight
         if args.budget is not None:
             opts["max_expansions"] = args.budget
+        if args.field_sway:
+            opts["field_sway"] = True
         run_walks(args.lengths, args.walks, **opts)
         if not args.skip_spread:
             run_spread([4, 8, 16, 32], 4, 10, **opts)

@@ -1,4 +1,19 @@
-"""Obstacle-aware distance-to-goal for the hybrid A*: a 2-D Dijkstra over the occupancy grid."""
+"""Obstacle-aware distance-to-goal for the hybrid A*: a 2-D Dijkstra over the occupancy grid.
+
+:func:`walkable_distance` is the planner's: the route a walker's sampled steps can take. A grid
+cell is free where its centre keeps the body radius (:mod:`mjwalk.plan.occupancy`), but every
+pelvis sample of a step must keep the body radius plus the safety margin
+(:data:`~mjwalk.plan.options.SAFETY_MARGIN`), and the pelvis sways to either side of the line
+its steps follow by about :data:`PELVIS_SWAY`. A passage whose clearance lies between the two
+(the shipped station's 0.58 m gap between trolley and car: 0.288 m at its middle) is a route
+for the grid but one the sampled steps rarely get through: a field through it draws the search
+into it and most of the expansions go to searches that are thrown away (issue 47's planning
+cost, ``benchmarks/bench_levels.py``). The planner's field therefore routes through passages
+that keep body radius + margin + sway wherever such a route reaches the goal; a cell only
+tight passages reach has the way out of them to the nearest such route (a tight pocket beside
+a roomy route does not draw the search in), and where the tight routes reach the goal without
+meeting a roomy one (a goal in a tight spot) the field is the body radius's.
+"""
 
 from __future__ import annotations
 
@@ -12,7 +27,14 @@ from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import dijkstra
 
 from mjwalk._jit import njit
+from mjwalk.gait.subjects import REAL_FIGURES
 from mjwalk.plan.occupancy import OccupancyGrid
+
+#: The pelvis's lateral sway about the line its steps follow (m): the median of the largest
+#: pelvis distance from the step's chord over 1332 steps of the Bandai-Namco motion dataset's
+#: `walk` clips (Kobayashi et al. 2023, arXiv:2306.08861; ``mjwalk.gait.subjects.REAL_FIGURES``;
+#: about a third of the 7-10 cm adult step width, Perry & Burnfield 2010, ch. 1).
+PELVIS_SWAY = REAL_FIGURES["walk"]["sway"][0]
 
 
 @functools.lru_cache(maxsize=8)
@@ -166,6 +188,55 @@ def goal_distance(grid: OccupancyGrid, goal: np.ndarray, tolerance: float) -> Go
     Returns:
         The goal's :class:`GoalDistance` field (shared per grid, goal and goal cells).
     """
+    return GoalDistance(grid, np.asarray(goal, float), tolerance, _field(grid, goal, tolerance))
+
+
+def walkable_distance(
+    grid: OccupancyGrid, roomy: OccupancyGrid, goal: np.ndarray, tolerance: float
+) -> GoalDistance:
+    """:func:`goal_distance` along passages the sampled steps get through (module doc).
+
+    Args:
+        grid: the body radius's occupancy grid (16-connected for the planner).
+        roomy: the same cells and moves keeping body radius + safety margin + pelvis sway
+            (:data:`PELVIS_SWAY`).
+        goal: (2,) the goal centre, metres, world frame.
+        tolerance: the goal area's radius, metres (cells within it join the goal node).
+
+    Returns:
+        A :class:`GoalDistance` on ``grid`` (its sight flags ``grid``'s) whose cells hold the
+        route length over ``roomy`` where that reaches the goal; elsewhere the route over
+        ``grid`` to the nearest such cell and on from there; ``grid``'s own field where no
+        such route meets one.
+    """
+    cells = _field(grid, goal, tolerance)
+    if roomy is not grid and roomy.free.shape == grid.free.shape:
+        wide = _field(roomy, goal, tolerance)
+        key = (id(grid), id(wide))
+        hit = _WALKABLE.get(key)
+        if hit is not None and hit[0]() is grid and hit[1] is wide:
+            cells = hit[2]
+        elif np.isfinite(wide).any():
+            reach = np.isfinite(wide)
+            out = _dijkstra_field(grid, np.where(reach, wide, 0.0), reach)
+            # (a cell whose tight routes reach the goal without meeting a roomy one: its own)
+            cells = np.where(reach, wide, np.where(np.isfinite(out), out, cells))
+            cells.setflags(write=False)
+            while len(_WALKABLE) >= _WALKABLE_KEPT:
+                _WALKABLE.pop(next(iter(_WALKABLE)))
+            _WALKABLE[key] = (weakref.ref(grid), wide, cells)
+    return GoalDistance(grid, np.asarray(goal, float), tolerance, cells)
+
+
+#: :func:`walkable_distance`'s fields, by grid and roomy field (kept while that is in
+#: :data:`_FIELDS`: the entry holds it); the last few, a memory bound.
+_WALKABLE: dict[tuple[int, int], tuple[weakref.ref, np.ndarray, np.ndarray]] = {}
+_WALKABLE_KEPT = 16
+
+
+def _field(grid: OccupancyGrid, goal: np.ndarray, tolerance: float) -> np.ndarray:
+    """:func:`goal_distance`'s cells (ny, nx), metres (``inf``: no route), kept per grid, goal
+    and goal cells."""
     ny, nx = grid.free.shape
     gx = grid.x0 + grid.cell * np.arange(nx)
     gy = grid.y0 + grid.cell * np.arange(ny)
@@ -178,22 +249,23 @@ def goal_distance(grid: OccupancyGrid, goal: np.ndarray, tolerance: float) -> Go
         inside[max(0, j - 1) : j + 2, max(0, i - 1) : i + 2] = True
         inside &= grid.free
     if not inside.any():
-        return GoalDistance(grid, np.asarray(goal, float), tolerance, np.full((ny, nx), np.inf))
+        return np.full((ny, nx), np.inf)
     key = (id(grid), float(goal[0]), float(goal[1]), np.packbits(inside).tobytes())
     hit = _FIELDS.get(key)
     if hit is not None and hit[0]() is grid:
-        return GoalDistance(grid, np.asarray(goal, float), tolerance, hit[1])
+        return hit[1]
     field = _dijkstra_field(grid, to_goal, inside)
     if field.nbytes <= _FIELDS_BYTES:
         while _FIELDS and sum(f.nbytes for _, f in _FIELDS.values()) + field.nbytes > _FIELDS_BYTES:
             _FIELDS.pop(next(iter(_FIELDS)))
         _FIELDS[key] = (weakref.ref(grid), field)
-    return GoalDistance(grid, np.asarray(goal, float), tolerance, field)
+    return field
 
 
 def _dijkstra_field(grid: OccupancyGrid, to_goal: np.ndarray, inside: np.ndarray) -> np.ndarray:
     """The route-length field to the goal cells ``inside`` (joined to a virtual goal node by
-    their distance ``to_goal`` to the goal centre), with the rim of :func:`_rim`."""
+    their distance ``to_goal`` to the goal centre, or any value to start from), with the rim of
+    :func:`_rim`."""
     ny, nx = grid.free.shape
     n = nx * ny
     moves = _move_graph(grid)

@@ -17,8 +17,9 @@ cost also grows with its heading error (:data:`~mjwalk.plan.options.HEADING_WEIG
 
 The heuristic is the straight-line distance to the goal centre or, by default, the larger of
 that and an obstacle-aware bound from a 2-D Dijkstra over a 16-connected occupancy grid divided
-by the grid's worst detour factor (both admissible). The search weights the heuristic by 1.01
-(weighted A*: a walk is at most 1 % longer than the best continuation of the sampled steps);
+by the grid's worst detour factor (both admissible; ``field_sway``: :func:`~mjwalk.plan.
+heuristic.walkable_distance`). The search weights the heuristic by 1.01 (weighted A*: a walk
+is at most 1 % longer than the best continuation of the sampled steps);
 ``heuristic_weight=1.0`` is the paper's plain A*. Walks starting farther than
 :data:`~mjwalk.plan.options.LONG_WALK` from the goal weigh the heuristic of nodes far from it
 more (:data:`~mjwalk.plan.options.FAR_WEIGHT`). A successor is rejected when any sample of its
@@ -58,11 +59,12 @@ from mjwalk.plan.assemble import assemble_walk
 from mjwalk.plan.decoder import StepDecoder, decoder_of
 from mjwalk.plan.detour import GuideBody, walk_guide
 from mjwalk.plan.guide import guide_is_clear
-from mjwalk.plan.heuristic import GoalDistance, goal_distance
+from mjwalk.plan.heuristic import PELVIS_SWAY, GoalDistance, walkable_distance
 from mjwalk.plan.occupancy import MOVES_16, check_endpoint, shared_grid
 from mjwalk.plan.options import (
     FAR_FROM,
     LONG_WALK,
+    SAFETY_MARGIN,
     START_SPREAD,
     WALK_PACE_SD,
     WANDER_FACTOR,
@@ -169,8 +171,8 @@ def walker_step_length(model: StepModel) -> float:
 class HybridPlanner:
     """Reusable planning context for one workplace, model and goal.
 
-    Building it costs the Dijkstra distance field (and, once per workplace, cell size and
-    radius, the 16-connected occupancy grid: :func:`~mjwalk.plan.occupancy.shared_grid`);
+    Building it costs the Dijkstra field(s) (:func:`~mjwalk.plan.heuristic.walkable_distance`;
+    once per workplace, cell and radius, the grids: :func:`~mjwalk.plan.occupancy.shared_grid`);
     :meth:`plan` then only samples and searches. :func:`plan_walk` and :func:`plan_walks` wrap
     it.
 
@@ -205,7 +207,11 @@ class HybridPlanner:
         self.radius = options.radius
         check_endpoint(workplace, self.goal, self.radius, "goal")
         self.grid = shared_grid(workplace, options.cell, self.radius, MOVES_16)
-        self.distance: GoalDistance = goal_distance(self.grid, self.goal, options.field_cells)
+        sway = self.radius + SAFETY_MARGIN + PELVIS_SWAY  # passages the steps get through
+        roomy = shared_grid(workplace, options.cell, sway, MOVES_16) if options.field_sway else None
+        self.distance: GoalDistance = walkable_distance(
+            self.grid, roomy or self.grid, self.goal, options.field_cells
+        )
         self.walk_field = workplace.walk_field()  # its clearance field
         self.params = KernelParams(
             options, self.goal, self.goal_within, self.grid, self.walk_field, self.distance

@@ -223,6 +223,11 @@ class PlannerOptions:
     #: The goal cells (m) the distance field starts from; None: ``goal_tolerance``. Planners of
     #: one goal with the same ``field_tolerance`` share one field.
     field_tolerance: float | None = None
+    #: Whether the distance field routes through passages that keep the body radius plus
+    #: SAFETY_MARGIN plus the pelvis's sway (:func:`mjwalk.plan.heuristic.walkable_distance`);
+    #: off: through any that keeps the body radius (measured both ways in branch plan-cost2's
+    #: commit: off until its mixed cost is settled).
+    field_sway: bool = False
 
     def __post_init__(self):
         if self.heuristic not in ("dijkstra", "euclidean"):
