@@ -15,11 +15,10 @@ can hold a foot. Each connected gap is one :class:`ScanPit`:
   bottom's height below the floor, printed with its link); one that nothing reaches, and a gap
   with no bottom, is an obstacle: a hole nobody may walk into.
 
-The scene (:func:`gap_boxes`) writes every gap as a box from the floor up to a guard rail's
-height (:data:`GUARD_HEIGHT`): an obstacle the planners see. A pit that is a level is guarded too:
-the written scene's floor is one MuJoCo plane (a half-space), so its walk surfaces
-(:func:`mjwalk.world.find_walk_surfaces`) hold nothing below the floor; the level and its link
-are printed (``mjwalk scan``) and drawn, not written. Ramps down into a pit are not looked for.
+The scene (:func:`gap_boxes`) writes every gap nothing reaches as a box from the floor up to a
+guard rail's height (:data:`GUARD_HEIGHT`): an obstacle the planners see. A pit that is a level is
+written as a level below the floor with its stair (:mod:`mjwalk.scan.pitscene`: the floor plane
+at its bottom, the floor as boxes round the opening). Ramps down into a pit are not looked for.
 Metres, scene frame (floor at z = 0).
 """
 
@@ -227,9 +226,11 @@ def describe_pits(pits: list[ScanPit], option: str = "--gaps floor") -> str:
     """
     if not pits:
         return ""
+    n_level = sum(p.kind == "level" for p in pits)
+    levels = f"{n_level} written as levels below the floor, the rest " if n_level else ""
     lines = [
-        f"gaps in the floor (unscanned, points below it): {len(pits)}, written as obstacles "
-        f"({GUARD_HEIGHT} m guard-rail boxes; {option} fills them as floor)"
+        f"gaps in the floor (unscanned, points below it): {len(pits)}, {levels}written as "
+        f"obstacles ({GUARD_HEIGHT} m guard-rail boxes; {option} fills them as floor)"
     ]
     for k, p in enumerate(pits):
         where = (
@@ -256,6 +257,6 @@ def describe_pits(pits: list[ScanPit], option: str = "--gaps floor") -> str:
             )
         lines.append(
             where + f"pit level, {what}, reached from the floor by {how} (a level of the scan; "
-            "guarded in the scene, whose floor plane holds no level below it)"
+            "written as a level below the floor with its stair: mjwalk.scan.pitscene)"
         )
     return "\n".join(lines)

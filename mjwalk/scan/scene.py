@@ -37,6 +37,7 @@ from mjwalk.scan.levelboxes import LEVEL_MATERIAL, LevelPlan, levels_at, scan_le
 from mjwalk.scan.limits import check_plan_size
 from mjwalk.scan.merge import merge_scans, read_poses
 from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan, floor_plan, rectangles
+from mjwalk.scan.pitscene import PitFloor, pit_floor
 from mjwalk.scan.read import Station, to_metres_z_up
 from mjwalk.scan.scanoptions import ScanOptions
 from mjwalk.scan.scanpits import PIT_MATERIAL, ScanPit, describe_pits, find_pits, gap_boxes
@@ -59,7 +60,8 @@ class ScanScene:
     floor points alone and why); ``levels`` the raised walk-surface levels written as boxes
     (:mod:`~mjwalk.scan.levelboxes`; None: one level, the floor); ``site_z`` each site's
     height, metres (the height of the level it stands on); ``pits`` the gaps in the floor
-    (:mod:`~mjwalk.scan.scanpits`), written as guard-rail boxes.
+    (:mod:`~mjwalk.scan.scanpits`), written as guard-rail boxes, or as levels below the floor
+    when a stair reaches them (:mod:`~mjwalk.scan.pitscene`).
     """
 
     xml: str
@@ -156,6 +158,7 @@ def _mjcf(
     matrix: np.ndarray,
     model_name: str,
     site_z: dict[str, float],
+    plane_z: float = 0.0,
 ) -> str:
     xmin, ymin, xmax, ymax = plan.bounds
     cx, cy = 0.5 * (xmin + xmax), 0.5 * (ymin + ymax)
@@ -194,7 +197,8 @@ def _mjcf(
         "  </asset>",
         "  <worldbody>",
         f'    <light pos="{cx:.4f} {cy:.4f} 6" dir="0 0 -1"/>',
-        f'    <geom name="floor" type="plane" pos="{cx:.4f} {cy:.4f} 0" size="{hx:.4f} {hy:.4f} '
+        f'    <geom name="floor" type="plane" pos="{cx:.4f} {cy:.4f} {_fmt([plane_z])}" '
+        f'size="{hx:.4f} {hy:.4f} '
         '0.05" material="floor"/>',
     ]
     for box in boxes:  # (name, centre, half sizes, material[, yaw radians or xyaxes (6,)])
@@ -376,19 +380,21 @@ def build_scene(
     levels = scan_levels(levelled, plan)
     plan = plan if levels is None else levels.plan
     pits = find_pits(levelled, plan)
+    below = pit_floor(plan, pits)
     timings["levels"] = clock() - t
     t = clock()
     offset = None if opts.offset is None else np.asarray(opts.offset)
     matrix = _matrix(levelling, scale, axes, offset)
-    site_xyyaw, site_z = _place_sites(sites or [], plan, matrix, source, levels)
+    site_xyyaw, site_z = _place_sites(sites or [], plan, matrix, source, levels, below)
     boxes, n_obst, n_void = _boxes(plan)
     if levels is not None:
         boxes += levels.boxes
-    boxes += gap_boxes(plan)
+    boxes += gap_boxes(plan) if below is None else below.boxes
     header = _header(source, len(pts), levelling, matrix, (n_obst, n_void), plan, opts, sight)
     if pits:
         header += "\n" + describe_pits(pits, "ScanOptions(gaps='floor')")
-    xml = _mjcf(plan, boxes, site_xyyaw, header, matrix, model_name, site_z)
+    plane_z = 0.0 if below is None else below.plane_z
+    xml = _mjcf(plan, boxes, site_xyyaw, header, matrix, model_name, site_z, plane_z)
     try:
         mujoco.MjModel.from_xml_string(xml)
     except ValueError as exc:  # a bug here, not bad input: say so plainly
@@ -424,6 +430,7 @@ def _place_sites(
     matrix: np.ndarray,
     source: str,
     levels: LevelPlan | None = None,
+    below: PitFloor | None = None,
 ) -> tuple[dict[str, tuple[float, float, float]], dict[str, float]]:
     """Each site's scene (x, y, yaw radians) and height: on the scanned floor (z = 0) or on a
     raised level (its height; of several there, the highest, or for a site picked in the scan
@@ -443,6 +450,8 @@ def _place_sites(
         on = [] if levels is None else levels_at(levels, xy)
         if 0 <= ix < nx and 0 <= iy < ny and plan.floor[iy, ix]:
             on.append((0, SITE_Z))
+        if below is not None:  # the bottom of a pit a stair reaches
+            on += [(-1, h) for h in below.heights_at(xy, plan)]
         if not on:
             b = plan.bounds
             raise ScanError(

@@ -184,9 +184,15 @@ def walk_tops(timeline: Timeline) -> np.ndarray | None:
     key = (str(scene), scene.stat().st_mtime)
     kept = _TOPS.setdefault(timeline.model, {})
     if key not in kept:
-        graph = shared_workplace(scene).levels
+        wp = shared_workplace(scene)
+        graph = wp.levels
         names = _geom_names(timeline.model)[0]
-        top = {s.name for s in graph.surfaces if s.kind != "floor" and s.name}
+        plane = mujoco.mjtGeom.mjGEOM_PLANE  # a floor of boxes (round a pit) is walk tops
+        top = {
+            s.name
+            for s in graph.surfaces
+            if s.name and (s.kind != "floor" or int(wp.model.geom_type[s.geom_id]) != plane)
+        }
         mask = np.array([n in top for n in names])
         mask.setflags(write=False)
         kept[key] = mask if graph.links else None

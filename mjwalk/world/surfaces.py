@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import mujoco
 import numpy as np
@@ -30,6 +30,7 @@ from mjwalk._args import check_patterns
 from mjwalk.errors import InputError
 from mjwalk.world.contacts import reachable, surface_contacts
 from mjwalk.world.floor import find_floor
+from mjwalk.world.floorholes import FloorBoxes, floor_boxes
 from mjwalk.world.footprint import Footprint, geom_footprint
 from mjwalk.world.norms import (
     CLEAR_HEADROOM,
@@ -367,14 +368,19 @@ def find_walk_surfaces(
     ground = _floor_surface(model, data, floor)
     floor_skip = human | {floor}
     geoms = _Geoms(model, data)
-    found = [_with_overhead(ground, geoms, floor_skip)]
+    holes = floor_boxes(model, data, floor, "scene")
+    if holes is None:
+        found = [_with_overhead(ground, geoms, floor_skip)]
+    else:  # the floor level is the boxes; the plane under its openings is a level below it
+        found = _floor_with_openings(holes, ground, geoms, floor_skip, options)
+        floor_skip = floor_skip | set(holes.geoms)
     for g in range(model.ngeom):
         if g in floor_skip or not _selected(model, g, options):
             continue
         corners = _top_face(model, data, g)
         if corners is None:
             continue
-        corners = _clip_above(corners, ground.z)
+        corners = _clip_above(corners, ground.z)  # the plane: under a floor with openings too
         if len(corners) < 3:
             continue
         s = _surface_from_face(model, g, corners, options)
@@ -387,6 +393,24 @@ def find_walk_surfaces(
     keep = reachable(len(found), surface_contacts(found, options.contact_gap, options.max_riser))
     rest = sorted((found[i] for i in keep if i > 0), key=lambda s: (s.z_low, s.name))
     return (found[0], *rest)
+
+
+def _floor_with_openings(
+    holes: FloorBoxes, ground: WalkSurface, geoms: _Geoms, skip: set[int], options: SurfaceOptions
+) -> list[WalkSurface]:
+    """The surfaces of a floor with openings (:mod:`mjwalk.world.floorholes`): each floor box's
+    top as a "floor" surface (of any size: the boxes tile the floor), then the plane below as a
+    "platform" (the pits' bottom: open to stand on only under the openings)."""
+    model, data = geoms.model, geoms.data
+    tiny = replace(options, min_depth=1e-6, min_width=1e-6)
+    out = []
+    for g in holes.geoms:
+        corners = _top_face(model, data, g)
+        s = None if corners is None else _surface_from_face(model, g, corners, tiny)
+        if s is not None:
+            out.append(_with_overhead(replace(s, kind="floor"), geoms, skip | {g}))
+    bottom = _with_overhead(replace(ground, kind="platform"), geoms, skip)
+    return [*out, bottom]
 
 
 def _with_overhead(s: WalkSurface, geoms: _Geoms, skip: set[int]) -> WalkSurface:

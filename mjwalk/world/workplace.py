@@ -22,6 +22,7 @@ from mjwalk.world.floor import (
     check_floor_nodes,
     find_floor,
 )
+from mjwalk.world.floorholes import floor_boxes, wall_openings
 from mjwalk.world.footprint import Footprint, geom_footprint
 from mjwalk.world.levels import LevelGraph, level_graph
 from mjwalk.world.meshimport import concave_mesh_footprints
@@ -383,13 +384,18 @@ def workplace_from_model(
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     floor = find_floor(model, data, label)
-    floor_z = float(data.geom_xpos[floor][2])
+    holes = floor_boxes(model, data, floor, label)
+    floor_z = float(data.geom_xpos[floor][2]) if holes is None else holes.height
     floor_name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
     fx, fy = model.geom_size[floor][:2]
     if fx > 0 and fy > 0:  # a finite floor: refused before the obstacles are read
         cx, cy = data.geom_xpos[floor][:2]
         check_floor_nodes((cx - fx, cy - fy, cx + fx, cy + fy), resolution, label, floor_name)
-    footprints = obstacle_footprints(model, data, floor, options, label)
+    if holes is None:
+        footprints = obstacle_footprints(model, data, floor, options, label)
+    else:  # a floor with openings: the band above the boxes, which are not obstacles
+        skip = frozenset(holes.geoms)
+        footprints = obstacle_footprints(model, data, floor, options, label, floor_z, skip)
     if fx > 0 and fy > 0:
         cx, cy = data.geom_xpos[floor][:2]
         bounds = (cx - fx, cy - fy, cx + fx, cy + fy)
@@ -400,6 +406,8 @@ def workplace_from_model(
         bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
     check_floor_nodes(bounds, resolution, label, floor_name)
     key, clearance = _clearance(footprints, bounds, options)
+    if holes is not None:
+        key, clearance = None, wall_openings(clearance, holes.footprints)
     return Workplace(
         model=model,
         source=source,

@@ -173,7 +173,7 @@ def test_cli_prints_the_gaps(tmp_path, capsys, scans):
     png = tmp_path / "top.png"
     assert cli.main(["scan", str(src), "-o", str(tmp_path / "s.xml"), "--png", str(png)]) == 0
     out = capsys.readouterr().out
-    assert "gaps in the floor (unscanned, points below it): 1, written as obstacles" in out
+    assert "gaps in the floor (unscanned, points below it): 1, 1 written as levels below" in out
     assert "stair 3 risers x 0.170 m, tread 0.28" in out
     assert png.stat().st_size > 0
     assert cli.main(["scan", str(src), "-o", str(tmp_path / "f.xml"), "--gaps", "floor"]) == 0

@@ -1,0 +1,160 @@
+"""A scan's pits that a stair reaches, written as levels below the floor (issue 47).
+
+A MuJoCo plane has no hole, so a scene with a reached pit (:class:`~mjwalk.scan.scanpits.ScanPit`
+of kind "level") is written as a floor with openings (:mod:`mjwalk.world.floorholes`): the floor
+plane at the deepest reached pit's bottom, the floor level as boxes named
+:data:`~mjwalk.world.floorholes.FLOOR_BOX_PREFIX`... from the plane up to z = 0 over every cell of
+the floor plan but the openings, each reached pit's stair as its regular flight
+(:func:`mjwalk.scan.levelboxes.fit_stair`: its treads' boxes from the plane up, the floor's edge
+moved onto the flight's last riser when the flight runs along x or y), and a shallower pit's
+bottom as a box. A gap nothing reaches stays a guard-rail box
+(:func:`mjwalk.scan.scanpits.gap_boxes`). A scan without a reached pit is written as before.
+Metres, scene frame (floor at z = 0).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+from scipy import ndimage
+
+from mjwalk.scan.levelboxes import LEVEL_MATERIAL, fit_stair
+from mjwalk.scan.obstacles import FloorPlan, rectangles
+from mjwalk.scan.scanpits import ScanPit, gap_boxes
+from mjwalk.world.floorholes import FLOOR_BOX_PREFIX
+
+#: Material of the floor boxes round the openings (the floor plane's).
+FLOOR_MATERIAL = "floor"
+#: A flight runs along an axis when its direction is within this of it, radians (1 deg): the
+#: floor's edge is then moved onto its last riser, so the top tread keeps the flight's depth.
+AXIS_TOL = math.radians(1.0)
+
+
+@dataclass(frozen=True)
+class PitFloor:
+    """The scene's floor when a stair reaches a pit.
+
+    Attributes:
+        plane_z: the floor plane's height, the deepest reached pit's bottom, metres (negative).
+        boxes: (name, centre (3,), half sizes (3,), material[, yaw radians]) per box: the floor
+            boxes, the treads and the shallower bottoms, then the guard-rail boxes of the gaps
+            nothing reaches.
+        reached: the reached pits.
+    """
+
+    plane_z: float
+    boxes: list
+    reached: tuple[ScanPit, ...]
+
+    def heights_at(self, xy: np.ndarray, plan: FloorPlan) -> list[float]:
+        """The bottom heights of the reached pits a point lies in.
+
+        Args:
+            xy: scene (x, y), metres.
+            plan: the floor plan (its grid).
+
+        Returns:
+            Heights, metres (empty when the point is in no reached pit).
+        """
+        ix = int(np.floor((xy[0] - plan.x0) / plan.resolution))
+        iy = int(np.floor((xy[1] - plan.y0) / plan.resolution))
+        out = []
+        for p in self.reached:
+            ny, nx = p.cells.shape
+            assert p.bottom is not None
+            if 0 <= ix < nx and 0 <= iy < ny and p.cells[iy, ix] and p.bottom.cells[iy, ix]:
+                out.append(float(p.bottom.height))
+        return out
+
+
+def _box(name: str, lo, hi, material: str, yaw: float = 0.0) -> tuple:
+    lo, hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+    return (name, 0.5 * (lo + hi), 0.5 * (hi - lo), material, yaw)
+
+
+def _flight(pit: ScanPit, plan: FloorPlan, plane_z: float, k0: int) -> tuple[list, dict | None]:
+    """A reached pit's tread boxes (named ``scan_pit_tread_<k>``) and its stair fit (None when
+    its link is steps: each step's region written as its rectangles)."""
+    link = pit.link
+    assert link is not None
+    levels = list(pit.levels)
+    chain = [link.lower, *link.via, link.upper]
+    fit = fit_stair(chain, levels, plan) if link.kind == "stair" else None
+    out: list = []
+    if fit is not None:
+        run = fit["run"]
+        yaw = float(math.atan2(run[1], run[0]))
+        for rect, h in zip(fit["rects"], fit["heights"], strict=True):
+            c = rect.mean(axis=0)
+            along = float(np.ptp(rect @ run))
+            across = float(np.ptp(rect @ np.array([-run[1], run[0]])))
+            half = np.array([along / 2, across / 2, (h - plane_z) / 2])
+            pos = np.array([c[0], c[1], (h + plane_z) / 2])
+            out.append((f"scan_pit_tread_{k0 + len(out)}", pos, half, LEVEL_MATERIAL, yaw))
+        return out, fit
+    r = plan.resolution
+    for i in link.via:
+        h = levels[i].height
+        for iy0, iy1, ix0, ix1, _ in rectangles(levels[i].cells.astype(np.int32)):
+            lo = (plan.x0 + ix0 * r, plan.y0 + iy0 * r, plane_z)
+            hi = (plan.x0 + ix1 * r, plan.y0 + iy1 * r, h)
+            out.append(_box(f"scan_pit_tread_{k0 + len(out)}", lo, hi, LEVEL_MATERIAL))
+    return out, None
+
+
+def _snap(lo: np.ndarray, hi: np.ndarray, fits: list[dict], res: float) -> None:
+    """Move a floor box's face lying within 1.5 cells of a flight's last riser onto it (a flight
+    along x or y), in place."""
+    for fit in fits:
+        run = fit["run"]
+        for ax in (0, 1):
+            if abs(run[ax]) < math.cos(AXIS_TOL):
+                continue
+            at = float(fit["top_edge"] * run[ax])  # the riser's line: coordinate ax
+            for face in (lo, hi):
+                if abs(face[ax] - at) <= 1.5 * res:
+                    face[ax] = at
+
+
+def pit_floor(plan: FloorPlan, pits: list[ScanPit]) -> PitFloor | None:
+    """The floor of a scan with reached pits (module docstring), or None without one.
+
+    Args:
+        plan: the floor plan (its grid, bounds and gaps).
+        pits: the scan's pits (:func:`mjwalk.scan.scanpits.find_pits`).
+
+    Returns:
+        The plane's height and the boxes; None when no pit is reached (the scene is written as
+        before).
+    """
+    reached = tuple(p for p in pits if p.kind == "level" and p.bottom is not None)
+    if not reached:
+        return None
+    plane_z = min(float(p.bottom.height) for p in reached if p.bottom is not None)
+    r = plan.resolution
+    opening = np.zeros(plan.floor.shape, bool)
+    boxes: list = []
+    fits = []
+    for p in reached:
+        assert p.bottom is not None
+        cells = ndimage.binary_closing(p.cells, np.ones((3, 3), bool), iterations=2) | p.cells
+        opening |= cells
+        treads, fit = _flight(p, plan, plane_z, len(boxes))
+        boxes += treads
+        fits += [fit] if fit is not None else []
+        if p.bottom.height > plane_z + 1e-6:  # a shallower pit: its bottom as a box
+            for iy0, iy1, ix0, ix1, _ in rectangles(cells.astype(np.int32)):
+                lo = (plan.x0 + ix0 * r, plan.y0 + iy0 * r, plane_z)
+                hi = (plan.x0 + ix1 * r, plan.y0 + iy1 * r, p.bottom.height)
+                boxes.append(_box(f"scan_pit_bottom_{len(boxes)}", lo, hi, LEVEL_MATERIAL))
+    floor: list = []
+    for iy0, iy1, ix0, ix1, _ in rectangles((~opening).astype(np.int32)):
+        low = np.array([plan.x0 + ix0 * r, plan.y0 + iy0 * r, plane_z])
+        high = np.array([plan.x0 + ix1 * r, plan.y0 + iy1 * r, 0.0])
+        _snap(low, high, fits, r)
+        floor.append(_box(f"{FLOOR_BOX_PREFIX}{len(floor)}", low, high, FLOOR_MATERIAL))
+    gaps = plan.gaps & ~opening if plan.gaps is not None else None
+    guards = gap_boxes(replace(plan, gaps=gaps))
+    return PitFloor(plane_z, floor + boxes + guards, reached)

@@ -1,0 +1,94 @@
+"""mjwalk.scan.pitscene: a pit a stair reaches is written as a level below the floor with its
+stair (the floor plane at its bottom, the floor as boxes round the opening); the written scene
+loads with the floor at 0, the pit at its depth and the stair between them, and a walk is
+planned from the floor down into the pit (issue 47).
+
+The seeded synthetic scan of tests/scan/test_scanpits.py: an 8 x 6 m hall, a 2 x 2 m opening at
+x in [-1, 1], y in [-0.5, 1.5], its bottom 0.51 m down, reached by three 0.17 m risers and
+0.28 m treads descending along +x from x = -1."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+import pytest
+from test_scanpits import PIT, STAIR, STAIR_SCANNERS, _scan
+
+from mjwalk.gait.default import default_model
+from mjwalk.plan.walks import plan_walk
+from mjwalk.scan import build_scene
+from mjwalk.scan.pitscene import pit_floor
+from mjwalk.scan.scene import read_sites
+from mjwalk.world import load_workplace
+from mjwalk.world.floorholes import FLOOR_BOX_PREFIX
+
+
+@pytest.fixture(scope="module")
+def stair_scan():
+    return _scan(STAIR, STAIR_SCANNERS)
+
+
+@pytest.fixture(scope="module")
+def written(stair_scan, tmp_path_factory):
+    d = tmp_path_factory.mktemp("pit")
+    sites = d / "sites.toml"
+    sites.write_text("[site.floor_a]\nxy = [-3.0, -2.0]\n[site.pit_b]\nxy = [0.5, 0.5]\n")
+    scene = build_scene(stair_scan, source="stair", sites=read_sites(sites))
+    path = d / "pit.xml"
+    path.write_text(scene.xml)
+    return scene, path
+
+
+def test_reached_pit_is_written_as_a_level_with_its_stair(written):
+    scene, _ = written
+    model = mujoco.MjModel.from_xml_string(scene.xml)
+    names = [model.geom(g).name for g in range(model.ngeom)]
+    assert not any(n.startswith("scan_pit_") and "tread" not in n for n in names)  # no guard
+    assert sum(n.startswith(FLOOR_BOX_PREFIX) for n in names) >= 4
+    assert sum(n.startswith("scan_pit_tread_") for n in names) == 2
+    plane = model.geom("floor")
+    assert model.geom_pos[plane.id][2] == pytest.approx(-0.51, abs=0.02)
+    assert scene.site_z["pit_b"] == pytest.approx(-0.51, abs=0.02)
+    assert scene.site_z["floor_a"] == pytest.approx(0.0, abs=0.01)
+    assert "written as a level below the floor with its stair" in scene.xml
+
+
+def test_written_scene_gives_the_floor_the_pit_and_the_stair(written):
+    _, path = written
+    wp = load_workplace(path)
+    graph = wp.levels
+    assert wp.floor_z == 0.0
+    assert graph.levels[0].kind == "floor" and graph.levels[0].height == pytest.approx(0.0)
+    heights = sorted(lv.height for lv in graph.levels)
+    assert heights == pytest.approx([-0.51, -0.34, -0.17, 0.0], abs=0.02)  # target: 2 cm
+    (stair,) = graph.links
+    assert stair.kind == "stair" and stair.upper == 0
+    assert graph.levels[stair.lower].height == pytest.approx(-0.51, abs=0.02)
+    assert len(stair.risers) == 3 and stair.risers[0] == pytest.approx(0.17, abs=0.005)
+    assert stair.tread == pytest.approx(0.28, abs=0.01)
+    assert float(wp.walk_clearance((0.0, 0.5))) < 0  # the opening is a wall on the floor
+
+
+def test_a_walk_is_planned_from_the_floor_down_into_the_pit(written):
+    _, path = written
+    wp = load_workplace(path)
+    walk = plan_walk(wp, "floor_a", "pit_b", default_model(progress=False), rng=5)
+    walk.validate()
+    route = walk.meta["levels"]["route"]
+    assert [r["kind"] for r in route] == ["level", "stair", "level"]
+    assert route[1]["direction"] == "down" and route[1]["risers"] == 3
+    graph = wp.levels
+    for s in walk.steps:  # every footfall within 1 cm of the surface under it
+        i = graph.surface_at(s.foot[:2], s.foot_z)
+        assert i is not None
+        assert abs(float(graph.surfaces[i].height_at(np.asarray(s.foot[:2]))) - s.foot_z) <= 0.01
+    for tread in (s for s in graph.surfaces if s.kind == "tread"):
+        assert sum(bool(tread.contains(s.foot[:2])) for s in walk.steps) == 1
+    assert walk.z[-1] == pytest.approx(-0.51, abs=0.02)
+
+
+def test_unreached_pit_stays_a_guard_rail_box():
+    points = _scan(PIT)
+    scene = build_scene(points, source="pit")
+    assert "scan_pit_0" in scene.xml and FLOOR_BOX_PREFIX not in scene.xml
+    assert pit_floor(scene.plan, scene.pits) is None
