@@ -69,6 +69,7 @@ def test_written_scene_gives_the_floor_the_pit_and_the_stair(written):
     assert float(wp.walk_clearance((0.0, 0.5))) < 0  # the opening is a wall on the floor
 
 
+@pytest.mark.slow  # about 22 s on a loaded 2-core machine (the hybrid A* on a scanned scene)
 def test_a_walk_is_planned_from_the_floor_down_into_the_pit(written):
     _, path = written
     wp = load_workplace(path)
