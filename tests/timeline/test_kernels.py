@@ -403,7 +403,7 @@ def test_broad_phase_finds_the_same_contacts(x):
         assert full, "the case must touch"
         assert _same(collision_report(tl, tol), full)
     # and it does prune: with the floor's ordinary tolerance fewer than half the frames are
-    # handed to MuJoCo (measured: 45 and 33 of 107)
+    # handed to MuJoCo (measured: 45 and 31 of 112)
     m = tl.model
     human, floorish = m.geom_group == HUMAN_GROUP, m.geom_type == mujoco.mjtGeom.mjGEOM_PLANE
     assert candidate_frames(m, tl.qpos, human, floorish, 0.01).sum() < len(tl.qpos) / 2
