@@ -15,7 +15,6 @@ from mjwalk.arms.chain import ARM_JOINTS, arm_joint
 from mjwalk.body.humanoid import pelvis_height
 from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.curves import smoothstep
-from mjwalk.body.legs.footcheck import lowest_point
 from mjwalk.timeline.collisions import collision_report
 from mjwalk.timeline.frames import (
     CARRY_POSE,
@@ -44,6 +43,9 @@ MIN_TURN = 0.25
 #: Speed (m/s) of a step back before a reach (:mod:`mjwalk.cycle.standoff`): a slow walk's
 #: speed (about half the preferred 1.3 m/s walking speed; Bohannon 1997).
 STEP_SPEED = 0.6
+#: The eight corners of a box geom, as signs of its half-sizes (the order of
+#: :func:`~mjwalk.body.legs.footcheck.lowest_point`'s).
+_BOX_CORNERS = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
 
 
 def standing_pose(ctx: CycleContext, x: float, y: float, yaw: float) -> np.ndarray:
@@ -166,17 +168,32 @@ def _feet_above_floor(ctx: CycleContext, frames: np.ndarray) -> None:
     """Raise the pelvis of ``frames`` (n, nq) in place where a blended pose puts a foot's lowest
     corner below the walk surface it stands on (the floor, z = 0, in a flat cycle): blending a
     landing pose (trailing heel raised, knee flexed) into the standing pose joint by joint
-    swings that foot's toes through the floor."""
+    swings that foot's toes through the floor. MuJoCo poses each frame; the corners of all
+    frames are then placed at once (:func:`_lowest_points`)."""
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
     feet = [m.geom(f"{jm.prefix}{g}").id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
     ground = ctx.ground(frames[-1, jm.root : jm.root + 2]) if len(frames) else 0.0
-    for q in frames:
+    xpos = np.empty((len(frames), len(feet), 3))
+    xmat = np.empty((len(frames), len(feet), 9))
+    for i, q in enumerate(frames):
         data.qpos[:] = q
         mujoco.mj_kinematics(m, data)
-        low = lowest_point(m, data, feet)
-        if low < ground:
-            q[jm.root + 2] += ground - low
+        xpos[i], xmat[i] = data.geom_xpos[feet], data.geom_xmat[feet]
+    low = _lowest_points(m.geom_size[feet], xpos, xmat)
+    below = np.flatnonzero(low < ground)
+    frames[below, jm.root + 2] += ground - low[below]
+
+
+def _lowest_points(size: np.ndarray, xpos: np.ndarray, xmat: np.ndarray) -> np.ndarray:
+    """(n,) the lowest corner's height (m) of G box geoms of half-sizes ``size`` (G, 3) placed
+    at ``xpos`` (n, G, 3) and turned by ``xmat`` (n, G, 9) in each of n poses: the number
+    :func:`~mjwalk.body.legs.footcheck.lowest_point` gives for each pose (the same products,
+    one (8, 3) by (3, 3) matrix product per geom and pose, stacked)."""
+    offsets = _BOX_CORNERS[None] * size[:, None]  # (G, 8, 3) in the geoms' axes
+    turn = xmat.reshape(*xmat.shape[:2], 3, 3).swapaxes(-1, -2)
+    corners = xpos[:, :, None, :] + offsets[None] @ turn  # (n, G, 8, 3)
+    return corners[..., 2].min(axis=(1, 2))
 
 
 def _settle(frames: np.ndarray, start: np.ndarray, r: int, hinges: np.ndarray) -> None:

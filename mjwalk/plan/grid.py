@@ -162,14 +162,28 @@ def _near_cells(
     ends = np.array([grid.centre(j, i) for j, i in cells])
     dist = np.linalg.norm(ends - p, axis=1)
     counts = [max(2, int(np.ceil(d / SAMPLE_SPACING)) + 1) for d in dist]
-    pts = np.concatenate(
-        [p + np.linspace(0.0, 1.0, k)[:, None] * (c - p) for k, c in zip(counts, ends, strict=True)]
-    )
+    # each segment's samples p + s (c - p), s = linspace(0, 1, k): all segments at once
+    s = np.concatenate([_unit_steps(k) for k in counts])
+    pts = p + s[:, None] * np.repeat(ends - p, counts, axis=0)
     ok = workplace.walk_clearance(pts) >= radius
     seg_ok = np.logical_and.reduceat(ok, np.cumsum([0, *counts[:-1]]))
     return [
         (j * nx + i, float(d)) for (j, i), d, good in zip(cells, dist, seg_ok, strict=True) if good
     ]
+
+
+def _unit_steps(k: int) -> np.ndarray:
+    """``np.linspace(0, 1, k)``, kept per ``k`` (read-only): a route's ends sample their
+    segments with a handful of sample counts."""
+    steps = _UNIT_STEPS.get(k)
+    if steps is None:
+        steps = _UNIT_STEPS[k] = np.linspace(0.0, 1.0, k)
+        steps.setflags(write=False)
+    return steps
+
+
+#: :func:`_unit_steps` by sample count.
+_UNIT_STEPS: dict[int, np.ndarray] = {}
 
 
 def _astar(

@@ -345,6 +345,8 @@ def candidate_frames(
         scene.size,
         scene.rbound,
         reach_solid,
+        scene.n_sub,
+        scene.sub_reach,
         centre,
         half,
         normals,
@@ -365,6 +367,10 @@ class StaticScene:
         size: (G, 3) their sizes.
         rbound: (G,) their bounding-sphere radii.
         reach_solid: (G,) how near (m) each may come to a scene box before a frame counts.
+        n_sub: (G,) how many spheres along a capsule's axis cover it, ceil(half-length /
+            radius) (1 for other geoms: the bounding sphere alone), each of the capsule's
+            radius plus a piece's half-length.
+        sub_reach: (G,) how near (m) those spheres' centres may come to a scene box.
         centre: (S, 3) the scene boxes' centres.
         half: (S, 3) their half-extents along the world axes.
         normals: (P, 3) the floor planes' normals.
@@ -376,6 +382,8 @@ class StaticScene:
     size: np.ndarray
     rbound: np.ndarray
     reach_solid: np.ndarray
+    n_sub: np.ndarray
+    sub_reach: np.ndarray
     centre: np.ndarray
     half: np.ndarray
     normals: np.ndarray
@@ -413,12 +421,21 @@ def _static_scene(
     R = data.geom_xmat[solids].reshape(-1, 3, 3)
     aabb = model.geom_aabb[solids]
     normals = np.array([data.geom_xmat[g].reshape(3, 3)[:, 2] for g in floors]).reshape(-1, 3)
+    # a capsule within its bounding sphere's reach is looked at closer: the spheres along its
+    # axis that cover it (n of them, radius r + h / n), with the same margins and slack
+    types, size = model.geom_type[hid].astype(np.int64), model.geom_size[hid]
+    capsule = (types == _CAPSULE) & (size[:, 0] > 0.0)
+    n_sub = np.ones(len(hid), dtype=np.int64)
+    n_sub[capsule] = np.maximum(1, np.ceil(size[capsule, 1] / size[capsule, 0])).astype(np.int64)
+    margins = model.geom_margin[hid] + slack + model.geom_margin[solids].max(initial=0.0)
     kept[key] = StaticScene(
         hid=hid,
-        types=model.geom_type[hid].astype(np.int64),
-        size=model.geom_size[hid],
+        types=types,
+        size=size,
         rbound=model.geom_rbound[hid],
         reach_solid=reach + model.geom_margin[solids].max(initial=0.0),
+        n_sub=n_sub,
+        sub_reach=size[:, 0] + size[:, 1] / n_sub + margins,
         centre=data.geom_xpos[solids] + np.einsum("gij,gj->gi", R, aabb[:, :3]),
         half=np.einsum("gij,gj->gi", np.abs(R), aabb[:, 3:]),
         normals=normals,
@@ -437,11 +454,15 @@ _SPHERE, _CAPSULE, _CYLINDER, _BOX = (
 
 
 @njit
-def _touching(xpos, xmat, types, size, rbound, reach, centre, half, normals, origins, depth):
+def _touching(
+    xpos, xmat, types, size, rbound, reach, n_sub, sub_reach, centre, half, normals, origins, depth
+):
     """(F,) frames where a humanoid geom (centres ``xpos`` (F, G, 3), rotations ``xmat``
     (F, G, 9), MuJoCo ``types``/``size``/``rbound`` (G,)) comes within ``reach`` (G,) of a
-    scene box (``centre``, ``half`` (S, 3), world axes), or its lowest point lies more than
-    ``depth`` below a floor plane (``normals``, ``origins`` (P, 3)). Metres."""
+    scene box (``centre``, ``half`` (S, 3), world axes), a capsule's bounding sphere only
+    where one of its ``n_sub`` spheres along the axis comes within ``sub_reach`` of it
+    (:func:`_sub_spheres_reach`), or its lowest point lies more than ``depth`` below a floor
+    plane (``normals``, ``origins`` (P, 3)). Metres."""
     n, g_n, s_n, p_n = xpos.shape[0], xpos.shape[1], centre.shape[0], normals.shape[0]
     hit = np.zeros(n, dtype=np.bool_)
     near = np.zeros(s_n, dtype=np.bool_)
@@ -467,7 +488,10 @@ def _touching(xpos, xmat, types, size, rbound, reach, centre, half, normals, ori
                     e = abs(xpos[f, g, j] - centre[k, j]) - half[k, j]
                     if e > 0.0:
                         d2 += e * e
-                if d2 <= reach[g] * reach[g]:
+                if d2 <= reach[g] * reach[g] and (
+                    n_sub[g] == 1
+                    or _sub_spheres_reach(xpos, xmat, f, g, k, centre, half, size, n_sub, sub_reach)
+                ):
                     hit[f] = True
                     break
             if hit[f]:
@@ -500,6 +524,29 @@ def _touching(xpos, xmat, types, size, rbound, reach, centre, half, normals, ori
             if hit[f]:
                 break
     return hit
+
+
+@njit
+def _sub_spheres_reach(xpos, xmat, f, g, k, centre, half, size, n_sub, sub_reach):
+    """Whether one of the ``n_sub[g]`` spheres covering capsule ``g`` in frame ``f`` comes within
+    ``sub_reach[g]`` of scene box ``k`` (world axes; metres). The spheres are centred on the
+    capsule's axis (half-length ``size[g, 1]``, the geom's z axis: column 2 of ``xmat``) at
+    the middles of ``n_sub`` equal pieces; each piece's points lie within its half-length of
+    its centre, so the capsule lies within its radius plus that of some centre
+    (:class:`StaticScene`)."""
+    m = n_sub[g]
+    h = size[g, 1]
+    r2 = sub_reach[g] * sub_reach[g]
+    for i in range(m):
+        t = -h + (2 * i + 1) * h / m
+        d2 = 0.0
+        for j in range(3):
+            e = abs(xpos[f, g, j] + t * xmat[f, g, 3 * j + 2] - centre[k, j]) - half[k, j]
+            if e > 0.0:
+                d2 += e * e
+        if d2 <= r2:
+            return True
+    return False
 
 
 def check_collisions(

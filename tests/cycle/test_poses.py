@@ -55,3 +55,28 @@ def test_the_carrying_posture_holds_the_palms_the_parts_width_apart(ctx):
     palms = hand_points(ctx, q[None])
     assert palms.shape == (1, 2, 3)
     assert float(np.linalg.norm(palms[0, 0] - palms[0, 1])) == pytest.approx(0.40, abs=1e-3)
+
+
+def test_a_turn_settling_from_a_landing_keeps_the_feet_on_the_floor(ctx):
+    # a landing pose (hip, knee and ankle flexed): blended joint by joint into the standing pose
+    # its toes would dip 4 mm into the floor; the settle lifts the pelvis of those frames
+    import mujoco  # deferred: only this test poses the humanoid itself
+
+    from mjwalk.body.legs.footcheck import lowest_point
+
+    m, jm = ctx.model, ctx.jointmap
+    r = jm.root
+    landing = standing_pose(ctx, 0.0, 0.0, 0.0)
+    for name in ("hip_r_flex", "knee_r", "ankle_r_flex"):
+        landing[jm.adr(name)] = 0.4
+    frames, _ = turn_frames(ctx, (0.0, 0.0), 0.0, 1.0, 30.0, settle=landing)
+    data = mujoco.MjData(m)
+    feet = [m.geom(f"{jm.prefix}{g}").id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
+    lows = []
+    for q in frames:
+        data.qpos[:] = q
+        mujoco.mj_kinematics(m, data)
+        lows.append(lowest_point(m, data, feet))
+    assert min(lows) > -1e-12  # on or above the floor, to round-off
+    assert frames[:, r + 2].max() > landing[r + 2] + 1e-3  # settled, and lifted
+    assert frames[-1, r + 2] == pytest.approx(standing_pose(ctx, 0.0, 0.0, 1.0)[r + 2], abs=1e-9)
