@@ -54,6 +54,7 @@ from mjwalk.body.legs.edgeswing import (
     StepSurfaces,
     edge_swing,
     sole_rise,
+    swing_clearance,
 )
 from mjwalk.body.legs.ik import KNEE_MIN, generic_joint, leg_ik_world
 from mjwalk.body.legs.stance import reach_deficit
@@ -364,10 +365,14 @@ def _place_swings(frames, surfs, tr: LevelTracks, feet: FootTracks, flat_ankle,
                 flat_landing(feet, fr, tr.air[fr.other])
             # the foot levelled after lift-off (toes and sole straighten), the landing pitch
             # taken at the end; :func:`_swing_pitch` then turns it toes down where the ankle
-            # cannot dorsiflex that far
+            # cannot dorsiflex that far. Down a stair the foot is not levelled: it stays toes
+            # down from toe-off to its forefoot landing (the ankle plantarflexed in swing:
+            # McFadyen & Winter 1988; Riener et al. 2002)
             tau = np.arange(len(k)) / (len(k) - 1)
             ease = 1.0 - smoothstep(tau / 0.25)
             land = smoothstep((tau - 0.8) / 0.2)
+            if _descends(sf):
+                ease, land = 1.0 - smoothstep(tau), smoothstep(tau)
             feet.pitch[s][k] = feet.pitch[s][k[0]] * ease + feet.pitch[s][k[-1]] * land
             feet.toe[s][k] = feet.toe[s][k[0]] * ease + feet.toe[s][k[-1]] * land
             plans.append((fr, sf, k, feet.ankle[s][k].copy()))
@@ -405,8 +410,10 @@ def _swing_pitch(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
     swing is planned again so that the toes and the heel of that pitched foot clear the edges
     (the swing rises where they would not). In place; returns the least clearance, metres."""
     up = [p for p in plans if p[1].land > p[1].lift + LEVEL_STEP]
-    rest = _plan_edged([p for p in plans if p[1].land <= p[1].lift + LEVEL_STEP], feet, geom)
-    least = _plan_edged(up, feet, geom)
+    down = [p for p in plans if _descends(p[1])]
+    _plan_edged(down, feet, geom)  # their clearance is :func:`_soles_clear`'s
+    rest = [p for p in plans if p[1].land <= p[1].lift + LEVEL_STEP and not _descends(p[1])]
+    least = min(_plan_edged(rest, feet, geom), _plan_edged(up, feet, geom))
     top = math.radians(ROM_DEG["ankle_flex"][1])
     for _ in range(SWING_PASSES if up else 0):
         moved = False
@@ -424,7 +431,7 @@ def _swing_pitch(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
         if not moved:
             break
         least = _plan_edged(up, feet, geom)
-    return min(least, rest)
+    return least
 
 
 #: Passes of :func:`_soles_clear` (lift the soles over their surfaces, pitch the foot to what
@@ -448,12 +455,16 @@ def _ankle_pitch(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
 
 
 def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarray,
-                 geom: LegGeometry) -> None:  # fmt: skip
+                 geom: LegGeometry) -> float:  # fmt: skip
     """The swing feet of the edged swings ``plans`` kept above their surfaces at the pitch the
     ankle holds: where a sole point (heel, ball, toe tip) of the foot so pitched would lie
     below the tread under it (the toes of a foot hanging toes down as it lowers onto a tread),
     the ankle rises by the depth (:func:`~mjwalk.body.legs.edgeswing.sole_rise`), and the
-    foot is pitched again to what the ankle reaches there; in place."""
+    foot is pitched again to what the ankle reaches there; in place. Down a stair the swing
+    is planned for a level sole (:func:`edge_swing`) and only this keeps the toes-down foot
+    off the treads: lifting it further, to :data:`STAIR_TOE_CLEARANCE` over the nosings,
+    gave knee peaks of 100-102 deg against :data:`KNEE_PEAK_DOWN`. Returns the least
+    clearance over the descents' edges, metres (inf without descents)."""
     for _ in range(SOLE_PASSES):
         _ankle_pitch(plans, feet, root, yaw, geom)
         moved = False
@@ -465,6 +476,20 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
             moved = moved or bool(rise.max() > 1e-4)
         if not moved:
             break
+    least = math.inf
+    for fr, sf, k, _ in plans:
+        if _descends(sf):
+            s = fr.side
+            gap = swing_clearance(feet.ankle[s][k], feet.pitch[s][k], feet.toe[s][k],
+                                  feet.fyaw[s][k], fr, sf, geom)  # fmt: skip
+            least = min(least, gap)
+    return least
+
+
+def _descends(sf: StepSurfaces) -> bool:
+    """Whether an edged step is a step down a stair (its stance and landing surfaces each lower
+    than the one before), whose swing :func:`edge_swing` plans for a level sole."""
+    return sf.stance < sf.lift - LEVEL_STEP and sf.land < sf.stance - LEVEL_STEP
 
 
 def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, root: np.ndarray,
@@ -509,9 +534,8 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
             break
         new_root[:, 2] -= spread(np.maximum(deficit, 0.0) + 2e-3, win)
     least = _swing_pitch(plans, feet, new_root, yaw, geom) if plans else math.inf
-    up = [p for p in plans if p[1].land > p[1].lift + LEVEL_STEP]
-    if up:  # descent: raising the held-back foot lifts the knee peak past KNEE_PEAK_DOWN
-        _soles_clear(up, feet, new_root, yaw, geom)
+    if plans:
+        least = min(least, _soles_clear(plans, feet, new_root, yaw, geom))
     raw = {s: _heel_rises(feet, s, new_root, yaw, grounded[s], geom) for s in "lr"}
     angles: dict[str, np.ndarray] = {}
     for s in "lr":
