@@ -42,6 +42,22 @@ def test_ramp_pitch_is_found():
     assert not step_surfaces(walk)[3].edged
 
 
+def test_ramp_pitch_only_on_the_route_s_ramps():
+    """With the level planner's route in the walk's meta, a footfall is pitched only in a ramp
+    crossing's steps: the same ramp walk read as level parts gets no pitch (the walk's height
+    eases over a stair's ends and read as a 7 deg slope on a level landing)."""
+    walk = synthetic_ramp_walk(np.deg2rad(5.5))
+    n = len(walk.steps)
+    walk.meta["levels"] = {
+        "route": [{"kind": "level", "steps": 3}, {"kind": "ramp", "steps": n - 3}]
+    }
+    surfs = step_surfaces(walk)
+    assert all(sf.land_pitch == 0.0 for sf in surfs[:3])
+    assert surfs[3].land_pitch == pytest.approx(np.deg2rad(5.5), abs=np.deg2rad(0.2))
+    walk.meta["levels"]["route"] = [{"kind": "level", "steps": n}]
+    assert all(sf.land_pitch == 0.0 and sf.stance_pitch == 0.0 for sf in step_surfaces(walk))
+
+
 def test_flat_walk_takes_the_flat_path():
     motion = legs_from_walk(synthetic_walk())
     assert "edge_clearance" not in motion.meta

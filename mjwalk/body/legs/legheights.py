@@ -148,6 +148,22 @@ def surface_pitch(walk: WalkPath, print_: np.ndarray) -> float:
     return pitch
 
 
+def _on_ramp(walk: WalkPath) -> list[bool]:
+    """Per step of ``walk`` whether its footfall may stand on a ramp: from the level planner's
+    route (``meta["levels"]["route"]``: its parts' kinds and step counts, in order), only the
+    steps of a ramp crossing; without that route, every step (:func:`surface_pitch` judges).
+    The walk's height eases over a stair's first and last steps and would read as a slope
+    there (a foot on a level landing pitched 7 deg toes down)."""
+    route = (walk.meta or {}).get("levels", {}).get("route") if walk.meta else None
+    n = len(walk.steps)
+    if not route or sum(int(part.get("steps", 0)) for part in route) != n:
+        return [True] * n
+    out: list[bool] = []
+    for part in route:
+        out += [part.get("kind") == "ramp"] * int(part.get("steps", 0))
+    return out
+
+
 def step_surfaces(walk: WalkPath) -> list[StepSurfaces]:
     """Per step of ``walk`` its surfaces' heights and slopes (the first step lifts its foot from
     the stance foot's surface: a standing start).
@@ -159,12 +175,13 @@ def step_surfaces(walk: WalkPath) -> list[StepSurfaces]:
         one :class:`StepSurfaces` per step.
     """
     out = []
+    on_ramp = _on_ramp(walk)
     pitches = [
         (
-            surface_pitch(walk, np.asarray(s.foot, float)),
-            surface_pitch(walk, np.asarray(s.stance, float)),
+            surface_pitch(walk, np.asarray(s.foot, float)) if on_ramp[k] else 0.0,
+            surface_pitch(walk, np.asarray(s.stance, float)) if on_ramp[max(k - 1, 0)] else 0.0,
         )
-        for s in walk.steps
+        for k, s in enumerate(walk.steps)
     ]
     for k, s in enumerate(walk.steps):
         prev = walk.steps[k - 1] if k else None
