@@ -18,7 +18,8 @@ false) then passes through :func:`lift_to_levels`:
 * **The swing foot as its ankle holds it** (steps up): where the leg IK would ask the swing
   ankle for more dorsiflexion than its range (the shank leaning back behind a flexed knee),
   the foot hangs toes down by the excess and the swing is planned again with that pitch
-  (:func:`_swing_pitch`); a step up lands flat (:func:`flat_landing`), not on the heel.
+  (:func:`_swing_pitch`); a step up, or down by less than :data:`FOREFOOT_DROP`, lands flat
+  (:func:`flat_landing`), not on the heel.
 * **The pelvis follows the level.** Its height is the flat synthesis's plus the lower of the
   two feet's surfaces in double support (on a ramp their mean), changing over the single
   support of each step (smoothstep): up a stair the pelvis rises in weight acceptance and
@@ -335,13 +336,18 @@ def heel_rise(feet: FootTracks, s: str, dorsi: np.ndarray, grounded: np.ndarray,
 
 
 def flat_landing(feet: FootTracks, fr: StepFrames, air: np.ndarray) -> None:
-    """A step up landed flat: the landing foot touches its tread with the whole sole at the
-    place and heading it stands on once flat (no heel strike with the toes up, which up a stair
-    would leave the foot pitched over the riser edge); ``feet`` updated in place from the
-    landing sample until the foot is flat in the flat synthesis, or the other foot lifts off.
-    Stair ascent is landed on the forefoot or the whole foot, not the heel (McFadyen & Winter,
-    J Biomech 21:733-744 (1988); Riener et al., Gait Posture 15:32-44 (2002): the ankle is
-    dorsiflexed at initial contact; NOT verified here beyond the abstracts).
+    """A step up, or a step down by less than :data:`FOREFOOT_DROP`, landed flat: the landing
+    foot touches its tread with the whole sole at the place and heading it stands on once flat
+    (no heel strike with the toes up, which up a stair would leave the foot pitched over the
+    riser edge, and down a step tips the foot's back, turned about a heel landing next to the
+    riser, into that riser: measured on the first step off a stair's top landing and off the
+    platform's step); ``feet`` updated in place from the landing sample until the foot is flat
+    in the flat synthesis, or the other foot lifts off. Stair ascent is landed on the forefoot
+    or the whole foot, not the heel (McFadyen & Winter, J Biomech 21:733-744 (1988); Riener et
+    al., Gait Posture 15:32-44 (2002): the ankle is dorsiflexed at initial contact; NOT
+    verified here beyond the abstracts). Single steps down of 5 and 15 cm are landed rearfoot
+    first (the study cited at :data:`FOREFOOT_DROP`); the whole-sole landing is this module's
+    stand-in for that rearfoot landing (no published pitch at contact is used).
 
     Args:
         feet: the foot tracks, their grounded samples already on their surfaces.
@@ -364,8 +370,9 @@ def flat_landing(feet: FootTracks, fr: StepFrames, air: np.ndarray) -> None:
 def _place_swings(frames, surfs, tr: LevelTracks, feet: FootTracks, flat_ankle,
                   geom: LegGeometry) -> list:  # fmt: skip
     """The swing feet on their surfaces (in place): a swing between level or ramp surfaces is
-    the flat swing carried on its ends' heights; a step down is landed on the forefoot, a step
-    up flat; the pitch of a swing over step edges starts level. Returns the edged swings to
+    the flat swing carried on its ends' heights; a step down by :data:`FOREFOOT_DROP` or more
+    is landed on the forefoot, other steps up or down flat; the pitch of a swing over step
+    edges starts level (down a stair: toes down throughout). Returns the edged swings to
     plan, as (step, surfaces, samples from the last grounded one to the landing, the flat
     swing's ankles there (k, 3))."""
     plans = []
@@ -378,7 +385,7 @@ def _place_swings(frames, surfs, tr: LevelTracks, feet: FootTracks, flat_ankle,
         if sf.edged:
             if sf.lift - sf.land >= FOREFOOT_DROP:
                 forefoot_landing(feet, fr, tr.air[fr.other], geom)
-            elif sf.land > sf.lift + LEVEL_STEP:
+            elif abs(sf.land - sf.lift) > LEVEL_STEP:  # up, or down less than FOREFOOT_DROP
                 flat_landing(feet, fr, tr.air[fr.other])
             # the foot levelled after lift-off (toes and sole straighten), the landing pitch
             # taken at the end; :func:`_swing_pitch` then turns it toes down where the ankle
