@@ -42,7 +42,7 @@ def test_edged_and_pelvis_level():
             marks=pytest.mark.xfail(
                 strict=True,
                 reason="the descent foot hangs toes down (plantarflexed for its forefoot "
-                "landing) and is only lifted off the treads (sole_rise): least clearance 0 mm; "
+                "landing) and is only lifted off the treads (sole_rise): least clearance 2 mm; "
                 "lifting it to 3 cm over the nosings gave knee peaks of 100-102 deg (cited "
                 "80-100)",
             ),
@@ -86,9 +86,7 @@ def test_sole_rise_lifts_toes_hanging_into_a_tread():
 def test_swing_clearance_of_a_swing_as_it_stands():
     """Down a 0.17/0.28 stair, a swing carried level 1 cm above the upper (lift) tread clears
     its nosings by 1 cm; hanging 30 deg toes down it dips into the treads (negative); lifted
-    by sole_rise it dips no more than 5 mm (sole_rise lifts the heel, ball and toe tip over
-    their surfaces, swing_clearance also checks the sole between them over an edge: 3 mm
-    here)."""
+    by sole_rise it no longer does (within the 1 mm the check allows)."""
     g = leg_geometry(DEFAULT_STATURE)
     fr = StepFrames("l", "r", 0, 20, np.array([0.0, 0.09, 0.0]), np.array([0.56, 0.09, 0.0]),
                     np.array([0.28, -0.09, 0.0]), False, False)  # fmt: skip
@@ -102,4 +100,4 @@ def test_swing_clearance_of_a_swing_as_it_stands():
     pitch = np.where((np.arange(m) > 3) & (np.arange(m) < m - 4), np.deg2rad(-30.0), 0.0)
     assert swing_clearance(ankle, pitch, zero, zero, fr, surf, g) < -0.05
     ankle[:, 2] += sole_rise(ankle, pitch, zero, zero, fr, surf, g)
-    assert swing_clearance(ankle, pitch, zero, zero, fr, surf, g) > -0.005
+    assert swing_clearance(ankle, pitch, zero, zero, fr, surf, g) > -1e-3

@@ -292,7 +292,8 @@ def _descent_swing(ankle, u_f, tau, edges: _Edges, heel_x, lift, floor: float,
         edges: the step's edges (chord metres, heights metres).
         heel_x: (m,) the heel's forward offset from the ankle, metres.
         lift: (lift footprint (x, y), chord unit vector).
-        floor: the ankle's height over an edge's height (clearance + ankle), metres.
+        floor: the ankle's height over an edge's height (clearance + the heel's depth under
+            the ankle), metres: one value, or (m,) per sample.
         t_a: the swing's time fraction at which the foot starts forward (its toe tip clear
             of the lift tread's nosing).
 
@@ -307,11 +308,11 @@ def _descent_swing(ankle, u_f, tau, edges: _Edges, heel_x, lift, floor: float,
     px, pz = [], []
     for k, (hi, ze) in enumerate(zip(edges.hi, edges.z, strict=True)):
         px.append(hi)
-        pz.append(ze + floor)
+        pz.append(ze)
         if k + 1 < len(edges.hi):
             px.append(hi + 0.5 * (edges.hi[k + 1] - hi))
-            pz.append(edges.z[k + 1] + floor)
-    z = np.interp(x_heel, px, pz)
+            pz.append(edges.z[k + 1])
+    z = np.interp(x_heel, px, pz) + floor
     z_a, z_b = float(ankle[0, 2]), float(ankle[-1, 2])
     z = z + (z_a - z[0]) * (1.0 - smoothstep(tau / 0.15))
     past = np.flatnonzero(x_heel >= edges.hi[-1])
@@ -328,12 +329,15 @@ def _descent_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeo
     """:func:`_descent_swing` from lift-off: the foot, hanging toes down (plantarflexed for a
     forefoot landing, as stair descent's swing carries it: McFadyen & Winter 1988; Riener et
     al. 2002), moves forward at once and its toes roll over the lift tread's nosing (not held
-    behind it while the foot would level out); :func:`sole_rise` then lifts the sole where it
-    would dip into a tread. ``time`` = (u_f, tau), ``foot`` =
-    (pitch, toe) per sample, ``levels`` = (clearance, the ankle's height over an edge);
+    behind it while the foot would level out); its height keeps the heel of the foot as
+    pitched (not a level sole's) over the edges, and :func:`sole_rise` then lifts the sole
+    where it would dip into a tread. ``time`` = (u_f, tau), ``foot`` = (pitch, toe) per
+    sample, ``levels`` = (clearance, the ankle's height over an edge for a level sole);
     returns (m, 3) ankles, metres."""
     (u_f, tau), (pitch, toe), (_, floor) = time, foot, levels
-    _, _, heel_x, _ = _toe_heel(pitch, toe, geom)
+    _, _, heel_x, heel_z = _toe_heel(pitch, toe, geom)
+    # the heel of the foot as pitched (toes down: higher than a level sole's) over the edges
+    floor = floor - geom.ankle_height - heel_z
     seg = fr.land[:2] - fr.lift[:2]
     lift = (fr.lift[:2], seg / max(float(np.hypot(*seg)), 1e-9))
     return _descent_swing(ankle, u_f, tau, edges, heel_x, lift, floor)
@@ -404,8 +408,9 @@ def sole_rise(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: 
     """How far the swing ankle of an edged step must rise so that no point of its sole (heel,
     ball, toe tip, at the foot's pitch and toe angle) lies below the surface under it: over
     the span where an edge may lie (:func:`_step_edges`, moved off the grounded feet) the
-    higher of its two surfaces counts. The rise is smoothed over the samples around (a
-    running maximum over +-2 samples, Gaussian) and is nil at both ends (grounded).
+    higher of its two surfaces counts, and the sole between heel and ball or ball and toe tip
+    passes over an edge's ends no lower than that edge. The rise is smoothed over the samples
+    around (a running maximum over +-2 samples, Gaussian) and is nil at both ends (grounded).
 
     Args:
         ankle: (m, 3) the swing ankle from the last grounded sample to the landing, metres.
@@ -437,6 +442,15 @@ def sole_rise(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: 
     for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
         under = np.where((x >= lo - 1e-3) & (x <= hi + 1e-3), np.maximum(under, ze), under)
     need = np.maximum((under + margin - pts[..., 2]).max(axis=1), 0.0)
+    z = pts[..., 2]
+    for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
+        for a, b in ((0, 1), (1, 2)):  # the sole between heel and ball, ball and toe tip
+            for xe in (lo, hi):
+                lo_x, hi_x = np.minimum(x[:, a], x[:, b]), np.maximum(x[:, a], x[:, b])
+                over = (lo_x < xe) & (xe < hi_x)
+                w = np.clip((xe - x[:, a]) / np.where(over, x[:, b] - x[:, a], 1.0), 0.0, 1.0)
+                zs = z[:, a] + w * (z[:, b] - z[:, a])
+                need = np.where(over, np.maximum(need, ze + margin - zs), need)
     need[ends] = 0.0
     if not need.any():
         return need
