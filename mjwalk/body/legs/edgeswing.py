@@ -199,7 +199,10 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
     to clear the highest edge by ``clearance``, travels forward only while its sole clears the
     first edge and is past the last before it lowers (the flat swing's path, re-timed, for the
     horizontal motion; its pitch, toes and heading kept); raised further where the sole would
-    still come closer to an edge than ``clearance``.
+    still come closer to an edge than ``clearance``. A step down a stair
+    (:func:`_descent_swing`) is planned once, for a level sole: its foot hangs toes down, and
+    :func:`sole_rise` lifts it where that foot would dip into a tread (the clearance returned
+    is the planned level sole's).
 
     Args:
         ankle: (m, 3) the flat swing's ankle from the last grounded sample before lift-off
@@ -257,7 +260,7 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
         out[0], out[-1] = ankle[0], ankle[-1]
         need = _clearance_deficit(_sole_points(out[1:-1], pitch[1:-1], toe[1:-1], yaw[1:-1], geom),
                                   fr, edges, clearance)  # fmt: skip
-        if need <= 1e-4:
+        if need <= 1e-4 or descent:  # a descent's sole is lifted by sole_rise instead
             break
         extra += need + 0.005
     return out, clearance - need
@@ -273,12 +276,14 @@ DESCENT_PULL_THROUGH = 0.7
 def _descent_swing(ankle, u_f, tau, edges: _Edges, heel_x, lift, floor: float,
                    t_a: float = 0.0) -> np.ndarray:  # fmt: skip
     """The swing ankle of a step down (a stair descended, a step down): it moves forward over
-    the first ``DESCENT_PULL_THROUGH`` of the swing (the flat swing's path re-timed) while its
+    the first ``DESCENT_PULL_THROUGH`` of the swing (the flat swing's path re-timed, carried
+    onto the landing ankle) while its
     height follows the edges it passes -- its sole ``floor`` above the edge its heel has not
     yet passed, lowered to the next edge's height over the first half of the tread after it
     (the foot reaching down along the stair's pitch line, as stair descent's swing does
     rather than carrying the foot at the upper tread's height) -- then lowers onto the
-    landing tread; it starts at the toe-off ankle height, blended into that path over 15 %.
+    landing tread once its heel is past the last edge or the pull-through is over; it starts
+    at the toe-off ankle height, blended into that path over 15 %.
 
     Args:
         ankle: (m, 3) the flat swing's ankle, landing included (world, metres).
@@ -287,7 +292,8 @@ def _descent_swing(ankle, u_f, tau, edges: _Edges, heel_x, lift, floor: float,
         edges: the step's edges (chord metres, heights metres).
         heel_x: (m,) the heel's forward offset from the ankle, metres.
         lift: (lift footprint (x, y), chord unit vector).
-        floor: the ankle's height over an edge's height (clearance + ankle), metres.
+        floor: the ankle's height over an edge's height (clearance + the heel's depth under
+            the ankle), metres: one value, or (m,) per sample.
         t_a: the swing's time fraction at which the foot starts forward (its toe tip clear
             of the lift tread's nosing).
 
@@ -296,19 +302,23 @@ def _descent_swing(ankle, u_f, tau, edges: _Edges, heel_x, lift, floor: float,
     """
     u = smoothstep((tau - t_a) / max(DESCENT_PULL_THROUGH - t_a, 1e-3))
     xy = np.column_stack([np.interp(u, u_f, ankle[:, 0]), np.interp(u, u_f, ankle[:, 1])])
+    # onto the landing ankle (a forefoot landing's lies ahead of the footprint's)
+    xy += u[:, None] * (ankle[-1, :2] - xy[-1])[None, :]
     x_heel = (xy - lift[0]) @ lift[1] + heel_x
     px, pz = [], []
     for k, (hi, ze) in enumerate(zip(edges.hi, edges.z, strict=True)):
         px.append(hi)
-        pz.append(ze + floor)
+        pz.append(ze)
         if k + 1 < len(edges.hi):
             px.append(hi + 0.5 * (edges.hi[k + 1] - hi))
-            pz.append(edges.z[k + 1] + floor)
-    z = np.interp(x_heel, px, pz)
+            pz.append(edges.z[k + 1])
+    z = np.interp(x_heel, px, pz) + floor
     z_a, z_b = float(ankle[0, 2]), float(ankle[-1, 2])
     z = z + (z_a - z[0]) * (1.0 - smoothstep(tau / 0.15))
     past = np.flatnonzero(x_heel >= edges.hi[-1])
-    t_pass = float(tau[past[0]]) if len(past) else float(tau[-1])
+    # a foot hanging toes down may never bring its heel past the last edge: it lowers from the
+    # pull-through's end at the latest
+    t_pass = min(float(tau[past[0]]) if len(past) else 1.0, DESCENT_PULL_THROUGH)
     w = smoothstep((tau - t_pass) / max(1.0 - t_pass, 1e-9))
     z = z + w * (z_b - z)
     return np.column_stack([xy, z])
@@ -316,26 +326,21 @@ def _descent_swing(ankle, u_f, tau, edges: _Edges, heel_x, lift, floor: float,
 
 def _descent_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeometry,
                   levels) -> np.ndarray:  # fmt: skip
-    """:func:`_descent_swing` started once the toe tip clears the lift tread's nosing (held
-    behind it while the foot flattens, then eased back onto the path without a jump).
-    ``time`` = (u_f, tau), ``foot`` = (pitch, toe) per sample, ``levels`` = (clearance,
-    the ankle's height over an edge); returns (m, 3) ankles, metres."""
-    (u_f, tau), (pitch, toe), (clearance, floor) = time, foot, levels
-    _, tip_z, heel_x, _ = _toe_heel(pitch, toe, geom)
+    """:func:`_descent_swing` from lift-off: the foot, hanging toes down (plantarflexed for a
+    forefoot landing, as stair descent's swing carries it: McFadyen & Winter 1988; Riener et
+    al. 2002), moves forward at once and its toes roll over the lift tread's nosing (not held
+    behind it while the foot would level out); its height keeps the heel of the foot as
+    pitched (not a level sole's) over the edges, and :func:`sole_rise` then lifts the sole
+    where it would dip into a tread. ``time`` = (u_f, tau), ``foot`` = (pitch, toe) per
+    sample, ``levels`` = (clearance, the ankle's height over an edge for a level sole);
+    returns (m, 3) ankles, metres."""
+    (u_f, tau), (pitch, toe), (_, floor) = time, foot, levels
+    _, _, heel_x, heel_z = _toe_heel(pitch, toe, geom)
+    # the heel of the foot as pitched (toes down: higher than a level sole's) over the edges
+    floor = floor - geom.ankle_height - heel_z
     seg = fr.land[:2] - fr.lift[:2]
     lift = (fr.lift[:2], seg / max(float(np.hypot(*seg)), 1e-9))
-    out = _descent_swing(ankle, u_f, tau, edges, heel_x, lift, floor)
-    clear = out[:, 2] + tip_z >= edges.z[0] + clearance - 1e-9
-    t_a = 0.0 if clear[0] or not clear.any() else float(tau[np.argmax(clear)])
-    out = _descent_swing(ankle, u_f, tau, edges, heel_x, lift, floor, t_a)
-    free = out[:, :2].copy()
-    _keep_behind_edges(out, out[:, 2], clearance, pitch, toe, edges, fr, geom)
-    held = np.flatnonzero(np.any(out[:, :2] != free, axis=1) & (tau < 0.5))
-    if len(held):
-        r = held[-1]
-        ease = 1.0 - smoothstep((tau[r + 1 :] - tau[r]) / 0.15)
-        out[r + 1 :, :2] += (out[r, :2] - free[r])[None, :] * ease[:, None]
-    return out
+    return _descent_swing(ankle, u_f, tau, edges, heel_x, lift, floor)
 
 
 def _toe_heel(pitch, toe, geom: LegGeometry):
@@ -369,13 +374,43 @@ def _keep_behind_edges(out, z, clearance, pitch, toe, edges: _Edges, fr: StepFra
     out[:, :2] += (x_new - x)[:, None] * e
 
 
+def swing_clearance(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: LegGeometry,
+                    clearance: float = STAIR_TOE_CLEARANCE) -> float:  # fmt: skip
+    """The least clearance of an edged step's swing sole over its edges (and of its sole
+    points over the surfaces under them), as :func:`edge_swing` reports it, for a swing as it
+    now stands.
+
+    Args:
+        ankle: (m, 3) the swing ankle from the last grounded sample to the landing, metres.
+        pitch: (m,) the foot's pitch, radians, + toes up.
+        toe: (m,) the toe angle, radians.
+        yaw: (m,) the foot's heading, radians from +x CCW.
+        fr: the step.
+        surf: its surfaces.
+        geom: the leg and foot lengths.
+        clearance: the clearance sought over an edge, metres.
+
+    Returns:
+        the least clearance, metres (``clearance`` where the swing keeps it everywhere).
+    """
+    ends = [0, len(ankle) - 1]
+    edges = _edges_off_grounded(
+        _step_edges(fr, surf, geom),
+        _sole_points(ankle[ends], pitch[ends], toe[ends], yaw[ends], geom),
+        fr,
+    )
+    pts = _sole_points(ankle[1:-1], pitch[1:-1], toe[1:-1], yaw[1:-1], geom)
+    return clearance - _clearance_deficit(pts, fr, edges, clearance)
+
+
 def sole_rise(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: LegGeometry,
               margin: float = 0.002) -> np.ndarray:  # fmt: skip
     """How far the swing ankle of an edged step must rise so that no point of its sole (heel,
     ball, toe tip, at the foot's pitch and toe angle) lies below the surface under it: over
     the span where an edge may lie (:func:`_step_edges`, moved off the grounded feet) the
-    higher of its two surfaces counts. The rise is smoothed over the samples around (a
-    running maximum over +-2 samples, Gaussian) and is nil at both ends (grounded).
+    higher of its two surfaces counts, and the sole between heel and ball or ball and toe tip
+    passes over an edge's ends no lower than that edge. The rise is smoothed over the samples
+    around (a running maximum over +-2 samples, Gaussian) and is nil at both ends (grounded).
 
     Args:
         ankle: (m, 3) the swing ankle from the last grounded sample to the landing, metres.
@@ -407,6 +442,15 @@ def sole_rise(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: 
     for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
         under = np.where((x >= lo - 1e-3) & (x <= hi + 1e-3), np.maximum(under, ze), under)
     need = np.maximum((under + margin - pts[..., 2]).max(axis=1), 0.0)
+    z = pts[..., 2]
+    for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
+        for a, b in ((0, 1), (1, 2)):  # the sole between heel and ball, ball and toe tip
+            for xe in (lo, hi):
+                lo_x, hi_x = np.minimum(x[:, a], x[:, b]), np.maximum(x[:, a], x[:, b])
+                over = (lo_x < xe) & (xe < hi_x)
+                w = np.clip((xe - x[:, a]) / np.where(over, x[:, b] - x[:, a], 1.0), 0.0, 1.0)
+                zs = z[:, a] + w * (z[:, b] - z[:, a])
+                need = np.where(over, np.maximum(need, ze + margin - zs), need)
     need[ends] = 0.0
     if not need.any():
         return need

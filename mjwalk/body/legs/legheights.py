@@ -18,7 +18,8 @@ false) then passes through :func:`lift_to_levels`:
 * **The swing foot as its ankle holds it** (steps up): where the leg IK would ask the swing
   ankle for more dorsiflexion than its range (the shank leaning back behind a flexed knee),
   the foot hangs toes down by the excess and the swing is planned again with that pitch
-  (:func:`_swing_pitch`); a step up lands flat (:func:`flat_landing`), not on the heel.
+  (:func:`_swing_pitch`); a step up, or down by less than :data:`FOREFOOT_DROP`, lands flat
+  (:func:`flat_landing`), not on the heel.
 * **The pelvis follows the level.** Its height is the flat synthesis's plus the lower of the
   two feet's surfaces in double support (on a ramp their mean), changing over the single
   support of each step (smoothstep): up a stair the pelvis rises in weight acceptance and
@@ -54,6 +55,7 @@ from mjwalk.body.legs.edgeswing import (
     StepSurfaces,
     edge_swing,
     sole_rise,
+    swing_clearance,
 )
 from mjwalk.body.legs.ik import KNEE_MIN, generic_joint, leg_ik_world
 from mjwalk.body.legs.stance import reach_deficit
@@ -147,6 +149,22 @@ def surface_pitch(walk: WalkPath, print_: np.ndarray) -> float:
     return pitch
 
 
+def _on_ramp(walk: WalkPath) -> list[bool]:
+    """Per step of ``walk`` whether its footfall may stand on a ramp: from the level planner's
+    route (``meta["levels"]["route"]``: its parts' kinds and step counts, in order), only the
+    steps of a ramp crossing; without that route, every step (:func:`surface_pitch` judges).
+    The walk's height eases over a stair's first and last steps and would read as a slope
+    there (a foot on a level landing pitched 7 deg toes down)."""
+    route = (walk.meta or {}).get("levels", {}).get("route") if walk.meta else None
+    n = len(walk.steps)
+    if not route or sum(int(part.get("steps", 0)) for part in route) != n:
+        return [True] * n
+    out: list[bool] = []
+    for part in route:
+        out += [part.get("kind") == "ramp"] * int(part.get("steps", 0))
+    return out
+
+
 def step_surfaces(walk: WalkPath) -> list[StepSurfaces]:
     """Per step of ``walk`` its surfaces' heights and slopes (the first step lifts its foot from
     the stance foot's surface: a standing start).
@@ -158,12 +176,13 @@ def step_surfaces(walk: WalkPath) -> list[StepSurfaces]:
         one :class:`StepSurfaces` per step.
     """
     out = []
+    on_ramp = _on_ramp(walk)
     pitches = [
         (
-            surface_pitch(walk, np.asarray(s.foot, float)),
-            surface_pitch(walk, np.asarray(s.stance, float)),
+            surface_pitch(walk, np.asarray(s.foot, float)) if on_ramp[k] else 0.0,
+            surface_pitch(walk, np.asarray(s.stance, float)) if on_ramp[max(k - 1, 0)] else 0.0,
         )
-        for s in walk.steps
+        for k, s in enumerate(walk.steps)
     ]
     for k, s in enumerate(walk.steps):
         prev = walk.steps[k - 1] if k else None
@@ -317,13 +336,18 @@ def heel_rise(feet: FootTracks, s: str, dorsi: np.ndarray, grounded: np.ndarray,
 
 
 def flat_landing(feet: FootTracks, fr: StepFrames, air: np.ndarray) -> None:
-    """A step up landed flat: the landing foot touches its tread with the whole sole at the
-    place and heading it stands on once flat (no heel strike with the toes up, which up a stair
-    would leave the foot pitched over the riser edge); ``feet`` updated in place from the
-    landing sample until the foot is flat in the flat synthesis, or the other foot lifts off.
-    Stair ascent is landed on the forefoot or the whole foot, not the heel (McFadyen & Winter,
-    J Biomech 21:733-744 (1988); Riener et al., Gait Posture 15:32-44 (2002): the ankle is
-    dorsiflexed at initial contact; NOT verified here beyond the abstracts).
+    """A step up, or a step down by less than :data:`FOREFOOT_DROP`, landed flat: the landing
+    foot touches its tread with the whole sole at the place and heading it stands on once flat
+    (no heel strike with the toes up, which up a stair would leave the foot pitched over the
+    riser edge, and down a step tips the foot's back, turned about a heel landing next to the
+    riser, into that riser: measured on the first step off a stair's top landing and off the
+    platform's step); ``feet`` updated in place from the landing sample until the foot is flat
+    in the flat synthesis, or the other foot lifts off. Stair ascent is landed on the forefoot
+    or the whole foot, not the heel (McFadyen & Winter, J Biomech 21:733-744 (1988); Riener et
+    al., Gait Posture 15:32-44 (2002): the ankle is dorsiflexed at initial contact; NOT
+    verified here beyond the abstracts). Single steps down of 5 and 15 cm are landed rearfoot
+    first (the study cited at :data:`FOREFOOT_DROP`); the whole-sole landing is this module's
+    stand-in for that rearfoot landing (no published pitch at contact is used).
 
     Args:
         feet: the foot tracks, their grounded samples already on their surfaces.
@@ -346,8 +370,9 @@ def flat_landing(feet: FootTracks, fr: StepFrames, air: np.ndarray) -> None:
 def _place_swings(frames, surfs, tr: LevelTracks, feet: FootTracks, flat_ankle,
                   geom: LegGeometry) -> list:  # fmt: skip
     """The swing feet on their surfaces (in place): a swing between level or ramp surfaces is
-    the flat swing carried on its ends' heights; a step down is landed on the forefoot, a step
-    up flat; the pitch of a swing over step edges starts level. Returns the edged swings to
+    the flat swing carried on its ends' heights; a step down by :data:`FOREFOOT_DROP` or more
+    is landed on the forefoot, other steps up or down flat; the pitch of a swing over step
+    edges starts level (down a stair: toes down throughout). Returns the edged swings to
     plan, as (step, surfaces, samples from the last grounded one to the landing, the flat
     swing's ankles there (k, 3))."""
     plans = []
@@ -360,14 +385,18 @@ def _place_swings(frames, surfs, tr: LevelTracks, feet: FootTracks, flat_ankle,
         if sf.edged:
             if sf.lift - sf.land >= FOREFOOT_DROP:
                 forefoot_landing(feet, fr, tr.air[fr.other], geom)
-            elif sf.land > sf.lift + LEVEL_STEP:
+            elif abs(sf.land - sf.lift) > LEVEL_STEP:  # up, or down less than FOREFOOT_DROP
                 flat_landing(feet, fr, tr.air[fr.other])
             # the foot levelled after lift-off (toes and sole straighten), the landing pitch
             # taken at the end; :func:`_swing_pitch` then turns it toes down where the ankle
-            # cannot dorsiflex that far
+            # cannot dorsiflex that far. Down a stair the foot is not levelled: it stays toes
+            # down from toe-off to its forefoot landing (the ankle plantarflexed in swing:
+            # McFadyen & Winter 1988; Riener et al. 2002)
             tau = np.arange(len(k)) / (len(k) - 1)
             ease = 1.0 - smoothstep(tau / 0.25)
             land = smoothstep((tau - 0.8) / 0.2)
+            if _descends(sf):
+                ease, land = 1.0 - smoothstep(tau), smoothstep(tau)
             feet.pitch[s][k] = feet.pitch[s][k[0]] * ease + feet.pitch[s][k[-1]] * land
             feet.toe[s][k] = feet.toe[s][k[0]] * ease + feet.toe[s][k[-1]] * land
             plans.append((fr, sf, k, feet.ankle[s][k].copy()))
@@ -405,8 +434,10 @@ def _swing_pitch(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
     swing is planned again so that the toes and the heel of that pitched foot clear the edges
     (the swing rises where they would not). In place; returns the least clearance, metres."""
     up = [p for p in plans if p[1].land > p[1].lift + LEVEL_STEP]
-    rest = _plan_edged([p for p in plans if p[1].land <= p[1].lift + LEVEL_STEP], feet, geom)
-    least = _plan_edged(up, feet, geom)
+    down = [p for p in plans if _descends(p[1])]
+    _plan_edged(down, feet, geom)  # their clearance is :func:`_soles_clear`'s
+    rest = [p for p in plans if p[1].land <= p[1].lift + LEVEL_STEP and not _descends(p[1])]
+    least = min(_plan_edged(rest, feet, geom), _plan_edged(up, feet, geom))
     top = math.radians(ROM_DEG["ankle_flex"][1])
     for _ in range(SWING_PASSES if up else 0):
         moved = False
@@ -424,7 +455,7 @@ def _swing_pitch(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
         if not moved:
             break
         least = _plan_edged(up, feet, geom)
-    return min(least, rest)
+    return least
 
 
 #: Passes of :func:`_soles_clear` (lift the soles over their surfaces, pitch the foot to what
@@ -448,12 +479,16 @@ def _ankle_pitch(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
 
 
 def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarray,
-                 geom: LegGeometry) -> None:  # fmt: skip
+                 geom: LegGeometry) -> float:  # fmt: skip
     """The swing feet of the edged swings ``plans`` kept above their surfaces at the pitch the
     ankle holds: where a sole point (heel, ball, toe tip) of the foot so pitched would lie
     below the tread under it (the toes of a foot hanging toes down as it lowers onto a tread),
     the ankle rises by the depth (:func:`~mjwalk.body.legs.edgeswing.sole_rise`), and the
-    foot is pitched again to what the ankle reaches there; in place."""
+    foot is pitched again to what the ankle reaches there; in place. Down a stair the swing
+    is planned for a level sole (:func:`edge_swing`) and only this keeps the toes-down foot
+    off the treads: lifting it further, to :data:`STAIR_TOE_CLEARANCE` over the nosings,
+    gave knee peaks of 100-102 deg against :data:`KNEE_PEAK_DOWN`. Returns the least
+    clearance over the descents' edges, metres (inf without descents)."""
     for _ in range(SOLE_PASSES):
         _ankle_pitch(plans, feet, root, yaw, geom)
         moved = False
@@ -465,6 +500,20 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
             moved = moved or bool(rise.max() > 1e-4)
         if not moved:
             break
+    least = math.inf
+    for fr, sf, k, _ in plans:
+        if _descends(sf):
+            s = fr.side
+            gap = swing_clearance(feet.ankle[s][k], feet.pitch[s][k], feet.toe[s][k],
+                                  feet.fyaw[s][k], fr, sf, geom)  # fmt: skip
+            least = min(least, gap)
+    return least
+
+
+def _descends(sf: StepSurfaces) -> bool:
+    """Whether an edged step is a step down a stair (its stance and landing surfaces each lower
+    than the one before), whose swing :func:`edge_swing` plans for a level sole."""
+    return sf.stance < sf.lift - LEVEL_STEP and sf.land < sf.stance - LEVEL_STEP
 
 
 def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, root: np.ndarray,
@@ -509,9 +558,8 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
             break
         new_root[:, 2] -= spread(np.maximum(deficit, 0.0) + 2e-3, win)
     least = _swing_pitch(plans, feet, new_root, yaw, geom) if plans else math.inf
-    up = [p for p in plans if p[1].land > p[1].lift + LEVEL_STEP]
-    if up:  # descent: raising the held-back foot lifts the knee peak past KNEE_PEAK_DOWN
-        _soles_clear(up, feet, new_root, yaw, geom)
+    if plans:
+        least = min(least, _soles_clear(plans, feet, new_root, yaw, geom))
     raw = {s: _heel_rises(feet, s, new_root, yaw, grounded[s], geom) for s in "lr"}
     angles: dict[str, np.ndarray] = {}
     for s in "lr":
