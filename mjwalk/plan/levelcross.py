@@ -76,20 +76,62 @@ def _footfalls(c: Crossing, direction: str, walker: Walker) -> tuple[np.ndarray,
     return s, times
 
 
-def tread_setback(c: Crossing, s: np.ndarray, stature: float) -> np.ndarray:
-    """How far behind each footfall's tread centre (against the walking direction) the point
-    under the ankle is put so that the foot, not the ankle, is centred on its tread: half the
-    foot's length ahead of the ankle less its length behind
-    (:func:`mjwalk.anthropometry.leg_geometry`: 0.0665 m at 1.75 m), as
-    :func:`mjwalk.plan.synthetic.synthetic_stair_walk` places its footprints. Without it the
-    toes of a foot on a 0.28 m tread stand 6 cm into the next riser going up (measured, the
-    multi-level station's stair). The footfalls half a tread before the first riser and past
-    the last are centred on that half tread's depth the same way; the stances and ramps: 0.
+#: Least gap (m) between a foot standing on a level next to a flight and the riser face its toes
+#: (before the first riser going up) or its heel (past the last riser going down) turn to: the
+#: least foot clearance over a stair edge, 3 cm (Hamel, Okita, Higginson & Cavanagh, Gait
+#: Posture 21:135-140 (2005): clearances under 5 mm are the risky ones; as
+#: :data:`mjwalk.body.legs.edgeswing.STAIR_TOE_CLEARANCE`). A foot centred on half a tread's
+#: depth (0.14 m) is longer than it and stood 7 mm off the riser (1.75 m walker), closer than
+#: its toes reach forward of the flat foot at a heel strike (the ankle's height turned about
+#: the heel, about 1.5 cm measured): the toes then touched the first riser (the multi-level
+#: station's stair, run 0 of its cycle) and, going down, the heel the bottom riser.
+RISER_GAP = 0.03
+
+
+def flight_setback(s: np.ndarray, track: np.ndarray, up: bool, stature: float) -> np.ndarray:
+    """How far behind each footfall (against the walking direction) the point under the ankle
+    is put: on a tread, half the foot's length ahead of the ankle less its length behind, so
+    that the foot, not the ankle, is centred on its tread
+    (:func:`mjwalk.anthropometry.leg_geometry`: 0.0665 m at 1.75 m); on the level before the
+    first riser going up (after the last going down), at least enough to keep the toes (the
+    heel) :data:`RISER_GAP` off that riser's face. Positions are along the walking direction;
+    the risers lie halfway between consecutive track positions. The planner's
+    (:func:`tread_setback`) and :func:`mjwalk.plan.synthetic.synthetic_stair_walk`'s rule.
+
+    Args:
+        s: (k,) footfall positions, metres along the walking direction.
+        track: (t,) the flight's footfall positions in walking order (>= 2; the first before
+            the first edge, the last past the last edge), metres along the walking direction.
+        up: whether the walk climbs the flight.
+        stature: the walker's stature, metres.
+
+    Returns:
+        (k,) the setbacks, metres.
+    """
+    s, track = np.asarray(s, dtype=float), np.asarray(track, dtype=float)
+    g = leg_geometry(stature)
+    centred = np.full(len(s), 0.5 * (g.foot_front - g.foot_back))
+    if up:  # the toes of the foot before the first riser
+        first = 0.5 * (track[0] + track[1])
+        toe_gap = s + g.foot_front + RISER_GAP - first
+        return np.where(np.abs(s - track[0]) < 1e-9, np.maximum(centred, toe_gap), centred)
+    last = 0.5 * (track[-2] + track[-1])  # the heel of the foot past the last riser
+    heel_gap = s - g.foot_back - RISER_GAP - last
+    return np.where(np.abs(s - track[-1]) < 1e-9, np.minimum(centred, heel_gap), centred)
+
+
+def tread_setback(c: Crossing, s: np.ndarray, stature: float, direction: str = "up") -> np.ndarray:
+    """How far behind each footfall (against the walking direction) the point under the ankle
+    is put on a step or stair (:func:`flight_setback`: the foot centred on its tread, and off
+    the riser it faces from the level before or after the flight); ramps and the stances: 0.
+    Without it the toes of a foot on a 0.28 m tread stand 6 cm into the next riser going up
+    (measured, the multi-level station's stair).
 
     Args:
         c: the crossing.
         s: (k,) footfall positions along its axis, metres.
         stature: the walker's stature, metres.
+        direction: "up" (along the axis) or "down".
 
     Returns:
         (k,) the setbacks, metres (>= 0).
@@ -97,9 +139,10 @@ def tread_setback(c: Crossing, s: np.ndarray, stature: float) -> np.ndarray:
     s = np.asarray(s, dtype=float)
     if c.kind == "ramp":
         return np.zeros(len(s))
-    g = leg_geometry(stature)
+    sign = 1.0 if direction == "up" else -1.0
     on_track = (s >= c.track[0] - 1e-9) & (s <= c.track[-1] + 1e-9)
-    return np.where(on_track, 0.5 * (g.foot_front - g.foot_back), 0.0)
+    back = flight_setback(sign * s, np.sort(sign * c.track), direction == "up", stature)
+    return np.where(on_track, back, 0.0)
 
 
 def cross_walk(
@@ -161,7 +204,7 @@ def cross_walk(
     zs.append(pelvis_z)
     yaws.append(yaw0)
     n = 0
-    back = tread_setback(c, s, walker.stature) * (1.0 if direction == "up" else -1.0)
+    back = tread_setback(c, s, walker.stature, direction) * (1.0 if direction == "up" else -1.0)
     for k, (pos, dt) in enumerate(zip(s, times, strict=True)):
         sign = 1.0 if side == "left" else -1.0
         foot_xy = c.point(pos - back[k]) + sign * 0.5 * width * left

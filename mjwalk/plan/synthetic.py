@@ -11,10 +11,11 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.interpolate import PchipInterpolator
 
-from mjwalk.conventions import SAMPLE_RATE_HZ
+from mjwalk.conventions import DEFAULT_STATURE, SAMPLE_RATE_HZ
 from mjwalk.errors import MjwalkError
 from mjwalk.gait.stairs import StairGeometry, stair_gait
 from mjwalk.gait.walker import Walker
+from mjwalk.plan.levelcross import flight_setback
 from mjwalk.plan.walkpath import PathStep, WalkPath
 
 
@@ -117,12 +118,15 @@ def synthetic_stair_walk(
     step_time: float | None = None,
     width: float = 0.18,
     start: ArrayLike = (0.0, 0.0, 0.0),
-    setback: float = 0.0665,
+    stature: float = DEFAULT_STATURE,
 ) -> WalkPath:
     """A step-over-step walk up or down a straight stair of ``n`` risers, without planning:
-    from standing on the floor (up) or the top landing (down) with the stance foot on the tread
-    centre before the first riser, every step lands on the next tread's centre; a last step
-    brings the trailing foot beside it on the landing. The walk carries its heights
+    from standing on the floor (up) or the top landing (down) with the stance foot half a tread
+    before the first riser, every step lands on the next tread's centre; a last step brings the
+    trailing foot beside it on the landing half a tread past the last riser. The feet stand as
+    the level planner puts them (:func:`mjwalk.plan.levelcross.flight_setback`: each foot
+    centred on its tread, the feet on the level before and after the flight a gap off the riser
+    they face). The walk carries its heights
     (``WalkPath.z``, ``PathStep.foot_z``/``stance_z``).
 
     Args:
@@ -135,11 +139,7 @@ def synthetic_stair_walk(
         width: step width, metres.
         start: (x, y, heading): the first riser's edge line crosses the heading ``tread / 2``
             ahead of this point (the centre of the tread the walk starts on), metres, radians.
-        setback: how far each footprint (the point under the ankle) lies behind the tread's
-            centre, metres, so that the foot, not the ankle, is centred on the tread: half the
-            foot's front less its back, 0.0665 m for the default 1.75 m humanoid
-            (``mjwalk.body.humanoid.leg_geometry``: 0.1995 m ahead of the ankle, 0.0665 m
-            behind it).
+        stature: the walker's stature, metres (its foot's lengths place the footprints).
 
     Returns:
         the WalkPath; ``meta["stair"]`` holds riser, tread, n, direction and the first riser's
@@ -165,10 +165,11 @@ def synthetic_stair_walk(
     # footprint k on tread k (0: the start tread); the last one beside footprint n
     s_f = np.r_[np.arange(n + 1) * tread, n * tread]
     sides = ["right"] + ["left" if k % 2 else "right" for k in range(1, n + 2)]
+    back = flight_setback(s_f, np.arange(n + 1) * tread, direction == "up", stature)
 
     def footprint(k):
         lat = (0.5 if sides[k] == "left" else -0.5) * width
-        along = s_f[k] - setback
+        along = s_f[k] - back[k]
         return np.array([*(np.array([x0, y0]) + along * fwd + lat * left), h0])
 
     n_steps = n + 1

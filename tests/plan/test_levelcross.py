@@ -9,7 +9,7 @@ from mjwalk.anthropometry import leg_geometry
 from mjwalk.gait.slope import slope_gait
 from mjwalk.gait.stairs import ASCENT_STEP_TIME, DESCENT_STEP_TIME
 from mjwalk.gait.walker import Walker
-from mjwalk.plan.levelcross import cross_walk, crossing_time, tread_setback
+from mjwalk.plan.levelcross import RISER_GAP, cross_walk, crossing_time, tread_setback
 from mjwalk.plan.levelroute import crossings
 from mjwalk.world import load_workplace
 
@@ -59,17 +59,17 @@ def test_ramp_walk_follows_the_plane_at_the_ramp_pace(by_kind):
 
 @pytest.mark.parametrize("direction", ["up", "down"])
 def test_stair_feet_are_centred_on_their_treads(by_kind, direction):
-    """Every foot on the flight -- the treads and the half treads before the first riser and
-    past the last -- stands heel to toe tip within its tread's depth (the ankle set back by half
-    the foot's front less its back: :func:`tread_setback`), and no step spans the stance's
-    clearance and a tread at once: each foot moves at most two treads' depth."""
+    """Every foot on a tread stands heel to toe tip within its tread's depth (the ankle set
+    back by half the foot's front less its back: :func:`tread_setback`); the foot on the level
+    before the first riser going up (past the last going down) keeps its toes (heel)
+    :data:`RISER_GAP` off that riser's face; and no step spans the stance's clearance and a
+    tread at once: each foot moves at most two treads' depth (and that gap)."""
     stair, walker = by_kind["stair"], Walker()
     start = stair.end(stair.lower if direction == "up" else stair.upper)
     walk = cross_walk(stair, direction, walker, (start, stair.yaw), None, 0.0)
     g = leg_geometry(walker.stature)
-    assert tread_setback(stair, stair.track, walker.stature) == pytest.approx(
-        0.5 * (g.foot_front - g.foot_back)
-    )
+    back = tread_setback(stair, stair.track, walker.stature, direction)
+    assert back[1:-1] == pytest.approx(0.5 * (g.foot_front - g.foot_back))
     ahead = 1.0 if direction == "up" else -1.0  # the walking direction along the axis
     edges = 0.5 * (stair.track[:-1] + stair.track[1:])  # the risers
     bounds = np.concatenate([[edges[0] - stair.tread], edges, [edges[-1] + stair.tread]])
@@ -81,10 +81,16 @@ def test_stair_feet_are_centred_on_their_treads(by_kind, direction):
         if 1 <= k < len(bounds):  # on a tread or a half tread of the track
             on_flight += 1
             lo, hi = bounds[k - 1], bounds[k]
+            lo, hi = (-np.inf if k == 1 else lo), (np.inf if k == len(bounds) - 1 else hi)
             assert lo - 1e-9 <= min(heel, toe) and max(heel, toe) <= hi + 1e-9
+            if direction == "up" and k == 1:  # the toes before the first riser
+                assert edges[0] - toe >= RISER_GAP - 1e-9
+            if direction == "down" and k == len(bounds) - 1:  # the heel past the last riser
+                assert heel - edges[-1] >= RISER_GAP - 1e-9
     assert on_flight == len(stair.track)
     feet = {}
     for s in walk.steps:
         if s.side in feet:
-            assert np.hypot(*(s.foot[:2] - feet[s.side])) <= 2 * stair.tread + 1e-9
+            # two treads, and the level foot's step back off the riser (less than RISER_GAP)
+            assert np.hypot(*(s.foot[:2] - feet[s.side])) <= 2 * stair.tread + RISER_GAP
         feet[s.side] = s.foot[:2]

@@ -122,22 +122,7 @@ def test_soles_on_treads_are_standing_not_contacts(direction):
             assert not (abs(c.pos[2] - top) < 0.005 and inside)
 
 
-@pytest.mark.parametrize(
-    "direction",
-    [
-        "up",
-        pytest.param(
-            "down",
-            marks=pytest.mark.xfail(
-                strict=True,
-                reason="down: 9 contacts (55 on e2808db), all the last step's heel against the "
-                "bottom riser as it lands (6 mm) and while standing after the walk (0 mm): "
-                "synthetic_stair_walk puts the last two footprints with the heels 7 mm past "
-                "that riser",
-            ),
-        ),
-    ],
-)
+@pytest.mark.parametrize("direction", ["up", "down"])
 def test_stair_walk_has_no_contacts(direction):
     assert collision_report(timeline_from_walk(_stair_walk(direction), _MULTI)) == []
 
