@@ -56,8 +56,17 @@ def geom_poses(
         ``(xpos, xmat)``: (F, G, 3) world positions, metres, and (F, G, 9) rotation matrices
         (row-major).
     """
-    qpos = np.ascontiguousarray(qpos, dtype=float).reshape(-1, model.nq)
     geoms = np.asarray(geoms, dtype=np.int64)
+    bodies = model.geom_bodyid[geoms].astype(np.int64)
+    return _frames_on_bodies(model, qpos, bodies, model.geom_pos[geoms], model.geom_quat[geoms])
+
+
+def _frames_on_bodies(
+    model: mujoco.MjModel, qpos: np.ndarray, bodies: np.ndarray, pos: np.ndarray, quat: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """World poses of frames fixed on bodies (``pos``/``quat`` in each body's frame), in every
+    frame of ``qpos``, by the compiled kernel."""
+    qpos = np.ascontiguousarray(qpos, dtype=float).reshape(-1, model.nq)
     return _geom_poses(
         qpos,
         model.qpos0,
@@ -70,10 +79,10 @@ def geom_poses(
         model.jnt_qposadr.astype(np.int64),
         model.jnt_axis,
         model.jnt_pos,
-        model.geom_bodyid[geoms].astype(np.int64),
-        model.geom_pos[geoms],
-        model.geom_quat[geoms],
-        _chains(model, model.geom_bodyid[geoms]),
+        bodies,
+        pos,
+        quat,
+        _chains(model, bodies),
     )
 
 
@@ -93,27 +102,10 @@ def body_poses(
         ``(xpos, xmat)``: (F, B, 3) world positions, metres, and (F, B, 9) rotation matrices
         (row-major).
     """
-    qpos = np.ascontiguousarray(qpos, dtype=float).reshape(-1, model.nq)
     bodies = np.asarray(bodies, dtype=np.int64)
     here = np.zeros((len(bodies), 4))
     here[:, 0] = 1.0  # the identity rotation: the body's own frame
-    return _geom_poses(
-        qpos,
-        model.qpos0,
-        model.body_parentid.astype(np.int64),
-        model.body_jntadr.astype(np.int64),
-        model.body_jntnum.astype(np.int64),
-        model.body_pos,
-        model.body_quat,
-        model.jnt_type.astype(np.int64),
-        model.jnt_qposadr.astype(np.int64),
-        model.jnt_axis,
-        model.jnt_pos,
-        bodies,
-        np.zeros((len(bodies), 3)),
-        here,
-        _chains(model, bodies),
-    )
+    return _frames_on_bodies(model, qpos, bodies, np.zeros((len(bodies), 3)), here)
 
 
 def _chains(model: mujoco.MjModel, bodies: np.ndarray) -> np.ndarray:
