@@ -339,11 +339,10 @@ class HybridPlanner:
         followed instead, on the same terms.
 
         When the open list runs dry (every sampled continuation blocked, which happens now and
-        then in tight places), the search starts over with fresh samples, without the guide and
-        without a split turn (the whole turn on the spot), up to ``attempts`` times in all; a
-        spent expansion budget ends the planning at once. A walk that loops
-        (:data:`WANDER_FACTOR`) is searched again too, up to :data:`WANDER_SEARCHES` searches
-        in all, and the shortest is kept.
+        then in tight places: a rack beside a split turn's first steps), the search starts over
+        with fresh samples, no guide and the whole turn on the spot, up to ``attempts`` times;
+        a spent budget ends the planning at once. A walk that loops (:data:`WANDER_FACTOR`) is
+        searched again too, up to :data:`WANDER_SEARCHES` searches, and the shortest is kept.
 
         Args:
             walk: a :class:`~mjwalk.plan.request.WalkRequest`, or its start alone.
@@ -388,9 +387,7 @@ class HybridPlanner:
                 spent += exc.expansions
                 exhausted += 1
                 guide = None  # a dead end along the guide: the route search decides from now
-                # a dead end from a split turn's first steps (e.g. the rack beside the walker
-                # in the way of setting off at an angle): it turns the whole way on the spot
-                request = replace(request, at_work=False)
+                request = replace(request, at_work=False)  # and the whole turn on the spot
                 if exhausted >= o.attempts or attempt == limit - 1:
                     if best is not None:
                         break
