@@ -69,3 +69,27 @@ def low_compartment(tmp_path_factory) -> Path:
         '[[task]]\nkind = "pick"\nsite = "rack1_low"\nhand = "left"\n'
     )
     return folder / "low.toml"
+
+
+#: An 8 x 6 m hall whose floor is four boxes round a 2 x 2 m opening (x in [-1, 1], y in
+#: [-0.5, 1.5]) over a plane 0.51 m down; a stair of three 0.17 m risers and 0.28 m treads
+#: descends along +x from the opening's edge at x = -1.
+_PIT_XML = """<mujoco model="pit"><worldbody>
+<geom name="floor" type="plane" pos="0 0 -0.51" size="4 3 0.05"/>
+<geom name="floor_0" type="box" pos="0 -1.75 -0.255" size="4 1.25 0.255"/>
+<geom name="floor_1" type="box" pos="0 2.25 -0.255" size="4 0.75 0.255"/>
+<geom name="floor_2" type="box" pos="-2.5 0.5 -0.255" size="1.5 1 0.255"/>
+<geom name="floor_3" type="box" pos="2.5 0.5 -0.255" size="1.5 1 0.255"/>
+<geom name="s1" type="box" pos="-0.86 0.5 -0.34" size="0.14 1 0.17"/>
+<geom name="s2" type="box" pos="-0.58 0.5 -0.425" size="0.14 1 0.085"/>
+<geom name="rack" type="box" pos="3 -2.5 1.0" size="0.5 0.4 1.0"/>
+<site name="floor_a" pos="-3 -2 0"/>
+<site name="pit_b" pos="0.5 0.5 -0.51"/>
+</worldbody></mujoco>"""
+
+
+@pytest.fixture(scope="session")
+def pit_xml() -> str:
+    """An MJCF hall with a pit under a floor of boxes and a stair down into it (the world's
+    floor-with-openings tests and the level planner's walk into a pit share it)."""
+    return _PIT_XML

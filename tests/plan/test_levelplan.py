@@ -273,31 +273,13 @@ def test_a_level_walk_counts_its_legs_expansions(station, model):
     assert walk.meta["expansions_all"] >= 2
 
 
-#: As tests/world/test_floorholes.py: an 8 x 6 m hall whose floor is four boxes round a
-#: 2 x 2 m opening (x in [-1, 1], y in
-#: [-0.5, 1.5]) over a plane 0.51 m down; a stair of three 0.17 m risers and 0.28 m treads
-#: descends along +x from the opening's edge at x = -1.
-PIT_XML = """<mujoco model="pit"><worldbody>
-<geom name="floor" type="plane" pos="0 0 -0.51" size="4 3 0.05"/>
-<geom name="floor_0" type="box" pos="0 -1.75 -0.255" size="4 1.25 0.255"/>
-<geom name="floor_1" type="box" pos="0 2.25 -0.255" size="4 0.75 0.255"/>
-<geom name="floor_2" type="box" pos="-2.5 0.5 -0.255" size="1.5 1 0.255"/>
-<geom name="floor_3" type="box" pos="2.5 0.5 -0.255" size="1.5 1 0.255"/>
-<geom name="s1" type="box" pos="-0.86 0.5 -0.34" size="0.14 1 0.17"/>
-<geom name="s2" type="box" pos="-0.58 0.5 -0.425" size="0.14 1 0.085"/>
-<geom name="rack" type="box" pos="3 -2.5 1.0" size="0.5 0.4 1.0"/>
-<site name="floor_a" pos="-3 -2 0"/>
-<site name="pit_b" pos="0.5 0.5 -0.51"/>
-</worldbody></mujoco>"""
-
-
-def test_walk_down_into_a_pit_and_back_takes_its_stair(tmp_path, model):
+def test_walk_down_into_a_pit_and_back_takes_its_stair(tmp_path, model, pit_xml):
     """A floor with an opening (:mod:`mjwalk.world.floorholes`): a walk from the floor to the
     bottom of a 0.51 m pit goes down its stair of three 0.17 m risers, one footfall per tread,
     every footfall within 1 cm of the surface under it, and the walk back comes up the same way;
     a walker limited to 0.15 m risers cannot get down."""
     path = tmp_path / "pit.xml"
-    path.write_text(PIT_XML)
+    path.write_text(pit_xml)
     wp = load_workplace(path)
     graph = wp.levels
     treads = [s for s in graph.surfaces if s.kind == "tread"]

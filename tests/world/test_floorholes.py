@@ -13,30 +13,14 @@ from mjwalk.errors import SceneError
 from mjwalk.world.floorholes import FLOOR_BOX_PREFIX, floor_boxes
 from mjwalk.world.workplace import workplace_from_model
 
-#: An 8 x 6 m hall whose floor is four boxes round a 2 x 2 m opening (x in [-1, 1], y in
-#: [-0.5, 1.5]) over a plane 0.51 m down; a stair of three 0.17 m risers and 0.28 m treads
-#: descends along +x from the opening's edge at x = -1.
-PIT_XML = """<mujoco model="pit"><worldbody>
-<geom name="floor" type="plane" pos="0 0 -0.51" size="4 3 0.05"/>
-<geom name="floor_0" type="box" pos="0 -1.75 -0.255" size="4 1.25 0.255"/>
-<geom name="floor_1" type="box" pos="0 2.25 -0.255" size="4 0.75 0.255"/>
-<geom name="floor_2" type="box" pos="-2.5 0.5 -0.255" size="1.5 1 0.255"/>
-<geom name="floor_3" type="box" pos="2.5 0.5 -0.255" size="1.5 1 0.255"/>
-<geom name="s1" type="box" pos="-0.86 0.5 -0.34" size="0.14 1 0.17"/>
-<geom name="s2" type="box" pos="-0.58 0.5 -0.425" size="0.14 1 0.085"/>
-<geom name="rack" type="box" pos="3 -2.5 1.0" size="0.5 0.4 1.0"/>
-<site name="floor_a" pos="-3 -2 0"/>
-<site name="pit_b" pos="0.5 0.5 -0.51"/>
-</worldbody></mujoco>"""
-
 
 @pytest.fixture(scope="module")
-def pit():
-    return workplace_from_model(mujoco.MjModel.from_xml_string(PIT_XML))
+def pit(pit_xml):
+    return workplace_from_model(mujoco.MjModel.from_xml_string(pit_xml))
 
 
-def test_floor_boxes_are_found_and_plain_floors_have_none():
-    model = mujoco.MjModel.from_xml_string(PIT_XML)
+def test_floor_boxes_are_found_and_plain_floors_have_none(pit_xml):
+    model = mujoco.MjModel.from_xml_string(pit_xml)
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     boxes = floor_boxes(model, data, 0, "pit")
@@ -59,8 +43,8 @@ def test_floor_boxes_are_found_and_plain_floors_have_none():
         ('<geom name="floor_x" type="sphere" pos="0 0 -0.2" size="0.1"/>', "must be a box"),
     ],
 )
-def test_bad_floor_boxes_are_refused_in_one_line(geom, match):
-    model = mujoco.MjModel.from_xml_string(PIT_XML.replace("</worldbody>", geom + "</worldbody>"))
+def test_bad_floor_boxes_are_refused_in_one_line(geom, match, pit_xml):
+    model = mujoco.MjModel.from_xml_string(pit_xml.replace("</worldbody>", geom + "</worldbody>"))
     with pytest.raises(SceneError, match=match) as err:
         workplace_from_model(model)
     assert "\n" not in str(err.value)
@@ -94,8 +78,8 @@ def test_level_graph_gives_the_floor_the_pit_and_the_stair(pit):
     assert graph.level_of[graph.surface_at((-2.0, 0.5))] == 0
 
 
-def test_a_deeper_opening_without_a_stair_is_not_a_level():
-    xml = PIT_XML.replace('<geom name="s1"', '<geom name="s1" contype="0"').replace(
+def test_a_deeper_opening_without_a_stair_is_not_a_level(pit_xml):
+    xml = pit_xml.replace('<geom name="s1"', '<geom name="s1" contype="0"').replace(
         'size="0.14 1 0.17"', 'size="0.14 1 0.17" group="4"'
     )
     model = mujoco.MjModel.from_xml_string(xml)
