@@ -127,15 +127,13 @@ def test_stair_walk_has_no_contacts(direction):
     assert collision_report(timeline_from_walk(_stair_walk(direction), _MULTI)) == []
 
 
-def test_walk_tops_of_a_floor_with_an_opening_are_its_floor_boxes(tmp_path):
+def test_walk_tops_of_a_floor_with_an_opening_are_its_floor_boxes(tmp_path, pit_xml):
     """A floor written as boxes round a pit (:mod:`mjwalk.world.floorholes`): a sole resting on
     a floor box's top is standing, as on a tread; the plane under the pit too."""
     from mjwalk.timeline.collisions import walk_tops  # deferred: as above
 
-    xml = (_MULTI.parent.parent / "tests" / "world" / "test_floorholes.py").read_text()
-    xml = xml[xml.index('PIT_XML = """') + 13 : xml.index('</mujoco>"""') + 9]
     path = tmp_path / "pit.xml"
-    path.write_text(xml)
+    path.write_text(pit_xml)
     tl = timeline_from_walk(make_walk(n_steps=2, start=(-3.0, -2.0, 0.0)), path)
     names = [
         mujoco.mj_id2name(tl.model, mujoco.mjtObj.mjOBJ_GEOM, g) for g in range(tl.model.ngeom)
