@@ -34,6 +34,7 @@ from mjwalk.gait.stairs import MIN_TREAD, StairGeometry, stair_gait
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelroute import Crossing
 from mjwalk.plan.walkpath import PathStep, WalkPath
+from mjwalk.world.norms import STAIR_TOE_CLEARANCE
 
 #: How far (m) a walker standing before a crossing (no step brought it there) may stand from
 #: the crossing's stance and start on it from where it stands: a grid cell of the planner's
@@ -78,14 +79,13 @@ def _footfalls(c: Crossing, direction: str, walker: Walker) -> tuple[np.ndarray,
 
 #: Least gap (m) between a foot standing on a level next to a flight and the riser face its toes
 #: (before the first riser going up) or its heel (past the last riser going down) turn to: the
-#: least foot clearance over a stair edge, 3 cm (Hamel, Okita, Higginson & Cavanagh, Gait
-#: Posture 21:135-140 (2005): clearances under 5 mm are the risky ones; as
-#: :data:`mjwalk.body.legs.edgeswing.STAIR_TOE_CLEARANCE`). A foot centred on half a tread's
+#: least foot clearance over a stair edge, 3 cm after Hamel et al. 2005, that the legs' swing
+#: keeps too (:data:`mjwalk.world.norms.STAIR_TOE_CLEARANCE`). A foot centred on half a tread's
 #: depth (0.14 m) is longer than it and stood 7 mm off the riser (1.75 m walker), closer than
 #: its toes reach forward of the flat foot at a heel strike (the ankle's height turned about
 #: the heel, about 1.5 cm measured): the toes then touched the first riser (the multi-level
 #: station's stair, run 0 of its cycle) and, going down, the heel the bottom riser.
-RISER_GAP = 0.03
+RISER_GAP = STAIR_TOE_CLEARANCE
 
 
 def flight_setback(s: np.ndarray, track: np.ndarray, up: bool, stature: float) -> np.ndarray:

@@ -38,6 +38,15 @@ MIN_STAIR_RISERS = 3
 #: Movement", table of boundary-layer widths; 0.09 m from a handrail's centreline; NOT verified
 #: here). A walker on a stair, ramp or step keeps its swinging arms this far from its sides.
 SIDE_CLEARANCE = 0.15
+#: Least vertical clearance of the swing foot's sole over a step edge (nosing), metres. Young
+#: adults' minimum foot clearance over stair nosings is a few centimetres: Hamel, Okita,
+#: Higginson & Cavanagh, "Foot clearance during stair descent: effects of age and
+#: illumination", Gait Posture 21:135-140 (2005) count clearances under 5 mm as the risky ones
+#: (abstract verified here); Francksen et al., "Negotiating stairs with an inconsistent riser",
+#: Applied Ergonomics (2022) report that a 10 mm higher riser cuts ascent clearance by ~9 mm
+#: (highlights verified here), a trip risk, so the usual clearance is not much larger; the
+#: group means of 3-4 cm usually quoted from these studies are NOT verified here. 3 cm.
+STAIR_TOE_CLEARANCE = 0.03
 
 # --- level and touching surfaces --------------------------------------------------------------
 #: Largest height difference between two touching surfaces that still counts as one level,

@@ -16,16 +16,8 @@ import numpy as np
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import smoothstep, spread
 from mjwalk.body.legs.steps import StepFrames
+from mjwalk.world.norms import STAIR_TOE_CLEARANCE
 
-#: Least vertical clearance of the swing foot's sole over a step edge (nosing), metres. Young
-#: adults' minimum foot clearance over stair nosings is a few centimetres: Hamel, Okita,
-#: Higginson & Cavanagh, "Foot clearance during stair descent: effects of age and
-#: illumination", Gait Posture 21:135-140 (2005) count clearances under 5 mm as the risky ones
-#: (abstract verified here); Francksen et al., "Negotiating stairs with an inconsistent riser",
-#: Applied Ergonomics (2022) report that a 10 mm higher riser cuts ascent clearance by ~9 mm
-#: (highlights verified here), a trip risk, so the usual clearance is not much larger; the
-#: group means of 3-4 cm usually quoted from these studies are NOT verified here. 3 cm.
-STAIR_TOE_CLEARANCE = 0.03
 #: Height differences below this between a step's surfaces are one level, metres (the
 #: surfaces' own tolerance, :data:`mjwalk.world.norms.LEVEL_TOLERANCE`, with room for rounding).
 LEVEL_STEP = 0.01
