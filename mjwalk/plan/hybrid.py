@@ -323,8 +323,8 @@ class HybridPlanner:
         walking. With ``at_work`` (a walker standing at the work it faced) a turn of more than
         a quarter is split (:mod:`mjwalk.plan.turnsplit`): the walker turns on the spot all but
         a one-step direction change and sets off that far from the way, turning the rest along
-        its first steps. The draws are otherwise those of a walk without a yaw. Without it a
-        start yaw is the
+        its first steps, never nearer the work's front (``work_heading``) than square to it. The
+        draws are otherwise those of a walk without a yaw. Without it a start yaw is the
         heading of the first step's frame (a walker already walking that way). The walk's first
         sample faces where the turn ended (``yaw[0]``): the turn itself is the caller's (the
         cycle animates it).
@@ -456,9 +456,9 @@ class HybridPlanner:
         # the starters, for the first expansion (the start node's)
         z0, side0 = model.sample_first_features(o.n_starters, rng)
         frame0 = np.full(len(z0), float(start_yaw))
-        split = (
-            starter_frames(facing, start_yaw, len(z0), rng) if turn and request.at_work else None
-        )
+        split = None
+        if turn and request.at_work:  # never nearer the work's front than square (None: facing)
+            split = starter_frames(facing, start_yaw, len(z0), rng, request.work_heading)
         if split is not None:  # a large turn: its last part is made along the first steps
             frame0 = split
         elif free_heading:  # the walker may set off anywhere around the downhill heading
