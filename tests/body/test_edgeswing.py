@@ -28,15 +28,7 @@ def test_edged_and_pelvis_level():
 @pytest.mark.parametrize(
     "direction",
     [
-        pytest.param(
-            "up",
-            marks=pytest.mark.xfail(
-                strict=True,
-                reason="fails on main edf9668 already: the planned ascent clearance is 9 mm "
-                "with the foot pitched as the clipped ankle holds it (as "
-                "test_legheights.test_stair_ascent_toe_clearance)",
-            ),
-        ),
+        "up",
         pytest.param(
             "down",
             marks=pytest.mark.xfail(
