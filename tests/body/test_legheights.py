@@ -99,11 +99,6 @@ def test_stair_descent_knee_hip_and_forefoot_landing():
         assert np.abs(motion.pitch[st.side][nxt.start : nxt.end]).min() < 1e-3
 
 
-@pytest.mark.xfail(
-    reason="knee peak 100.8 deg (cited 80-100) in the first step off the top landing, as the "
-    "foot lifts from the landing (95.2-95.9 deg in the steady steps, 99.7 in the last)",
-    strict=True,
-)
 def test_stair_descent_knee_peak():
     """Down a 0.17/0.28 stair the knee flexion peak lies in the cited range."""
     walk = synthetic_stair_walk(0.17, 0.28, 6, "down")

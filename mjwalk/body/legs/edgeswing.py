@@ -175,13 +175,13 @@ def _clearance_deficit(pts: np.ndarray, fr: StepFrames, edges: _Edges, clearance
 def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: LegGeometry,
                clearance: float = STAIR_TOE_CLEARANCE):  # fmt: skip
     """The swing foot of an edged step (a step or a stair) over its airborne samples. A step
-    up (:func:`_ascent_path`) rises until its toes clear the first edge, then travels forward
+    up (:func:`_swing_path`) rises until its toes clear the first edge, then travels forward
     (the flat swing's path, re-timed; its pitch, toes and heading kept) rising on to reach
     each further edge ``clearance`` above it, and lowers once its heel is past the last;
-    raised further where the sole would still come closer to an edge. A step down a stair
-    (:func:`_descent_swing`) is planned once, for a level sole: its foot hangs toes down, and
-    :func:`sole_rise` lifts it where that foot would dip into a tread (the clearance returned
-    is the planned level sole's).
+    raised further where the sole would still come closer to an edge. A step down
+    (:func:`_swing_path`) the same way for its foot hanging toes down, planned once (the
+    clearance returned is that plan's): :func:`sole_rise` then lifts the sole where the
+    foot, pitched again to what its ankle holds, would dip into a tread.
 
     Args:
         ankle: (m, 3) the flat swing's ankle from the last grounded sample before lift-off
@@ -212,16 +212,14 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
     u_f = np.maximum.accumulate(np.clip((ankle[:, :2] - fr.lift[:2]) @ e / length, 0, 1))
     u_f[-1] = max(u_f[-1], u_f[-2] + 1e-9) if m > 1 else u_f[-1]
     u_f = u_f + np.arange(m) * 1e-12  # strictly increasing for np.interp
-    lift_sole = geom.ankle_height + 0.005
     extra, out, need = 0.0, ankle.copy(), 0.0
     descent = bool(edges.z[0] > edges.z[-1] + LEVEL_STEP)
     for _ in range(3):
-        if descent:
-            out = _descent_path(ankle, (u_f, tau), (pitch, toe), edges, fr, geom,
-                                (clearance, clearance + lift_sole + extra))  # fmt: skip
-        else:
-            out = _ascent_path(ankle, (u_f, tau), (pitch, toe), edges, fr, geom,
-                               clearance + extra)  # fmt: skip
+        # a step down moves forward as long as its heel can still be lowered in time
+        end = 1.0 if descent else ASCENT_CLEARANCE_END
+        out = _swing_path(ankle, (u_f, tau), (pitch, toe), edges, fr, geom,
+                          (clearance + extra, end))  # fmt: skip
+        if not descent:
             _keep_behind_edges(out, out[:, 2], clearance, pitch, toe, edges, fr, geom)
         out[0], out[-1] = ankle[0], ankle[-1]
         need = _clearance_deficit(_sole_points(out[1:-1], pitch[1:-1], toe[1:-1], yaw[1:-1], geom),
@@ -238,7 +236,7 @@ RISE_SHARE = 0.45
 #: Share of a step up's swing time by which the foot is over its landing tread (its heel past
 #: the last edge); the rest it lowers onto it. McFadyen & Winter (1988, J Biomech
 #: 21:733-744) divide the ascent swing into foot clearance and foot placement; the share is
-#: this module's choice (as :data:`DESCENT_PULL_THROUGH`), not a published figure. Measured
+#: this module's choice, not a published figure. Measured
 #: on the 0.17/0.28 stair at 1.75 m: 0.6 gives knee 104.8 / hip 60.0 deg peaks, 0.7 gives
 #: 100.8 / 55.6, 0.8 gives 101.2 / 53.8 (``tests/body/test_edgeswing.py``).
 ASCENT_CLEARANCE_END = 0.7
@@ -247,16 +245,18 @@ ASCENT_CLEARANCE_END = 0.7
 TOE_DEPTH = 0.4
 
 
-def _sole_need(px, pz, edges: _Edges, margin: float, edge_margin: float) -> np.ndarray:
+def _sole_need(px, pz, edges: _Edges, margin: float, edge_margin: float,
+               slack: float = 1e-3) -> np.ndarray:  # fmt: skip
     """The least ankle height (or rise) per sample that keeps every sole point over the
     surface under it by ``margin`` (over the span where an edge may lie, the higher of its
     two surfaces) and the sole between heel and ball, ball and toe tip, over an edge it spans
     by ``edge_margin``. ``px`` (m, 3): the heel's, ball's and toe tip's chord coordinates;
     ``pz`` (m, 3): their heights (above the ankle for a height, absolute for a rise: the
-    result is then the rise); metres."""
+    result is then the rise); metres. ``slack``: how far (m) past an edge's span a point
+    still counts as over it (the grounded feet stand 1 mm off the spans)."""
     under = edges.zr[np.searchsorted(edges.cut, px)]
     for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
-        under = np.where((px >= lo - 1e-3) & (px <= hi + 1e-3), np.maximum(under, ze), under)
+        under = np.where((px >= lo - slack) & (px <= hi + slack), np.maximum(under, ze), under)
     need = (under + margin - pz).max(axis=1)
     for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
         for a, b in ((0, 1), (1, 2)):  # the sole between heel and ball, ball and toe tip
@@ -269,9 +269,9 @@ def _sole_need(px, pz, edges: _Edges, margin: float, edge_margin: float) -> np.n
     return need
 
 
-def _ascent_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeometry,
-                 clearance: float) -> np.ndarray:  # fmt: skip
-    """The swing ankle of a step up (a stair or a step ascended; any edged step not down):
+def _swing_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeometry,
+                levels) -> np.ndarray:  # fmt: skip
+    """The swing ankle of an edged step; for a step up (a stair or a step ascended):
     it rises until its toes clear the first edge, moves forward from then (the flat swing's
     path re-timed, over by :data:`ASCENT_CLEARANCE_END`) and rises on as it goes, its sole
     as pitched reaching each further edge ``clearance`` above it -- not first up to clear the
@@ -280,10 +280,16 @@ def _ascent_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeom
     is the least that keeps the sole over the surfaces and ``clearance`` over the edges it
     spans (:func:`_sole_need`), reached ahead of where it is needed at a bounded speed (the
     whole rise in :data:`RISE_SHARE` of the swing: the upper envelope of cones).
-    ``time`` = (u_f, tau), ``foot`` = (pitch, toe) per sample; returns (m, 3) ankles, metres.
     The forward motion of the foot over the lower nosing early, with the foot dorsiflexed,
-    is how stair ascent's swing clears the step (McFadyen & Winter 1988; Riener et al. 2002)."""
-    (u_f, tau), (pitch, toe) = time, foot
+    is how stair ascent's swing clears the step (McFadyen & Winter 1988; Riener et al. 2002).
+    A step down the same way: its foot, hanging toes down for its forefoot landing, moves
+    forward once its toes clear the lift tread's nosing and keeps on as long as its heel
+    can still be lowered onto the landing tread in time, its sole ``clearance`` over the
+    nosings it spans (leg pull-through, then foot placement: McFadyen & Winter 1988).
+    ``time`` = (u_f, tau), ``foot`` = (pitch, toe) per sample, ``levels`` = (clearance, the
+    share of the swing by which the forward motion is over at the latest); returns (m, 3)
+    ankles, metres."""
+    (u_f, tau), (pitch, toe), (clearance, end) = time, foot, levels
     m = len(ankle)
     tip_x, tip_z, heel_x, heel_z = _toe_heel(pitch, toe, geom)
     ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)  # footpivot.ball_offset
@@ -297,95 +303,20 @@ def _ascent_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeom
     t_a = float(tau[np.argmax(up_ok)]) if up_ok.any() else RISE_SHARE
     down_ok = z_b + v * (1.0 - tau) >= edges.z[-1] + clearance - heel_z
     t_b = float(tau[m - 1 - np.argmax(down_ok[::-1])]) if down_ok.any() else 1.0 - RISE_SHARE
-    t_b = max(min(t_b, ASCENT_CLEARANCE_END), t_a + 0.2)
+    t_b = max(min(t_b, end), t_a + 0.2)
     u = smoothstep((tau - t_a) / max(t_b - t_a, 1e-9))
     xy = np.column_stack([np.interp(u, u_f, ankle[:, 0]), np.interp(u, u_f, ankle[:, 1])])
+    # onto the landing ankle (a forefoot landing's lies ahead of the footprint's)
+    xy += u[:, None] * (ankle[-1, :2] - xy[-1])[None, :]
     seg = fr.land[:2] - fr.lift[:2]
     x = (xy - fr.lift[:2]) @ (seg / max(float(np.hypot(*seg)), 1e-9))
     px = x[:, None] + np.column_stack([heel_x, ball_x, tip_x])  # (m, 3) heel, ball, toe tip
-    req = _sole_need(px, np.column_stack([heel_z, ball_z, tip_z]), edges, 0.002, clearance)
+    req = _sole_need(px, np.column_stack([heel_z, ball_z, tip_z]), edges, 0.002, clearance, 0.0)
     req[0], req[-1] = z_a, z_b
     z = (req[None, :] - v * np.abs(tau[:, None] - tau[None, :])).max(axis=1)
     if m > 8:  # the cones' corners rounded (running maximum, Gaussian), never lowered
         z = z_b - 1.0 + spread(z - (z_b - 1.0), 2)
     return np.column_stack([xy, z])
-
-
-#: Share of a descent swing's time by which the foot is over its landing tread; the rest it
-#: lowers onto it. McFadyen & Winter (1988, J Biomech 21:733-744) divide the descent swing
-#: into leg pull-through and foot placement (the leg reaching down to the step below); the
-#: share is this module's choice, not a published figure.
-DESCENT_PULL_THROUGH = 0.7
-
-
-def _descent_swing(ankle, u_f, tau, edges: _Edges, heel_x, lift, floor: float,
-                   t_a: float = 0.0) -> np.ndarray:  # fmt: skip
-    """The swing ankle of a step down (a stair descended, a step down): it moves forward over
-    the first ``DESCENT_PULL_THROUGH`` of the swing (the flat swing's path re-timed, carried
-    onto the landing ankle) while its
-    height follows the edges it passes -- its sole ``floor`` above the edge its heel has not
-    yet passed, lowered to the next edge's height over the first half of the tread after it
-    (the foot reaching down along the stair's pitch line, as stair descent's swing does
-    rather than carrying the foot at the upper tread's height) -- then lowers onto the
-    landing tread once its heel is past the last edge or the pull-through is over; it starts
-    at the toe-off ankle height, blended into that path over 15 %.
-
-    Args:
-        ankle: (m, 3) the flat swing's ankle, landing included (world, metres).
-        u_f: (m,) its progress along the chord (0..1, strictly increasing).
-        tau: (m,) the swing's time fraction (0..1).
-        edges: the step's edges (chord metres, heights metres).
-        heel_x: (m,) the heel's forward offset from the ankle, metres.
-        lift: (lift footprint (x, y), chord unit vector).
-        floor: the ankle's height over an edge's height (clearance + the heel's depth under
-            the ankle), metres: one value, or (m,) per sample.
-        t_a: the swing's time fraction at which the foot starts forward (its toe tip clear
-            of the lift tread's nosing).
-
-    Returns:
-        (m, 3) the ankle positions, metres.
-    """
-    u = smoothstep((tau - t_a) / max(DESCENT_PULL_THROUGH - t_a, 1e-3))
-    xy = np.column_stack([np.interp(u, u_f, ankle[:, 0]), np.interp(u, u_f, ankle[:, 1])])
-    # onto the landing ankle (a forefoot landing's lies ahead of the footprint's)
-    xy += u[:, None] * (ankle[-1, :2] - xy[-1])[None, :]
-    x_heel = (xy - lift[0]) @ lift[1] + heel_x
-    px, pz = [], []
-    for k, (hi, ze) in enumerate(zip(edges.hi, edges.z, strict=True)):
-        px.append(hi)
-        pz.append(ze)
-        if k + 1 < len(edges.hi):
-            px.append(hi + 0.5 * (edges.hi[k + 1] - hi))
-            pz.append(edges.z[k + 1])
-    z = np.interp(x_heel, px, pz) + floor
-    z_a, z_b = float(ankle[0, 2]), float(ankle[-1, 2])
-    z = z + (z_a - z[0]) * (1.0 - smoothstep(tau / 0.15))
-    past = np.flatnonzero(x_heel >= edges.hi[-1])
-    # a foot hanging toes down may never bring its heel past the last edge: it lowers from the
-    # pull-through's end at the latest
-    t_pass = min(float(tau[past[0]]) if len(past) else 1.0, DESCENT_PULL_THROUGH)
-    w = smoothstep((tau - t_pass) / max(1.0 - t_pass, 1e-9))
-    z = z + w * (z_b - z)
-    return np.column_stack([xy, z])
-
-
-def _descent_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeometry,
-                  levels) -> np.ndarray:  # fmt: skip
-    """:func:`_descent_swing` from lift-off: the foot, hanging toes down (plantarflexed for a
-    forefoot landing, as stair descent's swing carries it: McFadyen & Winter 1988; Riener et
-    al. 2002), moves forward at once and its toes roll over the lift tread's nosing (not held
-    behind it while the foot would level out); its height keeps the heel of the foot as
-    pitched (not a level sole's) over the edges, and :func:`sole_rise` then lifts the sole
-    where it would dip into a tread. ``time`` = (u_f, tau), ``foot`` = (pitch, toe) per
-    sample, ``levels`` = (clearance, the ankle's height over an edge for a level sole);
-    returns (m, 3) ankles, metres."""
-    (u_f, tau), (pitch, toe), (_, floor) = time, foot, levels
-    _, _, heel_x, heel_z = _toe_heel(pitch, toe, geom)
-    # the heel of the foot as pitched (toes down: higher than a level sole's) over the edges
-    floor = floor - geom.ankle_height - heel_z
-    seg = fr.land[:2] - fr.lift[:2]
-    lift = (fr.lift[:2], seg / max(float(np.hypot(*seg)), 1e-9))
-    return _descent_swing(ankle, u_f, tau, edges, heel_x, lift, floor)
 
 
 def _toe_heel(pitch, toe, geom: LegGeometry):
