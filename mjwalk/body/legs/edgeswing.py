@@ -172,29 +172,16 @@ def _clearance_deficit(pts: np.ndarray, fr: StepFrames, edges: _Edges, clearance
     return worst
 
 
-def _profile(tau: np.ndarray, z_a: float, z_b: float, apex: float) -> np.ndarray:
-    """The swing ankle's height over ``tau`` (0 at the last grounded sample, 1 at landing):
-    up from ``z_a`` to ``apex``, held, down to ``z_b`` (smoothsteps); the rise and the fall
-    take time in proportion to their heights (at least 15 % of the swing each)."""
-    r1, r2 = apex - z_a, apex - z_b
-    big = max(r1, r2, 1e-9)
-    t1 = max(0.15, 0.45 * r1 / big)
-    t2 = 1.0 - max(0.15, 0.45 * r2 / big)
-    up = z_a + r1 * smoothstep(tau / t1)
-    down = apex - r2 * smoothstep((tau - t2) / (1.0 - t2))
-    return np.where(tau <= t1, up, np.where(tau >= t2, down, apex))
-
-
 def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: LegGeometry,
                clearance: float = STAIR_TOE_CLEARANCE):  # fmt: skip
-    """The swing foot of an edged step (a step or a stair) over its airborne samples: it rises
-    to clear the highest edge by ``clearance``, travels forward only while its sole clears the
-    first edge and is past the last before it lowers (the flat swing's path, re-timed, for the
-    horizontal motion; its pitch, toes and heading kept); raised further where the sole would
-    still come closer to an edge than ``clearance``. A step down a stair
-    (:func:`_descent_swing`) is planned once, for a level sole: its foot hangs toes down, and
-    :func:`sole_rise` lifts it where that foot would dip into a tread (the clearance returned
-    is the planned level sole's).
+    """The swing foot of an edged step (a step or a stair) over its airborne samples. A step
+    up (:func:`_swing_path`) rises until its toes clear the first edge, then travels forward
+    (the flat swing's path, re-timed; its pitch, toes and heading kept) rising on to reach
+    each further edge ``clearance`` above it, and lowers once its heel is past the last;
+    raised further where the sole would still come closer to an edge. A step down
+    (:func:`_swing_path`) the same way for its foot hanging toes down, planned once (the
+    clearance returned is that plan's): :func:`sole_rise` then lifts the sole where the
+    foot, pitched again to what its ankle holds, would dip into a tread.
 
     Args:
         ankle: (m, 3) the flat swing's ankle from the last grounded sample before lift-off
@@ -225,30 +212,15 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
     u_f = np.maximum.accumulate(np.clip((ankle[:, :2] - fr.lift[:2]) @ e / length, 0, 1))
     u_f[-1] = max(u_f[-1], u_f[-2] + 1e-9) if m > 1 else u_f[-1]
     u_f = u_f + np.arange(m) * 1e-12  # strictly increasing for np.interp
-    z_a, z_b = float(ankle[0, 2]), float(ankle[-1, 2])
-    lift_sole = geom.ankle_height + 0.005
-    tip_z, heel_z = _toe_heel(pitch, toe, geom)[1::2]
     extra, out, need = 0.0, ankle.copy(), 0.0
     descent = bool(edges.z[0] > edges.z[-1] + LEVEL_STEP)
     for _ in range(3):
-        if descent:
-            out = _descent_path(ankle, (u_f, tau), (pitch, toe), edges, fr, geom,
-                                (clearance, clearance + lift_sole + extra))  # fmt: skip
-        else:
-            apex = max(float(edges.z.max()) + clearance + lift_sole, z_a, z_b) + extra
-            z = _profile(tau, z_a, z_b, apex)
-            # forward once the toe tip clears the first edge, down once the heel clears the last
-            up_ok = z + tip_z >= edges.z[0] + clearance - 1e-9
-            down_ok = z + heel_z >= edges.z[-1] + clearance - 1e-9
-            top = float(tau[int(np.argmax(z))])
-            t_a = 0.0 if up_ok[0] else float(tau[np.argmax(up_ok)]) if up_ok.any() else top
-            t_b = 1.0 if down_ok[-1] else float(tau[m - 1 - np.argmax(down_ok[::-1])])
-            t_b = t_b if down_ok.any() and t_b > t_a else max(top, t_a + 1e-3)
-            u = smoothstep((tau - t_a) / max(t_b - t_a, 1e-9))
-            out = np.column_stack(
-                [np.interp(u, u_f, ankle[:, 0]), np.interp(u, u_f, ankle[:, 1]), z]
-            )
-            _keep_behind_edges(out, z, clearance, pitch, toe, edges, fr, geom)
+        # a step down moves forward as long as its heel can still be lowered in time
+        end = 1.0 if descent else ASCENT_CLEARANCE_END
+        out = _swing_path(ankle, (u_f, tau), (pitch, toe), edges, fr, geom,
+                          (clearance + extra, end))  # fmt: skip
+        if not descent:
+            _keep_behind_edges(out, out[:, 2], clearance, pitch, toe, edges, fr, geom)
         out[0], out[-1] = ankle[0], ankle[-1]
         need = _clearance_deficit(_sole_points(out[1:-1], pitch[1:-1], toe[1:-1], yaw[1:-1], geom),
                                   fr, edges, clearance)  # fmt: skip
@@ -258,81 +230,93 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
     return out, clearance - need
 
 
-#: Share of a descent swing's time by which the foot is over its landing tread; the rest it
-#: lowers onto it. McFadyen & Winter (1988, J Biomech 21:733-744) divide the descent swing
-#: into leg pull-through and foot placement (the leg reaching down to the step below); the
-#: share is this module's choice, not a published figure.
-DESCENT_PULL_THROUGH = 0.7
+#: Share of a step up's swing time over which its ankle would rise from lift-off to its
+#: highest: it bounds the ankle's vertical speed (the old flat-apex profile's 0.45).
+RISE_SHARE = 0.45
+#: Share of a step up's swing time by which the foot is over its landing tread (its heel past
+#: the last edge); the rest it lowers onto it. McFadyen & Winter (1988, J Biomech
+#: 21:733-744) divide the ascent swing into foot clearance and foot placement; the share is
+#: this module's choice, not a published figure. Measured
+#: on the 0.17/0.28 stair at 1.75 m: 0.6 gives knee 104.8 / hip 60.0 deg peaks, 0.7 gives
+#: 100.8 / 55.6, 0.8 gives 101.2 / 53.8 (``tests/body/test_edgeswing.py``).
+ASCENT_CLEARANCE_END = 0.7
+#: Depth of the toes over the sole, in ankle heights (the humanoid's toe block,
+#: :mod:`mjwalk.body.humanoid`).
+TOE_DEPTH = 0.4
 
 
-def _descent_swing(ankle, u_f, tau, edges: _Edges, heel_x, lift, floor: float,
-                   t_a: float = 0.0) -> np.ndarray:  # fmt: skip
-    """The swing ankle of a step down (a stair descended, a step down): it moves forward over
-    the first ``DESCENT_PULL_THROUGH`` of the swing (the flat swing's path re-timed, carried
-    onto the landing ankle) while its
-    height follows the edges it passes -- its sole ``floor`` above the edge its heel has not
-    yet passed, lowered to the next edge's height over the first half of the tread after it
-    (the foot reaching down along the stair's pitch line, as stair descent's swing does
-    rather than carrying the foot at the upper tread's height) -- then lowers onto the
-    landing tread once its heel is past the last edge or the pull-through is over; it starts
-    at the toe-off ankle height, blended into that path over 15 %.
+def _sole_need(px, pz, edges: _Edges, margin: float, edge_margin: float,
+               slack: float = 1e-3) -> np.ndarray:  # fmt: skip
+    """The least ankle height (or rise) per sample that keeps every sole point over the
+    surface under it by ``margin`` (over the span where an edge may lie, the higher of its
+    two surfaces) and the sole between heel and ball, ball and toe tip, over an edge it spans
+    by ``edge_margin``. ``px`` (m, 3): the heel's, ball's and toe tip's chord coordinates;
+    ``pz`` (m, 3): their heights (above the ankle for a height, absolute for a rise: the
+    result is then the rise); metres. ``slack``: how far (m) past an edge's span a point
+    still counts as over it (the grounded feet stand 1 mm off the spans)."""
+    under = edges.zr[np.searchsorted(edges.cut, px)]
+    for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
+        under = np.where((px >= lo - slack) & (px <= hi + slack), np.maximum(under, ze), under)
+    need = (under + margin - pz).max(axis=1)
+    for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
+        for a, b in ((0, 1), (1, 2)):  # the sole between heel and ball, ball and toe tip
+            for xe in (lo, hi):
+                lo_x, hi_x = np.minimum(px[:, a], px[:, b]), np.maximum(px[:, a], px[:, b])
+                over = (lo_x < xe) & (xe < hi_x)
+                w = np.clip((xe - px[:, a]) / np.where(over, px[:, b] - px[:, a], 1.0), 0.0, 1.0)
+                zs = pz[:, a] + w * (pz[:, b] - pz[:, a])
+                need = np.where(over, np.maximum(need, ze + edge_margin - zs), need)
+    return need
 
-    Args:
-        ankle: (m, 3) the flat swing's ankle, landing included (world, metres).
-        u_f: (m,) its progress along the chord (0..1, strictly increasing).
-        tau: (m,) the swing's time fraction (0..1).
-        edges: the step's edges (chord metres, heights metres).
-        heel_x: (m,) the heel's forward offset from the ankle, metres.
-        lift: (lift footprint (x, y), chord unit vector).
-        floor: the ankle's height over an edge's height (clearance + the heel's depth under
-            the ankle), metres: one value, or (m,) per sample.
-        t_a: the swing's time fraction at which the foot starts forward (its toe tip clear
-            of the lift tread's nosing).
 
-    Returns:
-        (m, 3) the ankle positions, metres.
-    """
-    u = smoothstep((tau - t_a) / max(DESCENT_PULL_THROUGH - t_a, 1e-3))
+def _swing_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeometry,
+                levels) -> np.ndarray:  # fmt: skip
+    """The swing ankle of an edged step; for a step up (a stair or a step ascended):
+    it rises until its toes clear the first edge, moves forward from then (the flat swing's
+    path re-timed, over by :data:`ASCENT_CLEARANCE_END`) and rises on as it goes, its sole
+    as pitched reaching each further edge ``clearance`` above it -- not first up to clear the
+    highest edge with the foot held behind the body, which flexed the knee past its cited
+    peak -- and lowers onto the landing tread once its heel is past the last edge. Its height
+    is the least that keeps the sole over the surfaces and ``clearance`` over the edges it
+    spans (:func:`_sole_need`), reached ahead of where it is needed at a bounded speed (the
+    whole rise in :data:`RISE_SHARE` of the swing: the upper envelope of cones).
+    The forward motion of the foot over the lower nosing early, with the foot dorsiflexed,
+    is how stair ascent's swing clears the step (McFadyen & Winter 1988; Riener et al. 2002).
+    A step down the same way: its foot, hanging toes down for its forefoot landing, moves
+    forward once its toes clear the lift tread's nosing and keeps on as long as its heel
+    can still be lowered onto the landing tread in time, its sole ``clearance`` over the
+    nosings it spans (leg pull-through, then foot placement: McFadyen & Winter 1988).
+    ``time`` = (u_f, tau), ``foot`` = (pitch, toe) per sample, ``levels`` = (clearance, the
+    share of the swing by which the forward motion is over at the latest); returns (m, 3)
+    ankles, metres."""
+    (u_f, tau), (pitch, toe), (clearance, end) = time, foot, levels
+    m = len(ankle)
+    tip_x, tip_z, heel_x, heel_z = _toe_heel(pitch, toe, geom)
+    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)  # footpivot.ball_offset
+    ball_x = ball * np.cos(pitch) + geom.ankle_height * np.sin(pitch)
+    ball_z = ball * np.sin(pitch) - geom.ankle_height * np.cos(pitch)
+    low = np.minimum(np.minimum(tip_z, heel_z), ball_z)  # the sole's lowest point
+    z_a, z_b = float(ankle[0, 2]), float(ankle[-1, 2])
+    v = max(float(edges.z.max() + clearance - low.min()) - min(z_a, z_b), 1e-9) / RISE_SHARE
+    # forward once the toe tip can clear the first edge, over once the heel can drop
+    up_ok = z_a + v * tau >= edges.z[0] + clearance - tip_z
+    t_a = float(tau[np.argmax(up_ok)]) if up_ok.any() else RISE_SHARE
+    down_ok = z_b + v * (1.0 - tau) >= edges.z[-1] + clearance - heel_z
+    t_b = float(tau[m - 1 - np.argmax(down_ok[::-1])]) if down_ok.any() else 1.0 - RISE_SHARE
+    t_b = max(min(t_b, end), t_a + 0.2)
+    u = smoothstep((tau - t_a) / max(t_b - t_a, 1e-9))
     xy = np.column_stack([np.interp(u, u_f, ankle[:, 0]), np.interp(u, u_f, ankle[:, 1])])
     # onto the landing ankle (a forefoot landing's lies ahead of the footprint's)
     xy += u[:, None] * (ankle[-1, :2] - xy[-1])[None, :]
-    x_heel = (xy - lift[0]) @ lift[1] + heel_x
-    px, pz = [], []
-    for k, (hi, ze) in enumerate(zip(edges.hi, edges.z, strict=True)):
-        px.append(hi)
-        pz.append(ze)
-        if k + 1 < len(edges.hi):
-            px.append(hi + 0.5 * (edges.hi[k + 1] - hi))
-            pz.append(edges.z[k + 1])
-    z = np.interp(x_heel, px, pz) + floor
-    z_a, z_b = float(ankle[0, 2]), float(ankle[-1, 2])
-    z = z + (z_a - z[0]) * (1.0 - smoothstep(tau / 0.15))
-    past = np.flatnonzero(x_heel >= edges.hi[-1])
-    # a foot hanging toes down may never bring its heel past the last edge: it lowers from the
-    # pull-through's end at the latest
-    t_pass = min(float(tau[past[0]]) if len(past) else 1.0, DESCENT_PULL_THROUGH)
-    w = smoothstep((tau - t_pass) / max(1.0 - t_pass, 1e-9))
-    z = z + w * (z_b - z)
-    return np.column_stack([xy, z])
-
-
-def _descent_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeometry,
-                  levels) -> np.ndarray:  # fmt: skip
-    """:func:`_descent_swing` from lift-off: the foot, hanging toes down (plantarflexed for a
-    forefoot landing, as stair descent's swing carries it: McFadyen & Winter 1988; Riener et
-    al. 2002), moves forward at once and its toes roll over the lift tread's nosing (not held
-    behind it while the foot would level out); its height keeps the heel of the foot as
-    pitched (not a level sole's) over the edges, and :func:`sole_rise` then lifts the sole
-    where it would dip into a tread. ``time`` = (u_f, tau), ``foot`` = (pitch, toe) per
-    sample, ``levels`` = (clearance, the ankle's height over an edge for a level sole);
-    returns (m, 3) ankles, metres."""
-    (u_f, tau), (pitch, toe), (_, floor) = time, foot, levels
-    _, _, heel_x, heel_z = _toe_heel(pitch, toe, geom)
-    # the heel of the foot as pitched (toes down: higher than a level sole's) over the edges
-    floor = floor - geom.ankle_height - heel_z
     seg = fr.land[:2] - fr.lift[:2]
-    lift = (fr.lift[:2], seg / max(float(np.hypot(*seg)), 1e-9))
-    return _descent_swing(ankle, u_f, tau, edges, heel_x, lift, floor)
+    x = (xy - fr.lift[:2]) @ (seg / max(float(np.hypot(*seg)), 1e-9))
+    px = x[:, None] + np.column_stack([heel_x, ball_x, tip_x])  # (m, 3) heel, ball, toe tip
+    req = _sole_need(px, np.column_stack([heel_z, ball_z, tip_z]), edges, 0.002, clearance, 0.0)
+    req[0], req[-1] = z_a, z_b
+    z = (req[None, :] - v * np.abs(tau[:, None] - tau[None, :])).max(axis=1)
+    if m > 8:  # the cones' corners rounded (running maximum, Gaussian), never lowered
+        z = z_b - 1.0 + spread(z - (z_b - 1.0), 2)
+    return np.column_stack([xy, z])
 
 
 def _toe_heel(pitch, toe, geom: LegGeometry):
@@ -361,7 +345,10 @@ def _keep_behind_edges(out, z, clearance, pitch, toe, edges: _Edges, fr: StepFra
     # before the toe tip first clears the first edge; after the heel last clears the last
     rising = ~np.logical_or.accumulate(z + tip_z >= edges.z[0] + clearance)
     falling = ~np.logical_or.accumulate((z + heel_z >= edges.z[-1] + clearance)[::-1])[::-1]
-    x_new = np.where(rising, np.minimum(x, edges.lo[0] - tip), x)
+    # the toes' top front corner (the toe block 0.4 ankle heights deep: body.humanoid) leads
+    # the toe tip of a foot pitched toes down
+    front = tip + TOE_DEPTH * geom.ankle_height * np.maximum(-np.sin(pitch + toe), 0.0)
+    x_new = np.where(rising, np.minimum(x, edges.lo[0] - front), x)
     x_new = np.where(falling, np.maximum(x_new, edges.hi[-1] - heel), x_new)
     out[:, :2] += (x_new - x)[:, None] * e
 
@@ -430,19 +417,7 @@ def sole_rise(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: 
     e = seg / max(float(np.hypot(*seg)), 1e-9)
     pts = _sole_points(ankle, pitch, toe, yaw, geom)
     x = (pts[..., :2] - fr.lift[:2]) @ e  # (m, 3)
-    under = edges.zr[np.searchsorted(edges.cut, x)]
-    for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
-        under = np.where((x >= lo - 1e-3) & (x <= hi + 1e-3), np.maximum(under, ze), under)
-    need = np.maximum((under + margin - pts[..., 2]).max(axis=1), 0.0)
-    z = pts[..., 2]
-    for lo, hi, ze in zip(edges.lo, edges.hi, edges.z, strict=True):
-        for a, b in ((0, 1), (1, 2)):  # the sole between heel and ball, ball and toe tip
-            for xe in (lo, hi):
-                lo_x, hi_x = np.minimum(x[:, a], x[:, b]), np.maximum(x[:, a], x[:, b])
-                over = (lo_x < xe) & (xe < hi_x)
-                w = np.clip((xe - x[:, a]) / np.where(over, x[:, b] - x[:, a], 1.0), 0.0, 1.0)
-                zs = z[:, a] + w * (z[:, b] - z[:, a])
-                need = np.where(over, np.maximum(need, ze + margin - zs), need)
+    need = np.maximum(_sole_need(x, pts[..., 2], edges, margin, margin), 0.0)
     need[ends] = 0.0
     if not need.any():
         return need

@@ -485,9 +485,10 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
     below the tread under it (the toes of a foot hanging toes down as it lowers onto a tread),
     the ankle rises by the depth (:func:`~mjwalk.body.legs.edgeswing.sole_rise`), and the
     foot is pitched again to what the ankle reaches there; in place. Down a stair the swing
-    is planned for a level sole (:func:`edge_swing`) and only this keeps the toes-down foot
-    off the treads: lifting it further, to :data:`STAIR_TOE_CLEARANCE` over the nosings,
-    gave knee peaks of 100-102 deg against :data:`KNEE_PEAK_DOWN`. Returns the least
+    is planned once, 3 cm over the nosings for the foot's pitch then (:func:`edge_swing`),
+    and only this keeps the foot, pitched further toes down, off the treads: planning it
+    again at each new pitch (as up a stair) kept 3 cm but gave knee peaks of 101-102 deg
+    against :data:`KNEE_PEAK_DOWN`. Returns the least
     clearance over the descents' edges, metres (inf without descents)."""
     for _ in range(SOLE_PASSES):
         _ankle_pitch(plans, feet, root, yaw, geom)
@@ -512,7 +513,7 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
 
 def _descends(sf: StepSurfaces) -> bool:
     """Whether an edged step is a step down a stair (its stance and landing surfaces each lower
-    than the one before), whose swing :func:`edge_swing` plans for a level sole."""
+    than the one before), whose swing :func:`edge_swing` plans once (not again at each pitch)."""
     return sf.stance < sf.lift - LEVEL_STEP and sf.land < sf.stance - LEVEL_STEP
 
 
