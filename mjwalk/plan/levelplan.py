@@ -19,7 +19,11 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    (:func:`next_foot`: step over step through every crossing);
 3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`), where along
    its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`), the
-   walker's swinging arms a cited clearance from its sides (:func:`side_margin`);
+   walker's swinging arms a cited clearance from its sides (:func:`side_margin`); a level
+   leg to a stair or step ends at its approach point a step length before the stance on its
+   axis, and the walk over it goes on a step length past its far stance before the next leg
+   (:func:`mjwalk.plan.levelcross.approach_point`, :func:`~mjwalk.plan.levelcross.departure`;
+   where the legs are long enough and the body fits): the walker lines up with the flight;
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
@@ -449,13 +453,13 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
 
 
 def _approach(view: Workplace, leg: RouteLeg, nxt: RouteLeg, lead: float, options):
-    """The goal of a level leg to a stair: its approach point ``lead`` before the stance
+    """The goal of a level leg to a stair or step: its approach point ``lead`` before the stance
     (:func:`mjwalk.plan.levelcross.approach_point`) where the leg starts farther from the stance
     than that point and its goal area, and the body radius fits all the way from the point to
     the stance (every :data:`~mjwalk.plan.occupancy.CELL_SIZE`); else None (the stance)."""
     c = nxt.crossing
     assert c is not None
-    if c.kind != "stair":
+    if c.kind == "ramp":  # walked onto without a break: no line-up
         return None
     if float(np.hypot(*(leg.start - leg.end))) <= lead + options.goal_tolerance:
         return None
@@ -464,14 +468,14 @@ def _approach(view: Workplace, leg: RouteLeg, nxt: RouteLeg, lead: float, option
 
 
 def _departure(workplace: Workplace, leg: RouteLeg, nxt: RouteLeg | None, lead: float, setup):
-    """The crossing of ``leg`` as walked: past a stair the walker steps ``lead`` on along its
+    """The crossing of ``leg`` as walked: past a stair or step the walker steps ``lead`` on its
     axis (:func:`mjwalk.plan.levelcross.departure`) where a level leg follows that is longer
     than that and its goal area, and the body radius fits all the way on the level it arrives
     at (``setup``: the planner's options and the head height); else the crossing itself."""
     c = leg.crossing
     assert c is not None
     options, head = setup
-    if c.kind != "stair" or nxt is None or nxt.kind != "level":
+    if c.kind == "ramp" or nxt is None or nxt.kind != "level":
         return c
     if float(np.hypot(*(nxt.end - nxt.start))) <= lead + options.goal_tolerance:
         return c
