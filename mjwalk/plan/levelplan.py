@@ -21,9 +21,10 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`), the
    walker's swinging arms a cited clearance from its sides (:func:`side_margin`); a level
    leg to a stair or step ends at its approach point a step length before the stance on its
-   axis, and the walk over it goes on a step length past its far stance before the next leg
-   (:func:`mjwalk.plan.levelcross.approach_point`, :func:`~mjwalk.plan.levelcross.departure`;
-   where the legs are long enough and the body fits): the walker lines up with the flight;
+   axis (:func:`mjwalk.plan.levelcross.approach_point`), and the walk over a stair goes on a
+   step length past its far stance before the next leg (:func:`~mjwalk.plan.levelcross.
+   departure`; a single step is left on the fly), where the legs are long enough and the body
+   fits: the walker lines up with the flight;
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
@@ -468,14 +469,14 @@ def _approach(view: Workplace, leg: RouteLeg, nxt: RouteLeg, lead: float, option
 
 
 def _departure(workplace: Workplace, leg: RouteLeg, nxt: RouteLeg | None, lead: float, setup):
-    """The crossing of ``leg`` as walked: past a stair or step the walker steps ``lead`` on its
+    """The crossing of ``leg`` as walked: past a stair the walker steps ``lead`` on along its
     axis (:func:`mjwalk.plan.levelcross.departure`) where a level leg follows that is longer
     than that and its goal area, and the body radius fits all the way on the level it arrives
     at (``setup``: the planner's options and the head height); else the crossing itself."""
     c = leg.crossing
     assert c is not None
     options, head = setup
-    if c.kind == "ramp" or nxt is None or nxt.kind != "level":
+    if c.kind != "stair" or nxt is None or nxt.kind != "level":
         return c
     if float(np.hypot(*(nxt.end - nxt.start))) <= lead + options.goal_tolerance:
         return c
