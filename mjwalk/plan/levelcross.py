@@ -261,11 +261,14 @@ def cross_walk(
 def approach_point(c: Crossing, direction: str, lead: float) -> np.ndarray:
     """The point on a flight's axis ``lead`` metres before its stance, away from the flight: a
     level walk aimed there lines the walker up with the flight before it steps on, as people
-    approaching a stair do over their last level steps (one foot planted before the first step
-    without a break in the walk's rhythm; Ackermans et al. 2020, Front. Sports Act. Living
-    2:63, compare stair walks with and without a walking approach). With ``lead`` one step
-    length the walk's last level step lands on the axis (:func:`cross_walk`'s ``lead_in``):
-    a modelling choice, no figure of those studies.
+    approaching steps do: they adapt their last approach steps so that one foot is planted
+    just before the step and the other lifted onto it without a break in the walk's rhythm
+    (PTMATE, "Analysis of stepping up", skillsforaction.com; qualitative). "Stair gait in older
+    adults worsens with smaller step treads and when transitioning between level and stair
+    walking" (Front. Sports Act. Living 2020, doi:10.3389/fspor.2020.00063) compares stair
+    walks with and without such a walking approach. With ``lead`` one step length the walk's
+    last level steps land on the axis (:func:`cross_walk`'s ``lead_in``): a modelling choice,
+    no figure of those sources.
 
     Args:
         c: the crossing.
