@@ -51,6 +51,16 @@ behind it (84 % of the first search's nodes west of x = -3 m, seed 1), and the w
 round the trolley, longer than 1.5x the field's distance, are searched again as loops (2-4
 searches a walk). The rack1 leg's arrival heading at the stair's foot is a hairpin round the
 stair's side wall: its aimed search spends 21-400 expansions.
+
+Branch i47-lvlcost (a level leg to a stair or step ends a step length before its stance on the
+axis, and a stair's walk goes on a step length past its far stance: levelcross.approach_point,
+departure), ``--draws 2 --walks 10``, CPU time, machine at load 6-8: level/flat 0.55, 0.48,
+0.63, rack1 -> mezzanine 1.01 (43 expansions against 23; 2.69 and 276 on main ae71305, same
+command), mezzanine -> rack1 (a new row) 1.09 (20 / 25; its legs alone from the stair's
+stance, as main walks them, 47.7 ms: 2540 expansions median at ae71305, loops re-searched up to
+11.7 m), platform1 -> car1 1.85 (194 / 18, unchanged: its floor leg threads the 0.58 m
+trolley-bumper gap; a flat walk on the same floor, stand_step -> stand_car1, 4.5 m, costs 733
+expansions and 16.7 ms median over seeds 1-10, more than this 6.4 m walk over levels).
 """
 
 from __future__ import annotations
@@ -219,6 +229,7 @@ LEVEL_WALKS = (
     ("stand_ramp", "stand_platform2"),
     ("stand_stair", "stand_mezz_rack"),
     ("stand_rack1", "stand_mezz_rack"),
+    ("stand_mezz_rack", "stand_rack1"),
     ("stand_platform1", "stand_car1"),
 )
 SCENES = Path(__file__).resolve().parent.parent / "scenes"

@@ -24,6 +24,7 @@ than jumping at each riser. Heights are given above the floor. Metres, seconds, 
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -64,10 +65,10 @@ def _footfalls(c: Crossing, direction: str, walker: Walker) -> tuple[np.ndarray,
     # every footfall of the track: the one half a tread before the first riser (descending: past
     # the last) too, so that no step spans the stance's clearance and two treads at once
     if direction == "up":
-        s = np.concatenate([c.track, [c.exit, c.exit]])
+        s = np.concatenate([c.track, _run(c.track[-1], c.exit, walker), [c.exit]])
         start = c.approach
     else:
-        s = np.concatenate([c.track[::-1], [c.approach, c.approach]])
+        s = np.concatenate([c.track[::-1], _run(c.track[0], c.approach, walker), [c.approach]])
         start = c.exit
     z = c.height_at(s)
     geometry = StairGeometry(max(c.risers), max(c.tread, MIN_TREAD))
@@ -75,6 +76,14 @@ def _footfalls(c: Crossing, direction: str, walker: Walker) -> tuple[np.ndarray,
     before = np.concatenate([[c.height_at(start)], z[:-1]])
     times = np.where(np.abs(z - before) > 1e-6, climb, walker.step_duration)
     return s, times
+
+
+def _run(a: float, b: float, walker: Walker) -> np.ndarray:
+    """Level footfalls from ``a`` (not included) to ``b`` along the axis, evenly spaced, none
+    farther apart than the walker's step length: ``[b]`` for a stance within a step of the
+    flight (:func:`departure`'s stance farther off: two or more)."""
+    n = max(1, math.ceil(abs(b - a) / walker.step_length - 1e-9))
+    return np.append(a + (b - a) * np.arange(1, n) / n, b)
 
 
 #: Least gap (m) between a foot standing on a level next to a flight and the riser face its toes
@@ -153,6 +162,7 @@ def cross_walk(
     last: PathStep | None,
     floor_z: float,
     step_width: float | None = None,
+    lead_in: bool = False,
 ) -> WalkPath:
     """The walk over a crossing (module docstring).
 
@@ -168,6 +178,10 @@ def cross_walk(
         floor_z: the floor's world height, metres (heights are given above it).
         step_width: lateral distance of the feet, metres (None: the walker's, else
             :data:`DEFAULT_STEP_WIDTH`).
+        lead_in: the walk that brought the walker there ended at the flight's approach point
+            (:func:`approach_point`), up to a step length and its goal area before the stance:
+            level steps along the axis, none longer than the walker's step length, lead from
+            there into the flight's first footfall (with ``last`` given; steps and stairs).
 
     Returns:
         The crossing's walk from t = 0: 120 Hz pelvis xy, yaw and height, its steps with the
@@ -181,6 +195,8 @@ def cross_walk(
     xy0, yaw0 = np.asarray(start[0], dtype=float), float(start[1])
     yaw = yaw0 + (yaw - yaw0 + math.pi) % (2 * math.pi) - math.pi  # the nearer turn
     begin = c.approach if direction == "up" else c.exit
+    if lead_in and last is not None and c.kind != "ramp":
+        s, times = _lead_in(c, s, times, start[0], walker)
     if last is None and float(np.hypot(*(c.point(begin) - xy0))) > STANCE_SLACK:
         # standing off the stance: both feet step onto it first, at the level step time
         s = np.concatenate([[begin, begin], s])
@@ -240,6 +256,59 @@ def cross_walk(
         meta=meta,
         z=np.asarray(zs) - floor_z,
     )
+
+
+def approach_point(c: Crossing, direction: str, lead: float) -> np.ndarray:
+    """The point on a flight's axis ``lead`` metres before its stance, away from the flight: a
+    level walk aimed there lines the walker up with the flight before it steps on, as people
+    approaching steps do: they adapt their last approach steps so that one foot is planted
+    just before the step and the other lifted onto it without a break in the walk's rhythm
+    (PTMATE, "Analysis of stepping up", skillsforaction.com; qualitative). "Stair gait in older
+    adults worsens with smaller step treads and when transitioning between level and stair
+    walking" (Front. Sports Act. Living 2020, doi:10.3389/fspor.2020.00063) compares stair
+    walks with and without such a walking approach. With ``lead`` one step length the walk's
+    last level steps land on the axis (:func:`cross_walk`'s ``lead_in``): a modelling choice,
+    no figure of those sources.
+
+    Args:
+        c: the crossing.
+        direction: "up" (the point lies before the approach stance on the lower level) or
+            "down" (past the exit stance on the upper level).
+        lead: distance from the stance, metres.
+
+    Returns:
+        (2,) world xy, metres.
+    """
+    return c.point(c.approach - lead if direction == "up" else c.exit + lead)
+
+
+def departure(c: Crossing, direction: str, lead: float) -> Crossing:
+    """The crossing walked on ``lead`` metres past its far stance along its axis: the walker
+    steps off a flight straight ahead before it turns to where it goes next (the mirror of
+    :func:`approach_point`; the steps there no longer than the walker's step length).
+
+    Args:
+        c: the crossing.
+        direction: "up" (the exit stance moves up the axis) or "down" (the approach stance
+            moves down it).
+        lead: distance past the stance, metres.
+
+    Returns:
+        The crossing with that stance moved (its :meth:`~Crossing.end` there).
+    """
+    if direction == "up":
+        return replace(c, exit=c.exit + lead)
+    return replace(c, approach=c.approach - lead)
+
+
+def _lead_in(c: Crossing, s: np.ndarray, times: np.ndarray, xy0, walker: Walker):
+    """``s`` and ``times`` with the level steps from ``xy0`` along the axis into the flight's
+    first footfall, evenly spaced, none longer than the walker's step length."""
+    here = float(np.dot(np.asarray(xy0, dtype=float) - c.origin, c.axis))
+    gap = float(s[0]) - here
+    n = max(1, math.ceil(abs(gap) / walker.step_length - 1e-9))
+    extra = here + gap * np.arange(1, n) / n
+    return np.concatenate([extra, s]), np.concatenate([np.full(n - 1, walker.step_duration), times])
 
 
 def crossing_time(c: Crossing, direction: str, walker: Walker) -> float:

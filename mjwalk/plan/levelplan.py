@@ -19,7 +19,12 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    (:func:`next_foot`: step over step through every crossing);
 3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`), where along
    its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`), the
-   walker's swinging arms a cited clearance from its sides (:func:`side_margin`);
+   walker's swinging arms a cited clearance from its sides (:func:`side_margin`); a level
+   leg to a stair or step ends at its approach point a step length before the stance on its
+   axis (:func:`mjwalk.plan.levelcross.approach_point`), and the walk over a stair goes on a
+   step length past its far stance before the next leg (:func:`~mjwalk.plan.levelcross.
+   departure`; a single step is left on the fly), where the legs are long enough and the body
+   fits: the walker lines up with the flight;
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
@@ -44,8 +49,8 @@ from mjwalk.anthropometry import swing_half_width
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.heuristic import goal_distance
-from mjwalk.plan.hybrid import HybridPlanner
-from mjwalk.plan.levelcross import cross_walk, crossing_time
+from mjwalk.plan.hybrid import HybridPlanner, walker_step_length
+from mjwalk.plan.levelcross import approach_point, cross_walk, crossing_time, departure
 from mjwalk.plan.levelroute import (
     Crossing,
     RouteLeg,
@@ -429,17 +434,62 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     c = nxt.crossing
     assert c is not None
     heading = c.yaw if nxt.direction == "up" else c.yaw + math.pi
+    goal = _approach(view, leg, nxt, walker_step_length(walker_model), options)
+    if goal is not None:  # lined up with the flight a step before its stance
+        planner = _planner(view, goal, model, options)
     # the approach heading is a preference: its guide searched on a small budget, else the
     # route search alone (the crossing's first step turns the walker onto its axis)
     budget = min(options.max_expansions, HEADING_BUDGET)
-    aimed = _planner(view, leg.end, model, replace(options, max_expansions=budget))
+    aim = leg.end if goal is None else goal
+    aimed = _planner(view, aim, model, replace(options, max_expansions=budget))
     try:
-        return aimed.plan(replace(request, goal_heading=heading), rng)
+        walk = aimed.plan(replace(request, goal_heading=heading), rng)
     except PlanningError:
         walk = planner.plan(request, rng)
         # the aimed search's spent budget counts (any earlier searches of it not)
         walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + budget
-        return walk
+    if goal is not None:
+        walk.meta["approach_point"] = [float(goal[0]), float(goal[1])]
+    return walk
+
+
+def _approach(view: Workplace, leg: RouteLeg, nxt: RouteLeg, lead: float, options):
+    """The goal of a level leg to a stair or step: its approach point ``lead`` before the stance
+    (:func:`mjwalk.plan.levelcross.approach_point`) where the leg starts farther from the stance
+    than that point and its goal area, and the body radius fits all the way from the point to
+    the stance (every :data:`~mjwalk.plan.occupancy.CELL_SIZE`); else None (the stance)."""
+    c = nxt.crossing
+    assert c is not None
+    if c.kind == "ramp":  # walked onto without a break: no line-up
+        return None
+    if float(np.hypot(*(leg.start - leg.end))) <= lead + options.goal_tolerance:
+        return None
+    point = approach_point(c, nxt.direction, lead)
+    return point if _line_clear(view, leg.end, point, options) else None
+
+
+def _departure(workplace: Workplace, leg: RouteLeg, nxt: RouteLeg | None, lead: float, setup):
+    """The crossing of ``leg`` as walked: past a stair the walker steps ``lead`` on along its
+    axis (:func:`mjwalk.plan.levelcross.departure`) where a level leg follows that is longer
+    than that and its goal area, and the body radius fits all the way on the level it arrives
+    at (``setup``: the planner's options and the head height); else the crossing itself."""
+    c = leg.crossing
+    assert c is not None
+    options, head = setup
+    if c.kind != "stair" or nxt is None or nxt.kind != "level":
+        return c
+    if float(np.hypot(*(nxt.end - nxt.start))) <= lead + options.goal_tolerance:
+        return c
+    level = c.upper if leg.direction == "up" else c.lower
+    walked = departure(c, leg.direction, lead)
+    view = level_view(workplace, level, head)
+    return walked if _line_clear(view, c.end(level), walked.end(level), options) else c
+
+
+def _line_clear(view: Workplace, a: np.ndarray, b: np.ndarray, options) -> bool:
+    """Whether the body radius fits along the segment a-b (every grid cell's length)."""
+    u = np.linspace(0.0, 1.0, max(2, math.ceil(float(np.hypot(*(b - a))) / CELL_SIZE) + 1))
+    return float(np.min(view.walk_clearance(a + np.outer(u, b - a)))) >= options.radius
 
 
 def plan_level_walk(
@@ -508,10 +558,16 @@ def plan_level_walk(
             # first step keeps that height under its stance foot, not the floor's
             h = workplace.levels.levels[parts[-1][0].level].height - workplace.floor_z
             last = replace(last, foot_z=h, stance_z=h)
-        walk = cross_walk(c, leg.direction, walker, here, last, workplace.floor_z)
+        lead_in = prev is not None and "approach_point" in prev.meta
+        nxt = legs[k + 1] if k + 1 < len(legs) else None
+        walked = _departure(workplace, leg, nxt, walker.step_length, (options, head))
+        walk = cross_walk(
+            walked, leg.direction, walker, here, last, workplace.floor_z, lead_in=lead_in
+        )
         parts.append((leg, walk))
         end_yaw = c.yaw if leg.direction == "up" else c.yaw + math.pi
-        pose = (float(leg.end[0]), float(leg.end[1]), end_yaw)
+        stance = walked.end(c.upper if leg.direction == "up" else c.lower)
+        pose = (float(stance[0]), float(stance[1]), end_yaw)
         foot = next_foot(walk.steps[-1].side if walk.steps else None)
     if not parts:
         raise PlanningError("start and goal are within reach already: there is no walk to plan")

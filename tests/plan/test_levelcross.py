@@ -9,8 +9,16 @@ from mjwalk.anthropometry import leg_geometry
 from mjwalk.gait.slope import slope_gait
 from mjwalk.gait.stairs import ASCENT_STEP_TIME, DESCENT_STEP_TIME
 from mjwalk.gait.walker import Walker
-from mjwalk.plan.levelcross import RISER_GAP, cross_walk, crossing_time, tread_setback
+from mjwalk.plan.levelcross import (
+    RISER_GAP,
+    approach_point,
+    cross_walk,
+    crossing_time,
+    departure,
+    tread_setback,
+)
 from mjwalk.plan.levelroute import crossings
+from mjwalk.plan.walkpath import PathStep
 from mjwalk.world import load_workplace
 
 
@@ -94,3 +102,39 @@ def test_stair_feet_are_centred_on_their_treads(by_kind, direction):
             # two treads, and the level foot's step back off the riser (less than RISER_GAP)
             assert np.hypot(*(s.foot[:2] - feet[s.side])) <= 2 * stair.tread + RISER_GAP
         feet[s.side] = s.foot[:2]
+
+
+@pytest.mark.parametrize("direction", ["up", "down"])
+def test_lead_in_and_departure_walk_on_the_axis_in_steps_no_longer_than_a_step(by_kind, direction):
+    c, w = by_kind["stair"], Walker()
+    lead = w.step_length
+    up = direction == "up"
+    here, there = (c.lower, c.upper) if up else (c.upper, c.lower)
+    point = approach_point(c, direction, lead)
+    assert float(np.hypot(*(point - c.end(here)))) == pytest.approx(lead)
+    # away from the flight: before the approach stance going up, past the exit going down
+    s_point = float(np.dot(point - c.origin, c.axis))
+    assert (s_point < c.approach) if up else (s_point > c.exit)
+    yaw = c.yaw if up else c.yaw + np.pi
+    plain = cross_walk(c, direction, w, (c.end(here), yaw), None, 0.0)
+    walked = departure(c, direction, lead)
+    assert float(np.hypot(*(walked.end(there) - c.end(there)))) == pytest.approx(lead)
+    # the level step that brought the walker to the approach point: its left foot lands
+    # beside it, the right one stands a step behind
+    left = np.array([-np.sin(yaw), np.cos(yaw)])
+    behind = point - lead * np.array([np.cos(yaw), np.sin(yaw)]) - 0.06 * left
+    h = float(c.height_at(s_point)) - c.z_lower
+    last = PathStep(
+        "left", 0, 60, np.array([*(point + 0.06 * left), yaw]), np.array([*behind, yaw]), h, h
+    )
+    start = (point, yaw)
+    longer = cross_walk(walked, direction, w, start, last, 0.0, lead_in=True)
+    # the lead-in and the departure add level steps, none longer than the walker's step
+    assert len(longer.steps) > len(plain.steps)
+    feet = np.array([s.foot[:2] for s in longer.steps])
+    along = np.abs(np.diff((feet - c.origin) @ c.axis))
+    assert along.max() <= w.step_length + 1e-9
+    assert np.hypot(*(longer.xy[-1] - walked.end(there))) < 0.01
+    # without either, the crossing's walk is as before
+    again = cross_walk(c, direction, w, (c.end(here), yaw), None, 0.0)
+    assert np.array_equal(again.xy, plain.xy)

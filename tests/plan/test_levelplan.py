@@ -124,9 +124,10 @@ def test_walk_to_the_mezzanine_puts_one_foot_on_each_tread(station, model):
         assert len(on) == 1, f"{tread.name}: {len(on)} footfalls"
         assert on[0].foot_z == pytest.approx(tread.z, abs=0.01)
     stair = walk.meta["levels"]["per_kind"]["stairs"]
-    # a level step half a tread before the first riser, 5 treads, the landing, a level step
-    # and the closing step
-    assert stair["steps"] == 9
+    # a level step half a tread before the first riser, 5 treads, the landing, two level
+    # steps on past the stance (levelcross.departure: the walk to the rack is longer than a
+    # step) and the closing step
+    assert stair["steps"] == 10
     assert walk.ground[-1] == pytest.approx(1.02, abs=1e-9)
 
 
@@ -297,3 +298,23 @@ def test_walk_down_into_a_pit_and_back_takes_its_stair(tmp_path, model, pit_xml)
         assert walk.z[-1 if direction == "down" else 0] == pytest.approx(-0.51, abs=0.01)
     with pytest.raises(PlanningError, match="no route"):
         plan_level_walk(wp, "floor_a", "pit_b", model, np.random.default_rng(3), max_riser=0.15)
+
+
+def test_a_walk_round_the_stair_lines_up_with_it_and_steps_off_straight(station, model):
+    """rack1 -> mezzanine aims its floor leg a step before the stair's stance on its axis
+    (levelcross.approach_point), and the way back steps on a step past the stance before it
+    turns (levelcross.departure): the hairpin round the stair's east wall is not searched
+    (the multi-level station's stair: axis x = -4.9, first riser at y = -0.10, up towards -y)."""
+    up = plan_walk(station, "stand_rack1", "stand_mezz_rack", model, rng=3)
+    down = plan_walk(station, "stand_mezz_rack", "stand_rack1", model, rng=3)
+    assert _kinds(up) == ["level", "stair", "level"] == _kinds(down)
+    floor_up = [s.foot[:2] for s in up.steps if s.foot_z < 0.01]
+    floor_down = [s.foot[:2] for s in down.steps if s.foot_z < 0.01]
+    # the last two floor footfalls before the flight (the level walk ends within its goal
+    # area of the approach point) and the first three after it: on the axis within the step
+    # width, and farther out than the stance (y = 0.23)
+    for feet, out in ((np.array(floor_up[-2:]), 0.15), (np.array(floor_down[:3]), 0.5)):
+        assert np.all(np.abs(feet[:, 0] + 4.9) < 0.15), feet
+        assert feet[:, 1].max() > 0.23 + out, feet
+    # few expansions: at ae71305 the hairpin cost 69-3577 (up) and 106-4957 (down), seeds 1-10
+    assert up.meta["expansions_all"] < 1000 and down.meta["expansions_all"] < 1000
