@@ -390,7 +390,12 @@ def find_walk_surfaces(
         if s.headroom.clear_area(options.min_headroom) < options.min_depth * options.min_width:
             continue
         found.append(s)
-    keep = reachable(len(found), surface_contacts(found, options.contact_gap, options.max_riser))
+    contacts = surface_contacts(found, options.contact_gap, options.max_riser)
+    keep = reachable(len(found), contacts)
+    if holes is not None:  # every floor box is the floor: each one's edge may be a few cells
+        for i, s in enumerate(found):  # of a staircase round a turned flight, touching little
+            if s.kind == "floor" and i not in keep:
+                keep |= reachable(len(found), contacts, i)
     rest = sorted((found[i] for i in keep if i > 0), key=lambda s: (s.z_low, s.name))
     return (found[0], *rest)
 

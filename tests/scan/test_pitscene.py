@@ -93,3 +93,44 @@ def test_unreached_pit_stays_a_guard_rail_box():
     scene = build_scene(points, source="pit")
     assert "scan_pit_0" in scene.xml and FLOOR_BOX_PREFIX not in scene.xml
     assert pit_floor(scene.plan, scene.pits) is None
+
+
+@pytest.mark.slow  # a second seeded scan and a walk on it: about 25 s on a loaded machine
+def test_a_turned_pit_keeps_its_stair_and_is_walked_into(tmp_path):
+    """The same hall turned 30 deg about z (scanners with it): the flight runs along neither
+    axis, so the floor boxes over the grid meet its last riser only in a staircase of cells;
+    the written scene has a floor box turned to the flight at its top, and the level graph
+    gives the floor, the pit and one stair of three risers (not single steps, not nothing), down
+    which a walk is planned."""
+    import math
+
+    from test_scanpits import HALL
+
+    c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+    turn = lambda x, y: (c * x - s * y, s * x + c * y)  # noqa: E731
+    xml = (HALL % STAIR).replace("<worldbody>", '<worldbody><body euler="0 0 30">')
+    model = mujoco.MjModel.from_xml_string(xml.replace("</worldbody>", "</body></worldbody>"))
+    scanners = [(*turn(x, y), z) for x, y, z in STAIR_SCANNERS]
+    from mjwalk.scan.raycast import synthetic_scan
+
+    points = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=1).points
+    sites = tmp_path / "sites.toml"
+    (ax, ay), (bx, by) = turn(-3.0, -2.0), turn(0.5, 0.5)
+    sites.write_text(
+        f"[site.floor_a]\nxy = [{ax:.4f}, {ay:.4f}]\n[site.pit_b]\nxy = [{bx:.4f}, {by:.4f}]\n"
+    )
+    scene = build_scene(points, source="turned", sites=read_sites(sites))
+    path = tmp_path / "turned.xml"
+    path.write_text(scene.xml)
+    wp = load_workplace(path)
+    graph = wp.levels
+    (stair,) = graph.links
+    assert stair.kind == "stair" and stair.upper == 0 and len(stair.risers) == 3
+    assert stair.risers[0] == pytest.approx(0.17, abs=0.005)
+    assert stair.tread == pytest.approx(0.28, abs=0.01)
+    assert graph.levels[stair.lower].height == pytest.approx(-0.51, abs=0.02)
+    assert graph.levels[stair.lower].area == pytest.approx(3.9, abs=0.15)  # the 2 x 2 m opening
+    walk = plan_walk(wp, "floor_a", "pit_b", default_model(progress=False), rng=5)
+    route = walk.meta["levels"]["route"]
+    assert [r["kind"] for r in route] == ["level", "stair", "level"]
+    assert walk.z[-1] == pytest.approx(-0.51, abs=0.02)
