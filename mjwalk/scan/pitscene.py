@@ -7,7 +7,9 @@ plane at the deepest reached pit's bottom, the floor level as boxes named
 the floor plan but the openings, each reached pit's stair as its regular flight
 (:func:`mjwalk.scan.levelboxes.fit_stair`: its treads' boxes from the plane up, the floor's edge
 moved onto the flight's last riser when the flight runs along x or y; a flight turned off the
-axes gets a floor box turned to it at its top, :func:`_landing`), and a shallower pit's
+axes gets a floor box turned to it at its top, :func:`_landing`), a pit's ramp as its tilted
+box (:func:`mjwalk.scan.scanramps.ramp_box`) with a floor box along its top end one least tread
+(``norms.MIN_TREAD``) deep, and a shallower pit's
 bottom as a box. A gap nothing reaches stays a guard-rail box
 (:func:`mjwalk.scan.scanpits.gap_boxes`). A scan without a reached pit is written as before.
 Metres, scene frame (floor at z = 0).
@@ -24,7 +26,9 @@ from scipy import ndimage
 from mjwalk.scan.levelboxes import LEVEL_MATERIAL, fit_stair
 from mjwalk.scan.obstacles import FloorPlan, rectangles
 from mjwalk.scan.scanpits import ScanPit, gap_boxes
+from mjwalk.scan.scanramps import ramp_box
 from mjwalk.world.floorholes import FLOOR_BOX_PREFIX
+from mjwalk.world.norms import MIN_TREAD
 
 #: Material of the floor boxes round the openings (the floor plane's).
 FLOOR_MATERIAL = "floor"
@@ -147,7 +151,15 @@ def _landing(fit: dict, plane_z: float, name: str) -> tuple:
     run, rect = fit["run"], fit["rects"][-1]
     side = np.array([-run[1], run[0]])
     w0, w1 = float(rect[0] @ side), float(rect[2] @ side)
-    s0, s1 = float(fit["top_edge"]), float(fit["top_edge"]) + float(fit["tread"])
+    s0 = float(fit["top_edge"])
+    return _top_box(run, (s0, s0 + float(fit["tread"])), (w0, w1), plane_z, name)
+
+
+def _top_box(run: np.ndarray, s: tuple, w: tuple, plane_z: float, name: str) -> tuple:
+    """A floor box turned to ``run`` over [s0, s1] along it and [w0, w1] across it (metres),
+    from the plane up to the floor."""
+    side = np.array([-run[1], run[0]])
+    (s0, s1), (w0, w1) = s, w
     c = 0.5 * (s0 + s1) * run + 0.5 * (w0 + w1) * side
     centre = np.array([c[0], c[1], 0.5 * plane_z])
     half = np.array([0.5 * (s1 - s0), 0.5 * abs(w1 - w0), -0.5 * plane_z])
@@ -182,6 +194,9 @@ def pit_floor(plan: FloorPlan, pits: list[ScanPit]) -> PitFloor | None:
         fits += [fit] if fit is not None else []
         if fit is not None and not _along_axis(fit["run"]):  # no floor box over its treads
             opening |= _in_rects(plan, fit["rects"])
+        if p.ramp is not None:  # a ramp down to it: its box, no floor box over it
+            boxes.append(ramp_box(p.ramp, f"scan_pit_ramp_{len(boxes)}"))
+            opening |= _in_rects(plan, [p.ramp.rect])
         if p.bottom.height > plane_z + 1e-6:  # a shallower pit: its bottom as a box
             for iy0, iy1, ix0, ix1, _ in rectangles(cells.astype(np.int32)):
                 lo = (plan.x0 + ix0 * r, plan.y0 + iy0 * r, plane_z)
@@ -196,6 +211,13 @@ def pit_floor(plan: FloorPlan, pits: list[ScanPit]) -> PitFloor | None:
     for fit in fits:
         if not _along_axis(fit["run"]):
             floor.append(_landing(fit, plane_z, f"{FLOOR_BOX_PREFIX}{len(floor)}"))
+    for p in reached:  # the floor at a ramp's top: one straight edge along its width
+        if p.ramp is not None:
+            rp = p.ramp
+            s = (rp.s_hi, rp.s_hi + MIN_TREAD)
+            floor.append(
+                _top_box(rp.run, s, (rp.w_lo, rp.w_hi), plane_z, f"{FLOOR_BOX_PREFIX}{len(floor)}")
+            )
     gaps = plan.gaps & ~opening if plan.gaps is not None else None
     guards = gap_boxes(replace(plan, gaps=gaps))
     return PitFloor(plane_z, floor + boxes + guards, reached)

@@ -16,6 +16,7 @@ planner walks around. ``--voids`` chooses what void means:
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -190,8 +191,10 @@ def save_top_view(
         draw_levels(ax, levels)
     for k, p in enumerate(pits or []):
         what = "no bottom seen" if p.bottom is None else f"bottom {p.bottom.height:+.2f} m"
-        if p.link is not None:
+        if p.link is not None and p.link.risers:
             what += f", {p.link.kind} {len(p.link.risers)} x {p.link.risers[0]:.2f} m"
+        elif p.link is not None:
+            what += f", ramp {math.degrees(p.link.slope or 0.0):.1f}°"
             draw_pit_link(ax, p, plan)
             what = f"pit level, {what}"
         at = p.centre if p.link is None else (p.centre[0], p.centre[1] - 0.3)  # under the arrow
@@ -213,7 +216,8 @@ def save_top_view(
 def draw_pit_link(ax, pit: ScanPit, plan: FloorPlan) -> None:
     """Draw how the floor reaches a pit level: an arrow from its bottom up to the tread next to
     the floor (as :func:`mjwalk.scan.levelboxes.draw_levels` draws a link, from the lower level
-    up), each tread's cells outlined (the pit's label, drawn by the caller, names the link).
+    up), each tread's cells outlined (a ramp: hatched, the arrow up its middle); the pit's
+    label, drawn by the caller, names the link.
 
     Args:
         ax: a matplotlib axes in world x, y metres.
@@ -224,6 +228,13 @@ def draw_pit_link(ax, pit: ScanPit, plan: FloorPlan) -> None:
         None; draws on ``ax``.
     """
     if pit.link is None or pit.bottom is None:
+        return
+    if pit.ramp is not None:  # up the ramp's middle, its outline hatched
+        rp = pit.ramp
+        ax.fill(*rp.rect.T, fill=False, lw=0.8, ec="k", hatch="///")
+        mid = 0.5 * (rp.w_lo + rp.w_hi) * np.array([-rp.run[1], rp.run[0]])
+        p, q = rp.s_lo * rp.run + mid, rp.s_hi * rp.run + mid
+        ax.annotate("", q, p, arrowprops={"arrowstyle": "->", "color": "#b03a2e", "lw": 1.0})
         return
     r = plan.resolution
 

@@ -134,3 +134,34 @@ def test_a_turned_pit_keeps_its_stair_and_is_walked_into(tmp_path):
     route = walk.meta["levels"]["route"]
     assert [r["kind"] for r in route] == ["level", "stair", "level"]
     assert walk.z[-1] == pytest.approx(-0.51, abs=0.02)
+
+
+@pytest.mark.slow  # a seeded scan and two walks on it: about 30 s on a loaded machine
+def test_a_pit_reached_by_a_ramp_is_written_with_it_and_walked_into(tmp_path):
+    """The seeded scan of test_scanpits.RAMP_HALL (a 0.51 m pit, a 9.06 deg ramp down to it):
+    the written scene has the ramp as a tilted box and the floor round the opening; the level
+    graph links the floor and the pit by one ramp, and walks go down it and back up."""
+    from test_scanpits import RAMP_HALL
+
+    from mjwalk.scan.raycast import synthetic_scan
+
+    model = mujoco.MjModel.from_xml_string(RAMP_HALL)
+    scanners = [(-3.0, -1.5, 1.6), (3.0, 2.0, 1.6), (2.8, 0.5, 1.7)]
+    points = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=1).points
+    sites = tmp_path / "sites.toml"
+    sites.write_text("[site.floor_a]\nxy = [-4.0, -2.0]\n[site.pit_b]\nxy = [1.6, 0.5]\n")
+    scene = build_scene(points, source="ramp", sites=read_sites(sites))
+    assert "scan_pit_ramp_" in scene.xml and "with its ramp" in scene.xml
+    path = tmp_path / "ramp.xml"
+    path.write_text(scene.xml)
+    wp = load_workplace(path)
+    (link,) = wp.levels.links
+    assert link.kind == "ramp" and link.upper == 0
+    assert np.degrees(link.slope) == pytest.approx(9.06, abs=0.3)
+    assert wp.levels.levels[link.lower].height == pytest.approx(-0.51, abs=0.02)
+    model_ = default_model(progress=False)
+    for start, goal, direction in (("floor_a", "pit_b", "down"), ("pit_b", "floor_a", "up")):
+        walk = plan_walk(wp, start, goal, model_, rng=5)
+        kinds = [(r["kind"], r.get("direction")) for r in walk.meta["levels"]["route"]]
+        assert ("ramp", direction) in kinds
+        assert walk.z[-1 if direction == "down" else 0] == pytest.approx(-0.51, abs=0.02)

@@ -6,6 +6,7 @@ floor is four boxes round a 2 x 2 m opening at x in [-1, 1], y in [-0.5, 1.5].""
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import mujoco
@@ -166,20 +167,22 @@ RAMP_HALL = """<mujoco><worldbody>
 </worldbody></mujoco>"""
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 47: ramps down into a pit are not looked for in scans (scanramps looks above "
-    "the floor only), and the pit's bottom is lost: its region at -0.50 m takes in the ramp's "
-    "lowest 0.28 m, fits a slope of 0.040 and is dropped as a ramp's strip (regions_at), so "
-    "the gap is written as 'no bottom scanned: obstacle'",
-)
 def test_a_pit_reached_by_a_ramp_is_a_level():
+    """Seeded scan of RAMP_HALL: the pit's bottom is found at its depth and the ramp down to it
+    (looked for below the floor) is its link, within 2 cm and 0.3 deg."""
     model = mujoco.MjModel.from_xml_string(RAMP_HALL)
     scanners = [(-3.0, -1.5, 1.6), (3.0, 2.0, 1.6), (2.8, 0.5, 1.7)]
     pts = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=1).points
     (pit,) = _pits(pts)[1]
+    assert pit.kind == "level"
+    # the bottom's region at the candidate height takes in the ramp's lowest strip; the cells
+    # whose points lie at the bottom's height keep it level (scanpits._flat_layer)
     assert pit.bottom is not None and pit.bottom.height == pytest.approx(-0.51, abs=0.02)
-    assert pit.link is not None and pit.link.kind == "ramp"
+    assert pit.link is not None and pit.link.kind == "ramp" and pit.ramp is not None
+    assert math.degrees(pit.ramp.slope) == pytest.approx(9.06, abs=0.3)
+    assert pit.ramp.h_hi == 0.0 and pit.ramp.length == pytest.approx(3.2, abs=0.05)
+    assert pit.ramp.width == pytest.approx(2.0, abs=0.05)
+    assert "reached from the floor by ramp 9." in describe_pits([pit])
 
 
 def test_a_slot_narrower_than_a_foot_stays_floor():
