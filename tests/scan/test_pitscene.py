@@ -165,3 +165,51 @@ def test_a_pit_reached_by_a_ramp_is_written_with_it_and_walked_into(tmp_path):
         kinds = [(r["kind"], r.get("direction")) for r in walk.meta["levels"]["route"]]
         assert ("ramp", direction) in kinds
         assert walk.z[-1 if direction == "down" else 0] == pytest.approx(-0.51, abs=0.02)
+
+
+#: An 8 x 6 m hall along the axes (its walls along its long sides) whose 2 x 2 m pit and stair
+#: (those of test_scanpits.STAIR) are turned 20 deg about the opening's centre (0, 0.5): axis
+#: boxes keep clear of the opening, four boxes turned with it close the floor round it.
+TURNED_PIT = """<mujoco><worldbody>
+<geom type="box" pos="-3 0 -0.05" size="1.5 3 0.05"/>
+<geom type="box" pos="3 0 -0.05" size="1.5 3 0.05"/>
+<geom type="box" pos="0 -2.25 -0.05" size="4 0.75 0.05"/>
+<geom type="box" pos="0 2.6 -0.05" size="4 0.4 0.05"/>
+<geom type="box" pos="0 3.05 1.5" size="4 0.05 1.5"/>
+<geom type="box" pos="0 -3.05 1.5" size="4 0.05 1.5"/>
+<body pos="0 0.5 0" euler="0 0 20">
+<geom type="box" pos="0 1.5 -0.05" size="2 0.5 0.05"/>
+<geom type="box" pos="0 -1.5 -0.05" size="2 0.5 0.05"/>
+<geom type="box" pos="-1.5 0 -0.05" size="0.5 1 0.05"/>
+<geom type="box" pos="1.5 0 -0.05" size="0.5 1 0.05"/>
+<geom name="pit" type="box" pos="0.14 0 -0.56" size="0.86 1 0.05"/>
+<geom name="s1" type="box" pos="-0.86 0 -0.35" size="0.14 1 0.18"/>
+<geom name="s2" type="box" pos="-0.58 0 -0.43" size="0.14 1 0.09"/>
+</body>
+</worldbody></mujoco>"""
+
+
+@pytest.mark.slow  # a seeded scan and the written scene's levels: about 15 s when loaded
+def test_a_pit_turned_in_its_hall_keeps_its_stair(tmp_path):
+    """The stair's run is taken from its own treads, not from the floor's outline (the hall's):
+    before, the flight of TURNED_PIT did not fit along x and the scan linked the pit by three
+    single steps (with other scanners: a stair of 0.26 m treads, and the written scene had no
+    pit level at all); now one stair of three 0.17 m risers and 0.28 m treads, in the scan and
+    in the written scene."""
+    from mjwalk.scan.raycast import synthetic_scan
+
+    model = mujoco.MjModel.from_xml_string(TURNED_PIT)
+    c, s = np.cos(np.radians(20)), np.sin(np.radians(20))
+    scanners = [(-2.5, -1.5, 1.6), (2.5, 2.0, 1.6), (2.3 * c, 0.5 + 2.3 * s, 1.7)]
+    points = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=1).points
+    scene = build_scene(points, source="turned pit")
+    (pit,) = scene.pits
+    assert pit.link is not None and pit.link.kind == "stair"
+    assert pit.link.tread == pytest.approx(0.28, abs=0.01)
+    path = tmp_path / "turned_pit.xml"
+    path.write_text(scene.xml)
+    wp = load_workplace(path)
+    (stair,) = wp.levels.links
+    assert stair.kind == "stair" and len(stair.risers) == 3 and stair.upper == 0
+    assert stair.tread == pytest.approx(0.28, abs=0.01)
+    assert wp.levels.levels[stair.lower].height == pytest.approx(-0.51, abs=0.02)
