@@ -21,6 +21,8 @@ SCENES = {
     "open_floor": "open_floor.xml",
     "multilevel": "multilevel_station.xml",
     "multilevel_station": "multilevel_station.xml",
+    "pit": "pit_station.xml",
+    "pit_station": "pit_station.xml",
 }
 #: Short names of the shipped cycle specifications -> file names.
 CYCLES = {
@@ -28,6 +30,8 @@ CYCLES = {
     "assembly_station": "assembly_station.toml",
     "multilevel": "multilevel_station.toml",
     "multilevel_station": "multilevel_station.toml",
+    "pit": "pit_station.toml",
+    "pit_station": "pit_station.toml",
 }
 
 

@@ -93,3 +93,34 @@ def pit_xml() -> str:
     """An MJCF hall with a pit under a floor of boxes and a stair down into it (the world's
     floor-with-openings tests and the level planner's walk into a pit share it)."""
     return _PIT_XML
+
+
+def _pit_ramp_xml() -> str:
+    """:func:`pit_ramp_xml`'s text: the ramp box placed so its top face runs from the opening's
+    west rim (x = -2, z = 0) down to the pit's bottom at x = 1.2 (z = -0.51)."""
+    import math
+
+    run, depth, t = 3.2, 0.51, 0.05
+    ang = math.atan2(depth, run)
+    cx, cz = -2.0 + run / 2 + t * math.sin(ang), -depth / 2 - t * math.cos(ang)
+    half = math.hypot(run, depth) / 2
+    return f"""<mujoco model="pit_ramp"><worldbody>
+<geom name="floor" type="plane" pos="0 0 -0.51" size="5 3 0.05"/>
+<geom name="floor_0" type="box" pos="0 -1.75 -0.255" size="5 1.25 0.255"/>
+<geom name="floor_1" type="box" pos="0 2.25 -0.255" size="5 0.75 0.255"/>
+<geom name="floor_2" type="box" pos="-3.5 0.5 -0.255" size="1.5 1 0.255"/>
+<geom name="floor_3" type="box" pos="3.5 0.5 -0.255" size="1.5 1 0.255"/>
+<geom name="ramp" type="box" pos="{cx:.5f} 0.5 {cz:.5f}" euler="0 {math.degrees(ang):.5f} 0"
+ size="{half:.5f} 1 {t}"/>
+<site name="floor_a" pos="-4 -2 0"/>
+<site name="pit_b" pos="1.6 0.5 -0.51"/>
+</worldbody></mujoco>"""
+
+
+@pytest.fixture(scope="session")
+def pit_ramp_xml() -> str:
+    """An MJCF hall (10 x 6 m) whose floor is four boxes round a 4 x 2 m opening (x in [-2, 2],
+    y in [-0.5, 1.5]) over a plane 0.51 m down, reached by a ramp of 9.06 deg (0.51 m over a
+    3.2 m run, within norms.MAX_RAMP_SLOPE's 10 deg) the opening's width, descending along +x
+    from its west rim."""
+    return _pit_ramp_xml()

@@ -40,11 +40,12 @@ def site_level(workplace: Workplace, name: str) -> int | None:
     Returns:
         0 for a site within :data:`STAND_MAX_Z` of the floor (the levels are not built); else
         the index in ``workplace.levels.levels`` of the level whose height lies within
-        :data:`STAND_MAX_Z` below the site; None when the site stands on no level.
+        :data:`STAND_MAX_Z` below the site (a platform above the floor, or a pit below a floor
+        with openings, :mod:`mjwalk.world.floorholes`); None when the site stands on no level.
     """
     st = workplace.stations[name]
     height = float(st.pos[2] - workplace.floor_z)
-    if height <= STAND_MAX_Z:
+    if abs(height) <= STAND_MAX_Z:
         return 0
     lv = level_at(workplace, np.asarray(st.xy, dtype=float), float(st.pos[2]))
     if lv is None:

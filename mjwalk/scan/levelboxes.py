@@ -148,6 +148,11 @@ def _axis(rect: np.ndarray, run: np.ndarray) -> np.ndarray:
     return a if a @ run > 0 else -a
 
 
+def _tread_rect(tread: ScanLevel, plan: FloorPlan) -> np.ndarray:
+    """A tread's minimum-area rectangle (4, 2), metres."""
+    return min_rectangle(tread.cells, plan.x0, plan.y0, plan.resolution)
+
+
 def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dict | None:
     """A chain of levels fitted as one regular flight, or None when it is not a stair.
 
@@ -168,7 +173,10 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
     dz = max(abs(t.height - h) for t, h in zip(treads, heights, strict=True))
     mids = [_centres(t.cells, plan).mean(axis=0) for t in treads]
     top_rect = min_rectangle(top.cells, plan.x0, plan.y0, plan.resolution)
-    run = _axis(top_rect, mids[-1] - mids[0])
+    # a flight down into a pit (its top the floor, whose outline is the hall's) turns with its
+    # own treads: the axis of the tread next to the floor
+    ref = top_rect if top.kind != "floor" else _tread_rect(treads[-1], plan)
+    run = _axis(ref, mids[-1] - mids[0])
     side = np.array([-run[1], run[0]])
     rows, rhs, lefts, rights = [], [], [], []
     for k, t in enumerate(treads):

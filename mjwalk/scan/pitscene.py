@@ -6,7 +6,10 @@ plane at the deepest reached pit's bottom, the floor level as boxes named
 :data:`~mjwalk.world.floorholes.FLOOR_BOX_PREFIX`... from the plane up to z = 0 over every cell of
 the floor plan but the openings, each reached pit's stair as its regular flight
 (:func:`mjwalk.scan.levelboxes.fit_stair`: its treads' boxes from the plane up, the floor's edge
-moved onto the flight's last riser when the flight runs along x or y), and a shallower pit's
+moved onto the flight's last riser when the flight runs along x or y; a flight turned off the
+axes gets a floor box turned to it at its top, :func:`_landing`), a pit's ramp as its tilted
+box (:func:`mjwalk.scan.scanramps.ramp_box`) with a floor box along its top end one least tread
+(``norms.MIN_TREAD``) deep, and a shallower pit's
 bottom as a box. A gap nothing reaches stays a guard-rail box
 (:func:`mjwalk.scan.scanpits.gap_boxes`). A scan without a reached pit is written as before.
 Metres, scene frame (floor at z = 0).
@@ -23,7 +26,9 @@ from scipy import ndimage
 from mjwalk.scan.levelboxes import LEVEL_MATERIAL, fit_stair
 from mjwalk.scan.obstacles import FloorPlan, rectangles
 from mjwalk.scan.scanpits import ScanPit, gap_boxes
+from mjwalk.scan.scanramps import ramp_box
 from mjwalk.world.floorholes import FLOOR_BOX_PREFIX
+from mjwalk.world.norms import MIN_TREAD
 
 #: Material of the floor boxes round the openings (the floor plane's).
 FLOOR_MATERIAL = "floor"
@@ -118,6 +123,49 @@ def _snap(lo: np.ndarray, hi: np.ndarray, fits: list[dict], res: float) -> None:
                     face[ax] = at
 
 
+def _along_axis(run: np.ndarray) -> bool:
+    """Whether a flight's climb direction lies within :data:`AXIS_TOL` of x or y."""
+    return max(abs(float(run[0])), abs(float(run[1]))) >= math.cos(AXIS_TOL)
+
+
+def _in_rects(plan: FloorPlan, rects: list[np.ndarray]) -> np.ndarray:
+    """(ny, nx) bool: the plan's cells whose centres lie in any of the rectangles (4, 2)."""
+    ny, nx = plan.floor.shape
+    r = plan.resolution
+    gx, gy = plan.x0 + (np.arange(nx) + 0.5) * r, plan.y0 + (np.arange(ny) + 0.5) * r
+    xy = np.stack(np.meshgrid(gx, gy), axis=-1)
+    out = np.zeros((ny, nx), bool)
+    for rect in rects:
+        e1, e2 = rect[1] - rect[0], rect[3] - rect[0]
+        u, v = (xy - rect[0]) @ e1, (xy - rect[0]) @ e2
+        out |= (u >= 0) & (u <= e1 @ e1) & (v >= 0) & (v <= e2 @ e2)
+    return out
+
+
+def _landing(fit: dict, plane_z: float, name: str) -> tuple:
+    """The floor box at the top of a flight that runs along neither axis: as wide as its
+    treads, one tread deep beyond its last riser, turned to the flight, from the plane up to the
+    floor. The floor's boxes over the grid's cells meet that riser only in a staircase of cells;
+    this box gives the top tread one straight edge to meet along its width (a stair's link needs
+    a crossing a body wide, :data:`mjwalk.world.contacts.MIN_CROSSING`)."""
+    run, rect = fit["run"], fit["rects"][-1]
+    side = np.array([-run[1], run[0]])
+    w0, w1 = float(rect[0] @ side), float(rect[2] @ side)
+    s0 = float(fit["top_edge"])
+    return _top_box(run, (s0, s0 + float(fit["tread"])), (w0, w1), plane_z, name)
+
+
+def _top_box(run: np.ndarray, s: tuple, w: tuple, plane_z: float, name: str) -> tuple:
+    """A floor box turned to ``run`` over [s0, s1] along it and [w0, w1] across it (metres),
+    from the plane up to the floor."""
+    side = np.array([-run[1], run[0]])
+    (s0, s1), (w0, w1) = s, w
+    c = 0.5 * (s0 + s1) * run + 0.5 * (w0 + w1) * side
+    centre = np.array([c[0], c[1], 0.5 * plane_z])
+    half = np.array([0.5 * (s1 - s0), 0.5 * abs(w1 - w0), -0.5 * plane_z])
+    return (name, centre, half, FLOOR_MATERIAL, float(math.atan2(run[1], run[0])))
+
+
 def pit_floor(plan: FloorPlan, pits: list[ScanPit]) -> PitFloor | None:
     """The floor of a scan with reached pits (module docstring), or None without one.
 
@@ -144,6 +192,11 @@ def pit_floor(plan: FloorPlan, pits: list[ScanPit]) -> PitFloor | None:
         treads, fit = _flight(p, plan, plane_z, len(boxes))
         boxes += treads
         fits += [fit] if fit is not None else []
+        if fit is not None and not _along_axis(fit["run"]):  # no floor box over its treads
+            opening |= _in_rects(plan, fit["rects"])
+        if p.ramp is not None:  # a ramp down to it: its box, no floor box over it
+            boxes.append(ramp_box(p.ramp, f"scan_pit_ramp_{len(boxes)}"))
+            opening |= _in_rects(plan, [p.ramp.rect])
         if p.bottom.height > plane_z + 1e-6:  # a shallower pit: its bottom as a box
             for iy0, iy1, ix0, ix1, _ in rectangles(cells.astype(np.int32)):
                 lo = (plan.x0 + ix0 * r, plan.y0 + iy0 * r, plane_z)
@@ -155,6 +208,16 @@ def pit_floor(plan: FloorPlan, pits: list[ScanPit]) -> PitFloor | None:
         high = np.array([plan.x0 + ix1 * r, plan.y0 + iy1 * r, 0.0])
         _snap(low, high, fits, r)
         floor.append(_box(f"{FLOOR_BOX_PREFIX}{len(floor)}", low, high, FLOOR_MATERIAL))
+    for fit in fits:
+        if not _along_axis(fit["run"]):
+            floor.append(_landing(fit, plane_z, f"{FLOOR_BOX_PREFIX}{len(floor)}"))
+    for p in reached:  # the floor at a ramp's top: one straight edge along its width
+        if p.ramp is not None:
+            rp = p.ramp
+            s = (rp.s_hi, rp.s_hi + MIN_TREAD)
+            floor.append(
+                _top_box(rp.run, s, (rp.w_lo, rp.w_hi), plane_z, f"{FLOOR_BOX_PREFIX}{len(floor)}")
+            )
     gaps = plan.gaps & ~opening if plan.gaps is not None else None
     guards = gap_boxes(replace(plan, gaps=gaps))
     return PitFloor(plane_z, floor + boxes + guards, reached)

@@ -18,12 +18,16 @@ can hold a foot. Each connected gap is one :class:`ScanPit`:
 The scene (:func:`gap_boxes`) writes every gap nothing reaches as a box from the floor up to a
 guard rail's height (:data:`GUARD_HEIGHT`): an obstacle the planners see. A pit that is a level is
 written as a level below the floor with its stair (:mod:`mjwalk.scan.pitscene`: the floor plane
-at its bottom, the floor as boxes round the opening). Ramps down into a pit are not looked for.
+at its bottom, the floor as boxes round the opening). A pit no step reaches is looked at for a
+ramp down to its bottom (:func:`mjwalk.scan.scanramps.find_ramps` below the floor): a bottom a
+ramp runs down to is found where most of each cell's points lie at its height
+(:func:`_flat_layer`), and the ramp is its link.
 Metres, scene frame (floor at z = 0).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 from dataclasses import dataclass
@@ -33,7 +37,7 @@ from scipy import ndimage
 
 from mjwalk.scan.level import MAX_SURFACE_HEIGHT
 from mjwalk.scan.levelboxes import fit_stair
-from mjwalk.scan.obstacles import FloorPlan, rectangles
+from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan, rectangles
 from mjwalk.scan.scanlevels import (
     PEAK_SEPARATION,
     ScanLevel,
@@ -46,6 +50,7 @@ from mjwalk.scan.scanlevels import (
     regions_at,
     touching,
 )
+from mjwalk.scan.scanramps import ScanRamp, find_ramps, renumber
 from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_STAIR_RISERS
 
 #: Height of the box a gap is written as, metres: the least height of a guard rail round an
@@ -54,6 +59,12 @@ from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_STAIR_RISERS
 GUARD_HEIGHT = 1.1
 #: Material of the gap boxes.
 PIT_MATERIAL = "scan_pit"
+#: The scan's range noise, metres (5 mm: ``FLOOR_TOL`` is six of it); a pit bottom's points lie
+#: within three of it from the bottom's height (:func:`_flat_layer`).
+RANGE_NOISE = FLOOR_TOL / 6
+#: Least share of a cell's points at the bottom's height for the cell to be the bottom's, not a
+#: ramp's strip at that height (:func:`_flat_layer`).
+FLAT_SHARE = 0.8
 
 
 @dataclass(frozen=True)
@@ -71,6 +82,8 @@ class ScanPit:
             ``upper``: 0, the floor), None when nothing reaches it.
         levels: the scan's levels below the floor that the floor reaches, the floor first,
             then by height; ``link`` indexes them (empty without a link).
+        ramp: the ramp down to the bottom when ``link`` is one (its levels indexing
+            ``levels``), else None.
     """
 
     cells: np.ndarray
@@ -81,6 +94,7 @@ class ScanPit:
     bottom: ScanLevel | None
     link: ScanLink | None
     levels: tuple[ScanLevel, ...] = ()
+    ramp: ScanRamp | None = None
 
     @property
     def kind(self) -> str:
@@ -111,9 +125,7 @@ def pit_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel],
     if len(heights):
         layers = rasterize_layers(levelled, heights, plan)
         for k in range(1, len(layers.heights)):
-            for cells, (h, rms, slope, _) in regions_at(levelled, layers, k, plan):
-                if 2 * (cells & gaps).sum() < cells.sum():
-                    continue  # not in a gap: under a grating, a reflection
+            for cells, (h, rms, slope, _) in _regions(levelled, layers, k, plan, gaps):
                 depth, width = rectangle_size(min_rectangle(cells, plan.x0, plan.y0, res))
                 kind = "tread" if depth <= MAX_TREAD + res else "platform"
                 area = float(cells.sum()) * res * res
@@ -126,6 +138,54 @@ def pit_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel],
         if 0 < b.height - a.height <= MAX_RISER and touching(a.cells, b.cells, res)
     ]
     return found, steps
+
+
+def _regions(levelled: np.ndarray, layers, k: int, plan: FloorPlan, gaps: np.ndarray) -> list:
+    """The regions at candidate ``k`` (:func:`~mjwalk.scan.scanlevels.regions_at`) that lie in
+    the gaps; when none does, those of :func:`_flat_layer` (a bottom a ramp runs down to)."""
+    inside = [
+        r for r in regions_at(levelled, layers, k, plan) if 2 * (r[0] & gaps).sum() >= r[0].sum()
+    ]
+    if inside:
+        return inside
+    flat = _flat_layer(levelled, layers, k, plan)
+    return [r for r in regions_at(levelled, flat, k, plan) if 2 * (r[0] & gaps).sum() >= r[0].sum()]
+
+
+def _flat_layer(levelled: np.ndarray, layers, k: int, plan: FloorPlan):
+    """``layers`` with candidate ``k``'s cells kept only where at least :data:`FLAT_SHARE` of
+    the points lie within 3 :data:`RANGE_NOISE` of the height most of them lie at (5 mm bins):
+    a ramp running down to a pit's bottom crosses the candidate's band over some 0.2-0.3 m,
+    enough to tilt the bottom's plane fit past a level's slope; its cells leave."""
+    h0 = float(layers.heights[k])
+    p = levelled[np.abs(levelled[:, 2] - h0) <= FLOOR_TOL]
+    bins = np.round((p[:, 2] - h0) / RANGE_NOISE).astype(np.int64)
+    vals, counts = np.unique(bins, return_counts=True)
+    mode = h0 + float(vals[np.argmax(counts)]) * RANGE_NOISE
+    ny, nx = plan.floor.shape
+    ix = np.floor((p[:, 0] - plan.x0) / plan.resolution).astype(np.int64)
+    iy = np.floor((p[:, 1] - plan.y0) / plan.resolution).astype(np.int64)
+    ok = (ix >= 0) & (ix < nx) & (iy >= 0) & (iy < ny)
+    total, at = np.zeros((ny, nx)), np.zeros((ny, nx))
+    np.add.at(total, (iy[ok], ix[ok]), 1.0)
+    np.add.at(at, (iy[ok], ix[ok]), (np.abs(p[ok, 2] - mode) <= 3 * RANGE_NOISE).astype(float))
+    near = layers.near.copy()
+    near[k] = np.where((total > 0) & (at >= FLAT_SHARE * total), near[k], 0)
+    return dataclasses.replace(layers, near=near)
+
+
+def _ramp_link(
+    bottom: int, found: list[ScanLevel], steps: list, ramps: list[ScanRamp]
+) -> tuple[ScanLink, tuple[ScanLevel, ...], ScanRamp] | None:
+    """The ramp from the floor down to region ``bottom`` (of ``found``), its link and levels
+    (:func:`~mjwalk.scan.scanlevels.keep_reachable` with it), or None when no ramp joins them."""
+    for r in ramps:
+        if (r.lower, r.upper) == (bottom, 0):
+            levels, _, new = keep_reachable(found, steps, [(r.lower, r.upper)])
+            ramp = renumber(r, new)
+            link = ScanLink("ramp", new[bottom], 0, (), slope=ramp.slope, run=ramp.length)
+            return link, tuple(levels), ramp
+    return None
 
 
 def _link(bottom: int, levels: list[ScanLevel], pairs: list, plan: FloorPlan) -> ScanLink | None:
@@ -168,15 +228,21 @@ def find_pits(levelled: np.ndarray, plan: FloorPlan) -> list[ScanPit]:
     lab, n = ndimage.label(plan.gaps, np.ones((3, 3), bool))
     low = plan.drop if plan.drop is not None else np.zeros(plan.gaps.shape)
     out = []
+    ramps: list[ScanRamp] | None = None
     for r in range(1, n + 1):
         cells = lab == r
         near = ndimage.binary_dilation(cells, np.ones((3, 3), bool), iterations=2)
         inside = [i for i in range(1, len(found)) if (found[i].cells & cells).any()]
         floors = [i for i in inside if found[i].kind == "platform"] or inside
         best = max(floors, key=lambda i: (found[i].cells & cells).sum(), default=None)
-        link = None
+        link, pit_levels, ramp = None, tuple(levels), None
         if best is not None and best in new:
             link = _link(new[best], levels, pairs, plan)
+        if best is not None and link is None:  # a ramp down to it (looked for once)
+            ramps = find_ramps(levelled, plan, found, below=True) if ramps is None else ramps
+            got = _ramp_link(best, found, steps, ramps)
+            if got is not None:
+                link, pit_levels, ramp = got
         iy, ix = np.nonzero(cells)
         centre = (plan.x0 + (ix.mean() + 0.5) * res, plan.y0 + (iy.mean() + 0.5) * res)
         size = rectangle_size(min_rectangle(cells, plan.x0, plan.y0, res))
@@ -185,7 +251,7 @@ def find_pits(levelled: np.ndarray, plan: FloorPlan) -> list[ScanPit]:
             ScanPit(
                 cells, float(cells.sum()) * res * res, centre, size, lowest,
                 None if best is None else found[best], link,
-                tuple(levels) if link is not None else (),
+                pit_levels if link is not None else (), ramp,
             )
         )  # fmt: skip
     return sorted(out, key=lambda p: -p.area)
@@ -245,7 +311,13 @@ def describe_pits(pits: list[ScanPit], option: str = "--gaps floor") -> str:
             lines.append(where + f"pit, {what}, no step or stair reaches it: obstacle")
             continue
         k_ = p.link
-        if k_.kind == "stair":
+        if k_.kind == "ramp" and p.ramp is not None:
+            deg, pct = math.degrees(p.ramp.slope), 100 * math.tan(p.ramp.slope)
+            how = (
+                f"ramp {deg:.2f} deg ({pct:.1f} %), {p.ramp.length:.2f} m long, "
+                f"{p.ramp.width:.2f} m wide"
+            )
+        elif k_.kind == "stair":
             how = f"stair {len(k_.risers)} risers x {k_.risers[0]:.3f} m, tread {k_.tread:.3f} m"
         else:
             how = (
@@ -257,6 +329,6 @@ def describe_pits(pits: list[ScanPit], option: str = "--gaps floor") -> str:
             )
         lines.append(
             where + f"pit level, {what}, reached from the floor by {how} (a level of the scan; "
-            "written as a level below the floor with its stair: mjwalk.scan.pitscene)"
+            f"written as a level below the floor with its {k_.kind}: mjwalk.scan.pitscene)"
         )
     return "\n".join(lines)

@@ -137,19 +137,23 @@ def _cell_index(pts: np.ndarray, plan: FloorPlan) -> tuple[np.ndarray, np.ndarra
     return np.clip(iy, 0, ny - 1), np.clip(ix, 0, nx - 1), inside
 
 
-def unexplained(levelled: np.ndarray, plan: FloorPlan, regions: Sequence[ScanLevel]) -> np.ndarray:
+def unexplained(
+    levelled: np.ndarray, plan: FloorPlan, regions: Sequence[ScanLevel], below: bool = False
+) -> np.ndarray:
     """The points above the floor that lie on no region (see the module docstring, step 1).
 
     Args:
         levelled: (N, 3) points, metres, floor at z = 0.
         plan: the floor plan (its grid).
         regions: the horizontal regions, the floor first.
+        below: look below the floor instead (a ramp down into a pit, :mod:`.scanpits`).
 
     Returns:
-        (M, 3) points between ``FLOOR_TOL`` and ``MAX_SURFACE_HEIGHT`` farther than
-        ``FLOOR_TOL`` from every region's height within its cells.
+        (M, 3) points between ``FLOOR_TOL`` and ``MAX_SURFACE_HEIGHT`` (below: between
+        ``-MAX_SURFACE_HEIGHT`` and ``-FLOOR_TOL``) farther than ``FLOOR_TOL`` from every
+        region's height within its cells.
     """
-    z = levelled[:, 2]
+    z = -levelled[:, 2] if below else levelled[:, 2]
     pts = levelled[(z > FLOOR_TOL) & (z <= MAX_SURFACE_HEIGHT)]
     iy, ix, inside = _cell_index(pts, plan)
     keep = inside.copy()
@@ -304,7 +308,7 @@ def _ramp_from(
 
 
 def find_ramps(
-    levelled: np.ndarray, plan: FloorPlan, regions: Sequence[ScanLevel]
+    levelled: np.ndarray, plan: FloorPlan, regions: Sequence[ScanLevel], below: bool = False
 ) -> list[ScanRamp]:
     """The ramps of a levelled scan between its horizontal regions.
 
@@ -313,11 +317,12 @@ def find_ramps(
         plan: its floor plan (its grid).
         regions: the horizontal walk-surface regions, the floor first
             (:func:`mjwalk.scan.scanlevels.find_regions`).
+        below: look for ramps below the floor (down into pits, :mod:`.scanpits`) instead.
 
     Returns:
         The ramps (``lower``/``upper`` index ``regions``), none for a scan without any.
     """
-    pts = unexplained(levelled, plan, regions)
+    pts = unexplained(levelled, plan, regions, below)
     out: list[ScanRamp] = []
     for mask in _groups(pts):
         p = pts[mask]

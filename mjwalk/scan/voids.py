@@ -16,6 +16,7 @@ planner walks around. ``--voids`` chooses what void means:
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -156,10 +157,18 @@ def save_top_view(
     if levels is not None:  # under the raised levels: neither floor, obstacle nor void
         kind = np.where((kind == 3) & ~plan.void, 4, kind)
         names.append("raised level")
-    if plan.gaps is not None and plan.gaps.any():  # the floor missing (mjwalk.scan.scanpits)
-        kind = np.where(plan.gaps, len(names), kind)
+    reached = np.zeros(kind.shape, bool)  # pits a stair or steps reach: levels below the floor
+    for p in pits or []:
+        if p.link is not None:
+            reached |= p.cells
+    if plan.gaps is not None and (plan.gaps & ~reached).any():  # the floor missing (scanpits)
+        kind = np.where(plan.gaps & ~reached, len(names), kind)
         colours = [*colours[: len(names)], "#e67e22"]
         names.append("gap (floor missing): obstacle")
+    if reached.any():
+        kind = np.where(reached, len(names), kind)
+        colours = [*colours[: len(names)], "#85c1e9"]
+        names.append("pit level (below the floor)")
     ny, nx = kind.shape
     r = plan.resolution
     extent = (plan.x0, plan.x0 + nx * r, plan.y0, plan.y0 + ny * r)
@@ -182,9 +191,14 @@ def save_top_view(
         draw_levels(ax, levels)
     for k, p in enumerate(pits or []):
         what = "no bottom seen" if p.bottom is None else f"bottom {p.bottom.height:+.2f} m"
-        if p.link is not None:
+        if p.link is not None and p.link.risers:
             what += f", {p.link.kind} {len(p.link.risers)} x {p.link.risers[0]:.2f} m"
-        ax.annotate(f"gap {k + 1}: {what}", p.centre, fontsize=6, ha="center", va="center")
+        elif p.link is not None:
+            what += f", ramp {math.degrees(p.link.slope or 0.0):.1f}°"
+            draw_pit_link(ax, p, plan)
+            what = f"pit level, {what}"
+        at = p.centre if p.link is None else (p.centre[0], p.centre[1] - 0.3)  # under the arrow
+        ax.annotate(f"gap {k + 1}: {what}", at, fontsize=6, ha="center", va="center")
     ax.legend(
         handles=[Patch(color=k, label=n) for k, n in zip(colours, names, strict=False)],
         loc="upper right",
@@ -197,3 +211,48 @@ def save_top_view(
     finally:
         plt.close(fig)
     return path
+
+
+def draw_pit_link(ax, pit: ScanPit, plan: FloorPlan) -> None:
+    """Draw how the floor reaches a pit level: an arrow from its bottom up to the tread next to
+    the floor (as :func:`mjwalk.scan.levelboxes.draw_levels` draws a link, from the lower level
+    up), each tread's cells outlined (a ramp: hatched, the arrow up its middle); the pit's
+    label, drawn by the caller, names the link.
+
+    Args:
+        ax: a matplotlib axes in world x, y metres.
+        pit: a pit a link reaches (``pit.link`` not None).
+        plan: the floor plan its cells lie on.
+
+    Returns:
+        None; draws on ``ax``.
+    """
+    if pit.link is None or pit.bottom is None:
+        return
+    if pit.ramp is not None:  # up the ramp's middle, its outline hatched
+        rp = pit.ramp
+        ax.fill(*rp.rect.T, fill=False, lw=0.8, ec="k", hatch="///")
+        mid = 0.5 * (rp.w_lo + rp.w_hi) * np.array([-rp.run[1], rp.run[0]])
+        p, q = rp.s_lo * rp.run + mid, rp.s_hi * rp.run + mid
+        ax.annotate("", q, p, arrowprops={"arrowstyle": "->", "color": "#b03a2e", "lw": 1.0})
+        return
+    r = plan.resolution
+
+    def centre(cells: np.ndarray) -> np.ndarray:
+        iy, ix = np.nonzero(cells)
+        return np.array([plan.x0 + (ix.mean() + 0.5) * r, plan.y0 + (iy.mean() + 0.5) * r])
+
+    ny, nx = plan.floor.shape
+    extent = (plan.x0, plan.x0 + nx * r, plan.y0, plan.y0 + ny * r)
+    for i in pit.link.via:
+        ax.contour(
+            pit.levels[i].cells,
+            levels=[0.5],
+            colors="k",
+            linewidths=0.6,
+            extent=extent,
+            origin="lower",
+        )
+    top = pit.levels[pit.link.via[-1]].cells if pit.link.via else pit.bottom.cells
+    p, q = centre(pit.bottom.cells), centre(top)
+    ax.annotate("", q, p, arrowprops={"arrowstyle": "->", "color": "#b03a2e", "lw": 1.0})

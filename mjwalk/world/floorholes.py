@@ -123,3 +123,21 @@ def wall_openings(field: ClearanceField, footprints: tuple[Footprint, ...]) -> C
     outer = ndimage.distance_transform_edt(~inside) * res - 0.5 * res
     edge = np.where(inside, inner, -outer)
     return ClearanceField(field.x0, field.y0, res, np.minimum(field.values, edge))
+
+
+def opening_area(plane: Footprint, footprints: tuple[Footprint, ...]) -> float:
+    """The area of a floor's openings: the plane's footprint less the floor boxes'.
+
+    Args:
+        plane: the floor plane's footprint (its size), world xy.
+        footprints: the floor boxes' footprints (:attr:`FloorBoxes.footprints`; polygons, a
+            floor box being a box with a level top).
+
+    Returns:
+        Square metres of the plane no floor box covers (the boxes' overlaps counted once): the
+        area of the level below the floor a walker may stand on, the pits' openings.
+    """
+    import shapely  # deferred: shapely is slow to import; only floors with openings need it
+
+    boxes = shapely.union_all([shapely.Polygon(fp.vertices) for fp in footprints])
+    return float(shapely.Polygon(plane.vertices).difference(boxes).area)

@@ -249,6 +249,9 @@ def _group_levels(
             continue
         if max(abs(c.rise_range[0]), abs(c.rise_range[1])) <= tol:
             parent[root(c.a)] = root(c.b)
+    floors = [i for i, s in enumerate(surfaces) if s.kind == "floor"]  # a floor's boxes
+    for i in floors[1:]:  # (mjwalk.world.floorholes) are one level, touching or not
+        parent[root(i)] = root(floors[0])
     groups: dict[int, list[int]] = {}
     for i, s in enumerate(surfaces):
         if not s.is_ramp:

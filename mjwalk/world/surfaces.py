@@ -30,7 +30,7 @@ from mjwalk._args import check_patterns
 from mjwalk.errors import InputError
 from mjwalk.world.contacts import reachable, surface_contacts
 from mjwalk.world.floor import find_floor
-from mjwalk.world.floorholes import FloorBoxes, floor_boxes
+from mjwalk.world.floorholes import FloorBoxes, floor_boxes, opening_area
 from mjwalk.world.footprint import Footprint, geom_footprint
 from mjwalk.world.norms import (
     CLEAR_HEADROOM,
@@ -390,7 +390,12 @@ def find_walk_surfaces(
         if s.headroom.clear_area(options.min_headroom) < options.min_depth * options.min_width:
             continue
         found.append(s)
-    keep = reachable(len(found), surface_contacts(found, options.contact_gap, options.max_riser))
+    contacts = surface_contacts(found, options.contact_gap, options.max_riser)
+    keep = reachable(len(found), contacts)
+    if holes is not None:  # every floor box is the floor: each one's edge may be a few cells
+        for i, s in enumerate(found):  # of a staircase round a turned flight, touching little
+            if s.kind == "floor" and i not in keep:
+                keep |= reachable(len(found), contacts, i)
     rest = sorted((found[i] for i in keep if i > 0), key=lambda s: (s.z_low, s.name))
     return (found[0], *rest)
 
@@ -400,7 +405,7 @@ def _floor_with_openings(
 ) -> list[WalkSurface]:
     """The surfaces of a floor with openings (:mod:`mjwalk.world.floorholes`): each floor box's
     top as a "floor" surface (of any size: the boxes tile the floor), then the plane below as a
-    "platform" (the pits' bottom: open to stand on only under the openings)."""
+    "platform" (the pits' bottom: open to stand on only under the openings, its area theirs)."""
     model, data = geoms.model, geoms.data
     tiny = replace(options, min_depth=1e-6, min_width=1e-6)
     out = []
@@ -409,7 +414,8 @@ def _floor_with_openings(
         s = None if corners is None else _surface_from_face(model, g, corners, tiny)
         if s is not None:
             out.append(_with_overhead(replace(s, kind="floor"), geoms, skip | {g}))
-    bottom = _with_overhead(replace(ground, kind="platform"), geoms, skip)
+    area = opening_area(ground.footprint, holes.footprints)  # the pits' openings, not the plane
+    bottom = _with_overhead(replace(ground, kind="platform", area=area), geoms, skip)
     return [*out, bottom]
 
 

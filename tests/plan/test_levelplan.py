@@ -318,3 +318,28 @@ def test_a_walk_round_the_stair_lines_up_with_it_and_steps_off_straight(station,
         assert feet[:, 1].max() > 0.23 + out, feet
     # few expansions: at ae71305 the hairpin cost 69-3577 (up) and 106-4957 (down), seeds 1-10
     assert up.meta["expansions_all"] < 1000 and down.meta["expansions_all"] < 1000
+
+
+def test_walk_down_a_ramp_into_a_pit_and_back(tmp_path, model, pit_ramp_xml):
+    """A pit reached by a 9.06 deg ramp (no stair): the level graph links the floor and the
+    pit's bottom by the ramp, and walks down into the pit and back take it, their footfalls on
+    the ramp's plane (within 1 cm) and the walker ending at the pit's bottom or the floor; a
+    walker with no step-up limit needs none here."""
+    path = tmp_path / "pit_ramp.xml"
+    path.write_text(pit_ramp_xml)
+    wp = load_workplace(path)
+    (link,) = wp.levels.links
+    assert link.kind == "ramp" and link.rise == pytest.approx(0.51, abs=1e-3)
+    assert np.degrees(link.slope) == pytest.approx(9.06, abs=0.05)
+    assert wp.levels.levels[1].area == pytest.approx(8.0)  # the 4 x 2 m opening
+    for start, goal, direction in (("floor_a", "pit_b", "down"), ("pit_b", "floor_a", "up")):
+        walk = plan_walk(wp, start, goal, model, rng=3)
+        kinds = [(r["kind"], r.get("direction")) for r in walk.meta["levels"]["route"]]
+        assert ("ramp", direction) in kinds and all(k in ("level", "ramp") for k, _ in kinds)
+        _check_heights(wp, walk)
+        on = [s for s in walk.steps if -2.0 < s.foot[0] < 1.2 and -0.5 < s.foot[1] < 1.5]
+        assert len(on) >= 4
+        for s in on:  # the ramp's top: z = -0.51 (x + 2) / 3.2
+            assert s.foot_z == pytest.approx(-0.51 * (s.foot[0] + 2.0) / 3.2, abs=0.01)
+        assert walk.z[0 if direction == "down" else -1] == pytest.approx(0.0)
+        assert walk.z[-1 if direction == "down" else 0] == pytest.approx(-0.51, abs=0.01)

@@ -93,3 +93,123 @@ def test_unreached_pit_stays_a_guard_rail_box():
     scene = build_scene(points, source="pit")
     assert "scan_pit_0" in scene.xml and FLOOR_BOX_PREFIX not in scene.xml
     assert pit_floor(scene.plan, scene.pits) is None
+
+
+@pytest.mark.slow  # a second seeded scan and a walk on it: about 25 s on a loaded machine
+def test_a_turned_pit_keeps_its_stair_and_is_walked_into(tmp_path):
+    """The same hall turned 30 deg about z (scanners with it): the flight runs along neither
+    axis, so the floor boxes over the grid meet its last riser only in a staircase of cells;
+    the written scene has a floor box turned to the flight at its top, and the level graph
+    gives the floor, the pit and one stair of three risers (not single steps, not nothing), down
+    which a walk is planned."""
+    import math
+
+    from test_scanpits import HALL
+
+    c, s = math.cos(math.radians(30)), math.sin(math.radians(30))
+    turn = lambda x, y: (c * x - s * y, s * x + c * y)  # noqa: E731
+    xml = (HALL % STAIR).replace("<worldbody>", '<worldbody><body euler="0 0 30">')
+    model = mujoco.MjModel.from_xml_string(xml.replace("</worldbody>", "</body></worldbody>"))
+    scanners = [(*turn(x, y), z) for x, y, z in STAIR_SCANNERS]
+    from mjwalk.scan.raycast import synthetic_scan
+
+    points = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=1).points
+    sites = tmp_path / "sites.toml"
+    (ax, ay), (bx, by) = turn(-3.0, -2.0), turn(0.5, 0.5)
+    sites.write_text(
+        f"[site.floor_a]\nxy = [{ax:.4f}, {ay:.4f}]\n[site.pit_b]\nxy = [{bx:.4f}, {by:.4f}]\n"
+    )
+    scene = build_scene(points, source="turned", sites=read_sites(sites))
+    path = tmp_path / "turned.xml"
+    path.write_text(scene.xml)
+    wp = load_workplace(path)
+    graph = wp.levels
+    (stair,) = graph.links
+    assert stair.kind == "stair" and stair.upper == 0 and len(stair.risers) == 3
+    assert stair.risers[0] == pytest.approx(0.17, abs=0.005)
+    assert stair.tread == pytest.approx(0.28, abs=0.01)
+    assert graph.levels[stair.lower].height == pytest.approx(-0.51, abs=0.02)
+    assert graph.levels[stair.lower].area == pytest.approx(3.9, abs=0.15)  # the 2 x 2 m opening
+    walk = plan_walk(wp, "floor_a", "pit_b", default_model(progress=False), rng=5)
+    route = walk.meta["levels"]["route"]
+    assert [r["kind"] for r in route] == ["level", "stair", "level"]
+    assert walk.z[-1] == pytest.approx(-0.51, abs=0.02)
+
+
+@pytest.mark.slow  # a seeded scan and two walks on it: about 30 s on a loaded machine
+def test_a_pit_reached_by_a_ramp_is_written_with_it_and_walked_into(tmp_path):
+    """The seeded scan of test_scanpits.RAMP_HALL (a 0.51 m pit, a 9.06 deg ramp down to it):
+    the written scene has the ramp as a tilted box and the floor round the opening; the level
+    graph links the floor and the pit by one ramp, and walks go down it and back up."""
+    from test_scanpits import RAMP_HALL
+
+    from mjwalk.scan.raycast import synthetic_scan
+
+    model = mujoco.MjModel.from_xml_string(RAMP_HALL)
+    scanners = [(-3.0, -1.5, 1.6), (3.0, 2.0, 1.6), (2.8, 0.5, 1.7)]
+    points = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=1).points
+    sites = tmp_path / "sites.toml"
+    sites.write_text("[site.floor_a]\nxy = [-4.0, -2.0]\n[site.pit_b]\nxy = [1.6, 0.5]\n")
+    scene = build_scene(points, source="ramp", sites=read_sites(sites))
+    assert "scan_pit_ramp_" in scene.xml and "with its ramp" in scene.xml
+    path = tmp_path / "ramp.xml"
+    path.write_text(scene.xml)
+    wp = load_workplace(path)
+    (link,) = wp.levels.links
+    assert link.kind == "ramp" and link.upper == 0
+    assert np.degrees(link.slope) == pytest.approx(9.06, abs=0.3)
+    assert wp.levels.levels[link.lower].height == pytest.approx(-0.51, abs=0.02)
+    model_ = default_model(progress=False)
+    for start, goal, direction in (("floor_a", "pit_b", "down"), ("pit_b", "floor_a", "up")):
+        walk = plan_walk(wp, start, goal, model_, rng=5)
+        kinds = [(r["kind"], r.get("direction")) for r in walk.meta["levels"]["route"]]
+        assert ("ramp", direction) in kinds
+        assert walk.z[-1 if direction == "down" else 0] == pytest.approx(-0.51, abs=0.02)
+
+
+#: An 8 x 6 m hall along the axes (its walls along its long sides) whose 2 x 2 m pit and stair
+#: (those of test_scanpits.STAIR) are turned 20 deg about the opening's centre (0, 0.5): axis
+#: boxes keep clear of the opening, four boxes turned with it close the floor round it.
+TURNED_PIT = """<mujoco><worldbody>
+<geom type="box" pos="-3 0 -0.05" size="1.5 3 0.05"/>
+<geom type="box" pos="3 0 -0.05" size="1.5 3 0.05"/>
+<geom type="box" pos="0 -2.25 -0.05" size="4 0.75 0.05"/>
+<geom type="box" pos="0 2.6 -0.05" size="4 0.4 0.05"/>
+<geom type="box" pos="0 3.05 1.5" size="4 0.05 1.5"/>
+<geom type="box" pos="0 -3.05 1.5" size="4 0.05 1.5"/>
+<body pos="0 0.5 0" euler="0 0 20">
+<geom type="box" pos="0 1.5 -0.05" size="2 0.5 0.05"/>
+<geom type="box" pos="0 -1.5 -0.05" size="2 0.5 0.05"/>
+<geom type="box" pos="-1.5 0 -0.05" size="0.5 1 0.05"/>
+<geom type="box" pos="1.5 0 -0.05" size="0.5 1 0.05"/>
+<geom name="pit" type="box" pos="0.14 0 -0.56" size="0.86 1 0.05"/>
+<geom name="s1" type="box" pos="-0.86 0 -0.35" size="0.14 1 0.18"/>
+<geom name="s2" type="box" pos="-0.58 0 -0.43" size="0.14 1 0.09"/>
+</body>
+</worldbody></mujoco>"""
+
+
+@pytest.mark.slow  # a seeded scan and the written scene's levels: about 15 s when loaded
+def test_a_pit_turned_in_its_hall_keeps_its_stair(tmp_path):
+    """The stair's run is taken from its own treads, not from the floor's outline (the hall's):
+    before, the flight of TURNED_PIT did not fit along x and the scan linked the pit by three
+    single steps (with other scanners: a stair of 0.26 m treads, and the written scene had no
+    pit level at all); now one stair of three 0.17 m risers and 0.28 m treads, in the scan and
+    in the written scene."""
+    from mjwalk.scan.raycast import synthetic_scan
+
+    model = mujoco.MjModel.from_xml_string(TURNED_PIT)
+    c, s = np.cos(np.radians(20)), np.sin(np.radians(20))
+    scanners = [(-2.5, -1.5, 1.6), (2.5, 2.0, 1.6), (2.3 * c, 0.5 + 2.3 * s, 1.7)]
+    points = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=1).points
+    scene = build_scene(points, source="turned pit")
+    (pit,) = scene.pits
+    assert pit.link is not None and pit.link.kind == "stair"
+    assert pit.link.tread == pytest.approx(0.28, abs=0.01)
+    path = tmp_path / "turned_pit.xml"
+    path.write_text(scene.xml)
+    wp = load_workplace(path)
+    (stair,) = wp.levels.links
+    assert stair.kind == "stair" and len(stair.risers) == 3 and stair.upper == 0
+    assert stair.tread == pytest.approx(0.28, abs=0.01)
+    assert wp.levels.levels[stair.lower].height == pytest.approx(-0.51, abs=0.02)

@@ -6,6 +6,7 @@ floor is four boxes round a 2 x 2 m opening at x in [-1, 1], y in [-0.5, 1.5].""
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import mujoco
@@ -146,6 +147,42 @@ def test_written_scene_guards_the_gap_and_refuses_a_site_in_it(scans, tmp_path):
     free = build_scene(scans["hole"], ScanOptions(voids="free"), source="hole")
     assert "scan_pit_0" in free.xml  # no void policy makes a gap walkable
     assert not free.plan.floor[_cell(free.plan, CENTRE)]
+
+
+#: A 10 x 6 m hall (its floor four boxes round a 4 x 2 m opening at x in [-2, 2], y in
+#: [-0.5, 1.5], walls along its long sides) whose pit, 0.51 m deep, is reached by a ramp of
+#: 9.06 deg (0.51 m over 3.2 m, within norms.MAX_RAMP_SLOPE) descending along +x from the
+#: opening's west rim; its flat bottom is x in [1.2, 2]. The MJCF twin is the pit_ramp_xml
+#: fixture (tests/conftest.py), whose ramp the level graph links and the planner walks.
+RAMP_HALL = """<mujoco><worldbody>
+<geom type="box" pos="0 -1.75 -0.05" size="5 1.25 0.05"/>
+<geom type="box" pos="0 2.25 -0.05" size="5 0.75 0.05"/>
+<geom type="box" pos="-3.5 0.5 -0.05" size="1.5 1 0.05"/>
+<geom type="box" pos="3.5 0.5 -0.05" size="1.5 1 0.05"/>
+<geom type="box" pos="0 3.05 1.5" size="5 0.05 1.5"/>
+<geom type="box" pos="0 -3.05 1.5" size="5 0.05 1.5"/>
+<geom name="pit" type="box" pos="0 0.5 -0.56" size="2 1 0.05"/>
+<geom name="ramp" type="box" pos="-0.39213 0.5 -0.30438" euler="0 9.05536 0"
+ size="1.62020 1 0.05"/>
+</worldbody></mujoco>"""
+
+
+def test_a_pit_reached_by_a_ramp_is_a_level():
+    """Seeded scan of RAMP_HALL: the pit's bottom is found at its depth and the ramp down to it
+    (looked for below the floor) is its link, within 2 cm and 0.3 deg."""
+    model = mujoco.MjModel.from_xml_string(RAMP_HALL)
+    scanners = [(-3.0, -1.5, 1.6), (3.0, 2.0, 1.6), (2.8, 0.5, 1.7)]
+    pts = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=1).points
+    (pit,) = _pits(pts)[1]
+    assert pit.kind == "level"
+    # the bottom's region at the candidate height takes in the ramp's lowest strip; the cells
+    # whose points lie at the bottom's height keep it level (scanpits._flat_layer)
+    assert pit.bottom is not None and pit.bottom.height == pytest.approx(-0.51, abs=0.02)
+    assert pit.link is not None and pit.link.kind == "ramp" and pit.ramp is not None
+    assert math.degrees(pit.ramp.slope) == pytest.approx(9.06, abs=0.3)
+    assert pit.ramp.h_hi == 0.0 and pit.ramp.length == pytest.approx(3.2, abs=0.05)
+    assert pit.ramp.width == pytest.approx(2.0, abs=0.05)
+    assert "reached from the floor by ramp 9." in describe_pits([pit])
 
 
 def test_a_slot_narrower_than_a_foot_stays_floor():

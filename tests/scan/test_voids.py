@@ -93,3 +93,39 @@ def test_bad_voids_and_png_are_refused_before_work(tmp_path, capsys, monkeypatch
         err = capsys.readouterr().err
         assert code == 2 and match in err and "Traceback" not in err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.xyz"]
+
+
+def test_a_pit_level_is_drawn_with_its_stair_not_as_a_gap(tmp_path):
+    """Seeded stair-pit scan of tests/scan/test_scanpits.py (bottom x in [-0.44, 1], treads at
+    x -1..-0.72 and -0.72..-0.44): the top view draws the arrow from the pit's bottom up to the
+    tread next to the floor, and the pit in the level colour, not as an obstacle gap."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from test_scanpits import STAIR, STAIR_SCANNERS, _pits, _scan
+
+    from mjwalk.scan.voids import draw_pit_link, save_top_view
+
+    plan, (pit,) = _pits(_scan(STAIR, STAIR_SCANNERS))
+    fig, ax = plt.subplots()
+    draw_pit_link(ax, pit, plan)
+    (arrow,) = [t for t in ax.texts if t.arrow_patch is not None]
+    (qx, qy), (px, py) = arrow.xy, arrow.xyann
+    assert -0.44 < px < 1.0 and py == pytest.approx(0.5, abs=0.1)  # the bottom's seen part
+    assert qx == pytest.approx(-0.86, abs=0.1) and qy == pytest.approx(0.5, abs=0.1)
+    plt.close(fig)
+    shown = []
+    real = plt.Axes.legend
+
+    def legend(self, *args, handles=(), **kw):
+        shown.extend(h.get_label() for h in handles)
+        return real(self, *args, handles=handles, **kw)
+
+    plt.Axes.legend = legend
+    try:
+        save_top_view(plan, tmp_path / "top.png", pits=[pit])
+    finally:
+        plt.Axes.legend = real
+    assert "pit level (below the floor)" in shown
+    assert "gap (floor missing): obstacle" not in shown

@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 from mjwalk.errors import SceneError
-from mjwalk.world.floorholes import FLOOR_BOX_PREFIX, floor_boxes
+from mjwalk.world.floorholes import FLOOR_BOX_PREFIX, floor_boxes, opening_area
+from mjwalk.world.footprint import Footprint
 from mjwalk.world.workplace import workplace_from_model
 
 
@@ -64,6 +65,9 @@ def test_level_graph_gives_the_floor_the_pit_and_the_stair(pit):
     heights = [round(lv.height, 3) for lv in graph.levels]
     assert heights == [0.0, -0.51, -0.34, -0.17]
     assert graph.levels[0].kind == "floor"
+    # areas: the floor boxes' 44 m2, the pit's 2 x 2 m opening (not the 8 x 6 m plane under it)
+    assert graph.levels[0].area == pytest.approx(44.0)
+    assert graph.levels[1].area == pytest.approx(4.0)
     assert {graph.surfaces[i].name for i in graph.levels[0].surfaces} == {
         f"floor_{k}" for k in range(4)
     }
@@ -91,3 +95,14 @@ def test_a_deeper_opening_without_a_stair_is_not_a_level(pit_xml):
     names = {s.name for s in surfaces}
     assert "s2" not in names and "floor" not in names  # 0.34 m below the floor: no step
     assert np.isclose(surfaces[0].z, 0.0)
+
+
+def _rect(x0, y0, x1, y1):
+    return Footprint("r", -1, np.array([(x0, y0), (x1, y0), (x1, y1), (x0, y1)], dtype=float))
+
+
+def test_opening_area_counts_overlapping_boxes_once():
+    plane = _rect(-2, -2, 2, 2)  # 16 m2
+    boxes = (_rect(-2, -2, 2, 0), _rect(-2, -1, 0, 2))  # 8 + 6 m2 of which 2 m2 overlap
+    assert opening_area(plane, boxes) == pytest.approx(16 - 12)
+    assert opening_area(plane, (_rect(-3, -3, 3, 3),)) == pytest.approx(0.0)
