@@ -26,6 +26,11 @@ CPU): hybrid 2.3 / 2.8 / 5.5 / 12.6 / 13.2 ms at 2 / 4 / 8 / 16 / 32 m (main bef
 hybrid/grid 4.1-4.3 / 3.8 / 5.8-6.0 / 6.0-6.4 / 3.6-3.7. The grid A* has been compiled since
 64666d3 (6x faster by its own commit's figure); the ratios of issue 48 (1.79 ... 0.45) were
 taken against the interpreted grid A*.
+Branch plan-speed (footprint distance compiled, per-planner field/sight set-up shared), both
+trees alternated on a loaded machine (load 7-8), CPU: hybrid 2.4-2.6 / 2.6-3.0 / 4.8-5.1 /
+12.4-12.7 / 13.1-13.2 ms (ae71305) -> 2.2 / 2.3 / 4.8 / 12.6 / 12.6 ms, expansions identical;
+the rest is the compiled search (about 16 us an expansion: 5 us the GP draw, the rest the
+ten steps' checks), so "at most 1.0x grid A*" is not reached by speed-ups that keep the walks.
 """
 
 from __future__ import annotations

@@ -123,7 +123,7 @@ def length_makeup(cycles: int, seed: int = 0) -> None:
     the walked length and of its chord (start to end, straight), the median and IQR of the
     excess of the walk over the chord, and the standard deviation (m) of where the walks
     start and end. A walk is its chord plus a few centimetres, so the length spread is the
-    spread of where walks start and end: the stand zones'."""
+    spread of where walks start and end: the stand zones'. Then :func:`_spread_parts`."""
     spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
     ctx = prepare(spec)
     rows: dict[str, list] = defaultdict(list)
@@ -131,7 +131,7 @@ def length_makeup(cycles: int, seed: int = 0) -> None:
         for i, here, goal, p in walks:
             chord = float(np.hypot(*(p.xy[-1] - p.xy[0])))
             rows[f"{spec.tasks[i].route} {here}->{goal}"].append(
-                (p.length, chord, p.length - chord, *p.xy[0], *p.xy[-1])
+                (p.length, chord, p.length - chord, *p.xy[0], *p.xy[-1], _set_off(p))
             )
     print(
         f"\nwhat the length spread is made of (shipped workforce, {cycles} cycles)\n"
@@ -145,6 +145,67 @@ def length_makeup(cycles: int, seed: int = 0) -> None:
         print(
             f"{key:<34}{_q(v[:, 0])[1]:>8.3f}{_q(v[:, 1])[1]:>10.3f}{np.median(v[:, 2]):>11.3f}"
             f"{_q(v[:, 2])[1]:>11.3f}{sd0:>9.3f}{sd1:>8.3f}"
+        )
+    _spread_parts(prepare(spec).workplace, {k: np.array(v) for k, v in rows.items()})
+
+
+def _set_off(path, along: float = 0.6) -> float:
+    """The heading (radians) of the walk's first ``along`` metres of pelvis path (start to
+    the sample that far along), from +x CCW."""
+    d = np.cumsum(np.r_[0.0, np.hypot(*np.diff(path.xy, axis=0).T)])
+    k = min(int(np.searchsorted(d, along)), len(d) - 1)
+    dx, dy = path.xy[k] - path.xy[0]
+    return float(np.arctan2(dy, dx))
+
+
+def _share(lengths, captured: float) -> float:
+    """IQR/median of ``lengths`` as a percentage of the ``captured`` IQR/median."""
+    med, iqr = _q(lengths)
+    return 100.0 * (iqr / med) / captured
+
+
+def _spread_parts(wp, rows: dict) -> None:
+    """Which parts of a direction's walk vary between runs (issue 48, station spread): the IQR
+    (m) of where the walks start and end along the sites' chord (the stand zones), of the excess
+    over the own chord, and of the set-off heading off that chord (:func:`_set_off`, degrees:
+    the turn into the walk); the residual turn the split leaves along the first steps
+    (:mod:`mjwalk.plan.turnsplit`: of the turn from the start site's yaw onto the chord, all
+    but 30-60 deg is made on the spot, never less than 90 deg: the range left, degrees); and
+    the share of the captured IQR/median with its bootstrap 90 % interval (1000 resamples:
+    100 cycles leave it uncertain by about +-10 points)."""
+    import math
+
+    from mjwalk.plan.turnsplit import AWAY_FROM_WORK, WALKING_TURN_MAX, WALKING_TURN_MIN
+
+    rng = np.random.default_rng(1)
+    print(
+        f"\nwhich parts vary (IQR; set-off heading off the chord, deg; residual left by the "
+        f"split)\n{'route':<34}{'start':>7}{'end':>7}{'excess':>8}{'set-off':>12}"
+        f"{'residual':>10}{'share (90 % CI)':>18}"
+    )
+    for key in sorted(rows):
+        v = rows[key]
+        route, way = key.split()
+        a, b = (wp.station(s) for s in way.split("->"))
+        d = b.pos[:2] - a.pos[:2]
+        u = d / np.hypot(*d)
+        chord = math.atan2(d[1], d[0])
+        turn = abs(math.remainder(chord - a.yaw, math.tau))
+        lo, hi = WALKING_TURN_MIN, min(WALKING_TURN_MAX, turn - AWAY_FROM_WORK)
+        residual = f"{math.degrees(lo):.0f}-{math.degrees(hi):.0f}" if hi > lo else "none"
+        if turn > AWAY_FROM_WORK and hi <= lo:  # the floor takes the whole draw
+            residual = f"{math.degrees(turn - AWAY_FROM_WORK):.0f}"
+        elif turn <= AWAY_FROM_WORK:
+            residual = "search"
+        off = np.degrees(np.remainder(v[:, 7] - chord + math.pi, math.tau) - math.pi)
+        cm, ci = CAPTURED[route]
+        boot = [_share(rng.choice(v[:, 0], len(v)), ci / cm) for _ in range(1000)]
+        b5, b95 = np.percentile(boot, [5, 95])
+        om, oi = _q(off)
+        print(
+            f"{key:<34}{_q(v[:, 3:5] @ u)[1]:>7.3f}{_q(v[:, 5:7] @ u)[1]:>7.3f}"
+            f"{_q(v[:, 2])[1]:>8.3f}{om:>6.0f} ({oi:>3.0f}){residual:>10}"
+            f"{_share(v[:, 0], ci / cm):>6.0f}% ({b5:.0f}-{b95:.0f})"
         )
 
 

@@ -24,6 +24,7 @@ __all__ = [
     "cycle_start",
     "plan_cycle_walks",
     "plan_task_walk",
+    "standing_site",
     "standing_spot",
     "start_zone",
     "work_zone",
@@ -121,8 +122,9 @@ def plan_task_walk(
         yaw: the heading the operator stands at (radians; the task before's): the walk sets off
             from it, turning on the spot first as far as that pays against turning while walking
             (``WalkRequest(turn_on_spot=True)``), a turn of more than a quarter split between
-            the spot and the first steps (``at_work``, :mod:`mjwalk.plan.turnsplit`); None: it
-            sets off around the downhill heading.
+            the spot and the first steps (``at_work``, :mod:`mjwalk.plan.turnsplit`: the first
+            steps no nearer the work than square to the front of the site the operator stands
+            at, :func:`standing_site`); None: it sets off around the downhill heading.
         face: the heading the operator works at after the walk (radians; the goal site's): the
             walk bends into it as people's do (``WalkRequest(goal_heading=...)``,
             :mod:`mjwalk.plan.guide`); None: it ends as it comes.
@@ -141,19 +143,44 @@ def plan_task_walk(
     turn = yaw is not None
     levels = ctx.on_levels and needs_levels(ctx.workplace, pose, task.site, ctx.spec.radius)
     planner = None if levels else ctx.planner(task.site, zone)
+    # the front of the work the operator stands at (its stand site's yaw): the turn split's
+    # floor (:mod:`mjwalk.plan.turnsplit`), whichever way the last reach turned the body
+    work = float(ctx.workplace.station(standing_site(ctx.spec, i)).yaw) if turn else None
     for _ in range(SPOT_TRIES):
         x, y = standing_spot(ctx, zone, rng if spots is None else spots)
         if np.hypot(x - start[0], y - start[1]) > reach:
             if levels:
                 return _level_walk(ctx, start, (x, y), model, rng, (reach, walker))
-            request = WalkRequest(pose, model, (x, y, reach), turn, face, at_work=turn)
+            request = WalkRequest(
+                pose, model, (x, y, reach), turn, face, at_work=turn, work_heading=work
+            )
             assert planner is not None
             return planner.plan(request, rng)
     if levels:
         return _level_walk(ctx, start, zone.centre, model, rng, (zone.radius, walker))
     assert planner is not None
-    request = WalkRequest(pose, model, turn_on_spot=turn, goal_heading=face, at_work=turn)
+    request = WalkRequest(
+        pose, model, turn_on_spot=turn, goal_heading=face, at_work=turn, work_heading=work
+    )
     return planner.plan(request, rng)
+
+
+def standing_site(spec, i: int) -> str:
+    """The site the operator stands at when task ``i`` of ``spec`` begins: the last walk's or
+    carry's goal before it, else the cycle's start site.
+
+    Args:
+        spec: the cycle (:class:`~mjwalk.cycle.types.CycleSpec`).
+        i: a task's index in ``spec.tasks``.
+
+    Returns:
+        The site's name.
+    """
+    here = spec.start
+    for task in spec.tasks[:i]:
+        if TASK_KINDS[task.kind].motion == "walk":
+            here = str(task.site)
+    return here
 
 
 def _level_walk(ctx: CycleContext, start, goal, model, rng, within):

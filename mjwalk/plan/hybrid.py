@@ -309,11 +309,12 @@ class HybridPlanner:
         walking. With ``at_work`` (a walker standing at the work it faced) a turn of more than
         a quarter is split (:mod:`mjwalk.plan.turnsplit`): the walker turns on the spot all but
         a one-step direction change and sets off that far from the way, turning the rest along
-        its first steps. Without ``turn_on_spot`` a start yaw is the heading of the first step's
-        frame (a walker already walking that way); with no start yaw the walker sets off along
-        its guide (:func:`~mjwalk.plan.guide.guide_start_heading`). The walk's first sample
-        faces where the turn ended (``yaw[0]``): the turn itself is the caller's (the cycle
-        animates it).
+        its first steps, never nearer the work's front (``work_heading``) than square to it. The
+        draws are otherwise those of a walk without a yaw. Without ``turn_on_spot`` a start yaw
+        is the heading of the first step's frame (a walker already walking that way); with no
+        start yaw the walker sets off along its guide
+        (:func:`~mjwalk.plan.guide.guide_start_heading`). The walk's first sample faces where
+        the turn ended (``yaw[0]``): the turn itself is the caller's (the cycle animates it).
 
         A ``goal_heading``, unlike the options' ``goal_yaw``, is no condition of the goal: it
         shapes the smooth path the walk's heading follows (:mod:`mjwalk.plan.guide`: the
@@ -445,9 +446,9 @@ class HybridPlanner:
         # the starters, for the first expansion (the start node's)
         z0, side0 = model.sample_first_features(o.n_starters, rng)
         frame0 = np.full(len(z0), float(start_yaw))
-        split = (
-            starter_frames(facing, start_yaw, len(z0), rng) if turn and request.at_work else None
-        )
+        split = None
+        if turn and request.at_work:  # never nearer the work's front than square (None: facing)
+            split = starter_frames(facing, start_yaw, len(z0), rng, request.work_heading)
         if split is not None:  # a large turn: its last part is made along the first steps
             frame0 = split
         elif free_heading and not along:  # anywhere around the downhill heading

@@ -48,6 +48,17 @@ TOE_PROBE_STEP = 0.02
 KNEE_LEAD = 0.23
 KNEE_SIDE = 0.12
 KNEE_CLEARANCE = 0.10
+#: The knee bends in the swing foot's plane (the leg IK, :mod:`mjwalk.body.legs.ik`), and the
+#: swing foot turns from its lift-off yaw to its landing yaw along a smoothstep between these
+#: step phases (the leg synthesis's ``TOE_OFF`` and ``SWING_TURNED``,
+#: :mod:`mjwalk.body.legs.steps`, which this stage cannot import; ``tests/plan/test_options.py``
+#: checks they agree). In a turning step the knee therefore leads along the swing foot's yaw,
+#: not the pelvis's: station run 330 of 2000 (seed 0), a 1.81 m operator's left knee 0.33 m
+#: beside the pelvis, its foot 50 degrees behind the pelvis's turn, 3 cm into rack 2's frame.
+#: The probes lead along the foot's yaw at their phase (:func:`swing_turned`), the swing side
+#: along the pelvis's (the hip's offset); lead and side scale with stature (the humanoid's
+#: segments are stature fractions, :mod:`mjwalk.anthropometry`).
+SWING_TURN_PHASES = (0.2, 0.9)
 #: The landing leg at heel strike. A foot lands heel first, toes up (the leg synthesis,
 #: :mod:`mjwalk.body.legs.synthesis`): its ankle lies some 4 cm behind and 2 cm above the flat
 #: footprint's, the heel's upper edge swings 2-3 cm behind the flat heel, and the shin leans
@@ -153,6 +164,36 @@ def leg_clearance(stature: float = DEFAULT_STATURE) -> float:
         The clearance, metres.
     """
     return SHIN_RADIUS * stature + SAFETY_MARGIN + 0.5 * LEG_PROBE_STEP
+
+
+def swing_turned(share: float) -> float:
+    """How far the swing foot has turned from its lift-off yaw to its landing yaw at a step
+    phase, as the leg synthesis turns it (a smoothstep over :data:`SWING_TURN_PHASES`).
+
+    Args:
+        share: the step phase, 0 (lift-off) to 1 (landing).
+
+    Returns:
+        The turned share, 0 to 1.
+    """
+    lo, hi = SWING_TURN_PHASES
+    u = min(max((share - lo) / (hi - lo), 0.0), 1.0)
+    return u * u * (3 - 2 * u)
+
+
+def knee_reach(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
+    """The swing-knee probes' lead and swing-side offset (m) for a walker of ``stature``
+    metres: :data:`KNEE_LEAD` and :data:`KNEE_SIDE`, measured on the 1.75 m humanoid, scaled
+    with stature.
+
+    Args:
+        stature: the walker's body height, metres.
+
+    Returns:
+        (lead, side), metres.
+    """
+    scale = stature / DEFAULT_STATURE
+    return KNEE_LEAD * scale, KNEE_SIDE * scale
 
 
 def lean_params() -> dict[str, float]:

@@ -26,8 +26,6 @@ from mjwalk.plan.options import (
     FOOT_CLEARANCE,
     FOOT_LENGTH,
     KNEE_CLEARANCE,
-    KNEE_LEAD,
-    KNEE_SIDE,
     LEG_PROBE_STEP,
     MAX_FOOT_REACH,
     MAX_LIFT_REACH,
@@ -39,8 +37,10 @@ from mjwalk.plan.options import (
     TOE_APPROACH_SHARE,
     TOE_PROBE_STEP,
     PlannerOptions,
+    knee_reach,
     lean_params,
     leg_clearance,
+    swing_turned,
 )
 from mjwalk.world.clearance import ClearanceField
 
@@ -189,9 +189,10 @@ class KernelParams:
         o, grid, walk = self.options, self.grid, self.walk_field
         m = o.samples_per_step
         knee_cols = _knee_cols(m)
+        knee_lead, knee_side = knee_reach(stature)
         par = slots.params(
-            knee_lead=KNEE_LEAD,
-            knee_side=KNEE_SIDE,
+            knee_lead=knee_lead,
+            knee_side=knee_side,
             foot_length=FOOT_LENGTH,
             foot_reach=MAX_FOOT_REACH,
             lift_reach=MAX_LIFT_REACH,
@@ -215,6 +216,8 @@ class KernelParams:
             dist_top_y=grid.free.shape[0] - 1.0,
             knee_share0=knee_cols[0] / (m - 1),  # the probes' share of the step
             knee_share1=knee_cols[1] / (m - 1),
+            knee_turn0=swing_turned(knee_cols[0] / (m - 1)),
+            knee_turn1=swing_turned(knee_cols[1] / (m - 1)),
             stop_reach=o.goal_tolerance + STOP_REACH,
             pool_sharpness=POOL_SHARPNESS,
             **lean_params(),

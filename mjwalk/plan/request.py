@@ -40,6 +40,9 @@ class WalkRequest:
             change on the spot and the rest along the first steps
             (:mod:`mjwalk.plan.turnsplit`); without, the search weighs the whole turn as
             before.
+        work_heading: with ``at_work``, the heading square to the front of the work (radians; a
+            stand site's yaw): the split's first steps go no nearer the work than square to
+            it; None: the start yaw (the walker faces its work squarely).
         goal_heading: the heading (radians) the walker means to arrive at; it shapes the path
             the walk's heading follows (:mod:`mjwalk.plan.guide`), no condition of the goal.
         guide: a (k, 2) path (metres) from near the start to near the goal for the heading to
@@ -53,12 +56,16 @@ class WalkRequest:
     goal_heading: float | None = None
     guide: np.ndarray | None = None
     at_work: bool = False
+    work_heading: float | None = None
 
     def __post_init__(self):
         if self.spot is not None:
             object.__setattr__(self, "spot", _checked_spot(self.spot))
         if self.goal_heading is not None:
             object.__setattr__(self, "goal_heading", _checked_heading(self.goal_heading))
+        if self.work_heading is not None:
+            heading = _checked_heading(self.work_heading, "work_heading")
+            object.__setattr__(self, "work_heading", heading)
         if self.guide is not None:
             try:
                 guide = resample_guide(self.guide)
@@ -78,12 +85,12 @@ def _checked_spot(spot) -> tuple[float, float, float]:
     return x, y, tol
 
 
-def _checked_heading(heading) -> float:
-    """``heading`` as finite radians."""
+def _checked_heading(heading, name: str = "goal_heading") -> float:
+    """``heading`` as finite radians (``name``: the field, for the message)."""
     try:
         value = float(heading)
     except (TypeError, ValueError):
         value = math.nan
     if not math.isfinite(value):
-        raise InputError(f"goal_heading must be finite radians, got {heading!r}")
+        raise InputError(f"{name} must be finite radians, got {heading!r}")
     return value

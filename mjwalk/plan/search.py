@@ -196,7 +196,7 @@ def search(
             lft = left0
             one_node[0, 1] = nan_c
             one_node[0, 2] = nan_c
-            one_node[0, 4] = np.nan
+            one_node[0, 4] = nan_c
         else:
             x = feats[row[nid] : row[nid] + 1]
             on_left = left[nid]
@@ -220,7 +220,8 @@ def search(
             lft = one_left
             one_node[0, 1] = foot[nid]
             one_node[0, 2] = foot[parent[nid]]
-            one_node[0, 4] = fhead[nid]
+            # the landed foot's heading, and the lifting foot's (the knee probes')
+            one_node[0, 4] = complex(fhead[nid], fhead[parent[nid]])
         one_node[0, 3] = g[nid]
         n_ok = check_into(
             z, matrix, offset, per, n_walk, frm, lft, one_near, one_node, thr, par, ipar, coef,

@@ -72,6 +72,8 @@ from mjwalk.plan.slots import (
     P_KNEE_SHARE0,
     P_KNEE_SHARE1,
     P_KNEE_SIDE,
+    P_KNEE_TURN0,
+    P_KNEE_TURN1,
     P_LIFT_REACH,
     P_PACE,
     P_START_YAW,
@@ -89,6 +91,7 @@ from mjwalk.plan.stepgeom import (
     field_clearance,
     in_goal,
     landing_leg_clear,
+    swing_yaw,
     toe_approach_clear,
     unit_turn,
 )
@@ -136,7 +139,9 @@ def check_steps(
             uncounted).
         node: (b, 4) or (b, 5) complex per predecessor: end point p, the foot its step
             landed and the foot behind that (world x + iy; nan: none yet), g (real part) and,
-            in column 4, the landed foot's heading (real part, world radians; nan: none).
+            in column 4, the landed foot's heading (real part, world radians; nan: none) and
+            the foot behind's (imaginary part: the swing foot's lift-off heading, which the
+            knee probes turn from; nan: none).
             The landed foot is the stance foot of the step drawn from the predecessor: with
             its heading, and the decoder's pelvis-yaw columns, and the P_HIP_Y .. P_ABDUCTION
             slots set, a step whose stance leg cannot follow it is rejected
@@ -299,12 +304,21 @@ def check_into(
         if not landing_leg_clear(loc, m, lf, yaws.imag, rot, p, thr[0], par, coef, fx0, fy0,
                                  fres, fnx, fny):  # fmt: skip
             continue
+        # the swing knee, ahead along the swing foot's yaw at the probe's phase (it bends in
+        # the foot's plane) and to the swing side along the pelvis's; without the lifting
+        # foot's heading (the first steps), ahead along the pelvis's
         lat = (1j if lf else -1j) * par[P_KNEE_SIDE]
+        lift_yaw = node[i, 4].imag - fr if node.shape[1] > 4 else math.nan
         for kk in range(2):
             col = kc0 if kk == 0 else kc1
             share = par[P_KNEE_SHARE0] if kk == 0 else par[P_KNEE_SHARE1]
             fwd = 1j * unit_turn(yaws.imag * share)
-            knee = (loc[col] + fwd * (par[P_KNEE_LEAD] + lat)) * rot + p
+            if math.isnan(lift_yaw):
+                knee = (loc[col] + fwd * (par[P_KNEE_LEAD] + lat)) * rot + p
+            else:
+                turned = par[P_KNEE_TURN0] if kk == 0 else par[P_KNEE_TURN1]
+                foot = swing_yaw(lift_yaw, yaws.real, turned)
+                knee = (loc[col] + 1j * unit_turn(foot) * par[P_KNEE_LEAD] + fwd * lat) * rot + p
             if (
                 field_clearance(coef, fx0, fy0, fres, fnx, fny, knee.real, knee.imag)
                 < thr[m + 2 + kk]

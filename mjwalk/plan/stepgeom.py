@@ -97,6 +97,23 @@ def unit_turn(angle):
 
 
 @njit
+def swing_yaw(lift, land, turned):
+    """The swing foot's yaw once it has ``turned`` (0 to 1) of its way from its lift-off yaw
+    ``lift`` to its landing yaw ``land`` (radians, one frame), the short way round.
+
+    Args:
+        lift: the lift-off yaw, radians.
+        land: the landing yaw, radians.
+        turned: the share of the turn made, 0 to 1.
+
+    Returns:
+        The yaw, radians.
+    """
+    d = land - lift
+    return lift + turned * math.atan2(math.sin(d), math.cos(d))
+
+
+@njit
 def within(v, r):
     """``abs(v) <= r`` for a complex ``v``, as :func:`beyond` decides it (nan: False).
 

@@ -69,19 +69,26 @@ def residual_turn(rng: np.random.Generator) -> float:
 
 
 def starter_frames(
-    facing: float, heading: float, n: int, rng: np.random.Generator
+    facing: float,
+    heading: float,
+    n: int,
+    rng: np.random.Generator,
+    work: float | None = None,
 ) -> np.ndarray | None:
     """The first steps' headings of a walker standing at ``facing`` who means to walk off along
-    ``heading``: None when the turn between them is within :data:`WALKING_TURN_MAX` (the
+    ``heading``: None when the turn between them is within :data:`AWAY_FROM_WORK` (the
     search chooses as before); else ``n`` headings the turn's on-the-spot part away from
-    ``facing`` (all of the turn but :func:`residual_turn`), each within
+    ``facing`` (all of the turn but :func:`residual_turn`, and at least as far as square to
+    the work's front ``work`` on the turn's side, never past ``heading``), each within
     :data:`STARTER_SPREAD` of it.
 
     Args:
         facing: the heading the walker stands at, radians from +x CCW.
         heading: the heading towards the goal (the planner's downhill heading), radians.
         n: how many starters.
-        rng: the walk's generator (draws only for a turn larger than WALKING_TURN_MAX).
+        rng: the walk's generator (draws only for a turn larger than AWAY_FROM_WORK).
+        work: the heading square to the front of the work the walker stands at (a stand
+            site's yaw), radians; None: ``facing`` (the walker faces its work squarely).
 
     Returns:
         (n,) headings, radians, or None.
@@ -89,5 +96,9 @@ def starter_frames(
     turn = wrap(heading - facing)
     if abs(turn) <= AWAY_FROM_WORK:
         return None
-    on_spot = math.copysign(max(abs(turn) - residual_turn(rng), AWAY_FROM_WORK), turn)
-    return facing + on_spot + rng.uniform(-STARTER_SPREAD, STARTER_SPREAD, n)
+    side = math.copysign(1.0, turn)
+    square = AWAY_FROM_WORK  # the on-the-spot turn to square to the work's front
+    if work is not None and work != facing:
+        square = side * wrap(work + side * AWAY_FROM_WORK - facing)
+    on_spot = min(max(abs(turn) - residual_turn(rng), square), abs(turn))
+    return facing + side * on_spot + rng.uniform(-STARTER_SPREAD, STARTER_SPREAD, n)

@@ -10,10 +10,13 @@ the slab their stadiums, and vertical (yaw-rotated) boxes their rectangles.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import mujoco
 import numpy as np
+
+from mjwalk._jit import njit
 
 #: Angular resolution of the tessellation of curved primitives (segments per full turn).
 _N_AROUND = 128
@@ -75,19 +78,60 @@ def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray
 
 def _polygon_signed_distance(p: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Signed distance to a convex CCW polygon: outside, to the nearest edge; inside, minus the
-    distance to the boundary (the largest signed distance to an edge line)."""
-    a = v
-    b = np.roll(v, -1, axis=0)
-    ab = b - a  # (E, 2)
-    length2 = np.einsum("ij,ij->i", ab, ab)
-    rel = p[..., None, :] - a  # (..., E, 2)
-    t = np.clip(np.einsum("...ij,ij->...i", rel, ab) / length2, 0.0, 1.0)
-    closest = rel - t[..., None] * ab
-    dist = np.sqrt(np.einsum("...ij,...ij->...i", closest, closest).min(axis=-1))
-    # Outward normal of a CCW edge (dx, dy) is (dy, -dx).
-    normal = np.stack([ab[:, 1], -ab[:, 0]], axis=1) / np.sqrt(length2)[:, None]
-    line = np.einsum("...ij,ij->...i", rel, normal).max(axis=-1)
-    return np.where(line > 0.0, dist, line)
+    distance to the boundary (the largest signed distance to an edge line). Compiled
+    (:func:`_polygon_kernel`): as NumPy code (a roll, einsums and a stack per call on a few
+    points) it was a third of a walk guide's time (``benchmarks/bench_scale.py``)."""
+    flat = np.ascontiguousarray(p, dtype=float).reshape(-1, 2)
+    out = _polygon_kernel(flat, np.ascontiguousarray(v, dtype=float))
+    return out.reshape(p.shape[:-1])
+
+
+@njit
+def _polygon_kernel(p, v):
+    """:func:`_polygon_signed_distance` of points (n, 2) to the polygon ``v`` (e, 2): the
+    NumPy version's arithmetic in its order (per edge ab = b - a, t = clip((rel·ab)/|ab|², 0,
+    1), the nearest point's squared distance, the edge line's (rel·n) with n = (ab_y, -ab_x)
+    / |ab|), a NaN in any edge's terms (a repeated vertex's 0/0) propagating as np.min and
+    np.max propagate it."""
+    n = p.shape[0]
+    e = v.shape[0]
+    ab = np.empty((e, 2))
+    length2 = np.empty(e)
+    normal = np.empty((e, 2))
+    for k in range(e):
+        nxt = k + 1 if k + 1 < e else 0
+        ab[k, 0] = v[nxt, 0] - v[k, 0]
+        ab[k, 1] = v[nxt, 1] - v[k, 1]
+        length2[k] = ab[k, 0] * ab[k, 0] + ab[k, 1] * ab[k, 1]
+        norm = math.sqrt(length2[k])
+        if norm == 0.0:  # a repeated vertex: 0/0 in NumPy, NaN for every point
+            normal[k, 0] = np.nan
+            normal[k, 1] = np.nan
+        else:
+            normal[k, 0] = ab[k, 1] / norm
+            normal[k, 1] = -ab[k, 0] / norm
+    out = np.empty(n)
+    for i in range(n):
+        best = np.inf
+        line = -np.inf
+        for k in range(e):
+            rx = p[i, 0] - v[k, 0]
+            ry = p[i, 1] - v[k, 1]
+            t = np.nan
+            if length2[k] != 0.0:
+                t = (rx * ab[k, 0] + ry * ab[k, 1]) / length2[k]
+                if t == t:  # (np.clip keeps a NaN)
+                    t = min(max(t, 0.0), 1.0)
+            cx = rx - t * ab[k, 0]
+            cy = ry - t * ab[k, 1]
+            d2 = cx * cx + cy * cy
+            if d2 < best or d2 != d2:
+                best = d2 if best == best else best
+            s = rx * normal[k, 0] + ry * normal[k, 1]
+            if s > line or s != s:
+                line = s if line == line else line
+        out[i] = math.sqrt(best) if line > 0.0 else line
+    return out
 
 
 def _unit_circle(n: int) -> np.ndarray:

@@ -174,3 +174,16 @@ def test_turns_on_the_spot_go_at_the_operators_cadence(ctx):
     slow = Walker(stature=ctx.spec.stature, speed=1.0, cadence=90.0)
     _, dt = turn_frames(operator_context(ctx, slow), (0.0, 0.0), 0.0, np.pi, 30.0)
     assert dt / ref == pytest.approx(REFERENCE_CADENCE / 90.0, rel=0.05)
+
+
+def test_station_run_330_keeps_the_turning_knee_off_rack_2(scenes_dir):
+    """Run 330 of 2000 (seed 0): a 1.81 m fatigued operator's route T4 to rack 2 turned right
+    beside rack 2's frame, and the left knee, bending in its foot's plane 50 degrees behind the
+    pelvis's turn, went 3.0 cm into ``rack2_frame_r`` (7 contacts at 70.6-70.7 s) where the
+    planner probed the knee ahead along the pelvis's yaw. With the knee probed along the swing
+    foot's yaw (mjwalk.plan.options.SWING_TURN_PHASES) that run has no contact."""
+    spec = scenes_dir / "assembly_station.toml"
+    (result,) = simulate_cycles(spec, runs=2000, seed=0, only=[330])
+    assert result.operator is not None and round(result.operator.stature, 2) == 1.81
+    assert result.error is None
+    assert result.collisions == []

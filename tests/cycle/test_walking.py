@@ -10,7 +10,7 @@ import numpy as np
 from mjwalk.cycle.simulate import prepare
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.types import TASK_KINDS
-from mjwalk.cycle.walking import plan_task_walk
+from mjwalk.cycle.walking import plan_task_walk, standing_site
 
 
 def test_walks_arrive_nearer_the_heading_of_the_work(scenes_dir):
@@ -38,3 +38,15 @@ def test_walks_arrive_nearer_the_heading_of_the_work(scenes_dir):
             here = task.site
     with_face, without = np.median(gaps[True]), np.median(gaps[False])
     assert with_face <= 35.0 and with_face <= 0.7 * without, (with_face, without)
+
+
+def test_the_standing_site_is_the_last_walks_goal(scenes_dir):
+    """Each task's standing site (whose front floors the turn split of the walk that starts
+    there) is the start site until the first walk, then the goal of the last walk before it."""
+    spec = load_cycle_spec(scenes_dir / "assembly_station.toml")
+    here = spec.start
+    for i, task in enumerate(spec.tasks):
+        assert standing_site(spec, i) == here
+        if TASK_KINDS[task.kind].motion == "walk":
+            here = task.site
+    assert standing_site(spec, 0) == "stand_rack2"

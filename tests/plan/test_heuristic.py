@@ -7,6 +7,7 @@ import pytest
 from test_planner_fastpaths import SCENE_NAMES, _points
 
 from mjwalk.conventions import BODY_RADIUS
+from mjwalk.plan import heuristic
 from mjwalk.plan.heuristic import (
     PELVIS_SWAY,
     goal_distance,
@@ -104,3 +105,27 @@ def test_walkable_distance_of_one_grid_is_goal_distance(tmp_path):
     np.testing.assert_array_equal(
         walkable_distance(grid, grid, goal, 0.25).cells, goal_distance(grid, goal, 0.25).cells
     )
+
+
+def test_planners_of_one_goal_share_the_field_and_sight(tmp_path):
+    """A second field of the same grid, goal and tolerance is the first's (found before the
+    goal cells are worked out), its sight flags and bounds too; another tolerance taking in
+    other goal cells gets its own field, equal to one built from scratch."""
+    wp = _gap_wall(tmp_path, 1.2)
+    grid = occupancy_grid(wp, radius=BODY_RADIUS, moves=MOVES_16)
+    goal = np.array([0.3, 1.0])
+    first = goal_distance(grid, goal, 0.25)
+    again = goal_distance(grid, goal, 0.25)
+    assert again.cells is first.cells
+    assert again.in_sight is first.in_sight
+    assert again.flat_bound() is first.flat_bound()
+    wide = goal_distance(grid, goal, 0.6)
+    assert wide.cells is not first.cells
+    heuristic._FIELDS.clear()
+    heuristic._FIELD_KEYS.clear()
+    heuristic._SIGHTS.clear()
+    fresh = goal_distance(grid, goal, 0.6)
+    assert fresh.cells is not wide.cells
+    np.testing.assert_array_equal(fresh.cells, wide.cells)
+    np.testing.assert_array_equal(fresh.flat_bound(), wide.flat_bound())
+    np.testing.assert_array_equal(goal_distance(grid, goal, 0.25).in_sight, first.in_sight)

@@ -387,7 +387,7 @@ def test_a_split_turn_that_sets_off_into_a_wall_is_turned_on_the_spot(model, tmp
     )
     planner = HybridPlanner(load_workplace(xml), (2.0, 0.0), model)
     monkeypatch.setattr(
-        hybrid, "starter_frames", lambda facing, heading, n, rng: np.full(n, facing)
+        hybrid, "starter_frames", lambda facing, heading, n, rng, work=None: np.full(n, facing)
     )
     for k in range(10):
         walk = planner.plan(

@@ -5,11 +5,23 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import numpy as np
 import pytest
 
+from mjwalk.body.legs.curves import smoothstep
+from mjwalk.body.legs.steps import SWING_TURNED, TOE_OFF
 from mjwalk.errors import InputError
 from mjwalk.plan.hybrid import HybridPlanner
-from mjwalk.plan.options import ATTEMPTS, MAX_EXPANSIONS, PlannerOptions
+from mjwalk.plan.options import (
+    ATTEMPTS,
+    KNEE_LEAD,
+    KNEE_SIDE,
+    MAX_EXPANSIONS,
+    SWING_TURN_PHASES,
+    PlannerOptions,
+    knee_reach,
+    swing_turned,
+)
 from mjwalk.plan.slots import MAX_GOAL_DISCS
 from mjwalk.world import load_workplace
 
@@ -70,3 +82,20 @@ def test_a_planner_keeps_its_options_and_draws_closing_steps_only_from_a_model_t
     assert planner.options is options and planner.radius == 0.3
     assert HybridPlanner(wp, (2.0, 0.0), object(), options).options.n_stops == 0
     assert HybridPlanner(wp, (2.0, 0.0), object()).options == PlannerOptions(n_stops=0)
+
+
+def test_the_knee_probes_turn_with_the_swing_foot_as_the_leg_synthesis_turns_it():
+    """The planner's copy of the swing foot's turn (it cannot import the body stage) is the
+    leg synthesis's: the same phases, the same smoothstep."""
+    assert SWING_TURN_PHASES == (TOE_OFF, SWING_TURNED)
+    for share in (0.0, 0.2, 0.5, 0.75, 0.9, 1.0):
+        want = float(smoothstep(np.array((share - TOE_OFF) / (SWING_TURNED - TOE_OFF))))
+        assert swing_turned(share) == pytest.approx(want, abs=1e-12)
+    assert swing_turned(0.5) == pytest.approx(0.394, abs=1e-3)  # at the first probe
+
+
+def test_the_knee_probes_scale_with_stature():
+    assert knee_reach(1.75) == (KNEE_LEAD, KNEE_SIDE)
+    lead, side = knee_reach(1.81)
+    assert lead == pytest.approx(KNEE_LEAD * 1.81 / 1.75) and lead > KNEE_LEAD
+    assert side == pytest.approx(KNEE_SIDE * 1.81 / 1.75)

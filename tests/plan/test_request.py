@@ -25,6 +25,7 @@ from mjwalk.world import load_workplace
         ({"spot": (1.0, 2.0, 0.0)}, "spot must be finite with a tolerance > 0"),
         ({"goal_heading": math.inf}, "goal_heading must be finite radians"),
         ({"goal_heading": "north"}, "goal_heading must be finite radians"),
+        ({"work_heading": math.nan}, "work_heading must be finite radians"),
         ({"guide": [(0.0, 0.0)]}, "guide"),
     ],
 )
@@ -45,6 +46,9 @@ def test_a_request_holds_its_values_checked():
         request.spot = None  # type: ignore[misc]
     # a turn is split between the spot and the first steps only for a walker at work
     assert not request.at_work and WalkRequest("west", turn_on_spot=True, at_work=True).at_work
+    # the front of the work (None: the start yaw), checked as a heading
+    assert request.work_heading is None
+    assert type(WalkRequest("west", work_heading=np.float32(1.5)).work_heading) is float
 
 
 def test_a_start_alone_plans_as_its_request(scenes_dir):

@@ -2,14 +2,17 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 from test_lean import FRAME, M
 
 from mjwalk.gait.default import default_model
-from mjwalk.plan import stepcheck
+from mjwalk.plan import slots, stepcheck
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.lean import lean_in_range, stance_lean
+from mjwalk.plan.options import PlannerOptions
 from mjwalk.world import load_workplace
 
 
@@ -46,3 +49,49 @@ def test_check_steps_refuses_the_steps_the_stance_leg_cannot_follow(scenes_dir, 
         assert len(rows) > 0.9 * len(free)
     else:  # a foot crossed under the other: most are refused
         assert len(rows) < 0.5 * len(free)
+
+
+#: Station run 330 of 2000 (seed 0, main at ae71305): route T4's eighth step, the left foot
+#: swinging from (0.664, -1.711) heading -88.5 deg to (0.303, -1.714) heading -155.8 deg while
+#: the pelvis (16 samples, world x, y) turned from -136.8 to -178.5 deg beside rack 2's frame.
+RUN330_PELVIS = [
+    (0.543, -1.719), (0.524, -1.712), (0.506, -1.706), (0.487, -1.701), (0.470, -1.696),
+    (0.453, -1.692), (0.437, -1.689), (0.423, -1.688), (0.409, -1.687), (0.395, -1.687),
+    (0.382, -1.689), (0.369, -1.691), (0.357, -1.694), (0.344, -1.698), (0.332, -1.703),
+    (0.319, -1.709),
+]  # fmt: skip
+
+
+def test_the_knee_probes_lead_along_the_turning_swing_foot(scenes_dir):
+    """The knee bends in its foot's plane, and a swing foot turns to its landing yaw only by
+    0.9 of the step: in run 330's turning step the left knee went 0.33 m beside the pelvis and
+    3 cm into rack 2's frame (a 1.81 m operator) while the probes, ahead along the pelvis's
+    yaw, stayed clear. The step passes with the lifting foot's heading unknown (the probes
+    along the pelvis's yaw, as before) and is refused with it (along the foot's yaw)."""
+    model = default_model()
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    pl = HybridPlanner(wp, "stand_rack2", model, PlannerOptions(radius=0.30))
+    par, ipar = pl.params.vectors(1.81)
+    m = int(ipar[slots.I_M])
+    assert m == len(RUN330_PELVIS)
+    fr = -2.388  # the pelvis's heading at the step's start (the step's frame)
+    rot = complex(math.sin(fr), -math.cos(fr))  # local (x right, y forward) to world
+    p = complex(*RUN330_PELVIS[0])
+    offset = np.zeros(2 * m + 3, dtype=np.complex128)
+    offset[:m] = [(complex(x, y) - p) / rot for x, y in RUN330_PELVIS]
+    offset[m] = (complex(0.303, -1.714) - p) / rot  # the landing ankle
+    offset[m + 1] = complex(-2.718 - fr, -3.115 - fr)  # landing foot's and end pelvis's yaw
+    matrix = np.zeros((1, 2 * m + 3), dtype=np.complex128)  # z = 0 decodes to the offset
+    landed, behind = complex(0.426, -1.726), complex(0.664, -1.711)
+    rest = (pl.params.thresholds, par, ipar, wp.walk_field().values, pl.distance.flat_bound())
+
+    def accepted(lift_heading: float) -> bool:
+        # column 4: no landed heading (no stance-lean check), the lifting foot's heading
+        node = np.array([[p, landed, behind, 0.0, complex(math.nan, lift_heading)]])
+        args = (np.zeros((1, 1)), matrix, offset, 1, 1, np.array([fr]), np.array([True]),
+                np.zeros(1, bool), node)  # fmt: skip
+        return len(stepcheck.check_steps(*args, *rest)[0]) == 1
+
+    assert accepted(math.nan)  # the pelvis, ankle, toes, landing leg and reach all pass
+    assert not accepted(-1.545)  # the knee, ahead along the lagging foot, meets the frame
+    assert accepted(-2.3)  # a foot already turned with the pelvis keeps its knee clear

@@ -17,7 +17,7 @@ import pytest
 
 from mjwalk.plan.options import FOOT_CLEARANCE, FOOT_LENGTH, TOE_APPROACH_SHARE, TOE_PROBE_STEP
 from mjwalk.plan.slots import params
-from mjwalk.plan.stepgeom import beyond, toe_approach_clear, unit_turn, within
+from mjwalk.plan.stepgeom import beyond, swing_yaw, toe_approach_clear, unit_turn, within
 from mjwalk.world import load_workplace
 
 # run 32's last step of T3 (main at 8f7a18a): the left foot lifts off at LIFT and lands at LAND
@@ -96,3 +96,12 @@ def test_unit_turn_is_exp_i_angle():
     for angle in (0.0, 0.5, -2.0, math.pi):
         assert unit_turn(angle) == complex(math.cos(angle), math.sin(angle))
         assert abs(unit_turn(angle) - cmath.exp(1j * angle)) < 1e-15
+
+
+def test_swing_yaw_turns_the_short_way_round():
+    assert swing_yaw(0.5, 1.5, 0.0) == 0.5
+    assert swing_yaw(0.5, 1.5, 1.0) == pytest.approx(1.5)
+    # from 170 to -170 deg: through 180, not back through 0
+    half = swing_yaw(math.radians(170), math.radians(-170), 0.5)
+    assert math.cos(half) == pytest.approx(-1.0)
+    assert swing_yaw(math.radians(170), math.radians(-170), 1.0) == pytest.approx(math.radians(190))

@@ -63,3 +63,47 @@ def test_the_first_step_never_heads_nearer_the_work_than_square():
         frames = starter_frames(0.0, math.radians(110.0), 8, rng)
         assert frames is not None
         assert np.all(np.abs(frames - AWAY_FROM_WORK) <= STARTER_SPREAD + 1e-9)
+
+
+def test_the_floor_is_square_to_the_work_not_to_the_last_reach():
+    """A walker whose last reach turned it 20 deg off the work's front (facing 70 deg, the
+    work's front 90 deg) and whose way lies at -40 deg (a 110 deg turn): the first steps go no
+    nearer the work than square to its front (heading 0 deg), so the residual along them spans
+    the cited 30-40 deg the work leaves (against a floor from the facing: heading -20 deg, 20 deg
+    left); with the work's front given as the facing, the frames are those of no ``work``."""
+    facing, work, way = (math.radians(d) for d in (70.0, 90.0, -40.0))
+    rng = np.random.default_rng(4)
+    residual = []
+    for _ in range(300):
+        frames = starter_frames(facing, way, 64, rng, work)
+        assert frames is not None
+        mid = wrap(float(np.mean(frames)) - way)  # the spread's mean, about the split
+        residual.append(math.degrees(mid))
+        # never nearer the work than square to its front (within the starter spread)
+        assert np.all(frames <= work - AWAY_FROM_WORK + STARTER_SPREAD + 1e-9)
+    r = np.array(residual)
+    # 64 starters' mean: within 3 deg of the split (SD of the mean 0.7 deg)
+    assert r.min() >= 30.0 - 3.0 and r.max() <= 40.0 + 3.0
+    assert np.percentile(r, 90) - np.percentile(r, 10) >= 5.0  # spread, not pinned
+    a, b = np.random.default_rng(5), np.random.default_rng(5)
+    np.testing.assert_array_equal(
+        starter_frames(1.0, 1.0 + math.radians(150.0), 8, a, work=1.0),
+        starter_frames(1.0, 1.0 + math.radians(150.0), 8, b),
+    )
+
+
+def test_the_split_never_turns_past_the_way():
+    """Facing 0 deg and turning 100 deg to the left. The work's front at -30 deg: square to it
+    lies 60 deg from the facing, so the on-the-spot part is the turn less the residual (40-70
+    deg). The work's front at 60 deg: square to it lies 150 deg away, past the way, so the whole
+    turn is made on the spot (the starters about the way itself)."""
+    way = math.radians(100.0)
+    rng = np.random.default_rng(6)
+    for _ in range(200):
+        frames = starter_frames(0.0, way, 64, rng, math.radians(-30.0))
+        assert frames is not None
+        on_spot = math.degrees(float(np.mean(frames)))  # 64 starters: within 3 deg of the split
+        assert 40.0 - 3.0 <= on_spot <= 70.0 + 3.0
+        frames = starter_frames(0.0, way, 64, rng, math.radians(60.0))
+        assert frames is not None
+        assert np.all(np.abs(frames - way) <= STARTER_SPREAD + 1e-9)
