@@ -50,6 +50,7 @@ __all__ = [
     "guide_aim_at",
     "guide_is_clear",
     "guide_nearest",
+    "guide_start_heading",
     "minimum_jerk_guide",
     "resample_guide",
     "via_point_guide",
@@ -336,6 +337,32 @@ def _resampled(pts, n):
     for i in range(n):
         j, out[i, 0], out[i, 1] = _station(pts, cum, i, n, j)
     return out
+
+
+def guide_start_heading(guide) -> float:
+    """The direction a walker whose facing is unknown sets off in: its guide's first segment.
+
+    People's walking paths are smooth with the body's heading along their tangent (the
+    nonholonomic model of Arechavaleta, Laumond, Hicheur & Berthoz, "An optimality principle
+    governing human walking", IEEE Trans Robot 24:5-14, 2008), and they set off from a stand
+    along the way they mean to walk: in gait initiation the centre of pressure's shift back
+    drives the centre of gravity forward along the direction of progression, with a lateral
+    shift onto the stance limb (Jian, Winter, Ishac & Gilchrist, "Trajectory of the body COG
+    and COP during initiation and termination of gait", Gait Posture 1:9-22, 1993). My
+    modelling step: a walk with no start yaw thus sets off along its guide (the
+    straight line to the goal in an open hall) rather than anywhere around the downhill
+    heading (:data:`~mjwalk.plan.options.START_SPREAD`): a first step set off a few degrees
+    from the line carries the walk several centimetres off its chord before the heading term
+    draws it back (issue 48, the empty hall).
+
+    Args:
+        guide: (k >= 2, 2) the guide, metres, world frame (:func:`resample_guide`).
+
+    Returns:
+        The direction from its first point to its second, radians from +x CCW.
+    """
+    g = np.asarray(guide, dtype=float)
+    return float(math.atan2(g[1, 1] - g[0, 1], g[1, 0] - g[0, 0]))
 
 
 def densify(points, spacing: float = 0.05) -> np.ndarray:

@@ -58,7 +58,7 @@ from mjwalk.plan import search
 from mjwalk.plan.assemble import assemble_walk
 from mjwalk.plan.decoder import StepDecoder, decoder_of
 from mjwalk.plan.detour import GuideBody, walk_guide
-from mjwalk.plan.guide import guide_is_clear
+from mjwalk.plan.guide import guide_is_clear, guide_start_heading
 from mjwalk.plan.heuristic import PELVIS_SWAY, GoalDistance, walkable_distance
 from mjwalk.plan.occupancy import MOVES_16, check_endpoint, shared_grid
 from mjwalk.plan.options import (
@@ -71,7 +71,7 @@ from mjwalk.plan.options import (
     WANDER_SEARCHES,
     PlannerOptions,
 )
-from mjwalk.plan.params import KernelParams, WalkTerms, spot_offset
+from mjwalk.plan.params import KernelParams, WalkTerms, goal_discs, spot_offset
 from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.stepcost import downhill_costs
 from mjwalk.plan.stepgeom import in_goal
@@ -91,20 +91,6 @@ class _Exhausted(PlanningError):
     ``expansions``: what the search spent."""
 
     expansions = 0
-
-
-def _goal_discs(options: PlannerOptions, goal: np.ndarray) -> np.ndarray:
-    """(k, 3) goal discs of ``options`` (x, y, radius; metres; checked there), the goal itself
-    inside every one (the goal area must not be empty where the walk is aimed)."""
-    arr = np.array(options.goal_within, dtype=float).reshape(-1, 3)
-    out = np.hypot(arr[:, 0] - goal[0], arr[:, 1] - goal[1]) > arr[:, 2]
-    if out.any():
-        k = int(np.flatnonzero(out)[0])
-        raise PlanningError(
-            f"goal_within: the goal ({goal[0]:.3f}, {goal[1]:.3f}) lies outside disc {k} "
-            f"({arr[k, 0]:.3f}, {arr[k, 1]:.3f}, radius {arr[k, 2]:.3f} m)"
-        )
-    return arr
 
 
 def _parse_pose(workplace: Workplace, where) -> tuple[np.ndarray, float | None]:
@@ -203,7 +189,7 @@ class HybridPlanner:
         self.model = model
         goal_xy, _ = _parse_pose(workplace, goal)
         self.goal = goal_xy
-        self.goal_within = _goal_discs(options, self.goal)
+        self.goal_within = goal_discs(options, self.goal)
         self.radius = options.radius
         check_endpoint(workplace, self.goal, self.radius, "goal")
         self.grid = shared_grid(workplace, options.cell, self.radius, MOVES_16)
@@ -324,10 +310,11 @@ class HybridPlanner:
         a quarter is split (:mod:`mjwalk.plan.turnsplit`): the walker turns on the spot all but
         a one-step direction change and sets off that far from the way, turning the rest along
         its first steps, never nearer the work's front (``work_heading``) than square to it. The
-        draws are otherwise those of a walk without a yaw. Without it a start yaw is the
-        heading of the first step's frame (a walker already walking that way). The walk's first
-        sample faces where the turn ended (``yaw[0]``): the turn itself is the caller's (the
-        cycle animates it).
+        draws are otherwise those of a walk without a yaw. Without ``turn_on_spot`` a start yaw
+        is the heading of the first step's frame (a walker already walking that way); with no
+        start yaw the walker sets off along its guide
+        (:func:`~mjwalk.plan.guide.guide_start_heading`). The walk's first sample faces where
+        the turn ended (``yaw[0]``): the turn itself is the caller's (the cycle animates it).
 
         A ``goal_heading``, unlike the options' ``goal_yaw``, is no condition of the goal: it
         shapes the smooth path the walk's heading follows (:mod:`mjwalk.plan.guide`: the
@@ -431,7 +418,10 @@ class HybridPlanner:
         start_distance = self._start_distance(start_xy)
         free_heading = start_yaw is None or request.turn_on_spot
         facing = start_yaw  # the heading the walker stands at before any turn on the spot
-        if free_heading:
+        along = facing is None and guide is not None  # facing unknown: sets off along its guide
+        if along:
+            start_yaw = guide_start_heading(guide)
+        elif free_heading:
             start_yaw = self.default_heading(start_xy, None if spot is None else spot[:2])
         dec = self.decoder(model)
         stature = walker_stature(model)  # a model conditioned on the run's operator
@@ -461,7 +451,7 @@ class HybridPlanner:
             split = starter_frames(facing, start_yaw, len(z0), rng, request.work_heading)
         if split is not None:  # a large turn: its last part is made along the first steps
             frame0 = split
-        elif free_heading:  # the walker may set off anywhere around the downhill heading
+        elif free_heading and not along:  # anywhere around the downhill heading
             frame0 += rng.uniform(-START_SPREAD, START_SPREAD, len(frame0))
         f0 = o.heuristic_weight * h_start  # as stepcheck.check_steps scores a node
         if h_start > FAR_FROM:

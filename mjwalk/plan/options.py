@@ -78,8 +78,9 @@ MAX_FOOT_REACH = 0.55
 #: in the first quarter of a step (m): the virtual corpus's maxima (medians 1.33 and 0.48).
 MAX_STRIDE = 1.74
 MAX_LIFT_REACH = 0.64
-#: Without a start yaw, starters set off within +-60 degrees of the obstacle-aware downhill
-#: heading (the operator turns on the spot before the first step).
+#: A walker turning on the spot (or without a start yaw and without a clear guide) sets off
+#: within +-60 degrees of the obstacle-aware downhill heading; without a start yaw but with a
+#: guide it sets off along the guide (:func:`mjwalk.plan.guide.guide_start_heading`).
 START_SPREAD = math.radians(60.0)
 #: Closing steps (gait termination, :meth:`StepModel.sample_stop`) are drawn for nodes within
 #: this distance (m) of the goal area, and kept only when they end in it: the walk stops

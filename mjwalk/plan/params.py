@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mjwalk.conventions import DEFAULT_STATURE
+from mjwalk.errors import PlanningError
 from mjwalk.gait.transition import POOL_SHARPNESS
 from mjwalk.plan import slots
 from mjwalk.plan.heuristic import GoalDistance
@@ -42,6 +43,31 @@ from mjwalk.plan.options import (
     swing_turned,
 )
 from mjwalk.world.clearance import ClearanceField
+
+
+def goal_discs(options: PlannerOptions, goal: np.ndarray) -> np.ndarray:
+    """The discs a planner's goal area is cut by (``options.goal_within``), checked.
+
+    Args:
+        options: the planner's options.
+        goal: (2,) the planner's goal point, metres, world frame.
+
+    Returns:
+        (k, 3) the discs (x, y, radius; metres), the goal inside every one.
+
+    Raises:
+        PlanningError: the goal outside a disc (the goal area would be empty where the walk
+            is aimed).
+    """
+    arr = np.array(options.goal_within, dtype=float).reshape(-1, 3)
+    out = np.hypot(arr[:, 0] - goal[0], arr[:, 1] - goal[1]) > arr[:, 2]
+    if out.any():
+        k = int(np.flatnonzero(out)[0])
+        raise PlanningError(
+            f"goal_within: the goal ({goal[0]:.3f}, {goal[1]:.3f}) lies outside disc {k} "
+            f"({arr[k, 0]:.3f}, {arr[k, 1]:.3f}, radius {arr[k, 2]:.3f} m)"
+        )
+    return arr
 
 
 @dataclass(frozen=True, eq=False)

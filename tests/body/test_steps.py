@@ -6,7 +6,15 @@ import numpy as np
 import pytest
 
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE
-from mjwalk.body.legs.steps import STANCE_KEYS, stance_angle, step_frames
+from mjwalk.body.legs.steps import (
+    HEEL_RISE_MAX,
+    STANCE_KEYS,
+    TOE_STRAIGHTEN,
+    TOE_STRAIGHTEN_SPEED,
+    stance_angle,
+    step_frames,
+    toe_straighten_share,
+)
 from mjwalk.plan.synthetic import synthetic_walk
 
 
@@ -36,3 +44,19 @@ def test_stance_angle_meets_boundaries_and_keys():
     a = stance_angle(DEFAULT_REFERENCE, "knee", phi, 0.3, 0.0, 0.1, 0.0)
     assert a[0] == pytest.approx(0.3) and a[-1] == pytest.approx(0.1)
     assert np.allclose(a[1:4], DEFAULT_REFERENCE("knee", 0.5 * np.array(STANCE_KEYS)))
+
+
+def test_toes_straighten_no_faster_than_the_cited_speed():
+    """Issue 48 (i48-toe): a 0.48 s step whose toes leave at the 60 deg heel-rise bound
+    (route stand_rack2 -> stand_car1, seed 0) straightened them over TOE_STRAIGHTEN of the
+    step at 745 deg/s mean x 1.5 (6.2 deg a 120 Hz sample); the share now lengthens so the
+    mean speed is at most TOE_STRAIGHTEN_SPEED (~362 deg/s), keeps TOE_STRAIGHTEN where that
+    is slow enough, and never runs past the landing."""
+    assert np.degrees(TOE_STRAIGHTEN_SPEED) == pytest.approx(362.2, abs=0.5)
+    share = toe_straighten_share(-HEEL_RISE_MAX, 0.48, 0.19)
+    assert share > TOE_STRAIGHTEN
+    assert HEEL_RISE_MAX / (share * 0.48) == pytest.approx(TOE_STRAIGHTEN_SPEED)
+    peak = 1.5 * np.degrees(HEEL_RISE_MAX) / (share * 0.48 * 120)  # smoothstep's peak slope
+    assert peak < 6.0
+    assert toe_straighten_share(np.deg2rad(-30.0), 0.6, 0.2) == TOE_STRAIGHTEN
+    assert toe_straighten_share(-HEEL_RISE_MAX, 0.1, 0.2) == pytest.approx(0.8)

@@ -20,7 +20,7 @@ from mjwalk.body.legs.curves import clamped_cubic, maximum1, smoothstep, soft_cl
 from mjwalk.body.legs.footpivot import ball_offset, heel_rise, pivot_ankle, pivot_rows
 from mjwalk.body.legs.ik import KNEE_MIN, ik_lengths, leg_ik_world_row
 from mjwalk.body.legs.reference import ReferenceGait
-from mjwalk.conventions import side_prefix
+from mjwalk.conventions import SAMPLE_RATE_HZ, side_prefix
 from mjwalk.plan.walkpath import WalkPath
 
 #: Stance key-frame phases (paper §4.2.3) and swing key-frame phases (§4.2.4).
@@ -34,8 +34,15 @@ TOE_OFF = 0.2
 FOOT_FLAT = STANCE_KEYS[0]
 #: Step phase by which the swing foot has turned to its landing heading: the last swing key.
 SWING_TURNED = SWING_KEYS[-1]
-#: Share of the step after toe-off over which the swing foot's toes straighten.
+#: Share of the step after toe-off over which the swing foot's toes straighten (at least).
 TOE_STRAIGHTEN = 0.25
+#: Mean speed at which the swing foot's toes straighten (rad/s): the reference's 50 deg peak
+#: heel rise (:mod:`~mjwalk.body.legs.reference`) undone over the initial swing, 60-73 % of
+#: the cycle, at free-walking cadence 113 steps/min (Perry & Burnfield, "Gait Analysis",
+#: 2nd ed., 2010): 50 deg in 0.138 s, ~362 deg/s. Toes bent further (up to
+#: :data:`HEEL_RISE_MAX`) or a quicker step take longer than :data:`TOE_STRAIGHTEN`: no
+#: faster (a 60 deg toe-off in a 0.48 s step straightened over 0.25 of it was 745 deg/s).
+TOE_STRAIGHTEN_SPEED = np.deg2rad(50.0) / (0.13 * 120.0 / 113.0)
 #: Highest heel rise of a foot rolling about its ball (radians, pitch toes down): 60 deg,
 #: within the toes' 70 deg extension (ROM_DEG["toe"]); :func:`heel_rise`'s bound.
 HEEL_RISE_MAX = np.deg2rad(60.0)
@@ -318,10 +325,30 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
         _swing_path(st, pos, p, early, yaw)
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[early][-1] if early.any() else 0.0
-    toe = np.where(early, -p, -p_end * (1 - smoothstep((phi - phi_to) / TOE_STRAIGHTEN)))
+    share = toe_straighten_share(p_end, (fr.end - fr.start) / SAMPLE_RATE_HZ, phi_to)
+    toe = np.where(early, -p, -p_end * (1 - smoothstep((phi - phi_to) / share)))
     if late.any():
         _clear_floor(pos, p, toe, late, geom)
     return pos, p, toe, yaw, phi_to
+
+
+@njit
+def toe_straighten_share(p_end: float, duration: float, phi_to: float) -> float:
+    """The share of the step over which the swing foot's toes straighten after toe-off:
+    :data:`TOE_STRAIGHTEN`, or longer where that would straighten them faster than
+    :data:`TOE_STRAIGHTEN_SPEED` on average; never past the landing.
+
+    Args:
+        p_end: the foot's pitch at toe-off, radians (toes down negative; the toes are bent
+            by ``-p_end``).
+        duration: the step's duration, seconds.
+        phi_to: the step phase of the toe-off.
+
+    Returns:
+        the share of the step (step phase), positive.
+    """
+    need = abs(p_end) / (TOE_STRAIGHTEN_SPEED * max(duration, 1e-9))
+    return max(min(max(TOE_STRAIGHTEN, need), 1.0 - phi_to), 1e-9)
 
 
 def _roll_pitch(fr: StepFrames, ref: ReferenceGait, ph: np.ndarray) -> np.ndarray:

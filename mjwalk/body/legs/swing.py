@@ -42,9 +42,10 @@ from mjwalk.body.legs.steps import (
     SWING_KEYS,
     SWING_TURNED,
     TOE_OFF,
-    TOE_STRAIGHTEN,
     StepFrames,
+    toe_straighten_share,
 )
+from mjwalk.conventions import SAMPLE_RATE_HZ
 
 #: The reference pitch's clamp in the swing (radians): :func:`~.steps.swing_foot`'s.
 PITCH_LO, PITCH_HI = float(np.deg2rad(-70)), float(np.deg2rad(30))
@@ -117,6 +118,7 @@ def swing_foot(
         float(geom.foot_front),
         float(geom.ankle_height),
         float(land_p),
+        (fr.end - fr.start) / SAMPLE_RATE_HZ,
         pos,
         p,
         toe,
@@ -128,13 +130,13 @@ def swing_foot(
 @njit
 def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm,
            hip_c, hip_k, knee_c, knee_k, pitch_c, pitch_k, L1, L2, span0, span1, knee_min,
-           ball, back, front, ah, land_p, pos, p, toe, yaw):  # fmt: skip
+           ball, back, front, ah, land_p, duration, pos, p, toe, yaw):  # fmt: skip
     """The arithmetic of :func:`swing_foot` into ``pos`` (n, 3, zeros), ``p`` (n, zeros),
     ``toe`` and ``yaw`` (n,); returns the toe-off phase. ``hip_c``, ``hip_k`` (and knee,
     pitch): the reference's piecewise-polynomial coefficients and knots; ``span0 + span1 cos
     knee`` the squared hip-to-ankle span (:meth:`LegGeometry.span`); ``lift2``, ``land2``
     the footprints as (1, 3) rows (no reshape in compiled code: its error path compiles
-    slowly)."""
+    slowly); ``duration`` the step's, seconds (how fast the toes straighten)."""
     lift = lift2[0]
     n = phi.shape[0]
     for i in range(n):
@@ -184,11 +186,12 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
                     p)  # fmt: skip
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[ne - 1] if ne > 0 else 0.0
+    share = toe_straighten_share(p_end, duration, phi_to)
     for i in range(n):
         if i < ne:
             toe[i] = -p[i]
         else:
-            toe[i] = -p_end * (1 - smoothstep1((phi[i] - phi_to) / TOE_STRAIGHTEN))
+            toe[i] = -p_end * (1 - smoothstep1((phi[i] - phi_to) / share))
     # keep heel, ball and toe tip off the floor (lift the ankle where they would dip)
     for i in range(ne, n):
         sp, cp = math.sin(p[i]), math.cos(p[i])
