@@ -88,12 +88,12 @@ def main() -> None:
         if args.against is not None:
             trees["against"] = args.against.resolve()
         print(f"load average at the start: {os.getloadavg()[0]:.1f} (2 cores)")
-        for n in args.scale:
-            cpu = {name: _timed(t, pickled, n, Path(tmp, f"{n}-{i}")) for i, (name, t) in
+        for j, n in enumerate(args.scale):
+            cpu = {name: _timed(t, pickled, n, Path(tmp, f"{j}-{i}")) for i, (name, t) in
                    enumerate(trees.items())}  # fmt: skip
             line = f"{n:6d} runs: report CPU this tree {cpu['this tree']:.2f} s"
             if "against" in cpu:
-                same = _same(Path(tmp, f"{n}-0"), Path(tmp, f"{n}-1"))
+                same = _same(Path(tmp, f"{j}-0"), Path(tmp, f"{j}-1"))
                 line += (
                     f", against {cpu['against']:.2f} s ({cpu['against'] / cpu['this tree']:.2f}x)"
                     f"; files and summary {'identical' if same else 'DIFFER'}"
