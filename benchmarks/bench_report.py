@@ -30,6 +30,7 @@ SPEC = ROOT / "scenes" / "assembly_station.toml"
 #: as their ``mjwalk simulate`` did.
 _TIMED = """
 import copy, inspect, pickle, sys, time
+import mjwalk
 from pathlib import Path
 from mjwalk.report import format_summary, report_dict, write_report
 from mjwalk.world import shared_workplace
@@ -50,6 +51,7 @@ if "report" in inspect.signature(write_report).parameters:
 else:
     write_report(res, out, workplace=wp)
     text = format_summary(report_dict(res))
+print(mjwalk.__file__)
 print(time.process_time() - c)
 (out / "summary.txt").write_text(text)
 """
@@ -60,8 +62,11 @@ def _timed(tree: Path, pickled: Path, runs: int, out: Path) -> float:
     out.mkdir(parents=True)
     env = {**os.environ, "PYTHONPATH": str(tree)}
     cmd = [sys.executable, "-c", _TIMED, str(pickled), str(runs), str(out)]
-    done = subprocess.run(cmd, check=True, capture_output=True, text=True, env=env)
-    return float(done.stdout.strip().splitlines()[-1])
+    # in the tree's own folder: ``python -c`` puts the working folder before PYTHONPATH
+    done = subprocess.run(cmd, check=True, capture_output=True, text=True, env=env, cwd=tree)
+    where, cpu = done.stdout.strip().splitlines()[-2:]
+    assert where.startswith(str(tree)), f"{tree}: ran {where}"
+    return float(cpu)
 
 
 def _same(a: Path, b: Path) -> bool:
