@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -217,8 +218,14 @@ class WalkRecord:
     baseline_length: float
     baseline: WalkPath | None = None
 
-    @property
+    @cached_property
     def length(self) -> float:
+        """The walked length (:attr:`WalkPath.length`), kept once read: a report reads every
+        walk's about a dozen times.
+
+        Returns:
+            Metres along the path's samples.
+        """
         return self.path.length
 
     @property

@@ -140,6 +140,9 @@ def risk_level(score) -> np.ndarray:
         The levels 0-4, shaped like ``score``.
     """
     s = np.asarray(score)
+    if s.ndim == 0:  # one score (the report's per task and run): no five temporary arrays
+        v = s.item()
+        return np.asarray(0 if v <= 1 else 1 if v <= 3 else 2 if v <= 7 else 3 if v <= 10 else 4)
     return np.select([s <= 1, s <= 3, s <= 7, s <= 10], [0, 1, 2, 3], 4)
 
 

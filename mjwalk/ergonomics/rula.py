@@ -151,6 +151,9 @@ def action_level(score) -> np.ndarray:
         The action levels, shaped like ``score``.
     """
     s = np.asarray(score)
+    if s.ndim == 0:  # one score (the report's per task and run): no four temporary arrays
+        v = s.item()
+        return np.asarray(1 if v <= 2 else 2 if v <= 4 else 3 if v <= 6 else 4)
     return np.select([s <= 2, s <= 4, s <= 6], [1, 2, 3], 4)
 
 

@@ -136,6 +136,7 @@ def write_report(
     workplace=None,
     baseline: BaselineArg | None = None,
     reference: Mapping[str, tuple[float, float]] | None = None,
+    report: dict | None = None,
 ) -> dict[str, Path]:
     """Write the report of ``results`` into ``out_dir`` (created if needed).
 
@@ -159,6 +160,9 @@ def write_report(
             each drawn walk's own route (``WalkRecord.baseline``, between the walk's ends, as
             the simulation recorded it); ``{}`` draws none.
         reference: captured (median, IQR) walk length per route, e.g. :data:`CAPTURE_TABLE1`.
+        report: :func:`report_dict` of the same ``results`` and ``reference`` when the caller
+            has it already (``mjwalk simulate`` prints it too); None: computed here. Over
+            thousands of runs it takes seconds (the stature trends' bootstrap bands).
 
     Returns:
         The path of each file written, by its key in :data:`REPORT_FILES` (and
@@ -167,7 +171,7 @@ def write_report(
     # deferred: matplotlib loads only when a report is drawn
     from mjwalk.render.plot import histograms_png, spaghetti_png
 
-    rep = report_dict(results, reference=reference)
+    rep = report_dict(results, reference=reference) if report is None else report
     results = split_failed(results)[0]  # the failed runs are listed in the report only
     if workplace is None:
         workplace = shared_workplace(results[0].spec.scene)

@@ -46,3 +46,20 @@ def test_operator_dict():
     assert operator_dict(None) is None
     d = operator_dict(Walker(stature=1.6, speed=1.1, cadence=105.0))
     assert d is not None and (d["stature"], d["speed"], d["cadence"]) == (1.6, 1.1, 105.0)
+
+
+def test_a_walks_length_is_its_paths_kept_once_read():
+    """A report reads each walk's length about a dozen times: it is the path's, read once; a
+    record that has read it pickles and summarises as one that has not."""
+    import pickle
+
+    w = _walk("T1", 2.5)
+    assert w.length == w.path.length == 2.5
+    back = pickle.loads(pickle.dumps(w))
+    assert back.length == 2.5
+    spec = CycleSpec(path=Path("c.toml"), scene=Path("s.xml"), start="a", tasks=[Task("walk")])
+    runs = [
+        CycleResult(spec=spec, run=0, seed=0, tasks=[], walks=[v], arms=[], cycle_time=1.0)
+        for v in (back, _walk("T1", 2.5))
+    ]
+    assert runs[0].summary() == runs[1].summary()

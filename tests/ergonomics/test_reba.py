@@ -85,3 +85,12 @@ def test_reba_risk_levels_and_load():
     assert list(reba.risk_level([1, 2, 3, 4, 7, 8, 10, 11, 15])) == [0, 1, 1, 2, 2, 3, 3, 4, 4]
     assert reba.load_score(4.9) == 0 and reba.load_score(5) == 1 and reba.load_score(11) == 2
     assert reba.load_score(11, shock=True) == 3
+
+
+def test_one_score_gets_the_level_an_array_of_it_gets():
+    """The one-score path (the report's per task and run) agrees with the per-frame one."""
+    scores = np.array([0, 1, 1.5, 2, 3, 3.5, 4, 7, 7.5, 8, 10, 10.5, 11, 15, np.nan])
+    levels = reba.risk_level(scores)
+    for s, level in zip(scores, levels, strict=True):
+        one = reba.risk_level(s)
+        assert one.shape == () and one.dtype == levels.dtype and one == level

@@ -71,3 +71,12 @@ def test_raising_the_arm_never_lowers_the_upper_arm_score():
         score.append(int(rula.rula(a, 0)[0]))
     assert ua == sorted(ua) and ua[0] == 1 and ua[-1] == 4
     assert score == sorted(score)
+
+
+def test_one_score_gets_the_action_level_an_array_of_it_gets():
+    """The one-score path (the report's per task and run) agrees with the per-frame one."""
+    scores = np.array([0, 1, 2, 2.5, 3, 4, 4.5, 5, 6, 6.5, 7, 9, np.nan])
+    levels = rula.action_level(scores)
+    for s, level in zip(scores, levels, strict=True):
+        one = rula.action_level(s)
+        assert one.shape == () and one.dtype == levels.dtype and one == level

@@ -137,3 +137,36 @@ def test_one_verdict_for_all_says_so_and_the_trend_table_shows_the_arm_at_the_to
     # mixed verdicts: no such sentence
     recs[0].ergo.extra["exposure_verdict"] = "acceptable"
     assert "Every run is" not in "\n".join(exposure_markdown(exposure_summary(recs)))
+
+
+def test_the_band_is_the_same_bit_for_bit_whatever_block_the_resamples_are_done_in(monkeypatch):
+    """The resamples go in cache-sized blocks; each resample's fit only reads its own row, so
+    one block of all 2000 and blocks of 7 give the same band to the last bit."""
+    from mjwalk.ergonomics import workforce
+
+    rng = np.random.default_rng(5)
+    x = rng.uniform(1.5, 1.95, 300)
+    y = 40 - 20 * x + rng.normal(0, 1.0, 300)
+    at = np.linspace(x.min(), x.max(), 9)
+    monkeypatch.setattr(workforce, "_BAND_BLOCK", 300 * workforce.BOOTSTRAP)  # one block
+    whole = workforce.lowess_band(x, y, at)
+    monkeypatch.setattr(workforce, "_BAND_BLOCK", 300 * 7)  # blocks of 7 resamples
+    blocks = workforce.lowess_band(x, y, at)
+    for a, b in zip(whole, blocks, strict=True):
+        assert a.tobytes() == b.tobytes()
+
+
+def test_a_trend_asked_twice_is_the_same_and_a_changed_copy_does_not_leak():
+    """The report asks for each trend several times; the second answer is the first one's
+    figures, and changing one answer does not change the next."""
+    rng = np.random.default_rng(2)
+    x = rng.uniform(1.5, 1.95, 40)
+    y = 30 - 10 * x + rng.normal(0, 0.5, 40)
+    first = stature_trend(x, y)
+    assert first is not None
+    first["smooth"][0]["value"] = -1.0
+    again = stature_trend(x.copy(), y.copy())
+    assert again is not None and again["smooth"][0]["value"] != -1.0
+    y2 = y.copy()
+    y2[0] += 1.0  # other figures: computed again
+    assert stature_trend(x, y2)["slope_per_10cm"] != again["slope_per_10cm"]

@@ -134,3 +134,17 @@ def test_station_walks_per_direction_against_their_own_grid_route(tmp_path, scen
         assert vs >= shortfall_bound(base) - 1e-4, row  # within the grid's discretisation
     md = files["markdown"].read_text()
     assert "| T2 | both | 6 |" in md and "every walk within the grid's discretisation" in md
+
+
+def test_a_report_given_its_figures_writes_the_same_files(tmp_path, workplace):
+    """``mjwalk simulate`` computes report_dict once and hands it to write_report: the files
+    are byte for byte those write_report writes computing it itself."""
+    from mjwalk.report.figures import report_dict
+
+    results = _results(workplace)
+    own = write_report(results, tmp_path / "own", workplace=workplace, baseline={})
+    given = write_report(
+        results, tmp_path / "given", workplace=workplace, baseline={}, report=report_dict(results)
+    )
+    for key, path in own.items():
+        assert path.read_bytes() == given[key].read_bytes(), key
