@@ -14,7 +14,8 @@ false) then passes through :func:`lift_to_levels`:
   last edge only once past it; the edges lie between the footprints' surfaces (the toe of the
   foot behind, the heel of the foot ahead: on a stair with footprints on the treads' centres,
   the nosings). Steps whose surfaces are a ramp or level keep the flat swing, carried on the
-  heights of its ends.
+  heights of its ends, or over a ramp's top edge on the edge's height
+  (:func:`~mjwalk.body.legs.rampreach.crest_ground`).
 * **The swing foot as its ankle holds it** (steps up): where the leg IK would ask the swing
   ankle for more dorsiflexion than its range (the shank leaning back behind a flexed knee),
   the foot hangs toes down by the excess and the swing is planned again with that pitch
@@ -24,8 +25,10 @@ false) then passes through :func:`lift_to_levels`:
   two feet's surfaces in double support (on a ramp their mean), changing over the single
   support of each step (smoothstep): up a stair the pelvis rises in weight acceptance and
   pull-up (by :data:`ASCENT_PULL_UP_END` of the step, a riser per step), down a stair it
-  lowers while the stance leg yields. Where a grounded leg then cannot reach its foot, the
-  pelvis lowers (smoothly).
+  lowers while the stance leg yields. Where a grounded leg then cannot reach its foot, a
+  foot on a ramp already rising on its ball rises further
+  (:func:`~mjwalk.body.legs.rampreach.trailing_reach`), and elsewhere the pelvis lowers
+  (smoothly).
 * **Stepping down** (a stair descended, a drop of :data:`FOREFOOT_DROP` or more) the foot
   lands on its forefoot (:data:`DESCENT_CONTACT_PITCH`) and lowers its heel in weight
   acceptance (:func:`forefoot_landing`); the pelvis holds its height through forward
@@ -57,7 +60,9 @@ from mjwalk.body.legs.edgeswing import (
     sole_rise,
     swing_clearance,
 )
+from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.ik import KNEE_MIN, generic_joint, leg_ik_world
+from mjwalk.body.legs.rampreach import crest_ground, roll_foot, trailing_reach
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import FootTracks, StepFrames
 from mjwalk.plan.walkpath import WalkPath
@@ -301,7 +306,7 @@ def forefoot_landing(feet: FootTracks, fr: StepFrames, air: np.ndarray, geom: Le
 
 
 def heel_rise(feet: FootTracks, s: str, dorsi: np.ndarray, grounded: np.ndarray,
-              geom: LegGeometry) -> bool:  # fmt: skip
+              geom: LegGeometry, surface: np.ndarray | None = None) -> bool:  # fmt: skip
     """Where a grounded foot's ankle would dorsiflex past its range (the stance leg flexed
     over a foot on a stair or a ramp), the heel rises instead: the foot turns toes down about
     its ball by the excess (the toes kept on the surface), so that clipping the ankle does not
@@ -313,6 +318,10 @@ def heel_rise(feet: FootTracks, s: str, dorsi: np.ndarray, grounded: np.ndarray,
         dorsi: (n,) the IK's ankle flexion, radians (+ dorsiflexion), before clipping.
         grounded: (n,) whether the foot is on its surface.
         geom: the foot's lengths.
+        surface: (n,) the slope of the surface under the foot, radians (+ uphill), or None:
+            where the foot is toes up from it (on its heel after heel strike) it turns about
+            its heel instead, its toes lowering sooner (up a ramp the ball about which it
+            turned was in the air and the heel rose 7-9 cm off the ramp).
 
     Returns:
         whether any sample changed.
@@ -321,17 +330,11 @@ def heel_rise(feet: FootTracks, s: str, dorsi: np.ndarray, grounded: np.ndarray,
     idx = np.flatnonzero(excess > 1e-4)
     if not len(idx):
         return False
-    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)  # footpivot.ball_offset
-    ah, p = geom.ankle_height, feet.pitch[s][idx]
-    p2 = p - excess[idx]
-    f = np.stack([np.cos(feet.fyaw[s][idx]), np.sin(feet.fyaw[s][idx])], -1)
-    # the ball's place in the foot's (forward, up) plane, kept while the pitch changes
-    dx = ball * (np.cos(p) - np.cos(p2)) + ah * (np.sin(p) - np.sin(p2))
-    dz = ball * (np.sin(p) - np.sin(p2)) - ah * (np.cos(p) - np.cos(p2))
-    feet.ankle[s][idx, :2] += dx[:, None] * f
-    feet.ankle[s][idx, 2] += dz
-    feet.pitch[s][idx] = p2
-    feet.toe[s][idx] = feet.toe[s][idx] + excess[idx]
+    # turned about the ball, or the heel where the foot is toes up from its surface (on its
+    # heel: it lowers its toes sooner instead of lifting its heel off)
+    heel = np.zeros(len(idx), bool) if surface is None else feet.pitch[s][idx] > surface[idx] + 1e-4
+    roll_foot(feet, s, idx, excess[idx], np.where(heel, -geom.foot_back, ball_offset(geom)), geom)
+    feet.toe[s][idx] = feet.toe[s][idx] + np.where(heel, 0.0, excess[idx])
     return True
 
 
@@ -403,7 +406,10 @@ def _place_swings(frames, surfs, tr: LevelTracks, feet: FootTracks, flat_ankle,
             continue
         seg = fr.land[:2] - fr.lift[:2]
         u = np.clip((flat_ankle[s][j, :2] - fr.lift[:2]) @ seg / max(float(seg @ seg), 1e-12), 0, 1)
-        feet.ankle[s][j, 2] += sf.lift + (sf.land - sf.lift) * u
+        base = sf.lift + (sf.land - sf.lift) * u
+        feet.ankle[s][j, 2] += np.maximum(
+            base, crest_ground(flat_ankle[s][j], feet.fyaw[s][j], fr, sf, geom)
+        )
         feet.pitch[s][j] += sf.lift_pitch + (sf.land_pitch - sf.lift_pitch) * u
     return plans
 
@@ -553,6 +559,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))
     reach_sq = {s: np.full(n, geom.span(KNEE_MIN) ** 2) for s in "lr"}
     grounded = {s: ~tr.air[s] for s in "lr"}
+    trailing_reach(feet, new_root, yaw, grounded, tr.pitch, reach_sq, geom)
     for _ in range(4):
         deficit = reach_deficit(new_root, yaw, feet.ankle, grounded, reach_sq, geom)
         if deficit.max() <= 1e-3:
@@ -561,7 +568,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
     least = _swing_pitch(plans, feet, new_root, yaw, geom) if plans else math.inf
     if plans:
         least = min(least, _soles_clear(plans, feet, new_root, yaw, geom))
-    raw = {s: _heel_rises(feet, s, new_root, yaw, grounded[s], geom) for s in "lr"}
+    raw = {s: _heel_rises(feet, s, new_root, yaw, grounded[s], tr.pitch[s], geom) for s in "lr"}
     angles: dict[str, np.ndarray] = {}
     for s in "lr":
         angles.update(
@@ -572,12 +579,12 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
 
 
 def _heel_rises(feet: FootTracks, s: str, root: np.ndarray, yaw: np.ndarray,
-                grounded: np.ndarray, geom: LegGeometry) -> dict:  # fmt: skip
+                grounded: np.ndarray, surface: np.ndarray, geom: LegGeometry) -> dict:  # fmt: skip
     """The ``s`` leg's unclipped IK angles after :func:`heel_rise` (up to 3 passes; ``feet``
     updated in place), for the pelvis ``root`` (n, 3, metres) and ``yaw`` (n,, radians)."""
     raw = leg_ik_world(feet.ankle[s], feet.fyaw[s], feet.pitch[s], root, yaw, s, geom)
     for _ in range(3):
-        if not heel_rise(feet, s, raw[f"ankle_{s}_flex"], grounded, geom):
+        if not heel_rise(feet, s, raw[f"ankle_{s}_flex"], grounded, geom, surface):
             break
         raw = leg_ik_world(feet.ankle[s], feet.fyaw[s], feet.pitch[s], root, yaw, s, geom)
     return raw
