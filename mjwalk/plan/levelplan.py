@@ -29,9 +29,9 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
-length and steps of the walk per level and per kind (``level``, ``stairs``, ``ramps``,
-``steps``; each step by the surfaces its foot leaves and lands on,
-:func:`mjwalk.plan.levelstitch.step_kinds`). A walk whose start and goal both stand on the floor is not this module's: it is
+length and steps of the walk per level and per kind (``level``, ``stairs``, ``ramps``, ``steps``;
+each step by the surfaces its foot leaves and lands on, :func:`mjwalk.plan.levelstitch.
+step_kinds`). A walk whose start and goal both stand on the floor is not this module's: it is
 planned exactly as in a flat scene (:func:`needs_levels`). Metres, seconds, radians.
 """
 
