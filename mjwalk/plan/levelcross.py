@@ -301,6 +301,58 @@ def departure(c: Crossing, direction: str, lead: float) -> Crossing:
     return replace(c, approach=c.approach - lead)
 
 
+def route_leads(c: Crossing, level: int, lead: float) -> tuple[np.ndarray | None, ...]:
+    """Where the level walks at a crossing's stance on ``level`` end and begin as walked: a
+    walk to a stair or step ends at its :func:`approach_point`, ``lead`` before the stance,
+    and lines up from there; a walk away from a stair begins at its :func:`departure` stance,
+    ``lead`` past it (a single step is left on the fly, a ramp walked onto and off without a
+    break). Both are the point ``lead`` from the stance along the axis, away from the flight.
+
+    Args:
+        c: the crossing.
+        level: its lower or upper level (index).
+        lead: the walker's step length, metres.
+
+    Returns:
+        (departure point, line-up point): world xy (metres) each, or None where the walks end
+        or begin at the stance itself.
+    """
+    point = approach_point(c, "up" if level == c.lower else "down", lead)
+    return (point if c.kind == "stair" else None, point if c.kind != "ramp" else None)
+
+
+def walked_distance(d: float, field, leaving: tuple, arriving: tuple, reach: tuple) -> float:
+    """The level distance between two route nodes (a crossing's stance, the walk's start or
+    goal) with the line-up and departure walked (:func:`route_leads`): at least the step
+    length to or from each such point along the axis plus the distance to it, and never less
+    than the direct distance ``d``. The line-up point's distance is taken straight (no field
+    is built to it): a lower bound of the walk around obstacles. Nodes no farther apart than a
+    step length and the goal tolerance are walked between directly (as the level planner
+    does).
+
+    Args:
+        d: the distance field's distance between the nodes, metres.
+        field: the distance field to the arriving node (callable on (2,) world xy, metres).
+        leaving: (xy, departure point or None) of the node the walk leaves, metres.
+        arriving: (xy, line-up point or None) of the node it goes to, metres.
+        reach: (the walker's step length, the planner's goal tolerance), metres.
+
+    Returns:
+        The distance, metres.
+    """
+    lead, tolerance = reach
+    here = np.asarray(leaving[0], dtype=float)
+    if float(np.hypot(*(np.asarray(arriving[0]) - here))) <= lead + tolerance:
+        return d
+    extra = 0.0
+    if leaving[1] is not None:
+        here, extra = np.asarray(leaving[1], dtype=float), lead
+        d = max(d, extra + float(field(here)))
+    if arriving[1] is not None:
+        d = max(d, extra + float(np.hypot(*(np.asarray(arriving[1]) - here))) + lead)
+    return d
+
+
 def _lead_in(c: Crossing, s: np.ndarray, times: np.ndarray, xy0, walker: Walker):
     """``s`` and ``times`` with the level steps from ``xy0`` along the axis into the flight's
     first footfall, evenly spaced, none longer than the walker's step length."""

@@ -6,7 +6,8 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
 
 1. the route over levels (:func:`mjwalk.plan.levelroute.level_route`): a Dijkstra over the
    crossings' stances, each level's obstacle-aware distance at the walker's speed, each crossing
-   at its gait's time, a step or stair only where every riser fits the walker's step-up limit
+   at its gait's time with the line-up and departure of 3. (:func:`mjwalk.plan.levelcross.
+   walked_distance`), a step or stair only where every riser fits the walker's step-up limit
    and the walker's head has room (a walker below a riser takes the ramp);
 2. on each level the hybrid A* unchanged (:class:`~mjwalk.plan.hybrid.HybridPlanner`, kept
    per level view, goal, step model and options, so a route's legs are set up once) in the
@@ -28,8 +29,9 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
-length and steps of the walk per level and per kind (``level``, ``stairs``, ``ramps``,
-``steps``). A walk whose start and goal both stand on the floor is not this module's: it is
+length and steps of the walk per level and per kind (``level``, ``stairs``, ``ramps``, ``steps``;
+each step by the surfaces its foot leaves and lands on, :func:`mjwalk.plan.levelstitch.
+step_kinds`). A walk whose start and goal both stand on the floor is not this module's: it is
 planned exactly as in a flat scene (:func:`needs_levels`). Metres, seconds, radians.
 """
 
@@ -50,7 +52,14 @@ from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.heuristic import goal_distance
 from mjwalk.plan.hybrid import HybridPlanner, walker_step_length
-from mjwalk.plan.levelcross import approach_point, cross_walk, crossing_time, departure
+from mjwalk.plan.levelcross import (
+    approach_point,
+    cross_walk,
+    crossing_time,
+    departure,
+    route_leads,
+    walked_distance,
+)
 from mjwalk.plan.levelroute import (
     Crossing,
     RouteLeg,
@@ -214,10 +223,17 @@ def _route(workplace, start: Endpoint, goal: Endpoint, walker: Walker, options, 
     for c in usable:
         nodes += [(c.lower, c.end(c.lower)), (c.upper, c.end(c.upper))]
     edges: dict[int, list[tuple[int, float]]] = {}
+    reach = (walker.step_length, options.goal_tolerance)  # the line-up and departure
+    leads: list[tuple] = [(None, None)] * 2
     for k, c in enumerate(usable):
         lo, hi = 2 + 2 * k, 3 + 2 * k
         edges.setdefault(lo, []).append((hi, crossing_time(c, "up", walker)))
         edges.setdefault(hi, []).append((lo, crossing_time(c, "down", walker)))
+        for lv in (c.lower, c.upper):
+            ends = route_leads(c, lv, reach[0])  # a ramp: none; the line-up's point is set
+            view = level_view(workplace, lv, head)
+            ok = ends[1] is None or _line_clear(view, c.end(lv), ends[1], options)
+            leads.append(ends if ok else (None, None))
     for v, (lv, xy) in enumerate(nodes):
         if v == 0:
             continue  # nothing walks to the start
@@ -226,6 +242,7 @@ def _route(workplace, start: Endpoint, goal: Endpoint, walker: Walker, options, 
             if u != v and lu == lv and u != 1:
                 d = _distance(workplace, field, uxy) if v >= 2 and u >= 2 else float(field(uxy))
                 if math.isfinite(d):
+                    d = walked_distance(d, field, (uxy, leads[u][0]), (xy, leads[v][1]), reach)
                     edges.setdefault(u, []).append((v, d / walker.speed))
     path, _ = dijkstra(len(nodes), edges, 0, 1)
     if path is None:

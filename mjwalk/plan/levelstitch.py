@@ -16,6 +16,7 @@ import numpy as np
 
 from mjwalk.plan.levelroute import RouteLeg
 from mjwalk.plan.walkpath import PathStep, WalkPath
+from mjwalk.world.norms import LEVEL_TOLERANCE
 from mjwalk.world.workplace import Workplace
 
 #: How each crossing kind is counted in the walk record.
@@ -88,11 +89,93 @@ def stitch(workplace: Workplace, parts: Sequence[tuple[RouteLeg, WalkPath]]) -> 
     )
 
 
-def _add(table: dict, key: str, walk: WalkPath) -> None:
+#: Most a foot's height may differ from a level's and still stand on it, metres: the levels' own
+#: tolerance (:data:`mjwalk.world.norms.LEVEL_TOLERANCE`, 4 mm, ASR A1.5/1,2). A crossing's
+#: footfalls on a level take its height exactly; a tread or a ramp footfall differs by a riser
+#: (>= 0.14 m, DIN 18065) or a ramp step's rise.
+SAME_HEIGHT = LEVEL_TOLERANCE
+
+
+def _add(table: dict, key: str, seconds: float, length: float, steps: int) -> None:
     row = table.setdefault(key, {"seconds": 0.0, "length": 0.0, "steps": 0})
-    row["seconds"] += walk.duration
-    row["length"] += walk.length
-    row["steps"] += len(walk.steps)
+    row["seconds"] += seconds
+    row["length"] += length
+    row["steps"] += steps
+
+
+def surface_levels(
+    steps: Sequence[PathStep], heights: dict[int, float], leave: float
+) -> list[int | None]:
+    """The level each step is walked on, by the surfaces its swinging foot leaves and lands on
+    and its other foot stands on: a step with all three on one level's height (within
+    :data:`SAME_HEIGHT`) is level walking on it; a step onto or off a tread, up or down a
+    riser or on a ramp is on none. A step's foot leaves where the step before it had its
+    stance foot.
+
+    Args:
+        steps: the steps in order, their ``foot_z`` and ``stance_z`` set (metres above the
+            floor).
+        heights: {level index: height above the floor, metres} of the levels the steps may
+            stand on.
+        leave: the height the first step's foot leaves, metres above the floor.
+
+    Returns:
+        Per step, the index of the level it is walked on, or None (a step on a stair, step or
+        ramp).
+    """
+    out: list[int | None] = []
+    for s in steps:
+        zs = (leave, float(s.foot_z), float(s.stance_z))
+        on = [lv for lv, h in heights.items() if max(abs(z - h) for z in zs) <= SAME_HEIGHT]
+        out.append(on[0] if on else None)
+        leave = float(s.stance_z)  # the stance foot swings next
+    return out
+
+
+def step_kinds(workplace: Workplace, leg: RouteLeg, walk: WalkPath) -> list[int | None]:
+    """:func:`surface_levels` of a crossing's walk: its line-up steps before a flight, its
+    stance steps and its steps on past a flight are level walking; its steps onto, over and
+    off the treads or risers, and on the ramp, count as the crossing's kind. The first step's
+    foot leaves the level the crossing starts from (the walker stands there on both feet).
+
+    Args:
+        workplace: the scene (the floor's height).
+        leg: the crossing's route leg.
+        walk: the crossing's walk (:func:`mjwalk.plan.levelcross.cross_walk`; heights above
+            the floor).
+
+    Returns:
+        Per step, the index of the level it is walked on, or None for a step counted as the
+        crossing's kind.
+    """
+    c = leg.crossing
+    assert c is not None
+    heights = {
+        c.lower: c.z_lower - workplace.floor_z,
+        c.upper: c.z_upper - workplace.floor_z,
+    }
+    return surface_levels(walk.steps, heights, heights[leg.level])
+
+
+def _add_crossing(workplace: Workplace, leg: RouteLeg, walk: WalkPath, tables) -> dict:
+    """Add a crossing's walk to the per-level and per-kind tables step by step
+    (:func:`step_kinds`); its level steps' seconds and count."""
+    per_level, per_kind = tables
+    c = leg.crossing
+    assert c is not None
+    seg = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(walk.xy, axis=0), axis=1))]
+    t = np.asarray(walk.t, dtype=float)
+    level = {"seconds": 0.0, "steps": 0}
+    for s, lv in zip(walk.steps, step_kinds(workplace, leg, walk), strict=True):
+        row = (float(t[s.end] - t[s.start]), float(seg[s.end] - seg[s.start]), 1)
+        if lv is None:
+            _add(per_kind, KIND_NAMES[c.kind], *row)
+            continue
+        _add(per_kind, "level", *row)
+        _add(per_level, f"L{workplace.levels.levels[lv].index}", *row)
+        level["seconds"] += row[0]
+        level["steps"] += 1
+    return level
 
 
 def level_meta(
@@ -107,8 +190,11 @@ def level_meta(
 
     Returns:
         ``route``: one entry per part (kind, level or levels, seconds, horizontal length in
-        metres, steps); ``per_level``: level walks' seconds, length and steps by level ("L0"...);
-        ``per_kind``: the same by kind ("level", "stairs", "ramps", "steps"); ``max_riser``.
+        metres, steps; a crossing also its level steps' ``level_seconds`` and
+        ``level_steps``); ``per_level``: seconds, length and steps walked on each level
+        ("L0"...): the level walks and the crossings' level steps; ``per_kind``: the same by
+        kind ("level", "stairs", "ramps", "steps"), each crossing step counted by the surfaces
+        its foot leaves and lands on (:func:`step_kinds`); ``max_riser``.
     """
     route: list[dict] = []
     per_level: dict[str, dict] = {}
@@ -124,9 +210,11 @@ def level_meta(
         if c is None:
             lv = graph.levels[leg.level]
             entry = {"kind": "level", "level": lv.index, "height": lv.height, **entry}
-            _add(per_level, f"L{lv.index}", walk)
-            _add(per_kind, "level", walk)
+            row = (walk.duration, walk.length, len(walk.steps))
+            _add(per_level, f"L{lv.index}", *row)
+            _add(per_kind, "level", *row)
         else:
+            level = _add_crossing(workplace, leg, walk, (per_level, per_kind))
             entry = {
                 "kind": c.kind,
                 "direction": leg.direction,
@@ -134,8 +222,9 @@ def level_meta(
                 "to": c.upper if leg.level == c.lower else c.lower,
                 "risers": len(c.risers),
                 **entry,
+                "level_seconds": level["seconds"],
+                "level_steps": level["steps"],
             }
-            _add(per_kind, KIND_NAMES[c.kind], walk)
         route.append(entry)
     return {
         "route": route,

@@ -3,8 +3,10 @@ cycle's walking is level walking, stairs, ramps and single steps, and which cros
 group's walks take -- a group whose step-up limit is below a riser (``[population] step_up``,
 :mod:`mjwalk.cycle.stepup`) is shown with the route it takes instead (the ramp).
 
-Read from each walk's ``meta["levels"]`` (:func:`mjwalk.plan.levelstitch.level_meta`); a walk
-on the floor alone counts as level walking. A report of cycles with no walk over levels has
+Read from each walk's ``meta["levels"]`` (:func:`mjwalk.plan.levelstitch.level_meta`), which
+counts each step by the surfaces its foot leaves and lands on: the line-up steps before a
+stair, the steps on past it and a crossing's stance steps are level walking; a walk on the
+floor alone counts as level walking. A report of cycles with no walk over levels has
 no split (:func:`level_split` gives None) and its files are exactly as before. Seconds.
 """
 

@@ -10,7 +10,8 @@ from mjwalk.body.humanoid import pelvis_height
 from mjwalk.cycle.levelsite import ground_height, site_level, spec_on_levels
 from mjwalk.cycle.simulate import simulate_cycle
 from mjwalk.cycle.spec import load_cycle_spec
-from mjwalk.report.levelsplit import KINDS, crossings_of, level_split
+from mjwalk.gait.stairs import StairGeometry, stair_gait
+from mjwalk.report.levelsplit import KINDS, crossings_of, level_split, walk_kinds
 from mjwalk.world.workplace import load_workplace
 
 #: The pit's depth below the floor in scenes/pit_station.xml, metres.
@@ -49,6 +50,16 @@ def test_the_pit_cycle_walks_the_stair_with_no_contacts(scenes_dir):
     assert sum(mean[k] for k in KINDS) == pytest.approx(walk_time, abs=1e-6)
     assert mean["stairs"] > 0.0 and mean["level"] > 0.0
     assert mean["ramps"] == 0.0 and mean["steps"] == 0.0
+    # each flight (3 risers of 0.17 m, 0.28 m treads) counts its risers' steps at the
+    # operator's stair step time (mjwalk.gait.stairs, from the cited 0.58 s up and 0.46 s down
+    # of the reference adult) and the trailing foot's level step off the last tread; the line-up
+    # and departure steps beside the stair are level walking
+    walker = r.operator
+    assert walker is not None
+    for w, way in zip(r.walks, ("down", "up"), strict=True):
+        step = stair_gait(walker, StairGeometry(0.17, 0.28), way).step_time
+        stairs = walk_kinds(w.path)["stairs"]
+        assert stairs == pytest.approx(3 * step + walker.step_duration, abs=4 / 120)
     # the operator ends standing at the rack on the floor (the humanoid has the operator's
     # stature); on the pit's bottom beyond the stair (x > -0.44 m) the root stands DEPTH lower
     # (the gait's pelvis rise, a few cm, above it; lower while stooping to fasten), never a

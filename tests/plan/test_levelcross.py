@@ -15,7 +15,9 @@ from mjwalk.plan.levelcross import (
     cross_walk,
     crossing_time,
     departure,
+    route_leads,
     tread_setback,
+    walked_distance,
 )
 from mjwalk.plan.levelroute import crossings
 from mjwalk.plan.walkpath import PathStep
@@ -138,3 +140,42 @@ def test_lead_in_and_departure_walk_on_the_axis_in_steps_no_longer_than_a_step(b
     # without either, the crossing's walk is as before
     again = cross_walk(c, direction, w, (c.end(here), yaw), None, 0.0)
     assert np.array_equal(again.xy, plain.xy)
+
+
+def test_route_leads_line_up_at_stairs_and_steps_and_depart_from_stairs_only(by_kind):
+    lead = 0.7
+    for kind, c in by_kind.items():
+        for lv, direction in ((c.lower, "up"), (c.upper, "down")):
+            dep, line = route_leads(c, lv, lead)
+            point = approach_point(c, direction, lead)
+            assert (line is not None) == (kind != "ramp")
+            assert (dep is not None) == (kind == "stair")
+            for p in (dep, line):
+                if p is not None:
+                    assert p == pytest.approx(point)
+                    assert float(np.hypot(*(p - c.end(lv)))) == pytest.approx(lead)
+
+
+def test_walked_distance_adds_the_line_up_and_the_departure_detours():
+    """Open floor (the field is the straight distance): a walk arriving from the side of a
+    flight walks to its line-up point a step length out on the axis and then along the axis;
+    one leaving a stair walks a step length on first; a walk already on the axis, or too short
+    for a line-up, keeps its direct distance."""
+    goal = np.array([0.0, 0.0])
+
+    def field(xy):
+        return float(np.hypot(*(np.asarray(xy) - goal)))
+
+    lead, reach = 0.7, (0.7, 0.2)
+    line = np.array([-lead, 0.0])  # the line-up point of a flight going +x from ``goal``
+    side = np.array([0.0, -3.0])
+    d = walked_distance(field(side), field, (side, None), (goal, line), reach)
+    assert d == pytest.approx(float(np.hypot(*(line - side))) + lead)
+    behind = np.array([-3.0, 0.0])  # on the axis: the line-up is on the way
+    assert walked_distance(3.0, field, (behind, None), (goal, line), reach) == pytest.approx(3.0)
+    near = np.array([0.0, -0.8])
+    assert walked_distance(0.8, field, (near, None), (goal, line), reach) == 0.8
+    # leaving a stair whose departure point lies away from the goal: out and back
+    start, dep = np.array([2.0, 0.0]), np.array([2.0 + lead, 0.0])
+    d = walked_distance(2.0, field, (start, dep), (goal, None), reach)
+    assert d == pytest.approx(lead + 2.0 + lead)
