@@ -37,6 +37,7 @@ from mjwalk.plan.options import (
     TOE_APPROACH_SHARE,
     TOE_PROBE_STEP,
     PlannerOptions,
+    knee_pivot,
     knee_reach,
     lean_params,
     leg_clearance,
@@ -193,6 +194,7 @@ class KernelParams:
         par = slots.params(
             knee_lead=knee_lead,
             knee_side=knee_side,
+            knee_pivot=knee_pivot(stature),
             foot_length=FOOT_LENGTH,
             foot_reach=MAX_FOOT_REACH,
             lift_reach=MAX_LIFT_REACH,
