@@ -64,6 +64,13 @@ KNEE_CLEARANCE = 0.10
 #: side scale with stature (the humanoid's segments are stature fractions,
 #: :mod:`mjwalk.anthropometry`).
 SWING_TURN_PHASES = (0.2, 0.9)
+#: A grounded foot whose hip would rotate past its range turns about its ball instead (the
+#: leg synthesis's spin turns, :mod:`mjwalk.body.legs.spin`): a swing foot lifts at most the
+#: hip's rotation range (``ROM_DEG["hip_rot"]``, 45 deg) off the pelvis's yaw at the step's
+#: start, whatever its footprint's yaw. Without this bound a step after a turn on the spot
+#: (a footprint 110-135 deg off the pelvis) put the foot 35-50 deg off the synthesized foot
+#: at the first knee probe; with it 2-7 deg (docs/decisions/103).
+SWING_LIFT_TURN = math.radians(max(abs(a) for a in ROM_DEG["hip_rot"]))
 #: The landing leg at heel strike. A foot lands heel first, toes up (the leg synthesis,
 #: :mod:`mjwalk.body.legs.synthesis`): its ankle lies some 4 cm behind and 2 cm above the flat
 #: footprint's, the heel's upper edge swings 2-3 cm behind the flat heel, and the shin leans

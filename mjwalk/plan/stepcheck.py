@@ -79,6 +79,7 @@ from mjwalk.plan.slots import (
     P_PACE,
     P_START_YAW,
     P_STRIDE,
+    P_SWING_LIFT_TURN,
     P_TURN_COST,
     P_WEIGHT,
     iparams,
@@ -312,6 +313,9 @@ def check_into(
         lat = (1j if lf else -1j) * par[P_KNEE_SIDE]
         hip = (1j if lf else -1j) * par[P_KNEE_PIVOT]
         lift_yaw = node[i, 4].imag - fr if node.shape[1] > 4 else math.nan
+        if not math.isnan(lift_yaw):  # past the hip's rotation range the grounded foot spins
+            lim = par[P_SWING_LIFT_TURN]
+            lift_yaw = min(max(math.atan2(math.sin(lift_yaw), math.cos(lift_yaw)), -lim), lim)
         for kk in range(2):
             col = kc0 if kk == 0 else kc1
             share = par[P_KNEE_SHARE0] if kk == 0 else par[P_KNEE_SHARE1]
