@@ -55,10 +55,22 @@ KNEE_CLEARANCE = 0.10
 #: checks they agree). In a turning step the knee therefore leads along the swing foot's yaw,
 #: not the pelvis's: station run 330 of 2000 (seed 0), a 1.81 m operator's left knee 0.33 m
 #: beside the pelvis, its foot 50 degrees behind the pelvis's turn, 3 cm into rack 2's frame.
-#: The probes lead along the foot's yaw at their phase (:func:`swing_turned`), the swing side
-#: along the pelvis's (the hip's offset); lead and side scale with stature (the humanoid's
-#: segments are stature fractions, :mod:`mjwalk.anthropometry`).
+#: The probes lead along the foot's yaw at their phase (:func:`swing_turned`) from the swing
+#: hip's joint centre (:func:`knee_pivot`: ``leg_geometry(stature).hip_y``, 0.087 m at 1.75 m,
+#: to the swing side along the pelvis's yaw), not from ``KNEE_SIDE``: that offset, measured
+#: along the pelvis's yaw, holds the hip's offset plus the lead turned by the feet's toe-out,
+#: which the foot's yaw already turns, so adding both put the probes 4-5 cm outward of the
+#: synthesized knee at 0.8 of a toe-out step (20 planned steps, docs/decisions/103). Lead and
+#: side scale with stature (the humanoid's segments are stature fractions,
+#: :mod:`mjwalk.anthropometry`).
 SWING_TURN_PHASES = (0.2, 0.9)
+#: A grounded foot whose hip would rotate past its range turns about its ball instead (the
+#: leg synthesis's spin turns, :mod:`mjwalk.body.legs.spin`): a swing foot lifts at most the
+#: hip's rotation range (``ROM_DEG["hip_rot"]``, 45 deg) off the pelvis's yaw at the step's
+#: start, whatever its footprint's yaw. Without this bound a step after a turn on the spot
+#: (a footprint 110-135 deg off the pelvis) put the foot 35-50 deg off the synthesized foot
+#: at the first knee probe; with it 2-7 deg (docs/decisions/103).
+SWING_LIFT_TURN = math.radians(max(abs(a) for a in ROM_DEG["hip_rot"]))
 #: The landing leg at heel strike. A foot lands heel first, toes up (the leg synthesis,
 #: :mod:`mjwalk.body.legs.synthesis`): its ankle lies some 4 cm behind and 2 cm above the flat
 #: footprint's, the heel's upper edge swings 2-3 cm behind the flat heel, and the shin leans
@@ -194,6 +206,20 @@ def knee_reach(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
     """
     scale = stature / DEFAULT_STATURE
     return KNEE_LEAD * scale, KNEE_SIDE * scale
+
+
+def knee_pivot(stature: float = DEFAULT_STATURE) -> float:
+    """The swing-side offset (m) the knee probes lead from along the swing foot's yaw: the hip
+    joint centre's lateral offset from the pelvis of a walker of ``stature`` metres
+    (:func:`mjwalk.anthropometry.leg_geometry`), about which the knee swings in the foot's plane.
+
+    Args:
+        stature: the walker's body height, metres.
+
+    Returns:
+        The offset, metres.
+    """
+    return float(leg_geometry(stature).hip_y)
 
 
 def lean_params() -> dict[str, float]:

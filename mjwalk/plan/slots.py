@@ -63,8 +63,10 @@ from mjwalk.plan.guide import GUIDE_POINTS
     P_TOE_STEP,  # spacing (m) of the approach probes (mjwalk.plan.stepgeom.toe_approach_clear)
     P_KNEE_TURN0,  # the swing foot's turned share at the first knee probe (swing_turned)
     P_KNEE_TURN1,  # ... at the second
+    P_KNEE_PIVOT,  # the swing hip's offset (m) the foot-yaw knee probes lead from (knee_pivot)
+    P_SWING_LIFT_TURN,  # the swing foot's largest lift-off yaw off the pelvis's (radians)
     P_GUIDE0,  # the guide's GUIDE_POINTS points, x y each (mjwalk.plan.guide); nan: none
-) = range(48)
+) = range(50)
 #: Goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal), after the guide's slots.
 P_DISC0 = P_GUIDE0 + 2 * GUIDE_POINTS
 #: Most discs the goal area can be cut by (:func:`~mjwalk.plan.stepgeom.in_goal`); their count

@@ -69,6 +69,7 @@ from mjwalk.plan.slots import (
     P_HEADING_WEIGHT,
     P_HIP_Y,
     P_KNEE_LEAD,
+    P_KNEE_PIVOT,
     P_KNEE_SHARE0,
     P_KNEE_SHARE1,
     P_KNEE_SIDE,
@@ -78,6 +79,7 @@ from mjwalk.plan.slots import (
     P_PACE,
     P_START_YAW,
     P_STRIDE,
+    P_SWING_LIFT_TURN,
     P_TURN_COST,
     P_WEIGHT,
     iparams,
@@ -305,10 +307,15 @@ def check_into(
                                  fres, fnx, fny):  # fmt: skip
             continue
         # the swing knee, ahead along the swing foot's yaw at the probe's phase (it bends in
-        # the foot's plane) and to the swing side along the pelvis's; without the lifting
-        # foot's heading (the first steps), ahead along the pelvis's
+        # the foot's plane) from the swing hip (to the swing side along the pelvis's);
+        # without the lifting foot's heading (the first steps), ahead along the pelvis's
+        # from KNEE_SIDE to the swing side
         lat = (1j if lf else -1j) * par[P_KNEE_SIDE]
+        hip = (1j if lf else -1j) * par[P_KNEE_PIVOT]
         lift_yaw = node[i, 4].imag - fr if node.shape[1] > 4 else math.nan
+        if not math.isnan(lift_yaw):  # past the hip's rotation range the grounded foot spins
+            lim = par[P_SWING_LIFT_TURN]
+            lift_yaw = min(max(math.atan2(math.sin(lift_yaw), math.cos(lift_yaw)), -lim), lim)
         for kk in range(2):
             col = kc0 if kk == 0 else kc1
             share = par[P_KNEE_SHARE0] if kk == 0 else par[P_KNEE_SHARE1]
@@ -318,7 +325,7 @@ def check_into(
             else:
                 turned = par[P_KNEE_TURN0] if kk == 0 else par[P_KNEE_TURN1]
                 foot = swing_yaw(lift_yaw, yaws.real, turned)
-                knee = (loc[col] + 1j * unit_turn(foot) * par[P_KNEE_LEAD] + fwd * lat) * rot + p
+                knee = (loc[col] + 1j * unit_turn(foot) * par[P_KNEE_LEAD] + fwd * hip) * rot + p
             if (
                 field_clearance(coef, fx0, fy0, fres, fnx, fny, knee.real, knee.imag)
                 < thr[m + 2 + kk]

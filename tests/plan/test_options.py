@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 
+from mjwalk.body.humanoid import ROM_DEG
 from mjwalk.body.legs.curves import smoothstep
 from mjwalk.body.legs.steps import SWING_TURNED, TOE_OFF
 from mjwalk.errors import InputError
@@ -17,8 +18,10 @@ from mjwalk.plan.options import (
     KNEE_LEAD,
     KNEE_SIDE,
     MAX_EXPANSIONS,
+    SWING_LIFT_TURN,
     SWING_TURN_PHASES,
     PlannerOptions,
+    knee_pivot,
     knee_reach,
     swing_turned,
 )
@@ -99,3 +102,16 @@ def test_the_knee_probes_scale_with_stature():
     lead, side = knee_reach(1.81)
     assert lead == pytest.approx(KNEE_LEAD * 1.81 / 1.75) and lead > KNEE_LEAD
     assert side == pytest.approx(KNEE_SIDE * 1.81 / 1.75)
+
+
+def test_the_foot_yaw_knee_probes_lead_from_the_swing_hip():
+    # the hip joint centre's offset (0.087 m at 1.75 m), inside KNEE_SIDE: that offset, taken
+    # along the pelvis's yaw, also holds the lead turned by the toe-out the foot's yaw turns
+    assert knee_pivot(1.75) == pytest.approx(0.087, abs=0.002) and knee_pivot(1.75) < KNEE_SIDE
+    assert knee_pivot(1.81) == pytest.approx(knee_pivot(1.75) * 1.81 / 1.75)
+
+
+def test_a_swing_foot_lifts_within_the_hips_rotation_range():
+    # the spin turns' bound (mjwalk.body.legs.spin: the hip-rotation range), which the plan
+    # stage cannot import
+    assert math.degrees(SWING_LIFT_TURN) == pytest.approx(max(map(abs, ROM_DEG["hip_rot"])))

@@ -12,7 +12,7 @@ from mjwalk.gait.default import default_model
 from mjwalk.plan import slots, stepcheck
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.lean import lean_in_range, stance_lean
-from mjwalk.plan.options import PlannerOptions
+from mjwalk.plan.options import SWING_LIFT_TURN, PlannerOptions
 from mjwalk.world import load_workplace
 
 
@@ -95,3 +95,8 @@ def test_the_knee_probes_lead_along_the_turning_swing_foot(scenes_dir):
     assert accepted(math.nan)  # the pelvis, ankle, toes, landing leg and reach all pass
     assert not accepted(-1.545)  # the knee, ahead along the lagging foot, meets the frame
     assert accepted(-2.3)  # a foot already turned with the pelvis keeps its knee clear
+    # a foot past the hip's rotation range off the pelvis spins about its ball before it lifts
+    # (mjwalk.body.legs.spin): a footprint 69-160 deg off lifts as one at the range
+    at_range = accepted(fr + SWING_LIFT_TURN)
+    assert not at_range
+    assert all(accepted(fr + off) == at_range for off in (1.2, 2.0, 2.8))
