@@ -11,16 +11,20 @@ divided by the runs. cProfile's per-call overhead (several microseconds a call) 
 made of many small calls several times over (a 30-run profile gave the turn frames' check
 4.7 ms a run; alone it takes about 0.6 ms), so the shares printed here, not a profile's, say
 what a change to a part can save. Prints one line per part: ms per cycle and its share of the
-cycle's CPU time.
+cycle's CPU time; then the legs (``legs_from_walk``) by step, exclusive CPU time measured in
+the cycles themselves (each named function of ``mjwalk.body.legs.synthesis`` wrapped where
+synthesis calls it; a call's time less its wrapped callees').
 """
 
 from __future__ import annotations
 
 import argparse
+import collections
 import time
 
 import numpy as np
 
+from mjwalk.body.legs import synthesis as syn
 from mjwalk.cycle import context as cx
 from mjwalk.cycle import poses
 from mjwalk.cycle import simulate as sim
@@ -29,6 +33,38 @@ from mjwalk.timeline import collisions as col
 from mjwalk.timeline.geomposes import geom_poses
 
 SPEC = "scenes/assembly_station.toml"
+
+#: The legs' steps timed (names bound in mjwalk.body.legs.synthesis).
+LEG_STEPS = (
+    "legs_from_walk", "_start", "landing_pitches", "_synth_step", "_stance_leg", "stance_knee",
+    "swing_foot_compiled", "pelvis_height", "spin_turns", "_fit_ankles", "fit_ankle_range",
+    "reach_deficit", "_clear_floor", "hip_world", "foot_lowest", "lift_to_levels",
+)  # fmt: skip
+
+
+def _wrap_legs(acc: collections.defaultdict) -> dict:
+    """Wrap :data:`LEG_STEPS` in synthesis to add their exclusive CPU seconds to ``acc``;
+    returns the originals."""
+    stack: list[float] = []
+    kept = {n: getattr(syn, n) for n in LEG_STEPS if hasattr(syn, n)}
+
+    def wrap(name, f):
+        def g(*a, **k):
+            t0 = time.process_time()
+            stack.append(0.0)
+            try:
+                return f(*a, **k)
+            finally:
+                dt = time.process_time() - t0
+                acc[name] += dt - stack.pop()
+                if stack:
+                    stack[-1] += dt
+
+        return g
+
+    for name, f in kept.items():
+        setattr(syn, name, wrap(name, f))
+    return kept
 
 
 def _record(runs: int) -> tuple[dict, float]:
@@ -48,16 +84,26 @@ def _record(runs: int) -> tuple[dict, float]:
         seen["planners"].append((self, key))
         return make0(self, key)
 
-    poses.frame_contacts, sim.collision_report, cx.Planners._make = turns, final, make
+    wrapped: list[tuple] = [(poses, "frame_contacts", turns, turn0)]
+    wrapped += [(sim, "collision_report", final, final0), (cx.Planners, "_make", make, make0)]
+    for owner, name, f, _ in wrapped:
+        setattr(owner, name, f)
+    legs: collections.defaultdict = collections.defaultdict(float)
+    kept = _wrap_legs(legs)
     try:
         sim.simulate_cycles(SPEC, 3, seed=99, n_jobs=1)  # warm: models, compiled code
         for v in seen.values():
             v.clear()
+        legs.clear()
         t0 = time.process_time()
         sim.simulate_cycles(SPEC, runs, seed=0, n_jobs=1)
         cpu = time.process_time() - t0
     finally:
-        poses.frame_contacts, sim.collision_report, cx.Planners._make = turn0, final0, make0
+        for owner, name, _, f in wrapped:
+            setattr(owner, name, f)
+        for name, f in kept.items():
+            setattr(syn, name, f)
+    seen["legs"] = legs
     return seen, cpu
 
 
@@ -111,6 +157,10 @@ def main() -> None:
     for name, f in parts.items():
         ms = 1e3 * _cpu(f, args.repeat) / args.runs
         print(f"{name:34s} {ms:6.2f} ms  {100 * ms / (1e3 * per):5.1f} %")
+    print("legs by step (exclusive; timed in the cycles, wrappers included):")
+    for name, sec in sorted(seen["legs"].items(), key=lambda kv: -kv[1]):
+        ms = 1e3 * sec / args.runs
+        print(f"  {name:32s} {ms:6.2f} ms  {100 * ms / (1e3 * per):5.1f} %")
 
 
 if __name__ == "__main__":
