@@ -57,8 +57,11 @@ def test_gaitpose_rollouts_keep_swinging():
     unswitched model's free rollouts hold their swing (ratio 0.9-1.0, was 0.1-0.2), so the
     contraction is asserted for the switching model only, and there for one of three rollouts:
     since issue 13 (the swing no longer steps back a sample's motion at toe-off), its free
-    rollouts of rng 0 and 2 hold their swing too (ratio 0.94, was 0.2), that of rng 1 contracts
-    (0.2)."""
+    rollouts of rng 0 and 2 hold their swing too (ratio 0.94, was 0.2), that of rng 1 contracted
+    (0.2). Since the swing foot's toes straighten no faster than the cited initial-swing speed
+    (legs.steps.TOE_STRAIGHTEN_SPEED: the training gait's last toe pops, up to 6.2 deg a
+    sample, removed), no free rollout contracts any more (ratios 0.99, 1.02, 0.99): asserted
+    as such, the reset and the free rollouts alike holding their swing."""
     cols = [gaitpose.NAMES.index(c) for c in ("shoulder_l_flex", "hip_l_flex")]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -74,4 +77,4 @@ def test_gaitpose_rollouts_keep_swinging():
                 for s in range(3):
                     free, _ = model.rollout(600, np.random.default_rng(s), reset=False)
                     ratios.append(np.ptp(free[-60:, cols[0]]) / np.ptp(free[:60, cols[0]]))
-                assert min(ratios) < 0.5, ratios
+                assert min(ratios) >= 0.75, ratios
