@@ -30,6 +30,7 @@ CYCLES = {
     "assembly_station": "assembly_station.toml",
     "multilevel": "multilevel_station.toml",
     "multilevel_station": "multilevel_station.toml",
+    "multilevel_platform": "multilevel_platform.toml",
     "pit": "pit_station.toml",
     "pit_station": "pit_station.toml",
 }

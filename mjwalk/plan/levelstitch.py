@@ -191,7 +191,10 @@ def level_meta(
     Returns:
         ``route``: one entry per part (kind, level or levels, seconds, horizontal length in
         metres, steps; a crossing also its level steps' ``level_seconds`` and
-        ``level_steps``); ``per_level``: seconds, length and steps walked on each level
+        ``level_steps``; a ramp also its ``plane``: ``slope`` in radians, ``uphill`` heading
+        in radians, ``foot`` the world xy of the middle of its foot, ``run`` its horizontal
+        length, ``half_width`` its half width (0: unknown) and ``z`` its foot's height above
+        the floor, metres); ``per_level``: seconds, length and steps walked on each level
         ("L0"...): the level walks and the crossings' level steps; ``per_kind``: the same by
         kind ("level", "stairs", "ramps", "steps"), each crossing step counted by the surfaces
         its foot leaves and lands on (:func:`step_kinds`); ``max_riser``.
@@ -225,6 +228,15 @@ def level_meta(
                 "level_seconds": level["seconds"],
                 "level_steps": level["steps"],
             }
+            if c.kind == "ramp":  # its plane, for the feet on it (legs.rampreach.plane_pitch)
+                entry["plane"] = {
+                    "slope": float(c.slope),
+                    "uphill": float(c.yaw),
+                    "foot": [float(v) for v in c.origin],
+                    "run": float(c.track[-1]),
+                    "half_width": float(c.half_width),
+                    "z": float(c.z_lower - workplace.floor_z),
+                }
         route.append(entry)
     return {
         "route": route,

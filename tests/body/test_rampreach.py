@@ -8,7 +8,8 @@ from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.edgeswing import StepSurfaces
 from mjwalk.body.legs.footcheck import foot_points
 from mjwalk.body.legs.footpivot import ball_offset
-from mjwalk.body.legs.rampreach import crest_ground, roll_foot, trailing_reach
+from mjwalk.body.legs.legheights import step_surfaces
+from mjwalk.body.legs.rampreach import crest_ground, plane_pitch, roll_foot, trailing_reach
 from mjwalk.body.legs.steps import FootTracks, StepFrames
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.gait.default import default_model
@@ -90,30 +91,50 @@ def test_ramp_heel_strike_and_pelvis():
 
 
 @pytest.mark.parametrize(
-    "ends", [("stand_ramp", "stand_platform2"), ("stand_platform2", "stand_ramp")]
+    ("ends", "rng"),
+    [
+        (("stand_ramp", "stand_platform2"), 3),
+        (("stand_platform2", "stand_ramp"), 3),
+        (("stand_platform2", "stand_ramp"), 4),
+    ],
 )
-def test_ramp_walks_clear_the_ramp_s_top_edge(scenes_dir, ends):
-    """Up and down the shipped multi-level station's 5.5 deg ramp (planned, seed 3) the
-    animated walk has no contact: the swing foot passes over the ramp's top edge
-    (:func:`crest_ground`; before, its toes went 2-3 cm into the edge: 6 contacts up, 15
-    down)."""
+def test_ramp_walks_clear_the_ramp_s_top_edge(scenes_dir, ends, rng):
+    """Up and down the shipped multi-level station's 5.5 deg ramp (planned) the animated walk
+    has no contact: the swing foot passes over the ramp's top edge (:func:`crest_ground`;
+    before, its toes went 2-3 cm into the edge: 6 contacts up, 15 down; seed 4 down kept one,
+    the toes 3.4 mm into the edge between heel and toe, before the crest itself was checked),
+    and every footprint on the ramp is pitched to its true 5.5 deg (the route's plane; the
+    walk's smoothed heights read 4.4-6.3 deg)."""
     scene = scenes_dir / "multilevel_station.xml"
-    walk = plan_walk(load_workplace(scene), *ends, default_model(progress=False), rng=3)
+    walk = plan_walk(load_workplace(scene), *ends, default_model(progress=False), rng=rng)
     assert "ramp" in [part["kind"] for part in walk.meta["levels"]["route"]]
+    lands = {round(abs(np.rad2deg(s.land_pitch)), 6) for s in step_surfaces(walk)}
+    assert lands == {0.0, 5.5}
     assert collision_report(timeline_from_walk(walk, scene)) == []
 
 
-def test_crest_ground_is_the_ramp_s_top_edge():
-    """Between a footprint on a 5.5 deg ramp rising along +x to a 0.34 m level at x = 0 and
-    a footprint on that level, the ground under a foot standing on the edge is the edge's
-    0.34 m, not the 0.31 m interpolated between the prints; over the ramp alone it is the
-    ramp."""
+def test_plane_pitch_on_the_ramp_only():
+    """A footprint on a ramp's plane is pitched by the slope along its heading (uphill +,
+    across 0, downhill -); beyond its foot or head, 0."""
+    plane = {"slope": np.deg2rad(5.5), "uphill": np.pi / 2, "foot": [1.0, 2.0], "run": 3.0}
+    assert plane_pitch(plane, np.array([1.0, 3.0, np.pi / 2])) == pytest.approx(np.deg2rad(5.5))
+    assert plane_pitch(plane, np.array([1.0, 3.0, -np.pi / 2])) == pytest.approx(-np.deg2rad(5.5))
+    assert plane_pitch(plane, np.array([1.0, 3.0, 0.0])) == pytest.approx(0.0, abs=1e-12)
+    assert plane_pitch(plane, np.array([1.0, 5.1, np.pi / 2])) == 0.0
+    assert plane_pitch(plane, np.array([1.0, 1.9, np.pi / 2])) == 0.0
+
+
+def test_crest_checked_between_heel_and_toe():
+    """A foot pitched toes down with its heel over a platform and its toe over the ramp below
+    its top edge: the ground offset keeps the sole above the edge between them."""
     g = leg_geometry(DEFAULT_STATURE)
     t = np.tan(np.deg2rad(5.5))
-    fr = StepFrames("l", "r", 0, 10, np.array([-0.7, 0.0, 0.0]), np.array([0.5, 0.0, 0.0]),
+    fr = StepFrames("l", "r", 0, 10, np.array([-0.5, 0.0, 0.0]), np.array([0.6, 0.0, 0.0]),
                     np.zeros(3), False, False)  # fmt: skip
-    sf = StepSurfaces(lift=0.34 - 0.7 * t, stance=0.34, land=0.34, lift_pitch=np.deg2rad(5.5))
-    ankle = np.array([[-g.foot_front, 0.0, 0.0], [-1.0, 0.0, 0.0]])
-    z = crest_ground(ankle, np.zeros(2), fr, sf, g)
-    assert z[0] == pytest.approx(0.34)
-    assert z[1] == pytest.approx(0.34 - (1.0 - g.foot_front) * t)
+    sf = StepSurfaces(lift=0.34, stance=0.34, land=0.34 - 0.6 * t, land_pitch=-np.deg2rad(5.5))
+    ankle = np.array([[-0.05, 0.0, 0.0]])  # the edge at x = 0, between heel and toe
+    half = np.tan(np.deg2rad(2.75))  # halfway through its pitch toward the ramp's
+    z = crest_ground(ankle, np.zeros(1), fr, sf, g, np.array([-np.deg2rad(2.75)]))
+    # the sole's height at the edge (0.05 m ahead of the ankle) is z - 0.05 tan(2.75 deg):
+    # on the edge, not 0.7 mm into it (heel, ankle and toe only)
+    assert z[0] - 0.05 * half == pytest.approx(0.34)

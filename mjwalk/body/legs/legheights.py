@@ -50,6 +50,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+import mjwalk.body.legs.rampreach as ramps
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.body.legs.curves import smoothstep, spread
 from mjwalk.body.legs.edgeswing import (
@@ -154,28 +155,37 @@ def surface_pitch(walk: WalkPath, print_: np.ndarray) -> float:
     return pitch
 
 
-def _on_ramp(walk: WalkPath) -> list[bool]:
+def _on_ramp(walk: WalkPath) -> list[bool | dict]:
     """Per step of ``walk`` whether its footfall may stand on a ramp: from the level planner's
     route (``meta["levels"]["route"]``: its parts' kinds and step counts, in order), only the
-    steps of a ramp crossing; without that route, every step (:func:`surface_pitch` judges).
-    The walk's height eases over a stair's first and last steps and would read as a slope
-    there (a foot on a level landing pitched 7 deg toes down)."""
+    steps of a ramp crossing (as its recorded plane, if any); without that route, every step
+    (:func:`surface_pitch` judges). The walk's height eases over a stair's first and last
+    steps and would read as a slope there (a foot on a level landing pitched 7 deg toes down)."""
     route = (walk.meta or {}).get("levels", {}).get("route") if walk.meta else None
     n = len(walk.steps)
     if not route or sum(int(part.get("steps", 0)) for part in route) != n:
         return [True] * n
-    out: list[bool] = []
+    out: list[bool | dict] = []
     for part in route:
-        out += [part.get("kind") == "ramp"] * int(part.get("steps", 0))
+        ramp = part.get("plane", True) if part.get("kind") == "ramp" else False
+        out += [ramp] * int(part.get("steps", 0))
     return out
 
 
-def step_surfaces(walk: WalkPath) -> list[StepSurfaces]:
+def _pitch(walk: WalkPath, ramp: bool | dict, print_) -> float:
+    """A footprint's surface pitch, radians: on a ramp's recorded plane, else estimated."""
+    if isinstance(ramp, dict):
+        return ramps.plane_pitch(ramp, np.asarray(print_, float))
+    return surface_pitch(walk, np.asarray(print_, float)) if ramp else 0.0
+
+
+def step_surfaces(walk: WalkPath, geom: LegGeometry | None = None) -> list[StepSurfaces]:
     """Per step of ``walk`` its surfaces' heights and slopes (the first step lifts its foot from
     the stance foot's surface: a standing start).
 
     Args:
         walk: a walk with steps.
+        geom: the feet's lengths (a level foot over a ramp's corner; None: default stature's).
 
     Returns:
         one :class:`StepSurfaces` per step.
@@ -183,10 +193,7 @@ def step_surfaces(walk: WalkPath) -> list[StepSurfaces]:
     out = []
     on_ramp = _on_ramp(walk)
     pitches = [
-        (
-            surface_pitch(walk, np.asarray(s.foot, float)) if on_ramp[k] else 0.0,
-            surface_pitch(walk, np.asarray(s.stance, float)) if on_ramp[max(k - 1, 0)] else 0.0,
-        )
+        (_pitch(walk, on_ramp[k], s.foot), _pitch(walk, on_ramp[max(k - 1, 0)], s.stance))
         for k, s in enumerate(walk.steps)
     ]
     for k, s in enumerate(walk.steps):
@@ -201,7 +208,7 @@ def step_surfaces(walk: WalkPath) -> list[StepSurfaces]:
                 land_pitch=pitches[k][0],
             )
         )
-    return out
+    return ramps.level_feet_on_ramps(walk, out, geom)
 
 
 @dataclass
@@ -407,10 +414,10 @@ def _place_swings(frames, surfs, tr: LevelTracks, feet: FootTracks, flat_ankle,
         seg = fr.land[:2] - fr.lift[:2]
         u = np.clip((flat_ankle[s][j, :2] - fr.lift[:2]) @ seg / max(float(seg @ seg), 1e-12), 0, 1)
         base = sf.lift + (sf.land - sf.lift) * u
-        feet.ankle[s][j, 2] += np.maximum(
-            base, crest_ground(flat_ankle[s][j], feet.fyaw[s][j], fr, sf, geom)
-        )
-        feet.pitch[s][j] += sf.lift_pitch + (sf.land_pitch - sf.lift_pitch) * u
+        added = sf.lift_pitch + (sf.land_pitch - sf.lift_pitch) * u
+        crest = crest_ground(flat_ankle[s][j], feet.fyaw[s][j], fr, sf, geom, added)
+        feet.ankle[s][j, 2] += np.maximum(base, crest)
+        feet.pitch[s][j] += added
     return plans
 
 
@@ -544,7 +551,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
         to their ranges) and the least clearance over a step edge (metres; inf without edges).
     """
     n = len(root)
-    surfs = step_surfaces(walk)
+    surfs = step_surfaces(walk, geom)
     tr = level_tracks(frames, surfs, feet.ground, n)
     flat_ankle = {s: feet.ankle[s].copy() for s in "lr"}
     for s in "lr":
@@ -554,6 +561,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
         feet.ankle[s][on] = a
         feet.pitch[s][on] = feet.pitch[s][on] + tr.pitch[s][on]
     plans = _place_swings(frames, surfs, tr, feet, flat_ankle, geom)
+    ramps.swing_over_ramps(walk, frames, tr.air, feet, flat_ankle, geom)
     new_root = root.copy()
     new_root[:, 2] += tr.level
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))

@@ -19,8 +19,12 @@ title). A swing between a ramp and a level is carried on the ground under its fo
 
 from __future__ import annotations
 
+import math
+from dataclasses import replace
+
 import numpy as np
 
+from mjwalk.anthropometry import leg_geometry
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.edgeswing import StepSurfaces
 from mjwalk.body.legs.footpivot import ball_offset
@@ -30,6 +34,28 @@ from mjwalk.body.legs.steps import HEEL_RISE_MAX, FootTracks, StepFrames
 #: Passes of :func:`trailing_reach` (raise the heel by the deficit over the ball's lever,
 #: measure again); the deficit falls below a millimetre by the third on a 5.5 deg ramp.
 REACH_PASSES = 4
+
+
+def plane_pitch(plane: dict, print_: np.ndarray) -> float:
+    """The slope along a footprint's heading of the ramp a route crosses, from the ramp's plane
+    as the level planner records it (``meta["levels"]["route"]`` entries' ``plane``:
+    :func:`mjwalk.plan.levelstitch.level_meta`), for a footprint whose point lies on the ramp
+    (between its foot and its head along its axis); 0 for one on a level beyond either end.
+
+    Args:
+        plane: ``slope`` (radians), ``uphill`` (heading up the ramp, radians), ``foot`` (world
+            xy of the middle of its foot, metres) and ``run`` (horizontal length, metres).
+        print_: (3,) the footprint (x, y, yaw), metres and radians.
+
+    Returns:
+        the slope, radians, + uphill along the footprint's heading.
+    """
+    up = float(plane["uphill"])
+    axis = np.array([math.cos(up), math.sin(up)])
+    along = float((np.asarray(print_[:2], float) - np.asarray(plane["foot"], float)) @ axis)
+    if not 0.0 <= along <= float(plane["run"]):
+        return 0.0
+    return math.atan(math.tan(float(plane["slope"])) * math.cos(float(print_[2]) - up))
 
 
 def roll_foot(
@@ -107,8 +133,133 @@ def trailing_reach(
     return moved
 
 
+def _on_plane(plane: dict, print_) -> tuple[float, float] | None:
+    """The height above the floor (m) and pitch (rad) of a ramp's plane under a footprint
+    (x, y, yaw), or None off the ramp (beyond its ends or, its width known, its sides)."""
+    up = float(plane["uphill"])
+    rel = np.asarray(print_[:2], float) - np.asarray(plane["foot"], float)
+    along = float(rel @ np.array([math.cos(up), math.sin(up)]))
+    side = abs(float(rel @ np.array([-math.sin(up), math.cos(up)])))
+    half = float(plane.get("half_width", 0.0))
+    if not 0.0 <= along <= float(plane["run"]) or (half > 0.0 and side > half):
+        return None
+    rise = math.tan(float(plane["slope"]))
+    return float(plane.get("z", 0.0)) + rise * along, plane_pitch(plane, np.asarray(print_, float))
+
+
+#: Sole points (along, across) checked against a ramp's plane under a level foot, and the most
+#: the plane can rise between them (m): a 0.27 m foot's points 3.4 cm apart on a 5.5 deg ramp
+#: (MAX_RAMP_SLOPE 6 deg: 3.5 mm); a ramp's side edge crossing the sole lies between them.
+SOLE_GRID = (9, 5)
+SOLE_GRID_SAG = 0.004
+
+
+def level_feet_on_ramps(
+    walk, surfs: list[StepSurfaces], geom: LegGeometry | None = None
+) -> list[StepSurfaces]:
+    """A walk's level steps whose foot stands over the plane of a ramp its route crosses (a
+    turn off or onto the ramp's foot cutting its low corner, under the floor level's 0.05 m
+    obstacle band: a flat foot was 1-2 cm into it, the multi-level platform cycle's
+    barrier-free runs), standing level on the highest point of that plane under its sole
+    (heel, ankle, toe tip; the sole's edges and centre line): its heel clear of the floor by
+    that height, its toes on the ramp through toe-off. Walks without such a footprint, or
+    without a route, are returned as they are.
+
+    Args:
+        walk: the walk (:class:`~mjwalk.plan.walkpath.WalkPath`, ``meta["levels"]["route"]``).
+        surfs: its steps' surfaces (:func:`~mjwalk.body.legs.legheights.step_surfaces`).
+        geom: the foot's lengths and width (None: the default stature's).
+
+    Returns:
+        the steps' surfaces, those over a ramp's plane raised.
+    """
+    route = (walk.meta or {}).get("levels", {}).get("route") or []
+    planes = [e["plane"] for e in route if e.get("kind") == "ramp" and "plane" in e]
+    if not planes or sum(int(e.get("steps", 0)) for e in route) != len(walk.steps):
+        return surfs
+    level = [e.get("kind") == "level" for e in route for _ in range(int(e.get("steps", 0)))]
+    geom = geom or leg_geometry()
+    along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
+    grid = [(d, w) for d in along for w in np.linspace(-0.5, 0.5, SOLE_GRID[1])]
+
+    def under(print_) -> float | None:
+        yaw = float(print_[2])
+        f = np.array([math.cos(yaw), math.sin(yaw)])
+        pts = [np.asarray(print_[:2], float) + d * f + w * geom.foot_width * f[::-1] * [-1, 1]
+               for d, w in grid]  # fmt: skip
+        hits = [h[0] for p in planes for q in pts if (h := _on_plane(p, (*q, 0.0))) is not None]
+        return max(hits) + SOLE_GRID_SAG if hits else None
+
+    out = list(surfs)
+    for k, s in enumerate(walk.steps):
+        if not level[k]:
+            continue
+        land, stance = under(s.foot), under(s.stance)
+        if land is not None and land > out[k].land:
+            out[k] = replace(out[k], land=land)
+            if k + 1 < len(out):  # the next step's stance foot
+                out[k + 1] = replace(out[k + 1], stance=land)
+            if k + 2 < len(out):
+                out[k + 2] = replace(out[k + 2], lift=land)
+        if stance is not None and stance > out[k].stance:
+            out[k] = replace(out[k], stance=stance)
+            if k + 1 < len(out):  # it swings next
+                out[k + 1] = replace(out[k + 1], lift=stance)
+    return out
+
+
+def swing_over_ramps(walk, frames: list[StepFrames], air: dict, feet: FootTracks,
+                     flat_ankle: dict, geom: LegGeometry) -> None:  # fmt: skip
+    """The swing foot of a level step raised over a ramp's plane it passes above (a turn off or
+    onto a ramp's foot crossing its low corner, under the floor level's 0.05 m obstacle band:
+    the sole swept 1-2 cm through it on the multi-level platform cycle's barrier-free runs):
+    each sole corner and middle point (heel, ankle, toe tip; the sole's edges and centre line)
+    kept at least on the plane, the foot's own clearance above its ground kept. Only the steps
+    of the route's level parts, and only where the walk's route crosses a ramp; ``feet``
+    updated in place.
+
+    Args:
+        walk: the walk (``meta["levels"]["route"]`` with its ramps' ``plane``).
+        frames: its steps as the leg synthesis sees them.
+        air: per side ("l"/"r") the (n,) flags of the foot in the air.
+        feet: the foot tracks, on their surfaces (ankle z updated in place).
+        flat_ankle: per side the flat synthesis's (n, 3) ankle positions, metres.
+        geom: the foot's lengths and width.
+
+    Returns:
+        None.
+    """
+    route = (walk.meta or {}).get("levels", {}).get("route") or []
+    planes = [e["plane"] for e in route if e.get("kind") == "ramp" and "plane" in e]
+    if not planes or sum(int(e.get("steps", 0)) for e in route) != len(frames):
+        return
+    level = [e.get("kind") == "level" for e in route for _ in range(int(e.get("steps", 0)))]
+    grid = [(d, w) for d in (-geom.foot_back, 0.0, geom.foot_front) for w in (-0.5, 0.0, 0.5)]
+    for fr, on_level in zip(frames, level, strict=True):
+        s = fr.side
+        j = np.flatnonzero(air[s][fr.start : fr.end]) + fr.start
+        if not on_level or not len(j):
+            continue
+        yaw = feet.fyaw[s][j]
+        f = np.stack([np.cos(yaw), np.sin(yaw)], -1)
+        left = np.stack([-f[:, 1], f[:, 0]], -1)
+        need = np.full(len(j), -np.inf)
+        for d, w in grid:
+            p = feet.ankle[s][j, :2] + d * f + w * geom.foot_width * left
+            for plane in planes:
+                hit = [_on_plane(plane, (x, y, 0.0)) for x, y in p]
+                need = np.maximum(need, [-np.inf if h is None else h[0] for h in hit])
+        offset = feet.ankle[s][j, 2] - flat_ankle[s][j, 2]
+        feet.ankle[s][j, 2] += np.maximum(need - offset, 0.0)
+
+
 def crest_ground(
-    ankle: np.ndarray, yaw: np.ndarray, fr: StepFrames, sf: StepSurfaces, geom: LegGeometry
+    ankle: np.ndarray,
+    yaw: np.ndarray,
+    fr: StepFrames,
+    sf: StepSurfaces,
+    geom: LegGeometry,
+    pitch: np.ndarray | None = None,
 ) -> np.ndarray:
     """The ground under a swing foot (its heel, ankle and toe tip along its heading) between
     a ramp and a level, as the lower of the lift and landing surfaces' planes, each extended
@@ -117,23 +268,44 @@ def crest_ground(
     the footprints passes under (the toes 2-3 cm into the ramp's top edge on the shipped
     multi-level station's ramp); at a ramp's foot and along a ramp it is at or below it.
 
+    With ``pitch`` (the swing foot's added pitch toward its landing surface's), each sole
+    point's ground is taken less the height that pitch moves it by (a point ``d`` ahead of
+    the ankle rises ``d tan(pitch)``), and the sole is also checked over the crest itself
+    where it lies between heel and toe (the lower of two planes is convex upward at the
+    crest: a sole pitched toes down off a platform, heel and toe clear, passed 3 mm into
+    the ramp's top edge between them; the multi-level station's stand_platform2 -> stand_ramp,
+    rng 4).
+
     Args:
         ankle: (m, 3) the swing ankle's positions (only x, y used), metres.
         yaw: (m,) the foot's headings, radians from +x CCW.
         fr: the step (its ``lift`` and ``land`` footprints (x, y, yaw)).
         sf: its surfaces (heights and slopes).
         geom: the foot's lengths.
+        pitch: (m,) the foot's added pitch, radians, + toes up (None: the foot level).
 
     Returns:
-        (m,) the highest of the ground under the foot's three points, metres.
+        (m,) the least height of the ankle's ground offset that keeps the sole's points above
+        the ground, metres.
     """
     f = np.stack([np.cos(yaw), np.sin(yaw)], -1)
+    tilt = np.zeros(len(yaw)) if pitch is None else np.tan(np.asarray(pitch, dtype=float))
+    lines = []  # each surface's height along the foot's line: a + b d
+    for pr, h, slope in ((fr.lift, sf.lift, sf.lift_pitch), (fr.land, sf.land, sf.land_pitch)):
+        head = np.array([np.cos(pr[2]), np.sin(pr[2])])
+        lines.append(
+            (
+                h + np.tan(slope) * ((ankle[:, :2] - np.asarray(pr[:2])) @ head),
+                np.tan(slope) * (f @ head),
+            )
+        )
+    (a0, b0), (a1, b1) = lines
+    points = [np.full(len(yaw), d) for d in (-geom.foot_back, 0.0, geom.foot_front)]
+    if pitch is not None:  # where the planes meet (the crest), between heel and toe
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cross = np.where(np.abs(b1 - b0) > 1e-12, (a0 - a1) / (b1 - b0), 0.0)
+        points.append(np.clip(cross, -geom.foot_back, geom.foot_front))
     out = np.full(len(yaw), -np.inf)
-    for d in (-geom.foot_back, 0.0, geom.foot_front):
-        p = ankle[:, :2] + d * f
-        planes = []
-        for pr, h, slope in ((fr.lift, sf.lift, sf.lift_pitch), (fr.land, sf.land, sf.land_pitch)):
-            head = np.array([np.cos(pr[2]), np.sin(pr[2])])
-            planes.append(h + np.tan(slope) * ((p - np.asarray(pr[:2])) @ head))
-        out = np.maximum(out, np.minimum(*planes))
+    for d in points:
+        out = np.maximum(out, np.minimum(a0 + b0 * d, a1 + b1 * d) - d * tilt)
     return out

@@ -1,0 +1,46 @@
+"""The shipped floor-and-platform cycle on the multi-level station (issue 47, deliverable 5),
+scenes/multilevel_platform.toml: a barrier-free group (``step_up = { older_adult = 0.0 }``)
+cannot take the platform's 0.17 m step and walks its 5.5 deg ramp instead, the other groups
+take the step; the animated cycles have 0 contacts and the report's level split names the
+route each group takes."""
+
+from __future__ import annotations
+
+import pytest
+
+from mjwalk.cycle.simulate import simulate_cycle
+from mjwalk.cycle.spec import load_cycle_spec
+from mjwalk.report.levelsplit import crossings_of, level_split, split_markdown
+from mjwalk.shipped import cycle_file
+
+
+def test_the_platform_cycle_is_shipped_with_a_barrier_free_group():
+    spec = load_cycle_spec(cycle_file("multilevel_platform"))
+    assert spec.scene.name == "multilevel_station.xml"
+    assert dict(spec.population.step_up) == {"older_adult": 0.0}
+
+
+@pytest.mark.slow
+def test_the_barrier_free_group_takes_the_ramp_with_no_contacts():
+    """Seeded: runs 0 and 1 (seed = run) draw a fatigued and an older operator. Animated with
+    collisions: 0 contacts in both (the older operator's turns off the ramp's foot cut its low
+    corner: 34 contacts before the feet stood and swung on the ramp's plane there); the older
+    operator's three walks go up, down and up the ramp, the other's take the step; the report
+    names both routes and the ramp's seconds."""
+    spec = load_cycle_spec(cycle_file("multilevel_platform"))
+    results = [simulate_cycle(spec, seed, run=seed, ergonomics=False) for seed in (0, 1)]
+    assert [r.group for r in results] == ["fatigued", "older_adult"]
+    for r in results:
+        assert r.collisions == []
+    ways = {r.group: [crossings_of(w.path) for w in r.walks] for r in results}
+    assert ways["older_adult"] == ["ramp up", "ramp down", "ramp up"]
+    assert ways["fatigued"] == ["step up", "step down", "step up"]
+    split = level_split(results)
+    assert split is not None
+    assert split["older_adult"]["max_riser"] == [0.0]
+    assert split["older_adult"]["mean"]["ramps"] > 0.0
+    assert split["older_adult"]["mean"]["steps"] == 0.0
+    assert split["fatigued"]["mean"]["ramps"] == 0.0
+    text = "\n".join(split_markdown(split))
+    assert "- older_adult, stand_rack1->stand_platform1: ramp up (1x)" in text
+    assert "- fatigued, stand_rack1->stand_platform1: step up (1x)" in text
