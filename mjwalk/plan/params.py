@@ -43,6 +43,7 @@ from mjwalk.plan.options import (
     lean_params,
     leg_clearance,
     swing_turned,
+    toe_centre,
 )
 from mjwalk.world.clearance import ClearanceField
 
@@ -198,6 +199,7 @@ class KernelParams:
             knee_pivot=knee_pivot(stature),
             swing_lift_turn=SWING_LIFT_TURN,
             foot_length=FOOT_LENGTH,
+            toe_centre=toe_centre(stature),
             foot_reach=MAX_FOOT_REACH,
             lift_reach=MAX_LIFT_REACH,
             stride=MAX_STRIDE,

@@ -5,16 +5,18 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import mujoco
 import numpy as np
 import pytest
 
-from mjwalk.body.humanoid import ROM_DEG
+from mjwalk.body.humanoid import ROM_DEG, build_humanoid
 from mjwalk.body.legs.curves import smoothstep
 from mjwalk.body.legs.steps import SWING_TURNED, TOE_OFF
 from mjwalk.errors import InputError
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.options import (
     ATTEMPTS,
+    FOOT_CLEARANCE,
     KNEE_LEAD,
     KNEE_SIDE,
     MAX_EXPANSIONS,
@@ -24,6 +26,7 @@ from mjwalk.plan.options import (
     knee_pivot,
     knee_reach,
     swing_turned,
+    toe_centre,
 )
 from mjwalk.plan.slots import MAX_GOAL_DISCS
 from mjwalk.world import load_workplace
@@ -115,3 +118,18 @@ def test_a_swing_foot_lifts_within_the_hips_rotation_range():
     # the spin turns' bound (mjwalk.body.legs.spin: the hip-rotation range), which the plan
     # stage cannot import
     assert math.degrees(SWING_LIFT_TURN) == pytest.approx(max(map(abs, ROM_DEG["hip_rot"])))
+
+
+@pytest.mark.parametrize("stature", [1.55, 1.87])
+def test_the_toe_probe_lies_at_the_synthesized_toes_centre(stature):
+    """The landing toe probe (toe_centre) lies where the humanoid's toe box has its centre,
+    ahead of the ankle along a flat foot, and that box's half-diagonal leaves the probe's
+    FOOT_CLEARANCE at least 1.5 cm for the heel strike's pitch and the field's error."""
+    m = build_humanoid(stature).compile()
+    d = mujoco.MjData(m)
+    mujoco.mj_kinematics(m, d)
+    ankle = d.xpos[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, "foot_l")]
+    g = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, "toes_l")
+    ahead = np.hypot(*(d.geom_xpos[g] - ankle)[:2])
+    assert ahead == pytest.approx(toe_centre(stature), abs=1e-3)
+    assert FOOT_CLEARANCE - np.hypot(*m.geom_size[g][:2]) >= 0.015
