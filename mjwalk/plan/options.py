@@ -208,30 +208,35 @@ def knee_reach(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
     return KNEE_LEAD * scale, KNEE_SIDE * scale
 
 
-def toe_centre(stature: float = DEFAULT_STATURE) -> float:
-    """How far (m) ahead of the ankle, along the foot, the centre of the toes of a walker of
-    ``stature`` metres lies: the humanoid's toe box runs from the ball (a fifth of the foot
-    length behind the toe tip) to the tip (:func:`mjwalk.anthropometry.leg_geometry`'s
-    ``foot_front``; :func:`mjwalk.body.humanoid.build_humanoid`), 0.173 m at 1.75 m and
-    0.193 m at 1.95 m.
+#: The clearance (m) the toes' front corners keep (:func:`toe_corners`): the walk field's error
+#: and the path between samples (:data:`SAFETY_MARGIN`) and how much further the toe box reaches
+#: at heel strike, the foot pitched toes up about the ankle, than flat: 1.4 cm for station run
+#: 1865's 1.87 m operator (toe box centre 0.199 m ahead of the ankle one frame before landing,
+#: 0.185 m flat), taken as 1.5 cm.
+TOE_CORNER_CLEARANCE = SAFETY_MARGIN + 0.015
 
-    The landing toe probe at :data:`FOOT_LENGTH` (0.14 m, not scaled) does not keep the toes'
-    front corners :data:`FOOT_CLEARANCE` from the scene for a tall walker: station run 1865 of
+
+def toe_corners(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
+    """Where the front corners of the toes of a walker of ``stature`` metres lie from the
+    ankle along a flat foot: the humanoid's toe box ends at ``foot_front`` and is the sole's
+    width (:func:`mjwalk.anthropometry.leg_geometry`; :func:`mjwalk.body.humanoid.build_humanoid`),
+    0.200 m ahead and 0.048 m aside at 1.75 m, 0.223 and 0.053 at 1.95 m.
+
+    The landing toe probe at :data:`FOOT_LENGTH` (0.14 m, not scaled) keeping
+    :data:`FOOT_CLEARANCE` does not cover these corners for a tall walker: station run 1865 of
     2000 (seed 0, main c7f4517), a 1.87 m operator's last step of route T4 landed at yaw -61
     deg with the probe 9.4 cm from rack 2's frame post; the toe box's corner, 0.213 m ahead and
-    0.051 m aside of the ankle (flat; 1.4 cm further at heel strike, the foot pitched toes up
-    about the ankle), was 0.089-0.101 m from the probe and went 3.6 mm into the post. A probe
-    at the toes' centre keeping ``FOOT_CLEARANCE`` covers the toe box's half-diagonal (0.031
-    statures, 0.061 m at 1.95 m) and that heel-strike reach.
+    0.051 m aside of the ankle (flat; 1.4 cm further at heel strike), lay 0.089-0.101 m from
+    the probe and went 3.6 mm into the post.
 
     Args:
         stature: the walker's body height, metres.
 
     Returns:
-        The distance, metres.
+        (ahead, aside): metres along the foot and to each side of it.
     """
     g = leg_geometry(stature)
-    return g.foot_front - 0.1 * (g.foot_back + g.foot_front)
+    return g.foot_front, 0.5 * g.foot_width
 
 
 def knee_pivot(stature: float = DEFAULT_STATURE) -> float:

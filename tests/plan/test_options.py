@@ -16,7 +16,6 @@ from mjwalk.errors import InputError
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.options import (
     ATTEMPTS,
-    FOOT_CLEARANCE,
     KNEE_LEAD,
     KNEE_SIDE,
     MAX_EXPANSIONS,
@@ -26,7 +25,7 @@ from mjwalk.plan.options import (
     knee_pivot,
     knee_reach,
     swing_turned,
-    toe_centre,
+    toe_corners,
 )
 from mjwalk.plan.slots import MAX_GOAL_DISCS
 from mjwalk.world import load_workplace
@@ -121,15 +120,15 @@ def test_a_swing_foot_lifts_within_the_hips_rotation_range():
 
 
 @pytest.mark.parametrize("stature", [1.55, 1.87])
-def test_the_toe_probe_lies_at_the_synthesized_toes_centre(stature):
-    """The landing toe probe (toe_centre) lies where the humanoid's toe box has its centre,
-    ahead of the ankle along a flat foot, and that box's half-diagonal leaves the probe's
-    FOOT_CLEARANCE at least 1.5 cm for the heel strike's pitch and the field's error."""
+def test_the_toe_probes_lie_at_the_synthesized_toes_front_corners(stature):
+    """The landing toe probes (toe_corners) lie at the front corners of the humanoid's toe box,
+    ahead of the ankle along a flat foot and to each side."""
     m = build_humanoid(stature).compile()
     d = mujoco.MjData(m)
     mujoco.mj_kinematics(m, d)
     ankle = d.xpos[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, "foot_l")]
     g = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, "toes_l")
-    ahead = np.hypot(*(d.geom_xpos[g] - ankle)[:2])
-    assert ahead == pytest.approx(toe_centre(stature), abs=1e-3)
-    assert FOOT_CLEARANCE - np.hypot(*m.geom_size[g][:2]) >= 0.015
+    ahead = np.hypot(*(d.geom_xpos[g] - ankle)[:2]) + m.geom_size[g][0]
+    front, side = toe_corners(stature)
+    assert ahead == pytest.approx(front, abs=1e-3)
+    assert m.geom_size[g][1] == pytest.approx(side, abs=1e-3)

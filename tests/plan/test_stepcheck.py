@@ -116,8 +116,8 @@ RUN1865_PELVIS = [
 def test_the_landing_toes_keep_clear_for_a_tall_walker(scenes_dir):
     """A tall walker's toes reach past the fixed toe probe (FOOT_LENGTH ahead of the ankle): in
     run 1865's last step the right toes' corner went 3.6 mm into rack 2's frame post while the
-    probe lay 9.4 cm from it. The probe at the toes' centre for the stature refuses the step;
-    without it (nan slot, as before) the step passes, and a 1.55 m walker's toes clear."""
+    probe lay 9.4 cm from it. The toes' corner probes for the stature refuse the step; without
+    them (nan slot, as before) the step passes, and a 1.55 m walker's toes clear."""
     model = default_model()
     wp = load_workplace(scenes_dir / "assembly_station.xml")
     pl = HybridPlanner(wp, "stand_rack2", model, PlannerOptions(radius=0.30))
@@ -126,7 +126,7 @@ def test_the_landing_toes_keep_clear_for_a_tall_walker(scenes_dir):
         par, ipar = pl.params.vectors(stature)
         par = par.copy()
         if not centre:
-            par[slots.P_TOE_CENTRE] = math.nan
+            par[slots.P_TOE_FRONT] = math.nan
         m = int(ipar[slots.I_M])
         assert m == len(RUN1865_PELVIS)
         fr = -1.231  # the pelvis's heading at the step's start (the step's frame)
@@ -145,5 +145,5 @@ def test_the_landing_toes_keep_clear_for_a_tall_walker(scenes_dir):
         return len(stepcheck.check_steps(*args, *rest)[0]) == 1
 
     assert accepted(1.87, centre=False)  # pelvis, ankle, toe probe, leg and knees pass
-    assert not accepted(1.87)  # the toes' centre, 0.185 m ahead, is within 8 cm of the post
-    assert accepted(1.55)  # 0.153 m ahead: clear
+    assert not accepted(1.87)  # the left corner, 0.213 m ahead, is within 2.5 cm of the post
+    assert accepted(1.55)  # 0.177 m ahead, 0.042 m aside: clear
