@@ -208,6 +208,37 @@ def knee_reach(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
     return KNEE_LEAD * scale, KNEE_SIDE * scale
 
 
+#: The clearance (m) the toes' front corners keep (:func:`toe_corners`): the walk field's error
+#: and the path between samples (:data:`SAFETY_MARGIN`) and how much further the toe box reaches
+#: at heel strike, the foot pitched toes up about the ankle, than flat: 1.4 cm for station run
+#: 1865's 1.87 m operator (toe box centre 0.199 m ahead of the ankle one frame before landing,
+#: 0.185 m flat), taken as 1.5 cm.
+TOE_CORNER_CLEARANCE = SAFETY_MARGIN + 0.015
+
+
+def toe_corners(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
+    """Where the front corners of the toes of a walker of ``stature`` metres lie from the
+    ankle along a flat foot: the humanoid's toe box ends at ``foot_front`` and is the sole's
+    width (:func:`mjwalk.anthropometry.leg_geometry`; :func:`mjwalk.body.humanoid.build_humanoid`),
+    0.200 m ahead and 0.048 m aside at 1.75 m, 0.223 and 0.053 at 1.95 m.
+
+    The landing toe probe at :data:`FOOT_LENGTH` (0.14 m, not scaled) keeping
+    :data:`FOOT_CLEARANCE` does not cover these corners for a tall walker: station run 1865 of
+    2000 (seed 0, main c7f4517), a 1.87 m operator's last step of route T4 landed at yaw -61
+    deg with the probe 9.4 cm from rack 2's frame post; the toe box's corner, 0.213 m ahead and
+    0.051 m aside of the ankle (flat; 1.4 cm further at heel strike), lay 0.089-0.101 m from
+    the probe and went 3.6 mm into the post.
+
+    Args:
+        stature: the walker's body height, metres.
+
+    Returns:
+        (ahead, aside): metres along the foot and to each side of it.
+    """
+    g = leg_geometry(stature)
+    return g.foot_front, 0.5 * g.foot_width
+
+
 def knee_pivot(stature: float = DEFAULT_STATURE) -> float:
     """The swing-side offset (m) the knee probes lead from along the swing foot's yaw: the hip
     joint centre's lateral offset from the pelvis of a walker of ``stature`` metres

@@ -36,6 +36,7 @@ from mjwalk.plan.options import (
     STOP_REACH,
     SWING_LIFT_TURN,
     TOE_APPROACH_SHARE,
+    TOE_CORNER_CLEARANCE,
     TOE_PROBE_STEP,
     PlannerOptions,
     knee_pivot,
@@ -43,6 +44,7 @@ from mjwalk.plan.options import (
     lean_params,
     leg_clearance,
     swing_turned,
+    toe_corners,
 )
 from mjwalk.world.clearance import ClearanceField
 
@@ -198,6 +200,9 @@ class KernelParams:
             knee_pivot=knee_pivot(stature),
             swing_lift_turn=SWING_LIFT_TURN,
             foot_length=FOOT_LENGTH,
+            toe_front=toe_corners(stature)[0],
+            toe_side=toe_corners(stature)[1],
+            toe_clearance=TOE_CORNER_CLEARANCE,
             foot_reach=MAX_FOOT_REACH,
             lift_reach=MAX_LIFT_REACH,
             stride=MAX_STRIDE,

@@ -65,8 +65,11 @@ from mjwalk.plan.guide import GUIDE_POINTS
     P_KNEE_TURN1,  # ... at the second
     P_KNEE_PIVOT,  # the swing hip's offset (m) the foot-yaw knee probes lead from (knee_pivot)
     P_SWING_LIFT_TURN,  # the swing foot's largest lift-off yaw off the pelvis's (radians)
+    P_TOE_FRONT,  # the toes' front corners (m) ahead of the landing ankle (toe_corners); nan: none
+    P_TOE_SIDE,  # ... and to each side of it
+    P_TOE_CLEARANCE,  # the clearance (m) they keep (TOE_CORNER_CLEARANCE)
     P_GUIDE0,  # the guide's GUIDE_POINTS points, x y each (mjwalk.plan.guide); nan: none
-) = range(50)
+) = range(53)
 #: Goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal), after the guide's slots.
 P_DISC0 = P_GUIDE0 + 2 * GUIDE_POINTS
 #: Most discs the goal area can be cut by (:func:`~mjwalk.plan.stepgeom.in_goal`); their count

@@ -80,6 +80,9 @@ from mjwalk.plan.slots import (
     P_START_YAW,
     P_STRIDE,
     P_SWING_LIFT_TURN,
+    P_TOE_CLEARANCE,
+    P_TOE_FRONT,
+    P_TOE_SIDE,
     P_TURN_COST,
     P_WEIGHT,
     iparams,
@@ -300,6 +303,20 @@ def check_into(
         toe = ankle + (par[P_FOOT_LENGTH] * 1j) * rot * unit_turn(yaws.real)
         if field_clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag) < thr[m + 1]:
             continue
+        # the toes' front corners for the walker's stature (a tall walker's wide toes reach
+        # past the probe above: options.toe_corners)
+        if not math.isnan(par[P_TOE_FRONT]):
+            turn = rot * unit_turn(yaws.real)
+            for side in (-par[P_TOE_SIDE], par[P_TOE_SIDE]):
+                toe = ankle + complex(side, par[P_TOE_FRONT]) * turn
+                if (
+                    field_clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag)
+                    < par[P_TOE_CLEARANCE]
+                ):
+                    ok = False
+                    break
+            if not ok:
+                continue
         # the landing leg, from the ankle towards its hip at the step's end (heel strike: the
         # shin leans back over the heel, the toes-up heel reaches behind the flat footprint),
         # probed every P_LEG_STEP out to where the end pelvis's own clearance covers it

@@ -5,10 +5,11 @@ from __future__ import annotations
 import dataclasses
 import math
 
+import mujoco
 import numpy as np
 import pytest
 
-from mjwalk.body.humanoid import ROM_DEG
+from mjwalk.body.humanoid import ROM_DEG, build_humanoid
 from mjwalk.body.legs.curves import smoothstep
 from mjwalk.body.legs.steps import SWING_TURNED, TOE_OFF
 from mjwalk.errors import InputError
@@ -24,6 +25,7 @@ from mjwalk.plan.options import (
     knee_pivot,
     knee_reach,
     swing_turned,
+    toe_corners,
 )
 from mjwalk.plan.slots import MAX_GOAL_DISCS
 from mjwalk.world import load_workplace
@@ -115,3 +117,18 @@ def test_a_swing_foot_lifts_within_the_hips_rotation_range():
     # the spin turns' bound (mjwalk.body.legs.spin: the hip-rotation range), which the plan
     # stage cannot import
     assert math.degrees(SWING_LIFT_TURN) == pytest.approx(max(map(abs, ROM_DEG["hip_rot"])))
+
+
+@pytest.mark.parametrize("stature", [1.55, 1.87])
+def test_the_toe_probes_lie_at_the_synthesized_toes_front_corners(stature):
+    """The landing toe probes (toe_corners) lie at the front corners of the humanoid's toe box,
+    ahead of the ankle along a flat foot and to each side."""
+    m = build_humanoid(stature).compile()
+    d = mujoco.MjData(m)
+    mujoco.mj_kinematics(m, d)
+    ankle = d.xpos[mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_BODY, "foot_l")]
+    g = mujoco.mj_name2id(m, mujoco.mjtObj.mjOBJ_GEOM, "toes_l")
+    ahead = np.hypot(*(d.geom_xpos[g] - ankle)[:2]) + m.geom_size[g][0]
+    front, side = toe_corners(stature)
+    assert ahead == pytest.approx(front, abs=1e-3)
+    assert m.geom_size[g][1] == pytest.approx(side, abs=1e-3)

@@ -100,3 +100,50 @@ def test_the_knee_probes_lead_along_the_turning_swing_foot(scenes_dir):
     at_range = accepted(fr + SWING_LIFT_TURN)
     assert not at_range
     assert all(accepted(fr + off) == at_range for off in (1.2, 2.0, 2.8))
+
+
+#: Station run 1865 of 2000 (seed 0, main at c7f4517): route T4's last step, a 1.87 m operator's
+#: right foot from (0.071, -1.409) to (0.262, -1.834) at yaw -60.6 deg beside rack 2's frame
+#: post, the pelvis (16 samples, world x, y) turning from -70.5 to -60.9 deg.
+RUN1865_PELVIS = [
+    (0.229, -1.524), (0.217, -1.524), (0.206, -1.525), (0.197, -1.528), (0.190, -1.532),
+    (0.185, -1.538), (0.181, -1.546), (0.179, -1.555), (0.178, -1.564), (0.179, -1.576),
+    (0.181, -1.590), (0.185, -1.605), (0.190, -1.623), (0.197, -1.642), (0.205, -1.663),
+    (0.215, -1.686),
+]  # fmt: skip
+
+
+def test_the_landing_toes_keep_clear_for_a_tall_walker(scenes_dir):
+    """A tall walker's toes reach past the fixed toe probe (FOOT_LENGTH ahead of the ankle): in
+    run 1865's last step the right toes' corner went 3.6 mm into rack 2's frame post while the
+    probe lay 9.4 cm from it. The toes' corner probes for the stature refuse the step; without
+    them (nan slot, as before) the step passes, and a 1.55 m walker's toes clear."""
+    model = default_model()
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    pl = HybridPlanner(wp, "stand_rack2", model, PlannerOptions(radius=0.30))
+
+    def accepted(stature: float, centre: bool = True) -> bool:
+        par, ipar = pl.params.vectors(stature)
+        par = par.copy()
+        if not centre:
+            par[slots.P_TOE_FRONT] = math.nan
+        m = int(ipar[slots.I_M])
+        assert m == len(RUN1865_PELVIS)
+        fr = -1.231  # the pelvis's heading at the step's start (the step's frame)
+        rot = complex(math.sin(fr), -math.cos(fr))  # local (x right, y forward) to world
+        p = complex(*RUN1865_PELVIS[0])
+        offset = np.zeros(2 * m + 3, dtype=np.complex128)
+        offset[:m] = [(complex(x, y) - p) / rot for x, y in RUN1865_PELVIS]
+        offset[m] = (complex(0.262, -1.834) - p) / rot  # the landing ankle
+        offset[m + 1] = complex(-1.058 - fr, -1.063 - fr)  # landing foot's and end pelvis's yaw
+        matrix = np.zeros((1, 2 * m + 3), dtype=np.complex128)
+        landed, behind = complex(0.157, -1.483), complex(0.071, -1.409)
+        node = np.array([[p, landed, behind, 0.0, complex(math.nan, math.nan)]])
+        rest = (pl.params.thresholds, par, ipar, wp.walk_field().values, pl.distance.flat_bound())
+        args = (np.zeros((1, 1)), matrix, offset, 1, 1, np.array([fr]), np.array([False]),
+                np.zeros(1, bool), node)  # fmt: skip
+        return len(stepcheck.check_steps(*args, *rest)[0]) == 1
+
+    assert accepted(1.87, centre=False)  # pelvis, ankle, toe probe, leg and knees pass
+    assert not accepted(1.87)  # the left corner, 0.213 m ahead, is within 2.5 cm of the post
+    assert accepted(1.55)  # 0.177 m ahead, 0.042 m aside: clear
