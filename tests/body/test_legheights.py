@@ -7,6 +7,7 @@ from mjwalk.anthropometry import ROM_DEG, leg_geometry
 from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.edgeswing import STAIR_TOE_CLEARANCE
 from mjwalk.body.legs.footcheck import foot_points
+from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.legheights import (
     DESCENT_CONTACT_PITCH,
     HIP_PEAK_DOWN,
@@ -14,9 +15,11 @@ from mjwalk.body.legs.legheights import (
     KNEE_PEAK_DOWN,
     KNEE_PEAK_UP,
     StepSurfaces,
+    heel_rise,
     step_surfaces,
     surface_pitch,
 )
+from mjwalk.body.legs.steps import FootTracks
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.plan.synthetic import synthetic_ramp_walk, synthetic_stair_walk, synthetic_walk
 
@@ -180,3 +183,36 @@ def test_foot_pitch_on_a_ramp():
         k = 1 if st.side == "left" else 0
         mid = (st.start + st.end) // 2
         assert pitch[mid, k] == pytest.approx(angle, abs=np.deg2rad(1.0))
+
+
+def test_a_heel_rise_on_the_heel_stops_lowering_the_toes_at_the_surface():
+    """A foot on its heel after heel strike on a 5.5 deg ramp (toes up 1 deg from it) whose
+    ankle would dorsiflex 3 deg past its range turns toes down about its heel only until its
+    sole is on the ramp, and about its ball by the other 2 deg (its heel rises, its toes stay
+    on the ramp): turned the whole 3 deg about its heel, its toe tip went 1 cm into the ramp
+    (the multi-level platform cycle's run 1, its first ramp step)."""
+    geom = leg_geometry()
+    slope, pitch = np.deg2rad(5.5), np.deg2rad(6.5)
+    back = np.array([np.cos(pitch), np.sin(pitch)])  # the sole's direction, heel to toe (x, z)
+    heel = np.array([0.0, 0.05])
+    ankle = heel + geom.foot_back * back + geom.ankle_height * np.array([-back[1], back[0]])
+    one = lambda v: {"l": np.array([v])}  # noqa: E731
+    feet = FootTracks(
+        {"l": np.array([[ankle[0], 0.0, ankle[1]]])}, one(0.0), one(pitch), one(0.0),
+        one(True), {"l": np.zeros((1, 3))},
+    )  # fmt: skip
+    dorsi = np.array([np.deg2rad(ROM_DEG["ankle_flex"][1] + 3.0)])
+    assert heel_rise(feet, "l", dorsi, np.array([True]), geom, np.array([slope]))
+    p = float(feet.pitch["l"][0])
+    assert p == pytest.approx(slope - np.deg2rad(2.0), abs=1e-9)
+    assert float(feet.toe["l"][0]) == pytest.approx(np.deg2rad(2.0), abs=1e-9)
+    # the ball (turned about) is where the sole met the ramp at the slope's pitch
+    sole = np.array([np.cos(slope), np.sin(slope)])
+    ball_on_ramp = heel + (geom.foot_back + ball_offset(geom)) * sole
+    a = feet.ankle["l"][0][[0, 2]]
+    ball = (
+        a
+        + ball_offset(geom) * np.array([np.cos(p), np.sin(p)])
+        - geom.ankle_height * np.array([-np.sin(p), np.cos(p)])
+    )
+    assert ball == pytest.approx(ball_on_ramp, abs=1e-9)

@@ -328,7 +328,8 @@ def heel_rise(feet: FootTracks, s: str, dorsi: np.ndarray, grounded: np.ndarray,
         surface: (n,) the slope of the surface under the foot, radians (+ uphill), or None:
             where the foot is toes up from it (on its heel after heel strike) it turns about
             its heel instead, its toes lowering sooner (up a ramp the ball about which it
-            turned was in the air and the heel rose 7-9 cm off the ramp).
+            turned was in the air and the heel rose 7-9 cm off the ramp) until its sole is on
+            it, then about its ball (further, its toes went 1.2 cm into the platform's ramp).
 
     Returns:
         whether any sample changed.
@@ -337,11 +338,12 @@ def heel_rise(feet: FootTracks, s: str, dorsi: np.ndarray, grounded: np.ndarray,
     idx = np.flatnonzero(excess > 1e-4)
     if not len(idx):
         return False
-    # turned about the ball, or the heel where the foot is toes up from its surface (on its
-    # heel: it lowers its toes sooner instead of lifting its heel off)
-    heel = np.zeros(len(idx), bool) if surface is None else feet.pitch[s][idx] > surface[idx] + 1e-4
-    roll_foot(feet, s, idx, excess[idx], np.where(heel, -geom.foot_back, ball_offset(geom)), geom)
-    feet.toe[s][idx] = feet.toe[s][idx] + np.where(heel, 0.0, excess[idx])
+    # on its heel (toes up from its surface) its toes lower only onto it, the rest on its ball
+    up = np.zeros(len(idx)) if surface is None else feet.pitch[s][idx] - surface[idx]
+    on_heel = np.where(up > 1e-4, np.minimum(excess[idx], up), 0.0)
+    roll_foot(feet, s, idx, on_heel, np.full(len(idx), -geom.foot_back), geom)
+    roll_foot(feet, s, idx, excess[idx] - on_heel, np.full(len(idx), ball_offset(geom)), geom)
+    feet.toe[s][idx] += excess[idx] - on_heel
     return True
 
 
