@@ -194,14 +194,15 @@ class KernelParams:
         m = o.samples_per_step
         knee_cols = _knee_cols(m)
         knee_lead, knee_side = knee_reach(stature)
+        toe_front, toe_side = toe_corners(stature)
         par = slots.params(
             knee_lead=knee_lead,
             knee_side=knee_side,
             knee_pivot=knee_pivot(stature),
             swing_lift_turn=SWING_LIFT_TURN,
             foot_length=FOOT_LENGTH,
-            toe_front=toe_corners(stature)[0],
-            toe_side=toe_corners(stature)[1],
+            toe_front=toe_front,
+            toe_side=toe_side,
             toe_clearance=TOE_CORNER_CLEARANCE,
             foot_reach=MAX_FOOT_REACH,
             lift_reach=MAX_LIFT_REACH,
