@@ -76,9 +76,15 @@ class Handling:
 
 
 def hand_poses(
-    model: mujoco.MjModel, jm: JointMap, qpos: np.ndarray, data: mujoco.MjData | None = None
+    model: mujoco.MjModel,
+    jm: JointMap,
+    qpos: np.ndarray,
+    data: mujoco.MjData | None = None,
+    frames: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The hands' poses by forward kinematics.
+    """The hands' poses by forward kinematics (``mj_kinematics``), once per distinct pose: a
+    frame whose pose is bit-for-bit its predecessor's copies its results (a hold repeats one
+    pose), which are then the same bits.
 
     Args:
         model: the compiled scene with the humanoid.
@@ -86,6 +92,7 @@ def hand_poses(
         qpos: (F, nq) poses (or one (nq,)).
         data: an MjData of ``model`` to compute in (a new one when None; its pose is the last
             frame's afterwards).
+        frames: (F,) bool, the frames to compute (all when None); the others are NaN.
 
     Returns:
         ``(pos, mat, palm)``: (F, 2, 3) world positions (m) and (F, 2, 3, 3) orientations of the
@@ -96,14 +103,47 @@ def hand_poses(
     palms = [int(np.flatnonzero(model.geom_bodyid == b)[0]) for b in bodies]
     qpos = np.atleast_2d(qpos)
     n = len(qpos)
-    pos, mat, palm = np.empty((n, 2, 3)), np.empty((n, 2, 3, 3)), np.empty((n, 2, 3))
-    for f, q in enumerate(qpos):
-        data.qpos[:] = q
+    need = np.ones(n, dtype=bool) if frames is None else np.asarray(frames, dtype=bool)
+    todo = _distinct(qpos, need)
+    b0, b1 = min(bodies), max(bodies) + 1  # copy the rows between the hands: one slice each
+    g0, g1 = min(palms), max(palms) + 1
+    xpos, xmat, gpos = (
+        np.empty((len(todo), b1 - b0, 3)),
+        np.empty((len(todo), b1 - b0, 9)),
+        np.empty((len(todo), g1 - g0, 3)),
+    )
+    q, dx, dm, dg = data.qpos, data.xpos[b0:b1], data.xmat[b0:b1], data.geom_xpos[g0:g1]
+    for i, f in enumerate(todo.tolist()):
+        q[:] = qpos[f]
         mujoco.mj_kinematics(model, data)
-        pos[f] = data.xpos[bodies]
-        mat[f] = data.xmat[bodies].reshape(2, 3, 3)
-        palm[f] = data.geom_xpos[palms]
+        xpos[i], xmat[i], gpos[i] = dx, dm, dg
+    if n and (len(todo) == 0 or todo[-1] != n - 1):  # leave data at the last frame's pose
+        q[:] = qpos[-1]
+        mujoco.mj_kinematics(model, data)
+    # each needed frame takes the results of the last computed frame at or before it
+    done = np.zeros(n, dtype=bool)
+    done[todo] = True
+    src = np.maximum.accumulate(np.where(done, np.arange(n), -1))
+    row = np.searchsorted(todo, src)
+    pos, mat, palm = (
+        np.full((n, 2, 3), np.nan),
+        np.full((n, 2, 3, 3), np.nan),
+        np.full((n, 2, 3), np.nan),
+    )
+    bi, gi = [b - b0 for b in bodies], [g - g0 for g in palms]
+    pos[need] = xpos[row[need]][:, bi]
+    mat[need] = xmat[row[need]][:, bi].reshape(-1, 2, 3, 3)
+    palm[need] = gpos[row[need]][:, gi]
     return pos, mat, palm
+
+
+def _distinct(qpos: np.ndarray, need: np.ndarray) -> np.ndarray:
+    """The frames of ``need`` (F,) bool whose pose ``qpos`` (F, nq) is not bit-for-bit that of
+    the frame before, when that frame is needed too (sorted ints)."""
+    bits = np.ascontiguousarray(qpos, dtype=np.float64).view(np.uint64)
+    same = np.zeros(len(qpos), dtype=bool)
+    same[1:] = (bits[1:] == bits[:-1]).all(axis=1) & need[:-1]
+    return np.flatnonzero(need & ~same)
 
 
 #: A grip point moving less than this (m) from where it was at the release is holding still:
@@ -132,6 +172,32 @@ def palms_frame(palm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     z = np.broadcast_to([0.0, 0.0, 1.0], y.shape)
     x = np.cross(y, z)
     return palm.mean(axis=1), np.stack([x, y, z], axis=2)
+
+
+def _needed(handlings: Sequence[Handling], lying: set[str], n: int) -> np.ndarray:
+    """(n,) bool: the frames whose hand poses :func:`part_tracks` reads -- every handling's
+    frames, and a drawn part's from the start of the handling that takes it to the end of the
+    one that puts it down (or the timeline's end): it is held in between. The same order of
+    takes and puts per hand as :func:`part_tracks`; ``lying``: the sites with a part."""
+    need = np.zeros(n, dtype=bool)
+    held: dict[str, list[int | None]] = {"left": [], "right": [], "both": []}
+    lying = set(lying)
+    for h in handlings:
+        lo, hi = max(h.start, 0), min(max(h.end, h.start + 1), n)
+        if lo >= hi:
+            continue
+        need[lo:hi] = True
+        if h.part == "take":
+            held[h.hand].append(lo if h.site in lying else None)
+            lying.discard(h.site)
+        elif held[h.hand]:
+            taken = held[h.hand].pop(0)
+            if taken is not None:
+                need[taken:hi] = True
+                lying.add(h.site)
+    for taken in (t for side in held.values() for t in side if t is not None):
+        need[taken:] = True
+    return need
 
 
 def part_tracks(
@@ -164,7 +230,8 @@ def part_tracks(
     n = len(qpos)
     data = mujoco.MjData(model) if data is None else data
     # the scene's geoms and sites are welded to the world: any pose's kinematics places them
-    hand_pos, hand_mat, palm = hand_poses(model, jm, qpos, data)
+    need = _needed(handlings, set(lying), n)
+    hand_pos, hand_mat, palm = hand_poses(model, jm, qpos, data, need)
     both_pos, both_mat = palms_frame(palm)
     held: dict[str, list[int | None]] = {"left": [], "right": [], "both": []}
     tracks: dict[int, PartTrack] = {}

@@ -14,7 +14,8 @@ import mjwalk
 from mjwalk.cycle.poses import hand_points
 from mjwalk.cycle.simulate import prepare
 from mjwalk.cycle.spec import load_cycle_spec
-from mjwalk.timeline.parts import Handling, palms_frame, part_tracks
+from mjwalk.timeline import parts
+from mjwalk.timeline.parts import Handling, hand_poses, palms_frame, part_tracks
 
 SCENES = Path(__file__).resolve().parents[2] / "scenes"
 
@@ -278,3 +279,72 @@ def test_the_humanoids_own_hand_ends_on_each_target(monkeypatch):
         tip = data.xpos[b] - hand * data.xmat[b].reshape(3, 3)[:, 2]
         assert np.linalg.norm(tip - target) < 0.01, (side, target, np.linalg.norm(tip - target))
         assert error == pytest.approx(np.linalg.norm(tip - target), abs=1e-9)
+
+
+def _reference_hand_poses(model, jm, qpos, data=None, frames=None):
+    """The straightforward hand poses: ``mj_kinematics`` in every frame (``frames`` ignored)."""
+    data = mujoco.MjData(model) if data is None else data
+    bodies = [model.body(f"{jm.prefix}hand_{p}").id for p in ("l", "r")]
+    palms = [int(np.flatnonzero(model.geom_bodyid == b)[0]) for b in bodies]
+    qpos = np.atleast_2d(qpos)
+    n = len(qpos)
+    pos, mat, palm = np.empty((n, 2, 3)), np.empty((n, 2, 3, 3)), np.empty((n, 2, 3))
+    for f, q in enumerate(qpos):
+        data.qpos[:] = q
+        mujoco.mj_kinematics(model, data)
+        pos[f] = data.xpos[bodies]
+        mat[f] = data.xmat[bodies].reshape(2, 3, 3)
+        palm[f] = data.geom_xpos[palms]
+    return pos, mat, palm
+
+
+def _same_bits(a, b):
+    return a.shape == b.shape and a.tobytes() == b.tobytes()
+
+
+def test_hand_poses_are_mujocos_in_every_frame_bit_for_bit(station_cycle):
+    """One ``mj_kinematics`` per distinct pose, copied to its repeats, and only the asked
+    frames: the same bits as a call in every frame; the other frames NaN; the data left at
+    the last frame's pose."""
+    tl = station_cycle.timeline
+    m, jm, q = tl.model, tl.jointmap, tl.qpos
+    assert len(parts._distinct(q, np.ones(len(q), dtype=bool))) < 0.8 * len(q)  # holds repeat
+    ref = _reference_hand_poses(m, jm, q)
+    assert all(_same_bits(a, b) for a, b in zip(hand_poses(m, jm, q), ref, strict=True))
+    ask = np.zeros(len(q), dtype=bool)
+    ask[100:900] = ask[1500:1510] = True
+    data, ref_data = mujoco.MjData(m), mujoco.MjData(m)
+    _reference_hand_poses(m, jm, q, ref_data)
+    for got, want in zip(hand_poses(m, jm, q, data, ask), ref, strict=True):
+        assert _same_bits(got[ask], want[ask]) and np.isnan(got[~ask]).all()
+    assert _same_bits(data.qpos, q[-1]) and _same_bits(data.xpos, ref_data.xpos)
+    one = hand_poses(m, jm, q[7])
+    assert all(_same_bits(a, b[7:8]) for a, b in zip(one, ref, strict=True))
+
+
+@pytest.mark.parametrize(
+    "scene,seed",
+    [
+        ("assembly_station", 0),
+        ("assembly_station", 1),
+        ("assembly_station", 2),
+        ("assembly_station_2h", 0),
+    ],
+)
+def test_part_tracks_equal_the_every_frame_reference_bit_for_bit(monkeypatch, scene, seed):
+    """The hand poses of only the frames the tracks read (the handlings and the holds between
+    a take and its put) give the same tracks, bit for bit, as hand poses of every frame."""
+    from mjwalk.cycle import simulate
+
+    seen = []
+    real = simulate.part_tracks
+    monkeypatch.setattr(simulate, "part_tracks", lambda *a: seen.append(a) or real(*a))
+    ctx = prepare(load_cycle_spec(SCENES / f"{scene}.toml"))
+    got = mjwalk.simulate_cycle(ctx, rng=seed, keep_timeline=True).timeline.parts
+    (args,) = seen
+    monkeypatch.setattr(parts, "hand_poses", _reference_hand_poses)
+    want = part_tracks(*args[:4], mujoco.MjData(args[0]))
+    assert len(got) == len(want) >= 1
+    for a, b in zip(got, want, strict=True):
+        assert (a.geom, a.grasp, a.release) == (b.geom, b.grasp, b.release)
+        assert _same_bits(a.pos, b.pos) and _same_bits(a.mat, b.mat), a.geom
