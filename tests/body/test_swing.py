@@ -9,7 +9,7 @@ from mjwalk.body.humanoid import leg_geometry, pelvis_height
 from mjwalk.body.legs import steps
 from mjwalk.body.legs.footpivot import pivot_ankle
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE
-from mjwalk.body.legs.steps import TOE_OFF, step_frames
+from mjwalk.body.legs.steps import TOE_OFF, StepFrames, step_frames
 from mjwalk.body.legs.swing import swing_foot
 from mjwalk.plan.synthetic import synthetic_walk
 
@@ -43,3 +43,51 @@ def test_swing_lands_on_its_footprint_as_the_numpy_swing():
     )  # fmt: skip
     for x, y in zip(want, (pos, p, toe, fyaw, phi_to), strict=True):
         assert np.allclose(x, y, rtol=0, atol=1e-12)
+
+
+def test_a_step_back_and_across_does_not_swing_back_out():
+    """A walk's last step backward and across the stance foot (run 2100 of the station at
+    scale, seed 0: the left foot lifts at (0.372, -1.822) facing -101 deg and lands 0.34 m
+    back-left, crossed 11 cm over the right stance foot; 1.70 m operator). The reference
+    foot reaches forward along the heading, away from this landing: its progress along the
+    chord rose and fell, and the ankle went back out 0.33 m towards the lift-off and a rack's
+    frame after nearly landing. The progress never decreases now: after toe-off the ankle
+    goes back along the chord by less than 6 cm (the spline's overshoot past the reference,
+    4.9 cm here); compiled and NumPy swings agree."""
+    g = leg_geometry(1.70)
+    fr = StepFrames(
+        side="l", other="r", start=0, end=82,
+        lift=np.array([0.372, -1.822, -1.765]), land=np.array([0.126, -1.591, -1.551]),
+        stance=np.array([0.241, -1.579, -1.714]), first=False, final=True,
+        land_p=0.042, p_start=-0.148, p_end=-0.148,
+    )  # fmt: skip
+    phi = np.arange(83) / 82
+    hip_xy = np.array([0.383, -1.706]) + phi[:, None] * np.array([-0.126, -0.014])
+    z_hip = np.full(83, 0.87)
+    pos, _, _, _, phi_to = swing_foot(fr, phi, hip_xy, z_hip, DEFAULT_REFERENCE, g, 0.042)
+    want = steps.swing_foot(
+        fr, phi, np.arange(83), z_hip,
+        lambda i, side, zz=None: hip_xy[i] if zz is None else np.column_stack([hip_xy[i], zz]),
+        DEFAULT_REFERENCE, g, 0.042,
+    )  # fmt: skip
+    assert np.allclose(want[0], pos, rtol=0, atol=1e-12)
+    seg = fr.land[:2] - fr.lift[:2]
+    u = (pos[phi > phi_to, :2] - fr.lift[:2]) @ (seg / np.linalg.norm(seg))
+    assert u[-1] > 0.3  # the landing ankle, 0.34 m along the chord
+    assert (np.maximum.accumulate(u) - u).max() < 0.06  # before: 0.32 m (0.27 m, then -0.04)
+
+
+def test_station_run_2100_has_no_contacts(scenes_dir):
+    """Station run 2100 of 10 000 (seed 0, main at 64ea5f7): the 1.70 m operator's left toes
+    swung back out 7.2 mm into rack 2's frame on walk T4's last step (the step above); the
+    whole cycle, with its contact check, has none now (about 4 s)."""
+    from mjwalk.cycle.context import prepare  # deferred: the cycle stage, for this test only
+    from mjwalk.cycle.seeding import run_generator  # deferred: as above
+    from mjwalk.cycle.simulate import simulate_cycle  # deferred: as above
+    from mjwalk.cycle.spec import load_cycle_spec  # deferred: as above
+
+    ctx = prepare(load_cycle_spec(scenes_dir / "assembly_station.toml"))
+    r = simulate_cycle(ctx, run_generator(0, 2100), run=2100, ergonomics=False)
+    assert r.operator.stature == pytest.approx(1.70)
+    assert r.walks[-2].direction == "stand_car3->stand_rack2"
+    assert list(r.collisions) == []

@@ -380,8 +380,11 @@ def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray):
     target = st.hip_pos(st.idx[jl], sw) + fwd[:, None] * heading
     seg = land[:2] - lift[:2]
     # progress along the chord, clamped to the footprints softly (C1): a hard clamp where
-    # the reference passes the landing footprint (short steps) kinks the ankle's path
+    # the reference passes the landing footprint (short steps) kinks the ankle's path; it
+    # never decreases: on a step backward or across, the reference's forward reach along
+    # the heading would carry the foot to the landing and back out towards its lift-off
     s = soft_clip01((target - lift[:2]) @ seg / max(float(seg @ seg), 1e-9), 0.1)
+    s = np.maximum.accumulate(s)
     chord = lift[:2] + s[:, None] * seg
     # sideways, the foot swings under its hip: where the step turns, the hip's track bends
     # away from the chord (and from an inner corner the pelvis was planned clear of)

@@ -222,6 +222,7 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
     m = n - ne
     ref_pos = np.empty((m, 3))
     ref_pit = np.empty(m)
+    s_run = 0.0  # the progress so far (soft_clip01_1 is never below 0)
     for j in range(m):
         i = ne + j
         c = 0.5 + 0.5 * phi[i]
@@ -231,8 +232,11 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
         down = L1 * math.cos(hf) + L2 * math.cos(hf - kf)
         t0 = hip_xy[i, 0] + fwd * math.cos(yaw[i])
         t1 = hip_xy[i, 1] + fwd * math.sin(yaw[i])
-        # progress along the chord, clamped softly (C1); numpy's (m, 2) @ (2,) is OpenBLAS's
+        # progress along the chord, clamped softly (C1), never decreasing (a step backward
+        # or across: see steps._reference_swing); numpy's (m, 2) @ (2,) is OpenBLAS's
         s = soft_clip01_1(fma(t0 - lift[0], seg[0], (t1 - lift[1]) * seg[1]) / seg_sq, 0.1)
+        s = max(s, s_run)
+        s_run = s
         ch0 = lift[0] + s * seg[0]
         ch1 = lift[1] + s * seg[1]
         off = fma(hip_xy[i, 0] - ch0, nrm[0], (hip_xy[i, 1] - ch1) * nrm[1])
