@@ -8,12 +8,27 @@ from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.edgeswing import (
     STAIR_TOE_CLEARANCE,
     StepSurfaces,
+    rise_held,
     sole_rise,
     swing_clearance,
 )
 from mjwalk.body.legs.steps import StepFrames
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.plan.synthetic import synthetic_stair_walk
+
+
+def test_rise_held_keeps_the_toe_tip_from_sinking_before_the_peak():
+    """The toe tip (ankle height plus its offset) never falls before the ankle's highest sample;
+    after it, the swing lowers as planned; a swing that rises throughout is left as it is."""
+    z = np.array([0.28, 0.52, 0.50, 0.48, 0.50, 0.54, 0.52, 0.45])
+    tip = np.array([-0.11, -0.15, -0.16, -0.18, -0.17, -0.17, -0.12, -0.07])
+    out = rise_held(z, tip)
+    top = int(np.argmax(z))
+    assert np.all(np.diff((out + tip)[: top + 1]) >= -1e-12)
+    assert np.all(out >= z) and np.array_equal(out[top:], z[top:])
+    assert out[3] + tip[3] == pytest.approx(z[1] + tip[1])  # held at its first height
+    rising = np.linspace(0.2, 0.5, 6)
+    assert np.array_equal(rise_held(rising, np.full(6, -0.1)), rising)
 
 
 def test_edged_and_pelvis_level():
