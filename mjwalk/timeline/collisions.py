@@ -465,24 +465,29 @@ def _touching(
     plane (``normals``, ``origins`` (P, 3)). Metres."""
     n, g_n, s_n, p_n = xpos.shape[0], xpos.shape[1], centre.shape[0], normals.shape[0]
     hit = np.zeros(n, dtype=np.bool_)
-    near = np.zeros(s_n, dtype=np.bool_)
+    near = np.empty(s_n, dtype=np.int64)  # this frame's near boxes (the first m of them)
+    lo = np.empty(3)
+    hi = np.empty(3)
     for f in range(n):
         # the scene boxes that overlap the box around all the humanoid's reach spheres
-        lo = np.full(3, np.inf)
-        hi = np.full(3, -np.inf)
+        lo[:] = np.inf
+        hi[:] = -np.inf
         for g in range(g_n):
             for j in range(3):
                 lo[j] = min(lo[j], xpos[f, g, j] - reach[g])
                 hi[j] = max(hi[j], xpos[f, g, j] + reach[g])
+        m = 0
         for k in range(s_n):
-            near[k] = True
+            apart = False
             for j in range(3):
                 if lo[j] > centre[k, j] + half[k, j] or hi[j] < centre[k, j] - half[k, j]:
-                    near[k] = False
+                    apart = True
+            if not apart:
+                near[m] = k
+                m += 1
         for g in range(g_n):
-            for k in range(s_n):
-                if not near[k]:
-                    continue
+            for i in range(m):
+                k = near[i]
                 d2 = 0.0
                 for j in range(3):
                     e = abs(xpos[f, g, j] - centre[k, j]) - half[k, j]
