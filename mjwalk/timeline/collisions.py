@@ -124,6 +124,7 @@ def collision_report(
         check = np.ones(len(qpos), dtype=bool)
     out: list[Contact] = []
     t = timeline.t
+    masks = (human.tolist(), floorish.tolist(), tops if tops is None else tops.tolist(), soles)
     for i in np.flatnonzero(check).tolist():  # (a repeated pose is never checked itself)
         data.qpos[:] = qpos[i]
         mujoco.mj_kinematics(model, data)
@@ -131,22 +132,7 @@ def collision_report(
         n = data.ncon
         if n == 0:
             continue
-        con = data.contact  # struct-of-arrays view: filter in numpy, loop over the few left
-        g = np.asarray(con.geom[:n]).astype(int)
-        depth = -np.asarray(con.dist[:n])
-        h1, h2 = human[g[:, 0]], human[g[:, 1]]
-        hg = np.where(h1, g[:, 0], g[:, 1])
-        sg = np.where(h1, g[:, 1], g[:, 0])
-        shallow = depth <= floor_tolerance
-        keep = (h1 != h2) & ~(floorish[sg] & shallow)
-        if tops is not None:  # soles standing on a walk surface's top face
-            up = np.abs(np.asarray(con.frame[:n])[:, 2]) >= math.cos(TOP_NORMAL_TILT)
-            keep &= ~(tops[sg] & soles[hg] & shallow & up)
-        best: dict[tuple[int, int], tuple[float, np.ndarray]] = {}
-        for k in np.flatnonzero(keep):
-            key = (int(hg[k]), int(sg[k]))
-            if depth[k] > best.get(key, (-np.inf,))[0]:
-                best[key] = (float(depth[k]), np.array(con.pos[k]))
+        best = _kept(data.contact, n, masks, floor_tolerance)
         found = [(names[h][plen:], names[s_], d, pos) for (h, s_), (d, pos) in best.items()]
         j = i
         while True:  # the frame, then the frames after it that repeat its pose: its contacts
@@ -155,6 +141,31 @@ def collision_report(
             if j >= len(qpos) or not same[j]:
                 break
     return out
+
+
+def _kept(con, n: int, masks: tuple, floor_tolerance: float) -> dict:
+    """:func:`collision_report`'s contacts of the first ``n`` of ``con`` (MjData's), the deepest a
+    pair: ``{(humanoid geom, scene geom): (depth m, (3,) point)}``; ``masks``: its masks as lists
+    (humanoid, floor, walk tops or None, soles; a few contacts: plain Python, not numpy)."""
+    human, floorish, tops, soles = masks  # (soles: an array, read only on walk tops)
+    up = None
+    if tops is not None:  # soles standing on a walk surface's top face
+        up = (np.abs(np.asarray(con.frame[:n])[:, 2]) >= math.cos(TOP_NORMAL_TILT)).tolist()
+    best: dict[tuple[int, int], tuple[float, np.ndarray]] = {}  # pairs in order of first kept
+    pairs, dists = con.geom[:n].tolist(), con.dist[:n].tolist()
+    for k, ((a, b), dist) in enumerate(zip(pairs, dists, strict=True)):
+        if human[a] == human[b]:
+            continue
+        hg, sg = (a, b) if human[a] else (b, a)
+        depth = -dist
+        shallow = depth <= floor_tolerance
+        if floorish[sg] and shallow:
+            continue
+        if up is not None and tops[sg] and soles[hg] and shallow and up[k]:
+            continue
+        if depth > best.get((hg, sg), (-math.inf,))[0]:
+            best[(hg, sg)] = (depth, np.array(con.pos[k]))
+    return best
 
 
 #: Largest tilt of a contact normal from vertical (radians) for a sole's contact with a walk
@@ -465,24 +476,28 @@ def _touching(
     plane (``normals``, ``origins`` (P, 3)). Metres."""
     n, g_n, s_n, p_n = xpos.shape[0], xpos.shape[1], centre.shape[0], normals.shape[0]
     hit = np.zeros(n, dtype=np.bool_)
-    near = np.zeros(s_n, dtype=np.bool_)
+    near = np.empty(s_n, dtype=np.int64)  # this frame's near boxes (the first m of them)
+    lo, hi = np.empty(3), np.empty(3)
     for f in range(n):
         # the scene boxes that overlap the box around all the humanoid's reach spheres
-        lo = np.full(3, np.inf)
-        hi = np.full(3, -np.inf)
+        lo[:] = np.inf
+        hi[:] = -np.inf
         for g in range(g_n):
             for j in range(3):
                 lo[j] = min(lo[j], xpos[f, g, j] - reach[g])
                 hi[j] = max(hi[j], xpos[f, g, j] + reach[g])
+        m = 0
         for k in range(s_n):
-            near[k] = True
+            apart = False
             for j in range(3):
                 if lo[j] > centre[k, j] + half[k, j] or hi[j] < centre[k, j] - half[k, j]:
-                    near[k] = False
+                    apart = True
+            if not apart:
+                near[m] = k
+                m += 1
         for g in range(g_n):
-            for k in range(s_n):
-                if not near[k]:
-                    continue
+            for i in range(m):
+                k = near[i]
                 d2 = 0.0
                 for j in range(3):
                     e = abs(xpos[f, g, j] - centre[k, j]) - half[k, j]

@@ -15,6 +15,7 @@ MuJoCo's kinematics). World frame: metres, rotation matrices row-major as MuJoCo
 from __future__ import annotations
 
 import math
+import weakref
 
 import mujoco
 import numpy as np
@@ -67,23 +68,47 @@ def _frames_on_bodies(
     """World poses of frames fixed on bodies (``pos``/``quat`` in each body's frame), in every
     frame of ``qpos``, by the compiled kernel."""
     qpos = np.ascontiguousarray(qpos, dtype=float).reshape(-1, model.nq)
+    parent, jntadr, jntnum, jnt_type, jnt_qposadr, chains = _tree(model)
     return _geom_poses(
         qpos,
         model.qpos0,
-        model.body_parentid.astype(np.int64),
-        model.body_jntadr.astype(np.int64),
-        model.body_jntnum.astype(np.int64),
+        parent,
+        jntadr,
+        jntnum,
         model.body_pos,
         model.body_quat,
-        model.jnt_type.astype(np.int64),
-        model.jnt_qposadr.astype(np.int64),
+        jnt_type,
+        jnt_qposadr,
         model.jnt_axis,
         model.jnt_pos,
         bodies,
         pos,
         quat,
-        _chains(model, bodies),
+        _chains(model, bodies, chains),
     )
+
+
+#: Per model: :func:`_tree`'s id arrays and :func:`_chains`' masks (a cycle asks for the same
+#: model's poses some fifty times; converting its ids and walking its tree each time cost
+#: about 20 us a call).
+_KEPT: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _tree(model: mujoco.MjModel) -> tuple:
+    """The tree's ids as int64 (parents, each body's first joint and joint count, the joints'
+    types and qpos addresses) and a dict for :func:`_chains`, kept per model (a compiled
+    model's tree does not change; its float arrays are read live at each call)."""
+    kept = _KEPT.get(model)
+    if kept is None:
+        ids = [
+            model.body_parentid,
+            model.body_jntadr,
+            model.body_jntnum,
+            model.jnt_type,
+            model.jnt_qposadr,
+        ]
+        kept = _KEPT[model] = (*[a.astype(np.int64) for a in ids], {})
+    return kept
 
 
 def body_poses(
@@ -108,16 +133,23 @@ def body_poses(
     return _frames_on_bodies(model, qpos, bodies, np.zeros((len(bodies), 3)), here)
 
 
-def _chains(model: mujoco.MjModel, bodies: np.ndarray) -> np.ndarray:
+def _chains(model: mujoco.MjModel, bodies: np.ndarray, kept: dict | None = None) -> np.ndarray:
     """(nbody,) bool: ``bodies`` and every body above them (the bodies whose poses they
-    need; the kernel skips the others)."""
-    parent = model.body_parentid
-    need = np.zeros(model.nbody, dtype=np.bool_)
+    need; the kernel skips the others), kept in ``kept`` by ``bodies`` (read-only)."""
+    key = np.asarray(bodies, dtype=np.int64).tobytes()
+    if kept is not None and key in kept:
+        return kept[key]
+    parent = model.body_parentid.tolist()
+    need = [False] * model.nbody
     for b in np.asarray(bodies, dtype=np.int64).tolist():
         while b > 0 and not need[b]:
             need[b] = True
-            b = int(parent[b])
-    return need
+            b = parent[b]
+    out = np.array(need, dtype=np.bool_)
+    out.setflags(write=False)
+    if kept is not None:
+        kept[key] = out
+    return out
 
 
 @njit

@@ -61,3 +61,23 @@ def test_bodies_that_did_not_move_keep_the_same_numbers():
         for f, q in enumerate(qpos):
             alone = geom_poses(m, q[None], geoms)
             assert np.array_equal(xpos[f], alone[0][0]) and np.array_equal(xmat[f], alone[1][0])
+
+
+def test_the_kept_tree_gives_the_same_numbers_and_follows_a_moved_body():
+    """The model's ids and chains are kept between calls: a second call, one for another set
+    of geoms in between, and a call after the model's body offset changed give what a fresh
+    model gives (the float arrays are read at each call)."""
+    m = mujoco.MjModel.from_xml_string(CHAIN)
+    qpos = m.qpos0 + np.random.default_rng(7).normal(scale=0.5, size=(4, m.nq))
+    first = geom_poses(m, qpos, np.array([0, 1]))
+    geom_poses(m, qpos, np.array([0]))
+    again = geom_poses(m, qpos, np.array([0, 1]))
+    for a, b in zip(first, again, strict=True):
+        assert np.array_equal(a, b)
+    m.body_pos[2] += 0.05  # the hinged body moved on its parent
+    fresh = mujoco.MjModel.from_xml_string(CHAIN)
+    fresh.body_pos[2] += 0.05
+    for a, b in zip(
+        geom_poses(m, qpos, np.array([1])), geom_poses(fresh, qpos, np.array([1])), strict=True
+    ):
+        assert np.array_equal(a, b)
