@@ -127,7 +127,13 @@ def timeline_from_walk(
 ARM_EASE = 0.6
 #: The arms swing fully with at least ARM_ROOM[1] metres of room around the pelvis (distance to
 #: the nearest obstacle footprint), not at all below ARM_ROOM[0]: people keep their arms in
-#: when they pass close to a rack, a wall or a car.
+#: when they pass close to a rack, a wall or a car. The figures are for the reference stature
+#: (DEFAULT_STATURE, 1.75 m) and scale with the operator's (:func:`arm_room`): every segment of
+#: the humanoid scales with stature, so the hand's reach from the pelvis does too (the carrying
+#: hand's lowest margin over the ramp, the fingertips' horizontal distance from the pelvis
+#: against the room, is 3.6 cm at 1.75 m; with the ramp in fixed metres it was -0.4 cm at 1.90 m
+#: and -3.7 cm at 2.02 m, where the fingers met the car in runs 732 and 1238 of the 2000-run
+#: batch: tests/timeline/test_frames.py).
 ARM_ROOM = (0.35, 0.6)
 #: Carrying posture of the hand that holds a part (radians): upper arm slightly back, elbow
 #: flexed 105 degrees, so the part is held close in front of the trunk.
@@ -212,6 +218,21 @@ class Carry:
     abduction: float | None = None
 
 
+def arm_room(stature: float) -> tuple[float, float]:
+    """The room around the pelvis (metres to the nearest obstacle footprint) below which the
+    arms start keeping in, and below which they hang: :data:`ARM_ROOM` scaled from the
+    reference stature to ``stature`` (the humanoid's arm scales with stature).
+
+    Args:
+        stature: the humanoid's stature, metres.
+
+    Returns:
+        ``(none, full)``: metres of room at which the swing is nil and full.
+    """
+    scale = stature / DEFAULT_STATURE
+    return ARM_ROOM[0] * scale, ARM_ROOM[1] * scale
+
+
 def ease_arms(
     qpos: np.ndarray,
     t: np.ndarray,
@@ -226,7 +247,8 @@ def ease_arms(
 
     The swing (or, for a one-handed ``carry``, that hand's carrying posture) fades in over
     the first and out over the last :data:`ARM_EASE` seconds, so the arms hang at rest when the
-    walker stops, and shrinks where the clearance's room falls below :data:`ARM_ROOM`; there
+    walker stops, and shrinks where the clearance's room falls below :data:`ARM_ROOM` (scaled
+    to the stature, :func:`arm_room`); there
     the hanging hands turn their thumbs forward (:data:`TUCK_PRONATION`). For a carry with
     both hands both arms hold the carrying posture, with the carry's shoulder abduction when
     given, over the whole walk without fading or shrinking: the hands stay on a two-handed
@@ -253,7 +275,8 @@ def ease_arms(
     w = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
     tight = np.zeros(len(t))
     if room is not None:
-        free = np.clip((room - ARM_ROOM[0]) / (ARM_ROOM[1] - ARM_ROOM[0]), 0.0, 1.0)
+        none, full = arm_room(stature)
+        free = np.clip((room - none) / (full - none), 0.0, 1.0)
         w = np.minimum(w, free)
         tight = 1.0 - free
         tight = smoothstep(tight)

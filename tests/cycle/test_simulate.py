@@ -187,3 +187,17 @@ def test_station_run_330_keeps_the_turning_knee_off_rack_2(scenes_dir):
     assert result.operator is not None and round(result.operator.stature, 2) == 1.81
     assert result.error is None
     assert result.collisions == []
+
+
+@pytest.mark.slow
+def test_station_run_732_keeps_a_tall_operators_carrying_hand_off_the_car(scenes_dir):
+    """Run 732 of 2000 (seed 0): a 2.02 m operator carrying screws in the left hand to car
+    stand 2 lowered the hand from the carrying posture as the room to the car shrank, and the
+    left index finger went 7.4 mm into ``car_body`` (41.9 s, 0.46 s before the walk's end): the
+    arms' keep-in ramp (mjwalk.timeline.frames.ARM_ROOM) was in fixed metres, the hand's reach
+    is not. With the ramp scaled to the stature (``arm_room``) that run has no contact."""
+    spec = scenes_dir / "assembly_station.toml"
+    (result,) = simulate_cycles(spec, runs=2000, seed=0, only=[732])
+    assert result.operator is not None and round(result.operator.stature, 2) == 2.02
+    assert result.error is None
+    assert result.collisions == []

@@ -7,10 +7,11 @@ import mujoco
 import numpy as np
 import pytest
 
+from mjwalk.body.humanoid import attach_humanoid
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.synthetic import synthetic_walk as make_walk
 from mjwalk.timeline import iter_frames, timeline_from_walk
-from mjwalk.timeline.frames import ARM_EASE, Carry, Clearance, ease_arms
+from mjwalk.timeline.frames import ARM_EASE, ARM_ROOM, Carry, Clearance, arm_room, ease_arms
 
 SCENE = """<mujoco><worldbody><geom name="floor" type="plane" size="10 10 .1"/>
 <body name="shelf" pos="{x} {y} .6"><geom name="box" type="box" size=".25 .25 .6"/></body>
@@ -95,3 +96,51 @@ def test_ease_arms_holds_a_two_handed_carry_and_tucks_tight_arms():
     pron = q[:, jm.adr("forearm_l_pron")] - rest[jm.adr("forearm_l_pron")]
     mid = len(t) // 2
     assert abs(pron[mid]) > abs(pron[0]) and abs(pron[0]) < 1e-9
+
+
+def _hand_reach(model, jm, qpos: np.ndarray, side: str = "l") -> np.ndarray:
+    """(F,) the horizontal distance (m) of the farthest point of the hand's geoms (palm and
+    fingers, their bounding spheres) from the pelvis in each pose."""
+    hand = model.body(f"{jm.prefix}hand_{side}").id
+    parent = model.body_parentid
+    geoms = []
+    for g in range(model.ngeom):
+        b = int(model.geom_bodyid[g])
+        while b > hand:
+            b = int(parent[b])
+        if b == hand:
+            geoms.append(g)
+    data = mujoco.MjData(model)
+    out = []
+    for q in qpos:
+        data.qpos[:] = q
+        mujoco.mj_kinematics(model, data)
+        d = np.hypot(*(data.geom_xpos[geoms, :2] - q[jm.root : jm.root + 2]).T)
+        out.append(float(np.max(d + model.geom_rbound[geoms])))
+    return np.array(out)
+
+
+def test_arm_room_scales_with_stature():
+    """The keep-in ramp is ARM_ROOM at the reference stature (bit for bit) and scales with the
+    stature, as every segment of the humanoid does."""
+    assert arm_room(1.75) == ARM_ROOM
+    assert arm_room(2.1) == pytest.approx((0.35 * 1.2, 0.6 * 1.2))
+
+
+@pytest.mark.parametrize("stature", [1.55, 1.75, 2.02])
+def test_carrying_hand_keeps_inside_the_room_at_every_stature(stature):
+    """Where the room around the pelvis shrinks, the hand in the one-handed carrying posture
+    lowers and stays at least 1 cm (a fingertip's thickness, mjwalk.cycle.standoff) inside it,
+    at every stature. With the ramp in fixed metres a 2.02 m operator's fingertips came 3.7 cm
+    past the room (standing), and in a walk to the car the left index finger went 7.4 mm into
+    the car body (run 732 of the 2000-run batch)."""
+    model, jm = attach_humanoid(_scene(20.0), stature)
+    rest = jm.neutral_qpos(model, stature)
+    none, full = arm_room(stature)
+    room = np.linspace(none, full + 0.05, 120)
+    t = np.full(len(room), 10.0)  # mid-walk: no fading in or out
+    q = np.tile(rest, (len(room), 1))
+    q = ease_arms(q, t, 20.0, jm, rest, Clearance(room), Carry("left"), stature)
+    reach = _hand_reach(model, jm, q)
+    assert np.all(reach <= room - 0.01)
+    assert reach[-1] - reach[0] > 0.1 * stature  # with room the hand does come forward
