@@ -8,7 +8,7 @@ arithmetic. :func:`repitch_foot` and :func:`fit_ankle_range` do the same arithme
 order, in one compiled call (the same numbers, bit for bit: tests/timeline/test_kernels.py compares
 them with the NumPy code they replace). World frame, metres, radians; a foot's pitch + toes up.
 
-The compiled rounds call the leg IK (``kinematics.leg_ik_world_cached``) and the spread
+The compiled rounds call the leg IK (``ik.leg_ik_world_row``, on the grounded rows) and the spread
 (``curves.spread_rows``): numba caches this module's machine code by its own source, so change a
 comment here when those change (else a cached copy keeps the old callees).
 """
@@ -24,7 +24,7 @@ from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import gauss_kernel, spread_rows
 from mjwalk.body.legs.footpivot import ball_offset
-from mjwalk.body.legs.ik import LegIKCache, ik_lengths, leg_ik_world_cached
+from mjwalk.body.legs.ik import LegIKCache, ik_lengths, leg_ik_world_row
 from mjwalk.body.legs.steps import FootTracks
 
 
@@ -119,6 +119,30 @@ def _repitch_rows(ankle, pitch, toe, fyaw, ground, prints, dp, ball, back, ah):
             math.sin(yaw), math.cos(fyaw[i]), math.sin(fyaw[i]), math.cos(p0), math.sin(p0),
             p1, math.cos(p1), math.sin(p1), ball, back, ah,
         )  # fmt: skip
+
+
+@njit
+def _ik_grounded(ankle, fyaw, pitch, root, yaw, ground, sgn, hip_y, L1, L2, rmin, rmax, inputs,
+                 out):  # fmt: skip
+    """``leg_ik_world_cached`` on the grounded rows only (the rounds read no other row's
+    angles): a grounded row whose inputs differ from ``inputs`` is solved and its inputs kept;
+    the other rows keep their inputs and angles as a pair, so the cache's next caller solves
+    the rows changed since (the same angles as solving them every round)."""
+    for i in range(ankle.shape[0]):
+        if not ground[i]:
+            continue
+        row = (ankle[i, 0], ankle[i, 1], ankle[i, 2], fyaw[i], pitch[i], root[i, 0], root[i, 1],
+               root[i, 2], yaw[i])  # fmt: skip
+        same = True
+        for k in range(9):
+            if row[k] != inputs[i, k]:
+                same = False
+                break
+        if same:
+            continue
+        for k in range(9):
+            inputs[i, k] = row[k]
+        leg_ik_world_row(ankle, fyaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
 
 
 @dataclass(frozen=True)
@@ -237,9 +261,8 @@ def _fit_rounds(
     c0, s0 = np.cos(pitch), np.sin(pitch)
     cp, sp = c0.copy(), s0.copy()
     for _ in range(rounds):
-        leg_ik_world_cached(
-            ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs, out
-        )
+        _ik_grounded(ankle, fyaw, pitch, root, yaw, ground, sgn, hip_y, L1, L2, rmin, rmax,
+                     inputs, out)  # fmt: skip
         e_max = -np.inf
         s_max = -np.inf
         for i in range(n):
