@@ -858,7 +858,8 @@ def test_spin_hip_rotation_excess_matches_numpy(s_):
     rot, up, down = np.full(n, 7.0), np.full(n, 7.0), np.full(n, 7.0)
     sgn = 1.0 if s_ == "l" else -1.0
     args = (ankle, fyaw, pitch, root, yaw, sgn, geom.hip_y, *ik_lengths(geom))
-    _hip_rotation_excess(ground, *args, top, bottom, w, rot, up, down)
+    bufs = (np.full((n, 9), np.nan), np.empty((n, 6)))
+    _hip_rotation_excess(ground, *args, top, bottom, w, rot, up, down, *bufs)
     on = np.flatnonzero(ground)
     want = leg_ik_world(ankle[on], fyaw[on], pitch[on], root[on], yaw[on], s_, geom)
     r = want[f"hip_{s_}_rot"]

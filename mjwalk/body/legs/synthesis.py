@@ -145,10 +145,12 @@ def legs_from_walk(
         knee_prev = _synth_step(sy, frames, k, knee_prev)
     # where the pelvis turns further than a grounded foot's hip can rotate, the foot spins
     # about its ball; its next swing starts from the turned footprint
-    spin_turns(sy.feet, np.column_stack([sy.xy, sy.z]), sy.yaw, geom)
+    # (the loops below re-solve only the samples changed since: the spin turns' grounded
+    # samples are solved already)
+    ik = {s_: LegIKCache(s_, geom) for s_ in "lr"}
+    spin_turns(sy.feet, np.column_stack([sy.xy, sy.z]), sy.yaw, geom, ik)
     _hold_ends(sy, frames[0], frames[-1])
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
-    ik = {s_: LegIKCache(s_, geom) for s_ in "lr"}  # the loops below re-solve changed samples
     _fit_ankles(sy, ik, win)
     root = np.column_stack([sy.xy, sy.z])
     angles = _clear_floor(sy, ik, root, win)
