@@ -100,13 +100,38 @@ def spin_turns(
 def _contacts(g: np.ndarray, prints: np.ndarray, n: int) -> tuple[np.ndarray, list[int]]:
     """First and last samples of each contact of a foot on the floor (``g`` (n,) bool) on one
     footprint of ``prints`` (n, 3): a contact ends before the next sample off the floor or on
-    another print."""
-    new_print = np.r_[True, np.any(prints[1:] != prints[:-1], axis=1)]
-    starts = np.flatnonzero(g & (new_print | ~np.r_[False, g[:-1]]))
-    breaks = np.flatnonzero(~g | new_print)
-    nxt = np.searchsorted(breaks, starts, side="right")
-    ends = [int(breaks[k]) - 1 if k < len(breaks) else n - 1 for k in nxt]
-    return starts, ends
+    another print (compiled: :func:`_contact_bounds`)."""
+    starts, ends = _contact_bounds(
+        np.ascontiguousarray(g, dtype=np.bool_), np.ascontiguousarray(prints, dtype=float), n
+    )
+    return starts, [int(e) for e in ends]
+
+
+@njit
+def _contact_bounds(g, prints, n):
+    """:func:`_contacts` in one pass: a contact starts on a grounded sample after one off the
+    floor (or the first) or on a new print, and ends before the next sample off the floor or
+    on a new print (or at the last sample); (starts, ends) as int arrays."""
+    starts = np.empty(n, np.int64)
+    ends = np.empty(n, np.int64)
+    m = 0
+    open_ = False
+    for i in range(n):
+        new_print = i == 0
+        if i > 0:
+            for k in range(3):
+                if prints[i, k] != prints[i - 1, k]:
+                    new_print = True
+        if open_ and (new_print or not g[i]):
+            ends[m - 1] = i - 1
+            open_ = False
+        if g[i] and not open_:
+            starts[m] = i
+            m += 1
+            open_ = True
+    if open_:
+        ends[m - 1] = n - 1
+    return starts[:m].copy(), ends[:m].copy()
 
 
 def _hip_rotation(feet: FootTracks, s_: str, root_c, yaw_c, sp: _Spin, bufs):
