@@ -295,17 +295,26 @@ def foot_lowest(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry) ->
     Returns:
         (N,) heights, metres (negative: below the hip).
     """
+    ah, ball = geom.ankle_height, ball_offset(geom)
+    foot, toes = _foot_boxes(geom)
+    p = side_prefix(side)
+    names = [k.format(p) for k in LEG_JOINTS]
+    q = np.ascontiguousarray(np.column_stack([np.asarray(angles[k], float) for k in names]))
+    s = 1.0 if side == "left" else -1.0
+    return _foot_lowest_rows(q, s, geom.thigh, geom.shank, foot, toes, ball, ah)
+
+
+@functools.lru_cache(maxsize=16)
+def _foot_boxes(geom: LegGeometry) -> tuple[np.ndarray, np.ndarray]:
+    """The corners (8, 3) of :func:`foot_lowest`'s sole box in the foot frame and of its toes
+    box in the toes frame (kept per geometry: not to be changed)."""
     ah, ball, hw = geom.ankle_height, ball_offset(geom), geom.foot_width / 2
     corners = np.array(list(itertools.product((0.0, 1.0), (-hw, hw), (0.0, 1.0))))
     # sole box: x from the heel to the ball, 0.8 ankle heights tall from the sole
     foot = corners * [ball + geom.foot_back, 1.0, 0.8 * ah] + [-geom.foot_back, 0.0, -ah]
     # toes box in the toes frame (origin at the ball on the sole, rotated by the toe angle)
     toes = corners * [geom.foot_front - ball, 1.0, 0.4 * ah]
-    p = side_prefix(side)
-    names = [k.format(p) for k in LEG_JOINTS]
-    q = np.ascontiguousarray(np.column_stack([np.asarray(angles[k], float) for k in names]))
-    s = 1.0 if side == "left" else -1.0
-    return _foot_lowest_rows(q, s, geom.thigh, geom.shank, foot, toes, ball, ah)
+    return foot, toes
 
 
 @njit
