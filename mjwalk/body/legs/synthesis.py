@@ -34,6 +34,7 @@ leg cycle 50-100 % (cycle 0 = heel strike of that leg).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -439,8 +440,8 @@ def _clear_floor(
         # down) and solve again, so the foot stays above -FLOOR_TOLERANCE by construction
         for _ in range(FLOOR_ITERATIONS):
             raw = ik[s_](f.ankle[s_], f.fyaw[s_], f.pitch[s_], root, sy.yaw)
-            ang = {k: np.clip(v, *np.deg2rad(ROM_DEG[generic_joint(k)])) for k, v in raw.items()}
-            ang[f"toe_{s_}"] = np.clip(f.toe[s_], *np.deg2rad(ROM_DEG["toe"]))
+            ang = {k: np.clip(v, *_range_rad(generic_joint(k))) for k, v in raw.items()}
+            ang[f"toe_{s_}"] = np.clip(f.toe[s_], *_range_rad("toe"))
             low = hip[:, 2] + foot_lowest(ang, side_of_prefix(s_), geom)
             bad = low < -FLOOR_TOLERANCE
             if not bad.any():
@@ -454,3 +455,11 @@ def _clear_floor(
             f.ankle[s_][:, 2] += spread(np.where(lift, -low, 0.0), win)
         angles.update(ang)
     return angles
+
+
+@functools.lru_cache(maxsize=32)
+def _range_rad(joint: str) -> tuple[float, float]:
+    """The humanoid's range of ``joint`` (a ``ROM_DEG`` key), radians (kept: the floor
+    clearance clips every joint in each of its rounds)."""
+    lo, hi = np.deg2rad(ROM_DEG[joint])
+    return lo, hi
