@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import functools
+import math
 
 import numpy as np
 from scipy.ndimage import gaussian_filter1d, maximum_filter1d
@@ -99,10 +100,17 @@ def spread_rows(need, win, kernel):
     r = len(kernel) // 2
     pad = win
     ext = np.empty(n + 2 * pad)
+    # live[j]: how many of ext[:j] are not +0.0 (a window of +0.0 only has the maximum +0.0,
+    # and a sum over such maxima is +0.0: those samples are skipped, their zeros kept)
+    live = np.zeros(n + 2 * pad + 1, dtype=np.int64)
     for i in range(-pad, n + pad):
-        ext[i + pad] = need[_reflect(i, n)]
-    peak = np.empty(n + 2 * r)
+        v = need[_reflect(i, n)]
+        ext[i + pad] = v
+        live[i + pad + 1] = live[i + pad] + (v != 0.0 or math.copysign(1.0, v) < 0.0)
+    peak = np.zeros(n + 2 * r)
     for i in range(n):
+        if live[i + 2 * win + 1] == live[i]:
+            continue
         m = ext[i]
         for j in range(i + 1, i + 2 * win + 1):
             if ext[j] > m:
@@ -111,8 +119,14 @@ def spread_rows(need, win, kernel):
     for i in range(r):  # the maximum's reflected borders
         peak[r - 1 - i] = peak[r + _reflect(-1 - i, n)]
         peak[r + n + i] = peak[r + _reflect(n + i, n)]
+    hot = np.zeros(n + 2 * r + 1, dtype=np.int64)  # as live, over peak
+    for i in range(n + 2 * r):
+        v = peak[i]
+        hot[i + 1] = hot[i] + (v != 0.0 or math.copysign(1.0, v) < 0.0)
     for i in range(n):
         c = i + r
+        if hot[c + r + 1] == hot[c - r]:
+            continue
         acc = peak[c] * kernel[r]
         for j in range(1, r + 1):
             acc += (peak[c - j] + peak[c + j]) * kernel[r + j]

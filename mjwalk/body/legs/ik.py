@@ -295,17 +295,26 @@ def foot_lowest(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry) ->
     Returns:
         (N,) heights, metres (negative: below the hip).
     """
+    ah, ball = geom.ankle_height, ball_offset(geom)
+    foot, toes = _foot_boxes(geom)
+    p = side_prefix(side)
+    names = [k.format(p) for k in LEG_JOINTS]
+    q = np.ascontiguousarray(np.column_stack([np.asarray(angles[k], float) for k in names]))
+    s = 1.0 if side == "left" else -1.0
+    return _foot_lowest_rows(q, s, geom.thigh, geom.shank, foot, toes, ball, ah)
+
+
+@functools.lru_cache(maxsize=16)
+def _foot_boxes(geom: LegGeometry) -> tuple[np.ndarray, np.ndarray]:
+    """The corners (8, 3) of :func:`foot_lowest`'s sole box in the foot frame and of its toes
+    box in the toes frame (kept per geometry: not to be changed)."""
     ah, ball, hw = geom.ankle_height, ball_offset(geom), geom.foot_width / 2
     corners = np.array(list(itertools.product((0.0, 1.0), (-hw, hw), (0.0, 1.0))))
     # sole box: x from the heel to the ball, 0.8 ankle heights tall from the sole
     foot = corners * [ball + geom.foot_back, 1.0, 0.8 * ah] + [-geom.foot_back, 0.0, -ah]
     # toes box in the toes frame (origin at the ball on the sole, rotated by the toe angle)
     toes = corners * [geom.foot_front - ball, 1.0, 0.4 * ah]
-    p = side_prefix(side)
-    names = [k.format(p) for k in LEG_JOINTS]
-    q = np.ascontiguousarray(np.column_stack([np.asarray(angles[k], float) for k in names]))
-    s = 1.0 if side == "left" else -1.0
-    return _foot_lowest_rows(q, s, geom.thigh, geom.shank, foot, toes, ball, ah)
+    return foot, toes
 
 
 @njit
@@ -443,6 +452,7 @@ class LegIKCache:
         self.side, self.geom = side, geom
         self.inputs: np.ndarray | None = None  # (n, 9) of the previous call
         self.out: np.ndarray | None = None  # (n, 6) its angles
+        self.flex: tuple[np.ndarray, np.ndarray] | None = None  # see flex_buffers
 
     def buffers(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         """The previous call's inputs and angles, for compiled callers of
@@ -458,6 +468,21 @@ class LegIKCache:
             self.inputs = np.full((n, 9), np.nan)  # nan: never equal, every row is solved
             self.out = np.empty((n, 6))
         return self.inputs, self.out
+
+    def flex_buffers(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """A second cache beside :meth:`buffers` for compiled callers that need only the ankle
+        flexion (:func:`~mjwalk.body.legs.pitchfit.fit_ankle_range`'s rounds), over the same
+        samples (new ones, every row to be solved, for another ``n``).
+
+        Args:
+            n: the number of samples.
+
+        Returns:
+            inputs (n, 9) (as :meth:`buffers`') and the ankle flexions (n,) they give, radians.
+        """
+        if self.flex is None or len(self.flex[1]) != n:
+            self.flex = (np.full((n, 9), np.nan), np.empty(n))
+        return self.flex
 
     def __call__(self, ankle, foot_yaw, pitch, root, yaw) -> dict:
         ankle = np.ascontiguousarray(ankle, dtype=float)
@@ -513,6 +538,46 @@ def leg_ik_world_cached(
             root[i, 2],
             yaw[i],
         )
+        same = True
+        for k in range(9):
+            if row[k] != inputs[i, k]:
+                same = False
+                break
+        if same:
+            continue
+        for k in range(9):
+            inputs[i, k] = row[k]
+        leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
+
+
+@njit
+def leg_ik_world_cached_where(
+    rows, ankle, foot_yaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs, out
+):
+    """:func:`leg_ik_world_cached` on the rows where ``rows`` is True only: the other rows
+    keep their ``inputs`` and ``out`` as a pair (a later call solves them if they changed).
+
+    Args:
+        rows: (n,) bool, the rows to bring up to date.
+        ankle: (n, 3) ankle targets, metres, world frame.
+        foot_yaw: (n,) foot headings, radians from +x CCW.
+        pitch: (n,) foot pitches to the floor, radians, + toes up.
+        root: (n, 3) pelvis (root) positions, metres.
+        yaw: (n,) pelvis yaws, radians from +x CCW.
+        sgn: +1 for the left leg, -1 for the right.
+        hip_y: the hip joint centre's lateral offset from the pelvis centre, metres.
+        L1: thigh length, metres.
+        L2: shank length, metres.
+        rmin: the shortest hip-to-ankle distance, metres (:func:`ik_lengths`).
+        rmax: the longest hip-to-ankle distance, metres.
+        inputs: (n, 9) the inputs of the previous call per row, updated on ``rows``.
+        out: (n, 6) unclipped angles, radians, updated where a row of ``rows`` changed.
+    """
+    for i in range(ankle.shape[0]):
+        if not rows[i]:
+            continue
+        row = (ankle[i, 0], ankle[i, 1], ankle[i, 2], foot_yaw[i], pitch[i], root[i, 0],
+               root[i, 1], root[i, 2], yaw[i])  # fmt: skip
         same = True
         for k in range(9):
             if row[k] != inputs[i, k]:

@@ -8,9 +8,10 @@ arithmetic. :func:`repitch_foot` and :func:`fit_ankle_range` do the same arithme
 order, in one compiled call (the same numbers, bit for bit: tests/timeline/test_kernels.py compares
 them with the NumPy code they replace). World frame, metres, radians; a foot's pitch + toes up.
 
-The compiled rounds call the leg IK (``kinematics.leg_ik_world_cached``) and the spread
-(``curves.spread_rows``): numba caches this module's machine code by its own source, so change a
-comment here when those change (else a cached copy keeps the old callees).
+The compiled rounds solve the leg IK's ankle flexion (:func:`_ankle_flex_row`: the arithmetic of
+``ik.leg_ik_world_row`` up to it) and call the spread (``curves.spread_rows``): numba caches this
+module's machine code by its own source, so change a comment here when those change (else a cached
+copy keeps the old callees).
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import gauss_kernel, spread_rows
 from mjwalk.body.legs.footpivot import ball_offset
-from mjwalk.body.legs.ik import LegIKCache, ik_lengths, leg_ik_world_cached
+from mjwalk.body.legs.ik import LegIKCache, ik_lengths
 from mjwalk.body.legs.steps import FootTracks
 
 
@@ -170,6 +171,7 @@ def fit_ankle_range(
     if n < 2 * win + 2:
         return None
     inputs, out = ik.buffers(n)
+    f_inputs, flex = ik.flex_buffers(n)
     ankle = np.array(feet.ankle[s_], dtype=float, order="C")
     pitch = np.array(feet.pitch[s_], dtype=float)
     geom = ik.geom
@@ -185,8 +187,7 @@ def fit_ankle_range(
         1.0 if s_ == "l" else -1.0,
         float(geom.hip_y),
         *ik_lengths(geom),
-        inputs,
-        out,
+        (inputs, out, f_inputs, flex),
         float(fit.dorsi_max),
         float(fit.plantar_min),
         int(win),
@@ -215,8 +216,7 @@ def _fit_rounds(
     L2,
     rmin,
     rmax,
-    inputs,
-    out,
+    caches,
     dorsi_max,
     plantar_min,
     win,
@@ -227,8 +227,9 @@ def _fit_rounds(
     rounds,
 ):
     """The rounds of :func:`fit_ankle_range` in place (``ankle``, ``pitch``, ``toe``, the IK
-    cache's ``inputs`` and ``out``)."""
+    cache's ``caches``: its inputs and angles, its flexion-only inputs and flexions)."""
     n = ankle.shape[0]
+    inputs, out, f_inputs, flex_c = caches
     need_down = np.empty(n)
     need_up = np.empty(n)
     # sines and cosines: of the foot headings, the footprints' headings (constant here) and
@@ -237,13 +238,13 @@ def _fit_rounds(
     c0, s0 = np.cos(pitch), np.sin(pitch)
     cp, sp = c0.copy(), s0.copy()
     for _ in range(rounds):
-        leg_ik_world_cached(
-            ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs, out
-        )
+        # (the grounded rows' ankle flexions only: the rounds read no other angle)
+        _grounded_flex(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax,
+                       inputs, out, f_inputs, flex_c)  # fmt: skip
         e_max = -np.inf
         s_max = -np.inf
         for i in range(n):
-            flex = out[i, 4]
+            flex = flex_c[i]
             excess = flex - dorsi_max if ground[i] else 0.0
             short = plantar_min - flex if ground[i] and pitch[i] < 0 else 0.0
             e_max = max(e_max, excess)
@@ -264,3 +265,78 @@ def _fit_rounds(
                 cf[i], sf[i], c0[i], s0[i], p1, cp[i], sp[i], ball, back, ah,
             )  # fmt: skip
             c0[i], s0[i] = cp[i], sp[i]
+
+
+@njit
+def _grounded_flex(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs,
+                   out, f_inputs, flex):  # fmt: skip
+    """The ankle flexion ``flex`` (n,) of every grounded row (``ground``): from the IK cache
+    (``inputs`` (n, 9), angles ``out`` (n, 6)) where a row's inputs are its, else from the
+    flexion cache (``f_inputs`` (n, 9)) where they are that's, else solved
+    (:func:`_ankle_flex_row`); ``f_inputs`` and ``flex`` are updated, the IK cache is not."""
+    for i in range(ankle.shape[0]):
+        if not ground[i]:
+            continue
+        row = (ankle[i, 0], ankle[i, 1], ankle[i, 2], fyaw[i], pitch[i], root[i, 0], root[i, 1],
+               root[i, 2], yaw[i])  # fmt: skip
+        in_ik, in_flex = True, True
+        for k in range(9):
+            if row[k] != inputs[i, k]:
+                in_ik = False
+            if row[k] != f_inputs[i, k]:
+                in_flex = False
+        if in_flex:
+            continue
+        for k in range(9):
+            f_inputs[i, k] = row[k]
+        if in_ik:
+            flex[i] = out[i, 4]
+        else:
+            flex[i] = _ankle_flex_row(ankle, fyaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin,
+                                      rmax)  # fmt: skip
+
+
+@njit
+def _ankle_flex_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax):
+    """Row ``i``'s ankle flexion (radians) of ``ik.leg_ik_world_row``: its arithmetic, in its
+    order, up to that angle (the rotation products of ``ik._mat3`` written out, zero terms
+    kept, so the bits are the same)."""
+    cy, sy = math.cos(yaw[i]), math.sin(yaw[i])
+    d0 = ankle[i, 0] - (root[i, 0] + sgn * hip_y * -sy)
+    d1 = ankle[i, 1] - (root[i, 1] + sgn * hip_y * cy)
+    d2 = ankle[i, 2] - (root[i, 2] + sgn * hip_y * 0.0)
+    c, sn = math.cos(-yaw[i]), math.sin(-yaw[i])
+    u0 = c * d0 + -sn * d1 + 0.0 * d2  # R_z(-yaw) (ankle - hip)
+    u1 = sn * d0 + c * d1 + 0.0 * d2
+    u2 = 0.0 * d0 + 0.0 * d1 + 1.0 * d2
+    dy = foot_yaw[i] - yaw[i]
+    yaw_f = math.atan2(math.sin(dy), math.cos(dy))
+    pitch_f = pitch[i]
+    cz, sz = math.cos(yaw_f), math.sin(yaw_f)
+    cp, sp = math.cos(-pitch_f), math.sin(-pitch_f)
+    # rf = R_z(yaw_f) R_y(-pitch_f), row-major: a = (cz, -sz, 0, sz, cz, 0, 0, 0, 1),
+    # b = (cp, 0, sp, 0, 1, 0, -sp, 0, cp)
+    msz = -sz
+    msp = -sp
+    rf0 = cz * cp + msz * 0.0 + 0.0 * msp
+    rf1 = cz * 0.0 + msz * 1.0 + 0.0 * 0.0
+    rf2 = cz * sp + msz * 0.0 + 0.0 * cp
+    rf3 = sz * cp + cz * 0.0 + 0.0 * msp
+    rf4 = sz * 0.0 + cz * 1.0 + 0.0 * 0.0
+    rf5 = sz * sp + cz * 0.0 + 0.0 * cp
+    rf6 = 0.0 * cp + 0.0 * 0.0 + 1.0 * msp
+    rf7 = 0.0 * 0.0 + 0.0 * 1.0 + 1.0 * 0.0
+    rf8 = 0.0 * sp + 0.0 * 0.0 + 1.0 * cp
+    v0 = rf0 * u0 + rf3 * u1 + rf6 * u2  # R_f^T (ankle - hip)
+    v1 = rf1 * u0 + rf4 * u1 + rf7 * u2
+    v2 = rf2 * u0 + rf5 * u1 + rf8 * u2
+    r = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
+    rc = min(max(r, rmin), rmax)
+    ck = (rc**2 - L1**2 - L2**2) / (2 * L1 * L2)
+    knee = math.acos(min(max(ck, -1.0), 1.0))
+    m = math.hypot(v1, v2)
+    a = math.atan2(L1 * math.sin(knee), L1 * math.cos(knee) + L2) - math.atan2(v0, m)
+    w = np.fmod(a + math.pi, 2 * math.pi)  # np.mod(a + pi, 2 pi) - pi: into [-pi, pi)
+    if w < 0.0:
+        w += 2 * math.pi
+    return w - math.pi

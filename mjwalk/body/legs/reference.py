@@ -73,7 +73,9 @@ class ReferenceGait:
     def __call__(self, name: str, cycle, derivative: bool = False) -> np.ndarray:
         """Angle ``name`` ("hip", "knee", "pitch") in radians at cycle fraction(s) (wrapped);
         ``derivative=True`` gives radians per unit cycle."""
-        c = np.mod(cycle, 1.0)
+        # (a Python float by Python's %: NumPy's floor-mod arithmetic, fmod then shifted into
+        # [0, 1), without a ufunc call per value)
+        c = cycle % 1.0 if type(cycle) is float else np.mod(cycle, 1.0)
         sp = self._splines[name]
         if not self._unit:  # a table not on [0, 1]: scipy wraps onto it
             return sp(c, 1) if derivative else sp(c)

@@ -12,7 +12,7 @@ from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.body.legs.curves import smoothstep, soft_excess1
 from mjwalk.body.legs.footpivot import ball_offset, pivot_ankle, spin_print
-from mjwalk.body.legs.ik import ik_lengths, leg_ik_world, leg_ik_world_row
+from mjwalk.body.legs.ik import LegIKCache, ik_lengths, leg_ik_world, leg_ik_world_cached_where
 from mjwalk.body.legs.steps import SWING_TURNED, FootTracks
 
 #: Spin turns (degrees): a grounded foot whose hip would rotate past its range less
@@ -37,7 +37,9 @@ class _Spin:
     ramp: float
 
 
-def spin_turns(feet: FootTracks, root, yaw, geom: LegGeometry) -> dict:
+def spin_turns(
+    feet: FootTracks, root, yaw, geom: LegGeometry, ik: dict[str, LegIKCache] | None = None
+) -> dict:
     """Spin turns, in place: a grounded foot (stance, then pre-swing on the same footprint)
     whose hip rotation would pass its range as the pelvis turns (a sharp turning step) turns
     by the excess about the point it stands on, so that point stays put and the hip stays
@@ -59,6 +61,8 @@ def spin_turns(feet: FootTracks, root, yaw, geom: LegGeometry) -> dict:
         root: (n, 3) pelvis position, metres, world frame.
         yaw: (n,) pelvis yaw, radians from +x CCW.
         geom: the leg lengths.
+        ik: per side ("l"/"r") an IK cache over the n samples that keeps the grounded
+            samples' solutions (the leg's later corrections start from them); None: not kept.
 
     Returns:
         per side ("l"/"r") the largest turn of a footprint (radians) and the number of
@@ -74,7 +78,8 @@ def spin_turns(feet: FootTracks, root, yaw, geom: LegGeometry) -> dict:
         starts, ends = _contacts(feet.ground[s_], feet.prints[s_], n)
         # the hip rotation of every grounded sample at once (the rows are independent: as
         # per contact), and where it passes its range; the other contacts are left as they are
-        r_all, up_all, down_all = _hip_rotation(feet, s_, root_c, yaw_c, sp)
+        bufs = ik[s_].buffers(n) if ik is not None else (np.full((n, 9), np.nan), np.empty((n, 6)))
+        r_all, up_all, down_all = _hip_rotation(feet, s_, root_c, yaw_c, sp, bufs)
         need_all = (up_all > 0) | (down_all > 0)
         worst, count = 0.0, 0
         for i, (j0, j1) in enumerate(zip(starts, ends, strict=True)):
@@ -95,18 +100,44 @@ def spin_turns(feet: FootTracks, root, yaw, geom: LegGeometry) -> dict:
 def _contacts(g: np.ndarray, prints: np.ndarray, n: int) -> tuple[np.ndarray, list[int]]:
     """First and last samples of each contact of a foot on the floor (``g`` (n,) bool) on one
     footprint of ``prints`` (n, 3): a contact ends before the next sample off the floor or on
-    another print."""
-    new_print = np.r_[True, np.any(prints[1:] != prints[:-1], axis=1)]
-    starts = np.flatnonzero(g & (new_print | ~np.r_[False, g[:-1]]))
-    breaks = np.flatnonzero(~g | new_print)
-    nxt = np.searchsorted(breaks, starts, side="right")
-    ends = [int(breaks[k]) - 1 if k < len(breaks) else n - 1 for k in nxt]
-    return starts, ends
+    another print (compiled: :func:`_contact_bounds`)."""
+    starts, ends = _contact_bounds(
+        np.ascontiguousarray(g, dtype=np.bool_), np.ascontiguousarray(prints, dtype=float), n
+    )
+    return starts, [int(e) for e in ends]
 
 
-def _hip_rotation(feet: FootTracks, s_: str, root_c, yaw_c, sp: _Spin):
+@njit
+def _contact_bounds(g, prints, n):
+    """:func:`_contacts` in one pass: a contact starts on a grounded sample after one off the
+    floor (or the first) or on a new print, and ends before the next sample off the floor or
+    on a new print (or at the last sample); (starts, ends) as int arrays."""
+    starts = np.empty(n, np.int64)
+    ends = np.empty(n, np.int64)
+    m = 0
+    open_ = False
+    for i in range(n):
+        new_print = i == 0
+        if i > 0:
+            for k in range(3):
+                if prints[i, k] != prints[i - 1, k]:
+                    new_print = True
+        if open_ and (new_print or not g[i]):
+            ends[m - 1] = i - 1
+            open_ = False
+        if g[i] and not open_:
+            starts[m] = i
+            m += 1
+            open_ = True
+    if open_:
+        ends[m - 1] = n - 1
+    return starts[:m].copy(), ends[:m].copy()
+
+
+def _hip_rotation(feet: FootTracks, s_: str, root_c, yaw_c, sp: _Spin, bufs):
     """The ``s_`` leg's hip rotation (n,) at every grounded sample and its soft excess over
-    the range's top and under its bottom (:func:`_hip_rotation_excess`), radians."""
+    the range's top and under its bottom (:func:`_hip_rotation_excess`), radians; ``bufs``:
+    an IK cache's inputs (n, 9) and angles (n, 6), updated on the grounded samples."""
     n = len(yaw_c)
     lo, hi, margin, soft = sp.lo, sp.hi, sp.margin, sp.soft
     r_all, up_all, down_all = (np.zeros(n) for _ in range(3))
@@ -126,6 +157,7 @@ def _hip_rotation(feet: FootTracks, s_: str, root_c, yaw_c, sp: _Spin):
         r_all,
         up_all,
         down_all,
+        *bufs,
     )
     return r_all, up_all, down_all
 
@@ -224,16 +256,17 @@ def _fade_offsets(feet: FootTracks, s_: str, offsets, bounds) -> None:
 
 @njit
 def _hip_rotation_excess(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax,
-                         top, bottom, w, rot, up, down):  # fmt: skip
+                         top, bottom, w, rot, up, down, inputs, out):  # fmt: skip
     """Per grounded sample (``ground`` (n,)): the leg's hip rotation ``rot`` (unclipped IK,
-    :func:`~mjwalk.body.legs.ik.leg_ik_world_row`) and how far it passes ``top`` and
-    falls short of ``bottom`` (``up``, ``down``: :func:`~mjwalk.body.legs.curves.soft_excess`
-    over ``w``), radians; the other samples are left as they are."""
-    out = np.empty((ground.shape[0], 6))
+    :func:`~mjwalk.body.legs.ik.leg_ik_world_cached_where` with the cache's ``inputs`` (n, 9)
+    and angles ``out`` (n, 6)) and how far it passes ``top`` and falls short of ``bottom``
+    (``up``, ``down``: :func:`~mjwalk.body.legs.curves.soft_excess` over ``w``), radians; the
+    other samples are left as they are."""
+    leg_ik_world_cached_where(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin,
+                              rmax, inputs, out)  # fmt: skip
     for i in range(ground.shape[0]):
         if not ground[i]:
             continue
-        leg_ik_world_row(ankle, fyaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
         rot[i] = out[i, 0]
         up[i] = soft_excess1(out[i, 0] - top, w)
         down[i] = soft_excess1(bottom - out[i, 0], w)

@@ -34,6 +34,7 @@ leg cycle 50-100 % (cycle 0 = heel strike of that leg).
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -145,10 +146,12 @@ def legs_from_walk(
         knee_prev = _synth_step(sy, frames, k, knee_prev)
     # where the pelvis turns further than a grounded foot's hip can rotate, the foot spins
     # about its ball; its next swing starts from the turned footprint
-    spin_turns(sy.feet, np.column_stack([sy.xy, sy.z]), sy.yaw, geom)
+    # (the loops below re-solve only the samples changed since: the spin turns' grounded
+    # samples are solved already)
+    ik = {s_: LegIKCache(s_, geom) for s_ in "lr"}
+    spin_turns(sy.feet, np.column_stack([sy.xy, sy.z]), sy.yaw, geom, ik)
     _hold_ends(sy, frames[0], frames[-1])
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
-    ik = {s_: LegIKCache(s_, geom) for s_ in "lr"}  # the loops below re-solve changed samples
     _fit_ankles(sy, ik, win)
     root = np.column_stack([sy.xy, sy.z])
     angles = _clear_floor(sy, ik, root, win)
@@ -437,8 +440,8 @@ def _clear_floor(
         # down) and solve again, so the foot stays above -FLOOR_TOLERANCE by construction
         for _ in range(FLOOR_ITERATIONS):
             raw = ik[s_](f.ankle[s_], f.fyaw[s_], f.pitch[s_], root, sy.yaw)
-            ang = {k: np.clip(v, *np.deg2rad(ROM_DEG[generic_joint(k)])) for k, v in raw.items()}
-            ang[f"toe_{s_}"] = np.clip(f.toe[s_], *np.deg2rad(ROM_DEG["toe"]))
+            ang = {k: np.clip(v, *_range_rad(generic_joint(k))) for k, v in raw.items()}
+            ang[f"toe_{s_}"] = np.clip(f.toe[s_], *_range_rad("toe"))
             low = hip[:, 2] + foot_lowest(ang, side_of_prefix(s_), geom)
             bad = low < -FLOOR_TOLERANCE
             if not bad.any():
@@ -452,3 +455,11 @@ def _clear_floor(
             f.ankle[s_][:, 2] += spread(np.where(lift, -low, 0.0), win)
         angles.update(ang)
     return angles
+
+
+@functools.lru_cache(maxsize=32)
+def _range_rad(joint: str) -> tuple[float, float]:
+    """The humanoid's range of ``joint`` (a ``ROM_DEG`` key), radians (kept: the floor
+    clearance clips every joint in each of its rounds)."""
+    lo, hi = np.deg2rad(ROM_DEG[joint])
+    return lo, hi
