@@ -13,17 +13,11 @@ grid, the grid-A* baseline and the hybrid A* work on unchanged:
   workplace's (0.05 m) and its top the walker's head: stature plus
   :data:`mjwalk.world.norms.HEAD_MARGIN` (a beam or a mezzanine's underside lower than that is an
   obstacle for this walker and not for a shorter one). Without a head height the band is the
-  workplace's own (0.05-2.0 m);
-- a ramp's part more than :data:`mjwalk.world.norms.LEVEL_TOLERANCE` (4 mm, a trip edge in
-  ASR A1.5/1,2) above the level is an obstacle of the level, not only its part above the band's
-  foot: a walk beside a ramp's low end keeps its feet off the ramp's side faces there (the legs
-  know a ramp only where the route crosses it, at its foot, which stays free: the crossing's
-  stance lies a body radius and more beyond it).
+  workplace's own (0.05-2.0 m).
 
-The floor's view with the workplace's own band is the workplace itself where the workplace has
-no ramp: flat scenes plan exactly as before. Views are built once per level and set of obstacles
-and kept on the workplace (walkers of nearby statures share a view when no geom's underside lies
-between their heads).
+The floor's view with the workplace's own band is the workplace itself: flat scenes plan exactly
+as before. Views are built once per level and set of obstacles and kept on the workplace (walkers
+of nearby statures share a view when no geom's underside lies between their heads).
 :func:`level_at` tells which level a point stands on (kept on the workplace per point).
 Metres, world frame.
 """
@@ -41,7 +35,7 @@ from scipy import ndimage
 from mjwalk.errors import InputError, SceneError
 from mjwalk.world.clearance import ClearanceField, build_clearance
 from mjwalk.world.floor import find_floor
-from mjwalk.world.norms import CONTACT_GAP, EXPOSED_MIN, HEADROOM_SCAN, LEVEL_TOLERANCE
+from mjwalk.world.norms import CONTACT_GAP, EXPOSED_MIN, HEADROOM_SCAN
 from mjwalk.world.workplace import Workplace, WorkplaceOptions, obstacle_footprints
 
 #: The key under which a workplace keeps its level views.
@@ -93,10 +87,9 @@ def level_view(workplace: Workplace, level: int, head: float | None = None) -> W
             None: the workplace's own band.
 
     Returns:
-        The level's workplace: its surfaces' extent as floor bounds, the obstacles in its band
-        and the ramps' parts above a trip edge, the level's edges as walls in the clearance
-        field; ``floor_z`` the level's height. The floor's view with the workplace's band is
-        ``workplace`` itself when it has no ramp.
+        The level's workplace: its surfaces' extent as floor bounds, the obstacles in its band,
+        the level's edges as walls in the clearance field; ``floor_z`` the level's height. The
+        floor's view with the workplace's band is ``workplace`` itself.
 
     Raises:
         InputError: an unknown level or a head height out of range.
@@ -107,8 +100,7 @@ def level_view(workplace: Workplace, level: int, head: float | None = None) -> W
     lv = graph.levels[int(level)]
     base = workplace.options or WorkplaceOptions()
     top = _band_top(head, workplace.z_range[1])
-    ramps = frozenset(s.geom_id for s in graph.surfaces if s.is_ramp)
-    if lv.index == 0 and top == workplace.z_range[1] and not ramps:
+    if lv.index == 0 and top == workplace.z_range[1]:
         return workplace
     views = workplace.__dict__.setdefault(_VIEWS, {})
     known = views.get((lv.index, round(top, 3)))  # this level and band seen before
@@ -121,14 +113,8 @@ def level_view(workplace: Workplace, level: int, head: float | None = None) -> W
     floor = find_floor(model, data, workplace.name)
     own = frozenset(graph.surfaces[i].geom_id for i in lv.surfaces)
     footprints = obstacle_footprints(
-        model, data, floor, options, workplace.name, base=lv.height, skip=own | ramps
+        model, data, floor, options, workplace.name, base=lv.height, skip=own
     )
-    if ramps:  # a ramp's sides from a trip edge's height up (module docstring)
-        low = replace(options, z_range=(LEVEL_TOLERANCE, top))
-        others = frozenset(range(model.ngeom)) - ramps
-        footprints += obstacle_footprints(
-            model, data, floor, low, workplace.name, base=lv.height, skip=others
-        )
     key = _view_key(lv.index, footprints)
     if key not in views:
         views[key] = _build_view(workplace, lv.index, footprints, options)
