@@ -53,10 +53,21 @@ def test_the_twelve_run_batchs_step_edge_contact_is_gone():
     re-simulated alone as ``--only-run`` does, has 0 contacts. Before: run 5 (a fatigued
     operator, step route) put its right toes 1.5 mm into the platform's edge as its foot,
     hanging toes down behind the riser, sank back after lift-off from the step's tread
-    (edgeswing.rise_held). (Run 7's toes over the ramp's low corner, walking past it on the
-    floor, are not fixed: keeping a floor walk's feet off a ramp's low sides blocked level
-    routes; see ``world.levelview``.)"""
+    (edgeswing.rise_held)."""
     spec = load_cycle_spec(cycle_file("multilevel_platform"))
     r = simulate_cycle(spec, run_generator(0, 5), run=5, ergonomics=False)
     assert r.group == "fatigued"
+    assert r.collisions == []
+
+
+@pytest.mark.slow
+def test_the_twelve_run_batchs_ramp_corner_contact_is_gone():
+    """Seeded: run 7 of the same batch (an older operator, ramp route) has 0 contacts. Before:
+    walking down the ramp and turning back south-west on the floor past its foot, the right
+    foot, toes down after push-off, swung its toes 10.3 mm into the ramp's low corner at
+    (5.57, 2.73): the swing over a ramp's plane took the sole's points as if the foot were
+    flat, 3 cm too far ahead (:func:`mjwalk.body.legs.rampreach.swing_over_ramps`)."""
+    spec = load_cycle_spec(cycle_file("multilevel_platform"))
+    r = simulate_cycle(spec, run_generator(0, 7), run=7, ergonomics=False)
+    assert r.group == "older_adult"
     assert r.collisions == []
