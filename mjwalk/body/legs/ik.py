@@ -245,6 +245,29 @@ def leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, r
         out: (n, 6) unclipped angles, radians (hip rotation, flexion, abduction, knee, ankle
             flexion, inversion); row ``i`` is written.
     """
+    u0, u1, u2, yrel = hip_frame_row(ankle, foot_yaw, root, yaw, i, sgn, hip_y)
+    _leg_ik_one(u0, u1, u2, yrel, pitch[i], sgn, L1, L2, rmin, rmax, out[i])
+
+
+@njit
+def hip_frame_row(ankle, foot_yaw, root, yaw, i, sgn, hip_y):
+    """Row ``i``'s ankle target seen from its hip in the pelvis frame, and the foot's yaw
+    relative to the pelvis: the first half of :func:`leg_ik_world_row` (the ankle flexion of
+    ``pitchfit`` starts from the same numbers).
+
+    Args:
+        ankle: (n, 3) ankle targets, metres, world frame.
+        foot_yaw: (n,) foot headings, radians from +x CCW.
+        root: (n, 3) pelvis (root) positions, metres.
+        yaw: (n,) pelvis yaws, radians from +x CCW.
+        i: the row.
+        sgn: +1 for the left leg, -1 for the right.
+        hip_y: the hip joint centre's lateral offset from the pelvis centre, metres.
+
+    Returns:
+        ``(u0, u1, u2, yrel)``: :math:`R_z(-yaw)` (ankle - hip), metres, pelvis frame (x
+        forward, y left, z up), and the foot's yaw less the pelvis's, radians in [-pi, pi].
+    """
     cy, sy = math.cos(yaw[i]), math.sin(yaw[i])
     d0 = ankle[i, 0] - (root[i, 0] + sgn * hip_y * -sy)
     d1 = ankle[i, 1] - (root[i, 1] + sgn * hip_y * cy)
@@ -254,8 +277,7 @@ def leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, r
     u1 = sn * d0 + c * d1 + 0.0 * d2
     u2 = 0.0 * d0 + 0.0 * d1 + 1.0 * d2
     dy = foot_yaw[i] - yaw[i]
-    yrel = math.atan2(math.sin(dy), math.cos(dy))
-    _leg_ik_one(u0, u1, u2, yrel, pitch[i], sgn, L1, L2, rmin, rmax, out[i])
+    return u0, u1, u2, math.atan2(math.sin(dy), math.cos(dy))
 
 
 def leg_fk(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry):
@@ -527,27 +549,8 @@ def leg_ik_world_cached(
         out: (n, 6) unclipped angles, radians, updated where the inputs changed.
     """
     for i in range(ankle.shape[0]):
-        row = (
-            ankle[i, 0],
-            ankle[i, 1],
-            ankle[i, 2],
-            foot_yaw[i],
-            pitch[i],
-            root[i, 0],
-            root[i, 1],
-            root[i, 2],
-            yaw[i],
-        )
-        same = True
-        for k in range(9):
-            if row[k] != inputs[i, k]:
-                same = False
-                break
-        if same:
-            continue
-        for k in range(9):
-            inputs[i, k] = row[k]
-        leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
+        _update_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, inputs,
+                    out)  # fmt: skip
 
 
 @njit
@@ -574,17 +577,24 @@ def leg_ik_world_cached_where(
         out: (n, 6) unclipped angles, radians, updated where a row of ``rows`` changed.
     """
     for i in range(ankle.shape[0]):
-        if not rows[i]:
-            continue
-        row = (ankle[i, 0], ankle[i, 1], ankle[i, 2], foot_yaw[i], pitch[i], root[i, 0],
-               root[i, 1], root[i, 2], yaw[i])  # fmt: skip
-        same = True
-        for k in range(9):
-            if row[k] != inputs[i, k]:
-                same = False
-                break
-        if same:
-            continue
-        for k in range(9):
-            inputs[i, k] = row[k]
-        leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
+        if rows[i]:
+            _update_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax,
+                        inputs, out)  # fmt: skip
+
+
+@njit
+def _update_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, inputs, out):
+    """Row ``i`` of :func:`leg_ik_world_cached`: solved by :func:`leg_ik_world_row` and its
+    inputs kept when they differ from ``inputs[i]``, else left as it is."""
+    row = (ankle[i, 0], ankle[i, 1], ankle[i, 2], foot_yaw[i], pitch[i], root[i, 0],
+           root[i, 1], root[i, 2], yaw[i])  # fmt: skip
+    same = True
+    for k in range(9):
+        if row[k] != inputs[i, k]:
+            same = False
+            break
+    if same:
+        return
+    for k in range(9):
+        inputs[i, k] = row[k]
+    leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)

@@ -25,7 +25,7 @@ from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import gauss_kernel, spread_rows
 from mjwalk.body.legs.footpivot import ball_offset
-from mjwalk.body.legs.ik import LegIKCache, ik_lengths
+from mjwalk.body.legs.ik import LegIKCache, hip_frame_row, ik_lengths
 from mjwalk.body.legs.steps import FootTracks
 
 
@@ -301,16 +301,7 @@ def _ankle_flex_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rm
     """Row ``i``'s ankle flexion (radians) of ``ik.leg_ik_world_row``: its arithmetic, in its
     order, up to that angle (the rotation products of ``ik._mat3`` written out, zero terms
     kept, so the bits are the same)."""
-    cy, sy = math.cos(yaw[i]), math.sin(yaw[i])
-    d0 = ankle[i, 0] - (root[i, 0] + sgn * hip_y * -sy)
-    d1 = ankle[i, 1] - (root[i, 1] + sgn * hip_y * cy)
-    d2 = ankle[i, 2] - (root[i, 2] + sgn * hip_y * 0.0)
-    c, sn = math.cos(-yaw[i]), math.sin(-yaw[i])
-    u0 = c * d0 + -sn * d1 + 0.0 * d2  # R_z(-yaw) (ankle - hip)
-    u1 = sn * d0 + c * d1 + 0.0 * d2
-    u2 = 0.0 * d0 + 0.0 * d1 + 1.0 * d2
-    dy = foot_yaw[i] - yaw[i]
-    yaw_f = math.atan2(math.sin(dy), math.cos(dy))
+    u0, u1, u2, yaw_f = hip_frame_row(ankle, foot_yaw, root, yaw, i, sgn, hip_y)
     pitch_f = pitch[i]
     cz, sz = math.cos(yaw_f), math.sin(yaw_f)
     cp, sp = math.cos(-pitch_f), math.sin(-pitch_f)
