@@ -9,7 +9,15 @@ from mjwalk.body.legs.edgeswing import StepSurfaces
 from mjwalk.body.legs.footcheck import foot_points
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.legheights import step_surfaces
-from mjwalk.body.legs.rampreach import crest_ground, plane_pitch, roll_foot, trailing_reach
+from mjwalk.body.legs.rampreach import (
+    CREST_CLEARANCE,
+    crest_ground,
+    plane_pitch,
+    print_tracks,
+    roll_foot,
+    tilt,
+    trailing_reach,
+)
 from mjwalk.body.legs.steps import FootTracks, StepFrames
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.gait.default import default_model
@@ -126,7 +134,8 @@ def test_plane_pitch_on_the_ramp_only():
 
 def test_crest_checked_between_heel_and_toe():
     """A foot pitched toes down with its heel over a platform and its toe over the ramp below
-    its top edge: the ground offset keeps the sole above the edge between them."""
+    its top edge: the ground offset keeps the sole above the edge between them, by
+    CREST_CLEARANCE (a swing between a ramp and a level)."""
     g = leg_geometry(DEFAULT_STATURE)
     t = np.tan(np.deg2rad(5.5))
     fr = StepFrames("l", "r", 0, 10, np.array([-0.5, 0.0, 0.0]), np.array([0.6, 0.0, 0.0]),
@@ -136,5 +145,39 @@ def test_crest_checked_between_heel_and_toe():
     half = np.tan(np.deg2rad(2.75))  # halfway through its pitch toward the ramp's
     z = crest_ground(ankle, np.zeros(1), fr, sf, g, np.array([-np.deg2rad(2.75)]))
     # the sole's height at the edge (0.05 m ahead of the ankle) is z - 0.05 tan(2.75 deg):
-    # on the edge, not 0.7 mm into it (heel, ankle and toe only)
-    assert z[0] - 0.05 * half == pytest.approx(0.34)
+    # on the edge, not 0.7 mm into it (heel, ankle and toe only), plus the clearance
+    assert z[0] - 0.05 * half == pytest.approx(0.34 + CREST_CLEARANCE)
+    level = StepSurfaces(lift=0.34, stance=0.34, land=0.34)
+    assert crest_ground(ankle, np.zeros(1), fr, level, g)[0] == pytest.approx(0.34)
+
+
+@pytest.mark.parametrize("slope_deg", [5.5, -5.5])
+def test_tilt_turns_the_ankle_about_its_footprint(slope_deg):
+    """An ankle 6 cm ahead of its footprint (heel rising over the ball) and 8 cm up keeps both
+    distances in the ramp's plane: walking up a 5.5 deg ramp it rises 6 tan(5.5 deg) = 5.8 mm
+    above the ramp's height at the footprint more than turned about the point under it (the
+    toes 6 mm into the ramp by toe-off); on level ground it is returned bit for bit."""
+    s = np.deg2rad(slope_deg)
+    yaw, fp = 0.7, np.array([[1.0, 2.0]])
+    f = np.array([np.cos(yaw), np.sin(yaw)])
+    ankle = np.array([[*(fp[0] + 0.06 * f), 0.08]])
+    out = tilt(ankle, np.array([yaw]), np.array([s]), fp)
+    along = (out[0, :2] - fp[0]) @ f
+    assert along * np.cos(s) + out[0, 2] * np.sin(s) == pytest.approx(0.06, abs=1e-12)
+    assert -along * np.sin(s) + out[0, 2] * np.cos(s) == pytest.approx(0.08, abs=1e-12)
+    assert np.allclose(out[0, :2] - fp[0], along * f, atol=1e-12)
+    flat = tilt(ankle, np.array([yaw]), np.zeros(1), fp)
+    assert np.array_equal(flat, ankle)
+
+
+def test_print_tracks_follow_the_steps():
+    """The stance foot stands on its footprint through a step; the swing foot on its lift
+    footprint until the step's last sample, on its landing footprint from then."""
+    p = {k: np.array([x, 0.0, 0.0]) for k, x in (("a", 0.0), ("b", 0.3), ("c", 0.6), ("d", 0.9))}
+    frames = [
+        StepFrames("l", "r", 2, 6, p["a"], p["c"], p["b"], True, False),
+        StepFrames("r", "l", 6, 10, p["b"], p["d"], p["c"], False, True),
+    ]
+    out = print_tracks(frames, 13)
+    assert out["l"][:, 0].tolist() == [0.0] * 6 + [0.6] * 7
+    assert out["r"][:, 0].tolist() == [0.3] * 10 + [0.9] * 3

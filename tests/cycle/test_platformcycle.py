@@ -71,3 +71,21 @@ def test_the_twelve_run_batchs_ramp_corner_contact_is_gone():
     r = simulate_cycle(spec, run_generator(0, 7), run=7, ergonomics=False)
     assert r.group == "older_adult"
     assert r.collisions == []
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("run", [15, 18, 38])
+def test_the_forty_run_batchs_ramp_crest_contacts_are_gone(run):
+    """Seeded: runs 15, 18 and 38 of ``mjwalk simulate scenes/multilevel_platform.toml --runs
+    40`` (older operators, ramp route) have 0 contacts. Before: 26, 1 and 2, the toes 0.1-0.6
+    mm below the platform's top at its edge where the ramp's top meets it (x 2.2): the stance
+    foot on the ramp's last footprint was turned onto the slope about the point under its
+    ankle, not its footprint, so its ball and toes sank with the heel's rise (6 mm by
+    toe-off; :func:`mjwalk.body.legs.rampreach.tilt`); the heel's rise at the ankle's
+    dorsiflexion limit left up to 0.4 deg clipped (run 15,
+    :data:`mjwalk.body.legs.legheights.HEEL_RISE_PASSES`); the flat swing's 0.5 mm toe dip
+    after toe-off (run 18, :data:`mjwalk.body.legs.rampreach.CREST_CLEARANCE`)."""
+    spec = load_cycle_spec(cycle_file("multilevel_platform"))
+    r = simulate_cycle(spec, run_generator(0, run), run=run, ergonomics=False)
+    assert r.group == "older_adult"
+    assert r.collisions == []

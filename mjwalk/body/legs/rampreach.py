@@ -84,6 +84,58 @@ def roll_foot(
     feet.pitch[s][idx] = p2
 
 
+def print_tracks(frames: list[StepFrames], n: int) -> dict[str, np.ndarray]:
+    """Per side ("l"/"r") the footprint (x, y) each sample's foot stands on or lifts from, as
+    :func:`~mjwalk.body.legs.legheights.level_tracks` assigns the surfaces: the stance foot's
+    during a step, the swing foot's lift footprint until it lands, its landing one from then.
+
+    Args:
+        frames: the walk's steps as the leg synthesis sees them.
+        n: the number of samples.
+
+    Returns:
+        per side (n, 2) footprint positions, metres.
+    """
+    out = {s: np.zeros((n, 2)) for s in "lr"}
+    f0, fl = frames[0], frames[-1]
+    out[f0.side][: f0.start + 1] = f0.lift[:2]
+    out[f0.other][: f0.start + 1] = f0.stance[:2]
+    for fr in frames:
+        out[fr.other][fr.start : fr.end + 1] = fr.stance[:2]
+        out[fr.side][fr.start : fr.end + 1] = fr.lift[:2]
+        out[fr.side][fr.end] = fr.land[:2]
+    out[fl.side][fl.end :] = fl.land[:2]
+    out[fl.other][fl.end :] = fl.stance[:2]
+    return out
+
+
+def tilt(ankle: np.ndarray, yaw: np.ndarray, slope: np.ndarray, prints: np.ndarray) -> np.ndarray:
+    """Flat-ground ankles (m, 3) put on a slope: turned by ``slope`` about their footprints'
+    points on the floor, in the vertical plane of the headings ``yaw``. An ankle ahead of its
+    footprint (the heel rising over the ball in pre-swing, 5-6 cm by toe-off) rises with the
+    ramp's plane under it; turned about the point under itself instead, the ball and toes of
+    a foot walking up a 5.5 deg ramp sank 6 mm into it by toe-off (the multi-level platform
+    cycle's runs 15 and 18: the toes into the platform's edge at the ramp's top). On level
+    ground (slope 0) the ankles are returned unchanged, bit for bit.
+
+    Args:
+        ankle: (m, 3) the flat synthesis's ankle positions, metres (z over its ground).
+        yaw: (m,) the feet's headings, radians from +x CCW.
+        slope: (m,) the surface's slope along the heading, radians (+ toes up).
+        prints: (m, 2) the footprints the feet stand on (:func:`print_tracks`), metres.
+
+    Returns:
+        (m, 3) the ankles on the slope, z over the footprint's surface height, metres.
+    """
+    f = np.stack([np.cos(yaw), np.sin(yaw)], -1)
+    h = ankle[:, 2]
+    along = np.einsum("ij,ij->i", ankle[:, :2] - prints, f)
+    out = ankle.copy()
+    out[:, :2] += (along * (np.cos(slope) - 1.0) - h * np.sin(slope))[:, None] * f
+    out[:, 2] = h * np.cos(slope) + along * np.sin(slope)
+    return out
+
+
 def trailing_reach(
     feet: FootTracks,
     root: np.ndarray,
@@ -263,6 +315,13 @@ def swing_over_ramps(walk, frames: list[StepFrames], air: dict, feet: FootTracks
         feet.ankle[s][j, 2] += np.maximum(need + SOLE_GRID_SAG - offset, 0.0)
 
 
+#: Clearance (m) kept over the ground of a swing between a ramp and a level: the flat swing's
+#: toe tip dips up to 0.54 mm below its ground in the sample after toe-off (measured on the
+#: multi-level platform cycle's floor steps, run 18), which on a ramp's last footprint put
+#: it 0.3 mm into the platform's edge at the ramp's top (run 18).
+CREST_CLEARANCE = 0.001
+
+
 def crest_ground(
     ankle: np.ndarray,
     yaw: np.ndarray,
@@ -296,7 +355,8 @@ def crest_ground(
 
     Returns:
         (m,) the least height of the ankle's ground offset that keeps the sole's points above
-        the ground, metres.
+        the ground, metres; :data:`CREST_CLEARANCE` above it between surfaces of different
+        slopes (a ramp and a level).
     """
     f = np.stack([np.cos(yaw), np.sin(yaw)], -1)
     tilt = np.zeros(len(yaw)) if pitch is None else np.tan(np.asarray(pitch, dtype=float))
@@ -318,4 +378,4 @@ def crest_ground(
     out = np.full(len(yaw), -np.inf)
     for d in points:
         out = np.maximum(out, np.minimum(a0 + b0 * d, a1 + b1 * d) - d * tilt)
-    return out
+    return out + (CREST_CLEARANCE if sf.lift_pitch != sf.land_pitch else 0.0)
