@@ -97,7 +97,7 @@ def test_trunk_turns_one_way_through_a_passage():
     need = np.arccos((room - SHOULDER_MARGIN - r) / a)
     assert need.min() > 0.3  # one passage over all frames
     turn = trunk_turn(yaw, room, away, fps=1e-3)  # no smoothing
-    assert np.all(turn > 0)  # one side: the one with the smaller largest turn
+    assert np.all(turn > 0)  # one side: the first frame's
     assert np.all(np.abs(np.diff(turn)) <= np.abs(np.diff(yaw)).max() + 1e-12)
     reach = a * np.abs(np.cos(yaw + turn)) + r  # left shoulder towards +y
     ok = np.abs(turn) < TRUNK_TURN - 1e-9
@@ -106,8 +106,9 @@ def test_trunk_turns_one_way_through_a_passage():
     d = np.array([0.1, 0.2, 0.05, 0.5, -0.1, -0.2])
     need2 = np.array([0.3, 0.3, 0.3, 0.3, 0.3, 0.3])
     assert np.array_equal(turn_sides(d, need2), [1, 1, 1, 1, -1, -1])
-    # a passage crossing zero takes the side of the smaller largest turn
-    assert np.array_equal(turn_sides(np.array([0.1, -0.05, -0.2]), np.full(3, 0.3)), [-1, -1, -1])
+    # a passage crossing zero keeps its first frame's side
+    assert np.array_equal(turn_sides(np.array([0.1, -0.05, -0.2]), np.full(3, 0.3)), [1, 1, 1])
+    assert np.array_equal(turn_sides(np.array([-0.2, 0.05, 0.1]), np.full(3, 0.3)), [-1, -1, -1])
 
 
 def test_ease_arms_holds_a_two_handed_carry_and_tucks_tight_arms():
