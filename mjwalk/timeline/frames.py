@@ -207,7 +207,10 @@ def turn_sides(d: np.ndarray, need: np.ndarray) -> np.ndarray:
     (``d`` changes sign) within the passage: the trunk starts turning away as the obstacle
     comes near and does not turn back through it (taking the other side from the start
     instead threw the trunk 37 degrees through the obstacle's direction as the passage began:
-    a thumb met the stair's wall in run 5 of the same batch).
+    a thumb met the stair's wall in run 5 of the same batch). Where keeping the side would
+    take more than :data:`TRUNK_TURN` the shoulders cannot be kept clear on it, and each
+    frame takes its least turn's side as before (run 13: the kept side's 43 degrees, clipped
+    and then dropped as the passage ended, put the right arm 3.8 mm into the stair's wall).
 
     Args:
         d: (F,) angle from the obstacle's direction to the shoulder line, radians, in
@@ -221,7 +224,10 @@ def turn_sides(d: np.ndarray, need: np.ndarray) -> np.ndarray:
     inside = np.abs(d) < need
     edges = np.flatnonzero(np.diff(np.concatenate([[0], inside.astype(np.int8), [0]])))
     for lo, hi in zip(edges[::2], edges[1::2], strict=True):
-        side[lo:hi] = side[lo]
+        s = side[lo]
+        if np.all(side[lo:hi] == s) or np.max(need[lo:hi] - s * d[lo:hi]) > TRUNK_TURN:
+            continue  # no swing through, or a turn the trunk cannot make: the least turn's side
+        side[lo:hi] = s
     return side
 
 

@@ -92,7 +92,7 @@ def test_trunk_turns_one_way_through_a_passage():
     a, r = shoulder_geometry(1.75)
     n = 61
     room = np.full(n, 0.24)
-    yaw = np.linspace(0.25, -0.15, n)  # the shoulder line swings through the obstacle's side
+    yaw = np.linspace(0.25, -0.05, n)  # the shoulder line swings through the obstacle's side
     away = np.tile([0.0, -1.0], (n, 1))  # the obstacle is to the left (+y)
     need = np.arccos((room - SHOULDER_MARGIN - r) / a)
     assert need.min() > 0.3  # one passage over all frames
@@ -109,6 +109,9 @@ def test_trunk_turns_one_way_through_a_passage():
     # a passage crossing zero keeps its first frame's side
     assert np.array_equal(turn_sides(np.array([0.1, -0.05, -0.2]), np.full(3, 0.3)), [1, 1, 1])
     assert np.array_equal(turn_sides(np.array([-0.2, 0.05, 0.1]), np.full(3, 0.3)), [-1, -1, -1])
+    # unless keeping it would take more than the trunk can turn: each frame's least side
+    d = np.array([0.1, -0.3, -0.5])
+    assert np.array_equal(turn_sides(d, np.full(3, 0.55)), [1, -1, -1])
 
 
 def test_ease_arms_holds_a_two_handed_carry_and_tucks_tight_arms():
