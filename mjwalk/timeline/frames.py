@@ -171,7 +171,11 @@ def trunk_turn(
     The shoulder line (joint centres ``a`` from the trunk axis plus the upper-arm radius ``r``)
     reaches ``a |cos d| + r`` towards an obstacle in a direction ``d`` from it; the trunk turns
     by the least angle that brings this within ``room - SHOULDER_MARGIN``, up to
-    :data:`TRUNK_TURN`. Zero where there is room.
+    :data:`TRUNK_TURN`. Zero where there is room. Over one passage (consecutive frames that
+    need a turn) the trunk turns one way only (:func:`turn_sides`): where the shoulder line
+    swings through the obstacle's direction the least turn changes side, and a frame-by-frame
+    choice threw the trunk 30 degrees and a hanging hand 0.1 m between frames (the 1.88 m
+    operator of run 33 of the multilevel_platform batch, whose left palm met the trolley).
 
     Returns:
         (F,) trunk rotation, radians, within :data:`TRUNK_TURN`.
@@ -181,7 +185,8 @@ def trunk_turn(
     need = np.arccos(c)  # least angle between the shoulder line and the obstacle direction
     gamma = np.arctan2(-away[:, 1], -away[:, 0])  # towards the obstacle
     d = np.mod(yaw + np.pi / 2 - gamma + np.pi / 2, np.pi) - np.pi / 2  # axis: fold to +-pi/2
-    turn = np.where(d >= 0, 1.0, -1.0) * np.maximum(need - np.abs(d), 0.0)
+    side = turn_sides(d, need)
+    turn = side * np.maximum(need - side * d, 0.0) * (np.abs(d) < need)
     turn = np.clip(turn, -TRUNK_TURN, TRUNK_TURN)
     k = max(1, round(TRUNK_SMOOTH * fps) | 1)
     if k > 1 and len(turn) > k:
@@ -190,6 +195,40 @@ def trunk_turn(
         # smoothing must not undercut the turn a frame needs
         turn = np.where(np.abs(smooth) >= np.abs(turn), smooth, turn)
     return turn
+
+
+def turn_sides(d: np.ndarray, need: np.ndarray) -> np.ndarray:
+    """The side (+1 CCW, -1 CW) the trunk turns to at each frame: one side per passage.
+
+    A passage is a run of consecutive frames whose shoulder line is nearer the obstacle's
+    direction than it may be (``|d| < need``). Turning to side ``s`` takes ``need - s d``;
+    the passage keeps the side of its first frame's least turn, which is the least turn's
+    side at every frame unless the shoulder line swings through the obstacle's direction
+    (``d`` changes sign) within the passage: the trunk starts turning away as the obstacle
+    comes near and does not turn back through it (taking the other side from the start
+    instead threw the trunk 37 degrees through the obstacle's direction as the passage began:
+    a thumb met the stair's wall in run 5 of the same batch). Where keeping the side would
+    take more than :data:`TRUNK_TURN` the shoulders cannot be kept clear on it, and each
+    frame takes its least turn's side as before (run 13: the kept side's 43 degrees, clipped
+    and then dropped as the passage ended, put the right arm 3.8 mm into the stair's wall).
+
+    Args:
+        d: (F,) angle from the obstacle's direction to the shoulder line, radians, in
+            [-pi/2, pi/2).
+        need: (F,) least angle the shoulder line must keep from it, radians.
+
+    Returns:
+        (F,) +1.0 or -1.0 (the least turn's side, ``sign(d)`` with +1 at 0, outside passages).
+    """
+    side = np.where(d >= 0, 1.0, -1.0)
+    inside = np.abs(d) < need
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], inside.astype(np.int8), [0]])))
+    for lo, hi in zip(edges[::2], edges[1::2], strict=True):
+        s = side[lo]
+        if np.all(side[lo:hi] == s) or np.max(need[lo:hi] - s * d[lo:hi]) > TRUNK_TURN:
+            continue  # no swing through, or a turn the trunk cannot make: the least turn's side
+        side[lo:hi] = s
+    return side
 
 
 @dataclass(frozen=True)

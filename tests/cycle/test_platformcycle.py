@@ -61,6 +61,20 @@ def test_the_twelve_run_batchs_step_edge_contact_is_gone():
 
 
 @pytest.mark.slow
+def test_run_33s_palm_clears_the_trolley():
+    """Seeded: run 33 of ``mjwalk simulate scenes/multilevel_platform.toml --runs 40`` (seed 0;
+    a 1.88 m adult, step route) has 0 contacts. Before: carrying the screws from rack 1 to the
+    step between the trolley and the car, its hanging left arm turned with a trunk that was
+    thrown from +17 to -19 degrees and back between frames (the least turn's side flipped as
+    the shoulder line swung through the trolley's direction), and the left palm went 2.1 mm
+    into the trolley at 48.67 s (:func:`mjwalk.timeline.frames.turn_sides`)."""
+    spec = load_cycle_spec(cycle_file("multilevel_platform"))
+    r = simulate_cycle(spec, run_generator(0, 33), run=33, ergonomics=False)
+    assert r.group == "adult"
+    assert r.collisions == []
+
+
+@pytest.mark.slow
 def test_the_twelve_run_batchs_ramp_corner_contact_is_gone():
     """Seeded: run 7 of the same batch (an older operator, ramp route) has 0 contacts. Before:
     walking down the ramp and turning back south-west on the floor past its foot, the right

@@ -81,6 +81,39 @@ def test_trunk_turns_shoulders_clear_of_a_wall():
     assert np.abs(turn).max() > np.deg2rad(10)
 
 
+def test_trunk_turns_one_way_through_a_passage():
+    """Where the shoulder line swings through the obstacle's direction within one passage, the
+    trunk keeps turning the same way (the least turn's side flips there: the trunk, and a
+    hanging hand with it, were thrown from one side to the other between frames; run 33 of
+    the multilevel_platform batch) and still keeps the shoulders clear."""
+    from mjwalk.body.humanoid import shoulder_geometry
+    from mjwalk.timeline.frames import SHOULDER_MARGIN, TRUNK_TURN, trunk_turn, turn_sides
+
+    a, r = shoulder_geometry(1.75)
+    n = 61
+    room = np.full(n, 0.24)
+    yaw = np.linspace(0.25, -0.05, n)  # the shoulder line swings through the obstacle's side
+    away = np.tile([0.0, -1.0], (n, 1))  # the obstacle is to the left (+y)
+    need = np.arccos((room - SHOULDER_MARGIN - r) / a)
+    assert need.min() > 0.3  # one passage over all frames
+    turn = trunk_turn(yaw, room, away, fps=1e-3)  # no smoothing
+    assert np.all(turn > 0)  # one side: the first frame's
+    assert np.all(np.abs(np.diff(turn)) <= np.abs(np.diff(yaw)).max() + 1e-12)
+    reach = a * np.abs(np.cos(yaw + turn)) + r  # left shoulder towards +y
+    ok = np.abs(turn) < TRUNK_TURN - 1e-9
+    assert np.all(reach[ok] <= room[ok] - SHOULDER_MARGIN + 1e-9)
+    # without a sign change in the passage every frame takes its least turn's side
+    d = np.array([0.1, 0.2, 0.05, 0.5, -0.1, -0.2])
+    need2 = np.array([0.3, 0.3, 0.3, 0.3, 0.3, 0.3])
+    assert np.array_equal(turn_sides(d, need2), [1, 1, 1, 1, -1, -1])
+    # a passage crossing zero keeps its first frame's side
+    assert np.array_equal(turn_sides(np.array([0.1, -0.05, -0.2]), np.full(3, 0.3)), [1, 1, 1])
+    assert np.array_equal(turn_sides(np.array([-0.2, 0.05, 0.1]), np.full(3, 0.3)), [-1, -1, -1])
+    # unless keeping it would take more than the trunk can turn: each frame's least side
+    d = np.array([0.1, -0.3, -0.5])
+    assert np.array_equal(turn_sides(d, np.full(3, 0.55)), [1, -1, -1])
+
+
 def test_ease_arms_holds_a_two_handed_carry_and_tucks_tight_arms():
     """A two-handed carry holds the carrying posture (with the given abduction) over the whole
     walk; a swinging arm in little room turns its thumb forward, less at the walk's ends."""
