@@ -25,8 +25,7 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    axis (:func:`mjwalk.plan.levelcross.approach_point`), and the walk over a stair goes on a
    step length past its far stance before the next leg (:func:`~mjwalk.plan.levelcross.
    departure`; a single step is left on the fly), where the legs are long enough and the body
-   fits: the walker lines up with the flight (a level walk that would arrive more than
-   :data:`~mjwalk.plan.levelcross.ENTRY_TURN` off the axis is searched with it as a goal yaw);
+   fits: the walker lines up with the flight, facing it within :data:`ENTRY_TURN`;
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
@@ -458,8 +457,7 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     goal = _approach(view, leg, nxt, walker_step_length(walker_model), options)
     if goal is not None:  # lined up with the flight a step before its stance
         planner = _planner(view, goal, model, options)
-    # the approach heading is a preference: its guide searched on a small budget, else the
-    # route search alone (the crossing's first step turns the walker onto its axis)
+    # the approach heading a preference: its guide on a small budget, else the route search
     budget = min(options.max_expansions, HEADING_BUDGET)
     aim = leg.end if goal is None else goal
     aimed = _planner(view, aim, model, replace(options, max_expansions=budget))
@@ -469,10 +467,13 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
         walk = planner.plan(request, rng)
         # the aimed search's spent budget counts (any earlier searches of it not)
         walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + budget
-    if entry_turn(walk, c, nxt.direction) > ENTRY_TURN:  # more than the first step can turn
+    if entry_turn(walk, c, nxt.direction) > ENTRY_TURN:  # more than a step turns: re-searched
         spent = walk.meta.get("expansions_all", 0)
-        walk = _planner(view, aim, model, replace(options, goal_yaw=heading)).plan(request, rng)
-        walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + spent
+        try:
+            walk = _planner(view, aim, model, replace(options, goal_yaw=heading)).plan(request, rng)
+            walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + spent
+        except PlanningError:  # its budget spent (or its open list dry before)
+            walk.meta["expansions_all"] = spent + options.max_expansions  # the walk as found
     if goal is not None:
         walk.meta["approach_point"] = [float(goal[0]), float(goal[1])]
     return walk
