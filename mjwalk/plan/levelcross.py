@@ -34,6 +34,8 @@ from mjwalk.gait.slope import slope_gait
 from mjwalk.gait.stairs import MIN_TREAD, StairGeometry, stair_gait
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelroute import Crossing
+from mjwalk.plan.occupancy import CELL_SIZE
+from mjwalk.plan.turnsplit import WALKING_TURN_MAX, wrap
 from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.world.norms import STAIR_TOE_CLEARANCE
 
@@ -181,7 +183,7 @@ def cross_walk(
         lead_in: the walk that brought the walker there ended at the flight's approach point
             (:func:`approach_point`), up to a step length and its goal area before the stance:
             level steps along the axis, none longer than the walker's step length, lead from
-            there into the flight's first footfall (with ``last`` given; steps and stairs).
+            there into the flight's first footfall (with ``last`` given; steps, stairs, ramps).
 
     Returns:
         The crossing's walk from t = 0: 120 Hz pelvis xy, yaw and height, its steps with the
@@ -195,7 +197,7 @@ def cross_walk(
     xy0, yaw0 = np.asarray(start[0], dtype=float), float(start[1])
     yaw = yaw0 + (yaw - yaw0 + math.pi) % (2 * math.pi) - math.pi  # the nearer turn
     begin = c.approach if direction == "up" else c.exit
-    if lead_in and last is not None and c.kind != "ramp":
+    if lead_in and last is not None:
         s, times = _lead_in(c, s, times, start[0], walker)
     if last is None and float(np.hypot(*(c.point(begin) - xy0))) > STANCE_SLACK:
         # standing off the stance: both feet step onto it first, at the level step time
@@ -258,6 +260,48 @@ def cross_walk(
     )
 
 
+#: The most (radians) a walk arriving at a crossing may face away from its axis: the crossing's
+#: first step turns the walker onto the axis, and people change direction by at most 60 degrees
+#: within one step (Patla et al. 1991, :data:`mjwalk.plan.turnsplit.WALKING_TURN_MAX`). A walk
+#: that came to a ramp's stance facing 120 degrees off turned onto the ramp in one step (the
+#: platform cycle's run 14): the legs could not reach and lowered the pelvis 0.21 m.
+ENTRY_TURN = WALKING_TURN_MAX
+
+
+def entry_turn(walk: WalkPath, c: Crossing, direction: str) -> float:
+    """How far the crossing's first step must turn a walker whose level walk ``walk`` ends
+    before it: the walk's last heading against the crossing's (up or down its axis).
+
+    Args:
+        walk: the level walk to the crossing.
+        c: the crossing.
+        direction: "up" or "down".
+
+    Returns:
+        The turn, radians (>= 0).
+    """
+    yaw = c.yaw if direction == "up" else c.yaw + math.pi
+    return abs(wrap(yaw - float(walk.yaw[-1])))
+
+
+def line_clear(view, a: np.ndarray, b: np.ndarray, radius: float) -> bool:
+    """Whether the body fits along a segment on a level (checked every grid cell's length,
+    :data:`~mjwalk.plan.occupancy.CELL_SIZE`).
+
+    Args:
+        view: the level's view (:func:`mjwalk.world.levelview.level_view`, its
+            ``walk_clearance``).
+        a: (2,) the segment's start, world xy, metres.
+        b: (2,) its end, world xy, metres.
+        radius: the body radius, metres.
+
+    Returns:
+        True when the clearance is at least ``radius`` all along.
+    """
+    u = np.linspace(0.0, 1.0, max(2, math.ceil(float(np.hypot(*(b - a))) / CELL_SIZE) + 1))
+    return float(np.min(view.walk_clearance(a + np.outer(u, b - a)))) >= radius
+
+
 def approach_point(c: Crossing, direction: str, lead: float) -> np.ndarray:
     """The point on a flight's axis ``lead`` metres before its stance, away from the flight: a
     level walk aimed there lines the walker up with the flight before it steps on, as people
@@ -303,10 +347,10 @@ def departure(c: Crossing, direction: str, lead: float) -> Crossing:
 
 def route_leads(c: Crossing, level: int, lead: float) -> tuple[np.ndarray | None, ...]:
     """Where the level walks at a crossing's stance on ``level`` end and begin as walked: a
-    walk to a stair or step ends at its :func:`approach_point`, ``lead`` before the stance,
-    and lines up from there; a walk away from a stair begins at its :func:`departure` stance,
-    ``lead`` past it (a single step is left on the fly, a ramp walked onto and off without a
-    break). Both are the point ``lead`` from the stance along the axis, away from the flight.
+    walk to a stair, step or ramp ends at its :func:`approach_point`, ``lead`` before the
+    stance, and lines up from there; a walk away from a stair begins at its :func:`departure`
+    stance, ``lead`` past it (a single step and a ramp are left on the fly). Both are the point
+    ``lead`` from the stance along the axis, away from the flight.
 
     Args:
         c: the crossing.
@@ -318,7 +362,7 @@ def route_leads(c: Crossing, level: int, lead: float) -> tuple[np.ndarray | None
         or begin at the stance itself.
     """
     point = approach_point(c, "up" if level == c.lower else "down", lead)
-    return (point if c.kind == "stair" else None, point if c.kind != "ramp" else None)
+    return (point if c.kind == "stair" else None, point)
 
 
 def walked_distance(d: float, field, leaving: tuple, arriving: tuple, reach: tuple) -> float:

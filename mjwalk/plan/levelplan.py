@@ -21,11 +21,11 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
 3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`), where along
    its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`), the
    walker's swinging arms a cited clearance from its sides (:func:`side_margin`); a level
-   leg to a stair or step ends at its approach point a step length before the stance on its
+   leg to a crossing ends at its approach point a step length before the stance on its
    axis (:func:`mjwalk.plan.levelcross.approach_point`), and the walk over a stair goes on a
    step length past its far stance before the next leg (:func:`~mjwalk.plan.levelcross.
    departure`; a single step is left on the fly), where the legs are long enough and the body
-   fits: the walker lines up with the flight;
+   fits: the walker lines up with the flight (onto a ramp facing it within :data:`ENTRY_TURN`);
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
@@ -53,10 +53,13 @@ from mjwalk.gait.walker import Walker
 from mjwalk.plan.heuristic import goal_distance
 from mjwalk.plan.hybrid import HybridPlanner, walker_step_length
 from mjwalk.plan.levelcross import (
+    ENTRY_TURN,
     approach_point,
     cross_walk,
     crossing_time,
     departure,
+    entry_turn,
+    line_clear,
     route_leads,
     walked_distance,
 )
@@ -230,9 +233,9 @@ def _route(workplace, start: Endpoint, goal: Endpoint, walker: Walker, options, 
         edges.setdefault(lo, []).append((hi, crossing_time(c, "up", walker)))
         edges.setdefault(hi, []).append((lo, crossing_time(c, "down", walker)))
         for lv in (c.lower, c.upper):
-            ends = route_leads(c, lv, reach[0])  # a ramp: none; the line-up's point is set
+            ends = route_leads(c, lv, reach[0])  # the line-up's point is set
             view = level_view(workplace, lv, head)
-            ok = ends[1] is None or _line_clear(view, c.end(lv), ends[1], options)
+            ok = ends[1] is None or line_clear(view, c.end(lv), ends[1], options.radius)
             leads.append(ends if ok else (None, None))
     for v, (lv, xy) in enumerate(nodes):
         if v == 0:
@@ -454,8 +457,7 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     goal = _approach(view, leg, nxt, walker_step_length(walker_model), options)
     if goal is not None:  # lined up with the flight a step before its stance
         planner = _planner(view, goal, model, options)
-    # the approach heading is a preference: its guide searched on a small budget, else the
-    # route search alone (the crossing's first step turns the walker onto its axis)
+    # the approach heading a preference: its guide on a small budget, else the route search
     budget = min(options.max_expansions, HEADING_BUDGET)
     aim = leg.end if goal is None else goal
     aimed = _planner(view, aim, model, replace(options, max_expansions=budget))
@@ -465,24 +467,29 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
         walk = planner.plan(request, rng)
         # the aimed search's spent budget counts (any earlier searches of it not)
         walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + budget
+    if c.kind == "ramp" and entry_turn(walk, c, nxt.direction) > ENTRY_TURN:  # re-searched
+        spent = walk.meta.get("expansions_all", 0)
+        try:
+            walk = _planner(view, aim, model, replace(options, goal_yaw=heading)).plan(request, rng)
+            walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + spent
+        except PlanningError:  # its budget spent (or its open list dry before)
+            walk.meta["expansions_all"] = spent + options.max_expansions  # the walk as found
     if goal is not None:
         walk.meta["approach_point"] = [float(goal[0]), float(goal[1])]
     return walk
 
 
 def _approach(view: Workplace, leg: RouteLeg, nxt: RouteLeg, lead: float, options):
-    """The goal of a level leg to a stair or step: its approach point ``lead`` before the stance
+    """The goal of a level leg to a crossing: its approach point ``lead`` before the stance
     (:func:`mjwalk.plan.levelcross.approach_point`) where the leg starts farther from the stance
     than that point and its goal area, and the body radius fits all the way from the point to
     the stance (every :data:`~mjwalk.plan.occupancy.CELL_SIZE`); else None (the stance)."""
     c = nxt.crossing
     assert c is not None
-    if c.kind == "ramp":  # walked onto without a break: no line-up
-        return None
     if float(np.hypot(*(leg.start - leg.end))) <= lead + options.goal_tolerance:
         return None
     point = approach_point(c, nxt.direction, lead)
-    return point if _line_clear(view, leg.end, point, options) else None
+    return point if line_clear(view, leg.end, point, options.radius) else None
 
 
 def _departure(workplace: Workplace, leg: RouteLeg, nxt: RouteLeg | None, lead: float, setup):
@@ -500,13 +507,7 @@ def _departure(workplace: Workplace, leg: RouteLeg, nxt: RouteLeg | None, lead: 
     level = c.upper if leg.direction == "up" else c.lower
     walked = departure(c, leg.direction, lead)
     view = level_view(workplace, level, head)
-    return walked if _line_clear(view, c.end(level), walked.end(level), options) else c
-
-
-def _line_clear(view: Workplace, a: np.ndarray, b: np.ndarray, options) -> bool:
-    """Whether the body radius fits along the segment a-b (every grid cell's length)."""
-    u = np.linspace(0.0, 1.0, max(2, math.ceil(float(np.hypot(*(b - a))) / CELL_SIZE) + 1))
-    return float(np.min(view.walk_clearance(a + np.outer(u, b - a)))) >= options.radius
+    return walked if line_clear(view, c.end(level), walked.end(level), options.radius) else c
 
 
 def plan_level_walk(

@@ -8,14 +8,17 @@ import pytest
 from mjwalk.body.humanoid import leg_geometry
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE
 from mjwalk.body.legs.stance import (
+    REACH_DROP_MAX,
     KneeEnds,
     LandingEase,
     StanceLeg,
+    lower_to_reach,
     pelvis_height,
     reach_deficit,
     stance_knee,
 )
 from mjwalk.body.legs.steps import step_frames
+from mjwalk.errors import PlanningError
 from mjwalk.plan.synthetic import synthetic_walk
 
 PHI = np.array([0.0, 0.2, 0.4, 0.5, 0.6, 0.8, 1.0])
@@ -69,3 +72,25 @@ def test_reach_deficit_is_zero_off_the_floor_and_measures_overreach():
     d = reach_deficit(root, np.zeros(n), ankle, on, reach_sq, g)
     cap = g.ankle_height + np.sqrt(0.8**2 - g.hip_y**2)
     assert np.allclose(d, np.maximum(root[:, 2] - cap, 0.0))
+
+
+@pytest.mark.parametrize("over", [0.03, 0.2])
+def test_lower_to_reach_lowers_a_little_and_refuses_a_lot(over):
+    """A grounded left leg its pelvis ``over`` metres too high to reach its ankle: 3 cm is
+    lowered (the pelvis then reaches within the 1 mm the passes stop at); 0.2 m (the platform
+    cycle's run 14 lowered 0.21 m for a 120 deg turn in one step) is more than
+    REACH_DROP_MAX and raises."""
+    g = leg_geometry(1.75)
+    n = 41
+    ankle = {s: np.column_stack([np.zeros((n, 2)), np.full(n, g.ankle_height)]) for s in "lr"}
+    reach_sq = {s: np.full(n, 0.8**2) for s in "lr"}
+    cap = g.ankle_height + np.sqrt(0.8**2 - g.hip_y**2)
+    root = np.column_stack([np.zeros((n, 2)), np.full(n, cap + over)])
+    on = {"l": np.ones(n, bool), "r": np.zeros(n, bool)}
+    if over > REACH_DROP_MAX:
+        with pytest.raises(PlanningError, match="lowered"):
+            lower_to_reach(root, np.zeros(n), ankle, on, reach_sq, g, 5)
+        return
+    drop = lower_to_reach(root, np.zeros(n), ankle, on, reach_sq, g, 5)
+    assert over <= drop <= REACH_DROP_MAX
+    assert reach_deficit(root, np.zeros(n), ankle, on, reach_sq, g).max() <= 1e-3

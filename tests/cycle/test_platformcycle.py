@@ -103,3 +103,17 @@ def test_the_forty_run_batchs_ramp_crest_contacts_are_gone(run):
     r = simulate_cycle(spec, run_generator(0, run), run=run, ergonomics=False)
     assert r.group == "older_adult"
     assert r.collisions == []
+
+
+@pytest.mark.slow
+def test_the_forty_run_batchs_turn_onto_the_ramp_is_gone():
+    """Seeded: run 14 of ``mjwalk simulate scenes/multilevel_platform.toml --runs 40`` (an older
+    operator, ramp route) has 0 contacts. Before: the floor leg ended at the ramp's stance
+    facing 120 deg away and the crossing's first step turned onto the ramp at once; the legs
+    could not reach, lowered the pelvis 0.21 m and put the left foot 10.7 cm into the floor
+    (40 contacts). Now the leg lines up a step before the ramp, facing up it within
+    levelcross.ENTRY_TURN, and such a lowering raises (legs.stance.REACH_DROP_MAX)."""
+    spec = load_cycle_spec(cycle_file("multilevel_platform"))
+    r = simulate_cycle(spec, run_generator(0, 14), run=14, ergonomics=False)
+    assert r.group == "older_adult"
+    assert r.collisions == []

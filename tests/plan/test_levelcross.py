@@ -10,17 +10,21 @@ from mjwalk.gait.slope import slope_gait
 from mjwalk.gait.stairs import ASCENT_STEP_TIME, DESCENT_STEP_TIME
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelcross import (
+    ENTRY_TURN,
     RISER_GAP,
     approach_point,
     cross_walk,
     crossing_time,
     departure,
+    entry_turn,
+    line_clear,
     route_leads,
     tread_setback,
     walked_distance,
 )
 from mjwalk.plan.levelroute import crossings
-from mjwalk.plan.walkpath import PathStep
+from mjwalk.plan.turnsplit import WALKING_TURN_MAX
+from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.world import load_workplace
 
 
@@ -142,13 +146,15 @@ def test_lead_in_and_departure_walk_on_the_axis_in_steps_no_longer_than_a_step(b
     assert np.array_equal(again.xy, plain.xy)
 
 
-def test_route_leads_line_up_at_stairs_and_steps_and_depart_from_stairs_only(by_kind):
+def test_route_leads_line_up_at_every_crossing_and_depart_from_stairs_only(by_kind):
+    """Ramps line up too (the platform cycle's run 14 came to the ramp's stance facing 120 deg
+    off its axis and turned onto it in one step)."""
     lead = 0.7
     for kind, c in by_kind.items():
         for lv, direction in ((c.lower, "up"), (c.upper, "down")):
             dep, line = route_leads(c, lv, lead)
             point = approach_point(c, direction, lead)
-            assert (line is not None) == (kind != "ramp")
+            assert line is not None
             assert (dep is not None) == (kind == "stair")
             for p in (dep, line):
                 if p is not None:
@@ -179,3 +185,24 @@ def test_walked_distance_adds_the_line_up_and_the_departure_detours():
     start, dep = np.array([2.0, 0.0]), np.array([2.0 + lead, 0.0])
     d = walked_distance(2.0, field, (start, dep), (goal, None), reach)
     assert d == pytest.approx(lead + 2.0 + lead)
+
+
+def test_entry_turn_is_the_last_headings_turn_onto_the_axis(by_kind):
+    """The ramp goes up towards -x (yaw pi): a walk ending at yaw 60 deg turns 120 deg onto it
+    going up and 60 deg going down; ENTRY_TURN is Patla et al.'s one-step direction change."""
+    ramp = by_kind["ramp"]
+    walk = WalkPath(t=np.array([0.0, 0.1]), xy=np.zeros((2, 2)), yaw=np.radians([0.0, 60.0]))
+    assert np.degrees(entry_turn(walk, ramp, "up")) == pytest.approx(120.0)
+    assert np.degrees(entry_turn(walk, ramp, "down")) == pytest.approx(60.0)
+    assert ENTRY_TURN == WALKING_TURN_MAX
+
+
+def test_line_clear_checks_the_body_radius_along_the_segment():
+    class Wall:  # clearance: distance to the wall x = 1
+        @staticmethod
+        def walk_clearance(xy):
+            return np.abs(1.0 - np.asarray(xy)[..., 0])
+
+    a = np.array([0.0, 0.0])
+    assert line_clear(Wall, a, np.array([0.0, 2.0]), 0.3)
+    assert not line_clear(Wall, a, np.array([0.8, 0.0]), 0.3)

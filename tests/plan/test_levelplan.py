@@ -4,6 +4,7 @@ can, the footfalls stand on the surfaces, flat walks plan as before. Seeded."""
 from __future__ import annotations
 
 import itertools
+import math
 
 import numpy as np
 import pytest
@@ -13,6 +14,7 @@ from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.levelcross import ENTRY_TURN
 from mjwalk.plan.levelplan import (
     endpoint,
     level_route,
@@ -322,6 +324,7 @@ def test_a_walk_round_the_stair_lines_up_with_it_and_steps_off_straight(station,
         assert np.all(np.abs(feet[:, 0] + 4.9) < 0.15), feet
         assert feet[:, 1].max() > 0.23 + out, feet
     # few expansions: at ae71305 the hairpin cost 69-3577 (up) and 106-4957 (down), seeds 1-10
+    # (a floor leg to a stair is not searched again for its entry turn: only ramps are)
     assert up.meta["expansions_all"] < 1000 and down.meta["expansions_all"] < 1000
 
 
@@ -348,3 +351,29 @@ def test_walk_down_a_ramp_into_a_pit_and_back(tmp_path, model, pit_ramp_xml):
             assert s.foot_z == pytest.approx(-0.51 * (s.foot[0] + 2.0) / 3.2, abs=0.01)
         assert walk.z[0 if direction == "down" else -1] == pytest.approx(0.0)
         assert walk.z[-1 if direction == "down" else 0] == pytest.approx(-0.51, abs=0.01)
+
+
+@pytest.mark.parametrize("seed", [0, 3])
+def test_a_walk_from_beside_the_ramp_lines_up_before_it_steps_on(station, model, seed):
+    """rack1's corner -> platform1 for a walker with no steps (the platform cycle's older
+    operators): the floor leg passes south of the ramp (foot at x = 5.73, up towards -x) and
+    must turn back onto it. It ends a step before the stance facing up the ramp within
+    ENTRY_TURN (levelcross.entry_turn), the line-up steps on its axis. Before, the leg ended
+    at the stance facing 128-139 deg away (seeds 0-5) and the crossing's first step turned
+    85-138 deg at once (run 14 of the cycle: 40 contacts, the pelvis lowered 0.21 m)."""
+    walk = plan_level_walk(
+        station, (-2.72, -1.68), "stand_platform1", model, np.random.default_rng(seed),
+        max_riser=0.0,
+    )  # fmt: skip
+    assert _kinds(walk) == ["level", "ramp", "level"]
+    on_axis = [
+        k
+        for k, s in enumerate(walk.steps)
+        if abs(math.remainder(s.foot[2] - math.pi, math.tau)) < 1e-6
+    ]
+    first = walk.steps[on_axis[0]]
+    turn = abs(math.remainder(math.pi - float(walk.yaw[first.start]), math.tau))
+    assert turn <= ENTRY_TURN + 1e-6
+    assert first.foot_z == pytest.approx(0.0)  # a line-up step on the floor, then the ramp
+    assert first.foot[0] > 5.73
+    _check_heights(station, walk)

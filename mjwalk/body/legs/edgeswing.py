@@ -201,10 +201,11 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
     m = len(ankle)
     tau = np.arange(m) / max(m - 1, 1)
     ends = [0, m - 1]
+    edges = _step_edges(fr, surf, geom)
+    if not len(edges.lo):  # no edge between lift-off and landing: the flat swing
+        return ankle.copy(), clearance
     edges = _edges_off_grounded(
-        _step_edges(fr, surf, geom),
-        _sole_points(ankle[ends], pitch[ends], toe[ends], yaw[ends], geom),
-        fr,
+        edges, _sole_points(ankle[ends], pitch[ends], toe[ends], yaw[ends], geom), fr
     )
     seg = fr.land[:2] - fr.lift[:2]
     length = max(float(np.hypot(*seg)), 1e-9)
@@ -398,10 +399,11 @@ def swing_clearance(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, 
         the least clearance, metres (``clearance`` where the swing keeps it everywhere).
     """
     ends = [0, len(ankle) - 1]
+    edges = _step_edges(fr, surf, geom)
+    if not len(edges.lo):  # no edge between lift-off and landing: the flat swing
+        return clearance
     edges = _edges_off_grounded(
-        _step_edges(fr, surf, geom),
-        _sole_points(ankle[ends], pitch[ends], toe[ends], yaw[ends], geom),
-        fr,
+        edges, _sole_points(ankle[ends], pitch[ends], toe[ends], yaw[ends], geom), fr
     )
     pts = _sole_points(ankle[1:-1], pitch[1:-1], toe[1:-1], yaw[1:-1], geom)
     return clearance - _clearance_deficit(pts, fr, edges, clearance)
@@ -433,10 +435,11 @@ def sole_rise(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: 
     if m < 3:
         return np.zeros(m)
     ends = [0, m - 1]
+    edges = _step_edges(fr, surf, geom)
+    if not len(edges.lo):  # no edge between lift-off and landing: the flat swing
+        return np.zeros(m)
     edges = _edges_off_grounded(
-        _step_edges(fr, surf, geom),
-        _sole_points(ankle[ends], pitch[ends], toe[ends], yaw[ends], geom),
-        fr,
+        edges, _sole_points(ankle[ends], pitch[ends], toe[ends], yaw[ends], geom), fr
     )
     seg = fr.land[:2] - fr.lift[:2]
     e = seg / max(float(np.hypot(*seg)), 1e-9)

@@ -28,7 +28,7 @@ false) then passes through :func:`lift_to_levels`:
   lowers while the stance leg yields. Where a grounded leg then cannot reach its foot, a
   foot on a ramp already rising on its ball rises further
   (:func:`~mjwalk.body.legs.rampreach.trailing_reach`), and elsewhere the pelvis lowers
-  (smoothly).
+  (smoothly; more than :data:`~mjwalk.body.legs.stance.REACH_DROP_MAX` is a PlanningError).
 * **Stepping down** (a stair descended, a drop of :data:`FOREFOOT_DROP` or more) the foot
   lands on its forefoot (:data:`DESCENT_CONTACT_PITCH`) and lowers its heel in weight
   acceptance (:func:`forefoot_landing`); the pelvis holds its height through forward
@@ -52,7 +52,7 @@ import numpy as np
 
 import mjwalk.body.legs.rampreach as ramps
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
-from mjwalk.body.legs.curves import smoothstep, spread
+from mjwalk.body.legs.curves import smoothstep
 from mjwalk.body.legs.edgeswing import (
     FLAT_PITCH,
     LEVEL_STEP,
@@ -64,7 +64,7 @@ from mjwalk.body.legs.edgeswing import (
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.ik import KNEE_MIN, generic_joint, leg_ik_world
 from mjwalk.body.legs.rampreach import crest_ground, roll_foot, trailing_reach
-from mjwalk.body.legs.stance import reach_deficit
+from mjwalk.body.legs.stance import lower_to_reach
 from mjwalk.body.legs.steps import FootTracks, StepFrames
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.norms import MAX_RAMP_SLOPE
@@ -560,11 +560,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
     reach_sq = {s: np.full(n, geom.span(KNEE_MIN) ** 2) for s in "lr"}
     grounded = {s: ~tr.air[s] for s in "lr"}
     trailing_reach(feet, new_root, yaw, grounded, tr.pitch, reach_sq, geom)
-    for _ in range(4):
-        deficit = reach_deficit(new_root, yaw, feet.ankle, grounded, reach_sq, geom)
-        if deficit.max() <= 1e-3:
-            break
-        new_root[:, 2] -= spread(np.maximum(deficit, 0.0) + 2e-3, win)
+    lower_to_reach(new_root, yaw, feet.ankle, grounded, reach_sq, geom, win)  # or raises
     least = _swing_pitch(plans, feet, new_root, yaw, geom) if plans else math.inf
     if plans:
         least = min(least, _soles_clear(plans, feet, new_root, yaw, geom))

@@ -34,11 +34,13 @@ from mjwalk.body.legs.curves import (
     minimum1,
     smoothstep1,
     soft_flat1,
+    spread,
 )
 from mjwalk.body.legs.footpivot import ball_offset, heel_rise_rows, pivot_rows
 from mjwalk.body.legs.ik import KNEE_MIN
 from mjwalk.body.legs.reference import ReferenceGait
 from mjwalk.body.legs.steps import FOOT_FLAT, STANCE_KEYS, StepFrames
+from mjwalk.errors import PlanningError
 
 #: The stance knee's upper bound (radians, 80 deg): the synthesis's clip of the stance spline.
 KNEE_STANCE_MAX = float(np.deg2rad(80))
@@ -397,6 +399,52 @@ def reach_deficit(
             out,
         )
     return out
+
+
+#: The most (metres) the pelvis may be lowered below its level so that a grounded leg reaches
+#: its foot: 5 cm, the whole vertical travel of the body's centre in a level stride (about 2 in,
+#: Saunders, Inman & Eberhart 1953, J Bone Joint Surg 35-A: 543-558). A walk that needs more
+#: asks a leg for what no walking step does (the platform cycle's run 14: a 120 degree turn in
+#: one step onto a ramp, the pelvis lowered 0.21 m, the feet through the floor): an error of its
+#: planning, raised rather than animated.
+REACH_DROP_MAX = 0.05
+
+
+def lower_to_reach(root, yaw: np.ndarray, ankle: dict, ground: dict, reach_sq: dict,
+                   geom: LegGeometry, win: int) -> float:  # fmt: skip
+    """Lower the pelvis (smoothly, in place) where a grounded leg cannot reach its ankle
+    (:func:`reach_deficit`, up to 4 passes).
+
+    Args:
+        root: (n, 3) pelvis positions, metres, world frame (z lowered in place).
+        yaw: (n,) pelvis yaw, radians from +x CCW.
+        ankle: per side ("l"/"r") the (n, 3) ankle targets, metres.
+        ground: per side the (n,) bool foot-on-the-floor flags.
+        reach_sq: per side the (n,) squared hip-to-ankle spans, m².
+        geom: the leg geometry.
+        win: the smoothing window, samples (:func:`~mjwalk.body.legs.curves.spread`).
+
+    Returns:
+        The largest lowering, metres (>= 0).
+
+    Raises:
+        PlanningError: the lowering exceeds :data:`REACH_DROP_MAX`.
+    """
+    z0 = root[:, 2].copy()
+    for _ in range(4):
+        deficit = reach_deficit(root, yaw, ankle, ground, reach_sq, geom)
+        if deficit.max() <= 1e-3:
+            break
+        root[:, 2] -= spread(np.maximum(deficit, 0.0) + 2e-3, win)
+    drop = float(np.max(z0 - root[:, 2], initial=0.0))
+    if drop > REACH_DROP_MAX:
+        i = int(np.argmax(z0 - root[:, 2]))
+        raise PlanningError(
+            f"the legs reach their feet only with the pelvis {drop:.3f} m lowered at "
+            f"({root[i, 0]:.2f}, {root[i, 1]:.2f}), more than {REACH_DROP_MAX} m: the walk's "
+            "steps there are no walking steps"
+        )
+    return drop
 
 
 @njit
