@@ -309,7 +309,8 @@ def approach_point(c: Crossing, direction: str, lead: float) -> np.ndarray:
     just before the step and the other lifted onto it without a break in the walk's rhythm
     (PTMATE, "Analysis of stepping up", skillsforaction.com; qualitative). "Stair gait in older
     adults worsens with smaller step treads and when transitioning between level and stair
-    walking" (Front. Sports Act. Living 2020, doi:10.3389/fspor.2020.00063) compares stair
+    walking" (Di Giulio, Reeves, Roys, Buckley, Jones, Gavin, Baltzopoulos & Maganaris, Front.
+    Sports Act. Living 2:63, 2020, doi:10.3389/fspor.2020.00063) compares stair
     walks with and without such a walking approach. With ``lead`` one step length the walk's
     last level steps land on the axis (:func:`cross_walk`'s ``lead_in``): a modelling choice,
     no figure of those sources.
