@@ -403,10 +403,11 @@ def reach_deficit(
 
 #: The most (metres) the pelvis may be lowered below its level so that a grounded leg reaches
 #: its foot: 5 cm, the whole vertical travel of the body's centre in a level stride (about 2 in,
-#: Saunders, Inman & Eberhart 1953, J Bone Joint Surg 35-A: 543-558). A walk that needs more
-#: asks a leg for what no walking step does (the platform cycle's run 14: a 120 degree turn in
-#: one step onto a ramp, the pelvis lowered 0.21 m, the feet through the floor): an error of its
-#: planning, raised rather than animated.
+#: Saunders, Inman & Eberhart 1953, J Bone Joint Surg 35-A: 543-558; quoted from memory, not
+#: checked against the paper here). A walk that needs more asks a leg for what no walking step
+#: does (the platform cycle's run 14: a 120 degree turn in one step onto a ramp, the pelvis
+#: lowered 0.21 m, the feet through the floor): an error of its planning, raised rather than
+#: animated.
 REACH_DROP_MAX = 0.05
 
 
