@@ -7,6 +7,7 @@ second."""
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
@@ -545,7 +546,10 @@ def blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
         (3,) unit vector.
     """
     v = (1.0 - tau) * a + tau * b
-    return v / max(float(np.linalg.norm(v)), 1e-9)
+    # the norm summed left to right in plain floats, not np.linalg.norm: its BLAS dot may fuse
+    # multiply-adds on one CPU and not on another, and blend_dirs must give the same numbers
+    norm = math.sqrt(float(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))
+    return v / max(norm, 1e-9)
 
 
 def blend_dirs(a: np.ndarray, b: np.ndarray, taus: np.ndarray) -> np.ndarray:
@@ -562,7 +566,7 @@ def blend_dirs(a: np.ndarray, b: np.ndarray, taus: np.ndarray) -> np.ndarray:
     """
     t = np.asarray(taus, dtype=float)[:, None]
     v = (1.0 - t) * np.asarray(a, dtype=float) + t * np.asarray(b, dtype=float)
-    # (the norm summed left to right, as np.linalg.norm of one vector sums it)
+    # (the norm summed left to right, as blend_dir sums it)
     norm = np.sqrt(v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1] + v[:, 2] * v[:, 2])
     return v / np.maximum(norm, 1e-9)[:, None]
 

@@ -33,8 +33,9 @@ def model(steps):
     return m
 
 
-def test_fit_is_quick_and_summarized(model, steps):
-    assert model.fit_time < 30.0  # ~2-4 s on an idle core
+def test_fit_is_summarized(model, steps):
+    # the fit's time is recorded, not judged here (speed is measured in benchmarks/bench_model.py)
+    assert model.fit_time > 0.0
     s = model.summary()
     assert s["n_steps"] == len(steps)
     assert s["n_transitions"]["left"] + s["n_transitions"]["right"] == 80 * 14
