@@ -314,14 +314,72 @@ def measure(
     ro = obstacle - lo
     s_obs = float(ro @ u / np.hypot(*d))
     lat_obs = float(u[0] * ro[1] - u[1] * ro[0])
+    chord = float(np.hypot(*(xy[-1] - xy[0])))
     return {
         "length": length,
-        "excess": length - float(np.hypot(*(xy[-1] - xy[0]))),
+        "excess": length - chord,
+        "thirds": excess_thirds(xy),
+        "scales": tuple(smoothed_excess(xy, w) for w in EXTRA_SMOOTH),
         "lateral": offset_at(xy, lo, hi, 0.5),
         "duration": (len(xy) - 1) / TRACK_HZ,
         "left": offset_at(xy, lo, hi, s_obs) > lat_obs,
         "crossing": math.nan if ends is None else crossing_duration(xy, *ends),
     }
+
+
+#: Extra moving averages (in 2.5 Hz samples: 1.2, 2.0 and 3.6 s) of :func:`excess_where`'s
+#: split of the excess by scale.
+EXTRA_SMOOTH = (3, 5, 9)
+
+
+def excess_thirds(xy: np.ndarray) -> tuple[float, float, float]:
+    """The excess (m) of a cut walk's samples over their own chord, split by where each
+    sample-to-sample step's midpoint projects onto the chord: its first, middle and last third
+    (each step's length minus its progress along the chord)."""
+    c = xy[-1] - xy[0]
+    length = max(float(np.hypot(*c)), 1e-12)
+    along = (xy - xy[0]) @ (c / length) / length
+    seg = np.hypot(*np.diff(xy, axis=0).T)
+    extra = seg - np.diff(along) * length
+    mid = 0.5 * (along[1:] + along[:-1])
+    parts = (mid < 1 / 3, (mid >= 1 / 3) & (mid < 2 / 3), mid >= 2 / 3)
+    return tuple(float(extra[k].sum()) for k in parts)  # type: ignore[return-value]
+
+
+def smoothed_excess(xy: np.ndarray, window: int) -> float:
+    """The excess (m) over the own chord of a cut walk after a further ``window``-sample moving
+    average (its end samples kept): what is left of it at bends longer than about that
+    window's walk, the finer ones averaged out."""
+    inner = uniform_filter1d(xy, size=window, axis=0, mode="nearest")[1:-1]
+    s = np.vstack([xy[:1], inner, xy[-1:]])
+    return float(np.hypot(*np.diff(s, axis=0).T).sum() - np.hypot(*(xy[-1] - xy[0])))
+
+
+def excess_where(results: dict) -> None:
+    """Print where along the walk and at which scale the planned walks are straighter than the
+    real ones (issue 48 item 3), per pair real | planned: the mean excess in the first, middle
+    and last third of the own chord (:func:`excess_thirds`), and the median excess after
+    further moving averages of :data:`EXTRA_SMOOTH` samples (:func:`smoothed_excess`); then
+    the medians over the pairs of the planned / real ratios."""
+    windows = ", ".join(f"{w / TRACK_HZ:.1f}" for w in EXTRA_SMOOTH)
+    print("\nwhere the excess is (m): real | planned; thirds of the chord (mean), then the median "
+          f"after further moving averages of {windows} s")  # fmt: skip
+    rows = []
+    for pair, (r, p, *_rest) in results.items():
+        th = [[np.mean([m["thirds"][k] for m in x["walks"]]) for k in range(3)] for x in (r, p)]
+        sc = [[np.median([m["scales"][k] for m in x["walks"]]) for k in range(3)] for x in (r, p)]
+        rows.append([b / a for a, b in zip(th[0] + sc[0], th[1] + sc[1], strict=True)])
+        cells = [f"{a:.3f}|{b:.3f}" for a, b in zip(th[0] + sc[0], th[1] + sc[1], strict=True)]
+        print(f"  {pair:5} thirds {' '.join(cells[:3])}   smoothed {' '.join(cells[3:])}")
+    med = np.median(np.array(rows), axis=0)
+    print("  median ratio planned/real: thirds " + " ".join(f"{v:.2f}" for v in med[:3])
+          + ", smoothed " + " ".join(f"{v:.2f}" for v in med[3:]))  # fmt: skip
+    print("nearest approach to the room's obstacle (m, from its surface), p10 | p50, real; planned")
+    for pair, (r, p, *_rest) in results.items():
+        gaps = [np.percentile([m["obstacle_gap"] for m in x["walks"]], [10, 50]) for x in (r, p)]
+        if gaps[0][1] < OBSTACLE_NEAR:
+            (r10, r50), (p10, p50) = gaps
+            print(f"  {pair:5} {r10:.2f} | {r50:.2f}; {p10:.2f} | {p50:.2f}")
 
 
 def predicted_left(obstacle, start: np.ndarray, goal: np.ndarray) -> float:
@@ -510,6 +568,7 @@ def main(argv: list[str] | None = None) -> int:
             xy = points[int(r["walk_id"])][:, 1:]
             a, b = stations[int(r["start"])], stations[int(r["goal"])]
             real.append(measure(xy, lo, hi, obstacle, (a, b, zone)))
+            real[-1]["obstacle_gap"] = float(obs_fp.signed_distance(xy).min())
             # the side as seen lower -> higher station: flip for walks the other way
             p_left = predicted_left(obs_fp, xy[0], xy[-1])
             real[-1]["predicted_left"] = p_left if int(r["start"]) == lo_id else 1.0 - p_left
@@ -551,6 +610,7 @@ def main(argv: list[str] | None = None) -> int:
                     failed += 1
                     continue
                 planned.append(measure(tracked, lo, hi, obstacle, (a, b, zone)))
+                planned[-1]["obstacle_gap"] = float(obs_fp.signed_distance(tracked).min())
                 planned[-1]["on_chord"] = near
         results[pair] = (summarize(real), summarize(planned), failed, plan_s, lo, hi, obstacle)
         print(f"  {pair}: {len(real)} real, {len(planned)} planned, {failed} failed, "
@@ -559,6 +619,7 @@ def main(argv: list[str] | None = None) -> int:
     print(f"({time.perf_counter() - t_start:.0f} s; {variant})")
     print_table(results)
     excess_split(results)
+    excess_where(results)
     print_duration_spread(results, args.seed)
     return 0
 
