@@ -110,6 +110,12 @@ them in the planner, the sampled steps' drift left uncorrected, gave 0.48 before
 onto the guide (above), with the empty hall's worst walk 0.124 m off its chord instead of
 0.089 m; the issue bounds it at 0.06 m.
 
+How far inside the zones the honest states are placed decides most of it (one-off runs of this
+benchmark with ``MOVE_BACK`` changed, same seed and walkers; not a proposal to change it: the
+issue chose 1 m so that no real tangent at the measured segment's edges reaches the planner):
+``MOVE_BACK`` 1.0 | 0.5 | 0.25 m gives excess 0.44 | 0.63 | 0.71, lateral IQR 1.05 | 0.98 |
+0.92, length IQR 1.24 | 1.07 | 1.10, and the large-scale (3.6 s) excess 0.61 | 0.81 | 0.88.
+
 The THÖR walks are VALIDATION ONLY: nothing in mjwalk is fitted to them.
 
 For every real VISITOR walk (``ok`` and ``in_judge``) of a station pair with at least 10 such
