@@ -79,8 +79,9 @@ unchanged, so every figure above stands: honest excess 0.44, pinned 0.69). Media
 pairs of planned / real, honest | ``--pinned-guide``:
 
 - by thirds of the own chord (mean excess): first 0.64 | 0.79, middle 0.39 | 0.68, last
-  0.59 | 0.88. The real walks carry 40-60 % of their excess in the first third (leaving the
-  start zone); the planned ones are straighter in every third, most in the middle.
+  0.59 | 0.88. The real walks carry 26-62 % of their mean excess in the first third (leaving
+  the start zone; median over pairs 47 %); the planned ones are straighter in every third,
+  most in the middle.
 - by scale (the median excess left after a further 1.2, 2.0 and 3.6 s moving average, i.e.
   only bends longer than about 1.5, 2.5 and 4.5 m of walking): 0.54, 0.57, 0.61 | 0.91, 0.97,
   1.02. With the real zone-edge states (pinned) the planned walks have the real walks' large
