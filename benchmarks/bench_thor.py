@@ -104,7 +104,8 @@ the end curvatures (the natural boundary of Arechavaleta et al. 2008's minimum c
 variation, linearized) gives the cubic, whose excess is 0.167 L·θ² against the zero-
 acceleration quintic's 0.243: less. The quintic with zero end accelerations is already the
 most bowed of these; the honest start state, 1 m inside the zone, is where the large bow is
-lost (the real walkers were still turning out of the station there; the pinned guide's 0.55
+lost (presumably the real walkers were still turning out of the station there: the tracks
+start at the zone's edge, so this copy cannot show it; the pinned guide's 0.55
 and the planned pinned walks' large-scale 0.91-1.02 show the model carries the bow when given
 the edge state). The bends shorter than 1.5 m are not a smooth path's: the one source of
 them in the planner, the sampled steps' drift left uncorrected, gave 0.48 before the pull
