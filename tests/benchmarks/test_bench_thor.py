@@ -24,6 +24,25 @@ def test_a_straight_walk_measures_as_its_chord():
     assert m["left"]  # passes the obstacle on its left (+y of lo -> hi)
 
 
+def test_the_excess_is_split_by_thirds_of_the_chord_and_by_scale():
+    """A walk with one sideways jog of 0.3 m in its first third: all its excess lies in that
+    third, and a walk wavering 5 cm from sample to sample loses most of its excess to a
+    further 1.2 s moving average, a single smooth bow little of it."""
+    xy = np.column_stack([np.arange(0.0, 6.01, 0.5), np.zeros(13)])
+    xy[2, 1] = 0.3  # x = 1.0 m of 6 m: the first third
+    first, middle, last = bench.excess_thirds(xy)
+    assert first == pytest.approx(2 * (np.hypot(0.5, 0.3) - 0.5))
+    assert middle == pytest.approx(0.0, abs=1e-12) and last == pytest.approx(0.0, abs=1e-12)
+    x = np.linspace(0.0, 6.0, 31)
+    wavy = np.column_stack([x, 0.05 * (-1.0) ** np.arange(31)])
+    wavy[[0, -1], 1] = 0.0
+    bow = np.column_stack([x, 0.3 * np.sin(np.pi * x / 6.0)])
+    for xy, kept in ((wavy, 0.2), (bow, 0.8)):
+        whole = float(np.hypot(*np.diff(xy, axis=0).T).sum() - 6.0)
+        share = bench.smoothed_excess(xy, 3) / whole
+        assert share < kept if kept < 0.5 else share > kept
+
+
 def test_a_walk_is_cut_from_its_last_sample_in_the_start_zone_to_its_first_in_the_goal():
     xy = np.column_stack([np.arange(-1.0, 8.01, 0.5), np.zeros(19)])
     out = bench.cut(xy, np.array([0.0, 0.0]), np.array([7.0, 0.0]), 1.25)
