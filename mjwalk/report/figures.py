@@ -346,6 +346,10 @@ def _route_figures(
                 entry["reference"]["planner_iqr"] = planner[1]
             entry["median_error"] = length["median"] / ref_median - 1.0
             entry["iqr_ratio"] = length["iqr"] / ref_iqr if ref_iqr > 0 else float("nan")
+            # each direction's spread against the route's captured IQR (issue 48, station
+            # spread: each direction at least 60 % of it; the source pools the directions)
+            for d in entry["directions"]:
+                d["iqr_ratio"] = d["length"]["iqr"] / ref_iqr if ref_iqr > 0 else float("nan")
         routes[label] = entry
     return routes
 

@@ -72,6 +72,8 @@ def _route_rows(rep: dict) -> tuple[list[str], list[list[str]]]:
                     _pct(ref["median_error"]),
                     f"{100 * ref['iqr_ratio']:.0f} %",
                 ]
+            elif "iqr_ratio" in e:  # a direction of a route walked both ways: its IQR alone
+                out += ["–"] * 3 + [f"({100 * e['iqr_ratio']:.0f} %)"]
             else:
                 out += ["–"] * 4
         if has_planner:
@@ -98,7 +100,8 @@ def _reference_md(rep: dict) -> list[str]:
         "",
         f"`capture` and `source's planner`: {source} (the captured walks' lengths and the "
         "source's own planner's, pooled over a route's directions; on the route's pooled "
-        "row). A route's spread here comes from where its walks start and end (the stand "
+        "row; a direction's own IQR over the route's captured one in brackets on its row). "
+        "A route's spread here comes from where its walks start and end (the stand "
         "zones) and from how each walk curves between them (mjwalk.plan.guide).",
     ]
 

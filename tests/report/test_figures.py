@@ -113,6 +113,8 @@ def test_report_figures(workplace):
         assert d["duration"]["median"] == pytest.approx(qd[1], abs=1e-12)
         assert d["duration"]["iqr"] == pytest.approx(qd[2] - qd[0], abs=1e-12)
         assert d["baseline_length"] == pytest.approx(base)
+        # its spread against the route's captured IQR (the source pools the directions)
+        assert d["iqr_ratio"] == pytest.approx((q[2] - q[0]) / CAPTURE_TABLE1["T2"][1])
         # vs A*: the median of each walk's own ratio
         assert d["length_vs_baseline"] == pytest.approx(
             np.median([w.length / base - 1 for w in ws])
@@ -122,6 +124,9 @@ def test_report_figures(workplace):
     assert "| T2 | stand_car1 -> stand_rack3 | 12 | 2.40 |" in md
     assert "| T2 | stand_rack3 -> stand_car2 | 12 | 2.30 |" in md
     assert "| T2 | both | 24 | 2.35 |" in md  # the pooled line of a route walked both ways
+    for d in t2["directions"]:  # a direction's own IQR ratio, in brackets on its row
+        line = next(x for x in md.splitlines() if f"| {d['from']} -> {d['to']} |" in x)
+        assert f"| ({100 * d['iqr_ratio']:.0f} %) |" in line
     assert "| T1 | both |" not in md  # a route walked one way has its one line
     assert rep["routes"]["T5"]["baseline_length"] == pytest.approx(1.05)
     cycle = [r.cycle_time for r in results]
