@@ -67,7 +67,7 @@ from mjwalk.body.legs.rampreach import crest_ground, roll_foot, trailing_reach
 from mjwalk.body.legs.stance import lower_to_reach
 from mjwalk.body.legs.steps import FootTracks, StepFrames
 from mjwalk.plan.walkpath import WalkPath
-from mjwalk.world.norms import MAX_RAMP_SLOPE
+from mjwalk.world.norms import DESCENT_LOW_CLEARANCE, MAX_RAMP_SLOPE
 
 #: Footprint neighbourhood (m) over which the walk's ground slope under a foot is estimated.
 SLOPE_REACH = 0.3
@@ -487,7 +487,9 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
     """The swing feet of the edged swings ``plans`` kept above their surfaces at the pitch the
     ankle holds: where a sole point (heel, ball, toe tip) of the foot so pitched would lie
     below the tread under it (the toes of a foot hanging toes down as it lowers onto a tread),
-    the ankle rises by the depth (:func:`~mjwalk.body.legs.edgeswing.sole_rise`), and the
+    the ankle rises by the depth (:func:`~mjwalk.body.legs.edgeswing.sole_rise`; down a stair
+    by the depth plus :data:`~mjwalk.world.norms.DESCENT_LOW_CLEARANCE`, the clearance below
+    which descent studies count a clearance as low), and the
     foot is pitched again to what the ankle reaches there; in place. Down a stair the swing
     is planned once, 3 cm over the nosings for the foot's pitch then (:func:`edge_swing`),
     and only this keeps the foot, pitched further toes down, off the treads: planning it
@@ -499,8 +501,9 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
         moved = False
         for fr, sf, k, _ in plans:
             s = fr.side
+            margin = DESCENT_LOW_CLEARANCE if _descends(sf) else 0.002
             rise = sole_rise(feet.ankle[s][k], feet.pitch[s][k], feet.toe[s][k], feet.fyaw[s][k],
-                             fr, sf, geom)  # fmt: skip
+                             fr, sf, geom, margin)  # fmt: skip
             feet.ankle[s][k, 2] += rise
             moved = moved or bool(rise.max() > 1e-4)
         if not moved:
