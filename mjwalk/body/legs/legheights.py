@@ -64,6 +64,7 @@ from mjwalk.body.legs.edgeswing import (
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.ik import KNEE_MIN, generic_joint, leg_ik_world
 from mjwalk.body.legs.rampreach import crest_ground, roll_foot, trailing_reach
+from mjwalk.body.legs.rampstance import uphill_stance_raise
 from mjwalk.body.legs.stance import lower_to_reach
 from mjwalk.body.legs.steps import FootTracks, StepFrames
 from mjwalk.plan.walkpath import WalkPath
@@ -548,6 +549,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
     surfs = step_surfaces(walk, geom)
     tr = level_tracks(frames, surfs, feet.ground, n)
     flat_ankle = {s: feet.ankle[s].copy() for s in "lr"}
+    flat = (flat_ankle, {s: feet.pitch[s].copy() for s in "lr"}, root)
     prints = ramps.print_tracks(frames, n)
     for s in "lr":
         on = ~tr.air[s]
@@ -560,6 +562,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
     new_root = root.copy()
     new_root[:, 2] += tr.level
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))
+    new_root[:, 2] += uphill_stance_raise(feet, flat, new_root, yaw, tr.air, tr.pitch, geom, win)
     reach_sq = {s: np.full(n, geom.span(KNEE_MIN) ** 2) for s in "lr"}
     grounded = {s: ~tr.air[s] for s in "lr"}
     trailing_reach(feet, new_root, yaw, grounded, tr.pitch, reach_sq, geom)
