@@ -47,6 +47,21 @@ SIDE_CLEARANCE = 0.15
 #: (highlights verified here), a trip risk, so the usual clearance is not much larger; the
 #: group means of 3-4 cm usually quoted from these studies are NOT verified here. 3 cm.
 STAIR_TOE_CLEARANCE = 0.03
+#: Least vertical clearance of the swing foot's sole over a nosing going DOWN a stair, metres:
+#: the bound below which stair-descent studies count a clearance as low (a trip risk), not a
+#: typical clearance. Hamel, Okita, Higginson & Cavanagh, "Foot clearance during stair descent:
+#: effects of age and illumination", Gait Posture 21:135-140 (2005): older adults had
+#: significantly more minimum foot clearances under 5 mm than young adults (abstract verified
+#: here); Foster, Hotchkiss, Buckley & Elliott, "Safety on stairs: influence of a tread edge
+#: highlighter and its position", Exp Gerontol 55:152-158 (2014): in older adults (71 +- 7 y)
+#: 2 % of descent clearances were under 5 mm with a highlighter flush with the nosing and 17 %
+#: with it set back 30 mm; in young adults with simulated cataract 8 % without a highlighter,
+#: 0 % with a flush one (abstract verified here). No published descent clearance mean or range
+#: was found in the stored sources (searched: Hamel et al. 2005, Simoneau et al. 1991, Christina
+#: & Cavanagh 2002, Zietz, Johannsen & Hollands 2011, Loverro, Mueske & Hamel 2013, Cluff &
+#: Robertson, Muhaidat et al. 2011, Foster et al. 2014, Di Giulio et al. 2020: abstracts only),
+#: so :data:`STAIR_TOE_CLEARANCE` remains an ascent figure. 5 mm.
+DESCENT_LOW_CLEARANCE = 0.005
 
 # --- level and touching surfaces --------------------------------------------------------------
 #: Largest height difference between two touching surfaces that still counts as one level,

@@ -64,10 +64,11 @@ from mjwalk.body.legs.edgeswing import (
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.ik import KNEE_MIN, generic_joint, leg_ik_world
 from mjwalk.body.legs.rampreach import crest_ground, roll_foot, trailing_reach
+from mjwalk.body.legs.rampstance import uphill_stance_raise
 from mjwalk.body.legs.stance import lower_to_reach
 from mjwalk.body.legs.steps import FootTracks, StepFrames
 from mjwalk.plan.walkpath import WalkPath
-from mjwalk.world.norms import MAX_RAMP_SLOPE
+from mjwalk.world.norms import DESCENT_LOW_CLEARANCE, MAX_RAMP_SLOPE
 
 #: Footprint neighbourhood (m) over which the walk's ground slope under a foot is estimated.
 SLOPE_REACH = 0.3
@@ -487,7 +488,9 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
     """The swing feet of the edged swings ``plans`` kept above their surfaces at the pitch the
     ankle holds: where a sole point (heel, ball, toe tip) of the foot so pitched would lie
     below the tread under it (the toes of a foot hanging toes down as it lowers onto a tread),
-    the ankle rises by the depth (:func:`~mjwalk.body.legs.edgeswing.sole_rise`), and the
+    the ankle rises by the depth (:func:`~mjwalk.body.legs.edgeswing.sole_rise`; down a stair
+    by the depth plus :data:`~mjwalk.world.norms.DESCENT_LOW_CLEARANCE`, the clearance below
+    which descent studies count a clearance as low), and the
     foot is pitched again to what the ankle reaches there; in place. Down a stair the swing
     is planned once, 3 cm over the nosings for the foot's pitch then (:func:`edge_swing`),
     and only this keeps the foot, pitched further toes down, off the treads: planning it
@@ -499,8 +502,9 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
         moved = False
         for fr, sf, k, _ in plans:
             s = fr.side
+            margin = DESCENT_LOW_CLEARANCE if _descends(sf) else 0.002
             rise = sole_rise(feet.ankle[s][k], feet.pitch[s][k], feet.toe[s][k], feet.fyaw[s][k],
-                             fr, sf, geom)  # fmt: skip
+                             fr, sf, geom, margin)  # fmt: skip
             feet.ankle[s][k, 2] += rise
             moved = moved or bool(rise.max() > 1e-4)
         if not moved:
@@ -545,6 +549,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
     surfs = step_surfaces(walk, geom)
     tr = level_tracks(frames, surfs, feet.ground, n)
     flat_ankle = {s: feet.ankle[s].copy() for s in "lr"}
+    flat = (flat_ankle, {s: feet.pitch[s].copy() for s in "lr"}, root)
     prints = ramps.print_tracks(frames, n)
     for s in "lr":
         on = ~tr.air[s]
@@ -557,6 +562,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
     new_root = root.copy()
     new_root[:, 2] += tr.level
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))
+    new_root[:, 2] += uphill_stance_raise(feet, flat, new_root, yaw, tr.air, tr.pitch, geom, win)
     reach_sq = {s: np.full(n, geom.span(KNEE_MIN) ** 2) for s in "lr"}
     grounded = {s: ~tr.air[s] for s in "lr"}
     trailing_reach(feet, new_root, yaw, grounded, tr.pitch, reach_sq, geom)
