@@ -92,6 +92,7 @@ from mjwalk.plan.stepcost import downhill_costs, grid_bound, grid_sight, heading
 from mjwalk.plan.stepgeom import (
     beyond,
     cell_key,
+    decode_col,
     decode_real,
     field_clearance,
     in_goal,
@@ -274,6 +275,16 @@ def check_into(
         drawn[i] += 1
         fr = frame[r] if per_row else frame[i]
         lf = left[r] if per_row else left[i]
+        if fr != fr_last:  # the turn into the world, once per frame heading (rows share it)
+            rot = complex(math.sin(fr), -math.cos(fr))
+            fr_last = fr
+        p = node[i, 0]
+        if closing:
+            # a closing step must end the walk: its end and heading first (most closing draws
+            # end outside the goal area), the same sums as the full decode's columns below
+            end = decode_col(z, r, matrix, offset, m - 1) * rot + p
+            if not in_goal(end, fr + decode_col(z, r, matrix, offset, m + 1).imag, par, ipar):
+                continue
         # decode: local = z @ matrix + offset (real features times complex columns: the real
         # and imaginary sums apart, the products a complex product with 0j would add as ±0)
         for c in range(m + 2):
@@ -285,10 +296,6 @@ def check_into(
                 sr += za * w.real
                 si += za * w.imag
             loc[c] = complex(sr, si)
-        if fr != fr_last:  # the turn into the world, once per frame heading (rows share it)
-            rot = complex(math.sin(fr), -math.cos(fr))
-            fr_last = fr
-        p = node[i, 0]
         # clearance of pelvis samples, ankle, toes, knees (world)
         ok = True
         for j in range(m + 1):
@@ -384,8 +391,6 @@ def check_into(
                 continue
         end = loc[m - 1] * rot + p
         th = fr + yaws.imag
-        if closing and not in_goal(end, th, par, ipar):  # a closing step must end the walk
-            continue
         # walked length and heuristic
         if ipar[I_CHORD]:
             seg = abs(loc[m - 1])

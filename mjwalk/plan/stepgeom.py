@@ -181,6 +181,29 @@ def in_goal(p, heading, par, ipar):
 
 
 @njit
+def decode_col(z, r, matrix, offset, col):
+    """Decoder column ``col`` for feature row ``r`` (``z[r] @ matrix + offset`` there): its real
+    and imaginary sums apart, in feature order, as :func:`~mjwalk.plan.stepcheck.check_into`
+    decodes every column (bit-equal to it).
+
+    Args:
+        z: (n, d) standardized features.
+        r: the row.
+        matrix: (d, 2m + 3) the decoder's complex matrix.
+        offset: (2m + 3,) its complex offset.
+        col: the column.
+    """
+    sr = offset[col].real
+    si = offset[col].imag
+    for a in range(z.shape[1]):
+        za = z[r, a]
+        w = matrix[a, col]
+        sr += za * w.real
+        si += za * w.imag
+    return complex(sr, si)
+
+
+@njit
 def decode_real(z, r, matrix, offset, col):
     """The real part of decoder column ``col`` for feature row ``r`` (``z[r] @ matrix + offset``
     there, summed in feature order): the columns only some steps need (pelvis yaws, duration).
