@@ -33,7 +33,7 @@ import math
 import numpy as np
 
 from mjwalk._jit import njit
-from mjwalk.plan.guide import guide_ahead_at, guide_aim, guide_aim_at, guide_nearest
+from mjwalk.plan.guide import guide_aim, guide_aim_at, guide_nearest, guide_rest
 from mjwalk.plan.lean import lean_in_range, lean_limits, lean_ok, stance_lean, stance_lean_ok
 from mjwalk.plan.slots import (
     I_CHORD,
@@ -65,6 +65,7 @@ from mjwalk.plan.slots import (
     P_GOAL_X,
     P_GOAL_Y,
     P_GUIDE0,
+    P_GUIDE_LEN0,
     P_HEADING_FROM,
     P_HEADING_WEIGHT,
     P_HIP_Y,
@@ -439,7 +440,7 @@ def check_into(
                 seg *= heading_factor(fr + 0.5 * yaws.imag, want, hw)
         g = node[i, 3].real + seg
         if guided:  # along a guide: the way left along it, if longer
-            h = max(h, guide_ahead_at(guide, gk, gw, gd2))
+            h = max(h, guide_rest(par[P_GUIDE_LEN0:N_PARAMS], gk, gw, gd2))
         fh = par[P_WEIGHT] * h
         if h > par[P_FAR_FROM]:  # farther than FAR_FROM from the goal: the far weight too
             fh += par[P_FAR_WEIGHT] * (h - par[P_FAR_FROM])
