@@ -13,7 +13,10 @@ x (p, d) are predecessor features; ``gp`` is the tuple :attr:`TransitionGP.kerne
 ``__post_init__``: ``neg_zs_t`` (d, m) = -(Z/ℓ²)ᵀ; ``half_zs2`` (m,) = |Z/ℓ|²/2;
 ``half_inv_l2`` (d,) = 1/(2ℓ²); ``c_alpha`` (m, d) = C·α; ``c2_w`` (m, m) = C²·W and its
 :func:`pack_upper`; C; ``pool`` (m·k, d) the residual pools flattened, k residuals per inducing
-input.
+input; k; ``var_cap`` an upper bound of every variance
+(:func:`mjwalk.gait.transition.variance_cap`). :func:`sample` is :func:`draw_parts` (all but the
+variance, all the random numbers), :func:`variance` and :func:`compose`, so a caller that can
+do without the variance skips it (:func:`mjwalk.plan.search.search`'s closing draws).
 """
 
 from __future__ import annotations

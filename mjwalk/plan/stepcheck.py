@@ -8,7 +8,8 @@ against its own limit (bilinear lookup in the workplace's walk field), the landi
 from the ankle towards the hip (:func:`~mjwalk.plan.stepgeom.landing_leg_clear`), the leg-reach
 tests, the stance-leg lean test (:func:`~mjwalk.plan.lean.stance_lean_ok`: the stance leg must
 follow the pelvis within the ankle's and the hip's sideways ranges), the closing-step test (a
-closing step must end in the goal area), and for the accepted steps the walked length g
+closing step must end in the goal area; tested first, from its end and heading alone: most
+closing draws end outside it), and for the accepted steps the walked length g
 (:mod:`mjwalk.plan.stepcost`), f = g + weight·h (plus far weight·(h - far from) beyond far
 from), the closed-list key, heading and landing foot. It is one loop over the rows (numba, see
 :mod:`mjwalk._jit`).

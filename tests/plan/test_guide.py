@@ -450,3 +450,17 @@ def test_straight_walks_in_an_empty_hall_stay_within_6_cm_of_their_chord(empty_h
     anywhere in the goal area (seed 22 of the last variant: 16 cm off in its last step)."""
     raw, _ = empty_hall_offsets
     assert raw.max() <= 0.06, raw
+
+
+def test_the_way_left_from_segment_lengths_made_once_is_bit_equal():
+    """guide_rest over guide_lengths (once per walk, slots.P_GUIDE_LEN0) gives guide_ahead_at's
+    value bit for bit at every segment and share."""
+    from mjwalk.plan.guide import guide_ahead_at, guide_lengths, guide_nearest, guide_rest
+
+    arc = resample_guide(minimum_jerk_guide((0.0, 0.0), (6.0, 2.0), math.radians(40), None))
+    flat = arc.ravel()
+    lengths = guide_lengths(flat)
+    rng = np.random.default_rng(0)
+    for p in rng.uniform(-1.0, 7.0, (200, 2)):
+        k, w, d2 = guide_nearest(flat, complex(*p))
+        assert guide_rest(lengths, k, w, d2) == guide_ahead_at(flat, k, w, d2)
