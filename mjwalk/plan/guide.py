@@ -37,6 +37,7 @@ import numpy as np
 
 from mjwalk._jit import njit
 from mjwalk.gait.walker import REFERENCE_CADENCE, REFERENCE_SPEED
+from mjwalk.plan.stepcost import guide_lengths, guide_rest
 from mjwalk.world.clearance import ClearanceField, bilinear_at
 
 __all__ = [
@@ -49,9 +50,7 @@ __all__ = [
     "guide_aim",
     "guide_aim_at",
     "guide_is_clear",
-    "guide_lengths",
     "guide_nearest",
-    "guide_rest",
     "guide_start_heading",
     "minimum_jerk_guide",
     "resample_guide",
@@ -559,40 +558,6 @@ def guide_ahead(guide, p):
 
 
 @njit
-def guide_lengths(guide):
-    """The lengths (m) of the guide's segments, (GUIDE_POINTS - 1,), as :func:`guide_ahead_at`
-    measures them: a walk's guide is fixed, so the search takes them once per walk
-    (:data:`~mjwalk.plan.slots.P_GUIDE_LEN0`, :func:`guide_rest`).
-
-    Args:
-        guide: the guide, flat (x0, y0, x1, y1, ...), metres.
-    """
-    n = guide.shape[0] // 2
-    out = np.empty(n - 1)
-    for k in range(n - 1):
-        out[k] = math.hypot(guide[2 * k + 2] - guide[2 * k], guide[2 * k + 3] - guide[2 * k + 1])
-    return out
-
-
-@njit
-def guide_rest(lengths, best_k, best_w, best_d2):
-    """:func:`guide_ahead_at` from the guide's segment lengths ``lengths``
-    (:func:`guide_lengths`): the same sum in the same order, bit-equal.
-
-    Args:
-        lengths: (GUIDE_POINTS - 1,) the segment lengths, metres.
-        best_k: the segment of the guide's point nearest the walker.
-        best_w: the share (0..1) along it of that point.
-        best_d2: the squared distance (m^2) from the walker to that point.
-    """
-    rest = 0.0
-    for k in range(best_k, lengths.shape[0]):
-        seg = lengths[k]
-        rest += seg * (1.0 - best_w) if k == best_k else seg
-    return math.sqrt(best_d2) + rest
-
-
-@njit
 def guide_ahead_at(guide, best_k, best_w, best_d2):
     """:func:`guide_ahead` along a guide, from its point nearest the walker (segment
     ``best_k``, share ``best_w``, squared distance ``best_d2``: :func:`guide_nearest`).
@@ -603,9 +568,4 @@ def guide_ahead_at(guide, best_k, best_w, best_d2):
         best_w: the share (0..1) along it of that point.
         best_d2: the squared distance (m^2) from the walker to that point.
     """
-    n = guide.shape[0] // 2
-    rest = 0.0
-    for k in range(best_k, n - 1):
-        seg = math.hypot(guide[2 * k + 2] - guide[2 * k], guide[2 * k + 3] - guide[2 * k + 1])
-        rest += seg * (1.0 - best_w) if k == best_k else seg
-    return math.sqrt(best_d2) + rest
+    return guide_rest(guide_lengths(guide), best_k, best_w, best_d2)

@@ -19,7 +19,6 @@ from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import PlanningError
 from mjwalk.gait.transition import POOL_SHARPNESS
 from mjwalk.plan import slots
-from mjwalk.plan.guide import guide_lengths
 from mjwalk.plan.heuristic import GoalDistance
 from mjwalk.plan.occupancy import OccupancyGrid
 from mjwalk.plan.options import (
@@ -47,6 +46,7 @@ from mjwalk.plan.options import (
     swing_turned,
     toe_corners,
 )
+from mjwalk.plan.stepcost import guide_lengths
 from mjwalk.world.clearance import ClearanceField
 
 

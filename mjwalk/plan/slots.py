@@ -77,7 +77,7 @@ P_DISC0 = P_GUIDE0 + 2 * GUIDE_POINTS
 #: planner's own goal area as one more disc (:meth:`~mjwalk.plan.hybrid.HybridPlanner.plan`).
 MAX_GOAL_DISCS = 7
 #: The guide's GUIDE_POINTS - 1 segment lengths (m) at P_GUIDE_LEN0 + k, after the discs
-#: (:func:`~mjwalk.plan.guide.guide_lengths`: made once per walk, not per scored step); nan:
+#: (:func:`~mjwalk.plan.stepcost.guide_lengths`: made once per walk, not per scored step); nan:
 #: no guide.
 P_GUIDE_LEN0 = P_DISC0 + 3 * MAX_GOAL_DISCS
 N_PARAMS = P_GUIDE_LEN0 + GUIDE_POINTS - 1

@@ -34,7 +34,7 @@ import math
 import numpy as np
 
 from mjwalk._jit import njit
-from mjwalk.plan.guide import guide_aim, guide_aim_at, guide_nearest, guide_rest
+from mjwalk.plan.guide import guide_aim, guide_aim_at, guide_nearest
 from mjwalk.plan.lean import lean_in_range, lean_limits, lean_ok, stance_lean, stance_lean_ok
 from mjwalk.plan.slots import (
     I_CHORD,
@@ -90,7 +90,14 @@ from mjwalk.plan.slots import (
     iparams,
     params,
 )
-from mjwalk.plan.stepcost import downhill_costs, grid_bound, grid_sight, heading_factor, step_energy
+from mjwalk.plan.stepcost import (
+    downhill_costs,
+    grid_bound,
+    grid_sight,
+    guide_rest,
+    heading_factor,
+    step_energy,
+)
 from mjwalk.plan.stepgeom import (
     beyond,
     cell_key,
