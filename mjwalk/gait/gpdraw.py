@@ -13,7 +13,10 @@ x (p, d) are predecessor features; ``gp`` is the tuple :attr:`TransitionGP.kerne
 ``__post_init__``: ``neg_zs_t`` (d, m) = -(Z/ℓ²)ᵀ; ``half_zs2`` (m,) = |Z/ℓ|²/2;
 ``half_inv_l2`` (d,) = 1/(2ℓ²); ``c_alpha`` (m, d) = C·α; ``c2_w`` (m, m) = C²·W and its
 :func:`pack_upper`; C; ``pool`` (m·k, d) the residual pools flattened, k residuals per inducing
-input.
+input; k; ``var_cap`` an upper bound of every variance
+(:func:`mjwalk.gait.transition.variance_cap`). :func:`sample` is :func:`draw_parts` (all but the
+variance, all the random numbers), :func:`variance` and :func:`compose`, so a caller that can
+do without the variance skips it (:func:`mjwalk.plan.search.search`'s closing draws).
 """
 
 from __future__ import annotations
@@ -95,7 +98,15 @@ def moments(x, gp):
 @njit
 def _moments(x, gp):
     """:func:`moments` and exp(-h) (p, m)."""
-    neg_zs_t, half_zs2, half_inv_l2, c_alpha, c2_w, packed, signal_var = gp[:7]
+    mean, h, e = _kernel_rows(x, gp)
+    return mean, variance(e, gp), h, e
+
+
+@njit
+def _kernel_rows(x, gp):
+    """The posterior mean (p, d), h (p, m) and exp(-h) (p, m) of :func:`moments`: all of it
+    but the variance."""
+    neg_zs_t, half_zs2, half_inv_l2, c_alpha = gp[:4]
     p, d = x.shape
     m = half_zs2.shape[0]
     h = np.empty((p, m))
@@ -122,8 +133,19 @@ def _moments(x, gp):
             e[i, j] = ej
             for a in range(c_alpha.shape[1]):
                 mean[i, a] += ej * c_alpha[j, a]
-    var = signal_var - _quadratic(e, c2_w, packed)
-    return mean, var, h, e
+    return mean, h, e
+
+
+@njit
+def variance(e, gp):
+    """The latent variance C - e (C²·W) eᵀ (p,) (not clipped at 0) of the kernel rows
+    exp(-h) ``e`` (p, m): the dense quadratic form, most of a draw's arithmetic.
+
+    Args:
+        e: (p, m) exp(-h) of :func:`draw_parts`.
+        gp: :attr:`TransitionGP.kernel`.
+    """
+    return gp[6] - _quadratic(e, gp[4], gp[5])
 
 
 @njit
@@ -134,7 +156,7 @@ def sample(x, n, rng, gp, sharp):
     ∝ exp(-sharp·(h_j - min h)) = (k_j/max k)^sharp (the power for a whole sharpness: equal to
     rounding, so a choice could only differ where the uniform number falls within a few
     roundings of a boundary between two inducing inputs), and a uniform member of it;
-    ε standard normal.
+    ε standard normal. :func:`draw_parts`, :func:`variance` and :func:`compose`.
 
     Args:
         x: (p, d) predecessor features.
@@ -146,11 +168,29 @@ def sample(x, n, rng, gp, sharp):
     Returns:
         (p, n, d) successor features.
     """
+    mean, e, rows, eps = draw_parts(x, n, rng, gp, sharp)
+    return compose(mean, variance(e, gp), rows, eps, n, gp[7])
+
+
+@njit
+def draw_parts(x, n, rng, gp, sharp):
+    """Everything of :func:`sample` but the variance, which the random numbers do not depend
+    on: the posterior mean (p, d), exp(-h) (p, m), each successor's residual row of the
+    flattened pools (p·n,) and its normal deviates (p·n·d,), drawn from ``rng`` as
+    :func:`sample` draws them.
+
+    Args:
+        x: (p, d) predecessor features.
+        n: successors per predecessor.
+        rng: ``numpy.random.Generator``: p·n uniforms, p·n integers, then p·n·d normals.
+        gp: :attr:`TransitionGP.kernel`.
+        sharp: sharpness of the pool choice (as for :func:`sample`).
+    """
     pool = gp[7]
     k = gp[8]
     p = x.shape[0]
     d = pool.shape[1]
-    mean, var, h, e = _moments(x, gp)
+    mean, h, e = _kernel_rows(x, gp)
     m = h.shape[1]
     # a whole sharpness (up to 64): the weights are that power of exp(-h) over its largest
     # value, by multiplications, instead of a second exp per inducing input
@@ -197,12 +237,29 @@ def sample(x, n, rng, gp, sharp):
             cell[i * n + r] = k * np.searchsorted(c, u[i * n + r] * acc)
     member = rng.integers(0, k, p * n)
     eps = rng.standard_normal(p * n * d)
+    return mean, e, cell + member, eps
+
+
+@njit
+def compose(mean, var, rows, eps, n, pool):
+    """The successors eps·√max(v, 0) + μ + r (p, n, d) of :func:`draw_parts`' mean, rows and
+    deviates, with the variances ``var`` (p,).
+
+    Args:
+        mean: (p, d) posterior means.
+        var: (p,) latent variances.
+        rows: (p·n,) residual rows of ``pool``.
+        eps: (p·n·d,) normal deviates.
+        n: successors per predecessor.
+        pool: (m·k, d) the flattened residual pools.
+    """
+    p, d = mean.shape
     out = np.empty((p, n, d))
     for i in range(p):
         sd = math.sqrt(max(var[i], 0.0))
         for r in range(n):
             q = i * n + r
-            row = cell[q] + member[q]
+            row = rows[q]
             for a in range(d):
                 out[i, r, a] = eps[q * d + a] * sd + mean[i, a] + pool[row, a]
     return out

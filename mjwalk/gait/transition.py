@@ -30,6 +30,36 @@ POOL_SHARPNESS = 10.0
 N_INDUCING = 200
 
 
+def variance_cap(c2_w: np.ndarray, signal_var: float) -> float:
+    """An upper bound of every latent variance C - e (C²·W) eᵀ that
+    :func:`mjwalk.gait.gpdraw.variance` computes, for any kernel row e in [0, 1]^m.
+
+    C²·W's least eigenvalue bounds e W eᵀ >= λ_min·|e|² >= min(λ_min, 0)·m; for λ_min a lower
+    bound from a successful Cholesky factorisation (its backward error: RᵀR = A + ΔA with
+    |ΔA| <= γ_(m+1)·|Rᵀ||R|, Higham, *Accuracy and Stability of Numerical Algorithms*, 2nd ed.
+    2002, Thm 10.3, so λ_min(A) >= -γ_(m+1)·‖R‖_F²), else from the symmetric eigenvalues less
+    m·u·‖A‖_F. The computed quadratic form is within γ_(2m)·Σ|A_ij| of its exact value
+    (ibid. §3.1; the packed and BLAS sums alike, reassociated or not), which the bound adds,
+    doubled. The default model's forms are positive definite: the cap is C plus about 1e-6.
+
+    Args:
+        c2_w: (m, m) the symmetric C²·W.
+        signal_var: the signal variance C.
+
+    Returns:
+        The cap on the variance (same units as C).
+    """
+    m = c2_w.shape[0]
+    unit = 2.0**-53
+    try:
+        r = np.linalg.cholesky(c2_w)
+        lowest = -1.01 * ((m + 1) * unit / (1 - (m + 1) * unit)) * float(np.sum(r * r))
+    except np.linalg.LinAlgError:
+        lowest = float(np.linalg.eigvalsh(c2_w)[0]) - 4 * m * unit * float(np.linalg.norm(c2_w))
+    rounding = 2.0 * (2 * m * unit / (1 - 2 * m * unit)) * float(np.abs(c2_w).sum())
+    return (signal_var + m * max(-lowest, 0.0) + rounding) * (1.0 + 1e-9)
+
+
 @dataclass
 class TransitionGP:
     """DTC (projected-process) GP predictor from predecessor to successor features.
@@ -84,6 +114,7 @@ class TransitionGP:
             float(self.signal_var),
             self._pool_flat,
             int(self.res_pool.shape[1]),
+            variance_cap(self._c2_w, float(self.signal_var)),
         )
 
     def kernel_rows(self, x: np.ndarray) -> np.ndarray:

@@ -37,6 +37,7 @@ import numpy as np
 
 from mjwalk._jit import njit
 from mjwalk.gait.walker import REFERENCE_CADENCE, REFERENCE_SPEED
+from mjwalk.plan.stepcost import guide_lengths, guide_rest
 from mjwalk.world.clearance import ClearanceField, bilinear_at
 
 __all__ = [
@@ -567,9 +568,4 @@ def guide_ahead_at(guide, best_k, best_w, best_d2):
         best_w: the share (0..1) along it of that point.
         best_d2: the squared distance (m^2) from the walker to that point.
     """
-    n = guide.shape[0] // 2
-    rest = 0.0
-    for k in range(best_k, n - 1):
-        seg = math.hypot(guide[2 * k + 2] - guide[2 * k], guide[2 * k + 3] - guide[2 * k + 1])
-        rest += seg * (1.0 - best_w) if k == best_k else seg
-    return math.sqrt(best_d2) + rest
+    return guide_rest(guide_lengths(guide), best_k, best_w, best_d2)

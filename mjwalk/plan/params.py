@@ -46,6 +46,7 @@ from mjwalk.plan.options import (
     swing_turned,
     toe_corners,
 )
+from mjwalk.plan.stepcost import guide_lengths
 from mjwalk.world.clearance import ClearanceField
 
 
@@ -180,6 +181,9 @@ class KernelParams:
             ipar[slots.I_N_DISCS] = k + 1
         if walk.guide is not None and par[slots.P_HEADING_WEIGHT] > 0.0:
             par[slots.P_GUIDE0 : slots.P_DISC0] = walk.guide.ravel()
+            par[slots.P_GUIDE_LEN0 : slots.N_PARAMS] = guide_lengths(
+                par[slots.P_GUIDE0 : slots.P_DISC0]
+            )
         if math.isnan(par[slots.P_GUIDE0]) and not self.distance.sees(walk.start_xy):
             # the heading term without a guide: only for a goal in sight from the start
             par[slots.P_HEADING_WEIGHT] = 0.0

@@ -20,19 +20,22 @@ functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_into`
 in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan.stepcost`;
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change to this file's text,
 or processes keep running the old machine code (touching the file is not enough). The record of
-such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the guide's pursuit point,
-issue 48).
+such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: closing draws that
+cannot end the walk skip the GP's variance, and the guide's segment lengths once per walk, issue
+50).
 """
 
 from __future__ import annotations
 
 import heapq
+import math
 
 import numpy as np
 from numba import types
 from numba.typed import Dict
 
 from mjwalk._jit import njit
+from mjwalk.gait.gpdraw import compose, draw_parts, variance
 from mjwalk.gait.gpdraw import sample as gp_sample
 from mjwalk.plan.slots import (
     I_M,
@@ -46,7 +49,7 @@ from mjwalk.plan.slots import (
     P_STOP_REACH,
 )
 from mjwalk.plan.stepcheck import check_into, new_buffers
-from mjwalk.plan.stepgeom import cell_key, in_goal, within
+from mjwalk.plan.stepgeom import cell_key, closing_ends_miss, in_goal, within
 
 #: :func:`search` outcomes.
 FOUND, EXHAUSTED, BUDGET = 0, 1, 2
@@ -64,6 +67,29 @@ def _grow2(a, n):
     out = np.empty((n, a.shape[1]), dtype=a.dtype)
     out[: a.shape[0]] = a
     return out
+
+
+@njit
+def _closing_draws(x, n, rng, gp, sharp, matrix, offset, frame, p, par, ipar):
+    """``n`` closing steps drawn from the predecessor ``x`` (1, d) by the closing-step GP
+    ``gp``, as :func:`~mjwalk.gait.gpdraw.sample` draws them (the same random numbers), for
+    a node at ``p`` (world x + iy) whose steps turn by ``frame`` (radians).
+
+    Most closing draws near the goal cannot end the walk wherever their variance puts them
+    (:func:`~mjwalk.plan.stepgeom.closing_ends_miss`, with the variance's cap
+    ``gp[9]``): those skip the dense variance (:func:`~mjwalk.gait.gpdraw.variance`) and come
+    out at their mean and residual (sd 0), which ends outside the goal area as well, so
+    :func:`~mjwalk.plan.stepcheck.check_into` rejects them as it would the true draws (their
+    features are never read: only accepted steps become nodes). Returns (n, d).
+    """
+    mean, e, rows, eps = draw_parts(x, n, rng, gp, sharp)
+    m = ipar[I_M]
+    if closing_ends_miss(mean, rows, eps, gp[7], math.sqrt(gp[9]), matrix, offset, m, frame,
+                         p, par, ipar):  # fmt: skip
+        var = np.zeros(1)
+    else:
+        var = variance(e, gp)
+    return compose(mean, var, rows, eps, n, gp[7])[0]
 
 
 @njit
@@ -211,9 +237,13 @@ def search(
                     z[:n_walk] = gp_sample(x, n_walk, rng, gp_right, sharp)[0]
             if per > n_walk:  # near the goal: closing steps too, after the walking ones
                 if on_left:
-                    z[n_walk:] = gp_sample(x, n_stop, rng, stop_left, sharp)[0]
+                    z[n_walk:] = _closing_draws(
+                        x, n_stop, rng, stop_left, sharp, matrix, offset, hd, p, par, ipar
+                    )
                 else:
-                    z[n_walk:] = gp_sample(x, n_stop, rng, stop_right, sharp)[0]
+                    z[n_walk:] = _closing_draws(
+                        x, n_stop, rng, stop_right, sharp, matrix, offset, hd, p, par, ipar
+                    )
             one_frame[0] = hd
             one_left[0] = not left[nid]
             frm = one_frame

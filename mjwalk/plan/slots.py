@@ -76,7 +76,11 @@ P_DISC0 = P_GUIDE0 + 2 * GUIDE_POINTS
 #: is I_N_DISCS. A planner takes one fewer (``goal_within``): a walk to a spot keeps the
 #: planner's own goal area as one more disc (:meth:`~mjwalk.plan.hybrid.HybridPlanner.plan`).
 MAX_GOAL_DISCS = 7
-N_PARAMS = P_DISC0 + 3 * MAX_GOAL_DISCS
+#: The guide's GUIDE_POINTS - 1 segment lengths (m) at P_GUIDE_LEN0 + k, after the discs
+#: (:func:`~mjwalk.plan.stepcost.guide_lengths`: made once per walk, not per scored step); nan:
+#: no guide.
+P_GUIDE_LEN0 = P_DISC0 + 3 * MAX_GOAL_DISCS
+N_PARAMS = P_GUIDE_LEN0 + GUIDE_POINTS - 1
 # Slots of the integer parameter vector.
 (
     I_M,

@@ -8,7 +8,8 @@ against its own limit (bilinear lookup in the workplace's walk field), the landi
 from the ankle towards the hip (:func:`~mjwalk.plan.stepgeom.landing_leg_clear`), the leg-reach
 tests, the stance-leg lean test (:func:`~mjwalk.plan.lean.stance_lean_ok`: the stance leg must
 follow the pelvis within the ankle's and the hip's sideways ranges), the closing-step test (a
-closing step must end in the goal area), and for the accepted steps the walked length g
+closing step must end in the goal area; tested first, from its end and heading alone: most
+closing draws end outside it), and for the accepted steps the walked length g
 (:mod:`mjwalk.plan.stepcost`), f = g + weight·h (plus far weight·(h - far from) beyond far
 from), the closed-list key, heading and landing foot. It is one loop over the rows (numba, see
 :mod:`mjwalk._jit`).
@@ -33,7 +34,7 @@ import math
 import numpy as np
 
 from mjwalk._jit import njit
-from mjwalk.plan.guide import guide_ahead_at, guide_aim, guide_aim_at, guide_nearest
+from mjwalk.plan.guide import guide_aim, guide_aim_at, guide_nearest
 from mjwalk.plan.lean import lean_in_range, lean_limits, lean_ok, stance_lean, stance_lean_ok
 from mjwalk.plan.slots import (
     I_CHORD,
@@ -65,6 +66,7 @@ from mjwalk.plan.slots import (
     P_GOAL_X,
     P_GOAL_Y,
     P_GUIDE0,
+    P_GUIDE_LEN0,
     P_HEADING_FROM,
     P_HEADING_WEIGHT,
     P_HIP_Y,
@@ -88,10 +90,18 @@ from mjwalk.plan.slots import (
     iparams,
     params,
 )
-from mjwalk.plan.stepcost import downhill_costs, grid_bound, grid_sight, heading_factor, step_energy
+from mjwalk.plan.stepcost import (
+    downhill_costs,
+    grid_bound,
+    grid_sight,
+    guide_rest,
+    heading_factor,
+    step_energy,
+)
 from mjwalk.plan.stepgeom import (
     beyond,
     cell_key,
+    decode_col,
     decode_real,
     field_clearance,
     in_goal,
@@ -274,6 +284,16 @@ def check_into(
         drawn[i] += 1
         fr = frame[r] if per_row else frame[i]
         lf = left[r] if per_row else left[i]
+        if fr != fr_last:  # the turn into the world, once per frame heading (rows share it)
+            rot = complex(math.sin(fr), -math.cos(fr))
+            fr_last = fr
+        p = node[i, 0]
+        if closing:
+            # a closing step must end the walk: its end and heading first (most closing draws
+            # end outside the goal area), the same sums as the full decode's columns below
+            end = decode_col(z, r, matrix, offset, m - 1) * rot + p
+            if not in_goal(end, fr + decode_col(z, r, matrix, offset, m + 1).imag, par, ipar):
+                continue
         # decode: local = z @ matrix + offset (real features times complex columns: the real
         # and imaginary sums apart, the products a complex product with 0j would add as ±0)
         for c in range(m + 2):
@@ -285,10 +305,6 @@ def check_into(
                 sr += za * w.real
                 si += za * w.imag
             loc[c] = complex(sr, si)
-        if fr != fr_last:  # the turn into the world, once per frame heading (rows share it)
-            rot = complex(math.sin(fr), -math.cos(fr))
-            fr_last = fr
-        p = node[i, 0]
         # clearance of pelvis samples, ankle, toes, knees (world)
         ok = True
         for j in range(m + 1):
@@ -384,8 +400,6 @@ def check_into(
                 continue
         end = loc[m - 1] * rot + p
         th = fr + yaws.imag
-        if closing and not in_goal(end, th, par, ipar):  # a closing step must end the walk
-            continue
         # walked length and heuristic
         if ipar[I_CHORD]:
             seg = abs(loc[m - 1])
@@ -434,7 +448,7 @@ def check_into(
                 seg *= heading_factor(fr + 0.5 * yaws.imag, want, hw)
         g = node[i, 3].real + seg
         if guided:  # along a guide: the way left along it, if longer
-            h = max(h, guide_ahead_at(guide, gk, gw, gd2))
+            h = max(h, guide_rest(par[P_GUIDE_LEN0:N_PARAMS], gk, gw, gd2))
         fh = par[P_WEIGHT] * h
         if h > par[P_FAR_FROM]:  # farther than FAR_FROM from the goal: the far weight too
             fh += par[P_FAR_WEIGHT] * (h - par[P_FAR_FROM])

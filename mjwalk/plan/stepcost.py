@@ -1,5 +1,6 @@
 """What a sampled step costs and what is left to the goal: the energy cost of its length,
-the heading factor while the goal is in sight, and the goal distance's grid bound (compiled).
+the heading factor while the goal is in sight, the goal distance's grid bound and the way left
+along a walk's guide from its segment lengths (compiled).
 """
 
 from __future__ import annotations
@@ -147,3 +148,40 @@ def heading_factor(heading, want, weight):
     psi = want - heading
     psi = (psi + math.pi) % (2.0 * math.pi) - math.pi
     return 1.0 + weight * psi * psi
+
+
+@njit
+def guide_lengths(guide):
+    """The lengths of a guide's segments, as :func:`mjwalk.plan.guide.guide_ahead_at` sums
+    them: a walk's guide is fixed, so the search takes them once per walk
+    (:data:`~mjwalk.plan.slots.P_GUIDE_LEN0`) rather than per scored step.
+
+    Args:
+        guide: the guide, flat (x0, y0, x1, y1, ...), metres, world frame.
+
+    Returns:
+        (points - 1,) the segment lengths, metres.
+    """
+    n = guide.shape[0] // 2
+    out = np.empty(n - 1)
+    for k in range(n - 1):
+        out[k] = math.hypot(guide[2 * k + 2] - guide[2 * k], guide[2 * k + 3] - guide[2 * k + 1])
+    return out
+
+
+@njit
+def guide_rest(lengths, best_k, best_w, best_d2):
+    """The way (m) left along a guide from its point nearest the walker
+    (:func:`mjwalk.plan.guide.guide_ahead_at`): the distance to that point plus the rest of
+    its segment and the segments after it, summed in order.
+
+    Args:
+        lengths: the guide's segment lengths (:func:`guide_lengths`), metres.
+        best_k: the segment of the guide's point nearest the walker.
+        best_w: the share (0..1) along it of that point.
+        best_d2: the squared distance (m^2) from the walker to that point.
+    """
+    rest = 0.0
+    for k in range(best_k, lengths.shape[0]):
+        rest += lengths[k] * (1.0 - best_w) if k == best_k else lengths[k]
+    return math.sqrt(best_d2) + rest

@@ -181,6 +181,95 @@ def in_goal(p, heading, par, ipar):
 
 
 @njit
+def closing_ends_miss(mean, rows, eps, pool, sd_cap, matrix, offset, m, frame, p, par, ipar):
+    """Whether no closing step of one draw can end in the goal area (:func:`in_goal`'s discs:
+    the tolerance about the goal and each goal disc), whatever its posterior standard
+    deviation between 0 and ``sd_cap``: then the draw needs no variance.
+
+    A step's features are ε·sd + μ + r (:func:`mjwalk.gait.gpdraw.compose`), so its end point
+    (decoder column m - 1, turned into the world) is A + sd·B, affine in sd; the step misses
+    when, for some disc, the segment sd in [0, sd_cap] stays farther from the disc's centre
+    than its radius by more than :data:`END_MARGIN` (far beyond the roundings of the decode).
+    Any nan decides nothing (False).
+
+    Args:
+        mean: (1, d) the posterior mean of the draw's predecessor.
+        rows: (n,) each step's residual row of ``pool``.
+        eps: (n·d,) each step's normal deviates.
+        pool: (m·k, d) the flattened residual pools.
+        sd_cap: the largest standard deviation the draw can have (``kernel[9]``'s root).
+        matrix: (d, 2m + 3) the decoder's complex matrix.
+        offset: (2m + 3,) its complex offset.
+        m: pelvis samples per step.
+        frame: the steps' frame heading, radians from +x CCW.
+        p: the steps' start point, world x + iy, metres.
+        par: the float slots (goal, tolerance, discs).
+        ipar: the integer slots (I_N_DISCS).
+    """
+    d = mean.shape[1]
+    rot = complex(math.sin(frame), -math.cos(frame))  # as check_into turns a frame
+    col = m - 1
+    for r in range(rows.shape[0]):
+        a_ = offset[col]
+        b_ = 0j
+        for a in range(d):
+            a_ += (mean[0, a] + pool[rows[r], a]) * matrix[a, col]
+            b_ += eps[r * d + a] * matrix[a, col]
+        a_ = a_ * rot + p
+        b_ = b_ * rot
+        missed = _segment_off(a_, b_, sd_cap, complex(par[P_GOAL_X], par[P_GOAL_Y]),
+                              par[P_TOLERANCE])  # fmt: skip
+        for k in range(ipar[I_N_DISCS]):
+            j = P_DISC0 + 3 * k
+            if missed:
+                break
+            missed = _segment_off(a_, b_, sd_cap, complex(par[j], par[j + 1]), par[j + 2])
+        if not missed:
+            return False
+    return True
+
+
+#: How much farther than a goal disc's radius (m) :func:`closing_ends_miss` wants a closing
+#: step's end: the decode's roundings are about 1e-15 m.
+END_MARGIN = 1e-6
+
+
+@njit
+def _segment_off(a, b, s_max, centre, radius):
+    """Whether every point a + s·b, s in [0, s_max], lies more than ``radius`` +
+    :data:`END_MARGIN` from ``centre`` (complex x + iy, metres); nan: False."""
+    v = a - centre
+    bb = b.real * b.real + b.imag * b.imag
+    s = 0.0
+    if bb > 0.0:
+        s = min(max(-(v.real * b.real + v.imag * b.imag) / bb, 0.0), s_max)
+    return abs(v + s * b) > radius + END_MARGIN
+
+
+@njit
+def decode_col(z, r, matrix, offset, col):
+    """Decoder column ``col`` for feature row ``r`` (``z[r] @ matrix + offset`` there): its real
+    and imaginary sums apart, in feature order, as :func:`~mjwalk.plan.stepcheck.check_into`
+    decodes every column (bit-equal to it).
+
+    Args:
+        z: (n, d) standardized features.
+        r: the row.
+        matrix: (d, 2m + 3) the decoder's complex matrix.
+        offset: (2m + 3,) its complex offset.
+        col: the column.
+    """
+    sr = offset[col].real
+    si = offset[col].imag
+    for a in range(z.shape[1]):
+        za = z[r, a]
+        w = matrix[a, col]
+        sr += za * w.real
+        si += za * w.imag
+    return complex(sr, si)
+
+
+@njit
 def decode_real(z, r, matrix, offset, col):
     """The real part of decoder column ``col`` for feature row ``r`` (``z[r] @ matrix + offset``
     there, summed in feature order): the columns only some steps need (pelvis yaws, duration).

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from test_transition import gp  # noqa: F401  (module fixture)
 
 from mjwalk.gait import gpdraw
@@ -26,3 +27,32 @@ def test_compiled_moments_match_the_dense_predictor(gp):  # noqa: F811
         np.maximum(var, 0), v_ref, atol=1e-10
     )
     assert np.allclose(g.signal_var * np.exp(-h), g.kernel_rows(x[:7]))
+
+
+def test_a_draw_in_parts_is_the_draw(gp):  # noqa: F811
+    """sample = draw_parts + variance + compose, bit for bit and with the same random numbers
+    (the planner skips the variance of closing draws that cannot end a walk)."""
+    g, x, _ = gp
+    xs = np.ascontiguousarray(x[:3])
+    whole = gpdraw.sample(xs, 6, np.random.default_rng(4), g.kernel, 10.0)
+    rng = np.random.default_rng(4)
+    mean, e, rows, eps = gpdraw.draw_parts(xs, 6, rng, g.kernel, 10.0)
+    parts = gpdraw.compose(mean, gpdraw.variance(e, g.kernel), rows, eps, 6, g.kernel[7])
+    np.testing.assert_array_equal(parts, whole)
+    after = np.random.default_rng(4)
+    gpdraw.sample(xs, 6, after, g.kernel, 10.0)
+    assert rng.random() == after.random()  # the same numbers drawn
+
+
+def test_the_variance_cap_bounds_every_variance(gp):  # noqa: F811
+    """kernel[9] (transition.variance_cap) is at least every variance the draws compute: at
+    the data, far from it and at kernel rows of every inducing input."""
+    g, x, _ = gp
+    cap = g.kernel[9]
+    rng = np.random.default_rng(0)
+    probes = np.vstack([x, 4.0 * rng.standard_normal((200, x.shape[1])), g.inducing])
+    _, var, _ = gpdraw.moments(np.ascontiguousarray(probes), g.kernel)
+    assert var.max() <= cap
+    assert cap == pytest.approx(g.signal_var, rel=1e-3)  # a positive definite form: about C
+    e = rng.uniform(0.0, 1.0, (500, g.inducing.shape[0]))  # any kernel row in [0, 1]^m
+    assert gpdraw.variance(e, g.kernel).max() <= cap

@@ -450,3 +450,31 @@ def test_straight_walks_in_an_empty_hall_stay_within_6_cm_of_their_chord(empty_h
     anywhere in the goal area (seed 22 of the last variant: 16 cm off in its last step)."""
     raw, _ = empty_hall_offsets
     assert raw.max() <= 0.06, raw
+
+
+def test_the_way_left_from_segment_lengths_made_once_is_bit_equal():
+    """guide_rest over guide_lengths (once per walk, slots.P_GUIDE_LEN0) gives the way left as
+    the per-step loop before it did (a hypot per segment, summed from the nearest point on),
+    bit for bit at every segment and share."""
+    from numba import njit
+
+    from mjwalk.plan.guide import guide_ahead_at, guide_nearest
+    from mjwalk.plan.stepcost import guide_lengths, guide_rest
+
+    @njit
+    def per_step(guide, best_k, best_w, best_d2):  # guide_ahead_at before issue 50
+        n = guide.shape[0] // 2
+        rest = 0.0
+        for k in range(best_k, n - 1):
+            seg = math.hypot(guide[2 * k + 2] - guide[2 * k], guide[2 * k + 3] - guide[2 * k + 1])
+            rest += seg * (1.0 - best_w) if k == best_k else seg
+        return math.sqrt(best_d2) + rest
+
+    arc = resample_guide(minimum_jerk_guide((0.0, 0.0), (6.0, 2.0), math.radians(40), None))
+    flat = arc.ravel()
+    lengths = guide_lengths(flat)
+    rng = np.random.default_rng(0)
+    for p in rng.uniform(-1.0, 7.0, (200, 2)):
+        k, w, d2 = guide_nearest(flat, complex(*p))
+        assert guide_rest(lengths, k, w, d2) == per_step(flat, k, w, d2)
+        assert guide_ahead_at(flat, k, w, d2) == per_step(flat, k, w, d2)

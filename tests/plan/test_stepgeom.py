@@ -105,3 +105,44 @@ def test_swing_yaw_turns_the_short_way_round():
     half = swing_yaw(math.radians(170), math.radians(-170), 0.5)
     assert math.cos(half) == pytest.approx(-1.0)
     assert swing_yaw(math.radians(170), math.radians(-170), 1.0) == pytest.approx(math.radians(190))
+
+
+def test_a_closing_draw_said_to_miss_the_goal_misses_it_at_its_true_variance():
+    """closing_ends_miss (the search skips such draws' variance): over the default model's
+    closing draws near a goal, every draw it says misses has all its steps' true end points
+    (the full draw, decoder column m - 1) outside the goal disc; and it says so of most
+    draws whose ends all lie well outside, not of draws with an end inside."""
+    from mjwalk.gait.default import default_model
+    from mjwalk.gait.gpdraw import compose, draw_parts, variance
+    from mjwalk.plan.decoder import decoder_of
+    from mjwalk.plan.slots import iparams
+    from mjwalk.plan.stepgeom import closing_ends_miss, decode_col, in_goal
+
+    model = default_model(progress=False)
+    m = 16
+    dec = decoder_of(model, m)
+    gp = model.stop_gp["left"].kernel
+    rng = np.random.default_rng(0)
+    xs = model.gp["left"].inducing  # predecessors where the model has data
+    said, hit, all_out = 0, 0, 0
+    for k in range(400):
+        x = np.ascontiguousarray(xs[k % len(xs)][None, :])
+        frame = rng.uniform(-math.pi, math.pi)
+        p = complex(*rng.uniform(-0.8, 0.8, 2))
+        par = params(goal_x=0.0, goal_y=0.0, tolerance=0.25)
+        ipar = iparams(m=m, n_discs=0)
+        mean, e, rows, eps = draw_parts(x, 5, rng, gp, 10.0)
+        z = compose(mean, variance(e, gp), rows, eps, 5, gp[7])[0]
+        rot = complex(math.sin(frame), -math.cos(frame))
+        ends = [decode_col(z, r, dec.matrix, dec.offset, m - 1) * rot + p for r in range(5)]
+        inside = [in_goal(end, 0.0, par, ipar) for end in ends]
+        miss = closing_ends_miss(
+            mean, rows, eps, gp[7], math.sqrt(gp[9]), dec.matrix, dec.offset, m, frame, p, par,
+            ipar,
+        )  # fmt: skip
+        if miss:
+            said += 1
+            assert not any(inside)
+        hit += any(inside)
+        all_out += min(abs(end) for end in ends) > 0.5
+    assert hit > 0 and said > 0.5 * all_out
