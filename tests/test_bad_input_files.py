@@ -410,11 +410,14 @@ def _limited(argv, limit_bytes, cwd):
 
 
 def _errors(stderr: str) -> list[str]:
-    """stderr's lines but the warnings of kernels whose compiled code could not be cached: the
-    file size limit stops those writes too when this process is the first to compile them (a
-    cold cache, tests/test_jit.py), and they run regardless."""
+    """stderr's lines but those a cold compile cache adds: the notice that the kernels are being
+    compiled, and the warnings of kernels whose compiled code could not be cached (the file size
+    limit stops those writes too when this process is the first to compile them,
+    tests/test_jit.py; they run regardless)."""
     return [
-        line for line in stderr.strip().splitlines() if "could not cache the compiled" not in line
+        line
+        for line in stderr.strip().splitlines()
+        if "could not cache the compiled" not in line and not line.startswith("[mjwalk] compiling")
     ]
 
 
