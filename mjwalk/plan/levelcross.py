@@ -398,6 +398,27 @@ def walked_distance(d: float, field, leaving: tuple, arriving: tuple, reach: tup
     return d
 
 
+def level_time(distance: float, walked: bool, walker: Walker) -> float:
+    """How long a level leg of a route takes (:func:`mjwalk.plan.levelplan.plan_level_walk`
+    plans each as a walk of its own, from standing to standing): its distance at the walker's
+    speed plus one step duration where it is walked at all. From standing with the feet side
+    by side the pelvis covers half a step length in the first step and half in the closing
+    step that brings the feet together again, so ``n`` step lengths take ``n + 1`` steps (the
+    planner's own walks from rest to rest on the open floor, 1.5-6 m, seeds 0-4: 0.62-1.09,
+    mean 0.87 step durations over ``distance / speed``, ending within their goal area).
+
+    Args:
+        distance: the level distance with the line-up and departure walked
+            (:func:`walked_distance`), metres.
+        walked: whether the leg is walked (False: its ends are within the planner's goal area).
+        walker: the walker (speed, step duration).
+
+    Returns:
+        Seconds.
+    """
+    return distance / walker.speed + (walker.step_duration if walked else 0.0)
+
+
 def _lead_in(c: Crossing, s: np.ndarray, times: np.ndarray, xy0, walker: Walker):
     """``s`` and ``times`` with the level steps from ``xy0`` along the axis into the flight's
     first footfall, evenly spaced, none longer than the walker's step length."""

@@ -5,10 +5,10 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
 <mjwalk.world.workplace.Workplace.levels>`):
 
 1. the route over levels (:func:`mjwalk.plan.levelroute.level_route`): a Dijkstra over the
-   crossings' stances, each level's obstacle-aware distance at the walker's speed, each crossing
-   at its gait's time with the line-up and departure of 3. (:func:`mjwalk.plan.levelcross.
-   walked_distance`), a step or stair only where every riser fits the walker's step-up limit
-   and the walker's head has room (a walker below a riser takes the ramp);
+   crossings' stances, each level's obstacle-aware distance with the line-up and departure of
+   3. walked from standing to standing (:func:`mjwalk.plan.levelcross.level_time`), each
+   crossing at its gait's time, a step or stair only where every riser fits the walker's
+   step-up limit and the head has room (a walker below a riser takes the ramp);
 2. on each level the hybrid A* unchanged (:class:`~mjwalk.plan.hybrid.HybridPlanner`, kept
    per level view, goal, step model and options, so a route's legs are set up once) in the
    level's view (:func:`mjwalk.world.levelview.level_view`: its surfaces, its obstacles up to
@@ -59,6 +59,7 @@ from mjwalk.plan.levelcross import (
     crossing_time,
     departure,
     entry_turn,
+    level_time,
     line_clear,
     route_leads,
     walked_distance,
@@ -244,9 +245,10 @@ def _route(workplace, start: Endpoint, goal: Endpoint, walker: Walker, options, 
         for u, (lu, uxy) in enumerate(nodes):
             if u != v and lu == lv and u != 1:
                 d = _distance(workplace, field, uxy) if v >= 2 and u >= 2 else float(field(uxy))
-                if math.isfinite(d):
+                if math.isfinite(d):  # each level leg a walk from standing to standing
                     d = walked_distance(d, field, (uxy, leads[u][0]), (xy, leads[v][1]), reach)
-                    edges.setdefault(u, []).append((v, d / walker.speed))
+                    far = float(np.hypot(*(uxy - xy))) > max(STANCE_TOLERANCE, reach[1])
+                    edges.setdefault(u, []).append((v, level_time(d, far, walker)))
     path, _ = dijkstra(len(nodes), edges, 0, 1)
     if path is None:
         raise PlanningError(
@@ -260,10 +262,8 @@ def _node_field(workplace: Workplace, level: int, xy: np.ndarray, head: float, o
     """The distance field (:func:`mjwalk.plan.heuristic.goal_distance`) to a route node on its
     level's view, kept on the workplace per node, head height and planner grid."""
     cache = workplace.__dict__.setdefault("_node_fields", {})
-    key = (
-        level, float(xy[0]), float(xy[1]), round(head, 3), options.radius, options.cell,
-        options.field_cells,
-    )  # fmt: skip
+    key = (level, float(xy[0]), float(xy[1]), round(head, 3))
+    key += (options.radius, options.cell, options.field_cells)
     if key not in cache:
         view = level_view(workplace, level, head)
         grid = shared_grid(view, options.cell, options.radius, MOVES_16)
