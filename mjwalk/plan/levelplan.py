@@ -25,7 +25,8 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    axis (:func:`mjwalk.plan.levelcross.approach_point`), and the walk over a stair goes on a
    step length past its far stance before the next leg (:func:`~mjwalk.plan.levelcross.
    departure`; a single step is left on the fly), where the legs are long enough and the body
-   fits: the walker lines up with the flight (onto a ramp facing it within :data:`ENTRY_TURN`);
+   fits: the walker lines up with the flight (facing it within :data:`ENTRY_TURN`, else the leg
+   is searched again facing it: :func:`_level_leg`);
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
@@ -86,12 +87,12 @@ from mjwalk.world.workplace import Workplace
 STANCE_TOLERANCE = 0.15
 #: Expansions a level leg aimed at a crossing with its approach heading may spend before it is
 #: searched again without (the heading's guide can lead into a tight approach the route search
-#: finds at once): a twentieth of :data:`mjwalk.plan.options.MAX_EXPANSIONS`'s 8000; the legs of
-#: the shipped multi-level station that succeed with the heading spend at most 150
+#: finds at once), and a leg to a step or stair searched again facing it (its entry turn over
+#: :data:`ENTRY_TURN`): a twentieth of :data:`mjwalk.plan.options.MAX_EXPANSIONS`'s 8000; the
+#: legs of the shipped multi-level station that succeed with the heading spend at most 150
 #: (``python3 benchmarks/bench_levels.py``; a cost bound, no behaviour of walkers).
 HEADING_BUDGET = 400
-#: Level-leg planners kept per level view (:func:`_planner`): a route's goals (crossing stances
-#: and sites) for a few walkers and option sets; a memory bound, no behaviour.
+#: Level-leg planners kept per level view (:func:`_planner`): a memory bound, no behaviour.
 LEG_PLANNERS = 64
 
 
@@ -275,18 +276,14 @@ def _distance(workplace: Workplace, field, xy: np.ndarray) -> float:
     """``field(xy)`` between two crossing stances, kept on the workplace."""
     cache = workplace.__dict__.setdefault("_node_distances", {})
     key = (id(field), float(xy[0]), float(xy[1]))
-    if key not in cache:
-        cache[key] = float(field(xy))
-    return cache[key]
+    return cache[key] if key in cache else cache.setdefault(key, float(field(xy)))
 
 
 def _crossings(workplace: Workplace, clear: float) -> list[Crossing]:
     """:func:`mjwalk.plan.levelroute.crossings` of the workplace's levels, kept on it."""
     cache = workplace.__dict__.setdefault("_crossings", {})
     key = round(clear, 6)
-    if key not in cache:
-        cache[key] = crossings(workplace.levels, clear)
-    return cache[key]
+    return cache[key] if key in cache else cache.setdefault(key, crossings(workplace.levels, clear))
 
 
 def _head_fits(workplace: Workplace, c: Crossing, stature: float) -> bool:
@@ -440,7 +437,8 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
 
     ``start`` is (pose, foot): the walk's start, or after a crossing the stance beyond it
     (x, y, yaw), where the walker stands on both feet: a standing start that may turn on the
-    spot (its turn costed), its first step with ``foot`` (:func:`next_foot`)."""
+    spot (its turn costed), its first step with ``foot`` (:func:`next_foot`). Arriving over
+    :data:`ENTRY_TURN` off its crossing, it is searched again facing it (:data:`HEADING_BUDGET`)."""
     view = level_view(workplace, leg.level, head)
     if float(np.hypot(*(leg.end - leg.start))) <= max(STANCE_TOLERANCE, options.goal_tolerance):
         return None  # the walker stands in the leg's goal area already: no level walk
@@ -467,13 +465,15 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
         walk = planner.plan(request, rng)
         # the aimed search's spent budget counts (any earlier searches of it not)
         walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + budget
-    if c.kind == "ramp" and entry_turn(walk, c, nxt.direction) > ENTRY_TURN:  # re-searched
+    if entry_turn(walk, c, nxt.direction) > ENTRY_TURN:  # re-searched facing the crossing
         spent = walk.meta.get("expansions_all", 0)
+        cap = options.max_expansions if c.kind == "ramp" else budget  # steps, stairs: cheaper
         try:
-            walk = _planner(view, aim, model, replace(options, goal_yaw=heading)).plan(request, rng)
+            again = replace(options, goal_yaw=heading, max_expansions=cap)
+            walk = _planner(view, aim, model, again).plan(request, rng)
             walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + spent
         except PlanningError:  # its budget spent (or its open list dry before)
-            walk.meta["expansions_all"] = spent + options.max_expansions  # the walk as found
+            walk.meta["expansions_all"] = spent + cap  # the walk as found
     if goal is not None:
         walk.meta["approach_point"] = [float(goal[0]), float(goal[1])]
     return walk
