@@ -25,8 +25,7 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    axis (:func:`mjwalk.plan.levelcross.approach_point`), and the walk over a stair goes on a
    step length past its far stance before the next leg (:func:`~mjwalk.plan.levelcross.
    departure`; a single step is left on the fly), where the legs are long enough and the body
-   fits: the walker lines up with the flight (facing it within :data:`ENTRY_TURN`, else the leg
-   is searched again facing it: :func:`_level_leg`);
+   fits: the walker lines up with the flight (facing it within :data:`ENTRY_TURN`);
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
@@ -86,12 +85,13 @@ from mjwalk.world.workplace import Workplace
 #: Route legs shorter than this are not walked (the walker stands there already), metres.
 STANCE_TOLERANCE = 0.15
 #: Expansions a level leg aimed at a crossing with its approach heading may spend before it is
-#: searched again without (the heading's guide can lead into a tight approach the route search
-#: finds at once), and a leg to a step or stair searched again facing it (its entry turn over
-#: :data:`ENTRY_TURN`): a twentieth of :data:`mjwalk.plan.options.MAX_EXPANSIONS`'s 8000; the
-#: legs of the shipped multi-level station that succeed with the heading spend at most 150
-#: (``python3 benchmarks/bench_levels.py``; a cost bound, no behaviour of walkers).
+#: searched again without (its guide can lead into a tight approach the route search finds at
+#: once): a twentieth of MAX_EXPANSIONS' 8000; the station's legs that succeed with it spend at
+#: most 150 (``benchmarks/bench_levels.py``; a cost bound, no behaviour of walkers).
 HEADING_BUDGET = 400
+#: Budget share (1000 of 8000) of a step's leg searched again facing it (ramps: all; station
+#: step legs took up to 804; stairs not: rack1 -> mezzanine failed at 1000): a cost bound.
+RESEARCH_SHARE = 8
 #: Level-leg planners kept per level view (:func:`_planner`): a memory bound, no behaviour.
 LEG_PLANNERS = 64
 
@@ -438,7 +438,7 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     ``start`` is (pose, foot): the walk's start, or after a crossing the stance beyond it
     (x, y, yaw), where the walker stands on both feet: a standing start that may turn on the
     spot (its turn costed), its first step with ``foot`` (:func:`next_foot`). Arriving over
-    :data:`ENTRY_TURN` off its crossing, it is searched again facing it (:data:`HEADING_BUDGET`)."""
+    :data:`ENTRY_TURN` off a ramp or step, it is searched again facing it (RESEARCH_SHARE)."""
     view = level_view(workplace, leg.level, head)
     if float(np.hypot(*(leg.end - leg.start))) <= max(STANCE_TOLERANCE, options.goal_tolerance):
         return None  # the walker stands in the leg's goal area already: no level walk
@@ -465,9 +465,9 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
         walk = planner.plan(request, rng)
         # the aimed search's spent budget counts (any earlier searches of it not)
         walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + budget
-    if entry_turn(walk, c, nxt.direction) > ENTRY_TURN:  # re-searched facing the crossing
+    if c.kind != "stair" and entry_turn(walk, c, nxt.direction) > ENTRY_TURN:  # re-searched
         spent = walk.meta.get("expansions_all", 0)
-        cap = options.max_expansions if c.kind == "ramp" else budget  # steps, stairs: cheaper
+        cap = options.max_expansions // (1 if c.kind == "ramp" else RESEARCH_SHARE)
         try:
             again = replace(options, goal_yaw=heading, max_expansions=cap)
             walk = _planner(view, aim, model, again).plan(request, rng)
