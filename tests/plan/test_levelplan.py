@@ -377,3 +377,17 @@ def test_a_walk_from_beside_the_ramp_lines_up_before_it_steps_on(station, model,
     assert first.foot_z == pytest.approx(0.0)  # a line-up step on the floor, then the ramp
     assert first.foot[0] > 5.73
     _check_heights(station, walk)
+
+
+@pytest.mark.parametrize("seed", [0, 4])
+def test_a_walk_to_the_step_is_searched_again_to_arrive_facing_it(station, model, seed):
+    """rack1 -> platform2's floor leg first arrives at the step 90-95 deg off its axis (seeds 0
+    and 4): it is searched again facing the step (RESEARCH_SHARE) and the crossing's first
+    step turns at most ENTRY_TURN (Patla et al. 1991)."""
+    walk = plan_walk(station, "stand_rack1", "stand_platform2", model, rng=seed)
+    route = walk.meta["levels"]["route"]
+    assert [r["kind"] for r in route] == ["level", "step", "level"]
+    before = round(route[0]["seconds"] * 120)
+    after = round((route[0]["seconds"] + route[1]["seconds"]) * 120)
+    turn = abs((walk.yaw[after] - walk.yaw[before] + math.pi) % (2 * math.pi) - math.pi)
+    assert turn <= ENTRY_TURN
