@@ -89,8 +89,7 @@ STANCE_TOLERANCE = 0.15
 #: once): a twentieth of MAX_EXPANSIONS' 8000; the station's legs that succeed with it spend at
 #: most 150 (``benchmarks/bench_levels.py``; a cost bound, no behaviour of walkers).
 HEADING_BUDGET = 400
-#: Budget share (1000 of 8000) of a step's leg searched again facing it (ramps: all; station
-#: step legs took up to 804; stairs not: rack1 -> mezzanine failed at 1000): a cost bound.
+#: Budget share (1000) of a step's leg searched again facing it (ramps: all): a cost bound.
 RESEARCH_SHARE = 8
 #: Level-leg planners kept per level view (:func:`_planner`): a memory bound, no behaviour.
 LEG_PLANNERS = 64
@@ -468,9 +467,10 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     if c.kind != "stair" and entry_turn(walk, c, nxt.direction) > ENTRY_TURN:  # re-searched
         spent = walk.meta.get("expansions_all", 0)
         cap = options.max_expansions // (1 if c.kind == "ramp" else RESEARCH_SHARE)
+        again = replace(options, goal_yaw=heading, max_expansions=cap)
+        draws = rng if c.kind == "ramp" else rng.spawn(1)[0]  # a step's: later legs as before
         try:
-            again = replace(options, goal_yaw=heading, max_expansions=cap)
-            walk = _planner(view, aim, model, again).plan(request, rng)
+            walk = _planner(view, aim, model, again).plan(request, draws)
             walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + spent
         except PlanningError:  # its budget spent (or its open list dry before)
             walk.meta["expansions_all"] = spent + cap  # the walk as found
