@@ -262,7 +262,7 @@ def _node_field(workplace: Workplace, level: int, xy: np.ndarray, head: float, o
     """The distance field (:func:`mjwalk.plan.heuristic.goal_distance`) to a route node on its
     level's view, kept on the workplace per node, head height and planner grid."""
     cache = workplace.__dict__.setdefault("_node_fields", {})
-    key = (level, float(xy[0]), float(xy[1]), round(head, 3))
+    key: tuple = (level, float(xy[0]), float(xy[1]), round(head, 3))
     key += (options.radius, options.cell, options.field_cells)
     if key not in cache:
         view = level_view(workplace, level, head)
