@@ -61,6 +61,15 @@ stance, as main walks them, 47.7 ms: 2540 expansions median at ae71305, loops re
 11.7 m), platform1 -> car1 1.85 (194 / 18, unchanged: its floor leg threads the 0.58 m
 trolley-bumper gap; a flat walk on the same floor, stand_step -> stand_car1, 4.5 m, costs 733
 expansions and 16.7 ms median over seeds 1-10, more than this 6.4 m walk over levels).
+
+Branch levels47 (``--draws 2 --walks 10``, CPU ms, load 8-14): each side now timed cold (a
+seed's first plan) and warm (the same again), the same way. Level / flat, cold: 1.8/7.2,
+1.9/8.5, 2.3/8.3, 4.5/9.3, 4.0/9.5, 11.7/8.9 (ratios 0.22-0.48, platform1 -> car1 1.33): the
+flat walk's goal moves with each seed's length, so its cold plan builds its goal's distance
+field, while the level legs' goals (crossing stances, sites) were built by the warm-up. Warm
+(every field kept on both sides): 1.9/0.9, 1.9/1.4, 2.4/1.3, 4.3/1.7, 3.7/2.0, 12.1/1.8 (ratios
+2.12, 1.32, 1.87, 2.56, 1.90, 6.86): the searches and the level machinery (two level searches,
+the crossing's walk, stitching) against one flat search; the 1.5x target is met cold, not warm.
 """
 
 from __future__ import annotations
