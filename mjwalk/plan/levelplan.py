@@ -5,10 +5,10 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
 <mjwalk.world.workplace.Workplace.levels>`):
 
 1. the route over levels (:func:`mjwalk.plan.levelroute.level_route`): a Dijkstra over the
-   crossings' stances, each level's obstacle-aware distance at the walker's speed, each crossing
-   at its gait's time with the line-up and departure of 3. (:func:`mjwalk.plan.levelcross.
-   walked_distance`), a step or stair only where every riser fits the walker's step-up limit
-   and the walker's head has room (a walker below a riser takes the ramp);
+   crossings' stances, each level's obstacle-aware distance with the line-up and departure of
+   3. walked from standing to standing (:func:`mjwalk.plan.levelcross.level_time`), each
+   crossing at its gait's time, a step or stair only where every riser fits the walker's
+   step-up limit and the head has room (a walker below a riser takes the ramp);
 2. on each level the hybrid A* unchanged (:class:`~mjwalk.plan.hybrid.HybridPlanner`, kept
    per level view, goal, step model and options, so a route's legs are set up once) in the
    level's view (:func:`mjwalk.world.levelview.level_view`: its surfaces, its obstacles up to
@@ -25,7 +25,7 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    axis (:func:`mjwalk.plan.levelcross.approach_point`), and the walk over a stair goes on a
    step length past its far stance before the next leg (:func:`~mjwalk.plan.levelcross.
    departure`; a single step is left on the fly), where the legs are long enough and the body
-   fits: the walker lines up with the flight (onto a ramp facing it within :data:`ENTRY_TURN`);
+   fits: the walker lines up with the flight (facing it within :data:`ENTRY_TURN`);
 
 stitched into one :class:`~mjwalk.plan.walkpath.WalkPath` with the surface height per sample and
 under each footfall. Its ``meta["levels"]`` gives the route (levels and crossings) and the time,
@@ -59,6 +59,7 @@ from mjwalk.plan.levelcross import (
     crossing_time,
     departure,
     entry_turn,
+    level_time,
     line_clear,
     route_leads,
     walked_distance,
@@ -84,13 +85,13 @@ from mjwalk.world.workplace import Workplace
 #: Route legs shorter than this are not walked (the walker stands there already), metres.
 STANCE_TOLERANCE = 0.15
 #: Expansions a level leg aimed at a crossing with its approach heading may spend before it is
-#: searched again without (the heading's guide can lead into a tight approach the route search
-#: finds at once): a twentieth of :data:`mjwalk.plan.options.MAX_EXPANSIONS`'s 8000; the legs of
-#: the shipped multi-level station that succeed with the heading spend at most 150
-#: (``python3 benchmarks/bench_levels.py``; a cost bound, no behaviour of walkers).
+#: searched again without (its guide can lead into a tight approach the route search finds at
+#: once): a twentieth of MAX_EXPANSIONS' 8000; the station's legs that succeed with it spend at
+#: most 150 (``benchmarks/bench_levels.py``; a cost bound, no behaviour of walkers).
 HEADING_BUDGET = 400
-#: Level-leg planners kept per level view (:func:`_planner`): a route's goals (crossing stances
-#: and sites) for a few walkers and option sets; a memory bound, no behaviour.
+#: Budget share (1000) of a step's leg searched again facing it (ramps: all): a cost bound.
+RESEARCH_SHARE = 8
+#: Level-leg planners kept per level view (:func:`_planner`): a memory bound, no behaviour.
 LEG_PLANNERS = 64
 
 
@@ -244,9 +245,10 @@ def _route(workplace, start: Endpoint, goal: Endpoint, walker: Walker, options, 
         for u, (lu, uxy) in enumerate(nodes):
             if u != v and lu == lv and u != 1:
                 d = _distance(workplace, field, uxy) if v >= 2 and u >= 2 else float(field(uxy))
-                if math.isfinite(d):
+                if math.isfinite(d):  # each level leg a walk from standing to standing
                     d = walked_distance(d, field, (uxy, leads[u][0]), (xy, leads[v][1]), reach)
-                    edges.setdefault(u, []).append((v, d / walker.speed))
+                    far = float(np.hypot(*(uxy - xy))) > max(STANCE_TOLERANCE, reach[1])
+                    edges.setdefault(u, []).append((v, level_time(d, far, walker)))
     path, _ = dijkstra(len(nodes), edges, 0, 1)
     if path is None:
         raise PlanningError(
@@ -260,10 +262,8 @@ def _node_field(workplace: Workplace, level: int, xy: np.ndarray, head: float, o
     """The distance field (:func:`mjwalk.plan.heuristic.goal_distance`) to a route node on its
     level's view, kept on the workplace per node, head height and planner grid."""
     cache = workplace.__dict__.setdefault("_node_fields", {})
-    key = (
-        level, float(xy[0]), float(xy[1]), round(head, 3), options.radius, options.cell,
-        options.field_cells,
-    )  # fmt: skip
+    key: tuple = (level, float(xy[0]), float(xy[1]), round(head, 3))
+    key += (options.radius, options.cell, options.field_cells)
     if key not in cache:
         view = level_view(workplace, level, head)
         grid = shared_grid(view, options.cell, options.radius, MOVES_16)
@@ -275,18 +275,14 @@ def _distance(workplace: Workplace, field, xy: np.ndarray) -> float:
     """``field(xy)`` between two crossing stances, kept on the workplace."""
     cache = workplace.__dict__.setdefault("_node_distances", {})
     key = (id(field), float(xy[0]), float(xy[1]))
-    if key not in cache:
-        cache[key] = float(field(xy))
-    return cache[key]
+    return cache[key] if key in cache else cache.setdefault(key, float(field(xy)))
 
 
 def _crossings(workplace: Workplace, clear: float) -> list[Crossing]:
     """:func:`mjwalk.plan.levelroute.crossings` of the workplace's levels, kept on it."""
     cache = workplace.__dict__.setdefault("_crossings", {})
     key = round(clear, 6)
-    if key not in cache:
-        cache[key] = crossings(workplace.levels, clear)
-    return cache[key]
+    return cache[key] if key in cache else cache.setdefault(key, crossings(workplace.levels, clear))
 
 
 def _head_fits(workplace: Workplace, c: Crossing, stature: float) -> bool:
@@ -440,7 +436,8 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
 
     ``start`` is (pose, foot): the walk's start, or after a crossing the stance beyond it
     (x, y, yaw), where the walker stands on both feet: a standing start that may turn on the
-    spot (its turn costed), its first step with ``foot`` (:func:`next_foot`)."""
+    spot (its turn costed), its first step with ``foot`` (:func:`next_foot`). Arriving over
+    :data:`ENTRY_TURN` off a ramp or step, it is searched again facing it (RESEARCH_SHARE)."""
     view = level_view(workplace, leg.level, head)
     if float(np.hypot(*(leg.end - leg.start))) <= max(STANCE_TOLERANCE, options.goal_tolerance):
         return None  # the walker stands in the leg's goal area already: no level walk
@@ -467,13 +464,16 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
         walk = planner.plan(request, rng)
         # the aimed search's spent budget counts (any earlier searches of it not)
         walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + budget
-    if c.kind == "ramp" and entry_turn(walk, c, nxt.direction) > ENTRY_TURN:  # re-searched
+    if c.kind != "stair" and entry_turn(walk, c, nxt.direction) > ENTRY_TURN:  # re-searched
         spent = walk.meta.get("expansions_all", 0)
+        cap = options.max_expansions // (1 if c.kind == "ramp" else RESEARCH_SHARE)
+        again = replace(options, goal_yaw=heading, max_expansions=cap)
+        draws = rng if c.kind == "ramp" else rng.spawn(1)[0]  # a step's: later legs as before
         try:
-            walk = _planner(view, aim, model, replace(options, goal_yaw=heading)).plan(request, rng)
+            walk = _planner(view, aim, model, again).plan(request, draws)
             walk.meta["expansions_all"] = walk.meta.get("expansions_all", 0) + spent
         except PlanningError:  # its budget spent (or its open list dry before)
-            walk.meta["expansions_all"] = spent + options.max_expansions  # the walk as found
+            walk.meta["expansions_all"] = spent + cap  # the walk as found
     if goal is not None:
         walk.meta["approach_point"] = [float(goal[0]), float(goal[1])]
     return walk

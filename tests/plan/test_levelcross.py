@@ -17,6 +17,7 @@ from mjwalk.plan.levelcross import (
     crossing_time,
     departure,
     entry_turn,
+    level_time,
     line_clear,
     route_leads,
     tread_setback,
@@ -206,3 +207,25 @@ def test_line_clear_checks_the_body_radius_along_the_segment():
     a = np.array([0.0, 0.0])
     assert line_clear(Wall, a, np.array([0.0, 2.0]), 0.3)
     assert not line_clear(Wall, a, np.array([0.8, 0.0]), 0.3)
+
+
+def test_level_time_adds_a_step_for_walking_from_standing_to_standing(scenes_dir):
+    """A route's level leg costs its distance at the walker's speed plus one step duration
+    where it is walked; the planner's own walks from rest to rest on the open floor take that
+    extra step (seeds 0-2, 2.5 and 4 m: within half a step of it, ending in the goal area)."""
+    from mjwalk.gait.default import default_model
+    from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.plan.request import WalkRequest
+
+    walker = Walker()
+    assert level_time(2.0, True, walker) == pytest.approx(2.0 / walker.speed + walker.step_duration)
+    assert level_time(2.0, False, walker) == pytest.approx(2.0 / walker.speed)
+    wp = load_workplace(scenes_dir / "open_floor.xml")
+    model = default_model(progress=False).for_walker(walker)
+    for d in (2.5, 4.0):
+        planner = HybridPlanner(wp, (d / 2, 0.0), model)
+        times = [
+            planner.plan(WalkRequest((-d / 2, 0.0, 0.0)), np.random.default_rng(s)).duration
+            for s in range(3)
+        ]
+        assert abs(float(np.mean(times)) - level_time(d, True, walker)) < 0.5 * walker.step_duration
