@@ -546,10 +546,8 @@ def blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
         (3,) unit vector.
     """
     v = (1.0 - tau) * a + tau * b
-    # the norm summed left to right in plain floats, not np.linalg.norm: its BLAS dot may fuse
-    # multiply-adds on one CPU and not on another, and blend_dirs must give the same numbers
-    norm = math.sqrt(float(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))
-    return v / max(norm, 1e-9)
+    # (summed left to right as blend_dirs sums it: np.linalg.norm's BLAS dot may fuse on some CPUs)
+    return v / max(math.sqrt(float(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])), 1e-9)
 
 
 def blend_dirs(a: np.ndarray, b: np.ndarray, taus: np.ndarray) -> np.ndarray:
