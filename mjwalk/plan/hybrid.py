@@ -329,7 +329,9 @@ class HybridPlanner:
         then in tight places: a rack beside a split turn's first steps), the search starts over
         with fresh samples, no guide and the whole turn on the spot, up to ``attempts`` times;
         a spent budget ends the planning at once. A walk that loops (:data:`WANDER_FACTOR`) is
-        searched again too, up to :data:`WANDER_SEARCHES` searches, and the shortest is kept.
+        searched again too, up to :data:`WANDER_SEARCHES` searches, and the shortest is kept;
+        the searches after a loop make the whole turn on the spot (no split,
+        :mod:`mjwalk.plan.turnsplit`).
 
         Args:
             walk: a :class:`~mjwalk.plan.request.WalkRequest`, or its start alone.
@@ -394,6 +396,8 @@ class HybridPlanner:
                 return path
             if best is None or path.length < best.length:
                 best = path  # a loop: try fresh samples, keep the shortest
+            # a split turn that loops is made wholly on the spot (mjwalk.plan.turnsplit)
+            request = replace(request, at_work=False)
         assert best is not None  # a search returned, or the last attempt raised
         best.meta["seconds"] = time.perf_counter() - t0
         best.meta["searches"] = attempt + 1

@@ -20,6 +20,13 @@ bends out from the work it turned away from. A uniform draw between the two cite
 my own modelling step (no published distribution of the split was found). A turn within
 :data:`WALKING_TURN_MAX` is left to the search, as before (the walker may set off anywhere
 within :data:`~mjwalk.plan.options.START_SPREAD` of the downhill heading).
+
+A split that makes the walk loop (longer than :data:`~mjwalk.plan.options.WANDER_FACTOR` times
+its route: set off that far from the way, the walk bends round to arrive) is made wholly on the
+spot when the walk is searched again (:meth:`~mjwalk.plan.hybrid.HybridPlanner.plan`), as
+after a dead end: the split is a one-step direction change carried into the walk (Patla et al.
+1991), not a loop, and people make a turn of up to 180 degrees in place (the 180 degree turns
+of Thigpen et al. 2000 above, one pivot in young adults).
 """
 
 from __future__ import annotations

@@ -398,6 +398,37 @@ def test_a_split_turn_that_sets_off_into_a_wall_is_turned_on_the_spot(model, tmp
         assert np.hypot(*(walk.xy[-1] - (2.0, 0.0))) <= planner.options.goal_tolerance + 1e-9
 
 
+def test_a_split_turn_whose_walk_loops_is_turned_on_the_spot(model, scenes_dir, monkeypatch):
+    """A split turn whose walk loops (longer than WANDER_FACTOR times its route) is made wholly
+    on the spot in the searches after the loop (:mod:`mjwalk.plan.turnsplit`, issue 48's
+    station p99): here the split is made to set off straight away from the goal, 2 m behind
+    the walker in an open hall; the first search loops, the second, without the split, sets
+    off within 20 deg of the way and is no loop (10 seeds)."""
+    import math
+
+    import mjwalk.plan.hybrid as hybrid
+
+    planner = HybridPlanner(load_workplace(scenes_dir / "open_floor.xml"), (0.0, 0.0), model)
+    calls = []
+
+    def away(facing, heading, n, rng, work=None):
+        calls.append(facing)
+        return np.full(n, facing)
+
+    monkeypatch.setattr(hybrid, "starter_frames", away)
+    for k in range(10):
+        calls.clear()
+        walk = planner.plan(
+            WalkRequest((-2.0, 0.0, math.pi), turn_on_spot=True, at_work=True),
+            np.random.default_rng(k),
+        )
+        # the first search loops (3.3-4.4 m before this rule, all 6 searches), the second
+        # turns on the spot: 1.8-2.1 m, setting off within 8 deg of the way
+        assert len(calls) == 1 and walk.meta["attempts"] == 2, (k, calls, walk.meta)
+        assert not walk.meta["wandering"] and walk.length < 1.5 * 2.0, (k, walk.length)
+        assert abs(math.remainder(walk.yaw[0], 2 * math.pi)) < math.radians(20.0), k
+
+
 #: Distance (m) from setting off to 90 % of the steady speed, and from the last 90 % to
 #: standing, of the 103 Bandai straight ``walk`` clips (standing to standing, four styles),
 #: measured as :func:`~mjwalk.gait.speedprofile.start_stop_distances`
