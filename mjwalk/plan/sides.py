@@ -276,14 +276,17 @@ def intruding(workplace, path, ends, berth: float):
     dense = densify(pts, BERTH_SPACING)
     lo, hi = dense.min(axis=0) - berth, dense.max(axis=0) + berth
     best, first = None, len(dense)
+    both = np.stack([s, g])
     for k in boxes_meeting(workplace, (lo[0], lo[1], hi[0], hi[1])):
         fp = workplace.obstacles[k]
         along = (np.asarray(fp.vertices, dtype=float) - s) @ u
         if along.min() - fp.radius < -berth or along.max() + fp.radius > length + berth:
             continue  # not passed by: a wall the walk runs along, or behind an end
-        if float(fp.signed_distance(np.stack([s, g])).min()) < berth:
+        # only points before the best so far can take its place (distances are per point)
+        near = np.flatnonzero(fp.signed_distance(dense[:first]) < berth)
+        if not len(near):
+            continue
+        if float(fp.signed_distance(both).min()) < berth:
             continue  # an end's own obstacle (a walk to or from a bench)
-        near = np.flatnonzero(fp.signed_distance(dense) < berth)
-        if len(near) and near[0] < first:
-            best, first = fp, int(near[0])
+        best, first = fp, int(near[0])
     return best

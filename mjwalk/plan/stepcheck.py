@@ -316,13 +316,14 @@ def check_into(
             continue
         yaws = loc[m + 1]
         ankle = loc[m] * rot + p
-        toe = ankle + (par[P_FOOT_LENGTH] * 1j) * rot * unit_turn(yaws.real)
+        land = unit_turn(yaws.real)  # the landing yaw's turn, once (the toe probes below)
+        toe = ankle + (par[P_FOOT_LENGTH] * 1j) * rot * land
         if field_clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag) < thr[m + 1]:
             continue
         # the toes' front corners for the walker's stature (a tall walker's wide toes reach
         # past the probe above: options.toe_corners)
         if not math.isnan(par[P_TOE_FRONT]):
-            turn = rot * unit_turn(yaws.real)
+            turn = rot * land
             for side in (-par[P_TOE_SIDE], par[P_TOE_SIDE]):
                 toe = ankle + complex(side, par[P_TOE_FRONT]) * turn
                 if (
@@ -389,7 +390,7 @@ def check_into(
             continue
         # the landing foot's way in along the chord from the foot behind, turned to its
         # landing yaw: a curved walk's step comes in obliquely, the toes sweeping sideways
-        toe_off = (par[P_FOOT_LENGTH] * 1j) * unit_turn(yaws.real)
+        toe_off = (par[P_FOOT_LENGTH] * 1j) * land
         if not toe_approach_clear(loc[m], behind, toe_off, thr[m + 1], rot, p, par, coef, fx0,
                                   fy0, fres, fnx, fny):  # fmt: skip
             continue

@@ -376,10 +376,11 @@ def toe_approach_clear(ankle, lift, toe, clear, rot, p, par, coef, x0, y0, res, 
     if math.isnan(share) or math.isnan(step) or step <= 0.0 or math.isnan(lift.real):
         return True
     chord = ankle - lift
-    span = share * abs(chord)
+    length = abs(chord)
+    span = share * length
     if span <= 0.0:
         return True
-    u = chord / abs(chord)
+    u = chord / length
     k = 1
     while True:
         back = min(k * step, span)
