@@ -99,16 +99,20 @@ def _run(a: float, b: float, walker: Walker) -> np.ndarray:
 RISER_GAP = STAIR_TOE_CLEARANCE
 
 #: Least gap (m) between a foot on a tread and the riser face it turns to (the riser ahead of its
-#: toes going up, behind its heel going down) where the foot, centred, would leave less: the
+#: toes going up, behind its heel going down) for the foot to stand centred on its tread: the
 #: clearance under which stair-descent studies count a foot's clearance as low
 #: (:data:`mjwalk.world.norms.DESCENT_LOW_CLEARANCE`, 5 mm, Hamel et al. 2005, Foster et al.
-#: 2014). A foot longer than the tread less this gap (0.27 m: statures over about 1.78 m;
-#: :func:`mjwalk.anthropometry.leg_geometry`) hangs the rest over the nosing it turns away from,
-#: the heel going up, the toes going down, as people put a long foot on a short going (the ball
-#: of the foot on the tread). Centred, a 1.85 m walker's 0.281 m foot stood 0.6 mm into both
-#: risers of a 0.28 m tread: its toes against the riser ahead going up, its heel against the
-#: riser behind going down, and the landing heel caught the upper tread's nosing (11 mm; the
-#: multi-level station's cycle, run 7 of 10: 225 contacts). Shorter feet stand as before.
+#: 2014). A foot longer than the tread less twice this gap (0.27 m on a 0.28 m tread: statures
+#: over about 1.78 m; :func:`mjwalk.anthropometry.leg_geometry`) does not fit and hangs over
+#: the nosing it turns away from: going up, its toes keep this gap off the riser ahead and the
+#: heel hangs back over the nosing (the ball of the foot on the tread); going down, its heel
+#: keeps :data:`RISER_GAP` off the riser behind and the toes hang over the nosing ahead, since
+#: the landing foot, pitched toes down, lowers its heel past the upper tread's nosing (a swing
+#: crosses that edge; the ascent's toes cross none in stance). Centred, a 1.85 m walker's 0.281
+#: m foot stood 0.6 mm into both risers of a 0.28 m tread, and with only this gap going down
+#: its landing heel still caught the upper nosing (6.2 mm; 1.3 mm with 1 cm; measured on the
+#: shipped stair, ``tests/timeline/test_collisions.py``); the multi-level station's cycle,
+#: run 7 of 10 (a 1.85 m older adult): 225 contacts. Feet that fit stand as before.
 TREAD_RISER_GAP = DESCENT_LOW_CLEARANCE
 
 
@@ -143,7 +147,10 @@ def flight_setback(s: np.ndarray, track: np.ndarray, up: bool, stature: float) -
         return np.maximum(centred, toe_gap)
     # the heel of a foot on a tread, and of the foot past the last riser
     behind = edges[np.clip(np.searchsorted(edges, s) - 1, 0, len(edges) - 1)]
-    gap = np.where(np.abs(s - track[-1]) < 1e-9, RISER_GAP, TREAD_RISER_GAP)
+    # a foot that does not fit keeps its landing heel the least edge clearance off the riser
+    # behind, whose nosing that heel passes as it lowers (TREAD_RISER_GAP's docstring)
+    fits = s - centred - g.foot_back - behind >= TREAD_RISER_GAP - 1e-9
+    gap = np.where((np.abs(s - track[-1]) < 1e-9) | ~fits, RISER_GAP, 0.0)
     heel_gap = np.where(s > edges[0], s - g.foot_back - gap - behind, np.inf)
     return np.minimum(centred, heel_gap)
 
