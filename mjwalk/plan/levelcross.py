@@ -37,7 +37,7 @@ from mjwalk.plan.levelroute import Crossing
 from mjwalk.plan.occupancy import CELL_SIZE
 from mjwalk.plan.turnsplit import WALKING_TURN_MAX, wrap
 from mjwalk.plan.walkpath import PathStep, WalkPath
-from mjwalk.world.norms import STAIR_TOE_CLEARANCE
+from mjwalk.world.norms import DESCENT_LOW_CLEARANCE, STAIR_TOE_CLEARANCE
 
 #: How far (m) a walker standing before a crossing (no step brought it there) may stand from
 #: the crossing's stance and start on it from where it stands: a grid cell of the planner's
@@ -98,6 +98,23 @@ def _run(a: float, b: float, walker: Walker) -> np.ndarray:
 #: station's stair, run 0 of its cycle) and, going down, the heel the bottom riser.
 RISER_GAP = STAIR_TOE_CLEARANCE
 
+#: Least gap (m) between a foot on a tread and the riser face it turns to (the riser ahead of its
+#: toes going up, behind its heel going down) for the foot to stand centred on its tread: the
+#: clearance under which stair-descent studies count a foot's clearance as low
+#: (:data:`mjwalk.world.norms.DESCENT_LOW_CLEARANCE`, 5 mm, Hamel et al. 2005, Foster et al.
+#: 2014). A foot longer than the tread less twice this gap (0.27 m on a 0.28 m tread: statures
+#: over about 1.78 m; :func:`mjwalk.anthropometry.leg_geometry`) does not fit and hangs over
+#: the nosing it turns away from: going up, its toes keep this gap off the riser ahead and the
+#: heel hangs back over the nosing (the ball of the foot on the tread); going down, its heel
+#: keeps :data:`RISER_GAP` off the riser behind and the toes hang over the nosing ahead, since
+#: the landing foot, pitched toes down, lowers its heel past the upper tread's nosing (a swing
+#: crosses that edge; the ascent's toes cross none in stance). Centred, a 1.85 m walker's 0.281
+#: m foot stood 0.6 mm into both risers of a 0.28 m tread, and with only this gap going down
+#: its landing heel still caught the upper nosing (6.2 mm; 1.3 mm with 1 cm; measured on the
+#: shipped stair, ``tests/timeline/test_collisions.py``); the multi-level station's cycle,
+#: run 7 of 10 (a 1.85 m older adult): 225 contacts. Feet that fit stand as before.
+TREAD_RISER_GAP = DESCENT_LOW_CLEARANCE
+
 
 def flight_setback(s: np.ndarray, track: np.ndarray, up: bool, stature: float) -> np.ndarray:
     """How far behind each footfall (against the walking direction) the point under the ankle
@@ -122,13 +139,20 @@ def flight_setback(s: np.ndarray, track: np.ndarray, up: bool, stature: float) -
     s, track = np.asarray(s, dtype=float), np.asarray(track, dtype=float)
     g = leg_geometry(stature)
     centred = np.full(len(s), 0.5 * (g.foot_front - g.foot_back))
-    if up:  # the toes of the foot before the first riser
-        first = 0.5 * (track[0] + track[1])
-        toe_gap = s + g.foot_front + RISER_GAP - first
-        return np.where(np.abs(s - track[0]) < 1e-9, np.maximum(centred, toe_gap), centred)
-    last = 0.5 * (track[-2] + track[-1])  # the heel of the foot past the last riser
-    heel_gap = s - g.foot_back - RISER_GAP - last
-    return np.where(np.abs(s - track[-1]) < 1e-9, np.minimum(centred, heel_gap), centred)
+    edges = 0.5 * (track[:-1] + track[1:])  # the risers, in walking order
+    if up:  # the toes of a foot on a tread, and of the foot before the first riser
+        ahead = edges[np.clip(np.searchsorted(edges, s), 0, len(edges) - 1)]
+        gap = np.where(np.abs(s - track[0]) < 1e-9, RISER_GAP, TREAD_RISER_GAP)
+        toe_gap = np.where(s < edges[-1], s + g.foot_front + gap - ahead, -np.inf)
+        return np.maximum(centred, toe_gap)
+    # the heel of a foot on a tread, and of the foot past the last riser
+    behind = edges[np.clip(np.searchsorted(edges, s) - 1, 0, len(edges) - 1)]
+    # a foot that does not fit keeps its landing heel the least edge clearance off the riser
+    # behind, whose nosing that heel passes as it lowers (TREAD_RISER_GAP's docstring)
+    fits = s - centred - g.foot_back - behind >= TREAD_RISER_GAP - 1e-9
+    gap = np.where((np.abs(s - track[-1]) < 1e-9) | ~fits, RISER_GAP, 0.0)
+    heel_gap = np.where(s > edges[0], s - g.foot_back - gap - behind, np.inf)
+    return np.minimum(centred, heel_gap)
 
 
 def tread_setback(c: Crossing, s: np.ndarray, stature: float, direction: str = "up") -> np.ndarray:
