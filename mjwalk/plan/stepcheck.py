@@ -253,7 +253,6 @@ def check_into(
         drawn: (>= b,) int, the drawn (not dropped) count per predecessor.
     """
     n = z.shape[0]
-    d = z.shape[1]
     b = n // per if per > 0 else 0
     m = ipar[I_M]
     q = ipar[I_Q]
@@ -294,17 +293,9 @@ def check_into(
             end = decode_col(z, r, matrix, offset, m - 1) * rot + p
             if not in_goal(end, fr + decode_col(z, r, matrix, offset, m + 1).imag, par, ipar):
                 continue
-        # decode: local = z @ matrix + offset (real features times complex columns: the real
-        # and imaginary sums apart, the products a complex product with 0j would add as ±0)
+        # decode: local = z @ matrix + offset, column by column (decode_col)
         for c in range(m + 2):
-            sr = offset[c].real
-            si = offset[c].imag
-            for a in range(d):
-                za = z[r, a]
-                w = matrix[a, c]
-                sr += za * w.real
-                si += za * w.imag
-            loc[c] = complex(sr, si)
+            loc[c] = decode_col(z, r, matrix, offset, c)
         # clearance of pelvis samples, ankle, toes, knees (world)
         ok = True
         for j in range(m + 1):

@@ -248,9 +248,10 @@ def _segment_off(a, b, s_max, centre, radius):
 
 @njit
 def decode_col(z, r, matrix, offset, col):
-    """Decoder column ``col`` for feature row ``r`` (``z[r] @ matrix + offset`` there): its real
-    and imaginary sums apart, in feature order, as :func:`~mjwalk.plan.stepcheck.check_into`
-    decodes every column (bit-equal to it).
+    """Decoder column ``col`` for feature row ``r`` (``z[r] @ matrix + offset`` there): real
+    features times complex columns, the real and imaginary sums apart in feature order (the
+    products a complex product with 0j would add as ±0); :func:`~mjwalk.plan.stepcheck.check_into`
+    decodes every column with it.
 
     Args:
         z: (n, d) standardized features.
@@ -281,10 +282,7 @@ def decode_real(z, r, matrix, offset, col):
         offset: (2m + 3,) its complex offset.
         col: the column.
     """
-    v = offset[col].real
-    for a in range(z.shape[1]):
-        v += z[r, a] * matrix[a, col].real
-    return v
+    return decode_col(z, r, matrix, offset, col).real
 
 
 @njit
