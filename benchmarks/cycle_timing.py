@@ -84,6 +84,7 @@ STAGES: list[tuple[str, list[str]]] = [
     ),
     ("result assembly", ["mjwalk.cycle.simulate:_finish"]),
     ("part tracks", ["mjwalk.timeline.parts:part_tracks"]),
+    ("shared kinematics", ["mjwalk.timeline.geomposes:geom_table"]),
     ("collisions", ["mjwalk.timeline.collisions:collision_report"]),
     ("ergonomics", ["mjwalk.cycle.simulate:cycle_ergonomics"]),
     ("ergonomics: angles", ["mjwalk.ergonomics.angles:angles_from_timeline"]),

@@ -81,7 +81,7 @@ _LAZY: dict[str, str] = {
     "Timeline": "mjwalk.timeline.timeline",
     "check_collisions": "mjwalk.timeline.collisions",
     "collision_report": "mjwalk.timeline.collisions",
-    "iter_frames": "mjwalk.timeline.collisions",
+    "iter_frames": "mjwalk.timeline.timeline",
     "reach_in_scene": "mjwalk.timeline.reachscene",
     "timeline_from_walk": "mjwalk.timeline.frames",
     # ergonomics
@@ -233,15 +233,10 @@ if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
     from mjwalk.render import render_frames, render_video
     from mjwalk.render.plot import save_plan_png
     from mjwalk.report import format_markdown, format_summary, report_dict, write_report
-    from mjwalk.timeline.collisions import (
-        Contact,
-        check_collisions,
-        collision_report,
-        iter_frames,
-    )
+    from mjwalk.timeline.collisions import Contact, check_collisions, collision_report
     from mjwalk.timeline.frames import timeline_from_walk
     from mjwalk.timeline.reachscene import reach_in_scene
-    from mjwalk.timeline.timeline import Event, Timeline
+    from mjwalk.timeline.timeline import Event, Timeline, iter_frames
     from mjwalk.world.clearance import ClearanceField
     from mjwalk.world.probe import ClearanceProbe, path_clearance
     from mjwalk.world.workplace import Workplace, WorkplaceOptions, load_workplace

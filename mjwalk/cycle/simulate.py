@@ -32,6 +32,7 @@ import numpy as np
 from joblib import Parallel, delayed
 
 from mjwalk._args import as_generator, check_seed
+from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.cycle.actions import Action, CycleRun, CycleState, action_class
 from mjwalk.cycle.context import (
@@ -65,6 +66,7 @@ from mjwalk.ergonomics.assess import TaskSpan, assess_cycle
 from mjwalk.errors import CycleSpecError, InputError, PlanningError
 from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.timeline.collisions import collision_report
+from mjwalk.timeline.geomposes import GeomTable, geom_table, supported
 from mjwalk.timeline.parts import Handling, part_tracks
 from mjwalk.timeline.timeline import Timeline
 
@@ -227,15 +229,28 @@ def _finish(
         qpos = timeline.qpos
         timeline.parts = part_tracks(ctx.model, ctx.jointmap, qpos, handlings, ctx.scratch())
         result.timeline = timeline
+    # the contact check and the ergonomics read the same kinematics: computed once for both
+    table = None
+    if collisions and ergonomics and supported(timeline.model):
+        human = np.flatnonzero(timeline.model.geom_group == HUMAN_GROUP)
+        table = geom_table(timeline.model, timeline.qpos, human)
     if collisions:
-        result.collisions = collision_report(timeline, data=ctx.scratch())
+        result.collisions = collision_report(timeline, data=ctx.scratch(), table=table)
     if ergonomics:
         wp, t = ctx.workplace, result.cycle_time
-        result.ergonomics = cycle_ergonomics(timeline, spec, starts, ends, t, wp)
+        result.ergonomics = cycle_ergonomics(timeline, spec, starts, ends, t, wp, table)
     return result
 
 
-def cycle_ergonomics(timeline: Timeline, spec: CycleSpec, starts, ends, cycle_time: float, wp):
+def cycle_ergonomics(
+    timeline: Timeline,
+    spec: CycleSpec,
+    starts,
+    ends,
+    cycle_time: float,
+    wp,
+    table: GeomTable | None = None,
+):
     """The ergonomics of a cycle's timeline (:func:`mjwalk.ergonomics.assess.assess_cycle`): a
     place or fasten handles the part its hand picked last (its mass and coupling).
 
@@ -246,6 +261,8 @@ def cycle_ergonomics(timeline: Timeline, spec: CycleSpec, starts, ends, cycle_ti
         ends: (n_tasks,) each task's end frame (exclusive).
         cycle_time: the cycle's duration, seconds.
         wp: the Workplace (the sites' positions).
+        table: the humanoid's geom poses in every frame, if already computed
+            (:func:`~mjwalk.ergonomics.angles.angles_from_timeline`).
 
     Returns:
         The run's ergonomic scores (:class:`~mjwalk.ergonomics.assess.RunErgonomics`).
@@ -272,7 +289,7 @@ def cycle_ergonomics(timeline: Timeline, spec: CycleSpec, starts, ends, cycle_ti
         spans.append(TaskSpan(i, task.kind, s, e, task.hand if task.kind != "walk" else None,
                               task.site, mass, coupling, pos, reach=reach, part=part,
                               lifts=kind.lifts))  # fmt: skip
-    ang = angles_from_timeline(timeline, walking)
+    ang = angles_from_timeline(timeline, walking, table)
     return assess_cycle(ang, spans, cycle_time, timeline.fps)
 
 

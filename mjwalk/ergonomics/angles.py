@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from mjwalk.timeline.geomposes import geom_poses, supported
+from mjwalk.timeline.geomposes import GeomTable, geom_poses, supported
 
 #: A joint within this many degrees of its neutral position counts as neutral ("0 deg", "upright"
 #: in RULA and REBA). The methods' worksheets are filled in by eye, to about this resolution;
@@ -325,7 +325,9 @@ _BODY_POINTS = {
 }  # fmt: skip
 
 
-def body_frames(model, jointmap, qpos: np.ndarray, bodies: list[str]):
+def body_frames(
+    model, jointmap, qpos: np.ndarray, bodies: list[str], table: GeomTable | None = None
+):
     """World poses of humanoid bodies: MuJoCo's forward kinematics compiled over frames
     (:func:`mjwalk.timeline.geomposes.geom_poses`) on each body's first geom, the geom's own
     offset undone, :math:`R_{body} = R_{geom} R_{local}^T`, :math:`p_{body} = p_{geom} -
@@ -336,6 +338,8 @@ def body_frames(model, jointmap, qpos: np.ndarray, bodies: list[str]):
         jointmap: the humanoid's joint map (its prefix names the bodies).
         qpos: (F, nq) poses.
         bodies: B unprefixed body names.
+        table: the geom poses of every frame of ``qpos``, if already computed (read when it
+            holds the bodies' first geoms: the same numbers as computing them here).
 
     Returns:
         ``(pos, rot)``: (F, B, 3) world positions, metres, and (F, B, 3, 3) rotations.
@@ -354,7 +358,8 @@ def body_frames(model, jointmap, qpos: np.ndarray, bodies: list[str]):
             rot[f] = data.xmat[bids].reshape(-1, 3, 3)
         return pos, rot
     gids = np.array([int(model.body_geomadr[b]) for b in bids])
-    gpos, gmat = geom_poses(model, qpos, gids)
+    shared = table.columns(gids) if table is not None and len(table.xpos) == len(qpos) else None
+    gpos, gmat = shared if shared is not None else geom_poses(model, qpos, gids)
     n = len(qpos)
     rot = gmat.reshape(n, len(gids), 3, 3)  # R_body = R_geom R_local^T, in place below
     pos = np.empty_like(gpos)
@@ -372,7 +377,9 @@ def body_frames(model, jointmap, qpos: np.ndarray, bodies: list[str]):
     return pos, rot
 
 
-def angles_from_timeline(timeline, walking: np.ndarray | None = None) -> BodyAngles:
+def angles_from_timeline(
+    timeline, walking: np.ndarray | None = None, table: GeomTable | None = None
+) -> BodyAngles:
     """Body angles of every frame of a humanoid :class:`~mjwalk.timeline.timeline.Timeline`.
     The wrists' flexion and deviation, the forearms' pronation and the neck's rotation are the
     humanoid's own hinge angles.
@@ -380,14 +387,18 @@ def angles_from_timeline(timeline, walking: np.ndarray | None = None) -> BodyAng
     Args:
         timeline: the humanoid's timeline.
         walking: (F,) frames of a walk (default none).
+        table: the humanoid's geom poses in every frame, if already computed
+            (:func:`body_frames`).
 
     Returns:
         The :class:`BodyAngles` of its F frames.
     """
-    return angles_from_qpos(timeline.model, timeline.jointmap, timeline.qpos, walking)
+    return angles_from_qpos(timeline.model, timeline.jointmap, timeline.qpos, walking, table)
 
 
-def angles_from_qpos(model, jointmap, qpos: np.ndarray, walking=None) -> BodyAngles:
+def angles_from_qpos(
+    model, jointmap, qpos: np.ndarray, walking=None, table: GeomTable | None = None
+) -> BodyAngles:
     """:func:`angles_from_timeline` for poses of a model: joint positions from the bodies'
     origins, the head's up the neck body's z, the grip points the palms' centres.
 
@@ -396,12 +407,14 @@ def angles_from_qpos(model, jointmap, qpos: np.ndarray, walking=None) -> BodyAng
         jointmap: the humanoid's joint map.
         qpos: (F, nq) poses.
         walking: (F,) frames of a walk (default none).
+        table: the geom poses of every frame of ``qpos``, if already computed
+            (:func:`body_frames`).
 
     Returns:
         The :class:`BodyAngles` of the F frames.
     """
     bodies = list(_BODY_POINTS)
-    pos, rot = body_frames(model, jointmap, qpos, bodies)
+    pos, rot = body_frames(model, jointmap, qpos, bodies, table)
     p = {_BODY_POINTS[b]: pos[:, k] for k, b in enumerate(bodies)}
     k_neck = bodies.index("neck")
     head_up = rot[:, k_neck, :, 2]  # the neck body's z: the head's up

@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 import weakref
-from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -24,7 +23,7 @@ from mjwalk.body.humanoid import HUMAN_GROUP
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.timeline.frames import timeline_from_walk
-from mjwalk.timeline.geomposes import geom_poses, supported
+from mjwalk.timeline.geomposes import GeomTable, geom_poses, supported
 from mjwalk.timeline.timeline import Timeline
 from mjwalk.world.norms import MAX_RAMP_SLOPE
 from mjwalk.world.workplace import shared_workplace
@@ -49,24 +48,6 @@ class Contact:
     pos: np.ndarray
 
 
-def iter_frames(timeline: Timeline, data: mujoco.MjData | None = None) -> Iterator[mujoco.MjData]:
-    """Play the timeline: set each frame's qpos, run forward kinematics, yield the MjData.
-
-    Args:
-        timeline: the timeline to play.
-        data: an MjData of the timeline's model to play in (default: a new one).
-
-    Yields:
-        ``data`` at each frame in turn, after ``mj_kinematics`` (the same object every time).
-    """
-    model = timeline.model
-    data = data if data is not None else mujoco.MjData(model)
-    for q in timeline.qpos:
-        data.qpos[:] = q
-        mujoco.mj_kinematics(model, data)
-        yield data
-
-
 #: Slack (m) of the broad phase's bounding-volume tests: a pair this close is handed to MuJoCo.
 BROAD_SLACK = 1e-3
 
@@ -76,6 +57,7 @@ def collision_report(
     floor_tolerance: float = 0.01,
     broad_phase: bool = True,
     data: mujoco.MjData | None = None,
+    table: GeomTable | None = None,
 ) -> list[Contact]:
     """Humanoid-vs-scene contacts of every frame by MuJoCo collision detection.
 
@@ -104,6 +86,8 @@ def collision_report(
         floor_tolerance: floor contacts shallower than this (metres) are left out.
         broad_phase: skip the frames without a candidate contact (same result, faster).
         data: an MjData of the timeline's model to work in (default: a new one).
+        table: the humanoid's geom poses in every frame, if already computed (the same
+            numbers as the broad phase's own, :class:`~mjwalk.timeline.geomposes.GeomTable`).
     """
     model = timeline.model
     data = data if data is not None else mujoco.MjData(model)
@@ -118,7 +102,7 @@ def collision_report(
         check = np.zeros(len(qpos), dtype=bool)
         fresh = np.flatnonzero(~same)
         check[fresh] = candidate_frames(
-            model, qpos[fresh], human, floorish, floor_tolerance, data=data
+            model, qpos[fresh], human, floorish, floor_tolerance, data, table, fresh
         )
     else:
         check = np.ones(len(qpos), dtype=bool)
@@ -290,6 +274,8 @@ def candidate_frames(
     floorish: np.ndarray,
     floor_tolerance: float,
     data: mujoco.MjData | None = None,
+    table: GeomTable | None = None,
+    rows: np.ndarray | None = None,
 ) -> np.ndarray:
     """(F,) True for the poses ``qpos`` (F, nq) in which a humanoid geom (``human`` (ngeom,)
     mask) may touch a scene geom, by bounding volumes (conservative: every contact MuJoCo can
@@ -317,6 +303,10 @@ def candidate_frames(
         floorish: (ngeom,) bool mask of the floors (:func:`floor_geoms`).
         floor_tolerance: floor contacts shallower than this (metres) are not reported.
         data: an MjData of ``model`` for models the compiled kinematics does not support.
+        table: the geom poses of a timeline whose frames ``rows`` (F,) are ``qpos`` (used
+            when it holds the humanoid's geoms; a row of it is what :func:`geom_poses` gives
+            for that frame alone, so the result is the same).
+        rows: see ``table``.
 
     Returns:
         (F,) bool: True where MuJoCo's collision detection must run.
@@ -328,7 +318,10 @@ def candidate_frames(
     hid = scene.hid
     if len(hid) == 0:  # no humanoid: nothing to report
         return np.zeros(n, dtype=bool)
-    if supported(model):  # compiled over all frames
+    shared = table.columns(hid) if table is not None and rows is not None else None
+    if shared is not None:  # the timeline's own table: its rows of these frames
+        xpos, xmat = shared
+    elif supported(model):  # compiled over all frames
         xpos, xmat = geom_poses(model, qpos, hid)
     else:
         data = data if data is not None else mujoco.MjData(model)
@@ -350,6 +343,7 @@ def candidate_frames(
     # lowest point that deep, less the slack for round-off
     depth = floor_tolerance - BROAD_SLACK
     return _touching(
+        np.arange(n) if shared is None else np.asarray(rows, dtype=np.int64),
         xpos,
         xmat,
         scene.types,
@@ -466,19 +460,21 @@ _SPHERE, _CAPSULE, _CYLINDER, _BOX = (
 
 @njit
 def _touching(
-    xpos, xmat, types, size, rbound, reach, n_sub, sub_reach, centre, half, normals, origins, depth
-):
-    """(F,) frames where a humanoid geom (centres ``xpos`` (F, G, 3), rotations ``xmat``
-    (F, G, 9), MuJoCo ``types``/``size``/``rbound`` (G,)) comes within ``reach`` (G,) of a
+    rows, xpos, xmat, types, size, rbound, reach, n_sub, sub_reach, centre, half, normals, origins,
+    depth,
+):  # fmt: skip
+    """(R,) which frames ``rows`` (R,) have a humanoid geom (centres ``xpos`` (F, G, 3), rotations
+    ``xmat`` (F, G, 9), MuJoCo ``types``/``size``/``rbound`` (G,)) within ``reach`` (G,) of a
     scene box (``centre``, ``half`` (S, 3), world axes), a capsule's bounding sphere only
     where one of its ``n_sub`` spheres along the axis comes within ``sub_reach`` of it
     (:func:`_sub_spheres_reach`), or its lowest point lies more than ``depth`` below a floor
     plane (``normals``, ``origins`` (P, 3)). Metres."""
-    n, g_n, s_n, p_n = xpos.shape[0], xpos.shape[1], centre.shape[0], normals.shape[0]
+    n, g_n, s_n, p_n = rows.shape[0], xpos.shape[1], centre.shape[0], normals.shape[0]
     hit = np.zeros(n, dtype=np.bool_)
     near = np.empty(s_n, dtype=np.int64)  # this frame's near boxes (the first m of them)
     lo, hi = np.empty(3), np.empty(3)
-    for f in range(n):
+    for r in range(n):
+        f = rows[r]
         # the scene boxes that overlap the box around all the humanoid's reach spheres
         lo[:] = np.inf
         hi[:] = -np.inf
@@ -507,9 +503,9 @@ def _touching(
                     n_sub[g] == 1
                     or _sub_spheres_reach(xpos, xmat, f, g, k, centre, half, size, n_sub, sub_reach)
                 ):
-                    hit[f] = True
+                    hit[r] = True
                     break
-            if hit[f]:
+            if hit[r]:
                 break
             for k in range(p_n):
                 nx, ny, nz = normals[k, 0], normals[k, 1], normals[k, 2]
@@ -534,9 +530,9 @@ def _touching(
                 else:
                     ext = rbound[g]
                 if h - ext < -depth:
-                    hit[f] = True
+                    hit[r] = True
                     break
-            if hit[f]:
+            if hit[r]:
                 break
     return hit
 

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 import weakref
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np
@@ -60,6 +61,58 @@ def geom_poses(
     geoms = np.asarray(geoms, dtype=np.int64)
     bodies = model.geom_bodyid[geoms].astype(np.int64)
     return _frames_on_bodies(model, qpos, bodies, model.geom_pos[geoms], model.geom_quat[geoms])
+
+
+@dataclass(frozen=True)
+class GeomTable:
+    """:func:`geom_poses` of some geoms in every frame of a timeline, computed once for the
+    stages that read the same kinematics (a cycle's contact check and its ergonomics): a
+    geom's pose in a frame depends on that frame's pose alone (the kernel's reuse of the
+    frame before copies the numbers it would compute), so a column, or a row, of the table
+    is bit for bit what :func:`geom_poses` gives for that geom, or those frames, alone.
+
+    Attributes:
+        geoms: (G,) the geom ids, ascending.
+        xpos: (F, G, 3) world positions, metres.
+        xmat: (F, G, 9) rotation matrices (row-major).
+    """
+
+    geoms: np.ndarray
+    xpos: np.ndarray
+    xmat: np.ndarray
+
+    def columns(self, geoms: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+        """The poses of ``geoms`` (G',) in every frame, or None when one is not in the table.
+
+        Args:
+            geoms: geom ids.
+
+        Returns:
+            ``(xpos, xmat)``: (F, G', 3) and (F, G', 9), or None.
+        """
+        geoms = np.asarray(geoms, dtype=np.int64)
+        if not np.isin(geoms, self.geoms).all():
+            return None
+        col = np.searchsorted(self.geoms, geoms)
+        if np.array_equal(col, np.arange(len(self.geoms))):
+            return self.xpos, self.xmat
+        return self.xpos[:, col], self.xmat[:, col]
+
+
+def geom_table(model: mujoco.MjModel, qpos: np.ndarray, geoms: np.ndarray) -> GeomTable:
+    """The :class:`GeomTable` of ``geoms`` in every frame of ``qpos`` (:func:`geom_poses`).
+
+    Args:
+        model: a compiled model (:func:`supported`).
+        qpos: (F, nq) poses.
+        geoms: (G,) geom ids.
+
+    Returns:
+        The table, its geoms in ascending order.
+    """
+    ids = np.unique(np.asarray(geoms, dtype=np.int64))
+    xpos, xmat = geom_poses(model, qpos, ids)
+    return GeomTable(ids, xpos, xmat)
 
 
 def _frames_on_bodies(

@@ -33,7 +33,7 @@ from typing import Literal
 
 import mujoco
 import numpy as np
-from scipy.spatial.transform import Rotation, Slerp
+from scipy.spatial.transform import Rotation
 
 from mjwalk.arms.chain import min_jerk
 from mjwalk.body.humanoid import JointMap
@@ -152,8 +152,15 @@ HOLD_STILL = 1e-3
 
 
 def _slerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
-    """Rotation matrices (n, 3, 3) from ``a`` to ``b`` (3, 3) at shares ``w`` (n,) (SLERP)."""
-    return Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([a, b])))(w).as_matrix()
+    """Rotation matrices (n, 3, 3) from ``a`` to ``b`` (3, 3) at shares ``w`` (n,) in [0, 1]
+    (SLERP): ``a`` composed with the rotation vector of ``a^-1 b`` scaled by ``w``, the
+    operations scipy's ``Slerp([0, 1], ...)(w)`` makes (its share ``(w - 0) / 1`` is ``w``),
+    without its per-call set-up (a third of the time; tests compare the two bit for bit)."""
+    r = Rotation.from_matrix(np.stack([a, b]))
+    turn = (r[:1].inv() * r[1:]).as_rotvec()
+    return (
+        r[np.zeros(len(w), dtype=np.intp)] * Rotation.from_rotvec(turn * w[:, None])
+    ).as_matrix()
 
 
 def palms_frame(palm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

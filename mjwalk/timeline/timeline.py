@@ -9,6 +9,7 @@ World frame: metres, seconds, radians, z up, yaw from +x CCW.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 
 import mujoco
@@ -91,3 +92,21 @@ class Timeline:
             (F,) angles, radians (metres for a slide joint).
         """
         return self.qpos[:, self.jointmap.adr(name)]
+
+
+def iter_frames(timeline: Timeline, data: mujoco.MjData | None = None) -> Iterator[mujoco.MjData]:
+    """Play the timeline: set each frame's qpos, run forward kinematics, yield the MjData.
+
+    Args:
+        timeline: the timeline to play.
+        data: an MjData of the timeline's model to play in (default: a new one).
+
+    Yields:
+        ``data`` at each frame in turn, after ``mj_kinematics`` (the same object every time).
+    """
+    model = timeline.model
+    data = data if data is not None else mujoco.MjData(model)
+    for q in timeline.qpos:
+        data.qpos[:] = q
+        mujoco.mj_kinematics(model, data)
+        yield data

@@ -201,3 +201,21 @@ def test_station_run_732_keeps_a_tall_operators_carrying_hand_off_the_car(scenes
     assert result.operator is not None and round(result.operator.stature, 2) == 2.02
     assert result.error is None
     assert result.collisions == []
+
+
+@pytest.mark.parametrize("seed", [0, 3])
+def test_contact_check_and_ergonomics_sharing_kinematics_match_each_alone(ctx, seed):
+    """A cycle computes its humanoid's geom poses once for the contact check and the ergonomics
+    (``timeline.geomposes.GeomTable``); each asked alone computes its own: the same contacts and
+    scores, bit for bit."""
+    import pickle
+
+    both = simulate_cycle(ctx, seed)
+    contacts = simulate_cycle(ctx, seed, ergonomics=False).collisions
+    scores = simulate_cycle(ctx, seed, collisions=False).ergonomics
+
+    def rows(found):
+        return [(c.time, c.body_part, c.scene_geom, c.depth, c.pos.tobytes()) for c in found]
+
+    assert rows(both.collisions) == rows(contacts)
+    assert pickle.dumps(both.ergonomics) == pickle.dumps(scores)

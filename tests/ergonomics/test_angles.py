@@ -111,3 +111,17 @@ def test_arm_elevation_is_from_the_vertical_whatever_the_trunk_does():
     assert a.trunk_flexion[0] == pytest.approx(45.0)
     np.testing.assert_allclose(a.upper_arm_elevation[0], [0.0, 90.0], atol=1e-9)
     np.testing.assert_allclose(a.upper_arm_angle[0], [45.0, 135.0], atol=1e-9)
+
+
+def test_angles_from_a_shared_geom_table_are_the_same_bit_for_bit():
+    """Body angles read from a table of the humanoid's geom poses (a cycle's, shared with its
+    contact check) are the numbers computed from the poses alone."""
+    from mjwalk.timeline.geomposes import geom_table
+
+    model, jm, qpos = humanoid_motion(5, shoulder_l_flex=70.0, lumbar_flex=30.0, knee_r=40.0)
+    qpos[:, jm.root] += np.linspace(0.0, 1.0, len(qpos))  # walking along x
+    table = geom_table(model, qpos, np.arange(model.ngeom))
+    a, b = angles_from_qpos(model, jm, qpos), angles_from_qpos(model, jm, qpos, table=table)
+    for name in a.__dataclass_fields__:
+        x, y = getattr(a, name), getattr(b, name)
+        assert np.asarray(x).tobytes() == np.asarray(y).tobytes(), name

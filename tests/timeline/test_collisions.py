@@ -53,6 +53,30 @@ def test_certified_corridor_walks_touch_no_wall(path, scenes_dir):
     assert contacts == [], [(c.body_part, c.scene_geom, round(c.depth, 4)) for c in contacts]
 
 
+def test_a_shared_geom_table_gives_the_same_candidates_and_contacts():
+    """The contact check reading a table of the humanoid's geom poses in every frame (as a
+    cycle shares it with its ergonomics) finds the same candidate frames and contacts."""
+    from mjwalk.body.humanoid import HUMAN_GROUP
+    from mjwalk.timeline.collisions import candidate_frames
+    from mjwalk.timeline.geomposes import geom_table
+
+    tl = timeline_from_walk(make_walk(n_steps=6), _scene(2.0))
+    m, q = tl.model, np.repeat(tl.qpos, 2, axis=0)[1:]  # holds: repeated poses
+    human = m.geom_group == HUMAN_GROUP
+    table = geom_table(m, q, np.flatnonzero(human))
+    fresh = np.flatnonzero(~repeats(q))
+    own = candidate_frames(m, q[fresh], human, floor_geoms(m), 0.01)
+    shared = candidate_frames(m, q[fresh], human, floor_geoms(m), 0.01, None, table, fresh)
+    assert own.any() and not own.all() and shared.tolist() == own.tolist()
+    tl.qpos, tl.t = q, np.arange(len(q)) / tl.fps
+
+    def rows(contacts):
+        return [(c.time, c.body_part, c.scene_geom, c.depth, c.pos.tobytes()) for c in contacts]
+
+    got = rows(collision_report(tl, table=table))
+    assert got and got == rows(collision_report(tl))
+
+
 def test_repeats_and_floor_geoms():
     q = np.array([[0.0, 1.0], [0.0, 1.0], [0.5, 1.0], [0.5, 1.0], [0.5, 1.0]])
     assert repeats(q).tolist() == [False, True, False, True, True]

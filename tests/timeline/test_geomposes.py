@@ -81,3 +81,27 @@ def test_the_kept_tree_gives_the_same_numbers_and_follows_a_moved_body():
         geom_poses(m, qpos, np.array([1])), geom_poses(fresh, qpos, np.array([1])), strict=True
     ):
         assert np.array_equal(a, b)
+
+
+def test_geom_table_columns_and_rows_are_geom_poses_bit_for_bit():
+    """A table of several geoms over all frames (holds repeated) gives, for any of its geoms or
+    frames, the very numbers geom_poses computes for those alone; a geom it lacks: None."""
+    from mjwalk.body.humanoid import humanoid_model
+    from mjwalk.timeline.geomposes import geom_table
+
+    m, _ = humanoid_model()
+    rng = np.random.default_rng(5)
+    qpos = np.repeat(m.qpos0 + rng.normal(scale=0.3, size=(12, m.nq)), 3, axis=0)
+    qpos[::4, 7:] += 0.01  # some frames move the limbs only
+    geoms = np.arange(0, m.ngeom, 2)
+    table = geom_table(m, qpos, geoms[::-1])
+    assert table.geoms.tolist() == sorted(geoms.tolist())
+    for some in (geoms, geoms[[3, 1, 7]], geoms[-1:]):
+        got, want = table.columns(some), geom_poses(m, qpos, some)
+        assert got is not None
+        assert all(a.tobytes() == b.tobytes() for a, b in zip(got, want, strict=True))
+    rows = np.array([1, 2, 5, 6, 17, 30])  # with repeats and gaps
+    alone = geom_poses(m, qpos[rows], geoms)
+    assert table.xpos[rows].tobytes() == alone[0].tobytes()
+    assert table.xmat[rows].tobytes() == alone[1].tobytes()
+    assert table.columns(np.array([1])) is None

@@ -348,3 +348,21 @@ def test_part_tracks_equal_the_every_frame_reference_bit_for_bit(monkeypatch, sc
     for a, b in zip(got, want, strict=True):
         assert (a.geom, a.grasp, a.release) == (b.geom, b.grasp, b.release)
         assert _same_bits(a.pos, b.pos) and _same_bits(a.mat, b.mat), a.geom
+
+
+def test_slerp_is_scipys_bit_for_bit():
+    """parts._slerp makes scipy's Slerp([0, 1], ...) arithmetic without its set-up: the same
+    bits for random turns, small ones and turns near half a turn."""
+    from scipy.spatial.transform import Rotation, Slerp
+
+    from mjwalk.arms.chain import min_jerk
+
+    rng = np.random.default_rng(11)
+    for i in range(300):
+        a = Rotation.random(random_state=rng).as_matrix()
+        turn = rng.normal(size=3)
+        turn *= [1e-4, 1.0, np.pi - 1e-6][i % 3] / np.linalg.norm(turn)
+        b = (Rotation.from_matrix(a) * Rotation.from_rotvec(turn)).as_matrix()
+        w = min_jerk(np.linspace(0.0, 1.0, int(rng.integers(2, 40))))
+        want = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([a, b])))(w).as_matrix()
+        assert parts._slerp(a, b, w).tobytes() == want.tobytes()
