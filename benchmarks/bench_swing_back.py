@@ -23,17 +23,15 @@ whose chord is under ``--min-chord`` (turns on the spot) are left out: their dir
 defined by the chord. Printed per step position (first / middle / last step of a
 walk, all): count, median, p95, max of both figures and the share of steps with back > 1 cm.
 
-Measured (``--cycles 20``, 782 steps; back median / p95 / max, cm) at 42152ae, which main
-still has: first steps 7.82 / 8.54 / 8.99 (100 % over 1 cm), middle 0.00 / 5.77 / 8.59 (19 %),
-last 0.00 / 3.13 / 7.48 (6 %); drawdown to mid-swing, all steps, p95 9.09, max 10.00 cm. The
-cause: the swing's chord progress starts at the lift-off footprint while the heel rise has
-already carried the ankle 7-9 cm ahead of it. A fix (the progress bounded below by the toe-off
-ankle's, continued at its toe-off speed, in both twins: ``legs.swing._swing_late`` and
-``legs.steps._reference_swing``) gave 0 in every step and 0 contacts in 20 station runs, but was
-not merged: the gait-pose model trained on the changed legs fails
-``tests/body/test_gaitpose.py::test_gaitpose_rollouts_keep_swinging`` (free rollout ratio 0.19
-against 0.75), a check that the base's own model also fails after 0.1 deg of smooth noise on
-its training poses (0.18-0.40), so it has to be made robust first.
+Measured (``--cycles 20``, 757 steps on this machine; back median / p95 / max, cm): at a196e73
+first steps 7.76 / 8.63 / 9.06 (100 % over 1 cm), middle 0.00 / 4.60 / 8.59 (17 %), last
+0.00 / 1.29 / 7.48 (6 %); drawdown to mid-swing, all steps, p95 9.12, max 10.10. The cause: the
+swing's chord progress started at the lift-off footprint while the heel rise had already carried
+the ankle 7-9 cm ahead of it. Since the progress is bounded below by the toe-off ankle's going on
+at its toe-off speed (``legs.steps._reference_swing`` and its twin ``legs.swing._swing_late``,
+handed over through a soft maximum): back 0 in every step; drawdown to mid-swing p95 0.00, max
+5.26 (one middle step); over the whole swing the landing approach's is left (all steps median
+0.75, p95 3.95, max 7.43; before 1.56 / 9.12 / 10.10).
 """
 
 from __future__ import annotations

@@ -9,6 +9,8 @@ from mjwalk.body.legs.curves import (
     clamped_cubic,
     smoothstep,
     soft_clip01,
+    soft_max,
+    soft_max1,
     spread,
 )
 
@@ -52,3 +54,19 @@ def test_clamped_cubic_meets_its_knots_and_end_slopes():
     ends = clamped_cubic(knots, values, 0.5, -0.3, np.array([0.0, h, 1.0 - h, 1.0])).ravel()
     assert (ends[1] - ends[0]) / h == pytest.approx(0.5, abs=1e-4)
     assert (ends[3] - ends[2]) / h == pytest.approx(-0.3, abs=1e-4)
+
+
+def test_soft_max_rounds_the_corner_of_the_larger():
+    """Exactly the larger beyond ``w`` apart, never below it, ``w / 4`` above it where equal;
+    its slope goes from 0 to 1 without a jump (C1); the compiled one-value twin agrees."""
+    b = np.zeros(4001)
+    a = np.linspace(-0.2, 0.2, 4001)
+    y = soft_max(a, b, 0.05)
+    far = np.abs(a) >= 0.05
+    assert np.array_equal(y[far], np.maximum(a, b)[far])
+    assert np.all(y >= np.maximum(a, b))
+    assert soft_max(np.array(0.0), np.array(0.0), 0.05) == pytest.approx(0.0125)
+    slope = np.diff(y) / np.diff(a)
+    assert slope[0] == pytest.approx(0.0) and slope[-1] == pytest.approx(1.0)
+    assert np.abs(np.diff(slope)).max() < 0.01
+    assert all(soft_max1(x, 0.0, 0.05) == v for x, v in zip(a[::97], y[::97], strict=True))

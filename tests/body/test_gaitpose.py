@@ -49,32 +49,79 @@ def test_gaitpose_switching_reduces_foot_skating():
     assert set(states) == {0, 1, 2}
 
 
-def test_gaitpose_rollouts_keep_swinging():
-    """Iterated GP means contract (free rollouts of the default switching model: arm swing
-    ~13 deg peak to peak in the first 2 s, 2-3 deg after 18 s); the heel-strike reset keeps a
-    20 s rollout's arm and hip swing within 25 % of its first seconds', with and without
-    switching (measured: equal). Since the leg training gait has no jumps (issue 5), the
-    unswitched model's free rollouts hold their swing (ratio 0.9-1.0, was 0.1-0.2), so the
-    contraction is asserted for the switching model only, and there for one of three rollouts:
-    since issue 13 (the swing no longer steps back a sample's motion at toe-off), its free
-    rollouts of rng 0 and 2 hold their swing too (ratio 0.94, was 0.2), that of rng 1 contracted
-    (0.2). Since the swing foot's toes straighten no faster than the cited initial-swing speed
-    (legs.steps.TOE_STRAIGHTEN_SPEED: the training gait's last toe pops, up to 6.2 deg a
-    sample, removed), no free rollout contracts any more (ratios 0.99, 1.02, 0.99): asserted
-    as such, the reset and the free rollouts alike holding their swing."""
+def _noisy_model(seed: int | None) -> gaitpose.GaitPoseModel:
+    """:func:`gaitpose.default_gaitpose`'s switching model (training seed 0), refitted after
+    smooth noise of 0.1 deg RMS on every joint-angle channel of its training poses (white
+    noise through a Gaussian of 5 frames, per walk and channel, drawn with ``1000 + seed``);
+    ``seed`` None: no noise (then the same model as ``default_gaitpose()``)."""
+    from scipy.ndimage import gaussian_filter1d
+
+    rng = np.random.default_rng(0)
+    poses, states, ids = gaitpose.training_poses(rng, n_walks=6)
+    if seed is not None:
+        ang = [i for i, n in enumerate(gaitpose.NAMES) if n not in ("root_speed", "root_z")]
+        r = np.random.default_rng(1000 + seed)
+        for w in np.unique(ids):
+            m = ids == w
+            e = gaussian_filter1d(r.standard_normal((int(m.sum()), len(ang))), 5.0, axis=0)
+            poses[np.ix_(m, ang)] += np.deg2rad(0.1) * e / e.std(0)
+    return gaitpose.fit_gaitpose(poses, states, ids, switching=True, rng=rng)
+
+
+def _check_swing_kept(model: gaitpose.GaitPoseModel) -> None:
+    """What the project uses the model for (:func:`gaitpose.upper_body_from_legs`, called by
+    ``timeline.frames`` for ``arms="gaitpose"``): rollouts with the heel-strike reset keep a
+    20 s rollout's arm and hip swing within 25 % of its first 2 s' and the arms swing more
+    than 8 deg peak to peak after 20 s; the arms it gives a 40-step walk (about 22 s) swing as
+    much in its last 2 s as in its first (within 25 %, over 8 deg) and against the hip of the
+    same side all the way (correlation under -0.9)."""
+    from mjwalk.body.legs import legs_from_walk
+    from mjwalk.plan.synthetic import synthetic_walk
+
     cols = [gaitpose.NAMES.index(c) for c in ("shoulder_l_flex", "hip_l_flex")]
+    for s in range(3):
+        poses, _ = model.rollout(600, np.random.default_rng(s))
+        first, last = np.ptp(poses[:60, cols], 0), np.ptp(poses[-60:, cols], 0)
+        assert np.all(last >= 0.75 * first), (s, np.degrees([first, last]))
+        assert np.degrees(last[0]) > 8.0  # the arms still swing after 20 s
+    legs = legs_from_walk(synthetic_walk(40, 0.65))
+    t = np.arange(legs.t[0], legs.t[-1], 1.0 / 30.0)
+    hip = np.interp(t, legs.t, legs.angles["hip_l_flex"])
+    n = len(t)
+    mid = slice(n // 10, n - n // 10)  # without the gait start and stop
+    for s in range(2):
+        sh = gaitpose.upper_body_from_legs(legs, t, np.random.default_rng(s), model)[
+            "shoulder_l_flex"
+        ]
+        a, b = np.ptp(sh[mid][:60]), np.ptp(sh[mid][-60:])
+        assert b >= 0.75 * a and np.degrees(b) > 8.0, (s, np.degrees([a, b]))
+        assert np.corrcoef(sh[mid], hip[mid])[0, 1] < -0.9
+
+
+def test_gaitpose_rollouts_keep_swinging():
+    """Iterated GP means contract or drift: a free rollout (``reset=False``, the paper's
+    ``z_t = mu(z_t-1)`` iterated) is a mean-prediction simulation, which for a second-order
+    RBF dynamics can settle on a cycle away from the training data (Wang, Fleet & Hertzmann,
+    GPDM project page, dgp.toronto.edu/~jmwang/gpdm/more3dgpdm.html, "Mean-Prediction vs
+    Optimization"). Where it ends up after 20 s is chance: this model's free arm swing after
+    20 s over its first 2 s was 0.99-1.02 (rng 0-2), but 0.13-1.76 after refitting on its
+    training poses plus 0.1 deg smooth noise (six draws), and it has flipped between 0.2 and
+    1.0 with unrelated leg changes before (issues 5, 13, 48). Nothing in the project uses it:
+    the only caller, :func:`gaitpose.upper_body_from_legs`, rolls out with the heel-strike
+    reset (the state put back on the training heel-strike states, so it stays on the data).
+    So this asserts what is used (:func:`_check_swing_kept`), with and without switching."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for switching in (True, False):
-            model = gaitpose.default_gaitpose(switching=switching, seed=0)
-            for s in range(3):
-                poses, _ = model.rollout(600, np.random.default_rng(s))
-                first, last = np.ptp(poses[:60, cols], 0), np.ptp(poses[-60:, cols], 0)
-                assert np.all(last >= 0.75 * first), (switching, s, np.degrees([first, last]))
-                assert np.degrees(last[0]) > 8.0  # the arms still swing after 20 s
-            if switching:
-                ratios = []
-                for s in range(3):
-                    free, _ = model.rollout(600, np.random.default_rng(s), reset=False)
-                    ratios.append(np.ptp(free[-60:, cols[0]]) / np.ptp(free[:60, cols[0]]))
-                assert min(ratios) >= 0.75, ratios
+            _check_swing_kept(gaitpose.default_gaitpose(switching=switching, seed=0))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_gaitpose_swing_kept_under_small_changes(seed):
+    """:func:`_check_swing_kept` holds for the model refitted after 0.1 deg of smooth noise
+    on its training poses (three draws): it does not hang on the exact training data (the
+    free rollout's ratio does: 0.13-1.76 over six draws, measured)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        _check_swing_kept(_noisy_model(seed))

@@ -150,6 +150,23 @@ def soft_clip01(x: np.ndarray, w: float) -> np.ndarray:
     return np.where(lo > 1 + w, 1.0, np.where(lo > 1 - w, 1 - (1 + w - lo) ** 2 / (4 * w), lo))
 
 
+def soft_max(a: np.ndarray, b: np.ndarray, w: float) -> np.ndarray:
+    """The larger of ``a`` and ``b`` with the corner rounded (C1): exactly the larger where
+    they differ by ``w`` or more, a quadratic blend nearer (at most ``w / 4`` above both,
+    never below either).
+
+    Args:
+        a: values (any shape).
+        b: values (broadcast with ``a``).
+        w: the half-width of the rounding (> 0), in the values' units.
+
+    Returns:
+        the soft maximum, the broadcast shape.
+    """
+    e = np.maximum(w - np.abs(a - b), 0.0)
+    return np.maximum(a, b) + e * e / (4 * w)
+
+
 def soft_flat(p: np.ndarray) -> np.ndarray:
     """Pitches within +-FLAT_DEG become exactly 0 (flat foot), continuously:
     ``sign(p) max(|p| - FLAT, 0)``.
@@ -252,6 +269,22 @@ def soft_excess1(x, w):
     """
     x = maximum1(x, 0.0)
     return x * x / (4 * w) if x < 2 * w else x - w
+
+
+@njit
+def soft_max1(a, b, w):
+    """:func:`soft_max` of two values.
+
+    Args:
+        a: the one value.
+        b: the other value.
+        w: the half-width of the rounding (> 0).
+
+    Returns:
+        the soft maximum.
+    """
+    e = maximum1(w - abs(a - b), 0.0)
+    return maximum1(a, b) + e * e / (4 * w)
 
 
 @njit

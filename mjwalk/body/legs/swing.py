@@ -33,12 +33,14 @@ from mjwalk.body.legs.curves import (
     soft_clip01_1,
     soft_flat,
     soft_flat1,
+    soft_max1,
 )
 from mjwalk.body.legs.footpivot import ball_offset, heel_rise_rows, pivot_rows
 from mjwalk.body.legs.ik import KNEE_MIN
 from mjwalk.body.legs.reference import ReferenceGait, ppoly_at, wrap01
 from mjwalk.body.legs.steps import (
     HEEL_RISE_MAX,
+    PROGRESS_BLEND,
     SWING_KEYS,
     SWING_TURNED,
     TOE_OFF,
@@ -222,6 +224,10 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
     m = n - ne
     ref_pos = np.empty((m, 3))
     ref_pit = np.empty(m)
+    # the progress never falls behind the toe-off ankle's going on at its toe-off speed
+    # along the chord (see steps._reference_swing)
+    u_to = fma(pos[ne - 1, 0] - lift[0], seg[0], (pos[ne - 1, 1] - lift[1]) * seg[1]) / seg_sq
+    du_to = max(fma(v0[0], seg[0], v0[1] * seg[1]) / seg_sq, 0.0)
     s_run = 0.0  # the progress so far (soft_clip01_1 is never below 0)
     for j in range(m):
         i = ne + j
@@ -232,10 +238,12 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
         down = L1 * math.cos(hf) + L2 * math.cos(hf - kf)
         t0 = hip_xy[i, 0] + fwd * math.cos(yaw[i])
         t1 = hip_xy[i, 1] + fwd * math.sin(yaw[i])
-        # progress along the chord, clamped softly (C1), never decreasing (a step backward
-        # or across: see steps._reference_swing); numpy's (m, 2) @ (2,) is OpenBLAS's
+        # progress along the chord, clamped softly (C1), never decreasing and never behind
+        # the toe-off ankle's going on (see steps._reference_swing); numpy's (m, 2) @ (2,) is
+        # OpenBLAS's
         s = soft_clip01_1(fma(t0 - lift[0], seg[0], (t1 - lift[1]) * seg[1]) / seg_sq, 0.1)
-        s = max(s, s_run)
+        s_to = soft_clip01_1(u_to + du_to * (phi[i] - phi[ne - 1]), 0.1)
+        s = max(soft_max1(s, s_to, PROGRESS_BLEND), s_run)
         s_run = s
         ch0 = lift[0] + s * seg[0]
         ch1 = lift[1] + s * seg[1]
