@@ -272,7 +272,7 @@ def align(
     hypotheses = _ransac(o3d, (pc_p, f_p), (pc_r, f_r), refine, seed)
     hypotheses += _quarter_turns(p, max(hypotheses, key=lambda h: h[0])[3], refine)
     hypotheses.sort(key=lambda h: -h[0])
-    best, runner_up = _choose(hypotheses, source)
+    best, runner_up = choose(hypotheses, source)
     rmse, m = _fine_icp(o3d, p, r, best[3])
     total = np.linalg.inv(lev_r.matrix) @ m @ lev_p.matrix
     return Alignment(total, best[0], rmse, best[2], runner_up, source)
@@ -356,13 +356,24 @@ def _quarter_turns(
     return out
 
 
-def _choose(
+def choose(
     hypotheses: list[tuple[float, float, float, np.ndarray]], source: str
 ) -> tuple[tuple[float, float, float, np.ndarray], float]:
-    """The best passing hypothesis (``hypotheses`` sorted by fitness, best first) and the
-    best distinct rival's fitness (passing or not; 0 when none); ScanError when none passes,
-    or when a distinct one, passing or refuted by free space, matches nearly as well
-    (:data:`AMBIGUITY`, module docstring, 4)."""
+    """The refined hypothesis to accept, if any (module docstring, 3 and 4).
+
+    Args:
+        hypotheses: refined hypotheses (fitness, RMSE metres, free-space clash, (4, 4)
+            matrix), sorted by fitness, best first.
+        source: the scan's name in errors.
+
+    Returns:
+        The best hypothesis passing :data:`MIN_FITNESS` and :data:`MAX_CLASH`, and the best
+        distinct rival's fitness, passing or not (0 when none).
+
+    Raises:
+        ScanError: naming ``source`` when none passes, or when a distinct one, passing or
+            refuted by free space, reaches :data:`AMBIGUITY` of its fitness.
+    """
     passed = [h for h in hypotheses if _passes(h)]
     figures = "; ".join(
         f"fitness {f:.2f}, RMSE {1000 * e:.1f} mm, clash {100 * c:.0f} %"

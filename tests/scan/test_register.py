@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from mjwalk.errors import ScanError
-from mjwalk.scan.register import AMBIGUITY, MAX_CLASH, Alignment, _choose, clash
+from mjwalk.scan.register import AMBIGUITY, MAX_CLASH, Alignment, choose, clash
 
 
 def _floor_with_post(post_x: float) -> np.ndarray:
@@ -48,7 +48,7 @@ def test_a_survivor_of_the_free_space_check_is_refused_when_a_refuted_rival_matc
     refuted = (0.74, 0.018, 0.22, _pose(0.0, 180.0))
     survivor = (0.41, 0.018, 0.063, _pose(1.8))
     with pytest.raises(ScanError) as err:
-        _choose([refuted, refuted, survivor], "st3.ply")
+        choose([refuted, refuted, survivor], "st3.ply")
     msg = str(err.value)
     assert msg.startswith("st3.ply: could not be aligned") and "\n" not in msg
     assert "fitness 0.41" in msg and "fitness 0.74" in msg and "1.80 m" in msg
@@ -62,11 +62,11 @@ def test_a_distinctly_best_match_is_kept_whatever_its_refuted_rivals():
     best = (0.433, 0.019, 0.005, _pose(0.0))
     again = (0.433, 0.019, 0.005, _pose(0.01))
     rival = (0.261, 0.020, 0.62, _pose(0.87, 14.0))
-    chosen, runner_up = _choose([best, again, rival], "st2.ply")
+    chosen, runner_up = choose([best, again, rival], "st2.ply")
     assert chosen is best and runner_up == 0.261
     near = (AMBIGUITY * 0.433 + 0.001, 0.02, 2 * MAX_CLASH, _pose(2.0))
     with pytest.raises(ScanError, match="nearly as well"):
-        _choose([best, near], "st2.ply")
+        choose([best, near], "st2.ply")
     twin = (0.43, 0.02, 0.0, _pose(3.0, 180.0))
     with pytest.raises(ScanError, match="unambiguously"):
-        _choose([best, twin], "st2.ply")
+        choose([best, twin], "st2.ply")
