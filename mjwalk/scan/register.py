@@ -29,9 +29,11 @@ and a small residual.
    higher up is not known without its position). So an accepted hypothesis must also be the
    distinctly best match, as a feature match is kept only when it is distinctly nearer than
    the second nearest (Lowe 2004, "Distinctive image features from scale-invariant
-   keypoints", IJCV 60(2), the distance-ratio test, quoted from memory); Huber & Hebert 2003
-   ("Fully automatic registration of multiple 3D data sets", Image and Vision Computing
-   21(7)) likewise note that a pairwise match can be locally consistent and still wrong.
+   keypoints", IJCV 60(2), the distance-ratio test, quoted from memory). A pairwise match
+   can pass every local check and still be wrong: "some incorrect matches may be locally
+   undetectable" (Huber 2001, "Automatic 3D modeling using range images obtained from unknown
+   viewpoints", 3DIM, abstract; journal version Huber & Hebert 2003, "Fully automatic
+   registration of multiple 3D data sets", Image and Vision Computing 21(7)).
    When a placement far from it matches as well or better and only free space rules that one
    out, the matched surfaces recur elsewhere (repetitive or two-sided geometry): the overlap
    does not fix the pose, and the one left standing is a survivor, not a finding. Measured on
@@ -39,10 +41,10 @@ and a small residual.
    (0.0, 2.75), sharing 3.6 % of their surface: the car looks alike from both long sides, so
    the second station's view of its far side, turned 180°, matches the first's view of its
    near side (fitness 0.74, refuted by a 22 % clash); that placement's half-turned twin (the
-   quarter-turn search below), 1.80 m off the truth, lays the far side on the near one from
-   behind (fitness 0.41, clash 6.3 %) and was accepted before this rule (2026-12-05,
-   open3d-cpu 0.20.0). The genuine pairs (stations 0 and 2, the PCL room scan split in two
-   views) have no distinct rival above 0.60 of their best fitness.
+   quarter turns of 1.), 1.80 m off the truth, lays the far side on the near one from
+   behind and passes the free-space check (fitness 0.41, clash 6.3 %): this rule refuses it.
+   The genuine pairs (stations 0 and 2, the PCL room scan split in two views) have no
+   distinct rival above 0.60 of their best fitness (docs/decisions/009).
 
 Why the placement is the same on every machine (issue 45). RANSAC's hypotheses need not be:
 each run is seeded (``o3d.utility.random.seed``), but the samples a seed gives may differ
