@@ -24,9 +24,12 @@ the shipped station, (0.2, -1.2) and (0.0, 2.75), 1.5 m high, the second moved b
 top-view correlation verified by ICP both merged it 2.3-3.0 m wrong with 73-87 % of its points
 matched within 3 cm, while at the true pose only 3.6 % match (the two views share almost no
 surface): fitness cannot tell a wrong merge from a right one. The free-space check of
-:mod:`~mjwalk.scan.register` refuses that pair (22-25 % of its low points on floor the
-other station saw empty); the heading search also missed the true heading of the shared PCL
-room scan split into two views overlapping by 60°, where FPFH + RANSAC found it.
+:mod:`~mjwalk.scan.register` refutes those placements (22-25 % of their low points on floor
+the other station saw empty) but passed one 1.80 m off (the car's far side laid on its near
+side from behind, 6.3 %), which the refuted ones outmatch, so the pair is refused as not
+fixing the pose (``register`` module docstring, 4); the heading search also missed the true
+heading of the shared PCL room scan split into two views overlapping by 60°, where FPFH +
+RANSAC found it.
 """
 
 from __future__ import annotations

@@ -21,9 +21,30 @@ and a small residual.
    checked against free space (as in occupancy mapping): where one scan saw *floor*, the
    space above it was seen through, so the other scan must not put a low obstacle there
    (:func:`clash`). A hypothesis is accepted when its fitness is at least :data:`MIN_FITNESS`,
-   its clash at most :data:`MAX_CLASH` both ways, and no distinct accepted hypothesis
-   matches nearly as well (:data:`AMBIGUITY`). Otherwise the scan is refused, by name, with
-   the figures, and ``--poses`` is suggested: never a silently wrong merge.
+   its clash at most :data:`MAX_CLASH` both ways, and no distinct hypothesis, accepted *or
+   refuted*, matches nearly as well (:data:`AMBIGUITY`). Otherwise the scan is refused, by
+   name, with the figures, and ``--poses`` is suggested: never a silently wrong merge.
+4. Why a refuted rival counts. Free space can refute an alignment, never confirm one: it
+   sees only what stands on floor the other scan saw (the space a scanner's rays crossed
+   higher up is not known without its position). So an accepted hypothesis must also be the
+   distinctly best match, as a feature match is kept only when it is distinctly nearer than
+   the second nearest (Lowe 2004, "Distinctive image features from scale-invariant
+   keypoints", IJCV 60(2), the distance-ratio test, quoted from memory). A pairwise match
+   can pass every local check and still be wrong: "some incorrect matches may be locally
+   undetectable" (Huber 2001, "Automatic 3D modeling using range images obtained from unknown
+   viewpoints", 3DIM, abstract; journal version Huber & Hebert 2003, "Fully automatic
+   registration of multiple 3D data sets", Image and Vision Computing 21(7)).
+   When a placement far from it matches as well or better and only free space rules that one
+   out, the matched surfaces recur elsewhere (repetitive or two-sided geometry): the overlap
+   does not fix the pose, and the one left standing is a survivor, not a finding. Measured on
+   two ray-cast stations of the shipped station on either side of the car, (0.2, -1.2) and
+   (0.0, 2.75), sharing 3.6 % of their surface: the car looks alike from both long sides, so
+   the second station's view of its far side, turned 180°, matches the first's view of its
+   near side (fitness 0.74, refuted by a 22 % clash); that placement's half-turned twin (the
+   quarter turns of 1.), 1.80 m off the truth, lays the far side on the near one from
+   behind and passes the free-space check (fitness 0.41, clash 6.3 %): this rule refuses it.
+   The genuine pairs (stations 0 and 2, the PCL room scan split in two views) have no
+   distinct rival above 0.60 of their best fitness (docs/decisions/009).
 
 Why the placement is the same on every machine (issue 45). RANSAC's hypotheses need not be:
 each run is seeded (``o3d.utility.random.seed``), but the samples a seed gives may differ
@@ -106,7 +127,10 @@ CLASH_CELL, CLASH_MARGIN = 0.05, 2
 MAX_CLASH = 0.10
 #: Distinct hypotheses: more than this shift (metres) or turn (degrees) apart.
 DISTINCT_SHIFT, DISTINCT_TURN = 0.25, 5.0
-#: Ambiguous when a distinct accepted hypothesis reaches this share of the best's fitness.
+#: Ambiguous when a distinct hypothesis (accepted or refuted by free space) reaches this share
+#: of the best accepted one's fitness (module docstring, 4; the share is the former rule's,
+#: which compared accepted hypotheses only; Lowe 2004 keeps a feature match when its distance
+#: is below 0.8 of the second nearest's, quoted from memory).
 AMBIGUITY = 0.9
 
 
@@ -117,8 +141,8 @@ class Alignment:
     thinned to :data:`VOXEL`, with a counterpart within :data:`ICP_DISTANCE`: the figure
     checked against :data:`MIN_FITNESS`) and ``rmse`` (metres, of the pairs of the last ICP
     on points thinned to :data:`FINE_VOXEL`); ``clash`` (the larger of the two free-space
-    contradiction shares, :func:`clash`); the best distinct runner-up's fitness (0 when
-    none); the scan's name."""
+    contradiction shares, :func:`clash`); the best distinct runner-up's fitness, whether it
+    passed verification or not (0 when none); the scan's name."""
 
     matrix: np.ndarray
     fitness: float
@@ -186,10 +210,16 @@ def clash(moved: np.ndarray, other: np.ndarray) -> float:
     return float(free[ij[over, 1], ij[over, 0]].sum()) / int(over.sum())
 
 
-def _distinct(a: np.ndarray, b: np.ndarray) -> bool:
+def _apart(a: np.ndarray, b: np.ndarray) -> tuple[float, float]:
+    """Shift (metres) and turn (degrees) between two (4, 4) poses."""
     d = np.linalg.inv(a) @ b
     turn = np.degrees(np.arccos(np.clip((np.trace(d[:3, :3]) - 1) / 2, -1, 1)))
-    return bool(np.linalg.norm(d[:3, 3]) > DISTINCT_SHIFT or turn > DISTINCT_TURN)
+    return float(np.linalg.norm(d[:3, 3])), float(turn)
+
+
+def _distinct(a: np.ndarray, b: np.ndarray) -> bool:
+    shift, turn = _apart(a, b)
+    return shift > DISTINCT_SHIFT or turn > DISTINCT_TURN
 
 
 def _passes(h: tuple[float, float, float, np.ndarray]) -> bool:
@@ -244,7 +274,7 @@ def align(
     hypotheses = _ransac(o3d, (pc_p, f_p), (pc_r, f_r), refine, seed)
     hypotheses += _quarter_turns(p, max(hypotheses, key=lambda h: h[0])[3], refine)
     hypotheses.sort(key=lambda h: -h[0])
-    best, runner_up = _choose(hypotheses, source)
+    best, runner_up = choose(hypotheses, source)
     rmse, m = _fine_icp(o3d, p, r, best[3])
     total = np.linalg.inv(lev_r.matrix) @ m @ lev_p.matrix
     return Alignment(total, best[0], rmse, best[2], runner_up, source)
@@ -328,11 +358,24 @@ def _quarter_turns(
     return out
 
 
-def _choose(
+def choose(
     hypotheses: list[tuple[float, float, float, np.ndarray]], source: str
 ) -> tuple[tuple[float, float, float, np.ndarray], float]:
-    """The best passing hypothesis (``hypotheses`` sorted by fitness, best first) and the
-    runner-up's fitness; ScanError when none passes or two distinct ones do."""
+    """The refined hypothesis to accept, if any (module docstring, 3 and 4).
+
+    Args:
+        hypotheses: refined hypotheses (fitness, RMSE metres, free-space clash, (4, 4)
+            matrix), sorted by fitness, best first.
+        source: the scan's name in errors.
+
+    Returns:
+        The best hypothesis passing :data:`MIN_FITNESS` and :data:`MAX_CLASH`, and the best
+        distinct rival's fitness, passing or not (0 when none).
+
+    Raises:
+        ScanError: naming ``source`` when none passes, or when a distinct one, passing or
+            refuted by free space, reaches :data:`AMBIGUITY` of its fitness.
+    """
     passed = [h for h in hypotheses if _passes(h)]
     figures = "; ".join(
         f"fitness {f:.2f}, RMSE {1000 * e:.1f} mm, clash {100 * c:.0f} %"
@@ -346,16 +389,27 @@ def _choose(
             f"saw empty ({figures}); too little overlap? Give its pose with --poses"
         )
     best = passed[0]
-    rivals = [h for h in passed[1:] if _distinct(best[3], h[3])]
+    rivals = [h for h in hypotheses if h is not best and _distinct(best[3], h[3])]
     runner_up = rivals[0][0] if rivals else 0.0
-    if runner_up >= AMBIGUITY * best[0]:
+    if runner_up < AMBIGUITY * best[0]:
+        return best, runner_up
+    if _passes(rivals[0]):
         raise ScanError(
             f"{source}: cannot be aligned to the scans before it unambiguously: two "
             f"alignments over {DISTINCT_SHIFT} m or {DISTINCT_TURN:g}° apart both pass "
             f"(fitness {best[0]:.2f} and {runner_up:.2f}; a symmetric hall?); give its pose "
             "with --poses"
         )
-    return best, runner_up
+    shift, turn = _apart(best[3], rivals[0][3])
+    raise ScanError(
+        f"{source}: could not be aligned to the scans before it: the alignment that passes "
+        f"the free-space check (fitness {best[0]:.2f}, clash {100 * best[2]:.1f} %) is not the "
+        f"best match: one {shift:.2f} m and {turn:.0f}° from it matches "
+        f"{'more' if runner_up > best[0] else 'nearly as well'} (fitness {runner_up:.2f}) but "
+        f"puts {100 * rivals[0][2]:.0f} % of its low points on floor the other scan saw empty, "
+        "so the shared surfaces recur and do not fix the pose (repetitive or two-sided "
+        "geometry?); give its pose with --poses"
+    )
 
 
 def _fine_icp(o3d, p: np.ndarray, r: np.ndarray, m: np.ndarray) -> tuple[float, np.ndarray]:

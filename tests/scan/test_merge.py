@@ -213,18 +213,12 @@ def test_stations_sharing_a_room_are_registered(stations):
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(
-    strict=False,
-    reason="a known silent wrong answer, not yet fixed: on an AMD EPYC machine with open3d-cpu "
-    "0.20.0 (2026-12-05) one of the 15 hypotheses, fitness 0.41, clash 6.3 % (under "
-    "MAX_CLASH 10 %), passes verification although it is 1.80 m off the true pose (turn "
-    "0.02 deg), so the scan is merged instead of refused; on the machine of the earlier "
-    "landings no hypothesis passed. The free-space check must catch a slide along a wall",
-)
 def test_stations_barely_overlapping_are_refused_by_name(stations, tmp_path, capsys):
-    """Stations (0.2, -1.2) and (0.0, 2.75) share 3.6 % of their surface: every alignment the
-    features find matches most points yet drags walls over floor the other station saw
-    empty, so the scan is refused, by name, and nothing is written."""
+    """Stations (0.2, -1.2) and (0.0, 2.75) share 3.6 % of their surface: the alignments the
+    features find that match most points put low obstacles on floor the other station saw
+    empty, and the one that does not (the car's far side laid on its near side from behind,
+    1.8 m off) matches less than they do, so the overlap does not fix the pose: the scan is
+    refused, by name, and nothing is written (register.py docstring, 4)."""
     move = _rigid(25, [1.2, -0.7, 0.1])
     files = [
         _write_format(tmp_path / "st2.ply", stations[2]),
