@@ -247,9 +247,16 @@ def cross_walk(
     back = tread_setback(c, s, walker.stature, direction) * (1.0 if direction == "up" else -1.0)
     s = np.asarray(s, dtype=float)
     points, heights = c.point(s - back), c.height_at(s)  # per footfall, as one by one
+    turning = spot_turn(yaw0, yaw)  # steps on the spot first, each within ENTRY_TURN
+    if turning.size:
+        points = np.concatenate([np.repeat(xy0[None, :], turning.size, axis=0), points])
+        heights = np.concatenate([np.full(turning.size, float(c.height_at(begin))), heights])
+        times = np.concatenate([np.full(turning.size, walker.step_duration), times])
+    headings = np.concatenate([turning, np.full(len(times) - turning.size, yaw)])
     for k, dt in enumerate(times):
-        sign = 1.0 if side == "left" else -1.0
-        foot = np.array([*(points[k] + sign * 0.5 * width * left), yaw])
+        sign, facing = (1.0 if side == "left" else -1.0), float(headings[k])
+        across = left if k >= turning.size else np.array([-math.sin(facing), math.cos(facing)])
+        foot = np.array([*(points[k] + sign * 0.5 * width * across), facing])
         fz = float(heights[k])
         other = "right" if side == "left" else "left"
         stance, sz = feet[other]
@@ -262,7 +269,8 @@ def cross_walk(
         start_xy, start_z = xs[-1][-1], zs[-1][-1]
         xs.append(start_xy + np.outer(u, end_xy - start_xy))
         zs.append(start_z + ease * (end_z - start_z))
-        yaws.append(yaw0 + ease * (yaw - yaw0) if k == 0 else np.full(m, yaw))
+        was = yaw0 if k == 0 else float(headings[k - 1])
+        yaws.append(was + ease * (headings[k] - was) if k <= turning.size else np.full(m, yaw))
         steps.append(
             PathStep(
                 side, n, n + m, foot, np.array(stance, dtype=float),
@@ -305,6 +313,33 @@ def entry_turn(walk: WalkPath, c: Crossing, direction: str) -> float:
     """
     yaw = c.yaw if direction == "up" else c.yaw + math.pi
     return abs(wrap(yaw - float(walk.yaw[-1])))
+
+
+def spot_turn(yaw0: float, yaw: float) -> np.ndarray:
+    """The headings of the steps a walker standing at a crossing's stance or approach point
+    turns on the spot before it steps onto the crossing, when the turn from ``yaw0`` to the
+    crossing's heading ``yaw`` is more than :data:`ENTRY_TURN`: the turn in equal parts, none
+    over :data:`ENTRY_TURN` (a direction change within one step, Patla et al. 1991), the last
+    part left to the crossing's first step. People turn up to 180 degrees in place, young
+    adults as one pivot, older ones in more, smaller steps (Thigpen et al. 2000, Phys Ther 80:
+    1174-1187, quoted in :mod:`mjwalk.plan.turnsplit`); equal parts of at most 60 degrees are
+    a modelling choice within that, no figure of the source. The walk to the crossing ends
+    standing (a level walk's closing step), so a turn the level planner could not make while
+    walking (a hairpin into a stair's foot, issue 47) is made there, not in one step.
+
+    Args:
+        yaw0: the walker's heading where the crossing's walk begins, radians.
+        yaw: the crossing's heading up or down its axis, the nearer turn from ``yaw0``
+            (``|yaw - yaw0| <= pi``), radians.
+
+    Returns:
+        (m,) the headings (radians) after each step on the spot, in order; empty when the turn
+        is within :data:`ENTRY_TURN`.
+    """
+    parts = math.ceil(abs(yaw - yaw0) / ENTRY_TURN - 1e-9)
+    if parts <= 1:
+        return np.empty(0)
+    return yaw0 + (yaw - yaw0) * np.arange(1, parts) / parts
 
 
 def line_clear(view, a: np.ndarray, b: np.ndarray, radius: float) -> bool:
