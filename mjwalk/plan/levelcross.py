@@ -14,6 +14,9 @@ WalkPath` the level planner stitches between its level walks.
   longer than the ramp gait's step (:func:`mjwalk.gait.slope.slope_gait`, up or down the slope)
   and timed by it, the heights along the ramp's plane.
 
+A walker who stands where the crossing's walk begins facing more than :data:`ENTRY_TURN` away
+from its axis turns on the spot first, in steps of at most that (:func:`spot_turn`).
+
 Feet stand the walker's step width apart across the axis (left foot left of the walking
 direction). The pelvis moves at even speed between the double-support instants, at the middle of
 the two feet, and its height (:attr:`WalkPath.z`) is the mean height of the surfaces under the
@@ -295,7 +298,10 @@ def cross_walk(
 #: first step turns the walker onto the axis, and people change direction by at most 60 degrees
 #: within one step (Patla et al. 1991, :data:`mjwalk.plan.turnsplit.WALKING_TURN_MAX`). A walk
 #: that came to a ramp's stance facing 120 degrees off turned onto the ramp in one step (the
-#: platform cycle's run 14): the legs could not reach and lowered the pelvis 0.21 m.
+#: platform cycle's run 14): the legs could not reach and lowered the pelvis 0.21 m. A walk
+#: that still arrives further off (rack1 -> mezzanine: 106-147 deg, its floor leg a hairpin
+#: out of the gap between the stair's wall and the trolley) is turned on the spot there first
+#: (:func:`spot_turn`), in steps of at most this.
 ENTRY_TURN = WALKING_TURN_MAX
 
 
