@@ -250,16 +250,13 @@ def cross_walk(
     back = tread_setback(c, s, walker.stature, direction) * (1.0 if direction == "up" else -1.0)
     s = np.asarray(s, dtype=float)
     points, heights = c.point(s - back), c.height_at(s)  # per footfall, as one by one
-    turning = spot_turn(yaw0, yaw)  # steps on the spot first, each within ENTRY_TURN
-    if turning.size:
-        points = np.concatenate([np.repeat(xy0[None, :], turning.size, axis=0), points])
-        heights = np.concatenate([np.full(turning.size, float(c.height_at(begin))), heights])
-        times = np.concatenate([np.full(turning.size, walker.step_duration), times])
-    headings = np.concatenate([turning, np.full(len(times) - turning.size, yaw)])
+    here = (xy0, float(c.height_at(begin)))  # steps on the spot first, each within ENTRY_TURN
+    points, heights, times, headings, across, was, turns = _spot_steps(
+        (points, heights, times), here, (yaw0, yaw), walker.step_duration, left
+    )
     for k, dt in enumerate(times):
-        sign, facing = (1.0 if side == "left" else -1.0), float(headings[k])
-        across = left if k >= turning.size else np.array([-math.sin(facing), math.cos(facing)])
-        foot = np.array([*(points[k] + sign * 0.5 * width * across), facing])
+        sign = 1.0 if side == "left" else -1.0
+        foot = np.array([*(points[k] + sign * 0.5 * width * across[k]), headings[k]])
         fz = float(heights[k])
         other = "right" if side == "left" else "left"
         stance, sz = feet[other]
@@ -272,8 +269,7 @@ def cross_walk(
         start_xy, start_z = xs[-1][-1], zs[-1][-1]
         xs.append(start_xy + np.outer(u, end_xy - start_xy))
         zs.append(start_z + ease * (end_z - start_z))
-        was = yaw0 if k == 0 else float(headings[k - 1])
-        yaws.append(was + ease * (headings[k] - was) if k <= turning.size else np.full(m, yaw))
+        yaws.append(was[k] + ease * (headings[k] - was[k]) if k <= turns else np.full(m, yaw))
         steps.append(
             PathStep(
                 side, n, n + m, foot, np.array(stance, dtype=float),
@@ -282,16 +278,39 @@ def cross_walk(
         )  # fmt: skip
         n += m
         side = other
-    t = np.arange(n + 1) / SAMPLE_RATE_HZ
     meta = {"crossing": c.kind, "direction": direction, "lower": c.lower, "upper": c.upper}
     return WalkPath(
-        t=t,
-        xy=np.concatenate(xs),
-        yaw=np.concatenate(yaws),
-        steps=steps,
-        meta=meta,
-        z=np.concatenate(zs) - floor_z,
-    )
+        t=np.arange(n + 1) / SAMPLE_RATE_HZ, xy=np.concatenate(xs), yaw=np.concatenate(yaws),
+        steps=steps, meta=meta, z=np.concatenate(zs) - floor_z,
+    )  # fmt: skip
+
+
+def _spot_steps(footfalls: tuple, here: tuple, turn: tuple, step_time: float, left: np.ndarray):
+    """The crossing's footfalls with the steps on the spot (:func:`spot_turn`) before them.
+
+    Args:
+        footfalls: (points (k, 2) world xy, heights (k,) world z, times (k,) s) of the steps.
+        here: (xy (2,), world z) where the walker stands, metres.
+        turn: (the walker's heading, the crossing's heading, the nearer turn), radians.
+        step_time: a step on the spot's duration, seconds (the walker's level step).
+        left: (2,) the unit vector left of the crossing's heading.
+
+    Returns:
+        points, heights, times, the heading of each step, the unit vector left of it (k', 2),
+        the heading each step turns from, and the number of steps on the spot.
+    """
+    points, heights, times = footfalls
+    turning = spot_turn(*turn)
+    m = turning.size
+    if m:
+        points = np.concatenate([np.repeat(here[0][None, :], m, axis=0), points])
+        heights = np.concatenate([np.full(m, here[1]), heights])
+        times = np.concatenate([np.full(m, step_time), times])
+    headings = np.concatenate([turning, np.full(len(times) - m, turn[1])])
+    across = np.tile(left, (len(times), 1))
+    across[:m] = np.stack([-np.sin(turning), np.cos(turning)], axis=1)
+    was = np.concatenate([[turn[0]], headings[:-1]])
+    return points, heights, times, headings, across, was, m
 
 
 #: The most (radians) a walk arriving at a crossing may face away from its axis: the crossing's
