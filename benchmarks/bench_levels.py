@@ -70,6 +70,14 @@ field, while the level legs' goals (crossing stances, sites) were built by the w
 (every field kept on both sides): 1.9/0.9, 1.9/1.4, 2.4/1.3, 4.3/1.7, 3.7/2.0, 12.1/1.8 (ratios
 2.12, 1.32, 1.87, 2.56, 1.90, 6.86): the searches and the level machinery (two level searches,
 the crossing's walk, stitching) against one flat search; the 1.5x target is met cold, not warm.
+
+Branch stairentry47 (``--draws 2 --walks 10``, CPU ms, load 5-9, base a196e73 run right after
+with this script): the new ``entry`` column (the sharpest one-step turn onto the first riser or
+ramp, max over seeds 1-10): rack1 -> mezzanine 147 -> 60 deg (per seed 106-147 -> 42-60: its
+floor leg, a hairpin out of the gap between the stair's east wall and the trolley, ends standing
+at the approach point facing away and turns there on the spot, levelcross.spot_turn); the other
+rows unchanged (12-22 deg). Expansions unchanged (planning untouched); cold ratios 0.23-1.28
+(base 0.24-1.42), warm 0.96-6.01 (base 1.15-7.48): load noise.
 """
 
 from __future__ import annotations
