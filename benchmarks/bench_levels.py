@@ -70,6 +70,14 @@ field, while the level legs' goals (crossing stances, sites) were built by the w
 (every field kept on both sides): 1.9/0.9, 1.9/1.4, 2.4/1.3, 4.3/1.7, 3.7/2.0, 12.1/1.8 (ratios
 2.12, 1.32, 1.87, 2.56, 1.90, 6.86): the searches and the level machinery (two level searches,
 the crossing's walk, stitching) against one flat search; the 1.5x target is met cold, not warm.
+
+Branch stairentry47 (``--draws 2 --walks 10``, CPU ms, load 5-9, base a196e73 run right after
+with this script): the new ``entry`` column (the sharpest one-step turn onto the first riser or
+ramp, max over seeds 1-10): rack1 -> mezzanine 147 -> 60 deg (per seed 106-147 -> 42-60: its
+floor leg, a hairpin out of the gap between the stair's east wall and the trolley, ends standing
+at the approach point facing away and turns there on the spot, levelcross.spot_turn); the other
+rows unchanged (12-22 deg). Expansions unchanged (planning untouched); cold ratios 0.23-1.28
+(base 0.24-1.42), warm 0.96-6.01 (base 1.15-7.48): load noise.
 """
 
 from __future__ import annotations
@@ -277,6 +285,20 @@ def _legs_alone(wp, start, goal, model, seed: int) -> float:
     return time.process_time() - t0
 
 
+def entry_turn_deg(walk) -> float:
+    """The largest pelvis heading change (degrees) over one step among the five steps before
+    a walk's first step up or down a riser or ramp and that step: how sharply it turns onto
+    its first crossing (ENTRY_TURN, 60 deg, the most within one step: Patla et al. 1991)."""
+    first = next((k for k, s in enumerate(walk.steps) if abs(s.foot_z - s.stance_z) > 0.01), None)
+    if first is None:
+        return 0.0
+    steps = walk.steps[max(0, first - 5) : first + 1]
+    return max(
+        abs(math.degrees(math.remainder(walk.yaw[s.end] - walk.yaw[s.start], math.tau)))
+        for s in steps
+    )
+
+
 def planning_cost(walks: int) -> None:
     """Print the planning time of walks over levels against flat walks of the same length, and
     against their own level legs planned alone as flat walks.
@@ -297,10 +319,11 @@ def planning_cost(walks: int) -> None:
     flat = load_workplace(SCENES / "open_floor.xml")
     print(f"\nPlanning cost, median over {walks} seeds (CPU time; cold: a seed's first plan,")
     print("warm: the same again); flat: open floor's diagonal, same length; legs: the route's")
-    print("level legs alone; exp: expansions over all searches (levels / flat), medians")
+    print("level legs alone; exp: expansions over all searches (levels / flat), medians;")
+    print("entry: the sharpest one-step turn onto the first riser or ramp, deg, max over seeds")
     head = (
         f"{'walk':38} {'route':20} {'length m':>8} {'cold ms':>13} {'ratio':>6} "
-        f"{'warm ms':>13} {'ratio':>6} {'legs ms':>8} {'exp':>9}"
+        f"{'warm ms':>13} {'ratio':>6} {'legs ms':>8} {'exp':>9} {'entry':>6}"
     )
     print(head)
     print("-" * len(head))
@@ -309,12 +332,13 @@ def planning_cost(walks: int) -> None:
         _timed(station, start, goal, model, 0)  # views, grids and fields of the scene, once
         _legs_alone(station, start, goal, model, 0)
         t: dict[str, list[float]] = {k: [] for k in ("lc", "lw", "fc", "fw", "legs")}
-        lengths, exp, flat_exp = [], [], []
+        lengths, exp, flat_exp, entry = [], [], [], []
         for seed in range(1, walks + 1):
             dt, walk = _timed(station, start, goal, model, seed)
             t["lc"].append(dt)
             t["lw"].append(_timed(station, start, goal, model, seed)[0])
             lengths.append(walk.length)
+            entry.append(entry_turn_deg(walk))
             exp.append(walk.meta["expansions_all"])
             a = walk.length / (2 * math.sqrt(2))  # along the open floor's diagonal
             dt, flat_walk = _timed(flat, (-a, -a), (a, a), model, seed)
@@ -330,6 +354,7 @@ def planning_cost(walks: int) -> None:
             f"{start + ' -> ' + goal:38} {route:20} {np.median(lengths):8.2f} "
             f"{med['lc']:6.1f}/{med['fc']:<6.1f} {cold:6.2f} {med['lw']:6.1f}/{med['fw']:<6.1f} "
             f"{warm:6.2f} {med['legs']:8.1f} {np.median(exp):>4.0f}/{np.median(flat_exp):<4.0f}"
+            f" {max(entry):6.0f}"
         )
     print(
         f"largest ratio to the flat walk: cold {worst['cold']:.2f}, warm {worst['warm']:.2f} "

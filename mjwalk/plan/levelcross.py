@@ -14,6 +14,9 @@ WalkPath` the level planner stitches between its level walks.
   longer than the ramp gait's step (:func:`mjwalk.gait.slope.slope_gait`, up or down the slope)
   and timed by it, the heights along the ramp's plane.
 
+A walker who stands where the crossing's walk begins facing more than :data:`ENTRY_TURN` away
+from its axis turns on the spot first, in steps of at most that (:func:`spot_turn`).
+
 Feet stand the walker's step width apart across the axis (left foot left of the walking
 direction). The pelvis moves at even speed between the double-support instants, at the middle of
 the two feet, and its height (:attr:`WalkPath.z`) is the mean height of the surfaces under the
@@ -247,9 +250,13 @@ def cross_walk(
     back = tread_setback(c, s, walker.stature, direction) * (1.0 if direction == "up" else -1.0)
     s = np.asarray(s, dtype=float)
     points, heights = c.point(s - back), c.height_at(s)  # per footfall, as one by one
+    here = (xy0, float(c.height_at(begin)))  # steps on the spot first, each within ENTRY_TURN
+    points, heights, times, headings, across, was, turns = _spot_steps(
+        (points, heights, times), here, (yaw0, yaw), walker.step_duration, left
+    )
     for k, dt in enumerate(times):
         sign = 1.0 if side == "left" else -1.0
-        foot = np.array([*(points[k] + sign * 0.5 * width * left), yaw])
+        foot = np.array([*(points[k] + sign * 0.5 * width * across[k]), headings[k]])
         fz = float(heights[k])
         other = "right" if side == "left" else "left"
         stance, sz = feet[other]
@@ -262,7 +269,7 @@ def cross_walk(
         start_xy, start_z = xs[-1][-1], zs[-1][-1]
         xs.append(start_xy + np.outer(u, end_xy - start_xy))
         zs.append(start_z + ease * (end_z - start_z))
-        yaws.append(yaw0 + ease * (yaw - yaw0) if k == 0 else np.full(m, yaw))
+        yaws.append(was[k] + ease * (headings[k] - was[k]) if k <= turns else np.full(m, yaw))
         steps.append(
             PathStep(
                 side, n, n + m, foot, np.array(stance, dtype=float),
@@ -271,23 +278,49 @@ def cross_walk(
         )  # fmt: skip
         n += m
         side = other
-    t = np.arange(n + 1) / SAMPLE_RATE_HZ
     meta = {"crossing": c.kind, "direction": direction, "lower": c.lower, "upper": c.upper}
     return WalkPath(
-        t=t,
-        xy=np.concatenate(xs),
-        yaw=np.concatenate(yaws),
-        steps=steps,
-        meta=meta,
-        z=np.concatenate(zs) - floor_z,
-    )
+        t=np.arange(n + 1) / SAMPLE_RATE_HZ, xy=np.concatenate(xs), yaw=np.concatenate(yaws),
+        steps=steps, meta=meta, z=np.concatenate(zs) - floor_z,
+    )  # fmt: skip
+
+
+def _spot_steps(footfalls: tuple, here: tuple, turn: tuple, step_time: float, left: np.ndarray):
+    """The crossing's footfalls with the steps on the spot (:func:`spot_turn`) before them.
+
+    Args:
+        footfalls: (points (k, 2) world xy, heights (k,) world z, times (k,) s) of the steps.
+        here: (xy (2,), world z) where the walker stands, metres.
+        turn: (the walker's heading, the crossing's heading, the nearer turn), radians.
+        step_time: a step on the spot's duration, seconds (the walker's level step).
+        left: (2,) the unit vector left of the crossing's heading.
+
+    Returns:
+        points, heights, times, the heading of each step, the unit vector left of it (k', 2),
+        the heading each step turns from, and the number of steps on the spot.
+    """
+    points, heights, times = footfalls
+    turning = spot_turn(*turn)
+    m = turning.size
+    if m:
+        points = np.concatenate([np.repeat(here[0][None, :], m, axis=0), points])
+        heights = np.concatenate([np.full(m, here[1]), heights])
+        times = np.concatenate([np.full(m, step_time), times])
+    headings = np.concatenate([turning, np.full(len(times) - m, turn[1])])
+    across = np.tile(left, (len(times), 1))
+    across[:m] = np.stack([-np.sin(turning), np.cos(turning)], axis=1)
+    was = np.concatenate([[turn[0]], headings[:-1]])
+    return points, heights, times, headings, across, was, m
 
 
 #: The most (radians) a walk arriving at a crossing may face away from its axis: the crossing's
 #: first step turns the walker onto the axis, and people change direction by at most 60 degrees
 #: within one step (Patla et al. 1991, :data:`mjwalk.plan.turnsplit.WALKING_TURN_MAX`). A walk
 #: that came to a ramp's stance facing 120 degrees off turned onto the ramp in one step (the
-#: platform cycle's run 14): the legs could not reach and lowered the pelvis 0.21 m.
+#: platform cycle's run 14): the legs could not reach and lowered the pelvis 0.21 m. A walk
+#: that still arrives further off (rack1 -> mezzanine: 106-147 deg, its floor leg a hairpin
+#: out of the gap between the stair's wall and the trolley) is turned on the spot there first
+#: (:func:`spot_turn`), in steps of at most this.
 ENTRY_TURN = WALKING_TURN_MAX
 
 
@@ -305,6 +338,33 @@ def entry_turn(walk: WalkPath, c: Crossing, direction: str) -> float:
     """
     yaw = c.yaw if direction == "up" else c.yaw + math.pi
     return abs(wrap(yaw - float(walk.yaw[-1])))
+
+
+def spot_turn(yaw0: float, yaw: float) -> np.ndarray:
+    """The headings of the steps a walker standing at a crossing's stance or approach point
+    turns on the spot before it steps onto the crossing, when the turn from ``yaw0`` to the
+    crossing's heading ``yaw`` is more than :data:`ENTRY_TURN`: the turn in equal parts, none
+    over :data:`ENTRY_TURN` (a direction change within one step, Patla et al. 1991), the last
+    part left to the crossing's first step. People turn up to 180 degrees in place, young
+    adults as one pivot, older ones in more, smaller steps (Thigpen et al. 2000, Phys Ther 80:
+    1174-1187, quoted in :mod:`mjwalk.plan.turnsplit`); equal parts of at most 60 degrees are
+    a modelling choice within that, no figure of the source. The walk to the crossing ends
+    standing (a level walk's closing step), so a turn the level planner could not make while
+    walking (a hairpin into a stair's foot, issue 47) is made there, not in one step.
+
+    Args:
+        yaw0: the walker's heading where the crossing's walk begins, radians.
+        yaw: the crossing's heading up or down its axis, the nearer turn from ``yaw0``
+            (``|yaw - yaw0| <= pi``), radians.
+
+    Returns:
+        (m,) the headings (radians) after each step on the spot, in order; empty when the turn
+        is within :data:`ENTRY_TURN`.
+    """
+    parts = math.ceil(abs(yaw - yaw0) / ENTRY_TURN - 1e-9)
+    if parts <= 1:
+        return np.empty(0)
+    return yaw0 + (yaw - yaw0) * np.arange(1, parts) / parts
 
 
 def line_clear(view, a: np.ndarray, b: np.ndarray, radius: float) -> bool:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -20,6 +22,7 @@ from mjwalk.plan.levelcross import (
     level_time,
     line_clear,
     route_leads,
+    spot_turn,
     tread_setback,
     walked_distance,
 )
@@ -39,7 +42,8 @@ def by_kind(scenes_dir):
 def test_stair_walk_puts_a_foot_on_every_tread_at_the_stair_cadence(by_kind, direction):
     stair, walker = by_kind["stair"], Walker()
     start = stair.end(stair.lower if direction == "up" else stair.upper)
-    walk = cross_walk(stair, direction, walker, (start, stair.yaw), None, 0.0)
+    facing = stair.yaw if direction == "up" else stair.yaw + math.pi  # no turn on the spot
+    walk = cross_walk(stair, direction, walker, (start, facing), None, 0.0)
     walk.validate()
     heights = sorted({round(z, 3) for s in walk.steps for z in (s.foot_z, s.stance_z)})
     assert heights == pytest.approx([0.0, 0.17, 0.34, 0.51, 0.68, 0.85, 1.02])
@@ -81,7 +85,8 @@ def test_stair_feet_are_centred_on_their_treads(by_kind, direction):
     tread at once: each foot moves at most two treads' depth (and that gap)."""
     stair, walker = by_kind["stair"], Walker()
     start = stair.end(stair.lower if direction == "up" else stair.upper)
-    walk = cross_walk(stair, direction, walker, (start, stair.yaw), None, 0.0)
+    facing = stair.yaw if direction == "up" else stair.yaw + math.pi  # no turn on the spot
+    walk = cross_walk(stair, direction, walker, (start, facing), None, 0.0)
     g = leg_geometry(walker.stature)
     back = tread_setback(stair, stair.track, walker.stature, direction)
     assert back[1:-1] == pytest.approx(0.5 * (g.foot_front - g.foot_back))
@@ -229,3 +234,34 @@ def test_level_time_adds_a_step_for_walking_from_standing_to_standing(scenes_dir
             for s in range(3)
         ]
         assert abs(float(np.mean(times)) - level_time(d, True, walker)) < 0.5 * walker.step_duration
+
+
+def test_spot_turn_splits_a_large_turn_into_steps_within_entry_turn():
+    """A turn over ENTRY_TURN is made in equal parts of at most ENTRY_TURN, the last part left
+    to the crossing's first step; a turn within it needs no step on the spot."""
+    assert spot_turn(0.3, 0.3 + 0.9 * ENTRY_TURN).size == 0
+    for turn in (math.radians(106.0), -math.radians(147.0), math.pi, 2 * ENTRY_TURN):
+        heads = spot_turn(0.2, 0.2 + turn)
+        parts = np.diff(np.concatenate([[0.2], heads, [0.2 + turn]]))
+        assert heads.size == math.ceil(abs(turn) / ENTRY_TURN - 1e-9) - 1
+        assert np.all(np.abs(parts) <= ENTRY_TURN + 1e-12)
+        assert np.allclose(parts, parts[0])
+
+
+def test_a_walker_facing_away_turns_on_the_spot_before_the_flight(by_kind):
+    """Standing a step before a stair facing 140 deg off its axis (rack1 -> mezzanine's floor
+    leg, issue 47), the walker turns on the spot first: no step turns the pelvis more than
+    ENTRY_TURN, the steps on the spot keep the pelvis where it stood, then the lead-in."""
+    c = by_kind["stair"]
+    walker = Walker()
+    xy0 = approach_point(c, "up", walker.step_length)
+    yaw0 = c.yaw + math.radians(140.0)
+    last = PathStep(
+        "left", 0, 1, np.array([*(xy0 + [0.05, 0.0]), yaw0]), np.array([*(xy0 - [0.05, 0.0]), yaw0])
+    )
+    walk = cross_walk(c, "up", walker, (xy0, yaw0), last, 0.0, lead_in=True)
+    turns = [abs(math.remainder(walk.yaw[s.end] - walk.yaw[s.start], math.tau)) for s in walk.steps]
+    assert max(turns) <= ENTRY_TURN + 1e-9
+    assert turns[0] > math.radians(45.0) and turns[1] > math.radians(45.0)
+    assert np.hypot(*(walk.xy[walk.steps[0].end] - xy0)) < 0.07
+    assert abs(math.remainder(walk.yaw[-1] - c.yaw, math.tau)) < 1e-9

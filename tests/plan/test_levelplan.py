@@ -216,7 +216,7 @@ def test_the_stair_is_walked_where_the_swinging_arms_clear_its_walls(station, mo
     _check_heights(station, walk)
     stair = [s for s in station.levels.surfaces if s.kind == "tread" and s.name.startswith("stair")]
     first = walk.meta["levels"]["route"][0]["steps"]
-    on_treads = walk.steps[first : first + len(stair)]
+    on_treads = [s for s in walk.steps[first:] if s.foot_z > 0.0][: len(stair)]  # no spot turn
     # the flight spans x -5.4..-4.4 between walls; stand_rack1 lies east of it, but a walker of
     # 1.75 m keeps half its width with the arms swinging (0.35 m) and 0.15 m (Pauls' boundary
     # layer) from each wall: 0.50 m, the flight's half width, so it climbs in the middle
@@ -395,3 +395,20 @@ def test_walks_to_the_step_are_searched_again_to_arrive_facing_it(station, model
         turn = abs((walk.yaw[after] - walk.yaw[before] + math.pi) % (2 * math.pi) - math.pi)
         over += turn > ENTRY_TURN
     assert over <= 2
+
+
+@pytest.mark.parametrize("seed", [1, 6, 10])
+def test_rack1_to_the_mezzanine_enters_the_stair_within_entry_turn(station, model, seed):
+    """rack1 -> mezzanine's floor leg comes up the gap between the stair's east wall and the
+    trolley and ends at the stair's approach point facing 106-147 deg off the flight (seeds
+    1-10; a 1000-expansion search facing it fails, 4000 find it at 666-4262 expansions): the
+    crossing's walk turns on the spot there first (levelcross.spot_turn), so no step from the
+    level walk's end onto the flight turns more than ENTRY_TURN (seeds 1, 6, 10: 147 deg
+    before on seed 10)."""
+    walk = plan_walk(station, "stand_rack1", "stand_mezz_rack", model, rng=seed)
+    first = next(k for k, s in enumerate(walk.steps) if s.foot_z > 0.05)  # onto the flight
+    turns = [
+        abs(math.remainder(float(walk.yaw[s.end] - walk.yaw[s.start]), math.tau))
+        for s in walk.steps[: first + 1]
+    ]
+    assert max(turns[-6:]) <= ENTRY_TURN + 1e-6
