@@ -458,6 +458,13 @@ def _wrist_feasible(
     u = _within_reach(np.asarray(u_hand, dtype=float), end, lengths)
     hint = u_last[0] * lengths[0]
     wrist = end - lengths[2] * u
+    # the nearest swivel (SWIVELS[0] = 0: the model's own elbow, the hint unturned) first, on
+    # its own: its row is the batch's row 0 bit for bit (each row is solved as if alone, and
+    # a zero rotation gives the hint back exactly), and it is most often in range
+    u1, u2 = two_link_ik_rows(wrist[None], lengths[0], lengths[1], hint[None])
+    dirs = np.stack([u1, u2, u[None]], axis=1)
+    if rows_in_range(ctx.jointmap, arm_joint_angles(dirs, side, None, True), side)[0]:
+        return u, u1[0]
     axis = wrist / max(float(np.linalg.norm(wrist)), 1e-9)
     # the elbow hint turned by each swivel about the shoulder-wrist axis, all swivels solved
     # at once (each row as if alone), the nearest in range taken
@@ -504,11 +511,12 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
     in the context's scratch data, pose by pose, for a model it does not support)."""
     m, jm = ctx.model, ctx.jointmap
     base = q0 if base is None else base
-    first = arm_frames(base, jm, q[:1], side, np.ones(1))[0][0]
-    w = np.linspace(0.0, 1.0, PATH_POSES)[:, None]
-    ready = q0[None] + w * (first - q0)[None]
     steps = np.linspace(0.0, 1.0, PATH_SUBSTEPS * (len(q) - 1) + 1)
     move, _ = arm_frames(base, jm, q, side, steps)
+    # the trajectory's first pose: move[0] (np.interp returns a sample's own value at its time)
+    first = move[0]
+    w = np.linspace(0.0, 1.0, PATH_POSES)[:, None]
+    ready = q0[None] + w * (first - q0)[None]
 
     hand = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
 
