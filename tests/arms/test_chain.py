@@ -11,6 +11,7 @@ from mjwalk.arms.chain import (
     ARM_JOINT_NAMES,
     ARM_JOINTS,
     ARM_SEGMENT_SHARES,
+    _shoulder_branch,
     arm_frames,
     arm_joint,
     arm_joint_angles,
@@ -158,3 +159,43 @@ def test_rows_in_range_agrees_with_clipped_joints_row_by_row(side):
     want = np.array([not clipped_joints(jm, row[None], side) for row in q])
     assert want[:2].all() and not want.all()
     assert np.array_equal(rows_in_range(jm, q, side), want)
+
+
+def _shoulder_branch_numpy(a, b, c, s):
+    """The NumPy form of chain._shoulder_branch (before it was compiled), as the reference."""
+    ranges = {k: np.radians(ROM_DEG[k]) for k in ("shoulder_flex", "shoulder_abd", "shoulder_rot")}
+
+    def excess(a, b, c):
+        out = np.zeros_like(a)
+        for value, name in (
+            (-a, "shoulder_flex"),
+            (s * b, "shoulder_abd"),
+            (-s * c, "shoulder_rot"),
+        ):
+            lo, hi = ranges[name]
+            out += np.maximum(lo - value, 0.0) + np.maximum(value - hi, 0.0)
+        return out
+
+    def wrap(x):
+        return (x + np.pi) % (2.0 * np.pi) - np.pi
+
+    a2, b2, c2 = wrap(a + np.pi), np.where(b >= 0.0, np.pi, -np.pi) - b, wrap(c + np.pi)
+    other = excess(a2, b2, c2) < excess(a, b, c) - 1e-9
+    return np.where(other, a2, a), np.where(other, b2, b), np.where(other, c2, c)
+
+
+@pytest.mark.parametrize("s", [1.0, -1.0])
+def test_compiled_shoulder_branch_gives_the_numpy_numbers_bit_for_bit(s):
+    """The compiled shoulder branch choice (arms raised over 90 deg sideways written with the
+    second Euler set) gives the NumPy arithmetic's numbers exactly, both sets chosen, with
+    +-pi, zeros and a NaN among the angles."""
+    rng = np.random.default_rng(11)
+    a = rng.uniform(-4.0, 4.0, 400)
+    b = rng.uniform(-0.5 * np.pi, 0.5 * np.pi, 400)
+    c = rng.uniform(-4.0, 4.0, 400)
+    a[:20], b[20:40], c[40:60], a[60] = -np.pi, 0.0, np.pi, np.nan
+    got = _shoulder_branch(a, b, c, s)
+    want = _shoulder_branch_numpy(a, b, c, s)
+    assert not np.array_equal(want[1], b)  # (the second set chosen somewhere)
+    for g, w in zip(got, want, strict=True):
+        assert np.array_equal(g.view(np.int64), w.view(np.int64))
