@@ -476,12 +476,72 @@ def arm_frames(
     idx = [jm.index(jn) for jn in names]
     lo, hi = jm.range[idx, 0], jm.range[idx, 1]
     src = np.linspace(0.0, 1.0, len(q))
+    times = np.ascontiguousarray(times, dtype=float).reshape(-1)
     out = np.repeat(np.asarray(q0)[None], len(times), axis=0)
-    qi = np.empty((len(times), len(names)))
-    for k in range(len(names)):
-        qi[:, k] = np.interp(times, src, q[:, k])
-    out[:, jm.qposadr[idx]] = np.clip(qi, lo, hi)
-    return out, _outside(qi, lo, hi, names)
+    bad = np.zeros(len(names), dtype=np.bool_)
+    # (compiled: np.interp per joint, np.clip and _outside's test, the same numbers)
+    _arm_rows(
+        np.ascontiguousarray(q, dtype=float),
+        src,
+        times,
+        np.ascontiguousarray(jm.qposadr[idx], dtype=np.int64),
+        np.ascontiguousarray(lo, dtype=float),
+        np.ascontiguousarray(hi, dtype=float),
+        out,
+        bad,
+    )
+    return out, [names[k] for k in np.flatnonzero(bad)]
+
+
+@njit
+def _interp_col(x, xp, fp, k):
+    """``np.interp(x, xp, fp[:, k])`` at one point ``x`` (xp increasing, at least one point):
+    NumPy's arithmetic and its special cases (the ends, a sample's own time, a NaN retried
+    from the right end of the interval)."""
+    n = xp.shape[0]
+    if n == 1:  # (NumPy's one-point case: its value everywhere, a NaN time too)
+        return fp[0, k]
+    if x != x:
+        return x
+    if x < xp[0]:
+        return fp[0, k]
+    if x > xp[n - 1]:
+        return fp[n - 1, k]
+    lo, hi = 0, n - 1  # the last j with xp[j] <= x
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if xp[mid] <= x:
+            lo = mid
+        else:
+            hi = mid
+    j = n - 1 if x >= xp[n - 1] else lo
+    if j == n - 1:
+        return fp[j, k]
+    if xp[j] == x:
+        return fp[j, k]
+    slope = (fp[j + 1, k] - fp[j, k]) / (xp[j + 1] - xp[j])
+    r = slope * (x - xp[j]) + fp[j, k]
+    if r != r:
+        r = slope * (x - xp[j + 1]) + fp[j + 1, k]
+        if r != r and fp[j, k] == fp[j + 1, k]:
+            r = fp[j, k]
+    return r
+
+
+@njit
+def _arm_rows(q, src, times, adr, lo, hi, out, bad):
+    """:func:`arm_frames`' joints into ``out`` (m, nq) at columns ``adr``: each of ``q``'s
+    (n, 7) columns interpolated at ``times`` (m,) over ``src`` (:func:`_interp_col`), clipped
+    to (``lo``, ``hi``) as np.clip clips (a NaN kept); ``bad`` (7,) set where a joint lies
+    beyond its range by over 1e-6 rad (:func:`_outside`)."""
+    for k in range(q.shape[1]):
+        lo_k, hi_k = lo[k], hi[k]
+        for t in range(times.shape[0]):
+            v = _interp_col(times[t], src, q, k)
+            if v < lo_k - 1e-6 or v > hi_k + 1e-6:
+                bad[k] = True
+            c = v if v != v or v > lo_k else lo_k
+            out[t, adr[k]] = c if c != c or c < hi_k else hi_k
 
 
 def clipped_joints(jm, q: np.ndarray, side: Side) -> list[str]:

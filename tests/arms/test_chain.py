@@ -199,3 +199,40 @@ def test_compiled_shoulder_branch_gives_the_numpy_numbers_bit_for_bit(s):
     assert not np.array_equal(want[1], b)  # (the second set chosen somewhere)
     for g, w in zip(got, want, strict=True):
         assert np.array_equal(g.view(np.int64), w.view(np.int64))
+
+
+def _arm_frames_numpy(q0, jm, q, side, times):
+    """The NumPy form of chain.arm_frames (before it was compiled), as the reference."""
+    names = ARM_JOINT_NAMES[side]
+    idx = [jm.index(jn) for jn in names]
+    lo, hi = jm.range[idx, 0], jm.range[idx, 1]
+    src = np.linspace(0.0, 1.0, len(q))
+    out = np.repeat(np.asarray(q0)[None], len(times), axis=0)
+    qi = np.column_stack([np.interp(times, src, q[:, k]) for k in range(len(names))])
+    out[:, jm.qposadr[idx]] = np.clip(qi, lo, hi)
+    bad = ((qi < lo - 1e-6) | (qi > hi + 1e-6)).any(axis=0)
+    return out, [names[k] for k in np.flatnonzero(bad)]
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_compiled_arm_frames_give_the_numpy_numbers_bit_for_bit(side):
+    """arm_frames (compiled interpolation and clipping) gives np.interp's and np.clip's numbers
+    exactly: times before, after and on the samples, a single sample, angles on and beyond the
+    limits, zeros and NaNs."""
+    _, jm = humanoid_model()
+    names = ARM_JOINT_NAMES[side]
+    lo, hi = np.array([jm.limits(n) for n in names]).T
+    rng = np.random.default_rng(8)
+    for trial in range(300):
+        n, m = int(rng.integers(1, 30)), int(rng.integers(1, 90))
+        q = lo + rng.uniform(-0.3, 1.3, (n, 7)) * (hi - lo)
+        q[0, 3], q[-1, 0], q[n // 2, 1] = lo[3], hi[0], -0.0
+        times = rng.uniform(-0.1, 1.1, m)
+        times[: m // 2] = np.linspace(0.0, 1.0, n)[rng.integers(0, n, m // 2)]
+        if trial % 10 == 0:
+            q[n // 2, 2], times[-1] = np.nan, np.nan
+        q0 = rng.normal(size=jm.root + 7 + len(jm.names))
+        got, got_names = arm_frames(q0, jm, q, side, times)
+        want, want_names = _arm_frames_numpy(q0, jm, q, side, times)
+        assert np.array_equal(got.view(np.int64), want.view(np.int64))
+        assert got_names == want_names
