@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from mjwalk._jit import njit
 from mjwalk.anthropometry import ROM_DEG
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 
@@ -306,25 +307,58 @@ def _shoulder_branch(a: np.ndarray, b: np.ndarray, c: np.ndarray, s: float):
     no flexion or rotation, which the first set writes as 60 deg with flexion and rotation
     of 180 deg, beyond their ranges (the clipped pose then pointed the arm backwards: a
     reach to a top shelf ended 1.3 m off). Ranges: :data:`mjwalk.anthropometry.ROM_DEG`;
-    ``s`` +1 for the left arm, -1 for the right."""
+    ``s`` +1 for the left arm, -1 for the right (compiled: :func:`_shoulder_branch_rows`)."""
+    a = np.ascontiguousarray(a, dtype=float)
+    b = np.ascontiguousarray(b, dtype=float)
+    c = np.ascontiguousarray(c, dtype=float)
+    out = np.empty((3, len(a)))
+    _shoulder_branch_rows(a, b, c, float(s), _SHOULDER_LIMITS, out)
+    return out[0], out[1], out[2]
 
-    def excess(a, b, c):  # radians beyond the ranges of flexion, abduction and rotation
-        out = np.zeros_like(a)
-        for value, name in (
-            (-a, "shoulder_flex"),
-            (s * b, "shoulder_abd"),
-            (-s * c, "shoulder_rot"),
-        ):
-            lo, hi = _SHOULDER_RANGES[name]
-            out += np.maximum(lo - value, 0.0) + np.maximum(value - hi, 0.0)
-        return out
 
-    def wrap(x):
-        return (x + np.pi) % (2.0 * np.pi) - np.pi
+#: (lo, hi) of shoulder flexion, abduction and rotation, radians (:data:`_SHOULDER_RANGES`).
+_SHOULDER_LIMITS = np.array(
+    [_SHOULDER_RANGES[k] for k in ("shoulder_flex", "shoulder_abd", "shoulder_rot")]
+)
 
-    a2, b2, c2 = wrap(a + np.pi), np.where(b >= 0.0, np.pi, -np.pi) - b, wrap(c + np.pi)
-    other = excess(a2, b2, c2) < excess(a, b, c) - 1e-9
-    return np.where(other, a2, a), np.where(other, b2, b), np.where(other, c2, c)
+
+@njit
+def _beyond(v, lo, hi):
+    """Radians of ``v`` beyond (lo, hi): ``np.maximum(lo - v, 0) + np.maximum(v - hi, 0)``
+    (a NaN carried through as np.maximum carries it)."""
+    d0, d1 = lo - v, v - hi
+    m0 = d0 if d0 > 0.0 or d0 != d0 else 0.0
+    m1 = d1 if d1 > 0.0 or d1 != d1 else 0.0
+    return m0 + m1
+
+
+@njit
+def _shoulder_excess(a, b, c, s, lim):
+    """Radians beyond the ranges ``lim`` (3, 2) of flexion -a, abduction s b and rotation
+    -s c, summed in that order from 0 (the NumPy sums of the excess this replaced)."""
+    out = 0.0
+    out += _beyond(-a, lim[0, 0], lim[0, 1])
+    out += _beyond(s * b, lim[1, 0], lim[1, 1])
+    out += _beyond(-s * c, lim[2, 0], lim[2, 1])
+    return out
+
+
+@njit
+def _shoulder_branch_rows(a, b, c, s, lim, out):
+    """:func:`_shoulder_branch` per row into ``out`` (3, n): the NumPy arithmetic it replaced,
+    row by row in the same order (wrap: ``(x + pi) % 2 pi - pi``, Python's and NumPy's float
+    remainder alike)."""
+    pi = np.pi
+    for i in range(a.shape[0]):
+        a2 = ((a[i] + pi) + pi) % (2.0 * pi) - pi  # wrap(a + pi)
+        b2 = (pi if b[i] >= 0.0 else -pi) - b[i]
+        c2 = ((c[i] + pi) + pi) % (2.0 * pi) - pi
+        other = (
+            _shoulder_excess(a2, b2, c2, s, lim) < _shoulder_excess(a[i], b[i], c[i], s, lim) - 1e-9
+        )
+        out[0, i] = a2 if other else a[i]
+        out[1, i] = b2 if other else b[i]
+        out[2, i] = c2 if other else c[i]
 
 
 def _euler_yxz(r: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -442,12 +476,72 @@ def arm_frames(
     idx = [jm.index(jn) for jn in names]
     lo, hi = jm.range[idx, 0], jm.range[idx, 1]
     src = np.linspace(0.0, 1.0, len(q))
+    times = np.ascontiguousarray(times, dtype=float).reshape(-1)
     out = np.repeat(np.asarray(q0)[None], len(times), axis=0)
-    qi = np.empty((len(times), len(names)))
-    for k in range(len(names)):
-        qi[:, k] = np.interp(times, src, q[:, k])
-    out[:, jm.qposadr[idx]] = np.clip(qi, lo, hi)
-    return out, _outside(qi, lo, hi, names)
+    bad = np.zeros(len(names), dtype=np.bool_)
+    # (compiled: np.interp per joint, np.clip and _outside's test, the same numbers)
+    _arm_rows(
+        np.ascontiguousarray(q, dtype=float),
+        src,
+        times,
+        np.ascontiguousarray(jm.qposadr[idx], dtype=np.int64),
+        np.ascontiguousarray(lo, dtype=float),
+        np.ascontiguousarray(hi, dtype=float),
+        out,
+        bad,
+    )
+    return out, [names[k] for k in np.flatnonzero(bad)]
+
+
+@njit
+def _interp_col(x, xp, fp, k):
+    """``np.interp(x, xp, fp[:, k])`` at one point ``x`` (xp increasing, at least one point):
+    NumPy's arithmetic and its special cases (the ends, a sample's own time, a NaN retried
+    from the right end of the interval)."""
+    n = xp.shape[0]
+    if n == 1:  # (NumPy's one-point case: its value everywhere, a NaN time too)
+        return fp[0, k]
+    if x != x:
+        return x
+    if x < xp[0]:
+        return fp[0, k]
+    if x > xp[n - 1]:
+        return fp[n - 1, k]
+    lo, hi = 0, n - 1  # the last j with xp[j] <= x
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if xp[mid] <= x:
+            lo = mid
+        else:
+            hi = mid
+    j = n - 1 if x >= xp[n - 1] else lo
+    if j == n - 1:
+        return fp[j, k]
+    if xp[j] == x:
+        return fp[j, k]
+    slope = (fp[j + 1, k] - fp[j, k]) / (xp[j + 1] - xp[j])
+    r = slope * (x - xp[j]) + fp[j, k]
+    if r != r:
+        r = slope * (x - xp[j + 1]) + fp[j + 1, k]
+        if r != r and fp[j, k] == fp[j + 1, k]:
+            r = fp[j, k]
+    return r
+
+
+@njit
+def _arm_rows(q, src, times, adr, lo, hi, out, bad):
+    """:func:`arm_frames`' joints into ``out`` (m, nq) at columns ``adr``: each of ``q``'s
+    (n, 7) columns interpolated at ``times`` (m,) over ``src`` (:func:`_interp_col`), clipped
+    to (``lo``, ``hi``) as np.clip clips (a NaN kept); ``bad`` (7,) set where a joint lies
+    beyond its range by over 1e-6 rad (:func:`_outside`)."""
+    for k in range(q.shape[1]):
+        lo_k, hi_k = lo[k], hi[k]
+        for t in range(times.shape[0]):
+            v = _interp_col(times[t], src, q, k)
+            if v < lo_k - 1e-6 or v > hi_k + 1e-6:
+                bad[k] = True
+            c = v if v != v or v > lo_k else lo_k
+            out[t, adr[k]] = c if c != c or c < hi_k else hi_k
 
 
 def clipped_joints(jm, q: np.ndarray, side: Side) -> list[str]:

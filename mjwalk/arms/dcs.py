@@ -384,19 +384,22 @@ class DCSNetwork:
             )
         return (X - self.x_mean_) / self.x_scale_
 
-    def predict(self, X: np.ndarray) -> np.ndarray:
+    def predict(self, X: np.ndarray, distance: np.ndarray | None = None) -> np.ndarray:
         """Outputs (N, m) for inputs ``X`` (N, d) by the normalized RBF of eq. 2 (blended into
         the trend network outside the trained range when it has one, see the module doc).
 
         Args:
             X: (N, d) inputs; a 1-D array is one input (d > 1) or N inputs (d = 1).
+            distance: (N,) :meth:`distance_to_training` of ``X`` when the caller has it
+                already (the weight then skips its nearest-neighbour query: the same
+                numbers); None: computed here.
 
         Returns:
             (N, m) outputs, or (N,) when fitted on 1-D targets.
         """
         self._check_fitted()
         # one weight for all networks: they share the training inputs, hence d and r
-        g = self.network_weight(X) if self._fallback() is not None else None
+        g = self.network_weight(X, distance) if self._fallback() is not None else None
         out = self._predict_one(X, g)
         members = getattr(self, "members_", [])
         if members:
@@ -413,13 +416,14 @@ class DCSNetwork:
             out = trend + g[:, None] * (out - trend)
         return out
 
-    def network_weight(self, X: np.ndarray) -> np.ndarray:
+    def network_weight(self, X: np.ndarray, distance: np.ndarray | None = None) -> np.ndarray:
         """(N,) weight of the full network in :meth:`predict`: ``exp(-d^2 / (2 r^2))``,
         ``d`` the distance to the nearest training input, ``r = range_radius_``; 1 without a
         trend fallback.
 
         Args:
             X: (N, d) inputs.
+            distance: (N,) :meth:`distance_to_training` of ``X`` if known; None: computed.
 
         Returns:
             (N,) weights in (0, 1].
@@ -427,7 +431,8 @@ class DCSNetwork:
         self._check_fitted()
         if self._fallback() is None:
             return np.ones(len(self._standardize(X)))
-        q = self.distance_to_training(X) / max(self.range_radius_, 1e-12)
+        d = self.distance_to_training(X) if distance is None else distance
+        q = d / max(self.range_radius_, 1e-12)
         return np.exp(-0.5 * q**2)
 
     def _predict_network(self, X: np.ndarray) -> np.ndarray:

@@ -338,12 +338,16 @@ class ReachModel:
     def n_neurons(self) -> int | None:
         return getattr(self.net_, "n_neurons_", None)
 
-    def _distance(self, c: np.ndarray) -> tuple[float, bool]:
+    def _distance(self, c: np.ndarray) -> tuple[float, bool, np.ndarray | None]:
+        """The constraint's distance to the nearest training constraint (standardized
+        units), whether it lies outside the trained range, and the network's (1,) distance
+        array (None for a network without one), which :meth:`predict` hands on to it."""
         if hasattr(self.net_, "distance_to_training"):
-            d = float(self.net_.distance_to_training(c[None])[0])
-            return d, d > self.net_.range_radius_
+            d_arr = self.net_.distance_to_training(c[None])
+            d = float(d_arr[0])
+            return d, d > self.net_.range_radius_, d_arr
         d = float(np.min(np.linalg.norm(self._train - c / self._scale, axis=1)))
-        return d, False
+        return d, False, None
 
     def predict(
         self,
@@ -382,7 +386,7 @@ class ReachModel:
         if not hasattr(self, "net_"):
             raise MjwalkError("ReachModel is not fitted; call fit() or load() first")
         c = np.atleast_1d(np.asarray(constraint, dtype=float))
-        dist, outside = self._distance(c)
+        dist, outside, d_arr = self._distance(c)
         warnings = []
         if outside:
             msg = (
@@ -396,7 +400,12 @@ class ReachModel:
             if strict:
                 raise MjwalkError(msg)
             warnings.append(msg)
-        out = np.asarray(self.net_.predict(c[None]))[0]
+        # (the network's weight reuses the distance found above: one nearest-neighbour query)
+        out = np.asarray(
+            self.net_.predict(c[None], d_arr)
+            if isinstance(self.net_, DCSNetwork) and d_arr is not None
+            else self.net_.predict(c[None])
+        )[0]
         b, pose = out[: self.n_modes_], out[self.n_modes_ :]
         A, E = self.rep_.inverse_transform(b[None])
         A, E = A[0], (None if E is None else E[0])

@@ -184,9 +184,8 @@ def reach_frames(
         ReachResult).
     """
     model = ctx.reach_model_for(side)
-    # the reach is solved at the reach model's arm lengths; an operator of another stature has
-    # the same arm shape scaled (Winter's shares), so the targets are scaled into the model's
-    # size (directions, hence joint angles, do not change with the scale)
+    # the reach is solved at the reach model's arm lengths; another stature has the same arm
+    # shape scaled (Winter's shares): the targets are scaled to the model's size (same angles)
     scale, lengths = humanoid_arm(model, ctx.spec.stature)
     arm = _Arm(side, model, scale, lengths)
     # ``base``: q0, or q0 bent forward at the trunk (the lean comes in with the ready phase and
@@ -240,11 +239,10 @@ def _solve_arm(
     app = np.repeat(u_last[None], n_app, axis=0)
     taus = min_jerk(np.linspace(0.0, 1.0, n_app + 1)[1:])
     hands = pre + taus[:, None] * (end - pre)
-    # the hand's direction on the target: along its approach (the hand, and the forearm behind
-    # it as far as the wrist follows, stay on the approach's line, which comes in from the free
-    # side of the target: out of a shelf's opening, from the operator at the car), or in the
-    # grip face's plane; as far as the humanoid's wrist can turn it there, the elbow swivelled
-    # as it needs (_wrist_feasible), so the fingers, not only the wrist, end on the target
+    # the hand's direction on the target: along its approach (the hand, and the forearm as far as
+    # the wrist follows, stay on the approach's line, in from the target's free side: a shelf's
+    # opening, the operator at the car), or in the grip face's plane; as far as the wrist can
+    # turn it, the elbow swivelled as it needs (_wrist_feasible): the fingers end on the target
     u_app = frame.T @ -np.asarray(approach_w, dtype=float)
     u_app /= max(float(np.linalg.norm(u_app)), 1e-9)
     if face is not None:
@@ -458,9 +456,13 @@ def _wrist_feasible(
     u = _within_reach(np.asarray(u_hand, dtype=float), end, lengths)
     hint = u_last[0] * lengths[0]
     wrist = end - lengths[2] * u
+    # the nearest swivel (0: the hint itself) alone first: the batch's row 0, most often in range
+    u1, u2 = two_link_ik_rows(wrist[None], lengths[0], lengths[1], hint[None])
+    q1 = arm_joint_angles(np.stack([u1, u2, u[None]], axis=1), side, None, True)
+    if rows_in_range(ctx.jointmap, q1, side)[0]:
+        return u, u1[0]
     axis = wrist / max(float(np.linalg.norm(wrist)), 1e-9)
-    # the elbow hint turned by each swivel about the shoulder-wrist axis, all swivels solved
-    # at once (each row as if alone), the nearest in range taken
+    # else the hint turned by each swivel about the shoulder-wrist axis, all solved at once
     hints = Rotation.from_rotvec(SWIVELS[:, None] * axis).apply(hint)
     wrists = np.repeat(wrist[None], len(hints), axis=0)
     u1, u2 = two_link_ik_rows(wrists, lengths[0], lengths[1], hints)
@@ -504,12 +506,10 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
     in the context's scratch data, pose by pose, for a model it does not support)."""
     m, jm = ctx.model, ctx.jointmap
     base = q0 if base is None else base
-    first = arm_frames(base, jm, q[:1], side, np.ones(1))[0][0]
-    w = np.linspace(0.0, 1.0, PATH_POSES)[:, None]
-    ready = q0[None] + w * (first - q0)[None]
     steps = np.linspace(0.0, 1.0, PATH_SUBSTEPS * (len(q) - 1) + 1)
     move, _ = arm_frames(base, jm, q, side, steps)
-
+    # (from q0 into move[0], the trajectory's first pose: np.interp gives a sample's own value)
+    ready = q0[None] + np.linspace(0.0, 1.0, PATH_POSES)[:, None] * (move[0] - q0)[None]
     hand = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
 
     def length(poses: np.ndarray) -> float:

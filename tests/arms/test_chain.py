@@ -11,6 +11,7 @@ from mjwalk.arms.chain import (
     ARM_JOINT_NAMES,
     ARM_JOINTS,
     ARM_SEGMENT_SHARES,
+    _shoulder_branch,
     arm_frames,
     arm_joint,
     arm_joint_angles,
@@ -158,3 +159,80 @@ def test_rows_in_range_agrees_with_clipped_joints_row_by_row(side):
     want = np.array([not clipped_joints(jm, row[None], side) for row in q])
     assert want[:2].all() and not want.all()
     assert np.array_equal(rows_in_range(jm, q, side), want)
+
+
+def _shoulder_branch_numpy(a, b, c, s):
+    """The NumPy form of chain._shoulder_branch (before it was compiled), as the reference."""
+    ranges = {k: np.radians(ROM_DEG[k]) for k in ("shoulder_flex", "shoulder_abd", "shoulder_rot")}
+
+    def excess(a, b, c):
+        out = np.zeros_like(a)
+        for value, name in (
+            (-a, "shoulder_flex"),
+            (s * b, "shoulder_abd"),
+            (-s * c, "shoulder_rot"),
+        ):
+            lo, hi = ranges[name]
+            out += np.maximum(lo - value, 0.0) + np.maximum(value - hi, 0.0)
+        return out
+
+    def wrap(x):
+        return (x + np.pi) % (2.0 * np.pi) - np.pi
+
+    a2, b2, c2 = wrap(a + np.pi), np.where(b >= 0.0, np.pi, -np.pi) - b, wrap(c + np.pi)
+    other = excess(a2, b2, c2) < excess(a, b, c) - 1e-9
+    return np.where(other, a2, a), np.where(other, b2, b), np.where(other, c2, c)
+
+
+@pytest.mark.parametrize("s", [1.0, -1.0])
+def test_compiled_shoulder_branch_gives_the_numpy_numbers_bit_for_bit(s):
+    """The compiled shoulder branch choice (arms raised over 90 deg sideways written with the
+    second Euler set) gives the NumPy arithmetic's numbers exactly, both sets chosen, with
+    +-pi, zeros and a NaN among the angles."""
+    rng = np.random.default_rng(11)
+    a = rng.uniform(-4.0, 4.0, 400)
+    b = rng.uniform(-0.5 * np.pi, 0.5 * np.pi, 400)
+    c = rng.uniform(-4.0, 4.0, 400)
+    a[:20], b[20:40], c[40:60], a[60] = -np.pi, 0.0, np.pi, np.nan
+    got = _shoulder_branch(a, b, c, s)
+    want = _shoulder_branch_numpy(a, b, c, s)
+    assert not np.array_equal(want[1], b)  # (the second set chosen somewhere)
+    for g, w in zip(got, want, strict=True):
+        assert np.array_equal(g.view(np.int64), w.view(np.int64))
+
+
+def _arm_frames_numpy(q0, jm, q, side, times):
+    """The NumPy form of chain.arm_frames (before it was compiled), as the reference."""
+    names = ARM_JOINT_NAMES[side]
+    idx = [jm.index(jn) for jn in names]
+    lo, hi = jm.range[idx, 0], jm.range[idx, 1]
+    src = np.linspace(0.0, 1.0, len(q))
+    out = np.repeat(np.asarray(q0)[None], len(times), axis=0)
+    qi = np.column_stack([np.interp(times, src, q[:, k]) for k in range(len(names))])
+    out[:, jm.qposadr[idx]] = np.clip(qi, lo, hi)
+    bad = ((qi < lo - 1e-6) | (qi > hi + 1e-6)).any(axis=0)
+    return out, [names[k] for k in np.flatnonzero(bad)]
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_compiled_arm_frames_give_the_numpy_numbers_bit_for_bit(side):
+    """arm_frames (compiled interpolation and clipping) gives np.interp's and np.clip's numbers
+    exactly: times before, after and on the samples, a single sample, angles on and beyond the
+    limits, zeros and NaNs."""
+    _, jm = humanoid_model()
+    names = ARM_JOINT_NAMES[side]
+    lo, hi = np.array([jm.limits(n) for n in names]).T
+    rng = np.random.default_rng(8)
+    for trial in range(300):
+        n, m = int(rng.integers(1, 30)), int(rng.integers(1, 90))
+        q = lo + rng.uniform(-0.3, 1.3, (n, 7)) * (hi - lo)
+        q[0, 3], q[-1, 0], q[n // 2, 1] = lo[3], hi[0], -0.0
+        times = rng.uniform(-0.1, 1.1, m)
+        times[: m // 2] = np.linspace(0.0, 1.0, n)[rng.integers(0, n, m // 2)]
+        if trial % 10 == 0:
+            q[n // 2, 2], times[-1] = np.nan, np.nan
+        q0 = rng.normal(size=jm.root + 7 + len(jm.names))
+        got, got_names = arm_frames(q0, jm, q, side, times)
+        want, want_names = _arm_frames_numpy(q0, jm, q, side, times)
+        assert np.array_equal(got.view(np.int64), want.view(np.int64))
+        assert got_names == want_names

@@ -446,6 +446,10 @@ def test_dcs_trend_fallback_blends_into_the_trend_outside_the_data(tmp_path):
     assert (0.0 < g).all() and (g < 1.0).all()
     blend = trend.predict(x_edge) + g[:, None] * (plain.predict(x_edge) - trend.predict(x_edge))
     np.testing.assert_allclose(net.predict(x_edge), blend, rtol=1e-12, atol=1e-12)
+    # a caller's own distances (ReachModel.predict has them) give the same numbers
+    d_edge = net.distance_to_training(x_edge)
+    assert np.array_equal(net.network_weight(x_edge, d_edge), g)
+    assert np.array_equal(net.predict(x_edge, d_edge), net.predict(x_edge))
     Xfar = rng.uniform(4.0, 5.0, (40, 2))
     assert (net.network_weight(Xfar) < 1e-6).all()
     np.testing.assert_allclose(net.predict(Xfar), trend.predict(Xfar), rtol=1e-5, atol=1e-5)
