@@ -66,6 +66,7 @@ clear_stale_caches()
 
 _njit = numba.njit(cache=True, nogil=True, fastmath=False)
 _njit_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
+_njit_inline = numba.njit(cache=True, nogil=True, fastmath=False, inline="always")
 
 
 def _cache_failures_warn(dispatcher):
@@ -95,6 +96,14 @@ def njit(func):
     """``numba.njit`` with mjwalk's settings (cached; ``fastmath`` off: the arithmetic stays
     that of the NumPy code it replaces), its cache writes non-fatal."""
     return _cache_failures_warn(_njit(func))
+
+
+def njit_inline(func):
+    """:func:`njit` inlined into its compiled callers by numba itself (``inline="always"``):
+    for a few-line helper called in a hot loop, where LLVM's own inlining leaves a call whose
+    argument passing outweighs the helper's arithmetic (:func:`mjwalk.plan.stepgeom.decode_col`:
+    six multiply-adds, 3.6x the cost as a call; issue 50). The arithmetic is the same."""
+    return _cache_failures_warn(_njit_inline(func))
 
 
 def njit_sum(func):

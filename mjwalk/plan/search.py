@@ -21,8 +21,8 @@ in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change to this file's text,
 or processes keep running the old machine code (touching the file is not enough). The record of
 such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the step decode
-in one place, ``stepgeom.decode_col``; before it, closing draws that cannot end the walk skip
-the GP's variance, and the guide's segment lengths once per walk, issue 50).
+inlined by numba, the step decoded column by column as the clearance test needs it and the
+lifting foot's turn once per node, issue 50; before it, the step decode in one place, ``stepgeom.decode_col``).
 """
 
 from __future__ import annotations

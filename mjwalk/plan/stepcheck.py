@@ -224,6 +224,25 @@ def new_buffers(n, m):
 
 
 @njit
+def _lift_turn(node, i, fr, par):
+    """The lifting foot's heading relative to the frame heading ``fr`` (radians), within
+    +-P_SWING_LIFT_TURN (past the hip's rotation range the grounded foot spins); nan when
+    ``node`` (as for :func:`check_steps`) has no column 4 or the foot is unknown.
+
+    Args:
+        node: as for :func:`check_steps`.
+        i: the predecessor's row of ``node``.
+        fr: the step's frame heading, radians.
+        par: the float slots.
+    """
+    lift_yaw = node[i, 4].imag - fr if node.shape[1] > 4 else math.nan
+    if not math.isnan(lift_yaw):
+        lim = par[P_SWING_LIFT_TURN]
+        lift_yaw = min(max(math.atan2(math.sin(lift_yaw), math.cos(lift_yaw)), -lim), lim)
+    return lift_yaw
+
+
+@njit
 def check_into(
     z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist, out,
     accepted, drawn,
@@ -275,6 +294,9 @@ def check_into(
     accepted[:b] = 0
     drawn[:b] = 0
     cnt = 0
+    lift_i = -1
+    lift_fr = math.nan
+    lift_yaw = math.nan
     for r in range(n):
         i = r // per
         closing = r % per >= n_walk
@@ -293,18 +315,19 @@ def check_into(
             end = decode_col(z, r, matrix, offset, m - 1) * rot + p
             if not in_goal(end, fr + decode_col(z, r, matrix, offset, m + 1).imag, par, ipar):
                 continue
-        # decode: local = z @ matrix + offset, column by column (decode_col)
-        for c in range(m + 2):
-            loc[c] = decode_col(z, r, matrix, offset, c)
-        # clearance of pelvis samples, ankle, toes, knees (world)
+        # decode (local = z @ matrix + offset, column by column: decode_col) and clearance of
+        # pelvis samples and ankle (world), each column as its test needs it: a third of the
+        # rows fail here, mostly before the last column
         ok = True
         for j in range(m + 1):
+            loc[j] = decode_col(z, r, matrix, offset, j)
             w = loc[j] * rot + p
             if field_clearance(coef, fx0, fy0, fres, fnx, fny, w.real, w.imag) < thr[j]:
                 ok = False
                 break
         if not ok:
             continue
+        loc[m + 1] = decode_col(z, r, matrix, offset, m + 1)
         yaws = loc[m + 1]
         ankle = loc[m] * rot + p
         land = unit_turn(yaws.real)  # the landing yaw's turn, once (the toe probes below)
@@ -337,10 +360,10 @@ def check_into(
         # from KNEE_SIDE to the swing side
         lat = (1j if lf else -1j) * par[P_KNEE_SIDE]
         hip = (1j if lf else -1j) * par[P_KNEE_PIVOT]
-        lift_yaw = node[i, 4].imag - fr if node.shape[1] > 4 else math.nan
-        if not math.isnan(lift_yaw):  # past the hip's rotation range the grounded foot spins
-            lim = par[P_SWING_LIFT_TURN]
-            lift_yaw = min(max(math.atan2(math.sin(lift_yaw), math.cos(lift_yaw)), -lim), lim)
+        if i != lift_i or fr != lift_fr:  # the same for a node's rows (of one frame heading)
+            lift_yaw = _lift_turn(node, i, fr, par)
+            lift_i = i
+            lift_fr = fr
         for kk in range(2):
             col = kc0 if kk == 0 else kc1
             share = par[P_KNEE_SHARE0] if kk == 0 else par[P_KNEE_SHARE1]
