@@ -22,7 +22,8 @@ in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan
 or processes keep running the old machine code (touching the file is not enough). The record of
 such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the step decode
 inlined by numba, the step decoded column by column as the clearance test needs it and the
-lifting foot's turn once per node, issue 50; before it, the step decode in one place, ``stepgeom.decode_col``).
+lifting foot's turn once per node, issue 50; before it, the step decode in one place,
+``stepgeom.decode_col``).
 """
 
 from __future__ import annotations
