@@ -120,7 +120,8 @@ def test_the_swing_ankle_never_goes_back_from_toe_off(first):
     strict=True,
     reason="issue 48: since the toe-off bound (704080c) run 307 of the station's 2000-run batch "
     "(seed 0, a 1.78 m adult) grazes the car 0.7 mm with its left thigh at t = 31.0 s, the last "
-    "steps of carry T2 rack3 -> car2; 0 at a196e73. 1 contact in 2000 runs, not yet fixed",
+    "steps of carry T2 rack3 -> car2; at a196e73 the same frame cleared it by 6.5 mm (a one-frame "
+    "dip from 35 mm in both trees). 1 contact in 2000 runs, not yet fixed",
 )
 def test_the_station_batchs_run_307_arrives_at_the_car_without_contact():
     """Seeded: run 307 of ``mjwalk simulate scenes/assembly_station.toml --runs 2000`` (seed 0),
