@@ -23,6 +23,11 @@ from mjwalk.world.norms import STAIR_TOE_CLEARANCE
 LEVEL_STEP = 0.01
 #: A surface pitch (radians) below this is level (0.3 deg: under norms.HORIZONTAL_SLOPE's 1 %).
 FLAT_PITCH = math.radians(0.3)
+#: Least height (m) a swing sole point keeps over the surface under it where no cited
+#: clearance applies (:func:`edge_swing`'s sole heights, :func:`sole_rise`'s default): 2 mm,
+#: a margin against grazing the surface, no measured figure (the legs' descent swings keep
+#: :data:`mjwalk.world.norms.DESCENT_LOW_CLEARANCE` instead).
+SOLE_MARGIN = 0.002
 
 
 @dataclass(frozen=True)
@@ -337,7 +342,9 @@ def _swing_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeome
     seg = fr.land[:2] - fr.lift[:2]
     x = (xy - fr.lift[:2]) @ (seg / max(float(np.hypot(*seg)), 1e-9))
     px = x[:, None] + np.column_stack([heel_x, ball_x, tip_x])  # (m, 3) heel, ball, toe tip
-    req = _sole_need(px, np.column_stack([heel_z, ball_z, tip_z]), edges, 0.002, clearance, 0.0)
+    req = _sole_need(
+        px, np.column_stack([heel_z, ball_z, tip_z]), edges, SOLE_MARGIN, clearance, 0.0
+    )
     req[0], req[-1] = z_a, z_b
     z = (req[None, :] - v * np.abs(tau[:, None] - tau[None, :])).max(axis=1)
     if m > 8:  # the cones' corners rounded (running maximum, Gaussian), never lowered
@@ -410,7 +417,7 @@ def swing_clearance(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, 
 
 
 def sole_rise(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: LegGeometry,
-              margin: float = 0.002) -> np.ndarray:  # fmt: skip
+              margin: float = SOLE_MARGIN) -> np.ndarray:  # fmt: skip
     """How far the swing ankle of an edged step must rise so that no point of its sole (heel,
     ball, toe tip, at the foot's pitch and toe angle) lies below the surface under it: over
     the span where an edge may lie (:func:`_step_edges`, moved off the grounded feet) the

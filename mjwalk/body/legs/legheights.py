@@ -56,6 +56,7 @@ from mjwalk.body.legs.curves import smoothstep
 from mjwalk.body.legs.edgeswing import (
     FLAT_PITCH,
     LEVEL_STEP,
+    SOLE_MARGIN,
     StepSurfaces,
     edge_swing,
     sole_rise,
@@ -502,7 +503,7 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
         moved = False
         for fr, sf, k, _ in plans:
             s = fr.side
-            margin = DESCENT_LOW_CLEARANCE if _descends(sf) else 0.002
+            margin = DESCENT_LOW_CLEARANCE if _descends(sf) else SOLE_MARGIN
             rise = sole_rise(feet.ankle[s][k], feet.pitch[s][k], feet.toe[s][k], feet.fyaw[s][k],
                              fr, sf, geom, margin)  # fmt: skip
             feet.ankle[s][k, 2] += rise
