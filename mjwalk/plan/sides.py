@@ -45,18 +45,8 @@ the protective gap (:data:`PASSING_GAP`: Hackney & Cinelli 2013, 0.30 m):
   speeds; the growth taken here is the larger of the two estimates. The berth differs
   between people through their speed (each walk's own pace, Bohannon & Andrews 2011's
   spread) and their shoulder width (their stature); no further draw: the cited studies give
-  means only. A between-person spread of the berth itself was looked for (issue 48, session
-  2026-12-05b; only abstracts could be read) and not found: Hackney & Cinelli 2013 (above),
-  Gérin-Lajoie, Richards & McFadyen 2006 (Gait Posture, doi:10.1016/j.gaitpost.2005.11.001),
-  Gérin-Lajoie et al. 2008 (above) and Bourgaize, McFadyen & Cinelli
-  (doi:10.1080/00222895.2020.1742083; doi:10.1016/j.humov.2023.103071) give means or effects
-  only, and no text of their 2005 study (Motor Control 9:242-269) was found; Darekar, Lamontagne
-  & Fung 2017 (doi:10.1186/s12984-017-0264-8) measured clearances in a virtual room; Basili
-  2013, Huber 2014, Knorr 2016, Vassallo 2017 and Olivier 2012 concern walkers or robots
-  crossing the way, not a fixed obstacle. The one spread found is between groups: a Journal of
-  Vision meeting abstract (jov.arvojournals.org, article 2140831) gives 0.31 m lateral clearance
-  at crossing for young and 0.70 m for older adults, while Itou et al. (Phys Ther Res 23:31-38,
-  2020) found no age difference passing a standing person: not used.
+  means only; no published between-person spread of the berth itself was found
+  (``docs/decisions/109-planner-berth-spread.md`` lists the search).
 - **An obstacle passed within the berth is passed at it** (:func:`intruding`): people keep
   that room from obstacles beside their way, not only from those they would hit, so a
   guide that passes a compact obstacle (one whose extent along the walk lies within it: not
