@@ -23,7 +23,7 @@ the directions of its first and last 10 % (deg from the chord). The models:
   length).
 
 Printed per case, then the medians over the cases of the ratios to the guide.
-""""""
+"""
 
 from __future__ import annotations
 
