@@ -118,8 +118,9 @@ issue chose 1 m so that no real tangent at the measured segment's edges reaches 
 ``MOVE_BACK`` 1.0 | 0.5 | 0.25 m gives excess 0.44 | 0.63 | 0.71, lateral IQR 1.05 | 0.98 |
 0.92, length IQR 1.24 | 1.07 | 1.10, and the large-scale (3.6 s) excess 0.61 | 0.81 | 0.88.
 
-Free walks between two headings do not lose the bend (issue 48, docs/decisions/110-planner-free-walk-bend.md; every
-figure above stands, the planner is unchanged). On synthetic walks in an empty hall
+Free walks between two headings do not lose the bend (issue 48,
+docs/decisions/110-planner-free-walk-bend.md; every figure above stands, the planner is
+unchanged). On synthetic walks in an empty hall
 (``benchmarks/bench_freebend.py``, no THOR data: 4-8 m, 10-30 deg off the chord at the start,
 the goal heading mirrored, the same or none, 6 seeds) the planned walks after the 800 ms
 average carry their guide's bend: lateral peak 1.06 and excess 1.01 of the guide's (median
