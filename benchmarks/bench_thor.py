@@ -118,6 +118,22 @@ issue chose 1 m so that no real tangent at the measured segment's edges reaches 
 ``MOVE_BACK`` 1.0 | 0.5 | 0.25 m gives excess 0.44 | 0.63 | 0.71, lateral IQR 1.05 | 0.98 |
 0.92, length IQR 1.24 | 1.07 | 1.10, and the large-scale (3.6 s) excess 0.61 | 0.81 | 0.88.
 
+Free walks between two headings do not lose the bend (issue 48,
+docs/decisions/110-planner-free-walk-bend.md; every figure above stands, the planner is
+unchanged). On synthetic walks in an empty hall
+(``benchmarks/bench_freebend.py``, no THOR data: 4-8 m, 10-30 deg off the chord at the start,
+the goal heading mirrored, the same or none, 6 seeds) the planned walks after the 800 ms
+average carry their guide's bend: lateral peak 1.06 and excess 1.01 of the guide's (median
+over 27 cases). The cited alternatives between the same two poses bend no more: the minimum-
+jerk path with free end accelerations (to first order Arechavaleta et al.'s least curvature
+variation with free end curvatures) carries 0.62 of the guide's excess, and end tangents from
+the walked length instead of the chord (Pham et al.'s speed times duration) 1.05, +0.3 to
++0.7 % at 10 deg. Here, with honest ends, the planner's guide is clear and used for 205 of the
+208 real walks' ends that admit a goal (one-off check, one planned walk each), and the planned
+pelvis stays near it: the median over walks of the 90th percentile of its distance from the
+guide is 0.045-0.069 m per pair. What the honest ends lack is thus the boundary state and the
+bends shorter than about 1.5 m, not bend between the two given poses.
+
 The THÖR walks are VALIDATION ONLY: nothing in mjwalk is fitted to them.
 
 For every real VISITOR walk (``ok`` and ``in_judge``) of a station pair with at least 10 such
