@@ -283,3 +283,18 @@ def test_a_short_walkers_descent_knee_peak_within_cited_range():
     none brings it within 100. The cited 80-100 deg come from adults of ordinary height;
     no stature-dependent range was found."""
     assert KNEE_PEAK_DOWN[0] <= _descent_knee_peak(1.55) <= KNEE_PEAK_DOWN[1]
+
+
+@pytest.mark.parametrize("stature", [1.55, DEFAULT_STATURE])
+def test_the_last_step_off_a_stair_flexes_the_knee_as_the_flight_does(stature):
+    """The trailing foot's step from the bottom tread onto the floor beside the stance foot is
+    swung as a descent (StepSurfaces.descends): its knee peak stays within 1 deg of the
+    flight's highest (measured 101.0 / 96.1 deg at 1.55 / 1.75 m against 103.0 / 98.4). Swung
+    as a step up, held behind the nosing it leaves, it peaked at 104.5 / 101.3."""
+    walk = synthetic_stair_walk(0.17, 0.28, 6, "down", stature=stature)
+    motion = legs_from_walk(walk, stature)
+    peaks = [
+        float(np.rad2deg(motion.angles[f"knee_{st.side[0]}"][st.start : st.end + 1].max()))
+        for st in walk.steps
+    ]
+    assert peaks[-1] <= max(peaks[1:-1]) + 1.0
