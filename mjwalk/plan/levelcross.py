@@ -512,15 +512,74 @@ def _lead_in(c: Crossing, s: np.ndarray, times: np.ndarray, xy0, walker: Walker)
     return np.concatenate([extra, s]), np.concatenate([np.full(n - 1, walker.step_duration), times])
 
 
-def crossing_time(c: Crossing, direction: str, walker: Walker) -> float:
-    """How long the walk over a crossing takes (from its stance to standing beyond it).
+def crossing_time(
+    c: Crossing, direction: str, walker: Walker, arrival: float | None = None
+) -> float:
+    """How long the walk over a crossing takes (from its stance to standing beyond it), with
+    the turn on the spot before it when the walker arrives facing ``arrival``
+    (:func:`entry_time`).
 
     Args:
         c: the crossing.
         direction: "up" or "down".
         walker: the walker.
+        arrival: the heading the walker arrives at (radians), or None (no turn counted).
 
     Returns:
-        Seconds (the sum of its steps' times).
+        Seconds (the sum of its steps' times, the steps on the spot included).
     """
-    return float(np.sum(_footfalls(c, direction, walker)[1]))
+    t = float(np.sum(_footfalls(c, direction, walker)[1]))
+    return t if arrival is None else t + entry_time(c, direction, walker, arrival)
+
+
+def entry_time(c: Crossing, direction: str, walker: Walker, arrival: float) -> float:
+    """How long a walker who arrives at a crossing facing ``arrival`` turns on the spot before
+    it: one level step time (:attr:`Walker.step_duration <mjwalk.gait.walker.Walker.
+    step_duration>`) per step on the spot (:func:`spot_turn`: the turn in equal parts of at
+    most :data:`ENTRY_TURN`, Patla et al. 1991; a turn in place, Thigpen et al. 2000), the last
+    part taken by the crossing's first step, as :func:`cross_walk` walks them.
+
+    Args:
+        c: the crossing.
+        direction: "up" or "down".
+        walker: the walker (its level step time).
+        arrival: the walker's heading where the crossing's walk begins, radians.
+
+    Returns:
+        Seconds (0 for a turn within :data:`ENTRY_TURN`).
+    """
+    yaw = c.yaw if direction == "up" else c.yaw + math.pi
+    return spot_turn(0.0, wrap(yaw - arrival)).size * walker.step_duration
+
+
+#: How far (m) before the point a level walk arrives at its route's last stretch is read, as a
+#: share of the walker's step length (:func:`arrival_heading`): the walk's last half step, a
+#: modelling choice (no figure of a source).
+ARRIVAL_REACH = 0.5
+
+
+def arrival_heading(view, ends: tuple, field, radius: float, step_length: float) -> float:
+    """The heading (radians) at which a level walk from one point arrives at another, as its
+    shortest route comes in: along the straight line where the body fits along it
+    (:func:`line_clear`), else from the point :data:`ARRIVAL_REACH` step lengths before the end
+    (of 32 around it) nearest the walk's start by the distance field ``field`` to that start.
+    A level leg to a stair is searched once (:func:`mjwalk.plan.levelplan.plan_level_walk`:
+    steps and ramps again, facing them), and arrives as its route comes in (the multi-level
+    station's rack1 -> mezzanine: 135-146 deg off the flight by the field, 117-152 walked).
+
+    Args:
+        view: the level's view (its ``walk_clearance``).
+        ends: (start, end) world xy, metres.
+        field: a callable returning the distance field to the start (built only when needed).
+        radius: the body radius, metres.
+        step_length: the walker's step length, metres.
+
+    Returns:
+        Radians from +x CCW.
+    """
+    a, b = (np.asarray(p, dtype=float) for p in ends)
+    if not line_clear(view, a, b, radius):
+        turns = np.linspace(0.0, 2.0 * math.pi, 32, endpoint=False)
+        around = b + ARRIVAL_REACH * step_length * np.stack([np.cos(turns), np.sin(turns)], 1)
+        a = around[int(np.argmin(field()(around)))]
+    return math.atan2(b[1] - a[1], b[0] - a[0])

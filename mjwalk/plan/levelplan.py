@@ -20,7 +20,8 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    (:func:`next_foot`: step over step through every crossing);
 3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`), where along
    its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`), the
-   walker's swinging arms a cited clearance from its sides (:func:`side_margin`); a level
+   walker's swinging arms a cited clearance from its sides (:func:`~mjwalk.plan.levelroute.
+   side_margin`); a level
    leg to a crossing ends at its approach point a step length before the stance on its
    axis (:func:`mjwalk.plan.levelcross.approach_point`), and the walk over a stair goes on a
    step length past its far stance before the next leg (:func:`~mjwalk.plan.levelcross.
@@ -47,7 +48,6 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from mjwalk.anthropometry import swing_half_width
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.heuristic import goal_distance
@@ -55,9 +55,11 @@ from mjwalk.plan.hybrid import HybridPlanner, walker_step_length
 from mjwalk.plan.levelcross import (
     ENTRY_TURN,
     approach_point,
+    arrival_heading,
     cross_walk,
     crossing_time,
     departure,
+    entry_time,
     entry_turn,
     level_time,
     line_clear,
@@ -70,7 +72,7 @@ from mjwalk.plan.levelroute import (
     crossings,
     dijkstra,
     head_fits_crossing,
-    place_on_edge,
+    place_crossings,
     step_up_limit,
 )
 from mjwalk.plan.levelstitch import level_meta, stitch
@@ -79,7 +81,7 @@ from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.levelview import level_at, level_view
-from mjwalk.world.norms import EXPOSED_MIN, HEAD_MARGIN, SIDE_CLEARANCE
+from mjwalk.world.norms import EXPOSED_MIN, HEAD_MARGIN
 from mjwalk.world.workplace import Workplace
 
 #: Route legs shorter than this are not walked (the walker stands there already), metres.
@@ -248,7 +250,10 @@ def _route(workplace, start: Endpoint, goal: Endpoint, walker: Walker, options, 
                 if math.isfinite(d):  # each level leg a walk from standing to standing
                     d = walked_distance(d, field, (uxy, leads[u][0]), (xy, leads[v][1]), reach)
                     far = float(np.hypot(*(uxy - xy))) > max(STANCE_TOLERANCE, reach[1])
-                    edges.setdefault(u, []).append((v, level_time(d, far, walker)))
+                    t = level_time(d, far, walker)
+                    if far and v >= 2:  # a stair's turn on the spot, as the leg comes in
+                        t += _entry(workplace, (usable, nodes, leads), (u, v), (walker, options))
+                    edges.setdefault(u, []).append((v, t))
     path, _ = dijkstra(len(nodes), edges, 0, 1)
     if path is None:
         raise PlanningError(
@@ -256,6 +261,25 @@ def _route(workplace, start: Endpoint, goal: Endpoint, walker: Walker, options, 
             f"this walker (step-up limit {max_riser:.2f} m, stature {walker.stature:.2f} m)"
         )
     return _legs(path, nodes, usable)
+
+
+def _entry(workplace: Workplace, route: tuple, leg: tuple, setup: tuple) -> float:
+    """The turn on the spot (s) before the stair whose stance is route node ``leg[1]``, walked
+    to from node ``leg[0]`` (:func:`~mjwalk.plan.levelcross.entry_time` at the heading of
+    :func:`~mjwalk.plan.levelcross.arrival_heading`); 0 before a step or ramp: its leg is
+    searched again facing it (:func:`_level_leg`). ``route``: (crossings, nodes, leads)."""
+    (usable, nodes, leads), (u, v), (walker, options) = route, leg, setup
+    c, (lv, uxy), xy = usable[(v - 2) // 2], nodes[u], nodes[v][1]
+    if c.kind != "stair":
+        return 0.0
+    ends = (uxy if leads[u][0] is None else leads[u][0], xy if leads[v][1] is None else leads[v][1])
+    if float(np.hypot(*(xy - uxy))) <= walker.step_length + options.goal_tolerance:
+        ends = (uxy, xy)  # walked between directly (walked_distance)
+    head = walker.stature + HEAD_MARGIN
+    field = functools.partial(_node_field, workplace, lv, uxy, head, options)
+    yaw = arrival_heading(level_view(workplace, lv, head), ends, field, options.radius,
+                          walker.step_length)  # fmt: skip
+    return entry_time(c, "up" if v % 2 == 0 else "down", walker, yaw)
 
 
 def _node_field(workplace: Workplace, level: int, xy: np.ndarray, head: float, options):
@@ -306,71 +330,6 @@ def _legs(path: list[int], nodes, usable: list[Crossing]) -> list[RouteLeg]:
         else:
             legs.append(RouteLeg("level", lu, uxy, vxy))
     return legs
-
-
-def place_crossings(
-    workplace: Workplace, legs: list[RouteLeg], options: PlannerOptions, head: float
-) -> list[RouteLeg]:
-    """The route's crossings walked nearest the walk (:func:`mjwalk.plan.levelroute.
-    place_on_edge`) where every moved stance keeps the body radius in its level's view and the
-    head has room over the moved crossing. The walker's middle keeps :func:`side_margin` from
-    a crossing's sides: its swinging arms clear a stair's walls.
-
-    Args:
-        workplace: the scene.
-        legs: the route (:func:`level_route`).
-        options: the planner's options (the body radius).
-        head: the walker's head height above a level (stature plus
-            :data:`mjwalk.world.norms.HEAD_MARGIN`), metres.
-
-    Returns:
-        The legs with the crossings moved, or ``legs`` (the crossings' middles) when a moved
-        one does not fit.
-    """
-    cache = workplace.__dict__.setdefault("_placed_routes", {})  # walks repeat their routes
-    key = (
-        tuple(
-            (leg.kind, leg.level, *np.round(leg.start, 6), *np.round(leg.end, 6), id(leg.crossing))
-            for leg in legs
-        ),
-        options.radius,
-        round(head, 3),
-    )
-    if key not in cache:
-        cache[key] = _placed(workplace, legs, options, head)
-    return cache[key]
-
-
-def _placed(workplace: Workplace, legs: list[RouteLeg], options, head: float) -> list[RouteLeg]:
-    """:func:`place_crossings` without its cache."""
-    placed = place_on_edge(legs, side_margin(head - HEAD_MARGIN, options.radius))
-    for leg in placed:
-        c = leg.crossing
-        if c is None:
-            continue
-        for lv in (c.lower, c.upper):
-            view = level_view(workplace, lv, head)
-            if float(view.walk_clearance(c.end(lv))) < options.radius:
-                return legs
-        if not head_fits_crossing(workplace.levels, c, head - HEAD_MARGIN):
-            return legs
-    return placed
-
-
-def side_margin(stature: float, radius: float) -> float:
-    """How far a walker's middle stays from the sides of a stair, ramp or step it walks on:
-    half its width with the arms swinging (:func:`mjwalk.anthropometry.swing_half_width`) and
-    the room people leave to a stair's wall or the side of its treads
-    (:data:`mjwalk.world.norms.SIDE_CLEARANCE`), at least the body radius.
-
-    Args:
-        stature: the walker's stature, metres.
-        radius: the planner's body radius, metres.
-
-    Returns:
-        The margin, metres (0.50 m at 1.75 m: a 1.0 m flight is walked in its middle).
-    """
-    return max(float(radius), swing_half_width(stature) + SIDE_CLEARANCE)
 
 
 def _walker(model) -> Walker:

@@ -15,7 +15,8 @@ obstacle-aware distance (the occupancy grid's distance field of the level's view
 every riser at most the walker's step-up limit (:func:`step_up_limit`; a walker below a riser
 takes the ramp), with the head's room over every footfall. Costs are seconds: level distance at
 the walker's speed, crossings at their stair or ramp gait (:mod:`mjwalk.plan.levelcross`).
-Metres, radians, world frame.
+:func:`place_crossings` then walks each crossing of a route where along its width it is nearest
+the walk, :func:`side_margin` from its sides. Metres, radians, world frame.
 """
 
 from __future__ import annotations
@@ -27,10 +28,14 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from mjwalk.anthropometry import swing_half_width
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
+from mjwalk.plan.options import PlannerOptions
 from mjwalk.world.levels import LevelGraph, LevelLink
-from mjwalk.world.norms import HEAD_MARGIN, MAX_RISER
+from mjwalk.world.levelview import level_view
+from mjwalk.world.norms import HEAD_MARGIN, MAX_RISER, SIDE_CLEARANCE
+from mjwalk.world.workplace import Workplace
 
 #: The tread ASR A1.8 §4.5 names particularly safe, 0.29 m (with a 0.17 m riser): a foot landing
 #: on a level from a single step lands half of it beyond the riser, as it would on a tread.
@@ -422,3 +427,68 @@ def place_on_edge(legs: Sequence[RouteLeg], margin: float, step: float = 0.05) -
         if k + 1 < len(out):
             out[k + 1] = replace(out[k + 1], start=b)
     return out
+
+
+def place_crossings(
+    workplace: Workplace, legs: list[RouteLeg], options: PlannerOptions, head: float
+) -> list[RouteLeg]:
+    """The route's crossings walked nearest the walk (:func:`mjwalk.plan.levelroute.
+    place_on_edge`) where every moved stance keeps the body radius in its level's view and the
+    head has room over the moved crossing. The walker's middle keeps :func:`side_margin` from
+    a crossing's sides: its swinging arms clear a stair's walls.
+
+    Args:
+        workplace: the scene.
+        legs: the route (:func:`level_route`).
+        options: the planner's options (the body radius).
+        head: the walker's head height above a level (stature plus
+            :data:`mjwalk.world.norms.HEAD_MARGIN`), metres.
+
+    Returns:
+        The legs with the crossings moved, or ``legs`` (the crossings' middles) when a moved
+        one does not fit.
+    """
+    cache = workplace.__dict__.setdefault("_placed_routes", {})  # walks repeat their routes
+    key = (
+        tuple(
+            (leg.kind, leg.level, *np.round(leg.start, 6), *np.round(leg.end, 6), id(leg.crossing))
+            for leg in legs
+        ),
+        options.radius,
+        round(head, 3),
+    )
+    if key not in cache:
+        cache[key] = _placed(workplace, legs, options, head)
+    return cache[key]
+
+
+def _placed(workplace: Workplace, legs: list[RouteLeg], options, head: float) -> list[RouteLeg]:
+    """:func:`place_crossings` without its cache."""
+    placed = place_on_edge(legs, side_margin(head - HEAD_MARGIN, options.radius))
+    for leg in placed:
+        c = leg.crossing
+        if c is None:
+            continue
+        for lv in (c.lower, c.upper):
+            view = level_view(workplace, lv, head)
+            if float(view.walk_clearance(c.end(lv))) < options.radius:
+                return legs
+        if not head_fits_crossing(workplace.levels, c, head - HEAD_MARGIN):
+            return legs
+    return placed
+
+
+def side_margin(stature: float, radius: float) -> float:
+    """How far a walker's middle stays from the sides of a stair, ramp or step it walks on:
+    half its width with the arms swinging (:func:`mjwalk.anthropometry.swing_half_width`) and
+    the room people leave to a stair's wall or the side of its treads
+    (:data:`mjwalk.world.norms.SIDE_CLEARANCE`), at least the body radius.
+
+    Args:
+        stature: the walker's stature, metres.
+        radius: the planner's body radius, metres.
+
+    Returns:
+        The margin, metres (0.50 m at 1.75 m: a 1.0 m flight is walked in its middle).
+    """
+    return max(float(radius), swing_half_width(stature) + SIDE_CLEARANCE)

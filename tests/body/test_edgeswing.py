@@ -32,6 +32,15 @@ def test_rise_held_keeps_the_toe_tip_from_sinking_before_the_peak():
     assert np.array_equal(rise_held(rising, np.full(6, -0.1)), rising)
 
 
+def test_a_step_descends_when_its_stance_and_landing_are_below_its_lift():
+    """On the flight, and the last step off it (one riser down beside the stance foot); not the
+    first step off the landing (the stance foot still up there) nor a step up."""
+    assert StepSurfaces(0.85, 0.68, 0.51).descends
+    assert StepSurfaces(0.17, 0.0, 0.0).descends
+    assert not StepSurfaces(1.02, 1.02, 0.85).descends
+    assert not StepSurfaces(0.0, 0.17, 0.34).descends
+
+
 def test_edged_and_pelvis_level():
     up = StepSurfaces(0.0, 0.17, 0.34)
     assert up.edged and up.pelvis_level() == (0.0, 0.17)

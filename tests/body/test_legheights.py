@@ -247,3 +247,54 @@ def test_tall_walkers_ascent_hip_peak_within_cited_range(stature):
     stature-dependent range was found."""
     _, hip = _tall_stair_peaks(stature, "up")
     assert HIP_PEAK_UP[0] <= hip <= HIP_PEAK_UP[1]
+
+
+def _descent_knee_peak(stature: float, riser: float = 0.17, tread: float = 0.28) -> float:
+    """The knee flexion peak (deg) of a walker of ``stature`` down a six-riser stair, its feet
+    placed as the level planner places them (the first and last steps left out)."""
+    walk = synthetic_stair_walk(riser, tread, 6, "down", stature=stature)
+    return _peaks(walk, legs_from_walk(walk, stature), "knee_{}")
+
+
+def test_a_short_walkers_descent_knee_peak_is_the_risers_share_of_its_leg():
+    """Down a stair scaled to its stature (riser and tread times 1.55 / 1.75) a 1.55 m walker
+    flexes its knee as the 1.75 m walker does down the 0.17/0.28 stair (measured 99.0 and 98.4
+    deg), within the cited descent range: its 103.0 deg down the 0.17 m stair (the strict xfail
+    below) is the same riser's larger share of a shorter leg, as a higher step takes more knee
+    flexion (lead knee 90.5 deg up a 20.3 cm step, 119.9 up a 40.6 cm one: "Hip and knee
+    flexion of lead and trail limbs during ascent of a step of different heights by normal
+    adults", abstract verified here). The riser, not the tread or the foot's place on it: on
+    a 0.32 m tread the 1.55 m walker's peak stays 103.4 deg, on a 0.15 m riser it is 98.7."""
+    scale = 1.55 / DEFAULT_STATURE
+    short = _descent_knee_peak(1.55, 0.17 * scale, 0.28 * scale)
+    assert KNEE_PEAK_DOWN[0] <= short <= KNEE_PEAK_DOWN[1]
+    assert short == pytest.approx(_descent_knee_peak(DEFAULT_STATURE), abs=1.5)
+
+
+@pytest.mark.xfail(strict=True, reason="knee peak down 103.0 deg at 1.55 m > cited 100 (issue 47)")
+def test_a_short_walkers_descent_knee_peak_within_cited_range():
+    """Down the 0.17/0.28 stair a 1.55 m walker's knee peaks at 103.0 deg (steps 1-5 of the
+    synthetic walk: 103.0, 100.1, 100.2, 100.2, 99.9; the first swings off the landing with the
+    pelvis a quarter tread on, 7 cm nearer above the lifting foot than in the flight; the
+    planner's own walk down the station's stair: 102.5 deg every stair step). Measured with
+    each suspect taken out (stair47c): the descent sole's 5 mm (DESCENT_LOW_CLEARANCE) lift
+    -0.4 deg, the pelvis lowered to reach (stance.lower_to_reach) -0.8, the soles' lift
+    altogether -0.4, the descent swing planned 5 mm instead of 3 cm over the nosings -1.7:
+    none brings it within 100. The cited 80-100 deg come from adults of ordinary height;
+    no stature-dependent range was found."""
+    assert KNEE_PEAK_DOWN[0] <= _descent_knee_peak(1.55) <= KNEE_PEAK_DOWN[1]
+
+
+@pytest.mark.parametrize("stature", [1.55, DEFAULT_STATURE])
+def test_the_last_step_off_a_stair_flexes_the_knee_as_the_flight_does(stature):
+    """The trailing foot's step from the bottom tread onto the floor beside the stance foot is
+    swung as a descent (StepSurfaces.descends): its knee peak stays within 1 deg of the
+    flight's highest (measured 101.0 / 96.1 deg at 1.55 / 1.75 m against 103.0 / 98.4). Swung
+    as a step up, held behind the nosing it leaves, it peaked at 104.5 / 101.3."""
+    walk = synthetic_stair_walk(0.17, 0.28, 6, "down", stature=stature)
+    motion = legs_from_walk(walk, stature)
+    peaks = [
+        float(np.rad2deg(motion.angles[f"knee_{st.side[0]}"][st.start : st.end + 1].max()))
+        for st in walk.steps
+    ]
+    assert peaks[-1] <= max(peaks[1:-1]) + 1.0

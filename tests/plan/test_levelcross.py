@@ -15,9 +15,11 @@ from mjwalk.plan.levelcross import (
     ENTRY_TURN,
     RISER_GAP,
     approach_point,
+    arrival_heading,
     cross_walk,
     crossing_time,
     departure,
+    entry_time,
     entry_turn,
     level_time,
     line_clear,
@@ -265,3 +267,38 @@ def test_a_walker_facing_away_turns_on_the_spot_before_the_flight(by_kind):
     assert turns[0] > math.radians(45.0) and turns[1] > math.radians(45.0)
     assert np.hypot(*(walk.xy[walk.steps[0].end] - xy0)) < 0.07
     assert abs(math.remainder(walk.yaw[-1] - c.yaw, math.tau)) < 1e-9
+
+
+@pytest.mark.parametrize("off", [0.0, 50.0, 100.0, 140.0, -170.0])
+def test_crossing_time_counts_the_turn_on_the_spot_as_the_walk_takes_it(by_kind, off):
+    """A walker standing at the stair's stance facing ``off`` degrees from its axis: the
+    crossing's estimate with that arrival heading is the walk's duration (its steps on the
+    spot included, one level step each), and the turn adds ceil(|off| / 60) - 1 level steps."""
+    c, walker = by_kind["stair"], Walker()
+    yaw0 = c.yaw + math.radians(off)
+    walk = cross_walk(c, "up", walker, (c.end(c.lower), yaw0), None, 0.0)
+    assert crossing_time(c, "up", walker, yaw0) == pytest.approx(walk.duration, abs=0.05)
+    steps = max(0, math.ceil(abs(off) / math.degrees(ENTRY_TURN) - 1e-9) - 1)
+    assert entry_time(c, "up", walker, yaw0) == pytest.approx(steps * walker.step_duration)
+    assert crossing_time(c, "up", walker) == pytest.approx(
+        crossing_time(c, "up", walker, yaw0) - steps * walker.step_duration
+    )
+
+
+def test_arrival_heading_is_the_straight_line_or_the_routes_last_stretch(scenes_dir):
+    """On open floor a walk arrives along the straight line (the field is not built); round the
+    corridor's first corner, from its west leg to 1 m up its north-going leg, it arrives as the
+    route comes in: heading north (within 15 deg), not along the blocked straight line (50 deg)."""
+    from mjwalk.plan.heuristic import goal_distance
+    from mjwalk.plan.occupancy import MOVES_16, shared_grid
+
+    wp = load_workplace(scenes_dir / "open_floor.xml")
+    a, b = np.array([-1.0, -1.0]), np.array([1.0, 1.0])
+    unused = lambda: pytest.fail("field built for a clear line")  # noqa: E731
+    assert arrival_heading(wp, (a, b), unused, 0.25, 0.7) == pytest.approx(math.pi / 4)
+    corridor = load_workplace(scenes_dir / "corridor.xml")
+    a, b = np.array([-3.0, -2.5]), np.array([0.0, 1.0])
+    assert not line_clear(corridor, a, b, 0.25)
+    field = goal_distance(shared_grid(corridor, 0.05, 0.25, MOVES_16), a, 0.1)
+    yaw = arrival_heading(corridor, (a, b), lambda: field, 0.25, 0.7)
+    assert abs(yaw - math.pi / 2) < math.radians(15.0)

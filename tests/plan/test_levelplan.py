@@ -22,8 +22,8 @@ from mjwalk.plan.levelplan import (
     next_foot,
     place_crossings,
     plan_level_walk,
-    side_margin,
 )
+from mjwalk.plan.levelroute import side_margin
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.walks import plan_walk, plan_walks
 from mjwalk.world import load_workplace

@@ -521,9 +521,9 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
 
 
 def _descends(sf: StepSurfaces) -> bool:
-    """Whether an edged step is a step down a stair (its stance and landing surfaces each lower
-    than the one before), whose swing :func:`edge_swing` plans once (not again at each pitch)."""
-    return sf.stance < sf.lift - LEVEL_STEP and sf.land < sf.stance - LEVEL_STEP
+    """Whether an edged step is a step down a stair (:attr:`StepSurfaces.descends`), whose
+    swing :func:`edge_swing` plans once (not again at each pitch)."""
+    return sf.descends
 
 
 def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, root: np.ndarray,
