@@ -8,13 +8,9 @@ import pytest
 
 from mjwalk.body.humanoid import humanoid_model, leg_geometry
 from mjwalk.body.legs.ik import (
-    LegIKCache,
     foot_lowest,
-    ik_lengths,
     leg_fk,
     leg_ik,
-    leg_ik_world,
-    leg_ik_world_cached_where,
     rot_x,
     rot_y,
     rot_z,
@@ -105,32 +101,3 @@ def test_leg_fk_matches_mujoco():
                 Rg = data.geom_xmat[gid].reshape(3, 3)
                 z.append(data.geom_xpos[gid][2] - np.abs(Rg[2] * model.geom_size[gid]).sum())
             assert min(z) - hip[2] == pytest.approx(low[i], abs=1e-9)
-
-
-def test_cached_where_solves_only_the_chosen_changed_rows():
-    """leg_ik_world_cached_where solves the chosen rows whose inputs changed (leg_ik_world's
-    angles, bit for bit) and leaves every other row's cached inputs and angles as they were;
-    a cache's flexion-only buffers are new (all rows unsolved) for another sample count."""
-    g = leg_geometry(1.75)
-    rng = np.random.default_rng(3)
-    n = 50
-    ankle = np.column_stack([rng.uniform(-0.3, 0.3, n), rng.uniform(0, 0.2, n), np.full(n, 0.1)])
-    root = np.column_stack([np.zeros(n), np.zeros(n), np.full(n, 0.9)])
-    fyaw, pitch, yaw = rng.uniform(-0.2, 0.2, (3, n))
-    cache = LegIKCache("l", g)
-    inputs, out = cache.buffers(n)
-    out[:] = 7.0
-    rows = rng.uniform(size=n) < 0.5
-    args = (ankle, fyaw, pitch, root, yaw, 1.0, g.hip_y, *ik_lengths(g), inputs, out)
-    leg_ik_world_cached_where(rows, *args)
-    want = leg_ik_world(ankle, fyaw, pitch, root, yaw, "l", g)
-    for k, name in enumerate(("hip_l_rot", "hip_l_flex", "hip_l_abd", "knee_l", "ankle_l_flex")):
-        assert np.array_equal(out[rows, k], want[name][rows])
-    assert np.all(out[~rows] == 7.0) and np.all(np.isnan(inputs[~rows]))
-    assert np.array_equal(inputs[rows, :3], ankle[rows])
-    out[rows] = 8.0  # unchanged inputs: not solved again
-    leg_ik_world_cached_where(rows, *args)
-    assert np.all(out[rows] == 8.0)
-    f_in, flex = cache.flex_buffers(n)
-    assert flex.shape == (n,) and np.all(np.isnan(f_in)) and cache.flex_buffers(n)[1] is flex
-    assert cache.flex_buffers(n + 1)[1].shape == (n + 1,)

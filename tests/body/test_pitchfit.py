@@ -9,7 +9,7 @@ import pytest
 
 from mjwalk.body.humanoid import ROM_DEG, leg_geometry, pelvis_height
 from mjwalk.body.legs.footpivot import pivot_ankle
-from mjwalk.body.legs.ik import LegIKCache
+from mjwalk.body.legs.ikcache import LegIKCache
 from mjwalk.body.legs.pitchfit import AnkleFit, fit_ankle_range, repitch_foot
 from mjwalk.body.legs.steps import FootTracks
 

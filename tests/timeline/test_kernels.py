@@ -29,7 +29,6 @@ from mjwalk.body.legs.curves import clamped_cubic, spread
 from mjwalk.body.legs.footpivot import ball_offset, heel_rise, pivot_ankle
 from mjwalk.body.legs.ik import (
     KNEE_MIN,
-    LegIKCache,
     generic_joint,
     hip_world,
     leg_ik,
@@ -38,6 +37,7 @@ from mjwalk.body.legs.ik import (
     rot_y,
     rot_z,
 )
+from mjwalk.body.legs.ikcache import LegIKCache
 from mjwalk.body.legs.steps import FootTracks
 from mjwalk.conventions import side_prefix
 from mjwalk.plan.synthetic import synthetic_walk
@@ -858,7 +858,7 @@ def test_spin_hip_rotation_excess_matches_numpy(s_):
     rot, up, down = np.full(n, 7.0), np.full(n, 7.0), np.full(n, 7.0)
     sgn = 1.0 if s_ == "l" else -1.0
     args = (ankle, fyaw, pitch, root, yaw, sgn, geom.hip_y, *ik_lengths(geom))
-    bufs = (np.full((n, 9), np.nan), np.empty((n, 6)))
+    bufs = (np.full((n, 9), np.nan), np.empty((n, 6)), np.full((n, 2), np.nan), np.empty((n, 7)))
     _hip_rotation_excess(ground, *args, top, bottom, w, rot, up, down, *bufs)
     on = np.flatnonzero(ground)
     want = leg_ik_world(ankle[on], fyaw[on], pitch[on], root[on], yaw[on], s_, geom)

@@ -104,7 +104,7 @@ def spread_rows(need, win, kernel):
     # and a sum over such maxima is +0.0: those samples are skipped, their zeros kept)
     live = np.zeros(n + 2 * pad + 1, dtype=np.int64)
     for i in range(-pad, n + pad):
-        v = need[_reflect(i, n)]
+        v = need[i if 0 <= i < n else _reflect(i, n)]  # (inside: the index itself)
         ext[i + pad] = v
         live[i + pad + 1] = live[i + pad] + (v != 0.0 or math.copysign(1.0, v) < 0.0)
     peak = np.zeros(n + 2 * r)

@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-from mjwalk._jit import njit
+from mjwalk._jit import njit, njit_inline
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.conventions import Side, side_of_prefix, side_prefix
@@ -115,7 +115,7 @@ def leg_ik(
     fp = np.ascontiguousarray(np.broadcast_to(np.asarray(foot_pitch, float), (n,)))
     out = np.empty((n, 6))
     _leg_ik_rows(rel, fy, fp, s, *ik_lengths(geom), out)
-    return _named(out, side, clip)
+    return named_angles(out, side, clip)
 
 
 @functools.lru_cache(maxsize=16)
@@ -134,8 +134,18 @@ def ik_lengths(geom: LegGeometry) -> tuple[float, float, float, float]:
     return float(geom.thigh), float(geom.shank), rmin, rmax
 
 
-def _named(out: np.ndarray, side: Side, clip: bool) -> dict[str, np.ndarray]:
-    """The IK's (n, 6) angle rows as {joint name: (n,) radians}, clipped to the ranges."""
+def named_angles(out: np.ndarray, side: Side, clip: bool) -> dict[str, np.ndarray]:
+    """The IK's angle rows by joint name.
+
+    Args:
+        out: (n, 6) angles, radians (hip rotation, flexion, abduction, knee, ankle flexion,
+            inversion).
+        side: "left" or "right".
+        clip: clip them to the humanoid's ranges (``ROM_DEG``).
+
+    Returns:
+        joint name -> (n,) angle, radians (views of ``out`` unless clipped).
+    """
     p = side_prefix(side)
     names = [f"hip_{p}_rot", f"hip_{p}_flex", f"hip_{p}_abd", f"knee_{p}"]
     names += [f"ankle_{p}_flex", f"ankle_{p}_inv"]
@@ -171,7 +181,32 @@ def _leg_ik_one(u0, u1, u2, yaw_f, pitch_f, s, L1, L2, rmin, rmax, out):
     """One sample of :func:`leg_ik`: ``(u0, u1, u2)`` the hip-to-ankle vector (pelvis frame),
     the foot's relative yaw and pitch; writes the six angles to ``out`` (6,). The matrices
     are :func:`rot_z`, :func:`rot_y`, :func:`rot_x` as row-major 9-tuples."""
-    cz, sz = math.cos(yaw_f), math.sin(yaw_f)
+    leg_ik_cs(u0, u1, u2, math.cos(yaw_f), math.sin(yaw_f), pitch_f, s, L1, L2, rmin, rmax, out)
+
+
+@njit_inline
+def leg_ik_cs(u0, u1, u2, cz, sz, pitch_f, s, L1, L2, rmin, rmax, out):
+    """:func:`_leg_ik_one` given the cosine ``cz`` and sine ``sz`` of the foot's relative yaw
+    (the rest of its arithmetic, in its order).
+
+    Args:
+        u0: the hip-to-ankle vector's x in the pelvis frame, metres.
+        u1: its y, metres.
+        u2: its z, metres.
+        cz: the cosine of the foot's yaw relative to the pelvis.
+        sz: its sine.
+        pitch_f: the foot's pitch to the floor, radians, + toes up.
+        s: +1 for the left leg, -1 for the right.
+        L1: thigh length, metres.
+        L2: shank length, metres.
+        rmin: the shortest hip-to-ankle distance, metres (:func:`ik_lengths`).
+        rmax: the longest hip-to-ankle distance, metres.
+        out: (6,) written: hip rotation, flexion, abduction, knee, ankle flexion, inversion,
+            radians, unclipped.
+
+    Returns:
+        None (``out`` is written).
+    """
     cy, sy = math.cos(-pitch_f), math.sin(-pitch_f)
     rf = _mat3(
         (cz, -sz, 0.0, sz, cz, 0.0, 0.0, 0.0, 1.0), (cy, 0.0, sy, 0.0, 1.0, 0.0, -sy, 0.0, cy)
@@ -269,15 +304,37 @@ def hip_frame_row(ankle, foot_yaw, root, yaw, i, sgn, hip_y):
         forward, y left, z up), and the foot's yaw less the pelvis's, radians in [-pi, pi].
     """
     cy, sy = math.cos(yaw[i]), math.sin(yaw[i])
-    d0 = ankle[i, 0] - (root[i, 0] + sgn * hip_y * -sy)
-    d1 = ankle[i, 1] - (root[i, 1] + sgn * hip_y * cy)
-    d2 = ankle[i, 2] - (root[i, 2] + sgn * hip_y * 0.0)
     c, sn = math.cos(-yaw[i]), math.sin(-yaw[i])
+    u0, u1, u2 = hip_rel(ankle, root, i, sgn * hip_y, cy, sy, c, sn)
+    dy = foot_yaw[i] - yaw[i]
+    return u0, u1, u2, math.atan2(math.sin(dy), math.cos(dy))
+
+
+@njit_inline
+def hip_rel(ankle, root, i, off, cy, sy, c, sn):
+    """Row ``i``'s ankle target relative to its hip, turned into the pelvis frame by
+    :math:`R_z(-yaw)` (:func:`hip_frame_row`'s arithmetic, in its order).
+
+    Args:
+        ankle: (n, 3) ankle targets, metres, world frame.
+        root: (n, 3) pelvis (root) positions, metres.
+        i: the row.
+        off: the hip joint centre's signed lateral offset, metres (+hip_y left, -hip_y right).
+        cy: the cosine of the pelvis yaw.
+        sy: its sine.
+        c: the cosine of the negative pelvis yaw.
+        sn: its sine.
+
+    Returns:
+        ``(u0, u1, u2)``: ankle - hip in the pelvis frame (x forward, y left, z up), metres.
+    """
+    d0 = ankle[i, 0] - (root[i, 0] + off * -sy)
+    d1 = ankle[i, 1] - (root[i, 1] + off * cy)
+    d2 = ankle[i, 2] - (root[i, 2] + off * 0.0)
     u0 = c * d0 + -sn * d1 + 0.0 * d2  # R_z(-yaw) (ankle - hip)
     u1 = sn * d0 + c * d1 + 0.0 * d2
     u2 = 0.0 * d0 + 0.0 * d1 + 1.0 * d2
-    dy = foot_yaw[i] - yaw[i]
-    return u0, u1, u2, math.atan2(math.sin(dy), math.cos(dy))
+    return u0, u1, u2
 
 
 def leg_fk(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry):
@@ -455,146 +512,4 @@ def leg_ik_world(ankle, foot_yaw, pitch, root, yaw, side: str, geom: LegGeometry
         *ik_lengths(geom),
         out,
     )
-    return _named(out, side_of_prefix(side), clip=False)
-
-
-class LegIKCache:
-    """:func:`leg_ik_world` for one leg over the same samples again and again (the synthesis's
-    correction loops): a sample whose inputs (ankle target, foot yaw and pitch, pelvis
-    position and yaw) are bit for bit those of the previous call keeps its angles, the others
-    are solved again; the results are those of :func:`leg_ik_world`."""
-
-    def __init__(self, side: str, geom: LegGeometry):
-        """An empty cache (the first call solves every sample).
-
-        Args:
-            side: "l" or "r".
-            geom: the leg lengths.
-        """
-        self.side, self.geom = side, geom
-        self.inputs: np.ndarray | None = None  # (n, 9) of the previous call
-        self.out: np.ndarray | None = None  # (n, 6) its angles
-        self.flex: tuple[np.ndarray, np.ndarray] | None = None  # see flex_buffers
-
-    def buffers(self, n: int) -> tuple[np.ndarray, np.ndarray]:
-        """The previous call's inputs and angles, for compiled callers of
-        ``leg_ik_world_cached`` (new ones, every row to be solved, for another ``n``).
-
-        Args:
-            n: the number of samples.
-
-        Returns:
-            inputs (n, 9) (ankle, foot yaw, pitch, root, yaw per row) and angles (n, 6), radians.
-        """
-        if self.inputs is None or self.out is None or len(self.inputs) != n:
-            self.inputs = np.full((n, 9), np.nan)  # nan: never equal, every row is solved
-            self.out = np.empty((n, 6))
-        return self.inputs, self.out
-
-    def flex_buffers(self, n: int) -> tuple[np.ndarray, np.ndarray]:
-        """A second cache beside :meth:`buffers` for compiled callers that need only the ankle
-        flexion (:func:`~mjwalk.body.legs.pitchfit.fit_ankle_range`'s rounds), over the same
-        samples (new ones, every row to be solved, for another ``n``).
-
-        Args:
-            n: the number of samples.
-
-        Returns:
-            inputs (n, 9) (as :meth:`buffers`') and the ankle flexions (n,) they give, radians.
-        """
-        if self.flex is None or len(self.flex[1]) != n:
-            self.flex = (np.full((n, 9), np.nan), np.empty(n))
-        return self.flex
-
-    def __call__(self, ankle, foot_yaw, pitch, root, yaw) -> dict:
-        ankle = np.ascontiguousarray(ankle, dtype=float)
-        self.buffers(len(ankle))
-        assert self.out is not None
-        sgn = 1.0 if self.side == "l" else -1.0
-        leg_ik_world_cached(
-            ankle,
-            np.ascontiguousarray(foot_yaw, dtype=float),
-            np.ascontiguousarray(pitch, dtype=float),
-            np.ascontiguousarray(root, dtype=float),
-            np.ascontiguousarray(yaw, dtype=float),
-            sgn,
-            float(self.geom.hip_y),
-            *ik_lengths(self.geom),
-            self.inputs,
-            self.out,
-        )
-        return _named(self.out.copy(), side_of_prefix(self.side), clip=False)
-
-
-@njit
-def leg_ik_world_cached(
-    ankle, foot_yaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs, out
-):
-    """:func:`_leg_ik_world_rows` for the rows whose inputs differ from ``inputs``, which
-    are updated; the other rows of ``out`` are kept.
-
-    Args:
-        ankle: (n, 3) ankle targets, metres, world frame.
-        foot_yaw: (n,) foot headings, radians from +x CCW.
-        pitch: (n,) foot pitches to the floor, radians, + toes up.
-        root: (n, 3) pelvis (root) positions, metres.
-        yaw: (n,) pelvis yaws, radians from +x CCW.
-        sgn: +1 for the left leg, -1 for the right.
-        hip_y: the hip joint centre's lateral offset from the pelvis centre, metres.
-        L1: thigh length, metres.
-        L2: shank length, metres.
-        rmin: the shortest hip-to-ankle distance, metres (:func:`ik_lengths`).
-        rmax: the longest hip-to-ankle distance, metres.
-        inputs: (n, 9) the inputs of the previous call per row, updated.
-        out: (n, 6) unclipped angles, radians, updated where the inputs changed.
-    """
-    for i in range(ankle.shape[0]):
-        _update_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, inputs,
-                    out)  # fmt: skip
-
-
-@njit
-def leg_ik_world_cached_where(
-    rows, ankle, foot_yaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs, out
-):
-    """:func:`leg_ik_world_cached` on the rows where ``rows`` is True only: the other rows
-    keep their ``inputs`` and ``out`` as a pair (a later call solves them if they changed).
-
-    Args:
-        rows: (n,) bool, the rows to bring up to date.
-        ankle: (n, 3) ankle targets, metres, world frame.
-        foot_yaw: (n,) foot headings, radians from +x CCW.
-        pitch: (n,) foot pitches to the floor, radians, + toes up.
-        root: (n, 3) pelvis (root) positions, metres.
-        yaw: (n,) pelvis yaws, radians from +x CCW.
-        sgn: +1 for the left leg, -1 for the right.
-        hip_y: the hip joint centre's lateral offset from the pelvis centre, metres.
-        L1: thigh length, metres.
-        L2: shank length, metres.
-        rmin: the shortest hip-to-ankle distance, metres (:func:`ik_lengths`).
-        rmax: the longest hip-to-ankle distance, metres.
-        inputs: (n, 9) the inputs of the previous call per row, updated on ``rows``.
-        out: (n, 6) unclipped angles, radians, updated where a row of ``rows`` changed.
-    """
-    for i in range(ankle.shape[0]):
-        if rows[i]:
-            _update_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax,
-                        inputs, out)  # fmt: skip
-
-
-@njit
-def _update_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, inputs, out):
-    """Row ``i`` of :func:`leg_ik_world_cached`: solved by :func:`leg_ik_world_row` and its
-    inputs kept when they differ from ``inputs[i]``, else left as it is."""
-    row = (ankle[i, 0], ankle[i, 1], ankle[i, 2], foot_yaw[i], pitch[i], root[i, 0],
-           root[i, 1], root[i, 2], yaw[i])  # fmt: skip
-    same = True
-    for k in range(9):
-        if row[k] != inputs[i, k]:
-            same = False
-            break
-    if same:
-        return
-    for k in range(9):
-        inputs[i, k] = row[k]
-    leg_ik_world_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
+    return named_angles(out, side_of_prefix(side), clip=False)

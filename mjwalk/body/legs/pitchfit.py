@@ -25,7 +25,8 @@ from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import gauss_kernel, spread_rows
 from mjwalk.body.legs.footpivot import ball_offset
-from mjwalk.body.legs.ik import LegIKCache, hip_frame_row, ik_lengths
+from mjwalk.body.legs.ik import hip_rel, ik_lengths
+from mjwalk.body.legs.ikcache import LegIKCache, yaw_trig_row
 from mjwalk.body.legs.steps import FootTracks
 
 
@@ -172,6 +173,7 @@ def fit_ankle_range(
         return None
     inputs, out = ik.buffers(n)
     f_inputs, flex = ik.flex_buffers(n)
+    key, vals = ik.trig_buffers(n)
     ankle = np.array(feet.ankle[s_], dtype=float, order="C")
     pitch = np.array(feet.pitch[s_], dtype=float)
     geom = ik.geom
@@ -187,7 +189,7 @@ def fit_ankle_range(
         1.0 if s_ == "l" else -1.0,
         float(geom.hip_y),
         *ik_lengths(geom),
-        (inputs, out, f_inputs, flex),
+        (inputs, out, f_inputs, flex, key, vals),
         float(fit.dorsi_max),
         float(fit.plantar_min),
         int(win),
@@ -227,9 +229,10 @@ def _fit_rounds(
     rounds,
 ):
     """The rounds of :func:`fit_ankle_range` in place (``ankle``, ``pitch``, ``toe``, the IK
-    cache's ``caches``: its inputs and angles, its flexion-only inputs and flexions)."""
+    cache's ``caches``: its inputs and angles, its flexion-only inputs and flexions, its
+    yaws' sines and cosines)."""
     n = ankle.shape[0]
-    inputs, out, f_inputs, flex_c = caches
+    inputs, out, f_inputs, flex_c, key, vals = caches
     need_down = np.empty(n)
     need_up = np.empty(n)
     # sines and cosines: of the foot headings, the footprints' headings (constant here) and
@@ -240,7 +243,7 @@ def _fit_rounds(
     for _ in range(rounds):
         # (the grounded rows' ankle flexions only: the rounds read no other angle)
         _grounded_flex(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax,
-                       inputs, out, f_inputs, flex_c)  # fmt: skip
+                       inputs, out, f_inputs, flex_c, key, vals)  # fmt: skip
         e_max = -np.inf
         s_max = -np.inf
         for i in range(n):
@@ -269,11 +272,13 @@ def _fit_rounds(
 
 @njit
 def _grounded_flex(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs,
-                   out, f_inputs, flex):  # fmt: skip
+                   out, f_inputs, flex, key, vals):  # fmt: skip
     """The ankle flexion ``flex`` (n,) of every grounded row (``ground``): from the IK cache
     (``inputs`` (n, 9), angles ``out`` (n, 6)) where a row's inputs are its, else from the
     flexion cache (``f_inputs`` (n, 9)) where they are that's, else solved
-    (:func:`_ankle_flex_row`); ``f_inputs`` and ``flex`` are updated, the IK cache is not."""
+    (:func:`_ankle_flex_row`, with the yaws' sines and cosines ``key``, ``vals`` of
+    :func:`~mjwalk.body.legs.ik.yaw_trig_row`); ``f_inputs`` and ``flex`` are updated, the IK
+    cache's inputs and angles are not."""
     for i in range(ankle.shape[0]):
         if not ground[i]:
             continue
@@ -293,17 +298,19 @@ def _grounded_flex(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rm
             flex[i] = out[i, 4]
         else:
             flex[i] = _ankle_flex_row(ankle, fyaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin,
-                                      rmax)  # fmt: skip
+                                      rmax, key, vals)  # fmt: skip
 
 
 @njit
-def _ankle_flex_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax):
+def _ankle_flex_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, key,
+                    vals):  # fmt: skip
     """Row ``i``'s ankle flexion (radians) of ``ik.leg_ik_world_row``: its arithmetic, in its
     order, up to that angle (the rotation products of ``ik._mat3`` written out, zero terms
-    kept, so the bits are the same)."""
-    u0, u1, u2, yaw_f = hip_frame_row(ankle, foot_yaw, root, yaw, i, sgn, hip_y)
+    kept, so the bits are the same), the yaws' sines and cosines kept per row
+    (``ik.yaw_trig_row``'s ``key`` (n, 2) and ``vals`` (n, 7))."""
+    cy, sy, c, sn, _, cz, sz = yaw_trig_row(foot_yaw, yaw, i, key, vals)
+    u0, u1, u2 = hip_rel(ankle, root, i, sgn * hip_y, cy, sy, c, sn)
     pitch_f = pitch[i]
-    cz, sz = math.cos(yaw_f), math.sin(yaw_f)
     cp, sp = math.cos(-pitch_f), math.sin(-pitch_f)
     # rf = R_z(yaw_f) R_y(-pitch_f), row-major: a = (cz, -sz, 0, sz, cz, 0, 0, 0, 1),
     # b = (cp, 0, sp, 0, 1, 0, -sp, 0, cp)

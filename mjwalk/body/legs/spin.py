@@ -12,7 +12,8 @@ from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.body.legs.curves import smoothstep, soft_excess1
 from mjwalk.body.legs.footpivot import ball_offset, pivot_ankle, spin_print
-from mjwalk.body.legs.ik import LegIKCache, ik_lengths, leg_ik_world, leg_ik_world_cached_where
+from mjwalk.body.legs.ik import ik_lengths, leg_ik_world
+from mjwalk.body.legs.ikcache import LegIKCache, leg_ik_world_cached_where
 from mjwalk.body.legs.steps import SWING_TURNED, FootTracks
 
 #: Spin turns (degrees): a grounded foot whose hip would rotate past its range less
@@ -78,7 +79,12 @@ def spin_turns(
         starts, ends = _contacts(feet.ground[s_], feet.prints[s_], n)
         # the hip rotation of every grounded sample at once (the rows are independent: as
         # per contact), and where it passes its range; the other contacts are left as they are
-        bufs = ik[s_].buffers(n) if ik is not None else (np.full((n, 9), np.nan), np.empty((n, 6)))
+        bufs = (
+            (*ik[s_].buffers(n), *ik[s_].trig_buffers(n))
+            if ik is not None
+            else (np.full((n, 9), np.nan), np.empty((n, 6)), np.full((n, 2), np.nan),
+                  np.empty((n, 7)))
+        )  # fmt: skip
         r_all, up_all, down_all = _hip_rotation(feet, s_, root_c, yaw_c, sp, bufs)
         need_all = (up_all > 0) | (down_all > 0)
         worst, count = 0.0, 0
@@ -137,7 +143,8 @@ def _contact_bounds(g, prints, n):
 def _hip_rotation(feet: FootTracks, s_: str, root_c, yaw_c, sp: _Spin, bufs):
     """The ``s_`` leg's hip rotation (n,) at every grounded sample and its soft excess over
     the range's top and under its bottom (:func:`_hip_rotation_excess`), radians; ``bufs``:
-    an IK cache's inputs (n, 9) and angles (n, 6), updated on the grounded samples."""
+    an IK cache's inputs (n, 9) and angles (n, 6), updated on the grounded samples, and its
+    yaws' sines and cosines (:func:`~mjwalk.body.legs.ik.yaw_trig_row`)."""
     n = len(yaw_c)
     lo, hi, margin, soft = sp.lo, sp.hi, sp.margin, sp.soft
     r_all, up_all, down_all = (np.zeros(n) for _ in range(3))
@@ -256,14 +263,15 @@ def _fade_offsets(feet: FootTracks, s_: str, offsets, bounds) -> None:
 
 @njit
 def _hip_rotation_excess(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax,
-                         top, bottom, w, rot, up, down, inputs, out):  # fmt: skip
+                         top, bottom, w, rot, up, down, inputs, out, key, vals):  # fmt: skip
     """Per grounded sample (``ground`` (n,)): the leg's hip rotation ``rot`` (unclipped IK,
     :func:`~mjwalk.body.legs.ik.leg_ik_world_cached_where` with the cache's ``inputs`` (n, 9)
-    and angles ``out`` (n, 6)) and how far it passes ``top`` and falls short of ``bottom``
+    and angles ``out`` (n, 6), yaws' sines and cosines ``key``, ``vals``) and how far it passes
+    ``top`` and falls short of ``bottom``
     (``up``, ``down``: :func:`~mjwalk.body.legs.curves.soft_excess` over ``w``), radians; the
     other samples are left as they are."""
     leg_ik_world_cached_where(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin,
-                              rmax, inputs, out)  # fmt: skip
+                              rmax, inputs, out, key, vals)  # fmt: skip
     for i in range(ground.shape[0]):
         if not ground[i]:
             continue

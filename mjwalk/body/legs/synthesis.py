@@ -43,7 +43,8 @@ import numpy as np
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry, leg_geometry
 from mjwalk.body.legs.curves import spread
 from mjwalk.body.legs.footpivot import pivot_ankle
-from mjwalk.body.legs.ik import KNEE_MIN, LegIKCache, foot_lowest, generic_joint, hip_world
+from mjwalk.body.legs.ik import KNEE_MIN, foot_lowest, generic_joint, hip_world
+from mjwalk.body.legs.ikcache import LegIKCache
 from mjwalk.body.legs.legheights import lift_to_levels
 from mjwalk.body.legs.pitchfit import AnkleFit, fit_ankle_range, repitch_foot
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
