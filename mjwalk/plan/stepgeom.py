@@ -19,6 +19,7 @@ from mjwalk.plan.slots import (
     P_CORNER_X,
     P_CORNER_Y,
     P_DISC0,
+    P_FIELD_LIP,
     P_GOAL_X,
     P_GOAL_Y,
     P_GOAL_YAW,
@@ -62,6 +63,29 @@ def field_clearance(coef, x0, y0, res, nx, ny, x, y):
     v10 = coef[iy + 1, ix]
     v11 = coef[iy + 1, ix + 1]
     return ((v11 - v10 - v01 + v00) * fy + (v01 - v00)) * fx + v00 + fy * (v10 - v00)
+
+
+#: The Lipschitz constant of the bilinear lookup of nodes that hold a distance (each node
+#: difference at most the spacing): the x- and y-derivatives within a cell are each at most 1,
+#: and a cell whose nodes hold 0, 1, 1, sqrt(2) spacings (an obstacle's corner) has the
+#: gradient (1, 1) at its corner (:attr:`mjwalk.world.clearance.ClearanceField.lipschitz`).
+DISTANCE_LIPSCHITZ = math.sqrt(2.0)
+
+
+@njit_inline
+def field_lipschitz(par):
+    """The Lipschitz constant the probe rules use for the walk field: its own
+    (``P_FIELD_LIP``, :attr:`~mjwalk.world.clearance.ClearanceField.lipschitz`), at least 1
+    (a constant taken larger than the true one stays a bound; at 1 the probes are never
+    sparser than their nominal spacing); nan: :data:`DISTANCE_LIPSCHITZ`.
+
+    Args:
+        par: the float slots (P_FIELD_LIP).
+    """
+    lip = par[P_FIELD_LIP]
+    if math.isnan(lip):
+        return DISTANCE_LIPSCHITZ
+    return max(lip, 1.0)
 
 
 @njit
@@ -293,12 +317,15 @@ def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, 
 
     The leg reaches from the landing ankle ``loc[m]`` up to the swing-side hip of the end
     pelvis ``loc[m - 1]`` (``P_HIP_Y`` to its side, turned by ``end_yaw``, radians relative to
-    the step's frame); seen from above it is the segment between them. Probes lie on it every
-    ``P_LEG_STEP`` metres from the ankle (whose own check, FOOT_CLEARANCE, covers the first
-    half spacing) until the end pelvis's check covers the rest: a probe within
-    ``pelvis_thr - P_LEG_CLEARANCE`` of the end pelvis already has that clearance, since the
-    clearance is 1-Lipschitz. For the same reason every point of the segment keeps
-    ``P_LEG_CLEARANCE - P_LEG_STEP / 2`` when every probe keeps ``P_LEG_CLEARANCE``.
+    the step's frame); seen from above it is the segment between them. The walk field's
+    lookup is L-Lipschitz (:func:`field_lipschitz`: the field's own constant, sqrt(2) for the
+    shipped scenes' fields, not 1). Probes lie on the segment every ``P_LEG_STEP / L`` metres
+    from the ankle (whose own check, FOOT_CLEARANCE, covers the first half spacing) until the
+    end pelvis's check covers the rest: a probe within ``(pelvis_thr - P_LEG_CLEARANCE) / L``
+    of the end pelvis already has that clearance. Every point of the segment between two
+    probes lies within half a spacing of one, so it keeps
+    ``P_LEG_CLEARANCE - L * (P_LEG_STEP / L) / 2 = P_LEG_CLEARANCE - P_LEG_STEP / 2`` when
+    every probe keeps ``P_LEG_CLEARANCE``.
 
     Args:
         loc: the decoded step (step frame, x + iy, metres): pelvis samples, landing ankle.
@@ -308,7 +335,7 @@ def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, 
         rot: the step frame's turn into the world (a unit complex).
         p: the step frame's origin, world x + iy, metres.
         pelvis_thr: the clearance the pelvis samples keep (metres).
-        par: the float slots (P_LEG_CLEARANCE, P_HIP_Y, P_LEG_STEP).
+        par: the float slots (P_LEG_CLEARANCE, P_HIP_Y, P_LEG_STEP, P_FIELD_LIP).
         coef: the walk field's node values (ny, nx), metres (:func:`field_clearance`).
         x0: the field's origin x, metres.
         y0: its origin y, metres.
@@ -328,10 +355,12 @@ def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, 
     if span <= 0.0:
         return True
     u = (hip - ankle) / span
-    covered = pelvis_thr - clear  # probes this close to the end pelvis need no check
+    lip = field_lipschitz(par)
+    spacing = step / lip
+    covered = (pelvis_thr - clear) / lip  # probes this close to the end pelvis need no check
     k = 1
-    while k * step < span:
-        q = ankle + (k * step) * u
+    while k * spacing < span:
+        q = ankle + (k * spacing) * u
         if within(q - end, covered):
             break
         w = q * rot + p
@@ -351,9 +380,11 @@ def toe_approach_clear(ankle, lift, toe, clear, rot, p, par, coef, x0, y0, res, 
     lift-off footprint to its landing (:func:`mjwalk.body.legs.steps.swing_foot`). Where the
     chord is oblique to the foot (a curved walk's step: up to 55 degrees), the foot, turned,
     slides sideways on its way in, and its toes, 0.2 m ahead of the ankle, sweep beside the
-    landing footprint that the ankle and toe checks passed. Probes every ``P_TOE_STEP`` metres
-    back along the chord, over its last ``P_TOE_SHARE``, keep the ankle and the toes ``clear``;
-    the clearance being 1-Lipschitz, every point between keeps ``clear - P_TOE_STEP / 2``.
+    landing footprint that the ankle and toe checks passed. Probes every ``P_TOE_STEP / L``
+    metres back along the chord (L the walk field's Lipschitz constant,
+    :func:`field_lipschitz`), over its last ``P_TOE_SHARE``, keep the ankle and the toes
+    ``clear``; every point between lies within half a spacing of a probe, so it keeps
+    ``clear - P_TOE_STEP / 2``.
 
     Args:
         ankle: the landing footprint (the step's local frame, x + iy, metres).
@@ -362,7 +393,7 @@ def toe_approach_clear(ankle, lift, toe, clear, rot, p, par, coef, x0, y0, res, 
         clear: the clearance (metres) each probe keeps.
         rot: the step frame's turn into the world (a unit complex).
         p: the step frame's origin, world x + iy, metres.
-        par: the float slots (P_TOE_STEP, P_TOE_SHARE).
+        par: the float slots (P_TOE_STEP, P_TOE_SHARE, P_FIELD_LIP).
         coef: the walk field's node values (ny, nx), metres (:func:`field_clearance`).
         x0: the field's origin x, metres.
         y0: its origin y, metres.
@@ -380,9 +411,10 @@ def toe_approach_clear(ankle, lift, toe, clear, rot, p, par, coef, x0, y0, res, 
     if span <= 0.0:
         return True
     u = chord / length
+    spacing = step / field_lipschitz(par)
     k = 1
     while True:
-        back = min(k * step, span)
+        back = min(k * spacing, span)
         a = ankle - back * u
         for q in (a, a + toe):
             w = q * rot + p
