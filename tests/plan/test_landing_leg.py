@@ -31,7 +31,7 @@ def _leg_clear(wp, pelvis, yaw, ankle, left=True, stature=1.64):
     loc[M] = complex(*ankle)
     ny, nx = field.values.shape
     return stepcheck.landing_leg_clear(
-        loc, M, left, yaw - math.pi / 2, 1.0 + 0j, 0j, 0.31, par,
+        loc, M, left, yaw - math.pi / 2, 1.0 + 0j, 0j, FOOT_CLEARANCE, 0.31, par,
         field.values, field.x0, field.y0, field.resolution, nx, ny,
     )  # fmt: skip
 
@@ -61,7 +61,7 @@ def test_landing_leg_slots_unset_means_no_check(scenes_dir):
     loc[M - 1], loc[M] = complex(0.1809, -1.7097), complex(0.483, -2.123)
     ny, nx = field.values.shape
     assert stepcheck.landing_leg_clear(
-        loc, M, True, 0.0, 1.0 + 0j, 0j, 0.31, par,
+        loc, M, True, 0.0, 1.0 + 0j, 0j, FOOT_CLEARANCE, 0.31, par,
         field.values, field.x0, field.y0, field.resolution, nx, ny,
     )  # fmt: skip
 

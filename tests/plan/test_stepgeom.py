@@ -35,7 +35,7 @@ def _approach_clear(wp, lift, land=LAND, yaw=YAW, share=TOE_APPROACH_SHARE):
     par = params(toe_share=share, toe_step=TOE_PROBE_STEP)
     toe = FOOT_LENGTH * cmath.exp(1j * yaw)
     return toe_approach_clear(
-        land, lift, toe, FOOT_CLEARANCE, 1.0 + 0j, 0j, par,
+        land, lift, toe, FOOT_CLEARANCE, FOOT_CLEARANCE, 1.0 + 0j, 0j, par,
         field.values, field.x0, field.y0, field.resolution, nx, ny,
     )  # fmt: skip
 
