@@ -61,7 +61,7 @@ from mjwalk.plan.guide import GUIDE_POINTS
     P_START_YAW,  # the walker's heading (world radians) before a turn on the spot
     P_TURN_COST,  # cost (m per radian) of a starter's turn on the spot from it; nan: none
     P_TOE_SHARE,  # the chord's share the landing foot's approach is probed over; nan: none
-    P_TOE_STEP,  # spacing (m) of the approach probes (mjwalk.plan.stepgeom.toe_approach_clear)
+    P_TOE_STEP,  # twice the approach probes' clearance over its guarantee (m; toe_approach_clear)
     P_KNEE_TURN0,  # the swing foot's turned share at the first knee probe (swing_turned)
     P_KNEE_TURN1,  # ... at the second
     P_KNEE_PIVOT,  # the swing hip's offset (m) the foot-yaw knee probes lead from (knee_pivot)
