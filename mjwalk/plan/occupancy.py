@@ -243,8 +243,10 @@ def _clearly_free(workplace: Workplace, xy: np.ndarray, radius: float) -> bool:
     """Whether the walk-clearance field proves that ``xy`` keeps ``radius`` (a quick accept).
 
     The field's nodes hold exact walk clearances (the minimum of the footprints' signed
-    distances and the distance to the floor's edge), and walk clearance is 1-Lipschitz, so at
-    ``xy`` it is at least the nearest node's value minus the distance to that node.
+    distances and the distance to the floor's edge), and the exact walk clearance is
+    1-Lipschitz (the field's bilinear lookup is not: up to sqrt(2),
+    :attr:`~mjwalk.world.clearance.ClearanceField.lipschitz`), so at ``xy`` it is at least the
+    nearest node's value minus the distance to that node.
     """
     f = workplace.walk_field()
     ny, nx = f.values.shape

@@ -34,9 +34,11 @@ FOOT_CLEARANCE = 0.08
 #: :data:`~mjwalk.body.legs.steps.SWING_TURNED` on and covers the rest of its chord turned so;
 #: over the 66 steps of a station cycle's seven walks synthesized at 1.55, 1.75 and 1.95 m that
 #: rest was at most 0.18 of the chord (median 0.10; 0.21 m at most) and the chord up to 55 degrees
-#: off the landing yaw. Probes every ``TOE_PROBE_STEP`` metres over the chord's last
-#: ``TOE_APPROACH_SHARE`` keep the ankle and the toes FOOT_CLEARANCE
-#: (:func:`mjwalk.plan.stepgeom.toe_approach_clear`).
+#: off the landing yaw. Probes over the chord's last ``TOE_APPROACH_SHARE`` keep the ankle and
+#: the toes FOOT_CLEARANCE, and every point of their way in FOOT_CLEARANCE - TOE_PROBE_STEP / 2:
+#: next to an obstacle they lie TOE_PROBE_STEP / L apart (L the walk field's Lipschitz
+#: constant, sqrt(2) in the shipped scenes), farther where the way is clearer
+#: (:func:`mjwalk.plan.stepgeom.toe_approach_clear`, ``docs/decisions/111``).
 TOE_APPROACH_SHARE = 0.2
 TOE_PROBE_STEP = 0.02
 #: The swing knee reaches beyond the body radius: over the swings of planned walks played back
@@ -76,12 +78,15 @@ SWING_LIFT_TURN = math.radians(max(abs(a) for a in ROM_DEG["hip_rot"]))
 #: footprint's, the heel's upper edge swings 2-3 cm behind the flat heel, and the shin leans
 #: back from the ankle towards the hip. A landing foot far ahead of the pelvis (up to
 #: MAX_FOOT_REACH) leaves some 0.2 m of shin between the ankle's check and the pelvis's. Probes
-#: every ``LEG_PROBE_STEP`` metres along the ankle-to-hip line keep the shin radius
-#: (:data:`mjwalk.anthropometry.SHIN_RADIUS` times the walker's stature) plus SAFETY_MARGIN
-#: plus half the spacing (:func:`mjwalk.plan.stepgeom.landing_leg_clear`); the first probe
-#: also covers the toes-up heel (at 1.75 m its upper back edge reaches 0.09 m behind the
-#: ankle, 0.05 m to the side: 0.07 m from the probe, within the 0.077 m kept). Evidence:
-#: ``docs/decisions/103`` (``benchmarks/bench_contacts.py``).
+#: along the ankle-to-hip line keep the shin radius (:data:`mjwalk.anthropometry.SHIN_RADIUS`
+#: times the walker's stature) plus SAFETY_MARGIN plus half of ``LEG_PROBE_STEP``, and every
+#: point of the line the shin radius plus SAFETY_MARGIN: next to an obstacle they lie
+#: LEG_PROBE_STEP / L apart (L the walk field's Lipschitz constant, sqrt(2) in the shipped
+#: scenes), farther where the leg is clearer (:func:`mjwalk.plan.stepgeom.landing_leg_clear`,
+#: ``docs/decisions/111``). The line's clearance also covers the toes-up heel (at 1.75 m its
+#: upper back edge reaches 0.09 m behind the ankle, 0.05 m to the side, within the 0.057 m the
+#: line point beside it keeps). Evidence: ``docs/decisions/103``
+#: (``benchmarks/bench_contacts.py``).
 LEG_PROBE_STEP = 0.04
 #: Largest horizontal distance (m) of a planted foot from the pelvis: the largest seen in the
 #: virtual corpus (landing foot vs pelvis at heel strike: median 0.37, 99.9th percentile 0.52).
@@ -167,7 +172,8 @@ WALK_PACE_SD = 0.045
 
 def leg_clearance(stature: float = DEFAULT_STATURE) -> float:
     """Clearance (m) the landing leg's probes keep for a walker of ``stature`` metres: the
-    shin radius plus SAFETY_MARGIN plus half of LEG_PROBE_STEP.
+    shin radius plus SAFETY_MARGIN plus half of LEG_PROBE_STEP (every point of the leg then
+    keeps the shin radius plus SAFETY_MARGIN: :func:`mjwalk.plan.stepgeom.landing_leg_clear`).
 
     Args:
         stature: the walker's body height, metres.

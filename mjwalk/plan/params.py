@@ -223,6 +223,7 @@ class KernelParams:
             field_x0=walk.x0,
             field_y0=walk.y0,
             field_res=walk.resolution,
+            field_lip=walk.lipschitz,
             dist_x0=grid.x0,
             dist_y0=grid.y0,
             dist_cell=grid.cell,

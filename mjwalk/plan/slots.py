@@ -34,6 +34,7 @@ from mjwalk.plan.guide import GUIDE_POINTS
     P_FIELD_X0,
     P_FIELD_Y0,
     P_FIELD_RES,
+    P_FIELD_LIP,  # the walk field's Lipschitz constant (ClearanceField.lipschitz); nan: sqrt(2)
     P_DIST_X0,
     P_DIST_Y0,
     P_DIST_CELL,
@@ -60,7 +61,7 @@ from mjwalk.plan.guide import GUIDE_POINTS
     P_START_YAW,  # the walker's heading (world radians) before a turn on the spot
     P_TURN_COST,  # cost (m per radian) of a starter's turn on the spot from it; nan: none
     P_TOE_SHARE,  # the chord's share the landing foot's approach is probed over; nan: none
-    P_TOE_STEP,  # spacing (m) of the approach probes (mjwalk.plan.stepgeom.toe_approach_clear)
+    P_TOE_STEP,  # twice the approach probes' clearance over its guarantee (m; toe_approach_clear)
     P_KNEE_TURN0,  # the swing foot's turned share at the first knee probe (swing_turned)
     P_KNEE_TURN1,  # ... at the second
     P_KNEE_PIVOT,  # the swing hip's offset (m) the foot-yaw knee probes lead from (knee_pivot)
@@ -69,7 +70,7 @@ from mjwalk.plan.guide import GUIDE_POINTS
     P_TOE_SIDE,  # ... and to each side of it
     P_TOE_CLEARANCE,  # the clearance (m) they keep (TOE_CORNER_CLEARANCE)
     P_GUIDE0,  # the guide's GUIDE_POINTS points, x y each (mjwalk.plan.guide); nan: none
-) = range(53)
+) = range(54)
 #: Goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal), after the guide's slots.
 P_DISC0 = P_GUIDE0 + 2 * GUIDE_POINTS
 #: Most discs the goal area can be cut by (:func:`~mjwalk.plan.stepgeom.in_goal`); their count

@@ -319,12 +319,17 @@ def check_into(
         # pelvis samples and ankle (world), each column as its test needs it: a third of the
         # rows fail here, mostly before the last column
         ok = True
+        v = 0.0
+        v_end = 0.0  # the field at the end pelvis and (v, after the loop) at the ankle
         for j in range(m + 1):
             loc[j] = decode_col(z, r, matrix, offset, j)
             w = loc[j] * rot + p
-            if field_clearance(coef, fx0, fy0, fres, fnx, fny, w.real, w.imag) < thr[j]:
+            v = field_clearance(coef, fx0, fy0, fres, fnx, fny, w.real, w.imag)
+            if v < thr[j]:
                 ok = False
                 break
+            if j == m - 1:
+                v_end = v
         if not ok:
             continue
         loc[m + 1] = decode_col(z, r, matrix, offset, m + 1)
@@ -332,8 +337,10 @@ def check_into(
         ankle = loc[m] * rot + p
         land = unit_turn(yaws.real)  # the landing yaw's turn, once (the toe probes below)
         toe = ankle + (par[P_FOOT_LENGTH] * 1j) * rot * land
-        if field_clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag) < thr[m + 1]:
+        v_toe = field_clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag)
+        if v_toe < thr[m + 1]:
             continue
+        v_toe = min(v, v_toe)  # the landing's ankle and toes (the approach probes start there)
         # the toes' front corners for the walker's stature (a tall walker's wide toes reach
         # past the probe above: options.toe_corners)
         if not math.isnan(par[P_TOE_FRONT]):
@@ -350,8 +357,8 @@ def check_into(
                 continue
         # the landing leg, from the ankle towards its hip at the step's end (heel strike: the
         # shin leans back over the heel, the toes-up heel reaches behind the flat footprint),
-        # probed every P_LEG_STEP out to where the end pelvis's own clearance covers it
-        if not landing_leg_clear(loc, m, lf, yaws.imag, rot, p, thr[0], par, coef, fx0, fy0,
+        # probed from the ankle's clearance out to where the end pelvis's covers it
+        if not landing_leg_clear(loc, m, lf, yaws.imag, rot, p, v, v_end, par, coef, fx0, fy0,
                                  fres, fnx, fny):  # fmt: skip
             continue
         # the swing knee, ahead along the swing foot's yaw at the probe's phase (it bends in
@@ -405,8 +412,8 @@ def check_into(
         # the landing foot's way in along the chord from the foot behind, turned to its
         # landing yaw: a curved walk's step comes in obliquely, the toes sweeping sideways
         toe_off = (par[P_FOOT_LENGTH] * 1j) * land
-        if not toe_approach_clear(loc[m], behind, toe_off, thr[m + 1], rot, p, par, coef, fx0,
-                                  fy0, fres, fnx, fny):  # fmt: skip
+        if not toe_approach_clear(loc[m], behind, toe_off, thr[m + 1], v_toe, rot, p, par, coef,
+                                  fx0, fy0, fres, fnx, fny):  # fmt: skip
             continue
         # the stance leg's sideways lean (the landed foot is this step's stance foot)
         if lean and not (math.isnan(landed.real) or math.isnan(node[i, 4].real)):

@@ -19,6 +19,7 @@ from mjwalk.plan.slots import (
     P_CORNER_X,
     P_CORNER_Y,
     P_DISC0,
+    P_FIELD_LIP,
     P_GOAL_X,
     P_GOAL_Y,
     P_GOAL_YAW,
@@ -62,6 +63,29 @@ def field_clearance(coef, x0, y0, res, nx, ny, x, y):
     v10 = coef[iy + 1, ix]
     v11 = coef[iy + 1, ix + 1]
     return ((v11 - v10 - v01 + v00) * fy + (v01 - v00)) * fx + v00 + fy * (v10 - v00)
+
+
+#: The Lipschitz constant of the bilinear lookup of nodes that hold a distance (each node
+#: difference at most the spacing): the x- and y-derivatives within a cell are each at most 1,
+#: and a cell whose nodes hold 0, 1, 1, sqrt(2) spacings (an obstacle's corner) has the
+#: gradient (1, 1) at its corner (:attr:`mjwalk.world.clearance.ClearanceField.lipschitz`).
+DISTANCE_LIPSCHITZ = math.sqrt(2.0)
+
+
+@njit_inline
+def field_lipschitz(par):
+    """The Lipschitz constant the probe rules use for the walk field: its own
+    (``P_FIELD_LIP``, :attr:`~mjwalk.world.clearance.ClearanceField.lipschitz`), at least 1
+    (a constant taken larger than the true one stays a bound; at 1 the probes are never
+    sparser than their nominal spacing); nan: :data:`DISTANCE_LIPSCHITZ`.
+
+    Args:
+        par: the float slots (P_FIELD_LIP).
+    """
+    lip = par[P_FIELD_LIP]
+    if math.isnan(lip):
+        return DISTANCE_LIPSCHITZ
+    return max(lip, 1.0)
 
 
 @njit
@@ -286,19 +310,39 @@ def decode_real(z, r, matrix, offset, col):
     return decode_col(z, r, matrix, offset, col).real
 
 
+@njit_inline
+def _cover(v, target, lip):
+    """How far (m) from a point of clearance ``v`` every point keeps ``target`` (metres), the
+    field being ``lip``-Lipschitz: (v - target) / lip, 0 when v is short of it (or nan)."""
+    c = (v - target) / lip
+    return c if c > 0.0 else 0.0
+
+
 @njit
-def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, y0, res, nx, ny):
-    """Whether the landing leg of one step keeps ``P_LEG_CLEARANCE`` from obstacles at heel
-    strike (True when the slots are nan: no leg check).
+def landing_leg_clear(
+    loc, m, left, end_yaw, rot, p, ankle_clear, end_clear, par, coef, x0, y0, res, nx, ny
+):
+    """Whether the landing leg of one step keeps ``P_LEG_CLEARANCE - P_LEG_STEP / 2`` from
+    obstacles at heel strike, every point of it, as its probes prove (True when the slots are
+    nan: no leg check).
 
     The leg reaches from the landing ankle ``loc[m]`` up to the swing-side hip of the end
     pelvis ``loc[m - 1]`` (``P_HIP_Y`` to its side, turned by ``end_yaw``, radians relative to
-    the step's frame); seen from above it is the segment between them. Probes lie on it every
-    ``P_LEG_STEP`` metres from the ankle (whose own check, FOOT_CLEARANCE, covers the first
-    half spacing) until the end pelvis's check covers the rest: a probe within
-    ``pelvis_thr - P_LEG_CLEARANCE`` of the end pelvis already has that clearance, since the
-    clearance is 1-Lipschitz. For the same reason every point of the segment keeps
-    ``P_LEG_CLEARANCE - P_LEG_STEP / 2`` when every probe keeps ``P_LEG_CLEARANCE``.
+    the step's frame); seen from above it is the segment between them. The walk field's
+    lookup is L-Lipschitz (:func:`field_lipschitz`: its own constant, sqrt(2) for the shipped
+    scenes' fields, not 1), so a point whose clearance is v keeps ``target = P_LEG_CLEARANCE -
+    P_LEG_STEP / 2`` everywhere within ``(v - target) / L`` of it. The probes march from the
+    ankle (clearance ``ankle_clear``) towards the hip, each where the last one's cover ends
+    plus ``(P_LEG_CLEARANCE - target) / L``: a probe keeping ``P_LEG_CLEARANCE`` covers that
+    much back, so the gap between two probes is covered. They stop where the cover reaches
+    the hip or enters the end pelvis's own (clearance ``end_clear``: a ball of radius
+    ``(end_clear - target) / L``, when the hip lies in it), and a probe short of
+    ``P_LEG_CLEARANCE`` refuses the step. Next to an obstacle the probes lie
+    ``P_LEG_STEP / L`` apart, as a fixed spacing for that guarantee would; where the leg is
+    clear by more, fewer are needed: sphere tracing (Hart 1996, "Sphere tracing: a geometric
+    method for the antialiased ray tracing of implicit surfaces", The Visual Computer 12(10),
+    527-545: steps along a ray "guaranteed not to penetrate" the surface, from "only a bound
+    on the magnitude of the derivative").
 
     Args:
         loc: the decoded step (step frame, x + iy, metres): pelvis samples, landing ankle.
@@ -307,8 +351,10 @@ def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, 
         end_yaw: the end pelvis yaw relative to the step's frame, radians.
         rot: the step frame's turn into the world (a unit complex).
         p: the step frame's origin, world x + iy, metres.
-        pelvis_thr: the clearance the pelvis samples keep (metres).
-        par: the float slots (P_LEG_CLEARANCE, P_HIP_Y, P_LEG_STEP).
+        ankle_clear: the walk field at the landing ankle, or a lower bound of it (metres;
+            at least ``target`` for the guarantee to hold from the ankle on).
+        end_clear: the walk field at the end pelvis, or a lower bound of it (metres).
+        par: the float slots (P_LEG_CLEARANCE, P_HIP_Y, P_LEG_STEP, P_FIELD_LIP).
         coef: the walk field's node values (ny, nx), metres (:func:`field_clearance`).
         x0: the field's origin x, metres.
         y0: its origin y, metres.
@@ -328,41 +374,57 @@ def landing_leg_clear(loc, m, left, end_yaw, rot, p, pelvis_thr, par, coef, x0, 
     if span <= 0.0:
         return True
     u = (hip - ankle) / span
-    covered = pelvis_thr - clear  # probes this close to the end pelvis need no check
-    k = 1
-    while k * step < span:
-        q = ankle + (k * step) * u
-        if within(q - end, covered):
-            break
-        w = q * rot + p
-        if field_clearance(coef, x0, y0, res, nx, ny, w.real, w.imag) < clear:
+    lip = field_lipschitz(par)
+    target = clear - 0.5 * step
+    half = 0.5 * step / lip  # the cover of a probe that keeps ``clear``, back towards the last
+    ball = _cover(end_clear, target, lip)  # the end pelvis's cover
+    hip_in = within(hip - end, ball)
+    at = 0.0
+    v = ankle_clear
+    while True:
+        reach = at + _cover(v, target, lip)  # covered from the ankle up to here
+        if reach >= span:
+            return True
+        if hip_in and within(ankle + reach * u - end, ball):
+            return True
+        at = min(reach + half, span)
+        w = (ankle + at * u) * rot + p
+        v = field_clearance(coef, x0, y0, res, nx, ny, w.real, w.imag)
+        if not v >= clear:  # (nan too)
             return False
-        k += 1
-    return True
 
 
 @njit
-def toe_approach_clear(ankle, lift, toe, clear, rot, p, par, coef, x0, y0, res, nx, ny):
-    """Whether the landing foot keeps ``clear`` metres from obstacles on its way in (True when
-    the slots are nan or the lift-off foot is unknown: no check).
+def toe_approach_clear(ankle, lift, toe, clear, start_clear, rot, p, par, coef, x0, y0, res,
+                       nx, ny):  # fmt: skip
+    """Whether the landing foot keeps ``clear - P_TOE_STEP / 2`` metres from obstacles on its
+    way in, at the ankle and the toes, as its probes prove (True when the slots are nan or the
+    lift-off foot is unknown: no check).
 
     The swing foot turns to its landing yaw by the step phase
     :data:`~mjwalk.body.legs.steps.SWING_TURNED` and then comes in along the chord from its
     lift-off footprint to its landing (:func:`mjwalk.body.legs.steps.swing_foot`). Where the
     chord is oblique to the foot (a curved walk's step: up to 55 degrees), the foot, turned,
     slides sideways on its way in, and its toes, 0.2 m ahead of the ankle, sweep beside the
-    landing footprint that the ankle and toe checks passed. Probes every ``P_TOE_STEP`` metres
-    back along the chord, over its last ``P_TOE_SHARE``, keep the ankle and the toes ``clear``;
-    the clearance being 1-Lipschitz, every point between keeps ``clear - P_TOE_STEP / 2``.
+    landing footprint that the ankle and toe checks passed. Over the chord's last
+    ``P_TOE_SHARE``, back from the landing, probes of the ankle and the toes march as
+    :func:`landing_leg_clear`'s do: from the landing (clearance ``start_clear``, the smaller
+    of the ankle's and the toes'), each where the last one's cover ends plus
+    ``(clear - target) / L`` (target ``clear - P_TOE_STEP / 2``, L the walk field's
+    Lipschitz constant, :func:`field_lipschitz`), until the cover reaches the share's end; a
+    probe of either point short of ``clear`` refuses the step. Every point of both paths then
+    keeps the target; next to an obstacle the probes lie ``P_TOE_STEP / L`` apart.
 
     Args:
         ankle: the landing footprint (the step's local frame, x + iy, metres).
         lift: the lift-off footprint (same frame; nan: unknown).
         toe: the toe point's offset from the ankle at the landing yaw (same frame).
         clear: the clearance (metres) each probe keeps.
+        start_clear: the walk field at the landing ankle and toes, the smaller, or a lower
+            bound of it (metres).
         rot: the step frame's turn into the world (a unit complex).
         p: the step frame's origin, world x + iy, metres.
-        par: the float slots (P_TOE_STEP, P_TOE_SHARE).
+        par: the float slots (P_TOE_STEP, P_TOE_SHARE, P_FIELD_LIP).
         coef: the walk field's node values (ny, nx), metres (:func:`field_clearance`).
         x0: the field's origin x, metres.
         y0: its origin y, metres.
@@ -380,14 +442,22 @@ def toe_approach_clear(ankle, lift, toe, clear, rot, p, par, coef, x0, y0, res, 
     if span <= 0.0:
         return True
     u = chord / length
-    k = 1
+    lip = field_lipschitz(par)
+    target = clear - 0.5 * step
+    half = 0.5 * step / lip
+    back = 0.0
+    v = start_clear
     while True:
-        back = min(k * step, span)
-        a = ankle - back * u
-        for q in (a, a + toe):
-            w = q * rot + p
-            if field_clearance(coef, x0, y0, res, nx, ny, w.real, w.imag) < clear:
-                return False
-        if back >= span:
+        reach = back + _cover(v, target, lip)
+        if reach >= span:
             return True
-        k += 1
+        back = min(reach + half, span)
+        a = ankle - back * u
+        w = a * rot + p
+        v = field_clearance(coef, x0, y0, res, nx, ny, w.real, w.imag)
+        if not v >= clear:  # (nan too)
+            return False
+        w = (a + toe) * rot + p
+        v = min(v, field_clearance(coef, x0, y0, res, nx, ny, w.real, w.imag))
+        if not v >= clear:
+            return False

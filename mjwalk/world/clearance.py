@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -74,6 +75,38 @@ class ClearanceField:
         return (v00 * (1 - tx) + v01 * tx) * (1 - ty) + (v10 * (1 - tx) + v11 * tx) * ty
 
     lookup = __call__
+
+    @cached_property
+    def lipschitz(self) -> float:
+        """The Lipschitz constant of the bilinear lookup (:meth:`__call__`), computed once:
+        no two points x, y have values further apart than ``lipschitz * |x - y|``.
+
+        Within a cell the lookup's x-derivative is a convex combination (weights 1 - ty, ty)
+        of the cell's two node differences along x over the spacing, and its y-derivative
+        one of the two along y (weights 1 - tx, tx); the first depends on ty alone and the
+        second on tx alone, so the gradient norm's supremum over the cell is
+        hypot(max |dx|, max |dy|) / resolution, reached at one of its corners. The lookup is
+        continuous and piecewise smooth on a convex domain and clamps points beyond the nodes
+        onto them (a 1-Lipschitz projection), so its Lipschitz constant is the largest of
+        these over the cells: exact, not a bound. For nodes holding a distance (each node
+        difference at most the spacing) it is at most sqrt(2), and reaches sqrt(2) wherever a
+        cell's corner sees the distance grow by the spacing along both axes: the nodes 0, 1,
+        1, sqrt(2) (in spacings) about an obstacle's corner, or the nodes of min(x, y) about a
+        room's corner, whose bilinear lookup x·y has the gradient (1, 1) at (1, 1).
+
+        Returns:
+            The constant (metres of clearance per metre); a field one node wide or high
+            gives its largest node difference over the spacing (0 for a single node).
+        """
+        v = np.asarray(self.values, dtype=float)
+        if v.shape[0] < 2 or v.shape[1] < 2:
+            d = np.abs(np.diff(v.ravel()))
+            return float(d.max()) / self.resolution if d.size else 0.0
+        dx = np.abs(np.diff(v, axis=1))
+        dy = np.abs(np.diff(v, axis=0))
+        gx = np.maximum(dx[:-1, :], dx[1:, :])  # per cell, its larger difference along x
+        gy = np.maximum(dy[:, :-1], dy[:, 1:])
+        return float(np.sqrt(np.max(gx * gx + gy * gy))) / self.resolution
 
 
 @njit

@@ -19,6 +19,7 @@ from mjwalk.plan.options import FOOT_CLEARANCE, FOOT_LENGTH, TOE_APPROACH_SHARE,
 from mjwalk.plan.slots import params
 from mjwalk.plan.stepgeom import beyond, swing_yaw, toe_approach_clear, unit_turn, within
 from mjwalk.world import load_workplace
+from mjwalk.world.clearance import ClearanceField
 
 # run 32's last step of T3 (main at 8f7a18a): the left foot lifts off at LIFT and lands at LAND
 # (ankle footprint, world x + iy, metres) facing YAW (radians from +x), 0.10 m beside rack 1's
@@ -35,7 +36,7 @@ def _approach_clear(wp, lift, land=LAND, yaw=YAW, share=TOE_APPROACH_SHARE):
     par = params(toe_share=share, toe_step=TOE_PROBE_STEP)
     toe = FOOT_LENGTH * cmath.exp(1j * yaw)
     return toe_approach_clear(
-        land, lift, toe, FOOT_CLEARANCE, 1.0 + 0j, 0j, par,
+        land, lift, toe, FOOT_CLEARANCE, FOOT_CLEARANCE, 1.0 + 0j, 0j, par,
         field.values, field.x0, field.y0, field.resolution, nx, ny,
     )  # fmt: skip
 
@@ -146,3 +147,50 @@ def test_a_closing_draw_said_to_miss_the_goal_misses_it_at_its_true_variance():
         hit += any(inside)
         all_out += min(abs(end) for end in ends) > 0.5
     assert hit > 0 and said > 0.5 * all_out
+
+
+def test_the_approach_over_an_adversarial_cell_keeps_the_stated_clearance():
+    """Every point of the ankle's and the toes' way in keeps FOOT_CLEARANCE - TOE_PROBE_STEP
+    / 2 when the approach is accepted, in a field whose lookup is sqrt(2)-Lipschitz: nodes
+    c + |i| + |j| spacings (each node difference one spacing, as a distance's), a valley along
+    the diagonal; taken as 1-Lipschitz, the probes' cover overreaches it."""
+    res = 0.02
+    target = FOOT_CLEARANCE - TOE_PROBE_STEP / 2
+    k = np.arange(-40, 41)
+    field = ClearanceField(
+        -0.8, -0.8, res, target - 0.004 + res * (abs(k)[None, :] + abs(k)[:, None])
+    )
+    ny, nx = field.values.shape
+
+    def clear(land, lift, toe, lip):
+        par = params(toe_share=1.0, toe_step=TOE_PROBE_STEP, field_lip=lip)
+        start = min(field(np.array([z.real, z.imag])) for z in (land, land + toe))
+        return toe_approach_clear(
+            land, lift, toe, FOOT_CLEARANCE, float(start), 1.0 + 0j, 0j, par, field.values,
+            field.x0, field.y0, res, nx, ny,
+        )  # fmt: skip
+
+    def lowest(a, b):
+        t = np.linspace(0.0, 1.0, int(abs(b - a) / 2e-4) + 2)
+        z = a + t * (b - a)
+        return float(field(np.stack([z.real, z.imag], axis=-1)).min())
+
+    diag = complex(1.0, 1.0) / math.sqrt(2.0)
+    toe = 0.14 * diag * 1j  # across the valley's floor, the toes out of it
+    land, lift = 0.14 * diag, -0.14 * diag  # the ankle's way in crosses the floor
+    assert lowest(lift, land) < target - 0.003
+    assert clear(land, lift, toe, 1.0)  # the 1-Lipschitz rule lets it through
+    assert not clear(land, lift, toe, field.lipschitz)
+    rng = np.random.default_rng(6)
+    accepted = 0
+    for _ in range(400):
+        u = complex(*rng.normal(size=2))
+        u /= abs(u)
+        land = rng.uniform(-0.06, 0.06) * 1j * u + rng.uniform(0.0, 0.3) * u
+        lift = land - rng.uniform(0.1, 0.4) * u
+        toe = 0.14 * complex(*rng.normal(size=2)) / math.sqrt(2.0)
+        if clear(land, lift, toe, field.lipschitz):
+            accepted += 1
+            assert lowest(lift, land) >= target - 1e-12
+            assert lowest(lift + toe, land + toe) >= target - 1e-12
+    assert accepted > 40

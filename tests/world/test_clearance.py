@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from mjwalk.world.clearance import (
     ClearanceField,
@@ -44,3 +45,65 @@ def test_bilinear_lookup_and_compiled_twin_agree():
     assert field(np.array([-5.0, -5.0])) == 0.0  # beyond the grid: the nearest border node
     for x, y in [(10.1, 20.3), (10.4, 20.05), (9.0, 21.0)]:
         assert bilinear_at(values, 10.0, 20.0, 0.5, x, y) == field(np.array([x, y]))
+
+
+def test_lipschitz_of_a_cell_about_an_obstacles_corner_is_sqrt2():
+    # nodes 0, 1, 1, sqrt(2) spacings (the distance from a box's corner at node (0, 0)): the
+    # lookup's gradient at that corner is (1, 1), not a unit vector
+    res = 0.5
+    field = ClearanceField(0.0, 0.0, res, res * np.array([[0.0, 1.0], [1.0, np.sqrt(2.0)]]))
+    assert field.lipschitz == np.sqrt(2.0)
+    h = 1e-7
+    grad = (field(np.array([[h, 0.0], [0.0, h]])) - field(np.array([0.0, 0.0]))) / h
+    np.testing.assert_allclose(grad, [1.0, 1.0], rtol=1e-6)
+    # a plane has its slope, whatever its direction
+    gx, gy = np.meshgrid(np.arange(4.0), np.arange(3.0))
+    plane = ClearanceField(0.0, 0.0, 0.1, 0.1 * (0.6 * gx + 0.8 * gy))
+    assert abs(plane.lipschitz - 1.0) < 1e-12
+
+
+def test_lipschitz_bounds_every_pair_and_is_reached():
+    # a distance field (boxes, posts, a room corner from the floor's edge as walk fields have
+    # it): no two points differ by more than lipschitz times their distance, the bound is
+    # reached near a cell's corner, and a distance's lookup never exceeds sqrt(2)
+    rng = np.random.default_rng(3)
+    posts = [
+        Footprint(f"p{k}", k, np.repeat(rng.uniform(0.3, 2.7, (1, 2)), 2, axis=0), radius=0.1)
+        for k in range(6)
+    ]
+    field = build_clearance([SQUARE, *posts], (0.0, 0.0, 3.0, 3.0), 0.05)
+    gx, gy = field.grid_xy()
+    edge = np.minimum(np.minimum(gx, 3.0 - gx)[None, :], np.minimum(gy, 3.0 - gy)[:, None])
+    field = ClearanceField(0.0, 0.0, 0.05, np.minimum(field.values, edge))
+    lip = field.lipschitz
+    assert 1.0 < lip <= np.sqrt(2.0) + 1e-12
+    a = rng.uniform(-0.2, 3.2, (20000, 2))
+    b = a + rng.normal(scale=0.05, size=a.shape)
+    assert np.all(np.abs(field(a) - field(b)) <= lip * np.linalg.norm(a - b, axis=1) + 1e-12)
+    # the steepest cell's corner: a one-sided difference there reaches the bound
+    v = field.values
+    dx, dy = np.abs(np.diff(v, axis=1)), np.abs(np.diff(v, axis=0))
+    best = 0.0
+    h = 1e-7
+    for j in range(v.shape[0] - 1):
+        for i in range(v.shape[1] - 1):
+            for cj in (0, 1):
+                for ci in (0, 1):
+                    g = np.hypot(dx[j + cj, i], dy[j, i + ci]) / 0.05
+                    if g > best - 1e-12:
+                        best, corner = g, (j, i, cj, ci)
+    j, i, cj, ci = corner
+    p = np.array([gx[i + ci] - (2 * ci - 1) * 2 * h, gy[j + cj] - (2 * cj - 1) * 2 * h])
+    slope = np.hypot(
+        *((field(p + d) - field(p - d)) / (2 * h) for d in (np.array([h, 0.0]), np.array([0.0, h])))
+    )
+    assert best == pytest.approx(lip, rel=1e-12)
+    assert slope == pytest.approx(lip, rel=1e-4)
+
+
+def test_the_shipped_stations_walk_field_is_sqrt2_lipschitz(scenes_dir):
+    # not 1: the floor's corners (the edge distance min(x, y)) and the obstacles' corners
+    from mjwalk.world import load_workplace
+
+    field = load_workplace(scenes_dir / "assembly_station.xml").walk_field()
+    assert field.lipschitz == pytest.approx(np.sqrt(2.0), abs=1e-9)
