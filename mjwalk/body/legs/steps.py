@@ -298,6 +298,20 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     stretched leg's knee would straighten until toe-off, then flex to the swing's within a
     few samples).
 
+    In the pre-swing the knee follows the reference and the heel rises as far as that needs
+    (:func:`~.footpivot.heel_rise`), from the pitch the step starts with (the stance's heel
+    rise), which is let down to flat by toe-off. The reference's own heel rise is not a floor:
+    its foot-floor angle (Perry & Burnfield) is that of a foot a normal stride behind the hip,
+    where the reference knee needs that rise anyway. A foot nearer under its hip (a short,
+    closing or turning step) held to it flexes the knee past the reference's and swings the
+    thigh forward: 0.25 m steps reached 35 deg hip flexion against the reference's 27 deg
+    peak, and the last step of the station batch's run 307 (seed 0), from a foot under the
+    hip, 39 deg, its knee 0.33 m out from the pelvis into the car beside it. People's joint
+    excursions shrink at slow speeds and short steps, not grow (Fukuchi, Fukuchi & Duarte,
+    "Effects of walking speed on gait biomechanics in healthy participants: a systematic
+    review and meta-analysis", Syst. Rev. 8:153, 2019, abstract: the amplitude of joint
+    kinematics decreases at slow speeds).
+
     Args:
         fr: the step (swing side, lift-off and landing footprints, first step, ``p_start``).
         phi: (n,) increasing step phases of the step's samples, 0 to 1.
@@ -324,11 +338,13 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     p[early] = _roll_pitch(fr, ref, phi[early])
     phi_to = TOE_OFF
     if not fr.first:
-        # pre-swing: the knee follows the reference; the heel rises as far as that needs
+        # pre-swing: the knee follows the reference; the heel rises as far as that needs,
+        # from the pitch the step starts with, let down to flat by toe-off (see above)
         je = np.flatnonzero(early)
         hip = hip_pos(idx[je], fr.side, z_hip[je])
         knee = np.maximum(ref("knee", 0.5 + 0.5 * phi[je]), float(KNEE_MIN))
-        p[je] = heel_rise(lift, hip, knee, p[je], geom, lo=-HEEL_RISE_MAX)
+        floor = p[je[0]] * (1 - smoothstep(phi[je] / TOE_OFF))
+        p[je] = heel_rise(lift, hip, knee, floor, geom, lo=-HEEL_RISE_MAX)
         held = np.flatnonzero(p[je] <= -HEEL_RISE_MAX + 1e-9)
         if len(held) and held[0] >= 1:  # (two samples on the floor give the lift-off velocity)
             phi_to = float(phi[je[held[0]]])
@@ -368,7 +384,8 @@ def toe_straighten_share(p_end: float, duration: float, phi_to: float) -> float:
 def _roll_pitch(fr: StepFrames, ref: ReferenceGait, ph: np.ndarray) -> np.ndarray:
     """The swing foot's pitch (radians) rolling about its ball before toe-off, at step
     phases ``ph``: the reference's heel rise (toes down only, softly flat), faded in on a
-    standing start, continuing the stance's extra heel rise otherwise."""
+    standing start, continuing the stance's extra heel rise otherwise (a later step takes
+    only its start from it: :func:`swing_foot`)."""
     p = soft_flat(np.minimum(ref("pitch", 0.5 + 0.5 * ph), 0.0))
     if fr.first:
         p = p * smoothstep(ph / TOE_OFF)

@@ -166,8 +166,8 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
             d[i] = math.sqrt(span0 + span1 * math.cos(kv))
         rise = np.empty(ne)
         p0 = np.empty(ne)
-        for i in range(ne):
-            p0[i] = p[i]
+        for i in range(ne):  # the start's pitch let down to flat (steps.swing_foot's floor)
+            p0[i] = p[0] * (1 - smoothstep1(phi[i] / TOE_OFF))
         heel_rise_rows(lift, hip, d, p0, ball, back, ah, -HEEL_RISE_MAX, rise)
         for i in range(ne):  # (element loops: no shape checks to compile)
             p[i] = rise[i]
