@@ -60,3 +60,37 @@ def test_toes_straighten_no_faster_than_the_cited_speed():
     assert peak < 6.0
     assert toe_straighten_share(np.deg2rad(-30.0), 0.6, 0.2) == TOE_STRAIGHTEN
     assert toe_straighten_share(-HEEL_RISE_MAX, 0.1, 0.2) == pytest.approx(0.8)
+
+
+def _swing_peaks(walk, legs):
+    """Per step: (swing hip flexion peak, pitch at toe-off, the reference's foot-floor angle
+    there), degrees, of the steady steps."""
+    out = []
+    for st in walk.steps[2:-1]:
+        a, b, s = st.start, st.end, st.side
+        ito = a + int(np.argmin(legs.contact[a : b + 1] == 2)) - 1  # the last double-support sample
+        hip = legs.angles[f"hip_{s[0]}_flex"][a : b + 1].max()
+        own = float(DEFAULT_REFERENCE("pitch", 0.5 + 0.5 * legs.phase[ito]))
+        out.append((np.rad2deg(hip), np.rad2deg(legs.pitch[s][ito]), np.rad2deg(own)))
+    return np.array(out)
+
+
+def test_short_steps_do_not_fold_the_swing_thigh_past_the_reference():
+    """Seeded (synthetic walks, no draw): the pre-swing heel rise is the reference's only as far
+    as the foot trails its hip as the reference's. Steady 0.25 m steps, their trailing foot
+    about half the reference's distance behind the hip, keep the swing hip's flexion within the
+    reference's swing peak (35.7 deg, 8.7 deg past it, when the reference's foot-floor angle
+    held whole) and lift the heel less than the reference; normal 0.65 m strides keep
+    the reference's heel rise at toe-off (or more, where the knee needs it)."""
+    from mjwalk.body.legs import legs_from_walk
+
+    ref = DEFAULT_REFERENCE
+    c = np.linspace(0.5, 1.0, 501)
+    hip_peak = np.rad2deg(max(float(ref("hip", x)) for x in c))
+    short = synthetic_walk(n_steps=8, step_len=0.25)
+    peaks = _swing_peaks(short, legs_from_walk(short))
+    assert peaks[:, 0].max() <= hip_peak + 0.5
+    assert (peaks[:, 1] > peaks[:, 2] + 5.0).all()
+    normal = synthetic_walk(n_steps=8)
+    peaks = _swing_peaks(normal, legs_from_walk(normal))
+    assert (peaks[:, 1] <= peaks[:, 2] + 1e-6).all()

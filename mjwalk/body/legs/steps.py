@@ -298,6 +298,23 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     stretched leg's knee would straighten until toe-off, then flex to the swing's within a
     few samples).
 
+    In the pre-swing the knee follows the reference and the heel rises as far as that needs
+    (:func:`~.footpivot.heel_rise`), and at least as far as the reference's heel rise in
+    proportion to how far the foot trails its hip (:func:`_trailing_rise`): the reference's
+    foot-floor angle (Perry & Burnfield) is that of a foot the reference's distance behind the
+    hip (0.25-0.36 m over the pre-swing at this stature), and from there on it applies whole
+    (a normal stride, a stair: as before). A foot nearer under its hip (a short, closing or
+    turning step) held to it whole flexes the knee past the reference's and swings the thigh
+    forward: steady 0.25 m steps reached 35 deg hip flexion against the reference's 27 deg
+    peak, and the last step of the station batch's run 307 (seed 0), from a foot under the
+    hip, 39 deg, its knee 0.33 m out from the pelvis and into the car beside it. A foot under
+    the hip keeps the pitch its step starts with. The share is linear in the distance: an
+    ASSUMPTION, no measured figure; its direction is the literature's: joint excursions shrink
+    at slow speeds and short steps, not grow (Fukuchi, Fukuchi & Duarte, "Effects of walking
+    speed on gait biomechanics in healthy participants: a systematic review and
+    meta-analysis", Syst. Rev. 8:153, 2019, abstract: the amplitude of joint kinematics
+    decreases at slow speeds).
+
     Args:
         fr: the step (swing side, lift-off and landing footprints, first step, ``p_start``).
         phi: (n,) increasing step phases of the step's samples, 0 to 1.
@@ -324,11 +341,12 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     p[early] = _roll_pitch(fr, ref, phi[early])
     phi_to = TOE_OFF
     if not fr.first:
-        # pre-swing: the knee follows the reference; the heel rises as far as that needs
+        # pre-swing: the knee follows the reference; the heel rises as far as that needs and
+        # at least as the reference's does as far as the foot trails as its does (see above)
         je = np.flatnonzero(early)
         hip = hip_pos(idx[je], fr.side, z_hip[je])
         knee = np.maximum(ref("knee", 0.5 + 0.5 * phi[je]), float(KNEE_MIN))
-        p[je] = heel_rise(lift, hip, knee, p[je], geom, lo=-HEEL_RISE_MAX)
+        p[je] = heel_rise(lift, hip, knee, _trailing_rise(st, p[je], hip), geom, lo=-HEEL_RISE_MAX)
         held = np.flatnonzero(p[je] <= -HEEL_RISE_MAX + 1e-9)
         if len(held) and held[0] >= 1:  # (two samples on the floor give the lift-off velocity)
             phi_to = float(phi[je[held[0]]])
@@ -365,10 +383,30 @@ def toe_straighten_share(p_end: float, duration: float, phi_to: float) -> float:
     return max(min(max(TOE_STRAIGHTEN, need), 1.0 - phi_to), 1e-9)
 
 
+def _trailing_rise(st: _SwingStep, p: np.ndarray, hip: np.ndarray) -> np.ndarray:
+    """The pre-swing roll's pitches ``p`` (m,) (from :func:`_roll_pitch`) as far as the foot
+    trails its hip ``hip`` (m, 3) as the reference's does: the reference's heel rise beyond
+    the step's starting pitch in proportion to the foot's distance behind the hip along the
+    step over the reference ankle's behind its hip at that instant, all of it from that
+    distance on (see :func:`swing_foot`)."""
+    fr, ref, geom = st.fr, st.ref, st.geom
+    lift, land = fr.lift, fr.land
+    seg = land[:2] - lift[:2]
+    seg_n = math.sqrt(max(float(seg @ seg), 1e-9))
+    c = 0.5 + 0.5 * st.phi[: len(p)]
+    hf, kf = ref("hip", c), ref("knee", c)
+    behind = -(geom.thigh * np.sin(hf) + geom.shank * np.sin(hf - kf))
+    trail = ((hip[:, 0] - lift[0]) * seg[0] + (hip[:, 1] - lift[1]) * seg[1]) / seg_n
+    with np.errstate(divide="ignore", invalid="ignore"):
+        share = np.where(behind > 0, np.minimum(np.maximum(trail / behind, 0.0), 1.0), 1.0)
+    return np.where(share >= 1.0, p, p[0] + (p - p[0]) * share)
+
+
 def _roll_pitch(fr: StepFrames, ref: ReferenceGait, ph: np.ndarray) -> np.ndarray:
     """The swing foot's pitch (radians) rolling about its ball before toe-off, at step
     phases ``ph``: the reference's heel rise (toes down only, softly flat), faded in on a
-    standing start, continuing the stance's extra heel rise otherwise."""
+    standing start, continuing the stance's extra heel rise otherwise (a later step takes
+    only its start from it: :func:`swing_foot`)."""
     p = soft_flat(np.minimum(ref("pitch", 0.5 + 0.5 * ph), 0.0))
     if fr.first:
         p = p * smoothstep(ph / TOE_OFF)

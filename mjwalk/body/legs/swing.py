@@ -166,8 +166,17 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
             d[i] = math.sqrt(span0 + span1 * math.cos(kv))
         rise = np.empty(ne)
         p0 = np.empty(ne)
+        # the reference's heel rise as far as the foot trails its hip as the reference's
+        # (steps._trailing_rise)
+        seg_n = math.sqrt(seg_sq)
         for i in range(ne):
-            p0[i] = p[i]
+            c = wrap01(0.5 + 0.5 * phi[i])
+            hf = ppoly_at(hip_c, hip_k, c, 0)
+            kf = ppoly_at(knee_c, knee_k, c, 0)
+            behind = -(L1 * math.sin(hf) + L2 * math.sin(hf - kf))
+            trail = ((hip_xy[i, 0] - lift[0]) * seg[0] + (hip_xy[i, 1] - lift[1]) * seg[1]) / seg_n
+            share = min(max(trail / behind, 0.0), 1.0) if behind > 0 else 1.0
+            p0[i] = p[i] if share >= 1.0 else p[0] + (p[i] - p[0]) * share
         heel_rise_rows(lift, hip, d, p0, ball, back, ah, -HEEL_RISE_MAX, rise)
         for i in range(ne):  # (element loops: no shape checks to compile)
             p[i] = rise[i]

@@ -13,8 +13,11 @@ footprint to ``step.foot`` while the other stands on ``step.stance``), with the 
   over the last 20 % of the step the swing leg's length eases into its heel-strike length
   (zero velocity), so the knee does not snap straight at landing.
 * **Swing leg (A9).** Until toe-off (``phi`` = 0.2, double support) the swing foot rolls about
-  its ball (toes flat); a trailing foot whose heel rise reaches its bound (60 deg) before that
-  lifts off there (the leg could not reach it on the floor). Then the swing ankle follows a
+  its ball (toes flat), its heel rising as far as the reference knee needs and as the
+  reference's as far as the foot trails its hip as the reference's (a foot under the hip
+  does not fold the leg forward: :func:`~.steps.swing_foot`); a trailing
+  foot whose heel rise reaches its bound (60 deg) before that lifts off there (the leg could
+  not reach it on the floor). Then the swing ankle follows a
   cubic spline through key positions at ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9: the reference
   hip/knee angles of that gait-cycle instant placed at the current hip (forward progress and
   height), kept on the line from the lift-off to the landing footprint, lifted where the foot
