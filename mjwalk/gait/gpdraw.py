@@ -17,6 +17,10 @@ input; k; ``var_cap`` an upper bound of every variance
 (:func:`mjwalk.gait.transition.variance_cap`). :func:`sample` is :func:`draw_parts` (all but the
 variance, all the random numbers), :func:`variance` and :func:`compose`, so a caller that can
 do without the variance skips it (:func:`mjwalk.plan.search.search`'s closing draws).
+The search draws thousands of times per walk, one predecessor at a time: it keeps one set of
+work arrays (:func:`new_work`) and draws into its own node arrays (:func:`sample_into`,
+:func:`draw_parts_into`, :func:`compose_into`), the same loops without a dozen small
+allocations per draw.
 """
 
 from __future__ import annotations
@@ -106,12 +110,21 @@ def _moments(x, gp):
 def _kernel_rows(x, gp):
     """The posterior mean (p, d), h (p, m) and exp(-h) (p, m) of :func:`moments`: all of it
     but the variance."""
+    p = x.shape[0]
+    m = gp[1].shape[0]
+    h = np.empty((p, m))
+    e = np.empty((p, m))
+    mean = np.empty((p, gp[3].shape[1]))
+    _kernel_rows_into(x, gp, mean, h, e)
+    return mean, h, e
+
+
+@njit
+def _kernel_rows_into(x, gp, mean, h, e):
+    """:func:`_kernel_rows` into ``mean`` (p, d), ``h`` and ``e`` (p, m each)."""
     neg_zs_t, half_zs2, half_inv_l2, c_alpha = gp[:4]
     p, d = x.shape
     m = half_zs2.shape[0]
-    h = np.empty((p, m))
-    e = np.empty((p, m))
-    mean = np.zeros((p, c_alpha.shape[1]))
     for i in range(p):
         xx = 0.0
         for a in range(d):
@@ -124,6 +137,8 @@ def _kernel_rows(x, gp):
             row = neg_zs_t[a]
             for j in range(m):
                 hi[j] += xa * row[j]
+        for a in range(c_alpha.shape[1]):
+            mean[i, a] = 0.0
         for j in range(m):
             v = hi[j] + half_zs2[j] + xx
             if v < 0.0:
@@ -133,7 +148,6 @@ def _kernel_rows(x, gp):
             e[i, j] = ej
             for a in range(c_alpha.shape[1]):
                 mean[i, a] += ej * c_alpha[j, a]
-    return mean, h, e
 
 
 @njit
@@ -186,19 +200,58 @@ def draw_parts(x, n, rng, gp, sharp):
         gp: :attr:`TransitionGP.kernel`.
         sharp: sharpness of the pool choice (as for :func:`sample`).
     """
+    work = new_work(x.shape[0], gp)
+    rows = np.empty(x.shape[0] * n, dtype=np.intp)
+    eps = draw_parts_into(x, n, rng, gp, sharp, work, rows)
+    return work[0], work[2], rows, eps
+
+
+@njit
+def new_work(p, gp):
+    """Work arrays for :func:`draw_parts_into` and :func:`sample_into`: draws of ``p``
+    predecessors by the GP ``gp`` (:attr:`TransitionGP.kernel`; m inducing inputs, d
+    features).
+
+    Returns:
+        (mean (p, d), h (p, m), exp(-h) (p, m), two (m,) rows for the pool weights).
+    """
+    m = gp[1].shape[0]
+    return (
+        np.empty((p, gp[3].shape[1])),
+        np.empty((p, m)),
+        np.empty((p, m)),
+        np.empty(m),
+        np.empty(m),
+    )
+
+
+@njit
+def draw_parts_into(x, n, rng, gp, sharp, work, rows):
+    """:func:`draw_parts` into the work arrays ``work`` (:func:`new_work` of x's p rows and
+    ``gp``) and ``rows`` (at least p·n): afterwards ``work[0]`` is the posterior mean and
+    ``work[2]`` exp(-h); returns the normal deviates (p·n·d,), drawn from ``rng`` as
+    :func:`draw_parts` draws them.
+
+    Args:
+        x: (p, d) predecessor features.
+        n: successors per predecessor.
+        rng: ``numpy.random.Generator``.
+        gp: :attr:`TransitionGP.kernel`.
+        sharp: sharpness of the pool choice (as for :func:`sample`).
+        work: :func:`new_work`'s arrays.
+        rows: (>= p·n,) int, takes each successor's residual row of the flattened pools.
+    """
     pool = gp[7]
     k = gp[8]
     p = x.shape[0]
     d = pool.shape[1]
-    mean, h, e = _kernel_rows(x, gp)
+    mean, h, e, c, sq = work
     m = h.shape[1]
+    _kernel_rows_into(x, gp, mean, h, e)
     # a whole sharpness (up to 64): the weights are that power of exp(-h) over its largest
     # value, by multiplications, instead of a second exp per inducing input
     power = int(sharp) if sharp == math.floor(sharp) and 1.0 <= sharp <= 64.0 else 0
     u = rng.random(p * n)
-    cell = np.empty(p * n, dtype=np.intp)
-    c = np.empty(m)
-    sq = np.empty(m)
     for i in range(p):
         lo = h[i, 0]
         near = 0
@@ -234,10 +287,11 @@ def draw_parts(x, n, rng, gp, sharp):
             c[j] = acc
         for r in range(n):
             # the first j with c_j >= u (u <= c_{m-1}: never past the last)
-            cell[i * n + r] = k * np.searchsorted(c, u[i * n + r] * acc)
+            rows[i * n + r] = k * np.searchsorted(c, u[i * n + r] * acc)
     member = rng.integers(0, k, p * n)
-    eps = rng.standard_normal(p * n * d)
-    return mean, e, cell + member, eps
+    for q in range(p * n):
+        rows[q] += member[q]
+    return rng.standard_normal(p * n * d)
 
 
 @njit
@@ -263,3 +317,47 @@ def compose(mean, var, rows, eps, n, pool):
             for a in range(d):
                 out[i, r, a] = eps[q * d + a] * sd + mean[i, a] + pool[row, a]
     return out
+
+
+@njit
+def compose_into(mean, var, rows, eps, n, pool, out, o0):
+    """:func:`compose` for one predecessor (``mean`` (1, d)) with the variance ``var`` (a
+    float) into the rows ``o0`` .. ``o0`` + n - 1 of ``out`` (.., d).
+
+    Args:
+        mean: (1, d) the posterior mean.
+        var: the latent variance.
+        rows: (>= n,) residual rows of ``pool``.
+        eps: (n·d,) normal deviates.
+        n: successors.
+        pool: (m·k, d) the flattened residual pools.
+        out: (>= o0 + n, d) takes the successors.
+        o0: the first row of ``out`` taken.
+    """
+    d = mean.shape[1]
+    sd = math.sqrt(max(var, 0.0))
+    for r in range(n):
+        row = rows[r]
+        for a in range(d):
+            out[o0 + r, a] = eps[r * d + a] * sd + mean[0, a] + pool[row, a]
+
+
+@njit
+def sample_into(x, n, rng, gp, sharp, work, rows, out, o0):
+    """:func:`sample` of one predecessor ``x`` (1, d) into the rows ``o0`` .. ``o0`` + n - 1
+    of ``out``, with the work arrays ``work`` (:func:`new_work`) and ``rows`` (>= n): the same
+    numbers, drawn from ``rng`` as :func:`sample` draws them.
+
+    Args:
+        x: (1, d) the predecessor's features.
+        n: successors.
+        rng: ``numpy.random.Generator``.
+        gp: :attr:`TransitionGP.kernel`.
+        sharp: sharpness of the pool choice (as for :func:`sample`).
+        work: :func:`new_work` of 1 predecessor and ``gp``.
+        rows: (>= n,) int work array.
+        out: (>= o0 + n, d) takes the successors.
+        o0: the first row of ``out`` taken.
+    """
+    eps = draw_parts_into(x, n, rng, gp, sharp, work, rows)
+    compose_into(work[0], variance(work[2], gp)[0], rows, eps, n, gp[7], out, o0)

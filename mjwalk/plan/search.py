@@ -20,10 +20,11 @@ functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_into`
 in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan.stepcost`;
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change to this file's text,
 or processes keep running the old machine code (touching the file is not enough). The record of
-such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the step decode
-inlined by numba, the step decoded column by column as the clearance test needs it and the
-lifting foot's turn once per node, issue 50; before it, the step decode in one place,
-``stepgeom.decode_col``).
+such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the GP draws into
+work arrays kept for the whole search and into ``feats`` itself,
+:func:`~mjwalk.gait.gpdraw.sample_into`, issue 50; before it, the step decode inlined by
+numba, the step decoded column by column as the clearance test needs it and the lifting
+foot's turn once per node).
 """
 
 from __future__ import annotations
@@ -36,8 +37,7 @@ from numba import types
 from numba.typed import Dict
 
 from mjwalk._jit import njit
-from mjwalk.gait.gpdraw import compose, draw_parts, variance
-from mjwalk.gait.gpdraw import sample as gp_sample
+from mjwalk.gait.gpdraw import compose_into, draw_parts_into, new_work, sample_into, variance
 from mjwalk.plan.slots import (
     I_M,
     I_MAX_EXPANSIONS,
@@ -71,26 +71,29 @@ def _grow2(a, n):
 
 
 @njit
-def _closing_draws(x, n, rng, gp, sharp, matrix, offset, frame, p, par, ipar):
+def _closing_draws(x, n, rng, gp, sharp, matrix, offset, frame, p, par, ipar, work, rows, z, o0):
     """``n`` closing steps drawn from the predecessor ``x`` (1, d) by the closing-step GP
     ``gp``, as :func:`~mjwalk.gait.gpdraw.sample` draws them (the same random numbers), for
-    a node at ``p`` (world x + iy) whose steps turn by ``frame`` (radians).
+    a node at ``p`` (world x + iy) whose steps turn by ``frame`` (radians), into the rows
+    ``o0`` .. ``o0`` + n - 1 of ``z`` (``work``, ``rows``: as for
+    :func:`~mjwalk.gait.gpdraw.sample_into`).
 
     Most closing draws near the goal cannot end the walk wherever their variance puts them
     (:func:`~mjwalk.plan.stepgeom.closing_ends_miss`, with the variance's cap
     ``gp[9]``): those skip the dense variance (:func:`~mjwalk.gait.gpdraw.variance`) and come
     out at their mean and residual (sd 0), which ends outside the goal area as well, so
     :func:`~mjwalk.plan.stepcheck.check_into` rejects them as it would the true draws (their
-    features are never read: only accepted steps become nodes). Returns (n, d).
+    features are never read: only accepted steps become nodes).
     """
-    mean, e, rows, eps = draw_parts(x, n, rng, gp, sharp)
+    eps = draw_parts_into(x, n, rng, gp, sharp, work, rows)
+    mean = work[0]
     m = ipar[I_M]
-    if closing_ends_miss(mean, rows, eps, gp[7], math.sqrt(gp[9]), matrix, offset, m, frame,
-                         p, par, ipar):  # fmt: skip
-        var = np.zeros(1)
+    if closing_ends_miss(mean, rows[:n], eps, gp[7], math.sqrt(gp[9]), matrix, offset, m,
+                         frame, p, par, ipar):  # fmt: skip
+        var = 0.0
     else:
-        var = variance(e, gp)
-    return compose(mean, var, rows, eps, n, gp[7])[0]
+        var = variance(work[2], gp)[0]
+    compose_into(mean, var, rows, eps, n, gp[7], z, o0)
 
 
 @njit
@@ -181,6 +184,12 @@ def search(
     lefts = bufs[9]
     accepted = np.zeros(1, dtype=np.int64)
     drawn = np.zeros(1, dtype=np.int64)
+    # the draws' work arrays, one set per GP, and the successors drawn into feats itself
+    work_left = new_work(1, gp_left)
+    work_right = new_work(1, gp_right)
+    work_stop_left = new_work(1, stop_left)
+    work_stop_right = new_work(1, stop_right)
+    draw_rows = np.empty(max(n_succ, n_stop, 1), dtype=np.intp)
     while len(heap) > 0:
         nid = heapq.heappop(heap)[2]
         p = pos[nid]
@@ -212,11 +221,10 @@ def search(
             else:
                 closed.add(key)
             stop_only = False
-        # draw this node's successors (the start node: the starters)
+        # draw this node's successors (the start node: the starters) into feats' next rows
         one_near[0] = near
         one_node[0, 0] = p
         if nid == 0:
-            z = z0
             per = z0.shape[0]
             n_walk = per
             frm = frame0
@@ -225,26 +233,31 @@ def search(
             one_node[0, 2] = nan_c
             one_node[0, 4] = nan_c
         else:
-            x = feats[row[nid] : row[nid] + 1]
             on_left = left[nid]
             n_walk = 0 if stop_only else n_succ
             per = n_walk + n_stop if near else n_walk
-            z = np.empty((per, d))
+        if nf + per > fcap:
+            fcap = max(2 * fcap, nf + per)
+            feats = _grow2(feats, fcap)
+            closing = _grow1(closing, fcap)
+        z = feats[nf : nf + per]
+        if nid == 0:
+            z[:] = z0
+        else:
+            x = feats[row[nid] : row[nid] + 1]
             if n_walk > 0:
                 # (each GP by name, not a tuple picked at run time: that copies it)
                 if on_left:
-                    z[:n_walk] = gp_sample(x, n_walk, rng, gp_left, sharp)[0]
+                    sample_into(x, n_walk, rng, gp_left, sharp, work_left, draw_rows, z, 0)
                 else:
-                    z[:n_walk] = gp_sample(x, n_walk, rng, gp_right, sharp)[0]
+                    sample_into(x, n_walk, rng, gp_right, sharp, work_right, draw_rows, z, 0)
             if per > n_walk:  # near the goal: closing steps too, after the walking ones
                 if on_left:
-                    z[n_walk:] = _closing_draws(
-                        x, n_stop, rng, stop_left, sharp, matrix, offset, hd, p, par, ipar
-                    )
+                    _closing_draws(x, n_stop, rng, stop_left, sharp, matrix, offset, hd, p, par,
+                                   ipar, work_stop_left, draw_rows, z, n_walk)  # fmt: skip
                 else:
-                    z[n_walk:] = _closing_draws(
-                        x, n_stop, rng, stop_right, sharp, matrix, offset, hd, p, par, ipar
-                    )
+                    _closing_draws(x, n_stop, rng, stop_right, sharp, matrix, offset, hd, p, par,
+                                   ipar, work_stop_right, draw_rows, z, n_walk)  # fmt: skip
             one_frame[0] = hd
             one_left[0] = not left[nid]
             frm = one_frame
@@ -258,11 +271,6 @@ def search(
             z, matrix, offset, per, n_walk, frm, lft, one_near, one_node, thr, par, ipar, coef,
             dist, bufs, accepted, drawn,
         )  # fmt: skip
-        if nf + per > fcap:
-            fcap = max(2 * fcap, nf + per)
-            feats = _grow2(feats, fcap)
-            closing = _grow1(closing, fcap)
-        feats[nf : nf + per] = z
         for r in range(per):
             closing[nf + r] = r >= n_walk
         base = nf
