@@ -122,7 +122,20 @@ def _kernel_rows(x, gp):
 @njit
 def _kernel_rows_into(x, gp, mean, h, e):
     """:func:`_kernel_rows` into ``mean`` (p, d), ``h`` and ``e`` (p, m each)."""
-    neg_zs_t, half_zs2, half_inv_l2, c_alpha = gp[:4]
+    half_sq_into(x, gp, h)
+    exp_rows_into(gp, h, mean, e)
+
+
+@njit
+def half_sq_into(x, gp, h):
+    """h_ij = |x_i/ℓ - z_j/ℓ|²/2 (clipped at 0) of :func:`moments` into ``h`` (p, m).
+
+    Args:
+        x: (p, d) predecessor features.
+        gp: :attr:`TransitionGP.kernel`.
+        h: (p, m) takes h.
+    """
+    neg_zs_t, half_zs2, half_inv_l2 = gp[:3]
     p, d = x.shape
     m = half_zs2.shape[0]
     for i in range(p):
@@ -137,14 +150,31 @@ def _kernel_rows_into(x, gp, mean, h, e):
             row = neg_zs_t[a]
             for j in range(m):
                 hi[j] += xa * row[j]
-        for a in range(c_alpha.shape[1]):
-            mean[i, a] = 0.0
         for j in range(m):
             v = hi[j] + half_zs2[j] + xx
             if v < 0.0:
                 v = 0.0
-            h[i, j] = v
-            ej = math.exp(-v)
+            hi[j] = v
+
+
+@njit
+def exp_rows_into(gp, h, mean, e):
+    """The kernel rows exp(-h) into ``e`` and the posterior mean into ``mean`` (p, d) of
+    :func:`half_sq_into`'s ``h`` (p, m).
+
+    Args:
+        gp: :attr:`TransitionGP.kernel`.
+        h: (p, m) half squared scaled distances.
+        mean: (p, d) takes the posterior mean.
+        e: (p, m) takes exp(-h).
+    """
+    c_alpha = gp[3]
+    p, m = h.shape
+    for i in range(p):
+        for a in range(c_alpha.shape[1]):
+            mean[i, a] = 0.0
+        for j in range(m):
+            ej = math.exp(-h[i, j])
             e[i, j] = ej
             for a in range(c_alpha.shape[1]):
                 mean[i, a] += ej * c_alpha[j, a]
@@ -241,17 +271,46 @@ def draw_parts_into(x, n, rng, gp, sharp, work, rows):
         work: :func:`new_work`'s arrays.
         rows: (>= p·n,) int, takes each successor's residual row of the flattened pools.
     """
-    pool = gp[7]
-    k = gp[8]
-    p = x.shape[0]
-    d = pool.shape[1]
-    mean, h, e, c, sq = work
-    m = h.shape[1]
+    mean, h, e = work[:3]
     _kernel_rows_into(x, gp, mean, h, e)
+    u, member, eps = draw_numbers(rng, x.shape[0], n, gp)
+    choose_rows(h, e, u, member, n, gp, sharp, work, rows)
+    return eps
+
+
+@njit
+def draw_numbers(rng, p, n, gp):
+    """The random numbers of a draw of ``n`` successors of ``p`` predecessors by ``gp``, drawn
+    from ``rng`` in :func:`sample`'s order: p·n uniforms (the pool choices), p·n pool members,
+    p·n·d standard normal deviates."""
+    u = rng.random(p * n)
+    member = rng.integers(0, gp[8], p * n)
+    return u, member, rng.standard_normal(p * n * gp[7].shape[1])
+
+
+@njit
+def choose_rows(h, e, u, member, n, gp, sharp, work, rows):
+    """Each successor's residual row of the flattened pools into ``rows`` (p·n,): the pool of
+    inducing input j with probability ∝ exp(-sharp·(h_j - min h)) (:func:`sample`) at the
+    uniform number ``u``, its member ``member``.
+
+    Args:
+        h: (p, m) half squared scaled distances.
+        e: (p, m) exp(-h).
+        u: (p·n,) uniforms.
+        member: (p·n,) pool members.
+        n: successors per predecessor.
+        gp: :attr:`TransitionGP.kernel`.
+        sharp: sharpness of the pool choice (as for :func:`sample`).
+        work: :func:`new_work`'s arrays (its two (m,) rows).
+        rows: (>= p·n,) takes the rows.
+    """
+    k = gp[8]
+    p, m = h.shape
+    c, sq = work[3], work[4]
     # a whole sharpness (up to 64): the weights are that power of exp(-h) over its largest
     # value, by multiplications, instead of a second exp per inducing input
     power = int(sharp) if sharp == math.floor(sharp) and 1.0 <= sharp <= 64.0 else 0
-    u = rng.random(p * n)
     for i in range(p):
         lo = h[i, 0]
         near = 0
@@ -287,11 +346,7 @@ def draw_parts_into(x, n, rng, gp, sharp, work, rows):
             c[j] = acc
         for r in range(n):
             # the first j with c_j >= u (u <= c_{m-1}: never past the last)
-            rows[i * n + r] = k * np.searchsorted(c, u[i * n + r] * acc)
-    member = rng.integers(0, k, p * n)
-    for q in range(p * n):
-        rows[q] += member[q]
-    return rng.standard_normal(p * n * d)
+            rows[i * n + r] = k * np.searchsorted(c, u[i * n + r] * acc) + member[i * n + r]
 
 
 @njit
