@@ -47,6 +47,7 @@ from mjwalk.plan.options import (
     toe_corners,
 )
 from mjwalk.plan.stepcost import guide_lengths
+from mjwalk.plan.stepgeom import field_lipschitz
 from mjwalk.world.clearance import ClearanceField
 
 
@@ -223,6 +224,7 @@ class KernelParams:
             field_x0=walk.x0,
             field_y0=walk.y0,
             field_res=walk.resolution,
+            field_lip=field_lipschitz(walk.values, walk.resolution),
             dist_x0=grid.x0,
             dist_y0=grid.y0,
             dist_cell=grid.cell,

@@ -68,8 +68,9 @@ from mjwalk.plan.guide import GUIDE_POINTS
     P_TOE_FRONT,  # the toes' front corners (m) ahead of the landing ankle (toe_corners); nan: none
     P_TOE_SIDE,  # ... and to each side of it
     P_TOE_CLEARANCE,  # the clearance (m) they keep (TOE_CORNER_CLEARANCE)
+    P_FIELD_LIP,  # the walk field's Lipschitz bound (stepgeom.field_lipschitz); nan: none
     P_GUIDE0,  # the guide's GUIDE_POINTS points, x y each (mjwalk.plan.guide); nan: none
-) = range(53)
+) = range(54)
 #: Goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal), after the guide's slots.
 P_DISC0 = P_GUIDE0 + 2 * GUIDE_POINTS
 #: Most discs the goal area can be cut by (:func:`~mjwalk.plan.stepgeom.in_goal`); their count

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from mjwalk._jit import njit, njit_inline
 from mjwalk.plan.slots import (
     I_BINS,
@@ -19,6 +21,7 @@ from mjwalk.plan.slots import (
     P_CORNER_X,
     P_CORNER_Y,
     P_DISC0,
+    P_FIELD_LIP,
     P_GOAL_X,
     P_GOAL_Y,
     P_GOAL_YAW,
@@ -278,6 +281,30 @@ def _ends_off(a, b, s_max, grow, par, ipar):
 END_MARGIN = 1e-6
 
 
+def field_lipschitz(coef: np.ndarray, res: float) -> float:
+    """A Lipschitz bound (m per m) of :func:`field_clearance` over the whole plane: in a cell
+    the bilinear value's x slope is a blend of two neighbouring nodes' differences over
+    ``res``, and the y slope likewise, so |∇| <= hypot(largest |x difference|, largest |y
+    difference|) / res; clamping to the grid keeps the bound. Raised by 1e-9 of itself; nan
+    for a field with a value that is not finite.
+
+    Args:
+        coef: the field's node values (ny, nx), metres.
+        res: its spacing, metres.
+    """
+    values = np.asarray(coef, dtype=float)
+    if not np.all(np.isfinite(values)) or res <= 0.0:
+        return math.nan
+    dx = float(np.abs(np.diff(values, axis=1)).max(initial=0.0))
+    dy = float(np.abs(np.diff(values, axis=0)).max(initial=0.0))
+    return math.hypot(dx, dy) / res * (1.0 + 1e-9)
+
+
+#: How much more than its limit (m) a clearance lookup left out by the Lipschitz bound
+#: (:func:`toe_approach_clear`) is sure to keep: far beyond the lookups' roundings (~1e-15 m).
+LIP_MARGIN = 1e-9
+
+
 @njit
 def _segment_off(a, b, s_max, centre, radius):
     """Whether every point a + s·b, s in [0, s_max], lies more than ``radius`` +
@@ -398,6 +425,9 @@ def toe_approach_clear(ankle, lift, toe, clear, rot, p, par, coef, x0, y0, res, 
     landing footprint that the ankle and toe checks passed. Probes every ``P_TOE_STEP`` metres
     back along the chord, over its last ``P_TOE_SHARE``, keep the ankle and the toes ``clear``;
     the clearance being 1-Lipschitz, every point between keeps ``clear - P_TOE_STEP / 2``.
+    A probe that the last value looked up on its track (ankle or toes) already keeps clear
+    through the walk field's Lipschitz bound (``P_FIELD_LIP``, :func:`field_lipschitz`, with
+    :data:`LIP_MARGIN`) is not looked up: the same answer, with a fraction of the lookups.
 
     Args:
         ankle: the landing footprint (the step's local frame, x + iy, metres).
@@ -424,14 +454,24 @@ def toe_approach_clear(ankle, lift, toe, clear, rot, p, par, coef, x0, y0, res, 
     if span <= 0.0:
         return True
     u = chord / length
+    # a probe within (value - clear) / lip of the last one looked up on its track (ankle or
+    # toes; the walk field's Lipschitz bound lip, P_FIELD_LIP) keeps clear: not looked up
+    lip = par[P_FIELD_LIP]
+    last = (-math.inf, -math.inf)  # the last value looked up on each track ...
+    at = (0.0, 0.0)  # ... at this far back
     k = 1
     while True:
         back = min(k * step, span)
         a = ankle - back * u
-        for q in (a, a + toe):
-            w = q * rot + p
-            if field_clearance(coef, x0, y0, res, nx, ny, w.real, w.imag) < clear:
+        for t in range(2):
+            if last[t] - lip * (back - at[t]) >= clear + LIP_MARGIN:
+                continue
+            w = (a if t == 0 else a + toe) * rot + p
+            c = field_clearance(coef, x0, y0, res, nx, ny, w.real, w.imag)
+            if c < clear:
                 return False
+            last = (c, last[1]) if t == 0 else (last[0], c)
+            at = (back, at[1]) if t == 0 else (at[0], back)
         if back >= span:
             return True
         k += 1

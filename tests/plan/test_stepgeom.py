@@ -191,3 +191,53 @@ def test_a_closing_draw_said_far_from_the_goal_misses_it_at_any_mean():
                     end = decode_col(zs, r, dec.matrix, dec.offset, m - 1) * rot + p
                     assert abs(end) > 0.1
     assert said > 40
+
+
+def test_the_field_lipschitz_bound_holds_between_any_two_points(scenes_dir):
+    """field_lipschitz bounds |Δ clearance| / distance of field_clearance everywhere, in and
+    beyond the grid (its lookups' roundings aside); a field with a non-finite value gets nan."""
+    from mjwalk.plan.stepgeom import field_clearance, field_lipschitz
+
+    field = load_workplace(scenes_dir / "assembly_station.xml").walk_field()
+    ny, nx = field.values.shape
+    lip = field_lipschitz(field.values, field.resolution)
+    assert 0.9 < lip < 1.5  # a distance field's: 1 along the grid, up to √2 across a cell
+    rng = np.random.default_rng(0)
+    lo = np.array([field.x0, field.y0]) - 0.5
+    hi = lo + 1.0 + field.resolution * np.array([nx, ny])
+    a = rng.uniform(lo, hi, (4000, 2))
+    b = a + rng.normal(0.0, 0.05, (4000, 2))
+    for (ax, ay), (bx, by) in zip(a, b, strict=True):
+        fa = field_clearance(field.values, field.x0, field.y0, field.resolution, nx, ny, ax, ay)
+        fb = field_clearance(field.values, field.x0, field.y0, field.resolution, nx, ny, bx, by)
+        assert abs(fa - fb) <= lip * math.hypot(bx - ax, by - ay) + 1e-12
+    bad = field.values.copy()
+    bad[0, 0] = np.inf
+    assert math.isnan(field_lipschitz(bad, field.resolution))
+
+
+def test_the_approach_skipping_lookups_gives_the_same_answers(scenes_dir):
+    """toe_approach_clear with the field's Lipschitz bound (lookups left out) answers as it
+    does looking every probe up (P_FIELD_LIP nan), over 3000 random landings at the station,
+    many beside the racks, and leaves most lookups out where the floor is open."""
+    from mjwalk.plan.stepgeom import field_lipschitz
+
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    field = wp.walk_field()
+    ny, nx = field.values.shape
+    lip = field_lipschitz(field.values, field.resolution)
+    rng = np.random.default_rng(1)
+    answers = {True: 0, False: 0}
+    for _ in range(3000):
+        land = complex(*rng.uniform(-4.0, 4.0, 2))
+        lift = land - cmath.rect(rng.uniform(0.3, 1.4), rng.uniform(-math.pi, math.pi))
+        toe = FOOT_LENGTH * cmath.exp(1j * rng.uniform(-math.pi, math.pi))
+        clear = rng.uniform(0.0, 0.3)
+        out = []
+        for bound in (math.nan, lip):
+            par = params(toe_share=TOE_APPROACH_SHARE, toe_step=TOE_PROBE_STEP, field_lip=bound)
+            args = (field.values, field.x0, field.y0, field.resolution, nx, ny)
+            out.append(toe_approach_clear(land, lift, toe, clear, 1.0 + 0j, 0j, par, *args))
+        assert out[0] == out[1]
+        answers[out[0]] += 1
+    assert min(answers.values()) > 300  # both answers well represented
