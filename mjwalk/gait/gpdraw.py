@@ -242,6 +242,10 @@ def new_work(p, gp):
     predecessors by the GP ``gp`` (:attr:`TransitionGP.kernel`; m inducing inputs, d
     features).
 
+    Args:
+        p: predecessors per draw.
+        gp: :attr:`TransitionGP.kernel`.
+
     Returns:
         (mean (p, d), h (p, m), exp(-h) (p, m), two (m,) rows for the pool weights).
     """
@@ -282,7 +286,17 @@ def draw_parts_into(x, n, rng, gp, sharp, work, rows):
 def draw_numbers(rng, p, n, gp):
     """The random numbers of a draw of ``n`` successors of ``p`` predecessors by ``gp``, drawn
     from ``rng`` in :func:`sample`'s order: p·n uniforms (the pool choices), p·n pool members,
-    p·n·d standard normal deviates."""
+    p·n·d standard normal deviates.
+
+    Args:
+        rng: ``numpy.random.Generator``.
+        p: predecessors.
+        n: successors per predecessor.
+        gp: :attr:`TransitionGP.kernel` (its pools' size k and features d).
+
+    Returns:
+        (u (p·n,), member (p·n,) int in [0, k), eps (p·n·d,)).
+    """
     u = rng.random(p * n)
     member = rng.integers(0, gp[8], p * n)
     return u, member, rng.standard_normal(p * n * gp[7].shape[1])

@@ -291,6 +291,9 @@ def field_lipschitz(coef: np.ndarray, res: float) -> float:
     Args:
         coef: the field's node values (ny, nx), metres.
         res: its spacing, metres.
+
+    Returns:
+        The bound (dimensionless), or nan.
     """
     values = np.asarray(coef, dtype=float)
     if not np.all(np.isfinite(values)) or res <= 0.0:
