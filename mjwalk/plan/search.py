@@ -22,8 +22,10 @@ in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan
 or processes keep running the old machine code (touching the file is not enough). The record of
 such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the GP draws into
 work arrays kept for the whole search and into ``feats`` itself,
-:func:`~mjwalk.gait.gpdraw.sample_into`, and closing draws whose mean cannot end the walk
-left undrawn, :func:`~mjwalk.plan.stepgeom.closing_ends_far`, issue 50; before it, the step
+:func:`~mjwalk.gait.gpdraw.sample_into`, closing draws whose mean cannot end the walk
+left undrawn, :func:`~mjwalk.plan.stepgeom.closing_ends_far`, and the landing foot's approach
+probes looked up only where the field's Lipschitz bound leaves them in doubt,
+:func:`~mjwalk.plan.stepgeom.toe_approach_clear`, issue 50; before it, the step
 decode inlined by numba, the step decoded column by column as the clearance test needs it
 and the lifting foot's turn once per node).
 """
