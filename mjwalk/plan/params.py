@@ -10,6 +10,7 @@ spot, guide, turn on the spot: :class:`WalkTerms`, :meth:`KernelParams.for_walk`
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -194,6 +195,12 @@ class KernelParams:
         par[slots.P_FAR_WEIGHT] = walk.far_weight
         return par, ipar
 
+    @functools.cached_property
+    def _field_lip(self) -> float:
+        """The walk field's Lipschitz bound (:func:`~mjwalk.plan.stepgeom.field_lipschitz`),
+        once per field rather than per stature (a batch's operators differ in stature)."""
+        return field_lipschitz(self.walk_field.values, self.walk_field.resolution)
+
     def _floats(self, stature: float) -> np.ndarray:
         o, grid, walk = self.options, self.grid, self.walk_field
         m = o.samples_per_step
@@ -224,7 +231,7 @@ class KernelParams:
             field_x0=walk.x0,
             field_y0=walk.y0,
             field_res=walk.resolution,
-            field_lip=field_lipschitz(walk.values, walk.resolution),
+            field_lip=self._field_lip,
             dist_x0=grid.x0,
             dist_y0=grid.y0,
             dist_cell=grid.cell,
