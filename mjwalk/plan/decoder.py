@@ -65,7 +65,8 @@ class StepDecoder:
         if hit is None:
             v = self.matrix[:, self.m - 1]
             r, f_z, slack = gp.mean_reach(v)
-            pool = float(np.abs(gp.kernel[7] @ v).max()) * (1.0 + 1e-9) + 1e-12
+            flat = gp.kernel[7]  # the residual pools (m·k, d): real products, no complex copy
+            pool = float(np.hypot(flat @ v.real, flat @ v.imag).max()) * (1.0 + 1e-9) + 1e-12
             hit = (np.array([r, slack + pool]), np.ascontiguousarray(f_z))
             self._reach[id(gp)] = hit
         return hit
