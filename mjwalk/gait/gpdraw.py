@@ -17,6 +17,10 @@ input; k; ``var_cap`` an upper bound of every variance
 (:func:`mjwalk.gait.transition.variance_cap`). :func:`sample` is :func:`draw_parts` (all but the
 variance, all the random numbers), :func:`variance` and :func:`compose`, so a caller that can
 do without the variance skips it (:func:`mjwalk.plan.search.search`'s closing draws).
+The search draws thousands of times per walk, one predecessor at a time: it keeps one set of
+work arrays (:func:`new_work`) and draws into its own node arrays (:func:`sample_into`,
+:func:`draw_parts_into`, :func:`compose_into`), the same loops without a dozen small
+allocations per draw.
 """
 
 from __future__ import annotations
@@ -106,12 +110,34 @@ def _moments(x, gp):
 def _kernel_rows(x, gp):
     """The posterior mean (p, d), h (p, m) and exp(-h) (p, m) of :func:`moments`: all of it
     but the variance."""
-    neg_zs_t, half_zs2, half_inv_l2, c_alpha = gp[:4]
-    p, d = x.shape
-    m = half_zs2.shape[0]
+    p = x.shape[0]
+    m = gp[1].shape[0]
     h = np.empty((p, m))
     e = np.empty((p, m))
-    mean = np.zeros((p, c_alpha.shape[1]))
+    mean = np.empty((p, gp[3].shape[1]))
+    _kernel_rows_into(x, gp, mean, h, e)
+    return mean, h, e
+
+
+@njit
+def _kernel_rows_into(x, gp, mean, h, e):
+    """:func:`_kernel_rows` into ``mean`` (p, d), ``h`` and ``e`` (p, m each)."""
+    half_sq_into(x, gp, h)
+    exp_rows_into(gp, h, mean, e)
+
+
+@njit
+def half_sq_into(x, gp, h):
+    """h_ij = |x_i/ℓ - z_j/ℓ|²/2 (clipped at 0) of :func:`moments` into ``h`` (p, m).
+
+    Args:
+        x: (p, d) predecessor features.
+        gp: :attr:`TransitionGP.kernel`.
+        h: (p, m) takes h.
+    """
+    neg_zs_t, half_zs2, half_inv_l2 = gp[:3]
+    p, d = x.shape
+    m = half_zs2.shape[0]
     for i in range(p):
         xx = 0.0
         for a in range(d):
@@ -128,12 +154,30 @@ def _kernel_rows(x, gp):
             v = hi[j] + half_zs2[j] + xx
             if v < 0.0:
                 v = 0.0
-            h[i, j] = v
-            ej = math.exp(-v)
+            hi[j] = v
+
+
+@njit
+def exp_rows_into(gp, h, mean, e):
+    """The kernel rows exp(-h) into ``e`` and the posterior mean into ``mean`` (p, d) of
+    :func:`half_sq_into`'s ``h`` (p, m).
+
+    Args:
+        gp: :attr:`TransitionGP.kernel`.
+        h: (p, m) half squared scaled distances.
+        mean: (p, d) takes the posterior mean.
+        e: (p, m) takes exp(-h).
+    """
+    c_alpha = gp[3]
+    p, m = h.shape
+    for i in range(p):
+        for a in range(c_alpha.shape[1]):
+            mean[i, a] = 0.0
+        for j in range(m):
+            ej = math.exp(-h[i, j])
             e[i, j] = ej
             for a in range(c_alpha.shape[1]):
                 mean[i, a] += ej * c_alpha[j, a]
-    return mean, h, e
 
 
 @njit
@@ -186,19 +230,101 @@ def draw_parts(x, n, rng, gp, sharp):
         gp: :attr:`TransitionGP.kernel`.
         sharp: sharpness of the pool choice (as for :func:`sample`).
     """
-    pool = gp[7]
+    work = new_work(x.shape[0], gp)
+    rows = np.empty(x.shape[0] * n, dtype=np.intp)
+    eps = draw_parts_into(x, n, rng, gp, sharp, work, rows)
+    return work[0], work[2], rows, eps
+
+
+@njit
+def new_work(p, gp):
+    """Work arrays for :func:`draw_parts_into` and :func:`sample_into`: draws of ``p``
+    predecessors by the GP ``gp`` (:attr:`TransitionGP.kernel`; m inducing inputs, d
+    features).
+
+    Args:
+        p: predecessors per draw.
+        gp: :attr:`TransitionGP.kernel`.
+
+    Returns:
+        (mean (p, d), h (p, m), exp(-h) (p, m), two (m,) rows for the pool weights).
+    """
+    m = gp[1].shape[0]
+    return (
+        np.empty((p, gp[3].shape[1])),
+        np.empty((p, m)),
+        np.empty((p, m)),
+        np.empty(m),
+        np.empty(m),
+    )
+
+
+@njit
+def draw_parts_into(x, n, rng, gp, sharp, work, rows):
+    """:func:`draw_parts` into the work arrays ``work`` (:func:`new_work` of x's p rows and
+    ``gp``) and ``rows`` (at least p·n): afterwards ``work[0]`` is the posterior mean and
+    ``work[2]`` exp(-h); returns the normal deviates (p·n·d,), drawn from ``rng`` as
+    :func:`draw_parts` draws them.
+
+    Args:
+        x: (p, d) predecessor features.
+        n: successors per predecessor.
+        rng: ``numpy.random.Generator``.
+        gp: :attr:`TransitionGP.kernel`.
+        sharp: sharpness of the pool choice (as for :func:`sample`).
+        work: :func:`new_work`'s arrays.
+        rows: (>= p·n,) int, takes each successor's residual row of the flattened pools.
+    """
+    mean, h, e = work[:3]
+    _kernel_rows_into(x, gp, mean, h, e)
+    u, member, eps = draw_numbers(rng, x.shape[0], n, gp)
+    choose_rows(h, e, u, member, n, gp, sharp, work, rows)
+    return eps
+
+
+@njit
+def draw_numbers(rng, p, n, gp):
+    """The random numbers of a draw of ``n`` successors of ``p`` predecessors by ``gp``, drawn
+    from ``rng`` in :func:`sample`'s order: p·n uniforms (the pool choices), p·n pool members,
+    p·n·d standard normal deviates.
+
+    Args:
+        rng: ``numpy.random.Generator``.
+        p: predecessors.
+        n: successors per predecessor.
+        gp: :attr:`TransitionGP.kernel` (its pools' size k and features d).
+
+    Returns:
+        (u (p·n,), member (p·n,) int in [0, k), eps (p·n·d,)).
+    """
+    u = rng.random(p * n)
+    member = rng.integers(0, gp[8], p * n)
+    return u, member, rng.standard_normal(p * n * gp[7].shape[1])
+
+
+@njit
+def choose_rows(h, e, u, member, n, gp, sharp, work, rows):
+    """Each successor's residual row of the flattened pools into ``rows`` (p·n,): the pool of
+    inducing input j with probability ∝ exp(-sharp·(h_j - min h)) (:func:`sample`) at the
+    uniform number ``u``, its member ``member``.
+
+    Args:
+        h: (p, m) half squared scaled distances.
+        e: (p, m) exp(-h).
+        u: (p·n,) uniforms.
+        member: (p·n,) pool members.
+        n: successors per predecessor.
+        gp: :attr:`TransitionGP.kernel`.
+        sharp: sharpness of the pool choice (as for :func:`sample`).
+        work: :func:`new_work`'s arrays (its two (m,) rows).
+        rows: (>= p·n,) takes the rows.
+    """
     k = gp[8]
-    p = x.shape[0]
-    d = pool.shape[1]
-    mean, h, e = _kernel_rows(x, gp)
-    m = h.shape[1]
+    p, m = h.shape
+    c, sq = work[3], work[4]
     # a whole sharpness (up to 64): the weights are that power of exp(-h) over its largest
     # value, by multiplications, instead of a second exp per inducing input
     power = int(sharp) if sharp == math.floor(sharp) and 1.0 <= sharp <= 64.0 else 0
-    u = rng.random(p * n)
-    cell = np.empty(p * n, dtype=np.intp)
-    c = np.empty(m)
-    sq = np.empty(m)
     for i in range(p):
         lo = h[i, 0]
         near = 0
@@ -234,10 +360,7 @@ def draw_parts(x, n, rng, gp, sharp):
             c[j] = acc
         for r in range(n):
             # the first j with c_j >= u (u <= c_{m-1}: never past the last)
-            cell[i * n + r] = k * np.searchsorted(c, u[i * n + r] * acc)
-    member = rng.integers(0, k, p * n)
-    eps = rng.standard_normal(p * n * d)
-    return mean, e, cell + member, eps
+            rows[i * n + r] = k * np.searchsorted(c, u[i * n + r] * acc) + member[i * n + r]
 
 
 @njit
@@ -263,3 +386,47 @@ def compose(mean, var, rows, eps, n, pool):
             for a in range(d):
                 out[i, r, a] = eps[q * d + a] * sd + mean[i, a] + pool[row, a]
     return out
+
+
+@njit
+def compose_into(mean, var, rows, eps, n, pool, out, o0):
+    """:func:`compose` for one predecessor (``mean`` (1, d)) with the variance ``var`` (a
+    float) into the rows ``o0`` .. ``o0`` + n - 1 of ``out`` (.., d).
+
+    Args:
+        mean: (1, d) the posterior mean.
+        var: the latent variance.
+        rows: (>= n,) residual rows of ``pool``.
+        eps: (n·d,) normal deviates.
+        n: successors.
+        pool: (m·k, d) the flattened residual pools.
+        out: (>= o0 + n, d) takes the successors.
+        o0: the first row of ``out`` taken.
+    """
+    d = mean.shape[1]
+    sd = math.sqrt(max(var, 0.0))
+    for r in range(n):
+        row = rows[r]
+        for a in range(d):
+            out[o0 + r, a] = eps[r * d + a] * sd + mean[0, a] + pool[row, a]
+
+
+@njit
+def sample_into(x, n, rng, gp, sharp, work, rows, out, o0):
+    """:func:`sample` of one predecessor ``x`` (1, d) into the rows ``o0`` .. ``o0`` + n - 1
+    of ``out``, with the work arrays ``work`` (:func:`new_work`) and ``rows`` (>= n): the same
+    numbers, drawn from ``rng`` as :func:`sample` draws them.
+
+    Args:
+        x: (1, d) the predecessor's features.
+        n: successors.
+        rng: ``numpy.random.Generator``.
+        gp: :attr:`TransitionGP.kernel`.
+        sharp: sharpness of the pool choice (as for :func:`sample`).
+        work: :func:`new_work` of 1 predecessor and ``gp``.
+        rows: (>= n,) int work array.
+        out: (>= o0 + n, d) takes the successors.
+        o0: the first row of ``out`` taken.
+    """
+    eps = draw_parts_into(x, n, rng, gp, sharp, work, rows)
+    compose_into(work[0], variance(work[2], gp)[0], rows, eps, n, gp[7], out, o0)

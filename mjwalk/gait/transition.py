@@ -8,8 +8,10 @@ the DTC posterior on all pairs, residual pools per inducing input) and why is in
 
 from __future__ import annotations
 
+import math
 import warnings
 from dataclasses import dataclass, replace
+from functools import cached_property
 
 import numpy as np
 from scipy.linalg import cho_solve, cholesky, solve_triangular
@@ -130,6 +132,41 @@ class TransitionGP:
         sq = np.einsum("pd,pd->p", xs, xs)[:, None] + self._zs2[None, :] - 2.0 * (xs @ self._zs.T)
         np.maximum(sq, 0.0, out=sq)
         return self.signal_var * np.exp(-0.5 * sq)
+
+    @cached_property
+    def _mean_gram(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """αᵀKα (d, d) and Kα (m, d) with K = k(Z, Z), and the same of |α| (the rounding
+        bounds of :meth:`mean_reach`)."""
+        k = self.kernel_rows(self.inducing)
+        ka, kb = k @ self.alpha, k @ np.abs(self.alpha)
+        return self.alpha.T @ ka, ka, np.abs(self.alpha).T @ kb, kb
+
+    def mean_reach(self, v: np.ndarray) -> tuple[float, np.ndarray, float]:
+        """How far the posterior mean's projection f(x) = μ(x)·v (v (d,) complex, as a
+        decoder column) can lie from its value at an inducing input, for any x.
+
+        f(x) = Σ_j k(x, z_j) α_j·v lies in the kernel's reproducing kernel Hilbert space with
+        norm² βᵀKβ (β = αv, real and imaginary parts apart), and f(x) - f(z) = <f, k(x, ·) -
+        k(z, ·)>, so |f(x) - f(z_j)| <= ‖f‖ ‖k(x, ·) - k(z_j, ·)‖ = ‖f‖ √(2C(1 - e_j)), e_j =
+        k(x, z_j)/C (Cauchy-Schwarz; Rasmussen & Williams, *Gaussian Processes for Machine
+        Learning*, 2006, §6.1, the reproducing property). The norms are raised by 1e-10 of
+        the same sums in absolute values, far more than their roundings.
+
+        Args:
+            v: (d,) complex, the projection (a decoder column: metres per unit feature).
+
+        Returns:
+            (r, f_z, slack): |f(x) - f(z_j)| <= r·√(2(1 - e_j)) for every x and j; f_z (m,)
+            complex, f at the inducing inputs; slack (m) bounds f_z's roundings.
+        """
+        g, ka, g_abs, kb = self._mean_gram
+        tol = 1e-10
+        q = 0.0
+        for part in (v.real, v.imag):
+            q += max(float(part @ g @ part), 0.0) + tol * float(np.abs(part) @ g_abs @ np.abs(part))
+        r = math.sqrt(self.signal_var * q) * (1.0 + 1e-9)
+        slack = tol * float((kb @ np.abs(v)).max(initial=0.0)) + 1e-12
+        return r, ka @ v, slack
 
     def _predict(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         k = self.kernel_rows(x)

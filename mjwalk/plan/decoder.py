@@ -35,6 +35,8 @@ class StepDecoder:
     """
 
     def __init__(self, model, m: int):
+        self.m = m
+        self._reach: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         d = model.n_dims
         basis = np.vstack([np.zeros(d), np.eye(d)])
         cols = self._columns(model, basis, m)
@@ -44,6 +46,30 @@ class StepDecoder:
         ref = self._columns(model, z, m)
         if not np.allclose(z @ self.matrix + self.offset, ref, rtol=0.0, atol=1e-9):
             raise PlanningError("the step model's decoding is not affine in its features")
+
+    def closing_reach(self, gp) -> tuple[np.ndarray, np.ndarray]:
+        """How far a draw's mean and residual move a step's decoded end (column m - 1) from
+        the mean's value at an inducing input, for the closing draws of
+        :func:`mjwalk.plan.search.search` (:func:`~mjwalk.plan.stepgeom.closing_ends_far`):
+        within r·√(2(1 - e_j)) + spread of f_z[j] for the kernel row e_j of inducing input j
+        (:meth:`~mjwalk.gait.transition.TransitionGP.mean_reach`, plus the residual pools'
+        largest move and the roundings). Made once per GP.
+
+        Args:
+            gp: the :class:`~mjwalk.gait.transition.TransitionGP`.
+
+        Returns:
+            ((r, spread) metres, f_z (m_gp,) complex, step frame, metres).
+        """
+        hit = self._reach.get(id(gp))
+        if hit is None:
+            v = self.matrix[:, self.m - 1]
+            r, f_z, slack = gp.mean_reach(v)
+            flat = gp.kernel[7]  # the residual pools (m·k, d): real products, no complex copy
+            pool = float(np.hypot(flat @ v.real, flat @ v.imag).max()) * (1.0 + 1e-9) + 1e-12
+            hit = (np.array([r, slack + pool]), np.ascontiguousarray(f_z))
+            self._reach[id(gp)] = hit
+        return hit
 
     @staticmethod
     def _columns(model, z: np.ndarray, m: int) -> np.ndarray:

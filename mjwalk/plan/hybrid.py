@@ -523,9 +523,10 @@ class HybridPlanner:
         o = self.options
         z0, frame0, side0, start, start_yaw, f0 = starters
         gps = (model.gp["left"].kernel, model.gp["right"].kernel)
-        stops = (model.stop_gp["left"].kernel, model.stop_gp["right"].kernel) if (
-            o.n_stops
-        ) else gps  # fmt: skip
+        sgp = (model.stop_gp["left"], model.stop_gp["right"]) if o.n_stops else None
+        stops = (sgp[0].kernel, sgp[1].kernel) if sgp else gps
+        none = (np.array([np.inf, np.inf]), np.zeros(len(gps[0][1]), complex))  # never far
+        reaches = (dec.closing_reach(sgp[0]), dec.closing_reach(sgp[1])) if sgp else (none, none)
         outcome, goal_node, stats, *nodes = search.search(
             np.ascontiguousarray(z0, dtype=float),
             frame0,
@@ -535,6 +536,7 @@ class HybridPlanner:
             f0,
             gps,
             stops,
+            reaches,
             rng,
             dec.matrix,
             dec.offset,

@@ -20,10 +20,12 @@ functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_into`
 in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan.stepcost`;
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change to this file's text,
 or processes keep running the old machine code (touching the file is not enough). The record of
-such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the step decode
-inlined by numba, the step decoded column by column as the clearance test needs it and the
-lifting foot's turn once per node, issue 50; before it, the step decode in one place,
-``stepgeom.decode_col``).
+such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the GP draws into
+work arrays kept for the whole search and into ``feats`` itself,
+:func:`~mjwalk.gait.gpdraw.sample_into`, and closing draws whose mean cannot end the walk
+left undrawn, :func:`~mjwalk.plan.stepgeom.closing_ends_far`, issue 50; before it, the step
+decode inlined by numba, the step decoded column by column as the clearance test needs it
+and the lifting foot's turn once per node).
 """
 
 from __future__ import annotations
@@ -36,8 +38,16 @@ from numba import types
 from numba.typed import Dict
 
 from mjwalk._jit import njit
-from mjwalk.gait.gpdraw import compose, draw_parts, variance
-from mjwalk.gait.gpdraw import sample as gp_sample
+from mjwalk.gait.gpdraw import (
+    choose_rows,
+    compose_into,
+    draw_numbers,
+    exp_rows_into,
+    half_sq_into,
+    new_work,
+    sample_into,
+    variance,
+)
 from mjwalk.plan.slots import (
     I_M,
     I_MAX_EXPANSIONS,
@@ -50,7 +60,7 @@ from mjwalk.plan.slots import (
     P_STOP_REACH,
 )
 from mjwalk.plan.stepcheck import check_into, new_buffers
-from mjwalk.plan.stepgeom import cell_key, closing_ends_miss, in_goal, within
+from mjwalk.plan.stepgeom import cell_key, closing_ends_far, closing_ends_miss, in_goal, within
 
 #: :func:`search` outcomes.
 FOUND, EXHAUSTED, BUDGET = 0, 1, 2
@@ -71,32 +81,60 @@ def _grow2(a, n):
 
 
 @njit
-def _closing_draws(x, n, rng, gp, sharp, matrix, offset, frame, p, par, ipar):
+def _closing_draws(x, n, rng, gp, reach, sharp, matrix, offset, frame, p, par, ipar, work, rows,
+                   z, o0):  # fmt: skip
     """``n`` closing steps drawn from the predecessor ``x`` (1, d) by the closing-step GP
     ``gp``, as :func:`~mjwalk.gait.gpdraw.sample` draws them (the same random numbers), for
-    a node at ``p`` (world x + iy) whose steps turn by ``frame`` (radians).
+    a node at ``p`` (world x + iy) whose steps turn by ``frame`` (radians), into the rows
+    ``o0`` .. ``o0`` + n - 1 of ``z`` (``work``, ``rows``: as for
+    :func:`~mjwalk.gait.gpdraw.sample_into`). Returns False, with the random numbers drawn
+    and ``z`` untouched, when none of the steps can end the walk.
 
-    Most closing draws near the goal cannot end the walk wherever their variance puts them
-    (:func:`~mjwalk.plan.stepgeom.closing_ends_miss`, with the variance's cap
-    ``gp[9]``): those skip the dense variance (:func:`~mjwalk.gait.gpdraw.variance`) and come
-    out at their mean and residual (sd 0), which ends outside the goal area as well, so
+    Most closing draws near the goal cannot end the walk wherever their variance puts them.
+    Where even their mean cannot put them in the goal area, they are not drawn at all
+    (:func:`~mjwalk.plan.stepgeom.closing_ends_far`): the mean's decoded end lies within
+    ``reach`` ((r, spread) and f_z of
+    :meth:`~mjwalk.plan.decoder.StepDecoder.closing_reach`) of its value at the nearest
+    inducing input, which needs h but no kernel row. The others
+    (:func:`~mjwalk.plan.stepgeom.closing_ends_miss`, with the variance's cap ``gp[9]``)
+    skip the dense variance (:func:`~mjwalk.gait.gpdraw.variance`) and come out at their
+    mean and residual (sd 0), which ends outside the goal area as well, so
     :func:`~mjwalk.plan.stepcheck.check_into` rejects them as it would the true draws (their
-    features are never read: only accepted steps become nodes). Returns (n, d).
+    features are never read: only accepted steps become nodes).
     """
-    mean, e, rows, eps = draw_parts(x, n, rng, gp, sharp)
+    mean, h, e = work[:3]
+    half_sq_into(x, gp, h)
+    u, member, eps = draw_numbers(rng, 1, n, gp)
     m = ipar[I_M]
-    if closing_ends_miss(mean, rows, eps, gp[7], math.sqrt(gp[9]), matrix, offset, m, frame,
-                         p, par, ipar):  # fmt: skip
-        var = np.zeros(1)
+    sd_cap = math.sqrt(gp[9])
+    near = 0
+    for j in range(1, h.shape[1]):
+        if h[0, j] < h[0, near]:
+            near = j
+    # h's roundings (far below 1e-12 of its terms) taken against the bound
+    xx = 0.0
+    for a in range(x.shape[1]):
+        xx += x[0, a] * gp[2][a] * x[0, a]
+    h_up = h[0, near] + 1e-12 * (1.0 + xx + gp[1][near])
+    grow = reach[0][0] * math.sqrt(-2.0 * math.expm1(-h_up)) + reach[0][1]
+    if closing_ends_far(reach[1][near], grow, eps, n, sd_cap, matrix, offset, m, frame, p, par,
+                        ipar):  # fmt: skip
+        return False
+    exp_rows_into(gp, h, mean, e)
+    choose_rows(h, e, u, member, n, gp, sharp, work, rows)
+    if closing_ends_miss(mean, rows[:n], eps, gp[7], sd_cap, matrix, offset, m, frame, p, par,
+                         ipar):  # fmt: skip
+        var = 0.0
     else:
-        var = variance(e, gp)
-    return compose(mean, var, rows, eps, n, gp[7])[0]
+        var = variance(e, gp)[0]
+    compose_into(mean, var, rows, eps, n, gp[7], z, o0)
+    return True
 
 
 @njit
 def search(
-    z0, frame0, left0, start, heading, f0, gps, stops, rng, matrix, offset, thr, par, ipar, coef,
-    dist,
+    z0, frame0, left0, start, heading, f0, gps, stops, reaches, rng, matrix, offset, thr, par,
+    ipar, coef, dist,
 ):  # fmt: skip
     """Search from ``start`` (world x + iy, facing ``heading``) to the goal of ``par``.
 
@@ -109,6 +147,8 @@ def search(
         f0: the start node's f, metres.
         gps: :attr:`TransitionGP.kernel` of the walking GPs, for a left and a right predecessor.
         stops: the same of the closing-step GPs (unused when ``ipar`` has no stops).
+        reaches: for each closing-step GP, the reach of its mean's decoded end
+            (:meth:`~mjwalk.plan.decoder.StepDecoder.closing_reach`: (r, spread) and f_z).
         rng: numpy Generator.
         matrix: the decoder's complex matrix, as for :func:`~mjwalk.plan.stepcheck.check_steps`.
         offset: the decoder's complex offset.
@@ -127,6 +167,7 @@ def search(
     d = matrix.shape[0]
     gp_left, gp_right = gps
     stop_left, stop_right = stops
+    reach_left, reach_right = reaches
     n_succ = ipar[I_N_SUCCESSORS]
     n_stop = ipar[I_N_STOPS]
     max_exp = ipar[I_MAX_EXPANSIONS]
@@ -181,6 +222,12 @@ def search(
     lefts = bufs[9]
     accepted = np.zeros(1, dtype=np.int64)
     drawn = np.zeros(1, dtype=np.int64)
+    # the draws' work arrays, one set per GP, and the successors drawn into feats itself
+    work_left = new_work(1, gp_left)
+    work_right = new_work(1, gp_right)
+    work_stop_left = new_work(1, stop_left)
+    work_stop_right = new_work(1, stop_right)
+    draw_rows = np.empty(max(n_succ, n_stop, 1), dtype=np.intp)
     while len(heap) > 0:
         nid = heapq.heappop(heap)[2]
         p = pos[nid]
@@ -212,11 +259,11 @@ def search(
             else:
                 closed.add(key)
             stop_only = False
-        # draw this node's successors (the start node: the starters)
+        # draw this node's successors (the start node: the starters) into feats' next rows
         one_near[0] = near
+        unchecked = 0
         one_node[0, 0] = p
         if nid == 0:
-            z = z0
             per = z0.shape[0]
             n_walk = per
             frm = frame0
@@ -225,26 +272,37 @@ def search(
             one_node[0, 2] = nan_c
             one_node[0, 4] = nan_c
         else:
-            x = feats[row[nid] : row[nid] + 1]
             on_left = left[nid]
             n_walk = 0 if stop_only else n_succ
             per = n_walk + n_stop if near else n_walk
-            z = np.empty((per, d))
+        if nf + per > fcap:
+            fcap = max(2 * fcap, nf + per)
+            feats = _grow2(feats, fcap)
+            closing = _grow1(closing, fcap)
+        z = feats[nf : nf + per]
+        if nid == 0:
+            z[:] = z0
+        else:
+            x = feats[row[nid] : row[nid] + 1]
             if n_walk > 0:
                 # (each GP by name, not a tuple picked at run time: that copies it)
                 if on_left:
-                    z[:n_walk] = gp_sample(x, n_walk, rng, gp_left, sharp)[0]
+                    sample_into(x, n_walk, rng, gp_left, sharp, work_left, draw_rows, z, 0)
                 else:
-                    z[:n_walk] = gp_sample(x, n_walk, rng, gp_right, sharp)[0]
+                    sample_into(x, n_walk, rng, gp_right, sharp, work_right, draw_rows, z, 0)
             if per > n_walk:  # near the goal: closing steps too, after the walking ones
                 if on_left:
-                    z[n_walk:] = _closing_draws(
-                        x, n_stop, rng, stop_left, sharp, matrix, offset, hd, p, par, ipar
-                    )
+                    drew = _closing_draws(x, n_stop, rng, stop_left, reach_left, sharp, matrix,
+                                          offset, hd, p, par, ipar, work_stop_left, draw_rows, z,
+                                          n_walk)  # fmt: skip
                 else:
-                    z[n_walk:] = _closing_draws(
-                        x, n_stop, rng, stop_right, sharp, matrix, offset, hd, p, par, ipar
-                    )
+                    drew = _closing_draws(x, n_stop, rng, stop_right, reach_right, sharp, matrix,
+                                          offset, hd, p, par, ipar, work_stop_right, draw_rows,
+                                          z, n_walk)  # fmt: skip
+                if not drew:  # none can end the walk: not checked, counted as rejected
+                    z[n_walk:] = np.nan
+                    one_near[0] = False
+                    unchecked = n_stop
             one_frame[0] = hd
             one_left[0] = not left[nid]
             frm = one_frame
@@ -258,17 +316,12 @@ def search(
             z, matrix, offset, per, n_walk, frm, lft, one_near, one_node, thr, par, ipar, coef,
             dist, bufs, accepted, drawn,
         )  # fmt: skip
-        if nf + per > fcap:
-            fcap = max(2 * fcap, nf + per)
-            feats = _grow2(feats, fcap)
-            closing = _grow1(closing, fcap)
-        feats[nf : nf + per] = z
         for r in range(per):
             closing[nf + r] = r >= n_walk
         base = nf
         nf += per
-        generated += drawn[0]
-        rejected += drawn[0] - accepted[0]
+        generated += drawn[0] + unchecked
+        rejected += drawn[0] + unchecked - accepted[0]
         # open the successors outside closed cells, and those that may end or stop the walk
         # in any case (a cell reaching into a small goal area may have been closed by a node
         # just outside it)

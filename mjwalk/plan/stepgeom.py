@@ -239,18 +239,62 @@ def closing_ends_miss(mean, rows, eps, pool, sd_cap, matrix, offset, m, frame, p
         for a in range(d):
             a_ += (mean[0, a] + pool[rows[r], a]) * matrix[a, col]
             b_ += eps[r * d + a] * matrix[a, col]
-        a_ = a_ * rot + p
-        b_ = b_ * rot
-        missed = _segment_off(a_, b_, sd_cap, complex(par[P_GOAL_X], par[P_GOAL_Y]),
-                              par[P_TOLERANCE])  # fmt: skip
-        for k in range(ipar[I_N_DISCS]):
-            j = P_DISC0 + 3 * k
-            if missed:
-                break
-            missed = _segment_off(a_, b_, sd_cap, complex(par[j], par[j + 1]), par[j + 2])
-        if not missed:
+        if not _ends_off(a_ * rot + p, b_ * rot, sd_cap, 0.0, par, ipar):
             return False
     return True
+
+
+@njit
+def closing_ends_far(centre, grow, eps, n, sd_cap, matrix, offset, m, frame, p, par, ipar):
+    """Whether no closing step of one draw can end in the goal area (as
+    :func:`closing_ends_miss`) whatever its mean, residual and standard deviation, given only
+    that the mean and residual move the end (decoder column m - 1, step frame) at most
+    ``grow`` metres from ``centre`` (:meth:`~mjwalk.gait.transition.TransitionGP.mean_reach`
+    bounds the mean; the residual pools' largest move is known): then the draw needs no
+    kernel row. A step's end is A + sd·B (:func:`closing_ends_miss`) with A within ``grow``
+    of offset + ``centre``; it misses when, for some disc, the segment sd in [0, sd_cap]
+    stays farther from the disc's centre than its radius + ``grow`` + :data:`END_MARGIN`.
+    Any nan decides nothing (False).
+
+    Args:
+        centre: the end's centre (complex, step frame, metres) before the decoder's offset.
+        grow: how far the mean and residual can move the end from it, metres.
+        eps: (n·d,) each step's normal deviates.
+        n: steps.
+        sd_cap: the largest standard deviation the draw can have.
+        matrix: (d, 2m + 3) the decoder's complex matrix.
+        offset: (2m + 3,) its complex offset.
+        m: pelvis samples per step.
+        frame: the steps' frame heading, radians from +x CCW.
+        p: the steps' start point, world x + iy, metres.
+        par: the float slots (goal, tolerance, discs).
+        ipar: the integer slots (I_N_DISCS).
+    """
+    d = matrix.shape[0]
+    rot = complex(math.sin(frame), -math.cos(frame))  # as check_into turns a frame
+    col = m - 1
+    a_ = (offset[col] + centre) * rot + p
+    for r in range(n):
+        b_ = 0j
+        for a in range(d):
+            b_ += eps[r * d + a] * matrix[a, col]
+        if not _ends_off(a_, b_ * rot, sd_cap, grow, par, ipar):
+            return False
+    return True
+
+
+@njit
+def _ends_off(a, b, s_max, grow, par, ipar):
+    """Whether the segment a + s·b, s in [0, s_max] (world, metres), stays farther than
+    ``grow`` + :data:`END_MARGIN` beyond one of :func:`in_goal`'s discs (the tolerance about
+    the goal, each goal disc); nan: False."""
+    if _segment_off(a, b, s_max, complex(par[P_GOAL_X], par[P_GOAL_Y]), par[P_TOLERANCE] + grow):
+        return True
+    for k in range(ipar[I_N_DISCS]):
+        j = P_DISC0 + 3 * k
+        if _segment_off(a, b, s_max, complex(par[j], par[j + 1]), par[j + 2] + grow):
+            return True
+    return False
 
 
 #: How much farther than a goal disc's radius (m) :func:`closing_ends_miss` wants a closing

@@ -262,11 +262,12 @@ def test_a_short_walkers_descent_knee_peak_is_the_risers_share_of_its_leg():
     deg at fed66aa; 100.3 and 99.7 since the pre-swing heel rise follows the foot's trail,
     run307, which puts the scaled walker 0.3 deg over the cited 100, so only the equality is
     asserted here and the 1.75 m walker's range in its own test): its 103.0 deg down the
-    0.17 m stair (the strict xfail below) is the same riser's larger share of a shorter leg, as a higher step takes more knee
-    flexion (lead knee 90.5 deg up a 20.3 cm step, 119.9 up a 40.6 cm one: "Hip and knee
-    flexion of lead and trail limbs during ascent of a step of different heights by normal
-    adults", abstract verified here). The riser, not the tread or the foot's place on it: on
-    a 0.32 m tread the 1.55 m walker's peak stays 103.4 deg, on a 0.15 m riser it is 98.7."""
+    0.17 m stair (the strict xfail below) is the same riser's larger share of a shorter leg,
+    as a higher step takes more knee flexion (lead knee 90.5 deg up a 20.3 cm step, 119.9 up
+    a 40.6 cm one: "Hip and knee flexion of lead and trail limbs during ascent of a step of
+    different heights by normal adults", abstract verified here). The riser, not the tread or
+    the foot's place on it: on a 0.32 m tread the 1.55 m walker's peak stays 103.4 deg, on a
+    0.15 m riser it is 98.7."""
     scale = 1.55 / DEFAULT_STATURE
     short = _descent_knee_peak(1.55, 0.17 * scale, 0.28 * scale)
     assert short == pytest.approx(_descent_knee_peak(DEFAULT_STATURE), abs=1.5)

@@ -56,3 +56,31 @@ def test_the_variance_cap_bounds_every_variance(gp):  # noqa: F811
     assert cap == pytest.approx(g.signal_var, rel=1e-3)  # a positive definite form: about C
     e = rng.uniform(0.0, 1.0, (500, g.inducing.shape[0]))  # any kernel row in [0, 1]^m
     assert gpdraw.variance(e, g.kernel).max() <= cap
+
+
+def test_a_draw_into_work_arrays_is_the_draw(gp):  # noqa: F811
+    """sample_into (the search's draws: work arrays kept, successors written into its node
+    rows) gives sample's numbers bit for bit and draws the same random numbers; so does
+    draw_parts, now made of draw_parts_into."""
+    g, x, _ = gp
+    work = gpdraw.new_work(1, g.kernel)
+    rows = np.empty(8, dtype=np.intp)
+    out = np.full((12, x.shape[1]), np.nan)
+    for k in range(20):
+        xs = np.ascontiguousarray(x[k : k + 1])
+        a, b = np.random.default_rng(k), np.random.default_rng(k)
+        whole = gpdraw.sample(xs, 6, a, g.kernel, 10.0)[0]
+        gpdraw.sample_into(xs, 6, b, g.kernel, 10.0, work, rows, out, 3)
+        np.testing.assert_array_equal(out[3:9], whole)
+        assert np.isnan(out[:3]).all() and np.isnan(out[9:]).all()  # only its rows written
+        assert a.random() == b.random()
+
+
+def test_the_draws_numbers_come_in_samples_order(gp):  # noqa: F811
+    """draw_numbers takes sample's p·n uniforms, p·n pool members, then p·n·d normals."""
+    g, x, _ = gp
+    u, member, eps = gpdraw.draw_numbers(np.random.default_rng(3), 2, 5, g.kernel)
+    ref = np.random.default_rng(3)
+    np.testing.assert_array_equal(u, ref.random(10))
+    np.testing.assert_array_equal(member, ref.integers(0, g.kernel[8], 10))
+    np.testing.assert_array_equal(eps, ref.standard_normal(10 * x.shape[1]))

@@ -37,3 +37,20 @@ def test_arrays_roundtrip(gp):
 def test_too_few_pairs():
     with pytest.raises(MjwalkError, match="at least 5"):
         TransitionGP.fit(np.zeros((4, 2)), np.zeros((4, 2)), rng=np.random.default_rng(0))
+
+
+def test_the_mean_reach_bounds_the_mean_everywhere(gp):
+    """mean_reach: f(x) = μ(x)·v stays within r·√(2(1 - k(x, z_j)/C)) of f(z_j) for every
+    inducing input j, at the data, between and far from it (the RKHS bound); the bound is
+    not vacuous: at an inducing input it is 0 and f_z is f there."""
+    g, x, _ = gp
+    v = np.array([0.3 - 0.2j, -0.1 + 0.4j])
+    r, f_z, slack = g.mean_reach(v)
+    rng = np.random.default_rng(5)
+    probes = np.vstack([x, 3.0 * rng.standard_normal((300, 2)), g.inducing + 0.01])
+    f = g.predict(probes)[0] @ v
+    e = g.kernel_rows(probes) / g.signal_var
+    bound = r * np.sqrt(2.0 * np.maximum(1.0 - e, 0.0)) + slack + 1e-9
+    assert np.all(np.abs(f[:, None] - f_z[None, :]) <= bound)
+    np.testing.assert_allclose(g.predict(g.inducing)[0] @ v, f_z, atol=1e-9)
+    assert 0.0 < r < np.abs(g.alpha @ v).sum() * g.signal_var  # tighter than Σ|k α v|

@@ -194,3 +194,49 @@ def test_the_approach_over_an_adversarial_cell_keeps_the_stated_clearance():
             assert lowest(lift, land) >= target - 1e-12
             assert lowest(lift + toe, land + toe) >= target - 1e-12
     assert accepted > 40
+
+
+def test_a_closing_draw_said_far_from_the_goal_misses_it_at_any_mean():
+    """closing_ends_far (the search then draws no kernel row): with the default model's
+    closing GP and decoder, over draws near a goal, every draw it says is far has all its
+    steps' true end points (the full draw) outside the goal disc; it says so of some draws."""
+    from mjwalk.gait.default import default_model
+    from mjwalk.gait.gpdraw import compose, draw_parts, variance
+    from mjwalk.plan.decoder import decoder_of
+    from mjwalk.plan.slots import iparams
+    from mjwalk.plan.stepgeom import closing_ends_far, decode_col, in_goal
+
+    model = default_model(progress=False)
+    m = 16
+    dec = decoder_of(model, m)
+    tgp = model.stop_gp["left"]
+    gp = tgp.kernel
+    (r_, spread), f_z = dec.closing_reach(tgp)
+    rng = np.random.default_rng(0)
+    xs = model.gp["left"].inducing
+    said = 0
+    for k in range(400):
+        x = np.ascontiguousarray(xs[k % len(xs)][None, :] + rng.normal(0.0, 0.3, (1, 6)))
+        frame = rng.uniform(-math.pi, math.pi)
+        p = complex(*rng.uniform(-1.2, 1.2, 2))
+        par = params(goal_x=0.0, goal_y=0.0, tolerance=0.1)
+        ipar = iparams(m=m, n_discs=0)
+        state = np.random.default_rng(k)
+        mean, e, rows, eps = draw_parts(x, 5, state, gp, 10.0)
+        z = compose(mean, variance(e, gp), rows, eps, 5, gp[7])[0]
+        rot = complex(math.sin(frame), -math.cos(frame))
+        ends = [decode_col(z, r, dec.matrix, dec.offset, m - 1) * rot + p for r in range(5)]
+        h = -np.log(e[0])
+        j = int(np.argmin(h))
+        grow = r_ * math.sqrt(2.0 * -math.expm1(-h[j])) + spread
+        if closing_ends_far(f_z[j], grow, eps, 5, math.sqrt(gp[9]), dec.matrix, dec.offset, m,
+                            frame, p, par, ipar):  # fmt: skip
+            said += 1
+            assert not any(in_goal(end, 0.0, par, ipar) for end in ends)
+            for s in (0.0, 0.5, 1.0):  # the mean and residual alone, at any sd up to the cap
+                zs = compose(mean, np.array([s * gp[9]]), rows, eps, 5, gp[7])[0]
+                for r in range(5):
+                    end = decode_col(zs, r, dec.matrix, dec.offset, m - 1) * rot + p
+                    assert abs(end) > 0.1
+    assert said > 40
+
