@@ -239,4 +239,3 @@ def test_a_closing_draw_said_far_from_the_goal_misses_it_at_any_mean():
                     end = decode_col(zs, r, dec.matrix, dec.offset, m - 1) * rot + p
                     assert abs(end) > 0.1
     assert said > 40
-
