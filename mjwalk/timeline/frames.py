@@ -39,10 +39,13 @@ def yaw_quat(yaw: np.ndarray) -> np.ndarray:
     Returns:
         (N, 4) quaternions (w, x, y, z).
     """
-    yaw = np.asarray(yaw, float)
-    return np.column_stack(
-        [np.cos(yaw / 2), np.zeros_like(yaw), np.zeros_like(yaw), np.sin(yaw / 2)]
-    )
+    half = np.asarray(yaw, float) / 2
+    q = np.zeros((len(half), 4))
+    # cos and sin of the contiguous half angles, then placed (NumPy's strided and contiguous
+    # loops may differ in the last bit): the numbers np.column_stack of them gave
+    q[:, 0] = np.cos(half)
+    q[:, 3] = np.sin(half)
+    return q
 
 
 def arm_swing(angles: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
@@ -311,7 +314,8 @@ def ease_arms(
     away = None if clearance is None else clearance.away
     carry_abd = None if carry is None else carry.abduction
     hands = None if carry is None else carry.hands
-    w = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
+    fade = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
+    w = fade
     tight = np.zeros(len(t))
     if room is not None:
         none, full = arm_room(stature)
@@ -320,21 +324,20 @@ def ease_arms(
         tight = 1.0 - free
         tight = smoothstep(tight)
     w = smoothstep(w)
-    ease = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
-    ease = smoothstep(ease)
+    ease = smoothstep(fade)
+    # the six arm joints at once: (F, 6) columns, the same element-wise arithmetic as one by one
+    joints = [(side, name) for side in "lr" for name in ("shoulder_flex", "shoulder_abd", "elbow")]
+    ks = np.array([jm.adr(_sided(name, side)) for side, name in joints], dtype=np.intp)
+    target = qpos[:, ks]
+    for c, (side, name) in enumerate(joints):
+        if hands is not None and (hands == "both" or side == hands[0]):  # this hand holds
+            pose = CARRY_POSE[name]
+            if hands == "both" and carry_abd is not None and name == "shoulder_abd":
+                pose = carry_abd
+            target[:, c] = pose
+    wk = np.ones_like(w) if hands == "both" else w
+    qpos[:, ks] = rest[ks] + wk[:, None] * (target - rest[ks])
     for side in "lr":
-        for joint in (f"shoulder_{side}_flex", f"shoulder_{side}_abd", f"elbow_{side}"):
-            k = jm.adr(joint)
-            target = qpos[:, k]
-            holds = hands is not None and (hands == "both" or side == hands[0])
-            if holds:
-                name = joint.replace(f"_{side}", "")
-                pose = CARRY_POSE[name]
-                if hands == "both" and carry_abd is not None and name == "shoulder_abd":
-                    pose = carry_abd
-                target = np.full_like(target, pose)
-            wk = np.ones_like(w) if hands == "both" else w
-            qpos[:, k] = rest[k] + wk * (target - rest[k])
         if hands is None or not (hands == "both" or side == hands[0]):
             # the tuck narrows a swinging arm: it eases in and out with the swing (a hanging
             # arm at the start and the end of the walk is the standing pose, untucked)
@@ -349,6 +352,13 @@ def ease_arms(
         qpos[:, jm.adr("lumbar_rot")] += lumbar
         qpos[:, jm.adr("thoracic_rot")] += np.clip(turn - lumbar, *jm.limits("thoracic_rot"))
     return qpos
+
+
+def _sided(name: str, side: str) -> str:
+    """The joint ``name`` of side ``side`` ("l" or "r"): ``shoulder_flex`` -> ``shoulder_l_flex``,
+    ``elbow`` -> ``elbow_l``."""
+    head, _, tail = name.partition("_")
+    return f"{head}_{side}_{tail}" if tail else f"{name}_{side}"
 
 
 def room_and_away(workplace, xy: np.ndarray, h: float = 0.02) -> tuple[np.ndarray, np.ndarray]:
@@ -432,7 +442,9 @@ def frames_from_legs(
         angles.update(upper_body_from_legs(legs, t, rng=rng))
     elif arms != "none":
         raise MjwalkError(f"timeline_from_walk: arms={arms!r}; use 'swing', 'gaitpose' or 'none'")
-    for name, v in angles.items():
-        lo, hi = jm.limits(name)
-        qpos[:, jm.adr(name)] = np.clip(v, lo, hi)
+    if angles:  # every angle clipped to its range at once (the same clip as one by one)
+        idx = np.array([jm.index(name) for name in angles], dtype=np.intp)
+        lo, hi = jm.range[idx, 0], jm.range[idx, 1]
+        clipped = np.clip(np.array(list(angles.values())), lo[:, None], hi[:, None])
+        qpos[:, jm.qposadr[idx]] = clipped.T
     return qpos
