@@ -226,7 +226,11 @@ def test_batched_arm_easing_equals_the_joint_by_joint_form(carry):
     tl = timeline_from_walk(walk, _scene(20.0))
     jm, t = tl.jointmap, tl.t
     rest = jm.neutral_qpos(tl.model)
-    arms = [jm.adr(f"{j}_{s}") for s in "lr" for j in ("shoulder_flex", "shoulder_abd", "elbow")]
+    arms = [
+        jm.adr(j.format(s))
+        for s in "lr"
+        for j in ("shoulder_{}_flex", "shoulder_{}_abd", "elbow_{}")
+    ]
     room = np.linspace(0.2, 0.8, len(t))
     for clearance in (None, Clearance(room)):
         got = ease_arms(tl.qpos.copy(), t, walk.duration, jm, rest, clearance, carry)
