@@ -314,8 +314,7 @@ def ease_arms(
     away = None if clearance is None else clearance.away
     carry_abd = None if carry is None else carry.abduction
     hands = None if carry is None else carry.hands
-    fade = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
-    w = fade
+    w = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
     tight = np.zeros(len(t))
     if room is not None:
         none, full = arm_room(stature)
@@ -324,20 +323,21 @@ def ease_arms(
         tight = 1.0 - free
         tight = smoothstep(tight)
     w = smoothstep(w)
-    ease = smoothstep(fade)
-    # the six arm joints at once: (F, 6) columns, the same element-wise arithmetic as one by one
-    joints = [(side, name) for side in "lr" for name in ("shoulder_flex", "shoulder_abd", "elbow")]
-    ks = np.array([jm.adr(_sided(name, side)) for side, name in joints], dtype=np.intp)
-    target = qpos[:, ks]
-    for c, (side, name) in enumerate(joints):
-        if hands is not None and (hands == "both" or side == hands[0]):  # this hand holds
-            pose = CARRY_POSE[name]
-            if hands == "both" and carry_abd is not None and name == "shoulder_abd":
-                pose = carry_abd
-            target[:, c] = pose
-    wk = np.ones_like(w) if hands == "both" else w
-    qpos[:, ks] = rest[ks] + wk[:, None] * (target - rest[ks])
+    ease = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
+    ease = smoothstep(ease)
     for side in "lr":
+        for joint in (f"shoulder_{side}_flex", f"shoulder_{side}_abd", f"elbow_{side}"):
+            k = jm.adr(joint)
+            target = qpos[:, k]
+            holds = hands is not None and (hands == "both" or side == hands[0])
+            if holds:
+                name = joint.replace(f"_{side}", "")
+                pose = CARRY_POSE[name]
+                if hands == "both" and carry_abd is not None and name == "shoulder_abd":
+                    pose = carry_abd
+                target = np.full_like(target, pose)
+            wk = np.ones_like(w) if hands == "both" else w
+            qpos[:, k] = rest[k] + wk * (target - rest[k])
         if hands is None or not (hands == "both" or side == hands[0]):
             # the tuck narrows a swinging arm: it eases in and out with the swing (a hanging
             # arm at the start and the end of the walk is the standing pose, untucked)
@@ -352,13 +352,6 @@ def ease_arms(
         qpos[:, jm.adr("lumbar_rot")] += lumbar
         qpos[:, jm.adr("thoracic_rot")] += np.clip(turn - lumbar, *jm.limits("thoracic_rot"))
     return qpos
-
-
-def _sided(name: str, side: str) -> str:
-    """The joint ``name`` of side ``side`` ("l" or "r"): ``shoulder_flex`` -> ``shoulder_l_flex``,
-    ``elbow`` -> ``elbow_l``."""
-    head, _, tail = name.partition("_")
-    return f"{head}_{side}_{tail}" if tail else f"{name}_{side}"
 
 
 def room_and_away(workplace, xy: np.ndarray, h: float = 0.02) -> tuple[np.ndarray, np.ndarray]:

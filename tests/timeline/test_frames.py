@@ -9,14 +9,12 @@ import pytest
 
 from mjwalk.body.humanoid import attach_humanoid
 from mjwalk.body.legs import legs_from_walk
-from mjwalk.body.legs.curves import smoothstep
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.synthetic import synthetic_walk as make_walk
 from mjwalk.timeline import iter_frames, timeline_from_walk
 from mjwalk.timeline.frames import (
     ARM_EASE,
     ARM_ROOM,
-    CARRY_POSE,
     Carry,
     Clearance,
     arm_room,
@@ -190,53 +188,6 @@ def test_carrying_hand_keeps_inside_the_room_at_every_stature(stature):
     reach = _hand_reach(model, jm, q)
     assert np.all(reach <= room - 0.01)
     assert reach[-1] - reach[0] > 0.1 * stature  # with room the hand does come forward
-
-
-def _ease_arms_by_joint(qpos, t, duration, jm, rest, room, carry):
-    """ease_arms' arm joints one column at a time (its form before the columns were batched;
-    no trunk turn): the reference the batched form must equal bit for bit."""
-    hands = None if carry is None else carry.hands
-    w = np.clip(np.minimum(t, duration - t) / ARM_EASE, 0.0, 1.0)
-    if room is not None:
-        none, full = arm_room(1.75)
-        w = np.minimum(w, np.clip((room - none) / (full - none), 0.0, 1.0))
-    w = smoothstep(w)
-    for side in "lr":
-        for joint in (f"shoulder_{side}_flex", f"shoulder_{side}_abd", f"elbow_{side}"):
-            k = jm.adr(joint)
-            target = qpos[:, k]
-            if hands is not None and (hands == "both" or side == hands[0]):
-                name = joint.replace(f"_{side}", "")
-                pose = CARRY_POSE[name]
-                if hands == "both" and carry.abduction is not None and name == "shoulder_abd":
-                    pose = carry.abduction
-                target = np.full_like(target, pose)
-            wk = np.ones_like(w) if hands == "both" else w
-            qpos[:, k] = rest[k] + wk * (target - rest[k])
-    return qpos
-
-
-@pytest.mark.parametrize(
-    "carry", [None, Carry("left"), Carry("right"), Carry("both"), Carry("both", 0.3)]
-)
-def test_batched_arm_easing_equals_the_joint_by_joint_form(carry):
-    """ease_arms sets the six arm joints as one (F, 6) block: bit for bit the numbers of
-    setting them one column at a time, for every carry, with and without room."""
-    walk = make_walk(n_steps=4)
-    tl = timeline_from_walk(walk, _scene(20.0))
-    jm, t = tl.jointmap, tl.t
-    rest = jm.neutral_qpos(tl.model)
-    arms = [
-        jm.adr(j.format(s))
-        for s in "lr"
-        for j in ("shoulder_{}_flex", "shoulder_{}_abd", "elbow_{}")
-    ]
-    room = np.linspace(0.2, 0.8, len(t))
-    for clearance in (None, Clearance(room)):
-        got = ease_arms(tl.qpos.copy(), t, walk.duration, jm, rest, clearance, carry)
-        r = None if clearance is None else room
-        ref = _ease_arms_by_joint(tl.qpos.copy(), t, walk.duration, jm, rest, r, carry)
-        assert np.array_equal(got[:, arms], ref[:, arms])
 
 
 def test_frames_from_legs_clips_as_one_by_one_and_yaw_quat_as_stacked_columns():
