@@ -172,14 +172,19 @@ def _feet_above_floor(ctx: CycleContext, frames: np.ndarray) -> None:
     frames are then placed at once (:func:`_lowest_points`)."""
     m, jm = ctx.model, ctx.jointmap
     data = ctx.scratch()
-    feet = [m.geom(f"{jm.prefix}{g}").id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
+    feet = np.array(
+        [m.geom(f"{jm.prefix}{g}").id for g in ("foot_l", "foot_r", "toes_l", "toes_r")]
+    )
     ground = ctx.ground(frames[-1, jm.root : jm.root + 2]) if len(frames) else 0.0
     xpos = np.empty((len(frames), len(feet), 3))
     xmat = np.empty((len(frames), len(feet), 9))
+    qpos, gpos, gmat = data.qpos, data.geom_xpos, data.geom_xmat  # views, fetched once
+    kinematics = mujoco.mj_kinematics
     for i, q in enumerate(frames):
-        data.qpos[:] = q
-        mujoco.mj_kinematics(m, data)
-        xpos[i], xmat[i] = data.geom_xpos[feet], data.geom_xmat[feet]
+        qpos[:] = q
+        kinematics(m, data)
+        gpos.take(feet, axis=0, out=xpos[i])
+        gmat.take(feet, axis=0, out=xmat[i])
     low = _lowest_points(m.geom_size[feet], xpos, xmat)
     below = np.flatnonzero(low < ground)
     frames[below, jm.root + 2] += ground - low[below]

@@ -11,6 +11,8 @@ seconds, z up.
 from __future__ import annotations
 
 import math
+import os
+import stat
 import weakref
 from dataclasses import dataclass
 from pathlib import Path
@@ -162,9 +164,8 @@ TOP_NORMAL_TILT = MAX_RAMP_SLOPE + math.radians(10.0)
 def walk_tops(timeline: Timeline) -> np.ndarray | None:
     """The scene geoms of a timeline's model whose top faces are walk surfaces other than the
     floor (platforms, treads, ramps: :attr:`Workplace.levels
-    <mjwalk.world.workplace.Workplace.levels>`), when its scene is an MJCF file on several
-    levels (some link between levels); None otherwise (a flat scene, a scene built from an
-    MjSpec), so that flat scenes check as they always did.
+    <mjwalk.world.workplace.Workplace.levels>`), when its scene is an MJCF file on several levels
+    (some link between levels); None otherwise (a flat scene, an MjSpec's) as always before.
 
     Args:
         timeline: the timeline (its ``scene`` file and ``model``).
@@ -172,29 +173,35 @@ def walk_tops(timeline: Timeline) -> np.ndarray | None:
     Returns:
         (ngeom,) read-only bool mask over the timeline's model, or None.
     """
-    scene = Path(timeline.scene) if timeline.scene and timeline.scene != "<MjSpec>" else None
-    if scene is None or not scene.is_file():
+    if not timeline.scene or timeline.scene == "<MjSpec>":
         return None
-    # kept per model and scene file version (a cycle checks its frames several times)
-    key = (str(scene), scene.stat().st_mtime)
-    kept = _TOPS.setdefault(timeline.model, {})
-    if key not in kept:
-        wp = shared_workplace(scene)
-        graph = wp.levels
-        names = _geom_names(timeline.model)[0]
+    try:  # one stat: whether it is a file, and its version
+        info = os.stat(timeline.scene)
+    except (OSError, ValueError):
+        return None
+    key = (timeline.scene, info.st_mtime)  # the names per scene version (models vary by stature)
+    if stat.S_ISREG(info.st_mode) and key not in _TOP_NAMES:
+        wp = shared_workplace(Path(timeline.scene))
         plane = mujoco.mjtGeom.mjGEOM_PLANE  # a floor of boxes (round a pit) is walk tops
-        top = {
+        top = [
             s.name
-            for s in graph.surfaces
+            for s in wp.levels.surfaces
             if s.name and (s.kind != "floor" or int(wp.model.geom_type[s.geom_id]) != plane)
-        }
-        mask = np.array([n in top for n in names])
-        mask.setflags(write=False)
-        kept[key] = mask if graph.links else None
+        ]
+        _TOP_NAMES[key] = frozenset(top) if wp.levels.links else None
+    names = _TOP_NAMES.get(key) if stat.S_ISREG(info.st_mode) else None
+    if names is None:  # not a file, or a scene on one level
+        return None
+    kept = _TOPS.setdefault(timeline.model, {})  # the mask per model and scene version
+    if key not in kept:
+        kept[key] = np.array([n in names for n in _geom_names(timeline.model)[0]])
+        kept[key].setflags(write=False)
     return kept[key]
 
 
-#: :func:`walk_tops` per model, by scene file and its modification time.
+#: :func:`walk_tops`' names by scene file and modification time (None: one level); its masks
+#: per model by the same keys.
+_TOP_NAMES: dict[tuple[str, float], frozenset[str] | None] = {}
 _TOPS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 #: :func:`_soles` per model, by the length of the humanoid's name prefix.
 _SOLES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
@@ -206,9 +213,8 @@ def _soles(model: mujoco.MjModel, plen: int) -> np.ndarray:
     kept = _SOLES.setdefault(model, {})
     if plen not in kept:
         names = _geom_names(model)[0]
-        mask = np.array([n[plen:].startswith(("foot_", "toes_")) for n in names])
-        mask.setflags(write=False)
-        kept[plen] = mask
+        kept[plen] = np.array([n[plen:].startswith(("foot_", "toes_")) for n in names])
+        kept[plen].setflags(write=False)
     return kept[plen]
 
 
@@ -227,11 +233,9 @@ def _geom_names(model: mujoco.MjModel) -> tuple[list[str], np.ndarray]:
             mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom#{g}"
             for g in range(model.ngeom)
         ]
+        plane = mujoco.mjtGeom.mjGEOM_PLANE
         floorish = np.array(
-            [
-                n == "floor" or model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
-                for g, n in enumerate(names)
-            ]
+            [n == "floor" or model.geom_type[g] == plane for g, n in enumerate(names)]
         )
         floorish.setflags(write=False)
         hit = _NAMES[model] = (names, floorish)

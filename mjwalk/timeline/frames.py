@@ -39,10 +39,13 @@ def yaw_quat(yaw: np.ndarray) -> np.ndarray:
     Returns:
         (N, 4) quaternions (w, x, y, z).
     """
-    yaw = np.asarray(yaw, float)
-    return np.column_stack(
-        [np.cos(yaw / 2), np.zeros_like(yaw), np.zeros_like(yaw), np.sin(yaw / 2)]
-    )
+    half = np.asarray(yaw, float) / 2
+    q = np.zeros((len(half), 4))
+    # cos and sin of the contiguous half angles, then placed (NumPy's strided and contiguous
+    # loops may differ in the last bit): the numbers np.column_stack of them gave
+    q[:, 0] = np.cos(half)
+    q[:, 3] = np.sin(half)
+    return q
 
 
 def arm_swing(angles: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
@@ -432,7 +435,9 @@ def frames_from_legs(
         angles.update(upper_body_from_legs(legs, t, rng=rng))
     elif arms != "none":
         raise MjwalkError(f"timeline_from_walk: arms={arms!r}; use 'swing', 'gaitpose' or 'none'")
-    for name, v in angles.items():
-        lo, hi = jm.limits(name)
-        qpos[:, jm.adr(name)] = np.clip(v, lo, hi)
+    if angles:  # every angle clipped to its range at once (the same clip as one by one)
+        idx = np.array([jm.index(name) for name in angles], dtype=np.intp)
+        lo, hi = jm.range[idx, 0], jm.range[idx, 1]
+        clipped = np.clip(np.array(list(angles.values())), lo[:, None], hi[:, None])
+        qpos[:, jm.qposadr[idx]] = clipped.T
     return qpos

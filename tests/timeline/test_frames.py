@@ -8,10 +8,21 @@ import numpy as np
 import pytest
 
 from mjwalk.body.humanoid import attach_humanoid
+from mjwalk.body.legs import legs_from_walk
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.synthetic import synthetic_walk as make_walk
 from mjwalk.timeline import iter_frames, timeline_from_walk
-from mjwalk.timeline.frames import ARM_EASE, ARM_ROOM, Carry, Clearance, arm_room, ease_arms
+from mjwalk.timeline.frames import (
+    ARM_EASE,
+    ARM_ROOM,
+    Carry,
+    Clearance,
+    arm_room,
+    arm_swing,
+    ease_arms,
+    frames_from_legs,
+    yaw_quat,
+)
 
 SCENE = """<mujoco><worldbody><geom name="floor" type="plane" size="10 10 .1"/>
 <body name="shelf" pos="{x} {y} .6"><geom name="box" type="box" size=".25 .25 .6"/></body>
@@ -177,3 +188,21 @@ def test_carrying_hand_keeps_inside_the_room_at_every_stature(stature):
     reach = _hand_reach(model, jm, q)
     assert np.all(reach <= room - 0.01)
     assert reach[-1] - reach[0] > 0.1 * stature  # with room the hand does come forward
+
+
+def test_frames_from_legs_clips_as_one_by_one_and_yaw_quat_as_stacked_columns():
+    """frames_from_legs clips all angles in one call: the numbers of clipping each angle to its
+    own range; yaw_quat fills its columns in place: the numbers of stacking them."""
+    walk = make_walk(n_steps=6)
+    model, jm = attach_humanoid(_scene(20.0), 1.75)
+    legs = legs_from_walk(walk, 1.75)
+    t = np.arange(0.0, walk.duration, 1 / 30)
+    q = frames_from_legs(model, jm, legs, t, 1.75, "swing", None)
+    angles = {name: np.interp(t, legs.t, v) for name, v in legs.angles.items()}
+    angles.update(arm_swing(angles))
+    for name, v in angles.items():
+        assert np.array_equal(q[:, jm.adr(name)], np.clip(v, *jm.limits(name)))
+    yaw = np.random.default_rng(0).uniform(-10.0, 10.0, 257)
+    ref = np.column_stack([np.cos(yaw / 2), np.zeros(257), np.zeros(257), np.sin(yaw / 2)])
+    assert np.array_equal(yaw_quat(yaw), ref)
+    assert np.array_equal(yaw_quat(yaw[:1]), ref[:1])
