@@ -46,6 +46,7 @@ from mjwalk.body.legs.footpivot import pivot_ankle
 from mjwalk.body.legs.ik import KNEE_MIN, LegIKCache, foot_lowest, generic_joint, hip_world
 from mjwalk.body.legs.legheights import lift_to_levels
 from mjwalk.body.legs.pitchfit import AnkleFit, fit_ankle_range, repitch_foot
+from mjwalk.body.legs.rampreach import BESIDE_KEY
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
 from mjwalk.body.legs.stance import (
@@ -157,7 +158,9 @@ def legs_from_walk(
     angles = _clear_floor(sy, ik, root, win)
     feet = sy.feet
     meta = {"stature": stature, "reference": ref.source}
-    if not walk.is_flat:  # platforms, steps, stairs, ramps (issue 47): the flat legs lifted
+    # platforms, steps, stairs, ramps, a ramp's low end beside a floor walk (issue 47): the flat
+    # legs lifted
+    if not walk.is_flat or (walk.meta or {}).get(BESIDE_KEY):
         root, angles, meta["edge_clearance"] = lift_to_levels(
             walk, frames, feet, root, sy.yaw, geom
         )
