@@ -5,8 +5,11 @@ A level's obstacles start :data:`~mjwalk.world.workplace.WorkplaceOptions` ``z_r
 (0.05 m) above it, so the first part of a ramp's run from its foot (0.52 m of a 5.5 deg ramp)
 is open floor to the planners: a walk that cuts past a ramp's foot from the side, or along
 it, sets its feet there. A person stands on the ramp's surface where a foot lands on it
-(its side edge rises at most those 0.05 m there, a third of the lowest riser DIN 18065
-allows, 0.14 m: :data:`mjwalk.world.norms` ``MIN_RISER`` -- a step, not a wall). The walk
+(its side edge rises at most those 0.05 m there, about a third of the lowest riser of a
+building stair, 0.14 m: DIN 18065:2020 Table 1 as :data:`mjwalk.world.norms.MIN_RISER` cites
+it -- a low step up, not a face to keep clear of; keeping floor walks off it instead would
+change every floor level's clearance field and walks, where standing on it changes only the
+legs of the walks that pass there). The walk
 records those ramps' planes (``meta["ramps_beside"]``, the same entries as a crossed ramp's
 ``plane`` in ``meta["levels"]["route"]``: :func:`ramp_plane`), and the legs stand each such
 foot on the highest point of the plane under its sole and swing it over the plane
@@ -27,8 +30,9 @@ from mjwalk.world.norms import LEVEL_TOLERANCE
 from mjwalk.world.workplace import Workplace
 
 #: How far from a ramp's plane (its run and width) a footprint's sole may reach, metres: more
-#: than the longest foot the humanoid scales to (0.307 m at 2.02 m stature; levelcross
-#: ``flight_setback``'s figures), so every sole that can overhang the plane is looked at.
+#: than the longest foot the humanoid scales to (0.334 m at the largest walker stature, 2.2 m:
+#: ``mjwalk.gait.walker.STATURE_RANGE``, ``mjwalk.anthropometry.leg_geometry``), so every sole
+#: that can overhang the plane is looked at (the legs test its sole points themselves).
 SOLE_REACH = 0.35
 
 #: The key of a walk's ``meta`` under which the planes of the ramps beside it are kept.
