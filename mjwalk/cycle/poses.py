@@ -310,7 +310,7 @@ def walk_frames(
         (n, nq) the frames, at ``1/fps`` s apart from the walk's start (the last at its end).
     """
     if ctx.on_levels:  # feet on a ramp's low end the walk cuts past (a flat cycle has none)
-        walk = with_ramps_beside(ctx.workplace, walk)
+        walk = with_ramps_beside(ctx.workplace, walk, ctx.spec.stature)
     legs = legs_from_walk(walk, ctx.spec.stature)
     t = np.arange(1, math.floor(walk.duration * fps) + 1) / fps
     if len(t) == 0 or t[-1] < walk.duration - 1e-9:

@@ -96,7 +96,7 @@ def timeline_from_walk(
     walk.validate("timeline_from_walk: walk")
     model, jm = attach_humanoid(scene, stature)
     if not isinstance(scene, mujoco.MjSpec):  # feet on a ramp's low end the walk cuts past
-        walk = with_ramps_beside(shared_workplace(scene), walk)
+        walk = with_ramps_beside(shared_workplace(scene), walk, stature)
     legs = legs_from_walk(walk, stature)
     t = np.arange(0.0, walk.duration + 1e-9, 1.0 / fps)
     qpos = frames_from_legs(model, jm, legs, t, stature, arms, rng)

@@ -85,7 +85,7 @@ def test_a_floor_walk_past_a_ramp_s_foot_stands_on_it(scene, model, seed):
     wp = load_workplace(scene)
     walk = plan_walk(wp, (X, -2.0, math.pi / 2), (X, 2.0), model, rng=seed)
     assert walk.is_flat and "levels" not in walk.meta  # planned as any floor walk
-    marked = with_ramps_beside(wp, walk)
+    marked = with_ramps_beside(wp, walk, 1.75)
     assert META_KEY not in walk.meta  # the planned walk is left as it is
     (plane,) = marked.meta[META_KEY]
     assert plane["slope"] == pytest.approx(math.radians(5.5), abs=1e-3)
@@ -98,19 +98,23 @@ def test_a_floor_walk_past_a_ramp_s_foot_stands_on_it(scene, model, seed):
 
 
 def test_walks_away_from_a_ramp_and_flat_scenes_name_none(scene, scenes_dir, model):
-    """A floor walk 2 m from the ramp names none; nor does any walk in a scene without ramps;
-    a walk over levels leaves out the ramp its route crosses."""
+    """A floor walk 2 m from the ramp names none; nor do the shipped station's floor walks to
+    and from the floor before the ramp's foot (their soles stay off it: their legs stay the
+    flat synthesis's), nor any walk in a scene without ramps; a walk over levels leaves out
+    the ramp its route crosses."""
     wp = load_workplace(scene)
     far = plan_walk(wp, (X + 2.0, -2.0, math.pi / 2), (X + 2.0, 2.0), model, rng=0)
-    assert ramps_beside(wp, far) == []
-    assert with_ramps_beside(wp, far) is far
+    assert ramps_beside(wp, far, 1.75) == []
+    assert with_ramps_beside(wp, far, 1.75) is far
     flat = load_workplace(scenes_dir / "open_floor.xml")
     walk = plan_walk(flat, (-1.0, -1.0), (1.0, 1.0), model, rng=0)
-    assert ramps_beside(flat, walk) == []
+    assert ramps_beside(flat, walk, 1.75) == []
     station = load_workplace(scenes_dir / "multilevel_station.xml")
+    for ends in (("stand_car3", "stand_ramp"), ("stand_ramp", "stand_car1")):
+        assert ramps_beside(station, plan_walk(station, *ends, model, rng=0), 1.75) == []
     up = plan_walk(station, "stand_ramp", "stand_platform2", model, rng=3)
     assert "ramp" in [e["kind"] for e in up.meta["levels"]["route"]]
-    assert META_KEY not in with_ramps_beside(station, up).meta
+    assert META_KEY not in with_ramps_beside(station, up, 1.75).meta
 
 
 def test_level_planes_of_a_floor_walk_make_every_step_level(scene, model):
@@ -119,6 +123,6 @@ def test_level_planes_of_a_floor_walk_make_every_step_level(scene, model):
     wp = load_workplace(scene)
     walk = plan_walk(wp, (X, -2.0, math.pi / 2), (X, 2.0), model, rng=0)
     assert level_planes(walk, len(walk.steps)) == ([], [True] * len(walk.steps))
-    planes, level = level_planes(with_ramps_beside(wp, walk), len(walk.steps))
+    planes, level = level_planes(with_ramps_beside(wp, walk, 1.75), len(walk.steps))
     assert len(planes) == 1 and level == [True] * len(walk.steps)
     assert np.isfinite(planes[0]["run"])
