@@ -126,3 +126,15 @@ def test_level_planes_of_a_floor_walk_make_every_step_level(scene, model):
     planes, level = level_planes(with_ramps_beside(wp, walk, 1.75), len(walk.steps))
     assert len(planes) == 1 and level == [True] * len(walk.steps)
     assert np.isfinite(planes[0]["run"])
+
+
+def test_the_shipped_station_s_floor_walk_past_the_ramp_s_foot_stands_on_it(scenes_dir, model):
+    """Seeded: on the shipped multi-level station, the floor walk from the floor before the
+    ramp's foot to the floor before the step (seed 3) turns past the ramp's low end. Before
+    (fed66aa) its feet stayed at floor height there: 201 contacts with the ramp, 34.0 mm deep
+    (seed 0: 46, 34.4 mm); now it names the ramp and has none."""
+    scene = scenes_dir / "multilevel_station.xml"
+    station = load_workplace(scene)
+    walk = plan_walk(station, "stand_ramp", "stand_step", model, rng=3)
+    assert len(ramps_beside(station, walk, 1.75)) == 1
+    assert collision_report(timeline_from_walk(walk, scene)) == []
