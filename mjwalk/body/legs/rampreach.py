@@ -242,8 +242,9 @@ def level_feet_on_ramps(
     obstacle band: a flat foot was 1-2 cm into it, the multi-level platform cycle's
     barrier-free runs), standing level on the highest point of that plane under its sole
     (heel, ankle, toe tip; the sole's edges and centre line): its heel clear of the floor by
-    that height, its toes on the ramp through toe-off. Walks without such a footprint, or
-    without a route, are returned as they are.
+    that height, its toes on the ramp through toe-off. The ramps are :func:`level_planes`'
+    (also those beside a floor walk that cuts past a ramp's low end,
+    :mod:`mjwalk.plan.rampside`). Walks without such a footprint are returned as they are.
 
     Args:
         walk: the walk (:class:`~mjwalk.plan.walkpath.WalkPath`, ``meta["levels"]["route"]``).
@@ -296,9 +297,9 @@ def swing_over_ramps(walk, frames: list[StepFrames], air: dict, feet: FootTracks
     ankle than a flat one: run 7 of the multi-level platform cycle at 12 runs, its right toes
     10 mm into the ramp's low corner), kept :data:`SOLE_GRID_SAG` above the plane, the foot's
     own clearance above its ground kept; a ramp's sides are taken one grid spacing wider (a
-    side edge crossing the sole between two points). Only the steps
-    of the route's level parts, and only where the walk's route crosses a ramp; ``feet``
-    updated in place.
+    side edge crossing the sole between two points). Only the level steps, over the ramps of
+    :func:`level_planes` (those the route crosses, those beside the walk); ``feet`` updated
+    in place.
 
     Args:
         walk: the walk (``meta["levels"]["route"]`` with its ramps' ``plane``).
