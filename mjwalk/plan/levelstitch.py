@@ -15,6 +15,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from mjwalk.plan.levelroute import RouteLeg
+from mjwalk.plan.rampside import ramp_plane
 from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.world.norms import LEVEL_TOLERANCE
 from mjwalk.world.workplace import Workplace
@@ -229,14 +230,7 @@ def level_meta(
                 "level_steps": level["steps"],
             }
             if c.kind == "ramp":  # its plane, for the feet on it (legs.rampreach.plane_pitch)
-                entry["plane"] = {
-                    "slope": float(c.slope),
-                    "uphill": float(c.yaw),
-                    "foot": [float(v) for v in c.origin],
-                    "run": float(c.track[-1]),
-                    "half_width": float(c.half_width),
-                    "z": float(c.z_lower - workplace.floor_z),
-                }
+                entry["plane"] = ramp_plane(c, workplace.floor_z)
         route.append(entry)
     return {
         "route": route,

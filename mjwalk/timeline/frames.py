@@ -24,6 +24,7 @@ from mjwalk.body.legs import LegMotion, legs_from_walk
 from mjwalk.body.legs.curves import smoothstep
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
+from mjwalk.plan.rampside import with_ramps_beside
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.timeline.timeline import Event, Timeline
 from mjwalk.world.workplace import shared_workplace
@@ -97,6 +98,8 @@ def timeline_from_walk(
     fps = check_fps(fps, "timeline_from_walk: fps must be")
     walk.validate("timeline_from_walk: walk")
     model, jm = attach_humanoid(scene, stature)
+    if not isinstance(scene, mujoco.MjSpec):  # feet on a ramp's low end the walk cuts past
+        walk = with_ramps_beside(shared_workplace(scene), walk, stature)
     legs = legs_from_walk(walk, stature)
     t = np.arange(0.0, walk.duration + 1e-9, 1.0 / fps)
     qpos = frames_from_legs(model, jm, legs, t, stature, arms, rng)

@@ -30,6 +30,7 @@ from mjwalk.body.legs.edgeswing import StepSurfaces
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import HEEL_RISE_MAX, FootTracks, StepFrames
+from mjwalk.plan.rampside import META_KEY as BESIDE_KEY
 
 #: Passes of :func:`trailing_reach` (raise the heel by the deficit over the ball's lever,
 #: measure again); the deficit falls below a millimetre by the third on a 5.5 deg ramp.
@@ -199,6 +200,33 @@ def _on_plane(plane: dict, print_) -> tuple[float, float] | None:
     return float(plane.get("z", 0.0)) + rise * along, plane_pitch(plane, np.asarray(print_, float))
 
 
+def level_planes(walk, n: int) -> tuple[list[dict], list[bool]]:
+    """The ramp planes a walk's level steps may stand or swing over, and which steps are level.
+
+    The planes are those of the ramps its route crosses (``meta["levels"]["route"]``) and of
+    the ramps beside it (``meta["ramps_beside"]``, :mod:`mjwalk.plan.rampside`: a floor walk
+    cutting past a ramp's low end). A walk over levels has its route's level parts' steps
+    level; a walk without a route (a floor walk) has every step level.
+
+    Args:
+        walk: the walk (:class:`~mjwalk.plan.walkpath.WalkPath`).
+        n: its number of steps.
+
+    Returns:
+        the planes (each as :func:`plane_pitch` takes it) and per step whether it is level
+        walking; no planes when the walk has none or its route does not count ``n`` steps.
+    """
+    meta = walk.meta or {}
+    route = meta.get("levels", {}).get("route") or []
+    planes = [e["plane"] for e in route if e.get("kind") == "ramp" and "plane" in e]
+    planes += [p for p in meta.get(BESIDE_KEY, []) if p not in planes]
+    if not route:
+        return planes, [True] * n
+    if not planes or sum(int(e.get("steps", 0)) for e in route) != n:
+        return [], []
+    return planes, [e.get("kind") == "level" for e in route for _ in range(int(e.get("steps", 0)))]
+
+
 #: Sole points (along, across) checked against a ramp's plane under a level foot, and the most
 #: the plane can rise between them (m): a 0.27 m foot's points 3.4 cm apart on a 5.5 deg ramp
 #: (MAX_RAMP_SLOPE 6 deg: 3.5 mm); a ramp's side edge crossing the sole lies between them.
@@ -214,8 +242,9 @@ def level_feet_on_ramps(
     obstacle band: a flat foot was 1-2 cm into it, the multi-level platform cycle's
     barrier-free runs), standing level on the highest point of that plane under its sole
     (heel, ankle, toe tip; the sole's edges and centre line): its heel clear of the floor by
-    that height, its toes on the ramp through toe-off. Walks without such a footprint, or
-    without a route, are returned as they are.
+    that height, its toes on the ramp through toe-off. The ramps are :func:`level_planes`'
+    (also those beside a floor walk that cuts past a ramp's low end,
+    :mod:`mjwalk.plan.rampside`). Walks without such a footprint are returned as they are.
 
     Args:
         walk: the walk (:class:`~mjwalk.plan.walkpath.WalkPath`, ``meta["levels"]["route"]``).
@@ -225,11 +254,9 @@ def level_feet_on_ramps(
     Returns:
         the steps' surfaces, those over a ramp's plane raised.
     """
-    route = (walk.meta or {}).get("levels", {}).get("route") or []
-    planes = [e["plane"] for e in route if e.get("kind") == "ramp" and "plane" in e]
-    if not planes or sum(int(e.get("steps", 0)) for e in route) != len(walk.steps):
+    planes, level = level_planes(walk, len(walk.steps))
+    if not planes:
         return surfs
-    level = [e.get("kind") == "level" for e in route for _ in range(int(e.get("steps", 0)))]
     geom = geom or leg_geometry()
     along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
     grid = [(d, w) for d in along for w in np.linspace(-0.5, 0.5, SOLE_GRID[1])]
@@ -270,9 +297,9 @@ def swing_over_ramps(walk, frames: list[StepFrames], air: dict, feet: FootTracks
     ankle than a flat one: run 7 of the multi-level platform cycle at 12 runs, its right toes
     10 mm into the ramp's low corner), kept :data:`SOLE_GRID_SAG` above the plane, the foot's
     own clearance above its ground kept; a ramp's sides are taken one grid spacing wider (a
-    side edge crossing the sole between two points). Only the steps
-    of the route's level parts, and only where the walk's route crosses a ramp; ``feet``
-    updated in place.
+    side edge crossing the sole between two points). Only the level steps, over the ramps of
+    :func:`level_planes` (those the route crosses, those beside the walk); ``feet`` updated
+    in place.
 
     Args:
         walk: the walk (``meta["levels"]["route"]`` with its ramps' ``plane``).
@@ -285,11 +312,9 @@ def swing_over_ramps(walk, frames: list[StepFrames], air: dict, feet: FootTracks
     Returns:
         None.
     """
-    route = (walk.meta or {}).get("levels", {}).get("route") or []
-    planes = [e["plane"] for e in route if e.get("kind") == "ramp" and "plane" in e]
-    if not planes or sum(int(e.get("steps", 0)) for e in route) != len(frames):
+    planes, level = level_planes(walk, len(frames))
+    if not planes:
         return
-    level = [e.get("kind") == "level" for e in route for _ in range(int(e.get("steps", 0)))]
     across = np.linspace(-0.5, 0.5, SOLE_GRID[1])
     grid = [(d, w) for d in np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
             for w in across]  # fmt: skip

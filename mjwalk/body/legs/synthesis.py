@@ -50,6 +50,7 @@ from mjwalk.body.legs.ik import KNEE_MIN, foot_lowest, generic_joint, hip_world
 from mjwalk.body.legs.ikcache import LegIKCache
 from mjwalk.body.legs.legheights import lift_to_levels
 from mjwalk.body.legs.pitchfit import AnkleFit, fit_ankle_range, repitch_foot
+from mjwalk.body.legs.rampreach import BESIDE_KEY
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
 from mjwalk.body.legs.stance import (
@@ -161,7 +162,9 @@ def legs_from_walk(
     angles = _clear_floor(sy, ik, root, win)
     feet = sy.feet
     meta = {"stature": stature, "reference": ref.source}
-    if not walk.is_flat:  # platforms, steps, stairs, ramps (issue 47): the flat legs lifted
+    # platforms, steps, stairs, ramps, a ramp's low end beside a floor walk (issue 47): the flat
+    # legs lifted
+    if not walk.is_flat or (walk.meta or {}).get(BESIDE_KEY):
         root, angles, meta["edge_clearance"] = lift_to_levels(
             walk, frames, feet, root, sy.yaw, geom
         )

@@ -1,0 +1,176 @@
+"""Ramps beside a walk (issue 47): the ramps whose low end a walk passes over without crossing
+them.
+
+A level's obstacles start :data:`~mjwalk.world.workplace.WorkplaceOptions` ``z_range[0]``
+(0.05 m) above it, so the first part of a ramp's run from its foot (0.52 m of a 5.5 deg ramp)
+is open floor to the planners: a walk that cuts past a ramp's foot from the side, or along
+it, sets its feet there. A person stands on the ramp's surface where a foot lands on it
+(its side edge rises at most those 0.05 m there, about a third of the lowest riser of a
+building stair, 0.14 m: DIN 18065:2020 Table 1 as :data:`mjwalk.world.norms.MIN_RISER` cites
+it -- a low step up, not a face to keep clear of; keeping floor walks off it instead would
+change every floor level's clearance field and walks, where standing on it changes only the
+legs of the walks that pass there). The walk
+records those ramps' planes (``meta["ramps_beside"]``, the same entries as a crossed ramp's
+``plane`` in ``meta["levels"]["route"]``: :func:`ramp_plane`), and the legs stand each such
+foot on the highest point of the plane under its sole and swing it over the plane
+(:func:`mjwalk.body.legs.rampreach.level_feet_on_ramps`, ``swing_over_ramps``), as they do
+for the level steps of a walk that crosses the ramp. Metres above the floor, radians.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from mjwalk.anthropometry import leg_geometry
+from mjwalk.plan.levelroute import Crossing, crossings
+from mjwalk.plan.walkpath import WalkPath
+from mjwalk.world.norms import LEVEL_TOLERANCE
+from mjwalk.world.workplace import Workplace
+
+#: Sole points (along the foot, across it) tested against a ramp's plane, as the legs test them
+#: (``mjwalk.body.legs.rampreach.SOLE_GRID``), and the spacing of the points along a swing's
+#: chord between two footprints of one foot, metres (a tenth of the shortest foot, 0.18 m at
+#: 1.2 m stature).
+SOLE_GRID = (9, 5)
+CHORD_SPACING = 0.02
+
+#: The key of a walk's ``meta`` under which the planes of the ramps beside it are kept.
+META_KEY = "ramps_beside"
+
+
+def ramp_plane(c: Crossing, floor_z: float) -> dict:
+    """A ramp crossing's plane as walks record it.
+
+    Args:
+        c: a ramp crossing (:func:`mjwalk.plan.levelroute.crossings`).
+        floor_z: the floor's world height, metres.
+
+    Returns:
+        ``slope`` (radians), ``uphill`` (heading up the ramp, radians), ``foot`` (world xy of
+        the middle of its foot), ``run`` (horizontal length), ``half_width`` (0: unknown) and
+        ``z`` (its foot's height above the floor), metres.
+    """
+    return {
+        "slope": float(c.slope),
+        "uphill": float(c.yaw),
+        "foot": [float(v) for v in c.origin],
+        "run": float(c.track[-1]),
+        "half_width": float(c.half_width),
+        "z": float(c.z_lower - floor_z),
+    }
+
+
+def _ramps(workplace: Workplace) -> list[Crossing]:
+    """The scene's ramp crossings, kept on the workplace (none in a scene without ramps)."""
+    cache = workplace.__dict__
+    if "_side_ramps" not in cache:
+        graph = workplace.levels
+        has = any(k.kind == "ramp" for k in graph.links)
+        cache["_side_ramps"] = [c for c in crossings(graph, 0.0) if c.kind == "ramp"] if has else []
+    return cache["_side_ramps"]
+
+
+def _soles(walk: WalkPath, geom, at: float) -> np.ndarray:
+    """World xy (k, 2) of the sole points of a walk's footprints standing at height ``at``
+    (metres above the floor) and of its swings between them (each foot's chord from the
+    footprint it leaves to the one it lands on, at the landing's heading), ``geom`` the
+    foot's lengths and width."""
+    along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
+    across = np.linspace(-0.5, 0.5, SOLE_GRID[1]) * geom.foot_width
+    poses = []
+    last: dict[str, np.ndarray] = {}
+    for s in walk.steps:
+        foot, stance = np.asarray(s.foot, float)[:3], np.asarray(s.stance, float)[:3]
+        last.setdefault("left" if s.side == "right" else "right", stance)  # the first stance
+        if abs(float(s.foot_z) - at) <= LEVEL_TOLERANCE:
+            poses.append(foot)
+            prev = last.get(s.side)
+            if prev is not None:
+                k = max(2, math.ceil(np.hypot(*(foot[:2] - prev[:2])) / CHORD_SPACING) + 1)
+                u = np.linspace(0.0, 1.0, k)[:, None]
+                chord = prev[:2] + u * (foot[:2] - prev[:2])
+                poses += [np.array([x, y, foot[2]]) for x, y in chord]
+        if abs(float(s.stance_z) - at) <= LEVEL_TOLERANCE:
+            poses.append(stance)
+        last[s.side] = foot
+    if not poses:
+        return np.zeros((0, 2))
+    p = np.array(poses)
+    f = np.stack([np.cos(p[:, 2]), np.sin(p[:, 2])], -1)
+    left = np.stack([-f[:, 1], f[:, 0]], -1)
+    pts = [p[:, :2] + d * f + w * left for d in along for w in across]
+    return np.concatenate(pts)
+
+
+def _over(c: Crossing, xy: np.ndarray, widen: float) -> bool:
+    """Whether any of the points (k, 2) lies over a ramp's plane (its run; its width, known,
+    widened by ``widen`` metres)."""
+    rel = xy - np.asarray(c.origin, dtype=float)
+    up = np.array([math.cos(c.yaw), math.sin(c.yaw)])
+    along = rel @ up
+    across = np.abs(rel @ np.array([-up[1], up[0]]))
+    half = float(c.half_width) + widen if c.half_width > 0.0 else math.inf
+    return bool(np.any((along > 0.0) & (along <= float(c.track[-1])) & (across <= half)))
+
+
+def ramps_beside(
+    workplace: Workplace, walk: WalkPath, stature: float, crossed: list[dict] | None = None
+) -> list[dict]:
+    """The planes of the ramps a walk's soles stand or swing over on the ramp's lower level.
+
+    Args:
+        workplace: the scene.
+        walk: the walk (its steps' footprints and ``foot_z``/``stance_z``, metres above the
+            floor).
+        stature: the walker's stature, metres (the foot's size).
+        crossed: the planes of the ramps the walk's route crosses (left out).
+
+    Returns:
+        the planes (:func:`ramp_plane`) of the ramps, other than ``crossed``, over which a
+        sole point (:data:`SOLE_GRID`) of a footprint standing at their foot's height, or of
+        a swing between two such footprints, lies (a ramp's sides widened by one grid spacing
+        across the foot, as the legs' swing over a ramp takes them); [] in a scene without
+        ramps.
+    """
+    ramps = _ramps(workplace)
+    if not ramps or not walk.steps:
+        return []
+    geom = leg_geometry(stature)
+    widen = geom.foot_width / (SOLE_GRID[1] - 1)
+    out: list[dict] = []
+    soles: dict[float, np.ndarray] = {}
+    for c in ramps:
+        plane = ramp_plane(c, workplace.floor_z)
+        if crossed and plane in crossed:
+            continue
+        at = round(plane["z"], 6)
+        if at not in soles:
+            soles[at] = _soles(walk, geom, plane["z"])
+        if _over(c, soles[at], widen):
+            out.append(plane)
+    return out
+
+
+def with_ramps_beside(workplace: Workplace, walk: WalkPath, stature: float) -> WalkPath:
+    """``walk`` with the ramps beside it in its ``meta`` (:data:`META_KEY`), when it has any.
+
+    Args:
+        workplace: the scene the walk was planned in.
+        walk: the walk (a walk over levels: its route's crossed ramps are left out).
+        stature: the walker's stature, metres.
+
+    Returns:
+        ``walk`` itself when no ramp is beside it (or it already names them), else a copy whose
+        ``meta`` names them.
+    """
+    if META_KEY in walk.meta:
+        return walk
+    route = (walk.meta.get("levels") or {}).get("route") or []
+    crossed = [e["plane"] for e in route if e.get("kind") == "ramp" and "plane" in e]
+    beside = ramps_beside(workplace, walk, stature, crossed)
+    if not beside:
+        return walk
+    return replace(walk, meta={**walk.meta, META_KEY: beside})

@@ -1,0 +1,140 @@
+"""Ramps beside a walk: a floor walk cutting past a ramp's low end (mjwalk.plan.rampside)."""
+
+import math
+
+import mujoco
+import numpy as np
+import pytest
+
+from mjwalk.body.legs.legheights import step_surfaces
+from mjwalk.body.legs.rampreach import SOLE_GRID_SAG, level_planes
+from mjwalk.gait.default import default_model
+from mjwalk.plan.rampside import META_KEY, ramps_beside, with_ramps_beside
+from mjwalk.plan.walks import plan_walk
+from mjwalk.timeline import collision_report, timeline_from_walk
+from mjwalk.world import load_workplace
+
+#: A 12 x 8 m floor with a 0.34 m deck (x -4 to -2) reached by a 5.5 deg ramp (the shipped
+#: multi-level station's: a 0.1 m slab, top face from (x -2.0, z 0.34) down to (x 1.531, z 0)
+#: along +x, 1 m wide); the floor level's obstacles start 0.05 m up, so the ramp's last 0.52 m
+#: (x 1.01 to 1.53) is open floor to the planner. Walks go north past the ramp's foot at x = X.
+SCENE = """<mujoco model="ramp_side">
+  <worldbody>
+    <geom name="floor" type="plane" pos="0 0 0" size="6 4 0.05"/>
+    <geom name="deck" type="box" size="1.0 0.5 0.17" pos="-3.0 0 0.17"/>
+    <geom name="deck_ramp" type="box" size="1.773683 0.5 0.05" pos="-0.239275 0 0.120230"
+          euler="0 5.5 0"/>
+  </worldbody>
+</mujoco>
+"""
+
+X = 1.35
+
+
+@pytest.fixture(scope="module")
+def scene(tmp_path_factory):
+    path = tmp_path_factory.mktemp("rampside") / "ramp_side.xml"
+    path.write_text(SCENE)
+    return path
+
+
+@pytest.fixture(scope="module")
+def model():
+    return default_model(progress=False)
+
+
+def _sole_depth(timeline, ramp: str) -> float:
+    """The deepest any sole (foot_*, toes_*) goes into the geom ``ramp`` over the timeline, m."""
+    m = timeline.model
+    names = [mujoco.mj_id2name(m, mujoco.mjtObj.mjOBJ_GEOM, i) or "" for i in range(m.ngeom)]
+    soles = {i for i, n in enumerate(names) if "/foot_" in n or "/toes_" in n}
+    rg, d, deepest = names.index(ramp), mujoco.MjData(m), 0.0
+    for q in timeline.qpos:
+        d.qpos[:] = q
+        mujoco.mj_kinematics(m, d)
+        mujoco.mj_collision(m, d)
+        for c in d.contact[: d.ncon]:
+            pair = {int(c.geom[0]), int(c.geom[1])}
+            if rg in pair and pair & soles:
+                deepest = max(deepest, -float(c.dist))
+    return deepest
+
+
+def test_the_scene_s_ramp_foot_is_open_floor_to_the_planner(scene):
+    """The premise: the ramp is one surface of the scene, and its obstacle footprint on the
+    floor stops 0.52 m short of its foot (the 0.05 m band), where the walks pass."""
+    wp = load_workplace(scene)
+    ramp = [s for s in wp.levels.surfaces if s.is_ramp]
+    assert len(ramp) == 1
+    (fp,) = [o for o in wp.obstacles if o.name == "deck_ramp"]
+    assert fp.vertices[:, 0].max() == pytest.approx(
+        1.531 - 0.05 / math.tan(math.radians(5.5)), abs=0.01
+    )
+
+
+@pytest.mark.parametrize("seed", [0, 2])
+def test_a_floor_walk_past_a_ramp_s_foot_stands_on_it(scene, model, seed):
+    """Seeded: a floor walk north past the ramp's foot (never crossing it) names the ramp
+    beside it, its feet over the ramp stand on the ramp's plane (the highest point under the
+    sole, :func:`mjwalk.body.legs.rampreach.level_feet_on_ramps`) and the animated walk has no
+    contact. Before (fed66aa): the feet stayed at floor height, soles 14.6 mm (seed 0)
+    and 14.9 mm (seed 2) into the ramp, 43 and 15 contacts (seeds 1 and 3: 8.8 and 17.1 mm,
+    0 and 41; now 0 mm and 0 contacts). Left: seed 2's toes, pushing off from
+    the floor beside the ramp's corner, touch its plane 2.9 mm deep (a foot's own clearance,
+    under the contact check's 10 mm tolerance for a sole on a walk surface)."""
+    wp = load_workplace(scene)
+    walk = plan_walk(wp, (X, -2.0, math.pi / 2), (X, 2.0), model, rng=seed)
+    assert walk.is_flat and "levels" not in walk.meta  # planned as any floor walk
+    marked = with_ramps_beside(wp, walk, 1.75)
+    assert META_KEY not in walk.meta  # the planned walk is left as it is
+    (plane,) = marked.meta[META_KEY]
+    assert plane["slope"] == pytest.approx(math.radians(5.5), abs=1e-3)
+    lands = [s.land for s in step_surfaces(marked)]
+    assert max(lands) > 0.01  # some foot lands on the ramp, above the floor
+    assert all(h == 0.0 or h >= SOLE_GRID_SAG for h in lands)
+    tl = timeline_from_walk(walk, scene)
+    assert collision_report(tl) == []
+    assert _sole_depth(tl, "deck_ramp") <= 0.003
+
+
+def test_walks_away_from_a_ramp_and_flat_scenes_name_none(scene, scenes_dir, model):
+    """A floor walk 2 m from the ramp names none; nor do the shipped station's floor walks to
+    and from the floor before the ramp's foot (their soles stay off it: their legs stay the
+    flat synthesis's), nor any walk in a scene without ramps; a walk over levels leaves out
+    the ramp its route crosses."""
+    wp = load_workplace(scene)
+    far = plan_walk(wp, (X + 2.0, -2.0, math.pi / 2), (X + 2.0, 2.0), model, rng=0)
+    assert ramps_beside(wp, far, 1.75) == []
+    assert with_ramps_beside(wp, far, 1.75) is far
+    flat = load_workplace(scenes_dir / "open_floor.xml")
+    walk = plan_walk(flat, (-1.0, -1.0), (1.0, 1.0), model, rng=0)
+    assert ramps_beside(flat, walk, 1.75) == []
+    station = load_workplace(scenes_dir / "multilevel_station.xml")
+    for ends in (("stand_car3", "stand_ramp"), ("stand_ramp", "stand_car1")):
+        assert ramps_beside(station, plan_walk(station, *ends, model, rng=0), 1.75) == []
+    up = plan_walk(station, "stand_ramp", "stand_platform2", model, rng=3)
+    assert "ramp" in [e["kind"] for e in up.meta["levels"]["route"]]
+    assert META_KEY not in with_ramps_beside(station, up, 1.75).meta
+
+
+def test_level_planes_of_a_floor_walk_make_every_step_level(scene, model):
+    """A walk without a route over levels: its ramps beside are its planes, every step level;
+    without them, none (the legs leave it flat)."""
+    wp = load_workplace(scene)
+    walk = plan_walk(wp, (X, -2.0, math.pi / 2), (X, 2.0), model, rng=0)
+    assert level_planes(walk, len(walk.steps)) == ([], [True] * len(walk.steps))
+    planes, level = level_planes(with_ramps_beside(wp, walk, 1.75), len(walk.steps))
+    assert len(planes) == 1 and level == [True] * len(walk.steps)
+    assert np.isfinite(planes[0]["run"])
+
+
+def test_the_shipped_station_s_floor_walk_past_the_ramp_s_foot_stands_on_it(scenes_dir, model):
+    """Seeded: on the shipped multi-level station, the floor walk from the floor before the
+    ramp's foot to the floor before the step (seed 3) turns past the ramp's low end. Before
+    (fed66aa) its feet stayed at floor height there: 201 contacts with the ramp, 34.0 mm deep
+    (seed 0: 46, 34.4 mm); now it names the ramp and has none."""
+    scene = scenes_dir / "multilevel_station.xml"
+    station = load_workplace(scene)
+    walk = plan_walk(station, "stand_ramp", "stand_step", model, rng=3)
+    assert len(ramps_beside(station, walk, 1.75)) == 1
+    assert collision_report(timeline_from_walk(walk, scene)) == []
