@@ -30,10 +30,10 @@ from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.norms import LEVEL_TOLERANCE
 from mjwalk.world.workplace import Workplace
 
-#: Sole points (along the foot, across it) tested against a ramp's plane, as the legs test them
-#: (``mjwalk.body.legs.rampreach.SOLE_GRID``), and the spacing of the points along a swing's
-#: chord between two footprints of one foot, metres (a tenth of the shortest foot, 0.18 m at
-#: 1.2 m stature).
+#: Sole points (along the foot, across it) tested against a ramp's plane, here and by the
+#: legs (:mod:`mjwalk.body.legs.rampreach`, one grid for both), and the spacing of the points
+#: along a swing's chord between two footprints of one foot, metres (a tenth of the shortest
+#: foot, 0.18 m at 1.2 m stature).
 SOLE_GRID = (9, 5)
 CHORD_SPACING = 0.02
 

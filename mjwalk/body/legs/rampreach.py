@@ -31,6 +31,7 @@ from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import HEEL_RISE_MAX, FootTracks, StepFrames
 from mjwalk.plan.rampside import META_KEY as BESIDE_KEY
+from mjwalk.plan.rampside import SOLE_GRID
 
 #: Passes of :func:`trailing_reach` (raise the heel by the deficit over the ball's lever,
 #: measure again); the deficit falls below a millimetre by the third on a 5.5 deg ramp.
@@ -227,10 +228,10 @@ def level_planes(walk, n: int) -> tuple[list[dict], list[bool]]:
     return planes, [e.get("kind") == "level" for e in route for _ in range(int(e.get("steps", 0)))]
 
 
-#: Sole points (along, across) checked against a ramp's plane under a level foot, and the most
-#: the plane can rise between them (m): a 0.27 m foot's points 3.4 cm apart on a 5.5 deg ramp
-#: (MAX_RAMP_SLOPE 6 deg: 3.5 mm); a ramp's side edge crossing the sole lies between them.
-SOLE_GRID = (9, 5)
+#: The most a ramp's plane can rise between the sole points checked under a level foot
+#: (:data:`~mjwalk.plan.rampside.SOLE_GRID`, along and across, the same grid the walk's
+#: ramps beside are found with), metres: a 0.27 m foot's points 3.4 cm apart on a 5.5 deg
+#: ramp (MAX_RAMP_SLOPE 6 deg: 3.5 mm); a ramp's side edge crossing the sole lies between them.
 SOLE_GRID_SAG = 0.004
 
 
