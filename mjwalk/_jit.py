@@ -67,6 +67,7 @@ clear_stale_caches()
 _njit = numba.njit(cache=True, nogil=True, fastmath=False)
 _njit_sum = numba.njit(cache=True, nogil=True, fastmath={"reassoc", "contract"})
 _njit_inline = numba.njit(cache=True, nogil=True, fastmath=False, inline="always")
+_njit_gil = numba.njit(cache=True, fastmath=False)
 
 
 def _cache_failures_warn(dispatcher):
@@ -104,6 +105,14 @@ def njit_inline(func):
     argument passing outweighs the helper's arithmetic (:func:`mjwalk.plan.stepgeom.decode_col`:
     six multiply-adds, 3.6x the cost as a call; issue 50). The arithmetic is the same."""
     return _cache_failures_warn(_njit_inline(func))
+
+
+def njit_gil(func):
+    """:func:`njit` without ``nogil``: for a compiled loop that calls back into Python (numba's
+    ``objmode``) for a value only NumPy computes bit for bit as the code it replaces needs
+    (:func:`mjwalk.body.legs.synthloop.synth_steps`: NumPy's arccos). The callback takes the
+    GIL anyway; a ``nogil`` function with one warns at every load."""
+    return _cache_failures_warn(_njit_gil(func))
 
 
 def njit_sum(func):

@@ -308,7 +308,7 @@ def _is_kernel(fn: ast.FunctionDef | ast.AsyncFunctionDef) -> bool:
     """Whether ``fn`` is a compiled numba kernel (``@njit``, ``@jit(...)``, ``@vectorize``...):
     a kernel takes its arrays one by one and runs as one loop, so the size rules do not apply."""
     return any(
-        re.search(r"\b(n?jit(_inline|_sum)?|vectorize|guvectorize|cfunc)\b", ast.unparse(d))
+        re.search(r"\b(n?jit(_inline|_sum|_gil)?|vectorize|guvectorize|cfunc)\b", ast.unparse(d))
         for d in fn.decorator_list
     )
 

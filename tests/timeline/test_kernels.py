@@ -673,6 +673,7 @@ def test_compiled_swing_foot_matches_numpy(monkeypatch, reference):
         return got
 
     monkeypatch.setattr(synthesis, "swing_foot_compiled", both)
+    monkeypatch.setattr(synthesis, "COMPILED_STEPS", False)  # (step by step: the calls seen)
     walks = _kernel_walks()
     for walk in walks:
         synthesis.legs_from_walk(walk, reference=ref)
@@ -778,6 +779,7 @@ def test_compiled_stance_leg_matches_numpy(monkeypatch, reference):
     monkeypatch.setattr(synthesis, "stance_foot", foot)
     monkeypatch.setattr(synthesis, "pelvis_height", height)
     monkeypatch.setattr(synthesis, "stance_knee", knee)
+    monkeypatch.setattr(synthesis, "COMPILED_STEPS", False)  # (step by step: the calls seen)
     walks = _kernel_walks()
     for walk in walks:
         synthesis.legs_from_walk(walk, reference=ref)

@@ -459,3 +459,10 @@ def _reach_deficit(root, yaw, ankle, ground, reach_sq, c, out):
         h = math.sqrt(dx * dx + dy * dy)
         cap = ankle[i, 2] + math.sqrt(maximum1(reach_sq[i] - h * h, 0.0))
         out[i] = maximum1(out[i], root[i, 2] - cap if ground[i] else 0.0)
+
+
+#: The compiled kernels of :func:`stance_foot`, :func:`stance_knee` and :func:`pelvis_height`
+#: and the stance spline's knots, for callers that run a walk's steps in one compiled loop
+#: (:mod:`~mjwalk.body.legs.synthloop`).
+stance_foot_rows, stance_knee_rows, pelvis_height_rows = _stance_foot, _stance_knee, _pelvis_height
+STANCE_KNOTS = _KNOTS

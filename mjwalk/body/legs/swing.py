@@ -81,7 +81,7 @@ def swing_foot(
         land_p: the pitch the foot lands with, radians.
     """
     lift, land = np.asarray(fr.lift, float), np.asarray(fr.land, float)
-    dyaw = float(np.angle(np.exp(1j * (land[2] - lift[2]))))
+    dyaw, seg, seg_sq, nrm = step_chord(fr)
     if fr.first:
         mode, p_pre = ROLL_FIRST, 0.0
     elif fr.p_start is not None:  # continue from the stance's extra heel rise
@@ -89,9 +89,6 @@ def swing_foot(
         mode, p_pre = ROLL_CONTINUE, min(float(fr.p_start - p0), 0.0)
     else:
         mode, p_pre = ROLL_PLAIN, 0.0
-    seg = land[:2] - lift[:2]
-    seg_sq = max(float(seg @ seg), 1e-9)
-    nrm = np.array([-seg[1], seg[0]]) / max(float(np.linalg.norm(seg)), 1e-9)
     L1, L2 = float(geom.thigh), float(geom.shank)
     n = len(phi)
     pos, p, toe, yaw = np.zeros((n, 3)), np.zeros(n), np.empty(n), np.empty(n)
@@ -127,6 +124,27 @@ def swing_foot(
         yaw,
     )
     return pos, p, toe, yaw, phi_to
+
+
+def step_chord(fr: StepFrames) -> tuple[float, np.ndarray, float, np.ndarray]:
+    """The swing's turn and chord of step ``fr``, as :func:`swing_foot` gives them to its
+    kernel (NumPy's arithmetic: the turn through the complex exponential, the chord's squared
+    length and norm by BLAS).
+
+    Args:
+        fr: the step (lift-off and landing footprints).
+
+    Returns:
+        the foot's turn from lift-off to landing heading, wrapped to [-pi, pi] (radians); the
+        chord from the lift-off to the landing footprint (2,) (metres); its squared length
+        (m², at least 1e-9); its unit normal (2,), 90 deg CCW.
+    """
+    lift, land = np.asarray(fr.lift, float), np.asarray(fr.land, float)
+    dyaw = float(np.angle(np.exp(1j * (land[2] - lift[2]))))
+    seg = land[:2] - lift[:2]
+    seg_sq = max(float(seg @ seg), 1e-9)
+    nrm = np.array([-seg[1], seg[0]]) / max(float(np.linalg.norm(seg)), 1e-9)
+    return dyaw, seg, seg_sq, nrm
 
 
 @njit
@@ -324,3 +342,8 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
         for k in range(3):
             pos[ne + j, k] = ref_pos[j, k] + sp[j, k]
         p[ne + j] = ref_pit[j] + spp[j, 0]
+
+
+#: :func:`swing_foot`'s compiled kernel, for callers that run a walk's steps in one compiled
+#: loop (:mod:`~mjwalk.body.legs.synthloop`).
+swing_rows = _swing

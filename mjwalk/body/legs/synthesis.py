@@ -70,6 +70,7 @@ from mjwalk.body.legs.steps import (
     swing_foot,
 )
 from mjwalk.body.legs.swing import swing_foot as swing_foot_compiled
+from mjwalk.body.legs.synthloop import SynthTracks, loop_consts, synth_steps
 from mjwalk.conventions import DEFAULT_STATURE, side_of_prefix
 from mjwalk.errors import PlanningError
 from mjwalk.plan.walkpath import WalkPath
@@ -88,6 +89,12 @@ LAND_EASE = 0.8
 
 #: Rounds of the ankle-range fit (pitch corrections and IK) per leg and pass.
 ANKLE_ROUNDS = 8
+
+#: Whether a walk with a reference tabulated on the unit cycle has its steps synthesised in one
+#: compiled call (:func:`~mjwalk.body.legs.synthloop.synth_steps`, bit for bit the numbers of
+#: :func:`_synth_step`'s loop, which other references take); False: step by step (the tests
+#: that pin the per-step kernels set it).
+COMPILED_STEPS = True
 
 
 @dataclass
@@ -146,9 +153,12 @@ def legs_from_walk(
             )
     sy = _start(walk, ref, geom)
     landing_pitches(frames, sy.xy, sy.yaw, sy.hs_pitch, sy.d_land, sy.dorsi_max, geom)
-    knee_prev = None  # (angle, velocity per unit phase) of the next stance leg at its landing
-    for k in range(len(frames)):
-        knee_prev = _synth_step(sy, frames, k, knee_prev)
+    if ref._unit and COMPILED_STEPS:  # all steps in one compiled call (the same numbers)
+        _synth_compiled(sy, frames)
+    else:
+        knee_prev = None  # (angle, velocity per unit phase) of the next stance leg at landing
+        for k in range(len(frames)):
+            knee_prev = _synth_step(sy, frames, k, knee_prev)
     # where the pelvis turns further than a grounded foot's hip can rotate, the foot spins
     # about its ball; its next swing starts from the turned footprint
     # (the loops below re-solve only the samples changed since: the spin turns' grounded
@@ -360,6 +370,20 @@ def _synth_step(sy: _Synth, frames: list[StepFrames], k: int, knee_prev):
     # the swing leg's knee at landing starts the next stance spline; its velocity is the
     # reference's (loading response: the knee flexes right after heel strike)
     return (sy.knee_for(b, sw, pos[-1], sy.z[b]), 0.5 * float(ref("knee", 0.0, True)))
+
+
+def _synth_compiled(sy: _Synth, frames: list[StepFrames]) -> None:
+    """Every step of ``frames`` into the tracks of ``sy`` as :func:`_synth_step`'s loop does,
+    in one compiled call (:func:`~mjwalk.body.legs.synthloop.synth_steps`; ``sy.ref._unit``)."""
+    f = sy.feet
+    c = loop_consts(sy.ref, sy.geom, sy.hs_pitch, sy.d_land, sy.d_max_sq)
+    pair = lambda d: (d["l"], d["r"])  # noqa: E731
+    out = SynthTracks(
+        ankle=pair(f.ankle), fyaw=pair(f.fyaw), pitch=pair(f.pitch), toe=pair(f.toe),
+        ground=pair(f.ground), prints=pair(f.prints), cyc=pair(sy.cyc), contact=sy.contact,
+        phase=sy.phase, z=sy.z,
+    )  # fmt: skip
+    synth_steps(frames, pair(sy.hip_xy), sy.ref._ppoly, c, LAND_EASE, out)
 
 
 def _hold_ends(sy: _Synth, first: StepFrames, last: StepFrames) -> None:
