@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mjwalk.ergonomics.angles import KNEE_BENT_DEG, BodyAngles
+from mjwalk.ergonomics.angles import KNEE_BENT_DEG, BodyAngles, select_first
 
 #: OWAS action categories: [back 1-4][arms 1-3][legs 1-7][load 1-3] (Karhu et al. 1977).
 #: Provenance (checked 2026-12-01): the 1977/1981 papers could not be reached. Of six
@@ -102,7 +102,7 @@ def codes(ang: BodyAngles, load_kg: float = 0.0) -> np.ndarray:
     """
     bent = np.abs(ang.trunk_flexion) >= BACK_DEG
     twisted = (np.abs(ang.trunk_twist) >= BACK_DEG) | (np.abs(ang.trunk_side_bend) >= BACK_DEG)
-    back = np.select([bent & twisted, twisted, bent], [4, 3, 2], 1)
+    back = select_first([bent & twisted, twisted, bent], [4, 3, 2], 1)
     high = ang.upper_arm_elevation >= 90.0  # the upper arm at or above shoulder level
     arms = 1 + high.sum(axis=1)
     down = ang.feet_down

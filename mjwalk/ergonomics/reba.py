@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mjwalk.ergonomics.angles import KNEE_BENT_DEG, NEUTRAL_DEG, BodyAngles
+from mjwalk.ergonomics.angles import KNEE_BENT_DEG, NEUTRAL_DEG, BodyAngles, select_first
 
 #: REBA Table A (Hignett & McAtamney 2000): [trunk 1-5][neck 1-3][legs 1-4] -> score A.
 TABLE_A = np.array(
@@ -95,7 +95,7 @@ def load_score(load_kg, shock: bool = False):
     """
     lo, hi = LOAD_KG
     load = np.asarray(load_kg, dtype=float)
-    score = np.select([load > hi, load >= lo], [2, 1], 0) + int(shock)
+    score = select_first([load > hi, load >= lo], [2, 1], 0) + int(shock)
     return int(score) if score.ndim == 0 else score
 
 
@@ -143,7 +143,7 @@ def risk_level(score) -> np.ndarray:
     if s.ndim == 0:  # one score (the report's per task and run): no five temporary arrays
         v = s.item()
         return np.asarray(0 if v <= 1 else 1 if v <= 3 else 2 if v <= 7 else 3 if v <= 10 else 4)
-    return np.select([s <= 1, s <= 3, s <= 7, s <= 10], [0, 1, 2, 3], 4)
+    return select_first([s <= 1, s <= 3, s <= 7, s <= 10], [0, 1, 2, 3], 4)
 
 
 def part_scores(ang: BodyAngles, side: int) -> RebaParts:
@@ -159,7 +159,7 @@ def part_scores(ang: BodyAngles, side: int) -> RebaParts:
     """
     tf = ang.trunk_flexion
     # upright 1; 0-20 deg flexion or extension 2; 20-60 flexion or > 20 extension 3; > 60 4
-    trunk = np.select([np.abs(tf) <= NEUTRAL_DEG, np.abs(tf) <= 20, tf <= 60], [1, 2, 3], 4)
+    trunk = select_first([np.abs(tf) <= NEUTRAL_DEG, np.abs(tf) <= 20, tf <= 60], [1, 2, 3], 4)
     trunk = trunk + (ang.trunk_twisted | ang.trunk_side_bent)
     nf = ang.neck_flexion
     neck = np.where((nf >= -NEUTRAL_DEG) & (nf <= 20), 1, 2) + (
@@ -169,9 +169,9 @@ def part_scores(ang: BodyAngles, side: int) -> RebaParts:
     # the knees of the legs that bear weight (both when both feet are down)
     kf = np.where(ang.feet_down, ang.knee_flexion, 0.0).max(axis=1)
     kf = np.where(ang.walking, 0.0, kf)
-    legs = legs + np.select([kf > 60, kf >= KNEE_BENT_DEG], [2, 1], 0)
+    legs = legs + select_first([kf > 60, kf >= KNEE_BENT_DEG], [2, 1], 0)
     ua_ang = ang.upper_arm_angle[:, side]
-    ua = np.select([ua_ang > 90, ua_ang > 45, (ua_ang > 20) | (ua_ang < -20)], [4, 3, 2], 1)
+    ua = select_first([ua_ang > 90, ua_ang > 45, (ua_ang > 20) | (ua_ang < -20)], [4, 3, 2], 1)
     ua = ua + ang.arm_abducted[:, side] + ang.shoulder_raised[:, side]
     el = ang.elbow_flexion[:, side]
     la = np.where((el >= 60) & (el <= 100), 1, 2)

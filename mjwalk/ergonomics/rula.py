@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mjwalk.ergonomics.angles import NEUTRAL_DEG, BodyAngles
+from mjwalk.ergonomics.angles import NEUTRAL_DEG, BodyAngles, select_first
 
 #: RULA Table A (McAtamney & Corlett 1993, Table 1): [upper arm 1-6][lower arm 1-3][wrist 1-4]
 #: [wrist twist 1-2] -> posture score A.
@@ -101,7 +101,7 @@ def force_score(load_kg, static_or_repeated, shock: bool = False):
     load = np.asarray(load_kg, dtype=float)
     held = np.asarray(static_or_repeated, dtype=bool)
     # >= 10 kg intermittent: the paper gives 2, static or repeated 3
-    score = np.select([load >= hi, load >= lo], [np.where(held, 3, 2), np.where(held, 2, 1)], 0)
+    score = select_first([load >= hi, load >= lo], [np.where(held, 3, 2), np.where(held, 2, 1)], 0)
     if shock:
         score = np.full_like(score, 3)
     return int(score) if score.ndim == 0 else score
@@ -154,7 +154,7 @@ def action_level(score) -> np.ndarray:
     if s.ndim == 0:  # one score (the report's per task and run): no four temporary arrays
         v = s.item()
         return np.asarray(1 if v <= 2 else 2 if v <= 4 else 3 if v <= 6 else 4)
-    return np.select([s <= 2, s <= 4, s <= 6], [1, 2, 3], 4)
+    return select_first([s <= 2, s <= 4, s <= 6], [1, 2, 3], 4)
 
 
 def part_scores(ang: BodyAngles, side: int) -> RulaParts:
@@ -169,18 +169,18 @@ def part_scores(ang: BodyAngles, side: int) -> RulaParts:
         The :class:`RulaParts`, each (F,).
     """
     ua_ang = ang.upper_arm_angle[:, side]
-    ua = np.select([ua_ang > 90, ua_ang > 45, (ua_ang > 20) | (ua_ang < -20)], [4, 3, 2], 1)
+    ua = select_first([ua_ang > 90, ua_ang > 45, (ua_ang > 20) | (ua_ang < -20)], [4, 3, 2], 1)
     ua = ua + ang.shoulder_raised[:, side] + ang.arm_abducted[:, side]
     el = ang.elbow_flexion[:, side]
     la = np.where((el >= 60) & (el <= 100), 1, 2) + ang.lower_arm_out[:, side]
     wf = np.abs(ang.wrist_flexion[:, side])
-    wr = np.select([wf <= NEUTRAL_DEG, wf <= 15], [1, 2], 3) + ang.wrist_deviated[:, side]
+    wr = select_first([wf <= NEUTRAL_DEG, wf <= 15], [1, 2], 3) + ang.wrist_deviated[:, side]
     tw = np.where(ang.wrist_twist_end[:, side], 2, 1)
     nf = ang.neck_flexion
-    neck = np.select([nf < -NEUTRAL_DEG, nf <= 10, nf <= 20], [4, 1, 2], 3)
+    neck = select_first([nf < -NEUTRAL_DEG, nf <= 10, nf <= 20], [4, 1, 2], 3)
     neck = neck + ang.neck_twisted + ang.neck_side_bent
     tf = ang.trunk_flexion
-    trunk = np.select([np.abs(tf) <= NEUTRAL_DEG, tf <= 20, tf <= 60], [1, 2, 3], 4)
+    trunk = select_first([np.abs(tf) <= NEUTRAL_DEG, tf <= 20, tf <= 60], [1, 2, 3], 4)
     trunk = np.where(tf < -NEUTRAL_DEG, 2, trunk)  # extension: scored as the 0-20 band
     trunk = trunk + ang.trunk_twisted + ang.trunk_side_bent
     legs = np.where(ang.legs_supported, 1, 2)

@@ -272,7 +272,9 @@ def _geom_poses(
 ):
     """The kernel of :func:`geom_poses` (model arrays as MuJoCo names them). Only the bodies
     in ``need`` are placed, and a body whose joints and parent did not move since the frame
-    before keeps its pose (and its geoms theirs): the same numbers, not computed again."""
+    before keeps its pose (and its geoms theirs): the same numbers, not computed again; a
+    frame whose whole pose repeats the one before (a hold: about a third of a station
+    cycle's frames) copies that frame's rows at once."""
     n_f, n_b, n_g = qpos.shape[0], parent.shape[0], gbody.shape[0]
     out_pos = np.empty((n_f, n_g, 3))
     out_mat = np.empty((n_f * n_g, 9))
@@ -287,7 +289,19 @@ def _geom_poses(
     moved[0] = False
     xquat[0, 0] = 1.0
     xmat[0, 0] = xmat[0, 4] = xmat[0, 8] = 1.0
+    n_q = qpos.shape[1]
     for f in range(n_f):
+        if f > 0:  # a pose equal to the one before: every geom where it was, copied at once
+            same = True
+            for i in range(n_q):
+                if qpos[f, i] != qpos[f - 1, i]:
+                    same = False
+                    break
+            if same:
+                moved[:] = False
+                out_pos[f] = out_pos[f - 1]
+                out_mat[f * n_g : (f + 1) * n_g] = out_mat[(f - 1) * n_g : f * n_g]
+                continue
         for b in range(1, n_b):
             if not need[b]:
                 continue

@@ -125,3 +125,27 @@ def test_angles_from_a_shared_geom_table_are_the_same_bit_for_bit():
     for name in a.__dataclass_fields__:
         x, y = getattr(a, name), getattr(b, name)
         assert np.asarray(x).tobytes() == np.asarray(y).tobytes(), name
+
+
+def test_select_first_is_np_select_value_for_value():
+    """select_first gives np.select's values and dtype (first true condition wins, NaN
+    compares false) over seeded inputs, with array and scalar choices and scalar conditions."""
+    from mjwalk.ergonomics.angles import select_first
+
+    rng = np.random.default_rng(50)
+    for _ in range(200):
+        x = rng.normal(scale=60.0, size=int(rng.integers(1, 400)))
+        x[rng.random(len(x)) < 0.05] = np.nan
+        held = rng.random(len(x)) < 0.5
+        conds = [x > 90, x > 45, (x > 20) | (x < -20)]
+        for choices, default in (
+            ([4, 3, 2], 1),
+            ([np.where(held, 3, 2), np.where(held, 2, 1), 7], 0),
+        ):
+            want = np.select(conds, choices, default)
+            got = select_first(conds, choices, default)
+            assert got.dtype == want.dtype and np.array_equal(got, want)
+    for v in (-1.0, 3.0, 5.0, np.nan):
+        want = np.select([v >= 5, v >= 3], [2, 1], 0)
+        got = select_first([v >= 5, v >= 3], [2, 1], 0)
+        assert np.shape(got) == np.shape(want) and got == want and got.dtype == want.dtype
