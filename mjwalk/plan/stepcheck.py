@@ -322,10 +322,7 @@ def legs_clear(z, r, matrix, offset, loc, rot, node, i, fr, lf, v, v_end, lift_y
             turned = par[P_KNEE_TURN0] if kk == 0 else par[P_KNEE_TURN1]
             foot = swing_yaw(lift_yaw, yaws.real, turned)
             knee = (loc[col] + 1j * unit_turn(foot) * par[P_KNEE_LEAD] + fwd * hip) * rot + p
-        if (
-            field_clearance(coef, fx0, fy0, fres, fnx, fny, knee.real, knee.imag)
-            < thr[m + 2 + kk]
-        ):
+        if field_clearance(coef, fx0, fy0, fres, fnx, fny, knee.real, knee.imag) < thr[m + 2 + kk]:
             return False
     # leg reach, in the local frame (nan feet: comparisons with nan are False)
     rc = rot.conjugate()
