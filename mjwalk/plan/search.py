@@ -10,6 +10,16 @@ Near the goal a cell closes after ``near_goal_expansions`` expansions, and a nod
 closed cell there still draws its closing steps. The first expansion (the start node) takes the
 starters drawn by the caller (the KDE lives in SciPy).
 
+A successor whose pelvis and ankle keep their clearances is scored and pushed at once; the
+checks of its legs and feet (:func:`~mjwalk.plan.stepcheck.legs_clear`: toes, landing leg,
+knees, reach, the foot's way in, stance lean) run when it is popped to be taken up
+(:func:`~mjwalk.plan.stepcheck.legs_recheck`), and one that fails them is dropped there,
+before anything depends on it. Most pushed successors are never popped (the search ends
+first), so most of those checks are never needed. The walk is the same as with every check
+at the push: the steps the legs refuse change neither the other nodes' f nor their push order
+(ties go by push order, which the dropped steps only skip), so the others pop in the same
+order; only the count of rejected steps is smaller (it counts the checks that ran).
+
 Everything is in one compiled function because an expansion is small: ten successors, twenty
 checked points each. As Python, the loop's bookkeeping (heap, closed set, node lists) cost as
 much as the draws. Nodes live in growing arrays; node 0 is the start. Random numbers come from
@@ -20,7 +30,8 @@ functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_into`
 in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan.stepcost`;
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change to this file's text,
 or processes keep running the old machine code (touching the file is not enough). The record of
-such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the GP draws into
+such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the legs' checks
+deferred to the pop, :func:`~mjwalk.plan.stepcheck.legs_recheck`; before it, the GP draws into
 work arrays kept for the whole search and into ``feats`` itself,
 :func:`~mjwalk.gait.gpdraw.sample_into`, and closing draws whose mean cannot end the walk
 left undrawn, :func:`~mjwalk.plan.stepgeom.closing_ends_far`, issue 50; before it, the step
@@ -180,7 +191,8 @@ def search(
         dist: the goal distance's flat grid bound (:meth:`GoalDistance.flat_bound`).
 
     Returns:
-        (outcome, goal node, [expansions, generated, rejected, stop draws], and per node:
+        (outcome, goal node, [expansions, generated, rejected (by the checks that ran: the
+        legs' checks run only on steps taken up), stop draws], and per node:
         parent, feature row, end point, frame heading, swing foot is left; the feature rows
         and whether each is a closing step).
     """
