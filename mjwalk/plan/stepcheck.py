@@ -354,10 +354,23 @@ def legs_clear(z, r, matrix, offset, loc, rot, node, i, fr, lf, v, v_end, lift_y
 
 @njit
 def legs_recheck(z, r, matrix, offset, fr, lf, node, thr, par, ipar, coef, loc):
-    """:func:`legs_clear` of a step that :func:`check_into` accepted with ``defer``, from its
-    row ``r`` of ``z``, frame heading ``fr`` and swing side ``lf`` and its predecessor's
-    ``node`` row (1, 5) as check_into had it: the same decode, turn and field lookups, so
-    the same outcome as the check_into without ``defer``. ``loc``: a work row (m + 2,)."""
+    """:func:`legs_clear` of a step that :func:`check_into` accepted with ``defer``: the same
+    decode, turn and field lookups, so the same outcome as check_into without ``defer``.
+
+    Args:
+        z: (n, d) standardized features.
+        r: the step's row of ``z``.
+        matrix: the decoder's complex matrix (:func:`check_steps`).
+        offset: its complex offset.
+        fr: the step's frame heading, radians.
+        lf: whether the swing foot is the left one.
+        node: (1, 5) its predecessor's row, as check_into had it (:func:`check_steps`).
+        thr: as for :func:`check_steps`.
+        par: the float slots.
+        ipar: the integer slots.
+        coef: the walk field's node values (ny, nx), metres.
+        loc: (m + 2,) complex work row; takes the step's decoded columns.
+    """
     m = ipar[I_M]
     rot = complex(math.sin(fr), -math.cos(fr))
     p = node[0, 0]
