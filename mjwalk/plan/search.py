@@ -10,6 +10,16 @@ Near the goal a cell closes after ``near_goal_expansions`` expansions, and a nod
 closed cell there still draws its closing steps. The first expansion (the start node) takes the
 starters drawn by the caller (the KDE lives in SciPy).
 
+A successor whose pelvis and ankle keep their clearances is scored and pushed at once; the
+checks of its legs and feet (:func:`~mjwalk.plan.stepcheck.legs_clear`: toes, landing leg,
+knees, reach, the foot's way in, stance lean) run when it is popped to be taken up
+(:func:`~mjwalk.plan.stepcheck.legs_recheck`), and one that fails them is dropped there,
+before anything depends on it. Most pushed successors are never popped (the search ends
+first), so most of those checks are never needed. The walk is the same as with every check
+at the push: the steps the legs refuse change neither the other nodes' f nor their push order
+(ties go by push order, which the dropped steps only skip), so the others pop in the same
+order; only the count of rejected steps is smaller (it counts the checks that ran).
+
 Everything is in one compiled function because an expansion is small: ten successors, twenty
 checked points each. As Python, the loop's bookkeeping (heap, closed set, node lists) cost as
 much as the draws. Nodes live in growing arrays; node 0 is the start. Random numbers come from
@@ -20,7 +30,8 @@ functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_into`
 in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan.stepcost`;
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change to this file's text,
 or processes keep running the old machine code (touching the file is not enough). The record of
-such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the GP draws into
+such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the legs' checks
+deferred to the pop, :func:`~mjwalk.plan.stepcheck.legs_recheck`; before it, the GP draws into
 work arrays kept for the whole search and into ``feats`` itself,
 :func:`~mjwalk.gait.gpdraw.sample_into`, and closing draws whose mean cannot end the walk
 left undrawn, :func:`~mjwalk.plan.stepgeom.closing_ends_far`, issue 50; before it, the step
@@ -59,7 +70,7 @@ from mjwalk.plan.slots import (
     P_POOL_SHARPNESS,
     P_STOP_REACH,
 )
-from mjwalk.plan.stepcheck import check_into, new_buffers
+from mjwalk.plan.stepcheck import check_into, legs_recheck, new_buffers
 from mjwalk.plan.stepgeom import cell_key, closing_ends_far, closing_ends_miss, in_goal, within
 
 #: :func:`search` outcomes.
@@ -78,6 +89,26 @@ def _grow2(a, n):
     out = np.empty((n, a.shape[1]), dtype=a.dtype)
     out[: a.shape[0]] = a
     return out
+
+
+@njit
+def _predecessor_row(nid, pos, foot, fhead, g, parent, out):
+    """Node ``nid``'s row for :func:`~mjwalk.plan.stepcheck.check_into` (its ``node``, (1, 5))
+    into ``out``: its end point, the foot its step landed and the foot behind that, g, and
+    their headings (the landed foot's, the lifting foot's); nan where there is none (the
+    start node, node 0, has no feet)."""
+    nan_c = complex(np.nan, np.nan)
+    out[0, 0] = pos[nid]
+    out[0, 3] = g[nid]
+    if nid == 0:
+        out[0, 1] = nan_c
+        out[0, 2] = nan_c
+        out[0, 4] = nan_c
+    else:
+        out[0, 1] = foot[nid]
+        out[0, 2] = foot[parent[nid]]
+        # the landed foot's heading, and the lifting foot's (the knee probes')
+        out[0, 4] = complex(fhead[nid], fhead[parent[nid]])
 
 
 @njit
@@ -160,7 +191,8 @@ def search(
         dist: the goal distance's flat grid bound (:meth:`GoalDistance.flat_bound`).
 
     Returns:
-        (outcome, goal node, [expansions, generated, rejected, stop draws], and per node:
+        (outcome, goal node, [expansions, generated, rejected (by the checks that ran: the
+        legs' checks run only on steps taken up), stop draws], and per node:
         parent, feature row, end point, frame heading, swing foot is left; the feature rows
         and whether each is a closing step).
     """
@@ -186,6 +218,7 @@ def search(
     foot = np.empty(cap, dtype=np.complex128)  # where the node's step landed (nan: none)
     fhead = np.empty(cap)  # ... and the landed foot's heading (nan: none)
     left = np.empty(cap, dtype=np.bool_)
+    legs_due = np.empty(cap, dtype=np.bool_)  # the legs' checks not run yet (check_into)
     parent[0] = -1
     row[0] = -1
     pos[0] = start
@@ -195,6 +228,7 @@ def search(
     foot[0] = nan_c
     fhead[0] = np.nan
     left[0] = False
+    legs_due[0] = False
     nn = 1
     fcap = 256
     feats = np.empty((fcap, d))
@@ -215,11 +249,13 @@ def search(
     one_frame = np.empty(1)
     one_left = np.empty(1, dtype=np.bool_)
     one_node = np.empty((1, 5), dtype=np.complex128)
+    due_node = np.empty((1, 5), dtype=np.complex128)  # a due node's predecessor, as one_node
     # the step checks' outputs, one set for all expansions (the start node's starters or a
     # node's walking and closing steps)
     bufs = new_buffers(max(z0.shape[0], n_succ + n_stop), ipar[I_M])
     rows, keys, fs, gs, ends, ths, frames, feet, fheads = bufs[:9]
     lefts = bufs[9]
+    due_loc = np.empty_like(bufs[10])
     accepted = np.zeros(1, dtype=np.int64)
     drawn = np.zeros(1, dtype=np.int64)
     # the draws' work arrays, one set per GP, and the successors drawn into feats itself
@@ -235,6 +271,17 @@ def search(
         key = cell_key(p, hd, par, ipar)
         done = in_goal(p, hd, par, ipar)
         near = n_stop > 0 and within(p - goal, stop_reach)
+        if key in closed and not done and not near:
+            continue
+        if legs_due[nid]:
+            # the legs' checks of its step, left by check_into until the step is taken up
+            # (most accepted steps never are): one that fails them is dropped, as check_into
+            # would have dropped it, before anything depends on it
+            _predecessor_row(parent[nid], pos, foot, fhead, g, parent, due_node)
+            if not legs_recheck(feats, row[nid], matrix, offset, frame[nid], left[nid],
+                                due_node, thr, par, ipar, coef, due_loc):  # fmt: skip
+                rejected += 1
+                continue
         if key in closed and not done:
             if not near:
                 continue
@@ -262,15 +309,11 @@ def search(
         # draw this node's successors (the start node: the starters) into feats' next rows
         one_near[0] = near
         unchecked = 0
-        one_node[0, 0] = p
         if nid == 0:
             per = z0.shape[0]
             n_walk = per
             frm = frame0
             lft = left0
-            one_node[0, 1] = nan_c
-            one_node[0, 2] = nan_c
-            one_node[0, 4] = nan_c
         else:
             on_left = left[nid]
             n_walk = 0 if stop_only else n_succ
@@ -307,14 +350,10 @@ def search(
             one_left[0] = not left[nid]
             frm = one_frame
             lft = one_left
-            one_node[0, 1] = foot[nid]
-            one_node[0, 2] = foot[parent[nid]]
-            # the landed foot's heading, and the lifting foot's (the knee probes')
-            one_node[0, 4] = complex(fhead[nid], fhead[parent[nid]])
-        one_node[0, 3] = g[nid]
+        _predecessor_row(nid, pos, foot, fhead, g, parent, one_node)
         n_ok = check_into(
             z, matrix, offset, per, n_walk, frm, lft, one_near, one_node, thr, par, ipar, coef,
-            dist, bufs, accepted, drawn,
+            dist, bufs, accepted, drawn, True,
         )  # fmt: skip
         for r in range(per):
             closing[nf + r] = r >= n_walk
@@ -336,6 +375,7 @@ def search(
             foot = _grow1(foot, cap)
             fhead = _grow1(fhead, cap)
             left = _grow1(left, cap)
+            legs_due = _grow1(legs_due, cap)
         for c in range(n_ok):
             e = ends[c]
             if (
@@ -353,6 +393,7 @@ def search(
             foot[nn] = feet[c]
             fhead[nn] = fheads[c]
             left[nn] = lefts[c]
+            legs_due[nn] = True
             heapq.heappush(heap, (fs[c], counter, nn))
             counter += 1
             nn += 1

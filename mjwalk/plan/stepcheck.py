@@ -180,7 +180,7 @@ def check_steps(
     drawn = np.zeros(b, dtype=np.int64)
     cnt = check_into(
         z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist,
-        out, accepted, drawn,
+        out, accepted, drawn, False,
     )  # fmt: skip
     out_rows, out_keys, out_f, out_g, out_end, out_th, out_frame, out_foot, out_fhead = out[:9]
     return (
@@ -243,14 +243,168 @@ def _lift_turn(node, i, fr, par):
 
 
 @njit
+def legs_clear(z, r, matrix, offset, loc, rot, node, i, fr, lf, v, v_end, lift_yaw, lean, limits,
+               thr, par, ipar, coef):  # fmt: skip
+    """Whether the legs and feet of a step whose pelvis samples and ankle keep their
+    clearances (:func:`check_into`'s first test) pass the rest of the checks: the landing
+    toes and toe corners, the landing leg, the swing knees, the legs' reach, the landing
+    foot's way in and the stance leg's lean. The order does not matter: each refuses alone.
+
+    Args:
+        z: (n, d) standardized features.
+        r: the step's row of ``z``.
+        matrix: the decoder's complex matrix (:func:`check_steps`).
+        offset: its complex offset.
+        loc: the step's decoded columns 0 .. m + 1 (step frame).
+        rot: the step frame's turn into the world, complex(sin fr, -cos fr).
+        node: as for :func:`check_steps`.
+        i: the predecessor's row of ``node``.
+        fr: the step's frame heading, radians.
+        lf: whether the swing foot is the left one.
+        v: the walk field at the landing ankle, metres.
+        v_end: the walk field at the end pelvis, metres.
+        lift_yaw: :func:`_lift_turn` of the predecessor and ``fr``.
+        lean: whether the stance lean is checked (:func:`check_into`).
+        limits: :func:`lean_limits` of ``par``.
+        thr: as for :func:`check_steps`.
+        par: the float slots.
+        ipar: the integer slots.
+        coef: the walk field's node values (ny, nx), metres.
+    """
+    m = ipar[I_M]
+    q = ipar[I_Q]
+    kc0 = ipar[I_KNEE_COL0]
+    kc1 = ipar[I_KNEE_COL1]
+    fnx = ipar[I_FIELD_NX]
+    fny = ipar[I_FIELD_NY]
+    fx0 = par[P_FIELD_X0]
+    fy0 = par[P_FIELD_Y0]
+    fres = par[P_FIELD_RES]
+    p = node[i, 0]
+    yaws = loc[m + 1]
+    ankle = loc[m] * rot + p
+    land = unit_turn(yaws.real)  # the landing yaw's turn, once (the toe probes below)
+    toe = ankle + (par[P_FOOT_LENGTH] * 1j) * rot * land
+    v_toe = field_clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag)
+    if v_toe < thr[m + 1]:
+        return False
+    v_toe = min(v, v_toe)  # the landing's ankle and toes (the approach probes start there)
+    # the toes' front corners for the walker's stature (a tall walker's wide toes reach
+    # past the probe above: options.toe_corners)
+    if not math.isnan(par[P_TOE_FRONT]):
+        turn = rot * land
+        for side in (-par[P_TOE_SIDE], par[P_TOE_SIDE]):
+            toe = ankle + complex(side, par[P_TOE_FRONT]) * turn
+            if (
+                field_clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag)
+                < par[P_TOE_CLEARANCE]
+            ):
+                return False
+    # the landing leg, from the ankle towards its hip at the step's end (heel strike: the
+    # shin leans back over the heel, the toes-up heel reaches behind the flat footprint),
+    # probed from the ankle's clearance out to where the end pelvis's covers it
+    if not landing_leg_clear(loc, m, lf, yaws.imag, rot, p, v, v_end, par, coef, fx0, fy0,
+                             fres, fnx, fny):  # fmt: skip
+        return False
+    # the swing knee, ahead along the swing foot's yaw at the probe's phase (it bends in
+    # the foot's plane) from the swing hip (to the swing side along the pelvis's);
+    # without the lifting foot's heading (the first steps), ahead along the pelvis's
+    # from KNEE_SIDE to the swing side
+    lat = (1j if lf else -1j) * par[P_KNEE_SIDE]
+    hip = (1j if lf else -1j) * par[P_KNEE_PIVOT]
+    for kk in range(2):
+        col = kc0 if kk == 0 else kc1
+        share = par[P_KNEE_SHARE0] if kk == 0 else par[P_KNEE_SHARE1]
+        fwd = 1j * unit_turn(yaws.imag * share)
+        if math.isnan(lift_yaw):
+            knee = (loc[col] + fwd * (par[P_KNEE_LEAD] + lat)) * rot + p
+        else:
+            turned = par[P_KNEE_TURN0] if kk == 0 else par[P_KNEE_TURN1]
+            foot = swing_yaw(lift_yaw, yaws.real, turned)
+            knee = (loc[col] + 1j * unit_turn(foot) * par[P_KNEE_LEAD] + fwd * hip) * rot + p
+        if field_clearance(coef, fx0, fy0, fres, fnx, fny, knee.real, knee.imag) < thr[m + 2 + kk]:
+            return False
+    # leg reach, in the local frame (nan feet: comparisons with nan are False)
+    rc = rot.conjugate()
+    landed = (node[i, 1] - p) * rc
+    behind = (node[i, 2] - p) * rc
+    reach = par[P_FOOT_REACH]
+    for j in range(m):
+        if beyond(loc[j] - landed, reach):
+            return False
+    lift = par[P_LIFT_REACH]
+    for j in range(q):
+        if beyond(loc[j] - behind, lift):
+            return False
+    if beyond(loc[m] - behind, par[P_STRIDE]) or beyond(loc[m] - loc[m - 1], reach):
+        return False
+    # the landing foot's way in along the chord from the foot behind, turned to its
+    # landing yaw: a curved walk's step comes in obliquely, the toes sweeping sideways
+    toe_off = (par[P_FOOT_LENGTH] * 1j) * land
+    if not toe_approach_clear(loc[m], behind, toe_off, thr[m + 1], v_toe, rot, p, par, coef,
+                              fx0, fy0, fres, fnx, fny):  # fmt: skip
+        return False
+    # the stance leg's sideways lean (the landed foot is this step's stance foot)
+    if lean and not (math.isnan(landed.real) or math.isnan(node[i, 4].real)):
+        if not lean_ok(z, r, matrix, offset, loc, m, landed, node[i, 4].real - fr,
+                        not lf, par, limits):  # fmt: skip
+            return False
+    return True
+
+
+@njit
+def legs_recheck(z, r, matrix, offset, fr, lf, node, thr, par, ipar, coef, loc):
+    """:func:`legs_clear` of a step that :func:`check_into` accepted with ``defer``: the same
+    decode, turn and field lookups, so the same outcome as check_into without ``defer``.
+
+    Args:
+        z: (n, d) standardized features.
+        r: the step's row of ``z``.
+        matrix: the decoder's complex matrix (:func:`check_steps`).
+        offset: its complex offset.
+        fr: the step's frame heading, radians.
+        lf: whether the swing foot is the left one.
+        node: (1, 5) its predecessor's row, as check_into had it (:func:`check_steps`).
+        thr: as for :func:`check_steps`.
+        par: the float slots.
+        ipar: the integer slots.
+        coef: the walk field's node values (ny, nx), metres.
+        loc: (m + 2,) complex work row; takes the step's decoded columns.
+    """
+    m = ipar[I_M]
+    rot = complex(math.sin(fr), -math.cos(fr))
+    p = node[0, 0]
+    fnx = ipar[I_FIELD_NX]
+    fny = ipar[I_FIELD_NY]
+    for j in range(m + 2):
+        loc[j] = decode_col(z, r, matrix, offset, j)
+    w = loc[m - 1] * rot + p
+    v_end = field_clearance(coef, par[P_FIELD_X0], par[P_FIELD_Y0], par[P_FIELD_RES], fnx, fny,
+                            w.real, w.imag)  # fmt: skip
+    w = loc[m] * rot + p
+    v = field_clearance(coef, par[P_FIELD_X0], par[P_FIELD_Y0], par[P_FIELD_RES], fnx, fny,
+                        w.real, w.imag)  # fmt: skip
+    lean = node.shape[1] > 4 and matrix.shape[1] >= 2 * m + 2 and not math.isnan(par[P_HIP_Y])
+    return legs_clear(z, r, matrix, offset, loc, rot, node, 0, fr, lf, v, v_end,
+                      _lift_turn(node, 0, fr, par), lean, lean_limits(par), thr, par, ipar,
+                      coef)  # fmt: skip
+
+
+@njit
 def check_into(
     z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist, out,
-    accepted, drawn,
+    accepted, drawn, defer,
 ):  # fmt: skip
     """:func:`check_steps` into buffers: ``out`` from :func:`new_buffers` (at least n rows)
     takes the accepted steps in its first rows, ``accepted`` and ``drawn`` (at least b, set
     to 0 here) the per-predecessor counts; returns the number of accepted steps. The search
     keeps one set of buffers instead of a dozen new arrays per expansion.
+
+    With ``defer`` the legs' and feet's checks (:func:`legs_clear`) are left to the caller:
+    the steps whose pelvis and ankle keep their clearances are accepted and scored, and the
+    caller runs :func:`legs_recheck` on a step before it takes the step up. The search does
+    so: most accepted steps are never taken up (it ends first), and a step the legs refuse
+    is then dropped where it would never have been pushed, so the walks are the same.
 
     Args:
         z: as for :func:`check_steps`.
@@ -270,13 +424,11 @@ def check_into(
         out: the buffers of :func:`new_buffers`.
         accepted: (>= b,) int, the accepted count per predecessor.
         drawn: (>= b,) int, the drawn (not dropped) count per predecessor.
+        defer: whether to leave :func:`legs_clear` to the caller (:func:`legs_recheck`).
     """
     n = z.shape[0]
     b = n // per if per > 0 else 0
     m = ipar[I_M]
-    q = ipar[I_Q]
-    kc0 = ipar[I_KNEE_COL0]
-    kc1 = ipar[I_KNEE_COL1]
     fnx = ipar[I_FIELD_NX]
     fny = ipar[I_FIELD_NY]
     fx0 = par[P_FIELD_X0]
@@ -335,90 +487,13 @@ def check_into(
         loc[m + 1] = decode_col(z, r, matrix, offset, m + 1)
         yaws = loc[m + 1]
         ankle = loc[m] * rot + p
-        land = unit_turn(yaws.real)  # the landing yaw's turn, once (the toe probes below)
-        toe = ankle + (par[P_FOOT_LENGTH] * 1j) * rot * land
-        v_toe = field_clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag)
-        if v_toe < thr[m + 1]:
-            continue
-        v_toe = min(v, v_toe)  # the landing's ankle and toes (the approach probes start there)
-        # the toes' front corners for the walker's stature (a tall walker's wide toes reach
-        # past the probe above: options.toe_corners)
-        if not math.isnan(par[P_TOE_FRONT]):
-            turn = rot * land
-            for side in (-par[P_TOE_SIDE], par[P_TOE_SIDE]):
-                toe = ankle + complex(side, par[P_TOE_FRONT]) * turn
-                if (
-                    field_clearance(coef, fx0, fy0, fres, fnx, fny, toe.real, toe.imag)
-                    < par[P_TOE_CLEARANCE]
-                ):
-                    ok = False
-                    break
-            if not ok:
-                continue
-        # the landing leg, from the ankle towards its hip at the step's end (heel strike: the
-        # shin leans back over the heel, the toes-up heel reaches behind the flat footprint),
-        # probed from the ankle's clearance out to where the end pelvis's covers it
-        if not landing_leg_clear(loc, m, lf, yaws.imag, rot, p, v, v_end, par, coef, fx0, fy0,
-                                 fres, fnx, fny):  # fmt: skip
-            continue
-        # the swing knee, ahead along the swing foot's yaw at the probe's phase (it bends in
-        # the foot's plane) from the swing hip (to the swing side along the pelvis's);
-        # without the lifting foot's heading (the first steps), ahead along the pelvis's
-        # from KNEE_SIDE to the swing side
-        lat = (1j if lf else -1j) * par[P_KNEE_SIDE]
-        hip = (1j if lf else -1j) * par[P_KNEE_PIVOT]
-        if i != lift_i or fr != lift_fr:  # the same for a node's rows (of one frame heading)
-            lift_yaw = _lift_turn(node, i, fr, par)
-            lift_i = i
-            lift_fr = fr
-        for kk in range(2):
-            col = kc0 if kk == 0 else kc1
-            share = par[P_KNEE_SHARE0] if kk == 0 else par[P_KNEE_SHARE1]
-            fwd = 1j * unit_turn(yaws.imag * share)
-            if math.isnan(lift_yaw):
-                knee = (loc[col] + fwd * (par[P_KNEE_LEAD] + lat)) * rot + p
-            else:
-                turned = par[P_KNEE_TURN0] if kk == 0 else par[P_KNEE_TURN1]
-                foot = swing_yaw(lift_yaw, yaws.real, turned)
-                knee = (loc[col] + 1j * unit_turn(foot) * par[P_KNEE_LEAD] + fwd * hip) * rot + p
-            if (
-                field_clearance(coef, fx0, fy0, fres, fnx, fny, knee.real, knee.imag)
-                < thr[m + 2 + kk]
-            ):
-                ok = False
-                break
-        if not ok:
-            continue
-        # leg reach, in the local frame (nan feet: comparisons with nan are False)
-        rc = rot.conjugate()
-        landed = (node[i, 1] - p) * rc
-        behind = (node[i, 2] - p) * rc
-        reach = par[P_FOOT_REACH]
-        for j in range(m):
-            if beyond(loc[j] - landed, reach):
-                ok = False
-                break
-        if not ok:
-            continue
-        lift = par[P_LIFT_REACH]
-        for j in range(q):
-            if beyond(loc[j] - behind, lift):
-                ok = False
-                break
-        if not ok:
-            continue
-        if beyond(loc[m] - behind, par[P_STRIDE]) or beyond(loc[m] - loc[m - 1], reach):
-            continue
-        # the landing foot's way in along the chord from the foot behind, turned to its
-        # landing yaw: a curved walk's step comes in obliquely, the toes sweeping sideways
-        toe_off = (par[P_FOOT_LENGTH] * 1j) * land
-        if not toe_approach_clear(loc[m], behind, toe_off, thr[m + 1], v_toe, rot, p, par, coef,
-                                  fx0, fy0, fres, fnx, fny):  # fmt: skip
-            continue
-        # the stance leg's sideways lean (the landed foot is this step's stance foot)
-        if lean and not (math.isnan(landed.real) or math.isnan(node[i, 4].real)):
-            if not lean_ok(z, r, matrix, offset, loc, m, landed, node[i, 4].real - fr,
-                            not lf, par, limits):  # fmt: skip
+        if not defer:  # else when the step is taken up (search: legs_recheck)
+            if i != lift_i or fr != lift_fr:  # the same for a node's rows (one frame heading)
+                lift_yaw = _lift_turn(node, i, fr, par)
+                lift_i = i
+                lift_fr = fr
+            if not legs_clear(z, r, matrix, offset, loc, rot, node, i, fr, lf, v, v_end,
+                              lift_yaw, lean, limits, thr, par, ipar, coef):  # fmt: skip
                 continue
         end = loc[m - 1] * rot + p
         th = fr + yaws.imag

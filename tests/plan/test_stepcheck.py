@@ -51,6 +51,40 @@ def test_check_steps_refuses_the_steps_the_stance_leg_cannot_follow(scenes_dir, 
         assert len(rows) < 0.5 * len(free)
 
 
+@pytest.mark.parametrize("foot_x", [0.1, -0.2])
+def test_deferred_legs_checks_accept_what_check_steps_accepts(scenes_dir, foot_x):
+    """check_into with ``defer`` accepts every step whose pelvis and ankle keep clear, and
+    legs_recheck on each (as the search runs it on the steps it pops) then refuses exactly the
+    steps check_steps refuses beyond those: the same steps, with the same scores."""
+    model = default_model()
+    wp = load_workplace(scenes_dir / "open_floor.xml")
+    pl = HybridPlanner(wp, "east", model)
+    par, ipar = pl.params.vectors()
+    dec = pl.decoder()
+    rng = np.random.default_rng(3)
+    z = model.sample_next_features(model.sample_first(1, rng, "right").features, "right", 300, rng)
+    frame, left = np.array([FRAME]), np.array([True])
+    args = (dec.matrix, dec.offset, len(z), len(z), frame, left, np.zeros(1, bool))
+    node = np.array([[0j, complex(foot_x, 0.05), complex(0.0, -0.3), 0.0, complex(FRAME, FRAME)]])
+    rest = (pl.params.thresholds, par, ipar, wp.walk_field().values, pl.distance.flat_bound())
+    eager = stepcheck.check_steps(z, *args, node, *rest)
+    out = stepcheck.new_buffers(len(z), ipar[slots.I_M])
+    counts = (np.zeros(1, np.int64), np.zeros(1, np.int64))
+    n = stepcheck.check_into(z, *args, node, *rest, out, *counts, True)
+    loc = np.empty_like(out[10])
+    thr, _, _, coef, _ = rest
+    kept = [
+        c
+        for c in range(n)
+        if stepcheck.legs_recheck(
+            z, out[0][c], *args[:2], FRAME, True, node, thr, par, ipar, coef, loc
+        )
+    ]
+    assert n > len(kept)  # the legs' checks refuse some of the steps deferred to them
+    np.testing.assert_array_equal(out[0][kept], eager[0])
+    np.testing.assert_array_equal(out[2][kept], eager[2])  # f
+
+
 #: Station run 330 of 2000 (seed 0, main at ae71305): route T4's eighth step, the left foot
 #: swinging from (0.664, -1.711) heading -88.5 deg to (0.303, -1.714) heading -155.8 deg while
 #: the pelvis (16 samples, world x, y) turned from -136.8 to -178.5 deg beside rack 2's frame.
