@@ -2,7 +2,8 @@
 
 Where a grounded foot's ankle would leave its range, the synthesis lowers or raises the foot's
 pitch about its pivot on the floor, spread over the samples around, and solves the leg again,
-up to eight times per leg and pass (four passes). Each round is a few dozen NumPy operations
+up to eight times per leg and pass (four passes), until no grounded ankle is more than a
+tolerance past its bound (``AnkleFit.tol``; the synthesis's ``ANKLE_TOL``). Each round is a few dozen NumPy operations
 on a walk's few hundred samples: in NumPy their call overhead cost about as much as the
 arithmetic. :func:`repitch_foot` and :func:`fit_ankle_range` do the same arithmetic, in the same
 order, in one compiled call (the same numbers, bit for bit: tests/timeline/test_kernels.py compares
