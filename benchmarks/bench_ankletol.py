@@ -12,6 +12,12 @@ flexion of a grounded foot before clipping against the joint's range, and the ou
 ``_fit_ankles`` (calls of ``reach_deficit``) each way. Then the walks are synthesised
 ``--rounds`` times each way, alternating which goes first, and the CPU seconds
 (``time.process_time``) of each way are divided by the runs: ms a cycle, medians, ratio.
+
+Measured (ankletol50, 20 runs, 140 walks, load ~14 on 2 cores): largest change 0.058 degree in
+any joint angle, 0.075 mm in the ankle targets, 0 in the pelvis; correcting rounds per leg and
+pass (560 fits) 490 x 8 and 70 x 0 -> 97 x 8, 252 x 0, the rest 1-7 (3920 -> 1836 rounds);
+_fit_ankles 2 passes in all 140 walks both ways; legs 16.26 -> 15.43, 14.47 -> 13.03 and
+15.44 -> 14.22 ms a cycle in three runs (ratios 0.95, 0.90, 0.92).
 """
 
 from __future__ import annotations
