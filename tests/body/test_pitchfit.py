@@ -74,3 +74,27 @@ def test_fit_ankle_range_leaves_short_walks_to_the_caller():
     assert fit_ankle_range(LegIKCache("l", g), feet, root, np.zeros(n), bounds) is None
     with pytest.raises(dataclasses.FrozenInstanceError):
         bounds.rounds = 2  # type: ignore[misc]
+
+
+def test_fit_ankle_range_stops_at_its_tolerance():
+    """With a tolerance the rounds stop once no grounded ankle is more than it past the bound
+    (before the eight rounds of the exact fit): the ankle ends within it, and nearer the bound
+    than without the rounds' stop would leave it less corrected."""
+    g = leg_geometry(1.75)
+    n = 60
+    yaw = np.zeros(n)
+    root = np.column_stack(
+        [np.linspace(0, 0.3, n), np.zeros(n), np.full(n, pelvis_height(1.75) - 0.05)]
+    )
+    prints = np.tile([-0.1, g.hip_y, 0.0], (n, 1))
+
+    def fitted(tol):
+        feet = _one_foot(pivot_ankle(prints, np.zeros(n), g), yaw.copy(), np.zeros(n),
+                         np.zeros(n), np.ones(n, bool), prints)  # fmt: skip
+        bounds = AnkleFit(DORSI, PLANTAR, 3, 8, tol)
+        ankle, p = fit_ankle_range(LegIKCache("l", g), feet, root, yaw, bounds)
+        return LegIKCache("l", g)(ankle, yaw, p, root, yaw)["ankle_l_flex"].max() - DORSI
+
+    exact, loose = fitted(0.0), fitted(np.deg2rad(0.5))
+    assert loose <= np.deg2rad(0.5)
+    assert exact < loose  # the loose fit stopped earlier, further from the bound

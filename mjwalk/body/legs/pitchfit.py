@@ -2,7 +2,8 @@
 
 Where a grounded foot's ankle would leave its range, the synthesis lowers or raises the foot's
 pitch about its pivot on the floor, spread over the samples around, and solves the leg again,
-up to eight times per leg and pass (four passes). Each round is a few dozen NumPy operations
+up to eight times per leg and pass (four passes), until no grounded ankle is more than a
+tolerance past its bound (``AnkleFit.tol``; the synthesis's ``ANKLE_TOL``). Each round is a few dozen NumPy operations
 on a walk's few hundred samples: in NumPy their call overhead cost about as much as the
 arithmetic. :func:`repitch_foot` and :func:`fit_ankle_range` do the same arithmetic, in the same
 order, in one compiled call (the same numbers, bit for bit: tests/timeline/test_kernels.py compares
@@ -132,12 +133,15 @@ class AnkleFit:
         plantar_min: the lowest ankle flexion of a heel-up grounded foot, radians.
         win: half-width of the spread of a correction over the samples around (samples).
         rounds: the most rounds of corrections.
+        tol: radians; the rounds stop once no grounded ankle is more than this past
+            ``dorsi_max`` or short of ``plantar_min`` (0: until none is past them at all).
     """
 
     dorsi_max: float
     plantar_min: float
     win: int
     rounds: int
+    tol: float = 0.0
 
 
 def fit_ankle_range(
@@ -152,7 +156,7 @@ def fit_ankle_range(
     past ``dorsi_max`` pitches down by 1.2 times the excess, one heel-up foot whose ankle
     extends past ``plantar_min`` lowers its heel by 1.2 times the shortfall (down to flat),
     both spread over +-``win`` samples (:func:`~mjwalk.body.legs.curves.spread`), by
-    :func:`repitch_foot`; stop when no grounded ankle is out of range.
+    :func:`repitch_foot`; stop when no grounded ankle is more than ``fit.tol`` out of range.
 
     Args:
         ik: the leg's IK cache (its ``side`` selects the foot of ``feet``).
@@ -198,6 +202,7 @@ def fit_ankle_range(
         float(geom.foot_back),
         float(geom.ankle_height),
         int(fit.rounds),
+        float(fit.tol),
     )
     return ankle, pitch
 
@@ -227,10 +232,11 @@ def _fit_rounds(
     back,
     ah,
     rounds,
+    tol,
 ):
     """The rounds of :func:`fit_ankle_range` in place (``ankle``, ``pitch``, ``toe``, the IK
     cache's ``caches``: its inputs and angles, its flexion-only inputs and flexions, its
-    yaws' sines and cosines)."""
+    yaws' sines and cosines). Returns the number of rounds that corrected the pitches."""
     n = ankle.shape[0]
     inputs, out, f_inputs, flex_c, key, vals = caches
     need_down = np.empty(n)
@@ -240,6 +246,7 @@ def _fit_rounds(
     cf, sf, cg, sg = np.cos(fyaw), np.sin(fyaw), np.cos(prints[:, 2]), np.sin(prints[:, 2])
     c0, s0 = np.cos(pitch), np.sin(pitch)
     cp, sp = c0.copy(), s0.copy()
+    done = 0
     for _ in range(rounds):
         # (the grounded rows' ankle flexions only: the rounds read no other angle)
         _grounded_flex(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, L2, rmin, rmax,
@@ -254,8 +261,9 @@ def _fit_rounds(
             s_max = max(s_max, short)
             need_down[i] = 1.2 * max(excess, 0.0)
             need_up[i] = 1.2 * max(short, 0.0)
-        if e_max <= 0 and s_max <= 0:
+        if e_max <= tol and s_max <= tol:
             break
+        done += 1
         down = spread_rows(need_down, win, kernel)
         up = spread_rows(need_up, win, kernel)
         for i in range(n):
@@ -268,6 +276,7 @@ def _fit_rounds(
                 cf[i], sf[i], c0[i], s0[i], p1, cp[i], sp[i], ball, back, ah,
             )  # fmt: skip
             c0[i], s0[i] = cp[i], sp[i]
+    return done
 
 
 @njit
