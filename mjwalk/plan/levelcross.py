@@ -26,6 +26,7 @@ than jumping at each riser. Heights are given above the floor. Metres, seconds, 
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import replace
 
@@ -38,6 +39,7 @@ from mjwalk.gait.stairs import MIN_TREAD, StairGeometry, stair_gait
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelroute import Crossing
 from mjwalk.plan.occupancy import CELL_SIZE
+from mjwalk.plan.turnin import turned_steps
 from mjwalk.plan.turnsplit import WALKING_TURN_MAX, wrap
 from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.world.norms import DESCENT_LOW_CLEARANCE, STAIR_TOE_CLEARANCE
@@ -191,7 +193,7 @@ def cross_walk(
     last: PathStep | None,
     floor_z: float,
     step_width: float | None = None,
-    lead_in: bool = False,
+    lead_in: bool | tuple = False,
 ) -> WalkPath:
     """The walk over a crossing (module docstring).
 
@@ -210,7 +212,9 @@ def cross_walk(
         lead_in: the walk that brought the walker there ended at the flight's approach point
             (:func:`approach_point`), up to a step length and its goal area before the stance:
             level steps along the axis, none longer than the walker's step length, lead from
-            there into the flight's first footfall (with ``last`` given; steps, stairs, ramps).
+            there into the flight's first footfall (with ``last`` given; steps, stairs, ramps);
+            or the turn into the flight while walking (:func:`mjwalk.plan.turnin.turn_into`:
+            footfalls, headings, the end heading), stepped before its first footfall.
 
     Returns:
         The crossing's walk from t = 0: 120 Hz pelvis xy, yaw and height, its steps with the
@@ -222,9 +226,10 @@ def cross_walk(
     heading = np.array([math.cos(yaw), math.sin(yaw)])
     left = np.array([-heading[1], heading[0]])
     xy0, yaw0 = np.asarray(start[0], dtype=float), float(start[1])
-    yaw = yaw0 + (yaw - yaw0 + math.pi) % (2 * math.pi) - math.pi  # the nearer turn
+    turned = isinstance(lead_in, tuple)  # the turn into it while walking (turnin.turn_into)
+    yaw = lead_in[2] if turned else yaw0 + (yaw - yaw0 + math.pi) % (2 * math.pi) - math.pi
     begin = c.approach if direction == "up" else c.exit
-    if lead_in and last is not None:
+    if lead_in is True and last is not None:
         s, times = _lead_in(c, s, times, start[0], walker)
     if last is None and float(np.hypot(*(c.point(begin) - xy0))) > STANCE_SLACK:
         # standing off the stance: both feet step onto it first, at the level step time
@@ -251,9 +256,9 @@ def cross_walk(
     s = np.asarray(s, dtype=float)
     points, heights = c.point(s - back), c.height_at(s)  # per footfall, as one by one
     here = (xy0, float(c.height_at(begin)))  # steps on the spot first, each within ENTRY_TURN
-    points, heights, times, headings, across, was, turns = _spot_steps(
-        (points, heights, times), here, (yaw0, yaw), walker.step_duration, left
-    )
+    points, heights, times, headings, across, was, turns = (
+        functools.partial(turned_steps, lead_in) if turned else _spot_steps
+    )((points, heights, times), here, (yaw0, yaw), walker.step_duration, left)
     for k, dt in enumerate(times):
         sign = 1.0 if side == "left" else -1.0
         foot = np.array([*(points[k] + sign * 0.5 * width * across[k]), headings[k]])
