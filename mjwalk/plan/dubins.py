@@ -1,40 +1,39 @@
-"""Shortest paths of bounded curvature between two poses (Dubins 1957), compiled.
+"""Shortest paths of bounded curvature between two poses (Dubins 1957).
 
 Dubins ("On curves of minimal length with a constraint on average curvature, and with
 prescribed initial and terminal positions and tangents", Am J Math 79:497-516, 1957) showed
 that the shortest path of curvature at most 1/r from a pose to a pose is one of six words of
 arcs (L, R: turning left or right at radius r) and straight runs (S): LSL, RSR, LSR, RSL, RLR,
-LRL. :func:`word_lengths` gives each word's three segments in closed form (Shkel & Lumelsky
-2001, "Classification of the Dubins set", Robot Auton Syst 34:179-202; the formulas as LaValle
-2006, "Planning Algorithms" §15.3.1, gives them, quoted from memory: tests trace each word to
-its end pose), :func:`dubins_length` the shortest. The hybrid search takes it as the
-heading-aware part of its heuristic where the goal has a heading (the non-holonomic heuristic
-without obstacles of Dolgov, Thrun, Montemerlo & Diebel 2010, "Path planning for autonomous
-vehicles in unknown semi-structured environments", Int J Robot Res 29:485-501, quoted from
-memory); :mod:`mjwalk.plan.turnin` traces the words into a guide. Metres, radians (yaw from +x).
+LRL. :func:`word_lengths` gives a word's three segments in closed form (Shkel & Lumelsky 2001,
+"Classification of the Dubins set", Robot Auton Syst 34:179-202; the formulas as LaValle 2006,
+"Planning Algorithms" §15.3.1, gives them, quoted from memory: :func:`dubins_paths` traces each
+word and keeps only those that end at the goal pose); :func:`dubins_paths` gives the words that
+join two poses as sampled paths, shortest first. :mod:`mjwalk.plan.turnin` walks them into a
+flight. Metres, radians (world frame, yaw from +x CCW).
 """
 
 from __future__ import annotations
 
 import math
 
-from mjwalk._jit import njit
+import numpy as np
 
-#: The words, in :func:`word_lengths`' numbering.
+#: The six words (Dubins 1957), in :func:`word_lengths`' numbering.
 WORDS = ("LSL", "RSR", "LSR", "RSL", "RLR", "LRL")
-
-_TAU = 2.0 * math.pi
-
-
-@njit
-def _mod(a):
-    return a % _TAU
+#: Spacing (m) of the points a path is sampled at, at most (as
+#: :func:`mjwalk.plan.guide.guide_is_clear` checks a path: 5 cm).
+SPACING = 0.05
+#: How far (m, rad) a traced word's end may miss the goal pose (rounding only).
+END_TOLERANCE = (1e-3, 1e-6)
 
 
-@njit
-def word_lengths(word, d, alpha, beta):
-    """The segments of Dubins word ``word`` (index into :data:`WORDS`) from heading ``alpha``
-    at the origin to heading ``beta`` at (d, 0), all in turning radii (the turns in radians).
+def _mod(a: float) -> float:
+    return a % (2.0 * math.pi)
+
+
+def word_lengths(word: int, d: float, alpha: float, beta: float) -> tuple[float, ...] | None:
+    """The segments of Dubins word ``word`` from heading ``alpha`` at the origin to heading
+    ``beta`` at (d, 0), all in turning radii (a turn's in radians).
 
     Args:
         word: 0-5, the word's index in :data:`WORDS`.
@@ -43,114 +42,93 @@ def word_lengths(word, d, alpha, beta):
         beta: the end heading against that line, radians.
 
     Returns:
-        (exists, t, p, q): whether the word joins the poses, and its three segments.
+        (t, p, q), or None where the word does not join the two poses.
     """
     sa, ca, sb, cb = math.sin(alpha), math.cos(alpha), math.sin(beta), math.cos(beta)
     cab = math.cos(alpha - beta)
-    if word == 0:  # LSL
-        tmp = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)
+    if word in (0, 1):  # LSL, RSR
+        sign = 1.0 if word == 0 else -1.0
+        tmp = 2.0 + d * d - 2.0 * cab + 2.0 * sign * d * (sa - sb)
         if tmp < 0.0:
-            return False, 0.0, 0.0, 0.0
-        th = math.atan2(cb - ca, d + sa - sb)
-        return True, _mod(th - alpha), math.sqrt(tmp), _mod(beta - th)
-    if word == 1:  # RSR
-        tmp = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)
-        if tmp < 0.0:
-            return False, 0.0, 0.0, 0.0
+            return None
+        if word == 0:
+            th = math.atan2(cb - ca, d + sa - sb)
+            return _mod(th - alpha), math.sqrt(tmp), _mod(beta - th)
         th = math.atan2(ca - cb, d - sa + sb)
-        return True, _mod(alpha - th), math.sqrt(tmp), _mod(th - beta)
+        return _mod(alpha - th), math.sqrt(tmp), _mod(th - beta)
     if word == 2:  # LSR
         tmp = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)
         if tmp < 0.0:
-            return False, 0.0, 0.0, 0.0
+            return None
         p = math.sqrt(tmp)
         th = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
-        return True, _mod(th - alpha), p, _mod(th - beta)
+        return _mod(th - alpha), p, _mod(th - beta)
     if word == 3:  # RSL
         tmp = d * d - 2.0 + 2.0 * cab - 2.0 * d * (sa + sb)
         if tmp < 0.0:
-            return False, 0.0, 0.0, 0.0
+            return None
         p = math.sqrt(tmp)
         th = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
-        return True, _mod(alpha - th), p, _mod(beta - th)
-    if word == 4:  # RLR
-        tmp = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0
-        if abs(tmp) > 1.0:
-            return False, 0.0, 0.0, 0.0
-        p = _mod(_TAU - math.acos(tmp))
-        t = _mod(alpha - math.atan2(ca - cb, d - sa + sb) + p / 2.0)
-        return True, t, p, _mod(alpha - beta - t + p)
-    tmp = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0  # LRL
+        return _mod(alpha - th), p, _mod(beta - th)
+    sign = 1.0 if word == 4 else -1.0  # RLR, LRL
+    tmp = (6.0 - d * d + 2.0 * cab + 2.0 * sign * d * (sa - sb)) / 8.0
     if abs(tmp) > 1.0:
-        return False, 0.0, 0.0, 0.0
-    p = _mod(_TAU - math.acos(tmp))
+        return None
+    p = _mod(2.0 * math.pi - math.acos(tmp))
+    if word == 4:
+        t = _mod(alpha - math.atan2(ca - cb, d - sa + sb) + p / 2.0)
+        return t, p, _mod(alpha - beta - t + p)
     t = _mod(-alpha - math.atan2(ca - cb, d + sa - sb) + p / 2.0)
-    return True, t, p, _mod(beta - alpha - t + p)
+    return t, p, _mod(beta - alpha - t + p)
 
 
-@njit
-def frame(x, y, yaw0, gx, gy, yaw1, radius):
-    """The normalised problem of a Dubins path: (d, alpha, beta) of :func:`word_lengths`.
+def _trace(start: np.ndarray, yaw: float, word: str, lengths, radius: float) -> tuple:
+    """The points (m, every :data:`SPACING` or closer, the start and end included) and the
+    end heading (radians, unwrapped from ``yaw``) of a word from ``start`` heading ``yaw``."""
+    pts = [np.asarray(start, dtype=float)[None, :]]
+    x, y = float(start[0]), float(start[1])
+    for kind, seg in zip(word, lengths, strict=True):
+        u = np.arange(1, max(1, math.ceil(seg * radius / SPACING)) + 1)
+        u = u / u[-1] * seg
+        if kind == "S":
+            xs, ys = x + radius * u * math.cos(yaw), y + radius * u * math.sin(yaw)
+        else:
+            sign = 1.0 if kind == "L" else -1.0
+            cx, cy = x - sign * radius * math.sin(yaw), y + sign * radius * math.cos(yaw)
+            xs = cx + sign * radius * np.sin(yaw + sign * u)
+            ys = cy - sign * radius * np.cos(yaw + sign * u)
+            yaw += sign * seg
+        pts.append(np.stack([xs, ys], axis=1))
+        x, y = float(xs[-1]), float(ys[-1])
+    return np.vstack(pts), yaw
+
+
+def dubins_paths(start, yaw0: float, goal, yaw1: float, radius: float) -> list[tuple]:
+    """The Dubins paths from a pose to a pose that exist, shortest first.
 
     Args:
-        x: the start's x, metres.
-        y: the start's y, metres.
-        yaw0: the start heading, radians.
-        gx: the goal's x, metres.
-        gy: the goal's y, metres.
+        start: (2,) world xy, metres.
+        yaw0: the heading there, radians.
+        goal: (2,) world xy, metres.
         yaw1: the heading to arrive along, radians.
         radius: the turning radius, metres (> 0).
+
+    Returns:
+        [(length in metres, (k, 2) points every :data:`SPACING` or closer from ``start`` to
+        ``goal``, the end heading unwrapped from ``yaw0``)], shortest first.
     """
-    dx, dy = (gx - x) / radius, (gy - y) / radius
+    s, g = np.asarray(start, dtype=float), np.asarray(goal, dtype=float)
+    dx, dy = (g - s) / radius
     theta = math.atan2(dy, dx)
-    return math.hypot(dx, dy), _mod(yaw0 - theta), _mod(yaw1 - theta)
-
-
-@njit
-def dubins_length(x, y, yaw0, gx, gy, yaw1, radius):
-    """The length (m) of the shortest path of curvature at most 1/``radius`` from (x, y)
-    heading ``yaw0`` to (gx, gy) heading ``yaw1`` (the shortest of the six words).
-
-    Args:
-        x: the start's x, metres.
-        y: the start's y, metres.
-        yaw0: the start heading, radians.
-        gx: the goal's x, metres.
-        gy: the goal's y, metres.
-        yaw1: the heading to arrive along, radians.
-        radius: the turning radius, metres (> 0).
-    """
-    d, alpha, beta = frame(x, y, yaw0, gx, gy, yaw1, radius)
-    best = math.inf
-    for w in range(6):
-        ok, t, p, q = word_lengths(w, d, alpha, beta)
-        if ok and t + p + q < best:
-            best = t + p + q
-    return best * radius
-
-
-#: The turning radius (m) of :func:`turn_in_bound`: the tightest the search's walking steps
-#: turn, a quarter turn (no planned step turns the pelvis by 90 deg or more,
-#: ``tests/plan/test_hybrid.py``; :func:`mjwalk.plan.detour.walkable`) in a step of 0.4 m
-#: (ASSUMPTION: a short walking step; a bound on the search's work, no behaviour of walkers).
-TURN_RADIUS = 0.4 / (math.pi / 2.0)
-
-
-@njit
-def turn_in_bound(x, y, yaw, goal, goal_yaw, tolerance, yaw_tolerance):
-    """A bound (m) on the way left for a walker at (x, y) heading ``yaw`` to a goal area it must
-    end in facing ``goal_yaw`` (within ``yaw_tolerance``): the Dubins path to the goal point
-    along the goal heading at :data:`TURN_RADIUS`, less the goal area's radius and the arc the
-    heading's tolerance spares.
-
-    Args:
-        x: the walker's x, metres.
-        y: the walker's y, metres.
-        yaw: its heading, radians.
-        goal: the goal point, x + iy, metres.
-        goal_yaw: the heading to arrive along, radians.
-        tolerance: the goal area's radius, metres.
-        yaw_tolerance: how far (radians) the arrival may face off ``goal_yaw``.
-    """
-    way = dubins_length(x, y, yaw, goal.real, goal.imag, goal_yaw, TURN_RADIUS)
-    return way - tolerance - TURN_RADIUS * yaw_tolerance
+    d, alpha, beta = math.hypot(dx, dy), _mod(yaw0 - theta), _mod(yaw1 - theta)
+    out = []
+    for k, word in enumerate(WORDS):
+        seg = word_lengths(k, d, alpha, beta)
+        if seg is None:
+            continue
+        pts, end = _trace(s, yaw0, word, seg, radius)
+        miss = abs(math.remainder(end - yaw1, 2.0 * math.pi))
+        if float(np.hypot(*(pts[-1] - g))) > END_TOLERANCE[0] or miss > END_TOLERANCE[1]:
+            continue  # (none does: a guard on the closed forms)
+        out.append((radius * sum(seg), pts, end))
+    return sorted(out, key=lambda c: c[0])

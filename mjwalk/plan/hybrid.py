@@ -576,8 +576,6 @@ class HybridPlanner:
         walker already walking unless ``turn_on_spot``) at the walk's ``pace`` (m/s; nan: the
         walker's preferred speed), which sets its berth."""
         (x, y), yaw = pose
-        if request.routed and request.guide is not None:
-            return request.guide  # the caller's route: no detour past obstacles
         walking = None if yaw is None or request.turn_on_spot else yaw
         goal = self.goal if request.spot is None else request.spot[:2]
         speed = pace if math.isfinite(pace) else preferred_speed(model)

@@ -85,6 +85,14 @@ def _footfalls(c: Crossing, direction: str, walker: Walker) -> tuple[np.ndarray,
     return s, times
 
 
+def flight_start(c: Crossing, direction: str, walker: Walker) -> np.ndarray:
+    """World xy (metres) of a crossing's first footfall on its walking line, as
+    :func:`cross_walk` places it (:func:`tread_setback`): where a walk into it lines up."""
+    s = _footfalls(c, direction, walker)[0][:1]
+    back = tread_setback(c, s, walker.stature, direction)[0]
+    return c.point(float(s[0]) - (back if direction == "up" else -back))
+
+
 def _run(a: float, b: float, walker: Walker) -> np.ndarray:
     """Level footfalls from ``a`` (not included) to ``b`` along the axis, evenly spaced, none
     farther apart than the walker's step length: ``[b]`` for a stance within a step of the

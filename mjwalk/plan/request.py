@@ -47,11 +47,6 @@ class WalkRequest:
             the walk's heading follows (:mod:`mjwalk.plan.guide`), no condition of the goal.
         guide: a (k, 2) path (metres) from near the start to near the goal for the heading to
             follow instead, resampled to :data:`~mjwalk.plan.guide.GUIDE_POINTS` points.
-        routed: the ``guide`` is routed round the obstacles already (the caller's route, e.g.
-            :func:`mjwalk.plan.turnin.turn_in_guide`): it is followed as given where it keeps
-            the body's clearance, with no detour past the obstacles it passes within the
-            walker's berth (:func:`mjwalk.plan.detour.detour_guide`); without, a ``guide`` is
-            followed on the planner's own guide's terms.
     """
 
     start: object
@@ -62,7 +57,6 @@ class WalkRequest:
     guide: np.ndarray | None = None
     at_work: bool = False
     work_heading: float | None = None
-    routed: bool = False
 
     def __post_init__(self):
         if self.spot is not None:
