@@ -103,8 +103,57 @@ def _trace(start: np.ndarray, yaw: float, word: str, lengths, radius: float) -> 
     return np.vstack(pts), yaw
 
 
+def dubins_words(start, yaw0: float, goal, yaw1: float, radius: float) -> list[tuple]:
+    """The Dubins words that join a pose to a pose, shortest first, untraced.
+
+    Args:
+        start: (2,) world xy, metres.
+        yaw0: the heading there, radians.
+        goal: (2,) world xy, metres.
+        yaw1: the heading to arrive along, radians.
+        radius: the turning radius, metres (> 0).
+
+    Returns:
+        [(length in metres, word, (t, p, q) its segments in turning radii)], shortest first.
+    """
+    s, g = np.asarray(start, dtype=float), np.asarray(goal, dtype=float)
+    dx, dy = (g - s) / radius
+    theta = math.atan2(dy, dx)
+    d, alpha, beta = math.hypot(dx, dy), _mod(yaw0 - theta), _mod(yaw1 - theta)
+    out = []
+    for k, word in enumerate(WORDS):
+        seg = word_lengths(k, d, alpha, beta)
+        if seg is not None:
+            out.append((radius * sum(seg), word, seg))
+    return sorted(out, key=lambda c: c[0])
+
+
+def trace(start, yaw0: float, goal, yaw1: float, radius: float, word: tuple) -> tuple | None:
+    """A word of :func:`dubins_words` as a sampled path.
+
+    Args:
+        start: (2,) world xy, metres.
+        yaw0: the heading there, radians.
+        goal: (2,) world xy, metres.
+        yaw1: the heading to arrive along, radians.
+        radius: the turning radius, metres (> 0).
+        word: (length, word, segments), as :func:`dubins_words` gives it.
+
+    Returns:
+        ((k, 2) points every :data:`SPACING` or closer from ``start`` to ``goal``, metres; the
+        end heading unwrapped from ``yaw0``), or None where the traced end misses the goal
+        pose by more than :data:`END_TOLERANCE` (a guard on the closed forms).
+    """
+    pts, end = _trace(np.asarray(start, dtype=float), yaw0, word[1], word[2], radius)
+    miss = abs(math.remainder(end - yaw1, 2.0 * math.pi))
+    if float(np.hypot(*(pts[-1] - np.asarray(goal)))) > END_TOLERANCE[0] or miss > END_TOLERANCE[1]:
+        return None
+    return pts, end
+
+
 def dubins_paths(start, yaw0: float, goal, yaw1: float, radius: float) -> list[tuple]:
-    """The Dubins paths from a pose to a pose that exist, shortest first.
+    """The Dubins paths from a pose to a pose that exist, shortest first (:func:`dubins_words`,
+    each traced, :func:`trace`).
 
     Args:
         start: (2,) world xy, metres.
@@ -117,18 +166,9 @@ def dubins_paths(start, yaw0: float, goal, yaw1: float, radius: float) -> list[t
         [(length in metres, (k, 2) points every :data:`SPACING` or closer from ``start`` to
         ``goal``, the end heading unwrapped from ``yaw0``)], shortest first.
     """
-    s, g = np.asarray(start, dtype=float), np.asarray(goal, dtype=float)
-    dx, dy = (g - s) / radius
-    theta = math.atan2(dy, dx)
-    d, alpha, beta = math.hypot(dx, dy), _mod(yaw0 - theta), _mod(yaw1 - theta)
     out = []
-    for k, word in enumerate(WORDS):
-        seg = word_lengths(k, d, alpha, beta)
-        if seg is None:
-            continue
-        pts, end = _trace(s, yaw0, word, seg, radius)
-        miss = abs(math.remainder(end - yaw1, 2.0 * math.pi))
-        if float(np.hypot(*(pts[-1] - g))) > END_TOLERANCE[0] or miss > END_TOLERANCE[1]:
-            continue  # (none does: a guard on the closed forms)
-        out.append((radius * sum(seg), pts, end))
-    return sorted(out, key=lambda c: c[0])
+    for word in dubins_words(start, yaw0, goal, yaw1, radius):
+        traced = trace(start, yaw0, goal, yaw1, radius, word)
+        if traced is not None:
+            out.append((word[0], *traced))
+    return out

@@ -34,7 +34,7 @@ import math
 
 import numpy as np
 
-from mjwalk.plan.dubins import dubins_paths
+from mjwalk.plan.dubins import dubins_words, trace
 from mjwalk.plan.guide import guide_is_clear
 from mjwalk.plan.turnsplit import WALKING_TURN_MAX
 from mjwalk.plan.walkpath import WalkPath
@@ -42,6 +42,13 @@ from mjwalk.plan.walkpath import WalkPath
 #: How many of a level walk's last walking steps the turn into a flight may start after, the
 #: last first (:func:`turn_in_steps`): a bound on the work (four steps, about 2.5 m of walk).
 CUT_STEPS = 4
+#: The step lengths a turn into a flight is tried with, as shares of the walker's step length,
+#: the longest first: people shorten and slow their steps into a sharp turn (Orendurff,
+#: "Turning gait", VA Motion Analysis Lab abstract, 2005: "the steps before a turn slow you
+#: down"; qualitative), so a tighter turn (60 deg a step, Patla et al. 1991) is taken in shorter
+#: steps, each at the walker's level step time. ASSUMPTION: down to half the step length (the
+#: level planner's closing steps move the pelvis 0.2-0.5 m, :mod:`mjwalk.plan.options`).
+TURN_STEP_SHARES = (1.0, 0.75, 0.5)
 
 
 def turn_in_steps(view, walk: WalkPath, heading: float, walker, radius: float, first) -> tuple | None:
@@ -61,23 +68,27 @@ def turn_in_steps(view, walk: WalkPath, heading: float, walker, radius: float, f
         (radians, unwrapped from the walk's), the last a step before ``first`` facing along
         the flight, and that heading; None where no cut fits.
     """
-    step = float(walker.step_length)
-    turning = step / WALKING_TURN_MAX  # one step length per 60 deg of turn
     first = np.asarray(first, dtype=float)
-    target = first - step * np.array([math.cos(heading), math.sin(heading)])
+    target = first - walker.step_length * np.array([math.cos(heading), math.sin(heading)])
     best = None
     walking = len(walk.steps) - 1  # the last is the closing step
     for j in range(walking - 1, max(-1, walking - 1 - CUT_STEPS), -1):
         at = walk.steps[j].end
         yaw = float(walk.yaw[at])
-        for length, pts, end in dubins_paths(walk.xy[at], yaw, target, heading, turning):
-            n = max(1, math.ceil(length / step - 1e-9))
-            if best is not None and j + n >= best[0]:
-                break  # no fewer steps in all than the best so far
-            if not guide_is_clear(view, pts, radius):  # (on from there: the line-up's)
-                continue
-            best = (j + n, j, *_stepped(pts, n, yaw, end))
-            break
+        for share in TURN_STEP_SHARES:
+            step = share * float(walker.step_length)
+            turning = step / WALKING_TURN_MAX  # 60 deg a step
+            pose = (walk.xy[at], yaw, target, heading, turning)
+            for word in dubins_words(*pose):
+                n = max(1, math.ceil(word[0] / step - 1e-9))
+                if best is not None and j + n >= best[0]:
+                    break  # no fewer steps in all than the best so far
+                traced = trace(*pose, word)
+                # clear of the body (on from its end: the line-up's, levelplan._approach)
+                if traced is None or not guide_is_clear(view, traced[0], radius):
+                    continue
+                best = (j + n, j, *_stepped(traced[0], n, yaw, traced[1]))
+                break
     return None if best is None else best[1:]
 
 
