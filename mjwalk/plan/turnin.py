@@ -75,10 +75,14 @@ def turn_in_steps(view, walk: WalkPath, heading: float, walker, radius: float, f
     for j in range(walking - 1, max(-1, walking - 1 - CUT_STEPS), -1):
         at = walk.steps[j].end
         yaw = float(walk.yaw[at])
+        # from the step's footfall on the walking line (its landing foot's along the heading):
+        # the turn's first footfall a step beyond it, as the walk's own next one would be
+        u = np.array([math.cos(yaw), math.sin(yaw)])
+        line = walk.xy[at] + float((walk.steps[j].foot[:2] - walk.xy[at]) @ u) * u
         for share in TURN_STEP_SHARES:
             step = share * float(walker.step_length)
             turning = step / WALKING_TURN_MAX  # 60 deg a step
-            pose = (walk.xy[at], yaw, target, heading, turning)
+            pose = (line, yaw, target, heading, turning)
             for word in dubins_words(*pose):
                 n = max(1, math.ceil(word[0] / step - 1e-9))
                 if best is not None and j + n >= best[0]:
