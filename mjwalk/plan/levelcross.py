@@ -15,7 +15,8 @@ WalkPath` the level planner stitches between its level walks.
   and timed by it, the heights along the ramp's plane.
 
 A walker who stands where the crossing's walk begins facing more than :data:`ENTRY_TURN` away
-from its axis turns on the spot first, in steps of at most that (:func:`spot_turn`).
+from its axis turns on the spot first, in steps of at most that (:func:`spot_turn`); a level
+walk that arrives so turns into it while walking where it fits (:mod:`mjwalk.plan.turnin`).
 
 Feet stand the walker's step width apart across the axis (left foot left of the walking
 direction). The pelvis moves at even speed between the double-support instants, at the middle of
@@ -26,7 +27,6 @@ than jumping at each riser. Heights are given above the floor. Metres, seconds, 
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import replace
 
@@ -86,8 +86,17 @@ def _footfalls(c: Crossing, direction: str, walker: Walker) -> tuple[np.ndarray,
 
 
 def flight_start(c: Crossing, direction: str, walker: Walker) -> np.ndarray:
-    """World xy (metres) of a crossing's first footfall on its walking line, as
-    :func:`cross_walk` places it (:func:`tread_setback`): where a walk into it lines up."""
+    """Where a crossing's first footfall lies on its walking line, as :func:`cross_walk`
+    places it (:func:`tread_setback`): where a walk into it lines up.
+
+    Args:
+        c: the crossing.
+        direction: "up" or "down".
+        walker: the walker (stature, step length; a ramp's gait).
+
+    Returns:
+        (2,) world xy, metres.
+    """
     s = _footfalls(c, direction, walker)[0][:1]
     back = tread_setback(c, s, walker.stature, direction)[0]
     return c.point(float(s[0]) - (back if direction == "up" else -back))
@@ -234,8 +243,8 @@ def cross_walk(
     heading = np.array([math.cos(yaw), math.sin(yaw)])
     left = np.array([-heading[1], heading[0]])
     xy0, yaw0 = np.asarray(start[0], dtype=float), float(start[1])
-    turned = isinstance(lead_in, tuple)  # the turn into it while walking (turnin.turn_into)
-    yaw = lead_in[2] if turned else yaw0 + (yaw - yaw0 + math.pi) % (2 * math.pi) - math.pi
+    turned = lead_in if isinstance(lead_in, tuple) else None  # turnin.turn_into's turn
+    yaw = turned[2] if turned else yaw0 + (yaw - yaw0 + math.pi) % (2 * math.pi) - math.pi
     begin = c.approach if direction == "up" else c.exit
     if lead_in is True and last is not None:
         s, times = _lead_in(c, s, times, start[0], walker)
@@ -263,10 +272,13 @@ def cross_walk(
     back = tread_setback(c, s, walker.stature, direction) * (1.0 if direction == "up" else -1.0)
     s = np.asarray(s, dtype=float)
     points, heights = c.point(s - back), c.height_at(s)  # per footfall, as one by one
-    here = (xy0, float(c.height_at(begin)))  # steps on the spot first, each within ENTRY_TURN
-    points, heights, times, headings, across, was, turns = (
-        functools.partial(turned_steps, lead_in) if turned else _spot_steps
-    )((points, heights, times), here, (yaw0, yaw), walker.step_duration, left)
+    here = (xy0, float(c.height_at(begin)))
+    if turned is None:  # steps on the spot first, each within ENTRY_TURN (spot_turn)
+        spot = spot_turn(yaw0, yaw)
+        turned = (np.repeat(xy0[None, :], spot.size, axis=0), spot, yaw)
+    points, heights, times, headings, across, was, turns = turned_steps(
+        turned, (points, heights, times), here, (yaw0, yaw), walker.step_duration, left
+    )
     for k, dt in enumerate(times):
         sign = 1.0 if side == "left" else -1.0
         foot = np.array([*(points[k] + sign * 0.5 * width * across[k]), headings[k]])
@@ -298,42 +310,14 @@ def cross_walk(
     )  # fmt: skip
 
 
-def _spot_steps(footfalls: tuple, here: tuple, turn: tuple, step_time: float, left: np.ndarray):
-    """The crossing's footfalls with the steps on the spot (:func:`spot_turn`) before them.
-
-    Args:
-        footfalls: (points (k, 2) world xy, heights (k,) world z, times (k,) s) of the steps.
-        here: (xy (2,), world z) where the walker stands, metres.
-        turn: (the walker's heading, the crossing's heading, the nearer turn), radians.
-        step_time: a step on the spot's duration, seconds (the walker's level step).
-        left: (2,) the unit vector left of the crossing's heading.
-
-    Returns:
-        points, heights, times, the heading of each step, the unit vector left of it (k', 2),
-        the heading each step turns from, and the number of steps on the spot.
-    """
-    points, heights, times = footfalls
-    turning = spot_turn(*turn)
-    m = turning.size
-    if m:
-        points = np.concatenate([np.repeat(here[0][None, :], m, axis=0), points])
-        heights = np.concatenate([np.full(m, here[1]), heights])
-        times = np.concatenate([np.full(m, step_time), times])
-    headings = np.concatenate([turning, np.full(len(times) - m, turn[1])])
-    across = np.tile(left, (len(times), 1))
-    across[:m] = np.stack([-np.sin(turning), np.cos(turning)], axis=1)
-    was = np.concatenate([[turn[0]], headings[:-1]])
-    return points, heights, times, headings, across, was, m
-
-
 #: The most (radians) a walk arriving at a crossing may face away from its axis: the crossing's
 #: first step turns the walker onto the axis, and people change direction by at most 60 degrees
 #: within one step (Patla et al. 1991, :data:`mjwalk.plan.turnsplit.WALKING_TURN_MAX`). A walk
 #: that came to a ramp's stance facing 120 degrees off turned onto the ramp in one step (the
 #: platform cycle's run 14): the legs could not reach and lowered the pelvis 0.21 m. A walk
 #: that still arrives further off (rack1 -> mezzanine: 106-147 deg, its floor leg a hairpin
-#: out of the gap between the stair's wall and the trolley) is turned on the spot there first
-#: (:func:`spot_turn`), in steps of at most this.
+#: out of the gap between the stair's wall and the trolley) turns into it while walking
+#: (:mod:`mjwalk.plan.turnin`), else on the spot there (:func:`spot_turn`), by at most this a step.
 ENTRY_TURN = WALKING_TURN_MAX
 
 

@@ -51,7 +51,9 @@ CUT_STEPS = 4
 TURN_STEP_SHARES = (1.0, 0.75, 0.5)
 
 
-def turn_in_steps(view, walk: WalkPath, heading: float, walker, radius: float, first) -> tuple | None:
+def turn_in_steps(
+    view, walk: WalkPath, heading: float, walker, radius: float, first
+) -> tuple | None:
     """Where a level walk turns into a flight, and the turn's footfalls (module docstring).
 
     Args:
@@ -109,7 +111,7 @@ def _stepped(pts: np.ndarray, n: int, yaw: float, end: float) -> tuple:
     return points, np.interp(at, cum, tang), end
 
 
-def turn_into(view, walk: WalkPath, c, direction: str, walker, radius: float) -> tuple | None:
+def turn_into(view, walk: WalkPath, flight: tuple, walker, radius: float) -> tuple | None:
     """A level walk to a flight's approach point cut where it turns into the flight while
     walking (:func:`turn_in_steps`), and that turn for the crossing's walk
     (:func:`mjwalk.plan.levelcross.cross_walk`'s ``lead_in``).
@@ -117,33 +119,35 @@ def turn_into(view, walk: WalkPath, c, direction: str, walker, radius: float) ->
     Args:
         view: the level's view (its ``walk_clearance``).
         walk: the level walk to the approach point.
-        c: the crossing as walked (:class:`~mjwalk.plan.levelroute.Crossing`).
-        direction: "up" or "down".
-        walker: the walker (step length, stature).
+        flight: (the flight's heading up or down it in radians, (2,) world xy in metres of
+            its first footfall: :func:`mjwalk.plan.levelcross.flight_start`).
+        walker: the walker (step length).
         radius: the body radius, metres.
 
     Returns:
         (the walk up to the end of its step the turn follows, (footfalls (m, 2), headings (m,),
         end heading)), or None where no turn fits.
     """
-    from mjwalk.plan.levelcross import flight_start  # levelcross imports this module
-
-    heading = c.yaw if direction == "up" else c.yaw + math.pi
-    found = turn_in_steps(view, walk, heading, walker, radius, flight_start(c, direction, walker))
+    found = turn_in_steps(view, walk, flight[0], walker, radius, flight[1])
     if found is None:
         return None
     j, points, headings, end = found
     e = walk.steps[j].end + 1
     cut = WalkPath(
-        t=walk.t[:e], xy=walk.xy[:e], yaw=walk.yaw[:e], steps=list(walk.steps[: j + 1]),
-        meta={**walk.meta, "turned_in": len(points)}, z=None if walk.z is None else walk.z[:e],
-    )  # fmt: skip
+        t=walk.t[:e],
+        xy=walk.xy[:e],
+        yaw=walk.yaw[:e],
+        steps=list(walk.steps[: j + 1]),
+        meta={**walk.meta, "turned_in": len(points)},
+        z=None if walk.z is None else walk.z[:e],
+    )
     return cut, (points, headings, end)
 
 
 def turned_steps(lead: tuple, footfalls: tuple, here: tuple, turn: tuple, step_time: float, left):
-    """The crossing's footfalls with the turn into it (:func:`turn_into`) before them, as
-    :func:`mjwalk.plan.levelcross.cross_walk` takes the steps on the spot.
+    """The crossing's footfalls with a turn before them, as :func:`mjwalk.plan.levelcross.
+    cross_walk` steps it: the turn into it (:func:`turn_into`), or the steps on the spot
+    (:func:`mjwalk.plan.levelcross.spot_turn`: its footfalls all where the walker stands).
 
     Args:
         lead: (footfalls (m, 2) world xy, headings (m,), end heading) of the turn.

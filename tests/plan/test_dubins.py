@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from mjwalk.plan.dubins import SPACING, WORDS, _mod, dubins_paths, dubins_words, word_lengths
+from mjwalk.plan.dubins import SPACING, WORDS, dubins_paths, dubins_words, word_lengths
 
 
 def test_every_word_that_exists_ends_at_the_goal_pose():
@@ -20,7 +20,8 @@ def test_every_word_that_exists_ends_at_the_goal_pose():
         a, b, r = rng.uniform(-4, 4), rng.uniform(-4, 4), rng.uniform(0.3, 1.5)
         dx, dy = (g - s) / r
         th = math.atan2(dy, dx)
-        exist = [word_lengths(k, math.hypot(dx, dy), _mod(a - th), _mod(b - th)) for k in range(6)]
+        alpha, beta = (a - th) % math.tau, (b - th) % math.tau
+        exist = [word_lengths(k, math.hypot(dx, dy), alpha, beta) for k in range(6)]
         assert exist[0] is not None and exist[1] is not None
         paths = dubins_paths(s, a, g, b, r)
         assert len(paths) == sum(e is not None for e in exist)

@@ -12,7 +12,7 @@ from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelcross import DEFAULT_STEP_WIDTH, ENTRY_TURN, cross_walk, flight_start
 from mjwalk.plan.levelroute import crossings
-from mjwalk.plan.turnin import TURN_STEP_SHARES, turn_in_steps, turn_into, turned_steps
+from mjwalk.plan.turnin import TURN_STEP_SHARES, turn_in_steps, turned_steps
 from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.plan.walks import plan_walk
 from mjwalk.world import load_workplace
@@ -80,7 +80,10 @@ def test_no_turn_fits_against_a_wall(station, stair):
     walker = Walker()
     view = level_view(station, stair.lower, walker.stature + 0.1)
     walk = _walk_north(-6.4, -1.2, -0.5, yaw=math.pi / 2)  # west of the stair, under the wall
-    assert turn_in_steps(view, walk, stair.yaw, walker, 0.25, flight_start(stair, "up", walker)) is None
+    assert (
+        turn_in_steps(view, walk, stair.yaw, walker, 0.25, flight_start(stair, "up", walker))
+        is None
+    )
 
 
 def test_turned_steps_prepend_the_turn_as_the_crossing_walks_it(stair):
@@ -101,7 +104,9 @@ def test_turned_steps_prepend_the_turn_as_the_crossing_walks_it(stair):
     walk.validate()
     for k in range(3):
         foot = walk.steps[k].foot
-        assert np.hypot(*(foot[:2] - pts[k])) == pytest.approx(0.5 * (walker.step_width or DEFAULT_STEP_WIDTH))
+        assert np.hypot(*(foot[:2] - pts[k])) == pytest.approx(
+            0.5 * (walker.step_width or DEFAULT_STEP_WIDTH)
+        )
         assert foot[2] == pytest.approx(heads[k])
     assert walk.yaw[-1] == pytest.approx(3 * math.pi / 2)
 
