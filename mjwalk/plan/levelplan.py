@@ -272,7 +272,7 @@ def _entry(workplace: Workplace, route: tuple, leg: tuple, setup: tuple) -> floa
     :func:`~mjwalk.plan.levelcross.arrival_heading`); 0 before a step or ramp: its leg is
     searched again facing it (:func:`_level_leg`). ``route``: (crossings, nodes, leads). A
     walk turning into the stair while walking instead (:func:`_turned`) takes about as long:
-    rack1 -> mezzanine estimate / walked 0.967 (1.020 turning on the spot; 40 walks)."""
+    rack1 -> mezzanine estimate / walked 0.977 (1.020 turning on the spot; 40 walks)."""
     (usable, nodes, leads), (u, v), (walker, options) = route, leg, setup
     c, (lv, uxy), xy = usable[(v - 2) // 2], nodes[u], nodes[v][1]
     if c.kind != "stair":
