@@ -272,10 +272,9 @@ def cross_walk(
     back = tread_setback(c, s, walker.stature, direction) * (1.0 if direction == "up" else -1.0)
     s = np.asarray(s, dtype=float)
     points, heights = c.point(s - back), c.height_at(s)  # per footfall, as one by one
-    here = (xy0, float(c.height_at(begin)))
     if turned is None:  # steps on the spot first, each within ENTRY_TURN (spot_turn)
-        spot = spot_turn(yaw0, yaw)
-        turned = (np.repeat(xy0[None, :], spot.size, axis=0), spot, yaw)
+        turned = (np.repeat(xy0[None, :], (spot := spot_turn(yaw0, yaw)).size, 0), spot, yaw)
+    here = (xy0, float(c.height_at(begin)))
     points, heights, times, headings, across, was, turns = turned_steps(
         turned, (points, heights, times), here, (yaw0, yaw), walker.step_duration, left
     )
