@@ -78,6 +78,21 @@ floor leg, a hairpin out of the gap between the stair's east wall and the trolle
 at the approach point facing away and turns there on the spot, levelcross.spot_turn); the other
 rows unchanged (12-22 deg). Expansions unchanged (planning untouched); cold ratios 0.23-1.28
 (base 0.24-1.42), warm 0.96-6.01 (base 1.15-7.48): load noise.
+
+Branch stairturn47 (``--draws 2 --walks 10``, CPU ms, base e749e69 run right after with this
+script, 2 other jobs on the machine): rack1 -> mezzanine no longer stops and turns on the spot
+at the stair's foot: its floor leg turns into the stair while walking (plan.turnin: cut after
+one of its last walking steps, Dubins path at 60 deg a step), 10 of 10 seeds (0-9, the walk
+7.75 -> 8.61 m; the entry column stays at 60: the turning steps' largest). Cold 5.7 -> 6.1
+(ratio 0.58 -> 0.60), warm 5.3 -> 6.1 (2.40 -> 2.87); expansions 46 unchanged (the turn is
+placed, not searched: turnin.turn_into 0.8-2.0 ms); the other rows unchanged within noise.
+The searches that did not do it, measured (rack1's floor leg to the approach point, seeds
+0-9): required heading (goal_yaw) 0/10 in 400 expansions, 3/10 in 1000, 10/10 in 4000 (13,
+28, 63 ms); with a Dubins bound added to the heuristic and a guide routed round the wall and
+looping into the flight, 1-9/10 in 1000 at 22-42 ms; a heading-conditioned search from 1-2 m
+before the leg's end 0-4/10 in 1000. The walks it did find turn on the spot-like short
+steps (0.07-0.28 m) next to the approach point: the search's cost of such steps is far above
+any metric heuristic, so it floods the floor about the goal.
 """
 
 from __future__ import annotations

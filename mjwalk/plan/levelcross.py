@@ -15,7 +15,8 @@ WalkPath` the level planner stitches between its level walks.
   and timed by it, the heights along the ramp's plane.
 
 A walker who stands where the crossing's walk begins facing more than :data:`ENTRY_TURN` away
-from its axis turns on the spot first, in steps of at most that (:func:`spot_turn`).
+from its axis turns on the spot first, in steps of at most that (:func:`spot_turn`); a level
+walk that arrives so turns into it while walking where it fits (:mod:`mjwalk.plan.turnin`).
 
 Feet stand the walker's step width apart across the axis (left foot left of the walking
 direction). The pelvis moves at even speed between the double-support instants, at the middle of
@@ -38,6 +39,7 @@ from mjwalk.gait.stairs import MIN_TREAD, StairGeometry, stair_gait
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelroute import Crossing
 from mjwalk.plan.occupancy import CELL_SIZE
+from mjwalk.plan.turnin import turned_steps
 from mjwalk.plan.turnsplit import WALKING_TURN_MAX, wrap
 from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.world.norms import DESCENT_LOW_CLEARANCE, STAIR_TOE_CLEARANCE
@@ -81,6 +83,23 @@ def _footfalls(c: Crossing, direction: str, walker: Walker) -> tuple[np.ndarray,
     before = np.concatenate([[c.height_at(start)], z[:-1]])
     times = np.where(np.abs(z - before) > 1e-6, climb, walker.step_duration)
     return s, times
+
+
+def flight_start(c: Crossing, direction: str, walker: Walker) -> np.ndarray:
+    """Where a crossing's first footfall lies on its walking line, as :func:`cross_walk`
+    places it (:func:`tread_setback`): where a walk into it lines up.
+
+    Args:
+        c: the crossing.
+        direction: "up" or "down".
+        walker: the walker (stature, step length; a ramp's gait).
+
+    Returns:
+        (2,) world xy, metres.
+    """
+    s = _footfalls(c, direction, walker)[0][:1]
+    back = tread_setback(c, s, walker.stature, direction)[0]
+    return c.point(float(s[0]) - (back if direction == "up" else -back))
 
 
 def _run(a: float, b: float, walker: Walker) -> np.ndarray:
@@ -191,7 +210,7 @@ def cross_walk(
     last: PathStep | None,
     floor_z: float,
     step_width: float | None = None,
-    lead_in: bool = False,
+    lead_in: bool | tuple = False,
 ) -> WalkPath:
     """The walk over a crossing (module docstring).
 
@@ -210,7 +229,9 @@ def cross_walk(
         lead_in: the walk that brought the walker there ended at the flight's approach point
             (:func:`approach_point`), up to a step length and its goal area before the stance:
             level steps along the axis, none longer than the walker's step length, lead from
-            there into the flight's first footfall (with ``last`` given; steps, stairs, ramps).
+            there into the flight's first footfall (with ``last`` given; steps, stairs, ramps);
+            or the turn into the flight while walking (:func:`mjwalk.plan.turnin.turn_into`:
+            footfalls, headings, the end heading), stepped before its first footfall.
 
     Returns:
         The crossing's walk from t = 0: 120 Hz pelvis xy, yaw and height, its steps with the
@@ -222,9 +243,10 @@ def cross_walk(
     heading = np.array([math.cos(yaw), math.sin(yaw)])
     left = np.array([-heading[1], heading[0]])
     xy0, yaw0 = np.asarray(start[0], dtype=float), float(start[1])
-    yaw = yaw0 + (yaw - yaw0 + math.pi) % (2 * math.pi) - math.pi  # the nearer turn
+    turned = lead_in if isinstance(lead_in, tuple) else None  # turnin.turn_into's turn
+    yaw = turned[2] if turned else yaw0 + (yaw - yaw0 + math.pi) % (2 * math.pi) - math.pi
     begin = c.approach if direction == "up" else c.exit
-    if lead_in and last is not None:
+    if lead_in is True and last is not None:
         s, times = _lead_in(c, s, times, start[0], walker)
     if last is None and float(np.hypot(*(c.point(begin) - xy0))) > STANCE_SLACK:
         # standing off the stance: both feet step onto it first, at the level step time
@@ -250,9 +272,11 @@ def cross_walk(
     back = tread_setback(c, s, walker.stature, direction) * (1.0 if direction == "up" else -1.0)
     s = np.asarray(s, dtype=float)
     points, heights = c.point(s - back), c.height_at(s)  # per footfall, as one by one
-    here = (xy0, float(c.height_at(begin)))  # steps on the spot first, each within ENTRY_TURN
-    points, heights, times, headings, across, was, turns = _spot_steps(
-        (points, heights, times), here, (yaw0, yaw), walker.step_duration, left
+    if turned is None:  # steps on the spot first, each within ENTRY_TURN (spot_turn)
+        turned = (np.repeat(xy0[None, :], (spot := spot_turn(yaw0, yaw)).size, 0), spot, yaw)
+    here = (xy0, float(c.height_at(begin)))
+    points, heights, times, headings, across, was, turns = turned_steps(
+        turned, (points, heights, times), here, (yaw0, yaw), walker.step_duration, left
     )
     for k, dt in enumerate(times):
         sign = 1.0 if side == "left" else -1.0
@@ -285,42 +309,14 @@ def cross_walk(
     )  # fmt: skip
 
 
-def _spot_steps(footfalls: tuple, here: tuple, turn: tuple, step_time: float, left: np.ndarray):
-    """The crossing's footfalls with the steps on the spot (:func:`spot_turn`) before them.
-
-    Args:
-        footfalls: (points (k, 2) world xy, heights (k,) world z, times (k,) s) of the steps.
-        here: (xy (2,), world z) where the walker stands, metres.
-        turn: (the walker's heading, the crossing's heading, the nearer turn), radians.
-        step_time: a step on the spot's duration, seconds (the walker's level step).
-        left: (2,) the unit vector left of the crossing's heading.
-
-    Returns:
-        points, heights, times, the heading of each step, the unit vector left of it (k', 2),
-        the heading each step turns from, and the number of steps on the spot.
-    """
-    points, heights, times = footfalls
-    turning = spot_turn(*turn)
-    m = turning.size
-    if m:
-        points = np.concatenate([np.repeat(here[0][None, :], m, axis=0), points])
-        heights = np.concatenate([np.full(m, here[1]), heights])
-        times = np.concatenate([np.full(m, step_time), times])
-    headings = np.concatenate([turning, np.full(len(times) - m, turn[1])])
-    across = np.tile(left, (len(times), 1))
-    across[:m] = np.stack([-np.sin(turning), np.cos(turning)], axis=1)
-    was = np.concatenate([[turn[0]], headings[:-1]])
-    return points, heights, times, headings, across, was, m
-
-
 #: The most (radians) a walk arriving at a crossing may face away from its axis: the crossing's
 #: first step turns the walker onto the axis, and people change direction by at most 60 degrees
 #: within one step (Patla et al. 1991, :data:`mjwalk.plan.turnsplit.WALKING_TURN_MAX`). A walk
 #: that came to a ramp's stance facing 120 degrees off turned onto the ramp in one step (the
 #: platform cycle's run 14): the legs could not reach and lowered the pelvis 0.21 m. A walk
 #: that still arrives further off (rack1 -> mezzanine: 106-147 deg, its floor leg a hairpin
-#: out of the gap between the stair's wall and the trolley) is turned on the spot there first
-#: (:func:`spot_turn`), in steps of at most this.
+#: out of the gap between the stair's wall and the trolley) turns into it while walking
+#: (:mod:`mjwalk.plan.turnin`), else on the spot there (:func:`spot_turn`), by at most this a step.
 ENTRY_TURN = WALKING_TURN_MAX
 
 

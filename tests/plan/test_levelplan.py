@@ -401,10 +401,10 @@ def test_walks_to_the_step_are_searched_again_to_arrive_facing_it(station, model
 def test_rack1_to_the_mezzanine_enters_the_stair_within_entry_turn(station, model, seed):
     """rack1 -> mezzanine's floor leg comes up the gap between the stair's east wall and the
     trolley and ends at the stair's approach point facing 106-147 deg off the flight (seeds
-    1-10; a 1000-expansion search facing it fails, 4000 find it at 666-4262 expansions): the
-    crossing's walk turns on the spot there first (levelcross.spot_turn), so no step from the
-    level walk's end onto the flight turns more than ENTRY_TURN (seeds 1, 6, 10: 147 deg
-    before on seed 10)."""
+    1-10; a 1000-expansion search facing it fails, 4000 find it at 666-4262 expansions): it
+    turns into the stair while walking (plan.turnin; tests/plan/test_turnin.py), where it
+    used to turn on the spot (levelcross.spot_turn), so no step from the level walk onto the
+    flight turns more than ENTRY_TURN (seeds 1, 6, 10: 147 deg before on seed 10)."""
     walk = plan_walk(station, "stand_rack1", "stand_mezz_rack", model, rng=seed)
     first = next(k for k, s in enumerate(walk.steps) if s.foot_z > 0.05)  # onto the flight
     turns = [
