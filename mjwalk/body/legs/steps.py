@@ -340,7 +340,12 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     early = phi <= TOE_OFF
     p[early] = _roll_pitch(fr, ref, phi[early])
     phi_to = TOE_OFF
-    if not fr.first:
+    if fr.first:
+        # from standing: the roll faded in, as far as the foot trails as the reference's
+        je = np.flatnonzero(early)
+        if len(je):
+            p[je] = _trailing_rise(st, p[je], hip_pos(idx[je], fr.side, z_hip[je]))
+    else:
         # pre-swing: the knee follows the reference; the heel rises as far as that needs and
         # at least as the reference's does as far as the foot trails as its does (see above)
         je = np.flatnonzero(early)
@@ -416,6 +421,49 @@ def _roll_pitch(fr: StepFrames, ref: ReferenceGait, ph: np.ndarray) -> np.ndarra
     return p
 
 
+@njit
+def thigh_kept(f, hf, kf, L1, L2, knee_min):
+    """The swing leg's hip-to-ankle drop (metres) and shank turn (radians) for an ankle
+    ``f`` metres ahead of its hip along the foot's heading, at the reference's thigh and knee
+    angles ``hf``, ``kf`` (radians) of that gait-cycle instant (thigh ``L1``, shank ``L2``,
+    metres). At or behind the reference's own ankle: the reference leg (drop ``L1 cos hf +
+    L2 cos(hf - kf)``, turn 0). Ahead of it (a foot starting near or under its hip: a first
+    step, a short or closing step) the thigh keeps the reference's flexion and the shank
+    turns forward to reach the ankle (the knee flexes less than the reference's, so the
+    ankle hangs lower); where even the knee at ``min(kf, knee_min)`` cannot reach it, the
+    thigh flexes further, only as far as that reach needs. Used by both swing twins
+    (:func:`_reference_swing`, :func:`~mjwalk.body.legs.swing._swing_late`).
+
+    Returns:
+        (drop, turn): the drop below the hip, metres; the shank's turn forward from the
+        reference's, radians (>= 0), which the foot's pitch takes too (the reference's ankle
+        angle kept).
+    """
+    sig_ref = hf - kf
+    if not f > L1 * math.sin(hf) + L2 * math.sin(sig_ref):
+        return L1 * math.cos(hf) + L2 * math.cos(sig_ref), 0.0
+    k_lo = min(kf, knee_min)
+    h = hf
+    x = (f - L1 * math.sin(h)) / L2
+    if x > math.sin(h - k_lo):  # the thigh flexes as far as the reach needs
+        a, b = L1 + L2 * math.cos(k_lo), L2 * math.sin(k_lo)
+        h = math.atan2(b, a) + math.asin(min(f / math.sqrt(a * a + b * b), 1.0))
+        sig = h - k_lo
+    else:
+        sig = math.asin(max(x, -1.0))
+    return L1 * math.cos(h) + L2 * math.cos(sig), max(sig - sig_ref, 0.0)
+
+
+@njit
+def _thigh_kept_rows(f, hf, kf, L1, L2, knee_min):
+    """:func:`thigh_kept` per row of ``f``, ``hf``, ``kf`` (m,): (drop (m,), turn (m,))."""
+    m = f.shape[0]
+    drop, turn = np.empty(m), np.empty(m)
+    for i in range(m):
+        drop[i], turn[i] = thigh_kept(f[i], hf[i], kf[i], L1, L2, knee_min)
+    return drop, turn
+
+
 def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple):
     """The reference swing at samples ``jl`` after toe-off: the reference hip/knee angles of
     each gait-cycle instant placed at the current hip (forward progress and height), along
@@ -428,9 +476,9 @@ def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple)
     c = 0.5 + 0.5 * phi[jl]
     hf, kf = ref("hip", c), ref("knee", c)
     fwd = L1 * np.sin(hf) + L2 * np.sin(hf - kf)
-    down = L1 * np.cos(hf) + L2 * np.cos(hf - kf)
     heading = np.column_stack([np.cos(yaw[jl]), np.sin(yaw[jl])])
-    target = st.hip_pos(st.idx[jl], sw) + fwd[:, None] * heading
+    hip = st.hip_pos(st.idx[jl], sw)
+    target = hip + fwd[:, None] * heading
     seg = land[:2] - lift[:2]
     # progress along the chord, clamped to the footprints softly (C1): a hard clamp where
     # the reference passes the landing footprint (short steps) kinks the ankle's path; it
@@ -454,10 +502,14 @@ def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple)
     # sideways, the foot swings under its hip: where the step turns, the hip's track bends
     # away from the chord (and from an inner corner the pelvis was planned clear of)
     nrm = np.array([-seg[1], seg[0]]) / max(float(np.linalg.norm(seg)), 1e-9)
-    off = (st.hip_pos(st.idx[jl], sw) - chord) @ nrm
+    off = (hip - chord) @ nrm
     xy = chord + (off * np.sin(np.pi * s))[:, None] * nrm
+    # the height: the reference leg's where the foot is at or behind the reference's ankle,
+    # else the reference thigh with the shank turned forward to the foot (thigh_kept)
+    f = (xy[:, 0] - hip[:, 0]) * heading[:, 0] + (xy[:, 1] - hip[:, 1]) * heading[:, 1]
+    down, turn = _thigh_kept_rows(f, hf, kf, L1, L2, float(KNEE_MIN))
     ref_pos = np.column_stack([xy, st.z_hip[jl] - down])
-    ref_pit = np.clip(ref("pitch", c), np.deg2rad(-70), np.deg2rad(30))
+    ref_pit = np.clip(ref("pitch", c) + turn, np.deg2rad(-70), np.deg2rad(30))
     return ref_pos, ref_pit
 
 
