@@ -57,6 +57,22 @@ TOE_STRAIGHTEN_SPEED = np.deg2rad(50.0) / (0.13 * 120.0 / 113.0)
 #: most elsewhere after toe-off). The soft clamp's rounding of the chord's ends (0.1) halved;
 #: a smoothing width, no measured figure.
 PROGRESS_BLEND = 0.05
+#: The reference pitch's clamp in the swing after toe-off (radians).
+PITCH_LO, PITCH_HI = float(np.deg2rad(-70)), float(np.deg2rad(30))
+#: Toe clearance (m) the swing foot's pitch keeps over the floor after toe-off where its ankle
+#: allows (:func:`swing_pitch`): the minimum toe clearance of able-bodied gait, 1.9 +- 0.5 cm
+#: at about 51 % of the swing (Moosabhoy & Gard, "Methodology for determining the sensitivity
+#: of swing leg toe clearance and leg length to swing leg joint angles during gait", Gait
+#: Posture 24(4):493-501, 2006, abstract; its toe clearance is most sensitive to the ankle
+#: angle, 17.1 cm/rad, then the hip's 9.5 and the knee's 2.5).
+SWING_TOE_CLEARANCE = 0.019
+#: Highest ankle dorsiflexion the swing foot's clearance pitch asks for (radians, from the
+#: shank's perpendicular): neutral. In mid swing the ankle comes up to neutral to clear the toes
+#: and stays there through terminal swing (Perry & Burnfield, "Gait Analysis", 2nd ed., 2010,
+#: the ankle in swing; quoted from memory, not checked). Measured: allowing up to the range's
+#: 19 deg instead, the ankle met its 20 deg limit after the spline and the floor lift had
+#: flexed the knee further, and the toes dipped 1.2 mm into the floor (steady 0.25 m steps).
+SWING_DORSI = 0.0
 #: Highest heel rise of a foot rolling about its ball (radians, pitch toes down): 60 deg,
 #: within the toes' 70 deg extension (ROM_DEG["toe"]); :func:`heel_rise`'s bound.
 HEEL_RISE_MAX = np.deg2rad(60.0)
@@ -455,13 +471,32 @@ def thigh_kept(f, hf, kf, L1, L2, knee_min):
 
 
 @njit
-def _thigh_kept_rows(f, hf, kf, L1, L2, knee_min):
-    """:func:`thigh_kept` per row of ``f``, ``hf``, ``kf`` (m,): (drop (m,), turn (m,))."""
+def swing_pitch(pv, turn, hf, kf, z, front, ah):
+    """The swing foot's pitch after toe-off (radians, + toes up) at one sample: the reference's
+    ``pv`` turned with the shank by ``turn`` (:func:`thigh_kept`; the reference's ankle angle
+    kept) and clamped to :data:`PITCH_LO`-:data:`PITCH_HI`, raised (the ankle dorsiflexed) as
+    far as the rigid foot's toe tip (``front`` ahead of the ankle, ``ah`` below it, metres)
+    then clears the floor by :data:`SWING_TOE_CLEARANCE` with the ankle at height ``z`` (m),
+    at most to :data:`SWING_DORSI` of dorsiflexion from the shank (``hf - kf + turn`` from the
+    vertical): the ankle clears the toes before the hip and knee must lift the foot (Moosabhoy
+    & Gard 2006; the floor lift after the spline, :func:`_clear_floor`, does the rest)."""
+    p = min(max(pv + turn, PITCH_LO), PITCH_HI)
+    r = math.sqrt(front * front + ah * ah)
+    need = math.atan2(ah, front) + math.asin(min(max((SWING_TOE_CLEARANCE - z) / r, -1.0), 1.0))
+    return max(p, min(need, hf - kf + turn + SWING_DORSI))
+
+
+@njit
+def _reference_rows(f, hf, kf, pv, z_hip, L1, L2, knee_min, front, ah):
+    """:func:`thigh_kept` and :func:`swing_pitch` per row of ``f``, ``hf``, ``kf``, ``pv``,
+    ``z_hip`` (m,): (ankle height (m,), pitch (m,))."""
     m = f.shape[0]
-    drop, turn = np.empty(m), np.empty(m)
+    z, pit = np.empty(m), np.empty(m)
     for i in range(m):
-        drop[i], turn[i] = thigh_kept(f[i], hf[i], kf[i], L1, L2, knee_min)
-    return drop, turn
+        drop, turn = thigh_kept(f[i], hf[i], kf[i], L1, L2, knee_min)
+        z[i] = z_hip[i] - drop
+        pit[i] = swing_pitch(pv[i], turn, hf[i], kf[i], z[i], front, ah)
+    return z, pit
 
 
 def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple):
@@ -507,10 +542,10 @@ def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple)
     # the height: the reference leg's where the foot is at or behind the reference's ankle,
     # else the reference thigh with the shank turned forward to the foot (thigh_kept)
     f = (xy[:, 0] - hip[:, 0]) * heading[:, 0] + (xy[:, 1] - hip[:, 1]) * heading[:, 1]
-    down, turn = _thigh_kept_rows(f, hf, kf, L1, L2, float(KNEE_MIN))
-    ref_pos = np.column_stack([xy, st.z_hip[jl] - down])
-    ref_pit = np.clip(ref("pitch", c) + turn, np.deg2rad(-70), np.deg2rad(30))
-    return ref_pos, ref_pit
+    z, ref_pit = _reference_rows(f, hf, kf, ref("pitch", c), st.z_hip[jl], L1, L2,
+                                 float(KNEE_MIN), float(geom.foot_front),
+                                 float(geom.ankle_height))  # fmt: skip
+    return np.column_stack([xy, z]), ref_pit
 
 
 def _swing_path(st: _SwingStep, pos, p, early, yaw) -> None:

@@ -45,13 +45,11 @@ from mjwalk.body.legs.steps import (
     SWING_TURNED,
     TOE_OFF,
     StepFrames,
+    swing_pitch,
     thigh_kept,
     toe_straighten_share,
 )
 from mjwalk.conventions import SAMPLE_RATE_HZ
-
-#: The reference pitch's clamp in the swing (radians): :func:`~.steps.swing_foot`'s.
-PITCH_LO, PITCH_HI = float(np.deg2rad(-70)), float(np.deg2rad(30))
 
 #: How the pre-swing roll starts (:func:`~.steps.swing_foot`'s ``roll_pitch``): the walk's
 #: first step (from standing, flat), a step after one whose stance raised the heel further
@@ -197,8 +195,8 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
     pivot_rows(lift2, p[:ne], ball, back, ah, pos[:ne])
     if ne < n:
         _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k, knee_c,
-                    knee_k, pitch_c, pitch_k, L1, L2, knee_min, ball, back, ah, land_p, ne, yaw,
-                    pos, p)  # fmt: skip
+                    knee_k, pitch_c, pitch_k, L1, L2, knee_min, ball, back, front, ah, land_p,
+                    ne, yaw, pos, p)  # fmt: skip
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[ne - 1] if ne > 0 else 0.0
     share = toe_straighten_share(p_end, duration, phi_to)
@@ -221,8 +219,8 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
 
 @njit
 def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k, knee_c, knee_k,
-                pitch_c, pitch_k, L1, L2, knee_min, ball, back, ah, land_p, ne, yaw, pos,
-                p):  # fmt: skip
+                pitch_c, pitch_k, L1, L2, knee_min, ball, back, front, ah, land_p, ne, yaw,
+                pos, p):  # fmt: skip
     """The swing after toe-off (samples ``ne`` on) into ``pos`` and ``p``: the reference
     swing (the reference hip/knee angles of each gait-cycle instant at the current hip, along
     the chord from the lift-off to the landing footprint, under the hip sideways; a foot
@@ -271,7 +269,7 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
         down, turn = thigh_kept(f, hf, kf, L1, L2, knee_min)
         ref_pos[j, 2] = z_hip[i] - down
         pv = ppoly_at(pitch_c, pitch_k, wrap01(c), 0)
-        ref_pit[j] = min(max(pv + turn, PITCH_LO), PITCH_HI)
+        ref_pit[j] = swing_pitch(pv, turn, hf, kf, ref_pos[j, 2], front, ah)
     # knots: the toe-off sample, the swing samples nearest the keys, the landing
     nk = len(SWING_KEYS) + 1
     knots = np.empty(nk)
