@@ -503,8 +503,9 @@ def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple)
     """The reference swing at samples ``jl`` after toe-off: the reference hip/knee angles of
     each gait-cycle instant placed at the current hip (forward progress and height), along
     the line from the lift-off to the landing footprint, never behind the toe-off ankle going
-    on at its toe-off velocity (``to``: its phase, position (3,) and velocity (3,) per unit
-    phase); returns the ankle (m, 3) and the clipped reference pitch (m,)."""
+    on at its toe-off velocity nor further behind its hip than then (``to``: its phase,
+    position (3,) and velocity (3,) per unit phase, the hip's (x, y) and the foot's yaw
+    there); returns the ankle (m, 3) and the clipped reference pitch (m,)."""
     fr, phi, ref, geom = st.fr, st.phi, st.ref, st.geom
     L1, L2 = geom.thigh, geom.shank
     lift, land, sw = fr.lift, fr.land, fr.side
@@ -528,10 +529,20 @@ def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple)
     # forward heel and toe trajectories through swing quoted from memory, not checked)
     seg_sq = max(float(seg @ seg), 1e-9)
     s = soft_clip01((target - lift[:2]) @ seg / seg_sq, 0.1)
-    phi_to, a_to, v_to = to
+    phi_to, a_to, v_to, hip_to, yaw_to = to
     u_to = float((a_to[:2] - lift[:2]) @ seg) / seg_sq
     du_to = max(float(v_to[:2] @ seg) / seg_sq, 0.0)
-    s_to = soft_clip01(u_to + du_to * (phi[jl] - phi_to), 0.1)
+    # nor does it fall further behind its hip than at toe-off: the reference's ankle comes
+    # forward on its hip from toe-off to late swing (cycle 60-90 %), and a foot that started
+    # under its hip (a first step, where the reference's own progress starts behind the
+    # lift-off footprint) would otherwise hang there, its thigh flexing over it, and then
+    # sweep the whole step at once
+    f_to = (a_to[0] - hip_to[0]) * math.cos(yaw_to) + (a_to[1] - hip_to[1]) * math.sin(yaw_to)
+    u_h = (
+        (hip[:, 0] + f_to * heading[:, 0] - lift[0]) * seg[0]
+        + (hip[:, 1] + f_to * heading[:, 1] - lift[1]) * seg[1]
+    ) / seg_sq
+    s_to = soft_clip01(np.maximum(u_to + du_to * (phi[jl] - phi_to), u_h), 0.1)
     s = np.maximum.accumulate(soft_max(s, s_to, PROGRESS_BLEND))
     chord = lift[:2] + s[:, None] * seg
     # sideways, the foot swings under its hip: where the step turns, the hip's track bends
@@ -558,7 +569,9 @@ def _swing_path(st: _SwingStep, pos, p, early, yaw) -> None:
     a0 = pos[je[::-1]]
     v0 = (a0[0] - a0[1]) / h
     jl = np.flatnonzero(late)
-    ref_pos, ref_pit = _reference_swing(st, jl, yaw, (float(phi[je[1]]), a0[0], v0))
+    hip_to = st.hip_pos(st.idx[je[1:]], st.fr.side)[0]
+    to = (float(phi[je[1]]), a0[0], v0, hip_to, float(yaw[je[1]]))
+    ref_pos, ref_pit = _reference_swing(st, jl, yaw, to)
     # key positions at SWING_KEYS: the reference, lifted where the ankle would be lower
     # than standing height; the reference shape is kept between the keys and the
     # boundaries (lift-off state at toe-off, the landing pose with zero velocity) by a

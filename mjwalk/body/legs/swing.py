@@ -241,6 +241,11 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
     # along the chord (see steps._reference_swing)
     u_to = fma(pos[ne - 1, 0] - lift[0], seg[0], (pos[ne - 1, 1] - lift[1]) * seg[1]) / seg_sq
     du_to = max(fma(v0[0], seg[0], v0[1] * seg[1]) / seg_sq, 0.0)
+    # nor further behind its hip than at toe-off (see steps._reference_swing)
+    k0 = ne - 1
+    f_to = (pos[k0, 0] - hip_xy[k0, 0]) * math.cos(yaw[k0]) + (
+        pos[k0, 1] - hip_xy[k0, 1]
+    ) * math.sin(yaw[k0])
     s_run = 0.0  # the progress so far (soft_clip01_1 is never below 0)
     for j in range(m):
         i = ne + j
@@ -255,7 +260,11 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
         # the toe-off ankle's going on (see steps._reference_swing); numpy's (m, 2) @ (2,) is
         # OpenBLAS's
         s = soft_clip01_1(fma(t0 - lift[0], seg[0], (t1 - lift[1]) * seg[1]) / seg_sq, 0.1)
-        s_to = soft_clip01_1(u_to + du_to * (phi[i] - phi[ne - 1]), 0.1)
+        u_h = (
+            (hip_xy[i, 0] + f_to * cy - lift[0]) * seg[0]
+            + (hip_xy[i, 1] + f_to * sy - lift[1]) * seg[1]
+        ) / seg_sq
+        s_to = soft_clip01_1(max(u_to + du_to * (phi[i] - phi[ne - 1]), u_h), 0.1)
         s = max(soft_max1(s, s_to, PROGRESS_BLEND), s_run)
         s_run = s
         ch0 = lift[0] + s * seg[0]
