@@ -359,15 +359,15 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     if fr.first:
         # from standing: the roll faded in, as far as the foot trails as the reference's
         je = np.flatnonzero(early)
-        if len(je):
-            p[je] = _trailing_rise(st, p[je], hip_pos(idx[je], fr.side, z_hip[je]))
+        p[je], share = _trailing_rise(st, p[je], hip_pos(idx[je], fr.side, z_hip[je]))
     else:
         # pre-swing: the knee follows the reference; the heel rises as far as that needs and
         # at least as the reference's does as far as the foot trails as its does (see above)
         je = np.flatnonzero(early)
         hip = hip_pos(idx[je], fr.side, z_hip[je])
         knee = np.maximum(ref("knee", 0.5 + 0.5 * phi[je]), float(KNEE_MIN))
-        p[je] = heel_rise(lift, hip, knee, _trailing_rise(st, p[je], hip), geom, lo=-HEEL_RISE_MAX)
+        p0, share = _trailing_rise(st, p[je], hip)
+        p[je] = heel_rise(lift, hip, knee, p0, geom, lo=-HEEL_RISE_MAX)
         held = np.flatnonzero(p[je] <= -HEEL_RISE_MAX + 1e-9)
         if len(held) and held[0] >= 1:  # (two samples on the floor give the lift-off velocity)
             phi_to = float(phi[je[held[0]]])
@@ -375,7 +375,9 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     pos[early] = pivot_ankle(lift, p[early], geom)
     late = ~early
     if late.any():
-        _swing_path(st, pos, p, early, yaw)
+        # how far the swing departs from the reference's: as far as the foot did not trail
+        # its hip as the reference's at toe-off (thigh_kept)
+        _swing_path(st, pos, p, early, yaw, 1.0 - float(share[int(np.count_nonzero(early)) - 1]))
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[early][-1] if early.any() else 0.0
     share = toe_straighten_share(p_end, (fr.end - fr.start) / SAMPLE_RATE_HZ, phi_to)
@@ -409,7 +411,7 @@ def _trailing_rise(st: _SwingStep, p: np.ndarray, hip: np.ndarray) -> np.ndarray
     trails its hip ``hip`` (m, 3) as the reference's does: the reference's heel rise beyond
     the step's starting pitch in proportion to the foot's distance behind the hip along the
     step over the reference ankle's behind its hip at that instant, all of it from that
-    distance on (see :func:`swing_foot`)."""
+    distance on (see :func:`swing_foot`); and that share (m,), 0 to 1."""
     fr, ref, geom = st.fr, st.ref, st.geom
     lift, land = fr.lift, fr.land
     seg = land[:2] - lift[:2]
@@ -420,7 +422,7 @@ def _trailing_rise(st: _SwingStep, p: np.ndarray, hip: np.ndarray) -> np.ndarray
     trail = ((hip[:, 0] - lift[0]) * seg[0] + (hip[:, 1] - lift[1]) * seg[1]) / seg_n
     with np.errstate(divide="ignore", invalid="ignore"):
         share = np.where(behind > 0, np.minimum(np.maximum(trail / behind, 0.0), 1.0), 1.0)
-    return np.where(share >= 1.0, p, p[0] + (p - p[0]) * share)
+    return np.where(share >= 1.0, p, p[0] + (p - p[0]) * share), share
 
 
 def _roll_pitch(fr: StepFrames, ref: ReferenceGait, ph: np.ndarray) -> np.ndarray:
@@ -438,7 +440,7 @@ def _roll_pitch(fr: StepFrames, ref: ReferenceGait, ph: np.ndarray) -> np.ndarra
 
 
 @njit
-def thigh_kept(f, hf, kf, L1, L2, knee_min):
+def thigh_kept(f, hf, kf, L1, L2, knee_min, kept):
     """The swing leg's hip-to-ankle drop (metres) and shank turn (radians) for an ankle
     ``f`` metres ahead of its hip along the foot's heading, at the reference's thigh and knee
     angles ``hf``, ``kf`` (radians) of that gait-cycle instant (thigh ``L1``, shank ``L2``,
@@ -447,7 +449,10 @@ def thigh_kept(f, hf, kf, L1, L2, knee_min):
     step, a short or closing step) the thigh keeps the reference's flexion and the shank
     turns forward to reach the ankle (the knee flexes less than the reference's, so the
     ankle hangs lower); where even the knee at ``min(kf, knee_min)`` cannot reach it, the
-    thigh flexes further, only as far as that reach needs. Used by both swing twins
+    thigh flexes further, only as far as that reach needs. Weighted by ``kept`` (0: the
+    reference leg, 1: the kept thigh): how far the foot did not trail its hip at toe-off as
+    the reference's (:func:`_trailing_rise`'s share), so a normal stride keeps the reference
+    swing and a foot from under its hip the reference thigh. Used by both swing twins
     (:func:`_reference_swing`, :func:`~mjwalk.body.legs.swing._swing_late`).
 
     Returns:
@@ -456,8 +461,9 @@ def thigh_kept(f, hf, kf, L1, L2, knee_min):
         angle kept).
     """
     sig_ref = hf - kf
+    drop_ref = L1 * math.cos(hf) + L2 * math.cos(sig_ref)
     if not f > L1 * math.sin(hf) + L2 * math.sin(sig_ref):
-        return L1 * math.cos(hf) + L2 * math.cos(sig_ref), 0.0
+        return drop_ref, 0.0
     k_lo = min(kf, knee_min)
     h = hf
     x = (f - L1 * math.sin(h)) / L2
@@ -467,11 +473,12 @@ def thigh_kept(f, hf, kf, L1, L2, knee_min):
         sig = h - k_lo
     else:
         sig = math.asin(max(x, -1.0))
-    return L1 * math.cos(h) + L2 * math.cos(sig), max(sig - sig_ref, 0.0)
+    drop = L1 * math.cos(h) + L2 * math.cos(sig)
+    return drop_ref + kept * (drop - drop_ref), kept * max(sig - sig_ref, 0.0)
 
 
 @njit
-def swing_pitch(pv, turn, hf, kf, z, front, ah):
+def swing_pitch(pv, turn, hf, kf, z, front, ah, kept):
     """The swing foot's pitch after toe-off (radians, + toes up) at one sample: the reference's
     ``pv`` turned with the shank by ``turn`` (:func:`thigh_kept`; the reference's ankle angle
     kept) and clamped to :data:`PITCH_LO`-:data:`PITCH_HI`, raised (the ankle dorsiflexed) as
@@ -479,23 +486,24 @@ def swing_pitch(pv, turn, hf, kf, z, front, ah):
     then clears the floor by :data:`SWING_TOE_CLEARANCE` with the ankle at height ``z`` (m),
     at most to :data:`SWING_DORSI` of dorsiflexion from the shank (``hf - kf + turn`` from the
     vertical): the ankle clears the toes before the hip and knee must lift the foot (Moosabhoy
-    & Gard 2006; the floor lift after the spline, :func:`_clear_floor`, does the rest)."""
+    & Gard 2006; the floor lift after the spline, :func:`_clear_floor`, does the rest); that
+    raise weighted by ``kept`` as :func:`thigh_kept`'s (the reference's pitch where 0)."""
     p = min(max(pv + turn, PITCH_LO), PITCH_HI)
     r = math.sqrt(front * front + ah * ah)
     need = math.atan2(ah, front) + math.asin(min(max((SWING_TOE_CLEARANCE - z) / r, -1.0), 1.0))
-    return max(p, min(need, hf - kf + turn + SWING_DORSI))
+    return p + kept * (max(p, min(need, hf - kf + turn + SWING_DORSI)) - p)
 
 
 @njit
-def _reference_rows(f, hf, kf, pv, z_hip, L1, L2, knee_min, front, ah):
+def _reference_rows(f, hf, kf, pv, z_hip, L1, L2, knee_min, front, ah, kept):
     """:func:`thigh_kept` and :func:`swing_pitch` per row of ``f``, ``hf``, ``kf``, ``pv``,
     ``z_hip`` (m,): (ankle height (m,), pitch (m,))."""
     m = f.shape[0]
     z, pit = np.empty(m), np.empty(m)
     for i in range(m):
-        drop, turn = thigh_kept(f[i], hf[i], kf[i], L1, L2, knee_min)
+        drop, turn = thigh_kept(f[i], hf[i], kf[i], L1, L2, knee_min, kept)
         z[i] = z_hip[i] - drop
-        pit[i] = swing_pitch(pv[i], turn, hf[i], kf[i], z[i], front, ah)
+        pit[i] = swing_pitch(pv[i], turn, hf[i], kf[i], z[i], front, ah, kept)
     return z, pit
 
 
@@ -529,7 +537,7 @@ def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple)
     # forward heel and toe trajectories through swing quoted from memory, not checked)
     seg_sq = max(float(seg @ seg), 1e-9)
     s = soft_clip01((target - lift[:2]) @ seg / seg_sq, 0.1)
-    phi_to, a_to, v_to, hip_to, yaw_to = to
+    phi_to, a_to, v_to, hip_to, yaw_to, kept = to
     u_to = float((a_to[:2] - lift[:2]) @ seg) / seg_sq
     du_to = max(float(v_to[:2] @ seg) / seg_sq, 0.0)
     # nor does it fall further behind its hip than at toe-off: the reference's ankle comes
@@ -542,7 +550,8 @@ def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple)
         (hip[:, 0] + f_to * heading[:, 0] - lift[0]) * seg[0]
         + (hip[:, 1] + f_to * heading[:, 1] - lift[1]) * seg[1]
     ) / seg_sq
-    s_to = soft_clip01(np.maximum(u_to + du_to * (phi[jl] - phi_to), u_h), 0.1)
+    u_lin = u_to + du_to * (phi[jl] - phi_to)
+    s_to = soft_clip01(np.maximum(u_lin, u_lin + kept * (u_h - u_lin)), 0.1)
     s = np.maximum.accumulate(soft_max(s, s_to, PROGRESS_BLEND))
     chord = lift[:2] + s[:, None] * seg
     # sideways, the foot swings under its hip: where the step turns, the hip's track bends
@@ -555,13 +564,15 @@ def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple)
     f = (xy[:, 0] - hip[:, 0]) * heading[:, 0] + (xy[:, 1] - hip[:, 1]) * heading[:, 1]
     z, ref_pit = _reference_rows(f, hf, kf, ref("pitch", c), st.z_hip[jl], L1, L2,
                                  float(KNEE_MIN), float(geom.foot_front),
-                                 float(geom.ankle_height))  # fmt: skip
+                                 float(geom.ankle_height), kept)  # fmt: skip
     return np.column_stack([xy, z]), ref_pit
 
 
-def _swing_path(st: _SwingStep, pos, p, early, yaw) -> None:
+def _swing_path(st: _SwingStep, pos, p, early, yaw, kept: float) -> None:
     """The swing after toe-off into ``pos`` and ``p`` (in place, where not ``early``): the
-    reference swing plus a clamped cubic-spline displacement through the key positions."""
+    reference swing plus a clamped cubic-spline displacement through the key positions;
+    ``kept`` (0 to 1) how far a foot ahead of the reference's ankle hangs from the reference
+    thigh (:func:`thigh_kept`)."""
     phi, geom, late = st.phi, st.geom, ~early
     je = np.flatnonzero(early)[-2:]
     h = float(phi[je[1]] - phi[je[0]])
@@ -570,7 +581,7 @@ def _swing_path(st: _SwingStep, pos, p, early, yaw) -> None:
     v0 = (a0[0] - a0[1]) / h
     jl = np.flatnonzero(late)
     hip_to = st.hip_pos(st.idx[je[1:]], st.fr.side)[0]
-    to = (float(phi[je[1]]), a0[0], v0, hip_to, float(yaw[je[1]]))
+    to = (float(phi[je[1]]), a0[0], v0, hip_to, float(yaw[je[1]]), kept)
     ref_pos, ref_pit = _reference_swing(st, jl, yaw, to)
     # key positions at SWING_KEYS: the reference, lifted where the ankle would be lower
     # than standing height; the reference shape is kept between the keys and the

@@ -156,6 +156,7 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
         p[i] = q
     phi_to = TOE_OFF
     p0 = np.empty(ne)
+    shares = np.empty(ne)
     # the reference's heel rise as far as the foot trails its hip as the reference's
     # (steps._trailing_rise); from standing that is the whole roll
     seg_n = math.sqrt(seg_sq)
@@ -166,6 +167,7 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
         behind = -(L1 * math.sin(hf) + L2 * math.sin(hf - kf))
         trail = ((hip_xy[i, 0] - lift[0]) * seg[0] + (hip_xy[i, 1] - lift[1]) * seg[1]) / seg_n
         share = min(max(trail / behind, 0.0), 1.0) if behind > 0 else 1.0
+        shares[i] = share
         p0[i] = p[i] if share >= 1.0 else p[0] + (p[i] - p[0]) * share
     if mode == ROLL_FIRST:
         for i in range(ne):
@@ -194,9 +196,10 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
                 ne += 1
     pivot_rows(lift2, p[:ne], ball, back, ah, pos[:ne])
     if ne < n:
+        kept = 1.0 - shares[ne - 1] if ne > 0 else 0.0  # (steps.swing_foot's)
         _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k, knee_c,
                     knee_k, pitch_c, pitch_k, L1, L2, knee_min, ball, back, front, ah, land_p,
-                    ne, yaw, pos, p)  # fmt: skip
+                    ne, yaw, pos, p, kept)  # fmt: skip
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[ne - 1] if ne > 0 else 0.0
     share = toe_straighten_share(p_end, duration, phi_to)
@@ -220,11 +223,12 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
 @njit
 def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k, knee_c, knee_k,
                 pitch_c, pitch_k, L1, L2, knee_min, ball, back, front, ah, land_p, ne, yaw,
-                pos, p):  # fmt: skip
+                pos, p, kept):  # fmt: skip
     """The swing after toe-off (samples ``ne`` on) into ``pos`` and ``p``: the reference
     swing (the reference hip/knee angles of each gait-cycle instant at the current hip, along
     the chord from the lift-off to the landing footprint, under the hip sideways; a foot
-    ahead of the reference's ankle hangs from the reference thigh, :func:`~.steps.thigh_kept`) plus
+    ahead of the reference's ankle hangs from the reference thigh as far as ``kept``,
+    :func:`~.steps.thigh_kept`) plus
     clamped cubic-spline displacements to the key positions at :data:`SWING_KEYS` (``land2``
     the landing footprint as a (1, 3) row)."""
     n = phi.shape[0]
@@ -264,7 +268,8 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
             (hip_xy[i, 0] + f_to * cy - lift[0]) * seg[0]
             + (hip_xy[i, 1] + f_to * sy - lift[1]) * seg[1]
         ) / seg_sq
-        s_to = soft_clip01_1(max(u_to + du_to * (phi[i] - phi[ne - 1]), u_h), 0.1)
+        u_lin = u_to + du_to * (phi[i] - phi[ne - 1])
+        s_to = soft_clip01_1(max(u_lin, u_lin + kept * (u_h - u_lin)), 0.1)
         s = max(soft_max1(s, s_to, PROGRESS_BLEND), s_run)
         s_run = s
         ch0 = lift[0] + s * seg[0]
@@ -275,10 +280,10 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
         ref_pos[j, 1] = ch1 + w * nrm[1]
         # the reference leg, or the reference thigh over a foot ahead of its ankle
         f = (ref_pos[j, 0] - hip_xy[i, 0]) * cy + (ref_pos[j, 1] - hip_xy[i, 1]) * sy
-        down, turn = thigh_kept(f, hf, kf, L1, L2, knee_min)
+        down, turn = thigh_kept(f, hf, kf, L1, L2, knee_min, kept)
         ref_pos[j, 2] = z_hip[i] - down
         pv = ppoly_at(pitch_c, pitch_k, wrap01(c), 0)
-        ref_pit[j] = swing_pitch(pv, turn, hf, kf, ref_pos[j, 2], front, ah)
+        ref_pit[j] = swing_pitch(pv, turn, hf, kf, ref_pos[j, 2], front, ah, kept)
     # knots: the toe-off sample, the swing samples nearest the keys, the landing
     nk = len(SWING_KEYS) + 1
     knots = np.empty(nk)
