@@ -27,6 +27,7 @@ from mjwalk.body.legs.curves import (
 from mjwalk.body.legs.footpivot import ball_offset, heel_rise, pivot_ankle, pivot_rows
 from mjwalk.body.legs.ik import KNEE_MIN, ik_lengths, leg_ik_world_row
 from mjwalk.body.legs.reference import ReferenceGait
+from mjwalk.body.legs.swingthigh import reference_rows
 from mjwalk.conventions import SAMPLE_RATE_HZ, side_prefix
 from mjwalk.plan.walkpath import WalkPath
 
@@ -57,22 +58,6 @@ TOE_STRAIGHTEN_SPEED = np.deg2rad(50.0) / (0.13 * 120.0 / 113.0)
 #: most elsewhere after toe-off). The soft clamp's rounding of the chord's ends (0.1) halved;
 #: a smoothing width, no measured figure.
 PROGRESS_BLEND = 0.05
-#: The reference pitch's clamp in the swing after toe-off (radians).
-PITCH_LO, PITCH_HI = float(np.deg2rad(-70)), float(np.deg2rad(30))
-#: Toe clearance (m) the swing foot's pitch keeps over the floor after toe-off where its ankle
-#: allows (:func:`swing_pitch`): the minimum toe clearance of able-bodied gait, 1.9 +- 0.5 cm
-#: at about 51 % of the swing (Moosabhoy & Gard, "Methodology for determining the sensitivity
-#: of swing leg toe clearance and leg length to swing leg joint angles during gait", Gait
-#: Posture 24(4):493-501, 2006, abstract; its toe clearance is most sensitive to the ankle
-#: angle, 17.1 cm/rad, then the hip's 9.5 and the knee's 2.5).
-SWING_TOE_CLEARANCE = 0.019
-#: Highest ankle dorsiflexion the swing foot's clearance pitch asks for (radians, from the
-#: shank's perpendicular): neutral. In mid swing the ankle comes up to neutral to clear the toes
-#: and stays there through terminal swing (Perry & Burnfield, "Gait Analysis", 2nd ed., 2010,
-#: the ankle in swing; quoted from memory, not checked). Measured: allowing up to the range's
-#: 19 deg instead, the ankle met its 20 deg limit after the spline and the floor lift had
-#: flexed the knee further, and the toes dipped 1.2 mm into the floor (steady 0.25 m steps).
-SWING_DORSI = 0.0
 #: Highest heel rise of a foot rolling about its ball (radians, pitch toes down): 60 deg,
 #: within the toes' 70 deg extension (ROM_DEG["toe"]); :func:`heel_rise`'s bound.
 HEEL_RISE_MAX = np.deg2rad(60.0)
@@ -376,7 +361,7 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     late = ~early
     if late.any():
         # how far the swing departs from the reference's: as far as the foot did not trail
-        # its hip as the reference's at toe-off (thigh_kept)
+        # its hip as the reference's at toe-off (swingthigh.thigh_kept)
         _swing_path(st, pos, p, early, yaw, 1.0 - float(share[int(np.count_nonzero(early)) - 1]))
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[early][-1] if early.any() else 0.0
@@ -406,7 +391,7 @@ def toe_straighten_share(p_end: float, duration: float, phi_to: float) -> float:
     return max(min(max(TOE_STRAIGHTEN, need), 1.0 - phi_to), 1e-9)
 
 
-def _trailing_rise(st: _SwingStep, p: np.ndarray, hip: np.ndarray) -> np.ndarray:
+def _trailing_rise(st: _SwingStep, p: np.ndarray, hip: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The pre-swing roll's pitches ``p`` (m,) (from :func:`_roll_pitch`) as far as the foot
     trails its hip ``hip`` (m, 3) as the reference's does: the reference's heel rise beyond
     the step's starting pitch in proportion to the foot's distance behind the hip along the
@@ -437,74 +422,6 @@ def _roll_pitch(fr: StepFrames, ref: ReferenceGait, ph: np.ndarray) -> np.ndarra
         p0 = soft_flat(np.minimum(ref("pitch", 0.5), 0.0))
         p = p + min(fr.p_start - p0, 0.0) * (1 - smoothstep(ph / TOE_OFF))
     return p
-
-
-@njit
-def thigh_kept(f, hf, kf, L1, L2, knee_min, kept):
-    """The swing leg's hip-to-ankle drop (metres) and shank turn (radians) for an ankle
-    ``f`` metres ahead of its hip along the foot's heading, at the reference's thigh and knee
-    angles ``hf``, ``kf`` (radians) of that gait-cycle instant (thigh ``L1``, shank ``L2``,
-    metres). At or behind the reference's own ankle: the reference leg (drop ``L1 cos hf +
-    L2 cos(hf - kf)``, turn 0). Ahead of it (a foot starting near or under its hip: a first
-    step, a short or closing step) the thigh keeps the reference's flexion and the shank
-    turns forward to reach the ankle (the knee flexes less than the reference's, so the
-    ankle hangs lower); where even the knee at ``min(kf, knee_min)`` cannot reach it, the
-    thigh flexes further, only as far as that reach needs. Weighted by ``kept`` (0: the
-    reference leg, 1: the kept thigh): how far the foot did not trail its hip at toe-off as
-    the reference's (:func:`_trailing_rise`'s share), so a normal stride keeps the reference
-    swing and a foot from under its hip the reference thigh. Used by both swing twins
-    (:func:`_reference_swing`, :func:`~mjwalk.body.legs.swing._swing_late`).
-
-    Returns:
-        (drop, turn): the drop below the hip, metres; the shank's turn forward from the
-        reference's, radians (>= 0), which the foot's pitch takes too (the reference's ankle
-        angle kept).
-    """
-    sig_ref = hf - kf
-    drop_ref = L1 * math.cos(hf) + L2 * math.cos(sig_ref)
-    if not f > L1 * math.sin(hf) + L2 * math.sin(sig_ref):
-        return drop_ref, 0.0
-    k_lo = min(kf, knee_min)
-    h = hf
-    x = (f - L1 * math.sin(h)) / L2
-    if x > math.sin(h - k_lo):  # the thigh flexes as far as the reach needs
-        a, b = L1 + L2 * math.cos(k_lo), L2 * math.sin(k_lo)
-        h = math.atan2(b, a) + math.asin(min(f / math.sqrt(a * a + b * b), 1.0))
-        sig = h - k_lo
-    else:
-        sig = math.asin(max(x, -1.0))
-    drop = L1 * math.cos(h) + L2 * math.cos(sig)
-    return drop_ref + kept * (drop - drop_ref), kept * max(sig - sig_ref, 0.0)
-
-
-@njit
-def swing_pitch(pv, turn, hf, kf, z, front, ah, kept):
-    """The swing foot's pitch after toe-off (radians, + toes up) at one sample: the reference's
-    ``pv`` turned with the shank by ``turn`` (:func:`thigh_kept`; the reference's ankle angle
-    kept) and clamped to :data:`PITCH_LO`-:data:`PITCH_HI`, raised (the ankle dorsiflexed) as
-    far as the rigid foot's toe tip (``front`` ahead of the ankle, ``ah`` below it, metres)
-    then clears the floor by :data:`SWING_TOE_CLEARANCE` with the ankle at height ``z`` (m),
-    at most to :data:`SWING_DORSI` of dorsiflexion from the shank (``hf - kf + turn`` from the
-    vertical): the ankle clears the toes before the hip and knee must lift the foot (Moosabhoy
-    & Gard 2006; the floor lift after the spline, :func:`_clear_floor`, does the rest); that
-    raise weighted by ``kept`` as :func:`thigh_kept`'s (the reference's pitch where 0)."""
-    p = min(max(pv + turn, PITCH_LO), PITCH_HI)
-    r = math.sqrt(front * front + ah * ah)
-    need = math.atan2(ah, front) + math.asin(min(max((SWING_TOE_CLEARANCE - z) / r, -1.0), 1.0))
-    return p + kept * (max(p, min(need, hf - kf + turn + SWING_DORSI)) - p)
-
-
-@njit
-def _reference_rows(f, hf, kf, pv, z_hip, L1, L2, knee_min, front, ah, kept):
-    """:func:`thigh_kept` and :func:`swing_pitch` per row of ``f``, ``hf``, ``kf``, ``pv``,
-    ``z_hip`` (m,): (ankle height (m,), pitch (m,))."""
-    m = f.shape[0]
-    z, pit = np.empty(m), np.empty(m)
-    for i in range(m):
-        drop, turn = thigh_kept(f[i], hf[i], kf[i], L1, L2, knee_min, kept)
-        z[i] = z_hip[i] - drop
-        pit[i] = swing_pitch(pv[i], turn, hf[i], kf[i], z[i], front, ah, kept)
-    return z, pit
 
 
 def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple):
@@ -560,9 +477,9 @@ def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple)
     off = (hip - chord) @ nrm
     xy = chord + (off * np.sin(np.pi * s))[:, None] * nrm
     # the height: the reference leg's where the foot is at or behind the reference's ankle,
-    # else the reference thigh with the shank turned forward to the foot (thigh_kept)
+    # else the reference thigh with the shank turned forward to the foot (swingthigh.thigh_kept)
     f = (xy[:, 0] - hip[:, 0]) * heading[:, 0] + (xy[:, 1] - hip[:, 1]) * heading[:, 1]
-    z, ref_pit = _reference_rows(f, hf, kf, ref("pitch", c), st.z_hip[jl], L1, L2,
+    z, ref_pit = reference_rows(f, hf, kf, ref("pitch", c), st.z_hip[jl], L1, L2,
                                  float(KNEE_MIN), float(geom.foot_front),
                                  float(geom.ankle_height), kept)  # fmt: skip
     return np.column_stack([xy, z]), ref_pit
@@ -572,7 +489,7 @@ def _swing_path(st: _SwingStep, pos, p, early, yaw, kept: float) -> None:
     """The swing after toe-off into ``pos`` and ``p`` (in place, where not ``early``): the
     reference swing plus a clamped cubic-spline displacement through the key positions;
     ``kept`` (0 to 1) how far a foot ahead of the reference's ankle hangs from the reference
-    thigh (:func:`thigh_kept`)."""
+    thigh (:func:`~.swingthigh.thigh_kept`)."""
     phi, geom, late = st.phi, st.geom, ~early
     je = np.flatnonzero(early)[-2:]
     h = float(phi[je[1]] - phi[je[0]])

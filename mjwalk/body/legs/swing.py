@@ -13,7 +13,8 @@ frame, metres, radians; a foot's pitch + toes up.
 numba caches this module's machine code by its own source, not by the compiled functions it
 calls from other modules (``footpivot.heel_rise_rows``, ``footpivot.pivot_rows``,
 ``curves.clamped_cubic_rows`` and the one-value shapes such as ``curves.smoothstep1``,
-``reference.ppoly_at``): change a comment here when those change.
+``reference.ppoly_at``, ``swingthigh.thigh_kept`` and ``swingthigh.swing_pitch``): change a
+comment here when those change.
 """
 
 from __future__ import annotations
@@ -45,10 +46,9 @@ from mjwalk.body.legs.steps import (
     SWING_TURNED,
     TOE_OFF,
     StepFrames,
-    swing_pitch,
-    thigh_kept,
     toe_straighten_share,
 )
+from mjwalk.body.legs.swingthigh import swing_pitch, thigh_kept
 from mjwalk.conventions import SAMPLE_RATE_HZ
 
 #: How the pre-swing roll starts (:func:`~.steps.swing_foot`'s ``roll_pitch``): the walk's
@@ -228,7 +228,7 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
     swing (the reference hip/knee angles of each gait-cycle instant at the current hip, along
     the chord from the lift-off to the landing footprint, under the hip sideways; a foot
     ahead of the reference's ankle hangs from the reference thigh as far as ``kept``,
-    :func:`~.steps.thigh_kept`) plus
+    :func:`~.swingthigh.thigh_kept`) plus
     clamped cubic-spline displacements to the key positions at :data:`SWING_KEYS` (``land2``
     the landing footprint as a (1, 3) row)."""
     n = phi.shape[0]
