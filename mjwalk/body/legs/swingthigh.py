@@ -41,19 +41,27 @@ SWING_DORSI = 0.0
 
 @njit
 def thigh_kept(f, hf, kf, L1, L2, knee_min, kept):
-    """The swing leg's hip-to-ankle drop (metres) and shank turn (radians) for an ankle
-    ``f`` metres ahead of its hip along the foot's heading, at the reference's thigh and knee
-    angles ``hf``, ``kf`` (radians) of that gait-cycle instant (thigh ``L1``, shank ``L2``,
-    metres). At or behind the reference's own ankle: the reference leg (drop ``L1 cos hf +
+    """The swing leg's hip-to-ankle drop and shank turn for an ankle ``f`` ahead of its hip
+    at the reference's thigh and knee angles of that gait-cycle instant. At or behind the
+    reference's own ankle: the reference leg (drop ``L1 cos hf +
     L2 cos(hf - kf)``, turn 0). Ahead of it (a foot starting near or under its hip: a first
     step, a short or closing step) the thigh keeps the reference's flexion and the shank
     turns forward to reach the ankle (the knee flexes less than the reference's, so the
     ankle hangs lower); where even the knee at ``min(kf, knee_min)`` cannot reach it, the
     thigh flexes further, only as far as that reach needs. Weighted by ``kept`` (0: the
     reference leg, 1: the kept thigh): how far the foot did not trail its hip at toe-off as
-    the reference's (:func:`~.steps._trailing_rise`'s share), so a normal stride keeps the reference
+    the reference's (the pre-swing's trailing share), so a normal stride keeps the reference
     swing and a foot from under its hip the reference thigh. Used by both swing twins
-    (:func:`~.steps._reference_swing`, :func:`~mjwalk.body.legs.swing._swing_late`).
+    (``steps._reference_swing``, ``swing._swing_late``).
+
+    Args:
+        f: the ankle's distance ahead of the hip along the foot's heading, metres.
+        hf: the reference's thigh flexion at that instant, radians.
+        kf: the reference's knee flexion there, radians.
+        L1: the thigh's length, metres.
+        L2: the shank's length, metres.
+        knee_min: the least knee flexion of a stretched leg, radians.
+        kept: the weight of the kept thigh, 0 to 1.
 
     Returns:
         (drop, turn): the drop below the hip, metres; the shank's turn forward from the
@@ -86,8 +94,22 @@ def swing_pitch(pv, turn, hf, kf, z, front, ah, kept):
     then clears the floor by :data:`SWING_TOE_CLEARANCE` with the ankle at height ``z`` (m),
     at most to :data:`SWING_DORSI` of dorsiflexion from the shank (``hf - kf + turn`` from the
     vertical): the ankle clears the toes before the hip and knee must lift the foot (Moosabhoy
-    & Gard 2006; the floor lift after the spline, :func:`~.steps._clear_floor`, does the rest); that
-    raise weighted by ``kept`` as :func:`thigh_kept`'s (the reference's pitch where 0)."""
+    & Gard 2006; the floor lift after the spline, ``steps._clear_floor``, does the rest); that
+    raise weighted by ``kept`` as :func:`thigh_kept`'s (the reference's pitch where 0).
+
+    Args:
+        pv: the reference's foot pitch at that instant, radians.
+        turn: the shank's turn from :func:`thigh_kept`, radians.
+        hf: the reference's thigh flexion, radians.
+        kf: the reference's knee flexion, radians.
+        z: the ankle's height over the floor, metres.
+        front: the toe tip's distance ahead of the ankle along the sole, metres.
+        ah: the ankle's height over the sole, metres.
+        kept: the weight of the raise, 0 to 1.
+
+    Returns:
+        the pitch, radians.
+    """
     p = min(max(pv + turn, PITCH_LO), PITCH_HI)
     r = math.sqrt(front * front + ah * ah)
     need = math.atan2(ah, front) + math.asin(min(max((SWING_TOE_CLEARANCE - z) / r, -1.0), 1.0))
@@ -96,8 +118,24 @@ def swing_pitch(pv, turn, hf, kf, z, front, ah, kept):
 
 @njit
 def reference_rows(f, hf, kf, pv, z_hip, L1, L2, knee_min, front, ah, kept):
-    """:func:`thigh_kept` and :func:`swing_pitch` per row of ``f``, ``hf``, ``kf``, ``pv``,
-    ``z_hip`` (m,): (ankle height (m,), pitch (m,))."""
+    """:func:`thigh_kept` and :func:`swing_pitch` per row (the NumPy swing's form).
+
+    Args:
+        f: (m,) the ankles' distances ahead of the hip, metres.
+        hf: (m,) the reference's thigh flexions, radians.
+        kf: (m,) the reference's knee flexions, radians.
+        pv: (m,) the reference's foot pitches, radians.
+        z_hip: (m,) the pelvis heights, metres.
+        L1: the thigh's length, metres.
+        L2: the shank's length, metres.
+        knee_min: the least knee flexion, radians.
+        front: the toe tip ahead of the ankle, metres.
+        ah: the ankle's height over the sole, metres.
+        kept: the weight of the kept thigh, 0 to 1.
+
+    Returns:
+        (z, pitch): the ankle heights (m,), metres, and pitches (m,), radians.
+    """
     m = f.shape[0]
     z, pit = np.empty(m), np.empty(m)
     for i in range(m):
