@@ -94,3 +94,28 @@ def test_short_steps_do_not_fold_the_swing_thigh_past_the_reference():
     normal = synthetic_walk(n_steps=8)
     peaks = _swing_peaks(normal, legs_from_walk(normal))
     assert (peaks[:, 1] <= peaks[:, 2] + 1e-6).all()
+
+
+def test_first_steps_from_standing_keep_the_reference_thigh():
+    """Seeded (synthetic walks, no draw): a first step lifts a foot from beside the stance
+    foot, under its hip. Its swing hangs from the reference thigh (steps.thigh_kept) and its
+    pre-swing heel rises only as far as the foot trails its hip, so the swing hip's flexion
+    stays within 1.5 deg of the reference's swing peak (27.0 deg): 47.5 / 49.9 / 52.5 deg at
+    0.25 / 0.35 / 0.65 m steps before (e749e69), 27.9-28.0 since. The ankle still clears the
+    floor (the feet's lowest point, MuJoCo's boxes, above -1 mm in mid swing)."""
+    from mjwalk.body.legs import legs_from_walk
+    from mjwalk.body.legs.footcheck import foot_points
+
+    ref = DEFAULT_REFERENCE
+    c = np.linspace(0.5, 1.0, 501)
+    hip_peak = np.rad2deg(max(float(ref("hip", x)) for x in c))
+    for step_len in (0.25, 0.35, None):
+        walk = synthetic_walk(n_steps=6, step_len=step_len) if step_len else synthetic_walk()
+        legs = legs_from_walk(walk)
+        st = walk.steps[0]
+        a, b = st.start, st.end
+        hip = np.rad2deg(legs.angles[f"hip_{st.side[0]}_flex"][a : b + 1].max())
+        assert hip <= hip_peak + 1.5, (step_len, hip)
+        _, _, low = foot_points(legs)
+        ph = legs.phase[a : b + 1]
+        assert low[a : b + 1][(ph > 0.3) & (ph < 0.85)].min() > -1e-3

@@ -27,6 +27,7 @@ from mjwalk.body.legs.curves import (
 from mjwalk.body.legs.footpivot import ball_offset, heel_rise, pivot_ankle, pivot_rows
 from mjwalk.body.legs.ik import KNEE_MIN, ik_lengths, leg_ik_world_row
 from mjwalk.body.legs.reference import ReferenceGait
+from mjwalk.body.legs.swingthigh import reference_rows
 from mjwalk.conventions import SAMPLE_RATE_HZ, side_prefix
 from mjwalk.plan.walkpath import WalkPath
 
@@ -313,7 +314,17 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     at slow speeds and short steps, not grow (Fukuchi, Fukuchi & Duarte, "Effects of walking
     speed on gait biomechanics in healthy participants: a systematic review and
     meta-analysis", Syst. Rev. 8:153, 2019, abstract: the amplitude of joint kinematics
-    decreases at slow speeds).
+    decreases at slow speeds). A first step from standing rolls the same way (its roll faded
+    in from flat, as far as the foot trails).
+
+    After toe-off the swing follows the reference from the current hip, and as far as the foot
+    did not trail its hip at toe-off as the reference's (one minus that share) it hangs from
+    the reference thigh, its knee and ankle following from where the foot is and the toe
+    clearance it needs (:mod:`~.swingthigh`), and its progress along the step never falls
+    further behind its hip than at toe-off. Before (e749e69) the reference ankle height and
+    foot angle, measured from the hip, folded the leg of a foot from under its hip: every
+    first step of the station's runs 0-19 reached 46.5 deg hip flexion median (50.4 max)
+    against the reference's 27 deg peak; now 29.8 (31.2).
 
     Args:
         fr: the step (swing side, lift-off and landing footprints, first step, ``p_start``).
@@ -340,13 +351,18 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     early = phi <= TOE_OFF
     p[early] = _roll_pitch(fr, ref, phi[early])
     phi_to = TOE_OFF
-    if not fr.first:
+    if fr.first:
+        # from standing: the roll faded in, as far as the foot trails as the reference's
+        je = np.flatnonzero(early)
+        p[je], share = _trailing_rise(st, p[je], hip_pos(idx[je], fr.side, z_hip[je]))
+    else:
         # pre-swing: the knee follows the reference; the heel rises as far as that needs and
         # at least as the reference's does as far as the foot trails as its does (see above)
         je = np.flatnonzero(early)
         hip = hip_pos(idx[je], fr.side, z_hip[je])
         knee = np.maximum(ref("knee", 0.5 + 0.5 * phi[je]), float(KNEE_MIN))
-        p[je] = heel_rise(lift, hip, knee, _trailing_rise(st, p[je], hip), geom, lo=-HEEL_RISE_MAX)
+        p0, share = _trailing_rise(st, p[je], hip)
+        p[je] = heel_rise(lift, hip, knee, p0, geom, lo=-HEEL_RISE_MAX)
         held = np.flatnonzero(p[je] <= -HEEL_RISE_MAX + 1e-9)
         if len(held) and held[0] >= 1:  # (two samples on the floor give the lift-off velocity)
             phi_to = float(phi[je[held[0]]])
@@ -354,7 +370,9 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     pos[early] = pivot_ankle(lift, p[early], geom)
     late = ~early
     if late.any():
-        _swing_path(st, pos, p, early, yaw)
+        # how far the swing departs from the reference's: as far as the foot did not trail
+        # its hip as the reference's at toe-off (swingthigh.thigh_kept)
+        _swing_path(st, pos, p, early, yaw, 1.0 - float(share[int(np.count_nonzero(early)) - 1]))
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[early][-1] if early.any() else 0.0
     share = toe_straighten_share(p_end, (fr.end - fr.start) / SAMPLE_RATE_HZ, phi_to)
@@ -383,12 +401,12 @@ def toe_straighten_share(p_end: float, duration: float, phi_to: float) -> float:
     return max(min(max(TOE_STRAIGHTEN, need), 1.0 - phi_to), 1e-9)
 
 
-def _trailing_rise(st: _SwingStep, p: np.ndarray, hip: np.ndarray) -> np.ndarray:
+def _trailing_rise(st: _SwingStep, p: np.ndarray, hip: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The pre-swing roll's pitches ``p`` (m,) (from :func:`_roll_pitch`) as far as the foot
     trails its hip ``hip`` (m, 3) as the reference's does: the reference's heel rise beyond
     the step's starting pitch in proportion to the foot's distance behind the hip along the
     step over the reference ankle's behind its hip at that instant, all of it from that
-    distance on (see :func:`swing_foot`)."""
+    distance on (see :func:`swing_foot`); and that share (m,), 0 to 1."""
     fr, ref, geom = st.fr, st.ref, st.geom
     lift, land = fr.lift, fr.land
     seg = land[:2] - lift[:2]
@@ -399,7 +417,7 @@ def _trailing_rise(st: _SwingStep, p: np.ndarray, hip: np.ndarray) -> np.ndarray
     trail = ((hip[:, 0] - lift[0]) * seg[0] + (hip[:, 1] - lift[1]) * seg[1]) / seg_n
     with np.errstate(divide="ignore", invalid="ignore"):
         share = np.where(behind > 0, np.minimum(np.maximum(trail / behind, 0.0), 1.0), 1.0)
-    return np.where(share >= 1.0, p, p[0] + (p - p[0]) * share)
+    return np.where(share >= 1.0, p, p[0] + (p - p[0]) * share), share
 
 
 def _roll_pitch(fr: StepFrames, ref: ReferenceGait, ph: np.ndarray) -> np.ndarray:
@@ -420,17 +438,18 @@ def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple)
     """The reference swing at samples ``jl`` after toe-off: the reference hip/knee angles of
     each gait-cycle instant placed at the current hip (forward progress and height), along
     the line from the lift-off to the landing footprint, never behind the toe-off ankle going
-    on at its toe-off velocity (``to``: its phase, position (3,) and velocity (3,) per unit
-    phase); returns the ankle (m, 3) and the clipped reference pitch (m,)."""
+    on at its toe-off velocity nor further behind its hip than then (``to``: its phase,
+    position (3,) and velocity (3,) per unit phase, the hip's (x, y) and the foot's yaw
+    there); returns the ankle (m, 3) and the clipped reference pitch (m,)."""
     fr, phi, ref, geom = st.fr, st.phi, st.ref, st.geom
     L1, L2 = geom.thigh, geom.shank
     lift, land, sw = fr.lift, fr.land, fr.side
     c = 0.5 + 0.5 * phi[jl]
     hf, kf = ref("hip", c), ref("knee", c)
     fwd = L1 * np.sin(hf) + L2 * np.sin(hf - kf)
-    down = L1 * np.cos(hf) + L2 * np.cos(hf - kf)
     heading = np.column_stack([np.cos(yaw[jl]), np.sin(yaw[jl])])
-    target = st.hip_pos(st.idx[jl], sw) + fwd[:, None] * heading
+    hip = st.hip_pos(st.idx[jl], sw)
+    target = hip + fwd[:, None] * heading
     seg = land[:2] - lift[:2]
     # progress along the chord, clamped to the footprints softly (C1): a hard clamp where
     # the reference passes the landing footprint (short steps) kinks the ankle's path; it
@@ -445,25 +464,42 @@ def _reference_swing(st: _SwingStep, jl: np.ndarray, yaw: np.ndarray, to: tuple)
     # forward heel and toe trajectories through swing quoted from memory, not checked)
     seg_sq = max(float(seg @ seg), 1e-9)
     s = soft_clip01((target - lift[:2]) @ seg / seg_sq, 0.1)
-    phi_to, a_to, v_to = to
+    phi_to, a_to, v_to, hip_to, yaw_to, kept = to
     u_to = float((a_to[:2] - lift[:2]) @ seg) / seg_sq
     du_to = max(float(v_to[:2] @ seg) / seg_sq, 0.0)
-    s_to = soft_clip01(u_to + du_to * (phi[jl] - phi_to), 0.1)
+    # nor does it fall further behind its hip than at toe-off: the reference's ankle comes
+    # forward on its hip from toe-off to late swing (cycle 60-90 %), and a foot that started
+    # under its hip (a first step, where the reference's own progress starts behind the
+    # lift-off footprint) would otherwise hang there, its thigh flexing over it, and then
+    # sweep the whole step at once
+    f_to = (a_to[0] - hip_to[0]) * math.cos(yaw_to) + (a_to[1] - hip_to[1]) * math.sin(yaw_to)
+    u_h = (
+        (hip[:, 0] + f_to * heading[:, 0] - lift[0]) * seg[0]
+        + (hip[:, 1] + f_to * heading[:, 1] - lift[1]) * seg[1]
+    ) / seg_sq
+    u_lin = u_to + du_to * (phi[jl] - phi_to)
+    s_to = soft_clip01(np.maximum(u_lin, u_lin + kept * (u_h - u_lin)), 0.1)
     s = np.maximum.accumulate(soft_max(s, s_to, PROGRESS_BLEND))
     chord = lift[:2] + s[:, None] * seg
     # sideways, the foot swings under its hip: where the step turns, the hip's track bends
     # away from the chord (and from an inner corner the pelvis was planned clear of)
     nrm = np.array([-seg[1], seg[0]]) / max(float(np.linalg.norm(seg)), 1e-9)
-    off = (st.hip_pos(st.idx[jl], sw) - chord) @ nrm
+    off = (hip - chord) @ nrm
     xy = chord + (off * np.sin(np.pi * s))[:, None] * nrm
-    ref_pos = np.column_stack([xy, st.z_hip[jl] - down])
-    ref_pit = np.clip(ref("pitch", c), np.deg2rad(-70), np.deg2rad(30))
-    return ref_pos, ref_pit
+    # the height: the reference leg's where the foot is at or behind the reference's ankle,
+    # else the reference thigh with the shank turned forward to the foot (swingthigh.thigh_kept)
+    f = (xy[:, 0] - hip[:, 0]) * heading[:, 0] + (xy[:, 1] - hip[:, 1]) * heading[:, 1]
+    z, ref_pit = reference_rows(f, hf, kf, ref("pitch", c), st.z_hip[jl], L1, L2,
+                                 float(KNEE_MIN), float(geom.foot_front),
+                                 float(geom.ankle_height), kept)  # fmt: skip
+    return np.column_stack([xy, z]), ref_pit
 
 
-def _swing_path(st: _SwingStep, pos, p, early, yaw) -> None:
+def _swing_path(st: _SwingStep, pos, p, early, yaw, kept: float) -> None:
     """The swing after toe-off into ``pos`` and ``p`` (in place, where not ``early``): the
-    reference swing plus a clamped cubic-spline displacement through the key positions."""
+    reference swing plus a clamped cubic-spline displacement through the key positions;
+    ``kept`` (0 to 1) how far a foot ahead of the reference's ankle hangs from the reference
+    thigh (:func:`~.swingthigh.thigh_kept`)."""
     phi, geom, late = st.phi, st.geom, ~early
     je = np.flatnonzero(early)[-2:]
     h = float(phi[je[1]] - phi[je[0]])
@@ -471,7 +507,9 @@ def _swing_path(st: _SwingStep, pos, p, early, yaw) -> None:
     a0 = pos[je[::-1]]
     v0 = (a0[0] - a0[1]) / h
     jl = np.flatnonzero(late)
-    ref_pos, ref_pit = _reference_swing(st, jl, yaw, (float(phi[je[1]]), a0[0], v0))
+    hip_to = st.hip_pos(st.idx[je[1:]], st.fr.side)[0]
+    to = (float(phi[je[1]]), a0[0], v0, hip_to, float(yaw[je[1]]), kept)
+    ref_pos, ref_pit = _reference_swing(st, jl, yaw, to)
     # key positions at SWING_KEYS: the reference, lifted where the ankle would be lower
     # than standing height; the reference shape is kept between the keys and the
     # boundaries (lift-off state at toe-off, the landing pose with zero velocity) by a

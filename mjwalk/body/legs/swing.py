@@ -13,7 +13,8 @@ frame, metres, radians; a foot's pitch + toes up.
 numba caches this module's machine code by its own source, not by the compiled functions it
 calls from other modules (``footpivot.heel_rise_rows``, ``footpivot.pivot_rows``,
 ``curves.clamped_cubic_rows`` and the one-value shapes such as ``curves.smoothstep1``,
-``reference.ppoly_at``): change a comment here when those change.
+``reference.ppoly_at``, ``swingthigh.thigh_kept`` and ``swingthigh.swing_pitch``): change a
+comment here when those change.
 """
 
 from __future__ import annotations
@@ -47,10 +48,8 @@ from mjwalk.body.legs.steps import (
     StepFrames,
     toe_straighten_share,
 )
+from mjwalk.body.legs.swingthigh import swing_pitch, thigh_kept
 from mjwalk.conventions import SAMPLE_RATE_HZ
-
-#: The reference pitch's clamp in the swing (radians): :func:`~.steps.swing_foot`'s.
-PITCH_LO, PITCH_HI = float(np.deg2rad(-70)), float(np.deg2rad(30))
 
 #: How the pre-swing roll starts (:func:`~.steps.swing_foot`'s ``roll_pitch``): the walk's
 #: first step (from standing, flat), a step after one whose stance raised the heel further
@@ -174,7 +173,24 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
             q = q + p_pre * (1 - smoothstep1(ph / TOE_OFF))
         p[i] = q
     phi_to = TOE_OFF
-    if mode != ROLL_FIRST and ne > 0:
+    p0 = np.empty(ne)
+    shares = np.empty(ne)
+    # the reference's heel rise as far as the foot trails its hip as the reference's
+    # (steps._trailing_rise); from standing that is the whole roll
+    seg_n = math.sqrt(seg_sq)
+    for i in range(ne):
+        c = wrap01(0.5 + 0.5 * phi[i])
+        hf = ppoly_at(hip_c, hip_k, c, 0)
+        kf = ppoly_at(knee_c, knee_k, c, 0)
+        behind = -(L1 * math.sin(hf) + L2 * math.sin(hf - kf))
+        trail = ((hip_xy[i, 0] - lift[0]) * seg[0] + (hip_xy[i, 1] - lift[1]) * seg[1]) / seg_n
+        share = min(max(trail / behind, 0.0), 1.0) if behind > 0 else 1.0
+        shares[i] = share
+        p0[i] = p[i] if share >= 1.0 else p[0] + (p[i] - p[0]) * share
+    if mode == ROLL_FIRST:
+        for i in range(ne):
+            p[i] = p0[i]
+    elif ne > 0:
         # the knee follows the reference; the heel rises as far as that needs
         hip = np.empty((ne, 3))
         d = np.empty(ne)
@@ -183,18 +199,6 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
             kv = maximum1(ppoly_at(knee_c, knee_k, wrap01(0.5 + 0.5 * phi[i]), 0), knee_min)
             d[i] = math.sqrt(span0 + span1 * math.cos(kv))
         rise = np.empty(ne)
-        p0 = np.empty(ne)
-        # the reference's heel rise as far as the foot trails its hip as the reference's
-        # (steps._trailing_rise)
-        seg_n = math.sqrt(seg_sq)
-        for i in range(ne):
-            c = wrap01(0.5 + 0.5 * phi[i])
-            hf = ppoly_at(hip_c, hip_k, c, 0)
-            kf = ppoly_at(knee_c, knee_k, c, 0)
-            behind = -(L1 * math.sin(hf) + L2 * math.sin(hf - kf))
-            trail = ((hip_xy[i, 0] - lift[0]) * seg[0] + (hip_xy[i, 1] - lift[1]) * seg[1]) / seg_n
-            share = min(max(trail / behind, 0.0), 1.0) if behind > 0 else 1.0
-            p0[i] = p[i] if share >= 1.0 else p[0] + (p[i] - p[0]) * share
         heel_rise_rows(lift, hip, d, p0, ball, back, ah, -HEEL_RISE_MAX, rise)
         for i in range(ne):  # (element loops: no shape checks to compile)
             p[i] = rise[i]
@@ -210,9 +214,10 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
                 ne += 1
     pivot_rows(lift2, p[:ne], ball, back, ah, pos[:ne])
     if ne < n:
+        kept = 1.0 - shares[ne - 1] if ne > 0 else 0.0  # (steps.swing_foot's)
         _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k, knee_c,
-                    knee_k, pitch_c, pitch_k, L1, L2, ball, back, ah, land_p, ne, yaw, pos,
-                    p)  # fmt: skip
+                    knee_k, pitch_c, pitch_k, L1, L2, knee_min, ball, back, front, ah, land_p,
+                    ne, yaw, pos, p, kept)  # fmt: skip
     # the toes stay flat during the roll-off, then straighten while the foot lifts
     p_end = p[ne - 1] if ne > 0 else 0.0
     share = toe_straighten_share(p_end, duration, phi_to)
@@ -235,10 +240,13 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
 
 @njit
 def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k, knee_c, knee_k,
-                pitch_c, pitch_k, L1, L2, ball, back, ah, land_p, ne, yaw, pos, p):  # fmt: skip
+                pitch_c, pitch_k, L1, L2, knee_min, ball, back, front, ah, land_p, ne, yaw,
+                pos, p, kept):  # fmt: skip
     """The swing after toe-off (samples ``ne`` on) into ``pos`` and ``p``: the reference
     swing (the reference hip/knee angles of each gait-cycle instant at the current hip, along
-    the chord from the lift-off to the landing footprint, under the hip sideways) plus
+    the chord from the lift-off to the landing footprint, under the hip sideways; a foot
+    ahead of the reference's ankle hangs from the reference thigh as far as ``kept``,
+    :func:`~.swingthigh.thigh_kept`) plus
     clamped cubic-spline displacements to the key positions at :data:`SWING_KEYS` (``land2``
     the landing footprint as a (1, 3) row)."""
     n = phi.shape[0]
@@ -255,6 +263,11 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
     # along the chord (see steps._reference_swing)
     u_to = fma(pos[ne - 1, 0] - lift[0], seg[0], (pos[ne - 1, 1] - lift[1]) * seg[1]) / seg_sq
     du_to = max(fma(v0[0], seg[0], v0[1] * seg[1]) / seg_sq, 0.0)
+    # nor further behind its hip than at toe-off (see steps._reference_swing)
+    k0 = ne - 1
+    f_to = (pos[k0, 0] - hip_xy[k0, 0]) * math.cos(yaw[k0]) + (
+        pos[k0, 1] - hip_xy[k0, 1]
+    ) * math.sin(yaw[k0])
     s_run = 0.0  # the progress so far (soft_clip01_1 is never below 0)
     for j in range(m):
         i = ne + j
@@ -262,14 +275,19 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
         hf = ppoly_at(hip_c, hip_k, wrap01(c), 0)
         kf = ppoly_at(knee_c, knee_k, wrap01(c), 0)
         fwd = L1 * math.sin(hf) + L2 * math.sin(hf - kf)
-        down = L1 * math.cos(hf) + L2 * math.cos(hf - kf)
-        t0 = hip_xy[i, 0] + fwd * math.cos(yaw[i])
-        t1 = hip_xy[i, 1] + fwd * math.sin(yaw[i])
+        cy, sy = math.cos(yaw[i]), math.sin(yaw[i])
+        t0 = hip_xy[i, 0] + fwd * cy
+        t1 = hip_xy[i, 1] + fwd * sy
         # progress along the chord, clamped softly (C1), never decreasing and never behind
         # the toe-off ankle's going on (see steps._reference_swing); numpy's (m, 2) @ (2,) is
         # OpenBLAS's
         s = soft_clip01_1(fma(t0 - lift[0], seg[0], (t1 - lift[1]) * seg[1]) / seg_sq, 0.1)
-        s_to = soft_clip01_1(u_to + du_to * (phi[i] - phi[ne - 1]), 0.1)
+        u_h = (
+            (hip_xy[i, 0] + f_to * cy - lift[0]) * seg[0]
+            + (hip_xy[i, 1] + f_to * sy - lift[1]) * seg[1]
+        ) / seg_sq
+        u_lin = u_to + du_to * (phi[i] - phi[ne - 1])
+        s_to = soft_clip01_1(max(u_lin, u_lin + kept * (u_h - u_lin)), 0.1)
         s = max(soft_max1(s, s_to, PROGRESS_BLEND), s_run)
         s_run = s
         ch0 = lift[0] + s * seg[0]
@@ -278,9 +296,12 @@ def _swing_late(phi, hip_xy, z_hip, lift, land2, seg, seg_sq, nrm, hip_c, hip_k,
         w = off * math.sin(np.pi * s)
         ref_pos[j, 0] = ch0 + w * nrm[0]
         ref_pos[j, 1] = ch1 + w * nrm[1]
+        # the reference leg, or the reference thigh over a foot ahead of its ankle
+        f = (ref_pos[j, 0] - hip_xy[i, 0]) * cy + (ref_pos[j, 1] - hip_xy[i, 1]) * sy
+        down, turn = thigh_kept(f, hf, kf, L1, L2, knee_min, kept)
         ref_pos[j, 2] = z_hip[i] - down
         pv = ppoly_at(pitch_c, pitch_k, wrap01(c), 0)
-        ref_pit[j] = min(max(pv, PITCH_LO), PITCH_HI)
+        ref_pit[j] = swing_pitch(pv, turn, hf, kf, ref_pos[j, 2], front, ah, kept)
     # knots: the toe-off sample, the swing samples nearest the keys, the landing
     nk = len(SWING_KEYS) + 1
     knots = np.empty(nk)

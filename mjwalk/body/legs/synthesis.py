@@ -21,7 +21,9 @@ footprint to ``step.foot`` while the other stands on ``step.stance``), with the 
   cubic spline through key positions at ``phi`` = 0.2, 0.4, 0.6, 0.8, 0.9: the reference
   hip/knee angles of that gait-cycle instant placed at the current hip (forward progress and
   height), kept on the line from the lift-off to the landing footprint, lifted where the foot
-  would touch the floor; zero velocity at the landing (``phi = 1``), heel first.
+  would touch the floor; zero velocity at the landing (``phi = 1``), heel first. A foot that
+  did not trail its hip as the reference's at toe-off (a first step, a short step) hangs from
+  the reference thigh instead, as far as it did not (:mod:`~.swingthigh`).
 * **Feet.** The foot pitch (toes up +) follows the reference: heel strike and roll-down about
   the heel, flat, heel rise and roll-off about the ball. Pivots stay put on the floor.
 * **IK.** Hip (rotation, flexion, abduction), knee, ankle (flexion, inversion) from an analytic
