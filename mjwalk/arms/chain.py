@@ -12,6 +12,7 @@ from scipy.spatial.transform import Rotation
 
 from mjwalk._jit import njit
 from mjwalk.anthropometry import ROM_DEG
+from mjwalk.arms.anglerows import fill_angles, frame_terms, hand_terms, ik_rows, upper_x
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 
 #: Anthropometric segment lengths as shares of stature H (Winter): upper arm, forearm, hand.
@@ -107,24 +108,14 @@ def two_link_ik_rows(
     Returns:
         ``(upper, fore)`` (n, 3) unit directions.
     """
-    target = np.asarray(target, dtype=float)
-    hint = np.asarray(elbow_hint, dtype=float)
-    norm = np.sqrt(_dot(target, target))
-    d = np.clip(norm, abs(l1 - l2) + 1e-6, l1 + l2 - 1e-6)
-    axis = target / np.maximum(norm, 1e-9)[:, None]
-    perp = hint - _dot(hint, axis)[:, None] * axis
-    bad = np.sqrt(_dot(perp, perp)) < 1e-9
-    if bad.any():  # a hint along the axis: any perpendicular, from y (or x)
-        alt = np.cross(axis[bad], [0.0, 1.0, 0.0])
-        flat = np.sqrt(_dot(alt, alt)) < 1e-9
-        alt[flat] = np.cross(axis[bad][flat], [1.0, 0.0, 0.0])
-        perp[bad] = alt
-    perp = perp / np.sqrt(_dot(perp, perp))[:, None]
-    a = (l1**2 - l2**2 + d**2) / (2 * d)
-    h = np.sqrt(np.maximum(l1**2 - a**2, 0.0))
-    elbow = a[:, None] * axis + h[:, None] * perp
-    wrist = d[:, None] * axis
-    return elbow / l1, (wrist - elbow) / l2
+    target = np.ascontiguousarray(target, dtype=float)
+    hint = np.ascontiguousarray(elbow_hint, dtype=float)
+    upper, fore = np.empty_like(target), np.empty_like(target)
+    # (compiled, the NumPy arithmetic it replaced row by row: mjwalk.arms.anglerows; the
+    # scalars as that code formed them)
+    lo, hi = abs(l1 - l2) + 1e-6, l1 + l2 - 1e-6
+    ik_rows(target, hint, l1, l2, lo, hi, l1**2 - l2**2, l1**2, upper, fore)
+    return upper, fore
 
 
 #: Joint names of one arm of the mjwalk humanoid (mjwalk.body.humanoid), in output order.
@@ -204,40 +195,43 @@ def arm_joint_angles(
         (n, 7) joint angles, radians, :data:`ARM_JOINTS` order.
     """
     s = 1.0 if side == "left" else -1.0
-    U = np.asarray(directions, dtype=float)
+    U = np.ascontiguousarray(directions, dtype=float)
     n = len(U)
     q = np.zeros((n, 7))
-    u1, u2 = U[:, 0], U[:, 1]
-    z = -u1
+    # (the sums, products and clips compiled, the NumPy arithmetic they replaced row by row,
+    # the inverse trigonometric functions NumPy's: mjwalk.arms.anglerows)
     # the upper arm's x axis: the forearm's part perpendicular to the upper arm (all frames
     # at once); where the elbow is straight it is carried over from the previous frame
-    x = u2 - _dot(u2, u1)[:, None] * u1
-    norm = np.linalg.norm(x, axis=1)
-    straight = norm < 1e-3
-    x[~straight] /= norm[~straight, None]
-    for t in np.flatnonzero(straight):  # rare, and each depends on the frame before
-        xt = x[t - 1] if t > 0 and not independent else np.array([1.0, 0.0, 0.0])
-        xt = xt - (xt @ z[t]) * z[t]
-        x[t] = xt / np.linalg.norm(xt)
-    y = _cross(z, x)
-    r_sh = np.stack([x, y, z], axis=-1)  # (n, 3, 3), columns x, y, z
-    a, b, c = _shoulder_branch(*_euler_yxz(r_sh), s)
-    elbow = np.arccos(np.clip(_dot(u1, u2), -1, 1))
+    x, straight = np.empty((n, 3)), np.empty(n, dtype=np.bool_)
+    upper_x(U, x, straight)
+    if straight.any():
+        z = -U[:, 0]
+        for t in np.flatnonzero(straight):  # rare, and each depends on the frame before
+            xt = x[t - 1] if t > 0 and not independent else np.array([1.0, 0.0, 0.0])
+            xt = xt - (xt @ z[t]) * z[t]
+            x[t] = xt / np.linalg.norm(xt)
+    y, terms, lock = np.empty((n, 3)), np.empty((6, n)), np.empty(n, dtype=np.bool_)
+    frame_terms(U, x, y, terms, lock, _GIMBAL)
+    # the shoulder frame R_sh = [x y z] (z = -upper arm) as intrinsic Y-X-Z angles
+    # (scipy's ``as_euler("YXZ")`` written out; near gimbal lock scipy decomposes those frames)
+    b = np.arcsin(terms[0])
+    a = np.arctan2(terms[1], terms[2])
+    c = np.arctan2(terms[3], terms[4])
+    if lock.any():
+        r_sh = np.stack([x, y, -U[:, 0]], axis=-1)  # (n, 3, 3), columns x, y, z
+        a[lock], b[lock], c[lock] = Rotation.from_matrix(r_sh[lock]).as_euler("YXZ").T
+    a, b, c = _shoulder_branch(a, b, c, s)
+    elbow = np.arccos(terms[5])
     pron = np.zeros(n) if roll is None else np.asarray(roll, dtype=float)[:n]
-    q[:, 0], q[:, 1], q[:, 2], q[:, 3], q[:, 4] = -a, s * b, -s * c, elbow, pron
+    fill_angles(q, a, b, c, elbow, np.ascontiguousarray(pron), s, n > 1 and not independent)
     if U.shape[1] > 2:
         # the hand in the forearm frame R_sh Ry(-elbow) Rz(-s pron): rotate back step by step
-        h = np.einsum("nji,nj->ni", r_sh, U[:, 2])  # R_sh^T u3
+        wrist = np.empty((3, n))
         ce, se = np.cos(-elbow), np.sin(-elbow)
-        h = np.column_stack([ce * h[:, 0] - se * h[:, 2], h[:, 1], se * h[:, 0] + ce * h[:, 2]])
         cp, sp = np.cos(-s * pron), np.sin(-s * pron)
-        h = np.column_stack([cp * h[:, 0] + sp * h[:, 1], -sp * h[:, 0] + cp * h[:, 1], h[:, 2]])
-        beta = np.arcsin(np.clip(h[:, 1], -1, 1))
-        q[:, 5] = np.arctan2(h[:, 0], -h[:, 2])
-        q[:, 6] = s * beta
-    if n > 1 and not independent:  # (one frame: nothing to unwrap)
-        q[:, 0] = np.unwrap(q[:, 0])
-        q[:, 2] = np.unwrap(q[:, 2])
+        hand_terms(U, x, y, ce, se, np.ascontiguousarray(cp), np.ascontiguousarray(sp), wrist)
+        q[:, 5] = np.arctan2(wrist[1], wrist[2])
+        q[:, 6] = s * np.arcsin(wrist[0])
     return q
 
 
