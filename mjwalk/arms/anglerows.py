@@ -1,7 +1,8 @@
 """Compiled row arithmetic of the arm kinematics in :mod:`mjwalk.arms.chain` (issue 50): the
 two-link IK (:func:`ik_rows`), and the sums, products, clips and branch choices of
 :func:`~mjwalk.arms.chain.arm_joint_angles` between its inverse trigonometric functions
-(:func:`frame_terms`, :func:`hand_terms`, :func:`fill_angles`, :func:`unwrap_col`).
+(:func:`frame_terms`, :func:`hand_terms`, :func:`fill_angles`, :func:`unwrap_col`); and
+the evenly spaced samples the per-reach code asks for again and again (:func:`unit_steps`).
 
 Each kernel does the NumPy code it replaced element by element in the same order (row-wise
 dot products summed left to right, ``np.einsum``'s sum from 0, ``np.clip``'s and
@@ -16,6 +17,8 @@ Frames and units as in :mod:`mjwalk.arms.chain`: the shoulder's thorax frame, me
 """
 
 from __future__ import annotations
+
+import functools
 
 import numpy as np
 
@@ -168,3 +171,22 @@ def fill_angles(q, a, b, c, elbow, pron, s, unwrap):
     if unwrap:
         unwrap_col(q, 0)
         unwrap_col(q, 2)
+
+
+@functools.lru_cache(maxsize=512)
+def _unit_steps(n: int) -> np.ndarray:
+    steps = np.linspace(0.0, 1.0, n)
+    steps.flags.writeable = False
+    return steps
+
+
+def unit_steps(n: int) -> np.ndarray:
+    """``np.linspace(0.0, 1.0, n)`` (the same numbers), made once per ``n`` and copied.
+
+    Args:
+        n: the number of samples.
+
+    Returns:
+        (n,) a new array.
+    """
+    return _unit_steps(int(n)).copy()

@@ -12,7 +12,14 @@ from scipy.spatial.transform import Rotation
 
 from mjwalk._jit import njit
 from mjwalk.anthropometry import ROM_DEG
-from mjwalk.arms.anglerows import fill_angles, frame_terms, hand_terms, ik_rows, upper_x
+from mjwalk.arms.anglerows import (
+    fill_angles,
+    frame_terms,
+    hand_terms,
+    ik_rows,
+    unit_steps,
+    upper_x,
+)
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 
 #: Anthropometric segment lengths as shares of stature H (Winter): upper arm, forearm, hand.
@@ -294,14 +301,14 @@ _SHOULDER_RANGES = {
 
 
 def _shoulder_branch(a: np.ndarray, b: np.ndarray, c: np.ndarray, s: float):
-    """The shoulder's Y-X-Z angles (a, b, c) of :func:`_euler_yxz` (whose ``b`` lies within
-    +-90 deg), or per frame the other set for the same rotation, ``(a + pi, sign(b) pi - b,
-    c + pi)``, where that one keeps the joints within their ranges and this one does not: an
-    arm raised sideways above the shoulder (abduction beyond 90 deg) is ``b`` = 120 deg with
-    no flexion or rotation, which the first set writes as 60 deg with flexion and rotation
-    of 180 deg, beyond their ranges (the clipped pose then pointed the arm backwards: a
-    reach to a top shelf ended 1.3 m off). Ranges: :data:`mjwalk.anthropometry.ROM_DEG`;
-    ``s`` +1 for the left arm, -1 for the right (compiled: :func:`_shoulder_branch_rows`)."""
+    """The shoulder's Y-X-Z angles (a, b, c) as :func:`arm_joint_angles` decomposes its frame (``b``
+    within +-90 deg), or per frame the other set for the same rotation, ``(a + pi, sign(b) pi - b, c
+    + pi)``, where that one keeps the joints within their ranges and this one does not: an arm
+    raised sideways above the shoulder (abduction beyond 90 deg) is ``b`` = 120 deg with no flexion
+    or rotation, which the first set writes as 60 deg with flexion and rotation of 180 deg, beyond
+    their ranges (the clipped pose then pointed the arm backwards: a reach to a top shelf ended 1.3
+    m off). Ranges: :data:`mjwalk.anthropometry.ROM_DEG`; ``s`` +1 for the left arm, -1 for the
+    right (compiled: :func:`_shoulder_branch_rows`)."""
     a = np.ascontiguousarray(a, dtype=float)
     b = np.ascontiguousarray(b, dtype=float)
     c = np.ascontiguousarray(c, dtype=float)
@@ -353,20 +360,6 @@ def _shoulder_branch_rows(a, b, c, s, lim, out):
         out[0, i] = a2 if other else a[i]
         out[1, i] = b2 if other else b[i]
         out[2, i] = c2 if other else c[i]
-
-
-def _euler_yxz(r: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Intrinsic Y-X-Z Euler angles (a, b, c) of rotation matrices ``r`` (n, 3, 3),
-    ``r = Ry(a) Rx(b) Rz(c)``, radians (scipy's ``as_euler("YXZ")`` written out for all
-    frames at once; near gimbal lock scipy decomposes those frames)."""
-    sb = -r[:, 1, 2]
-    b = np.arcsin(np.clip(sb, -1.0, 1.0))
-    a = np.arctan2(r[:, 0, 2], r[:, 2, 2])
-    c = np.arctan2(r[:, 1, 0], r[:, 1, 1])
-    lock = np.abs(sb) > _GIMBAL
-    if lock.any():
-        a[lock], b[lock], c[lock] = Rotation.from_matrix(r[lock]).as_euler("YXZ").T
-    return a, b, c
 
 
 #: Halvings of the blend in :func:`wrist_in_range`'s least-turn search: the hand's direction
@@ -449,6 +442,33 @@ def wrist_in_range(
     return np.stack([u1, u2, hd], axis=1)
 
 
+def arm_ranges(jm, side: Side) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The lower and upper limits (7,) (radians) and ``qpos`` addresses (7,) of ``side``'s
+    :data:`ARM_JOINTS` in joint map ``jm``, looked up once per joint map and kept with it
+    (the per-reach code asks for them in every call; a new ``range`` array is looked up
+    again). Do not write into them.
+
+    Args:
+        jm: the humanoid's joint map.
+        side: "left" or "right".
+
+    Returns:
+        ``(lo, hi, adr)``: float, float and int64 arrays in :data:`ARM_JOINTS` order.
+    """
+    kept = jm.__dict__.setdefault("_arm_ranges", {})
+    hit = kept.get(side)
+    if hit is None or hit[0] is not jm.range or hit[1] is not jm.qposadr:
+        idx = [jm.index(jn) for jn in ARM_JOINT_NAMES[side]]
+        hit = kept[side] = (
+            jm.range,
+            jm.qposadr,
+            np.ascontiguousarray(jm.range[idx, 0], dtype=float),
+            np.ascontiguousarray(jm.range[idx, 1], dtype=float),
+            np.ascontiguousarray(jm.qposadr[idx], dtype=np.int64),
+        )
+    return hit[2], hit[3], hit[4]
+
+
 def arm_frames(
     q0: np.ndarray, jm, q: np.ndarray, side: Side, times: np.ndarray
 ) -> tuple[np.ndarray, list[str]]:
@@ -467,23 +487,13 @@ def arm_frames(
         ``(poses, clipped)``: (m, nq) poses and the names of the clipped joints.
     """
     names = ARM_JOINT_NAMES[side]
-    idx = [jm.index(jn) for jn in names]
-    lo, hi = jm.range[idx, 0], jm.range[idx, 1]
-    src = np.linspace(0.0, 1.0, len(q))
+    lo, hi, adr = arm_ranges(jm, side)
+    src = unit_steps(len(q))
     times = np.ascontiguousarray(times, dtype=float).reshape(-1)
     out = np.repeat(np.asarray(q0)[None], len(times), axis=0)
     bad = np.zeros(len(names), dtype=np.bool_)
     # (compiled: np.interp per joint, np.clip and _outside's test, the same numbers)
-    _arm_rows(
-        np.ascontiguousarray(q, dtype=float),
-        src,
-        times,
-        np.ascontiguousarray(jm.qposadr[idx], dtype=np.int64),
-        np.ascontiguousarray(lo, dtype=float),
-        np.ascontiguousarray(hi, dtype=float),
-        out,
-        bad,
-    )
+    _arm_rows(np.ascontiguousarray(q, dtype=float), src, times, adr, lo, hi, out, bad)
     return out, [names[k] for k in np.flatnonzero(bad)]
 
 
@@ -550,9 +560,8 @@ def clipped_joints(jm, q: np.ndarray, side: Side) -> list[str]:
     Returns:
         The clipped joints' names, :data:`ARM_JOINTS` order.
     """
-    names = ARM_JOINT_NAMES[side]
-    idx = [jm.index(jn) for jn in names]
-    return _outside(np.asarray(q, dtype=float), jm.range[idx, 0], jm.range[idx, 1], names)
+    lo, hi, _ = arm_ranges(jm, side)
+    return _outside(np.asarray(q, dtype=float), lo, hi, ARM_JOINT_NAMES[side])
 
 
 def rows_in_range(jm, q: np.ndarray, side: Side) -> np.ndarray:
@@ -567,8 +576,7 @@ def rows_in_range(jm, q: np.ndarray, side: Side) -> np.ndarray:
     Returns:
         (n,) bool.
     """
-    idx = [jm.index(jn) for jn in ARM_JOINT_NAMES[side]]
-    lo, hi = jm.range[idx, 0], jm.range[idx, 1]
+    lo, hi, _ = arm_ranges(jm, side)
     qi = np.asarray(q, dtype=float)
     return ~((qi < lo - 1e-6) | (qi > hi + 1e-6)).any(axis=1)
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from mjwalk.arms.anglerows import unwrap_col
+from mjwalk.arms.anglerows import unit_steps, unwrap_col
 from mjwalk.arms.chain import (
     _GIMBAL,
     _cross,
@@ -178,3 +178,11 @@ def test_unwrap_col_is_numpys_unwrap():
         unwrap_col(q, 1)
         assert _same(q[:, 1], np.unwrap(p)), k
         assert _same(q[:, 0], p)
+
+
+def test_unit_steps_are_linspace_and_new_each_time():
+    for n in range(0, 400):
+        a = unit_steps(n)
+        assert _same(a, np.linspace(0.0, 1.0, n)) and _same(a, np.linspace(0, 1, n))
+        a[:] = 7.0  # a copy: the next call is not changed
+        assert _same(unit_steps(n), np.linspace(0.0, 1.0, n))
