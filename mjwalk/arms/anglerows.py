@@ -19,6 +19,7 @@ Frames and units as in :mod:`mjwalk.arms.chain`: the shoulder's thorax frame, me
 from __future__ import annotations
 
 import functools
+import math
 
 import numpy as np
 
@@ -173,6 +174,21 @@ def fill_angles(q, a, b, c, elbow, pron, s, unwrap):
         unwrap_col(q, 2)
 
 
+@njit
+def retrace_rows(out, src, back):
+    """Poses ``back`` (m, nq) retracing ``out`` (n, nq) backwards at the fractional frames
+    ``src`` (m,) of the reversed sequence (0 to n - 1): each the blend ``(1 - w) a + w b`` of
+    the two poses about it, the arithmetic of :func:`mjwalk.cycle.reaching._retraced`'s
+    NumPy code (``floor``, the index clipped to the last frame, the weight ``src - i0``)."""
+    n = out.shape[0]
+    for k in range(src.shape[0]):
+        i0 = min(int(np.floor(src[k])), n - 1)
+        i1 = min(i0 + 1, n - 1)
+        w = src[k] - i0
+        for j in range(out.shape[1]):
+            back[k, j] = (1.0 - w) * out[n - 1 - i0, j] + w * out[n - 1 - i1, j]
+
+
 @functools.lru_cache(maxsize=512)
 def _unit_steps(n: int) -> np.ndarray:
     steps = np.linspace(0.0, 1.0, n)
@@ -190,3 +206,23 @@ def unit_steps(n: int) -> np.ndarray:
         (n,) a new array.
     """
     return _unit_steps(int(n)).copy()
+
+
+def all_close(a: np.ndarray, b: np.ndarray) -> bool:
+    """``np.allclose(a, b)`` (rtol 1e-5, atol 1e-8, NaNs unequal) of two equal-length 1-D
+    vectors, element by element in Python floats: the same IEEE operations, without NumPy's
+    per-call set-up (error state, broadcasting), for the per-reach code's (3,) directions.
+
+    Args:
+        a: (n,) values.
+        b: (n,) values, the reference (its magnitude scales the tolerance).
+
+    Returns:
+        Whether every ``|a - b| <= 1e-8 + 1e-5 |b|`` (``b`` finite), or ``a == b``.
+    """
+    xs, ys = np.asarray(a, dtype=float).tolist(), np.asarray(b, dtype=float).tolist()
+    pairs = zip(xs, ys, strict=True)
+    for x, y in pairs:
+        if not ((abs(x - y) <= 1e-8 + 1e-5 * abs(y) and math.isfinite(y)) or x == y):
+            return False
+    return True

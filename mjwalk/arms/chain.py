@@ -7,6 +7,8 @@ humanoid's thorax frame in its neutral pose). Angles in radians.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from scipy.spatial.transform import Rotation
 
@@ -73,6 +75,19 @@ def min_jerk(tau: np.ndarray) -> np.ndarray:
     """
     tau = np.clip(tau, 0.0, 1.0)
     return tau**3 * (10 - 15 * tau + 6 * tau**2)
+
+
+@functools.lru_cache(maxsize=512)
+def _min_jerk_steps(n: int) -> np.ndarray:
+    w = min_jerk(unit_steps(n))
+    w.flags.writeable = False
+    return w
+
+
+def min_jerk_steps(n: int) -> np.ndarray:
+    """:func:`min_jerk` of ``np.linspace(0.0, 1.0, n)`` (the same numbers), made once per ``n``
+    and copied (the per-reach code asks for the same few again and again)."""
+    return _min_jerk_steps(int(n)).copy()
 
 
 def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -443,10 +458,8 @@ def wrist_in_range(
 
 
 def arm_ranges(jm, side: Side) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The lower and upper limits (7,) (radians) and ``qpos`` addresses (7,) of ``side``'s
-    :data:`ARM_JOINTS` in joint map ``jm``, looked up once per joint map and kept with it
-    (the per-reach code asks for them in every call; a new ``range`` array is looked up
-    again). Do not write into them.
+    """The limits (7,) (radians) and ``qpos`` addresses (7,) of ``side``'s :data:`ARM_JOINTS`
+    in ``jm``, looked up once per joint map (and new ``range`` array); do not write into them.
 
     Args:
         jm: the humanoid's joint map.

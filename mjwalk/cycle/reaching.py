@@ -18,12 +18,12 @@ from scipy.spatial.transform import Rotation
 
 from mjwalk.anthropometry import knee_height
 from mjwalk.arms import reach as armreach  # reach_for_side looked up per call (tests spy on it)
-from mjwalk.arms.anglerows import unit_steps
+from mjwalk.arms.anglerows import all_close, retrace_rows, unit_steps
 from mjwalk.arms.chain import (
     arm_frames,
     arm_joint_angles,
     end_effector,
-    min_jerk,
+    min_jerk_steps,
     rows_in_range,
     two_link_ik_rows,
     wrist_in_range,
@@ -237,7 +237,7 @@ def _solve_arm(
     u_last = res.directions[-1]
     n_app = max(4, len(res.directions) // 2)
     app = np.repeat(u_last[None], n_app, axis=0)
-    taus = min_jerk(unit_steps(n_app + 1)[1:])
+    taus = min_jerk_steps(n_app + 1)[1:]
     hands = pre + taus[:, None] * (end - pre)
     # the hand's direction on the target: along its approach (the hand, and the forearm as far as
     # the wrist follows, stay on the approach's line, in from the target's free side: a shelf's
@@ -257,7 +257,7 @@ def _solve_arm(
         model_dirs = _turn_hand(model_dirs, u_end, lengths)
         u_last = model_dirs[-1]
         app[:] = u_last
-    elif not np.allclose(u_end, u_last[2]):
+    elif not all_close(u_end, u_last[2]):
         app[:, 2] = blend_dirs(u_last[2], u_end, taus)
     wrists = hands - lengths[2] * app[:, 2]
     # the elbow swivels from where the model left it to where the hand's end pose needs it
@@ -371,11 +371,9 @@ def _retraced(out: np.ndarray, n_back: int) -> np.ndarray:
     reach), so the hand moves smoothly however the return's frame count divides the reach's."""
     n_out = len(out)
     src = np.linspace(0.0, n_out - 1.0, n_back)
-    i0 = np.minimum(np.floor(src).astype(int), n_out - 1)
-    i1 = np.minimum(i0 + 1, n_out - 1)
-    w = (src - i0)[:, None]
-    rev = out[::-1]
-    return (1.0 - w) * rev[i0] + w * rev[i1]
+    back = np.empty((n_back, out.shape[1]))
+    retrace_rows(np.ascontiguousarray(out, dtype=float), src, back)  # (compiled, same numbers)
+    return back
 
 
 def leaning(ctx: CycleContext, q0: np.ndarray, targets, reach: float) -> np.ndarray:

@@ -8,13 +8,15 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from mjwalk.arms.anglerows import unit_steps, unwrap_col
+from mjwalk.arms.anglerows import all_close, unit_steps, unwrap_col
 from mjwalk.arms.chain import (
     _GIMBAL,
     _cross,
     _dot,
     _shoulder_branch,
     arm_joint_angles,
+    min_jerk,
+    min_jerk_steps,
     two_link_ik_rows,
 )
 
@@ -186,3 +188,47 @@ def test_unit_steps_are_linspace_and_new_each_time():
         assert _same(a, np.linspace(0.0, 1.0, n)) and _same(a, np.linspace(0, 1, n))
         a[:] = 7.0  # a copy: the next call is not changed
         assert _same(unit_steps(n), np.linspace(0.0, 1.0, n))
+
+
+def test_min_jerk_steps_are_min_jerk_of_linspace_and_new_each_time():
+    for n in range(0, 300):
+        w = min_jerk_steps(n)
+        assert _same(w, min_jerk(np.linspace(0.0, 1.0, n)))
+        w[:] = 7.0
+        assert _same(min_jerk_steps(n), min_jerk(np.linspace(0, 1, n)))
+
+
+def test_all_close_is_numpys_allclose():
+    rng = np.random.default_rng(53)
+    specials = [0.0, -0.0, 1e-8, -1e-8, 1.0, np.inf, -np.inf, np.nan, 1e300, 5e-324]
+    for k in range(20000):
+        b = rng.normal(size=3) * 10.0 ** rng.integers(-12, 3)
+        a = b + rng.normal(size=3) * 10.0 ** rng.integers(-14, 0)
+        if k % 7 == 0:
+            a[rng.integers(3)] = specials[rng.integers(len(specials))]
+        if k % 11 == 0:
+            b[rng.integers(3)] = specials[rng.integers(len(specials))]
+        if k % 13 == 0:
+            a = b.copy()
+        assert all_close(a, b) == bool(np.allclose(a, b)), (a, b)
+
+
+def _retraced_ref(out, n_back):
+    """mjwalk.cycle.reaching._retraced as it was in NumPy (e749e69)."""
+    n_out = len(out)
+    src = np.linspace(0.0, n_out - 1.0, n_back)
+    i0 = np.minimum(np.floor(src).astype(int), n_out - 1)
+    i1 = np.minimum(i0 + 1, n_out - 1)
+    w = (src - i0)[:, None]
+    rev = out[::-1]
+    return (1.0 - w) * rev[i0] + w * rev[i1]
+
+
+def test_retrace_rows_equal_the_numpy_retrace():
+    from mjwalk.cycle.reaching import _retraced
+
+    rng = np.random.default_rng(54)
+    for _ in range(300):
+        out = rng.normal(size=(int(rng.integers(1, 90)), int(rng.integers(1, 40))))
+        n_back = int(rng.integers(2, 150))
+        assert _same(_retraced(out, n_back), _retraced_ref(out, n_back))
