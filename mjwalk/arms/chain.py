@@ -591,7 +591,7 @@ def rows_in_range(jm, q: np.ndarray, side: Side) -> np.ndarray:
     """
     lo, hi, _ = arm_ranges(jm, side)
     qi = np.asarray(q, dtype=float)
-    return ~((qi < lo - 1e-6) | (qi > hi + 1e-6)).any(axis=1)
+    return np.asarray(~((qi < lo - 1e-6) | (qi > hi + 1e-6)).any(axis=1))
 
 
 def _outside(qi: np.ndarray, lo: np.ndarray, hi: np.ndarray, names) -> list[str]:
