@@ -46,7 +46,20 @@ def ik_rows(target, hint, l1, l2, lo, hi, c, l1sq, upper, fore):
     """:func:`~mjwalk.arms.chain.two_link_ik_rows` into ``upper`` and ``fore`` (n, 3): wrist
     ``target`` (n, 3) m from the shoulder, elbow ``hint`` (n, 3); ``lo``/``hi`` the clip of
     the shoulder-wrist distance, ``c`` = l1**2 - l2**2 and ``l1sq`` = l1**2 as the caller's
-    scalar arithmetic gives them."""
+    scalar arithmetic gives them.
+
+    Args:
+        target: (n, 3) wrist positions, metres from the shoulder.
+        hint: (n, 3) directions the elbows bend towards.
+        l1: upper arm length, metres.
+        l2: forearm length, metres.
+        lo: the shortest shoulder-wrist distance, metres.
+        hi: the longest, metres.
+        c: l1**2 - l2**2, square metres.
+        l1sq: l1**2, square metres.
+        upper: (n, 3) out: unit upper-arm directions.
+        fore: (n, 3) out: unit forearm directions.
+    """
     n = target.shape[0]
     axis = np.empty((n, 3))
     perp = np.empty((n, 3))
@@ -81,7 +94,13 @@ def ik_rows(target, hint, l1, l2, lo, hi, c, l1sq, upper, fore):
 def upper_x(u, x, straight):
     """The upper arm's x axis of each row of ``u`` (n, S, 3) into ``x`` (n, 3): the forearm's
     part perpendicular to the upper arm, normalised; ``straight`` (n,) set where its norm is
-    under 1e-3 (a straight elbow: ``x`` left unnormalised there for the caller)."""
+    under 1e-3 (a straight elbow: ``x`` left unnormalised there for the caller).
+
+    Args:
+        u: (n, S, 3) unit segment directions, thorax frame.
+        x: (n, 3) out: the upper arm frame's x axes.
+        straight: (n,) out: straight elbows.
+    """
     for i in range(u.shape[0]):
         d = u[i, 1, 0] * u[i, 0, 0] + u[i, 1, 1] * u[i, 0, 1] + u[i, 1, 2] * u[i, 0, 2]
         for j in range(3):
@@ -98,7 +117,16 @@ def frame_terms(u, x, y, terms, lock, gimbal):
     """The shoulder frame's y axis (``y`` (n, 3) = z x x, z = -upper arm) and the arguments of
     the inverse trigonometric functions into ``terms`` (6, n): the clipped sine of the Y-X-Z
     middle angle, the two (y, x) pairs of its outer angles' arctan2, the clipped cosine of
-    the elbow; ``lock`` (n,) where |sine| > ``gimbal`` (decomposed by scipy)."""
+    the elbow; ``lock`` (n,) where |sine| > ``gimbal`` (decomposed by scipy).
+
+    Args:
+        u: (n, S, 3) unit segment directions, thorax frame.
+        x: (n, 3) the upper arm frame's x axes (:func:`upper_x`).
+        y: (n, 3) out: its y axes.
+        terms: (6, n) out: the functions' arguments.
+        lock: (n,) out: near gimbal lock.
+        gimbal: the |sine| beyond which a frame is locked.
+    """
     for i in range(u.shape[0]):
         z0, z1, z2 = -u[i, 0, 0], -u[i, 0, 1], -u[i, 0, 2]
         x0, x1, x2 = x[i, 0], x[i, 1], x[i, 2]
@@ -121,7 +149,18 @@ def hand_terms(u, x, y, ce, se, cp, sp, terms):
     """The hand's direction in the forearm frame (the shoulder frame's transpose, the elbow's
     and the pronation's rotations undone: cosines ``ce``/``cp`` and sines ``se``/``sp`` (n,))
     as the wrist's arcsin and arctan2 take it, into ``terms`` (3, n): the clipped sine of the
-    deviation, then the flexion's (y, x)."""
+    deviation, then the flexion's (y, x).
+
+    Args:
+        u: (n, 3, 3) unit segment directions, thorax frame.
+        x: (n, 3) the upper arm frame's x axes.
+        y: (n, 3) its y axes.
+        ce: (n,) cosines of minus the elbow angles.
+        se: (n,) their sines.
+        cp: (n,) cosines of minus the side's pronation.
+        sp: (n,) their sines.
+        terms: (3, n) out: the functions' arguments.
+    """
     for i in range(u.shape[0]):
         h0 = 0.0 + x[i, 0] * u[i, 2, 0] + x[i, 1] * u[i, 2, 1] + x[i, 2] * u[i, 2, 2]
         h1 = 0.0 + y[i, 0] * u[i, 2, 0] + y[i, 1] * u[i, 2, 1] + y[i, 2] * u[i, 2, 2]
@@ -138,7 +177,12 @@ def hand_terms(u, x, y, ce, se, cp, sp, terms):
 @njit
 def unwrap_col(q, k):
     """``q[:, k] = np.unwrap(q[:, k])`` in place: NumPy's arithmetic (period 2 pi, the
-    remainder as ``np.mod`` takes it, the boundary fix, the running sum of the corrections)."""
+    remainder as ``np.mod`` takes it, the boundary fix, the running sum of the corrections).
+
+    Args:
+        q: (n, m) angles, radians (changed in place).
+        k: the column.
+    """
     n = q.shape[0]
     pi = np.pi
     period = 2.0 * pi
@@ -162,7 +206,18 @@ def unwrap_col(q, k):
 def fill_angles(q, a, b, c, elbow, pron, s, unwrap):
     """The shoulder's, elbow's and forearm's columns of ``q`` (n, 7): flexion -a, abduction
     s b, rotation -s c, the elbow, the pronation; with ``unwrap`` the flexion and rotation
-    unwrapped along the rows (:func:`unwrap_col`)."""
+    unwrapped along the rows (:func:`unwrap_col`).
+
+    Args:
+        q: (n, 7) out: joint angles, radians.
+        a: (n,) the shoulder's Y angles, radians.
+        b: (n,) its X angles.
+        c: (n,) its Z angles.
+        elbow: (n,) elbow flexion, radians.
+        pron: (n,) forearm pronation, radians.
+        s: +1 for the left arm, -1 for the right.
+        unwrap: unwrap flexion and rotation along the rows.
+    """
     for i in range(q.shape[0]):
         q[i, 0] = -a[i]
         q[i, 1] = s * b[i]
@@ -179,7 +234,13 @@ def retrace_rows(out, src, back):
     """Poses ``back`` (m, nq) retracing ``out`` (n, nq) backwards at the fractional frames
     ``src`` (m,) of the reversed sequence (0 to n - 1): each the blend ``(1 - w) a + w b`` of
     the two poses about it, the arithmetic of :func:`mjwalk.cycle.reaching._retraced`'s
-    NumPy code (``floor``, the index clipped to the last frame, the weight ``src - i0``)."""
+    NumPy code (``floor``, the index clipped to the last frame, the weight ``src - i0``).
+
+    Args:
+        out: (n, nq) the reach's poses.
+        src: (m,) fractional frames of the reversed poses, 0 to n - 1.
+        back: (m, nq) out: the retracing poses.
+    """
     n = out.shape[0]
     for k in range(src.shape[0]):
         i0 = min(int(np.floor(src[k])), n - 1)
@@ -226,3 +287,36 @@ def all_close(a: np.ndarray, b: np.ndarray) -> bool:
         if not ((abs(x - y) <= 1e-8 + 1e-5 * abs(y) and math.isfinite(y)) or x == y):
             return False
     return True
+
+
+def min_jerk(tau: np.ndarray) -> np.ndarray:
+    """Minimum-jerk profile 10 t^3 - 15 t^4 + 6 t^5 on t in [0, 1].
+
+    Args:
+        tau: normalized time, clipped to [0, 1].
+
+    Returns:
+        the profile, 0 at tau <= 0 and 1 at tau >= 1, same shape as ``tau``.
+    """
+    tau = np.clip(tau, 0.0, 1.0)
+    return tau**3 * (10 - 15 * tau + 6 * tau**2)
+
+
+@functools.lru_cache(maxsize=512)
+def _min_jerk_steps(n: int) -> np.ndarray:
+    w = min_jerk(unit_steps(n))
+    w.flags.writeable = False
+    return w
+
+
+def min_jerk_steps(n: int) -> np.ndarray:
+    """:func:`min_jerk` of ``np.linspace(0.0, 1.0, n)``, made once per
+    ``n`` and copied.
+
+    Args:
+        n: the number of samples.
+
+    Returns:
+        (n,) a new array, the same numbers.
+    """
+    return _min_jerk_steps(int(n)).copy()

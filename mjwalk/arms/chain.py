@@ -7,8 +7,6 @@ humanoid's thorax frame in its neutral pose). Angles in radians.
 
 from __future__ import annotations
 
-import functools
-
 import numpy as np
 from scipy.spatial.transform import Rotation
 
@@ -21,6 +19,9 @@ from mjwalk.arms.anglerows import (
     ik_rows,
     unit_steps,
     upper_x,
+)
+from mjwalk.arms.anglerows import (
+    min_jerk as min_jerk,  # (re-exported: the minimum-jerk profile lives there)
 )
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 
@@ -62,32 +63,6 @@ def end_effector(directions: np.ndarray, lengths: np.ndarray) -> np.ndarray:
         (..., 3) position of the chain's end, metres from the shoulder.
     """
     return np.einsum("...sj,s->...j", directions, np.asarray(lengths))
-
-
-def min_jerk(tau: np.ndarray) -> np.ndarray:
-    """Minimum-jerk profile 10 t^3 - 15 t^4 + 6 t^5 on t in [0, 1].
-
-    Args:
-        tau: normalized time, clipped to [0, 1].
-
-    Returns:
-        the profile, 0 at tau <= 0 and 1 at tau >= 1, same shape as ``tau``.
-    """
-    tau = np.clip(tau, 0.0, 1.0)
-    return tau**3 * (10 - 15 * tau + 6 * tau**2)
-
-
-@functools.lru_cache(maxsize=512)
-def _min_jerk_steps(n: int) -> np.ndarray:
-    w = min_jerk(unit_steps(n))
-    w.flags.writeable = False
-    return w
-
-
-def min_jerk_steps(n: int) -> np.ndarray:
-    """:func:`min_jerk` of ``np.linspace(0.0, 1.0, n)`` (the same numbers), made once per ``n``
-    and copied (the per-reach code asks for the same few again and again)."""
-    return _min_jerk_steps(int(n)).copy()
 
 
 def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:

@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import least_squares
 
 from mjwalk._io import check_header, load_npz, save_npz
+from mjwalk.arms.anglerows import min_jerk_steps
 from mjwalk.arms.armpose import apply_pose
 from mjwalk.arms.armrep import ArmRepresentation
 from mjwalk.arms.chain import (
@@ -40,7 +41,6 @@ from mjwalk.arms.chain import (
     arm_segment_lengths,
     end_effector,
     min_jerk,
-    min_jerk_steps,
     two_link_ik_rows,
 )
 from mjwalk.arms.dcs import DCSNetwork

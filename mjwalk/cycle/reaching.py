@@ -18,12 +18,11 @@ from scipy.spatial.transform import Rotation
 
 from mjwalk.anthropometry import knee_height
 from mjwalk.arms import reach as armreach  # reach_for_side looked up per call (tests spy on it)
-from mjwalk.arms.anglerows import all_close, retrace_rows, unit_steps
+from mjwalk.arms.anglerows import all_close, min_jerk_steps, retrace_rows, unit_steps
 from mjwalk.arms.chain import (
     arm_frames,
     arm_joint_angles,
     end_effector,
-    min_jerk_steps,
     rows_in_range,
     two_link_ik_rows,
     wrist_in_range,

@@ -8,17 +8,48 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from mjwalk.arms.anglerows import all_close, unit_steps, unwrap_col
-from mjwalk.arms.chain import (
-    _GIMBAL,
-    _cross,
-    _dot,
-    _shoulder_branch,
-    arm_joint_angles,
-    min_jerk,
+from mjwalk.anthropometry import ROM_DEG
+from mjwalk.arms.anglerows import (
+    all_close,
     min_jerk_steps,
-    two_link_ik_rows,
+    retrace_rows,
+    unit_steps,
+    unwrap_col,
 )
+from mjwalk.arms.chain import arm_joint_angles, min_jerk, two_link_ik_rows
+
+#: |sin| of the middle YXZ angle beyond which scipy decomposes a frame (chain's gimbal limit).
+GIMBAL = 1.0 - 1e-7
+
+
+def _dot(u, v):
+    return u[:, 0] * v[:, 0] + u[:, 1] * v[:, 1] + u[:, 2] * v[:, 2]
+
+
+def _cross(u, v):
+    out = np.empty_like(u)
+    out[:, 0] = u[:, 1] * v[:, 2] - u[:, 2] * v[:, 1]
+    out[:, 1] = u[:, 2] * v[:, 0] - u[:, 0] * v[:, 2]
+    out[:, 2] = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+    return out
+
+
+def _shoulder_branch(a, b, c, s):
+    """The shoulder's other Y-X-Z set where it keeps the joints in range and this one does not
+    (chain's compiled branch choice), in NumPy."""
+    lim = np.radians([ROM_DEG[k] for k in ("shoulder_flex", "shoulder_abd", "shoulder_rot")])
+
+    def excess(a, b, c):
+        out = 0.0
+        for v, (lo, hi) in zip((-a, s * b, -s * c), lim, strict=True):
+            out = out + (np.maximum(lo - v, 0.0) + np.maximum(v - hi, 0.0))
+        return out
+
+    a2 = ((a + np.pi) + np.pi) % (2.0 * np.pi) - np.pi
+    b2 = np.where(b >= 0.0, np.pi, -np.pi) - b
+    c2 = ((c + np.pi) + np.pi) % (2.0 * np.pi) - np.pi
+    other = excess(a2, b2, c2) < excess(a, b, c) - 1e-9
+    return np.where(other, a2, a), np.where(other, b2, b), np.where(other, c2, c)
 
 
 def _ik_ref(target, l1, l2, elbow_hint):
@@ -48,7 +79,7 @@ def _euler_ref(r):
     b = np.arcsin(np.clip(sb, -1.0, 1.0))
     a = np.arctan2(r[:, 0, 2], r[:, 2, 2])
     c = np.arctan2(r[:, 1, 0], r[:, 1, 1])
-    lock = np.abs(sb) > _GIMBAL
+    lock = np.abs(sb) > GIMBAL
     if lock.any():
         a[lock], b[lock], c[lock] = Rotation.from_matrix(r[lock]).as_euler("YXZ").T
     return a, b, c
@@ -225,10 +256,10 @@ def _retraced_ref(out, n_back):
 
 
 def test_retrace_rows_equal_the_numpy_retrace():
-    from mjwalk.cycle.reaching import _retraced
-
     rng = np.random.default_rng(54)
     for _ in range(300):
         out = rng.normal(size=(int(rng.integers(1, 90)), int(rng.integers(1, 40))))
         n_back = int(rng.integers(2, 150))
-        assert _same(_retraced(out, n_back), _retraced_ref(out, n_back))
+        back = np.empty((n_back, out.shape[1]))
+        retrace_rows(out, np.linspace(0.0, len(out) - 1.0, n_back), back)
+        assert _same(back, _retraced_ref(out, n_back))
