@@ -12,6 +12,17 @@ from scipy.spatial.transform import Rotation
 
 from mjwalk._jit import njit
 from mjwalk.anthropometry import ROM_DEG
+from mjwalk.arms.anglerows import (
+    fill_angles,
+    frame_terms,
+    hand_terms,
+    ik_rows,
+    unit_steps,
+    upper_x,
+)
+from mjwalk.arms.anglerows import (
+    min_jerk as min_jerk,  # (re-exported: the minimum-jerk profile lives there)
+)
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 
 #: Anthropometric segment lengths as shares of stature H (Winter): upper arm, forearm, hand.
@@ -54,19 +65,6 @@ def end_effector(directions: np.ndarray, lengths: np.ndarray) -> np.ndarray:
     return np.einsum("...sj,s->...j", directions, np.asarray(lengths))
 
 
-def min_jerk(tau: np.ndarray) -> np.ndarray:
-    """Minimum-jerk profile 10 t^3 - 15 t^4 + 6 t^5 on t in [0, 1].
-
-    Args:
-        tau: normalized time, clipped to [0, 1].
-
-    Returns:
-        the profile, 0 at tau <= 0 and 1 at tau >= 1, same shape as ``tau``.
-    """
-    tau = np.clip(tau, 0.0, 1.0)
-    return tau**3 * (10 - 15 * tau + 6 * tau**2)
-
-
 def _dot(u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Row-wise dot products (n,) of (n, 3) arrays, summed left to right like ``u @ v``."""
     return u[:, 0] * v[:, 0] + u[:, 1] * v[:, 1] + u[:, 2] * v[:, 2]
@@ -107,24 +105,14 @@ def two_link_ik_rows(
     Returns:
         ``(upper, fore)`` (n, 3) unit directions.
     """
-    target = np.asarray(target, dtype=float)
-    hint = np.asarray(elbow_hint, dtype=float)
-    norm = np.sqrt(_dot(target, target))
-    d = np.clip(norm, abs(l1 - l2) + 1e-6, l1 + l2 - 1e-6)
-    axis = target / np.maximum(norm, 1e-9)[:, None]
-    perp = hint - _dot(hint, axis)[:, None] * axis
-    bad = np.sqrt(_dot(perp, perp)) < 1e-9
-    if bad.any():  # a hint along the axis: any perpendicular, from y (or x)
-        alt = np.cross(axis[bad], [0.0, 1.0, 0.0])
-        flat = np.sqrt(_dot(alt, alt)) < 1e-9
-        alt[flat] = np.cross(axis[bad][flat], [1.0, 0.0, 0.0])
-        perp[bad] = alt
-    perp = perp / np.sqrt(_dot(perp, perp))[:, None]
-    a = (l1**2 - l2**2 + d**2) / (2 * d)
-    h = np.sqrt(np.maximum(l1**2 - a**2, 0.0))
-    elbow = a[:, None] * axis + h[:, None] * perp
-    wrist = d[:, None] * axis
-    return elbow / l1, (wrist - elbow) / l2
+    target = np.ascontiguousarray(target, dtype=float)
+    hint = np.ascontiguousarray(elbow_hint, dtype=float)
+    upper, fore = np.empty_like(target), np.empty_like(target)
+    # (compiled, the NumPy arithmetic it replaced row by row: mjwalk.arms.anglerows; the
+    # scalars as that code formed them)
+    lo, hi = abs(l1 - l2) + 1e-6, l1 + l2 - 1e-6
+    ik_rows(target, hint, l1, l2, lo, hi, l1**2 - l2**2, l1**2, upper, fore)
+    return upper, fore
 
 
 #: Joint names of one arm of the mjwalk humanoid (mjwalk.body.humanoid), in output order.
@@ -204,40 +192,43 @@ def arm_joint_angles(
         (n, 7) joint angles, radians, :data:`ARM_JOINTS` order.
     """
     s = 1.0 if side == "left" else -1.0
-    U = np.asarray(directions, dtype=float)
+    U = np.ascontiguousarray(directions, dtype=float)
     n = len(U)
     q = np.zeros((n, 7))
-    u1, u2 = U[:, 0], U[:, 1]
-    z = -u1
+    # (the sums, products and clips compiled, the NumPy arithmetic they replaced row by row,
+    # the inverse trigonometric functions NumPy's: mjwalk.arms.anglerows)
     # the upper arm's x axis: the forearm's part perpendicular to the upper arm (all frames
     # at once); where the elbow is straight it is carried over from the previous frame
-    x = u2 - _dot(u2, u1)[:, None] * u1
-    norm = np.linalg.norm(x, axis=1)
-    straight = norm < 1e-3
-    x[~straight] /= norm[~straight, None]
-    for t in np.flatnonzero(straight):  # rare, and each depends on the frame before
-        xt = x[t - 1] if t > 0 and not independent else np.array([1.0, 0.0, 0.0])
-        xt = xt - (xt @ z[t]) * z[t]
-        x[t] = xt / np.linalg.norm(xt)
-    y = _cross(z, x)
-    r_sh = np.stack([x, y, z], axis=-1)  # (n, 3, 3), columns x, y, z
-    a, b, c = _shoulder_branch(*_euler_yxz(r_sh), s)
-    elbow = np.arccos(np.clip(_dot(u1, u2), -1, 1))
+    x, straight = np.empty((n, 3)), np.empty(n, dtype=np.bool_)
+    upper_x(U, x, straight)
+    if straight.any():
+        z = -U[:, 0]
+        for t in np.flatnonzero(straight):  # rare, and each depends on the frame before
+            xt = x[t - 1] if t > 0 and not independent else np.array([1.0, 0.0, 0.0])
+            xt = xt - (xt @ z[t]) * z[t]
+            x[t] = xt / np.linalg.norm(xt)
+    y, terms, lock = np.empty((n, 3)), np.empty((6, n)), np.empty(n, dtype=np.bool_)
+    frame_terms(U, x, y, terms, lock, _GIMBAL)
+    # the shoulder frame R_sh = [x y z] (z = -upper arm) as intrinsic Y-X-Z angles
+    # (scipy's ``as_euler("YXZ")`` written out; near gimbal lock scipy decomposes those frames)
+    b = np.arcsin(terms[0])
+    a = np.arctan2(terms[1], terms[2])
+    c = np.arctan2(terms[3], terms[4])
+    if lock.any():
+        r_sh = np.stack([x, y, -U[:, 0]], axis=-1)  # (n, 3, 3), columns x, y, z
+        a[lock], b[lock], c[lock] = Rotation.from_matrix(r_sh[lock]).as_euler("YXZ").T
+    a, b, c = _shoulder_branch(a, b, c, s)
+    elbow = np.arccos(terms[5])
     pron = np.zeros(n) if roll is None else np.asarray(roll, dtype=float)[:n]
-    q[:, 0], q[:, 1], q[:, 2], q[:, 3], q[:, 4] = -a, s * b, -s * c, elbow, pron
+    fill_angles(q, a, b, c, elbow, np.ascontiguousarray(pron), s, n > 1 and not independent)
     if U.shape[1] > 2:
         # the hand in the forearm frame R_sh Ry(-elbow) Rz(-s pron): rotate back step by step
-        h = np.einsum("nji,nj->ni", r_sh, U[:, 2])  # R_sh^T u3
+        wrist = np.empty((3, n))
         ce, se = np.cos(-elbow), np.sin(-elbow)
-        h = np.column_stack([ce * h[:, 0] - se * h[:, 2], h[:, 1], se * h[:, 0] + ce * h[:, 2]])
         cp, sp = np.cos(-s * pron), np.sin(-s * pron)
-        h = np.column_stack([cp * h[:, 0] + sp * h[:, 1], -sp * h[:, 0] + cp * h[:, 1], h[:, 2]])
-        beta = np.arcsin(np.clip(h[:, 1], -1, 1))
-        q[:, 5] = np.arctan2(h[:, 0], -h[:, 2])
-        q[:, 6] = s * beta
-    if n > 1 and not independent:  # (one frame: nothing to unwrap)
-        q[:, 0] = np.unwrap(q[:, 0])
-        q[:, 2] = np.unwrap(q[:, 2])
+        hand_terms(U, x, y, ce, se, np.ascontiguousarray(cp), np.ascontiguousarray(sp), wrist)
+        q[:, 5] = np.arctan2(wrist[1], wrist[2])
+        q[:, 6] = s * np.arcsin(wrist[0])
     return q
 
 
@@ -300,14 +291,14 @@ _SHOULDER_RANGES = {
 
 
 def _shoulder_branch(a: np.ndarray, b: np.ndarray, c: np.ndarray, s: float):
-    """The shoulder's Y-X-Z angles (a, b, c) of :func:`_euler_yxz` (whose ``b`` lies within
-    +-90 deg), or per frame the other set for the same rotation, ``(a + pi, sign(b) pi - b,
-    c + pi)``, where that one keeps the joints within their ranges and this one does not: an
-    arm raised sideways above the shoulder (abduction beyond 90 deg) is ``b`` = 120 deg with
-    no flexion or rotation, which the first set writes as 60 deg with flexion and rotation
-    of 180 deg, beyond their ranges (the clipped pose then pointed the arm backwards: a
-    reach to a top shelf ended 1.3 m off). Ranges: :data:`mjwalk.anthropometry.ROM_DEG`;
-    ``s`` +1 for the left arm, -1 for the right (compiled: :func:`_shoulder_branch_rows`)."""
+    """The shoulder's Y-X-Z angles (a, b, c) as :func:`arm_joint_angles` decomposes its frame (``b``
+    within +-90 deg), or per frame the other set for the same rotation, ``(a + pi, sign(b) pi - b, c
+    + pi)``, where that one keeps the joints within their ranges and this one does not: an arm
+    raised sideways above the shoulder (abduction beyond 90 deg) is ``b`` = 120 deg with no flexion
+    or rotation, which the first set writes as 60 deg with flexion and rotation of 180 deg, beyond
+    their ranges (the clipped pose then pointed the arm backwards: a reach to a top shelf ended 1.3
+    m off). Ranges: :data:`mjwalk.anthropometry.ROM_DEG`; ``s`` +1 for the left arm, -1 for the
+    right (compiled: :func:`_shoulder_branch_rows`)."""
     a = np.ascontiguousarray(a, dtype=float)
     b = np.ascontiguousarray(b, dtype=float)
     c = np.ascontiguousarray(c, dtype=float)
@@ -359,20 +350,6 @@ def _shoulder_branch_rows(a, b, c, s, lim, out):
         out[0, i] = a2 if other else a[i]
         out[1, i] = b2 if other else b[i]
         out[2, i] = c2 if other else c[i]
-
-
-def _euler_yxz(r: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Intrinsic Y-X-Z Euler angles (a, b, c) of rotation matrices ``r`` (n, 3, 3),
-    ``r = Ry(a) Rx(b) Rz(c)``, radians (scipy's ``as_euler("YXZ")`` written out for all
-    frames at once; near gimbal lock scipy decomposes those frames)."""
-    sb = -r[:, 1, 2]
-    b = np.arcsin(np.clip(sb, -1.0, 1.0))
-    a = np.arctan2(r[:, 0, 2], r[:, 2, 2])
-    c = np.arctan2(r[:, 1, 0], r[:, 1, 1])
-    lock = np.abs(sb) > _GIMBAL
-    if lock.any():
-        a[lock], b[lock], c[lock] = Rotation.from_matrix(r[lock]).as_euler("YXZ").T
-    return a, b, c
 
 
 #: Halvings of the blend in :func:`wrist_in_range`'s least-turn search: the hand's direction
@@ -455,6 +432,31 @@ def wrist_in_range(
     return np.stack([u1, u2, hd], axis=1)
 
 
+def arm_ranges(jm, side: Side) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The limits (7,) (radians) and ``qpos`` addresses (7,) of ``side``'s :data:`ARM_JOINTS`
+    in ``jm``, looked up once per joint map (and new ``range`` array); do not write into them.
+
+    Args:
+        jm: the humanoid's joint map.
+        side: "left" or "right".
+
+    Returns:
+        ``(lo, hi, adr)``: float, float and int64 arrays in :data:`ARM_JOINTS` order.
+    """
+    kept = jm.__dict__.setdefault("_arm_ranges", {})
+    hit = kept.get(side)
+    if hit is None or hit[0] is not jm.range or hit[1] is not jm.qposadr:
+        idx = [jm.index(jn) for jn in ARM_JOINT_NAMES[side]]
+        hit = kept[side] = (
+            jm.range,
+            jm.qposadr,
+            np.ascontiguousarray(jm.range[idx, 0], dtype=float),
+            np.ascontiguousarray(jm.range[idx, 1], dtype=float),
+            np.ascontiguousarray(jm.qposadr[idx], dtype=np.int64),
+        )
+    return hit[2], hit[3], hit[4]
+
+
 def arm_frames(
     q0: np.ndarray, jm, q: np.ndarray, side: Side, times: np.ndarray
 ) -> tuple[np.ndarray, list[str]]:
@@ -473,23 +475,13 @@ def arm_frames(
         ``(poses, clipped)``: (m, nq) poses and the names of the clipped joints.
     """
     names = ARM_JOINT_NAMES[side]
-    idx = [jm.index(jn) for jn in names]
-    lo, hi = jm.range[idx, 0], jm.range[idx, 1]
-    src = np.linspace(0.0, 1.0, len(q))
+    lo, hi, adr = arm_ranges(jm, side)
+    src = unit_steps(len(q))
     times = np.ascontiguousarray(times, dtype=float).reshape(-1)
     out = np.repeat(np.asarray(q0)[None], len(times), axis=0)
     bad = np.zeros(len(names), dtype=np.bool_)
     # (compiled: np.interp per joint, np.clip and _outside's test, the same numbers)
-    _arm_rows(
-        np.ascontiguousarray(q, dtype=float),
-        src,
-        times,
-        np.ascontiguousarray(jm.qposadr[idx], dtype=np.int64),
-        np.ascontiguousarray(lo, dtype=float),
-        np.ascontiguousarray(hi, dtype=float),
-        out,
-        bad,
-    )
+    _arm_rows(np.ascontiguousarray(q, dtype=float), src, times, adr, lo, hi, out, bad)
     return out, [names[k] for k in np.flatnonzero(bad)]
 
 
@@ -556,9 +548,8 @@ def clipped_joints(jm, q: np.ndarray, side: Side) -> list[str]:
     Returns:
         The clipped joints' names, :data:`ARM_JOINTS` order.
     """
-    names = ARM_JOINT_NAMES[side]
-    idx = [jm.index(jn) for jn in names]
-    return _outside(np.asarray(q, dtype=float), jm.range[idx, 0], jm.range[idx, 1], names)
+    lo, hi, _ = arm_ranges(jm, side)
+    return _outside(np.asarray(q, dtype=float), lo, hi, ARM_JOINT_NAMES[side])
 
 
 def rows_in_range(jm, q: np.ndarray, side: Side) -> np.ndarray:
@@ -573,10 +564,9 @@ def rows_in_range(jm, q: np.ndarray, side: Side) -> np.ndarray:
     Returns:
         (n,) bool.
     """
-    idx = [jm.index(jn) for jn in ARM_JOINT_NAMES[side]]
-    lo, hi = jm.range[idx, 0], jm.range[idx, 1]
+    lo, hi, _ = arm_ranges(jm, side)
     qi = np.asarray(q, dtype=float)
-    return ~((qi < lo - 1e-6) | (qi > hi + 1e-6)).any(axis=1)
+    return np.asarray(~((qi < lo - 1e-6) | (qi > hi + 1e-6)).any(axis=1))
 
 
 def _outside(qi: np.ndarray, lo: np.ndarray, hi: np.ndarray, names) -> list[str]:

@@ -32,6 +32,7 @@ from numpy.typing import ArrayLike
 from scipy.optimize import least_squares
 
 from mjwalk._io import check_header, load_npz, save_npz
+from mjwalk.arms.anglerows import min_jerk_steps
 from mjwalk.arms.armpose import apply_pose
 from mjwalk.arms.armrep import ArmRepresentation
 from mjwalk.arms.chain import (
@@ -460,7 +461,7 @@ class ReachModel:
         hand = end_effector(U, lengths)
         e0 = np.zeros(3) if start is None else np.asarray(start) - hand[0]
         e1 = np.zeros(3) if end is None else np.asarray(end) - hand[-1]
-        w = min_jerk(np.linspace(0, 1, n))[:, None]
+        w = min_jerk_steps(n)[:, None]
         delta = (1 - w) * e0 + w * e1
         l1, l2 = lengths[:2]
         out = U.copy()

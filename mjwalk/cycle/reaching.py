@@ -18,11 +18,11 @@ from scipy.spatial.transform import Rotation
 
 from mjwalk.anthropometry import knee_height
 from mjwalk.arms import reach as armreach  # reach_for_side looked up per call (tests spy on it)
+from mjwalk.arms.anglerows import all_close, min_jerk_steps, retrace_rows, unit_steps
 from mjwalk.arms.chain import (
     arm_frames,
     arm_joint_angles,
     end_effector,
-    min_jerk,
     rows_in_range,
     two_link_ik_rows,
     wrist_in_range,
@@ -221,8 +221,7 @@ def _solve_arm(
     the pre-grasp point, then the straight approach onto the target (:func:`reach_frames`),
     and the reach model's ReachResult."""
     side, model, scale, lengths = arm.side, arm.model, arm.scale, arm.lengths
-    m, jm = ctx.model, ctx.jointmap
-    data = ctx.scratch()
+    m, jm, data = ctx.model, ctx.jointmap, ctx.scratch()
     data.qpos[:] = base
     mujoco.mj_kinematics(m, data)
     ua = m.body(f"{jm.prefix}upper_arm_{side_prefix(side)}").id
@@ -237,7 +236,7 @@ def _solve_arm(
     u_last = res.directions[-1]
     n_app = max(4, len(res.directions) // 2)
     app = np.repeat(u_last[None], n_app, axis=0)
-    taus = min_jerk(np.linspace(0.0, 1.0, n_app + 1)[1:])
+    taus = min_jerk_steps(n_app + 1)[1:]
     hands = pre + taus[:, None] * (end - pre)
     # the hand's direction on the target: along its approach (the hand, and the forearm as far as
     # the wrist follows, stay on the approach's line, in from the target's free side: a shelf's
@@ -257,7 +256,7 @@ def _solve_arm(
         model_dirs = _turn_hand(model_dirs, u_end, lengths)
         u_last = model_dirs[-1]
         app[:] = u_last
-    elif not np.allclose(u_end, u_last[2]):
+    elif not all_close(u_end, u_last[2]):
         app[:, 2] = blend_dirs(u_last[2], u_end, taus)
     wrists = hands - lengths[2] * app[:, 2]
     # the elbow swivels from where the model left it to where the hand's end pose needs it
@@ -303,7 +302,7 @@ def _reach_motion(
     # the feet stay planted while the pelvis lowers (the legs solved at every pose)
     ready = crouch_frames(ctx, q0, ready_pose, w)
     n_out -= n_ready
-    out, _ = arm_frames(base, jm, q, side, np.linspace(0.0, 1.0, n_out + 1)[1:])
+    out, _ = arm_frames(base, jm, q, side, unit_steps(n_out + 1)[1:])
     data = ctx.scratch()
     data.qpos[:] = out[-1]
     mujoco.mj_kinematics(m, data)
@@ -371,11 +370,9 @@ def _retraced(out: np.ndarray, n_back: int) -> np.ndarray:
     reach), so the hand moves smoothly however the return's frame count divides the reach's."""
     n_out = len(out)
     src = np.linspace(0.0, n_out - 1.0, n_back)
-    i0 = np.minimum(np.floor(src).astype(int), n_out - 1)
-    i1 = np.minimum(i0 + 1, n_out - 1)
-    w = (src - i0)[:, None]
-    rev = out[::-1]
-    return (1.0 - w) * rev[i0] + w * rev[i1]
+    back = np.empty((n_back, out.shape[1]))
+    retrace_rows(np.ascontiguousarray(out, dtype=float), src, back)  # (compiled, same numbers)
+    return back
 
 
 def leaning(ctx: CycleContext, q0: np.ndarray, targets, reach: float) -> np.ndarray:
@@ -506,10 +503,10 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
     in the context's scratch data, pose by pose, for a model it does not support)."""
     m, jm = ctx.model, ctx.jointmap
     base = q0 if base is None else base
-    steps = np.linspace(0.0, 1.0, PATH_SUBSTEPS * (len(q) - 1) + 1)
+    steps = unit_steps(PATH_SUBSTEPS * (len(q) - 1) + 1)
     move, _ = arm_frames(base, jm, q, side, steps)
     # (from q0 into move[0], the trajectory's first pose: np.interp gives a sample's own value)
-    ready = q0[None] + np.linspace(0.0, 1.0, PATH_POSES)[:, None] * (move[0] - q0)[None]
+    ready = q0[None] + unit_steps(PATH_POSES)[:, None] * (move[0] - q0)[None]
     hand = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
 
     def length(poses: np.ndarray) -> float:

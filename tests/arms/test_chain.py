@@ -15,6 +15,7 @@ from mjwalk.arms.chain import (
     arm_frames,
     arm_joint,
     arm_joint_angles,
+    arm_ranges,
     arm_segment_lengths,
     clipped_joints,
     end_effector,
@@ -236,3 +237,16 @@ def test_compiled_arm_frames_give_the_numpy_numbers_bit_for_bit(side):
         want, want_names = _arm_frames_numpy(q0, jm, q, side, times)
         assert np.array_equal(got.view(np.int64), want.view(np.int64))
         assert got_names == want_names
+
+
+def test_arm_ranges_are_the_joint_maps_and_follow_a_new_range_array():
+    _, jm = humanoid_model()
+    for side in ("left", "right"):
+        idx = [jm.index(jn) for jn in ARM_JOINT_NAMES[side]]
+        lo, hi, adr = arm_ranges(jm, side)
+        assert np.array_equal(lo, jm.range[idx, 0]) and np.array_equal(hi, jm.range[idx, 1])
+        assert np.array_equal(adr, jm.qposadr[idx]) and adr.dtype == np.int64
+        assert arm_ranges(jm, side)[0] is lo  # kept with the joint map
+    jm.range = jm.range * 0.5  # a new array: looked up again
+    lo, hi, _ = arm_ranges(jm, "left")
+    assert np.array_equal(lo, jm.range[[jm.index(j) for j in ARM_JOINT_NAMES["left"]], 0])
