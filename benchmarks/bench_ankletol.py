@@ -28,33 +28,11 @@ import statistics
 import time
 
 import numpy as np
+from bench_synthloop import _record  # the station walks, recorded as the legs meet them
 
 from mjwalk.body.humanoid import ROM_DEG
 from mjwalk.body.legs import pitchfit
 from mjwalk.body.legs import synthesis as syn
-from mjwalk.cycle import poses
-from mjwalk.cycle import simulate as sim
-
-SPEC = "scenes/assembly_station.toml"
-
-
-def _record(runs: int) -> list[tuple]:
-    """The (walk, stature) pairs the cycles' legs were built from."""
-    seen: list[tuple] = []
-    legs0 = poses.legs_from_walk
-
-    def legs(walk, stature=1.75, reference=None):
-        seen.append((walk, stature))
-        return legs0(walk, stature, reference)
-
-    poses.legs_from_walk = legs
-    try:
-        sim.simulate_cycles(SPEC, 2, seed=99, n_jobs=1)  # warm: models, compiled code
-        seen.clear()
-        sim.simulate_cycles(SPEC, runs, seed=0, n_jobs=1)
-    finally:
-        poses.legs_from_walk = legs0
-    return seen
 
 
 def _legs(walks: list[tuple], tol: float) -> tuple[list, collections.Counter, collections.Counter]:
