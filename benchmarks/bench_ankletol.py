@@ -25,10 +25,9 @@ from __future__ import annotations
 import argparse
 import collections
 import statistics
-import time
 
 import numpy as np
-from bench_synthloop import _record  # the station walks, recorded as the legs meet them
+from bench_synthloop import _record, synth_cpu  # the station walks, recorded as the legs meet them
 
 from mjwalk.body.humanoid import ROM_DEG
 from mjwalk.body.legs import pitchfit
@@ -92,15 +91,6 @@ def _highest_flex(legs: list) -> float:
     return max(float(np.rad2deg(m.angles[f"ankle_{s}_flex"].max())) for m in legs for s in "lr")
 
 
-def _cpu(walks: list[tuple], tol: float) -> float:
-    """CPU seconds of synthesising every walk with ``ANKLE_TOL = tol``."""
-    syn.ANKLE_TOL = tol
-    t0 = time.process_time()
-    for walk, stature in walks:
-        syn.legs_from_walk(walk, stature)
-    return time.process_time() - t0
-
-
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=20)
@@ -124,7 +114,8 @@ def main() -> None:
     for r in range(args.rounds):
         order = (0.0, args.tol) if r % 2 == 0 else (args.tol, 0.0)
         for t in order:
-            ms[t].append(_cpu(walks, t) / args.runs * 1e3)
+            syn.ANKLE_TOL = t
+            ms[t].append(synth_cpu(walks) / args.runs * 1e3)
         print(f"round {r}: tol 0 {ms[0.0][-1]:.2f} ms a cycle, tol {ms[args.tol][-1]:.2f}")
     a, b = statistics.median(ms[0.0]), statistics.median(ms[args.tol])
     print(f"median: tol 0 {a:.2f} ms a cycle, tol {args.tol} {b:.2f} ms (ratio {b / a:.3f})")

@@ -52,9 +52,8 @@ def _bytes(m) -> list[bytes]:
     return [a.tobytes() for a in arrays]
 
 
-def _cpu(walks: list[tuple], compiled: bool) -> float:
-    """CPU seconds of synthesising every walk one way."""
-    syn.COMPILED_STEPS = compiled
+def synth_cpu(walks: list[tuple]) -> float:
+    """CPU seconds of synthesising every walk (with the synthesis's switches as they are set)."""
     t0 = time.process_time()
     for walk, stature in walks:
         syn.legs_from_walk(walk, stature)
@@ -80,7 +79,8 @@ def main() -> None:
         first = r % 2 == 0  # alternate which way goes first
         t = {c: 0.0 for c in (first, not first)}
         for c in t:
-            t[c] = _cpu(walks, c) / args.runs * 1e3
+            syn.COMPILED_STEPS = c
+            t[c] = synth_cpu(walks) / args.runs * 1e3
         step_ms.append(t[False])
         loop_ms.append(t[True])
         print(f"round {r}: step by step {t[False]:.2f} ms a cycle, one call {t[True]:.2f}")
