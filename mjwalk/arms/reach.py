@@ -40,7 +40,6 @@ from mjwalk.arms.chain import (
     REST_HAND,
     arm_segment_lengths,
     end_effector,
-    min_jerk,
     two_link_ik_rows,
 )
 from mjwalk.arms.dcs import DCSNetwork
@@ -414,7 +413,7 @@ class ReachModel:
             if E is None:
                 raise MjwalkError("ReachModel.predict: object_size needs a grasp model (extras)")
             E = E.copy()
-            E[:, 0] += min_jerk(np.linspace(0, 1, len(E))) * (object_size - E[-1, 0])
+            E[:, 0] += min_jerk_steps(len(E)) * (object_size - E[-1, 0])
         if start is not None or end is not None:
             pose = self._fit_endpoints(A, pose, start, end, L)
         U = apply_pose(self.rep_.center_, A, pose)
