@@ -1,5 +1,8 @@
-"""The nearest training input of a DCS network's queries by brute force (issue 50), the same
-distances to the bit as SciPy's ``cKDTree.query(x, k=1)`` gave.
+"""A DCS network's per-query arithmetic compiled (issue 50), the same numbers to the bit as
+the SciPy and NumPy code it replaces: the nearest training input (:func:`nearest_distances`,
+SciPy's ``cKDTree.query(x, k=1)``) and the logits of the normalized RBF
+(:func:`design_logits`, :func:`~mjwalk.arms.dcsfit.design`'s ``cdist``, winner, lateral
+neighbours and Gaussian exponents).
 
 A reach asks :meth:`~mjwalk.arms.dcs.DCSNetwork.distance_to_training` one query at a time,
 against a few hundred training inputs (the default model: 320 of 6 values): a k-d tree's
@@ -9,9 +12,13 @@ in ``scipy/spatial/ckdtree/src/distance.h``: four running sums over the dimensio
 four, added as ``((s0 + s1) + s2) + s3``, then the remaining dimensions one by one, no fused
 multiply-adds), keeps the smallest and takes its square root, as the tree takes the root of
 the smallest squared distance it found; the square root is correctly rounded and monotonic, so
-the result is the tree's to the bit (``tests/arms/test_dcsquery.py`` compares them over seeded
-tables of 1-9 dimensions). :data:`BRUTE_MAX` bounds the work done this way; past it the tree
-answers (many queries at once: a benchmark's test set).
+the result is the tree's to the bit. :data:`BRUTE_MAX` bounds the work done this way; past it
+the tree answers (many queries at once: a benchmark's test set). ``cdist``'s Euclidean
+distance sums the squared differences one dimension after the other (measured: the same bits
+for 1-11 dimensions), and the exponent's arithmetic is elementwise, so
+:func:`design_logits` is NumPy's to the bit too; ``np.exp`` and the normalization stay
+NumPy's (its vectorised ``exp`` differs from the C library's in the last bit).
+``tests/arms/test_dcsquery.py`` compares both with the code they replace over seeded inputs.
 
 Units: the network's standardized input units.
 """
@@ -93,5 +100,67 @@ def nearest_distances(train: np.ndarray, queries: np.ndarray) -> np.ndarray:
     out = np.empty(len(queries))
     _nearest(
         np.ascontiguousarray(train, dtype=float), np.ascontiguousarray(queries, dtype=float), out
+    )
+    return out
+
+
+@njit
+def _logits(Z, centers, widths, edges, out):
+    """:func:`design_logits` into ``out`` (N, K)."""
+    n, k_n = out.shape
+    d_n = Z.shape[1]
+    dist = np.empty(k_n)
+    for i in range(n):
+        bmu = 0
+        for k in range(k_n):
+            s = 0.0
+            for j in range(d_n):
+                e = Z[i, j] - centers[k, j]
+                s += e * e
+            dist[k] = math.sqrt(s)
+            # np.argmin: the first smallest, the first NaN if there is one
+            if dist[bmu] == dist[bmu] and (dist[k] < dist[bmu] or dist[k] != dist[k]):
+                bmu = k
+        top = -math.inf
+        for k in range(k_n):
+            if edges[bmu, k] or k == bmu:
+                r = dist[k] / widths[k]
+                v = -0.5 * (r * r)
+            else:
+                v = -math.inf
+            out[i, k] = v
+            # np.max: NaN propagates
+            if v != v or top != top:
+                top = math.nan
+            elif v > top:
+                top = v
+        for k in range(k_n):
+            out[i, k] -= top
+
+
+def design_logits(
+    Z: np.ndarray, centers: np.ndarray, widths: np.ndarray, edges: np.ndarray
+) -> np.ndarray:
+    """(N, K) logits of the normalized RBF over each input's winner and its lateral
+    neighbours, less the row's largest: ``-0.5 (d / width)^2`` (``d`` SciPy's ``cdist`` to
+    each centre) for the winner and its neighbours, ``-inf`` for the other neurons.
+
+    Args:
+        Z: (N, d) standardized inputs.
+        centers: (K, d) neuron centres.
+        widths: (K,) Gaussian widths.
+        edges: (K, K) bool lateral edges.
+
+    Returns:
+        (N, K) logits (their ``exp``, normalized, are the design's weights).
+    """
+    Z = np.ascontiguousarray(Z, dtype=float)
+    out = np.empty((len(Z), len(centers)))
+    _logits(
+        Z,
+        np.ascontiguousarray(centers, dtype=float),
+        np.ascontiguousarray(widths, dtype=float),
+        np.ascontiguousarray(edges, dtype=np.bool_),
+        out,
     )
     return out

@@ -7,6 +7,7 @@ import pytest
 from scipy.spatial import cKDTree
 
 from mjwalk.arms.dcs import DCSNetwork
+from mjwalk.arms.dcsfit import design
 from mjwalk.arms.dcsquery import BRUTE_MAX, nearest_distances, use_brute
 
 
@@ -51,3 +52,44 @@ def test_network_distance_matches_its_tree():
         assert net.distance_to_training(q[None]).tobytes() == np.float64(want).tobytes()
     big = rng.uniform(-1.5, 1.5, size=(BRUTE_MAX // 120 + 1, 6))  # the tree's own answer
     assert np.array_equal(net.distance_to_training(big), net._tree.query(net._standardize(big))[0])
+
+
+def _design_numpy(Z, centers, widths, edges):
+    """The NumPy design this module's logits replaced (mjwalk.arms.dcsfit before issue 50)."""
+    from scipy.spatial.distance import cdist
+
+    d = cdist(Z, centers)
+    bmu = np.argmin(d, axis=1)
+    active = edges[bmu].copy()
+    active[np.arange(len(Z)), bmu] = True
+    logit = np.where(active, -0.5 * (d / widths) ** 2, -np.inf)
+    logit -= logit.max(axis=1, keepdims=True)
+    w = np.exp(logit)
+    return w / w.sum(axis=1, keepdims=True)
+
+
+@pytest.mark.parametrize("d", [1, 2, 3, 6, 9, 11])
+def test_design_same_bits(d):
+    rng = np.random.default_rng(10 + d)
+    for _ in range(30):
+        k = int(rng.integers(1, 25))
+        centers = rng.normal(size=(k, d))
+        widths = rng.uniform(0.05, 2.0, size=k)
+        edges = rng.random((k, k)) < 0.3
+        edges = edges | edges.T
+        np.fill_diagonal(edges, False)
+        Z = np.vstack([rng.normal(size=(20, d)) * 2.0, centers[:2]])  # on a centre too
+        assert design(Z, centers, widths, edges).tobytes() == (
+            _design_numpy(Z, centers, widths, edges).tobytes()
+        )
+
+
+def test_design_nan_as_numpy():
+    centers = np.array([[0.0, 0.0], [1.0, 1.0], [2.0, 0.0]])
+    widths = np.array([0.5, 1.0, 2.0])
+    edges = np.array([[0, 1, 0], [1, 0, 1], [0, 1, 0]], dtype=bool)
+    Z = np.array([[np.nan, 0.0], [0.9, 1.1]])
+    with np.errstate(invalid="ignore"):
+        want = _design_numpy(Z, centers, widths, edges)
+        got = design(Z, centers, widths, edges)
+    assert np.array_equal(got, want, equal_nan=True)
