@@ -84,6 +84,7 @@ from mjwalk.arms.dcsfit import (
 )
 from mjwalk.arms.dcsgrow import adapt, insert_neuron, insertion_pair, prune, start_neurons
 from mjwalk.arms.dcsoptions import DCSOptions
+from mjwalk.arms.dcsquery import nearest_distances, use_brute
 from mjwalk.errors import MjwalkError
 
 
@@ -458,7 +459,11 @@ class DCSNetwork:
             (N,) distances, standardized units.
         """
         self._check_fitted()
-        d, _ = self._tree.query(self._standardize(X), k=1)
+        Z = self._standardize(X)
+        train = self.train_z_
+        if len(train) and use_brute(len(train), len(Z)):  # the tree's numbers, without it
+            return nearest_distances(train, Z)
+        d, _ = self._tree.query(Z, k=1)
         return np.atleast_1d(d).astype(float)
 
     def is_outside(self, X: np.ndarray) -> np.ndarray:

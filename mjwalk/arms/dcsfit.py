@@ -54,6 +54,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial.distance import cdist
 
+from mjwalk.arms.dcsquery import design_logits
 from mjwalk.errors import MjwalkError
 
 #: Fewest training samples per input column for the global linear term (one coefficient per
@@ -294,13 +295,8 @@ def design(Z, centers, widths, edges):
     Returns:
         (N, K) weights, each row summing to 1.
     """
-    d = cdist(Z, centers)
-    bmu = np.argmin(d, axis=1)
-    active = edges[bmu].copy()
-    active[np.arange(len(Z)), bmu] = True
-    logit = np.where(active, -0.5 * (d / widths) ** 2, -np.inf)
-    logit -= logit.max(axis=1, keepdims=True)
-    w = np.exp(logit)
+    # (cdist, the winner, its neighbours and the exponents compiled: the same numbers)
+    w = np.exp(design_logits(Z, centers, widths, edges))
     return w / w.sum(axis=1, keepdims=True)
 
 

@@ -24,7 +24,7 @@ there rather than extrapolating its neurons' local maps; the warning says by how
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -53,6 +53,12 @@ REACH_VERSION = 1
 ENDPOINT_INPUTS = 6
 #: Segments of the humanoid arm chain a scene reach drives: upper arm, forearm, hand.
 HUMANOID_ARM_SEGMENTS = 3
+#: Bounds of the endpoint fit's pose (rotation vector, radians; log angular scale): the log
+#: scale within +-1 (:meth:`ReachModel._fit_endpoints`). Read-only: shared by every fit.
+_POSE_LB = np.array([-np.inf, -np.inf, -np.inf, -1.0])
+_POSE_UB = np.array([np.inf, np.inf, np.inf, 1.0])
+_POSE_LB.setflags(write=False)
+_POSE_UB.setflags(write=False)
 
 
 def load_endpoint_model(path: str | Path, source: str | None = None) -> ReachModel:
@@ -157,10 +163,14 @@ def mirror_result(res: ReachResult) -> ReachResult:
     Returns:
         the reflected reach.
     """
-    return replace(
-        res,
+    # (the fields spelled out: dataclasses.replace looks each one up by name at every call)
+    return ReachResult(
         directions=res.directions * MIRROR_Y,
         hand=res.hand * MIRROR_Y,
+        extras=res.extras,
+        coefficients=res.coefficients,
+        distance=res.distance,
+        outside=res.outside,
         warnings=list(res.warnings),
     )
 
@@ -239,7 +249,11 @@ def reach_for_side(
             start = start * (reach / r)
     end = np.asarray(end, dtype=float) * (MIRROR_Y if side == "right" else 1.0)
     res = model.predict(
-        np.r_[start, end], start=start, end=end, object_size=object_size, arm_lengths=arm_lengths
+        np.concatenate((start, end)),
+        start=start,
+        end=end,
+        object_size=object_size,
+        arm_lengths=arm_lengths,
     )
     return mirror_result(res) if side == "right" else res
 
@@ -444,9 +458,8 @@ class ReachModel:
         def resid(x):
             return (end_effector(apply_pose(self.rep_.center_, Asub, x), lengths) - tgt).ravel()
 
-        lb = np.r_[-np.inf, -np.inf, -np.inf, -1.0]
-        ub = np.r_[np.inf, np.inf, np.inf, 1.0]
-        x0 = np.clip(pose0, lb + 1e-9, ub - 1e-9)
+        lb, ub = _POSE_LB.copy(), _POSE_UB.copy()
+        x0 = np.clip(pose0, _POSE_LB + 1e-9, _POSE_UB - 1e-9)
         # compiled Levenberg-Marquardt (the same residual); scipy's bounded solver where it
         # does not converge or the scale ends on its bound
         x, ok = fit_endpoint_pose(self.rep_.center_, Asub, lengths, tgt, x0, (-1.0, 1.0))
