@@ -377,26 +377,22 @@ def body_frames(
             rot[f] = data.xmat[bids].reshape(-1, 3, 3)
         return pos, rot
     gids = np.array([int(model.body_geomadr[b]) for b in bids])
-    # the table's columns of these geoms, read body by body (not gathered into a copy first)
-    cols = table.index(gids) if table is not None and len(table.xpos) == len(qpos) else None
-    if cols is not None:
-        gpos, gmat = table.xpos, table.xmat
-    else:
-        (gpos, gmat), cols = geom_poses(model, qpos, gids), np.arange(len(gids))
+    shared = table.columns(gids) if table is not None and len(table.xpos) == len(qpos) else None
+    gpos, gmat = shared if shared is not None else geom_poses(model, qpos, gids)
     n = len(qpos)
-    rot = np.empty((n, len(gids), 3, 3))  # R_body = R_geom R_local^T
-    pos = np.empty((n, len(gids), 3))
+    rot = gmat.reshape(n, len(gids), 3, 3)  # R_body = R_geom R_local^T, in place below
+    pos = np.empty_like(gpos)
     m = np.empty(9)
     # one (3F x 3) product per body, not F stacked 3x3 products (numpy's stacked matmul costs
     # about 3x more: benchmarks/cycle_timing.py, "ergonomics: angles"); the same sums, so the
     # same floats
-    for k, (g, c) in enumerate(zip(gids.tolist(), cols.tolist(), strict=True)):
-        r = np.ascontiguousarray(gmat[:, c]).reshape(3 * n, 3)
+    for k, g in enumerate(gids):
+        r = np.ascontiguousarray(rot[:, k]).reshape(3 * n, 3)
         if np.any(model.geom_quat[g] != (1.0, 0.0, 0.0, 0.0)):  # R_local is not the identity
             mujoco.mju_quat2Mat(m, model.geom_quat[g])
             r = r @ m.reshape(3, 3).T
-        rot[:, k] = r.reshape(n, 3, 3)
-        pos[:, k] = gpos[:, c] - (r @ model.geom_pos[g]).reshape(n, 3)
+            rot[:, k] = r.reshape(n, 3, 3)
+        pos[:, k] = gpos[:, k] - (r @ model.geom_pos[g]).reshape(n, 3)
     return pos, rot
 
 

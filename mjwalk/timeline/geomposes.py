@@ -90,26 +90,13 @@ class GeomTable:
         Returns:
             ``(xpos, xmat)``: (F, G', 3) and (F, G', 9), or None.
         """
-        col = self.index(geoms)
-        if col is None:
-            return None
-        if np.array_equal(col, np.arange(len(self.geoms))):
-            return self.xpos, self.xmat
-        return self.xpos[:, col], self.xmat[:, col]
-
-    def index(self, geoms: np.ndarray) -> np.ndarray | None:
-        """The table's columns of ``geoms`` (G',), or None when one is not in the table.
-
-        Args:
-            geoms: geom ids.
-
-        Returns:
-            (G',) int64 column indices into ``xpos`` / ``xmat``'s second axis, or None.
-        """
         geoms = np.asarray(geoms, dtype=np.int64)
         if not np.isin(geoms, self.geoms).all():
             return None
-        return np.searchsorted(self.geoms, geoms)
+        col = np.searchsorted(self.geoms, geoms)
+        if np.array_equal(col, np.arange(len(self.geoms))):
+            return self.xpos, self.xmat
+        return self.xpos[:, col], self.xmat[:, col]
 
 
 def geom_table(model: mujoco.MjModel, qpos: np.ndarray, geoms: np.ndarray) -> GeomTable:
