@@ -182,3 +182,25 @@ def test_walk_tops_of_a_floor_with_an_opening_are_its_floor_boxes(tmp_path, pit_
     on = {n for n, t in zip(names, tops, strict=True) if t}
     assert {"floor_0", "floor_1", "floor_2", "floor_3", "s1", "s2", "floor"} <= on
     assert "rack" not in on
+
+
+def test_capsules_are_covered_by_spheres_within_a_quarter_of_their_radius():
+    """The broad phase covers each capsule by spheres along its axis no larger than (1 +
+    1/SUB_PER_RADIUS) its radius (plus the margins and slack), and the cover holds: every
+    point of the capsule lies in one of them."""
+    from mjwalk.body.humanoid import HUMAN_GROUP
+    from mjwalk.timeline.collisions import BROAD_SLACK, SUB_PER_RADIUS, _static_scene
+
+    m = timeline_from_walk(make_walk(n_steps=2), _scene(2.0)).model
+    human = m.geom_group == HUMAN_GROUP
+    sc = _static_scene(m, human, floor_geoms(m))
+    cap = sc.types == mujoco.mjtGeom.mjGEOM_CAPSULE
+    assert cap.any()
+    r, h, n = sc.size[cap, 0], sc.size[cap, 1], sc.n_sub[cap]
+    assert (h / n <= r / SUB_PER_RADIUS + 1e-12).all() and (n >= 1).all()
+    np.testing.assert_allclose(sc.sub_reach[cap], r + h / n + BROAD_SLACK)  # no margins here
+    # every point of a capsule's axis is within its piece's half-length of a sphere centre
+    for hi, ni in zip(h, n, strict=True):
+        centres = -hi + (2 * np.arange(ni) + 1) * hi / ni
+        axis = np.linspace(-hi, hi, 101)
+        assert (np.abs(axis[:, None] - centres).min(axis=1) <= hi / ni + 1e-12).all()
