@@ -126,16 +126,18 @@ def simulate_cycle(
     actions = [_action(ctx, i, task) for i, task in enumerate(ctx.spec.tasks)]
     run_, state = _start(ctx, rng, fps)
     frames = [state.pose[None]]
+    n_frames = 1  # the frames so far
     starts: list[int] = []  # first frame of each task
     tasks: list[TaskRecord] = []
     walks: list[WalkRecord] = []
     arms: list[ArmRecord] = []
     for action in actions:
-        starts.append(sum(len(f) for f in frames))
+        starts.append(n_frames)
         done = action.perform(run_, state, action.plan(run_, state))
         t = state.t
         for piece, seconds in done.pieces:
             frames.append(piece)
+            n_frames += len(piece)
             t += seconds
         task = action.task
         tasks.append(TaskRecord(action.index, task.kind, task.site, state.t, t, task.route))

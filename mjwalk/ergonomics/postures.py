@@ -100,8 +100,9 @@ class RulaScore(Score):
         """
         out = np.zeros((ang.n_frames, 2), dtype=int)
         parts = []
+        body = rula.body_parts(ang)  # the neck, trunk and legs: the same for both arms
         for s in (0, 1):
-            p = rula.part_scores(ang, s)
+            p = rula.part_scores(ang, s, body)
             parts.append(p)
             force = rula.force_score(ctx.load[:, s], ctx.muscle[:, s] > 0)
             out[:, s] = rula.parts_score(p, ctx.muscle[:, s], force)
@@ -191,8 +192,9 @@ class RebaScore(Score):
         """
         out = np.zeros((ang.n_frames, 2), dtype=int)
         parts = []
+        body = reba.body_parts(ang)  # the trunk, neck and legs: the same for both arms
         for s in (0, 1):
-            p = reba.part_scores(ang, s)
+            p = reba.part_scores(ang, s, body)
             parts.append(p)
             load_s = reba.load_score(ctx.load[:, s])
             out[:, s] = reba.parts_score(p, load_s, ctx.coupling[:, s], ctx.muscle[:, s])

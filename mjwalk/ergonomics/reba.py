@@ -146,16 +146,14 @@ def risk_level(score) -> np.ndarray:
     return select_first([s <= 1, s <= 3, s <= 7, s <= 10], [0, 1, 2, 3], 4)
 
 
-def part_scores(ang: BodyAngles, side: int) -> RebaParts:
-    """REBA part scores of every frame for one arm (thresholds in
-    :mod:`mjwalk.ergonomics.angles`).
+def body_parts(ang: BodyAngles) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """REBA's trunk, neck and legs scores of every frame (the same for either arm).
 
     Args:
         ang: the body angles of F frames.
-        side: the arm, 0 left, 1 right.
 
     Returns:
-        The :class:`RebaParts`, each (F,).
+        (trunk, neck, legs), each (F,) ints.
     """
     tf = ang.trunk_flexion
     # upright 1; 0-20 deg flexion or extension 2; 20-60 flexion or > 20 extension 3; > 60 4
@@ -170,6 +168,22 @@ def part_scores(ang: BodyAngles, side: int) -> RebaParts:
     kf = np.where(ang.feet_down, ang.knee_flexion, 0.0).max(axis=1)
     kf = np.where(ang.walking, 0.0, kf)
     legs = legs + select_first([kf > 60, kf >= KNEE_BENT_DEG], [2, 1], 0)
+    return trunk.astype(int), neck.astype(int), legs.astype(int)
+
+
+def part_scores(ang: BodyAngles, side: int, body: tuple | None = None) -> RebaParts:
+    """REBA part scores of every frame for one arm (thresholds in
+    :mod:`mjwalk.ergonomics.angles`).
+
+    Args:
+        ang: the body angles of F frames.
+        side: the arm, 0 left, 1 right.
+        body: :func:`body_parts` of ``ang``, if already computed (both arms share them).
+
+    Returns:
+        The :class:`RebaParts`, each (F,).
+    """
+    trunk, neck, legs = body if body is not None else body_parts(ang)
     ua_ang = ang.upper_arm_angle[:, side]
     ua = select_first([ua_ang > 90, ua_ang > 45, (ua_ang > 20) | (ua_ang < -20)], [4, 3, 2], 1)
     ua = ua + ang.arm_abducted[:, side] + ang.shoulder_raised[:, side]
@@ -177,14 +191,7 @@ def part_scores(ang: BodyAngles, side: int) -> RebaParts:
     la = np.where((el >= 60) & (el <= 100), 1, 2)
     wf = np.abs(ang.wrist_flexion[:, side])
     wr = np.where(wf <= 15, 1, 2) + (ang.wrist_deviated[:, side] | ang.wrist_twist_end[:, side])
-    return RebaParts(
-        trunk.astype(int),
-        neck.astype(int),
-        legs.astype(int),
-        ua.astype(int),
-        la.astype(int),
-        wr.astype(int),
-    )
+    return RebaParts(trunk, neck, legs, ua.astype(int), la.astype(int), wr.astype(int))
 
 
 def reba(

@@ -157,13 +157,33 @@ def action_level(score) -> np.ndarray:
     return select_first([s <= 2, s <= 4, s <= 6], [1, 2, 3], 4)
 
 
-def part_scores(ang: BodyAngles, side: int) -> RulaParts:
+def body_parts(ang: BodyAngles) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """RULA's neck, trunk and legs scores of every frame (the same for either arm).
+
+    Args:
+        ang: the body angles of F frames.
+
+    Returns:
+        (neck, trunk, legs), each (F,) ints.
+    """
+    nf = ang.neck_flexion
+    neck = select_first([nf < -NEUTRAL_DEG, nf <= 10, nf <= 20], [4, 1, 2], 3)
+    neck = neck + ang.neck_twisted + ang.neck_side_bent
+    tf = ang.trunk_flexion
+    trunk = select_first([np.abs(tf) <= NEUTRAL_DEG, tf <= 20, tf <= 60], [1, 2, 3], 4)
+    trunk = np.where(tf < -NEUTRAL_DEG, 2, trunk)  # extension: scored as the 0-20 band
+    trunk = trunk + ang.trunk_twisted + ang.trunk_side_bent
+    return neck.astype(int), trunk.astype(int), np.where(ang.legs_supported, 1, 2)
+
+
+def part_scores(ang: BodyAngles, side: int, body: tuple | None = None) -> RulaParts:
     """RULA part scores of every frame for one arm (thresholds in
     :mod:`mjwalk.ergonomics.angles`).
 
     Args:
         ang: the body angles of F frames.
         side: the arm, 0 left, 1 right.
+        body: :func:`body_parts` of ``ang``, if already computed (both arms share them).
 
     Returns:
         The :class:`RulaParts`, each (F,).
@@ -176,23 +196,8 @@ def part_scores(ang: BodyAngles, side: int) -> RulaParts:
     wf = np.abs(ang.wrist_flexion[:, side])
     wr = select_first([wf <= NEUTRAL_DEG, wf <= 15], [1, 2], 3) + ang.wrist_deviated[:, side]
     tw = np.where(ang.wrist_twist_end[:, side], 2, 1)
-    nf = ang.neck_flexion
-    neck = select_first([nf < -NEUTRAL_DEG, nf <= 10, nf <= 20], [4, 1, 2], 3)
-    neck = neck + ang.neck_twisted + ang.neck_side_bent
-    tf = ang.trunk_flexion
-    trunk = select_first([np.abs(tf) <= NEUTRAL_DEG, tf <= 20, tf <= 60], [1, 2, 3], 4)
-    trunk = np.where(tf < -NEUTRAL_DEG, 2, trunk)  # extension: scored as the 0-20 band
-    trunk = trunk + ang.trunk_twisted + ang.trunk_side_bent
-    legs = np.where(ang.legs_supported, 1, 2)
-    return RulaParts(
-        ua.astype(int),
-        la.astype(int),
-        wr.astype(int),
-        tw,
-        neck.astype(int),
-        trunk.astype(int),
-        legs,
-    )
+    neck, trunk, legs = body if body is not None else body_parts(ang)
+    return RulaParts(ua.astype(int), la.astype(int), wr.astype(int), tw, neck, trunk, legs)
 
 
 def rula(

@@ -52,6 +52,9 @@ class Contact:
 
 #: Slack (m) of the broad phase's bounding-volume tests: a pair this close is handed to MuJoCo.
 BROAD_SLACK = 1e-3
+#: Capsules are covered by spheres of at most (1 + 1/this) their radius (:class:`StaticScene`;
+#: station candidate frames a cycle by this: 1: 127, 4: 75, 16: 60; measured over 8 cycles).
+SUB_PER_RADIUS = 4
 
 
 def collision_report(
@@ -346,22 +349,11 @@ def candidate_frames(
     # MuJoCo report pairs that are apart): a contact deeper than floor_tolerance needs the
     # lowest point that deep, less the slack for round-off
     depth = floor_tolerance - BROAD_SLACK
+    rows = np.arange(n) if shared is None else np.asarray(rows, dtype=np.int64)
     return _touching(
-        np.arange(n) if shared is None else np.asarray(rows, dtype=np.int64),
-        xpos,
-        xmat,
-        scene.types,
-        scene.size,
-        scene.rbound,
-        reach_solid,
-        scene.n_sub,
-        scene.sub_reach,
-        centre,
-        half,
-        normals,
-        origins,
-        depth,
-    )
+        rows, xpos, xmat, scene.types, scene.size, scene.rbound, reach_solid, scene.n_sub,
+        scene.sub_reach, centre, half, normals, origins, depth,
+    )  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -376,9 +368,9 @@ class StaticScene:
         size: (G, 3) their sizes.
         rbound: (G,) their bounding-sphere radii.
         reach_solid: (G,) how near (m) each may come to a scene box before a frame counts.
-        n_sub: (G,) how many spheres along a capsule's axis cover it, ceil(half-length /
-            radius) (1 for other geoms: the bounding sphere alone), each of the capsule's
-            radius plus a piece's half-length.
+        n_sub: (G,) how many spheres along a capsule's axis cover it, ceil(
+            :data:`SUB_PER_RADIUS` half-length / radius) (1 for other geoms: the bounding
+            sphere alone), each of the capsule's radius plus a piece's half-length.
         sub_reach: (G,) how near (m) those spheres' centres may come to a scene box.
         centre: (S, 3) the scene boxes' centres.
         half: (S, 3) their half-extents along the world axes.
@@ -435,7 +427,7 @@ def _static_scene(
     types, size = model.geom_type[hid].astype(np.int64), model.geom_size[hid]
     capsule = (types == _CAPSULE) & (size[:, 0] > 0.0)
     n_sub = np.ones(len(hid), dtype=np.int64)
-    n_sub[capsule] = np.maximum(1, np.ceil(size[capsule, 1] / size[capsule, 0])).astype(np.int64)
+    n_sub[capsule] = np.ceil(SUB_PER_RADIUS * size[capsule, 1] / size[capsule, 0]).clip(1)
     margins = model.geom_margin[hid] + slack + model.geom_margin[solids].max(initial=0.0)
     kept[key] = StaticScene(
         hid=hid,

@@ -41,6 +41,16 @@ def test_context_is_frozen_and_shares_its_caches_with_operators(scenes_dir):
     assert ctx.zone(1, ctx.spec.stature + 1e-4, step) is zone
     tall = operator_context(ctx, Walker(stature=1.90))
     assert tall.model is not ctx.model and tall.scratch() is not ctx.scratch()
-    assert tall.scratch() is tall.scratch()  # one scratch MjData per context
+    assert tall.scratch() is tall.scratch()  # one scratch MjData per model and thread
+    # an operator of the cycle's own stature works in the cycle's humanoid and its MjData
+    same = operator_context(ctx, Walker(stature=ctx.spec.stature, cadence=100.0))
+    assert same is not ctx and same.model is ctx.model and same.scratch() is ctx.scratch()
+    import threading
+
+    other: list = []
+    worker = threading.Thread(target=lambda: other.append(operator_context(ctx, Walker(1.90))))
+    worker.start()
+    worker.join()
+    assert other[0].model is tall.model and other[0].scratch() is not tall.scratch()
     assert tall.zones is ctx.zones and tall.planners is ctx.planners and tall.routes is ctx.routes
     assert tall.zone(1, ctx.spec.stature, step) is zone

@@ -30,3 +30,33 @@ def test_per_frame_scores_follow_the_methods_and_the_task_takes_the_peak():
     parts = [h.part for h in iso["holdings"]]
     assert parts == ["trunk", "upper_arm_left", "upper_arm_right"]
     assert iso["holdings"][0].held == 0.0  # an upright trunk is never held in the 20-60 zone
+
+
+def test_body_parts_shared_by_both_arms_are_each_arms_own():
+    """RULA and REBA score the neck, trunk and legs once for both arms (``body_parts``): each
+    arm's part scores are those it gets computing them itself, on random body angles."""
+    from dataclasses import replace
+
+    from mjwalk.ergonomics import reba
+
+    ang, _ = reach_cycle()
+    rng = np.random.default_rng(3)
+    n = ang.n_frames
+    ang = replace(
+        ang,
+        trunk_flexion=rng.uniform(-30, 90, n),
+        trunk_side_bend=rng.uniform(-20, 20, n),
+        trunk_twist=rng.uniform(-20, 20, n),
+        neck_flexion=rng.uniform(-20, 40, n),
+        neck_twist=rng.uniform(-20, 20, n),
+        knee_flexion=rng.uniform(0, 90, (n, 2)),
+        feet_down=rng.random((n, 2)) < 0.7,
+        walking=rng.random(n) < 0.3,
+    )
+    for method in (rula, reba):
+        body = method.body_parts(ang)
+        for side in (0, 1):
+            own, shared = method.part_scores(ang, side), method.part_scores(ang, side, body)
+            for a, b in zip(vars(own).values(), vars(shared).values(), strict=True):
+                assert a.dtype == b.dtype
+                np.testing.assert_array_equal(a, b)

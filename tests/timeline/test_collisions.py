@@ -182,3 +182,23 @@ def test_walk_tops_of_a_floor_with_an_opening_are_its_floor_boxes(tmp_path, pit_
     on = {n for n, t in zip(names, tops, strict=True) if t}
     assert {"floor_0", "floor_1", "floor_2", "floor_3", "s1", "s2", "floor"} <= on
     assert "rack" not in on
+
+
+def test_capsules_are_covered_by_spheres_within_a_quarter_of_their_radius():
+    """The broad phase's cover of a capsule: ceil(SUB_PER_RADIUS half-length / radius) spheres
+    along its axis, each of its radius plus a piece's half-length, at most (1 + 1/SUB_PER_RADIUS)
+    its radius, and every point of the axis within a piece's half-length of a sphere's centre,
+    for each of the humanoid's capsules (its exactness against the full check: the small-box
+    and clearance tests in test_kernels)."""
+    from mjwalk.body.humanoid import HUMAN_GROUP
+    from mjwalk.timeline.collisions import SUB_PER_RADIUS
+
+    m = timeline_from_walk(make_walk(n_steps=2), _scene(2.0)).model
+    cap = (m.geom_group == HUMAN_GROUP) & (m.geom_type == mujoco.mjtGeom.mjGEOM_CAPSULE)
+    assert SUB_PER_RADIUS >= 1 and cap.sum() > 10
+    for r, h in m.geom_size[cap, :2]:
+        n = max(1, int(np.ceil(SUB_PER_RADIUS * h / r)))
+        assert r + h / n <= (1 + 1 / SUB_PER_RADIUS) * r + 1e-12
+        centres = -h + (2 * np.arange(n) + 1) * h / n
+        axis = np.linspace(-h, h, 101)
+        assert (np.abs(axis[:, None] - centres).min(axis=1) <= h / n + 1e-12).all()
