@@ -55,3 +55,27 @@ def test_heel_rise_only_where_the_leg_cannot_reach():
     assert -1.0472 - 1e-9 <= p < 0.0
     gap = np.linalg.norm(far - pivot_ankle(foot, np.array([p]), g)[0]) - d
     assert gap < 0.03 - 1e-3
+
+
+def test_ankle_kept_rows_raises_the_heel_as_far_as_the_shank_leans_on():
+    """A flat foot under a hip that moves forward and down: the heel rises (pitch below 0) by
+    the shank's further lean, none at the first sample, never above ``p0`` nor past ``lo``."""
+    from mjwalk.body.legs.footpivot import _shank_lean, ankle_kept_rows
+
+    g = leg_geometry()
+    foot = np.array([0.0, 0.0, 0.0])
+    n = 6
+    hip = np.column_stack(
+        [np.linspace(0.0, 0.12, n), np.zeros(n), np.linspace(0.9, 0.84, n) * (g.thigh + g.shank)]
+    )
+    p0 = np.zeros(n)
+    out = np.empty(n)
+    args = (g.thigh, g.shank, ball_offset(g), g.foot_back, g.ankle_height)
+    ankle_kept_rows(foot, hip, p0, *args, -1.0, out)
+    fx, fy = 1.0, 0.0
+    lean = [_shank_lean(foot, fx, fy, hip[i], 0.0, *args) for i in range(n)]
+    assert out[0] == 0.0
+    assert np.all(np.diff(lean) < 0)  # the knee flexes forward as the hip goes on and down
+    assert out == pytest.approx(np.minimum(np.array(lean) - lean[0], 0.0), abs=1e-12)
+    ankle_kept_rows(foot, hip, p0, *args, -0.01, out)
+    assert out.min() >= -0.01 and out[-1] == -0.01
