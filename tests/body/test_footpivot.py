@@ -59,23 +59,24 @@ def test_heel_rise_only_where_the_leg_cannot_reach():
 
 def test_ankle_kept_rows_raises_the_heel_as_far_as_the_shank_leans_on():
     """A flat foot under a hip that moves forward and down: the heel rises (pitch below 0) by
-    the shank's further lean, none at the first sample, never above ``p0`` nor past ``lo``."""
-    from mjwalk.body.legs.footpivot import _shank_lean, ankle_kept_rows
+    the shank's further lean (the leg's sagittal triangle, worked out here again), none at the
+    first sample, never above ``p0`` nor past ``lo``."""
+    from mjwalk.body.legs.footpivot import ankle_kept_rows
 
     g = leg_geometry()
-    foot = np.array([0.0, 0.0, 0.0])
+    L1, L2 = g.thigh, g.shank
     n = 6
     hip = np.column_stack(
-        [np.linspace(0.0, 0.12, n), np.zeros(n), np.linspace(0.9, 0.84, n) * (g.thigh + g.shank)]
+        [np.linspace(0.0, 0.12, n), np.zeros(n), np.linspace(0.9, 0.84, n) * (L1 + L2)]
     )
-    p0 = np.zeros(n)
+    fwd, down = -hip[:, 0], hip[:, 2] - g.ankle_height  # the flat foot's ankle from the hip
+    d = np.hypot(fwd, down)
+    knee = np.arccos((d**2 - L1**2 - L2**2) / (2 * L1 * L2))
+    lean = np.arctan2(fwd, down) + np.arccos((L1**2 + d**2 - L2**2) / (2 * L1 * d)) - knee
     out = np.empty(n)
     args = (g.thigh, g.shank, ball_offset(g), g.foot_back, g.ankle_height)
-    ankle_kept_rows(foot, hip, p0, *args, -1.0, out)
-    fx, fy = 1.0, 0.0
-    lean = [_shank_lean(foot, fx, fy, hip[i], 0.0, *args) for i in range(n)]
-    assert out[0] == 0.0
-    assert np.all(np.diff(lean) < 0)  # the knee flexes forward as the hip goes on and down
-    assert out == pytest.approx(np.minimum(np.array(lean) - lean[0], 0.0), abs=1e-12)
-    ankle_kept_rows(foot, hip, p0, *args, -0.01, out)
+    ankle_kept_rows(np.zeros(3), hip, np.zeros(n), *args, -1.0, out)
+    assert out[0] == 0.0 and np.all(np.diff(out) < 0)  # the heel rises as the shank leans on
+    assert out == pytest.approx(lean - lean[0], abs=1e-9)
+    ankle_kept_rows(np.zeros(3), hip, np.zeros(n), *args, -0.01, out)
     assert out.min() >= -0.01 and out[-1] == -0.01
