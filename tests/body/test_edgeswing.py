@@ -130,3 +130,25 @@ def test_swing_clearance_of_a_swing_as_it_stands():
     assert swing_clearance(ankle, pitch, zero, zero, fr, surf, g) < -0.05
     ankle[:, 2] += sole_rise(ankle, pitch, zero, zero, fr, surf, g)
     assert swing_clearance(ankle, pitch, zero, zero, fr, surf, g) > -1e-3
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="first step down from standing on a landing: swing ankle held at landing height, "
+    "then drops 17 cm in the last samples (issue 47, gait47)",
+)
+def test_a_first_step_down_from_a_landing_lowers_its_foot_before_it_lands():
+    """Down the 0.17/0.28 stair from standing on the top landing (1.75 m), the walk's first
+    step lands on tread 1. Measured (gait47, as at 879469c): its swing ankle stays at the
+    landing's height while the pelvis lowers for the descent (hip 48.9 deg, knee 73 deg: the
+    "first swing down off the landing" over the cited 45), then falls 17 cm in the step's
+    last three samples (knee 72 -> 8 deg in one). Its landing heel lies just past the edge
+    span (``_step_edges``: from the lift foot's toe to the landing heel), so the foot pitched
+    toes down for its forefoot landing keeps its heel over the landing's side and ``sole_rise``
+    holds it up until the landing sample."""
+    walk = synthetic_stair_walk(0.17, 0.28, 6, "down", stature=1.75)
+    legs = legs_from_walk(walk, 1.75)
+    st = walk.steps[0]
+    side = "left" if st.side[0] == "l" else "right"
+    z = legs.ankle[side][st.start : st.end + 1, 2]
+    assert np.abs(np.diff(z)).max() < 0.05

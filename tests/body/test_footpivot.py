@@ -55,3 +55,28 @@ def test_heel_rise_only_where_the_leg_cannot_reach():
     assert -1.0472 - 1e-9 <= p < 0.0
     gap = np.linalg.norm(far - pivot_ankle(foot, np.array([p]), g)[0]) - d
     assert gap < 0.03 - 1e-3
+
+
+def test_ankle_kept_rows_raises_the_heel_as_far_as_the_shank_leans_on():
+    """A flat foot under a hip that moves forward and down: the heel rises (pitch below 0) by
+    the shank's further lean (the leg's sagittal triangle, worked out here again), none at the
+    first sample, never above ``p0`` nor past ``lo``."""
+    from mjwalk.body.legs.footpivot import ankle_kept_rows
+
+    g = leg_geometry()
+    L1, L2 = g.thigh, g.shank
+    n = 6
+    hip = np.column_stack(
+        [np.linspace(0.0, 0.12, n), np.zeros(n), np.linspace(0.9, 0.84, n) * (L1 + L2)]
+    )
+    fwd, down = -hip[:, 0], hip[:, 2] - g.ankle_height  # the flat foot's ankle from the hip
+    d = np.hypot(fwd, down)
+    knee = np.arccos((d**2 - L1**2 - L2**2) / (2 * L1 * L2))
+    lean = np.arctan2(fwd, down) + np.arccos((L1**2 + d**2 - L2**2) / (2 * L1 * d)) - knee
+    out = np.empty(n)
+    args = (g.thigh, g.shank, ball_offset(g), g.foot_back, g.ankle_height)
+    ankle_kept_rows(np.zeros(3), hip, np.zeros(n), *args, -1.0, out)
+    assert out[0] == 0.0 and np.all(np.diff(out) < 0)  # the heel rises as the shank leans on
+    assert out == pytest.approx(lean - lean[0], abs=1e-9)
+    ankle_kept_rows(np.zeros(3), hip, np.zeros(n), *args, -0.01, out)
+    assert out.min() >= -0.01 and out[-1] == -0.01

@@ -1,12 +1,13 @@
 """The foot on the floor: where its ankle is when it pitches about its heel or ball on a
 footprint (:func:`pivot_ankle`), its footprints when it spins about a point of its sole
 (:func:`spin_print`), and how far its heel must rise for the leg to reach the hip
-(:func:`heel_rise`). World frame, metres, radians; a footprint is (x, y, yaw) of the floor
-point under the ankle with the foot flat; a pitch is + toes up.
+(:func:`heel_rise`) or as the shank leans forward (:func:`ankle_kept_rows`). World frame,
+metres, radians; a footprint is (x, y, yaw) of the floor point under the ankle with the foot
+flat; a pitch is + toes up.
 
-numba caches the compiled functions of the modules that call :func:`pivot_rows` and
-:func:`heel_rise_rows` (stance, swing, steps, pitchfit) by their own source: change a comment
-there when these change.
+numba caches the compiled functions of the modules that call :func:`pivot_rows`,
+:func:`heel_rise_rows` and :func:`ankle_kept_rows` (stance, swing, steps, pitchfit) by their
+own source: change a comment there when these change.
 """
 
 from __future__ import annotations
@@ -231,3 +232,57 @@ def heel_rise_rows(foot, hip, d, p0, ball, back, ah, lo, out):
                     a = m
             q = 0.5 * (a + b)
         out[i] = q
+
+
+@njit
+def ankle_kept_rows(foot, hip, p0, L1, L2, ball, back, ah, lo, out):
+    """The pitches <= ``p0`` (rolled about the ball) of a foot whose heel rises as far as the
+    shank leans forward past its lean at the first sample: a first step from standing, whose
+    swing heel comes off the floor before its toes (:func:`~.swing.swing_foot`) instead of
+    the ankle dorsiflexing under the forward-leaning shank with the foot flat. The shank's
+    lean is taken once, at the foot as it is (pitch ``p0``), in the foot's sagittal plane:
+    the knee from the hip-to-ankle span (``L1``, ``L2``: thigh and shank, metres), the thigh
+    flexed past the hip-to-ankle line by the triangle's hip angle, the lean ``thigh - knee``.
+    Once, not solved for the raised foot: with the hip where it is, a higher heel brings the
+    ankle nearer the hip, flexes the knee and leans the shank further, and the fixed point of
+    that loop (tried: eight rounds) jumped the knee from 10 to 33 deg within one sample of a
+    synthetic first step. So the ankle still dorsiflexes a little (synthetic first steps,
+    ``benchmarks/bench_swing_ankle.py``: 5.0 deg standing, 5.7 at toe-off; 12.3-12.6 with
+    the foot lifted flat, 879469c).
+
+    Args:
+        foot: (3,) the footprint (x, y, yaw), metres and radians.
+        hip: (n, 3) hip joint centres, metres.
+        p0: (n,) current pitches, radians, + toes up (``p0[0]`` the standing foot's).
+        L1: the thigh's length, metres.
+        L2: the shank's length, metres.
+        ball: the ball's distance ahead of the ankle, metres.
+        back: the heel's distance behind the ankle, metres.
+        ah: the ankle height, metres.
+        lo: the lowest pitch, radians.
+        out: (n,) the pitches, radians, written.
+    """
+    n = p0.shape[0]
+    if n == 0:
+        return
+    fx, fy = math.cos(foot[2]), math.sin(foot[2])
+    lean0 = _shank_lean(foot, fx, fy, hip[0], p0[0], L1, L2, ball, back, ah)
+    for i in range(n):
+        lean = _shank_lean(foot, fx, fy, hip[i], p0[i], L1, L2, ball, back, ah)
+        out[i] = min(max(p0[i] + min(lean - lean0, 0.0), lo), p0[i])
+
+
+@njit
+def _shank_lean(foot, fx, fy, h, p, L1, L2, ball, back, ah):
+    """The shank's lean from the vertical (radians, + ankle ahead of the knee) of the leg
+    from hip ``h`` to the ankle of the foot pitched by ``p`` (:func:`ankle_kept_rows`)."""
+    lever = ball if p <= 0 else -back
+    c, s = math.cos(p), math.sin(p)
+    along = lever * (c - 1) + ah * s
+    dx = foot[0] - along * fx - h[0]
+    dy = foot[1] - along * fy - h[1]
+    down = h[2] - (ah * c - lever * s)
+    d = math.sqrt(dx * dx + dy * dy + down * down)
+    knee = math.acos(min(max((d * d - L1 * L1 - L2 * L2) / (2 * L1 * L2), -1.0), 1.0))
+    hip_in = math.acos(min(max((L1 * L1 + d * d - L2 * L2) / (2 * L1 * d), -1.0), 1.0))
+    return math.atan2(dx * fx + dy * fy, down) + hip_in - knee

@@ -24,7 +24,13 @@ from mjwalk.body.legs.curves import (
     soft_flat,
     soft_max,
 )
-from mjwalk.body.legs.footpivot import ball_offset, heel_rise, pivot_ankle, pivot_rows
+from mjwalk.body.legs.footpivot import (
+    ankle_kept_rows,
+    ball_offset,
+    heel_rise,
+    pivot_ankle,
+    pivot_rows,
+)
 from mjwalk.body.legs.ik import KNEE_MIN, ik_lengths, leg_ik_world_row
 from mjwalk.body.legs.reference import ReferenceGait
 from mjwalk.body.legs.swingthigh import reference_rows
@@ -315,7 +321,12 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     speed on gait biomechanics in healthy participants: a systematic review and
     meta-analysis", Syst. Rev. 8:153, 2019, abstract: the amplitude of joint kinematics
     decreases at slow speeds). A first step from standing rolls the same way (its roll faded
-    in from flat, as far as the foot trails).
+    in from flat, as far as the foot trails), and its heel rises further as far as the shank
+    leans forward past its standing lean (:func:`~.footpivot.ankle_kept_rows`): in gait
+    initiation the swing heel comes off the floor before the toes (the events "swing
+    heel-off" and "swing toe-off" of gait-initiation studies). Lifted flat (879469c) the
+    ankle dorsiflexed from its standing 5 deg to 12.3-12.6 at toe-off and 16 in early swing
+    (synthetic first steps, ``benchmarks/bench_swing_ankle.py``); now 5.7 and 12.4.
 
     After toe-off the swing follows the reference from the current hip, and as far as the foot
     did not trail its hip at toe-off as the reference's (one minus that share) it hangs from
@@ -354,7 +365,9 @@ def swing_foot(fr, phi, idx, z_hip, hip_pos, ref: ReferenceGait, geom: LegGeomet
     if fr.first:
         # from standing: the roll faded in, as far as the foot trails as the reference's
         je = np.flatnonzero(early)
-        p[je], share = _trailing_rise(st, p[je], hip_pos(idx[je], fr.side, z_hip[je]))
+        hip = hip_pos(idx[je], fr.side, z_hip[je])
+        p[je], share = _trailing_rise(st, p[je], hip)
+        p[je] = _ankle_kept(lift, hip, p[je], geom)
     else:
         # pre-swing: the knee follows the reference; the heel rises as far as that needs and
         # at least as the reference's does as far as the foot trails as its does (see above)
@@ -399,6 +412,18 @@ def toe_straighten_share(p_end: float, duration: float, phi_to: float) -> float:
     """
     need = abs(p_end) / (TOE_STRAIGHTEN_SPEED * max(duration, 1e-9))
     return max(min(max(TOE_STRAIGHTEN, need), 1.0 - phi_to), 1e-9)
+
+
+def _ankle_kept(lift: np.ndarray, hip: np.ndarray, p: np.ndarray, geom: LegGeometry) -> np.ndarray:
+    """The first step's pre-swing pitches ``p`` (m,) raised at the heel as far as the ankle
+    would otherwise dorsiflex past its standing angle (:func:`~.footpivot.ankle_kept_rows`,
+    ``hip`` (m, 3) the hip joint centres, metres)."""
+    out = np.empty(len(p))
+    ankle_kept_rows(np.asarray(lift, float), np.ascontiguousarray(hip, dtype=float),
+                    np.ascontiguousarray(p, dtype=float), float(geom.thigh), float(geom.shank),
+                    ball_offset(geom), float(geom.foot_back), float(geom.ankle_height),
+                    -HEEL_RISE_MAX, out)  # fmt: skip
+    return out
 
 
 def _trailing_rise(st: _SwingStep, p: np.ndarray, hip: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -12,6 +12,7 @@ frame, metres, radians; a foot's pitch + toes up.
 
 numba caches this module's machine code by its own source, not by the compiled functions it
 calls from other modules (``footpivot.heel_rise_rows``, ``footpivot.pivot_rows``,
+``footpivot.ankle_kept_rows``,
 ``curves.clamped_cubic_rows`` and the one-value shapes such as ``curves.smoothstep1``,
 ``reference.ppoly_at``, ``swingthigh.thigh_kept`` and ``swingthigh.swing_pitch``): change a
 comment here when those change.
@@ -36,7 +37,7 @@ from mjwalk.body.legs.curves import (
     soft_flat1,
     soft_max1,
 )
-from mjwalk.body.legs.footpivot import ball_offset, heel_rise_rows, pivot_rows
+from mjwalk.body.legs.footpivot import ankle_kept_rows, ball_offset, heel_rise_rows, pivot_rows
 from mjwalk.body.legs.ik import KNEE_MIN
 from mjwalk.body.legs.reference import ReferenceGait, ppoly_at, wrap01
 from mjwalk.body.legs.steps import (
@@ -188,8 +189,11 @@ def _swing(phi, hip_xy, z_hip, lift2, land2, dyaw, mode, p_pre, seg, seg_sq, nrm
         shares[i] = share
         p0[i] = p[i] if share >= 1.0 else p[0] + (p[i] - p[0]) * share
     if mode == ROLL_FIRST:
+        # the heel rises as far as the ankle would dorsiflex past its standing angle
+        hip1 = np.empty((ne, 3))
         for i in range(ne):
-            p[i] = p0[i]
+            hip1[i, 0], hip1[i, 1], hip1[i, 2] = hip_xy[i, 0], hip_xy[i, 1], z_hip[i]
+        ankle_kept_rows(lift, hip1, p0, L1, L2, ball, back, ah, -HEEL_RISE_MAX, p[:ne])
     elif ne > 0:
         # the knee follows the reference; the heel rises as far as that needs
         hip = np.empty((ne, 3))
