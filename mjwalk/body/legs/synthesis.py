@@ -39,7 +39,6 @@ leg cycle 50-100 % (cycle 0 = heel strike of that leg).
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass, field
 
@@ -48,7 +47,7 @@ import numpy as np
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry, leg_geometry
 from mjwalk.body.legs.curves import spread
 from mjwalk.body.legs.footpivot import pivot_ankle
-from mjwalk.body.legs.ik import KNEE_MIN, foot_lowest, generic_joint, hip_world
+from mjwalk.body.legs.ik import KNEE_MIN, LEG_JOINTS
 from mjwalk.body.legs.ikcache import LegIKCache
 from mjwalk.body.legs.legheights import lift_to_levels
 from mjwalk.body.legs.pitchfit import AnkleFit, fit_ankle_range, repitch_foot
@@ -473,25 +472,27 @@ def _clear_floor(
 ) -> dict[str, np.ndarray]:
     """The legs' joint angles, clipped to their ranges, with each foot kept above
     -:data:`FLOOR_TOLERANCE` (ankle targets lifted or feet pitched down, in place)."""
-    geom, f = sy.geom, sy.feet
+    f = sy.feet
     angles: dict[str, np.ndarray] = {}
     for s_ in "lr":
-        hip = hip_world(root, sy.yaw, s_, geom)
+        names = [k.format(s_) for k in LEG_JOINTS]
         # where the joint ranges still keep the foot from its target (a trailing foot too far
         # behind for the hip's extension, say), the clipped leg would put the sole below the
         # floor: lift the ankle target by the depth (or, where the ankle is at its
         # dorsiflexion limit and lifting would tilt the toes down further, pitch the foot
         # down) and solve again, so the foot stays above -FLOOR_TOLERANCE by construction
+        # (compiled: the IK, the clipped angles and the foot's lowest point in one call,
+        # LegIKCache.floor_round)
         for _ in range(FLOOR_ITERATIONS):
-            raw = ik[s_](f.ankle[s_], f.fyaw[s_], f.pitch[s_], root, sy.yaw)
-            ang = {k: np.clip(v, *_range_rad(generic_joint(k))) for k, v in raw.items()}
-            ang[f"toe_{s_}"] = np.clip(f.toe[s_], *_range_rad("toe"))
-            low = hip[:, 2] + foot_lowest(ang, side_of_prefix(s_), geom)
+            q, low = ik[s_].floor_round(
+                f.ankle[s_], f.fyaw[s_], f.pitch[s_], f.toe[s_], root, sy.yaw
+            )
+            ang = dict(zip(names, q, strict=True))
             bad = low < -FLOOR_TOLERANCE
             if not bad.any():
                 break
             # (both spread over the samples around, as above)
-            excess = raw[f"ankle_{s_}_flex"] - sy.dorsi_max
+            excess = ik[s_].out[:, 4] - sy.dorsi_max  # the unclipped ankle flexion
             tilt = bad & (excess > 0)
             if tilt.any():
                 sy.repitch(s_, spread(np.where(tilt, 1.2 * excess, 0.0), win))
@@ -499,11 +500,3 @@ def _clear_floor(
             f.ankle[s_][:, 2] += spread(np.where(lift, -low, 0.0), win)
         angles.update(ang)
     return angles
-
-
-@functools.lru_cache(maxsize=32)
-def _range_rad(joint: str) -> tuple[float, float]:
-    """The humanoid's range of ``joint`` (a ``ROM_DEG`` key), radians (kept: the floor
-    clearance clips every joint in each of its rounds)."""
-    lo, hi = np.deg2rad(ROM_DEG[joint])
-    return lo, hi
