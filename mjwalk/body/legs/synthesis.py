@@ -208,7 +208,8 @@ class _Synth:
     the reference and leg geometry, the pelvis track (``xy`` (n, 2), ``yaw``, ``z`` (n,)),
     each hip's (x, y) per side, the feet's tracks, each leg's gait-cycle fraction ``cyc``
     (0 = heel strike), the contact state and step phase, and the ankle bounds and leg spans
-    every step shares."""
+    every step shares, and the compiled step loop's scalars (:func:`~.synthloop.loop_consts`;
+    None for a reference not on the unit cycle)."""
 
     ref: ReferenceGait
     geom: LegGeometry
@@ -225,6 +226,7 @@ class _Synth:
     plantar_min: float
     d_land: float
     d_max_sq: float
+    loop: np.ndarray | None
 
     def hip_pos(self, idx, side, zz=None):
         """The ``side`` hip's (x, y) at samples ``idx`` (indices or a slice: a view of
@@ -258,9 +260,38 @@ class _Synth:
         )  # fmt: skip
 
 
+@dataclass(frozen=True)
+class _WalkerConsts:
+    """What the synthesis derives from the reference for one leg geometry (kept per
+    reference and geometry: the same numbers for every walk of a walker): the heel-strike
+    pitch (radians, >= 0), the landing leg's hip-to-ankle distance (m), the swing leg's
+    longest one squared (m²) and the compiled step loop's scalars (None for a reference not
+    on the unit cycle)."""
+
+    hs_pitch: float
+    d_land: float
+    d_max_sq: float
+    loop: np.ndarray | None
+
+
+def _walker_consts(ref: ReferenceGait, geom: LegGeometry) -> _WalkerConsts:
+    """:class:`_WalkerConsts` of ``ref`` for ``geom``, computed once per pair."""
+    c = ref.per_geom.get(geom)
+    if c is None:
+        hs_pitch = max(0.0, float(ref("pitch", 0.0)))
+        d_land = geom.span(max(ref("knee", 0.0), KNEE_MIN))
+        d_max_sq = geom.span(KNEE_MIN) ** 2  # the swing leg's longest hip-to-ankle distance²
+        loop = loop_consts(ref, geom, hs_pitch, d_land, d_max_sq) if ref._unit else None
+        c = _WalkerConsts(hs_pitch, d_land, d_max_sq, loop)
+        if len(ref.per_geom) < 64:
+            ref.per_geom[geom] = c
+    return c
+
+
 def _start(walk: WalkPath, ref: ReferenceGait, geom: LegGeometry) -> _Synth:
     """The synthesis's state before the first step: empty tracks, the hips' (x, y), the
     ankle's range less a degree each way and the legs' landing and longest spans."""
+    wc = _walker_consts(ref, geom)
     n = len(walk.t)
     xy = np.asarray(walk.xy, float)
     yaw = np.asarray(walk.yaw, float)
@@ -286,12 +317,12 @@ def _start(walk: WalkPath, ref: ReferenceGait, geom: LegGeometry) -> _Synth:
         cyc={s: np.zeros(n) for s in "lr"},
         contact=np.full(n, 2, dtype=int),
         phase=np.zeros(n),
-        hs_pitch=max(0.0, float(ref("pitch", 0.0))),
+        hs_pitch=wc.hs_pitch,
         dorsi_max=np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0),
         plantar_min=np.deg2rad(ROM_DEG["ankle_flex"][0] + 1.0),
-        d_land=geom.span(max(ref("knee", 0.0), KNEE_MIN)),
-        # the swing leg's longest hip-to-ankle distance, squared
-        d_max_sq=geom.span(KNEE_MIN) ** 2,
+        d_land=wc.d_land,
+        d_max_sq=wc.d_max_sq,
+        loop=wc.loop,
     )
 
 
@@ -387,7 +418,8 @@ def _synth_compiled(sy: _Synth, frames: list[StepFrames]) -> None:
     """Every step of ``frames`` into the tracks of ``sy`` as :func:`_synth_step`'s loop does,
     in one compiled call (:func:`~mjwalk.body.legs.synthloop.synth_steps`; ``sy.ref._unit``)."""
     f = sy.feet
-    c = loop_consts(sy.ref, sy.geom, sy.hs_pitch, sy.d_land, sy.d_max_sq)
+    c = sy.loop  # (loop_consts, kept per reference and geometry)
+    assert c is not None
     pair = lambda d: (d["l"], d["r"])  # noqa: E731
     out = SynthTracks(
         ankle=pair(f.ankle), fyaw=pair(f.fyaw), pitch=pair(f.pitch), toe=pair(f.toe),
