@@ -524,7 +524,9 @@ def _clear_floor(
             if not bad.any():
                 break
             # (both spread over the samples around, as above)
-            excess = ik[s_].out[:, 4] - sy.dorsi_max  # the unclipped ankle flexion
+            raw = ik[s_].out  # the round's unclipped angles
+            assert raw is not None
+            excess = raw[:, 4] - sy.dorsi_max  # (the ankle flexion)
             tilt = bad & (excess > 0)
             if tilt.any():
                 sy.repitch(s_, spread(np.where(tilt, 1.2 * excess, 0.0), win))
