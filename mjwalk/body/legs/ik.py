@@ -385,8 +385,15 @@ def foot_lowest(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry) ->
 
 @functools.lru_cache(maxsize=16)
 def foot_boxes(geom: LegGeometry) -> tuple[np.ndarray, np.ndarray]:
-    """The corners (8, 3) of :func:`foot_lowest`'s sole box in the foot frame and of its toes
-    box in the toes frame (kept per geometry: not to be changed)."""
+    """The corners of :func:`foot_lowest`'s sole box in the foot frame and of its toes box in
+    the toes frame (kept per geometry: not to be changed).
+
+    Args:
+        geom: the leg and foot lengths.
+
+    Returns:
+        the sole box's corners (8, 3) and the toes box's (8, 3), metres.
+    """
     ah, ball, hw = geom.ankle_height, ball_offset(geom), geom.foot_width / 2
     corners = np.array(list(itertools.product((0.0, 1.0), (-hw, hw), (0.0, 1.0))))
     # sole box: x from the heel to the ball, 0.8 ankle heights tall from the sole
@@ -429,8 +436,27 @@ def _foot_lowest_rows(q, s, thigh, shank, foot, toes, ball, ah):
 
 @njit_inline
 def foot_lowest_row(q0, q1, q2, q3, q4, q5, q6, s, thigh, shank, foot, toes, ball, ah):
-    """One row of :func:`_foot_lowest_rows`: the lowest corner's height (m) above the hip of
-    the sole and toes boxes for the :data:`LEG_JOINTS` angles ``q0``..``q6`` (radians)."""
+    """One row of :func:`_foot_lowest_rows` (:func:`foot_lowest`'s arithmetic, in its order).
+
+    Args:
+        q0: hip rotation, radians (the :data:`LEG_JOINTS` order).
+        q1: hip flexion, radians.
+        q2: hip abduction, radians.
+        q3: knee flexion, radians.
+        q4: ankle flexion, radians.
+        q5: ankle inversion, radians.
+        q6: toe angle, radians.
+        s: +1 for the left leg, -1 for the right.
+        thigh: thigh length, metres.
+        shank: shank length, metres.
+        foot: (8, 3) the sole box's corners in the foot frame (:func:`foot_boxes`), metres.
+        toes: (8, 3) the toes box's corners in the toes frame, metres.
+        ball: the ball's offset ahead of the ankle, metres.
+        ah: the ankle's height above the sole, metres.
+
+    Returns:
+        the lowest corner's height above the hip joint centre, metres (negative: below).
+    """
     r = _mat3(_mat3(_rz(-s * q0), _ry(-q1)), _rx(s * q2))
     kz = r[8] * -thigh
     r = _mat3(r, _ry(q3))

@@ -172,7 +172,16 @@ def _leg_ranges() -> tuple[np.ndarray, np.ndarray]:
 def clip1(x, lo, hi):
     """``np.clip`` of one float with float bounds, as NumPy 2 clips: a NaN stays, and a value
     equal to a bound stays itself (``-0.0`` clipped to 0.0..1.0 is ``-0.0``; tested against
-    ``np.clip``, signed zeros, NaN and infinities included)."""
+    ``np.clip``, signed zeros, NaN and infinities included).
+
+    Args:
+        x: the value (any unit, e.g. radians).
+        lo: the lower bound, same unit.
+        hi: the upper bound, same unit.
+
+    Returns:
+        ``x`` clipped to ``lo``..``hi``.
+    """
     t = x if (x != x or x >= lo) else lo
     return t if (t != t or t <= hi) else hi
 
