@@ -7,9 +7,17 @@ import math
 
 import numpy as np
 
-from mjwalk.body.humanoid import leg_geometry
-from mjwalk.body.legs.ik import ik_lengths, leg_ik_world
-from mjwalk.body.legs.ikcache import LegIKCache, leg_ik_world_cached_where, yaw_trig_row
+from mjwalk.body.humanoid import ROM_DEG, leg_geometry
+from mjwalk.body.legs.ik import (
+    LEG_JOINTS,
+    foot_lowest,
+    generic_joint,
+    hip_world,
+    ik_lengths,
+    leg_ik_world,
+)
+from mjwalk.body.legs.ikcache import LegIKCache, clip1, leg_ik_world_cached_where, yaw_trig_row
+from mjwalk.conventions import side_of_prefix
 
 
 def test_cached_where_solves_only_the_chosen_changed_rows():
@@ -89,3 +97,49 @@ def test_yaw_trig_row_tells_signed_zeros_apart():
         assert got == want and [math.copysign(1, v) for v in got] == [
             math.copysign(1, v) for v in want
         ]
+
+
+def test_clip1_is_numpys_clip_bit_for_bit():
+    """clip1 gives np.clip's numbers for scalar bounds, signed zeros, NaN, infinities and values
+    on the bounds included."""
+    rng = np.random.default_rng(11)
+    special = [0.0, -0.0, np.nan, np.inf, -np.inf, 1.0, -1.0, 0.5, -0.5, 5e-324, -5e-324]
+    x = np.concatenate([rng.uniform(-3, 3, 20_000), np.repeat(special, 50)])
+    rng.shuffle(x)
+    bounds = ((-1.0, 1.0), (0.0, 0.5), (-0.5, -0.0), (-0.0, 0.0), (0.0, 0.0), (-0.0, -0.0))
+    for lo, hi in bounds:
+        for v in (x, x[::3], np.array(special)):  # long, strided and short arrays
+            want = np.clip(v, lo, hi)
+            got = np.array([clip1(e, lo, hi) for e in v])
+            assert want.tobytes() == got.tobytes()
+
+
+def test_floor_round_is_the_clipped_ik_and_foot_lowest_bit_for_bit():
+    """LegIKCache.floor_round gives the angles of LegIKCache.__call__ clipped by np.clip to the
+    humanoid's ranges, the foot's lowest point of hip_world + foot_lowest, and leaves the cache
+    as __call__ would, bit for bit (both legs, targets out of reach, joints past their ranges)."""
+    rng = np.random.default_rng(5)
+    n = 400
+    for stature, side in ((1.55, "l"), (1.75, "r"), (1.95, "l")):
+        g = leg_geometry(stature)
+        ankle = np.column_stack(
+            [rng.uniform(-0.9, 0.9, n), rng.uniform(-0.5, 0.5, n), rng.uniform(-0.1, 0.6, n)]
+        )
+        root = np.column_stack([rng.uniform(-0.2, 0.2, (n, 2)), rng.uniform(0.6, 1.2, n)])
+        fyaw, yaw = rng.uniform(-3.5, 3.5, (2, n))
+        pitch, toe = rng.uniform(-1.2, 1.2, (2, n))
+        toe[:3] = [0.0, -0.0, 2.0]
+        a, b = LegIKCache(side, g), LegIKCache(side, g)
+        raw = a(ankle, fyaw, pitch, root, yaw)
+        names = [k.format(side) for k in LEG_JOINTS]
+        lo, hi = np.deg2rad(np.array([ROM_DEG[generic_joint(k)] for k in names])).T
+        want = [np.clip(raw[k], lo[i], hi[i]) for i, k in enumerate(names[:6])]
+        want.append(np.clip(toe, lo[6], hi[6]))
+        hip = hip_world(root, yaw, side, g)
+        low_want = hip[:, 2] + foot_lowest(
+            dict(zip(names, want, strict=True)), side_of_prefix(side), g
+        )
+        q, low = b.floor_round(ankle, fyaw, pitch, toe, root, yaw)
+        assert [w.tobytes() for w in want] == [r.tobytes() for r in q]
+        assert low.tobytes() == low_want.tobytes()
+        assert a.out.tobytes() == b.out.tobytes() and a.inputs.tobytes() == b.inputs.tobytes()

@@ -4,12 +4,15 @@ shapes, and references off the unit cycle keep the step path."""
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
 from mjwalk.body.humanoid import leg_geometry
 from mjwalk.body.legs import synthesis, synthloop
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait, winter_reference
+from mjwalk.body.legs.swing import step_chord
 from mjwalk.body.legs.synthloop import N_CONSTS, loop_consts
 from mjwalk.plan.synthetic import synthetic_walk
 
@@ -109,3 +112,25 @@ def test_loop_consts_fill_every_slot():
     assert c.shape == (N_CONSTS,) and np.isfinite(c).all()
     assert c[synthloop.C_D_LAND_SQ] == 0.8**2 and c[synthloop.C_TWO] == 2.0
     assert c[synthloop.C_KL1SQ] == geom.thigh**2
+
+
+def test_step_chords_are_step_chords_numbers():
+    """synthloop.step_chords gives swing.step_chord's turn, chord, squared length and normal of
+    every step bit for bit: seeded footprints with turns past pi either way, short and long
+    chords, a zero chord and signed zeros."""
+    rng = np.random.default_rng(21)
+    m = 4000
+    lift = np.column_stack([rng.uniform(-20, 20, (m, 2)), rng.uniform(-7, 7, m)])
+    land = lift + np.column_stack(
+        [rng.normal(0, 0.4, (m, 2)) * rng.choice([1e-6, 1e-3, 1.0], (m, 1)), rng.normal(0, 2, m)]
+    )
+    land[:3] = lift[:3]  # no chord, no turn
+    lift[3], land[3] = [0.0, -0.0, -0.0], [-0.0, 0.0, 0.0]
+    got = synthloop.step_chords(lift, land)
+    for k in range(m):
+        fr = SimpleNamespace(lift=lift[k], land=land[k])
+        want = step_chord(fr)  # type: ignore[arg-type]
+        assert np.array([want[0]]).tobytes() == got[0][k : k + 1].tobytes()
+        assert want[1].tobytes() == got[1][k].tobytes()
+        assert np.array([want[2]]).tobytes() == got[2][k : k + 1].tobytes()
+        assert want[3].tobytes() == got[3][k].tobytes()

@@ -375,7 +375,7 @@ def foot_lowest(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry) ->
         (N,) heights, metres (negative: below the hip).
     """
     ah, ball = geom.ankle_height, ball_offset(geom)
-    foot, toes = _foot_boxes(geom)
+    foot, toes = foot_boxes(geom)
     p = side_prefix(side)
     names = [k.format(p) for k in LEG_JOINTS]
     q = np.ascontiguousarray(np.column_stack([np.asarray(angles[k], float) for k in names]))
@@ -384,9 +384,16 @@ def foot_lowest(angles: dict[str, np.ndarray], side: Side, geom: LegGeometry) ->
 
 
 @functools.lru_cache(maxsize=16)
-def _foot_boxes(geom: LegGeometry) -> tuple[np.ndarray, np.ndarray]:
-    """The corners (8, 3) of :func:`foot_lowest`'s sole box in the foot frame and of its toes
-    box in the toes frame (kept per geometry: not to be changed)."""
+def foot_boxes(geom: LegGeometry) -> tuple[np.ndarray, np.ndarray]:
+    """The corners of :func:`foot_lowest`'s sole box in the foot frame and of its toes box in
+    the toes frame (kept per geometry: not to be changed).
+
+    Args:
+        geom: the leg and foot lengths.
+
+    Returns:
+        the sole box's corners (8, 3) and the toes box's (8, 3), metres.
+    """
     ah, ball, hw = geom.ankle_height, ball_offset(geom), geom.foot_width / 2
     corners = np.array(list(itertools.product((0.0, 1.0), (-hw, hw), (0.0, 1.0))))
     # sole box: x from the heel to the ball, 0.8 ankle heights tall from the sole
@@ -422,24 +429,51 @@ def _foot_lowest_rows(q, s, thigh, shank, foot, toes, ball, ah):
     n = q.shape[0]
     out = np.empty(n)
     for i in range(n):
-        r = _mat3(_mat3(_rz(-s * q[i, 0]), _ry(-q[i, 1])), _rx(s * q[i, 2]))
-        kz = r[8] * -thigh
-        r = _mat3(r, _ry(q[i, 3]))
-        az = kz + r[8] * -shank
-        r = _mat3(_mat3(r, _ry(-q[i, 4])), _rx(-s * q[i, 5]))
-        low = np.inf
-        for c in range(foot.shape[0]):
-            z = r[6] * foot[c, 0] + r[7] * foot[c, 1] + r[8] * foot[c, 2]
-            low = min(low, z)
-        t = _ry(-q[i, 6])
-        for c in range(toes.shape[0]):
-            x = t[0] * toes[c, 0] + t[1] * toes[c, 1] + t[2] * toes[c, 2] + ball
-            y = t[3] * toes[c, 0] + t[4] * toes[c, 1] + t[5] * toes[c, 2] + 0.0
-            zz = t[6] * toes[c, 0] + t[7] * toes[c, 1] + t[8] * toes[c, 2] + -ah
-            z = r[6] * x + r[7] * y + r[8] * zz
-            low = min(low, z)
-        out[i] = az + low
+        out[i] = foot_lowest_row(q[i, 0], q[i, 1], q[i, 2], q[i, 3], q[i, 4], q[i, 5], q[i, 6],
+                                 s, thigh, shank, foot, toes, ball, ah)  # fmt: skip
     return out
+
+
+@njit_inline
+def foot_lowest_row(q0, q1, q2, q3, q4, q5, q6, s, thigh, shank, foot, toes, ball, ah):
+    """One row of :func:`_foot_lowest_rows` (:func:`foot_lowest`'s arithmetic, in its order).
+
+    Args:
+        q0: hip rotation, radians (the :data:`LEG_JOINTS` order).
+        q1: hip flexion, radians.
+        q2: hip abduction, radians.
+        q3: knee flexion, radians.
+        q4: ankle flexion, radians.
+        q5: ankle inversion, radians.
+        q6: toe angle, radians.
+        s: +1 for the left leg, -1 for the right.
+        thigh: thigh length, metres.
+        shank: shank length, metres.
+        foot: (8, 3) the sole box's corners in the foot frame (:func:`foot_boxes`), metres.
+        toes: (8, 3) the toes box's corners in the toes frame, metres.
+        ball: the ball's offset ahead of the ankle, metres.
+        ah: the ankle's height above the sole, metres.
+
+    Returns:
+        the lowest corner's height above the hip joint centre, metres (negative: below).
+    """
+    r = _mat3(_mat3(_rz(-s * q0), _ry(-q1)), _rx(s * q2))
+    kz = r[8] * -thigh
+    r = _mat3(r, _ry(q3))
+    az = kz + r[8] * -shank
+    r = _mat3(_mat3(r, _ry(-q4)), _rx(-s * q5))
+    low = np.inf
+    for c in range(foot.shape[0]):
+        z = r[6] * foot[c, 0] + r[7] * foot[c, 1] + r[8] * foot[c, 2]
+        low = min(low, z)
+    t = _ry(-q6)
+    for c in range(toes.shape[0]):
+        x = t[0] * toes[c, 0] + t[1] * toes[c, 1] + t[2] * toes[c, 2] + ball
+        y = t[3] * toes[c, 0] + t[4] * toes[c, 1] + t[5] * toes[c, 2] + 0.0
+        zz = t[6] * toes[c, 0] + t[7] * toes[c, 1] + t[8] * toes[c, 2] + -ah
+        z = r[6] * x + r[7] * y + r[8] * zz
+        low = min(low, z)
+    return az + low
 
 
 def generic_joint(name: str) -> str:

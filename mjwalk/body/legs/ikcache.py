@@ -7,13 +7,24 @@ loops leave unchanged, are kept per sample (:func:`yaw_trig_row`). The numbers a
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 
 from mjwalk._jit import njit, njit_inline
-from mjwalk.body.humanoid import LegGeometry
-from mjwalk.body.legs.ik import hip_rel, ik_lengths, leg_ik_cs, named_angles
+from mjwalk.body.humanoid import ROM_DEG, LegGeometry
+from mjwalk.body.legs.footpivot import ball_offset
+from mjwalk.body.legs.ik import (
+    LEG_JOINTS,
+    foot_boxes,
+    foot_lowest_row,
+    generic_joint,
+    hip_rel,
+    ik_lengths,
+    leg_ik_cs,
+    named_angles,
+)
 from mjwalk.conventions import side_of_prefix
 
 
@@ -99,6 +110,101 @@ class LegIKCache:
             *self.trig_buffers(len(ankle)),
         )
         return named_angles(self.out.copy(), side_of_prefix(self.side), clip=False)
+
+    def floor_round(self, ankle, foot_yaw, pitch, toe, root, yaw) -> tuple[np.ndarray, np.ndarray]:
+        """One round of the synthesis's floor clearance for this leg in one compiled call:
+        the leg solved as :meth:`__call__` solves it (its angles kept in :attr:`out`,
+        unclipped), its :data:`~mjwalk.body.legs.ik.LEG_JOINTS` angles (the toes' from ``toe``)
+        clipped to the humanoid's ranges as ``np.clip`` clips them, and the foot's lowest point
+        above the floor (the hip's height plus :func:`~mjwalk.body.legs.ik.foot_lowest`) --
+        the numbers of those calls, bit for bit.
+
+        Args:
+            ankle: (n, 3) ankle targets, metres, world frame.
+            foot_yaw: (n,) foot headings, radians from +x CCW.
+            pitch: (n,) foot pitches to the floor, radians, + toes up.
+            toe: (n,) toe angles, radians.
+            root: (n, 3) pelvis (root) positions, metres.
+            yaw: (n,) pelvis yaws, radians from +x CCW.
+
+        Returns:
+            the clipped angles (7, n) in :data:`~mjwalk.body.legs.ik.LEG_JOINTS` order, radians,
+            and the foot's lowest point (n,), metres above the floor (z = 0).
+        """
+        ankle = np.ascontiguousarray(ankle, dtype=float)
+        n = len(ankle)
+        self.buffers(n)
+        geom = self.geom
+        foot, toes = foot_boxes(geom)
+        lo, hi = _leg_ranges()
+        q, low = np.empty((7, n)), np.empty(n)
+        _floor_rows(
+            ankle,
+            np.ascontiguousarray(foot_yaw, dtype=float),
+            np.ascontiguousarray(pitch, dtype=float),
+            np.ascontiguousarray(toe, dtype=float),
+            np.ascontiguousarray(root, dtype=float),
+            np.ascontiguousarray(yaw, dtype=float),
+            1.0 if self.side == "l" else -1.0,
+            float(geom.hip_y),
+            *ik_lengths(geom),
+            self.inputs,
+            self.out,
+            *self.trig_buffers(n),
+            lo,
+            hi,
+            (foot, toes, ball_offset(geom), geom.ankle_height),
+            q,
+            low,
+        )
+        return q, low
+
+
+@functools.lru_cache(maxsize=1)
+def _leg_ranges() -> tuple[np.ndarray, np.ndarray]:
+    """The humanoid's ranges (radians) of the :data:`~mjwalk.body.legs.ik.LEG_JOINTS`, lower
+    and upper bounds (7,) each, as ``np.deg2rad`` gives them (kept: not to be changed)."""
+    rad = np.array([np.deg2rad(ROM_DEG[generic_joint(k.format("l"))]) for k in LEG_JOINTS])
+    return np.ascontiguousarray(rad[:, 0]), np.ascontiguousarray(rad[:, 1])
+
+
+@njit_inline
+def clip1(x, lo, hi):
+    """``np.clip`` of one float with float bounds, as NumPy 2 clips: a NaN stays, and a value
+    equal to a bound stays itself (``-0.0`` clipped to 0.0..1.0 is ``-0.0``; tested against
+    ``np.clip``, signed zeros, NaN and infinities included).
+
+    Args:
+        x: the value (any unit, e.g. radians).
+        lo: the lower bound, same unit.
+        hi: the upper bound, same unit.
+
+    Returns:
+        ``x`` clipped to ``lo``..``hi``.
+    """
+    t = x if (x != x or x >= lo) else lo
+    return t if (t != t or t <= hi) else hi
+
+
+@njit
+def _floor_rows(ankle, foot_yaw, pitch, toe, root, yaw, sgn, hip_y, L1, L2, rmin, rmax, inputs,
+                out, key, vals, lo, hi, feet, q, low):  # fmt: skip
+    """:meth:`LegIKCache.floor_round` per row: :func:`leg_ik_world_cached`'s row, the seven
+    angles clipped to ``lo``..``hi`` into ``q`` (7, n), the lowest point of the foot's boxes
+    (``feet``: sole and toes corners, the ball's offset, the ankle height) above the floor into
+    ``low`` (the hip's height as ``ik.hip_world`` gives it, plus
+    ``ik.foot_lowest``'s row)."""
+    foot, toes, ball, ah = feet
+    off = sgn * hip_y
+    for i in range(ankle.shape[0]):
+        _update_row(ankle, foot_yaw, pitch, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, inputs,
+                    out, key, vals)  # fmt: skip
+        for k in range(6):
+            q[k, i] = clip1(out[i, k], lo[k], hi[k])
+        q[6, i] = clip1(toe[i], lo[6], hi[6])
+        fl = foot_lowest_row(q[0, i], q[1, i], q[2, i], q[3, i], q[4, i], q[5, i], q[6, i], sgn,
+                             L1, L2, foot, toes, ball, ah)  # fmt: skip
+        low[i] = (root[i, 2] + off * 0.0) + fl
 
 
 @njit

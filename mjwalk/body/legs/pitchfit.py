@@ -3,11 +3,12 @@
 Where a grounded foot's ankle would leave its range, the synthesis lowers or raises the foot's
 pitch about its pivot on the floor, spread over the samples around, and solves the leg again,
 up to eight times per leg and pass (four passes), until no grounded ankle is more than a
-tolerance past its bound (``AnkleFit.tol``; the synthesis's ``ANKLE_TOL``). Each round is a few dozen NumPy operations
-on a walk's few hundred samples: in NumPy their call overhead cost about as much as the
-arithmetic. :func:`repitch_foot` and :func:`fit_ankle_range` do the same arithmetic, in the same
-order, in one compiled call (the same numbers, bit for bit: tests/timeline/test_kernels.py compares
-them with the NumPy code they replace). World frame, metres, radians; a foot's pitch + toes up.
+tolerance past its bound (``AnkleFit.tol``; the synthesis's ``ANKLE_TOL``). Each round is a
+few dozen NumPy operations on a walk's few hundred samples: in NumPy their call overhead cost
+about as much as the arithmetic. :func:`repitch_foot` and :func:`fit_ankle_range` do the same
+arithmetic, in the same order, in one compiled call (the same numbers, bit for bit:
+tests/timeline/test_kernels.py compares them with the NumPy code they replace). World frame,
+metres, radians; a foot's pitch + toes up.
 
 The compiled rounds solve the leg IK's ankle flexion (:func:`_ankle_flex_row`: the arithmetic of
 ``ik.leg_ik_world_row`` up to it) and call the spread (``curves.spread_rows``): numba caches this
@@ -242,10 +243,9 @@ def _fit_rounds(
     need_down = np.empty(n)
     need_up = np.empty(n)
     # sines and cosines: of the foot headings, the footprints' headings (constant here) and
-    # the pitches (c0, s0: before a round's repitch; cp, sp: after)
-    cf, sf, cg, sg = np.cos(fyaw), np.sin(fyaw), np.cos(prints[:, 2]), np.sin(prints[:, 2])
-    c0, s0 = np.cos(pitch), np.sin(pitch)
-    cp, sp = c0.copy(), s0.copy()
+    # the pitches (c0, s0: before a round's repitch; cp, sp: after), taken at the first round
+    # that corrects (nearly half the fits correct nothing: issue 50)
+    cf = sf = cg = sg = c0 = s0 = cp = sp = need_down[:0]
     done = 0
     for _ in range(rounds):
         # (the grounded rows' ankle flexions only: the rounds read no other angle)
@@ -263,6 +263,11 @@ def _fit_rounds(
             need_up[i] = 1.2 * max(short, 0.0)
         if e_max <= tol and s_max <= tol:
             break
+        if done == 0:  # (no pitch has changed yet: those of the walk's start)
+            cf, sf = np.cos(fyaw), np.sin(fyaw)
+            cg, sg = np.cos(prints[:, 2]), np.sin(prints[:, 2])
+            c0, s0 = np.cos(pitch), np.sin(pitch)
+            cp, sp = c0.copy(), s0.copy()
         done += 1
         down = spread_rows(need_down, win, kernel)
         up = spread_rows(need_up, win, kernel)

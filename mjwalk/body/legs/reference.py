@@ -56,6 +56,9 @@ class ReferenceGait:
     #: values at single cycle fractions, kept (the synthesis asks for the same few, such as
     #: the knee at heel strike, hundreds of times per cycle)
     _memo: dict[tuple[str, float, bool], Any] = field(init=False, repr=False, compare=False)
+    #: what the synthesis derives from the table for one leg geometry (a walker's stature),
+    #: kept by geometry (:func:`~mjwalk.body.legs.synthesis.legs_from_walk`)
+    per_geom: dict[Any, Any] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         sp = {}
@@ -69,6 +72,7 @@ class ReferenceGait:
         ppoly = {k: (np.ascontiguousarray(v.c), np.ascontiguousarray(v.x)) for k, v in sp.items()}
         object.__setattr__(self, "_ppoly", ppoly)
         object.__setattr__(self, "_memo", {})
+        object.__setattr__(self, "per_geom", {})
 
     def __call__(self, name: str, cycle, derivative: bool = False) -> np.ndarray:
         """Angle ``name`` ("hip", "knee", "pitch") in radians at cycle fraction(s) (wrapped);

@@ -39,7 +39,6 @@ leg cycle 50-100 % (cycle 0 = heel strike of that leg).
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass, field
 
@@ -48,7 +47,7 @@ import numpy as np
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry, leg_geometry
 from mjwalk.body.legs.curves import spread
 from mjwalk.body.legs.footpivot import pivot_ankle
-from mjwalk.body.legs.ik import KNEE_MIN, foot_lowest, generic_joint, hip_world
+from mjwalk.body.legs.ik import KNEE_MIN, LEG_JOINTS
 from mjwalk.body.legs.ikcache import LegIKCache
 from mjwalk.body.legs.legheights import lift_to_levels
 from mjwalk.body.legs.pitchfit import AnkleFit, fit_ankle_range, repitch_foot
@@ -209,7 +208,8 @@ class _Synth:
     the reference and leg geometry, the pelvis track (``xy`` (n, 2), ``yaw``, ``z`` (n,)),
     each hip's (x, y) per side, the feet's tracks, each leg's gait-cycle fraction ``cyc``
     (0 = heel strike), the contact state and step phase, and the ankle bounds and leg spans
-    every step shares."""
+    every step shares, and the compiled step loop's scalars (:func:`~.synthloop.loop_consts`;
+    None for a reference not on the unit cycle)."""
 
     ref: ReferenceGait
     geom: LegGeometry
@@ -226,6 +226,7 @@ class _Synth:
     plantar_min: float
     d_land: float
     d_max_sq: float
+    loop: np.ndarray | None
 
     def hip_pos(self, idx, side, zz=None):
         """The ``side`` hip's (x, y) at samples ``idx`` (indices or a slice: a view of
@@ -259,9 +260,38 @@ class _Synth:
         )  # fmt: skip
 
 
+@dataclass(frozen=True)
+class _WalkerConsts:
+    """What the synthesis derives from the reference for one leg geometry (kept per
+    reference and geometry: the same numbers for every walk of a walker): the heel-strike
+    pitch (radians, >= 0), the landing leg's hip-to-ankle distance (m), the swing leg's
+    longest one squared (m²) and the compiled step loop's scalars (None for a reference not
+    on the unit cycle)."""
+
+    hs_pitch: float
+    d_land: float
+    d_max_sq: float
+    loop: np.ndarray | None
+
+
+def _walker_consts(ref: ReferenceGait, geom: LegGeometry) -> _WalkerConsts:
+    """:class:`_WalkerConsts` of ``ref`` for ``geom``, computed once per pair."""
+    c = ref.per_geom.get(geom)
+    if c is None:
+        hs_pitch = max(0.0, float(ref("pitch", 0.0)))
+        d_land = geom.span(max(ref("knee", 0.0), KNEE_MIN))
+        d_max_sq = geom.span(KNEE_MIN) ** 2  # the swing leg's longest hip-to-ankle distance²
+        loop = loop_consts(ref, geom, hs_pitch, d_land, d_max_sq) if ref._unit else None
+        c = _WalkerConsts(hs_pitch, d_land, d_max_sq, loop)
+        if len(ref.per_geom) < 64:
+            ref.per_geom[geom] = c
+    return c
+
+
 def _start(walk: WalkPath, ref: ReferenceGait, geom: LegGeometry) -> _Synth:
     """The synthesis's state before the first step: empty tracks, the hips' (x, y), the
     ankle's range less a degree each way and the legs' landing and longest spans."""
+    wc = _walker_consts(ref, geom)
     n = len(walk.t)
     xy = np.asarray(walk.xy, float)
     yaw = np.asarray(walk.yaw, float)
@@ -287,12 +317,12 @@ def _start(walk: WalkPath, ref: ReferenceGait, geom: LegGeometry) -> _Synth:
         cyc={s: np.zeros(n) for s in "lr"},
         contact=np.full(n, 2, dtype=int),
         phase=np.zeros(n),
-        hs_pitch=max(0.0, float(ref("pitch", 0.0))),
+        hs_pitch=wc.hs_pitch,
         dorsi_max=np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0),
         plantar_min=np.deg2rad(ROM_DEG["ankle_flex"][0] + 1.0),
-        d_land=geom.span(max(ref("knee", 0.0), KNEE_MIN)),
-        # the swing leg's longest hip-to-ankle distance, squared
-        d_max_sq=geom.span(KNEE_MIN) ** 2,
+        d_land=wc.d_land,
+        d_max_sq=wc.d_max_sq,
+        loop=wc.loop,
     )
 
 
@@ -388,7 +418,8 @@ def _synth_compiled(sy: _Synth, frames: list[StepFrames]) -> None:
     """Every step of ``frames`` into the tracks of ``sy`` as :func:`_synth_step`'s loop does,
     in one compiled call (:func:`~mjwalk.body.legs.synthloop.synth_steps`; ``sy.ref._unit``)."""
     f = sy.feet
-    c = loop_consts(sy.ref, sy.geom, sy.hs_pitch, sy.d_land, sy.d_max_sq)
+    c = sy.loop  # (loop_consts, kept per reference and geometry)
+    assert c is not None
     pair = lambda d: (d["l"], d["r"])  # noqa: E731
     out = SynthTracks(
         ankle=pair(f.ankle), fyaw=pair(f.fyaw), pitch=pair(f.pitch), toe=pair(f.toe),
@@ -473,25 +504,29 @@ def _clear_floor(
 ) -> dict[str, np.ndarray]:
     """The legs' joint angles, clipped to their ranges, with each foot kept above
     -:data:`FLOOR_TOLERANCE` (ankle targets lifted or feet pitched down, in place)."""
-    geom, f = sy.geom, sy.feet
+    f = sy.feet
     angles: dict[str, np.ndarray] = {}
     for s_ in "lr":
-        hip = hip_world(root, sy.yaw, s_, geom)
+        names = [k.format(s_) for k in LEG_JOINTS]
         # where the joint ranges still keep the foot from its target (a trailing foot too far
         # behind for the hip's extension, say), the clipped leg would put the sole below the
         # floor: lift the ankle target by the depth (or, where the ankle is at its
         # dorsiflexion limit and lifting would tilt the toes down further, pitch the foot
         # down) and solve again, so the foot stays above -FLOOR_TOLERANCE by construction
+        # (compiled: the IK, the clipped angles and the foot's lowest point in one call,
+        # LegIKCache.floor_round)
         for _ in range(FLOOR_ITERATIONS):
-            raw = ik[s_](f.ankle[s_], f.fyaw[s_], f.pitch[s_], root, sy.yaw)
-            ang = {k: np.clip(v, *_range_rad(generic_joint(k))) for k, v in raw.items()}
-            ang[f"toe_{s_}"] = np.clip(f.toe[s_], *_range_rad("toe"))
-            low = hip[:, 2] + foot_lowest(ang, side_of_prefix(s_), geom)
+            q, low = ik[s_].floor_round(
+                f.ankle[s_], f.fyaw[s_], f.pitch[s_], f.toe[s_], root, sy.yaw
+            )
+            ang = dict(zip(names, q, strict=True))
             bad = low < -FLOOR_TOLERANCE
             if not bad.any():
                 break
             # (both spread over the samples around, as above)
-            excess = raw[f"ankle_{s_}_flex"] - sy.dorsi_max
+            raw = ik[s_].out  # the round's unclipped angles
+            assert raw is not None
+            excess = raw[:, 4] - sy.dorsi_max  # (the ankle flexion)
             tilt = bad & (excess > 0)
             if tilt.any():
                 sy.repitch(s_, spread(np.where(tilt, 1.2 * excess, 0.0), win))
@@ -499,11 +534,3 @@ def _clear_floor(
             f.ankle[s_][:, 2] += spread(np.where(lift, -low, 0.0), win)
         angles.update(ang)
     return angles
-
-
-@functools.lru_cache(maxsize=32)
-def _range_rad(joint: str) -> tuple[float, float]:
-    """The humanoid's range of ``joint`` (a ``ROM_DEG`` key), radians (kept: the floor
-    clearance clips every joint in each of its rounds)."""
-    lo, hi = np.deg2rad(ROM_DEG[joint])
-    return lo, hi

@@ -50,7 +50,7 @@ from mjwalk.body.legs.stance import (
     stance_knee_rows,
 )
 from mjwalk.body.legs.steps import StepFrames
-from mjwalk.body.legs.swing import ROLL_CONTINUE, ROLL_FIRST, step_chord, swing_rows
+from mjwalk.body.legs.swing import ROLL_CONTINUE, ROLL_FIRST, swing_rows
 from mjwalk.conventions import SAMPLE_RATE_HZ
 
 #: Slots of the walk's scalars (:func:`synth_steps`' ``consts``).
@@ -152,10 +152,7 @@ def synth_steps(
     land = np.array([fr.land for fr in frames], dtype=float).reshape(m, 3)
     stance = np.array([fr.stance for fr in frames], dtype=float).reshape(m, 3)
     land_p = np.array([fr.land_p for fr in frames], dtype=float)
-    dyaw, seg_sq = np.empty(m), np.empty(m)
-    seg, nrm = np.empty((m, 2)), np.empty((m, 2))
-    for k, fr in enumerate(frames):  # (the swing's chord as swing.swing_foot takes it)
-        dyaw[k], seg[k], seg_sq[k], nrm[k] = step_chord(fr)
+    dyaw, seg, seg_sq, nrm = step_chords(lift, land)
     ease_j, ease_at, base = _ease_bases(start, end, float(ease_from))
     u3 = base**3  # NumPy's power (see the module's docstring)
     p_end = np.empty(m)
@@ -168,6 +165,31 @@ def synth_steps(
     for k, fr in enumerate(frames):
         fr.p_start = frames[k - 1].p_end if k > 0 else None
         fr.p_end = float(p_end[k])
+
+
+def step_chords(
+    lift: np.ndarray, land: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`~mjwalk.body.legs.swing.step_chord` of every step at once, the same numbers
+    (``tests/body/test_synthloop.py`` compares them bit for bit): NumPy's complex exponential
+    and angle on the steps' turns, each chord's squared length by BLAS's dot as ``seg @ seg``
+    (a stacked ``matmul``; the plain sum of squares differs in the last bit), its norm the
+    square root of that dot, as ``np.linalg.norm`` takes it.
+
+    Args:
+        lift: (m, 3) the steps' lift-off footprints (x, y, yaw), metres, radians.
+        land: (m, 3) their landing footprints.
+
+    Returns:
+        per step: the foot's turn, wrapped to [-pi, pi] (m,) (radians); the chord (m, 2)
+        (metres); its squared length (m,) (m², at least 1e-9); its unit normal (m, 2), 90 deg
+        CCW.
+    """
+    dyaw = np.angle(np.exp(1j * (land[:, 2] - lift[:, 2])))
+    seg = land[:, :2] - lift[:, :2]
+    dot = np.matmul(seg[:, None, :], seg[:, :, None])[:, 0, 0]
+    nrm = np.column_stack([-seg[:, 1], seg[:, 0]]) / np.maximum(np.sqrt(dot), 1e-9)[:, None]
+    return dyaw, seg, np.maximum(dot, 1e-9), nrm
 
 
 @njit_gil
