@@ -93,9 +93,12 @@ def turn_in_steps(
                 # clear of the body (on from its end: the line-up's, levelplan._approach)
                 if traced is None or not guide_is_clear(view, traced[0], radius):
                     continue
-                best = (j + n, j, *_stepped(traced[0], n, yaw, traced[1]))
+                best = (j + n, j, traced, n, yaw)  # stepped once, the best only
                 break
-    return None if best is None else best[1:]
+    if best is None:
+        return None
+    _, j, traced, n, yaw = best
+    return (j, *_stepped(traced[0], n, yaw, traced[1]))
 
 
 def _stepped(pts: np.ndarray, n: int, yaw: float, end: float) -> tuple:

@@ -1,0 +1,52 @@
+"""Walk-independent pieces of a walk over levels, computed once and kept on their owner.
+
+A scene's crossings, level views and walkers come back walk after walk (a cycle's operator walks
+the same routes; a benchmark plans the same pair with other seeds), and several pieces of a walk
+over levels depend on nothing else: a crossing's footfalls for a walker and direction
+(:func:`mjwalk.plan.levelcross.flight_start`), the crossing walked on past its far stance
+(:func:`mjwalk.plan.levelcross.departure`), whether the body fits along a segment of a level
+(:func:`mjwalk.plan.levelcross.line_clear`). :func:`kept` keeps such a value in a dictionary on
+the object it belongs to (the crossing, the level's view), keyed by everything else it depends
+on, so a cached value is the very value the computation gives (no rounding of keys: the same
+floats give the same key). Arrays kept are made read-only, so no caller can change them for the
+next. No behaviour of walkers: a cost bound only.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Hashable
+from typing import TypeVar
+
+import numpy as np
+
+T = TypeVar("T")
+
+#: Entries kept per owner and name before the oldest is dropped: a memory bound (a cycle's
+#: operators come and go, each a walker of its own), no behaviour.
+MAX_KEPT = 256
+
+
+def kept(owner: object, name: str, key: Hashable, make: Callable[[], T]) -> T:
+    """``make()``, computed once per ``key`` and kept in ``owner``'s ``__dict__`` under ``name``.
+
+    Args:
+        owner: the object the value belongs to (a crossing, a level's view); it must have a
+            ``__dict__`` (frozen dataclasses do).
+        name: the cache's attribute name on ``owner``.
+        key: everything else the value depends on (hashable; floats as given).
+        make: computes the value.
+
+    Returns:
+        The value; numpy arrays in it (alone or in a tuple) read-only.
+    """
+    cache: dict = owner.__dict__.setdefault(name, {})
+    if key in cache:
+        return cache[key]
+    value = make()
+    for a in value if isinstance(value, tuple) else (value,):
+        if isinstance(a, np.ndarray):
+            a.flags.writeable = False
+    while len(cache) >= MAX_KEPT:
+        cache.pop(next(iter(cache)))
+    cache[key] = value
+    return value
