@@ -35,16 +35,20 @@ def kept(owner: object, name: str, key: Hashable, make: Callable[[], T]) -> T:
     """``make()``, computed once per ``key`` and kept in ``owner``'s ``__dict__`` under ``name``.
 
     Args:
-        owner: the object the value belongs to (a crossing, a level's view); it must have a
-            ``__dict__`` (frozen dataclasses do).
+        owner: the object the value belongs to (a crossing, a level's view; frozen
+            dataclasses have an instance ``__dict__``).
         name: the cache's attribute name on ``owner``.
         key: everything else the value depends on (hashable; floats as given).
         make: computes the value.
 
     Returns:
-        The value; numpy arrays in it (alone or in a tuple) read-only.
+        The value; numpy arrays in it (alone or in a tuple) read-only. An owner without an
+        instance dictionary of its own (a class) keeps nothing: the value is made each time.
     """
-    cache: dict = owner.__dict__.setdefault(name, {})
+    own = getattr(owner, "__dict__", None)
+    if not isinstance(own, dict):
+        return make()
+    cache: dict = own.setdefault(name, {})
     if key in cache:
         return cache[key]
     value = make()
@@ -92,5 +96,9 @@ _VARIANTS: dict[tuple, tuple] = {}
 
 @functools.cache
 def default_options() -> PlannerOptions:
-    """``PlannerOptions()``, made once (it has no arguments, so every call's is equal)."""
+    """``PlannerOptions()``, made once (it has no arguments, so every call's is equal).
+
+    Returns:
+        The default planner options (one object).
+    """
     return PlannerOptions()
