@@ -90,8 +90,10 @@ def turn_in_steps(
                 tried.append((j + n, len(tried), j, n, yaw, pose, word))
     # the fewest steps in all, the first tried of those (latest cut, longest steps, shortest
     # word): traced in that order, the first clear of the body is the turn
-    for _, _, j, n, yaw, pose, word in sorted(tried, key=lambda c: c[:2]):
-        traced = trace(*pose, word)
+    for _, _, j, n, yaw, (line, at_yaw, end, end_yaw, turning), word in sorted(
+        tried, key=lambda c: c[:2]
+    ):
+        traced = trace(line, at_yaw, end, end_yaw, turning, word)
         # clear of the body (on from its end: the line-up's, levelplan._approach)
         if traced is not None and guide_is_clear(view, traced[0], radius):
             return (j, *_stepped(traced[0], n, yaw, traced[1]))
