@@ -93,6 +93,17 @@ looping into the flight, 1-9/10 in 1000 at 22-42 ms; a heading-conditioned searc
 before the leg's end 0-4/10 in 1000. The walks it did find turn on the spot-like short
 steps (0.07-0.28 m) next to the approach point: the search's cost of such steps is far above
 any metric heuristic, so it floods the floor about the goal.
+
+Branch levelcost47 (``--draws 2 --walks 10``, CPU ms, base 879469c run right before with this
+script, load 21-25): the level walk's own costs cut, walks bit-identical (plan.levelmemo keeps a
+crossing's footfalls, first footfall and departure, clear lines and option variants;
+plan.footfallwalk lays a crossing's steps out at once; turnin traces its Dubins words in order
+of fewest steps). rack1 -> mezzanine cold 6.8 -> 5.0 (0.77 -> 0.56), warm 8.2 -> 5.0 (4.50 ->
+2.75); the others within noise (warm ratios 1.4-2.4, platform1 -> car1 5.5-5.7: 321 expansions
+against 24). Least of 5 repeats per seed, median over seeds 1-10 (two rounds each): step
+2.55/2.25 -> 2.30/1.94, rack1 6.13/5.72 -> 4.66/4.66, mezzanine -> rack1 3.93 -> 3.46. What is
+left of a warm level walk is mostly its searches (two or three HybridPlanner.plan calls, each
+with its guide and assembly, against the flat walk's one): warm 1.5x is not met.
 """
 
 from __future__ import annotations

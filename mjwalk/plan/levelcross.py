@@ -37,6 +37,8 @@ from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.gait.slope import slope_gait
 from mjwalk.gait.stairs import MIN_TREAD, StairGeometry, stair_gait
 from mjwalk.gait.walker import Walker
+from mjwalk.plan.footfallwalk import footfall_walk
+from mjwalk.plan.levelmemo import kept
 from mjwalk.plan.levelroute import Crossing
 from mjwalk.plan.occupancy import CELL_SIZE
 from mjwalk.plan.turnin import turned_steps
@@ -58,7 +60,14 @@ DEFAULT_STEP_WIDTH = 0.12
 
 
 def _footfalls(c: Crossing, direction: str, walker: Walker) -> tuple[np.ndarray, np.ndarray]:
-    """Positions along the axis (m) and step times (s) of the footfalls, the closing one last."""
+    """Positions along the axis (m) and step times (s) of the footfalls, the closing one last
+    (kept on the crossing per direction and walker, read-only: :func:`mjwalk.plan.levelmemo.
+    kept`)."""
+    return kept(c, "_footfalls", (direction, walker), lambda: _steps(c, direction, walker))
+
+
+def _steps(c: Crossing, direction: str, walker: Walker) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_footfalls` without its cache."""
     if c.kind == "ramp":
         angle = c.slope if direction == "up" else -c.slope
         gait = slope_gait(walker, angle)
@@ -95,11 +104,15 @@ def flight_start(c: Crossing, direction: str, walker: Walker) -> np.ndarray:
         walker: the walker (stature, step length; a ramp's gait).
 
     Returns:
-        (2,) world xy, metres.
+        (2,) world xy, metres (kept on the crossing, read-only).
     """
-    s = _footfalls(c, direction, walker)[0][:1]
-    back = tread_setback(c, s, walker.stature, direction)[0]
-    return c.point(float(s[0]) - (back if direction == "up" else -back))
+
+    def make() -> np.ndarray:
+        s = _footfalls(c, direction, walker)[0][:1]
+        back = tread_setback(c, s, walker.stature, direction)[0]
+        return c.point(float(s[0]) - (back if direction == "up" else -back))
+
+    return kept(c, "_flight_start", (direction, walker), make)
 
 
 def _run(a: float, b: float, walker: Walker) -> np.ndarray:
@@ -263,12 +276,7 @@ def cross_walk(
             name: (np.array([*(xy0 + sign * 0.5 * width * left), yaw0]), z0)
             for name, sign in (("left", 1.0), ("right", -1.0))
         }
-    steps: list[PathStep] = []
     pelvis_z = 0.5 * (feet["left"][1] + feet["right"][1])
-    xs: list[np.ndarray] = [xy0[None, :]]  # each step's samples, joined once at the end
-    zs: list[np.ndarray] = [np.array([pelvis_z], dtype=float)]
-    yaws: list[np.ndarray] = [np.array([yaw0], dtype=float)]
-    n = 0
     back = tread_setback(c, s, walker.stature, direction) * (1.0 if direction == "up" else -1.0)
     s = np.asarray(s, dtype=float)
     points, heights = c.point(s - back), c.height_at(s)  # per footfall, as one by one
@@ -278,34 +286,15 @@ def cross_walk(
     points, heights, times, headings, across, was, turns = turned_steps(
         turned, (points, heights, times), here, (yaw0, yaw), walker.step_duration, left
     )
-    for k, dt in enumerate(times):
-        sign = 1.0 if side == "left" else -1.0
-        foot = np.array([*(points[k] + sign * 0.5 * width * across[k]), headings[k]])
-        fz = float(heights[k])
-        other = "right" if side == "left" else "left"
-        stance, sz = feet[other]
-        feet[side] = (foot, fz)
-        end_xy = 0.5 * (feet["left"][0][:2] + feet["right"][0][:2])
-        end_z = 0.5 * (feet["left"][1] + feet["right"][1])
-        m = max(1, round(dt * SAMPLE_RATE_HZ))
-        u = np.arange(1, m + 1) / m
-        ease = u * u * (3 - 2 * u)
-        start_xy, start_z = xs[-1][-1], zs[-1][-1]
-        xs.append(start_xy + np.outer(u, end_xy - start_xy))
-        zs.append(start_z + ease * (end_z - start_z))
-        yaws.append(was[k] + ease * (headings[k] - was[k]) if k <= turns else np.full(m, yaw))
-        steps.append(
-            PathStep(
-                side, n, n + m, foot, np.array(stance, dtype=float),
-                foot_z=fz - floor_z, stance_z=float(sz) - floor_z,
-            )
-        )  # fmt: skip
-        n += m
-        side = other
+    xy, z, yaws, steps = footfall_walk(
+        (points, heights, times, headings, across, width), feet, side, (xy0, pelvis_z, yaw0),
+        (was, turns, yaw), floor_z,
+    )  # fmt: skip
+    n = steps[-1].end if steps else 0
     meta = {"crossing": c.kind, "direction": direction, "lower": c.lower, "upper": c.upper}
     return WalkPath(
-        t=np.arange(n + 1) / SAMPLE_RATE_HZ, xy=np.concatenate(xs), yaw=np.concatenate(yaws),
-        steps=steps, meta=meta, z=np.concatenate(zs) - floor_z,
+        t=np.arange(n + 1) / SAMPLE_RATE_HZ, xy=xy, yaw=yaws, steps=steps, meta=meta,
+        z=z - floor_z,
     )  # fmt: skip
 
 
@@ -375,8 +364,15 @@ def line_clear(view, a: np.ndarray, b: np.ndarray, radius: float) -> bool:
         radius: the body radius, metres.
 
     Returns:
-        True when the clearance is at least ``radius`` all along.
+        True when the clearance is at least ``radius`` all along (kept on the view per
+        segment and radius).
     """
+    key = (float(a[0]), float(a[1]), float(b[0]), float(b[1]), float(radius))
+    return kept(view, "_clear_lines", key, lambda: _line_clear(view, a, b, radius))
+
+
+def _line_clear(view, a: np.ndarray, b: np.ndarray, radius: float) -> bool:
+    """:func:`line_clear` without its cache."""
     u = np.linspace(0.0, 1.0, max(2, math.ceil(float(np.hypot(*(b - a))) / CELL_SIZE) + 1))
     return float(np.min(view.walk_clearance(a + np.outer(u, b - a)))) >= radius
 
@@ -418,11 +414,12 @@ def departure(c: Crossing, direction: str, lead: float) -> Crossing:
         lead: distance past the stance, metres.
 
     Returns:
-        The crossing with that stance moved (its :meth:`~Crossing.end` there).
+        The crossing with that stance moved (its :meth:`~Crossing.end` there), kept on ``c``
+        per direction and lead (so its own kept values are found again).
     """
     if direction == "up":
-        return replace(c, exit=c.exit + lead)
-    return replace(c, approach=c.approach - lead)
+        return kept(c, "_departures", (direction, lead), lambda: replace(c, exit=c.exit + lead))
+    return kept(c, "_departures", (direction, lead), lambda: replace(c, approach=c.approach - lead))
 
 
 def route_leads(c: Crossing, level: int, lead: float) -> tuple[np.ndarray | None, ...]:

@@ -68,6 +68,7 @@ from mjwalk.plan.levelcross import (
     route_leads,
     walked_distance,
 )
+from mjwalk.plan.levelmemo import default_options, variant
 from mjwalk.plan.levelroute import (
     Crossing,
     RouteLeg,
@@ -421,7 +422,7 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     # the approach heading a preference: its guide on a small budget, else the route search
     budget = min(options.max_expansions, HEADING_BUDGET)
     aim = leg.end if goal is None else goal
-    aimed = _planner(view, aim, model, replace(options, max_expansions=budget))
+    aimed = _planner(view, aim, model, variant(options, max_expansions=budget))
     try:
         walk = aimed.plan(replace(request, goal_heading=heading), rng)
     except PlanningError:
@@ -431,7 +432,7 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     if c.kind != "stair" and entry_turn(walk, c, nxt.direction) > ENTRY_TURN:  # re-searched
         spent = walk.meta.get("expansions_all", 0)
         cap = options.max_expansions // (1 if c.kind == "ramp" else RESEARCH_SHARE)
-        again = replace(options, goal_yaw=heading, max_expansions=cap)
+        again = variant(options, goal_yaw=heading, max_expansions=cap)
         draws = rng if c.kind == "ramp" else rng.spawn(1)[0]  # a step's: later legs as before
         try:
             walk = _planner(view, aim, model, again).plan(request, draws)
@@ -527,7 +528,7 @@ def plan_level_walk(
         PlanningError: an end on no level, no route for the walker, or a level walk not found.
     """
     t0 = time.perf_counter()
-    options = PlannerOptions() if options is None else options
+    options = default_options() if options is None else options
     walker = _walker(model)
     limit = step_up_limit(walker, max_riser)
     head = walker.stature + HEAD_MARGIN

@@ -205,16 +205,12 @@ def level_meta(
     per_kind: dict[str, dict] = {}
     graph = workplace.levels
     for leg, walk in parts:
-        entry: dict = {
-            "seconds": walk.duration,
-            "length": walk.length,
-            "steps": len(walk.steps),
-        }
+        row = (walk.duration, walk.length, len(walk.steps))  # each read once
+        entry: dict = {"seconds": row[0], "length": row[1], "steps": row[2]}
         c = leg.crossing
         if c is None:
             lv = graph.levels[leg.level]
             entry = {"kind": "level", "level": lv.index, "height": lv.height, **entry}
-            row = (walk.duration, walk.length, len(walk.steps))
             _add(per_level, f"L{lv.index}", *row)
             _add(per_kind, "level", *row)
         else:

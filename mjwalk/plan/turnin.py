@@ -72,8 +72,8 @@ def turn_in_steps(
     """
     first = np.asarray(first, dtype=float)
     target = first - walker.step_length * np.array([math.cos(heading), math.sin(heading)])
-    best = None
     walking = len(walk.steps) - 1  # the last is the closing step
+    tried: list[tuple] = []  # (steps in all, order tried, j, n, yaw, pose, word)
     for j in range(walking - 1, max(-1, walking - 1 - CUT_STEPS), -1):
         at = walk.steps[j].end
         yaw = float(walk.yaw[at])
@@ -87,15 +87,17 @@ def turn_in_steps(
             pose = (line, yaw, target, heading, turning)
             for word in dubins_words(*pose):
                 n = max(1, math.ceil(word[0] / step - 1e-9))
-                if best is not None and j + n >= best[0]:
-                    break  # no fewer steps in all than the best so far
-                traced = trace(*pose, word)
-                # clear of the body (on from its end: the line-up's, levelplan._approach)
-                if traced is None or not guide_is_clear(view, traced[0], radius):
-                    continue
-                best = (j + n, j, *_stepped(traced[0], n, yaw, traced[1]))
-                break
-    return None if best is None else best[1:]
+                tried.append((j + n, len(tried), j, n, yaw, pose, word))
+    # the fewest steps in all, the first tried of those (latest cut, longest steps, shortest
+    # word): traced in that order, the first clear of the body is the turn
+    for _, _, j, n, yaw, (line, at_yaw, end, end_yaw, turning), word in sorted(
+        tried, key=lambda c: c[:2]
+    ):
+        traced = trace(line, at_yaw, end, end_yaw, turning, word)
+        # clear of the body (on from its end: the line-up's, levelplan._approach)
+        if traced is not None and guide_is_clear(view, traced[0], radius):
+            return (j, *_stepped(traced[0], n, yaw, traced[1]))
+    return None
 
 
 def _stepped(pts: np.ndarray, n: int, yaw: float, end: float) -> tuple:
