@@ -31,6 +31,12 @@ class SkeletonMap:
         hip_l, hip_r: hip joints (head of the femur); the pelvis yaw is taken from their line.
         scale: metres per file length unit (e.g. 0.01 for centimetres).
         up: the file's up axis, ``"y"`` or ``"z"``.
+        guess_scale: read ``scale`` from the body's proportions instead of trusting it
+            (:func:`mjwalk.mocap.bodycheck.body_frame`).
+        guess_up: read ``up`` from the body (pelvis above the feet) instead of trusting it.
+        verify: check the declared scale and up axis against the body, and repair frozen and
+            leading/trailing outlier frames (:mod:`mjwalk.mocap.bodycheck`); off for toy
+            skeletons whose proportions are not a person's.
         asf_length: for ASF skeletons only, the ``:units length`` value at which ``scale`` holds;
             a file declaring another ``length`` L gets ``scale * asf_length / L``. ``None``: use
             ``scale`` as is.
@@ -47,6 +53,9 @@ class SkeletonMap:
     scale: float = 1.0
     up: Literal["y", "z"] = "y"
     asf_length: float | None = None
+    guess_scale: bool = False
+    guess_up: bool = False
+    verify: bool = False
 
     def __post_init__(self) -> None:
         if self.up not in ("y", "z"):
@@ -87,6 +96,7 @@ BANDAI = SkeletonMap(
     hip_r="UpperLeg_R",
     scale=0.01,
     up="y",
+    verify=True,
 )
 
 #: CMU Graphics Lab ASF/AMC (y up). ASF bones are named after the bone that *starts* at a joint:
@@ -118,6 +128,7 @@ CMU_BVH = SkeletonMap(
     hip_r="RightUpLeg",
     scale=0.056444,
     up="y",
+    verify=True,
 )
 
 #: Presets by name, for ``skeleton="bandai"`` style arguments and the command line.
@@ -192,11 +203,19 @@ def take_from_positions(
         scale: metres per file unit; defaults to ``skeleton.scale``.
         meta: extra provenance for ``Take.meta``.
 
+    With ``skeleton.verify``, frozen frames are interpolated and pose-outlier end frames cut
+    first (:func:`mjwalk.mocap.bodycheck.repair_frames`; what was done goes to ``meta``).
+
     Returns:
         The take at ``fps`` Hz: metres, z up, yaw from +x CCW.
     """
     scale = skeleton.scale if scale is None else scale
     world = _to_z_up(np.asarray(positions, dtype=float), skeleton.up) * scale
+    fixes: dict = {}
+    if skeleton.verify:
+        from mjwalk.mocap.bodycheck import repair_frames  # bodycheck imports this module
+
+        world, fixes = repair_frames(world, names, skeleton, src_fps, name)
     index = {n: i for i, n in enumerate(names)}
     yaw = hip_line_yaw(world[:, index[skeleton.hip_l]], world[:, index[skeleton.hip_r]])
     n_src = world.shape[0]
@@ -208,6 +227,7 @@ def take_from_positions(
         yaw = CubicSpline(t_src, yaw)(t_out)
     joints = {n: np.ascontiguousarray(world[:, i]) for n, i in index.items()}
     info = {"source_fps": float(src_fps), "skeleton": skeleton.name, "scale": float(scale)}
+    info.update({k: v for k, v in fixes.items() if v})
     info.update(meta or {})
     return Take(
         name=name,
