@@ -4,12 +4,15 @@
 points lie in a plane across it) and the length unit (the leg length and the pelvis height
 must give a human stature), and checks them against what the skeleton map declares;
 :func:`repair_frames` interpolates frozen (repeated) frames, as trackers write them when they
-drop frames, and cuts a pose outlier at either end (a T-pose or bind pose first frame).
+drop frames, cuts a pose outlier at either end (a T-pose or bind pose first frame) and levels
+a floor that drifts linearly over the take (a root drifting in height, as inertial suits'
+do).
 
 Proportions: hip joint centre to ankle (thigh + shank) is 0.491 of stature, hip joint centre
 height 0.530 and ankle height 0.039 of it (Winter 2009, Fig. 4.1, in
-:data:`mjwalk.anthropometry.SEG`), so both the leg length and the pelvis height above the
-ankles are about 0.49 of stature.
+:data:`mjwalk.anthropometry.SEG`), so the pelvis stands about one leg length above the ankles.
+The leg length (95th percentile of the hip-ankle distance: the stance leg is nearly straight)
+gives the stature, hence the unit; the pelvis height checks that the body stands on its feet.
 """
 
 from __future__ import annotations
@@ -31,8 +34,6 @@ if TYPE_CHECKING:  # skeletons imports this module
 STATURE_RANGE = (1.2, 2.2)
 #: Leg length (hip joint centre to ankle) per stature: thigh + shank (Winter 2009, Fig. 4.1).
 LEG_PER_STATURE = SEG["thigh"] + SEG["shank"]
-#: Pelvis (hip joint centre) height above the ankle joints per stature, standing (Winter 2009).
-PELVIS_PER_STATURE = SEG["hip_height"] - SEG["ankle_height"]
 #: The contact samples span a plane when their second spread (RMS) is at least this share of
 #: the pelvis height (about 4.5 cm for an adult) and five times the third: a standing take's
 #: sway does not define a floor.
@@ -41,6 +42,10 @@ MIN_SPREAD = 0.05
 #: support (about 0.1 s, some 10 % of a 1.1 s stride; Perry 1992, quoted from memory) spans
 #: fewer than three frames and the contacts the step segmentation cuts at are not resolved.
 MIN_FPS = 24.0
+#: Pelvis height above the ankles per leg length a capture may show: 1.0 standing (Winter 2009:
+#: 0.491 H both), lower in walking's flexed stance (0.93 median over the shared Bandai walks),
+#: with room for crouched gait; outside it the pelvis or hip joints are named wrongly.
+PELVIS_PER_LEG = (0.7, 1.2)
 #: Length units tried when the map gives none, metres per unit.
 UNIT_CANDIDATES: dict[str, float] = {"m": 1.0, "cm": 0.01, "mm": 0.001, "in": 0.0254}
 #: The contact plane's normal may lie this far from the pelvis-over-feet axis, degrees: the
@@ -53,6 +58,13 @@ MAX_FROZEN_S = 0.2
 #: frame and more than ``OUTLIER_FACTOR`` times the take's median frame-to-frame motion.
 OUTLIER_MIN_JUMP = 0.05
 OUTLIER_FACTOR = 8.0
+#: Window over which the floor is the lowest foot joint, seconds: about one stride (1.1 s at
+#: ~110 steps/min, Winter 2009), so each window holds a stance of each foot.
+FLOOR_WINDOW_S = 1.2
+#: A floor drifting less than this over the take is left alone, metres (a capture system's
+#: calibration, a few millimetres, is well under it; segmentation's contact height offset is
+#: larger, ``gait.segment.ContactOptions``).
+MIN_FLOOR_DRIFT = 0.02
 
 
 def _role_positions(positions: np.ndarray, names: list[str], skel: SkeletonMap) -> dict:
@@ -96,36 +108,33 @@ def _contact_normal(p: dict, pelvis: float) -> np.ndarray | None:
     return vt[2]
 
 
-def _stature(leg: float, pelvis: float, scale: float) -> tuple[float, float]:
-    """Statures (m) the leg length and the pelvis height (file units) give at ``scale``."""
-    return leg * scale / LEG_PER_STATURE, pelvis * scale / PELVIS_PER_STATURE
+def _stature(leg: float, scale: float) -> float:
+    """The stature (m) a leg length of ``leg`` file units gives at ``scale`` m per unit."""
+    return leg * scale / LEG_PER_STATURE
 
 
-def _fits(leg: float, pelvis: float, scale: float) -> bool:
-    lo, hi = STATURE_RANGE
-    return all(lo <= h <= hi for h in _stature(leg, pelvis, scale))
+def _fits(leg: float, scale: float) -> bool:
+    return STATURE_RANGE[0] <= _stature(leg, scale) <= STATURE_RANGE[1]
 
 
-def _scale(skel: SkeletonMap, leg: float, pelvis: float, path: object) -> float:
+def _scale(skel: SkeletonMap, leg: float, path: object) -> float:
     """The file's metres per unit: the declared one checked, or the one candidate that fits."""
-    fitting = [(u, s) for u, s in UNIT_CANDIDATES.items() if _fits(leg, pelvis, s)]
+    fitting = [(u, s) for u, s in UNIT_CANDIDATES.items() if _fits(leg, s)]
     if not skel.guess_scale:
-        if _fits(leg, pelvis, skel.scale):
+        if _fits(leg, skel.scale):
             return skel.scale
-        h_leg, h_pel = _stature(leg, pelvis, skel.scale)
         hint = f"the data fit units = '{fitting[0][0]}'" if fitting else "no length unit fits"
         raise CaptureError(
             f"{path}: skeleton {skel.name!r} declares {skel.scale:g} m per unit, which makes a "
-            f"stature of {h_leg:.2f} m (leg) / {h_pel:.2f} m (pelvis height), outside "
-            f"{STATURE_RANGE[0]}-{STATURE_RANGE[1]} m; {hint} (--skeleton map.toml)"
+            f"leg of {leg * skel.scale:.3g} m, a stature of {_stature(leg, skel.scale):.3g} m "
+            f"outside {STATURE_RANGE[0]}-{STATURE_RANGE[1]} m; {hint} (--skeleton map.toml)"
         )
     if len(fitting) == 1:
         return fitting[0][1]
     raise CaptureError(
-        f"{path}: cannot tell the length unit: leg {leg:.4g} and pelvis height {pelvis:.4g} file "
-        f"units give a stature in {STATURE_RANGE[0]}-{STATURE_RANGE[1]} m for "
-        f"{', '.join(u for u, _ in fitting) or 'none'} of {', '.join(UNIT_CANDIDATES)}; give "
-        "units in a skeleton map (--skeleton map.toml)"
+        f"{path}: cannot tell the length unit: a leg of {leg:.4g} file units gives a stature in "
+        f"{STATURE_RANGE[0]}-{STATURE_RANGE[1]} m for {', '.join(u for u, _ in fitting) or 'none'}"
+        f" of {', '.join(UNIT_CANDIDATES)}; give units in a skeleton map (--skeleton map.toml)"
     )
 
 
@@ -171,7 +180,14 @@ def body_frame(
         )
     legs = [np.linalg.norm(p["hip" + s] - p["ankle" + s], axis=1) for s in ("_l", "_r")]
     leg = float(np.percentile(np.concatenate(legs), 95))
-    scale = _scale(skel, leg, pelvis, path)
+    lo, hi = PELVIS_PER_LEG
+    if not lo <= pelvis / leg <= hi:
+        raise CaptureError(
+            f"{path}: the pelvis joint {skel.pelvis!r} stands {pelvis / leg:.2f} leg lengths "
+            f"above the ankles (a standing or walking body: {lo}-{hi}); map the hip-centre joint "
+            "as pelvis and the thigh's first joint as hip (--skeleton map.toml)"
+        )
+    scale = _scale(skel, leg, path)
     up = "y" if found == "y" else "z"
     return replace(skel, scale=scale, up=up, guess_scale=False, guess_up=False, verify=True)
 
@@ -231,10 +247,30 @@ def _end_outliers(world: np.ndarray, joints: list[int]) -> tuple[int, int]:
     return head, tail
 
 
+def _level_floor(world: np.ndarray, feet: list[int], fps: float) -> tuple[np.ndarray, float]:
+    """Remove a linear drift of the floor: the lowest foot joint's height per
+    :data:`FLOOR_WINDOW_S` window, fitted by a line over time; subtracted when it drifts more
+    than :data:`MIN_FLOOR_DRIFT` over the take (returns the drift removed, metres)."""
+    n = max(1, round(FLOOR_WINDOW_S * fps))
+    k = world.shape[0] // n
+    if k < 3:
+        return world, 0.0
+    low = world[: k * n, feet, 2].min(axis=1).reshape(k, n).min(axis=1)
+    t_mid = (np.arange(k) * n + 0.5 * (n - 1)) / fps
+    slope = float(np.polyfit(t_mid, low, 1)[0])
+    t = np.arange(world.shape[0]) / fps
+    drift = slope * t[-1]
+    if abs(drift) <= MIN_FLOOR_DRIFT:
+        return world, 0.0
+    out = world.copy()
+    out[..., 2] -= (slope * (t - t.mean()))[:, None]
+    return out, drift
+
+
 def repair_frames(
     world: np.ndarray, names: list[str], skel: SkeletonMap, fps: float, path: object = ""
 ) -> tuple[np.ndarray, dict]:
-    """Frozen frames interpolated, pose-outlier end frames cut.
+    """Frozen frames interpolated, pose-outlier end frames cut, a drifting floor levelled.
 
     Args:
         world: (T, J, 3) joint positions, metres, z up.
@@ -245,7 +281,7 @@ def repair_frames(
 
     Returns:
         The repaired (T', J, 3) positions and what was done (``frozen_filled``,
-        ``cut_start``, ``cut_end`` frame counts).
+        ``cut_start``, ``cut_end`` frame counts, ``floor_drift_m`` the floor drift removed).
 
     Raises:
         CaptureError: a frozen run longer than :data:`MAX_FROZEN_S` while the body moves.
@@ -255,4 +291,11 @@ def repair_frames(
     head, tail = _end_outliers(world, roles)
     world = world[head : world.shape[0] - tail]
     world, filled = _fill_frozen(world, fps, path)
-    return world, {"frozen_filled": filled, "cut_start": head, "cut_end": tail}
+    feet = [index[getattr(skel, r)] for r in ("ankle_l", "ankle_r", "toe_l", "toe_r")]
+    world, drift = _level_floor(world, feet, fps)
+    return world, {
+        "frozen_filled": filled,
+        "cut_start": head,
+        "cut_end": tail,
+        "floor_drift_m": round(drift, 4),
+    }
