@@ -55,7 +55,8 @@ MAX_TILT_DEG = 20.0
 #: about 0.55 s at 1.3 m/s, agethen2018 / Winter 2009 cadence ~110 steps/min).
 MAX_FROZEN_S = 0.2
 #: An end frame is a pose outlier when its joints jump more than this (metres) to the next
-#: frame and more than ``OUTLIER_FACTOR`` times the take's median frame-to-frame motion.
+#: frame and more than ``OUTLIER_FACTOR`` times the median frame-to-frame motion of the
+#: quarter second beside it (a walking foot moves smoothly; a swapped-in pose jumps).
 OUTLIER_MIN_JUMP = 0.05
 OUTLIER_FACTOR = 8.0
 #: Window over which the floor is the lowest foot joint, seconds: about one stride (1.1 s at
@@ -230,21 +231,26 @@ def _fill_frozen(world: np.ndarray, fps: float, path: object) -> tuple[np.ndarra
     return out, filled
 
 
-def _end_outliers(world: np.ndarray, joints: list[int]) -> tuple[int, int]:
-    """(frames to cut at the start, at the end): end frames whose joints jump to the next
-    frame far more than the take moves per frame (a T-pose or bind pose frame)."""
+def _end_outliers(world: np.ndarray, joints: list[int], fps: float) -> tuple[int, int]:
+    """(frames to cut at the start, at the end): up to three end frames whose joints jump to
+    the next frame far more than the take moves per frame in the quarter second beside them
+    (a T-pose or bind pose frame)."""
     x = world[:, joints]
     step = np.max(np.linalg.norm(np.diff(x, axis=0), axis=-1), axis=1)
-    if step.size < 4:
+    w = max(3, round(0.25 * fps))
+    if step.size < 2 * w + 6:
         return 0, 0
-    limit = max(OUTLIER_MIN_JUMP, OUTLIER_FACTOR * float(np.median(step)))
-    head = 0
-    while head < min(3, step.size // 4) and step[head] > limit:
-        head += 1
-    tail = 0
-    while tail < min(3, step.size // 4) and step[-1 - tail] > limit:
-        tail += 1
-    return head, tail
+
+    def count(seq: np.ndarray) -> int:
+        n = 0
+        while n < 3:
+            limit = max(OUTLIER_MIN_JUMP, OUTLIER_FACTOR * float(np.median(seq[n + 1 : n + 1 + w])))
+            if seq[n] <= limit:
+                break
+            n += 1
+        return n
+
+    return count(step), count(step[::-1])
 
 
 def _level_floor(world: np.ndarray, feet: list[int], fps: float) -> tuple[np.ndarray, float]:
@@ -288,7 +294,7 @@ def repair_frames(
     """
     index = {n: i for i, n in enumerate(names)}
     roles = [index[j] for j in skel.required_joints().values()]
-    head, tail = _end_outliers(world, roles)
+    head, tail = _end_outliers(world, roles, fps)
     world = world[head : world.shape[0] - tail]
     world, filled = _fill_frozen(world, fps, path)
     feet = [index[getattr(skel, r)] for r in ("ankle_l", "ankle_r", "toe_l", "toe_r")]
