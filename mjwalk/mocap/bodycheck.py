@@ -18,7 +18,7 @@ gives the stature, hence the unit; the pelvis height checks that the body stands
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
@@ -189,7 +189,7 @@ def body_frame(
             "as pelvis and the thigh's first joint as hip (--skeleton map.toml)"
         )
     scale = _scale(skel, leg, path)
-    up = "y" if found == "y" else "z"
+    up: Literal["y", "z"] = "y" if found == "y" else "z"
     return replace(skel, scale=scale, up=up, guess_scale=False, guess_up=False, verify=True)
 
 

@@ -87,6 +87,22 @@ CONVENTIONS: tuple[Convention, ...] = (
 )
 
 
+def _guessed(name: str, j: dict[str, str]) -> SkeletonMap:
+    """The map of role -> joint ``j`` whose units and up axis are read from the data."""
+    return SkeletonMap(
+        name=name,
+        pelvis=j["pelvis"],
+        ankle_l=j["ankle_l"],
+        ankle_r=j["ankle_r"],
+        toe_l=j["toe_l"],
+        toe_r=j["toe_r"],
+        hip_l=j["hip_l"],
+        hip_r=j["hip_r"],
+        guess_scale=True,
+        guess_up=True,
+    )
+
+
 def _key(name: str) -> str:
     """A joint name without namespace prefix and case: ``mixamorig:LeftFoot`` -> ``leftfoot``."""
     return name.rsplit(":", 1)[-1].strip().lower()
@@ -123,7 +139,7 @@ def detect_skeleton(names: list[str], path: object = "") -> SkeletonMap:
     for conv in CONVENTIONS:
         bound = _bind(conv, names)
         if bound is not None:
-            return SkeletonMap(name=conv.name, **bound, guess_scale=True, guess_up=True)
+            return _guessed(conv.name, bound)
     shown = ", ".join(names[:12]) + (", ..." if len(names) > 12 else "")
     known = ", ".join(c.name for c in CONVENTIONS)
     raise CaptureError(
@@ -164,7 +180,9 @@ def load_skeleton_map(path: str | Path) -> SkeletonMap:
         raise CaptureError(f"{path}: not a TOML skeleton map ({exc})") from None
     unknown = sorted(set(data) - {*ROLES, "units", "up", "name"})
     if unknown:
-        raise CaptureError(f"{path}: unknown key {unknown[0]!r}; keys: {', '.join(ROLES)}, units, up")
+        raise CaptureError(
+            f"{path}: unknown key {unknown[0]!r}; keys: {', '.join(ROLES)}, units, up"
+        )
     missing = [r for r in ROLES if not isinstance(data.get(r), str) or not data[r].strip()]
     if missing:
         raise CaptureError(f"{path}: the map names no joint for {', '.join(missing)}")
@@ -182,7 +200,9 @@ def load_skeleton_map(path: str | Path) -> SkeletonMap:
     )
 
 
-def resolve_skeleton(skeleton: SkeletonMap | str | None, names: list[str], path: object) -> SkeletonMap:
+def resolve_skeleton(
+    skeleton: SkeletonMap | str | None, names: list[str], path: object
+) -> SkeletonMap:
     """The map to read one file with: a given map, a preset name, a map file, or detection.
 
     Args:
@@ -209,7 +229,7 @@ def resolve_skeleton(skeleton: SkeletonMap | str | None, names: list[str], path:
     conv = {c.name: c for c in CONVENTIONS}.get(key)
     if conv is not None:
         bound = _bind(conv, names) or conv.joints  # missing: the joint check names it
-        return SkeletonMap(name=conv.name, **bound, guess_scale=True, guess_up=True)
+        return _guessed(conv.name, bound)
     known = sorted({*SKELETONS, *(c.name for c in CONVENTIONS)})
     raise CaptureError(
         f"unknown skeleton {skeleton!r}; known: {', '.join(known)}, auto, or a map file .toml"
