@@ -18,15 +18,13 @@ gives the stature, hence the unit; the pelvis height checks that the body stands
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import TYPE_CHECKING, Literal
+from typing import Literal
 
 import numpy as np
 
 from mjwalk.anthropometry import SEG
 from mjwalk.errors import CaptureError
-
-if TYPE_CHECKING:  # skeletons imports this module
-    from mjwalk.mocap.skeletons import SkeletonMap
+from mjwalk.mocap.skeletons import SkeletonMap, from_z_up, to_z_up
 
 #: Statures a capture may show, metres: mjwalk's walker bounds (``gait.walker.STATURE_RANGE``),
 #: which hold the 1st percentile of women to the 99th of men of DIN 33402-2 (about 1.50-1.95 m;
@@ -274,24 +272,28 @@ def _level_floor(world: np.ndarray, feet: list[int], fps: float) -> tuple[np.nda
 
 
 def repair_frames(
-    world: np.ndarray, names: list[str], skel: SkeletonMap, fps: float, path: object = ""
+    positions: np.ndarray, names: list[str], skel: SkeletonMap, fps: float, path: object = ""
 ) -> tuple[np.ndarray, dict]:
     """Frozen frames interpolated, pose-outlier end frames cut, a drifting floor levelled.
 
     Args:
-        world: (T, J, 3) joint positions, metres, z up.
+        positions: (T, J, 3) joint positions in file units and the file's frame.
         names: the J joint names.
-        skel: the map naming the seven joints whose motion decides.
-        fps: the rate of ``world``, Hz.
+        skel: the map (its ``scale`` and ``up`` resolved, :func:`body_frame`) naming the seven
+            joints whose motion decides.
+        fps: the rate of ``positions``, Hz.
         path: the file, for messages.
 
     Returns:
-        The repaired (T', J, 3) positions and what was done (``frozen_filled``,
-        ``cut_start``, ``cut_end`` frame counts, ``floor_drift_m`` the floor drift removed).
+        The repaired (T', J, 3) positions in file units and frame (``positions`` itself when
+        nothing was done) and what was done, the non-zero ones of ``frozen_filled``,
+        ``cut_start``, ``cut_end`` (frame counts) and ``floor_drift_m`` (the floor drift
+        removed, metres).
 
     Raises:
         CaptureError: a frozen run longer than :data:`MAX_FROZEN_S` while the body moves.
     """
+    world = to_z_up(np.asarray(positions, float), skel.up) * skel.scale
     index = {n: i for i, n in enumerate(names)}
     roles = [index[j] for j in skel.required_joints().values()]
     head, tail = _end_outliers(world, roles, fps)
@@ -299,9 +301,13 @@ def repair_frames(
     world, filled = _fill_frozen(world, fps, path)
     feet = [index[getattr(skel, r)] for r in ("ankle_l", "ankle_r", "toe_l", "toe_r")]
     world, drift = _level_floor(world, feet, fps)
-    return world, {
+    done = {
         "frozen_filled": filled,
         "cut_start": head,
         "cut_end": tail,
         "floor_drift_m": round(drift, 4),
     }
+    done = {k: v for k, v in done.items() if v}
+    if not done:
+        return positions, done
+    return from_z_up(world / skel.scale, skel.up), done

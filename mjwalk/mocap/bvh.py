@@ -27,7 +27,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from mjwalk.errors import CaptureError
-from mjwalk.mocap.bodycheck import MIN_FPS, body_frame
+from mjwalk.mocap.bodycheck import MIN_FPS, body_frame, repair_frames
 from mjwalk.mocap.conventions import resolve_skeleton
 from mjwalk.mocap.skeletons import SkeletonMap, check_joints, take_from_positions
 from mjwalk.mocap.take import TAKE_FPS, Take
@@ -428,8 +428,11 @@ def take_from_bvh(
             "contacts; export the capture at 24 Hz or more"
         )
     positions = bvh_forward_kinematics(bvh)
+    meta: dict = {"file": str(bvh.path)}
     if checked:
         skel = body_frame(positions, bvh.names, skel, bvh.path)
+        positions, done = repair_frames(positions, bvh.names, skel, bvh.fps, bvh.path)
+        meta.update(done)
     return take_from_positions(
         positions,
         bvh.names,
@@ -437,5 +440,5 @@ def take_from_bvh(
         src_fps=bvh.fps,
         fps=fps,
         name=bvh.path.name,
-        meta={"file": str(bvh.path)},
+        meta=meta,
     )

@@ -154,8 +154,31 @@ def get_skeleton(skeleton: SkeletonMap | str) -> SkeletonMap:
         ) from None
 
 
-def _to_z_up(p, up: str):
-    """(..., 3) file-frame vectors -> z-up world; y up maps as world = (x, -z, y)."""
+def from_z_up(p, up: str):
+    """Inverse of :func:`to_z_up`: z-up world vectors back to the file's frame.
+
+    Args:
+        p: (..., 3) world vectors.
+        up: the file's up axis, ``"y"`` or ``"z"``.
+
+    Returns:
+        The vectors in the file's frame: (x, z, -y) for y up.
+    """
+    if up == "z":
+        return p
+    return np.stack([p[..., 0], p[..., 2], -p[..., 1]], axis=-1)
+
+
+def to_z_up(p, up: str):
+    """(..., 3) file-frame vectors -> z-up world; y up maps as world = (x, -z, y).
+
+    Args:
+        p: (..., 3) vectors in the file's frame.
+        up: the file's up axis, ``"y"`` or ``"z"``.
+
+    Returns:
+        The vectors in the z-up world frame (same units).
+    """
     if up == "z":
         return p
     if up == "y":
@@ -203,19 +226,11 @@ def take_from_positions(
         scale: metres per file unit; defaults to ``skeleton.scale``.
         meta: extra provenance for ``Take.meta``.
 
-    With ``skeleton.verify``, frozen frames are interpolated and pose-outlier end frames cut
-    first (:func:`mjwalk.mocap.bodycheck.repair_frames`; what was done goes to ``meta``).
-
     Returns:
         The take at ``fps`` Hz: metres, z up, yaw from +x CCW.
     """
     scale = skeleton.scale if scale is None else scale
-    world = _to_z_up(np.asarray(positions, dtype=float), skeleton.up) * scale
-    fixes: dict = {}
-    if skeleton.verify:
-        from mjwalk.mocap.bodycheck import repair_frames  # bodycheck imports this module
-
-        world, fixes = repair_frames(world, names, skeleton, src_fps, name)
+    world = to_z_up(np.asarray(positions, dtype=float), skeleton.up) * scale
     index = {n: i for i, n in enumerate(names)}
     yaw = hip_line_yaw(world[:, index[skeleton.hip_l]], world[:, index[skeleton.hip_r]])
     n_src = world.shape[0]
@@ -227,7 +242,6 @@ def take_from_positions(
         yaw = CubicSpline(t_src, yaw)(t_out)
     joints = {n: np.ascontiguousarray(world[:, i]) for n, i in index.items()}
     info = {"source_fps": float(src_fps), "skeleton": skeleton.name, "scale": float(scale)}
-    info.update({k: v for k, v in fixes.items() if v})
     info.update(meta or {})
     return Take(
         name=name,

@@ -3,6 +3,7 @@ frame repairs; every bad file gets one line naming the fix."""
 
 from __future__ import annotations
 
+import itertools
 import sys
 from pathlib import Path
 
@@ -10,7 +11,7 @@ import numpy as np
 import pytest
 
 from mjwalk.errors import CaptureError
-from mjwalk.mocap import load_bvh
+from mjwalk.mocap import bodycheck, load_bvh
 from mjwalk.mocap.bvhwrite import write_bvh
 
 sys.path.insert(0, str(Path(__file__).parent))
@@ -112,3 +113,22 @@ def test_cli_names_the_fix(tmp_path, capsys):
     err = capsys.readouterr().err.strip()
     assert status == 2 and "--skeleton map.toml" in err and len(err.splitlines()) == 1
     assert not (tmp_path / "m.npz").exists()
+
+
+def test_proportions_and_unit_choice():
+    assert bodycheck.LEG_PER_STATURE == pytest.approx(0.491)  # Winter 2009: thigh + shank
+    lo, hi = bodycheck.STATURE_RANGE
+    # the candidate units are further apart than the stature range is wide: one fits at most
+    ratios = sorted(bodycheck.UNIT_CANDIDATES.values())
+    assert min(b / a for a, b in itertools.pairwise(ratios)) > hi / lo
+
+
+def test_nothing_to_repair_returns_the_positions_unchanged(clip, tmp_path):
+    from mjwalk.mocap.bvh import bvh_forward_kinematics, parse_bvh
+    from mjwalk.mocap.conventions import detect_skeleton
+
+    bvh = parse_bvh(write_bvh(clip, tmp_path / "c.bvh"))
+    pos = bvh_forward_kinematics(bvh)
+    skel = bodycheck.body_frame(pos, bvh.names, detect_skeleton(bvh.names))
+    out, done = bodycheck.repair_frames(pos, bvh.names, skel, bvh.fps)
+    assert out is pos and done == {}
