@@ -15,7 +15,9 @@ and ``Hips`` are one name). The names, each checked against public files (the
   ``LeftUpLeg, LeftLeg, LeftFoot, LeftToeBase``) and the SFU Motion Capture Database (a
   retargeting configuration for it lists ``Hips, LeftUpLeg, LeftLeg, LeftFoot, LeftToeBase``).
 - ``lafan1``: ``Hips/LeftUpLeg/LeftFoot/LeftToe`` (Ubisoft LaFAN1, as used by motion-matching
-  code on it: ``Hips, LeftUpLeg, LeftLeg, LeftFoot, LeftToe, RightUpLeg, ...``).
+  code on it: ``Hips, LeftUpLeg, LeftLeg, LeftFoot, LeftToe, RightUpLeg, ...``; one public
+  channel breakdown of a LaFAN1 file names the toe ``LeftToeBase``: such a file reads as
+  ``humanik``, the same joints).
 - ``xsens_mvn``: ``Pelvis/LeftUpperLeg/LeftFoot/LeftToe`` (Xsens MVN segments: ``Pelvis, L5,
   L3, T12, T8, Neck, Head, ..., RightUpperLeg, RightLowerLeg, RightFoot, RightToe``).
 - ``rokoko``: ``Hips/LeftThigh/LeftFoot/LeftToe`` (Rokoko Newton: ``hips, leftThigh, leftShin,
