@@ -382,7 +382,7 @@ def load_capture(
         amc: glob of ``.amc`` files, or None.
         asf: the ``.asf`` skeleton of the AMC files (required with ``amc``).
         skeleton: skeleton preset, convention or map file (``*.toml``); default: detected from
-            the joint names for BVH (:func:`mjwalk.mocap.conventions.resolve_skeleton`),
+            the joint names for BVH (:func:`mjwalk.mocap.naming.resolve_skeleton`),
             ``"cmu"`` for AMC.
 
     Returns:

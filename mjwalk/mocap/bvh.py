@@ -28,7 +28,7 @@ from scipy.spatial.transform import Rotation
 
 from mjwalk.errors import CaptureError
 from mjwalk.mocap.bodycheck import MIN_FPS, body_frame, repair_frames
-from mjwalk.mocap.conventions import resolve_skeleton
+from mjwalk.mocap.naming import resolve_skeleton
 from mjwalk.mocap.skeletons import SkeletonMap, check_joints, take_from_positions
 from mjwalk.mocap.take import TAKE_FPS, Take
 
@@ -385,7 +385,7 @@ def load_bvh(
         skeleton: a :class:`SkeletonMap`, a preset name (``"bandai"``, ``"cmu_bvh"``, ...), a
             convention name (``"humanik"``, ``"lafan1"``, ...), a map file ``*.toml``, or None /
             ``"auto"`` to detect the convention from the joint names
-            (:func:`mjwalk.mocap.conventions.resolve_skeleton`). Units and up axis a convention
+            (:func:`mjwalk.mocap.naming.resolve_skeleton`). Units and up axis a convention
             or map leaves open are read from the body, declared ones checked against it
             (:mod:`mjwalk.mocap.bodycheck`).
         fps: output sampling rate (Hz); the file's rate is converted by cubic interpolation.

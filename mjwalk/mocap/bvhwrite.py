@@ -1,6 +1,6 @@
 """Write a :class:`~mjwalk.mocap.Take` as a BVH file in a chosen naming convention, length
 unit, up axis and frame rate: capture of mjwalk's own walks for other tools, and the files the
-import's invariance tests read back (:mod:`mjwalk.mocap.conventions`).
+import's invariance tests read back (:mod:`mjwalk.mocap.naming`).
 
 Every joint gets six channels (positions, then zero Z/X/Y rotations), so the file's forward
 kinematics returns the written positions exactly, as in the Bandai dataset's files. Joints a
@@ -19,7 +19,7 @@ from scipy.interpolate import CubicSpline
 
 from mjwalk.anthropometry import SEG
 from mjwalk.errors import CaptureError
-from mjwalk.mocap.conventions import CONVENTIONS
+from mjwalk.mocap.naming import CONVENTIONS
 from mjwalk.mocap.take import Take
 
 #: Knee joint names by convention (the import does not need them; the files look complete).
@@ -119,7 +119,7 @@ def write_bvh(
     Args:
         take: the take (metres, z up).
         path: the file to write.
-        convention: joint names, a :data:`~mjwalk.mocap.conventions.CONVENTIONS` name.
+        convention: joint names, a :data:`~mjwalk.mocap.naming.CONVENTIONS` name.
         scale: metres per file unit (0.01: centimetres, 0.0254: inches).
         up: the file's up axis, ``"y"`` (file = (x, z, -y) of the world) or ``"z"``.
         fps: the file's frame rate, Hz (resampled by a cubic spline); None keeps the take's.

@@ -125,7 +125,7 @@ def test_proportions_and_unit_choice():
 
 def test_nothing_to_repair_returns_the_positions_unchanged(clip, tmp_path):
     from mjwalk.mocap.bvh import bvh_forward_kinematics, parse_bvh
-    from mjwalk.mocap.conventions import detect_skeleton
+    from mjwalk.mocap.naming import detect_skeleton
 
     bvh = parse_bvh(write_bvh(clip, tmp_path / "c.bvh"))
     pos = bvh_forward_kinematics(bvh)

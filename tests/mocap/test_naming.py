@@ -1,11 +1,11 @@
-"""Tests of mjwalk.mocap.conventions: detection from joint names, map files, one-line errors."""
+"""Tests of mjwalk.mocap.naming: detection from joint names, map files, one-line errors."""
 
 from __future__ import annotations
 
 import pytest
 
 from mjwalk.errors import CaptureError
-from mjwalk.mocap.conventions import (
+from mjwalk.mocap.naming import (
     CONVENTIONS,
     detect_skeleton,
     load_skeleton_map,
