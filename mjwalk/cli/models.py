@@ -137,7 +137,12 @@ def add_train_parser(sub) -> None:
         help="share of the step features' variance the PCA keeps, in (0, 1] (default 0.99; "
         "the paper keeps >= 0.95, better for small captures)",
     )
-    p.add_argument("--skeleton", help="skeleton preset: bandai, cmu, cmu_bvh")
+    p.add_argument(
+        "--skeleton",
+        help="bandai, cmu, cmu_bvh, a convention (humanik, lafan1, xsens_mvn, rokoko), or a "
+        "map file .toml naming pelvis/hips/ankles/toes, units, up (default: detected from the "
+        "joint names; units and up axis read from the body)",
+    )
     p.add_argument("--seed", type=arg_seed, default=0)
     p.add_argument("-o", "--output", type=Path, required=True, help="model file to write")
     p.set_defaults(func=cmd_train)
@@ -153,7 +158,12 @@ def add_validate_parser(sub) -> None:
     p.add_argument("model", type=Path, nargs="?", help="model file (default: built-in model)")
     p.add_argument("--against", required=True, help="glob of BVH (or AMC, with --asf) files")
     p.add_argument("--asf", help="ASF skeleton for AMC files")
-    p.add_argument("--skeleton", help="skeleton preset: bandai, cmu, cmu_bvh")
+    p.add_argument(
+        "--skeleton",
+        help="bandai, cmu, cmu_bvh, a convention (humanik, lafan1, xsens_mvn, rokoko), or a "
+        "map file .toml naming pelvis/hips/ankles/toes, units, up (default: detected from the "
+        "joint names; units and up axis read from the body)",
+    )
     p.add_argument("--json", type=Path, help="write the report as JSON here")
     p.add_argument("--seed", type=arg_seed, default=0)
     add_walker_args(p)

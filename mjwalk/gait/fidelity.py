@@ -381,7 +381,9 @@ def load_capture(
         bvh: glob of ``.bvh`` files, or None.
         amc: glob of ``.amc`` files, or None.
         asf: the ``.asf`` skeleton of the AMC files (required with ``amc``).
-        skeleton: skeleton preset name; default ``"bandai"`` for BVH, ``"cmu"`` for AMC.
+        skeleton: skeleton preset, convention or map file (``*.toml``); default: detected from
+            the joint names for BVH (:func:`mjwalk.mocap.naming.resolve_skeleton`),
+            ``"cmu"`` for AMC.
 
     Returns:
         The BVH takes, then the AMC takes (metres, z up).
@@ -394,7 +396,7 @@ def load_capture(
         files = sorted(_glob.glob(str(bvh)))
         if not files:
             raise MjwalkError(f"no BVH files match {bvh!r}")
-        takes += [load_bvh(f, skeleton=skeleton or "bandai") for f in files]
+        takes += [load_bvh(f, skeleton=skeleton) for f in files]
     if amc:
         if not asf:
             raise MjwalkError(f"AMC glob {amc!r} given without its ASF skeleton file")

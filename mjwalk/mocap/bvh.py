@@ -27,7 +27,9 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from mjwalk.errors import CaptureError
-from mjwalk.mocap.skeletons import SkeletonMap, check_joints, get_skeleton, take_from_positions
+from mjwalk.mocap.bodycheck import MIN_FPS, body_frame, repair_frames
+from mjwalk.mocap.naming import resolve_skeleton
+from mjwalk.mocap.skeletons import SkeletonMap, check_joints, take_from_positions
 from mjwalk.mocap.take import TAKE_FPS, Take
 
 _CHANNEL_NAMES = {
@@ -373,15 +375,19 @@ def bvh_forward_kinematics(bvh: Bvh) -> np.ndarray:
 
 def load_bvh(
     path: str | os.PathLike,
-    skeleton: SkeletonMap | str = "bandai",
+    skeleton: SkeletonMap | str | None = "bandai",
     fps: float = TAKE_FPS,
 ) -> Take:
     """Load a BVH file as a :class:`Take` (metres, z up, ``fps`` Hz, every joint in ``joints``).
 
     Args:
         path: the ``.bvh`` file.
-        skeleton: a :class:`SkeletonMap` or a preset name (``"bandai"``, ``"cmu_bvh"``, ...)
-            giving the pelvis/hip/ankle/toe joint names, the unit scale and the up axis.
+        skeleton: a :class:`SkeletonMap`, a preset name (``"bandai"``, ``"cmu_bvh"``, ...), a
+            convention name (``"humanik"``, ``"lafan1"``, ...), a map file ``*.toml``, or None /
+            ``"auto"`` to detect the convention from the joint names
+            (:func:`mjwalk.mocap.naming.resolve_skeleton`). Units and up axis a convention
+            or map leaves open are read from the body, declared ones checked against it
+            (:mod:`mjwalk.mocap.bodycheck`).
         fps: output sampling rate (Hz); the file's rate is converted by cubic interpolation.
 
     Returns:
@@ -391,12 +397,15 @@ def load_bvh(
 
     Raises:
         CaptureError: missing/unreadable file, malformed hierarchy, wrong value counts,
-            truncated motion, or a joint named by ``skeleton`` that the file lacks.
+            truncated motion, a joint named by ``skeleton`` that the file lacks, no convention
+            detected, a frame rate below 24 Hz, or units / up axis contradicting the body.
     """
     return take_from_bvh(parse_bvh(path), skeleton, fps)
 
 
-def take_from_bvh(bvh: Bvh, skeleton: SkeletonMap | str = "bandai", fps: float = TAKE_FPS) -> Take:
+def take_from_bvh(
+    bvh: Bvh, skeleton: SkeletonMap | str | None = "bandai", fps: float = TAKE_FPS
+) -> Take:
     """The :class:`Take` of a parsed BVH file (:func:`parse_bvh`): :func:`load_bvh` without
     reading the file again (for callers that also need the hierarchy, e.g. its OFFSETs).
 
@@ -408,11 +417,22 @@ def take_from_bvh(bvh: Bvh, skeleton: SkeletonMap | str = "bandai", fps: float =
     Returns:
         The take at ``fps`` Hz: metres, z up, yaw from +x CCW.
     """
-    skel = get_skeleton(skeleton)
+    skel = resolve_skeleton(skeleton, bvh.names, bvh.path)
     check_joints(skel, bvh.names, bvh.path)
     if bvh.motion.shape[0] == 0:
         raise CaptureError(f"{bvh.path}: 'Frames: 0', the file holds no motion")
+    checked = skel.verify or skel.guess_scale or skel.guess_up
+    if checked and bvh.fps < MIN_FPS:
+        raise CaptureError(
+            f"{bvh.path}: {bvh.fps:.3g} Hz is below {MIN_FPS:g} Hz, too coarse to place foot "
+            "contacts; export the capture at 24 Hz or more"
+        )
     positions = bvh_forward_kinematics(bvh)
+    meta: dict = {"file": str(bvh.path)}
+    if checked:
+        skel = body_frame(positions, bvh.names, skel, bvh.path)
+        positions, done = repair_frames(positions, bvh.names, skel, bvh.fps, bvh.path)
+        meta.update(done)
     return take_from_positions(
         positions,
         bvh.names,
@@ -420,5 +440,5 @@ def take_from_bvh(bvh: Bvh, skeleton: SkeletonMap | str = "bandai", fps: float =
         src_fps=bvh.fps,
         fps=fps,
         name=bvh.path.name,
-        meta={"file": str(bvh.path)},
+        meta=meta,
     )

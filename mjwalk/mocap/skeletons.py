@@ -31,6 +31,12 @@ class SkeletonMap:
         hip_l, hip_r: hip joints (head of the femur); the pelvis yaw is taken from their line.
         scale: metres per file length unit (e.g. 0.01 for centimetres).
         up: the file's up axis, ``"y"`` or ``"z"``.
+        guess_scale: read ``scale`` from the body's proportions instead of trusting it
+            (:func:`mjwalk.mocap.bodycheck.body_frame`).
+        guess_up: read ``up`` from the body (pelvis above the feet) instead of trusting it.
+        verify: check the declared scale and up axis against the body, and repair frozen and
+            leading/trailing outlier frames (:mod:`mjwalk.mocap.bodycheck`); off for toy
+            skeletons whose proportions are not a person's.
         asf_length: for ASF skeletons only, the ``:units length`` value at which ``scale`` holds;
             a file declaring another ``length`` L gets ``scale * asf_length / L``. ``None``: use
             ``scale`` as is.
@@ -47,6 +53,9 @@ class SkeletonMap:
     scale: float = 1.0
     up: Literal["y", "z"] = "y"
     asf_length: float | None = None
+    guess_scale: bool = False
+    guess_up: bool = False
+    verify: bool = False
 
     def __post_init__(self) -> None:
         if self.up not in ("y", "z"):
@@ -87,6 +96,7 @@ BANDAI = SkeletonMap(
     hip_r="UpperLeg_R",
     scale=0.01,
     up="y",
+    verify=True,
 )
 
 #: CMU Graphics Lab ASF/AMC (y up). ASF bones are named after the bone that *starts* at a joint:
@@ -118,6 +128,7 @@ CMU_BVH = SkeletonMap(
     hip_r="RightUpLeg",
     scale=0.056444,
     up="y",
+    verify=True,
 )
 
 #: Presets by name, for ``skeleton="bandai"`` style arguments and the command line.
@@ -143,8 +154,31 @@ def get_skeleton(skeleton: SkeletonMap | str) -> SkeletonMap:
         ) from None
 
 
-def _to_z_up(p, up: str):
-    """(..., 3) file-frame vectors -> z-up world; y up maps as world = (x, -z, y)."""
+def from_z_up(p, up: str):
+    """Inverse of :func:`to_z_up`: z-up world vectors back to the file's frame.
+
+    Args:
+        p: (..., 3) world vectors.
+        up: the file's up axis, ``"y"`` or ``"z"``.
+
+    Returns:
+        The vectors in the file's frame: (x, z, -y) for y up.
+    """
+    if up == "z":
+        return p
+    return np.stack([p[..., 0], p[..., 2], -p[..., 1]], axis=-1)
+
+
+def to_z_up(p, up: str):
+    """(..., 3) file-frame vectors -> z-up world; y up maps as world = (x, -z, y).
+
+    Args:
+        p: (..., 3) vectors in the file's frame.
+        up: the file's up axis, ``"y"`` or ``"z"``.
+
+    Returns:
+        The vectors in the z-up world frame (same units).
+    """
     if up == "z":
         return p
     if up == "y":
@@ -196,7 +230,7 @@ def take_from_positions(
         The take at ``fps`` Hz: metres, z up, yaw from +x CCW.
     """
     scale = skeleton.scale if scale is None else scale
-    world = _to_z_up(np.asarray(positions, dtype=float), skeleton.up) * scale
+    world = to_z_up(np.asarray(positions, dtype=float), skeleton.up) * scale
     index = {n: i for i, n in enumerate(names)}
     yaw = hip_line_yaw(world[:, index[skeleton.hip_l]], world[:, index[skeleton.hip_r]])
     n_src = world.shape[0]

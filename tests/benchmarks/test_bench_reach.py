@@ -10,6 +10,7 @@ import pytest
 
 from mjwalk.arms.armcapture import ArmMovements
 from mjwalk.errors import CaptureError
+from mjwalk.mocap.skeletons import get_skeleton
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 bench_reach = pytest.importorskip("bench_reach")
@@ -25,23 +26,29 @@ LEGS = {
 }
 
 
+def _units(skeleton: str) -> float:
+    """File units per centimetre of the preset (its declared units are checked on loading)."""
+    return 0.01 / get_skeleton(skeleton).scale
+
+
 def _leg(side: str, skeleton: str = "bandai") -> str:
     hip, ankle, toe = LEGS[skeleton][side]
+    k = _units(skeleton)
     return f"""  JOINT {hip}
   {{
-    OFFSET {"10" if side == "L" else "-10"} 0 0
+    OFFSET {10 * k if side == "L" else -10 * k} 0 0
     CHANNELS 3 Zrotation Xrotation Yrotation
     JOINT {ankle}
     {{
-      OFFSET 0 -80 0
+      OFFSET 0 {-80 * k} 0
       CHANNELS 3 Zrotation Xrotation Yrotation
       JOINT {toe}
       {{
-        OFFSET 0 -5 10
+        OFFSET 0 {-5 * k} {10 * k}
         CHANNELS 3 Zrotation Xrotation Yrotation
         End Site
         {{
-          OFFSET 0 0 5
+          OFFSET 0 0 {5 * k}
         }}
       }}
     }}
@@ -52,8 +59,8 @@ def _leg(side: str, skeleton: str = "bandai") -> str:
 def _armless_bvh(
     path: Path, frames: int = 10, skeleton: str = "bandai", hips: str = "0 0 0"
 ) -> None:
-    """A skeleton with the preset's leg names and no arms (centimetres, y up, 30 fps)."""
-    row = " ".join(["0 90 0 0 0 0"] + ["0 0 0"] * 6)
+    """A skeleton with the preset's leg names and no arms (the preset's units, y up, 30 fps)."""
+    row = " ".join([f"0 {90 * _units(skeleton)} 0 0 0 0"] + ["0 0 0"] * 6)
     path.write_text(
         f"HIERARCHY\nROOT Hips\n{{\n  OFFSET {hips}\n"
         "  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
