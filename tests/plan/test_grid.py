@@ -181,3 +181,41 @@ def test_compiled_search_pops_as_heapq_does(scenes_dir):
         assert found and expansions == len(popped)
         reached = np.flatnonzero(got >= 0)
         assert {int(v): int(got[v]) for v in reached} == parent
+
+
+class _OtherClearance:
+    """A clearance model that is not a ClearanceField (its lookup is the field's own): the grid
+    A* takes the NumPy path for its ends."""
+
+    def __init__(self, field):
+        self.field = field
+
+    def __call__(self, xy):
+        return self.field(xy)
+
+
+def test_compiled_end_links_equal_the_numpy_ones(scenes_dir):
+    """The compiled end links (:func:`mjwalk.plan.grid._near_kernel`) join the same cells at
+    the same distances, to the last bit, as the NumPy path, for random points all over the
+    station (near obstacles and the floor's edge too), and whole routes are equal."""
+    from mjwalk.plan.grid import _near_cells
+
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    grid = occupancy_grid(wp, radius=0.25)
+    other = load_workplace(scenes_dir / "assembly_station.xml")
+    other.walk_field()  # built from the field before it is wrapped (the end checks use it)
+    other.clearance = _OtherClearance(wp.clearance)
+    rng = np.random.default_rng(7)
+    xmin, ymin, xmax, ymax = wp.floor_bounds
+    pts = rng.uniform((xmin - 0.1, ymin - 0.1), (xmax + 0.1, ymax + 0.1), size=(1500, 2))
+    partial = 0
+    for p in pts:
+        got = _near_cells(wp, grid, p, 0.25)
+        want = _near_cells(other, grid, p, 0.25)
+        assert got == want
+        partial += 0 < len(got) < 9
+    assert partial > 50  # ends whose cells are joined in part (blocked segments tested)
+    for a, b in ROUTES["assembly_station"]:
+        r1 = plan_grid(wp, a, b, radius=0.25, grid=grid)
+        r2 = plan_grid(other, a, b, radius=0.25, grid=grid)
+        assert r1.xy.tobytes() == r2.xy.tobytes() and r1.t.tobytes() == r2.t.tobytes()
