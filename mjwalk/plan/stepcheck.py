@@ -38,7 +38,6 @@ from mjwalk.plan.guide import guide_aim, guide_aim_at, guide_nearest
 from mjwalk.plan.lean import lean_in_range, lean_limits, lean_ok, stance_lean, stance_lean_ok
 from mjwalk.plan.slots import (
     I_CHORD,
-    I_DIJKSTRA,
     I_DIST_NX,
     I_FIELD_NX,
     I_FIELD_NY,
@@ -51,13 +50,10 @@ from mjwalk.plan.slots import (
     N_PARAMS,
     P_DISC0,
     P_DIST_CELL,
-    P_DIST_OFFSET,
     P_DIST_TOP_X,
     P_DIST_TOP_Y,
     P_DIST_X0,
     P_DIST_Y0,
-    P_FAR_FROM,
-    P_FAR_WEIGHT,
     P_FIELD_RES,
     P_FIELD_X0,
     P_FIELD_Y0,
@@ -86,13 +82,11 @@ from mjwalk.plan.slots import (
     P_TOE_FRONT,
     P_TOE_SIDE,
     P_TURN_COST,
-    P_WEIGHT,
     iparams,
     params,
 )
 from mjwalk.plan.stepcost import (
     downhill_costs,
-    grid_bound,
     grid_sight,
     guide_rest,
     heading_factor,
@@ -104,11 +98,13 @@ from mjwalk.plan.stepgeom import (
     decode_col,
     decode_real,
     field_clearance,
+    goal_bound,
     in_goal,
     landing_leg_clear,
     swing_yaw,
     toe_approach_clear,
     unit_turn,
+    weighted_h,
 )
 
 __all__ = [
@@ -131,6 +127,16 @@ __all__ = [
     "stance_lean_ok",
     "step_energy",
 ]
+
+
+#: :func:`check_into`'s modes (its ``defer``): every check at once; the legs' and feet's
+#: checks left to the caller (:func:`legs_recheck`); or only a lower bound of f, from the step's
+#: end and heading alone (:data:`BOUND_ONLY`), everything else left to a later call.
+CHECK_ALL, LEGS_LATER, BOUND_ONLY = 0, 1, 2
+#: The relative margin taken off a step's f bound in :data:`BOUND_ONLY` mode: its cost is at
+#: least its chord (the energy cost is AM-GM's (pace·T + L²/(pace·T))/2 >= L, the heading
+#: factor >= 1, a turn's cost >= 0) up to rounding (~1e-16 relative), far below this.
+BOUND_MARGIN = 1e-9
 
 
 @njit
@@ -180,7 +186,7 @@ def check_steps(
     drawn = np.zeros(b, dtype=np.int64)
     cnt = check_into(
         z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist,
-        out, accepted, drawn, False,
+        out, accepted, drawn, CHECK_ALL,
     )  # fmt: skip
     out_rows, out_keys, out_f, out_g, out_end, out_th, out_frame, out_foot, out_fhead = out[:9]
     return (
@@ -400,11 +406,17 @@ def check_into(
     to 0 here) the per-predecessor counts; returns the number of accepted steps. The search
     keeps one set of buffers instead of a dozen new arrays per expansion.
 
-    With ``defer`` the legs' and feet's checks (:func:`legs_clear`) are left to the caller:
-    the steps whose pelvis and ankle keep their clearances are accepted and scored, and the
-    caller runs :func:`legs_recheck` on a step before it takes the step up. The search does
-    so: most accepted steps are never taken up (it ends first), and a step the legs refuse
-    is then dropped where it would never have been pushed, so the walks are the same.
+    With ``defer`` = :data:`LEGS_LATER` the legs' and feet's checks (:func:`legs_clear`) are
+    left to the caller: the steps whose pelvis and ankle keep their clearances are accepted
+    and scored, and the caller runs :func:`legs_recheck` on a step before it takes the step
+    up. The search does so: most accepted steps are never taken up (it ends first), and a
+    step the legs refuse is then dropped where it would never have been pushed, so the walks
+    are the same. With :data:`BOUND_ONLY` every step that is drawn (a closing step: that
+    ends in the goal area) is accepted with its end, heading, key, frame and side, and in
+    ``f`` a lower bound of its f (g: nan): its predecessor's g plus its chord (its cost is
+    at least that: :data:`BOUND_MARGIN`) plus the weighted straight-line and field bound to
+    the goal (the way left along a guide can only raise h); the search checks and scores it
+    (this function again, on its row alone, :data:`LEGS_LATER`) when that bound comes up.
 
     Args:
         z: as for :func:`check_steps`.
@@ -424,7 +436,8 @@ def check_into(
         out: the buffers of :func:`new_buffers`.
         accepted: (>= b,) int, the accepted count per predecessor.
         drawn: (>= b,) int, the drawn (not dropped) count per predecessor.
-        defer: whether to leave :func:`legs_clear` to the caller (:func:`legs_recheck`).
+        defer: :data:`CHECK_ALL`, :data:`LEGS_LATER` (:func:`legs_clear` left to the caller:
+            :func:`legs_recheck`) or :data:`BOUND_ONLY` (only f's bound, above).
     """
     n = z.shape[0]
     b = n // per if per > 0 else 0
@@ -467,6 +480,25 @@ def check_into(
             end = decode_col(z, r, matrix, offset, m - 1) * rot + p
             if not in_goal(end, fr + decode_col(z, r, matrix, offset, m + 1).imag, par, ipar):
                 continue
+        if defer == BOUND_ONLY:  # f's lower bound alone (the row is checked later)
+            chord = decode_col(z, r, matrix, offset, m - 1)
+            end = chord * rot + p
+            th = fr + decode_col(z, r, matrix, offset, m + 1).imag
+            lb = node[i, 3].real + (abs(chord) if ipar[I_CHORD] else 0.0)
+            lb += weighted_h(goal_bound(end, goal, par, ipar, dist), par)
+            out_rows[cnt] = r
+            out_keys[cnt] = cell_key(end, th, par, ipar)
+            out_f[cnt] = lb - BOUND_MARGIN * (1.0 + abs(lb))
+            out_g[cnt] = math.nan
+            out_end[cnt] = end
+            out_th[cnt] = th
+            out_frame[cnt] = fr
+            out_foot[cnt] = complex(math.nan, math.nan)
+            out_fhead[cnt] = math.nan
+            out_left[cnt] = lf
+            accepted[i] += 1
+            cnt += 1
+            continue
         # decode (local = z @ matrix + offset, column by column: decode_col) and clearance of
         # pelvis samples and ankle (world), each column as its test needs it: a third of the
         # rows fail here, mostly before the last column
@@ -487,7 +519,7 @@ def check_into(
         loc[m + 1] = decode_col(z, r, matrix, offset, m + 1)
         yaws = loc[m + 1]
         ankle = loc[m] * rot + p
-        if not defer:  # else when the step is taken up (search: legs_recheck)
+        if defer == CHECK_ALL:  # else when the step is taken up (search: legs_recheck)
             if i != lift_i or fr != lift_fr:  # the same for a node's rows (one frame heading)
                 lift_yaw = _lift_turn(node, i, fr, par)
                 lift_i = i
@@ -515,14 +547,7 @@ def check_into(
             turned = (fr - par[P_START_YAW] + math.pi) % (2.0 * math.pi) - math.pi
             seg += par[P_TURN_COST] * abs(turned)
         ex, ey = end.real, end.imag
-        h = math.hypot(ex - goal.real, ey - goal.imag)
-        if ipar[I_DIJKSTRA]:
-            bound = grid_bound(
-                dist, par[P_DIST_X0], par[P_DIST_Y0], par[P_DIST_CELL], par[P_DIST_TOP_X],
-                par[P_DIST_TOP_Y], ipar[I_DIST_NX], ex, ey,
-            ) - par[P_DIST_OFFSET]  # fmt: skip
-            if bound > h:
-                h = bound
+        h = goal_bound(end, goal, par, ipar, dist)
         hw = par[P_HEADING_WEIGHT]
         guided = not math.isnan(par[P_GUIDE0])
         guide = par[P_GUIDE0:P_DISC0]
@@ -546,9 +571,7 @@ def check_into(
         g = node[i, 3].real + seg
         if guided:  # along a guide: the way left along it, if longer
             h = max(h, guide_rest(par[P_GUIDE_LEN0:N_PARAMS], gk, gw, gd2))
-        fh = par[P_WEIGHT] * h
-        if h > par[P_FAR_FROM]:  # farther than FAR_FROM from the goal: the far weight too
-            fh += par[P_FAR_WEIGHT] * (h - par[P_FAR_FROM])
+        fh = weighted_h(h, par)
         out_rows[cnt] = r
         out_keys[cnt] = cell_key(end, th, par, ipar)
         out_f[cnt] = g + fh
@@ -562,3 +585,4 @@ def check_into(
         accepted[i] += 1
         cnt += 1
     return cnt
+
