@@ -18,9 +18,8 @@ Rows are grouped by predecessor: row r belongs to node r // per and is a closing
 r % per >= n_walk. Per-row ``frame``/``left`` arrays (a start node's starters each turn their
 own way) or per-node ones (length b) are both accepted.
 
-numba's on-disk cache of :func:`check_into` is keyed by this file's text only, not by the
-compiled functions it calls or the constants it reads from other modules: mjwalk clears its
-cached machine code whenever any of its sources changes (:func:`mjwalk._jit.clear_stale_caches`).
+numba caches :func:`check_into` by this file's text only: mjwalk clears its cached machine
+code whenever any of its sources changes (:func:`mjwalk._jit.clear_stale_caches`).
 
 The parameter vectors' slots live in :mod:`mjwalk.plan.slots`; this module re-exports what
 callers of the check use (:func:`~mjwalk.plan.slots.params`, the stance-lean and energy
@@ -129,13 +128,10 @@ __all__ = [
 ]
 
 
-#: :func:`check_into`'s modes (its ``defer``): every check at once; the legs' and feet's
-#: checks left to the caller (:func:`legs_recheck`); or only a lower bound of f, from the step's
-#: end and heading alone (:data:`BOUND_ONLY`), everything else left to a later call.
+#: :func:`check_into`'s modes (``defer``): all checks; the legs' left to :func:`legs_recheck`;
+#: only a lower bound of f (:func:`_bound_into`), the rest left to a later call.
 CHECK_ALL, LEGS_LATER, BOUND_ONLY = 0, 1, 2
-#: The relative margin taken off a step's f bound in :data:`BOUND_ONLY` mode: its cost is at
-#: least its chord (the energy cost is AM-GM's (pace·T + L²/(pace·T))/2 >= L, the heading
-#: factor >= 1, a turn's cost >= 0) up to rounding (~1e-16 relative), far below this.
+#: The relative margin off a bound of f for rounding (~1e-16 relative), :func:`_bound_into`.
 BOUND_MARGIN = 1e-9
 
 
@@ -413,10 +409,10 @@ def check_into(
     step the legs refuse is then dropped where it would never have been pushed, so the walks
     are the same. With :data:`BOUND_ONLY` every step that is drawn (a closing step: that
     ends in the goal area) is accepted with its end, heading, key, frame and side, and in
-    ``f`` a lower bound of its f (g: nan): its predecessor's g plus its chord (its cost is
-    at least that: :data:`BOUND_MARGIN`) plus the weighted straight-line and field bound to
-    the goal (the way left along a guide can only raise h); the search checks and scores it
-    (this function again, on its row alone, :data:`LEGS_LATER`) when that bound comes up.
+    ``f`` a lower bound of its f (g: nan), :func:`_bound_into`; the search checks and scores
+    it (this function again, on its row alone, :data:`LEGS_LATER`) when that bound comes up.
+    A step whose bound is not finite (it ends where the goal field has no way) is checked
+    and scored at once, as with :data:`LEGS_LATER`.
 
     Args:
         z: as for :func:`check_steps`.
@@ -480,22 +476,9 @@ def check_into(
             end = decode_col(z, r, matrix, offset, m - 1) * rot + p
             if not in_goal(end, fr + decode_col(z, r, matrix, offset, m + 1).imag, par, ipar):
                 continue
-        if defer == BOUND_ONLY:  # f's lower bound alone (the row is checked later)
-            chord = decode_col(z, r, matrix, offset, m - 1)
-            end = chord * rot + p
-            th = fr + decode_col(z, r, matrix, offset, m + 1).imag
-            lb = node[i, 3].real + (abs(chord) if ipar[I_CHORD] else 0.0)
-            lb += weighted_h(goal_bound(end, goal, par, ipar, dist), par)
-            out_rows[cnt] = r
-            out_keys[cnt] = cell_key(end, th, par, ipar)
-            out_f[cnt] = lb - BOUND_MARGIN * (1.0 + abs(lb))
-            out_g[cnt] = math.nan
-            out_end[cnt] = end
-            out_th[cnt] = th
-            out_frame[cnt] = fr
-            out_foot[cnt] = complex(math.nan, math.nan)
-            out_fhead[cnt] = math.nan
-            out_left[cnt] = lf
+        if defer == BOUND_ONLY and _bound_into(z, r, matrix, offset, m, rot, p, fr, lf,
+                                               node[i, 3].real, goal, par, ipar, dist, out,
+                                               cnt):  # fmt: skip
             accepted[i] += 1
             cnt += 1
             continue
@@ -586,3 +569,32 @@ def check_into(
         cnt += 1
     return cnt
 
+
+@njit
+def _bound_into(z, r, matrix, offset, m, rot, p, fr, lf, g0, goal, par, ipar, dist, out, cnt):
+    """:func:`check_into`'s :data:`BOUND_ONLY` entry of row ``r`` into row ``cnt`` of ``out``:
+    end, heading, key, frame, side and a lower bound of f (g, foot: nan): the predecessor's
+    ``g0`` plus the chord (the cost is at least that: energy (pace·T + L²/(pace·T))/2 >= L,
+    heading factor >= 1, turn cost >= 0) plus the weighted straight-line and field bound to the
+    goal (a guide's way left only raises h), less :data:`BOUND_MARGIN`. False: not finite."""
+    m1 = decode_col(z, r, matrix, offset, m - 1)
+    end = m1 * rot + p
+    th = fr + decode_col(z, r, matrix, offset, m + 1).imag
+    lb = (
+        g0
+        + (abs(m1) if ipar[I_CHORD] else 0.0)
+        + weighted_h(goal_bound(end, goal, par, ipar, dist), par)
+    )
+    if not lb < math.inf:
+        return False
+    out[0][cnt] = r
+    out[1][cnt] = cell_key(end, th, par, ipar)
+    out[2][cnt] = lb - BOUND_MARGIN * (1.0 + lb)
+    out[3][cnt] = math.nan
+    out[4][cnt] = end
+    out[5][cnt] = th
+    out[6][cnt] = fr
+    out[7][cnt] = complex(math.nan, math.nan)
+    out[8][cnt] = math.nan
+    out[9][cnt] = lf
+    return True
