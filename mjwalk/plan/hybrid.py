@@ -528,7 +528,7 @@ class HybridPlanner:
         stops = (sgp[0].kernel, sgp[1].kernel) if sgp else gps
         none = (np.array([np.inf, np.inf]), np.zeros(len(gps[0][1]), complex))  # never far
         reaches = (dec.closing_reach(sgp[0]), dec.closing_reach(sgp[1])) if sgp else (none, none)
-        args = (
+        outcome, goal_node, stats, *nodes = search.search(
             np.ascontiguousarray(z0, dtype=float),
             frame0,
             np.ascontiguousarray(side0 == "left"),
@@ -547,11 +547,6 @@ class HybridPlanner:
             self.walk_field.values,
             self.distance.flat_bound(),
         )
-        state = rng.bit_generator.state  # a RETRY searches again from the same draws
-        outcome, goal_node, stats, *nodes = search.search(*args, True)
-        if outcome == search.RETRY:
-            rng.bit_generator.state = state
-            outcome, goal_node, stats, *nodes = search.search(*args, False)
         expansions, generated, rejected, stop_draws = stats.tolist()
         goal_x, goal_y, _ = aim
         where = f"({start.real:.3f}, {start.imag:.3f})"

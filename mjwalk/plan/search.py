@@ -70,13 +70,11 @@ from mjwalk.plan.slots import (
     P_POOL_SHARPNESS,
     P_STOP_REACH,
 )
-from mjwalk.plan.stepcheck import BOUND_ONLY, LEGS_LATER, check_into, legs_recheck, new_buffers
+from mjwalk.plan.stepcheck import check_into, legs_recheck, new_buffers
 from mjwalk.plan.stepgeom import cell_key, closing_ends_far, closing_ends_miss, in_goal, within
 
-#: :func:`search` outcomes. RETRY: a scored step's f was not a number (its end where the goal
-#: field has no way, with no far weight: 0·inf), so the open list's order depends on how the
-#: heap lies; run the search again without bounds (``bounded=False``), as it was before them.
-FOUND, EXHAUSTED, BUDGET, RETRY = 0, 1, 2, 3
+#: :func:`search` outcomes.
+FOUND, EXHAUSTED, BUDGET = 0, 1, 2
 
 
 @njit
@@ -165,40 +163,9 @@ def _closing_draws(x, n, rng, gp, reach, sharp, matrix, offset, frame, p, par, i
 
 
 @njit
-def _score_due(nid, order, heap, feats, row, closing, parent, pos, foot, fhead, g, frame, left,
-               matrix, offset, thr, par, ipar, coef, dist, bufs1, one_true, accepted, drawn,
-               due_node):  # fmt: skip
-    """Check and score node ``nid``'s step, pushed with f's bound only (check_into's
-    BOUND_ONLY), as check_into would have at its push (LEGS_LATER: the legs' checks still wait
-    for the node to be taken up): the same decode, lookups and score from its feature row,
-    frame, side and predecessor. Accepted, it takes its g, foot and foot heading and goes
-    back on the open list at its f with its own push count ``order``; returns whether it was
-    accepted.
-
-    Its true f is at least the bound it was pushed with (the bound's push count is the
-    same), so the nodes come off the list, by (f, push count), in the order they would have
-    with every step scored at its push: a node is taken up only from its true f, and no
-    bound left on the list can be below it then.
-    """
-    _predecessor_row(parent[nid], pos, foot, fhead, g, parent, due_node)
-    r = row[nid]
-    n_walk = 0 if closing[r] else 1
-    n_ok = check_into(feats[r : r + 1], matrix, offset, 1, n_walk, frame[nid : nid + 1],
-                      left[nid : nid + 1], one_true, due_node, thr, par, ipar, coef, dist, bufs1,
-                      accepted, drawn, LEGS_LATER)  # fmt: skip
-    if n_ok == 0:
-        return False
-    g[nid] = bufs1[3][0]
-    foot[nid] = bufs1[7][0]
-    fhead[nid] = bufs1[8][0]
-    heapq.heappush(heap, (bufs1[2][0], order, nid))
-    return True
-
-
-@njit
 def search(
     z0, frame0, left0, start, heading, f0, gps, stops, reaches, rng, matrix, offset, thr, par,
-    ipar, coef, dist, bounded,
+    ipar, coef, dist,
 ):  # fmt: skip
     """Search from ``start`` (world x + iy, facing ``heading``) to the goal of ``par``.
 
@@ -222,9 +189,6 @@ def search(
         ipar: the integer slots, the search's filled.
         coef: the walk field's node values (ny, nx), metres.
         dist: the goal distance's flat grid bound (:meth:`GoalDistance.flat_bound`).
-        bounded: push successors with a lower bound of f and score them when it comes up
-            (:data:`~mjwalk.plan.stepcheck.BOUND_ONLY`, :func:`_score_due`): the same walk,
-            most pushed steps never scored; outcome RETRY when a step's f is nan.
 
     Returns:
         (outcome, goal node, [expansions, generated, rejected (by the checks that ran: the
@@ -255,7 +219,6 @@ def search(
     fhead = np.empty(cap)  # ... and the landed foot's heading (nan: none)
     left = np.empty(cap, dtype=np.bool_)
     legs_due = np.empty(cap, dtype=np.bool_)  # the legs' checks not run yet (check_into)
-    unscored = np.empty(cap, dtype=np.bool_)  # pushed with f's bound only (BOUND_ONLY)
     parent[0] = -1
     row[0] = -1
     pos[0] = start
@@ -266,7 +229,6 @@ def search(
     fhead[0] = np.nan
     left[0] = False
     legs_due[0] = False
-    unscored[0] = False
     nn = 1
     fcap = 256
     feats = np.empty((fcap, d))
@@ -296,9 +258,6 @@ def search(
     due_loc = np.empty_like(bufs[10])
     accepted = np.zeros(1, dtype=np.int64)
     drawn = np.zeros(1, dtype=np.int64)
-    # a step scored when its bound comes up: its row alone, with its own buffers
-    bufs1 = new_buffers(1, ipar[I_M])
-    one_true = np.ones(1, dtype=np.bool_)
     # the draws' work arrays, one set per GP, and the successors drawn into feats itself
     work_left = new_work(1, gp_left)
     work_right = new_work(1, gp_right)
@@ -306,25 +265,13 @@ def search(
     work_stop_right = new_work(1, stop_right)
     draw_rows = np.empty(max(n_succ, n_stop, 1), dtype=np.intp)
     while len(heap) > 0:
-        _, order, nid = heapq.heappop(heap)
+        nid = heapq.heappop(heap)[2]
         p = pos[nid]
         hd = head[nid]
         key = cell_key(p, hd, par, ipar)
         done = in_goal(p, hd, par, ipar)
         near = n_stop > 0 and within(p - goal, stop_reach)
         if key in closed and not done and not near:
-            continue
-        if unscored[nid]:
-            # its bound came up: check and score its step now, and push it again at its f in
-            # its place (the same push count); one the checks refuse is dropped
-            if not _score_due(nid, order, heap, feats, row, closing, parent, pos, foot, fhead,
-                              g, frame, left, matrix, offset, thr, par, ipar, coef, dist, bufs1,
-                              one_true, accepted, drawn, due_node):  # fmt: skip
-                rejected += 1
-            elif math.isnan(g[nid]) or math.isnan(bufs1[2][0]):
-                outcome = RETRY
-                break
-            unscored[nid] = False
             continue
         if legs_due[nid]:
             # the legs' checks of its step, left by check_into until the step is taken up
@@ -406,7 +353,7 @@ def search(
         _predecessor_row(nid, pos, foot, fhead, g, parent, one_node)
         n_ok = check_into(
             z, matrix, offset, per, n_walk, frm, lft, one_near, one_node, thr, par, ipar, coef,
-            dist, bufs, accepted, drawn, BOUND_ONLY if bounded else LEGS_LATER,
+            dist, bufs, accepted, drawn, True,
         )  # fmt: skip
         for r in range(per):
             closing[nf + r] = r >= n_walk
@@ -429,7 +376,6 @@ def search(
             fhead = _grow1(fhead, cap)
             left = _grow1(left, cap)
             legs_due = _grow1(legs_due, cap)
-            unscored = _grow1(unscored, cap)
         for c in range(n_ok):
             e = ends[c]
             if (
@@ -448,15 +394,9 @@ def search(
             fhead[nn] = fheads[c]
             left[nn] = lefts[c]
             legs_due[nn] = True
-            unscored[nn] = math.isnan(gs[c])  # pushed with f's bound (BOUND_ONLY)
-            if bounded and math.isnan(fs[c]):
-                outcome = RETRY  # a nan f: the heap's order is its layout's (RETRY)
-                break
             heapq.heappush(heap, (fs[c], counter, nn))
             counter += 1
             nn += 1
-        if outcome == RETRY:
-            break
     stats = np.array([expansions, generated, rejected, stop_draws], dtype=np.int64)
     return (
         outcome,

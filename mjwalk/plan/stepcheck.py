@@ -18,8 +18,9 @@ Rows are grouped by predecessor: row r belongs to node r // per and is a closing
 r % per >= n_walk. Per-row ``frame``/``left`` arrays (a start node's starters each turn their
 own way) or per-node ones (length b) are both accepted.
 
-numba caches :func:`check_into` by this file's text only: mjwalk clears its cached machine
-code whenever any of its sources changes (:func:`mjwalk._jit.clear_stale_caches`).
+numba's on-disk cache of :func:`check_into` is keyed by this file's text only, not by the
+compiled functions it calls or the constants it reads from other modules: mjwalk clears its
+cached machine code whenever any of its sources changes (:func:`mjwalk._jit.clear_stale_caches`).
 
 The parameter vectors' slots live in :mod:`mjwalk.plan.slots`; this module re-exports what
 callers of the check use (:func:`~mjwalk.plan.slots.params`, the stance-lean and energy
@@ -37,6 +38,7 @@ from mjwalk.plan.guide import guide_aim, guide_aim_at, guide_nearest
 from mjwalk.plan.lean import lean_in_range, lean_limits, lean_ok, stance_lean, stance_lean_ok
 from mjwalk.plan.slots import (
     I_CHORD,
+    I_DIJKSTRA,
     I_DIST_NX,
     I_FIELD_NX,
     I_FIELD_NY,
@@ -49,10 +51,13 @@ from mjwalk.plan.slots import (
     N_PARAMS,
     P_DISC0,
     P_DIST_CELL,
+    P_DIST_OFFSET,
     P_DIST_TOP_X,
     P_DIST_TOP_Y,
     P_DIST_X0,
     P_DIST_Y0,
+    P_FAR_FROM,
+    P_FAR_WEIGHT,
     P_FIELD_RES,
     P_FIELD_X0,
     P_FIELD_Y0,
@@ -81,11 +86,13 @@ from mjwalk.plan.slots import (
     P_TOE_FRONT,
     P_TOE_SIDE,
     P_TURN_COST,
+    P_WEIGHT,
     iparams,
     params,
 )
 from mjwalk.plan.stepcost import (
     downhill_costs,
+    grid_bound,
     grid_sight,
     guide_rest,
     heading_factor,
@@ -97,13 +104,11 @@ from mjwalk.plan.stepgeom import (
     decode_col,
     decode_real,
     field_clearance,
-    goal_bound,
     in_goal,
     landing_leg_clear,
     swing_yaw,
     toe_approach_clear,
     unit_turn,
-    weighted_h,
 )
 
 __all__ = [
@@ -126,13 +131,6 @@ __all__ = [
     "stance_lean_ok",
     "step_energy",
 ]
-
-
-#: :func:`check_into`'s modes (``defer``): all checks; the legs' left to :func:`legs_recheck`;
-#: only a lower bound of f (:func:`_bound_into`), the rest left to a later call.
-CHECK_ALL, LEGS_LATER, BOUND_ONLY = 0, 1, 2
-#: The relative margin off a bound of f for rounding (~1e-16 relative), :func:`_bound_into`.
-BOUND_MARGIN = 1e-9
 
 
 @njit
@@ -182,7 +180,7 @@ def check_steps(
     drawn = np.zeros(b, dtype=np.int64)
     cnt = check_into(
         z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist,
-        out, accepted, drawn, CHECK_ALL,
+        out, accepted, drawn, False,
     )  # fmt: skip
     out_rows, out_keys, out_f, out_g, out_end, out_th, out_frame, out_foot, out_fhead = out[:9]
     return (
@@ -402,17 +400,11 @@ def check_into(
     to 0 here) the per-predecessor counts; returns the number of accepted steps. The search
     keeps one set of buffers instead of a dozen new arrays per expansion.
 
-    With ``defer`` = :data:`LEGS_LATER` the legs' and feet's checks (:func:`legs_clear`) are
-    left to the caller: the steps whose pelvis and ankle keep their clearances are accepted
-    and scored, and the caller runs :func:`legs_recheck` on a step before it takes the step
-    up. The search does so: most accepted steps are never taken up (it ends first), and a
-    step the legs refuse is then dropped where it would never have been pushed, so the walks
-    are the same. With :data:`BOUND_ONLY` every step that is drawn (a closing step: that
-    ends in the goal area) is accepted with its end, heading, key, frame and side, and in
-    ``f`` a lower bound of its f (g: nan), :func:`_bound_into`; the search checks and scores
-    it (this function again, on its row alone, :data:`LEGS_LATER`) when that bound comes up.
-    A step whose bound is not finite (it ends where the goal field has no way) is checked
-    and scored at once, as with :data:`LEGS_LATER`.
+    With ``defer`` the legs' and feet's checks (:func:`legs_clear`) are left to the caller:
+    the steps whose pelvis and ankle keep their clearances are accepted and scored, and the
+    caller runs :func:`legs_recheck` on a step before it takes the step up. The search does
+    so: most accepted steps are never taken up (it ends first), and a step the legs refuse
+    is then dropped where it would never have been pushed, so the walks are the same.
 
     Args:
         z: as for :func:`check_steps`.
@@ -432,8 +424,7 @@ def check_into(
         out: the buffers of :func:`new_buffers`.
         accepted: (>= b,) int, the accepted count per predecessor.
         drawn: (>= b,) int, the drawn (not dropped) count per predecessor.
-        defer: :data:`CHECK_ALL`, :data:`LEGS_LATER` (:func:`legs_clear` left to the caller:
-            :func:`legs_recheck`) or :data:`BOUND_ONLY` (only f's bound, above).
+        defer: whether to leave :func:`legs_clear` to the caller (:func:`legs_recheck`).
     """
     n = z.shape[0]
     b = n // per if per > 0 else 0
@@ -476,12 +467,6 @@ def check_into(
             end = decode_col(z, r, matrix, offset, m - 1) * rot + p
             if not in_goal(end, fr + decode_col(z, r, matrix, offset, m + 1).imag, par, ipar):
                 continue
-        if defer == BOUND_ONLY and _bound_into(z, r, matrix, offset, m, rot, p, fr, lf,
-                                               node[i, 3].real, goal, par, ipar, dist, out,
-                                               cnt):  # fmt: skip
-            accepted[i] += 1
-            cnt += 1
-            continue
         # decode (local = z @ matrix + offset, column by column: decode_col) and clearance of
         # pelvis samples and ankle (world), each column as its test needs it: a third of the
         # rows fail here, mostly before the last column
@@ -502,7 +487,7 @@ def check_into(
         loc[m + 1] = decode_col(z, r, matrix, offset, m + 1)
         yaws = loc[m + 1]
         ankle = loc[m] * rot + p
-        if defer == CHECK_ALL:  # else when the step is taken up (search: legs_recheck)
+        if not defer:  # else when the step is taken up (search: legs_recheck)
             if i != lift_i or fr != lift_fr:  # the same for a node's rows (one frame heading)
                 lift_yaw = _lift_turn(node, i, fr, par)
                 lift_i = i
@@ -530,7 +515,14 @@ def check_into(
             turned = (fr - par[P_START_YAW] + math.pi) % (2.0 * math.pi) - math.pi
             seg += par[P_TURN_COST] * abs(turned)
         ex, ey = end.real, end.imag
-        h = goal_bound(end, goal, par, ipar, dist)
+        h = math.hypot(ex - goal.real, ey - goal.imag)
+        if ipar[I_DIJKSTRA]:
+            bound = grid_bound(
+                dist, par[P_DIST_X0], par[P_DIST_Y0], par[P_DIST_CELL], par[P_DIST_TOP_X],
+                par[P_DIST_TOP_Y], ipar[I_DIST_NX], ex, ey,
+            ) - par[P_DIST_OFFSET]  # fmt: skip
+            if bound > h:
+                h = bound
         hw = par[P_HEADING_WEIGHT]
         guided = not math.isnan(par[P_GUIDE0])
         guide = par[P_GUIDE0:P_DISC0]
@@ -554,7 +546,9 @@ def check_into(
         g = node[i, 3].real + seg
         if guided:  # along a guide: the way left along it, if longer
             h = max(h, guide_rest(par[P_GUIDE_LEN0:N_PARAMS], gk, gw, gd2))
-        fh = weighted_h(h, par)
+        fh = par[P_WEIGHT] * h
+        if h > par[P_FAR_FROM]:  # farther than FAR_FROM from the goal: the far weight too
+            fh += par[P_FAR_WEIGHT] * (h - par[P_FAR_FROM])
         out_rows[cnt] = r
         out_keys[cnt] = cell_key(end, th, par, ipar)
         out_f[cnt] = g + fh
@@ -568,33 +562,3 @@ def check_into(
         accepted[i] += 1
         cnt += 1
     return cnt
-
-
-@njit
-def _bound_into(z, r, matrix, offset, m, rot, p, fr, lf, g0, goal, par, ipar, dist, out, cnt):
-    """:func:`check_into`'s :data:`BOUND_ONLY` entry of row ``r`` into row ``cnt`` of ``out``:
-    end, heading, key, frame, side and a lower bound of f (g, foot: nan): the predecessor's
-    ``g0`` plus the chord (the cost is at least that: energy (pace·T + L²/(pace·T))/2 >= L,
-    heading factor >= 1, turn cost >= 0) plus the weighted straight-line and field bound to the
-    goal (a guide's way left only raises h), less :data:`BOUND_MARGIN`. False: not finite."""
-    m1 = decode_col(z, r, matrix, offset, m - 1)
-    end = m1 * rot + p
-    th = fr + decode_col(z, r, matrix, offset, m + 1).imag
-    lb = (
-        g0
-        + (abs(m1) if ipar[I_CHORD] else 0.0)
-        + weighted_h(goal_bound(end, goal, par, ipar, dist), par)
-    )
-    if not lb < math.inf:
-        return False
-    out[0][cnt] = r
-    out[1][cnt] = cell_key(end, th, par, ipar)
-    out[2][cnt] = lb - BOUND_MARGIN * (1.0 + lb)
-    out[3][cnt] = math.nan
-    out[4][cnt] = end
-    out[5][cnt] = th
-    out[6][cnt] = fr
-    out[7][cnt] = complex(math.nan, math.nan)
-    out[8][cnt] = math.nan
-    out[9][cnt] = lf
-    return True

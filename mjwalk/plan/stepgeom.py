@@ -13,22 +13,12 @@ import math
 from mjwalk._jit import njit, njit_inline
 from mjwalk.plan.slots import (
     I_BINS,
-    I_DIJKSTRA,
-    I_DIST_NX,
     I_N_DISCS,
     I_SPAN,
     P_CELL,
     P_CORNER_X,
     P_CORNER_Y,
     P_DISC0,
-    P_DIST_CELL,
-    P_DIST_OFFSET,
-    P_DIST_TOP_X,
-    P_DIST_TOP_Y,
-    P_DIST_X0,
-    P_DIST_Y0,
-    P_FAR_FROM,
-    P_FAR_WEIGHT,
     P_FIELD_LIP,
     P_GOAL_X,
     P_GOAL_Y,
@@ -39,10 +29,8 @@ from mjwalk.plan.slots import (
     P_TOE_SHARE,
     P_TOE_STEP,
     P_TOLERANCE,
-    P_WEIGHT,
     P_YAW_TOLERANCE,
 )
-from mjwalk.plan.stepcost import grid_bound
 
 
 @njit
@@ -517,50 +505,3 @@ def toe_approach_clear(ankle, lift, toe, clear, start_clear, rot, p, par, coef, 
         v = min(v, field_clearance(coef, x0, y0, res, nx, ny, w.real, w.imag))
         if not v >= clear:
             return False
-
-
-@njit
-def goal_bound(end, goal, par, ipar, dist):
-    """h of a step ending at ``end`` before the guide's term (the search's check scores with
-    it, :mod:`mjwalk.plan.stepcheck`): the straight line to ``goal`` or, with the Dijkstra
-    heuristic, the goal field's grid bound (:func:`~mjwalk.plan.stepcost.grid_bound`) less
-    the walk's spot offset where that is larger.
-
-    Args:
-        end: the step's end, world x + iy, metres.
-        goal: the goal point, world x + iy, metres.
-        par: the float slots (:mod:`mjwalk.plan.slots`).
-        ipar: the integer slots.
-        dist: the goal distance's flat grid bound.
-
-    Returns:
-        h, metres.
-    """
-    ex, ey = end.real, end.imag
-    h = math.hypot(ex - goal.real, ey - goal.imag)
-    if ipar[I_DIJKSTRA]:
-        bound = grid_bound(
-            dist, par[P_DIST_X0], par[P_DIST_Y0], par[P_DIST_CELL], par[P_DIST_TOP_X],
-            par[P_DIST_TOP_Y], ipar[I_DIST_NX], ex, ey,
-        ) - par[P_DIST_OFFSET]  # fmt: skip
-        if bound > h:
-            h = bound
-    return h
-
-
-@njit
-def weighted_h(h, par):
-    """The weighted heuristic of ``h``: weight·h, plus the far weight times its excess over
-    P_FAR_FROM (non-decreasing in h).
-
-    Args:
-        h: the heuristic, metres.
-        par: the float slots (:mod:`mjwalk.plan.slots`).
-
-    Returns:
-        The weighted heuristic, metres.
-    """
-    fh = par[P_WEIGHT] * h
-    if h > par[P_FAR_FROM]:  # farther than FAR_FROM from the goal: the far weight too
-        fh += par[P_FAR_WEIGHT] * (h - par[P_FAR_FROM])
-    return fh
