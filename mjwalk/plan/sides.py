@@ -283,11 +283,11 @@ def intruding(workplace, path, ends, berth: float):
         along = (np.asarray(fp.vertices, dtype=float) - s) @ u
         if along.min() - fp.radius < -berth or along.max() + fp.radius > length + berth:
             continue  # not passed by: a wall the walk runs along, or behind an end
-        if float(fp.signed_distance(both).min()) < berth:
-            continue  # an end's own obstacle (a walk to or from a bench): two points first
         # only points before the best so far can take its place (distances are per point)
         near = np.flatnonzero(fp.signed_distance(dense[:first]) < berth)
         if not len(near):
             continue
+        if float(fp.signed_distance(both).min()) < berth:
+            continue  # an end's own obstacle (a walk to or from a bench)
         best, first = fp, int(near[0])
     return best
