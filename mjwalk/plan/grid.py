@@ -116,7 +116,7 @@ def plan_grid(
             f"goal ({b[0]:.3f}, {b[1]:.3f}) is unreachable from start ({a[0]:.3f}, {a[1]:.3f}) "
             f"in {workplace.name} with body radius {radius} m (searched {expansions} cells)"
         )
-    pts = _route_points(parent, start_node, goal_node, nx, grid.x0, grid.y0, grid.cell, a, b)
+    pts = _route_points(parent, start_node, goal_node, grid, a, b)
     seg = np.diff(pts, axis=0)
     yaw = np.arctan2(seg[:, 1], seg[:, 0])
     yaw = np.unwrap(np.append(yaw, yaw[-1])) if len(yaw) else np.zeros(1)
@@ -135,16 +135,17 @@ def plan_grid(
     ).stamp_scene(workplace)
 
 
-def _route_points(parent, start_node, goal_node, nx, x0, y0, cell, a, b) -> np.ndarray:
+def _route_points(parent, start_node, goal_node, grid: OccupancyGrid, a, b) -> np.ndarray:
     """The route's points (n, 2), metres: ``a``, the centres (x0 + i·cell, y0 + j·cell) of the
-    cells on the chain of ``parent`` links back from ``goal_node`` to ``start_node``, in
-    order, and ``b`` (:func:`_chain`)."""
+    ``grid`` cells on the chain of ``parent`` links back from ``goal_node`` to ``start_node``,
+    in order, and ``b`` (:func:`_chain`)."""
     chain = _chain(parent, start_node, goal_node)
     inner = chain[1:-1]  # the cells between the two ends (node index j * nx + i)
+    nx = grid.shape[1]
     pts = np.empty((len(chain), 2))
     pts[0], pts[-1] = a, b
-    pts[1:-1, 0] = x0 + (inner % nx) * cell
-    pts[1:-1, 1] = y0 + (inner // nx) * cell
+    pts[1:-1, 0] = grid.x0 + (inner % nx) * grid.cell
+    pts[1:-1, 1] = grid.y0 + (inner // nx) * grid.cell
     return pts
 
 
