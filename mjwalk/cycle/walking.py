@@ -34,6 +34,9 @@ __all__ = [
 #: Candidate spots drawn at once by :func:`standing_spot` (uniform over the zone's disc); the
 #: stations' zones keep 5-40 % of their disc walkable, so 512 leave a miss below 1e-10.
 SPOT_DRAWS = 512
+#: Candidates :func:`standing_spot` tests at a time, in their order (the first block nearly
+#: always holds the spot; testing all at once found the same one, with more lookups).
+SPOT_BLOCK = 64
 
 
 def standing_spot(
@@ -55,13 +58,20 @@ def standing_spot(
     r = zone.radius * np.sqrt(rng.uniform(size=SPOT_DRAWS))
     a = rng.uniform(0.0, 2.0 * np.pi, SPOT_DRAWS)
     pts = np.asarray(zone.centre) + np.column_stack([r * np.cos(a), r * np.sin(a)])
-    ok = field(pts) >= ctx.spec.radius + START_MARGIN
-    for x, y, rad in zone.discs:
-        ok &= np.hypot(pts[:, 0] - x, pts[:, 1] - y) <= rad
-    hit = np.flatnonzero(ok)
-    if len(hit) == 0:
-        return zone.centre
-    return float(pts[hit[0], 0]), float(pts[hit[0], 1])
+    need = ctx.spec.radius + START_MARGIN
+    # the first candidate in the zone's discs and keeping ``need``, looked for a block at a
+    # time (the first block holds it nearly always): the same elementwise tests of the same
+    # points as over all of them at once
+    for lo in range(0, SPOT_DRAWS, SPOT_BLOCK):
+        block = pts[lo : lo + SPOT_BLOCK]
+        ok = np.ones(len(block), dtype=bool)
+        for x, y, rad in zone.discs:
+            ok &= np.hypot(block[:, 0] - x, block[:, 1] - y) <= rad
+        inside = np.flatnonzero(ok)
+        hit = inside[field(block[inside]) >= need] if len(inside) else inside
+        if len(hit):
+            return float(block[hit[0], 0]), float(block[hit[0], 1])
+    return zone.centre
 
 
 def cycle_start(ctx: CycleContext, rng: np.random.Generator, walker=None) -> tuple[float, float]:

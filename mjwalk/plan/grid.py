@@ -25,6 +25,7 @@ from mjwalk.plan.occupancy import (
     segment_is_free,
 )
 from mjwalk.plan.walkpath import WalkPath
+from mjwalk.world.clearance import ClearanceField, bilinear_at
 from mjwalk.world.workplace import Workplace
 
 #: Walking speed (m/s) used to time the baseline's route (median speed of the Bandai walk capture).
@@ -115,16 +116,7 @@ def plan_grid(
             f"goal ({b[0]:.3f}, {b[1]:.3f}) is unreachable from start ({a[0]:.3f}, {a[1]:.3f}) "
             f"in {workplace.name} with body radius {radius} m (searched {expansions} cells)"
         )
-    chain = [goal_node]
-    while chain[-1] != start_node:
-        chain.append(int(parent[chain[-1]]))
-    chain.reverse()
-    pts = np.array(
-        [
-            a if v == start_node else b if v == goal_node else grid.centre(v // nx, v % nx)
-            for v in chain
-        ]
-    )
+    pts = _route_points(parent, start_node, goal_node, grid, a, b)
     seg = np.diff(pts, axis=0)
     yaw = np.arctan2(seg[:, 1], seg[:, 0])
     yaw = np.unwrap(np.append(yaw, yaw[-1])) if len(yaw) else np.zeros(1)
@@ -143,14 +135,57 @@ def plan_grid(
     ).stamp_scene(workplace)
 
 
+def _route_points(parent, start_node, goal_node, grid: OccupancyGrid, a, b) -> np.ndarray:
+    """The route's points (n, 2), metres: ``a``, the centres (x0 + i·cell, y0 + j·cell) of the
+    ``grid`` cells on the chain of ``parent`` links back from ``goal_node`` to ``start_node``,
+    in order, and ``b`` (:func:`_chain`)."""
+    chain = _chain(parent, start_node, goal_node)
+    inner = chain[1:-1]  # the cells between the two ends (node index j * nx + i)
+    nx = grid.shape[1]
+    pts = np.empty((len(chain), 2))
+    pts[0], pts[-1] = a, b
+    pts[1:-1, 0] = grid.x0 + (inner % nx) * grid.cell
+    pts[1:-1, 1] = grid.y0 + (inner // nx) * grid.cell
+    return pts
+
+
+@njit
+def _chain(parent, start_node, goal_node):
+    """The nodes from ``start_node`` to ``goal_node`` along the ``parent`` links (int64)."""
+    n = 1
+    v = goal_node
+    while v != start_node:
+        v = parent[v]
+        n += 1
+    out = np.empty(n, dtype=np.int64)
+    v = goal_node
+    for k in range(n - 1, -1, -1):
+        out[k] = v
+        v = parent[v]
+    return out
+
+
 def _near_cells(
     workplace: Workplace, grid: OccupancyGrid, p: np.ndarray, radius: float
 ) -> list[tuple[int, float]]:
     """The free centres (node index, distance in metres) of the 3 x 3 cells around ``p``
-    joined to it by a free segment (sampled as :func:`segment_is_free` samples it, all
-    segments in one field lookup)."""
+    joined to it by a free segment (sampled as :func:`segment_is_free` samples it). With a
+    :class:`~mjwalk.world.clearance.ClearanceField` the compiled :func:`_near_kernel` tests
+    them (the same samples, lookups and distances to the last bit, stopping at a segment's
+    first failing sample); another clearance model: all segments in one NumPy lookup."""
     ny, nx = grid.shape
     j0, i0 = grid.index(p)
+    c = workplace.clearance
+    if isinstance(c, ClearanceField):
+        nodes = np.empty(9, dtype=np.int64)
+        dists = np.empty(9)
+        bounds = np.asarray(workplace.floor_bounds, dtype=float)
+        k = _near_kernel(
+            grid.free, float(grid.x0), float(grid.y0), float(grid.cell), j0, i0,
+            float(p[0]), float(p[1]), c.values, float(c.x0), float(c.y0), float(c.resolution),
+            bounds, float(radius), SAMPLE_SPACING, nodes, dists,
+        )  # fmt: skip
+        return [(int(nodes[m]), float(dists[m])) for m in range(k)]
     cells = [
         (j, i)
         for j in range(max(0, j0 - 1), min(ny, j0 + 2))
@@ -170,6 +205,46 @@ def _near_cells(
     return [
         (j * nx + i, float(d)) for (j, i), d, good in zip(cells, dist, seg_ok, strict=True) if good
     ]
+
+
+@njit
+def _near_kernel(free, gx0, gy0, cell, j0, i0, px, py, values, fx0, fy0, res, bounds, radius,
+                 spacing, nodes, dists):  # fmt: skip
+    """:func:`_near_cells`' test of the free cells of the 3 x 3 around cell (``j0``, ``i0``),
+    row by row, for the point (``px``, ``py``): each centre's distance as ``np.linalg.norm``
+    sums it, its segment sampled at ``np.linspace(0, 1, k)`` (k as :func:`_near_cells` counts
+    them), each sample's walk clearance as ``Workplace.walk_clearance`` computes it (the field's
+    bilinear lookup, :func:`~mjwalk.world.clearance.bilinear_at`, and the distance to the
+    floor's ``bounds``, xmin, ymin, xmax, ymax); a segment fails at its first sample short of
+    ``radius``. Writes the joined cells' node indices and distances (m) into ``nodes`` and
+    ``dists`` and returns how many there are."""
+    ny, nx = free.shape
+    xmin, ymin, xmax, ymax = bounds[0], bounds[1], bounds[2], bounds[3]
+    m = 0
+    for j in range(max(0, j0 - 1), min(ny, j0 + 2)):
+        for i in range(max(0, i0 - 1), min(nx, i0 + 2)):
+            if not free[j, i]:
+                continue
+            ex = (gx0 + i * cell) - px
+            ey = (gy0 + j * cell) - py
+            d = math.sqrt(ex * ex + ey * ey)
+            k = max(2, math.ceil(d / spacing) + 1)
+            step = 1.0 / (k - 1)  # np.linspace(0, 1, k): arange(k) * step, its last 1.0
+            good = True
+            for a in range(k):
+                s = 1.0 if a == k - 1 else a * step
+                x = px + s * ex
+                y = py + s * ey
+                clear = bilinear_at(values, fx0, fy0, res, x, y)
+                edge = min(x - xmin, xmax - x, y - ymin, ymax - y)
+                if not min(clear, edge) >= radius:
+                    good = False
+                    break
+            if good:
+                nodes[m] = j * nx + i
+                dists[m] = d
+                m += 1
+    return m
 
 
 def _unit_steps(k: int) -> np.ndarray:

@@ -199,10 +199,11 @@ class HybridPlanner:
             self.grid, roomy or self.grid, self.goal, options.field_cells
         )
         self.walk_field = workplace.walk_field()  # its clearance field
+        # (the kernels' vectors are made for a walker's stature on its first walk: a cycle's
+        # planner serves one operator, seldom of the default stature)
         self.params = KernelParams(
             options, self.goal, self.goal_within, self.grid, self.walk_field, self.distance
         )
-        self.params.vectors()  # the default walker's, with the distance field: per goal
 
     def _check_spot(self, spot: tuple[float, float, float]) -> None:
         """Refuse a walk's ``spot`` (:class:`~mjwalk.plan.request.WalkRequest`) outside the

@@ -50,3 +50,42 @@ def test_the_standing_site_is_the_last_walks_goal(scenes_dir):
         if TASK_KINDS[task.kind].motion == "walk":
             here = task.site
     assert standing_site(spec, 0) == "stand_rack2"
+
+
+def _spot_at_once(ctx, zone, rng):
+    """standing_spot as it tested all its candidates at once (before the blocks)."""
+    from mjwalk.cycle.walking import SPOT_DRAWS, START_MARGIN
+
+    field = ctx.workplace.walk_field()
+    r = zone.radius * np.sqrt(rng.uniform(size=SPOT_DRAWS))
+    a = rng.uniform(0.0, 2.0 * np.pi, SPOT_DRAWS)
+    pts = np.asarray(zone.centre) + np.column_stack([r * np.cos(a), r * np.sin(a)])
+    ok = field(pts) >= ctx.spec.radius + START_MARGIN
+    for x, y, rad in zone.discs:
+        ok &= np.hypot(pts[:, 0] - x, pts[:, 1] - y) <= rad
+    hit = np.flatnonzero(ok)
+    if len(hit) == 0:
+        return zone.centre
+    return float(pts[hit[0], 0]), float(pts[hit[0], 1])
+
+
+def test_standing_spots_tested_by_blocks_are_the_spots_tested_at_once(scenes_dir):
+    """standing_spot tests its candidates a block at a time: over the station's zones, three
+    operator sizes and 40 seeds each, the same spot as testing all at once, and the generator
+    left in the same state; a zone too tight for any candidate gives its centre."""
+    from dataclasses import replace
+
+    from mjwalk.cycle.walking import standing_spot
+
+    ctx = prepare(load_cycle_spec(scenes_dir / "assembly_station.toml"))
+    walks = [i for i, t in enumerate(ctx.spec.tasks) if TASK_KINDS[t.kind].motion == "walk"]
+    zones = [ctx.zone(i, s, 0.4 * s) for i in walks for s in (1.55, 1.75, 1.95)]
+    # a disc of a tenth of the zone's radius: the spot lies in a later block, if any
+    zones += [replace(z, discs=((*z.centre, 0.1 * z.radius),)) for z in zones[:7]]
+    zones.append(replace(zones[0], discs=((*zones[0].centre, 1e-4),)))  # a point: no spot
+    for zone in zones:
+        for seed in range(40):
+            g1, g2 = np.random.default_rng(seed), np.random.default_rng(seed)
+            assert standing_spot(ctx, zone, g1) == _spot_at_once(ctx, zone, g2)
+            assert g1.bit_generator.state == g2.bit_generator.state
+    assert standing_spot(ctx, zones[-1], np.random.default_rng(0)) == zones[-1].centre

@@ -181,3 +181,45 @@ def test_compiled_search_pops_as_heapq_does(scenes_dir):
         assert found and expansions == len(popped)
         reached = np.flatnonzero(got >= 0)
         assert {int(v): int(got[v]) for v in reached} == parent
+
+
+class _OtherClearance:
+    """A clearance model that is not a ClearanceField (its lookup is the field's own): the grid
+    A* takes the NumPy path for its ends."""
+
+    def __init__(self, field):
+        self.field = field
+
+    def __call__(self, xy):
+        return self.field(xy)
+
+
+def test_compiled_end_links_equal_the_numpy_ones(scenes_dir):
+    """The compiled end links (each end joined to the free centres of its 3 x 3 cells) give the
+    same routes, to the last bit, as the NumPy path a clearance model other than a
+    ClearanceField takes: 300 random start/goal pairs all over the station (ends near
+    obstacles and the floor's edge too, some refused by both) and the station's routes."""
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    grid = occupancy_grid(wp, radius=0.25)
+    other = load_workplace(scenes_dir / "assembly_station.xml")
+    other.walk_field()  # built from the field before it is wrapped (the end checks use it)
+    other.clearance = _OtherClearance(wp.clearance)
+    rng = np.random.default_rng(7)
+    xmin, ymin, xmax, ymax = wp.floor_bounds
+    pts = rng.uniform((xmin + 0.2, ymin + 0.2), (xmax - 0.2, ymax - 0.2), size=(300, 2, 2))
+    pairs = [(a, b) for a, b in pts] + [
+        (wp.point(a), wp.point(b)) for a, b in ROUTES["assembly_station"]
+    ]
+    planned = 0
+    for a, b in pairs:
+        try:
+            r1 = plan_grid(wp, a, b, radius=0.25, grid=grid)
+        except PlanningError as exc:
+            with pytest.raises(PlanningError) as again:
+                plan_grid(other, a, b, radius=0.25, grid=grid)
+            assert str(again.value) == str(exc)
+            continue
+        r2 = plan_grid(other, a, b, radius=0.25, grid=grid)
+        assert r1.xy.tobytes() == r2.xy.tobytes() and r1.t.tobytes() == r2.t.tobytes()
+        planned += 1
+    assert planned > 100
