@@ -42,7 +42,6 @@ from shapely.geometry import Polygon, box
 
 from mjwalk._args import as_generator
 from mjwalk.world.norms import (
-    CLEAR_HEADROOM,
     MAX_RAMP_SLOPE,
     MAX_RISER,
     MAX_TREAD,
@@ -189,7 +188,8 @@ class _Frame:
         cx, cy = self.pt(0.5 * (u0 + u1), 0.5 * (v0 + v1))
         self.n += 1
         part.geoms.append(
-            f'<geom name="{self.tag}_{name}" type="box" pos="{cx:.4f} {cy:.4f} {0.5 * (z0 + z1):.4f}" '
+            f'<geom name="{self.tag}_{name}" type="box" '
+            f'pos="{cx:.4f} {cy:.4f} {0.5 * (z0 + z1):.4f}" '
             f'size="{0.5 * (u1 - u0):.4f} {0.5 * (v1 - v0):.4f} {0.5 * (z1 - z0):.4f}" '
             f'euler="0 0 {math.degrees(self.yaw):.4f}" material="{mat}"/>'
         )
@@ -274,7 +274,9 @@ def _mezzanine(rng: np.random.Generator, f: _Frame) -> _Part:
             side = float(rng.choice([-1.0, 1.0]))
             lv = (-w / 2, depth - w / 2) if side > 0 else (w / 2 - depth, w / 2)
             land = f.box(p, "landing", (u, u + depth), lv, (0.0, zl), "deck")
-            g = _Frame(*f.pt(u + depth - w / 2, side * (depth - w / 2)), f.yaw + side * math.pi / 2, f.tag)
+            g = _Frame(
+                *f.pt(u + depth - w / 2, side * (depth - w / 2)), f.yaw + side * math.pi / 2, f.tag
+            )
             g.n = f.n
             u = _flight(g, p, 0.0, v, zl, (n2, r, a), "s2")
         _top(p, land, zl, "landing", [])
@@ -394,7 +396,9 @@ def _clutter(rng: np.random.Generator, f: _Frame) -> _Part:
     """A box on the floor (a bin, a trolley), 0.4-1.0 m a side, 0.5-1.5 m tall."""
     p = _Part()
     du, dv = (float(x) for x in rng.uniform(0.4, 1.0, 2))
-    f.box(p, "box", (-du / 2, du / 2), (-dv / 2, dv / 2), (0.0, float(rng.uniform(0.5, 1.5))), "rack")
+    f.box(
+        p, "box", (-du / 2, du / 2), (-dv / 2, dv / 2), (0.0, float(rng.uniform(0.5, 1.5))), "rack"
+    )
     return p
 
 
@@ -419,7 +423,10 @@ def _pit(rng: np.random.Generator, f: _Frame) -> tuple[_Part, Polygon, float]:
     bottom = f.rect((n - 1) * a, length, -wp / 2, wp / 2)
     p.tops.append((bottom.buffer(-SITE_ROOM), -depth, "pit"))
     c = bottom.centroid
-    p.scanners += [(c.x, c.y, -depth + SCANNER_HEIGHT), (*f.pt(-APPROACH - 0.5, 0.0), SCANNER_HEIGHT)]
+    p.scanners += [
+        (c.x, c.y, -depth + SCANNER_HEIGHT),
+        (*f.pt(-APPROACH - 0.5, 0.0), SCANNER_HEIGHT),
+    ]
     p.features.append("pit")
     return p, opening, depth
 
@@ -448,8 +455,12 @@ def _place(rng: np.random.Generator, make, size, placed: list, axis: bool = Fals
     hall = box(-w / 2 + WALKWAY, -d / 2 + WALKWAY, w / 2 - WALKWAY, d / 2 - WALKWAY)
     taken = shapely.union_all(placed).buffer(WALKWAY) if placed else None
     for _ in range(300):
-        yaw = float(rng.integers(4)) * math.pi / 2 if axis else float(rng.uniform(-math.pi, math.pi))
-        frame = _Frame(float(rng.uniform(-w / 2, w / 2)), float(rng.uniform(-d / 2, d / 2)), yaw, "")
+        yaw = (
+            float(rng.integers(4)) * math.pi / 2 if axis else float(rng.uniform(-math.pi, math.pi))
+        )
+        frame = _Frame(
+            float(rng.uniform(-w / 2, w / 2)), float(rng.uniform(-d / 2, d / 2)), yaw, ""
+        )
         out = make(frame)
         part = out[0] if isinstance(out, tuple) else out
         area = part.area()
@@ -527,7 +538,9 @@ def generate_levels(seed: int, *, pit: float = 0.4, pedestal: float = 0.3) -> Le
     if rng.uniform() < pedestal:
         makers.append(("ped", lambda f: _pedestal(rng, f), False))
     makers.append(("beam", lambda f: _beam(rng, f), False))
-    makers += [(f"box{i}", lambda f: _clutter(rng, f), False) for i in range(int(rng.integers(4, 10)))]
+    makers += [
+        (f"box{i}", lambda f: _clutter(rng, f), False) for i in range(int(rng.integers(4, 10)))
+    ]
     for tag, make, axis in makers:
         out = _place(rng, lambda f, m=make, t=tag: m(_tag(f, t)), size, placed, axis)
         if out is None:
