@@ -165,8 +165,15 @@ def candidate_heights(
 
 
 def upward_centroids(levelled: np.ndarray, span: tuple[float, float]) -> np.ndarray:
-    """The centroids (M, 3) of the planar upward-facing voxels whose height lies in ``span``
-    (metres; the paper's 20 deg of up, :func:`candidate_heights`)."""
+    """The planar upward-facing voxels of a levelled cloud (the paper's 20 deg of up).
+
+    Args:
+        levelled: (N, 3) points, metres, floor at z = 0.
+        span: (lowest, highest) voxel height kept, metres.
+
+    Returns:
+        (M, 3) the voxels' centroids, metres.
+    """
     lo, hi = span
     sel = levelled[(levelled[:, 2] > lo - VOXEL) & (levelled[:, 2] <= hi + VOXEL)]
     if len(sel) < 10:
@@ -181,9 +188,17 @@ def upward_centroids(levelled: np.ndarray, span: tuple[float, float]) -> np.ndar
 
 
 def peak_heights(z: np.ndarray, span: tuple[float, float]) -> np.ndarray:
-    """The peaks of a 1 cm histogram of voxel heights ``z`` (metres) within ``span``, strongest
-    first, each at least :data:`PEAK_SEPARATION` from a stronger one and holding at least
-    :data:`PEAK_AREA` of voxels within ``FLOOR_TOL``; each the mean of its voxels there."""
+    """The peaks of a 1 cm histogram of upward voxels' heights.
+
+    Args:
+        z: (M,) the voxels' centroid heights, metres.
+        span: (lowest, highest) height looked at, metres.
+
+    Returns:
+        (K,) heights, metres, strongest first, each at least :data:`PEAK_SEPARATION` from a
+        stronger one and holding at least :data:`PEAK_AREA` of voxels within ``FLOOR_TOL``;
+        each the mean of its voxels there.
+    """
     lo, hi = span
     if len(z) == 0:
         return np.zeros(0)
@@ -453,11 +468,10 @@ def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPl
 def _unexplained(
     up: np.ndarray, found: list[ScanLevel], plan: FloorPlan, looked: np.ndarray
 ) -> np.ndarray:
-    """Candidate heights among the upward voxels no region found explains (a voxel within
-    ``FLOOR_TOL`` of a region's height over one of its cells): a tread 2 cm above a platform
-    elsewhere is no candidate of its own (its peak lies within :data:`PEAK_SEPARATION` of the
-    platform's), and the platform's layer may cut it short; heights within :data:`HIST_BIN` of
-    one already looked at are left out (its regions were looked for)."""
+    """Candidate heights of the upward voxels no region explains (within ``FLOOR_TOL`` of a
+    region's height over its cells): a tread 2 cm above a platform elsewhere has no peak of
+    its own (within :data:`PEAK_SEPARATION` of the platform's); heights within
+    :data:`HIST_BIN` of one looked at already are left out."""
     if len(up) == 0:
         return np.zeros(0)
     res = plan.resolution

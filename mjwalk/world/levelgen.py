@@ -1,13 +1,11 @@
 """Generated workplaces on several levels, from a seed (issue 47: scenes nobody has seen).
 
-A rectangular hall (metres, z up, floor at z = 0) holding a mezzanine reached by a stair (one
-straight flight, two flights with a landing between, or two flights turned 90 deg at a landing),
-a platform reached by one or two steps, a platform reached by a ramp (sometimes also by a step),
-sometimes a pedestal no one can step onto, sometimes a pit reached by a stair going down, a low
-beam on two posts, obstacles beside the foot and the head of each flight and floor clutter; every
-structure at any yaw (a pit's opening and stair along the hall's axes). Named sites stand on
-every level. :func:`generate_levels` draws it; :class:`LevelHall` holds the MJCF, the sites,
-the true level heights and links, and scanner spots for a synthetic scan.
+A hall (metres, z up, floor at z = 0) with a mezzanine reached by a stair (one flight, two with
+a landing, or two turned 90 deg at a landing), a platform reached by one or two steps, one by a
+ramp (and a step where its height allows), sometimes a pedestal no one can climb and a pit with
+a stair down, a low beam, obstacles by each flight's foot and head, clutter; any yaw (a pit
+along the axes). Sites stand on every level. :class:`LevelHall` holds the MJCF, sites, true
+levels and links, and scanner spots.
 
 **Legal** (what every drawn dimension keeps to):
 
@@ -26,8 +24,7 @@ the true level heights and links, and scanner spots for a synthetic scan.
 - standing room: raised levels at least ``STAND_WIDTH`` wide; sites at least :data:`SITE_ROOM`
   from a level's edge and from obstacles.
 
-A pedestal (:data:`PEDESTAL_HEIGHT`, higher than any riser, no step or ramp) holds a site no
-walk reaches: the walk there does not exist and must be refused.
+A pedestal's site (:data:`PEDESTAL_HEIGHT`, no step or ramp) is one no walk reaches.
 """
 
 from __future__ import annotations
@@ -117,13 +114,11 @@ class LevelHall:
         size: the floor's (x, y) extent, metres (centred on the origin).
         seed: the seed it was drawn from.
         sites: every named site.
-        heights: the true heights of the walk levels a walker reaches (floor, landings, treads
-            of single steps, platforms, pit bottoms; a stair's treads are not levels), metres.
+        heights: the true heights of the levels a walker reaches (no stair treads), metres.
         treads: the heights of every stair tread, metres (horizontal surfaces a scan may show).
         links: the steps, stairs and ramps.
         scanners: (x, y, z) scanner positions in free space, metres.
-        features: what the hall holds ("stair-straight", "stair-landing", "stair-turn", "pit",
-            "pedestal", "beam", "ramp+step", ...).
+        features: what the hall holds ("stair-turn", "pit", "pedestal", ...).
     """
 
     xml: str
@@ -137,7 +132,14 @@ class LevelHall:
     features: tuple[str, ...]
 
     def write(self, path: str | Path) -> Path:
-        """Write the MJCF to ``path`` (through a temporary file, then rename) and return it."""
+        """Write the MJCF (through a temporary file, then rename).
+
+        Args:
+            path: the file to write.
+
+        Returns:
+            ``path`` as a path.
+        """
         path = Path(path)
         tmp = path.with_name(path.name + ".tmp")
         tmp.write_text(self.xml)
@@ -145,7 +147,14 @@ class LevelHall:
         return path
 
     def site(self, name: str) -> GenSite:
-        """The site of that name (KeyError when none)."""
+        """A site by name.
+
+        Args:
+            name: the site's name.
+
+        Returns:
+            The site (StopIteration when none has that name).
+        """
         return next(s for s in self.sites if s.name == name)
 
 
@@ -157,7 +166,6 @@ class _Part:
     solid: list[Polygon] = field(default_factory=list)  # footprints of everything standing
     keep: list[Polygon] = field(default_factory=list)  # approaches that must stay clear
     tops: list[tuple[Polygon, float, str]] = field(default_factory=list)  # raised levels
-    sites: list[GenSite] = field(default_factory=list)
     heights: list[float] = field(default_factory=list)
     treads: list[float] = field(default_factory=list)
     links: list[GenLink] = field(default_factory=list)
@@ -174,7 +182,6 @@ class _Frame:
     def __init__(self, x: float, y: float, yaw: float, tag: str):
         self.x, self.y, self.yaw, self.tag = x, y, yaw, tag
         self.c, self.s = math.cos(yaw), math.sin(yaw)
-        self.n = 0
 
     def pt(self, u: float, v: float) -> tuple[float, float]:
         return self.x + self.c * u - self.s * v, self.y + self.s * u + self.c * v
@@ -186,7 +193,6 @@ class _Frame:
         """A box spanning local u (u0, u1), v (v0, v1), world z (z0, z1)."""
         (u0, u1), (v0, v1), (z0, z1) = u, v, z
         cx, cy = self.pt(0.5 * (u0 + u1), 0.5 * (v0 + v1))
-        self.n += 1
         part.geoms.append(
             f'<geom name="{self.tag}_{name}" type="box" '
             f'pos="{cx:.4f} {cy:.4f} {0.5 * (z0 + z1):.4f}" '
@@ -277,7 +283,6 @@ def _mezzanine(rng: np.random.Generator, f: _Frame) -> _Part:
             g = _Frame(
                 *f.pt(u + depth - w / 2, side * (depth - w / 2)), f.yaw + side * math.pi / 2, f.tag
             )
-            g.n = f.n
             u = _flight(g, p, 0.0, v, zl, (n2, r, a), "s2")
         _top(p, land, zl, "landing", [])
     p.features.append(f"stair-{form}")
@@ -291,7 +296,6 @@ def _mezzanine(rng: np.random.Generator, f: _Frame) -> _Part:
     off = float(rng.uniform(-(dv - w) / 2, (dv - w) / 2))
     deck = g.box(p, "deck", (u, u + du), (off - dv / 2, off + dv / 2), (0.0, top), "deck")
     p.heights.append(top)
-    head = g.rect(u, u + APPROACH, *v)
     room = [hv for hv in ((v[1], off + dv / 2), (off - dv / 2, v[0])) if hv[1] - hv[0] > 0.5]
     obst = []
     if room:  # an obstacle on the mezzanine beside the head's approach, where there is room
@@ -302,7 +306,6 @@ def _mezzanine(rng: np.random.Generator, f: _Frame) -> _Part:
             lo = max(hv[1] - float(rng.uniform(0.3, 0.6)) - float(rng.uniform(0.0, 0.3)), hv[0])
             hi = min(lo + 0.5, hv[1] - 0.0)
         obst.append(g.box(p, "head_obst", (u + 0.1, u + 0.7), (lo, hi), (top, top + 1.6), "rack"))
-    del head  # kept clear of obstacles; sites may stand there
     _top(p, deck, top, "mezz", obst)
     c = deck.centroid
     p.scanners.append((c.x, c.y, top + SCANNER_HEIGHT))
@@ -328,7 +331,6 @@ def _platform(rng: np.random.Generator, f: _Frame, ramp: bool) -> _Part:
         h = round(float(rng.uniform(MIN_RISER, MAX_RISER)), 4)
     else:  # two risers
         h = 2 * round(float(rng.uniform(MIN_RISER, MAX_RISER)), 4)
-    clear = [f.rect(0.0, APPROACH, -wr / 2, wr / 2)] if ramp else []
     if h <= MAX_RISER:
         p.links.append(GenLink("step", 0.0, h, 1, h, 0.0))
         p.features.append("step-1")
@@ -336,14 +338,12 @@ def _platform(rng: np.random.Generator, f: _Frame, ramp: bool) -> _Part:
         a = round(float(rng.uniform(MIN_TREAD, MAX_TREAD)), 4)
         f.box(p, "tread", (du, du + a), (-wr / 2, wr / 2), (0.0, round(h / 2, 4)), "step")
         p.keep.append(f.rect(du + a, du + a + APPROACH, -wr / 2, wr / 2))
-        clear.append(f.rect(du - APPROACH, du, -wr / 2, wr / 2))
         p.heights.append(round(h / 2, 4))
         p.links.append(GenLink("step", 0.0, h, 2, h / 2, a))
         p.features.append("step-2")
         p.scanners.append((*f.pt(du + a + APPROACH, 0.0), SCANNER_HEIGHT))
     deck = f.box(p, "deck", (0.0, du), (-dv / 2, dv / 2), (0.0, h), "deck")
     p.heights.append(h)
-    del clear  # approaches on the deck: clear of obstacles by construction
     _top(p, deck, h, "platform", [])
     c = deck.centroid
     p.scanners.append((c.x, c.y, h + SCANNER_HEIGHT))
@@ -448,19 +448,16 @@ def _floor_boxes(size: tuple[float, float], opening: Polygon, depth: float) -> l
     ]
 
 
-def _place(rng: np.random.Generator, make, size, placed: list, axis: bool = False):
+def _place(rng: np.random.Generator, make, size, placed: list, axis: bool, tag: str):
     """Draw a structure's frame until its area and approaches, kept a walkway from the floor's
     edge and from every structure placed, fit (None after 300 draws)."""
     w, d = size
     hall = box(-w / 2 + WALKWAY, -d / 2 + WALKWAY, w / 2 - WALKWAY, d / 2 - WALKWAY)
     taken = shapely.union_all(placed).buffer(WALKWAY) if placed else None
     for _ in range(300):
-        yaw = (
-            float(rng.integers(4)) * math.pi / 2 if axis else float(rng.uniform(-math.pi, math.pi))
-        )
-        frame = _Frame(
-            float(rng.uniform(-w / 2, w / 2)), float(rng.uniform(-d / 2, d / 2)), yaw, ""
-        )
+        yaw = rng.integers(4) * math.pi / 2 if axis else rng.uniform(-math.pi, math.pi)
+        x, y = rng.uniform(-w / 2, w / 2), rng.uniform(-d / 2, d / 2)
+        frame = _Frame(float(x), float(y), float(yaw), tag)
         out = make(frame)
         part = out[0] if isinstance(out, tuple) else out
         area = part.area()
@@ -542,7 +539,7 @@ def generate_levels(seed: int, *, pit: float = 0.4, pedestal: float = 0.3) -> Le
         (f"box{i}", lambda f: _clutter(rng, f), False) for i in range(int(rng.integers(4, 10)))
     ]
     for tag, make, axis in makers:
-        out = _place(rng, lambda f, m=make, t=tag: m(_tag(f, t)), size, placed, axis)
+        out = _place(rng, make, size, placed, axis, tag)
         if out is None:
             continue
         if tag == "pit":
@@ -553,11 +550,6 @@ def generate_levels(seed: int, *, pit: float = 0.4, pedestal: float = 0.3) -> Le
         parts.append(part)
     sites = _sites(rng, parts, size, n_floor=3)
     return _assemble(seed, size, parts, sites, hole)
-
-
-def _tag(f: _Frame, tag: str) -> _Frame:
-    f.tag = tag
-    return f
 
 
 def _assemble(seed, size, parts: list[_Part], sites: list[GenSite], hole) -> LevelHall:

@@ -6,8 +6,8 @@ from __future__ import annotations
 import mujoco
 import pytest
 
-from mjwalk.scan.levelboxes import scan_levels
 from mjwalk.scan.level import find_floor
+from mjwalk.scan.levelboxes import scan_levels
 from mjwalk.scan.obstacles import floor_plan
 from mjwalk.scan.raycast import synthetic_scan
 
