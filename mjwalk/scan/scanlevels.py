@@ -487,10 +487,9 @@ def _unexplained(
 
 
 def _distinct(found: list[ScanLevel]) -> list[ScanLevel]:
-    """The regions less those that repeat a larger one: two candidate heights less than
-    ``2 FLOOR_TOL`` apart both hold a surface between them, so it is found twice; a region
-    sharing half its cells with a larger one within ``FLOOR_TOL`` of its height is dropped
-    (two walk surfaces cannot lie over each other 3 cm apart)."""
+    """The regions less those repeating a larger one (two candidate heights under ``2
+    FLOOR_TOL`` apart both hold a surface between them): a region sharing half its cells with
+    a larger one within ``FLOOR_TOL`` of its height (no two walk surfaces lie 3 cm apart)."""
     keep = [found[0]]
     order = sorted(range(1, len(found)), key=lambda i: -found[i].area)
     kept: list[int] = []
