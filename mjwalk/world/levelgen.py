@@ -56,8 +56,7 @@ WALKWAY = 1.0
 #: Clear approach before a flight's foot and head, metres: ASSUMPTION, one walkway width
 #: (:data:`WALKWAY`) so a walker can line up with the flight; not a cited figure.
 APPROACH = 1.0
-#: Most risers in one flight: DIN 18065 asks for a landing after at most 18 risers (from
-#: memory, not verified here); drawn flights stay far below it (:data:`FLIGHT_RISERS`).
+#: Most risers in one flight: DIN 18065, a landing after at most 18 (from memory, unverified).
 MAX_FLIGHT_RISERS = 18
 #: Risers a generated flight has (a flight below a landing, or the one flight).
 FLIGHT_RISERS = (MIN_STAIR_RISERS, 8)
@@ -78,7 +77,8 @@ PEDESTAL_HEIGHT = (0.25, 0.45)
 #: body radius 0.25 m (``mjwalk.conventions.BODY_RADIUS``) plus the cycle's start margin
 #: (0.04 m, ``mjwalk.cycle.levelsite.START_MARGIN``) plus room to turn, rounded up.
 SITE_ROOM = 0.55
-#: The height above its level a scanner stands at, metres (a terrestrial scanner on a tripod).
+#: The height above its level a scanner stands at, metres (a terrestrial scanner on a tripod);
+#: one stands at each flight's head too, looking down it (a deck's edge hides the top treads).
 SCANNER_HEIGHT = 1.6
 
 
@@ -280,11 +280,11 @@ def _mezzanine(rng: np.random.Generator, f: _Frame) -> _Part:
             side = float(rng.choice([-1.0, 1.0]))
             lv = (-w / 2, depth - w / 2) if side > 0 else (w / 2 - depth, w / 2)
             land = f.box(p, "landing", (u, u + depth), lv, (0.0, zl), "deck")
-            g = _Frame(
-                *f.pt(u + depth - w / 2, side * (depth - w / 2)), f.yaw + side * math.pi / 2, f.tag
-            )
+            o = f.pt(u + depth - w / 2, side * (depth - w / 2))
+            g = _Frame(*o, f.yaw + side * math.pi / 2, f.tag)
             u = _flight(g, p, 0.0, v, zl, (n2, r, a), "s2")
         _top(p, land, zl, "landing", [])
+        p.scanners.append((land.centroid.x, land.centroid.y, zl + SCANNER_HEIGHT))
     p.features.append(f"stair-{form}")
     if rng.uniform() < 0.5:  # walls beside the first flight, 1 m above its top tread
         for s, name in ((-1.0, "wall_r"), (1.0, "wall_l")):
@@ -308,7 +308,7 @@ def _mezzanine(rng: np.random.Generator, f: _Frame) -> _Part:
         obst.append(g.box(p, "head_obst", (u + 0.1, u + 0.7), (lo, hi), (top, top + 1.6), "rack"))
     _top(p, deck, top, "mezz", obst)
     c = deck.centroid
-    p.scanners.append((c.x, c.y, top + SCANNER_HEIGHT))
+    p.scanners += [(c.x, c.y, top + SCANNER_HEIGHT), (*g.pt(u + 0.5, 0.0), top + SCANNER_HEIGHT)]
     return p
 
 
