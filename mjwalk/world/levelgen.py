@@ -30,8 +30,10 @@ A pedestal's site (:data:`PEDESTAL_HEIGHT`, no step or ramp) is one no walk reac
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import shapely
@@ -216,9 +218,8 @@ def _stair_dims(rng: np.random.Generator) -> tuple[float, float]:
 
 
 def _flight(f: _Frame, p: _Part, u0: float, v, z0: float, rise: tuple[int, float, float], name):
-    """The treads of a flight rising along +u from its first riser at ``u0``: ``rise`` = (n
-    risers, riser, tread); n - 1 treads standing on the ground at ``z0``. Returns the u of its
-    last riser."""
+    """A flight's n - 1 treads on the ground at ``z0``, rising along +u from its first riser at
+    ``u0`` (``rise``: n, riser, tread); returns the u of its last riser."""
     n, r, a = rise
     for k in range(1, n):
         top = round(z0 + k * r, 4)
@@ -228,8 +229,8 @@ def _flight(f: _Frame, p: _Part, u0: float, v, z0: float, rise: tuple[int, float
 
 
 def _beside(rng: np.random.Generator, f: _Frame, p: _Part, u, v, z0: float, name: str) -> Polygon:
-    """An obstacle box beside a clear zone spanning local ``u`` and ``v``: on one side of it,
-    0-0.4 m off, 0.4-0.8 m wide and deep, 0.8-1.8 m tall, standing at ``z0``."""
+    """A box 0-0.4 m to one side of a clear zone (local ``u``, ``v``), 0.4-0.8 m wide and deep,
+    0.8-1.8 m tall, standing at ``z0``."""
     side = float(rng.choice([-1.0, 1.0]))
     gap = float(rng.uniform(0.0, 0.4))
     size = rng.uniform(0.4, 0.8, 2)
@@ -249,9 +250,8 @@ def _top(p: _Part, deck: Polygon, z: float, label: str, clear: list[Polygon]) ->
 
 
 def _mezzanine(rng: np.random.Generator, f: _Frame) -> _Part:
-    """A mezzanine reached by a stair: one straight flight, two with a landing between, or two
-    turned 90 deg at a quarter landing; an obstacle beside the foot's approach and one on the
-    mezzanine beside the head's; walls along the first flight half the time."""
+    """A mezzanine reached by a stair (one flight, two with a landing, or two turned 90 deg),
+    obstacles beside its foot's and head's approaches, walls along it half the time."""
     p = _Part()
     r, a = _stair_dims(rng)
     w = round(float(rng.uniform(WALKWAY, 1.5)), 3)
@@ -351,8 +351,7 @@ def _platform(rng: np.random.Generator, f: _Frame, ramp: bool) -> _Part:
 
 
 def _ramp(f: _Frame, p: _Part, run: float, h: float, width: float) -> None:
-    """A 0.1 m slab whose top face rises along +u from the floor at u = -run to ``h`` at u = 0;
-    its lower corners dip below the floor."""
+    """A 0.1 m slab, its top rising along +u from the floor at u = -run to ``h`` at u = 0."""
     t, a = 0.05, math.atan2(h, run)
     half = 0.5 * math.hypot(run, h)
     cu, cz = -run / 2 + t * math.sin(a), h / 2 - t * math.cos(a)
@@ -432,8 +431,7 @@ def _pit(rng: np.random.Generator, f: _Frame) -> tuple[_Part, Polygon, float]:
 
 
 def _floor_boxes(size: tuple[float, float], opening: Polygon, depth: float) -> list[str]:
-    """The floor level round an axis-aligned opening as four boxes named floor_0..3, their tops
-    at z = 0, standing on the plane at ``-depth`` (:mod:`mjwalk.world.floorholes`)."""
+    """Four floor boxes round an opening, tops at 0, on the plane at ``-depth`` (floorholes)."""
     w, d = size
     x0, y0, x1, y1 = opening.bounds
     rects = [
@@ -525,7 +523,9 @@ def generate_levels(seed: int, *, pit: float = 0.4, pedestal: float = 0.3) -> Le
     placed: list = []
     parts: list[_Part] = []
     hole = None
-    makers = [("mezz", lambda f: _mezzanine(rng, f), False)]
+    makers: list[tuple[str, Callable[[_Frame], Any], bool]] = [
+        ("mezz", lambda f: _mezzanine(rng, f), False)
+    ]
     if rng.uniform() < pit:
         makers.insert(0, ("pit", lambda f: _pit(rng, f), True))
     makers += [
