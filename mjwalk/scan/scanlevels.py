@@ -453,11 +453,13 @@ def touching(lower: np.ndarray, upper: np.ndarray, res: float) -> bool:
     return float((rim & near).sum()) * res >= MIN_CROSSING
 
 
-def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPlan, ks) -> None:
-    """Append the regions at candidate heights ``ks`` (:func:`regions_at`) to ``found``."""
+def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPlan, ks, avoid=None):
+    """Append the regions at heights ``ks`` to ``found``, none sharing a cell with ``avoid``."""
     res = plan.resolution
     for k in ks:
         for cells, (h, rms, slope, _) in regions_at(levelled, layers, k, plan):
+            if avoid is not None and bool((cells & avoid).any()):
+                continue
             rect = min_rectangle(cells, plan.x0, plan.y0, res)
             depth, width = rectangle_size(rect)
             kind = "tread" if depth <= MAX_TREAD + res else "platform"
@@ -468,10 +470,8 @@ def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPl
 def _unexplained(
     up: np.ndarray, found: list[ScanLevel], plan: FloorPlan, looked: np.ndarray
 ) -> np.ndarray:
-    """Candidate heights of the upward voxels no region explains (within ``FLOOR_TOL`` of a
-    region's height over its cells): a tread 2 cm above a platform elsewhere has no peak of
-    its own (within :data:`PEAK_SEPARATION` of the platform's); heights within
-    :data:`HIST_BIN` of one looked at already are left out."""
+    """Heights of the upward voxels no region explains (a tread 2 cm over a platform elsewhere
+    has no peak of its own); none within :data:`HIST_BIN` of one looked at already."""
     if len(up) == 0:
         return np.zeros(0)
     res = plan.resolution
@@ -487,16 +487,15 @@ def _unexplained(
 
 
 def _distinct(found: list[ScanLevel]) -> list[ScanLevel]:
-    """The regions less those repeating a larger one (two candidate heights under ``2
-    FLOOR_TOL`` apart both hold a surface between them): a region sharing half its cells with
-    a larger one within ``FLOOR_TOL`` of its height (no two walk surfaces lie 3 cm apart)."""
+    """The regions less any sharing half its cells with a larger one less than
+    :data:`PEAK_SEPARATION` from its height (one surface found at two candidate heights)."""
     keep = [found[0]]
     order = sorted(range(1, len(found)), key=lambda i: -found[i].area)
     kept: list[int] = []
     for i in order:
         a = found[i]
         dup = any(
-            abs(a.height - found[j].height) <= FLOOR_TOL
+            abs(a.height - found[j].height) < PEAK_SEPARATION
             and (a.cells & found[j].cells).sum() >= 0.5 * a.cells.sum()
             for j in kept
         )
@@ -534,7 +533,8 @@ def find_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel]
         heights = np.concatenate([heights, extra])
         layers = rasterize_layers(levelled, heights, plan)
         k0 = len(layers.heights) - len(extra)
-        _add_regions(found, levelled, layers, plan, range(k0, len(layers.heights)))
+        taken = np.logical_or.reduce([r.cells for r in found[1:]]) if len(found) > 1 else None
+        _add_regions(found, levelled, layers, plan, range(k0, len(layers.heights)), taken)
     found = _distinct(found)
     steps = []
     for i, a in enumerate(found):

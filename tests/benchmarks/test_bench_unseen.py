@@ -22,12 +22,13 @@ def test_table_counts_outcomes():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("seed", [3, 6])
+@pytest.mark.parametrize("seed", [3, 9])
 def test_generated_halls_plan_and_scan(seed):
-    """Halls 3 (a 5-riser stair, a two-riser step, a ramp) and 6 (a pit, a stair turned at a
-    landing): every walk is planned or refused as it must be (the ramp-only walker to the
-    mezzanine), nothing raises, and the scan finds every level within 2 cm and every stair and
-    ramp (hall 3's mezzanine and stair were lost before scanlevels looked again)."""
+    """Halls 3 (a 5-riser stair, a two-riser step, a ramp) and 9 (a stair with a landing, a
+    two-riser step, a ramp): every walk is planned or refused as it must be (the ramp-only
+    walker to the mezzanine), nothing raises, and the scan finds every level within 2 cm and
+    every stair and ramp (hall 3's mezzanine and stair were lost before scanlevels looked again;
+    hall 9's ramp met a ghost level the second look found on the ramp's head)."""
     rec = bench.run_one(seed, ("plan", "scan"))
     kinds = {o["kind"] for o in rec["outcomes"]}
     assert kinds <= {"planned", "refused as expected"}, rec["outcomes"]
