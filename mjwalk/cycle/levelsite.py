@@ -16,6 +16,7 @@ import numpy as np
 
 from mjwalk.world.clearance import ClearanceField
 from mjwalk.world.levelview import level_at, level_view
+from mjwalk.world.norms import LEVEL_TOLERANCE
 from mjwalk.world.workplace import Workplace
 
 #: Highest a standing site may lie above the surface it stands on, metres (a site on the floor
@@ -40,7 +41,9 @@ def site_level(workplace: Workplace, name: str) -> int | None:
     Returns:
         0 for a site within :data:`STAND_MAX_Z` of the floor (the levels are not built); else
         the index in ``workplace.levels.levels`` of the level whose height lies within
-        :data:`STAND_MAX_Z` below the site (a platform above the floor, or a pit below a floor
+        :data:`STAND_MAX_Z` below the site or at most ``norms.LEVEL_TOLERANCE`` above it (a site
+        written a tenth of a millimetre under a deck's top stands on the deck, as the floor
+        check takes either side) (a platform above the floor, or a pit below a floor
         with openings, :mod:`mjwalk.world.floorholes`); None when the site stands on no level.
     """
     st = workplace.stations[name]
@@ -50,7 +53,7 @@ def site_level(workplace: Workplace, name: str) -> int | None:
     lv = level_at(workplace, np.asarray(st.xy, dtype=float), float(st.pos[2]))
     if lv is None:
         return None
-    if not 0.0 <= float(st.pos[2]) - workplace.levels.levels[lv].height <= STAND_MAX_Z:
+    if not -LEVEL_TOLERANCE <= float(st.pos[2]) - workplace.levels.levels[lv].height <= STAND_MAX_Z:
         return None
     return int(lv)
 

@@ -68,6 +68,8 @@ PLANAR_SHARE = 0.1
 #: Trim of the plane fits: residuals beyond this many rms are dropped (twice).
 TRIM_SIGMAS = 3.0
 
+#: Rounds of looking again for surfaces no region explains (:func:`find_regions`).
+MORE_ROUNDS = 2
 #: Kinds of scan level.
 LEVEL_KINDS = ("floor", "tread", "platform")
 
@@ -159,17 +161,47 @@ def candidate_heights(
         (K,) heights, metres, each the mean of its upward voxels' centroids within
         ``FLOOR_TOL`` of its histogram peak; within ``span``.
     """
+    return peak_heights(upward_centroids(levelled, span)[:, 2], span)
+
+
+def upward_centroids(levelled: np.ndarray, span: tuple[float, float]) -> np.ndarray:
+    """The planar upward-facing voxels of a levelled cloud (the paper's 20 deg of up).
+
+    Args:
+        levelled: (N, 3) points, metres, floor at z = 0.
+        span: (lowest, highest) voxel height kept, metres.
+
+    Returns:
+        (M, 3) the voxels' centroids, metres.
+    """
     lo, hi = span
     sel = levelled[(levelled[:, 2] > lo - VOXEL) & (levelled[:, 2] <= hi + VOXEL)]
     if len(sel) < 10:
-        return np.zeros(0)
+        return np.zeros((0, 3))
     vn = voxel_normals(sel, VOXEL)
     ev = vn.eigval
     up = (vn.normal[:, 2] >= math.cos(math.radians(HORIZONTAL_DEG))) & (
         ev[:, 1] >= PLANAR_SHARE * ev[:, 2]
     )
-    z = vn.centroid[up, 2]
-    z = z[(z > lo) & (z <= hi)]
+    c = vn.centroid[up]
+    return c[(c[:, 2] > lo) & (c[:, 2] <= hi)]
+
+
+def peak_heights(z: np.ndarray, span: tuple[float, float]) -> np.ndarray:
+    """The peaks of a 1 cm histogram of upward voxels' heights.
+
+    Args:
+        z: (M,) the voxels' centroid heights, metres.
+        span: (lowest, highest) height looked at, metres.
+
+    Returns:
+        (K,) heights, metres, strongest first, each at least :data:`PEAK_SEPARATION` from a
+        stronger one and holding at least :data:`PEAK_AREA` of voxels within ``FLOOR_TOL``;
+        each the mean of its voxels there.
+    """
+    lo, hi = span
+    if len(z) == 0:
+        return np.zeros(0)
     nb = math.ceil((hi - lo) / HIST_BIN)
     hist = np.bincount(((z - lo) / HIST_BIN).astype(np.int64), minlength=nb)[:nb].astype(float)
     half = round(FLOOR_TOL / HIST_BIN)
@@ -421,6 +453,58 @@ def touching(lower: np.ndarray, upper: np.ndarray, res: float) -> bool:
     return float((rim & near).sum()) * res >= MIN_CROSSING
 
 
+def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPlan, ks, avoid=None):
+    """Append the regions at heights ``ks`` to ``found``, none sharing a cell with ``avoid``."""
+    res = plan.resolution
+    for k in ks:
+        for cells, (h, rms, slope, _) in regions_at(levelled, layers, k, plan):
+            if avoid is not None and bool((cells & avoid).any()):
+                continue
+            rect = min_rectangle(cells, plan.x0, plan.y0, res)
+            depth, width = rectangle_size(rect)
+            kind = "tread" if depth <= MAX_TREAD + res else "platform"
+            area = float(cells.sum()) * res * res
+            found.append(ScanLevel(0, kind, h, rms, math.atan(slope), cells, area, depth, width, k))
+
+
+def _unexplained(
+    up: np.ndarray, found: list[ScanLevel], plan: FloorPlan, looked: np.ndarray
+) -> np.ndarray:
+    """Heights of the upward voxels no region explains (a tread 2 cm over a platform elsewhere
+    has no peak of its own); none within :data:`HIST_BIN` of one looked at already."""
+    if len(up) == 0:
+        return np.zeros(0)
+    res = plan.resolution
+    ny, nx = plan.floor.shape
+    ix = np.clip(np.floor((up[:, 0] - plan.x0) / res).astype(np.int64), 0, nx - 1)
+    iy = np.clip(np.floor((up[:, 1] - plan.y0) / res).astype(np.int64), 0, ny - 1)
+    left = np.ones(len(up), bool)
+    for r in found[1:]:
+        left &= ~(r.cells[iy, ix] & (np.abs(up[:, 2] - r.height) <= FLOOR_TOL))
+    peaks = peak_heights(up[left, 2], (PEAK_SEPARATION, MAX_SURFACE_HEIGHT))
+    new = [h for h in peaks if np.min(np.abs(np.asarray(looked) - h)) > HIST_BIN]
+    return np.array(new)
+
+
+def _distinct(found: list[ScanLevel]) -> list[ScanLevel]:
+    """The regions less any sharing half its cells with a larger one less than
+    :data:`PEAK_SEPARATION` from its height (one surface found at two candidate heights)."""
+    keep = [found[0]]
+    order = sorted(range(1, len(found)), key=lambda i: -found[i].area)
+    kept: list[int] = []
+    for i in order:
+        a = found[i]
+        dup = any(
+            abs(a.height - found[j].height) < PEAK_SEPARATION
+            and (a.cells & found[j].cells).sum() >= 0.5 * a.cells.sum()
+            for j in kept
+        )
+        if not dup:
+            kept.append(i)
+    keep += [found[i] for i in sorted(kept)]
+    return keep
+
+
 def find_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel], list, Layers]:
     """Every horizontal walk-surface region of a levelled scan, reachable from the floor or not.
 
@@ -433,19 +517,25 @@ def find_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel]
         (lower, upper) index pairs (a riser of at most ``norms.MAX_RISER`` along touching
         edges), and the rasterised layers (the floor's and each candidate height).
     """
-    heights = candidate_heights(levelled)
+    span = (PEAK_SEPARATION, MAX_SURFACE_HEIGHT)
+    up = upward_centroids(levelled, span)
+    heights = peak_heights(up[:, 2], span)
     layers = rasterize_layers(levelled, heights, plan)
     res = plan.resolution
     a_floor = float(plan.floor.sum()) * res * res
     floor = ScanLevel(0, "floor", 0.0, 0.0, 0.0, plan.floor, a_floor, 0.0, 0.0, -1)
     found = [floor]
-    for k in range(1, len(layers.heights)):
-        for cells, (h, rms, slope, _) in regions_at(levelled, layers, k, plan):
-            rect = min_rectangle(cells, plan.x0, plan.y0, res)
-            depth, width = rectangle_size(rect)
-            kind = "tread" if depth <= MAX_TREAD + res else "platform"
-            area = float(cells.sum()) * res * res
-            found.append(ScanLevel(0, kind, h, rms, math.atan(slope), cells, area, depth, width, k))
+    _add_regions(found, levelled, layers, plan, range(1, len(layers.heights)))
+    for _ in range(MORE_ROUNDS):  # surfaces a stronger peak near their height hid
+        extra = _unexplained(up, found, plan, layers.heights)
+        if not extra.size:
+            break
+        heights = np.concatenate([heights, extra])
+        layers = rasterize_layers(levelled, heights, plan)
+        k0 = len(layers.heights) - len(extra)
+        taken = np.logical_or.reduce([r.cells for r in found[1:]]) if len(found) > 1 else None
+        _add_regions(found, levelled, layers, plan, range(k0, len(layers.heights)), taken)
+    found = _distinct(found)
     steps = []
     for i, a in enumerate(found):
         for j, b in enumerate(found):

@@ -30,6 +30,7 @@ from mjwalk.errors import InputError
 from mjwalk.world.contacts import Contact, surface_contacts
 from mjwalk.world.norms import (
     CONTACT_GAP,
+    EXPOSED_MIN,
     HEAD_MARGIN,
     LEVEL_TOLERANCE,
     MAX_RISER,
@@ -167,7 +168,9 @@ class LevelGraph:
 
     def surface_at(self, xy: Sequence[float], z: float | None = None) -> int | None:
         """The surface a point stands on: among the surfaces under ``xy`` with room above them
-        there, the one nearest height ``z`` (the highest when None).
+        there (more than :data:`~mjwalk.world.norms.EXPOSED_MIN` free: a floor box written a
+        tenth of a millimetre over the plane under a pit leaves the plane no standing room), the
+        one nearest height ``z`` (the highest when None).
 
         Args:
             xy: world point (x, y), metres.
@@ -179,7 +182,7 @@ class LevelGraph:
         p = np.asarray(xy, dtype=float)[:2]
         best, key = None, math.inf
         for i, s in enumerate(self.surfaces):
-            if not bool(s.contains(p)) or float(s.free_height(p)) <= 0.0:
+            if not bool(s.contains(p)) or float(s.free_height(p)) <= EXPOSED_MIN:
                 continue
             h = float(s.height_at(p))
             k = -h if z is None else abs(h - z)

@@ -125,3 +125,20 @@ def _site_at(ctx, xy) -> str:
         if np.hypot(*(np.asarray(st.xy, dtype=float)[:2] - xy)) < 1e-9:
             return name
     raise AssertionError(f"no site at {xy}")
+
+
+def test_a_site_a_hair_under_a_decks_top_stands_on_it(tmp_path):
+    """Generated hall 0 (bench_unseen, issue 47): its mezzanine site is written 0.1 mm under
+    the deck's top (both rounded to 0.1 mm); the cycle refused it as "not a standing place"
+    though the floor's check takes either side."""
+    from mjwalk.world.levelgen import generate_levels
+    from mjwalk.world.workplace import load_workplace
+
+    hall = generate_levels(0)
+    wp = load_workplace(hall.write(tmp_path / "hall0.xml"), cache=False)
+    lv = site_level(wp, "mezz_0")
+    assert lv is not None
+    assert wp.levels.levels[lv].height - wp.stations["mezz_0"].pos[2] == pytest.approx(
+        1e-4, abs=5e-5
+    )
+    assert site_level(wp, "pedestal_0") is None

@@ -149,3 +149,24 @@ def test_level_options_are_checked():
         LevelOptions(riser_range=(0.2, 0.1))
     with pytest.raises(InputError, match="no walk surfaces"):
         level_graph(())
+
+
+def test_a_slab_a_hair_over_the_pit_plane_leaves_it_no_standing_room(tmp_path):
+    """Generated hall 0 (bench_unseen, issue 47): its floor boxes round a pit are written 0.1 mm
+    over the plane at the pit's bottom. A site on a pedestal no one can climb was placed on
+    the pit's level (the plane went on under the boxes with 0.1 mm free) instead of on none."""
+    from mjwalk.world.levelgen import generate_levels
+    from mjwalk.world.levelview import level_at
+    from mjwalk.world.workplace import load_workplace
+
+    hall = generate_levels(0)
+    assert "pit" in hall.features and "pedestal" in hall.features
+    wp = load_workplace(hall.write(tmp_path / "hall0.xml"), cache=False)
+    ped = wp.stations["pedestal_0"]
+    assert level_at(wp, ped.xy, float(ped.pos[2])) is None
+    pit = wp.stations["pit_0"]
+    assert wp.levels.levels[level_at(wp, pit.xy, float(pit.pos[2]))].height == pytest.approx(
+        hall.site("pit_0").pos[2], abs=1e-3
+    )
+    floor = wp.stations["floor_0"]
+    assert level_at(wp, floor.xy, 0.0) == 0
