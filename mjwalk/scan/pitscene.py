@@ -207,6 +207,8 @@ def pit_floor(plan: FloorPlan, pits: list[ScanPit]) -> PitFloor | None:
         low = np.array([plan.x0 + ix0 * r, plan.y0 + iy0 * r, plane_z])
         high = np.array([plan.x0 + ix1 * r, plan.y0 + iy1 * r, 0.0])
         _snap(low, high, fits, r)
+        if np.any(high[:2] <= low[:2]):  # a strip wholly within the snap of a riser: empty now
+            continue
         floor.append(_box(f"{FLOOR_BOX_PREFIX}{len(floor)}", low, high, FLOOR_MATERIAL))
     for fit in fits:
         if not _along_axis(fit["run"]):

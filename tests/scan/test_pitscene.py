@@ -213,3 +213,22 @@ def test_a_pit_turned_in_its_hall_keeps_its_stair(tmp_path):
     assert stair.kind == "stair" and len(stair.risers) == 3 and stair.upper == 0
     assert stair.tread == pytest.approx(0.28, abs=0.01)
     assert wp.levels.levels[stair.lower].height == pytest.approx(-0.51, abs=0.02)
+
+
+@pytest.mark.slow
+def test_a_floor_strip_snapped_onto_a_riser_is_not_written():
+    """Generated hall 6 (a pit reached by a stair along y): a one-cell floor strip beside the
+    flight's last riser had both faces snapped onto the riser's line, and the scene was written
+    with a box of zero width, which MuJoCo refuses ('size 1 must be positive in geom floor_9').
+    An empty box covers nothing: it is left out and the scene compiles."""
+    from mjwalk.scan.raycast import synthetic_scan
+    from mjwalk.world.levelgen import generate_levels
+
+    hall = generate_levels(6)
+    model = mujoco.MjModel.from_xml_string(hall.xml)
+    scan = synthetic_scan(model, list(hall.scanners), step_deg=0.4, noise=0.005, seed=6)
+    scene = build_scene(scan.points, source="levels_6")
+    assert scene.pits and any(p.bottom is not None for p in scene.pits)
+    built = mujoco.MjModel.from_xml_string(scene.xml)
+    boxes = built.geom_size[built.geom_type == mujoco.mjtGeom.mjGEOM_BOX]
+    assert np.all(boxes > 0)
