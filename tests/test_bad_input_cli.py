@@ -10,6 +10,7 @@ The servers are real sockets on free local ports, started by each test in a thre
 
 from __future__ import annotations
 
+import argparse
 import http.server
 import os
 import socket
@@ -309,3 +310,24 @@ def test_parser_errors_are_one_line(argv, cause, command, capsys, no_work, tmp_p
     see = f"mjwalk {command} --help" if command else "mjwalk --help"
     assert line.endswith(f"(see {see})")
     assert "usage:" not in line
+
+
+def test_a_message_of_several_lines_is_printed_as_one(monkeypatch, capsys):
+    """An MjwalkError carrying a message of several lines (MuJoCo's compiler errors, wrapped by
+    the scene builders, span two: 'Error: size 1 must be positive in geom' and 'Element name
+    ...') is printed as one line, its parts joined by '; '."""
+    from mjwalk.errors import ScanError
+
+    def fails(args):
+        raise ScanError("x.ply: the generated scene does not compile: Error: bad\nElement 'a'\n")
+
+    parser = cli.build_parser()
+    monkeypatch.setattr(cli, "build_parser", lambda: parser)
+    monkeypatch.setattr(
+        parser, "parse_args", lambda argv=None: argparse.Namespace(func=fails, quiet=True)
+    )
+    assert cli.main(["scan", "x.ply"]) == 2
+    err = capsys.readouterr().err
+    assert err.splitlines() == [
+        "mjwalk: error: x.ply: the generated scene does not compile: Error: bad; Element 'a'"
+    ]

@@ -73,7 +73,9 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return args.func(args)
     except MjwalkError as exc:
-        print(f"mjwalk: error: {exc}", file=sys.stderr)
+        # one line, whatever the message carries (MuJoCo's compiler messages span two)
+        text = "; ".join(part.strip() for part in str(exc).splitlines() if part.strip())
+        print(f"mjwalk: error: {text}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("mjwalk: interrupted", file=sys.stderr)
