@@ -54,31 +54,3 @@ def test_context_is_frozen_and_shares_its_caches_with_operators(scenes_dir):
     assert other[0].model is tall.model and other[0].scratch() is not tall.scratch()
     assert tall.zones is ctx.zones and tall.planners is ctx.planners and tall.routes is ctx.routes
     assert tall.zone(1, ctx.spec.stature, step) is zone
-
-
-def test_scratch_data_are_bounded_and_let_dropped_models_go(monkeypatch):
-    """The scratch MjData of each model and thread (cycle.context._scratch_of): the same for one
-    model, kept for at most SCRATCH_LIMIT models, and a dropped model is freed (an MjData holds
-    its model, so a weak-keyed cache never dropped any)."""
-    import gc
-    import threading
-    import weakref
-
-    import mujoco
-
-    from mjwalk.cycle import context
-
-    monkeypatch.setattr(context, "SCRATCH_LIMIT", 2)
-    monkeypatch.setattr(context, "_LOCAL", threading.local())
-    xml = '<mujoco><worldbody><geom size="1"/></worldbody></mujoco>'
-    first = mujoco.MjModel.from_xml_string(xml)
-    data = context._scratch_of(first)
-    assert context._scratch_of(first) is data and data.model is not None
-    gone = weakref.ref(first)
-    del first, data
-    kept = [mujoco.MjModel.from_xml_string(xml) for _ in range(2)]
-    for model in kept:
-        context._scratch_of(model)
-    gc.collect()
-    assert gone() is None
-    assert len(context._LOCAL.scratch) == 2
