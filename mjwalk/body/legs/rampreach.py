@@ -25,9 +25,11 @@ from dataclasses import replace
 import numpy as np
 
 from mjwalk.anthropometry import leg_geometry
-from mjwalk.body.humanoid import LegGeometry
+from mjwalk.body.humanoid import ROM_DEG, LegGeometry
+from mjwalk.body.legs.curves import spread
 from mjwalk.body.legs.edgeswing import StepSurfaces
 from mjwalk.body.legs.footpivot import ball_offset
+from mjwalk.body.legs.ik import leg_ik_world
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import HEEL_RISE_MAX, FootTracks, StepFrames
 from mjwalk.plan.rampside import META_KEY as BESIDE_KEY
@@ -339,6 +341,105 @@ def swing_over_ramps(walk, frames: list[StepFrames], air: dict, feet: FootTracks
                 need = np.maximum(need, [-np.inf if h is None else h[0] for h in hit])
         offset = feet.ankle[s][j, 2] - flat_ankle[s][j, 2]
         feet.ankle[s][j, 2] += np.maximum(need + SOLE_GRID_SAG - offset, 0.0)
+
+
+#: Passes of :func:`edged_swings_over_ramps` (pitch the foot to what the ankle holds, lift the
+#: sole over the ramps' planes); on generated hall 8's edged floor step the lift is nil by the
+#: third.
+EDGED_RAMP_PASSES = 4
+
+
+def _plane_heights(plane: dict, xy: np.ndarray) -> np.ndarray:
+    """The height above the floor (m) of a ramp's plane under the points ``xy`` (..., 2),
+    -inf off the ramp (beyond its ends or, its width known, its sides)."""
+    up = float(plane["uphill"])
+    rel = xy - np.asarray(plane["foot"], float)
+    along = rel @ np.array([math.cos(up), math.sin(up)])
+    side = np.abs(rel @ np.array([-math.sin(up), math.cos(up)]))
+    half = float(plane.get("half_width", 0.0))
+    on = (along >= 0.0) & (along <= float(plane["run"])) & ((half <= 0.0) | (side <= half))
+    h = float(plane.get("z", 0.0)) + math.tan(float(plane["slope"])) * along
+    return np.where(on, h, -np.inf)
+
+
+def _sole_grid(ankle, pitch, toe, yaw, geom: LegGeometry) -> np.ndarray:
+    """(m, p, 3) the :data:`SOLE_GRID` points of the sole (heel to toe tip, edge to edge) for
+    ankles (m, 3), pitches, toe angles and headings (m,), the toes turned about the ball by
+    the toe angle; world metres, pitch + toes up."""
+    ah, ball = geom.ankle_height, ball_offset(geom)
+    along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
+    across = np.linspace(-0.5, 0.5, SOLE_GRID[1]) * geom.foot_width
+    p, t = pitch[:, None], toe[:, None]
+    d = np.minimum(along, ball)[None, :]
+    fw = d * np.cos(p) + ah * np.sin(p) + np.maximum(along - ball, 0.0) * np.cos(p + t)
+    up = d * np.sin(p) - ah * np.cos(p) + np.maximum(along - ball, 0.0) * np.sin(p + t)
+    f = np.stack([np.cos(yaw), np.sin(yaw)], -1)
+    left = np.stack([-f[:, 1], f[:, 0]], -1)
+    xy = ankle[:, None, None, :2] + fw[:, :, None, None] * f[:, None, None]
+    xy = xy + across[None, None, :, None] * left[:, None, None]
+    z = np.broadcast_to((ankle[:, 2:3] + up)[:, :, None], xy.shape[:3])
+    return np.concatenate([xy, z[..., None]], -1).reshape(len(ankle), -1, 3)
+
+
+def edged_swings_over_ramps(
+    walk,
+    plans: list,
+    frames: list[StepFrames],
+    feet: FootTracks,
+    root: np.ndarray,
+    yaw: np.ndarray,
+    geom: LegGeometry,
+) -> None:
+    """The edged swings of a walk's level steps kept above the planes of the ramps it passes
+    (:func:`level_planes`), after they are planned over their edges: a level step is edged
+    where a foot beside it stands raised on a ramp's low end (:func:`level_feet_on_ramps`),
+    and its swing, planned over that one height (the legs' edge swing), passed 11.7 mm into
+    the ramp's side higher up its run (generated hall 8, ``benchmarks/bench_unseen.py``: the
+    left toes, hanging 28 deg toes down where the ankle could not dorsiflex further). Each
+    pass lifts the airborne ankle so that every :data:`SOLE_GRID` point of the sole at its
+    pitch (its toes turned by the toe angle) is :data:`SOLE_GRID_SAG` above any plane under
+    it, then pitches the foot toes down by the dorsiflexion the leg IK asks beyond the
+    ankle's range there (as the edge swing does), until no point is below (a ramp's sides
+    wider), the lift spread over the samples around (:func:`~mjwalk.body.legs.curves.spread`,
+    +-2 samples). Swings already clear are left as they are. ``feet`` updated in place.
+
+    Args:
+        walk: the walk (its route's ramps' ``plane`` and those beside it).
+        plans: the edged swings (step, surfaces, samples from the last grounded one to the
+            landing, ankles), as the leg synthesis planned them.
+        frames: the walk's steps as the leg synthesis sees them.
+        feet: the foot tracks (ankle z and pitch updated in place).
+        root: (n, 3) the pelvis positions, metres.
+        yaw: (n,) the pelvis yaw, radians from +x CCW.
+        geom: the leg and foot lengths.
+    """
+    planes, level = level_planes(walk, len(frames))
+    if not planes or not plans:
+        return
+    index = {id(fr): i for i, fr in enumerate(frames)}
+    mine = [(fr.side, k[1:-1]) for fr, _, k, _ in plans if level[index[id(fr)]] and len(k) > 2]
+    if not mine:
+        return
+    widen = geom.foot_width / (SOLE_GRID[1] - 1)
+    planes = [{**p, "half_width": p["half_width"] + widen} if p.get("half_width", 0.0) > 0.0
+              else p for p in planes]  # fmt: skip
+    top = math.radians(ROM_DEG["ankle_flex"][1])
+    for _ in range(EDGED_RAMP_PASSES):
+        moved = False
+        for s, j in mine:
+            pts = _sole_grid(feet.ankle[s][j], feet.pitch[s][j], feet.toe[s][j],
+                             feet.fyaw[s][j], geom)  # fmt: skip
+            under = np.max([_plane_heights(p, pts[..., :2]) for p in planes], axis=0)
+            need = np.maximum(np.max(under + SOLE_GRID_SAG - pts[..., 2], axis=1), 0.0)
+            if need.max() <= 1e-4:
+                continue
+            feet.ankle[s][j, 2] += np.maximum(spread(need, 2), need)
+            raw = leg_ik_world(feet.ankle[s][j], feet.fyaw[s][j], feet.pitch[s][j], root[j],
+                               yaw[j], s, geom)  # fmt: skip
+            feet.pitch[s][j] -= np.maximum(raw[f"ankle_{s}_flex"] - top, 0.0)
+            moved = True
+        if not moved:
+            break
 
 
 #: Clearance (m) kept over the ground of a swing between a ramp and a level: the flat swing's
