@@ -12,6 +12,7 @@ from mjwalk.body.legs.legheights import step_surfaces
 from mjwalk.body.legs.rampreach import (
     CREST_CLEARANCE,
     _plane_heights,
+    _ramp_support,
     crest_ground,
     plane_pitch,
     print_tracks,
@@ -218,4 +219,38 @@ def test_an_edged_floor_swing_clears_a_ramp_beside_it(tmp_path):
     xml = generate_levels(8).write(tmp_path / "levels_8.xml")
     wp = load_workplace(xml, cache=False)
     walk = plan_walk(wp, "mezz_0", "floor_1", rng=4)
-    assert _deepest_under_ramps(wp, walk) > 0.0
+    assert _deepest_under_ramps(wp, walk) > -1e-4  # a sole on the plane: to 0.1 mm
+
+
+def test_a_foot_whose_heel_and_ball_are_on_a_ramp_is_pitched_to_it():
+    """A level step's footprint over a ramp beside the walk: where the ramp's plane carries
+    its heel and its ball it stands on the plane pitched to the slope along it (its height the
+    plane's under the footprint plus the rise across half the foot); where only its toes are
+    over the ramp's foot it stands level (None: the highest point under the sole)."""
+    g = leg_geometry(DEFAULT_STATURE)
+    slope = np.radians(5.5)
+    plane = {"slope": slope, "uphill": 0.0, "foot": [0.0, 0.0], "run": 3.0, "half_width": 0.6}
+    h, pitch = _ramp_support([plane], (1.0, 0.0, 0.0), g)  # walking up its axis
+    assert pitch == pytest.approx(slope)
+    assert h == pytest.approx(np.tan(slope))
+    h, pitch = _ramp_support([plane], (1.0, 0.0, np.pi / 2), g)  # across it
+    assert pitch == pytest.approx(0.0, abs=1e-12)
+    assert h == pytest.approx(np.tan(slope) * (1.0 + 0.5 * g.foot_width))
+    assert _ramp_support([plane], (0.02, 0.0, 0.0), g) is None  # the heel off its foot
+    assert _ramp_support([plane], (1.0, 0.65, 0.0), g) is None  # beside its side
+
+
+def test_feet_on_a_ramp_beside_a_floor_walk_are_pitched_to_it(tmp_path):
+    """Generated hall 8, mezz_0 -> floor_1 (rng 4): the floor steps past the ramp's low end
+    whose heel and ball the ramp carries are pitched to its slope (before: all level, raised
+    to the highest point under the sole); every step's surfaces stay within the ramp's
+    heights."""
+    xml = generate_levels(8).write(tmp_path / "levels_8.xml")
+    wp = load_workplace(xml, cache=False)
+    walk = with_ramps_beside(wp, plan_walk(wp, "mezz_0", "floor_1", rng=4), DEFAULT_STATURE)
+    (plane,) = walk.meta["ramps_beside"]
+    surfs = step_surfaces(walk)
+    pitched = [s for s in surfs if abs(s.land_pitch) > 1e-3]
+    assert pitched
+    assert all(abs(s.land_pitch) <= plane["slope"] + 1e-9 for s in pitched)
+    assert all(0.0 < s.land < np.tan(plane["slope"]) * plane["run"] for s in pitched)

@@ -237,16 +237,58 @@ def level_planes(walk, n: int) -> tuple[list[dict], list[bool]]:
 SOLE_GRID_SAG = 0.004
 
 
+def _ramp_support(planes: list[dict], print_, geom: LegGeometry) -> tuple[float, float] | None:
+    """The surface a footprint (x, y, yaw) stands on when a ramp's plane carries both its heel
+    and its ball (the sole's two supports in stance; :func:`~mjwalk.body.legs.footpivot.
+    ball_offset`): the plane's height under the footprint point raised by the rise of the
+    plane across half the foot's width (the foot is pitched to the slope along it, not rolled
+    across it: it stands on its uphill edge), and the slope along the foot; None when no one
+    plane carries both (the foot stands level on the highest point under its sole)."""
+    yaw = float(print_[2])
+    f = np.array([math.cos(yaw), math.sin(yaw)])
+    xy = np.asarray(print_[:2], float)
+    for plane in planes:
+        if all(
+            _on_plane(plane, (*(xy + d * f), 0.0)) for d in (-geom.foot_back, ball_offset(geom))
+        ):
+            hit = _on_plane(plane, (*xy, yaw))
+            if hit is None:
+                continue
+            across = math.tan(float(plane["slope"])) * abs(math.sin(yaw - float(plane["uphill"])))
+            return hit[0] + 0.5 * geom.foot_width * across, hit[1]
+    return None
+
+
+def _set_foot(out: list[StepSurfaces], k: int, h: float, pitch: float, landing: bool) -> None:
+    """Step ``k``'s landing (``landing``) or stance footprint on the surface (``h`` metres
+    above the floor, slope ``pitch`` radians) in ``out``, and the later steps that stand on or
+    lift from the same footprint (in place)."""
+    if landing:
+        out[k] = replace(out[k], land=h, land_pitch=pitch)
+        if k + 1 < len(out):  # the next step's stance foot
+            out[k + 1] = replace(out[k + 1], stance=h, stance_pitch=pitch)
+        if k + 2 < len(out):
+            out[k + 2] = replace(out[k + 2], lift=h, lift_pitch=pitch)
+    else:
+        out[k] = replace(out[k], stance=h, stance_pitch=pitch)
+        if k + 1 < len(out):  # it swings next
+            out[k + 1] = replace(out[k + 1], lift=h, lift_pitch=pitch)
+
+
 def level_feet_on_ramps(
     walk, surfs: list[StepSurfaces], geom: LegGeometry | None = None
 ) -> list[StepSurfaces]:
     """A walk's level steps whose foot stands over the plane of a ramp its route crosses (a
     turn off or onto the ramp's foot cutting its low corner, under the floor level's 0.05 m
     obstacle band: a flat foot was 1-2 cm into it, the multi-level platform cycle's
-    barrier-free runs), standing level on the highest point of that plane under its sole
-    (heel, ankle, toe tip; the sole's edges and centre line): its heel clear of the floor by
-    that height, its toes on the ramp through toe-off. The ramps are :func:`level_planes`'
-    (also those beside a floor walk that cuts past a ramp's low end,
+    barrier-free runs), put on that plane. Where the plane carries both the heel and the ball
+    (:func:`_ramp_support`) the foot stands on it pitched to its slope, as a ramp's own steps
+    do; elsewhere (only its toes or its heel over the ramp's foot or side) it stands level on
+    the highest point of the plane under its sole (heel, ankle, toe tip; the sole's edges and
+    centre line): its heel clear of the floor by that height, its toes on the ramp through
+    toe-off. Before, every such foot stood level, its heel up to the plane's rise along the
+    foot above the ramp (27 mm on a 5.5 deg ramp's 0.27 m foot). The ramps are
+    :func:`level_planes`' (also those beside a floor walk that cuts past a ramp's low end,
     :mod:`mjwalk.plan.rampside`). Walks without such a footprint are returned as they are.
 
     Args:
@@ -255,7 +297,7 @@ def level_feet_on_ramps(
         geom: the foot's lengths and width (None: the default stature's).
 
     Returns:
-        the steps' surfaces, those over a ramp's plane raised.
+        the steps' surfaces, those over a ramp's plane raised (and pitched).
     """
     planes, level = level_planes(walk, len(walk.steps))
     if not planes:
@@ -264,29 +306,26 @@ def level_feet_on_ramps(
     along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
     grid = [(d, w) for d in along for w in np.linspace(-0.5, 0.5, SOLE_GRID[1])]
 
-    def under(print_) -> float | None:
+    def under(print_) -> tuple[float, float] | None:
+        on = _ramp_support(planes, print_, geom)
+        if on is not None:
+            return on
         yaw = float(print_[2])
         f = np.array([math.cos(yaw), math.sin(yaw)])
         pts = [np.asarray(print_[:2], float) + d * f + w * geom.foot_width * f[::-1] * [-1, 1]
                for d, w in grid]  # fmt: skip
         hits = [h[0] for p in planes for q in pts if (h := _on_plane(p, (*q, 0.0))) is not None]
-        return max(hits) + SOLE_GRID_SAG if hits else None
+        return (max(hits) + SOLE_GRID_SAG, 0.0) if hits else None
 
     out = list(surfs)
     for k, s in enumerate(walk.steps):
         if not level[k]:
             continue
         land, stance = under(s.foot), under(s.stance)
-        if land is not None and land > out[k].land:
-            out[k] = replace(out[k], land=land)
-            if k + 1 < len(out):  # the next step's stance foot
-                out[k + 1] = replace(out[k + 1], stance=land)
-            if k + 2 < len(out):
-                out[k + 2] = replace(out[k + 2], lift=land)
-        if stance is not None and stance > out[k].stance:
-            out[k] = replace(out[k], stance=stance)
-            if k + 1 < len(out):  # it swings next
-                out[k + 1] = replace(out[k + 1], lift=stance)
+        if land is not None and (land[1] != 0.0 or land[0] > out[k].land):
+            _set_foot(out, k, *land, landing=True)
+        if stance is not None and (stance[1] != 0.0 or stance[0] > out[k].stance):
+            _set_foot(out, k, *stance, landing=False)
     return out
 
 
