@@ -6,16 +6,16 @@ import pytest
 from mjwalk.anthropometry import leg_geometry
 from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.edgeswing import StepSurfaces
-from mjwalk.body.legs.footcheck import _CORNERS, foot_points, posed
+from mjwalk.body.legs.footcheck import box_corners, foot_points, posed
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.legheights import step_surfaces
 from mjwalk.body.legs.rampreach import (
     CREST_CLEARANCE,
-    _plane_heights,
-    _ramp_support,
     crest_ground,
+    plane_heights,
     plane_pitch,
     print_tracks,
+    ramp_support,
     roll_foot,
     tilt,
     trailing_reach,
@@ -200,11 +200,8 @@ def _deepest_under_ramps(workplace, walk, stature=DEFAULT_STATURE):
     for _, model, data in posed(legs, stature):
         for name in ("foot_l", "toes_l", "foot_r", "toes_r"):
             g = model.geom(name).id
-            c = (
-                data.geom_xpos[g]
-                + (_CORNERS * model.geom_size[g]) @ data.geom_xmat[g].reshape(3, 3).T
-            )
-            h = np.max([_plane_heights(p, c[:, :2]) for p in planes], axis=0)
+            c = box_corners(model, data, g)
+            h = np.max([plane_heights(p, c[:, :2]) for p in planes], axis=0)
             least = min(least, float(np.min(c[:, 2] - workplace.floor_z - h)))
     return least
 
@@ -230,14 +227,14 @@ def test_a_foot_whose_heel_and_ball_are_on_a_ramp_is_pitched_to_it():
     g = leg_geometry(DEFAULT_STATURE)
     slope = np.radians(5.5)
     plane = {"slope": slope, "uphill": 0.0, "foot": [0.0, 0.0], "run": 3.0, "half_width": 0.6}
-    h, pitch = _ramp_support([plane], (1.0, 0.0, 0.0), g)  # walking up its axis
+    h, pitch = ramp_support([plane], (1.0, 0.0, 0.0), g)  # walking up its axis
     assert pitch == pytest.approx(slope)
     assert h == pytest.approx(np.tan(slope))
-    h, pitch = _ramp_support([plane], (1.0, 0.0, np.pi / 2), g)  # across it
+    h, pitch = ramp_support([plane], (1.0, 0.0, np.pi / 2), g)  # across it
     assert pitch == pytest.approx(0.0, abs=1e-12)
     assert h == pytest.approx(np.tan(slope) * (1.0 + 0.5 * g.foot_width))
-    assert _ramp_support([plane], (0.02, 0.0, 0.0), g) is None  # the heel off its foot
-    assert _ramp_support([plane], (1.0, 0.65, 0.0), g) is None  # beside its side
+    assert ramp_support([plane], (0.02, 0.0, 0.0), g) is None  # the heel off its foot
+    assert ramp_support([plane], (1.0, 0.65, 0.0), g) is None  # beside its side
 
 
 def test_feet_on_a_ramp_beside_a_floor_walk_are_pitched_to_it(tmp_path):

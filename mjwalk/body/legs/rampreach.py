@@ -237,7 +237,7 @@ def level_planes(walk, n: int) -> tuple[list[dict], list[bool]]:
 SOLE_GRID_SAG = 0.004
 
 
-def _ramp_support(planes: list[dict], print_, geom: LegGeometry) -> tuple[float, float] | None:
+def ramp_support(planes: list[dict], print_, geom: LegGeometry) -> tuple[float, float] | None:
     """The surface a footprint (x, y, yaw) stands on when a ramp's plane carries both its heel
     and its ball (the sole's two supports in stance; :func:`~mjwalk.body.legs.footpivot.
     ball_offset`): the plane's height under the footprint point raised by the rise of the
@@ -282,7 +282,7 @@ def level_feet_on_ramps(
     turn off or onto the ramp's foot cutting its low corner, under the floor level's 0.05 m
     obstacle band: a flat foot was 1-2 cm into it, the multi-level platform cycle's
     barrier-free runs), put on that plane. Where the plane carries both the heel and the ball
-    (:func:`_ramp_support`) the foot stands on it pitched to its slope, as a ramp's own steps
+    (:func:`ramp_support`) the foot stands on it pitched to its slope, as a ramp's own steps
     do; elsewhere (only its toes or its heel over the ramp's foot or side) it stands level on
     the highest point of the plane under its sole (heel, ankle, toe tip; the sole's edges and
     centre line): its heel clear of the floor by that height, its toes on the ramp through
@@ -307,7 +307,7 @@ def level_feet_on_ramps(
     grid = [(d, w) for d in along for w in np.linspace(-0.5, 0.5, SOLE_GRID[1])]
 
     def under(print_) -> tuple[float, float] | None:
-        on = _ramp_support(planes, print_, geom)
+        on = ramp_support(planes, print_, geom)
         if on is not None:
             return on
         yaw = float(print_[2])
@@ -388,7 +388,7 @@ def swing_over_ramps(walk, frames: list[StepFrames], air: dict, feet: FootTracks
 EDGED_RAMP_PASSES = 4
 
 
-def _plane_heights(plane: dict, xy: np.ndarray) -> np.ndarray:
+def plane_heights(plane: dict, xy: np.ndarray) -> np.ndarray:
     """The height above the floor (m) of a ramp's plane under the points ``xy`` (..., 2),
     -inf off the ramp (beyond its ends or, its width known, its sides)."""
     up = float(plane["uphill"])
@@ -468,7 +468,7 @@ def edged_swings_over_ramps(
         for s, j in mine:
             pts = _sole_grid(feet.ankle[s][j], feet.pitch[s][j], feet.toe[s][j],
                              feet.fyaw[s][j], geom)  # fmt: skip
-            under = np.max([_plane_heights(p, pts[..., :2]) for p in planes], axis=0)
+            under = np.max([plane_heights(p, pts[..., :2]) for p in planes], axis=0)
             need = np.maximum(np.max(under + SOLE_GRID_SAG - pts[..., 2], axis=1), 0.0)
             if need.max() <= 1e-4:
                 continue
