@@ -242,8 +242,17 @@ def ramp_support(planes: list[dict], print_, geom: LegGeometry) -> tuple[float, 
     and its ball (the sole's two supports in stance; :func:`~mjwalk.body.legs.footpivot.
     ball_offset`): the plane's height under the footprint point raised by the rise of the
     plane across half the foot's width (the foot is pitched to the slope along it, not rolled
-    across it: it stands on its uphill edge), and the slope along the foot; None when no one
-    plane carries both (the foot stands level on the highest point under its sole)."""
+    across it: it stands on its uphill edge), and the slope along the foot.
+
+    Args:
+        planes: ramp planes (as :func:`plane_pitch` takes them).
+        print_: (3,) the footprint (x, y, yaw), metres and radians.
+        geom: the foot's lengths and width.
+
+    Returns:
+        (height above the floor, metres; slope along the foot, radians, + uphill), or None
+        when no one plane carries both (the foot stands level on the highest point under it).
+    """
     yaw = float(print_[2])
     f = np.array([math.cos(yaw), math.sin(yaw)])
     xy = np.asarray(print_[:2], float)
@@ -389,8 +398,16 @@ EDGED_RAMP_PASSES = 4
 
 
 def plane_heights(plane: dict, xy: np.ndarray) -> np.ndarray:
-    """The height above the floor (m) of a ramp's plane under the points ``xy`` (..., 2),
-    -inf off the ramp (beyond its ends or, its width known, its sides)."""
+    """The height of a ramp's plane under points.
+
+    Args:
+        plane: the ramp's plane (as :func:`plane_pitch` takes it, with ``half_width``, ``z``).
+        xy: (..., 2) world points, metres.
+
+    Returns:
+        (...,) the height above the floor, metres; -inf off the ramp (beyond its ends or, its
+        width known, its sides).
+    """
     up = float(plane["uphill"])
     rel = xy - np.asarray(plane["foot"], float)
     along = rel @ np.array([math.cos(up), math.sin(up)])
