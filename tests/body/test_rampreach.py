@@ -6,14 +6,16 @@ import pytest
 from mjwalk.anthropometry import leg_geometry
 from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.edgeswing import StepSurfaces
-from mjwalk.body.legs.footcheck import foot_points
+from mjwalk.body.legs.footcheck import box_corners, foot_points, posed
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.legheights import step_surfaces
 from mjwalk.body.legs.rampreach import (
     CREST_CLEARANCE,
     crest_ground,
+    plane_heights,
     plane_pitch,
     print_tracks,
+    ramp_support,
     roll_foot,
     tilt,
     trailing_reach,
@@ -21,10 +23,12 @@ from mjwalk.body.legs.rampreach import (
 from mjwalk.body.legs.steps import FootTracks, StepFrames
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.gait.default import default_model
+from mjwalk.plan.rampside import with_ramps_beside
 from mjwalk.plan.synthetic import synthetic_ramp_walk, synthetic_walk
 from mjwalk.plan.walks import plan_walk
 from mjwalk.timeline import collision_report, timeline_from_walk
 from mjwalk.world import load_workplace
+from mjwalk.world.levelgen import generate_levels
 
 
 def _feet(n, pitch, z=0.0):
@@ -181,3 +185,69 @@ def test_print_tracks_follow_the_steps():
     out = print_tracks(frames, 13)
     assert out["l"][:, 0].tolist() == [0.0] * 6 + [0.6] * 7
     assert out["r"][:, 0].tolist() == [0.3] * 10 + [0.9] * 3
+
+
+def _deepest_under_ramps(workplace, walk, stature=DEFAULT_STATURE):
+    """The least height (m) of any foot box corner (feet and toes, MuJoCo forward kinematics)
+    over the plane of a ramp under it (those the walk crosses or passes beside), for the legs
+    of ``walk`` as the cycles pose them (with its ramps beside); inf off every ramp."""
+    walk = with_ramps_beside(workplace, walk, stature)
+    meta = walk.meta
+    planes = list(meta.get("ramps_beside", []))
+    planes += [e["plane"] for e in (meta.get("levels") or {}).get("route", []) if "plane" in e]
+    legs = legs_from_walk(walk, stature)
+    least = np.inf
+    for _, model, data in posed(legs, stature):
+        for name in ("foot_l", "toes_l", "foot_r", "toes_r"):
+            g = model.geom(name).id
+            c = box_corners(model, data, g)
+            h = np.max([plane_heights(p, c[:, :2]) for p in planes], axis=0)
+            least = min(least, float(np.min(c[:, 2] - workplace.floor_z - h)))
+    return least
+
+
+def test_an_edged_floor_swing_clears_a_ramp_beside_it(tmp_path):
+    """Generated hall 8 (``benchmarks/bench_unseen.py``): the walk from the mezzanine to
+    floor_1 ends past the ramp's low end; a foot landing on the ramp's foot (raised 1-2 cm,
+    standing level on its highest point) makes the next floor step an edged swing, planned over
+    that one height, and the swing foot, hanging toes down, passed 6.0 mm into the ramp's side
+    higher up its run (rng 4; 11.7 mm in the hall's 3-run cycle, run 0). Now every foot box
+    corner is above the ramp's plane (3.7 mm)."""
+    xml = generate_levels(8).write(tmp_path / "levels_8.xml")
+    wp = load_workplace(xml, cache=False)
+    walk = plan_walk(wp, "mezz_0", "floor_1", rng=4)
+    assert _deepest_under_ramps(wp, walk) > -1e-4  # a sole on the plane: to 0.1 mm
+
+
+def test_a_foot_whose_heel_and_ball_are_on_a_ramp_is_pitched_to_it():
+    """A level step's footprint over a ramp beside the walk: where the ramp's plane carries
+    its heel and its ball it stands on the plane pitched to the slope along it (its height the
+    plane's under the footprint plus the rise across half the foot); where only its toes are
+    over the ramp's foot it stands level (None: the highest point under the sole)."""
+    g = leg_geometry(DEFAULT_STATURE)
+    slope = np.radians(5.5)
+    plane = {"slope": slope, "uphill": 0.0, "foot": [0.0, 0.0], "run": 3.0, "half_width": 0.6}
+    h, pitch = ramp_support([plane], (1.0, 0.0, 0.0), g)  # walking up its axis
+    assert pitch == pytest.approx(slope)
+    assert h == pytest.approx(np.tan(slope))
+    h, pitch = ramp_support([plane], (1.0, 0.0, np.pi / 2), g)  # across it
+    assert pitch == pytest.approx(0.0, abs=1e-12)
+    assert h == pytest.approx(np.tan(slope) * (1.0 + 0.5 * g.foot_width))
+    assert ramp_support([plane], (0.02, 0.0, 0.0), g) is None  # the heel off its foot
+    assert ramp_support([plane], (1.0, 0.65, 0.0), g) is None  # beside its side
+
+
+def test_feet_on_a_ramp_beside_a_floor_walk_are_pitched_to_it(tmp_path):
+    """Generated hall 8, mezz_0 -> floor_1 (rng 4): the floor steps past the ramp's low end
+    whose heel and ball the ramp carries are pitched to its slope (before: all level, raised
+    to the highest point under the sole); every step's surfaces stay within the ramp's
+    heights."""
+    xml = generate_levels(8).write(tmp_path / "levels_8.xml")
+    wp = load_workplace(xml, cache=False)
+    walk = with_ramps_beside(wp, plan_walk(wp, "mezz_0", "floor_1", rng=4), DEFAULT_STATURE)
+    (plane,) = walk.meta["ramps_beside"]
+    surfs = step_surfaces(walk)
+    pitched = [s for s in surfs if abs(s.land_pitch) > 1e-3]
+    assert pitched
+    assert all(abs(s.land_pitch) <= plane["slope"] + 1e-9 for s in pitched)
+    assert all(0.0 < s.land < np.tan(plane["slope"]) * plane["run"] for s in pitched)

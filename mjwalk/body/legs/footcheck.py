@@ -47,6 +47,20 @@ def posed(legs, stature: float = DEFAULT_STATURE):
 _CORNERS = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T
 
 
+def box_corners(model: mujoco.MjModel, data: mujoco.MjData, g: int) -> np.ndarray:
+    """The eight corners of box geom ``g`` in ``data``'s pose (after forward kinematics).
+
+    Args:
+        model: the compiled model.
+        data: its data after forward kinematics.
+        g: the id of a box geom.
+
+    Returns:
+        (8, 3) the corners, metres, world frame.
+    """
+    return data.geom_xpos[g] + (_CORNERS * model.geom_size[g]) @ data.geom_xmat[g].reshape(3, 3).T
+
+
 def lowest_point(model: mujoco.MjModel, data: mujoco.MjData, geoms) -> float:
     """Height of the lowest corner of box geoms in ``data``'s pose (after forward kinematics):
     the feet's lowest point.
@@ -59,15 +73,7 @@ def lowest_point(model: mujoco.MjModel, data: mujoco.MjData, geoms) -> float:
     Returns:
         the height, metres, world frame.
     """
-    return min(
-        float(
-            (
-                data.geom_xpos[g]
-                + (_CORNERS * model.geom_size[g]) @ data.geom_xmat[g].reshape(3, 3).T
-            )[:, 2].min()
-        )
-        for g in geoms
-    )
+    return min(float(box_corners(model, data, g)[:, 2].min()) for g in geoms)
 
 
 def foot_points(legs, stature: float = DEFAULT_STATURE):

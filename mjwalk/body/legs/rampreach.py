@@ -25,9 +25,11 @@ from dataclasses import replace
 import numpy as np
 
 from mjwalk.anthropometry import leg_geometry
-from mjwalk.body.humanoid import LegGeometry
+from mjwalk.body.humanoid import ROM_DEG, LegGeometry
+from mjwalk.body.legs.curves import spread
 from mjwalk.body.legs.edgeswing import StepSurfaces
 from mjwalk.body.legs.footpivot import ball_offset
+from mjwalk.body.legs.ik import leg_ik_world
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import HEEL_RISE_MAX, FootTracks, StepFrames
 from mjwalk.plan.rampside import META_KEY as BESIDE_KEY
@@ -235,16 +237,67 @@ def level_planes(walk, n: int) -> tuple[list[dict], list[bool]]:
 SOLE_GRID_SAG = 0.004
 
 
+def ramp_support(planes: list[dict], print_, geom: LegGeometry) -> tuple[float, float] | None:
+    """The surface a footprint (x, y, yaw) stands on when a ramp's plane carries both its heel
+    and its ball (the sole's two supports in stance; :func:`~mjwalk.body.legs.footpivot.
+    ball_offset`): the plane's height under the footprint point raised by the rise of the
+    plane across half the foot's width (the foot is pitched to the slope along it, not rolled
+    across it: it stands on its uphill edge), and the slope along the foot.
+
+    Args:
+        planes: ramp planes (as :func:`plane_pitch` takes them).
+        print_: (3,) the footprint (x, y, yaw), metres and radians.
+        geom: the foot's lengths and width.
+
+    Returns:
+        (height above the floor, metres; slope along the foot, radians, + uphill), or None
+        when no one plane carries both (the foot stands level on the highest point under it).
+    """
+    yaw = float(print_[2])
+    f = np.array([math.cos(yaw), math.sin(yaw)])
+    xy = np.asarray(print_[:2], float)
+    for plane in planes:
+        if all(
+            _on_plane(plane, (*(xy + d * f), 0.0)) for d in (-geom.foot_back, ball_offset(geom))
+        ):
+            hit = _on_plane(plane, (*xy, yaw))
+            if hit is None:
+                continue
+            across = math.tan(float(plane["slope"])) * abs(math.sin(yaw - float(plane["uphill"])))
+            return hit[0] + 0.5 * geom.foot_width * across, hit[1]
+    return None
+
+
+def _set_foot(out: list[StepSurfaces], k: int, h: float, pitch: float, landing: bool) -> None:
+    """Step ``k``'s landing (``landing``) or stance footprint on the surface (``h`` metres
+    above the floor, slope ``pitch`` radians) in ``out``, and the later steps that stand on or
+    lift from the same footprint (in place)."""
+    if landing:
+        out[k] = replace(out[k], land=h, land_pitch=pitch)
+        if k + 1 < len(out):  # the next step's stance foot
+            out[k + 1] = replace(out[k + 1], stance=h, stance_pitch=pitch)
+        if k + 2 < len(out):
+            out[k + 2] = replace(out[k + 2], lift=h, lift_pitch=pitch)
+    else:
+        out[k] = replace(out[k], stance=h, stance_pitch=pitch)
+        if k + 1 < len(out):  # it swings next
+            out[k + 1] = replace(out[k + 1], lift=h, lift_pitch=pitch)
+
+
 def level_feet_on_ramps(
     walk, surfs: list[StepSurfaces], geom: LegGeometry | None = None
 ) -> list[StepSurfaces]:
     """A walk's level steps whose foot stands over the plane of a ramp its route crosses (a
     turn off or onto the ramp's foot cutting its low corner, under the floor level's 0.05 m
     obstacle band: a flat foot was 1-2 cm into it, the multi-level platform cycle's
-    barrier-free runs), standing level on the highest point of that plane under its sole
-    (heel, ankle, toe tip; the sole's edges and centre line): its heel clear of the floor by
-    that height, its toes on the ramp through toe-off. The ramps are :func:`level_planes`'
-    (also those beside a floor walk that cuts past a ramp's low end,
+    barrier-free runs), put on that plane. Where the plane carries both the heel and the ball
+    (:func:`ramp_support`) the foot stands on it pitched to its slope, as a ramp's own steps
+    do; elsewhere (only its toes or its heel over the ramp's foot or side) it stands level on
+    the highest point of the plane under its sole (heel, ankle, toe tip; the sole's edges and
+    centre line): its heel clear of the floor by that height, its toes on the ramp through
+    toe-off. Before, every such foot stood level, its heel up to the plane's rise along the
+    foot above the ramp (27 mm on a 5.5 deg ramp's 0.27 m foot). The ramps are
+    :func:`level_planes`' (also those beside a floor walk that cuts past a ramp's low end,
     :mod:`mjwalk.plan.rampside`). Walks without such a footprint are returned as they are.
 
     Args:
@@ -253,7 +306,7 @@ def level_feet_on_ramps(
         geom: the foot's lengths and width (None: the default stature's).
 
     Returns:
-        the steps' surfaces, those over a ramp's plane raised.
+        the steps' surfaces, those over a ramp's plane raised (and pitched).
     """
     planes, level = level_planes(walk, len(walk.steps))
     if not planes:
@@ -262,29 +315,26 @@ def level_feet_on_ramps(
     along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
     grid = [(d, w) for d in along for w in np.linspace(-0.5, 0.5, SOLE_GRID[1])]
 
-    def under(print_) -> float | None:
+    def under(print_) -> tuple[float, float] | None:
+        on = ramp_support(planes, print_, geom)
+        if on is not None:
+            return on
         yaw = float(print_[2])
         f = np.array([math.cos(yaw), math.sin(yaw)])
         pts = [np.asarray(print_[:2], float) + d * f + w * geom.foot_width * f[::-1] * [-1, 1]
                for d, w in grid]  # fmt: skip
         hits = [h[0] for p in planes for q in pts if (h := _on_plane(p, (*q, 0.0))) is not None]
-        return max(hits) + SOLE_GRID_SAG if hits else None
+        return (max(hits) + SOLE_GRID_SAG, 0.0) if hits else None
 
     out = list(surfs)
     for k, s in enumerate(walk.steps):
         if not level[k]:
             continue
         land, stance = under(s.foot), under(s.stance)
-        if land is not None and land > out[k].land:
-            out[k] = replace(out[k], land=land)
-            if k + 1 < len(out):  # the next step's stance foot
-                out[k + 1] = replace(out[k + 1], stance=land)
-            if k + 2 < len(out):
-                out[k + 2] = replace(out[k + 2], lift=land)
-        if stance is not None and stance > out[k].stance:
-            out[k] = replace(out[k], stance=stance)
-            if k + 1 < len(out):  # it swings next
-                out[k + 1] = replace(out[k + 1], lift=stance)
+        if land is not None and (land[1] != 0.0 or land[0] > out[k].land):
+            _set_foot(out, k, *land, landing=True)
+        if stance is not None and (stance[1] != 0.0 or stance[0] > out[k].stance):
+            _set_foot(out, k, *stance, landing=False)
     return out
 
 
@@ -339,6 +389,113 @@ def swing_over_ramps(walk, frames: list[StepFrames], air: dict, feet: FootTracks
                 need = np.maximum(need, [-np.inf if h is None else h[0] for h in hit])
         offset = feet.ankle[s][j, 2] - flat_ankle[s][j, 2]
         feet.ankle[s][j, 2] += np.maximum(need + SOLE_GRID_SAG - offset, 0.0)
+
+
+#: Passes of :func:`edged_swings_over_ramps` (pitch the foot to what the ankle holds, lift the
+#: sole over the ramps' planes); on generated hall 8's edged floor step the lift is nil by the
+#: third.
+EDGED_RAMP_PASSES = 4
+
+
+def plane_heights(plane: dict, xy: np.ndarray) -> np.ndarray:
+    """The height of a ramp's plane under points.
+
+    Args:
+        plane: the ramp's plane (as :func:`plane_pitch` takes it, with ``half_width``, ``z``).
+        xy: (..., 2) world points, metres.
+
+    Returns:
+        (...,) the height above the floor, metres; -inf off the ramp (beyond its ends or, its
+        width known, its sides).
+    """
+    up = float(plane["uphill"])
+    rel = xy - np.asarray(plane["foot"], float)
+    along = rel @ np.array([math.cos(up), math.sin(up)])
+    side = np.abs(rel @ np.array([-math.sin(up), math.cos(up)]))
+    half = float(plane.get("half_width", 0.0))
+    on = (along >= 0.0) & (along <= float(plane["run"])) & ((half <= 0.0) | (side <= half))
+    h = float(plane.get("z", 0.0)) + math.tan(float(plane["slope"])) * along
+    return np.where(on, h, -np.inf)
+
+
+def _sole_grid(ankle, pitch, toe, yaw, geom: LegGeometry) -> np.ndarray:
+    """(m, p, 3) the :data:`SOLE_GRID` points of the sole (heel to toe tip, edge to edge) for
+    ankles (m, 3), pitches, toe angles and headings (m,), the toes turned about the ball by
+    the toe angle; world metres, pitch + toes up."""
+    ah, ball = geom.ankle_height, ball_offset(geom)
+    along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
+    across = np.linspace(-0.5, 0.5, SOLE_GRID[1]) * geom.foot_width
+    p, t = pitch[:, None], toe[:, None]
+    d = np.minimum(along, ball)[None, :]
+    fw = d * np.cos(p) + ah * np.sin(p) + np.maximum(along - ball, 0.0) * np.cos(p + t)
+    up = d * np.sin(p) - ah * np.cos(p) + np.maximum(along - ball, 0.0) * np.sin(p + t)
+    f = np.stack([np.cos(yaw), np.sin(yaw)], -1)
+    left = np.stack([-f[:, 1], f[:, 0]], -1)
+    xy = ankle[:, None, None, :2] + fw[:, :, None, None] * f[:, None, None]
+    xy = xy + across[None, None, :, None] * left[:, None, None]
+    z = np.broadcast_to((ankle[:, 2:3] + up)[:, :, None], xy.shape[:3])
+    return np.concatenate([xy, z[..., None]], -1).reshape(len(ankle), -1, 3)
+
+
+def edged_swings_over_ramps(
+    walk,
+    plans: list,
+    frames: list[StepFrames],
+    feet: FootTracks,
+    root: np.ndarray,
+    yaw: np.ndarray,
+    geom: LegGeometry,
+) -> None:
+    """The edged swings of a walk's level steps kept above the planes of the ramps it passes
+    (:func:`level_planes`), after they are planned over their edges: a level step is edged
+    where a foot beside it stands raised on a ramp's low end (:func:`level_feet_on_ramps`),
+    and its swing, planned over that one height (the legs' edge swing), passed 11.7 mm into
+    the ramp's side higher up its run (generated hall 8, ``benchmarks/bench_unseen.py``: the
+    left toes, hanging 28 deg toes down where the ankle could not dorsiflex further). Each
+    pass lifts the airborne ankle so that every :data:`SOLE_GRID` point of the sole at its
+    pitch (its toes turned by the toe angle) is :data:`SOLE_GRID_SAG` above any plane under
+    it, then pitches the foot toes down by the dorsiflexion the leg IK asks beyond the
+    ankle's range there (as the edge swing does), until no point is below (a ramp's sides
+    wider), the lift spread over the samples around (:func:`~mjwalk.body.legs.curves.spread`,
+    +-2 samples). Swings already clear are left as they are. ``feet`` updated in place.
+
+    Args:
+        walk: the walk (its route's ramps' ``plane`` and those beside it).
+        plans: the edged swings (step, surfaces, samples from the last grounded one to the
+            landing, ankles), as the leg synthesis planned them.
+        frames: the walk's steps as the leg synthesis sees them.
+        feet: the foot tracks (ankle z and pitch updated in place).
+        root: (n, 3) the pelvis positions, metres.
+        yaw: (n,) the pelvis yaw, radians from +x CCW.
+        geom: the leg and foot lengths.
+    """
+    planes, level = level_planes(walk, len(frames))
+    if not planes or not plans:
+        return
+    index = {id(fr): i for i, fr in enumerate(frames)}
+    mine = [(fr.side, k[1:-1]) for fr, _, k, _ in plans if level[index[id(fr)]] and len(k) > 2]
+    if not mine:
+        return
+    widen = geom.foot_width / (SOLE_GRID[1] - 1)
+    planes = [{**p, "half_width": p["half_width"] + widen} if p.get("half_width", 0.0) > 0.0
+              else p for p in planes]  # fmt: skip
+    top = math.radians(ROM_DEG["ankle_flex"][1])
+    for _ in range(EDGED_RAMP_PASSES):
+        moved = False
+        for s, j in mine:
+            pts = _sole_grid(feet.ankle[s][j], feet.pitch[s][j], feet.toe[s][j],
+                             feet.fyaw[s][j], geom)  # fmt: skip
+            under = np.max([plane_heights(p, pts[..., :2]) for p in planes], axis=0)
+            need = np.maximum(np.max(under + SOLE_GRID_SAG - pts[..., 2], axis=1), 0.0)
+            if need.max() <= 1e-4:
+                continue
+            feet.ankle[s][j, 2] += np.maximum(spread(need, 2), need)
+            raw = leg_ik_world(feet.ankle[s][j], feet.fyaw[s][j], feet.pitch[s][j], root[j],
+                               yaw[j], s, geom)  # fmt: skip
+            feet.pitch[s][j] -= np.maximum(raw[f"ankle_{s}_flex"] - top, 0.0)
+            moved = True
+        if not moved:
+            break
 
 
 #: Clearance (m) kept over the ground of a swing between a ramp and a level: the flat swing's
