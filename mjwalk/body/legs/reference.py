@@ -291,6 +291,9 @@ def with_toe_off_pitch(landmarks: dict, base: ReferenceGait | None = None) -> di
     shank) at :data:`ANKLE_TOE_OFF_DEG` there, with the hip and knee the landmarks give: the
     foot's angle at toe-off from the cited ankle and the reference's own leg, not read off a
     foot-floor table. The base pitch at that landmark is ``base``'s (default Winter's) there.
+    A second landmark at cycle 50 % keeps the stance's pitch as the landmarks alone give it
+    (with the toe-off landmark alone the stance heel rose from cycle 40 % on, and on a 5.5 deg
+    ramp the stance foot left the slope by 2-3.5 deg at mid-step).
 
     Args:
         landmarks: as :func:`warp_reference` takes them; a pitch landmark at toe-off must not
@@ -308,8 +311,37 @@ def with_toe_off_pitch(landmarks: dict, base: ReferenceGait | None = None) -> di
         (pct, float(np.degrees(base("pitch", TOE_OFF_CYCLE)))),
         (pct, ANKLE_TOE_OFF_DEG + hip - knee),
     )
-    pitch = sorted([*landmarks["pitch"], mark], key=lambda m: m[1][0])
+    # the stance (to cycle 50 %, the other foot's heel strike) kept as it was: a landmark
+    # there at the warped base's own time and value
+    lm = np.asarray(landmarks["pitch"], float)
+    src = float(np.interp(50.0, lm[:, 1, 0], lm[:, 0, 0]))
+    half = (
+        (src, float(np.degrees(base("pitch", src / 100.0)))),
+        (50.0, float(np.degrees(leg("pitch", 0.5)))),
+    )
+    pitch = sorted([*landmarks["pitch"], half, mark], key=lambda m: m[1][0])
     return {**landmarks, "pitch": pitch}
+
+
+def heel_strike_ankle(ref: ReferenceGait) -> float:
+    """The reference's own ankle flexion at heel strike (radians, + dorsiflexion): its foot
+    pitch plus knee flexion minus thigh flexion at cycle 0 (the foot's angle to the shank),
+    with the pitch as the landing takes it (toes up only, ``hs_pitch``). The default
+    reference's is +7.0 deg (the bandai actor's 28 deg pitch and 22 deg thigh at heel
+    strike, :data:`BANDAI_LANDMARKS`). A first step from standing landed at 16 deg, bounded
+    by the ankle's range alone (synthetic first steps at 1.55-1.95 m, 15.3 median in the
+    station's, b3507ca, ``benchmarks/bench_swing_ankle.py``), where the ankle is neutral at
+    initial contact (Perry & Burnfield, "Gait Analysis", 2nd ed., 2010, quoted from memory;
+    slideplayer.com/5345284 "Biomechanics foot ankle": "Initial Contact Ankle jt. is in
+    neutral"); ``steps.landing_pitches`` bounds a first step's landing by this angle.
+
+    Args:
+        ref: the reference gait.
+
+    Returns:
+        the ankle angle, radians.
+    """
+    return max(0.0, float(ref("pitch", 0.0))) + float(ref("knee", 0.0)) - float(ref("hip", 0.0))
 
 
 def reference_angle(joint: str, cycle, derivative: bool = False):
