@@ -144,26 +144,16 @@ def test_a_first_steps_heel_comes_off_before_its_toes(stature):
 
 
 @pytest.mark.parametrize("stature", [1.55, 1.75, 1.95])
-def test_the_swing_ankle_plantarflexes_at_toe_off_and_a_first_step_lands_neutral(stature):
-    """Seeded (synthetic walk, no draw; step length 0.65 m x stature / 1.75). A steady step's
-    swing ankle is at its least within 0.1 step phase of toe-off (cycle 60-65 %) and there
-    plantarflexed 15-25 deg (Perry & Burnfield: about 20 at toe-off; podiapaedia: 25; the
-    reference's toe-off landmark, reference.with_toe_off_pitch), measured -23.6 at step phase
-    0.27 (b3507ca: -14.0 at 0.38). A walk's first step lands no more dorsiflexed than the
-    steady step (steps.landing_pitches) and within 5 deg of neutral (initial contact "in
-    neutral"), measured 0.4 against the steady 7.4 (b3507ca: 16.2)."""
+def test_a_first_step_lands_no_more_dorsiflexed_than_a_steady_one(stature):
+    """Seeded (synthetic walk, no draw; step length 0.65 m x stature / 1.75): a walk's first
+    step lands no more dorsiflexed than the steady step (steps.landing_pitches bounds it by
+    the reference's own heel-strike ankle) and within 5 deg of neutral (initial contact "in
+    neutral", Perry & Burnfield), measured 0.4 deg against the steady 7.4 (b3507ca: 16.2)."""
     from mjwalk.body.legs import legs_from_walk
 
     walk = synthetic_walk(n_steps=8, step_len=0.65 * stature / 1.75)
     legs = legs_from_walk(walk, stature)
     first, steady = walk.steps[0], walk.steps[3]
-    a, b = steady.start, steady.end
-    ph = legs.phase[a : b + 1]
-    to = int(np.flatnonzero(legs.contact[a : b + 1] != 2).min()) - 1
-    ank = np.rad2deg(legs.angles[f"ankle_{steady.side[0]}_flex"][a : b + 1])
-    early = ank[to : int(np.searchsorted(ph, 0.4))]
-    least = to + int(np.argmin(early))
-    assert -25.0 <= early.min() <= -15.0, early.min()
-    assert ph[least] - ph[to] <= 0.1, (ph[to], ph[least])
     hs_first = np.rad2deg(legs.angles[f"ankle_{first.side[0]}_flex"][first.end])
-    assert -5.0 <= hs_first <= min(5.0, ank[-1]), (hs_first, ank[-1])
+    hs_steady = np.rad2deg(legs.angles[f"ankle_{steady.side[0]}_flex"][steady.end])
+    assert -5.0 <= hs_first <= min(5.0, hs_steady), (hs_first, hs_steady)

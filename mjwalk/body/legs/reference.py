@@ -185,7 +185,7 @@ def winter_reference() -> ReferenceGait:
 #: by :func:`gait_cycles` (heel strike = toes-up pitch peak), read off and rounded to the
 #: percent and degree. This actor walks with more knee flexion in stance than Winter's
 #: ensemble (34 vs 19 deg at the loading-response peak, 17 vs 5 deg at mid-stance).
-_BANDAI_CAPTURE = {
+BANDAI_LANDMARKS = {
     "hip": [
         ((0, 30), (0, 22)),
         ((5, 29), (11, 29)),
@@ -212,21 +212,6 @@ _BANDAI_CAPTURE = {
         ((100, 20), (100, 28)),
     ],
 }
-
-#: The cycle fraction of toe-off: stance lasts about 60 % of the gait cycle (J. Perry, "Normal
-#: Gait", ch. 13 of the Atlas of Limb Prosthetics, 2nd ed., AAOS 1992, oandplibrary.org/alp/
-#: chap13-01.asp: "approximately 60% of the time is spent in stance"); the leg synthesis's
-#: toe-off (``steps.TOE_OFF``, step phase 0.2) is this instant.
-TOE_OFF_CYCLE = 0.6
-#: The ankle's plantarflexion at toe-off, degrees (- plantarflexion): about 20 deg (Perry &
-#: Burnfield, "Gait Analysis", 2nd ed., 2010, pre-swing, quoted from memory; the lecture notes
-#: slideplayer.com/5345284 "Biomechanics foot ankle", pre-swing: "ankle to 20 degrees PF";
-#: podiapaedia.org "Angular kinematics of gait": 25 deg at toe-off). The capture landmarks
-#: alone (:data:`_BANDAI_CAPTURE`, the Winter table's pitch shape between 40 and 69 %) left
-#: the reference's own ankle (pitch + knee - thigh) at +2.8 deg there, and the synthesised
-#: swing ankle at 0 deg at toe-off and -14 deg at its least (cycle 69 %), as late as the
-#: capture's least foot pitch (issue 47, ``benchmarks/bench_swing_ankle.py``).
-ANKLE_TOE_OFF_DEG = -20.0
 
 
 def warp_reference(
@@ -280,47 +265,8 @@ def bandai_reference() -> ReferenceGait:
         the warped :class:`ReferenceGait` (the package default, :data:`DEFAULT_REFERENCE`).
     """
     return warp_reference(
-        BANDAI_LANDMARKS,
-        source="bandai-walk normal 001-003 landmarks and the toe-off ankle (BANDAI_LANDMARKS)",
+        BANDAI_LANDMARKS, source="bandai-walk normal 001-003 landmarks (BANDAI_LANDMARKS)"
     )
-
-
-def with_toe_off_pitch(landmarks: dict, base: ReferenceGait | None = None) -> dict:
-    """``landmarks`` with a foot-pitch landmark at :data:`TOE_OFF_CYCLE` that puts the
-    reference's own ankle (pitch + knee flexion - thigh flexion, the foot's angle to the
-    shank) at :data:`ANKLE_TOE_OFF_DEG` there, with the hip and knee the landmarks give: the
-    foot's angle at toe-off from the cited ankle and the reference's own leg, not read off a
-    foot-floor table. The base pitch at that landmark is ``base``'s (default Winter's) there.
-    A second landmark at cycle 50 % keeps the stance's pitch as the landmarks alone give it
-    (with the toe-off landmark alone the stance heel rose from cycle 40 % on, and on a 5.5 deg
-    ramp the stance foot left the slope by 2-3.5 deg at mid-step).
-
-    Args:
-        landmarks: as :func:`warp_reference` takes them; a pitch landmark at toe-off must not
-            be among them.
-        base: the gait whose shapes are warped.
-
-    Returns:
-        a new landmark dict (the hip and knee lists shared with ``landmarks``).
-    """
-    base = base or _WINTER
-    leg = warp_reference(landmarks, base=base)
-    hip, knee = (float(np.degrees(leg(k, TOE_OFF_CYCLE))) for k in ("hip", "knee"))
-    pct = 100.0 * TOE_OFF_CYCLE
-    mark = (
-        (pct, float(np.degrees(base("pitch", TOE_OFF_CYCLE)))),
-        (pct, ANKLE_TOE_OFF_DEG + hip - knee),
-    )
-    # the stance (to cycle 50 %, the other foot's heel strike) kept as it was: a landmark
-    # there at the warped base's own time and value
-    lm = np.asarray(landmarks["pitch"], float)
-    src = float(np.interp(50.0, lm[:, 1, 0], lm[:, 0, 0]))
-    half = (
-        (src, float(np.degrees(base("pitch", src / 100.0)))),
-        (50.0, float(np.degrees(leg("pitch", 0.5)))),
-    )
-    pitch = sorted([*landmarks["pitch"], half, mark], key=lambda m: m[1][0])
-    return {**landmarks, "pitch": pitch}
 
 
 def heel_strike_ankle(ref: ReferenceGait) -> float:
@@ -359,10 +305,6 @@ def reference_angle(joint: str, cycle, derivative: bool = False):
 
 
 _WINTER = winter_reference()
-
-#: :data:`_BANDAI_CAPTURE` with the toe-off foot pitch of :func:`with_toe_off_pitch` (the
-#: landmarks :func:`bandai_reference` warps through).
-BANDAI_LANDMARKS = with_toe_off_pitch(_BANDAI_CAPTURE)
 
 #: The reference gait :func:`legs_from_walk` uses by default: the generated
 #: :func:`bandai_reference` (the Winter table warped onto the landmark figures
