@@ -46,3 +46,12 @@ def test_warp_reference_meets_its_landmarks():
     assert np.abs(np.diff(np.rad2deg(ref("knee", x)))).max() < 2.0  # < 2 deg per 0.25 %
     with pytest.raises(ValueError, match="increase"):
         warp_reference({**BANDAI_LANDMARKS, "knee": BANDAI_LANDMARKS["knee"][::-1]})
+
+
+def test_the_reference_heel_strike_ankle():
+    """The default reference's own ankle at heel strike (pitch + knee - thigh at cycle 0,
+    reference.heel_strike_ankle) is the bandai actor's +7.0 deg (28 deg pitch, 1 deg knee,
+    22 deg thigh), the bound of a walk's first landing (steps.landing_pitches)."""
+    from mjwalk.body.legs.reference import heel_strike_ankle
+
+    assert np.rad2deg(heel_strike_ankle(bandai_reference())) == pytest.approx(7.0, abs=0.3)

@@ -141,3 +141,19 @@ def test_a_first_steps_heel_comes_off_before_its_toes(stature):
     ankle = np.rad2deg(legs.angles[f"ankle_{st.side[0]}_flex"])
     assert np.rad2deg(legs.pitch[side][to]) <= -5.0
     assert ankle[to] <= ankle[a] + 1.5, (ankle[a], ankle[to])
+
+
+@pytest.mark.parametrize("stature", [1.55, 1.75, 1.95])
+def test_a_first_step_lands_no_more_dorsiflexed_than_a_steady_one(stature):
+    """Seeded (synthetic walk, no draw; step length 0.65 m x stature / 1.75): a walk's first
+    step lands no more dorsiflexed than the steady step (steps.landing_pitches bounds it by
+    the reference's own heel-strike ankle) and within 5 deg of neutral (initial contact "in
+    neutral", Perry & Burnfield), measured 0.4 deg against the steady 7.4 (b3507ca: 16.2)."""
+    from mjwalk.body.legs import legs_from_walk
+
+    walk = synthetic_walk(n_steps=8, step_len=0.65 * stature / 1.75)
+    legs = legs_from_walk(walk, stature)
+    first, steady = walk.steps[0], walk.steps[3]
+    hs_first = np.rad2deg(legs.angles[f"ankle_{first.side[0]}_flex"][first.end])
+    hs_steady = np.rad2deg(legs.angles[f"ankle_{steady.side[0]}_flex"][steady.end])
+    assert -5.0 <= hs_first <= min(5.0, hs_steady), (hs_first, hs_steady)

@@ -269,6 +269,27 @@ def bandai_reference() -> ReferenceGait:
     )
 
 
+def heel_strike_ankle(ref: ReferenceGait) -> float:
+    """The reference's own ankle flexion at heel strike (radians, + dorsiflexion): its foot
+    pitch plus knee flexion minus thigh flexion at cycle 0 (the foot's angle to the shank),
+    with the pitch as the landing takes it (toes up only, ``hs_pitch``). The default
+    reference's is +7.0 deg (the bandai actor's 28 deg pitch and 22 deg thigh at heel
+    strike, :data:`BANDAI_LANDMARKS`). A first step from standing landed at 16 deg, bounded
+    by the ankle's range alone (synthetic first steps at 1.55-1.95 m, 15.3 median in the
+    station's, b3507ca, ``benchmarks/bench_swing_ankle.py``), where the ankle is neutral at
+    initial contact (Perry & Burnfield, "Gait Analysis", 2nd ed., 2010, quoted from memory;
+    slideplayer.com/5345284 "Biomechanics foot ankle": "Initial Contact Ankle jt. is in
+    neutral"); ``steps.landing_pitches`` bounds a first step's landing by this angle.
+
+    Args:
+        ref: the reference gait.
+
+    Returns:
+        the ankle angle, radians.
+    """
+    return max(0.0, float(ref("pitch", 0.0))) + float(ref("knee", 0.0)) - float(ref("hip", 0.0))
+
+
 def reference_angle(joint: str, cycle, derivative: bool = False):
     """Default-reference angle of ``joint`` at cycle(s).
 

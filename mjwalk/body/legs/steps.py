@@ -32,7 +32,7 @@ from mjwalk.body.legs.footpivot import (
     pivot_rows,
 )
 from mjwalk.body.legs.ik import KNEE_MIN, ik_lengths, leg_ik_world_row
-from mjwalk.body.legs.reference import ReferenceGait
+from mjwalk.body.legs.reference import ReferenceGait, heel_strike_ankle
 from mjwalk.body.legs.swingthigh import reference_rows
 from mjwalk.conventions import SAMPLE_RATE_HZ, side_prefix
 from mjwalk.plan.walkpath import WalkPath
@@ -163,13 +163,22 @@ def step_frames(walk: WalkPath) -> list[StepFrames]:
 
 
 def landing_pitches(
-    frames: list[StepFrames], xy, yaw, hs_pitch, d_land, dorsi_max, geom: LegGeometry
+    frames: list[StepFrames],
+    xy,
+    yaw,
+    hs_pitch,
+    d_land,
+    dorsi_max,
+    geom: LegGeometry,
+    ref: ReferenceGait | None = None,
 ) -> None:
     """Per step (``frames``, in place: ``land_p``), the pitch the swing foot lands with: the
     reference's ``hs_pitch``, or flatter (down to 0) where the landing leg at its heel-strike
     length ``d_land`` under the pelvis of the landing sample would dorsiflex its ankle past
-    ``dorsi_max`` (a foot landing under the hip). All steps at once; a few fixed-point rounds
-    (compiled: :func:`_landing_rounds`).
+    ``dorsi_max`` (a foot landing under the hip), a walk's first step past ``ref``'s own
+    heel-strike ankle if given (:func:`~.reference.heel_strike_ankle`: with the range's 19
+    deg alone it landed at 16 deg against the steady 7.4, b3507ca). All steps at once; a few
+    fixed-point rounds (compiled: :func:`_landing_rounds`).
 
     Args:
         frames: the walk's steps; their ``land_p`` is set.
@@ -179,8 +188,10 @@ def landing_pitches(
         d_land: the landing leg's hip-to-ankle distance, metres.
         dorsi_max: the highest ankle flexion, radians.
         geom: the leg lengths.
+        ref: the reference gait whose heel-strike ankle bounds a first step's landing.
     """
     L1, L2, rmin, rmax = ik_lengths(geom)
+    first = min(float(dorsi_max), heel_strike_ankle(ref)) if ref is not None else dorsi_max
     land_p = np.full(len(frames), float(hs_pitch))
     _landing_rounds(
         np.array([fr.end for fr in frames], dtype=np.int64),
@@ -189,7 +200,7 @@ def landing_pitches(
         np.ascontiguousarray(xy, dtype=float),
         np.ascontiguousarray(yaw, dtype=float),
         float(d_land**2),
-        float(dorsi_max),
+        np.array([first if fr.first else dorsi_max for fr in frames], dtype=float),
         float(geom.hip_y),
         L1,
         L2,
@@ -212,7 +223,7 @@ def _landing_rounds(b, land, sgn, xy, yaw, d_land_sq, dorsi_max, hip_y, L1, L2, 
     pivoted by its pitch, the pelvis height at which the leg spans ``d_land_sq`` (m²) to it
     from the hip of the upright pelvis (:func:`~.kinematics.hip_world` at height 0), and the
     leg IK's ankle flexion there (:func:`~.kinematics.leg_ik_world_row`); a foot whose
-    ankle flexes past ``dorsi_max`` lands flatter by 1.2 times the excess (down to 0)."""
+    ankle flexes past ``dorsi_max`` (m,) lands flatter by 1.2 times the excess (down to 0)."""
     m = b.shape[0]
     pos = np.empty((m, 3))
     root = np.empty((m, 3))
@@ -234,12 +245,12 @@ def _landing_rounds(b, land, sgn, xy, yaw, d_land_sq, dorsi_max, hip_y, L1, L2, 
                               rmin, rmax, out)  # fmt: skip
         done = True
         for i in range(m):
-            if out[i, 4] - dorsi_max > 0 and land_p[i] > 0:
+            if out[i, 4] - dorsi_max[i] > 0 and land_p[i] > 0:
                 done = False
         if done:
             break
         for i in range(m):
-            over = out[i, 4] - dorsi_max
+            over = out[i, 4] - dorsi_max[i]
             if over > 0:
                 land_p[i] = maximum1(land_p[i] - 1.2 * over, 0.0)
 

@@ -163,7 +163,7 @@ def legs_from_walk(
                 f"the path's {n} samples"
             )
     sy = _start(walk, ref, geom)
-    landing_pitches(frames, sy.xy, sy.yaw, sy.hs_pitch, sy.d_land, sy.dorsi_max, geom)
+    landing_pitches(frames, sy.xy, sy.yaw, sy.hs_pitch, sy.d_land, sy.dorsi_max, geom, ref)
     if ref._unit and COMPILED_STEPS:  # all steps in one compiled call (the same numbers)
         _synth_compiled(sy, frames)
     else:
