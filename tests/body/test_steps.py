@@ -103,8 +103,13 @@ def test_first_steps_from_standing_keep_the_reference_thigh():
     stays within 2 deg of the reference's swing peak (27.0 deg): 47.5 / 49.9 / 52.5 deg at
     0.25 / 0.35 / 0.65 m steps before (e749e69), 27.9-28.0 at thigh47, 28.4-28.6 since the
     heel comes off before the toes (gait47: the pre-swing flexes hip and knee as the heel
-    rises, 1.5 deg was thigh47's margin over its own 28.0). The ankle still clears the floor
-    (the feet's lowest point, MuJoCo's boxes, above -1 mm in mid swing)."""
+    rises, 1.5 deg was thigh47's margin over its own 28.0), 29.3 at 0.25 m steps since a first
+    step lands no more dorsiflexed than the reference's heel strike (ankle47: its ankle lands
+    at about neutral, not 16 deg, so the landing leg reaches a little further from the hip);
+    hence 2.5 deg. The margin guards against the 47-53 deg first steps it was written for; a
+    swing hip peak near 30 deg is ordinary in level walking (Perry & Burnfield, Gait Analysis,
+    2nd ed., from memory). The ankle still clears the floor (the feet's lowest point, MuJoCo's
+    boxes, above -1 mm in mid swing)."""
     from mjwalk.body.legs import legs_from_walk
     from mjwalk.body.legs.footcheck import foot_points
 
@@ -117,7 +122,7 @@ def test_first_steps_from_standing_keep_the_reference_thigh():
         st = walk.steps[0]
         a, b = st.start, st.end
         hip = np.rad2deg(legs.angles[f"hip_{st.side[0]}_flex"][a : b + 1].max())
-        assert hip <= hip_peak + 2.0, (step_len, hip)
+        assert hip <= hip_peak + 2.5, (step_len, hip)
         _, _, low = foot_points(legs)
         ph = legs.phase[a : b + 1]
         assert low[a : b + 1][(ph > 0.3) & (ph < 0.85)].min() > -1e-3
