@@ -419,12 +419,19 @@ def touching(lower: np.ndarray, upper: np.ndarray, res: float) -> bool:
     return float((rim & near).sum()) * res >= MIN_CROSSING
 
 
-def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPlan, ks, avoid=None):
-    """Append the regions at heights ``ks`` to ``found``, none sharing a cell with ``avoid``."""
+def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPlan, ks, avoid=0):
+    """Append the regions at heights ``ks`` to ``found``; with ``avoid``, none sharing a cell
+    with one of ``found[1:avoid]`` less than :data:`PEAK_SEPARATION` from its height (that
+    surface again) or more than its rim cells with any (surfaces at other heights share at
+    most the cells a riser's line crosses)."""
     res = plan.resolution
     for k in ks:
         for cells, (h, rms, slope, _) in regions_at(levelled, layers, k, plan, SHADOWED_DEPTH):
-            if avoid is not None and bool((cells & avoid).any()):
+            inner = ndimage.binary_erosion(cells, np.ones((3, 3), bool))
+            if any(
+                (r.cells & (cells if abs(r.height - h) < PEAK_SEPARATION else inner)).any()
+                for r in found[1:avoid]
+            ):
                 continue
             rect = min_rectangle(cells, plan.x0, plan.y0, res)
             depth, width = rectangle_size(rect)
@@ -499,8 +506,7 @@ def find_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel]
         heights = np.concatenate([heights, extra])
         layers = rasterize_layers(levelled, heights, plan)
         k0 = len(layers.heights) - len(extra)
-        taken = np.logical_or.reduce([r.cells for r in found[1:]]) if len(found) > 1 else None
-        _add_regions(found, levelled, layers, plan, range(k0, len(layers.heights)), taken)
+        _add_regions(found, levelled, layers, plan, range(k0, len(layers.heights)), len(found))
     found = _distinct(found)
     steps = []
     for i, a in enumerate(found):

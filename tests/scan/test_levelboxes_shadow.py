@@ -90,3 +90,17 @@ def test_generated_hall_1_keeps_its_mezzanine_stair():
     assert stairs[0].risers[0] == pytest.approx(0.1431, abs=0.005)
     assert stairs[0].tread == pytest.approx(0.3422, abs=0.01)
     assert lp.heights[stairs[0].upper] == pytest.approx(1.1448, abs=0.02)
+
+
+@pytest.mark.slow  # a generated hall's scan: about 40 s on a loaded 2-core machine
+def test_generated_hall_0_finds_a_tread_beside_a_stronger_surface():
+    """Hall 0: the stair's 0.3766 m tread lies 4 cm over a 0.337 m platform elsewhere (found at
+    a second candidate height) and shares a riser's line of cells with the tread above it: a
+    region at another height sharing only its rim cells is no duplicate."""
+    from mjwalk.scan.scanlevels import find_regions
+
+    pts, plan = _hall_scan(0)
+    found, _, _ = find_regions(pts, plan)
+    treads = [r.height for r in found if r.kind == "tread"]
+    for h in (0.1883, 0.3766, 0.5649, 0.7532):
+        assert min(abs(t - h) for t in treads) < 0.01, (h, sorted(treads))
