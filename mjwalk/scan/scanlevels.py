@@ -518,8 +518,16 @@ def find_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel]
 
 
 def seen_in_part(level: ScanLevel, res: float) -> bool:
-    """Whether a region is shallower than a tread (:data:`SHADOWED_DEPTH`): a tread seen in
-    part, a level only in a regular flight; ``res`` the grid's cell edge, metres."""
+    """Whether a region is shallower than a tread: a tread seen in part (at least
+    :data:`SHADOWED_DEPTH`), a level only in a regular flight.
+
+    Args:
+        level: the region.
+        res: the grid's cell edge, metres.
+
+    Returns:
+        True for a tread less than ``norms.MIN_TREAD`` deep, less two cells.
+    """
     return level.kind == "tread" and level.depth < MIN_TREAD - 2 * res
 
 
