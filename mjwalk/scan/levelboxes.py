@@ -42,6 +42,7 @@ from mjwalk.scan.scanlevels import (
     keep_reachable,
     min_rectangle,
     rectangle_size,
+    seen_in_part,
 )
 from mjwalk.scan.scanramps import ScanRamp, find_ramps, ramp_box, renumber
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
@@ -189,10 +190,14 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
     a = np.array(rows)
     coef, *_ = np.linalg.lstsq(a, np.array(rhs), rcond=None)
     dxy = float(np.abs(a @ coef - rhs).max())
+    tol = STAIR_TOLERANCE + EDGE_CELLS * plan.resolution
+    if dxy > tol or any(seen_in_part(t, plan.resolution) for t in treads):
+        top_front = _near_edge(top, plan, run, side, (min(lefts), max(rights)), rhs[-2])
+        coef, dxy = _shadowed_fit(np.array(rhs), top_front, plan.resolution)
     first, tread = float(coef[0]), float(coef[2])
     ok = (
         dz <= HEIGHT_TOL
-        and dxy <= STAIR_TOLERANCE + EDGE_CELLS * plan.resolution
+        and dxy <= tol
         and MIN_RISER - 1e-9 <= riser <= MAX_RISER + 1e-9
         and MIN_TREAD - 1e-9 <= tread <= MAX_TREAD + 1e-9
         and STEP_RULE[0] - 1e-9 <= 2 * riser + tread <= STEP_RULE[1] + 1e-9
@@ -209,6 +214,41 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
         "riser": riser, "tread": tread, "heights": heights, "rects": rects, "run": run,
         "top_edge": first + (n - 1) * tread, "top_rect": top_rect, "dz": dz, "dxy": dxy,
     }  # fmt: skip
+
+
+def _near_edge(
+    top: ScanLevel, plan: FloorPlan, run: np.ndarray, side: np.ndarray, span, start: float
+) -> float:
+    """The centre of level ``top``'s first cells along ``run`` beyond ``start`` (metres along
+    ``run``) within the flight's width ``span`` (across ``side``, metres); inf: none."""
+    c = _centres(top.cells, plan)
+    along, across = c @ run, c @ side
+    mine = (along > start) & (across >= span[0]) & (across <= span[1])
+    return float(along[mine].min()) if mine.any() else math.inf
+
+
+def _shadowed_fit(edges: np.ndarray, top_front: float, res: float) -> tuple[np.ndarray, float]:
+    """A flight fitted to its treads' front edges and the top level's (a tread's back may lie
+    in the shadow of the next tread or level, so it is seen shorter, never longer).
+
+    Args:
+        edges: (2 (n - 1),) each tread's first and last cell centre along the run, metres.
+        top_front: the top level's first cell centre along the run, metres.
+        res: the grid's cell edge, metres.
+
+    Returns:
+        (coef: (3,) the first front edge, unused, the tread depth; dxy: the largest front
+        residual or back edge seen beyond the next front, metres).
+    """
+    fronts = np.append(edges[0::2], top_front)
+    k = np.arange(len(fronts), dtype=float)
+    if not np.isfinite(top_front):
+        return np.zeros(3), math.inf
+    a = np.column_stack([np.ones_like(k), k])
+    (first, tread), *_ = np.linalg.lstsq(a, fronts, rcond=None)
+    dxy = float(np.abs(a @ np.array([first, tread]) - fronts).max())
+    beyond = edges[1::2] - (first + (k[1:]) * tread - res)
+    return np.array([first, 0.0, tread]), max(dxy, float(np.max(beyond, initial=0.0)))
 
 
 def _snap_edge(rect: np.ndarray, run: np.ndarray, at: float) -> np.ndarray:
@@ -336,12 +376,24 @@ def scan_levels(levelled: np.ndarray, plan: FloorPlan) -> LevelPlan | None:
         before); else the levels, links, boxes and the floor plan without them.
     """
     found, steps, layers = find_regions(levelled, plan)
-    ramps = find_ramps(levelled, plan, found)
-    levels, pairs, new = keep_reachable(found, steps, [(r.lower, r.upper) for r in ramps])
+    res = plan.resolution
+    ramps = [
+        r for r in find_ramps(levelled, plan, found)
+        if not (seen_in_part(found[r.lower], res) or seen_in_part(found[r.upper], res))
+    ]  # fmt: skip
+    joins = [(r.lower, r.upper) for r in ramps]
+    levels, pairs, new = keep_reachable(found, steps, joins)
+    links, stairs = _links_and_stairs(levels, pairs, plan)
+    in_stair = {i for chain, _ in stairs for i in chain[1:-1]}
+    old = {n: o for o, n in new.items()}
+    gone = {old[lv.index] for lv in levels if seen_in_part(lv, res) and lv.index not in in_stair}
+    if gone:  # a region shallower than a tread is a level only in a flight
+        steps = [(i, j) for i, j in steps if i not in gone and j not in gone]
+        levels, pairs, new = keep_reachable(found, steps, joins)
+        links, stairs = _links_and_stairs(levels, pairs, plan)
     ramps = [renumber(r, new) for r in ramps if r.lower in new and r.upper in new]
     if len(levels) == 1:
         return None
-    links, stairs = _links_and_stairs(levels, pairs, plan)
     links += [ScanLink("ramp", r.lower, r.upper, (), slope=r.slope, run=r.length) for r in ramps]
     heights = [lv.height for lv in levels]
     rects, cells = _rects(levels, pairs, plan)

@@ -42,6 +42,7 @@ from scipy import ndimage
 
 from mjwalk._jit import njit
 from mjwalk.scan.level import HORIZONTAL_DEG, MAX_SURFACE_HEIGHT, VOXEL, voxel_normals
+from mjwalk.scan.minrect import min_rectangle, rectangle_size
 from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, FloorPlan
 from mjwalk.world.contacts import MIN_CROSSING
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
@@ -68,6 +69,10 @@ PLANAR_SHARE = 0.1
 #: Trim of the plane fits: residuals beyond this many rms are dropped (twice).
 TRIM_SIGMAS = 3.0
 
+#: Least depth of a stair tread seen in part, metres: half the least tread (``norms.MIN_TREAD``;
+#: a choice, no norm). The next level's edge may shadow a tread's back from the scanners; such a
+#: region is a level only as a tread of a regular flight (:func:`mjwalk.scan.levelboxes.fit_stair`).
+SHADOWED_DEPTH = 0.5 * MIN_TREAD
 #: Rounds of looking again for surfaces no region explains (:func:`find_regions`).
 MORE_ROUNDS = 2
 #: Kinds of scan level.
@@ -308,61 +313,8 @@ def plane_fit(xyz: np.ndarray) -> tuple[np.ndarray, float, np.ndarray, float, fl
     return c, float(coef[0]), np.array([coef[1], coef[2]]), rms, err
 
 
-def min_rectangle(cells: np.ndarray, x0: float, y0: float, res: float) -> np.ndarray:
-    """The minimum-area rectangle round the centres of a region's cells.
-
-    Args:
-        cells: (ny, nx) bool.
-        x0: the grid's lower x, metres.
-        y0: the grid's lower y, metres.
-        res: the cell edge, metres.
-
-    Returns:
-        (4, 2) corners, counter-clockwise, metres (the first edge is the rectangle's first axis).
-    """
-    from scipy.spatial import ConvexHull, QhullError  # deferred: scipy.spatial's slow import
-
-    iy, ix = np.nonzero(cells)
-    pts = np.column_stack([x0 + (ix + 0.5) * res, y0 + (iy + 0.5) * res])
-    try:
-        hull = pts[ConvexHull(pts).vertices]
-    except QhullError:  # a line of cells: a rectangle half a cell wide round it
-        hull = pts
-    best = (math.inf, np.eye(2), np.zeros(2), np.zeros(2))
-    for i in range(len(hull)):
-        e = hull[(i + 1) % len(hull)] - hull[i]
-        n = float(np.hypot(*e))
-        if n < 1e-12:
-            continue
-        rot = np.array([e / n, [-e[1] / n, e[0] / n]])  # rows: the rectangle's axes
-        q = hull @ rot.T
-        lo, hi = q.min(axis=0), q.max(axis=0)
-        area = float(np.prod(np.maximum(hi - lo, 0.5 * res)))
-        if area < best[0] - 1e-12:
-            best = (area, rot, lo, hi)
-    _, rot, lo, hi = best
-    mid = 0.5 * (lo + hi)
-    lo, hi = np.minimum(lo, mid - 0.25 * res), np.maximum(hi, mid + 0.25 * res)
-    corners = np.array([[lo[0], lo[1]], [hi[0], lo[1]], [hi[0], hi[1]], [lo[0], hi[1]]])
-    return corners @ rot
-
-
-def rectangle_size(corners: np.ndarray) -> tuple[float, float]:
-    """(depth: the shorter side, width: the longer) of a rectangle (4, 2), metres.
-
-    Args:
-        corners: (4, 2) corners in order.
-
-    Returns:
-        Its two side lengths, shorter first, metres.
-    """
-    a = float(np.hypot(*(corners[1] - corners[0])))
-    b = float(np.hypot(*(corners[2] - corners[1])))
-    return min(a, b), max(a, b)
-
-
 def regions_at(
-    levelled: np.ndarray, layers: Layers, k: int, plan: FloorPlan
+    levelled: np.ndarray, layers: Layers, k: int, plan: FloorPlan, least: float = MIN_TREAD
 ) -> list[tuple[np.ndarray, tuple[float, float, float, float]]]:
     """The horizontal walk-surface regions at candidate height ``k`` (``layers.heights[k]``).
 
@@ -371,6 +323,7 @@ def regions_at(
         layers: the rasterised cloud.
         k: the candidate's index in ``layers`` (>= 1; 0 is the floor).
         plan: the floor plan (its grid).
+        least: the least depth of a region, metres (less two cells for the edges' cells).
 
     Returns:
         Per region kept: its cells (holes filled) and its plane fit (:func:`fit_plane`).
@@ -398,20 +351,33 @@ def regions_at(
             continue
         cells = ndimage.binary_fill_holes(lab == r)
         depth, width = rectangle_size(min_rectangle(cells, plan.x0, plan.y0, res))
-        if depth < MIN_TREAD - 2 * res or width < STAND_WIDTH - 2 * res:
+        if depth < least - 2 * res or width < STAND_WIDTH - 2 * res:
             continue
         p = pts[order[bounds[r] : bounds[r + 1]]]
         if len(p) < 3:
             continue
         fit = fit_plane(p)
+        if depth < MIN_TREAD - 2 * res:  # a narrow strip: the nosing's riser points tilt it
+            fit = _inner_fit(p, cells, plan, fit)
         if fit[2] > HORIZONTAL_SLOPE + TRIM_SIGMAS * fit[3]:
             continue  # a sloped region: a ramp's strip at this height
         cells = _inlier_cells(p, fit, plan, cells)
         depth, width = rectangle_size(min_rectangle(cells, plan.x0, plan.y0, res))
-        if depth < MIN_TREAD - 2 * res or width < STAND_WIDTH - 2 * res:
+        if depth < least - 2 * res or width < STAND_WIDTH - 2 * res:
             continue
         out.append((cells, fit))
     return out
+
+
+def _inner_fit(p: np.ndarray, cells: np.ndarray, plan: FloorPlan, fit: tuple) -> tuple:
+    """The plane fit of a region's points less those in its rim cells (where a riser's top
+    points lie), or ``fit`` when fewer than three are left."""
+    res = plan.resolution
+    inner = ndimage.binary_erosion(cells, np.ones((3, 3), bool))
+    ix = np.floor((p[:, 0] - plan.x0) / res).astype(np.int64)
+    iy = np.floor((p[:, 1] - plan.y0) / res).astype(np.int64)
+    q = p[inner[iy, ix]]
+    return fit_plane(q) if len(q) >= 3 else fit
 
 
 def _inlier_cells(
@@ -453,12 +419,19 @@ def touching(lower: np.ndarray, upper: np.ndarray, res: float) -> bool:
     return float((rim & near).sum()) * res >= MIN_CROSSING
 
 
-def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPlan, ks, avoid=None):
-    """Append the regions at heights ``ks`` to ``found``, none sharing a cell with ``avoid``."""
+def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPlan, ks, avoid=0):
+    """Append the regions at heights ``ks`` to ``found``; with ``avoid``, none sharing a cell
+    with one of ``found[1:avoid]`` less than :data:`PEAK_SEPARATION` from its height (that
+    surface again) or more than its rim cells with any (surfaces at other heights share at
+    most the cells a riser's line crosses)."""
     res = plan.resolution
     for k in ks:
-        for cells, (h, rms, slope, _) in regions_at(levelled, layers, k, plan):
-            if avoid is not None and bool((cells & avoid).any()):
+        for cells, (h, rms, slope, _) in regions_at(levelled, layers, k, plan, SHADOWED_DEPTH):
+            inner = ndimage.binary_erosion(cells, np.ones((3, 3), bool))
+            if any(
+                (r.cells & (cells if abs(r.height - h) < PEAK_SEPARATION else inner)).any()
+                for r in found[1:avoid]
+            ):
                 continue
             rect = min_rectangle(cells, plan.x0, plan.y0, res)
             depth, width = rectangle_size(rect)
@@ -533,15 +506,42 @@ def find_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel]
         heights = np.concatenate([heights, extra])
         layers = rasterize_layers(levelled, heights, plan)
         k0 = len(layers.heights) - len(extra)
-        taken = np.logical_or.reduce([r.cells for r in found[1:]]) if len(found) > 1 else None
-        _add_regions(found, levelled, layers, plan, range(k0, len(layers.heights)), taken)
+        _add_regions(found, levelled, layers, plan, range(k0, len(layers.heights)), len(found))
     found = _distinct(found)
     steps = []
     for i, a in enumerate(found):
+        reach = _with_shadow(a, layers, res)
         for j, b in enumerate(found):
-            if 0 < b.height - a.height <= MAX_RISER and touching(a.cells, b.cells, res):
+            if 0 < b.height - a.height <= MAX_RISER and touching(reach, b.cells, res):
                 steps.append((i, j))
     return found, steps, layers
+
+
+def seen_in_part(level: ScanLevel, res: float) -> bool:
+    """Whether a region is shallower than a tread: a tread seen in part (at least
+    :data:`SHADOWED_DEPTH`), a level only in a regular flight.
+
+    Args:
+        level: the region.
+        res: the grid's cell edge, metres.
+
+    Returns:
+        True for a tread less than ``norms.MIN_TREAD`` deep, less two cells.
+    """
+    return level.kind == "tread" and level.depth < MIN_TREAD - 2 * res
+
+
+def _with_shadow(level: ScanLevel, layers: Layers, res: float) -> np.ndarray:
+    """A tread's cells and the cells beyond them with no point at its height nor in its band,
+    up to the deepest tread (``norms.MAX_TREAD``): its back in the shadow of the next tread or
+    level. Any other region's cells as they are."""
+    n = math.ceil((MAX_TREAD - level.depth) / res)
+    if level.kind != "tread" or n <= 0:
+        return level.cells
+    k = level.peak
+    unseen = (layers.near[k] == 0) & (layers.band[k] < MIN_BAND_POINTS)
+    grow = ndimage.binary_dilation
+    return grow(level.cells, np.ones((3, 3), bool), iterations=n, mask=unseen | level.cells)
 
 
 def keep_reachable(

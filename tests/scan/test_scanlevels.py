@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import math
-
 import mujoco
 import numpy as np
 import pytest
@@ -15,8 +13,6 @@ from mjwalk.scan.scanlevels import (
     candidate_heights,
     find_levels,
     fit_plane,
-    min_rectangle,
-    rectangle_size,
 )
 
 #: A small hall: a stair of four 0.17 m risers and 0.28 m treads rising towards +x to a 0.68 m
@@ -76,13 +72,3 @@ def test_fit_plane_ignores_a_riser_edge():
     h, rms, slope, err = fit_plane(np.vstack([top, riser]))
     assert h == pytest.approx(0.34, abs=0.002)
     assert rms < 0.006 and slope < 0.01 + 3 * err
-
-
-def test_min_rectangle_of_a_turned_region():
-    res, ang = 0.02, math.radians(30)
-    gx, gy = np.meshgrid((np.arange(200) + 0.5) * res, (np.arange(200) + 0.5) * res)
-    u = (gx - 2) * math.cos(ang) + (gy - 2) * math.sin(ang)
-    v = -(gx - 2) * math.sin(ang) + (gy - 2) * math.cos(ang)
-    cells = (np.abs(u) <= 0.6) & (np.abs(v) <= 0.2)
-    depth, width = rectangle_size(min_rectangle(cells, 0.0, 0.0, res))
-    assert depth == pytest.approx(0.4, abs=2 * res) and width == pytest.approx(1.2, abs=2 * res)
