@@ -113,9 +113,10 @@ def test_a_cycle_does_not_depend_on_the_scratch_data_it_gets(scenes_dir, monkeyp
     monkeypatch.setattr(context, "_scratch_of", junk)
     fresh = simulate_cycle(prepare(load_cycle_spec(scenes_dir / "assembly_station.toml")), 1,
                            keep_timeline=True)  # fmt: skip
-    assert np.array_equal(used.timeline.qpos, fresh.timeline.qpos)
+    tu, tf = used.timeline, fresh.timeline
+    assert tu is not None and tf is not None and np.array_equal(tu.qpos, tf.qpos)
     assert [repr(c) for c in used.collisions] == [repr(c) for c in fresh.collisions]
     assert repr(used.ergonomics) == repr(fresh.ergonomics)
-    assert len(used.timeline.parts) == len(fresh.timeline.parts) > 0
-    for a, b in zip(used.timeline.parts, fresh.timeline.parts, strict=True):
+    assert len(tu.parts) == len(tf.parts) > 0
+    for a, b in zip(tu.parts, tf.parts, strict=True):
         assert a.geom == b.geom and np.array_equal(a.pos, b.pos) and np.array_equal(a.mat, b.mat)
