@@ -7,7 +7,6 @@ from __future__ import annotations
 import hashlib
 import pickle
 import threading
-import weakref
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -284,20 +283,25 @@ class CycleContext:
         return self.routes.grid()
 
 
-#: The scratch MjData of each model by thread (:func:`_scratch_of`).
-_SCRATCH: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+#: Scratch MjData kept per thread: as many models as the humanoid cache holds
+#: (:data:`HUMANOIDS`' limit), the one kept longest dropped first (:class:`Memo`). What a run
+#: computes does not depend on which MjData it gets (its users set the qpos and compute the
+#: kinematics they read; tests/cycle/test_memo.py runs a cycle in a fresh and in a used one).
+SCRATCH_LIMIT = 64
+_LOCAL = threading.local()
 
 
 def _scratch_of(model: mujoco.MjModel) -> mujoco.MjData:
     """The scratch MjData of ``model`` for this thread, made on first use. A run makes a context
     for its operator (:func:`operator_context`); making its MjData cost about 0.4 ms a run
     (measured on the station's humanoid). Its users set the whole qpos before each use, as
-    with a context's own, and a thread's runs go one after the other."""
-    per_thread = _SCRATCH.setdefault(model, {})
-    key = threading.get_ident()
-    if key not in per_thread:
-        per_thread[key] = mujoco.MjData(model)
-    return per_thread[key]
+    with a context's own, and a thread's runs go one after the other. An MjData holds its
+    model, so the cache is bounded (:data:`SCRATCH_LIMIT` per thread), not weak: a weak key
+    would never be dropped."""
+    memo = getattr(_LOCAL, "scratch", None)
+    if memo is None:
+        memo = _LOCAL.scratch = Memo(mujoco.MjData, limit=SCRATCH_LIMIT)
+    return memo.get(model)
 
 
 def _load_step_model(spec: CycleSpec) -> StepModel:

@@ -107,14 +107,17 @@ def runs_above(
     a = np.asarray(angle)
     m = np.concatenate([[0], (a > limit).astype(np.int8), [0]])
     d = np.diff(m)
-    starts, ends = np.flatnonzero(d == 1).tolist(), np.flatnonzero(d == -1).tolist()
-    runs: list[tuple[int, int]] = []
-    for s, e in zip(starts, ends, strict=True):
-        if runs and hysteresis > 0 and a[runs[-1][1] : s].min() > limit - hysteresis:
-            runs[-1] = (runs[-1][0], e)  # the dip between them did not leave the zone
-        else:
-            runs.append((s, e))
-    return runs
+    starts, ends = np.flatnonzero(d == 1), np.flatnonzero(d == -1)
+    if len(starts) > 1 and hysteresis > 0:
+        # a run joins the one before when the dip between them (the frames from the earlier
+        # run's end to its own start: never empty) stays above limit - hysteresis; joining
+        # keeps the earlier run's end as the dip's start, so each dip is that of two raw runs
+        # in a row, and all of them are found at once (minima: the same numbers)
+        gaps = np.minimum.reduceat(a, np.column_stack([ends[:-1], starts[1:]]).ravel())[::2]
+        first = np.concatenate([[True], ~(gaps > limit - hysteresis)])
+        last = np.concatenate([first[1:], [True]])
+        starts, ends = starts[first], ends[last]
+    return list(zip(starts.tolist(), ends.tolist(), strict=True))
 
 
 @dataclass
