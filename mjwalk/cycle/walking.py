@@ -55,15 +55,19 @@ def standing_spot(
         (x, y) world frame, metres; the zone's own centre (the site) when no draw lands there.
     """
     field = level_field(ctx.workplace, zone.centre, ctx.on_levels)  # the zone's level's
-    r = zone.radius * np.sqrt(rng.uniform(size=SPOT_DRAWS))
+    u = rng.uniform(size=SPOT_DRAWS)  # all draws at once: the generator's state as before
     a = rng.uniform(0.0, 2.0 * np.pi, SPOT_DRAWS)
-    pts = np.asarray(zone.centre) + np.column_stack([r * np.cos(a), r * np.sin(a)])
+    cx, cy = (float(v) for v in zone.centre)
     need = ctx.spec.radius + START_MARGIN
     # the first candidate in the zone's discs and keeping ``need``, looked for a block at a
     # time (the first block holds it nearly always): the same elementwise tests of the same
-    # points as over all of them at once
+    # points as over all of them at once, each block's points made as they are needed (the
+    # same elementwise arithmetic, so the same points)
     for lo in range(0, SPOT_DRAWS, SPOT_BLOCK):
-        block = pts[lo : lo + SPOT_BLOCK]
+        r, ab = zone.radius * np.sqrt(u[lo : lo + SPOT_BLOCK]), a[lo : lo + SPOT_BLOCK]
+        block = np.empty((len(r), 2))
+        block[:, 0] = cx + r * np.cos(ab)
+        block[:, 1] = cy + r * np.sin(ab)
         ok = np.ones(len(block), dtype=bool)
         for x, y, rad in zone.discs:
             ok &= np.hypot(block[:, 0] - x, block[:, 1] - y) <= rad

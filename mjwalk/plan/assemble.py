@@ -125,7 +125,8 @@ def assemble_walk(model, nid: int, nodes, feats: np.ndarray, meta: dict) -> Walk
         nid = parent[nid]
     chain = np.array(ids[::-1])
     left = lefts[chain]
-    batch = model.decode(feats[rows[chain]], np.where(left, "left", "right"))
+    # the sides as booleans (True: right; batch_from_raw makes the same strings once)
+    batch = model.decode(feats[rows[chain]], ~left)
     ox = pos[parent[chain]].real
     oy = pos[parent[chain]].imag
     fr = frames[chain]

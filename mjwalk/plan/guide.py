@@ -277,7 +277,7 @@ def _checked(points) -> np.ndarray:
     """``points`` as a contiguous float (k, 2) array, or the ValueError every guide function
     raises for anything else."""
     pts = np.asarray(points, dtype=float)
-    if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2 or not np.all(np.isfinite(pts)):
+    if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2 or not np.isfinite(pts).all():
         raise ValueError("a guide must be finite (x, y) points, at least two")
     return np.ascontiguousarray(pts)
 
