@@ -180,8 +180,8 @@ def turn_in_time(view, poses: list, flight: tuple, walker, radius: float) -> flo
             for word in dubins_words(*pose):
                 n = max(1, math.ceil(word[0] / (share * step) - 1e-9))
                 tried.append((n - k, len(tried), k, n, pose, word))
-    for _, _, k, n, pose, word in sorted(tried, key=lambda c: c[:2]):
-        traced = trace(*pose, word)
+    for _, _, k, n, (line, yaw, end, end_yaw, turning), word in sorted(tried, key=lambda c: c[:2]):
+        traced = trace(line, yaw, end, end_yaw, turning, word)
         if traced is not None and guide_is_clear(view, traced[0], radius):
             return max(0.0, n * float(walker.step_duration) - k * step / float(walker.speed))
     return None
