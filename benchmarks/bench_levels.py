@@ -104,6 +104,24 @@ against 24). Least of 5 repeats per seed, median over seeds 1-10 (two rounds eac
 2.55/2.25 -> 2.30/1.94, rack1 6.13/5.72 -> 4.66/4.66, mezzanine -> rack1 3.93 -> 3.46. What is
 left of a warm level walk is mostly its searches (two or three HybridPlanner.plan calls, each
 with its guide and assembly, against the flat walk's one): warm 1.5x is not met.
+
+Branch levelwarm47 (b3507ca, ``--draws 2 --walks 10``, CPU ms, load 2-16): cold ratios
+0.27-0.96, warm 1.38-6.77 (platform1 -> car1 8.9/1.3 ms, 321 / 24 expansions). Where a warm
+level walk's time goes (warm plans of seeds 1-10, three rounds, CPU ms, load 16): step
+3.6 = searches 0.7 + guides 0.5 + assembly 0.4 + the rest of two plan calls 0.7 + the
+crossing's walk 0.5 + level meta 0.2; the open floor's 2.3 m walk 1.0 (guide 0.04: no
+obstacles). platform1 -> car1 13.2, of it searches 8.7. Its expansions are the floor leg's
+from the step's foot (-2.83, 3.2) to car1 and do not come from the hand-over: the same leg
+planned alone (seeds 1-20, median / mean expansions) from that stance facing west 205 / 376,
+facing south 222 / 353, walking south 114 / 470, from stand_step (a flat walk on the same
+floor) 429 / 700, from (-2.7, 2.0) facing south already in the passage 256 / 411, from
+(-4.0, 1.5) 817 / 1236, and from (-2.3, -0.5) past the trolley 6 / 7. The distance field
+routes it through the diagonal passage between the trolley and the car's rear bumper (1-2
+pelvis cells of 0.1 m wide, clearance 0.288 m against the 0.25 m radius); sampled steps seldom
+thread it, so the search floods the floor north of it or goes round the trolley's west side
+(a passage as tight, between it and the stair's east wall) and back, 7-11 m against the
+field's 4.24 m, and that walk is searched again as a loop (2-4 searches in 5 of 10 seeds). The
+cost is the floor's, the same for a flat walk there; the hybrid search's, not the levels'.
 """
 
 from __future__ import annotations

@@ -5,11 +5,12 @@ the same routes; a benchmark plans the same pair with other seeds), and several 
 over levels depend on nothing else: a crossing's footfalls for a walker and direction
 (:func:`mjwalk.plan.levelcross.flight_start`), the crossing walked on past its far stance
 (:func:`mjwalk.plan.levelcross.departure`), whether the body fits along a segment of a level
-(:func:`mjwalk.plan.levelcross.line_clear`). :func:`kept` keeps such a value in a dictionary on
-the object it belongs to (the crossing, the level's view), keyed by everything else it depends
-on, so a cached value is the very value the computation gives (no rounding of keys: the same
-floats give the same key). Arrays kept are made read-only, so no caller can change them for the
-next. No behaviour of walkers: a cost bound only.
+(:func:`mjwalk.plan.levelcross.line_clear`). :func:`kept` keeps such a value in a bounded memo
+(:class:`~mjwalk.boundedmemo.Memo`) on the object it belongs to (the crossing, the level's
+view), keyed by everything else it depends on, so a cached value is the very value the
+computation gives (no rounding of keys: the same floats give the same key). Arrays kept are
+made read-only, so no caller can change them for the next. No behaviour of walkers: a cost
+bound only.
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from typing import TypeVar
 
 import numpy as np
 
+from mjwalk.boundedmemo import Memo
 from mjwalk.plan.options import PlannerOptions
 
 T = TypeVar("T")
@@ -32,7 +34,8 @@ MAX_KEPT = 256
 
 
 def kept(owner: object, name: str, key: Hashable, make: Callable[[], T]) -> T:
-    """``make()``, computed once per ``key`` and kept in ``owner``'s ``__dict__`` under ``name``.
+    """``make()``, computed once per ``key`` and kept in a :class:`~mjwalk.boundedmemo.Memo` of
+    :data:`MAX_KEPT` values in ``owner``'s ``__dict__`` under ``name``.
 
     Args:
         owner: the object the value belongs to (a crossing, a level's view; frozen
@@ -48,16 +51,17 @@ def kept(owner: object, name: str, key: Hashable, make: Callable[[], T]) -> T:
     own = getattr(owner, "__dict__", None)
     if not isinstance(own, dict):
         return make()
-    cache: dict = own.setdefault(name, {})
-    if key in cache:
-        return cache[key]
-    value = make()
+    memo = own.get(name)
+    if memo is None:
+        memo = own[name] = Memo(limit=MAX_KEPT)
+    return memo.get(key, lambda: _read_only(make()))
+
+
+def _read_only(value: T) -> T:
+    """``value`` with the numpy arrays in it (alone or in a tuple) made read-only."""
     for a in value if isinstance(value, tuple) else (value,):
         if isinstance(a, np.ndarray):
             a.flags.writeable = False
-    while len(cache) >= MAX_KEPT:
-        cache.pop(next(iter(cache)))
-    cache[key] = value
     return value
 
 

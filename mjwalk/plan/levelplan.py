@@ -82,7 +82,7 @@ from mjwalk.plan.levelstitch import level_meta, stitch
 from mjwalk.plan.occupancy import CELL_SIZE, MOVES_16, shared_grid
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
-from mjwalk.plan.turnin import turn_into
+from mjwalk.plan.turnin import turn_in_time, turn_into, walked_back
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.levelview import level_at, level_view
 from mjwalk.world.norms import EXPOSED_MIN, HEAD_MARGIN
@@ -268,12 +268,13 @@ def _route(workplace, start: Endpoint, goal: Endpoint, walker: Walker, options, 
 
 
 def _entry(workplace: Workplace, route: tuple, leg: tuple, setup: tuple) -> float:
-    """The turn on the spot (s) before the stair whose stance is route node ``leg[1]``, walked
-    to from node ``leg[0]`` (:func:`~mjwalk.plan.levelcross.entry_time` at the heading of
-    :func:`~mjwalk.plan.levelcross.arrival_heading`); 0 before a step or ramp: its leg is
-    searched again facing it (:func:`_level_leg`). ``route``: (crossings, nodes, leads). A
-    walk turning into the stair while walking instead (:func:`_turned`) takes about as long:
-    rack1 -> mezzanine estimate / walked 0.977 (1.020 turning on the spot; 40 walks)."""
+    """What turning into the stair whose stance is route node ``leg[1]``, walked to from node
+    ``leg[0]``, adds to the walk (s), arriving at the heading of :func:`~mjwalk.plan.levelcross.
+    arrival_heading`: nothing within :data:`ENTRY_TURN`; else the turn into it while walking
+    as the walk makes it (:func:`_turned`; :func:`mjwalk.plan.turnin.turn_in_time`), or where
+    no such turn fits the turn on the spot (:func:`~mjwalk.plan.levelcross.entry_time`); 0
+    before a step or ramp: its leg is searched again facing it (:func:`_level_leg`).
+    ``route``: (crossings, nodes, leads)."""
     (usable, nodes, leads), (u, v), (walker, options) = route, leg, setup
     c, (lv, uxy), xy = usable[(v - 2) // 2], nodes[u], nodes[v][1]
     if c.kind != "stair":
@@ -283,9 +284,16 @@ def _entry(workplace: Workplace, route: tuple, leg: tuple, setup: tuple) -> floa
         ends = (uxy, xy)  # walked between directly (walked_distance)
     head = walker.stature + HEAD_MARGIN
     field = functools.partial(_node_field, workplace, lv, uxy, head, options)
-    yaw = arrival_heading(level_view(workplace, lv, head), ends, field, options.radius,
-                          walker.step_length)  # fmt: skip
-    return entry_time(c, "up" if v % 2 == 0 else "down", walker, yaw)
+    view = level_view(workplace, lv, head)
+    yaw = arrival_heading(view, ends, field, options.radius, walker.step_length)
+    direction = "up" if v % 2 == 0 else "down"
+    heading = c.yaw if direction == "up" else c.yaw + math.pi
+    if abs(math.remainder(heading - yaw, math.tau)) <= ENTRY_TURN or leads[v][1] is None:
+        return entry_time(c, direction, walker, yaw)  # 0 within ENTRY_TURN
+    flight = (heading, flight_start(c, direction, walker))
+    poses = walked_back(field(), ends[1], walker.step_length)
+    turned = turn_in_time(view, poses, flight, walker, options.radius)
+    return entry_time(c, direction, walker, yaw) if turned is None else turned
 
 
 def _node_field(workplace: Workplace, level: int, xy: np.ndarray, head: float, options):

@@ -100,6 +100,93 @@ def turn_in_steps(
     return None
 
 
+#: The stride (m) and directions of :func:`walked_back`'s descent of a distance field: a
+#: tenth of a metre in 16 directions, a cost bound (the field's cells are 0.08 m).
+BACK_STRIDE = 0.1
+_BACK_RING = BACK_STRIDE * np.stack(
+    [np.cos(np.linspace(0.0, 2.0 * math.pi, 16, endpoint=False)),
+     np.sin(np.linspace(0.0, 2.0 * math.pi, 16, endpoint=False))], axis=1
+)  # fmt: skip
+
+
+def walked_back(field, end, step: float) -> list[tuple[np.ndarray, float]]:
+    """Where a level walk arriving at ``end`` is 1 .. :data:`CUT_STEPS` step lengths before
+    it, by its shortest route: ``field`` (the distance to the walk's start) descended from
+    ``end`` in :data:`BACK_STRIDE` strides, each pose's heading the route's towards ``end``.
+
+    Args:
+        field: the distance field to the walk's start (callable on (m, 2) world xy, metres).
+        end: (2,) world xy where the walk arrives, metres.
+        step: the walker's step length, metres.
+
+    Returns:
+        [(xy (2,), heading in radians)], nearest ``end`` first; fewer where the route back
+        reaches the start sooner.
+    """
+    pts = [np.asarray(end, dtype=float)]
+    here = float(field(pts[0][None])[0])
+    for _ in range(math.ceil(CUT_STEPS * step / BACK_STRIDE)):
+        around = pts[-1] + _BACK_RING
+        values = field(around)
+        k = int(np.argmin(values))
+        if not values[k] < here:  # the start (or no way back): the route ends
+            break
+        pts.append(around[k])
+        here = float(values[k])
+    path = np.array(pts)
+    cum = BACK_STRIDE * np.arange(len(path))
+    out = []
+    for k in range(1, CUT_STEPS + 1):
+        i = int(np.searchsorted(cum, k * step))
+        if i >= len(path):
+            break
+        d = path[i - 1] - path[i]  # the way the walk goes there: towards the end
+        out.append((path[i], math.atan2(d[1], d[0])))
+    return out
+
+
+def turn_in_time(view, poses: list, flight: tuple, walker, radius: float) -> float | None:
+    """How much longer a level walk arriving at a flight takes when it turns into the flight
+    while walking (:func:`turn_in_steps`), for the route over levels to price
+    (:func:`mjwalk.plan.levelplan.level_route`): the walk cut ``k`` step lengths before where
+    it arrives (``poses[k - 1]``, :func:`walked_back`) and the turn's ``n`` steps of
+    :data:`TURN_STEP_SHARES` step lengths at the walker's level step time (as
+    :func:`turned_steps` times them) in place of those ``k`` step lengths at its speed; of the
+    cuts and words whose path keeps the body clear, the one with the fewest steps in all, as
+    :func:`turn_in_steps` chooses.
+
+    Args:
+        view: the level's view (its ``walk_clearance``).
+        poses: [(xy (2,) metres, heading radians)] of the walk 1, 2, ... step lengths before
+            where it arrives (:func:`walked_back`).
+        flight: (the flight's heading up or down it in radians, (2,) world xy in metres of
+            its first footfall: :func:`mjwalk.plan.levelcross.flight_start`).
+        walker: the walker (step length, step time, speed).
+        radius: the body radius, metres.
+
+    Returns:
+        Seconds (>= 0), or None where no turn fits (the walker turns on the spot).
+    """
+    heading, first = flight
+    step = float(walker.step_length)
+    target = np.asarray(first, dtype=float) - step * np.array(
+        [math.cos(heading), math.sin(heading)]
+    )
+    tried: list[tuple] = []  # (steps the turn adds, order tried, k, n, pose, word)
+    for k, (line, yaw) in enumerate(poses, start=1):
+        for share in TURN_STEP_SHARES:
+            turning = share * step / WALKING_TURN_MAX  # 60 deg a step
+            pose = (line, yaw, target, heading, turning)
+            for word in dubins_words(*pose):
+                n = max(1, math.ceil(word[0] / (share * step) - 1e-9))
+                tried.append((n - k, len(tried), k, n, pose, word))
+    for _, _, k, n, (line, yaw, end, end_yaw, turning), word in sorted(tried, key=lambda c: c[:2]):
+        traced = trace(line, yaw, end, end_yaw, turning, word)
+        if traced is not None and guide_is_clear(view, traced[0], radius):
+            return max(0.0, n * float(walker.step_duration) - k * step / float(walker.speed))
+    return None
+
+
 def _stepped(pts: np.ndarray, n: int, yaw: float, end: float) -> tuple:
     """``n`` equal steps along the path ``pts`` (k, 2): their points, headings (the path's
     tangent, unwrapped from ``yaw``; the last ``end``) and ``end``."""

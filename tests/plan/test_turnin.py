@@ -12,7 +12,15 @@ from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelcross import DEFAULT_STEP_WIDTH, ENTRY_TURN, cross_walk, flight_start
 from mjwalk.plan.levelroute import crossings
-from mjwalk.plan.turnin import TURN_STEP_SHARES, turn_in_steps, turned_steps
+from mjwalk.plan.turnin import (
+    BACK_STRIDE,
+    CUT_STEPS,
+    TURN_STEP_SHARES,
+    turn_in_steps,
+    turn_in_time,
+    turned_steps,
+    walked_back,
+)
 from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.plan.walks import plan_walk
 from mjwalk.world import load_workplace
@@ -135,3 +143,38 @@ def test_rack1_to_the_mezzanine_turns_into_the_stair_while_walking(station, mode
         facing = abs(math.remainder(walk.yaw[walk.steps[first].start] + math.pi / 2, math.tau))
         turned += min(moved) > 0.15 and max(turns) <= ENTRY_TURN + 1e-6 and facing < math.radians(1)
     assert turned >= 9
+
+
+def test_walked_back_follows_the_shortest_route_back_a_step_length_apart(station):
+    """On the open floor the route back to a start due south is the straight line: the poses
+    lie on it a step length apart, nearest the end first, each facing the end (north)."""
+    start, end = np.array([1.0, -2.0]), np.array([1.0, 0.5])
+    poses = walked_back(lambda p: np.hypot(*(np.atleast_2d(p) - start).T), end, 0.6)
+    assert len(poses) == CUT_STEPS
+    for k, (xy, yaw) in enumerate(poses, start=1):
+        assert xy[0] == pytest.approx(1.0, abs=1e-9)
+        assert xy[1] == pytest.approx(0.5 - k * 0.6, abs=BACK_STRIDE)
+        assert yaw == pytest.approx(math.pi / 2, abs=1e-9)
+    short = walked_back(lambda p: np.hypot(*(np.atleast_2d(p) - start).T), start + (0, 1.0), 0.6)
+    assert len(short) == 1  # the start is reached after 1.0 m
+
+
+def test_the_route_prices_a_turn_into_the_stair_as_walked(station, stair):
+    """Arriving along the flight adds nothing; arriving up the gap east of the stair, facing
+    away from it (a hairpin: 180 deg, at least three turning steps of 60 deg), adds the turn's
+    steps over the straight ones they replace: more than the two steps on the spot a standing
+    walker turns 180 deg in (levelcross.spot_turn), fewer than CUT_STEPS + 4 steps; under the
+    wall no turn fits: None (the route then prices the turn on the spot)."""
+    walker = Walker()
+    view = level_view(station, stair.lower, walker.stature + 0.1)
+    first = flight_start(stair, "up", walker)
+    flight = (stair.yaw, first)
+    ahead = first - walker.step_length * np.array([math.cos(stair.yaw), math.sin(stair.yaw)])
+    along = [(ahead - k * 0.7 * np.array([0.0, -1.0]), -math.pi / 2) for k in (1, 2)]
+    assert turn_in_time(view, along, flight, walker, 0.25) == pytest.approx(0.0, abs=0.3)
+    gap = [(np.array([-4.0, 0.9 - 0.7 * k]), math.pi / 2) for k in range(1, CUT_STEPS + 1)]
+    t = turn_in_time(view, gap, flight, walker, 0.25)
+    assert t is not None
+    assert 2 * walker.step_duration < t < (CUT_STEPS + 4) * walker.step_duration
+    wall = [(np.array([-6.4, -0.5 - 0.7 * k]), math.pi / 2) for k in range(1, CUT_STEPS + 1)]
+    assert turn_in_time(view, wall, flight, walker, 0.25) is None

@@ -30,6 +30,7 @@ BASE = {
     "_args",
     "_version",
     "_log",
+    "boundedmemo",
 }
 TOP = {"render", "report", "cli", "__main__", "shipped"}
 
