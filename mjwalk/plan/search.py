@@ -30,7 +30,9 @@ functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_into`
 in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan.stepcost`;
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change to this file's text,
 or processes keep running the old machine code (touching the file is not enough). The record of
-such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the legs' checks
+such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: check_into tests the
+end pelvis and the ankle before the other pelvis samples, and a node keeps its closed-list key
+from the push; before it, the legs' checks
 deferred to the pop, :func:`~mjwalk.plan.stepcheck.legs_recheck`; before it, the GP draws into
 work arrays kept for the whole search and into ``feats`` itself,
 :func:`~mjwalk.gait.gpdraw.sample_into`, and closing draws whose mean cannot end the walk
@@ -219,6 +221,7 @@ def search(
     fhead = np.empty(cap)  # ... and the landed foot's heading (nan: none)
     left = np.empty(cap, dtype=np.bool_)
     legs_due = np.empty(cap, dtype=np.bool_)  # the legs' checks not run yet (check_into)
+    nkey = np.empty(cap, dtype=np.int64)  # the node's closed-list key (check_into's, at push)
     parent[0] = -1
     row[0] = -1
     pos[0] = start
@@ -229,6 +232,7 @@ def search(
     fhead[0] = np.nan
     left[0] = False
     legs_due[0] = False
+    nkey[0] = cell_key(start, heading, par, ipar)
     nn = 1
     fcap = 256
     feats = np.empty((fcap, d))
@@ -268,7 +272,7 @@ def search(
         nid = heapq.heappop(heap)[2]
         p = pos[nid]
         hd = head[nid]
-        key = cell_key(p, hd, par, ipar)
+        key = nkey[nid]
         done = in_goal(p, hd, par, ipar)
         near = n_stop > 0 and within(p - goal, stop_reach)
         if key in closed and not done and not near:
@@ -376,6 +380,7 @@ def search(
             fhead = _grow1(fhead, cap)
             left = _grow1(left, cap)
             legs_due = _grow1(legs_due, cap)
+            nkey = _grow1(nkey, cap)
         for c in range(n_ok):
             e = ends[c]
             if (
@@ -394,6 +399,7 @@ def search(
             fhead[nn] = fheads[c]
             left[nn] = lefts[c]
             legs_due[nn] = True
+            nkey[nn] = keys[c]
             heapq.heappush(heap, (fs[c], counter, nn))
             counter += 1
             nn += 1
