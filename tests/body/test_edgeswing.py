@@ -132,11 +132,6 @@ def test_swing_clearance_of_a_swing_as_it_stands():
     assert swing_clearance(ankle, pitch, zero, zero, fr, surf, g) > -1e-3
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="first step down from standing on a landing: swing ankle held at landing height, "
-    "then drops 17 cm in the last samples (issue 47, gait47)",
-)
 def test_a_first_step_down_from_a_landing_lowers_its_foot_before_it_lands():
     """Down the 0.17/0.28 stair from standing on the top landing (1.75 m), the walk's first
     step lands on tread 1. Measured (gait47, as at 879469c): its swing ankle stays at the

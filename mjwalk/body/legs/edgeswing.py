@@ -41,6 +41,9 @@ class StepSurfaces:
         lift_pitch: the lift surface's slope along the swing foot's heading (+ uphill).
         stance_pitch: the stance surface's slope along the stance foot's heading.
         land_pitch: the landing surface's slope along the landing heading.
+        risers: the walk's riser edge lines, each (x, y, normal x, normal y, low, high,
+            half width) (:func:`riser_lines`); empty: unknown, each edge may lie anywhere
+            between the feet either side of it (:func:`_step_edges`).
     """
 
     lift: float
@@ -49,6 +52,7 @@ class StepSurfaces:
     lift_pitch: float = 0.0
     stance_pitch: float = 0.0
     land_pitch: float = 0.0
+    risers: tuple[tuple[float, ...], ...] = ()
 
     @property
     def edged(self) -> bool:
@@ -115,10 +119,53 @@ class _Edges:
     zr: np.ndarray
 
 
+def riser_lines(meta: dict | None) -> tuple[tuple[float, ...], ...]:
+    """A walk's riser edge lines from its ``meta["edges"]`` (the level planner's crossings,
+    :meth:`mjwalk.plan.levelroute.Crossing.riser_lines`, or a synthetic stair's): each as
+    (x, y, normal x, normal y, low, high, half width), metres; () without them."""
+    return tuple(
+        (*e["xy"], *e["normal"], e["low"], e["high"], e.get("half_width", 0.0))
+        for e in (meta or {}).get("edges") or ()
+    )
+
+
+#: How far (m) beside a riser's known width, or from its point when the width is unknown, a
+#: chord may cross its edge line and still cross that riser: the planner walks a crossing
+#: inside its width; the margin only keeps another stair's riser of the same heights, in line
+#: with this one, from being taken for it.
+RISER_SIDE_SLACK = 0.5
+
+
+def _true_edge(span: tuple[float, float], pair: tuple[float, float], fr: StepFrames,
+               risers) -> float | None:  # fmt: skip
+    """Where along the chord (m from the lift footprint) a riser between surfaces ``pair``
+    (heights, metres) crosses it: the riser of those heights (within :data:`LEVEL_STEP`)
+    whose edge line the chord crosses inside ``span`` (the footprints either side, metres),
+    the nearest to the span's middle; None when no known riser fits."""
+    seg = fr.land[:2] - fr.lift[:2]
+    e = seg / max(float(np.hypot(*seg)), 1e-9)
+    lo_z, hi_z = min(pair), max(pair)
+    best, key = None, math.inf
+    for x, y, nx, ny, low, high, half in risers:
+        cos = float(e @ (n := np.array([nx, ny])))
+        if abs(low - lo_z) > LEVEL_STEP or abs(high - hi_z) > LEVEL_STEP or abs(cos) < 0.3:
+            continue
+        t = float((np.array([x, y]) - fr.lift[:2]) @ n) / cos
+        side = abs(float((fr.lift[:2] + t * e - (x, y)) @ (-ny, nx)))
+        reach = (half if half > 0 else 0.0) + RISER_SIDE_SLACK * (1.0 if half > 0 else 4.0)
+        if span[0] <= t <= span[1] and side <= reach and abs(t - sum(span) / 2) < key:
+            best, key = t, abs(t - sum(span) / 2)
+    return best
+
+
 def _step_edges(fr: StepFrames, surf: StepSurfaces, geom: LegGeometry) -> _Edges:
     """The edges of an edged step: between the surfaces of the lift, stance and landing
-    footprints in their order along the chord, each from the toe of the foot behind to the
-    heel of the foot ahead (their midpoint where those overlap)."""
+    footprints in their order along the chord, each where its riser's edge line crosses the
+    chord (:func:`_true_edge`), or where the riser is not known, anywhere from the toe of the
+    foot behind to the heel of the foot ahead (their midpoint where those overlap). That span
+    held a first step down off a stair's landing, whose landing heel lay just past it, at the
+    landing's height to the last samples (hip 48.9 deg, then the knee 72 -> 8 deg in one
+    frame: gait47)."""
     seg = fr.land[:2] - fr.lift[:2]
     length = max(float(np.hypot(*seg)), 1e-9)
     e = seg / length
@@ -136,6 +183,8 @@ def _step_edges(fr: StepFrames, surf: StepSurfaces, geom: LegGeometry) -> _Edges
         a, b = x0 + geom.foot_front, x1 - geom.foot_back
         if a > b:
             a = b = 0.5 * (x0 + x1)
+        if (t := _true_edge((x0, x1), (z0, z1), fr, surf.risers)) is not None:
+            a = b = t
         lo.append(a)
         hi.append(b)
         ze.append(max(z0, z1))
