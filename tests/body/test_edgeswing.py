@@ -86,7 +86,9 @@ def test_descent_swing_keeps_off_low_clearances(stature):
     default and a tall walker (before: 3-5 mm)."""
     walk = synthetic_stair_walk(0.17, 0.28, 6, "down", stature=stature)
     motion = legs_from_walk(walk, stature=stature)
-    assert motion.meta["edge_clearance"] >= DESCENT_LOW_CLEARANCE
+    # the sole is lifted to exactly that floor where it passes a nosing (1.95 m, landing47:
+    # 0.005 - 1.3e-16 m, the edges at their risers), so float rounding is allowed for
+    assert motion.meta["edge_clearance"] >= DESCENT_LOW_CLEARANCE - 1e-9
 
 
 def test_sole_rise_lifts_toes_hanging_into_a_tread():
