@@ -9,9 +9,11 @@ from mjwalk.body.legs.edgeswing import (
     STAIR_TOE_CLEARANCE,
     StepSurfaces,
     rise_held,
+    riser_lines,
     sole_rise,
     swing_clearance,
 )
+from mjwalk.body.legs.legheights import HIP_PEAK_DOWN
 from mjwalk.body.legs.steps import StepFrames
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.plan.synthetic import synthetic_stair_walk
@@ -149,3 +151,32 @@ def test_a_first_step_down_from_a_landing_lowers_its_foot_before_it_lands():
     side = "left" if st.side[0] == "l" else "right"
     z = legs.ankle[side][st.start : st.end + 1, 2]
     assert np.abs(np.diff(z)).max() < 0.05
+
+
+def test_riser_lines_are_read_from_the_walk():
+    """A synthetic stair walk carries its six risers' edge lines, the first half a tread ahead
+    of the start; a walk without them has none (the edges then lie anywhere between the feet)."""
+    walk = synthetic_stair_walk(0.17, 0.28, 6, "down")
+    lines = riser_lines(walk.meta)
+    assert len(lines) == 6
+    x, y, nx, ny, low, high, half = lines[0]
+    assert (x, y, half) == pytest.approx((0.14, 0.0, 0.0))
+    assert (abs(nx), ny) == pytest.approx((1.0, 0.0)) and (low, high) == pytest.approx((0.85, 1.02))
+    assert riser_lines({}) == () and riser_lines(None) == ()
+
+
+@pytest.mark.parametrize("stature", [1.55, DEFAULT_STATURE, 1.95])
+def test_steps_down_off_a_landing_and_off_a_flight_move_smoothly(stature):
+    """Down the 0.17/0.28 stair the swing ankle never moves more than 5 cm in a frame and the
+    first step's hip stays within the cited descent peak (HIP_PEAK_DOWN, 45 deg). Before
+    (b3507ca, the edges anywhere between the feet): the first step's ankle fell 17.2 cm in
+    one frame (hip 54.1 / 48.9 / 47.6 deg at 1.55 / 1.75 / 1.95 m) and the last step's off the
+    flight 18.6 cm; with the riser edges: largest move 4.1 / 3.7 / 3.7 cm a frame, first-step
+    hip 31.2 / 29.0 / 28.6 deg (landing47)."""
+    walk = synthetic_stair_walk(0.17, 0.28, 6, "down", stature=stature)
+    legs = legs_from_walk(walk, stature)
+    for side in ("left", "right"):
+        assert np.linalg.norm(np.diff(legs.ankle[side], axis=0), axis=1).max() < 0.05
+    st = walk.steps[0]
+    hip = np.degrees(legs.angles[f"hip_{st.side[0]}_flex"][st.start : st.end + 1]).max()
+    assert hip <= HIP_PEAK_DOWN[1]
