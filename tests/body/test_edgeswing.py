@@ -144,7 +144,8 @@ def test_a_first_step_down_from_a_landing_lowers_its_foot_before_it_lands():
     last three samples (knee 72 -> 8 deg in one). Its landing heel lies just past the edge
     span (``_step_edges``: from the lift foot's toe to the landing heel), so the foot pitched
     toes down for its forefoot landing keeps its heel over the landing's side and ``sole_rise``
-    holds it up until the landing sample."""
+    holds it up until the landing sample. With the riser's edge where it is (the walk's
+    ``meta["edges"]``, landing47): largest drop 1.9 cm a frame, hip 29.0 deg, knee 58.5 deg."""
     walk = synthetic_stair_walk(0.17, 0.28, 6, "down", stature=1.75)
     legs = legs_from_walk(walk, 1.75)
     st = walk.steps[0]
