@@ -13,9 +13,9 @@ false) then passes through :func:`lift_to_levels`:
   once its sole clears the first edge by :data:`STAIR_TOE_CLEARANCE`, and lowers below the
   last edge only once past it; the edges lie between the footprints' surfaces (the toe of the
   foot behind, the heel of the foot ahead: on a stair with footprints on the treads' centres,
-  the nosings), on a step down where its riser is (the walk's ``meta["edges"]``). Steps whose surfaces are a ramp or level keep the flat swing, carried on the
-  heights of its ends, or over a ramp's top edge on the edge's height
-  (:func:`~mjwalk.body.legs.rampreach.crest_ground`).
+  the nosings), on a step down where its riser is (the walk's ``meta["edges"]``). Steps whose
+  surfaces are a ramp or level keep the flat swing, carried on the heights of its ends, or
+  over a ramp's top edge on the edge's height (:func:`~mjwalk.body.legs.rampreach.crest_ground`).
 * **The swing foot as its ankle holds it** (steps up): where the leg IK would ask the swing
   ankle for more dorsiflexion than its range (the shank leaning back behind a flexed knee),
   the foot hangs toes down by the excess and the swing is planned again with that pitch
