@@ -123,8 +123,14 @@ class _Edges:
 
 def riser_lines(meta: dict | None) -> tuple[tuple[float, ...], ...]:
     """A walk's riser edge lines from its ``meta["edges"]`` (the level planner's crossings,
-    :meth:`mjwalk.plan.levelroute.Crossing.riser_lines`, or a synthetic stair's): each as
-    (x, y, normal x, normal y, low, high, half width), metres; () without them."""
+    :meth:`mjwalk.plan.levelroute.Crossing.riser_lines`, or a synthetic stair's).
+
+    Args:
+        meta: the walk's meta (or None).
+
+    Returns:
+        each edge as (x, y, normal x, normal y, low, high, half width), metres; () without.
+    """
     return tuple(
         (*e["xy"], *e["normal"], e["low"], e["high"], e.get("half_width", 0.0))
         for e in (meta or {}).get("edges") or ()
