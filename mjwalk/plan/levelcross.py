@@ -291,7 +291,8 @@ def cross_walk(
         (was, turns, yaw), floor_z,
     )  # fmt: skip
     n = steps[-1].end if steps else 0
-    meta = {"crossing": c.kind, "direction": direction, "lower": c.lower, "upper": c.upper}
+    meta = {"crossing": c.kind, "direction": direction, "lower": c.lower, "upper": c.upper,
+            "edges": c.riser_lines(floor_z)}  # fmt: skip
     return WalkPath(
         t=np.arange(n + 1) / SAMPLE_RATE_HZ, xy=xy, yaw=yaws, steps=steps, meta=meta,
         z=z - floor_z,

@@ -168,6 +168,30 @@ class Crossing:
         left = np.array([-self.axis[1], self.axis[0]])
         return replace(self, origin=self.origin + float(offset) * left)
 
+    def riser_lines(self, floor_z: float) -> list[dict]:
+        """Where its risers' edges lie, for the legs' swing over them
+        (:func:`mjwalk.body.legs.edgeswing.true_edges`): each riser's edge line (the riser lies
+        halfway between the footfall positions on either side, as :meth:`height_at` has it).
+
+        Args:
+            floor_z: the floor's world height, metres (heights are given above it).
+
+        Returns:
+            per riser bottom up: ``xy`` a point of its edge line (world, metres), ``normal``
+            the unit axis across it, ``low``/``high`` the surfaces' heights below and above it
+            (above the floor, metres), ``half_width`` (metres, 0: unknown); none for a ramp.
+        """
+        if self.kind == "ramp":
+            return []
+        mid = 0.5 * (self.track[:-1] + self.track[1:])
+        return [
+            {"xy": [float(v) for v in self.point(float(s))],
+             "normal": [float(v) for v in self.axis],
+             "low": float(self.track_z[i]) - floor_z, "high": float(self.track_z[i + 1]) - floor_z,
+             "half_width": float(self.half_width)}
+            for i, s in enumerate(mid)
+        ]  # fmt: skip
+
     def fits(self, max_riser: float) -> bool:
         """Whether every riser is at most ``max_riser`` metres (a ramp always fits).
 

@@ -47,7 +47,9 @@ def stitch(workplace: Workplace, parts: Sequence[tuple[RouteLeg, WalkPath]]) -> 
 
     Returns:
         The walk: samples, steps and heights of all parts in order; ``meta`` the first level
-        walk's (its planner's counts) with ``seconds`` summed over the level walks.
+        walk's (its planner's counts) with ``seconds`` summed over the level walks and
+        ``edges`` the crossings' riser edges in order (:meth:`~mjwalk.plan.levelroute.
+        Crossing.riser_lines`).
     """
     ts: list[np.ndarray] = []
     xys: list[np.ndarray] = []
@@ -56,6 +58,7 @@ def stitch(workplace: Workplace, parts: Sequence[tuple[RouteLeg, WalkPath]]) -> 
     steps: list[PathStep] = []
     t_end, total, seconds = 0.0, 0, 0.0
     meta: dict = {}
+    edges: list[dict] = []  # the crossings' riser edges (levelroute.Crossing.riser_lines)
     for k, (leg, walk) in enumerate(parts):
         z, part_steps = _part_heights(workplace, leg, walk)
         first = 0 if k == 0 else 1
@@ -79,7 +82,8 @@ def stitch(workplace: Workplace, parts: Sequence[tuple[RouteLeg, WalkPath]]) -> 
         if "crossing" not in walk.meta:
             meta = meta or dict(walk.meta)
             seconds += float(walk.meta.get("seconds", 0.0))
-    meta = {**meta, "planner": "level_hybrid_astar", "seconds": seconds}
+        edges += walk.meta.get("edges", [])
+    meta = {**meta, "planner": "level_hybrid_astar", "seconds": seconds, "edges": edges}
     return WalkPath(
         t=np.concatenate(ts),
         xy=np.concatenate(xys),

@@ -143,7 +143,8 @@ def synthetic_stair_walk(
 
     Returns:
         the WalkPath; ``meta["stair"]`` holds riser, tread, n, direction and the first riser's
-        distance along the heading from ``start``.
+        distance along the heading from ``start``; ``meta["edges"]`` the risers' edge lines
+        (as :meth:`mjwalk.plan.levelroute.Crossing.riser_lines` gives them).
     """
     if n < 1 or direction not in ("up", "down") or riser <= 0 or tread <= 0:
         raise MjwalkError(
@@ -196,10 +197,19 @@ def synthetic_stair_walk(
         for i in range(n_steps)
     ]
     xy = np.array([x0, y0]) + s_of_t[:, None] * fwd
+    up = 1.0 if direction == "up" else -1.0  # the axis up the stair
+    edges = [
+        {"xy": [float(v) for v in np.array([x0, y0]) + (i + 0.5) * tread * fwd],
+         "normal": [float(v) for v in up * fwd],
+         "low": float(height((i + 1.0 if up < 0 else i) * tread)),
+         "high": float(height((i if up < 0 else i + 1.0) * tread)), "half_width": 0.0}
+        for i in range(n)
+    ]  # fmt: skip
     meta = {
         "planner": "synthetic",
         "stair": {"riser": riser, "tread": tread, "n": n, "direction": direction,
                   "first_riser": 0.5 * tread},
+        "edges": edges,
     }  # fmt: skip
     return WalkPath(t=t, xy=xy, yaw=np.full(m, h0), steps=steps, meta=meta, z=height(s_of_t))
 

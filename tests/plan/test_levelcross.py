@@ -56,6 +56,7 @@ def test_stair_walk_puts_a_foot_on_every_tread_at_the_stair_cadence(by_kind, dir
         assert (s.end - s.start) / 120.0 == pytest.approx(step_time, abs=1 / 120)
     assert walk.ground[-1] == pytest.approx(1.02 if direction == "up" else 0.0)
     assert crossing_time(stair, direction, walker) == pytest.approx(walk.duration, abs=0.05)
+    assert walk.meta["edges"] == stair.riser_lines(0.0)  # for the legs' swing (landing47)
 
 
 def test_slower_walkers_take_longer_on_the_stair(by_kind):

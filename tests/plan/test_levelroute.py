@@ -97,3 +97,21 @@ def test_place_on_edge_walks_the_side_nearest_the_walk(station):
     ]
     assert place_on_edge(straight, margin=0.25)[1].crossing is stair
     assert place_on_edge(legs, margin=0.5)[1].crossing is stair
+
+
+def test_riser_lines_lie_halfway_between_the_footfalls(station):
+    """Each riser's edge line crosses the axis halfway between the footfalls on either side
+    (where :meth:`Crossing.height_at` changes height), with the heights below and above it;
+    a ramp has none. The legs' swing takes its edges from these (landing47)."""
+    by_kind = {c.kind: c for c in crossings(station.levels, 0.33)}
+    stair = by_kind["stair"]
+    lines = stair.riser_lines(station.floor_z)
+    assert len(lines) == 6 and by_kind["ramp"].riser_lines(station.floor_z) == []
+    for k, e in enumerate(lines):
+        s = float((np.asarray(e["xy"]) - stair.origin) @ stair.axis)
+        assert s == pytest.approx(0.5 * (stair.track[k] + stair.track[k + 1]), abs=1e-9)
+        assert float(stair.height_at(s - 1e-3)) - station.floor_z == pytest.approx(e["low"])
+        assert float(stair.height_at(s + 1e-3)) - station.floor_z == pytest.approx(e["high"])
+        assert e["high"] - e["low"] == pytest.approx(0.17, abs=1e-6)
+        np.testing.assert_allclose(e["normal"], stair.axis)
+        assert e["half_width"] == pytest.approx(0.5)

@@ -41,6 +41,9 @@ class StepSurfaces:
         lift_pitch: the lift surface's slope along the swing foot's heading (+ uphill).
         stance_pitch: the stance surface's slope along the stance foot's heading.
         land_pitch: the landing surface's slope along the landing heading.
+        risers: the walk's riser edge lines, each (x, y, normal x, normal y, low, high,
+            half width) (:func:`riser_lines`); empty: unknown, each edge may lie anywhere
+            between the feet either side of it (:func:`_step_edges`).
     """
 
     lift: float
@@ -49,6 +52,7 @@ class StepSurfaces:
     lift_pitch: float = 0.0
     stance_pitch: float = 0.0
     land_pitch: float = 0.0
+    risers: tuple[tuple[float, ...], ...] = ()
 
     @property
     def edged(self) -> bool:
@@ -106,19 +110,74 @@ def _sole_points(ankle, pitch, toe, yaw, geom: LegGeometry) -> np.ndarray:
 class _Edges:
     """The step edges a swing crosses, along its chord from the lift footprint (metres):
     ``lo``/``hi`` (e,) where each edge may lie, ``z`` (e,) its height; ``cut`` (r - 1,) the
-    boundaries between the surfaces ``zr`` (r,) under the chord."""
+    boundaries between the surfaces ``zr`` (r,) under the chord; ``known`` (e,) whether an
+    edge lies where its riser is (:func:`_true_edge`)."""
 
     lo: np.ndarray
     hi: np.ndarray
     z: np.ndarray
     cut: np.ndarray
     zr: np.ndarray
+    known: tuple[bool, ...] = ()
+
+
+def riser_lines(meta: dict | None) -> tuple[tuple[float, ...], ...]:
+    """A walk's riser edge lines from its ``meta["edges"]`` (the level planner's crossings,
+    :meth:`mjwalk.plan.levelroute.Crossing.riser_lines`, or a synthetic stair's).
+
+    Args:
+        meta: the walk's meta (or None).
+
+    Returns:
+        each edge as (x, y, normal x, normal y, low, high, half width), metres; () without.
+    """
+    return tuple(
+        (*e["xy"], *e["normal"], e["low"], e["high"], e.get("half_width", 0.0))
+        for e in (meta or {}).get("edges") or ()
+    )
+
+
+#: How far (m) beside a riser's known width, or from its point when the width is unknown, a
+#: chord may cross its edge line and still cross that riser: the planner walks a crossing
+#: inside its width; the margin only keeps another stair's riser of the same heights, in line
+#: with this one, from being taken for it.
+RISER_SIDE_SLACK = 0.5
+
+
+def _true_edge(span: tuple[float, float], pair: tuple[float, float], fr: StepFrames,
+               risers) -> float | None:  # fmt: skip
+    """Where along the chord (m from the lift footprint) a riser between surfaces ``pair``
+    (heights, metres) crosses it: the riser of those heights (within :data:`LEVEL_STEP`)
+    whose edge line the chord crosses inside ``span`` (the footprints either side, metres),
+    the nearest to the span's middle; None when no known riser fits."""
+    seg = fr.land[:2] - fr.lift[:2]
+    e = seg / max(float(np.hypot(*seg)), 1e-9)
+    lo_z, hi_z = min(pair), max(pair)
+    best, key = None, math.inf
+    for x, y, nx, ny, low, high, half in risers:
+        cos = float(e @ (n := np.array([nx, ny])))
+        if abs(low - lo_z) > LEVEL_STEP or abs(high - hi_z) > LEVEL_STEP or abs(cos) < 0.3:
+            continue
+        t = float((np.array([x, y]) - fr.lift[:2]) @ n) / cos
+        side = abs(float((fr.lift[:2] + t * e - (x, y)) @ (-ny, nx)))
+        reach = (half if half > 0 else 0.0) + RISER_SIDE_SLACK * (1.0 if half > 0 else 4.0)
+        if span[0] <= t <= span[1] and side <= reach and abs(t - sum(span) / 2) < key:
+            best, key = t, abs(t - sum(span) / 2)
+    return best
 
 
 def _step_edges(fr: StepFrames, surf: StepSurfaces, geom: LegGeometry) -> _Edges:
     """The edges of an edged step: between the surfaces of the lift, stance and landing
-    footprints in their order along the chord, each from the toe of the foot behind to the
-    heel of the foot ahead (their midpoint where those overlap)."""
+    footprints in their order along the chord, each where its riser's edge line crosses the
+    chord (:func:`_true_edge`) on a step down, or where the riser is not known and on a step
+    up, anywhere from the toe of the foot behind to the heel of the foot ahead (their midpoint
+    where those overlap). That span held a first step down off a stair's landing, whose
+    landing heel lay just past it, at the landing's height to the last samples (hip 48.9 deg,
+    then the knee 72 -> 8 deg in one frame: gait47), and the last step off a flight likewise
+    (its ankle fell 18.6 cm in one frame at 1.55-1.95 m). Steps up keep the span: with the
+    true edge the closing step onto a stair's top landing, its toes held behind the nosing
+    until they clear it (:func:`_keep_behind_edges`), jumped 23-26 cm forward in one frame
+    at 1.55 and 1.75 m (landing47, not solved)."""
     seg = fr.land[:2] - fr.lift[:2]
     length = max(float(np.hypot(*seg)), 1e-9)
     e = seg / length
@@ -131,35 +190,44 @@ def _step_edges(fr: StepFrames, surf: StepSurfaces, geom: LegGeometry) -> _Edges
     for x, z in regions[1:]:
         if abs(z - merged[-1][1]) > LEVEL_STEP:
             merged.append((x, z))
-    lo, hi, ze, cut = [], [], [], []
+    lo, hi, ze, cut, known = [], [], [], [], []
+    down = surf.land < surf.lift - LEVEL_STEP  # steps up keep the span (docstring)
     for (x0, z0), (x1, z1) in itertools.pairwise(merged):
         a, b = x0 + geom.foot_front, x1 - geom.foot_back
         if a > b:
             a = b = 0.5 * (x0 + x1)
+        t = _true_edge((x0, x1), (z0, z1), fr, surf.risers) if down else None
+        a, b = (a, b) if t is None else (t, t)
+        known.append(t is not None)
         lo.append(a)
         hi.append(b)
         ze.append(max(z0, z1))
         cut.append(0.5 * (a + b))
-    return _Edges(
-        np.array(lo), np.array(hi), np.array(ze), np.array(cut), np.array([z for _, z in merged])
-    )
+    zr = np.array([z for _, z in merged])
+    return _Edges(np.array(lo), np.array(hi), np.array(ze), np.array(cut), zr, tuple(known))
 
 
 def _edges_off_grounded(edges: _Edges, ends: np.ndarray, fr: StepFrames) -> _Edges:
     """The edges moved off the grounded feet: the foot at lift-off stands on its surface, so
     the first edge lies ahead of its sole's foremost point (its toe tip in the toe-off pose,
     which reaches past the toe of the flat foot), and the landed foot stands on its surface,
-    so the last edge lies behind its sole's rearmost point. ``ends`` (2, 3, 3): the sole's
-    heel, ball and toe at the last grounded sample before lift-off and at landing."""
+    so the last edge lies behind its sole's rearmost point; an edge whose riser is known
+    stays where it is (a tall walker's toes hang over the nosing ahead, in the air: moved
+    past them, the last step off a flight held its foot up and dropped it 18.6 cm in one
+    frame at 1.95 m). ``ends`` (2, 3, 3): the sole's heel, ball and toe at the last grounded
+    sample before lift-off and at landing."""
     seg = fr.land[:2] - fr.lift[:2]
     e = seg / max(float(np.hypot(*seg)), 1e-9)
     x = (ends[..., :2] - fr.lift[:2]) @ e  # (2, 3)
     lo, hi = edges.lo.copy(), edges.hi.copy()
-    lo[0] = max(lo[0], float(x[0].max()) + 1e-3)
-    hi[0] = max(hi[0], lo[0])
-    hi[-1] = min(hi[-1], float(x[1].min()) - 1e-3)
-    lo[-1] = min(lo[-1], hi[-1])
-    return _Edges(lo, hi, edges.z, 0.5 * (lo + hi), edges.zr)
+    known = edges.known or (False,) * len(lo)
+    if not known[0]:
+        lo[0] = max(lo[0], float(x[0].max()) + 1e-3)
+        hi[0] = max(hi[0], lo[0])
+    if not known[-1]:
+        hi[-1] = min(hi[-1], float(x[1].min()) - 1e-3)
+        lo[-1] = min(lo[-1], hi[-1])
+    return _Edges(lo, hi, edges.z, 0.5 * (lo + hi), edges.zr, edges.known)
 
 
 def _clearance_deficit(pts: np.ndarray, fr: StepFrames, edges: _Edges, clearance: float) -> float:

@@ -13,9 +13,9 @@ false) then passes through :func:`lift_to_levels`:
   once its sole clears the first edge by :data:`STAIR_TOE_CLEARANCE`, and lowers below the
   last edge only once past it; the edges lie between the footprints' surfaces (the toe of the
   foot behind, the heel of the foot ahead: on a stair with footprints on the treads' centres,
-  the nosings). Steps whose surfaces are a ramp or level keep the flat swing, carried on the
-  heights of its ends, or over a ramp's top edge on the edge's height
-  (:func:`~mjwalk.body.legs.rampreach.crest_ground`).
+  the nosings), on a step down where its riser is (the walk's ``meta["edges"]``). Steps whose
+  surfaces are a ramp or level keep the flat swing, carried on the heights of its ends, or
+  over a ramp's top edge on the edge's height (:func:`~mjwalk.body.legs.rampreach.crest_ground`).
 * **The swing foot as its ankle holds it** (steps up): where the leg IK would ask the swing
   ankle for more dorsiflexion than its range (the shank leaning back behind a flexed knee),
   the foot hangs toes down by the excess and the swing is planned again with that pitch
@@ -59,6 +59,7 @@ from mjwalk.body.legs.edgeswing import (
     SOLE_MARGIN,
     StepSurfaces,
     edge_swing,
+    riser_lines,
     sole_rise,
     swing_clearance,
 )
@@ -192,7 +193,7 @@ def step_surfaces(walk: WalkPath, geom: LegGeometry | None = None) -> list[StepS
     Returns:
         one :class:`StepSurfaces` per step.
     """
-    out = []
+    out, lines = [], riser_lines(walk.meta)
     on_ramp = _on_ramp(walk)
     pitches = [
         (_pitch(walk, on_ramp[k], s.foot), _pitch(walk, on_ramp[max(k - 1, 0)], s.stance))
@@ -208,6 +209,7 @@ def step_surfaces(walk: WalkPath, geom: LegGeometry | None = None) -> list[StepS
                 lift_pitch=pitches[k - 1][1] if k else pitches[k][1],
                 stance_pitch=pitches[k][1],
                 land_pitch=pitches[k][0],
+                risers=lines,
             )
         )
     return ramps.level_feet_on_ramps(walk, out, geom)
@@ -398,7 +400,7 @@ def _place_swings(frames, surfs, tr: LevelTracks, feet: FootTracks, flat_ankle,
             tau = np.arange(len(k)) / (len(k) - 1)
             ease = 1.0 - smoothstep(tau / 0.25)
             land = smoothstep((tau - 0.8) / 0.2)
-            if _descends(sf):
+            if sf.descends:
                 ease, land = 1.0 - smoothstep(tau), smoothstep(tau)
             feet.pitch[s][k] = feet.pitch[s][k[0]] * ease + feet.pitch[s][k[-1]] * land
             feet.toe[s][k] = feet.toe[s][k[0]] * ease + feet.toe[s][k[-1]] * land
@@ -440,9 +442,9 @@ def _swing_pitch(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
     swing is planned again so that the toes and the heel of that pitched foot clear the edges
     (the swing rises where they would not). In place; returns the least clearance, metres."""
     up = [p for p in plans if p[1].land > p[1].lift + LEVEL_STEP]
-    down = [p for p in plans if _descends(p[1])]
+    down = [p for p in plans if p[1].descends]
     _plan_edged(down, feet, geom)  # their clearance is :func:`_soles_clear`'s
-    rest = [p for p in plans if p[1].land <= p[1].lift + LEVEL_STEP and not _descends(p[1])]
+    rest = [p for p in plans if p[1].land <= p[1].lift + LEVEL_STEP and not p[1].descends]
     least = min(_plan_edged(rest, feet, geom), _plan_edged(up, feet, geom))
     top = math.radians(ROM_DEG["ankle_flex"][1])
     for _ in range(SWING_PASSES if up else 0):
@@ -503,7 +505,7 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
         moved = False
         for fr, sf, k, _ in plans:
             s = fr.side
-            margin = DESCENT_LOW_CLEARANCE if _descends(sf) else SOLE_MARGIN
+            margin = DESCENT_LOW_CLEARANCE if sf.descends else SOLE_MARGIN
             rise = sole_rise(feet.ankle[s][k], feet.pitch[s][k], feet.toe[s][k], feet.fyaw[s][k],
                              fr, sf, geom, margin)  # fmt: skip
             feet.ankle[s][k, 2] += rise
@@ -512,18 +514,12 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
             break
     least = math.inf
     for fr, sf, k, _ in plans:
-        if _descends(sf):
+        if sf.descends:
             s = fr.side
             gap = swing_clearance(feet.ankle[s][k], feet.pitch[s][k], feet.toe[s][k],
                                   feet.fyaw[s][k], fr, sf, geom)  # fmt: skip
             least = min(least, gap)
     return least
-
-
-def _descends(sf: StepSurfaces) -> bool:
-    """Whether an edged step is a step down a stair (:attr:`StepSurfaces.descends`), whose
-    swing :func:`edge_swing` plans once (not again at each pitch)."""
-    return sf.descends
 
 
 def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, root: np.ndarray,
