@@ -192,15 +192,19 @@ def trailing_reach(
 def _on_plane(plane: dict, print_) -> tuple[float, float] | None:
     """The height above the floor (m) and pitch (rad) of a ramp's plane under a footprint
     (x, y, yaw), or None off the ramp (beyond its ends or, its width known, its sides)."""
-    up = float(plane["uphill"])
-    rel = np.asarray(print_[:2], float) - np.asarray(plane["foot"], float)
-    along = float(rel @ np.array([math.cos(up), math.sin(up)]))
-    side = abs(float(rel @ np.array([-math.sin(up), math.cos(up)])))
-    half = float(plane.get("half_width", 0.0))
-    if not 0.0 <= along <= float(plane["run"]) or (half > 0.0 and side > half):
+    h = float(plane_heights(plane, np.asarray(print_[:2], float)))
+    if h == -math.inf:
         return None
-    rise = math.tan(float(plane["slope"]))
-    return float(plane.get("z", 0.0)) + rise * along, plane_pitch(plane, np.asarray(print_, float))
+    return h, plane_pitch(plane, np.asarray(print_, float))
+
+
+def _widened(planes: list[dict], geom: LegGeometry) -> list[dict]:
+    """Ramp planes of known width widened on each side by the gap between two :data:`SOLE_GRID`
+    points across the sole, so a sole edge between two tested points still meets the ramp's
+    side (the swings' checks over ramps)."""
+    side = geom.foot_width / (SOLE_GRID[1] - 1)
+    return [{**p, "half_width": p["half_width"] + side} if p.get("half_width", 0.0) > 0.0
+            else p for p in planes]  # fmt: skip
 
 
 def level_planes(walk, n: int) -> tuple[list[dict], list[bool]]:
@@ -369,9 +373,7 @@ def swing_over_ramps(walk, frames: list[StepFrames], air: dict, feet: FootTracks
     across = np.linspace(-0.5, 0.5, SOLE_GRID[1])
     grid = [(d, w) for d in np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
             for w in across]  # fmt: skip
-    side = geom.foot_width * float(across[1] - across[0])  # a side edge between two points
-    planes = [{**p, "half_width": p["half_width"] + side} if p.get("half_width", 0.0) > 0.0
-              else p for p in planes]  # fmt: skip
+    planes = _widened(planes, geom)
     for fr, on_level in zip(frames, level, strict=True):
         s = fr.side
         j = np.flatnonzero(air[s][fr.start : fr.end]) + fr.start
@@ -476,9 +478,7 @@ def edged_swings_over_ramps(
     mine = [(fr.side, k[1:-1]) for fr, _, k, _ in plans if level[index[id(fr)]] and len(k) > 2]
     if not mine:
         return
-    widen = geom.foot_width / (SOLE_GRID[1] - 1)
-    planes = [{**p, "half_width": p["half_width"] + widen} if p.get("half_width", 0.0) > 0.0
-              else p for p in planes]  # fmt: skip
+    planes = _widened(planes, geom)
     top = math.radians(ROM_DEG["ankle_flex"][1])
     for _ in range(EDGED_RAMP_PASSES):
         moved = False
