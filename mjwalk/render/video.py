@@ -11,10 +11,16 @@ World frame: metres, z up; image pixels (u right, v down) from the top-left corn
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import os
 import queue
+import re
+import signal
+import subprocess
+import tempfile
 import threading
+from fractions import Fraction
 
 from mjwalk.render._gl import available_backend, ensure_headless_backend
 
@@ -451,35 +457,83 @@ class _Drawer:
 
 
 class _Video:
-    """ffmpeg (imageio-ffmpeg) writing H.264 from top-down RGB frames; no per-frame
+    """ffmpeg (imageio-ffmpeg's binary) writing H.264 from top-down RGB frames; no per-frame
     allocation: each frame is flipped into one reused buffer, whose bytes go down the pipe
-    (the write releases the GIL; ffmpeg encodes in its own process)."""
+    (the write releases the GIL; ffmpeg encodes in its own process).
+
+    The process is started here, not through ``imageio_ffmpeg.write_frames``, because that
+    generator never looks at ffmpeg's exit status: an ffmpeg that fails or is killed after it
+    has read the last frame (a file size limit reached while the encoder flushes, with
+    ``SIGXFSZ`` back at its default in the child) left a cut file that was renamed into place
+    as a finished video. The command line is the one ``write_frames`` builds for these
+    options (``-crf`` from imageio-ffmpeg's quality mapping), so the bytes written are the same.
+    """
 
     def __init__(self, path, size: tuple[int, int], fps: float):
         w, h = int(size[0]), int(size[1])
         self._flip = np.empty((h, w, 3), np.uint8)
-        self._writer = imageio_ffmpeg.write_frames(
+        crf = int((1 - VIDEO_QUALITY / 10.0) * 51)  # imageio-ffmpeg: quality 0-10 -> crf 51-0
+        cmd = [
+            imageio_ffmpeg.get_ffmpeg_exe(),
+            "-y",
+            "-f", "rawvideo", "-vcodec", "rawvideo",
+            "-s", f"{w}x{h}", "-pix_fmt", "rgb24",
+            "-r", str(Fraction(fps).limit_denominator()),
+            "-i", "-", "-an",
+            "-vcodec", VIDEO_CODEC, "-pix_fmt", "yuv420p", "-crf", str(crf),
+            "-v", "warning", "-preset", VIDEO_PRESET,
             str(path),
-            (w, h),
-            fps=fps,
-            codec=VIDEO_CODEC,
-            quality=VIDEO_QUALITY,
-            macro_block_size=1,
-            ffmpeg_log_level="warning",
-            output_params=["-preset", VIDEO_PRESET],
+        ]  # fmt: skip
+        self._log = tempfile.TemporaryFile()  # ffmpeg's messages: the last line names a failure
+        self._proc = subprocess.Popen(
+            cmd,
+            stdin=subprocess.PIPE,
+            stdout=subprocess.DEVNULL,
+            stderr=self._log,
+            start_new_session=True,  # a Ctrl-C stops mjwalk, which then stops ffmpeg
         )
-        self._writer.send(None)  # start ffmpeg
 
     def write_bottom_up(self, buf: np.ndarray) -> None:
         """Append a frame stored bottom-up (as OpenGL reads it)."""
         np.copyto(self._flip, buf[::-1])
+        assert self._proc.stdin is not None
         try:
-            self._writer.send(self._flip)
-        except OSError as exc:  # imageio-ffmpeg's message holds ffmpeg's whole command line
+            self._proc.stdin.write(self._flip.data)
+        except OSError as exc:
             raise BrokenPipeError(errno.EPIPE, "ffmpeg stopped writing it") from exc
 
-    def close(self) -> None:
-        self._writer.close()
+    def close(self, ok: bool = True) -> None:
+        """Let ffmpeg finish the file (``ok``), or stop it (the write failed elsewhere).
+
+        Raises:
+            BrokenPipeError: ``ok`` and ffmpeg exited with an error or was killed by a signal.
+        """
+        proc, log = self._proc, self._log
+        try:
+            if not ok:
+                proc.kill()
+                proc.wait()
+                return
+            assert proc.stdin is not None
+            with contextlib.suppress(OSError):  # a dead ffmpeg: its exit status says why
+                proc.stdin.close()
+            code = proc.wait()
+            if code != 0:
+                log.seek(0)
+                lines = log.read().decode(errors="replace").strip().splitlines()
+                why = (
+                    f"killed by {signal.Signals(-code).name}"
+                    if code < 0
+                    else re.sub(r"^\[[^]]*\]\s*", "", lines[-1])
+                    if lines
+                    else f"exit code {code}"
+                )
+                raise BrokenPipeError(errno.EPIPE, f"ffmpeg stopped writing it: {why}")
+        finally:
+            if proc.poll() is None:  # interrupted while waiting for it
+                proc.kill()
+                proc.wait()
+            log.close()
 
 
 def render_video(
@@ -527,6 +581,7 @@ def render_video(
     drawers = [_Drawer(timeline, camera, (w, h), frames[k::n], geoms, view, lock) for k in range(n)]
     with atomic_path(path, suffix=".mp4") as tmp:
         video = _Video(tmp, (w, h), fps)
+        finished = False
         try:
             for d in drawers:
                 d.start()
@@ -539,7 +594,8 @@ def render_video(
                     raise MjwalkError(f"render_video: drawing failed: {got}") from got
                 video.write_bottom_up(d.bufs[got[1]])
                 d.free.put(got[1])
+            finished = True
         finally:
             for d in drawers:
                 d.stop()
-            video.close()
+            video.close(ok=finished)

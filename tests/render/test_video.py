@@ -203,3 +203,31 @@ def test_render_video_drawing_error_leaves_no_file(tmp_path, timeline, monkeypat
     with pytest.raises(MjwalkError, match="size"):
         render.render_video(short, out, size=(0, 480), progress=False)
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize(
+    "ending, why",
+    [
+        ("echo '[out#0/mp4 @ 0x1] Error writing trailer: File too large' >&2; exit 1",
+         "Error writing trailer: File too large"),
+        ("kill -XFSZ $$", "killed by SIGXFSZ"),
+    ],
+    ids=["error", "signal"],
+)  # fmt: skip
+def test_an_ffmpeg_failing_after_the_last_frame_leaves_no_video(
+    tmp_path, timeline, monkeypatch, ending, why
+):
+    """ffmpeg may read every frame and fail only while it flushes the encoder and writes the
+    file's index (a file size limit reached then: the race CI met, where a cut 20 kB mp4 was
+    renamed into place as finished). Its exit status is checked, so the write fails and no
+    file is left. A stand-in ffmpeg reads all frames, then ends as the real one can."""
+    short = type(timeline)(**{**timeline.__dict__, "qpos": timeline.qpos[:4], "t": timeline.t[:4]})
+    fake = tmp_path / "bin" / "ffmpeg"
+    fake.parent.mkdir()
+    fake.write_text(f"#!/bin/sh\ncat > /dev/null\n{ending}\n")
+    fake.chmod(0o755)
+    monkeypatch.setattr(render.imageio_ffmpeg, "get_ffmpeg_exe", lambda: str(fake))
+    out = tmp_path / "out" / "walk.mp4"
+    with pytest.raises(OSError, match=f"cannot write {out}: ffmpeg stopped writing it: {why}"):
+        render.render_video(short, out, camera="top", size=(32, 24), progress=False)
+    assert not (tmp_path / "out").exists()
