@@ -11,16 +11,9 @@ World frame: metres, z up; image pixels (u right, v down) from the top-left corn
 
 from __future__ import annotations
 
-import contextlib
-import errno
 import os
 import queue
-import re
-import signal
-import subprocess
-import tempfile
 import threading
-from fractions import Fraction
 
 from mjwalk.render._gl import available_backend, ensure_headless_backend
 
@@ -28,7 +21,6 @@ from mjwalk.render._gl import available_backend, ensure_headless_backend
 _SELECTED = ensure_headless_backend()
 
 
-import imageio_ffmpeg  # noqa: E402
 import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
 from tqdm import tqdm  # noqa: E402
@@ -37,6 +29,7 @@ from mjwalk._args import check_fps  # noqa: E402
 from mjwalk._io import atomic_path  # noqa: E402
 from mjwalk.body.humanoid import HUMAN_GROUP  # noqa: E402
 from mjwalk.errors import InputError, MjwalkError  # noqa: E402
+from mjwalk.render._ffmpeg import FfmpegWriter  # noqa: E402
 from mjwalk.render.pathgeoms import (  # noqa: E402
     add_path_geoms,
     path_geoms,
@@ -377,15 +370,6 @@ N_DRAWERS = 2
 #: Frame buffers per drawing thread: a drawer runs at most this many frames ahead of the
 #: encoder (640x480x3 bytes each).
 N_BUFFERS = 2
-#: H.264 settings of the videos: imageio-ffmpeg's quality 7 (x264 CRF 15) at x264's
-#: ``veryfast`` preset, which halves the encoder's CPU time against the default ``medium``
-#: (300 station frames: 1.9 s vs 4.1 s of CPU) for 50.8 dB PSNR against the rendered frames
-#: (medium: 54.8 dB) and a file of the same size (763 vs 810 kB). Measured with ffmpeg 9.0.2
-#: of imageio-ffmpeg 0.8.1 on frames from benchmarks/bench_render.py
-#: (``ffmpeg -f rawvideo ... -crf 15 -preset P``, ``-lavfi psnr``).
-VIDEO_CODEC = "libx264"
-VIDEO_QUALITY = 7
-VIDEO_PRESET = "veryfast"
 
 
 def video_frames(timeline: Timeline, fps: float) -> np.ndarray:
@@ -456,86 +440,6 @@ class _Drawer:
             self.done.put(exc)
 
 
-class _Video:
-    """ffmpeg (imageio-ffmpeg's binary) writing H.264 from top-down RGB frames; no per-frame
-    allocation: each frame is flipped into one reused buffer, whose bytes go down the pipe
-    (the write releases the GIL; ffmpeg encodes in its own process).
-
-    The process is started here, not through ``imageio_ffmpeg.write_frames``, because that
-    generator never looks at ffmpeg's exit status: an ffmpeg that fails or is killed after it
-    has read the last frame (a file size limit reached while the encoder flushes, with
-    ``SIGXFSZ`` back at its default in the child) left a cut file that was renamed into place
-    as a finished video. The command line is the one ``write_frames`` builds for these
-    options (``-crf`` from imageio-ffmpeg's quality mapping), so the bytes written are the same.
-    """
-
-    def __init__(self, path, size: tuple[int, int], fps: float):
-        w, h = int(size[0]), int(size[1])
-        self._flip = np.empty((h, w, 3), np.uint8)
-        crf = int((1 - VIDEO_QUALITY / 10.0) * 51)  # imageio-ffmpeg: quality 0-10 -> crf 51-0
-        cmd = [
-            imageio_ffmpeg.get_ffmpeg_exe(),
-            "-y",
-            "-f", "rawvideo", "-vcodec", "rawvideo",
-            "-s", f"{w}x{h}", "-pix_fmt", "rgb24",
-            "-r", str(Fraction(fps).limit_denominator()),
-            "-i", "-", "-an",
-            "-vcodec", VIDEO_CODEC, "-pix_fmt", "yuv420p", "-crf", str(crf),
-            "-v", "warning", "-preset", VIDEO_PRESET,
-            str(path),
-        ]  # fmt: skip
-        self._log = tempfile.TemporaryFile()  # ffmpeg's messages: the last line names a failure
-        self._proc = subprocess.Popen(
-            cmd,
-            stdin=subprocess.PIPE,
-            stdout=subprocess.DEVNULL,
-            stderr=self._log,
-            start_new_session=True,  # a Ctrl-C stops mjwalk, which then stops ffmpeg
-        )
-
-    def write_bottom_up(self, buf: np.ndarray) -> None:
-        """Append a frame stored bottom-up (as OpenGL reads it)."""
-        np.copyto(self._flip, buf[::-1])
-        assert self._proc.stdin is not None
-        try:
-            self._proc.stdin.write(self._flip.data)
-        except OSError as exc:
-            raise BrokenPipeError(errno.EPIPE, "ffmpeg stopped writing it") from exc
-
-    def close(self, ok: bool = True) -> None:
-        """Let ffmpeg finish the file (``ok``), or stop it (the write failed elsewhere).
-
-        Raises:
-            BrokenPipeError: ``ok`` and ffmpeg exited with an error or was killed by a signal.
-        """
-        proc, log = self._proc, self._log
-        try:
-            if not ok:
-                proc.kill()
-                proc.wait()
-                return
-            assert proc.stdin is not None
-            with contextlib.suppress(OSError):  # a dead ffmpeg: its exit status says why
-                proc.stdin.close()
-            code = proc.wait()
-            if code != 0:
-                log.seek(0)
-                lines = log.read().decode(errors="replace").strip().splitlines()
-                why = (
-                    f"killed by {signal.Signals(-code).name}"
-                    if code < 0
-                    else re.sub(r"^\[[^]]*\]\s*", "", lines[-1])
-                    if lines
-                    else f"exit code {code}"
-                )
-                raise BrokenPipeError(errno.EPIPE, f"ffmpeg stopped writing it: {why}")
-        finally:
-            if proc.poll() is None:  # interrupted while waiting for it
-                proc.kill()
-                proc.wait()
-            log.close()
-
-
 def render_video(
     timeline: Timeline,
     path: str | os.PathLike,
@@ -549,8 +453,9 @@ def render_video(
     """Render the timeline offscreen to an mp4 (H.264 via imageio-ffmpeg), atomically.
 
     :data:`N_DRAWERS` threads draw alternate frames, each in its own OpenGL context, while
-    this thread puts the frames in order and feeds them to ffmpeg (:class:`_Video`), so
-    drawing, rasterizing and encoding overlap instead of adding up.
+    this thread puts the frames in order and feeds them to ffmpeg
+    (:class:`~mjwalk.render._ffmpeg.FfmpegWriter`), so drawing, rasterizing and encoding
+    overlap instead of adding up.
 
     Args:
         timeline: the poses to show.
@@ -580,7 +485,7 @@ def render_video(
     n = min(N_DRAWERS, len(frames))
     drawers = [_Drawer(timeline, camera, (w, h), frames[k::n], geoms, view, lock) for k in range(n)]
     with atomic_path(path, suffix=".mp4") as tmp:
-        video = _Video(tmp, (w, h), fps)
+        video = FfmpegWriter(tmp, (w, h), fps)
         finished = False
         try:
             for d in drawers:

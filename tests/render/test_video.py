@@ -18,6 +18,7 @@ import pytest
 
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.synthetic import synthetic_walk as make_walk
+from mjwalk.render import _ffmpeg
 from mjwalk.render import video as render
 from mjwalk.render._gl import available_backend
 from mjwalk.timeline import timeline_from_walk
@@ -226,7 +227,7 @@ def test_an_ffmpeg_failing_after_the_last_frame_leaves_no_video(
     fake.parent.mkdir()
     fake.write_text(f"#!/bin/sh\ncat > /dev/null\n{ending}\n")
     fake.chmod(0o755)
-    monkeypatch.setattr(render.imageio_ffmpeg, "get_ffmpeg_exe", lambda: str(fake))
+    monkeypatch.setattr(_ffmpeg.imageio_ffmpeg, "get_ffmpeg_exe", lambda: str(fake))
     out = tmp_path / "out" / "walk.mp4"
     with pytest.raises(OSError, match=f"cannot write {out}: ffmpeg stopped writing it: {why}"):
         render.render_video(short, out, camera="top", size=(32, 24), progress=False)
