@@ -105,3 +105,21 @@ def test_geom_table_columns_and_rows_are_geom_poses_bit_for_bit():
     assert table.xpos[rows].tobytes() == alone[0].tobytes()
     assert table.xmat[rows].tobytes() == alone[1].tobytes()
     assert table.columns(np.array([1])) is None
+
+
+def test_table_columns_keep_the_layout_of_numpy_indexing():
+    """A subset of a table's columns is a copy laid out as ``xpos[:, col]`` lays it out (a
+    (G', F, k) block seen as (F, G', k)): the readers' strided loops, and their last bits,
+    stay those they had with NumPy's indexing."""
+    from mjwalk.timeline.geomposes import GeomTable
+
+    rng = np.random.default_rng(3)
+    xpos, xmat = rng.random((40, 9, 3)), rng.random((40, 9, 9))
+    table = GeomTable(np.arange(9) * 3 + 2, xpos, xmat)
+    col = np.array([7, 0, 4])
+    got = table.columns(table.geoms[col])
+    assert got is not None
+    for a, full in zip(got, (xpos, xmat), strict=True):
+        want = full[:, col]
+        assert a.shape == want.shape and a.strides == want.strides
+        assert np.array_equal(a, want) and not np.shares_memory(a, full)
