@@ -16,6 +16,9 @@ from typing import Generic, TypeVar
 K = TypeVar("K", bound=Hashable)
 V = TypeVar("V")
 
+#: What :meth:`Memo.get` finds for a key not kept (no value is this object).
+_ABSENT = object()
+
 
 class Memo(Generic[K, V]):
     """The values ``make(key)``, each made on its key's first :meth:`get` and kept, at most
@@ -48,14 +51,18 @@ class Memo(Generic[K, V]):
         Raises:
             TypeError: the memo has no maker and the call gives none.
         """
-        if key not in self._kept:
-            if make is None and self._make is None:
-                raise TypeError("Memo.get: no maker for a key not kept")
-            if self._limit is not None:
-                while len(self._kept) >= self._limit:
-                    self._kept.pop(next(iter(self._kept)))
-            self._kept[key] = make() if make is not None else self._make(key)  # type: ignore[misc]
-        return self._kept[key]
+        kept = self._kept
+        value = kept.get(key, _ABSENT)  # one hash of the key on a hit (a stand zone's is long)
+        if value is not _ABSENT:
+            return value  # type: ignore[return-value]
+        if make is None and self._make is None:
+            raise TypeError("Memo.get: no maker for a key not kept")
+        if self._limit is not None:
+            while len(kept) >= self._limit:
+                kept.pop(next(iter(kept)))
+        value = make() if make is not None else self._make(key)  # type: ignore[misc]
+        kept[key] = value
+        return value
 
     def __len__(self) -> int:
         return len(self._kept)

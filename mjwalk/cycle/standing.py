@@ -75,6 +75,15 @@ class StandZone:
     radius: float
     discs: tuple[tuple[float, float, float], ...]
 
+    def __hash__(self) -> int:
+        # the dataclass's own hash (of the fields' tuple), computed once: a zone keys the
+        # cycle's planners (mjwalk.cycle.context.Planners), asked for on every walk
+        h = self.__dict__.get("_hash")
+        if h is None:
+            h = hash((self.centre, self.radius, self.discs))
+            object.__setattr__(self, "_hash", h)
+        return h
+
     def contains(self, xy) -> bool:
         """Whether the floor point ``xy`` lies in the zone (within 1e-9 m of its bounds).
 

@@ -125,6 +125,10 @@ class StepModel:
         # factors that covariance (SVD) and normalizes the weights on every call; both are
         # fixed, so they are computed here, once (see _kde_resample). Building the kde objects
         # themselves would import scipy.stats (about 1 s) for every ``mjwalk plan``.
+        b = self._base  # for_walker's model: its base's KDE, so its factors
+        if b is not None and b.kde_data is self.kde_data and b.kde_factor is self.kde_factor:
+            self._kde_draw: dict[str, tuple[np.ndarray, np.ndarray]] = b._kde_draw
+            return
         self._kde_draw = {}
         for s in _SIDES:
             data = self.kde_data[s]

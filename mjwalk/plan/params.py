@@ -136,6 +136,9 @@ class KernelParams:
             [options.radius + SAFETY_MARGIN] * m + [FOOT_CLEARANCE] * 2 + [KNEE_CLEARANCE] * 2
         )
         self._held: dict[float, tuple[np.ndarray, np.ndarray]] = {}
+        #: The float vector's slots that do not depend on the stature, and the integer vector
+        #: (which does not at all): made on first use, a walker's stature filled in per stature
+        self._shared: tuple[np.ndarray, np.ndarray] | None = None
 
     def vectors(self, stature: float = DEFAULT_STATURE) -> tuple[np.ndarray, np.ndarray]:
         """The float and integer vectors for a walker of ``stature`` metres (the landing leg's
@@ -150,7 +153,9 @@ class KernelParams:
         """
         held = self._held.get(stature)
         if held is None:
-            held = self._held[stature] = (self._floats(stature), self._integers())
+            if self._shared is None:
+                self._shared = (self._floats(), self._integers())
+            held = self._held[stature] = (_with_stature(self._shared[0], stature), self._shared[1])
         return held[0].copy(), held[1].copy()
 
     def for_walk(self, stature: float, walk: WalkTerms) -> tuple[np.ndarray, np.ndarray]:
@@ -193,20 +198,14 @@ class KernelParams:
         par[slots.P_FAR_WEIGHT] = walk.far_weight
         return par, ipar
 
-    def _floats(self, stature: float) -> np.ndarray:
+    def _floats(self) -> np.ndarray:
+        """The float vector but for the stature's slots (nan; :func:`_with_stature`)."""
         o, grid, walk = self.options, self.grid, self.walk_field
         m = o.samples_per_step
         knee_cols = _knee_cols(m)
-        knee_lead, knee_side = knee_reach(stature)
-        toe_front, toe_side = toe_corners(stature)
         par = slots.params(
-            knee_lead=knee_lead,
-            knee_side=knee_side,
-            knee_pivot=knee_pivot(stature),
             swing_lift_turn=SWING_LIFT_TURN,
             foot_length=FOOT_LENGTH,
-            toe_front=toe_front,
-            toe_side=toe_side,
             toe_clearance=TOE_CORNER_CLEARANCE,
             foot_reach=MAX_FOOT_REACH,
             lift_reach=MAX_LIFT_REACH,
@@ -239,7 +238,6 @@ class KernelParams:
             far_weight=o.far_weight,
             far_from=FAR_FROM,
             leg_step=LEG_PROBE_STEP,
-            leg_clearance=leg_clearance(stature),
             toe_share=TOE_APPROACH_SHARE,
             toe_step=TOE_PROBE_STEP,
             dist_offset=0.0,
@@ -276,6 +274,17 @@ class KernelParams:
             near_goal_expansions=NEAR_GOAL_EXPANSIONS,
             n_discs=len(self.discs),
         )
+
+
+def _with_stature(shared: np.ndarray, stature: float) -> np.ndarray:
+    """A copy of the float vector ``shared`` with the slots of a walker of ``stature`` metres:
+    the swing knee's and the toes' reach, the knee's pivot and the landing leg's clearance."""
+    par = shared.copy()
+    par[slots.P_KNEE_LEAD], par[slots.P_KNEE_SIDE] = knee_reach(stature)
+    par[slots.P_KNEE_PIVOT] = knee_pivot(stature)
+    par[slots.P_TOE_FRONT], par[slots.P_TOE_SIDE] = toe_corners(stature)
+    par[slots.P_LEG_CLEARANCE] = leg_clearance(stature)
+    return par
 
 
 def spot_offset(goal: np.ndarray, spot: tuple[float, float, float]) -> float:
