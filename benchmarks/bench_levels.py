@@ -128,7 +128,9 @@ from __future__ import annotations
 
 import argparse
 import math
+import tempfile
 import time
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
@@ -406,18 +408,106 @@ def planning_cost(walks: int) -> None:
     )
 
 
+def flat_twin(scene: Path, out: Path) -> Path:
+    """The scene with its linked levels flattened, written to ``out``: every surface of a level
+    reached by a step, ramp or stair (and the ramps' and stairs' own surfaces) removed, and the
+    sites and bodies standing on such a level lowered by its height to the floor. The floor's
+    obstacles stay as they are and those on a removed level stand where they stood, on the
+    floor: a walk between the same sites goes through the same floor (the same obstacles near
+    the way), with each crossing replaced by the flat distance under it.
+
+    Args:
+        scene: the MJCF scene (no external asset files).
+        out: the file to write.
+
+    Returns:
+        ``out``.
+    """
+    graph = load_workplace(scene).levels
+    linked = {lv for link in graph.links for lv in (link.lower, link.upper)} - {0}
+    drop = {graph.surfaces[i].name for lv in linked for i in graph.levels[lv].surfaces}
+    drop |= {graph.surfaces[i].name for link in graph.links for i in link.via}
+    heights = [graph.levels[lv].height - graph.levels[0].height for lv in linked]
+    tree = ET.parse(scene)
+    for parent in tree.iter():
+        for child in list(parent):
+            if child.tag == "geom" and child.get("name") in drop:
+                parent.remove(child)
+    world = tree.getroot().find("worldbody")
+    assert world is not None
+    for child in world:  # what stands on a removed level, down to the floor
+        pos = [float(v) for v in child.get("pos", "0 0 0").split()]
+        if child.tag in ("body", "site") and any(abs(pos[2] - h) < 0.01 for h in heights):
+            child.set("pos", f"{pos[0]} {pos[1]} 0")
+    tree.write(out)
+    return out
+
+
+def twin_cost(walks: int) -> None:
+    """Print each walk over levels against the same walk in the station's flat twin
+    (:func:`flat_twin`): a flat walk of about the same length through the same floor.
+
+    Cold: the first plan of the pair in a freshly loaded scene (levels, views, grids, fields and
+    planners built in the call; the load itself not timed), on each side; warm: the same seed
+    again. CPU time, median over ``walks`` seeds; expansions over all searches, medians.
+
+    Args:
+        walks: seeds per pair.
+    """
+    model = default_model(progress=False)
+    scene = SCENES / "multilevel_station.xml"
+    print(f"\nAgainst the flat twin (levels flattened, same sites and floor), {walks} seeds:")
+    head = (
+        f"{'walk':38} {'length m':>11} {'cold ms':>11} {'ratio':>6} {'warm ms':>11} "
+        f"{'ratio':>6} {'exp':>9}"
+    )
+    print(head)
+    print("-" * len(head))
+    worst = {"cold": 0.0, "warm": 0.0}
+    with tempfile.TemporaryDirectory() as tmp:
+        twin_path = flat_twin(scene, Path(tmp) / "flat_twin.xml")
+        for start, goal in LEVEL_WALKS:
+            rows: dict[str, list[float]] = {k: [] for k in ("lc", "lw", "tc", "tw", "ll", "tl")}
+            exp: dict[str, list[int]] = {"l": [], "t": []}
+            for seed in range(1, walks + 1):
+                for side, path in (("l", scene), ("t", twin_path)):
+                    wp = load_workplace(path)
+                    dt, walk = _timed(wp, start, goal, model, seed)
+                    rows[side + "c"].append(dt)
+                    rows[side + "w"].append(_timed(wp, start, goal, model, seed)[0])
+                    rows[side + "l"].append(walk.length)
+                    exp[side].append(int(walk.meta["expansions_all"]))
+            med = {k: float(np.median(v)) for k, v in rows.items()}
+            cold, warm = med["lc"] / med["tc"], med["lw"] / med["tw"]
+            worst = {"cold": max(worst["cold"], cold), "warm": max(worst["warm"], warm)}
+            print(
+                f"{start + ' -> ' + goal:38} {med['ll']:5.2f}/{med['tl']:<5.2f} "
+                f"{1000 * med['lc']:5.1f}/{1000 * med['tc']:<5.1f} {cold:6.2f} "
+                f"{1000 * med['lw']:5.1f}/{1000 * med['tw']:<5.1f} {warm:6.2f} "
+                f"{np.median(exp['l']):>4.0f}/{np.median(exp['t']):<4.0f}"
+            )
+    print(
+        f"largest ratio to the flat twin: cold {worst['cold']:.2f}, warm {worst['warm']:.2f} "
+        "(target <= 1.5)"
+    )
+
+
 def main() -> None:
     """Print the tables and the planning cost."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--draws", type=int, default=400)
     ap.add_argument("--seed", type=int, default=47)
-    ap.add_argument("--walks", type=int, default=10, help="seeds per walk over levels")
+    ap.add_argument("--walks", type=int, default=20, help="seeds per walk over levels")
+    ap.add_argument("--twin-only", action="store_true", help="only the flat-twin comparison")
     args = ap.parse_args()
-    stair_table(args.draws, args.seed)
-    body_table(args.draws, args.seed)
-    ramp_table(args.draws, args.seed)
+    if not args.twin_only:
+        stair_table(args.draws, args.seed)
+        body_table(args.draws, args.seed)
+        ramp_table(args.draws, args.seed)
+        if args.walks > 0:
+            planning_cost(args.walks)
     if args.walks > 0:
-        planning_cost(args.walks)
+        twin_cost(args.walks)
 
 
 if __name__ == "__main__":
