@@ -122,13 +122,44 @@ thread it, so the search floods the floor north of it or goes round the trolley'
 (a passage as tight, between it and the stair's east wall) and back, 7-11 m against the
 field's 4.24 m, and that walk is searched again as a loop (2-4 searches in 5 of 10 seeds). The
 cost is the floor's, the same for a flat walk there; the hybrid search's, not the levels'.
+
+Branch levelcost47h (a88f200, ``--twin-only --walks 20``, CPU ms, load 13-26): each walk
+against its flat twin (:func:`flat_twin`: the station with the platform, step, ramp, stair and
+mezzanine removed and what stood on them lowered to the floor; the same sites, the same floor
+obstacles), median of 20 seeds, level / twin. Warm: step 2.5/1.4 (1.75-1.82), ramp 2.5/1.8
+(1.35-1.37), stair 2.8/2.2 (1.24), rack1 -> mezzanine 6.0/2.5 (2.37; the twin walks 3.0 m
+straight onto where the mezzanine stood, the level walk 8.5 m round to the stair's foot: per
+metre 0.84), mezzanine -> rack1 3.8/2.4 (1.58; per metre 0.59), platform1 -> car1 13.6/42.4
+(0.32: 570 / 2560 expansions; the twin, with no platform to walk along, meets the car's rear
+and the trolley from the north-east and floods the floor about them). Cold (each side's first
+plan in a freshly loaded scene): 690-800 ms against 22-63 ms (ratios 12-33): a flat scene
+never builds its levels (~130 ms), its level views (the obstacles clipped to each level's
+head band, world.footprint._clip_hull_to_slab, ~35 ms a geom set per view, 3-4 views) nor
+the crossings' head checks (~100 ms per stature). The same views and checks are built again
+for each new stature (two routes of a new walker in a warm scene: 514 ms old, 523 ms new).
+The narrow-gap floor leg (platform1 -> car1) does no work a flat walk does not: planned alone
+on the floor's view to car1, seeds 1-40, median / mean / p90 expansions, from the step's foot
+standing facing west as the level walk starts it 429 / 595 / 1679; standing facing south 460 /
+703 / 1410; from stand_step, the flat walk through the same gap, 330 / 622 / 1373 (the note's
+817 was a start at (-4.0, 1.5), not the crossing's foot). Cut here: the route's Dijkstra makes
+a node's edges when it pops it (plan.levelsearch), so levels the route never reaches build no
+view, field or line-up check; routes and walks bit-identical (1002 comparisons); fresh-scene
+first plan, old / new interleaved, 6 seeds: mezzanine -> rack1 742 -> 374 ms, the others
+within noise (691-770 -> 670-761): each reaches the floor, the platform and the stair's foot.
+Reading of the target: "a flat walk of the same length" is met by both comparators; the twin
+is the one that holds what the target measures (the levels' cost) fixed, where its length is
+the walk's; warm against it the step (1.75) and rack1 -> mezzanine (per metre 0.84 but 2.37
+per walk) rows are over 1.5: the two or three searches, guides and assemblies a level walk
+makes against the twin's one (hybrid.py), and cold every row is far over (the levels' set-up).
 """
 
 from __future__ import annotations
 
 import argparse
 import math
+import tempfile
 import time
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
@@ -406,18 +437,112 @@ def planning_cost(walks: int) -> None:
     )
 
 
+def flat_twin(scene: Path, out: Path) -> Path:
+    """The scene with its linked levels flattened, written to ``out``: every surface of a level
+    reached by a step, ramp or stair (and the ramps' and stairs' own surfaces) removed, and the
+    sites and bodies standing on such a level lowered by its height to the floor. The floor's
+    obstacles stay as they are and those on a removed level stand where they stood, on the
+    floor: a walk between the same sites goes through the same floor (the same obstacles near
+    the way), with each crossing replaced by the flat distance under it.
+
+    Args:
+        scene: the MJCF scene (no external asset files).
+        out: the file to write.
+
+    Returns:
+        ``out``.
+    """
+    graph = load_workplace(scene).levels
+    linked = {lv for link in graph.links for lv in (link.lower, link.upper)} - {0}
+    drop = {graph.surfaces[i].name for lv in linked for i in graph.levels[lv].surfaces}
+    drop |= {graph.surfaces[i].name for link in graph.links for i in link.via}
+    heights = [graph.levels[lv].height - graph.levels[0].height for lv in linked]
+    tree = ET.parse(scene)
+    for parent in tree.iter():
+        for child in list(parent):
+            if child.tag == "geom" and child.get("name") in drop:
+                parent.remove(child)
+    world = tree.getroot().find("worldbody")
+    assert world is not None
+    for child in world:  # what stands on a removed level, down to the floor
+        pos = [float(v) for v in child.get("pos", "0 0 0").split()]
+        if child.tag in ("body", "site") and any(abs(pos[2] - h) < 0.01 for h in heights):
+            child.set("pos", f"{pos[0]} {pos[1]} 0")
+    tree.write(out)
+    return out
+
+
+def twin_cost(walks: int) -> None:
+    """Print each walk over levels against the same walk in the station's flat twin
+    (:func:`flat_twin`): a flat walk of about the same length through the same floor.
+
+    Cold: the first plan of the pair in a freshly loaded scene (levels, views, grids, fields and
+    planners built in the call; the load itself not timed), on each side; warm: the same seed
+    again. CPU time, median over ``walks`` seeds; expansions over all searches, medians; "per
+    m": the warm ratio of milliseconds per metre walked, for a twin walk more than a quarter
+    shorter or longer than the walk over levels (a mezzanine reached round its stair's foot
+    whose twin walks straight onto where it stood), where the twin is no flat walk of the same
+    length.
+
+    Args:
+        walks: seeds per pair.
+    """
+    model = default_model(progress=False)
+    scene = SCENES / "multilevel_station.xml"
+    print(f"\nAgainst the flat twin (levels flattened, same sites and floor), {walks} seeds:")
+    head = (
+        f"{'walk':38} {'length m':>11} {'cold ms':>11} {'ratio':>6} {'warm ms':>11} "
+        f"{'ratio':>6} {'per m':>6} {'exp':>9}"
+    )
+    print(head)
+    print("-" * len(head))
+    worst = {"cold": 0.0, "warm": 0.0}
+    with tempfile.TemporaryDirectory() as tmp:
+        twin_path = flat_twin(scene, Path(tmp) / "flat_twin.xml")
+        for start, goal in LEVEL_WALKS:
+            rows: dict[str, list[float]] = {k: [] for k in ("lc", "lw", "tc", "tw", "ll", "tl")}
+            exp: dict[str, list[int]] = {"l": [], "t": []}
+            for seed in range(1, walks + 1):
+                for side, path in (("l", scene), ("t", twin_path)):
+                    wp = load_workplace(path)
+                    dt, walk = _timed(wp, start, goal, model, seed)
+                    rows[side + "c"].append(dt)
+                    rows[side + "w"].append(_timed(wp, start, goal, model, seed)[0])
+                    rows[side + "l"].append(walk.length)
+                    exp[side].append(int(walk.meta["expansions_all"]))
+            med = {k: float(np.median(v)) for k, v in rows.items()}
+            cold, warm = med["lc"] / med["tc"], med["lw"] / med["tw"]
+            worst = {"cold": max(worst["cold"], cold), "warm": max(worst["warm"], warm)}
+            print(
+                f"{start + ' -> ' + goal:38} {med['ll']:5.2f}/{med['tl']:<5.2f} "
+                f"{1000 * med['lc']:5.1f}/{1000 * med['tc']:<5.1f} {cold:6.2f} "
+                f"{1000 * med['lw']:5.1f}/{1000 * med['tw']:<5.1f} {warm:6.2f} "
+                f"{warm * med['tl'] / med['ll']:6.2f} "
+                f"{np.median(exp['l']):>4.0f}/{np.median(exp['t']):<4.0f}"
+                + ("  (twin not the same length)" if abs(med["tl"] / med["ll"] - 1) > 0.25 else "")
+            )
+    print(
+        f"largest ratio to the flat twin: cold {worst['cold']:.2f}, warm {worst['warm']:.2f} "
+        "(target <= 1.5)"
+    )
+
+
 def main() -> None:
     """Print the tables and the planning cost."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--draws", type=int, default=400)
     ap.add_argument("--seed", type=int, default=47)
-    ap.add_argument("--walks", type=int, default=10, help="seeds per walk over levels")
+    ap.add_argument("--walks", type=int, default=20, help="seeds per walk over levels")
+    ap.add_argument("--twin-only", action="store_true", help="only the flat-twin comparison")
     args = ap.parse_args()
-    stair_table(args.draws, args.seed)
-    body_table(args.draws, args.seed)
-    ramp_table(args.draws, args.seed)
+    if not args.twin_only:
+        stair_table(args.draws, args.seed)
+        body_table(args.draws, args.seed)
+        ramp_table(args.draws, args.seed)
+        if args.walks > 0:
+            planning_cost(args.walks)
     if args.walks > 0:
-        planning_cost(args.walks)
+        twin_cost(args.walks)
 
 
 if __name__ == "__main__":

@@ -4,7 +4,7 @@
 platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
 <mjwalk.world.workplace.Workplace.levels>`):
 
-1. the route over levels (:func:`mjwalk.plan.levelroute.level_route`): a Dijkstra over the
+1. the route over levels (:func:`mjwalk.plan.levelsearch.level_route`): a Dijkstra over the
    crossings' stances, each level's obstacle-aware distance with the line-up and departure of
    3. walked from standing to standing (:func:`mjwalk.plan.levelcross.level_time`), each
    crossing at its gait's time, a step or stair only where every riser fits the walker's
@@ -41,7 +41,6 @@ from __future__ import annotations
 
 import copy
 import functools
-import itertools
 import math
 import time
 import weakref
@@ -51,45 +50,32 @@ import numpy as np
 
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
-from mjwalk.plan.heuristic import goal_distance
 from mjwalk.plan.hybrid import HybridPlanner, walker_step_length
 from mjwalk.plan.levelcross import (
     ENTRY_TURN,
     approach_point,
-    arrival_heading,
     cross_walk,
-    crossing_time,
     departure,
-    entry_time,
     entry_turn,
     flight_start,
-    level_time,
     line_clear,
-    route_leads,
-    walked_distance,
 )
 from mjwalk.plan.levelmemo import default_options, variant
 from mjwalk.plan.levelroute import (
-    Crossing,
     RouteLeg,
-    crossings,
-    dijkstra,
-    head_fits_crossing,
     place_crossings,
     step_up_limit,
 )
+from mjwalk.plan.levelsearch import STANCE_TOLERANCE, level_route
 from mjwalk.plan.levelstitch import level_meta, stitch
-from mjwalk.plan.occupancy import CELL_SIZE, MOVES_16, shared_grid
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
-from mjwalk.plan.turnin import turn_in_time, turn_into, walked_back
+from mjwalk.plan.turnin import turn_into
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.levelview import level_at, level_view
 from mjwalk.world.norms import EXPOSED_MIN, HEAD_MARGIN
 from mjwalk.world.workplace import Workplace
 
-#: Route legs shorter than this are not walked (the walker stands there already), metres.
-STANCE_TOLERANCE = 0.15
 #: Expansions a level leg aimed at a crossing with its approach heading may spend before it is
 #: searched again without (its guide can lead into a tight approach the route search finds at
 #: once): a twentieth of MAX_EXPANSIONS' 8000; the station's legs that succeed with it spend at
@@ -184,166 +170,6 @@ def endpoint(workplace: Workplace, where, what: str) -> Endpoint:
             "or on no walk surface)"
         )
     return Endpoint(where, xy, int(lv))
-
-
-def level_route(
-    workplace: Workplace,
-    start: Endpoint,
-    goal: Endpoint,
-    walker: Walker,
-    options: PlannerOptions,
-    max_riser: float,
-) -> list[RouteLeg]:
-    """The route over levels (module docstring, 1.).
-
-    Args:
-        workplace: the scene.
-        start: the walk's start on its level.
-        goal: the walk's goal on its level.
-        walker: the walker (speed, stature, stair and ramp gait).
-        options: the planner's options (body radius, goal field cells).
-        max_riser: the walker's step-up limit, metres.
-
-    Returns:
-        The legs: walks on levels and crossings, in order.
-
-    Raises:
-        PlanningError: no route the walker can take.
-    """
-    cache = workplace.__dict__.setdefault("_routes", {})  # walks repeat their ends
-    key = (
-        start.level, *np.round(start.xy, 6), goal.level, *np.round(goal.xy, 6), walker,
-        options, round(max_riser, 6),
-    )  # fmt: skip
-    if key not in cache:
-        cache[key] = _route(workplace, start, goal, walker, options, max_riser)
-    return list(cache[key])
-
-
-def _route(workplace, start: Endpoint, goal: Endpoint, walker: Walker, options, max_riser):
-    """:func:`level_route` without its cache."""
-    head = walker.stature + HEAD_MARGIN
-    usable = [
-        c
-        for c in _crossings(workplace, options.radius + CELL_SIZE)
-        if c.fits(max_riser) and _head_fits(workplace, c, walker.stature)
-    ]
-    # nodes: 0 start, 1 goal, then each crossing's lower and upper stance
-    nodes = [(start.level, start.xy), (goal.level, goal.xy)]
-    for c in usable:
-        nodes += [(c.lower, c.end(c.lower)), (c.upper, c.end(c.upper))]
-    edges: dict[int, list[tuple[int, float]]] = {}
-    reach = (walker.step_length, options.goal_tolerance)  # the line-up and departure
-    leads: list[tuple] = [(None, None)] * 2
-    for k, c in enumerate(usable):
-        lo, hi = 2 + 2 * k, 3 + 2 * k
-        edges.setdefault(lo, []).append((hi, crossing_time(c, "up", walker)))
-        edges.setdefault(hi, []).append((lo, crossing_time(c, "down", walker)))
-        for lv in (c.lower, c.upper):
-            ends = route_leads(c, lv, reach[0])  # the line-up's point is set
-            view = level_view(workplace, lv, head)
-            ok = ends[1] is None or line_clear(view, c.end(lv), ends[1], options.radius)
-            leads.append(ends if ok else (None, None))
-    for v, (lv, xy) in enumerate(nodes):
-        if v == 0:
-            continue  # nothing walks to the start
-        field = _node_field(workplace, lv, xy, head, options)
-        for u, (lu, uxy) in enumerate(nodes):
-            if u != v and lu == lv and u != 1:
-                d = _distance(workplace, field, uxy) if v >= 2 and u >= 2 else float(field(uxy))
-                if math.isfinite(d):  # each level leg a walk from standing to standing
-                    d = walked_distance(d, field, (uxy, leads[u][0]), (xy, leads[v][1]), reach)
-                    far = float(np.hypot(*(uxy - xy))) > max(STANCE_TOLERANCE, reach[1])
-                    t = level_time(d, far, walker)
-                    if far and v >= 2:  # a stair's turn on the spot, as the leg comes in
-                        t += _entry(workplace, (usable, nodes, leads), (u, v), (walker, options))
-                    edges.setdefault(u, []).append((v, t))
-    path, _ = dijkstra(len(nodes), edges, 0, 1)
-    if path is None:
-        raise PlanningError(
-            f"no route from level L{start.level} to level L{goal.level} of {workplace.name} for "
-            f"this walker (step-up limit {max_riser:.2f} m, stature {walker.stature:.2f} m)"
-        )
-    return _legs(path, nodes, usable)
-
-
-def _entry(workplace: Workplace, route: tuple, leg: tuple, setup: tuple) -> float:
-    """What turning into the stair whose stance is route node ``leg[1]``, walked to from node
-    ``leg[0]``, adds to the walk (s), arriving at the heading of :func:`~mjwalk.plan.levelcross.
-    arrival_heading`: nothing within :data:`ENTRY_TURN`; else the turn into it while walking
-    as the walk makes it (:func:`_turned`; :func:`mjwalk.plan.turnin.turn_in_time`), or where
-    no such turn fits the turn on the spot (:func:`~mjwalk.plan.levelcross.entry_time`); 0
-    before a step or ramp: its leg is searched again facing it (:func:`_level_leg`).
-    ``route``: (crossings, nodes, leads)."""
-    (usable, nodes, leads), (u, v), (walker, options) = route, leg, setup
-    c, (lv, uxy), xy = usable[(v - 2) // 2], nodes[u], nodes[v][1]
-    if c.kind != "stair":
-        return 0.0
-    ends = (uxy if leads[u][0] is None else leads[u][0], xy if leads[v][1] is None else leads[v][1])
-    if float(np.hypot(*(xy - uxy))) <= walker.step_length + options.goal_tolerance:
-        ends = (uxy, xy)  # walked between directly (walked_distance)
-    head = walker.stature + HEAD_MARGIN
-    field = functools.partial(_node_field, workplace, lv, uxy, head, options)
-    view = level_view(workplace, lv, head)
-    yaw = arrival_heading(view, ends, field, options.radius, walker.step_length)
-    direction = "up" if v % 2 == 0 else "down"
-    heading = c.yaw if direction == "up" else c.yaw + math.pi
-    if abs(math.remainder(heading - yaw, math.tau)) <= ENTRY_TURN or leads[v][1] is None:
-        return entry_time(c, direction, walker, yaw)  # 0 within ENTRY_TURN
-    flight = (heading, flight_start(c, direction, walker))
-    poses = walked_back(field(), ends[1], walker.step_length)
-    turned = turn_in_time(view, poses, flight, walker, options.radius)
-    return entry_time(c, direction, walker, yaw) if turned is None else turned
-
-
-def _node_field(workplace: Workplace, level: int, xy: np.ndarray, head: float, options):
-    """The distance field (:func:`mjwalk.plan.heuristic.goal_distance`) to a route node on its
-    level's view, kept on the workplace per node, head height and planner grid."""
-    cache = workplace.__dict__.setdefault("_node_fields", {})
-    key: tuple = (level, float(xy[0]), float(xy[1]), round(head, 3))
-    key += (options.radius, options.cell, options.field_cells)
-    if key not in cache:
-        view = level_view(workplace, level, head)
-        grid = shared_grid(view, options.cell, options.radius, MOVES_16)
-        cache[key] = goal_distance(grid, xy, options.field_cells)
-    return cache[key]
-
-
-def _distance(workplace: Workplace, field, xy: np.ndarray) -> float:
-    """``field(xy)`` between two crossing stances, kept on the workplace."""
-    cache = workplace.__dict__.setdefault("_node_distances", {})
-    key = (id(field), float(xy[0]), float(xy[1]))
-    return cache[key] if key in cache else cache.setdefault(key, float(field(xy)))
-
-
-def _crossings(workplace: Workplace, clear: float) -> list[Crossing]:
-    """:func:`mjwalk.plan.levelroute.crossings` of the workplace's levels, kept on it."""
-    cache = workplace.__dict__.setdefault("_crossings", {})
-    key = round(clear, 6)
-    return cache[key] if key in cache else cache.setdefault(key, crossings(workplace.levels, clear))
-
-
-def _head_fits(workplace: Workplace, c: Crossing, stature: float) -> bool:
-    """:func:`mjwalk.plan.levelroute.head_fits_crossing`, kept on the workplace per stature."""
-    cache = workplace.__dict__.setdefault("_crossing_heads", {})
-    key = (id(c), round(stature, 3))
-    if key not in cache:
-        cache[key] = head_fits_crossing(workplace.levels, c, stature)
-    return cache[key]
-
-
-def _legs(path: list[int], nodes, usable: list[Crossing]) -> list[RouteLeg]:
-    """The route's legs from its Dijkstra nodes."""
-    legs = []
-    for u, v in itertools.pairwise(path):
-        (lu, uxy), (_, vxy) = nodes[u], nodes[v]
-        if u >= 2 and v >= 2 and (u - 2) // 2 == (v - 2) // 2:
-            c = usable[(u - 2) // 2]
-            direction = "up" if lu == c.lower else "down"
-            legs.append(RouteLeg("cross", lu, uxy, vxy, c, direction))
-        else:
-            legs.append(RouteLeg("level", lu, uxy, vxy))
-    return legs
 
 
 def _walker(model) -> Walker:

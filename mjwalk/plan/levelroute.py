@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import heapq
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -372,12 +372,12 @@ def head_fits_crossing(graph: LevelGraph, c: Crossing, stature: float) -> bool:
     return True
 
 
-def dijkstra(n: int, edges: dict[int, list[tuple[int, float]]], source: int, target: int):
+def dijkstra(n: int, edges: Mapping[int, list[tuple[int, float]]], source: int, target: int):
     """Least-cost path in a small graph.
 
     Args:
         n: number of nodes.
-        edges: for each node, its (neighbour, cost) pairs.
+        edges: for each node, its (neighbour, cost) pairs (asked for as nodes are popped).
         source: the first node's index.
         target: the last node's index.
 
