@@ -280,6 +280,9 @@ def scan_levels(levelled: np.ndarray, plan: FloorPlan) -> LevelPlan | None:
                                                                          built[i])
         for i in range(len(levels))
     ]  # fmt: skip
+    for chain, fit in stairs:  # a flight's top in parts: its landing strip is one of them
+        if len(parts[chain[-1]]) > 1:
+            parts[chain[-1]].append(fit["rects"][-1] + fit["tread"] * fit["run"])
     return _assemble(levels, links, heights, rects, plan, layers, ramps, parts)
 
 

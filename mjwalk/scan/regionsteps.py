@@ -19,7 +19,8 @@ Metres, floor-plan grid.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from collections.abc import Sequence
+from typing import Protocol
 
 import numpy as np
 from scipy import ndimage
@@ -28,8 +29,27 @@ from mjwalk.scan.obstacles import MIN_BAND_POINTS
 from mjwalk.world.contacts import MIN_CROSSING
 from mjwalk.world.norms import CONTACT_GAP, MAX_RISER, MAX_TREAD, MIN_TREAD
 
-if TYPE_CHECKING:
-    from mjwalk.scan.scanlevels import Layers, ScanLevel
+
+class Region(Protocol):
+    """What the steps need of a region (:class:`mjwalk.scan.scanlevels.ScanLevel`)."""
+
+    @property
+    def kind(self) -> str: ...
+    @property
+    def height(self) -> float: ...
+    @property
+    def depth(self) -> float: ...
+    @property
+    def cells(self) -> np.ndarray: ...
+    @property
+    def peak(self) -> int: ...
+
+
+class Rasters(Protocol):
+    """What the steps need of the layers (:class:`mjwalk.scan.scanlevels.Layers`)."""
+
+    near: np.ndarray
+    band: np.ndarray
 
 
 def touching(lower: np.ndarray, upper: np.ndarray, res: float) -> bool:
@@ -50,7 +70,7 @@ def touching(lower: np.ndarray, upper: np.ndarray, res: float) -> bool:
     return float((rim & near).sum()) * res >= MIN_CROSSING
 
 
-def with_shadow(level: ScanLevel, layers: Layers, res: float) -> np.ndarray:
+def with_shadow(level: Region, layers: Rasters, res: float) -> np.ndarray:
     """A region's cells and the unseen cells beyond its edges that may be its own.
 
     Args:
@@ -77,7 +97,7 @@ def with_shadow(level: ScanLevel, layers: Layers, res: float) -> np.ndarray:
     return grow(level.cells, np.ones((3, 3), bool), iterations=n, mask=unseen | level.cells)
 
 
-def region_steps(found: list[ScanLevel], layers: Layers, res: float) -> list[tuple[int, int]]:
+def region_steps(found: Sequence[Region], layers: Rasters, res: float) -> list[tuple[int, int]]:
     """The steps between regions.
 
     Args:
