@@ -7,22 +7,24 @@ seen in part (``scanlevels.SHADOWED_DEPTH``) and is no region; the treads below 
 tread short of a level two risers higher, and neither the flight nor the level is found.
 
 Stairs are built regular (DIN 18065 allows ``norms.STAIR_TOLERANCE`` between any two risers or
-treads of a flight), so the missing tread is where the flight puts it. A chain from a level up
-over at least two single treads whose last tread has no step up (:func:`hidden_treads`) gets one
-tread at the last tread's height plus the chain's riser, one fitted tread depth beyond the last
-tread's front edge (a least-squares line through the treads' front edges: a tread's back may be
-in a shadow, its front is not), across the treads' width, when:
+treads of a flight), so the missing treads are where the flight puts them. A chain from a level
+up over at least two single treads whose last tread has no step up (:func:`hidden_treads`) gets
+``n`` treads (fewer than it has: the flight is seen more than it is inferred), each a riser
+above the one before from the last tread's height by the chain's riser and one fitted tread
+depth further (a least-squares line through the treads' front edges: a tread's back may be in
+a shadow, its front is not), across the treads' width, when:
 
-- a region lies two risers above the last tread (within :data:`~mjwalk.scan.stairfit.
+- a region lies ``n + 1`` risers above the last tread (within :data:`~mjwalk.scan.stairfit.
   HEIGHT_TOL`) and its first cells within the flight's width lie where the flight puts the next
-  riser (within ``STAIR_TOLERANCE`` and :data:`~mjwalk.scan.stairfit.EDGE_CELLS` cells);
+  riser (within ``STAIR_TOLERANCE`` and :data:`~mjwalk.scan.stairfit.EDGE_CELLS` cells): the
+  flight is pinned at both ends, the treads between follow from its regularity;
 - the chain is a regular flight of treads itself (heights within ``HEIGHT_TOL`` of the chain's
   riser, front edges within the edge tolerance of the line, riser and tread in the norms);
-- nothing stands on the inferred tread (its cells inside its rim have fewer than
+- nothing stands on an inferred tread (its cells inside its rim have fewer than
   ``MIN_BAND_POINTS`` points in its obstacle band, as a region's cells must) and no other region
   lies inside it.
 
-The inferred tread is one more region; the flight is then fitted and checked as any other
+Each inferred tread is one more region; the flight is then fitted and checked as any other
 (:func:`mjwalk.scan.stairfit.fit_stair`). Metres, scene frame (floor at z = 0).
 """
 
@@ -75,18 +77,22 @@ def hidden_treads(
         guess = _hidden_tread(chain, found, levelled, plan)
         if guess is None:
             continue
-        cells, height, tread, width, top = guess
-        more = rasterize_layers(levelled, np.array([height]), plan)
-        layers = Layers(
-            np.append(layers.heights, height),
-            np.concatenate([layers.near, more.near[1:]]),
-            np.concatenate([layers.band, more.band[1:]]),
-            np.concatenate([layers.top, more.top[1:]]),
-        )
-        area = float(cells.sum()) * plan.resolution**2
-        k = len(layers.heights) - 1
-        out.append(ScanLevel(0, "tread", height, 0.0, 0.0, cells, area, tread, width, k))
-        pairs += [(chain[-1], len(out) - 1), (len(out) - 1, top)]
+        hidden, tread, width, top = guess
+        below = chain[-1]
+        for cells, height in hidden:
+            more = rasterize_layers(levelled, np.array([height]), plan)
+            layers = Layers(
+                np.append(layers.heights, height),
+                np.concatenate([layers.near, more.near[1:]]),
+                np.concatenate([layers.band, more.band[1:]]),
+                np.concatenate([layers.top, more.top[1:]]),
+            )
+            area = float(cells.sum()) * plan.resolution**2
+            k = len(layers.heights) - 1
+            out.append(ScanLevel(0, "tread", height, 0.0, 0.0, cells, area, tread, width, k))
+            pairs.append((below, len(out) - 1))
+            below = len(out) - 1
+        pairs.append((below, top))
     return out, pairs, layers
 
 
@@ -112,10 +118,10 @@ def _open_chains(found: list[ScanLevel], up: dict[int, list[int]]) -> list[list[
 
 def _hidden_tread(
     chain: list[int], found: list[ScanLevel], levelled: np.ndarray, plan: FloorPlan
-) -> tuple[np.ndarray, float, float, float, int] | None:
-    """The tread a chain's flight puts after its last tread, where a region two risers higher
-    begins one tread further: (cells, height, tread depth, width, that region's index), or
-    None."""
+) -> tuple[list[tuple[np.ndarray, float]], float, float, int] | None:
+    """The treads a chain's flight puts after its last tread, where a region ``n + 1`` risers
+    higher begins ``n`` treads further (``n`` less than the chain's treads): ((cells, height)
+    per tread, the tread depth, the width, that region's index), or None."""
     res = plan.resolution
     bottom, treads = found[chain[0]], [found[i] for i in chain[1:]]
     m = len(treads)
@@ -143,23 +149,30 @@ def _hidden_tread(
         return None
     if not MIN_TREAD - tol <= tread <= MAX_TREAD + tol:
         return None
-    height, s0 = treads[-1].height + riser, first + m * tread
     span = (float(np.median(lefts)), float(np.median(rights)))
-    tops = [
-        i for i, lv in enumerate(found)
-        if abs(lv.height - height - riser) <= HEIGHT_TOL
-        and abs(near_edge(lv, plan, run, side, span, s0) - (s0 + tread)) <= tol
-    ]  # fmt: skip
-    if not tops:
+    last, start = treads[-1].height, first + m * tread
+    for n in range(1, m):  # hidden treads, fewer than those seen
+        tops = [
+            i for i, lv in enumerate(found)
+            if abs(lv.height - last - (n + 1) * riser) <= HEIGHT_TOL
+            and abs(near_edge(lv, plan, run, side, span, start) - (start + n * tread)) <= tol
+        ]  # fmt: skip
+        if tops:
+            break
+    else:
         return None
-    cells = _strip(plan, run, side, (s0, s0 + tread), span)
-    inner = ndimage.binary_erosion(cells, np.ones((3, 3), bool), iterations=EDGE_CELLS)
-    band = rasterize_layers(levelled, np.array([height]), plan).band[1]
-    if (band[inner] >= MIN_BAND_POINTS).any():
-        return None
-    if any((r.cells & inner).any() for r in found[1:]):
-        return None
-    return cells, height, float(tread), span[1] - span[0], tops[0]
+    out = []
+    for q in range(n):
+        height, s0 = last + (q + 1) * riser, start + q * tread
+        cells = _strip(plan, run, side, (s0, s0 + tread), span)
+        inner = ndimage.binary_erosion(cells, np.ones((3, 3), bool), iterations=EDGE_CELLS)
+        band = rasterize_layers(levelled, np.array([height]), plan).band[1]
+        if (band[inner] >= MIN_BAND_POINTS).any() or any(
+            (r.cells & inner).any() for r in found[1:]
+        ):
+            return None
+        out.append((cells, height))
+    return out, float(tread), span[1] - span[0], tops[0]
 
 
 def _strip(
