@@ -35,16 +35,16 @@ def _xml(deck_at: float) -> str:
 </worldbody></mujoco>"""
 
 
-def _scan(deck_at: float = TREAD * (N - 1), seen: float = 0.06):
-    """The seeded scan, levelled, with all of the top tread but its front ``seen`` metres taken
-    out (what the deck's edge hides), and its floor plan."""
+def _scan(deck_at: float = TREAD * (N - 1), seen: float = 0.06, hidden: int = 1):
+    """The seeded scan, levelled, with all of the top ``hidden`` treads but their front ``seen``
+    metres taken out (what the deck's edge hides), and its floor plan."""
     model = mujoco.MjModel.from_xml_string(_xml(deck_at))
     pts = synthetic_scan(model, SCANNERS, step_deg=0.4, noise=0.005, seed=7).points
     pts = find_floor(pts).apply(pts)
-    x0 = TREAD * (N - 2)  # the top tread's front
-    top = RISER * (N - 1)
-    hidden = (pts[:, 0] > x0 + seen) & (pts[:, 0] < x0 + TREAD) & (np.abs(pts[:, 2] - top) < 0.03)
-    pts = pts[~hidden]
+    for k in range(N - hidden, N):  # tread k: from x = TREAD (k - 1) at RISER k
+        x0, top = TREAD * (k - 1), RISER * k
+        gone = (pts[:, 0] > x0 + seen) & (pts[:, 0] < x0 + TREAD) & (np.abs(pts[:, 2] - top) < 0.03)
+        pts = pts[~gone]
     return pts, floor_plan(pts)
 
 
@@ -94,3 +94,17 @@ def test_no_tread_is_inferred_where_the_deck_does_not_begin_a_tread_further():
     found, steps, layers = find_regions(pts, plan)
     more, _, _ = hidden_treads(found, steps, pts, plan, layers)
     assert len(more) == len(found)
+
+
+def test_two_hidden_treads_of_a_flight_pinned_at_both_ends():
+    """The top two treads hidden (three seen): both put back, the flight and the deck found."""
+    pts, plan = _scan(hidden=2)
+    found, steps, layers = find_regions(pts, plan)
+    more, _, _ = hidden_treads(found, steps, pts, plan, layers)
+    added = sorted(r.height for r in more[len(found) :])
+    assert added == pytest.approx([RISER * (N - 2), RISER * (N - 1)], abs=0.01)
+    lp = scan_levels(pts, plan)
+    assert lp is not None
+    stairs = [k for k in lp.links if k.kind == "stair"]
+    assert len(stairs) == 1 and len(stairs[0].risers) == N
+    assert lp.heights[stairs[0].upper] == pytest.approx(RISER * N, abs=0.02)
