@@ -3,15 +3,10 @@
 :func:`scan_levels` takes the levels of :func:`mjwalk.scan.scanlevels.find_levels` to the scene:
 
 - **Stairs.** A chain from a level over single treads to a level, with at least
-  ``norms.MIN_STAIR_RISERS`` risers, is fitted as one regular flight, as stairs are built
-  (DIN 18065 allows 5 mm, ``norms.STAIR_TOLERANCE``): the riser is the rise between the two end
-  levels over the number of risers; the tread depth and the first riser's place a least-squares
-  line through the treads' front and back edges along the climb (the top level's axis nearest
-  the treads' run). The chain is a stair when each tread's fitted height and edges lie within
-  the scan's tolerance of the flight (:data:`HEIGHT_TOL`, :data:`EDGE_TOL`) and the flight is
-  within the norms (riser ``MIN_RISER``-``MAX_RISER``, tread ``MIN_TREAD``-``MAX_TREAD``, step
-  rule ``STEP_RULE``); its treads become exact boxes, and the top level's edge is put on the last
-  riser. Other chains are steps.
+  ``norms.MIN_STAIR_RISERS`` risers, is fitted as one regular flight
+  (:func:`mjwalk.scan.stairfit.fit_stair`); a stair's top tread the level above hides is
+  inferred from the flight (:mod:`mjwalk.scan.hiddentread`). A flight's treads become exact
+  boxes, and the top level's edge is put on the last riser. Other chains are steps.
 - **Boxes.** Every level but the floor is a solid box standing on the floor up to its height
   (as the shipped multi-level scene builds them), over its cells' minimum-area rectangle; a
   level reached by a step from below reaches under the higher one by the cells that touch it,
@@ -32,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage
 
+from mjwalk.scan.hiddentread import hidden_treads
 from mjwalk.scan.levelparts import level_parts
 from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, TOP_STEP, FloorPlan, rectangles
 from mjwalk.scan.scanlevels import (
@@ -45,26 +41,10 @@ from mjwalk.scan.scanlevels import (
     seen_in_part,
 )
 from mjwalk.scan.scanramps import ScanRamp, find_ramps, ramp_box, renumber
+from mjwalk.scan.stairfit import fit_stair
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
-from mjwalk.world.norms import (
-    CONTACT_GAP,
-    MAX_RISER,
-    MAX_TREAD,
-    MIN_RISER,
-    MIN_STAIR_RISERS,
-    MIN_TREAD,
-    STAIR_TOLERANCE,
-    STEP_RULE,
-)
+from mjwalk.world.norms import CONTACT_GAP, MIN_STAIR_RISERS
 
-#: Most a tread's fitted height may differ from its regular flight's, metres: the build
-#: tolerance ``STAIR_TOLERANCE`` (5 mm, DIN 18065) plus the scan's range noise (5 mm, the sigma
-#: ``mjwalk.scan.obstacles.FLOOR_TOL`` is six of).
-HEIGHT_TOL = STAIR_TOLERANCE + FLOOR_TOL / 6
-#: Most a tread's edge may differ from its flight's, in cells of the floor plan, besides
-#: ``STAIR_TOLERANCE``: an edge lies somewhere in its outermost cell, one more for the riser's
-#: cell that its points block.
-EDGE_CELLS = 2
 #: Material of the level boxes.
 LEVEL_MATERIAL = "scan_level"
 
@@ -133,122 +113,6 @@ def _chains(levels: list[ScanLevel], pairs: list[tuple[int, int]]) -> list[list[
         if levels[chain[-1]].kind != "tread" and len(chain) - 1 >= MIN_STAIR_RISERS:
             out.append(chain)
     return out
-
-
-def _centres(cells: np.ndarray, plan: FloorPlan) -> np.ndarray:
-    iy, ix = np.nonzero(cells)
-    r = plan.resolution
-    return np.column_stack([plan.x0 + (ix + 0.5) * r, plan.y0 + (iy + 0.5) * r])
-
-
-def _axis(rect: np.ndarray, run: np.ndarray) -> np.ndarray:
-    """The rectangle's axis (unit, signed) nearest a direction ``run``."""
-    axes = [rect[1] - rect[0], rect[3] - rect[0]]
-    axes = [a / np.hypot(*a) for a in axes]
-    a = max(axes, key=lambda v: abs(float(v @ run)))
-    return a if a @ run > 0 else -a
-
-
-def _tread_rect(tread: ScanLevel, plan: FloorPlan) -> np.ndarray:
-    """A tread's minimum-area rectangle (4, 2), metres."""
-    return min_rectangle(tread.cells, plan.x0, plan.y0, plan.resolution)
-
-
-def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dict | None:
-    """A chain of levels fitted as one regular flight, or None when it is not a stair.
-
-    Args:
-        chain: level indices bottom up: a level, the treads, a level.
-        levels: the levels.
-        plan: the floor plan (its grid).
-
-    Returns:
-        None, or: ``riser`` and ``tread`` (metres), ``heights`` of the treads, ``rects`` (4, 2)
-        of the treads, ``top_edge`` (the last riser's place along ``run``), ``run`` (the unit
-        climb direction) and the largest deviations ``dz``, ``dxy`` (metres).
-    """
-    n = len(chain) - 1
-    bottom, top, treads = levels[chain[0]], levels[chain[-1]], [levels[i] for i in chain[1:-1]]
-    riser = (top.height - bottom.height) / n
-    heights = [bottom.height + (k + 1) * riser for k in range(n - 1)]
-    dz = max(abs(t.height - h) for t, h in zip(treads, heights, strict=True))
-    mids = [_centres(t.cells, plan).mean(axis=0) for t in treads]
-    top_rect = min_rectangle(top.cells, plan.x0, plan.y0, plan.resolution)
-    # a flight down into a pit (its top the floor, whose outline is the hall's) turns with its
-    # own treads: the axis of the tread next to the floor
-    ref = top_rect if top.kind != "floor" else _tread_rect(treads[-1], plan)
-    run = _axis(ref, mids[-1] - mids[0])
-    side = np.array([-run[1], run[0]])
-    rows, rhs, lefts, rights = [], [], [], []
-    for k, t in enumerate(treads):
-        c = _centres(t.cells, plan)
-        along, across = c @ run, c @ side
-        rows += [[1.0, 0.0, k], [0.0, 1.0, k]]
-        rhs += [along.min(), along.max()]
-        lefts.append(across.min())
-        rights.append(across.max())
-    a = np.array(rows)
-    coef, *_ = np.linalg.lstsq(a, np.array(rhs), rcond=None)
-    dxy = float(np.abs(a @ coef - rhs).max())
-    tol = STAIR_TOLERANCE + EDGE_CELLS * plan.resolution
-    if dxy > tol or any(seen_in_part(t, plan.resolution) for t in treads):
-        top_front = _near_edge(top, plan, run, side, (min(lefts), max(rights)), rhs[-2])
-        coef, dxy = _shadowed_fit(np.array(rhs), top_front, plan.resolution)
-    first, tread = float(coef[0]), float(coef[2])
-    ok = (
-        dz <= HEIGHT_TOL
-        and dxy <= tol
-        and MIN_RISER - 1e-9 <= riser <= MAX_RISER + 1e-9
-        and MIN_TREAD - 1e-9 <= tread <= MAX_TREAD + 1e-9
-        and STEP_RULE[0] - 1e-9 <= 2 * riser + tread <= STEP_RULE[1] + 1e-9
-    )
-    if not ok:
-        return None
-    w0, w1 = float(np.median(lefts)), float(np.median(rights))
-    rects = []
-    for k in range(n - 1):
-        s0, s1 = first + k * tread, first + (k + 1) * tread
-        corners = [(s0, w0), (s1, w0), (s1, w1), (s0, w1)]
-        rects.append(np.array([u * run + v * side for u, v in corners]))
-    return {
-        "riser": riser, "tread": tread, "heights": heights, "rects": rects, "run": run,
-        "top_edge": first + (n - 1) * tread, "top_rect": top_rect, "dz": dz, "dxy": dxy,
-    }  # fmt: skip
-
-
-def _near_edge(
-    top: ScanLevel, plan: FloorPlan, run: np.ndarray, side: np.ndarray, span, start: float
-) -> float:
-    """The centre of level ``top``'s first cells along ``run`` beyond ``start`` (metres along
-    ``run``) within the flight's width ``span`` (across ``side``, metres); inf: none."""
-    c = _centres(top.cells, plan)
-    along, across = c @ run, c @ side
-    mine = (along > start) & (across >= span[0]) & (across <= span[1])
-    return float(along[mine].min()) if mine.any() else math.inf
-
-
-def _shadowed_fit(edges: np.ndarray, top_front: float, res: float) -> tuple[np.ndarray, float]:
-    """A flight fitted to its treads' front edges and the top level's (a tread's back may lie
-    in the shadow of the next tread or level, so it is seen shorter, never longer).
-
-    Args:
-        edges: (2 (n - 1),) each tread's first and last cell centre along the run, metres.
-        top_front: the top level's first cell centre along the run, metres.
-        res: the grid's cell edge, metres.
-
-    Returns:
-        (coef: (3,) the first front edge, unused, the tread depth; dxy: the largest front
-        residual or back edge seen beyond the next front, metres).
-    """
-    fronts = np.append(edges[0::2], top_front)
-    k = np.arange(len(fronts), dtype=float)
-    if not np.isfinite(top_front):
-        return np.zeros(3), math.inf
-    a = np.column_stack([np.ones_like(k), k])
-    (first, tread), *_ = np.linalg.lstsq(a, fronts, rcond=None)
-    dxy = float(np.abs(a @ np.array([first, tread]) - fronts).max())
-    beyond = edges[1::2] - (first + (k[1:]) * tread - res)
-    return np.array([first, 0.0, tread]), max(dxy, float(np.max(beyond, initial=0.0)))
 
 
 def _snap_edge(rect: np.ndarray, run: np.ndarray, at: float) -> np.ndarray:
@@ -376,6 +240,7 @@ def scan_levels(levelled: np.ndarray, plan: FloorPlan) -> LevelPlan | None:
         before); else the levels, links, boxes and the floor plan without them.
     """
     found, steps, layers = find_regions(levelled, plan)
+    found, steps, layers = hidden_treads(found, steps, levelled, plan, layers)
     res = plan.resolution
     ramps = [
         r for r in find_ramps(levelled, plan, found)
@@ -415,6 +280,9 @@ def scan_levels(levelled: np.ndarray, plan: FloorPlan) -> LevelPlan | None:
                                                                          built[i])
         for i in range(len(levels))
     ]  # fmt: skip
+    for chain, fit in stairs:  # a flight's top in parts: its landing strip is one of them
+        if len(parts[chain[-1]]) > 1:
+            parts[chain[-1]].append(fit["rects"][-1] + fit["tread"] * fit["run"])
     return _assemble(levels, links, heights, rects, plan, layers, ramps, parts)
 
 

@@ -5,7 +5,7 @@ of kind "level") is written as a floor with openings (:mod:`mjwalk.world.floorho
 plane at the deepest reached pit's bottom, the floor level as boxes named
 :data:`~mjwalk.world.floorholes.FLOOR_BOX_PREFIX`... from the plane up to z = 0 over every cell of
 the floor plan but the openings, each reached pit's stair as its regular flight
-(:func:`mjwalk.scan.levelboxes.fit_stair`: its treads' boxes from the plane up, the floor's edge
+(:func:`mjwalk.scan.stairfit.fit_stair`: its treads' boxes from the plane up, the floor's edge
 moved onto the flight's last riser when the flight runs along x or y; a flight turned off the
 axes gets a floor box turned to it at its top, :func:`_landing`), a pit's ramp as its tilted
 box (:func:`mjwalk.scan.scanramps.ramp_box`) with a floor box along its top end one least tread
@@ -23,10 +23,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy import ndimage
 
-from mjwalk.scan.levelboxes import LEVEL_MATERIAL, fit_stair
+from mjwalk.scan.levelboxes import LEVEL_MATERIAL
 from mjwalk.scan.obstacles import FloorPlan, rectangles
 from mjwalk.scan.scanpits import ScanPit, gap_boxes
 from mjwalk.scan.scanramps import ramp_box
+from mjwalk.scan.stairfit import fit_stair
 from mjwalk.world.floorholes import FLOOR_BOX_PREFIX
 from mjwalk.world.norms import MIN_TREAD
 

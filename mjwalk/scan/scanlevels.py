@@ -44,12 +44,10 @@ from mjwalk._jit import njit
 from mjwalk.scan.level import HORIZONTAL_DEG, MAX_SURFACE_HEIGHT, VOXEL, voxel_normals
 from mjwalk.scan.minrect import min_rectangle, rectangle_size
 from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, FloorPlan
-from mjwalk.world.contacts import MIN_CROSSING
+from mjwalk.scan.regionsteps import region_steps
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.norms import (
-    CONTACT_GAP,
     HORIZONTAL_SLOPE,
-    MAX_RISER,
     MAX_TREAD,
     MIN_TREAD,
     STAND_WIDTH,
@@ -71,7 +69,7 @@ TRIM_SIGMAS = 3.0
 
 #: Least depth of a stair tread seen in part, metres: half the least tread (``norms.MIN_TREAD``;
 #: a choice, no norm). The next level's edge may shadow a tread's back from the scanners; such a
-#: region is a level only as a tread of a regular flight (:func:`mjwalk.scan.levelboxes.fit_stair`).
+#: region is a level only as a tread of a regular flight (:func:`mjwalk.scan.stairfit.fit_stair`).
 SHADOWED_DEPTH = 0.5 * MIN_TREAD
 #: Rounds of looking again for surfaces no region explains (:func:`find_regions`).
 MORE_ROUNDS = 2
@@ -401,24 +399,6 @@ def _inlier_cells(
     return ndimage.binary_fill_holes(lab == big)
 
 
-def touching(lower: np.ndarray, upper: np.ndarray, res: float) -> bool:
-    """Whether two regions' edges touch along at least a body's width.
-
-    Args:
-        lower: (ny, nx) bool cells of the lower region.
-        upper: (ny, nx) bool cells of the upper region.
-        res: the cell edge, metres.
-
-    Returns:
-        True when the cells of ``upper``'s rim within ``CONTACT_GAP`` and two cells of
-        ``lower`` span at least ``MIN_CROSSING``.
-    """
-    d = math.ceil(CONTACT_GAP / res) + 2
-    near = ndimage.binary_dilation(lower, np.ones((3, 3), bool), iterations=d)
-    rim = upper & ~ndimage.binary_erosion(upper, np.ones((3, 3), bool))
-    return float((rim & near).sum()) * res >= MIN_CROSSING
-
-
 def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPlan, ks, avoid=0):
     """Append the regions at heights ``ks`` to ``found``; with ``avoid``, none sharing a cell
     with one of ``found[1:avoid]`` less than :data:`PEAK_SEPARATION` from its height (that
@@ -508,13 +488,7 @@ def find_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel]
         k0 = len(layers.heights) - len(extra)
         _add_regions(found, levelled, layers, plan, range(k0, len(layers.heights)), len(found))
     found = _distinct(found)
-    steps = []
-    for i, a in enumerate(found):
-        reach = _with_shadow(a, layers, res)
-        for j, b in enumerate(found):
-            if 0 < b.height - a.height <= MAX_RISER and touching(reach, b.cells, res):
-                steps.append((i, j))
-    return found, steps, layers
+    return found, region_steps(found, layers, res), layers
 
 
 def seen_in_part(level: ScanLevel, res: float) -> bool:
@@ -529,19 +503,6 @@ def seen_in_part(level: ScanLevel, res: float) -> bool:
         True for a tread less than ``norms.MIN_TREAD`` deep, less two cells.
     """
     return level.kind == "tread" and level.depth < MIN_TREAD - 2 * res
-
-
-def _with_shadow(level: ScanLevel, layers: Layers, res: float) -> np.ndarray:
-    """A tread's cells and the cells beyond them with no point at its height nor in its band,
-    up to the deepest tread (``norms.MAX_TREAD``): its back in the shadow of the next tread or
-    level. Any other region's cells as they are."""
-    n = math.ceil((MAX_TREAD - level.depth) / res)
-    if level.kind != "tread" or n <= 0:
-        return level.cells
-    k = level.peak
-    unseen = (layers.near[k] == 0) & (layers.band[k] < MIN_BAND_POINTS)
-    grow = ndimage.binary_dilation
-    return grow(level.cells, np.ones((3, 3), bool), iterations=n, mask=unseen | level.cells)
 
 
 def keep_reachable(

@@ -11,7 +11,7 @@ can hold a foot. Each connected gap is one :class:`ScanPit`:
 - its **link**: the bottom is reached from the floor when a chain of such regions joins them by
   risers of at most ``norms.MAX_RISER`` along touching edges (as the raised levels); a chain of
   at least ``norms.MIN_STAIR_RISERS`` risers over treads that fits a regular flight
-  (:func:`mjwalk.scan.levelboxes.fit_stair`) is a stair. Such a pit is a level of the scan (its
+  (:func:`mjwalk.scan.stairfit.fit_stair`) is a stair. Such a pit is a level of the scan (its
   bottom's height below the floor, printed with its link); one that nothing reaches, and a gap
   with no bottom, is an obstacle: a hole nobody may walk into.
 
@@ -36,8 +36,8 @@ import numpy as np
 from scipy import ndimage
 
 from mjwalk.scan.level import MAX_SURFACE_HEIGHT
-from mjwalk.scan.levelboxes import fit_stair
 from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan, rectangles
+from mjwalk.scan.regionsteps import touching
 from mjwalk.scan.scanlevels import (
     PEAK_SEPARATION,
     ScanLevel,
@@ -48,9 +48,9 @@ from mjwalk.scan.scanlevels import (
     rasterize_layers,
     rectangle_size,
     regions_at,
-    touching,
 )
 from mjwalk.scan.scanramps import ScanRamp, find_ramps, renumber
+from mjwalk.scan.stairfit import fit_stair
 from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_STAIR_RISERS
 
 #: Height of the box a gap is written as, metres: the least height of a guard rail round an

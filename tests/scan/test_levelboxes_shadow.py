@@ -104,3 +104,53 @@ def test_generated_hall_0_finds_a_tread_beside_a_stronger_surface():
     treads = [r.height for r in found if r.kind == "tread"]
     for h in (0.1883, 0.3766, 0.5649, 0.7532):
         assert min(abs(t - h) for t in treads) < 0.01, (h, sorted(treads))
+
+
+def _written_links(pts, lp):
+    """The stairs of the scene the scan writes, as the MJCF level graph finds them: (lower
+    height, upper height, risers)."""
+    import mujoco
+
+    from mjwalk.scan.scene import build_scene
+    from mjwalk.world.levels import level_graph
+    from mjwalk.world.surfaces import find_walk_surfaces
+
+    scene = build_scene(pts, source="hall")
+    graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_string(scene.xml)))
+    h = [lv.height for lv in graph.levels]
+    return {(round(h[k.lower], 2), round(h[k.upper], 2), len(k.risers)) for k in graph.links
+            if k.kind == "stair"}  # fmt: skip
+
+
+@pytest.mark.slow  # a generated hall's scan: about 60 s on a loaded 2-core machine
+def test_generated_hall_0_infers_its_hidden_top_tread():
+    """Hall 0: seven 0.1883 m risers, 0.2675 m treads to a 1.318 m mezzanine; its top tread lies
+    under the mezzanine's edge (about 0.10 of it seen, no region). The flight's regular rise and
+    run put it back (:mod:`mjwalk.scan.hiddentread`), and the written scene climbs the flight
+    to the mezzanine (written in parts: its landing strip is one of them)."""
+    pts, plan = _hall_scan(0)
+    lp = scan_levels(pts, plan)
+    assert lp is not None
+    stairs = [k for k in lp.links if k.kind == "stair" and len(k.risers) == 7]
+    assert len(stairs) == 1
+    assert stairs[0].risers[0] == pytest.approx(0.1883, abs=0.005)
+    assert stairs[0].tread == pytest.approx(0.2675, abs=0.01)
+    assert lp.heights[stairs[0].upper] == pytest.approx(1.3181, abs=0.02)
+    assert (0.0, 1.32, 7) in _written_links(pts, lp)
+
+
+@pytest.mark.slow  # a generated hall's scan: about 60 s on a loaded 2-core machine
+def test_generated_hall_8_climbs_its_upper_flight_from_the_landing():
+    """Hall 8: a 0.760 m landing, then turned 90 deg, four 0.1521 m risers and 0.3236 m treads
+    to a 1.369 m mezzanine; the landing's strip before the upper flight's first riser is seen
+    by no scanner (:mod:`mjwalk.scan.regionsteps`)."""
+    pts, plan = _hall_scan(8)
+    lp = scan_levels(pts, plan)
+    assert lp is not None
+    h = lp.heights
+    upper = [k for k in lp.links if k.kind == "stair" and abs(h[k.lower] - 0.7605) < 0.02]
+    assert len(upper) == 1
+    assert len(upper[0].risers) == 4 and upper[0].risers[0] == pytest.approx(0.1521, abs=0.005)
+    assert upper[0].tread == pytest.approx(0.3236, abs=0.01)
+    assert h[upper[0].upper] == pytest.approx(1.3689, abs=0.02)
+    assert (0.76, 1.37, 4) in _written_links(pts, lp)

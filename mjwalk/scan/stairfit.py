@@ -1,0 +1,193 @@
+"""A chain of scan levels fitted as one regular flight (issue 47): from a level over single
+treads to a level, as stairs are built (DIN 18065 allows 5 mm, ``norms.STAIR_TOLERANCE``).
+
+The riser is the rise between the two end levels over the number of risers; the tread depth and
+the first riser's place a least-squares line through the treads' front and back edges along the
+climb (the top level's axis nearest the treads' run); when a tread is seen in part (its back in
+the shadow of the next tread or level), through the treads' front edges and the top level's. The
+chain is a stair when each tread's fitted height and edges lie within the scan's tolerance of
+the flight (:data:`HEIGHT_TOL`, :data:`EDGE_CELLS`) and the flight is within the norms (riser
+``MIN_RISER``-``MAX_RISER``, tread ``MIN_TREAD``-``MAX_TREAD``, step rule ``STEP_RULE``).
+Used by :mod:`mjwalk.scan.levelboxes` (flights up), :mod:`mjwalk.scan.scanpits` (down into pits)
+and :mod:`mjwalk.scan.hiddentread`. Metres, scene frame (floor at z = 0).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from mjwalk.scan.minrect import min_rectangle
+from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan
+from mjwalk.scan.scanlevels import ScanLevel, seen_in_part
+from mjwalk.world.norms import (
+    MAX_RISER,
+    MAX_TREAD,
+    MIN_RISER,
+    MIN_TREAD,
+    STAIR_TOLERANCE,
+    STEP_RULE,
+)
+
+#: Most a tread's fitted height may differ from its regular flight's, metres: the build
+#: tolerance ``STAIR_TOLERANCE`` (5 mm, DIN 18065) plus the scan's range noise (5 mm, the sigma
+#: ``mjwalk.scan.obstacles.FLOOR_TOL`` is six of).
+HEIGHT_TOL = STAIR_TOLERANCE + FLOOR_TOL / 6
+#: Most a tread's edge may differ from its flight's, in cells of the floor plan, besides
+#: ``STAIR_TOLERANCE``: an edge lies somewhere in its outermost cell, one more for the riser's
+#: cell that its points block.
+EDGE_CELLS = 2
+
+
+def cell_centres(cells: np.ndarray, plan: FloorPlan) -> np.ndarray:
+    """The centres of a region's cells.
+
+    Args:
+        cells: (ny, nx) bool on the floor plan's grid.
+        plan: the floor plan (its grid).
+
+    Returns:
+        (M, 2) x, y, metres.
+    """
+    iy, ix = np.nonzero(cells)
+    r = plan.resolution
+    return np.column_stack([plan.x0 + (ix + 0.5) * r, plan.y0 + (iy + 0.5) * r])
+
+
+def axis_near(rect: np.ndarray, run: np.ndarray) -> np.ndarray:
+    """The rectangle's axis nearest a direction.
+
+    Args:
+        rect: (4, 2) corners in order, metres.
+        run: (2,) the direction.
+
+    Returns:
+        (2,) the unit axis, signed to point along ``run``.
+    """
+    axes = [rect[1] - rect[0], rect[3] - rect[0]]
+    axes = [a / np.hypot(*a) for a in axes]
+    a = max(axes, key=lambda v: abs(float(v @ run)))
+    return a if a @ run > 0 else -a
+
+
+def tread_rect(tread: ScanLevel, plan: FloorPlan) -> np.ndarray:
+    """A tread's minimum-area rectangle.
+
+    Args:
+        tread: the region.
+        plan: the floor plan (its grid).
+
+    Returns:
+        (4, 2) corners, metres.
+    """
+    return min_rectangle(tread.cells, plan.x0, plan.y0, plan.resolution)
+
+
+def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dict | None:
+    """A chain of levels fitted as one regular flight, or None when it is not a stair.
+
+    Args:
+        chain: level indices bottom up: a level, the treads, a level.
+        levels: the levels.
+        plan: the floor plan (its grid).
+
+    Returns:
+        None, or: ``riser`` and ``tread`` (metres), ``heights`` of the treads, ``rects`` (4, 2)
+        of the treads, ``top_edge`` (the last riser's place along ``run``), ``run`` (the unit
+        climb direction) and the largest deviations ``dz``, ``dxy`` (metres).
+    """
+    n = len(chain) - 1
+    bottom, top, treads = levels[chain[0]], levels[chain[-1]], [levels[i] for i in chain[1:-1]]
+    riser = (top.height - bottom.height) / n
+    heights = [bottom.height + (k + 1) * riser for k in range(n - 1)]
+    dz = max(abs(t.height - h) for t, h in zip(treads, heights, strict=True))
+    mids = [cell_centres(t.cells, plan).mean(axis=0) for t in treads]
+    top_rect = min_rectangle(top.cells, plan.x0, plan.y0, plan.resolution)
+    # a flight down into a pit (its top the floor, whose outline is the hall's) turns with its
+    # own treads: the axis of the tread next to the floor
+    ref = top_rect if top.kind != "floor" else tread_rect(treads[-1], plan)
+    run = axis_near(ref, mids[-1] - mids[0])
+    side = np.array([-run[1], run[0]])
+    rows, rhs, lefts, rights = [], [], [], []
+    for k, t in enumerate(treads):
+        c = cell_centres(t.cells, plan)
+        along, across = c @ run, c @ side
+        rows += [[1.0, 0.0, k], [0.0, 1.0, k]]
+        rhs += [along.min(), along.max()]
+        lefts.append(across.min())
+        rights.append(across.max())
+    a = np.array(rows)
+    coef, *_ = np.linalg.lstsq(a, np.array(rhs), rcond=None)
+    dxy = float(np.abs(a @ coef - rhs).max())
+    tol = STAIR_TOLERANCE + EDGE_CELLS * plan.resolution
+    if dxy > tol or any(seen_in_part(t, plan.resolution) for t in treads):
+        top_front = near_edge(top, plan, run, side, (min(lefts), max(rights)), rhs[-2])
+        coef, dxy = _shadowed_fit(np.array(rhs), top_front, plan.resolution)
+    first, tread = float(coef[0]), float(coef[2])
+    ok = (
+        dz <= HEIGHT_TOL
+        and dxy <= tol
+        and MIN_RISER - 1e-9 <= riser <= MAX_RISER + 1e-9
+        and MIN_TREAD - 1e-9 <= tread <= MAX_TREAD + 1e-9
+        and STEP_RULE[0] - 1e-9 <= 2 * riser + tread <= STEP_RULE[1] + 1e-9
+    )
+    if not ok:
+        return None
+    w0, w1 = float(np.median(lefts)), float(np.median(rights))
+    rects = []
+    for k in range(n - 1):
+        s0, s1 = first + k * tread, first + (k + 1) * tread
+        corners = [(s0, w0), (s1, w0), (s1, w1), (s0, w1)]
+        rects.append(np.array([u * run + v * side for u, v in corners]))
+    return {
+        "riser": riser, "tread": tread, "heights": heights, "rects": rects, "run": run,
+        "top_edge": first + (n - 1) * tread, "top_rect": top_rect, "dz": dz, "dxy": dxy,
+    }  # fmt: skip
+
+
+def near_edge(
+    top: ScanLevel, plan: FloorPlan, run: np.ndarray, side: np.ndarray, span, start: float
+) -> float:
+    """Where a level begins along a flight: its first cells beyond a place within its width.
+
+    Args:
+        top: the level.
+        plan: the floor plan (its grid).
+        run: (2,) the flight's unit climb direction.
+        side: (2,) the unit direction across it.
+        span: (least, most) across ``side`` of the flight's width, metres.
+        start: the place along ``run`` looked beyond, metres.
+
+    Returns:
+        The centre of ``top``'s first cells along ``run`` beyond ``start`` within ``span``,
+        metres along ``run``; inf when none.
+    """
+    c = cell_centres(top.cells, plan)
+    along, across = c @ run, c @ side
+    mine = (along > start) & (across >= span[0]) & (across <= span[1])
+    return float(along[mine].min()) if mine.any() else math.inf
+
+
+def _shadowed_fit(edges: np.ndarray, top_front: float, res: float) -> tuple[np.ndarray, float]:
+    """A flight fitted to its treads' front edges and the top level's (a tread's back may lie
+    in the shadow of the next tread or level, so it is seen shorter, never longer).
+
+    Args:
+        edges: (2 (n - 1),) each tread's first and last cell centre along the run, metres.
+        top_front: the top level's first cell centre along the run, metres.
+        res: the grid's cell edge, metres.
+
+    Returns:
+        (coef: (3,) the first front edge, unused, the tread depth; dxy: the largest front
+        residual or back edge seen beyond the next front, metres).
+    """
+    fronts = np.append(edges[0::2], top_front)
+    k = np.arange(len(fronts), dtype=float)
+    if not np.isfinite(top_front):
+        return np.zeros(3), math.inf
+    a = np.column_stack([np.ones_like(k), k])
+    (first, tread), *_ = np.linalg.lstsq(a, fronts, rcond=None)
+    dxy = float(np.abs(a @ np.array([first, tread]) - fronts).max())
+    beyond = edges[1::2] - (first + (k[1:]) * tread - res)
+    return np.array([first, 0.0, tread]), max(dxy, float(np.max(beyond, initial=0.0)))

@@ -1,0 +1,57 @@
+"""mjwalk.scan.stairfit: a chain of levels fitted as one regular flight (issue 47)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from mjwalk.scan.obstacles import FloorPlan
+from mjwalk.scan.scanlevels import ScanLevel
+from mjwalk.scan.stairfit import axis_near, cell_centres, fit_stair, near_edge
+
+RES = 0.02
+NY, NX = 60, 120
+
+
+def _plan() -> FloorPlan:
+    z = np.zeros((NY, NX), bool)
+    return FloorPlan(0.0, 0.0, RES, ~z, np.zeros((NY, NX), np.int64), np.zeros(1), z,
+                     (0.0, 0.0, NX * RES, NY * RES), 0)  # fmt: skip
+
+
+def _level(i: int, kind: str, h: float, cols: tuple[int, int]) -> ScanLevel:
+    cells = np.zeros((NY, NX), bool)
+    cells[5:55, cols[0] : cols[1]] = True
+    depth = (cols[1] - cols[0]) * RES
+    return ScanLevel(i, kind, h, 0.0, 0.0, cells, float(cells.sum()) * RES**2, depth, 1.0, 0)
+
+
+def test_a_regular_flight_is_fitted():
+    """Floor, three 0.28 m treads of 0.17 m risers along +x from x = 0.40, a 0.68 m deck."""
+    floor = _level(0, "floor", 0.0, (0, 20))
+    treads = [_level(k + 1, "tread", 0.17 * (k + 1), (20 + 14 * k, 34 + 14 * k)) for k in range(3)]
+    deck = _level(4, "platform", 0.68, (62, 110))
+    fit = fit_stair([0, 1, 2, 3, 4], [floor, *treads, deck], _plan())
+    assert fit is not None
+    assert fit["riser"] == pytest.approx(0.17)
+    assert fit["tread"] == pytest.approx(0.28, abs=1e-6)
+    assert fit["run"] == pytest.approx([1.0, 0.0])
+    assert fit["top_edge"] == pytest.approx(0.41 + 3 * 0.28, abs=1e-6)  # first cell centres
+
+
+def test_a_chain_with_a_riser_out_of_the_norms_is_no_stair():
+    floor = _level(0, "floor", 0.0, (0, 20))
+    treads = [_level(k + 1, "tread", 0.25 * (k + 1), (20 + 14 * k, 34 + 14 * k)) for k in range(3)]
+    deck = _level(4, "platform", 1.0, (62, 110))
+    assert fit_stair([0, 1, 2, 3, 4], [floor, *treads, deck], _plan()) is None
+
+
+def test_helpers():
+    deck = _level(0, "platform", 0.68, (62, 110))
+    plan = _plan()
+    assert cell_centres(deck.cells, plan)[:, 0].min() == pytest.approx(1.25)
+    rect = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]])
+    assert axis_near(rect, np.array([-0.9, 0.2])) == pytest.approx([-1.0, 0.0])
+    run, side = np.array([1.0, 0.0]), np.array([0.0, 1.0])
+    assert near_edge(deck, plan, run, side, (0.2, 0.9), 0.5) == pytest.approx(1.25)
+    assert near_edge(deck, plan, run, side, (2.0, 3.0), 0.5) == float("inf")
