@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from mjwalk.ergonomics.anglejit import KERNEL_POINTS, point_array, trig_arguments, z_offsets
 from mjwalk.timeline.geomposes import GeomTable, geom_poses, supported
 
 #: A joint within this many degrees of its neutral position counts as neutral ("0 deg", "upright"
@@ -295,40 +296,59 @@ def angles_from_points(
     Returns:
         The :class:`BodyAngles` of the F frames.
     """
-    n = len(p["pelvis"])
-    fwd, trunk, sh, t_flex, t_side, t_incl, t_twist = _trunk_angles(p)
-    # the trunk's frame: up the trunk axis, left the shoulder line made orthogonal to it
-    up = trunk
-    left = _unit(sh - _dot(sh, up)[:, None] * up)
-    front = np.cross(left, up)
-    # neck
-    hu = _unit(head_up if head_up is not None else p["head"] - p["neck"])
-    n_flex = _deg(np.arctan2(_dot(hu, front), _dot(hu, up)))
-    n_side = _deg(np.arctan2(_dot(hu, left), _dot(hu, up)))
-    ua_angle, ua_elev, ua_plane, elbow, out = _arm_angles(p, up, left, front)
-    knee, down = _leg_angles(p)
+    pts = point_array(p)
+    hu = np.asarray(head_up if head_up is not None else p["head"] - p["neck"], dtype=float)
+    if hands is None:
+        hands = np.stack([p["wrist_l"], p["wrist_r"]], axis=1)
+    return _angles(pts, hu, hands, wrist, neck_twist, twist_range, walking)
+
+
+def _angles(
+    pts: np.ndarray,
+    head_up: np.ndarray,
+    hands: np.ndarray,
+    wrist: np.ndarray | None,
+    neck_twist: np.ndarray | None,
+    twist_range: float,
+    walking: np.ndarray | None,
+) -> BodyAngles:
+    """:func:`angles_from_points` of the (14, F, 3) points of
+    :data:`~mjwalk.ergonomics.anglejit.KERNEL_POINTS`: the compiled arithmetic
+    (:func:`~mjwalk.ergonomics.anglejit.trig_arguments`), then NumPy's arc tangents and arc
+    cosines of all frames at once."""
+    n = pts.shape[1]
+    ys, xs, cs = np.empty((8, n)), np.empty((8, n)), np.empty((9, n))
+    fwd, fwd_c, out = np.empty((n, 3)), np.empty((2, n)), np.empty((n, 2), dtype=bool)
+    hu = np.ascontiguousarray(head_up, dtype=float)
+    trig_arguments(pts, hu, OUT_TO_SIDE_SHARE, ys, xs, cs, fwd, fwd_c, out)
+    at = np.arctan2(ys, xs)
+    dt, dc = _deg(at), _deg(np.arccos(cs))
+    twist = at[2] - at[3]  # the shoulder line's yaw from the hip line's
+    plane, elev = dt[6:8], dc[1:3]
+    behind = (fwd_c < 0) & (plane <= ABDUCTION_PLANE_DEG)  # raised mainly backwards
+    az = pts[12:14, :, 2]  # the ankles' heights
     w = np.zeros((n, 2, 3)) if wrist is None else np.asarray(wrist, dtype=float)
     return BodyAngles(
-        trunk_flexion=t_flex,
-        trunk_side_bend=t_side,
-        trunk_twist=t_twist,
-        trunk_inclination=t_incl,
-        neck_flexion=n_flex,
-        neck_side_bend=n_side,
+        trunk_flexion=dt[0],
+        trunk_side_bend=dt[1],
+        trunk_twist=_deg((twist + np.pi) % (2 * np.pi) - np.pi),
+        trunk_inclination=dc[0],
+        neck_flexion=dt[4],
+        neck_side_bend=dt[5],
         neck_twist=np.zeros(n) if neck_twist is None else np.asarray(neck_twist, dtype=float),
-        upper_arm_angle=ua_angle,
-        upper_arm_elevation=ua_elev,
-        upper_arm_plane=ua_plane,
-        elbow_flexion=elbow,
+        upper_arm_angle=np.where(behind, -elev, elev).T,
+        upper_arm_elevation=dc[3:5].T,
+        upper_arm_plane=plane.T,
+        elbow_flexion=dc[5:7].T,
         wrist_flexion=w[:, :, 0],
         wrist_deviation=w[:, :, 1],
         wrist_twist=w[:, :, 2],
         twist_range=float(twist_range),
-        knee_flexion=knee,
-        feet_down=down,
+        knee_flexion=dc[7:9].T,
+        feet_down=(az <= az.min(axis=1, initial=np.inf)[:, None] + FOOT_UP).T,
         walking=np.zeros(n, dtype=bool) if walking is None else np.asarray(walking, dtype=bool),
-        hands=np.stack([p["wrist_l"], p["wrist_r"]], axis=1) if hands is None else hands,
-        ankles=0.5 * (p["ankle_l"] + p["ankle_r"]),
+        hands=hands,
+        ankles=0.5 * (pts[12] + pts[13]),
         forward=fwd,
         shoulder_raised=np.zeros((n, 2), dtype=bool),
         lower_arm_out=out,
@@ -342,6 +362,8 @@ _BODY_POINTS = {
     "thigh_l": "hip_l", "thigh_r": "hip_r", "shin_l": "knee_l", "shin_r": "knee_r",
     "foot_l": "ankle_l", "foot_r": "ankle_r",
 }  # fmt: skip
+#: The humanoid body of each joint of :data:`_BODY_POINTS`.
+_POINT_BODIES = {v: k for k, v in _BODY_POINTS.items()}
 
 
 def body_frames(
@@ -396,6 +418,70 @@ def body_frames(
     return pos, rot
 
 
+def _palm_offset(model, jointmap, tag: str) -> np.ndarray:
+    """The palm's centre in the hand body's frame (zeros without a palm geom), metres."""
+    g = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, jointmap.prefix + f"palm_{tag}")
+    return model.geom_pos[g] if g >= 0 else np.zeros(3)
+
+
+def _humanoid_points(
+    model, jointmap, qpos: np.ndarray, table: GeomTable | None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The joints of :func:`angles_from_qpos` as (14, F, 3) points in the order of
+    :data:`~mjwalk.ergonomics.anglejit.KERNEL_POINTS`, the head's up (F, 3) and the palms'
+    centres (F, 2, 3): :func:`body_frames`' numbers, read from the geom poses without copying
+    the table's columns; a body whose first geom sits on its z axis unrotated (all but the
+    pelvis, the neck and the feet) by one compiled pass (:func:`~mjwalk.ergonomics.anglejit.
+    z_offsets`), the others by :func:`body_frames`' own NumPy products."""
+    bodies = list(_BODY_POINTS)
+    qpos = np.asarray(qpos, dtype=float).reshape(-1, model.nq)
+    n = len(qpos)
+    if not supported(model):
+        pos, rot = body_frames(model, jointmap, qpos, bodies, table)
+        pts = np.stack([pos[:, bodies.index(_POINT_BODIES[k])] for k in KERNEL_POINTS])
+        hands = np.stack(
+            [pos[:, bodies.index(f"hand_{t}")] + rot[:, bodies.index(f"hand_{t}")]
+             @ _palm_offset(model, jointmap, t) for t in ("l", "r")], axis=1,
+        )  # fmt: skip
+        return pts, rot[:, bodies.index("neck"), :, 2], hands
+    pre = jointmap.prefix
+    gids = np.array(
+        [model.body_geomadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, pre + b)]
+         for b in bodies], dtype=np.int64,
+    )  # fmt: skip
+    if table is not None and len(table.xpos) == n and np.isin(gids, table.geoms).all():
+        xpos, xmat, cols = table.xpos, table.xmat, np.searchsorted(table.geoms, gids)
+    else:
+        (xpos, xmat), cols = geom_poses(model, qpos, gids), np.arange(len(gids))
+    pts = np.empty((len(KERNEL_POINTS), n, 3))
+    rots: dict[str, np.ndarray] = {}
+    on_z = []
+    for b, g, c in zip(bodies, gids, cols, strict=True):
+        k = KERNEL_POINTS.index(_BODY_POINTS[b])
+        unrotated = not np.any(model.geom_quat[g] != (1.0, 0.0, 0.0, 0.0))
+        if unrotated and model.geom_pos[g, 0] == 0.0 and model.geom_pos[g, 1] == 0.0:
+            on_z.append((k, c, model.geom_pos[g, 2]))
+            rots[b] = xmat[:, c].reshape(n, 3, 3)
+            continue
+        r = np.ascontiguousarray(xmat[:, c]).reshape(3 * n, 3)  # as body_frames does
+        if not unrotated:
+            m = np.empty(9)
+            mujoco.mju_quat2Mat(m, model.geom_quat[g])
+            r = r @ m.reshape(3, 3).T
+        rots[b] = r.reshape(n, 3, 3)
+        pts[k] = xpos[:, c] - (r @ model.geom_pos[g]).reshape(n, 3)
+    ks, cs, zs = (np.array(v) for v in zip(*on_z, strict=True))
+    out = np.empty((len(ks), n, 3))
+    z_offsets(xpos, xmat, cs.astype(np.int64), zs.astype(float), -np.ones(len(ks)), out)
+    pts[ks] = out
+    hands = np.empty((n, 2, 3))
+    for s, t in enumerate(("l", "r")):
+        off, r = _palm_offset(model, jointmap, t), rots[f"hand_{t}"]
+        wrist_pt = pts[KERNEL_POINTS.index(f"wrist_{t}")]
+        hands[:, s] = wrist_pt + (r[:, :, 2] * off[2] if off[0] == off[1] == 0.0 else r @ off)
+    return pts, rots["neck"][:, :, 2], hands
+
+
 def angles_from_timeline(
     timeline, walking: np.ndarray | None = None, table: GeomTable | None = None
 ) -> BodyAngles:
@@ -432,20 +518,7 @@ def angles_from_qpos(
     Returns:
         The :class:`BodyAngles` of the F frames.
     """
-    bodies = list(_BODY_POINTS)
-    pos, rot = body_frames(model, jointmap, qpos, bodies, table)
-    p = {_BODY_POINTS[b]: pos[:, k] for k, b in enumerate(bodies)}
-    k_neck = bodies.index("neck")
-    head_up = rot[:, k_neck, :, 2]  # the neck body's z: the head's up
-    p["head"] = p["neck"] + head_up
-    # the grip points: the palms' centres, half the palm box below the wrist
-    hands = np.empty((len(qpos), 2, 3))
-    for s, tag in enumerate(("l", "r")):
-        k = bodies.index(f"hand_{tag}")
-        palm = jointmap.prefix + f"palm_{tag}"
-        g = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, palm)
-        off = model.geom_pos[g] if g >= 0 else np.zeros(3)
-        hands[:, s] = pos[:, k] + rot[:, k] @ off
+    pts, head_up, hands = _humanoid_points(model, jointmap, qpos, table)
     q = np.asarray(qpos).reshape(-1, model.nq)
 
     def hinge(name: str) -> np.ndarray:
@@ -462,12 +535,12 @@ def angles_from_qpos(
         axis=1,
     )
     lo, hi = jointmap.limits("forearm_l_pron")
-    return angles_from_points(
-        p,
-        head_up=head_up,
-        hands=hands,
-        wrist=wrist,
-        neck_twist=hinge("neck_rot"),
-        twist_range=float(np.degrees(max(abs(lo), abs(hi)))),
-        walking=walking,
+    return _angles(
+        pts,
+        head_up,
+        hands,
+        wrist,
+        hinge("neck_rot"),
+        float(np.degrees(max(abs(lo), abs(hi)))),
+        walking,
     )
