@@ -128,27 +128,44 @@ def trig_arguments(p, head_up, out_share, ys, xs, cs, fwd, fwd_c, out):
 
 
 @njit
-def z_offsets(xpos, xmat, cols, z, sign, out):
-    """Points on frames: ``out[k, f] = xpos[f, cols[k]] + sign[k] * z[k] * R[:, 2]`` with R the
-    frame's rotation ``xmat[f, cols[k]]`` (row-major): a point ``z[k]`` along the frame's own z
-    axis, the product ``R @ (0, 0, z)`` as BLAS gives it (the two zero terms add nothing).
+def z_offsets(xpos, xmat, cols, z, out):
+    """Body origins from their geoms' poses: ``out[k, f] = xpos[f, cols[k]] - z[k] * R[:, 2]``
+    with R the geom's rotation ``xmat[f, cols[k]]`` (row-major), for a geom at ``(0, 0, z[k])``
+    in its body's frame, unrotated: the product ``R @ (0, 0, z)`` as BLAS gives it (the two
+    zero terms add nothing), frame by frame (a frame's geoms lie side by side in the table).
 
     Args:
-        xpos: (F, G, 3) frame origins, world metres.
-        xmat: (F, G, 9) frame rotations (row-major).
-        cols: (K,) the frames' columns in ``xpos``/``xmat``.
-        z: (K,) the offsets along each frame's z axis, metres.
-        sign: (K,) +1 (the point at ``z``) or -1 (the origin of a frame at ``z`` from it).
-        out: (K, F, 3) filled: the points, world metres.
+        xpos: (F, G, 3) geom positions, world metres.
+        xmat: (F, G, 9) geom rotations (row-major).
+        cols: (K,) the geoms' columns in ``xpos``/``xmat``.
+        z: (K,) each geom's offset along its body's z axis, metres.
+        out: (K, F, 3) filled: the bodies' origins, world metres.
     """
-    for k in range(len(cols)):
-        c = cols[k]
-        for f in range(xpos.shape[0]):
+    for f in range(xpos.shape[0]):
+        for k in range(len(cols)):
+            c = cols[k]
             for i in range(3):
-                if sign[k] > 0:
-                    out[k, f, i] = xpos[f, c, i] + xmat[f, c, 3 * i + 2] * z[k]
-                else:
-                    out[k, f, i] = xpos[f, c, i] - xmat[f, c, 3 * i + 2] * z[k]
+                out[k, f, i] = xpos[f, c, i] - xmat[f, c, 3 * i + 2] * z[k]
+
+
+@njit
+def gather(xpos, xmat, cols, pos, mat):
+    """Copies of some columns of a geom table, frame by frame (contiguous, for NumPy's products).
+
+    Args:
+        xpos: (F, G, 3) geom positions.
+        xmat: (F, G, 9) geom rotations.
+        cols: (K,) the columns.
+        pos: (K, F, 3) filled: ``xpos[:, cols[k]]``.
+        mat: (K, F, 9) filled: ``xmat[:, cols[k]]``.
+    """
+    for f in range(xpos.shape[0]):
+        for k in range(len(cols)):
+            c = cols[k]
+            for i in range(3):
+                pos[k, f, i] = xpos[f, c, i]
+            for i in range(9):
+                mat[k, f, i] = xmat[f, c, i]
 
 
 def point_array(p: dict[str, np.ndarray]) -> np.ndarray:
@@ -163,4 +180,12 @@ def point_array(p: dict[str, np.ndarray]) -> np.ndarray:
     return np.ascontiguousarray(np.stack([np.asarray(p[k], dtype=float) for k in KERNEL_POINTS]))
 
 
-__all__ = ["ACOS_ROWS", "ATAN_ROWS", "KERNEL_POINTS", "point_array", "trig_arguments", "z_offsets"]
+__all__ = [
+    "ACOS_ROWS",
+    "ATAN_ROWS",
+    "KERNEL_POINTS",
+    "gather",
+    "point_array",
+    "trig_arguments",
+    "z_offsets",
+]

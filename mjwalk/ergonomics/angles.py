@@ -27,7 +27,13 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
-from mjwalk.ergonomics.anglejit import KERNEL_POINTS, point_array, trig_arguments, z_offsets
+from mjwalk.ergonomics.anglejit import (
+    KERNEL_POINTS,
+    gather,
+    point_array,
+    trig_arguments,
+    z_offsets,
+)
 from mjwalk.timeline.geomposes import GeomTable, geom_poses, supported
 
 #: A joint within this many degrees of its neutral position counts as neutral ("0 deg", "upright"
@@ -449,31 +455,36 @@ def _humanoid_points(
         [model.body_geomadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, pre + b)]
          for b in bodies], dtype=np.int64,
     )  # fmt: skip
-    if table is not None and len(table.xpos) == n and np.isin(gids, table.geoms).all():
-        xpos, xmat, cols = table.xpos, table.xmat, np.searchsorted(table.geoms, gids)
-    else:
+    cols = None
+    if table is not None and len(table.xpos) == n:
+        cols = np.minimum(np.searchsorted(table.geoms, gids), len(table.geoms) - 1)
+        cols = cols if np.array_equal(table.geoms[cols], gids) else None
+    if cols is None:
         (xpos, xmat), cols = geom_poses(model, qpos, gids), np.arange(len(gids))
+    else:
+        xpos, xmat = table.xpos, table.xmat
     pts = np.empty((len(KERNEL_POINTS), n, 3))
+    unrotated = ~np.any(model.geom_quat[gids] != (1.0, 0.0, 0.0, 0.0), axis=1)
+    on_z = unrotated & (model.geom_pos[gids, 0] == 0.0) & (model.geom_pos[gids, 1] == 0.0)
+    ks = np.array([KERNEL_POINTS.index(_BODY_POINTS[b]) for b in bodies])
+    out = np.empty((int(on_z.sum()), n, 3))
+    z_offsets(xpos, xmat, cols[on_z], model.geom_pos[gids[on_z], 2], out)
+    pts[ks[on_z]] = out
+    other = np.flatnonzero(~on_z)
+    gpos, gmat = np.empty((len(other), n, 3)), np.empty((len(other), n, 9))
+    gather(xpos, xmat, cols[other], gpos, gmat)
     rots: dict[str, np.ndarray] = {}
-    on_z = []
-    for b, g, c in zip(bodies, gids, cols, strict=True):
-        k = KERNEL_POINTS.index(_BODY_POINTS[b])
-        unrotated = not np.any(model.geom_quat[g] != (1.0, 0.0, 0.0, 0.0))
-        if unrotated and model.geom_pos[g, 0] == 0.0 and model.geom_pos[g, 1] == 0.0:
-            on_z.append((k, c, model.geom_pos[g, 2]))
-            rots[b] = xmat[:, c].reshape(n, 3, 3)
-            continue
-        r = np.ascontiguousarray(xmat[:, c]).reshape(3 * n, 3)  # as body_frames does
-        if not unrotated:
+    for j, gp, gm in zip(other, gpos, gmat, strict=True):
+        g = gids[j]
+        r = gm.reshape(3 * n, 3)  # body_frames' products, on the same numbers
+        if not unrotated[j]:
             m = np.empty(9)
             mujoco.mju_quat2Mat(m, model.geom_quat[g])
             r = r @ m.reshape(3, 3).T
-        rots[b] = r.reshape(n, 3, 3)
-        pts[k] = xpos[:, c] - (r @ model.geom_pos[g]).reshape(n, 3)
-    ks, cs, zs = (np.array(v) for v in zip(*on_z, strict=True))
-    out = np.empty((len(ks), n, 3))
-    z_offsets(xpos, xmat, cs.astype(np.int64), zs.astype(float), -np.ones(len(ks)), out)
-    pts[ks] = out
+        rots[bodies[j]] = r.reshape(n, 3, 3)
+        pts[ks[j]] = gp - (r @ model.geom_pos[g]).reshape(n, 3)
+    for j in np.flatnonzero(on_z):
+        rots[bodies[j]] = xmat[:, cols[j]].reshape(n, 3, 3)
     hands = np.empty((n, 2, 3))
     for s, t in enumerate(("l", "r")):
         off, r = _palm_offset(model, jointmap, t), rots[f"hand_{t}"]
