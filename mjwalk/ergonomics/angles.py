@@ -531,27 +531,18 @@ def angles_from_qpos(
     """
     pts, head_up, hands = _humanoid_points(model, jointmap, qpos, table)
     q = np.asarray(qpos).reshape(-1, model.nq)
-
-    def hinge(name: str) -> np.ndarray:
-        return np.degrees(q[:, jointmap.adr(name)])
-
-    wrist = np.stack(
-        [
-            np.stack(
-                [hinge(f"wrist_{t}_flex"), hinge(f"wrist_{t}_dev"), hinge(f"forearm_{t}_pron")],
-                axis=1,
-            )
-            for t in ("l", "r")
-        ],
-        axis=1,
-    )
+    hinges = [f"{j}_{t}_{a}" for t in ("l", "r") for j, a in (("wrist", "flex"), ("wrist", "dev"),
+                                                               ("forearm", "pron"))]  # fmt: skip
+    adr = [jointmap.adr(h) for h in (*hinges, "neck_rot")]
+    deg = np.degrees(q[:, adr])  # one gather: the same degrees, elementwise
+    wrist = deg[:, :6].reshape(-1, 2, 3)  # (F, side, flexion / deviation / pronation)
     lo, hi = jointmap.limits("forearm_l_pron")
     return _angles(
         pts,
         head_up,
         hands,
         wrist,
-        hinge("neck_rot"),
+        deg[:, 6],
         float(np.degrees(max(abs(lo), abs(hi)))),
         walking,
     )
