@@ -60,7 +60,8 @@ def trig_arguments(p, head_up, out_share, ys, xs, cs, fwd, fwd_c, out):
         head_up: (F, 3) the head's up direction (not necessarily unit).
         out_share: a wrist farther than this share of the upper arm's length outward of its
             shoulder is out to the side (:data:`mjwalk.ergonomics.angles.OUT_TO_SIDE_SHARE`).
-        ys, xs: (8, F) filled: the arc tangents' y and x, rows :data:`ATAN_ROWS`.
+        ys: (8, F) filled: the arc tangents' y, rows :data:`ATAN_ROWS`.
+        xs: (8, F) filled: the arc tangents' x.
         cs: (9, F) filled: the arc cosines' arguments, clipped, rows :data:`ACOS_ROWS`.
         fwd: (F, 3) filled: the pelvis' horizontal forward direction.
         fwd_c: (2, F) filled: each upper arm's forward component in the trunk's frame.

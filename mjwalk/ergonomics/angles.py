@@ -456,13 +456,12 @@ def _humanoid_points(
          for b in bodies], dtype=np.int64,
     )  # fmt: skip
     cols = None
-    if table is not None and len(table.xpos) == n:
-        cols = np.minimum(np.searchsorted(table.geoms, gids), len(table.geoms) - 1)
-        cols = cols if np.array_equal(table.geoms[cols], gids) else None
+    if table is not None and len(table.xpos) == n:  # the table's columns, if it has them all
+        c = np.minimum(np.searchsorted(table.geoms, gids), len(table.geoms) - 1)
+        if np.array_equal(table.geoms[c], gids):
+            cols, xpos, xmat = c, table.xpos, table.xmat
     if cols is None:
         (xpos, xmat), cols = geom_poses(model, qpos, gids), np.arange(len(gids))
-    else:
-        xpos, xmat = table.xpos, table.xmat
     pts = np.empty((len(KERNEL_POINTS), n, 3))
     unrotated = ~np.any(model.geom_quat[gids] != (1.0, 0.0, 0.0, 0.0), axis=1)
     on_z = unrotated & (model.geom_pos[gids, 0] == 0.0) & (model.geom_pos[gids, 1] == 0.0)

@@ -201,7 +201,14 @@ ANGLE_THRESHOLDS = (NEUTRAL_DEG, ASYMMETRY_DEG, ABDUCTION_PLANE_DEG, WRIST_DEVIA
 
 
 def twist_end(ang: BodyAngles) -> float:
-    """The forearm rotation (deg) beyond which the twist is at the end of its range."""
+    """The forearm rotation beyond which the twist is at the end of its range.
+
+    Args:
+        ang: the body angles (their ``twist_range``).
+
+    Returns:
+        Degrees.
+    """
     return TWIST_END_SHARE * ang.twist_range
 
 

@@ -9,22 +9,38 @@ import pytest
 from mjwalk.body.humanoid import humanoid_model, pelvis_height
 from mjwalk.ergonomics.anglejit import KERNEL_POINTS
 from mjwalk.ergonomics.angles import (
-    _BODY_POINTS,
     ABDUCTION_PLANE_DEG,
     FOOT_UP,
     OUT_TO_SIDE_SHARE,
     BodyAngles,
-    _deg,
-    _dot,
-    _unit,
     angles_from_points,
     angles_from_qpos,
     body_frames,
 )
 from mjwalk.timeline.geomposes import geom_table
 
-
 # --- the NumPy reference (mjwalk/ergonomics/angles.py at a88f200) ---
+_BODY_POINTS = {
+    "pelvis": "pelvis", "neck": "neck", "upper_arm_l": "shoulder_l", "upper_arm_r": "shoulder_r",
+    "forearm_l": "elbow_l", "forearm_r": "elbow_r", "hand_l": "wrist_l", "hand_r": "wrist_r",
+    "thigh_l": "hip_l", "thigh_r": "hip_r", "shin_l": "knee_l", "shin_r": "knee_r",
+    "foot_l": "ankle_l", "foot_r": "ankle_r",
+}  # fmt: skip
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    n = np.sqrt(_dot(v, v))[..., None]
+    return v / np.where(n > 1e-12, n, 1.0)
+
+
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
+
+
+def _deg(x: np.ndarray) -> np.ndarray:
+    return np.degrees(x)
+
+
 def _trunk_angles(p: dict[str, np.ndarray]) -> tuple[np.ndarray, ...]:
     """The pelvis' left and forward axes and the trunk's flexion, side bend, inclination and
     twist (degrees) of joint positions ``p``, with the trunk axis and the shoulder line."""

@@ -7,6 +7,7 @@ import numpy as np
 
 from mjwalk.ergonomics import owas, reba, rula
 from mjwalk.ergonomics.angles import BodyAngles
+from mjwalk.ergonomics.posturejit import posture_inputs
 from mjwalk.ergonomics.postures import OwasScore, RebaScore, RulaScore
 from mjwalk.ergonomics.score import ScoreContext
 
@@ -66,6 +67,8 @@ def test_kernels_give_the_numpy_scores_frame_for_frame():
             load = reba.load_score(ctx.load[:, s])
             want = reba.parts_score(p, load, ctx.coupling[:, s], ctx.muscle[:, s])
             assert np.array_equal(got.arm[:, s], want)
+        body, arms, flags = posture_inputs(a)
+        assert body.shape == (6, n) and arms.shape == (6, n, 2) and flags.shape == (4, n, 2)
         codes = owas.codes(a)
         codes[:, 3] = owas.load_codes(ctx.load.sum(axis=1))
         assert np.array_equal(OwasScore().per_frame(a, ctx), owas.action_category(*codes.T))
