@@ -27,6 +27,13 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from mjwalk.ergonomics.anglejit import (
+    KERNEL_POINTS,
+    gather,
+    point_array,
+    trig_arguments,
+    z_offsets,
+)
 from mjwalk.timeline.geomposes import GeomTable, geom_poses, supported
 
 #: A joint within this many degrees of its neutral position counts as neutral ("0 deg", "upright"
@@ -206,70 +213,6 @@ POINTS = (
 )  # fmt: skip
 
 
-def _trunk_angles(p: dict[str, np.ndarray]) -> tuple[np.ndarray, ...]:
-    """The pelvis' left and forward axes and the trunk's flexion, side bend, inclination and
-    twist (degrees) of joint positions ``p``, with the trunk axis and the shoulder line."""
-    z = np.array([0.0, 0.0, 1.0])
-    hip_left = p["hip_l"] - p["hip_r"]
-    hip_left[:, 2] = 0.0
-    hip_left = _unit(hip_left)
-    fwd = np.cross(hip_left, z)  # x = y cross z
-    trunk = _unit(p["neck"] - p["pelvis"])
-    t_flex = _deg(np.arctan2(_dot(trunk, fwd), trunk[:, 2]))
-    t_side = _deg(np.arctan2(_dot(trunk, hip_left), trunk[:, 2]))
-    t_incl = _deg(np.arccos(np.clip(trunk[:, 2], -1.0, 1.0)))
-    sh = p["shoulder_l"] - p["shoulder_r"]
-    twist = np.arctan2(sh[:, 1], sh[:, 0]) - np.arctan2(hip_left[:, 1], hip_left[:, 0])
-    t_twist = _deg((twist + np.pi) % (2 * np.pi) - np.pi)
-    return fwd, trunk, sh, t_flex, t_side, t_incl, t_twist
-
-
-def _arm_angles(
-    p: dict[str, np.ndarray], up: np.ndarray, left: np.ndarray, front: np.ndarray
-) -> tuple[np.ndarray, ...]:
-    """(F, 2) upper-arm angle, elevation and plane, elbow flexion (degrees) and the
-    lower-arm-out flag of both arms in the trunk's frame (``up``, ``left``, ``front``)."""
-    n = len(up)
-    ua_angle = np.zeros((n, 2))
-    ua_elev = np.zeros((n, 2))
-    ua_plane = np.zeros((n, 2))
-    elbow = np.zeros((n, 2))
-    out = np.zeros((n, 2), dtype=bool)
-    centre = 0.5 * (p["shoulder_l"] + p["shoulder_r"])
-    for s, tag in enumerate(("l", "r")):
-        outward = left if s == 0 else -left
-        u = p[f"elbow_{tag}"] - p[f"shoulder_{tag}"]
-        f = p[f"wrist_{tag}"] - p[f"elbow_{tag}"]
-        uu = _unit(u)
-        down_c, fwd_c, out_c = -_dot(uu, up), _dot(uu, front), _dot(uu, outward)
-        elev = _deg(np.arccos(np.clip(down_c, -1.0, 1.0)))
-        plane = _deg(np.arctan2(np.abs(out_c), np.abs(fwd_c)))
-        behind = (fwd_c < 0) & (plane <= ABDUCTION_PLANE_DEG)  # raised mainly backwards
-        ua_angle[:, s] = np.where(behind, -elev, elev)
-        ua_plane[:, s] = plane
-        ua_elev[:, s] = _deg(np.arccos(np.clip(-uu[:, 2], -1.0, 1.0)))
-        elbow[:, s] = _deg(np.arccos(np.clip(_dot(uu, _unit(f)), -1.0, 1.0)))
-        lat = _dot(p[f"wrist_{tag}"] - centre, outward)  # outward of the trunk's midline
-        sh_lat = _dot(p[f"shoulder_{tag}"] - centre, outward)
-        u_len = np.linalg.norm(u, axis=-1)
-        out[:, s] = (lat < 0.0) | (lat - sh_lat > OUT_TO_SIDE_SHARE * u_len)
-    return ua_angle, ua_elev, ua_plane, elbow, out
-
-
-def _leg_angles(p: dict[str, np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
-    """(F, 2) knee flexion (degrees) and feet-on-the-floor flags of both legs."""
-    n = len(p["pelvis"])
-    knee = np.zeros((n, 2))
-    down = np.zeros((n, 2), dtype=bool)
-    for s, tag in enumerate(("l", "r")):
-        th = _unit(p[f"knee_{tag}"] - p[f"hip_{tag}"])
-        sn = _unit(p[f"ankle_{tag}"] - p[f"knee_{tag}"])
-        knee[:, s] = _deg(np.arccos(np.clip(_dot(th, sn), -1.0, 1.0)))
-        az = p[f"ankle_{tag}"][:, 2]
-        down[:, s] = az <= az.min(initial=np.inf) + FOOT_UP
-    return knee, down
-
-
 def angles_from_points(
     p: dict[str, np.ndarray],
     *,
@@ -295,40 +238,59 @@ def angles_from_points(
     Returns:
         The :class:`BodyAngles` of the F frames.
     """
-    n = len(p["pelvis"])
-    fwd, trunk, sh, t_flex, t_side, t_incl, t_twist = _trunk_angles(p)
-    # the trunk's frame: up the trunk axis, left the shoulder line made orthogonal to it
-    up = trunk
-    left = _unit(sh - _dot(sh, up)[:, None] * up)
-    front = np.cross(left, up)
-    # neck
-    hu = _unit(head_up if head_up is not None else p["head"] - p["neck"])
-    n_flex = _deg(np.arctan2(_dot(hu, front), _dot(hu, up)))
-    n_side = _deg(np.arctan2(_dot(hu, left), _dot(hu, up)))
-    ua_angle, ua_elev, ua_plane, elbow, out = _arm_angles(p, up, left, front)
-    knee, down = _leg_angles(p)
+    pts = point_array(p)
+    hu = np.asarray(head_up if head_up is not None else p["head"] - p["neck"], dtype=float)
+    if hands is None:
+        hands = np.stack([p["wrist_l"], p["wrist_r"]], axis=1)
+    return _angles(pts, hu, hands, wrist, neck_twist, twist_range, walking)
+
+
+def _angles(
+    pts: np.ndarray,
+    head_up: np.ndarray,
+    hands: np.ndarray,
+    wrist: np.ndarray | None,
+    neck_twist: np.ndarray | None,
+    twist_range: float,
+    walking: np.ndarray | None,
+) -> BodyAngles:
+    """:func:`angles_from_points` of the (14, F, 3) points of
+    :data:`~mjwalk.ergonomics.anglejit.KERNEL_POINTS`: the compiled arithmetic
+    (:func:`~mjwalk.ergonomics.anglejit.trig_arguments`), then NumPy's arc tangents and arc
+    cosines of all frames at once."""
+    n = pts.shape[1]
+    ys, xs, cs = np.empty((8, n)), np.empty((8, n)), np.empty((9, n))
+    fwd, fwd_c, out = np.empty((n, 3)), np.empty((2, n)), np.empty((n, 2), dtype=bool)
+    hu = np.ascontiguousarray(head_up, dtype=float)
+    trig_arguments(pts, hu, OUT_TO_SIDE_SHARE, ys, xs, cs, fwd, fwd_c, out)
+    at = np.arctan2(ys, xs)
+    dt, dc = _deg(at), _deg(np.arccos(cs))
+    twist = at[2] - at[3]  # the shoulder line's yaw from the hip line's
+    plane, elev = dt[6:8], dc[1:3]
+    behind = (fwd_c < 0) & (plane <= ABDUCTION_PLANE_DEG)  # raised mainly backwards
+    az = pts[12:14, :, 2]  # the ankles' heights
     w = np.zeros((n, 2, 3)) if wrist is None else np.asarray(wrist, dtype=float)
     return BodyAngles(
-        trunk_flexion=t_flex,
-        trunk_side_bend=t_side,
-        trunk_twist=t_twist,
-        trunk_inclination=t_incl,
-        neck_flexion=n_flex,
-        neck_side_bend=n_side,
+        trunk_flexion=dt[0],
+        trunk_side_bend=dt[1],
+        trunk_twist=_deg((twist + np.pi) % (2 * np.pi) - np.pi),
+        trunk_inclination=dc[0],
+        neck_flexion=dt[4],
+        neck_side_bend=dt[5],
         neck_twist=np.zeros(n) if neck_twist is None else np.asarray(neck_twist, dtype=float),
-        upper_arm_angle=ua_angle,
-        upper_arm_elevation=ua_elev,
-        upper_arm_plane=ua_plane,
-        elbow_flexion=elbow,
+        upper_arm_angle=np.where(behind, -elev, elev).T,
+        upper_arm_elevation=dc[3:5].T,
+        upper_arm_plane=plane.T,
+        elbow_flexion=dc[5:7].T,
         wrist_flexion=w[:, :, 0],
         wrist_deviation=w[:, :, 1],
         wrist_twist=w[:, :, 2],
         twist_range=float(twist_range),
-        knee_flexion=knee,
-        feet_down=down,
+        knee_flexion=dc[7:9].T,
+        feet_down=(az <= az.min(axis=1, initial=np.inf)[:, None] + FOOT_UP).T,
         walking=np.zeros(n, dtype=bool) if walking is None else np.asarray(walking, dtype=bool),
-        hands=np.stack([p["wrist_l"], p["wrist_r"]], axis=1) if hands is None else hands,
-        ankles=0.5 * (p["ankle_l"] + p["ankle_r"]),
+        hands=hands,
+        ankles=0.5 * (pts[12] + pts[13]),
         forward=fwd,
         shoulder_raised=np.zeros((n, 2), dtype=bool),
         lower_arm_out=out,
@@ -342,6 +304,8 @@ _BODY_POINTS = {
     "thigh_l": "hip_l", "thigh_r": "hip_r", "shin_l": "knee_l", "shin_r": "knee_r",
     "foot_l": "ankle_l", "foot_r": "ankle_r",
 }  # fmt: skip
+#: The humanoid body of each joint of :data:`_BODY_POINTS`.
+_POINT_BODIES = {v: k for k, v in _BODY_POINTS.items()}
 
 
 def body_frames(
@@ -396,6 +360,74 @@ def body_frames(
     return pos, rot
 
 
+def _palm_offset(model, jointmap, tag: str) -> np.ndarray:
+    """The palm's centre in the hand body's frame (zeros without a palm geom), metres."""
+    g = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, jointmap.prefix + f"palm_{tag}")
+    return model.geom_pos[g] if g >= 0 else np.zeros(3)
+
+
+def _humanoid_points(
+    model, jointmap, qpos: np.ndarray, table: GeomTable | None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The joints of :func:`angles_from_qpos` as (14, F, 3) points in the order of
+    :data:`~mjwalk.ergonomics.anglejit.KERNEL_POINTS`, the head's up (F, 3) and the palms'
+    centres (F, 2, 3): :func:`body_frames`' numbers, read from the geom poses without copying
+    the table's columns; a body whose first geom sits on its z axis unrotated (all but the
+    pelvis, the neck and the feet) by one compiled pass (:func:`~mjwalk.ergonomics.anglejit.
+    z_offsets`), the others by :func:`body_frames`' own NumPy products."""
+    bodies = list(_BODY_POINTS)
+    qpos = np.asarray(qpos, dtype=float).reshape(-1, model.nq)
+    n = len(qpos)
+    if not supported(model):
+        pos, rot = body_frames(model, jointmap, qpos, bodies, table)
+        pts = np.stack([pos[:, bodies.index(_POINT_BODIES[k])] for k in KERNEL_POINTS])
+        hands = np.stack(
+            [pos[:, bodies.index(f"hand_{t}")] + rot[:, bodies.index(f"hand_{t}")]
+             @ _palm_offset(model, jointmap, t) for t in ("l", "r")], axis=1,
+        )  # fmt: skip
+        return pts, rot[:, bodies.index("neck"), :, 2], hands
+    pre = jointmap.prefix
+    gids = np.array(
+        [model.body_geomadr[mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, pre + b)]
+         for b in bodies], dtype=np.int64,
+    )  # fmt: skip
+    cols = None
+    if table is not None and len(table.xpos) == n:  # the table's columns, if it has them all
+        c = np.minimum(np.searchsorted(table.geoms, gids), len(table.geoms) - 1)
+        if np.array_equal(table.geoms[c], gids):
+            cols, xpos, xmat = c, table.xpos, table.xmat
+    if cols is None:
+        (xpos, xmat), cols = geom_poses(model, qpos, gids), np.arange(len(gids))
+    pts = np.empty((len(KERNEL_POINTS), n, 3))
+    unrotated = ~np.any(model.geom_quat[gids] != (1.0, 0.0, 0.0, 0.0), axis=1)
+    on_z = unrotated & (model.geom_pos[gids, 0] == 0.0) & (model.geom_pos[gids, 1] == 0.0)
+    ks = np.array([KERNEL_POINTS.index(_BODY_POINTS[b]) for b in bodies])
+    out = np.empty((int(on_z.sum()), n, 3))
+    z_offsets(xpos, xmat, cols[on_z], model.geom_pos[gids[on_z], 2], out)
+    pts[ks[on_z]] = out
+    other = np.flatnonzero(~on_z)
+    gpos, gmat = np.empty((len(other), n, 3)), np.empty((len(other), n, 9))
+    gather(xpos, xmat, cols[other], gpos, gmat)
+    rots: dict[str, np.ndarray] = {}
+    for j, gp, gm in zip(other, gpos, gmat, strict=True):
+        g = gids[j]
+        r = gm.reshape(3 * n, 3)  # body_frames' products, on the same numbers
+        if not unrotated[j]:
+            m = np.empty(9)
+            mujoco.mju_quat2Mat(m, model.geom_quat[g])
+            r = r @ m.reshape(3, 3).T
+        rots[bodies[j]] = r.reshape(n, 3, 3)
+        pts[ks[j]] = gp - (r @ model.geom_pos[g]).reshape(n, 3)
+    for j in np.flatnonzero(on_z):
+        rots[bodies[j]] = xmat[:, cols[j]].reshape(n, 3, 3)
+    hands = np.empty((n, 2, 3))
+    for s, t in enumerate(("l", "r")):
+        off, r = _palm_offset(model, jointmap, t), rots[f"hand_{t}"]
+        wrist_pt = pts[KERNEL_POINTS.index(f"wrist_{t}")]
+        hands[:, s] = wrist_pt + (r[:, :, 2] * off[2] if off[0] == off[1] == 0.0 else r @ off)
+    return pts, rots["neck"][:, :, 2], hands
+
+
 def angles_from_timeline(
     timeline, walking: np.ndarray | None = None, table: GeomTable | None = None
 ) -> BodyAngles:
@@ -432,42 +464,20 @@ def angles_from_qpos(
     Returns:
         The :class:`BodyAngles` of the F frames.
     """
-    bodies = list(_BODY_POINTS)
-    pos, rot = body_frames(model, jointmap, qpos, bodies, table)
-    p = {_BODY_POINTS[b]: pos[:, k] for k, b in enumerate(bodies)}
-    k_neck = bodies.index("neck")
-    head_up = rot[:, k_neck, :, 2]  # the neck body's z: the head's up
-    p["head"] = p["neck"] + head_up
-    # the grip points: the palms' centres, half the palm box below the wrist
-    hands = np.empty((len(qpos), 2, 3))
-    for s, tag in enumerate(("l", "r")):
-        k = bodies.index(f"hand_{tag}")
-        palm = jointmap.prefix + f"palm_{tag}"
-        g = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, palm)
-        off = model.geom_pos[g] if g >= 0 else np.zeros(3)
-        hands[:, s] = pos[:, k] + rot[:, k] @ off
+    pts, head_up, hands = _humanoid_points(model, jointmap, qpos, table)
     q = np.asarray(qpos).reshape(-1, model.nq)
-
-    def hinge(name: str) -> np.ndarray:
-        return np.degrees(q[:, jointmap.adr(name)])
-
-    wrist = np.stack(
-        [
-            np.stack(
-                [hinge(f"wrist_{t}_flex"), hinge(f"wrist_{t}_dev"), hinge(f"forearm_{t}_pron")],
-                axis=1,
-            )
-            for t in ("l", "r")
-        ],
-        axis=1,
-    )
+    hinges = [f"{j}_{t}_{a}" for t in ("l", "r") for j, a in (("wrist", "flex"), ("wrist", "dev"),
+                                                               ("forearm", "pron"))]  # fmt: skip
+    adr = [jointmap.adr(h) for h in (*hinges, "neck_rot")]
+    deg = np.degrees(q[:, adr])  # one gather: the same degrees, elementwise
+    wrist = deg[:, :6].reshape(-1, 2, 3)  # (F, side, flexion / deviation / pronation)
     lo, hi = jointmap.limits("forearm_l_pron")
-    return angles_from_points(
-        p,
-        head_up=head_up,
-        hands=hands,
-        wrist=wrist,
-        neck_twist=hinge("neck_rot"),
-        twist_range=float(np.degrees(max(abs(lo), abs(hi)))),
-        walking=walking,
+    return _angles(
+        pts,
+        head_up,
+        hands,
+        wrist,
+        deg[:, 6],
+        float(np.degrees(max(abs(lo), abs(hi)))),
+        walking,
     )

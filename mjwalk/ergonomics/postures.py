@@ -16,6 +16,15 @@ import numpy as np
 
 from mjwalk.ergonomics import iso11226, owas, reba, rula
 from mjwalk.ergonomics.angles import BodyAngles
+from mjwalk.ergonomics.posturejit import (
+    ANGLE_THRESHOLDS,
+    KNEE_BENT_DEG,
+    owas_kernel,
+    posture_inputs,
+    reba_kernel,
+    rula_kernel,
+    twist_end,
+)
 from mjwalk.ergonomics.results import RunErgonomics
 from mjwalk.ergonomics.score import (
     Column,
@@ -98,14 +107,14 @@ class RulaScore(Score):
         Returns:
             :class:`ArmFrames`: (F, 2) scores, each side's part scores, (F,) the higher arm's.
         """
-        out = np.zeros((ang.n_frames, 2), dtype=int)
-        parts = []
-        body = rula.body_parts(ang)  # the neck, trunk and legs: the same for both arms
-        for s in (0, 1):
-            p = rula.part_scores(ang, s, body)
-            parts.append(p)
-            force = rula.force_score(ctx.load[:, s], ctx.muscle[:, s] > 0)
-            out[:, s] = rula.parts_score(p, ctx.muscle[:, s], force)
+        body, arms, flags = posture_inputs(ang)
+        n = ang.n_frames
+        p, out = np.empty((2, 7, n), dtype=np.int64), np.empty((n, 2), dtype=np.int64)
+        loads = np.stack([ctx.load, ctx.muscle]).astype(float)
+        limits = (*ANGLE_THRESHOLDS, twist_end(ang), *rula.FORCE_KG)
+        tables = (rula.TABLE_A, rula.TABLE_B, rula.TABLE_C)
+        rula_kernel(body, arms, flags, loads, limits, tables, p, out)
+        parts = [rula.RulaParts(*p[s]) for s in (0, 1)]
         return ArmFrames(out, parts, out.max(axis=1))
 
     def per_task(self, frames: ArmFrames, span: TaskSpan, ctx: ScoreContext) -> dict[str, Any]:
@@ -190,14 +199,15 @@ class RebaScore(Score):
         Returns:
             :class:`ArmFrames`: (F, 2) scores, each side's part scores, (F,) the higher side's.
         """
-        out = np.zeros((ang.n_frames, 2), dtype=int)
-        parts = []
-        body = reba.body_parts(ang)  # the trunk, neck and legs: the same for both arms
-        for s in (0, 1):
-            p = reba.part_scores(ang, s, body)
-            parts.append(p)
-            load_s = reba.load_score(ctx.load[:, s])
-            out[:, s] = reba.parts_score(p, load_s, ctx.coupling[:, s], ctx.muscle[:, s])
+        body, arms, flags = posture_inputs(ang)
+        n = ang.n_frames
+        p, out = np.empty((2, 6, n), dtype=np.int64), np.empty((n, 2), dtype=np.int64)
+        loads = np.stack([ctx.load, ctx.coupling, ctx.muscle]).astype(float)
+        limits = (*ANGLE_THRESHOLDS, twist_end(ang), KNEE_BENT_DEG, *reba.LOAD_KG)
+        tables = (reba.TABLE_A, reba.TABLE_B, reba.TABLE_C)
+        knee = np.ascontiguousarray(ang.knee_flexion, dtype=float)
+        reba_kernel(body, arms, knee, flags, loads, limits, tables, p, out)
+        parts = [reba.RebaParts(*p[s]) for s in (0, 1)]
         return ArmFrames(out, parts, out.max(axis=1))
 
     def per_task(self, frames: ArmFrames, span: TaskSpan, ctx: ScoreContext) -> dict[str, Any]:
@@ -265,9 +275,14 @@ class OwasScore(Score):
         Returns:
             (F,) action categories 1-4.
         """
-        codes = owas.codes(ang)
-        codes[:, 3] = owas.load_codes(ctx.load.sum(axis=1))
-        return owas.action_category(*codes.T)
+        body, _, flags = posture_inputs(ang)
+        out = np.empty(ang.n_frames, dtype=np.int64)
+        elevation = np.ascontiguousarray(ang.upper_arm_elevation, dtype=float)
+        knee = np.ascontiguousarray(ang.knee_flexion, dtype=float)
+        load = np.ascontiguousarray(ctx.load, dtype=float)
+        limits = (owas.BACK_DEG, KNEE_BENT_DEG, *owas.LOAD_KG)
+        owas_kernel(body, elevation, knee, flags, load, limits, owas.TABLE, out)
+        return out
 
     def per_task(self, frames: np.ndarray, span: TaskSpan, ctx: ScoreContext) -> dict[str, Any]:
         """The task's highest OWAS action category.
