@@ -2,7 +2,8 @@
 one pass over all frames instead of some hundred NumPy calls on (F, 3) arrays (issue 50).
 
 The kernels do the products, sums, square roots and divisions in the order the NumPy code did
-them (``_unit``, ``_dot``, ``np.cross``, ``np.linalg.norm``: the same floats, no fused
+them (its ``_unit``, ``_dot``, ``np.cross``, ``np.linalg.norm``, kept verbatim as the reference
+in ``tests/ergonomics/test_anglejit.py``: the same floats, no fused
 multiply-adds: :func:`mjwalk._jit.njit` keeps ``fastmath`` off); the arc tangents and arc
 cosines stay NumPy's (:func:`trig_arguments` returns their arguments, the caller calls
 ``np.arctan2`` and ``np.arccos`` once on all of them): NumPy's vectorised ``arctan2``/``arccos``
@@ -45,7 +46,7 @@ def _clip1(x: float) -> float:
 
 @njit
 def _unit3(x: float, y: float, z: float) -> tuple[float, float, float]:
-    """``angles._unit`` of one vector: divided by its norm, unless that is at most 1e-12."""
+    """The NumPy code's ``_unit`` of one vector: divided by its norm, unless at most 1e-12."""
     n = math.sqrt(x * x + y * y + z * z)
     d = n if n > 1e-12 else 1.0
     return x / d, y / d, z / d

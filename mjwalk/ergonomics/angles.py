@@ -171,18 +171,6 @@ class BodyAngles:
         return BodyAngles(**kw)
 
 
-def _unit(v: np.ndarray) -> np.ndarray:
-    n = np.sqrt(_dot(v, v))[..., None]  # np.linalg.norm's sum, in its order, without its reduce
-    return v / np.where(n > 1e-12, n, 1.0)
-
-
-def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    # the three products added in the order ``(a * b).sum(axis=-1)`` adds them: a reduction
-    # over an axis of 3 costs numpy about 5x more than the two additions
-    # (benchmarks/cycle_timing.py, "ergonomics: angles")
-    return a[..., 0] * b[..., 0] + a[..., 1] * b[..., 1] + a[..., 2] * b[..., 2]
-
-
 def _deg(x: np.ndarray) -> np.ndarray:
     return np.degrees(x)
 
