@@ -2,8 +2,8 @@
 
 Frames arrive bottom-up (as OpenGL reads them) in RGB; the file is H.264 in an mp4 at
 :data:`VIDEO_QUALITY` and :data:`VIDEO_PRESET`. A write that fails anywhere, while frames are
-sent or while ffmpeg finishes the file, raises ``BrokenPipeError`` (the caller's
-:func:`mjwalk._io.atomic_path` names the file and removes it).
+sent or while ffmpeg finishes the file, raises ``BrokenPipeError`` saying why ffmpeg stopped
+(the caller's :func:`mjwalk._io.atomic_path` names the file and removes it).
 """
 
 from __future__ import annotations
@@ -28,6 +28,10 @@ import numpy as np
 VIDEO_CODEC = "libx264"
 VIDEO_QUALITY = 7
 VIDEO_PRESET = "veryfast"
+
+#: Seconds to wait for an ffmpeg that stopped reading frames to exit, so that its exit status
+#: or last message can name why (it exits at once after a failed write; a choice, not a norm).
+WAIT_AFTER_PIPE_S = 10.0
 
 
 class FfmpegWriter:
@@ -74,7 +78,32 @@ class FfmpegWriter:
         try:
             self._proc.stdin.write(self._flip.data)
         except OSError as exc:
-            raise BrokenPipeError(errno.EPIPE, "ffmpeg stopped writing it") from exc
+            raise BrokenPipeError(errno.EPIPE, self._stopped(WAIT_AFTER_PIPE_S)) from exc
+
+    def _stopped(self, timeout: float | None) -> str:
+        """Why ffmpeg stopped: its last message, the signal that killed it or its exit code.
+
+        Args:
+            timeout: Seconds to wait for ffmpeg to exit (None: as long as it takes). An ffmpeg
+                still running after it closed its input is killed and named as such.
+        """
+        proc, log = self._proc, self._log
+        try:
+            code = proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+            return "ffmpeg stopped writing it: it closed its input and did not exit"
+        log.seek(0)
+        lines = log.read().decode(errors="replace").strip().splitlines()
+        why = (
+            f"killed by {signal.Signals(-code).name}"
+            if code < 0
+            else re.sub(r"^\[[^]]*\]\s*", "", lines[-1])
+            if lines
+            else f"exit code {code}"
+        )
+        return f"ffmpeg stopped writing it: {why}"
 
     def close(self, ok: bool = True) -> None:
         """Let ffmpeg finish the file (``ok``), or stop it (the write failed elsewhere).
@@ -91,18 +120,8 @@ class FfmpegWriter:
             assert proc.stdin is not None
             with contextlib.suppress(OSError):  # a dead ffmpeg: its exit status says why
                 proc.stdin.close()
-            code = proc.wait()
-            if code != 0:
-                log.seek(0)
-                lines = log.read().decode(errors="replace").strip().splitlines()
-                why = (
-                    f"killed by {signal.Signals(-code).name}"
-                    if code < 0
-                    else re.sub(r"^\[[^]]*\]\s*", "", lines[-1])
-                    if lines
-                    else f"exit code {code}"
-                )
-                raise BrokenPipeError(errno.EPIPE, f"ffmpeg stopped writing it: {why}")
+            if proc.wait() != 0:
+                raise BrokenPipeError(errno.EPIPE, self._stopped(None))
         finally:
             if proc.poll() is None:  # interrupted while waiting for it
                 proc.kill()

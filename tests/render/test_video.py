@@ -232,3 +232,21 @@ def test_an_ffmpeg_failing_after_the_last_frame_leaves_no_video(
     with pytest.raises(OSError, match=f"cannot write {out}: ffmpeg stopped writing it: {why}"):
         render.render_video(short, out, camera="top", size=(32, 24), progress=False)
     assert not (tmp_path / "out").exists()
+
+
+def test_an_ffmpeg_failing_while_frames_are_sent_names_why(tmp_path, timeline, monkeypatch):
+    """An ffmpeg that stops reading before the last frame (here: at once, with a message)
+    breaks the pipe; the error names ffmpeg's reason as at the end of the file, and no file
+    is left. Frames of 320x240 (230 kB) overfill the pipe's buffer, so the write itself fails."""
+    short = type(timeline)(**{**timeline.__dict__, "qpos": timeline.qpos[:4], "t": timeline.t[:4]})
+    fake = tmp_path / "bin" / "ffmpeg"
+    fake.parent.mkdir()
+    fake.write_text("#!/bin/sh\necho '[out#0/mp4 @ 0x1] No space left on device' >&2\nexit 1\n")
+    fake.chmod(0o755)
+    monkeypatch.setattr(_ffmpeg.imageio_ffmpeg, "get_ffmpeg_exe", lambda: str(fake))
+    out = tmp_path / "out" / "walk.mp4"
+    with pytest.raises(
+        OSError, match=f"cannot write {out}: ffmpeg stopped writing it: No space left on device"
+    ):
+        render.render_video(short, out, camera="top", size=(320, 240), progress=False)
+    assert not (tmp_path / "out").exists()
