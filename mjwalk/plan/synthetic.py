@@ -178,7 +178,11 @@ def synthetic_stair_walk(
     n_hold = round(0.25 * fps)  # the final pose held a quarter second, as synthetic_walk's
     m = bounds[-1] + n_hold + 1
     t = np.arange(m) / fps
-    sp = [0.0] + [0.5 * (s_f[i - 1] + s_f[i]) if i > 1 else 0.25 * tread for i in range(1, n_steps)]
+    # pelvis at step starts midway between the two feet, as synthetic_walk's (whose first step
+    # is a half step, so its midway is a quarter step; here the first step is a whole tread):
+    # a quarter tread here put the first step off a landing 7 cm nearer above its lifting foot
+    # than the flight's steps (knee 100.1 against 95.5-95.7 deg down at 1.75 m)
+    sp = [0.0] + [0.5 * (s_f[i - 1] + s_f[i]) for i in range(1, n_steps)]
     sp = [*sp, s_f[-1]]
     knots_t, knots_s = t[bounds], np.asarray(sp)
     if n_hold:

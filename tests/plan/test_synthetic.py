@@ -52,6 +52,19 @@ def test_synthetic_stair_walk_heights_and_timing():
     assert float(down.z[0]) == pytest.approx(1.02) and float(down.z[-1]) == 0.0
 
 
+@pytest.mark.parametrize("direction", ["up", "down"])
+def test_synthetic_stair_walk_starts_its_steps_with_the_pelvis_midway(direction):
+    """Every step of a stair walk after the first starts with the pelvis midway between the
+    tread centres of its two feet, the second too (the first step is a whole tread, unlike
+    synthetic_walk's half step; a quarter tread there put the first step off the top landing
+    7 cm nearer above its lifting foot than the flight's, knee 100.1 against 95.5-95.7 deg)."""
+    from mjwalk.plan.synthetic import synthetic_stair_walk
+
+    w = synthetic_stair_walk(0.17, 0.28, 6, direction)
+    for k in range(1, len(w.steps)):
+        assert float(w.xy[w.steps[k].start, 0]) == pytest.approx(0.28 * (k - 0.5))
+
+
 def test_synthetic_ramp_walk_rises_along_the_heading():
     from mjwalk.plan.synthetic import synthetic_ramp_walk
 

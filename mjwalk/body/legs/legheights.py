@@ -84,7 +84,11 @@ SLOPE_REACH = 0.3
 #: abstract verified here). The ranges span the peaks reported by Riener, Rabuffetti & Frigo,
 #: Gait Posture 15:32-44 (2002) at 24-42 deg, McFadyen & Winter, J Biomech 21:733-744 (1988)
 #: and Protopapadaki et al. (2007) (about 83-105 deg up, 80-100 deg down; NOT verified here
-#: beyond the abstracts).
+#: beyond the abstracts). One descent figure was verified (abstract only, SafetyLit record
+#: citjournalarticle_703263_26; authors and journal not read here): 101 adults aged 18-35
+#: walking down an unconstrained 13-step staircase outside a laboratory (wearable sensors)
+#: flexed the knee up to 85 deg and the hip 30 deg (joint ranges; no SD of the peak and no
+#: riser or tread in the abstract), inside the descent range below but near its low end.
 KNEE_PEAK_UP = (83.0, 105.0)
 KNEE_PEAK_DOWN = (80.0, 100.0)
 #: Peak hip flexion, degrees: greater up than down by 28.1 deg (SD 4.1) (Protopapadaki et al.
