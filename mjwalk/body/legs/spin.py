@@ -93,9 +93,11 @@ def spin_turns(
         r_all, up_all, down_all = _hip_rotation(feet, s_, root_c, yaw_c, sp, bufs)
         need_all = (up_all > 0) | (down_all > 0)
         worst, count = 0.0, 0
-        for i, (j0, j1) in enumerate(zip(starts, ends, strict=True)):
-            if not need_all[j0 : j1 + 1].any():
-                continue
+        # (the contacts with a sample that needs a turn, found at once by a running count)
+        seen = np.concatenate([[0], np.cumsum(need_all)])
+        after = np.asarray(ends, dtype=np.int64) + 1
+        for i in np.flatnonzero(seen[after] > seen[starts]).tolist():
+            j0, j1 = starts[i], ends[i]
             run = np.arange(j0, j1 + 1)
             hip = (r_all[run], up_all[run], down_all[run], need_all[run])
             turned, offsets = _turn_contact(feet, s_, run, hip, sp)
