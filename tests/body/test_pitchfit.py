@@ -98,3 +98,45 @@ def test_fit_ankle_range_stops_at_its_tolerance():
     exact, loose = fitted(0.0), fitted(np.deg2rad(0.5))
     assert loose <= np.deg2rad(0.5)
     assert exact < loose  # the loose fit stopped earlier, further from the bound
+
+
+def test_fit_passes_in_one_call_give_the_python_loops_tracks_bit_for_bit(monkeypatch):
+    """``synthesis._fit_ankles``' passes in one compiled call (``fit_ankle_passes``) and pass
+    by pass in Python give every track of 36 seeded walks (straight and turning, short quick
+    and long slow steps, statures 1.5-2.0 m) to the byte; the compiled call ran for each."""
+    from mjwalk.body.legs import pitchfit, synthesis
+    from mjwalk.plan.synthetic import synthetic_walk
+
+    ran = []
+    kept = pitchfit.fit_ankle_passes
+
+    def counted(*args):
+        z = kept(*args)
+        ran.append(z is not None)
+        return z
+
+    monkeypatch.setattr(synthesis, "fit_ankle_passes", counted)
+
+    def tracks(walk, stature, compiled):
+        monkeypatch.setattr(synthesis, "COMPILED_FIT", compiled)
+        legs = synthesis.legs_from_walk(walk, stature)
+        arrays = [legs.root, legs.yaw, legs.contact, legs.phase]
+        for d in (legs.angles, legs.ankle, legs.pitch):
+            arrays += [d[k] for k in sorted(d)]
+        return [a.dtype.str.encode() + a.tobytes() for a in arrays]
+
+    rng = np.random.default_rng(50)
+    for case in range(36):
+        radius = None if case % 3 == 0 else float(rng.choice([-1, 1]) * rng.uniform(0.6, 3))
+        walk = synthetic_walk(
+            n_steps=int(rng.integers(2, 9)),
+            step_len=float(rng.uniform(0.1, 0.9)),
+            width=float(rng.uniform(0.08, 0.3)),
+            step_time=float(rng.uniform(0.4, 0.8)),
+            radius=radius,
+            start=(float(rng.uniform(-3, 3)), float(rng.uniform(-3, 3)), rng.uniform(-3, 3)),
+            hold=float(rng.choice([0.0, 0.25])),
+        )
+        stature = float(rng.uniform(1.5, 2.0))
+        assert tracks(walk, stature, True) == tracks(walk, stature, False), case
+    assert len(ran) == 36 and all(ran)

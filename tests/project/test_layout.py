@@ -199,7 +199,12 @@ def test_no_import_cycles_counting_type_checking_imports():
 
 
 #: Private names a module still takes from another (each is to be made public in its owner).
-PRIVATE_FOR_NOW: set[tuple[str, str, str]] = set()
+#: pitchfit's compiled ankle-fit passes call stance's reach-deficit kernel; the mend is a public
+#: alias beside stance's other ``*_rows`` kernels (stance.py was another branch's while legs50i
+#: worked; issue 50).
+PRIVATE_FOR_NOW: set[tuple[str, str, str]] = {
+    ("mjwalk.body.legs.pitchfit", "mjwalk.body.legs.stance", "_reach_deficit")
+}
 
 
 def test_private_names_stay_in_their_module():
@@ -223,6 +228,7 @@ KERNEL_PINNING_TESTS = {
     "tests/plan/test_planner_fastpaths.py": {"_rim", "_dijkstra_field"},
     "tests/plan/test_grid.py": {"_astar"},
     "tests/arms/test_chain.py": {"_shoulder_branch"},
+    "tests/body/test_spin.py": {"_spin_rounds"},
 }
 #: Private names tests still import: each is to be made public in its module or tested through
 #: public behaviour, then taken off this list.

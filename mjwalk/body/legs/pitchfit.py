@@ -25,10 +25,11 @@ import numpy as np
 
 from mjwalk._jit import njit
 from mjwalk.body.humanoid import LegGeometry
-from mjwalk.body.legs.curves import gauss_kernel, spread_rows
+from mjwalk.body.legs.curves import gauss_kernel, maximum1, spread_rows
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.ik import hip_rel, ik_lengths
 from mjwalk.body.legs.ikcache import LegIKCache, yaw_trig_row
+from mjwalk.body.legs.stance import _reach_deficit
 from mjwalk.body.legs.steps import FootTracks
 
 
@@ -206,6 +207,108 @@ def fit_ankle_range(
         float(fit.tol),
     )
     return ankle, pitch
+
+
+def fit_ankle_passes(
+    ik: dict[str, LegIKCache],
+    feet: FootTracks,
+    xy: np.ndarray,
+    z: np.ndarray,
+    yaw: np.ndarray,
+    reach_sq: dict[str, np.ndarray],
+    fit: AnkleFit,
+    passes: int,
+) -> np.ndarray | None:
+    """The synthesis's ankle fit of both legs with the pelvis lowered after each pass, in one
+    compiled call: up to ``passes`` passes of :func:`fit_ankle_range` on the left leg, then
+    the right, the pelvis at (``xy``, ``z``); then each grounded leg's reach deficit
+    (``stance.reach_deficit``, the larger of the legs'); done when no deficit exceeds 1 mm,
+    else the pelvis lowered by its spread (``curves.spread``) and another pass -- the numbers
+    of that loop in Python (``synthesis._fit_ankles``), bit for bit.
+
+    Args:
+        ik: per side ("l"/"r") the leg's IK cache over the n samples (updated).
+        feet: the feet's tracks; both feet's ``ankle`` and ``pitch`` are replaced by the
+            fitted ones, their ``toe`` updated in place.
+        xy: (n, 2) pelvis (x, y), metres, world frame.
+        z: (n,) pelvis heights, metres (not changed).
+        yaw: (n,) pelvis yaw, radians from +x CCW.
+        reach_sq: per side the (n,) squared hip-to-ankle spans a grounded leg reaches, m².
+        fit: the ankle bounds (radians), spread window and rounds per leg and pass.
+        passes: the most passes.
+
+    Returns:
+        the lowered pelvis heights (n,), metres, or None for walks shorter than the compiled
+        spread handles (2 ``win`` + 2 samples; nothing changed: the caller runs the loop).
+    """
+    n, win = len(z), fit.win
+    if n < 2 * win + 2:
+        return None
+    geom = ik["l"].geom
+    arr = lambda a: np.ascontiguousarray(a, dtype=float)  # noqa: E731
+    ankle = {s_: np.array(feet.ankle[s_], dtype=float, order="C") for s_ in "lr"}
+    pitch = {s_: np.array(feet.pitch[s_], dtype=float) for s_ in "lr"}
+    legs = [
+        (ankle[s_], arr(feet.fyaw[s_]), pitch[s_], feet.toe[s_],
+         np.ascontiguousarray(feet.ground[s_], dtype=np.bool_), arr(feet.prints[s_]),
+         arr(reach_sq[s_]), (*ik[s_].buffers(n), *ik[s_].flex_buffers(n), *ik[s_].trig_buffers(n)))
+        for s_ in "lr"
+    ]  # fmt: skip
+    z = np.array(z, dtype=float)
+    bounds = (float(fit.dorsi_max), float(fit.plantar_min), float(fit.tol))
+    sole = (ball_offset(geom), float(geom.foot_back), float(geom.ankle_height))
+    _fit_passes(
+        legs[0], legs[1], arr(xy), z, arr(yaw), float(geom.hip_y), ik_lengths(geom), bounds,
+        (int(win), int(fit.rounds)), gauss_kernel(int(win)), sole, int(passes),
+    )  # fmt: skip
+    for s_ in "lr":
+        feet.ankle[s_], feet.pitch[s_] = ankle[s_], pitch[s_]
+    return z
+
+
+@njit
+def _fit_leg(leg, root, yaw, sgn, hip_y, lengths, bounds, counts, kernel, sole):
+    """One leg's :func:`_fit_rounds` (``leg``: ankle, foot yaw, pitch, toe, ground, prints,
+    reach, IK caches) with the pelvis at ``root`` (n, 3)."""
+    ankle, fyaw, pitch, toe, ground, prints, _, caches = leg
+    L1, L2, rmin, rmax = lengths
+    dorsi_max, plantar_min, tol = bounds
+    win, rounds = counts
+    ball, back, ah = sole
+    _fit_rounds(ankle, fyaw, pitch, toe, ground, prints, root, yaw, sgn, hip_y, L1, L2, rmin, rmax,
+                caches, dorsi_max, plantar_min, win, kernel, ball, back, ah, rounds,
+                tol)  # fmt: skip
+
+
+@njit
+def _fit_passes(left, right, xy, z, yaw, hip_y, lengths, bounds, counts, kernel, sole, passes):
+    """:func:`fit_ankle_passes` in place (the legs' ankles, pitches, toes and IK caches, the
+    pelvis heights ``z``)."""
+    n = z.shape[0]
+    root = np.empty((n, 3))
+    deficit = np.empty(n)
+    need = np.empty(n)
+    for _ in range(passes):
+        for i in range(n):  # (np.column_stack([xy, z]))
+            root[i, 0], root[i, 1], root[i, 2] = xy[i, 0], xy[i, 1], z[i]
+        _fit_leg(left, root, yaw, 1.0, hip_y, lengths, bounds, counts, kernel, sole)
+        _fit_leg(right, root, yaw, -1.0, hip_y, lengths, bounds, counts, kernel, sole)
+        deficit[:] = 0.0
+        _reach_deficit(root, yaw, left[0], left[4], left[6], 1.0 * hip_y, deficit)
+        _reach_deficit(root, yaw, right[0], right[4], right[6], -1.0 * hip_y, deficit)
+        top, nan = -np.inf, False  # (NumPy's max: NaN if any)
+        for i in range(n):
+            if deficit[i] != deficit[i]:
+                nan = True
+            elif deficit[i] > top:
+                top = deficit[i]
+        if not nan and top <= 1e-3:
+            break
+        for i in range(n):
+            need[i] = maximum1(deficit[i], 0.0)
+        env = spread_rows(need, counts[0], kernel)
+        for i in range(n):
+            z[i] = z[i] - env[i]
 
 
 @njit

@@ -4,6 +4,7 @@ about its ball (or heel) instead (see :func:`spin_turns`). World frame, metres, 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -11,8 +12,8 @@ import numpy as np
 from mjwalk._jit import njit
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.body.legs.curves import smoothstep, soft_excess1
-from mjwalk.body.legs.footpivot import ball_offset, pivot_ankle, spin_print
-from mjwalk.body.legs.ik import ik_lengths, leg_ik_world
+from mjwalk.body.legs.footpivot import ball_offset, pivot_rows
+from mjwalk.body.legs.ik import ik_lengths, leg_ik_world_row
 from mjwalk.body.legs.ikcache import LegIKCache, leg_ik_world_cached_where
 from mjwalk.body.legs.steps import SWING_TURNED, FootTracks
 
@@ -20,6 +21,10 @@ from mjwalk.body.legs.steps import SWING_TURNED, FootTracks
 #: ``SPIN_MARGIN`` turns about its ball by the excess (softly: from ``SPIN_SOFT`` before that),
 #: its heel raised ``SPIN_HEEL`` over the last ``SPIN_RAMP`` of hip rotation before the turn.
 SPIN_MARGIN, SPIN_SOFT, SPIN_HEEL, SPIN_RAMP = 2.0, 4.0, 4.0, 6.0
+
+#: Rounds of a contact's turn corrected by its hip rotation's error (the hip follows the foot's
+#: yaw one to one, so a round leaves only what the pivot's move changes).
+SPIN_ROUNDS = 6
 
 
 @dataclass(frozen=True)
@@ -88,9 +93,11 @@ def spin_turns(
         r_all, up_all, down_all = _hip_rotation(feet, s_, root_c, yaw_c, sp, bufs)
         need_all = (up_all > 0) | (down_all > 0)
         worst, count = 0.0, 0
-        for i, (j0, j1) in enumerate(zip(starts, ends, strict=True)):
-            if not need_all[j0 : j1 + 1].any():
-                continue
+        # (the contacts with a sample that needs a turn, found at once by a running count)
+        seen = np.concatenate([[0], np.cumsum(need_all)])
+        after = np.asarray(ends, dtype=np.int64) + 1
+        for i in np.flatnonzero(seen[after] > seen[starts]).tolist():
+            j0, j1 = starts[i], ends[i]
             run = np.arange(j0, j1 + 1)
             hip = (r_all[run], up_all[run], down_all[run], need_all[run])
             turned, offsets = _turn_contact(feet, s_, run, hip, sp)
@@ -169,19 +176,6 @@ def _hip_rotation(feet: FootTracks, s_: str, root_c, yaw_c, sp: _Spin, bufs):
     return r_all, up_all, down_all
 
 
-def _spin_prints(spin, foot, heel_ph, k_h, geom: LegGeometry) -> np.ndarray:
-    """The footprints (m, 3) of a foot on ``foot`` turned by ``spin`` (m,): about the heel
-    over the heel phase (its first ``k_h`` samples, ``heel_ph``), then about the ball from the
-    print the heel phase ended on."""
-    ball, back = ball_offset(geom), -geom.foot_back
-    fp = np.empty((len(spin), 3))
-    fp[heel_ph] = spin_print(foot, spin[heel_ph], geom, back)
-    base = fp[k_h - 1] if k_h else foot
-    rest = spin[~heel_ph] - (spin[k_h - 1] if k_h else 0.0)
-    fp[~heel_ph] = spin_print(base, rest, geom, ball)
-    return fp
-
-
 def _turn_contact(feet: FootTracks, s_: str, run: np.ndarray, hip, sp: _Spin):
     """Turn the ``s_`` foot over one contact (samples ``run``) by its hip rotation's excess
     (``hip``: rotation, excess up and down, need, each over ``run``), in place; returns the
@@ -192,11 +186,7 @@ def _turn_contact(feet: FootTracks, s_: str, run: np.ndarray, hip, sp: _Spin):
     heel = np.deg2rad(SPIN_HEEL)
     lo, hi, margin, soft, ramp = sp.lo, sp.hi, sp.margin, sp.soft, sp.ramp
     j0, j1 = run[0], run[-1]
-    foot = feet.prints[s_][j0].copy()
-
-    def rot(a_, y_, p_, run=run, side=s_):
-        return leg_ik_world(a_, y_, p_, sp.root[run], sp.yaw[run], side, geom)[f"hip_{side}_rot"]
-
+    foot = np.array(feet.prints[s_][j0], dtype=float)
     p0 = feet.pitch[s_][run].copy()
     r0, up, down, need = hip
     target = r0 - (up - down)
@@ -217,15 +207,19 @@ def _turn_contact(feet: FootTracks, s_: str, run: np.ndarray, hip, sp: _Spin):
         np.maximum(p0, heel * rise),
         np.where(lift > 0, np.minimum(p0, -heel * lift), p0),
     )
-    spin = np.zeros(len(run))
-    for _ in range(6):  # the hip rotation follows the foot's yaw one to one (-s)
-        fp = _spin_prints(spin, foot, heel_ph, k_h, geom)
-        err = rot(pivot_ankle(fp, p, geom), fp[:, 2], p) - target
-        spin = spin + np.where(need, sgn * err, 0.0)
-        # without need the foot keeps its turn (relative to its phase's pivot)
-        spin = np.where(need, spin, 0.0)
-    fp = _spin_prints(spin, foot, heel_ph, k_h, geom)
-    a_ = pivot_ankle(fp, p, geom)
+    # the hip rotation follows the foot's yaw one to one (-s): SPIN_ROUNDS rounds of the turn
+    # corrected by the hip's error; without need the foot keeps its turn (relative to its
+    # phase's pivot); then the turned footprints and their ankles (compiled: _spin_rounds)
+    m = len(run)
+    fp, a_ = np.empty((m, 3)), np.empty((m, 3))
+    _spin_rounds(
+        np.zeros(m), foot, k_h, np.ascontiguousarray(p, dtype=float),
+        np.ascontiguousarray(need, dtype=np.bool_), np.ascontiguousarray(target, dtype=float),
+        np.ascontiguousarray(sp.root[j0 : j1 + 1], dtype=float),
+        np.ascontiguousarray(sp.yaw[j0 : j1 + 1], dtype=float), sgn, float(geom.hip_y),
+        ik_lengths(geom), (ball_offset(geom), float(geom.foot_back), float(geom.ankle_height)),
+        SPIN_ROUNDS, fp, a_,
+    )  # fmt: skip
     turned = float(np.abs(fp[:, 2] - foot[2]).max())
     offsets = [
         (a_[k] - feet.ankle[s_][j], fp[k, 2] - foot[2], p[k] - p0[k])
@@ -278,3 +272,57 @@ def _hip_rotation_excess(ground, ankle, fyaw, pitch, root, yaw, sgn, hip_y, L1, 
         rot[i] = out[i, 0]
         up[i] = soft_excess1(out[i, 0] - top, w)
         down[i] = soft_excess1(bottom - out[i, 0], w)
+
+
+@njit
+def _spin_prints_rows(spin, foot, k_h, ball, heel, fp):
+    """The footprints ``fp`` (m, 3) of a foot on ``foot`` (x, y, yaw) turned by ``spin``
+    (m,): about the heel (``heel``: its lever ahead of the ankle, < 0) over the first ``k_h``
+    samples, then about the ball (``ball`` ahead of the ankle) from the print the heel phase
+    ended on -- ``footpivot.spin_print``'s arithmetic, in its order, for each phase."""
+    m = spin.shape[0]
+    yaw = foot[2]
+    px, py = foot[0] + heel * math.cos(yaw), foot[1] + heel * math.sin(yaw)
+    for i in range(k_h):
+        y = yaw + spin[i]
+        fp[i, 0], fp[i, 1], fp[i, 2] = px - heel * math.cos(y), py - heel * math.sin(y), y
+    bx, by, yaw, s0 = foot[0], foot[1], foot[2], 0.0
+    if k_h:
+        bx, by, yaw, s0 = fp[k_h - 1, 0], fp[k_h - 1, 1], fp[k_h - 1, 2], spin[k_h - 1]
+    px, py = bx + ball * math.cos(yaw), by + ball * math.sin(yaw)
+    for i in range(k_h, m):
+        y = yaw + (spin[i] - s0)
+        fp[i, 0], fp[i, 1], fp[i, 2] = px - ball * math.cos(y), py - ball * math.sin(y), y
+
+
+@njit
+def _spin_rounds(spin, foot, k_h, p, need, target, root, yaw, sgn, hip_y, lengths, sole, rounds,
+                 fp, a_):  # fmt: skip
+    """A contact's turn in ``rounds`` rounds, in place: each round the footprints turned by
+    ``spin`` (m,) (:func:`_spin_prints_rows`: about the heel over the first ``k_h`` samples,
+    then the ball), their ankles at the pitches ``p`` (``footpivot.pivot_rows``), the hip
+    rotation there (``ik.leg_ik_world_row``, the pelvis at ``root`` (m, 3), ``yaw`` (m,))
+    and the turn corrected by its error from ``target`` (times ``sgn``) where ``need``, else
+    zero; then the final footprints into ``fp`` (m, 3) and their ankles into ``a_`` (m, 3).
+    ``lengths``: the leg's ``ik_lengths``; ``sole``: the ball's and the heel's distances from
+    the ankle and the ankle height, metres. The numbers of the NumPy rounds (``spin_print``,
+    ``pivot_ankle``, ``leg_ik_world``) bit for bit; rows without need are not solved (their
+    turn is zero whatever the hip does)."""
+    L1, L2, rmin, rmax = lengths
+    ball, back, ah = sole
+    m = spin.shape[0]
+    fy = np.empty(m)
+    out = np.empty((m, 6))
+    for _ in range(rounds):
+        _spin_prints_rows(spin, foot, k_h, ball, -back, fp)
+        pivot_rows(fp, p, ball, back, ah, a_)
+        for i in range(m):
+            fy[i] = fp[i, 2]
+        for i in range(m):
+            if need[i]:
+                leg_ik_world_row(a_, fy, p, root, yaw, i, sgn, hip_y, L1, L2, rmin, rmax, out)
+                spin[i] = spin[i] + sgn * (out[i, 0] - target[i])
+            else:
+                spin[i] = 0.0
+    _spin_prints_rows(spin, foot, k_h, ball, -back, fp)
+    pivot_rows(fp, p, ball, back, ah, a_)

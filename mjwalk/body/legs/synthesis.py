@@ -50,7 +50,7 @@ from mjwalk.body.legs.footpivot import pivot_ankle
 from mjwalk.body.legs.ik import KNEE_MIN, LEG_JOINTS
 from mjwalk.body.legs.ikcache import LegIKCache
 from mjwalk.body.legs.legheights import lift_to_levels
-from mjwalk.body.legs.pitchfit import AnkleFit, fit_ankle_range, repitch_foot
+from mjwalk.body.legs.pitchfit import AnkleFit, fit_ankle_passes, fit_ankle_range, repitch_foot
 from mjwalk.body.legs.rampreach import BESIDE_KEY
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.spin import spin_turns
@@ -106,6 +106,15 @@ ANKLE_TOL = 0.01
 #: :func:`_synth_step`'s loop, which other references take); False: step by step (the tests
 #: that pin the per-step kernels set it).
 COMPILED_STEPS = True
+
+#: Passes of the ankle fit of both legs, each followed by the pelvis lowered where a grounded
+#: leg cannot reach its foot (:func:`_fit_ankles`).
+FIT_PASSES = 4
+
+#: Whether walks long enough for the compiled spread run :func:`_fit_ankles`' passes in one
+#: compiled call (:func:`~mjwalk.body.legs.pitchfit.fit_ankle_passes`, bit for bit the numbers
+#: of the loop); False: pass by pass in Python (the tests that compare the two set it).
+COMPILED_FIT = True
 
 
 @dataclass
@@ -448,12 +457,18 @@ def _hold_ends(sy: _Synth, first: StepFrames, last: StepFrames) -> None:
 
 def _fit_ankles(sy: _Synth, ik: dict[str, LegIKCache], win: int) -> None:
     """Keep the grounded ankles in their range by pitching the feet, and lower the pelvis
-    where a grounded leg then cannot reach its foot (up to four passes), in place."""
+    where a grounded leg then cannot reach its foot (up to :data:`FIT_PASSES` passes), in
+    place."""
     ref, geom, f = sy.ref, sy.geom, sy.feet
     k_floor = {s_: np.clip(ref("knee", sy.cyc[s_]), KNEE_MIN, np.deg2rad(KNEE_SOFT)) for s_ in "lr"}
     reach_sq = {s_: geom.span(k_floor[s_]) ** 2 for s_ in "lr"}  # (m²) with those knees
     bounds = AnkleFit(sy.dorsi_max, sy.plantar_min, win, ANKLE_ROUNDS, np.deg2rad(ANKLE_TOL))
-    for _ in range(4):
+    if COMPILED_FIT:  # the passes below in one compiled call (the same numbers)
+        z = fit_ankle_passes(ik, f, sy.xy, sy.z, sy.yaw, reach_sq, bounds, FIT_PASSES)
+        if z is not None:
+            sy.z = z
+            return
+    for _ in range(FIT_PASSES):
         root = np.column_stack([sy.xy, sy.z])
         for s_ in "lr":
             # a grounded foot whose ankle would dorsiflex past its range pitches down
