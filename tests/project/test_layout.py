@@ -199,12 +199,7 @@ def test_no_import_cycles_counting_type_checking_imports():
 
 
 #: Private names a module still takes from another (each is to be made public in its owner).
-#: pitchfit's compiled ankle-fit passes call stance's reach-deficit kernel; the mend is a public
-#: alias beside stance's other ``*_rows`` kernels (stance.py was another branch's while legs50i
-#: worked; issue 50).
-PRIVATE_FOR_NOW: set[tuple[str, str, str]] = {
-    ("mjwalk.body.legs.pitchfit", "mjwalk.body.legs.stance", "_reach_deficit")
-}
+PRIVATE_FOR_NOW: set[tuple[str, str, str]] = set()
 
 
 def test_private_names_stay_in_their_module():

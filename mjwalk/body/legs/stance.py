@@ -463,6 +463,8 @@ def _reach_deficit(root, yaw, ankle, ground, reach_sq, c, out):
 
 #: The compiled kernels of :func:`stance_foot`, :func:`stance_knee` and :func:`pelvis_height`
 #: and the stance spline's knots, for callers that run a walk's steps in one compiled loop
-#: (:mod:`~mjwalk.body.legs.synthloop`).
+#: (:mod:`~mjwalk.body.legs.synthloop`), and the reach-deficit kernel for the compiled ankle-fit
+#: passes (:func:`~mjwalk.body.legs.pitchfit.fit_ankle_passes`).
 stance_foot_rows, stance_knee_rows, pelvis_height_rows = _stance_foot, _stance_knee, _pelvis_height
+reach_deficit_rows = _reach_deficit
 STANCE_KNOTS = _KNOTS
