@@ -508,26 +508,28 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
     # (from q0 into move[0], the trajectory's first pose: np.interp gives a sample's own value)
     ready = q0[None] + unit_steps(PATH_POSES)[:, None] * (move[0] - q0)[None]
     hand = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
+    # the hand body's origin and -z axis in every pose, ready phase and movement in one call
+    # (compiled kinematics over all poses where the model allows it: a pose's numbers are its
+    # own, whatever comes before it), then :func:`hand_tip`'s point ``knuckle`` m along the
+    # hand for all of them at once
+    poses = np.concatenate([ready, move])
+    if supported(m):
+        xpos, xmat = body_poses(m, poses, np.array([hand]))
+        origin, axis = xpos[:, 0], xmat[:, 0, 2::3]
+    else:
+        data = ctx.scratch()
+        origin, axis = np.empty((len(poses), 3)), np.empty((len(poses), 3))
+        for k, pose in enumerate(poses):
+            data.qpos[:] = pose
+            mujoco.mj_kinematics(m, data)
+            origin[k] = data.xpos[hand]
+            axis[k] = data.xmat[hand, 2::3]
+    points = origin - knuckle * axis
 
-    def length(poses: np.ndarray) -> float:
-        # the hand body's origin and -z axis in every pose (compiled kinematics over all poses
-        # where the model allows it), then :func:`hand_tip`'s point ``knuckle`` m along the
-        # hand for all of them at once
-        if supported(m):
-            xpos, xmat = body_poses(m, poses, np.array([hand]))
-            origin, axis = xpos[:, 0], xmat[:, 0, 2::3]
-        else:
-            data = ctx.scratch()
-            origin, axis = np.empty((len(poses), 3)), np.empty((len(poses), 3))
-            for k, pose in enumerate(poses):
-                data.qpos[:] = pose
-                mujoco.mj_kinematics(m, data)
-                origin[k] = data.xpos[hand]
-                axis[k] = data.xmat[hand, 2::3]
-        points = origin - knuckle * axis
-        return float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
+    def length(path: np.ndarray) -> float:
+        return float(np.linalg.norm(np.diff(path, axis=0), axis=1).sum())
 
-    return length(ready), length(move)
+    return length(points[: len(ready)]), length(points[len(ready) :])
 
 
 def blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
