@@ -1,6 +1,7 @@
 """The alignment pose of an arm movement (Al-Zubi & Sommer §4.1): exp and log maps of the unit
-sphere, the angular scaling about a centre direction, rotation vectors, and the fit of the pose
-that brings a movement onto a target.
+sphere, the angular scaling about a centre direction, rotation vectors, the fit of the pose
+that brings a movement onto a target, and the normalized linear blend between two directions
+(:func:`blend_dir`, :func:`blend_dirs`: how a reach turns the hand and swivels the elbow).
 
 A pose is a (4,) vector ``[rotvec (3, radians), log scale]`` with ``U = R @ E(s, A)``: ``A`` the
 aligned directions (n, S, 3), ``E(s, .)`` the angular scaling by ``s = exp(log scale)`` about the
@@ -9,6 +10,8 @@ the shoulder frame, x forward, y left, z up); angles in radians.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -232,3 +235,39 @@ def fit_poses(
         if converged.all():
             break
     return X
+
+
+def blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
+    """Unit vector between unit vectors ``a`` (``tau`` = 0) and ``b`` (``tau`` = 1): the
+    normalized linear blend :math:`((1 - \tau) a + \tau b) / \\|(1 - \tau) a + \tau b\\|`.
+
+    Args:
+        a: (3,) unit vector.
+        b: (3,) unit vector.
+        tau: the blend, 0 to 1.
+
+    Returns:
+        (3,) unit vector.
+    """
+    v = (1.0 - tau) * a + tau * b
+    # (summed left to right as blend_dirs sums it: np.linalg.norm's BLAS dot may fuse on some CPUs)
+    return v / max(math.sqrt(float(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])), 1e-9)
+
+
+def blend_dirs(a: np.ndarray, b: np.ndarray, taus: np.ndarray) -> np.ndarray:
+    """:func:`blend_dir` for many blends at once, the same numbers row by row: unit vectors
+    between ``a`` (one (3,) or one per row (n, 3)) and ``b`` (3,) at ``taus`` (n,).
+
+    Args:
+        a: (3,) or (n, 3) unit vectors (``tau`` = 0).
+        b: (3,) unit vector (``tau`` = 1).
+        taus: (n,) the blends, 0 to 1.
+
+    Returns:
+        (n, 3) unit vectors.
+    """
+    t = np.asarray(taus, dtype=float)[:, None]
+    v = (1.0 - t) * np.asarray(a, dtype=float) + t * np.asarray(b, dtype=float)
+    # (the norm summed left to right, as blend_dir sums it)
+    norm = np.sqrt(v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1] + v[:, 2] * v[:, 2])
+    return v / np.maximum(norm, 1e-9)[:, None]

@@ -7,7 +7,6 @@ second."""
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
@@ -19,6 +18,7 @@ from scipy.spatial.transform import Rotation
 from mjwalk.anthropometry import knee_height
 from mjwalk.arms import reach as armreach  # reach_for_side looked up per call (tests spy on it)
 from mjwalk.arms.anglerows import all_close, min_jerk_steps, retrace_rows, unit_steps
+from mjwalk.arms.armpose import blend_dir, blend_dirs
 from mjwalk.arms.chain import (
     arm_frames,
     arm_joint_angles,
@@ -294,10 +294,10 @@ def _reach_motion(
     or a stoop below the knee; and the hand's error (m) from ``target_w``."""
     m, jm, fps, side = ctx.model, ctx.jointmap, pace.fps, arm.side
     assert pace.timing is not None
-    n_ready, n_out, n_rise, n_arm_ready, reach_back = _phase_counts(
+    # (``ready_pose``: the arm at the trajectory's first angles in ``base``, ranges applied)
+    n_ready, n_out, n_rise, n_arm_ready, reach_back, ready_pose = _phase_counts(
         ctx, arm, q0, base, q, pace, low
     )
-    ready_pose = arm_frames(base, jm, q[:1], side, np.ones(1))[0][0]
     w = smoothstep(np.arange(1, n_ready + 1) / (n_ready + 1))
     # the feet stay planted while the pelvis lowers (the legs solved at every pose)
     ready = crouch_frames(ctx, q0, ready_pose, w)
@@ -329,9 +329,10 @@ def _phase_counts(
     q: np.ndarray,
     pace: ReachPace,
     low: bool,
-) -> tuple[int, int, int, int, float]:
+) -> tuple[int, int, int, int, float, np.ndarray]:
     """Frame counts of a reach's phases: (ready phase with any crouch, reach out including
-    the ready phase, rise, the arm's own ready phase) and the return's duration (s)."""
+    the ready phase, rise, the arm's own ready phase), the return's duration (s) and the
+    ready posture (:func:`_hand_path`'s first pose of the movement)."""
     assert pace.timing is not None
     timing, fps = pace.timing, pace.fps
     # MTM-1 times a reach by the true path of the hand, not the straight line from start to
@@ -339,7 +340,7 @@ def _phase_counts(
     # 2014, ch. 12): the humanoid's index knuckle from where it is in q0 (the ready phase bends
     # the arm into the model's start), along the model's trajectory and the approach
     knuckle = PALM_SHARE * arm.lengths[2] / arm.scale
-    ready_len, model_len = _hand_path(ctx, q0, q, arm.side, knuckle, base)
+    ready_len, model_len, ready_pose = _hand_path(ctx, q0, q, arm.side, knuckle, base)
     reach_out, reach_back = timing(ready_len + model_len)
     n_out = max(2, round(reach_out * fps))
     # The reach model's trajectories start at its ready posture (ReachModel.rest_hand; the
@@ -361,7 +362,7 @@ def _phase_counts(
         n_ready = max(n_ready, n_down)
         n_out += n_ready - n_arm_ready
         n_rise = max(n_arm_ready, round(body_motion_duration("AB") * factor * fps))
-    return n_ready, n_out, n_rise, n_arm_ready, reach_back
+    return n_ready, n_out, n_rise, n_arm_ready, reach_back, ready_pose
 
 
 def _retraced(out: np.ndarray, n_back: int) -> np.ndarray:
@@ -491,7 +492,9 @@ def _within_reach(u: np.ndarray, end: np.ndarray, lengths: np.ndarray) -> np.nda
     return radial
 
 
-def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tuple[float, float]:
+def _hand_path(
+    ctx: CycleContext, q0, q, side, knuckle: float, base=None
+) -> tuple[float, float, np.ndarray]:
     """Lengths (m) of the path of the humanoid's index knuckle in a reach, where MTM-1 measures
     a hand's reach (Freivalds & Niebel 2014, *Niebel's Methods, Standards, and Work Design*,
     13th ed., ch. 12): ``(ready, movement)``, through the ready phase's poses (the joint angles
@@ -500,7 +503,9 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
     ``knuckle``: its distance (m) from the wrist along the hand (the operator's size).
     ``base``: the pose the arm's angles are set in (q0 bent forward, for a leaning reach).
     Forward kinematics compiled over all poses (:func:`~mjwalk.timeline.geomposes.body_poses`;
-    in the context's scratch data, pose by pose, for a model it does not support)."""
+    in the context's scratch data, pose by pose, for a model it does not support). Also
+    returns the movement's first pose, (nq,): ``base`` with the arm at ``q[0]`` after the
+    ranges (the ready posture; what ``arm_frames`` gives for ``q[:1]`` at any time)."""
     m, jm = ctx.model, ctx.jointmap
     base = q0 if base is None else base
     steps = unit_steps(PATH_SUBSTEPS * (len(q) - 1) + 1)
@@ -508,62 +513,28 @@ def _hand_path(ctx: CycleContext, q0, q, side, knuckle: float, base=None) -> tup
     # (from q0 into move[0], the trajectory's first pose: np.interp gives a sample's own value)
     ready = q0[None] + unit_steps(PATH_POSES)[:, None] * (move[0] - q0)[None]
     hand = m.body(f"{jm.prefix}hand_{side_prefix(side)}").id
+    # the hand body's origin and -z axis in every pose, ready phase and movement in one call
+    # (compiled kinematics over all poses where the model allows it: a pose's numbers are its
+    # own, whatever comes before it), then :func:`hand_tip`'s point ``knuckle`` m along the
+    # hand for all of them at once
+    poses = np.concatenate([ready, move])
+    if supported(m):
+        xpos, xmat = body_poses(m, poses, np.array([hand]))
+        origin, axis = xpos[:, 0], xmat[:, 0, 2::3]
+    else:
+        data = ctx.scratch()
+        origin, axis = np.empty((len(poses), 3)), np.empty((len(poses), 3))
+        for k, pose in enumerate(poses):
+            data.qpos[:] = pose
+            mujoco.mj_kinematics(m, data)
+            origin[k] = data.xpos[hand]
+            axis[k] = data.xmat[hand, 2::3]
+    points = origin - knuckle * axis
 
-    def length(poses: np.ndarray) -> float:
-        # the hand body's origin and -z axis in every pose (compiled kinematics over all poses
-        # where the model allows it), then :func:`hand_tip`'s point ``knuckle`` m along the
-        # hand for all of them at once
-        if supported(m):
-            xpos, xmat = body_poses(m, poses, np.array([hand]))
-            origin, axis = xpos[:, 0], xmat[:, 0, 2::3]
-        else:
-            data = ctx.scratch()
-            origin, axis = np.empty((len(poses), 3)), np.empty((len(poses), 3))
-            for k, pose in enumerate(poses):
-                data.qpos[:] = pose
-                mujoco.mj_kinematics(m, data)
-                origin[k] = data.xpos[hand]
-                axis[k] = data.xmat[hand, 2::3]
-        points = origin - knuckle * axis
-        return float(np.linalg.norm(np.diff(points, axis=0), axis=1).sum())
+    def length(path: np.ndarray) -> float:
+        return float(np.linalg.norm(np.diff(path, axis=0), axis=1).sum())
 
-    return length(ready), length(move)
-
-
-def blend_dir(a: np.ndarray, b: np.ndarray, tau: float) -> np.ndarray:
-    """Unit vector between unit vectors ``a`` (``tau`` = 0) and ``b`` (``tau`` = 1): the
-    normalized linear blend :math:`((1 - \tau) a + \tau b) / \\|(1 - \tau) a + \tau b\\|`.
-
-    Args:
-        a: (3,) unit vector.
-        b: (3,) unit vector.
-        tau: the blend, 0 to 1.
-
-    Returns:
-        (3,) unit vector.
-    """
-    v = (1.0 - tau) * a + tau * b
-    # (summed left to right as blend_dirs sums it: np.linalg.norm's BLAS dot may fuse on some CPUs)
-    return v / max(math.sqrt(float(v[0] * v[0] + v[1] * v[1] + v[2] * v[2])), 1e-9)
-
-
-def blend_dirs(a: np.ndarray, b: np.ndarray, taus: np.ndarray) -> np.ndarray:
-    """:func:`blend_dir` for many blends at once, the same numbers row by row: unit vectors
-    between ``a`` (one (3,) or one per row (n, 3)) and ``b`` (3,) at ``taus`` (n,).
-
-    Args:
-        a: (3,) or (n, 3) unit vectors (``tau`` = 0).
-        b: (3,) unit vector (``tau`` = 1).
-        taus: (n,) the blends, 0 to 1.
-
-    Returns:
-        (n, 3) unit vectors.
-    """
-    t = np.asarray(taus, dtype=float)[:, None]
-    v = (1.0 - t) * np.asarray(a, dtype=float) + t * np.asarray(b, dtype=float)
-    # (the norm summed left to right, as blend_dir sums it)
-    norm = np.sqrt(v[:, 0] * v[:, 0] + v[:, 1] * v[:, 1] + v[:, 2] * v[:, 2])
-    return v / np.maximum(norm, 1e-9)[:, None]
+    return length(points[: len(ready)]), length(points[len(ready) :]), move[0]
 
 
 def plumb_arms(

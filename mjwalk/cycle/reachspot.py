@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -157,7 +158,6 @@ def reach_task(
         back=back,
         site_pos=site_pos,
         rise=rise,
-        room=level_room(ctx.workplace, (hx, hy), ctx.on_levels),
     )
     upright = _settle(search, lean=False)
     best = upright
@@ -177,7 +177,7 @@ class _Search:
     """What the stand-off search of one reach task keeps fixed (:func:`reach_task`'s
     arguments, world frame, metres): ``home`` is where the steps are measured from, ``back``
     the unit direction (x, y) away from the target there, ``rise`` the pre-grasp point's rise
-    (:func:`~mjwalk.cycle.targets.approach_rise`) and ``room`` the walk clearance at
+    (:func:`~mjwalk.cycle.targets.approach_rise`) and :attr:`room` the walk clearance at
     ``home``."""
 
     ctx: CycleContext
@@ -192,7 +192,12 @@ class _Search:
     back: np.ndarray
     site_pos: np.ndarray
     rise: float
-    room: float
+
+    @cached_property
+    def room(self) -> float:
+        """The walk clearance (m) at ``home`` (:func:`~mjwalk.cycle.levelsite.level_room`),
+        found when a step first asks for it (a reach clear from the walk's end never does)."""
+        return level_room(self.ctx.workplace, self.home, self.ctx.on_levels)
 
 
 def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> WorkingReach | None:
@@ -204,9 +209,10 @@ def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> Work
     x, y, yaw = search.x, search.y, search.yaw
     hx, hy = search.home
     xs, ys = float(hx + s * search.back[0]), float(hy + s * search.back[1])
-    room = level_room(ctx.workplace, (xs, ys), ctx.on_levels, home=(hx, hy))
-    if s != 0 and room < reach_room(ctx.spec.radius, ctx.on_levels, search.room):
-        return None
+    if s != 0:  # (the room is asked only of a step: most reaches take the walk's end)
+        room = level_room(ctx.workplace, (xs, ys), ctx.on_levels, home=(hx, hy))
+        if room < reach_room(ctx.spec.radius, ctx.on_levels, search.room):
+            return None
     target = reach_target(task.kind, search.site_pos, xs, ys)
     # face the target (turning on the spot) before reaching for it
     d = math.hypot(target[0] - xs, target[1] - ys)
