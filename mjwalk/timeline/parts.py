@@ -37,6 +37,7 @@ from scipy.spatial.transform import Rotation
 
 from mjwalk.arms.chain import min_jerk
 from mjwalk.body.humanoid import JointMap
+from mjwalk.timeline import chainkin
 
 #: Name suffix of the scene geom that shows the part lying at a pick site.
 PART_GEOM_SUFFIX = "_geom"
@@ -84,7 +85,10 @@ def hand_poses(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The hands' poses by forward kinematics (``mj_kinematics``), once per distinct pose: a
     frame whose pose is bit-for-bit its predecessor's copies its results (a hold repeats one
-    pose), which are then the same bits.
+    pose), which are then the same bits. Where :func:`mjwalk.timeline.chainkin.supported`
+    holds, MuJoCo's arithmetic runs compiled on the hands' chain alone (the same bits, a
+    fraction of the cost); a frame it cannot match, and any other model, calls
+    ``mj_kinematics``.
 
     Args:
         model: the compiled scene with the humanoid.
@@ -113,11 +117,19 @@ def hand_poses(
         np.empty((len(todo), g1 - g0, 3)),
     )
     q, dx, dm, dg = data.qpos, data.xpos[b0:b1], data.xmat[b0:b1], data.geom_xpos[g0:g1]
-    for i, f in enumerate(todo.tolist()):
+    slow = todo
+    if len(todo) and chainkin.supported(model, np.array(bodies), np.array(palms)):
+        # MuJoCo's arithmetic on the hands' chain alone, compiled (the same bits)
+        bpos, bmat, ppos, exact = chainkin.chain_poses(model, qpos, todo, bodies, palms)
+        bi, gi = [b - b0 for b in bodies], [g - g0 for g in palms]
+        xpos[:, bi], xmat[:, bi], gpos[:, gi] = bpos, bmat, ppos
+        slow = todo[~exact]
+    rows = np.searchsorted(todo, slow).tolist()
+    for i, f in zip(rows, slow.tolist(), strict=True):
         q[:] = qpos[f]
         mujoco.mj_kinematics(model, data)
         xpos[i], xmat[i], gpos[i] = dx, dm, dg
-    if n and (len(todo) == 0 or todo[-1] != n - 1):  # leave data at the last frame's pose
+    if n and (len(slow) == 0 or slow[-1] != n - 1):  # leave data at the last frame's pose
         q[:] = qpos[-1]
         mujoco.mj_kinematics(model, data)
     # each needed frame takes the results of the last computed frame at or before it
