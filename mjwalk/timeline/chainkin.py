@@ -70,6 +70,18 @@ def supported(model: mujoco.MjModel, bodies: np.ndarray, geoms: np.ndarray) -> b
         each geom sits at its body's origin or is offset without rotation
         (``mjSAMEFRAME_BODY`` / ``mjSAMEFRAME_BODYROT``).
     """
+    key = (
+        np.asarray(bodies, dtype=np.int64).tobytes(),
+        np.asarray(geoms, dtype=np.int64).tobytes(),
+    )
+    kept = _KEPT.setdefault(model, {})
+    if key not in kept:
+        kept[key] = _supported(model, bodies, geoms)
+    return kept[key]
+
+
+def _supported(model: mujoco.MjModel, bodies: np.ndarray, geoms: np.ndarray) -> bool:
+    """:func:`supported`, worked out."""
     if int(model.nmocap) != 0:
         return False
     for b in _chain(model, bodies).tolist():
@@ -85,7 +97,8 @@ def supported(model: mujoco.MjModel, bodies: np.ndarray, geoms: np.ndarray) -> b
     return bool(np.isin(same, (_SAME_BODY, _SAME_BODYROT)).all())
 
 
-#: Per model and bodies: the chain and the id arrays as int64 (read-only model structure).
+#: Per model: by bodies, the chain and the id arrays as int64; by (bodies, geoms), whether
+#: :func:`supported` holds (read-only model structure; a cycle asks some 30 times).
 _KEPT: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
