@@ -37,7 +37,7 @@ from scipy.spatial.transform import Rotation
 
 from mjwalk.arms.chain import min_jerk
 from mjwalk.body.humanoid import JointMap
-from mjwalk.timeline import chainkin
+from mjwalk.timeline.chainkin import chain_poses, supported
 
 #: Name suffix of the scene geom that shows the part lying at a pick site.
 PART_GEOM_SUFFIX = "_geom"
@@ -113,9 +113,9 @@ def hand_poses(
     xpos, xmat, gpos = np.empty((k, 2, 3)), np.empty((k, 2, 9)), np.empty((k, 2, 3))
     slow = todo
     hands, centres = np.array(bodies), np.array(palms)
-    if k and chainkin.supported(model, hands, centres):
+    if k and supported(model, hands, centres):
         # MuJoCo's arithmetic on the hands' chain alone, compiled (the same bits)
-        xpos, xmat, gpos, exact = chainkin.chain_poses(model, qpos, todo, hands, centres)
+        xpos, xmat, gpos, exact = chain_poses(model, qpos, todo, hands, centres)
         slow = todo[~exact]
     q = data.qpos
     for i, f in zip(np.searchsorted(todo, slow).tolist(), slow.tolist(), strict=True):
