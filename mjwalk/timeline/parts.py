@@ -37,6 +37,7 @@ from scipy.spatial.transform import Rotation
 
 from mjwalk.arms.chain import min_jerk
 from mjwalk.body.humanoid import JointMap
+from mjwalk.timeline.chainkin import chain_poses, supported
 
 #: Name suffix of the scene geom that shows the part lying at a pick site.
 PART_GEOM_SUFFIX = "_geom"
@@ -84,7 +85,10 @@ def hand_poses(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The hands' poses by forward kinematics (``mj_kinematics``), once per distinct pose: a
     frame whose pose is bit-for-bit its predecessor's copies its results (a hold repeats one
-    pose), which are then the same bits.
+    pose), which are then the same bits. Where :func:`mjwalk.timeline.chainkin.supported`
+    holds, MuJoCo's arithmetic runs compiled on the hands' chain alone (the same bits, a
+    fraction of the cost); a frame it cannot match, and any other model, calls
+    ``mj_kinematics``.
 
     Args:
         model: the compiled scene with the humanoid.
@@ -105,35 +109,35 @@ def hand_poses(
     n = len(qpos)
     need = np.ones(n, dtype=bool) if frames is None else np.asarray(frames, dtype=bool)
     todo = _distinct(qpos, need)
-    b0, b1 = min(bodies), max(bodies) + 1  # copy the rows between the hands: one slice each
-    g0, g1 = min(palms), max(palms) + 1
-    xpos, xmat, gpos = (
-        np.empty((len(todo), b1 - b0, 3)),
-        np.empty((len(todo), b1 - b0, 9)),
-        np.empty((len(todo), g1 - g0, 3)),
-    )
-    q, dx, dm, dg = data.qpos, data.xpos[b0:b1], data.xmat[b0:b1], data.geom_xpos[g0:g1]
-    for i, f in enumerate(todo.tolist()):
+    k = len(todo)
+    xpos, xmat, gpos = np.empty((k, 2, 3)), np.empty((k, 2, 9)), np.empty((k, 2, 3))
+    slow = todo
+    hands, centres = np.array(bodies), np.array(palms)
+    if k and supported(model, hands, centres):
+        # MuJoCo's arithmetic on the hands' chain alone, compiled (the same bits)
+        xpos, xmat, gpos, exact = chain_poses(model, qpos, todo, hands, centres)
+        slow = todo[~exact]
+    q = data.qpos
+    for i, f in zip(np.searchsorted(todo, slow).tolist(), slow.tolist(), strict=True):
         q[:] = qpos[f]
         mujoco.mj_kinematics(model, data)
-        xpos[i], xmat[i], gpos[i] = dx, dm, dg
-    if n and (len(todo) == 0 or todo[-1] != n - 1):  # leave data at the last frame's pose
+        xpos[i], xmat[i], gpos[i] = data.xpos[bodies], data.xmat[bodies], data.geom_xpos[palms]
+    if n and (len(slow) == 0 or slow[-1] != n - 1):  # leave data at the last frame's pose
         q[:] = qpos[-1]
         mujoco.mj_kinematics(model, data)
     # each needed frame takes the results of the last computed frame at or before it
     done = np.zeros(n, dtype=bool)
     done[todo] = True
     src = np.maximum.accumulate(np.where(done, np.arange(n), -1))
-    row = np.searchsorted(todo, src)
+    row = np.searchsorted(todo, src)[need]
     pos, mat, palm = (
         np.full((n, 2, 3), np.nan),
         np.full((n, 2, 3, 3), np.nan),
         np.full((n, 2, 3), np.nan),
     )
-    bi, gi = [b - b0 for b in bodies], [g - g0 for g in palms]
-    pos[need] = xpos[row[need]][:, bi]
-    mat[need] = xmat[row[need]][:, bi].reshape(-1, 2, 3, 3)
-    palm[need] = gpos[row[need]][:, gi]
+    pos[need] = xpos[row]
+    mat[need] = xmat[row].reshape(-1, 2, 3, 3)
+    palm[need] = gpos[row]
     return pos, mat, palm
 
 
