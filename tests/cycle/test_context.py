@@ -8,8 +8,10 @@ import dataclasses
 
 import pytest
 
-from mjwalk.cycle.context import HUMANOIDS, context_of, operator_context
+from mjwalk.cycle.context import GOAL_TOLERANCE, HUMANOIDS, context_of, operator_context
 from mjwalk.gait.walker import REFERENCE_CADENCE, Walker
+from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.options import PlannerOptions
 
 
 @pytest.fixture(scope="module")
@@ -46,3 +48,27 @@ def test_grid_routes_are_kept_per_pair_of_sites(station):
     d = ctx.baseline("stand_rack1", "stand_rack2")
     assert d > 0.0 and ctx.baseline("stand_rack1", "stand_rack2") == d
     assert ctx.occupancy() is ctx.occupancy()  # the grid is built once
+
+
+def test_a_zones_planner_is_the_one_its_options_build_sharing_its_sites(station):
+    ctx = context_of(station)
+    spec = ctx.spec
+    i = next(k for k, t in enumerate(spec.tasks) if t.site == "stand_rack2")
+    site = ctx.planner("stand_rack2")
+    for stature, step in ((1.62, 0.61), (1.87, 0.74)):
+        zone = ctx.zone(i, stature, step)
+        planner = ctx.planner("stand_rack2", zone)
+        assert ctx.planner("stand_rack2", zone) is planner and planner is not site
+        options = PlannerOptions(
+            radius=spec.radius,
+            goal_tolerance=zone.radius,
+            goal_within=zone.discs,
+            field_tolerance=GOAL_TOLERANCE,
+        )
+        own = HybridPlanner(ctx.workplace, "stand_rack2", ctx.step_model, options)
+        assert planner.options == own.options and set(vars(planner)) == set(vars(own))
+        assert planner.goal_within.tobytes() == own.goal_within.tobytes()
+        assert planner.distance is site.distance and planner.grid is site.grid
+        for a, b in zip(planner.params.vectors(stature), own.params.vectors(stature), strict=True):
+            assert a.tobytes() == b.tobytes()
+        assert planner.options.goal_tolerance == zone.radius != site.options.goal_tolerance
