@@ -114,18 +114,30 @@ def for_goal_area(planner: HybridPlanner, tolerance: float, within) -> HybridPla
         PlanningError: the goal outside one of the discs.
     """
     out = copy.copy(planner)
-    out.options = _with_goal_area(planner.options, tolerance, within)
+    out.options = goal_area_options(planner.options, tolerance, within)
     out.goal_within = goal_discs(out.options, planner.goal)
     out.params = planner.params.for_goal_area(out.options, out.goal_within)
     return out
 
 
-def _with_goal_area(options: PlannerOptions, tolerance: float, within) -> PlannerOptions:
+def goal_area_options(options: PlannerOptions, tolerance: float, within) -> PlannerOptions:
     """``dataclasses.replace(options, goal_tolerance=tolerance, goal_within=within)``, equal
     to it field for field: a copy with the two fields set when ``within`` holds valid discs
     (float triples, finite, radius > 0, not too many: what ``PlannerOptions`` keeps of them),
     else ``replace`` itself, whose checks refuse them. The options' other fields are already
-    checked, and ``replace`` checking them again was a third of a zone planner's making."""
+    checked, and ``replace`` checking them again was a third of a zone planner's making.
+
+    Args:
+        options: checked planner options.
+        tolerance: the goal area's radius (m).
+        within: the goal area's discs ((x, y, radius), metres).
+
+    Returns:
+        The options with that goal area.
+
+    Raises:
+        InputError: ``within`` not valid discs (``PlannerOptions``' own message).
+    """
     try:
         discs = tuple((float(x), float(y), float(r)) for x, y, r in within)
     except (TypeError, ValueError):

@@ -12,8 +12,8 @@ import pytest
 from mjwalk.cycle.context import (
     GOAL_TOLERANCE,
     HUMANOIDS,
-    _with_goal_area,
     context_of,
+    goal_area_options,
     operator_context,
 )
 from mjwalk.errors import InputError
@@ -89,7 +89,7 @@ def test_a_goal_areas_options_equal_replaces_and_bad_discs_are_refused():
         (0.3, ()),
         (0.2, ((1, 2, 3),)),  # ints become floats, as PlannerOptions keeps them
     ):
-        got = _with_goal_area(base, tolerance, within)
+        got = goal_area_options(base, tolerance, within)
         want = dataclasses.replace(base, goal_tolerance=tolerance, goal_within=within)
         assert got == want and vars(got) == vars(want) and got is not base
         assert all(type(v) is type(vars(want)[k]) for k, v in vars(got).items())
@@ -102,4 +102,4 @@ def test_a_goal_areas_options_equal_replaces_and_bad_discs_are_refused():
     )
     for within in bad:
         with pytest.raises(InputError, match="goal_within"):
-            _with_goal_area(base, 0.3, within)
+            goal_area_options(base, 0.3, within)
