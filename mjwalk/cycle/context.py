@@ -4,7 +4,9 @@
 
 from __future__ import annotations
 
+import copy
 import hashlib
+import math
 import pickle
 import threading
 from dataclasses import dataclass, field, replace
@@ -29,6 +31,8 @@ from mjwalk.plan.grid import plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.occupancy import OccupancyGrid, occupancy_grid
 from mjwalk.plan.options import PlannerOptions
+from mjwalk.plan.params import goal_discs
+from mjwalk.plan.slots import MAX_GOAL_DISCS
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace, shared_workplace
 
@@ -57,6 +61,9 @@ class Planners:
         self._memo: Memo[tuple[str, StandZone | None], HybridPlanner] = Memo(
             self._make, KEPT_PER_CONTEXT
         )
+        # the planners without a zone, one per goal: what every zone's planner of the goal
+        # shares (grids, distance field, kernel vectors: for_goal_area)
+        self._sites: Memo[str, HybridPlanner] = Memo(self._make_site, KEPT_PER_CONTEXT)
 
     def get(self, goal: str, zone: StandZone | None = None) -> HybridPlanner:
         """The planner of walks to site ``goal`` ending in ``zone`` (made on first use, kept by the
@@ -73,14 +80,77 @@ class Planners:
 
     def _make(self, key: tuple[str, StandZone | None]) -> HybridPlanner:
         goal, zone = key
+        site = self._sites.get(goal)
+        return site if zone is None else for_goal_area(site, zone.radius, zone.discs)
+
+    def _make_site(self, goal: str) -> HybridPlanner:
         options = PlannerOptions(
             radius=self._radius,
-            goal_tolerance=GOAL_TOLERANCE if zone is None else zone.radius,
-            goal_within=() if zone is None else zone.discs,
+            goal_tolerance=GOAL_TOLERANCE,
             # one distance field per site whatever the operator's zone
             field_tolerance=GOAL_TOLERANCE,
         )
         return HybridPlanner(self._workplace, goal, self._step_model, options)
+
+
+def for_goal_area(planner: HybridPlanner, tolerance: float, within) -> HybridPlanner:
+    """``planner`` with another goal area: within ``tolerance`` (m) of its goal and inside
+    the discs ``within`` ((x, y, radius), metres), the planner that ``HybridPlanner(workplace,
+    goal, model, options)`` would build with those two options changed, sharing ``planner``'s
+    grids, distance field (its ``field_tolerance`` is the same), clearance field and kernel
+    vectors (:meth:`~mjwalk.plan.params.KernelParams.for_goal_area`). A stand zone changes
+    with every operator: building each zone's planner anew cost about 1 ms a station cycle,
+    and its kernel vectors were made again for every one.
+
+    Args:
+        planner: a planner of the goal.
+        tolerance: the goal area's radius (m).
+        within: the goal area's discs ((x, y, radius), metres).
+
+    Returns:
+        The goal area's :class:`~mjwalk.plan.hybrid.HybridPlanner`.
+
+    Raises:
+        PlanningError: the goal outside one of the discs.
+    """
+    out = copy.copy(planner)
+    out.options = goal_area_options(planner.options, tolerance, within)
+    out.goal_within = goal_discs(out.options, planner.goal)
+    out.params = planner.params.for_goal_area(out.options, out.goal_within)
+    return out
+
+
+def goal_area_options(options: PlannerOptions, tolerance: float, within) -> PlannerOptions:
+    """``dataclasses.replace(options, goal_tolerance=tolerance, goal_within=within)``, equal
+    to it field for field: a copy with the two fields set when ``within`` holds valid discs
+    (float triples, finite, radius > 0, not too many: what ``PlannerOptions`` keeps of them),
+    else ``replace`` itself, whose checks refuse them. The options' other fields are already
+    checked, and ``replace`` checking them again was a third of a zone planner's making.
+
+    Args:
+        options: checked planner options.
+        tolerance: the goal area's radius (m).
+        within: the goal area's discs ((x, y, radius), metres).
+
+    Returns:
+        The options with that goal area.
+
+    Raises:
+        InputError: ``within`` not valid discs (``PlannerOptions``' own message).
+    """
+    try:
+        discs = tuple((float(x), float(y), float(r)) for x, y, r in within)
+    except (TypeError, ValueError):
+        discs = ((math.nan, math.nan, math.nan),)  # not triples: replace says so
+    valid = len(discs) < MAX_GOAL_DISCS and all(
+        math.isfinite(x) and math.isfinite(y) and math.isfinite(r) and r > 0 for x, y, r in discs
+    )
+    if not valid or not isinstance(tolerance, float):
+        return replace(options, goal_tolerance=tolerance, goal_within=within)
+    out = copy.copy(options)
+    object.__setattr__(out, "goal_tolerance", tolerance)
+    object.__setattr__(out, "goal_within", discs)
+    return out
 
 
 class GridRoutes:

@@ -226,6 +226,25 @@ def _site_zone(
 ) -> StandZone:
     """The stand zone of ``site`` for the reaches of tasks ``first, first + 1, ...`` up to
     the next walk or carry."""
+    work = _site_work(spec, workplace, site, first)
+    return _zone_of(work, stature, step_length)
+
+
+#: What :func:`_site_work` gives: the stand site (x, y), the reach targets (k, 3), which are
+#: faced squarely, the hands, the work's heading.
+SiteWork = tuple[np.ndarray, list, list, list, float]
+
+
+def _zone_of(work: SiteWork, stature: float, step_length: float) -> StandZone:
+    """:func:`stand_zone` of a site's work (:func:`_site_work`) for an operator."""
+    stand, targets, squarely, hands, facing = work
+    return stand_zone(stand, targets, step_length, stature, facing, squarely, hands)
+
+
+def _site_work(spec: CycleSpec, workplace: Workplace, site: str, first: int) -> SiteWork:
+    """The operator-free part of :func:`_site_zone`: the stand site's (x, y), the reach
+    targets of tasks ``first, ...`` up to the next walk or carry, whether each is faced
+    squarely, its hand, and the site's heading."""
     stand = workplace.station(site).pos
     targets, squarely, hands = [], [], []
     for task in spec.tasks[first:]:
@@ -240,8 +259,7 @@ def _site_zone(
             # the cycle faces fastenings and two-handed work squarely (simulate_cycle)
             squarely.append(kind.approach == "surface" or task.hand == "both")
             hands.append(None if squarely[-1] else task.hand)
-    facing = workplace.station(site).yaw
-    return stand_zone(stand[:2], targets, step_length, stature, facing, squarely, hands)
+    return stand[:2], targets, squarely, hands, workplace.station(site).yaw
 
 
 class StandZones:
@@ -257,8 +275,12 @@ class StandZones:
     """
 
     def __init__(self, spec: CycleSpec, workplace: Workplace, limit: int):
+        # each walk's site and targets (the same for every operator), made once per walk
+        self._work: Memo[int, SiteWork] = Memo(
+            lambda i: _site_work(spec, workplace, str(spec.tasks[i].site), i + 1), limit
+        )
         self._memo: Memo[tuple[int, float, float], StandZone] = Memo(
-            lambda key: work_zone(spec, workplace, *key), limit
+            lambda key: _zone_of(self._work.get(key[0]), key[1], key[2]), limit
         )
 
     def get(self, i: int, stature: float, step_length: float) -> StandZone:

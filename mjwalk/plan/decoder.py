@@ -87,9 +87,10 @@ class StepDecoder:
         )
 
 
-#: Decoders already built, by model and samples per step (:func:`decoder_of`); the model is
-#: held weakly and the oldest entries go beyond :data:`_DECODERS_MAX`.
-_DECODERS: dict[tuple[int, int], tuple[weakref.ref, StepDecoder]] = {}
+#: Decoders already built, by model (a conditioned model: its base and walker) and samples per
+#: step (:func:`decoder_of`); the model is held weakly and the oldest entries go beyond
+#: :data:`_DECODERS_MAX`.
+_DECODERS: dict[tuple[int, object, int], tuple[weakref.ref, StepDecoder]] = {}
 _DECODERS_MAX = 16
 
 
@@ -107,12 +108,17 @@ def decoder_of(model, m: int) -> StepDecoder:
     Returns:
         The model's decoder, shared by model and ``m`` (the model held weakly).
     """
-    key = (id(model), int(m))
+    owner, walker = getattr(model, "_base", None), getattr(model, "_walker", None)
+    if owner is None or walker is None:
+        owner, walker = model, None
+    # a conditioned model's decoding is its base's features scaled by factors that the walker
+    # sets (StepModel.for_walker): the same walker's models, made again, share a decoder
+    key = (id(owner), walker, int(m))
     hit = _DECODERS.get(key)
-    if hit is not None and hit[0]() is model:
+    if hit is not None and hit[0]() is owner:
         return hit[1]
     dec = StepDecoder(model, m)
     while len(_DECODERS) >= _DECODERS_MAX:
         _DECODERS.pop(next(iter(_DECODERS)))
-    _DECODERS[key] = (weakref.ref(model), dec)
+    _DECODERS[key] = (weakref.ref(owner), dec)
     return dec

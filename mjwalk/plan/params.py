@@ -102,6 +102,12 @@ class WalkTerms:
     far_weight: float = 0.0
 
 
+#: Statures whose vectors one :class:`KernelParams` keeps (the oldest go first): a planner
+#: shared by a population's operators (:meth:`KernelParams.for_goal_area`) sees their statures
+#: in centimetres, some 25-50 values.
+STATURES_KEPT = 64
+
+
 class KernelParams:
     """The kernels' float and integer vectors of one planner (:mod:`mjwalk.plan.slots`).
 
@@ -139,6 +145,31 @@ class KernelParams:
         #: The float vector's slots that do not depend on the stature, and the integer vector
         #: (which does not at all): made on first use, a walker's stature filled in per stature
         self._shared: tuple[np.ndarray, np.ndarray] | None = None
+        #: The vectors of the same planner but for its goal area (:meth:`for_goal_area`), whose
+        #: stature vectors these are made from; None: made here
+        self._base: KernelParams | None = None
+
+    def for_goal_area(self, options: PlannerOptions, discs: np.ndarray) -> KernelParams:
+        """These vectors for another goal area: ``options`` differ from this planner's in
+        ``goal_tolerance`` and ``goal_within`` only (a stand zone's planner of the same goal,
+        :meth:`~mjwalk.plan.hybrid.HybridPlanner.for_goal_area`). The new vectors are this
+        one's per stature with the goal area's slots set over them (the goal tolerance, the
+        closing and heading reach, the discs and their count), the values :meth:`vectors`
+        would make from ``options`` itself; this one's are made once for all its goal areas.
+
+        Args:
+            options: the goal area's planner options.
+            discs: (k, 3) its goal discs (x, y, radius; metres), checked against the goal.
+
+        Returns:
+            The goal area's :class:`KernelParams` (sharing grids, fields and thresholds).
+        """
+        out = KernelParams.__new__(KernelParams)
+        out.__dict__.update(self.__dict__)
+        out.options, out.discs = options, discs
+        out._held, out._shared = {}, None
+        out._base = self if self._base is None else self._base
+        return out
 
     def vectors(self, stature: float = DEFAULT_STATURE) -> tuple[np.ndarray, np.ndarray]:
         """The float and integer vectors for a walker of ``stature`` metres (the landing leg's
@@ -151,12 +182,39 @@ class KernelParams:
             The float vector (:data:`~mjwalk.plan.slots.N_PARAMS`,) and the integer vector
             (:data:`~mjwalk.plan.slots.N_IPARAMS`,).
         """
+        held = self._stature_vectors(stature)
+        return held[0].copy(), held[1].copy()
+
+    def _stature_vectors(self, stature: float) -> tuple[np.ndarray, np.ndarray]:
+        """The vectors of ``stature`` (kept, not copied; the last :data:`STATURES_KEPT`
+        statures): made from this planner's options, or from its base's (:meth:`for_goal_area`)
+        with the goal area set."""
         held = self._held.get(stature)
         if held is None:
-            if self._shared is None:
-                self._shared = (self._floats(), self._integers())
-            held = self._held[stature] = (_with_stature(self._shared[0], stature), self._shared[1])
-        return held[0].copy(), held[1].copy()
+            if self._base is not None:
+                held = self._goal_area(*self._base._stature_vectors(stature))
+            else:
+                if self._shared is None:
+                    self._shared = (self._floats(), self._integers())
+                held = (_with_stature(self._shared[0], stature), self._shared[1])
+            while len(self._held) >= STATURES_KEPT:
+                self._held.pop(next(iter(self._held)))
+            self._held[stature] = held
+        return held
+
+    def _goal_area(self, par: np.ndarray, ipar: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Copies of ``par`` and ``ipar`` with this planner's goal area in their slots (as
+        :meth:`_floats` and :meth:`_integers` set them)."""
+        o = self.options
+        par, ipar = par.copy(), ipar.copy()
+        par[slots.P_TOLERANCE] = o.goal_tolerance
+        par[slots.P_STOP_REACH] = o.goal_tolerance + STOP_REACH
+        par[slots.P_HEADING_FROM] = o.goal_tolerance + STOP_REACH
+        par[slots.P_DISC0 : slots.P_GUIDE_LEN0] = np.nan
+        for k, (dx, dy, dr) in enumerate(self.discs):
+            par[slots.P_DISC0 + 3 * k : slots.P_DISC0 + 3 * k + 3] = (dx, dy, dr)
+        ipar[slots.I_N_DISCS] = len(self.discs)
+        return par, ipar
 
     def for_walk(self, stature: float, walk: WalkTerms) -> tuple[np.ndarray, np.ndarray]:
         """:meth:`vectors` with what ``walk`` sets: its pace, its spot (its own goal point and

@@ -5,11 +5,21 @@ shares the cycle's caches."""
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import pytest
 
-from mjwalk.cycle.context import HUMANOIDS, context_of, operator_context
+from mjwalk.cycle.context import (
+    GOAL_TOLERANCE,
+    HUMANOIDS,
+    context_of,
+    goal_area_options,
+    operator_context,
+)
+from mjwalk.errors import InputError
 from mjwalk.gait.walker import REFERENCE_CADENCE, Walker
+from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.options import PlannerOptions
 
 
 @pytest.fixture(scope="module")
@@ -46,3 +56,50 @@ def test_grid_routes_are_kept_per_pair_of_sites(station):
     d = ctx.baseline("stand_rack1", "stand_rack2")
     assert d > 0.0 and ctx.baseline("stand_rack1", "stand_rack2") == d
     assert ctx.occupancy() is ctx.occupancy()  # the grid is built once
+
+
+def test_a_zones_planner_is_the_one_its_options_build_sharing_its_sites(station):
+    ctx = context_of(station)
+    spec = ctx.spec
+    i = next(k for k, t in enumerate(spec.tasks) if t.site == "stand_rack2")
+    site = ctx.planner("stand_rack2")
+    for stature, step in ((1.62, 0.61), (1.87, 0.74)):
+        zone = ctx.zone(i, stature, step)
+        planner = ctx.planner("stand_rack2", zone)
+        assert ctx.planner("stand_rack2", zone) is planner and planner is not site
+        options = PlannerOptions(
+            radius=spec.radius,
+            goal_tolerance=zone.radius,
+            goal_within=zone.discs,
+            field_tolerance=GOAL_TOLERANCE,
+        )
+        own = HybridPlanner(ctx.workplace, "stand_rack2", ctx.step_model, options)
+        assert planner.options == own.options and set(vars(planner)) == set(vars(own))
+        assert planner.goal_within.tobytes() == own.goal_within.tobytes()
+        assert planner.distance is site.distance and planner.grid is site.grid
+        for a, b in zip(planner.params.vectors(stature), own.params.vectors(stature), strict=True):
+            assert a.tobytes() == b.tobytes()
+        assert planner.options.goal_tolerance == zone.radius != site.options.goal_tolerance
+
+
+def test_a_goal_areas_options_equal_replaces_and_bad_discs_are_refused():
+    base = PlannerOptions(radius=0.3, goal_tolerance=0.1, field_tolerance=0.1, n_stops=0)
+    for tolerance, within in (
+        (0.35, ((1.0, 2.0, 0.5), (3.0, -1000.0, 1000.0))),
+        (0.3, ()),
+        (0.2, ((1, 2, 3),)),  # ints become floats, as PlannerOptions keeps them
+    ):
+        got = goal_area_options(base, tolerance, within)
+        want = dataclasses.replace(base, goal_tolerance=tolerance, goal_within=within)
+        assert got == want and vars(got) == vars(want) and got is not base
+        assert all(type(v) is type(vars(want)[k]) for k, v in vars(got).items())
+    bad = (
+        ((1.0, 2.0, -1.0),),
+        ((math.nan, 0.0, 1.0),),
+        ((0.0, 0.0, 1.0),) * 7,
+        ((1.0, 2.0),),
+        ((1.0, "x", 2.0),),
+    )
+    for within in bad:
+        with pytest.raises(InputError, match="goal_within"):
+            goal_area_options(base, 0.3, within)

@@ -8,7 +8,14 @@ import pytest
 from mjwalk.anthropometry import hand_reach
 from mjwalk.cycle.simulate import plan_cycle_walks, prepare
 from mjwalk.cycle.spec import load_cycle_spec
-from mjwalk.cycle.standing import REACH_MARGIN, SIDE_SLACK, ZONE_STEPS, stand_zone
+from mjwalk.cycle.standing import (
+    REACH_MARGIN,
+    SIDE_SLACK,
+    ZONE_STEPS,
+    StandZones,
+    stand_zone,
+    work_zone,
+)
 from mjwalk.errors import InputError, PlanningError
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
@@ -208,3 +215,13 @@ def test_cycle_starts_anywhere_in_the_start_zone_and_every_start_sets_off(scenes
     # spread over the zone: depth (y) and width (x) both vary by several centimetres
     assert s.std(axis=0).min() > 0.03
     assert np.median(np.hypot(*(s - site).T)) > 0.05
+
+
+def test_kept_zones_are_the_operators_own(scenes_dir):
+    spec = load_cycle_spec(scenes_dir / "assembly_station.toml")
+    ctx = prepare(spec)
+    zones = StandZones(spec, ctx.workplace, limit=4)  # the sites' work kept once per walk
+    walks = [i for i, t in enumerate(spec.tasks) if t.kind in ("walk", "carry")]
+    for stature, step in ((1.6, 0.6), (1.9, 0.75), (1.6, 0.6)):
+        for i in walks:
+            assert zones.get(i, stature, step) == work_zone(spec, ctx.workplace, i, stature, step)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from mjwalk.gait.default import default_model
+from mjwalk.gait.walker import Walker
 from mjwalk.plan.decoder import StepDecoder, decoder_of
 
 
@@ -42,3 +43,17 @@ def test_decoder_of_keeps_one_decoder_per_model_and_size():
     assert decoder_of(model, 16) is a
     assert a.matrix.shape == (model.n_dims, 2 * 16 + 3) and a.offset.shape == (2 * 16 + 3,)
     assert decoder_of(model, 8).matrix.shape == (model.n_dims, 2 * 8 + 3)
+
+
+def test_a_walkers_models_made_again_share_its_decoder():
+    base = default_model()
+    walker = Walker(stature=1.81, speed=1.31, cadence=108.0)
+    first = base.for_walker(walker)
+    dec = decoder_of(first, 16)
+    base.for_walker(Walker(stature=1.62, speed=1.1, cadence=101.0))  # for_walker keeps one
+    again = base.for_walker(walker)
+    assert again is not first and decoder_of(again, 16) is dec  # the walker sets the decoding
+    assert decoder_of(base, 16) is not dec
+    fresh = StepDecoder(again, 16)
+    assert fresh.matrix.tobytes() == dec.matrix.tobytes()
+    assert fresh.offset.tobytes() == dec.offset.tobytes()

@@ -75,3 +75,17 @@ def test_a_turn_on_the_spot_and_a_guide_are_encoded(params):
     assert par[slots.P_FAR_WEIGHT] == 0.05
     plain, _ = params.for_walk(1.75, WalkTerms(start_xy=np.array([-2.0, 0.0])))
     assert math.isnan(plain[slots.P_TURN_COST]) and math.isnan(plain[slots.P_START_YAW])
+
+
+def test_a_goal_areas_vectors_are_those_its_own_options_make(scenes_dir):
+    wp = load_workplace(scenes_dir / "open_floor.xml")
+    site = HybridPlanner(wp, GOAL, object(), PlannerOptions(goal_tolerance=0.5, n_successors=7))
+    for tolerance, within in ((0.3, ((2.2, 0.0, 0.4), (1.9, 0.1, 0.5))), (0.5, ())):
+        options = PlannerOptions(goal_tolerance=tolerance, goal_within=within, n_successors=7)
+        own = HybridPlanner(wp, GOAL, object(), options).params
+        area = site.params.for_goal_area(options, own.discs)
+        # the base's statures first (its vectors are the area's start), then the area's own
+        for stature in (1.75, 1.6, 1.9, 1.75):
+            for a, b in zip(area.vectors(stature), own.vectors(stature), strict=True):
+                assert a.tobytes() == b.tobytes()  # bit for bit, nan slots included
+        assert area.vectors(1.75)[0] is not area.vectors(1.75)[0]  # fresh copies
