@@ -188,6 +188,7 @@ from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.synthetic import synthetic_stair_walk
 from mjwalk.plan.walks import plan_walk
 from mjwalk.world import load_workplace
+from mjwalk.world.footprint import clear_memos
 from mjwalk.world.levelview import level_view
 from mjwalk.world.norms import DESCENT_LOW_CLEARANCE, HEAD_MARGIN
 
@@ -505,6 +506,7 @@ def twin_cost(walks: int) -> None:
             for seed in range(1, walks + 1):
                 for side, path in (("l", scene), ("t", twin_path)):
                     wp = load_workplace(path)
+                    clear_memos()  # cold: no footprint kept from an earlier load either
                     dt, walk = _timed(wp, start, goal, model, seed)
                     rows[side + "c"].append(dt)
                     rows[side + "w"].append(_timed(wp, start, goal, model, seed)[0])
