@@ -48,7 +48,7 @@ class _Memo:
 #: Hull edges of point sets (:func:`_clip_hull_to_slab`), by the points' digest: a level's view
 #: and every walker's head band clip the same tessellated geoms again (a 3-D hull of a sloped
 #: capsule's ~12 500 points is ~10 ms).
-_HULL_EDGES = _Memo(512)
+_HULL_EDGES = _Memo(32)
 #: Footprints of :func:`geom_footprint` past its exact shapes, by name, geom, the world points'
 #: digest and the slab faces that cut them (exact: equal keys, equal answers).
 _FOOTPRINTS = _Memo(4096)
