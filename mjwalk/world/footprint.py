@@ -218,11 +218,18 @@ def _local_points(model: mujoco.MjModel, g: int) -> np.ndarray | None:
     return None
 
 
-def _hull_edges(simplices: np.ndarray) -> np.ndarray:
-    """The hull's edges, each once as (low index, high index), in ascending order of the pair:
-    the triangles' sides (i, i + 1 mod 3) sorted within each pair and de-duplicated by
-    ``np.unique`` over rows (lexicographic, as ``sorted`` of a set of pairs gives them; one
-    NumPy pass instead of a Python loop over ~10^4 simplices of a tessellated capsule)."""
+def hull_edges(simplices: np.ndarray) -> np.ndarray:
+    """A 3-D convex hull's edges, each once, in ascending order of the pair: the triangles'
+    sides (i, i + 1 mod 3) sorted within each pair, de-duplicated and sorted lexicographically
+    (as ``sorted`` of a set of pairs gives them), in one NumPy pass instead of a Python loop
+    over the ~10^4 simplices of a tessellated capsule.
+
+    Args:
+        simplices: (f, 3) vertex indices of the hull's triangles (``ConvexHull.simplices``).
+
+    Returns:
+        (e, 2) int64 (low index, high index) pairs.
+    """
     s = np.asarray(simplices, dtype=np.int64)
     pairs = np.concatenate([s[:, [0, 1]], s[:, [1, 2]], s[:, [2, 0]]])
     pairs.sort(axis=1)
@@ -242,7 +249,7 @@ def _clip_hull_to_slab(points: np.ndarray, z0: float, z1: float) -> np.ndarray:
     e = _HULL_EDGES.get(digest)
     if e is None:
         try:
-            e = _HULL_EDGES.put(digest, _hull_edges(ConvexHull(points).simplices))
+            e = _HULL_EDGES.put(digest, hull_edges(ConvexHull(points).simplices))
         except QhullError:
             e = _HULL_EDGES.put(digest, np.empty((0, 2), dtype=np.int64))
     if len(e) == 0:  # qhull refused the points (flat or degenerate): the points in the slab
