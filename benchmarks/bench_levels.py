@@ -151,6 +151,21 @@ is the one that holds what the target measures (the levels' cost) fixed, where i
 the walk's; warm against it the step (1.75) and rack1 -> mezzanine (per metre 0.84 but 2.37
 per walk) rows are over 1.5: the two or three searches, guides and assemblies a level walk
 makes against the twin's one (hybrid.py), and cold every row is far over (the levels' set-up).
+
+Branch levelplan47i (13e4664, ``--twin-only --walks 10``, CPU ms, base and branch alternating,
+two rounds each, load 9-17; the branch's cold plans start with no footprint kept,
+world.footprint.clear_memos): cold, level walk old -> new (twin unchanged, 21-30 ms): step
+592/702 -> 495/464, ramp 626/715 -> 471/478, stair 663/715 -> 489/510, rack1 -> mezzanine
+729/768 -> 502/578, mezzanine -> rack1 398/374 -> 326/363, platform1 -> car1 776/754 ->
+466/470 (ratios 14-32 -> 9-22). Warm unchanged within noise (1.28-2.37). Cuts, walks
+bit-identical (108 level walks, 6 pairs x seeds 1-6 x statures 1.55/1.75/1.95, one scene:
+same digests): a clipped hull's edges in one NumPy pass (was a Python loop over ~10^4
+simplices of a tessellated capsule); hull edges and geom footprints kept per exact key (the
+world points' digest and the slab faces that cut them), so a view of another level or head
+band clips a geom again without qhull; a crossing's least free height measured once and
+compared with every stature. Left: the first 3-D hull of each tessellated geom (the station's
+sloped capsule and ellipsoid: ~30-75 ms each), the level graph (world.surfaces, contacts,
+walksurface headroom: ~130 ms, modules outside this branch), the views' clearance fields.
 """
 
 from __future__ import annotations
@@ -188,6 +203,7 @@ from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.synthetic import synthetic_stair_walk
 from mjwalk.plan.walks import plan_walk
 from mjwalk.world import load_workplace
+from mjwalk.world.footprint import clear_memos
 from mjwalk.world.levelview import level_view
 from mjwalk.world.norms import DESCENT_LOW_CLEARANCE, HEAD_MARGIN
 
@@ -505,6 +521,7 @@ def twin_cost(walks: int) -> None:
             for seed in range(1, walks + 1):
                 for side, path in (("l", scene), ("t", twin_path)):
                     wp = load_workplace(path)
+                    clear_memos()  # cold: no footprint kept from an earlier load either
                     dt, walk = _timed(wp, start, goal, model, seed)
                     rows[side + "c"].append(dt)
                     rows[side + "w"].append(_timed(wp, start, goal, model, seed)[0])

@@ -362,14 +362,29 @@ def head_fits_crossing(graph: LevelGraph, c: Crossing, stature: float) -> bool:
         True when the free height at every point is at least stature plus
         :data:`mjwalk.world.norms.HEAD_MARGIN`.
     """
+    return not crossing_headroom(graph, c) < stature + HEAD_MARGIN
+
+
+def crossing_headroom(graph: LevelGraph, c: Crossing) -> float:
+    """The least free height over a crossing's footfalls and stances: a walker's head fits
+    (:func:`head_fits_crossing`) when stature plus margin is not above it, so it is measured
+    once per crossing for every stature.
+
+    Args:
+        graph: the level graph.
+        c: the crossing.
+
+    Returns:
+        Metres (inf when nothing is over it).
+    """
     s = np.concatenate([[c.approach], c.track, [c.exit]])
+    least = math.inf
     for p, z in zip(c.point(s), c.height_at(s), strict=True):
         i = graph.surface_at(p, float(z))
         if i is None:
             continue  # the edge between two surfaces: its neighbours decide
-        if float(graph.surfaces[i].free_height(p)) < stature + HEAD_MARGIN:
-            return False
-    return True
+        least = min(least, float(graph.surfaces[i].free_height(p)))
+    return least
 
 
 def dijkstra(n: int, edges: Mapping[int, list[tuple[int, float]]], source: int, target: int):

@@ -38,7 +38,13 @@ from mjwalk.plan.levelcross import (
     route_leads,
     walked_distance,
 )
-from mjwalk.plan.levelroute import Crossing, RouteLeg, crossings, dijkstra, head_fits_crossing
+from mjwalk.plan.levelroute import (
+    Crossing,
+    RouteLeg,
+    crossing_headroom,
+    crossings,
+    dijkstra,
+)
 from mjwalk.plan.occupancy import CELL_SIZE, MOVES_16, shared_grid
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.turnin import turn_in_time, walked_back
@@ -240,12 +246,13 @@ def _crossings(workplace: Workplace, clear: float) -> list[Crossing]:
 
 
 def _head_fits(workplace: Workplace, c: Crossing, stature: float) -> bool:
-    """:func:`mjwalk.plan.levelroute.head_fits_crossing`, kept on the workplace per stature."""
-    cache = workplace.__dict__.setdefault("_crossing_heads", {})
-    key = (id(c), round(stature, 3))
-    if key not in cache:
-        cache[key] = head_fits_crossing(workplace.levels, c, stature)
-    return cache[key]
+    """:func:`mjwalk.plan.levelroute.head_fits_crossing`: the crossing's least free height
+    (:func:`~mjwalk.plan.levelroute.crossing_headroom`) kept on the workplace, once for every
+    stature, against the stature plus margin (the same comparison)."""
+    cache = workplace.__dict__.setdefault("_crossing_headroom", {})
+    if id(c) not in cache:
+        cache[id(c)] = (c, crossing_headroom(workplace.levels, c))  # c held: its id stays its
+    return not cache[id(c)][1] < stature + HEAD_MARGIN
 
 
 def _legs(path: list[int], nodes, usable: list[Crossing]) -> list[RouteLeg]:

@@ -115,3 +115,14 @@ def test_riser_lines_lie_halfway_between_the_footfalls(station):
         assert e["high"] - e["low"] == pytest.approx(0.17, abs=1e-6)
         np.testing.assert_allclose(e["normal"], stair.axis)
         assert e["half_width"] == pytest.approx(0.5)
+
+
+def test_crossing_headroom_decides_the_head_check_for_every_stature(station):
+    from mjwalk.plan.levelroute import crossing_headroom
+    from mjwalk.world.norms import HEAD_MARGIN
+
+    for c in crossings(station.levels, 0.33):
+        room = crossing_headroom(station.levels, c)
+        assert room > 0
+        for stature in (1.40, 1.75, 2.05, room - HEAD_MARGIN + 1e-6):
+            assert head_fits_crossing(station.levels, c, stature) == (stature + HEAD_MARGIN <= room)

@@ -66,3 +66,48 @@ def test_box_geom_footprint_is_its_rotated_rectangle():
     assert fp is not None and fp.name == "box" and fp.geom_id == 1
     np.testing.assert_allclose(fp.bounds(), (0.75, 1.5, 1.25, 2.5), atol=1e-9)
     assert geom_footprint(model, data, 2, 0.05, 2.0) is None  # above the band
+
+
+def test_hull_edges_are_the_sorted_set_of_the_triangles_sides():
+    # seeded: the one-pass edges equal the old Python loop's sorted set of (low, high) pairs
+    from scipy.spatial import ConvexHull
+
+    from mjwalk.world.footprint import hull_edges
+
+    rng = np.random.default_rng(47)
+    for n in (4, 9, 200, 2000):
+        hull = ConvexHull(rng.normal(size=(n, 3)))
+        edges = set()
+        for simplex in hull.simplices:
+            for i in range(3):
+                a, b = simplex[i], simplex[(i + 1) % 3]
+                edges.add((min(a, b), max(a, b)))
+        np.testing.assert_array_equal(hull_edges(hull.simplices), np.array(sorted(edges)))
+
+
+def test_a_kept_footprint_equals_a_fresh_one_for_every_slab():
+    # a sloped capsule (clipped as a tessellated hull): kept answers are bit-equal to fresh ones,
+    # whatever the slab, and a slab face beyond the geom shares the entry of any other such face
+    # (a slab holding it whole gives its exact stadium, not kept)
+    from mjwalk.world import footprint as fpmod
+
+    xml = """<mujoco><worldbody><geom name="pipe" type="capsule" size="0.05"
+      fromto="0 0 0.3 1 0.2 0.9"/></worldbody></mujoco>"""
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    slabs = [(0.05, 2.0), (0.05, 3.0), (0.4, 0.8), (0.4, 2.5), (1.5, 2.0), (0.0, 0.2)]
+    fresh = []
+    for z0, z1 in slabs:
+        fpmod.clear_memos()
+        fresh.append(geom_footprint(model, data, 0, z0, z1))
+    fpmod.clear_memos()
+    for (z0, z1), want in zip(slabs + slabs, fresh + fresh, strict=True):
+        got = geom_footprint(model, data, 0, z0, z1)
+        if want is None:
+            assert got is None
+            continue
+        np.testing.assert_array_equal(got.vertices, want.vertices)
+        assert got.radius == want.radius
+        assert got.is_polygon != got.vertices.flags.writeable  # kept ones read-only
+    assert geom_footprint(model, data, 0, 0.4, 2.0) is geom_footprint(model, data, 0, 0.4, 3.0)
