@@ -188,9 +188,12 @@ def _links_and_stairs(
 
 def _top(top: np.ndarray, base: float) -> float:
     """An obstacle's top: its highest band point rounded up to the band's bins
-    (``TOP_STEP`` from ``base + OBSTACLE_Z_RANGE[0]``, as the floor plan's), within the band."""
+    (``TOP_STEP`` from ``base + OBSTACLE_Z_RANGE[0]``, as the floor plan's), within the band;
+    the lowest bin when it holds no band point (cells the floor plan closed between points,
+    left apart when a level's cells leave it: as ``obstacles._obstacle_tops``)."""
     z0, z1 = base + OBSTACLE_Z_RANGE[0], base + OBSTACLE_Z_RANGE[1]
-    b = max(0, int((float(top) - z0) / TOP_STEP))
+    t = float(top)
+    b = max(0, int((t - z0) / TOP_STEP)) if math.isfinite(t) else 0
     return min(z0 + (b + 1) * TOP_STEP, z1)
 
 

@@ -159,3 +159,16 @@ def test_cli_says_pits_are_not_levels(tmp_path, capsys):
     assert cli.main(["scan", str(src), "-o", str(tmp_path / "pit.xml")]) == 0
     out = capsys.readouterr().out
     assert "pit, bottom -0.800 m, no step or stair reaches it: obstacle" in out
+
+
+def test_an_obstacle_part_without_band_points_gets_the_lowest_bin():
+    """Cells the floor plan closed between obstacle points may be left apart, holding no band
+    point, when a level's cells leave the obstacle (hall 17 of bench_unseen): their top is the
+    band's lowest bin, as the floor plan gives such an obstacle, not an error."""
+    from mjwalk.scan.levelboxes import _top
+    from mjwalk.scan.obstacles import TOP_STEP
+    from mjwalk.world.floor import OBSTACLE_Z_RANGE
+
+    assert _top(np.float32(-np.inf), 0.0) == pytest.approx(OBSTACLE_Z_RANGE[0] + TOP_STEP)
+    assert _top(np.float32(-np.inf), 0.3) == pytest.approx(0.3 + OBSTACLE_Z_RANGE[0] + TOP_STEP)
+    assert _top(np.float32(0.51), 0.0) > 0.5
