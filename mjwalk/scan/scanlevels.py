@@ -20,8 +20,9 @@ through diagonal voxels, so here levels are found in two passes:
    are one region, its height a least-squares plane through its points (trimmed at 3 rms),
    kept when that plane is horizontal (``norms.HORIZONTAL_SLOPE`` plus three standard errors
    of the fit; else its flat part, :func:`mjwalk.scan.planefit.flat_part`, when a ramp's strip
-   at that height joined a level's edge and tilted it) and the region is a tread deep and a person wide (``norms.MIN_TREAD`` by
-   ``norms.STAND_WIDTH``, less a cell each side for the cells its edges cut).
+   at that height joined a level's edge and tilted it) and the region is a tread deep and a
+   person wide (``norms.MIN_TREAD`` by ``norms.STAND_WIDTH``, less a cell each side for the
+   cells its edges cut).
 
 Regions whose edges touch (within ``norms.CONTACT_GAP`` and a cell) along at least a body's
 width (``mjwalk.world.contacts.MIN_CROSSING``) with a riser of at most ``norms.MAX_RISER`` are

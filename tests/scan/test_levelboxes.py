@@ -10,9 +10,10 @@ from test_scanlevels import LEVELS_XML, SCANNERS
 
 from mjwalk.scan import build_scene
 from mjwalk.scan.level import find_floor
-from mjwalk.scan.levelboxes import describe, scan_levels
-from mjwalk.scan.obstacles import floor_plan
+from mjwalk.scan.levelboxes import band_top, describe, scan_levels
+from mjwalk.scan.obstacles import TOP_STEP, floor_plan
 from mjwalk.scan.raycast import synthetic_scan
+from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.levels import level_graph
 from mjwalk.world.surfaces import find_walk_surfaces
 
@@ -165,10 +166,6 @@ def test_an_obstacle_part_without_band_points_gets_the_lowest_bin():
     """Cells the floor plan closed between obstacle points may be left apart, holding no band
     point, when a level's cells leave the obstacle (hall 17 of bench_unseen): their top is the
     band's lowest bin, as the floor plan gives such an obstacle, not an error."""
-    from mjwalk.scan.levelboxes import _top
-    from mjwalk.scan.obstacles import TOP_STEP
-    from mjwalk.world.floor import OBSTACLE_Z_RANGE
-
-    assert _top(np.float32(-np.inf), 0.0) == pytest.approx(OBSTACLE_Z_RANGE[0] + TOP_STEP)
-    assert _top(np.float32(-np.inf), 0.3) == pytest.approx(0.3 + OBSTACLE_Z_RANGE[0] + TOP_STEP)
-    assert _top(np.float32(0.51), 0.0) > 0.5
+    assert band_top(np.float32(-np.inf), 0.0) == pytest.approx(OBSTACLE_Z_RANGE[0] + TOP_STEP)
+    assert band_top(np.float32(-np.inf), 0.3) == pytest.approx(0.3 + OBSTACLE_Z_RANGE[0] + TOP_STEP)
+    assert band_top(np.float32(0.51), 0.0) > 0.5
