@@ -186,11 +186,22 @@ def _links_and_stairs(
     return links, stairs
 
 
-def _top(top: np.ndarray, base: float) -> float:
+def band_top(top: np.ndarray, base: float) -> float:
     """An obstacle's top: its highest band point rounded up to the band's bins
-    (``TOP_STEP`` from ``base + OBSTACLE_Z_RANGE[0]``, as the floor plan's), within the band."""
+    (``TOP_STEP`` from ``base + OBSTACLE_Z_RANGE[0]``, as the floor plan's), within the band;
+    the lowest bin when it holds no band point (cells the floor plan closed between points,
+    left apart when a level's cells leave it: as ``obstacles._obstacle_tops``).
+
+    Args:
+        top: the highest band point, metres (-inf: none).
+        base: the height of the surface the obstacle stands on, metres.
+
+    Returns:
+        The top, metres.
+    """
     z0, z1 = base + OBSTACLE_Z_RANGE[0], base + OBSTACLE_Z_RANGE[1]
-    b = max(0, int((float(top) - z0) / TOP_STEP))
+    t = float(top)
+    b = max(0, int((t - z0) / TOP_STEP)) if math.isfinite(t) else 0
     return min(z0 + (b + 1) * TOP_STEP, z1)
 
 
@@ -206,7 +217,7 @@ def _obstacle_boxes(
     r = plan.resolution
     out: list[tuple[str, np.ndarray, np.ndarray, str, float]] = []
     for iy0, iy1, ix0, ix1, k in rectangles(lab):
-        z1 = _top(tops[k - 1], base)
+        z1 = band_top(tops[k - 1], base)
         lo = np.array([plan.x0 + ix0 * r, plan.y0 + iy0 * r, base])
         hi = np.array([plan.x0 + ix1 * r, plan.y0 + iy1 * r, z1])
         out.append((f"{prefix}_{len(out)}", 0.5 * (lo + hi), 0.5 * (hi - lo), "scan_obstacle", 0.0))
@@ -324,7 +335,9 @@ def _assemble(
     olab, n = ndimage.label(obst, np.ones((3, 3), bool))
     tops = np.zeros(n + 1)
     if n:
-        tops[1:] = [_top(t, 0.0) for t in ndimage.maximum(layers.top[0], olab, np.arange(1, n + 1))]
+        tops[1:] = [
+            band_top(t, 0.0) for t in ndimage.maximum(layers.top[0], olab, np.arange(1, n + 1))
+        ]
     void = plan.void & ~gone
     new_plan = dataclasses.replace(plan, obstacles=olab, tops=tops, void=void)
     for i in range(1, len(levels)):

@@ -19,8 +19,10 @@ through diagonal voxels, so here levels are found in two passes:
    above ``h``, :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`); connected cells (8-neighbourhood)
    are one region, its height a least-squares plane through its points (trimmed at 3 rms),
    kept when that plane is horizontal (``norms.HORIZONTAL_SLOPE`` plus three standard errors
-   of the fit) and the region is a tread deep and a person wide (``norms.MIN_TREAD`` by
-   ``norms.STAND_WIDTH``, less a cell each side for the cells its edges cut).
+   of the fit; else its flat part, :func:`mjwalk.scan.planefit.flat_part`, when a ramp's strip
+   at that height joined a level's edge and tilted it) and the region is a tread deep and a
+   person wide (``norms.MIN_TREAD`` by ``norms.STAND_WIDTH``, less a cell each side for the
+   cells its edges cut).
 
 Regions whose edges touch (within ``norms.CONTACT_GAP`` and a cell) along at least a body's
 width (``mjwalk.world.contacts.MIN_CROSSING``) with a riser of at most ``norms.MAX_RISER`` are
@@ -44,6 +46,7 @@ from mjwalk._jit import njit
 from mjwalk.scan.level import HORIZONTAL_DEG, MAX_SURFACE_HEIGHT, VOXEL, voxel_normals
 from mjwalk.scan.minrect import min_rectangle, rectangle_size
 from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, FloorPlan
+from mjwalk.scan.planefit import TRIM_SIGMAS, fit_plane, flat_part
 from mjwalk.scan.regionsteps import region_steps
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.norms import (
@@ -64,8 +67,6 @@ PEAK_AREA = 0.5 * MIN_TREAD * STAND_WIDTH
 #: A voxel is planar when its middle covariance eigenvalue is at least this share of the
 #: largest (a scan line crossing a voxel spans one direction only; as ``level.walk_surfaces``).
 PLANAR_SHARE = 0.1
-#: Trim of the plane fits: residuals beyond this many rms are dropped (twice).
-TRIM_SIGMAS = 3.0
 
 #: Least depth of a stair tread seen in part, metres: half the least tread (``norms.MIN_TREAD``;
 #: a choice, no norm). The next level's edge may shadow a tread's back from the scanners; such a
@@ -266,51 +267,6 @@ def rasterize_layers(levelled: np.ndarray, heights: np.ndarray, plan: FloorPlan)
     return Layers(hs, near, band, top)
 
 
-def fit_plane(xyz: np.ndarray) -> tuple[float, float, float, float]:
-    """A least-squares plane z = h + a (x - cx) + b (y - cy) through points, trimmed at
-    :data:`TRIM_SIGMAS` robust sigmas (1.4826 median absolute residuals: a riser's points near
-    the nosing are a minority and do not widen the cut).
-
-    Args:
-        xyz: (M, 3) points, metres, M >= 3.
-
-    Returns:
-        (h: the height at the points' centroid, rms: of the kept points' residuals, slope: the
-        plane's tan inclination, slope_err: its standard error); metres and rise over run.
-    """
-    _, h, grad, rms, err = plane_fit(xyz)
-    return h, rms, float(math.hypot(*grad)), err
-
-
-def plane_fit(xyz: np.ndarray) -> tuple[np.ndarray, float, np.ndarray, float, float]:
-    """The trimmed plane fit of :func:`fit_plane` with its gradient.
-
-    Args:
-        xyz: (M, 3) points, metres, M >= 3.
-
-    Returns:
-        (centre: (2,) the kept points' xy centroid, h: the height there, grad: (2,) dz/dx and
-        dz/dy, rms: of the kept residuals, slope_err: the gradient's standard error); metres.
-    """
-    keep = np.ones(len(xyz), bool)
-    for _ in range(4):
-        p = xyz[keep]
-        c = p[:, :2].mean(axis=0)
-        a = np.column_stack([np.ones(len(p)), p[:, 0] - c[0], p[:, 1] - c[1]])
-        coef, *_ = np.linalg.lstsq(a, p[:, 2], rcond=None)
-        res = p[:, 2] - a @ coef
-        rms = float(np.sqrt(np.mean(res**2)))
-        full = xyz[:, 2] - (coef[0] + coef[1] * (xyz[:, 0] - c[0]) + coef[2] * (xyz[:, 1] - c[1]))
-        sigma = 1.4826 * float(np.median(np.abs(full - np.median(full))))
-        new = np.abs(full) <= max(TRIM_SIGMAS * sigma, 1e-4)
-        if new.sum() < 3 or (new == keep).all():
-            break
-        keep = new
-    cov = rms**2 * np.linalg.pinv(a.T @ a)
-    err = float(np.sqrt(max(cov[1, 1] + cov[2, 2], 0.0)))
-    return c, float(coef[0]), np.array([coef[1], coef[2]]), rms, err
-
-
 def regions_at(
     levelled: np.ndarray, layers: Layers, k: int, plan: FloorPlan, least: float = MIN_TREAD
 ) -> list[tuple[np.ndarray, tuple[float, float, float, float]]]:
@@ -358,7 +314,10 @@ def regions_at(
         if depth < MIN_TREAD - 2 * res:  # a narrow strip: the nosing's riser points tilt it
             fit = _inner_fit(p, cells, plan, fit)
         if fit[2] > HORIZONTAL_SLOPE + TRIM_SIGMAS * fit[3]:
-            continue  # a sloped region: a ramp's strip at this height
+            flat = flat_part(p, cells, plan)  # a level with a ramp's strip joined at its edge
+            if flat is None or flat[1][2] > HORIZONTAL_SLOPE + TRIM_SIGMAS * flat[1][3]:
+                continue  # a sloped region: a ramp's strip at this height
+            cells, fit, p = flat
         cells = _inlier_cells(p, fit, plan, cells)
         depth, width = rectangle_size(min_rectangle(cells, plan.x0, plan.y0, res))
         if depth < least - 2 * res or width < STAND_WIDTH - 2 * res:

@@ -37,6 +37,7 @@ from scipy import ndimage
 
 from mjwalk.scan.level import MAX_SURFACE_HEIGHT
 from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan, rectangles
+from mjwalk.scan.planefit import flat_cells
 from mjwalk.scan.regionsteps import touching
 from mjwalk.scan.scanlevels import (
     PEAK_SEPARATION,
@@ -59,12 +60,6 @@ from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_STAIR_RISERS
 GUARD_HEIGHT = 1.1
 #: Material of the gap boxes.
 PIT_MATERIAL = "scan_pit"
-#: The scan's range noise, metres (5 mm: ``FLOOR_TOL`` is six of it); a pit bottom's points lie
-#: within three of it from the bottom's height (:func:`_flat_layer`).
-RANGE_NOISE = FLOOR_TOL / 6
-#: Least share of a cell's points at the bottom's height for the cell to be the bottom's, not a
-#: ramp's strip at that height (:func:`_flat_layer`).
-FLAT_SHARE = 0.8
 
 
 @dataclass(frozen=True)
@@ -153,24 +148,15 @@ def _regions(levelled: np.ndarray, layers, k: int, plan: FloorPlan, gaps: np.nda
 
 
 def _flat_layer(levelled: np.ndarray, layers, k: int, plan: FloorPlan):
-    """``layers`` with candidate ``k``'s cells kept only where at least :data:`FLAT_SHARE` of
-    the points lie within 3 :data:`RANGE_NOISE` of the height most of them lie at (5 mm bins):
-    a ramp running down to a pit's bottom crosses the candidate's band over some 0.2-0.3 m,
-    enough to tilt the bottom's plane fit past a level's slope; its cells leave."""
+    """``layers`` with candidate ``k``'s cells kept only where its points lie flat
+    (:func:`mjwalk.scan.planefit.flat_cells`): a ramp running down to a pit's bottom crosses
+    the candidate's band over some 0.2-0.3 m, enough to tilt the bottom's plane fit past a
+    level's slope; its cells leave."""
     h0 = float(layers.heights[k])
     p = levelled[np.abs(levelled[:, 2] - h0) <= FLOOR_TOL]
-    bins = np.round((p[:, 2] - h0) / RANGE_NOISE).astype(np.int64)
-    vals, counts = np.unique(bins, return_counts=True)
-    mode = h0 + float(vals[np.argmax(counts)]) * RANGE_NOISE
-    ny, nx = plan.floor.shape
-    ix = np.floor((p[:, 0] - plan.x0) / plan.resolution).astype(np.int64)
-    iy = np.floor((p[:, 1] - plan.y0) / plan.resolution).astype(np.int64)
-    ok = (ix >= 0) & (ix < nx) & (iy >= 0) & (iy < ny)
-    total, at = np.zeros((ny, nx)), np.zeros((ny, nx))
-    np.add.at(total, (iy[ok], ix[ok]), 1.0)
-    np.add.at(at, (iy[ok], ix[ok]), (np.abs(p[ok, 2] - mode) <= 3 * RANGE_NOISE).astype(float))
     near = layers.near.copy()
-    near[k] = np.where((total > 0) & (at >= FLAT_SHARE * total), near[k], 0)
+    if len(p):
+        near[k] = np.where(flat_cells(p, plan, h0), near[k], 0)
     return dataclasses.replace(layers, near=near)
 
 

@@ -9,10 +9,11 @@ lie on a plane inclined more than ``norms.HORIZONTAL_SLOPE`` and at most
    and from each region's height within its cells) give local-PCA normals on 0.1 m voxels
    (:func:`mjwalk.scan.level.voxel_normals`); the upward-facing planar ones are grouped by 3-D
    adjacency (26 neighbours: a 10° ramp rises 18 mm over a voxel).
-2. Each group's points get a trimmed plane fit (:func:`mjwalk.scan.scanlevels.plane_fit`); it
+2. Each group's points get a trimmed plane fit (:func:`mjwalk.scan.planefit.plane_fit`); it
    is a ramp candidate when the plane's inclination lies in that range and its rms is that of a
-   plane scanned (:data:`RAMP_RMS`). Its cells are those holding its points with nothing
-   higher than ``EXPOSED_MIN`` above the plane (the obstacle band's foot), largest part.
+   plane scanned (:data:`RAMP_RMS`). Its cells are those holding its points (closed over gaps
+   up to a voxel: a far ramp's points are sparser than the grid) with nothing higher than
+   ``EXPOSED_MIN`` above the plane (the obstacle band's foot), largest part.
 3. **Ends.** The plane runs down to the level whose height it reaches below the cells' low end
    and up to the one above their high end (within the band the first step left out plus a cell
    of climb), each of which must lie there along a body's width
@@ -38,13 +39,8 @@ from scipy import ndimage
 
 from mjwalk.scan.level import HORIZONTAL_DEG, MAX_SURFACE_HEIGHT, VOXEL, voxel_normals
 from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, FloorPlan
-from mjwalk.scan.scanlevels import (
-    PLANAR_SHARE,
-    TRIM_SIGMAS,
-    ScanLevel,
-    min_rectangle,
-    plane_fit,
-)
+from mjwalk.scan.planefit import TRIM_SIGMAS, plane_fit
+from mjwalk.scan.scanlevels import PLANAR_SHARE, ScanLevel, min_rectangle
 from mjwalk.world.contacts import MIN_CROSSING
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.norms import (
@@ -194,8 +190,10 @@ def _ramp_cells(
     levelled: np.ndarray, pts: np.ndarray, fit: tuple, plan: FloorPlan, seed: np.ndarray
 ) -> np.ndarray:
     """The cells of a ramp plane (step 2 of the module docstring): holding unexplained points
-    within ``TRIM_SIGMAS`` rms of it, fewer than ``MIN_BAND_POINTS`` in the band above it; the
-    largest part that meets the group's points ``seed``."""
+    within ``TRIM_SIGMAS`` rms of it (closed over gaps up to a voxel: far from the scanners a
+    ramp's points are sparser than the grid, and the group joined them at the voxel's scale),
+    fewer than ``MIN_BAND_POINTS`` in the band above it; the largest part that meets the
+    group's points ``seed``."""
     c, h, grad, rms, _ = fit
 
     def above(p: np.ndarray) -> np.ndarray:
@@ -211,7 +209,9 @@ def _ramp_cells(
     iy, ix, inside = _cell_index(levelled, plan)
     sel = inside & (d > EXPOSED_MIN) & (d <= OBSTACLE_Z_RANGE[1])
     np.add.at(band, (iy[sel], ix[sel]), 1)
-    cells = (near > 0) & (band < MIN_BAND_POINTS)
+    k = max(1, round(VOXEL / plan.resolution))  # the scale the group's voxels joined at
+    hit = (near > 0) | ndimage.binary_closing(near > 0, np.ones((k, k), bool))
+    cells = hit & (band < MIN_BAND_POINTS)
     lab, n = ndimage.label(cells, np.ones((3, 3), bool))
     if n == 0:
         return cells

@@ -125,12 +125,13 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
         top_front = near_edge(top, plan, run, side, (min(lefts), max(rights)), rhs[-2])
         coef, dxy = _shadowed_fit(np.array(rhs), top_front, plan.resolution)
     first, tread = float(coef[0]), float(coef[2])
+    slack = tread_slack(n, plan.resolution)
     ok = (
         dz <= HEIGHT_TOL
         and dxy <= tol
         and MIN_RISER - 1e-9 <= riser <= MAX_RISER + 1e-9
-        and MIN_TREAD - 1e-9 <= tread <= MAX_TREAD + 1e-9
-        and STEP_RULE[0] - 1e-9 <= 2 * riser + tread <= STEP_RULE[1] + 1e-9
+        and MIN_TREAD - slack <= tread <= MAX_TREAD + slack
+        and STEP_RULE[0] - slack <= 2 * riser + tread <= STEP_RULE[1] + slack
     )
     if not ok:
         return None
@@ -144,6 +145,27 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
         "riser": riser, "tread": tread, "heights": heights, "rects": rects, "run": run,
         "top_edge": first + (n - 1) * tread, "top_rect": top_rect, "dz": dz, "dxy": dxy,
     }  # fmt: skip
+
+
+def tread_slack(risers: int, res: float) -> float:
+    """How far a flight's fitted tread may lie from its true one on the floor plan's grid.
+
+    A tread's edges are read as the centres of its first and last cells along the climb, each
+    up to a cell from the true edge (its outermost cell, or the next one when the riser's
+    points block it, :data:`EDGE_CELLS`); the tread is the least-squares spacing of those edges
+    over the flight's ``risers - 2`` tread steps (the top level's front with a shadowed back:
+    one more), so it is known to within a cell over that span. The norm's ranges (tread, step
+    rule) are checked with this much slack: a regular flight within them is not refused for
+    where the grid cut its edges. Metres.
+
+    Args:
+        risers: the flight's risers (at least ``norms.MIN_STAIR_RISERS``).
+        res: the grid's cell edge, metres.
+
+    Returns:
+        ``res / max(1, risers - 2)``, metres (at least 1e-9).
+    """
+    return max(res / max(1, risers - 2), 1e-9)
 
 
 def near_edge(

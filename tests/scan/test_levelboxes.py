@@ -10,9 +10,10 @@ from test_scanlevels import LEVELS_XML, SCANNERS
 
 from mjwalk.scan import build_scene
 from mjwalk.scan.level import find_floor
-from mjwalk.scan.levelboxes import describe, scan_levels
-from mjwalk.scan.obstacles import floor_plan
+from mjwalk.scan.levelboxes import band_top, describe, scan_levels
+from mjwalk.scan.obstacles import TOP_STEP, floor_plan
 from mjwalk.scan.raycast import synthetic_scan
+from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.levels import level_graph
 from mjwalk.world.surfaces import find_walk_surfaces
 
@@ -159,3 +160,12 @@ def test_cli_says_pits_are_not_levels(tmp_path, capsys):
     assert cli.main(["scan", str(src), "-o", str(tmp_path / "pit.xml")]) == 0
     out = capsys.readouterr().out
     assert "pit, bottom -0.800 m, no step or stair reaches it: obstacle" in out
+
+
+def test_an_obstacle_part_without_band_points_gets_the_lowest_bin():
+    """Cells the floor plan closed between obstacle points may be left apart, holding no band
+    point, when a level's cells leave the obstacle (hall 17 of bench_unseen): their top is the
+    band's lowest bin, as the floor plan gives such an obstacle, not an error."""
+    assert band_top(np.float32(-np.inf), 0.0) == pytest.approx(OBSTACLE_Z_RANGE[0] + TOP_STEP)
+    assert band_top(np.float32(-np.inf), 0.3) == pytest.approx(0.3 + OBSTACLE_Z_RANGE[0] + TOP_STEP)
+    assert band_top(np.float32(0.51), 0.0) > 0.5

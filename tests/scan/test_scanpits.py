@@ -260,3 +260,23 @@ def test_real_scans_noise_below_the_floor_is_no_gap(shared_data, name):
     assert not plan.gaps.any() and not find_pits(pts, plan)
     assert (plan.floor == old.floor).all() and (plan.void == old.void).all()
     assert plan.holes_filled == old.holes_filled
+
+
+def test_a_stair_at_the_step_rule_bound_is_a_stair_on_the_grid():
+    """Three 0.146 m risers over 0.352 m treads (hall 12 of bench_unseen: 2 r + a = 0.644 m,
+    within DIN 18065's 0.59-0.65 m) down into the opening from x = -0.996: on the 2 cm grid
+    the treads' edges read 0.36 m apart, 2 r + a = 0.652 m, and the flight was taken for three
+    single steps. Within a cell of the grid over its one tread step it is a stair."""
+    x0, a, r = -0.996, 0.352, 0.146
+    body = f"""<geom name="pit" type="box" pos="{(x0 + 2 * a + 1) / 2:.4f} 0.5 {-3 * r - 0.05:.4f}"
+      size="{(1 - x0 - 2 * a) / 2:.4f} 1 0.05"/>
+<geom name="s1" type="box" pos="{x0 + a / 2:.4f} 0.5 {(-r - 0.53) / 2:.4f}"
+      size="{a / 2:.4f} 1 {(0.53 - r) / 2:.4f}"/>
+<geom name="s2" type="box" pos="{x0 + 1.5 * a:.4f} 0.5 {(-2 * r - 0.53) / 2:.4f}"
+      size="{a / 2:.4f} 1 {(0.53 - 2 * r) / 2:.4f}"/>"""
+    _, pits = _pits(_scan(body, STAIR_SCANNERS))
+    (pit,) = pits
+    link = pit.link
+    assert link is not None and link.kind == "stair" and link.upper == 0
+    assert len(link.risers) == 3 and link.risers[0] == pytest.approx(r, abs=0.005)
+    assert link.tread == pytest.approx(a, abs=0.02)

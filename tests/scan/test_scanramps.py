@@ -141,3 +141,30 @@ def test_sites_stand_on_levels(ramp_scan, tmp_path):
         bad = _sites(tmp_path, f"[site.x]\nxy = [{x}, {y}]\n")
         with pytest.raises(ScanError, match="not on the scanned floor or a level"):
             build_scene(ramp_scan.points, sites=bad)
+
+
+def test_a_long_shallow_ramp_scanned_sparsely_is_one_ramp():
+    """A 0.387 m deck reached by a 3.9 deg ramp 5.7 m long (hall 12 of bench_unseen), scanned
+    from its foot and from over the deck: half-way the ramp's points lie 4-5 cm apart, wider
+    than the 2 cm grid, so its cells fell apart and the part meeting the group was too short to
+    reach the deck. Seeded synthetic scan (0.4 deg rays, 5 mm noise)."""
+    th = math.radians(3.9)
+    run = 0.387 / math.tan(th)
+    x, z = -0.5 + 0.5 * run - 0.05 * math.sin(th), 0.1935 - 0.05 * math.cos(th)
+    half = 0.5 * run / math.cos(th)
+    xml = f"""<mujoco><worldbody>
+  <geom name="floor" type="plane" size="8 4 0.05"/>
+  <geom name="deck" type="box" pos="-1.75 0 0.1935" size="1.25 1.25 0.1935"/>
+  <geom name="ramp" type="box" pos="{x:.6f} 0 {z:.6f}" size="{half:.6f} 0.58 0.05"
+        euler="0 3.9 0"/>
+</worldbody></mujoco>"""
+    scanners = [(-0.5 + run + 1.2, 0.35, 1.6), (-1.75, -0.3, 0.387 + 1.6)]
+    model = mujoco.MjModel.from_xml_string(xml)
+    scan = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=3)
+    lp = build_scene(scan.points, source="long ramp").levels
+    assert lp is not None and len(lp.heights) == 2
+    assert lp.heights[1] == pytest.approx(0.387, abs=0.01)
+    (link,) = lp.links
+    assert link.kind == "ramp" and (link.lower, link.upper) == (0, 1)
+    assert math.degrees(link.slope) == pytest.approx(3.9, abs=0.3)
+    assert link.run == pytest.approx(run, abs=0.15)

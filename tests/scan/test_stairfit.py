@@ -7,7 +7,8 @@ import pytest
 
 from mjwalk.scan.obstacles import FloorPlan
 from mjwalk.scan.scanlevels import ScanLevel
-from mjwalk.scan.stairfit import axis_near, cell_centres, fit_stair, near_edge
+from mjwalk.scan.stairfit import axis_near, cell_centres, fit_stair, near_edge, tread_slack
+from mjwalk.world.norms import MAX_TREAD, MIN_TREAD, STEP_RULE
 
 RES = 0.02
 NY, NX = 60, 120
@@ -55,3 +56,31 @@ def test_helpers():
     run, side = np.array([1.0, 0.0]), np.array([0.0, 1.0])
     assert near_edge(deck, plan, run, side, (0.2, 0.9), 0.5) == pytest.approx(1.25)
     assert near_edge(deck, plan, run, side, (2.0, 3.0), 0.5) == float("inf")
+
+
+def test_a_flight_at_the_step_rule_bound_is_not_refused_for_the_grid():
+    """A pit's stair of hall 12's shape: three 0.146 m risers, treads 0.352 m deep (2 r + a =
+    0.644 m, within the step rule). On the 2 cm grid its edges read 0.36 m apart, 2 r + a =
+    0.652 m: within the grid's slack (a cell over the one tread step), so it is a stair."""
+    floor = _level(0, "floor", 0.0, (0, 20))
+    treads = [_level(k + 1, "tread", 0.146 * (k + 1), (20 + 18 * k, 37 + 18 * k)) for k in range(2)]
+    deck = _level(3, "platform", 0.438, (56, 110))
+    fit = fit_stair([0, 1, 2, 3], [floor, *treads, deck], _plan())
+    assert fit is not None
+    assert fit["tread"] == pytest.approx(0.36, abs=1e-6)
+    assert 2 * fit["riser"] + fit["tread"] > STEP_RULE[1]
+
+
+def test_a_flight_beyond_the_grids_slack_is_refused():
+    """The same flight with treads 0.40 m apart: 2 r + a = 0.692 m, beyond the step rule by
+    more than a cell, and a tread deeper than ``MAX_TREAD`` by more than a cell: no stair."""
+    floor = _level(0, "floor", 0.0, (0, 20))
+    treads = [_level(k + 1, "tread", 0.146 * (k + 1), (20 + 20 * k, 39 + 20 * k)) for k in range(2)]
+    deck = _level(3, "platform", 0.438, (60, 110))
+    assert fit_stair([0, 1, 2, 3], [floor, *treads, deck], _plan()) is None
+
+
+def test_tread_slack_shrinks_with_the_flight():
+    assert tread_slack(3, RES) == pytest.approx(RES)
+    assert tread_slack(6, RES) == pytest.approx(RES / 4)
+    assert tread_slack(3, RES) < MAX_TREAD - MIN_TREAD
