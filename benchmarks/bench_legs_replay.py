@@ -25,8 +25,9 @@ import statistics
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
+
+from bench_synthloop import recording_legs, synth_cpu, track_bytes  # the recorded station walks
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -34,49 +35,27 @@ ROOT = Path(__file__).resolve().parents[1]
 def _record(cycles: int, out: Path) -> int:
     """Pickle the (walk, stature) pairs of ``cycles`` station cycles to ``out``; their count."""
     import mjwalk.cycle.simulate as sim
-    from mjwalk.cycle import poses
     from mjwalk.cycle.spec import load_cycle_spec
 
     ctx = sim.prepare(load_cycle_spec(ROOT / "scenes" / "assembly_station.toml"))
     sim.simulate_cycle(ctx, 99)  # warm-up: models, compiled code
-    seen: list[tuple] = []
-    legs0 = poses.legs_from_walk
-
-    def legs(walk, stature=1.75, reference=None):
-        seen.append((walk, stature))
-        return legs0(walk, stature, reference)
-
-    poses.legs_from_walk = legs
-    try:
+    with recording_legs() as seen:
         for k in range(cycles):
             sim.simulate_cycle(ctx, k)
-    finally:
-        poses.legs_from_walk = legs0
     out.write_bytes(pickle.dumps(seen))
     return len(seen)
 
 
 def _child(walks_file: Path, cycles: int) -> None:
     """In the timed tree: the walks' digest and CPU ms per cycle of five passes, one JSON line."""
-    import numpy as np
-
     from mjwalk.body.legs import synthesis as syn
 
     walks = pickle.loads(walks_file.read_bytes())
     h = hashlib.sha256()
     for walk, stature in walks:
-        m = syn.legs_from_walk(walk, stature)
-        arrays = [m.root, m.yaw, m.contact, m.phase]
-        for d in (m.angles, m.ankle, m.pitch):
-            arrays += [d[k] for k in sorted(d)]
-        for a in arrays:
-            h.update(np.ascontiguousarray(a).tobytes())
-    ms = []
-    for _ in range(5):
-        c0 = time.process_time()
-        for walk, stature in walks:
-            syn.legs_from_walk(walk, stature)
-        ms.append(1e3 * (time.process_time() - c0) / cycles)
+        for b in track_bytes(syn.legs_from_walk(walk, stature)):
+            h.update(b)
+    ms = [1e3 * synth_cpu(walks) / cycles for _ in range(5)]
     print(json.dumps({"digest": h.hexdigest(), "ms": statistics.median(ms)}))
 
 

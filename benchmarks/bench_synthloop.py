@@ -17,6 +17,8 @@ from __future__ import annotations
 import argparse
 import statistics
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from mjwalk.body.legs import synthesis as syn
 from mjwalk.cycle import poses
@@ -25,8 +27,10 @@ from mjwalk.cycle import simulate as sim
 SPEC = "scenes/assembly_station.toml"
 
 
-def _record(runs: int) -> list[tuple]:
-    """The (walk, stature) pairs the cycles' legs were built from."""
+@contextmanager
+def recording_legs() -> Iterator[list[tuple]]:
+    """While open, ``cycle.poses.legs_from_walk`` appends each (walk, stature) it is asked for
+    to the list yielded (the cycles' legs themselves are built as before)."""
     seen: list[tuple] = []
     legs0 = poses.legs_from_walk
 
@@ -36,15 +40,21 @@ def _record(runs: int) -> list[tuple]:
 
     poses.legs_from_walk = legs
     try:
+        yield seen
+    finally:
+        poses.legs_from_walk = legs0
+
+
+def _record(runs: int) -> list[tuple]:
+    """The (walk, stature) pairs the cycles' legs were built from."""
+    with recording_legs() as seen:
         sim.simulate_cycles(SPEC, 2, seed=99, n_jobs=1)  # warm: models, compiled code
         seen.clear()
         sim.simulate_cycles(SPEC, runs, seed=0, n_jobs=1)
-    finally:
-        poses.legs_from_walk = legs0
     return seen
 
 
-def _bytes(m) -> list[bytes]:
+def track_bytes(m) -> list[bytes]:
     """Every track of a LegMotion, as bytes, in a fixed order."""
     arrays = [m.root, m.yaw, m.contact, m.phase]
     for d in (m.angles, m.ankle, m.pitch):
@@ -69,9 +79,9 @@ def main() -> None:
     differ = 0
     for walk, stature in walks:
         syn.COMPILED_STEPS = True
-        a = _bytes(syn.legs_from_walk(walk, stature))
+        a = track_bytes(syn.legs_from_walk(walk, stature))
         syn.COMPILED_STEPS = False
-        differ += a != _bytes(syn.legs_from_walk(walk, stature))
+        differ += a != track_bytes(syn.legs_from_walk(walk, stature))
     steps = sum(len(w.steps) for w, _ in walks)
     print(f"{len(walks)} walks, {steps} steps in {args.runs} cycles; walks differing: {differ}")
     step_ms, loop_ms = [], []
