@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import copy
 import hashlib
-import math
 import pickle
 import threading
 from dataclasses import dataclass, field, replace
@@ -32,7 +31,6 @@ from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.occupancy import OccupancyGrid, occupancy_grid
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.params import goal_discs
-from mjwalk.plan.slots import MAX_GOAL_DISCS
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.workplace import Workplace, shared_workplace
 
@@ -114,42 +112,9 @@ def for_goal_area(planner: HybridPlanner, tolerance: float, within) -> HybridPla
         PlanningError: the goal outside one of the discs.
     """
     out = copy.copy(planner)
-    out.options = goal_area_options(planner.options, tolerance, within)
+    out.options = replace(planner.options, goal_tolerance=tolerance, goal_within=within)
     out.goal_within = goal_discs(out.options, planner.goal)
     out.params = planner.params.for_goal_area(out.options, out.goal_within)
-    return out
-
-
-def goal_area_options(options: PlannerOptions, tolerance: float, within) -> PlannerOptions:
-    """``dataclasses.replace(options, goal_tolerance=tolerance, goal_within=within)``, equal
-    to it field for field: a copy with the two fields set when ``within`` holds valid discs
-    (float triples, finite, radius > 0, not too many: what ``PlannerOptions`` keeps of them),
-    else ``replace`` itself, whose checks refuse them. The options' other fields are already
-    checked, and ``replace`` checking them again was a third of a zone planner's making.
-
-    Args:
-        options: checked planner options.
-        tolerance: the goal area's radius (m).
-        within: the goal area's discs ((x, y, radius), metres).
-
-    Returns:
-        The options with that goal area.
-
-    Raises:
-        InputError: ``within`` not valid discs (``PlannerOptions``' own message).
-    """
-    try:
-        discs = tuple((float(x), float(y), float(r)) for x, y, r in within)
-    except (TypeError, ValueError):
-        discs = ((math.nan, math.nan, math.nan),)  # not triples: replace says so
-    valid = len(discs) < MAX_GOAL_DISCS and all(
-        math.isfinite(x) and math.isfinite(y) and math.isfinite(r) and r > 0 for x, y, r in discs
-    )
-    if not valid or not isinstance(tolerance, float):
-        return replace(options, goal_tolerance=tolerance, goal_within=within)
-    out = copy.copy(options)
-    object.__setattr__(out, "goal_tolerance", tolerance)
-    object.__setattr__(out, "goal_within", discs)
     return out
 
 

@@ -369,6 +369,9 @@ def _checked_discs(discs) -> tuple[tuple[float, float, float], ...]:
     """``goal_within`` as (x, y, radius) float triples, checked: finite, positive radii, at
     most :data:`~mjwalk.plan.slots.MAX_GOAL_DISCS` less one (whether the goal lies inside
     each is the planner's check, in :mod:`mjwalk.plan.hybrid`)."""
+    plain = _plain_discs(discs)
+    if plain is not None:
+        return plain
     try:
         arr = np.asarray(discs, dtype=float).reshape(-1, 3) if len(discs) else np.zeros((0, 3))
     except (TypeError, ValueError):
@@ -378,3 +381,24 @@ def _checked_discs(discs) -> tuple[tuple[float, float, float], ...]:
     if not np.all(np.isfinite(arr)) or np.any(arr[:, 2] <= 0):
         raise InputError("goal_within: discs are (x, y, radius) with finite x, y and radius > 0")
     return tuple((float(x), float(y), float(r)) for x, y, r in arr)
+
+
+def _plain_discs(discs) -> tuple[tuple[float, float, float], ...] | None:
+    """:func:`_checked_discs`' answer without NumPy for the usual input, a short tuple or list
+    of valid (x, y, radius) number triples (a planner's options are made for every stand zone:
+    NumPy's conversion was half of that); None for anything else, which the checked path then
+    converts or refuses."""
+    if not isinstance(discs, (tuple, list)) or len(discs) > slots.MAX_GOAL_DISCS - 1:
+        return None
+    out = []
+    for d in discs:
+        if not isinstance(d, (tuple, list)) or len(d) != 3:
+            return None
+        try:
+            x, y, r = float(d[0]), float(d[1]), float(d[2])
+        except (TypeError, ValueError):
+            return None
+        if not (math.isfinite(x) and math.isfinite(y) and math.isfinite(r) and r > 0):
+            return None
+        out.append((x, y, r))
+    return tuple(out)

@@ -5,7 +5,6 @@ shares the cycle's caches."""
 from __future__ import annotations
 
 import dataclasses
-import math
 
 import pytest
 
@@ -13,10 +12,8 @@ from mjwalk.cycle.context import (
     GOAL_TOLERANCE,
     HUMANOIDS,
     context_of,
-    goal_area_options,
     operator_context,
 )
-from mjwalk.errors import InputError
 from mjwalk.gait.walker import REFERENCE_CADENCE, Walker
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.options import PlannerOptions
@@ -80,26 +77,3 @@ def test_a_zones_planner_is_the_one_its_options_build_sharing_its_sites(station)
         for a, b in zip(planner.params.vectors(stature), own.params.vectors(stature), strict=True):
             assert a.tobytes() == b.tobytes()
         assert planner.options.goal_tolerance == zone.radius != site.options.goal_tolerance
-
-
-def test_a_goal_areas_options_equal_replaces_and_bad_discs_are_refused():
-    base = PlannerOptions(radius=0.3, goal_tolerance=0.1, field_tolerance=0.1, n_stops=0)
-    for tolerance, within in (
-        (0.35, ((1.0, 2.0, 0.5), (3.0, -1000.0, 1000.0))),
-        (0.3, ()),
-        (0.2, ((1, 2, 3),)),  # ints become floats, as PlannerOptions keeps them
-    ):
-        got = goal_area_options(base, tolerance, within)
-        want = dataclasses.replace(base, goal_tolerance=tolerance, goal_within=within)
-        assert got == want and vars(got) == vars(want) and got is not base
-        assert all(type(v) is type(vars(want)[k]) for k, v in vars(got).items())
-    bad = (
-        ((1.0, 2.0, -1.0),),
-        ((math.nan, 0.0, 1.0),),
-        ((0.0, 0.0, 1.0),) * 7,
-        ((1.0, 2.0),),
-        ((1.0, "x", 2.0),),
-    )
-    for within in bad:
-        with pytest.raises(InputError, match="goal_within"):
-            goal_area_options(base, 0.3, within)

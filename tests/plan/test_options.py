@@ -52,6 +52,34 @@ def test_bad_options_are_refused_on_construction(change, message):
     assert "\n" not in str(err.value)  # one line
 
 
+def test_goal_discs_are_float_triples_whatever_they_come_in_and_bad_ones_are_refused():
+    """Plain tuples and lists of number triples (a stand zone's, made for every operator) are
+    read without NumPy; every other container takes NumPy's conversion: the same floats."""
+    base = PlannerOptions(radius=0.3, goal_tolerance=0.1, field_tolerance=0.1, n_stops=0)
+    for within in (
+        ((1.0, 2.0, 0.5), (3.0, -1000.0, 1000.0)),
+        (),
+        ((1, 2, 3),),  # ints become floats
+        [[1, 2, 3], (4.0, 5.0, 0.25)],
+        np.array([[1.0, 2.0, 3.0]]),
+        (1.0, 2.0, 3.0),  # one flat triple: NumPy's reshape
+    ):
+        got = dataclasses.replace(base, goal_tolerance=0.35, goal_within=within).goal_within
+        want = np.asarray(within, dtype=float).reshape(-1, 3).tolist()
+        assert [list(d) for d in got] == want
+        assert type(got) is tuple and all(type(v) is float for d in got for v in d)
+    bad = (
+        ((1.0, 2.0, -1.0),),
+        ((math.nan, 0.0, 1.0),),
+        ((0.0, 0.0, 1.0),) * 7,
+        ((1.0, 2.0),),
+        ((1.0, "x", 2.0),),
+    )
+    for within in bad:
+        with pytest.raises(InputError, match="goal_within"):
+            dataclasses.replace(base, goal_tolerance=0.3, goal_within=within)
+
+
 def test_options_are_frozen_and_normalized():
     options = PlannerOptions(attempts=0, n_stops=-2, heading_weight=3, goal_within=[[1, 2, 0.5]])
     assert options.attempts == 1 and options.n_stops == 0
