@@ -67,5 +67,9 @@ class Memo(Generic[K, V]):
     def __len__(self) -> int:
         return len(self._kept)
 
+    def clear(self) -> None:
+        """Forget every kept value (a benchmark's cold start)."""
+        self._kept.clear()
+
     def __contains__(self, key: object) -> bool:
         return key in self._kept

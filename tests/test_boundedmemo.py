@@ -27,3 +27,12 @@ def test_a_maker_per_call_is_used_only_for_a_key_not_kept():
 
 def test_the_cycle_names_the_same_memo():
     assert cycle_memo.Memo is Memo
+
+
+def test_a_cleared_memo_makes_its_values_again():
+    made = []
+    memo = Memo(lambda k: made.append(k) or k, limit=4)
+    memo.get(1)
+    memo.clear()
+    assert len(memo) == 0 and 1 not in memo
+    assert memo.get(1) == 1 and made == [1, 1]

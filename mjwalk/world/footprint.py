@@ -18,6 +18,7 @@ import mujoco
 import numpy as np
 
 from mjwalk._jit import njit
+from mjwalk.boundedmemo import Memo
 
 #: Angular resolution of the tessellation of curved primitives (segments per full turn).
 _N_AROUND = 128
@@ -25,39 +26,19 @@ _N_AROUND = 128
 _N_RINGS = 48
 
 
-class _Memo:
-    """A bounded memo: the ``size`` latest entries, the oldest dropped first."""
-
-    def __init__(self, size: int) -> None:
-        self.size = size
-        self.items: dict = {}
-
-    def __contains__(self, key) -> bool:
-        return key in self.items
-
-    def get(self, key):
-        return self.items.get(key)
-
-    def put(self, key, value):
-        if len(self.items) >= self.size:
-            self.items.pop(next(iter(self.items)))
-        self.items[key] = value
-        return value
-
-
 #: Hull edges of point sets (:func:`_clip_hull_to_slab`), by the points' digest: a level's view
 #: and every walker's head band clip the same tessellated geoms again (a 3-D hull of a sloped
 #: capsule's ~12 500 points is ~10 ms).
-_HULL_EDGES = _Memo(32)
+_HULL_EDGES: Memo[bytes, np.ndarray] = Memo(limit=32)
 #: Footprints of :func:`geom_footprint` past its exact shapes, by name, geom, the world points'
 #: digest and the slab faces that cut them (exact: equal keys, equal answers).
-_FOOTPRINTS = _Memo(4096)
+_FOOTPRINTS: Memo[tuple, Footprint | None] = Memo(limit=4096)
 
 
 def clear_memos() -> None:
     """Forget the kept hull edges and footprints (a benchmark's cold start)."""
-    _HULL_EDGES.items.clear()
-    _FOOTPRINTS.items.clear()
+    _HULL_EDGES.clear()
+    _FOOTPRINTS.clear()
 
 
 def _digest(points: np.ndarray) -> bytes:
@@ -245,13 +226,13 @@ def _clip_hull_to_slab(points: np.ndarray, z0: float, z1: float) -> np.ndarray:
         return points
     from scipy.spatial import ConvexHull, QhullError  # deferred: scipy.spatial, ~1 s import
 
-    digest = _digest(points)
-    e = _HULL_EDGES.get(digest)
-    if e is None:
+    def edges() -> np.ndarray:
         try:
-            e = _HULL_EDGES.put(digest, hull_edges(ConvexHull(points).simplices))
+            return hull_edges(ConvexHull(points).simplices)
         except QhullError:
-            e = _HULL_EDGES.put(digest, np.empty((0, 2), dtype=np.int64))
+            return np.empty((0, 2), dtype=np.int64)
+
+    e = _HULL_EDGES.get(_digest(points), edges)
     if len(e) == 0:  # qhull refused the points (flat or degenerate): the points in the slab
         return inside
     pa, pb = points[e[:, 0]], points[e[:, 1]]
@@ -325,12 +306,14 @@ def geom_footprint(
     # them: a face at or beyond their extent clips nothing (no point outside it, no edge across
     # it), so every such face gives the same footprint (the key's infinities).
     key = (name, g, _digest(world), z0 if z0 > lo else -math.inf, z1 if z1 < hi else math.inf)
-    if key in _FOOTPRINTS:
-        return _FOOTPRINTS.get(key)
-    fp = _slab_footprint(name, g, world, z0, z1) if lo <= z1 and hi >= z0 else None
-    if fp is not None:
-        fp.vertices.setflags(write=False)  # shared by every later call with this key
-    return _FOOTPRINTS.put(key, fp)
+
+    def footprint() -> Footprint | None:
+        fp = _slab_footprint(name, g, world, z0, z1) if lo <= z1 and hi >= z0 else None
+        if fp is not None:
+            fp.vertices.setflags(write=False)  # shared by every later call with this key
+        return fp
+
+    return _FOOTPRINTS.get(key, footprint)
 
 
 def _slab_footprint(name: str, g: int, world: np.ndarray, z0: float, z1: float) -> Footprint | None:
