@@ -205,14 +205,9 @@ class KernelParams:
     def _goal_area(self, par: np.ndarray, ipar: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Copies of ``par`` and ``ipar`` with this planner's goal area in their slots (as
         :meth:`_floats` and :meth:`_integers` set them)."""
-        o = self.options
         par, ipar = par.copy(), ipar.copy()
-        par[slots.P_TOLERANCE] = o.goal_tolerance
-        par[slots.P_STOP_REACH] = o.goal_tolerance + STOP_REACH
-        par[slots.P_HEADING_FROM] = o.goal_tolerance + STOP_REACH
-        par[slots.P_DISC0 : slots.P_GUIDE_LEN0] = np.nan
-        for k, (dx, dy, dr) in enumerate(self.discs):
-            par[slots.P_DISC0 + 3 * k : slots.P_DISC0 + 3 * k + 3] = (dx, dy, dr)
+        _put_tolerance(par, self.options.goal_tolerance)
+        _put_discs(par, self.discs)
         ipar[slots.I_N_DISCS] = len(self.discs)
         return par, ipar
 
@@ -234,9 +229,7 @@ class KernelParams:
             goal_x, goal_y, tolerance = walk.spot
             par[slots.P_GOAL_X] = goal_x
             par[slots.P_GOAL_Y] = goal_y
-            par[slots.P_TOLERANCE] = tolerance
-            par[slots.P_STOP_REACH] = tolerance + STOP_REACH
-            par[slots.P_HEADING_FROM] = tolerance + STOP_REACH
+            _put_tolerance(par, tolerance)
             par[slots.P_DIST_OFFSET] = spot_offset(self.goal, walk.spot)
             k = int(ipar[slots.I_N_DISCS])
             j = slots.P_DISC0 + 3 * k
@@ -303,8 +296,7 @@ class KernelParams:
             heading_weight=o.heading_weight,
             heading_from=o.goal_tolerance + STOP_REACH,
         )
-        for k, (dx, dy, dr) in enumerate(self.discs):
-            par[slots.P_DISC0 + 3 * k : slots.P_DISC0 + 3 * k + 3] = (dx, dy, dr)
+        _put_discs(par, self.discs)
         return par
 
     def _integers(self) -> np.ndarray:
@@ -332,6 +324,22 @@ class KernelParams:
             near_goal_expansions=NEAR_GOAL_EXPANSIONS,
             n_discs=len(self.discs),
         )
+
+
+def _put_tolerance(par: np.ndarray, tolerance: float) -> None:
+    """Set the goal tolerance (m) and the closing and heading reach that follow from it
+    (``tolerance + STOP_REACH``) in the float vector ``par``, in place."""
+    par[slots.P_TOLERANCE] = tolerance
+    par[slots.P_STOP_REACH] = tolerance + STOP_REACH
+    par[slots.P_HEADING_FROM] = tolerance + STOP_REACH
+
+
+def _put_discs(par: np.ndarray, discs: np.ndarray) -> None:
+    """Set the goal discs ((k, 3): x, y, radius; metres) in the float vector ``par``, in place,
+    the slots of discs not given nan (their count is the integer vector's)."""
+    par[slots.P_DISC0 : slots.P_GUIDE_LEN0] = np.nan
+    for k, (dx, dy, dr) in enumerate(discs):
+        par[slots.P_DISC0 + 3 * k : slots.P_DISC0 + 3 * k + 3] = (dx, dy, dr)
 
 
 def _with_stature(shared: np.ndarray, stature: float) -> np.ndarray:
