@@ -414,11 +414,23 @@ class Humanoids:
 
     def __init__(self, limit: int):
         self._models: Memo[tuple[str, float], tuple[mujoco.MjModel, JointMap]] = Memo(
-            lambda key: attach_humanoid(Path(key[0]), key[1]), limit
+            self._attach, limit
         )
+        # each scene's file parsed once (attach_humanoid copies it, never changes it): parsing
+        # the station's XML again was about 0.5 ms of each new stature's 6 ms
+        self._scenes: Memo[str, mujoco.MjSpec | None] = Memo(_parsed_scene, SCENES_KEPT)
         self._clearances: Memo[tuple[str, float], ArmClearance] = Memo(
             lambda key: ArmClearance(*self._models.get(key)), limit
         )
+
+    def _attach(self, key: tuple[str, float]) -> tuple[mujoco.MjModel, JointMap]:
+        """The humanoid of ``key`` (scene, stature) attached to the parsed scene (the same model
+        as attaching it to the file: the same bytes, ``tests/cycle/test_context.py``); a file
+        that does not parse is given to :func:`~mjwalk.body.humanoid.attach_humanoid` by its
+        path, which reports it."""
+        scene, stature = key
+        parsed = self._scenes.get(scene)
+        return attach_humanoid(Path(scene) if parsed is None else parsed, stature)
 
     def model(self, scene: str, stature: float) -> tuple[mujoco.MjModel, JointMap]:
         """The scene with a humanoid of ``stature`` attached.
@@ -443,6 +455,19 @@ class Humanoids:
             The :class:`~mjwalk.cycle.standoff.ArmClearance` of that humanoid in the scene.
         """
         return self._clearances.get((scene, stature))
+
+
+#: Parsed scene files :class:`Humanoids` keeps (a process runs one or a few scenes).
+SCENES_KEPT = 4
+
+
+def _parsed_scene(path: str) -> mujoco.MjSpec | None:
+    """The scene file ``path`` parsed (read-only for its users), or None when MuJoCo cannot
+    parse it (:func:`~mjwalk.body.humanoid.attach_humanoid` then reports the file)."""
+    try:
+        return mujoco.MjSpec.from_file(path)
+    except Exception:  # mujoco raises ValueError with the XML parser's message
+        return None
 
 
 #: The contexts of the specs this process ran (:func:`context_of`), the last 4 of each kind.
