@@ -216,7 +216,7 @@ class CycleContext:
     on_levels: bool = False
     # the scratch MjData of ``model`` (set with the context, never replaced; not copied by
     # dataclasses.replace: an operator's context may have its own humanoid model): one per
-    # model and thread (:func:`_scratch_of`), shared by the contexts of that model
+    # model layout and thread (:func:`_scratch_of`), shared by the contexts of those models
     _data: mujoco.MjData = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -237,8 +237,9 @@ class CycleContext:
         return self.reach_model
 
     def scratch(self) -> mujoco.MjData:
-        """The MjData of ``model`` for this context's forward kinematics (every user sets the whole
-        qpos before each use).
+        """An MjData for ``model``'s forward kinematics in this context (made for a model of its
+        sizes, :func:`_scratch_of`; every user sets the whole qpos before each use and passes
+        ``model`` to MuJoCo).
 
         Returns:
             The context's scratch :class:`mujoco.MjData`.
@@ -318,7 +319,7 @@ class CycleContext:
         return self.routes.grid()
 
 
-#: Scratch MjData kept per thread: as many models as the humanoid cache holds
+#: Scratch MjData kept per thread: as many model layouts as the humanoid cache holds models
 #: (:data:`HUMANOIDS`' limit), the one kept longest dropped first (:class:`Memo`). What a run
 #: computes does not depend on which MjData it gets (its users set the qpos and compute the
 #: kinematics they read; tests/cycle/test_memo.py runs a cycle in a fresh and in a used one).
@@ -327,16 +328,29 @@ _LOCAL = threading.local()
 
 
 def _scratch_of(model: mujoco.MjModel) -> mujoco.MjData:
-    """The scratch MjData of ``model`` for this thread, made on first use. A run makes a context
-    for its operator (:func:`operator_context`); making its MjData cost about 0.4 ms a run
-    (measured on the station's humanoid). Its users set the whole qpos before each use, as
-    with a context's own, and a thread's runs go one after the other. An MjData holds its
-    model, so the cache is bounded (:data:`SCRATCH_LIMIT` per thread), not weak: a weak key
-    would never be dropped."""
+    """The scratch MjData of ``model`` for this thread, made on first use for its layout
+    (:func:`_layout`): the humanoids of every stature in one scene have the same sizes, so the
+    operators' contexts share one. A run makes a context for its operator
+    (:func:`operator_context`); making its MjData cost about 0.8 ms a run (the station's
+    humanoid: a 17.8 MB arena), and its first contacts touched the arena's pages anew. Its
+    users set the whole qpos before each use and pass their own model to MuJoCo (as
+    :func:`mujoco.rollout.rollout` runs one MjData with several models of one size
+    signature), as with a context's own, and a thread's runs go one after the other. An MjData
+    holds the model it was made for, so the cache is bounded (:data:`SCRATCH_LIMIT` per
+    thread), not weak: a weak key would never be dropped."""
     memo = getattr(_LOCAL, "scratch", None)
     if memo is None:
-        memo = _LOCAL.scratch = Memo(mujoco.MjData, limit=SCRATCH_LIMIT)
-    return memo.get(model)
+        memo = _LOCAL.scratch = Memo(limit=SCRATCH_LIMIT)
+    return memo.get(_layout(model), lambda: mujoco.MjData(model))
+
+
+def _layout(model: mujoco.MjModel) -> tuple:
+    """What an MjData of ``model`` is made for: MuJoCo's size signature of the model with its
+    buffer and arena sizes; a model with mocap bodies keys by itself (an MjData starts its
+    mocap poses at its own model's, which the kinematics read)."""
+    if model.nmocap:
+        return (model,)
+    return (model.signature, model.nbuffer, model.narena, model.nq, model.ngeom)
 
 
 def _load_step_model(spec: CycleSpec) -> StepModel:
@@ -414,11 +428,23 @@ class Humanoids:
 
     def __init__(self, limit: int):
         self._models: Memo[tuple[str, float], tuple[mujoco.MjModel, JointMap]] = Memo(
-            lambda key: attach_humanoid(Path(key[0]), key[1]), limit
+            self._attach, limit
         )
+        # each scene's file parsed once (attach_humanoid copies it, never changes it): parsing
+        # the station's XML again was about 0.5 ms of each new stature's 6 ms
+        self._scenes: Memo[str, mujoco.MjSpec | None] = Memo(_parsed_scene, SCENES_KEPT)
         self._clearances: Memo[tuple[str, float], ArmClearance] = Memo(
             lambda key: ArmClearance(*self._models.get(key)), limit
         )
+
+    def _attach(self, key: tuple[str, float]) -> tuple[mujoco.MjModel, JointMap]:
+        """The humanoid of ``key`` (scene, stature) attached to the parsed scene (the same model
+        as attaching it to the file: the same bytes, ``tests/cycle/test_context.py``); a file
+        that does not parse is given to :func:`~mjwalk.body.humanoid.attach_humanoid` by its
+        path, which reports it."""
+        scene, stature = key
+        parsed = self._scenes.get(scene)
+        return attach_humanoid(Path(scene) if parsed is None else parsed, stature)
 
     def model(self, scene: str, stature: float) -> tuple[mujoco.MjModel, JointMap]:
         """The scene with a humanoid of ``stature`` attached.
@@ -443,6 +469,19 @@ class Humanoids:
             The :class:`~mjwalk.cycle.standoff.ArmClearance` of that humanoid in the scene.
         """
         return self._clearances.get((scene, stature))
+
+
+#: Parsed scene files :class:`Humanoids` keeps (a process runs one or a few scenes).
+SCENES_KEPT = 4
+
+
+def _parsed_scene(path: str) -> mujoco.MjSpec | None:
+    """The scene file ``path`` parsed (read-only for its users), or None when MuJoCo cannot
+    parse it (:func:`~mjwalk.body.humanoid.attach_humanoid` then reports the file)."""
+    try:
+        return mujoco.MjSpec.from_file(path)
+    except Exception:  # mujoco raises ValueError with the XML parser's message
+        return None
 
 
 #: The contexts of the specs this process ran (:func:`context_of`), the last 4 of each kind.

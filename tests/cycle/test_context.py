@@ -6,14 +6,18 @@ from __future__ import annotations
 
 import dataclasses
 
+import mujoco
 import pytest
 
+from mjwalk.body.humanoid import attach_humanoid
 from mjwalk.cycle.context import (
     GOAL_TOLERANCE,
     HUMANOIDS,
+    Humanoids,
     context_of,
     operator_context,
 )
+from mjwalk.errors import SceneError
 from mjwalk.gait.walker import REFERENCE_CADENCE, Walker
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.options import PlannerOptions
@@ -46,6 +50,23 @@ def test_an_operators_context_has_their_humanoid_and_shares_the_caches(station):
     assert again.model is tall.model and again.turn_rate != tall.turn_rate
     same = operator_context(ctx, Walker(stature=ctx.spec.stature, speed=1.0, cadence=90.0))
     assert same.model is ctx.model  # the cycle's own stature: its own humanoid
+
+
+def _model_bytes(model, path) -> bytes:
+    mujoco.mj_saveModel(model, str(path), None)
+    return path.read_bytes()
+
+
+def test_a_humanoid_on_the_parsed_scene_is_the_one_on_its_file(station, tmp_path):
+    scene = str(context_of(station).spec.scene)
+    kept = Humanoids(limit=2)
+    for stature in (1.55, 1.93):
+        model, jm = kept.model(scene, stature)
+        again, jm_file = attach_humanoid(scene, stature)  # the file parsed anew
+        assert _model_bytes(model, tmp_path / "a.mjb") == _model_bytes(again, tmp_path / "b.mjb")
+        assert repr(jm) == repr(jm_file)
+    with pytest.raises(SceneError, match="no such scene file"):
+        kept.model(str(tmp_path / "missing.xml"), 1.7)
 
 
 def test_grid_routes_are_kept_per_pair_of_sites(station):

@@ -40,8 +40,9 @@ def test_context_is_frozen_and_shares_its_caches_with_operators(scenes_dir):
     # the key's rounded figures make the zone: a tenth of a millimetre asks for the same one
     assert ctx.zone(1, ctx.spec.stature + 1e-4, step) is zone
     tall = operator_context(ctx, Walker(stature=1.90))
-    assert tall.model is not ctx.model and tall.scratch() is not ctx.scratch()
-    assert tall.scratch() is tall.scratch()  # one scratch MjData per model and thread
+    # one scratch MjData per model layout and thread: every stature's humanoid has the sizes
+    assert tall.model is not ctx.model and tall.scratch() is ctx.scratch()
+    assert tall.scratch() is tall.scratch()
     # an operator of the cycle's own stature works in the cycle's humanoid and its MjData
     same = operator_context(ctx, Walker(stature=ctx.spec.stature, cadence=100.0))
     assert same is not ctx and same.model is ctx.model and same.scratch() is ctx.scratch()
@@ -56,10 +57,11 @@ def test_context_is_frozen_and_shares_its_caches_with_operators(scenes_dir):
     assert tall.zone(1, ctx.spec.stature, step) is zone
 
 
-def test_scratch_data_are_bounded_and_let_dropped_models_go(monkeypatch):
-    """The scratch MjData of each model and thread (cycle.context._scratch_of): the same for one
-    model, kept for at most SCRATCH_LIMIT models, and a dropped model is freed (an MjData holds
-    its model, so a weak-keyed cache never dropped any)."""
+def test_scratch_data_are_kept_per_layout_bounded_and_let_dropped_models_go(monkeypatch):
+    """The scratch MjData of each model layout and thread (cycle.context._scratch_of): the same
+    for models of one size signature, kept for at most SCRATCH_LIMIT layouts, and a dropped
+    layout's model is freed (an MjData holds its model, so a weak-keyed cache never dropped
+    any); a model with mocap bodies has its own."""
     import gc
     import threading
     import weakref
@@ -70,18 +72,26 @@ def test_scratch_data_are_bounded_and_let_dropped_models_go(monkeypatch):
 
     monkeypatch.setattr(context, "SCRATCH_LIMIT", 2)
     monkeypatch.setattr(context, "_LOCAL", threading.local())
-    xml = '<mujoco><worldbody><geom size="1"/></worldbody></mujoco>'
-    first = mujoco.MjModel.from_xml_string(xml)
+
+    def xml(n: int, size: float = 1.0) -> str:
+        geoms = "".join(f'<geom size="{size}" pos="{k} 0 0"/>' for k in range(n))
+        return f"<mujoco><worldbody>{geoms}</worldbody></mujoco>"
+
+    first = mujoco.MjModel.from_xml_string(xml(1))
     data = context._scratch_of(first)
     assert context._scratch_of(first) is data and data.model is not None
+    # another model of the same sizes (other numbers) shares it; other sizes do not
+    assert context._scratch_of(mujoco.MjModel.from_xml_string(xml(1, 2.0))) is data
     gone = weakref.ref(first)
     del first, data
-    kept = [mujoco.MjModel.from_xml_string(xml) for _ in range(2)]
-    for model in kept:
-        context._scratch_of(model)
+    kept = [mujoco.MjModel.from_xml_string(xml(n)) for n in (2, 3)]
+    assert context._scratch_of(kept[0]) is not context._scratch_of(kept[1])
     gc.collect()
     assert gone() is None
     assert len(context._LOCAL.scratch) == 2
+    mocap = '<mujoco><worldbody><body mocap="true"><geom size="1"/></body></worldbody></mujoco>'
+    a, b = (mujoco.MjModel.from_xml_string(mocap) for _ in range(2))
+    assert context._scratch_of(a) is not context._scratch_of(b)
 
 
 @pytest.mark.slow
