@@ -57,26 +57,37 @@ def _rotvec_matrix(r0, r1, r2):
 
 
 @njit
-def _residual(x, center, a, lengths, targets, out):
-    """Hand minus target (K*3,) for pose ``x`` (4,): aligned directions ``a`` (K, S, 3) scaled
-    by exp(x[3]) about ``center`` (3,) on the sphere, rotated by the rotation vector x[:3],
-    summed with ``lengths`` (S,) into the hand, minus ``targets`` (K, 3)."""
-    s = math.exp(x[3])
-    m = _rotvec_matrix(x[0], x[1], x[2])
-    for k in range(a.shape[0]):
-        h0 = 0.0
-        h1 = 0.0
-        h2 = 0.0
-        for j in range(a.shape[1]):
+def _logs(center, a):
+    """The pose-free part of the sphere log of each direction of ``a`` (K, S, 3) at
+    ``center``: its tangent ``v`` (K, S, 3) before scaling, ``acos(cos) / |v|`` (K, S) (the
+    factor the scale multiplies) and where ``|v|`` is ~zero (the centre itself: no tangent)."""
+    k_n, s_n = a.shape[0], a.shape[1]
+    v = np.empty((k_n, s_n, 3))
+    f0 = np.empty((k_n, s_n))
+    off = np.empty((k_n, s_n), dtype=np.bool_)
+    for k in range(k_n):
+        for j in range(s_n):
             u0, u1, u2 = a[k, j, 0], a[k, j, 1], a[k, j, 2]
             cos = u0 * center[0] + u1 * center[1] + u2 * center[2]
             cos = min(max(cos, -1.0), 1.0)
             v0, v1, v2 = u0 - cos * center[0], u1 - cos * center[1], u2 - cos * center[2]
             nv = math.sqrt(v0 * v0 + v1 * v1 + v2 * v2)
+            v[k, j, 0], v[k, j, 1], v[k, j, 2] = v0, v1, v2
+            off[k, j] = not nv > _EPS
+            f0[k, j] = math.acos(cos) / nv if nv > _EPS else 0.0
+    return v, f0, off
+
+
+@njit
+def _scaled(s, center, v, f0, off, out):
+    """The directions (K, S, 3) into ``out``: each log (:func:`_logs`) scaled by ``s``, then
+    the sphere's exp about ``center``."""
+    for k in range(v.shape[0]):
+        for j in range(v.shape[1]):
             # sphere_log, scaled by s, then sphere_exp about the centre
-            if nv > _EPS:
-                f = math.acos(cos) / nv * s
-                w0, w1, w2 = v0 * f, v1 * f, v2 * f
+            if not off[k, j]:
+                f = f0[k, j] * s
+                w0, w1, w2 = v[k, j, 0] * f, v[k, j, 1] * f, v[k, j, 2] * f
             else:
                 w0, w1, w2 = 0.0, 0.0, 0.0
             ang = math.sqrt(w0 * w0 + w1 * w1 + w2 * w2)
@@ -86,6 +97,19 @@ def _residual(x, center, a, lengths, targets, out):
                 d0, d1, d2 = c * center[0] + g * w0, c * center[1] + g * w1, c * center[2] + g * w2
             else:
                 d0, d1, d2 = c * center[0], c * center[1], c * center[2]
+            out[k, j, 0], out[k, j, 1], out[k, j, 2] = d0, d1, d2
+
+
+@njit
+def _hand(m, d, lengths, targets, out):
+    """Hand minus target (K*3,) into ``out``: the directions ``d`` (K, S, 3) rotated by the
+    row-major matrix ``m`` (9-tuple), summed with ``lengths`` (S,), minus ``targets``."""
+    for k in range(d.shape[0]):
+        h0 = 0.0
+        h1 = 0.0
+        h2 = 0.0
+        for j in range(d.shape[1]):
+            d0, d1, d2 = d[k, j, 0], d[k, j, 1], d[k, j, 2]
             h0 += lengths[j] * (m[0] * d0 + m[1] * d1 + m[2] * d2)
             h1 += lengths[j] * (m[3] * d0 + m[4] * d1 + m[5] * d2)
             h2 += lengths[j] * (m[6] * d0 + m[7] * d1 + m[8] * d2)
@@ -97,11 +121,19 @@ def _residual(x, center, a, lengths, targets, out):
 @njit
 def _solve(center, a, lengths, targets, x0, lo, hi):
     """Levenberg-Marquardt for the pose (4,) from ``x0`` with x[3] kept in [lo, hi]; returns
-    (pose, converged)."""
+    (pose, converged). The residual in parts: the directions' logs once (:func:`_logs`), the
+    scaled directions once per log scale (:func:`_scaled`; the rotation's three Jacobian
+    columns keep the pose's own), the rotation per residual (:func:`_hand`): the same numbers,
+    in the same order, as the residual computed whole each time (which ran the logs' arccos
+    and the exp map's sine and cosine about ten times an iteration)."""
     m = 3 * a.shape[0]
     x = x0.copy()
+    v, f0, off = _logs(center, a)
+    dx_ = np.empty(a.shape)  # the directions at x's log scale
+    dt = np.empty(a.shape)  # ... at a trial's or a Jacobian column's
     r = np.empty(m)
-    _residual(x, center, a, lengths, targets, r)
+    _scaled(math.exp(x[3]), center, v, f0, off, dx_)
+    _hand(_rotvec_matrix(x[0], x[1], x[2]), dx_, lengths, targets, r)
     cost = r @ r
     lam = 1e-3
     J = np.empty((m, 4))
@@ -110,13 +142,19 @@ def _solve(center, a, lengths, targets, x0, lo, hi):
     xt = np.empty(4)
     r_new = np.empty(m)
     for _ in range(_MAX_ITER):
-        for i in range(4):
+        for i in range(3):
             xt[:] = x
             xt[i] = x[i] + _STEP
-            _residual(xt, center, a, lengths, targets, rp)
+            _hand(_rotvec_matrix(xt[0], xt[1], xt[2]), dx_, lengths, targets, rp)
             xt[i] = x[i] - _STEP
-            _residual(xt, center, a, lengths, targets, rm)
+            _hand(_rotvec_matrix(xt[0], xt[1], xt[2]), dx_, lengths, targets, rm)
             J[:, i] = (rp - rm) / (2 * _STEP)
+        rot = _rotvec_matrix(x[0], x[1], x[2])
+        _scaled(math.exp(x[3] + _STEP), center, v, f0, off, dt)
+        _hand(rot, dt, lengths, targets, rp)
+        _scaled(math.exp(x[3] - _STEP), center, v, f0, off, dt)
+        _hand(rot, dt, lengths, targets, rm)
+        J[:, 3] = (rp - rm) / (2 * _STEP)
         g = J.T @ r
         H = J.T @ J
         while True:
@@ -126,12 +164,14 @@ def _solve(center, a, lengths, targets, x0, lo, hi):
             dx = -np.linalg.solve(A, g)
             xt[:] = x + dx
             xt[3] = min(max(xt[3], lo), hi)
-            _residual(xt, center, a, lengths, targets, r_new)
+            _scaled(math.exp(xt[3]), center, v, f0, off, dt)
+            _hand(_rotvec_matrix(xt[0], xt[1], xt[2]), dt, lengths, targets, r_new)
             c_new = r_new @ r_new
             if c_new <= cost:
                 step = np.abs(xt - x).max()
                 x[:] = xt
                 r[:] = r_new
+                dx_[:] = dt
                 done = cost - c_new <= 1e-15 * cost or step <= 1e-13
                 cost = c_new
                 lam = max(lam / 3, 1e-12)

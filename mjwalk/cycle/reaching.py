@@ -317,8 +317,9 @@ def _reach_motion(
     if n_rise != n_ready:
         w = smoothstep(np.arange(1, n_rise + 1) / (n_rise + 1))[::-1]
         rise = crouch_frames(ctx, q0, ready_pose, w)
-    back = np.vstack([back[1:], rise, q0[None]])
-    return np.vstack([ready, out, np.repeat(out[-1:], n_hold, axis=0), back]), error
+    # (one copy: ready, out, hold, back, rise, q0)
+    hold = np.repeat(out[-1:], n_hold, axis=0)
+    return np.concatenate([ready, out, hold, back[1:], rise, q0[None]]), error
 
 
 def _phase_counts(

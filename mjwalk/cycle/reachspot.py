@@ -135,15 +135,14 @@ def reach_task(
     x, y, home = start.x, start.y, start.home
     site_pos = ctx.workplace.station(task.site).pos
     hx, hy = (float(x), float(y)) if home is None else (float(home[0]), float(home[1]))
-    back = np.array([hx, hy]) - reach_target(task.kind, site_pos, hx, hy)[:2]
+    target = reach_target(task.kind, site_pos, hx, hy)  # (from the walk's end)
+    back = np.array([hx, hy]) - target[:2]
     back /= max(float(np.linalg.norm(back)), 1e-9)
     # a fastening's approach is level (approach_offset): no headroom to measure
     rise = (
         0.0
         if TASK_KINDS[task.kind].approach == "surface"
-        else approach_rise(
-            ctx.model, ctx.scratch(), ctx.spec.stature, reach_target(task.kind, site_pos, hx, hy)
-        )
+        else approach_rise(ctx.model, ctx.scratch(), ctx.spec.stature, target)
     )
     search = _Search(
         ctx=ctx,
@@ -158,6 +157,7 @@ def reach_task(
         back=back,
         site_pos=site_pos,
         rise=rise,
+        target=target,
     )
     upright = _settle(search, lean=False)
     best = upright
@@ -177,8 +177,9 @@ class _Search:
     """What the stand-off search of one reach task keeps fixed (:func:`reach_task`'s
     arguments, world frame, metres): ``home`` is where the steps are measured from, ``back``
     the unit direction (x, y) away from the target there, ``rise`` the pre-grasp point's rise
-    (:func:`~mjwalk.cycle.targets.approach_rise`) and :attr:`room` the walk clearance at
-    ``home``."""
+    (:func:`~mjwalk.cycle.targets.approach_rise`), ``target`` the hand's target from ``home``
+    (:func:`~mjwalk.cycle.targets.reach_target`; read only) and :attr:`room` the walk
+    clearance at ``home``."""
 
     ctx: CycleContext
     task: Task
@@ -192,6 +193,7 @@ class _Search:
     back: np.ndarray
     site_pos: np.ndarray
     rise: float
+    target: np.ndarray
 
     @cached_property
     def room(self) -> float:
@@ -213,7 +215,10 @@ def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> Work
         room = level_room(ctx.workplace, (xs, ys), ctx.on_levels, home=(hx, hy))
         if room < reach_room(ctx.spec.radius, ctx.on_levels, search.room):
             return None
-    target = reach_target(task.kind, search.site_pos, xs, ys)
+    if _same(xs, hx) and _same(ys, hy):  # (the walk's end: its target is known)
+        target = search.target
+    else:
+        target = reach_target(task.kind, search.site_pos, xs, ys)
     # face the target (turning on the spot) before reaching for it
     d = math.hypot(target[0] - xs, target[1] - ys)
     face = math.atan2(target[1] - ys, target[0] - xs)
@@ -239,6 +244,11 @@ def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> Work
         )
     dist = ctx.clearance.distance(np.vstack([turn, rf]))
     return WorkingReach(xs, ys, face, float(s), turn, dt, rf, err, res, width, dist)
+
+
+def _same(a: float, b: float) -> bool:
+    """Whether two floats are the same number, a zero's sign included."""
+    return a == b and math.copysign(1.0, a) == math.copysign(1.0, b)
 
 
 def _settle(search: _Search, lean: bool, drop: float = 0.0) -> WorkingReach:
