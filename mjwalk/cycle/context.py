@@ -17,7 +17,7 @@ from mjwalk.arms.reach import load_endpoint_model
 from mjwalk.arms.reachdefault import default_reach_model
 from mjwalk.body.humanoid import JointMap, attach_humanoid
 from mjwalk.cycle.levelsite import ground_height, spec_on_levels
-from mjwalk.cycle.memo import Memo
+from mjwalk.cycle.memo import Memo, data_layout
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.standing import StandZone, StandZones
 from mjwalk.cycle.standoff import ArmClearance
@@ -329,7 +329,7 @@ _LOCAL = threading.local()
 
 def _scratch_of(model: mujoco.MjModel) -> mujoco.MjData:
     """The scratch MjData of ``model`` for this thread, made on first use for its layout
-    (:func:`_layout`): the humanoids of every stature in one scene have the same sizes, so the
+    (:func:`~mjwalk.cycle.memo.data_layout`): the humanoids of every stature in one scene have the same sizes, so the
     operators' contexts share one. A run makes a context for its operator
     (:func:`operator_context`); making its MjData cost about 0.8 ms a run (the station's
     humanoid: a 17.8 MB arena), and its first contacts touched the arena's pages anew. Its
@@ -341,16 +341,7 @@ def _scratch_of(model: mujoco.MjModel) -> mujoco.MjData:
     memo = getattr(_LOCAL, "scratch", None)
     if memo is None:
         memo = _LOCAL.scratch = Memo(limit=SCRATCH_LIMIT)
-    return memo.get(_layout(model), lambda: mujoco.MjData(model))
-
-
-def _layout(model: mujoco.MjModel) -> tuple:
-    """What an MjData of ``model`` is made for: MuJoCo's size signature of the model with its
-    buffer and arena sizes; a model with mocap bodies keys by itself (an MjData starts its
-    mocap poses at its own model's, which the kinematics read)."""
-    if model.nmocap:
-        return (model,)
-    return (model.signature, model.nbuffer, model.narena, model.nq, model.ngeom)
+    return memo.get(data_layout(model), lambda: mujoco.MjData(model))
 
 
 def _load_step_model(spec: CycleSpec) -> StepModel:

@@ -25,6 +25,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.body.humanoid import HUMAN_GROUP, JointMap
+from mjwalk.cycle.memo import ScratchData
 from mjwalk.timeline.collisions import candidate_frames, floor_geoms, repeats
 
 #: Clearance (m) the reaching arm (upper arm to fingertips) keeps from every scene geom. The
@@ -43,6 +44,13 @@ REACH_TOLERANCE = 0.01
 #: Contacts with the floor count only deeper than this (m): the soles rest on it (as in
 #: :func:`mjwalk.timeline.collisions.collision_report`).
 FLOOR_TOLERANCE = 0.01
+#: The clearance checks' MjData, one per model layout and thread: every operator's stature has
+#: its own :class:`ArmClearance` (its own margins) but the same sizes, and making an MjData of
+#: the station's humanoid (a 17.8 MB arena) cost about 0.7 ms a stature. :meth:`ArmClearance.
+#: distance` sets each pose's whole qpos before MuJoCo reads it. Kept apart from the contexts'
+#: scratch (:mod:`mjwalk.cycle.context`), in which the reach code computes between clearance
+#: checks. 64 layouts a thread, as many as the humanoid cache holds models.
+CLEARANCE_DATA = ScratchData(64)
 
 
 class ArmClearance:
@@ -60,7 +68,7 @@ class ArmClearance:
     ):
         self.clearance = float(clearance)
         self.model = copy.deepcopy(model)  # the caller's model keeps its margins
-        self.data = mujoco.MjData(self.model)
+        self.data = CLEARANCE_DATA.of(self.model)  # every use sets the whole qpos
         m = self.model
         roots = {m.body(f"{jointmap.prefix}upper_arm_{s}").id for s in ("l", "r")}
         arm = np.zeros(m.ngeom, dtype=bool)

@@ -130,3 +130,35 @@ def test_a_cycle_does_not_depend_on_the_scratch_data_it_gets(scenes_dir, monkeyp
     assert len(tu.parts) == len(tf.parts) > 0
     for a, b in zip(tu.parts, tf.parts, strict=True):
         assert a.geom == b.geom and np.array_equal(a.pos, b.pos) and np.array_equal(a.mat, b.mat)
+
+
+def test_scratch_data_is_per_layout_and_thread():
+    """ScratchData (the clearance checks' MjData): one MjData for models of one layout, another
+    for another layout, and another thread gets its own."""
+    import threading
+
+    import mujoco
+
+    from mjwalk.cycle.memo import ScratchData, data_layout
+
+    def model(size: float) -> mujoco.MjModel:
+        return mujoco.MjModel.from_xml_string(
+            f'<mujoco><worldbody><body><freejoint/><geom size="{size}"/></body></worldbody>'
+            "</mujoco>"
+        )
+
+    one, same, other = model(0.1), model(0.2), model(0.1)
+    bigger = mujoco.MjModel.from_xml_string(
+        '<mujoco><worldbody><body><freejoint/><geom size="0.1"/></body>'
+        '<body><freejoint/><geom size="0.1"/></body></worldbody></mujoco>'
+    )
+    assert data_layout(one) == data_layout(same) != data_layout(bigger)
+    scratch = ScratchData(4)
+    d = scratch.of(one)
+    assert scratch.of(same) is d and scratch.of(other) is d
+    assert scratch.of(bigger) is not d
+    seen = []
+    t = threading.Thread(target=lambda: seen.append(scratch.of(one)))
+    t.start()
+    t.join()
+    assert seen[0] is not d

@@ -260,3 +260,31 @@ def test_under_a_shelf_the_hand_comes_in_low_enough_to_clear_it(scenes_dir, tmp_
         targets.approach_rise(drawn.model, drawn.scratch(), drawn.spec.stature, target)
         == targets.APPROACH_UP
     )
+
+
+def test_clearances_of_two_statures_share_one_mjdata_and_measure_as_with_their_own(scenes_dir):
+    """Every stature's ArmClearance computes in one MjData per model layout and thread
+    (CLEARANCE_DATA, issue 50): the distances of seeded poses are those a fresh MjData of each
+    model gives, bit for bit, in either order of use."""
+    import mujoco
+
+    from mjwalk.body.humanoid import attach_humanoid
+
+    scene = scenes_dir / "assembly_station.xml"
+    a = ArmClearance(*attach_humanoid(scene, 1.62))
+    b = ArmClearance(*attach_humanoid(scene, 1.86))
+    assert a.data is b.data
+    rng = np.random.default_rng(7)
+
+    def poses(c):
+        q = np.tile(c.model.qpos0, (12, 1))
+        q[:, 7:] += rng.normal(0.0, 0.3, (12, c.model.nq - 7))
+        return q
+
+    qa, qb = poses(a), poses(b)
+    shared = [a.distance(qa), b.distance(qb), a.distance(qa, broad_phase=False)]
+    for c in (a, b):
+        c.data = mujoco.MjData(c.model)
+    own = [a.distance(qa), b.distance(qb), a.distance(qa, broad_phase=False)]
+    assert shared == own
+    assert any(np.isfinite(shared))  # the poses reach into the scene: distances were compared
