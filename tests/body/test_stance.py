@@ -6,12 +6,14 @@ import numpy as np
 import pytest
 
 from mjwalk.body.humanoid import leg_geometry
-from mjwalk.body.legs.reference import DEFAULT_REFERENCE
+from mjwalk.body.legs.ik import KNEE_MIN
+from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.stance import (
     REACH_DROP_MAX,
     KneeEnds,
     LandingEase,
     StanceLeg,
+    floor_reach_sq,
     lower_to_reach,
     pelvis_height,
     reach_deficit,
@@ -94,3 +96,23 @@ def test_lower_to_reach_lowers_a_little_and_refuses_a_lot(over):
     drop = lower_to_reach(root, np.zeros(n), ankle, on, reach_sq, g, 5)
     assert over <= drop <= REACH_DROP_MAX
     assert reach_deficit(root, np.zeros(n), ankle, on, reach_sq, g).max() <= 1e-3
+
+
+@pytest.mark.parametrize("stature", [1.55, 1.75, 1.95])
+def test_floor_reach_sq_is_the_numpy_expression_bit_for_bit(stature):
+    """The compiled squared spans are ``geom.span(np.clip(ref("knee", cyc), KNEE_MIN, hi))
+    ** 2`` to the bit, wrapped fractions (negative, past 1, exactly 1) and the clip's both
+    ends included; a table off the unit cycle takes the NumPy path with the same numbers."""
+    g = leg_geometry(stature)
+    rng = np.random.default_rng(5)
+    cyc = np.r_[rng.uniform(-0.5, 1.5, 4000), 0.0, 1.0, 0.5, -0.0, 2.0]
+    hi = float(np.deg2rad(10.0))
+    want = g.span(np.clip(DEFAULT_REFERENCE("knee", cyc), KNEE_MIN, hi)) ** 2
+    got = floor_reach_sq(DEFAULT_REFERENCE, cyc, hi, g)
+    assert got.tobytes() == want.tobytes()
+    k = DEFAULT_REFERENCE("knee", cyc)
+    assert (k < KNEE_MIN).any() and (k > hi).any()  # both bounds clip somewhere
+    ref = DEFAULT_REFERENCE
+    shifted = ReferenceGait(ref.cycle * 2.0, ref.hip, ref.knee, ref.pitch)
+    want2 = g.span(np.clip(shifted("knee", cyc), KNEE_MIN, hi)) ** 2
+    assert floor_reach_sq(shifted, cyc, hi, g).tobytes() == want2.tobytes()

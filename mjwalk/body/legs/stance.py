@@ -38,7 +38,8 @@ from mjwalk.body.legs.curves import (
 )
 from mjwalk.body.legs.footpivot import ball_offset, heel_rise_rows, pivot_rows
 from mjwalk.body.legs.ik import KNEE_MIN
-from mjwalk.body.legs.reference import ReferenceGait
+from mjwalk.body.legs.ikcache import clip1
+from mjwalk.body.legs.reference import ReferenceGait, ppoly_at
 from mjwalk.body.legs.steps import FOOT_FLAT, STANCE_KEYS, StepFrames
 from mjwalk.errors import PlanningError
 
@@ -459,6 +460,43 @@ def _reach_deficit(root, yaw, ankle, ground, reach_sq, c, out):
         h = math.sqrt(dx * dx + dy * dy)
         cap = ankle[i, 2] + math.sqrt(maximum1(reach_sq[i] - h * h, 0.0))
         out[i] = maximum1(out[i], root[i, 2] - cap if ground[i] else 0.0)
+
+
+def floor_reach_sq(ref: ReferenceGait, cyc: np.ndarray, knee_hi: float, geom: LegGeometry):
+    """The squared hip-to-ankle spans (n,), m², of a leg whose knee is flexed as the
+    reference's at the gait-cycle fractions ``cyc`` (n,), clipped to :data:`KNEE_MIN` ..
+    ``knee_hi`` radians: ``geom.span(np.clip(ref("knee", cyc), KNEE_MIN, knee_hi)) ** 2``, its
+    arithmetic in its order in one compiled call (reference tables on the unit cycle; others
+    take that NumPy expression).
+
+    Args:
+        ref: the reference gait.
+        cyc: (n,) gait-cycle fractions (wrapped onto [0, 1)).
+        knee_hi: the knee's upper bound, radians.
+        geom: the leg lengths.
+
+    Returns:
+        (n,) the squared spans, m².
+    """
+    if not ref._unit:
+        return geom.span(np.clip(ref("knee", cyc), KNEE_MIN, knee_hi)) ** 2
+    L1, L2 = geom.thigh, geom.shank
+    coef, knots = ref._ppoly["knee"]
+    out = np.empty(len(cyc))
+    _floor_reach_sq(np.ascontiguousarray(cyc, dtype=float), coef, knots, float(KNEE_MIN),
+                    float(knee_hi), float(L1**2 + L2**2), float(2 * L1 * L2), out)  # fmt: skip
+    return out
+
+
+@njit
+def _floor_reach_sq(cyc, coef, knots, lo, hi, c0, c1, out):
+    """:func:`floor_reach_sq` per row: the reference knee (``reference.ppoly_at`` at
+    ``cyc % 1``, as ``np.mod``), clipped as ``np.clip`` clips, the span
+    ``sqrt(c0 + c1 cos(knee))`` (``c0`` = L1² + L2², ``c1`` = 2 L1 L2) squared."""
+    for i in range(cyc.shape[0]):
+        k = clip1(ppoly_at(coef, knots, cyc[i] % 1.0, 0), lo, hi)
+        d = np.sqrt(c0 + c1 * np.cos(k))
+        out[i] = d * d
 
 
 #: The compiled kernels of :func:`stance_foot`, :func:`stance_knee` and :func:`pelvis_height`
