@@ -191,6 +191,7 @@ def legs_from_walk(
     # (the loops below re-solve only the samples changed since: the spin turns' grounded
     # samples are solved already)
     ik = {s_: LegIKCache(s_, geom) for s_ in "lr"}
+    ik["l"].share_trig(ik["r"], sy.feet.fyaw["l"], sy.feet.fyaw["r"], sy.yaw)
     spin_turns(sy.feet, np.column_stack([sy.xy, sy.z]), sy.yaw, geom, ik)
     _hold_ends(sy, frames[0], frames[-1])
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
