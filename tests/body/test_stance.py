@@ -116,3 +116,36 @@ def test_floor_reach_sq_is_the_numpy_expression_bit_for_bit(stature):
     shifted = ReferenceGait(ref.cycle * 2.0, ref.hip, ref.knee, ref.pitch)
     want2 = g.span(np.clip(shifted("knee", cyc), KNEE_MIN, hi)) ** 2
     assert floor_reach_sq(shifted, cyc, hi, g).tobytes() == want2.tobytes()
+
+
+def test_reach_deficit_with_kept_yaw_sines_is_the_same():
+    """The compiled ankle fit's deficit with the pelvis yaw's cosines and sines read from an
+    IK cache (where its kept yaw is the row's, to the bit; else taken) is reach_deficit's,
+    bit for bit: rows kept, rows kept for another yaw, a -0.0 against a kept +0.0, NaN."""
+    from mjwalk.body.legs.ikcache import LegIKCache
+    from mjwalk.body.legs.stance import reach_deficit_kept
+
+    g = leg_geometry(1.75)
+    rng = np.random.default_rng(9)
+    n = 90
+    yaw = rng.uniform(-3.5, 3.5, n)
+    yaw[:4] = (0.0, -0.0, np.nan, np.pi)
+    root = np.column_stack([rng.uniform(-0.1, 0.1, (n, 2)), rng.uniform(0.85, 0.95, n)])
+    left, right = LegIKCache("l", g), LegIKCache("r", g)
+    kept_yaw = yaw.copy()
+    kept_yaw[1], kept_yaw[10:20] = 0.0, kept_yaw[10:20] + 0.1  # another yaw kept there
+    left.share_trig(right, kept_yaw, kept_yaw, kept_yaw)
+    for s_, cache in (("l", left), ("r", right)):
+        ankle = np.column_stack([root[:, :2] + rng.uniform(-0.2, 0.2, (n, 2)), np.full(n, 0.08)])
+        ground = rng.uniform(size=n) < 0.7
+        reach_sq = np.full(n, rng.uniform(0.6, 0.8) ** 2)
+        o = "r" if s_ == "l" else "l"  # (the other leg off the floor: no deficit)
+        want = reach_deficit(
+            root, yaw, {s_: ankle, o: ankle}, {s_: ground, o: np.zeros(n, bool)},
+            {s_: reach_sq, o: reach_sq}, g,
+        )  # fmt: skip
+        out = np.zeros(n)
+        c = (1.0 if s_ == "l" else -1.0) * float(g.hip_y)
+        reach_deficit_kept(root, yaw, ankle, ground, reach_sq, c, *cache.trig_buffers(n), out)
+        assert out.tobytes() == want.tobytes()
+        assert (want > 0).any()

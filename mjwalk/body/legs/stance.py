@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mjwalk._jit import njit
+from mjwalk._jit import njit, njit_inline
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import (
     FLAT,
@@ -455,11 +455,32 @@ def _reach_deficit(root, yaw, ankle, ground, reach_sq, c, out):
     the hip ``c`` metres to the pelvis's left (:func:`~.kinematics.hip_world`), the height
     above the ankle at which the leg spans ``reach_sq``, the pelvis height above that."""
     for i in range(yaw.shape[0]):
-        dx = (root[i, 0] + c * -math.sin(yaw[i])) - ankle[i, 0]
-        dy = (root[i, 1] + c * math.cos(yaw[i])) - ankle[i, 1]
-        h = math.sqrt(dx * dx + dy * dy)
-        cap = ankle[i, 2] + math.sqrt(maximum1(reach_sq[i] - h * h, 0.0))
-        out[i] = maximum1(out[i], root[i, 2] - cap if ground[i] else 0.0)
+        _deficit_row(root, ankle, ground, reach_sq, c, i, math.cos(yaw[i]), math.sin(yaw[i]), out)
+
+
+@njit
+def _reach_deficit_kept(root, yaw, ankle, ground, reach_sq, c, key, vals, out):
+    """:func:`_reach_deficit` with the pelvis yaw's cosine and sine read from an IK cache's
+    kept ones (``ikcache.yaw_trig_row``'s ``key`` (n, 2), ``vals`` (n, 7)) where the row's
+    yaw is the one kept (to the bit), else taken: the same numbers."""
+    for i in range(yaw.shape[0]):
+        y = yaw[i]
+        if y == key[i, 0] and math.copysign(1.0, y) == math.copysign(1.0, key[i, 0]):
+            cy, sy = vals[i, 0], vals[i, 1]
+        else:
+            cy, sy = math.cos(y), math.sin(y)
+        _deficit_row(root, ankle, ground, reach_sq, c, i, cy, sy, out)
+
+
+@njit_inline
+def _deficit_row(root, ankle, ground, reach_sq, c, i, cy, sy, out):
+    """Row ``i`` of :func:`_reach_deficit`, the pelvis yaw's cosine ``cy`` and sine ``sy``
+    given."""
+    dx = (root[i, 0] + c * -sy) - ankle[i, 0]
+    dy = (root[i, 1] + c * cy) - ankle[i, 1]
+    h = math.sqrt(dx * dx + dy * dy)
+    cap = ankle[i, 2] + math.sqrt(maximum1(reach_sq[i] - h * h, 0.0))
+    out[i] = maximum1(out[i], root[i, 2] - cap if ground[i] else 0.0)
 
 
 def floor_reach_sq(ref: ReferenceGait, cyc: np.ndarray, knee_hi: float, geom: LegGeometry):
@@ -501,8 +522,8 @@ def _floor_reach_sq(cyc, coef, knots, lo, hi, c0, c1, out):
 
 #: The compiled kernels of :func:`stance_foot`, :func:`stance_knee` and :func:`pelvis_height`
 #: and the stance spline's knots, for callers that run a walk's steps in one compiled loop
-#: (:mod:`~mjwalk.body.legs.synthloop`), and the reach-deficit kernel for the compiled ankle-fit
-#: passes (:func:`~mjwalk.body.legs.pitchfit.fit_ankle_passes`).
+#: (:mod:`~mjwalk.body.legs.synthloop`), and the reach-deficit kernel (the yaws' sines kept) for
+#: the compiled ankle-fit passes (:func:`~mjwalk.body.legs.pitchfit.fit_ankle_passes`).
 stance_foot_rows, stance_knee_rows, pelvis_height_rows = _stance_foot, _stance_knee, _pelvis_height
-reach_deficit_rows = _reach_deficit
+reach_deficit_kept = _reach_deficit_kept
 STANCE_KNOTS = _KNOTS
