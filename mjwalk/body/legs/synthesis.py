@@ -88,8 +88,9 @@ FLOOR_TOLERANCE = 2e-3
 KNEE_SOFT = 10.0
 KNEE_SOFT_RAD = float(np.deg2rad(KNEE_SOFT))  # (the same, radians)
 
-#: The leg geometry per stature (its type and value: the same lengths, the same object, whose
-#: reference-derived numbers the reference keeps by geometry), at most 64 statures.
+#: The leg geometry per stature (a Python number, keyed by its type and value: the same lengths,
+#: the same object, whose reference-derived numbers the reference keeps by geometry), at most
+#: 64 statures; other statures get theirs made each time.
 _GEOMS: Memo = Memo(limit=64)
 
 #: Step phase from which the swing knee eases into the landing (the last swing key frame).
@@ -169,7 +170,11 @@ def legs_from_walk(
             "the hybrid A* or add footprints)"
         )
     ref = reference or DEFAULT_REFERENCE
-    geom = _GEOMS.get((type(stature), stature), lambda: leg_geometry(stature))
+    geom = (
+        _GEOMS.get((type(stature), stature), lambda: leg_geometry(stature))
+        if isinstance(stature, float | int)
+        else leg_geometry(stature)
+    )
     n = len(walk.t)
     frames = step_frames(walk)
     for k, fr in enumerate(frames):
