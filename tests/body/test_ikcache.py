@@ -143,3 +143,32 @@ def test_floor_round_is_the_clipped_ik_and_foot_lowest_bit_for_bit():
         assert [w.tobytes() for w in want] == [r.tobytes() for r in q]
         assert low.tobytes() == low_want.tobytes()
         assert a.out.tobytes() == b.out.tobytes() and a.inputs.tobytes() == b.inputs.tobytes()
+
+
+def test_shared_trig_is_each_legs_own():
+    """share_trig fills both legs' kept sines and cosines with the numbers yaw_trig_row keeps
+    for their own yaws (bit for bit, signed zeros, wrap-around and NaN yaws included), and
+    the legs then solve as leg_ik_world does."""
+    g = leg_geometry(1.75)
+    rng = np.random.default_rng(11)
+    n = 80
+    yaw = rng.uniform(-4.0, 4.0, n)
+    fl, fr = yaw + rng.uniform(-0.5, 0.5, n), yaw + rng.uniform(-0.5, 0.5, n)
+    yaw[:3], fl[:3], fr[3:5] = (-0.0, 0.0, np.nan), (0.0, -0.0, 1.0), (np.pi, -np.pi)
+    left, right = LegIKCache("l", g), LegIKCache("r", g)
+    left.share_trig(right, fl, fr, yaw)
+    for fy, cache in ((fl, left), (fr, right)):
+        key, vals = np.full((n, 2), np.nan), np.empty((n, 7))
+        want = np.array([yaw_trig_row(fy, yaw, i, key, vals) for i in range(n)])
+        got_key, got = cache.trig_buffers(n)
+        ok = ~np.isnan(yaw)
+        assert got[ok].tobytes() == want[ok].tobytes()
+        assert got_key.tobytes() == key.tobytes()
+    ankle = np.column_stack([rng.uniform(-0.3, 0.3, n), rng.uniform(0, 0.2, n), np.full(n, 0.1)])
+    root = np.column_stack([rng.uniform(-0.1, 0.1, (n, 2)), np.full(n, 0.9)])
+    pitch = rng.uniform(-0.3, 0.3, n)
+    for side, fy, cache in (("l", fl, left), ("r", fr, right)):
+        got = cache(ankle, fy, pitch, root, yaw)
+        want = leg_ik_world(ankle, fy, pitch, root, yaw, side, g)
+        for name in want:
+            assert got[name].tobytes() == want[name].tobytes(), name

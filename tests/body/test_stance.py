@@ -6,12 +6,14 @@ import numpy as np
 import pytest
 
 from mjwalk.body.humanoid import leg_geometry
-from mjwalk.body.legs.reference import DEFAULT_REFERENCE
+from mjwalk.body.legs.ik import KNEE_MIN
+from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
 from mjwalk.body.legs.stance import (
     REACH_DROP_MAX,
     KneeEnds,
     LandingEase,
     StanceLeg,
+    floor_reach_sq,
     lower_to_reach,
     pelvis_height,
     reach_deficit,
@@ -94,3 +96,56 @@ def test_lower_to_reach_lowers_a_little_and_refuses_a_lot(over):
     drop = lower_to_reach(root, np.zeros(n), ankle, on, reach_sq, g, 5)
     assert over <= drop <= REACH_DROP_MAX
     assert reach_deficit(root, np.zeros(n), ankle, on, reach_sq, g).max() <= 1e-3
+
+
+@pytest.mark.parametrize("stature", [1.55, 1.75, 1.95])
+def test_floor_reach_sq_is_the_numpy_expression_bit_for_bit(stature):
+    """The compiled squared spans are ``geom.span(np.clip(ref("knee", cyc), KNEE_MIN, hi))
+    ** 2`` to the bit, wrapped fractions (negative, past 1, exactly 1) and the clip's both
+    ends included; a table off the unit cycle takes the NumPy path with the same numbers."""
+    g = leg_geometry(stature)
+    rng = np.random.default_rng(5)
+    cyc = np.r_[rng.uniform(-0.5, 1.5, 4000), 0.0, 1.0, 0.5, -0.0, 2.0]
+    hi = float(np.deg2rad(10.0))
+    want = g.span(np.clip(DEFAULT_REFERENCE("knee", cyc), KNEE_MIN, hi)) ** 2
+    got = floor_reach_sq(DEFAULT_REFERENCE, cyc, hi, g)
+    assert got.tobytes() == want.tobytes()
+    k = DEFAULT_REFERENCE("knee", cyc)
+    assert (k < KNEE_MIN).any() and (k > hi).any()  # both bounds clip somewhere
+    ref = DEFAULT_REFERENCE
+    shifted = ReferenceGait(ref.cycle * 2.0, ref.hip, ref.knee, ref.pitch)
+    want2 = g.span(np.clip(shifted("knee", cyc), KNEE_MIN, hi)) ** 2
+    assert floor_reach_sq(shifted, cyc, hi, g).tobytes() == want2.tobytes()
+
+
+def test_reach_deficit_with_kept_yaw_sines_is_the_same():
+    """The compiled ankle fit's deficit with the pelvis yaw's cosines and sines read from an
+    IK cache (where its kept yaw is the row's, to the bit; else taken) is reach_deficit's,
+    bit for bit: rows kept, rows kept for another yaw, a -0.0 against a kept +0.0, NaN."""
+    from mjwalk.body.legs.ikcache import LegIKCache
+    from mjwalk.body.legs.stance import reach_deficit_kept
+
+    g = leg_geometry(1.75)
+    rng = np.random.default_rng(9)
+    n = 90
+    yaw = rng.uniform(-3.5, 3.5, n)
+    yaw[:4] = (0.0, -0.0, np.nan, np.pi)
+    root = np.column_stack([rng.uniform(-0.1, 0.1, (n, 2)), rng.uniform(0.85, 0.95, n)])
+    left, right = LegIKCache("l", g), LegIKCache("r", g)
+    kept_yaw = yaw.copy()
+    kept_yaw[1], kept_yaw[10:20] = 0.0, kept_yaw[10:20] + 0.1  # another yaw kept there
+    left.share_trig(right, kept_yaw, kept_yaw, kept_yaw)
+    for s_, cache in (("l", left), ("r", right)):
+        ankle = np.column_stack([root[:, :2] + rng.uniform(-0.2, 0.2, (n, 2)), np.full(n, 0.08)])
+        ground = rng.uniform(size=n) < 0.7
+        reach_sq = np.full(n, rng.uniform(0.6, 0.8) ** 2)
+        o = "r" if s_ == "l" else "l"  # (the other leg off the floor: no deficit)
+        want = reach_deficit(
+            root, yaw, {s_: ankle, o: ankle}, {s_: ground, o: np.zeros(n, bool)},
+            {s_: reach_sq, o: reach_sq}, g,
+        )  # fmt: skip
+        out = np.zeros(n)
+        c = (1.0 if s_ == "l" else -1.0) * float(g.hip_y)
+        reach_deficit_kept(root, yaw, ankle, ground, reach_sq, c, *cache.trig_buffers(n), out)
+        assert out.tobytes() == want.tobytes()
+        assert (want > 0).any()

@@ -20,6 +20,7 @@ import numpy as np
 from mjwalk._jit import njit, njit_inline
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
 from mjwalk.body.legs.footpivot import ball_offset
+from mjwalk.boundedmemo import Memo
 from mjwalk.conventions import Side, side_of_prefix, side_prefix
 
 #: Smallest knee flexion the IK uses when a leg must stretch (radians): never lock the knee.
@@ -129,9 +130,18 @@ def ik_lengths(geom: LegGeometry) -> tuple[float, float, float, float]:
         (thigh, shank, rmin, rmax) in metres: rmin at the knee's largest flexion, rmax at
         :data:`KNEE_MIN`.
     """
+    return _LENGTHS.get(geom, lambda: _ik_lengths(geom))
+
+
+def _ik_lengths(geom: LegGeometry) -> tuple[float, float, float, float]:
+    """:func:`ik_lengths`, computed."""
     rmax = float(geom.span(KNEE_MIN))
     rmin = float(geom.span(np.deg2rad(ROM_DEG["knee"][1])))
     return float(geom.thigh), float(geom.shank), rmin, rmax
+
+
+#: :func:`ik_lengths` per geometry (the synthesis asks for them hundreds of times a cycle).
+_LENGTHS: Memo = Memo(limit=64)
 
 
 def named_angles(out: np.ndarray, side: Side, clip: bool) -> dict[str, np.ndarray]:

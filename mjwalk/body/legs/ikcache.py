@@ -91,6 +91,27 @@ class LegIKCache:
             self.trig = (np.full((n, 2), np.nan), np.empty((n, 7)))
         return self.trig
 
+    def share_trig(self, other: LegIKCache, foot_yaw, other_yaw, yaw) -> None:
+        """Fill both legs' yaw sines and cosines (:meth:`trig_buffers`) for their feet's
+        headings ``foot_yaw`` and ``other_yaw`` (n,) under the pelvis yaws ``yaw`` (n,) in one
+        compiled pass that takes the pelvis yaw's four once per sample for both legs: the
+        numbers :func:`yaw_trig_row` keeps (a row whose yaws change later is taken again).
+
+        Args:
+            other: the other leg's cache over the same samples.
+            foot_yaw: (n,) this leg's foot headings, radians from +x CCW.
+            other_yaw: (n,) the other leg's.
+            yaw: (n,) pelvis yaws, radians from +x CCW.
+        """
+        n = len(yaw)
+        _trig_pair(
+            np.ascontiguousarray(foot_yaw, dtype=float),
+            np.ascontiguousarray(other_yaw, dtype=float),
+            np.ascontiguousarray(yaw, dtype=float),
+            *self.trig_buffers(n),
+            *other.trig_buffers(n),
+        )
+
     def __call__(self, ankle, foot_yaw, pitch, root, yaw) -> dict:
         ankle = np.ascontiguousarray(ankle, dtype=float)
         self.buffers(len(ankle))
@@ -355,3 +376,18 @@ def yaw_trig_row(foot_yaw, yaw, i, key, vals):
         key[i, 0], key[i, 1] = y, fy
     v = vals[i]
     return v[0], v[1], v[2], v[3], v[4], v[5], v[6]
+
+
+@njit
+def _trig_pair(fy_a, fy_b, yaw, key_a, vals_a, key_b, vals_b):
+    """:meth:`LegIKCache.share_trig`: per row :func:`yaw_trig_row`'s seven numbers of both
+    legs (its arithmetic, the pelvis yaw's cosines and sines taken once)."""
+    for i in range(yaw.shape[0]):
+        y = yaw[i]
+        c0, s0, c1, s1 = math.cos(y), math.sin(y), math.cos(-y), math.sin(-y)
+        for fy, key, vals in ((fy_a[i], key_a, vals_a), (fy_b[i], key_b, vals_b)):
+            dy = fy - y
+            yrel = math.atan2(math.sin(dy), math.cos(dy))
+            vals[i, 0], vals[i, 1], vals[i, 2], vals[i, 3] = c0, s0, c1, s1
+            vals[i, 4], vals[i, 5], vals[i, 6] = yrel, math.cos(yrel), math.sin(yrel)
+            key[i, 0], key[i, 1] = y, fy

@@ -29,7 +29,7 @@ from mjwalk.body.legs.curves import gauss_kernel, maximum1, spread_rows
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.ik import hip_rel, ik_lengths
 from mjwalk.body.legs.ikcache import LegIKCache, yaw_trig_row
-from mjwalk.body.legs.stance import reach_deficit_rows
+from mjwalk.body.legs.stance import reach_deficit_kept
 from mjwalk.body.legs.steps import FootTracks
 
 
@@ -294,8 +294,11 @@ def _fit_passes(left, right, xy, z, yaw, hip_y, lengths, bounds, counts, kernel,
         _fit_leg(left, root, yaw, 1.0, hip_y, lengths, bounds, counts, kernel, sole)
         _fit_leg(right, root, yaw, -1.0, hip_y, lengths, bounds, counts, kernel, sole)
         deficit[:] = 0.0
-        reach_deficit_rows(root, yaw, left[0], left[4], left[6], 1.0 * hip_y, deficit)
-        reach_deficit_rows(root, yaw, right[0], right[4], right[6], -1.0 * hip_y, deficit)
+        # (the pelvis yaw's cosines and sines those the legs' IK caches keep)
+        reach_deficit_kept(root, yaw, left[0], left[4], left[6], 1.0 * hip_y, left[7][4],
+                           left[7][5], deficit)  # fmt: skip
+        reach_deficit_kept(root, yaw, right[0], right[4], right[6], -1.0 * hip_y, right[7][4],
+                           right[7][5], deficit)  # fmt: skip
         top, nan = -np.inf, False  # (NumPy's max: NaN if any)
         for i in range(n):
             if deficit[i] != deficit[i]:

@@ -26,6 +26,11 @@ SPIN_MARGIN, SPIN_SOFT, SPIN_HEEL, SPIN_RAMP = 2.0, 4.0, 4.0, 6.0
 #: yaw one to one, so a round leaves only what the pivot's move changes).
 SPIN_ROUNDS = 6
 
+#: The hip rotation's range (radians, ``ROM_DEG``) and :data:`SPIN_MARGIN`, :data:`SPIN_SOFT`,
+#: :data:`SPIN_RAMP` in radians, as ``np.deg2rad`` gives them.
+_HIP_ROT = tuple(np.deg2rad(ROM_DEG["hip_rot"]))
+_SPIN_RAD = tuple(np.deg2rad([SPIN_MARGIN, SPIN_SOFT, SPIN_RAMP]))
+
 
 @dataclass(frozen=True)
 class _Spin:
@@ -75,9 +80,7 @@ def spin_turns(
         contacts that turned.
     """
     n = len(yaw)
-    lo, hi = np.deg2rad(ROM_DEG["hip_rot"])
-    margin, soft, ramp = np.deg2rad([SPIN_MARGIN, SPIN_SOFT, SPIN_RAMP])
-    sp = _Spin(root, yaw, geom, lo, hi, margin, soft, ramp)
+    sp = _Spin(root, yaw, geom, *_HIP_ROT, *_SPIN_RAD)
     stats = {}
     root_c, yaw_c = np.ascontiguousarray(root, dtype=float), np.ascontiguousarray(yaw, dtype=float)
     for s_ in "lr":
@@ -117,7 +120,7 @@ def _contacts(g: np.ndarray, prints: np.ndarray, n: int) -> tuple[np.ndarray, li
     starts, ends = _contact_bounds(
         np.ascontiguousarray(g, dtype=np.bool_), np.ascontiguousarray(prints, dtype=float), n
     )
-    return starts, [int(e) for e in ends]
+    return starts, ends.tolist()
 
 
 @njit

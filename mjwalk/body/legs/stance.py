@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mjwalk._jit import njit
+from mjwalk._jit import njit, njit_inline
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import (
     FLAT,
@@ -38,7 +38,8 @@ from mjwalk.body.legs.curves import (
 )
 from mjwalk.body.legs.footpivot import ball_offset, heel_rise_rows, pivot_rows
 from mjwalk.body.legs.ik import KNEE_MIN
-from mjwalk.body.legs.reference import ReferenceGait
+from mjwalk.body.legs.ikcache import clip1
+from mjwalk.body.legs.reference import ReferenceGait, ppoly_at
 from mjwalk.body.legs.steps import FOOT_FLAT, STANCE_KEYS, StepFrames
 from mjwalk.errors import PlanningError
 
@@ -454,17 +455,75 @@ def _reach_deficit(root, yaw, ankle, ground, reach_sq, c, out):
     the hip ``c`` metres to the pelvis's left (:func:`~.kinematics.hip_world`), the height
     above the ankle at which the leg spans ``reach_sq``, the pelvis height above that."""
     for i in range(yaw.shape[0]):
-        dx = (root[i, 0] + c * -math.sin(yaw[i])) - ankle[i, 0]
-        dy = (root[i, 1] + c * math.cos(yaw[i])) - ankle[i, 1]
-        h = math.sqrt(dx * dx + dy * dy)
-        cap = ankle[i, 2] + math.sqrt(maximum1(reach_sq[i] - h * h, 0.0))
-        out[i] = maximum1(out[i], root[i, 2] - cap if ground[i] else 0.0)
+        _deficit_row(root, ankle, ground, reach_sq, c, i, math.cos(yaw[i]), math.sin(yaw[i]), out)
+
+
+@njit
+def _reach_deficit_kept(root, yaw, ankle, ground, reach_sq, c, key, vals, out):
+    """:func:`_reach_deficit` with the pelvis yaw's cosine and sine read from an IK cache's
+    kept ones (``ikcache.yaw_trig_row``'s ``key`` (n, 2), ``vals`` (n, 7)) where the row's
+    yaw is the one kept (to the bit), else taken: the same numbers."""
+    for i in range(yaw.shape[0]):
+        y = yaw[i]
+        if y == key[i, 0] and math.copysign(1.0, y) == math.copysign(1.0, key[i, 0]):
+            cy, sy = vals[i, 0], vals[i, 1]
+        else:
+            cy, sy = math.cos(y), math.sin(y)
+        _deficit_row(root, ankle, ground, reach_sq, c, i, cy, sy, out)
+
+
+@njit_inline
+def _deficit_row(root, ankle, ground, reach_sq, c, i, cy, sy, out):
+    """Row ``i`` of :func:`_reach_deficit`, the pelvis yaw's cosine ``cy`` and sine ``sy``
+    given."""
+    dx = (root[i, 0] + c * -sy) - ankle[i, 0]
+    dy = (root[i, 1] + c * cy) - ankle[i, 1]
+    h = math.sqrt(dx * dx + dy * dy)
+    cap = ankle[i, 2] + math.sqrt(maximum1(reach_sq[i] - h * h, 0.0))
+    out[i] = maximum1(out[i], root[i, 2] - cap if ground[i] else 0.0)
+
+
+def floor_reach_sq(ref: ReferenceGait, cyc: np.ndarray, knee_hi: float, geom: LegGeometry):
+    """The squared hip-to-ankle spans (n,), m², of a leg whose knee is flexed as the
+    reference's at the gait-cycle fractions ``cyc`` (n,), clipped to :data:`KNEE_MIN` ..
+    ``knee_hi`` radians: ``geom.span(np.clip(ref("knee", cyc), KNEE_MIN, knee_hi)) ** 2``, its
+    arithmetic in its order in one compiled call (reference tables on the unit cycle; others
+    take that NumPy expression).
+
+    Args:
+        ref: the reference gait.
+        cyc: (n,) gait-cycle fractions (wrapped onto [0, 1)).
+        knee_hi: the knee's upper bound, radians.
+        geom: the leg lengths.
+
+    Returns:
+        (n,) the squared spans, m².
+    """
+    if not ref._unit:
+        return geom.span(np.clip(ref("knee", cyc), KNEE_MIN, knee_hi)) ** 2
+    L1, L2 = geom.thigh, geom.shank
+    coef, knots = ref._ppoly["knee"]
+    out = np.empty(len(cyc))
+    _floor_reach_sq(np.ascontiguousarray(cyc, dtype=float), coef, knots, float(KNEE_MIN),
+                    float(knee_hi), float(L1**2 + L2**2), float(2 * L1 * L2), out)  # fmt: skip
+    return out
+
+
+@njit
+def _floor_reach_sq(cyc, coef, knots, lo, hi, c0, c1, out):
+    """:func:`floor_reach_sq` per row: the reference knee (``reference.ppoly_at`` at
+    ``cyc % 1``, as ``np.mod``), clipped as ``np.clip`` clips, the span
+    ``sqrt(c0 + c1 cos(knee))`` (``c0`` = L1² + L2², ``c1`` = 2 L1 L2) squared."""
+    for i in range(cyc.shape[0]):
+        k = clip1(ppoly_at(coef, knots, cyc[i] % 1.0, 0), lo, hi)
+        d = np.sqrt(c0 + c1 * np.cos(k))
+        out[i] = d * d
 
 
 #: The compiled kernels of :func:`stance_foot`, :func:`stance_knee` and :func:`pelvis_height`
 #: and the stance spline's knots, for callers that run a walk's steps in one compiled loop
-#: (:mod:`~mjwalk.body.legs.synthloop`), and the reach-deficit kernel for the compiled ankle-fit
-#: passes (:func:`~mjwalk.body.legs.pitchfit.fit_ankle_passes`).
+#: (:mod:`~mjwalk.body.legs.synthloop`), and the reach-deficit kernel (the yaws' sines kept) for
+#: the compiled ankle-fit passes (:func:`~mjwalk.body.legs.pitchfit.fit_ankle_passes`).
 stance_foot_rows, stance_knee_rows, pelvis_height_rows = _stance_foot, _stance_knee, _pelvis_height
-reach_deficit_rows = _reach_deficit
+reach_deficit_kept = _reach_deficit_kept
 STANCE_KNOTS = _KNOTS

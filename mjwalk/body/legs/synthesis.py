@@ -58,6 +58,7 @@ from mjwalk.body.legs.stance import (
     KneeEnds,
     LandingEase,
     StanceLeg,
+    floor_reach_sq,
     pelvis_height,
     reach_deficit,
     stance_foot,
@@ -72,6 +73,7 @@ from mjwalk.body.legs.steps import (
 )
 from mjwalk.body.legs.swing import swing_foot as swing_foot_compiled
 from mjwalk.body.legs.synthloop import SynthTracks, loop_consts, synth_steps
+from mjwalk.boundedmemo import Memo
 from mjwalk.conventions import DEFAULT_STATURE, side_of_prefix
 from mjwalk.errors import PlanningError
 from mjwalk.plan.walkpath import WalkPath
@@ -84,6 +86,12 @@ FLOOR_TOLERANCE = 2e-3
 #: Grounded legs keep their knee flexed at least as the reference's at that instant of the
 #: gait cycle, up to this many degrees (the pelvis lowers where they would not).
 KNEE_SOFT = 10.0
+KNEE_SOFT_RAD = float(np.deg2rad(KNEE_SOFT))  # (the same, radians)
+
+#: The leg geometry per stature (a Python number, keyed by its type and value: the same lengths,
+#: the same object, whose reference-derived numbers the reference keeps by geometry), at most
+#: 64 statures; other statures get theirs made each time.
+_GEOMS: Memo = Memo(limit=64)
 
 #: Step phase from which the swing knee eases into the landing (the last swing key frame).
 LAND_EASE = 0.8
@@ -162,7 +170,11 @@ def legs_from_walk(
             "the hybrid A* or add footprints)"
         )
     ref = reference or DEFAULT_REFERENCE
-    geom = leg_geometry(stature)
+    geom = (
+        _GEOMS.get((type(stature), stature), lambda: leg_geometry(stature))
+        if isinstance(stature, float | int)
+        else leg_geometry(stature)
+    )
     n = len(walk.t)
     frames = step_frames(walk)
     for k, fr in enumerate(frames):
@@ -184,6 +196,7 @@ def legs_from_walk(
     # (the loops below re-solve only the samples changed since: the spin turns' grounded
     # samples are solved already)
     ik = {s_: LegIKCache(s_, geom) for s_ in "lr"}
+    ik["l"].share_trig(ik["r"], sy.feet.fyaw["l"], sy.feet.fyaw["r"], sy.yaw)
     spin_turns(sy.feet, np.column_stack([sy.xy, sy.z]), sy.yaw, geom, ik)
     _hold_ends(sy, frames[0], frames[-1])
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
@@ -460,8 +473,8 @@ def _fit_ankles(sy: _Synth, ik: dict[str, LegIKCache], win: int) -> None:
     where a grounded leg then cannot reach its foot (up to :data:`FIT_PASSES` passes), in
     place."""
     ref, geom, f = sy.ref, sy.geom, sy.feet
-    k_floor = {s_: np.clip(ref("knee", sy.cyc[s_]), KNEE_MIN, np.deg2rad(KNEE_SOFT)) for s_ in "lr"}
-    reach_sq = {s_: geom.span(k_floor[s_]) ** 2 for s_ in "lr"}  # (m²) with those knees
+    # (m²) with the reference's knees, at least KNEE_MIN, at most KNEE_SOFT (compiled)
+    reach_sq = {s_: floor_reach_sq(ref, sy.cyc[s_], KNEE_SOFT_RAD, geom) for s_ in "lr"}
     bounds = AnkleFit(sy.dorsi_max, sy.plantar_min, win, ANKLE_ROUNDS, np.deg2rad(ANKLE_TOL))
     if COMPILED_FIT:  # the passes below in one compiled call (the same numbers)
         z = fit_ankle_passes(ik, f, sy.xy, sy.z, sy.yaw, reach_sq, bounds, FIT_PASSES)
