@@ -168,7 +168,7 @@ def _add_crossing(workplace: Workplace, leg: RouteLeg, walk: WalkPath, tables) -
     per_level, per_kind = tables
     c = leg.crossing
     assert c is not None
-    seg = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(walk.xy, axis=0), axis=1))]
+    seg = np.concatenate(([0.0], np.cumsum(np.linalg.norm(np.diff(walk.xy, axis=0), axis=1))))
     t = np.asarray(walk.t, dtype=float)
     level = {"seconds": 0.0, "steps": 0}
     for s, lv in zip(walk.steps, step_kinds(workplace, leg, walk), strict=True):
