@@ -166,6 +166,24 @@ band clips a geom again without qhull; a crossing's least free height measured o
 compared with every stature. Left: the first 3-D hull of each tessellated geom (the station's
 sloped capsule and ellipsoid: ~30-75 ms each), the level graph (world.surfaces, contacts,
 walksurface headroom: ~130 ms, modules outside this branch), the views' clearance fields.
+
+Branch levelwarm47j (fc03651, ``--split --walks 10`` at 0bc5342, CPU ms a warm walk, load 3-8):
+where a warm walk's time goes. Step walk 2.03 = hybrid plans 1.27 (2 calls: a 0.31 m leg of one
+step and a 0.67 m leg of two) + crossing walk 0.27 + record (stitch, level meta) 0.21 + rest
+0.28 (route, level legs' set-up, plan_walk); its twin 0.92, of it its one plan 0.69. Ramp 2.00 =
+1.23 + 0.29 + 0.22 + 0.26 (twin 1.35); stair 2.27 = 1.44 + 0.31 + 0.24 + 0.28 (twin 1.72);
+rack1 -> mezzanine 5.77 = 4.12 (2.1 calls) + 0.34 + 0.29 + turn into the stair 0.68 + 0.33
+(twin 2.58). A level leg's plan costs about what the twin's whole plan does (0.6 ms for a
+one-step leg: guide, search call, assembly, set-up), so the step row's two plans alone are 1.4x
+its twin's walk: no cut of the crossing, record or set-up reaches 1.5x there; one search per
+crossing less (the structural change) would leave about 2.03 - 0.6 = 1.4 ms (~1.5x). Cut here,
+walks bit-identical (216 digests: 6 pairs x seeds 1-6 x statures 1.55/1.75/1.95, twice each):
+a site's endpoint kept (44 -> 0.6 us for a floor site), a crossing's tread setbacks and riser
+lines kept (26 -> 1 and 12-33 -> 2-3 us; lines copied per walk), level_meta's crossing length
+from the distances it sums anyway (125 -> 89 us): about 0.15 ms a walk. Interleaved, medians of
+30 warm plans, base -> branch, two rounds (load 3): step 2.07/2.05 -> 1.79/1.91 ms (ratio
+2.39/2.29 -> 2.10/2.20), rack1 -> mezzanine 5.10/4.64 -> 4.10/3.99, mezzanine -> rack1
+3.41/3.19 -> 3.02/3.03; at load 11 within noise.
 """
 
 from __future__ import annotations
