@@ -166,15 +166,35 @@ band clips a geom again without qhull; a crossing's least free height measured o
 compared with every stature. Left: the first 3-D hull of each tessellated geom (the station's
 sloped capsule and ellipsoid: ~30-75 ms each), the level graph (world.surfaces, contacts,
 walksurface headroom: ~130 ms, modules outside this branch), the views' clearance fields.
+
+Branch levelwarm47j (fc03651, ``--split --walks 10`` at 0bc5342, CPU ms a warm walk, load 3-8):
+where a warm walk's time goes. Step walk 2.03 = hybrid plans 1.27 (2 calls: a 0.31 m leg of one
+step and a 0.67 m leg of two) + crossing walk 0.27 + record (stitch, level meta) 0.21 + rest
+0.28 (route, level legs' set-up, plan_walk); its twin 0.92, of it its one plan 0.69. Ramp 2.00 =
+1.23 + 0.29 + 0.22 + 0.26 (twin 1.35); stair 2.27 = 1.44 + 0.31 + 0.24 + 0.28 (twin 1.72);
+rack1 -> mezzanine 5.77 = 4.12 (2.1 calls) + 0.34 + 0.29 + turn into the stair 0.68 + 0.33
+(twin 2.58). A level leg's plan costs about what the twin's whole plan does (0.6 ms for a
+one-step leg: guide, search call, assembly, set-up), so the step row's two plans alone are 1.4x
+its twin's walk: no cut of the crossing, record or set-up reaches 1.5x there; one search per
+crossing less (the structural change) would leave about 2.03 - 0.6 = 1.4 ms (~1.5x). Cut here,
+walks bit-identical (216 digests: 6 pairs x seeds 1-6 x statures 1.55/1.75/1.95, twice each):
+a site's endpoint kept (44 -> 0.6 us for a floor site), a crossing's tread setbacks and riser
+lines kept (26 -> 1 and 12-33 -> 2-3 us; lines copied per walk), level_meta's crossing length
+from the distances it sums anyway (125 -> 89 us): about 0.15 ms a walk. Interleaved, medians of
+30 warm plans, base -> branch, two rounds (load 3): step 2.07/2.05 -> 1.79/1.91 ms (ratio
+2.39/2.29 -> 2.10/2.20), rack1 -> mezzanine 5.10/4.64 -> 4.10/3.99, mezzanine -> rack1
+3.41/3.19 -> 3.02/3.03; at load 11 within noise.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import tempfile
 import time
 import xml.etree.ElementTree as ET
+from collections import Counter
 from pathlib import Path
 
 import numpy as np
@@ -195,6 +215,7 @@ from mjwalk.gait.stairs import (
     stair_gait,
 )
 from mjwalk.gait.walker import PRESETS, Walker
+from mjwalk.plan import levelplan
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.levelplan import STANCE_TOLERANCE, endpoint, level_route, place_crossings
 from mjwalk.plan.levelroute import step_up_limit
@@ -544,6 +565,96 @@ def twin_cost(walks: int) -> None:
     )
 
 
+#: What :func:`split_cost` times inside a warm walk: (owner, attribute, row).
+SPLIT = (
+    (HybridPlanner, "plan", "hybrid plans"),
+    (levelplan, "cross_walk", "crossing walks"),
+    (levelplan, "stitch", "record"),
+    (levelplan, "level_meta", "record"),
+    (levelplan, "_turned", "turn into a stair"),
+)
+
+
+@contextlib.contextmanager
+def _timing(cpu: Counter, calls: Counter):
+    """Add each :data:`SPLIT` function's CPU seconds and calls to ``cpu`` and ``calls`` by
+    row while the block runs (the functions wrapped, then put back)."""
+
+    def wrap(f, row):
+        def timed(*args, **kwargs):
+            t0 = time.process_time()
+            try:
+                return f(*args, **kwargs)
+            finally:
+                cpu[row] += time.process_time() - t0
+                calls[row] += 1
+
+        return timed
+
+    saved = [(owner, name, getattr(owner, name)) for owner, name, _ in SPLIT]
+    try:
+        for (owner, name, row), (_, _, f) in zip(SPLIT, saved, strict=True):
+            setattr(owner, name, wrap(f, row))
+        yield
+    finally:
+        for owner, name, f in saved:
+            setattr(owner, name, f)
+
+
+def split_cost(walks: int, rounds: int = 3) -> None:
+    """Print where a warm walk over levels spends its time against its flat twin's walk
+    (:func:`flat_twin`): CPU ms a walk in its hybrid plans (calls a walk), crossing walks, its
+    record (stitch and level meta), turns into a stair and the rest (route, level legs' set-up,
+    ``plan_walk``), median over ``rounds`` rounds of seeds 1..``walks`` each planned once
+    before (warm).
+
+    Args:
+        walks: seeds per pair.
+        rounds: rounds over the seeds.
+    """
+    model = default_model(progress=False)
+    scene = SCENES / "multilevel_station.xml"
+    rows = ("hybrid plans", "crossing walks", "record", "turn into a stair", "rest")
+    print(f"\nWhere a warm walk's time goes, CPU ms a walk (median of {rounds} rounds of {walks}")
+    print("seeds); twin: the flat twin's walk, its hybrid plans alone in brackets")
+    head = f"{'walk':38} {'total':>6} " + " ".join(f"{r:>17}" for r in rows) + f" {'twin':>13}"
+    print(head)
+    print("-" * len(head))
+    with tempfile.TemporaryDirectory() as tmp:
+        sides = {"l": load_workplace(scene)}
+        sides["t"] = load_workplace(flat_twin(scene, Path(tmp) / "flat_twin.xml"))
+        for start, goal in LEVEL_WALKS:
+            for wp in sides.values():
+                for seed in range(1, walks + 1):
+                    plan_walk(wp, start, goal, model, rng=seed)
+            got: dict[str, list[tuple[float, Counter, Counter]]] = {"l": [], "t": []}
+            for _ in range(rounds):
+                for side, wp in sides.items():
+                    cpu, calls = Counter(), Counter()
+                    with _timing(cpu, calls):
+                        t0 = time.process_time()
+                        for seed in range(1, walks + 1):
+                            plan_walk(wp, start, goal, model, rng=seed)
+                        total = time.process_time() - t0
+                    got[side].append((total, cpu, calls))
+            per = {  # ms a walk, median over the rounds
+                side: {
+                    k: 1000 / walks * float(np.median([r[1][k] if k else r[0] for r in got[side]]))
+                    for k in ("", *rows[:-1])
+                }
+                for side in got
+            }
+            lv = per["l"]
+            lv["rest"] = lv[""] - sum(lv[r] for r in rows[:-1])
+            n = {r: got["l"][0][2][r] / walks for r in rows[:-1]}
+            cells = [f"{lv[r]:6.2f}" + (f" ({n[r]:.1f})" if r in n else "") for r in rows]
+            print(
+                f"{start + ' -> ' + goal:38} {lv['']:6.2f} "
+                + " ".join(f"{c:>17}" for c in cells)
+                + f" {per['t']['']:5.2f} ({per['t']['hybrid plans']:.2f})"
+            )
+
+
 def main() -> None:
     """Print the tables and the planning cost."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -551,7 +662,11 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=47)
     ap.add_argument("--walks", type=int, default=20, help="seeds per walk over levels")
     ap.add_argument("--twin-only", action="store_true", help="only the flat-twin comparison")
+    ap.add_argument("--split", action="store_true", help="only where a warm walk's time goes")
     args = ap.parse_args()
+    if args.split:
+        split_cost(args.walks)
+        return
     if not args.twin_only:
         stair_table(args.draws, args.seed)
         body_table(args.draws, args.seed)

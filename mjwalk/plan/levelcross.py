@@ -277,8 +277,8 @@ def cross_walk(
             for name, sign in (("left", 1.0), ("right", -1.0))
         }
     pelvis_z = 0.5 * (feet["left"][1] + feet["right"][1])
-    back = tread_setback(c, s, walker.stature, direction) * (1.0 if direction == "up" else -1.0)
     s = np.asarray(s, dtype=float)
+    back = _setback(c, s, walker.stature, direction) * (1.0 if direction == "up" else -1.0)
     points, heights = c.point(s - back), c.height_at(s)  # per footfall, as one by one
     if turned is None:  # steps on the spot first, each within ENTRY_TURN (spot_turn)
         turned = (np.repeat(xy0[None, :], (spot := spot_turn(yaw0, yaw)).size, 0), spot, yaw)
@@ -292,11 +292,27 @@ def cross_walk(
     )  # fmt: skip
     n = steps[-1].end if steps else 0
     meta = {"crossing": c.kind, "direction": direction, "lower": c.lower, "upper": c.upper,
-            "edges": c.riser_lines(floor_z)}  # fmt: skip
+            "edges": _riser_lines(c, floor_z)}  # fmt: skip
     return WalkPath(
         t=np.arange(n + 1) / SAMPLE_RATE_HZ, xy=xy, yaw=yaws, steps=steps, meta=meta,
         z=z - floor_z,
     )  # fmt: skip
+
+
+def _setback(c: Crossing, s: np.ndarray, stature: float, direction: str) -> np.ndarray:
+    """:func:`tread_setback` kept on the crossing per footfall positions (their bytes: the same
+    floats), stature and direction (read-only: :func:`mjwalk.plan.levelmemo.kept`): a
+    crossing's footfalls are the same walk after walk but for a lead-in's."""
+    key = (s.tobytes(), stature, direction)
+    return kept(c, "_setbacks", key, lambda: tread_setback(c, s, stature, direction))
+
+
+def _riser_lines(c: Crossing, floor_z: float) -> list[dict]:
+    """:meth:`~mjwalk.plan.levelroute.Crossing.riser_lines`, kept on the crossing per floor
+    height; each walk gets its own copies (its dicts and lists), so no walk's meta is
+    another's."""
+    lines = kept(c, "_riser_lines", floor_z, lambda: tuple(c.riser_lines(floor_z)))
+    return [{**e, "xy": list(e["xy"]), "normal": list(e["normal"])} for e in lines]
 
 
 #: The most (radians) a walk arriving at a crossing may face away from its axis: the crossing's

@@ -60,7 +60,7 @@ from mjwalk.plan.levelcross import (
     flight_start,
     line_clear,
 )
-from mjwalk.plan.levelmemo import default_options, variant
+from mjwalk.plan.levelmemo import default_options, kept, variant
 from mjwalk.plan.levelroute import (
     RouteLeg,
     place_crossings,
@@ -145,7 +145,9 @@ def needs_levels(workplace: Workplace, start, goal, radius: float) -> bool:
 
 
 def endpoint(workplace: Workplace, where, what: str) -> Endpoint:
-    """Place a start or goal on its level.
+    """Place a start or goal on its level; a site's or a text's placing is kept on the
+    workplace (a cycle's walks start and end at the same sites; :func:`mjwalk.plan.levelmemo.
+    kept`, its ``xy`` read-only).
 
     Args:
         workplace: the scene.
@@ -158,10 +160,18 @@ def endpoint(workplace: Workplace, where, what: str) -> Endpoint:
     Raises:
         PlanningError: the point stands on no level (on a ramp, or on no surface).
     """
+    if isinstance(where, str):  # the same text, the same point and level
+        return kept(workplace, "_endpoints", where, lambda: _endpoint(workplace, where, what))
+    return _endpoint(workplace, where, what)
+
+
+def _endpoint(workplace: Workplace, where, what: str) -> Endpoint:
+    """:func:`endpoint` without its memo."""
     xy = _xy(workplace, where)
     z = _site_z(workplace, where)
     high = z is not None and z - workplace.floor_z > EXPOSED_MIN
     if not high and float(workplace.walk_clearance(xy)) > 0.0:
+        xy.flags.writeable = False
         return Endpoint(where, xy, 0)
     lv = level_at(workplace, xy, z)
     if lv is None:
@@ -169,6 +179,7 @@ def endpoint(workplace: Workplace, where, what: str) -> Endpoint:
             f"{what} ({xy[0]:.3f}, {xy[1]:.3f}) stands on no level of {workplace.name} (on a ramp "
             "or on no walk surface)"
         )
+    xy.flags.writeable = False  # kept by endpoint: no caller changes it for the next
     return Endpoint(where, xy, int(lv))
 
 

@@ -164,11 +164,14 @@ def step_kinds(workplace: Workplace, leg: RouteLeg, walk: WalkPath) -> list[int 
 
 def _add_crossing(workplace: Workplace, leg: RouteLeg, walk: WalkPath, tables) -> dict:
     """Add a crossing's walk to the per-level and per-kind tables step by step
-    (:func:`step_kinds`); its level steps' seconds and count."""
+    (:func:`step_kinds`); its level steps' seconds and count, and the walk's length (m: its
+    sample distances summed as :attr:`~mjwalk.plan.walkpath.WalkPath.length` sums them, the
+    same float)."""
     per_level, per_kind = tables
     c = leg.crossing
     assert c is not None
-    seg = np.r_[0.0, np.cumsum(np.linalg.norm(np.diff(walk.xy, axis=0), axis=1))]
+    gaps = np.linalg.norm(np.diff(walk.xy, axis=0), axis=1)  # as WalkPath.length
+    seg = np.concatenate(([0.0], np.cumsum(gaps)))
     t = np.asarray(walk.t, dtype=float)
     level = {"seconds": 0.0, "steps": 0}
     for s, lv in zip(walk.steps, step_kinds(workplace, leg, walk), strict=True):
@@ -180,6 +183,7 @@ def _add_crossing(workplace: Workplace, leg: RouteLeg, walk: WalkPath, tables) -
         _add(per_level, f"L{workplace.levels.levels[lv].index}", *row)
         level["seconds"] += row[0]
         level["steps"] += 1
+    level["length"] = float(gaps.sum())
     return level
 
 
@@ -209,16 +213,18 @@ def level_meta(
     per_kind: dict[str, dict] = {}
     graph = workplace.levels
     for leg, walk in parts:
-        row = (walk.duration, walk.length, len(walk.steps))  # each read once
-        entry: dict = {"seconds": row[0], "length": row[1], "steps": row[2]}
         c = leg.crossing
+        level = None if c is None else _add_crossing(workplace, leg, walk, (per_level, per_kind))
+        length = walk.length if level is None else level["length"]  # each read once
+        row = (walk.duration, length, len(walk.steps))
+        entry: dict = {"seconds": row[0], "length": row[1], "steps": row[2]}
         if c is None:
             lv = graph.levels[leg.level]
             entry = {"kind": "level", "level": lv.index, "height": lv.height, **entry}
             _add(per_level, f"L{lv.index}", *row)
             _add(per_kind, "level", *row)
         else:
-            level = _add_crossing(workplace, leg, walk, (per_level, per_kind))
+            assert level is not None
             entry = {
                 "kind": c.kind,
                 "direction": leg.direction,

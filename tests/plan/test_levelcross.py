@@ -303,3 +303,18 @@ def test_arrival_heading_is_the_straight_line_or_the_routes_last_stretch(scenes_
     field = goal_distance(shared_grid(corridor, 0.05, 0.25, MOVES_16), a, 0.1)
     yaw = arrival_heading(corridor, (a, b), lambda: field, 0.25, 0.7)
     assert abs(yaw - math.pi / 2) < math.radians(15.0)
+
+
+def test_repeated_crossing_walks_are_equal_and_own_their_riser_lines(by_kind):
+    stair, walker = by_kind["stair"], Walker()
+    start = (stair.end(stair.lower), stair.yaw)
+    first = cross_walk(stair, "up", walker, start, None, 0.0)  # setbacks and lines kept here
+    first.meta["edges"][0]["xy"][0] = 99.0  # a caller changing its walk's record
+    first.meta["edges"].pop()
+    again = cross_walk(stair, "up", walker, start, None, 0.0)
+    assert again.meta["edges"] == stair.riser_lines(0.0)  # not the first walk's changes
+    fresh = cross_walk(stair, "up", Walker(stature=1.76), start, None, 0.0)  # another walker
+    np.testing.assert_array_equal(first.xy, again.xy)
+    feet = [np.asarray([s.foot for s in w.steps]) for w in (first, again, fresh)]
+    np.testing.assert_array_equal(feet[0], feet[1])
+    assert not np.array_equal(feet[2], feet[0])  # its own setbacks

@@ -412,3 +412,13 @@ def test_rack1_to_the_mezzanine_enters_the_stair_within_entry_turn(station, mode
         for s in walk.steps[: first + 1]
     ]
     assert max(turns[-6:]) <= ENTRY_TURN + 1e-6
+
+
+def test_a_sites_endpoint_is_kept_and_read_only(station):
+    a = endpoint(station, "stand_platform1", "goal")
+    assert endpoint(station, "stand_platform1", "start") is a  # placed once per site
+    with pytest.raises(ValueError):
+        a.xy[0] = 0.0  # no caller changes it for the next walk
+    b = endpoint(station, (float(a.xy[0]), float(a.xy[1])), "goal")  # coordinates: not kept
+    assert b.level == a.level and b is not a
+    np.testing.assert_array_equal(b.xy, a.xy)
