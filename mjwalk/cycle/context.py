@@ -329,8 +329,8 @@ _LOCAL = threading.local()
 
 def _scratch_of(model: mujoco.MjModel) -> mujoco.MjData:
     """The scratch MjData of ``model`` for this thread, made on first use for its layout
-    (:func:`~mjwalk.cycle.memo.data_layout`): the humanoids of every stature in one scene have the same sizes, so the
-    operators' contexts share one. A run makes a context for its operator
+    (:func:`~mjwalk.cycle.memo.data_layout`): the humanoids of every stature in one scene have
+    the same sizes, so the operators' contexts share one. A run makes a context for its operator
     (:func:`operator_context`); making its MjData cost about 0.8 ms a run (the station's
     humanoid: a 17.8 MB arena), and its first contacts touched the arena's pages anew. Its
     users set the whole qpos before each use and pass their own model to MuJoCo (as
