@@ -35,6 +35,7 @@ import mujoco
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from mjwalk._jit import njit
 from mjwalk.arms.chain import min_jerk
 from mjwalk.body.humanoid import JointMap
 from mjwalk.boundedmemo import Memo
@@ -132,18 +133,8 @@ def hand_poses(
         q[:] = qpos[-1]
         mujoco.mj_kinematics(model, data)
     # each needed frame takes the results of the last computed frame at or before it
-    done = np.zeros(n, dtype=bool)
-    done[todo] = True
-    src = np.maximum.accumulate(np.where(done, np.arange(n), -1))
-    row = np.searchsorted(todo, src)[need]
-    pos, mat, palm = (
-        np.full((n, 2, 3), np.nan),
-        np.full((n, 2, 3, 3), np.nan),
-        np.full((n, 2, 3), np.nan),
-    )
-    pos[need] = xpos[row]
-    mat[need] = xmat[row].reshape(-1, 2, 3, 3)
-    palm[need] = gpos[row]
+    pos, mat, palm = np.empty((n, 2, 3)), np.empty((n, 2, 3, 3)), np.empty((n, 2, 3))
+    _spread(need, todo, xpos, xmat, gpos, pos, mat.reshape(n, 2, 9), palm)
     return pos, mat, palm
 
 
@@ -151,9 +142,42 @@ def _distinct(qpos: np.ndarray, need: np.ndarray) -> np.ndarray:
     """The frames of ``need`` (F,) bool whose pose ``qpos`` (F, nq) is not bit-for-bit that of
     the frame before, when that frame is needed too (sorted ints)."""
     bits = np.ascontiguousarray(qpos, dtype=np.float64).view(np.uint64)
-    same = np.zeros(len(qpos), dtype=bool)
-    same[1:] = (bits[1:] == bits[:-1]).all(axis=1) & need[:-1]
-    return np.flatnonzero(need & ~same)
+    return np.flatnonzero(_fresh(bits, np.ascontiguousarray(need, dtype=np.bool_)))
+
+
+@njit
+def _fresh(bits, need):
+    """(F,) bool: ``need`` and not the bits ``bits`` (F, nq) of the frame before, when that
+    frame is needed (row by row, stopping at the first word that differs)."""
+    n, m = bits.shape
+    out = need.copy()
+    for f in range(1, n):
+        if not (need[f] and need[f - 1]):
+            continue
+        same = True
+        for i in range(m):
+            if bits[f, i] != bits[f - 1, i]:
+                same = False
+                break
+        out[f] = not same
+    return out
+
+
+@njit
+def _spread(need, todo, xpos, xmat, gpos, pos, mat, palm):
+    """Fill ``pos`` (F, 2, 3), ``mat`` (F, 2, 9) and ``palm`` (F, 2, 3): a frame of ``need``
+    (F,) bool takes the rows ``xpos``, ``xmat``, ``gpos`` of the last frame of ``todo`` (K,)
+    at or before it (copied), the others NaN."""
+    j = -1
+    for f in range(need.shape[0]):
+        while j + 1 < todo.shape[0] and todo[j + 1] <= f:
+            j += 1
+        for s in range(2):
+            for i in range(3):
+                pos[f, s, i] = xpos[j, s, i] if need[f] else np.nan
+                palm[f, s, i] = gpos[j, s, i] if need[f] else np.nan
+            for i in range(9):
+                mat[f, s, i] = xmat[j, s, i] if need[f] else np.nan
 
 
 #: A grip point moving less than this (m) from where it was at the release is holding still:
