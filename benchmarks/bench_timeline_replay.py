@@ -41,7 +41,7 @@ TIMED = {
     "collisions": [
         ("mjwalk.cycle.simulate", "collision_report"),
         ("mjwalk.cycle.poses", "collision_report"),
-    ],  # fmt: skip
+    ],
     "clearance broad phase": [("mjwalk.cycle.standoff", "candidate_frames")],
     "ergonomics": [("mjwalk.cycle.simulate", "cycle_ergonomics")],
 }
