@@ -4,6 +4,14 @@ baseline commit against this tree, in alternating fresh processes, and whether b
 same bytes (issue 50).
 
 Run: python3 benchmarks/bench_timeline_replay.py --baseline fc03651 [--cycles 10] [--rounds 4]
+     PYTHONPATH=. python3 benchmarks/bench_timeline_replay.py --baseline fc03651 --same-process
+
+``--same-process``: one process records the cycles with this tree, loads the baseline's own
+``mjwalk/timeline/parts.py`` and ``collisions.py`` beside this tree's (under other module
+names: valid while the modules they import are the same in both trees) and replays the calls
+of ``part_tracks``, ``collision_report`` and ``candidate_frames`` with both, interleaved,
+``--rounds`` rounds of five passes (CPU clock); prints the medians, the ratio and whether
+every result has the same bytes.
 
 Each round runs one fresh subprocess per tree (the baseline exported as ``bench_cycle.py``
 exports it). The subprocess simulates ``--cycles`` animated station cycles (``simulate_cycle``
@@ -107,11 +115,88 @@ def _child(cycles: int) -> None:
     print(json.dumps({"digest": h.hexdigest(), "ms": res}))
 
 
+def _same_process(baseline: Path, cycles: int, rounds: int) -> None:
+    """The in-process A/B of ``--same-process`` (see the module docstring)."""
+    import importlib
+    import importlib.util
+
+    import mjwalk.cycle.simulate as sim
+    from mjwalk.cycle.spec import load_cycle_spec
+
+    old = {}
+    for name in ("parts", "collisions"):
+        path = baseline / "mjwalk" / "timeline" / f"{name}.py"
+        spec = importlib.util.spec_from_file_location(f"baseline_{name}", path)
+        mod = importlib.util.module_from_spec(spec)
+        sys.modules[spec.name] = mod  # (its dataclasses look their module up)
+        spec.loader.exec_module(mod)
+        old[name] = mod
+    ctx = sim.prepare(load_cycle_spec(ROOT / "scenes" / "assembly_station.toml"))
+    sim.simulate_cycle(ctx, 99, keep_timeline=True)
+    where = {
+        "part tracks": ("parts", "part_tracks", [("mjwalk.cycle.simulate", "part_tracks")]),
+        "collisions": (
+            "collisions",
+            "collision_report",
+            [
+                ("mjwalk.cycle.simulate", "collision_report"),
+                ("mjwalk.cycle.poses", "collision_report"),
+            ],
+        ),
+        "clearance broad phase": (
+            "collisions",
+            "candidate_frames",
+            [("mjwalk.cycle.standoff", "candidate_frames")],
+        ),
+    }
+    calls: dict[str, list] = {k: [] for k in where}
+    originals = []
+    for stage, (_, _, bound) in where.items():
+        for mod_name, name in bound:
+            mod = importlib.import_module(mod_name)
+            f = getattr(mod, name)
+            originals.append((mod, name, f))
+
+            def rec(*a, _f=f, _stage=stage, **k):
+                calls[_stage].append((a, k))
+                return _f(*a, **k)
+
+            setattr(mod, name, rec)
+    for k in range(cycles):
+        sim.simulate_cycle(ctx, k, keep_timeline=True)
+    for mod, name, f in originals:
+        setattr(mod, name, f)
+    load = os.getloadavg()[0]
+    print(f"same process, {cycles} station cycles, CPU ms a cycle (median of {rounds} rounds "
+          f"of 5 passes), baseline {baseline.name} vs this tree; load {load:.1f}")  # fmt: skip
+    for stage, (mod_name, name, _) in where.items():
+        new_f = getattr(importlib.import_module(f"mjwalk.timeline.{mod_name}"), name)
+        fs = {"old": getattr(old[mod_name], name), "new": new_f}
+        same = True
+        for a, k in calls[stage]:
+            ho, hn = hashlib.sha256(), hashlib.sha256()
+            _digest(ho, fs["old"](*a, **k))
+            _digest(hn, fs["new"](*a, **k))
+            same &= ho.digest() == hn.digest()
+        ms: dict[str, list[float]] = {"old": [], "new": []}
+        for r in range(rounds):
+            for tree in ("old", "new") if r % 2 == 0 else ("new", "old"):
+                t0 = time.process_time()
+                for _ in range(5):
+                    for a, k in calls[stage]:
+                        fs[tree](*a, **k)
+                ms[tree].append(1e3 * (time.process_time() - t0) / 5 / cycles)
+        mo, mn = statistics.median(ms["old"]), statistics.median(ms["new"])
+        print(f"  {stage:22s} old {mo:.2f} ms, new {mn:.2f} ms, new/old {mn / mo:.3f}; "
+              f"same bytes: {same}")  # fmt: skip
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--baseline", default="fc03651", help="commit timed as the old code")
     ap.add_argument("--cycles", type=int, default=10)
     ap.add_argument("--rounds", type=int, default=4)
+    ap.add_argument("--same-process", action="store_true", help="in-process A/B (see above)")
     ap.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
     args = ap.parse_args()
     if args.child:
@@ -119,6 +204,10 @@ def main() -> None:
         return
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bench_cycle import baseline_tree
+
+    if args.same_process:
+        _same_process(baseline_tree(args.baseline), args.cycles, args.rounds)
+        return
 
     trees = {"old": baseline_tree(args.baseline), "new": ROOT}
     res: dict[str, list[dict]] = {k: [] for k in trees}
