@@ -376,10 +376,7 @@ class StaticScene:
         half: (S, 3) their half-extents along the world axes.
         normals: (P, 3) the floor planes' normals.
         origins: (P, 3) points on them.
-        low: (G,) at least how far (m) each geom reaches down below its centre whatever its
-            rotation, as :func:`_touching` computes it (its extent along a plane normal, or its
-            bounding sphere), with room for round-off: a centre higher than this above the
-            floor less the depth puts no point of the geom that deep.
+        low: (G,) a bound on each geom's extent along any unit normal (m, +1e-6 round-off).
     """
 
     hid: np.ndarray
@@ -434,13 +431,8 @@ def _static_scene(
     n_sub = np.ones(len(hid), dtype=np.int64)
     n_sub[capsule] = np.ceil(SUB_PER_RADIUS * size[capsule, 1] / size[capsule, 0]).clip(1)
     margins = model.geom_margin[hid] + slack + model.geom_margin[solids].max(initial=0.0)
-    # a geom's extent along a unit normal, over every rotation (|n_i| <= 1 in its axes): a box's
-    # half sizes summed, a sphere's radius, a capsule's or cylinder's half length plus radius,
-    # else the bounding sphere; 1e-6 of it more for the round-off of the computed extent
-    low = np.where(types == _BOX, size.sum(axis=1), size[:, 0])
-    low = np.where((types == _CAPSULE) | (types == _CYLINDER), size[:, 0] + size[:, 1], low)
-    known = np.isin(types, (_BOX, _SPHERE, _CAPSULE, _CYLINDER))
-    low = np.where(known, low, model.geom_rbound[hid]) * (1.0 + 1e-6)
+    tube = np.isin(types, (_CAPSULE, _CYLINDER))  # extent <= half length + radius (a box's: sizes)
+    ext = np.where(types == _BOX, size.sum(axis=1), size[:, 0] + size[:, 1] * tube)
     kept[key] = StaticScene(
         hid=hid,
         types=types,
@@ -453,7 +445,7 @@ def _static_scene(
         half=np.einsum("gij,gj->gi", np.abs(R), aabb[:, 3:]),
         normals=normals,
         origins=data.geom_xpos[floors].reshape(-1, 3),
-        low=low,
+        low=np.maximum(ext, model.geom_rbound[hid]) * (1.0 + 1e-6),  # (other types: rbound)
     )
     return kept[key]
 
@@ -477,10 +469,8 @@ def _touching(
     scene box (``centre``, ``half`` (S, 3), world axes), a capsule's bounding sphere only
     where one of its ``n_sub`` spheres along the axis comes within ``sub_reach`` of it
     (:func:`_sub_spheres_reach`), or its lowest point lies more than ``depth`` below a floor
-    plane (``normals``, ``origins`` (P, 3)). Metres. A geom whose centre lies more than its
-    ``low`` (G,) above a plane, less ``depth``, is not looked at closer there: its computed
-    extent is below ``low``, so the test's own difference could not be below ``-depth``
-    (rounding keeps the order of differences; the same frames)."""
+    plane (``normals``, ``origins`` (P, 3); not tested closer when centred over ``low`` (G,)
+    less ``depth`` above it: its extent is below ``low``, rounding is monotone). Metres."""
     n, g_n, s_n, p_n = rows.shape[0], xpos.shape[1], centre.shape[0], normals.shape[0]
     hit = np.zeros(n, dtype=np.bool_)
     near = np.empty(s_n, dtype=np.int64)  # this frame's near boxes (the first m of them)
