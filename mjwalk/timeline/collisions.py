@@ -352,7 +352,7 @@ def candidate_frames(
     rows = np.arange(n) if shared is None else np.asarray(rows, dtype=np.int64)
     return _touching(
         rows, xpos, xmat, scene.types, scene.size, scene.rbound, reach_solid, scene.n_sub,
-        scene.sub_reach, centre, half, normals, origins, depth,
+        scene.sub_reach, centre, half, normals, origins, depth, scene.low,
     )  # fmt: skip
 
 
@@ -376,6 +376,7 @@ class StaticScene:
         half: (S, 3) their half-extents along the world axes.
         normals: (P, 3) the floor planes' normals.
         origins: (P, 3) points on them.
+        low: (G,) a bound on each geom's extent along any unit normal (m, +1e-6 round-off).
     """
 
     hid: np.ndarray
@@ -389,6 +390,7 @@ class StaticScene:
     half: np.ndarray
     normals: np.ndarray
     origins: np.ndarray
+    low: np.ndarray
 
 
 #: :func:`_static_scene` per model, by the masks and the geoms' margins it was built for.
@@ -429,6 +431,8 @@ def _static_scene(
     n_sub = np.ones(len(hid), dtype=np.int64)
     n_sub[capsule] = np.ceil(SUB_PER_RADIUS * size[capsule, 1] / size[capsule, 0]).clip(1)
     margins = model.geom_margin[hid] + slack + model.geom_margin[solids].max(initial=0.0)
+    tube = np.isin(types, (_CAPSULE, _CYLINDER))  # extent <= half length + radius (a box's: sizes)
+    ext = np.where(types == _BOX, size.sum(axis=1), size[:, 0] + size[:, 1] * tube)
     kept[key] = StaticScene(
         hid=hid,
         types=types,
@@ -441,6 +445,7 @@ def _static_scene(
         half=np.einsum("gij,gj->gi", np.abs(R), aabb[:, 3:]),
         normals=normals,
         origins=data.geom_xpos[floors].reshape(-1, 3),
+        low=np.maximum(ext, model.geom_rbound[hid]) * (1.0 + 1e-6),  # (other types: rbound)
     )
     return kept[key]
 
@@ -457,14 +462,15 @@ _SPHERE, _CAPSULE, _CYLINDER, _BOX = (
 @njit
 def _touching(
     rows, xpos, xmat, types, size, rbound, reach, n_sub, sub_reach, centre, half, normals, origins,
-    depth,
+    depth, low,
 ):  # fmt: skip
     """(R,) which frames ``rows`` (R,) have a humanoid geom (centres ``xpos`` (F, G, 3), rotations
     ``xmat`` (F, G, 9), MuJoCo ``types``/``size``/``rbound`` (G,)) within ``reach`` (G,) of a
     scene box (``centre``, ``half`` (S, 3), world axes), a capsule's bounding sphere only
     where one of its ``n_sub`` spheres along the axis comes within ``sub_reach`` of it
     (:func:`_sub_spheres_reach`), or its lowest point lies more than ``depth`` below a floor
-    plane (``normals``, ``origins`` (P, 3)). Metres."""
+    plane (``normals``, ``origins`` (P, 3); not tested closer when centred over ``low`` (G,)
+    less ``depth`` above it: its extent is below ``low``, rounding is monotone). Metres."""
     n, g_n, s_n, p_n = rows.shape[0], xpos.shape[1], centre.shape[0], normals.shape[0]
     hit = np.zeros(n, dtype=np.bool_)
     near = np.empty(s_n, dtype=np.int64)  # this frame's near boxes (the first m of them)
@@ -510,6 +516,8 @@ def _touching(
                     + (xpos[f, g, 1] - origins[k, 1]) * ny
                     + (xpos[f, g, 2] - origins[k, 2]) * nz
                 )
+                if h - low[g] >= -depth:  # high above the plane: the test below is False
+                    continue
                 # the plane normal in the geom's frame: R^T n (xmat row-major)
                 a0 = abs(xmat[f, g, 0] * nx + xmat[f, g, 3] * ny + xmat[f, g, 6] * nz)
                 a1 = abs(xmat[f, g, 1] * nx + xmat[f, g, 4] * ny + xmat[f, g, 7] * nz)

@@ -35,9 +35,16 @@ import mujoco
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from mjwalk._jit import njit
 from mjwalk.arms.chain import min_jerk
 from mjwalk.body.humanoid import JointMap
+from mjwalk.boundedmemo import Memo
 from mjwalk.timeline.chainkin import chain_poses, supported
+
+try:  # scipy's compiled quaternion functions behind Rotation (scipy >= 1.15's layout)
+    from scipy.spatial.transform import _rotation_cy
+except ImportError:  # another layout: Rotation's methods
+    _rotation_cy = None
 
 #: Name suffix of the scene geom that shows the part lying at a pick site.
 PART_GEOM_SUFFIX = "_geom"
@@ -126,18 +133,8 @@ def hand_poses(
         q[:] = qpos[-1]
         mujoco.mj_kinematics(model, data)
     # each needed frame takes the results of the last computed frame at or before it
-    done = np.zeros(n, dtype=bool)
-    done[todo] = True
-    src = np.maximum.accumulate(np.where(done, np.arange(n), -1))
-    row = np.searchsorted(todo, src)[need]
-    pos, mat, palm = (
-        np.full((n, 2, 3), np.nan),
-        np.full((n, 2, 3, 3), np.nan),
-        np.full((n, 2, 3), np.nan),
-    )
-    pos[need] = xpos[row]
-    mat[need] = xmat[row].reshape(-1, 2, 3, 3)
-    palm[need] = gpos[row]
+    pos, mat, palm = np.empty((n, 2, 3)), np.empty((n, 2, 3, 3)), np.empty((n, 2, 3))
+    _spread(need, todo, xpos, xmat, gpos, pos, mat.reshape(n, 2, 9), palm)
     return pos, mat, palm
 
 
@@ -145,9 +142,42 @@ def _distinct(qpos: np.ndarray, need: np.ndarray) -> np.ndarray:
     """The frames of ``need`` (F,) bool whose pose ``qpos`` (F, nq) is not bit-for-bit that of
     the frame before, when that frame is needed too (sorted ints)."""
     bits = np.ascontiguousarray(qpos, dtype=np.float64).view(np.uint64)
-    same = np.zeros(len(qpos), dtype=bool)
-    same[1:] = (bits[1:] == bits[:-1]).all(axis=1) & need[:-1]
-    return np.flatnonzero(need & ~same)
+    return np.flatnonzero(_fresh(bits, np.ascontiguousarray(need, dtype=np.bool_)))
+
+
+@njit
+def _fresh(bits, need):
+    """(F,) bool: ``need`` and not the bits ``bits`` (F, nq) of the frame before, when that
+    frame is needed (row by row, stopping at the first word that differs)."""
+    n, m = bits.shape
+    out = need.copy()
+    for f in range(1, n):
+        if not (need[f] and need[f - 1]):
+            continue
+        same = True
+        for i in range(m):
+            if bits[f, i] != bits[f - 1, i]:
+                same = False
+                break
+        out[f] = not same
+    return out
+
+
+@njit
+def _spread(need, todo, xpos, xmat, gpos, pos, mat, palm):
+    """Fill ``pos`` (F, 2, 3), ``mat`` (F, 2, 9) and ``palm`` (F, 2, 3): a frame of ``need``
+    (F,) bool takes the rows ``xpos``, ``xmat``, ``gpos`` of the last frame of ``todo`` (K,)
+    at or before it (copied), the others NaN."""
+    j = -1
+    for f in range(need.shape[0]):
+        while j + 1 < todo.shape[0] and todo[j + 1] <= f:
+            j += 1
+        for s in range(2):
+            for i in range(3):
+                pos[f, s, i] = xpos[j, s, i] if need[f] else np.nan
+                palm[f, s, i] = gpos[j, s, i] if need[f] else np.nan
+            for i in range(9):
+                mat[f, s, i] = xmat[j, s, i] if need[f] else np.nan
 
 
 #: A grip point moving less than this (m) from where it was at the release is holding still:
@@ -159,12 +189,32 @@ def _slerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
     """Rotation matrices (n, 3, 3) from ``a`` to ``b`` (3, 3) at shares ``w`` (n,) in [0, 1]
     (SLERP): ``a`` composed with the rotation vector of ``a^-1 b`` scaled by ``w``, the
     operations scipy's ``Slerp([0, 1], ...)(w)`` makes (its share ``(w - 0) / 1`` is ``w``),
-    without its per-call set-up (a third of the time; tests compare the two bit for bit)."""
+    without its per-call set-up (a third of the time; tests compare the two bit for bit).
+    With scipy's compiled quaternion functions (:data:`_QUATS`) they are called on the arrays
+    directly, as :class:`~scipy.spatial.transform.Rotation`'s methods call them (no
+    ``Rotation`` objects: two thirds of the rest)."""
+    w = np.asarray(w, dtype=float)
+    if _QUATS is not None:
+        cy = _QUATS
+        q = cy.from_matrix(np.stack([a, b]), assume_valid=False)
+        # Rotation's product: compose_quat, then its constructor's normalisation
+        rel = cy.from_quat(cy.compose_quat(cy.inv(q[:1]), q[1:]), normalize=True, copy=False)
+        step = cy.from_rotvec(cy.as_rotvec(rel, degrees=False) * w[:, None], degrees=False)
+        both = cy.compose_quat(np.take(q, np.zeros(len(w), dtype=np.intp), axis=0), step)
+        return np.asarray(cy.as_matrix(cy.from_quat(both, normalize=True, copy=False)))
     r = Rotation.from_matrix(np.stack([a, b]))
     turn = (r[:1].inv() * r[1:]).as_rotvec()
     return (
         r[np.zeros(len(w), dtype=np.intp)] * Rotation.from_rotvec(turn * w[:, None])
     ).as_matrix()
+
+
+#: scipy's compiled quaternion functions (``from_matrix``, ``inv``, ``compose_quat``,
+#: ``from_quat``, ``as_rotvec``, ``from_rotvec``, ``as_matrix``), the ones
+#: :class:`~scipy.spatial.transform.Rotation` calls on NumPy arrays, for :func:`_slerp`; None
+#: when this scipy has no such module (:func:`_slerp` goes through ``Rotation``).
+_QUAT_FUNCTIONS = "from_matrix inv compose_quat from_quat as_rotvec from_rotvec as_matrix"
+_QUATS = _rotation_cy if all(hasattr(_rotation_cy, n) for n in _QUAT_FUNCTIONS.split()) else None
 
 
 def palms_frame(palm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -211,6 +261,49 @@ def _needed(handlings: Sequence[Handling], lying: set[str], n: int) -> np.ndarra
     return need
 
 
+def _lying_parts(model: mujoco.MjModel) -> dict[str, int]:
+    """``{site name: id of the geom lying there}`` of the sites with a part geom
+    (:data:`PART_GEOM_SUFFIX`), kept per model (names do not change after compiling; reading
+    them costs about 0.5 ms a call). A copy: the caller's to change."""
+    return dict(_LYING.get(model, lambda: _find_lying(model)))
+
+
+def _find_lying(model: mujoco.MjModel) -> dict[str, int]:
+    """:func:`_lying_parts` made: the model's geom and site names read once."""
+    names = {model.geom(g).name: g for g in range(model.ngeom)}
+    sites = (model.site(s).name for s in range(model.nsite))
+    return {s: names[s + PART_GEOM_SUFFIX] for s in sites if s + PART_GEOM_SUFFIX in names}
+
+
+#: :func:`_lying_parts` per model (a cycle's operators: a few models).
+_LYING: Memo[mujoco.MjModel, dict[str, int]] = Memo(limit=8)
+
+
+def _releases(
+    handlings: Sequence[Handling], lying: set[str], grips: list[tuple[int, int, int] | None]
+) -> dict[int, int]:
+    """``{take's index: the frame its part is put down}`` for the takes of a drawn part that
+    a later put releases: the same order of takes and puts per hand as :func:`part_tracks`
+    (``lying``: the sites with a part; ``grips``: each handling's ``(lo, hi, frame)`` or
+    None). From that frame on the put writes the whole track: what the take writes after
+    it is never read."""
+    held: dict[str, list[int | None]] = {"left": [], "right": [], "both": []}
+    lying = set(lying)
+    out = {}
+    for i, (h, grip) in enumerate(zip(handlings, grips, strict=True)):
+        if grip is None:
+            continue
+        if h.part == "take":
+            held[h.hand].append(i if h.site in lying else None)
+            lying.discard(h.site)
+        elif held[h.hand]:
+            taken = held[h.hand].pop(0)
+            if taken is not None:
+                out[taken] = grip[2]
+                lying.add(h.site)
+    return out
+
+
 def part_tracks(
     model: mujoco.MjModel,
     jm: JointMap,
@@ -230,12 +323,7 @@ def part_tracks(
     Returns:
         One :class:`PartTrack` per handled part.
     """
-    names = {model.geom(g).name: g for g in range(model.ngeom)}
-    lying = {  # site -> geom lying there
-        model.site(s).name: names[model.site(s).name + PART_GEOM_SUFFIX]
-        for s in range(model.nsite)
-        if model.site(s).name + PART_GEOM_SUFFIX in names
-    }
+    lying = _lying_parts(model)  # site -> geom lying there
     if not lying or not any(h.part == "take" and h.site in lying for h in handlings):
         return []
     n = len(qpos)
@@ -243,19 +331,28 @@ def part_tracks(
     # the scene's geoms and sites are welded to the world: any pose's kinematics places them
     need = _needed(handlings, set(lying), n)
     hand_pos, hand_mat, palm = hand_poses(model, jm, qpos, data, need)
-    both_pos, both_mat = palms_frame(palm)
-    held: dict[str, list[int | None]] = {"left": [], "right": [], "both": []}
-    tracks: dict[int, PartTrack] = {}
-    lay: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # offset from its site, orientation
-    for h in handlings:
-        site_pos = data.site_xpos[model.site(h.site).id]
+    both_pos = both_mat = palm[:, 0]  # (read only for a two-handed grip)
+    if any(h.hand not in ("left", "right") for h in handlings):
+        both_pos, both_mat = palms_frame(palm)
+    sites = [data.site_xpos[model.site(h.site).id] for h in handlings]
+    grips: list[tuple[int, int, int] | None] = []
+    for h, site_pos in zip(handlings, sites, strict=True):
         lo, hi = max(h.start, 0), min(max(h.end, h.start + 1), n)
         if lo >= hi:  # no frame of this task in the timeline
+            grips.append(None)
             continue
         side = {"left": 0, "right": 1}.get(h.hand)
         grip = palm[lo:hi, side] if side is not None else both_pos[lo:hi]
-        k = int(np.argmin(np.linalg.norm(grip - site_pos, axis=1)))
-        f = lo + k
+        grips.append((lo, hi, lo + int(np.argmin(np.linalg.norm(grip - site_pos, axis=1)))))
+    release = _releases(handlings, set(lying), grips)
+    held: dict[str, list[int | None]] = {"left": [], "right": [], "both": []}
+    tracks: dict[int, PartTrack] = {}
+    lay: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # offset from its site, orientation
+    for i, (h, site_pos, span) in enumerate(zip(handlings, sites, grips, strict=True)):
+        if span is None:
+            continue
+        lo, hi, f = span
+        side = {"left": 0, "right": 1}.get(h.hand)
         if side is not None:
             origin, axes = hand_pos[:, side], hand_mat[:, side]
         else:
@@ -274,28 +371,40 @@ def part_tracks(
             track.grasp, track.release = f, None
             # its pose in the holding frame kept from the grasp on, where it lies then: the
             # hand's end, not its palm, comes onto the part (the palm centre stops 15-18 cm
-            # from a screw's site; snapping the part onto it jumped it that far in one frame)
+            # from a screw's site; snapping the part onto it jumped it that far in one frame);
+            # up to its release, from where the put writes the track (each frame's numbers
+            # are those of the whole tail's products)
+            end = max(release.get(i, n - 1) + 1, f)
             rel_mat = axes[f].T @ track.mat[f]
             rel_pos = axes[f].T @ (track.pos[f] - origin[f])
-            track.pos[f:] = origin[f:] + np.einsum("fij,j->fi", axes[f:], rel_pos)
-            track.mat[f:] = axes[f:] @ rel_mat
+            track.pos[f:end] = origin[f:end] + np.einsum("fij,j->fi", axes[f:end], rel_pos)
+            track.mat[f:end] = axes[f:end] @ rel_mat
         elif held[h.hand]:  # put down (place / fasten): the first part this hand took
             g = held[h.hand].pop(0)
             if g is None:
                 continue
-            track = tracks[g]
-            offset, mat0 = lay[g]
-            # while the hand holds still at the site (a fastening hand stops in front of the
-            # surface) the part goes from the hand onto the site: a screw driven in, not
-            # jumping there in one frame
-            still = np.linalg.norm(grip[k:] - grip[k], axis=1) < HOLD_STILL
-            n_in = int(np.argmin(still)) if not still.all() else len(still)
-            if n_in > 1:
-                w = min_jerk(np.linspace(0.0, 1.0, n_in))[:, None]
-                track.pos[f : f + n_in] = (1 - w) * track.pos[f] + w * (site_pos + offset)
-                track.mat[f : f + n_in] = _slerp(track.mat[f], mat0, w[:, 0])
-            track.pos[f + max(n_in - 1, 0) :] = site_pos + offset
-            track.mat[f + max(n_in - 1, 0) :] = mat0
-            track.release = f
+            grip = palm[lo:hi, side] if side is not None else both_pos[lo:hi]
+            _put_down(tracks[g], lay[g], grip[f - lo :], f, site_pos)
             lying[h.site] = g
     return list(tracks.values())
+
+
+def _put_down(
+    track: PartTrack, lay: tuple[np.ndarray, np.ndarray], grip: np.ndarray, f: int, site_pos
+) -> None:
+    """Put ``track``'s part onto its site (world ``site_pos``, metres) from frame ``f`` on, as
+    it lay where it was taken (``lay``: its offset from that site and its orientation), the
+    grip point ``grip`` (k, 3) from frame ``f`` to the handling's end."""
+    offset, mat0 = lay
+    # while the hand holds still at the site (a fastening hand stops in front of the
+    # surface) the part goes from the hand onto the site: a screw driven in, not
+    # jumping there in one frame
+    still = np.linalg.norm(grip - grip[0], axis=1) < HOLD_STILL
+    n_in = int(np.argmin(still)) if not still.all() else len(still)
+    if n_in > 1:
+        w = min_jerk(np.linspace(0.0, 1.0, n_in))[:, None]
+        track.pos[f : f + n_in] = (1 - w) * track.pos[f] + w * (site_pos + offset)
+        track.mat[f : f + n_in] = _slerp(track.mat[f], mat0, w[:, 0])
+    track.pos[f + max(n_in - 1, 0) :] = site_pos + offset
+    track.mat[f + max(n_in - 1, 0) :] = mat0
+    track.release = f

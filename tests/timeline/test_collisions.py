@@ -77,6 +77,29 @@ def test_a_shared_geom_table_gives_the_same_candidates_and_contacts():
     assert got and got == rows(collision_report(tl))
 
 
+def test_floor_test_skips_high_geoms_without_changing_the_frames():
+    """The broad phase's floor test skips a geom centred higher above the floor than its
+    extent bound (StaticScene.low): the same candidate frames as testing every geom (an
+    infinite bound), on a walk lowered so that its feet sink to various depths."""
+    from mjwalk.body.humanoid import HUMAN_GROUP
+    from mjwalk.timeline import collisions as col
+    from mjwalk.timeline.geomposes import geom_poses
+
+    tl = timeline_from_walk(make_walk(n_steps=6), _scene(2.0))
+    m, q = tl.model, tl.qpos.copy()
+    q[:, 2] -= np.linspace(0.0, 0.05, len(q))  # the pelvis (free joint z) ever lower
+    human = m.geom_group == HUMAN_GROUP
+    scene = col._static_scene(m, human, floor_geoms(m))
+    assert (scene.low >= scene.rbound * (1.0 - 1e-12)).all()
+    xpos, xmat = geom_poses(m, q, scene.hid)
+    args = (np.arange(len(q)), xpos, xmat, scene.types, scene.size, scene.rbound)
+    args += (scene.reach_solid, scene.n_sub, scene.sub_reach, scene.centre, scene.half)
+    args += (scene.normals, scene.origins, 0.01 - col.BROAD_SLACK)
+    got = col._touching(*args, scene.low)
+    every = col._touching(*args, np.full_like(scene.low, np.inf))
+    assert got.tolist() == every.tolist() and got.any() and not got.all()
+
+
 def test_repeats_and_floor_geoms():
     q = np.array([[0.0, 1.0], [0.0, 1.0], [0.5, 1.0], [0.5, 1.0], [0.5, 1.0]])
     assert repeats(q).tolist() == [False, True, False, True, True]

@@ -350,10 +350,16 @@ def test_part_tracks_equal_the_every_frame_reference_bit_for_bit(monkeypatch, sc
         assert _same_bits(a.pos, b.pos) and _same_bits(a.mat, b.mat), a.geom
 
 
-def test_slerp_is_scipys_bit_for_bit():
+@pytest.mark.parametrize("compiled", [True, False])
+def test_slerp_is_scipys_bit_for_bit(monkeypatch, compiled):
     """parts._slerp makes scipy's Slerp([0, 1], ...) arithmetic without its set-up: the same
-    bits for random turns, small ones and turns near half a turn."""
+    bits for random turns, small ones and turns near half a turn, by scipy's compiled
+    quaternion functions and through Rotation's methods (a scipy without them)."""
     from scipy.spatial.transform import Rotation, Slerp
+
+    assert parts._QUATS is not None  # this scipy has them: the fast path is the one run
+    if not compiled:
+        monkeypatch.setattr(parts, "_QUATS", None)
 
     from mjwalk.arms.chain import min_jerk
 
