@@ -66,13 +66,10 @@ def pack(workplace) -> ObstaclePack:
         The pack.
     """
     obstacles = workplace.obstacles
+    ids = tuple(map(id, obstacles))  # the kept footprints live on: their ids are not reused
     kept = workplace.__dict__.get("_obstacle_pack")
-    if (
-        kept is None
-        or len(kept[0]) != len(obstacles)
-        or not all(a is b for a, b in zip(kept[0], obstacles, strict=True))
-    ):
-        kept = (tuple(obstacles), ObstaclePack(obstacles))
+    if kept is None or kept[0] != ids:
+        kept = (ids, ObstaclePack(obstacles), tuple(obstacles))
         workplace.__dict__["_obstacle_pack"] = kept
     return kept[1]
 

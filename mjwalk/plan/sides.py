@@ -202,9 +202,9 @@ def side_gap(workplace, blocker, route, start, goal) -> float:
     s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
     u = (g - s) / max(float(np.hypot(*(g - s))), 1e-12)
     along = (pts - s) @ u
-    outline = np.asarray(blocker.vertices, dtype=float)
+    extent = (np.asarray(blocker.vertices, dtype=float) - s) @ u
     reach = float(blocker.radius)
-    lo, hi = float(((outline - s) @ u).min()) - reach, float(((outline - s) @ u).max()) + reach
+    lo, hi = float(extent.min()) - reach, float(extent.max()) + reach
     beside = pts[(along >= lo) & (along <= hi)]
     if len(beside) == 0:
         beside = pts
