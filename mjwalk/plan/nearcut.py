@@ -7,8 +7,8 @@ and its extent along the walk (a NumPy matrix product, whose rounding depends on
 length: BLAS fuses some products). Most obstacles they ask cannot change the answer, which
 bounds show without those calls:
 
-- **Bounding-box distance** (a lower bound of an obstacle's distance: its footprint lies in its
-  box, :meth:`~mjwalk.world.footprint.Footprint.bounds`).
+- **Bounding-box distance** (a lower bound of an obstacle's distance from a point outside its
+  box, where its footprint lies: :meth:`~mjwalk.world.footprint.Footprint.bounds`; none in it).
 - **Nearest vertex distance** (an upper bound: a polygon's vertices lie in it; a rounded
   segment's ends are ``radius`` deep in it).
 - **Extent along the walk in plain arithmetic** (within a few ulps of NumPy's product).
@@ -76,9 +76,13 @@ def pack(workplace) -> ObstaclePack:
 
 @njit
 def _box_distance(b, x, y):
-    """The distance (m) from (x, y) to the box b = (xmin, ymin, xmax, ymax), 0 inside."""
+    """The distance (m) from (x, y) to the box b = (xmin, ymin, xmax, ymax) where it lies
+    outside, -inf in it (the footprint's signed distance may be negative there): a lower
+    bound of the footprint's signed distance."""
     dx = max(b[0] - x, 0.0, x - b[2])
     dy = max(b[1] - y, 0.0, y - b[3])
+    if dx == 0.0 and dy == 0.0:
+        return -np.inf
     return math.hypot(dx, dy)
 
 
