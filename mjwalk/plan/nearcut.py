@@ -45,7 +45,11 @@ class ObstaclePack:
     """
 
     def __init__(self, footprints) -> None:
-        """Pack ``footprints`` (:class:`~mjwalk.world.footprint.Footprint`)."""
+        """Pack ``footprints``.
+
+        Args:
+            footprints: the workplace's :class:`~mjwalk.world.footprint.Footprint` s, in order.
+        """
         boxes = np.array([fp.bounds() for fp in footprints], dtype=float)
         self.bounds = np.ascontiguousarray(boxes.reshape(-1, 4))
         verts = [np.asarray(fp.vertices, dtype=float).reshape(-1, 2) for fp in footprints]
