@@ -57,6 +57,7 @@ from mjwalk.plan.guide import (
 from mjwalk.plan.sides import (
     PASSING_GAP,
     intruding,
+    obstacle_bounds,
     passing_berth,
     side_gap,
     side_log_odds,
@@ -224,10 +225,7 @@ def _blocking(workplace, path: np.ndarray, radius: float):
     p = first_below(workplace, path, radius)  # sampled every 5 cm
     if p is None or not workplace.obstacles:
         return None
-    bounds = workplace.__dict__.get("_footprint_bounds")
-    if bounds is None or len(bounds) != len(workplace.obstacles):  # kept on the workplace
-        bounds = np.array([fp.bounds() for fp in workplace.obstacles])
-        workplace.__dict__["_footprint_bounds"] = bounds
+    bounds = obstacle_bounds(workplace)
     near = np.flatnonzero(
         (bounds[:, 0] - radius <= p[0])
         & (p[0] <= bounds[:, 2] + radius)

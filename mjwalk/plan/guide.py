@@ -113,12 +113,14 @@ def minimum_jerk_guide(
     length = float(np.hypot(*chord))
     if not length > 1e-9:
         raise ValueError("minimum_jerk_guide: start and goal coincide")
+    t0 = chord if start_heading is None else _heading_tangent(start_heading, length)
+    t1 = chord if goal_heading is None else _heading_tangent(goal_heading, length)
+    return _poly_points(_H.T @ np.array([p0, t0, t1, p1]), n)  # rows (4, 2)
 
-    def tangent(h: float | None) -> np.ndarray:
-        return chord if h is None else length * np.array([math.cos(h), math.sin(h)])
 
-    rows = np.stack([p0, tangent(start_heading), tangent(goal_heading), p1])  # (4, 2)
-    return _poly_points(_H.T @ rows, n)
+def _heading_tangent(h: float, length: float) -> np.ndarray:
+    """The tangent ``length`` times the unit heading ``h`` (radians), (2,)."""
+    return length * np.array([math.cos(h), math.sin(h)])
 
 
 # Quintic Hermite basis with end accelerations too, in s in [0, 1] (constant term first):
@@ -218,17 +220,21 @@ def via_point_guide(
         raise ValueError("via_point_guide: the via point coincides with an end")
     length = l1 + l2
     t1, t2 = l1 / length, l2 / length  # the pieces' normalized times
-
-    def velocity(h: float | None, d: np.ndarray, norm: float) -> np.ndarray:
-        return length * (d / norm if h is None else np.array([math.cos(h), math.sin(h)]))
-
-    v0, v1 = velocity(start_heading, w - p0, l1), velocity(goal_heading, p1 - w, l2)
+    # end velocities: the whole length along the heading, or along the way to / from ``via``
+    v0 = (
+        length * ((w - p0) / l1)
+        if start_heading is None
+        else _heading_tangent(start_heading, length)
+    )
+    v1 = (
+        length * ((p1 - w) / l2) if goal_heading is None else _heading_tangent(goal_heading, length)
+    )
     m1 = min(n - 1, max(2, round(n * t1)))
     vw, aw = _via_point_solve(p0, w, p1, v0, v1, t1, t2, _JERK)
     zero = np.zeros(2)
-    first = _poly_points(_H6.T @ np.stack([p0, v0 * t1, zero, aw * t1**2, vw * t1, w]), m1)
-    second = _poly_points(_H6.T @ np.stack([w, vw * t2, aw * t2**2, zero, v1 * t2, p1]), n - m1 + 1)
-    return np.vstack([first, second[1:]])
+    first = _poly_points(_H6.T @ np.array([p0, v0 * t1, zero, aw * t1**2, vw * t1, w]), m1)
+    second = _poly_points(_H6.T @ np.array([w, vw * t2, aw * t2**2, zero, v1 * t2, p1]), n - m1 + 1)
+    return np.concatenate([first, second[1:]])
 
 
 def via_points_guide(
@@ -276,10 +282,19 @@ def via_points_guide(
 def _checked(points) -> np.ndarray:
     """``points`` as a contiguous float (k, 2) array, or the ValueError every guide function
     raises for anything else."""
-    pts = np.asarray(points, dtype=float)
-    if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2 or not np.isfinite(pts).all():
+    pts = np.ascontiguousarray(points, dtype=float)
+    if pts.ndim != 2 or pts.shape[1] != 2 or len(pts) < 2 or not _all_finite(pts):
         raise ValueError("a guide must be finite (x, y) points, at least two")
-    return np.ascontiguousarray(pts)
+    return pts
+
+
+@njit
+def _all_finite(pts):
+    """Whether every coordinate of ``pts`` (k, 2) is finite (np.isfinite(pts).all())."""
+    for i in range(pts.shape[0]):
+        if not (math.isfinite(pts[i, 0]) and math.isfinite(pts[i, 1])):
+            return False
+    return True
 
 
 @njit
@@ -377,8 +392,17 @@ def densify(points, spacing: float = 0.05) -> np.ndarray:
     Returns:
         (k', 2) the resampled points, metres, the ends kept.
     """
-    pts = _checked(points)
-    return resample_guide(pts, _dense_count(float(_cumulative(pts)[-1]), spacing))
+    out = _densified(_checked(points), float(spacing))
+    if len(out) == 0:
+        raise ValueError("a guide must have a length")
+    return out
+
+
+@njit
+def _densified(pts, spacing):
+    """:func:`densify`'s points, compiled (:func:`_resampled` at :func:`_dense_count`'s
+    number); (0, 2) for a polyline of no length."""
+    return _resampled(pts, _dense_count(_cumulative(pts)[-1], spacing))
 
 
 @njit

@@ -71,6 +71,7 @@ import numpy as np
 from mjwalk.anthropometry import SEG
 from mjwalk.gait.walker import REFERENCE_SPEED
 from mjwalk.plan.guide import densify, first_below
+from mjwalk.plan.nearcut import gap_candidates, intruding_candidates, pack
 
 __all__ = [
     "CONFINED_APERTURE",
@@ -201,9 +202,9 @@ def side_gap(workplace, blocker, route, start, goal) -> float:
     s, g = np.asarray(start, dtype=float)[:2], np.asarray(goal, dtype=float)[:2]
     u = (g - s) / max(float(np.hypot(*(g - s))), 1e-12)
     along = (pts - s) @ u
-    outline = np.asarray(blocker.vertices, dtype=float)
+    extent = (np.asarray(blocker.vertices, dtype=float) - s) @ u
     reach = float(blocker.radius)
-    lo, hi = float(((outline - s) @ u).min()) - reach, float(((outline - s) @ u).max()) + reach
+    lo, hi = float(extent.min()) - reach, float(extent.max()) + reach
     beside = pts[(along >= lo) & (along <= hi)]
     if len(beside) == 0:
         beside = pts
@@ -213,13 +214,11 @@ def side_gap(workplace, blocker, route, start, goal) -> float:
         [beside[:, 0] - xmin, xmax - beside[:, 0], beside[:, 1] - ymin, ymax - beside[:, 1]]
     )
     other = np.minimum(other, GAP_OPEN)
-    x0, y0 = beside.min(axis=0) - GAP_OPEN
-    x1, y1 = beside.max(axis=0) + GAP_OPEN
-    for k in boxes_meeting(workplace, (x0, y0, x1, y1)):  # the others too far cannot narrow it
-        fp = workplace.obstacles[k]
-        if fp is blocker:
-            continue
-        other = np.minimum(other, fp.signed_distance(beside))
+    if workplace.obstacles:  # those within GAP_OPEN that may narrow it (nearcut: exact)
+        passed = [fp is blocker for fp in workplace.obstacles]
+        pk = pack(workplace)
+        for k in gap_candidates(pk, beside, other, passed, GAP_OPEN):
+            other = np.minimum(other, workplace.obstacles[k].signed_distance(beside))
     return float(np.min(own + other))  # negative depth inside another obstacle narrows it
 
 
@@ -257,6 +256,8 @@ def intruding(workplace, path, ends, berth: float):
     """The first obstacle along ``path`` that it passes nearer than ``berth`` metres and that
     the walk passes by (module doc): a footprint whose extent along the line start -> goal
     lies within the walk's (berth included) and that neither end stands within the berth of.
+    Only the obstacles whose bounds leave the answer open are asked for their distances
+    (:func:`mjwalk.plan.nearcut.intruding_candidates`: the same answer as asking all).
 
     Args:
         workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
@@ -275,47 +276,19 @@ def intruding(workplace, path, ends, berth: float):
     length = float(np.hypot(*(g - s)))
     u = (g - s) / length
     dense = densify(pts, BERTH_SPACING)
-    lo, hi = dense.min(axis=0) - berth, dense.max(axis=0) + berth
-    best, first = None, len(dense)
     both = np.stack([s, g])
-    for k in _near_boxes(workplace, dense, berth, (lo[0], lo[1], hi[0], hi[1])):
+    pk = pack(workplace)
+    best, first = None, len(dense)
+    for k, along_open, ends_open in intruding_candidates(pk, dense, both, length, u, berth):
         fp = workplace.obstacles[k]
-        along = (np.asarray(fp.vertices, dtype=float) - s) @ u
-        if along.min() - fp.radius < -berth or along.max() + fp.radius > length + berth:
-            continue  # not passed by: a wall the walk runs along, or behind an end
+        if along_open:
+            along = (np.asarray(fp.vertices, dtype=float) - s) @ u
+            if along.min() - fp.radius < -berth or along.max() + fp.radius > length + berth:
+                continue  # not passed by: a wall the walk runs along, or behind an end
+        if ends_open and float(fp.signed_distance(both).min()) < berth:
+            continue  # an end's own obstacle (a walk to or from a bench)
         # only points before the best so far can take its place (distances are per point)
         near = np.flatnonzero(fp.signed_distance(dense[:first]) < berth)
-        if not len(near):
-            continue
-        if float(fp.signed_distance(both).min()) < berth:
-            continue  # an end's own obstacle (a walk to or from a bench)
-        best, first = fp, int(near[0])
+        if len(near):
+            best, first = fp, int(near[0])
     return best
-
-
-def _near_boxes(workplace, pts: np.ndarray, berth: float, box) -> np.ndarray:
-    """:func:`boxes_meeting` ``box``, less the obstacles whose bounding box grown by ``berth``
-    (and 1 nm for rounding) holds none of ``pts``: no point is nearer than ``berth`` to those
-    (a footprint lies in its box), so :func:`intruding` skips them without asking each its
-    distances.
-
-    Args:
-        workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
-        pts: (k, 2) points, metres, world frame.
-        berth: metres.
-        box: (xmin, ymin, xmax, ymax), metres.
-
-    Returns:
-        The obstacles' indices, ascending.
-    """
-    ks = boxes_meeting(workplace, box)
-    b = obstacle_bounds(workplace)[ks]
-    reach = berth + 1e-9
-    x, y = pts[None, :, 0], pts[None, :, 1]
-    near = (
-        (x >= b[:, None, 0] - reach)
-        & (x <= b[:, None, 2] + reach)
-        & (y >= b[:, None, 1] - reach)
-        & (y <= b[:, None, 3] + reach)
-    )
-    return ks[near.any(axis=1)]
