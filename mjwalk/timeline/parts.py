@@ -194,14 +194,24 @@ def _slerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
     directly, as :class:`~scipy.spatial.transform.Rotation`'s methods call them (no
     ``Rotation`` objects: two thirds of the rest)."""
     w = np.asarray(w, dtype=float)
-    if _QUATS is not None:
-        cy = _QUATS
-        q = cy.from_matrix(np.stack([a, b]), assume_valid=False)
-        # Rotation's product: compose_quat, then its constructor's normalisation
-        rel = cy.from_quat(cy.compose_quat(cy.inv(q[:1]), q[1:]), normalize=True, copy=False)
-        step = cy.from_rotvec(cy.as_rotvec(rel, degrees=False) * w[:, None], degrees=False)
-        both = cy.compose_quat(np.take(q, np.zeros(len(w), dtype=np.intp), axis=0), step)
-        return np.asarray(cy.as_matrix(cy.from_quat(both, normalize=True, copy=False)))
+    cy = _quat_functions()
+    if cy is not None:
+        return _slerp_cy(cy, a, b, w)
+    return _slerp_rotation(a, b, w)
+
+
+def _slerp_cy(cy, a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """:func:`_slerp` by scipy's compiled quaternion functions ``cy`` on the arrays."""
+    q = cy.from_matrix(np.stack([a, b]), assume_valid=False)
+    # Rotation's product: compose_quat, then its constructor's normalisation
+    rel = cy.from_quat(cy.compose_quat(cy.inv(q[:1]), q[1:]), normalize=True, copy=False)
+    step = cy.from_rotvec(cy.as_rotvec(rel, degrees=False) * w[:, None], degrees=False)
+    both = cy.compose_quat(np.take(q, np.zeros(len(w), dtype=np.intp), axis=0), step)
+    return np.asarray(cy.as_matrix(cy.from_quat(both, normalize=True, copy=False)))
+
+
+def _slerp_rotation(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """:func:`_slerp` by :class:`~scipy.spatial.transform.Rotation`'s public methods."""
     r = Rotation.from_matrix(np.stack([a, b]))
     turn = (r[:1].inv() * r[1:]).as_rotvec()
     return (
@@ -214,7 +224,31 @@ def _slerp(a: np.ndarray, b: np.ndarray, w: np.ndarray) -> np.ndarray:
 #: :class:`~scipy.spatial.transform.Rotation` calls on NumPy arrays, for :func:`_slerp`; None
 #: when this scipy has no such module (:func:`_slerp` goes through ``Rotation``).
 _QUAT_FUNCTIONS = "from_matrix inv compose_quat from_quat as_rotvec from_rotvec as_matrix"
-_QUATS = _rotation_cy if all(hasattr(_rotation_cy, n) for n in _QUAT_FUNCTIONS.split()) else None
+_QUATS: list = []  # [the functions, or None], decided by the first _quat_functions call
+
+
+def _quat_functions():
+    """scipy's compiled quaternion functions when this scipy has them and they give
+    :func:`_slerp_rotation`'s numbers bit for bit on 16 seeded rotation pairs (checked once per
+    process: a private module may change its arguments or arithmetic with any scipy release);
+    otherwise None (``Rotation``'s public methods serve)."""
+    if not _QUATS:
+        cy = _rotation_cy
+        if cy is not None and all(hasattr(cy, n) for n in _QUAT_FUNCTIONS.split()):
+            rng = np.random.default_rng(1)
+            w = np.linspace(0.0, 1.0, 7)
+            try:
+                for _ in range(16):
+                    a, b = Rotation.from_rotvec(rng.normal(0.0, 1.5, (2, 3))).as_matrix()
+                    if not np.array_equal(_slerp_cy(cy, a, b, w), _slerp_rotation(a, b, w)):
+                        cy = None
+                        break
+            except Exception:  # another signature: Rotation serves
+                cy = None
+        else:
+            cy = None
+        _QUATS.append(cy)
+    return _QUATS[0]
 
 
 def palms_frame(palm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

@@ -357,9 +357,9 @@ def test_slerp_is_scipys_bit_for_bit(monkeypatch, compiled):
     quaternion functions and through Rotation's methods (a scipy without them)."""
     from scipy.spatial.transform import Rotation, Slerp
 
-    assert parts._QUATS is not None  # this scipy has them: the fast path is the one run
+    assert parts._quat_functions() is not None  # this scipy has them: the fast path is run
     if not compiled:
-        monkeypatch.setattr(parts, "_QUATS", None)
+        monkeypatch.setattr(parts, "_QUATS", [None])
 
     from mjwalk.arms.chain import min_jerk
 
@@ -372,3 +372,27 @@ def test_slerp_is_scipys_bit_for_bit(monkeypatch, compiled):
         w = min_jerk(np.linspace(0.0, 1.0, int(rng.integers(2, 40))))
         want = Slerp([0.0, 1.0], Rotation.from_matrix(np.stack([a, b])))(w).as_matrix()
         assert parts._slerp(a, b, w).tobytes() == want.tobytes()
+
+
+def test_slerp_declines_scipys_private_functions_that_differ(monkeypatch):
+    """The compiled path is taken only after it gave Rotation's numbers bit for bit (checked
+    once per process): functions one ulp off, or with other arguments, are declined and
+    Rotation's public methods serve."""
+    from types import SimpleNamespace
+
+    real = parts._rotation_cy
+    off = SimpleNamespace(**{n: getattr(real, n) for n in parts._QUAT_FUNCTIONS.split()})
+    off.as_matrix = lambda q: np.nextafter(np.asarray(real.as_matrix(q)), 2.0)
+
+    def other_arguments(m):  # as if a release renamed a keyword
+        return real.from_matrix(m)
+
+    renamed = SimpleNamespace(**{**vars(off), "as_matrix": real.as_matrix})
+    renamed.from_matrix = other_arguments
+    for fake in (off, renamed):
+        monkeypatch.setattr(parts, "_rotation_cy", fake)
+        monkeypatch.setattr(parts, "_QUATS", [])
+        assert parts._quat_functions() is None
+    monkeypatch.setattr(parts, "_rotation_cy", real)
+    monkeypatch.setattr(parts, "_QUATS", [])
+    assert parts._quat_functions() is real
