@@ -59,6 +59,25 @@ def _child(cycles: int) -> None:
     print(json.dumps(out))
 
 
+def alternate_children(
+    script: str, trees: dict[str, Path], rounds: int, cycles: int
+) -> dict[str, list[dict]]:
+    """Run ``script --child --cycles N`` once per tree and round, each tree first in every
+    other round, with that tree first on PYTHONPATH; the last JSON line each child prints,
+    per tree name (a child that fails ends the benchmark with its message)."""
+    res: dict[str, list[dict]] = {k: [] for k in trees}
+    names = list(trees)
+    for r in range(rounds):
+        for name in names if r % 2 == 0 else names[::-1]:
+            env = {**os.environ, "PYTHONPATH": str(trees[name])}
+            cmd = [sys.executable, script, "--child", "--cycles", str(cycles)]
+            run = subprocess.run(cmd, env=env, capture_output=True, text=True, cwd=ROOT)
+            if run.returncode != 0:
+                sys.exit(f"the {name} tree failed:\n{run.stderr[-3000:]}")
+            res[name].append(json.loads(run.stdout.strip().splitlines()[-1]))
+    return res
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--baseline", default="879469c", help="commit timed as the old code")
@@ -73,15 +92,7 @@ def main() -> None:
     from bench_cycle import baseline_tree
 
     trees = {"old": baseline_tree(args.baseline), "new": ROOT}
-    res: dict[str, list[dict]] = {k: [] for k in trees}
-    for r in range(args.rounds):
-        for name in ("old", "new") if r % 2 == 0 else ("new", "old"):
-            env = {**os.environ, "PYTHONPATH": str(trees[name])}
-            cmd = [sys.executable, __file__, "--child", "--cycles", str(args.cycles)]
-            run = subprocess.run(cmd, env=env, capture_output=True, text=True, cwd=ROOT)
-            if run.returncode != 0:
-                sys.exit(f"the {name} tree failed:\n{run.stderr[-3000:]}")
-            res[name].append(json.loads(run.stdout.strip().splitlines()[-1]))
+    res = alternate_children(__file__, trees, args.rounds, args.cycles)
     print(
         f"CPU ms per animated station cycle, median of {args.rounds} rounds of {args.cycles} "
         f"cycles: baseline {args.baseline} (old) vs this tree (new); load {os.getloadavg()[0]:.1f}"

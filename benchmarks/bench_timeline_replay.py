@@ -33,7 +33,6 @@ import json
 import os
 import pickle
 import statistics
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -204,21 +203,14 @@ def main() -> None:
         return
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bench_cycle import baseline_tree
+    from bench_stage_cpu import alternate_children
 
     if args.same_process:
         _same_process(baseline_tree(args.baseline), args.cycles, args.rounds)
         return
 
     trees = {"old": baseline_tree(args.baseline), "new": ROOT}
-    res: dict[str, list[dict]] = {k: [] for k in trees}
-    for r in range(args.rounds):
-        for name in ("old", "new") if r % 2 == 0 else ("new", "old"):
-            env = {**os.environ, "PYTHONPATH": str(trees[name])}
-            cmd = [sys.executable, __file__, "--child", "--cycles", str(args.cycles)]
-            run = subprocess.run(cmd, env=env, capture_output=True, text=True, cwd=ROOT)
-            if run.returncode != 0:
-                sys.exit(f"the {name} tree failed:\n{run.stderr[-3000:]}")
-            res[name].append(json.loads(run.stdout.strip().splitlines()[-1]))
+    res = alternate_children(__file__, trees, args.rounds, args.cycles)
     print(
         f"timeline stages of {args.cycles} station cycles, CPU ms a cycle, median of 5 passes "
         f"per round: baseline {args.baseline} (old) vs this tree (new); "
