@@ -1,4 +1,5 @@
-"""The cycle's bounded memo (:class:`Memo`, made in :mod:`mjwalk.boundedmemo`, named here too).
+"""The cycle's bounded memo (:class:`Memo`, made in :mod:`mjwalk.boundedmemo`, named here too)
+and its scratch MjData, one per model layout and thread (:class:`ScratchData`).
 
 The cycle's caches are memos with a key of their own, each owned by the module that makes its
 values (the planners and grid-A* routes, the prepared contexts and the operators' humanoids by
