@@ -7,7 +7,6 @@ from __future__ import annotations
 import copy
 import hashlib
 import pickle
-import threading
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
@@ -17,7 +16,7 @@ from mjwalk.arms.reach import load_endpoint_model
 from mjwalk.arms.reachdefault import default_reach_model
 from mjwalk.body.humanoid import JointMap, attach_humanoid
 from mjwalk.cycle.levelsite import ground_height, spec_on_levels
-from mjwalk.cycle.memo import Memo, data_layout
+from mjwalk.cycle.memo import Memo, ScratchData
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.standing import StandZone, StandZones
 from mjwalk.cycle.standoff import ArmClearance
@@ -320,28 +319,19 @@ class CycleContext:
 
 
 #: Scratch MjData kept per thread: as many model layouts as the humanoid cache holds models
-#: (:data:`HUMANOIDS`' limit), the one kept longest dropped first (:class:`Memo`). What a run
-#: computes does not depend on which MjData it gets (its users set the qpos and compute the
-#: kinematics they read; tests/cycle/test_memo.py runs a cycle in a fresh and in a used one).
-SCRATCH_LIMIT = 64
-_LOCAL = threading.local()
+#: (:data:`HUMANOIDS`' limit), the one kept longest dropped first. What a run computes does not
+#: depend on which MjData it gets (its users set the qpos and compute the kinematics they read;
+#: tests/cycle/test_memo.py runs a cycle in a fresh and in a used one).
+SCRATCH = ScratchData(64)
 
 
 def _scratch_of(model: mujoco.MjModel) -> mujoco.MjData:
-    """The scratch MjData of ``model`` for this thread, made on first use for its layout
-    (:func:`~mjwalk.cycle.memo.data_layout`): the humanoids of every stature in one scene have
-    the same sizes, so the operators' contexts share one. A run makes a context for its operator
+    """The scratch MjData of ``model`` for this thread (:data:`SCRATCH`): the humanoids of every
+    stature in one scene have the same sizes (:func:`~mjwalk.cycle.memo.data_layout`), so the
+    operators' contexts share one. A run makes a context for its operator
     (:func:`operator_context`); making its MjData cost about 0.8 ms a run (the station's
-    humanoid: a 17.8 MB arena), and its first contacts touched the arena's pages anew. Its
-    users set the whole qpos before each use and pass their own model to MuJoCo (as
-    :func:`mujoco.rollout.rollout` runs one MjData with several models of one size
-    signature), as with a context's own, and a thread's runs go one after the other. An MjData
-    holds the model it was made for, so the cache is bounded (:data:`SCRATCH_LIMIT` per
-    thread), not weak: a weak key would never be dropped."""
-    memo = getattr(_LOCAL, "scratch", None)
-    if memo is None:
-        memo = _LOCAL.scratch = Memo(limit=SCRATCH_LIMIT)
-    return memo.get(data_layout(model), lambda: mujoco.MjData(model))
+    humanoid: a 17.8 MB arena), and its first contacts touched the arena's pages anew."""
+    return SCRATCH.of(model)
 
 
 def _load_step_model(spec: CycleSpec) -> StepModel:

@@ -62,3 +62,8 @@ class ScratchData:
         if memo is None:
             memo = self._local.memo = Memo(limit=self.limit)
         return memo.get(data_layout(model), lambda: mujoco.MjData(model))
+
+    def __len__(self) -> int:
+        """The layouts this thread keeps an MjData for."""
+        memo = getattr(self._local, "memo", None)
+        return 0 if memo is None else len(memo)

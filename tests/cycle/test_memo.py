@@ -59,19 +59,18 @@ def test_context_is_frozen_and_shares_its_caches_with_operators(scenes_dir):
 
 def test_scratch_data_are_kept_per_layout_bounded_and_let_dropped_models_go(monkeypatch):
     """The scratch MjData of each model layout and thread (cycle.context._scratch_of): the same
-    for models of one size signature, kept for at most SCRATCH_LIMIT layouts, and a dropped
+    for models of one size signature, kept for at most SCRATCH's limit of layouts, and a dropped
     layout's model is freed (an MjData holds its model, so a weak-keyed cache never dropped
     any); a model with mocap bodies has its own."""
     import gc
-    import threading
     import weakref
 
     import mujoco
 
     from mjwalk.cycle import context
+    from mjwalk.cycle.memo import ScratchData
 
-    monkeypatch.setattr(context, "SCRATCH_LIMIT", 2)
-    monkeypatch.setattr(context, "_LOCAL", threading.local())
+    monkeypatch.setattr(context, "SCRATCH", ScratchData(2))
 
     def xml(n: int, size: float = 1.0) -> str:
         geoms = "".join(f'<geom size="{size}" pos="{k} 0 0"/>' for k in range(n))
@@ -88,7 +87,7 @@ def test_scratch_data_are_kept_per_layout_bounded_and_let_dropped_models_go(monk
     assert context._scratch_of(kept[0]) is not context._scratch_of(kept[1])
     gc.collect()
     assert gone() is None
-    assert len(context._LOCAL.scratch) == 2
+    assert len(context.SCRATCH) == 2
     mocap = '<mujoco><worldbody><body mocap="true"><geom size="1"/></body></worldbody></mujoco>'
     a, b = (mujoco.MjModel.from_xml_string(mocap) for _ in range(2))
     assert context._scratch_of(a) is not context._scratch_of(b)
