@@ -72,18 +72,15 @@ def _digest(h, out) -> None:
         h.update(pickle.dumps(out))
 
 
-def _child(cycles: int) -> None:
-    """In the timed tree: record, replay once for the digest, time five passes; a JSON line."""
+def _recorded_calls(sim, ctx, cycles: int, bound: dict[str, list]) -> dict[str, list]:
+    """Station cycles 0..cycles-1 of ``ctx`` with each stage's functions wrapped where the
+    cycle code calls them (``bound``: stage -> [(module, name)]): per stage, the calls made,
+    as (function, args, kwargs). The wrappers are removed afterwards."""
     import importlib
 
-    import mjwalk.cycle.simulate as sim
-    from mjwalk.cycle.spec import load_cycle_spec
-
-    ctx = sim.prepare(load_cycle_spec(ROOT / "scenes" / "assembly_station.toml"))
-    sim.simulate_cycle(ctx, 99, keep_timeline=True)  # warm-up: models, compiled code
-    calls: dict[str, list] = {k: [] for k in TIMED}
+    calls: dict[str, list] = {k: [] for k in bound}
     originals = []
-    for stage, where in TIMED.items():
+    for stage, where in bound.items():
         for mod_name, name in where:
             mod = importlib.import_module(mod_name)
             f = getattr(mod, name)
@@ -94,10 +91,24 @@ def _child(cycles: int) -> None:
                 return _f(*a, **k)
 
             setattr(mod, name, rec)
-    for k in range(cycles):
-        sim.simulate_cycle(ctx, k, keep_timeline=True)
-    for mod, name, f in originals:
-        setattr(mod, name, f)
+    try:
+        for k in range(cycles):
+            sim.simulate_cycle(ctx, k, keep_timeline=True)
+    finally:
+        for mod, name, f in originals:
+            setattr(mod, name, f)
+    return calls
+
+
+def _child(cycles: int) -> None:
+    """In the timed tree: record, replay once for the digest, time five passes; a JSON line."""
+
+    import mjwalk.cycle.simulate as sim
+    from mjwalk.cycle.spec import load_cycle_spec
+
+    ctx = sim.prepare(load_cycle_spec(ROOT / "scenes" / "assembly_station.toml"))
+    sim.simulate_cycle(ctx, 99, keep_timeline=True)  # warm-up: models, compiled code
+    calls = _recorded_calls(sim, ctx, cycles, TIMED)
     h = hashlib.sha256()
     res = {}
     for stage, seen in calls.items():
@@ -148,23 +159,7 @@ def _same_process(baseline: Path, cycles: int, rounds: int) -> None:
             [("mjwalk.cycle.standoff", "candidate_frames")],
         ),
     }
-    calls: dict[str, list] = {k: [] for k in where}
-    originals = []
-    for stage, (_, _, bound) in where.items():
-        for mod_name, name in bound:
-            mod = importlib.import_module(mod_name)
-            f = getattr(mod, name)
-            originals.append((mod, name, f))
-
-            def rec(*a, _f=f, _stage=stage, **k):
-                calls[_stage].append((a, k))
-                return _f(*a, **k)
-
-            setattr(mod, name, rec)
-    for k in range(cycles):
-        sim.simulate_cycle(ctx, k, keep_timeline=True)
-    for mod, name, f in originals:
-        setattr(mod, name, f)
+    calls = _recorded_calls(sim, ctx, cycles, {st: w[2] for st, w in where.items()})
     load = os.getloadavg()[0]
     print(f"same process, {cycles} station cycles, CPU ms a cycle (median of {rounds} rounds "
           f"of 5 passes), baseline {baseline.name} vs this tree; load {load:.1f}")  # fmt: skip
@@ -172,7 +167,7 @@ def _same_process(baseline: Path, cycles: int, rounds: int) -> None:
         new_f = getattr(importlib.import_module(f"mjwalk.timeline.{mod_name}"), name)
         fs = {"old": getattr(old[mod_name], name), "new": new_f}
         same = True
-        for a, k in calls[stage]:
+        for _, a, k in calls[stage]:
             ho, hn = hashlib.sha256(), hashlib.sha256()
             _digest(ho, fs["old"](*a, **k))
             _digest(hn, fs["new"](*a, **k))
@@ -182,7 +177,7 @@ def _same_process(baseline: Path, cycles: int, rounds: int) -> None:
             for tree in ("old", "new") if r % 2 == 0 else ("new", "old"):
                 t0 = time.process_time()
                 for _ in range(5):
-                    for a, k in calls[stage]:
+                    for _, a, k in calls[stage]:
                         fs[tree](*a, **k)
                 ms[tree].append(1e3 * (time.process_time() - t0) / 5 / cycles)
         mo, mn = statistics.median(ms["old"]), statistics.median(ms["new"])

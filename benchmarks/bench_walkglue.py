@@ -20,9 +20,7 @@ from __future__ import annotations
 import argparse
 import hashlib
 import json
-import os
 import statistics
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -76,17 +74,10 @@ def main() -> None:
         return
     sys.path.insert(0, str(ROOT / "benchmarks"))
     from bench_cycle import baseline_tree
+    from bench_stage_cpu import alternate_children
 
     trees = {"base": baseline_tree(args.baseline), "branch": ROOT}
-    out: dict[str, list[dict]] = {"base": [], "branch": []}
-    for _ in range(args.rounds):
-        for name, tree in trees.items():
-            env = {**os.environ, "PYTHONPATH": str(tree)}
-            cmd = [sys.executable, __file__, "--child", "--cycles", str(args.cycles)]
-            run = subprocess.run(cmd, env=env, capture_output=True, text=True, cwd=ROOT)
-            if run.returncode != 0:
-                sys.exit(f"{name} failed:\n{run.stderr[-3000:]}")
-            out[name].append(json.loads(run.stdout.strip().splitlines()[-1]))
+    out = alternate_children(__file__, trees, args.rounds, args.cycles)
     med = {
         name: {s: statistics.median(r["ms"].get(s, 0.0) for r in rs) for s in GLUE}
         for name, rs in out.items()
