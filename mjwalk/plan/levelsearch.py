@@ -256,14 +256,22 @@ def _head_fits(workplace: Workplace, c: Crossing, stature: float) -> bool:
 
 
 def _legs(path: list[int], nodes, usable: list[Crossing]) -> list[RouteLeg]:
-    """The route's legs from its Dijkstra nodes."""
-    legs = []
+    """The route's legs from its Dijkstra nodes, a crossing between every two level legs.
+
+    The route may pass through the stance of a crossing it does not take (the level walks'
+    times, each from standing to standing with its line-up and turn into a stair, need not
+    add up like distances): that stance is no place to stop, so the level walks on either side
+    of it are one walk, from the first's start to the second's end, which the level's own
+    search routes."""
+    legs: list[RouteLeg] = []
     for u, v in itertools.pairwise(path):
         (lu, uxy), (_, vxy) = nodes[u], nodes[v]
         if u >= 2 and v >= 2 and (u - 2) // 2 == (v - 2) // 2:
             c = usable[(u - 2) // 2]
             direction = "up" if lu == c.lower else "down"
             legs.append(RouteLeg("cross", lu, uxy, vxy, c, direction))
+        elif legs and legs[-1].kind == "level":  # through a stance not crossed (above)
+            legs[-1] = RouteLeg("level", lu, legs[-1].start, vxy)
         else:
             legs.append(RouteLeg("level", lu, uxy, vxy))
     return legs
