@@ -17,12 +17,17 @@ through diagonal voxels, so here levels are found in two passes:
    holds a point within :data:`~mjwalk.scan.obstacles.FLOOR_TOL` of ``h`` and fewer than
    :data:`~mjwalk.scan.obstacles.MIN_BAND_POINTS` points in its own obstacle band (0.05-2.0 m
    above ``h``, :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`); connected cells (8-neighbourhood)
-   are one region, its height a least-squares plane through its points (trimmed at 3 rms),
-   kept when that plane is horizontal (``norms.HORIZONTAL_SLOPE`` plus three standard errors
-   of the fit; else its flat part, :func:`mjwalk.scan.planefit.flat_part`, when a ramp's strip
-   at that height joined a level's edge and tilted it) and the region is a tread deep and a
-   person wide (``norms.MIN_TREAD`` by ``norms.STAND_WIDTH``, less a cell each side for the
-   cells its edges cut).
+   are one region, its height a least-squares plane through the points of its cells inside its
+   rim (trimmed at 3 rms; the rim cells hold the risers' points within ``FLOOR_TOL``, the lower
+   riser's below the tread at its front, the upper one's above at its back, which tilt a full
+   tread's fit past 1 % where a scanner sees the risers head-on and the tread at a grazing
+   angle), kept when that plane is horizontal (``norms.HORIZONTAL_SLOPE`` plus three standard
+   errors of the fit; else its flat part, :func:`mjwalk.scan.planefit.flat_part`, when a
+   ramp's strip at that height joined a level's edge and tilted it) and the region is a tread
+   deep and a person wide (``norms.MIN_TREAD`` by ``norms.STAND_WIDTH``, less a cell each side
+   for the cells its edges cut). A region whose height lies more than :data:`OWN_HEIGHT_TOL`
+   from its candidate's (a peak two surfaces a few centimetres apart made between them) is
+   found again at its own height.
 
 Regions whose edges touch (within ``norms.CONTACT_GAP`` and a cell) along at least a body's
 width (``mjwalk.world.contacts.MIN_CROSSING``) with a riser of at most ``norms.MAX_RISER`` are
@@ -46,7 +51,7 @@ from mjwalk._jit import njit
 from mjwalk.scan.level import HORIZONTAL_DEG, MAX_SURFACE_HEIGHT, VOXEL, voxel_normals
 from mjwalk.scan.minrect import min_rectangle, rectangle_size
 from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, FloorPlan
-from mjwalk.scan.planefit import TRIM_SIGMAS, fit_plane, flat_part
+from mjwalk.scan.planefit import RANGE_NOISE, TRIM_SIGMAS, fit_plane, flat_part
 from mjwalk.scan.regionsteps import region_steps
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.norms import (
@@ -74,6 +79,12 @@ PLANAR_SHARE = 0.1
 SHADOWED_DEPTH = 0.5 * MIN_TREAD
 #: Rounds of looking again for surfaces no region explains (:func:`find_regions`).
 MORE_ROUNDS = 2
+#: A region whose fitted height lies further than this from the candidate height it was found
+#: at lost points (metres): its points lie within three ``planefit.RANGE_NOISE`` of its height,
+#: the candidate's cells within ``FLOOR_TOL`` of the candidate. Two surfaces a few centimetres
+#: apart (a tread and a crate's lid) make one histogram peak between them; such a region is
+#: found again at its own height (:func:`_at_own_height`).
+OWN_HEIGHT_TOL = FLOOR_TOL - 3 * RANGE_NOISE
 #: Kinds of scan level.
 LEVEL_KINDS = ("floor", "tread", "platform")
 
@@ -310,9 +321,7 @@ def regions_at(
         p = pts[order[bounds[r] : bounds[r + 1]]]
         if len(p) < 3:
             continue
-        fit = fit_plane(p)
-        if depth < MIN_TREAD - 2 * res:  # a narrow strip: the nosing's riser points tilt it
-            fit = _inner_fit(p, cells, plan, fit)
+        fit = _inner_fit(p, cells, plan, fit_plane(p))  # the risers' points at the rim tilt it
         if fit[2] > HORIZONTAL_SLOPE + TRIM_SIGMAS * fit[3]:
             flat = flat_part(p, cells, plan)  # a level with a ramp's strip joined at its edge
             if flat is None or flat[1][2] > HORIZONTAL_SLOPE + TRIM_SIGMAS * flat[1][3]:
@@ -327,8 +336,8 @@ def regions_at(
 
 
 def _inner_fit(p: np.ndarray, cells: np.ndarray, plan: FloorPlan, fit: tuple) -> tuple:
-    """The plane fit of a region's points less those in its rim cells (where a riser's top
-    points lie), or ``fit`` when fewer than three are left."""
+    """The plane fit of a region's points less those in its rim cells (where the risers'
+    points within ``FLOOR_TOL`` of its height lie), or ``fit`` when fewer than three are left."""
     res = plan.resolution
     inner = ndimage.binary_erosion(cells, np.ones((3, 3), bool))
     ix = np.floor((p[:, 0] - plan.x0) / res).astype(np.int64)
@@ -363,7 +372,6 @@ def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPl
     with one of ``found[1:avoid]`` less than :data:`PEAK_SEPARATION` from its height (that
     surface again) or more than its rim cells with any (surfaces at other heights share at
     most the cells a riser's line crosses)."""
-    res = plan.resolution
     for k in ks:
         for cells, (h, rms, slope, _) in regions_at(levelled, layers, k, plan, SHADOWED_DEPTH):
             inner = ndimage.binary_erosion(cells, np.ones((3, 3), bool))
@@ -372,11 +380,42 @@ def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPl
                 for r in found[1:avoid]
             ):
                 continue
-            rect = min_rectangle(cells, plan.x0, plan.y0, res)
-            depth, width = rectangle_size(rect)
-            kind = "tread" if depth <= MAX_TREAD + res else "platform"
-            area = float(cells.sum()) * res * res
-            found.append(ScanLevel(0, kind, h, rms, math.atan(slope), cells, area, depth, width, k))
+            found.append(_region(cells, (h, rms, slope), k, plan))
+
+
+def _region(cells: np.ndarray, fit: tuple, k: int, plan: FloorPlan) -> ScanLevel:
+    """The region of ``cells`` with its plane ``fit`` (height, rms, slope) at candidate ``k``."""
+    res = plan.resolution
+    depth, width = rectangle_size(min_rectangle(cells, plan.x0, plan.y0, res))
+    kind = "tread" if depth <= MAX_TREAD + res else "platform"
+    area = float(cells.sum()) * res * res
+    h, rms, slope = fit[:3]
+    return ScanLevel(0, kind, h, rms, math.atan(slope), cells, area, depth, width, k)
+
+
+def _at_own_height(
+    found: list[ScanLevel], levelled: np.ndarray, layers: Layers, plan: FloorPlan
+) -> Layers:
+    """Find again, at its own height, each region of ``found`` (in place) more than
+    :data:`OWN_HEIGHT_TOL` from its candidate's; the region there sharing most cells with it
+    replaces it when at least as large. Returns the layers with those heights added."""
+    off = [
+        i for i in range(1, len(found))
+        if abs(found[i].height - layers.heights[found[i].peak]) > OWN_HEIGHT_TOL
+    ]  # fmt: skip
+    if not off:
+        return layers
+    own = np.array([found[i].height for i in off])
+    layers = rasterize_layers(levelled, np.concatenate([layers.heights[1:], own]), plan)
+    k0 = len(layers.heights) - len(off)
+    for n, i in enumerate(off):
+        best, shared = None, 0
+        for cells, fit in regions_at(levelled, layers, k0 + n, plan, SHADOWED_DEPTH):
+            if (c := int((cells & found[i].cells).sum())) > shared:
+                best, shared = (cells, fit), c
+        if best is not None and best[0].sum() >= found[i].cells.sum():
+            found[i] = _region(best[0], best[1], k0 + n, plan)
+    return layers
 
 
 def _unexplained(
@@ -446,6 +485,7 @@ def find_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel]
         layers = rasterize_layers(levelled, heights, plan)
         k0 = len(layers.heights) - len(extra)
         _add_regions(found, levelled, layers, plan, range(k0, len(layers.heights)), len(found))
+    layers = _at_own_height(found, levelled, layers, plan)
     found = _distinct(found)
     return found, region_steps(found, layers, res), layers
 

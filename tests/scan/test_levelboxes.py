@@ -3,6 +3,8 @@ and the written scene's own level graph agrees (issue 47)."""
 
 from __future__ import annotations
 
+import re
+
 import mujoco
 import numpy as np
 import pytest
@@ -108,7 +110,9 @@ def test_multilevel_station_scan_levels_within_2cm(scenes_dir, tmp_path, capsys)
     out, png = tmp_path / "station.xml", tmp_path / "top.png"
     assert cli.main(["scan", str(src), "-o", str(out), "--png", str(png)]) == 0
     assert png.stat().st_size > 0
-    assert "ramp  L0 -> L4  rise 0.340 m over 3.53 m, slope 5.50 deg" in capsys.readouterr().out
+    # the platform and the tread at 0.34 m differ by 0.2 mm: either may be L3 or L4
+    ramp_line = r"ramp  L0 -> L[34]  rise 0\.340 m over 3\.53 m, slope 5\.50 deg"
+    assert re.search(ramp_line, capsys.readouterr().out)
     graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_path(str(out))))
     truth = [0.0, 0.17, 0.17, 0.34, 0.34, 0.51, 0.68, 0.85, 1.02]
     assert sorted(lv.height for lv in graph.levels) == pytest.approx(truth, abs=0.02)

@@ -53,6 +53,14 @@ def test_no_step_over_a_strip_deeper_than_a_tread_or_with_something_in_it():
     assert (1, 2) not in region_steps(found, layers, RES)
 
 
+def test_a_strip_seen_in_sparse_rows_at_its_height_is_its_own():
+    """A tread's back seen at a grazing angle: a row of points at its height, not joined to its
+    region, nothing standing there; the strip is still its own up to the next riser."""
+    found, layers = _regions(gap=6)
+    layers.near[1][:, 33] = 2  # a scan line across the strip, two cells short of the riser
+    assert (1, 2) in region_steps(found, layers, RES)
+
+
 def test_the_floor_keeps_its_cells():
     found, layers = _regions(gap=6)
     assert (with_shadow(found[0], layers, RES) == found[0].cells).all()

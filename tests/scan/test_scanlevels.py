@@ -72,3 +72,28 @@ def test_fit_plane_ignores_a_riser_edge():
     h, rms, slope, err = fit_plane(np.vstack([top, riser]))
     assert h == pytest.approx(0.34, abs=0.002)
     assert rms < 0.006 and slope < 0.01 + 3 * err
+
+
+@pytest.mark.slow  # about 15 s CPU (the scan), over a minute under load
+def test_a_walled_flight_and_its_mezzanine_in_a_generated_hall(tmp_path):
+    """levelgen's hall 101 (seeded; issue 47's unseen halls): a straight flight of seven
+    0.1887 m risers between side walls up to a 1.321 m mezzanine. Its top treads' backs lie in
+    the nosings' shadow from the head's scanner and are seen only in sparse grazing rows from
+    the foot's; crate lids elsewhere 3 cm from the fourth and the sixth tread blend with them
+    into one histogram peak each; the risers' rim points tilt the full treads' fits. The flight
+    is one regular stair and the mezzanine a level within 2 cm (before: both missed)."""
+    from mjwalk.scan.levelboxes import scan_levels
+    from mjwalk.world.levelgen import generate_levels
+    from mjwalk.world.workplace import load_model
+
+    hall = generate_levels(101)
+    xml = tmp_path / "hall.xml"
+    xml.write_text(hall.xml)
+    scan = synthetic_scan(load_model(xml), list(hall.scanners), step_deg=0.4, noise=0.005, seed=101)
+    pts = find_floor(scan.points).apply(scan.points)
+    lp = scan_levels(pts, floor_plan(pts))
+    assert lp is not None
+    assert np.abs(np.asarray(lp.heights) - 1.3209).min() <= 0.02
+    (stair,) = [k for k in lp.links if k.kind == "stair"]
+    assert lp.heights[stair.upper] == pytest.approx(1.3209, abs=0.02)
+    assert len(stair.risers) == 7 and np.mean(stair.risers) == pytest.approx(0.1887, abs=0.01)
