@@ -89,6 +89,9 @@ class Crossing:
         slope: a ramp's inclination, radians (0 otherwise).
         half_width: half the width of its first riser or the ramp's foot, metres (0: unknown,
             the walker keeps to its middle).
+        sides: a ramp surface's own extent across the axis (right, left), metres left of the
+            origin: wider than ``half_width`` where the lower level's longest contact with
+            its foot is only part of it; (0, 0) for a flight or when unknown.
     """
 
     kind: str
@@ -106,6 +109,7 @@ class Crossing:
     tread: float
     slope: float
     half_width: float = 0.0
+    sides: tuple[float, float] = (0.0, 0.0)
 
     def point(self, s) -> np.ndarray:
         """World xy at positions along the axis.
@@ -282,10 +286,12 @@ def _ramp(graph: LevelGraph, link: LevelLink, clear: float) -> Crossing:
     origin = _mid(link.lower_edge)
     run = float((_mid(link.upper_edge) - origin) @ axis)
     z0, z1 = graph.levels[link.lower].height, graph.levels[link.upper].height
+    left = np.array([-axis[1], axis[0]])
+    across = (np.asarray(s.footprint.vertices, float)[:, :2] - origin) @ left
     return Crossing(
         "ramp", link.lower, link.upper, (), origin, axis, np.array([0.0, run]),
         np.array([z0, z1]), -clear, run + clear, z0, z1, run, float(link.slope or 0.0),
-        0.5 * _length(link.lower_edge),
+        0.5 * _length(link.lower_edge), (float(across.min()), float(across.max())),
     )  # fmt: skip
 
 

@@ -570,7 +570,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
     lower_to_reach(new_root, yaw, feet.ankle, grounded, reach_sq, geom, win)  # or raises
     least = _swing_pitch(plans, feet, new_root, yaw, geom) if plans else math.inf
     least = min(least, _soles_clear(plans, feet, new_root, yaw, geom)) if plans else least
-    ramps.edged_swings_over_ramps(walk, plans, frames, feet, new_root, yaw, geom)
+    ramps.swings_clear_ramps(walk, plans, frames, tr.air, feet, new_root, yaw, geom)
     raw = {s: _heel_rises(feet, s, new_root, yaw, grounded[s], tr.pitch[s], geom) for s in "lr"}
     angles: dict[str, np.ndarray] = {}
     for s in "lr":

@@ -213,7 +213,10 @@ def level_planes(walk, n: int) -> tuple[list[dict], list[bool]]:
     The planes are those of the ramps its route crosses (``meta["levels"]["route"]``) and of
     the ramps beside it (``meta["ramps_beside"]``, :mod:`mjwalk.plan.rampside`: a floor walk
     cutting past a ramp's low end). A walk over levels has its route's level parts' steps
-    level; a walk without a route (a floor walk) has every step level.
+    level, and the steps of a step's or a stair's crossing that lift, stand and land at one
+    height (the walk up to the first riser: on generated hall 153, ``benchmarks/
+    bench_unseen.py``, such a step turned past a ramp's foot, its toes 2.3 cm into the
+    ramp); a walk without a route (a floor walk) has every step level.
 
     Args:
         walk: the walk (:class:`~mjwalk.plan.walkpath.WalkPath`).
@@ -231,7 +234,19 @@ def level_planes(walk, n: int) -> tuple[list[dict], list[bool]]:
         return planes, [True] * n
     if not planes or sum(int(e.get("steps", 0)) for e in route) != n:
         return [], []
-    return planes, [e.get("kind") == "level" for e in route for _ in range(int(e.get("steps", 0)))]
+    kinds = [e.get("kind") for e in route for _ in range(int(e.get("steps", 0)))]
+    return planes, [k == "level" or (k in ("step", "stair") and _flat(walk, i))
+                    for i, k in enumerate(kinds)]  # fmt: skip
+
+
+def _flat(walk, k: int) -> bool:
+    """Whether step ``k`` of a walk lifts, stands and lands at one height (its lift footprint
+    is the previous step's stance)."""
+    if k >= len(walk.steps):
+        return False
+    s = walk.steps[k]
+    lift = walk.steps[k - 1].stance_z if k else s.stance_z
+    return bool(s.foot_z == s.stance_z == lift)
 
 
 #: The most a ramp's plane can rise between the sole points checked under a level foot
@@ -393,7 +408,7 @@ def swing_over_ramps(walk, frames: list[StepFrames], air: dict, feet: FootTracks
         feet.ankle[s][j, 2] += np.maximum(need + SOLE_GRID_SAG - offset, 0.0)
 
 
-#: Passes of :func:`edged_swings_over_ramps` (pitch the foot to what the ankle holds, lift the
+#: Passes of :func:`swings_clear_ramps` (pitch the foot to what the ankle holds, lift the
 #: sole over the ramps' planes); on generated hall 8's edged floor step the lift is nil by the
 #: third.
 EDGED_RAMP_PASSES = 4
@@ -439,17 +454,24 @@ def _sole_grid(ankle, pitch, toe, yaw, geom: LegGeometry) -> np.ndarray:
     return np.concatenate([xy, z[..., None]], -1).reshape(len(ankle), -1, 3)
 
 
-def edged_swings_over_ramps(
+def swings_clear_ramps(
     walk,
     plans: list,
     frames: list[StepFrames],
+    air: dict,
     feet: FootTracks,
     root: np.ndarray,
     yaw: np.ndarray,
     geom: LegGeometry,
 ) -> None:
-    """The edged swings of a walk's level steps kept above the planes of the ramps it passes
-    (:func:`level_planes`), after they are planned over their edges: a level step is edged
+    """The swings of a walk's level steps kept above the planes of the ramps it passes
+    (:func:`level_planes`) at the foot pitch the ankle holds, last of the legs' lifts: the
+    edged swings after they are planned over their edges, every other level step's airborne
+    samples after :func:`swing_over_ramps` lifted them at the pitch the foot was given. A
+    sharp turn beside a ramp's foot (generated hall 153, ``benchmarks/bench_unseen.py``, a
+    floor walk's last turn to a step up) asks the ankle for more dorsiflexion than it has:
+    the foot hung 45 deg toes down and its toes passed 2.3 cm into the ramp, though the
+    ankle was lifted over it. A level step is edged
     where a foot beside it stands raised on a ramp's low end (:func:`level_feet_on_ramps`),
     and its swing, planned over that one height (the legs' edge swing), passed 11.7 mm into
     the ramp's side higher up its run (generated hall 8, ``benchmarks/bench_unseen.py``: the
@@ -466,16 +488,22 @@ def edged_swings_over_ramps(
         plans: the edged swings (step, surfaces, samples from the last grounded one to the
             landing, ankles), as the leg synthesis planned them.
         frames: the walk's steps as the leg synthesis sees them.
+        air: per side ("l"/"r") the (n,) flags of the foot in the air.
         feet: the foot tracks (ankle z and pitch updated in place).
         root: (n, 3) the pelvis positions, metres.
         yaw: (n,) the pelvis yaw, radians from +x CCW.
         geom: the leg and foot lengths.
     """
     planes, level = level_planes(walk, len(frames))
-    if not planes or not plans:
+    if not planes:
         return
     index = {id(fr): i for i, fr in enumerate(frames)}
     mine = [(fr.side, k[1:-1]) for fr, _, k, _ in plans if level[index[id(fr)]] and len(k) > 2]
+    edged = {id(fr) for fr, *_ in plans}
+    for fr, on_level in zip(frames, level, strict=True):
+        j = np.flatnonzero(air[fr.side][fr.start : fr.end]) + fr.start
+        if on_level and id(fr) not in edged and len(j):
+            mine.append((fr.side, j))
     if not mine:
         return
     planes = _widened(planes, geom)
