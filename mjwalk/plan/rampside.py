@@ -51,25 +51,46 @@ def ramp_plane(c: Crossing, floor_z: float) -> dict:
     Returns:
         ``slope`` (radians), ``uphill`` (heading up the ramp, radians), ``foot`` (world xy of
         the middle of its foot), ``run`` (horizontal length), ``half_width`` (0: unknown) and
-        ``z`` (its foot's height above the floor), metres. The foot and the width are the ramp
-        surface's own (:attr:`~mjwalk.plan.levelroute.Crossing.sides`), not only the part of
-        its foot the lower level meets: on generated hall 170 (``benchmarks/bench_unseen.py``)
-        the floor's longest contact with a ramp's foot was 0.90 of its 1.08 m, and a floor
-        walk along the foot swung its toes 1.5 cm into the 0.18 m the feet did not know of.
+        ``z`` (its foot's height above the floor), metres; ``sides`` (right, left: the ramp
+        surface's own extent across its axis, metres left of ``foot``,
+        :attr:`~mjwalk.plan.levelroute.Crossing.sides`) when it is known.
     """
-    lo, hi = c.sides
-    foot, half = np.asarray(c.origin, float), float(c.half_width)
-    if hi > lo:
-        foot = foot + 0.5 * (lo + hi) * np.array([-c.axis[1], c.axis[0]])
-        half = 0.5 * (hi - lo)
-    return {
+    plane = {
         "slope": float(c.slope),
         "uphill": float(c.yaw),
-        "foot": [float(v) for v in foot],
+        "foot": [float(v) for v in c.origin],
         "run": float(c.track[-1]),
-        "half_width": half,
+        "half_width": float(c.half_width),
         "z": float(c.z_lower - floor_z),
     }
+    if c.sides[1] > c.sides[0]:
+        plane["sides"] = [float(v) for v in c.sides]
+    return plane
+
+
+def surface_plane(plane: dict) -> dict:
+    """A ramp's plane (:func:`ramp_plane`) over the ramp surface's whole width (its
+    ``sides``), not only the part of its foot the lower level meets (``half_width`` about
+    ``foot``, where the walker lines up to cross it): what a foot swinging past the ramp must
+    clear. On generated hall 170 (``benchmarks/bench_unseen.py``) the floor's longest contact
+    with a ramp's foot was 0.90 of its 1.08 m, and a floor walk along the foot swung its toes
+    1.5 cm into the 0.18 m the swings did not know of.
+
+    Args:
+        plane: the ramp's plane.
+
+    Returns:
+        the plane with ``foot`` the middle of the surface's foot and ``half_width`` half its
+        width; ``plane`` itself without ``sides``.
+    """
+    if "sides" not in plane:
+        return plane
+    lo, hi = plane["sides"]
+    up = float(plane["uphill"])
+    foot = np.asarray(plane["foot"], float) + 0.5 * (lo + hi) * np.array(
+        [-math.sin(up), math.cos(up)]
+    )
+    return {**plane, "foot": [float(v) for v in foot], "half_width": 0.5 * (hi - lo)}
 
 
 def _ramps(workplace: Workplace) -> list[Crossing]:
@@ -115,8 +136,9 @@ def _soles(walk: WalkPath, geom, at: float) -> np.ndarray:
 
 
 def _over(plane: dict, xy: np.ndarray, widen: float) -> bool:
-    """Whether any of the points (k, 2) lies over a ramp's plane (:func:`ramp_plane`: its
-    run; its width, known, widened by ``widen`` metres)."""
+    """Whether any of the points (k, 2) lies over a ramp's surface (:func:`surface_plane`:
+    its run; its width, known, widened by ``widen`` metres)."""
+    plane = surface_plane(plane)
     rel = xy - np.asarray(plane["foot"], dtype=float)
     up = np.array([math.cos(plane["uphill"]), math.sin(plane["uphill"])])
     along = rel @ up

@@ -33,7 +33,7 @@ from mjwalk.body.legs.ik import leg_ik_world
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import HEEL_RISE_MAX, FootTracks, StepFrames
 from mjwalk.plan.rampside import META_KEY as BESIDE_KEY
-from mjwalk.plan.rampside import SOLE_GRID
+from mjwalk.plan.rampside import SOLE_GRID, surface_plane
 
 #: Passes of :func:`trailing_reach` (raise the heel by the deficit over the ball's lever,
 #: measure again); the deficit falls below a millimetre by the third on a 5.5 deg ramp.
@@ -199,12 +199,13 @@ def _on_plane(plane: dict, print_) -> tuple[float, float] | None:
 
 
 def _widened(planes: list[dict], geom: LegGeometry) -> list[dict]:
-    """Ramp planes of known width widened on each side by the gap between two :data:`SOLE_GRID`
-    points across the sole, so a sole edge between two tested points still meets the ramp's
-    side (the swings' checks over ramps)."""
+    """Ramp planes over their surfaces' whole width (:func:`~mjwalk.plan.rampside.
+    surface_plane`), those of known width widened on each side by the gap between two
+    :data:`SOLE_GRID` points across the sole, so a sole edge between two tested points still
+    meets the ramp's side (the swings' checks over ramps)."""
     side = geom.foot_width / (SOLE_GRID[1] - 1)
     return [{**p, "half_width": p["half_width"] + side} if p.get("half_width", 0.0) > 0.0
-            else p for p in planes]  # fmt: skip
+            else p for p in map(surface_plane, planes)]  # fmt: skip
 
 
 def level_planes(walk, n: int) -> tuple[list[dict], list[bool]]:
@@ -240,13 +241,13 @@ def level_planes(walk, n: int) -> tuple[list[dict], list[bool]]:
 
 
 def _flat(walk, k: int) -> bool:
-    """Whether step ``k`` of a walk lifts, stands and lands at one height (its lift footprint
-    is the previous step's stance)."""
+    """Whether step ``k`` of a walk lifts, stands and lands at one height, to 1 um (its lift
+    footprint is the previous step's stance)."""
     if k >= len(walk.steps):
         return False
     s = walk.steps[k]
-    lift = walk.steps[k - 1].stance_z if k else s.stance_z
-    return bool(s.foot_z == s.stance_z == lift)
+    z = [s.foot_z, s.stance_z, walk.steps[k - 1].stance_z if k else s.stance_z]
+    return bool(max(z) - min(z) <= 1e-6)
 
 
 #: The most a ramp's plane can rise between the sole points checked under a level foot
