@@ -1,5 +1,7 @@
 """A foot turned about its sole and the trailing foot on a ramp (mjwalk.body.legs.rampreach)."""
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 
@@ -12,6 +14,7 @@ from mjwalk.body.legs.legheights import step_surfaces
 from mjwalk.body.legs.rampreach import (
     CREST_CLEARANCE,
     crest_ground,
+    level_planes,
     plane_heights,
     plane_pitch,
     print_tracks,
@@ -23,7 +26,7 @@ from mjwalk.body.legs.rampreach import (
 from mjwalk.body.legs.steps import FootTracks, StepFrames
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.gait.default import default_model
-from mjwalk.plan.rampside import with_ramps_beside
+from mjwalk.plan.rampside import surface_plane, with_ramps_beside
 from mjwalk.plan.synthetic import synthetic_ramp_walk, synthetic_walk
 from mjwalk.plan.walks import plan_walk
 from mjwalk.timeline import collision_report, timeline_from_walk
@@ -189,12 +192,13 @@ def test_print_tracks_follow_the_steps():
 
 def _deepest_under_ramps(workplace, walk, stature=DEFAULT_STATURE):
     """The least height (m) of any foot box corner (feet and toes, MuJoCo forward kinematics)
-    over the plane of a ramp under it (those the walk crosses or passes beside), for the legs
-    of ``walk`` as the cycles pose them (with its ramps beside); inf off every ramp."""
+    over the plane of a ramp's surface under it (those the walk crosses or passes beside), for
+    the legs of ``walk`` as the cycles pose them (with its ramps beside); inf off every ramp."""
     walk = with_ramps_beside(workplace, walk, stature)
     meta = walk.meta
     planes = list(meta.get("ramps_beside", []))
     planes += [e["plane"] for e in (meta.get("levels") or {}).get("route", []) if "plane" in e]
+    planes = [surface_plane(p) for p in planes]  # the ramps' whole surfaces
     legs = legs_from_walk(walk, stature)
     least = np.inf
     for _, model, data in posed(legs, stature):
@@ -251,3 +255,20 @@ def test_feet_on_a_ramp_beside_a_floor_walk_are_pitched_to_it(tmp_path):
     assert pitched
     assert all(abs(s.land_pitch) <= plane["slope"] + 1e-9 for s in pitched)
     assert all(0.0 < s.land < np.tan(plane["slope"]) * plane["run"] for s in pitched)
+
+
+def test_a_flight_s_steps_at_one_height_are_level_steps():
+    """:func:`level_planes`: a step's or a stair's crossing counts its steps that lift, stand
+    and land at one height (to 1 um: the planner's heights carry 1e-16 m of rounding) as
+    level, so that its walk up to the first riser is kept off a ramp beside it (generated
+    hall 153's turn past a ramp's foot before a step up); the riser steps, and every step of
+    a ramp's crossing, are not."""
+    zs = [(0.0, 0.0), (1e-16, 0.0), (0.19, 1e-16), (0.19, 0.19), (0.19, 0.19), (0.0, 0.0)]
+    steps = [SimpleNamespace(foot_z=f, stance_z=s) for f, s in zs]
+    plane = {"slope": 0.1, "uphill": 0.0, "foot": [5.0, 0.0], "run": 2.0, "half_width": 0.5}
+    route = [{"kind": "level", "steps": 1}, {"kind": "step", "steps": 4},
+             {"kind": "ramp", "steps": 1, "plane": plane}]  # fmt: skip
+    walk = SimpleNamespace(meta={"levels": {"route": route}}, steps=steps)
+    planes, level = level_planes(walk, len(steps))
+    assert planes == [plane]
+    assert level == [True, True, False, False, True, False]

@@ -9,10 +9,18 @@ import pytest
 from mjwalk.body.legs.legheights import step_surfaces
 from mjwalk.body.legs.rampreach import SOLE_GRID_SAG, level_planes
 from mjwalk.gait.default import default_model
-from mjwalk.plan.rampside import META_KEY, ramps_beside, with_ramps_beside
+from mjwalk.plan.levelroute import crossings
+from mjwalk.plan.rampside import (
+    META_KEY,
+    ramp_plane,
+    ramps_beside,
+    surface_plane,
+    with_ramps_beside,
+)
 from mjwalk.plan.walks import plan_walk
 from mjwalk.timeline import collision_report, timeline_from_walk
 from mjwalk.world import load_workplace
+from mjwalk.world.levelgen import generate_levels
 
 #: A 12 x 8 m floor with a 0.34 m deck (x -4 to -2) reached by a 5.5 deg ramp (the shipped
 #: multi-level station's: a 0.1 m slab, top face from (x -2.0, z 0.34) down to (x 1.531, z 0)
@@ -140,3 +148,53 @@ def test_the_shipped_station_s_floor_walk_past_the_ramp_s_foot_stands_on_it(scen
     walk = plan_walk(station, "stand_ramp", "stand_step", model, rng=3)
     assert len(ramps_beside(station, walk, 1.75)) == 1
     assert collision_report(timeline_from_walk(walk, scene)) == []
+
+
+def test_a_ramp_s_surface_plane_spans_its_whole_width(tmp_path):
+    """Generated hall 170 (``benchmarks/bench_unseen.py``): the floor's longest contact with
+    the ramp's foot is 0.90 m of its 1.08 m, so the crossing's plane (where the walker lines
+    up) is 0.45 m either side of that part's middle; its surface plane spans the ramp geom's
+    whole width (0.54 m half width), its foot on the geom's axis, the slope and run kept."""
+    xml = generate_levels(170).write(tmp_path / "levels_170.xml")
+    wp = load_workplace(xml, cache=False)
+    (c,) = [c for c in crossings(wp.levels, 0.0) if c.kind == "ramp"]
+    plane = ramp_plane(c, wp.floor_z)
+    whole = surface_plane(plane)
+    assert plane["half_width"] == pytest.approx(0.45, abs=0.005)
+    assert whole["half_width"] == pytest.approx(0.54, abs=1e-3)
+    m = mujoco.MjModel.from_xml_path(str(xml))
+    d = mujoco.MjData(m)
+    mujoco.mj_forward(m, d)
+    g = m.geom("ramp_ramp").id
+    side = d.geom_xmat[g].reshape(3, 3)[:2, 1]  # the box's y axis: across the ramp
+    rel = np.asarray(whole["foot"]) - d.geom_xpos[g][:2]
+    assert abs(float(rel @ side)) / np.linalg.norm(side) < 1e-3  # on its axis
+    assert {k: whole[k] for k in ("slope", "uphill", "run", "z")} == {
+        k: plane[k] for k in ("slope", "uphill", "run", "z")
+    }
+    assert (
+        surface_plane({k: v for k, v in plane.items() if k != "sides"})["half_width"]
+        == (plane["half_width"])
+    )
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    ("seed", "ends", "rng"),
+    [(170, ("mezz_0", "platform_0"), 4), (159, ("floor_0", "pit_0"), 8),
+     (153, ("mezz_0", "platform_0"), 7)],
+)  # fmt: skip
+def test_generated_halls_walks_past_a_ramp_keep_their_soles_off_it(tmp_path, seed, ends, rng):
+    """Seeded, generated halls of ``benchmarks/bench_unseen.py`` whose walks pass a ramp's foot
+    without crossing it, the default walker: no sole goes into the ramp. At 83e038b: 24.3 mm
+    (hall 170: toes over the strip of the ramp beside the part of its foot the floor meets),
+    21.8 mm (hall 159: a stance foot on that strip) and 11.7 mm (hall 153: the flat steps of
+    a step's crossing, turning past the ramp's foot, were not level steps to the legs; the
+    foot hung toes down where the ankle could not dorsiflex further). Over rng 0-11 of the
+    three walks the deepest was 24.3 mm, with one PlanningError; now 0.0 mm (7 um: a sole
+    resting on it), none."""
+    xml = generate_levels(seed).write(tmp_path / f"levels_{seed}.xml")
+    wp = load_workplace(xml, cache=False)
+    walk = plan_walk(wp, *ends, rng=rng)
+    assert ramps_beside(wp, walk, 1.75)
+    assert _sole_depth(timeline_from_walk(walk, xml), "ramp_ramp") <= 1e-4  # a sole on it

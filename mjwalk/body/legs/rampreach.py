@@ -312,7 +312,9 @@ def level_feet_on_ramps(
     obstacle band: a flat foot was 1-2 cm into it, the multi-level platform cycle's
     barrier-free runs), put on that plane. Where the plane carries both the heel and the ball
     (:func:`ramp_support`) the foot stands on it pitched to its slope, as a ramp's own steps
-    do; elsewhere (only its toes or its heel over the ramp's foot or side) it stands level on
+    do; elsewhere (only its toes or its heel over the ramp's foot or side, or over the strip
+    of the ramp's surface beside the part of its foot the floor meets, :func:`~mjwalk.plan.
+    rampside.surface_plane`: generated hall 159's right foot stood 10.8 mm in it) it stands level on
     the highest point of the plane under its sole (heel, ankle, toe tip; the sole's edges and
     centre line): its heel clear of the floor by that height, its toes on the ramp through
     toe-off. Before, every such foot stood level, its heel up to the plane's rise along the
@@ -343,9 +345,10 @@ def level_feet_on_ramps(
         f = np.array([math.cos(yaw), math.sin(yaw)])
         pts = [np.asarray(print_[:2], float) + d * f + w * geom.foot_width * f[::-1] * [-1, 1]
                for d, w in grid]  # fmt: skip
-        hits = [h[0] for p in planes for q in pts if (h := _on_plane(p, (*q, 0.0))) is not None]
+        hits = [h[0] for p in whole for q in pts if (h := _on_plane(p, (*q, 0.0))) is not None]
         return (max(hits) + SOLE_GRID_SAG, 0.0) if hits else None
 
+    whole = [surface_plane(p) for p in planes]
     out = list(surfs)
     for k, s in enumerate(walk.steps):
         if not level[k]:
