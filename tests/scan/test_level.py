@@ -2,12 +2,22 @@
 
 from __future__ import annotations
 
+import mujoco
 import numpy as np
 import pytest
 from test_scene import _room_cloud
 
 from mjwalk.errors import ScanError
-from mjwalk.scan.level import check_upright, find_floor, voxel_normals, walk_surfaces
+from mjwalk.scan.level import (
+    check_upright,
+    find_floor,
+    floor_layer,
+    up_normal,
+    voxel_normals,
+    walk_surfaces,
+)
+from mjwalk.scan.raycast import synthetic_scan
+from mjwalk.world.levelgen import generate_levels
 
 
 def _tilted(pts: np.ndarray, deg: float) -> np.ndarray:
@@ -47,3 +57,52 @@ def test_voxel_normals_of_a_floor_point_up_and_form_one_surface():
     assert np.abs(vn.normal[:, 2]).min() > 0.999
     labels = walk_surfaces(vn)
     assert set(labels.tolist()) == {0}
+
+
+def _hall_scan(seed: int):
+    """A synthetic scan of a generated hall (coarse rays: the floor is what matters)."""
+    hall = generate_levels(seed)
+    model = mujoco.MjModel.from_xml_string(hall.xml)
+    return synthetic_scan(model, list(hall.scanners), step_deg=0.8, noise=0.005, seed=seed)
+
+
+def test_a_hall_whose_stairs_join_a_mezzanine_to_the_floor_keeps_its_floor_level():
+    # Hall 111: its floor's walk surface, region-grown, takes in a stair-landing, a 0.91 m
+    # mezzanine off the hall's middle, a platform and a ramp; a plane through all of it was
+    # 1.5 deg off and half the cloud fell "below the floor" (refused as upside down).
+    scan = _hall_scan(111)
+    lv = find_floor(scan.points, source="hall")
+    true_up = scan.to_scene[:3, :3].T @ [0.0, 0.0, 1.0]  # the scene's +z in the scan's frame
+    assert np.degrees(np.arccos(min(1.0, float(lv.normal @ true_up)))) < 0.05
+    levelled = lv.apply(scan.points)
+    scene = scan.points @ scan.to_scene[:3, :3].T + scan.to_scene[:3, 3]
+    floor = np.abs(scene[:, 2]) < 0.01
+    assert np.abs(levelled[floor, 2]).max() < 0.03
+    assert np.mean(levelled[:, 2] < -0.05) < 0.01  # nothing below the floor (no pit here)
+    check_upright(levelled, "+z", "hall")
+    with pytest.raises(ScanError, match=r"hall: the floor found is above .* upside down for "):
+        flipped = scan.points * [1.0, -1.0, -1.0]  # the same hall read with the wrong up axis
+        check_upright(find_floor(flipped).apply(flipped), "+z", "hall")
+
+
+def test_up_normal_is_the_levels_common_normal_whatever_their_heights():
+    rng = np.random.default_rng(0)
+    up = np.array([0.02, -0.01, 1.0]) / np.linalg.norm([0.02, -0.01, 1.0])
+    ramp = np.array([0.0, np.sin(0.1), np.cos(0.1)])  # a 5.7 deg ramp: 40 % of the voxels
+    normals = np.vstack([np.tile(up, (600, 1)), np.tile(ramp, (400, 1))])
+    normals += rng.normal(0.0, 0.003, normals.shape)
+    got = up_normal(normals, rng.integers(5, 50, len(normals)))
+    assert np.linalg.norm(got) == pytest.approx(1.0)
+    assert np.degrees(np.arccos(got @ up)) < 0.3
+
+
+def test_floor_layer_is_the_lowest_large_layer_not_a_pit_or_a_bigger_deck():
+    def layer(z: float, n: int, first: int):  # n voxel columns at height z
+        return np.full(n, z), np.arange(first, first + n)
+
+    parts = [layer(-0.8, 40, 0), layer(0.0, 500, 100), layer(0.012, 300, 100), layer(0.9, 700, 0)]
+    height = np.concatenate([p[0] for p in parts])
+    column = np.concatenate([p[1] for p in parts])
+    got = floor_layer(height, column, 0.1)
+    assert np.all(np.abs(height[got]) < 0.02)  # the 5 m² floor's voxels only...
+    assert len(np.unique(column[got])) == 500  # ...under every one of its columns
