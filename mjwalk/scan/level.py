@@ -519,25 +519,43 @@ def _other_surfaces(
     return surfaces
 
 
-def check_upright(levelled: np.ndarray, up: str = "+z", source: str = "cloud") -> None:
+def check_upright(
+    levelled: np.ndarray,
+    up: str = "+z",
+    source: str = "cloud",
+    scanners: np.ndarray | None = None,
+) -> None:
     """Refuse a levelled cloud that is upside down.
 
     A cloud with more points more than :data:`BELOW_FLOOR` below its floor than above it has
-    its floor found at the top of its contents: its up axis is the opposite of ``up``.
+    its floor found at the top of its contents: its up axis is the opposite of ``up``. Counting
+    points misses a cloud read upside down whose raised deck covers a quarter of its floor (the
+    deck's top, then the lowest large layer, is taken for the floor and the floor's points lie
+    above it); where the scanners stood is known, a scanner stands on the floor or on a level
+    above it, its head at a tripod's height (sight's ``MIN_STATION_HEIGHT``), so a floor above
+    every scanner is one read upside down.
 
     Args:
         levelled: (N, 3) levelled points, metres, floor at z = 0.
         up: the up axis the cloud was read with (the error suggests its opposite).
         source: the cloud's name in errors.
+        scanners: (S, 3) levelled positions of the scanners whose returns agree they stood
+            there (``mjwalk.scan.sight.ray_agreement``), metres; None or empty: not known.
 
     Raises:
         ScanError: the cloud is upside down.
     """
+    flip = ("-" if up.startswith("+") or not up.startswith("-") else "+") + up.lstrip("+-")
+    if scanners is not None and len(scanners) and float(np.max(scanners[:, 2])) < -BELOW_FLOOR:
+        raise ScanError(
+            f"{source}: the floor found is above every scanner ({len(scanners)} stood "
+            f"{-float(np.max(scanners[:, 2])):.2f} m or more below it; a scanner stands on a "
+            f"floor): the cloud is upside down for --up={up}; pass --up={flip}"
+        )
     z = levelled[:, 2]
     below = int(np.count_nonzero(z < -BELOW_FLOOR))
     above = int(np.count_nonzero(z > BELOW_FLOOR))
     if below > above:
-        flip = ("-" if up.startswith("+") or not up.startswith("-") else "+") + up.lstrip("+-")
         n = len(z)
         raise ScanError(
             f"{source}: the floor found is above the cloud's contents ({100 * below / n:.0f} % "

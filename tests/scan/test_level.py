@@ -5,7 +5,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 import pytest
-from test_scene import _room_cloud
+from test_scene import _deck_scan, _room_cloud
 
 from mjwalk.errors import ScanError
 from mjwalk.scan.level import (
@@ -106,3 +106,36 @@ def test_floor_layer_is_the_lowest_large_layer_not_a_pit_or_a_bigger_deck():
     got = floor_layer(height, column, 0.1)
     assert np.all(np.abs(height[got]) < 0.02)  # the 5 m² floor's voxels only...
     assert len(np.unique(column[got])) == 500  # ...under every one of its columns
+
+
+def test_a_dense_stand_by_the_scanner_does_not_tilt_the_floor():
+    # A real scan's point density falls with the range squared: in the PCL room scan the stand
+    # under the scanner held most walk-surface points. Here a 0.4 m top at 1.1 m, 12 deg off
+    # level, holds 60 % of them over a floor undulating by 8 mm with 1 cm noise; its normal
+    # won a point-weighted median (bda755a: the floor levelled 0.15 deg off its own plane).
+    rng = np.random.default_rng(0)
+    gx, gy = np.meshgrid(np.arange(0, 6, 0.04), np.arange(0, 5, 0.04))
+    gx, gy = gx.ravel(), gy.ravel()
+    floor = np.column_stack([gx, gy, 0.008 * np.sin(1.3 * gx) * np.cos(gy)])
+    floor = floor[np.hypot(floor[:, 0] - 3, floor[:, 1] - 2.5) > 1.0]  # the stand's shadow
+    t = np.radians(12.0)
+    u = rng.uniform(-0.2, 0.2, (int(1.5 * len(floor)), 2))
+    stand = np.column_stack([3 + u[:, 0] * np.cos(t), 2.5 + u[:, 1], 1.1 + u[:, 0] * np.sin(t)])
+    pts = np.vstack([floor, stand]) + rng.normal(0.0, 0.01, (len(floor) + len(stand), 3))
+    f = pts[: len(floor)]
+    own = np.linalg.lstsq(np.column_stack([f[:, :2], np.ones(len(f))]), f[:, 2], rcond=None)[0]
+    own_tilt = np.degrees(np.arctan(np.hypot(*own[:2])))  # the floor's own plane: 0.022 deg
+    assert find_floor(pts).tilt_deg == pytest.approx(own_tilt, abs=0.005)
+
+
+def test_a_cloud_read_upside_down_is_refused_where_its_scanners_stood_below_its_floor():
+    pts, spots, _ = _deck_scan()
+    lv = find_floor(pts)
+    check_upright(lv.apply(pts), "+z", "deck", lv.apply(spots))
+    flipped, spots = pts * [1.0, -1.0, -1.0], spots * [1.0, -1.0, -1.0]
+    lv = find_floor(flipped)  # the deck's top: the lowest layer, as large as the floor
+    levelled = lv.apply(flipped)
+    assert abs(np.mean(levelled[:, 2] > 0.05) - 0.5) < 0.05  # the floor, "over" it, half the
+    check_upright(levelled, "+z", "deck")  # points: counting them cannot tell
+    with pytest.raises(ScanError, match=r"deck: the floor found is above every scanner .* upside"):
+        check_upright(levelled, "-z", "deck", lv.apply(spots))
