@@ -15,7 +15,8 @@ The steps of the seed paper (mocap-based DHM walking in as-built environments, Â
 4. The floor is the lowest large horizontal layer of the walk surfaces (at least
    :data:`MIN_FLOOR_AREA` and :data:`FLOOR_SHARE` of the largest), so table tops, pads and the
    ceiling are not the floor. Heights are taken along the walk surfaces' common normal (the
-   median of their voxels' normals, :func:`up_normal`), and layers, not surfaces, are compared
+   median of their voxels' normals, one vote per voxel, :func:`up_normal`; then the fitted
+   floor's own normal, :data:`UP_ROUNDS`), and layers, not surfaces, are compared
    (:func:`floor_layer`): region growing joins the floor to every deck its steps, stairs and
    ramps reach (0.1 m voxels touch across a riser up to 0.2 m), and a plane through that union
    is tilted by the raised parts (``levelgen`` hall 111, a 0.91 m mezzanine and its stairs off
