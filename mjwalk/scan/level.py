@@ -12,12 +12,20 @@ The steps of the seed paper (mocap-based DHM walking in as-built environments, �
    ``OMP_NUM_THREADS=1``; the voxel sums 0.6 s).
 2. Walk-surface voxels: normal within :data:`HORIZONTAL_DEG` (20°, the paper's epsilon) of up.
 3. Region growing: walk-surface voxels that touch (26-neighbourhood) form one walk surface.
-4. The floor is the lowest walk surface among the large ones (at least :data:`MIN_FLOOR_AREA` and
-   :data:`FLOOR_SHARE` of the largest), so table tops, pads and the ceiling are not the floor.
-5. A least-squares plane through the floor's points (voxels farther than :data:`PLANE_TOL` from
-   it dropped, refit) gives the tilt; the cloud is rotated about the floor point below the floor's
-   median x, y so the plane becomes z = 0. x and y keep the scan's meaning: points on the floor
-   move horizontally by at most d·(1 - cos tilt) (0.6 mm at 10 m for a 2° tilt).
+4. The floor is the lowest large horizontal layer of the walk surfaces (at least
+   :data:`MIN_FLOOR_AREA` and :data:`FLOOR_SHARE` of the largest), so table tops, pads and the
+   ceiling are not the floor. Heights are taken along the walk surfaces' common normal (the
+   median of their voxels' normals, one vote per voxel, :func:`up_normal`; then the fitted
+   floor's own normal, :data:`UP_ROUNDS`), and layers, not surfaces, are compared
+   (:func:`floor_layer`): region growing joins the floor to every deck its steps, stairs and
+   ramps reach (0.1 m voxels touch across a riser up to 0.2 m), and a plane through that union
+   is tilted by the raised parts (``levelgen`` hall 111, a 0.91 m mezzanine and its stairs off
+   the middle of a 17 m hall: 1.5° off, 54 % of the points then "below the floor").
+5. A least-squares plane through the floor layer's voxels (voxels farther than
+   :data:`PLANE_TOL` from it dropped, refit) gives the tilt; the cloud is rotated about the
+   floor point below the floor's median x, y so the plane becomes z = 0. x and y keep the
+   scan's meaning: points on the floor move horizontally by at most d·(1 - cos tilt) (0.6 mm
+   at 10 m for a 2° tilt).
 """
 
 from __future__ import annotations
@@ -50,6 +58,15 @@ STAND_AREA = 0.36
 #: Surfaces higher above the floor than this are not reported (ceilings, lamps, overhead
 #: pipework: the top of the obstacle band, ``OBSTACLE_Z_RANGE``), metres.
 MAX_SURFACE_HEIGHT = 2.0
+#: Rounds of layers re-cut along the fitted floor's normal (:func:`find_floor`): the median
+#: of noisy voxel normals (:func:`up_normal`) is a start, the plane fitted on the floor layer's
+#: points is the floor's own normal; the layers are cut again along it until it turns by less
+#: than :data:`UP_CONVERGED_DEG`.
+UP_ROUNDS = 3
+#: The floor's normal has settled when a round turns it by less than this, degrees (the
+#: flatness a 0.1 m voxel's layer holds: 0.01 deg over a 50 m hall is 9 mm, under
+#: :data:`PLANE_TOL`).
+UP_CONVERGED_DEG = 0.01
 #: Points a voxel needs for its local-PCA normal (a plane through fewer is noise).
 MIN_VOXEL_POINTS = 5
 #: A levelled cloud is upside down when more of its points lie this far below the floor than
@@ -318,8 +335,9 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
         source: the cloud's name in errors.
 
     Returns:
-        The levelling: its floor is the lowest walk surface among the largest ones, fitted as a
-        plane on every point near it; the other walk surfaces one could stand on are listed.
+        The levelling: its floor is the lowest large horizontal layer of the walk surfaces
+        (heights along their common normal, :func:`floor_layer`), fitted as a plane on every
+        point near it; the other walk surfaces one could stand on are listed.
 
     Raises:
         ScanError: no walk surface of at least :data:`MIN_FLOOR_AREA` square metres.
@@ -343,20 +361,22 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
     col = vn.ijk[surf, 0] * (int(vn.ijk[:, 1].max()) + 1) + vn.ijk[surf, 1]
     pair = np.unique(lab * (int(col.max()) + 1) + col)
     area = np.bincount(pair // (int(col.max()) + 1), minlength=nlab) * voxel**2
-    order = np.argsort(lab, kind="stable")
-    bounds = np.searchsorted(lab[order], np.arange(nlab + 1))
-    zs = vn.centroid[surf[order], 2]
-    height = np.array([np.median(zs[bounds[k] : bounds[k + 1]]) for k in range(nlab)])
-    big = area >= max(MIN_FLOOR_AREA, FLOOR_SHARE * area.max())
-    if not big.any():
+    if area.max() < MIN_FLOOR_AREA:
         raise ScanError(
             f"{source}: no floor found: the largest horizontal surface is {area.max():.2f} m², "
             f"a floor needs at least {MIN_FLOOR_AREA} m²{_sparse_hint(sub) or _up_hint(vn)}"
         )
-    floor = int(np.flatnonzero(big)[np.argmin(height[big])])
-    vox = surf[lab == floor]
-    vox, centre, normal = _floor_plane(vn, vox, sub)
+    up = up_normal(vn.normal[surf])
+    for _ in range(UP_ROUNDS):  # layers along the floor's own normal once it is fitted
+        seed = floor_layer(vn.centroid[surf] @ up, col, voxel)
+        vox, centre, normal = _floor_plane(vn, surf[seed], sub)
+        turn, up = float(np.degrees(np.arccos(min(1.0, float(normal @ up))))), normal
+        if turn < UP_CONVERGED_DEG:
+            break
+    floor = int(np.bincount(lab[seed]).argmax())  # the surface most of the floor lies on
     rms = float(np.sqrt(np.mean(((vn.centroid[vox] - centre) @ normal) ** 2)))
+    on = np.abs((vn.centroid[surf] - centre) @ normal) <= PLANE_TOL
+    floor_area = len(np.unique(col[on])) * voxel**2
     xy = np.median(vn.centroid[vox, :2], axis=0)
     # The plane point below (xy): solve n . (p - centre) = 0 for p_z.
     pz = centre[2] - (normal[0] * (xy[0] - centre[0]) + normal[1] * (xy[1] - centre[1])) / normal[2]
@@ -370,10 +390,67 @@ def find_floor(points: np.ndarray, *, source: str = "cloud") -> Levelling:
         target=np.array([pivot[0], pivot[1], 0.0]),
         normal=normal,
         tilt_deg=tilt,
-        floor_area=float(area[floor]),
+        floor_area=float(floor_area),
         rms=rms,
         surfaces=tuple(surfaces),
     )
+
+
+def up_normal(normals: np.ndarray) -> np.ndarray:
+    """The common normal of a cloud's walk surfaces: the median of their voxels' normals' x and
+    y components, one vote per voxel.
+
+    Every horizontal surface of a building (floor, decks, treads, table tops) shares one
+    normal whatever its height, so the median of the local normals is the floor's tilt
+    however much of the walk surface lies on raised levels, while ramps and the voxels on a
+    surface's edge (a minority) cannot pull it. A least-squares plane through a walk surface
+    that region growing joined across steps and stairs (0.1 m voxels touch across a riser up
+    to 0.2 m) is tilted by its raised parts instead. Each voxel is an equal patch of surface,
+    so each votes once: weighted by its points, the vote would go to whatever stands nearest a
+    scanner (a terrestrial scanner's point density falls with the square of the range; in the
+    PCL room scan six voxels of the stand under the scanner held 59 % of the walk-surface
+    points and pulled a point-weighted median 11 deg off once the ceiling was cut away).
+
+    Args:
+        normals: (M, 3) unit normals (z > 0) of walk-surface voxels.
+
+    Returns:
+        (3,) the unit normal, z > 0.
+    """
+    nx, ny = np.median(normals[:, :2], axis=0)
+    return np.array([nx, ny, np.sqrt(max(0.0, 1.0 - nx * nx - ny * ny))])
+
+
+def floor_layer(height: np.ndarray, column: np.ndarray, voxel: float) -> np.ndarray:
+    """The walk-surface voxels of the floor: the lowest large horizontal layer.
+
+    The voxels' heights are cut into layers :data:`PLANE_TOL` thick; a window of two layers
+    (room for a floor's residual tilt and undulation) holds a horizontal surface's area as the
+    distinct (i, j) columns of its voxels. The floor is the lowest window of at least
+    :data:`MIN_FLOOR_AREA` and :data:`FLOOR_SHARE` of the largest (seed paper §3: the large
+    walkable region at the lowest level; pads and pit bottoms below it are small), followed up
+    while the next window is larger (the floor's peak, not its lower flank).
+
+    Args:
+        height: (M,) the voxels' heights along the walk surfaces' normal (:func:`up_normal`),
+            metres.
+        column: (M,) each voxel's (i, j) column key.
+        voxel: the voxel edge, metres.
+
+    Returns:
+        (M,) bool: the voxels in the floor's window (the seed of its plane: the floor's voxels
+        under all its columns, not necessarily all of its voxels).
+    """
+    layer = np.floor((height - height.min()) / PLANE_TOL).astype(np.int64)
+    ncol = int(column.max()) + 1
+    # Each voxel counts in the window starting at its layer and in the one below.
+    keys = np.unique(np.concatenate([layer * ncol + column, (layer - 1) * ncol + column]))
+    area = np.bincount(keys // ncol + 1) * voxel**2  # window w at index w + 1
+    big = np.flatnonzero(area >= max(MIN_FLOOR_AREA, FLOOR_SHARE * area.max()))
+    w = int(big[0]) if len(big) else int(area.argmax())
+    while w + 1 < len(area) and area[w + 1] > area[w]:
+        w += 1
+    return (layer == w - 1) | (layer == w)
 
 
 def _surfaces_at_some_voxel(sub: np.ndarray) -> tuple[VoxelNormals, np.ndarray, float]:
@@ -443,25 +520,43 @@ def _other_surfaces(
     return surfaces
 
 
-def check_upright(levelled: np.ndarray, up: str = "+z", source: str = "cloud") -> None:
+def check_upright(
+    levelled: np.ndarray,
+    up: str = "+z",
+    source: str = "cloud",
+    scanners: np.ndarray | None = None,
+) -> None:
     """Refuse a levelled cloud that is upside down.
 
     A cloud with more points more than :data:`BELOW_FLOOR` below its floor than above it has
-    its floor found at the top of its contents: its up axis is the opposite of ``up``.
+    its floor found at the top of its contents: its up axis is the opposite of ``up``. Counting
+    points misses a cloud read upside down whose raised deck covers a quarter of its floor (the
+    deck's top, then the lowest large layer, is taken for the floor and the floor's points lie
+    above it); where the scanners stood is known, a scanner stands on the floor or on a level
+    above it, its head at a tripod's height (sight's ``MIN_STATION_HEIGHT``), so a floor above
+    every scanner is one read upside down.
 
     Args:
         levelled: (N, 3) levelled points, metres, floor at z = 0.
         up: the up axis the cloud was read with (the error suggests its opposite).
         source: the cloud's name in errors.
+        scanners: (S, 3) levelled positions of the scanners whose returns agree they stood
+            there (``mjwalk.scan.sight.ray_agreement``), metres; None or empty: not known.
 
     Raises:
         ScanError: the cloud is upside down.
     """
+    flip = ("-" if up.startswith("+") or not up.startswith("-") else "+") + up.lstrip("+-")
+    if scanners is not None and len(scanners) and float(np.max(scanners[:, 2])) < -BELOW_FLOOR:
+        raise ScanError(
+            f"{source}: the floor found is above every scanner ({len(scanners)} stood "
+            f"{-float(np.max(scanners[:, 2])):.2f} m or more below it; a scanner stands on a "
+            f"floor): the cloud is upside down for --up={up}; pass --up={flip}"
+        )
     z = levelled[:, 2]
     below = int(np.count_nonzero(z < -BELOW_FLOOR))
     above = int(np.count_nonzero(z > BELOW_FLOOR))
     if below > above:
-        flip = ("-" if up.startswith("+") or not up.startswith("-") else "+") + up.lstrip("+-")
         n = len(z)
         raise ScanError(
             f"{source}: the floor found is above the cloud's contents ({100 * below / n:.0f} % "

@@ -32,7 +32,7 @@ import numpy as np
 from mjwalk._args import check_output_file
 from mjwalk._io import atomic_path, read_toml
 from mjwalk.errors import ScanError
-from mjwalk.scan.level import Levelling, check_upright, find_floor
+from mjwalk.scan.level import BELOW_FLOOR, Levelling, check_upright, find_floor
 from mjwalk.scan.levelboxes import LEVEL_MATERIAL, LevelPlan, levels_at, scan_levels
 from mjwalk.scan.limits import check_plan_size
 from mjwalk.scan.merge import merge_scans, read_poses
@@ -42,7 +42,7 @@ from mjwalk.scan.read import Station, to_metres_z_up
 from mjwalk.scan.scanoptions import ScanOptions
 from mjwalk.scan.scanpits import PIT_MATERIAL, ScanPit, describe_pits, find_pits, gap_boxes
 from mjwalk.scan.scanramps import RAMP_MATERIAL
-from mjwalk.scan.sight import View, check_station
+from mjwalk.scan.sight import View, check_station, ray_agreement
 from mjwalk.scan.voids import apply_policy
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 
@@ -303,6 +303,23 @@ def _views(
     return views, line
 
 
+def _scanners_if_low(
+    levelled: np.ndarray, stations: Sequence[Station], levelling: Levelling
+) -> np.ndarray:
+    """(S, 3) the levelled positions of the stations whose returns agree they stood there
+    (:func:`~mjwalk.scan.sight.ray_agreement`) when every station lies below the floor found
+    (:func:`~mjwalk.scan.level.check_upright`; the rays are tested only then); else empty."""
+    vps = [levelling.apply(np.asarray(st.viewpoint, dtype=np.float64)[None])[0] for st in stations]
+    if not vps or max(vp[2] for vp in vps) >= -BELOW_FLOOR:
+        return np.zeros((0, 3))
+    ok = [
+        vp
+        for vp, st in zip(vps, stations, strict=True)
+        if not ray_agreement(levelled[st.start : st.stop], vp)[1]
+    ]
+    return np.array(ok).reshape(-1, 3)
+
+
 def build_scene(
     points: np.ndarray,
     options: ScanOptions | None = None,
@@ -364,7 +381,7 @@ def build_scene(
     timings["floor"] = clock() - t
     t = clock()
     levelled = levelling.apply(pts)
-    check_upright(levelled, opts.up, source)
+    check_upright(levelled, opts.up, source, _scanners_if_low(levelled, stations, levelling))
     timings["level"] = clock() - t
     t = clock()
     views, sight = _views(levelled, stations, levelling)

@@ -139,6 +139,21 @@ def check_station(points: np.ndarray, viewpoint: np.ndarray, floor_tol: float) -
         return float("nan"), f"{h:+.2f} m above the floor, not a scanner's height"
     if not (np.abs(points[:, 2]) <= floor_tol).any():
         return float("nan"), "no floor among its points"
+    return ray_agreement(points, viewpoint)
+
+
+def ray_agreement(points: np.ndarray, viewpoint: np.ndarray) -> tuple[float, str]:
+    """Whether a scanner's returns agree it stood at a position, whatever the floor: they fan
+    out at one angular step and at most :data:`MAX_HIDDEN` of them lie behind others (a
+    rigid motion, a cloud turned upside down included, keeps both).
+
+    Args:
+        points: (K, 3) the station's returns, metres.
+        viewpoint: (3,) the scanner's position in their frame, metres.
+
+    Returns:
+        (angular step radians, "") when they agree; else (NaN, why not in one clause).
+    """
     u, _ = _directions(points, viewpoint)
     step = angular_step(u)
     if not np.isfinite(step) or step <= 0:

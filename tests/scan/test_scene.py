@@ -6,12 +6,15 @@ import dataclasses
 import os
 from pathlib import Path
 
+import mujoco
 import numpy as np
 import pytest
 
 from mjwalk.errors import MjwalkError, ScanError
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.scan import ScanOptions, build_scene, read_scan, scan_to_scene
+from mjwalk.scan.raycast import synthetic_scan
+from mjwalk.scan.read import Station
 from mjwalk.scan.scene import write_scene
 from mjwalk.world import load_workplace
 
@@ -47,6 +50,20 @@ def _room_cloud(seed: int = 0, spacing: float = 0.03) -> np.ndarray:
     parts.append(np.column_stack([lx.ravel(), ly.ravel(), np.full(lx.size, 2.3)]))
     pts = np.vstack(parts)
     return pts + rng.normal(0, 0.003, pts.shape)
+
+
+def _deck_scan():
+    """A 8 x 6 m floor, its right half a 0.6 m deck; scanners 1.5 m over the floor and over
+    the deck (0.5 deg rays), their rows of the cloud. Metres, z up, floor at z = 0."""
+    xml = """<mujoco><worldbody><geom type="plane" size="4 3 0.1"/>
+    <geom type="box" pos="2 0 0.3" size="2 3 0.3"/></worldbody></mujoco>"""
+    model = mujoco.MjModel.from_xml_string(xml)
+    spots = [(-2.0, 0.0, 1.5), (2.0, 0.0, 2.1)]
+    clouds = [
+        synthetic_scan(model, [p], step_deg=0.5, tilt_deg=0.0, floor_height=0.0, seed=k).points
+        for k, p in enumerate(spots)
+    ]
+    return np.vstack(clouds), np.array(spots), np.cumsum([0] + [len(c) for c in clouds])
 
 
 def _tilt(pts: np.ndarray, deg: float, lift: float) -> np.ndarray:
@@ -200,7 +217,6 @@ STATION_SCANNERS = [(-3.6, -1.2, 1.5), (3.7, -2.6, 1.5), (0.2, -1.2, 1.5), (0.0,
 
 @pytest.fixture(scope="module")
 def station_round_trip(tmp_path_factory, scenes_dir):
-    from mjwalk.scan.raycast import synthetic_scan
     from mjwalk.world.workplace import load_model
 
     src = scenes_dir / "assembly_station.xml"
@@ -411,3 +427,17 @@ def test_formats_read_by_their_libraries(tmp_path, suffix):
     x0, y0, x1, y1 = np.asarray(wp.floor_bounds) - np.resize(np.asarray(offset)[:2], 4)
     assert x1 - x0 == pytest.approx(4.0, abs=0.05)
     assert y1 - y0 == pytest.approx(3.0 * np.cos(np.radians(1.2)), abs=0.05)
+
+
+def test_a_cloud_read_upside_down_is_refused_by_its_stations():
+    pts, spots, rows = _deck_scan()
+    stations = [
+        Station(p, int(a), int(b), "test")
+        for p, a, b in zip(spots, rows[:-1], rows[1:], strict=True)
+    ]
+    build_scene(pts, stations=stations, source="deck")
+    flip = np.array([1.0, -1.0, -1.0])
+    upside = [dataclasses.replace(s, viewpoint=s.viewpoint * flip) for s in stations]
+    with pytest.raises(ScanError, match=r"deck: .* above every scanner .* pass --up=-z"):
+        build_scene(pts * flip, stations=upside, source="deck")
+    build_scene(pts * flip, stations=upside[:0], source="deck")  # no station: counts accept

@@ -9,8 +9,9 @@ import pytest
 from scipy.spatial import cKDTree
 
 from mjwalk.scan import build_scene, read_scan
+from mjwalk.scan.raycast import synthetic_scan
 from mjwalk.scan.read import Station
-from mjwalk.scan.sight import MAX_HIDDEN, check_station
+from mjwalk.scan.sight import MAX_HIDDEN, check_station, ray_agreement
 
 #: A 16 x 8 m floor, one 1 m tall crate, 0.6 m wide, 3 m in front of the scanner, and a 2 m
 #: tall wall 3 m wide 2.5 m behind it.
@@ -35,7 +36,6 @@ def test_sparse_far_floor_is_floor_and_floor_behind_an_obstacle_stays_void():
     not). The wall's shadow (3 m wide, 5 m long: wider than a 1 m hole) stays void by
     either rule; the crate's (narrower than a 1 m hole) is a small hole, floor by either, as the
     floor plan's hole rule (HOLE_RADIUS) has it."""
-    from mjwalk.scan.raycast import synthetic_scan
 
     model = mujoco.MjModel.from_xml_string(ROOM)
     scan = synthetic_scan(model, [(0.0, 0.0, 1.5)], step_deg=1.0, tilt_deg=0.0, floor_height=0)
@@ -85,3 +85,17 @@ def test_shared_pcl_scan_far_half_is_floor_where_it_was_seen(shared_data):
         f"cells near far floor points that are floor: rays {shares[0]:.3f}, points {shares[1]:.3f}"
     )
     assert shares[0] >= 0.9 and shares[0] > shares[1] + 0.05  # measured 0.941 vs 0.818
+
+
+def test_ray_agreement_holds_in_any_frame_and_fails_off_the_scanner():
+    xml = """<mujoco><worldbody><geom type="plane" size="4 3 0.1"/>
+    <geom type="box" pos="1 0 0.5" size="0.5 0.5 0.5"/></worldbody></mujoco>"""
+    model = mujoco.MjModel.from_xml_string(xml)
+    spot = np.array([-1.0, 0.5, 1.5])
+    pts = synthetic_scan(model, [spot], step_deg=0.5, tilt_deg=0.0, floor_height=0.0).points
+    flip = np.array([1.0, -1.0, -1.0])  # the same returns read upside down
+    for p, vp in ((pts, spot), (pts * flip, spot * flip)):
+        step, why = ray_agreement(p, vp)
+        assert why == "" and np.degrees(step) == pytest.approx(0.5, abs=0.05)
+    _, why = ray_agreement(pts, spot + (3.0, 0.0, -1.0))  # past the box: it hides the floor
+    assert "lie behind others" in why
