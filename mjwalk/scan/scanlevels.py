@@ -16,18 +16,20 @@ through diagonal voxels, so here levels are found in two passes:
 2. **Regions**: per candidate height ``h``, on the floor plan's grid, a cell is surface when it
    holds a point within :data:`~mjwalk.scan.obstacles.FLOOR_TOL` of ``h`` and fewer than
    :data:`~mjwalk.scan.obstacles.MIN_BAND_POINTS` points in its own obstacle band (0.05-2.0 m
-   above ``h``, :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`); connected cells (8-neighbourhood)
-   are one region, its height a least-squares plane through the points of its cells inside its
-   rim (trimmed at 3 rms; the rim cells hold the risers' points within ``FLOOR_TOL``, the lower
-   riser's below the tread at its front, the upper one's above at its back, which tilt a full
-   tread's fit past 1 % where a scanner sees the risers head-on and the tread at a grazing
-   angle), kept when that plane is horizontal (``norms.HORIZONTAL_SLOPE`` plus three standard
-   errors of the fit; else its flat part, :func:`mjwalk.scan.planefit.flat_part`, when a
-   ramp's strip at that height joined a level's edge and tilted it) and the region is a tread
-   deep and a person wide (``norms.MIN_TREAD`` by ``norms.STAND_WIDTH``, less a cell each side
-   for the cells its edges cut). A region whose height lies more than :data:`OWN_HEIGHT_TOL`
-   from its candidate's (a peak two surfaces a few centimetres apart made between them) is
-   found again at its own height.
+   above ``h``, :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`), joined over the gaps up to a voxel
+   where no point was seen from below ``h`` to the band's top (:mod:`mjwalk.scan.sparsecells`:
+   a deck's middle in its own scanner's blind cone, seen by the others only in rows several
+   cells apart); connected cells (8-neighbourhood) are one region, its height a least-squares
+   plane through the points of its cells inside its rim (trimmed at 3 rms; the rim cells hold
+   the risers' points within ``FLOOR_TOL``, the lower riser's below the tread at its front, the
+   upper one's above at its back, which tilt a full tread's fit past 1 % where a scanner sees
+   the risers head-on and the tread at a grazing angle), kept when that plane is horizontal
+   (``norms.HORIZONTAL_SLOPE`` plus three standard errors of the fit; else its flat part,
+   :func:`mjwalk.scan.planefit.flat_part`, when a ramp's strip at that height joined a level's
+   edge and tilted it) and the region is a tread deep and a person wide (``norms.MIN_TREAD`` by
+   ``norms.STAND_WIDTH``, less a cell each side for the cells its edges cut). A region whose
+   height lies more than :data:`OWN_HEIGHT_TOL` from its candidate's (a peak two surfaces a few
+   centimetres apart made between them) is found again at its own height.
 
 Regions whose edges touch (within ``norms.CONTACT_GAP`` and a cell) along at least a body's
 width (``mjwalk.world.contacts.MIN_CROSSING``) with a riser of at most ``norms.MAX_RISER`` are
