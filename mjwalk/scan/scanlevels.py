@@ -377,12 +377,20 @@ def _inlier_cells(
     iy = np.floor((q[:, 1] - plan.y0) / res).astype(np.int64)
     hit = np.zeros_like(cells)
     hit[iy, ix] = True
-    hit = join_sparse(hit & cells, res, unseen & cells)
-    lab, n = ndimage.label(hit, np.ones((3, 3), bool))
-    if n == 0:
+    hit &= cells
+    box = ndimage.find_objects(cells.astype(np.int8))
+    if not box or box[0] is None:
         return hit
+    pad = math.ceil(VOXEL / res)  # the region's bounding box and a voxel: all the join needs
+    sub = tuple(slice(max(0, b.start - pad), b.stop + pad) for b in box[0])
+    part = join_sparse(hit[sub], res, unseen[sub] & cells[sub])
+    lab, n = ndimage.label(part, np.ones((3, 3), bool))
+    out = np.zeros_like(cells)
+    if n == 0:
+        return out
     big = int(np.argmax(np.bincount(lab.ravel())[1:])) + 1
-    return ndimage.binary_fill_holes(lab == big)
+    out[sub] = ndimage.binary_fill_holes(lab == big)
+    return out
 
 
 def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPlan, ks, avoid=0):

@@ -58,5 +58,7 @@ def join_sparse(
         VOXEL` wide (a morphological closing by a voxel's square of cells), within ``within``.
     """
     k = max(1, round(VOXEL / resolution))
-    out = cells | ndimage.binary_closing(cells, np.ones((k, k), bool))
+    grown = ndimage.maximum_filter(cells, size=k, mode="constant", cval=False)
+    closed = ndimage.minimum_filter(grown, size=k, mode="constant", cval=False)  # separable
+    out = cells | closed
     return out if within is None else out & (within | cells)
