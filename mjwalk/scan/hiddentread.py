@@ -86,6 +86,7 @@ def hidden_treads(
                 np.concatenate([layers.near, more.near[1:]]),
                 np.concatenate([layers.band, more.band[1:]]),
                 np.concatenate([layers.top, more.top[1:]]),
+                layers.lowest,
             )
             area = float(cells.sum()) * plan.resolution**2
             k = len(layers.heights) - 1

@@ -16,18 +16,20 @@ through diagonal voxels, so here levels are found in two passes:
 2. **Regions**: per candidate height ``h``, on the floor plan's grid, a cell is surface when it
    holds a point within :data:`~mjwalk.scan.obstacles.FLOOR_TOL` of ``h`` and fewer than
    :data:`~mjwalk.scan.obstacles.MIN_BAND_POINTS` points in its own obstacle band (0.05-2.0 m
-   above ``h``, :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`); connected cells (8-neighbourhood)
-   are one region, its height a least-squares plane through the points of its cells inside its
-   rim (trimmed at 3 rms; the rim cells hold the risers' points within ``FLOOR_TOL``, the lower
-   riser's below the tread at its front, the upper one's above at its back, which tilt a full
-   tread's fit past 1 % where a scanner sees the risers head-on and the tread at a grazing
-   angle), kept when that plane is horizontal (``norms.HORIZONTAL_SLOPE`` plus three standard
-   errors of the fit; else its flat part, :func:`mjwalk.scan.planefit.flat_part`, when a
-   ramp's strip at that height joined a level's edge and tilted it) and the region is a tread
-   deep and a person wide (``norms.MIN_TREAD`` by ``norms.STAND_WIDTH``, less a cell each side
-   for the cells its edges cut). A region whose height lies more than :data:`OWN_HEIGHT_TOL`
-   from its candidate's (a peak two surfaces a few centimetres apart made between them) is
-   found again at its own height.
+   above ``h``, :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`), joined over the gaps up to a voxel
+   where no point was seen from below ``h`` to the band's top (:mod:`mjwalk.scan.sparsecells`:
+   a deck's middle in its own scanner's blind cone, seen by the others only in rows several
+   cells apart); connected cells (8-neighbourhood) are one region, its height a least-squares
+   plane through the points of its cells inside its rim (trimmed at 3 rms; the rim cells hold
+   the risers' points within ``FLOOR_TOL``, the lower riser's below the tread at its front, the
+   upper one's above at its back, which tilt a full tread's fit past 1 % where a scanner sees
+   the risers head-on and the tread at a grazing angle), kept when that plane is horizontal
+   (``norms.HORIZONTAL_SLOPE`` plus three standard errors of the fit; else its flat part,
+   :func:`mjwalk.scan.planefit.flat_part`, when a ramp's strip at that height joined a level's
+   edge and tilted it) and the region is a tread deep and a person wide (``norms.MIN_TREAD`` by
+   ``norms.STAND_WIDTH``, less a cell each side for the cells its edges cut). A region whose
+   height lies more than :data:`OWN_HEIGHT_TOL` from its candidate's (a peak two surfaces a few
+   centimetres apart made between them) is found again at its own height.
 
 Regions whose edges touch (within ``norms.CONTACT_GAP`` and a cell) along at least a body's
 width (``mjwalk.world.contacts.MIN_CROSSING``) with a riser of at most ``norms.MAX_RISER`` are
@@ -53,6 +55,7 @@ from mjwalk.scan.minrect import min_rectangle, rectangle_size
 from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, FloorPlan
 from mjwalk.scan.planefit import RANGE_NOISE, TRIM_SIGMAS, fit_plane, flat_part
 from mjwalk.scan.regionsteps import region_steps
+from mjwalk.scan.sparsecells import join_sparse, unseen_cells
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.norms import (
     HORIZONTAL_SLOPE,
@@ -154,12 +157,14 @@ class ScanLink:
 class Layers:
     """The cloud rasterised per candidate height ``heights`` (K,) on the floor plan's grid:
     ``near`` (K, ny, nx) points within ``FLOOR_TOL``, ``band`` points in the obstacle band above,
-    ``top`` the highest band point (metres; -inf: none)."""
+    ``top`` the highest band point (metres; -inf: none); ``lowest`` (ny, nx) the lowest point
+    per cell at any height (metres; +inf: none; None: not rasterised)."""
 
     heights: np.ndarray
     near: np.ndarray
     band: np.ndarray
     top: np.ndarray
+    lowest: np.ndarray | None = None
 
 
 def candidate_heights(
@@ -236,17 +241,21 @@ def peak_heights(z: np.ndarray, span: tuple[float, float]) -> np.ndarray:
 @njit
 def _rasterize_layers(points, heights, x0, y0, res, nx, ny, tol, band_lo, band_hi):
     """Per height k and cell: points within ``tol`` of ``heights[k]``, points in the band
-    (``heights[k] + band_lo``, ``heights[k] + band_hi``], and the highest of those."""
+    (``heights[k] + band_lo``, ``heights[k] + band_hi``], and the highest of those; per cell the
+    lowest point."""
     k_n = heights.shape[0]
     near = np.zeros((k_n, ny, nx), dtype=np.int32)
     band = np.zeros((k_n, ny, nx), dtype=np.int32)
     top = np.full((k_n, ny, nx), -np.inf, dtype=np.float32)
+    lowest = np.full((ny, nx), np.inf, dtype=np.float32)
     for p in range(points.shape[0]):
         i = int(np.floor((points[p, 0] - x0) / res))
         j = int(np.floor((points[p, 1] - y0) / res))
         if i < 0 or i >= nx or j < 0 or j >= ny:
             continue
         z = points[p, 2]
+        if z < lowest[j, i]:
+            lowest[j, i] = z
         for k in range(k_n):
             d = z - heights[k]
             if abs(d) <= tol:
@@ -255,7 +264,7 @@ def _rasterize_layers(points, heights, x0, y0, res, nx, ny, tol, band_lo, band_h
                 band[k, j, i] += 1
                 if z > top[k, j, i]:
                     top[k, j, i] = z
-    return near, band, top
+    return near, band, top, lowest
 
 
 def rasterize_layers(levelled: np.ndarray, heights: np.ndarray, plan: FloorPlan) -> Layers:
@@ -271,11 +280,11 @@ def rasterize_layers(levelled: np.ndarray, heights: np.ndarray, plan: FloorPlan)
     """
     hs = np.concatenate([[0.0], np.asarray(heights, dtype=np.float64)])
     ny, nx = plan.floor.shape
-    near, band, top = _rasterize_layers(
+    near, band, top, lowest = _rasterize_layers(
         np.ascontiguousarray(levelled, dtype=np.float64), hs, plan.x0, plan.y0,
         plan.resolution, nx, ny, FLOOR_TOL, OBSTACLE_Z_RANGE[0], OBSTACLE_Z_RANGE[1],
     )  # fmt: skip
-    return Layers(hs, near, band, top)
+    return Layers(hs, near, band, top, lowest)
 
 
 def regions_at(
@@ -294,11 +303,15 @@ def regions_at(
         Per region kept: its cells (holes filled) and its plane fit (:func:`fit_plane`).
     """
     res = plan.resolution
+    h0 = layers.heights[k]
+    unseen = (
+        unseen_cells(layers.lowest, h0) if layers.lowest is not None else np.zeros_like(plan.floor)
+    )
     surface = (layers.near[k] > 0) & (layers.band[k] < MIN_BAND_POINTS)
+    surface = join_sparse(surface, res, unseen)  # a sparse scan's gaps nothing was seen in
     lab, n = ndimage.label(surface, np.ones((3, 3), bool))
     if n == 0:
         return []
-    h0 = layers.heights[k]
     pts = levelled[np.abs(levelled[:, 2] - h0) <= FLOOR_TOL]
     ix = np.floor((pts[:, 0] - plan.x0) / res).astype(np.int64)
     iy = np.floor((pts[:, 1] - plan.y0) / res).astype(np.int64)
@@ -327,7 +340,7 @@ def regions_at(
             if flat is None or flat[1][2] > HORIZONTAL_SLOPE + TRIM_SIGMAS * flat[1][3]:
                 continue  # a sloped region: a ramp's strip at this height
             cells, fit, p = flat
-        cells = _inlier_cells(p, fit, plan, cells)
+        cells = _inlier_cells(p, fit, plan, cells, unseen)
         depth, width = rectangle_size(min_rectangle(cells, plan.x0, plan.y0, res))
         if depth < least - 2 * res or width < STAND_WIDTH - 2 * res:
             continue
@@ -347,11 +360,16 @@ def _inner_fit(p: np.ndarray, cells: np.ndarray, plan: FloorPlan, fit: tuple) ->
 
 
 def _inlier_cells(
-    p: np.ndarray, fit: tuple[float, float, float, float], plan: FloorPlan, cells: np.ndarray
+    p: np.ndarray,
+    fit: tuple[float, float, float, float],
+    plan: FloorPlan,
+    cells: np.ndarray,
+    unseen: np.ndarray,
 ) -> np.ndarray:
     """The region's cells holding a point within :data:`TRIM_SIGMAS` rms of its horizontal
-    plane: its largest connected part, holes filled (a ramp's strip joined at the region's
-    edge within ``FLOOR_TOL`` falls away)."""
+    plane, joined over the ``unseen`` cells between them (:func:`~mjwalk.scan.sparsecells.
+    join_sparse`): their largest connected part, holes filled (a ramp's strip joined at the
+    region's edge within ``FLOOR_TOL`` falls away)."""
     h, rms = fit[0], fit[1]
     q = p[np.abs(p[:, 2] - h) <= max(TRIM_SIGMAS * rms, 1e-3)]
     res = plan.resolution
@@ -360,11 +378,19 @@ def _inlier_cells(
     hit = np.zeros_like(cells)
     hit[iy, ix] = True
     hit &= cells
-    lab, n = ndimage.label(hit, np.ones((3, 3), bool))
-    if n == 0:
+    box = ndimage.find_objects(cells.astype(np.int8))
+    if not box or box[0] is None:
         return hit
+    pad = math.ceil(VOXEL / res)  # the region's bounding box and a voxel: all the join needs
+    sub = tuple(slice(max(0, b.start - pad), b.stop + pad) for b in box[0])
+    part = join_sparse(hit[sub], res, unseen[sub] & cells[sub])
+    lab, n = ndimage.label(part, np.ones((3, 3), bool))
+    out = np.zeros_like(cells)
+    if n == 0:
+        return out
     big = int(np.argmax(np.bincount(lab.ravel())[1:])) + 1
-    return ndimage.binary_fill_holes(lab == big)
+    out[sub] = ndimage.binary_fill_holes(lab == big)
+    return out
 
 
 def _add_regions(found: list[ScanLevel], levelled, layers: Layers, plan: FloorPlan, ks, avoid=0):

@@ -92,12 +92,20 @@ def test_pit_with_a_stair_is_a_level(scans):
     assert not plan.floor[_cell(plan, CENTRE)]  # guarded in the scene: never floor
 
 
-def test_the_same_pit_seen_without_its_stair_is_an_obstacle(scans):
-    """Without the scanner that looks down the stair its treads are not seen: the bottom is
-    reached by nothing the scan shows, so the pit is an obstacle."""
-    _, pits = _pits(_scan(STAIR))
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_the_same_pit_seen_without_its_stair_scanner_still_shows_its_stair(seed):
+    """Without the scanner that looks down the stair its treads are seen only sparsely, at
+    grazing angles from the two far scanners, rows of points several cells apart with nothing
+    seen between them. Joined over those unseen cells (:mod:`mjwalk.scan.sparsecells`) the
+    treads are whole and the stair is the true one on every noise seed (before, 1 seed in 5
+    found it, tread 0.25 m; the others read the pit as an obstacle)."""
+    _, pits = _pits(_scan(STAIR, seed=seed))
     (pit,) = pits
-    assert pit.kind == "pit" and pit.link is None
+    assert pit.kind == "level"
+    link = pit.link
+    assert link is not None and link.kind == "stair" and link.upper == 0
+    assert len(link.risers) == 3 and link.risers[0] == pytest.approx(0.17, abs=0.005)
+    assert link.tread == pytest.approx(0.28, abs=0.025)
 
 
 def test_pit_without_a_stair_is_an_obstacle_never_floor(scans):
