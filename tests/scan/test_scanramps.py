@@ -170,6 +170,7 @@ def test_a_long_shallow_ramp_scanned_sparsely_is_one_ramp():
     assert link.run == pytest.approx(run, abs=0.15)
 
 
+@pytest.mark.slow  # a whole hall's synthetic scan: 76 s under load
 def test_a_ramp_up_to_a_deck_narrower_than_its_scanners_blind_cone(tmp_path):
     """Generated hall 107 (bench_unseen): a 0.543 m deck 1.67 m deep, reached by an 8.4 deg
     ramp, scanned from 1.6 m over its centre. The scanner's 30 deg blind cone leaves a disc of
