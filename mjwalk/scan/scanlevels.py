@@ -52,7 +52,7 @@ from mjwalk.scan.level import HORIZONTAL_DEG, MAX_SURFACE_HEIGHT, VOXEL, voxel_n
 from mjwalk.scan.minrect import min_rectangle, rectangle_size
 from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, FloorPlan
 from mjwalk.scan.planefit import RANGE_NOISE, TRIM_SIGMAS, fit_plane, flat_part
-from mjwalk.scan.regionsteps import region_steps
+from mjwalk.scan.regionsteps import region_steps, touching
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.norms import (
     HORIZONTAL_SLOPE,
@@ -437,9 +437,12 @@ def _unexplained(
     return np.array(new)
 
 
-def _distinct(found: list[ScanLevel]) -> list[ScanLevel]:
-    """The regions less any sharing half its cells with a larger one less than
-    :data:`PEAK_SEPARATION` from its height (one surface found at two candidate heights)."""
+def _distinct(found: list[ScanLevel], res: float) -> list[ScanLevel]:
+    """The regions less any less than :data:`PEAK_SEPARATION` from a larger one's height that
+    shares half its cells (one surface found at two candidate heights) or touches it along a
+    body's width (:func:`~mjwalk.scan.regionsteps.touching`): the obstacle band begins
+    ``PEAK_SEPARATION`` above a surface, so what meets it lower is part of it, no level of its
+    own and no step up (a box beside a mezzanine, its top 3.6 cm above the deck)."""
     keep = [found[0]]
     order = sorted(range(1, len(found)), key=lambda i: -found[i].area)
     kept: list[int] = []
@@ -447,7 +450,10 @@ def _distinct(found: list[ScanLevel]) -> list[ScanLevel]:
         a = found[i]
         dup = any(
             abs(a.height - found[j].height) < PEAK_SEPARATION
-            and (a.cells & found[j].cells).sum() >= 0.5 * a.cells.sum()
+            and (
+                (a.cells & found[j].cells).sum() >= 0.5 * a.cells.sum()
+                or touching(found[j].cells, a.cells, res)
+            )
             for j in kept
         )
         if not dup:
@@ -486,7 +492,7 @@ def find_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel]
         k0 = len(layers.heights) - len(extra)
         _add_regions(found, levelled, layers, plan, range(k0, len(layers.heights)), len(found))
     layers = _at_own_height(found, levelled, layers, plan)
-    found = _distinct(found)
+    found = _distinct(found, res)
     return found, region_steps(found, layers, res), layers
 
 

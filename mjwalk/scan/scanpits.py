@@ -37,7 +37,7 @@ from scipy import ndimage
 
 from mjwalk.scan.level import MAX_SURFACE_HEIGHT
 from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan, rectangles
-from mjwalk.scan.planefit import flat_cells
+from mjwalk.scan.planefit import RISER_TOL, flat_cells
 from mjwalk.scan.regionsteps import touching
 from mjwalk.scan.scanlevels import (
     PEAK_SEPARATION,
@@ -109,8 +109,8 @@ def pit_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel],
 
     Returns:
         The regions (the floor first, ``index`` not yet set) and the steps between them as
-        (lower, upper) index pairs (a riser of at most ``norms.MAX_RISER`` along touching
-        edges).
+        (lower, upper) index pairs (a riser of at most ``norms.MAX_RISER``, measured: within
+        ``planefit.RISER_TOL`` of it, along touching edges).
     """
     res = plan.resolution
     gaps = plan.gaps if plan.gaps is not None else np.zeros_like(plan.floor)
@@ -130,7 +130,7 @@ def pit_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel],
         (i, j)
         for i, a in enumerate(found)
         for j, b in enumerate(found)
-        if 0 < b.height - a.height <= MAX_RISER and touching(a.cells, b.cells, res)
+        if 0 < b.height - a.height <= MAX_RISER + RISER_TOL and touching(a.cells, b.cells, res)
     ]
     return found, steps
 
