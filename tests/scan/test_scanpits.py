@@ -280,3 +280,23 @@ def test_a_stair_at_the_step_rule_bound_is_a_stair_on_the_grid():
     assert link is not None and link.kind == "stair" and link.upper == 0
     assert len(link.risers) == 3 and link.risers[0] == pytest.approx(r, abs=0.005)
     assert link.tread == pytest.approx(a, abs=0.02)
+
+
+@pytest.mark.slow  # about 15 s CPU (the scan), over a minute under load
+def test_a_pit_stair_of_the_largest_risers_in_a_generated_hall(tmp_path):
+    """levelgen's hall 108 (seeded): a pit 0.57 m deep reached by three 0.19 m risers (DIN
+    18065's largest) and 0.2619 m treads. Its top tread measures 0.1901 m below the floor, over
+    the limit by less than the scan's riser tolerance (``planefit.RISER_TOL``): the pit is a
+    level and its flight a stair (before: no step from the floor, the pit an obstacle)."""
+    from mjwalk.world.levelgen import generate_levels
+    from mjwalk.world.workplace import load_model
+
+    hall = generate_levels(108)
+    xml = tmp_path / "hall.xml"
+    xml.write_text(hall.xml)
+    scan = synthetic_scan(load_model(xml), list(hall.scanners), step_deg=0.4, noise=0.005, seed=108)
+    (pit,) = [p for p in build_scene(scan.points, source="hall108").pits if p.bottom is not None]
+    assert pit.kind == "level" and pit.bottom.height == pytest.approx(-0.57, abs=0.02)
+    link = pit.link
+    assert link is not None and link.kind == "stair" and len(link.risers) == 3
+    assert link.risers[0] == pytest.approx(0.19, abs=0.005)
