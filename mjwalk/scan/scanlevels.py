@@ -31,7 +31,10 @@ through diagonal voxels, so here levels are found in two passes:
 
 Regions whose edges touch (within ``norms.CONTACT_GAP`` and a cell) along at least a body's
 width (``mjwalk.world.contacts.MIN_CROSSING``) with a riser of at most ``norms.MAX_RISER`` are
-joined; the levels are the regions reachable from the floor so (a table top stays an obstacle).
+joined (a riser measured within ``planefit.RISER_TOL`` of the limit: a region's height is a fit);
+a region less than :data:`PEAK_SEPARATION` from a larger one it touches is part of it, no level
+(the obstacle band begins there); the levels are the regions reachable from the floor so (a
+table top stays an obstacle).
 Stairs: a chain of at least ``norms.MIN_STAIR_RISERS`` risers over single treads (regions no
 deeper than ``norms.MAX_TREAD``) with risers and treads regular within the scan's measuring
 tolerance is fitted as one regular flight (:mod:`mjwalk.scan.levelboxes`). Metres, scene frame

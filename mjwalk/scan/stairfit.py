@@ -138,6 +138,9 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
     )
     if not ok:
         return None
+    # a tread measured within the grid's slack outside the norm's range is written at its limit
+    # (the grid cannot tell them apart; the written scene's level graph is exact at the norm)
+    tread = min(max(tread, MIN_TREAD), MAX_TREAD)
     w0, w1 = float(np.median(lefts)), float(np.median(rights))
     rects = []
     for k in range(n - 1):
