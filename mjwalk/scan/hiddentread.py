@@ -36,6 +36,7 @@ import numpy as np
 from scipy import ndimage
 
 from mjwalk.scan.obstacles import MIN_BAND_POINTS, FloorPlan
+from mjwalk.scan.planefit import RISER_TOL
 from mjwalk.scan.scanlevels import Layers, ScanLevel, rasterize_layers
 from mjwalk.scan.stairfit import (
     EDGE_CELLS,
@@ -127,7 +128,7 @@ def _hidden_tread(
     bottom, treads = found[chain[0]], [found[i] for i in chain[1:]]
     m = len(treads)
     riser = (treads[-1].height - bottom.height) / m
-    if not MIN_RISER - HEIGHT_TOL <= riser <= MAX_RISER + HEIGHT_TOL:
+    if not MIN_RISER - RISER_TOL <= riser <= MAX_RISER + RISER_TOL:
         return None
     if any(
         abs(t.height - bottom.height - (k + 1) * riser) > HEIGHT_TOL for k, t in enumerate(treads)

@@ -24,6 +24,14 @@ TRIM_SIGMAS = 3.0
 #: The scan's range noise, metres (5 mm: ``FLOOR_TOL`` is six of it); a flat surface's points
 #: lie within three of it from its height (:func:`flat_cells`).
 RANGE_NOISE = FLOOR_TOL / 6
+#: How far a riser measured between two fitted regions may lie from the true one, metres: one
+#: :data:`RANGE_NOISE`. A region's height is a trimmed least-squares plane through tens to
+#: thousands of points, its standard error a fraction of one point's noise; a riser, the
+#: difference of two such heights, carries both and the levelling's residual tilt between them,
+#: within one point's noise (a generated pit's 0.19 m riser measured 0.1901 m). A measured riser
+#: is tested against a norm's limits (``norms.MIN_RISER``-``MAX_RISER``, DIN 18065) widened by
+#: this much, and by nothing more: the norm is not widened (a 0.25 m riser is refused).
+RISER_TOL = RANGE_NOISE
 #: Least share of a cell's points at a surface's height for the cell to be the surface's, not a
 #: ramp's strip at that height (:func:`flat_cells`).
 FLAT_SHARE = 0.8

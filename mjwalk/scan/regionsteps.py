@@ -30,6 +30,7 @@ import numpy as np
 from scipy import ndimage
 
 from mjwalk.scan.obstacles import MIN_BAND_POINTS
+from mjwalk.scan.planefit import RISER_TOL
 from mjwalk.world.contacts import MIN_CROSSING
 from mjwalk.world.norms import CONTACT_GAP, MAX_RISER, MAX_TREAD, MIN_TREAD
 
@@ -109,13 +110,14 @@ def region_steps(found: Sequence[Region], layers: Rasters, res: float) -> list[t
         res: the cell edge, metres.
 
     Returns:
-        (lower, upper) index pairs: a riser of at most ``norms.MAX_RISER`` between regions
-        whose edges touch (the lower one's unseen strip counted, :func:`with_shadow`).
+        (lower, upper) index pairs: a riser of at most ``norms.MAX_RISER`` (measured: within
+        ``planefit.RISER_TOL`` of it) between regions whose edges touch (the lower one's
+        unseen strip counted, :func:`with_shadow`).
     """
     steps = []
     for i, a in enumerate(found):
         reach = with_shadow(a, layers, res)
         for j, b in enumerate(found):
-            if 0 < b.height - a.height <= MAX_RISER and touching(reach, b.cells, res):
+            if 0 < b.height - a.height <= MAX_RISER + RISER_TOL and touching(reach, b.cells, res):
                 steps.append((i, j))
     return steps

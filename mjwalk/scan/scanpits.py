@@ -11,7 +11,9 @@ can hold a foot. Each connected gap is one :class:`ScanPit`:
 - its **link**: the bottom is reached from the floor when a chain of such regions joins them by
   risers of at most ``norms.MAX_RISER`` along touching edges (as the raised levels); a chain of
   at least ``norms.MIN_STAIR_RISERS`` risers over treads that fits a regular flight
-  (:func:`mjwalk.scan.stairfit.fit_stair`) is a stair. Such a pit is a level of the scan (its
+  (:func:`mjwalk.scan.stairfit.fit_stair`) is a stair (a riser measured within
+  ``planefit.RISER_TOL`` over ``MAX_RISER`` written at it, :func:`within_norm`). Such a pit is a
+  level of the scan (its
   bottom's height below the floor, printed with its link); one that nothing reaches, and a gap
   with no bottom, is an obstacle: a hole nobody may walk into.
 
@@ -37,7 +39,7 @@ from scipy import ndimage
 
 from mjwalk.scan.level import MAX_SURFACE_HEIGHT
 from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan, rectangles
-from mjwalk.scan.planefit import flat_cells
+from mjwalk.scan.planefit import RISER_TOL, flat_cells
 from mjwalk.scan.regionsteps import touching
 from mjwalk.scan.scanlevels import (
     PEAK_SEPARATION,
@@ -52,7 +54,7 @@ from mjwalk.scan.scanlevels import (
 )
 from mjwalk.scan.scanramps import ScanRamp, find_ramps, renumber
 from mjwalk.scan.stairfit import fit_stair
-from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_STAIR_RISERS
+from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_RISER, MIN_STAIR_RISERS
 
 #: Height of the box a gap is written as, metres: the least height of a guard rail round an
 #: opening, 1.1 m (EN ISO 14122-3:2016, 7.2.1); any height in the obstacle band makes it an
@@ -109,8 +111,8 @@ def pit_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel],
 
     Returns:
         The regions (the floor first, ``index`` not yet set) and the steps between them as
-        (lower, upper) index pairs (a riser of at most ``norms.MAX_RISER`` along touching
-        edges).
+        (lower, upper) index pairs (a riser of at most ``norms.MAX_RISER``, measured: within
+        ``planefit.RISER_TOL`` of it, along touching edges).
     """
     res = plan.resolution
     gaps = plan.gaps if plan.gaps is not None else np.zeros_like(plan.floor)
@@ -130,7 +132,7 @@ def pit_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel],
         (i, j)
         for i, a in enumerate(found)
         for j, b in enumerate(found)
-        if 0 < b.height - a.height <= MAX_RISER and touching(a.cells, b.cells, res)
+        if 0 < b.height - a.height <= MAX_RISER + RISER_TOL and touching(a.cells, b.cells, res)
     ]
     return found, steps
 
@@ -196,6 +198,33 @@ def _link(bottom: int, levels: list[ScanLevel], pairs: list, plan: FloorPlan) ->
     return ScanLink("step", bottom, 0, risers, via=via)
 
 
+def within_norm(
+    link: ScanLink, levels: tuple[ScanLevel, ...]
+) -> tuple[ScanLink, tuple[ScanLevel, ...]]:
+    """A stair down from the floor whose riser was measured within ``planefit.RISER_TOL``
+    outside the norm's range (``norms.MIN_RISER``-``MAX_RISER``), at the range's limit: the scan
+    cannot tell the two apart, and the written scene's level graph (exact at the norm) links
+    only the one within it. Its treads and bottom move to that riser's multiples below the
+    floor (by at most the riser count times ``RISER_TOL``).
+
+    Args:
+        link: the stair (``upper`` the floor, ``via`` its treads, bottom up).
+        levels: the levels ``link`` indexes.
+
+    Returns:
+        The link and the levels, unchanged when its riser is within the norm's range.
+    """
+    riser = min(max(link.risers[0], MIN_RISER), MAX_RISER)
+    if riser == link.risers[0]:
+        return link, levels
+    chain = [link.lower, *link.via]
+    n = len(link.risers)
+    out = list(levels)
+    for k, i in enumerate(chain):
+        out[i] = dataclasses.replace(levels[i], height=-(n - k) * riser)
+    return dataclasses.replace(link, risers=(riser,) * n), tuple(out)
+
+
 def find_pits(levelled: np.ndarray, plan: FloorPlan) -> list[ScanPit]:
     """The gaps of a floor plan, each with its bottom and how the floor reaches it.
 
@@ -224,6 +253,8 @@ def find_pits(levelled: np.ndarray, plan: FloorPlan) -> list[ScanPit]:
         link, pit_levels, ramp = None, tuple(levels), None
         if best is not None and best in new:
             link = _link(new[best], levels, pairs, plan)
+            if link is not None and link.kind == "stair":
+                link, pit_levels = within_norm(link, pit_levels)
         if best is not None and link is None:  # a ramp down to it (looked for once)
             ramps = find_ramps(levelled, plan, found, below=True) if ramps is None else ramps
             got = _ramp_link(best, found, steps, ramps)
@@ -233,10 +264,12 @@ def find_pits(levelled: np.ndarray, plan: FloorPlan) -> list[ScanPit]:
         centre = (plan.x0 + (ix.mean() + 0.5) * res, plan.y0 + (iy.mean() + 0.5) * res)
         size = rectangle_size(min_rectangle(cells, plan.x0, plan.y0, res))
         lowest = float(low[near].min(initial=0.0))
+        bottom = None if best is None else found[best]
+        if link is not None and link.kind == "stair":
+            bottom = pit_levels[link.lower]
         out.append(
             ScanPit(
-                cells, float(cells.sum()) * res * res, centre, size, lowest,
-                None if best is None else found[best], link,
+                cells, float(cells.sum()) * res * res, centre, size, lowest, bottom, link,
                 pit_levels if link is not None else (), ramp,
             )
         )  # fmt: skip

@@ -7,7 +7,8 @@ climb (the top level's axis nearest the treads' run); when a tread is seen in pa
 the shadow of the next tread or level), through the treads' front edges and the top level's. The
 chain is a stair when each tread's fitted height and edges lie within the scan's tolerance of
 the flight (:data:`HEIGHT_TOL`, :data:`EDGE_CELLS`) and the flight is within the norms (riser
-``MIN_RISER``-``MAX_RISER``, tread ``MIN_TREAD``-``MAX_TREAD``, step rule ``STEP_RULE``).
+``MIN_RISER``-``MAX_RISER``, tread ``MIN_TREAD``-``MAX_TREAD``, step rule ``STEP_RULE``; the
+riser measured, so within ``planefit.RISER_TOL`` of them, the tread within :func:`tread_slack`).
 Used by :mod:`mjwalk.scan.levelboxes` (flights up), :mod:`mjwalk.scan.scanpits` (down into pits)
 and :mod:`mjwalk.scan.hiddentread`. Metres, scene frame (floor at z = 0).
 """
@@ -20,6 +21,7 @@ import numpy as np
 
 from mjwalk.scan.minrect import min_rectangle
 from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan
+from mjwalk.scan.planefit import RISER_TOL
 from mjwalk.scan.scanlevels import ScanLevel, seen_in_part
 from mjwalk.world.norms import (
     MAX_RISER,
@@ -126,15 +128,19 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
         coef, dxy = _shadowed_fit(np.array(rhs), top_front, plan.resolution)
     first, tread = float(coef[0]), float(coef[2])
     slack = tread_slack(n, plan.resolution)
+    rule_slack = slack + 2 * RISER_TOL  # 2 s + a: twice the measured riser's, the tread's
     ok = (
         dz <= HEIGHT_TOL
         and dxy <= tol
-        and MIN_RISER - 1e-9 <= riser <= MAX_RISER + 1e-9
+        and MIN_RISER - RISER_TOL <= riser <= MAX_RISER + RISER_TOL
         and MIN_TREAD - slack <= tread <= MAX_TREAD + slack
-        and STEP_RULE[0] - slack <= 2 * riser + tread <= STEP_RULE[1] + slack
+        and STEP_RULE[0] - rule_slack <= 2 * riser + tread <= STEP_RULE[1] + rule_slack
     )
     if not ok:
         return None
+    # a tread measured within the grid's slack outside the norm's range is written at its limit
+    # (the grid cannot tell them apart; the written scene's level graph is exact at the norm)
+    tread = min(max(tread, MIN_TREAD), MAX_TREAD)
     w0, w1 = float(np.median(lefts)), float(np.median(rights))
     rects = []
     for k in range(n - 1):

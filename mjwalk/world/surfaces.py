@@ -284,7 +284,8 @@ def _surface_from_face(
     horizontal = math.tan(slope) <= options.horizontal_slope
     xy = _ccw(corners[:, :2])
     depth, width = _calipers(xy)
-    if depth < options.min_depth or width < options.min_width:
+    # 1e-9 m: the corners' rounding (a box exactly MIN_TREAD deep is a tread; as levels.py)
+    if depth < options.min_depth - 1e-9 or width < options.min_width - 1e-9:
         return None
     zc = float(corners[:, 2].mean())  # the plane's height over the vertices' mean
     centre = corners[:, :2].mean(axis=0)

@@ -5,8 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from mjwalk.scan.planefit import RISER_TOL
 from mjwalk.scan.regionsteps import region_steps, touching, with_shadow
 from mjwalk.scan.scanlevels import Layers, ScanLevel
+from mjwalk.world.norms import MAX_RISER
 
 RES = 0.02
 NY, NX = 60, 80
@@ -64,3 +66,20 @@ def test_a_strip_seen_in_sparse_rows_at_its_height_is_its_own():
 def test_the_floor_keeps_its_cells():
     found, layers = _regions(gap=6)
     assert (with_shadow(found[0], layers, RES) == found[0].cells).all()
+
+
+def test_a_riser_measured_over_the_limit_within_the_scans_tolerance_is_a_step():
+    """A riser measured at 0.1901 m (a true 0.19 m, DIN 18065's largest) is a step; one over
+    the limit by more than ``planefit.RISER_TOL`` (0.2 m, 0.25 m) is none."""
+    for rise, ok in (
+        (0.1901, True),
+        (MAX_RISER + RISER_TOL - 1e-4, True),
+        (0.20, False),
+        (0.25, False),
+    ):
+        found, layers = _regions(gap=0)
+        tread = found[2]
+        found[2] = ScanLevel(
+            0, "tread", 0.60 + rise, 0.0, 0.0, tread.cells, tread.area, tread.depth, 1.0, 2
+        )
+        assert ((1, 2) in region_steps(found, layers, RES)) is ok, rise

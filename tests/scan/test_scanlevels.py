@@ -97,3 +97,53 @@ def test_a_walled_flight_and_its_mezzanine_in_a_generated_hall(tmp_path):
     (stair,) = [k for k in lp.links if k.kind == "stair"]
     assert lp.heights[stair.upper] == pytest.approx(1.3209, abs=0.02)
     assert len(stair.risers) == 7 and np.mean(stair.risers) == pytest.approx(0.1887, abs=0.01)
+
+
+#: The small hall's deck with a box standing on the floor at its far corner, overlapping it by
+#: 5 x 5 cm, its top 3.6 cm above the deck (levelgen's hall 139: a stair's foot obstacle beside
+#: the mezzanine's corner).
+BOX_TOP = 0.68 + 0.036
+CORNER_XML = LEVELS_XML.replace(
+    "</worldbody>",
+    f'  <geom name="box" type="box" pos="2.64 1.30 {BOX_TOP / 2}" '
+    f'size="0.35 0.35 {BOX_TOP / 2}"/>\n</worldbody>',
+)
+
+
+def test_a_box_top_less_than_the_band_foot_above_a_level_is_no_level():
+    """The box top meets the deck less than the obstacle band's foot (0.05 m) above it: by the
+    band's definition part of the deck's surface, neither a level of its own nor a step up.
+    The deck and the stair stay (before: a 0.716 m level a 0.036 m step above the deck)."""
+    model = mujoco.MjModel.from_xml_string(CORNER_XML)
+    scanners = [*SCANNERS, (2.9, 2.2, 1.6)]
+    scan = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=3)
+    pts = find_floor(scan.points).apply(scan.points)
+    levels, pairs, _ = find_levels(pts, floor_plan(pts))
+    heights = sorted(lv.height for lv in levels)
+    assert heights == pytest.approx(TRUE, abs=0.02)
+    assert not any(abs(h - BOX_TOP) < 0.02 for h in heights)
+    rises = sorted(round(levels[j].height - levels[i].height, 2) for i, j in pairs)
+    assert rises == [0.17] * 5
+
+
+@pytest.mark.slow  # about 20 s CPU (the scan), over a minute under load
+def test_a_foot_obstacle_beside_the_mezzanines_corner_in_a_generated_hall(tmp_path):
+    """levelgen's hall 139 (seeded): a box standing on the floor by a turned stair's foot
+    overlaps the 1.2649 m mezzanine's corner, its top 1.3006 m. The mezzanine and its flights
+    are found, the box top is no level (before: an extra 1.30 m level)."""
+    from mjwalk.scan.levelboxes import scan_levels
+    from mjwalk.world.levelgen import generate_levels
+    from mjwalk.world.workplace import load_model
+
+    hall = generate_levels(139)
+    xml = tmp_path / "hall.xml"
+    xml.write_text(hall.xml)
+    scan = synthetic_scan(load_model(xml), list(hall.scanners), step_deg=0.4, noise=0.005, seed=139)
+    pts = find_floor(scan.points).apply(scan.points)
+    lp = scan_levels(pts, floor_plan(pts))
+    assert lp is not None
+    heights = np.asarray(lp.heights)
+    assert np.abs(heights - 1.2649).min() <= 0.02
+    assert np.abs(heights - 1.3006).min() > 0.02
+    stairs = [k for k in lp.links if k.kind == "stair"]
+    assert sorted(len(k.risers) for k in stairs) == [3, 4]

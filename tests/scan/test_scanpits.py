@@ -18,8 +18,12 @@ from mjwalk.scan import ScanOptions, build_scene
 from mjwalk.scan.level import find_floor
 from mjwalk.scan.obstacles import GAP_WIDTH, floor_plan
 from mjwalk.scan.raycast import synthetic_scan
-from mjwalk.scan.scanpits import GUARD_HEIGHT, describe_pits, find_pits, gap_boxes
+from mjwalk.scan.scanlevels import ScanLevel, ScanLink
+from mjwalk.scan.scanpits import GUARD_HEIGHT, describe_pits, find_pits, gap_boxes, within_norm
 from mjwalk.scan.scene import read_sites
+from mjwalk.world.levels import level_graph
+from mjwalk.world.norms import MAX_RISER
+from mjwalk.world.surfaces import find_walk_surfaces
 
 HALL = """<mujoco><worldbody>
 <geom type="box" pos="0 -1.75 -0.05" size="4 1.25 0.05"/>
@@ -288,3 +292,43 @@ def test_a_stair_at_the_step_rule_bound_is_a_stair_on_the_grid():
     assert link is not None and link.kind == "stair" and link.upper == 0
     assert len(link.risers) == 3 and link.risers[0] == pytest.approx(r, abs=0.005)
     assert link.tread == pytest.approx(a, abs=0.02)
+
+
+@pytest.mark.slow  # about 15 s CPU (the scan), over a minute under load
+def test_a_pit_stair_of_the_largest_risers_in_a_generated_hall(tmp_path):
+    """levelgen's hall 108 (seeded): a pit 0.57 m deep reached by three 0.19 m risers (DIN
+    18065's largest) and 0.2619 m treads. Its top tread measures 0.1901 m below the floor, over
+    the limit by less than the scan's riser tolerance (``planefit.RISER_TOL``): the pit is a
+    level and its flight a stair (before: no step from the floor, the pit an obstacle)."""
+    from mjwalk.world.levelgen import generate_levels
+    from mjwalk.world.workplace import load_model
+
+    hall = generate_levels(108)
+    xml = tmp_path / "hall.xml"
+    xml.write_text(hall.xml)
+    scan = synthetic_scan(load_model(xml), list(hall.scanners), step_deg=0.4, noise=0.005, seed=108)
+    scene = build_scene(scan.points, source="hall108")
+    (pit,) = [p for p in scene.pits if p.bottom is not None]
+    assert pit.kind == "level" and pit.bottom.height == pytest.approx(-0.57, abs=0.02)
+    link = pit.link
+    assert link is not None and link.kind == "stair" and len(link.risers) == 3
+    assert link.risers[0] == pytest.approx(0.19, abs=0.005)
+    # written at the norm's limit: the written scene's level graph links the pit by its stair
+    graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_string(scene.xml)))
+    (down,) = [k for k in graph.links if graph.levels[k.lower].height < -0.5]
+    assert down.kind == "stair" and len(down.risers) == 3
+
+
+def test_a_stair_measured_within_the_tolerance_over_the_limit_is_written_at_it():
+    """A pit's flight of three risers measured 0.1904 m (within ``planefit.RISER_TOL`` of the
+    0.19 m limit): its bottom and treads move to 0.19 m multiples below the floor; a flight
+    within the norm is left as measured."""
+    cells = np.zeros((4, 4), bool)
+    lv = [ScanLevel(k, "tread", h, 0.0, 0.0, cells, 0.0, 0.3, 1.0, 0) for k, h in
+          enumerate((0.0, -0.5712, -0.3808, -0.1904))]  # fmt: skip
+    link = ScanLink("stair", 1, 0, (0.1904,) * 3, 0.27, (2, 3))
+    new_link, new_levels = within_norm(link, tuple(lv))
+    assert new_link.risers == (MAX_RISER,) * 3
+    assert [x.height for x in new_levels] == pytest.approx([0.0, -0.57, -0.38, -0.19])
+    ok = ScanLink("stair", 1, 0, (0.17,) * 3, 0.27, (2, 3))
+    assert within_norm(ok, tuple(lv)) == (ok, tuple(lv))

@@ -6,9 +6,10 @@ import numpy as np
 import pytest
 
 from mjwalk.scan.obstacles import FloorPlan
+from mjwalk.scan.planefit import RISER_TOL
 from mjwalk.scan.scanlevels import ScanLevel
 from mjwalk.scan.stairfit import axis_near, cell_centres, fit_stair, near_edge, tread_slack
-from mjwalk.world.norms import MAX_TREAD, MIN_TREAD, STEP_RULE
+from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_TREAD, STEP_RULE
 
 RES = 0.02
 NY, NX = 60, 120
@@ -84,3 +85,19 @@ def test_tread_slack_shrinks_with_the_flight():
     assert tread_slack(3, RES) == pytest.approx(RES)
     assert tread_slack(6, RES) == pytest.approx(RES / 4)
     assert tread_slack(3, RES) < MAX_TREAD - MIN_TREAD
+
+
+def test_a_riser_measured_over_the_limit_within_the_scans_tolerance_is_a_stair():
+    """Hall 108's pit stair: three 0.19 m risers (DIN 18065's largest) and 0.26 m treads, its
+    bottom measured 0.5703 m down: a riser of 0.1901 m, over the limit by less than the scan's
+    riser tolerance (``planefit.RISER_TOL``): a stair. A riser over it by more is none."""
+    for riser, ok in ((0.1901, True), (MAX_RISER + RISER_TOL - 1e-4, True), (0.20, False)):
+        floor = _level(0, "floor", 0.0, (0, 20))
+        treads = [
+            _level(k + 1, "tread", riser * (k + 1), (20 + 13 * k, 33 + 13 * k)) for k in range(2)
+        ]
+        deck = _level(3, "platform", 3 * riser, (46, 110))
+        fit = fit_stair([0, 1, 2, 3], [floor, *treads, deck], _plan())
+        assert (fit is not None) is ok, riser
+        if ok:
+            assert fit["riser"] == pytest.approx(riser)
