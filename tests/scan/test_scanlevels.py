@@ -82,17 +82,7 @@ def test_a_walled_flight_and_its_mezzanine_in_a_generated_hall(tmp_path):
     the foot's; crate lids elsewhere 3 cm from the fourth and the sixth tread blend with them
     into one histogram peak each; the risers' rim points tilt the full treads' fits. The flight
     is one regular stair and the mezzanine a level within 2 cm (before: both missed)."""
-    from mjwalk.scan.levelboxes import scan_levels
-    from mjwalk.world.levelgen import generate_levels
-    from mjwalk.world.workplace import load_model
-
-    hall = generate_levels(101)
-    xml = tmp_path / "hall.xml"
-    xml.write_text(hall.xml)
-    scan = synthetic_scan(load_model(xml), list(hall.scanners), step_deg=0.4, noise=0.005, seed=101)
-    pts = find_floor(scan.points).apply(scan.points)
-    lp = scan_levels(pts, floor_plan(pts))
-    assert lp is not None
+    lp = _hall_levels(101, tmp_path)
     assert np.abs(np.asarray(lp.heights) - 1.3209).min() <= 0.02
     (stair,) = [k for k in lp.links if k.kind == "stair"]
     assert lp.heights[stair.upper] == pytest.approx(1.3209, abs=0.02)
@@ -137,19 +127,28 @@ def test_a_foot_obstacle_beside_the_mezzanines_corner_in_a_generated_hall(tmp_pa
     """levelgen's hall 139 (seeded): a box standing on the floor by a turned stair's foot
     overlaps the 1.2649 m mezzanine's corner, its top 1.3006 m. The mezzanine and its flights
     are found, the box top is no level (before: an extra 1.30 m level)."""
-    from mjwalk.scan.levelboxes import scan_levels
-    from mjwalk.world.levelgen import generate_levels
-    from mjwalk.world.workplace import load_model
-
-    hall = generate_levels(139)
-    xml = tmp_path / "hall.xml"
-    xml.write_text(hall.xml)
-    scan = synthetic_scan(load_model(xml), list(hall.scanners), step_deg=0.4, noise=0.005, seed=139)
-    pts = find_floor(scan.points).apply(scan.points)
-    lp = scan_levels(pts, floor_plan(pts))
-    assert lp is not None
+    lp = _hall_levels(139, tmp_path)
     heights = np.asarray(lp.heights)
     assert np.abs(heights - 1.2649).min() <= 0.02
     assert np.abs(heights - 1.3006).min() > 0.02
     stairs = [k for k in lp.links if k.kind == "stair"]
     assert sorted(len(k.risers) for k in stairs) == [3, 4]
+
+
+def _hall_levels(seed: int, tmp_path):
+    """The levels (:func:`~mjwalk.scan.levelboxes.scan_levels`) of a seeded synthetic scan
+    (0.4 deg rays, 5 mm noise, the seed's) of levelgen's hall ``seed`` from its scanners."""
+    from mjwalk.scan.levelboxes import scan_levels
+    from mjwalk.world.levelgen import generate_levels
+    from mjwalk.world.workplace import load_model
+
+    hall = generate_levels(seed)
+    xml = tmp_path / "hall.xml"
+    xml.write_text(hall.xml)
+    scan = synthetic_scan(
+        load_model(xml), list(hall.scanners), step_deg=0.4, noise=0.005, seed=seed
+    )
+    pts = find_floor(scan.points).apply(scan.points)
+    lp = scan_levels(pts, floor_plan(pts))
+    assert lp is not None
+    return lp
