@@ -57,6 +57,13 @@ class Contact:
         return math.hypot(x1 - x0, y1 - y0)
 
 
+#: Slack on ``max_rise``, metres: the rounding of a rise computed from two geoms' corners (a
+#: generated hall's 0.19 m riser, at the limit, came out 0.19000000000000006 m and its flight
+#: and mezzanine were no walk surfaces: ``benchmarks/bench_unseen.py`` hall 214), as
+#: :mod:`mjwalk.world.levels`' stair check allows 1e-9 m.
+RISE_SLACK = 1e-9
+
+
 def _edges(surface: WalkSurface) -> list[tuple[np.ndarray, np.ndarray]]:
     v = np.asarray(surface.footprint.vertices, dtype=float)
     return [(v[i], v[(i + 1) % len(v)]) for i in range(len(v))]
@@ -98,7 +105,7 @@ def _edge_contacts(
         if not np.any(on):
             continue
         rise = sb.height_at(q) - za
-        ok = on & (np.abs(rise) <= max_rise)
+        ok = on & (np.abs(rise) <= max_rise + RISE_SLACK)
         if np.any(ok):
             ok[ok] = sb.free_height(q[ok]) > EXPOSED_MIN
         for i, j in _runs(ok):

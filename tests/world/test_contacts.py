@@ -49,3 +49,20 @@ def test_reachable_and_arguments():
     assert reachable(len(ss), [c for c in cs if {c.a, c.b} != {1, 2}]) == {0, 1}
     with pytest.raises(InputError, match="gap"):
         surface_contacts(ss, gap=0.0)
+
+
+def test_a_riser_at_the_limit_rounded_over_it_is_a_contact(tmp_path):
+    """Generated hall 214 (``benchmarks/bench_unseen.py``): the landing's top (0.5696 m) and
+    the upper flight's first tread (0.7596 m) are a riser of exactly ``MAX_RISER`` (0.19 m),
+    computed 0.19000000000000006 m from the geoms' corners; without a slack the flight and the
+    1.52 m mezzanine were no walk surfaces (the walks there "inside obstacle 'mezz_deck'").
+    Now they are, and the mezzanine is linked by a five-riser stair."""
+    from mjwalk.world.levelgen import generate_levels
+    from mjwalk.world.workplace import load_workplace
+
+    wp = load_workplace(generate_levels(214).write(tmp_path / "levels_214.xml"), cache=False)
+    names = {s.name for s in wp.levels.surfaces}
+    assert {"mezz_s2t1", "mezz_s2t4", "mezz_deck"} <= names
+    deck = wp.levels.level_of[[s.name for s in wp.levels.surfaces].index("mezz_deck")]
+    stairs = [k for k in wp.levels.links if k.kind == "stair" and deck in (k.lower, k.upper)]
+    assert [len(k.risers) for k in stairs] == [5]
