@@ -336,6 +336,7 @@ def level_feet_on_ramps(
     geom = geom or leg_geometry()
     along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
     grid = [(d, w) for d in along for w in np.linspace(-0.5, 0.5, SOLE_GRID[1])]
+    whole = [surface_plane(p) for p in planes]  # the fallback's: the ramps' whole surfaces
 
     def under(print_) -> tuple[float, float] | None:
         on = ramp_support(planes, print_, geom)
@@ -348,7 +349,6 @@ def level_feet_on_ramps(
         hits = [h[0] for p in whole for q in pts if (h := _on_plane(p, (*q, 0.0))) is not None]
         return (max(hits) + SOLE_GRID_SAG, 0.0) if hits else None
 
-    whole = [surface_plane(p) for p in planes]
     out = list(surfs)
     for k, s in enumerate(walk.steps):
         if not level[k]:
