@@ -34,7 +34,7 @@ from mjwalk.gait.walker import Walker
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.world.levels import LevelGraph, LevelLink
 from mjwalk.world.levelview import level_view
-from mjwalk.world.norms import HEAD_MARGIN, MAX_RISER, SIDE_CLEARANCE
+from mjwalk.world.norms import HEAD_MARGIN, MAX_RISER, ROUNDING_SLACK, SIDE_CLEARANCE
 from mjwalk.world.workplace import Workplace
 
 #: The tread ASR A1.8 §4.5 names particularly safe, 0.29 m (with a 0.17 m riser): a foot landing
@@ -205,7 +205,7 @@ class Crossing:
         Returns:
             True when the walker takes it.
         """
-        return all(r <= max_riser + 1e-9 for r in self.risers)
+        return all(r <= max_riser + ROUNDING_SLACK for r in self.risers)
 
 
 def _length(seg) -> float:

@@ -19,7 +19,7 @@ import numpy as np
 
 from mjwalk.conventions import BODY_RADIUS
 from mjwalk.errors import InputError
-from mjwalk.world.norms import CONTACT_GAP, EXPOSED_MIN, MAX_RISER
+from mjwalk.world.norms import CONTACT_GAP, EXPOSED_MIN, MAX_RISER, ROUNDING_SLACK
 from mjwalk.world.walksurface import Segment, WalkSurface
 
 #: Spacing of the samples along an edge, metres (the clearance grid's 2 cm).
@@ -55,13 +55,6 @@ class Contact:
         """Length of the stretch, metres."""
         (x0, y0), (x1, y1) = self.edge
         return math.hypot(x1 - x0, y1 - y0)
-
-
-#: Slack on ``max_rise``, metres: the rounding of a rise computed from two geoms' corners (a
-#: generated hall's 0.19 m riser, at the limit, came out 0.19000000000000006 m and its flight
-#: and mezzanine were no walk surfaces: ``benchmarks/bench_unseen.py`` hall 214), as
-#: :mod:`mjwalk.world.levels`' stair check allows 1e-9 m.
-RISE_SLACK = 1e-9
 
 
 def _edges(surface: WalkSurface) -> list[tuple[np.ndarray, np.ndarray]]:
@@ -105,7 +98,7 @@ def _edge_contacts(
         if not np.any(on):
             continue
         rise = sb.height_at(q) - za
-        ok = on & (np.abs(rise) <= max_rise + RISE_SLACK)
+        ok = on & (np.abs(rise) <= max_rise + ROUNDING_SLACK)
         if np.any(ok):
             ok[ok] = sb.free_height(q[ok]) > EXPOSED_MIN
         for i, j in _runs(ok):

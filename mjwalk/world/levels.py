@@ -38,6 +38,7 @@ from mjwalk.world.norms import (
     MIN_RISER,
     MIN_STAIR_RISERS,
     MIN_TREAD,
+    ROUNDING_SLACK,
     STAIR_TOLERANCE,
     STEP_RULE,
 )
@@ -226,7 +227,7 @@ class LevelGraph:
         while todo:
             cur = todo.pop()
             for k in self.links_of(cur):
-                if max_riser is not None and any(r > max_riser for r in k.risers):
+                if max_riser is not None and any(r > max_riser + ROUNDING_SLACK for r in k.risers):
                     continue
                 nxt = k.upper if k.lower == cur else k.lower
                 if nxt not in seen:
@@ -347,9 +348,9 @@ def _is_stair(chain: list[LevelLink], options: LevelOptions) -> bool:
     return bool(
         np.ptp(risers) <= tol
         and np.ptp(treads) <= tol
-        and np.all((risers >= r0 - 1e-9) & (risers <= r1 + 1e-9))
-        and np.all((treads >= t0 - 1e-9) & (treads <= t1 + 1e-9))
-        and np.all((rule >= s0 - 1e-9) & (rule <= s1 + 1e-9))
+        and np.all((risers >= r0 - ROUNDING_SLACK) & (risers <= r1 + ROUNDING_SLACK))
+        and np.all((treads >= t0 - ROUNDING_SLACK) & (treads <= t1 + ROUNDING_SLACK))
+        and np.all((rule >= s0 - ROUNDING_SLACK) & (rule <= s1 + ROUNDING_SLACK))
     )
 
 

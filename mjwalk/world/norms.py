@@ -11,6 +11,14 @@ from __future__ import annotations
 
 import math
 
+# --- comparing computed lengths with these limits ---------------------------------------------
+#: Slack, metres, on every comparison of a length computed from geoms' corners (a riser, a tread,
+#: a surface's depth or width) with a limit of this module: the float rounding of the corners'
+#: arithmetic, not a tolerance of the norm. A generated hall's 0.19 m riser, exactly
+#: ``MAX_RISER``, came out 0.19000000000000006 m, and its flight and mezzanine were no walk
+#: surfaces (``benchmarks/bench_unseen.py``, hall 214). Far below any measurement's precision.
+ROUNDING_SLACK = 1e-9
+
 # --- stairs and steps -------------------------------------------------------------------------
 #: Smallest and largest riser (Steigung) of a building stair, metres: DIN 18065:2020 Table 1,
 #: "Gebäude im Allgemeinen" (workplaces, offices, public buildings), 140-190 mm; ASR A1.8 §4.5

@@ -41,6 +41,7 @@ from mjwalk.world.norms import (
     MAX_RISER,
     MAX_TREAD,
     MIN_TREAD,
+    ROUNDING_SLACK,
     STAND_WIDTH,
 )
 from mjwalk.world.walksurface import HeadroomMap, Overhead, WalkSurface, head_fits
@@ -284,8 +285,8 @@ def _surface_from_face(
     horizontal = math.tan(slope) <= options.horizontal_slope
     xy = _ccw(corners[:, :2])
     depth, width = _calipers(xy)
-    # 1e-9 m: the corners' rounding (a box exactly MIN_TREAD deep is a tread; as levels.py)
-    if depth < options.min_depth - 1e-9 or width < options.min_width - 1e-9:
+    # a box exactly MIN_TREAD deep is a tread: the corners' rounding is no shortfall
+    if depth < options.min_depth - ROUNDING_SLACK or width < options.min_width - ROUNDING_SLACK:
         return None
     zc = float(corners[:, 2].mean())  # the plane's height over the vertices' mean
     centre = corners[:, :2].mean(axis=0)

@@ -97,6 +97,19 @@ def test_reach_depends_on_the_walkers_riser(station):
     assert plat in low and mezz not in low
 
 
+def test_a_walker_whose_limit_is_the_riser_rounded_takes_the_stair(station):
+    """A stair's riser computed from geoms' corners carries float rounding: a walker whose
+    step-up limit is that riser less the rounding (1e-12 m) still takes the stair (as the
+    contacts and the stair check allow, ``norms.ROUNDING_SLACK``); 1 µm less does not."""
+    _, _, g = station
+    mezz = level_named(g, "mezzanine")
+    r = max(
+        r for k in g.links if k.kind == "stair" and mezz in (k.lower, k.upper) for r in k.risers
+    )
+    assert mezz in g.reachable(max_riser=r - 1e-12)
+    assert mezz not in g.reachable(max_riser=r - 1e-6)
+
+
 def test_a_riser_above_the_limit_gives_no_link():
     # surfaces found with a 0.25 m step limit; the default level options link at most 0.19 m
     model = scene('<geom name="box" type="box" size="1 1 0.105" pos="2 0 0.105"/>')
