@@ -135,16 +135,25 @@ def _soles(walk: WalkPath, geom, at: float) -> np.ndarray:
     return np.concatenate(pts)
 
 
-def _over(plane: dict, xy: np.ndarray, widen: float) -> bool:
-    """Whether any of the points (k, 2) lies over a ramp's surface (:func:`surface_plane`:
-    its run; its width, known, widened by ``widen`` metres)."""
-    plane = surface_plane(plane)
-    rel = xy - np.asarray(plane["foot"], dtype=float)
-    up = np.array([math.cos(plane["uphill"]), math.sin(plane["uphill"])])
-    along = rel @ up
-    across = np.abs(rel @ np.array([-up[1], up[0]]))
-    half = float(plane["half_width"]) + widen if plane["half_width"] > 0.0 else math.inf
-    return bool(np.any((along > 0.0) & (along <= float(plane["run"])) & (across <= half)))
+def over_ramp(plane: dict, xy: np.ndarray, widen: float = 0.0) -> np.ndarray:
+    """Which points lie over a ramp's plane: the planners' and the legs' one test.
+
+    Args:
+        plane: the ramp's plane (:func:`ramp_plane` or :func:`surface_plane`).
+        xy: (..., 2) world points, metres.
+        widen: metres added to each side of its width, when the width is known (a plane of
+            ``half_width`` 0 has no sides).
+
+    Returns:
+        (...,) bool: within its run, foot and top included, and its (widened) width.
+    """
+    rel = np.asarray(xy, dtype=float) - np.asarray(plane["foot"], dtype=float)
+    up = float(plane["uphill"])
+    along = rel @ np.array([math.cos(up), math.sin(up)])
+    across = np.abs(rel @ np.array([-math.sin(up), math.cos(up)]))
+    half = float(plane.get("half_width", 0.0))
+    sides = across <= half + widen if half > 0.0 else np.ones_like(along, dtype=bool)
+    return (along >= 0.0) & (along <= float(plane["run"])) & sides
 
 
 def ramps_beside(
@@ -180,7 +189,7 @@ def ramps_beside(
         at = round(plane["z"], 6)
         if at not in soles:
             soles[at] = _soles(walk, geom, plane["z"])
-        if _over(plane, soles[at], widen):
+        if np.any(over_ramp(surface_plane(plane), soles[at], widen)):
             out.append(plane)
     return out
 

@@ -12,6 +12,7 @@ from mjwalk.gait.default import default_model
 from mjwalk.plan.levelroute import crossings
 from mjwalk.plan.rampside import (
     META_KEY,
+    over_ramp,
     ramp_plane,
     ramps_beside,
     surface_plane,
@@ -148,6 +149,17 @@ def test_the_shipped_station_s_floor_walk_past_the_ramp_s_foot_stands_on_it(scen
     walk = plan_walk(station, "stand_ramp", "stand_step", model, rng=3)
     assert len(ramps_beside(station, walk, 1.75)) == 1
     assert collision_report(timeline_from_walk(walk, scene)) == []
+
+
+def test_over_ramp_takes_the_run_with_its_ends_and_the_widened_width():
+    """One test of "over the ramp" for the planners and the legs: a ramp rising along +y
+    from (1, 0), 2 m long, 1 m wide. Its foot and top lines are on it; its sides, known,
+    are widened by ``widen``; a plane of unknown width (``half_width`` 0) has none."""
+    plane = {"foot": (1.0, 0.0), "uphill": math.pi / 2, "run": 2.0, "half_width": 0.5}
+    xy = np.array([[1.0, 0.0], [1.0, 2.0], [1.0, -0.01], [1.0, 2.01], [1.55, 1.0], [0.45, 1.0]])
+    assert over_ramp(plane, xy).tolist() == [True, True, False, False, False, False]
+    assert over_ramp(plane, xy, widen=0.1).tolist() == [True, True, False, False, True, True]
+    assert over_ramp({**plane, "half_width": 0.0}, xy[4:]).all()
 
 
 def test_a_ramp_s_surface_plane_spans_its_whole_width(tmp_path):

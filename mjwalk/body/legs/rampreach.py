@@ -33,7 +33,7 @@ from mjwalk.body.legs.ik import leg_ik_world
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import HEEL_RISE_MAX, FootTracks, StepFrames
 from mjwalk.plan.rampside import META_KEY as BESIDE_KEY
-from mjwalk.plan.rampside import SOLE_GRID, surface_plane
+from mjwalk.plan.rampside import SOLE_GRID, over_ramp, surface_plane
 
 #: Passes of :func:`trailing_reach` (raise the heel by the deficit over the ball's lever,
 #: measure again); the deficit falls below a millimetre by the third on a 5.5 deg ramp.
@@ -430,13 +430,9 @@ def plane_heights(plane: dict, xy: np.ndarray) -> np.ndarray:
         width known, its sides).
     """
     up = float(plane["uphill"])
-    rel = xy - np.asarray(plane["foot"], float)
-    along = rel @ np.array([math.cos(up), math.sin(up)])
-    side = np.abs(rel @ np.array([-math.sin(up), math.cos(up)]))
-    half = float(plane.get("half_width", 0.0))
-    on = (along >= 0.0) & (along <= float(plane["run"])) & ((half <= 0.0) | (side <= half))
+    along = (xy - np.asarray(plane["foot"], float)) @ np.array([math.cos(up), math.sin(up)])
     h = float(plane.get("z", 0.0)) + math.tan(float(plane["slope"])) * along
-    return np.where(on, h, -np.inf)
+    return np.where(over_ramp(plane, xy), h, -np.inf)
 
 
 def _sole_grid(ankle, pitch, toe, yaw, geom: LegGeometry) -> np.ndarray:
