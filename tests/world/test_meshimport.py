@@ -86,6 +86,27 @@ def test_walk_into_the_u_is_planned_and_refused_with_the_hull(u_scene):
         plan_grid(hulled, OUTSIDE, INSIDE, radius=0.25)
 
 
+def test_a_mesh_whose_band_cuts_it_in_several_loops_loads(tmp_path):
+    """One mesh of two 0.4 m pillars 1.6 m apart (a frame's legs, a table's): its band cuts it
+    in two loops, which trimesh sorts with an R-tree (the ``rtree`` dependency; without it
+    ``load_workplace`` ended in ModuleNotFoundError). The gap between them stays free."""
+    parts = [_extrude(shapely.box(x, -0.2, x + 0.4, 0.2), 1.0) for x in (-1.2, 0.8)]
+    v = np.vstack([parts[0][0], parts[1][0]])
+    f = np.vstack([parts[0][1], parts[1][1] + len(parts[0][0])])
+    path = tmp_path / "pillars.xml"
+    path.write_text(f"""<mujoco>
+  <asset><mesh name="p" vertex="{" ".join(f"{x:.6g}" for x in v.ravel())}"
+               face="{" ".join(str(i) for i in f.ravel())}"/></asset>
+  <worldbody>
+    <geom name="floor" type="plane" size="3 3 0.05"/>
+    <geom name="pillars" type="mesh" mesh="p"/>
+  </worldbody>
+</mujoco>""")
+    wp = load_workplace(path, cache=False)
+    assert wp.clearance(np.array([0.0, 0.0])) == pytest.approx(0.8, abs=0.005)
+    assert wp.clearance(np.array([1.0, 0.0])) < 0 and wp.clearance(np.array([-1.0, 0.0])) < 0
+
+
 @pytest.mark.slow
 def test_imported_u_bench_walk_is_collision_free_in_mujoco(u_scene, tmp_path):
     """scene-import decomposes the bench (CoACD); walks planned into the U keep the body
