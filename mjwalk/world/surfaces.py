@@ -11,7 +11,8 @@ roof of a car on a flat floor is not (it stays an obstacle).
 
 Geom types: boxes exactly (level, yawed and tilted: a tilted box's top is a ramp); a vertical
 cylinder's top disc (as an inscribed 32-gon); a mesh's top (the convex hull of its vertices
-within 1 mm of its highest, horizontal only); a finite upward plane other than the floor.
+within 1 mm of its highest; where those are no face, as a wedge's ridge, the most upward face of
+its convex hull through its highest vertex: a ramp); a finite upward plane other than the floor.
 Spheres, capsules, ellipsoids, lying cylinders, height fields and SDFs give no surface. The geoms
 over a surface (its :class:`~mjwalk.world.walksurface.Overhead`) are every geom but the humanoid's,
 by their footprint in the band above the surface and their bounding box's underside.
@@ -166,16 +167,37 @@ def _top_face(model: mujoco.MjModel, data: mujoco.MjData, g: int) -> np.ndarray 
         v = model.mesh_vert[model.mesh_vertadr[m] : model.mesh_vertadr[m] + model.mesh_vertnum[m]]
         w = np.asarray(v, dtype=float) @ rot.T + pos
         top = w[w[:, 2] >= w[:, 2].max() - MESH_TOP]
-        if len(top) < 3:
-            return None
         from scipy.spatial import ConvexHull, QhullError  # deferred: ~1 s import, meshes only
 
         try:
-            hull = ConvexHull(top[:, :2])
-        except QhullError:
-            return None
+            hull = ConvexHull(top[:, :2]) if len(top) >= 3 else None
+        except QhullError:  # the highest vertices on a line: a wedge's ridge
+            hull = None
+        if hull is None:
+            return _sloped_top(w)
         return np.column_stack([top[hull.vertices, :2], np.full(len(hull.vertices), w[:, 2].max())])
     return None
+
+
+def _sloped_top(w: np.ndarray) -> np.ndarray | None:
+    """World corners (K, 3) of a mesh's top where its highest vertices are no face: the most
+    upward face of its convex hull (as MuJoCo collides it) through its highest vertex, e.g. a
+    wedge's ramp; None for a degenerate mesh. The slope limit is the caller's."""
+    from scipy.spatial import ConvexHull, QhullError  # deferred: ~1 s import, meshes only
+
+    try:
+        eq = ConvexHull(w).equations  # (F, 4): outward unit normal, offset
+    except QhullError:  # a flat or degenerate mesh
+        return None
+    through = np.abs(eq[:, :3] @ w[np.argmax(w[:, 2])] + eq[:, 3]) <= MESH_TOP
+    if not np.any(through & (eq[:, 2] > 0.0)):
+        return None
+    plane = eq[np.flatnonzero(through)[np.argmax(eq[through, 2])]]
+    face = w[np.abs(w @ plane[:3] + plane[3]) <= MESH_TOP]
+    try:
+        return face[ConvexHull(face[:, :2]).vertices]
+    except QhullError:
+        return None
 
 
 def _clip_above(corners: np.ndarray, z0: float) -> np.ndarray:

@@ -153,3 +153,64 @@ def test_without_the_ramp_the_platform_is_still_reached_by_its_step(scenes_dir):
 
 def test_humanoid_prefixes_match_the_workplace():
     assert surfaces_module.HUMANOID_PREFIXES == HUMANOID_PREFIXES
+
+
+def _wedge_station(scenes_dir, tmp_path):
+    """The multi-level station with its ramp (a tilted slab) replaced by a wedge mesh with the
+    same top face: from (x 2.2, z 0.34) down 5.5 deg to the floor, 1 m wide (CAD gives ramps
+    as solids like this)."""
+    import re
+
+    x1 = 2.2 + 0.34 / math.tan(math.radians(5.5))
+    v = [
+        (2.2, 2.7, 0),
+        (x1, 2.7, 0),
+        (x1, 3.7, 0),
+        (2.2, 3.7, 0),
+        (2.2, 2.7, 0.34),
+        (2.2, 3.7, 0.34),
+    ]
+    src = (scenes_dir / "multilevel_station.xml").read_text()
+    out = re.sub(
+        r'<geom name="platform_ramp" type="box"[^>]*/>',
+        '<geom name="platform_ramp" type="mesh" mesh="wedge" material="deck"/>',
+        src,
+        flags=re.S,
+    )
+    vertex = " ".join(f"{c:.6f}" for p in v for c in p)
+    out = out.replace("<asset>", f'<asset><mesh name="wedge" vertex="{vertex}"/>', 1)
+    assert out != src
+    path = tmp_path / "wedge_station.xml"
+    path.write_text(out)
+    return path
+
+
+def test_a_wedge_mesh_s_sloped_top_is_the_ramp_a_slab_gives(multilevel, scenes_dir, tmp_path):
+    """A mesh whose highest vertices are a ridge, not a face (a wedge), has the hull's most
+    upward face through its ridge as its top: the station's ramp as a wedge mesh is the same
+    ramp as the tilted slab (before: no surface, the wedge an obstacle, the ramp gone)."""
+    model = mujoco.MjModel.from_xml_path(str(_wedge_station(scenes_dir, tmp_path)))
+    found = {s.name: s for s in find_walk_surfaces(model)}
+    slab, wedge = multilevel["platform_ramp"], found["platform_ramp"]
+    assert wedge.kind == "ramp"
+    assert (wedge.z_low, wedge.z_high) == pytest.approx((slab.z_low, slab.z_high), abs=1e-3)
+    assert wedge.slope == pytest.approx(slab.slope, abs=1e-4)
+    assert math.cos(wedge.uphill - slab.uphill) == pytest.approx(1.0, abs=1e-9)
+    assert wedge.area == pytest.approx(slab.area, rel=1e-3)
+    assert set(found) == set(multilevel)
+
+
+@pytest.mark.slow
+def test_a_walk_up_a_wedge_mesh_ramp_takes_it_without_contacts(scenes_dir, tmp_path):
+    """The wedge-mesh station's walk from the ramp's foot onto the platform goes up the ramp,
+    and its animation touches nothing (the wedge is convex: MuJoCo collides it as it is)."""
+    import mjwalk
+    from mjwalk.gait.default import default_model
+
+    path = _wedge_station(scenes_dir, tmp_path)
+    walk = mjwalk.plan_walk(
+        mjwalk.load_workplace(path, cache=False), "stand_ramp", "stand_platform2",
+        default_model(), rng=0,
+    )  # fmt: skip
+    assert [r["kind"] for r in walk.meta["levels"]["route"]] == ["level", "ramp", "level"]
+    assert mjwalk.check_collisions(walk, path) == []
