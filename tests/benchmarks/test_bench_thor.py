@@ -99,6 +99,7 @@ def test_bad_options_stop_with_status_2(tmp_path, capsys):
     assert "no THÖR data" in capsys.readouterr().err
 
 
+@pytest.mark.slow  # among the fast tier's 4 longest (84-222 s in a loaded run): its 5 min budget
 def test_a_short_run_reproduces_the_real_figures(shared_data, capsys):
     """Pair 1-5's real walks measured as the data's README states (median path 4.07 m), and
     planned walks between their ends."""

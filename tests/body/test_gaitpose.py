@@ -22,6 +22,7 @@ def test_foot_skating_of_standing_and_gliding_poses():
     assert gaitpose.foot_skating(poses, fps=30.0, stature=1.75) == pytest.approx(1.2)
 
 
+@pytest.mark.slow  # among the fast tier's 4 longest (84-222 s in a loaded run): its 5 min budget
 def test_gaitpose_switching_reduces_foot_skating():
     """Remillard & Kry: per-contact-state GP dynamics keep the contact discontinuities; one
     smooth GP averages them away, which shows as foot skating. Seeded; 12 rollouts of 5 s

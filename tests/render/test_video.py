@@ -122,6 +122,7 @@ def test_render_video_atomic(tmp_path, timeline):
     assert not (tmp_path / "x.mp4").exists()
 
 
+@pytest.mark.slow  # among the fast tier's 4 longest (84-222 s in a loaded run): its 5 min budget
 @pytest.mark.skipif(
     available_backend() == "none",
     reason="neither EGL nor OSMesa loads here (this test renders with MUJOCO_GL unset)",

@@ -60,6 +60,7 @@ def test_bad_arms_option():
         timeline_from_walk(make_walk(n_steps=2), _scene(20.0), arms="flail")
 
 
+@pytest.mark.slow  # among the fast tier's 4 longest (84-222 s in a loaded run): its 5 min budget
 def test_timeline_with_gaitpose_arms():
     import warnings
 
