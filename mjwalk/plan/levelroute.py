@@ -313,8 +313,14 @@ def crossings(graph: LevelGraph, clear: float) -> list[Crossing]:
             out.append(_ramp(graph, k, clear))
         elif k.kind == "stair":
             edges = [k.lower_edge]
-            for i in k.via:  # each tread's far edge is the next riser
-                edges.append(_riser_after(graph.surfaces[i], edges[-1]))
+            for j, i in enumerate(k.via):  # each tread's far edge is the next riser ...
+                far = _riser_after(graph.surfaces[i], edges[-1])
+                above = (
+                    graph.surfaces[k.via[j + 1]].footprint.vertices
+                    if j + 1 < len(k.via)
+                    else k.upper_edge
+                )
+                edges.append(_under_nosing(far, edges[-1], above))  # ... unless overhung
             out.append(_flight(graph, edges, k.risers, k.lower, k.upper, "stair", clear))
     for chain in _step_chains(graph):
         edges = [c.lower_edge for c in chain]
@@ -333,6 +339,30 @@ def _riser_after(tread, below) -> tuple[tuple[float, float], tuple[float, float]
     off = float((centre - _mid(below)) @ n)
     shift = 2.0 * off * n  # the tread's centre lies half its depth beyond its near edge
     (x0, y0), (x1, y1) = a + shift, b + shift
+    return ((float(x0), float(y0)), (float(x1), float(y1)))
+
+
+#: Least overlap (m) of the next tread over a tread's far edge taken as a nosing's projection
+#: (Unterschneidung): DIN 18065 asks at least 30 mm of it on stairs without risers; below a
+#: millimetre the two edges are one line (a box stair's, up to its corners' rounding).
+NOSING_OVERLAP = 1e-3
+
+
+def _under_nosing(far, below, above) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The riser after a tread: its far edge ``far``, or, where the surface above (its points
+    ``above``: the next tread's footprint, or the upper level's edge) reaches back over it by
+    more than :data:`NOSING_OVERLAP` (an open stair's overlapping treads, DIN 18065's
+    Unterschneidung), the nosing's line over it: a foot on the tread keeps off that, not the
+    far edge under it (the toes under a 3 cm overlap caught the nosing as they lifted)."""
+    f0, f1 = (np.asarray(p, dtype=float) for p in far)
+    up = _mid(far) - _mid(below)
+    d = (f1 - f0) / max(float(np.linalg.norm(f1 - f0)), 1e-12)
+    n = np.array([-d[1], d[0]])
+    n = n if float(up @ n) >= 0.0 else -n  # up the stair
+    back = float(np.min((np.asarray(above, dtype=float) - _mid(far)) @ n))
+    if back >= -NOSING_OVERLAP:
+        return far
+    (x0, y0), (x1, y1) = f0 + back * n, f1 + back * n
     return ((float(x0), float(y0)), (float(x1), float(y1)))
 
 
