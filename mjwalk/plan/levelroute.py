@@ -343,7 +343,9 @@ def _riser_after(tread, below) -> tuple[tuple[float, float], tuple[float, float]
 
 
 #: Least overlap (m) of the next tread over a tread's far edge taken as a nosing's projection
-#: (Unterschneidung): DIN 18065 asks at least 30 mm of it on stairs without risers; below a
+#: (Unterschneidung): DIN 18065 §6.6 asks at least 30 mm of it on open stairs (no risers), and
+#: the going (Auftritt) is measured nosing to nosing, without it (public summaries checked:
+#: baunetzwissen.de "Unterschneidung", treppen-abc.com; the standard itself not); below a
 #: millimetre the two edges are one line (a box stair's, up to its corners' rounding).
 NOSING_OVERLAP = 1e-3
 
