@@ -34,9 +34,9 @@ through diagonal voxels, so here levels are found in two passes:
 Regions whose edges touch (within ``norms.CONTACT_GAP`` and a cell) along at least a body's
 width (``mjwalk.world.contacts.MIN_CROSSING``) with a riser of at most ``norms.MAX_RISER`` are
 joined (a riser measured within ``planefit.RISER_TOL`` of the limit: a region's height is a fit);
-a region less than :data:`PEAK_SEPARATION` from a larger one it touches is part of it, no level
-(the obstacle band begins there); the levels are the regions reachable from the floor so (a
-table top stays an obstacle).
+a region less than :data:`PEAK_SEPARATION` from a larger one it touches (that one's unseen strip
+counted, as for the steps) is part of it, no level (the obstacle band begins there); the levels
+are the regions reachable from the floor so (a table top stays an obstacle).
 Stairs: a chain of at least ``norms.MIN_STAIR_RISERS`` risers over single treads (regions no
 deeper than ``norms.MAX_TREAD``) with risers and treads regular within the scan's measuring
 tolerance is fitted as one regular flight (:mod:`mjwalk.scan.levelboxes`). Metres, scene frame
@@ -57,7 +57,7 @@ from mjwalk.scan.level import HORIZONTAL_DEG, MAX_SURFACE_HEIGHT, VOXEL, voxel_n
 from mjwalk.scan.minrect import min_rectangle, rectangle_size
 from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, FloorPlan
 from mjwalk.scan.planefit import RANGE_NOISE, TRIM_SIGMAS, fit_plane, flat_part
-from mjwalk.scan.regionsteps import region_steps, touching
+from mjwalk.scan.regionsteps import region_steps, touching, with_shadow
 from mjwalk.scan.sparsecells import join_sparse, unseen_cells
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.norms import (
@@ -466,26 +466,24 @@ def _unexplained(
     return np.array(new)
 
 
-def _distinct(found: list[ScanLevel], res: float) -> list[ScanLevel]:
+def _distinct(found: list[ScanLevel], layers: Layers, res: float) -> list[ScanLevel]:
     """The regions less any less than :data:`PEAK_SEPARATION` from a larger one's height that
     shares half its cells (one surface found at two candidate heights) or touches it along a
-    body's width (:func:`~mjwalk.scan.regionsteps.touching`): the obstacle band begins
-    ``PEAK_SEPARATION`` above a surface, so what meets it lower is part of it, no level of its
-    own and no step up (a box beside a mezzanine, its top 3.6 cm above the deck)."""
+    body's width, its unseen strip counted as the steps count it (:func:`~mjwalk.scan.
+    regionsteps.with_shadow`): the obstacle band begins ``PEAK_SEPARATION`` above a surface, so
+    what the steps would reach from it by a lower riser is part of it, no level of its own and
+    no step up (a box beside a mezzanine, its top 3.6 cm above the deck)."""
     keep = [found[0]]
     order = sorted(range(1, len(found)), key=lambda i: -found[i].area)
     kept: list[int] = []
     for i in order:
         a = found[i]
-        dup = any(
-            abs(a.height - found[j].height) < PEAK_SEPARATION
-            and (
-                (a.cells & found[j].cells).sum() >= 0.5 * a.cells.sum()
-                or touching(found[j].cells, a.cells, res)
-            )
+        if not any(
+            (a.cells & found[j].cells).sum() >= 0.5 * a.cells.sum()
+            or touching(with_shadow(found[j], layers, res), a.cells, res)
             for j in kept
-        )
-        if not dup:
+            if abs(a.height - found[j].height) < PEAK_SEPARATION
+        ):
             kept.append(i)
     keep += [found[i] for i in sorted(kept)]
     return keep
@@ -521,7 +519,7 @@ def find_regions(levelled: np.ndarray, plan: FloorPlan) -> tuple[list[ScanLevel]
         k0 = len(layers.heights) - len(extra)
         _add_regions(found, levelled, layers, plan, range(k0, len(layers.heights)), len(found))
     layers = _at_own_height(found, levelled, layers, plan)
-    found = _distinct(found, res)
+    found = _distinct(found, layers, res)
     return found, region_steps(found, layers, res), layers
 
 
