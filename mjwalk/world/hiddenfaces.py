@@ -116,13 +116,14 @@ def hidden_walk_faces(
     offset = np.einsum("ij,ij->i", unit, tri[:, 0])
     keys = np.round(np.c_[unit, offset] / PLANE_ROUND).astype(np.int64)
     _, group = np.unique(keys, axis=0, return_inverse=True)
+    group = group.ravel()
+    d1, d2 = tri[:, 1, :2] - tri[:, 0, :2], tri[:, 2, :2] - tri[:, 0, :2]
+    plan_area = np.bincount(group, 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]))
     found = []
-    for k in range(int(group.max()) + 1):
-        mine = np.flatnonzero(group.ravel() == k)
+    for k in np.flatnonzero(plan_area >= min_depth * min_width - 1e-9):  # planes one can stand on
+        mine = np.flatnonzero(group == k)
         xy = tri[mine][:, :, :2]
         plan = shapely.union_all([shapely.buffer(p, 1e-6) for p in shapely.polygons(xy)])
-        if plan.area < min_depth * min_width:
-            continue
         plane = np.r_[unit[mine].mean(axis=0), offset[mine].mean()]
         region = _lifted_inside(np.asarray(plan.bounds), plane, upper)
         if len(region) < 3:

@@ -189,9 +189,9 @@ def concave_mesh_footprints(
     if hidden:
         heights = ", ".join(f"{h.z:.3f}" for h in hidden)
         warnings.warn(
-            f"mesh geom {name!r} has {len(hidden)} walk face(s) under its convex hull (at z "
-            f"{heights} m), which MuJoCo collides with instead of the mesh: they are no walk "
-            "surfaces; run `mjwalk scene-import` on the scene to decompose it",
+            f"mesh geom {name!r} has {len(hidden)} face(s) to stand on under its convex hull "
+            f"(at z {heights} m), which MuJoCo collides with instead of the mesh: they are no "
+            "walk surfaces; run `mjwalk scene-import` on the scene to decompose it",
             HiddenWalkFaceWarning,
             stacklevel=2,
         )
@@ -223,11 +223,11 @@ def concave_mesh(
 
     A mesh with walk faces under its hull (:func:`~mjwalk.world.hiddenfaces.hidden_walk_faces`:
     a stair as one mesh) is concave in elevation. A closed volume is concave when its volume
-    falls short of its hull's by more than CONCAVE_SHARE. A mesh that is not one (a missing triangle, faces wound inwards: common in
-    exported CAD) is first repaired with trimesh (``fix_normals``, ``fill_holes``) and judged
-    as a volume when that closes it; one that stays open or non-manifold (two boxes sharing an
-    edge) is judged by its top view, so MuJoCo never collides the convex hull of a U whose
-    inside is free.
+    falls short of its hull's by more than CONCAVE_SHARE. A mesh that is not one (a missing
+    triangle, faces wound inwards: common in exported CAD) is first repaired with trimesh
+    (``fix_normals``, ``fill_holes``) and judged as a volume when that closes it; one that
+    stays open or non-manifold (two boxes sharing an edge) is judged by its top view, so MuJoCo
+    never collides the convex hull of a U whose inside is free.
 
     Args:
         verts: (V, 3) vertices in the mesh frame, metres.
