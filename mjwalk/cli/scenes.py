@@ -264,5 +264,10 @@ def add_scene_import_parser(sub) -> None:
     p.add_argument("-o", "--output", type=Path, required=True, help="MJCF scene to write")
     p.add_argument("--units", default="m", help="mesh file units: m cm mm in ft")
     p.add_argument("--up", default="+z", help="mesh file up axis: +z +y ...")
-    p.add_argument("--threshold", type=float, default=0.02, help="CoACD concavity threshold (0.02)")
+    p.add_argument(
+        "--threshold",
+        type=float,
+        default=None,
+        help="CoACD concavity threshold (0.02; 0.01 for a mesh with walk faces under its hull)",
+    )
     p.set_defaults(func=cmd_scene_import)

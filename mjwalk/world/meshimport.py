@@ -13,10 +13,17 @@ planner would see it filled in. Two remedies that agree with each other:
   bare mesh file, put on a floor) is replaced by its CoACD convex decomposition (Wei et al.
   2022, collision-aware concavity), written inline as mesh assets, so MuJoCo's collision and
   the planner's footprints (the union of the parts' footprints) are the same shape.
+
+A mesh can be concave in elevation too: a stair and its landing modelled as one mesh (CAD exports
+do this) has a convex footprint, but its convex hull is a wedge over the nosings, so the treads
+are hidden under it (:func:`hidden_walk_faces`): ``load_workplace`` warns
+(:class:`HiddenWalkFaceWarning`) and ``scene-import`` decomposes such a mesh, finely enough that
+every tread is a part's top.
 """
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -28,6 +35,7 @@ from mjwalk._io import atomic_path
 from mjwalk.errors import InputError, SceneError
 from mjwalk.world.floor import check_floor_size
 from mjwalk.world.footprint import Footprint
+from mjwalk.world.hiddenfaces import HiddenWalkFaceWarning, hidden_walk_faces
 from mjwalk.world.units import UNITS, UP_AXES
 
 #: A band footprint is concave when its convex hull exceeds it by more than this share of the
@@ -40,6 +48,13 @@ SIMPLIFY_TOL = 0.002
 #: the decomposition cuts until every part is within this share of the bounding-box diagonal
 #: of convex, which 0 or less never allows (``--threshold 0`` was still cutting after 120 s).
 THRESHOLD_RANGE = (0.01, 1.0)
+#: CoACD's threshold for a mesh concave in plan (4 cm on a 2 m bench).
+DEFAULT_THRESHOLD = 0.02
+#: CoACD's threshold for a mesh with walk faces under its hull: the range's least. A tread must
+#: be a part's top to within ``norms.STAIR_TOLERANCE`` (5 mm); relative to the bounding-box
+#: diagonal of anything a person stands on (at least a 0.26 x 0.6 m tread's, 0.65 m) that is
+#: below 0.008, finer than CoACD allows, so the finest it allows.
+ELEVATION_THRESHOLD = THRESHOLD_RANGE[0]
 #: Mesh file suffixes trimesh reads for scene-import.
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".off")
 
@@ -161,11 +176,25 @@ def concave_mesh_footprints(
 
     Returns:
         The convex pieces, or None when the geom is not a mesh or not concave.
+
+    Warns:
+        HiddenWalkFaceWarning: the mesh has walk faces under its convex hull (a stair as one
+            mesh), which MuJoCo collides with: ``mjwalk scene-import`` decomposes it.
     """
     if int(model.geom_type[g]) != mujoco.mjtGeom.mjGEOM_MESH:
         return None
     verts, faces = geom_mesh_world(model, data, g)
     name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
+    hidden = hidden_walk_faces(verts, faces)
+    if hidden:
+        heights = ", ".join(f"{h.z:.3f}" for h in hidden)
+        warnings.warn(
+            f"mesh geom {name!r} has {len(hidden)} face(s) to stand on under its convex hull "
+            f"(at z {heights} m), which MuJoCo collides with instead of the mesh: they are no "
+            "walk surfaces; run `mjwalk scene-import` on the scene to decompose it",
+            HiddenWalkFaceWarning,
+            stacklevel=2,
+        )
     return mesh_footprints(verts, faces, z0, z1, name, g)
 
 
@@ -192,12 +221,13 @@ def concave_mesh(
 ) -> tuple[np.ndarray, np.ndarray] | None:
     """The mesh to decompose when a mesh is concave, else None.
 
-    A closed volume is concave when its volume falls short of its hull's by more than
-    CONCAVE_SHARE. A mesh that is not one (a missing triangle, faces wound inwards: common in
-    exported CAD) is first repaired with trimesh (``fix_normals``, ``fill_holes``) and judged
-    as a volume when that closes it; one that stays open or non-manifold (two boxes sharing an
-    edge) is judged by its top view, so MuJoCo never collides the convex hull of a U whose
-    inside is free.
+    A mesh with walk faces under its hull (:func:`~mjwalk.world.hiddenfaces.hidden_walk_faces`:
+    a stair as one mesh) is concave in elevation. A closed volume is concave when its volume
+    falls short of its hull's by more than CONCAVE_SHARE. A mesh that is not one (a missing
+    triangle, faces wound inwards: common in exported CAD) is first repaired with trimesh
+    (``fix_normals``, ``fill_holes``) and judged as a volume when that closes it; one that
+    stays open or non-manifold (two boxes sharing an edge) is judged by its top view, so MuJoCo
+    never collides the convex hull of a U whose inside is free.
 
     Args:
         verts: (V, 3) vertices in the mesh frame, metres.
@@ -210,30 +240,32 @@ def concave_mesh(
     import trimesh  # deferred: trimesh is slow to import; only meshes need it
 
     mesh = trimesh.Trimesh(verts, faces, process=True)
+    world = verts if rot is None else verts @ np.asarray(rot).T
+    hidden = bool(hidden_walk_faces(world, faces))
     if not mesh.is_volume:
         fixed = mesh.copy()
         trimesh.repair.fix_normals(fixed)
         trimesh.repair.fill_holes(fixed)
         if not fixed.is_volume:
-            world = verts if rot is None else verts @ np.asarray(rot).T
-            return (verts, faces) if _plan_concave(world, faces) else None
+            return (verts, faces) if hidden or _plan_concave(world, faces) else None
         mesh = fixed
     hull = mesh.convex_hull.volume
-    if hull - abs(mesh.volume) > CONCAVE_SHARE * hull:
+    if hidden or hull - abs(mesh.volume) > CONCAVE_SHARE * hull:
         return np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int64)
     return None
 
 
 def convex_parts(
-    verts: np.ndarray, faces: np.ndarray, threshold: float = 0.02, seed: int = 0
+    verts: np.ndarray, faces: np.ndarray, threshold: float = DEFAULT_THRESHOLD, seed: int = 0
 ) -> list[tuple[np.ndarray, np.ndarray]]:
     """CoACD convex decomposition of a mesh.
 
     Args:
         verts: (V, 3) vertices, metres.
         faces: (F, 3) vertex indices.
-        threshold: CoACD's concavity bound relative to the mesh's bounding-box diagonal (0.02:
-            4 cm on a 2 m bench, below the planner's 0.25 m body radius by an order).
+        threshold: CoACD's concavity bound relative to the mesh's bounding-box diagonal
+            (:data:`DEFAULT_THRESHOLD`: 4 cm on a 2 m bench, below the planner's 0.25 m body
+            radius by an order).
         seed: CoACD's seed.
 
     Returns:
@@ -250,6 +282,40 @@ def convex_parts(
     return [(np.asarray(v, float), np.asarray(f, np.int64)) for v, f in parts]
 
 
+def decompose(
+    verts: np.ndarray, faces: np.ndarray, threshold: float = DEFAULT_THRESHOLD, seed: int = 0
+) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Convex parts of a concave mesh: each closed body of a mesh made of several (a CAD export
+    of touching boxes: a stair's steps and its landing) on its own, a convex body as itself
+    (to within CONCAVE_SHARE of its hull's volume) and a concave one by :func:`convex_parts`;
+    a mesh that is not several closed bodies by :func:`convex_parts` whole.
+
+    Args:
+        verts: (V, 3) vertices, metres.
+        faces: (F, 3) vertex indices.
+        threshold: CoACD's concavity threshold (see :func:`convex_parts`).
+        seed: CoACD's seed.
+
+    Returns:
+        The convex parts, (vertices (V_k, 3), faces (F_k, 3)) each.
+    """
+    import trimesh  # deferred: trimesh is slow to import; only meshes need it
+
+    mesh = trimesh.Trimesh(verts, faces, process=True)
+    bodies = mesh.split(only_watertight=True)
+    if len(bodies) < 2 or sum(len(b.faces) for b in bodies) != len(mesh.faces):
+        return convex_parts(verts, faces, threshold, seed)
+    out = []
+    for body in bodies:
+        bv, bf = np.asarray(body.vertices, float), np.asarray(body.faces, np.int64)
+        hull = body.convex_hull.volume
+        if hull - abs(body.volume) <= CONCAVE_SHARE * hull:
+            out.append((bv, bf))
+        else:
+            out.extend(convex_parts(bv, bf, threshold, seed))
+    return out
+
+
 @dataclass
 class ImportResult:
     """What :func:`import_scene` wrote: ``parts`` maps each decomposed geom to its part count."""
@@ -260,23 +326,25 @@ class ImportResult:
     mesh_dir: str = "inline"
 
 
-def check_threshold(threshold: float, what: str = "threshold") -> None:
+def check_threshold(threshold: float | None, what: str = "threshold") -> None:
     """Refuse a concavity threshold outside CoACD's range.
 
     Args:
-        threshold: the value given.
+        threshold: the value given (None: the defaults, accepted).
         what: its name in the message.
 
     Raises:
         InputError: not a number within :data:`THRESHOLD_RANGE`.
     """
     lo, hi = THRESHOLD_RANGE
+    if threshold is None:
+        return
     if isinstance(threshold, bool) or not (
         isinstance(threshold, int | float) and lo <= threshold <= hi
     ):
         raise InputError(
             f"{what} {threshold!r}: CoACD's concavity threshold must lie in [{lo:g}, {hi:g}] "
-            "(a share of the mesh's bounding-box diagonal; 0.02 is the default)"
+            f"(a share of the mesh's bounding-box diagonal; {DEFAULT_THRESHOLD:g} is the default)"
         )
 
 
@@ -328,7 +396,7 @@ def import_scene(
     *,
     units: str = "m",
     up: str = "+z",
-    threshold: float = 0.02,
+    threshold: float | None = None,
 ) -> ImportResult:
     """Write ``output``: the MJCF (or mesh file) ``source`` with every concave mesh geom
     replaced by its convex parts (inline mesh assets, same body, pose, material and
@@ -340,7 +408,9 @@ def import_scene(
         output: the MJCF file to write (.xml, atomically).
         units: a mesh file's length unit (:data:`mjwalk.world.units.UNITS`).
         up: a mesh file's up axis (:data:`mjwalk.world.units.UP_AXES`).
-        threshold: CoACD's concavity threshold (see :func:`check_threshold`).
+        threshold: CoACD's concavity threshold (see :func:`check_threshold`; None:
+            :data:`DEFAULT_THRESHOLD`, and :data:`ELEVATION_THRESHOLD` for a mesh with walk
+            faces under its hull).
 
     Returns:
         The output path and the number of convex parts per replaced geom name.
@@ -364,12 +434,19 @@ def import_scene(
         fa, fn = model.mesh_faceadr[mesh], model.mesh_facenum[mesh]
         verts = np.asarray(model.mesh_vert[va : va + vn], float)
         faces = np.asarray(model.mesh_face[fa : fa + fn], np.int64)
-        concave = concave_mesh(verts, faces, data.geom_xmat[g].reshape(3, 3))
+        rot = data.geom_xmat[g].reshape(3, 3)
+        concave = concave_mesh(verts, faces, rot)
         if concave is None:
             continue
         name = model.geom(g).name or f"geom{g}"
         geom = spec.geoms[g]
-        parts = convex_parts(*concave, threshold)
+        if threshold is not None:
+            limit = threshold
+        elif hidden_walk_faces(verts @ rot.T, faces):
+            limit = ELEVATION_THRESHOLD
+        else:
+            limit = DEFAULT_THRESHOLD
+        parts = decompose(*concave, limit)
         for k, (pv, pf) in enumerate(parts):
             _add_part(spec, model, (g, geom), f"{name}_part{k}", (pv, pf))
         spec.delete(geom)

@@ -36,5 +36,7 @@ def test_scan_parser():
 
 def test_scene_import_parser():
     a = _parse(["scene-import", "part.stl", "-o", "s.xml", "--units", "mm"])
-    assert (a.source, a.units, a.up, a.threshold) == (Path("part.stl"), "mm", "+z", 0.02)
+    # None: import_scene's defaults (0.02; 0.01 for a mesh with walk faces under its hull)
+    assert (a.source, a.units, a.up, a.threshold) == (Path("part.stl"), "mm", "+z", None)
     assert a.func is cmd_scene_import
+    assert _parse(["scene-import", "p.stl", "-o", "s.xml", "--threshold", "0.05"]).threshold == 0.05

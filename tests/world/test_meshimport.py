@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import dataclasses
+import warnings
 
 import mujoco
 import numpy as np
@@ -12,6 +13,7 @@ import shapely
 from mjwalk.errors import PlanningError, SceneError
 from mjwalk.plan.grid import plan_grid
 from mjwalk.world import build_clearance, geom_footprint, load_workplace
+from mjwalk.world.hiddenfaces import HiddenWalkFaceWarning
 from mjwalk.world.meshimport import import_scene
 
 
@@ -155,3 +157,100 @@ def test_scene_import_bad_input(tmp_path):
     with pytest.raises(SceneError, match="unknown scene format"):
         import_scene(tmp_path / "x.txt", tmp_path / "o.xml")
     assert not (tmp_path / "o.xml").exists()
+
+
+#: A 0.51 m platform reached by three 0.17 m risers and 0.28 m treads, 1 m wide: its profile in
+#: the x-z plane (stair from x = 0, platform to x = 2.84).
+STAIR_PROFILE = shapely.Polygon(
+    [(0, 0), (2.84, 0), (2.84, 0.51), (0.56, 0.51), (0.56, 0.34), (0.28, 0.34), (0.28, 0.17)]
+    + [(0, 0.17)]
+)
+
+
+def _stair_scene(tmp_path, kind: str):
+    """The stair and its platform as ONE mesh geom: "bodies", touching boxes (a CAD export of
+    several bodies, not a manifold), or "manifold", the profile extruded (a closed volume)."""
+    import trimesh
+
+    if kind == "bodies":
+        boxes = []
+        for x0, x1, h in (
+            (0, 0.28, 0.17),
+            (0.28, 0.56, 0.34),
+            (0.56, 0.84, 0.51),
+            (0.84, 2.84, 0.51),
+        ):
+            b = trimesh.creation.box(extents=[x1 - x0, 1.0, h])
+            b.apply_translation([(x0 + x1) / 2, 0, h / 2])
+            boxes.append(b)
+        mesh = trimesh.util.concatenate(boxes)
+    else:
+        v, f = _extrude(STAIR_PROFILE, 1.0)
+        mesh = trimesh.Trimesh(np.c_[v[:, 0], v[:, 2] - 0.5, v[:, 1]], f[:, ::-1])
+        assert mesh.is_volume
+    mesh.export(tmp_path / "stair.stl")
+    path = tmp_path / "stair.xml"
+    path.write_text(
+        """<mujoco><asset><mesh name="stair" file="stair.stl"/></asset><worldbody>
+  <geom name="floor" type="plane" size="6 4 0.1"/>
+  <geom name="stairmesh" type="mesh" mesh="stair"/>
+  <site name="a" pos="-2 0 0"/><site name="b" pos="2.3 0 0.51"/>
+</worldbody></mujoco>"""
+    )
+    return path
+
+
+def _hidden_warnings(path) -> list[str]:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        load_workplace(path)
+    return [str(w.message) for w in caught if issubclass(w.category, HiddenWalkFaceWarning)]
+
+
+@pytest.mark.parametrize("kind", ["bodies", "manifold"])
+def test_a_one_mesh_stair_warns_that_its_treads_are_under_its_hull(tmp_path, kind):
+    (msg,) = _hidden_warnings(_stair_scene(tmp_path, kind))
+    assert "'stairmesh'" in msg and "mjwalk scene-import" in msg and "0.170, 0.340" in msg
+    assert "\n" not in msg
+
+
+def test_no_hidden_face_warning_for_a_convex_mesh_or_the_u_bench(tmp_path, u_scene):
+    assert _hidden_warnings(u_scene) == []
+    path = tmp_path / "box.xml"
+    path.write_text(
+        """<mujoco><asset><mesh name="m" vertex="0 0 0 2 0 0 2 1 0 0 1 0 0 0 .5 2 0 .5 2 1 .5
+  0 1 .5"/></asset><worldbody><geom name="floor" type="plane" size="4 4 0.1"/>
+  <geom name="box" type="mesh" mesh="m"/></worldbody></mujoco>"""
+    )
+    assert _hidden_warnings(path) == []
+
+
+@pytest.mark.parametrize("kind", ["bodies", "manifold"])
+def test_imported_one_mesh_stair_has_its_treads_and_stair(tmp_path, kind):
+    """scene-import decomposes the stair (concave in elevation, not in plan): each tread and
+    the platform is a part's top at its true height, joined to the floor by a stair."""
+    out = tmp_path / "imported.xml"
+    result = import_scene(_stair_scene(tmp_path, kind), out)
+    assert result.parts["stairmesh"] >= 4
+    assert _hidden_warnings(out) == []
+    graph = load_workplace(out).levels
+    heights = [lv.height for lv in graph.levels]
+    assert heights == pytest.approx([0.0, 0.17, 0.34, 0.51], abs=0.002)
+    (link,) = graph.links
+    assert link.kind == "stair" and (link.lower, link.upper) == (0, 3)
+    assert link.risers == pytest.approx([0.17] * 3, abs=0.002)
+    assert link.tread == pytest.approx(0.28, abs=0.005)
+
+
+@pytest.mark.slow
+def test_walk_up_the_imported_one_mesh_stair_touches_nothing(tmp_path):
+    """Floor -> platform over the imported stair: planned, and its animated timeline has no
+    contact with the parts (the raw mesh's hull would hold the feet 0.14 m deep)."""
+    from mjwalk.plan.walks import plan_walk
+    from mjwalk.timeline import collision_report, timeline_from_walk
+
+    out = tmp_path / "imported.xml"
+    import_scene(_stair_scene(tmp_path, "bodies"), out)
+    walk = plan_walk(load_workplace(out), "a", "b", rng=0)
+    assert walk.z is not None and walk.z.max() == pytest.approx(0.51, abs=0.002)
+    assert collision_report(timeline_from_walk(walk, out)) == []
