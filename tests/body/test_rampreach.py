@@ -26,6 +26,7 @@ from mjwalk.body.legs.rampreach import (
 from mjwalk.body.legs.steps import FootTracks, StepFrames
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.gait.default import default_model
+from mjwalk.gait.walker import Walker
 from mjwalk.plan.rampside import surface_plane, with_ramps_beside
 from mjwalk.plan.synthetic import synthetic_ramp_walk, synthetic_walk
 from mjwalk.plan.walks import plan_walk
@@ -272,3 +273,56 @@ def test_a_flight_s_steps_at_one_height_are_level_steps():
     planes, level = level_planes(walk, len(steps))
     assert planes == [plane]
     assert level == [True, True, False, False, True, False]
+
+
+def test_a_footprint_beside_a_ramp_is_not_pitched():
+    """A ramp crossing's level steps may turn on the floor beside the ramp, within its run
+    along the axis but off its sides: they stand level (generated hall 510, floor_0 ->
+    platform_1: a turn 1.3 m beside the 3.5 deg ramp's foot stood pitched toes down, 1.2 cm
+    into the floor); on its surface, pitched; a plane of unknown width, pitched as before."""
+    slope = np.deg2rad(3.5)
+    plane = {"slope": slope, "uphill": 0.0, "foot": [0.0, 0.0], "run": 3.0, "half_width": 0.6,
+             "sides": [-0.6, 0.6]}  # fmt: skip
+    down = np.array([0.2, 1.3, np.pi])
+    assert plane_pitch(plane, down) == 0.0
+    assert plane_pitch(plane, np.array([0.2, 0.5, np.pi])) == pytest.approx(-slope)
+    wide = {k: v for k, v in plane.items() if k not in ("half_width", "sides")}
+    assert plane_pitch(wide, down) == pytest.approx(-slope)
+
+
+def test_a_foot_whose_toes_reach_past_a_ramp_s_foot_is_not_pitched():
+    """:func:`ramp_support` needs the plane under the toe tip too: a foot pointing down a ramp
+    with its heel and ball on it and its toe tip past its foot, pitched to the slope, has
+    its toes below the floor; it stands level instead (None)."""
+    g = leg_geometry(DEFAULT_STATURE)
+    plane = {"slope": np.radians(9.8), "uphill": 0.0, "foot": [0.0, 0.0], "run": 3.0,
+             "half_width": 0.6}  # fmt: skip
+    x = 0.5 * (ball_offset(g) + g.foot_front)  # the ball on the ramp, the toe tip past it
+    assert ramp_support([plane], (x, 0.0, np.pi), g) is None
+    _, pitch = ramp_support([plane], (x + g.foot_front, 0.0, np.pi), g)
+    assert pitch == pytest.approx(-np.radians(9.8))
+
+
+def test_a_step_down_a_ramp_s_foot_keeps_its_toes_out_of_the_floor(tmp_path):
+    """Generated hall 500, platform_1 -> floor_0 down its 9.8 deg ramp, by the older adult of
+    the hall's stress cycle (run 5: 1.67 m, 0.95 m/s, 99 steps/min): the ramp's last footfall
+    has its ankle 8 cm up the ramp from its foot, and the foot, pitched to the slope, had its
+    toes 1.8 cm into the floor beyond (the cycle's 20 contacts). Now that foot stands level on
+    the ramp under its heel: no foot box corner (MuJoCo forward kinematics) is 5 mm below the
+    floor or the ramp's plane (half the contact check's 1 cm floor tolerance,
+    :func:`mjwalk.timeline.collisions.check_collisions`; the toes on this ramp's own slope, as
+    before, rest to 3 mm in it)."""
+    xml = generate_levels(500).write(tmp_path / "levels_500.xml")
+    wp = load_workplace(xml, cache=False)
+    walker = Walker(stature=1.67, speed=0.9517, cadence=99.26, group="older_adult")
+    model = default_model().for_walker(walker)
+    walk = plan_walk(wp, "platform_1", "floor_0", model, rng=5)
+    (plane,) = [e["plane"] for e in walk.meta["levels"]["route"] if "plane" in e]
+    legs = legs_from_walk(walk, walker.stature)
+    least = np.inf
+    for _, m, data in posed(legs, walker.stature):
+        for name in ("foot_l", "toes_l", "foot_r", "toes_r"):
+            c = box_corners(m, data, m.geom(name).id)
+            ground = np.maximum(plane_heights(surface_plane(plane), c[:, :2]), 0.0)
+            least = min(least, float(np.min(c[:, 2] - wp.floor_z - ground)))
+    assert least > -5e-3  # before: -18 mm

@@ -43,8 +43,11 @@ REACH_PASSES = 4
 def plane_pitch(plane: dict, print_: np.ndarray) -> float:
     """The slope along a footprint's heading of the ramp a route crosses, from the ramp's plane
     as the level planner records it (``meta["levels"]["route"]`` entries' ``plane``:
-    :func:`mjwalk.plan.levelstitch.level_meta`), for a footprint whose point lies on the ramp
-    (between its foot and its head along its axis); 0 for one on a level beyond either end.
+    :func:`mjwalk.plan.levelstitch.level_meta`), for a footprint whose point lies on the ramp's
+    surface (between its foot and its head along its axis and, its width known, between its
+    sides: :func:`plane_heights` of :func:`~mjwalk.plan.rampside.surface_plane`); 0 for one on
+    a level beyond either end or beside it (generated hall 510: a ramp crossing's turn on the
+    floor 1.3 m beside the ramp's foot stood pitched 3.4 deg toes down, 1.2 cm into the floor).
 
     Args:
         plane: ``slope`` (radians), ``uphill`` (heading up the ramp, radians), ``foot`` (world
@@ -55,9 +58,7 @@ def plane_pitch(plane: dict, print_: np.ndarray) -> float:
         the slope, radians, + uphill along the footprint's heading.
     """
     up = float(plane["uphill"])
-    axis = np.array([math.cos(up), math.sin(up)])
-    along = float((np.asarray(print_[:2], float) - np.asarray(plane["foot"], float)) @ axis)
-    if not 0.0 <= along <= float(plane["run"]):
+    if plane_heights(surface_plane(plane), np.asarray(print_[:2], float)) == -math.inf:
         return 0.0
     return math.atan(math.tan(float(plane["slope"])) * math.cos(float(print_[2]) - up))
 
@@ -258,11 +259,12 @@ SOLE_GRID_SAG = 0.004
 
 
 def ramp_support(planes: list[dict], print_, geom: LegGeometry) -> tuple[float, float] | None:
-    """The surface a footprint (x, y, yaw) stands on when a ramp's plane carries both its heel
-    and its ball (the sole's two supports in stance; :func:`~mjwalk.body.legs.footpivot.
-    ball_offset`): the plane's height under the footprint point raised by the rise of the
-    plane across half the foot's width (the foot is pitched to the slope along it, not rolled
-    across it: it stands on its uphill edge), and the slope along the foot.
+    """The surface a footprint (x, y, yaw) stands on when a ramp's plane carries its heel, its
+    ball (the sole's two supports in stance; :func:`~mjwalk.body.legs.footpivot.ball_offset`)
+    and its toe tip (the toes lie flat in stance: pitched down a ramp past its foot they were
+    1.8 cm into the floor, generated hall 500): the plane's height under the footprint point
+    raised by the rise of the plane across half the foot's width (the foot is pitched to the
+    slope along it, not rolled across it: it stands on its uphill edge), and the slope along it.
 
     Args:
         planes: ramp planes (as :func:`plane_pitch` takes them).
@@ -271,15 +273,14 @@ def ramp_support(planes: list[dict], print_, geom: LegGeometry) -> tuple[float, 
 
     Returns:
         (height above the floor, metres; slope along the foot, radians, + uphill), or None
-        when no one plane carries both (the foot stands level on the highest point under it).
+        when no one plane carries all three (the foot stands level on the highest point under it).
     """
     yaw = float(print_[2])
     f = np.array([math.cos(yaw), math.sin(yaw)])
     xy = np.asarray(print_[:2], float)
+    sole = (-geom.foot_back, ball_offset(geom), geom.foot_front)
     for plane in planes:
-        if all(
-            _on_plane(plane, (*(xy + d * f), 0.0)) for d in (-geom.foot_back, ball_offset(geom))
-        ):
+        if all(_on_plane(plane, (*(xy + d * f), 0.0)) for d in sole):
             hit = _on_plane(plane, (*xy, yaw))
             if hit is None:
                 continue
@@ -310,7 +311,7 @@ def level_feet_on_ramps(
     """A walk's level steps whose foot stands over the plane of a ramp its route crosses (a
     turn off or onto the ramp's foot cutting its low corner, under the floor level's 0.05 m
     obstacle band: a flat foot was 1-2 cm into it, the multi-level platform cycle's
-    barrier-free runs), put on that plane. Where the plane carries both the heel and the ball
+    barrier-free runs), put on that plane. Where the plane carries the whole sole
     (:func:`ramp_support`) the foot stands on it pitched to its slope, as a ramp's own steps
     do; elsewhere (only its toes or its heel over the ramp's foot or side, or over the strip
     of the ramp's surface beside the part of its foot the floor meets, :func:`~mjwalk.plan.
@@ -320,7 +321,9 @@ def level_feet_on_ramps(
     toe-off. Before, every such foot stood level, its heel up to the plane's rise along the
     foot above the ramp (27 mm on a 5.5 deg ramp's 0.27 m foot). The ramps are
     :func:`level_planes`' (also those beside a floor walk that cuts past a ramp's low end,
-    :mod:`mjwalk.plan.rampside`). Walks without such a footprint are returned as they are.
+    :mod:`mjwalk.plan.rampside`). A ramp's own step whose sole reaches past its foot or head
+    stands so too (hall 500: a foot down a 9.8 deg ramp, its ankle 8 cm above the foot, had
+    its toes 1.8 cm into the floor). Walks without such a footprint are returned as they are.
 
     Args:
         walk: the walk (:class:`~mjwalk.plan.walkpath.WalkPath`, ``meta["levels"]["route"]``).
@@ -351,9 +354,10 @@ def level_feet_on_ramps(
 
     out = list(surfs)
     for k, s in enumerate(walk.steps):
-        if not level[k]:
-            continue
         land, stance = under(s.foot), under(s.stance)
+        if not level[k]:  # a ramp's own foot, pitched, that the plane does not carry whole
+            land = land if out[k].land_pitch and land and not land[1] else None
+            stance = stance if out[k].stance_pitch and stance and not stance[1] else None
         if land is not None and (land[1] != 0.0 or land[0] > out[k].land):
             _set_foot(out, k, *land, landing=True)
         if stance is not None and (stance[1] != 0.0 or stance[0] > out[k].stance):
