@@ -69,7 +69,7 @@ from mjwalk.plan.guide import GUIDE_POINTS
     P_TOE_FRONT,  # the toes' front corners (m) ahead of the landing ankle (toe_corners); nan: none
     P_TOE_SIDE,  # ... and to each side of it
     P_TOE_CLEARANCE,  # the clearance (m) they keep (TOE_CORNER_CLEARANCE)
-    P_KNEE_SHARE2,  # the early-swing knee probe's share of the step (options.KNEE_PHASES)
+    P_KNEE_SHARE2,  # the early-swing knee probe's share of the step (options.KNEE_LEAD)
     P_KNEE_TURN2,  # ... and the swing foot's turned share there (swing_turned)
     P_GUIDE0,  # the guide's GUIDE_POINTS points, x y each (mjwalk.plan.guide); nan: none
 ) = range(56)

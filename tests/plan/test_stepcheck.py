@@ -13,8 +13,10 @@ from mjwalk.plan import slots, stepcheck
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.lean import lean_in_range, stance_lean
 from mjwalk.plan.options import SWING_LIFT_TURN, PlannerOptions
+from mjwalk.plan.walks import plan_walk
+from mjwalk.timeline.collisions import check_collisions
 from mjwalk.world import load_workplace
-from mjwalk.world.generate import generate_hall
+from mjwalk.world.generate import free_points, generate_hall
 
 
 @pytest.mark.parametrize("foot_x", [0.1, -0.2])
@@ -197,10 +199,13 @@ HALL317_PELVIS = [
 
 
 def _hall317(path):
-    """Generated hall 317 as the flat-hall stress draws it (size and density from the seed)."""
+    """Generated hall 317 as the flat-hall stress draws it (size and density from the seed),
+    and its second walk's start and goal (free points drawn on after them)."""
     rng = np.random.default_rng(317)
     w, d, density = rng.uniform(6, 14), rng.uniform(5, 12), rng.uniform(0.15, 0.5)
-    return load_workplace(generate_hall(w, d, density=density, seed=317).write(path))
+    hall = generate_hall(w, d, density=density, seed=317)
+    ends = free_points(hall, 8, rng)[2:4]
+    return load_workplace(hall.write(path), cache=False), (tuple(ends[0]), tuple(ends[1]))
 
 
 def test_the_knee_probes_cover_the_early_swing_of_a_turning_step(tmp_path):
@@ -211,8 +216,8 @@ def test_the_knee_probes_cover_the_early_swing_of_a_turning_step(tmp_path):
     0.47 m. The probe at a third of the step refuses it; a foot lifting along the pelvis's
     heading keeps its knee clear."""
     model = default_model()
-    wp = _hall317(tmp_path / "hall317.xml")
-    pl = HybridPlanner(wp, (4.5745, 1.4385), model)
+    wp, (_, goal) = _hall317(tmp_path / "hall317.xml")
+    pl = HybridPlanner(wp, goal, model)
     par, ipar = pl.params.vectors()
     m = int(ipar[slots.I_M])
     assert m == len(HALL317_PELVIS)
@@ -235,3 +240,14 @@ def test_the_knee_probes_cover_the_early_swing_of_a_turning_step(tmp_path):
 
     assert accepted(fr)  # pelvis, ankle, toes, landing leg, reach and knees pass
     assert not accepted(2.489)  # the lifting footprint's heading: the early knee meets box7
+
+
+@pytest.mark.slow
+def test_hall317_s_turning_walk_keeps_its_knees_off_the_thin_box(tmp_path):
+    """The walk of hall 317 (walk 1 of the flat-hall stress draws, rng 3171) played back: at
+    39c83c0 the left thigh went 2.2 cm and the shin 0.8 cm into ``box7`` at 6.1 s, in the early
+    swing of a step turning the foot 92 deg; with the early knee probe no contact."""
+    wp, (start, goal) = _hall317(tmp_path / "hall317.xml")
+    assert np.allclose(start, (6.0879, -1.9730), atol=1e-4)
+    walk = plan_walk(wp, start, goal, default_model(), rng=3171)
+    assert check_collisions(walk, tmp_path / "hall317.xml") == []
