@@ -46,7 +46,17 @@ TOE_PROBE_STEP = 0.02
 #: pelvis yaw and 0.11 m (0.15) to the swing side, and the thigh is 0.035 statures thick
 #: (``docs/decisions/103``). Probes at half and three quarters of the step, ``KNEE_LEAD``
 #: ahead and ``KNEE_SIDE`` to the swing side, keep ``KNEE_CLEARANCE`` (thigh radius, 1 cm
-#: margin and 3 cm for the knee's spread about the probe).
+#: margin and 3 cm for the knee's spread about the probe). The knee's farthest reach falls at
+#: 0.26-0.94 of the step (docs/decisions/103), and in a turning step its farthest reach
+#: sideways comes early, just after toe-off (step phase 0.2), while the foot still points
+#: along its lift-off yaw: generated hall 317 (flat-hall stress draws, seed 317, walk 1), the
+#: left foot turning 92 deg in one step, the knee 0.24 m beside the pelvis at 0.31 of the
+#: step and the thigh 2.2 cm into a thin box the probes at 0.53 and 0.80 kept 0.27 and 0.47 m
+#: from. A third probe at a third of the step (after the lifting foot's heading is known, the
+#: probes' foot-yaw lead below) closes that gap with the same lead: over 826 planned steps in
+#: generated halls (seeds 300-330) the synthesized knee leads the hip along the foot's yaw by
+#: a median 0.01-0.07 m at 0.27-0.40 of the step (95th percentile 0.14-0.18, at most 0.28),
+#: 0.17-0.21 m at 0.53-0.80 (at most 0.25) (``docs/decisions/103``).
 KNEE_LEAD = 0.23
 KNEE_SIDE = 0.12
 KNEE_CLEARANCE = 0.10

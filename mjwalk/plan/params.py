@@ -137,9 +137,11 @@ class KernelParams:
         self.distance = distance
         m = options.samples_per_step
         #: Clearance (m) per checked point of a successor: m pelvis samples, the landing ankle
-        #: and its toes, the swing knee at half and three quarters of the step.
+        #: and its toes, the swing knee at half, three quarters and a third of the step.
         self.thresholds = np.array(
-            [options.radius + SAFETY_MARGIN] * m + [FOOT_CLEARANCE] * 2 + [KNEE_CLEARANCE] * 2
+            [options.radius + SAFETY_MARGIN] * m
+            + [FOOT_CLEARANCE] * 2
+            + [KNEE_CLEARANCE] * len(_knee_cols(m))
         )
         self._held: dict[float, tuple[np.ndarray, np.ndarray]] = {}
         #: The float vector's slots that do not depend on the stature, and the integer vector
@@ -283,6 +285,8 @@ class KernelParams:
             knee_share1=knee_cols[1] / (m - 1),
             knee_turn0=swing_turned(knee_cols[0] / (m - 1)),
             knee_turn1=swing_turned(knee_cols[1] / (m - 1)),
+            knee_share2=knee_cols[2] / (m - 1),
+            knee_turn2=swing_turned(knee_cols[2] / (m - 1)),
             stop_reach=o.goal_tolerance + STOP_REACH,
             pool_sharpness=POOL_SHARPNESS,
             **lean_params(),
@@ -308,6 +312,7 @@ class KernelParams:
             q=max(2, m // 4),  # samples of a step's first quarter (the foot behind lifts off)
             knee_col0=knee_cols[0],
             knee_col1=knee_cols[1],
+            knee_col2=knee_cols[2],
             # closed cells as one integer: (i * span + j) * bins + heading bin, with span
             # larger than any cell row index j of a point a step can reach (the grid's rows
             # plus a margin)
@@ -368,6 +373,7 @@ def spot_offset(goal: np.ndarray, spot: tuple[float, float, float]) -> float:
     return math.hypot(spot[0] - goal[0], spot[1] - goal[1])
 
 
-def _knee_cols(m: int) -> tuple[int, int]:
-    """The swing-knee probes' pelvis samples of a step of ``m`` samples."""
-    return m // 2, (3 * m) // 4
+def _knee_cols(m: int) -> tuple[int, int, int]:
+    """The swing-knee probes' pelvis samples of a step of ``m`` samples: at half, three
+    quarters and a third of the step (:data:`~mjwalk.plan.options.KNEE_LEAD`)."""
+    return m // 2, (3 * m) // 4, m // 3

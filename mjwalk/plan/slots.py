@@ -69,8 +69,10 @@ from mjwalk.plan.guide import GUIDE_POINTS
     P_TOE_FRONT,  # the toes' front corners (m) ahead of the landing ankle (toe_corners); nan: none
     P_TOE_SIDE,  # ... and to each side of it
     P_TOE_CLEARANCE,  # the clearance (m) they keep (TOE_CORNER_CLEARANCE)
+    P_KNEE_SHARE2,  # the early-swing knee probe's share of the step (options.KNEE_LEAD)
+    P_KNEE_TURN2,  # ... and the swing foot's turned share there (swing_turned)
     P_GUIDE0,  # the guide's GUIDE_POINTS points, x y each (mjwalk.plan.guide); nan: none
-) = range(54)
+) = range(56)
 #: Goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal), after the guide's slots.
 P_DISC0 = P_GUIDE0 + 2 * GUIDE_POINTS
 #: Most discs the goal area can be cut by (:func:`~mjwalk.plan.stepgeom.in_goal`); their count
@@ -88,6 +90,7 @@ N_PARAMS = P_GUIDE_LEN0 + GUIDE_POINTS - 1
     I_Q,
     I_KNEE_COL0,
     I_KNEE_COL1,
+    I_KNEE_COL2,  # the early-swing knee probe's pelvis sample
     I_SPAN,
     I_BINS,
     I_FIELD_NX,
@@ -101,7 +104,7 @@ N_PARAMS = P_GUIDE_LEN0 + GUIDE_POINTS - 1
     I_NEAR_GOAL_EXPANSIONS,
     I_N_DISCS,
     N_IPARAMS,
-) = range(17)
+) = range(18)
 
 
 def params(**values) -> np.ndarray:

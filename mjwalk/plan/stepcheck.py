@@ -44,6 +44,7 @@ from mjwalk.plan.slots import (
     I_FIELD_NY,
     I_KNEE_COL0,
     I_KNEE_COL1,
+    I_KNEE_COL2,
     I_M,
     I_Q,
     MAX_GOAL_DISCS,
@@ -74,9 +75,11 @@ from mjwalk.plan.slots import (
     P_KNEE_PIVOT,
     P_KNEE_SHARE0,
     P_KNEE_SHARE1,
+    P_KNEE_SHARE2,
     P_KNEE_SIDE,
     P_KNEE_TURN0,
     P_KNEE_TURN1,
+    P_KNEE_TURN2,
     P_LIFT_REACH,
     P_PACE,
     P_START_YAW,
@@ -161,7 +164,7 @@ def check_steps(
             its heading, and the decoder's pelvis-yaw columns, and the P_HIP_Y .. P_ABDUCTION
             slots set, a step whose stance leg cannot follow it is rejected
             (:func:`stance_lean_ok`).
-        thr: (m + 4,) clearance limits of the pelvis samples, ankle, toes and the two knees
+        thr: (m + 5,) clearance limits of the pelvis samples, ankle, toes and the three knees
             (the landing leg's probes keep P_LEG_CLEARANCE: :func:`landing_leg_clear`).
         par: the float slots (:func:`params`).
         ipar: the integer slots (:func:`iparams`).
@@ -273,8 +276,6 @@ def legs_clear(z, r, matrix, offset, loc, rot, node, i, fr, lf, v, v_end, lift_y
     """
     m = ipar[I_M]
     q = ipar[I_Q]
-    kc0 = ipar[I_KNEE_COL0]
-    kc1 = ipar[I_KNEE_COL1]
     fnx = ipar[I_FIELD_NX]
     fny = ipar[I_FIELD_NY]
     fx0 = par[P_FIELD_X0]
@@ -309,17 +310,19 @@ def legs_clear(z, r, matrix, offset, loc, rot, node, i, fr, lf, v, v_end, lift_y
     # the swing knee, ahead along the swing foot's yaw at the probe's phase (it bends in
     # the foot's plane) from the swing hip (to the swing side along the pelvis's);
     # without the lifting foot's heading (the first steps), ahead along the pelvis's
-    # from KNEE_SIDE to the swing side
+    # from KNEE_SIDE to the swing side; at half and three quarters of the step, and with
+    # the lifting foot's heading at a third (the early swing, the foot still along its
+    # lift-off yaw: options.KNEE_LEAD)
     lat = (1j if lf else -1j) * par[P_KNEE_SIDE]
     hip = (1j if lf else -1j) * par[P_KNEE_PIVOT]
-    for kk in range(2):
-        col = kc0 if kk == 0 else kc1
-        share = par[P_KNEE_SHARE0] if kk == 0 else par[P_KNEE_SHARE1]
+    for kk in range(2 if math.isnan(lift_yaw) else 3):
+        col = ipar[I_KNEE_COL0 if kk == 0 else (I_KNEE_COL1 if kk == 1 else I_KNEE_COL2)]
+        share = par[P_KNEE_SHARE0 if kk == 0 else (P_KNEE_SHARE1 if kk == 1 else P_KNEE_SHARE2)]
         fwd = 1j * unit_turn(yaws.imag * share)
         if math.isnan(lift_yaw):
             knee = (loc[col] + fwd * (par[P_KNEE_LEAD] + lat)) * rot + p
         else:
-            turned = par[P_KNEE_TURN0] if kk == 0 else par[P_KNEE_TURN1]
+            turned = par[P_KNEE_TURN0 if kk == 0 else (P_KNEE_TURN1 if kk == 1 else P_KNEE_TURN2)]
             foot = swing_yaw(lift_yaw, yaws.real, turned)
             knee = (loc[col] + 1j * unit_turn(foot) * par[P_KNEE_LEAD] + fwd * hip) * rot + p
         if field_clearance(coef, fx0, fy0, fres, fnx, fny, knee.real, knee.imag) < thr[m + 2 + kk]:

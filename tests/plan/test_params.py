@@ -41,7 +41,10 @@ def test_vectors_encode_the_options_and_are_fresh_copies(params):
     assert params.vectors()[0][slots.P_GOAL_X] == GOAL[0]  # the held vectors are untouched
     assert params.vectors(1.5)[0][slots.P_LEG_CLEARANCE] == leg_clearance(1.5)
     assert params.vectors(1.9)[0][slots.P_LEG_CLEARANCE] == leg_clearance(1.9)
-    assert len(params.thresholds) == PlannerOptions().samples_per_step + 4
+    assert len(params.thresholds) == PlannerOptions().samples_per_step + 5  # 3 knee probes
+    m = PlannerOptions().samples_per_step
+    assert [ipar[slots.I_KNEE_COL0], ipar[slots.I_KNEE_COL1], ipar[slots.I_KNEE_COL2]] == [8, 12, 5]
+    assert par[slots.P_KNEE_SHARE2] == pytest.approx(5 / (m - 1))
 
 
 def test_a_walk_without_terms_changes_only_pace_and_far_weight(params):

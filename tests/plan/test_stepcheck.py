@@ -13,7 +13,10 @@ from mjwalk.plan import slots, stepcheck
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.lean import lean_in_range, stance_lean
 from mjwalk.plan.options import SWING_LIFT_TURN, PlannerOptions
+from mjwalk.plan.walks import plan_walk
+from mjwalk.timeline.collisions import check_collisions
 from mjwalk.world import load_workplace
+from mjwalk.world.generate import free_points, generate_hall
 
 
 @pytest.mark.parametrize("foot_x", [0.1, -0.2])
@@ -181,3 +184,70 @@ def test_the_landing_toes_keep_clear_for_a_tall_walker(scenes_dir):
     assert accepted(1.87, centre=False)  # pelvis, ankle, toe probe, leg and knees pass
     assert not accepted(1.87)  # the left corner, 0.213 m ahead, is within 2.5 cm of the post
     assert accepted(1.55)  # 0.177 m ahead, 0.042 m aside: clear
+
+
+#: Generated hall 317 (``generate_hall`` with /work/dbg/flatstress.py's draws, seed 317), walk
+#: 1 (rng 3171, main 39c83c0): the eleventh step, the left foot swinging from (3.812, -0.087)
+#: heading 142.6 deg to (4.183, 0.598) heading 50.2 deg while the pelvis (16 samples, world x,
+#: y) turned from 84.8 to 47.5 deg beside the thin box ``box7``.
+HALL317_PELVIS = [
+    (3.897, -0.031), (3.904, -0.009), (3.913, 0.017), (3.921, 0.039), (3.929, 0.060),
+    (3.939, 0.085), (3.948, 0.106), (3.957, 0.128), (3.968, 0.154), (3.978, 0.176),
+    (3.989, 0.200), (4.004, 0.230), (4.017, 0.257), (4.031, 0.287), (4.051, 0.326),
+    (4.069, 0.361),
+]  # fmt: skip
+
+
+def _hall317(path):
+    """Generated hall 317 as the flat-hall stress draws it (size and density from the seed),
+    and its second walk's start and goal (free points drawn on after them)."""
+    rng = np.random.default_rng(317)
+    w, d, density = rng.uniform(6, 14), rng.uniform(5, 12), rng.uniform(0.15, 0.5)
+    hall = generate_hall(w, d, density=density, seed=317)
+    ends = free_points(hall, 8, rng)[2:4]
+    return load_workplace(hall.write(path), cache=False), (tuple(ends[0]), tuple(ends[1]))
+
+
+def test_the_knee_probes_cover_the_early_swing_of_a_turning_step(tmp_path):
+    """Just after toe-off the swing foot still points along its lift-off yaw, and the knee
+    bends in its plane: in hall 317's turning step the left knee was 0.24 m beside the pelvis
+    at 0.31 of the step and the thigh went 2.2 cm into ``box7``, while the probes at half and
+    four fifths of the step, the foot turned towards its landing yaw by then, kept 0.27 and
+    0.47 m. The probe at a third of the step refuses it; a foot lifting along the pelvis's
+    heading keeps its knee clear."""
+    model = default_model()
+    wp, (_, goal) = _hall317(tmp_path / "hall317.xml")
+    pl = HybridPlanner(wp, goal, model)
+    par, ipar = pl.params.vectors()
+    m = int(ipar[slots.I_M])
+    assert m == len(HALL317_PELVIS)
+    fr = 1.480  # the pelvis's heading at the step's start (the step's frame)
+    rot = complex(math.sin(fr), -math.cos(fr))  # local (x right, y forward) to world
+    p = complex(*HALL317_PELVIS[0])
+    offset = np.zeros(2 * m + 3, dtype=np.complex128)
+    offset[:m] = [(complex(x, y) - p) / rot for x, y in HALL317_PELVIS]
+    offset[m] = (complex(4.183, 0.598) - p) / rot  # the landing ankle
+    offset[m + 1] = complex(0.877 - fr, 0.829 - fr)  # landing foot's and end pelvis's yaw
+    matrix = np.zeros((1, 2 * m + 3), dtype=np.complex128)  # z = 0 decodes to the offset
+    landed, behind = complex(4.017, -0.028), complex(3.812, -0.087)
+    rest = (pl.params.thresholds, par, ipar, wp.walk_field().values, pl.distance.flat_bound())
+
+    def accepted(lift_heading: float) -> bool:
+        node = np.array([[p, landed, behind, 0.0, complex(math.nan, lift_heading)]])
+        args = (np.zeros((1, 1)), matrix, offset, 1, 1, np.array([fr]), np.array([True]),
+                np.zeros(1, bool), node)  # fmt: skip
+        return len(stepcheck.check_steps(*args, *rest)[0]) == 1
+
+    assert accepted(fr)  # pelvis, ankle, toes, landing leg, reach and knees pass
+    assert not accepted(2.489)  # the lifting footprint's heading: the early knee meets box7
+
+
+@pytest.mark.slow
+def test_hall317_s_turning_walk_keeps_its_knees_off_the_thin_box(tmp_path):
+    """The walk of hall 317 (walk 1 of the flat-hall stress draws, rng 3171) played back: at
+    39c83c0 the left thigh went 2.2 cm and the shin 0.8 cm into ``box7`` at 6.1 s, in the early
+    swing of a step turning the foot 92 deg; with the early knee probe no contact."""
+    wp, (start, goal) = _hall317(tmp_path / "hall317.xml")
+    assert np.allclose(start, (6.0879, -1.9730), atol=1e-4)
+    walk = plan_walk(wp, start, goal, default_model(), rng=3171)
+    assert check_collisions(walk, tmp_path / "hall317.xml") == []
