@@ -99,27 +99,21 @@ RUN330_PELVIS = [
 ]  # fmt: skip
 
 
-def test_the_knee_probes_lead_along_the_turning_swing_foot(scenes_dir):
-    """The knee bends in its foot's plane, and a swing foot turns to its landing yaw only by
-    0.9 of the step: in run 330's turning step the left knee went 0.33 m beside the pelvis and
-    3 cm into rack 2's frame (a 1.81 m operator) while the probes, ahead along the pelvis's
-    yaw, stayed clear. The step passes with the lifting foot's heading unknown (the probes
-    along the pelvis's yaw, as before) and is refused with it (along the foot's yaw)."""
-    model = default_model()
-    wp = load_workplace(scenes_dir / "assembly_station.xml")
-    pl = HybridPlanner(wp, "stand_rack2", model, PlannerOptions(radius=0.30))
-    par, ipar = pl.params.vectors(1.81)
+def _one_step(pl, wp, vectors, pelvis, fr, ankle, yaws, landed, behind):
+    """Whether :func:`stepcheck.check_steps` accepts one decoded step, as a function of the
+    lifting foot's heading: the pelvis's samples ``pelvis`` (world x, y), the step's frame
+    heading ``fr``, the landing ankle (x, y), the landing foot's and the end pelvis's yaw,
+    the landed and the behind footprints (complex x + iy); radians, metres."""
+    par, ipar = vectors
     m = int(ipar[slots.I_M])
-    assert m == len(RUN330_PELVIS)
-    fr = -2.388  # the pelvis's heading at the step's start (the step's frame)
+    assert m == len(pelvis)
     rot = complex(math.sin(fr), -math.cos(fr))  # local (x right, y forward) to world
-    p = complex(*RUN330_PELVIS[0])
+    p = complex(*pelvis[0])
     offset = np.zeros(2 * m + 3, dtype=np.complex128)
-    offset[:m] = [(complex(x, y) - p) / rot for x, y in RUN330_PELVIS]
-    offset[m] = (complex(0.303, -1.714) - p) / rot  # the landing ankle
-    offset[m + 1] = complex(-2.718 - fr, -3.115 - fr)  # landing foot's and end pelvis's yaw
+    offset[:m] = [(complex(x, y) - p) / rot for x, y in pelvis]
+    offset[m] = (complex(*ankle) - p) / rot  # the landing ankle
+    offset[m + 1] = complex(yaws[0] - fr, yaws[1] - fr)  # landing foot's and end pelvis's yaw
     matrix = np.zeros((1, 2 * m + 3), dtype=np.complex128)  # z = 0 decodes to the offset
-    landed, behind = complex(0.426, -1.726), complex(0.664, -1.711)
     rest = (pl.params.thresholds, par, ipar, wp.walk_field().values, pl.distance.flat_bound())
 
     def accepted(lift_heading: float) -> bool:
@@ -129,6 +123,23 @@ def test_the_knee_probes_lead_along_the_turning_swing_foot(scenes_dir):
                 np.zeros(1, bool), node)  # fmt: skip
         return len(stepcheck.check_steps(*args, *rest)[0]) == 1
 
+    return accepted
+
+
+def test_the_knee_probes_lead_along_the_turning_swing_foot(scenes_dir):
+    """The knee bends in its foot's plane, and a swing foot turns to its landing yaw only by
+    0.9 of the step: in run 330's turning step the left knee went 0.33 m beside the pelvis and
+    3 cm into rack 2's frame (a 1.81 m operator) while the probes, ahead along the pelvis's
+    yaw, stayed clear. The step passes with the lifting foot's heading unknown (the probes
+    along the pelvis's yaw, as before) and is refused with it (along the foot's yaw)."""
+    model = default_model()
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    pl = HybridPlanner(wp, "stand_rack2", model, PlannerOptions(radius=0.30))
+    fr = -2.388  # the pelvis's heading at the step's start (the step's frame)
+    accepted = _one_step(
+        pl, wp, pl.params.vectors(1.81), RUN330_PELVIS, fr, (0.303, -1.714),
+        (-2.718, -3.115), complex(0.426, -1.726), complex(0.664, -1.711),
+    )  # fmt: skip
     assert accepted(math.nan)  # the pelvis, ankle, toes, landing leg and reach all pass
     assert not accepted(-1.545)  # the knee, ahead along the lagging foot, meets the frame
     assert accepted(-2.3)  # a foot already turned with the pelvis keeps its knee clear
@@ -218,26 +229,11 @@ def test_the_knee_probes_cover_the_early_swing_of_a_turning_step(tmp_path):
     model = default_model()
     wp, (_, goal) = _hall317(tmp_path / "hall317.xml")
     pl = HybridPlanner(wp, goal, model)
-    par, ipar = pl.params.vectors()
-    m = int(ipar[slots.I_M])
-    assert m == len(HALL317_PELVIS)
     fr = 1.480  # the pelvis's heading at the step's start (the step's frame)
-    rot = complex(math.sin(fr), -math.cos(fr))  # local (x right, y forward) to world
-    p = complex(*HALL317_PELVIS[0])
-    offset = np.zeros(2 * m + 3, dtype=np.complex128)
-    offset[:m] = [(complex(x, y) - p) / rot for x, y in HALL317_PELVIS]
-    offset[m] = (complex(4.183, 0.598) - p) / rot  # the landing ankle
-    offset[m + 1] = complex(0.877 - fr, 0.829 - fr)  # landing foot's and end pelvis's yaw
-    matrix = np.zeros((1, 2 * m + 3), dtype=np.complex128)  # z = 0 decodes to the offset
-    landed, behind = complex(4.017, -0.028), complex(3.812, -0.087)
-    rest = (pl.params.thresholds, par, ipar, wp.walk_field().values, pl.distance.flat_bound())
-
-    def accepted(lift_heading: float) -> bool:
-        node = np.array([[p, landed, behind, 0.0, complex(math.nan, lift_heading)]])
-        args = (np.zeros((1, 1)), matrix, offset, 1, 1, np.array([fr]), np.array([True]),
-                np.zeros(1, bool), node)  # fmt: skip
-        return len(stepcheck.check_steps(*args, *rest)[0]) == 1
-
+    accepted = _one_step(
+        pl, wp, pl.params.vectors(), HALL317_PELVIS, fr, (4.183, 0.598), (0.877, 0.829),
+        complex(4.017, -0.028), complex(3.812, -0.087),
+    )  # fmt: skip
     assert accepted(fr)  # pelvis, ankle, toes, landing leg, reach and knees pass
     assert not accepted(2.489)  # the lifting footprint's heading: the early knee meets box7
 
