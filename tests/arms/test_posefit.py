@@ -1,6 +1,7 @@
 """The compiled endpoint pose fit (mjwalk.arms.posefit)."""
 
 import numpy as np
+import pytest
 
 from mjwalk.arms.armpose import apply_pose
 from mjwalk.arms.chain import end_effector
@@ -149,6 +150,7 @@ def _reference_solve():
     return solve
 
 
+@pytest.mark.slow  # among the fast tier's longest in a quiet warm run (10-21 s): its 5 min budget
 def test_the_fit_gives_the_numbers_of_the_whole_residual_solve_bit_for_bit():
     """The residual computed in parts (the logs once, the scaled directions once per log
     scale) changes no bit of the pose: random two-sample problems with three segments, a

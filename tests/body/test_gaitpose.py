@@ -99,6 +99,7 @@ def _check_swing_kept(model: gaitpose.GaitPoseModel) -> None:
         assert np.corrcoef(sh[mid], hip[mid])[0, 1] < -0.9
 
 
+@pytest.mark.slow  # among the fast tier's longest in a quiet warm run (10-21 s): its 5 min budget
 def test_gaitpose_rollouts_keep_swinging():
     """Iterated GP means contract or drift: a free rollout (``reset=False``, the paper's
     ``z_t = mu(z_t-1)`` iterated) is a mean-prediction simulation, which for a second-order
