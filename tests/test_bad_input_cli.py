@@ -99,6 +99,7 @@ def _simulate(address: str, tmp_path):
 # ------------------------------------------------------------------ --scheduler
 
 
+@pytest.mark.slow  # among the fast tier's longest in a quiet warm run (9-10 s): its 5 min budget
 def test_http_server_is_not_a_scheduler(capsys, no_work, tmp_path):
     """An HTTP server accepts and waits for a request line forever: before, mjwalk hung past
     120 s; now it names the peer as not Dask once the time promised is up."""

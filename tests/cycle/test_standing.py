@@ -156,6 +156,7 @@ def workforce_walks(scenes_dir):
     return ctx, walks
 
 
+@pytest.mark.slow  # among the fast tier's longest in a quiet warm run (9-10 s): its 5 min budget
 @pytest.mark.parametrize("route", ["T2", "T3", "T5"])
 @pytest.mark.parametrize("who", ["model", "workforce"])
 def test_no_wandering(station_walks, workforce_walks, route, who):

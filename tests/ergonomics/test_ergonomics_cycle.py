@@ -32,6 +32,7 @@ def _pick_from(tmp_path: Path, height: float, seeds=range(3), mass: float | None
     return [simulate_cycle(ctx, rng=s, collisions=False).ergonomics for s in seeds]
 
 
+@pytest.mark.slow  # among the fast tier's longest in a quiet warm run (9-10 s): its 5 min budget
 def test_a_higher_shelf_raises_the_upper_arm_and_the_rula(tmp_path):
     """1.0 -> 1.9 m: the reaching arm's upper-arm score rises (3 -> 4 measured); the cycle's
     RULA P50 does not fall (4 at both heights measured on 2026-12-01: the 1.0 m pick's

@@ -153,6 +153,7 @@ def bandai_styles(shared_data):
     return out
 
 
+@pytest.mark.slow  # among the fast tier's longest in a quiet warm run (9-10 s): its 5 min budget
 @pytest.mark.parametrize("style", STYLES)
 def test_held_out_style_conditioned_on_its_pace_only(model, bandai_styles, style):
     """Leave-one-group-out, stricter: the default model never saw any Bandai capture. Told
@@ -207,6 +208,7 @@ def test_plan_cli_rejects_a_walker_outside_human_ranges(capsys):
     assert "speed 7 is outside the human range" in capsys.readouterr().err
 
 
+@pytest.mark.slow  # among the fast tier's longest in a quiet warm run (9-10 s): its 5 min budget
 def test_planned_straight_walks_take_as_long_as_the_captured_ones(bandai_styles):
     """Issue 14 item 5: every captured straight walk of the four Bandai styles (91) walked 10
     times by the planner with the default model conditioned on its style's pace only (the
