@@ -16,7 +16,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from mjwalk.world.norms import LEVEL_TOLERANCE, MAX_RAMP_SLOPE, MIN_TREAD, STAND_WIDTH
+from mjwalk.world.norms import (
+    LEVEL_TOLERANCE,
+    MAX_RAMP_SLOPE,
+    MIN_TREAD,
+    ROUNDING_SLACK,
+    STAND_WIDTH,
+)
 
 #: How far a mesh's hull may stand above one of its walk faces before the face counts as hidden,
 #: metres: ``norms.LEVEL_TOLERANCE`` (4 mm; a height step over 4 mm is already a trip point,
@@ -120,7 +126,9 @@ def hidden_walk_faces(
     d1, d2 = tri[:, 1, :2] - tri[:, 0, :2], tri[:, 2, :2] - tri[:, 0, :2]
     plan_area = np.bincount(group, 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]))
     found = []
-    for k in np.flatnonzero(plan_area >= min_depth * min_width - 1e-9):  # planes one can stand on
+    for k in np.flatnonzero(
+        plan_area >= min_depth * min_width - ROUNDING_SLACK
+    ):  # planes one can stand on
         mine = np.flatnonzero(group == k)
         xy = tri[mine][:, :, :2]
         plan = shapely.union_all([shapely.buffer(p, 1e-6) for p in shapely.polygons(xy)])
@@ -134,8 +142,8 @@ def hidden_walk_faces(
             if len(env) < 4:
                 continue
             sides = sorted(float(np.linalg.norm(env[i + 1] - env[i])) for i in range(2))
-            # 1e-9 m: the vertices' rounding (a tread exactly MIN_TREAD deep is one)
-            if sides[0] >= min_depth - 1e-9 and sides[1] >= min_width - 1e-9:
+            # a tread exactly MIN_TREAD deep is one: the vertices' rounding is no shortfall
+            if sides[0] >= min_depth - ROUNDING_SLACK and sides[1] >= min_width - ROUNDING_SLACK:
                 z = float(tri[mine][:, :, 2].mean())
                 found.append(HiddenFace(z, sides[0], sides[1], float(part.area)))
     return sorted(found, key=lambda h: h.z)
