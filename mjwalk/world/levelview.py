@@ -113,7 +113,7 @@ def level_view(workplace: Workplace, level: int, head: float | None = None) -> W
     floor = find_floor(model, data, workplace.name)
     own = frozenset(graph.surfaces[i].geom_id for i in lv.surfaces)
     footprints = obstacle_footprints(
-        model, data, floor, options, workplace.name, base=lv.height, skip=own
+        model, data, floor, options, workplace.name, base=lv.height, skip=own, warn=False
     )
     key = _view_key(lv.index, footprints)
     if key not in views:

@@ -163,7 +163,7 @@ def geom_mesh_world(model: mujoco.MjModel, data: mujoco.MjData, g: int):
 
 
 def concave_mesh_footprints(
-    model: mujoco.MjModel, data: mujoco.MjData, g: int, z0: float, z1: float
+    model: mujoco.MjModel, data: mujoco.MjData, g: int, z0: float, z1: float, warn: bool = True
 ) -> list[Footprint] | None:
     """:func:`mesh_footprints` of a mesh geom.
 
@@ -173,6 +173,9 @@ def concave_mesh_footprints(
         g: the geom id.
         z0: the band's bottom, world z, metres.
         z1: the band's top, world z, metres.
+
+        warn: whether to look for walk faces its hull hides and warn of them (once per scene:
+            a level's band of the same mesh is not looked at again).
 
     Returns:
         The convex pieces, or None when the geom is not a mesh or not concave.
@@ -185,7 +188,7 @@ def concave_mesh_footprints(
         return None
     verts, faces = geom_mesh_world(model, data, g)
     name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
-    hidden = hidden_walk_faces(verts, faces)
+    hidden = hidden_walk_faces(verts, faces) if warn else []
     if hidden:
         heights = ", ".join(f"{h.z:.3f}" for h in hidden)
         warnings.warn(
@@ -217,7 +220,7 @@ def _plan_concave(verts: np.ndarray, faces: np.ndarray) -> bool:
 
 
 def concave_mesh(
-    verts: np.ndarray, faces: np.ndarray, rot: np.ndarray | None = None
+    verts: np.ndarray, faces: np.ndarray, rot: np.ndarray | None = None, hidden: bool | None = None
 ) -> tuple[np.ndarray, np.ndarray] | None:
     """The mesh to decompose when a mesh is concave, else None.
 
@@ -233,6 +236,8 @@ def concave_mesh(
         verts: (V, 3) vertices in the mesh frame, metres.
         faces: (F, 3) vertex indices.
         rot: (3, 3) the mesh frame's rotation in the world, for the top view (None: identity).
+        hidden: whether it has walk faces under its hull, when the caller knows (None: found
+            here).
 
     Returns:
         (vertices, faces) to decompose (the repaired mesh where the repair closed it), or None.
@@ -241,7 +246,8 @@ def concave_mesh(
 
     mesh = trimesh.Trimesh(verts, faces, process=True)
     world = verts if rot is None else verts @ np.asarray(rot).T
-    hidden = bool(hidden_walk_faces(world, faces))
+    if hidden is None:
+        hidden = bool(hidden_walk_faces(world, faces))
     if not mesh.is_volume:
         fixed = mesh.copy()
         trimesh.repair.fix_normals(fixed)
@@ -435,14 +441,15 @@ def import_scene(
         verts = np.asarray(model.mesh_vert[va : va + vn], float)
         faces = np.asarray(model.mesh_face[fa : fa + fn], np.int64)
         rot = data.geom_xmat[g].reshape(3, 3)
-        concave = concave_mesh(verts, faces, rot)
+        hidden = bool(hidden_walk_faces(verts @ rot.T, faces))
+        concave = concave_mesh(verts, faces, rot, hidden)
         if concave is None:
             continue
         name = model.geom(g).name or f"geom{g}"
         geom = spec.geoms[g]
         if threshold is not None:
             limit = threshold
-        elif hidden_walk_faces(verts @ rot.T, faces):
+        elif hidden:
             limit = ELEVATION_THRESHOLD
         else:
             limit = DEFAULT_THRESHOLD

@@ -431,6 +431,7 @@ def obstacle_footprints(
     label: str,
     base: float | None = None,
     skip: frozenset[int] = frozenset(),
+    warn: bool = True,
 ) -> list[Footprint]:
     """The footprints of the obstacle geoms ``options`` selects (not the floor, not a
     humanoid's, not planes), cut to its height band above the floor (or above ``base``).
@@ -444,6 +445,9 @@ def obstacle_footprints(
         base: world height the band is measured from, metres (None: the floor's; a level's
             height for :mod:`mjwalk.world.levelview`).
         skip: further geom ids that are never obstacles (a level's own surfaces).
+        warn: whether to warn of meshes whose hull hides walk faces
+            (:func:`~mjwalk.world.meshimport.concave_mesh_footprints`; a level's view of a
+            scene already loaded does not look again).
 
     Returns:
         The footprints, in geom order (a concave mesh gives several pieces).
@@ -474,7 +478,7 @@ def obstacle_footprints(
                 "primitives or meshes (exclude it with exclude=...)"
             )
         z0, z1 = floor_z + z_range[0], floor_z + z_range[1]
-        pieces = concave_mesh_footprints(model, data, g, z0, z1)  # None unless concave
+        pieces = concave_mesh_footprints(model, data, g, z0, z1, warn)  # None unless concave
         if pieces is not None:
             footprints.extend(pieces)
             continue
