@@ -333,13 +333,18 @@ def _riser_after(tread, below) -> tuple[tuple[float, float], tuple[float, float]
     """The far edge of a stair tread (the next riser's), parallel to the riser ``below``:
     ``below`` moved across the tread by its depth."""
     a, b = (np.asarray(p, dtype=float) for p in below)
-    d = (b - a) / max(float(np.linalg.norm(b - a)), 1e-12)
-    n = np.array([-d[1], d[0]])
+    n = _normal(a, b)
     centre = np.asarray(tread.centre, dtype=float)
     off = float((centre - _mid(below)) @ n)
     shift = 2.0 * off * n  # the tread's centre lies half its depth beyond its near edge
     (x0, y0), (x1, y1) = a + shift, b + shift
     return ((float(x0), float(y0)), (float(x1), float(y1)))
+
+
+def _normal(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The unit normal (2,) of the segment a -> b, its direction turned 90 deg CCW."""
+    d = (b - a) / max(float(np.linalg.norm(b - a)), 1e-12)
+    return np.array([-d[1], d[0]])
 
 
 #: Least overlap (m) of the next tread over a tread's far edge taken as a nosing's projection
@@ -358,8 +363,7 @@ def _under_nosing(far, below, above) -> tuple[tuple[float, float], tuple[float, 
     far edge under it (the toes under a 3 cm overlap caught the nosing as they lifted)."""
     f0, f1 = (np.asarray(p, dtype=float) for p in far)
     up = _mid(far) - _mid(below)
-    d = (f1 - f0) / max(float(np.linalg.norm(f1 - f0)), 1e-12)
-    n = np.array([-d[1], d[0]])
+    n = _normal(f0, f1)
     n = n if float(up @ n) >= 0.0 else -n  # up the stair
     back = float(np.min((np.asarray(above, dtype=float) - _mid(far)) @ n))
     if back >= -NOSING_OVERLAP:
