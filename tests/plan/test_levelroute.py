@@ -180,3 +180,55 @@ def test_walks_up_and_down_an_open_stair_touch_nothing(tmp_path):
         walk = mjwalk.plan_walk(wp, a, b, model, rng=0)
         assert [r["kind"] for r in walk.meta["levels"]["route"]] == ["level", "stair", "level"]
         assert mjwalk.check_collisions(walk, path) == []
+
+
+def _step_block(tmp_path, depth: float):
+    """A 0.34 m platform reached by a step block ``depth`` deep and 1.2 m wide before its
+    edge (risers 0.17, 0.17). Returns the scene's path."""
+    path = tmp_path / f"step_block_{depth}.xml"
+    path.write_text(
+        '<mujoco><worldbody><geom name="floor" type="plane" size="8 8 0.1"/>'
+        '<geom name="plat" type="box" size="1.5 1.0 0.17" pos="2 0 0.17"/>'
+        f'<geom name="block" type="box" size="0.6 {depth / 2} 0.085" '
+        f'pos="2 {-1 - depth / 2} 0.085"/>'
+        '<site name="a" pos="-4 -2 0"/><site name="b" pos="2.5 0.3 0.34"/>'
+        "</worldbody></mujoco>"
+    )
+    return path
+
+
+@pytest.mark.parametrize("depth", [0.4, 0.5])
+def test_a_step_block_deeper_than_a_tread_is_stepped_over(tmp_path, depth):
+    """A step block deeper than a stair's tread (0.37 m, DIN 18065) but too shallow for a
+    stance a body clearance from both its edges is passed in one footfall, like a tread: one
+    step crossing of two 0.17 m risers from the floor to the platform (before: two step links
+    through a 'platform' level nobody can walk on, and 'no route' for every walker)."""
+    graph = load_workplace(_step_block(tmp_path, depth), cache=False).levels
+    (step,) = [c for c in crossings(graph, 0.3) if c.kind == "step"]
+    assert step.risers == pytest.approx((0.17, 0.17))
+    assert graph.levels[step.lower].height == 0.0
+    assert graph.levels[step.upper].height == pytest.approx(0.34)
+    assert step.tread == pytest.approx(depth)
+
+
+def test_a_step_block_with_room_to_stand_stays_a_level(tmp_path):
+    """0.7 m deep, the block holds a stance a clearance (0.3 m) from both edges: a level walked on,
+    reached by single-riser steps (from the floor at its front and both sides), as before."""
+    graph = load_workplace(_step_block(tmp_path, 0.7), cache=False).levels
+    steps = [c for c in crossings(graph, 0.3) if c.kind == "step"]
+    assert [len(c.risers) for c in steps] == [1, 1, 1, 1]
+
+
+@pytest.mark.slow
+def test_walks_over_a_deep_step_block_touch_nothing(tmp_path):
+    """Up onto the platform over the 0.4 m block and back down, one step crossing each way,
+    0 contacts (before: no route)."""
+    import mjwalk
+    from mjwalk.gait.default import default_model
+
+    path = _step_block(tmp_path, 0.4)
+    wp, model = load_workplace(path, cache=False), default_model()
+    for a, b in (("a", "b"), ("b", "a")):
+        walk = mjwalk.plan_walk(wp, a, b, model, rng=0)
+        assert [r["kind"] for r in walk.meta["levels"]["route"]] == ["level", "step", "level"]
+        assert mjwalk.check_collisions(walk, path) == []
