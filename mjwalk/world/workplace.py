@@ -26,6 +26,7 @@ from mjwalk.world.floorholes import floor_boxes, wall_openings
 from mjwalk.world.footprint import Footprint, geom_footprint
 from mjwalk.world.levels import LevelGraph, level_graph
 from mjwalk.world.meshimport import concave_mesh_footprints
+from mjwalk.world.norms import ROUNDING_SLACK
 from mjwalk.world.surfaces import SurfaceOptions, find_walk_surfaces
 
 #: Bodies whose name starts with one of these are part of a humanoid, never obstacles (the
@@ -387,6 +388,12 @@ def workplace_from_model(
     holes = floor_boxes(model, data, floor, label)
     floor_z = float(data.geom_xpos[floor][2]) if holes is None else holes.height
     floor_name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
+    if abs(floor_z) > ROUNDING_SLACK:  # the planners' heights are above it, the body's world
+        raise SceneError(
+            f"{label}: the floor '{floor_name}' is at z = {floor_z:.4g} m; people stand at "
+            f"z = 0: move the scene by {-floor_z:+.4g} m (e.g. into "
+            f'<frame pos="0 0 {-floor_z:.4g}">)'
+        )
     fx, fy = model.geom_size[floor][:2]
     if fx > 0 and fy > 0:  # a finite floor: refused before the obstacles are read
         cx, cy = data.geom_xpos[floor][:2]

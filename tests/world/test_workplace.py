@@ -133,6 +133,11 @@ def test_bilinear_lookup_is_vectorized(scenes_dir):
             "</worldbody></mujoco>",
             "not a valid MJCF",
         ),
+        (  # the body played back stood 0.5 m under it, every frame a contact
+            "<mujoco><worldbody><geom name='hall' type='plane' pos='0 0 0.5' size='4 4 .1'/>"
+            "</worldbody></mujoco>",
+            r"the floor 'hall' is at z = 0.5 m; people stand at z = 0: move the scene by -0.5 m",
+        ),
     ],
 )
 def test_bad_scenes(tmp_path, text, match):
