@@ -27,7 +27,7 @@ from mjwalk.plan.walkpath import WalkPath
 from mjwalk.timeline.frames import timeline_from_walk
 from mjwalk.timeline.geomposes import GeomTable, geom_poses, supported
 from mjwalk.timeline.timeline import Timeline
-from mjwalk.world.norms import MAX_RAMP_SLOPE
+from mjwalk.world.norms import MAX_RAMP_SLOPE, ROUNDING_SLACK
 from mjwalk.world.workplace import shared_workplace
 
 
@@ -71,8 +71,8 @@ def collision_report(
     ``floor_tolerance`` metres, so ordinary foot contact is not reported. In a scene on several
     levels (:func:`walk_tops`) a sole (``foot_*``, ``toes_*``) standing on the top face of a
     walk surface (a platform, a tread, a ramp) is left out the same way: a contact no deeper
-    than ``floor_tolerance`` whose normal is within :data:`TOP_NORMAL_TILT` of vertical (a
-    foot against a riser or an edge is still reported). Flat scenes: as before.
+    than ``floor_tolerance`` with a normal within :data:`TOP_NORMAL_TILT` of vertical, or at no
+    depth (``norms.ROUNDING_SLACK``); a foot against a riser is still reported. Flat: as before.
 
     With ``broad_phase`` (default) MuJoCo's collision detection runs only on the frames where
     a contact can be reported (:func:`candidate_frames`: some humanoid geom's bounding sphere
@@ -137,9 +137,7 @@ def _kept(con, n: int, masks: tuple, floor_tolerance: float) -> dict:
     pair: ``{(humanoid geom, scene geom): (depth m, (3,) point)}``; ``masks``: its masks as lists
     (humanoid, floor, walk tops or None, soles; a few contacts: plain Python, not numpy)."""
     human, floorish, tops, soles = masks  # (soles: an array, read only on walk tops)
-    up = None
-    if tops is not None:  # soles standing on a walk surface's top face
-        up = (np.abs(np.asarray(con.frame[:n])[:, 2]) >= math.cos(TOP_NORMAL_TILT)).tolist()
+    up = None if tops is None else (np.abs(np.asarray(con.frame[:n])[:, 2]) >= UPRIGHT).tolist()
     best: dict[tuple[int, int], tuple[float, np.ndarray]] = {}  # pairs in order of first kept
     pairs, dists = con.geom[:n].tolist(), con.dist[:n].tolist()
     for k, ((a, b), dist) in enumerate(zip(pairs, dists, strict=True)):
@@ -150,7 +148,8 @@ def _kept(con, n: int, masks: tuple, floor_tolerance: float) -> dict:
         shallow = depth <= floor_tolerance
         if floorish[sg] and shallow:
             continue
-        if up is not None and tops[sg] and soles[hg] and shallow and up[k]:
+        on_top = up is not None and tops[sg] and soles[hg]  # standing: as vertical as a ramp,
+        if on_top and shallow and (up[k] or depth <= ROUNDING_SLACK):  # or no depth at all
             continue
         if depth > best.get((hg, sg), (-math.inf,))[0]:
             best[(hg, sg)] = (depth, np.array(con.pos[k]))
@@ -162,6 +161,7 @@ def _kept(con, n: int, masks: tuple, floor_tolerance: float) -> dict:
 #: (``mjwalk.world.norms.MAX_RAMP_SLOPE``) plus 10 deg for the contact normal of a box corner
 #: on a face (MuJoCo's box-box normals follow the faces).
 TOP_NORMAL_TILT = MAX_RAMP_SLOPE + math.radians(10.0)
+UPRIGHT = math.cos(TOP_NORMAL_TILT)  # a contact normal's least vertical part, standing
 
 
 def walk_tops(timeline: Timeline) -> np.ndarray | None:

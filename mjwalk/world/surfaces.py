@@ -29,7 +29,7 @@ import numpy as np
 
 from mjwalk._args import check_patterns
 from mjwalk.errors import InputError
-from mjwalk.world.contacts import reachable, surface_contacts
+from mjwalk.world.contacts import MIN_CROSSING, reachable, surface_contacts
 from mjwalk.world.floor import find_floor
 from mjwalk.world.floorholes import FloorBoxes, floor_boxes, opening_area
 from mjwalk.world.footprint import Footprint, geom_footprint
@@ -61,7 +61,8 @@ __all__ = [
 HUMANOID_PREFIXES = ("human",)
 #: A mesh's top is its vertices within this of its highest one, metres.
 MESH_TOP = 1e-3
-#: Sides of the polygon inscribed in a cylinder's top disc.
+#: Most sides of the polygon round a cylinder's top disc (fewer on a small disc:
+#: :func:`disc_sides`).
 DISC_SIDES = 32
 #: Floor margin around the other geoms when the floor plane is infinite, metres (as
 #: ``mjwalk.world.workplace.workplace_from_model`` does).
@@ -141,6 +142,12 @@ def _ccw(xy: np.ndarray) -> np.ndarray:
     return xy[order]
 
 
+def _upright_cylinder(model: mujoco.MjModel, data: mujoco.MjData, g: int) -> bool:
+    """Whether geom ``g`` is a cylinder standing upright (its top a horizontal disc)."""
+    upright = abs(data.geom_xmat[g][8]) > 1 - 1e-9
+    return int(model.geom_type[g]) == mujoco.mjtGeom.mjGEOM_CYLINDER and upright
+
+
 def _top_face(model: mujoco.MjModel, data: mujoco.MjData, g: int) -> np.ndarray | None:
     """World corners (K, 3) of geom ``g``'s top face (a convex polygon), or None."""
     gtype = int(model.geom_type[g])
@@ -154,11 +161,13 @@ def _top_face(model: mujoco.MjModel, data: mujoco.MjData, g: int) -> np.ndarray 
             for sa, sb in ((-1, -1), (1, -1), (1, 1), (-1, 1))
         ]
         return np.array(corners)
-    if gtype == mujoco.mjtGeom.mjGEOM_CYLINDER and abs(rot[2, 2]) > 1 - 1e-9:
-        ang = np.linspace(0, 2 * np.pi, DISC_SIDES, endpoint=False)
-        rim = np.column_stack([size[0] * np.cos(ang), size[0] * np.sin(ang)])
+    if _upright_cylinder(model, data, g):
+        n = disc_sides(float(size[0]))
+        ang = np.linspace(0, 2 * np.pi, n, endpoint=False)
+        r = size[0] / math.cos(math.pi / n)  # the sides touch the rim
+        rim = np.column_stack([r * np.cos(ang), r * np.sin(ang)])
         top = pos[2] + size[1]
-        return np.column_stack([pos[0] + rim[:, 0], pos[1] + rim[:, 1], np.full(DISC_SIDES, top)])
+        return np.column_stack([pos[0] + rim[:, 0], pos[1] + rim[:, 1], np.full(n, top)])
     if gtype == mujoco.mjtGeom.mjGEOM_PLANE and rot[2, 2] > 1 - 1e-9 and size[0] > 0:
         ex, ey = rot[:, 0] * size[0], rot[:, 1] * size[1]
         return np.array([pos - ex - ey, pos + ex - ey, pos + ex + ey, pos - ex + ey])
@@ -177,6 +186,18 @@ def _top_face(model: mujoco.MjModel, data: mujoco.MjData, g: int) -> np.ndarray 
             return _sloped_top(w)
         return np.column_stack([top[hull.vertices, :2], np.full(len(hull.vertices), w[:, 2].max())])
     return None
+
+
+def disc_sides(radius: float) -> int:
+    """Sides of the polygon round a disc of ``radius`` (m), its sides touching the rim, as a
+    walk surface's footprint: :data:`DISC_SIDES`, or fewer where the sides would be shorter
+    than a crossing (``contacts.MIN_CROSSING``, a body wide): a round dais is stepped onto
+    across a side, and a contact is sought along each side alone, so 32 sides of a 1.5 m dais
+    gave it no way up. The sides touch the rim so that a foot kept off one is off the disc
+    (inscribed sides cut up to 3.6 cm off a 0.9 m dais, and the toes before them caught its
+    rim); the corners reach past it (3.8 cm at 0.9 m), far from any stance. At least 3."""
+    half = MIN_CROSSING / (2.0 * radius)
+    return int(min(DISC_SIDES, max(3, math.floor(math.pi / math.atan(half) + ROUNDING_SLACK))))
 
 
 def _sloped_top(w: np.ndarray) -> np.ndarray | None:

@@ -214,3 +214,43 @@ def test_a_walk_up_a_wedge_mesh_ramp_takes_it_without_contacts(scenes_dir, tmp_p
     )  # fmt: skip
     assert [r["kind"] for r in walk.meta["levels"]["route"]] == ["level", "ramp", "level"]
     assert mjwalk.check_collisions(walk, path) == []
+
+
+ROUND_DAIS = '<geom name="dais" type="cylinder" size="0.9 0.085" pos="2 0 0.085"/>'
+
+
+@pytest.mark.parametrize("radius", [0.9, 1.5])
+def test_a_round_dais_is_reached_across_sides_that_touch_its_rim(radius):
+    """A cylinder's top disc is a polygon whose sides are a crossing (0.5 m) or longer and touch
+    the rim: a step reaches the dais (before: 32 sides of 0.18-0.29 m each, shorter than a
+    crossing, so no contact with the floor and no level)."""
+    model = scene(ROUND_DAIS.replace("0.9 0.085", f"{radius} 0.085"))
+    dais = find_walk_surfaces(model, None)[1]
+    assert dais.name == "dais" and dais.z == pytest.approx(0.17)
+    v = np.asarray(dais.footprint.vertices)
+    mid = 0.5 * (v + np.roll(v, -1, axis=0)) - [2.0, 0.0]
+    assert np.hypot(*mid.T) == pytest.approx(radius, abs=1e-9)  # each side touches the rim
+    assert np.hypot(*np.diff(np.vstack([v, v[:1]]), axis=0).T).min() >= 0.5
+    assert surfaces_module.disc_sides(radius) == len(v)
+
+
+@pytest.mark.slow
+def test_walks_onto_a_round_dais_touch_nothing(tmp_path):
+    """Up a 0.17 m step onto a 0.9 m round dais and back (before: no way up; with inscribed
+    sides the toes before a side caught the rim up to 9 mm, and a sole flat on the top gave a
+    tilted contact normal at 2e-16 m)."""
+    import mjwalk
+    from mjwalk.gait.default import default_model
+
+    path = tmp_path / "dais.xml"
+    path.write_text(
+        '<mujoco><worldbody><geom name="floor" type="plane" size="8 8 0.1"/>'
+        f'{ROUND_DAIS}<site name="a" pos="-4 -2 0"/><site name="b" pos="2.1 0.1 0.17"/>'
+        "</worldbody></mujoco>"
+    )
+    wp, model = mjwalk.load_workplace(path, cache=False), default_model()
+    for rng in (0, 1):
+        for a, b in (("a", "b"), ("b", "a")):
+            walk = mjwalk.plan_walk(wp, a, b, model, rng=rng)
+            assert [r["kind"] for r in walk.meta["levels"]["route"]] == ["level", "step", "level"]
+            assert mjwalk.check_collisions(walk, path) == []
