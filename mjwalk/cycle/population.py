@@ -317,13 +317,12 @@ class Population:
         # the cap (mjwalk.cycle.copula): only with a stature that varies, and only when some
         # speed and cadence within their bounds give a step under it at this stature
         cap = STEP_STATURE_MAX * stature / 60.0
-        if cop.cv_stature > 0.0 and g.speed.lo / g.cadence.hi <= cap:
-            for _ in range(STEP_STATURE_TRIES):
-                if speed / cadence <= cap:
-                    break
+        if cop.cv_stature > 0.0 and g.speed.lo / g.cadence.hi <= cap and speed / cadence > cap:
+            for _ in range(STEP_STATURE_TRIES):  # none under the cap: the first draw stands
                 s2, c2 = pace(*map(float, rng.random(2)))
-                if s2 / c2 < speed / cadence:  # the shortest step when none is under the cap
+                if s2 / c2 <= cap:
                     speed, cadence = s2, c2
+                    break
         return Walker(stature, speed, cadence, step_width=g.step_width, group=g.name)
 
     @property
