@@ -117,7 +117,8 @@ class GaitCopula:
 
         Args:
             z_stature: the stature's standard normal score.
-            u_speed, u_other: independent uniform quantiles, 0 to 1 (open).
+            u_speed: a uniform quantile, 0 to 1 (open).
+            u_other: another, independent of ``u_speed``.
 
         Returns:
             (speed quantile, cadence quantile), 0 to 1; without a stature-speed correlation the
