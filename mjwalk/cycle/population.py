@@ -40,16 +40,9 @@ so no run fails on an implausible operator; a distribution that puts less than
 :data:`MIN_MASS` of its draws inside those ranges is refused when the cycle file is read.
 Statures are drawn to the centimetre (the humanoid is built per centimetre).
 
-Speed and cadence are not independent: speed is step length times cadence, and mjwalk takes the
-two factors, step length and cadence, to vary independently between people. Then the logarithms
-of speed and cadence correlate with ``rho = cv_cadence / cv_speed`` (capped at 1), and the step
-length's between-person coefficient of variation is ``sqrt(cv_speed**2 - cv_cadence**2)``:
-for the adult preset (speed 1.38 +- 0.17 m/s, cadence 113 +- 8 steps/min) rho = 0.58 and the step
-length varies by about 10 %, where independent speed and cadence draws would give 14 % and
-operators with 0.95 m steps at 1.73 m stature. The pair is drawn through a Gaussian copula with
-that rho (:meth:`OperatorGroup.speed_cadence_rho`), so each figure keeps its own distribution.
-Stature is drawn independently of both (an ASSUMPTION: the step model already widens the step
-with stature, :meth:`~mjwalk.gait.model.StepModel.for_walker`).
+Stature, speed and cadence are drawn through a Gaussian copula whose correlations follow from
+step length growing with stature while the cadence does not (:mod:`mjwalk.cycle.copula`, which
+derives them and caps step length over stature), so each figure keeps its own distribution.
 """
 
 from __future__ import annotations
@@ -61,6 +54,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.special import ndtr, ndtri
 
+from mjwalk.cycle.copula import STEP_STATURE_MAX, STEP_STATURE_TRIES, GaitCopula
 from mjwalk.cycle.stepup import parse_step_up
 from mjwalk.errors import CycleSpecError
 from mjwalk.gait.walker import CADENCE_RANGE, PRESETS, SPEED_RANGE, Walker
@@ -244,31 +238,41 @@ class OperatorGroup:
     cadence: Distribution
     step_width: float | None = None
 
+    @property
+    def copula(self) -> GaitCopula:
+        """The correlations of the group's stature, speed and cadence draws
+        (:class:`~mjwalk.cycle.copula.GaitCopula` of the figures' coefficients of variation)."""
+        return GaitCopula(self.stature.cv(), self.speed.cv(), self.cadence.cv())
+
     def speed_cadence_rho(self) -> float:
-        """Correlation of the speed and cadence draws (Gaussian copula): ``cv_cadence / cv_speed``
-        capped at 1, from step length and cadence varying independently between people (module
-        docstring).
+        """Correlation of the speed and cadence draws (:meth:`GaitCopula.speed_cadence_rho`).
 
         Returns:
             The correlation, 0 to 1 (0 when either figure is fixed).
         """
-        cs, cc = self.speed.cv(), self.cadence.cv()
-        if cs == 0.0 or cc == 0.0:
-            return 0.0
-        return min(cc / cs, 1.0)
+        return self.copula.speed_cadence_rho()
+
+    def stature_step_rho(self) -> float:
+        """Correlation of stature and step length (:meth:`GaitCopula.stature_step_rho`).
+
+        Returns:
+            The correlation, 0 to 1 (0 when the stature or the step length does not vary).
+        """
+        return self.copula.stature_step_rho()
 
     def describe(self) -> dict[str, str | float | None]:
         """The group as plain data (for the report).
 
         Returns:
-            group, share, each figure's :meth:`Distribution.describe`, the speed-cadence
-            correlation and the step width (m or None).
+            group, share, each figure's :meth:`Distribution.describe`, the speed-cadence and
+            stature-step length correlations and the step width (m or None).
         """
         return {
             "group": self.name,
             "share": self.share,
             **{f: getattr(self, f).describe(UNITS[f]) for f in FIGURES},
             "speed_cadence_rho": round(self.speed_cadence_rho(), 3),
+            "stature_step_rho": round(self.stature_step_rho(), 3),
             "step_width": self.step_width,
         }
 
@@ -283,10 +287,12 @@ class Population:
     step_up: tuple[tuple[str, float], ...] = ()
 
     def draw(self, rng: np.random.Generator) -> Walker:
-        """One operator: the group by its share, then each figure at a quantile of its truncated
-        distribution: stature at an independent uniform quantile, speed and cadence at quantiles
-        correlated by :meth:`OperatorGroup.speed_cadence_rho` (Gaussian copula). Four uniforms
-        from ``rng`` in every case. Stature is rounded to :data:`STATURE_STEP`.
+        """One operator: the group by its share, its stature at a uniform quantile, then speed
+        and cadence at quantiles correlated with it and each other
+        (:meth:`~mjwalk.cycle.copula.GaitCopula.quantiles`); four uniforms from ``rng``, two
+        more per speed and cadence drawn again over
+        :data:`~mjwalk.cycle.copula.STEP_STATURE_MAX`. Stature is
+        rounded to :data:`STATURE_STEP`.
 
         Args:
             rng: the run's operator stream.
@@ -300,16 +306,24 @@ class Population:
         g = self.groups[k]
         lo, hi = RANGES["stature"]
         stature = round(g.stature.ppf(float(u[1])) / STATURE_STEP) * STATURE_STEP
-        rho = g.speed_cadence_rho()
-        z_speed, z_other = ndtri(u[2:4])
-        u_cadence = float(ndtr(rho * z_speed + math.sqrt(max(1.0 - rho * rho, 0.0)) * z_other))
-        return Walker(
-            stature=float(np.clip(round(stature, 2), lo, hi)),
-            speed=g.speed.ppf(float(u[2])),
-            cadence=g.cadence.ppf(u_cadence),
-            step_width=g.step_width,
-            group=g.name,
-        )
+        stature = float(np.clip(round(stature, 2), lo, hi))
+        cop, z_stature = g.copula, float(ndtri(u[1]))
+
+        def pace(u_speed: float, u_other: float) -> tuple[float, float]:
+            us, uc = cop.quantiles(z_stature, u_speed, u_other)
+            return g.speed.ppf(us), g.cadence.ppf(uc)
+
+        speed, cadence = pace(float(u[2]), float(u[3]))
+        # the cap (mjwalk.cycle.copula): only with a stature that varies, and only when some
+        # speed and cadence within their bounds give a step under it at this stature
+        cap = STEP_STATURE_MAX * stature / 60.0
+        if cop.cv_stature > 0.0 and g.speed.lo / g.cadence.hi <= cap and speed / cadence > cap:
+            for _ in range(STEP_STATURE_TRIES):  # none under the cap: the first draw stands
+                s2, c2 = pace(*map(float, rng.random(2)))
+                if s2 / c2 <= cap:
+                    speed, cadence = s2, c2
+                    break
+        return Walker(stature, speed, cadence, step_width=g.step_width, group=g.name)
 
     @property
     def group_names(self) -> list[str]:

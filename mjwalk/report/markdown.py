@@ -326,7 +326,9 @@ def _operators_md(rep: dict) -> list[str]:
         rows.append(row)
     figures = [
         f"- {g['group']} ({100 * g['share']:.0f} %): stature {g['stature']}, speed "
-        f"{g['speed']}, cadence {g['cadence']}"
+        f"{g['speed']}, cadence {g['cadence']}; correlation speed-cadence "
+        f"{g.get('speed_cadence_rho', 0):.2f}, stature-step length "
+        f"{g.get('stature_step_rho', 0):.2f}"
         for g in rep["population"]
     ]
     return [

@@ -10,6 +10,7 @@ import json
 import numpy as np
 import pytest
 
+from mjwalk.cycle.copula import STEP_STATURE_MAX
 from mjwalk.cycle.population import RANGES, Distribution, parse_population
 from mjwalk.cycle.simulate import prepare, simulate_cycle, simulate_cycles
 from mjwalk.cycle.spec import load_cycle_spec
@@ -102,6 +103,60 @@ def test_speed_and_cadence_correlate_as_step_length_and_cadence_vary_independent
         .speed_cadence_rho()
         == 0.0
     )
+
+
+@pytest.mark.parametrize("name", list(PRESETS))
+def test_stature_and_step_length_correlate_keeping_the_marginals(name):
+    """Each preset, 10 000 seeded draws: stature and step length correlate (logs) within 0.03
+    (about 3 standard errors, the centimetre statures and the cap included) of
+    ``stature_step_rho`` (adult 0.52, elderly 0.29, brisk 0.81); stature and cadence do not
+    (|r| < 0.03, Samson et al. 2001); each figure's mean within 3 standard errors and SD within
+    3 % of its preset's (the marginals unchanged); step over stature never above the cap."""
+    pop = parse_population({"mix": {name: 1}}, 1.75)
+    ws = _draws(pop, 10000, seed=47)
+    st, sp, ca = (np.array([getattr(w, f) for w in ws]) for f in ("stature", "speed", "cadence"))
+    step = sp * 60.0 / ca
+    g = pop.groups[0]
+    assert np.corrcoef(np.log(st), np.log(step))[0, 1] == pytest.approx(
+        g.stature_step_rho(), abs=0.03
+    )
+    assert abs(np.corrcoef(st, ca)[0, 1]) < 0.03
+    p = PRESETS[name]
+    for x, (mean, sd) in ((st, p.stature), (sp, p.speed), (ca, p.cadence)):
+        assert x.mean() == pytest.approx(mean, abs=3 * sd / 100)
+        assert x.std() == pytest.approx(sd, rel=0.03)
+    assert (step / st).max() <= STEP_STATURE_MAX
+    assert pop.describe()[0]["stature_step_rho"] == round(g.stature_step_rho(), 3)
+
+
+def test_step_over_stature_cap_and_what_the_marginals_force():
+    """A wide speed at a short stature (4000 seeded draws): no step above STEP_STATURE_MAX x
+    stature, the stature's mean and SD still its own (within 0.005 m and 5 % of the truncated
+    normal's); the same figures
+    at a fixed stature have no cap (more than 10 % of the steps above it, as before). A fixed
+    fast walker of varying stature whose step is above the cap at every stature (2.4 m/s at 100
+    steps/min: 1.44 m) is what the marginals force: the draws stand (speed and cadence as given,
+    the stature drawn)."""
+    figs = {
+        "speed": {"dist": "normal", "mean": 1.5, "sd": 0.3},
+        "cadence": {"dist": "normal", "mean": 105, "sd": 8},
+    }
+    wide = parse_population({"stature": {"dist": "normal", "mean": 1.55, "sd": 0.08}, **figs}, 1.75)
+    ws = _draws(wide, 4000, seed=3)
+    st = np.array([w.stature for w in ws])
+    assert max(w.step_length / w.stature for w in ws) <= STEP_STATURE_MAX
+    mean, sd = wide.groups[0].stature.moments()  # truncated at the humanoid's 1.4 m
+    assert st.mean() == pytest.approx(mean, abs=0.005) and st.std() == pytest.approx(sd, rel=0.05)
+    fixed_stature = parse_population({"stature": 1.55, **figs}, 1.75)
+    over = [w.step_length / w.stature > STEP_STATURE_MAX for w in _draws(fixed_stature, 4000)]
+    assert np.mean(over) > 0.1
+    forced = parse_population(
+        {"stature": {"dist": "normal", "mean": 1.7, "sd": 0.08}, "speed": 2.4, "cadence": 100},
+        1.75,
+    )
+    fw = _draws(forced, 500)
+    assert {(w.speed, w.cadence) for w in fw} == {(2.4, 100.0)}
+    assert np.std([w.stature for w in fw]) == pytest.approx(0.08, rel=0.15)
 
 
 def test_extreme_distributions_are_truncated_not_raised():
@@ -363,6 +418,9 @@ def test_runs_independent_of_jobs_and_csv_carries_the_operator(tmp_path, scenes_
     assert rep["per_run"][0]["operator"]["group"] == one[0].operator.group
     md = files["markdown"].read_text()
     assert "## Operators" in md and "over takt" in md and "P95 [s]" in md
+    # the groups' copula correlations in the JSON and the markdown (adult r = 0.52)
+    assert {g["group"]: g["stature_step_rho"] for g in rep["population"]}["adult"] == 0.519
+    assert "stature-step length 0.52" in md and "stature-step length 0.29" in md  # elderly
 
 
 # ------------------------------------------------------------------------------ report

@@ -153,9 +153,10 @@ def test_walkers_step_within_human_stair_cadences(group):
     the cited group means (brisk young descents 0.33 s from Fruin's 1.01 m/s, the oldest ascents
     about 1.1 s from Oh-Park, widened for the between-person spread); every one within
     0.25-2.5 s (the far tails of the drawn level speeds, down to the Walker's 0.3 m/s floor, and
-    2.2 m/s; Oh-Park's 85+ women: 3.22 +- 1.45 s for 3 steps)."""
+    2.2 m/s; Oh-Park's 85+ women: 3.22 +- 1.45 s for 3 steps). 2000 walkers: the share's
+    standard error 0.3 % (brisk: 97.9 %, at 400 walkers one step time decided it)."""
     times = np.array(
-        [stair_gait(w, STAIR, d).step_time for w in draw(group) for d in ("up", "down")]
+        [stair_gait(w, STAIR, d).step_time for w in draw(group, n=2000) for d in ("up", "down")]
     )
     assert np.mean((times >= 0.33) & (times <= 1.5)) >= 0.97
     assert times.min() >= 0.25 and times.max() <= 2.5
