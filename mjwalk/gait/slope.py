@@ -30,8 +30,9 @@ The model, and where each part comes from:
   ``L sin|a| / 2`` below the pelvis, which holds the mean height of the two feet in double
   support (:mod:`mjwalk.body.legs.legheights`); the leading leg, at its full reach at initial
   contact on the level, gets there only with the pelvis lowered by that much (measured on
-  synthetic ramp walks, 4-9.9 deg, statures 1.45-1.95 m: the leg stage's raw deficit is
-  ``L sin|a| / 2`` within 2 mm, before its lowering's own tolerance). The pelvis may lower at
+  synthetic ramp walks down 5.5-9.8 deg, statures 1.59-1.83 m: the leg stage's raw deficit is
+  ``L sin|a| / 2`` within 2 mm for steps of 0.45-0.75 m, and up to 3.7 mm over it for a 1.45
+  m walker's 0.98 m step; its lowering adds 2 mm). The pelvis may lower at
   most :data:`~mjwalk.body.legs.stance.REACH_DROP_MAX` (Saunders et al. 1953); so downhill
   the step along the surface is at most ``2 DOWNHILL_DROP / sin|a|``
   (:data:`DOWNHILL_DROP`, :func:`downhill_step_max`; 0.57 m at 9.5 deg, 0.98 m at 5.5 deg),

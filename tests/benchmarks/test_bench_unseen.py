@@ -35,3 +35,13 @@ def test_generated_halls_plan_and_scan(seed):
     assert rec["scan"]["missed"] == [] and rec["scan"]["extra"] == []
     for kind, (found, true) in rec["scan"]["links"].items():
         assert found == true, (kind, rec["scan"])
+
+
+@pytest.mark.slow
+def test_hall_201_cycle_walks_down_its_steep_ramp():
+    """Hall 201's cycle (the 1.75 m reference walker) walks down its 9.x deg ramp: its ramp
+    steps were the level gait's (Tobler and Franz & Kram alone) and the legs reached their
+    feet only with the pelvis 0.052 m lowered (PlanningError, over REACH_DROP_MAX); the steps
+    within the legs' reach (mjwalk.gait.slope.downhill_step_max) ask for less."""
+    rec = bench.run_one(201, ("cycle",))
+    assert rec["cycle"]["errors"] == [], rec["cycle"]
