@@ -29,10 +29,13 @@ The model, and where each part comes from:
   (along the surface) down a slope ``a`` lands ``L sin|a|`` below the rear one, so
   ``L sin|a| / 2`` below the pelvis, which holds the mean height of the two feet in double
   support (:mod:`mjwalk.body.legs.legheights`); the leading leg, at its full reach at initial
-  contact on the level, gets there only with the pelvis lowered by that much (measured on
-  synthetic ramp walks down 5.5-9.8 deg, statures 1.59-1.83 m: the leg stage's raw deficit is
-  ``L sin|a| / 2`` within 2 mm for steps of 0.45-0.75 m, and up to 3.7 mm over it for a 1.45
-  m walker's 0.98 m step; its lowering adds 2 mm). The pelvis may lower at
+  contact on the level and landing no more flexed going down (knee flexion at heel strike
+  rose with the incline walking up, "but not down": McIntosh, Beatty, Dwan & Vickers, "Gait
+  dynamics on an inclined walkway", J Biomech (2006), doi 10.1016/j.jbiomech.2005.07.025,
+  0-10 deg, abstract verified here), gets there only with the pelvis lowered by that much
+  (measured on synthetic ramp walks down 5.5-9.8 deg, statures 1.59-1.83 m: the leg stage's
+  raw deficit is ``L sin|a| / 2`` within 2 mm for steps of 0.45-0.75 m, and up to 3.7 mm over
+  it for a 1.45 m walker's 0.98 m step; its lowering adds 2 mm). The pelvis may lower at
   most :data:`~mjwalk.body.legs.stance.REACH_DROP_MAX` (Saunders et al. 1953); so downhill
   the step along the surface is at most ``2 DOWNHILL_DROP / sin|a|``
   (:data:`DOWNHILL_DROP`, :func:`downhill_step_max`; 0.57 m at 9.5 deg, 0.98 m at 5.5 deg),
