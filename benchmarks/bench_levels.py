@@ -232,6 +232,9 @@ STAIR = StairGeometry(0.17, 0.28)
 RISERS = 6
 RAMP_DEG = 5.5
 RAMP_RISE = 0.34
+#: The steepest ramps of the generated halls (mjwalk.world.levelgen: 8.5-9.9 deg), where a long
+#: step down is bound by the legs' reach (mjwalk.gait.slope.downhill_step_max).
+STEEP_RAMP_DEG = 9.5
 
 
 def _walkers(group: str, draws: int, seed: int) -> list[Walker]:
@@ -333,8 +336,9 @@ def ramp_table(draws: int, seed: int) -> None:
     """
     run = RAMP_RISE / math.tan(math.radians(RAMP_DEG))
     print(
-        f"\nRamp {RAMP_DEG} deg, {run:.2f} m run to the {RAMP_RISE} m platform; norms: "
-        "Tobler 1993 speed factor (capped at 1 downhill), Franz & Kram 2012 downhill cadence"
+        f"\nRamp {RAMP_DEG} deg, {run:.2f} m run to the {RAMP_RISE} m platform (and "
+        f"{STEEP_RAMP_DEG} deg to the same rise); norms: Tobler 1993 speed factor (capped at 1 "
+        "downhill), Franz & Kram 2012 downhill cadence, downhill steps within the legs' reach"
     )
     head = (
         f"{'group':12} {'slope':6} {'speed m/s':22} {'step length m':22} "
@@ -344,8 +348,9 @@ def ramp_table(draws: int, seed: int) -> None:
     print("-" * len(head))
     for group in PRESETS:
         walkers = _walkers(group, draws, seed)
-        for deg in (0.0, RAMP_DEG, -RAMP_DEG):
+        for deg in (0.0, RAMP_DEG, -RAMP_DEG, STEEP_RAMP_DEG, -STEEP_RAMP_DEG):
             gaits = [slope_gait(w, math.radians(deg)) for w in walkers]
+            run = RAMP_RISE / math.tan(math.radians(abs(deg) or RAMP_DEG))
             print(
                 f"{group:12} {deg:+6.1f} {_stats([g.speed for g in gaits])} "
                 f"{_stats([g.step_length for g in gaits])} "

@@ -25,6 +25,23 @@ The model, and where each part comes from:
   alike (each by the square root of the speed factor), as a walker's walk ratio (step length
   over cadence) stays constant over speeds (Sekiya & Nagasaki, Gait Posture 7:225-227, 1998;
   NOT verified here). The step length is then speed over cadence.
+- **Downhill, no step longer than the legs reach**: the front foot of a step of length ``L``
+  (along the surface) down a slope ``a`` lands ``L sin|a|`` below the rear one, so
+  ``L sin|a| / 2`` below the pelvis, which holds the mean height of the two feet in double
+  support (:mod:`mjwalk.body.legs.legheights`); the leading leg, at its full reach at initial
+  contact on the level and landing no more flexed going down (knee flexion at heel strike
+  rose with the incline walking up, "but not down": McIntosh, Beatty, Dwan & Vickers, "Gait
+  dynamics on an inclined walkway", J Biomech (2006), doi 10.1016/j.jbiomech.2005.07.025,
+  0-10 deg, abstract verified here), gets there only with the pelvis lowered by that much
+  (measured on synthetic ramp walks down 5.5-9.8 deg, statures 1.59-1.83 m: the leg stage's
+  raw deficit is ``L sin|a| / 2`` within 2 mm for steps of 0.45-0.75 m, and up to 3.7 mm over
+  it for a 1.45 m walker's 0.98 m step; its lowering adds 2 mm). The pelvis may lower at
+  most :data:`~mjwalk.body.legs.stance.REACH_DROP_MAX` (Saunders et al. 1953); so downhill
+  the step along the surface is at most ``2 DOWNHILL_DROP / sin|a|``
+  (:data:`DOWNHILL_DROP`, :func:`downhill_step_max`; 0.57 m at 9.5 deg, 0.98 m at 5.5 deg),
+  people shortening their steps going down as Sun et al. 1996 observed. A step so shortened
+  keeps the ramp's cadence and slows the walk (speed = step length times cadence), as the
+  cited cadences reach no further: the time per step stays Franz & Kram's.
 
 Units: metres, seconds, radians; cadence in steps per second.
 """
@@ -50,6 +67,14 @@ GRADE_FREQUENCY = (0.99 / 0.93, 0.98 / 0.93, 0.95 / 0.93, 1.0)
 #: A slope steeper than this (radians, either way) is not walked as a ramp: refused. 20 deg is
 #: an ASSUMPTION (the cited gait data reach 9 deg; workplace ramps stay far below it).
 MAX_RAMP_ANGLE = math.radians(20.0)
+#: The most (m) a downhill step may ask the pelvis to lower for the leading leg to reach its
+#: foot (module docstring): the leg stage's limit
+#: :data:`~mjwalk.body.legs.stance.REACH_DROP_MAX` (0.05 m, the body's whole vertical travel
+#: in a level stride, Saunders, Inman & Eberhart 1953) less its lowering's tolerance, 3 mm
+#: (:func:`~mjwalk.body.legs.stance.lower_to_reach` lowers 2 mm past each deficit and stops
+#: within 1 mm of the reach). The gait stage cannot import the body's figure;
+#: ``tests/gait/test_slope.py`` holds the two together.
+DOWNHILL_DROP = 0.05 - 0.003
 
 
 @dataclass(frozen=True)
@@ -139,6 +164,22 @@ def frequency_factor(angle: float) -> float:
     return float(np.interp(math.degrees(angle), GRADE_DEG, GRADE_FREQUENCY))
 
 
+def downhill_step_max(angle: float) -> float:
+    """The longest step (along the surface) a walker takes down a slope: its front foot's
+    drop below the pelvis, half the step's fall, kept within :data:`DOWNHILL_DROP` (module
+    docstring).
+
+    Args:
+        angle: slope in the walking direction, radians (positive uphill).
+
+    Returns:
+        Metres; ``inf`` on the level and uphill.
+    """
+    if angle >= 0.0:
+        return math.inf
+    return 2.0 * DOWNHILL_DROP / math.sin(-angle)
+
+
 def slope_gait(walker: Walker, angle: float) -> SlopeGait:
     """A walker's gait on a ramp (module docstring: the model and its sources).
 
@@ -164,4 +205,5 @@ def slope_gait(walker: Walker, angle: float) -> SlopeGait:
         )
     f = speed_factor(angle)
     cadence = walker.cadence / 60.0 * math.sqrt(f) * frequency_factor(angle)
-    return SlopeGait(angle=float(angle), speed=walker.speed * f, cadence=cadence)
+    speed = min(walker.speed * f, cadence * downhill_step_max(angle))
+    return SlopeGait(angle=float(angle), speed=speed, cadence=cadence)

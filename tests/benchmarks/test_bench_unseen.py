@@ -35,3 +35,35 @@ def test_generated_halls_plan_and_scan(seed):
     assert rec["scan"]["missed"] == [] and rec["scan"]["extra"] == []
     for kind, (found, true) in rec["scan"]["links"].items():
         assert found == true, (kind, rec["scan"])
+
+
+@pytest.mark.slow
+def test_hall_500_population_walks_down_its_steep_ramp(tmp_path):
+    """Hall 500's 9.8 deg ramp walked down by the station population's long-stepping walkers
+    (runs 2 and 3 of seed 1: a 1.59 m elderly and a 1.83 m older adult, all of the hall's
+    reachable sites): their ramp steps were the level gait's (Tobler and Franz & Kram alone,
+    0.68 m) and the legs reached their feet only with the pelvis 0.061 / 0.060 m lowered
+    (PlanningError, over REACH_DROP_MAX); the steps within the legs' reach
+    (mjwalk.gait.slope.downhill_step_max) ask for less."""
+    from mjwalk.cycle.seeding import run_generator
+    from mjwalk.cycle.simulate import simulate_cycle
+    from mjwalk.cycle.spec import load_cycle_spec
+    from mjwalk.world.levelgen import generate_levels
+
+    hall = generate_levels(500)
+    xml = hall.write(tmp_path / "levels_500.xml")
+    reach = [s.name for s in hall.sites if s.reachable and s.level != "floor"]
+    floor = [s.name for s in hall.sites if s.level == "floor"]
+    mix = "{ adult = 0.3, older_adult = 0.2, elderly = 0.2, fatigued = 0.1, brisk = 0.2 }"
+    lines = ['name = "stress 500"', f'scene = "{xml.name}"', f'start = "{floor[0]}"', "[models]",
+             'step = "default"', 'reach = "default"', "[population]", f"mix = {mix}"]  # fmt: skip
+    for i, site in enumerate(
+        x for j, r in enumerate(reach) for x in (r, floor[(j + 1) % len(floor)])
+    ):
+        lines += ["[[task]]", 'kind = "walk"', f'site = "{site}"', f'route = "R{i}"']
+    toml = tmp_path / "cycle.toml"
+    toml.write_text("\n".join(lines) + "\n")
+    spec = load_cycle_spec(toml)
+    for k in (2, 3):
+        r = simulate_cycle(spec, run_generator(1, k), run=k)  # raised PlanningError before
+        assert r.collisions == []
