@@ -1,17 +1,19 @@
 """An exact convex decomposition of a mesh without overhangs, and a check of an approximate one.
 
-A CAD stair, platform or plinth modelled as one closed mesh is, seen from above, a terrain over a
-flat base: every vertical line through it meets the solid in one interval from the base up.
-Such a solid is exactly the union of its upward faces each extruded straight down to the base:
-:func:`extruded_parts` cuts each upward plane's footprint into convex pieces
-(:func:`convex_pieces`) and makes each piece a prism (its top on the face's plane, its bottom
-on the base), so every tread, landing and ramp is a part's top to float precision and the
-parts fill the mesh and nothing else. CoACD (``meshimport.convex_parts``) approximates: on one
-clean stair mesh it dropped a 10 m platform and split a tread in two levels.
+A CAD stair, platform, plinth or table modelled as one closed mesh meets every vertical line
+through it in one interval: from its bottom (a flat base, a stair's sloped soffit, a table
+top's underside) up to its top. Such a solid is exactly the union of prisms between its bottom
+and top faces: :func:`extruded_parts` cuts each plane's footprint into convex pieces
+(:func:`convex_pieces`) and makes each cell where a top piece meets a bottom piece a prism
+(its top on the top face's plane, its bottom on the bottom face's; over a flat base, each
+upward face extruded straight down), so every tread, landing and ramp is a part's top to float
+precision and the parts fill the mesh and nothing else. CoACD (``meshimport.convex_parts``)
+approximates: on one clean stair mesh it dropped a 10 m platform and split a tread in two levels.
 
-A mesh with an overhang (a table, a shelf, a stair's sloped soffit) is no such terrain and stays
-with CoACD; :func:`approximate_walk_faces` then names its walk faces that no part's top
-reproduces within ``norms.STAIR_TOLERANCE``, so the import can say it is approximate.
+A mesh with an overhang (a vertical line meets it twice: a shelf's boards, a stair under a
+stair) stays with CoACD; :func:`approximate_walk_faces` then names its walk faces that no
+part's top reproduces within ``norms.STAIR_TOLERANCE``, so the import can say it is
+approximate.
 """
 
 from __future__ import annotations
@@ -20,8 +22,14 @@ import math
 
 import numpy as np
 
-from mjwalk.world.hiddenfaces import PLANE_ROUND, upward_planes
-from mjwalk.world.norms import MIN_TREAD, ROUNDING_SLACK, STAIR_TOLERANCE, STAND_WIDTH
+from mjwalk.world.hiddenfaces import PLANE_ROUND, FacePlane, upward_planes
+from mjwalk.world.norms import (
+    HORIZONTAL_SLOPE,
+    MIN_TREAD,
+    ROUNDING_SLACK,
+    STAIR_TOLERANCE,
+    STAND_WIDTH,
+)
 
 #: Geometric tolerance of the overhang test, the convexity test and the volume check, metres:
 #: ``hiddenfaces.PLANE_ROUND`` (0.1 mm; CAD tessellates a flat face coplanar to far better, and
@@ -43,26 +51,31 @@ def _plan_thickness(tri: np.ndarray) -> np.ndarray:
     return np.where(sides > 0, 2.0 * area / np.maximum(sides, 1e-300), 0.0)
 
 
-def overhang_free(verts: np.ndarray, faces: np.ndarray) -> bool:
-    """Whether a closed mesh is a terrain over a flat base: every face that faces down (its top
-    view thicker than :data:`GEOM_TOL`) lies on the mesh's lowest plane.
+def _plane_plans(verts: np.ndarray, faces: np.ndarray) -> list[tuple[FacePlane, object]]:
+    """Each plane of a mesh's upward faces (any slope; faces whose top view is thinner than
+    :data:`GEOM_TOL` are walls) with its footprint (shapely, exact: the faces share corners)."""
+    import shapely  # deferred: shapely is slow to import; only meshes need it
 
-    For a closed, consistently wound volume that is exact: a vertical line enters the solid
-    through a downward face and leaves through an upward one, alternately; with all downward
-    faces on one plane it enters once, so it meets the solid in one interval from the base.
+    out = []
+    for plane in upward_planes(verts, faces, max_slope=0.5 * math.pi):
+        tri = plane.triangles[_plan_thickness(plane.triangles) > GEOM_TOL]
+        if not len(tri):
+            continue
+        polys = shapely.polygons(tri[:, :, :2])
+        try:  # the faces share their corners exactly: a coverage
+            plan = shapely.coverage_union_all(polys)
+        except shapely.errors.GEOSException:
+            plan = shapely.union_all(polys)
+        out.append((plane, plan))
+    return out
 
-    Args:
-        verts: (V, 3) vertices, z up, metres.
-        faces: (F, 3) vertex indices, wound outwards.
 
-    Returns:
-        True when the mesh has no overhang.
-    """
-    tri = np.asarray(verts, float)[np.asarray(faces, np.int64)]
-    nz = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])[:, 2]
-    down = (nz < 0) & (_plan_thickness(tri) > GEOM_TOL)
-    base = float(np.asarray(verts, float)[:, 2].min())
-    return bool(np.all(tri[down][:, :, 2] <= base + GEOM_TOL))
+def _single_cover(plans: list) -> bool:
+    """Whether footprints overlap by no more than a :data:`GEOM_TOL` strip along them."""
+    import shapely  # deferred: shapely is slow to import; only meshes need it
+
+    union = shapely.union_all([p for _, p in plans])
+    return sum(p.area for _, p in plans) - union.area <= GEOM_TOL * max(union.length, 1e-9)
 
 
 def _is_convex(poly) -> bool:
@@ -113,25 +126,59 @@ def convex_pieces(poly) -> list:
     return pieces
 
 
-def _prism(xy: np.ndarray, top: np.ndarray, base: float) -> tuple[np.ndarray, np.ndarray]:
-    """The convex prism over a convex plan polygon ``xy`` (K, 2) from ``base`` up to the
-    heights ``top`` (K,) (trimesh's hull of its corners, which keeps them as given)."""
+def _prism(xy: np.ndarray, top: np.ndarray, bottom: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The convex prism over a convex plan polygon ``xy`` (K, 2) between the heights
+    ``bottom`` and ``top`` (K,) at its corners (trimesh's hull, which keeps them as given)."""
     import trimesh  # deferred: trimesh is slow to import; only meshes need it
 
-    pts = np.vstack([np.c_[xy, top], np.c_[xy, np.full(len(xy), base)]])
-    hull = trimesh.convex.convex_hull(pts)
+    hull = trimesh.convex.convex_hull(np.vstack([np.c_[xy, top], np.c_[xy, bottom]]))
     return np.asarray(hull.vertices, float), np.asarray(hull.faces, np.int64)
+
+
+def _pieces(plans: list) -> list:
+    """(plane, convex piece) for every region of every footprint of ``plans``."""
+    import shapely  # deferred: shapely is slow to import; only meshes need it
+
+    return [
+        (plane, piece)
+        for plane, plan in plans
+        for region in shapely.get_parts(plan)
+        for piece in convex_pieces(region)
+    ]
+
+
+def _whole(
+    cells: list[tuple[np.ndarray, np.ndarray]], area: float
+) -> list[tuple[np.ndarray, np.ndarray]]:
+    """The prisms under one top piece as one part, their convex hull, where that hull holds
+    no more than they do (to a :data:`GEOM_TOL` layer over the piece's ``area``: a bottom
+    that is a convex function, a flat base meeting a rising soffit), so the top stays whole (a
+    tread split in two is no tread for ``surfaces.find_walk_surfaces``); else the prisms."""
+    import trimesh  # deferred: trimesh is slow to import; only meshes need it
+
+    if len(cells) < 2:
+        return cells
+    hull = trimesh.convex.convex_hull(np.vstack([v for v, _ in cells]))
+    if hull.volume - sum(trimesh.Trimesh(v, f).volume for v, f in cells) > GEOM_TOL * area:
+        return cells
+    return [(np.asarray(hull.vertices, float), np.asarray(hull.faces, np.int64))]
 
 
 def extruded_parts(
     verts: np.ndarray, faces: np.ndarray
 ) -> list[tuple[np.ndarray, np.ndarray]] | None:
-    """The exact convex decomposition of a closed mesh without overhangs.
+    """The exact convex decomposition of a closed mesh that every vertical line meets in one
+    interval (no overhang: a stair, a plinth, a table, a soffit stair; not a shelf).
 
-    Each plane of upward faces (``hiddenfaces.upward_planes``, any slope; faces whose top view
-    is thinner than :data:`GEOM_TOL` are walls), each connected region of its footprint cut
-    into :func:`convex_pieces`, each piece a prism from the face's plane down to the mesh's
-    lowest height.
+    A closed volume's boundary is crossed by a vertical line alternately downwards (into it)
+    and upwards (out of it); when neither its upward nor its downward faces overlap in plan
+    (``hiddenfaces.upward_planes``, any slope, each side's plane footprints covering the plan
+    once; faces whose top view is thinner than :data:`GEOM_TOL` are walls), each line meets
+    it once, so it is the union of the prisms between its bottom and top faces: each
+    footprint cut into :func:`convex_pieces`, each top piece met with each bottom piece (a
+    flat base: the top pieces extruded straight down), each cell a convex prism from the
+    bottom plane to the top plane; a top piece's cells one part where their hull is
+    (:func:`_whole`).
 
     Args:
         verts: (V, 3) vertices, z up (world orientation; any origin), metres.
@@ -139,47 +186,49 @@ def extruded_parts(
 
     Returns:
         The parts, (vertices (V_k, 3), faces (F_k, 3)) each, vertices in the frame given; None
-        when the mesh is not a closed volume or has an overhang (:func:`overhang_free`), or
-        the parts' volume differs from the mesh's by more than a :data:`GEOM_TOL` layer over
-        its footprint (a mesh whose faces overlap: no terrain after all).
+        when the mesh is not a closed volume or has an overhang, or the parts' volume differs
+        from the mesh's by more than a :data:`GEOM_TOL` layer over its footprint.
     """
     import shapely  # deferred: shapely is slow to import; only meshes need it
     import trimesh  # deferred: trimesh is slow to import; only meshes need it
 
     mesh = trimesh.Trimesh(np.asarray(verts, float), np.asarray(faces, np.int64), process=True)
-    if not mesh.is_volume or not overhang_free(mesh.vertices, mesh.faces):
+    if not mesh.is_volume:
         return None
-    base = float(mesh.vertices[:, 2].min())
+    v, f = np.asarray(mesh.vertices, float), np.asarray(mesh.faces, np.int64)
+    tops = _plane_plans(v, f)
+    bottoms = _plane_plans(v * [1.0, 1.0, -1.0], f[:, ::-1])  # mirrored: heights are -z
+    if not tops or not _single_cover(tops) or not _single_cover(bottoms):
+        return None  # a vertical line meets two faces of one side: an overhang
     parts = []
-    plan_area = 0.0
-    for plane in upward_planes(mesh.vertices, mesh.faces, max_slope=0.5 * math.pi):
-        tri = plane.triangles[_plan_thickness(plane.triangles) > GEOM_TOL]
-        if not len(tri):
-            continue
-        polys = shapely.polygons(tri[:, :, :2])
-        try:  # the faces share their corners exactly: a coverage
-            plan = shapely.coverage_union_all(polys)
-        except shapely.errors.GEOSException:
-            plan = shapely.union_all(polys)
-        plan_area += plan.area
-        for region in shapely.get_parts(plan):
-            for piece in convex_pieces(region):
-                xy = np.asarray(piece.exterior.coords)[:-1]
-                top = plane.z_at(xy)
-                if top.min() - base > GEOM_TOL:
-                    parts.append(_prism(xy, top, base))
-    volume = sum(trimesh.Trimesh(v, f).volume for v, f in parts)
+    lower = _pieces(bottoms)
+    for top_plane, piece in _pieces(tops):
+        cells = []
+        for bottom_plane, under in lower:
+            for cell in shapely.get_parts(shapely.intersection(piece, under)):
+                if cell.geom_type != "Polygon" or cell.area <= GEOM_TOL * cell.length:
+                    continue  # the pieces touch along a side or at a corner
+                xy = np.asarray(shapely.simplify(cell, 0.0).exterior.coords)[:-1]
+                top, bottom = top_plane.z_at(xy), -bottom_plane.z_at(xy)
+                if np.min(top - bottom) > GEOM_TOL:
+                    cells.append(_prism(xy, top, bottom))
+        parts.extend(_whole(cells, piece.area))
+    plan_area = shapely.union_all([p for _, p in tops]).area
+    volume = sum(trimesh.Trimesh(pv, pf).volume for pv, pf in parts)
     if not parts or abs(volume - mesh.volume) > GEOM_TOL * plan_area:
         return None
     return parts
 
 
-def _tops(parts: list[tuple[np.ndarray, np.ndarray]], xy: np.ndarray) -> np.ndarray:
-    """(P, N) each convex part's top over each plan point, metres (NaN where the vertical line
-    misses the part)."""
+def _tops(
+    parts: list[tuple[np.ndarray, np.ndarray]], xy: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Each convex part's top over each plan point: its height (P, N), metres (NaN where the
+    vertical line misses the part), and its unit normal there (P, N, 3)."""
     from scipy.spatial import ConvexHull, QhullError  # deferred: ~1 s import, meshes only
 
     out = np.full((len(parts), len(xy)), np.nan)
+    normal = np.zeros((len(parts), len(xy), 3))
     for k, (v, _) in enumerate(parts):
         try:
             eq = ConvexHull(v).equations  # inside where n . p + d <= 0
@@ -187,11 +236,15 @@ def _tops(parts: list[tuple[np.ndarray, np.ndarray]], xy: np.ndarray) -> np.ndar
             continue
         up, down, side = eq[:, 2] > 1e-9, eq[:, 2] < -1e-9, np.abs(eq[:, 2]) <= 1e-9
         rest = -(xy @ eq[:, :2].T + eq[:, 3])  # n_z z <= rest
-        hi = np.min(rest[:, up] / eq[up, 2], axis=1, initial=np.inf)
+        if not up.any():
+            continue
+        heights = rest[:, up] / eq[up, 2]
+        hi = heights.min(axis=1)
         lo = np.max(rest[:, down] / eq[down, 2], axis=1, initial=-np.inf)
         inside = (lo <= hi + GEOM_TOL) & np.all(rest[:, side] >= -GEOM_TOL, axis=1)
         out[k, inside] = hi[inside]
-    return out
+        normal[k] = eq[up, :3][np.argmin(heights, axis=1)]
+    return out, normal
 
 
 def approximate_walk_faces(
@@ -204,8 +257,10 @@ def approximate_walk_faces(
 
     A walk face is a plane of upward faces a person can stand on (no steeper than
     ``norms.MAX_RAMP_SLOPE``, at least ``norms.MIN_TREAD`` by ``norms.STAND_WIDTH`` in area, as
-    ``hiddenfaces``); at points :data:`SAMPLE_SPACING` apart on it (and its centroid), the part
-    top nearest to the face's height must lie within ``tolerance``.
+    ``hiddenfaces``); at points :data:`SAMPLE_SPACING` apart on it (and a point on it), a part's
+    top must lie within ``tolerance`` of it and be parallel to it within
+    ``norms.HORIZONTAL_SLOPE`` (a top tilted more reads as another surface: a 0.28 m tread of
+    CoACD's rising 3 mm is no tread for ``surfaces.find_walk_surfaces``).
 
     Args:
         verts: (V, 3) the mesh's vertices, z up, metres.
@@ -214,8 +269,8 @@ def approximate_walk_faces(
         tolerance: the largest deviation accepted, metres (``norms.STAIR_TOLERANCE``, 5 mm).
 
     Returns:
-        (height of the face, its largest deviation, metres; inf where no part is under or
-        over a point) per face off, lowest first.
+        (height of the face, its largest deviation, metres; inf where no part's top is
+        parallel to it at a point) per face off, lowest first.
     """
     import shapely  # deferred: shapely is slow to import; only meshes need it
 
@@ -234,7 +289,10 @@ def approximate_walk_faces(
         grid = np.c_[gx.ravel(), gy.ravel()]
         xy = np.vstack([grid[shapely.contains_xy(plan, grid[:, 0], grid[:, 1])], [0.0, 0.0]])
         xy[-1] = shapely.point_on_surface(plan).coords[0]
-        gap = np.abs(_tops(parts, xy) - plane.z_at(xy)[None, :])
+        top, normal = _tops(parts, xy)
+        gap = np.abs(top - plane.z_at(xy)[None, :])
+        tilt = np.linalg.norm(np.cross(normal, plane.normal), axis=2)  # sine of the angle
+        gap[tilt > HORIZONTAL_SLOPE] = np.nan
         worst = float(np.max(np.nanmin(np.where(np.isnan(gap), np.inf, gap), axis=0)))
         if worst > tolerance:
             off.append((float(plane.triangles[:, :, 2].mean()), worst))

@@ -484,7 +484,9 @@ def import_scene(
         else:
             limit = DEFAULT_THRESHOLD
         parts = decompose(*concave, limit, rot=rot)
-        _warn_approximate(name, verts @ rot.T, faces, [(pv @ rot.T, pf) for pv, pf in parts])
+        pos = data.geom_xpos[g]
+        world = [(pv @ rot.T + pos, pf) for pv, pf in parts]
+        _warn_approximate(name, verts @ rot.T + pos, faces, world)
         for k, (pv, pf) in enumerate(parts):
             _add_part(spec, model, (g, geom), f"{name}_part{k}", (pv, pf))
         spec.delete(geom)
