@@ -79,17 +79,22 @@ def _single_cover(plans: list) -> bool:
 
 
 def _is_convex(poly) -> bool:
-    """Whether a shapely polygon falls short of its hull by at most a :data:`GEOM_TOL` strip
-    along the hull's outline (and has no hole)."""
-    hull = poly.convex_hull
-    return len(poly.interiors) == 0 and hull.area - poly.area <= GEOM_TOL * hull.length
+    """Whether a shapely polygon has no hole and none of its corners lies more than
+    :data:`GEOM_TOL` inside its convex hull's outline (the deepest point of a dent is a
+    corner), so the hull of its prism holds it to within that."""
+    import shapely  # deferred: shapely is slow to import; only meshes need it
+
+    if len(poly.interiors):
+        return False
+    corners = shapely.points(np.asarray(poly.exterior.coords))
+    return float(np.max(shapely.distance(poly.convex_hull.exterior, corners))) <= GEOM_TOL
 
 
 def convex_pieces(poly) -> list:
     """A polygon cut into convex pieces whose union is the polygon.
 
     The constrained Delaunay triangles of the polygon (shapely, holes kept, no new vertices),
-    merged greedily across shared sides while the merge stays convex (Hertel and Mehlhorn
+    merged across each shared side in turn where the merge stays convex (Hertel and Mehlhorn
     1983: at most four times the fewest convex pieces); shapely has no convex partition.
 
     Args:
@@ -100,30 +105,41 @@ def convex_pieces(poly) -> list:
     """
     import shapely  # deferred: shapely is slow to import; only meshes need it
 
-    poly = shapely.simplify(poly, 0.0)  # collinear outline vertices go
+    # outline vertices within GEOM_TOL of collinear go (float32, turned: not exactly collinear)
+    poly = shapely.simplify(poly, GEOM_TOL)
     if _is_convex(poly):
         return [poly]
-    pieces = [
+    tris = [
         t
         for t in shapely.get_parts(shapely.constrained_delaunay_triangles(poly))
         if t.area > ROUNDING_SLACK
     ]
-    merged = True
-    while merged:
-        merged = False
-        for i in range(len(pieces)):
-            for j in range(i + 1, len(pieces)):
-                if pieces[i].boundary.intersection(pieces[j].boundary).length <= GEOM_TOL:
-                    continue  # no common side
-                both = shapely.simplify(shapely.union(pieces[i], pieces[j]), 0.0)
-                if both.geom_type == "Polygon" and _is_convex(both):
-                    pieces[i] = both
-                    del pieces[j]
-                    merged = True
-                    break
-            if merged:
-                break
-    return pieces
+    sides: dict[tuple, list[int]] = {}
+    for k, t in enumerate(tris):
+        c = [tuple(p) for p in np.asarray(t.exterior.coords)[:3]]
+        for i in range(3):
+            sides.setdefault(tuple(sorted((c[i], c[(i + 1) % 3]))), []).append(k)
+    owner = list(range(len(tris)))  # union-find: each triangle's piece
+    pieces = dict(enumerate(tris))
+
+    def find(k: int) -> int:
+        while owner[k] != k:
+            owner[k] = owner[owner[k]]
+            k = owner[k]
+        return k
+
+    for pair in sides.values():
+        if len(pair) != 2:
+            continue  # on the outline
+        a, b = find(pair[0]), find(pair[1])
+        if a == b:
+            continue
+        both = shapely.simplify(shapely.union(pieces[a], pieces[b]), GEOM_TOL)
+        if both.geom_type == "Polygon" and _is_convex(both):
+            pieces[a] = both
+            del pieces[b]
+            owner[b] = a
+    return list(pieces.values())
 
 
 def _prism(xy: np.ndarray, top: np.ndarray, bottom: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -208,7 +224,7 @@ def extruded_parts(
             for cell in shapely.get_parts(shapely.intersection(piece, under)):
                 if cell.geom_type != "Polygon" or cell.area <= GEOM_TOL * cell.length:
                     continue  # the pieces touch along a side or at a corner
-                xy = np.asarray(shapely.simplify(cell, 0.0).exterior.coords)[:-1]
+                xy = np.asarray(shapely.simplify(cell, GEOM_TOL).exterior.coords)[:-1]
                 top, bottom = top_plane.z_at(xy), -bottom_plane.z_at(xy)
                 if np.min(top - bottom) > GEOM_TOL:
                     cells.append(_prism(xy, top, bottom))
