@@ -31,14 +31,14 @@ from mjwalk.world.norms import (
     STAND_WIDTH,
 )
 
-#: Geometric tolerance of the overhang test, the convexity test and the volume check, metres:
-#: ``hiddenfaces.PLANE_ROUND`` (0.1 mm; CAD tessellates a flat face coplanar to far better, and
-#: MuJoCo's float32 vertices of a 10 m part are good to 1 um). A face whose top view is thinner
-#: than this is a wall; a downward face within it of the base is the base.
+#: Geometric tolerance of the one-interval test (footprints overlapping), the convexity test,
+#: the outlines' simplification and the volume check, metres: ``hiddenfaces.PLANE_ROUND``
+#: (0.1 mm; CAD tessellates a flat face coplanar to far better, and MuJoCo's float32 vertices
+#: of a 10 m part are good to 1 um). A face whose top view is thinner than this is a wall.
 GEOM_TOL = PLANE_ROUND
-#: Spacing of the points at which a walk face is compared with the parts' tops, metres: half a
-#: foot's breadth (about 0.1 m, DIN 33402-2 foot breadth of adults, 5th-95th percentile
-#: 0.09-0.11 m), so no place a foot can stand on misses a point.
+#: Spacing of the points at which a walk face is compared with the parts' tops, metres: about
+#: half a foot's breadth (``anthropometry.SEG["foot_width"]``, 0.055 of stature after Winter
+#: 2009 Fig. 4.1: 0.096 m at the default 1.75 m), so no place a foot stands on misses a point.
 SAMPLE_SPACING = 0.05
 
 
