@@ -82,6 +82,75 @@ def _lifted_inside(bounds: np.ndarray, plane: np.ndarray, upper: np.ndarray) -> 
     return poly
 
 
+@dataclass(frozen=True)
+class FacePlane:
+    """The upward faces of a mesh that share one plane (to :data:`PLANE_ROUND`).
+
+    Attributes:
+        normal: (3,) the plane's mean unit normal, z > 0, frame of the vertices given.
+        offset: its mean offset ``normal . p``, metres.
+        triangles: (K, 3, 3) its faces' corners, metres.
+    """
+
+    normal: np.ndarray
+    offset: float
+    triangles: np.ndarray
+
+    @property
+    def plan_area(self) -> float:
+        """The faces' area in plan, square metres."""
+        t = self.triangles
+        d1, d2 = t[:, 1, :2] - t[:, 0, :2], t[:, 2, :2] - t[:, 0, :2]
+        return float(np.sum(0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])))
+
+    def z_at(self, xy: np.ndarray) -> np.ndarray:
+        """The plane's height over plan points.
+
+        Args:
+            xy: (N, 2) plan points, metres.
+
+        Returns:
+            (N,) heights, metres.
+        """
+        ux, uy, uz = self.normal
+        xy = np.asarray(xy, float).reshape(-1, 2)
+        return (self.offset - ux * xy[:, 0] - uy * xy[:, 1]) / uz
+
+
+def upward_planes(
+    verts: np.ndarray, faces: np.ndarray, max_slope: float = MAX_RAMP_SLOPE
+) -> list[FacePlane]:
+    """A mesh's upward faces no steeper than ``max_slope``, grouped by plane.
+
+    Args:
+        verts: (V, 3) vertices, z up, metres.
+        faces: (F, 3) vertex indices.
+        max_slope: the steepest face kept, radians (``norms.MAX_RAMP_SLOPE``: walk faces).
+
+    Returns:
+        One :class:`FacePlane` per plane (faces of one plane in several places together).
+    """
+    verts = np.asarray(verts, float)
+    tri = verts[np.asarray(faces, np.int64)]
+    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    norm = np.linalg.norm(n, axis=1)
+    ok = norm > 1e-12
+    unit = n[ok] / norm[ok, None]
+    up = unit[:, 2] >= max(math.cos(max_slope), 1e-12)
+    if not up.any():
+        return []
+    tri, unit = tri[ok][up], unit[up]
+    offset = np.einsum("ij,ij->i", unit, tri[:, 0])
+    keys = np.round(np.c_[unit, offset] / PLANE_ROUND).astype(np.int64)
+    _, group = np.unique(keys, axis=0, return_inverse=True)
+    group = group.ravel()
+    out = []
+    for k in range(int(group.max()) + 1):
+        mine = np.flatnonzero(group == k)
+        out.append(FacePlane(unit[mine].mean(axis=0), float(offset[mine].mean()), tri[mine]))
+    return out
+
+
 def hidden_walk_faces(
     verts: np.ndarray,
     faces: np.ndarray,
@@ -104,36 +173,24 @@ def hidden_walk_faces(
     import shapely  # deferred: shapely is slow to import; only meshes need it
     from scipy.spatial import ConvexHull, QhullError  # deferred: ~1 s import, meshes only
 
-    verts = np.asarray(verts, float)
-    tri = verts[np.asarray(faces, np.int64)]
-    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-    norm = np.linalg.norm(n, axis=1)
-    ok = norm > 1e-12
-    unit = n[ok] / norm[ok, None]
-    up = unit[:, 2] >= math.cos(MAX_RAMP_SLOPE)
-    if not up.any():
+    planes = [
+        p
+        for p in upward_planes(verts, faces)
+        if p.plan_area >= min_depth * min_width - ROUNDING_SLACK  # planes one can stand on
+    ]
+    if not planes:
         return []
     try:
-        hull = ConvexHull(verts)
+        hull = ConvexHull(np.asarray(verts, float))
     except QhullError:  # flat or degenerate: no volume for a hull to hide a face in
         return []
     upper = hull.equations[hull.equations[:, 2] > 1e-12]
-    tri, unit = tri[ok][up], unit[up]
-    offset = np.einsum("ij,ij->i", unit, tri[:, 0])
-    keys = np.round(np.c_[unit, offset] / PLANE_ROUND).astype(np.int64)
-    _, group = np.unique(keys, axis=0, return_inverse=True)
-    group = group.ravel()
-    d1, d2 = tri[:, 1, :2] - tri[:, 0, :2], tri[:, 2, :2] - tri[:, 0, :2]
-    plan_area = np.bincount(group, 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]))
     found = []
-    for k in np.flatnonzero(
-        plan_area >= min_depth * min_width - ROUNDING_SLACK
-    ):  # planes one can stand on
-        mine = np.flatnonzero(group == k)
-        xy = tri[mine][:, :, :2]
-        plan = shapely.union_all([shapely.buffer(p, 1e-6) for p in shapely.polygons(xy)])
-        plane = np.r_[unit[mine].mean(axis=0), offset[mine].mean()]
-        region = _lifted_inside(np.asarray(plan.bounds), plane, upper)
+    for p in planes:
+        plan = shapely.union_all(
+            [shapely.buffer(q, 1e-6) for q in shapely.polygons(p.triangles[:, :, :2])]
+        )
+        region = _lifted_inside(np.asarray(plan.bounds), np.r_[p.normal, p.offset], upper)
         if len(region) < 3:
             continue
         hidden = plan.intersection(shapely.Polygon(region))
@@ -144,6 +201,6 @@ def hidden_walk_faces(
             sides = sorted(float(np.linalg.norm(env[i + 1] - env[i])) for i in range(2))
             # a tread exactly MIN_TREAD deep is one: the vertices' rounding is no shortfall
             if sides[0] >= min_depth - ROUNDING_SLACK and sides[1] >= min_width - ROUNDING_SLACK:
-                z = float(tri[mine][:, :, 2].mean())
+                z = float(p.triangles[:, :, 2].mean())
                 found.append(HiddenFace(z, sides[0], sides[1], float(part.area)))
     return sorted(found, key=lambda h: h.z)

@@ -18,7 +18,10 @@ A mesh can be concave in elevation too: a stair and its landing modelled as one 
 do this) has a convex footprint, but its convex hull is a wedge over the nosings, so the treads
 are hidden under it (:func:`hidden_walk_faces`): ``load_workplace`` warns
 (:class:`HiddenWalkFaceWarning`) and ``scene-import`` decomposes such a mesh, finely enough that
-every tread is a part's top.
+every tread is a part's top: exactly where the mesh has no overhang
+(:func:`mjwalk.world.meshextrude.extruded_parts`, each upward face extruded down to the base),
+else by CoACD, warning (:class:`ApproximateImportWarning`) where a walk face is no part's top
+within ``norms.STAIR_TOLERANCE``.
 """
 
 from __future__ import annotations
@@ -36,6 +39,8 @@ from mjwalk.errors import InputError, SceneError
 from mjwalk.world.floor import check_floor_size
 from mjwalk.world.footprint import Footprint
 from mjwalk.world.hiddenfaces import HiddenWalkFaceWarning, hidden_walk_faces
+from mjwalk.world.meshextrude import approximate_walk_faces, extruded_parts
+from mjwalk.world.norms import STAIR_TOLERANCE
 from mjwalk.world.units import UNITS, UP_AXES
 
 #: A band footprint is concave when its convex hull exceeds it by more than this share of the
@@ -57,6 +62,10 @@ DEFAULT_THRESHOLD = 0.02
 ELEVATION_THRESHOLD = THRESHOLD_RANGE[0]
 #: Mesh file suffixes trimesh reads for scene-import.
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".off")
+
+
+class ApproximateImportWarning(UserWarning):
+    """A decomposed mesh's walk face is no convex part's top within ``norms.STAIR_TOLERANCE``."""
 
 
 def _band_polygon(verts: np.ndarray, faces: np.ndarray, z0: float, z1: float):
@@ -289,28 +298,44 @@ def convex_parts(
 
 
 def decompose(
-    verts: np.ndarray, faces: np.ndarray, threshold: float = DEFAULT_THRESHOLD, seed: int = 0
+    verts: np.ndarray,
+    faces: np.ndarray,
+    threshold: float = DEFAULT_THRESHOLD,
+    seed: int = 0,
+    rot: np.ndarray | None = None,
 ) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Convex parts of a concave mesh: each closed body of a mesh made of several (a CAD export
-    of touching boxes: a stair's steps and its landing) on its own, a convex body as itself
-    (to within CONCAVE_SHARE of its hull's volume) and a concave one by :func:`convex_parts`;
-    a mesh that is not several closed bodies by :func:`convex_parts` whole.
+    """Convex parts of a concave mesh: a closed volume without overhangs exactly
+    (:func:`~mjwalk.world.meshextrude.extruded_parts`); else each closed body of a mesh made
+    of several (a CAD export of touching boxes: a stair's steps and its landing) on its own, a
+    convex body as itself (to within CONCAVE_SHARE of its hull's volume) and a concave one
+    exactly or by :func:`convex_parts`; a mesh that is not several closed bodies by
+    :func:`convex_parts` whole.
 
     Args:
-        verts: (V, 3) vertices, metres.
+        verts: (V, 3) vertices in the mesh frame, metres.
         faces: (F, 3) vertex indices.
         threshold: CoACD's concavity threshold (see :func:`convex_parts`).
         seed: CoACD's seed.
+        rot: (3, 3) the mesh frame's rotation in the world, whose z is "down" for the exact
+            decomposition (None: identity).
 
     Returns:
         The convex parts, (vertices (V_k, 3), faces (F_k, 3)) each.
     """
     import trimesh  # deferred: trimesh is slow to import; only meshes need it
 
+    rot = np.eye(3) if rot is None else np.asarray(rot, float)
+
+    def exact_or_coacd(v: np.ndarray, f: np.ndarray) -> list[tuple[np.ndarray, np.ndarray]]:
+        parts = extruded_parts(v @ rot.T, f)
+        if parts is None:
+            return convex_parts(v, f, threshold, seed)
+        return [(pv @ rot, pf) for pv, pf in parts]  # back to the mesh frame
+
     mesh = trimesh.Trimesh(verts, faces, process=True)
     bodies = mesh.split(only_watertight=True)
     if len(bodies) < 2 or sum(len(b.faces) for b in bodies) != len(mesh.faces):
-        return convex_parts(verts, faces, threshold, seed)
+        return exact_or_coacd(np.asarray(verts, float), np.asarray(faces, np.int64))
     out = []
     for body in bodies:
         bv, bf = np.asarray(body.vertices, float), np.asarray(body.faces, np.int64)
@@ -318,7 +343,7 @@ def decompose(
         if hull - abs(body.volume) <= CONCAVE_SHARE * hull:
             out.append((bv, bf))
         else:
-            out.extend(convex_parts(bv, bf, threshold, seed))
+            out.extend(exact_or_coacd(bv, bf))
     return out
 
 
@@ -414,12 +439,17 @@ def import_scene(
         output: the MJCF file to write (.xml, atomically).
         units: a mesh file's length unit (:data:`mjwalk.world.units.UNITS`).
         up: a mesh file's up axis (:data:`mjwalk.world.units.UP_AXES`).
-        threshold: CoACD's concavity threshold (see :func:`check_threshold`; None:
+        threshold: CoACD's concavity threshold for the meshes not decomposed exactly (see
+            :func:`check_threshold`; None:
             :data:`DEFAULT_THRESHOLD`, and :data:`ELEVATION_THRESHOLD` for a mesh with walk
             faces under its hull).
 
     Returns:
         The output path and the number of convex parts per replaced geom name.
+
+    Warns:
+        ApproximateImportWarning: a replaced mesh's walk face is no part's top within
+            ``norms.STAIR_TOLERANCE`` (a mesh with overhangs, which CoACD approximates).
 
     Raises:
         SceneError: an unreadable source or a scene that does not compile, before writing.
@@ -453,7 +483,10 @@ def import_scene(
             limit = ELEVATION_THRESHOLD
         else:
             limit = DEFAULT_THRESHOLD
-        parts = decompose(*concave, limit)
+        parts = decompose(*concave, limit, rot=rot)
+        pos = data.geom_xpos[g]
+        world = [(pv @ rot.T + pos, pf) for pv, pf in parts]
+        _warn_approximate(name, verts @ rot.T + pos, faces, world)
         for k, (pv, pf) in enumerate(parts):
             _add_part(spec, model, (g, geom), f"{name}_part{k}", (pv, pf))
         spec.delete(geom)
@@ -466,6 +499,25 @@ def import_scene(
     with atomic_path(output) as tmp:
         tmp.write_text(xml)
     return result
+
+
+def _warn_approximate(
+    name: str, verts: np.ndarray, faces: np.ndarray, parts: list[tuple[np.ndarray, np.ndarray]]
+) -> None:
+    """Warn (one line) when a walk face of mesh geom ``name`` (world orientation) is no top of
+    its convex ``parts`` within ``norms.STAIR_TOLERANCE``."""
+    off = approximate_walk_faces(verts, faces, parts)
+    if off:
+        worst = max(d for _, d in off)
+        warnings.warn(
+            f"mesh geom {name!r}: its convex parts miss {len(off)} walk face(s) (at z "
+            f"{', '.join(f'{z:.3f}' for z, _ in off)} m) by up to "
+            f"{'the whole face' if np.isinf(worst) else f'{worst * 1000:.0f} mm'}, more than "
+            f"{STAIR_TOLERANCE * 1000:g} mm: CoACD approximated it (an overhang, or no closed "
+            "volume), so its imported levels may be off",
+            ApproximateImportWarning,
+            stacklevel=3,
+        )
 
 
 def _source_spec(source: Path, units: str, up: str) -> mujoco.MjSpec:

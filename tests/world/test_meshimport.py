@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import warnings
+from pathlib import Path
 
 import mujoco
 import numpy as np
@@ -231,7 +232,8 @@ def test_imported_one_mesh_stair_has_its_treads_and_stair(tmp_path, kind):
     the platform is a part's top at its true height, joined to the floor by a stair."""
     out = tmp_path / "imported.xml"
     result = import_scene(_stair_scene(tmp_path, kind), out)
-    assert result.parts["stairmesh"] >= 4
+    # four closed bodies; the manifold exactly, its last tread and platform one plane: one part
+    assert result.parts["stairmesh"] == (4 if kind == "bodies" else 3)
     assert _hidden_warnings(out) == []
     graph = load_workplace(out).levels
     heights = [lv.height for lv in graph.levels]
@@ -251,6 +253,82 @@ def test_walk_up_the_imported_one_mesh_stair_touches_nothing(tmp_path):
 
     out = tmp_path / "imported.xml"
     import_scene(_stair_scene(tmp_path, "bodies"), out)
+    walk = plan_walk(load_workplace(out), "a", "b", rng=0)
+    assert walk.z is not None and walk.z.max() == pytest.approx(0.51, abs=0.002)
+    assert collision_report(timeline_from_walk(walk, out)) == []
+
+
+def _one_mesh_scene(tmp_path, profile: list[tuple[float, float]], width: float) -> Path:
+    """A closed mesh (the (x, z) ``profile`` extruded ``width`` along y) turned 20 deg about z
+    and moved, on a floor, as one mesh geom "stairmesh"; sites at the floor and the top."""
+    import trimesh
+
+    v, f = _extrude(shapely.Polygon(profile), width)
+    mesh = trimesh.Trimesh(np.c_[v[:, 0], v[:, 2] - width / 2, v[:, 1]], f[:, ::-1])
+    assert mesh.is_volume
+    mesh.export(tmp_path / "stair.stl")
+    top = max(z for _, z in profile)
+    far = np.array([max(x for x, _ in profile) - 0.7, 0.0])
+    c, s = np.cos(np.radians(20)), np.sin(np.radians(20))
+    b = [0.3 + c * far[0], 0.2 + s * far[0]]
+    path = tmp_path / "stair.xml"
+    path.write_text(
+        f"""<mujoco><asset><mesh name="stair" file="stair.stl"/></asset><worldbody>
+  <geom name="floor" type="plane" size="15 8 0.1"/>
+  <geom name="stairmesh" type="mesh" mesh="stair" pos="0.3 0.2 0" euler="0 0 20"/>
+  <site name="a" pos="-2 0 0"/><site name="b" pos="{b[0]:.4f} {b[1]:.4f} {top}"/>
+</worldbody></mujoco>"""
+    )
+    return path
+
+
+def _stair(platform: float) -> list[tuple[float, float]]:
+    """STAIR_PROFILE with a platform ``platform`` long (x, z)."""
+    pts = list(STAIR_PROFILE.exterior.coords)[:-1]
+    return [(x if x < 2.0 else 0.84 + platform, z) for x, z in pts]
+
+
+@pytest.mark.parametrize(("platform", "width"), [(10.0, 1.0), (2.0, 3.0)])
+def test_a_clean_one_mesh_stair_imports_exactly(tmp_path, platform, width):
+    """A closed one-mesh stair without overhangs is decomposed exactly (each tread extruded to
+    the base): CoACD found only the floor on the 10 m platform and split tread 1 of the 3 m
+    wide stair into two levels."""
+    out = tmp_path / "imported.xml"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # nothing approximate
+        result = import_scene(_one_mesh_scene(tmp_path, _stair(platform), width), out)
+    assert result.parts["stairmesh"] == 3  # the last tread and the platform: one plane
+    graph = load_workplace(out).levels
+    assert [lv.height for lv in graph.levels] == pytest.approx([0.0, 0.17, 0.34, 0.51], abs=1e-3)
+    (link,) = graph.links
+    assert link.kind == "stair" and (link.lower, link.upper) == (0, 3)
+    assert link.risers == pytest.approx([0.17] * 3, abs=1e-3)
+    assert link.tread == pytest.approx(0.28, abs=1e-3)
+
+
+def test_a_shelf_as_one_mesh_keeps_coacd_and_says_it_is_approximate(tmp_path):
+    """A shelf's boards overhang each other: no exact decomposition; CoACD's parts miss the
+    middle board's top by more than 5 mm, and the import says so in one line."""
+    from mjwalk.world.meshimport import ApproximateImportWarning
+
+    shelf = [(0, 0), (1.0, 0), (1.0, 0.03), (0.05, 0.03), (0.05, 0.8), (1.0, 0.8), (1.0, 0.83)]
+    shelf += [(0.05, 0.83), (0.05, 1.6), (1.0, 1.6), (1.0, 1.63), (0, 1.63)]
+    with pytest.warns(ApproximateImportWarning) as caught:
+        result = import_scene(_one_mesh_scene(tmp_path, shelf, 1.2), tmp_path / "out.xml")
+    assert result.parts["stairmesh"] >= 2
+    (msg,) = [str(w.message) for w in caught if w.category is ApproximateImportWarning]
+    assert "'stairmesh'" in msg and "0.830" in msg and "\n" not in msg
+
+
+@pytest.mark.slow
+def test_walk_up_the_imported_10_m_platform_stair_touches_nothing(tmp_path):
+    """Floor -> 10 m platform over the exactly imported one-mesh stair: planned, at the
+    platform's height, and its animated timeline has no contact."""
+    from mjwalk.plan.walks import plan_walk
+    from mjwalk.timeline import collision_report, timeline_from_walk
+
+    out = tmp_path / "imported.xml"
+    import_scene(_one_mesh_scene(tmp_path, _stair(10.0), 1.0), out)
     walk = plan_walk(load_workplace(out), "a", "b", rng=0)
     assert walk.z is not None and walk.z.max() == pytest.approx(0.51, abs=0.002)
     assert collision_report(timeline_from_walk(walk, out)) == []
