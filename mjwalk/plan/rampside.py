@@ -156,6 +156,29 @@ def over_ramp(plane: dict, xy: np.ndarray, widen: float = 0.0) -> np.ndarray:
     return (along >= 0.0) & (along <= float(plane["run"])) & sides
 
 
+def head_heights(plane: dict, xy: np.ndarray) -> np.ndarray:
+    """The height of the level a ramp's head meets (its foot's height plus its rise) under the
+    points past its head and within its width: the ground a sole reaching over a ramp's crest
+    stands on there (generated hall 514, ``benchmarks/bench_unseen.py``).
+
+    Args:
+        plane: the ramp's plane (:func:`ramp_plane` or :func:`surface_plane`).
+        xy: (..., 2) world points, metres.
+
+    Returns:
+        (...,) the height above the floor, metres; -inf elsewhere (over the ramp, before its
+        foot, beside it).
+    """
+    rel = np.asarray(xy, dtype=float) - np.asarray(plane["foot"], dtype=float)
+    up, run = float(plane["uphill"]), float(plane["run"])
+    along = rel @ np.array([math.cos(up), math.sin(up)])
+    across = np.abs(rel @ np.array([-math.sin(up), math.cos(up)]))
+    half = float(plane.get("half_width", 0.0))
+    past = (along > run) & ((across <= half) if half > 0.0 else True)
+    top = float(plane.get("z", 0.0)) + math.tan(float(plane["slope"])) * run
+    return np.where(past, top, -np.inf)
+
+
 def ramps_beside(
     workplace: Workplace, walk: WalkPath, stature: float, crossed: list[dict] | None = None
 ) -> list[dict]:

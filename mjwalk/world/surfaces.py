@@ -333,7 +333,11 @@ def _surface_from_face(
         return None
     zc = float(corners[:, 2].mean())  # the plane's height over the vertices' mean
     centre = corners[:, :2].mean(axis=0)
-    kind = "ramp" if not horizontal else ("tread" if depth <= MAX_TREAD else "platform")
+    # a box exactly MAX_TREAD deep is a tread too (yawed, its depth came out 0.37 m + 3e-16 and
+    # a two-riser step's tread was a platform with no room to stand on between the steps, so
+    # the platform above was out of reach: generated hall 710, ``benchmarks/bench_unseen.py``)
+    tread = depth <= MAX_TREAD + ROUNDING_SLACK
+    kind = "ramp" if not horizontal else ("tread" if tread else "platform")
     name = _geom_name(model, g)
     return WalkSurface(
         geom_id=g,

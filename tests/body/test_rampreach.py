@@ -14,6 +14,7 @@ from mjwalk.body.legs.legheights import step_surfaces
 from mjwalk.body.legs.rampreach import (
     CREST_CLEARANCE,
     crest_ground,
+    level_feet_on_ramps,
     level_planes,
     plane_heights,
     plane_pitch,
@@ -326,3 +327,32 @@ def test_a_step_down_a_ramp_s_foot_keeps_its_toes_out_of_the_floor(tmp_path):
             ground = np.maximum(plane_heights(surface_plane(plane), c[:, :2]), 0.0)
             least = min(least, float(np.min(c[:, 2] - wp.floor_z - ground)))
     assert least > -5e-3  # before: -18 mm
+
+
+def test_a_foot_whose_toes_reach_past_a_ramp_s_head_stands_on_the_level_there():
+    """A ramp's own footfall near its head, its toe tip past it over the level the head meets
+    (generated hall 514's 9.5 deg ramp up to a 0.54 m deck, an adult's stress cycle): the
+    ramp's plane does not carry the sole, so the foot stands level; on the highest point of
+    the plane under its sole plus the grid's sag (before), its toes were 1.2 mm under the
+    deck's edge and swung through it after toe-off. It stands at least at the deck's height."""
+    g = leg_geometry(DEFAULT_STATURE)
+    slope, run = np.radians(9.5), 3.0
+    plane = {"slope": slope, "uphill": 0.0, "foot": [0.0, 0.0], "run": run, "half_width": 0.6,
+             "z": 0.0}  # fmt: skip
+    deck = np.tan(slope) * run
+    # the sole grid's foremost point just past the head, the one behind it a spacing short
+    x = run + 1e-3 - g.foot_front
+    step = SimpleNamespace(side="left", foot=np.array([x, 0.0, 0.0]), foot_z=0.5 * deck,
+                           stance=np.array([x - 0.6, 0.1, 0.0]), stance_z=0.4 * deck)  # fmt: skip
+    route = [{"kind": "ramp", "steps": 1, "plane": plane}]
+    walk = SimpleNamespace(meta={"levels": {"route": route}}, steps=[step])
+    surf = StepSurfaces(lift=0.4 * deck, stance=0.4 * deck, land=0.5 * deck, lift_pitch=slope,
+                        stance_pitch=slope, land_pitch=slope)  # fmt: skip
+    (out,) = level_feet_on_ramps(walk, [surf], g)
+    assert out.land_pitch == 0.0
+    assert out.land >= deck - 1e-12  # before: 1.2 mm below
+    assert out.land <= deck + 0.004
+    inside = SimpleNamespace(**{**vars(step), "foot": np.array([run - 0.5, 0.0, 0.0])})
+    walk.steps = [inside]  # carried whole by the plane: pitched to it, as before
+    (on,) = level_feet_on_ramps(walk, [surf], g)
+    assert on.land_pitch == pytest.approx(slope)

@@ -12,6 +12,7 @@ from mjwalk.gait.default import default_model
 from mjwalk.plan.levelroute import crossings
 from mjwalk.plan.rampside import (
     META_KEY,
+    head_heights,
     over_ramp,
     ramp_plane,
     ramps_beside,
@@ -210,3 +211,13 @@ def test_generated_halls_walks_past_a_ramp_keep_their_soles_off_it(tmp_path, see
     walk = plan_walk(wp, *ends, rng=rng)
     assert ramps_beside(wp, walk, 1.75)
     assert _sole_depth(timeline_from_walk(walk, xml), "ramp_ramp") <= 1e-4  # a sole on it
+
+
+def test_head_heights_are_the_upper_level_past_the_head_within_the_width():
+    """Past a ramp's head (and within its width) the ground is the level the head meets: the
+    foot's height plus the rise; over the ramp, before its foot and beside it, none."""
+    plane = {"slope": 0.1, "uphill": np.pi / 2, "foot": [1.0, 2.0], "run": 3.0,
+             "half_width": 0.5, "z": 0.2}  # fmt: skip
+    pts = np.array([[1.0, 5.2], [1.4, 5.01], [1.0, 4.9], [1.0, 1.9], [1.6, 5.2]])
+    top = 0.2 + np.tan(0.1) * 3.0
+    assert head_heights(plane, pts) == pytest.approx([top, top, -np.inf, -np.inf, -np.inf])

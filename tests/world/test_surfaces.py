@@ -11,6 +11,7 @@ import pytest
 
 from mjwalk.errors import InputError
 from mjwalk.world import surfaces as surfaces_module
+from mjwalk.world.norms import MAX_TREAD
 from mjwalk.world.surfaces import SurfaceOptions, find_walk_surfaces
 from mjwalk.world.walksurface import head_fits
 from mjwalk.world.workplace import HUMANOID_PREFIXES
@@ -101,6 +102,20 @@ def test_yawed_box_keeps_its_rectangle():
     along = np.array([math.cos(math.radians(30)), math.sin(math.radians(30))])  # its local +x
     assert bool(pad.contains(np.array([1.0, 1.0]) + 0.55 * along))
     assert not bool(pad.contains(np.array([1.0, 1.0]) + 0.65 * along))  # beyond its short side
+
+
+def test_a_yawed_tread_exactly_max_tread_deep_is_a_tread():
+    """A two-riser step's 0.37 m tread (``MAX_TREAD`` exactly) yawed as generated hall 710 has
+    it: its depth comes out 0.37 m + 3e-16 (before: a "platform", so no step chain over it)."""
+    tread = (
+        '<geom name="tread" type="box" size="0.1850 0.6720 0.0741" pos="2.8375 -3.8303 0.0741"'
+        ' euler="0 0 -160.4690"/>'
+    )
+    (surface,) = find_walk_surfaces(scene(tread), None)[1:]
+    assert surface.depth == pytest.approx(MAX_TREAD, abs=1e-12)
+    assert surface.kind == "tread"
+    deeper = tread.replace("0.1850", "0.1851")  # 0.3702 m: a platform
+    assert find_walk_surfaces(scene(deeper), None)[1].kind == "platform"
 
 
 BEAM_PLATFORM = '<geom name="deck" type="box" size="1 0.5 0.085" pos="0 0 0.085"/>'

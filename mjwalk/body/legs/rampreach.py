@@ -33,7 +33,7 @@ from mjwalk.body.legs.ik import leg_ik_world
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import HEEL_RISE_MAX, FootTracks, StepFrames
 from mjwalk.plan.rampside import META_KEY as BESIDE_KEY
-from mjwalk.plan.rampside import SOLE_GRID, over_ramp, surface_plane
+from mjwalk.plan.rampside import SOLE_GRID, head_heights, over_ramp, surface_plane
 
 #: Passes of :func:`trailing_reach` (raise the heel by the deficit over the ball's lever,
 #: measure again); the deficit falls below a millimetre by the third on a 5.5 deg ramp.
@@ -323,7 +323,8 @@ def level_feet_on_ramps(
     :func:`level_planes`' (also those beside a floor walk that cuts past a ramp's low end,
     :mod:`mjwalk.plan.rampside`). A ramp's own step whose sole reaches past its foot or head
     stands so too (hall 500: a foot down a 9.8 deg ramp, its ankle 8 cm above the foot, had
-    its toes 1.8 cm into the floor). Walks without such a footprint are returned as they are.
+    its toes 1.8 cm into the floor); a sole past its head stands on the level the head meets
+    (hall 514: toes 1.2 mm under a deck's edge). Walks without such a footprint are unchanged.
 
     Args:
         walk: the walk (:class:`~mjwalk.plan.walkpath.WalkPath`, ``meta["levels"]["route"]``).
@@ -350,7 +351,10 @@ def level_feet_on_ramps(
         pts = [np.asarray(print_[:2], float) + d * f + w * geom.foot_width * f[::-1] * [-1, 1]
                for d, w in grid]  # fmt: skip
         hits = [h[0] for p in whole for q in pts if (h := _on_plane(p, (*q, 0.0))) is not None]
-        return (max(hits) + SOLE_GRID_SAG, 0.0) if hits else None
+        if not hits:
+            return None
+        top = max(float(np.max(head_heights(p, np.asarray(pts)))) for p in whole)
+        return max(max(hits) + SOLE_GRID_SAG, top), 0.0
 
     out = list(surfs)
     for k, s in enumerate(walk.steps):
