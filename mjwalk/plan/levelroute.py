@@ -32,15 +32,10 @@ from mjwalk.anthropometry import swing_half_width
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.options import PlannerOptions
+from mjwalk.world import norms
 from mjwalk.world.levels import LevelGraph, LevelLink
 from mjwalk.world.levelview import level_view
-from mjwalk.world.norms import (
-    HEAD_MARGIN,
-    MAX_RISER,
-    ROUNDING_SLACK,
-    SIDE_CLEARANCE,
-    STAIR_TOLERANCE,
-)
+from mjwalk.world.norms import HEAD_MARGIN, MAX_RISER, ROUNDING_SLACK, SIDE_CLEARANCE
 from mjwalk.world.workplace import Workplace
 
 #: The tread ASR A1.8 §4.5 names particularly safe, 0.29 m (with a 0.17 m riser): a foot landing
@@ -235,24 +230,21 @@ def _axis_up(graph: LevelGraph, edge, upper_surfaces: Sequence[int]) -> np.ndarr
 
 
 def _passed(graph: LevelGraph, clear: float) -> list[bool]:
-    """Per level, whether a walk only steps over it: a tread level, or a level of one surface
-    less than two clearances ``clear`` deep (a 0.4 m step block before a platform, deeper than
-    a stair's tread, ``norms.MAX_TREAD``): no stance fits a clearance from both its edges, so
-    no walk can start or end on it (the crossings' stances keep ``clear`` from a level's
-    edge), and a walker passes it in one footfall as it does a tread."""
-    on = [lv for lv in graph.level_of if lv is not None]  # a ramp's surface is on no level
-    count = np.bincount(np.asarray(on, dtype=np.int64), minlength=len(graph.levels))
-    out = [lv.kind == "tread" for lv in graph.levels]
-    for s, lv in zip(graph.surfaces, graph.level_of, strict=True):
-        narrow = lv is not None and count[lv] == 1 and s.depth < 2.0 * clear
-        if narrow and graph.levels[lv].kind == "platform":
-            out[lv] = True
-    return out
+    """Per level, whether walks only step over it: a tread, or one surface less than two
+    clearances deep (a 0.4 m step block, deeper than ``norms.MAX_TREAD``): no crossing's
+    stance fits ``clear`` from both its edges; it is passed in one footfall, as a tread."""
+    own: dict[int | None, list] = {}  # the surfaces per level (a ramp's: on none)
+    for s, i in zip(graph.surfaces, graph.level_of, strict=True):
+        own.setdefault(i, []).append(s)
+    return [
+        lv.kind == "tread"
+        or (lv.kind == "platform" and len(own[i]) == 1 and own[i][0].depth < 2.0 * clear)
+        for i, lv in enumerate(graph.levels)
+    ]
 
 
 def _step_chains(graph: LevelGraph, clear: float) -> list[list[LevelLink]]:
-    """Chains of step links from a level walked on up over levels only stepped over
-    (:func:`_passed`) to a level walked on."""
+    """Chains of step links from a level walked on over levels only stepped over to another."""
     passed = _passed(graph, clear)
     steps = [k for k in graph.links if k.kind == "step"]
     out = []
@@ -273,14 +265,13 @@ def _step_chains(graph: LevelGraph, clear: float) -> list[list[LevelLink]]:
 
 
 def _across(below: LevelLink, above: LevelLink) -> bool:
-    """Whether step ``above`` lies straight across the level stepped onto by ``below``: its
-    edge parallel to ``below``'s, the same depth (within ``norms.STAIR_TOLERANCE``, the most a
-    tread may vary) along it. A block's side edge meets the floor too, and a chain from it up
-    across the platform's perpendicular edge is no flight."""
+    """Whether step ``above`` lies straight across the level ``below`` steps onto: its edge
+    parallel, the depth the same within ``norms.STAIR_TOLERANCE`` (a block's sides meet the
+    floor too, and a chain from a side edge is no flight)."""
     a = np.asarray(below.lower_edge, dtype=float)
     n = _normal(a[0], a[1])
     d = (np.asarray(above.lower_edge, dtype=float) - a[0]) @ n
-    return bool(abs(d[1] - d[0]) <= STAIR_TOLERANCE and min(abs(d[0]), abs(d[1])) > 0.0)
+    return bool(abs(d[1] - d[0]) <= norms.STAIR_TOLERANCE and min(abs(d[0]), abs(d[1])) > 0.0)
 
 
 def _flight(graph: LevelGraph, edges, risers, lower: int, upper: int, kind: str, clear: float):

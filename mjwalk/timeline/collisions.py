@@ -137,7 +137,7 @@ def _kept(con, n: int, masks: tuple, floor_tolerance: float) -> dict:
     pair: ``{(humanoid geom, scene geom): (depth m, (3,) point)}``; ``masks``: its masks as lists
     (humanoid, floor, walk tops or None, soles; a few contacts: plain Python, not numpy)."""
     human, floorish, tops, soles = masks  # (soles: an array, read only on walk tops)
-    up = None if tops is None else (np.abs(np.asarray(con.frame[:n])[:, 2]) >= UPRIGHT).tolist()
+    up = [] if tops is None else (np.abs(np.asarray(con.frame[:n])[:, 2]) >= UPRIGHT).tolist()
     best: dict[tuple[int, int], tuple[float, np.ndarray]] = {}  # pairs in order of first kept
     pairs, dists = con.geom[:n].tolist(), con.dist[:n].tolist()
     for k, ((a, b), dist) in enumerate(zip(pairs, dists, strict=True)):
@@ -148,7 +148,7 @@ def _kept(con, n: int, masks: tuple, floor_tolerance: float) -> dict:
         shallow = depth <= floor_tolerance
         if floorish[sg] and shallow:
             continue
-        on_top = up is not None and tops[sg] and soles[hg]  # standing: as vertical as a ramp,
+        on_top = tops is not None and tops[sg] and soles[hg]  # standing: as upright as a ramp,
         if on_top and shallow and (up[k] or depth <= ROUNDING_SLACK):  # or no depth at all
             continue
         if depth > best.get((hg, sg), (-math.inf,))[0]:

@@ -195,7 +195,14 @@ def disc_sides(radius: float) -> int:
     across a side, and a contact is sought along each side alone, so 32 sides of a 1.5 m dais
     gave it no way up. The sides touch the rim so that a foot kept off one is off the disc
     (inscribed sides cut up to 3.6 cm off a 0.9 m dais, and the toes before them caught its
-    rim); the corners reach past it (3.8 cm at 0.9 m), far from any stance. At least 3."""
+    rim); the corners reach past it (3.8 cm at 0.9 m), far from any stance.
+
+    Args:
+        radius: the disc's radius, metres.
+
+    Returns:
+        The number of sides, 3 to :data:`DISC_SIDES`.
+    """
     half = MIN_CROSSING / (2.0 * radius)
     return int(min(DISC_SIDES, max(3, math.floor(math.pi / math.atan(half) + ROUNDING_SLACK))))
 
