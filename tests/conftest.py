@@ -124,3 +124,39 @@ def pit_ramp_xml() -> str:
     3.2 m run, within norms.MAX_RAMP_SLOPE's 10 deg) the opening's width, descending along +x
     from its west rim."""
     return _pit_ramp_xml()
+
+
+def _open_stair_xml(overlap: float) -> str:
+    """:func:`open_stair_xml`'s scene for one overlap (m)."""
+    going, r, th = OPEN_STAIR_GOING, 0.17, 0.04
+    geoms = [
+        f'<geom name="tread{i}" type="box" size="{(going + overlap) / 2:.4f} 0.5 {th / 2}" '
+        f'pos="{i * going + (going + overlap) / 2:.4f} 0 {(i + 1) * r - th / 2:.4f}"/>'
+        for i in range(5)
+    ]
+    x = 5 * going
+    geoms.append(f'<geom name="deck" type="box" size="1.5 1.5 0.05" pos="{x + 1.5} 0 0.97"/>')
+    geoms += [
+        f'<geom name="post{k}" type="box" size="0.05 0.05 0.46" pos="{x + px} {py} 0.46"/>'
+        for k, (px, py) in enumerate([(0.1, -1.4), (0.1, 1.4), (2.9, -1.4), (2.9, 1.4)])
+    ]
+    return (
+        '<mujoco><worldbody><geom name="floor" type="plane" size="8 6 0.1"/>'
+        + "".join(geoms)
+        + f'<site name="a" pos="-2 0 0"/><site name="b" pos="{x + 1.5} 0 1.02"/>'
+        "</worldbody></mujoco>"
+    )
+
+
+#: The open stair's going (nosing to nosing), metres.
+OPEN_STAIR_GOING = 0.27
+
+
+@pytest.fixture(scope="session")
+def open_stair_xml():
+    """An open steel stair (no risers), as a function of the overlap (m): five 0.04 m thick
+    treads, each ``overlap`` deeper than the 0.27 m going so that it reaches back under the
+    next one's nosing (DIN 18065 §6.6's Unterschneidung, at least 30 mm without risers),
+    risers 0.17, up to a 1.02 m deck on four posts; sites ``a`` on the floor, ``b`` on the
+    deck (the level planner's and the scan's open-stair tests share it)."""
+    return _open_stair_xml

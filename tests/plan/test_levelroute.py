@@ -128,38 +128,19 @@ def test_crossing_headroom_decides_the_head_check_for_every_stature(station):
             assert head_fits_crossing(station.levels, c, stature) == (stature + HEAD_MARGIN <= room)
 
 
-def _open_stair(tmp_path, overlap: float):
-    """An open steel stair (no risers): five 0.04 m thick treads, each ``overlap`` metres deeper
-    than the 0.27 m going so that it reaches back under the next one's nosing (DIN 18065's
-    Unterschneidung, at least 30 mm without risers), risers 0.17, up to a 1.02 m deck on posts.
-    Returns the scene's path and the nosing lines' x, bottom up."""
-    going, r, th = 0.27, 0.17, 0.04
-    geoms = [
-        f'<geom name="tread{i}" type="box" size="{(going + overlap) / 2:.4f} 0.5 {th / 2}" '
-        f'pos="{i * going + (going + overlap) / 2:.4f} 0 {(i + 1) * r - th / 2:.4f}"/>'
-        for i in range(5)
-    ]
-    x = 5 * going
-    geoms.append(f'<geom name="deck" type="box" size="1.5 1.5 0.05" pos="{x + 1.5} 0 0.97"/>')
-    geoms += [
-        f'<geom name="post{k}" type="box" size="0.05 0.05 0.46" pos="{x + px} {py} 0.46"/>'
-        for k, (px, py) in enumerate([(0.1, -1.4), (0.1, 1.4), (2.9, -1.4), (2.9, 1.4)])
-    ]
+def _open_stair(tmp_path, open_stair_xml, overlap: float):
+    """The shared open stair (tests/conftest.py) written to a file; its path and the nosing
+    lines' x, bottom up."""
     path = tmp_path / f"open_stair_{overlap}.xml"
-    path.write_text(
-        '<mujoco><worldbody><geom name="floor" type="plane" size="8 6 0.1"/>'
-        + "".join(geoms)
-        + f'<site name="a" pos="-2 0 0"/><site name="b" pos="{x + 1.5} 0 1.02"/>'
-        "</worldbody></mujoco>"
-    )
-    return path, [i * going for i in range(6)]
+    path.write_text(open_stair_xml(overlap))
+    return path, [i * 0.27 for i in range(6)]
 
 
-def test_an_open_stair_s_risers_are_its_nosings_over_the_treads(tmp_path):
+def test_an_open_stair_s_risers_are_its_nosings_over_the_treads(tmp_path, open_stair_xml):
     """Each tread of an open stair reaches 3 cm under the next: the riser a foot keeps off is
     the next tread's nosing, not the tread's own far edge under it (before: risers at 0.30,
     0.54, 0.84, 1.08, 1.38 m, every other one under a nosing, and the toes caught it)."""
-    path, nosings = _open_stair(tmp_path, 0.03)
+    path, nosings = _open_stair(tmp_path, open_stair_xml, 0.03)
     graph = load_workplace(path, cache=False).levels
     (stair,) = [c for c in crossings(graph, 0.3) if c.kind == "stair"]
     risers = 0.5 * (stair.track[:-1] + stair.track[1:])
@@ -168,13 +149,13 @@ def test_an_open_stair_s_risers_are_its_nosings_over_the_treads(tmp_path):
 
 
 @pytest.mark.slow
-def test_walks_up_and_down_an_open_stair_touch_nothing(tmp_path):
+def test_walks_up_and_down_an_open_stair_touch_nothing(tmp_path, open_stair_xml):
     """Up and down the open stair with 3 cm nosing overlap (before: 8-9 toe contacts with the
     nosings going up, up to 1.4 cm, and the foot under the deck's nosing going down)."""
     import mjwalk
     from mjwalk.gait.default import default_model
 
-    path, _ = _open_stair(tmp_path, 0.03)
+    path, _ = _open_stair(tmp_path, open_stair_xml, 0.03)
     wp, model = load_workplace(path, cache=False), default_model()
     for a, b in (("a", "b"), ("b", "a")):
         walk = mjwalk.plan_walk(wp, a, b, model, rng=0)

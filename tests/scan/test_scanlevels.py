@@ -148,38 +148,15 @@ def _hall_levels(seed: int, tmp_path):
     return lp
 
 
-def _open_stair_xml(overlap: float) -> str:
-    """A steel stair without risers: five 0.04 m grating treads 0.27 m apart (going), each
-    ``overlap`` deeper than the going (DIN 18065 §6.6 asks open stairs for >= 30 mm), 0.17 m
-    risers, up to a 1.02 m mezzanine deck (a 0.1 m slab on four posts)."""
-    going, rise, thick = 0.27, 0.17, 0.04
-    depth = going + overlap
-    geoms = [
-        f'<geom type="box" size="{depth / 2} 0.5 {thick / 2}" '
-        f'pos="{i * going + depth / 2} 0 {(i + 1) * rise - thick / 2}"/>'
-        for i in range(5)
-    ]
-    x = 5 * going
-    geoms.append(f'<geom type="box" size="1.5 1.5 0.05" pos="{x + 1.5} 0 {6 * rise - 0.05}"/>')
-    half = (6 * rise - 0.1) / 2
-    geoms += [
-        f'<geom type="box" size="0.05 0.05 {half}" pos="{x + dx} {dy} {half}"/>'
-        for dx in (0.1, 2.9)
-        for dy in (-1.4, 1.4)
-    ]
-    body = "\n".join(geoms)
-    return f'<mujoco><worldbody><geom type="plane" size="8 6 0.1"/>{body}</worldbody></mujoco>'
-
-
 @pytest.mark.slow  # about 7 s CPU (the scan)
-def test_an_open_stair_seen_between_its_treads_is_one_regular_stair():
+def test_an_open_stair_seen_between_its_treads_is_one_regular_stair(open_stair_xml):
     """A scanner sees the floor through an open stair's gaps and the treads' undersides from
     below; the treads overlap 3 cm, so each riser line is the nosing above. The scan gives the
     six levels within 2 cm and one stair of six 0.17 m risers whose going is the treads'
     spacing (0.27 m), not their depth (0.30 m)."""
     from mjwalk.scan.levelboxes import scan_levels
 
-    model = mujoco.MjModel.from_xml_string(_open_stair_xml(0.03))
+    model = mujoco.MjModel.from_xml_string(open_stair_xml(0.03))
     scanners = [(-3.0, -2.5, 1.8), (-3.0, 2.5, 1.8), (5.0, 2.5, 2.8), (1.0, -3.0, 1.8)]
     scan = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=0)
     pts = find_floor(scan.points).apply(scan.points)
