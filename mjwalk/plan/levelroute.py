@@ -1,8 +1,8 @@
 """Where a walker crosses between levels, and the route over levels a walk takes.
 
 A :class:`Crossing` is a way from one level to another a walker walks in one go: a stair, a
-ramp, or one or more single steps (step links through single treads, the levels of kind "tread"
-that have no room to stand on between them, e.g. a step of one tread up to a platform). It is
+ramp, or one or more single steps (step links through levels with no room to stand on between
+them: single treads, or a step block too shallow for a stance, e.g. before a platform). It is
 laid out along its axis (the horizontal direction up it, perpendicular to its first riser or up
 the ramp): the stance where the walker stands before it on the lower level
 (:attr:`Crossing.approach`), the footfalls on its treads or along the ramp, and the stance on
