@@ -221,8 +221,7 @@ def _mid(seg) -> np.ndarray:
 def _axis_up(graph: LevelGraph, edge, upper_surfaces: Sequence[int]) -> np.ndarray:
     """The unit normal of ``edge`` pointing onto the surfaces above it."""
     a, b = (np.asarray(p, dtype=float) for p in edge)
-    d = (b - a) / max(float(np.linalg.norm(b - a)), 1e-12)
-    n = np.array([-d[1], d[0]])
+    n = _normal(a, b)
     probe = _mid(edge) + 0.05 * n
     if any(bool(graph.surfaces[i].contains(probe)) for i in upper_surfaces):
         return n
