@@ -27,6 +27,7 @@ from mjwalk.plan.walkpath import WalkPath
 from mjwalk.timeline.frames import timeline_from_walk
 from mjwalk.timeline.geomposes import GeomTable, geom_poses, supported
 from mjwalk.timeline.timeline import Timeline
+from mjwalk.world.floor import flush_geoms
 from mjwalk.world.norms import MAX_RAMP_SLOPE, ROUNDING_SLACK
 from mjwalk.world.workplace import shared_workplace
 
@@ -67,12 +68,12 @@ def collision_report(
     """Humanoid-vs-scene contacts of every frame by MuJoCo collision detection.
 
     Only pairs of one humanoid geom (group 5) and one scene geom count. Contacts with the floor
-    (the geom named ``"floor"`` or any plane) are left out unless they penetrate deeper than
-    ``floor_tolerance`` metres, so ordinary foot contact is not reported. In a scene on several
-    levels (:func:`walk_tops`) a sole (``foot_*``, ``toes_*``) standing on the top face of a
-    walk surface (a platform, a tread, a ramp) is left out the same way: a contact no deeper
-    than ``floor_tolerance`` with a normal within :data:`TOP_NORMAL_TILT` of vertical, or at no
-    depth (``norms.ROUNDING_SLACK``); a foot against a riser is still reported. Flat: as before.
+    (the geom named ``"floor"``, any plane, and geoms flush with it such as tape,
+    :func:`~mjwalk.world.floor.flush_geoms`) no deeper than ``floor_tolerance`` metres are
+    ordinary foot contact, not reported. In a scene on several levels (:func:`walk_tops`) a sole
+    (``foot_*``, ``toes_*``) on the top face of a walk surface (platform, tread, ramp) stands
+    too: no deeper than ``floor_tolerance``, its normal within :data:`TOP_NORMAL_TILT` of vertical
+    or no depth (``norms.ROUNDING_SLACK``); a foot against a riser is reported. Flat: as before.
 
     With ``broad_phase`` (default) MuJoCo's collision detection runs only on the frames where
     a contact can be reported (:func:`candidate_frames`: some humanoid geom's bounding sphere
@@ -103,25 +104,24 @@ def collision_report(
     soles = human & _soles(model, plen)
     qpos = np.asarray(timeline.qpos)
     same = repeats(qpos) if broad_phase else np.zeros(len(qpos), dtype=bool)
+    check = ~same  # every pose but a repeat; with the broad phase, only its candidates
     if broad_phase and len(qpos) > 1:
-        check = np.zeros(len(qpos), dtype=bool)
         fresh = np.flatnonzero(~same)
         check[fresh] = candidate_frames(
             model, qpos[fresh], human, floorish, floor_tolerance, data, table, fresh
         )
-    else:
-        check = np.ones(len(qpos), dtype=bool)
     out: list[Contact] = []
     t = timeline.t
-    masks = (human.tolist(), floorish.tolist(), tops if tops is None else tops.tolist(), soles)
+    mujoco.mj_kinematics(model, data)  # the scene's geoms placed: those flush with the floor
+    flat = (floorish | flush_geoms(model, data)).tolist()
+    masks = (human.tolist(), flat, tops if tops is None else tops.tolist(), soles)
     for i in np.flatnonzero(check).tolist():  # (a repeated pose is never checked itself)
         data.qpos[:] = qpos[i]
         mujoco.mj_kinematics(model, data)
         mujoco.mj_collision(model, data)
-        n = data.ncon
-        if n == 0:
+        if data.ncon == 0:
             continue
-        best = _kept(data.contact, n, masks, floor_tolerance)
+        best = _kept(data.contact, data.ncon, masks, floor_tolerance)
         found = [(names[h][plen:], names[s_], d, pos) for (h, s_), (d, pos) in best.items()]
         j = i
         while True:  # the frame, then the frames after it that repeat its pose: its contacts

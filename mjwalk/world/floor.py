@@ -1,6 +1,7 @@
 """The floor of a scene: which plane geom it is, and whether mjwalk can plan on it (its clearance
 grid's size). Used by :func:`mjwalk.world.workplace.load_workplace` and, before any work, by the
-scene importers (:mod:`mjwalk.world.meshimport`). Metres, z up."""
+scene importers (:mod:`mjwalk.world.meshimport`); the geoms flush with it (floor tape, inlays:
+:func:`flush_geoms`) are floor to the contact check. Metres, z up."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ import numpy as np
 
 from mjwalk.errors import SceneError
 from mjwalk.world.footprint import geom_footprint
+from mjwalk.world.norms import LEVEL_TOLERANCE
 
 #: Default height band (metres above the floor) in which a geom counts as an obstacle.
 OBSTACLE_Z_RANGE = (0.05, 2.0)
@@ -131,3 +133,31 @@ def check_floor_size(model: mujoco.MjModel, label: str, resolution: float = 0.02
         b = np.array(boxes)
         bounds = (b[:, 0].min() - 2, b[:, 1].min() - 2, b[:, 2].max() + 2, b[:, 3].max() + 2)
         check_floor_nodes(bounds, resolution, label, name)
+
+
+def flush_geoms(model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
+    """The geoms flush with a floor: floor tape, markings, inlaid plates -- every static geom
+    (welded to the world) whose whole height lies within ``norms.LEVEL_TOLERANCE`` (4 mm) of a
+    level floor plane's (:data:`FLOOR_MIN_NZ`). They are one level with the floor, as
+    :func:`mjwalk.world.levels.level_graph` groups surfaces within that tolerance (ASR A1.5/1,2
+    §3.4: height differences up to 4 mm are no trip points), so a foot on them stands on the
+    floor. Heights from MuJoCo's ``geom_aabb`` turned into the world (conservative for a turned
+    geom); planes are not counted.
+
+    Args:
+        model: the compiled scene (with or without the humanoid).
+        data: its data, kinematics done (any pose: the static geoms do not move).
+
+    Returns:
+        (ngeom,) bool mask.
+    """
+    plane = model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE
+    up = data.geom_xmat[:, 6:9]  # each geom's rotation's third row: its axes' world z parts
+    floors = data.geom_xpos[plane & (up[:, 2] > FLOOR_MIN_NZ), 2]
+    centre = data.geom_xpos[:, 2] + np.einsum("gj,gj->g", up, model.geom_aabb[:, :3])
+    half = np.einsum("gj,gj->g", np.abs(up), model.geom_aabb[:, 3:])
+    static = model.body_weldid[model.geom_bodyid] == 0
+    out = np.zeros(model.ngeom, dtype=bool)
+    for z in floors:
+        out |= (centre - half >= z - LEVEL_TOLERANCE) & (centre + half <= z + LEVEL_TOLERANCE)
+    return out & static & ~plane

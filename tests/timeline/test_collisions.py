@@ -225,3 +225,17 @@ def test_capsules_are_covered_by_spheres_within_a_quarter_of_their_radius():
         centres = -h + (2 * np.arange(n) + 1) * h / n
         axis = np.linspace(-h, h, 101)
         assert (np.abs(axis[:, None] - centres).min(axis=1) <= h / n + 1e-12).all()
+
+
+def test_feet_on_floor_tape_stand_on_the_floor():
+    # yellow tape (a 2 mm box, 5 cm wide) across the walk at x = 1.2 m: the feet stand on it
+    # (within the floor's 4 mm level tolerance), as on the floor (before: foot_*/toes_* on
+    # 'tape', 2 mm deep); a 15 mm mat is no floor, its contacts are still reported
+    xml = """<mujoco><worldbody><geom name="floor" type="plane" size="10 10 .1"/>
+    <geom name="tape" type="box" size=".025 2 {h}" pos="{x} 0 {h}"/></worldbody></mujoco>"""
+    walk = make_walk(n_steps=6)
+    for x in (0.9, 1.2, 1.5, 1.8):
+        tape = mujoco.MjSpec.from_string(xml.format(x=x, h=0.001))
+        assert collision_report(timeline_from_walk(walk, tape)) == []
+    mat = mujoco.MjSpec.from_string(xml.format(x=1.2, h=0.0075).replace(".025 2", ".5 2"))
+    assert {c.scene_geom for c in collision_report(timeline_from_walk(walk, mat))} == {"tape"}

@@ -48,3 +48,28 @@ def test_floor_node_limit():
     model, _ = _model('<geom name="floor" type="plane" size="500 500 .1"/>')
     with pytest.raises(SceneError, match="spans 1000 x 1000 m"):
         check_floor_size(model, "s")
+
+
+#: A floor with what lies on it: tape 2 mm thick (flush), a 15 mm mat (no trip-free 4 mm: not
+#: flush), an inlaid plate sunk from -3 to +1 mm (flush), a pit wall box reaching 1 m down
+#: (not flush), tape on a moving body (not flush) and an upright strip 3 cm tall (not flush).
+FLUSH_SCENE = """<mujoco><worldbody><geom name="floor" type="plane" size="5 5 .1"/>
+<geom name="tape" type="box" size="2 .025 .001" pos="0 0 .001"/>
+<geom name="mat" type="box" size=".75 .45 .0075" pos="0 1 .0075"/>
+<geom name="inlay" type="box" size=".3 .3 .002" pos="1 -1 -.001"/>
+<geom name="wall" type="box" size=".5 .1 .5" pos="-2 -2 -.5"/>
+<geom name="tape_up" type="box" size="1 .001 .015" pos="0 -2 .015"/>
+<body name="cart" pos="2 2 0"><freejoint/>
+<geom name="tape_cart" type="box" size=".2 .2 .001"/></body>
+</worldbody></mujoco>"""
+
+
+def test_flush_geoms_are_the_static_ones_within_the_level_tolerance_of_the_floor():
+    from mjwalk.world.floor import flush_geoms  # deferred: only this test uses it
+
+    model = mujoco.MjModel.from_xml_string(FLUSH_SCENE)
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    mask = flush_geoms(model, data)
+    names = {mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) for g in mask.nonzero()[0]}
+    assert names == {"tape", "inlay"}
