@@ -12,7 +12,7 @@ import numpy as np
 
 from mjwalk.errors import SceneError
 from mjwalk.world.footprint import geom_footprint
-from mjwalk.world.slabfloor import find_slab_floor, slab
+from mjwalk.world.slabfloor import MIN_FLOOR_AREA, find_slab_floor, slab
 
 #: Default height band (metres above the floor) in which a geom counts as an obstacle.
 OBSTACLE_Z_RANGE = (0.05, 2.0)
@@ -69,7 +69,7 @@ def find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
         raise SceneError(
             f"{label}: no floor: the scene needs an upward-facing plane geom (e.g. "
             '<geom name="floor" type="plane" size="4 3 0.1"/>) or a box or mesh slab of at '
-            "least 1 m^2 whose top is the floor"
+            f"least {MIN_FLOOR_AREA:g} m^2 whose top is the floor"
         )
     named = [g for g in planes if "floor" in (mujoco.mj_id2name(model, 5, g) or "").lower()]
     return (named or sorted(planes, key=lambda g: data.geom_xpos[g][2]))[0]

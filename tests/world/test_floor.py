@@ -30,7 +30,7 @@ def test_the_plane_named_floor_wins_else_the_lowest():
 
 
 def test_no_floor_or_a_tilted_one_is_named():
-    model, data = _model('<geom type="box" size="1 1 1"/>')
+    model, data = _model('<geom type="box" size=".3 .3 1"/>')  # a box too small to be a floor
     with pytest.raises(SceneError, match="s: no floor"):
         find_floor(model, data, "s")
     model, data = _model('<geom name="ramp" type="plane" size="1 1 .1" euler="10 0 0"/>')

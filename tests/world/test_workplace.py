@@ -125,7 +125,7 @@ def test_bilinear_lookup_is_vectorized(scenes_dir):
         (None, "not found"),
         ("<mujoco><worldbody><geom type='box' size='1 1 1'", "not a valid MJCF"),
         (
-            "<mujoco><worldbody><geom name='b' type='box' size='1 1 1'/></worldbody></mujoco>",
+            "<mujoco><worldbody><geom name='b' type='box' size='.3 .3 1'/></worldbody></mujoco>",
             "no floor",
         ),
         (
