@@ -28,7 +28,6 @@ from mjwalk.world.floorholes import floor_boxes, wall_openings
 from mjwalk.world.footprint import Footprint, geom_footprint
 from mjwalk.world.levels import LevelGraph, level_graph
 from mjwalk.world.meshimport import concave_mesh_footprints
-from mjwalk.world.norms import ROUNDING_SLACK
 from mjwalk.world.slabfloor import slab
 from mjwalk.world.surfaces import SurfaceOptions, find_walk_surfaces
 
@@ -391,12 +390,6 @@ def workplace_from_model(
     holes = floor_boxes(model, data, floor, label)
     floor_z = floor_top(model, data, floor) if holes is None else holes.height
     floor_name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
-    if abs(floor_z) > ROUNDING_SLACK:  # the planners' heights are above it, the body's world
-        raise SceneError(
-            f"{label}: the floor '{floor_name}' is at z = {floor_z:.4g} m; people stand at "
-            f"z = 0: move the scene by {-floor_z:+.4g} m (e.g. into "
-            f'<frame pos="0 0 {-floor_z:.4g}">)'
-        )
     rect = floor_rect(model, data, floor)
     if rect is not None:  # a finite floor: refused before the obstacles are read
         check_floor_nodes(rect, resolution, label, floor_name)

@@ -98,3 +98,28 @@ def test_a_zones_planner_is_the_one_its_options_build_sharing_its_sites(station)
         for a, b in zip(planner.params.vectors(stature), own.params.vectors(stature), strict=True):
             assert a.tobytes() == b.tobytes()
         assert planner.options.goal_tolerance == zone.radius != site.options.goal_tolerance
+
+
+def _lifted_station(scenes_dir, tmp_path, dz: float = 0.5):
+    """The multi-level station and its cycle moved up by ``dz`` (m): the scene wrapped in a
+    frame, the cycle's TOML pointing at it."""
+    xml = (scenes_dir / "multilevel_station.xml").read_text()
+    i, j = xml.index("<worldbody>") + len("<worldbody>"), xml.index("</worldbody>")
+    scene = tmp_path / "lifted.xml"
+    scene.write_text(f'{xml[:i]}<frame pos="0 0 {dz}">{xml[i:j]}</frame>{xml[j:]}')
+    toml = (scenes_dir / "multilevel_station.toml").read_text()
+    cycle = tmp_path / "lifted.toml"
+    cycle.write_text(toml.replace('scene = "multilevel_station.xml"', f'scene = "{scene}"'))
+    return cycle
+
+
+def test_the_ground_is_the_world_height_of_the_surface_stood_on(scenes_dir, tmp_path):
+    """On the station moved up by 0.5 m, the ground under a site on the floor is 0.5 m and on
+    the 0.34 m platform 0.84 m (world z: the standing pose's pelvis stands on it)."""
+    flat = context_of(scenes_dir / "multilevel_station.toml")
+    up = context_of(_lifted_station(scenes_dir, tmp_path))
+    assert up.workplace.floor_z == pytest.approx(0.5, abs=1e-12)
+    for site, height in (("stand_rack1", 0.0), ("stand_platform1", 0.34)):
+        xy = flat.workplace.station(site).xy
+        assert flat.ground(xy) == pytest.approx(height, abs=1e-9)
+        assert up.ground(xy) == pytest.approx(0.5 + height, abs=1e-9)
