@@ -7,6 +7,7 @@ from __future__ import annotations
 import dataclasses
 
 import mujoco
+import numpy as np
 import pytest
 
 from mjwalk.body.humanoid import attach_humanoid
@@ -17,6 +18,9 @@ from mjwalk.cycle.context import (
     context_of,
     operator_context,
 )
+from mjwalk.cycle.seeding import run_generator
+from mjwalk.cycle.simulate import simulate_cycle
+from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.errors import SceneError
 from mjwalk.gait.walker import REFERENCE_CADENCE, Walker
 from mjwalk.plan.hybrid import HybridPlanner
@@ -123,3 +127,24 @@ def test_the_ground_is_the_world_height_of_the_surface_stood_on(scenes_dir, tmp_
         xy = flat.workplace.station(site).xy
         assert flat.ground(xy) == pytest.approx(height, abs=1e-9)
         assert up.ground(xy) == pytest.approx(0.5 + height, abs=1e-9)
+
+
+@pytest.mark.slow
+def test_the_lifted_station_cycle_walks_as_the_station_and_touches_nothing(scenes_dir, tmp_path):
+    """Seeded (batch seed 0, run 0, a fatigued operator: its walks in ``walks.csv`` are the
+    station's): the station moved up by 0.5 m plans the same walks, plays the body 0.5 m higher
+    in every frame and has 0 contacts."""
+    flat_spec = load_cycle_spec(scenes_dir / "multilevel_station.toml")
+    up_spec = load_cycle_spec(_lifted_station(scenes_dir, tmp_path))
+    flat, up = (
+        simulate_cycle(s, run_generator(0, 0), keep_timeline=True, ergonomics=False)
+        for s in (flat_spec, up_spec)
+    )
+    assert up.collisions == []
+    assert len(up.walks) == len(flat.walks) > 0
+    for a, b in zip(flat.walks, up.walks, strict=True):
+        np.testing.assert_allclose(b.path.xy, a.path.xy, atol=1e-9)
+    r = flat.timeline.jointmap.root
+    assert up.timeline.qpos.shape == flat.timeline.qpos.shape
+    dz = up.timeline.qpos[:, r + 2] - flat.timeline.qpos[:, r + 2]
+    np.testing.assert_allclose(dz, 0.5, atol=1e-9)
