@@ -298,16 +298,17 @@ class CycleContext:
         return self.routes.route(start, end)
 
     def ground(self, xy) -> float:
-        """The height above the floor of the walk surface under a standing operator
-        (:func:`~mjwalk.cycle.levelsite.ground_height`; 0 in a flat cycle).
+        """The world height of the walk surface under a standing operator: the floor's
+        (``Workplace.floor_z``) plus the surface's height above it
+        (:func:`~mjwalk.cycle.levelsite.ground_height`; the floor's alone in a flat cycle).
 
         Args:
             xy: (x, y) world, metres.
 
         Returns:
-            Metres above the floor.
+            World z, metres.
         """
-        return ground_height(self.workplace, xy, self.on_levels)
+        return self.workplace.floor_z + ground_height(self.workplace, xy, self.on_levels)
 
     def occupancy(self) -> OccupancyGrid:
         """The grid A*'s occupancy grid of the scene at the cycle's body radius (built once).

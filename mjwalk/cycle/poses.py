@@ -322,6 +322,7 @@ def walk_frames(
         t = np.append(t, walk.duration)
     frames = frames_from_legs(ctx.model, ctx.jointmap, legs, t, ctx.spec.stature, "swing", None)
     jm = ctx.jointmap
+    frames[:, jm.root + 2] += ctx.workplace.floor_z  # the walk's heights are above the floor
     room, away = room_and_away(ctx.workplace, frames[:, jm.root : jm.root + 2])
     rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
     abd = carry_abduction(ctx, carry_width) if carry == "both" and carry_width else None

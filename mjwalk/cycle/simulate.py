@@ -24,6 +24,7 @@ cluster unchanged (see the README), through joblib.
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Iterable, Sequence
 from functools import partial
 from pathlib import Path
@@ -254,7 +255,8 @@ def cycle_ergonomics(
     table: GeomTable | None = None,
 ):
     """The ergonomics of a cycle's timeline (:func:`mjwalk.ergonomics.assess.assess_cycle`): a
-    place or fasten handles the part its hand picked last (its mass and coupling).
+    place or fasten handles the part its hand picked last (its mass and coupling). Heights are
+    given above the floor (``wp.floor_z``): the hands', the ankles' and the sites' (NIOSH's V).
 
     Args:
         timeline: the cycle's humanoid timeline.
@@ -270,6 +272,7 @@ def cycle_ergonomics(
         The run's ergonomic scores (:class:`~mjwalk.ergonomics.assess.RunErgonomics`).
     """
     n = timeline.n_frames
+    up = np.array([0.0, 0.0, wp.floor_z])
     walking = np.zeros(n, dtype=bool)
     held: dict[str, list[tuple[float, str]]] = {"left": [], "right": [], "both": []}
     spans = []
@@ -287,11 +290,13 @@ def cycle_ergonomics(
             mass, coupling = held[task.hand].pop()
         pos = None
         if task.site is not None and task.site in wp.stations:
-            pos = np.asarray(wp.stations[task.site].pos, dtype=float)
+            pos = np.asarray(wp.stations[task.site].pos, dtype=float) - up
         spans.append(TaskSpan(i, task.kind, s, e, task.hand if task.kind != "walk" else None,
                               task.site, mass, coupling, pos, reach=reach, part=part,
                               lifts=kind.lifts))  # fmt: skip
     ang = angles_from_timeline(timeline, walking, table)
+    if wp.floor_z != 0.0:  # a floor off z = 0: the methods' heights are above it
+        ang = dataclasses.replace(ang, hands=ang.hands - up, ankles=ang.ankles - up)
     return assess_cycle(ang, spans, cycle_time, timeline.fps)
 
 

@@ -246,6 +246,7 @@ def _site_work(spec: CycleSpec, workplace: Workplace, site: str, first: int) -> 
     targets of tasks ``first, ...`` up to the next walk or carry, whether each is faced
     squarely, its hand, and the site's heading."""
     stand = workplace.station(site).pos
+    floor = np.array([0.0, 0.0, workplace.floor_z])  # the reach's heights are above the floor
     targets, squarely, hands = [], [], []
     for task in spec.tasks[first:]:
         kind = TASK_KINDS[task.kind]
@@ -255,7 +256,7 @@ def _site_work(spec: CycleSpec, workplace: Workplace, site: str, first: int) -> 
             continue
         for _, name in grip_sites(task.site, task.hand):
             pos = workplace.station(name).pos
-            targets.append(reach_target(task.kind, pos, float(stand[0]), float(stand[1])))
+            targets.append(reach_target(task.kind, pos, float(stand[0]), float(stand[1])) - floor)
             # the cycle faces fastenings and two-handed work squarely (simulate_cycle)
             squarely.append(kind.approach == "surface" or task.hand == "both")
             hands.append(None if squarely[-1] else task.hand)

@@ -27,7 +27,7 @@ from mjwalk.plan.walkpath import WalkPath
 from mjwalk.timeline.frames import timeline_from_walk
 from mjwalk.timeline.geomposes import GeomTable, geom_poses, supported
 from mjwalk.timeline.timeline import Timeline
-from mjwalk.world.floor import flush_geoms
+from mjwalk.world.floor import floor_planes, flush_geoms, slab_floor_mask
 from mjwalk.world.norms import MAX_RAMP_SLOPE, ROUNDING_SLACK
 from mjwalk.world.workplace import shared_workplace
 
@@ -228,8 +228,7 @@ _NAMES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 def _geom_names(model: mujoco.MjModel) -> tuple[list[str], np.ndarray]:
     """The geoms' names (``"geom#<id>"`` when unnamed) and the floor mask (the geom named
-    ``"floor"`` and every plane) of ``model``, kept per model (names and types do not change
-    after compiling)."""
+    ``"floor"``, every plane, a slab floor) of ``model``, kept per model (fixed once compiled)."""
     hit = _NAMES.get(model)
     if hit is None or len(hit[0]) != model.ngeom:
         names = [
@@ -240,6 +239,7 @@ def _geom_names(model: mujoco.MjModel) -> tuple[list[str], np.ndarray]:
         floorish = np.array(
             [n == "floor" or model.geom_type[g] == plane for g, n in enumerate(names)]
         )
+        floorish |= slab_floor_mask(model)  # a floor modelled as a slab
         floorish.setflags(write=False)
         hit = _NAMES[model] = (names, floorish)
     return hit
@@ -262,8 +262,8 @@ def repeats(qpos: np.ndarray) -> np.ndarray:
 
 
 def floor_geoms(model: mujoco.MjModel) -> np.ndarray:
-    """The floors of ``model``: the geom named ``"floor"`` and every plane (their
-    shallow contacts with the humanoid are standing, not collisions).
+    """The floors of ``model``: the geom named ``"floor"``, every plane, a slab floor
+    (:func:`~mjwalk.world.floor.slab_floor_mask`): their shallow contacts are standing.
 
     Args:
         model: the compiled scene (with or without the humanoid).
@@ -411,19 +411,18 @@ def _static_scene(
     sid = np.flatnonzero(~human & (model.geom_contype | model.geom_conaffinity).astype(bool))
     floors = sid[floorish[sid]]
     solids = sid[~floorish[sid]]
-    if (model.body_weldid[model.geom_bodyid[sid]] != 0).any() or (
-        model.geom_type[floors] != mujoco.mjtGeom.mjGEOM_PLANE
-    ).any():
-        kept[key] = None
-        return None
     data = mujoco.MjData(model)  # the scene's geoms are static: any pose places them
     mujoco.mj_kinematics(model, data)
+    moving = (model.body_weldid[model.geom_bodyid[sid]] != 0).any()
+    planes = None if moving else floor_planes(model, data, floors)  # (slab floors: their tops)
+    if planes is None:  # scene geoms on moving bodies, or a floor neither a plane nor a slab
+        kept[key] = None
+        return None
     slack = model.geom_margin[hid].max(initial=0.0) + BROAD_SLACK
     reach = model.geom_rbound[hid] + model.geom_margin[hid] + slack
     # the scene's boxes (static: welded to the world) in world axes
     R = data.geom_xmat[solids].reshape(-1, 3, 3)
     aabb = model.geom_aabb[solids]
-    normals = np.array([data.geom_xmat[g].reshape(3, 3)[:, 2] for g in floors]).reshape(-1, 3)
     # a capsule within its bounding sphere's reach is looked at closer: the spheres along its
     # axis that cover it (n of them, radius r + h / n), with the same margins and slack
     types, size = model.geom_type[hid].astype(np.int64), model.geom_size[hid]
@@ -443,8 +442,8 @@ def _static_scene(
         sub_reach=size[:, 0] + size[:, 1] / n_sub + margins,
         centre=data.geom_xpos[solids] + np.einsum("gij,gj->gi", R, aabb[:, :3]),
         half=np.einsum("gij,gj->gi", np.abs(R), aabb[:, 3:]),
-        normals=normals,
-        origins=data.geom_xpos[floors].reshape(-1, 3),
+        normals=planes[0],
+        origins=planes[1],
         low=np.maximum(ext, model.geom_rbound[hid]) * (1.0 + 1e-6),  # (other types: rbound)
     )
     return kept[key]

@@ -98,11 +98,14 @@ def timeline_from_walk(
     fps = check_fps(fps, "timeline_from_walk: fps must be")
     walk.validate("timeline_from_walk: walk")
     model, jm = attach_humanoid(scene, stature)
+    floor_z = 0.0  # an MjSpec's floor: at z = 0
     if not isinstance(scene, mujoco.MjSpec):  # feet on a ramp's low end the walk cuts past
-        walk = with_ramps_beside(shared_workplace(scene), walk, stature)
+        wp = shared_workplace(scene)
+        walk, floor_z = with_ramps_beside(wp, walk, stature), wp.floor_z
     legs = legs_from_walk(walk, stature)
     t = np.arange(0.0, walk.duration + 1e-9, 1.0 / fps)
     qpos = frames_from_legs(model, jm, legs, t, stature, arms, rng)
+    qpos[:, jm.root + 2] += floor_z  # the walk's heights are above the floor
     if arms != "none":
         room, away = room_in_scene(scene, qpos[:, jm.root : jm.root + 2])
         rest = jm.neutral_qpos(model, stature)

@@ -1,7 +1,8 @@
-"""The floor of a scene: which plane geom it is, and whether mjwalk can plan on it (its clearance
-grid's size). Used by :func:`mjwalk.world.workplace.load_workplace` and, before any work, by the
-scene importers (:mod:`mjwalk.world.meshimport`); the geoms flush with it (floor tape, inlays:
-:func:`flush_geoms`) are floor to the contact check. Metres, z up."""
+"""The floor of a scene: which plane geom it is (or, in a scene without one, which slab:
+:mod:`mjwalk.world.slabfloor`), its height and extent, and whether mjwalk can plan on it (its
+clearance grid's size). Used by :func:`mjwalk.world.workplace.load_workplace` and, before any
+work, by the scene importers (:mod:`mjwalk.world.meshimport`); the geoms flush with it (floor
+tape, inlays: :func:`flush_geoms`) are floor to the contact check. Metres, z up."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ import numpy as np
 from mjwalk.errors import SceneError
 from mjwalk.world.footprint import geom_footprint
 from mjwalk.world.norms import LEVEL_TOLERANCE
+from mjwalk.world.slabfloor import MIN_FLOOR_AREA, find_slab_floor, slab
 
 #: Default height band (metres above the floor) in which a geom counts as an obstacle.
 OBSTACLE_Z_RANGE = (0.05, 2.0)
@@ -29,7 +31,8 @@ def find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
     """The floor geom of a model.
 
     A plane whose normal points up (:data:`FLOOR_MIN_NZ`), the one named like "floor" first,
-    else the lowest.
+    else the lowest; in a scene without one, the lowest large slab top (a box, mesh or height
+    field: :func:`mjwalk.world.slabfloor.find_slab_floor`).
 
     Args:
         model: the compiled scene.
@@ -40,7 +43,8 @@ def find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
         The floor's geom id.
 
     Raises:
-        SceneError: no plane, or only tilted ones (naming the tilt).
+        SceneError: no plane nor slab, or only tilted planes (naming the tilt), or slabs
+            with no clear floor among them.
     """
     planes = [
         g
@@ -49,6 +53,9 @@ def find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
         and data.geom_xmat[g].reshape(3, 3)[2, 2] > FLOOR_MIN_NZ
     ]
     if not planes:
+        floor = find_slab_floor(model, data, label)
+        if floor is not None:
+            return floor.geom
         tilted = [
             g for g in range(model.ngeom) if model.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE
         ]
@@ -63,10 +70,105 @@ def find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
             )
         raise SceneError(
             f"{label}: no floor: the scene needs an upward-facing plane geom (e.g. "
-            '<geom name="floor" type="plane" size="4 3 0.1"/>)'
+            '<geom name="floor" type="plane" size="4 3 0.1"/>) or a box or mesh slab of at '
+            f"least {MIN_FLOOR_AREA:g} m^2 whose top is the floor"
         )
     named = [g for g in planes if "floor" in (mujoco.mj_id2name(model, 5, g) or "").lower()]
     return (named or sorted(planes, key=lambda g: data.geom_xpos[g][2]))[0]
+
+
+def floor_top(model: mujoco.MjModel, data: mujoco.MjData, floor: int) -> float:
+    """The height of a floor geom's walk face: a plane's own, a slab's top.
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done.
+        floor: the floor's geom id (:func:`find_floor`).
+
+    Returns:
+        World z of the floor, metres.
+    """
+    if int(model.geom_type[floor]) == mujoco.mjtGeom.mjGEOM_PLANE:
+        return float(data.geom_xpos[floor][2])
+    s = slab(model, data, floor)
+    return float(data.geom_xpos[floor][2]) if s is None else s.top
+
+
+def floor_rect(
+    model: mujoco.MjModel, data: mujoco.MjData, floor: int
+) -> tuple[float, float, float, float] | None:
+    """The extent of a floor geom: a finite plane's rectangle (its size about its centre), a
+    slab's top face's bounding box; None for an infinite plane.
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done.
+        floor: the floor's geom id (:func:`find_floor`).
+
+    Returns:
+        (xmin, ymin, xmax, ymax), world metres, or None.
+    """
+    if int(model.geom_type[floor]) != mujoco.mjtGeom.mjGEOM_PLANE:
+        s = slab(model, data, floor)
+        if s is not None:
+            return s.bounds
+    fx, fy = model.geom_size[floor][:2]
+    if fx > 0 and fy > 0:
+        cx, cy = data.geom_xpos[floor][:2]
+        return (cx - fx, cy - fy, cx + fx, cy + fy)
+    return None
+
+
+def floor_planes(
+    model: mujoco.MjModel, data: mujoco.MjData, floors: np.ndarray
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """The planes floor geoms stand for: a plane's own, a slab's top (a humanoid over the slab
+    reaches it only through its top).
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done.
+        floors: (P,) the floors' geom ids.
+
+    Returns:
+        (P, 3) their unit normals and (P, 3) a point of each, world metres; None when one of
+        them is neither a plane nor a slab (:func:`mjwalk.world.slabfloor.slab`).
+    """
+    normals, origins = np.zeros((len(floors), 3)), np.zeros((len(floors), 3))
+    for i, g in enumerate(np.asarray(floors, dtype=np.int64).tolist()):
+        if int(model.geom_type[g]) == mujoco.mjtGeom.mjGEOM_PLANE:
+            normals[i], origins[i] = data.geom_xmat[g].reshape(3, 3)[:, 2], data.geom_xpos[g]
+            continue
+        s = slab(model, data, g)
+        if s is None:
+            return None
+        normals[i], origins[i] = (0.0, 0.0, 1.0), (*data.geom_xpos[g][:2], s.top)
+    return normals, origins
+
+
+def slab_floor_mask(model: mujoco.MjModel) -> np.ndarray:
+    """The slab a model's floor is, as a mask: in a model without planes, the geom
+    :func:`~mjwalk.world.slabfloor.find_slab_floor` chooses (the humanoid's geoms, not fixed
+    to the world, are never one); no geom otherwise, or when no slab is clearly the floor.
+
+    Args:
+        model: the compiled scene (with or without the humanoid).
+
+    Returns:
+        (ngeom,) bool mask, at most one True.
+    """
+    mask = np.zeros(model.ngeom, dtype=bool)
+    if (model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE).any():
+        return mask
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    try:
+        floor = find_slab_floor(model, data, "scene")
+    except SceneError:  # no clear floor: loading the workplace says so
+        floor = None
+    if floor is not None:
+        mask[floor.geom] = True
+    return mask
 
 
 def check_floor_nodes(bounds, resolution: float, label: str, floor: str) -> None:
@@ -116,10 +218,9 @@ def check_floor_size(model: mujoco.MjModel, label: str, resolution: float = 0.02
     except SceneError:
         return
     name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
-    fx, fy = model.geom_size[floor][:2]
-    if fx > 0 and fy > 0:
-        cx, cy = data.geom_xpos[floor][:2]
-        check_floor_nodes((cx - fx, cy - fy, cx + fx, cy + fy), resolution, label, name)
+    rect = floor_rect(model, data, floor)
+    if rect is not None:
+        check_floor_nodes(rect, resolution, label, name)
         return
     floor_z = float(data.geom_xpos[floor][2])
     z0, z1 = floor_z + OBSTACLE_Z_RANGE[0], floor_z + OBSTACLE_Z_RANGE[1]
@@ -138,11 +239,12 @@ def check_floor_size(model: mujoco.MjModel, label: str, resolution: float = 0.02
 def flush_geoms(model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
     """The geoms flush with a floor: floor tape, markings, inlaid plates -- every static geom
     (welded to the world) whose whole height lies within ``norms.LEVEL_TOLERANCE`` (4 mm) of a
-    level floor plane's (:data:`FLOOR_MIN_NZ`). They are one level with the floor, as
+    level floor plane's (:data:`FLOOR_MIN_NZ`) or of a slab floor's top (:func:`slab_floor_mask`).
+    They are one level with the floor, as
     :func:`mjwalk.world.levels.level_graph` groups surfaces within that tolerance (ASR A1.5/1,2
     §3.4: height differences up to 4 mm are no trip points), so a foot on them stands on the
     floor. Heights from MuJoCo's ``geom_aabb`` turned into the world (conservative for a turned
-    geom); planes are not counted.
+    geom); the floors themselves are not counted.
 
     Args:
         model: the compiled scene (with or without the humanoid).
@@ -153,11 +255,16 @@ def flush_geoms(model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
     """
     plane = model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE
     up = data.geom_xmat[:, 6:9]  # each geom's rotation's third row: its axes' world z parts
-    floors = data.geom_xpos[plane & (up[:, 2] > FLOOR_MIN_NZ), 2]
+    floors = data.geom_xpos[plane & (up[:, 2] > FLOOR_MIN_NZ), 2].tolist()
+    slabs = slab_floor_mask(model)
+    for g in np.flatnonzero(slabs).tolist():
+        top = slab(model, data, g)
+        if top is not None:
+            floors.append(top.top)
     centre = data.geom_xpos[:, 2] + np.einsum("gj,gj->g", up, model.geom_aabb[:, :3])
     half = np.einsum("gj,gj->g", np.abs(up), model.geom_aabb[:, 3:])
     static = model.body_weldid[model.geom_bodyid] == 0
     out = np.zeros(model.ngeom, dtype=bool)
     for z in floors:
         out |= (centre - half >= z - LEVEL_TOLERANCE) & (centre + half <= z + LEVEL_TOLERANCE)
-    return out & static & ~plane
+    return out & static & ~plane & ~slabs

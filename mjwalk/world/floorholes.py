@@ -57,12 +57,14 @@ def floor_boxes(
 
     Returns:
         The boxes, their common top height and footprints; None when no box is named
-        :data:`FLOOR_BOX_PREFIX`...
+        :data:`FLOOR_BOX_PREFIX`... or when the floor is no plane.
 
     Raises:
         SceneError: such a geom that is not a level box, or tops at different heights, or at or
             below the plane.
     """
+    if int(model.geom_type[plane]) != mujoco.mjtGeom.mjGEOM_PLANE:
+        return None  # a slab floor (:mod:`mjwalk.world.slabfloor`): its top is the floor
     ids = [
         g
         for g in range(model.ngeom)

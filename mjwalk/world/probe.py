@@ -14,6 +14,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.errors import SceneError
+from mjwalk.world.floor import find_floor, floor_top
 from mjwalk.world.workplace import Workplace
 
 _PROBE_RADIUS = 1e-3
@@ -43,7 +44,7 @@ class ClearanceProbe:
             )
             path, floor_z, z_range = scene.source, scene.floor_z, scene.z_range
         else:
-            path, floor_z = Path(scene), 0.0
+            path, floor_z = Path(scene), None  # the floor's: found in the model below
             names = geoms
         spec = mujoco.MjSpec.from_file(str(path))
         half = 0.5 * (z_range[1] - z_range[0])
@@ -59,12 +60,19 @@ class ClearanceProbe:
         self.data = mujoco.MjData(self.model)
         mujoco.mj_kinematics(self.model, self.data)
         self._probe = self.model.geom("mjwalk_probe_geom").id
+        try:
+            floor = find_floor(self.model, self.data, str(path))
+        except SceneError:  # no floor: the band is above z = 0
+            floor = -1
+        if floor_z is None:
+            floor_z = 0.0 if floor < 0 else floor_top(self.model, self.data, floor)
         self._z = floor_z + z_range[0] + half
-        if names is None:
+        if names is None:  # every geom but the probe, planes and a slab floor
             names = [
                 self.model.geom(g).name
                 for g in range(self.model.ngeom)
-                if g != self._probe and self.model.geom_type[g] != mujoco.mjtGeom.mjGEOM_PLANE
+                if g not in (self._probe, floor)
+                and self.model.geom_type[g] != mujoco.mjtGeom.mjGEOM_PLANE
             ]
         self.geoms = [self.model.geom(n).id for n in names]
         self.names = list(names)

@@ -30,7 +30,7 @@ import numpy as np
 from mjwalk._args import check_patterns
 from mjwalk.errors import InputError
 from mjwalk.world.contacts import MIN_CROSSING, reachable, surface_contacts
-from mjwalk.world.floor import find_floor
+from mjwalk.world.floor import find_floor, floor_rect, floor_top
 from mjwalk.world.floorholes import FloorBoxes, floor_boxes, opening_area
 from mjwalk.world.footprint import Footprint, geom_footprint
 from mjwalk.world.norms import (
@@ -364,12 +364,13 @@ def _surface_from_face(
 
 
 def _floor_surface(model, data, floor: int) -> WalkSurface:
-    """The floor as a walk surface (an infinite plane: the other geoms' extent plus a margin)."""
-    z = float(data.geom_xpos[floor][2])
-    fx, fy = model.geom_size[floor][:2]
+    """The floor as a walk surface (an infinite plane: the other geoms' extent plus a margin; a
+    slab: its top, :mod:`mjwalk.world.slabfloor`)."""
+    z = floor_top(model, data, floor)
     c = data.geom_xpos[floor][:2]
-    if fx > 0 and fy > 0:
-        bounds = (c[0] - fx, c[1] - fy, c[0] + fx, c[1] + fy)
+    rect = floor_rect(model, data, floor)
+    if rect is not None:
+        bounds = rect
     else:
         boxes = [
             fp.bounds()

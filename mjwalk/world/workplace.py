@@ -21,12 +21,14 @@ from mjwalk.world.floor import (
     OBSTACLE_Z_RANGE,
     check_floor_nodes,
     find_floor,
+    floor_rect,
+    floor_top,
 )
 from mjwalk.world.floorholes import floor_boxes, wall_openings
 from mjwalk.world.footprint import Footprint, geom_footprint
 from mjwalk.world.levels import LevelGraph, level_graph
 from mjwalk.world.meshimport import concave_mesh_footprints
-from mjwalk.world.norms import ROUNDING_SLACK
+from mjwalk.world.slabfloor import slab
 from mjwalk.world.surfaces import SurfaceOptions, find_walk_surfaces
 
 #: Bodies whose name starts with one of these are part of a humanoid, never obstacles (the
@@ -386,26 +388,18 @@ def workplace_from_model(
     mujoco.mj_kinematics(model, data)
     floor = find_floor(model, data, label)
     holes = floor_boxes(model, data, floor, label)
-    floor_z = float(data.geom_xpos[floor][2]) if holes is None else holes.height
+    floor_z = floor_top(model, data, floor) if holes is None else holes.height
     floor_name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, floor) or f"geom{floor}"
-    if abs(floor_z) > ROUNDING_SLACK:  # the planners' heights are above it, the body's world
-        raise SceneError(
-            f"{label}: the floor '{floor_name}' is at z = {floor_z:.4g} m; people stand at "
-            f"z = 0: move the scene by {-floor_z:+.4g} m (e.g. into "
-            f'<frame pos="0 0 {-floor_z:.4g}">)'
-        )
-    fx, fy = model.geom_size[floor][:2]
-    if fx > 0 and fy > 0:  # a finite floor: refused before the obstacles are read
-        cx, cy = data.geom_xpos[floor][:2]
-        check_floor_nodes((cx - fx, cy - fy, cx + fx, cy + fy), resolution, label, floor_name)
+    rect = floor_rect(model, data, floor)
+    if rect is not None:  # a finite floor: refused before the obstacles are read
+        check_floor_nodes(rect, resolution, label, floor_name)
     if holes is None:
         footprints = obstacle_footprints(model, data, floor, options, label)
     else:  # a floor with openings: the band above the boxes, which are not obstacles
         skip = frozenset(holes.geoms)
         footprints = obstacle_footprints(model, data, floor, options, label, floor_z, skip)
-    if fx > 0 and fy > 0:
-        cx, cy = data.geom_xpos[floor][:2]
-        bounds = (cx - fx, cy - fy, cx + fx, cy + fy)
+    if rect is not None:
+        bounds = rect
     else:  # an infinite plane: the obstacles' extent plus 2 m
         if not footprints:
             raise SceneError(f"{label}: the floor plane is infinite and there are no obstacles")
@@ -415,6 +409,10 @@ def workplace_from_model(
     key, clearance = _clearance(footprints, bounds, options)
     if holes is not None:
         key, clearance = None, wall_openings(clearance, holes.footprints)
+    top = slab(model, data, floor) if rect is not None and holes is None else None
+    if top is not None:  # a slab's top off its bounding box (a yawed slab): walls at its edges
+        walled = wall_openings(clearance, (Footprint(floor_name, floor, top.xy),))
+        key, clearance = (key, clearance) if walled is clearance else (None, walled)
     return Workplace(
         model=model,
         source=source,
@@ -464,7 +462,7 @@ def obstacle_footprints(
     """
     groups, include, exclude = options.groups, options.include, options.exclude
     z_range = options.z_range
-    floor_z = float(data.geom_xpos[floor][2]) if base is None else float(base)
+    floor_z = floor_top(model, data, floor) if base is None else float(base)
     footprints: list[Footprint] = []
     for g in range(model.ngeom):
         if g == floor or g in skip or _is_humanoid_geom(model, g, options.humanoid_prefixes):

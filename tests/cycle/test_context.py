@@ -7,6 +7,7 @@ from __future__ import annotations
 import dataclasses
 
 import mujoco
+import numpy as np
 import pytest
 
 from mjwalk.body.humanoid import attach_humanoid
@@ -17,6 +18,9 @@ from mjwalk.cycle.context import (
     context_of,
     operator_context,
 )
+from mjwalk.cycle.seeding import run_generator
+from mjwalk.cycle.simulate import simulate_cycle
+from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.errors import SceneError
 from mjwalk.gait.walker import REFERENCE_CADENCE, Walker
 from mjwalk.plan.hybrid import HybridPlanner
@@ -98,3 +102,49 @@ def test_a_zones_planner_is_the_one_its_options_build_sharing_its_sites(station)
         for a, b in zip(planner.params.vectors(stature), own.params.vectors(stature), strict=True):
             assert a.tobytes() == b.tobytes()
         assert planner.options.goal_tolerance == zone.radius != site.options.goal_tolerance
+
+
+def _lifted_station(scenes_dir, tmp_path, dz: float = 0.5):
+    """The multi-level station and its cycle moved up by ``dz`` (m): the scene wrapped in a
+    frame, the cycle's TOML pointing at it."""
+    xml = (scenes_dir / "multilevel_station.xml").read_text()
+    i, j = xml.index("<worldbody>") + len("<worldbody>"), xml.index("</worldbody>")
+    scene = tmp_path / "lifted.xml"
+    scene.write_text(f'{xml[:i]}<frame pos="0 0 {dz}">{xml[i:j]}</frame>{xml[j:]}')
+    toml = (scenes_dir / "multilevel_station.toml").read_text()
+    cycle = tmp_path / "lifted.toml"
+    cycle.write_text(toml.replace('scene = "multilevel_station.xml"', f'scene = "{scene}"'))
+    return cycle
+
+
+def test_the_ground_is_the_world_height_of_the_surface_stood_on(scenes_dir, tmp_path):
+    """On the station moved up by 0.5 m, the ground under a site on the floor is 0.5 m and on
+    the 0.34 m platform 0.84 m (world z: the standing pose's pelvis stands on it)."""
+    flat = context_of(scenes_dir / "multilevel_station.toml")
+    up = context_of(_lifted_station(scenes_dir, tmp_path))
+    assert up.workplace.floor_z == pytest.approx(0.5, abs=1e-12)
+    for site, height in (("stand_rack1", 0.0), ("stand_platform1", 0.34)):
+        xy = flat.workplace.station(site).xy
+        assert flat.ground(xy) == pytest.approx(height, abs=1e-9)
+        assert up.ground(xy) == pytest.approx(0.5 + height, abs=1e-9)
+
+
+@pytest.mark.slow
+def test_the_lifted_station_cycle_walks_as_the_station_and_touches_nothing(scenes_dir, tmp_path):
+    """Seeded (batch seed 0, run 0, a fatigued operator: its walks in ``walks.csv`` are the
+    station's): the station moved up by 0.5 m plans the same walks, plays the body 0.5 m higher
+    in every frame and has 0 contacts."""
+    flat_spec = load_cycle_spec(scenes_dir / "multilevel_station.toml")
+    up_spec = load_cycle_spec(_lifted_station(scenes_dir, tmp_path))
+    flat, up = (
+        simulate_cycle(s, run_generator(0, 0), keep_timeline=True, ergonomics=False)
+        for s in (flat_spec, up_spec)
+    )
+    assert up.collisions == []
+    assert len(up.walks) == len(flat.walks) > 0
+    for a, b in zip(flat.walks, up.walks, strict=True):
+        np.testing.assert_allclose(b.path.xy, a.path.xy, atol=1e-9)
+    r = flat.timeline.jointmap.root
+    assert up.timeline.qpos.shape == flat.timeline.qpos.shape
+    dz = up.timeline.qpos[:, r + 2] - flat.timeline.qpos[:, r + 2]
+    np.testing.assert_allclose(dz, 0.5, atol=1e-9)

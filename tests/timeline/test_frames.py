@@ -12,6 +12,7 @@ from mjwalk.body.legs import legs_from_walk
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.synthetic import synthetic_walk as make_walk
 from mjwalk.timeline import iter_frames, timeline_from_walk
+from mjwalk.timeline.collisions import collision_report
 from mjwalk.timeline.frames import (
     ARM_EASE,
     ARM_ROOM,
@@ -207,3 +208,24 @@ def test_frames_from_legs_clips_as_one_by_one_and_yaw_quat_as_stacked_columns():
     ref = np.column_stack([np.cos(yaw / 2), np.zeros(257), np.zeros(257), np.sin(yaw / 2)])
     assert np.array_equal(yaw_quat(yaw), ref)
     assert np.array_equal(yaw_quat(yaw[:1]), ref[:1])
+
+
+@pytest.mark.parametrize("floor", ['type="plane" size="10 10 .1"', 'type="box" size="10 10 .05"'])
+def test_a_walk_plays_back_on_a_floor_off_z0(tmp_path, floor):
+    """A scene moved up by 0.5 m (a plane or a box floor, its top at 0.5 m): the walk's body
+    frames are the same, moved up by 0.5 m, and stand on the floor (0 contacts)."""
+    walk = make_walk(n_steps=6)
+    plane = '<geom name="floor" type="plane" size="10 10 .1"/>'
+    shelf = '<geom name="box" type="box" size=".25 .25 .6" pos="3 1.2 .6"/>'
+    lifted = f'<geom name="hall" {floor} pos="0 0 {-0.05 if "box" in floor else 0}"/>{shelf}'
+    paths = [tmp_path / "flat.xml", tmp_path / "lifted.xml"]
+    paths[0].write_text(f"<mujoco><worldbody>{plane}{shelf}</worldbody></mujoco>")
+    paths[1].write_text(
+        f'<mujoco><worldbody><frame pos="0 0 0.5">{lifted}</frame></worldbody></mujoco>'
+    )
+    flat, up = (timeline_from_walk(walk, p, fps=30) for p in paths)
+    r = flat.jointmap.root
+    np.testing.assert_allclose(up.qpos[:, r + 2] - flat.qpos[:, r + 2], 0.5, atol=1e-12)
+    others = np.delete(np.arange(flat.model.nq), r + 2)
+    np.testing.assert_allclose(up.qpos[:, others], flat.qpos[:, others], atol=1e-12)
+    assert collision_report(flat) == [] and collision_report(up) == []

@@ -30,7 +30,7 @@ def test_the_plane_named_floor_wins_else_the_lowest():
 
 
 def test_no_floor_or_a_tilted_one_is_named():
-    model, data = _model('<geom type="box" size="1 1 1"/>')
+    model, data = _model('<geom type="box" size=".3 .3 1"/>')  # a box too small to be a floor
     with pytest.raises(SceneError, match="s: no floor"):
         find_floor(model, data, "s")
     model, data = _model('<geom name="ramp" type="plane" size="1 1 .1" euler="10 0 0"/>')
@@ -68,6 +68,23 @@ def test_flush_geoms_are_the_static_ones_within_the_level_tolerance_of_the_floor
     from mjwalk.world.floor import flush_geoms  # deferred: only this test uses it
 
     model = mujoco.MjModel.from_xml_string(FLUSH_SCENE)
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    mask = flush_geoms(model, data)
+    names = {mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) for g in mask.nonzero()[0]}
+    assert names == {"tape", "inlay"}
+
+
+def test_flush_geoms_on_a_slab_floor_are_those_on_its_top():
+    """A floor given as a box (no plane): the tape on its top is flush, the box itself is not."""
+    from mjwalk.world.floor import flush_geoms  # deferred: only this test uses it
+
+    xml = FLUSH_SCENE.replace(
+        '<geom name="floor" type="plane" size="5 5 .1"/>',
+        '<geom name="floor" type="box" size="5 5 .05" pos="0 0 -.05"/>',
+    )
+    assert xml != FLUSH_SCENE
+    model = mujoco.MjModel.from_xml_string(xml)
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     mask = flush_geoms(model, data)

@@ -125,18 +125,13 @@ def test_bilinear_lookup_is_vectorized(scenes_dir):
         (None, "not found"),
         ("<mujoco><worldbody><geom type='box' size='1 1 1'", "not a valid MJCF"),
         (
-            "<mujoco><worldbody><geom name='b' type='box' size='1 1 1'/></worldbody></mujoco>",
+            "<mujoco><worldbody><geom name='b' type='box' size='.3 .3 1'/></worldbody></mujoco>",
             "no floor",
         ),
         (
             "<mujoco><worldbody><geom type='plane' size='1 1 .1'/><geom type='bogus'/>"
             "</worldbody></mujoco>",
             "not a valid MJCF",
-        ),
-        (  # the body played back stood 0.5 m under it, every frame a contact
-            "<mujoco><worldbody><geom name='hall' type='plane' pos='0 0 0.5' size='4 4 .1'/>"
-            "</worldbody></mujoco>",
-            r"the floor 'hall' is at z = 0.5 m; people stand at z = 0: move the scene by -0.5 m",
         ),
     ],
 )
@@ -147,6 +142,25 @@ def test_bad_scenes(tmp_path, text, match):
     with pytest.raises(SceneError, match=match) as info:
         load_workplace(f)
     assert "bad.xml" in str(info.value)
+
+
+@pytest.mark.parametrize(
+    "floor",
+    [
+        "<geom name='hall' type='plane' pos='0 0 0.5' size='4 4 .1'/>",
+        "<geom name='hall' type='box' pos='0 0 0.45' size='4 4 .05'/>",
+    ],
+)
+def test_a_floor_off_z0_is_the_floor_at_its_height(tmp_path, floor):
+    """A floor plane or slab top at z = 0.5 m: the workplace's floor is there (the planners'
+    heights are above it, the body plays back at floor_z plus them), its obstacle band too."""
+    f = tmp_path / "lifted.xml"
+    crate = "<geom name='crate' type='box' size='.3 .3 .5' pos='1 1 1'/>"
+    f.write_text(f"<mujoco><worldbody>{floor}{crate}</worldbody></mujoco>")
+    wp = load_workplace(f)
+    assert wp.floor == "hall" and wp.floor_z == pytest.approx(0.5, abs=1e-12)
+    assert wp.floor_bounds == (-4.0, -4.0, 4.0, 4.0) and [o.name for o in wp.obstacles] == ["crate"]
+    assert [lv.height for lv in wp.levels.levels] == [pytest.approx(0.5, abs=1e-12)]
 
 
 @pytest.mark.parametrize(

@@ -1,0 +1,179 @@
+"""A floor modelled as a slab: a box, mesh or height field whose flat top is the floor (issue 47).
+
+Hand-written and CAD-exported MJCF often model the floor as a thin box
+(``<geom type="box" size="10 10 0.05" pos="0 0 -0.05"/>``) or a mesh slab instead of a plane.
+When a scene has no upward plane, :func:`find_slab_floor` chooses its floor among the tops of
+such slabs by the rule the scan pipeline uses for a cloud's floor (:mod:`mjwalk.scan.level`,
+after the seed paper's §3: the floor is "the large walkable region at the lowest level"): of the
+slab tops at least :data:`MIN_FLOOR_AREA` and :data:`FLOOR_SHARE` of the largest, the lowest.
+When that one is not also the largest (a large deck above a smaller low slab: which is the
+floor?), the scene is ambiguous and refused in one line naming both. A slab top inside another
+slab (a foundation block under the floor) is hidden and no candidate. The chosen slab's top
+then stands for the plane: it is the floor's height and extent, never an obstacle nor a walk
+surface of its own, and its shallow contacts with the humanoid are standing
+(:func:`mjwalk.timeline.collisions.floor_geoms`). Metres, world z up.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+from mjwalk.errors import SceneError
+from mjwalk.world.norms import LEVEL_TOLERANCE
+
+#: Smallest floor, square metres: room for one person to stand and turn (0.8 m x 1.25 m turning
+#: space of ISO 21542 rounded down), as ``mjwalk.scan.level.MIN_FLOOR_AREA``.
+MIN_FLOOR_AREA = 1.0
+#: A slab top is a candidate floor when at least this share of the largest slab top (the floor
+#: is the *large* walkable region at the lowest level, seed paper §3), as
+#: ``mjwalk.scan.level.FLOOR_SHARE``.
+FLOOR_SHARE = 0.25
+#: A mesh's top is its vertices within this of its highest one, metres (as
+#: ``mjwalk.world.surfaces.MESH_TOP``); a height field is flat when its elevations span no more.
+FLAT_TOP = 1e-3
+#: A box's axis is vertical (its top level) when its z component is within this of 1 (as the
+#: floor boxes of :mod:`mjwalk.world.floorholes`).
+UPRIGHT_EPS = 1e-9
+
+
+@dataclass(frozen=True)
+class Slab:
+    """A geom whose top is a horizontal face, as a candidate floor.
+
+    Attributes:
+        geom: its geom id.
+        name: its name (``"geom<id>"`` when unnamed).
+        top: its top face's height, world metres.
+        bottom: its lowest point's height, world metres.
+        xy: (K, 2) its top face's corners, world metres, counter-clockwise.
+    """
+
+    geom: int
+    name: str
+    top: float
+    bottom: float
+    xy: np.ndarray
+
+    @property
+    def area(self) -> float:
+        """The top face's area, square metres."""
+        x, y = self.xy[:, 0], self.xy[:, 1]
+        return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+
+    @property
+    def bounds(self) -> tuple[float, float, float, float]:
+        """(xmin, ymin, xmax, ymax) of the top face, world metres."""
+        lo, hi = self.xy.min(axis=0), self.xy.max(axis=0)
+        return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])
+
+
+def slab(model: mujoco.MjModel, data: mujoco.MjData, g: int) -> Slab | None:
+    """Geom ``g`` as a slab: a box with a vertical axis, a mesh whose highest vertices (within
+    :data:`FLAT_TOP`) span a face, or an upright height field whose elevations span at most
+    :data:`FLAT_TOP`; None for any other geom.
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done.
+        g: the geom id.
+
+    Returns:
+        The slab (its top face), or None.
+    """
+    gtype = int(model.geom_type[g])
+    pos, rot = data.geom_xpos[g], data.geom_xmat[g].reshape(3, 3)
+    name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom{g}"
+    if gtype == mujoco.mjtGeom.mjGEOM_BOX:
+        size = model.geom_size[g]
+        k = int(np.argmax(np.abs(rot[2])))
+        if abs(rot[2, k]) < 1 - UPRIGHT_EPS:
+            return None
+        a, b = [i for i in range(3) if i != k]
+        ea, eb = rot[:2, a] * size[a], rot[:2, b] * size[b]
+        c = pos[:2]
+        xy = np.array([c - ea - eb, c + ea - eb, c + ea + eb, c - ea + eb])
+        if ea[0] * eb[1] - ea[1] * eb[0] < 0:  # a mirrored frame: keep counter-clockwise
+            xy = xy[::-1]
+        half = float(np.abs(rot[2]) @ size)
+        return Slab(g, name, float(pos[2] + half), float(pos[2] - half), xy)
+    if gtype == mujoco.mjtGeom.mjGEOM_MESH:
+        m = int(model.geom_dataid[g])
+        v = model.mesh_vert[model.mesh_vertadr[m] : model.mesh_vertadr[m] + model.mesh_vertnum[m]]
+        w = np.asarray(v, dtype=float) @ rot.T + pos
+        top = w[w[:, 2] >= w[:, 2].max() - FLAT_TOP]
+        from scipy.spatial import ConvexHull, QhullError  # deferred: ~1 s import, meshes only
+
+        try:
+            hull = ConvexHull(top[:, :2]) if len(top) >= 3 else None
+        except QhullError:  # the highest vertices on a line: a ridge, no face
+            hull = None
+        if hull is None:
+            return None
+        return Slab(g, name, float(w[:, 2].max()), float(w[:, 2].min()), top[hull.vertices, :2])
+    if gtype == mujoco.mjtGeom.mjGEOM_HFIELD and rot[2, 2] > 1 - UPRIGHT_EPS:
+        h = int(model.geom_dataid[g])
+        rx, ry, elev, base = (float(s) for s in model.hfield_size[h])
+        n = int(model.hfield_nrow[h] * model.hfield_ncol[h])
+        z = np.asarray(model.hfield_data[model.hfield_adr[h] : model.hfield_adr[h] + n]) * elev
+        if float(np.ptp(z)) > FLAT_TOP:
+            return None
+        ex, ey = rot[:2, 0] * rx, rot[:2, 1] * ry
+        c = pos[:2]
+        xy = np.array([c - ex - ey, c + ex - ey, c + ex + ey, c - ex + ey])
+        return Slab(g, name, float(pos[2] + z.max()), float(pos[2] - base), xy)
+    return None
+
+
+def _hidden(s: Slab, others: list[Slab]) -> bool:
+    """Whether ``s``'s top lies inside another slab (its top within that one's height, its face
+    within that one's extent): no one stands on it."""
+    x0, y0, x1, y1 = s.bounds
+    for o in others:
+        if o.geom == s.geom or not (o.bottom < s.top < o.top - LEVEL_TOLERANCE):
+            continue
+        ox0, oy0, ox1, oy1 = o.bounds
+        if ox0 <= x0 and oy0 <= y0 and x1 <= ox1 and y1 <= oy1:
+            return True
+    return False
+
+
+def find_slab_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> Slab | None:
+    """The floor of a scene without a floor plane: the lowest large slab top (module docstring).
+
+    Only geoms fixed to the world (``body_weldid`` 0) are candidates, so a humanoid's or a
+    moving part's geoms never are.
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done.
+        label: the scene, for messages.
+
+    Returns:
+        The floor's slab, or None when no slab top is large enough (:data:`MIN_FLOOR_AREA`).
+
+    Raises:
+        SceneError: the lowest large slab top is not the largest one (naming both).
+    """
+    static = model.body_weldid[model.geom_bodyid] == 0
+    slabs = [s for g in np.flatnonzero(static).tolist() if (s := slab(model, data, g)) is not None]
+    slabs = [s for s in slabs if s.area >= MIN_FLOOR_AREA]
+    slabs = [s for s in slabs if not _hidden(s, slabs)]
+    if not slabs:
+        return None
+    largest = max(s.area for s in slabs)
+    large = [s for s in slabs if s.area >= FLOOR_SHARE * largest]
+    low = min(s.top for s in large)
+    level = [s for s in large if s.top <= low + LEVEL_TOLERANCE]  # the lowest level's slabs
+    floor = max(level, key=lambda s: (s.area, "floor" in s.name.lower(), -s.geom))
+    big = max(large, key=lambda s: (s.area, -s.geom))
+    if big.area > floor.area and big.top > low + LEVEL_TOLERANCE:
+        raise SceneError(
+            f"{label}: no clear floor: {floor.name!r} (top z = {floor.top:.4g} m, "
+            f"{floor.area:.3g} m^2) is the lowest large slab, {big.name!r} (top z = "
+            f"{big.top:.4g} m, {big.area:.3g} m^2) the largest; add a floor plane "
+            '(<geom name="floor" type="plane" .../>) at the floor\'s height'
+        )
+    return floor
