@@ -1,5 +1,6 @@
 """A foot turned about its sole and the trailing foot on a ramp (mjwalk.body.legs.rampreach)."""
 
+from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
@@ -356,3 +357,28 @@ def test_a_foot_whose_toes_reach_past_a_ramp_s_head_stands_on_the_level_there():
     walk.steps = [inside]  # carried whole by the plane: pitched to it, as before
     (on,) = level_feet_on_ramps(walk, [surf], g)
     assert on.land_pitch == pytest.approx(slope)
+
+
+def test_a_swing_off_a_foot_level_on_a_ramp_beside_the_walk_keeps_out_of_the_floor():
+    """A floor walk's left footprint over the low corner of a ramp beside it (8.6 deg, its
+    foot line along the walk) stands level on the highest point of the plane under its sole,
+    2.1 cm up (:func:`level_feet_on_ramps`). That height is the ramp's, no tread's: the swings
+    around it are no edged steps. Before, the next step of that foot was swung as down a stair:
+    held over its footprint until its toes, hanging down, cleared a nosing there is not, while
+    the pelvis walked on; the leg, stretched to its knee's limit, put the foot 9.9 mm into the
+    floor (0.8 m steps; generated halls 518 and 700's stress cycles, 3.1 and 1.1 cm). Now no
+    foot box corner (MuJoCo forward kinematics) is under the floor."""
+    walk = synthetic_walk(n_steps=8, step_len=0.8, step_time=0.55)
+    x = float(walk.steps[4].foot[0])  # a left footprint, 0.09 m left of the walk's line
+    plane = {"slope": 0.15, "uphill": np.pi / 2, "foot": [x, 0.0], "run": 2.0, "half_width": 0.2,
+             "z": 0.0, "sides": [-0.2, 0.2]}  # fmt: skip
+    walk = replace(walk, meta={**(walk.meta or {}), "ramps_beside": [plane]})
+    legs = legs_from_walk(walk, DEFAULT_STATURE)
+    least = np.inf
+    for _, m, data in posed(legs, DEFAULT_STATURE):
+        for name in ("foot_l", "toes_l", "foot_r", "toes_r"):
+            least = min(least, float(box_corners(m, data, m.geom(name).id)[:, 2].min()))
+    assert least > -1e-4  # before: -9.9 mm
+    surfs = step_surfaces(walk)
+    assert surfs[6].lift > 0.015 and surfs[6].lift_ramp  # the foot on the ramp's corner
+    assert not any(s.edged for s in surfs)

@@ -294,15 +294,15 @@ def _set_foot(out: list[StepSurfaces], k: int, h: float, pitch: float, landing: 
     above the floor, slope ``pitch`` radians) in ``out``, and the later steps that stand on or
     lift from the same footprint (in place)."""
     if landing:
-        out[k] = replace(out[k], land=h, land_pitch=pitch)
+        out[k] = replace(out[k], land=h, land_pitch=pitch, land_ramp=True)
         if k + 1 < len(out):  # the next step's stance foot
-            out[k + 1] = replace(out[k + 1], stance=h, stance_pitch=pitch)
+            out[k + 1] = replace(out[k + 1], stance=h, stance_pitch=pitch, stance_ramp=True)
         if k + 2 < len(out):
-            out[k + 2] = replace(out[k + 2], lift=h, lift_pitch=pitch)
+            out[k + 2] = replace(out[k + 2], lift=h, lift_pitch=pitch, lift_ramp=True)
     else:
-        out[k] = replace(out[k], stance=h, stance_pitch=pitch)
+        out[k] = replace(out[k], stance=h, stance_pitch=pitch, stance_ramp=True)
         if k + 1 < len(out):  # it swings next
-            out[k + 1] = replace(out[k + 1], lift=h, lift_pitch=pitch)
+            out[k + 1] = replace(out[k + 1], lift=h, lift_pitch=pitch, lift_ramp=True)
 
 
 def level_feet_on_ramps(
