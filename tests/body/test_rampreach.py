@@ -13,8 +13,6 @@ from mjwalk.body.legs.footcheck import box_corners, foot_points, posed
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.legheights import step_surfaces
 from mjwalk.body.legs.rampreach import (
-    CREST_CLEARANCE,
-    crest_ground,
     level_feet_on_ramps,
     level_planes,
     plane_heights,
@@ -118,7 +116,7 @@ def test_ramp_heel_strike_and_pelvis():
 )
 def test_ramp_walks_clear_the_ramp_s_top_edge(scenes_dir, ends, rng):
     """Up and down the shipped multi-level station's 5.5 deg ramp (planned) the animated walk
-    has no contact: the swing foot passes over the ramp's top edge (:func:`crest_ground`;
+    has no contact: the swing foot passes over the ramp's top edge (``crest.crest_ground``;
     before, its toes went 2-3 cm into the edge: 6 contacts up, 15 down; seed 4 down kept one,
     the toes 3.4 mm into the edge between heel and toe, before the crest itself was checked),
     and every footprint on the ramp is pitched to its true 5.5 deg (the route's plane; the
@@ -140,25 +138,6 @@ def test_plane_pitch_on_the_ramp_only():
     assert plane_pitch(plane, np.array([1.0, 3.0, 0.0])) == pytest.approx(0.0, abs=1e-12)
     assert plane_pitch(plane, np.array([1.0, 5.1, np.pi / 2])) == 0.0
     assert plane_pitch(plane, np.array([1.0, 1.9, np.pi / 2])) == 0.0
-
-
-def test_crest_checked_between_heel_and_toe():
-    """A foot pitched toes down with its heel over a platform and its toe over the ramp below
-    its top edge: the ground offset keeps the sole above the edge between them, by
-    CREST_CLEARANCE (a swing between a ramp and a level)."""
-    g = leg_geometry(DEFAULT_STATURE)
-    t = np.tan(np.deg2rad(5.5))
-    fr = StepFrames("l", "r", 0, 10, np.array([-0.5, 0.0, 0.0]), np.array([0.6, 0.0, 0.0]),
-                    np.zeros(3), False, False)  # fmt: skip
-    sf = StepSurfaces(lift=0.34, stance=0.34, land=0.34 - 0.6 * t, land_pitch=-np.deg2rad(5.5))
-    ankle = np.array([[-0.05, 0.0, 0.0]])  # the edge at x = 0, between heel and toe
-    half = np.tan(np.deg2rad(2.75))  # halfway through its pitch toward the ramp's
-    z = crest_ground(ankle, np.zeros(1), fr, sf, g, np.array([-np.deg2rad(2.75)]))
-    # the sole's height at the edge (0.05 m ahead of the ankle) is z - 0.05 tan(2.75 deg):
-    # on the edge, not 0.7 mm into it (heel, ankle and toe only), plus the clearance
-    assert z[0] - 0.05 * half == pytest.approx(0.34 + CREST_CLEARANCE)
-    level = StepSurfaces(lift=0.34, stance=0.34, land=0.34)
-    assert crest_ground(ankle, np.zeros(1), fr, level, g)[0] == pytest.approx(0.34)
 
 
 @pytest.mark.parametrize("slope_deg", [5.5, -5.5])
