@@ -50,6 +50,12 @@ def test_edged_and_pelvis_level():
     assert down.edged and down.pelvis_level() == (0.17, 0.0)
     assert not StepSurfaces(0.1, 0.1, 0.1).edged
     assert not StepSurfaces(0.0, 0.02, 0.04, land_pitch=0.05).edged  # a ramp has no edge
+    # a foot level on a ramp's plane beside its foot stands on no tread: no edge there
+    assert StepSurfaces(0.027, 0.0, 0.0).edged
+    assert not StepSurfaces(0.027, 0.0, 0.0, lift_ramp=True).edged
+    assert not StepSurfaces(0.0, 0.027, 0.0, stance_ramp=True).edged
+    # the other two still differ by a riser: an edge
+    assert StepSurfaces(0.027, 0.0, 0.17, lift_ramp=True).edged
 
 
 @pytest.mark.parametrize(

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from mjwalk.body.humanoid import leg_geometry
-from mjwalk.body.legs.footpivot import ball_offset, heel_rise, pivot_ankle, spin_print
+from mjwalk.body.legs.footpivot import ball_offset, heel_rise, pivot_ankle, sole_profile, spin_print
+from mjwalk.conventions import DEFAULT_STATURE
 
 
 def test_spin_print_keeps_its_pivot():
@@ -80,3 +81,20 @@ def test_ankle_kept_rows_raises_the_heel_as_far_as_the_shank_leans_on():
     assert out == pytest.approx(lean - lean[0], abs=1e-9)
     ankle_kept_rows(np.zeros(3), hip, np.zeros(n), *args, -0.01, out)
     assert out.min() >= -0.01 and out[-1] == -0.01
+
+
+def test_sole_profile_of_a_flat_and_a_pitched_foot():
+    """The heel, under the ankle, the ball and the toe tip: flat, the sole's length at the
+    ankle height below it; pitched, the same points turned about the ankle; toes turned up
+    about the ball lift only the tip."""
+    g = leg_geometry(DEFAULT_STATURE)
+    fwd, up = sole_profile(np.zeros(1), np.zeros(1), g)
+    np.testing.assert_allclose(fwd[0], [-g.foot_back, 0.0, ball_offset(g), g.foot_front])
+    np.testing.assert_allclose(up[0], -g.ankle_height)
+    p = -0.4
+    f2, u2 = sole_profile(np.array([p]), np.zeros(1), g)
+    turn = np.array([[np.cos(p), -np.sin(p)], [np.sin(p), np.cos(p)]])
+    np.testing.assert_allclose(np.stack([f2[0], u2[0]]), turn @ np.stack([fwd[0], up[0]]))
+    f3, u3 = sole_profile(np.array([p]), np.array([0.3]), g)
+    np.testing.assert_allclose(f3[0, :3], f2[0, :3])
+    assert u3[0, 3] > u2[0, 3]

@@ -1,5 +1,6 @@
 """A foot turned about its sole and the trailing foot on a ramp (mjwalk.body.legs.rampreach)."""
 
+from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
@@ -12,8 +13,6 @@ from mjwalk.body.legs.footcheck import box_corners, foot_points, posed
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.legheights import step_surfaces
 from mjwalk.body.legs.rampreach import (
-    CREST_CLEARANCE,
-    crest_ground,
     level_feet_on_ramps,
     level_planes,
     plane_heights,
@@ -117,7 +116,7 @@ def test_ramp_heel_strike_and_pelvis():
 )
 def test_ramp_walks_clear_the_ramp_s_top_edge(scenes_dir, ends, rng):
     """Up and down the shipped multi-level station's 5.5 deg ramp (planned) the animated walk
-    has no contact: the swing foot passes over the ramp's top edge (:func:`crest_ground`;
+    has no contact: the swing foot passes over the ramp's top edge (``crest.crest_ground``;
     before, its toes went 2-3 cm into the edge: 6 contacts up, 15 down; seed 4 down kept one,
     the toes 3.4 mm into the edge between heel and toe, before the crest itself was checked),
     and every footprint on the ramp is pitched to its true 5.5 deg (the route's plane; the
@@ -139,25 +138,6 @@ def test_plane_pitch_on_the_ramp_only():
     assert plane_pitch(plane, np.array([1.0, 3.0, 0.0])) == pytest.approx(0.0, abs=1e-12)
     assert plane_pitch(plane, np.array([1.0, 5.1, np.pi / 2])) == 0.0
     assert plane_pitch(plane, np.array([1.0, 1.9, np.pi / 2])) == 0.0
-
-
-def test_crest_checked_between_heel_and_toe():
-    """A foot pitched toes down with its heel over a platform and its toe over the ramp below
-    its top edge: the ground offset keeps the sole above the edge between them, by
-    CREST_CLEARANCE (a swing between a ramp and a level)."""
-    g = leg_geometry(DEFAULT_STATURE)
-    t = np.tan(np.deg2rad(5.5))
-    fr = StepFrames("l", "r", 0, 10, np.array([-0.5, 0.0, 0.0]), np.array([0.6, 0.0, 0.0]),
-                    np.zeros(3), False, False)  # fmt: skip
-    sf = StepSurfaces(lift=0.34, stance=0.34, land=0.34 - 0.6 * t, land_pitch=-np.deg2rad(5.5))
-    ankle = np.array([[-0.05, 0.0, 0.0]])  # the edge at x = 0, between heel and toe
-    half = np.tan(np.deg2rad(2.75))  # halfway through its pitch toward the ramp's
-    z = crest_ground(ankle, np.zeros(1), fr, sf, g, np.array([-np.deg2rad(2.75)]))
-    # the sole's height at the edge (0.05 m ahead of the ankle) is z - 0.05 tan(2.75 deg):
-    # on the edge, not 0.7 mm into it (heel, ankle and toe only), plus the clearance
-    assert z[0] - 0.05 * half == pytest.approx(0.34 + CREST_CLEARANCE)
-    level = StepSurfaces(lift=0.34, stance=0.34, land=0.34)
-    assert crest_ground(ankle, np.zeros(1), fr, level, g)[0] == pytest.approx(0.34)
 
 
 @pytest.mark.parametrize("slope_deg", [5.5, -5.5])
@@ -356,3 +336,28 @@ def test_a_foot_whose_toes_reach_past_a_ramp_s_head_stands_on_the_level_there():
     walk.steps = [inside]  # carried whole by the plane: pitched to it, as before
     (on,) = level_feet_on_ramps(walk, [surf], g)
     assert on.land_pitch == pytest.approx(slope)
+
+
+def test_a_swing_off_a_foot_level_on_a_ramp_beside_the_walk_keeps_out_of_the_floor():
+    """A floor walk's left footprint over the low corner of a ramp beside it (8.6 deg, its
+    foot line along the walk) stands level on the highest point of the plane under its sole,
+    2.1 cm up (:func:`level_feet_on_ramps`). That height is the ramp's, no tread's: the swings
+    around it are no edged steps. Before, the next step of that foot was swung as down a stair:
+    held over its footprint until its toes, hanging down, cleared a nosing there is not, while
+    the pelvis walked on; the leg, stretched to its knee's limit, put the foot 9.9 mm into the
+    floor (0.8 m steps; generated halls 518 and 700's stress cycles, 3.1 and 1.1 cm). Now no
+    foot box corner (MuJoCo forward kinematics) is under the floor."""
+    walk = synthetic_walk(n_steps=8, step_len=0.8, step_time=0.55)
+    x = float(walk.steps[4].foot[0])  # a left footprint, 0.09 m left of the walk's line
+    plane = {"slope": 0.15, "uphill": np.pi / 2, "foot": [x, 0.0], "run": 2.0, "half_width": 0.2,
+             "z": 0.0, "sides": [-0.2, 0.2]}  # fmt: skip
+    walk = replace(walk, meta={**(walk.meta or {}), "ramps_beside": [plane]})
+    legs = legs_from_walk(walk, DEFAULT_STATURE)
+    least = np.inf
+    for _, m, data in posed(legs, DEFAULT_STATURE):
+        for name in ("foot_l", "toes_l", "foot_r", "toes_r"):
+            least = min(least, float(box_corners(m, data, m.geom(name).id)[:, 2].min()))
+    assert least > -1e-4  # before: -9.9 mm
+    surfs = step_surfaces(walk)
+    assert surfs[6].lift > 0.015 and surfs[6].lift_ramp  # the foot on the ramp's corner
+    assert not any(s.edged for s in surfs)

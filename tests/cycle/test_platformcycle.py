@@ -98,7 +98,7 @@ def test_the_forty_run_batchs_ramp_crest_contacts_are_gone(run):
     toe-off; :func:`mjwalk.body.legs.rampreach.tilt`); the heel's rise at the ankle's
     dorsiflexion limit left up to 0.4 deg clipped (run 15,
     :data:`mjwalk.body.legs.legheights.HEEL_RISE_PASSES`); the flat swing's 0.5 mm toe dip
-    after toe-off (run 18, :data:`mjwalk.body.legs.rampreach.CREST_CLEARANCE`)."""
+    after toe-off (run 18, :data:`mjwalk.body.legs.crest.CREST_CLEARANCE`)."""
     spec = load_cycle_spec(cycle_file("multilevel_platform"))
     r = simulate_cycle(spec, run_generator(0, run), run=run, ergonomics=False)
     assert r.group == "older_adult"

@@ -44,6 +44,8 @@ class StepSurfaces:
         risers: the walk's riser edge lines, each (x, y, normal x, normal y, low, high,
             half width) (:func:`riser_lines`); empty: unknown, each edge may lie anywhere
             between the feet either side of it (:func:`_step_edges`).
+        lift_ramp, stance_ramp, land_ramp: that footprint stands on a ramp's plane, pitched
+            or level (:func:`~mjwalk.body.legs.rampreach.level_feet_on_ramps`), on no tread.
     """
 
     lift: float
@@ -53,14 +55,23 @@ class StepSurfaces:
     stance_pitch: float = 0.0
     land_pitch: float = 0.0
     risers: tuple[tuple[float, ...], ...] = ()
+    lift_ramp: bool = False
+    stance_ramp: bool = False
+    land_ramp: bool = False
 
     @property
     def edged(self) -> bool:
-        """Whether the step crosses a step edge: its surfaces differ in height and none is a
-        ramp (on a ramp the heights change without an edge)."""
-        zs = (self.lift, self.stance, self.land)
+        """Whether the step crosses a step edge: the surfaces of its footprints that stand on
+        no ramp's plane differ in height, and neither its lift nor its landing surface is a
+        ramp (on a ramp the heights change without an edge). A foot level on a ramp's plane
+        beside its foot, centimetres up, was swung off it as down a stair: held over its
+        footprint until its toes cleared a nosing there is not while the pelvis walked on,
+        the leg stretched to its knee's limit put the foot 3.1 / 1.1 cm into the floor
+        (generated halls 518 and 700, ``benchmarks/bench_unseen.py``)."""
+        zs = [z for z, on in ((self.lift, self.lift_ramp), (self.stance, self.stance_ramp),
+                              (self.land, self.land_ramp)) if not on]  # fmt: skip
         ramp = any(abs(p) > FLAT_PITCH for p in (self.lift_pitch, self.land_pitch))
-        return (max(zs) - min(zs)) > LEVEL_STEP and not ramp
+        return len(zs) > 1 and (max(zs) - min(zs)) > LEVEL_STEP and not ramp
 
     @property
     def descends(self) -> bool:

@@ -32,6 +32,28 @@ def ball_offset(geom: LegGeometry) -> float:
     return geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)
 
 
+def sole_profile(pitch, toe, geom: LegGeometry) -> tuple[np.ndarray, np.ndarray]:
+    """The sole's heel, the point under the ankle, the ball and the toe tip relative to the
+    ankle in the foot's vertical plane, for a foot pitched ``pitch`` with its toes turned by
+    ``toe`` about the ball.
+
+    Args:
+        pitch: (m,) the foot's pitch, radians, + toes up.
+        toe: (m,) the toe angle, radians, + toes up.
+        geom: the foot's lengths and ankle height.
+
+    Returns:
+        (forward, up): (m, 4) each, metres (heel, under the ankle, ball, toe tip).
+    """
+    p, t = np.asarray(pitch, float)[:, None], np.asarray(toe, float)[:, None]
+    d = np.array([-geom.foot_back, 0.0, ball_offset(geom)])[None, :]
+    fwd = d * np.cos(p) + geom.ankle_height * np.sin(p)
+    up = d * np.sin(p) - geom.ankle_height * np.cos(p)
+    tip = geom.foot_front - ball_offset(geom)
+    fwd = np.concatenate([fwd, fwd[:, 2:] + tip * np.cos(p + t)], axis=1)
+    return fwd, np.concatenate([up, up[:, 2:] + tip * np.sin(p + t)], axis=1)
+
+
 def pivot_ankle(foot: np.ndarray, pitch, geom: LegGeometry) -> np.ndarray:
     """Ankle positions of a foot on a footprint pitched by ``pitch``: negative (heel up)
     rolls about the ball, positive (toes up) about the heel; the pivot stays where it is on

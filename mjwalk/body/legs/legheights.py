@@ -14,8 +14,7 @@ false) then passes through :func:`lift_to_levels`:
   last edge only once past it; the edges lie between the footprints' surfaces (the toe of the
   foot behind, the heel of the foot ahead: on a stair with footprints on the treads' centres,
   the nosings), on a step down where its riser is (the walk's ``meta["edges"]``). Steps whose
-  surfaces are a ramp or level keep the flat swing, carried on the heights of its ends, or
-  over a ramp's top edge on the edge's height (:func:`~mjwalk.body.legs.rampreach.crest_ground`).
+  surfaces are a ramp or level keep the flat swing, on its ends' heights or a ramp's crest.
 * **The swing foot as its ankle holds it** (steps up): where the leg IK would ask the swing
   ankle for more dorsiflexion than its range (the shank leaning back behind a flexed knee),
   the foot hangs toes down by the excess and the swing is planned again with that pitch
@@ -37,10 +36,9 @@ false) then passes through :func:`lift_to_levels`:
   where a grounded ankle would dorsiflex past its range, the heel rises about the ball
   (:func:`heel_rise`) instead of the ball sinking into the surface.
 
-The knee and hip flexion this gives on a stair is not prescribed: it follows from the geometry
-(a leg that lands one riser up flexes its knee and hip by the riser). The published peaks are
-:data:`KNEE_PEAK_UP` and the others below; ``tests/body/test_legheights.py`` and
-``benchmarks/bench_levels.py`` hold the synthesis to them. World frame, metres, radians.
+The knee and hip flexion on a stair follows from the geometry, not prescribed; the published
+peaks (:data:`KNEE_PEAK_UP`, ...) hold it in ``tests/body/test_legheights.py`` and
+``benchmarks/bench_levels.py``. World frame, metres, radians.
 """
 
 from __future__ import annotations
@@ -52,6 +50,7 @@ import numpy as np
 
 import mjwalk.body.legs.rampreach as ramps
 from mjwalk.body.humanoid import ROM_DEG, LegGeometry
+from mjwalk.body.legs.crest import crest_ground
 from mjwalk.body.legs.curves import smoothstep
 from mjwalk.body.legs.edgeswing import (
     FLAT_PITCH,
@@ -65,7 +64,7 @@ from mjwalk.body.legs.edgeswing import (
 )
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.ik import KNEE_MIN, generic_joint, leg_ik_world
-from mjwalk.body.legs.rampreach import crest_ground, roll_foot, trailing_reach
+from mjwalk.body.legs.rampreach import roll_foot, trailing_reach
 from mjwalk.body.legs.rampstance import uphill_stance_raise
 from mjwalk.body.legs.stance import lower_to_reach
 from mjwalk.body.legs.steps import FootTracks, StepFrames
@@ -414,7 +413,8 @@ def _place_swings(frames, surfs, tr: LevelTracks, feet: FootTracks, flat_ankle,
         u = np.clip((flat_ankle[s][j, :2] - fr.lift[:2]) @ seg / max(float(seg @ seg), 1e-12), 0, 1)
         base = sf.lift + (sf.land - sf.lift) * u
         added = sf.lift_pitch + (sf.land_pitch - sf.lift_pitch) * u
-        crest = crest_ground(flat_ankle[s][j], feet.fyaw[s][j], fr, sf, geom, added)
+        crest = crest_ground(flat_ankle[s][j], feet.fyaw[s][j], fr, sf, geom, added,
+                             (feet.pitch[s][j], feet.toe[s][j]))  # fmt: skip
         feet.ankle[s][j, 2] += np.maximum(base, crest)
         feet.pitch[s][j] += added
     return plans

@@ -13,8 +13,8 @@ lowering: lowering it folds the leading leg, nearly straight at heel strike, by 
 plantarflexion at push-off (Lay et al., "The effects of sloped surfaces on locomotion: a
 kinematic and kinetic analysis", J Biomech 39:1621-1628 (2006); NOT verified here beyond the
 title). A swing between a ramp and a level is carried on the ground under its foot
-(:func:`crest_ground`), not below a ramp's top edge. World frame, metres, radians; a pitch is
-+ toes up.
+(:func:`~mjwalk.body.legs.crest.crest_ground`), not below a ramp's top edge. World frame,
+metres, radians; a pitch is + toes up.
 """
 
 from __future__ import annotations
@@ -294,15 +294,15 @@ def _set_foot(out: list[StepSurfaces], k: int, h: float, pitch: float, landing: 
     above the floor, slope ``pitch`` radians) in ``out``, and the later steps that stand on or
     lift from the same footprint (in place)."""
     if landing:
-        out[k] = replace(out[k], land=h, land_pitch=pitch)
+        out[k] = replace(out[k], land=h, land_pitch=pitch, land_ramp=True)
         if k + 1 < len(out):  # the next step's stance foot
-            out[k + 1] = replace(out[k + 1], stance=h, stance_pitch=pitch)
+            out[k + 1] = replace(out[k + 1], stance=h, stance_pitch=pitch, stance_ramp=True)
         if k + 2 < len(out):
-            out[k + 2] = replace(out[k + 2], lift=h, lift_pitch=pitch)
+            out[k + 2] = replace(out[k + 2], lift=h, lift_pitch=pitch, lift_ramp=True)
     else:
-        out[k] = replace(out[k], stance=h, stance_pitch=pitch)
+        out[k] = replace(out[k], stance=h, stance_pitch=pitch, stance_ramp=True)
         if k + 1 < len(out):  # it swings next
-            out[k + 1] = replace(out[k + 1], lift=h, lift_pitch=pitch)
+            out[k + 1] = replace(out[k + 1], lift=h, lift_pitch=pitch, lift_ramp=True)
 
 
 def level_feet_on_ramps(
@@ -532,69 +532,3 @@ def swings_clear_ramps(
             moved = True
         if not moved:
             break
-
-
-#: Clearance (m) kept over the ground of a swing between a ramp and a level: the flat swing's
-#: toe tip dips up to 0.54 mm below its ground in the sample after toe-off (measured on the
-#: multi-level platform cycle's floor steps, run 18), which on a ramp's last footprint put
-#: it 0.3 mm into the platform's edge at the ramp's top (run 18).
-CREST_CLEARANCE = 0.001
-
-
-def crest_ground(
-    ankle: np.ndarray,
-    yaw: np.ndarray,
-    fr: StepFrames,
-    sf: StepSurfaces,
-    geom: LegGeometry,
-    pitch: np.ndarray | None = None,
-) -> np.ndarray:
-    """The ground under a swing foot (its heel, ankle and toe tip along its heading) between
-    a ramp and a level, as the lower of the lift and landing surfaces' planes, each extended
-    from its footprint along its slope: over a ramp's top edge (a convex crest, up onto a
-    platform or down off it) that is the edge's height, which a height interpolated between
-    the footprints passes under (the toes 2-3 cm into the ramp's top edge on the shipped
-    multi-level station's ramp); at a ramp's foot and along a ramp it is at or below it.
-
-    With ``pitch`` (the swing foot's added pitch toward its landing surface's), each sole
-    point's ground is taken less the height that pitch moves it by (a point ``d`` ahead of
-    the ankle rises ``d tan(pitch)``), and the sole is also checked over the crest itself
-    where it lies between heel and toe (the lower of two planes is convex upward at the
-    crest: a sole pitched toes down off a platform, heel and toe clear, passed 3 mm into
-    the ramp's top edge between them; the multi-level station's stand_platform2 -> stand_ramp,
-    rng 4).
-
-    Args:
-        ankle: (m, 3) the swing ankle's positions (only x, y used), metres.
-        yaw: (m,) the foot's headings, radians from +x CCW.
-        fr: the step (its ``lift`` and ``land`` footprints (x, y, yaw)).
-        sf: its surfaces (heights and slopes).
-        geom: the foot's lengths.
-        pitch: (m,) the foot's added pitch, radians, + toes up (None: the foot level).
-
-    Returns:
-        (m,) the least height of the ankle's ground offset that keeps the sole's points above
-        the ground, metres; :data:`CREST_CLEARANCE` above it between surfaces of different
-        slopes (a ramp and a level).
-    """
-    f = np.stack([np.cos(yaw), np.sin(yaw)], -1)
-    tilt = np.zeros(len(yaw)) if pitch is None else np.tan(np.asarray(pitch, dtype=float))
-    lines = []  # each surface's height along the foot's line: a + b d
-    for pr, h, slope in ((fr.lift, sf.lift, sf.lift_pitch), (fr.land, sf.land, sf.land_pitch)):
-        head = np.array([np.cos(pr[2]), np.sin(pr[2])])
-        lines.append(
-            (
-                h + np.tan(slope) * ((ankle[:, :2] - np.asarray(pr[:2])) @ head),
-                np.tan(slope) * (f @ head),
-            )
-        )
-    (a0, b0), (a1, b1) = lines
-    points = [np.full(len(yaw), d) for d in (-geom.foot_back, 0.0, geom.foot_front)]
-    if pitch is not None:  # where the planes meet (the crest), between heel and toe
-        with np.errstate(divide="ignore", invalid="ignore"):
-            cross = np.where(np.abs(b1 - b0) > 1e-12, (a0 - a1) / (b1 - b0), 0.0)
-        points.append(np.clip(cross, -geom.foot_back, geom.foot_front))
-    out = np.full(len(yaw), -np.inf)
-    for d in points:
-        out = np.maximum(out, np.minimum(a0 + b0 * d, a1 + b1 * d) - d * tilt)
-    return out + (CREST_CLEARANCE if sf.lift_pitch != sf.land_pitch else 0.0)
