@@ -195,10 +195,11 @@ def _deepest_under_ramps(workplace, walk, stature=DEFAULT_STATURE):
 def test_an_edged_floor_swing_clears_a_ramp_beside_it(tmp_path):
     """Generated hall 8 (``benchmarks/bench_unseen.py``): the walk from the mezzanine to
     floor_1 ends past the ramp's low end; a foot landing on the ramp's foot (raised 1-2 cm,
-    standing level on its highest point) makes the next floor step an edged swing, planned over
+    standing level on its highest point) made the next floor step an edged swing, planned over
     that one height, and the swing foot, hanging toes down, passed 6.0 mm into the ramp's side
-    higher up its run (rng 4; 11.7 mm in the hall's 3-run cycle, run 0). Now every foot box
-    corner is above the ramp's plane (3.7 mm)."""
+    higher up its run (rng 4; 11.7 mm in the hall's 3-run cycle, run 0). A foot on a ramp's
+    plane stands on no tread now (``StepSurfaces.lift_ramp``): no edged swing there, and every
+    foot box corner is on or above the plane."""
     xml = generate_levels(8).write(tmp_path / "levels_8.xml")
     wp = load_workplace(xml, cache=False)
     walk = plan_walk(wp, "mezz_0", "floor_1", rng=4)
@@ -361,3 +362,28 @@ def test_a_swing_off_a_foot_level_on_a_ramp_beside_the_walk_keeps_out_of_the_flo
     surfs = step_surfaces(walk)
     assert surfs[6].lift > 0.015 and surfs[6].lift_ramp  # the foot on the ramp's corner
     assert not any(s.edged for s in surfs)
+
+
+def test_a_level_step_off_a_foot_raised_on_a_ramp_lands_on_its_heel():
+    """A floor walk past a ramp's low end (``meta["ramps_beside"]``): the left foot whose heel
+    is over the ramp's side stands level 2.7 cm up (the highest point of the plane under its
+    sole), and the next steps swing from and land on the floor. A foot on a ramp's plane
+    stands on no tread (``StepSurfaces.lift_ramp``), so they are no steps down off an edge:
+    each foot lands on its heel as on the floor, and the pelvis stays
+    within 5 mm of the floor walk's. Before, the step off the raised foot was taken for a
+    stair's step down: it landed flat, its ankle 4 cm farther ahead and 2 cm lower than at heel
+    strike, and the pelvis was lowered 4.0 cm to reach it (generated hall 201's seed-0 cycle,
+    run 1: 0.73 m steps, 5.2 cm lowered, more than REACH_DROP_MAX: a PlanningError)."""
+    g = leg_geometry(DEFAULT_STATURE)
+    plane = {"slope": np.radians(5.5), "uphill": np.pi / 2, "foot": [1.475, -0.1], "run": 3.0,
+             "half_width": 0.3, "z": 0.0}  # fmt: skip
+    walk = synthetic_walk(n_steps=8, step_len=0.73, step_time=0.55)
+    flat = legs_from_walk(walk, DEFAULT_STATURE)
+    walk.meta["ramps_beside"] = [plane]
+    surfs = step_surfaces(walk, g)
+    assert surfs[2].land > 0.02 and surfs[2].land_pitch == 0.0  # the raised level foot
+    assert not any(s.edged for s in surfs)
+    legs = legs_from_walk(walk, DEFAULT_STATURE)
+    for s in walk.steps:
+        assert legs.pitch[s.side][s.end] == pytest.approx(flat.pitch[s.side][s.end])  # heel
+    assert np.min(legs.root[:, 2] - flat.root[:, 2]) > -5e-3  # before: -40 mm
