@@ -299,8 +299,8 @@ def _set_foot(out: list[StepSurfaces], k: int, h: float, pitch: float, landing: 
         if k + 2 < len(out):
             out[k + 2] = replace(out[k + 2], lift=h, lift_pitch=pitch)
     else:  # the first step's lifting foot stands beside it (a standing start: step_surfaces)
-        first = {"lift": h, "lift_pitch": pitch} if k == 0 else {}
-        out[k] = replace(out[k], stance=h, stance_pitch=pitch, **first)
+        lift = (h, pitch) if k == 0 else (out[k].lift, out[k].lift_pitch)
+        out[k] = replace(out[k], stance=h, stance_pitch=pitch, lift=lift[0], lift_pitch=lift[1])
         if k + 1 < len(out):  # it swings next
             out[k + 1] = replace(out[k + 1], lift=h, lift_pitch=pitch)
 
