@@ -7,10 +7,11 @@ height differences up to 4 mm are no trip points) of the floor is floor
 workplace's ``z_range[0]``, 0.05 m, :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`) is an obstacle
 the planners walk round. Between them (a 10-20 mm mat, a 30-50 mm cable bridge) lies a top the
 planners walk over as floor, though a foot there cannot stand at the floor's height: it is
-above the body's own toe clearance in swing on level ground (minimum toe clearance 1-2 cm:
-Winter 1992, *The Biomechanics and Motor Control of Human Gait*; Begg et al. 2007, Gait Posture
-26: 1.3-1.6 cm), and the soles stood in it (a 15 mm mat before a bench: 47-115 foot-mat contacts
-per walk, 15 mm deep). A person stands on such a top as on a ramp's low end beside a floor walk
+about the body's own least toe clearance in swing on level ground or above it (1-2 cm:
+1.29 +- 0.45 cm, Winter 1992, Phys Ther 72:45-53; Begg et al. 2007, Gait Posture 25:191-198),
+so neither the legs' flat stance nor their flat swing clears it, and the soles stood in it
+(a 15 mm mat before a bench: 80-108 foot-mat contacts per walk onto or off it, 15 mm deep).
+A person stands on such a top as on a ramp's low end beside a floor walk
 (:mod:`mjwalk.plan.rampside`): each low top becomes a flat plane in the walk's
 ``meta["ramps_beside"]`` (marked :data:`~mjwalk.plan.rampside.LOW_KEY`), so the legs stand a
 footprint over it on its top (:func:`mjwalk.body.legs.rampreach.level_feet_on_ramps`: the whole
