@@ -123,8 +123,10 @@ def tops_under(workplace: Workplace, walk: WalkPath, stature: float) -> list[dic
 
     Returns:
         the planes (:func:`low_tops`) under a :data:`~mjwalk.plan.rampside.SOLE_GRID` point of a
-        floor footprint or of a swing between two of them, their sides widened by one grid
-        spacing across the foot (as for ramps beside a walk); [] without low tops.
+        floor footprint or of a swing between two of them, each grown on every side by the
+        grid's spacing along the foot (3.4 cm at 1.75 m), so a top's edge crossing a sole
+        between two grid points still carries it (rng 3 of the mat station: a foot beside the
+        15 mm mat's edge 16.6 mm into its side); [] without low tops.
     """
     tops = _scene_tops(workplace)
     if not tops or not walk.steps:
@@ -133,8 +135,15 @@ def tops_under(workplace: Workplace, walk: WalkPath, stature: float) -> list[dic
     soles = sole_points(walk, geom, 0.0)
     if not len(soles):
         return []
-    widen = geom.foot_width / (SOLE_GRID[1] - 1)
-    return [p for p in tops if np.any(over_ramp(p, soles, widen))]
+    pad = (geom.foot_back + geom.foot_front) / (SOLE_GRID[0] - 1)  # the grid's spacing along
+    out = []
+    for p in tops:
+        up = np.array([math.cos(p["uphill"]), math.sin(p["uphill"])])
+        foot = [float(v) for v in np.asarray(p["foot"]) - pad * up]
+        grown = {**p, "foot": foot, "run": p["run"] + 2 * pad, "half_width": p["half_width"] + pad}
+        if np.any(over_ramp(grown, soles)):
+            out.append(grown)
+    return out
 
 
 def with_low_tops(workplace: Workplace, walk: WalkPath, stature: float) -> WalkPath:
