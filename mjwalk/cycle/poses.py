@@ -15,6 +15,7 @@ from mjwalk.arms.chain import ARM_JOINTS, arm_joint
 from mjwalk.body.humanoid import pelvis_height
 from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.curves import smoothstep
+from mjwalk.plan.lowtops import with_low_tops
 from mjwalk.plan.rampside import with_ramps_beside
 from mjwalk.timeline.collisions import collision_report
 from mjwalk.timeline.frames import (
@@ -316,6 +317,7 @@ def walk_frames(
     """
     if ctx.on_levels:  # feet on a ramp's low end the walk cuts past (a flat cycle has none)
         walk = with_ramps_beside(ctx.workplace, walk, ctx.spec.stature)
+    walk = with_low_tops(ctx.workplace, walk, ctx.spec.stature)  # a mat, a cable bridge
     legs = legs_from_walk(walk, ctx.spec.stature)
     t = np.arange(1, math.floor(walk.duration * fps) + 1) / fps
     if len(t) == 0 or t[-1] < walk.duration - 1e-9:

@@ -40,6 +40,10 @@ CHORD_SPACING = 0.02
 #: The key of a walk's ``meta`` under which the planes of the ramps beside it are kept.
 META_KEY = "ramps_beside"
 
+#: The key that marks a plane of :data:`META_KEY` as a low top lying on the floor, not a ramp
+#: (:mod:`mjwalk.plan.lowtops`): flat, and no level beyond its edges.
+LOW_KEY = "low_top"
+
 
 def ramp_plane(c: Crossing, floor_z: float) -> dict:
     """A ramp crossing's plane as walks record it.
@@ -103,11 +107,19 @@ def _ramps(workplace: Workplace) -> list[Crossing]:
     return cache["_side_ramps"]
 
 
-def _soles(walk: WalkPath, geom, at: float) -> np.ndarray:
-    """World xy (k, 2) of the sole points of a walk's footprints standing at height ``at``
-    (metres above the floor) and of its swings between them (each foot's chord from the
-    footprint it leaves to the one it lands on, at the landing's heading), ``geom`` the
-    foot's lengths and width."""
+def sole_points(walk: WalkPath, geom, at: float) -> np.ndarray:
+    """The sole points of a walk's footprints standing at one height and of its swings
+    between them (each foot's chord from the footprint it leaves to the one it lands on, at
+    the landing's heading).
+
+    Args:
+        walk: the walk (its steps' footprints, ``foot_z``/``stance_z``).
+        geom: the foot's lengths and width (:func:`~mjwalk.anthropometry.leg_geometry`).
+        at: the footprints' height above the floor, metres (within ``LEVEL_TOLERANCE``).
+
+    Returns:
+        (k, 2) world xy, metres (:data:`SOLE_GRID` points per pose).
+    """
     along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
     across = np.linspace(-0.5, 0.5, SOLE_GRID[1]) * geom.foot_width
     poses = []
@@ -167,7 +179,7 @@ def head_heights(plane: dict, xy: np.ndarray) -> np.ndarray:
 
     Returns:
         (...,) the height above the floor, metres; -inf elsewhere (over the ramp, before its
-        foot, beside it).
+        foot, beside it; everywhere for a low top's plane, :data:`LOW_KEY`).
     """
     rel = np.asarray(xy, dtype=float) - np.asarray(plane["foot"], dtype=float)
     up, run = float(plane["uphill"]), float(plane["run"])
@@ -175,6 +187,8 @@ def head_heights(plane: dict, xy: np.ndarray) -> np.ndarray:
     across = np.abs(rel @ np.array([-math.sin(up), math.cos(up)]))
     half = float(plane.get("half_width", 0.0))
     past = (along > run) & ((across <= half) if half > 0.0 else True)
+    if plane.get(LOW_KEY):  # a low top (mjwalk.plan.lowtops): no level past its far edge
+        past = np.zeros_like(along, dtype=bool)
     top = float(plane.get("z", 0.0)) + math.tan(float(plane["slope"])) * run
     return np.where(past, top, -np.inf)
 
@@ -211,7 +225,7 @@ def ramps_beside(
             continue
         at = round(plane["z"], 6)
         if at not in soles:
-            soles[at] = _soles(walk, geom, plane["z"])
+            soles[at] = sole_points(walk, geom, plane["z"])
         if np.any(over_ramp(surface_plane(plane), soles[at], widen)):
             out.append(plane)
     return out

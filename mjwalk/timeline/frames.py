@@ -24,6 +24,7 @@ from mjwalk.body.legs import LegMotion, legs_from_walk
 from mjwalk.body.legs.curves import smoothstep
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
+from mjwalk.plan.lowtops import with_low_tops
 from mjwalk.plan.rampside import with_ramps_beside
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.timeline.timeline import Event, Timeline
@@ -102,6 +103,7 @@ def timeline_from_walk(
     if not isinstance(scene, mujoco.MjSpec):  # feet on a ramp's low end the walk cuts past
         wp = shared_workplace(scene)
         walk, floor_z = with_ramps_beside(wp, walk, stature), wp.floor_z
+        walk = with_low_tops(wp, walk, stature)  # and on a mat or cable bridge under it
     legs = legs_from_walk(walk, stature)
     t = np.arange(0.0, walk.duration + 1e-9, 1.0 / fps)
     qpos = frames_from_legs(model, jm, legs, t, stature, arms, rng)

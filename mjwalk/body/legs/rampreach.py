@@ -290,17 +290,19 @@ def ramp_support(planes: list[dict], print_, geom: LegGeometry) -> tuple[float, 
 
 
 def _set_foot(out: list[StepSurfaces], k: int, h: float, pitch: float, landing: bool) -> None:
-    """Step ``k``'s landing (``landing``) or stance footprint on the surface (``h`` metres
-    above the floor, slope ``pitch`` radians) in ``out``, and the later steps that stand on or
-    lift from the same footprint (in place)."""
+    """Step ``k``'s landing (``landing``) or stance footprint on the surface (``h`` m above the
+    floor, slope ``pitch`` rad) in ``out``, and the later steps on or lifting from it (in place)."""
     if landing:
         out[k] = replace(out[k], land=h, land_pitch=pitch, land_ramp=True)
         if k + 1 < len(out):  # the next step's stance foot
             out[k + 1] = replace(out[k + 1], stance=h, stance_pitch=pitch, stance_ramp=True)
         if k + 2 < len(out):
             out[k + 2] = replace(out[k + 2], lift=h, lift_pitch=pitch, lift_ramp=True)
-    else:
-        out[k] = replace(out[k], stance=h, stance_pitch=pitch, stance_ramp=True)
+    else:  # the first step's lifting foot stands beside it (a standing start: step_surfaces)
+        sf = out[k]
+        lift = (h, pitch, True) if k == 0 else (sf.lift, sf.lift_pitch, sf.lift_ramp)
+        out[k] = replace(sf, stance=h, stance_pitch=pitch, stance_ramp=True, lift=lift[0],
+                         lift_pitch=lift[1], lift_ramp=lift[2])  # fmt: skip
         if k + 1 < len(out):  # it swings next
             out[k + 1] = replace(out[k + 1], lift=h, lift_pitch=pitch, lift_ramp=True)
 

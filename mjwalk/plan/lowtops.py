@@ -1,0 +1,168 @@
+"""Low tops on the floor (issue 47): anti-fatigue mats, cable bridges, floor plates -- static
+geoms lying on the floor whose top is neither flush with it nor in the obstacle band.
+
+A geom whose whole height lies within ``norms.LEVEL_TOLERANCE`` (4 mm; ASR A1.5/1,2 §3.4:
+height differences up to 4 mm are no trip points) of the floor is floor
+(:func:`mjwalk.world.floor.flush_geoms`); one reaching into the obstacle band (from the
+workplace's ``z_range[0]``, 0.05 m, :data:`mjwalk.world.floor.OBSTACLE_Z_RANGE`) is an obstacle
+the planners walk round. Between them (a 10-20 mm mat, a 30-50 mm cable bridge) lies a top the
+planners walk over as floor, though a foot there cannot stand at the floor's height: it is
+about the body's own least toe clearance in swing on level ground or above it (1-2 cm:
+1.29 +- 0.45 cm, Winter 1992, Phys Ther 72:45-53; Begg et al. 2007, Gait Posture 25:191-198),
+so neither the legs' flat stance nor their flat swing clears it, and the soles stood in it
+(a 15 mm mat before a bench: 80-108 foot-mat contacts per walk onto or off it, 15 mm deep).
+A person stands on such a top as on a ramp's low end beside a floor walk
+(:mod:`mjwalk.plan.rampside`): each low top becomes a flat plane in the walk's
+``meta["ramps_beside"]`` (marked :data:`~mjwalk.plan.rampside.LOW_KEY`), so the legs stand a
+footprint over it on its top (:func:`mjwalk.body.legs.rampreach.level_feet_on_ramps`: the whole
+sole over it, flat on it; part of it, level on its top), lift the pelvis with the feet as on
+levels, and swing the sole over it (``swing_over_ramps``, ``swings_clear_ramps``; the edge swing
+where a foot's two grounds differ by more than :data:`~mjwalk.body.legs.edgeswing.LEVEL_STEP`).
+A geom's top is the top of its bounding box in its own frame when that frame's z axis is
+vertical (a box's, a mesh's or a plate's top face, turned about z), else of its world bounding
+box (conservative). Metres above the floor, radians; world frame.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import mujoco
+import numpy as np
+
+from mjwalk.anthropometry import leg_geometry
+from mjwalk.plan.rampside import LOW_KEY, META_KEY, SOLE_GRID, over_ramp, sole_points
+from mjwalk.plan.walkpath import WalkPath
+from mjwalk.world.floor import flush_geoms
+from mjwalk.world.norms import LEVEL_TOLERANCE
+from mjwalk.world.workplace import Workplace
+
+#: The least |z| of a geom frame's z axis for its own bounding box's top to be taken as a
+#: horizontal top: within 1 % of vertical, as walk surfaces are found
+#: (:mod:`mjwalk.world.surfaces`).
+VERTICAL_MIN = 0.9999
+
+
+def low_tops(model: mujoco.MjModel, floor_z: float, band: float) -> list[dict]:
+    """The low tops lying on a floor: every static geom (welded to the world) that can
+    collide, not flush with the floor, whose bottom lies within ``LEVEL_TOLERANCE`` of the
+    floor and whose top is more than ``LEVEL_TOLERANCE`` above it and at most ``band``.
+
+    Args:
+        model: the compiled scene.
+        floor_z: the floor's world height, metres.
+        band: the obstacle band's bottom above the floor, metres (the workplace's
+            ``z_range[0]``).
+
+    Returns:
+        each top as a flat plane in :func:`~mjwalk.plan.rampside.ramp_plane`'s form (``slope``
+        0, ``uphill`` its frame's x heading, ``foot`` the middle of its -x edge, ``run`` its
+        length, ``half_width`` half its width, ``z`` its height above the floor, metres) with
+        ``low_top`` (its geom's id); [] when there are none.
+    """
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    up = data.geom_xmat[:, 6:9]  # the geom axes' world z parts
+    centre = data.geom_xpos[:, 2] + np.einsum("gj,gj->g", up, model.geom_aabb[:, :3])
+    half = np.einsum("gj,gj->g", np.abs(up), model.geom_aabb[:, 3:])
+    bottom, top = centre - half - floor_z, centre + half - floor_z
+    static = model.body_weldid[model.geom_bodyid] == 0
+    collides = (model.geom_contype != 0) | (model.geom_conaffinity != 0)
+    plane = model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE
+    low = (np.abs(bottom) <= LEVEL_TOLERANCE) & (top > LEVEL_TOLERANCE) & (top <= band)
+    pick = low & static & collides & ~plane & ~flush_geoms(model, data)
+    out = []
+    for g in np.flatnonzero(pick).tolist():
+        mat = data.geom_xmat[g].reshape(3, 3)
+        box = model.geom_aabb[g]
+        lo, hi = box[:3] - box[3:], box[:3] + box[3:]
+        if abs(mat[2, 2]) >= VERTICAL_MIN:
+            corners = np.array([[x, y, 0.0] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])])
+        else:  # the world bounding box of its eight corners
+            c8 = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1])
+                           for z in (lo[2], hi[2])])  # fmt: skip
+            w = c8 @ mat.T
+            corners = np.array([[x, y, 0.0] for x in (w[:, 0].min(), w[:, 0].max())
+                                for y in (w[:, 1].min(), w[:, 1].max())])  # fmt: skip
+            mat = np.eye(3)
+        xy = corners @ mat.T[:, :2] + data.geom_xpos[g, :2]  # (-,-), (-,+), (+,-), (+,+)
+        axis = xy[2] - xy[0]
+        run = float(np.hypot(*axis))
+        width = float(np.hypot(*(xy[1] - xy[0])))
+        foot = 0.5 * (xy[0] + xy[1])
+        out.append(
+            {
+                "slope": 0.0,
+                "uphill": math.atan2(float(axis[1]), float(axis[0])),
+                "foot": [float(v) for v in foot],
+                "run": run,
+                "half_width": 0.5 * width,
+                "z": float(top[g]),
+                LOW_KEY: int(g),
+            }
+        )
+    return out
+
+
+def _scene_tops(workplace: Workplace) -> list[dict]:
+    """The scene's low tops, kept on the workplace."""
+    cache = workplace.__dict__
+    if "_low_tops" not in cache:
+        cache["_low_tops"] = low_tops(workplace.model, workplace.floor_z, workplace.z_range[0])
+    return cache["_low_tops"]
+
+
+def tops_under(workplace: Workplace, walk: WalkPath, stature: float) -> list[dict]:
+    """The low tops a floor walk's soles stand or swing over.
+
+    Args:
+        workplace: the scene.
+        walk: the walk (its footprints at the floor's height, ``foot_z``/``stance_z`` 0).
+        stature: the walker's stature, metres (the foot's size).
+
+    Returns:
+        the planes (:func:`low_tops`) under a :data:`~mjwalk.plan.rampside.SOLE_GRID` point of a
+        floor footprint or of a swing between two of them, each grown on every side by the
+        grid's spacing along the foot (3.4 cm at 1.75 m), so a top's edge crossing a sole
+        between two grid points still carries it (rng 3 of the mat station: a foot beside the
+        15 mm mat's edge 16.6 mm into its side); [] without low tops.
+    """
+    tops = _scene_tops(workplace)
+    if not tops or not walk.steps:
+        return []
+    geom = leg_geometry(stature)
+    soles = sole_points(walk, geom, 0.0)
+    if not len(soles):
+        return []
+    pad = (geom.foot_back + geom.foot_front) / (SOLE_GRID[0] - 1)  # the grid's spacing along
+    out = []
+    for p in tops:
+        up = np.array([math.cos(p["uphill"]), math.sin(p["uphill"])])
+        foot = [float(v) for v in np.asarray(p["foot"]) - pad * up]
+        grown = {**p, "foot": foot, "run": p["run"] + 2 * pad, "half_width": p["half_width"] + pad}
+        if np.any(over_ramp(grown, soles)):
+            out.append(grown)
+    return out
+
+
+def with_low_tops(workplace: Workplace, walk: WalkPath, stature: float) -> WalkPath:
+    """``walk`` with the low tops under it added to its ``meta["ramps_beside"]``.
+
+    Args:
+        workplace: the scene the walk was planned in.
+        walk: the walk.
+        stature: the walker's stature, metres.
+
+    Returns:
+        ``walk`` itself when no low top lies under it (or they are named already), else a copy
+        whose ``meta`` names them.
+    """
+    meta = walk.meta or {}
+    have = meta.get(META_KEY, [])
+    if any(LOW_KEY in p for p in have):
+        return walk
+    tops = tops_under(workplace, walk, stature)
+    if not tops:
+        return walk
+    return replace(walk, meta={**meta, META_KEY: [*have, *tops]})
