@@ -6,7 +6,13 @@ import mujoco
 import pytest
 
 from mjwalk.errors import SceneError
-from mjwalk.world.floor import MAX_FLOOR_NODES, check_floor_nodes, check_floor_size, find_floor
+from mjwalk.world.floor import (
+    MAX_FLOOR_NODES,
+    check_floor_nodes,
+    check_floor_size,
+    find_floor,
+    flush_geoms,
+)
 
 
 def _model(body: str) -> tuple[mujoco.MjModel, mujoco.MjData]:
@@ -64,29 +70,24 @@ FLUSH_SCENE = """<mujoco><worldbody><geom name="floor" type="plane" size="5 5 .1
 </worldbody></mujoco>"""
 
 
-def test_flush_geoms_are_the_static_ones_within_the_level_tolerance_of_the_floor():
-    from mjwalk.world.floor import flush_geoms  # deferred: only this test uses it
-
-    model = mujoco.MjModel.from_xml_string(FLUSH_SCENE)
+def _flush_names(xml: str) -> set[str]:
+    """The names of a scene's geoms flush with its floor."""
+    model = mujoco.MjModel.from_xml_string(xml)
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     mask = flush_geoms(model, data)
-    names = {mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) for g in mask.nonzero()[0]}
-    assert names == {"tape", "inlay"}
+    return {mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) for g in mask.nonzero()[0]}
+
+
+def test_flush_geoms_are_the_static_ones_within_the_level_tolerance_of_the_floor():
+    assert _flush_names(FLUSH_SCENE) == {"tape", "inlay"}
 
 
 def test_flush_geoms_on_a_slab_floor_are_those_on_its_top():
     """A floor given as a box (no plane): the tape on its top is flush, the box itself is not."""
-    from mjwalk.world.floor import flush_geoms  # deferred: only this test uses it
-
     xml = FLUSH_SCENE.replace(
         '<geom name="floor" type="plane" size="5 5 .1"/>',
         '<geom name="floor" type="box" size="5 5 .05" pos="0 0 -.05"/>',
     )
     assert xml != FLUSH_SCENE
-    model = mujoco.MjModel.from_xml_string(xml)
-    data = mujoco.MjData(model)
-    mujoco.mj_kinematics(model, data)
-    mask = flush_geoms(model, data)
-    names = {mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) for g in mask.nonzero()[0]}
-    assert names == {"tape", "inlay"}
+    assert _flush_names(xml) == {"tape", "inlay"}
