@@ -37,17 +37,12 @@ from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
 from mjwalk.errors import ScanError
+from mjwalk.world.norms import FLOOR_SHARE, MIN_FLOOR_AREA
 
 #: Edge of the voxel whose points give one local-PCA normal, metres (see the module docstring).
 VOXEL = 0.10
 #: Walk surfaces: normal within this angle of up, degrees (the seed paper's epsilon, §3 A2).
 HORIZONTAL_DEG = 20.0
-#: Smallest floor, square metres: room for one person to stand and turn (0.8 m x 1.25 m
-#: turning space of ISO 21542 rounded down).
-MIN_FLOOR_AREA = 1.0
-#: A walk surface below the floor is ignored when smaller than this share of the largest walk
-#: surface (the floor is the *large* walkable region at the lowest level, seed paper §3).
-FLOOR_SHARE = 0.25
 #: Voxels whose centroid is farther than this from the fitted floor plane are refit outliers,
 #: metres (6 sigma of a 5 mm range noise).
 PLANE_TOL = 0.03

@@ -96,6 +96,14 @@ BARRIER_FREE_RAMP_SLOPE = math.atan(0.06)
 #: 95th-percentile man, about 0.52 m (DIN 33402-2), rounded up to 0.6 m, as the scan's
 #: ``mjwalk.scan.level.STAND_AREA`` (0.6 m square) is.
 STAND_WIDTH = 0.60
+#: Smallest floor, square metres: room for one person to stand and turn (0.8 m x 1.25 m
+#: turning space of ISO 21542 rounded down); a scan's floor (``mjwalk.scan.level``) and a slab
+#: floor (``mjwalk.world.slabfloor``) are at least this large.
+MIN_FLOOR_AREA = 1.0
+#: The floor is the *large* walkable region at the lowest level (seed paper §3): a walk surface
+#: smaller than this share of the largest is no floor (a scan's surfaces below the floor are
+#: ignored, a slab top is no candidate).
+FLOOR_SHARE = 0.25
 #: Clear headroom over a walk surface, metres: DIN 18065 lichte Treppendurchgangshöhe, at least
 #: 2.00 m; ASR A1.8 asks the same clear height over walkways (not verified here).
 CLEAR_HEADROOM = 2.00

@@ -22,15 +22,8 @@ import mujoco
 import numpy as np
 
 from mjwalk.errors import SceneError
-from mjwalk.world.norms import LEVEL_TOLERANCE
+from mjwalk.world.norms import FLOOR_SHARE, LEVEL_TOLERANCE, MIN_FLOOR_AREA
 
-#: Smallest floor, square metres: room for one person to stand and turn (0.8 m x 1.25 m turning
-#: space of ISO 21542 rounded down), as ``mjwalk.scan.level.MIN_FLOOR_AREA``.
-MIN_FLOOR_AREA = 1.0
-#: A slab top is a candidate floor when at least this share of the largest slab top (the floor
-#: is the *large* walkable region at the lowest level, seed paper §3), as
-#: ``mjwalk.scan.level.FLOOR_SHARE``.
-FLOOR_SHARE = 0.25
 #: A mesh's top is its vertices within this of its highest one, metres (as
 #: ``mjwalk.world.surfaces.MESH_TOP``); a height field is flat when its elevations span no more.
 FLAT_TOP = 1e-3
