@@ -34,7 +34,7 @@ import numpy as np
 from mjwalk.anthropometry import leg_geometry
 from mjwalk.plan.rampside import LOW_KEY, META_KEY, SOLE_GRID, over_ramp, sole_points
 from mjwalk.plan.walkpath import WalkPath
-from mjwalk.world.floor import flush_geoms
+from mjwalk.world.floor import flush_geoms, geom_z_extents
 from mjwalk.world.norms import LEVEL_TOLERANCE
 from mjwalk.world.workplace import Workplace
 
@@ -63,10 +63,7 @@ def low_tops(model: mujoco.MjModel, floor_z: float, band: float) -> list[dict]:
     """
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
-    up = data.geom_xmat[:, 6:9]  # the geom axes' world z parts
-    centre = data.geom_xpos[:, 2] + np.einsum("gj,gj->g", up, model.geom_aabb[:, :3])
-    half = np.einsum("gj,gj->g", np.abs(up), model.geom_aabb[:, 3:])
-    bottom, top = centre - half - floor_z, centre + half - floor_z
+    bottom, top = (z - floor_z for z in geom_z_extents(model, data))
     static = model.body_weldid[model.geom_bodyid] == 0
     collides = (model.geom_contype != 0) | (model.geom_conaffinity != 0)
     plane = model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE

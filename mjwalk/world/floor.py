@@ -254,17 +254,32 @@ def flush_geoms(model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
         (ngeom,) bool mask.
     """
     plane = model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE
-    up = data.geom_xmat[:, 6:9]  # each geom's rotation's third row: its axes' world z parts
-    floors = data.geom_xpos[plane & (up[:, 2] > FLOOR_MIN_NZ), 2].tolist()
+    floors = data.geom_xpos[plane & (data.geom_xmat[:, 8] > FLOOR_MIN_NZ), 2].tolist()
     slabs = slab_floor_mask(model)
     for g in np.flatnonzero(slabs).tolist():
-        top = slab(model, data, g)
-        if top is not None:
-            floors.append(top.top)
-    centre = data.geom_xpos[:, 2] + np.einsum("gj,gj->g", up, model.geom_aabb[:, :3])
-    half = np.einsum("gj,gj->g", np.abs(up), model.geom_aabb[:, 3:])
+        face = slab(model, data, g)
+        if face is not None:
+            floors.append(face.top)
+    bottom, top = geom_z_extents(model, data)
     static = model.body_weldid[model.geom_bodyid] == 0
     out = np.zeros(model.ngeom, dtype=bool)
     for z in floors:
-        out |= (centre - half >= z - LEVEL_TOLERANCE) & (centre + half <= z + LEVEL_TOLERANCE)
+        out |= (bottom >= z - LEVEL_TOLERANCE) & (top <= z + LEVEL_TOLERANCE)
     return out & static & ~plane & ~slabs
+
+
+def geom_z_extents(model: mujoco.MjModel, data: mujoco.MjData) -> tuple[np.ndarray, np.ndarray]:
+    """Every geom's lowest and highest world z: MuJoCo's ``geom_aabb`` (in the geom's frame)
+    turned into the world (exact for a geom upright or turned about z, conservative otherwise).
+
+    Args:
+        model: the compiled scene.
+        data: its data, kinematics done.
+
+    Returns:
+        (ngeom,) bottoms and (ngeom,) tops, world metres.
+    """
+    up = data.geom_xmat[:, 6:9]  # each geom's rotation's third row: its axes' world z parts
+    centre = data.geom_xpos[:, 2] + np.einsum("gj,gj->g", up, model.geom_aabb[:, :3])
+    half = np.einsum("gj,gj->g", np.abs(up), model.geom_aabb[:, 3:])
+    return centre - half, centre + half

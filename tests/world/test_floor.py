@@ -12,6 +12,7 @@ from mjwalk.world.floor import (
     check_floor_size,
     find_floor,
     flush_geoms,
+    geom_z_extents,
 )
 
 
@@ -91,3 +92,16 @@ def test_flush_geoms_on_a_slab_floor_are_those_on_its_top():
     )
     assert xml != FLUSH_SCENE
     assert _flush_names(xml) == {"tape", "inlay"}
+
+
+def test_geom_z_extents_are_the_world_heights_of_upright_and_turned_geoms():
+    xml = """<mujoco><worldbody><geom name="floor" type="plane" size="5 5 .1"/>
+<geom name="mat" type="box" size=".75 .45 .0075" pos="0 1 .0075" euler="0 0 30"/>
+<geom name="beam" type="box" size=".5 .1 .1" pos="1 0 1" euler="0 90 0"/>
+</worldbody></mujoco>"""
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    bottom, top = geom_z_extents(model, data)
+    assert (bottom[1], top[1]) == pytest.approx((0.0, 0.015))  # turned about z: exact
+    assert (bottom[2], top[2]) == pytest.approx((0.5, 1.5))  # stood on end: its length
