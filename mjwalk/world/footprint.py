@@ -199,6 +199,19 @@ def _local_points(model: mujoco.MjModel, g: int) -> np.ndarray | None:
     return None
 
 
+def polygon_area(v: np.ndarray) -> float:
+    """The area of a simple polygon (the shoelace formula).
+
+    Args:
+        v: (K, 2) its corners in order (either way round), metres.
+
+    Returns:
+        Its area, square metres.
+    """
+    x, y = v[:, 0], v[:, 1]
+    return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+
+
 def hull_edges(simplices: np.ndarray) -> np.ndarray:
     """A 3-D convex hull's edges, each once, in ascending order of the pair: the triangles'
     sides (i, i + 1 mod 3) sorted within each pair, de-duplicated and sorted lexicographically

@@ -22,6 +22,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.errors import SceneError
+from mjwalk.world.footprint import polygon_area
 from mjwalk.world.norms import FLOOR_SHARE, LEVEL_TOLERANCE, MIN_FLOOR_AREA
 
 #: A mesh's top is its vertices within this of its highest one, metres (as
@@ -53,8 +54,7 @@ class Slab:
     @property
     def area(self) -> float:
         """The top face's area, square metres."""
-        x, y = self.xy[:, 0], self.xy[:, 1]
-        return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+        return polygon_area(self.xy)
 
     @property
     def bounds(self) -> tuple[float, float, float, float]:

@@ -32,7 +32,7 @@ from mjwalk.errors import InputError
 from mjwalk.world.contacts import MIN_CROSSING, reachable, surface_contacts
 from mjwalk.world.floor import find_floor, floor_rect, floor_top
 from mjwalk.world.floorholes import FloorBoxes, floor_boxes, opening_area
-from mjwalk.world.footprint import Footprint, geom_footprint
+from mjwalk.world.footprint import Footprint, geom_footprint, polygon_area
 from mjwalk.world.norms import (
     CLEAR_HEADROOM,
     CONTACT_GAP,
@@ -259,11 +259,6 @@ def _calipers(v: np.ndarray) -> tuple[float, float]:
     return best
 
 
-def _polygon_area(v: np.ndarray) -> float:
-    x, y = v[:, 0], v[:, 1]
-    return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
-
-
 class _Geoms:
     """The scene's geoms for the overhead search: world bounding boxes and whole footprints."""
 
@@ -352,7 +347,7 @@ def _surface_from_face(
         kind=kind,
         z=zc,
         footprint=Footprint(name, g, xy),
-        area=_polygon_area(xy),
+        area=polygon_area(xy),
         centre=(float(centre[0]), float(centre[1])),
         slope=0.0 if horizontal else slope,
         uphill=0.0 if horizontal else float(math.atan2(-n[1], -n[0])),

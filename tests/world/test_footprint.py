@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import mujoco
 import numpy as np
+import pytest
 
-from mjwalk.world.footprint import Footprint, geom_footprint
+from mjwalk.world.footprint import Footprint, geom_footprint, polygon_area
 
 
 def test_polygon_and_rounded_segment_signed_distances():
@@ -111,3 +112,10 @@ def test_a_kept_footprint_equals_a_fresh_one_for_every_slab():
         assert got.radius == want.radius
         assert got.is_polygon != got.vertices.flags.writeable  # kept ones read-only
     assert geom_footprint(model, data, 0, 0.4, 2.0) is geom_footprint(model, data, 0, 0.4, 3.0)
+
+
+def test_polygon_area_either_way_round():
+    square = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 1.5], [0.0, 1.5]])
+    assert polygon_area(square) == pytest.approx(3.0)
+    assert polygon_area(square[::-1]) == pytest.approx(3.0)
+    assert polygon_area(np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])) == pytest.approx(0.5)
