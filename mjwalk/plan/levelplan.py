@@ -46,6 +46,7 @@ import time
 import weakref
 from dataclasses import dataclass, replace
 
+import mujoco
 import numpy as np
 
 from mjwalk.errors import PlanningError
@@ -73,7 +74,7 @@ from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.turnin import turn_into
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.levelview import level_at, level_view
-from mjwalk.world.norms import EXPOSED_MIN, HEAD_MARGIN
+from mjwalk.world.norms import EXPOSED_MIN, HEAD_MARGIN, MAX_RISER
 from mjwalk.world.workplace import Workplace
 
 #: Expansions a level leg aimed at a crossing with its approach heading may spend before it is
@@ -133,15 +134,53 @@ def needs_levels(workplace: Workplace, start, goal, radius: float) -> bool:
     Returns:
         True when either end stands on another level than the floor's.
     """
-    for where in (goal, start):  # the goal first, as the planner parses them
-        xy = _xy(workplace, where)
+    for where, what in ((goal, "goal"), (start, "start")):  # the goal first, as the planner
+        xy = _xy(workplace, where)  # parses them
         z = _site_z(workplace, where)
         high = z is not None and z - workplace.floor_z > EXPOSED_MIN
         if not high and float(workplace.walk_clearance(xy)) >= radius:
             continue
         if len(workplace.levels.levels) > 1 and level_at(workplace, xy, z) not in (0, None):
             return True
+        if z is not None and high:
+            _refuse_raised_top(workplace, str(where), xy, z, what)
     return False
+
+
+def _refuse_raised_top(workplace: Workplace, site: str, xy: np.ndarray, z: float, what: str):
+    """Raise a PlanningError naming the raised top a site stands on when that top is no walk
+    surface (no way up reaches it, or it has no room to stand): the walk would otherwise fail
+    with "inside obstacle", which hides why. A site inside no obstacle, or over no geom top
+    above :data:`~mjwalk.world.norms.EXPOSED_MIN` within that height of it, is left to the
+    planner's own checks.
+
+    Args:
+        workplace: the scene.
+        site: the site's name.
+        xy: (2,) its world xy, metres.
+        z: its world height, metres.
+        what: "start" or "goal", for the message.
+    """
+    if not any(float(fp.signed_distance(xy[None])[0]) < 0.0 for fp in workplace.obstacles):
+        return
+    model = workplace.model
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    hit = np.array([-1], dtype=np.int32)
+    above = z + EXPOSED_MIN  # a site a little below its top's face still finds it
+    far = mujoco.mj_ray(
+        model, data, np.array([xy[0], xy[1], above]), np.array([0.0, 0.0, -1.0]), None, 1, -1, hit
+    )
+    top = above - far - workplace.floor_z
+    if hit[0] < 0 or far > 2.0 * EXPOSED_MIN or top <= EXPOSED_MIN:  # no top within 5 cm of it
+        return
+    name = model.geom(int(hit[0])).name or f"geom {int(hit[0])}"
+    raise PlanningError(
+        f"{what} site {site!r} stands on {name!r} (top +{top:.2f} m above the floor), which is "
+        f"no walk surface of {workplace.name} (walk surfaces are reached from the floor by steps "
+        f"of risers up to {MAX_RISER} m, ramps or stairs, and have room to stand); add a way up "
+        "or move the site"
+    )
 
 
 def endpoint(workplace: Workplace, where, what: str) -> Endpoint:

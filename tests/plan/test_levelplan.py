@@ -422,3 +422,31 @@ def test_a_sites_endpoint_is_kept_and_read_only(station):
     b = endpoint(station, (float(a.xy[0]), float(a.xy[1])), "goal")  # coordinates: not kept
     assert b.level == a.level and b is not a
     np.testing.assert_array_equal(b.xy, a.xy)
+
+
+_PEDESTAL = """<mujoco model="pedestal"><worldbody>
+  <geom name="floor" type="plane" size="6 5 0.1"/>
+  <geom name="mezz" type="box" size="1.5 1.5 0.5" pos="2 2 0.5"/>
+  <site name="start" pos="-4 -3 0"/>
+  <site name="on_mezz" pos="2 2 1.0"/>
+  <site name="over_mezz" pos="2.5 2 1.4"/>
+</worldbody></mujoco>"""
+
+
+def test_a_site_on_a_top_no_way_reaches_is_refused_naming_the_top(tmp_path, model):
+    """A 1 m deck with no stair is no walk surface: a walk to a site on it says so (before: "goal
+    (2.000, 2.000) is inside obstacle 'mezz'", which hides why); a site 0.4 m above the deck
+    (a hand target) and a plain point keep the planner's own message."""
+    path = tmp_path / "pedestal.xml"
+    path.write_text(_PEDESTAL)
+    wp = load_workplace(path, cache=False)
+    for a, b, what in (("start", "on_mezz", "goal"), ("on_mezz", "start", "start")):
+        with pytest.raises(
+            PlanningError,
+            match=rf"^{what} site 'on_mezz' stands on 'mezz' "
+            r"\(top \+1.00 m above the floor\), which is no walk surface",
+        ):
+            plan_walk(wp, a, b, model, rng=0)
+    for goal in ("over_mezz", "2,2"):
+        with pytest.raises(PlanningError, match=r"inside obstacle 'mezz'"):
+            plan_walk(wp, "start", goal, model, rng=0)
