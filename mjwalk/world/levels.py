@@ -450,6 +450,7 @@ def describe_levels(graph: LevelGraph) -> str:
         lines.append(
             f"  L{lv.index} {lv.kind:<8} {lv.height:+.3f} m {lv.area:7.2f} m2  {names}{ceil}"
         )
+    links: dict[str, int] = {}  # a round podium's top is a polygon: one step per edge, one line
     for k in graph.links:
         if k.kind == "step":
             what = f"riser {k.rise:.3f} m"
@@ -461,5 +462,7 @@ def describe_levels(graph: LevelGraph) -> str:
             r = float(np.mean(k.risers))
             g = k.tread or 0.0
             what = f"{len(k.risers)} risers x {r:.3f} m, tread {g:.3f} m (2h+g {2 * r + g:.3f} m)"
-        lines.append(f"  {k.kind:<5} L{k.lower} -> L{k.upper}  {what}")
+        line = f"  {k.kind:<5} L{k.lower} -> L{k.upper}  {what}"
+        links[line] = links.get(line, 0) + 1
+    lines += [line if n == 1 else f"{line}  ({n} edges)" for line, n in links.items()]
     return "\n".join(lines)

@@ -155,6 +155,21 @@ def test_describe_levels(station):
     assert "stair L0 -> L8  6 risers x 0.170 m, tread 0.280 m (2h+g 0.620 m)" in text
 
 
+def test_describe_levels_prints_a_round_podiums_steps_once():
+    """A cylinder's top is a polygon: its step down to the floor is one link per edge, printed
+    as one line with their count."""
+    g = level_graph(
+        find_walk_surfaces(
+            scene('<geom name="pod" type="cylinder" size="1.2 0.085" pos="0 0 0.085"/>')
+        )
+    )
+    steps = [k for k in g.links if k.kind == "step"]
+    assert len(steps) > 4
+    lines = describe_levels(g).splitlines()
+    assert lines[-1] == f"  step  L0 -> L1  riser 0.170 m  ({len(steps)} edges)"
+    assert lines[0] == f"levels: 2, links: {len(steps)}"
+
+
 def test_level_options_are_checked():
     with pytest.raises(InputError, match="level_tol"):
         LevelOptions(level_tol=0.0)
