@@ -61,6 +61,7 @@ _LAZY: dict[str, str] = {
     "WalkPath": "mjwalk.plan.walkpath",
     "minimum_jerk_guide": "mjwalk.plan.guide",
     "plan_grid": "mjwalk.plan.grid",
+    "level_grid_route": "mjwalk.plan.levelgrid",
     "plan_walk": "mjwalk.plan.walks",
     "plan_walks": "mjwalk.plan.walks",
     "planned_straight_walks": "mjwalk.plan.walktimes",
@@ -164,6 +165,7 @@ __all__ = [
     "humanoid_model",
     "iter_frames",
     "legs_from_walk",
+    "level_grid_route",
     "load_amc",
     "load_bvh",
     "load_cycle_spec",
@@ -226,6 +228,7 @@ if TYPE_CHECKING:  # static checkers and IDEs see the lazy names
     from mjwalk.plan.grid import plan_grid
     from mjwalk.plan.guide import minimum_jerk_guide
     from mjwalk.plan.hybrid import HybridPlanner
+    from mjwalk.plan.levelgrid import level_grid_route
     from mjwalk.plan.options import PlannerOptions
     from mjwalk.plan.request import WalkRequest
     from mjwalk.plan.walkpath import PathStep, WalkPath

@@ -60,6 +60,7 @@ def cmd_plan(args: argparse.Namespace) -> int:
     model = load_model(args.model).for_walker(walker) if args.n > 0 else None
     if levels:
         print(_level_summary(workplace, args.start, args.goal))
+        baseline = _level_baseline(workplace, args, walker)
     else:
         baseline = plan_grid(workplace, args.start, args.goal, radius=args.radius)
         print(
@@ -95,6 +96,24 @@ def _level_summary(workplace, start, goal) -> str:
         f"{describe_levels(workplace.levels)}\n"
         f"walk over levels  {start} (L{a.level}) -> {goal} (L{b.level})"
     )
+
+
+def _level_baseline(workplace, args, walker):
+    """The grid-A* route over levels (:func:`mjwalk.plan.levelgrid.level_grid_route`), printed;
+    None (and why, printed) when the grid finds none: the hybrid walks may still be planned."""
+    from mjwalk.errors import PlanningError
+    from mjwalk.plan.levelgrid import level_grid_route  # deferred: numba, as above
+
+    try:
+        base = level_grid_route(workplace, args.start, args.goal, walker=walker, radius=args.radius)
+    except PlanningError as e:
+        print(f"grid A*  over levels: none ({e})")
+        return None
+    print(
+        f"grid A*  {args.start} -> {args.goal} over levels: length {base.length:.3f} m, "
+        f"route {' -> '.join(base.meta['levels'])}"
+    )
+    return base
 
 
 def _level_walk_summary(paths: list) -> str:

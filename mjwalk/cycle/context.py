@@ -20,6 +20,7 @@ from mjwalk.cycle.memo import Memo, ScratchData
 from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.standing import StandZone, StandZones
 from mjwalk.cycle.standoff import ArmClearance
+from mjwalk.cycle.stepup import step_up_of
 from mjwalk.cycle.types import TASK_KINDS, CycleSpec
 from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
@@ -27,6 +28,7 @@ from mjwalk.gait.model import StepModel
 from mjwalk.gait.walker import REFERENCE_CADENCE, Walker
 from mjwalk.plan.grid import plan_grid
 from mjwalk.plan.hybrid import HybridPlanner
+from mjwalk.plan.levelgrid import level_grid_route
 from mjwalk.plan.occupancy import OccupancyGrid, occupancy_grid
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.params import goal_discs
@@ -155,6 +157,29 @@ class GridRoutes:
             The route's length (m).
         """
         return self._lengths.get((a, b))
+
+    def over_levels(
+        self, path: WalkPath, walker: Walker, max_riser: float | None
+    ) -> WalkPath | None:
+        """The grid-A* route over levels (:func:`~mjwalk.plan.levelgrid.level_grid_route`)
+        between a walk over levels' own ends, at the heights it stands at (not kept).
+
+        Args:
+            path: the walk (its ``z``: the surface heights above the floor).
+            walker: the operator (the route over levels is theirs).
+            max_riser: the operator's step-up limit, metres (None: the default limit).
+
+        Returns:
+            The route, or None when there is none.
+        """
+        assert path.z is not None  # a walk over levels
+        a, b = ((*path.xy[k], self._workplace.floor_z + path.z[k]) for k in (0, -1))
+        try:
+            return level_grid_route(
+                self._workplace, a, b, walker=walker, max_riser=max_riser, radius=self._radius
+            )
+        except PlanningError:
+            return None
 
     def route(self, start, end) -> WalkPath | None:
         """The grid-A* route between two points, a walk's own ends (not kept).
@@ -296,6 +321,22 @@ class CycleContext:
             The route, or None when there is none.
         """
         return self.routes.route(start, end)
+
+    def baseline_over_levels(self, path: WalkPath, walker: Walker | None) -> WalkPath | None:
+        """The grid-A* route over levels between a walk's own ends, for the operator (their
+        group's step-up limit, :func:`~mjwalk.cycle.stepup.step_up_of`), :meth:`GridRoutes.
+        over_levels`.
+
+        Args:
+            path: the walk (with ``z``).
+            walker: the operator (None: the cycle's reference adult).
+
+        Returns:
+            The route, or None when there is none.
+        """
+        limit = step_up_of(self.spec.population, walker)
+        who = Walker(stature=self.spec.stature) if walker is None else walker
+        return self.routes.over_levels(path, who, limit)
 
     def ground(self, xy) -> float:
         """The world height of the walk surface under a standing operator: the floor's

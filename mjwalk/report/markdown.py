@@ -131,6 +131,13 @@ def _baseline_md(rep: dict) -> list[str]:
         f"({_pct(example)} for a 2.4 m route) and still be no shorter than the shortest way "
         "(where a straight line joins its ends).",
     ]
+    if rep.get("levels"):  # walks over levels: the grid routes on their levels
+        out[-1] += (
+            " A walk over levels is compared with the grid-A* routes on each level of the route "
+            "over levels its operator can take (the step, ramp or stair the level search "
+            "finds for their step-up limit), joined through the crossings' stances, each "
+            "crossing walked straight (`mjwalk.plan.levelgrid`)."
+        )
     if lows:
         low = min(v for v, _ in lows)
         floor = min(f for _, f in lows if f is not None)

@@ -57,3 +57,15 @@ def test_render_refuses_another_video_format_before_work(tmp_path, capsys):
     out = tmp_path / "w.avi"
     assert main(["render", "w.npz", "--scene", "station", "-o", str(out)]) == 2
     assert ".mp4" in capsys.readouterr().err and not out.exists()
+
+
+def test_plan_over_levels_prints_the_grid_route_over_levels(scenes_dir, capsys):
+    """A walk onto the platform gets its grid-A* baseline over levels, as a floor walk gets its
+    grid A* (mjwalk.plan.levelgrid), even with no hybrid walks asked for."""
+    scene = str(scenes_dir / "multilevel_station.xml")
+    argv = ["plan", scene, "--from", "stand_rack1", "--to", "stand_platform2", "--n", "0"]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert "walk over levels  stand_rack1 (L0) -> stand_platform2 (L3)" in out
+    assert "grid A*  stand_rack1 -> stand_platform2 over levels: length " in out
+    assert out.rstrip().endswith("route L0 -> step up -> L3")

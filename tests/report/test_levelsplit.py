@@ -16,7 +16,9 @@ from mjwalk.cycle.spec import load_cycle_spec
 from mjwalk.cycle.walking import plan_cycle_walks
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.synthetic import synthetic_walk
+from mjwalk.report.figures import report_dict
 from mjwalk.report.levelsplit import KINDS, crossings_of, level_split, split_markdown, walk_kinds
+from mjwalk.report.markdown import format_markdown
 
 
 def _spec(tmp_path, scenes_dir, sites, start="stand_stair", population=""):
@@ -48,6 +50,10 @@ def test_a_cycle_walks_the_stair_and_the_step_and_the_split_sums(tmp_path, scene
     # the walks keep their heights in the timeline: up to the mezzanine and down again
     assert tl.qpos[:, tl.jointmap.root + 2].max() > 1.02 + 0.8 * pelvis_height(spec.stature)
     assert "## Walking over levels" in "\n".join(split_markdown(split))
+    # each walk over levels has its grid-A* routes over levels (mjwalk.plan.levelgrid)
+    assert all(np.isfinite(w.baseline_length) for w in r.walks)
+    md = format_markdown(report_dict([r]))
+    assert "compared with the grid-A* routes on each level" in md and "no grid route" not in md
 
 
 def test_a_group_without_steps_takes_the_ramp(tmp_path, scenes_dir):
@@ -62,6 +68,8 @@ def test_a_group_without_steps_takes_the_ramp(tmp_path, scenes_dir):
     e = level_split([run])["adult"]
     assert e["mean"]["ramps"] > 0.0 and e["mean"]["steps"] == 0.0
     assert e["routes"] == {"a->b": {"ramp up": 1}} and e["max_riser"] == [0.0]
+    base = ctx.baseline_over_levels(path, walker)  # the group's baseline takes the ramp too
+    assert base is not None and "ramp up" in base.meta["levels"]
 
 
 def test_flat_walks_have_no_split():

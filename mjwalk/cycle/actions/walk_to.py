@@ -73,7 +73,8 @@ class Walk(Action):
 
     def record(self, run: CycleRun, start: str, path: WalkPath) -> WalkRecord:
         """The walk from site ``start`` with the grid-A* route between the walk's own ends (not the
-        sites' marks: the walk starts and ends where the operator stands).
+        sites' marks: the walk starts and ends where the operator stands; over levels: the
+        grid routes on each level through the crossings, :mod:`mjwalk.plan.levelgrid`).
 
         Args:
             run: what stays the same through the run (its context plans the grid route).
@@ -84,7 +85,10 @@ class Walk(Action):
             The :class:`~mjwalk.cycle.types.WalkRecord` (``baseline_length`` NaN when the grid
             planner finds no route).
         """
-        base = run.ctx.baseline_route(path.xy[0], path.xy[-1])
+        if path.z is None:
+            base = run.ctx.baseline_route(path.xy[0], path.xy[-1])
+        else:  # a walk over levels: the grid routes on its levels, through the crossings
+            base = run.ctx.baseline_over_levels(path, run.walker)
         return WalkRecord(
             task=self.index,
             route=self.task.route or f"{start}->{self.goal}",
