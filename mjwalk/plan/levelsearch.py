@@ -182,9 +182,10 @@ def _route(workplace, start, goal, walker: Walker, options, max_riser):
     edges = _Edges(workplace, (usable, nodes, leads), walker, options, reach)
     path, _ = dijkstra(len(nodes), edges, 0, 1)
     if path is None:
+        notes = "".join(f"; {n}" for n in workplace.levels.notes)  # a ramp that links none
         raise PlanningError(
             f"no route from level L{start.level} to level L{goal.level} of {workplace.name} for "
-            f"this walker (step-up limit {max_riser:.2f} m, stature {walker.stature:.2f} m)"
+            f"this walker (step-up limit {max_riser:.2f} m, stature {walker.stature:.2f} m)" + notes
         )
     return _legs(path, nodes, usable)
 

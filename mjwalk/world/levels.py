@@ -149,12 +149,14 @@ class LevelGraph:
         levels: the levels, the floor's first, then by height.
         links: the links, steps then ramps then stairs.
         level_of: for each surface, its level's index (None for a ramp).
+        notes: why a ramp links no levels (:func:`_ramp_notes`), one line each.
     """
 
     surfaces: tuple[WalkSurface, ...]
     levels: tuple[Level, ...]
     links: tuple[LevelLink, ...]
     level_of: tuple[int | None, ...]
+    notes: tuple[str, ...] = ()
 
     def links_of(self, level: int) -> list[LevelLink]:
         """The links that start or end at a level.
@@ -429,9 +431,49 @@ def level_graph(surfaces: Sequence[WalkSurface], options: LevelOptions | None = 
             )
         )  # fmt: skip
         steps = [k for k in steps if all(k is not c for c in chain)]
+    notes = _ramp_notes(surfaces, contacts, level_of, options.level_tol, ramps)
     return LevelGraph(
-        tuple(surfaces), tuple(levels), tuple(steps + ramps + stairs), tuple(level_of)
+        tuple(surfaces), tuple(levels), tuple(steps + ramps + stairs), tuple(level_of), notes
     )
+
+
+def _ramp_notes(
+    surfaces: Sequence[WalkSurface],
+    contacts: list[Contact],
+    level_of: list[int | None],
+    tol: float,
+    ramps: list[LevelLink],
+) -> tuple[str, ...]:
+    """Why each ramp that links no levels does not: the levels its lowest and highest edge
+    contacts meet and the largest lip there (a ramp's end must meet its level within ``tol``,
+    ASR A1.5/1,2's 4 mm: no trip point; a ramp with a cross-slope, which DIN 18040-1 §4.3.8
+    rules out, has lips at both ends)."""
+    linked = {k.via[0] for k in ramps}
+    out = []
+    for r, s in enumerate(surfaces):
+        if not s.is_ramp or r in linked:
+            continue
+        ends = [
+            (float(np.mean(s.height_at(np.asarray(c.edge)))), max(map(abs, c.rise_range)), c.b)
+            for c in contacts
+            if c.a == r and level_of[c.b] is not None
+        ]
+        if not ends:
+            out.append(f"ramp {s.name!r} meets no level at either end")
+            continue
+        low, high = min(ends), max(ends)
+        said = [
+            f"its {what} end meets L{level_of[b]} with a lip of up to {1000 * lip:.1f} mm"
+            for what, (_, lip, b) in (("low", low), ("high", high))
+            if lip > tol and (what == "low" or high is not low)
+        ]
+        why = ", ".join(said) if said else "its ends do not meet two levels"
+        out.append(
+            f"ramp {s.name!r} links no levels: {why} (a ramp's ends must meet their levels "
+            f"within {1000 * tol:.0f} mm: ASR A1.5/1,2, no trip points; DIN 18040-1: no "
+            "cross-slope)"
+        )
+    return tuple(out)
 
 
 def describe_levels(graph: LevelGraph) -> str:
@@ -465,4 +507,5 @@ def describe_levels(graph: LevelGraph) -> str:
         line = f"  {k.kind:<5} L{k.lower} -> L{k.upper}  {what}"
         links[line] = links.get(line, 0) + 1
     lines += [line if n == 1 else f"{line}  ({n} edges)" for line, n in links.items()]
+    lines += [f"  note: {n}" for n in graph.notes]
     return "\n".join(lines)

@@ -450,3 +450,21 @@ def test_a_site_on_a_top_no_way_reaches_is_refused_naming_the_top(tmp_path, mode
     for goal in ("over_mezz", "2,2"):
         with pytest.raises(PlanningError, match=r"inside obstacle 'mezz'"):
             plan_walk(wp, "start", goal, model, rng=0)
+
+
+def test_no_route_says_which_ramp_links_no_levels_and_why(tmp_path, model):
+    """A ramp rolled 0.5 deg about its axis meets its deck with a 5 mm lip (over ASR's 4 mm):
+    the walk onto the deck has no route, and the message names the ramp and the lip."""
+    half = 0.30 / math.sin(math.radians(5.0)) / 2
+    x, z = 1.5 - half * math.cos(math.radians(5.0)), 0.15 - 0.05 * math.cos(math.radians(5.0))
+    path = tmp_path / "rolled.xml"
+    path.write_text(
+        '<mujoco><worldbody><geom name="floor" type="plane" size="7 5 0.1"/>'
+        '<geom name="deck" type="box" size="1.5 1.2 0.15" pos="3 0 0.15"/>'
+        f'<geom name="ramp" type="box" size="{half} 0.6 0.05" pos="{x} 0 {z}" euler="0.5 -5 0"/>'
+        '<site name="start" pos="-4 2 0"/><site name="on_deck" pos="3.5 0 0.30"/>'
+        "</worldbody></mujoco>"
+    )
+    wp = load_workplace(path, cache=False)
+    with pytest.raises(PlanningError, match=r"no route .*; ramp 'ramp' links no levels: its high"):
+        plan_walk(wp, "start", "on_deck", model, rng=0)

@@ -170,6 +170,32 @@ def test_describe_levels_prints_a_round_podiums_steps_once():
     assert lines[0] == f"levels: 2, links: {len(steps)}"
 
 
+def _rolled_ramp(roll_deg: float) -> str:
+    """A 5 deg ramp up to a 0.30 m deck, its top rolled about its axis by ``roll_deg``."""
+    half = 0.30 / math.sin(math.radians(5.0)) / 2
+    x = 1.5 - half * math.cos(math.radians(5.0))
+    z = 0.15 - 0.05 * math.cos(math.radians(5.0))
+    return (
+        '<geom name="deck" type="box" size="1.5 1.2 0.15" pos="3 0 0.15"/>'
+        f'<geom name="ramp" type="box" size="{half} 0.6 0.05" pos="{x} 0 {z}" '
+        f'euler="{roll_deg} -5 0"/>'  # degrees: MJCF's default
+    )
+
+
+def test_a_ramp_with_a_cross_slope_links_nothing_and_says_why():
+    """A 0.5 deg roll leaves a 5 mm lip where the 1.2 m wide ramp meets the deck: more than
+    ASR A1.5/1,2's 4 mm, so no link (as before), but now a note says so, and the level
+    planner's "no route" carries it; the same ramp without the roll links and has no note."""
+    plain = level_graph(find_walk_surfaces(scene(_rolled_ramp(0.0))))
+    assert [k.kind for k in plain.links] == ["ramp"] and plain.notes == ()
+    rolled = level_graph(find_walk_surfaces(scene(_rolled_ramp(0.5))))
+    assert rolled.links == ()
+    (note,) = rolled.notes
+    assert note.startswith("ramp 'ramp' links no levels: its high end meets L1 with a lip of up")
+    assert "5.2 mm" in note and "within 4 mm" in note
+    assert f"  note: {note}" in describe_levels(rolled)
+
+
 def test_level_options_are_checked():
     with pytest.raises(InputError, match="level_tol"):
         LevelOptions(level_tol=0.0)
