@@ -39,6 +39,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.anthropometry import leg_geometry
+from mjwalk.conventions import BODY_RADIUS
 from mjwalk.plan.rampside import LOW_KEY, META_KEY, SOLE_GRID, over_ramp, sole_points
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.floor import flush_geoms, geom_z_extents
@@ -182,13 +183,55 @@ def tops_under(workplace: Workplace, walk: WalkPath, stature: float) -> list[dic
                 and all(q[LOW_KEY] != p[LOW_KEY] for q in out)]  # fmt: skip
         soles = sole_points(walk, geom, at) if tops else np.zeros((0, 2))
         for p in tops if len(soles) else []:
-            up = np.array([math.cos(p["uphill"]), math.sin(p["uphill"])])
-            foot = [float(v) for v in np.asarray(p["foot"]) - pad * up]
-            grown = {**p, "foot": foot, "run": p["run"] + 2 * pad,
-                     "half_width": p["half_width"] + pad}  # fmt: skip
+            grown = grow(p, pad)
             if np.any(over_ramp(grown, soles)):
                 out.append(grown)
     return out
+
+
+def stand_top(workplace: Workplace, xy, level: float) -> float:
+    """The ground under an operator standing at a point of a surface: the highest low top
+    lying on the surface whose outline, grown by the body's radius
+    (:data:`~mjwalk.conventions.BODY_RADIUS`, within which the standing feet lie), holds the
+    point (conservative: a foot beside the top's edge stands at most its height above the
+    surface, in the air, never in it), else the surface itself.
+
+    Args:
+        workplace: the scene.
+        xy: the operator's pelvis (x, y), world metres.
+        level: the surface's height above the floor, metres.
+
+    Returns:
+        Metres above the floor: ``level`` itself without such a top.
+    """
+    band = workplace.z_range[0]
+    point = np.asarray(xy, dtype=float)[:2]
+    out = level
+    for b, p in _scene_tops(workplace):
+        if (
+            is_low(b, p["z"], level, band)
+            and p["z"] > out
+            and over_ramp(grow(p, BODY_RADIUS), point)
+        ):
+            out = p["z"]
+    return out
+
+
+def grow(plane: dict, pad: float) -> dict:
+    """A low top's plane (:func:`low_tops`) grown by ``pad`` metres on every side.
+
+    Args:
+        plane: the plane.
+        pad: metres.
+
+    Returns:
+        the plane, its ``foot`` moved ``pad`` back along its axis, its ``run`` and width
+        ``2 * pad`` longer.
+    """
+    up = np.array([math.cos(plane["uphill"]), math.sin(plane["uphill"])])
+    foot = [float(v) for v in np.asarray(plane["foot"]) - pad * up]
+    return {**plane, "foot": foot, "run": plane["run"] + 2 * pad,
+            "half_width": plane["half_width"] + pad}  # fmt: skip
 
 
 def with_low_tops(workplace: Workplace, walk: WalkPath, stature: float) -> WalkPath:

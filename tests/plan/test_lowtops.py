@@ -4,6 +4,7 @@ and the walks over them stand and swing on them; floor tape (flush) and obstacle
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import mujoco
 import numpy as np
@@ -269,3 +270,88 @@ def test_a_floor_mat_under_a_mezzanine_and_before_a_step(tmp_path, model, a, b, 
              for p in tops_under(wp, walk, 1.75)]  # fmt: skip
     assert names == under
     assert hits == [], sorted({(h.body_part, h.scene_geom, round(h.depth, 4)) for h in hits})[:6]
+
+
+#: The cycle: walk onto the mat, pick a screw there, carry it off the mat to ``{away}`` and
+#: place it, walk back to the start.
+CYCLE = """name = "work on a mat"
+scene = "scene.xml"
+start = "{start}"
+takt = 60.0
+
+[humanoid]
+stature = 1.75
+
+[models]
+step = "default"
+reach = "default"
+
+[[task]]
+kind = "walk"
+site = "{on}"
+
+[[task]]
+kind = "pick"
+site = "screw"
+hand = "right"
+part = "screw"
+
+[[task]]
+kind = "carry"
+site = "{away}"
+hand = "right"
+part = "screw"
+
+[[task]]
+kind = "place"
+site = "drop"
+hand = "right"
+part = "screw"
+
+[[task]]
+kind = "walk"
+site = "{start}"
+"""
+
+
+def _floor(tmp_path: Path) -> Path:
+    """The 15 mm floor mat before the bench (:func:`station`), a screw on the
+    bench before the mat's site ``b`` and a drop point before ``c``."""
+    sites = '<site name="screw" pos="0 1.75 0.95"/><site name="drop" pos="-4.55 -1 0.9"/>'
+    (tmp_path / "scene.xml").write_text(station().replace("</worldbody>", sites + "</worldbody>"))
+    return tmp_path
+
+
+def _platform(tmp_path: Path) -> Path:
+    """The 15 mm mat and 3 mm tape on the 0.34 m platform (:func:`platform`), a
+    screw 0.95 m above the mat before its site ``p_mat`` and a drop point past the ramp."""
+    sites = '<site name="screw" pos="0.6 2.65 1.3"/><site name="drop" pos="7.15 3.2 0.95"/>'
+    xml = platform(tape=True).replace("</worldbody>", sites + "</worldbody>")
+    (tmp_path / "scene.xml").write_text(xml)
+    return tmp_path
+
+
+@pytest.mark.parametrize(
+    ("scene", "start", "on", "away"),
+    [(_floor, "a", "b", "c"), (_platform, "stand_step", "p_mat", "stand_ramp")],
+    ids=["floor", "platform"],
+)
+def test_a_cycle_with_its_work_on_a_mat_touches_nothing(tmp_path, scene, start, on, away):
+    """An animated cycle through the cycle's own walk frames
+    (:func:`mjwalk.cycle.poses.walk_frames` stands the feet on the mat's top). Seeded (runs 0
+    and 1): the operator walks onto the mat, picks the screw standing on it, carries it off the
+    mat and back: 0 contacts. Before, on the floor, 440 and 528 foot and toe contacts 15 mm
+    deep in the mat from the walk's last turn to the carry's first: the standing and reaching
+    poses stood the feet at the floor's height (:func:`mjwalk.cycle.levelsite.ground_height`
+    now stands them on the mat, :func:`mjwalk.plan.lowtops.stand_top`); on the platform,
+    17-32 in the walks crossing the mat (base 1bbe2b4, the same walks planned alone)."""
+    from mjwalk.cycle.simulate import simulate_cycle
+    from mjwalk.cycle.spec import load_cycle_spec
+
+    path = scene(tmp_path)
+    (path / "cycle.toml").write_text(CYCLE.format(start=start, on=on, away=away))
+    spec = load_cycle_spec(path / "cycle.toml")
+    for run in (0, 1):
+        r = simulate_cycle(spec, run, run=run, ergonomics=False)
+        assert len(r.walks) == 3
+        assert r.collisions == [], sorted({(c.body_part, c.scene_geom) for c in r.collisions})
