@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from mjwalk.plan.lowtops import stand_top
 from mjwalk.world.clearance import ClearanceField
 from mjwalk.world.levelview import level_at, level_view
 from mjwalk.world.norms import LEVEL_TOLERANCE
@@ -86,22 +87,28 @@ def spec_on_levels(workplace: Workplace, sites) -> bool:
 
 
 def ground_height(workplace: Workplace, xy, on_levels: bool) -> float:
-    """The height above the floor of the surface a standing operator's pelvis is over.
+    """The height above the floor of the surface a standing operator's pelvis is over: the
+    level's, or the top of a mat, cable bridge or floor plate lying on it under the operator
+    (:func:`mjwalk.plan.lowtops.stand_top`: the walk that brought the operator there stood
+    the feet on it too).
 
     Args:
         workplace: the scene.
         xy: (x, y) world, metres.
-        on_levels: whether the cycle stands on levels (:func:`spec_on_levels`); False: 0.
+        on_levels: whether the cycle stands on levels (:func:`spec_on_levels`); False: the
+            floor's.
 
     Returns:
-        Metres above the floor (0 on the floor, on no level or off the levels' surfaces).
+        Metres above the floor (0 on the floor, on no level or off the levels' surfaces,
+        without a low top there).
     """
     if not on_levels:
-        return 0.0
+        return stand_top(workplace, xy, 0.0)
     lv = level_at(workplace, np.asarray(xy, dtype=float)[:2])
     if lv in (0, None):
-        return 0.0
-    return float(workplace.levels.levels[int(lv)].height - workplace.floor_z)
+        return stand_top(workplace, xy, 0.0)
+    level = float(workplace.levels.levels[int(lv)].height - workplace.floor_z)
+    return stand_top(workplace, xy, level)
 
 
 def level_field(workplace: Workplace, xy, on_levels: bool) -> ClearanceField:

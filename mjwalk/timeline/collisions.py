@@ -11,8 +11,6 @@ seconds, z up.
 from __future__ import annotations
 
 import math
-import os
-import stat
 import weakref
 from dataclasses import dataclass
 from pathlib import Path
@@ -27,6 +25,7 @@ from mjwalk.plan.walkpath import WalkPath
 from mjwalk.timeline.frames import timeline_from_walk
 from mjwalk.timeline.geomposes import GeomTable, geom_poses, supported
 from mjwalk.timeline.timeline import Timeline
+from mjwalk.timeline.walktops import level_heights, walk_tops
 from mjwalk.world.floor import floor_planes, flush_geoms, slab_floor_mask
 from mjwalk.world.norms import MAX_RAMP_SLOPE, ROUNDING_SLACK
 from mjwalk.world.workplace import shared_workplace
@@ -68,12 +67,14 @@ def collision_report(
     """Humanoid-vs-scene contacts of every frame by MuJoCo collision detection.
 
     Only pairs of one humanoid geom (group 5) and one scene geom count. Contacts with the floor
-    (the geom named ``"floor"``, any plane, and geoms flush with it such as tape,
-    :func:`~mjwalk.world.floor.flush_geoms`) no deeper than ``floor_tolerance`` metres are
-    ordinary foot contact, not reported. In a scene on several levels (:func:`walk_tops`) a sole
-    (``foot_*``, ``toes_*``) on the top face of a walk surface (platform, tread, ramp) stands
-    too: no deeper than ``floor_tolerance``, its normal within :data:`TOP_NORMAL_TILT` of vertical
-    or no depth (``norms.ROUNDING_SLACK``); a foot against a riser is reported. Flat: as before.
+    (the geom named ``"floor"``, any plane, and geoms flush with it or with a level such as
+    tape, :func:`~mjwalk.world.floor.flush_geoms`,
+    :func:`~mjwalk.timeline.walktops.level_heights`) no deeper than ``floor_tolerance`` metres
+    are ordinary foot contact, not reported. In a scene on several levels
+    (:func:`~mjwalk.timeline.walktops.walk_tops`) a sole (``foot_*``, ``toes_*``) on the top
+    face of a walk surface (platform, tread, ramp) stands too: no deeper than
+    ``floor_tolerance``, its normal within :data:`TOP_NORMAL_TILT` of vertical or no depth
+    (``norms.ROUNDING_SLACK``); a foot against a riser is reported. Flat: as before.
 
     With ``broad_phase`` (default) MuJoCo's collision detection runs only on the frames where
     a contact can be reported (:func:`candidate_frames`: some humanoid geom's bounding sphere
@@ -113,7 +114,7 @@ def collision_report(
     out: list[Contact] = []
     t = timeline.t
     mujoco.mj_kinematics(model, data)  # the scene's geoms placed: those flush with the floor
-    flat = (floorish | flush_geoms(model, data)).tolist()
+    flat = (floorish | flush_geoms(model, data, level_heights(timeline))).tolist()
     masks = (human.tolist(), flat, tops if tops is None else tops.tolist(), soles)
     for i in np.flatnonzero(check).tolist():  # (a repeated pose is never checked itself)
         data.qpos[:] = qpos[i]
@@ -164,48 +165,6 @@ TOP_NORMAL_TILT = MAX_RAMP_SLOPE + math.radians(10.0)
 UPRIGHT = math.cos(TOP_NORMAL_TILT)  # a contact normal's least vertical part, standing
 
 
-def walk_tops(timeline: Timeline) -> np.ndarray | None:
-    """The scene geoms of a timeline's model whose top faces are walk surfaces other than the
-    floor (platforms, treads, ramps: :attr:`Workplace.levels
-    <mjwalk.world.workplace.Workplace.levels>`), when its scene is an MJCF file on several levels
-    (some link between levels); None otherwise (a flat scene, an MjSpec's) as always before.
-
-    Args:
-        timeline: the timeline (its ``scene`` file and ``model``).
-
-    Returns:
-        (ngeom,) read-only bool mask over the timeline's model, or None.
-    """
-    if not timeline.scene or timeline.scene == "<MjSpec>":
-        return None
-    try:  # one stat: whether it is a file, and its version
-        info = os.stat(timeline.scene)
-    except (OSError, ValueError):
-        return None
-    key = (timeline.scene, info.st_mtime)  # the names per scene version (models vary by stature)
-    if stat.S_ISREG(info.st_mode) and key not in _TOP_NAMES:
-        wp = shared_workplace(Path(timeline.scene))
-        plane = mujoco.mjtGeom.mjGEOM_PLANE  # a floor of boxes (round a pit) is walk tops
-        top = [
-            s.name
-            for s in wp.levels.surfaces
-            if s.name and (s.kind != "floor" or int(wp.model.geom_type[s.geom_id]) != plane)
-        ]
-        _TOP_NAMES[key] = frozenset(top) if wp.levels.links else None
-    names = _TOP_NAMES.get(key) if stat.S_ISREG(info.st_mode) else None
-    if names is None:  # not a file, or a scene on one level
-        return None
-    kept = _TOPS.setdefault(timeline.model, {})  # the mask per model and scene version
-    if key not in kept:
-        kept[key] = np.array([n in names for n in _geom_names(timeline.model)[0]])
-        kept[key].setflags(write=False)
-    return kept[key]
-
-
-#: :func:`walk_tops`' names by scene file and modification time (None: one level); its masks
-#: per model by the same keys.
-_TOP_NAMES: dict[tuple[str, float], frozenset[str] | None] = {}
-_TOPS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 #: :func:`_soles` per model, by the length of the humanoid's name prefix.
 _SOLES: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 

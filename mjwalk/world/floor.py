@@ -7,6 +7,7 @@ tape, inlays: :func:`flush_geoms`) are floor to the contact check. Metres, z up.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import mujoco
 import numpy as np
@@ -236,19 +237,24 @@ def check_floor_size(model: mujoco.MjModel, label: str, resolution: float = 0.02
         check_floor_nodes(bounds, resolution, label, name)
 
 
-def flush_geoms(model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
+def flush_geoms(
+    model: mujoco.MjModel, data: mujoco.MjData, levels: Sequence[float] = ()
+) -> np.ndarray:
     """The geoms flush with a floor: floor tape, markings, inlaid plates -- every static geom
     (welded to the world) whose whole height lies within ``norms.LEVEL_TOLERANCE`` (4 mm) of a
-    level floor plane's (:data:`FLOOR_MIN_NZ`) or of a slab floor's top (:func:`slab_floor_mask`).
-    They are one level with the floor, as
-    :func:`mjwalk.world.levels.level_graph` groups surfaces within that tolerance (ASR A1.5/1,2
-    §3.4: height differences up to 4 mm are no trip points), so a foot on them stands on the
-    floor. Heights from MuJoCo's ``geom_aabb`` turned into the world (conservative for a turned
-    geom); the floors themselves are not counted.
+    level floor plane's (:data:`FLOOR_MIN_NZ`), of a slab floor's top (:func:`slab_floor_mask`)
+    or of one of ``levels`` (a platform's, a mezzanine's, a tread's top: tape on a platform is
+    the platform's floor as tape on the floor is the floor's). They are one level with that
+    floor, as :func:`mjwalk.world.levels.level_graph` groups surfaces within that tolerance
+    (ASR A1.5/1,2 §3.4: height differences up to 4 mm are no trip points), so a foot on them
+    stands on it. Heights from MuJoCo's ``geom_aabb`` turned into the world (conservative for
+    a turned geom); the floors themselves are not counted.
 
     Args:
         model: the compiled scene (with or without the humanoid).
         data: its data, kinematics done (any pose: the static geoms do not move).
+        levels: world heights of further horizontal walk surfaces, metres
+            (:func:`mjwalk.timeline.walktops.level_heights`; none: the floors alone).
 
     Returns:
         (ngeom,) bool mask.
@@ -260,6 +266,7 @@ def flush_geoms(model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
         face = slab(model, data, g)
         if face is not None:
             floors.append(face.top)
+    floors += [float(z) for z in levels]
     bottom, top = geom_z_extents(model, data)
     static = model.body_weldid[model.geom_bodyid] == 0
     out = np.zeros(model.ngeom, dtype=bool)

@@ -71,12 +71,12 @@ FLUSH_SCENE = """<mujoco><worldbody><geom name="floor" type="plane" size="5 5 .1
 </worldbody></mujoco>"""
 
 
-def _flush_names(xml: str) -> set[str]:
-    """The names of a scene's geoms flush with its floor."""
+def _flush_names(xml: str, levels: tuple[float, ...] = ()) -> set[str]:
+    """The names of a scene's geoms flush with its floor (and with the ``levels``' heights)."""
     model = mujoco.MjModel.from_xml_string(xml)
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
-    mask = flush_geoms(model, data)
+    mask = flush_geoms(model, data, levels)
     return {mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) for g in mask.nonzero()[0]}
 
 
@@ -92,6 +92,21 @@ def test_flush_geoms_on_a_slab_floor_are_those_on_its_top():
     )
     assert xml != FLUSH_SCENE
     assert _flush_names(xml) == {"tape", "inlay"}
+
+
+def test_flush_geoms_on_a_level_are_those_within_the_tolerance_of_its_top():
+    """Tape 3 mm thick on a 0.34 m platform is flush with the platform's top when its height
+    is given (the contact check gives its walk surfaces'); a 15 mm mat on it is not, nor the
+    platform itself; without the level only the floor's tape is flush, as before."""
+    xml = FLUSH_SCENE.replace(
+        "<body",
+        '<geom name="platform" type="box" size="2 .5 .17" pos="0 3 .17"/>'
+        '<geom name="ptape" type="box" size=".025 .5 .0015" pos="-1 3 .3415"/>'
+        '<geom name="pmat" type="box" size=".6 .35 .0075" pos=".6 3 .3475"/><body',
+    )
+    assert _flush_names(xml) == {"tape", "inlay"}
+    assert _flush_names(xml, (0.0, 0.34)) == {"tape", "inlay", "ptape"}
+    assert _flush_names(xml, (0.34 + 0.005,)) == {"tape", "inlay"}  # 5 mm off: no longer
 
 
 def test_geom_z_extents_are_the_world_heights_of_upright_and_turned_geoms():
