@@ -217,7 +217,8 @@ def find_floor_slabs(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> 
 
     Returns:
         The floor's slabs, the largest first (the floor geom: a "floor"-named one among equals,
-        then the lowest id), the others by geom id; empty when no region is large enough.
+        then the lowest id), the others by geom id (not those within another's face: tape on
+        it); empty when no region is large enough.
 
     Raises:
         SceneError: the lowest large region is not the largest one (naming both).
@@ -247,7 +248,20 @@ def find_floor_slabs(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> 
             '(<geom name="floor" type="plane" .../>) at the floor\'s height'
         )
     first = main[id(floor)]
-    return (first, *sorted((s for s in floor if s is not first), key=lambda s: s.geom))
+    # a slab on the floor within its face (tape, an inlay) adds no floor: it stays a geom
+    # flush with the floor (mjwalk.world.floor.flush_geoms), as on a plane
+    rest = [s for s in floor if s is not first and not _within(s, floor)]
+    return (first, *sorted(rest, key=lambda s: s.geom))
+
+
+def _within(s: Slab, others: tuple[Slab, ...]) -> bool:
+    """Whether ``s``'s face lies within another slab's (their bounding boxes)."""
+    x0, y0, x1, y1 = s.bounds
+    for o in others:
+        ox0, oy0, ox1, oy1 = o.bounds
+        if o is not s and ox0 <= x0 and oy0 <= y0 and x1 <= ox1 and y1 <= oy1:
+            return True
+    return False
 
 
 def _rank(s: Slab) -> tuple[bool, int]:
