@@ -294,6 +294,39 @@ def carry_pose(ctx: CycleContext, q: np.ndarray, width: float) -> np.ndarray:
     return out
 
 
+def walk_frame_times(walk, fps: float) -> np.ndarray:
+    """The times of a walk's frames after its first sample (:func:`walk_frames`).
+
+    Args:
+        walk: the walk (:class:`~mjwalk.plan.walkpath.WalkPath`).
+        fps: frames per second.
+
+    Returns:
+        (n,) seconds from the walk's start, ``1/fps`` apart, the last at its end.
+    """
+    t = np.arange(1, math.floor(walk.duration * fps) + 1) / fps
+    if len(t) == 0 or t[-1] < walk.duration - 1e-9:
+        t = np.append(t, walk.duration)
+    return t
+
+
+def walk_ground(ctx: CycleContext, walk, fps: float) -> np.ndarray:
+    """The world height (m) of the walk surface under the pelvis in each of a walk's frames
+    (:func:`walk_frames`): the floor's plus the walk's own surface heights
+    (:attr:`WalkPath.ground <mjwalk.plan.walkpath.WalkPath.ground>`) at the frames' times.
+
+    Args:
+        ctx: the cycle context.
+        walk: the walk.
+        fps: frames per second.
+
+    Returns:
+        (n,) world z, metres (the floor's, ``Workplace.floor_z``, all along a floor walk).
+    """
+    t = walk_frame_times(walk, fps)
+    return ctx.workplace.floor_z + np.interp(t, walk.t, walk.ground)
+
+
 def walk_frames(
     ctx: CycleContext, walk, fps, carry: str | None = None, carry_width: float | None = None
 ) -> np.ndarray:
@@ -319,9 +352,7 @@ def walk_frames(
         walk = with_ramps_beside(ctx.workplace, walk, ctx.spec.stature)
     walk = with_low_tops(ctx.workplace, walk, ctx.spec.stature)  # a mat, a cable bridge
     legs = legs_from_walk(walk, ctx.spec.stature)
-    t = np.arange(1, math.floor(walk.duration * fps) + 1) / fps
-    if len(t) == 0 or t[-1] < walk.duration - 1e-9:
-        t = np.append(t, walk.duration)
+    t = walk_frame_times(walk, fps)
     frames = frames_from_legs(ctx.model, ctx.jointmap, legs, t, ctx.spec.stature, "swing", None)
     jm = ctx.jointmap
     frames[:, jm.root + 2] += ctx.workplace.floor_z  # the walk's heights are above the floor

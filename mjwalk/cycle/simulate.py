@@ -24,7 +24,6 @@ cluster unchanged (see the README), through joblib.
 
 from __future__ import annotations
 
-import dataclasses
 from collections.abc import Iterable, Sequence
 from functools import partial
 from pathlib import Path
@@ -127,6 +126,7 @@ def simulate_cycle(
     actions = [_action(ctx, i, task) for i, task in enumerate(ctx.spec.tasks)]
     run_, state = _start(ctx, rng, fps)
     frames = [state.pose[None]]
+    ground = [np.full(1, run_.ctx.ground((state.x, state.y)))]  # the surface stood on per frame
     n_frames = 1  # the frames so far
     starts: list[int] = []  # first frame of each task
     tasks: list[TaskRecord] = []
@@ -135,11 +135,13 @@ def simulate_cycle(
     for action in actions:
         starts.append(n_frames)
         done = action.perform(run_, state, action.plan(run_, state))
-        t = state.t
+        t, n0 = state.t, n_frames
         for piece, seconds in done.pieces:
             frames.append(piece)
             n_frames += len(piece)
             t += seconds
+        here = run_.ctx.ground((state.x, state.y)) if done.ground is None else done.ground
+        ground.append(np.broadcast_to(here, n_frames - n0))
         task = action.task
         tasks.append(TaskRecord(action.index, task.kind, task.site, state.t, t, task.route))
         if isinstance(done.record, WalkRecord):
@@ -162,7 +164,7 @@ def simulate_cycle(
     )
     return _finish(
         run_.ctx, timeline, starts, result, keep=keep_timeline, collisions=collisions,
-        ergonomics=ergonomics,
+        ergonomics=ergonomics, ground=np.concatenate(ground),
     )  # fmt: skip
 
 
@@ -217,10 +219,12 @@ def _finish(
     keep: bool,
     collisions: bool,
     ergonomics: bool,
+    ground: np.ndarray | None = None,
 ) -> CycleResult:
     """``result`` with what was asked for: the timeline and the tracks of the parts the hands
-    handle (``keep``), the humanoid-vs-scene contacts, the ergonomic scores. Task ``i`` spans
-    frames ``starts[i]`` up to the next task's first frame."""
+    handle (``keep``), the humanoid-vs-scene contacts, the ergonomic scores (heights above
+    ``ground``, (F,) world z of the surface stood on in each frame). Task ``i`` spans frames
+    ``starts[i]`` up to the next task's first frame."""
     spec = result.spec
     ends = [*starts[1:], len(timeline.qpos)]
     if keep:  # the parts the hands pick, carry and put down, drawn into videos
@@ -241,7 +245,7 @@ def _finish(
         result.collisions = collision_report(timeline, data=ctx.scratch(), table=table)
     if ergonomics:
         wp, t = ctx.workplace, result.cycle_time
-        result.ergonomics = cycle_ergonomics(timeline, spec, starts, ends, t, wp, table)
+        result.ergonomics = cycle_ergonomics(timeline, spec, starts, ends, t, wp, table, ground)
     return result
 
 
@@ -253,10 +257,13 @@ def cycle_ergonomics(
     cycle_time: float,
     wp,
     table: GeomTable | None = None,
+    ground: np.ndarray | None = None,
 ):
     """The ergonomics of a cycle's timeline (:func:`mjwalk.ergonomics.assess.assess_cycle`): a
     place or fasten handles the part its hand picked last (its mass and coupling). Heights are
-    given above the floor (``wp.floor_z``): the hands', the ankles' and the sites' (NIOSH's V).
+    given above the surface the operator stands on (``ground``; the floor in a flat cycle): the
+    hands', the ankles' and the sites' (NIOSH's V: the hands' height above the floor the worker
+    stands on, Waters et al. 1993; a task on a 0.34 m platform is measured from its top).
 
     Args:
         timeline: the cycle's humanoid timeline.
@@ -267,12 +274,17 @@ def cycle_ergonomics(
         wp: the Workplace (the sites' positions).
         table: the humanoid's geom poses in every frame, if already computed
             (:func:`~mjwalk.ergonomics.angles.angles_from_timeline`).
+        ground: (n_frames,) world z (m) of the surface the operator stands on in each frame
+            (:attr:`Performed.ground <mjwalk.cycle.actions.base.Performed.ground>`); None: the
+            floor's (``wp.floor_z``) throughout.
 
     Returns:
         The run's ergonomic scores (:class:`~mjwalk.ergonomics.assess.RunErgonomics`).
     """
     n = timeline.n_frames
-    up = np.array([0.0, 0.0, wp.floor_z])
+    g = np.full(n, float(wp.floor_z)) if ground is None else np.asarray(ground, dtype=float)
+    if len(g) != n:
+        raise InputError(f"cycle_ergonomics: {len(g)} ground heights for {n} frames")
     walking = np.zeros(n, dtype=bool)
     held: dict[str, list[tuple[float, str]]] = {"left": [], "right": [], "both": []}
     spans = []
@@ -290,13 +302,12 @@ def cycle_ergonomics(
             mass, coupling = held[task.hand].pop()
         pos = None
         if task.site is not None and task.site in wp.stations:
-            pos = np.asarray(wp.stations[task.site].pos, dtype=float) - up
+            pos = np.asarray(wp.stations[task.site].pos, dtype=float) - [0.0, 0.0, g[min(s, n - 1)]]
         spans.append(TaskSpan(i, task.kind, s, e, task.hand if task.kind != "walk" else None,
                               task.site, mass, coupling, pos, reach=reach, part=part,
                               lifts=kind.lifts))  # fmt: skip
-    ang = angles_from_timeline(timeline, walking, table)
-    if wp.floor_z != 0.0:  # a floor off z = 0: the methods' heights are above it
-        ang = dataclasses.replace(ang, hands=ang.hands - up, ankles=ang.ankles - up)
+    # heights above the surface stood on (world z where it is the floor at z = 0 throughout)
+    ang = angles_from_timeline(timeline, walking, table, g if np.any(g != 0.0) else None)
     return assess_cycle(ang, spans, cycle_time, timeline.fps)
 
 

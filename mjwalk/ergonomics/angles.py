@@ -85,10 +85,11 @@ class BodyAngles:
             pronation (positive); zero where the source cannot tell (joint positions only).
         twist_range: the forearm rotation's half range (deg), for the twist's "end of range".
         knee_flexion: 0 straight.
-        feet_down: whether each foot is on the floor.
+        feet_down: whether each foot is on the ground it stands on.
         walking: (F,) frames of a walk (REBA and RULA count walking as supported legs).
-        hands: (F, 2, 3) the grip points (palm centres; wrists for capture), world metres.
-        ankles: (F, 3) mid-point of the ankles, world metres.
+        hands: (F, 2, 3) the grip points (palm centres; wrists for capture), world metres; their
+            z above the surface the body stands on when the angles are given its ``ground``.
+        ankles: (F, 3) mid-point of the ankles, world metres (z as the hands').
         forward: (F, 3) the pelvis' horizontal forward direction.
         shoulder_raised, lower_arm_out: (F, 2) flags measured from positions.
     """
@@ -241,11 +242,13 @@ def _angles(
     neck_twist: np.ndarray | None,
     twist_range: float,
     walking: np.ndarray | None,
+    ground: np.ndarray | None = None,
 ) -> BodyAngles:
     """:func:`angles_from_points` of the (14, F, 3) points of
     :data:`~mjwalk.ergonomics.anglejit.KERNEL_POINTS`: the compiled arithmetic
     (:func:`~mjwalk.ergonomics.anglejit.trig_arguments`), then NumPy's arc tangents and arc
-    cosines of all frames at once."""
+    cosines of all frames at once. With ``ground`` ((F,) world z of the surface the body stands
+    on in each frame) the heights (hands, ankles, the feet's contact) are above it."""
     n = pts.shape[1]
     ys, xs, cs = np.empty((8, n)), np.empty((8, n)), np.empty((9, n))
     fwd, fwd_c, out = np.empty((n, 3)), np.empty((2, n)), np.empty((n, 2), dtype=bool)
@@ -257,6 +260,13 @@ def _angles(
     plane, elev = dt[6:8], dc[1:3]
     behind = (fwd_c < 0) & (plane <= ABDUCTION_PLANE_DEG)  # raised mainly backwards
     az = pts[12:14, :, 2]  # the ankles' heights
+    ankles = 0.5 * (pts[12] + pts[13])
+    low = az.min(axis=1, initial=np.inf)[:, None]  # each ankle's lowest in the motion
+    if ground is not None:  # heights above the surface stood on (NIOSH's V: Waters et al. 1993)
+        up = np.zeros((n, 3))
+        up[:, 2] = ground
+        az, hands, ankles = az - up[:, 2], hands - up[:, None, :], ankles - up
+        low = _lowest_per_ground(az, up[:, 2])
     w = np.zeros((n, 2, 3)) if wrist is None else np.asarray(wrist, dtype=float)
     return BodyAngles(
         trunk_flexion=dt[0],
@@ -275,14 +285,26 @@ def _angles(
         wrist_twist=w[:, :, 2],
         twist_range=float(twist_range),
         knee_flexion=dc[7:9].T,
-        feet_down=(az <= az.min(axis=1, initial=np.inf)[:, None] + FOOT_UP).T,
+        feet_down=(az <= low + FOOT_UP).T,
         walking=np.zeros(n, dtype=bool) if walking is None else np.asarray(walking, dtype=bool),
         hands=hands,
-        ankles=0.5 * (pts[12] + pts[13]),
+        ankles=ankles,
         forward=fwd,
         shoulder_raised=np.zeros((n, 2), dtype=bool),
         lower_arm_out=out,
     )
+
+
+def _lowest_per_ground(az: np.ndarray, ground: np.ndarray) -> np.ndarray:
+    """(2, F) each ankle's lowest height above the ground ``az`` (2, F) among the frames on the
+    same ground as each frame (``ground`` (F,), world z): :data:`FOOT_UP`'s "lowest in the
+    motion" taken on each surface stood on, so a stair's frames (the pelvis over a tread, the
+    trailing foot on the one below) do not lower the floor's or a platform's."""
+    levels, at = np.unique(ground, return_inverse=True)
+    low = np.full((2, len(levels)), np.inf)
+    for side in range(2):
+        np.minimum.at(low[side], at, az[side])
+    return low[:, at]
 
 
 #: Humanoid body -> the joint position it stands for (the body's origin is the joint).
@@ -417,7 +439,10 @@ def _humanoid_points(
 
 
 def angles_from_timeline(
-    timeline, walking: np.ndarray | None = None, table: GeomTable | None = None
+    timeline,
+    walking: np.ndarray | None = None,
+    table: GeomTable | None = None,
+    ground: np.ndarray | None = None,
 ) -> BodyAngles:
     """Body angles of every frame of a humanoid :class:`~mjwalk.timeline.timeline.Timeline`.
     The wrists' flexion and deviation, the forearms' pronation and the neck's rotation are the
@@ -428,15 +453,26 @@ def angles_from_timeline(
         walking: (F,) frames of a walk (default none).
         table: the humanoid's geom poses in every frame, if already computed
             (:func:`body_frames`).
+        ground: (F,) world z (m) of the surface the body stands on in each frame (a platform's
+            top under the feet at a raised station); the hands', the ankles' and the feet's
+            heights are measured above it (NIOSH's V is the hands' height above the floor the
+            worker stands on, Waters et al. 1993). None: world z.
 
     Returns:
         The :class:`BodyAngles` of its F frames.
     """
-    return angles_from_qpos(timeline.model, timeline.jointmap, timeline.qpos, walking, table)
+    return angles_from_qpos(
+        timeline.model, timeline.jointmap, timeline.qpos, walking, table, ground
+    )
 
 
 def angles_from_qpos(
-    model, jointmap, qpos: np.ndarray, walking=None, table: GeomTable | None = None
+    model,
+    jointmap,
+    qpos: np.ndarray,
+    walking=None,
+    table: GeomTable | None = None,
+    ground: np.ndarray | None = None,
 ) -> BodyAngles:
     """:func:`angles_from_timeline` for poses of a model: joint positions from the bodies'
     origins, the head's up the neck body's z, the grip points the palms' centres.
@@ -448,6 +484,8 @@ def angles_from_qpos(
         walking: (F,) frames of a walk (default none).
         table: the geom poses of every frame of ``qpos``, if already computed
             (:func:`body_frames`).
+        ground: (F,) world z of the surface stood on in each frame (:func:`angles_from_timeline`);
+            None: heights are world z.
 
     Returns:
         The :class:`BodyAngles` of the F frames.
@@ -468,4 +506,5 @@ def angles_from_qpos(
         deg[:, 6],
         float(np.degrees(max(abs(lo), abs(hi)))),
         walking,
+        None if ground is None else np.asarray(ground, dtype=float),
     )

@@ -5,7 +5,8 @@ cycle, judged by EN 1005-4 and ISO 11226 (:mod:`mjwalk.ergonomics.en1005`).
 Per frame (:class:`ExposureFrames`): each upper arm's elevation from the vertical, the trunk's
 flexion, side bend and twist, the neck's flexion (all from
 :class:`~mjwalk.ergonomics.angles.BodyAngles`, degrees), each hand's height (metres above the
-floor: a cycle's are above its scene's floor, ``cycle_ergonomics``) and reach distance
+floor; a cycle's above the surface the operator stands on, a platform's top at a raised
+station, ``cycle_ergonomics``) and reach distance
 (horizontal distance from the mid-point of the ankles to the grip point, metres).
 
 Per task: the peak arm elevation and trunk flexion, the seconds above 60 deg of either arm and
@@ -65,7 +66,7 @@ class ExposureFrames:
     Attributes:
         arm: (F, 2) upper-arm elevation from the vertical, left and right.
         trunk_flexion, trunk_side_bend, trunk_twist, trunk_inclination, neck_flexion: (F,).
-        hand_height: (F, 2) the grip points' height above the floor, metres.
+        hand_height: (F, 2) the grip points' height above the floor stood on, metres.
         reach: (F, 2) the grip points' horizontal distance from the ankles' mid-point.
     """
 

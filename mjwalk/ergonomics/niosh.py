@@ -120,7 +120,7 @@ class LiftEnds:
 
     Attributes:
         h: horizontal distance of the hands from the ankles' mid-point, cm (or in).
-        v: height of the hands above the floor, cm (or in).
+        v: height of the hands above the floor the worker stands on, cm (or in).
         a: asymmetry angle, degrees.
     """
 
@@ -245,7 +245,7 @@ def multipliers(
 
     Args:
         h: horizontal distance of the hands from the ankles' mid-point, cm (or in).
-        v: height of the hands above the floor, cm (or in).
+        v: height of the hands above the floor the worker stands on, cm (or in).
         d: vertical travel of the lift, cm (or in).
         a: asymmetry angle, degrees.
         cond: frequency, duration category, coupling and units of the lift.

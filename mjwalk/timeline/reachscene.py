@@ -14,11 +14,12 @@ from numpy.typing import ArrayLike
 from mjwalk.arms.chain import arm_frames, arm_joint_angles
 from mjwalk.arms.hands import finger_trajectory
 from mjwalk.arms.reach import ReachModel, humanoid_arm, reach_for_side
-from mjwalk.body.humanoid import attach_humanoid, pelvis_height
+from mjwalk.body.humanoid import HUMAN_GROUP, attach_humanoid, pelvis_height
 from mjwalk.conventions import DEFAULT_STATURE, Side, side_prefix
 from mjwalk.errors import MjwalkError
 from mjwalk.timeline.frames import yaw_quat
 from mjwalk.timeline.timeline import Timeline
+from mjwalk.world.norms import LEVEL_TOLERANCE
 
 
 def _site_pose(model, name: str):
@@ -48,9 +49,35 @@ class SceneReachOptions:
     object_size: float | None = None
 
 
+def ground_under(model: mujoco.MjModel, data: mujoco.MjData, point) -> float:
+    """The world height of the surface a person standing at ``point`` stands on: the first
+    static scene geom (not the humanoid's) straight below ``point`` raised by
+    ``norms.LEVEL_TOLERANCE`` (a site written a hair under a deck's top stands on the deck, as
+    the cycle's :func:`~mjwalk.cycle.levelsite.site_level` takes it), found by MuJoCo's ray cast.
+
+    Args:
+        model: the compiled scene.
+        data: its MjData with the kinematics computed.
+        point: (3,) world point (a standing site's), metres.
+
+    Returns:
+        World z of the surface, metres (a floor, a platform's or a mezzanine's top); 0 when no
+        geom lies below the point.
+    """
+    start = np.asarray(point, dtype=float).copy()
+    start[2] += LEVEL_TOLERANCE
+    groups = np.ones(6, dtype=np.uint8)
+    groups[HUMAN_GROUP] = 0
+    hit = np.zeros(1, dtype=np.int32)
+    down = np.array([0.0, 0.0, -1.0])
+    dist = mujoco.mj_ray(model, data, start, down, groups, 1, -1, hit)
+    return 0.0 if hit[0] < 0 else float(start[2] - dist)
+
+
 def _stand_pose(mj, jm, stand_site: str, stature: float):
-    """The humanoid's standing pose (nq,) at ``stand_site`` (facing the site's +x) and the
-    MjData of the scene's neutral pose (for the sites' world poses)."""
+    """The humanoid's standing pose (nq,) at ``stand_site`` (facing the site's +x, the pelvis at
+    its standing height over the surface under the site, :func:`ground_under`) and the MjData of
+    the scene's neutral pose (for the sites' world poses)."""
     _site_pose(mj, stand_site)
     data = mujoco.MjData(mj)
     mujoco.mj_kinematics(mj, data)  # site_xpos of bodies' sites need the kinematics
@@ -59,11 +86,8 @@ def _stand_pose(mj, jm, stand_site: str, stature: float):
     yaw = float(np.arctan2(xmat[1, 0], xmat[0, 0]))
     q0 = jm.neutral_qpos(mj, stature)
     r = jm.root
-    q0[r : r + 3] = [
-        data.site_xpos[sid_stand][0],
-        data.site_xpos[sid_stand][1],
-        pelvis_height(stature),
-    ]
+    at = data.site_xpos[sid_stand]
+    q0[r : r + 3] = [at[0], at[1], pelvis_height(stature) + ground_under(mj, data, at)]
     q0[r + 3 : r + 7] = yaw_quat(np.array([yaw]))[0]
     return q0, data
 
@@ -95,14 +119,15 @@ def reach_in_scene(
     options: SceneReachOptions | None = None,
 ):
     """A :class:`~mjwalk.timeline.timeline.Timeline` of the humanoid standing at ``stand_site``
-    (facing the site's +x) and reaching its ``side`` hand to ``target_site`` (+
-    ``target_offset``, world metres): the hand starts where the model's reaches start
+    (facing the site's +x, on the surface under it: the floor, a platform's top) and
+    reaching its ``side`` hand to ``target_site`` (+ ``target_offset``, world metres): the
+    hand starts where the model's reaches start
     (:attr:`~mjwalk.arms.reach.ReachModel.rest_hand`: for the generated models
     :data:`~mjwalk.arms.chain.REST_HAND`, relaxed, elbow slightly bent) and ends on the
     target within 1 cm; joint angles outside the humanoid's ranges are clipped (noted in
     ``meta``). The target is scaled into the model's size by ``meta["scale"]``
-    (:func:`~mjwalk.arms.reach.arm_scale`; 1 for the default model at 1.75 m), and fitted for
-    the humanoid's arm at that size (``meta["arm_lengths"]``).
+    (:func:`~mjwalk.arms.reach.arm_scale`; 1 for the default model at 1.75 m), and fitted
+    for the humanoid's arm at that size (``meta["arm_lengths"]``).
 
     Args:
         scene: an MJCF scene file or an MjSpec; the humanoid is attached.

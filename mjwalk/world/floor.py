@@ -7,6 +7,7 @@ tape, inlays: :func:`flush_geoms`) are floor to the contact check. Metres, z up.
 from __future__ import annotations
 
 import math
+import weakref
 from collections.abc import Sequence
 
 import mujoco
@@ -15,7 +16,7 @@ import numpy as np
 from mjwalk.errors import SceneError
 from mjwalk.world.footprint import geom_footprint
 from mjwalk.world.norms import LEVEL_TOLERANCE
-from mjwalk.world.slabfloor import MIN_FLOOR_AREA, find_slab_floor, slab
+from mjwalk.world.slabfloor import MIN_FLOOR_AREA, Slab, find_floor_slabs, find_slab_floor, slab
 
 #: Default height band (metres above the floor) in which a geom counts as an obstacle.
 OBSTACLE_Z_RANGE = (0.05, 2.0)
@@ -54,7 +55,8 @@ def find_floor(model: mujoco.MjModel, data: mujoco.MjData, label: str) -> int:
         and data.geom_xmat[g].reshape(3, 3)[2, 2] > FLOOR_MIN_NZ
     ]
     if not planes:
-        floor = find_slab_floor(model, data, label)
+        tiles = slab_floor(model)  # kept per model; when none, the search again names why
+        floor = tiles[0] if tiles else find_slab_floor(model, data, label)
         if floor is not None:
             return floor.geom
         tilted = [
@@ -91,7 +93,7 @@ def floor_top(model: mujoco.MjModel, data: mujoco.MjData, floor: int) -> float:
     """
     if int(model.geom_type[floor]) == mujoco.mjtGeom.mjGEOM_PLANE:
         return float(data.geom_xpos[floor][2])
-    s = slab(model, data, floor)
+    s = _floor_slab(model, data, floor)
     return float(data.geom_xpos[floor][2]) if s is None else s.top
 
 
@@ -99,7 +101,8 @@ def floor_rect(
     model: mujoco.MjModel, data: mujoco.MjData, floor: int
 ) -> tuple[float, float, float, float] | None:
     """The extent of a floor geom: a finite plane's rectangle (its size about its centre), a
-    slab's top face's bounding box; None for an infinite plane.
+    slab floor's top faces' bounding box (every slab of it, :func:`slab_floor`); None for an
+    infinite plane.
 
     Args:
         model: the compiled scene.
@@ -110,9 +113,16 @@ def floor_rect(
         (xmin, ymin, xmax, ymax), world metres, or None.
     """
     if int(model.geom_type[floor]) != mujoco.mjtGeom.mjGEOM_PLANE:
-        s = slab(model, data, floor)
-        if s is not None:
-            return s.bounds
+        tiles = slab_floor(model)
+        if not any(t.geom == floor for t in tiles):
+            one = slab(model, data, floor)
+            tiles = () if one is None else (one,)
+        if tiles:
+            b = np.array([t.bounds for t in tiles])
+            return (
+                float(b[:, 0].min()), float(b[:, 1].min()), float(b[:, 2].max()),
+                float(b[:, 3].max()),
+            )  # fmt: skip
     fx, fy = model.geom_size[floor][:2]
     if fx > 0 and fy > 0:
         cx, cy = data.geom_xpos[floor][:2]
@@ -140,35 +150,66 @@ def floor_planes(
         if int(model.geom_type[g]) == mujoco.mjtGeom.mjGEOM_PLANE:
             normals[i], origins[i] = data.geom_xmat[g].reshape(3, 3)[:, 2], data.geom_xpos[g]
             continue
-        s = slab(model, data, g)
+        s = _floor_slab(model, data, g)
         if s is None:
             return None
         normals[i], origins[i] = (0.0, 0.0, 1.0), (*data.geom_xpos[g][:2], s.top)
     return normals, origins
 
 
-def slab_floor_mask(model: mujoco.MjModel) -> np.ndarray:
-    """The slab a model's floor is, as a mask: in a model without planes, the geom
-    :func:`~mjwalk.world.slabfloor.find_slab_floor` chooses (the humanoid's geoms, not fixed
-    to the world, are never one); no geom otherwise, or when no slab is clearly the floor.
+#: The slab floor of each model (:func:`slab_floor`), kept while the model lives: the contact
+#: check asks for it every report, the workplace three times at load.
+_SLAB_FLOORS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def slab_floor(model: mujoco.MjModel) -> tuple[Slab, ...]:
+    """The slabs a model's floor is made of (:func:`~mjwalk.world.slabfloor.find_floor_slabs`:
+    the lowest large slab top and the slabs side by side with it), found once per model; none
+    in a model with a plane, or when no slab is clearly the floor. The humanoid's geoms, not
+    fixed to the world, are never one, so a scene with and without it has the same.
 
     Args:
         model: the compiled scene (with or without the humanoid).
 
     Returns:
-        (ngeom,) bool mask, at most one True.
+        The floor's slabs, the floor geom's first; empty without a slab floor.
+    """
+    hit = _SLAB_FLOORS.get(model)
+    if hit is not None and hit[0] == model.ngeom:
+        return hit[1]
+    tiles: tuple[Slab, ...] = ()
+    if not (model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE).any():
+        data = mujoco.MjData(model)
+        mujoco.mj_kinematics(model, data)
+        try:
+            tiles = find_floor_slabs(model, data, "scene")
+        except SceneError:  # no clear floor: loading the workplace says so
+            tiles = ()
+    _SLAB_FLOORS[model] = (model.ngeom, tiles)
+    return tiles
+
+
+def _floor_slab(model: mujoco.MjModel, data: mujoco.MjData, g: int) -> Slab | None:
+    """Geom ``g``'s slab: the kept one when it is a slab of the floor (:func:`slab_floor`),
+    else :func:`~mjwalk.world.slabfloor.slab`'s."""
+    for t in slab_floor(model):
+        if t.geom == g:
+            return t
+    return slab(model, data, g)
+
+
+def slab_floor_mask(model: mujoco.MjModel) -> np.ndarray:
+    """The slabs a model's floor is made of (:func:`slab_floor`, kept per model), as a mask;
+    no geom in a model with a plane, or when no slab is clearly the floor.
+
+    Args:
+        model: the compiled scene (with or without the humanoid).
+
+    Returns:
+        (ngeom,) bool mask.
     """
     mask = np.zeros(model.ngeom, dtype=bool)
-    if (model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE).any():
-        return mask
-    data = mujoco.MjData(model)
-    mujoco.mj_kinematics(model, data)
-    try:
-        floor = find_slab_floor(model, data, "scene")
-    except SceneError:  # no clear floor: loading the workplace says so
-        floor = None
-    if floor is not None:
-        mask[floor.geom] = True
+    mask[[t.geom for t in slab_floor(model)]] = True
     return mask
 
 
@@ -262,10 +303,7 @@ def flush_geoms(
     plane = model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE
     floors = data.geom_xpos[plane & (data.geom_xmat[:, 8] > FLOOR_MIN_NZ), 2].tolist()
     slabs = slab_floor_mask(model)
-    for g in np.flatnonzero(slabs).tolist():
-        face = slab(model, data, g)
-        if face is not None:
-            floors.append(face.top)
+    floors += [t.top for t in slab_floor(model)]
     floors += [float(z) for z in levels]
     bottom, top = geom_z_extents(model, data)
     static = model.body_weldid[model.geom_bodyid] == 0

@@ -30,7 +30,7 @@ import numpy as np
 from mjwalk._args import check_patterns
 from mjwalk.errors import InputError
 from mjwalk.world.contacts import MIN_CROSSING, reachable, surface_contacts
-from mjwalk.world.floor import find_floor, floor_rect, floor_top
+from mjwalk.world.floor import find_floor, floor_rect, floor_top, slab_floor
 from mjwalk.world.floorholes import FloorBoxes, floor_boxes, opening_area
 from mjwalk.world.footprint import Footprint, geom_footprint, polygon_area
 from mjwalk.world.norms import (
@@ -360,9 +360,21 @@ def _surface_from_face(
 
 def _floor_surface(model, data, floor: int) -> WalkSurface:
     """The floor as a walk surface (an infinite plane: the other geoms' extent plus a margin; a
-    slab: its top, :mod:`mjwalk.world.slabfloor`)."""
+    slab: its own top face, a yawed one's turned rectangle, :mod:`mjwalk.world.slabfloor`; the
+    slabs side by side with it are surfaces of its height, one level with it)."""
     z = floor_top(model, data, floor)
     c = data.geom_xpos[floor][:2]
+    own = [t for t in slab_floor(model) if t.geom == floor]
+    if own:
+        xy, name = own[0].xy, _geom_name(model, floor)
+        x0, y0, x1, y1 = own[0].bounds
+        depth, width = sorted((x1 - x0, y1 - y0))  # a yawed slab's: its turned rectangle's
+        if len(xy) == 4:
+            depth, width = sorted(np.linalg.norm(xy[[1, 2]] - xy[[0, 1]], axis=1).tolist())
+        return WalkSurface(
+            floor, name, "floor", z, Footprint(name, floor, xy), polygon_area(xy),
+            ((x0 + x1) / 2, (y0 + y1) / 2), 0.0, 0.0, z, z, depth, width,
+        )  # fmt: skip
     rect = floor_rect(model, data, floor)
     if rect is not None:
         bounds = rect

@@ -23,12 +23,12 @@ from mjwalk.world.floor import (
     find_floor,
     floor_rect,
     floor_top,
+    slab_floor,
 )
 from mjwalk.world.floorholes import floor_boxes, wall_openings
 from mjwalk.world.footprint import Footprint, geom_footprint
 from mjwalk.world.levels import LevelGraph, level_graph
 from mjwalk.world.meshimport import concave_mesh_footprints
-from mjwalk.world.slabfloor import slab
 from mjwalk.world.surfaces import SurfaceOptions, find_walk_surfaces
 
 #: Bodies whose name starts with one of these are part of a humanoid, never obstacles (the
@@ -409,9 +409,9 @@ def workplace_from_model(
     key, clearance = _clearance(footprints, bounds, options)
     if holes is not None:
         key, clearance = None, wall_openings(clearance, holes.footprints)
-    top = slab(model, data, floor) if rect is not None and holes is None else None
-    if top is not None:  # a slab's top off its bounding box (a yawed slab): walls at its edges
-        walled = wall_openings(clearance, (Footprint(floor_name, floor, top.xy),))
+    tiles = slab_floor(model) if rect is not None and holes is None else ()
+    if tiles:  # slab tops off their bounding box (a yawed slab, an L of tiles): walls at edges
+        walled = wall_openings(clearance, tuple(Footprint(t.name, t.geom, t.xy) for t in tiles))
         key, clearance = (key, clearance) if walled is clearance else (None, walled)
     return Workplace(
         model=model,

@@ -219,3 +219,50 @@ def test_contact_check_and_ergonomics_sharing_kinematics_match_each_alone(ctx, s
 
     assert rows(both.collisions) == rows(contacts)
     assert pickle.dumps(both.ergonomics) == pickle.dumps(scores)
+
+
+def test_a_task_on_a_platform_scores_as_the_same_task_on_the_floor():
+    """Issue 47: heights are measured above the surface stood on. A pick of a 5 kg part on a
+    0.34 m platform (the body, the site and the ground all 0.34 m up) gives the same NIOSH V,
+    RWL and LI, hand height and RULA/REBA/OWAS peaks as on the floor. Before, its V and hand
+    height were 34 cm higher and its feet, 0.34 m above the cycle's lowest ankle, were
+    'not down' (RULA's legs unsupported)."""
+    from types import SimpleNamespace
+
+    from mjwalk.body.humanoid import humanoid_model, pelvis_height
+    from mjwalk.cycle.simulate import cycle_ergonomics
+    from mjwalk.ergonomics.angles import angles_from_qpos
+    from mjwalk.timeline.timeline import Timeline
+
+    model, jm = humanoid_model()
+    q0 = jm.neutral_qpos(model)
+    q0[jm.root + 2] = pelvis_height(1.75)
+    qpos = np.tile(q0, (60, 1))  # a walk, a wait, the pick (arm raised, trunk bent)
+    for name, deg in (("shoulder_l_flex", 60.0), ("elbow_l", 30.0), ("lumbar_flex", 40.0)):
+        qpos[40:, jm.adr(name)] = np.radians(deg)
+    hand = angles_from_qpos(model, jm, qpos[50:51]).hands[0, 0]
+    task = dict(hand="left", mass=5.0, coupling="fair", duration=None)
+    spec = SimpleNamespace(tasks=[
+        SimpleNamespace(kind="walk", site="stand", **task),
+        SimpleNamespace(kind="wait", site=None, **task),
+        SimpleNamespace(kind="pick", site="shelf", **task),
+    ])  # fmt: skip
+    starts, ends = [0, 20, 40], [20, 40, 60]
+    out = []
+    for up in (0.0, 0.34):
+        q = qpos.copy()
+        q[20:, jm.root + 2] += up  # walked up onto the platform
+        tl = Timeline(model=model, jointmap=jm, fps=10.0, t=np.arange(60) / 10.0, qpos=q,
+                      scene="", stature=1.75)  # fmt: skip
+        wp = SimpleNamespace(
+            floor_z=0.0, stations={"shelf": SimpleNamespace(pos=hand + [0, 0, up])}
+        )
+        ground = np.where(np.arange(60) < 20, 0.0, up)
+        out.append(cycle_ergonomics(tl, spec, starts, ends, 60.0, wp, ground=ground))
+    floor, platform = out
+    (a,), (b,) = floor.lifts, platform.lifts
+    assert b.v == pytest.approx(a.v, abs=1e-9) and b.h == pytest.approx(a.h, abs=1e-9)
+    assert b.rwl == pytest.approx(a.rwl, abs=1e-9) and b.li == pytest.approx(a.li, abs=1e-9)
+    for s, t in zip(floor.tasks, platform.tasks, strict=True):
+        assert (s.rula, s.reba, s.owas, s.rula_driver) == (t.rula, t.reba, t.owas, t.rula_driver)
+        assert t.extra["hand_height_max_m"] == pytest.approx(s.extra["hand_height_max_m"])

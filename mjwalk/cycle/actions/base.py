@@ -105,11 +105,16 @@ class Performed:
         state: where the operator is afterwards (its ``t`` and ``pose`` are set by the cycle
             from the pieces).
         record: the walk or arm motion for the result (None: neither).
+        ground: (n,) world z (m) of the surface the operator stands on in each of the pieces'
+            frames, in order (the ergonomics measure heights above it); None: the surface under
+            where the operator stood before the action (:meth:`CycleContext.ground
+            <mjwalk.cycle.context.CycleContext.ground>`), throughout.
     """
 
     pieces: tuple[tuple[np.ndarray, float], ...]
     state: CycleState
     record: WalkRecord | ArmRecord | None = None
+    ground: np.ndarray | None = None
 
 
 class Action:

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import numpy as np
+
 from mjwalk.cycle.actions.base import Action, CycleRun, CycleState, Performed
-from mjwalk.cycle.poses import carry_pose, turn_frames, walk_frames
+from mjwalk.cycle.poses import carry_pose, turn_frames, walk_frames, walk_ground
 from mjwalk.cycle.types import WalkRecord
 from mjwalk.cycle.walking import plan_task_walk
 from mjwalk.plan.walkpath import WalkPath
@@ -49,8 +51,8 @@ class Walk(Action):
             plan: the walk from :meth:`plan`.
 
         Returns:
-            The three pieces, the state at the site (facing its yaw, ``home`` the walk's end) and
-            the :class:`~mjwalk.cycle.types.WalkRecord`.
+            The three pieces, the state at the site (facing its yaw, ``home`` the walk's end),
+            the :class:`~mjwalk.cycle.types.WalkRecord` and the ground under every frame.
         """
         ctx, fps, path, width = run.ctx, run.fps, plan, state.grip
         face = ctx.workplace.station(self.goal).yaw
@@ -69,7 +71,12 @@ class Walk(Action):
         )
         after = state.moved(x=x, y=y, yaw=face, home=(x, y), here=self.goal)
         pieces = ((turn, dt), (wf, len(wf) / fps), (end, dt2))
-        return Performed(pieces, after, self.record(run, state.here, path))
+        ground = np.concatenate([  # the surface stood on: where the walk starts, under it, its end
+            np.full(len(turn), ctx.ground((state.x, state.y))),
+            walk_ground(ctx, path, fps),
+            np.full(len(end), ctx.ground((x, y))),
+        ])  # fmt: skip
+        return Performed(pieces, after, self.record(run, state.here, path), ground)
 
     def record(self, run: CycleRun, start: str, path: WalkPath) -> WalkRecord:
         """The walk from site ``start`` with the grid-A* route between the walk's own ends (not the
