@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from mjwalk.anthropometry import ROM_DEG, leg_geometry
-from mjwalk.body.legs import legs_from_walk
+from mjwalk.body.legs import legs_from_walk, synthesis
 from mjwalk.body.legs.edgeswing import STAIR_TOE_CLEARANCE
 from mjwalk.body.legs.footcheck import foot_points
 from mjwalk.body.legs.footpivot import ball_offset
@@ -21,8 +21,10 @@ from mjwalk.body.legs.legheights import (
     step_surfaces,
     surface_pitch,
 )
+from mjwalk.body.legs.stance import REACH_DROP_MAX
 from mjwalk.body.legs.steps import FootTracks
 from mjwalk.conventions import DEFAULT_STATURE
+from mjwalk.errors import PlanningError
 from mjwalk.plan.synthetic import synthetic_ramp_walk, synthetic_stair_walk, synthetic_walk
 
 
@@ -330,3 +332,79 @@ def test_the_first_step_off_a_landing_flexes_the_knee_as_the_flight_does(stature
         for st in walk.steps
     ]
     assert peaks[1] <= max(peaks[2:-1]) + 1.0
+
+
+def _one_riser_walk(riser: float, step_len: float, first: int = 3):
+    """A straight 8-step walk whose step ``first`` lands one riser up (``riser`` > 0) or down
+    and whose next step brings the trailing foot onto that level, the ground height jumping at
+    the riser (a step as the level planner's crossings give it, not a ramp)."""
+    walk = synthetic_walk(n_steps=8, step_len=step_len, step_time=0.55)
+    lo, hi = (0.0, riser) if riser > 0 else (-riser, 0.0)
+    walk.steps[:] = [
+        replace(s, foot_z=hi if k >= first else lo, stance_z=hi if k > first else lo)
+        for k, s in enumerate(walk.steps)
+    ]
+    z = np.full(len(walk.t), lo)
+    z[walk.steps[first].end :] = hi
+    walk.z = z
+    return walk
+
+
+@pytest.mark.parametrize("riser", [0.17, -0.17])
+def test_a_step_onto_the_stance_foot_s_level_lands_on_its_heel(riser):
+    """Off a riser (up or down) the next step brings the trailing foot onto the level the
+    stance foot already stands on: it lands on its heel as on the level (its riser is behind
+    the stance foot), and the pelvis is not lowered for it. Landed flat (before), its ankle 4 cm
+    ahead and 2 cm below the heel strike, the leg reached it only with the pelvis 3.4 cm
+    lowered (0.49 m steps; 3.5 cm in generated halls 201 and 510). The step down onto the
+    lower level itself is landed flat (a riser below the stance foot) and lowers the pelvis
+    3.4 cm: within the bound."""
+    walk = _one_riser_walk(riser, 0.49)
+    flat = legs_from_walk(synthetic_walk(n_steps=8, step_len=0.49, step_time=0.55))
+    motion = legs_from_walk(walk)
+    onto = walk.steps[4]  # lift one riser from the stance foot's level, lands on it
+    assert motion.pitch[onto.side][onto.end] == pytest.approx(flat.pitch[onto.side][onto.end])
+    low = motion.meta["pelvis_lowering"]
+    assert low[onto.end - 10 :].max() < 5e-3
+    for st in walk.steps:  # every step's lowering within the bound
+        assert low[st.start : st.end + 1].max() <= REACH_DROP_MAX
+
+
+def test_stair_walks_pelvis_lowering_within_the_bound():
+    """Up and down a 0.17/0.28 stair (the level planner's footfalls) the pelvis's whole
+    lowering below its gait's height over the stance tread (flat synthesis and lift onto the
+    treads together; down a stair the gait's own lowering of a riser per step is not counted)
+    stays under 1 cm on every step (measured: at most 5.1 mm, the first step down), far within
+    REACH_DROP_MAX."""
+    for direction in ("up", "down"):
+        walk = synthetic_stair_walk(0.17, 0.28, 6, direction)
+        low = legs_from_walk(walk).meta["pelvis_lowering"]
+        assert len(low) == len(walk.t)
+        for st in walk.steps:
+            assert 0.0 <= low[st.start : st.end + 1].max() < 0.01
+
+
+@pytest.mark.parametrize("flat_drop", [0.0, 0.03, 0.06])
+def test_the_whole_lowering_is_bounded_once(monkeypatch, flat_drop):
+    """The flat synthesis's lowering and the lift's are one lowering of the pelvis below its
+    gait's height, bounded once. With ``flat_drop`` lowered by the flat synthesis (its ankle
+    fit, stood in for here) the step down a riser (3.4 cm to reach its flat landing) is
+    lowered only what is still missing (the lift measures from the lowered pelvis): the whole
+    is the larger of the two, and past the bound the walk is refused in one line naming
+    where, a flat walk too (before, the flat synthesis's lowering had no bound, and the lift
+    counted only its own part)."""
+    fit = synthesis._fit_ankles
+
+    def lowered_fit(sy, ik, win):
+        fit(sy, ik, win)
+        sy.z = sy.z - flat_drop
+
+    monkeypatch.setattr(synthesis, "_fit_ankles", lowered_fit)
+    for walk, need in ((synthetic_walk(n_steps=6), 0.0), (_one_riser_walk(-0.17, 0.49), 0.034)):
+        if flat_drop <= REACH_DROP_MAX:
+            low = legs_from_walk(walk).meta["pelvis_lowering"]
+            assert low.max() == pytest.approx(max(flat_drop, need), abs=5e-3)
+            continue
+        with pytest.raises(PlanningError, match=r"m lowered at \(") as err:
+            legs_from_walk(walk)
+        assert "\n" not in str(err.value)

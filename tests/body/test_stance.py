@@ -13,6 +13,7 @@ from mjwalk.body.legs.stance import (
     KneeEnds,
     LandingEase,
     StanceLeg,
+    bound_lowering,
     floor_reach_sq,
     lower_to_reach,
     pelvis_height,
@@ -149,3 +150,38 @@ def test_reach_deficit_with_kept_yaw_sines_is_the_same():
         reach_deficit_kept(root, yaw, ankle, ground, reach_sq, c, *cache.trig_buffers(n), out)
         assert out.tobytes() == want.tobytes()
         assert (want > 0).any()
+
+
+def test_bound_lowering_refuses_over_the_bound_in_one_line_naming_the_point():
+    """The whole lowering is bounded by REACH_DROP_MAX: within it the largest is returned, over
+    it a one-line PlanningError names where (the pelvis's x, y)."""
+    root = np.column_stack([np.arange(5.0), np.full(5, 2.0), np.full(5, 0.9)])
+    low = np.array([0.0, 0.01, REACH_DROP_MAX + 0.004, 0.02, 0.0])
+    with pytest.raises(PlanningError, match=r"0\.054 m lowered at \(2\.00, 2\.00\)") as err:
+        bound_lowering(low, root)
+    assert "\n" not in str(err.value)
+    assert bound_lowering(np.minimum(low, REACH_DROP_MAX), root) == REACH_DROP_MAX
+    assert bound_lowering(np.zeros(0), root[:0]) == 0.0
+
+
+def test_lower_to_reach_bounds_its_lowering_with_the_one_before():
+    """A 3 cm lowering is within the bound alone, but not on top of a flat synthesis's 3 cm
+    (``before``): the two are one lowering of the pelvis, bounded once; ``before`` holds the
+    sum afterwards."""
+    g = leg_geometry(1.75)
+    n = 41
+    ankle = {s: np.column_stack([np.zeros((n, 2)), np.full(n, g.ankle_height)]) for s in "lr"}
+    reach_sq = {s: np.full(n, 0.8**2) for s in "lr"}
+    cap = g.ankle_height + np.sqrt(0.8**2 - g.hip_y**2)
+    on = {"l": np.ones(n, bool), "r": np.zeros(n, bool)}
+
+    def root():
+        return np.column_stack([np.zeros((n, 2)), np.full(n, cap + 0.03)])
+
+    alone = lower_to_reach(root(), np.zeros(n), ankle, on, reach_sq, g, 5)
+    before = np.full(n, 0.01)
+    total = lower_to_reach(root(), np.zeros(n), ankle, on, reach_sq, g, 5, before)
+    assert total == pytest.approx(alone + 0.01)
+    assert before.max() == pytest.approx(total)
+    with pytest.raises(PlanningError, match="lowered"):
+        lower_to_reach(root(), np.zeros(n), ankle, on, reach_sq, g, 5, np.full(n, 0.03))

@@ -26,8 +26,8 @@ false) then passes through :func:`lift_to_levels`:
   pull-up (by :data:`ASCENT_PULL_UP_END` of the step, a riser per step), down a stair it
   lowers while the stance leg yields. Where a grounded leg then cannot reach its foot, a
   foot on a ramp already rising on its ball rises further
-  (:func:`~mjwalk.body.legs.rampreach.trailing_reach`), and elsewhere the pelvis lowers
-  (smoothly; more than :data:`~mjwalk.body.legs.stance.REACH_DROP_MAX` is a PlanningError).
+  (:func:`~mjwalk.body.legs.rampreach.trailing_reach`), elsewhere the pelvis lowers (smoothly;
+  with the flat synthesis's, over :data:`~mjwalk.body.legs.stance.REACH_DROP_MAX`: an error).
 * **Stepping down** (a stair descended, a drop of :data:`FOREFOOT_DROP` or more) the foot
   lands on its forefoot (:data:`DESCENT_CONTACT_PITCH`) and lowers its heel in weight
   acceptance (:func:`forefoot_landing`); the pelvis holds its height through forward
@@ -344,18 +344,19 @@ def heel_rise(feet: FootTracks, s: str, dorsi: np.ndarray, grounded: np.ndarray,
 
 
 def flat_landing(feet: FootTracks, fr: StepFrames, air: np.ndarray) -> None:
-    """A step up, or a step down by less than :data:`FOREFOOT_DROP`, landed flat: the landing
-    foot touches its tread with the whole sole at the place and heading it stands on once flat
-    (no heel strike with the toes up, which up a stair would leave the foot pitched over the
-    riser edge, and down a step tips the foot's back, turned about a heel landing next to the
-    riser, into that riser: measured on the first step off a stair's top landing and off the
-    platform's step); ``feet`` updated in place from the landing sample until the foot is flat
-    in the flat synthesis, or the other foot lifts off. Stair ascent is landed on the forefoot
-    or the whole foot, not the heel (McFadyen & Winter, J Biomech 21:733-744 (1988); Riener et
-    al., Gait Posture 15:32-44 (2002): the ankle is dorsiflexed at initial contact; NOT
-    verified here beyond the abstracts). Single steps down of 5 and 15 cm are landed rearfoot
-    first (the study cited at :data:`FOREFOOT_DROP`); the whole-sole landing is this module's
-    stand-in for that rearfoot landing (no published pitch at contact is used).
+    """A step up, or down by less than :data:`FOREFOOT_DROP`, onto a surface a riser from the
+    stance foot's, landed flat: the whole sole touches its tread where and as it stands once flat
+    (a heel strike with the toes up would leave the foot pitched over the riser edge up a stair,
+    and down a step tip the foot's back into the riser: measured on the first step off a stair's
+    top landing and off the platform's step); ``feet`` updated in place from the landing sample
+    until the foot is flat in the flat synthesis, or the other foot lifts off. Stair ascent is
+    landed on the forefoot or the whole foot (McFadyen & Winter, J Biomech 21:733-744 (1988);
+    Riener et al., Gait Posture 15:32-44 (2002): the ankle dorsiflexed at initial contact; NOT
+    verified here beyond the abstracts); single steps down of 5 and 15 cm rearfoot first (the
+    study at :data:`FOREFOOT_DROP`), for which the whole sole stands in. A step onto the stance
+    foot's own level (off a flight's last riser, either way) lands on its heel as on the level:
+    landed flat, 4 cm ahead and 2 cm below the heel strike, it took the pelvis 3.5 cm lowered
+    (generated halls 201 and 510, ``benchmarks/bench_unseen.py``).
 
     Args:
         feet: the foot tracks, their grounded samples already on their surfaces.
@@ -369,10 +370,8 @@ def flat_landing(feet: FootTracks, fr: StepFrames, air: np.ndarray) -> None:
     w = b + (min(ends) if ends else 0)
     if w <= b:
         return
-    idx = np.arange(b, w)
-    feet.ankle[s][idx] = feet.ankle[s][w]
-    feet.pitch[s][idx] = feet.pitch[s][w]
-    feet.toe[s][idx] = feet.toe[s][w]
+    for track in (feet.ankle[s], feet.pitch[s], feet.toe[s]):
+        track[b:w] = track[w]
 
 
 def _place_swings(frames, surfs, tr: LevelTracks, feet: FootTracks, flat_ankle,
@@ -393,8 +392,8 @@ def _place_swings(frames, surfs, tr: LevelTracks, feet: FootTracks, flat_ankle,
         if sf.edged:
             if sf.lift - sf.land >= FOREFOOT_DROP:
                 forefoot_landing(feet, fr, tr.air[fr.other], geom)
-            elif abs(sf.land - sf.lift) > LEVEL_STEP:  # up, or down less than FOREFOOT_DROP
-                flat_landing(feet, fr, tr.air[fr.other])
+            elif abs(sf.land - sf.stance) > LEVEL_STEP:  # up, or down < FOREFOOT_DROP, a riser
+                flat_landing(feet, fr, tr.air[fr.other])  # from the stance (else: heel strike)
             # the foot levelled after lift-off (toes and sole straighten), the landing pitch
             # taken at the end; :func:`_swing_pitch` then turns it toes down where the ankle
             # cannot dorsiflex that far. Down a stair the foot is not levelled: it stays toes
@@ -527,7 +526,7 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
 
 
 def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, root: np.ndarray,
-                   yaw: np.ndarray, geom: LegGeometry):  # fmt: skip
+                   yaw: np.ndarray, geom: LegGeometry, lowered: np.ndarray):  # fmt: skip
     """The flat leg synthesis of a walk that leaves the floor, put on its surfaces: feet on
     their footprints' heights (pitched to a ramp), the swing over step edges with the foot
     pitch its ankle can hold (:func:`edge_swing`, :func:`_swing_pitch`), the pelvis on the
@@ -541,6 +540,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
         root: (n, 3) the flat synthesis's pelvis positions, metres.
         yaw: (n,) the pelvis yaw, radians from +x CCW.
         geom: the leg geometry.
+        lowered: (n,) the flat synthesis's lowering of ``root``, metres (bounded with this one's).
 
     Returns:
         the pelvis positions (n, 3, metres), the joint angles (name -> (n,) radians, clipped
@@ -567,7 +567,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
     reach_sq = {s: np.full(n, geom.span(KNEE_MIN) ** 2) for s in "lr"}
     grounded = {s: ~tr.air[s] for s in "lr"}
     trailing_reach(feet, new_root, yaw, grounded, tr.pitch, reach_sq, geom)
-    lower_to_reach(new_root, yaw, feet.ankle, grounded, reach_sq, geom, win)  # or raises
+    lower_to_reach(new_root, yaw, feet.ankle, grounded, reach_sq, geom, win, lowered)  # or raises
     least = _swing_pitch(plans, feet, new_root, yaw, geom) if plans else math.inf
     least = min(least, _soles_clear(plans, feet, new_root, yaw, geom)) if plans else least
     ramps.swings_clear_ramps(walk, plans, frames, tr.air, feet, new_root, yaw, geom)

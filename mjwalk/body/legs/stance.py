@@ -412,8 +412,42 @@ def reach_deficit(
 REACH_DROP_MAX = 0.05
 
 
+def bound_lowering(lowering: np.ndarray, root: np.ndarray) -> float:
+    """The whole lowering of the pelvis below its gait's height over the stance surface,
+    bounded: the one check of :data:`REACH_DROP_MAX` (the flat synthesis's ankle fit and the
+    lift onto the levels add theirs; :func:`~mjwalk.body.legs.synthesis.legs_from_walk`).
+
+    On a level the gait's height is the flat synthesis's pelvis over the stance foot's
+    surface; on a stair it follows the stance tread, and down a stair its controlled lowering
+    (the stance knee flexing a riser in late single support, McFadyen & Winter 1988) is the
+    gait's own, not a lowering (:func:`~mjwalk.body.legs.legheights.level_tracks`).
+
+    Args:
+        lowering: (n,) how far the pelvis stands below that height, metres (>= 0 where
+            lowered).
+        root: (n, 3) the pelvis positions, metres, world frame (for the error's place).
+
+    Returns:
+        The largest lowering, metres (>= 0).
+
+    Raises:
+        PlanningError: the lowering exceeds :data:`REACH_DROP_MAX` (one line naming the walk
+            point).
+    """
+    drop = float(np.max(lowering, initial=0.0))
+    if drop > REACH_DROP_MAX:
+        i = int(np.argmax(lowering))
+        raise PlanningError(
+            f"the legs reach their feet only with the pelvis {drop:.3f} m lowered at "
+            f"({root[i, 0]:.2f}, {root[i, 1]:.2f}), more than {REACH_DROP_MAX} m: the walk's "
+            "steps there are no walking steps"
+        )
+    return drop
+
+
 def lower_to_reach(root, yaw: np.ndarray, ankle: dict, ground: dict, reach_sq: dict,
-                   geom: LegGeometry, win: int) -> float:  # fmt: skip
+                   geom: LegGeometry, win: int,
+                   before: np.ndarray | None = None) -> float:  # fmt: skip
     """Lower the pelvis (smoothly, in place) where a grounded leg cannot reach its ankle
     (:func:`reach_deficit`, up to 4 passes).
 
@@ -425,12 +459,15 @@ def lower_to_reach(root, yaw: np.ndarray, ankle: dict, ground: dict, reach_sq: d
         reach_sq: per side the (n,) squared hip-to-ankle spans, m².
         geom: the leg geometry.
         win: the smoothing window, samples (:func:`~mjwalk.body.legs.curves.spread`).
+        before: (n,) the lowering ``root`` already has (metres; the flat synthesis's), this
+            one added to it in place and the sum bounded; None: none.
 
     Returns:
-        The largest lowering, metres (>= 0).
+        The largest whole lowering, metres (>= 0).
 
     Raises:
-        PlanningError: the lowering exceeds :data:`REACH_DROP_MAX`.
+        PlanningError: the whole lowering exceeds :data:`REACH_DROP_MAX`
+            (:func:`bound_lowering`).
     """
     z0 = root[:, 2].copy()
     for _ in range(4):
@@ -438,15 +475,11 @@ def lower_to_reach(root, yaw: np.ndarray, ankle: dict, ground: dict, reach_sq: d
         if deficit.max() <= 1e-3:
             break
         root[:, 2] -= spread(np.maximum(deficit, 0.0) + 2e-3, win)
-    drop = float(np.max(z0 - root[:, 2], initial=0.0))
-    if drop > REACH_DROP_MAX:
-        i = int(np.argmax(z0 - root[:, 2]))
-        raise PlanningError(
-            f"the legs reach their feet only with the pelvis {drop:.3f} m lowered at "
-            f"({root[i, 0]:.2f}, {root[i, 1]:.2f}), more than {REACH_DROP_MAX} m: the walk's "
-            "steps there are no walking steps"
-        )
-    return drop
+    own = z0 - root[:, 2]
+    if before is None:
+        return bound_lowering(own, root)
+    before += own
+    return bound_lowering(before, root)
 
 
 @njit

@@ -58,6 +58,7 @@ from mjwalk.body.legs.stance import (
     KneeEnds,
     LandingEase,
     StanceLeg,
+    bound_lowering,
     floor_reach_sq,
     pelvis_height,
     reach_deficit,
@@ -138,6 +139,10 @@ class LegMotion:
         pitch: side -> (N,) foot pitch to the floor, radians, + toes up.
         contact: (N,) contact state: 0 = left stance, 1 = right stance, 2 = double support.
         phase: (N,) step phase in [0, 1] (0 before the first / after the last step).
+        meta: the stature, the reference's source, ``pelvis_lowering`` ((N,) metres: how far
+            the pelvis stands below its gait's height over the stance surface, at most
+            :data:`~mjwalk.body.legs.stance.REACH_DROP_MAX`) and, for a walk lifted onto
+            levels, ``edge_clearance`` (metres).
     """
 
     t: np.ndarray
@@ -200,17 +205,22 @@ def legs_from_walk(
     spin_turns(sy.feet, np.column_stack([sy.xy, sy.z]), sy.yaw, geom, ik)
     _hold_ends(sy, frames[0], frames[-1])
     win = max(3, round(0.05 * n / max(float(walk.t[-1] - walk.t[0]), 1e-9)))  # 50 ms
+    z_gait = sy.z.copy()  # the gait's pelvis height over the stance surface
     _fit_ankles(sy, ik, win)
     root = np.column_stack([sy.xy, sy.z])
     angles = _clear_floor(sy, ik, root, win)
     feet = sy.feet
-    meta = {"stature": stature, "reference": ref.source}
+    # the whole lowering below it, bounded in one place (the lift onto levels adds its own)
+    lowered = z_gait - sy.z
+    meta = {"stature": stature, "reference": ref.source, "pelvis_lowering": lowered}
     # platforms, steps, stairs, ramps, a ramp's low end beside a floor walk (issue 47): the flat
     # legs lifted
     if not walk.is_flat or (walk.meta or {}).get(BESIDE_KEY):
         root, angles, meta["edge_clearance"] = lift_to_levels(
-            walk, frames, feet, root, sy.yaw, geom
+            walk, frames, feet, root, sy.yaw, geom, lowered
         )
+    else:
+        bound_lowering(lowered, root)  # or raises
     return LegMotion(
         t=np.asarray(walk.t, float),
         root=root,
