@@ -240,21 +240,63 @@ def test_feet_on_a_ramp_beside_a_floor_walk_are_pitched_to_it(tmp_path):
     assert all(0.0 < s.land < np.tan(plane["slope"]) * plane["run"] for s in pitched)
 
 
-def test_a_flight_s_steps_at_one_height_are_level_steps():
-    """:func:`level_planes`: a step's or a stair's crossing counts its steps that lift, stand
-    and land at one height (to 1 um: the planner's heights carry 1e-16 m of rounding) as
-    level, so that its walk up to the first riser is kept off a ramp beside it (generated
-    hall 153's turn past a ramp's foot before a step up); the riser steps, and every step of
-    a ramp's crossing, are not."""
-    zs = [(0.0, 0.0), (1e-16, 0.0), (0.19, 1e-16), (0.19, 0.19), (0.19, 0.19), (0.0, 0.0)]
+def test_a_crossing_s_steps_at_one_height_are_level_steps():
+    """:func:`level_planes`: a step's, a stair's or a ramp's crossing counts its steps that
+    lift, stand and land at one height (to 1 um: the planner's heights carry 1e-16 m of
+    rounding) as level, so that its walk up to the first riser or the ramp's foot is kept off
+    a ramp beside it (generated hall 153's turn past a ramp's foot before a step up, hall
+    511's turn into a ramp past its low corner); the riser steps and a ramp's steps on its
+    slope are not."""
+    zs = [(0.0, 0.0), (1e-16, 0.0), (0.19, 1e-16), (0.19, 0.19), (0.19, 0.19), (0.0, 0.0),
+          (0.0, 0.0), (0.05, 0.0), (0.1, 0.05)]  # fmt: skip
     steps = [SimpleNamespace(foot_z=f, stance_z=s) for f, s in zs]
     plane = {"slope": 0.1, "uphill": 0.0, "foot": [5.0, 0.0], "run": 2.0, "half_width": 0.5}
     route = [{"kind": "level", "steps": 1}, {"kind": "step", "steps": 4},
-             {"kind": "ramp", "steps": 1, "plane": plane}]  # fmt: skip
+             {"kind": "ramp", "steps": 4, "plane": plane}]  # fmt: skip
     walk = SimpleNamespace(meta={"levels": {"route": route}}, steps=steps)
     planes, level = level_planes(walk, len(steps))
     assert planes == [plane]
-    assert level == [True, True, False, False, True, False]
+    assert level == [True, True, False, False, True, False, True, False, False]
+
+
+def _ramp_crossing(foot_x: float, slope: float = 0.1):
+    """A straight walk up a ramp (uphill +x, its foot line at ``foot_x``) from the floor, as
+    one ramp crossing of the level planner's route (its plane recorded), its heights the
+    plane's under each footprint and sample."""
+    walk = synthetic_walk(n_steps=9, step_len=0.65, step_time=0.55)
+    plane = {"slope": slope, "uphill": 0.0, "foot": [foot_x, 0.0], "run": 8.0, "half_width": 1.0,
+             "z": 0.0, "sides": [-1.0, 1.0]}  # fmt: skip
+
+    def height(p):
+        return np.maximum(plane_heights(plane, np.asarray(p, float)[..., :2]), 0.0)
+
+    walk.z = height(walk.xy)
+    for s in walk.steps:
+        s.foot_z, s.stance_z = float(height(s.foot)), float(height(s.stance))
+    walk.meta["levels"] = {"route": [{"kind": "ramp", "steps": 9, "plane": plane}]}
+    return walk, plane
+
+
+@pytest.mark.parametrize("foot_x", [1.7, 2.3])
+def test_a_ramp_crossing_s_floor_step_stands_off_the_ramp_s_foot(foot_x):
+    """A ramp crossing's last footfall on the floor, its footprint before the ramp's foot and
+    its toes over the ramp (a 5.7 deg ramp, the foot line 7.5 cm or 2.5 cm past the left or
+    right footprint), lifts, stands and lands at the floor's height: a level step, stood level
+    on the highest point of the plane under its sole (:func:`level_feet_on_ramps`) and swung
+    over it. Before, a ramp crossing's steps were all ramp steps, and one whose footprint is
+    off the plane stood on the floor unpitched: the toes 12.5 and 17.5 mm into the ramp
+    (generated hall 511's stress cycle, run 0: a turn into the ramp past its low corner swung
+    the left toes 0.74 mm into its side). Now no foot box corner (MuJoCo forward kinematics)
+    is 0.1 mm below the floor or the ramp's plane."""
+    walk, plane = _ramp_crossing(foot_x)
+    legs = legs_from_walk(walk, DEFAULT_STATURE)
+    least = np.inf
+    for _, m, data in posed(legs, DEFAULT_STATURE):
+        for name in ("foot_l", "toes_l", "foot_r", "toes_r"):
+            c = box_corners(m, data, m.geom(name).id)
+            ground = np.maximum(plane_heights(plane, c[:, :2]), 0.0)
+            least = min(least, float(np.min(c[:, 2] - ground)))
+    assert least > -1e-4  # before: -12.5 and -17.5 mm
 
 
 def test_a_footprint_beside_a_ramp_is_not_pitched():

@@ -215,10 +215,12 @@ def level_planes(walk, n: int) -> tuple[list[dict], list[bool]]:
     The planes are those of the ramps its route crosses (``meta["levels"]["route"]``) and of
     the ramps beside it (``meta["ramps_beside"]``, :mod:`mjwalk.plan.rampside`: a floor walk
     cutting past a ramp's low end). A walk over levels has its route's level parts' steps
-    level, and the steps of a step's or a stair's crossing that lift, stand and land at one
-    height (the walk up to the first riser: on generated hall 153, ``benchmarks/
+    level, and the steps of a crossing (a step, a stair, a ramp) that lift, stand and land
+    at one height (the walk up to the first riser: on generated hall 153, ``benchmarks/
     bench_unseen.py``, such a step turned past a ramp's foot, its toes 2.3 cm into the
-    ramp); a walk without a route (a floor walk) has every step level.
+    ramp; the turn into a ramp on the floor before its foot: on hall 511's stress cycle,
+    run 0, such a swing cut the ramp's low corner, its toes 0.74 mm into the ramp's side);
+    a walk without a route (a floor walk) has every step level.
 
     Args:
         walk: the walk (:class:`~mjwalk.plan.walkpath.WalkPath`).
@@ -237,7 +239,7 @@ def level_planes(walk, n: int) -> tuple[list[dict], list[bool]]:
     if not planes or sum(int(e.get("steps", 0)) for e in route) != n:
         return [], []
     kinds = [e.get("kind") for e in route for _ in range(int(e.get("steps", 0)))]
-    return planes, [k == "level" or (k in ("step", "stair") and _flat(walk, i))
+    return planes, [k == "level" or (k in ("step", "stair", "ramp") and _flat(walk, i))
                     for i, k in enumerate(kinds)]  # fmt: skip
 
 
