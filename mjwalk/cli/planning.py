@@ -19,6 +19,7 @@ from mjwalk._args import (
 from mjwalk.cli._common import QUIET_HELP, SCENES
 from mjwalk.cli.models import add_walker_args, walker_from_args
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
+from mjwalk.errors import PlanningError
 
 #: Video files ``mjwalk render`` writes (H.264 in MP4).
 VIDEO_SUFFIXES = (".mp4",)
@@ -101,7 +102,6 @@ def _level_summary(workplace, start, goal) -> str:
 def _level_baseline(workplace, args, walker):
     """The grid-A* route over levels (:func:`mjwalk.plan.levelgrid.level_grid_route`), printed;
     None (and why, printed) when the grid finds none: the hybrid walks may still be planned."""
-    from mjwalk.errors import PlanningError
     from mjwalk.plan.levelgrid import level_grid_route  # deferred: numba, as above
 
     try:
