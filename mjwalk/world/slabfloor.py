@@ -20,6 +20,7 @@ from dataclasses import dataclass
 
 import mujoco
 import numpy as np
+from scipy.cluster.hierarchy import DisjointSet
 
 from mjwalk.errors import SceneError
 from mjwalk.world.footprint import polygon_area
@@ -167,21 +168,14 @@ def slab_regions(slabs: list[Slab]) -> list[tuple[Slab, ...]]:
         The regions (each a tuple of slabs, in the order given), in the order of their first
         slab.
     """
-    root = list(range(len(slabs)))
-
-    def find(i: int) -> int:
-        while root[i] != i:
-            root[i] = root[root[i]]
-            i = root[i]
-        return i
-
+    joined = DisjointSet(range(len(slabs)))
     for i in range(len(slabs)):
         for j in range(i + 1, len(slabs)):
-            if find(i) != find(j) and _joined(slabs[i], slabs[j]):
-                root[find(j)] = find(i)
+            if not joined.connected(i, j) and _joined(slabs[i], slabs[j]):
+                joined.merge(i, j)
     groups: dict[int, list[Slab]] = {}
     for i, s in enumerate(slabs):
-        groups.setdefault(find(i), []).append(s)
+        groups.setdefault(joined[i], []).append(s)
     return [tuple(g) for g in groups.values()]
 
 
