@@ -368,9 +368,7 @@ def _floor_surface(model, data, floor: int) -> WalkSurface:
     if own:
         xy, name = own[0].xy, _geom_name(model, floor)
         x0, y0, x1, y1 = own[0].bounds
-        depth, width = sorted((x1 - x0, y1 - y0))  # a yawed slab's: its turned rectangle's
-        if len(xy) == 4:
-            depth, width = sorted(np.linalg.norm(xy[[1, 2]] - xy[[0, 1]], axis=1).tolist())
+        depth, width = _calipers(xy)  # as every surface's: a yawed slab's its turned rectangle's
         return WalkSurface(
             floor, name, "floor", z, Footprint(name, floor, xy), polygon_area(xy),
             ((x0 + x1) / 2, (y0 + y1) / 2), 0.0, 0.0, z, z, depth, width,
