@@ -187,7 +187,7 @@ def head_heights(plane: dict, xy: np.ndarray) -> np.ndarray:
     across = np.abs(rel @ np.array([-math.sin(up), math.cos(up)]))
     half = float(plane.get("half_width", 0.0))
     past = (along > run) & ((across <= half) if half > 0.0 else True)
-    if plane.get(LOW_KEY):  # a low top (mjwalk.plan.lowtops): no level past its far edge
+    if LOW_KEY in plane:  # a low top (its geom id may be 0): no level past its far edge
         past = np.zeros_like(along, dtype=bool)
     top = float(plane.get("z", 0.0)) + math.tan(float(plane["slope"])) * run
     return np.where(past, top, -np.inf)

@@ -11,6 +11,7 @@ from mjwalk.body.legs.rampreach import SOLE_GRID_SAG, level_planes
 from mjwalk.gait.default import default_model
 from mjwalk.plan.levelroute import crossings
 from mjwalk.plan.rampside import (
+    LOW_KEY,
     META_KEY,
     head_heights,
     over_ramp,
@@ -221,3 +222,8 @@ def test_head_heights_are_the_upper_level_past_the_head_within_the_width():
     pts = np.array([[1.0, 5.2], [1.4, 5.01], [1.0, 4.9], [1.0, 1.9], [1.6, 5.2]])
     top = 0.2 + np.tan(0.1) * 3.0
     assert head_heights(plane, pts) == pytest.approx([top, top, -np.inf, -np.inf, -np.inf])
+    # a low top's plane (mjwalk.plan.lowtops) has no level past its far edge, whatever its
+    # geom's id: geom 0 too (a mat written before the floor read as a ramp's head before)
+    for g in (0, 7):
+        low = {**plane, "slope": 0.0, LOW_KEY: g}
+        assert np.all(head_heights(low, pts) == -np.inf)
