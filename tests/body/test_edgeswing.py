@@ -224,3 +224,22 @@ def test_the_first_step_up_and_the_last_onto_the_landing_move_smoothly(stature):
         side = "left" if st.side[0] == "l" else "right"
         a = legs.ankle[side][st.start : st.end + 1]
         assert np.linalg.norm(np.diff(a, axis=0), axis=1).max() < 0.05
+
+
+def test_identical_stair_steps_swing_alike():
+    """The inner steps of a regular stair (0.17/0.28 m, six risers, 0.65 s steps, 1.725 m)
+    swing their ankle to the same height over their lift tread: before, on one of them the
+    heel, planned exactly at its clearance over the last edge, fell 1e-16 m short of it (the
+    tread height 0.51 + 0.17 + 0.17 = 0.8500000000000001), was held past the edge, and that
+    swing rose 32 cm higher than its neighbours' (knee peak 107.0 deg against 102.5, over
+    the cited 105: the older-adult row of ``benchmarks/bench_levels.py``)."""
+    walk = synthetic_stair_walk(0.17, 0.28, 6, "up", step_time=0.65)
+    motion = legs_from_walk(walk, stature=1.725)
+    inner = walk.steps[2:-2]  # the steps from one tread of the flight to another
+    peaks = [float(motion.ankle[st.side][st.start : st.end, 2].max() - st.stance_z) for st in inner]
+    assert max(peaks) - min(peaks) < 0.005, peaks
+    knees = [
+        float(np.rad2deg(max(motion.angles[f"knee_{s}"][st.start : st.end].max() for s in "lr")))
+        for st in inner
+    ]
+    assert max(knees) - min(knees) < 1.0, knees

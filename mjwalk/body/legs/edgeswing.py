@@ -76,12 +76,10 @@ class StepSurfaces:
     @property
     def descends(self) -> bool:
         """Whether the step goes down a stair: its stance and landing surfaces both lower than
-        the lift's (the trailing foot leaves a tread above the stance foot's; its landing on a
-        lower tread still, or beside the stance foot where the flight ends). The last step off
-        a stair, one riser down onto the level the stance foot stands on, was swung as a step
-        up (held behind the nosing it leaves until its toes cleared that nosing by
-        :data:`STAIR_TOE_CLEARANCE`, its one edge giving no direction): knee peak 101.3 deg
-        at 1.75 m against 95.4-95.6 on the flight (cited 80-100)."""
+        the lift's (the trailing foot leaves a tread above the stance foot's; it lands lower
+        still, or beside the stance foot where the flight ends). The last step off a stair,
+        one riser down, was swung as a step up (held behind the nosing it leaves until its toes
+        cleared it): knee peak 101.3 deg at 1.75 m, 95.4-95.6 on the flight (cited 80-100)."""
         return self.stance < self.lift - LEVEL_STEP and self.land < self.lift - LEVEL_STEP
 
     def pelvis_level(self) -> tuple[float, float]:
@@ -259,10 +257,8 @@ def _clearance_deficit(pts: np.ndarray, fr: StepFrames, edges: _Edges, clearance
                 over = (np.minimum(xa, xb) < xe - 1e-3) & (xe + 1e-3 < np.maximum(xa, xb))
                 if not over.any():
                     continue
-                w = np.clip(
-                    (xe - xa[over]) / np.where(xb[over] != xa[over], xb[over] - xa[over], 1.0), 0, 1
-                )
-                zs = za[over] + w * (zb[over] - za[over])
+                dx = np.where(xb[over] != xa[over], xb[over] - xa[over], 1.0)
+                zs = za[over] + np.clip((xe - xa[over]) / dx, 0, 1) * (zb[over] - za[over])
                 worst = max(worst, float(np.max(ze + clearance - zs)))
     return worst
 
@@ -358,12 +354,15 @@ RISE_SHARE = 0.45
 #: the last edge); the rest it lowers onto it. McFadyen & Winter (1988, J Biomech
 #: 21:733-744) divide the ascent swing into foot clearance and foot placement; the share is
 #: this module's choice, not a published figure. Measured
-#: on the 0.17/0.28 stair at 1.75 m: 0.6 gives knee 104.8 / hip 60.0 deg peaks, 0.7 gives
-#: 100.8 / 55.6, 0.8 gives 101.2 / 53.8 (``tests/body/test_edgeswing.py``).
+#: on the 0.17/0.28 stair at 1.75 m: 0.6 gives knee 104.5 / hip 58.3 deg peaks, 0.7 gives
+#: 99.2 / 54.4, 0.75 gives 100.8 / 53.2 (0.65: 102.3 / 57.0, but 104.9 knee at 1.55 m).
 ASCENT_CLEARANCE_END = 0.7
 #: Depth of the toes over the sole, in ankle heights (the humanoid's toe block,
 #: :mod:`mjwalk.body.humanoid`).
 TOE_DEPTH = 0.4
+#: A sole point planned at a clearance (:func:`_clear_at_turns`) reaches it within this (m):
+#: a heel 1e-16 m short of it on one tread of a regular stair had its swing raised 32 cm.
+REACHED = 1e-6
 
 
 def _sole_need(px, pz, edges: _Edges, margin: float, edge_margin: float,
@@ -514,8 +513,9 @@ def _keep_behind_edges(out, z, clearance, pitch, toe, edges: _Edges, fr: StepFra
     tip, tip_z, heel, heel_z = _toe_heel(pitch, toe, geom)
     x = (out[:, :2] - fr.lift[:2]) @ e
     # before the toe tip first clears the first edge; after the heel last clears the last
-    rising = ~np.logical_or.accumulate(z + tip_z >= edges.z[0] + clearance)
-    falling = ~np.logical_or.accumulate((z + heel_z >= edges.z[-1] + clearance)[::-1])[::-1]
+    first, last = edges.z[0] + clearance - REACHED, edges.z[-1] + clearance - REACHED
+    rising = ~np.logical_or.accumulate(z + tip_z >= first)
+    falling = ~np.logical_or.accumulate((z + heel_z >= last)[::-1])[::-1]
     # the toes' top front corner (the toe block 0.4 ankle heights deep: body.humanoid) leads
     # the toe tip of a foot pitched toes down
     front = tip + TOE_DEPTH * geom.ankle_height * np.maximum(-np.sin(pitch + toe), 0.0)
