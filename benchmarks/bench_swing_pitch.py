@@ -38,6 +38,11 @@ least pitch -69.3 [-69.3, -59.5] at 69.7 %, toe-off -43.4, least ankle -14.0; st
 Winter table's swing pitch instead (``warp_reference`` with the pitch landmarks at 65 and 80 %
 left on the table): middle steps -54.8 with the ankle dorsiflexed up to 24 deg in the table at
 79 %, the synthesis's knee moved 13 deg, its hip 7 deg, the pelvis 8 mm: wider than the feet.
+The pitch raised after toe-off only (a sin² bump of up to 11 deg over 60-90 %, stance and
+pelvis unchanged; table minimum -61.8): middle steps -62.4 at 68.2 %, the swing ankle's least
+-8.0 instead of -14.0 (further from Winter's 15-20 deg), swing knee moved 6 deg, ankle target
+23 mm. With this hip and knee a foot at -50 to -60 needs an ankle near neutral in early swing.
+Other capture: CMU subject 35, ``35_01`` (3 cycles), -75.2 to -76.7 at 68-69 %.
 """
 
 from __future__ import annotations
