@@ -55,3 +55,22 @@ def test_the_reference_heel_strike_ankle():
     from mjwalk.body.legs.reference import heel_strike_ankle
 
     assert np.rad2deg(heel_strike_ankle(bandai_reference())) == pytest.approx(7.0, abs=0.3)
+
+
+def test_the_swing_foot_angle_is_the_shank_plus_a_plantarflexed_ankle():
+    """The foot's angle to the floor is the shank's from the vertical (thigh minus knee
+    flexion) plus the ankle's. Between toe-off (60 %) and mid-swing (75 %) the default
+    reference's foot reaches -69 deg (the bandai actor's, BANDAI_LANDMARKS) with its ankle
+    plantarflexed 14 deg at most: within Winter 1991's 15-20 deg plantarflexion at toe-off
+    (5 deg tolerance), dorsiflexing towards neutral by mid-swing. The Winter table's own
+    pitch row (-50 deg at 65 %, after Perry & Burnfield 2010) would, with the same hip and
+    knee, leave the ankle dorsiflexed in early swing: it does not meet Winter's ankle, so the
+    swing is not brought to -50 (benchmarks/bench_swing_pitch.py)."""
+    c = np.linspace(0.60, 0.75, 61)
+    ref = bandai_reference()
+    pitch, knee, hip = (np.rad2deg(ref(n, c)) for n in ("pitch", "knee", "hip"))
+    ankle = pitch + knee - hip
+    assert pitch.min() == pytest.approx(-69.3, abs=0.5)
+    assert -20.0 - 5.0 <= ankle.min() <= -15.0 + 5.0
+    table_ankle = np.rad2deg(winter_reference()("pitch", c)) + knee - hip
+    assert table_ankle.min() > -5.0 and table_ankle.max() > 5.0

@@ -132,3 +132,25 @@ def test_the_station_batchs_run_307_arrives_at_the_car_without_contact():
     r = simulate_cycle(spec, run_generator(0, 307), run=307, ergonomics=False)
     assert r.operator.stature == pytest.approx(1.78, abs=0.005)
     assert r.collisions == []
+
+
+def test_the_early_swing_foot_is_the_shank_plus_a_plantarflexed_ankle():
+    """A straight walk's middle steps (1.55 and 1.95 m walkers): after toe-off the swing foot
+    points toes down to -69 +- 3 deg at 67-72 % of the gait cycle, the reference's own
+    (bandai-walk normal capture, 224 cycles: median -69.7, p10-p90 -73.4 to -66.0,
+    benchmarks/bench_swing_pitch.py), with the swing ankle plantarflexed 8-20 deg there
+    (Winter 1991: 15-20 deg at toe-off, dorsiflexing in initial swing): the toes-down foot is
+    the knee's flexion, not an ankle past its range."""
+    from mjwalk.body.legs import legs_from_walk
+
+    for stature in (1.55, 1.95):
+        walk = synthetic_walk(n_steps=8, step_len=0.65 * stature / 1.75)
+        legs = legs_from_walk(walk, stature)
+        for st in walk.steps[2:-2]:
+            a, b = st.start, st.end
+            p = np.rad2deg(legs.pitch[st.side][a : b + 1])
+            ank = np.rad2deg(legs.angles[f"ankle_{st.side[0]}_flex"][a : b + 1])
+            j = int(np.argmin(p))
+            assert p[j] == pytest.approx(-69.0, abs=3.0)
+            assert 67.0 <= 50 + 50 * legs.phase[a + j] <= 72.0
+            assert -20.0 <= ank[j] <= -8.0
