@@ -3,10 +3,11 @@ alternating rounds (issue 50: the stages' costs on a machine shared with other w
 
 Run: python3 benchmarks/bench_stage_cpu.py --baseline 879469c [--rounds 4] [--cycles 10]
 
-``cycle_timing.py``'s split times its stages by the wall clock, which other processes on a
-busy machine inflate unevenly; here each stage's exclusive time (the same stage table, the
-same wrapping: :func:`cycle_timing.install`) is the process's CPU time
-(``time.process_time``). Each round runs one fresh subprocess per tree (the baseline exported
+Each stage's exclusive time is the process's CPU time (``time.process_time``), as in
+``cycle_timing.py``'s split (the same stage table, the same wrapping and clock:
+:func:`cycle_timing.install`, :class:`cycle_timing.StageClock`), of several alternating fresh
+processes per tree, since a busy machine's swings exceed one process's noise. Each round
+runs one fresh subprocess per tree (the baseline exported
 as ``bench_cycle.py`` exports it), which prepares the station cycle, runs one warm-up cycle and
 then ``--cycles`` cycles on seeds 0.. with the stages wrapped. Prints per stage the median over
 the rounds of the CPU ms per cycle in each tree and their ratio (stages of at least 1 ms).
@@ -35,20 +36,10 @@ def _child(cycles: int) -> None:
     import mjwalk.cycle.simulate as sim
     from mjwalk.cycle.spec import load_cycle_spec
 
-    class CPUClock(ct.StageClock):
-        """:class:`cycle_timing.StageClock` on the process's CPU clock."""
-
-        def _switch(self) -> float:
-            now = time.process_time()
-            if self.stack:
-                self.acc[self.stack[-1]] += now - self.last
-            self.last = now
-            return now
-
     spec_path = Path(mjwalk.__file__).resolve().parents[1] / "scenes" / "assembly_station.toml"
     ctx = sim.prepare(load_cycle_spec(spec_path))
     sim.simulate_cycle(ctx, 99)  # warm-up: models, compiled code
-    clock = CPUClock()
+    clock = ct.StageClock()  # CPU time
     ct.install(clock)
     clock.acc.clear()
     c0 = time.process_time()

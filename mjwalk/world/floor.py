@@ -298,15 +298,57 @@ def flush_geoms(
             (:func:`mjwalk.timeline.walktops.level_heights`; none: the floors alone).
 
     Returns:
-        (ngeom,) bool mask.
+        (ngeom,) bool mask (the caller's own copy).
     """
-    plane = model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE
+    plane, static, placed = _fixed_masks(model)
+    # the mask depends on the levels, the model's boxes and where its static geoms and planes
+    # lie, nothing else: kept per model by those (a cycle asks again with every contact check)
+    key = (
+        tuple(float(z) for z in levels),
+        model.geom_aabb.tobytes(),
+        data.geom_xpos[placed].tobytes(),
+        data.geom_xmat[placed].tobytes(),
+    )
+    kept = _FLUSH.setdefault(model, {})
+    if key not in kept:
+        if len(kept) >= FLUSH_KEPT:
+            kept.pop(next(iter(kept)))  # the oldest first
+        kept[key] = _flush_mask(model, data, key[0], plane, static)
+    return kept[key].copy()
+
+
+#: :func:`flush_geoms`' masks kept per model (by levels and placement; the oldest dropped
+#: first): a cycle's contact checks ask with one or two sets of levels.
+FLUSH_KEPT = 8
+_FLUSH: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+#: :func:`_fixed_masks` per model (fixed once compiled).
+_FIXED: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _fixed_masks(model: mujoco.MjModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(ngeom,) the planes, the static geoms (welded to the world) and the ids of either, of a
+    compiled model, kept per model."""
+    hit = _FIXED.get(model)
+    if hit is None or len(hit[0]) != model.ngeom:
+        plane = model.geom_type == mujoco.mjtGeom.mjGEOM_PLANE
+        static = model.body_weldid[model.geom_bodyid] == 0
+        hit = _FIXED[model] = (plane, static, np.flatnonzero(plane | static))
+    return hit
+
+
+def _flush_mask(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    levels: tuple[float, ...],
+    plane: np.ndarray,
+    static: np.ndarray,
+) -> np.ndarray:
+    """:func:`flush_geoms` computed (``plane``, ``static``: :func:`_fixed_masks`)."""
     floors = data.geom_xpos[plane & (data.geom_xmat[:, 8] > FLOOR_MIN_NZ), 2].tolist()
     slabs = slab_floor_mask(model)
     floors += [t.top for t in slab_floor(model)]
-    floors += [float(z) for z in levels]
+    floors += list(levels)
     bottom, top = geom_z_extents(model, data)
-    static = model.body_weldid[model.geom_bodyid] == 0
     out = np.zeros(model.ngeom, dtype=bool)
     for z in floors:
         out |= (bottom >= z - LEVEL_TOLERANCE) & (top <= z + LEVEL_TOLERANCE)

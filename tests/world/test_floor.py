@@ -120,3 +120,25 @@ def test_geom_z_extents_are_the_world_heights_of_upright_and_turned_geoms():
     bottom, top = geom_z_extents(model, data)
     assert (bottom[1], top[1]) == pytest.approx((0.0, 0.015))  # turned about z: exact
     assert (bottom[2], top[2]) == pytest.approx((0.5, 1.5))  # stood on end: its length
+
+
+def test_flush_geoms_kept_per_model_follow_the_levels_and_a_moved_geom():
+    """The mask is kept per model by the levels and where the static geoms lie: asked again it
+    is the same (a copy the caller may change), another level or a static geom moved (its
+    placement recomputed) gives that case's mask, as a model of its own would."""
+    xml = FLUSH_SCENE.replace(
+        "<body", '<geom name="ptape" type="box" size=".025 .5 .0015" pos="-1 3 .3415"/><body'
+    )
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    first = flush_geoms(model, data, (0.34,))
+    first[:] = False  # the caller's copy
+    again = flush_geoms(model, data, (0.34,))
+    assert again.any() and again.tolist() == flush_geoms(model, data, [0.34]).tolist()
+    assert flush_geoms(model, data).tolist() != again.tolist()  # without the level: no ptape
+    tape = model.geom("tape").id
+    model.geom_pos[tape, 2] += 0.02  # lifted 2 cm: no longer flush
+    mujoco.mj_kinematics(model, data)
+    lifted = flush_geoms(model, data, (0.34,)).tolist()
+    assert lifted == [bool(v) and g != tape for g, v in enumerate(again)]  # the rest as before
