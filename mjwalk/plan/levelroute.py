@@ -90,9 +90,10 @@ class Crossing:
         slope: a ramp's inclination, radians (0 otherwise).
         half_width: half the width of its first riser or the ramp's foot, metres (0: unknown,
             the walker keeps to its middle).
-        sides: a ramp surface's own extent across the axis (right, left), metres left of the
-            origin: wider than ``half_width`` where the lower level's longest contact with
+        sides: a ramp surface's own extent across the axis (right, left), metres left of its
+            middle: wider than ``half_width`` where the lower level's longest contact with
             its foot is only part of it; (0, 0) for a flight or when unknown.
+        centre: that middle once :meth:`shifted` moves the origin (None: the origin), metres.
     """
 
     kind: str
@@ -111,6 +112,7 @@ class Crossing:
     slope: float
     half_width: float = 0.0
     sides: tuple[float, float] = (0.0, 0.0)
+    centre: np.ndarray | None = None
 
     def point(self, s) -> np.ndarray:
         """World xy at positions along the axis.
@@ -160,7 +162,8 @@ class Crossing:
 
     def shifted(self, offset: float) -> Crossing:
         """The same crossing walked ``offset`` metres to the left of its middle (left of the
-        axis): origin moved across the axis, everything along it unchanged.
+        axis): origin moved across the axis, everything along it unchanged; the crossing's
+        width and sides stay about its ``centre``, the origin before the first shift.
 
         Args:
             offset: lateral shift, metres (positive: left of the way up).
@@ -171,7 +174,8 @@ class Crossing:
         if offset == 0.0:
             return self
         left = np.array([-self.axis[1], self.axis[0]])
-        return replace(self, origin=self.origin + float(offset) * left)
+        centre = self.origin if self.centre is None else self.centre
+        return replace(self, origin=self.origin + float(offset) * left, centre=centre)
 
     def riser_lines(self, floor_z: float) -> list[dict]:
         """Where its risers' edges lie, for the legs' swing over them
@@ -339,11 +343,8 @@ def crossings(graph: LevelGraph, clear: float) -> list[Crossing]:
             edges = [k.lower_edge]
             for j, i in enumerate(k.via):  # each tread's far edge is the next riser ...
                 far = _riser_after(graph.surfaces[i], edges[-1])
-                above = (
-                    graph.surfaces[k.via[j + 1]].footprint.vertices
-                    if j + 1 < len(k.via)
-                    else k.upper_edge
-                )
+                nxt = graph.surfaces[k.via[j + 1]] if j + 1 < len(k.via) else None
+                above = k.upper_edge if nxt is None else nxt.footprint.vertices
                 edges.append(_under_nosing(far, edges[-1], above))  # ... unless overhung
             out.append(_flight(graph, edges, k.risers, k.lower, k.upper, "stair", clear))
     for chain in _step_chains(graph, clear):

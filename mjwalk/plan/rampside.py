@@ -46,7 +46,12 @@ LOW_KEY = "low_top"
 
 
 def ramp_plane(c: Crossing, floor_z: float) -> dict:
-    """A ramp crossing's plane as walks record it.
+    """A ramp crossing's plane as walks record it: the ramp's own, about the middle of its
+    foot, wherever the walker crosses it (a crossing walked off its middle,
+    :meth:`~mjwalk.plan.levelroute.Crossing.shifted`, has the same plane; before, its foot
+    moved with the walker's line and its sides and width with it: generated hall 511's ramp,
+    crossed 0.2 m left of its middle, was known 0.2 m past its left side and not over the
+    0.2 m along its right one).
 
     Args:
         c: a ramp crossing (:func:`mjwalk.plan.levelroute.crossings`).
@@ -62,7 +67,7 @@ def ramp_plane(c: Crossing, floor_z: float) -> dict:
     plane = {
         "slope": float(c.slope),
         "uphill": float(c.yaw),
-        "foot": [float(v) for v in c.origin],
+        "foot": [float(v) for v in (c.origin if c.centre is None else c.centre)],
         "run": float(c.track[-1]),
         "half_width": float(c.half_width),
         "z": float(c.z_lower - floor_z),

@@ -13,6 +13,7 @@ from mjwalk.body.legs.footcheck import box_corners, foot_points, posed
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.legheights import step_surfaces
 from mjwalk.body.legs.rampreach import (
+    heel_face_need,
     level_feet_on_ramps,
     level_planes,
     plane_heights,
@@ -429,3 +430,46 @@ def test_a_level_step_off_a_foot_raised_on_a_ramp_lands_on_its_heel():
     for s in walk.steps:
         assert legs.pitch[s.side][s.end] == pytest.approx(flat.pitch[s.side][s.end])  # heel
     assert np.min(legs.root[:, 2] - flat.root[:, 2]) > -5e-3  # before: -40 mm
+
+
+def _box_points(c, k=6):
+    """(k**3, 3) points spread through a box from its 8 corners (:func:`box_corners`)."""
+    u = np.linspace(0.0, 1.0, k)
+    a, b, w = (x.ravel()[:, None] for x in np.meshgrid(u, u, u, indexing="ij"))
+    C = c.reshape(2, 2, 2, 3)
+    lerp = [[(1 - w) * C[i, j, 0] + w * C[i, j, 1] for j in (0, 1)] for i in (0, 1)]
+    return (1 - a) * ((1 - b) * lerp[0][0] + b * lerp[0][1]) + a * (
+        (1 - b) * lerp[1][0] + b * lerp[1][1]
+    )
+
+
+def test_a_heel_strike_beside_a_ramp_s_side_keeps_its_back_face_out_of_the_ramp():
+    """A level landing whose heel lands 7 mm in front of a ramp's side (a 5.5 deg ramp beside a
+    floor walk, its side across the walk; generated hall 511's stress cycle, run 5, once the
+    crossed ramp's plane is its own: a floor heel 7 mm from the ramp's side, its back face
+    1.3 mm into it): the foot lands on its heel pitched 26 deg toes up, and the foot box's
+    back face, turned about the heel, leans back over the ramp. The stance check tests that
+    pitched foot (:func:`heel_face_need`), not the flat footprint alone: no point of the foot
+    box lies under the ramp's plane (before: 27 mm under it in the heel strike)."""
+    g = leg_geometry(DEFAULT_STATURE)
+    walk = synthetic_walk(n_steps=8, step_len=0.73, step_time=0.55)
+    s4 = walk.steps[4]
+    heel = float(s4.foot[0]) - g.foot_back
+    plane = {"slope": np.radians(5.5), "uphill": np.pi / 2, "foot": [heel - 0.037, -0.3],
+             "run": 1.0, "half_width": 0.03, "z": 0.0}  # fmt: skip
+    walk = replace(walk, meta={**(walk.meta or {}), "ramps_beside": [plane]})
+    need = heel_face_need([plane], s4.foot, np.radians(26.0), g)
+    flat = step_surfaces(walk, g)[4].land  # the flat sole is not over the ramp: on the floor
+    assert flat == 0.0 and need > 0.01
+    assert heel_face_need([plane], s4.foot, 0.0, g) == -np.inf  # a flat landing needs nothing
+    legs = legs_from_walk(walk, DEFAULT_STATURE)
+    assert np.degrees(legs.pitch[s4.side][s4.end]) > 20.0  # it lands on its heel
+    least = np.inf
+    for i, m, data in posed(legs, DEFAULT_STATURE):
+        if abs(i - s4.end) > 30:
+            continue
+        pts = _box_points(box_corners(m, data, m.geom("foot_l").id))
+        h = plane_heights(plane, pts[:, :2])
+        if np.isfinite(h).any():
+            least = min(least, float(np.min((pts[:, 2] - h)[np.isfinite(h)])))
+    assert least > -1e-4  # before: -27 mm

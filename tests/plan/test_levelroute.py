@@ -69,6 +69,9 @@ def test_crossings_know_their_width_and_shift_across_it(station):
     np.testing.assert_allclose(moved.end(stair.lower) - stair.end(stair.lower), 0.2 * left)
     np.testing.assert_allclose(moved.track, stair.track)  # along the axis: unchanged
     assert stair.shifted(0.0) is stair
+    # its width and sides stay about its middle, however often it is moved
+    assert moved.centre is stair.origin and moved.shifted(-0.1).centre is stair.origin
+    assert (moved.half_width, moved.sides) == (stair.half_width, stair.sides)
 
 
 def test_place_on_edge_walks_the_side_nearest_the_walk(station):

@@ -192,6 +192,25 @@ def test_a_ramp_s_surface_plane_spans_its_whole_width(tmp_path):
     )
 
 
+def test_a_ramp_crossed_off_its_middle_records_the_ramp_s_own_plane(tmp_path):
+    """Generated hall 511's ramp crossed 0.2 m left of its middle (the level planner walks a
+    wide crossing on the side nearest the walk, :func:`~mjwalk.plan.levelroute.place_on_edge`):
+    its recorded plane is the ramp's own, the one a walk passing beside it records. Before,
+    its foot moved with the walker's line and its width and sides with it: the ramp was known
+    0.2 m past its left side, over the floor, and not over the 0.2 m along its right side."""
+    xml = generate_levels(511).write(tmp_path / "levels_511.xml")
+    wp = load_workplace(xml, cache=False)
+    (c,) = [c for c in crossings(wp.levels, 0.0) if c.kind == "ramp"]
+    plane = ramp_plane(c, wp.floor_z)
+    for offset in (0.2, -0.15):
+        assert ramp_plane(c.shifted(offset), wp.floor_z) == plane
+    left = np.array([-c.axis[1], c.axis[0]])
+    right_side = np.asarray(plane["foot"]) + (plane["sides"][0] + 0.1) * left + 0.5 * c.axis
+    assert over_ramp(surface_plane(plane), right_side)  # 0.1 m inside its right side
+    was = {**plane, "foot": [float(v) for v in c.shifted(0.2).origin]}
+    assert not over_ramp(surface_plane(was), right_side)
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize(
     ("seed", "ends", "rng"),

@@ -185,13 +185,15 @@ def _pitch(walk: WalkPath, ramp: bool | dict, print_) -> float:
     return surface_pitch(walk, np.asarray(print_, float)) if ramp else 0.0
 
 
-def step_surfaces(walk: WalkPath, geom: LegGeometry | None = None) -> list[StepSurfaces]:
+def step_surfaces(walk: WalkPath, geom: LegGeometry | None = None,
+                  land_p: list[float] | None = None) -> list[StepSurfaces]:  # fmt: skip
     """Per step of ``walk`` its surfaces' heights and slopes (the first step lifts its foot from
     the stance foot's surface: a standing start).
 
     Args:
         walk: a walk with steps.
         geom: the feet's lengths (a level foot over a ramp's corner; None: default stature's).
+        land_p: per step its landing pitch, radians (a heel strike beside a ramp; None: flat).
 
     Returns:
         one :class:`StepSurfaces` per step.
@@ -215,7 +217,7 @@ def step_surfaces(walk: WalkPath, geom: LegGeometry | None = None) -> list[StepS
                 risers=lines,
             )
         )
-    return ramps.level_feet_on_ramps(walk, out, geom)
+    return ramps.level_feet_on_ramps(walk, out, geom, land_p)
 
 
 @dataclass
@@ -496,13 +498,12 @@ def _soles_clear(plans: list, feet: FootTracks, root: np.ndarray, yaw: np.ndarra
     below the tread under it (the toes of a foot hanging toes down as it lowers onto a tread),
     the ankle rises by the depth (:func:`~mjwalk.body.legs.edgeswing.sole_rise`; down a stair
     by the depth plus :data:`~mjwalk.world.norms.DESCENT_LOW_CLEARANCE`, the clearance below
-    which descent studies count a clearance as low), and the
-    foot is pitched again to what the ankle reaches there; in place. Down a stair the swing
-    is planned once, 3 cm over the nosings for the foot's pitch then (:func:`edge_swing`),
-    and only this keeps the foot, pitched further toes down, off the treads: planning it
-    again at each new pitch (as up a stair) kept 3 cm but gave knee peaks of 101-102 deg
-    against :data:`KNEE_PEAK_DOWN`. Returns the least
-    clearance over the descents' edges, metres (inf without descents)."""
+    which descent studies count a clearance as low), and the foot is pitched again to what
+    the ankle reaches there; in place. Down a stair the swing is planned once, 3 cm over the
+    nosings for the foot's pitch then (:func:`edge_swing`), and only this keeps the foot,
+    pitched further toes down, off the treads: planning it again at each new pitch (as up a
+    stair) kept 3 cm but gave knee peaks of 101-102 deg against :data:`KNEE_PEAK_DOWN`.
+    Returns the least clearance over the descents' edges, metres (inf without descents)."""
     for _ in range(SOLE_PASSES):
         _ankle_pitch(plans, feet, root, yaw, geom)
         moved = False
@@ -547,7 +548,7 @@ def lift_to_levels(walk: WalkPath, frames: list[StepFrames], feet: FootTracks, r
         to their ranges) and the least clearance over a step edge (metres; inf without edges).
     """
     n = len(root)
-    surfs = step_surfaces(walk, geom)
+    surfs = step_surfaces(walk, geom, [fr.land_p for fr in frames])
     tr = level_tracks(frames, surfs, feet.ground, n)
     flat_ankle = {s: feet.ankle[s].copy() for s in "lr"}
     flat = (flat_ankle, {s: feet.pitch[s].copy() for s in "lr"}, root)
@@ -589,9 +590,8 @@ HEEL_RISE_PASSES = 10
 
 def _heel_rises(feet: FootTracks, s: str, root: np.ndarray, yaw: np.ndarray,
                 grounded: np.ndarray, surface: np.ndarray, geom: LegGeometry) -> dict:  # fmt: skip
-    """The ``s`` leg's unclipped IK angles after :func:`heel_rise` (up to
-    :data:`HEEL_RISE_PASSES`; ``feet`` updated in place), for the pelvis ``root`` (n, 3,
-    metres) and ``yaw`` (n,, radians)."""
+    """The ``s`` leg's unclipped IK angles after :func:`heel_rise` (up to :data:`HEEL_RISE_PASSES`;
+    ``feet`` updated in place), for the pelvis ``root`` (n, 3, metres) and ``yaw`` (n,, rad)."""
     raw = leg_ik_world(feet.ankle[s], feet.fyaw[s], feet.pitch[s], root, yaw, s, geom)
     for _ in range(HEEL_RISE_PASSES):
         if not heel_rise(feet, s, raw[f"ankle_{s}_flex"], grounded, geom, surface):

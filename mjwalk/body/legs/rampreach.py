@@ -309,8 +309,49 @@ def _set_foot(out: list[StepSurfaces], k: int, h: float, pitch: float, landing: 
             out[k + 1] = replace(out[k + 1], lift=h, lift_pitch=pitch, lift_ramp=True)
 
 
+#: The foot box's height over its sole, a fraction of the ankle height (the humanoid's foot
+#: geom, :func:`mjwalk.body.humanoid.humanoid_model`): how high its back face reaches.
+FOOT_BOX_HEIGHT = 0.8
+
+#: Spacing of the points behind the heel at which :func:`heel_face_need` meets a ramp's plane,
+#: metres: the heel-strike foot's back face (26 deg toes up) rises 2 mm over 1 mm back.
+HEEL_FACE_SPACING = 0.001
+
+
+def heel_face_need(planes: list[dict], print_, pitch: float, geom: LegGeometry) -> float:
+    """How high the ground under a footprint must be for its foot, landing on its heel pitched
+    ``pitch`` toes up, to keep its back face above the ramp planes behind the heel: the box's
+    back face, turned about the heel's edge, leans back ``z tan(pitch)`` at ``z`` over the
+    sole, past the flat footprint a stance check tests (generated hall 511's stress cycle,
+    run 5: a floor heel strike 7 mm from a ramp's side, pitched 26 deg, its back face 3.1 mm
+    into the ramp's 2.5 cm side). A point ``d`` behind the heel is under the face at ``d /
+    tan(pitch)`` over the ground; the plane's height there less that, plus
+    :data:`SOLE_GRID_SAG` (the points lie :data:`HEEL_FACE_SPACING` apart), is the need.
+
+    Args:
+        planes: ramp planes (:func:`plane_heights`).
+        print_: (3,) the footprint (x, y, yaw), metres and radians.
+        pitch: the landing pitch, radians, + toes up (<= 0: the heel strikes flat, no need).
+        geom: the foot's lengths, width and ankle height.
+
+    Returns:
+        the height above the floor, metres; -inf where the face passes over no plane.
+    """
+    if pitch <= 0.0 or not planes:
+        return -math.inf
+    reach = FOOT_BOX_HEIGHT * geom.ankle_height * math.sin(pitch)
+    d = np.arange(1, math.ceil(reach / HEEL_FACE_SPACING) + 1) * HEEL_FACE_SPACING
+    yaw = float(print_[2])
+    f, left = np.array([math.cos(yaw), math.sin(yaw)]), np.array([-math.sin(yaw), math.cos(yaw)])
+    across = np.linspace(-0.5, 0.5, SOLE_GRID[1]) * geom.foot_width
+    xy = (np.asarray(print_[:2], float) - (geom.foot_back + d[:, None, None]) * f
+          + across[None, :, None] * left)  # fmt: skip
+    h = np.max([plane_heights(p, xy) for p in planes], axis=(0, 2))
+    return float(np.max(h - d / math.tan(pitch))) + SOLE_GRID_SAG
+
+
 def level_feet_on_ramps(
-    walk, surfs: list[StepSurfaces], geom: LegGeometry | None = None
+    walk, surfs: list[StepSurfaces], geom: LegGeometry | None = None, land_p=None
 ) -> list[StepSurfaces]:
     """A walk's level steps whose foot stands over the plane of a ramp its route crosses (a
     turn off or onto the ramp's foot cutting its low corner, under the floor level's 0.05 m
@@ -328,12 +369,17 @@ def level_feet_on_ramps(
     :mod:`mjwalk.plan.rampside`). A ramp's own step whose sole reaches past its foot or head
     stands so too (hall 500: a foot down a 9.8 deg ramp, its ankle 8 cm above the foot, had
     its toes 1.8 cm into the floor); a sole past its head stands on the level the head meets
-    (hall 514: toes 1.2 mm under a deck's edge). Walks without such a footprint are unchanged.
+    (hall 514: toes 1.2 mm under a deck's edge). A level landing's heel strike is its pitched
+    foot, not the flat footprint: its back face, leaning back behind the heel, stays over a
+    ramp's plane behind it (:func:`heel_face_need`; the foot stands level as high as that
+    needs). Walks without such a footprint are unchanged.
 
     Args:
         walk: the walk (:class:`~mjwalk.plan.walkpath.WalkPath`, ``meta["levels"]["route"]``).
         surfs: its steps' surfaces (:func:`~mjwalk.body.legs.legheights.step_surfaces`).
         geom: the foot's lengths and width (None: the default stature's).
+        land_p: per step the pitch its foot lands with, radians, + toes up (the leg
+            synthesis's :attr:`~mjwalk.body.legs.steps.StepFrames.land_p`; None: flat).
 
     Returns:
         the steps' surfaces, those over a ramp's plane raised (and pitched).
@@ -363,6 +409,9 @@ def level_feet_on_ramps(
     out = list(surfs)
     for k, s in enumerate(walk.steps):
         land, stance = under(s.foot), under(s.stance)
+        face = heel_face_need(whole, s.foot, float(land_p[k]), geom) if land_p else -math.inf
+        if level[k] and face > max(out[k].land, land[0] if land else -math.inf):
+            land = (face, 0.0) if land is None or land[1] == 0.0 else land
         if not level[k]:  # a ramp's own foot, pitched, that the plane does not carry whole
             land = land if out[k].land_pitch and land and not land[1] else None
             stance = stance if out[k].stance_pitch and stance and not stance[1] else None
