@@ -32,8 +32,8 @@ from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.ik import leg_ik_world
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import HEEL_RISE_MAX, FootTracks, StepFrames
+from mjwalk.plan.rampside import LOW_KEY, SOLE_GRID, head_heights, over_ramp, surface_plane
 from mjwalk.plan.rampside import META_KEY as BESIDE_KEY
-from mjwalk.plan.rampside import SOLE_GRID, head_heights, over_ramp, surface_plane
 
 #: Passes of :func:`trailing_reach` (raise the heel by the deficit over the ball's lever,
 #: measure again); the deficit falls below a millimetre by the third on a 5.5 deg ramp.
@@ -344,12 +344,15 @@ def level_feet_on_ramps(
     geom = geom or leg_geometry()
     along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
     grid = [(d, w) for d in along for w in np.linspace(-0.5, 0.5, SOLE_GRID[1])]
-    whole = [surface_plane(p) for p in planes]  # the fallback's: the ramps' whole surfaces
+    lows = [p for p in planes if LOW_KEY in p]
 
-    def under(print_) -> tuple[float, float] | None:
+    def under(print_, planes=planes) -> tuple[float, float] | None:
+        if not planes:
+            return None
         on = ramp_support(planes, print_, geom)
         if on is not None:
             return on
+        whole = [surface_plane(p) for p in planes]  # the ramps' whole surfaces
         yaw = float(print_[2])
         f = np.array([math.cos(yaw), math.sin(yaw)])
         pts = [np.asarray(print_[:2], float) + d * f + w * geom.foot_width * f[::-1] * [-1, 1]
@@ -363,13 +366,51 @@ def level_feet_on_ramps(
     out = list(surfs)
     for k, s in enumerate(walk.steps):
         land, stance = under(s.foot), under(s.stance)
-        if not level[k]:  # a ramp's own foot, pitched, that the plane does not carry whole
-            land = land if out[k].land_pitch and land and not land[1] else None
-            stance = stance if out[k].stance_pitch and stance and not stance[1] else None
+        if not level[k]:  # a ramp's own foot, pitched, that the plane does not carry whole;
+            # a riser's footfall on a low top (a mat before a step) stands on the low top
+            land = land if out[k].land_pitch and land and not land[1] else under(s.foot, lows)
+            stance = (stance if out[k].stance_pitch and stance and not stance[1]
+                      else under(s.stance, lows))  # fmt: skip
         if land is not None and (land[1] != 0.0 or land[0] > out[k].land):
             _set_foot(out, k, *land, landing=True)
         if stance is not None and (stance[1] != 0.0 or stance[0] > out[k].stance):
             _set_foot(out, k, *stance, landing=False)
+    return low_treads(walk, out, level, lambda p: under(p, lows))
+
+
+def low_treads(walk, surfs: list[StepSurfaces], level: list[bool], low) -> list[StepSurfaces]:
+    """The footprints standing on a low top (a mat, a cable bridge, a floor plate:
+    :mod:`mjwalk.plan.lowtops`) as a step crossing a riser takes them: a tread, whose height
+    the riser is measured from (a foot on a 15 mm mat before a 0.17 m step rises 0.155 m onto
+    it, the step swung over the riser's edge with the pelvis on the mat, :attr:`~mjwalk.body.
+    legs.edgeswing.StepSurfaces.edged`), not a ramp's plane that changes height without an
+    edge; a level step keeps them as planes (swung over the top's edge, not as off a stair).
+    Before, the mat's footprints of the first riser step of a crossing were planes, so that
+    step (0.015 -> 0.17 m) was no edged step: its pelvis rose to the mean of its feet before
+    the next step dropped it back to the mat, and the legs reached the trailing foot only with
+    the pelvis 0.069 m lowered (a 15 mm mat 5 cm short of a 0.34 m platform's step).
+
+    Args:
+        walk: the walk (its steps' footprints).
+        surfs: its steps' surfaces (:func:`level_feet_on_ramps`).
+        level: per step whether it is level walking (:func:`level_planes`).
+        low: a footprint (x, y, yaw) -> (height above the floor, pitch) of the low tops under
+            it, or None.
+
+    Returns:
+        the surfaces, a flat footprint at its low top's height marked on a plane exactly in
+        the level steps.
+    """
+    out = []
+    for k, (s, sf) in enumerate(zip(walk.steps, surfs, strict=True)):
+        prints = (walk.steps[k - 1].stance if k else s.stance, s.stance, s.foot)
+        flags = {}
+        for name, print_ in zip(("lift", "stance", "land"), prints, strict=True):
+            on = low(print_)
+            if on is not None and not getattr(sf, f"{name}_pitch") and abs(
+                on[0] - getattr(sf, name)) <= 1e-9:  # fmt: skip
+                flags[f"{name}_ramp"] = level[k]
+        out.append(replace(sf, **flags) if flags else sf)
     return out
 
 
