@@ -357,11 +357,16 @@ def level_feet_on_ramps(
         f = np.array([math.cos(yaw), math.sin(yaw)])
         pts = [np.asarray(print_[:2], float) + d * f + w * geom.foot_width * f[::-1] * [-1, 1]
                for d, w in grid]  # fmt: skip
-        hits = [h[0] for p in whole for q in pts if (h := _on_plane(p, (*q, 0.0))) is not None]
-        if not hits:
+        hits = {i: [h[0] for q in pts if (h := _on_plane(p, (*q, 0.0))) is not None]
+                for i, p in enumerate(whole)}  # fmt: skip
+        if not any(hits.values()):
             return None
-        top = max(float(np.max(head_heights(p, np.asarray(pts)))) for p in whole)
-        return max(max(hits) + SOLE_GRID_SAG, top), 0.0
+        # the level past a ramp's head under a sole reaching over that ramp's crest, not
+        # under one standing on another plane (a mat 5.7 m beyond a ramp's head, in line with
+        # it: the foot stood 0.34 m up in the air, the pelvis lowered 0.15 m to reach it)
+        top = max(float(np.max(head_heights(whole[i], np.asarray(pts)))) for i, h in hits.items()
+                  if h)  # fmt: skip
+        return max(max(max(h) for h in hits.values() if h) + SOLE_GRID_SAG, top), 0.0
 
     out = list(surfs)
     for k, s in enumerate(walk.steps):
