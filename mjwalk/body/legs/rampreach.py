@@ -409,13 +409,13 @@ def low_treads(walk, surfs: list[StepSurfaces], level: list[bool], low) -> list[
     out = []
     for k, (s, sf) in enumerate(zip(walk.steps, surfs, strict=True)):
         prints = (walk.steps[k - 1].stance if k else s.stance, s.stance, s.foot)
-        flags = {}
-        for name, print_ in zip(("lift", "stance", "land"), prints, strict=True):
+        flags = [sf.lift_ramp, sf.stance_ramp, sf.land_ramp]
+        for i, (name, print_) in enumerate(zip(("lift", "stance", "land"), prints, strict=True)):
             on = low(print_)
             if on is not None and not getattr(sf, f"{name}_pitch") and abs(
                 on[0] - getattr(sf, name)) <= 1e-9:  # fmt: skip
-                flags[f"{name}_ramp"] = level[k]
-        out.append(replace(sf, **flags) if flags else sf)
+                flags[i] = level[k]
+        out.append(replace(sf, lift_ramp=flags[0], stance_ramp=flags[1], land_ramp=flags[2]))
     return out
 
 
