@@ -449,7 +449,7 @@ def _stepmat(tmp_path, gap: float):
  euler="0 5.5 0"/>
 <geom name="mat" type="box" size="0.6 0.35 0.0075" pos="0.6 3.2 0.3475"/>
 <geom name="stepmat" type="box" size="0.45 0.5 0.0075" pos="{x:.4f} 3.2 0.0075"/>
-<site name="stand_step" pos="{x - 0.15:.4f} 3.2 0"/>
+<site name="stand_step" pos="{x - 0.3:.4f} 3.2 0"/>
 <site name="stand_ramp" pos="6.6 3.2 0" euler="0 0 180"/>
 <site name="p_mat" pos="0.6 3.2 0.355" euler="0 0 -90"/></worldbody></mujoco>""")
     return path
