@@ -28,10 +28,11 @@ from mjwalk.body.legs.steps import FootTracks, StepFrames
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import Walker
+from mjwalk.plan.lowtops import with_low_tops
 from mjwalk.plan.rampside import surface_plane, with_ramps_beside
 from mjwalk.plan.synthetic import synthetic_ramp_walk, synthetic_walk
 from mjwalk.plan.walks import plan_walk
-from mjwalk.timeline import collision_report, timeline_from_walk
+from mjwalk.timeline import check_collisions, collision_report, timeline_from_walk
 from mjwalk.world import load_workplace
 from mjwalk.world.levelgen import generate_levels
 
@@ -473,3 +474,82 @@ def test_a_heel_strike_beside_a_ramp_s_side_keeps_its_back_face_out_of_the_ramp(
         if np.isfinite(h).any():
             least = min(least, float(np.min((pts[:, 2] - h)[np.isfinite(h)])))
     assert least > -1e-4  # before: -27 mm
+
+
+def _stepmat(tmp_path, gap: float):
+    """A 0.34 m platform reached by a step block of two 0.17 m risers at its west end (x =
+    -2.5 m) and a 5.5 deg ramp at its east end, a 15 mm mat on it (site ``p_mat``), and a
+    0.9 x 1.0 m floor mat 15 mm thick whose east edge lies ``gap`` metres short of the step
+    (site ``stand_step`` on it); ``stand_ramp`` on the floor before the ramp. Returns the
+    scene's path."""
+    x = -2.5 - gap - 0.45
+    path = tmp_path / "stepmat.xml"
+    path.write_text(f"""<mujoco model="stepmat"><worldbody>
+<geom name="floor" type="plane" pos="0.5 0 0" size="7 4.5 0.05"/>
+<geom name="platform" type="box" size="2.2 0.5 0.17" pos="0 3.2 0.17"/>
+<geom name="platform_step" type="box" size="0.15 0.4 0.085" pos="-2.35 3.2 0.085"/>
+<geom name="platform_ramp" type="box" size="1.773683 0.5 0.05" pos="3.960725 3.2 0.120230"
+ euler="0 5.5 0"/>
+<geom name="mat" type="box" size="0.6 0.35 0.0075" pos="0.6 3.2 0.3475"/>
+<geom name="stepmat" type="box" size="0.45 0.5 0.0075" pos="{x:.4f} 3.2 0.0075"/>
+<site name="stand_step" pos="{x - 0.3:.4f} 3.2 0"/>
+<site name="stand_ramp" pos="6.6 3.2 0" euler="0 0 180"/>
+<site name="p_mat" pos="0.6 3.2 0.355" euler="0 0 -90"/></worldbody></mujoco>""")
+    return path
+
+
+def _contacts(path, a: str, b: str, rng: int):
+    """(the walk, its contacts) of ``a`` to ``b`` in the scene at ``path``."""
+    walk = plan_walk(load_workplace(path, cache=False), a, b, default_model(progress=False),
+                     rng=rng)  # fmt: skip
+    return walk, check_collisions(walk, path)
+
+
+@pytest.mark.parametrize(
+    ("a", "b", "rng"),
+    [("stand_step", "p_mat", 0), ("stand_ramp", "stand_step", 1), ("p_mat", "stand_step", 0)],
+)
+def test_walks_between_a_mat_short_of_a_step_and_the_platform_touch_nothing(tmp_path, a, b, rng):
+    """A floor mat 5 cm short of the platform's step (issue 47): the walks up from it onto the
+    platform's mat, down from there onto it, and along the floor from the ramp onto it plan
+    and touch nothing. Before: up, a PlanningError (the pelvis lowered 0.069 m: the first
+    riser step's feet on the mat were taken for a ramp's plane, no step edge, so the pelvis
+    rose to the mean of the feet and fell back to the mat); along, a PlanningError at rngs
+    1-2 (0.15-0.16 m: the foot on the mat stood on the level past the ramp's head, 5.7 m
+    away in line with it, 0.34 m up); down, 38-41 contacts 15 mm deep (the riser step's
+    landing on the mat stood at the floor's height)."""
+    _, hits = _contacts(_stepmat(tmp_path, 0.05), a, b, rng)
+    assert hits == [], sorted({(h.body_part, h.scene_geom, round(h.depth, 4)) for h in hits})[:6]
+
+
+@pytest.mark.parametrize("gap", [0.0, 0.3])
+@pytest.mark.parametrize(("a", "b"), [("stand_step", "p_mat"), ("p_mat", "stand_step")])
+def test_a_mat_against_or_well_short_of_a_step_touches_nothing(tmp_path, gap, a, b):
+    """A floor mat right against the step (a level of its own, its riser 0.155 m to the
+    tread) or 0.3 m short of it (the crossing's stance on the floor): 0 contacts up and
+    down."""
+    _, hits = _contacts(_stepmat(tmp_path, gap), a, b, 0)
+    assert hits == [], sorted({(h.body_part, h.scene_geom, round(h.depth, 4)) for h in hits})[:6]
+
+
+def test_a_riser_step_off_a_mat_rises_from_the_mat_s_top(tmp_path):
+    """The walk up from the mat 5 cm short of the step: the steps onto the step's tread and
+    onto the platform leave feet standing on the mat's top (15 mm), a tread the risers are
+    measured from (no ramp's plane): both are edged steps, the pelvis starting on the mat;
+    the mat's footprints of the level steps before stay planes (not edged)."""
+    walk, _ = _contacts(_stepmat(tmp_path, 0.05), "stand_step", "p_mat", 0)
+    walk = with_low_tops(load_workplace(tmp_path / "stepmat.xml", cache=False), walk,
+                         DEFAULT_STATURE)  # fmt: skip
+    surfs = step_surfaces(walk)
+    _, level = level_planes(walk, len(walk.steps))
+    up = [k for k, sf in enumerate(surfs) if sf.land > sf.lift + 0.1 and sf.lift < 0.02]
+    assert len(up) == 2
+    first = surfs[up[0]]
+    assert (first.lift, first.stance, first.land) == pytest.approx((0.015, 0.015, 0.17))
+    assert first.edged and not (first.lift_ramp or first.stance_ramp)
+    assert first.pelvis_level() == pytest.approx((0.015, 0.015))
+    second = surfs[up[1]]  # step over step: the trailing foot leaves the mat for the platform
+    assert (second.lift, second.land) == pytest.approx((0.015, 0.34)) and not second.lift_ramp
+    assert second.edged
+    before = [s for k, s in enumerate(surfs[: up[0]]) if level[k]]
+    assert before and all(s.land_ramp and not s.edged for s in before)

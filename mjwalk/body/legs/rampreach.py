@@ -30,10 +30,11 @@ from mjwalk.body.legs.curves import spread
 from mjwalk.body.legs.edgeswing import StepSurfaces
 from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.ik import leg_ik_world
+from mjwalk.body.legs.lowtreads import low_treads
 from mjwalk.body.legs.stance import reach_deficit
 from mjwalk.body.legs.steps import HEEL_RISE_MAX, FootTracks, StepFrames
+from mjwalk.plan.rampside import LOW_KEY, SOLE_GRID, head_heights, over_ramp, surface_plane
 from mjwalk.plan.rampside import META_KEY as BESIDE_KEY
-from mjwalk.plan.rampside import SOLE_GRID, head_heights, over_ramp, surface_plane
 
 #: Passes of :func:`trailing_reach` (raise the heel by the deficit over the ball's lever,
 #: measure again); the deficit falls below a millimetre by the third on a 5.5 deg ramp.
@@ -390,36 +391,47 @@ def level_feet_on_ramps(
     geom = geom or leg_geometry()
     along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
     grid = [(d, w) for d in along for w in np.linspace(-0.5, 0.5, SOLE_GRID[1])]
-    whole = [surface_plane(p) for p in planes]  # the fallback's: the ramps' whole surfaces
+    lows = [p for p in planes if LOW_KEY in p]
+    flat = [surface_plane(p) for p in planes]  # the ramps' whole surfaces (heel_face_need)
 
-    def under(print_) -> tuple[float, float] | None:
+    def under(print_, planes=planes) -> tuple[float, float] | None:
+        if not planes:
+            return None
         on = ramp_support(planes, print_, geom)
         if on is not None:
             return on
+        whole = [surface_plane(p) for p in planes]  # the ramps' whole surfaces
         yaw = float(print_[2])
         f = np.array([math.cos(yaw), math.sin(yaw)])
         pts = [np.asarray(print_[:2], float) + d * f + w * geom.foot_width * f[::-1] * [-1, 1]
                for d, w in grid]  # fmt: skip
-        hits = [h[0] for p in whole for q in pts if (h := _on_plane(p, (*q, 0.0))) is not None]
-        if not hits:
+        hits = {i: [h[0] for q in pts if (h := _on_plane(p, (*q, 0.0))) is not None]
+                for i, p in enumerate(whole)}  # fmt: skip
+        if not any(hits.values()):
             return None
-        top = max(float(np.max(head_heights(p, np.asarray(pts)))) for p in whole)
-        return max(max(hits) + SOLE_GRID_SAG, top), 0.0
+        # the level past a ramp's head under a sole reaching over that ramp's crest, not
+        # under one standing on another plane (a mat 5.7 m beyond a ramp's head, in line with
+        # it: the foot stood 0.34 m up in the air, the pelvis lowered 0.15 m to reach it)
+        top = max(float(np.max(head_heights(whole[i], np.asarray(pts)))) for i, h in hits.items()
+                  if h)  # fmt: skip
+        return max(max(max(h) for h in hits.values() if h) + SOLE_GRID_SAG, top), 0.0
 
     out = list(surfs)
     for k, s in enumerate(walk.steps):
         land, stance = under(s.foot), under(s.stance)
-        face = heel_face_need(whole, s.foot, float(land_p[k]), geom) if land_p else -math.inf
+        face = heel_face_need(flat, s.foot, float(land_p[k]), geom) if land_p else -math.inf
         if level[k] and face > max(out[k].land, land[0] if land else -math.inf):
             land = (face, 0.0) if land is None or land[1] == 0.0 else land
-        if not level[k]:  # a ramp's own foot, pitched, that the plane does not carry whole
-            land = land if out[k].land_pitch and land and not land[1] else None
-            stance = stance if out[k].stance_pitch and stance and not stance[1] else None
+        if not level[k]:  # a ramp's own foot, pitched, that the plane does not carry whole;
+            # a riser's footfall on a low top (a mat before a step) stands on the low top
+            land = land if out[k].land_pitch and land and not land[1] else under(s.foot, lows)
+            stance = (stance if out[k].stance_pitch and stance and not stance[1]
+                      else under(s.stance, lows))  # fmt: skip
         if land is not None and (land[1] != 0.0 or land[0] > out[k].land):
             _set_foot(out, k, *land, landing=True)
         if stance is not None and (stance[1] != 0.0 or stance[0] > out[k].stance):
             _set_foot(out, k, *stance, landing=False)
-    return out
+    return low_treads(walk, out, level, lambda p: under(p, lows))
 
 
 def swing_over_ramps(walk, frames: list[StepFrames], air: dict, feet: FootTracks,
