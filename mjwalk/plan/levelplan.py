@@ -50,7 +50,7 @@ import mujoco
 import numpy as np
 
 from mjwalk.errors import PlanningError
-from mjwalk.gait.walker import REFERENCE_CADENCE, Walker
+from mjwalk.gait.walker import Walker
 from mjwalk.plan.hybrid import HybridPlanner, walker_step_length
 from mjwalk.plan.levelcross import (
     ENTRY_TURN,
@@ -68,8 +68,8 @@ from mjwalk.plan.levelroute import (
     step_up_limit,
 )
 from mjwalk.plan.levelsearch import STANCE_TOLERANCE, level_route
-from mjwalk.plan.levelstitch import level_meta, stitch, turned_on_spot
-from mjwalk.plan.options import ON_SPOT_TURN_SPEED, PlannerOptions
+from mjwalk.plan.levelstitch import level_meta, stitch
+from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.turnin import turn_into
 from mjwalk.plan.walkpath import WalkPath
@@ -430,9 +430,6 @@ def plan_level_walk(
         if leg.kind == "level":
             nxt = legs[k + 1] if k + 1 < len(legs) else None
             walk = _level_leg(workplace, leg, nxt, (pose, foot), model, rng, options, head)
-            if walk is not None and parts:  # off a crossing: its turn on the spot walked first
-                rate = walker.cadence / REFERENCE_CADENCE  # a turn of steps, at their cadence
-                walk = turned_on_spot(walk, float(parts[-1][1].yaw[-1]), ON_SPOT_TURN_SPEED * rate)
             if walk is not None:
                 parts.append((leg, walk))
             continue

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import replace
 
 import numpy as np
 
@@ -23,45 +22,6 @@ from mjwalk.world.workplace import Workplace
 
 #: How each crossing kind is counted in the walk record.
 KIND_NAMES = {"stair": "stairs", "ramp": "ramps", "step": "steps"}
-
-
-def turned_on_spot(walk: WalkPath, yaw_from: float, speed: float) -> WalkPath:
-    """``walk`` with the turn on the spot it starts with walked first: the walker stands where
-    the walk starts, facing ``yaw_from`` (the crossing it comes off ends facing along the
-    flight), and turns to the walk's first heading the shorter way, at ``speed`` (rad/s), the
-    heading easing in and out (smoothstep), before its first step. The hybrid planner costs a
-    standing start's turn (``WalkRequest(turn_on_spot=True)``) but leaves it to the caller; in a
-    walk over levels nobody made it, so the pelvis turned up to 174 deg in one 1/120 s sample
-    where a level walk set off back past the stair it came down (the shipped multi-level
-    cycle: 5-83 deg at 18 of its 20 first joins), its legs' hips crossed over and the flat
-    synthesis lowered the pelvis 4.6 cm to reach the feet (generated hall 511).
-
-    Args:
-        walk: the level walk (samples at a fixed rate from t = 0).
-        yaw_from: the heading the walker stands facing, radians from +x CCW.
-        speed: the turning speed, rad/s (> 0).
-
-    Returns:
-        The walk with the turn's samples first (its steps and times after them), or ``walk``
-        itself where it starts facing ``yaw_from``.
-    """
-    turn = (float(walk.yaw[0]) - yaw_from + math.pi) % (2 * math.pi) - math.pi
-    if abs(turn) < 1e-6 or len(walk.t) < 2:
-        return walk
-    dt = float(walk.t[1] - walk.t[0])
-    n = max(1, math.ceil(abs(turn) / speed / dt))
-    u = np.arange(n) / n
-    ease = u * u * (3.0 - 2.0 * u)  # smoothstep: the heading starts and stops at rest
-    yaw = float(walk.yaw[0]) - turn + turn * ease
-    steps = [replace(st, start=st.start + n, end=st.end + n) for st in walk.steps]
-    return WalkPath(
-        t=np.concatenate([np.arange(n) * dt, np.asarray(walk.t, dtype=float) + n * dt]),
-        xy=np.concatenate([np.repeat(np.asarray(walk.xy[:1], dtype=float), n, axis=0), walk.xy]),
-        yaw=np.concatenate([yaw, np.asarray(walk.yaw, dtype=float)]),
-        steps=steps,
-        meta={**walk.meta, "turn_on_spot": turn},
-        z=None if walk.z is None else np.concatenate([np.repeat(walk.z[:1], n), walk.z]),
-    )
 
 
 def _part_heights(

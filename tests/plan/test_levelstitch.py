@@ -9,16 +9,9 @@ from mjwalk.gait.stairs import ASCENT_STEP_TIME, DESCENT_STEP_TIME
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelcross import approach_point, cross_walk, departure
 from mjwalk.plan.levelroute import RouteLeg, crossings
-from mjwalk.plan.levelstitch import (
-    level_meta,
-    step_kinds,
-    stitch,
-    surface_levels,
-    turned_on_spot,
-)
+from mjwalk.plan.levelstitch import level_meta, step_kinds, stitch, surface_levels
 from mjwalk.plan.synthetic import synthetic_stair_walk, synthetic_walk
 from mjwalk.plan.walkpath import PathStep
-from mjwalk.plan.walks import plan_walk
 from mjwalk.world import load_workplace
 
 
@@ -98,37 +91,3 @@ def test_a_crossing_counts_its_line_up_and_departure_steps_as_level_walking(
     assert stairs == pytest.approx(n * step_time + walker.step_duration, abs=(n + 1) / 120)
     assert stairs + rec["route"][0]["level_seconds"] == pytest.approx(cross.duration)
     assert set(rec["per_level"]) == {f"L{lo}", f"L{hi}"}
-
-
-def test_a_level_walk_off_a_crossing_turns_on_the_spot_first():
-    """A level walk setting off 174 deg from where the walker stands (off a stair it came down)
-    first turns on the spot at the given speed, the heading easing in and out, no sample
-    turning more than the speed allows; its steps and times follow the turn."""
-    walk = synthetic_walk(start=(0.0, 0.0, 0.0))
-    speed = np.pi  # rad/s
-    turned = turned_on_spot(walk, np.radians(174.0), speed)
-    turned.validate()
-    n = len(turned.t) - len(walk.t)
-    dt = float(walk.t[1] - walk.t[0])
-    assert n == int(np.ceil(np.radians(174.0) / speed / dt))
-    assert turned.yaw[0] == pytest.approx(np.radians(174.0))
-    assert np.allclose(turned.xy[:n], walk.xy[0])
-    assert np.allclose(turned.yaw[n:], walk.yaw) and np.allclose(turned.t[n:] - n * dt, walk.t)
-    step = np.abs(np.diff(turned.yaw[: n + 1]))
-    assert step.max() <= 1.5 * speed * dt + 1e-12  # smoothstep's peak rate: 1.5 x the mean
-    assert step[0] < 0.1 * step.max() and step[-1] < 0.1 * step.max()
-    assert [s.start - n for s in turned.steps] == [s.start for s in walk.steps]
-    assert turned.meta["turn_on_spot"] == pytest.approx(np.radians(-174.0))
-    assert turned_on_spot(walk, float(walk.yaw[0]), speed) is walk
-
-
-def test_a_walk_over_levels_turns_no_faster_than_on_the_spot(scenes_dir):
-    """The shipped multi-level scene's walk from the mezzanine's rack down the stair and back
-    past it to rack 1: no pelvis heading turns faster than the walker's on-the-spot turn
-    (before: up to 83 deg in one 1/120 s sample where a level walk set off from the stair's
-    foot)."""
-    wp = load_workplace(scenes_dir / "multilevel_station.xml")
-    for seed in range(3):
-        walk = plan_walk(wp, "stand_mezz_rack", "stand_rack1", rng=seed)
-        rate = np.abs(np.diff(np.unwrap(walk.yaw))) / np.diff(walk.t)
-        assert rate.max() < 1.5 * np.pi * 1.05, (seed, float(np.degrees(rate.max())))
