@@ -95,6 +95,9 @@ def collision_report(
         data: an MjData of the timeline's model to work in (default: a new one).
         table: the humanoid's geom poses in every frame, if already computed (the same
             numbers as the broad phase's own, :class:`~mjwalk.timeline.geomposes.GeomTable`).
+
+    Raises:
+        MjwalkError: a frame's pose is not finite (NaN or inf).
     """
     model = timeline.model
     data = data if data is not None else mujoco.MjData(model)
@@ -104,6 +107,12 @@ def collision_report(
     tops = walk_tops(timeline)
     soles = human & _soles(model, plen)
     qpos = np.asarray(timeline.qpos)
+    bad = np.flatnonzero(~np.isfinite(qpos).all(axis=1))
+    if len(bad):  # MuJoCo finds no contact at a non-finite pose: it would pass unchecked
+        raise MjwalkError(
+            f"timeline frame {bad[0]} (t = {timeline.t[bad[0]]:.3f} s) and {len(bad) - 1} "
+            "more have a non-finite pose: their contacts cannot be checked"
+        )
     same = repeats(qpos) if broad_phase else np.zeros(len(qpos), dtype=bool)
     check = ~same  # every pose but a repeat; with the broad phase, only its candidates
     if broad_phase and len(qpos) > 1:
