@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from mjwalk.body.legs.edgeswing import StepSurfaces
+from mjwalk.world.norms import LEVEL_TOLERANCE
 
 
 def low_treads(walk, surfs: list[StepSurfaces], level: list[bool], low) -> list[StepSurfaces]:
@@ -25,14 +26,17 @@ def low_treads(walk, surfs: list[StepSurfaces], level: list[bool], low) -> list[
 
     Args:
         walk: the walk (its steps' footprints).
-        surfs: its steps' surfaces (:func:`level_feet_on_ramps`).
-        level: per step whether it is level walking (:func:`level_planes`).
+        surfs: its steps' surfaces (:func:`~mjwalk.body.legs.rampreach.level_feet_on_ramps`).
+        level: per step whether it is level walking
+            (:func:`~mjwalk.body.legs.rampreach.level_planes`).
         low: a footprint (x, y, yaw) -> (height above the floor, pitch) of the low tops under
             it, or None.
 
     Returns:
-        the surfaces, a flat footprint at its low top's height marked on a plane exactly in
-        the level steps.
+        the surfaces, a flat footprint at its low top's height (within the levels' own
+        :data:`~mjwalk.world.norms.LEVEL_TOLERANCE`, 4 mm: a heel strike near a mat's edge
+        stands 0.4 mm above it, :func:`~mjwalk.body.legs.rampreach.heel_face_need`) marked on
+        a plane exactly in the level steps.
     """
     out = []
     for k, (s, sf) in enumerate(zip(walk.steps, surfs, strict=True)):
@@ -41,7 +45,7 @@ def low_treads(walk, surfs: list[StepSurfaces], level: list[bool], low) -> list[
         for i, (name, print_) in enumerate(zip(("lift", "stance", "land"), prints, strict=True)):
             on = low(print_)
             if on is not None and not getattr(sf, f"{name}_pitch") and abs(
-                on[0] - getattr(sf, name)) <= 1e-9:  # fmt: skip
+                on[0] - getattr(sf, name)) <= LEVEL_TOLERANCE:  # fmt: skip
                 flags[i] = level[k]
         out.append(replace(sf, lift_ramp=flags[0], stance_ramp=flags[1], land_ramp=flags[2]))
     return out
