@@ -19,6 +19,7 @@ metres, radians; a pitch is + toes up.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import replace
 
@@ -392,15 +393,14 @@ def level_feet_on_ramps(
     along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
     grid = [(d, w) for d in along for w in np.linspace(-0.5, 0.5, SOLE_GRID[1])]
     lows = [p for p in planes if LOW_KEY in p]
-    flat = [surface_plane(p) for p in planes]  # the ramps' whole surfaces (heel_face_need)
+    flat = [surface_plane(p) for p in planes]  # the ramps' whole surfaces, once per walk
 
-    def under(print_, planes=planes) -> tuple[float, float] | None:
+    def under(print_, planes=planes, whole=flat) -> tuple[float, float] | None:
         if not planes:
             return None
         on = ramp_support(planes, print_, geom)
         if on is not None:
             return on
-        whole = [surface_plane(p) for p in planes]  # the ramps' whole surfaces
         yaw = float(print_[2])
         f = np.array([math.cos(yaw), math.sin(yaw)])
         pts = [np.asarray(print_[:2], float) + d * f + w * geom.foot_width * f[::-1] * [-1, 1]
@@ -416,6 +416,7 @@ def level_feet_on_ramps(
                   if h)  # fmt: skip
         return max(max(max(h) for h in hits.values() if h) + SOLE_GRID_SAG, top), 0.0
 
+    low_under = functools.partial(under, planes=lows, whole=[surface_plane(p) for p in lows])
     out = list(surfs)
     for k, s in enumerate(walk.steps):
         land, stance = under(s.foot), under(s.stance)
@@ -424,14 +425,14 @@ def level_feet_on_ramps(
             land = (face, 0.0) if land is None or land[1] == 0.0 else land
         if not level[k]:  # a ramp's own foot, pitched, that the plane does not carry whole;
             # a riser's footfall on a low top (a mat before a step) stands on the low top
-            land = land if out[k].land_pitch and land and not land[1] else under(s.foot, lows)
+            land = land if out[k].land_pitch and land and not land[1] else low_under(s.foot)
             stance = (stance if out[k].stance_pitch and stance and not stance[1]
-                      else under(s.stance, lows))  # fmt: skip
+                      else low_under(s.stance))  # fmt: skip
         if land is not None and (land[1] != 0.0 or land[0] > out[k].land):
             _set_foot(out, k, *land, landing=True)
         if stance is not None and (stance[1] != 0.0 or stance[0] > out[k].stance):
             _set_foot(out, k, *stance, landing=False)
-    return low_treads(walk, out, level, lambda p: under(p, lows))
+    return low_treads(walk, out, level, low_under)
 
 
 def swing_over_ramps(walk, frames: list[StepFrames], air: dict, feet: FootTracks,
