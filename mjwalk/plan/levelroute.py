@@ -160,6 +160,11 @@ class Crossing:
         """The axis' heading, radians from +x (up the crossing)."""
         return float(math.atan2(self.axis[1], self.axis[0]))
 
+    @property
+    def middle(self) -> np.ndarray:
+        """World xy of the middle of its first riser or foot, metres, however it is walked."""
+        return self.origin if self.centre is None else self.centre
+
     def shifted(self, offset: float) -> Crossing:
         """The same crossing walked ``offset`` metres to the left of its middle (left of the
         axis): origin moved across the axis, everything along it unchanged; the crossing's
@@ -174,13 +179,13 @@ class Crossing:
         if offset == 0.0:
             return self
         left = np.array([-self.axis[1], self.axis[0]])
-        centre = self.origin if self.centre is None else self.centre
-        return replace(self, origin=self.origin + float(offset) * left, centre=centre)
+        return replace(self, origin=self.origin + float(offset) * left, centre=self.middle)
 
     def riser_lines(self, floor_z: float) -> list[dict]:
         """Where its risers' edges lie, for the legs' swing over them
         (:func:`mjwalk.body.legs.edgeswing.true_edges`): each riser's edge line (the riser lies
-        halfway between the footfall positions on either side, as :meth:`height_at` has it).
+        halfway between the footfall positions on either side, as :meth:`height_at` has it),
+        its point and ``half_width`` about the crossing's :attr:`middle` however it is walked.
 
         Args:
             floor_z: the floor's world height, metres (heights are given above it).
@@ -192,13 +197,12 @@ class Crossing:
         """
         if self.kind == "ramp":
             return []
-        mid = 0.5 * (self.track[:-1] + self.track[1:])
         return [
-            {"xy": [float(v) for v in self.point(float(s))],
+            {"xy": [float(v) for v in self.middle + float(s) * self.axis],
              "normal": [float(v) for v in self.axis],
              "low": float(self.track_z[i]) - floor_z, "high": float(self.track_z[i + 1]) - floor_z,
              "half_width": float(self.half_width)}
-            for i, s in enumerate(mid)
+            for i, s in enumerate(0.5 * (self.track[:-1] + self.track[1:]))
         ]  # fmt: skip
 
     def fits(self, max_riser: float) -> bool:
@@ -284,8 +288,7 @@ def _flight(graph: LevelGraph, edges, risers, lower: int, upper: int, kind: str,
     origin = _mid(edges[0])
     d = np.array([float((_mid(e) - origin) @ axis) for e in edges])
     tread = float(np.mean(np.diff(d))) if len(d) > 1 else SAFE_TREAD
-    half = 0.5 * tread
-    track = np.concatenate([[d[0] - half], 0.5 * (d[:-1] + d[1:]), [d[-1] + half]])
+    track = np.concatenate([[d[0] - 0.5 * tread], 0.5 * (d[:-1] + d[1:]), [d[-1] + 0.5 * tread]])
     z0 = graph.levels[lower].height
     track_z = z0 + np.concatenate([[0.0], np.cumsum(risers)])
     return Crossing(
@@ -297,14 +300,11 @@ def _flight(graph: LevelGraph, edges, risers, lower: int, upper: int, kind: str,
 
 def _surfaces_above(graph: LevelGraph, edge, lower: int) -> list[int]:
     """The surfaces that touch ``edge`` and are not on level ``lower``."""
-    probe = _mid(edge)
-    near = []
-    for i, s in enumerate(graph.surfaces):
-        if graph.level_of[i] == lower:
-            continue
-        if float(s.footprint.signed_distance(probe[None])[0]) <= 0.03:
-            near.append(i)
-    return near
+    probe = _mid(edge)[None]
+    return [
+        i for i, s in enumerate(graph.surfaces)
+        if graph.level_of[i] != lower and float(s.footprint.signed_distance(probe)[0]) <= 0.03
+    ]  # fmt: skip
 
 
 def _ramp(graph: LevelGraph, link: LevelLink, clear: float) -> Crossing:

@@ -67,7 +67,7 @@ def ramp_plane(c: Crossing, floor_z: float) -> dict:
     plane = {
         "slope": float(c.slope),
         "uphill": float(c.yaw),
-        "foot": [float(v) for v in (c.origin if c.centre is None else c.centre)],
+        "foot": [float(v) for v in c.middle],
         "run": float(c.track[-1]),
         "half_width": float(c.half_width),
         "z": float(c.z_lower - floor_z),

@@ -120,6 +120,20 @@ def test_riser_lines_lie_halfway_between_the_footfalls(station):
         assert e["half_width"] == pytest.approx(0.5)
 
 
+def test_a_shifted_crossing_keeps_its_riser_lines_about_its_middle(station):
+    """A step or stair walked off its middle (:meth:`Crossing.shifted`) has the same riser lines:
+    each edge's point and ``half_width`` stay about the crossing's middle, not the walked line
+    (before, the point moved with the walk while ``half_width`` stayed: the side test of the
+    legs' swing measured from the wrong place); the middle is the ramp plane's foot too."""
+    by_kind = {c.kind: c for c in crossings(station.levels, 0.33)}
+    for c in (by_kind["stair"], by_kind["step"]):
+        moved = c.shifted(0.3).shifted(-0.1)
+        assert moved.riser_lines(station.floor_z) == c.riser_lines(station.floor_z)
+        np.testing.assert_array_equal(moved.middle, c.origin)
+        assert not np.allclose(moved.point(0.0), c.point(0.0))  # the walk itself moved
+    assert by_kind["ramp"].middle is by_kind["ramp"].origin
+
+
 def test_crossing_headroom_decides_the_head_check_for_every_stature(station):
     from mjwalk.plan.levelroute import crossing_headroom
     from mjwalk.world.norms import HEAD_MARGIN
