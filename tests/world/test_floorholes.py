@@ -41,6 +41,10 @@ def test_floor_boxes_are_found_and_plain_floors_have_none(pit_xml):
     ("geom", "match"),
     [
         ('<geom name="floor_x" type="box" pos="0 0 -0.2" size="1 1 0.05"/>', "tops differ"),
+        (  # a rack named floor_...: the message names it and the naming rule
+            '<geom name="floor_rack_shelf" type="box" pos="3 2 1.0" size="0.4 0.25 0.02"/>',
+            r"'floor_rack_shelf' at 1\.020 m, .* geoms named 'floor_\.\.\.' are the floor's boxes",
+        ),
         ('<geom name="floor_x" type="sphere" pos="0 0 -0.2" size="0.1"/>', "must be a box"),
     ],
 )
