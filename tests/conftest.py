@@ -160,3 +160,36 @@ def open_stair_xml():
     risers 0.17, up to a 1.02 m deck on four posts; sites ``a`` on the floor, ``b`` on the
     deck (the level planner's and the scan's open-stair tests share it)."""
     return _open_stair_xml
+
+
+def _box(name: str, x0: float, x1: float, y0: float, y1: float, z1: float) -> str:
+    """A box geom from the floor (z 0) up to ``z1`` over [x0, x1] x [y0, y1], metres."""
+    return (
+        f'<geom name="{name}" type="box" size="{(x1 - x0) / 2:.4f} {(y1 - y0) / 2:.4f} '
+        f'{z1 / 2:.4f}" pos="{(x0 + x1) / 2:.4f} {(y0 + y1) / 2:.4f} {z1 / 2:.4f}"/>'
+    )
+
+
+@pytest.fixture(scope="session")
+def dogleg_xml() -> str:
+    """A dog-leg (half-turn) stair to a 1.36 m mezzanine: a flight of four 0.17 m risers and
+    0.28 m treads up +y (x 0..1) to a 1.2 m deep landing at 0.68 m, then a second flight of four
+    back down -y (x 1.1..2.1) onto the mezzanine (x 1.1..4.5, y -3..0), a wall between the
+    flights and round the landing (DIN 18065 §6.3: a landing at least as deep as the stair is
+    wide); sites ``floor`` (-2, -1.5, 0), ``landing`` on the landing, ``mezz`` (3.5, -2, 1.36)."""
+    geoms = [_box(f"a{i}", 0.0, 1.0, 0.28 * (i - 1), 0.28 * i, 0.17 * i) for i in (1, 2, 3)]
+    geoms += [_box(f"b{j}", 1.1, 2.1, 0.28 * (7 - j), 0.28 * (8 - j), 0.17 * j) for j in (5, 6, 7)]
+    geoms += [
+        _box("landing", 0.0, 2.1, 0.84, 2.04, 0.68),
+        _box("mezzanine", 1.1, 4.5, -3.0, 0.0, 1.36),
+        _box("wall_mid", 1.0, 1.1, 0.0, 0.84, 2.0),
+        _box("wall_west", -0.05, 0.0, 0.0, 2.04, 1.9),
+        _box("wall_back", -0.05, 2.15, 2.04, 2.09, 1.9),
+        _box("wall_east", 2.1, 2.15, 0.0, 2.04, 2.2),
+    ]
+    return (
+        '<mujoco><worldbody><geom name="floor" type="plane" size="6 6 0.1"/>'
+        + "".join(geoms)
+        + '<site name="floor" pos="-2 -1.5 0"/><site name="landing" pos="1.05 1.5 0.68"/>'
+        '<site name="mezz" pos="3.5 -2 1.36"/></worldbody></mujoco>'
+    )

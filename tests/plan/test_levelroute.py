@@ -180,6 +180,41 @@ def test_walks_up_and_down_an_open_stair_touch_nothing(tmp_path, open_stair_xml)
         assert mjwalk.check_collisions(walk, path) == []
 
 
+def test_a_dog_leg_stair_is_two_flights_through_its_landing(tmp_path, dogleg_xml):
+    """A half-turn stair: its landing is a level of its own, each flight a stair of four
+    0.17 m risers and 0.28 m treads, the first up +y and the second up -y, and a walk from the
+    floor to the mezzanine takes both through the landing."""
+    path = tmp_path / "dogleg.xml"
+    path.write_text(dogleg_xml)
+    wp = load_workplace(path, cache=False)
+    stairs = sorted(
+        (c for c in crossings(wp.levels, 0.3) if c.kind == "stair"), key=lambda c: c.z_lower
+    )
+    assert [round(c.z_lower, 3) for c in stairs] == [0.0, 0.68]
+    assert [round(c.z_upper, 3) for c in stairs] == [0.68, 1.36]
+    for c, up in zip(stairs, (1.0, -1.0), strict=True):
+        assert c.risers == pytest.approx((0.17,) * 4, abs=1e-6)
+        assert c.tread == pytest.approx(0.28, abs=1e-6)
+        np.testing.assert_allclose(c.axis, (0.0, up), atol=1e-9)
+
+
+@pytest.mark.slow
+def test_walks_over_a_dog_leg_stair_touch_nothing(tmp_path, dogleg_xml):
+    """Up both flights and down again, and onto the landing: 0 contacts (the walls between the
+    flights and round the landing included)."""
+    import mjwalk  # the slow tier's end-to-end imports (as in the open stair's test above)
+    from mjwalk.gait.default import default_model
+
+    path = tmp_path / "dogleg.xml"
+    path.write_text(dogleg_xml)
+    wp, model = load_workplace(path, cache=False), default_model()
+    for a, b in (("floor", "mezz"), ("mezz", "landing"), ("landing", "floor")):
+        walk = mjwalk.plan_walk(wp, a, b, model, rng=0)
+        kinds = [r["kind"] for r in walk.meta["levels"]["route"]]
+        assert kinds.count("stair") == (2 if "mezz" in (a, b) and "floor" in (a, b) else 1)
+        assert mjwalk.check_collisions(walk, path) == []
+
+
 def _step_block(tmp_path, depth: float):
     """A 0.34 m platform reached by a step block ``depth`` deep and 1.2 m wide before its
     edge (risers 0.17, 0.17). Returns the scene's path."""
