@@ -200,6 +200,7 @@ from pathlib import Path
 import numpy as np
 
 from mjwalk.body.legs import legs_from_walk
+from mjwalk.body.legs.analysis import swing_hip_peaks
 from mjwalk.body.legs.edgeswing import STAIR_TOE_CLEARANCE
 from mjwalk.body.legs.legheights import HIP_PEAK_DOWN, HIP_PEAK_UP, KNEE_PEAK_DOWN, KNEE_PEAK_UP
 from mjwalk.cycle.population import Population, preset_group
@@ -299,8 +300,15 @@ def body_table(draws: int, seed: int) -> None:
         seed: the draws' seed.
     """
     print(f"\nLegs on the stair, each group's mean walker ({draws} draws per group)")
+    print(
+        "hip: the thigh from the vertical (the humanoid's pelvis never tilts; published hip "
+        "flexion is the thigh to a pelvis tilting forward 2.6-9.7 deg in step ascent, Bohannon "
+        "& Smutnick 2010); hip IC: the swing hip as its foot lands; at: the peak's share of "
+        "the swing (inner steps, mean)"
+    )
     head = (
-        f"{'group':12} {'dir':4} {'stature m':10} {'knee deg':9} {'hip deg':8} {'clear cm':9} norm"
+        f"{'group':12} {'dir':4} {'stature m':10} {'knee deg':9} {'hip deg':8} {'hip IC':7} "
+        f"{'at':5} {'clear cm':9} norm"
     )
     print(head)
     print("-" * len(head))
@@ -316,11 +324,13 @@ def body_table(draws: int, seed: int) -> None:
                 float(np.rad2deg(max(motion.angles[j.format(s)][a:b].max() for s in "lr")))
                 for j in ("knee_{}", "hip_{}_flex")
             )
+            swings = np.array(swing_hip_peaks(walk, motion))
             kn, hp = (KNEE_PEAK_UP, HIP_PEAK_UP) if d == "up" else (KNEE_PEAK_DOWN, HIP_PEAK_DOWN)
             # down: no published descent clearance found; 5 mm is the studies' low-clearance bound
             least = STAIR_TOE_CLEARANCE if d == "up" else DESCENT_LOW_CLEARANCE
             print(
                 f"{group:12} {d:4} {stature:<10.3f} {knee:<9.1f} {hip:<8.1f} "
+                f"{swings[:, 1].mean():<7.1f} {swings[:, 2].mean():<5.2f} "
                 f"{100 * motion.meta['edge_clearance']:<9.1f} knee {kn[0]:.0f}-{kn[1]:.0f}, "
                 f"hip {hp[0]:.0f}-{hp[1]:.0f} deg, clearance >= "
                 f"{100 * least:.1f} cm"
