@@ -28,6 +28,15 @@ down, knee 98.6-99.4 (80-100), hip 40.5-41.4 (20-45), clearance 0.3-0.5 cm (the 
 pitched further toes down after its swing is planned, is only kept off the treads). The
 synthetic stair walk has 0 contacts up and down in MuJoCo.
 
+Branch hip47 (``--draws 50 --walks 0``): the legs table adds the swing hip as its foot lands
+(``hip IC``) and where in the swing the peak lies (``at``), from analysis.swing_hip_peaks;
+knee, hip and clearance unchanged (up: hip 55.0-56.4 deg, statures 1.67-1.73 m). Up, the hip
+peaks at 0.58-0.59 of the swing (the foot at its highest over the lower nosing) and extends
+to 44.8-45.9 deg by foot contact; published ascent hip flexion peaks in late swing and is
+held into contact. The "hip" here is the thigh from the vertical (the humanoid's pelvis never
+tilts); the cited 55-75 deg are the thigh to the pelvis, which tilts forward 2.6-9.7 deg in
+step ascent (Bohannon & Smutnick 2010, abstract): not comparable one to one.
+
 Planning cost measured (``--draws 10 --walks 10``, 2-core machine at load average 1.3, three
 runs, branch i47-levelcost): median ms level walk / open-floor walk of the same length / the
 route's level legs planned alone as flat walks: step 1.6-1.8 / 2.6-2.7 / 2.4-2.6 (ratio to flat
