@@ -28,6 +28,15 @@ down, knee 98.6-99.4 (80-100), hip 40.5-41.4 (20-45), clearance 0.3-0.5 cm (the 
 pitched further toes down after its swing is planned, is only kept off the treads). The
 synthetic stair walk has 0 contacts up and down in MuJoCo.
 
+Branch hip47 (``--draws 50 --walks 0``): the legs table adds the swing hip as its foot lands
+(``hip IC``) and where in the swing the peak lies (``at``), from analysis.swing_hip_peaks;
+knee, hip and clearance unchanged (up: hip 55.0-56.4 deg, statures 1.67-1.73 m). Up, the hip
+peaks at 0.58-0.59 of the swing (the foot at its highest over the lower nosing) and extends
+to 44.8-45.9 deg by foot contact; published ascent hip flexion peaks in late swing and is
+held into contact. The "hip" here is the thigh from the vertical (the humanoid's pelvis never
+tilts); the cited 55-75 deg are the thigh to the pelvis, which tilts forward 2.6-9.7 deg in
+step ascent (Bohannon & Smutnick 2010, abstract): not comparable one to one.
+
 Planning cost measured (``--draws 10 --walks 10``, 2-core machine at load average 1.3, three
 runs, branch i47-levelcost): median ms level walk / open-floor walk of the same length / the
 route's level legs planned alone as flat walks: step 1.6-1.8 / 2.6-2.7 / 2.4-2.6 (ratio to flat
@@ -200,6 +209,7 @@ from pathlib import Path
 import numpy as np
 
 from mjwalk.body.legs import legs_from_walk
+from mjwalk.body.legs.analysis import swing_hip_peaks
 from mjwalk.body.legs.edgeswing import STAIR_TOE_CLEARANCE
 from mjwalk.body.legs.legheights import HIP_PEAK_DOWN, HIP_PEAK_UP, KNEE_PEAK_DOWN, KNEE_PEAK_UP
 from mjwalk.cycle.population import Population, preset_group
@@ -299,8 +309,15 @@ def body_table(draws: int, seed: int) -> None:
         seed: the draws' seed.
     """
     print(f"\nLegs on the stair, each group's mean walker ({draws} draws per group)")
+    print(
+        "hip: the thigh from the vertical (the humanoid's pelvis never tilts; published hip "
+        "flexion is the thigh to a pelvis tilting forward 2.6-9.7 deg in step ascent, Bohannon "
+        "& Smutnick 2010); hip IC: the swing hip as its foot lands; at: the peak's share of "
+        "the swing (inner steps, mean)"
+    )
     head = (
-        f"{'group':12} {'dir':4} {'stature m':10} {'knee deg':9} {'hip deg':8} {'clear cm':9} norm"
+        f"{'group':12} {'dir':4} {'stature m':10} {'knee deg':9} {'hip deg':8} {'hip IC':7} "
+        f"{'at':5} {'clear cm':9} norm"
     )
     print(head)
     print("-" * len(head))
@@ -316,11 +333,13 @@ def body_table(draws: int, seed: int) -> None:
                 float(np.rad2deg(max(motion.angles[j.format(s)][a:b].max() for s in "lr")))
                 for j in ("knee_{}", "hip_{}_flex")
             )
+            swings = np.array(swing_hip_peaks(walk, motion))
             kn, hp = (KNEE_PEAK_UP, HIP_PEAK_UP) if d == "up" else (KNEE_PEAK_DOWN, HIP_PEAK_DOWN)
             # down: no published descent clearance found; 5 mm is the studies' low-clearance bound
             least = STAIR_TOE_CLEARANCE if d == "up" else DESCENT_LOW_CLEARANCE
             print(
                 f"{group:12} {d:4} {stature:<10.3f} {knee:<9.1f} {hip:<8.1f} "
+                f"{swings[:, 1].mean():<7.1f} {swings[:, 2].mean():<5.2f} "
                 f"{100 * motion.meta['edge_clearance']:<9.1f} knee {kn[0]:.0f}-{kn[1]:.0f}, "
                 f"hip {hp[0]:.0f}-{hp[1]:.0f} deg, clearance >= "
                 f"{100 * least:.1f} cm"

@@ -1,6 +1,7 @@
 """Gait analysis of capture: sagittal leg angles, heel strikes and time-normalised gait cycles
 of a :class:`~mjwalk.mocap.take.Take`, and a :class:`~mjwalk.body.legs.reference.ReferenceGait`
-averaged from them.
+averaged from them; and the swing hip's peaks of a synthesized stair walk
+(:func:`swing_hip_peaks`).
 
 World frame: metres, z up; angles in radians.
 """
@@ -14,7 +15,7 @@ from scipy.signal import find_peaks
 
 from mjwalk.body.legs.reference import ReferenceGait
 from mjwalk.conventions import Side, side_prefix
-from mjwalk.errors import CaptureError
+from mjwalk.errors import CaptureError, InputError
 
 
 def sagittal_angles(hip, knee, ankle, toe, yaw):
@@ -37,6 +38,35 @@ def sagittal_angles(hip, knee, ankle, toe, yaw):
     kneef = hipf - np.arctan2((sh * fwd).sum(1), -sh[:, 2])
     pitch = np.arctan2(ft[:, 2], (ft * fwd).sum(1))
     return hipf, kneef, pitch
+
+
+def swing_hip_peaks(walk, legs) -> list[tuple[float, float, float]]:
+    """The swing hip of each inner step of a synthesized walk (a stair's flight: the first
+    and last steps left out): its peak flexion over the swing, its flexion as the swing foot
+    lands, and where in the swing the peak lies. Hip flexion is the synthesis's: the thigh
+    from the vertical in the walking plane (the humanoid's pelvis is never tilted).
+
+    Args:
+        walk: a :class:`~mjwalk.plan.walkpath.WalkPath` with at least three steps.
+        legs: its :class:`~mjwalk.body.legs.synthesis.LegMotion` (``contact``: 0 left
+            stance, 1 right stance, 2 double support).
+
+    Returns:
+        per inner step (peak deg, at landing deg, the peak's share of the swing from lift-off
+        to landing, 0-1).
+    """
+    out = []
+    for st in walk.steps[1:-1]:
+        s, other = st.side[0], 0 if st.side == "right" else 1  # the swing: the other's stance
+        idx = np.arange(st.start, st.end + 1)
+        air = idx[legs.contact[idx] == other]
+        if not len(air):
+            raise InputError(f"swing_hip_peaks: the step at sample {st.start} has no swing")
+        lift, land = int(air[0]), min(int(air[-1]) + 1, len(legs.t) - 1)
+        hip = np.rad2deg(legs.angles[f"hip_{s}_flex"])
+        k = lift + int(np.argmax(hip[lift : land + 1]))
+        out.append((float(hip[k]), float(hip[land]), (k - lift) / max(land - lift, 1)))
+    return out
 
 
 def heel_strikes(pitch: np.ndarray, fps: float) -> np.ndarray:
