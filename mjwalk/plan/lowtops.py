@@ -204,10 +204,13 @@ def stand_top(workplace: Workplace, xy, level: float) -> float:
     Returns:
         Metres above the floor: ``level`` itself without such a top.
     """
+    thin = _scene_tops(workplace)
+    if not thin:  # a scene without low tops (most): the surface itself (asked ~80 times a cycle)
+        return level
     band = workplace.z_range[0]
     point = np.asarray(xy, dtype=float)[:2]
     out = level
-    for b, p in _scene_tops(workplace):
+    for b, p in thin:
         if (
             is_low(b, p["z"], level, band)
             and p["z"] > out

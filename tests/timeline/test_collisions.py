@@ -87,6 +87,27 @@ def test_a_shared_geom_table_gives_the_same_candidates_and_contacts():
     assert got and got == rows(collision_report(tl))
 
 
+def test_static_scene_placed_in_a_used_data_is_that_of_a_new_one():
+    """The broad phase's static scene built in the caller's MjData, left in any pose (here a
+    walk's frame, the humanoid's joints bent), holds the numbers a new MjData gives: the
+    scene's geoms are welded to the world (issue 50: no MjData made per new model)."""
+    from mjwalk.body.humanoid import HUMAN_GROUP
+    from mjwalk.timeline import collisions as col
+
+    tl = timeline_from_walk(make_walk(n_steps=4), _scene(2.0))
+    m = tl.model
+    human, floor = m.geom_group == HUMAN_GROUP, floor_geoms(m)
+    fresh = col._static_scene(m, human, floor)
+    col._STATIC.pop(m)  # built again, now in a used data
+    used = mujoco.MjData(m)
+    used.qpos[:] = tl.qpos[len(tl.qpos) // 2] + 0.3  # every joint off its place
+    again = col._static_scene(m, human, floor, used)
+    assert again is not fresh
+    for name in fresh.__dataclass_fields__:
+        a, b = getattr(fresh, name), getattr(again, name)
+        assert a.dtype == b.dtype and a.tobytes() == b.tobytes(), name
+
+
 def test_floor_test_skips_high_geoms_without_changing_the_frames():
     """The broad phase's floor test skips a geom centred higher above the floor than its
     extent bound (StaticScene.low): the same candidate frames as testing every geom (an
