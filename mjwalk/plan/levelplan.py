@@ -433,7 +433,7 @@ def plan_level_walk(
             nxt = legs[k + 1] if k + 1 < len(legs) else None
             walk = _level_leg(workplace, leg, nxt, (pose, foot), model, rng, options, head)
             if walk is not None and foot is not None:  # after a crossing: turn in steps
-                walk = stepped_turn(walk, parts[-1][1], walker.step_duration)
+                walk = stepped_turn(walk, parts[-1][1], walker)
             if walk is not None:
                 parts.append((leg, walk))
             continue

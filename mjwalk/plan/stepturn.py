@@ -10,13 +10,13 @@ the walk, or the pelvis heading jumps between two samples while the feet stay pu
 in one 1/120 s sample on the shipped station). :func:`stepped_turn` puts steps on the spot
 before the leg's first step: the pelvis turns from the crossing's last heading to the leg's
 first in equal parts, one per step (eased, as :func:`mjwalk.plan.footfallwalk.footfall_walk`
-turns a step), each foot landing at its step's heading beside the pelvis, the feet as far
-apart across the walk as the crossing left them; the last lands on the leg's first stance
-footprint and the one before a step width beside it, where the leg's first step lifts it
-(:func:`mjwalk.body.legs.steps.step_frames`: after the first step, a swing lifts the foot the
-step before stood on). The steps alternate
-from the crossing's last step on and their number is even, so the leg's first step swings the
-foot it was planned with. Young adults turn 180 degrees as one pivot, older ones in more,
+turns a step), each foot landing at its step's heading half a step width beside the spot the
+turn ends on, the pelvis moving to the middle of the feet (as on a crossing). The last step
+lands on the leg's first stance footprint and the one before a step width beside it, where the
+leg's first step lifts it (:func:`mjwalk.body.legs.steps.step_frames`: after a walk's first
+step, a swing lifts the foot the step before stood on). The steps alternate from the
+crossing's last step on and their number is even, so the leg's first step swings the foot it
+was planned with. Young adults turn 180 degrees as one pivot, older ones in more,
 smaller steps (Thigpen et al. 2000, Phys Ther 80: 1174-1187); the split here is bounded by the
 hip's rotation range (:data:`TURN_PER_STEP`). Metres, seconds, radians; world frame.
 """
@@ -29,7 +29,10 @@ import numpy as np
 
 from mjwalk.conventions import SAMPLE_RATE_HZ
 from mjwalk.errors import PlanningError
+from mjwalk.gait.walker import Walker
+from mjwalk.plan.levelcross import DEFAULT_STEP_WIDTH
 from mjwalk.plan.options import SWING_LIFT_TURN
+from mjwalk.plan.turnsplit import wrap
 from mjwalk.plan.walkpath import PathStep, WalkPath
 
 #: Most the pelvis turns in one step on the spot, radians: the hip's rotation range
@@ -40,13 +43,8 @@ from mjwalk.plan.walkpath import PathStep, WalkPath
 #: half turn in four steps; the planner's ON_SPOT_TURN_SPEED costs it in about two).
 TURN_PER_STEP = SWING_LIFT_TURN
 #: Feet and heading closer than this to where the leg's first step expects them need no turn
-#: (metres, radians): a millimetre, a tenth of a degree (below any step's visible change).
+#: (metres, radians): a millimetre, a twentieth of a degree (no step's visible change).
 ALREADY_THERE = 1e-3
-
-
-def _wrap(angle: float) -> float:
-    """``angle`` wrapped into [-pi, pi), radians."""
-    return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 
 def turn_steps(turn: float) -> int:
@@ -62,7 +60,7 @@ def turn_steps(turn: float) -> int:
     return 2 * max(1, math.ceil(abs(turn) / (2.0 * TURN_PER_STEP) - 1e-9))
 
 
-def stepped_turn(walk: WalkPath, crossing: WalkPath, step_time: float) -> WalkPath:
+def stepped_turn(walk: WalkPath, crossing: WalkPath, walker: Walker) -> WalkPath:
     """``walk`` (a level leg planned as a standing start after a crossing) with the turn on the
     spot from where the crossing left the walker stepped before it (module docstring).
 
@@ -72,7 +70,8 @@ def stepped_turn(walk: WalkPath, crossing: WalkPath, step_time: float) -> WalkPa
         crossing: the crossing's walk before it (its last sample's pelvis xy and heading, its
             last step's world footprints: ``foot`` of that step's side, ``stance`` of the
             other, where the walker stands).
-        step_time: a step on the spot's duration, seconds (the walker's step).
+        walker: the walker: a step on the spot lasts its step, the feet its step width apart
+            (else :data:`~mjwalk.plan.levelcross.DEFAULT_STEP_WIDTH`, as on a crossing).
 
     Returns:
         The walk from t = 0: the steps on the spot, then ``walk``'s samples and steps (its
@@ -89,10 +88,9 @@ def stepped_turn(walk: WalkPath, crossing: WalkPath, step_time: float) -> WalkPa
     if side0 == last.side:
         raise PlanningError("stepped turn: the level leg's first step must swing the other foot")
     yaw1 = float(walk.yaw[0])
-    yaw0 = yaw1 - _wrap(yaw1 - float(crossing.yaw[-1]))
+    yaw0 = yaw1 - wrap(yaw1 - float(crossing.yaw[-1]))
     feet = {last.side: np.asarray(last.foot, float), side0: np.asarray(last.stance, float)}
-    # the feet as far apart across the walk as the crossing left them (its step width)
-    width = abs(float((feet["left"][:2] - feet["right"][:2]) @ _left(yaw0)))
+    width = walker.step_width or DEFAULT_STEP_WIDTH  # as the crossing's feet (cross_walk)
     stance = np.asarray(walk.steps[0].stance, float)  # the leg's first stance foot
     sign = 1.0 if side0 == "left" else -1.0
     target = {last.side: stance, side0: np.array([*(stance[:2] + sign * width * _left(yaw1)), 0])}
@@ -100,10 +98,11 @@ def stepped_turn(walk: WalkPath, crossing: WalkPath, step_time: float) -> WalkPa
     if moved <= ALREADY_THERE and abs(yaw1 - yaw0) <= ALREADY_THERE:
         return walk
     m = turn_steps(yaw1 - yaw0)
-    n = max(1, round(step_time * SAMPLE_RATE_HZ))
-    p0, p1 = np.asarray(crossing.xy[-1], float), np.asarray(walk.xy[0], float)
+    spot = 0.5 * (target["left"][:2] + target["right"][:2])  # the feet's middle at the end
+    n = max(1, round(walker.step_duration * SAMPLE_RATE_HZ))
+    here = np.asarray(crossing.xy[-1], float)  # the pelvis
     u = np.arange(1, n + 1) / n
-    steps, yaws, xys = [], [np.array([yaw0])], [p0[None, :]]
+    steps, yaws, xys = [], [np.array([yaw0])], [here[None, :]]
     for j in range(1, m + 1):
         side = side0 if j % 2 == 1 else last.side
         h0, h = yaw0 + (yaw1 - yaw0) * (j - 1) / m, yaw0 + (yaw1 - yaw0) * j / m
@@ -111,15 +110,29 @@ def stepped_turn(walk: WalkPath, crossing: WalkPath, step_time: float) -> WalkPa
             land = target[side].copy()
         elif j == m - 1:  # a step width beside it, where the leg's first step lifts it
             land = np.array([*target[side][:2], h])
-        else:  # beside the pelvis, square to this step's heading
+        else:  # half a step width beside the spot the turn ends on, at this step's heading
             to_left = 0.5 * width * (1.0 if side == "left" else -1.0)
-            land = np.array([*(p0 + (p1 - p0) * (j / m) + to_left * _left(h)), h])
-        other = "right" if side == "left" else "left"
-        steps.append(PathStep(side, (j - 1) * n, j * n, land, feet[other].copy()))
+            land = np.array([*(spot + to_left * _left(h)), h])
+        steps.append(PathStep(side, (j - 1) * n, j * n, land, feet[other_of(side)].copy()))
         feet[side] = land
         yaws.append(h0 + (u * u * (3 - 2 * u)) * (h - h0))
-        xys.append(p0 + (p1 - p0) * ((j - 1 + u) / m)[:, None])
+        # the pelvis to the middle of the feet, the last step to where the leg begins
+        end = walk.xy[0] if j == m else 0.5 * (feet["left"][:2] + feet["right"][:2])
+        xys.append(here + (np.asarray(end, float) - here) * u[:, None])
+        here = np.asarray(end, float)
     return _joined(walk, (np.concatenate(yaws), np.vstack(xys)), steps, m * n)
+
+
+def other_of(side: str) -> str:
+    """The other foot: "right" for "left", "left" for "right".
+
+    Args:
+        side: "left" or "right".
+
+    Returns:
+        The other side.
+    """
+    return "right" if side == "left" else "left"
 
 
 def _left(yaw: float) -> np.ndarray:
