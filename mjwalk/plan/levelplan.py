@@ -17,7 +17,8 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    guide searched on :data:`HEADING_BUDGET` expansions before the route search alone) or the
    goal. After a crossing the walker stands on both feet: the leg is a standing start (a turn
    on the spot costed) whose first step swings the other foot than the crossing's last
-   (:func:`next_foot`: step over step through every crossing);
+   (:func:`next_foot`: step over step through every crossing), the turn walked as steps on
+   the spot before it (:func:`mjwalk.plan.stepturn.stepped_turn`);
 3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`), where along
    its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`), the
    walker's swinging arms a cited clearance from its sides (:func:`~mjwalk.plan.levelroute.
@@ -71,6 +72,7 @@ from mjwalk.plan.levelsearch import STANCE_TOLERANCE, level_route
 from mjwalk.plan.levelstitch import level_meta, stitch
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
+from mjwalk.plan.stepturn import stepped_turn
 from mjwalk.plan.turnin import turn_into
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.levelview import level_at, level_view
@@ -430,6 +432,8 @@ def plan_level_walk(
         if leg.kind == "level":
             nxt = legs[k + 1] if k + 1 < len(legs) else None
             walk = _level_leg(workplace, leg, nxt, (pose, foot), model, rng, options, head)
+            if walk is not None and foot is not None:  # after a crossing: turn in steps
+                walk = stepped_turn(walk, parts[-1][1], walker)
             if walk is not None:
                 parts.append((leg, walk))
             continue

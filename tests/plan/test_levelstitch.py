@@ -94,13 +94,6 @@ def test_a_crossing_counts_its_line_up_and_departure_steps_as_level_walking(
     assert set(rec["per_level"]) == {f"L{lo}", f"L{hi}"}
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="issue 47: a level walk off a crossing starts turned; the turn on the spot the "
-    "planner costs is not walked, so the pelvis turns 130-140 deg in one 1/120 s sample here "
-    "(174 deg in generated hall 511); walking it needs steps on the spot (a stepless turn "
-    "gave the leg synthesis NaN, edeaa98 reverted)",
-)
 def test_a_walk_over_levels_turns_no_faster_than_on_the_spot(scenes_dir):
     """The shipped multi-level scene's walk from the mezzanine's rack down the stair and back
     past it to rack 1: no pelvis heading turns faster than a turn on the spot's peak (a half
