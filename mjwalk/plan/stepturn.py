@@ -18,7 +18,10 @@ step, a swing lifts the foot the step before stood on). The steps alternate from
 crossing's last step on and their number is even, so the leg's first step swings the foot it
 was planned with. Young adults turn 180 degrees as one pivot, older ones in more,
 smaller steps (Thigpen et al. 2000, Phys Ther 80: 1174-1187); the split here is bounded by the
-hip's rotation range (:data:`TURN_PER_STEP`). Metres, seconds, radians; world frame.
+hip's rotation range (:data:`TURN_PER_STEP`). A turn within that range is not stepped on the
+spot but walked on (a walker leaving a stair at a small angle does not stop to turn): the leg's
+first step stands on the crossing's last footprint and the pelvis eases into the leg's heading
+over that step. Metres, seconds, radians; world frame.
 """
 
 from __future__ import annotations
@@ -75,8 +78,10 @@ def stepped_turn(walk: WalkPath, crossing: WalkPath, walker: Walker) -> WalkPath
 
     Returns:
         The walk from t = 0: the steps on the spot, then ``walk``'s samples and steps (its
-        ``meta`` with ``turn_steps``, their number); ``walk`` itself when the feet and the
-        heading are already where its first step expects them.
+        ``meta`` with ``turn_steps``, their number); a turn within :data:`TURN_PER_STEP`
+        walked on in the leg's first step instead (``turn_steps`` 0, :func:`_walked_on`);
+        ``walk`` itself when the feet and the heading are already where its first step
+        expects them.
 
     Raises:
         PlanningError: either walk has no steps, or the leg's first step swings the crossing's
@@ -97,6 +102,8 @@ def stepped_turn(walk: WalkPath, crossing: WalkPath, walker: Walker) -> WalkPath
     moved = max(float(np.max(np.abs(feet[s][:2] - target[s][:2]))) for s in target)
     if moved <= ALREADY_THERE and abs(yaw1 - yaw0) <= ALREADY_THERE:
         return walk
+    if abs(yaw1 - yaw0) <= TURN_PER_STEP:  # the hip's range takes it in the leg's first step
+        return _walked_on(walk, crossing, yaw0)
     m = turn_steps(yaw1 - yaw0)
     spot = 0.5 * (target["left"][:2] + target["right"][:2])  # the feet's middle at the end
     n = max(1, round(walker.step_duration * SAMPLE_RATE_HZ))
@@ -121,6 +128,31 @@ def stepped_turn(walk: WalkPath, crossing: WalkPath, walker: Walker) -> WalkPath
         xys.append(here + (np.asarray(end, float) - here) * u[:, None])
         here = np.asarray(end, float)
     return _joined(walk, (np.concatenate(yaws), np.vstack(xys)), steps, m * n)
+
+
+def _walked_on(walk: WalkPath, crossing: WalkPath, yaw0: float) -> WalkPath:
+    """``walk`` set off from where the crossing left the walker, with no step on the spot: its
+    first step stands on the crossing's last footprint (it lifts the other foot from where that
+    stood, :func:`mjwalk.body.legs.steps.step_frames`), and over that step the pelvis eases
+    from the crossing's last heading and place into the leg's own (a smoothstep), the stance
+    foot left at most :data:`TURN_PER_STEP` off the pelvis (the hip's rotation range, as a
+    step on the spot leaves it). The leg's samples after its first step are unchanged."""
+    first = walk.steps[0]
+    k = first.end - first.start
+    u = np.arange(k + 1) / max(k, 1)
+    fade = 1.0 - u * u * (3.0 - 2.0 * u)  # 1 at the crossing, 0 where the first step lands
+    yaw, xy = walk.yaw.copy(), walk.xy.copy()
+    span = slice(first.start, first.end + 1)
+    yaw[span] += (yaw0 - float(walk.yaw[first.start])) * fade
+    xy[span] += (np.asarray(crossing.xy[-1], float) - walk.xy[first.start]) * fade[:, None]
+    stood = PathStep(
+        first.side, first.start, first.end, first.foot,
+        np.asarray(crossing.steps[-1].foot, float).copy(), first.foot_z, first.stance_z,
+    )  # fmt: skip
+    return WalkPath(
+        t=walk.t, xy=xy, yaw=yaw, steps=[stood, *walk.steps[1:]],
+        meta={**walk.meta, "turn_steps": 0}, z=walk.z,
+    )  # fmt: skip
 
 
 def other_of(side: str) -> str:

@@ -41,7 +41,7 @@ def test_turn_steps_are_even_and_within_the_hips_range_each():
         assert m % 2 == 0 and abs(turn) / m <= TURN_PER_STEP + 1e-9
 
 
-@pytest.mark.parametrize("turn_deg", [-150.0, -60.0, 30.0, 137.0, 180.0])
+@pytest.mark.parametrize("turn_deg", [-150.0, -60.0, 137.0, 180.0])
 def test_the_turn_is_stepped_on_the_spot_feet_planted_and_alternating(turn_deg):
     arrive, leave = _arrive_and_leave(turn_deg)
     walk = stepped_turn(leave, arrive, WALKER)
@@ -68,6 +68,34 @@ def test_the_turn_is_stepped_on_the_spot_feet_planted_and_alternating(turn_deg):
     assert math.remainder(yaw[0] - arrive.yaw[-1], 2 * math.pi) == pytest.approx(0.0, abs=1e-12)
     assert float(np.max(np.abs(np.diff(yaw)) / np.diff(walk.t))) < PEAK_RATE
     assert np.max(np.linalg.norm(walk.xy[:k] - arrive.xy[-1], axis=1)) < 0.25 * 0.65 + 0.18
+
+
+@pytest.mark.parametrize("turn_deg", [-45.0, -20.0, 0.5, 30.0])
+def test_a_turn_within_the_hips_range_is_walked_on_in_the_legs_first_step(turn_deg):
+    """A turn of at most :data:`TURN_PER_STEP` takes no step on the spot (a stop of two steps,
+    about 1.1 s, for a turn the walker makes while walking on): the leg's first step stands on
+    the arriving walk's last footprint, the pelvis eases from where and how the arriving walk
+    left it into the leg's over that step, and the rest of the leg is unchanged."""
+    arrive, leave = _arrive_and_leave(turn_deg)
+    walk = stepped_turn(leave, arrive, WALKER)
+    assert walk.meta["turn_steps"] == 0 and len(walk.steps) == len(leave.steps)
+    np.testing.assert_array_equal(walk.t, leave.t)
+    first = walk.steps[0]
+    np.testing.assert_array_equal(first.stance, arrive.steps[-1].foot)
+    np.testing.assert_array_equal(first.foot, leave.steps[0].foot)
+    k = first.end + 1
+    np.testing.assert_array_equal(walk.yaw[k:], leave.yaw[k:])
+    np.testing.assert_array_equal(walk.xy[k:], leave.xy[k:])
+    np.testing.assert_allclose(walk.xy[0], arrive.xy[-1], atol=1e-12)
+    yaw = np.unwrap(walk.yaw)
+    assert math.remainder(yaw[0] - arrive.yaw[-1], 2 * math.pi) == pytest.approx(0.0, abs=1e-12)
+    assert float(np.max(np.abs(np.diff(yaw)) / np.diff(walk.t))) < PEAK_RATE
+    legs = legs_from_walk(walk)
+    assert all(np.all(np.isfinite(a)) for a in legs.angles.values())
+    # the arriving walk stops mid-stride (feet 0.65 m apart, unlike a crossing's stance): at
+    # 45 deg the first step's pelvis is lowered 2.6 cm; planned walks over generated halls
+    # need up to 3.0 cm (bench_unseen, seeds 511, 518, 1094, 1096-1100)
+    assert float(np.max(legs.meta["pelvis_lowering"])) < 0.03
 
 
 def test_the_legs_through_the_turn_are_finite_and_stand_on_the_floor():
