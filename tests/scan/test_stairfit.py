@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from mjwalk.scan.minrect import min_rectangle, rectangle_size
 from mjwalk.scan.obstacles import FloorPlan
 from mjwalk.scan.planefit import RISER_TOL
-from mjwalk.scan.minrect import min_rectangle, rectangle_size
 from mjwalk.scan.scanlevels import ScanLevel, seen_in_part
 from mjwalk.scan.stairfit import (
     axis_near,
