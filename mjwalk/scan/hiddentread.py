@@ -43,6 +43,7 @@ from mjwalk.scan.stairfit import (
     HEIGHT_TOL,
     axis_near,
     cell_centres,
+    cell_span,
     near_edge,
     tread_rect,
 )
@@ -146,7 +147,7 @@ def _hidden_tread(
     k = np.arange(m, dtype=float)
     a = np.column_stack([np.ones(m), k])
     (first, tread), *_ = np.linalg.lstsq(a, np.array(fronts), rcond=None)
-    tol = STAIR_TOLERANCE + EDGE_CELLS * res
+    tol = STAIR_TOLERANCE + EDGE_CELLS * cell_span(run, res)  # cells measured along the climb
     if np.abs(a @ np.array([first, tread]) - fronts).max() > tol:
         return None
     if not MIN_TREAD - tol <= tread <= MAX_TREAD + tol:

@@ -38,8 +38,27 @@ from mjwalk.world.norms import (
 HEIGHT_TOL = STAIR_TOLERANCE + FLOOR_TOL / 6
 #: Most a tread's edge may differ from its flight's, in cells of the floor plan, besides
 #: ``STAIR_TOLERANCE``: an edge lies somewhere in its outermost cell, one more for the riser's
-#: cell that its points block.
+#: cell that its points block. A cell is measured along the flight's climb
+#: (:func:`cell_span`): a square cell spans ``res (|cos a| + |sin a|)`` along a direction at
+#: ``a`` to the grid, up to ``res * sqrt(2)`` for a flight at 45 deg to the hall's axes.
 EDGE_CELLS = 2
+
+
+def cell_span(run: np.ndarray, res: float) -> float:
+    """How far a square grid cell extends along a direction (its projection's length).
+
+    A region's edge read from its cells' centres lies up to half this from the true edge on
+    either side; on a flight turned against the grid that is more than half a cell edge.
+
+    Args:
+        run: (2,) unit direction (a flight's climb), the floor plan's frame.
+        res: the grid's cell edge, metres.
+
+    Returns:
+        ``res * (|run_x| + |run_y|)``, metres: ``res`` along a grid axis, ``res * sqrt(2)`` at
+        45 deg.
+    """
+    return res * (abs(float(run[0])) + abs(float(run[1])))
 
 
 def cell_centres(cells: np.ndarray, plan: FloorPlan) -> np.ndarray:
@@ -122,10 +141,11 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
     a = np.array(rows)
     coef, *_ = np.linalg.lstsq(a, np.array(rhs), rcond=None)
     dxy = float(np.abs(a @ coef - rhs).max())
-    tol = STAIR_TOLERANCE + EDGE_CELLS * plan.resolution
+    cell = cell_span(run, plan.resolution)  # a cell's extent along the climb
+    tol = STAIR_TOLERANCE + EDGE_CELLS * cell
     if dxy > tol or any(seen_in_part(t, plan.resolution) for t in treads):
         top_front = near_edge(top, plan, run, side, (min(lefts), max(rights)), rhs[-2])
-        coef, dxy = _shadowed_fit(np.array(rhs), top_front, plan.resolution)
+        coef, dxy = _shadowed_fit(np.array(rhs), top_front, cell)
     first, tread = float(coef[0]), float(coef[2])
     slack = tread_slack(n, plan.resolution)
     rule_slack = slack + 2 * RISER_TOL  # 2 s + a: twice the measured riser's, the tread's
@@ -204,7 +224,7 @@ def _shadowed_fit(edges: np.ndarray, top_front: float, res: float) -> tuple[np.n
     Args:
         edges: (2 (n - 1),) each tread's first and last cell centre along the run, metres.
         top_front: the top level's first cell centre along the run, metres.
-        res: the grid's cell edge, metres.
+        res: a grid cell's extent along the run (:func:`cell_span`), metres.
 
     Returns:
         (coef: (3,) the first front edge, unused, the tread depth; dxy: the largest front

@@ -154,3 +154,21 @@ def test_generated_hall_8_climbs_its_upper_flight_from_the_landing():
     assert upper[0].tread == pytest.approx(0.3236, abs=0.01)
     assert h[upper[0].upper] == pytest.approx(1.3689, abs=0.02)
     assert (0.76, 1.37, 4) in _written_links(pts, lp)
+
+
+@pytest.mark.slow  # a generated hall's scan: about 40 s on a loaded 2-core machine
+def test_generated_hall_1016_keeps_its_flight_turned_against_the_grid():
+    """Hall 1016: eight 0.1782 m risers, 0.2822 m treads climbing at 126 deg from +x (36 deg
+    against the floor plan's grid) to a 1.4256 m mezzanine, its top tread seen 0.19 m deep. A
+    cell spans 0.028 m along that climb; with edges allowed 0.02 m cells the flight was refused
+    (a back edge 0.0475 m past the next front's line, tolerance 0.045 m), its top tread dropped
+    and the mezzanine unreachable (base 1eaa92b)."""
+    pts, plan = _hall_scan(1016)
+    lp = scan_levels(pts, plan)
+    assert lp is not None
+    stairs = [k for k in lp.links if k.kind == "stair" and len(k.risers) == 8]
+    assert len(stairs) == 1, [(k.kind, len(k.risers)) for k in lp.links]
+    assert stairs[0].risers[0] == pytest.approx(0.1782, abs=0.005)
+    assert stairs[0].tread == pytest.approx(0.2822, abs=0.01)
+    assert lp.heights[stairs[0].upper] == pytest.approx(1.4256, abs=0.02)
+    assert any(abs(h - 1.2474) < 0.02 for h in lp.heights)

@@ -5,10 +5,18 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from mjwalk.scan.minrect import min_rectangle, rectangle_size
 from mjwalk.scan.obstacles import FloorPlan
 from mjwalk.scan.planefit import RISER_TOL
-from mjwalk.scan.scanlevels import ScanLevel
-from mjwalk.scan.stairfit import axis_near, cell_centres, fit_stair, near_edge, tread_slack
+from mjwalk.scan.scanlevels import ScanLevel, seen_in_part
+from mjwalk.scan.stairfit import (
+    axis_near,
+    cell_centres,
+    cell_span,
+    fit_stair,
+    near_edge,
+    tread_slack,
+)
 from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_TREAD, STEP_RULE
 
 RES = 0.02
@@ -101,3 +109,55 @@ def test_a_riser_measured_over_the_limit_within_the_scans_tolerance_is_a_stair()
         assert (fit is not None) is ok, riser
         if ok:
             assert fit["riser"] == pytest.approx(riser)
+
+
+def _scanned(u: tuple[float, float], run: np.ndarray, origin: np.ndarray, shape) -> np.ndarray:
+    """The grid cells a dense scan (2 mm spacing) of the strip ``u`` along ``run`` (1.37 m
+    across it) holds points in: every cell the strip overlaps, as a scan's rasterisation."""
+    side = np.array([-run[1], run[0]])
+    uu, vv = np.meshgrid(np.arange(u[0], u[1], 0.002), np.arange(0.0, 1.37, 0.002))
+    xy = origin + uu.reshape(-1, 1) * run + vv.reshape(-1, 1) * side
+    ij = np.floor(xy / RES).astype(int)
+    cells = np.zeros(shape, bool)
+    cells[ij[:, 1], ij[:, 0]] = True
+    return cells
+
+
+def test_a_flight_turned_against_the_grid_is_fitted():
+    """Hall 1016's flight (seed 1016 of ``bench_unseen``): eight 0.178 m risers, 0.282 m
+    treads, climbing at 126 deg from +x, its top tread seen 0.18 m deep (the deck's edge shadows
+    its back). Each tread holds every cell it overlaps, and the next riser's foot points (within
+    ``FLOOR_TOL`` of it) scattered 5 mm past the riser (the scan's range noise sigma); on a grid
+    turned 36 deg against the flight a cell spans 0.028 m along the climb, not 0.02 m, so a
+    tread's back cell and the next one's front cell lie up to 0.028 m past each other: a
+    regular flight, fitted as one (the edge tolerance counted in cells along the climb,
+    ``stairfit.cell_span``). On the base tree (cells counted as 0.02 m) it was refused."""
+    shape = (260, 260)
+    a, r, n = 0.282, 0.178, 8
+    run = np.array([np.cos(np.radians(126.0)), np.sin(np.radians(126.0))])
+    origin = np.array([4.0, 1.4])
+    noise = 0.005  # the riser's foot points within FLOOR_TOL of a tread: a range sigma past it
+    spans = [(-0.5, noise)] + [(k * a, (k + 1) * a + noise) for k in range(n - 2)]
+    spans += [((n - 2) * a, (n - 2) * a + 0.18), ((n - 1) * a, (n - 1) * a + 1.5)]
+    levels = []
+    for k, u in enumerate(spans):
+        cells = _scanned(u, run, origin, shape)
+        depth, width = rectangle_size(min_rectangle(cells, 0.0, 0.0, RES))
+        kind = "floor" if k == 0 else "platform" if k == n else "tread"
+        area = float(cells.sum()) * RES**2
+        levels.append(ScanLevel(k, kind, k * r, 0.0, 0.0, cells, area, depth, width, 0))
+    assert seen_in_part(levels[n - 1], RES)
+    z = np.zeros(shape, bool)
+    plan = FloorPlan(0.0, 0.0, RES, ~z, np.zeros(shape, np.int64), np.zeros(1), z,
+                     (0.0, 0.0, 5.2, 5.2), 0)  # fmt: skip
+    fit = fit_stair(list(range(n + 1)), levels, plan)
+    assert fit is not None
+    assert fit["riser"] == pytest.approx(r)
+    assert fit["tread"] == pytest.approx(a, abs=tread_slack(n, RES))
+    assert fit["run"] == pytest.approx(run, abs=0.02)
+
+
+def test_cell_span():
+    assert cell_span(np.array([1.0, 0.0]), RES) == pytest.approx(RES)
+    assert cell_span(np.array([0.0, -1.0]), RES) == pytest.approx(RES)
+    assert cell_span(np.array([1.0, 1.0]) / np.sqrt(2.0), RES) == pytest.approx(RES * np.sqrt(2))
