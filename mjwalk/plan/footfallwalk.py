@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from mjwalk.conventions import SAMPLE_RATE_HZ
+from mjwalk.conventions import SAMPLE_RATE_HZ, other_side
 from mjwalk.plan.walkpath import PathStep
 
 
@@ -43,7 +43,7 @@ def footfall_walk(
     points, heights, times, headings, across, width = lay
     was, turns, yaw = turn
     k = len(times)
-    other = "right" if side == "left" else "left"
+    other = other_side(side)
     lead = 1.0 if side == "left" else -1.0  # the left foot left of the walking line
     sign = np.where(np.arange(k) % 2 == 0, lead, -lead)
     foot = np.column_stack([points + (sign * 0.5 * width)[:, None] * across, headings])

@@ -50,6 +50,7 @@ from dataclasses import dataclass, replace
 import mujoco
 import numpy as np
 
+from mjwalk.conventions import other_side
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.hybrid import HybridPlanner, walker_step_length
@@ -257,9 +258,7 @@ def next_foot(last_side: str | None) -> str | None:
     Returns:
         "right" after "left", "left" after "right", None (either foot) after no crossing.
     """
-    if last_side is None:
-        return None
-    return "right" if last_side == "left" else "left"
+    return None if last_side is None else other_side(last_side)
 
 
 def _foot_model(model, side: str | None):

@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from mjwalk.conventions import SAMPLE_RATE_HZ
+from mjwalk.conventions import SAMPLE_RATE_HZ, other_side
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelcross import DEFAULT_STEP_WIDTH
@@ -120,7 +120,7 @@ def stepped_turn(walk: WalkPath, crossing: WalkPath, walker: Walker) -> WalkPath
         else:  # half a step width beside the spot the turn ends on, at this step's heading
             to_left = 0.5 * width * (1.0 if side == "left" else -1.0)
             land = np.array([*(spot + to_left * _left(h)), h])
-        steps.append(PathStep(side, (j - 1) * n, j * n, land, feet[other_of(side)].copy()))
+        steps.append(PathStep(side, (j - 1) * n, j * n, land, feet[other_side(side)].copy()))
         feet[side] = land
         yaws.append(h0 + (u * u * (3 - 2 * u)) * (h - h0))
         # the pelvis to the middle of the feet, the last step to where the leg begins
@@ -153,18 +153,6 @@ def _walked_on(walk: WalkPath, crossing: WalkPath, yaw0: float) -> WalkPath:
         t=walk.t, xy=xy, yaw=yaw, steps=[stood, *walk.steps[1:]],
         meta={**walk.meta, "turn_steps": 0}, z=walk.z,
     )  # fmt: skip
-
-
-def other_of(side: str) -> str:
-    """The other foot: "right" for "left", "left" for "right".
-
-    Args:
-        side: "left" or "right".
-
-    Returns:
-        The other side.
-    """
-    return "right" if side == "left" else "left"
 
 
 def _left(yaw: float) -> np.ndarray:
