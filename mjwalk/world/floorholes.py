@@ -75,9 +75,10 @@ def floor_boxes(
     ]
     if not ids:
         return None
-    tops, prints = [], []
+    tops, prints, names = [], [], []
     for g in ids:
         name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g)
+        names.append(name)
         rot = data.geom_xmat[g].reshape(3, 3)
         if int(model.geom_type[g]) != mujoco.mjtGeom.mjGEOM_BOX or abs(rot[2, 2]) < 1 - 1e-9:
             raise SceneError(f"{label}: floor geom {name!r} must be a box with a level top")
@@ -88,11 +89,11 @@ def floor_boxes(
         tops.append(top)
         prints.append(fp)
     if max(tops) - min(tops) > LEVEL_TOLERANCE:
-        low, high = (ids[int(k)] for k in (np.argmin(tops), np.argmax(tops)))
+        low, high = (names[int(k)] for k in (np.argmin(tops), np.argmax(tops)))
         raise SceneError(
             f"{label}: the floor boxes' tops differ by {max(tops) - min(tops):.3f} m "
-            f"(at most {LEVEL_TOLERANCE} m: one floor level): {_name(model, high)!r} at "
-            f"{max(tops):.3f} m, {_name(model, low)!r} at {min(tops):.3f} m; geoms named "
+            f"(at most {LEVEL_TOLERANCE} m: one floor level): {high!r} at "
+            f"{max(tops):.3f} m, {low!r} at {min(tops):.3f} m; geoms named "
             f"'{FLOOR_BOX_PREFIX}...' are the floor's boxes, rename any other"
         )
     height = float(np.mean(tops))
@@ -101,11 +102,6 @@ def floor_boxes(
             f"{label}: the floor boxes' tops ({height:.3f} m) must lie above the plane"
         )
     return FloorBoxes(height, tuple(ids), tuple(prints))
-
-
-def _name(model: mujoco.MjModel, g: int) -> str:
-    """Geom ``g``'s name."""
-    return mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or f"geom {g}"
 
 
 def wall_openings(field: ClearanceField, footprints: tuple[Footprint, ...]) -> ClearanceField:

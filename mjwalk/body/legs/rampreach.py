@@ -392,8 +392,8 @@ def level_feet_on_ramps(
     geom = geom or leg_geometry()
     along = np.linspace(-geom.foot_back, geom.foot_front, SOLE_GRID[0])
     grid = [(d, w) for d in along for w in np.linspace(-0.5, 0.5, SOLE_GRID[1])]
-    lows = [p for p in planes if LOW_KEY in p]
     flat = [surface_plane(p) for p in planes]  # the ramps' whole surfaces, once per walk
+    lows = [(p, f) for p, f in zip(planes, flat, strict=True) if LOW_KEY in p]
 
     def under(print_, planes=planes, whole=flat) -> tuple[float, float] | None:
         if not planes:
@@ -416,7 +416,7 @@ def level_feet_on_ramps(
                   if h)  # fmt: skip
         return max(max(max(h) for h in hits.values() if h) + SOLE_GRID_SAG, top), 0.0
 
-    low_under = functools.partial(under, planes=lows, whole=[surface_plane(p) for p in lows])
+    low_under = functools.partial(under, planes=[p for p, _ in lows], whole=[f for _, f in lows])
     out = list(surfs)
     for k, s in enumerate(walk.steps):
         land, stance = under(s.foot), under(s.stance)
