@@ -11,7 +11,6 @@ World frame: metres, seconds, radians, z up, yaw from +x CCW.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -354,31 +353,13 @@ def ease_arms(
             qpos[:, k] = qpos[:, k] + tight * ease * (TUCK_PRONATION - qpos[:, k])
     if room is not None and away is not None:
         yaw = 2.0 * np.arctan2(qpos[:, jm.root + 6], qpos[:, jm.root + 3])
-        fps = 1.0 / median_of(np.diff(t)) if len(t) > 1 else 30.0
+        fps = 1.0 / float(np.median(np.diff(t))) if len(t) > 1 else 30.0
         turn = trunk_turn(yaw, room, away, stature, fps)
         lo, hi = jm.limits("lumbar_rot")
         lumbar = np.clip(turn, lo, hi)
         qpos[:, jm.adr("lumbar_rot")] += lumbar
         qpos[:, jm.adr("thoracic_rot")] += np.clip(turn - lumbar, *jm.limits("thoracic_rot"))
     return qpos
-
-
-def median_of(x: np.ndarray) -> float:
-    """``float(np.median(x))`` of a non-empty 1-D array, bit for bit (the middle of the sorted
-    values, or the two middle ones' sum halved, as ``np.median``'s mean of them; NaN when
-    one is NaN) without NumPy's general machinery (0.1 ms a call, once a walk).
-
-    Args:
-        x: (n,) values, n >= 1 (seconds between frames, here).
-
-    Returns:
-        The median, in ``x``'s units.
-    """
-    s = np.sort(x)
-    if s[-1] != s[-1]:  # a NaN sorts last: np.median's answer is NaN
-        return math.nan
-    mid = len(s) // 2
-    return float(s[mid]) if len(s) % 2 else float((s[mid - 1] + s[mid]) / 2.0)
 
 
 def room_and_away(workplace, xy: np.ndarray, h: float = 0.02) -> tuple[np.ndarray, np.ndarray]:

@@ -3,8 +3,6 @@ trunk kept clear of obstacles) and its playback."""
 
 from __future__ import annotations
 
-import math
-
 import mujoco
 import numpy as np
 import pytest
@@ -24,7 +22,6 @@ from mjwalk.timeline.frames import (
     arm_swing,
     ease_arms,
     frames_from_legs,
-    median_of,
     yaw_quat,
 )
 
@@ -232,15 +229,3 @@ def test_a_walk_plays_back_on_a_floor_off_z0(tmp_path, floor):
     others = np.delete(np.arange(flat.model.nq), r + 2)
     np.testing.assert_allclose(up.qpos[:, others], flat.qpos[:, others], atol=1e-12)
     assert collision_report(flat) == [] and collision_report(up) == []
-
-
-def test_median_of_is_numpy_s_median_bit_for_bit():
-    """median_of (ease_arms' frame interval) gives np.median's float exactly: odd and even
-    lengths, ties, spreads of scale, and NaN (seeded)."""
-    rng = np.random.default_rng(0)
-    for n in range(1, 40):
-        for scale in (1e-3, 1.0, 1e3):
-            x = rng.random(n) * scale
-            for v in (x, np.round(x, 1), np.diff(np.arange(n + 1) / 30.0)):
-                assert median_of(v) == float(np.median(v))
-    assert math.isnan(median_of(np.array([0.1, np.nan, 0.2])))
