@@ -125,20 +125,22 @@ def openings_of(graph, level: int, options: LevelOptions | None = None) -> tuple
     Returns:
         The footprints (polygons, counter-clockwise), named ``opening_L<level>_<k>``, geom id -1.
     """
-    # deferred: shapely is slow to import (as in mjwalk.world.meshextrude); only levels need it
-    import shapely
-    from shapely.geometry import Polygon
+    lv = graph.levels[int(level)]
+    if len(lv.surfaces) < 3:
+        return ()  # convex surfaces enclose a hole only three or more at a time (a flat floor)
+    import shapely  # deferred: slow to import (as in meshextrude); only level views need it
 
     o = options or LevelOptions()
-    lv = graph.levels[int(level)]
     half = 0.5 * o.contact_gap
 
     def polygon(fp: Footprint):
-        return Polygon(np.asarray(fp.vertices, dtype=float)).buffer(half, join_style="mitre")
+        return shapely.Polygon(np.asarray(fp.vertices, dtype=float)).buffer(
+            half, join_style="mitre"
+        )
 
     own = shapely.union_all([polygon(graph.surfaces[i].footprint) for i in lv.surfaces])
     holes = [
-        Polygon(ring).buffer(half, join_style="mitre")  # back to the surfaces' edges
+        shapely.Polygon(ring).buffer(half, join_style="mitre")  # back to the surfaces' edges
         for part in getattr(own, "geoms", [own])
         for ring in part.interiors
     ]
@@ -151,7 +153,7 @@ def openings_of(graph, level: int, options: LevelOptions | None = None) -> tuple
         if i not in lv.surfaces and (i in linked or _step_apart(s, lv.height) <= o.max_riser)
     ]
     reach = shapely.union_all(
-        [Polygon(np.asarray(graph.surfaces[i].footprint.vertices)) for i in stepped]
+        [shapely.Polygon(np.asarray(graph.surfaces[i].footprint.vertices)) for i in stepped]
     )
     out: list[Footprint] = []
     for hole in holes:
