@@ -63,6 +63,7 @@ from mjwalk.plan.sides import (
     side_log_odds,
 )
 from mjwalk.world.clearance import ClearanceField, bilinear_at
+from mjwalk.world.openings import passing_footprints
 
 __all__ = [
     "MAX_PASSED",
@@ -223,7 +224,8 @@ def _blocking(workplace, path: np.ndarray, radius: float):
     """The obstacle footprint the path ``path`` (k, 2) first comes within ``radius`` of, or
     None (clear, or first short of it at the floor's edge)."""
     p = first_below(workplace, path, radius)  # sampled every 5 cm
-    if p is None or not workplace.obstacles:
+    footprints = passing_footprints(workplace)  # a level's openings too (issue 47)
+    if p is None or not footprints:
         return None
     bounds = obstacle_bounds(workplace)
     near = np.flatnonzero(
@@ -242,11 +244,11 @@ def _blocking(workplace, path: np.ndarray, radius: float):
         if room >= radius:
             return None
         if len(near) == 1:
-            return workplace.obstacles[int(near[0])]
-    dist = [float(workplace.obstacles[k].signed_distance(p[None])[0]) for k in near]
+            return footprints[int(near[0])]
+    dist = [float(footprints[k].signed_distance(p[None])[0]) for k in near]
     if min(dist) >= radius:  # the floor's edge, not an obstacle
         return None
-    return workplace.obstacles[int(near[int(np.argmin(dist))])]
+    return footprints[int(near[int(np.argmin(dist))])]
 
 
 @dataclass(frozen=True)

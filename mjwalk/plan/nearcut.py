@@ -25,6 +25,7 @@ import math
 import numpy as np
 
 from mjwalk._jit import njit
+from mjwalk.world.openings import passing_footprints
 
 __all__ = ["MARGIN", "ObstaclePack", "gap_candidates", "intruding_candidates", "pack"]
 
@@ -60,8 +61,9 @@ class ObstaclePack:
 
 
 def pack(workplace) -> ObstaclePack:
-    """The workplace's :class:`ObstaclePack`, kept on it for the same footprints (the same
-    objects, in the same order).
+    """The workplace's :class:`ObstaclePack` of its obstacles and its level's openings
+    (:func:`~mjwalk.world.openings.passing_footprints`), kept on it for the same footprints (the
+    same objects, in the same order).
 
     Args:
         workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
@@ -69,7 +71,7 @@ def pack(workplace) -> ObstaclePack:
     Returns:
         The pack.
     """
-    obstacles = workplace.obstacles
+    obstacles = passing_footprints(workplace)  # its level's openings too (issue 47)
     ids = tuple(map(id, obstacles))  # the kept footprints live on: their ids are not reused
     kept = workplace.__dict__.get("_obstacle_pack")
     if kept is None or kept[0] != ids:

@@ -72,6 +72,7 @@ from mjwalk.anthropometry import SEG
 from mjwalk.gait.walker import REFERENCE_SPEED
 from mjwalk.plan.guide import densify, first_below
 from mjwalk.plan.nearcut import gap_candidates, intruding_candidates, pack
+from mjwalk.world.openings import passing_footprints
 
 __all__ = [
     "CONFINED_APERTURE",
@@ -155,19 +156,21 @@ def obstacle_bounds(workplace) -> np.ndarray:
         workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
 
     Returns:
-        (n, 4) each footprint's (xmin, ymin, xmax, ymax), metres, in ``workplace.obstacles``'
-        order.
+        (n, 4) each footprint's (xmin, ymin, xmax, ymax), metres, in the order of
+        :func:`~mjwalk.world.openings.passing_footprints` (the obstacles', then the level's
+        openings).
     """
+    footprints = passing_footprints(workplace)
     bounds = workplace.__dict__.get("_footprint_bounds")
-    if bounds is None or len(bounds) != len(workplace.obstacles):
-        bounds = np.array([fp.bounds() for fp in workplace.obstacles]).reshape(-1, 4)
+    if bounds is None or len(bounds) != len(footprints):
+        bounds = np.array([fp.bounds() for fp in footprints]).reshape(-1, 4)
         workplace.__dict__["_footprint_bounds"] = bounds
     return bounds
 
 
 def boxes_meeting(workplace, box) -> np.ndarray:
-    """The indices of the obstacles whose bounding box meets ``box`` (edges included), in
-    ``workplace.obstacles``' order.
+    """The indices of the obstacles (and the level's openings) whose bounding box meets ``box``
+    (edges included), in :func:`~mjwalk.world.openings.passing_footprints`' order.
 
     Args:
         workplace: the scene (:class:`~mjwalk.world.workplace.Workplace`).
@@ -214,11 +217,12 @@ def side_gap(workplace, blocker, route, start, goal) -> float:
         [beside[:, 0] - xmin, xmax - beside[:, 0], beside[:, 1] - ymin, ymax - beside[:, 1]]
     )
     other = np.minimum(other, GAP_OPEN)
-    if workplace.obstacles:  # those within GAP_OPEN that may narrow it (nearcut: exact)
-        passed = [fp is blocker for fp in workplace.obstacles]
+    footprints = passing_footprints(workplace)  # a level's openings too (issue 47)
+    if footprints:  # those within GAP_OPEN that may narrow it (nearcut: exact)
+        passed = [fp is blocker for fp in footprints]
         pk = pack(workplace)
         for k in gap_candidates(pk, beside, other, passed, GAP_OPEN):
-            other = np.minimum(other, workplace.obstacles[k].signed_distance(beside))
+            other = np.minimum(other, footprints[k].signed_distance(beside))
     return float(np.min(own + other))  # negative depth inside another obstacle narrows it
 
 
@@ -270,7 +274,8 @@ def intruding(workplace, path, ends, berth: float):
         floor edges and the ends' own obstacles).
     """
     pts = np.asarray(path, dtype=float)
-    if not workplace.obstacles or first_below(workplace, pts, berth) is None:
+    footprints = passing_footprints(workplace)  # a level's openings too (issue 47)
+    if not footprints or first_below(workplace, pts, berth) is None:
         return None  # nothing within the berth anywhere: the one compiled pass
     s, g = (np.asarray(v, dtype=float)[:2] for v in ends)
     length = float(np.hypot(*(g - s)))
@@ -280,7 +285,7 @@ def intruding(workplace, path, ends, berth: float):
     pk = pack(workplace)
     best, first = None, len(dense)
     for k, along_open, ends_open in intruding_candidates(pk, dense, both, length, u, berth):
-        fp = workplace.obstacles[k]
+        fp = footprints[k]
         if along_open:
             along = (np.asarray(fp.vertices, dtype=float) - s) @ u
             if along.min() - fp.radius < -berth or along.max() + fp.radius > length + berth:

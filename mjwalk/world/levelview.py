@@ -36,6 +36,7 @@ from mjwalk.errors import InputError, SceneError
 from mjwalk.world.clearance import ClearanceField, build_clearance
 from mjwalk.world.floor import find_floor
 from mjwalk.world.norms import CONTACT_GAP, EXPOSED_MIN, HEADROOM_SCAN
+from mjwalk.world.openings import mark_level
 from mjwalk.world.workplace import Workplace, WorkplaceOptions, obstacle_footprints
 
 #: The key under which a workplace keeps its level views.
@@ -153,7 +154,7 @@ def _build_view(
     if level != 0:
         edge = _edge_field(graph, lv, field)
         field = ClearanceField(field.x0, field.y0, field.resolution, np.minimum(field.values, edge))
-    return Workplace(
+    view = Workplace(
         model=workplace.model,
         source=workplace.source,
         floor=workplace.floor,
@@ -166,6 +167,8 @@ def _build_view(
         cache_key=None,
         options=options,
     )
+    mark_level(view, graph, level)  # its openings, for the side choice (mjwalk.world.openings)
+    return view
 
 
 def _edge_field(graph, lv, field: ClearanceField) -> np.ndarray:

@@ -1,0 +1,204 @@
+"""A level's openings (drops) as obstacle footprints, for the side choice and the berth.
+
+A level's edges are walls of its clearance field (:mod:`mjwalk.world.levelview`,
+:mod:`mjwalk.world.floorholes`): the planners never walk off a level. To the question which side
+a walker passes an obstacle on and how much room it leaves (:mod:`mjwalk.plan.sides`,
+:mod:`mjwalk.plan.detour`) a field's wall is not an obstacle, though: a pit beside a bench left
+the walker the pit's rim as free room (issues 47/48: 8 of 16 walks passed the bench nearer than
+0.30 m, 3 of 16 with a box in the pit's place). People keep from a drop as from an obstacle, so
+a level's **openings** are obstacle footprints to those questions:
+
+- an opening is a hole in the level: a region off the level's surfaces (joined across gaps up to
+  :data:`~mjwalk.world.norms.CONTACT_GAP`, as the level's edge field joins them) that they
+  enclose. The level's outer boundary (a flat floor's rectangle, a platform's or mezzanine's
+  rim) is no opening: it is the floor's edge of the level's view, which the planners already
+  treat as such;
+- less the surfaces a walker steps onto from the rim (the via surfaces of the level's links, a
+  stair's treads or a ramp, and every surface within a step, ``LevelOptions.max_riser``, of the
+  level's height): a drop is where the walk surface ends over a drop too deep to step
+  (DIN 18065's 0.19 m riser, :data:`~mjwalk.world.norms.MAX_RISER`), not where a step, stair or
+  ramp connects;
+- each opening cut into convex pieces (footprints are convex: constrained Delaunay triangles
+  merged while their union stays convex); a rectangular pit is one piece.
+
+They are found once per level view (:func:`level_openings`, kept on the workplace) and joined to
+its obstacles by :func:`passing_footprints`; a workplace without openings (every flat scene) gives
+its own obstacle list, so its plans are exactly as before. Metres, world frame (z up).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mjwalk.world.footprint import Footprint
+from mjwalk.world.levels import LevelOptions
+
+__all__ = [
+    "OPENING_PREFIX",
+    "level_openings",
+    "mark_level",
+    "openings_of",
+    "passing_footprints",
+]
+
+#: Names of the openings' footprints start with this (then the level and a count).
+OPENING_PREFIX = "opening_"
+#: The key under which a workplace keeps its level's openings.
+_OPENINGS = "_level_openings"
+#: The key under which a level's view keeps its level graph and level's index.
+_LEVEL = "_level_of_view"
+#: The key under which a workplace keeps its obstacles joined with its openings.
+_PASSING = "_passing_footprints"
+#: Pieces smaller than this (square metres) are dropped. ASSUMPTION: a sliver narrower than the
+#: contact gap (0.02 m) along a metre's edge is an artefact of joining surfaces, not a drop a
+#: foot fits into (ASR A1.5/1,2: gaps up to 20 mm are walked over).
+_SLIVER_AREA = 0.02 * 0.02
+#: Relative area by which a union may fall short of its convex hull and still count as convex
+#: (rounding of shapely's coordinates).
+_CONVEX_TOL = 1e-9
+
+
+def level_openings(workplace) -> tuple[Footprint, ...]:
+    """The openings of the level ``workplace`` is the view of (module doc), found on first use
+    and kept on it. A level's view (:func:`mjwalk.world.levelview.level_view`) is marked with
+    its level at construction (:func:`mark_level`); any other workplace is the floor's view
+    (level 0 of its own level graph).
+
+    Args:
+        workplace: the scene or a level's view (:class:`~mjwalk.world.workplace.Workplace`).
+
+    Returns:
+        The openings' convex footprints (none on a flat floor).
+    """
+    kept = workplace.__dict__.get(_OPENINGS)
+    if kept is None:
+        graph, level = workplace.__dict__.get(_LEVEL) or (workplace.levels, 0)
+        kept = openings_of(graph, level)
+        workplace.__dict__[_OPENINGS] = kept
+    return kept
+
+
+def mark_level(view, graph, level: int) -> None:
+    """Mark ``view`` as the view of ``level`` of ``graph`` (:func:`level_openings` finds that
+    level's openings, on first use).
+
+    Args:
+        view: a level's :class:`~mjwalk.world.workplace.Workplace`.
+        graph: the scene's :class:`~mjwalk.world.levels.LevelGraph`.
+        level: the level's index in ``graph.levels``.
+    """
+    view.__dict__[_LEVEL] = (graph, int(level))
+
+
+def passing_footprints(workplace) -> list[Footprint]:
+    """The footprints the side choice and the berth keep from: the workplace's obstacles, then
+    its level's openings (:func:`level_openings`). Kept on the workplace; without openings the
+    workplace's own obstacle list.
+
+    Args:
+        workplace: the scene or a level's view.
+
+    Returns:
+        The footprints, obstacles first in ``workplace.obstacles``' order.
+    """
+    openings = level_openings(workplace)
+    if not openings:
+        return workplace.obstacles
+    obstacles = workplace.obstacles
+    ids = tuple(map(id, obstacles))  # the kept footprints live on: their ids are not reused
+    kept = workplace.__dict__.get(_PASSING)
+    if kept is None or kept[0] != ids:
+        kept = (ids, [*obstacles, *openings], tuple(obstacles))
+        workplace.__dict__[_PASSING] = kept
+    return kept[1]
+
+
+def openings_of(graph, level: int, options: LevelOptions | None = None) -> tuple[Footprint, ...]:
+    """The openings of one level of a level graph (module doc) as convex footprints.
+
+    Args:
+        graph: the scene's :class:`~mjwalk.world.levels.LevelGraph`.
+        level: the level's index in ``graph.levels``.
+        options: the gap that joins surfaces and the highest step
+            (:class:`~mjwalk.world.levels.LevelOptions`; None: the defaults).
+
+    Returns:
+        The footprints (polygons, counter-clockwise), named ``opening_L<level>_<k>``, geom id -1.
+    """
+    lv = graph.levels[int(level)]
+    if len(lv.surfaces) < 3:
+        return ()  # convex surfaces enclose a hole only three or more at a time (a flat floor)
+    import shapely  # deferred: slow to import (as in meshextrude); only level views need it
+
+    o = options or LevelOptions()
+    half = 0.5 * o.contact_gap
+
+    def polygon(fp: Footprint):
+        return shapely.Polygon(np.asarray(fp.vertices, dtype=float)).buffer(
+            half, join_style="mitre"
+        )
+
+    own = shapely.union_all([polygon(graph.surfaces[i].footprint) for i in lv.surfaces])
+    holes = [
+        shapely.Polygon(ring).buffer(half, join_style="mitre")  # back to the surfaces' edges
+        for part in getattr(own, "geoms", [own])
+        for ring in part.interiors
+    ]
+    if not holes:
+        return ()
+    linked = {i for k in graph.links_of(lv.index) for i in k.via}
+    stepped = [
+        i
+        for i, s in enumerate(graph.surfaces)
+        if i not in lv.surfaces and (i in linked or _step_apart(s, lv.height) <= o.max_riser)
+    ]
+    reach = shapely.union_all(
+        [shapely.Polygon(np.asarray(graph.surfaces[i].footprint.vertices)) for i in stepped]
+    )
+    out: list[Footprint] = []
+    for hole in holes:
+        rest = hole.difference(reach) if stepped else hole
+        for part in getattr(rest, "geoms", [rest]):
+            for piece in _convex_pieces(part):
+                if piece.area >= _SLIVER_AREA:
+                    v = np.asarray(shapely.geometry.polygon.orient(piece, 1.0).exterior.coords)
+                    name = f"{OPENING_PREFIX}L{lv.index}_{len(out)}"
+                    out.append(Footprint(name, -1, np.ascontiguousarray(v[:-1])))
+    return tuple(out)
+
+
+def _step_apart(surface, height: float) -> float:
+    """How far (m) the surface's heights (a ramp's from low to high end) lie from ``height``."""
+    lo, hi = float(surface.z_low), float(surface.z_high)
+    return max(0.0, lo - height, height - hi)
+
+
+def _convex_pieces(poly) -> list:
+    """``poly`` (a shapely Polygon) cut into convex polygons: itself if convex, else its
+    constrained Delaunay triangles merged pairwise while each union stays convex."""
+    import shapely  # deferred: see openings_of
+
+    if poly.is_empty or poly.area <= 0.0:
+        return []
+    poly = poly.simplify(0.0)
+    if poly.area >= poly.convex_hull.area * (1.0 - _CONVEX_TOL) and not poly.interiors:
+        return [poly]
+    pieces = list(shapely.constrained_delaunay_triangles(poly).geoms)
+    merged = True
+    while merged:
+        merged = False
+        for a in range(len(pieces)):
+            for b in range(a + 1, len(pieces)):
+                if pieces[a].intersection(pieces[b]).length <= 0.0:
+                    continue  # no shared edge
+                union = shapely.union(pieces[a], pieces[b]).simplify(0.0)
+                if union.geom_type == "Polygon" and union.area >= union.convex_hull.area * (
+                    1.0 - _CONVEX_TOL
+                ):
+                    pieces[a] = union
+                    del pieces[b]
+                    merged = True
+                    break
+            if merged:
+                break
+    return pieces
