@@ -310,9 +310,9 @@ def body_table(draws: int, seed: int) -> None:
     """
     print(f"\nLegs on the stair, each group's mean walker ({draws} draws per group)")
     print(
-        "hip: the thigh from the vertical (the humanoid's pelvis never tilts; published hip "
-        "flexion is the thigh to a pelvis tilting forward 2.6-9.7 deg in step ascent, Bohannon "
-        "& Smutnick 2010); hip IC: the swing hip as its foot lands; at: the peak's share of "
+        "hip: the thigh relative to the pelvis, as published hip flexion (the pelvis tilted "
+        "forward 2.6 deg up a stair, Bohannon & Smutnick 2010: mjwalk.body.legs.pelvistilt; "
+        "upright down it); hip IC: the swing hip as its foot lands; at: the peak's share of "
         "the swing (inner steps, mean)"
     )
     head = (
