@@ -31,9 +31,8 @@ from mjwalk.world.norms import MIN_RISER
 #: mean, 2.6 deg at a femoral elevation of 47.2 deg, is the condition nearest this model's
 #: 0.17 m risers (thigh elevation 54-57 deg, benchmarks/bench_levels.py), and the smallest:
 #: it is taken, not an interpolation. ASSUMPTION: the tilt is forward (anterior), as issue 47
-#: reads the study and as the trunk leans forward in stair ascent; and it is held through each
-#: ascending step rather than following the femur within the step (the abstract gives maxima
-#: only).
+#: reads the study (the abstract does not say); and it is held through each ascending step
+#: rather than following the femur within the step (the abstract gives maxima only).
 STAIR_ASCENT_PELVIC_TILT = math.radians(2.6)
 #: Least rise of a step counted as a stair ascent, metres: DIN 18065's smallest riser
 #: (:data:`mjwalk.world.norms.MIN_RISER`), less 1 cm. ASSUMPTION: a surveyed stair's riser may
