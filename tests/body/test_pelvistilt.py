@@ -8,9 +8,9 @@ from mjwalk.body.legs import legs_from_walk, synthesis
 from mjwalk.body.legs.footcheck import posed
 from mjwalk.body.legs.pelvistilt import (
     STAIR_ASCENT_PELVIC_TILT,
-    _hip_matrix,
     ascent_tilt,
     pelvis_quat,
+    thigh_rotation,
     tilt_pelvis,
 )
 from mjwalk.plan.synthetic import synthetic_ramp_walk, synthetic_stair_walk, synthetic_walk
@@ -65,8 +65,8 @@ def test_tilt_pelvis_keeps_the_thighs_world_rotation():
     ry = np.zeros((n, 3, 3))
     ry[:, 0, 0], ry[:, 0, 2], ry[:, 1, 1], ry[:, 2, 0], ry[:, 2, 2] = c, s_, 1.0, -s_, c
     for s in "lr":
-        old = _hip_matrix(s, *(angles[f"hip_{s}_{j}"] for j in ("rot", "flex", "abd")))
-        got = ry @ _hip_matrix(s, *(new[f"hip_{s}_{j}"] for j in ("rot", "flex", "abd")))
+        old = thigh_rotation(s, *(angles[f"hip_{s}_{j}"] for j in ("rot", "flex", "abd")))
+        got = ry @ thigh_rotation(s, *(new[f"hip_{s}_{j}"] for j in ("rot", "flex", "abd")))
         assert np.abs(got - old).max() < 1e-12
     zero = {k: np.zeros(n) for k in angles}
     zero["hip_l_flex"] = angles["hip_l_flex"]

@@ -84,10 +84,20 @@ def ascent_tilt(walk, n: int, tilt: float = STAIR_ASCENT_PELVIC_TILT) -> np.ndar
     return out
 
 
-def _hip_matrix(side: str, rot, flex, abd) -> np.ndarray:
-    """(n, 3, 3) rotation of a thigh in the pelvis frame from its hip angles (the humanoid's
-    hinges in order: rotation about (0, 0, -s), flexion about (0, -1, 0), abduction about
-    (s, 0, 0); s = +1 left, -1 right)."""
+def thigh_rotation(side: str, rot, flex, abd) -> np.ndarray:
+    """The rotation of a thigh in the pelvis frame from its hip angles (the humanoid's hinges
+    in order: rotation about (0, 0, -s), flexion about (0, -1, 0), abduction about (s, 0, 0);
+    s = +1 left, -1 right).
+
+    Args:
+        side: "l" or "r".
+        rot: (n,) hip rotation, radians.
+        flex: (n,) hip flexion, radians.
+        abd: (n,) hip abduction, radians.
+
+    Returns:
+        (n, 3, 3) rotation matrices.
+    """
     s = 1.0 if side == "l" else -1.0
     a, b, g = -s * rot, -flex, s * abd  # Rz(a) Ry(b) Rx(g)
     ca, sa, cb, sb, cg, sg = np.cos(a), np.sin(a), np.cos(b), np.sin(b), np.cos(g), np.sin(g)
@@ -121,7 +131,7 @@ def tilt_pelvis(angles: dict[str, np.ndarray], tilt: np.ndarray) -> dict[str, np
     for side in "lr":
         s = 1.0 if side == "l" else -1.0
         names = [f"hip_{side}_{j}" for j in ("rot", "flex", "abd")]
-        r = _hip_matrix(side, *(angles[j][on] for j in names))
+        r = thigh_rotation(side, *(angles[j][on] for j in names))
         # Ry(-t) rows: (ct, 0, -st), (0, 1, 0), (st, 0, ct)
         m = r.copy()
         m[:, 0] = ct[:, None] * r[:, 0] - st[:, None] * r[:, 2]
