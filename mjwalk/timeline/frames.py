@@ -22,6 +22,7 @@ from mjwalk.anthropometry import ARM_SWING_ABDUCTION_DEG
 from mjwalk.body.humanoid import JointMap, attach_humanoid, shoulder_geometry
 from mjwalk.body.legs import LegMotion, legs_from_walk
 from mjwalk.body.legs.curves import smoothstep
+from mjwalk.body.legs.pelvistilt import pelvis_quat
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.lowtops import with_low_tops
@@ -432,7 +433,11 @@ def frames_from_legs(
     r = jm.root
     for k in range(3):
         qpos[:, r + k] = np.interp(t, legs.t, legs.root[:, k])
-    qpos[:, r + 3 : r + 7] = yaw_quat(np.interp(t, legs.t, legs.yaw))
+    yaw = np.interp(t, legs.t, legs.yaw)
+    tilt = legs.meta.get("pelvis_tilt")  # a stair ascent's forward pelvic tilt (pelvistilt)
+    qpos[:, r + 3 : r + 7] = (
+        yaw_quat(yaw) if tilt is None else pelvis_quat(yaw, np.interp(t, legs.t, tilt))
+    )
     angles = {name: np.interp(t, legs.t, v) for name, v in legs.angles.items()}
     if arms == "swing":
         angles.update(arm_swing(angles))

@@ -43,8 +43,9 @@ def sagittal_angles(hip, knee, ankle, toe, yaw):
 def swing_hip_peaks(walk, legs) -> list[tuple[float, float, float]]:
     """The swing hip of each inner step of a synthesized walk (a stair's flight: the first
     and last steps left out): its peak flexion over the swing, its flexion as the swing foot
-    lands, and where in the swing the peak lies. Hip flexion is the synthesis's: the thigh
-    from the vertical in the walking plane (the humanoid's pelvis is never tilted).
+    lands, and where in the swing the peak lies. Hip flexion is the synthesis's joint angle:
+    the thigh relative to the pelvis (the thigh from the vertical in the walking plane plus
+    the pelvis's forward tilt, which is zero but on a stair ascent: pelvistilt).
 
     Args:
         walk: a :class:`~mjwalk.plan.walkpath.WalkPath` with at least three steps.

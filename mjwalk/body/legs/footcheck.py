@@ -15,6 +15,7 @@ import numpy as np
 
 from mjwalk.anthropometry import leg_geometry
 from mjwalk.body.humanoid import humanoid_model
+from mjwalk.body.legs.pelvistilt import pelvis_quat
 from mjwalk.conventions import DEFAULT_STATURE
 
 
@@ -32,10 +33,11 @@ def posed(legs, stature: float = DEFAULT_STATURE):
     """
     model, jm = humanoid_model(stature)
     data = mujoco.MjData(model)
+    tilt = legs.meta.get("pelvis_tilt", np.zeros(len(legs.t)))  # stair ascent (pelvistilt)
     for i in range(len(legs.t)):
         q = jm.neutral_qpos(model, stature)
         q[:3] = legs.root[i]
-        q[3:7] = [np.cos(legs.yaw[i] / 2), 0, 0, np.sin(legs.yaw[i] / 2)]
+        q[3:7] = pelvis_quat(legs.yaw[i : i + 1], tilt[i : i + 1])[0]
         for name, v in legs.angles.items():
             q[jm.adr(name)] = v[i]
         data.qpos[:] = q

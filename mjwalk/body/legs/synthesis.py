@@ -50,6 +50,7 @@ from mjwalk.body.legs.footpivot import pivot_ankle
 from mjwalk.body.legs.ik import KNEE_MIN, LEG_JOINTS
 from mjwalk.body.legs.ikcache import LegIKCache
 from mjwalk.body.legs.legheights import lift_to_levels
+from mjwalk.body.legs.pelvistilt import ascent_tilt, tilt_pelvis
 from mjwalk.body.legs.pitchfit import AnkleFit, fit_ankle_passes, fit_ankle_range, repitch_foot
 from mjwalk.body.legs.rampreach import BESIDE_KEY
 from mjwalk.body.legs.reference import DEFAULT_REFERENCE, ReferenceGait
@@ -219,6 +220,9 @@ def legs_from_walk(
         root, angles, meta["edge_clearance"] = lift_to_levels(
             walk, frames, feet, root, sy.yaw, geom, lowered
         )
+        tilt = ascent_tilt(walk, n)  # the pelvis forward on a stair up, the legs kept
+        if tilt.any():
+            angles, meta["pelvis_tilt"] = tilt_pelvis(angles, tilt), tilt
     else:
         bound_lowering(lowered, root)  # or raises
     return LegMotion(
