@@ -236,7 +236,7 @@ def _axis_up(graph: LevelGraph, edge, upper_surfaces: Sequence[int]) -> np.ndarr
     return -n
 
 
-def _passed(graph: LevelGraph, clear: float) -> list[bool]:
+def stepped_over(graph: LevelGraph, clear: float) -> list[bool]:
     """Per level, whether walks only step over it: a tread, or one surface less than two
     clearances deep (a 0.4 m step block, deeper than ``norms.MAX_TREAD``): no crossing's
     stance fits ``clear`` from both its edges; it is passed in one footfall, as a tread."""
@@ -252,7 +252,7 @@ def _passed(graph: LevelGraph, clear: float) -> list[bool]:
 
 def _step_chains(graph: LevelGraph, clear: float) -> list[list[LevelLink]]:
     """Chains of step links from a level walked on over levels only stepped over to another."""
-    passed = _passed(graph, clear)
+    passed = stepped_over(graph, clear)
     steps = [k for k in graph.links if k.kind == "step"]
     out = []
     for first in steps:
@@ -267,11 +267,11 @@ def _step_chains(graph: LevelGraph, clear: float) -> list[list[LevelLink]]:
                 continue
             if len(chain) >= len(steps):
                 continue
-            todo.extend(chain + [k] for k in steps if k.lower == top and _across(chain[-1], k))
+            todo.extend(chain + [k] for k in steps if k.lower == top and in_line(chain[-1], k))
     return out
 
 
-def _across(below: LevelLink, above: LevelLink) -> bool:
+def in_line(below: LevelLink, above: LevelLink) -> bool:
     """Whether step ``above`` lies straight across the level ``below`` steps onto: its edge
     parallel, the depth the same within ``norms.STAIR_TOLERANCE`` (a block's sides meet the
     floor too, and a chain from a side edge is no flight)."""

@@ -1,0 +1,63 @@
+"""Steps that turn: a winder or spiral stair, which no crossing walks (issue 47).
+
+A crossing over single steps (:func:`mjwalk.plan.levelroute.crossings`) is a straight flight:
+each step edge in line with the one below it (:func:`mjwalk.plan.levelroute.in_line`), the
+footfalls laid along one axis. A stair whose treads are wedges round a post or a winder's
+corner (DIN 18065:2020 and ASR A1.8 allow such "gewendelte" stairs, their tread measured at the
+walk line) has step edges that turn from one tread to the next, so no crossing joins the levels
+at its ends and a walk between them is refused. :func:`turning_steps` names such stairs, one line
+each, so the refusal says why. Metres, world frame.
+"""
+
+from __future__ import annotations
+
+from mjwalk.plan.levelroute import in_line, stepped_over
+from mjwalk.world.levels import LevelGraph, LevelLink
+
+
+def turning_steps(graph: LevelGraph, clear: float) -> list[str]:
+    """Levels joined only by single steps whose edges turn (a winder or spiral stair).
+
+    Args:
+        graph: the scene's levels and links.
+        clear: how far from a level's edge the walker stands before and after a crossing,
+            metres (as :func:`mjwalk.plan.levelroute.crossings` is given it).
+
+    Returns:
+        One line per pair of walked levels (lower, upper) that a chain of steps over treads
+        joins only if it turns, naming the treads where it turns; empty when there is none.
+    """
+    passed = stepped_over(graph, clear)
+    steps = [k for k in graph.links if k.kind == "step"]
+    straight: set[tuple[int, int]] = set()
+    turned: dict[tuple[int, int], list[int]] = {}
+    for first in steps:
+        if passed[first.lower] or not passed[first.upper]:
+            continue  # a chain starts on a walked level and goes over a tread
+        todo: list[tuple[list[LevelLink], list[int]]] = [([first], [])]
+        while todo:
+            chain, turns = todo.pop()
+            top = chain[-1].upper
+            if not passed[top]:
+                ends = (chain[0].lower, top)
+                if turns:
+                    turned.setdefault(ends, turns)
+                else:
+                    straight.add(ends)
+                continue
+            if len(chain) >= len(steps):
+                continue  # each step rises, so no chain is longer
+            for k in steps:
+                if k.lower == top:
+                    turn = [] if in_line(chain[-1], k) else [top]
+                    todo.append((chain + [k], turns + turn))
+    out = []
+    for (lo, up), turns in sorted(turned.items()):
+        if (lo, up) in straight:
+            continue
+        names = ", ".join(graph.surfaces[graph.levels[i].surfaces[0]].name for i in turns)
+        out.append(
+            f"the steps from L{lo} to L{up} turn at {names} (a winder or spiral stair): walks "
+            "over levels take straight flights only"
+        )
+    return out
