@@ -3,10 +3,10 @@
 A crossing over single steps (:func:`mjwalk.plan.levelroute.crossings`) is a straight flight:
 each step edge in line with the one below it (:func:`mjwalk.plan.levelroute.in_line`), the
 footfalls laid along one axis. A stair whose treads are wedges round a post or a winder's
-corner (DIN 18065:2020 and ASR A1.8 allow such "gewendelte" stairs, their tread measured at the
-walk line) has step edges that turn from one tread to the next, so no crossing joins the levels
-at its ends and a walk between them is refused. :func:`turning_steps` names such stairs, one line
-each, so the refusal says why. Metres, world frame.
+corner (DIN 18065:2020 allows such "gewendelte" stairs, a tread measured as the chord of the
+walk line between its nosings) has step edges that turn from one tread to the next, so no
+crossing joins the levels at its ends and a walk between them is refused. :func:`turning_steps`
+names such stairs, one line each, so the refusal says why. Metres, world frame.
 """
 
 from __future__ import annotations

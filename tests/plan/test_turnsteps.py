@@ -18,7 +18,8 @@ from mjwalk.plan.turnsteps import turning_steps
 from mjwalk.world import load_workplace
 
 #: Riser (m) and the wedges' angle (rad): 0.17 m (ASR A1.8 §4.5); 30 deg treads round a 0.1 m
-#: post out to 1.0 m give 0.29 m at the walk line (r = 0.55 m, DIN 18065's middle of the flight).
+#: post out to 1.0 m give a 0.28 m tread at the walk line (r = 0.55 m, the flight's middle; DIN
+#: 18065:2020 measures a winder's tread as the chord there, 2 r sin 15 deg), within 0.26-0.37 m.
 RISER, WEDGE = 0.17, math.radians(30.0)
 
 
