@@ -14,7 +14,7 @@ from mjwalk.plan.levelroute import step_up_limit
 from mjwalk.plan.levelsearch import level_route
 from mjwalk.plan.occupancy import CELL_SIZE
 from mjwalk.plan.options import PlannerOptions
-from mjwalk.plan.turnsteps import turning_steps
+from mjwalk.plan.turnsteps import in_line, stepped_over, turning_steps
 from mjwalk.world import load_workplace
 
 #: Riser (m) and the wedges' angle (rad): 0.17 m (ASR A1.8 §4.5); 30 deg treads round a 0.1 m
@@ -56,6 +56,31 @@ def test_the_winders_turning_treads_are_named(winder):
     notes = turning_steps(winder.levels, clear)
     assert len(notes) == 1
     assert "turn at wedge1, wedge2, wedge3 (a winder or spiral stair)" in notes[0]
+
+
+def test_the_wedges_are_stepped_over_and_their_steps_not_in_line(winder):
+    graph = winder.levels
+    passed = stepped_over(graph, PlannerOptions().radius + CELL_SIZE)
+    names = [graph.surfaces[lv.surfaces[0]].name for lv in graph.levels]
+    assert {n for n, p in zip(names, passed, strict=True) if p} == {"wedge1", "wedge2", "wedge3"}
+    up = {graph.surfaces[graph.levels[k.upper].surfaces[0]].name: k for k in graph.links}
+    assert not in_line(up["wedge1"], up["wedge2"])  # the edges 30 deg apart
+
+
+def test_a_straight_flights_steps_are_in_line(tmp_path):
+    """Three single 0.4 m deep blocks (no tread, no stair: deeper than 0.37 m) in a row."""
+    boxes = "".join(
+        f'<geom name="block{i}" type="box" size="0.2 0.6 {0.085 * i}" pos="{0.4 * i - 0.2} 0 '
+        f'{0.085 * i}"/>'
+        for i in (1, 2)
+    )
+    deck = '<geom name="deck" type="box" size="1 1 0.255" pos="1.8 0 0.255"/>'
+    xml = f'<mujoco><worldbody><geom name="floor" type="plane" size="5 5 0.05"/>{boxes}{deck}'
+    path = tmp_path / "blocks.xml"
+    path.write_text(xml + "</worldbody></mujoco>")
+    graph = load_workplace(path).levels
+    up = {graph.surfaces[graph.levels[k.upper].surfaces[0]].name: k for k in graph.links}
+    assert in_line(up["block1"], up["block2"])
 
 
 def test_a_walk_up_the_winder_is_refused_saying_why(winder):
