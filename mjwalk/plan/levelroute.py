@@ -32,7 +32,7 @@ from mjwalk.anthropometry import swing_half_width
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.options import PlannerOptions
-from mjwalk.world import norms
+from mjwalk.plan.turnsteps import in_line, stepped_over
 from mjwalk.world.levels import LevelGraph, LevelLink
 from mjwalk.world.levelview import level_view
 from mjwalk.world.norms import HEAD_MARGIN, MAX_RISER, ROUNDING_SLACK, SIDE_CLEARANCE
@@ -236,23 +236,9 @@ def _axis_up(graph: LevelGraph, edge, upper_surfaces: Sequence[int]) -> np.ndarr
     return -n
 
 
-def _passed(graph: LevelGraph, clear: float) -> list[bool]:
-    """Per level, whether walks only step over it: a tread, or one surface less than two
-    clearances deep (a 0.4 m step block, deeper than ``norms.MAX_TREAD``): no crossing's
-    stance fits ``clear`` from both its edges; it is passed in one footfall, as a tread."""
-    own: dict[int | None, list] = {}  # the surfaces per level (a ramp's: on none)
-    for s, i in zip(graph.surfaces, graph.level_of, strict=True):
-        own.setdefault(i, []).append(s)
-    return [
-        lv.kind == "tread"
-        or (lv.kind == "platform" and len(own[i]) == 1 and own[i][0].depth < 2.0 * clear)
-        for i, lv in enumerate(graph.levels)
-    ]
-
-
 def _step_chains(graph: LevelGraph, clear: float) -> list[list[LevelLink]]:
     """Chains of step links from a level walked on over levels only stepped over to another."""
-    passed = _passed(graph, clear)
+    passed = stepped_over(graph, clear)
     steps = [k for k in graph.links if k.kind == "step"]
     out = []
     for first in steps:
@@ -267,18 +253,8 @@ def _step_chains(graph: LevelGraph, clear: float) -> list[list[LevelLink]]:
                 continue
             if len(chain) >= len(steps):
                 continue
-            todo.extend(chain + [k] for k in steps if k.lower == top and _across(chain[-1], k))
+            todo.extend(chain + [k] for k in steps if k.lower == top and in_line(chain[-1], k))
     return out
-
-
-def _across(below: LevelLink, above: LevelLink) -> bool:
-    """Whether step ``above`` lies straight across the level ``below`` steps onto: its edge
-    parallel, the depth the same within ``norms.STAIR_TOLERANCE`` (a block's sides meet the
-    floor too, and a chain from a side edge is no flight)."""
-    a = np.asarray(below.lower_edge, dtype=float)
-    n = _normal(a[0], a[1])
-    d = (np.asarray(above.lower_edge, dtype=float) - a[0]) @ n
-    return bool(abs(d[1] - d[0]) <= norms.STAIR_TOLERANCE and min(abs(d[0]), abs(d[1])) > 0.0)
 
 
 def _flight(graph: LevelGraph, edges, risers, lower: int, upper: int, kind: str, clear: float):

@@ -48,6 +48,7 @@ from mjwalk.plan.levelroute import (
 from mjwalk.plan.occupancy import CELL_SIZE, MOVES_16, shared_grid
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.turnin import turn_in_time, walked_back
+from mjwalk.plan.turnsteps import turning_steps
 from mjwalk.world.levelview import level_view
 from mjwalk.world.norms import HEAD_MARGIN
 from mjwalk.world.workplace import Workplace
@@ -182,7 +183,11 @@ def _route(workplace, start, goal, walker: Walker, options, max_riser):
     edges = _Edges(workplace, (usable, nodes, leads), walker, options, reach)
     path, _ = dijkstra(len(nodes), edges, 0, 1)
     if path is None:
-        notes = "".join(f"; {n}" for n in workplace.levels.notes)  # a ramp that links none
+        why = [
+            *workplace.levels.notes,
+            *turning_steps(workplace.levels, options.radius + CELL_SIZE),
+        ]
+        notes = "".join(f"; {n}" for n in why)  # a ramp that links none, a winder stair
         raise PlanningError(
             f"no route from level L{start.level} to level L{goal.level} of {workplace.name} for "
             f"this walker (step-up limit {max_riser:.2f} m, stature {walker.stature:.2f} m)" + notes
