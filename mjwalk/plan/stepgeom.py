@@ -126,7 +126,8 @@ def out_of_reach(v, heading, reach, roll):
     foot's ankle, the foot's heading ``heading`` (a unit complex in the same frame), farther
     than ``reach - roll·(1 - |cos θ|)`` for the angle θ between the heading and ``v``
     (:func:`mjwalk.plan.options.foot_reach`: the foot's roll about its ball or heel reaches
-    along its heading only). Nan (no foot) is never beyond; a nan ``roll`` counts as 0.
+    along its heading only). Nan (no foot) is never beyond; without a heading (nan) or with a
+    nan ``roll`` the reach is ``reach`` every way.
 
     Args:
         v: the pelvis from the ankle, x + iy, metres.
@@ -140,6 +141,8 @@ def out_of_reach(v, heading, reach, roll):
     if not d > reach - roll:  # within the least reach (or nan): within
         return False
     along = abs((v * heading.conjugate()).real) / d
+    if math.isnan(along):  # no heading: the reach alone
+        return d > reach
     return d > reach - roll * (1.0 - along)
 
 

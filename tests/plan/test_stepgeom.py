@@ -265,3 +265,6 @@ def test_a_planted_foot_reaches_farther_along_its_heading_than_across_it():
     assert not out_of_reach(complex(math.nan, math.nan), ahead, reach, roll)
     assert not out_of_reach(0.549j, 1 + 0j, reach, math.nan)
     assert out_of_reach(0.551j, 1 + 0j, reach, math.nan)
+    nowhere = complex(math.nan, math.nan)  # no heading: the reach every way
+    assert not out_of_reach(0.549j, nowhere, reach, roll)
+    assert out_of_reach(0.551j, nowhere, reach, roll)
