@@ -101,6 +101,19 @@ LEG_PROBE_STEP = 0.04
 #: Largest horizontal distance (m) of a planted foot from the pelvis: the largest seen in the
 #: virtual corpus (landing foot vs pelvis at heel strike: median 0.37, 99.9th percentile 0.52).
 MAX_FOOT_REACH = 0.55
+#: A planted foot rolls in its own vertical plane: behind the body its heel rises about the
+#: ball (pre-swing, up to the leg synthesis's ``HEEL_RISE_MAX``, 60 deg,
+#: :mod:`mjwalk.body.legs.steps`, which this stage cannot import; ``tests/plan/test_options.py``
+#: checks they agree), ahead of it the foot lands heel first, toes up. Either roll brings the
+#: ankle towards the hip along the foot's heading only: MAX_FOOT_REACH, measured on corpus
+#: walkers (N(1.75, 0.04) m tall, :mod:`mjwalk.gait.subjects`) whose feet point along their
+#: walk, holds that gain, a foot turned across the way to the pelvis does not have it (issue 50:
+#: station runs 1913, 2306, 3164 and 9146 of 10 000, a foot 40-96 deg across the way to a
+#: pelvis 0.48-0.55 m from it, the stance leg reaching it only with the pelvis 5.3-8.3 cm
+#: lowered). ASSUMPTION: the gain is the ball's (the larger lever) lift of the ankle's
+#: horizontal place at the largest heel rise, ``ball·(1 - cos 60 deg)``, 7.3 cm at 1.75 m, and
+#: a foot at θ to the way gains its |cos θ| share (:func:`foot_reach`).
+FOOT_ROLL_MAX = math.radians(60.0)
 #: Longest stride (m; same foot, lift-off to landing) and farthest lift-off foot from the pelvis
 #: in the first quarter of a step (m): the virtual corpus's maxima (medians 1.33 and 0.48).
 MAX_STRIDE = 1.74
@@ -222,6 +235,24 @@ def knee_reach(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
     """
     scale = stature / DEFAULT_STATURE
     return KNEE_LEAD * scale, KNEE_SIDE * scale
+
+
+def foot_reach(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
+    """A planted foot's reach for a walker of ``stature`` metres: the farthest the pelvis may
+    lie from its ankle along the foot's heading, :data:`MAX_FOOT_REACH` scaled with stature
+    (the leg's lengths are stature fractions, :mod:`mjwalk.anthropometry`), and what the foot's
+    roll adds there (:data:`FOOT_ROLL_MAX`): across the foot the reach is the first less the
+    second (:func:`mjwalk.plan.stepgeom.out_of_reach`).
+
+    Args:
+        stature: the walker's body height, metres.
+
+    Returns:
+        (reach, roll), metres.
+    """
+    geom = leg_geometry(stature)
+    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)  # the toe joint's lead
+    return MAX_FOOT_REACH * stature / DEFAULT_STATURE, ball * (1.0 - math.cos(FOOT_ROLL_MAX))
 
 
 #: The clearance (m) the toes' front corners keep (:func:`toe_corners`): the walk field's error

@@ -39,6 +39,7 @@ from mjwalk.plan.options import (
     TOE_CORNER_CLEARANCE,
     TOE_PROBE_STEP,
     PlannerOptions,
+    foot_reach,
     knee_pivot,
     knee_reach,
     lean_params,
@@ -349,12 +350,14 @@ def _put_discs(par: np.ndarray, discs: np.ndarray) -> None:
 
 def _with_stature(shared: np.ndarray, stature: float) -> np.ndarray:
     """A copy of the float vector ``shared`` with the slots of a walker of ``stature`` metres:
-    the swing knee's and the toes' reach, the knee's pivot and the landing leg's clearance."""
+    the swing knee's and the toes' reach, the knee's pivot, the landing leg's clearance and
+    the planted feet's reach."""
     par = shared.copy()
     par[slots.P_KNEE_LEAD], par[slots.P_KNEE_SIDE] = knee_reach(stature)
     par[slots.P_KNEE_PIVOT] = knee_pivot(stature)
     par[slots.P_TOE_FRONT], par[slots.P_TOE_SIDE] = toe_corners(stature)
     par[slots.P_LEG_CLEARANCE] = leg_clearance(stature)
+    par[slots.P_FOOT_REACH], par[slots.P_FOOT_ROLL] = foot_reach(stature)
     return par
 
 

@@ -71,8 +71,9 @@ from mjwalk.plan.guide import GUIDE_POINTS
     P_TOE_CLEARANCE,  # the clearance (m) they keep (TOE_CORNER_CLEARANCE)
     P_KNEE_SHARE2,  # the early-swing knee probe's share of the step (options.KNEE_LEAD)
     P_KNEE_TURN2,  # ... and the swing foot's turned share there (swing_turned)
+    P_FOOT_ROLL,  # the reach (m) a planted foot's roll adds along its heading (options.foot_reach)
     P_GUIDE0,  # the guide's GUIDE_POINTS points, x y each (mjwalk.plan.guide); nan: none
-) = range(56)
+) = range(57)
 #: Goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal), after the guide's slots.
 P_DISC0 = P_GUIDE0 + 2 * GUIDE_POINTS
 #: Most discs the goal area can be cut by (:func:`~mjwalk.plan.stepgeom.in_goal`); their count

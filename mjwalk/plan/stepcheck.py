@@ -64,6 +64,7 @@ from mjwalk.plan.slots import (
     P_FIELD_Y0,
     P_FOOT_LENGTH,
     P_FOOT_REACH,
+    P_FOOT_ROLL,
     P_GOAL_X,
     P_GOAL_Y,
     P_GUIDE0,
@@ -109,6 +110,7 @@ from mjwalk.plan.stepgeom import (
     field_clearance,
     in_goal,
     landing_leg_clear,
+    out_of_reach,
     swing_yaw,
     toe_approach_clear,
     unit_turn,
@@ -328,18 +330,22 @@ def legs_clear(z, r, matrix, offset, loc, rot, node, i, fr, lf, v, v_end, lift_y
         if field_clearance(coef, fx0, fy0, fres, fnx, fny, knee.real, knee.imag) < thr[m + 2 + kk]:
             return False
     # leg reach, in the local frame (nan feet: comparisons with nan are False)
+    # (the planted feet's reach shrinks as the foot turns across it: options.foot_reach)
     rc = rot.conjugate()
     landed = (node[i, 1] - p) * rc
     behind = (node[i, 2] - p) * rc
     reach = par[P_FOOT_REACH]
+    roll = par[P_FOOT_ROLL]
+    stand = 1j * unit_turn(node[i, 4].real - fr)  # the landed foot's heading (step frame)
     for j in range(m):
-        if beyond(loc[j] - landed, reach):
+        if out_of_reach(loc[j] - landed, stand, reach, roll):
             return False
     lift = par[P_LIFT_REACH]
     for j in range(q):
         if beyond(loc[j] - behind, lift):
             return False
-    if beyond(loc[m] - behind, par[P_STRIDE]) or beyond(loc[m] - loc[m - 1], reach):
+    if beyond(loc[m] - behind, par[P_STRIDE]) or out_of_reach(loc[m - 1] - loc[m], 1j * land,
+                                                              reach, roll):  # fmt: skip
         return False
     # the landing foot's way in along the chord from the foot behind, turned to its
     # landing yaw: a curved walk's step comes in obliquely, the toes sweeping sideways

@@ -121,6 +121,32 @@ def unit_turn(angle):
 
 
 @njit
+def out_of_reach(v, heading, reach, roll):
+    """Whether the pelvis lies beyond a planted foot's reach: ``v`` (x + iy, metres) from the
+    foot's ankle, the foot's heading ``heading`` (a unit complex in the same frame), farther
+    than ``reach - roll·(1 - |cos θ|)`` for the angle θ between the heading and ``v``
+    (:func:`mjwalk.plan.options.foot_reach`: the foot's roll about its ball or heel reaches
+    along its heading only). Nan (no foot) is never beyond; without a heading (nan) or with a
+    nan ``roll`` the reach is ``reach`` every way.
+
+    Args:
+        v: the pelvis from the ankle, x + iy, metres.
+        heading: the foot's heading as a unit complex.
+        reach: the reach along the foot's heading, metres.
+        roll: what the roll adds there, metres (nan: 0).
+    """
+    if math.isnan(roll):
+        roll = 0.0
+    d = abs(v)
+    if not d > reach - roll:  # within the least reach (or nan): within
+        return False
+    along = abs((v * heading.conjugate()).real) / d
+    if math.isnan(along):  # no heading: the reach alone
+        return d > reach
+    return d > reach - roll * (1.0 - along)
+
+
+@njit
 def swing_yaw(lift, land, turned):
     """The swing foot's yaw once it has ``turned`` (0 to 1) of its way from its lift-off yaw
     ``lift`` to its landing yaw ``land`` (radians, one frame), the short way round.

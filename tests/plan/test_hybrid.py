@@ -8,15 +8,18 @@ import numpy as np
 import pytest
 
 from mjwalk import PlanningError
+from mjwalk.body.legs.synthesis import legs_from_walk
 from mjwalk.gait.corpus import generate_corpus
 from mjwalk.gait.default import default_model
 from mjwalk.gait.fidelity import sway_amplitude
 from mjwalk.gait.segment import segment_takes
 from mjwalk.gait.speedprofile import curve_speed_ratio, start_stop_distances
+from mjwalk.gait.walker import Walker
 from mjwalk.plan import WalkPath
 from mjwalk.plan.hybrid import HybridPlanner
-from mjwalk.plan.options import ATTEMPTS, PlannerOptions
+from mjwalk.plan.options import ATTEMPTS, PlannerOptions, foot_reach
 from mjwalk.plan.request import WalkRequest
+from mjwalk.plan.stepgeom import out_of_reach, unit_turn
 from mjwalk.plan.walks import plan_walk, plan_walks
 from mjwalk.world import load_workplace
 from mjwalk.world.probe import ClearanceProbe
@@ -478,3 +481,63 @@ def test_expansions_all_counts_every_search(model, scenes_dir, monkeypatch):
         assert walk.meta["expansions_all"] == sum(spent) >= walk.meta["expansions"]
         searches = max(searches, len(spent))
     assert searches >= 1
+
+
+# Station run 2306 of 10 000 (seed 0, at 571cdb1): its walk to the car's roof, as the cycle
+# plans it (the planner's goal area, the request, the 1.65 m operator and the generator's state
+# at the planner's call, captured with a patched HybridPlanner.plan).
+RUN2306_OPTIONS = {
+    "goal_tolerance": 0.3545,
+    "radius": 0.3,
+    "field_tolerance": 0.1,
+    "goal_within": (
+        (1000.082687722593, 0.14999999999971678, 1000.0),
+        (-999.4826877225931, 0.1500000000002832, 1000.0),
+        (0.18952522259311555, 0.4961543025415711, 0.6065469064063),
+        (0.41047477740688443, 0.4961543025415711, 0.6065469064063),
+    ),
+}
+RUN2306_RNG = {
+    "bit_generator": "PCG64",
+    "state": {
+        "state": 66701158754704115137061128025237621319,
+        "inc": 72072095334048813679643522803406459785,
+    },
+    "has_uint32": 1,
+    "uinteger": 2713525328,
+}
+
+
+def test_station_run_2306s_walk_ends_where_the_legs_reach_the_feet(model, scenes_dir):
+    """Issue 50: the walk ended with a closing step that left the pelvis 0.51 m from the right
+    foot, turned 91 deg across the way to it (feet at 78 and 144 deg, 0.68 m apart), which
+    the 1.65 m operator's leg reached only with the pelvis 8.3 cm lowered: the leg synthesis
+    refused it (PlanningError, 5 cm at most). The planner now holds a planted foot's reach to
+    the walker's stature and shortens it across the foot (``options.foot_reach``): the same
+    plan's legs synthesize, every planted foot within that reach of the pelvis at each step's
+    end. Fails at 571cdb1 (the PlanningError above)."""
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    walker = Walker(1.65, 1.3356529345797021, 113.01591049562315, 0.08, "fatigued")
+    planner = HybridPlanner(wp, (0.3, 0.15), model, PlannerOptions(**RUN2306_OPTIONS))
+    request = WalkRequest(
+        (0.9471838412058806, -1.6206941900296123, -1.4272717661369128),
+        model.for_walker(walker),
+        (0.26393749674590183, 0.06365254274190896, 0.3545482035376149),
+        turn_on_spot=True,
+        goal_heading=np.pi / 2,
+        at_work=True,
+        work_heading=-np.pi / 2,
+    )
+    rng = np.random.default_rng()
+    rng.bit_generator.state = RUN2306_RNG
+    walk = planner.plan(request, rng)
+    legs = legs_from_walk(walk, walker.stature)  # raised PlanningError at 571cdb1
+    assert float(np.max(legs.meta["pelvis_lowering"])) <= 0.05
+    reach, roll = foot_reach(walker.stature)
+    # (the first step's stance foot is where the walker stood: the search checks the rest;
+    # 2 mm for the 120 Hz spline's end against the decoded one)
+    for k, s in enumerate(walk.steps):
+        pelvis = complex(*walk.xy[s.end])
+        for foot in (s.stance, s.foot)[k == 0 :]:
+            way = pelvis - complex(foot[0], foot[1])
+            assert not out_of_reach(way, unit_turn(foot[2]), reach + 2e-3, roll), k

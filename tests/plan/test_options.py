@@ -9,19 +9,24 @@ import mujoco
 import numpy as np
 import pytest
 
+from mjwalk.anthropometry import leg_geometry
 from mjwalk.body.humanoid import ROM_DEG, build_humanoid
 from mjwalk.body.legs.curves import smoothstep
-from mjwalk.body.legs.steps import SWING_TURNED, TOE_OFF
+from mjwalk.body.legs.footpivot import ball_offset
+from mjwalk.body.legs.steps import HEEL_RISE_MAX, SWING_TURNED, TOE_OFF
 from mjwalk.errors import InputError
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.options import (
     ATTEMPTS,
+    FOOT_ROLL_MAX,
     KNEE_LEAD,
     KNEE_SIDE,
     MAX_EXPANSIONS,
+    MAX_FOOT_REACH,
     SWING_LIFT_TURN,
     SWING_TURN_PHASES,
     PlannerOptions,
+    foot_reach,
     knee_pivot,
     knee_reach,
     swing_turned,
@@ -125,6 +130,18 @@ def test_the_knee_probes_turn_with_the_swing_foot_as_the_leg_synthesis_turns_it(
         want = float(smoothstep(np.array((share - TOE_OFF) / (SWING_TURNED - TOE_OFF))))
         assert swing_turned(share) == pytest.approx(want, abs=1e-12)
     assert swing_turned(0.5) == pytest.approx(0.394, abs=1e-3)  # at the first probe
+
+
+def test_the_planted_feet_reach_scales_with_stature_and_rolls_as_the_leg_synthesis_rolls():
+    """Issue 50: the planner's copy of the heel rise's limit and of the ball's place (it
+    cannot import the body stage) are the leg synthesis's; the reach scales with stature."""
+    assert FOOT_ROLL_MAX == pytest.approx(float(HEEL_RISE_MAX), abs=1e-12)
+    for stature in (1.55, 1.75, 1.95):
+        reach, roll = foot_reach(stature)
+        assert reach == pytest.approx(MAX_FOOT_REACH * stature / 1.75)
+        want = ball_offset(leg_geometry(stature)) * (1 - math.cos(float(HEEL_RISE_MAX)))
+        assert roll == pytest.approx(want, abs=1e-12)
+    assert foot_reach()[1] == pytest.approx(0.073, abs=1e-3)  # at 1.75 m
 
 
 def test_the_knee_probes_scale_with_stature():

@@ -17,7 +17,14 @@ import pytest
 
 from mjwalk.plan.options import FOOT_CLEARANCE, FOOT_LENGTH, TOE_APPROACH_SHARE, TOE_PROBE_STEP
 from mjwalk.plan.slots import params
-from mjwalk.plan.stepgeom import beyond, swing_yaw, toe_approach_clear, unit_turn, within
+from mjwalk.plan.stepgeom import (
+    beyond,
+    out_of_reach,
+    swing_yaw,
+    toe_approach_clear,
+    unit_turn,
+    within,
+)
 from mjwalk.world import load_workplace
 from mjwalk.world.clearance import ClearanceField
 
@@ -239,3 +246,25 @@ def test_a_closing_draw_said_far_from_the_goal_misses_it_at_any_mean():
                     end = decode_col(zs, r, dec.matrix, dec.offset, m - 1) * rot + p
                     assert abs(end) > 0.1
     assert said > 40
+
+
+def test_a_planted_foot_reaches_farther_along_its_heading_than_across_it():
+    """Issue 50: a foot rolls (heel rise about its ball, heel strike toes up) in its own plane
+    only, so the pelvis may lie ``reach`` from its ankle along the foot, behind or ahead, and
+    ``reach - roll`` across it; at θ between, ``reach - roll (1 - |cos θ|)``."""
+    reach, roll = 0.55, 0.07
+    ahead = unit_turn(math.radians(30.0))  # the foot's heading
+    for deg, limit in ((30.0, reach), (210.0, reach), (120.0, reach - roll),
+                       (90.0, reach - roll * (1 - math.cos(math.radians(60.0)))),
+                       (-30.0, reach - roll * (1 - math.cos(math.radians(60.0)))),
+                       ):  # fmt: skip
+        way = unit_turn(math.radians(deg))
+        assert not out_of_reach((limit - 1e-6) * way, ahead, reach, roll), deg
+        assert out_of_reach((limit + 1e-6) * way, ahead, reach, roll), deg
+    # no foot (nan) is never out of reach; a nan roll is none (the reach alone)
+    assert not out_of_reach(complex(math.nan, math.nan), ahead, reach, roll)
+    assert not out_of_reach(0.549j, 1 + 0j, reach, math.nan)
+    assert out_of_reach(0.551j, 1 + 0j, reach, math.nan)
+    nowhere = complex(math.nan, math.nan)  # no heading: the reach every way
+    assert not out_of_reach(0.549j, nowhere, reach, roll)
+    assert out_of_reach(0.551j, nowhere, reach, roll)
