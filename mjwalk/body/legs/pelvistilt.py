@@ -21,6 +21,7 @@ import math
 import numpy as np
 
 from mjwalk.body.legs.curves import smoothstep
+from mjwalk.body.legs.ik import rot_x, rot_y, rot_z
 from mjwalk.world.norms import MIN_RISER
 
 #: Forward pelvic tilt held over a stair ascent, radians. Bohannon & Smutnick, "Pelvifemoral
@@ -99,16 +100,7 @@ def thigh_rotation(side: str, rot, flex, abd) -> np.ndarray:
         (n, 3, 3) rotation matrices.
     """
     s = 1.0 if side == "l" else -1.0
-    a, b, g = -s * rot, -flex, s * abd  # Rz(a) Ry(b) Rx(g)
-    ca, sa, cb, sb, cg, sg = np.cos(a), np.sin(a), np.cos(b), np.sin(b), np.cos(g), np.sin(g)
-    return np.stack(
-        [
-            np.stack([ca * cb, ca * sb * sg - sa * cg, ca * sb * cg + sa * sg], -1),
-            np.stack([sa * cb, sa * sb * sg + ca * cg, sa * sb * cg - ca * sg], -1),
-            np.stack([-sb, cb * sg, cb * cg], -1),
-        ],
-        -2,
-    )
+    return rot_z(-s * rot) @ rot_y(-flex) @ rot_x(s * abd)  # as ik.leg_fk
 
 
 def tilt_pelvis(angles: dict[str, np.ndarray], tilt: np.ndarray) -> dict[str, np.ndarray]:
@@ -127,15 +119,11 @@ def tilt_pelvis(angles: dict[str, np.ndarray], tilt: np.ndarray) -> dict[str, np
     on = np.flatnonzero(tilt)
     if not len(on):
         return out
-    ct, st = np.cos(tilt[on]), np.sin(tilt[on])
     for side in "lr":
         s = 1.0 if side == "l" else -1.0
         names = [f"hip_{side}_{j}" for j in ("rot", "flex", "abd")]
         r = thigh_rotation(side, *(angles[j][on] for j in names))
-        # Ry(-t) rows: (ct, 0, -st), (0, 1, 0), (st, 0, ct)
-        m = r.copy()
-        m[:, 0] = ct[:, None] * r[:, 0] - st[:, None] * r[:, 2]
-        m[:, 2] = st[:, None] * r[:, 0] + ct[:, None] * r[:, 2]
+        m = rot_y(-tilt[on]) @ r
         # the branch of the flexion nearest the old one plus the tilt (past 90 deg cos b < 0)
         sg = np.where(np.cos(angles[names[1]][on] + tilt[on]) < 0.0, -1.0, 1.0)
         b = np.arctan2(-m[:, 2, 0], sg * np.hypot(m[:, 0, 0], m[:, 1, 0]))
