@@ -149,6 +149,18 @@ class LegGeometry:
         return np.arccos(np.clip((d**2 - L1**2 - L2**2) / (2 * L1 * L2), -1, 1))
 
 
+def ball_offset(geom: LegGeometry) -> float:
+    """Distance of the ball of the foot (toe joint) ahead of the ankle.
+
+    Args:
+        geom: the leg and foot lengths.
+
+    Returns:
+        ``foot_front - 0.2 (foot_front + foot_back)``, metres.
+    """
+    return geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)
+
+
 #: Upper-arm capsule radius per metre of stature.
 UPPER_ARM_RADIUS = 0.024
 #: Shin (shank) capsule radius per metre of stature of the humanoid's legs.

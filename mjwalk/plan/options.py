@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from mjwalk.anthropometry import ROM_DEG, SHIN_RADIUS, leg_geometry
+from mjwalk.anthropometry import ROM_DEG, SHIN_RADIUS, ball_offset, leg_geometry
 from mjwalk.conventions import BODY_RADIUS, DEFAULT_STATURE
 from mjwalk.errors import InputError
 from mjwalk.plan import slots
@@ -251,7 +251,7 @@ def foot_reach(stature: float = DEFAULT_STATURE) -> tuple[float, float]:
         (reach, roll), metres.
     """
     geom = leg_geometry(stature)
-    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)  # the toe joint's lead
+    ball = ball_offset(geom)  # the toe joint's lead
     return MAX_FOOT_REACH * stature / DEFAULT_STATURE, ball * (1.0 - math.cos(FOOT_ROLL_MAX))
 
 

@@ -15,6 +15,7 @@ import numpy as np
 
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import smoothstep, spread
+from mjwalk.body.legs.footpivot import ball_offset
 from mjwalk.body.legs.steps import StepFrames
 from mjwalk.world.norms import STAIR_TOE_CLEARANCE
 
@@ -98,7 +99,7 @@ def _sole_points(ankle, pitch, toe, yaw, geom: LegGeometry) -> np.ndarray:
     """(m, 3, 3) the heel, ball and toe tip of the foot (world x, y, z, metres) for ankles
     ``ankle`` (m, 3), pitches, toe angles and headings (m,) (radians, pitch + toes up)."""
     ah, back, front = geom.ankle_height, geom.foot_back, geom.foot_front
-    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)  # footpivot.ball_offset
+    ball = ball_offset(geom)
     cp, sp = np.cos(pitch), np.sin(pitch)
     # foot frame (forward, up) rotated by the pitch: x' = x cos p - z sin p, z' = x sin p + z cos p
     heel = (-back * cp + ah * sp, -back * sp - ah * cp)
@@ -412,7 +413,7 @@ def _swing_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeome
     (u_f, tau), (pitch, toe), (clearance, end) = time, foot, levels
     m = len(ankle)
     tip_x, tip_z, heel_x, heel_z = _toe_heel(pitch, toe, geom)
-    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)  # footpivot.ball_offset
+    ball = ball_offset(geom)
     ball_x = ball * np.cos(pitch) + geom.ankle_height * np.sin(pitch)
     ball_z = ball * np.sin(pitch) - geom.ankle_height * np.cos(pitch)
     low = np.minimum(np.minimum(tip_z, heel_z), ball_z)  # the sole's lowest point
@@ -493,7 +494,7 @@ def _toe_heel(pitch, toe, geom: LegGeometry):
     """The toe tip's and the heel's positions relative to the ankle in the foot's vertical
     plane (forward, up; metres) for pitches and toe angles (radians, + toes up): (tip_x,
     tip_z, heel_x, heel_z), as :func:`_sole_points` places them."""
-    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)
+    ball = ball_offset(geom)
     ah = geom.ankle_height
     cp, sp = np.cos(pitch), np.sin(pitch)
     tip_x = ball * cp + ah * sp + (geom.foot_front - ball) * np.cos(pitch + toe)

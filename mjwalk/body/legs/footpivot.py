@@ -17,19 +17,8 @@ import math
 import numpy as np
 
 from mjwalk._jit import njit
+from mjwalk.anthropometry import ball_offset
 from mjwalk.body.humanoid import LegGeometry
-
-
-def ball_offset(geom: LegGeometry) -> float:
-    """Distance of the ball of the foot (toe joint) ahead of the ankle.
-
-    Args:
-        geom: the leg and foot lengths.
-
-    Returns:
-        ``foot_front - 0.2 (foot_front + foot_back)``, metres.
-    """
-    return geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)
 
 
 def sole_profile(pitch, toe, geom: LegGeometry) -> tuple[np.ndarray, np.ndarray]:

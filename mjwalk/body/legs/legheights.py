@@ -299,7 +299,7 @@ def forefoot_landing(feet: FootTracks, fr: StepFrames, air: np.ndarray, geom: Le
     idx = np.arange(b, w + 1)
     p = DESCENT_CONTACT_PITCH * (1.0 - smoothstep((idx - b) / (w - b)))
     flat = feet.ankle[s][w].copy()
-    ball = geom.foot_front - 0.2 * (geom.foot_front + geom.foot_back)  # footpivot.ball_offset
+    ball = ball_offset(geom)
     ah = geom.ankle_height
     yaw = feet.fyaw[s][idx]
     f = np.stack([np.cos(yaw), np.sin(yaw)], -1)
