@@ -27,6 +27,7 @@ over that step. Metres, seconds, radians; world frame.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -145,14 +146,9 @@ def _walked_on(walk: WalkPath, crossing: WalkPath, yaw0: float) -> WalkPath:
     span = slice(first.start, first.end + 1)
     yaw[span] += (yaw0 - float(walk.yaw[first.start])) * fade
     xy[span] += (np.asarray(crossing.xy[-1], float) - walk.xy[first.start]) * fade[:, None]
-    stood = PathStep(
-        first.side, first.start, first.end, first.foot,
-        np.asarray(crossing.steps[-1].foot, float).copy(), first.foot_z, first.stance_z,
-    )  # fmt: skip
-    return WalkPath(
-        t=walk.t, xy=xy, yaw=yaw, steps=[stood, *walk.steps[1:]],
-        meta={**walk.meta, "turn_steps": 0}, z=walk.z,
-    )  # fmt: skip
+    stood = replace(first, stance=np.asarray(crossing.steps[-1].foot, float).copy())
+    steps = [stood, *walk.steps[1:]]
+    return replace(walk, xy=xy, yaw=yaw, steps=steps, meta={**walk.meta, "turn_steps": 0})
 
 
 def _left(yaw: float) -> np.ndarray:
