@@ -412,7 +412,9 @@ def frames_from_legs(
     rng: np.random.Generator | None,
 ) -> np.ndarray:
     """The humanoid's poses at times ``t``: root and legs interpolated from ``legs``, arms and
-    torso by ``arms``, every angle clipped to its joint range.
+    torso by ``arms``, every angle clipped to its joint range. Up a stair the pelvis is tilted
+    by ``legs.meta["pelvis_tilt"]`` (radians, + forward; :mod:`mjwalk.body.legs.pelvistilt`)
+    and the lumbar joint flexed by as much the other way, so the trunk keeps its pose.
 
     Args:
         model: the compiled scene with the humanoid.
@@ -434,7 +436,7 @@ def frames_from_legs(
     for k in range(3):
         qpos[:, r + k] = np.interp(t, legs.t, legs.root[:, k])
     yaw = np.interp(t, legs.t, legs.yaw)
-    tilt = legs.meta.get("pelvis_tilt")  # a stair ascent's forward pelvic tilt (pelvistilt)
+    tilt = legs.meta.get("pelvis_tilt")  # a stair ascent's pelvic tilt (pelvistilt)
     qpos[:, r + 3 : r + 7] = (
         yaw_quat(yaw) if tilt is None else pelvis_quat(yaw, np.interp(t, legs.t, tilt))
     )
@@ -448,6 +450,9 @@ def frames_from_legs(
         angles.update(upper_body_from_legs(legs, t, rng=rng))
     elif arms != "none":
         raise MjwalkError(f"timeline_from_walk: arms={arms!r}; use 'swing', 'gaitpose' or 'none'")
+    if tilt is not None:  # the lumbar joint takes the pelvis's tilt back (the trunk kept)
+        lumbar = angles.get("lumbar_flex", qpos[:, jm.qposadr[jm.index("lumbar_flex")]])
+        angles["lumbar_flex"] = lumbar - np.interp(t, legs.t, tilt)
     if angles:  # every angle clipped to its range at once (the same clip as one by one)
         idx = np.array([jm.index(name) for name in angles], dtype=np.intp)
         lo, hi = jm.range[idx, 0], jm.range[idx, 1]
