@@ -101,22 +101,24 @@ def test_a_straight_stair_has_no_turning_steps(scenes_dir):
     assert turning_steps(station.levels, PlannerOptions().radius + CELL_SIZE) == []
 
 
-def _route(tmp_path, xml: str):
-    """Plan the level route from site ``low`` to site ``high`` of ``xml`` (raises if none)."""
+def _route(tmp_path, xml: str, ends: tuple[str, str] = ("low", "high")):
+    """Plan the level route between two sites of ``xml`` (raises if none)."""
     path = tmp_path / "stair.xml"
     path.write_text(xml)
     workplace, walker, options = load_workplace(path), Walker(), PlannerOptions()
-    a, b = endpoint(workplace, "low", "start"), endpoint(workplace, "high", "goal")
+    a, b = endpoint(workplace, ends[0], "start"), endpoint(workplace, ends[1], "goal")
     return level_route(workplace, a, b, walker, options, step_up_limit(walker))
 
 
+@pytest.mark.parametrize("ends", [("low", "high"), ("high", "low")])
 def test_a_winder_breaking_the_step_rule_is_refused_naming_its_walk_line_tread(
-    tmp_path, winder_xml
+    tmp_path, winder_xml, ends
 ):
-    """Three wedges turning a 1 m stair a quarter: 0.42 m on the walk line. Before the walk-line
-    check the refusal named only the turning treads, not the rule they break."""
+    """Three wedges turning a 1 m stair a quarter: 0.42 m on the walk line; refused up and down.
+    Before the walk-line check the refusal named only the turning treads, not the rule they
+    break."""
     with pytest.raises(PlanningError) as err:
-        _route(tmp_path, winder_xml("wedges"))
+        _route(tmp_path, winder_xml("wedges"), ends)
     msg = str(err.value)
     assert "turn at tread2, tread3, tread4 (a winder or spiral stair) and break DIN 18065" in msg
     assert (
