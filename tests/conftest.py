@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import os
 from pathlib import Path
 
@@ -193,3 +194,69 @@ def dogleg_xml() -> str:
         + '<site name="floor" pos="-2 -1.5 0"/><site name="landing" pos="1.05 1.5 0.68"/>'
         '<site name="mezz" pos="3.5 -2 1.36"/></worldbody></mujoco>'
     )
+
+
+#: Quarter-turn winders (issue 47), 1.0 m usable width (DIN 18065, buildings in general): the
+#: stair rises +x over y -1..0, turns left round the inner corner (0, 0) and rises +y over
+#: x 0..1. Each nosing runs from the inner side (y 0 or x 0) to the outer (y -1 or x 1), bottom
+#: up. "balanced": the turn spread over five turned treads, each 0.29-0.30 m on the walk line
+#: (the middle of the width; ASR A1.8's "particularly safe" tread is 0.29 m; 2R + T <= 0.64 m)
+#: and 0.11 m at its narrow end (DIN 18065: >= 0.10 m), a straight 0.29 m tread before and
+#: after. "wedges": only three wedge treads in the turn, between a straight 0.29 m tread below
+#: and above, each at least 0.11 m at the narrow end: on the walk line they are 0.38-0.43 m
+#: (2R + T 0.72-0.77 m), breaking the step rule (three treads cannot turn a 1 m wide stair a
+#: quarter: the walk line round the corner is longer than three 0.29 m treads once the narrow
+#: ends keep 0.10 m).
+_WINDER_NOSINGS = {
+    "balanced": [
+        ((-0.5861, 0.0), (-0.5861, -1.0)),
+        ((-0.2961, 0.0), (-0.2961, -1.0)),
+        ((-0.1867, 0.0), (0.1744, -1.0)),
+        ((-0.0772, 0.0), (0.656, -1.0)),
+        ((0.0, 0.0772), (1.0, -0.656)),
+        ((0.0, 0.1867), (1.0, -0.1744)),
+        ((0.0, 0.2961), (1.0, 0.2961)),
+        ((0.0, 0.5861), (1.0, 0.5861)),
+    ],
+    "wedges": [
+        ((-0.49, 0.0), (-0.49, -1.0)),
+        ((-0.2, 0.0), (-0.2, -1.0)),
+        ((-0.09, 0.0), (0.5435, -1.0)),
+        ((0.0, 0.09), (1.0, -0.5435)),
+        ((0.0, 0.2), (1.0, 0.2)),
+        ((0.0, 0.49), (1.0, 0.49)),
+    ],
+}
+
+
+def _winder_xml(kind: str, riser: float = 0.17) -> str:
+    """A quarter-turn winder (``_WINDER_NOSINGS[kind]``) of ``riser`` m risers: one convex
+    prism per tread from the floor up to its top, between two nosings (round the outer corner
+    (1, -1) where they lie on its two sides; open to the floor at the inner corner), then a
+    deck one riser above the last tread; sites ``low`` on the floor and ``high`` on the deck."""
+    nosings = _WINDER_NOSINGS[kind]
+    meshes, geoms = [], ['<geom name="floor" type="plane" size="6 6 0.1"/>']
+    for i, (a, b) in enumerate(itertools.pairwise(nosings), start=1):
+        corner = [(1.0, -1.0)] if a[1][1] == -1.0 and b[1][0] == 1.0 else []
+        poly = [a[0], a[1], *corner, b[1], b[0]]
+        z = riser * i
+        vert = " ".join(f"{x:.4f} {y:.4f} {h:.4f}" for h in (0.0, z) for x, y in poly)
+        meshes.append(f'<mesh name="tread{i}" vertex="{vert}"/>')
+        geoms.append(f'<geom name="tread{i}" type="mesh" mesh="tread{i}"/>')
+    top, y0 = riser * len(nosings), nosings[-1][0][1]
+    geoms += [
+        _box("deck", -1.0, 2.5, y0, 3.0, top),
+        '<site name="low" pos="-2.5 -0.5 0"/>',
+        f'<site name="high" pos="0.5 2.2 {top:.4f}"/>',
+    ]
+    return (
+        f"<mujoco><asset>{''.join(meshes)}</asset><worldbody>"
+        + "".join(geoms)
+        + "</worldbody></mujoco>"
+    )
+
+
+@pytest.fixture(scope="session")
+def winder_xml():
+    """``winder_xml(kind, riser=0.17)``: a quarter-turn winder's MJCF (``_winder_xml``)."""
+    return _winder_xml

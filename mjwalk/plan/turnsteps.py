@@ -6,20 +6,28 @@ it (:func:`in_line`), the footfalls laid along one axis. A stair whose treads ar
 post or a winder's corner (DIN 18065:2020 allows such "gewendelte" stairs, a tread measured as
 the chord of the walk line between its nosings) has step edges that turn from one tread to the
 next, so no crossing joins the levels at its ends and a walk between them is refused.
-:func:`turning_steps` names such stairs, one line each, so the refusal says why. Metres, world
-frame.
+:func:`turning_steps` names such stairs, one line each, so the refusal says why, with the
+stair measured on its walk line (:mod:`mjwalk.world.walkline`): a tread that breaks DIN
+18065's step rule there is named with its numbers. Metres, world frame.
 """
 
 from __future__ import annotations
+
+import itertools
 
 import numpy as np
 
 from mjwalk.world import norms
 from mjwalk.world.levels import LevelGraph, LevelLink
+from mjwalk.world.walkline import walk_line_faults, walk_line_treads
 
 
 def turning_steps(graph: LevelGraph, clear: float) -> list[str]:
     """Levels joined only by single steps whose edges turn (a winder or spiral stair).
+
+    Each such stair is measured on its walk line (:mod:`mjwalk.world.walkline`, DIN 18065):
+    the line says whether its treads meet the step rule there, and if not, which tread breaks
+    it and by how much.
 
     Args:
         graph: the scene's levels and links.
@@ -28,23 +36,43 @@ def turning_steps(graph: LevelGraph, clear: float) -> list[str]:
 
     Returns:
         One line per pair of walked levels (lower, upper) that a chain of steps over treads
-        joins only if it turns, naming the treads where it turns; empty when there is none.
+        joins only if it turns, naming the treads where it turns and its walk-line figures;
+        empty when there is none.
     """
+    straight, turned = _chains(graph, clear)
+    out = []
+    for (lo, up), chains in sorted(turned.items()):
+        if (lo, up) in straight:
+            continue
+        # the chain DIN 18065 faults least: a side step onto the first tread is no stair's way
+        scored = [
+            (len(walk_line_faults(walk_line_treads(graph, c))), i) for i, c in enumerate(chains)
+        ]
+        chain = chains[min(scored)[1]]
+        out.append(f"the steps from L{lo} to L{up} " + _verdict(graph, chain))
+    return out
+
+
+def _chains(
+    graph: LevelGraph, clear: float
+) -> tuple[set[tuple[int, int]], dict[tuple[int, int], list[list[LevelLink]]]]:
+    """Every chain of steps over treads between two walked levels: the level pairs one
+    straight chain joins, and per pair the chains that turn."""
     passed = stepped_over(graph, clear)
     steps = [k for k in graph.links if k.kind == "step"]
     straight: set[tuple[int, int]] = set()
-    turned: dict[tuple[int, int], list[int]] = {}
+    turned: dict[tuple[int, int], list[list[LevelLink]]] = {}
     for first in steps:
         if passed[first.lower] or not passed[first.upper]:
             continue  # a chain starts on a walked level and goes over a tread
-        todo: list[tuple[list[LevelLink], list[int]]] = [([first], [])]
+        todo: list[tuple[list[LevelLink], bool]] = [([first], False)]
         while todo:
             chain, turns = todo.pop()
             top = chain[-1].upper
             if not passed[top]:
                 ends = (chain[0].lower, top)
                 if turns:
-                    turned.setdefault(ends, turns)
+                    turned.setdefault(ends, []).append(chain)
                 else:
                     straight.add(ends)
                 continue
@@ -52,18 +80,28 @@ def turning_steps(graph: LevelGraph, clear: float) -> list[str]:
                 continue  # each step rises, so no chain is longer
             for k in steps:
                 if k.lower == top:
-                    turn = [] if in_line(chain[-1], k) else [top]
-                    todo.append((chain + [k], turns + turn))
-    out = []
-    for (lo, up), turns in sorted(turned.items()):
-        if (lo, up) in straight:
-            continue
-        names = ", ".join(graph.surfaces[graph.levels[i].surfaces[0]].name for i in turns)
-        out.append(
-            f"the steps from L{lo} to L{up} turn at {names} (a winder or spiral stair): walks "
-            "over levels take straight flights only"
+                    todo.append((chain + [k], turns or not in_line(chain[-1], k)))
+    return straight, turned
+
+
+def _verdict(graph: LevelGraph, chain: list[LevelLink]) -> str:
+    """Where a turning chain turns and what its walk line says, as the end of a refusal."""
+    turns = [b.upper for b, a in itertools.pairwise(chain) if not in_line(b, a)]
+    names = ", ".join(graph.surfaces[graph.levels[i].surfaces[0]].name for i in turns)
+    treads = walk_line_treads(graph, chain)
+    faults = walk_line_faults(treads)
+    if faults:
+        return (
+            f"turn at {names} (a winder or spiral stair) and break DIN 18065 on its walk line "
+            f"(the middle of its width): {'; '.join(faults)}: no stair a walk takes"
         )
-    return out
+    t = [x.tread for x in treads]
+    r = [x.step for x in treads]
+    return (
+        f"turn at {names} (a winder or spiral stair; on its walk line treads {min(t):.3f}-"
+        f"{max(t):.3f} m, 2R + T {min(r):.3f}-{max(r):.3f} m, within DIN 18065's step rule): "
+        "walks over levels take straight flights only"
+    )
 
 
 def stepped_over(graph: LevelGraph, clear: float) -> list[bool]:

@@ -40,6 +40,17 @@ STAIR_TOLERANCE = 0.005
 #: one or two are single steps.
 MIN_STAIR_RISERS = 3
 
+#: Least depth of a turned (winder or spiral) tread at its narrow end, within the usable width,
+#: metres: DIN 18065:2020, "Gebäude im Allgemeinen", 100 mm (50 mm within dwellings and houses
+#: of up to two dwellings), as summarised at https://treppen-abc.com/de/treppenlexikon/
+#: gewendelte-stufen (the standard itself not verifiable here). Such a tread is measured on the
+#: walk line ("Lauflinie"), which for usable widths up to 1 m lies in the middle of the stair
+#: (the walk zone is the middle 2/10 of the width; https://treppenakademie.de/wissensdatenbank/
+#: lauflinie-bei-treppen/), as the chord between its crossings of the two nosings
+#: (https://treppenbau-voss.de/n%C3%BCtzliches/treppen-abc/gewendelt), and must meet
+#: :data:`MIN_TREAD`-:data:`MAX_TREAD` and :data:`STEP_RULE` there (:mod:`mjwalk.world.walkline`).
+WINDER_MIN_NARROW_TREAD = 0.10
+
 #: Room people leave between their body and the side of a stair (a wall or the side of the
 #: treads), metres: the boundary layer of Pauls' effective-width model, 0.15 m for "stairways,
 #: wall or side of tread" (Pauls 1980; SFPE Handbook of Fire Protection Engineering, "Emergency

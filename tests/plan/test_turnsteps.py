@@ -18,8 +18,10 @@ from mjwalk.plan.turnsteps import in_line, stepped_over, turning_steps
 from mjwalk.world import load_workplace
 
 #: Riser (m) and the wedges' angle (rad): 0.17 m (ASR A1.8 §4.5); 30 deg treads round a 0.1 m
-#: post out to 1.0 m give a 0.28 m tread at the walk line (r = 0.55 m, the flight's middle; DIN
-#: 18065:2020 measures a winder's tread as the chord there, 2 r sin 15 deg), within 0.26-0.37 m.
+#: post out to 1.0 m. The wedges are boxes, so the edge each shares with the next lies along
+#: the next box's side, 0.2588 m off its centre line: the nosings' middles are 0.608 m from the
+#: post and 30 deg apart, a 0.315 m tread on the walk line (DIN 18065:2020 measures a winder's
+#: tread as the chord there, 2 r sin 15 deg), 2R + T = 0.655 m: just over the step rule.
 RISER, WEDGE = 0.17, math.radians(30.0)
 
 
@@ -88,7 +90,8 @@ def test_a_walk_up_the_winder_is_refused_saying_why(winder):
     walker (step-up limit 0.19 m, stature 1.75 m)", as if the walker were the cause."""
     walker, options = Walker(), PlannerOptions()
     a, b = endpoint(winder, "low", "start"), endpoint(winder, "high", "goal")
-    with pytest.raises(PlanningError, match=r"turn at wedge1.*straight flights only") as err:
+    want = r"turn at wedge1.*walk line.*tread wedge1: 2R \+ T = 2 x 0.170 \+ 0.315 = 0.655 m"
+    with pytest.raises(PlanningError, match=want) as err:
         level_route(winder, a, b, walker, options, step_up_limit(walker))
     assert "\n" not in str(err.value)
 
@@ -96,3 +99,34 @@ def test_a_walk_up_the_winder_is_refused_saying_why(winder):
 def test_a_straight_stair_has_no_turning_steps(scenes_dir):
     station = load_workplace(scenes_dir / "multilevel_station.xml")
     assert turning_steps(station.levels, PlannerOptions().radius + CELL_SIZE) == []
+
+
+def _route(tmp_path, xml: str, ends: tuple[str, str] = ("low", "high")):
+    """Plan the level route between two sites of ``xml`` (raises if none)."""
+    path = tmp_path / "stair.xml"
+    path.write_text(xml)
+    workplace, walker, options = load_workplace(path), Walker(), PlannerOptions()
+    a, b = endpoint(workplace, ends[0], "start"), endpoint(workplace, ends[1], "goal")
+    return level_route(workplace, a, b, walker, options, step_up_limit(walker))
+
+
+@pytest.mark.parametrize("ends", [("low", "high"), ("high", "low")])
+def test_a_winder_breaking_the_step_rule_is_refused_naming_its_walk_line_tread(
+    tmp_path, winder_xml, ends
+):
+    """Three wedges turning a 1 m stair a quarter: 0.42 m on the walk line; refused up and down.
+    Before the walk-line check the refusal named only the turning treads, not the rule they
+    break."""
+    with pytest.raises(PlanningError) as err:
+        _route(tmp_path, winder_xml("wedges"), ends)
+    msg = str(err.value)
+    assert "turn at tread2, tread3, tread4 (a winder or spiral stair) and break DIN 18065" in msg
+    assert (
+        "tread tread2: 2R + T = 2 x 0.170 + 0.422 = 0.762 m on the walk line, outside the " in msg
+    )
+    assert "step rule 0.59-0.65 m" in msg and "\n" not in msg
+
+
+def test_a_winder_meeting_the_step_rule_says_so_when_refused(tmp_path, winder_xml):
+    with pytest.raises(PlanningError, match=r"2R \+ T 0.63\d-0.63\d m, within DIN 18065"):
+        _route(tmp_path, winder_xml("balanced"))
