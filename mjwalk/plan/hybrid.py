@@ -27,7 +27,9 @@ pelvis trajectory comes closer to an obstacle (or the floor's edge) than the bod
 its foot, knees or landing leg come too close, when the stance leg cannot follow it, or when it
 ends in a grid cell (0.08 m, optionally with heading bins) that is already closed (near the
 goal: closed for walking on after :data:`~mjwalk.plan.options.NEAR_GOAL_EXPANSIONS`
-expansions, never for a closing step). The limits and defaults are in
+expansions, never for a closing step), or in an open cell that holds a node of no higher g
+(away from the goal a cell keeps its cheapest node, hybrid-state A*: :mod:`mjwalk.plan.search`).
+The limits and defaults are in
 :mod:`mjwalk.plan.options`.
 
 Because the steps are random, repeated plans between the same points differ — they form the

@@ -6,8 +6,16 @@ cell keys, and for every expanded node ``n_successors`` GP successors of its ste
 (:func:`mjwalk.gait.gpdraw.sample`), plus ``n_stops`` closing steps when it lies within the stop
 reach of the goal, decoded, checked and scored by :func:`~mjwalk.plan.stepcheck.check_steps`
 (its buffered form :func:`~mjwalk.plan.stepcheck.check_into`).
-Near the goal a cell closes after ``near_goal_expansions`` expansions, and a node popped in a
-closed cell there still draws its closing steps. The first expansion (the start node) takes the
+Away from the goal a cell keeps one node, the one of lowest g pushed into it while it is open
+(hybrid-state A*, Dolgov et al. 2010, IJRR 29(5) 485-501: each cell holds one continuous state,
+replaced when a cheaper one reaches the cell); a later, cheaper node replaces an earlier one,
+which is skipped when it is popped (stale), and one no cheaper than its cell's is not pushed.
+The cell closes when its node is expanded. Before (issue 48) the first node popped, by f,
+closed its cell, though a node of lower g in it could still wait in the open list (its f
+higher by the heuristic's or the heading term's difference within the cell). Near the goal a
+cell closes after ``near_goal_expansions`` expansions, and a node popped in a closed cell
+there still draws its closing steps; nodes there, and those that may end the walk, are
+pushed and expanded as before (no best g). The first expansion (the start node) takes the
 starters drawn by the caller (the KDE lives in SciPy).
 
 A successor whose pelvis and ankle keep their clearances is scored and pushed at once; the
@@ -30,7 +38,9 @@ functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_into`
 in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan.stepcost`;
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change to this file's text,
 or processes keep running the old machine code (touching the file is not enough). The record of
-such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: check_into tests the
+such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: a cell keeps its node of
+lowest g, issue 48, with check_into's stepped turn cost after a crossing, issue 47; before it,
+check_into tests the
 end pelvis and the ankle before the other pelvis samples, and a node keeps its closed-list key
 from the push; before it, the legs' checks
 deferred to the pop, :func:`~mjwalk.plan.stepcheck.legs_recheck`; before it, the GP draws into
@@ -242,6 +252,10 @@ def search(
     closed = {-1}
     closed.discard(-1)
     near_expanded = Dict.empty(key_type=types.int64, value_type=types.int64)
+    # per open cell (away from the goal), the cheapest node pushed into it and its g: a later
+    # node reaching the cell with lower g replaces it, and the replaced ones are stale
+    best_id = Dict.empty(key_type=types.int64, value_type=types.int64)
+    best_g = Dict.empty(key_type=types.int64, value_type=types.float64)
     counter = 1
     expansions = 0
     generated = 0
@@ -277,6 +291,8 @@ def search(
         near = n_stop > 0 and within(p - goal, stop_reach)
         if key in closed and not done and not near:
             continue
+        if not done and not near and best_id.get(key, nid) != nid:
+            continue  # replaced in its cell by a node of lower g (stale)
         if legs_due[nid]:
             # the legs' checks of its step, left by check_into until the step is taken up
             # (most accepted steps never are): one that fails them is dropped, as check_into
@@ -285,6 +301,10 @@ def search(
             if not legs_recheck(feats, row[nid], matrix, offset, frame[nid], left[nid],
                                 due_node, thr, par, ipar, coef, due_loc):  # fmt: skip
                 rejected += 1
+                if best_id.get(key, -1) == nid:
+                    # its cell's best is gone: the cell is open again to the others
+                    del best_id[key]
+                    del best_g[key]
                 continue
         if key in closed and not done:
             if not near:
@@ -383,12 +403,17 @@ def search(
             nkey = _grow1(nkey, cap)
         for c in range(n_ok):
             e = ends[c]
-            if (
-                keys[c] in closed
-                and not in_goal(e, ths[c], par, ipar)
-                and not (n_stop > 0 and within(e - goal, stop_reach))
-            ):
+            kc = keys[c]
+            ending = in_goal(e, ths[c], par, ipar) or (n_stop > 0 and within(e - goal, stop_reach))
+            if kc in closed and not ending:
                 continue
+            if not ending:
+                # Dolgov et al. 2010, hybrid-state A*: a cell keeps one continuous state, the
+                # one of lowest g; a node no cheaper than its cell's is not opened
+                if kc in best_g and gs[c] >= best_g[kc]:
+                    continue
+                best_id[kc] = nn
+                best_g[kc] = gs[c]
             parent[nn] = nid
             row[nn] = base + rows[c]
             pos[nn] = e
