@@ -9,7 +9,7 @@ reach of the goal, decoded, checked and scored by :func:`~mjwalk.plan.stepcheck.
 Away from the goal a cell keeps one node, the one of lowest g pushed into it while it is open
 (hybrid-state A*, Dolgov et al. 2010, IJRR 29(5) 485-501: each cell holds one continuous state,
 replaced when a cheaper one reaches the cell); a later, cheaper node replaces an earlier one,
-which is skipped when it is popped (stale), and one no cheaper than its cell's is not pushed.
+which is skipped when it is popped (stale) unless that one fails its deferred legs' checks.
 The cell closes when its node is expanded. Before (issue 48) the first node popped, by f,
 closed its cell, though a node of lower g in it could still wait in the open list (its f
 higher by the heuristic's or the heading term's difference within the cell). Near the goal a
@@ -232,6 +232,7 @@ def search(
     left = np.empty(cap, dtype=np.bool_)
     legs_due = np.empty(cap, dtype=np.bool_)  # the legs' checks not run yet (check_into)
     nkey = np.empty(cap, dtype=np.int64)  # the node's closed-list key (check_into's, at push)
+    dropped = np.zeros(cap, dtype=np.bool_)  # its legs' checks failed before its pop
     parent[0] = -1
     row[0] = -1
     pos[0] = start
@@ -291,8 +292,26 @@ def search(
         near = n_stop > 0 and within(p - goal, stop_reach)
         if key in closed and not done and not near:
             continue
-        if not done and not near and best_id.get(key, nid) != nid:
-            continue  # replaced in its cell by a node of lower g (stale)
+        if dropped[nid]:  # its legs' checks failed while it was its cell's best (below)
+            continue
+        b = nid
+        if not done and not near and key in best_id:
+            b = best_id[key]
+        if b != nid:
+            # a node of lower g waits in this cell: this one is stale, unless that one's step
+            # fails the legs' checks (deferred: run now), which drops it and leaves the cell
+            # to the nodes pushed into it, as before a cell kept its best
+            if legs_due[b]:
+                _predecessor_row(parent[b], pos, foot, fhead, g, parent, due_node)
+                legs_due[b] = False
+                if not legs_recheck(feats, row[b], matrix, offset, frame[b], left[b], due_node,
+                                    thr, par, ipar, coef, due_loc):  # fmt: skip
+                    rejected += 1
+                    dropped[b] = True
+                    del best_id[key]
+                    del best_g[key]
+            if not dropped[b]:
+                continue
         if legs_due[nid]:
             # the legs' checks of its step, left by check_into until the step is taken up
             # (most accepted steps never are): one that fails them is dropped, as check_into
@@ -401,17 +420,16 @@ def search(
             left = _grow1(left, cap)
             legs_due = _grow1(legs_due, cap)
             nkey = _grow1(nkey, cap)
+            dropped = _grow1(dropped, cap)
         for c in range(n_ok):
             e = ends[c]
             kc = keys[c]
             ending = in_goal(e, ths[c], par, ipar) or (n_stop > 0 and within(e - goal, stop_reach))
             if kc in closed and not ending:
                 continue
-            if not ending:
+            if not ending and (kc not in best_g or gs[c] < best_g[kc]):
                 # Dolgov et al. 2010, hybrid-state A*: a cell keeps one continuous state, the
-                # one of lowest g; a node no cheaper than its cell's is not opened
-                if kc in best_g and gs[c] >= best_g[kc]:
-                    continue
+                # one of lowest g (the others are pushed too: the best's legs may fail)
                 best_id[kc] = nn
                 best_g[kc] = gs[c]
             parent[nn] = nid
@@ -424,6 +442,7 @@ def search(
             fhead[nn] = fheads[c]
             left[nn] = lefts[c]
             legs_due[nn] = True
+            dropped[nn] = False
             nkey[nn] = keys[c]
             heapq.heappush(heap, (fs[c], counter, nn))
             counter += 1
