@@ -200,21 +200,6 @@ from the distances it sums anyway (125 -> 89 us): about 0.15 ms a walk. Interlea
 30 warm plans, base -> branch, two rounds (load 3): step 2.07/2.05 -> 1.79/1.91 ms (ratio
 2.39/2.29 -> 2.10/2.20), rack1 -> mezzanine 5.10/4.64 -> 4.10/3.99, mezzanine -> rack1
 3.41/3.19 -> 3.02/3.03; at load 11 within noise.
-
-Branch turncost47 (the leg after a crossing costs its turn as stepturn steps it,
-plan/spotturn.py), ``--draws 10 --walks 10 --twin-only``, two interleaved rounds base 571cdb1
--> branch, warm ms level walk: step 2.8/2.5 -> 1.9/3.5, ramp 3.0/3.3 -> 2.3/3.3, stair 2.6/2.6
--> 2.1/2.6, rack1 -> mezzanine 5.2/5.0 -> 4.8/7.3, mezzanine -> rack1 3.8/3.8 -> 3.8/5.8,
-platform1 -> car1 11.4/11.5 -> 10.9/12.2 (load 2-7: noise of the same size); median
-expansions 6 -> 4, 6 -> 5, 8 -> 10, 46 -> 43, 22 -> 24, 326 -> 396. platform1 -> car1 walks
-longer (seeds 0-9, plan_walk: duration median 9.89 -> 11.16 s, length mean 6.59 -> 7.07 m;
-its floor leg after the step goes round the trolley more often, 6.1-6.2 m in 8.6-8.8 s
-against 4.4-4.6 m in 4.6-6.1 s at seeds 0, 3, 8); mezzanine -> rack1 unchanged (12.06 ->
-12.02 s median). With the search's cell keeping its cheapest node (issue 48, branch
-search48) the charge is on: platform1 -> car1, plan_walk seeds 0-19, every walk through the
-trolley's gap (base beb62ed 20/20 without the charge), duration median 10.02 -> 10.29 s,
-length median 6.56 -> 6.73 m, expansions median 415 -> 495 (the search fix alone: 10.36 s,
-6.58 m, 451).
 """
 
 from __future__ import annotations

@@ -27,8 +27,8 @@ pelvis trajectory comes closer to an obstacle (or the floor's edge) than the bod
 its foot, knees or landing leg come too close, when the stance leg cannot follow it, or when it
 ends in a grid cell (0.08 m, optionally with heading bins) that is already closed (near the
 goal: closed for walking on after :data:`~mjwalk.plan.options.NEAR_GOAL_EXPANSIONS`
-expansions, never for a closing step), or in an open cell holding a node of no higher g (a
-cell keeps its cheapest node: :mod:`mjwalk.plan.search`). Limits: :mod:`mjwalk.plan.options`.
+expansions, never for a closing step). The limits and defaults are in
+:mod:`mjwalk.plan.options`.
 
 Because the steps are random, repeated plans between the same points differ — they form the
 corridor real walks form — while a fixed ``rng`` seed reproduces a plan exactly.
@@ -301,22 +301,21 @@ class HybridPlanner:
         spot costs no new field.
 
         With ``turn_on_spot`` and a start yaw the walker stands facing the start yaw and sets
-        off as without one (its first step anywhere within :data:`START_SPREAD` of the downhill
-        heading, :meth:`default_heading`), but the turn on the spot from the start yaw to the
-        first step's heading costs its time (at :data:`~mjwalk.plan.options.ON_SPOT_TURN_SPEED`;
-        with ``turn_step`` its steps', :mod:`mjwalk.plan.spotturn`) times the walk's pace
-        (metres, as the steps), against the heading term
-        (:data:`~mjwalk.plan.options.HEADING_WEIGHT`) of setting off away from the goal: the
-        search weighs turning first against turning while walking. With ``at_work`` (a walker
-        standing at the work it faced) a turn of more than a quarter is split
-        (:mod:`mjwalk.plan.turnsplit`): the walker turns on the spot all but a one-step
-        direction change and sets off that far from the way, turning the rest along its first
-        steps, never nearer the work's front (``work_heading``) than square to it. The draws are
-        otherwise those of a walk without a yaw. Without ``turn_on_spot`` a start yaw is the
-        heading of the first step's frame (a walker already walking that way); with no start yaw
-        the walker sets off along its guide (:func:`~mjwalk.plan.guide.guide_start_heading`).
-        The walk's first sample faces where the turn ended (``yaw[0]``): the turn itself is the
-        caller's (the cycle animates it).
+        off as without one (its first step anywhere within :data:`START_SPREAD` of the
+        downhill heading, :meth:`default_heading`), but the turn on the spot from the start yaw
+        to the first step's heading costs its time at
+        :data:`~mjwalk.plan.options.ON_SPOT_TURN_SPEED` times the walk's pace (metres, as the
+        steps), against the heading term (:data:`~mjwalk.plan.options.HEADING_WEIGHT`) of
+        setting off away from the goal: the search weighs turning first against turning while
+        walking. With ``at_work`` (a walker standing at the work it faced) a turn of more than
+        a quarter is split (:mod:`mjwalk.plan.turnsplit`): the walker turns on the spot all but
+        a one-step direction change and sets off that far from the way, turning the rest along
+        its first steps, never nearer the work's front (``work_heading``) than square to it. The
+        draws are otherwise those of a walk without a yaw. Without ``turn_on_spot`` a start yaw
+        is the heading of the first step's frame (a walker already walking that way); with no
+        start yaw the walker sets off along its guide
+        (:func:`~mjwalk.plan.guide.guide_start_heading`). The walk's first sample faces where
+        the turn ended (``yaw[0]``): the turn itself is the caller's (the cycle animates it).
 
         A ``goal_heading``, unlike the options' ``goal_yaw``, is no condition of the goal: it
         shapes the smooth path the walk's heading follows (:mod:`mjwalk.plan.guide`: the
@@ -441,7 +440,6 @@ class HybridPlanner:
             guide=guide,
             facing=facing if turn else None,
             turn_pace=(pace if math.isfinite(pace) else preferred_speed(model)) if turn else 0.0,
-            turn_step=request.turn_step if turn and request.turn_step else math.nan,
             far_weight=far,
         )
         par, ipar = self.params.for_walk(stature, terms)

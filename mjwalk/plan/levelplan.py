@@ -16,10 +16,9 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    (ending in the planner's goal area about it; the heading up or down it a preference, its
    guide searched on :data:`HEADING_BUDGET` expansions before the route search alone) or the
    goal. After a crossing the walker stands on both feet: the leg is a standing start (a turn
-   on the spot costed as stepped, :mod:`mjwalk.plan.spotturn`) whose first step swings the
-   other foot than the crossing's last (:func:`next_foot`: step over step through every
-   crossing), the turn walked as steps on the spot before it
-   (:func:`mjwalk.plan.stepturn.stepped_turn`);
+   on the spot costed) whose first step swings the other foot than the crossing's last
+   (:func:`next_foot`: step over step through every crossing), the turn walked as steps on
+   the spot before it (:func:`mjwalk.plan.stepturn.stepped_turn`);
 3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`), where along
    its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`), the
    walker's swinging arms a cited clearance from its sides (:func:`~mjwalk.plan.levelroute.
@@ -296,10 +295,7 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     standing = foot is not None
     walker_model = _foot_model(model, foot)
     planner = _planner(view, leg.end, model, options)
-    # after a crossing the turn is stepped on the spot (stepturn) and costed so (spotturn:
-    # the half turn off the station's stair 2.13 s, not 0.76 s at ON_SPOT_TURN_SPEED)
-    step = _walker(model).step_duration if standing else None
-    request = WalkRequest(pose, model=walker_model, turn_on_spot=standing, turn_step=step)
+    request = WalkRequest(pose, model=walker_model, turn_on_spot=standing)
     if nxt is None:  # to the walk's goal
         return planner.plan(request, rng)
     c = nxt.crossing

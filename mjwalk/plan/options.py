@@ -185,8 +185,7 @@ ATTEMPTS = 6
 HEADING_WEIGHT = 5.2
 #: Turning speed on the spot (rad/s) of a walker who sets off facing away from the way
 #: (``WalkRequest(turn_on_spot=True)``): ASSUMPTION, a half turn in about two steps (1.06 s at
-#: 113 steps/min), as the cycle turns an operator (``mjwalk.cycle.poses.TURN_SPEED``). After a
-#: crossing the turn is costed as its steps on the spot instead (:mod:`mjwalk.plan.spotturn`).
+#: 113 steps/min), as the cycle turns an operator (``mjwalk.cycle.poses.TURN_SPEED``).
 ON_SPOT_TURN_SPEED = math.pi
 #: Walk-to-walk spread of a person's pace with the energy cost: each walk's preferred speed is
 #: the walker's times exp(N(0, WALK_PACE_SD²)), as the virtual subjects vary theirs from bout

@@ -47,7 +47,6 @@ from mjwalk.plan.options import (
     swing_turned,
     toe_corners,
 )
-from mjwalk.plan.spotturn import spot_step_time
 from mjwalk.plan.stepcost import guide_lengths
 from mjwalk.world.clearance import ClearanceField
 
@@ -91,9 +90,6 @@ class WalkTerms:
         facing: the heading the walker stands at before a turn on the spot, which then costs
             its time; None: no turn cost.
         turn_pace: the speed (m/s) that time is costed at (metres, as the steps).
-        turn_step: the walker's step duration (s) where the turn is made in steps on the spot
-            after a crossing (:mod:`mjwalk.plan.spotturn`: their number times their time, none
-            within a step's turn); nan: at :data:`~mjwalk.plan.options.ON_SPOT_TURN_SPEED`.
         far_weight: the heuristic's extra weight far from the goal
             (:data:`~mjwalk.plan.options.FAR_WEIGHT`; the options' on a long walk, else 0).
     """
@@ -104,7 +100,6 @@ class WalkTerms:
     guide: np.ndarray | None = None
     facing: float | None = None
     turn_pace: float = math.nan
-    turn_step: float = math.nan
     far_weight: float = 0.0
 
 
@@ -253,10 +248,7 @@ class KernelParams:
             par[slots.P_HEADING_WEIGHT] = 0.0
         if walk.facing is not None:
             par[slots.P_START_YAW] = float(walk.facing)
-            if math.isnan(walk.turn_step):
-                par[slots.P_TURN_COST] = walk.turn_pace / ON_SPOT_TURN_SPEED
-            else:  # in steps on the spot after a crossing (mjwalk.plan.spotturn), each its time
-                par[slots.P_TURN_STEP_COST] = walk.turn_pace * spot_step_time(walk.turn_step)
+            par[slots.P_TURN_COST] = walk.turn_pace / ON_SPOT_TURN_SPEED
         par[slots.P_FAR_WEIGHT] = walk.far_weight
         return par, ipar
 

@@ -35,12 +35,6 @@ class WalkRequest:
         turn_on_spot: with a start yaw, the walker stands facing it and turns on the spot
             before the first step, the turn costed by its time; without, a start yaw is the
             heading of a walker already walking.
-        turn_step: with ``turn_on_spot``, the walker stands beyond a crossing and turns in
-            steps on the spot (:func:`mjwalk.plan.stepturn.stepped_turn`), each lasting its step
-            of this duration (seconds, > 0): the turn costs their number times their time
-            (:mod:`mjwalk.plan.spotturn`; nothing for a turn walked on in the first step);
-            None: its time at :data:`~mjwalk.plan.options.ON_SPOT_TURN_SPEED` (the cycle's
-            turn before a walk, :func:`mjwalk.cycle.poses.turn_frames`).
         at_work: with ``turn_on_spot``, the walker stands at the work it faced (a cycle's
             stand site): a turn of more than a quarter is split, all but a one-step direction
             change on the spot and the rest along the first steps
@@ -63,7 +57,6 @@ class WalkRequest:
     guide: np.ndarray | None = None
     at_work: bool = False
     work_heading: float | None = None
-    turn_step: float | None = None
 
     def __post_init__(self):
         if self.spot is not None:
@@ -73,8 +66,6 @@ class WalkRequest:
         if self.work_heading is not None:
             heading = _checked_heading(self.work_heading, "work_heading")
             object.__setattr__(self, "work_heading", heading)
-        if self.turn_step is not None:
-            object.__setattr__(self, "turn_step", _checked_step(self.turn_step))
         if self.guide is not None:
             try:
                 guide = resample_guide(self.guide)
@@ -102,15 +93,4 @@ def _checked_heading(heading, name: str = "goal_heading") -> float:
         value = math.nan
     if not math.isfinite(value):
         raise InputError(f"{name} must be finite radians, got {heading!r}")
-    return value
-
-
-def _checked_step(step) -> float:
-    """``step`` as finite seconds > 0 (``turn_step``)."""
-    try:
-        value = float(step)
-    except (TypeError, ValueError):
-        value = math.nan
-    if not (math.isfinite(value) and value > 0.0):
-        raise InputError(f"turn_step must be a step duration in seconds > 0, got {step!r}")
     return value

@@ -6,16 +6,8 @@ cell keys, and for every expanded node ``n_successors`` GP successors of its ste
 (:func:`mjwalk.gait.gpdraw.sample`), plus ``n_stops`` closing steps when it lies within the stop
 reach of the goal, decoded, checked and scored by :func:`~mjwalk.plan.stepcheck.check_steps`
 (its buffered form :func:`~mjwalk.plan.stepcheck.check_into`).
-Away from the goal a cell keeps one node, the one of lowest g pushed into it while it is open
-(hybrid-state A*, Dolgov et al. 2010, IJRR 29(5) 485-501: each cell holds one continuous state,
-replaced when a cheaper one reaches the cell); a later, cheaper node replaces an earlier one,
-which is skipped when it is popped (stale) unless that one fails its deferred legs' checks.
-The cell closes when its node is expanded. Before (issue 48) the first node popped, by f,
-closed its cell, though a node of lower g in it could still wait in the open list (its f
-higher by the heuristic's or the heading term's difference within the cell). Near the goal a
-cell closes after ``near_goal_expansions`` expansions, and a node popped in a closed cell
-there still draws its closing steps; nodes there, and those that may end the walk, are
-pushed and expanded as before (no best g). The first expansion (the start node) takes the
+Near the goal a cell closes after ``near_goal_expansions`` expansions, and a node popped in a
+closed cell there still draws its closing steps. The first expansion (the start node) takes the
 starters drawn by the caller (the KDE lives in SciPy).
 
 A successor whose pelvis and ankle keep their clearances is scored and pushed at once; the
@@ -38,9 +30,7 @@ functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_into`
 in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan.stepcost`;
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change to this file's text,
 or processes keep running the old machine code (touching the file is not enough). The record of
-such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: a cell keeps its node of
-lowest g, issue 48, with check_into's stepped turn cost after a crossing, issue 47; before it,
-check_into tests the
+such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: check_into tests the
 end pelvis and the ankle before the other pelvis samples, and a node keeps its closed-list key
 from the push; before it, the legs' checks
 deferred to the pop, :func:`~mjwalk.plan.stepcheck.legs_recheck`; before it, the GP draws into
@@ -232,7 +222,6 @@ def search(
     left = np.empty(cap, dtype=np.bool_)
     legs_due = np.empty(cap, dtype=np.bool_)  # the legs' checks not run yet (check_into)
     nkey = np.empty(cap, dtype=np.int64)  # the node's closed-list key (check_into's, at push)
-    dropped = np.zeros(cap, dtype=np.bool_)  # its legs' checks failed before its pop
     parent[0] = -1
     row[0] = -1
     pos[0] = start
@@ -253,10 +242,6 @@ def search(
     closed = {-1}
     closed.discard(-1)
     near_expanded = Dict.empty(key_type=types.int64, value_type=types.int64)
-    # per open cell (away from the goal), the cheapest node pushed into it and its g: a later
-    # node reaching the cell with lower g replaces it, and the replaced ones are stale
-    best_id = Dict.empty(key_type=types.int64, value_type=types.int64)
-    best_g = Dict.empty(key_type=types.int64, value_type=types.float64)
     counter = 1
     expansions = 0
     generated = 0
@@ -292,26 +277,6 @@ def search(
         near = n_stop > 0 and within(p - goal, stop_reach)
         if key in closed and not done and not near:
             continue
-        if dropped[nid]:  # its legs' checks failed while it was its cell's best (below)
-            continue
-        b = nid
-        if not done and not near and key in best_id:
-            b = best_id[key]
-        if b != nid:
-            # a node of lower g waits in this cell: this one is stale, unless that one's step
-            # fails the legs' checks (deferred: run now), which drops it and leaves the cell
-            # to the nodes pushed into it, as before a cell kept its best
-            if legs_due[b]:
-                _predecessor_row(parent[b], pos, foot, fhead, g, parent, due_node)
-                legs_due[b] = False
-                if not legs_recheck(feats, row[b], matrix, offset, frame[b], left[b], due_node,
-                                    thr, par, ipar, coef, due_loc):  # fmt: skip
-                    rejected += 1
-                    dropped[b] = True
-                    del best_id[key]
-                    del best_g[key]
-            if not dropped[b]:
-                continue
         if legs_due[nid]:
             # the legs' checks of its step, left by check_into until the step is taken up
             # (most accepted steps never are): one that fails them is dropped, as check_into
@@ -320,10 +285,6 @@ def search(
             if not legs_recheck(feats, row[nid], matrix, offset, frame[nid], left[nid],
                                 due_node, thr, par, ipar, coef, due_loc):  # fmt: skip
                 rejected += 1
-                if best_id.get(key, -1) == nid:
-                    # its cell's best is gone: the cell is open again to the others
-                    del best_id[key]
-                    del best_g[key]
                 continue
         if key in closed and not done:
             if not near:
@@ -420,18 +381,14 @@ def search(
             left = _grow1(left, cap)
             legs_due = _grow1(legs_due, cap)
             nkey = _grow1(nkey, cap)
-            dropped = _grow1(dropped, cap)
         for c in range(n_ok):
             e = ends[c]
-            kc = keys[c]
-            ending = in_goal(e, ths[c], par, ipar) or (n_stop > 0 and within(e - goal, stop_reach))
-            if kc in closed and not ending:
+            if (
+                keys[c] in closed
+                and not in_goal(e, ths[c], par, ipar)
+                and not (n_stop > 0 and within(e - goal, stop_reach))
+            ):
                 continue
-            if not ending and (kc not in best_g or gs[c] < best_g[kc]):
-                # Dolgov et al. 2010, hybrid-state A*: a cell keeps one continuous state, the
-                # one of lowest g (the others are pushed too: the best's legs may fail)
-                best_id[kc] = nn
-                best_g[kc] = gs[c]
             parent[nn] = nid
             row[nn] = base + rows[c]
             pos[nn] = e
@@ -442,7 +399,6 @@ def search(
             fhead[nn] = fheads[c]
             left[nn] = lefts[c]
             legs_due[nn] = True
-            dropped[nn] = False
             nkey[nn] = keys[c]
             heapq.heappush(heap, (fs[c], counter, nn))
             counter += 1

@@ -90,12 +90,10 @@ from mjwalk.plan.slots import (
     P_TOE_FRONT,
     P_TOE_SIDE,
     P_TURN_COST,
-    P_TURN_STEP_COST,
     P_WEIGHT,
     iparams,
     params,
 )
-from mjwalk.plan.spotturn import spot_steps
 from mjwalk.plan.stepcost import (
     downhill_costs,
     grid_bound,
@@ -528,17 +526,10 @@ def check_into(
             # landed foot) nor of a closing step, which set off from and come to a stand;
             # the duration is the decoder's last column
             seg = step_energy(seg, decode_real(z, r, matrix, offset, 2 * m + 2), pace)
-        spot = 0.0  # a stepped turn's cost: its own time, no heading factor on it
         if par[P_TURN_COST] > 0.0 and math.isnan(node[i, 1].real):
             # a starter set off after a turn on the spot from the walker's heading: its time
             turned = (fr - par[P_START_YAW] + math.pi) % (2.0 * math.pi) - math.pi
             seg += par[P_TURN_COST] * abs(turned)
-        elif par[P_TURN_STEP_COST] > 0.0 and math.isnan(node[i, 1].real):
-            # ... made in steps on the spot after a crossing, to the walk's first yaw (sample 0
-            # of the starter's pelvis yaw), as stepturn makes it (mjwalk.plan.spotturn)
-            turned = fr + decode_real(z, r, matrix, offset, m + 2) - par[P_START_YAW]
-            turned = (turned + math.pi) % (2.0 * math.pi) - math.pi
-            spot = par[P_TURN_STEP_COST] * spot_steps(turned)
         ex, ey = end.real, end.imag
         h = math.hypot(ex - goal.real, ey - goal.imag)
         if ipar[I_DIJKSTRA]:
@@ -568,7 +559,7 @@ def check_into(
                 else:  # straight at the goal
                     want = guide_aim(guide, end, goal)
                 seg *= heading_factor(fr + 0.5 * yaws.imag, want, hw)
-        g = node[i, 3].real + seg + spot
+        g = node[i, 3].real + seg
         if guided:  # along a guide: the way left along it, if longer
             h = max(h, guide_rest(par[P_GUIDE_LEN0:N_PARAMS], gk, gw, gd2))
         fh = par[P_WEIGHT] * h

@@ -3,9 +3,8 @@ stair, step or ramp and sets off on the next level leg at another heading turns 
 on the spot, each foot in turn lifted and set down turned.
 
 The level leg after a crossing is a standing start (:func:`mjwalk.plan.levelplan.next_foot`):
-the hybrid A* costs its turn on the spot as it is stepped here (``WalkRequest(turn_on_spot=True,
-turn_step=...)``: the steps' number and time both from :mod:`mjwalk.plan.spotturn`) and leaves
-it to the caller. The flat cycle turns the operator before the walk
+the hybrid A* costs its turn on the spot and leaves it to the caller
+(``WalkRequest(turn_on_spot=True)``). The flat cycle turns the operator before the walk
 (:func:`mjwalk.cycle.poses.turn_frames`); inside a walk over levels the turn must be part of
 the walk, or the pelvis heading jumps between two samples while the feet stay put (130-140 deg
 in one 1/120 s sample on the shipped station). :func:`stepped_turn` puts steps on the spot
@@ -19,10 +18,10 @@ step, a swing lifts the foot the step before stood on). The steps alternate from
 crossing's last step on and their number is even, so the leg's first step swings the foot it
 was planned with. Young adults turn 180 degrees as one pivot, older ones in more,
 smaller steps (Thigpen et al. 2000, Phys Ther 80: 1174-1187); the split here is bounded by the
-hip's rotation range (:data:`~mjwalk.plan.spotturn.TURN_PER_STEP`). A turn within that range
-is not stepped on the spot but walked on (a walker leaving a stair at a small angle does not
-stop to turn): the leg's first step stands on the crossing's last footprint and the pelvis
-eases into the leg's heading over that step. Metres, seconds, radians; world frame.
+hip's rotation range (:data:`TURN_PER_STEP`). A turn within that range is not stepped on the
+spot but walked on (a walker leaving a stair at a small angle does not stop to turn): the leg's
+first step stands on the crossing's last footprint and the pelvis eases into the leg's heading
+over that step. Metres, seconds, radians; world frame.
 """
 
 from __future__ import annotations
@@ -36,13 +35,33 @@ from mjwalk.conventions import SAMPLE_RATE_HZ, other_side
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelcross import DEFAULT_STEP_WIDTH
-from mjwalk.plan.spotturn import spot_step_samples, spot_steps
+from mjwalk.plan.options import SWING_LIFT_TURN
 from mjwalk.plan.turnsplit import wrap
 from mjwalk.plan.walkpath import PathStep, WalkPath
 
+#: Most the pelvis turns in one step on the spot, radians: the hip's rotation range
+#: (``ROM_DEG["hip_rot"]``, 45 deg; :data:`mjwalk.plan.options.SWING_LIFT_TURN`). A foot stands
+#: through two steps, so the pelvis leaves it at most this far off its landing heading at
+#: lift-off (within the hip's range, no pivot needed) and each swing turns a foot by at most
+#: twice this. ASSUMPTION: the range, not a measured turning-step figure, bounds the split (a
+#: half turn in four steps; the planner's ON_SPOT_TURN_SPEED costs it in about two).
+TURN_PER_STEP = SWING_LIFT_TURN
 #: Feet and heading closer than this to where the leg's first step expects them need no turn
 #: (metres, radians): a millimetre, a twentieth of a degree (no step's visible change).
 ALREADY_THERE = 1e-3
+
+
+def turn_steps(turn: float) -> int:
+    """How many steps on the spot make a turn: the fewest even number (the leg's first step
+    keeps its foot) whose equal parts are each within :data:`TURN_PER_STEP`, at least two.
+
+    Args:
+        turn: the pelvis's turn, radians (either sign).
+
+    Returns:
+        The number of steps.
+    """
+    return 2 * max(1, math.ceil(abs(turn) / (2.0 * TURN_PER_STEP) - 1e-9))
 
 
 def stepped_turn(walk: WalkPath, crossing: WalkPath, walker: Walker) -> WalkPath:
@@ -60,10 +79,10 @@ def stepped_turn(walk: WalkPath, crossing: WalkPath, walker: Walker) -> WalkPath
 
     Returns:
         The walk from t = 0: the steps on the spot, then ``walk``'s samples and steps (its
-        ``meta`` with ``turn_steps``, their number); a turn within
-        :data:`~mjwalk.plan.spotturn.TURN_PER_STEP` walked on in the leg's first step instead
-        (``turn_steps`` 0, :func:`_walked_on`); ``walk`` itself when the feet and the heading
-        are already where its first step expects them.
+        ``meta`` with ``turn_steps``, their number); a turn within :data:`TURN_PER_STEP`
+        walked on in the leg's first step instead (``turn_steps`` 0, :func:`_walked_on`);
+        ``walk`` itself when the feet and the heading are already where its first step
+        expects them.
 
     Raises:
         PlanningError: either walk has no steps, or the leg's first step swings the crossing's
@@ -84,11 +103,11 @@ def stepped_turn(walk: WalkPath, crossing: WalkPath, walker: Walker) -> WalkPath
     moved = max(float(np.max(np.abs(feet[s][:2] - target[s][:2]))) for s in target)
     if moved <= ALREADY_THERE and abs(yaw1 - yaw0) <= ALREADY_THERE:
         return walk
-    m = spot_steps(yaw1 - yaw0)  # as the planner costs it (mjwalk.plan.spotturn)
-    if m == 0:  # the hip's range takes it in the leg's first step
+    if abs(yaw1 - yaw0) <= TURN_PER_STEP:  # the hip's range takes it in the leg's first step
         return _walked_on(walk, crossing, yaw0)
+    m = turn_steps(yaw1 - yaw0)
     spot = 0.5 * (target["left"][:2] + target["right"][:2])  # the feet's middle at the end
-    n = spot_step_samples(walker.step_duration)
+    n = max(1, round(walker.step_duration * SAMPLE_RATE_HZ))
     here = np.asarray(crossing.xy[-1], float)  # the pelvis
     u = np.arange(1, n + 1) / n
     steps, yaws, xys = [], [np.array([yaw0])], [here[None, :]]
@@ -117,9 +136,8 @@ def _walked_on(walk: WalkPath, crossing: WalkPath, yaw0: float) -> WalkPath:
     first step stands on the crossing's last footprint (it lifts the other foot from where that
     stood, :func:`mjwalk.body.legs.steps.step_frames`), and over that step the pelvis eases
     from the crossing's last heading and place into the leg's own (a smoothstep), the stance
-    foot left at most :data:`~mjwalk.plan.spotturn.TURN_PER_STEP` off the pelvis (the hip's
-    rotation range, as a step on the spot leaves it). The leg's samples after its first step
-    are unchanged."""
+    foot left at most :data:`TURN_PER_STEP` off the pelvis (the hip's rotation range, as a
+    step on the spot leaves it). The leg's samples after its first step are unchanged."""
     first = walk.steps[0]
     k = first.end - first.start
     u = np.arange(k + 1) / max(k, 1)

@@ -76,15 +76,8 @@ def test_a_turn_on_the_spot_and_a_guide_are_encoded(params):
     assert par[slots.P_TURN_COST] == pytest.approx(1.2 / ON_SPOT_TURN_SPEED)
     np.testing.assert_array_equal(par[slots.P_GUIDE0 : slots.P_DISC0], guide.ravel())
     assert par[slots.P_FAR_WEIGHT] == 0.05
-    assert math.isnan(par[slots.P_TURN_STEP_COST])
     plain, _ = params.for_walk(1.75, WalkTerms(start_xy=np.array([-2.0, 0.0])))
     assert math.isnan(plain[slots.P_TURN_COST]) and math.isnan(plain[slots.P_START_YAW])
-    assert math.isnan(plain[slots.P_TURN_STEP_COST])
-    # after a crossing: metres per step on the spot (the pace times the step in whole samples)
-    stepped = WalkTerms(start_xy=np.array([-2.0, 0.0]), facing=1.0, turn_pace=1.2, turn_step=0.53)
-    par, _ = params.for_walk(1.75, stepped)
-    assert par[slots.P_START_YAW] == 1.0 and math.isnan(par[slots.P_TURN_COST])
-    assert par[slots.P_TURN_STEP_COST] == pytest.approx(1.2 * 64 / 120)
 
 
 def test_a_goal_areas_vectors_are_those_its_own_options_make(scenes_dir):

@@ -27,9 +27,6 @@ from mjwalk.world import load_workplace
         ({"goal_heading": "north"}, "goal_heading must be finite radians"),
         ({"work_heading": math.nan}, "work_heading must be finite radians"),
         ({"guide": [(0.0, 0.0)]}, "guide"),
-        ({"turn_step": 0.0}, "turn_step must be a step duration in seconds > 0"),
-        ({"turn_step": math.nan}, "turn_step must be a step duration in seconds > 0"),
-        ({"turn_step": "slow"}, "turn_step must be a step duration in seconds > 0"),
     ],
 )
 def test_bad_requests_are_refused_on_construction(change, message):
@@ -52,11 +49,6 @@ def test_a_request_holds_its_values_checked():
     # the front of the work (None: the start yaw), checked as a heading
     assert request.work_heading is None
     assert type(WalkRequest("west", work_heading=np.float32(1.5)).work_heading) is float
-    # a turn stepped on the spot after a crossing: the walker's step duration, seconds
-    assert request.turn_step is None
-    assert (
-        type(WalkRequest("west", turn_on_spot=True, turn_step=np.float32(0.5)).turn_step) is float
-    )
 
 
 def test_a_start_alone_plans_as_its_request(scenes_dir):

@@ -10,8 +10,7 @@ import pytest
 from mjwalk.body.legs.synthesis import legs_from_walk
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
-from mjwalk.plan.spotturn import TURN_PER_STEP, spot_steps
-from mjwalk.plan.stepturn import stepped_turn
+from mjwalk.plan.stepturn import TURN_PER_STEP, stepped_turn, turn_steps
 from mjwalk.plan.synthetic import synthetic_walk
 from mjwalk.plan.walks import plan_walk
 from mjwalk.world import load_workplace
@@ -33,14 +32,13 @@ def _arrive_and_leave(turn_deg: float):
 
 
 def test_turn_steps_are_even_and_within_the_hips_range_each():
-    assert spot_steps(0.0) == 0 and spot_steps(TURN_PER_STEP) == 0
-    assert spot_steps(math.radians(46.0)) == 2
-    assert spot_steps(math.radians(90.0)) == 2
-    assert spot_steps(math.radians(-137.0)) == 4
-    assert spot_steps(math.pi) == 4
+    assert turn_steps(0.0) == 2
+    assert turn_steps(math.radians(90.0)) == 2
+    assert turn_steps(math.radians(-137.0)) == 4
+    assert turn_steps(math.pi) == 4
     for turn in np.linspace(-math.pi, math.pi, 37):
-        m = spot_steps(float(turn))
-        assert m % 2 == 0 and (m == 0 or abs(turn) / m <= TURN_PER_STEP + 1e-9)
+        m = turn_steps(float(turn))
+        assert m % 2 == 0 and abs(turn) / m <= TURN_PER_STEP + 1e-9
 
 
 @pytest.mark.parametrize("turn_deg", [-150.0, -60.0, 137.0, 180.0])
@@ -48,7 +46,7 @@ def test_the_turn_is_stepped_on_the_spot_feet_planted_and_alternating(turn_deg):
     arrive, leave = _arrive_and_leave(turn_deg)
     walk = stepped_turn(leave, arrive, WALKER)
     m = walk.meta["turn_steps"]
-    assert m == spot_steps(math.radians(turn_deg)) and len(walk.steps) == m + len(leave.steps)
+    assert m == turn_steps(math.radians(turn_deg)) and len(walk.steps) == m + len(leave.steps)
     # the leg itself unchanged after the turn
     k = len(walk.t) - len(leave.t)
     np.testing.assert_array_equal(walk.yaw[k:], leave.yaw)
