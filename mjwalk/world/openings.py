@@ -14,7 +14,8 @@ a level's **openings** are obstacle footprints to those questions:
   rim) is no opening: it is the floor's edge of the level's view, which the planners already
   treat as such;
 - less the surfaces a walker steps onto from the rim (the via surfaces of the level's links, a
-  stair's treads or a ramp, and every surface within a step, ``LevelOptions.max_riser``, of the
+  stair's treads or a ramp, the treads reached by steps over treads only, and every surface
+  within a step, ``LevelOptions.max_riser``, of the
   level's height): a drop is where the walk surface ends over a drop too deep to step
   (DIN 18065's 0.19 m riser, :data:`~mjwalk.world.norms.MAX_RISER`), not where a step, stair or
   ramp connects;
@@ -152,7 +153,7 @@ def openings_of(graph, level: int, options: LevelOptions | None = None) -> tuple
     ]
     if not holes:
         return ()
-    linked = {i for k in graph.links_of(lv.index) for i in k.via}
+    linked = {i for k in graph.links_of(lv.index) for i in k.via} | _tread_steps(graph, lv.index)
     stepped = [
         i
         for i, s in enumerate(graph.surfaces)
@@ -171,6 +172,30 @@ def openings_of(graph, level: int, options: LevelOptions | None = None) -> tuple
                     name = f"{OPENING_PREFIX}L{lv.index}_{len(out)}"
                     out.append(Footprint(name, -1, np.ascontiguousarray(v[:-1])))
     return tuple(out)
+
+
+def _tread_steps(graph, level: int) -> set[int]:
+    """The surfaces of the tread levels a walker reaches from ``level`` by steps over treads
+    only: a stair whose treads the level graph did not join into one stair link (a scanned
+    pit's, whose top tread meets the rim on two edges) is stepped onto all the same.
+
+    Args:
+        graph: the scene's level graph.
+        level: the level's index.
+
+    Returns:
+        The surfaces' indices in ``graph.surfaces``.
+    """
+    seen, todo, out = {int(level)}, [int(level)], set()
+    while todo:
+        here = todo.pop()
+        for k in graph.links_of(here):
+            there = k.upper if k.lower == here else k.lower
+            if k.kind == "step" and there not in seen and graph.levels[there].kind == "tread":
+                seen.add(there)
+                todo.append(there)
+                out.update(graph.levels[there].surfaces)
+    return out
 
 
 def _step_apart(surface, height: float) -> float:
