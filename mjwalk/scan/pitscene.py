@@ -4,7 +4,8 @@ A MuJoCo plane has no hole, so a scene with a reached pit (:class:`~mjwalk.scan.
 of kind "level") is written as a floor with openings (:mod:`mjwalk.world.floorholes`): the floor
 plane at the deepest reached pit's bottom, the floor level as boxes named
 :data:`~mjwalk.world.floorholes.FLOOR_BOX_PREFIX`... from the plane up to z = 0 over every cell of
-the floor plan but the openings, each reached pit's stair as its regular flight
+the floor plan but the openings (boxes of one extent that meet joined into one, so a flight's
+top riser meets one floor box along its width), each reached pit's stair as its regular flight
 (:func:`mjwalk.scan.stairfit.fit_stair`: its treads' boxes from the plane up, the floor's edge
 moved onto the flight's last riser when the flight runs along x or y; a flight turned off the
 axes gets a floor box turned to it at its top, :func:`_landing`), a pit's ramp as its tilted
