@@ -4,7 +4,8 @@ A MuJoCo plane has no hole, so a scene with a reached pit (:class:`~mjwalk.scan.
 of kind "level") is written as a floor with openings (:mod:`mjwalk.world.floorholes`): the floor
 plane at the deepest reached pit's bottom, the floor level as boxes named
 :data:`~mjwalk.world.floorholes.FLOOR_BOX_PREFIX`... from the plane up to z = 0 over every cell of
-the floor plan but the openings, each reached pit's stair as its regular flight
+the floor plan but the openings (boxes of one extent that meet joined into one, so a flight's
+top riser meets one floor box along its width), each reached pit's stair as its regular flight
 (:func:`mjwalk.scan.stairfit.fit_stair`: its treads' boxes from the plane up, the floor's edge
 moved onto the flight's last riser when the flight runs along x or y; a flight turned off the
 axes gets a floor box turned to it at its top, :func:`_landing`), a pit's ramp as its tilted
@@ -124,6 +125,33 @@ def _snap(lo: np.ndarray, hi: np.ndarray, fits: list[dict], res: float) -> None:
                     face[ax] = at
 
 
+def _joined(faces: list[tuple[np.ndarray, np.ndarray]]) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Floor boxes (low, high corners) joined while two have the same extent across one axis and
+    meet along it: the strips a cell-stepped pit edge cuts the floor into, once snapped onto a
+    flight's last riser, become one box along it, so the top tread meets one floor box along
+    its width (the world's contacts need a body's width of edge between two surfaces,
+    :data:`mjwalk.world.contacts.MIN_CROSSING`: a scanned pit's stair in strips of 6-34 cm
+    reached nothing, generated hall 1057). Boxes that meet nothing are kept as they are."""
+    out = [(lo.copy(), hi.copy()) for lo, hi in faces]
+    joined = True
+    while joined:
+        joined = False
+        for i, (lo, hi) in enumerate(out):
+            for j, (lo2, hi2) in enumerate(out):
+                ax = next(
+                    (a for a in (0, 1) if lo[1 - a] == lo2[1 - a] and hi[1 - a] == hi2[1 - a]),
+                    None,
+                )
+                if i != j and ax is not None and hi[ax] == lo2[ax]:
+                    hi[ax] = hi2[ax]
+                    del out[j]
+                    joined = True
+                    break
+            if joined:
+                break
+    return out
+
+
 def _along_axis(run: np.ndarray) -> bool:
     """Whether a flight's climb direction lies within :data:`AXIS_TOL` of x or y."""
     return max(abs(float(run[0])), abs(float(run[1]))) >= math.cos(AXIS_TOL)
@@ -203,14 +231,18 @@ def pit_floor(plan: FloorPlan, pits: list[ScanPit]) -> PitFloor | None:
                 lo = (plan.x0 + ix0 * r, plan.y0 + iy0 * r, plane_z)
                 hi = (plan.x0 + ix1 * r, plan.y0 + iy1 * r, p.bottom.height)
                 boxes.append(_box(f"scan_pit_bottom_{len(boxes)}", lo, hi, LEVEL_MATERIAL))
-    floor: list = []
+    faces: list[tuple[np.ndarray, np.ndarray]] = []
     for iy0, iy1, ix0, ix1, _ in rectangles((~opening).astype(np.int32)):
         low = np.array([plan.x0 + ix0 * r, plan.y0 + iy0 * r, plane_z])
         high = np.array([plan.x0 + ix1 * r, plan.y0 + iy1 * r, 0.0])
         _snap(low, high, fits, r)
         if np.any(high[:2] <= low[:2]):  # a strip wholly within the snap of a riser: empty now
             continue
-        floor.append(_box(f"{FLOOR_BOX_PREFIX}{len(floor)}", low, high, FLOOR_MATERIAL))
+        faces.append((low, high))
+    floor = [
+        _box(f"{FLOOR_BOX_PREFIX}{k}", low, high, FLOOR_MATERIAL)
+        for k, (low, high) in enumerate(_joined(faces))
+    ]
     for fit in fits:
         if not _along_axis(fit["run"]):
             floor.append(_landing(fit, plane_z, f"{FLOOR_BOX_PREFIX}{len(floor)}"))

@@ -14,12 +14,16 @@ a level's **openings** are obstacle footprints to those questions:
   rim) is no opening: it is the floor's edge of the level's view, which the planners already
   treat as such;
 - less the surfaces a walker steps onto from the rim (the via surfaces of the level's links, a
-  stair's treads or a ramp, and every surface within a step, ``LevelOptions.max_riser``, of the
+  stair's treads or a ramp, the treads reached by steps over treads only, and every surface
+  within a step, ``LevelOptions.max_riser``, of the
   level's height): a drop is where the walk surface ends over a drop too deep to step
   (DIN 18065's 0.19 m riser, :data:`~mjwalk.world.norms.MAX_RISER`), not where a step, stair or
   ramp connects;
 - each opening cut into convex pieces (footprints are convex: constrained Delaunay triangles
-  merged while their union stays convex); a rectangular pit is one piece.
+  merged while their union stays convex); a rectangular pit is one piece. A piece no wider
+  than :data:`~mjwalk.world.norms.CONTACT_GAP` (ASR A1.5/1,2: floor gaps up to 20 mm are walked
+  over) is no opening: a scanned floor's boxes leave such strips between a tread and the rim,
+  or along a pit's cell-stepped edge (issue 47, a synthetic scan of ``scenes/pit_station``).
 
 They are found once per level view (:func:`level_openings`, kept on the workplace) and joined to
 its obstacles by :func:`passing_footprints`; a workplace without openings (every flat scene) gives
@@ -53,6 +57,9 @@ _PASSING = "_passing_footprints"
 #: contact gap (0.02 m) along a metre's edge is an artefact of joining surfaces, not a drop a
 #: foot fits into (ASR A1.5/1,2: gaps up to 20 mm are walked over).
 _SLIVER_AREA = 0.02 * 0.02
+#: Metres by which a piece's width may exceed the contact gap and still be walked over (the
+#: rounding of shapely's coordinates: a 2 cm strip of a 2 cm floor-plan grid).
+_WIDTH_TOL = 1e-9
 #: Relative area by which a union may fall short of its convex hull and still count as convex
 #: (rounding of shapely's coordinates).
 _CONVEX_TOL = 1e-9
@@ -146,7 +153,7 @@ def openings_of(graph, level: int, options: LevelOptions | None = None) -> tuple
     ]
     if not holes:
         return ()
-    linked = {i for k in graph.links_of(lv.index) for i in k.via}
+    linked = {i for k in graph.links_of(lv.index) for i in k.via} | _tread_steps(graph, lv.index)
     stepped = [
         i
         for i, s in enumerate(graph.surfaces)
@@ -160,17 +167,54 @@ def openings_of(graph, level: int, options: LevelOptions | None = None) -> tuple
         rest = hole.difference(reach) if stepped else hole
         for part in getattr(rest, "geoms", [rest]):
             for piece in _convex_pieces(part):
-                if piece.area >= _SLIVER_AREA:
+                if piece.area >= _SLIVER_AREA and _width(piece) > o.contact_gap + _WIDTH_TOL:
                     v = np.asarray(shapely.geometry.polygon.orient(piece, 1.0).exterior.coords)
                     name = f"{OPENING_PREFIX}L{lv.index}_{len(out)}"
                     out.append(Footprint(name, -1, np.ascontiguousarray(v[:-1])))
     return tuple(out)
 
 
+def _tread_steps(graph, level: int) -> set[int]:
+    """The surfaces of the tread levels a walker reaches from ``level`` by steps over treads
+    only: a stair whose treads the level graph did not join into one stair link (a scanned
+    pit's, whose top tread meets the rim on two edges) is stepped onto all the same.
+
+    Args:
+        graph: the scene's level graph.
+        level: the level's index.
+
+    Returns:
+        The surfaces' indices in ``graph.surfaces``.
+    """
+    seen, todo, out = {int(level)}, [int(level)], set()
+    while todo:
+        here = todo.pop()
+        for k in graph.links_of(here):
+            there = k.upper if k.lower == here else k.lower
+            if k.kind == "step" and there not in seen and graph.levels[there].kind == "tread":
+                seen.add(there)
+                todo.append(there)
+                out.update(graph.levels[there].surfaces)
+    return out
+
+
 def _step_apart(surface, height: float) -> float:
     """How far (m) the surface's heights (a ramp's from low to high end) lie from ``height``."""
     lo, hi = float(surface.z_low), float(surface.z_high)
     return max(0.0, lo - height, height - hi)
+
+
+def _width(piece) -> float:
+    """The width (m) of a convex shapely Polygon: its least extent across, over the directions
+    normal to its edges (a convex polygon's narrowest strip lies along one of its edges)."""
+    v = np.asarray(piece.exterior.coords, dtype=float)
+    d = np.diff(v, axis=0)
+    length = np.hypot(d[:, 0], d[:, 1])
+    keep = length > 0.0
+    d, a = d[keep] / length[keep, None], v[:-1][keep]
+    rel = v[None, :, :] - a[:, None, :]  # (edges, vertices, 2)
+    across = np.abs(d[:, None, 0] * rel[..., 1] - d[:, None, 1] * rel[..., 0])
+    return float(across.max(axis=1).min()) if len(d) else 0.0
 
 
 def _convex_pieces(poly) -> list:

@@ -232,3 +232,29 @@ def test_a_floor_strip_snapped_onto_a_riser_is_not_written():
     built = mujoco.MjModel.from_xml_string(scene.xml)
     boxes = built.geom_size[built.geom_type == mujoco.mjtGeom.mjGEOM_BOX]
     assert np.all(boxes > 0)
+
+
+@pytest.mark.slow  # a seeded scan of a generated hall and the written scene's levels: ~30 s
+def test_a_cell_stepped_rim_at_the_stair_top_is_one_floor_box_the_stair_reaches():
+    """Generated hall 1057 (a 3-riser pit stair along x): the pit's cell-stepped rim cut the
+    floor beside the flight's top riser into eleven strips 6-34 cm wide, each snapped onto the
+    riser, each touching the top tread along less than a body's width; the written scene's
+    pit (bottom and treads) was reached by nothing, and the floor level's opening covered the
+    stair (3.52 m^2). Strips of one extent are joined: the pit is a level again, reached by
+    one stair of three 0.167 m risers, and the opening is the pit less its stair."""
+    from mjwalk.scan.raycast import synthetic_scan
+    from mjwalk.world.levelgen import generate_levels
+    from mjwalk.world.openings import openings_of
+    from mjwalk.world.workplace import workplace_from_model
+
+    hall = generate_levels(1057)
+    model = mujoco.MjModel.from_xml_string(hall.xml)
+    scan = synthetic_scan(model, list(hall.scanners), step_deg=0.4, noise=0.005, seed=1057)
+    scene = build_scene(scan.points, source="levels_1057")
+    wp = workplace_from_model(mujoco.MjModel.from_xml_string(scene.xml))
+    graph = wp.levels
+    (stair,) = [k for k in graph.links if k.kind == "stair" and k.upper == 0]
+    assert len(stair.risers) == 3 and np.mean(stair.risers) == pytest.approx(0.167, abs=0.005)
+    assert graph.levels[stair.lower].height == pytest.approx(-0.502, abs=0.02)
+    ops = openings_of(graph, 0)
+    assert len(ops) == 1 and max(v[0] for v in ops[0].vertices) < 0.91  # west of the treads

@@ -102,6 +102,41 @@ def test_a_slab_level_pit_is_convex_pieces_round_its_stair(pit):
     assert level_openings(level_view(pit, 0)) == ()
 
 
+def test_a_strip_no_wider_than_the_contact_gap_is_no_opening(pit_xml):
+    """The shared pit with its treads 1 cm short of the south rim (y -0.49..1.5, as a scanned
+    floor's boxes leave them): the 1 cm strip between tread and rim is walked over (ASR
+    A1.5/1,2: gaps up to 20 mm), so the opening is the pit less the stair, as with no strip."""
+    xml = pit_xml.replace(
+        'pos="-0.86 0.5 -0.34" size="0.14 1 0.17"', 'pos="-0.86 0.505 -0.34" size="0.14 0.995 0.17"'
+    )
+    xml = xml.replace(
+        'pos="-0.58 0.5 -0.425" size="0.14 1 0.085"',
+        'pos="-0.58 0.505 -0.425" size="0.14 0.995 0.085"',
+    )
+    assert xml.count("0.995") == 2
+    ops = openings_of(workplace_from_model(mujoco.MjModel.from_xml_string(xml)).levels, 0)
+    assert _union(ops).bounds == pytest.approx((-0.44, -0.5, 1.0, 1.5), abs=0.011)
+    assert _union(ops).area == pytest.approx(1.44 * 2.0, abs=0.02)
+
+
+def test_treads_reached_by_steps_are_no_opening_when_no_stair_joins_them(pit_xml):
+    """The shared pit with treads at -0.18 and -0.36 m (risers 0.15, 0.18, 0.18 m: too
+    irregular for one stair link, three step links as a scanned pit's stair gives): the lower
+    tread (x -0.72..-0.44), 0.36 m below the rim, is stepped onto over the upper one, so the
+    opening is the pit less both treads, x -0.44..1, as with the regular stair."""
+    xml = pit_xml.replace(
+        'pos="-0.86 0.5 -0.34" size="0.14 1 0.17"', 'pos="-0.86 0.5 -0.345" size="0.14 1 0.165"'
+    )
+    xml = xml.replace(
+        'pos="-0.58 0.5 -0.425" size="0.14 1 0.085"', 'pos="-0.58 0.5 -0.435" size="0.14 1 0.075"'
+    )
+    graph = workplace_from_model(mujoco.MjModel.from_xml_string(xml)).levels
+    assert [k.kind for k in graph.links_of(0)] == ["step"]  # no stair link
+    ops = openings_of(graph, 0)
+    assert _union(ops).bounds == pytest.approx((-0.44, -0.5, 1.0, 1.5), abs=1e-6)
+    assert _union(ops).area == pytest.approx(1.44 * 2.0, abs=1e-6)
+
+
 def test_a_hole_no_deeper_than_a_step_is_no_opening():
     """A 0.15 m recess (within DIN 18065's 0.19 m riser) is stepped into, not a drop."""
     xml = (
