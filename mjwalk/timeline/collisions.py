@@ -223,9 +223,29 @@ def repeats(qpos: np.ndarray) -> np.ndarray:
     Returns:
         (F,) bool; the first frame is never a repeat.
     """
-    same = np.zeros(len(qpos), dtype=bool)
-    if len(qpos) > 1:
-        same[1:] = np.all(qpos[1:] == qpos[:-1], axis=1)
+    qpos = np.asarray(qpos)
+    if qpos.ndim != 2 or qpos.dtype != np.float64:  # (the kernel's one layout)
+        same = np.zeros(len(qpos), dtype=bool)
+        if len(qpos) > 1:
+            same[1:] = np.all(qpos[1:] == qpos[:-1], axis=1)
+        return same
+    return _repeats(qpos)
+
+
+@njit
+def _repeats(qpos):
+    """:func:`repeats` of a (F, nq) float array, compiled: a row is compared with the one
+    before only up to its first differing number (NumPy compared every number of every row:
+    about 25 us of a station cycle's 22 calls each). NaN equals nothing, as in NumPy."""
+    n_f, n_q = qpos.shape
+    same = np.zeros(n_f, dtype=np.bool_)
+    for f in range(1, n_f):
+        eq = True
+        for i in range(n_q):
+            if qpos[f, i] != qpos[f - 1, i]:
+                eq = False
+                break
+        same[f] = eq
     return same
 
 

@@ -131,6 +131,25 @@ def test_floor_test_skips_high_geoms_without_changing_the_frames():
     assert got.tolist() == every.tolist() and got.any() and not got.all()
 
 
+def test_repeats_is_numpys_row_equality():
+    rng = np.random.default_rng(3)
+    q = rng.normal(size=(60, 9))
+    for f in (5, 6, 7, 30, 31):  # holds
+        q[f] = q[f - 1]
+    q[12], q[13] = q[11], q[11]
+    q[13, 8] = -q[11, 8] if q[11, 8] == 0.0 else q[11, 8] + 1e-15  # one number apart
+    q[40, 2] = 0.0
+    q[41] = q[40]
+    q[41, 2] = -0.0  # equal to 0.0
+    q[50, 3] = np.nan
+    q[51] = q[50]  # NaN equals nothing: not a repeat
+    want = np.r_[False, np.all(q[1:] == q[:-1], axis=1)]
+    got = repeats(q)
+    assert got.dtype == bool and got.tolist() == want.tolist()
+    assert got[[5, 6, 7, 12, 30, 31, 41]].all() and not got[[13, 51]].any()
+    assert repeats(np.zeros((0, 4))).tolist() == [] and repeats(q[:1]).tolist() == [False]
+
+
 def test_repeats_and_floor_geoms():
     q = np.array([[0.0, 1.0], [0.0, 1.0], [0.5, 1.0], [0.5, 1.0], [0.5, 1.0]])
     assert repeats(q).tolist() == [False, True, False, True, True]

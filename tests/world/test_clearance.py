@@ -47,6 +47,33 @@ def test_bilinear_lookup_and_compiled_twin_agree():
         assert bilinear_at(values, 10.0, 20.0, 0.5, x, y) == field(np.array([x, y]))
 
 
+def _numpy_lookup(field: ClearanceField, xy: np.ndarray) -> np.ndarray:
+    """The lookup's NumPy arithmetic (the compiled lookup must give these numbers)."""
+    ny, nx = field.values.shape
+    fx = np.clip((xy[..., 0] - field.x0) / field.resolution, 0.0, nx - 1.000001)
+    fy = np.clip((xy[..., 1] - field.y0) / field.resolution, 0.0, ny - 1.000001)
+    ix, iy = fx.astype(np.intp), fy.astype(np.intp)
+    tx, ty = fx - ix, fy - iy
+    v = field.values
+    return (v[iy, ix] * (1 - tx) + v[iy, ix + 1] * tx) * (1 - ty) + (
+        v[iy + 1, ix] * (1 - tx) + v[iy + 1, ix + 1] * tx
+    ) * ty
+
+
+def test_lookup_gives_the_numpy_arithmetics_numbers_bit_for_bit():
+    rng = np.random.default_rng(5)
+    field = ClearanceField(-1.3, 0.7, 0.05, rng.normal(size=(23, 31)))
+    # inside, on and beyond the grid, in several shapes (one point: a scalar)
+    for shape in [(2,), (1, 2), (40, 2), (5, 9, 2)]:
+        xy = rng.uniform(-2.0, 2.5, size=shape)
+        got, want = field(xy), _numpy_lookup(field, xy)
+        assert np.shape(got) == np.shape(want) == shape[:-1]
+        assert np.asarray(got).tobytes() == np.asarray(want).tobytes()
+    assert isinstance(field(np.array([0.1, 0.9])), np.float64)
+    nodes = np.array([[-1.3 + 0.05 * 4, 0.7 + 0.05 * 6], [-1.3 + 0.05 * 30, 0.7 + 0.05 * 22]])
+    assert field(nodes).tobytes() == _numpy_lookup(field, nodes).tobytes()
+
+
 def test_lipschitz_of_a_cell_about_an_obstacles_corner_is_sqrt2():
     # nodes 0, 1, 1, sqrt(2) spacings (the distance from a box's corner at node (0, 0)): the
     # lookup's gradient at that corner is (1, 1), not a unit vector
