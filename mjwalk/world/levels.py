@@ -365,8 +365,11 @@ def _riser_ahead(
     A tread's next riser is parallel to its previous one (both its ends equally far from the
     previous riser's line, within ``stair_tol``: a regular tread, DIN 18065) and the nearest
     such edge; the next level may meet it in several stretches (a pit's rim written as several
-    floor boxes, issue 47's scanned hall 1117), which are one riser when they rise to the same
-    level. Their longest stretch is where the flight is crossed.
+    floor boxes, issue 47's scanned hall 1117; a scanned deck's box 1 cm behind the inferred top
+    tread written as part of it, hall 1038), which are one riser when they lie within
+    ``contact_gap`` of the nearest (surfaces that close touch) and rise to the same level. The
+    longest of its stretches within ``stair_tol`` of the nearest is where the flight is crossed
+    (so the tread is measured to the riser's front).
 
     Args:
         prev: the step link onto the tread.
@@ -386,10 +389,11 @@ def _riser_ahead(
     if not inline:
         return None, []
     near = min(float(np.mean(depth(k))) for k in inline)
-    riser = [k for k in inline if float(np.mean(depth(k))) <= near + options.stair_tol]
+    riser = [k for k in inline if float(np.mean(depth(k))) <= near + options.contact_gap]
     if len({k.upper for k in riser}) != 1:
         return None, []
-    return max(riser, key=lambda k: _segment_length(k.lower_edge)), riser
+    front = [k for k in riser if float(np.mean(depth(k))) <= near + options.stair_tol]
+    return max(front, key=lambda k: _segment_length(k.lower_edge)), riser
 
 
 def _segment_length(seg: Segment) -> float:

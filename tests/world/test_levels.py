@@ -272,3 +272,26 @@ def test_a_tread_meeting_two_levels_in_line_stops_the_flight():
     g = level_graph(find_walk_surfaces(model, None))
     assert level_named(g, "deck_a") != level_named(g, "deck_b")
     assert {k.kind for k in g.links} == {"step"}
+
+
+def test_a_landing_box_a_centimetre_behind_the_top_riser_is_the_same_riser():
+    """The flight's landing as a tread-wide box flush with the top riser and a deck box whose
+    edge lies 1 cm behind it (within the 2 cm contact gap: touching), as the scan writes a deck
+    and its inferred top tread (issue 47's scanned hall 1038): both meet the top tread, one riser
+    of one level. The flight is one stair measured to the riser's front (tread 0.28 m), and no
+    step is left over it (the base tree gave four steps)."""
+    treads = "".join(
+        f'<geom name="t{k}" type="box" size="0.14 0.7 {0.085 * k}" '
+        f'pos="{0.28 * k - 0.14} 0 {0.085 * k}"/>'
+        for k in (1, 2, 3)
+    )
+    landing = (
+        '<geom name="top" type="box" size="0.14 0.7 0.34" pos="0.98 0 0.34"/>'
+        '<geom name="deck" type="box" size="1 1.2 0.34" pos="1.85 0 0.34"/>'
+    )
+    model = scene(treads + landing)
+    g = level_graph(find_walk_surfaces(model, None))
+    deck = level_named(g, "deck")
+    assert level_named(g, "top") == deck
+    assert [(k.kind, k.lower, k.upper) for k in g.links] == [("stair", 0, deck)]
+    assert g.links[0].tread == pytest.approx(0.28, abs=1e-6)
