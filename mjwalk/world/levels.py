@@ -11,7 +11,8 @@ same height (within ``norms.LEVEL_TOLERANCE``) into :class:`Level` s, and joins 
   risers and treads are regular (within ``norms.STAIR_TOLERANCE``) and within the cited limits
   (risers ``norms.MIN_RISER``-``MAX_RISER``, treads ``MIN_TREAD``-``MAX_TREAD``, step rule
   ``norms.STEP_RULE``); it replaces the step links it is made of. Fewer or irregular risers stay
-  steps.
+  steps. A tread that meets the next level in several stretches (a landing or a pit's rim
+  written as several boxes) goes on at the riser in line with the flight (:func:`_riser_ahead`).
 
 Each link names where it is crossed: a segment on the lower level (a step's riser edge, a ramp's
 foot, a stair's first riser) and one on the upper. Metres, radians, world xy.
