@@ -9,7 +9,10 @@ stair only: refused too); a short cycle (a generated .toml: walks to 2-3 sites o
 levels) is simulated ``--runs 3 --jobs 1`` and its contacts counted; a synthetic scan of the hall
 (:func:`mjwalk.scan.raycast.synthetic_scan` from the hall's scanner spots, 0.4 deg rays, 5 mm
 noise) becomes a scene (:func:`mjwalk.scan.scene.build_scene`) whose levels and links are
-compared with the true ones (heights within 2 cm; every stair's risers, every step and ramp).
+compared with the true ones (heights within 2 cm; every stair's risers, every step and ramp),
+and the scene written from it (:func:`mjwalk.scan.scene.write_scene`) is loaded as any scene and
+its level graph compared with the hall's (:func:`_written`: levels, links' kinds and levels,
+openings' areas), since the scan's own level list can be right while the written scene is not.
 
 The seeds run in a child process (restarted after a seed past ``--timeout`` wall seconds) and
 every stage under a CPU-time alarm (:data:`ALARM`): a hang is a "timeout", never a stuck
@@ -22,7 +25,9 @@ harness. Outcomes:
 - ``MjwalkError``: any other error of mjwalk's own (message);
 - ``other exception``: a bug (traceback kept in the seed's record);
 - cycles: runs without error, contacts (any humanoid-scene contact);
-- scan: levels within 2 cm, extra levels, stairs / steps / ramps recognised.
+- scan: levels within 2 cm, extra levels, stairs / steps / ramps recognised; ``written scene
+  differs`` (stage ``scan:written``) when the written scene's levels, links or openings are not
+  the hall's.
 
 Run: ``PYTHONPATH=. python3 benchmarks/bench_unseen.py --seeds 0-29`` (``--json FILE`` keeps the
 records; ``--many SEEDS`` is the child's entry).
@@ -184,12 +189,13 @@ def _cycle(toml: Path) -> dict:
             "deepest": round(float(deepest), 4), "parts": parts[:6]}  # fmt: skip
 
 
-def _scan(model, hall, seed: int) -> dict:
+def _scan(model, hall, seed: int, true_graph) -> dict:
     from mjwalk.scan.raycast import synthetic_scan
     from mjwalk.scan.scene import build_scene
 
     scan = synthetic_scan(model, list(hall.scanners), step_deg=0.4, noise=0.005, seed=seed)
     scene = build_scene(scan.points, source=f"levels_{seed}")
+    to_written = scene.matrix @ np.linalg.inv(scan.to_scene)  # the hall's frame to the scene's
     lp = scene.levels
     found = [] if lp is None else [float(h) for h in lp.heights]
     pit_links = []
@@ -212,7 +218,117 @@ def _scan(model, hall, seed: int) -> dict:
         got.append((kind, lo, hi, len(k.risers), float(np.mean(k.risers)) if k.risers else 0))
     rec = {"levels": len(found), "missed": missed, "extra": [round(x, 3) for x in extra]}
     rec["links"] = _match_links(hall, got)
+    rec["written"] = _written(true_graph, scene, to_written)
     return rec
+
+
+def _written(true_graph, scene, to_written: np.ndarray) -> dict:
+    """The scene ``mjwalk scan`` writes, loaded as any scene is, against the generated hall's:
+    each hall level found on the written scene under a point of its largest surface (mapped by
+    ``to_written``) within :data:`HEIGHT_TOL` of its height above the floor, each link of the
+    hall's (kind, lower, upper) a link of the written scene's between the levels matched, and
+    each level's openings (:func:`mjwalk.world.openings.openings_of`) of the same total area
+    within :func:`_opening_tol`. The scan's own level list can be right while the scene written
+    from it is not (hall 1057: its pit stair's link was lost in the written scene only)."""
+    from mjwalk.scan.scene import write_scene
+    from mjwalk.world.workplace import load_workplace
+
+    with tempfile.TemporaryDirectory() as tmp:
+        wp = load_workplace(write_scene(scene, Path(tmp) / "scan.xml"), cache=False)
+        graph = wp.levels
+    z0, w0 = true_graph.levels[0].height, graph.levels[0].height
+    match: dict[int, int] = {}
+    for lv in true_graph.levels:
+        p = _inner_point(true_graph, lv)
+        q = (to_written @ np.array([p[0], p[1], lv.height, 1.0]))[:2]
+        i = graph.surface_at(q, lv.height - z0 + w0)
+        j = None if i is None else graph.level_of[i]
+        if j is not None and abs(graph.levels[j].height - w0 - (lv.height - z0)) <= HEIGHT_TOL:
+            match[lv.index] = j
+    out: dict = {"levels": [len(true_graph.levels), len(graph.levels)]}
+    out["unmatched"] = [
+        round(lv.height - z0, 3) for lv in true_graph.levels if lv.index not in match
+    ]
+    out["extra"] = [
+        round(lv.height - w0, 3) for lv in graph.levels if lv.index not in match.values()
+    ]
+    want = {(k.kind, match.get(k.lower, -1), match.get(k.upper, -1)) for k in true_graph.links}
+    have = {(k.kind, k.lower, k.upper) for k in graph.links}
+    name = {j: f"{graph.levels[j].height - w0:+.2f}" for j in range(len(graph.levels))}
+    name[-1] = "?"
+    out["links_missing"] = sorted(f"{k} {name[a]}->{name[b]}" for k, a, b in want - have)
+    out["links_extra"] = sorted(f"{k} {name[a]}->{name[b]}" for k, a, b in have - want)
+    out["openings"] = []
+    for i, j in match.items():
+        a, b, tol = _opening_areas(true_graph, i, graph, j)
+        if abs(a - b) > tol:
+            out["openings"].append([round(true_graph.levels[i].height - z0, 3), a, b, tol])
+    return out
+
+
+def _inner_point(graph, level) -> tuple[float, float]:
+    """A point where a level is walked on (world xy, metres): inside its surfaces, not under a
+    higher surface (a pit's bottom is the hall's floor plane, under the floor's boxes but in the
+    pit), and :data:`INNER_MARGIN` inside that region's edges when it is wide enough."""
+    import shapely  # deferred: slow to import; the scan stage alone needs it
+
+    def poly(i):
+        return shapely.Polygon(np.asarray(graph.surfaces[i].footprint.vertices, dtype=float))
+
+    own = shapely.union_all([poly(i) for i in level.surfaces])
+    above = [
+        poly(i)
+        for i, s in enumerate(graph.surfaces)
+        if i not in level.surfaces and s.z_high > level.height + HEIGHT_TOL
+    ]
+    free = own.difference(shapely.union_all(above)) if above else own
+    free = free if not free.is_empty else own
+    inner = free.buffer(-INNER_MARGIN)
+    c = (inner if not inner.is_empty else free).representative_point()
+    return float(c.x), float(c.y)
+
+
+#: Metres a level's test point keeps from its edges: five floor-plan cells (2 cm,
+#: :data:`mjwalk.scan.scanoptions.DEFAULT_RESOLUTION`). ASSUMPTION: a written edge lies within
+#: a cell or two of the true one; 0.1 m keeps the point on the same level either way.
+INNER_MARGIN = 0.1
+
+
+#: How far a written scene's opening edge may lie from the hall's, metres: one floor-plan
+#: cell (:data:`mjwalk.scan.scanoptions.DEFAULT_RESOLUTION`, 2 cm). ASSUMPTION: the scan
+#: writes an edge on a cell boundary, the true edge lies anywhere within that cell.
+OPENING_EDGE_TOL = 0.02
+
+
+def _opening_areas(true_graph, i: int, graph, j: int) -> tuple[float, float, float]:
+    """Total area of level ``i``'s openings in the hall and of level ``j``'s in the written
+    scene (square metres), and the difference allowed: the hall's openings' perimeter times
+    :data:`OPENING_EDGE_TOL` (none when the hall's level has no opening)."""
+    import shapely  # deferred: slow to import; the scan stage alone needs it
+
+    from mjwalk.world.openings import openings_of
+
+    def union(g, k):
+        return shapely.union_all(
+            [shapely.Polygon(np.asarray(f.vertices, dtype=float)) for f in openings_of(g, k)]
+        )
+
+    a, b = union(true_graph, i), union(graph, j)
+    return round(a.area, 3), round(b.area, 3), round(a.length * OPENING_EDGE_TOL, 3)
+
+
+def _written_faults(w: dict) -> list[str]:
+    """What the written scene got wrong (:func:`_written`), one phrase each; empty when it
+    matches the hall."""
+    out = [f"level {h:+.2f} m missing" for h in w["unmatched"]]
+    out += [f"extra level {h:+.2f} m" for h in w["extra"]]
+    out += [f"link missing: {k}" for k in w["links_missing"]]
+    out += [f"extra link: {k}" for k in w["links_extra"]]
+    out += [
+        f"openings at {h:+.2f} m: {a:.3f} vs {b:.3f} m2 (tol {t:.3f})"
+        for h, a, b, t in w["openings"]
+    ]
+    return out
 
 
 def _match_links(hall, got) -> dict:
@@ -280,9 +396,15 @@ def run_one(seed: int, stages: tuple[str, ...] = ("plan", "cycle", "scan")) -> d
             if cyc is not None:
                 rec["cycle"] = cyc
         if "scan" in stages:
-            scan = _stage(rec, "scan", _scan, load_model(xml), hall, seed)
+            scan = _stage(rec, "scan", _scan, load_model(xml), hall, seed, wp.levels)
             if scan is not None:
                 rec["scan"] = scan
+                faults = _written_faults(scan["written"])
+                if faults:
+                    rec.setdefault("outcomes", []).append(
+                        {"stage": "scan:written", "kind": "written scene differs",
+                         "msg": "; ".join(faults)}
+                    )  # fmt: skip
     return rec
 
 
@@ -349,6 +471,12 @@ def table(records: list[dict]) -> str:
     lines += [f"scans: {len(scans)}; levels within 2 cm in {len(scans) - miss}, "
               f"extra levels in {extra}; recognised: "
               + ", ".join(f"{k} {a}/{b}" for k, (a, b) in sorted(link.items()))]  # fmt: skip
+    written = [s["written"] for s in scans if "written" in s]
+    faults = [_written_faults(w) for w in written]
+    lines += [f"written scenes: {len(written)}; as the hall in {sum(not f for f in faults)}; "
+              f"levels off in {sum(bool(w['unmatched'] or w['extra']) for w in written)}, "
+              f"links off in {sum(bool(w['links_missing'] or w['links_extra']) for w in written)}, "
+              f"openings off in {sum(bool(w['openings']) for w in written)}"]  # fmt: skip
     for kind, c in sorted(msgs.items()):
         lines += ["", f"{kind}:"] + [f"  {n} x {m}" for m, n in c.most_common(8)]
     return "\n".join(lines)

@@ -42,6 +42,13 @@ HEIGHT_TOL = STAIR_TOLERANCE + FLOOR_TOL / 6
 #: (:func:`cell_span`): a square cell spans ``res (|cos a| + |sin a|)`` along a direction at
 #: ``a`` to the grid, up to ``res * sqrt(2)`` for a flight at 45 deg to the hall's axes.
 EDGE_CELLS = 2
+#: Metres inside the norm's limits (tread, step rule) a flight measured beyond them is written
+#: at (generated hall 1044's 0.2602 m treads, measured under ``MIN_TREAD``, written at it, read
+#: 0.25999... m: single steps).
+#: ASSUMPTION: ten times the 1e-5 m the scene's boxes are written to (five decimals,
+#: ``mjwalk.scan.levelboxes``), so the written flight's 2 h + g reads within the rule after
+#: rounding; far below the floor plan's 2 cm grid.
+WRITE_MARGIN = 1e-4
 
 
 def cell_span(run: np.ndarray, res: float) -> float:
@@ -159,8 +166,13 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
     if not ok:
         return None
     # a tread measured within the grid's slack outside the norm's range is written at its limit
-    # (the grid cannot tell them apart; the written scene's level graph is exact at the norm)
-    tread = min(max(tread, MIN_TREAD), MAX_TREAD)
+    # (the grid cannot tell them apart; the written scene's level graph is exact at the norm,
+    # so a margin inside it survives the written coordinates' rounding: WRITE_MARGIN),
+    # and so is one whose step rule 2 h + g is (generated halls 1031 and 1032 of
+    # benchmarks/bench_unseen.py: 2 h + g 0.656 and 0.6500+ m written, single steps in the scene)
+    tread = min(max(tread, MIN_TREAD + WRITE_MARGIN), MAX_TREAD - WRITE_MARGIN)
+    rule = (STEP_RULE[0] + WRITE_MARGIN - 2 * riser, STEP_RULE[1] - WRITE_MARGIN - 2 * riser)
+    tread = min(max(tread, rule[0]), rule[1])
     w0, w1 = float(np.median(lefts)), float(np.median(rights))
     rects = []
     for k in range(n - 1):

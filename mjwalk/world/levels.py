@@ -11,7 +11,8 @@ same height (within ``norms.LEVEL_TOLERANCE``) into :class:`Level` s, and joins 
   risers and treads are regular (within ``norms.STAIR_TOLERANCE``) and within the cited limits
   (risers ``norms.MIN_RISER``-``MAX_RISER``, treads ``MIN_TREAD``-``MAX_TREAD``, step rule
   ``norms.STEP_RULE``); it replaces the step links it is made of. Fewer or irregular risers stay
-  steps.
+  steps. A tread that meets the next level in several stretches (a landing or a pit's rim
+  written as several boxes) goes on at the riser in line with the flight (:func:`_riser_ahead`).
 
 Each link names where it is crossed: a segment on the lower level (a step's riser edge, a ramp's
 foot, a stair's first riser) and one on the upper. Metres, radians, world xy.
@@ -356,11 +357,58 @@ def _is_stair(chain: list[LevelLink], options: LevelOptions) -> bool:
     )
 
 
+def _riser_ahead(
+    prev: LevelLink, ups: list[LevelLink], options: LevelOptions
+) -> tuple[LevelLink | None, list[LevelLink]]:
+    """Of several step links up from a tread, the riser the flight goes on, and every link that
+    riser is made of.
+
+    A tread's next riser is parallel to its previous one (both its ends equally far from the
+    previous riser's line, within ``stair_tol``: a regular tread, DIN 18065) and the nearest
+    such edge; the next level may meet it in several stretches (a pit's rim written as several
+    floor boxes, issue 47's scanned hall 1117; a scanned deck's box 1 cm behind the inferred top
+    tread written as part of it, hall 1038), which are one riser when they lie within
+    ``contact_gap`` of the nearest (surfaces that close touch) and rise to the same level. The
+    longest of its stretches within ``stair_tol`` of the nearest is where the flight is crossed
+    (so the tread is measured to the riser's front).
+
+    Args:
+        prev: the step link onto the tread.
+        ups: the step links up from the tread, of the flight's riser.
+        options: the stair tolerance.
+
+    Returns:
+        (the link the flight takes, the links of its riser), or (None, []) when no edge is in
+        line with the flight or the in-line edges rise to different levels.
+    """
+
+    def depth(k: LevelLink) -> tuple[float, float]:  # its ends' distances (a point: (p, p))
+        a, b = k.lower_edge
+        return _line_distance(prev.upper_edge, (a, a)), _line_distance(prev.upper_edge, (b, b))
+
+    inline = [k for k in ups if abs(np.subtract(*depth(k))) <= options.stair_tol]
+    if not inline:
+        return None, []
+    near = min(float(np.mean(depth(k))) for k in inline)
+    riser = [k for k in inline if float(np.mean(depth(k))) <= near + options.contact_gap]
+    if len({k.upper for k in riser}) != 1:
+        return None, []
+    front = [k for k in riser if float(np.mean(depth(k))) <= near + options.stair_tol]
+    return max(front, key=lambda k: _segment_length(k.lower_edge)), riser
+
+
+def _segment_length(seg: Segment) -> float:
+    """A segment's length, metres."""
+    return float(np.linalg.norm(np.subtract(seg[1], seg[0])))
+
+
 def _stairs(
     steps: list[LevelLink], levels: list[Level], options: LevelOptions
-) -> list[list[LevelLink]]:
+) -> list[tuple[list[LevelLink], list[LevelLink]]]:
     """The chains of step links that are stairs: from a non-tread level over single treads, each
-    step up near the previous riser, to a non-tread level."""
+    step up near the previous riser, to a non-tread level; where a tread meets the next level on
+    several edges, the one in line with the flight (:func:`_riser_ahead`). Each chain comes with
+    the step links it replaces (its own and the other stretches of its risers)."""
     up: dict[int, list[LevelLink]] = {}
     for k in steps:
         up.setdefault(k.lower, []).append(k)
@@ -371,7 +419,7 @@ def _stairs(
             continue
         if first.upper in used:
             continue
-        chain = [first]
+        chain, replaced = [first], [first]
         while levels[chain[-1].upper].kind == "tread":
             nxt = [
                 k
@@ -379,11 +427,17 @@ def _stairs(
                 if abs(k.rise - chain[-1].rise) <= options.stair_tol
                 and _line_distance(chain[-1].upper_edge, k.lower_edge) > options.contact_gap
             ]
-            if len(nxt) != 1:
+            if len(nxt) == 1:
+                chain.append(nxt[0])
+                replaced.append(nxt[0])
+                continue
+            ahead, riser = _riser_ahead(chain[-1], nxt, options)
+            if ahead is None:
                 break
-            chain.append(nxt[0])
+            chain.append(ahead)
+            replaced += riser
         if levels[chain[-1].upper].kind != "tread" and _is_stair(chain, options):
-            out.append(chain)
+            out.append((chain, replaced))
             used.update(k.upper for k in chain[:-1])
     return out
 
@@ -416,7 +470,7 @@ def level_graph(surfaces: Sequence[WalkSurface], options: LevelOptions | None = 
     steps = _step_links(surfaces, contacts, level_of, options.level_tol)
     ramps = _ramp_links(surfaces, contacts, level_of, options.level_tol)
     stairs = []
-    for chain in _stairs(steps, levels, options):
+    for chain, replaced in _stairs(steps, levels, options):
         treads = tuple(levels[k.upper].surfaces[0] for k in chain[:-1])
         depth = float(
             np.mean(
@@ -430,7 +484,7 @@ def level_graph(surfaces: Sequence[WalkSurface], options: LevelOptions | None = 
                 treads, chain[0].lower_edge, chain[-1].upper_edge,
             )
         )  # fmt: skip
-        steps = [k for k in steps if all(k is not c for c in chain)]
+        steps = [k for k in steps if all(k is not c for c in replaced)]
     notes = _ramp_notes(surfaces, contacts, level_of, options.level_tol, ramps)
     return LevelGraph(
         tuple(surfaces), tuple(levels), tuple(steps + ramps + stairs), tuple(level_of), notes

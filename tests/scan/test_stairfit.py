@@ -10,6 +10,7 @@ from mjwalk.scan.obstacles import FloorPlan
 from mjwalk.scan.planefit import RISER_TOL
 from mjwalk.scan.scanlevels import ScanLevel, seen_in_part
 from mjwalk.scan.stairfit import (
+    WRITE_MARGIN,
     axis_near,
     cell_centres,
     cell_span,
@@ -70,14 +71,18 @@ def test_helpers():
 def test_a_flight_at_the_step_rule_bound_is_not_refused_for_the_grid():
     """A pit's stair of hall 12's shape: three 0.146 m risers, treads 0.352 m deep (2 r + a =
     0.644 m, within the step rule). On the 2 cm grid its edges read 0.36 m apart, 2 r + a =
-    0.652 m: within the grid's slack (a cell over the one tread step), so it is a stair."""
+    0.652 m: within the grid's slack (a cell over the one tread step), so it is a stair, written
+    with its tread at the step rule's limit (less ``WRITE_MARGIN``) so the written scene's level
+    graph reads a stair too (generated halls 1031/1032: single steps when written at 2 r + a
+    over 0.65 m; this test asserted the 0.36 m tread before)."""
     floor = _level(0, "floor", 0.0, (0, 20))
     treads = [_level(k + 1, "tread", 0.146 * (k + 1), (20 + 18 * k, 37 + 18 * k)) for k in range(2)]
     deck = _level(3, "platform", 0.438, (56, 110))
     fit = fit_stair([0, 1, 2, 3], [floor, *treads, deck], _plan())
     assert fit is not None
-    assert fit["tread"] == pytest.approx(0.36, abs=1e-6)
-    assert 2 * fit["riser"] + fit["tread"] > STEP_RULE[1]
+    rule = 2 * fit["riser"] + fit["tread"]
+    assert rule == pytest.approx(STEP_RULE[1] - WRITE_MARGIN, abs=1e-9)
+    assert fit["tread"] == pytest.approx(0.65 - 0.292 - WRITE_MARGIN, abs=1e-9)
 
 
 def test_a_flight_beyond_the_grids_slack_is_refused():

@@ -224,3 +224,74 @@ def test_a_slab_a_hair_over_the_pit_plane_leaves_it_no_standing_room(tmp_path):
     )
     floor = wp.stations["floor_0"]
     assert level_at(wp, floor.xy, 0.0) == 0
+
+
+def test_a_top_tread_meeting_the_landing_in_two_stretches_is_still_a_stair():
+    """A flight of four 0.17 m risers whose landing is two boxes side by side (a pit's rim
+    written as several floor boxes, issue 47's scanned hall 1117): its top tread meets the
+    landing's level along two stretches of one riser, two step links. The flight is one stair
+    crossed at the longer stretch, and neither stretch stays a step (on the base tree the chain
+    stopped at two candidates: four steps, no stair)."""
+    treads = "".join(
+        f'<geom name="t{k}" type="box" size="0.14 0.7 {0.085 * k}" '
+        f'pos="{0.28 * k - 0.14} 0 {0.085 * k}"/>'
+        for k in (1, 2, 3)
+    )
+    landing = (  # split at y = -0.2: stretches of 0.5 m and 0.9 m along the top riser
+        '<geom name="deck_a" type="box" size="1 0.5 0.34" pos="1.84 -0.7 0.34"/>'
+        '<geom name="deck_b" type="box" size="1 0.8 0.34" pos="1.84 0.6 0.34"/>'
+    )
+    model = scene(treads + landing)
+    g = level_graph(find_walk_surfaces(model, None))
+    deck = level_named(g, "deck_a")
+    assert level_named(g, "deck_b") == deck
+    assert [(k.kind, k.lower, k.upper) for k in g.links] == [("stair", 0, deck)]
+    stair = g.links[0]
+    assert stair.risers == pytest.approx((0.17,) * 4, abs=1e-6)
+    assert stair.tread == pytest.approx(0.28, abs=1e-6)
+    (x0, y0), (x1, y1) = stair.upper_edge
+    assert x0 == pytest.approx(0.84, abs=0.03) and x1 == pytest.approx(0.84, abs=0.03)
+    assert abs(y1 - y0) == pytest.approx(0.9, abs=0.05)  # the longer stretch, deck_b's
+
+
+def test_a_tread_meeting_two_levels_in_line_stops_the_flight():
+    """The same flight with the landing's two boxes at heights 0.680 m and 0.6845 m (two
+    levels: 4.5 mm apart, over the 4 mm level tolerance, within the 5 mm stair tolerance): the
+    top riser's two stretches rise to different levels, so which the flight reaches is not
+    clear and the treads stay steps."""
+    treads = "".join(
+        f'<geom name="t{k}" type="box" size="0.14 0.7 {0.085 * k}" '
+        f'pos="{0.28 * k - 0.14} 0 {0.085 * k}"/>'
+        for k in (1, 2, 3)
+    )
+    landing = (
+        '<geom name="deck_a" type="box" size="1 0.5 0.34" pos="1.84 -0.7 0.34"/>'
+        '<geom name="deck_b" type="box" size="1 0.8 0.34225" pos="1.84 0.6 0.34225"/>'
+    )
+    model = scene(treads + landing)
+    g = level_graph(find_walk_surfaces(model, None))
+    assert level_named(g, "deck_a") != level_named(g, "deck_b")
+    assert {k.kind for k in g.links} == {"step"}
+
+
+def test_a_landing_box_a_centimetre_behind_the_top_riser_is_the_same_riser():
+    """The flight's landing as a tread-wide box flush with the top riser and a deck box whose
+    edge lies 1 cm behind it (within the 2 cm contact gap: touching), as the scan writes a deck
+    and its inferred top tread (issue 47's scanned hall 1038): both meet the top tread, one riser
+    of one level. The flight is one stair measured to the riser's front (tread 0.28 m), and no
+    step is left over it (the base tree gave four steps)."""
+    treads = "".join(
+        f'<geom name="t{k}" type="box" size="0.14 0.7 {0.085 * k}" '
+        f'pos="{0.28 * k - 0.14} 0 {0.085 * k}"/>'
+        for k in (1, 2, 3)
+    )
+    landing = (
+        '<geom name="top" type="box" size="0.14 0.7 0.34" pos="0.98 0 0.34"/>'
+        '<geom name="deck" type="box" size="1 1.2 0.34" pos="1.85 0 0.34"/>'
+    )
+    model = scene(treads + landing)
+    g = level_graph(find_walk_surfaces(model, None))
+    deck = level_named(g, "deck")
+    assert level_named(g, "top") == deck
+    assert [(k.kind, k.lower, k.upper) for k in g.links] == [("stair", 0, deck)]
+    assert g.links[0].tread == pytest.approx(0.28, abs=1e-6)
