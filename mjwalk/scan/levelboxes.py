@@ -115,6 +115,38 @@ def _chains(levels: list[ScanLevel], pairs: list[tuple[int, int]]) -> list[list[
     return out
 
 
+def square_to_flight(rect: np.ndarray, run: np.ndarray, res: float) -> np.ndarray:
+    """A flight's top level's rectangle (4, 2) turned about its centre onto the flight's axes
+    when the two differ by less than the floor plan can tell apart: the angle one cell subtends
+    over the rectangle's edge across the climb (``atan(res / edge)``). The level's rectangle is
+    the minimum-area one of its cells and those it joins (:func:`_rects`), the flight's axes
+    are its top level's own rectangle's (:func:`~mjwalk.scan.stairfit.fit_stair`): a landing
+    turned 0.14 deg from its flight put the riser's contact with the last tread 2 mm deeper
+    than the fitted tread, over DIN 18065's step rule, and the written flight read as single
+    steps (generated hall 1068 of ``benchmarks/bench_unseen.py``). A top turned further is a
+    level turned from its flight and is kept as it is.
+
+    Args:
+        rect: (4, 2) corners, metres.
+        run: the flight's unit climb direction.
+        res: the floor plan's cell edge, metres.
+
+    Returns:
+        (4, 2) corners, metres.
+    """
+    e = rect[1] - rect[0]
+    a = math.atan2(float(e[1]), float(e[0])) - math.atan2(float(run[1]), float(run[0]))
+    turn = (a + math.pi / 4) % (math.pi / 2) - math.pi / 4  # to the nearest of run's axes
+    edges = (rect[1] - rect[0], rect[3] - rect[0])
+    side = min(edges, key=lambda d: abs(float(d @ run)) / max(float(np.linalg.norm(d)), 1e-12))
+    width = float(np.linalg.norm(side))  # the edge across the climb, metres
+    if turn == 0.0 or abs(turn) >= math.atan2(res, max(width, res)):
+        return rect
+    c, s = math.cos(-turn), math.sin(-turn)
+    mid = rect.mean(axis=0)
+    return (rect - mid) @ np.array([[c, s], [-s, c]]) + mid
+
+
 def _snap_edge(rect: np.ndarray, run: np.ndarray, at: float) -> np.ndarray:
     """A rectangle (4, 2) whose edge facing ``-run`` (an axis of it) is moved to ``at`` along
     ``run``; its far edge stays."""
@@ -279,6 +311,7 @@ def scan_levels(levelled: np.ndarray, plan: FloorPlan) -> LevelPlan | None:
             rects[i], heights[i] = fit["rects"][k], fit["heights"][k]
         top = rects[chain[-1]]
         if top is not None:
+            top = square_to_flight(top, fit["run"], plan.resolution)
             rects[chain[-1]] = _snap_edge(top, fit["run"], fit["top_edge"])
     for r in ramps:  # a level's edge where a ramp's end meets it
         if (up := rects[r.upper]) is not None:

@@ -3,6 +3,7 @@ and the written scene's own level graph agrees (issue 47)."""
 
 from __future__ import annotations
 
+import math
 import re
 
 import mujoco
@@ -12,7 +13,7 @@ from test_scanlevels import LEVELS_XML, SCANNERS
 
 from mjwalk.scan import build_scene
 from mjwalk.scan.level import find_floor
-from mjwalk.scan.levelboxes import band_top, describe, scan_levels
+from mjwalk.scan.levelboxes import band_top, describe, scan_levels, square_to_flight
 from mjwalk.scan.obstacles import TOP_STEP, floor_plan
 from mjwalk.scan.raycast import synthetic_scan
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
@@ -177,3 +178,28 @@ def test_an_obstacle_part_without_band_points_gets_the_lowest_bin():
     assert band_top(np.float32(-np.inf), 0.0) == pytest.approx(OBSTACLE_Z_RANGE[0] + TOP_STEP)
     assert band_top(np.float32(-np.inf), 0.3) == pytest.approx(0.3 + OBSTACLE_Z_RANGE[0] + TOP_STEP)
     assert band_top(np.float32(0.51), 0.0) > 0.5
+
+
+def test_a_landing_turned_less_than_a_cell_over_its_width_is_squared_to_its_flight():
+    """A flight's top level's rectangle turned 0.14 deg from the flight (generated hall 1068:
+    its written last tread read 2 mm deep, over the step rule) is turned onto the flight's
+    axes about its centre; one turned 5 deg (more than a 2 cm cell subtends over its 1.4 m
+    edge, 0.82 deg) is a level turned from its flight and kept."""
+    run = np.array([math.cos(0.3), math.sin(0.3)])
+    side = np.array([-run[1], run[0]])
+
+    def rect(turn_deg: float) -> np.ndarray:
+        c, s = math.cos(math.radians(turn_deg)), math.sin(math.radians(turn_deg))
+        u, v = c * run + s * side, -s * run + c * side
+        mid = np.array([2.0, 1.0])
+        return np.array(
+            [mid + a * 0.7 * u + b * 0.7 * v for a, b in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
+        )
+
+    squared = square_to_flight(rect(0.14), run, 0.02)
+    e = squared[1] - squared[0]
+    assert abs(float(e @ side)) == pytest.approx(0.0, abs=1e-9)  # an edge along the run
+    assert squared.mean(axis=0) == pytest.approx([2.0, 1.0], abs=1e-9)
+    assert np.linalg.norm(e) == pytest.approx(1.4, abs=1e-9)
+    kept = rect(5.0)
+    assert np.array_equal(square_to_flight(kept, run, 0.02), kept)
