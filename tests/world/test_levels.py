@@ -242,13 +242,11 @@ def test_a_top_tread_meeting_the_landing_in_two_stretches_is_still_a_stair():
     landing's level along two stretches of one riser, two step links. The flight is one stair
     crossed at the longer stretch, and neither stretch stays a step (on the base tree the chain
     stopped at two candidates: four steps, no stair)."""
-    treads = three_treads()
     landing = (  # split at y = -0.2: stretches of 0.5 m and 0.9 m along the top riser
         '<geom name="deck_a" type="box" size="1 0.5 0.34" pos="1.84 -0.7 0.34"/>'
         '<geom name="deck_b" type="box" size="1 0.8 0.34" pos="1.84 0.6 0.34"/>'
     )
-    model = scene(treads + landing)
-    g = level_graph(find_walk_surfaces(model, None))
+    g = level_graph(find_walk_surfaces(scene(three_treads() + landing), None))
     deck = level_named(g, "deck_a")
     assert level_named(g, "deck_b") == deck
     assert [(k.kind, k.lower, k.upper) for k in g.links] == [("stair", 0, deck)]
@@ -265,13 +263,11 @@ def test_a_tread_meeting_two_levels_in_line_stops_the_flight():
     levels: 4.5 mm apart, over the 4 mm level tolerance, within the 5 mm stair tolerance): the
     top riser's two stretches rise to different levels, so which the flight reaches is not
     clear and the treads stay steps."""
-    treads = three_treads()
     landing = (
         '<geom name="deck_a" type="box" size="1 0.5 0.34" pos="1.84 -0.7 0.34"/>'
         '<geom name="deck_b" type="box" size="1 0.8 0.34225" pos="1.84 0.6 0.34225"/>'
     )
-    model = scene(treads + landing)
-    g = level_graph(find_walk_surfaces(model, None))
+    g = level_graph(find_walk_surfaces(scene(three_treads() + landing), None))
     assert level_named(g, "deck_a") != level_named(g, "deck_b")
     assert {k.kind for k in g.links} == {"step"}
 
@@ -282,13 +278,11 @@ def test_a_landing_box_a_centimetre_behind_the_top_riser_is_the_same_riser():
     and its inferred top tread (issue 47's scanned hall 1038): both meet the top tread, one riser
     of one level. The flight is one stair measured to the riser's front (tread 0.28 m), and no
     step is left over it (the base tree gave four steps)."""
-    treads = three_treads()
     landing = (
         '<geom name="top" type="box" size="0.14 0.7 0.34" pos="0.98 0 0.34"/>'
         '<geom name="deck" type="box" size="1 1.2 0.34" pos="1.85 0 0.34"/>'
     )
-    model = scene(treads + landing)
-    g = level_graph(find_walk_surfaces(model, None))
+    g = level_graph(find_walk_surfaces(scene(three_treads() + landing), None))
     deck = level_named(g, "deck")
     assert level_named(g, "top") == deck
     assert [(k.kind, k.lower, k.upper) for k in g.links] == [("stair", 0, deck)]
