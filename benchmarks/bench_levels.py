@@ -220,13 +220,16 @@ import xml.etree.ElementTree as ET
 from collections import Counter
 from pathlib import Path
 
+import mujoco
 import numpy as np
 
+from mjwalk.body.humanoid import attach_humanoid
 from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.analysis import swing_hip_peaks
 from mjwalk.body.legs.edgeswing import STAIR_TOE_CLEARANCE
 from mjwalk.body.legs.legheights import HIP_PEAK_DOWN, HIP_PEAK_UP, KNEE_PEAK_DOWN, KNEE_PEAK_UP
 from mjwalk.cycle.population import Population, preset_group
+from mjwalk.ergonomics.angles import angles_from_qpos
 from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.gait.slope import slope_gait
@@ -247,6 +250,7 @@ from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.synthetic import synthetic_stair_walk
 from mjwalk.plan.walks import plan_walk
+from mjwalk.timeline.frames import frames_from_legs
 from mjwalk.world import load_workplace
 from mjwalk.world.footprint import clear_memos
 from mjwalk.world.levelview import level_view
@@ -312,6 +316,19 @@ def stair_table(draws: int, seed: int) -> None:
             )
 
 
+_PLANE = '<mujoco><worldbody><geom name="floor" type="plane" size="50 50 .1"/></worldbody></mujoco>'
+
+
+def trunk_flexion(motion, stature: float, a: int, b: int) -> float:
+    """Mean trunk flexion, degrees (the ergonomic methods' hip-to-C7 axis from the vertical in
+    the pelvis's sagittal plane, forward +: mjwalk.ergonomics.angles), over every 4th sample
+    of ``a:b`` of ``motion`` played by the timeline with swinging arms (frames_from_legs)."""
+    model, jm = attach_humanoid(mujoco.MjSpec.from_string(_PLANE), stature)
+    t = motion.t[a:b:4]
+    q = frames_from_legs(model, jm, motion, t, stature, "swing", None)
+    return float(angles_from_qpos(model, jm, q).trunk_flexion.mean())
+
+
 def body_table(draws: int, seed: int) -> None:
     """Print the legs on the stair per preset: the group's mean walker (mean stature, mean
     step time) played up and down the stair (synthetic_stair_walk, legs_from_walk); knee and
@@ -327,11 +344,13 @@ def body_table(draws: int, seed: int) -> None:
         "hip: the thigh relative to the pelvis, as published hip flexion (the pelvis tilted "
         "backward 2.6 deg up a stair, Bohannon & Smutnick 2010: mjwalk.body.legs.pelvistilt; "
         "upright down it); hip IC: the swing hip as its foot lands; at: the peak's share of "
-        "the swing (inner steps, mean)"
+        "the swing (inner steps, mean); trunk: trunk flexion (hip to C7 from the vertical), "
+        "inner steps' mean, the timeline's pose (up a stair leaned 12.4 deg in the spine: "
+        "mjwalk.body.legs.trunklean)"
     )
     head = (
         f"{'group':12} {'dir':4} {'stature m':10} {'knee deg':9} {'hip deg':8} {'hip IC':7} "
-        f"{'at':5} {'clear cm':9} norm"
+        f"{'at':5} {'clear cm':9} {'trunk':6} norm"
     )
     print(head)
     print("-" * len(head))
@@ -354,7 +373,8 @@ def body_table(draws: int, seed: int) -> None:
             print(
                 f"{group:12} {d:4} {stature:<10.3f} {knee:<9.1f} {hip:<8.1f} "
                 f"{swings[:, 1].mean():<7.1f} {swings[:, 2].mean():<5.2f} "
-                f"{100 * motion.meta['edge_clearance']:<9.1f} knee {kn[0]:.0f}-{kn[1]:.0f}, "
+                f"{100 * motion.meta['edge_clearance']:<9.1f} "
+                f"{trunk_flexion(motion, stature, a, b):<6.1f} knee {kn[0]:.0f}-{kn[1]:.0f}, "
                 f"hip {hp[0]:.0f}-{hp[1]:.0f} deg, clearance >= "
                 f"{100 * least:.1f} cm"
             )

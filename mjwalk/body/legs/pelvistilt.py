@@ -10,7 +10,8 @@ pelvis by it about the line through the hip joint centres (the humanoid's hips s
 pelvis body's y axis, so the hips, thighs, shanks and feet keep their world poses) and solves
 each hip's rotation, flexion and abduction again in the tilted pelvis. The timeline flexes the
 lumbar joint by as much (:func:`mjwalk.timeline.frames.timeline_from_walk`), so the trunk keeps
-its pose over the tilted pelvis.
+its pose over the tilted pelvis; the trunk's forward lean up a stair is the spine's, timed by
+the same :func:`ascent_share` (:mod:`mjwalk.body.legs.trunklean`).
 
 World frame: metres, seconds, radians, z up, yaw from +x CCW; tilt + = the pelvis's top forward
 (about the pelvis's +y axis), - = backward (posterior).
