@@ -460,8 +460,8 @@ def frames_from_legs(
         angles["lumbar_flex"] = lumbar - np.interp(t, legs.t, tilt)
     lean = legs.meta.get("trunk_lean")  # a stair ascent's forward trunk lean (trunklean)
     if lean is not None:
-        spine = [angles.get(j, qpos[:, jm.qposadr[jm.index(j)]]) for j in TRUNK_JOINTS]
-        bent = lean_spine(*spine, np.interp(t, legs.t, lean))
+        lumbar, thoracic = (angles.get(j, qpos[:, jm.qposadr[jm.index(j)]]) for j in TRUNK_JOINTS)
+        bent = lean_spine(lumbar, thoracic, np.interp(t, legs.t, lean))
         angles.update(zip(TRUNK_JOINTS, bent, strict=True))
     if angles:  # every angle clipped to its range at once (the same clip as one by one)
         idx = np.array([jm.index(name) for name in angles], dtype=np.intp)
