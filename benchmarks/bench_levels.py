@@ -51,6 +51,15 @@ lumbar joint takes it back in the timeline (the trunk keeps its pose): up, hip 5
 52.4-53.8 deg, hip IC 47.4-48.5 -> 42.2-43.3 (cited 55-75: now under it); knee, clearance, ``at``
 and every descent and gait figure unchanged.
 
+Branch trunk47 (``--draws 50 --walks 0``, base 2a82a27 run right before with this script): up
+a stair the trunk leans forward 12.4 deg in the spine (controls' mean anterior trunk tilt 13.7
+deg ascending a 17 cm stair against 1.3 deg walking level, Int J Phys Med Rehabil 2:231 (2014),
+Table 3: mjwalk.body.legs.trunklean); the new ``trunk`` column (trunk flexion, hip joint centre
+to C7 from the vertical, as the ergonomic methods read it) goes up -0.4 -> 7.9 deg in every
+group (the thorax itself leans 12.4 deg; the hip-to-C7 line also runs through the pelvis,
+tilted 2.6 deg backward, and the lumbar segment, flexed by 57 % of the lean), down 0.0 -> 0.0;
+knee, hip, hip IC, at and clearance unchanged (the lean is the spine's, not the pelvis's).
+
 Planning cost measured (``--draws 10 --walks 10``, 2-core machine at load average 1.3, three
 runs, branch i47-levelcost): median ms level walk / open-floor walk of the same length / the
 route's level legs planned alone as flat walks: step 1.6-1.8 / 2.6-2.7 / 2.4-2.6 (ratio to flat
