@@ -51,6 +51,15 @@ lumbar joint takes it back in the timeline (the trunk keeps its pose): up, hip 5
 52.4-53.8 deg, hip IC 47.4-48.5 -> 42.2-43.3 (cited 55-75: now under it); knee, clearance, ``at``
 and every descent and gait figure unchanged.
 
+Branch trunk47 (``--draws 50 --walks 0``, base 2a82a27 run right before with this script): up
+a stair the trunk leans forward 12.4 deg in the spine (controls' mean anterior trunk tilt 13.7
+deg ascending a 17 cm stair against 1.3 deg walking level, Int J Phys Med Rehabil 2:231 (2014),
+Table 3: mjwalk.body.legs.trunklean); the new ``trunk`` column (trunk flexion, hip joint centre
+to C7 from the vertical, as the ergonomic methods read it) goes up -0.4 -> 7.9 deg in every
+group (the thorax itself leans 12.4 deg; the hip-to-C7 line also runs through the pelvis,
+tilted 2.6 deg backward, and the lumbar segment, flexed by 57 % of the lean), down 0.0 -> 0.0;
+knee, hip, hip IC, at and clearance unchanged (the lean is the spine's, not the pelvis's).
+
 Planning cost measured (``--draws 10 --walks 10``, 2-core machine at load average 1.3, three
 runs, branch i47-levelcost): median ms level walk / open-floor walk of the same length / the
 route's level legs planned alone as flat walks: step 1.6-1.8 / 2.6-2.7 / 2.4-2.6 (ratio to flat
@@ -220,13 +229,16 @@ import xml.etree.ElementTree as ET
 from collections import Counter
 from pathlib import Path
 
+import mujoco
 import numpy as np
 
+from mjwalk.body.humanoid import attach_humanoid
 from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.analysis import swing_hip_peaks
 from mjwalk.body.legs.edgeswing import STAIR_TOE_CLEARANCE
 from mjwalk.body.legs.legheights import HIP_PEAK_DOWN, HIP_PEAK_UP, KNEE_PEAK_DOWN, KNEE_PEAK_UP
 from mjwalk.cycle.population import Population, preset_group
+from mjwalk.ergonomics.angles import angles_from_qpos
 from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.gait.slope import slope_gait
@@ -247,6 +259,7 @@ from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.synthetic import synthetic_stair_walk
 from mjwalk.plan.walks import plan_walk
+from mjwalk.timeline.frames import frames_from_legs
 from mjwalk.world import load_workplace
 from mjwalk.world.footprint import clear_memos
 from mjwalk.world.levelview import level_view
@@ -312,6 +325,19 @@ def stair_table(draws: int, seed: int) -> None:
             )
 
 
+_PLANE = '<mujoco><worldbody><geom name="floor" type="plane" size="50 50 .1"/></worldbody></mujoco>'
+
+
+def trunk_flexion(motion, stature: float, a: int, b: int) -> float:
+    """Mean trunk flexion, degrees (the ergonomic methods' hip-to-C7 axis from the vertical in
+    the pelvis's sagittal plane, forward +: mjwalk.ergonomics.angles), over every 4th sample
+    of ``a:b`` of ``motion`` played by the timeline with swinging arms (frames_from_legs)."""
+    model, jm = attach_humanoid(mujoco.MjSpec.from_string(_PLANE), stature)
+    t = motion.t[a:b:4]
+    q = frames_from_legs(model, jm, motion, t, stature, "swing", None)
+    return float(angles_from_qpos(model, jm, q).trunk_flexion.mean())
+
+
 def body_table(draws: int, seed: int) -> None:
     """Print the legs on the stair per preset: the group's mean walker (mean stature, mean
     step time) played up and down the stair (synthetic_stair_walk, legs_from_walk); knee and
@@ -327,11 +353,13 @@ def body_table(draws: int, seed: int) -> None:
         "hip: the thigh relative to the pelvis, as published hip flexion (the pelvis tilted "
         "backward 2.6 deg up a stair, Bohannon & Smutnick 2010: mjwalk.body.legs.pelvistilt; "
         "upright down it); hip IC: the swing hip as its foot lands; at: the peak's share of "
-        "the swing (inner steps, mean)"
+        "the swing (inner steps, mean); trunk: trunk flexion (hip to C7 from the vertical), "
+        "inner steps' mean, the timeline's pose (up a stair leaned 12.4 deg in the spine: "
+        "mjwalk.body.legs.trunklean)"
     )
     head = (
         f"{'group':12} {'dir':4} {'stature m':10} {'knee deg':9} {'hip deg':8} {'hip IC':7} "
-        f"{'at':5} {'clear cm':9} norm"
+        f"{'at':5} {'clear cm':9} {'trunk':6} norm"
     )
     print(head)
     print("-" * len(head))
@@ -354,7 +382,8 @@ def body_table(draws: int, seed: int) -> None:
             print(
                 f"{group:12} {d:4} {stature:<10.3f} {knee:<9.1f} {hip:<8.1f} "
                 f"{swings[:, 1].mean():<7.1f} {swings[:, 2].mean():<5.2f} "
-                f"{100 * motion.meta['edge_clearance']:<9.1f} knee {kn[0]:.0f}-{kn[1]:.0f}, "
+                f"{100 * motion.meta['edge_clearance']:<9.1f} "
+                f"{trunk_flexion(motion, stature, a, b):<6.1f} knee {kn[0]:.0f}-{kn[1]:.0f}, "
                 f"hip {hp[0]:.0f}-{hp[1]:.0f} deg, clearance >= "
                 f"{100 * least:.1f} cm"
             )

@@ -23,6 +23,7 @@ from mjwalk.body.humanoid import JointMap, attach_humanoid, shoulder_geometry
 from mjwalk.body.legs import LegMotion, legs_from_walk
 from mjwalk.body.legs.curves import smoothstep
 from mjwalk.body.legs.pelvistilt import pelvis_quat
+from mjwalk.body.legs.trunklean import lean_spine
 from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.errors import MjwalkError
 from mjwalk.plan.lowtops import with_low_tops
@@ -157,6 +158,8 @@ CARRY_POSE = {"shoulder_flex": -0.15, "shoulder_abd": 0.12, "elbow": 1.83}
 TUCK_PRONATION = np.deg2rad(45.0)
 #: Clearance (m) kept between the shoulders and the nearest obstacle by turning the trunk.
 SHOULDER_MARGIN = 0.01
+#: The spine's flexion joints a stair ascent's trunk lean bends (:func:`lean_spine`'s order).
+TRUNK_JOINTS = ("lumbar_flex", "thoracic_flex")
 #: Largest trunk rotation against the pelvis (radians): lumbar (5 deg range) plus thoracic.
 TRUNK_TURN = np.deg2rad(38.0)
 #: Seconds over which the trunk rotation is smoothed (a centred moving average).
@@ -414,7 +417,9 @@ def frames_from_legs(
     """The humanoid's poses at times ``t``: root and legs interpolated from ``legs``, arms and
     torso by ``arms``, every angle clipped to its joint range. Up a stair the pelvis is tilted
     by ``legs.meta["pelvis_tilt"]`` (radians, + forward; :mod:`mjwalk.body.legs.pelvistilt`)
-    and the lumbar joint flexed by as much the other way, so the trunk keeps its pose.
+    and the lumbar joint flexed by as much the other way, so the trunk keeps its pose; then
+    the lumbar and thoracic joints flex by ``legs.meta["trunk_lean"]`` (radians, + forward;
+    :mod:`mjwalk.body.legs.trunklean`), so the trunk leans forward by it.
 
     Args:
         model: the compiled scene with the humanoid.
@@ -453,6 +458,11 @@ def frames_from_legs(
     if tilt is not None:  # the lumbar joint takes the pelvis's tilt back (the trunk kept)
         lumbar = angles.get("lumbar_flex", qpos[:, jm.qposadr[jm.index("lumbar_flex")]])
         angles["lumbar_flex"] = lumbar - np.interp(t, legs.t, tilt)
+    lean = legs.meta.get("trunk_lean")  # a stair ascent's forward trunk lean (trunklean)
+    if lean is not None:
+        lumbar, thoracic = (angles.get(j, qpos[:, jm.qposadr[jm.index(j)]]) for j in TRUNK_JOINTS)
+        bent = lean_spine(lumbar, thoracic, np.interp(t, legs.t, lean))
+        angles.update(zip(TRUNK_JOINTS, bent, strict=True))
     if angles:  # every angle clipped to its range at once (the same clip as one by one)
         idx = np.array([jm.index(name) for name in angles], dtype=np.intp)
         lo, hi = jm.range[idx, 0], jm.range[idx, 1]

@@ -10,7 +10,8 @@ pelvis by it about the line through the hip joint centres (the humanoid's hips s
 pelvis body's y axis, so the hips, thighs, shanks and feet keep their world poses) and solves
 each hip's rotation, flexion and abduction again in the tilted pelvis. The timeline flexes the
 lumbar joint by as much (:func:`mjwalk.timeline.frames.timeline_from_walk`), so the trunk keeps
-its pose over the tilted pelvis.
+its pose over the tilted pelvis; the trunk's forward lean up a stair is the spine's, timed by
+the same :func:`ascent_share` (:mod:`mjwalk.body.legs.trunklean`).
 
 World frame: metres, seconds, radians, z up, yaw from +x CCW; tilt + = the pelvis's top forward
 (about the pelvis's +y axis), - = backward (posterior).
@@ -51,22 +52,22 @@ STAIR_ASCENT_PELVIC_TILT = -math.radians(2.6)
 ASCENT_MIN_RISE = MIN_RISER - 0.01
 
 
-def ascent_tilt(walk, n: int, tilt: float = STAIR_ASCENT_PELVIC_TILT) -> np.ndarray:
-    """The pelvis's tilt at every sample of a walk: ``tilt`` over each run of ascending
-    steps (a step whose landing surface lies at least :data:`ASCENT_MIN_RISE` above its stance
-    surface), eased in over the run's first step and out over the step after its last (the
-    trailing foot's step off the last tread; over the run's last step if the walk ends there),
-    zero elsewhere.
+def ascent_share(walk, n: int) -> np.ndarray:
+    """The share (0 to 1) of a held stair-ascent posture at every sample of a walk: 1 over
+    each run of ascending steps (a step whose landing surface lies at least
+    :data:`ASCENT_MIN_RISE` above its stance surface), eased in over the run's first step and
+    out over the step after its last (the trailing foot's step off the last tread; over the
+    run's last step if the walk ends there), 0 elsewhere. The pelvic tilt
+    (:func:`ascent_tilt`) and the trunk's lean (:mod:`mjwalk.body.legs.trunklean`) follow it.
 
     Args:
         walk: a :class:`~mjwalk.plan.walkpath.WalkPath` (its steps' ``foot_z``/``stance_z``).
         n: the number of samples.
-        tilt: the held tilt, radians.
 
     Returns:
-        (n,) tilt, radians (+ forward, - backward).
+        (n,) the share, 0 to 1.
     """
-    w = np.zeros(n)  # the share of the held tilt, 0 to 1
+    w = np.zeros(n)
     steps = walk.steps
     up = [s.foot_z - s.stance_z >= ASCENT_MIN_RISE for s in steps]
     k = 0
@@ -90,7 +91,22 @@ def ascent_tilt(walk, n: int, tilt: float = STAIR_ASCENT_PELVIC_TILT) -> np.ndar
             ramp_out = 1.0 - smoothstep((idx - c) / max(b - c, 1))
             w[idx] = np.minimum(ramp_in, ramp_out)
         k = k1 + 1
-    return tilt * w
+    return w
+
+
+def ascent_tilt(walk, n: int, tilt: float = STAIR_ASCENT_PELVIC_TILT) -> np.ndarray:
+    """The pelvis's tilt at every sample of a walk: ``tilt`` times :func:`ascent_share` (held
+    over each run of ascending steps, eased in and out at its ends), zero elsewhere.
+
+    Args:
+        walk: a :class:`~mjwalk.plan.walkpath.WalkPath` (its steps' ``foot_z``/``stance_z``).
+        n: the number of samples.
+        tilt: the held tilt, radians.
+
+    Returns:
+        (n,) tilt, radians (+ forward, - backward).
+    """
+    return tilt * ascent_share(walk, n)
 
 
 def thigh_rotation(side: str, rot, flex, abd) -> np.ndarray:

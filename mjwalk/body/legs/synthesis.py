@@ -75,6 +75,7 @@ from mjwalk.body.legs.steps import (
 )
 from mjwalk.body.legs.swing import swing_foot as swing_foot_compiled
 from mjwalk.body.legs.synthloop import SynthTracks, loop_consts, synth_steps
+from mjwalk.body.legs.trunklean import ascent_lean
 from mjwalk.boundedmemo import Memo
 from mjwalk.conventions import DEFAULT_STATURE, side_of_prefix
 from mjwalk.errors import PlanningError
@@ -143,7 +144,9 @@ class LegMotion:
         meta: the stature, the reference's source, ``pelvis_lowering`` ((N,) metres: how far
             the pelvis stands below its gait's height over the stance surface, at most
             :data:`~mjwalk.body.legs.stance.REACH_DROP_MAX`) and, for a walk lifted onto
-            levels, ``edge_clearance`` (metres).
+            levels, ``edge_clearance`` (metres); up a stair ``pelvis_tilt`` and
+            ``trunk_lean`` ((N,) radians, + forward: :mod:`~mjwalk.body.legs.pelvistilt`,
+            :mod:`~mjwalk.body.legs.trunklean`).
     """
 
     t: np.ndarray
@@ -223,6 +226,9 @@ def legs_from_walk(
         tilt = ascent_tilt(walk, n)  # the pelvis forward on a stair up, the legs kept
         if tilt.any():
             angles, meta["pelvis_tilt"] = tilt_pelvis(angles, tilt), tilt
+        lean = ascent_lean(walk, n)  # the trunk forward, in the spine (the timeline)
+        if lean.any():
+            meta["trunk_lean"] = lean
     else:
         bound_lowering(lowered, root)  # or raises
     return LegMotion(
