@@ -15,8 +15,13 @@ On the levels before and after the stair the foot stands off the first and last 
 their normals, its toes (heel) at least :data:`mjwalk.plan.levelcross.RISER_GAP` from the
 riser. A step that climbs or descends a riser takes the stair gait's step time
 (:func:`mjwalk.gait.stairs.stair_gait`, the stair's highest riser and mean walk-line tread, as
-for straight flights); a level step the walker's level step time. Metres, seconds, radians, world
-frame, z up, yaw from +x.
+for straight flights); a level step the walker's level step time.
+
+Not yet taken by the level route (:func:`mjwalk.plan.levelsearch.level_route` still refuses a
+walk over a winder, naming it, :func:`mjwalk.plan.turnsteps.turning_steps`): the route, the
+level planner's line-up and stitching, and the legs' swing over a nosing that is not square to
+the step (:mod:`mjwalk.body.legs.edgeswing` measures edges along the step's chord) are to come.
+Metres, seconds, radians, world frame, z up, yaw from +x.
 """
 
 from __future__ import annotations
@@ -33,6 +38,7 @@ from mjwalk.gait.stairs import MIN_TREAD, StairGeometry, stair_gait
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.footfallwalk import footfall_walk
 from mjwalk.plan.levelcross import DEFAULT_STEP_WIDTH, RISER_GAP
+from mjwalk.plan.turnsplit import WALKING_TURN_MAX
 from mjwalk.plan.turnsteps import turned_chains
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.footprint import Footprint
@@ -245,7 +251,7 @@ class WinderFootfalls:
     Attributes:
         centre: (k, 2) each sole's centre, world xy, metres.
         ankle: (k, 2) the point under each ankle, world xy, metres.
-        yaw: (k,) each foot's heading, radians.
+        yaw: (k,) each foot's heading, radians, unwrapped (each within pi of the one before).
         z: (k,) world heights of the surfaces under them, metres.
         times: (k,) each step's duration, seconds.
         tread: (k,) the tread each stands on (index bottom up), -1 on a level.
@@ -278,7 +284,9 @@ def winder_footfalls(
         The footfalls.
 
     Raises:
-        PlanningError: ``direction`` is neither, or a tread has no place for the foot.
+        PlanningError: ``direction`` is neither, a tread has no place for the foot, or a step
+            turns the walker more than :data:`mjwalk.plan.turnsplit.WALKING_TURN_MAX` (60 deg,
+            Patla et al. 1991).
     """
     if direction not in ("up", "down"):
         raise PlanningError(f"winder walk direction {direction!r} must be 'up' or 'down'")
@@ -288,8 +296,8 @@ def winder_footfalls(
     stance = max(c.clear, off)
     m0, m1 = c.nosings[0].mean(axis=0), c.nosings[-1].mean(axis=0)
     n0, n1 = c.normal(0), c.normal(-1)
-    run = max(1, math.ceil((stance - off) / walker.step_length - 1e-9))
-    beyond = off + (stance - off) * np.arange(1, run + 1) / run
+    run = math.ceil((stance - off) / walker.step_length - 1e-9)  # level steps to the stance
+    beyond = off + (stance - off) * np.arange(1, run + 1) / max(run, 1)
     n = len(c.treads)
     if direction == "up":
         order, sign = list(range(n)), 1.0
@@ -316,12 +324,17 @@ def winder_footfalls(
         yaw.append(math.atan2(nl[1], nl[0]))
         z.append(float(zl))
         tread.append(-1)
-    centre_a, yaw_a, z_a = np.array(centre), np.array(yaw), np.array(z)
+    centre_a, yaw_a, z_a = np.array(centre), np.unwrap(np.array(yaw)), np.array(z)
+    turn = float(np.max(np.abs(np.diff(yaw_a))))
+    if turn > WALKING_TURN_MAX + 1e-9:
+        raise PlanningError(
+            f"winder walk turns {math.degrees(turn):.0f} deg in one step, more than "
+            f"{math.degrees(WALKING_TURN_MAX):.0f} deg (a walking direction change within a step)"
+        )
     h = np.stack([np.cos(yaw_a), np.sin(yaw_a)], axis=1)
     ankle = centre_a - 0.5 * (g.foot_front - g.foot_back) * h
-    climb = stair_gait(
-        walker, StairGeometry(max(c.risers), max(c.tread, MIN_TREAD)), direction
-    ).step_time
+    geometry = StairGeometry(max(c.risers), max(c.tread, MIN_TREAD))
+    climb = stair_gait(walker, geometry, "up" if direction == "up" else "down").step_time
     before = np.concatenate([[c.z[0] if direction == "up" else c.z[-1]], z_a[:-1]])
     times = np.where(np.abs(z_a - before) > 1e-6, climb, walker.step_duration)
     return WinderFootfalls(centre_a, ankle, yaw_a, z_a, times, np.array(tread))
@@ -347,9 +360,9 @@ def winder_walk(
     step_width: float | None = None,
 ) -> WalkPath:  # fmt: skip
     """The walk over a winder from standing at its stance, the feet side by side facing the
-    first footfall's heading, to standing at the other end's (:func:`winder_footfalls`): the
-    120 Hz pelvis path between the feet (:func:`mjwalk.plan.footfallwalk.footfall_walk`), its
-    heading turning with each step's.
+    first footfall's heading, their soles centred on it (as every footfall's), to standing at
+    the other end's (:func:`winder_footfalls`): the 120 Hz pelvis path between the feet
+    (:func:`mjwalk.plan.footfallwalk.footfall_walk`), its heading turning with each step's.
 
     Args:
         c: the winder.
@@ -365,9 +378,12 @@ def winder_walk(
     width = step_width or walker.step_width or DEFAULT_STEP_WIDTH
     f = winder_footfalls(c, direction, walker, width)
     level = c.lower if direction == "up" else c.upper
-    xy0, yaw0 = c.end(level), float(f.yaw[0])
+    yaw0 = float(f.yaw[0])
+    g = leg_geometry(walker.stature)
+    ahead = np.array([math.cos(yaw0), math.sin(yaw0)])
+    xy0 = c.end(level) - 0.5 * (g.foot_front - g.foot_back) * ahead  # the soles on the stance
     z0 = float(c.z[0] if direction == "up" else c.z[-1])
-    left = np.array([-math.sin(yaw0), math.cos(yaw0)])
+    left = np.array([-ahead[1], ahead[0]])
     feet = {
         name: (np.array([*(xy0 + sign * 0.5 * width * left), yaw0]), z0)
         for name, sign in (("left", 1.0), ("right", -1.0))
