@@ -271,7 +271,9 @@ def winder_footfalls(
     c: WinderCrossing, direction: str, walker: Walker, step_width: float | None = None
 ) -> WinderFootfalls:
     """The footfalls of a walk up or down a winder from standing at one end's stance to
-    standing at the other's (module docstring); the left foot swings first.
+    standing at the other's (module docstring); the left foot swings first (the right where
+    the stance is the first footfall: the walker stands there already, its first step is
+    onto the stair).
 
     Args:
         c: the winder.
@@ -337,7 +339,11 @@ def winder_footfalls(
     climb = stair_gait(walker, geometry, "up" if direction == "up" else "down").step_time
     before = np.concatenate([[c.z[0] if direction == "up" else c.z[-1]], z_a[:-1]])
     times = np.where(np.abs(z_a - before) > 1e-6, climb, walker.step_duration)
-    return WinderFootfalls(centre_a, ankle, yaw_a, z_a, times, np.array(tread))
+    at = 0 if stance > off + 1e-9 else 1  # standing at the first footfall: no step to it
+    return WinderFootfalls(
+        centre_a[at:], ankle[at:], yaw_a[at:], z_a[at:], times[at:], np.array(tread)[at:],
+        "left" if at == 0 else "right",
+    )  # fmt: skip
 
 
 def winder_time(c: WinderCrossing, direction: str, walker: Walker) -> float:
