@@ -39,17 +39,33 @@ def turning_steps(graph: LevelGraph, clear: float) -> list[str]:
         joins only if it turns, naming the treads where it turns and its walk-line figures;
         empty when there is none.
     """
+    return [
+        f"the steps from L{lo} to L{up} " + _verdict(graph, chain)
+        for (lo, up), chain in sorted(turned_chains(graph, clear).items())
+    ]
+
+
+def turned_chains(graph: LevelGraph, clear: float) -> dict[tuple[int, int], list[LevelLink]]:
+    """Per pair of walked levels joined only by steps that turn, the chain of steps between
+    them that DIN 18065 faults least on its walk line (a side step onto the first tread is no
+    stair's way).
+
+    Args:
+        graph: the scene's levels and links.
+        clear: how far from a level's edge the walker stands, metres.
+
+    Returns:
+        {(lower, upper): the chain's step links bottom up}; empty when there is none.
+    """
     straight, turned = _chains(graph, clear)
-    out = []
-    for (lo, up), chains in sorted(turned.items()):
-        if (lo, up) in straight:
+    out = {}
+    for ends, chains in sorted(turned.items()):
+        if ends in straight:
             continue
-        # the chain DIN 18065 faults least: a side step onto the first tread is no stair's way
         scored = [
             (len(walk_line_faults(walk_line_treads(graph, c))), i) for i, c in enumerate(chains)
         ]
-        chain = chains[min(scored)[1]]
-        out.append(f"the steps from L{lo} to L{up} " + _verdict(graph, chain))
+        out[ends] = chains[min(scored)[1]]
     return out
 
 

@@ -50,6 +50,12 @@ MIN_STAIR_RISERS = 3
 #: (https://treppenbau-voss.de/n%C3%BCtzliches/treppen-abc/gewendelt), and must meet
 #: :data:`MIN_TREAD`-:data:`MAX_TREAD` and :data:`STEP_RULE` there (:mod:`mjwalk.world.walkline`).
 WINDER_MIN_NARROW_TREAD = 0.10
+#: Width of a turning stair's walk zone ("Gehbereich") as a share of its usable width: the
+#: middle 2/10 for usable widths up to 1 m (DIN 18065:2020, as summarised at
+#: https://treppenakademie.de/wissensdatenbank/lauflinie-bei-treppen/; the standard itself not
+#: verifiable here). People walk a winder within it; a foot that does not fit its tread on the
+#: walk line is placed elsewhere in it (:mod:`mjwalk.plan.windercross`).
+WALK_ZONE_SHARE = 0.2
 
 #: Room people leave between their body and the side of a stair (a wall or the side of the
 #: treads), metres: the boundary layer of Pauls' effective-width model, 0.15 m for "stairways,

@@ -3,6 +3,7 @@ refused (issue 47)."""
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import pytest
@@ -14,7 +15,7 @@ from mjwalk.plan.levelroute import step_up_limit
 from mjwalk.plan.levelsearch import level_route
 from mjwalk.plan.occupancy import CELL_SIZE
 from mjwalk.plan.options import PlannerOptions
-from mjwalk.plan.turnsteps import in_line, stepped_over, turning_steps
+from mjwalk.plan.turnsteps import in_line, stepped_over, turned_chains, turning_steps
 from mjwalk.world import load_workplace
 
 #: Riser (m) and the wedges' angle (rad): 0.17 m (ASR A1.8 §4.5); 30 deg treads round a 0.1 m
@@ -130,3 +131,16 @@ def test_a_winder_breaking_the_step_rule_is_refused_naming_its_walk_line_tread(
 def test_a_winder_meeting_the_step_rule_says_so_when_refused(tmp_path, winder_xml):
     with pytest.raises(PlanningError, match=r"2R \+ T 0.63\d-0.63\d m, within DIN 18065"):
         _route(tmp_path, winder_xml("balanced"))
+
+
+def test_turned_chains_gives_the_winders_chain_bottom_up(winder):
+    """The spiral's one chain: floor -> wedge1 -> wedge2 -> wedge3 -> deck, each link onto the
+    level the next leaves (the chain windercross walks)."""
+    graph = winder.levels
+    chains = turned_chains(graph, PlannerOptions().radius + CELL_SIZE)
+    assert len(chains) == 1
+    (((lo, up), chain),) = chains.items()
+    assert (chain[0].lower, chain[-1].upper) == (lo, up) and len(chain) == 4
+    assert all(a.upper == b.lower for a, b in itertools.pairwise(chain))
+    names = [graph.surfaces[graph.levels[k.upper].surfaces[0]].name for k in chain[:-1]]
+    assert names == ["wedge1", "wedge2", "wedge3"]
