@@ -3,8 +3,8 @@
 
 The generator writes its MJCF in metres to :data:`WRITE_DECIMALS` decimals, a box as its centre
 and half-sizes. A riser or tread drawn inside the limits could come out beyond them: hall 1065's
-flight, drawn 2 h + g = 0.6499 m, was written with treads' tops 0.2 mm apart and read as single
-steps (2 h + g > 0.65 m). So:
+flight, drawn with 0.1525 m risers and 2 h + g = 0.6499 m, was written with half-heights rounded
+to 0.1 mm, risers of 0.1524 and 0.1526 m, and read as single steps (2 h + g 0.65006 m). So:
 
 - a riser and a tread are drawn on a grid of :data:`DIM_GRID` (two written units), so half of
   one (a half-size; a mid-height between two levels on the grid) is written exactly and every
