@@ -53,7 +53,7 @@ from mjwalk.scan.scanlevels import (
     regions_at,
 )
 from mjwalk.scan.scanramps import ScanRamp, find_ramps, renumber
-from mjwalk.scan.stairfit import fit_stair
+from mjwalk.scan.stairfit import WRITE_MARGIN, fit_stair
 from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_RISER, MIN_STAIR_RISERS
 
 #: Height of the box a gap is written as, metres: the least height of a guard rail round an
@@ -204,8 +204,12 @@ def within_norm(
     """A stair down from the floor whose riser was measured within ``planefit.RISER_TOL``
     outside the norm's range (``norms.MIN_RISER``-``MAX_RISER``), at the range's limit: the scan
     cannot tell the two apart, and the written scene's level graph (exact at the norm) links
-    only the one within it. Its treads and bottom move to that riser's multiples below the
-    floor (by at most the riser count times ``RISER_TOL``).
+    only the one within it. The limit is taken ``stairfit.WRITE_MARGIN`` inside, as a fitted
+    tread is, so the written boxes' rounding cannot take the riser back over it (generated
+    hall 108: a riser set to 0.19 m read 0.19001 m in the written scene, no link). Its treads
+    and bottom move to that riser's multiples below the floor (by at most the riser count
+    times ``RISER_TOL`` + ``WRITE_MARGIN``). A riser measured within ``WRITE_MARGIN`` inside a
+    limit moves to the same place.
 
     Args:
         link: the stair (``upper`` the floor, ``via`` its treads, bottom up).
@@ -214,7 +218,7 @@ def within_norm(
     Returns:
         The link and the levels, unchanged when its riser is within the norm's range.
     """
-    riser = min(max(link.risers[0], MIN_RISER), MAX_RISER)
+    riser = min(max(link.risers[0], MIN_RISER + WRITE_MARGIN), MAX_RISER - WRITE_MARGIN)
     if riser == link.risers[0]:
         return link, levels
     chain = [link.lower, *link.via]

@@ -12,8 +12,9 @@ levels and links, and scanner spots.
 - stairs: one riser height and one tread depth per flight, riser in [``MIN_RISER``,
   ``MAX_RISER``], tread in [``MIN_TREAD``, ``MAX_TREAD``], step rule 2 s + a in ``STEP_RULE``, at
   least ``MIN_STAIR_RISERS`` risers a flight and at most :data:`MAX_FLIGHT_RISERS` (DIN 18065 /
-  ASR A1.8 as :mod:`mjwalk.world.norms` cites them); a landing at least as deep as the stair is
-  wide (:data:`LANDING_DEPTH`);
+  ASR A1.8 as :mod:`mjwalk.world.norms` cites them), as the MJCF is written, not only as drawn
+  (:mod:`mjwalk.world.levelgendims`); a landing at least as deep as the stair is wide
+  (:data:`LANDING_DEPTH`);
 - single steps: one or two risers in the stair range (DIN 18065: one or two risers are steps);
 - ramps: slope at most ``MAX_RAMP_SLOPE``, run at most :data:`MAX_RAMP_RUN`;
 - widths: stairs, ramps and every walkway between structures at least :data:`WALKWAY` wide
@@ -40,6 +41,7 @@ import shapely
 from shapely.geometry import Polygon, box
 
 from mjwalk._args import as_generator
+from mjwalk.world.levelgendims import WRITE_DECIMALS, draw_riser, stair_dims
 from mjwalk.world.norms import (
     MAX_RAMP_SLOPE,
     MAX_RISER,
@@ -47,7 +49,6 @@ from mjwalk.world.norms import (
     MIN_RISER,
     MIN_STAIR_RISERS,
     MIN_TREAD,
-    STEP_RULE,
 )
 
 #: Narrowest walkway, stair or ramp, metres: ASR A1.8 "Verkehrswege" (2022 edition) §4.2
@@ -193,28 +194,18 @@ class _Frame:
 
     def box(self, part: _Part, name: str, u, v, z, mat: str, solid: bool = True) -> Polygon:
         """A box spanning local u (u0, u1), v (v0, v1), world z (z0, z1)."""
-        (u0, u1), (v0, v1), (z0, z1) = u, v, z
+        (u0, u1), (v0, v1), (z0, z1), d = u, v, z, WRITE_DECIMALS
         cx, cy = self.pt(0.5 * (u0 + u1), 0.5 * (v0 + v1))
         part.geoms.append(
             f'<geom name="{self.tag}_{name}" type="box" '
-            f'pos="{cx:.4f} {cy:.4f} {0.5 * (z0 + z1):.4f}" '
-            f'size="{0.5 * (u1 - u0):.4f} {0.5 * (v1 - v0):.4f} {0.5 * (z1 - z0):.4f}" '
+            f'pos="{cx:.{d}f} {cy:.{d}f} {0.5 * (z0 + z1):.{d}f}" '
+            f'size="{0.5 * (u1 - u0):.{d}f} {0.5 * (v1 - v0):.{d}f} {0.5 * (z1 - z0):.{d}f}" '
             f'euler="0 0 {math.degrees(self.yaw):.4f}" material="{mat}"/>'
         )
         poly = self.rect(u0, u1, v0, v1)
         if solid:
             part.solid.append(poly)
         return poly
-
-
-def _stair_dims(rng: np.random.Generator) -> tuple[float, float]:
-    """A riser and tread (metres) inside DIN 18065's ranges and step rule."""
-    while True:
-        r = float(rng.uniform(MIN_RISER, MAX_RISER))
-        lo = max(MIN_TREAD, STEP_RULE[0] - 2 * r)
-        hi = min(MAX_TREAD, STEP_RULE[1] - 2 * r)
-        if hi > lo:
-            return round(r, 4), round(float(rng.uniform(lo, hi)), 4)
 
 
 def _flight(f: _Frame, p: _Part, u0: float, v, z0: float, rise: tuple[int, float, float], name):
@@ -253,7 +244,7 @@ def _mezzanine(rng: np.random.Generator, f: _Frame) -> _Part:
     """A mezzanine reached by a stair (one flight, two with a landing, or two turned 90 deg),
     obstacles beside its foot's and head's approaches, walls along it half the time."""
     p = _Part()
-    r, a = _stair_dims(rng)
+    r, a = stair_dims(rng)
     w = round(float(rng.uniform(WALKWAY, 1.5)), 3)
     form = str(rng.choice(["straight", "landing", "turn"]))
     v = (-w / 2, w / 2)
@@ -328,9 +319,9 @@ def _platform(rng: np.random.Generator, f: _Frame, ramp: bool) -> _Part:
         p.features.append("ramp")
         p.scanners.append((*f.pt(-run - APPROACH, 0.0), SCANNER_HEIGHT))
     elif rng.uniform() < 0.5:  # one riser
-        h = round(float(rng.uniform(MIN_RISER, MAX_RISER)), 4)
+        h = draw_riser(rng)
     else:  # two risers
-        h = 2 * round(float(rng.uniform(MIN_RISER, MAX_RISER)), 4)
+        h = round(2 * draw_riser(rng), WRITE_DECIMALS)
     if h <= MAX_RISER:
         p.links.append(GenLink("step", 0.0, h, 1, h, 0.0))
         p.features.append("step-1")
@@ -405,7 +396,7 @@ def _pit(rng: np.random.Generator, f: _Frame) -> tuple[_Part, Polygon, float]:
     """A pit along local +u (the frame's yaw a multiple of 90 deg), a stair going down from its
     rim at u = 0 as wide as the pit; returns the part, the opening and the depth."""
     p = _Part()
-    r, a = _stair_dims(rng)
+    r, a = stair_dims(rng)
     n = int(rng.integers(MIN_STAIR_RISERS, 6))  # at most 5 x 0.19 = 0.95 m deep
     depth = round(n * r, 4)
     wp = round(float(rng.uniform(1.3, 2.0)), 3)

@@ -34,7 +34,18 @@ MAX_TREAD = 0.37
 #: particularly safe (2 s + a = 0.63 m).
 STEP_RULE = (0.59, 0.65)
 #: Most a riser or tread of one flight may differ from its nominal value and from its neighbour,
-#: metres: DIN 18065 tolerance, 5 mm.
+#: metres: DIN 18065 tolerance, 5 mm (DIN 18065 §7, figures A.21/A.22, as summarised at
+#: https://treppenmeister.com/de/treppenlexikon/toleranzen and
+#: https://www.treppenportal-deutschland.de/treppenberater/toleranzen.php: the actual riser and
+#: tread of a finished flight within 5 mm of the nominal and of the next step's; 15 mm for the
+#: first riser of prefabricated flights in houses of up to two dwellings, not workplaces; the
+#: standard itself not verifiable here). It bounds how regular a flight is, never its limits:
+#: the tolerances may not, besides, exceed or fall short of the limit dimensions (the largest
+#: and least figures the building rules set; treppenmeister.com, above, translated). So a
+#: flight with a riser over :data:`MAX_RISER`, a tread outside :data:`MIN_TREAD`-
+#: :data:`MAX_TREAD` or a step rule outside :data:`STEP_RULE`, by however little, is no stair
+#: (``mjwalk.world.levels``); a scan's measured flight has its own slack for the grid and the
+#: noise (``mjwalk.scan.stairfit``), and is written inside the limits.
 STAIR_TOLERANCE = 0.005
 #: Fewest risers of a flight (Treppenlauf): DIN 18065 defines a flight as at least three risers;
 #: one or two are single steps.

@@ -166,12 +166,37 @@ def openings_of(graph, level: int, options: LevelOptions | None = None) -> tuple
     for hole in holes:
         rest = hole.difference(reach) if stepped else hole
         for part in getattr(rest, "geoms", [rest]):
-            for piece in _convex_pieces(part):
-                if piece.area >= _SLIVER_AREA and _width(piece) > o.contact_gap + _WIDTH_TOL:
-                    v = np.asarray(shapely.geometry.polygon.orient(piece, 1.0).exterior.coords)
-                    name = f"{OPENING_PREFIX}L{lv.index}_{len(out)}"
-                    out.append(Footprint(name, -1, np.ascontiguousarray(v[:-1])))
+            for piece in _wide_pieces(part, o.contact_gap):
+                v = np.asarray(shapely.geometry.polygon.orient(piece, 1.0).exterior.coords)
+                name = f"{OPENING_PREFIX}L{lv.index}_{len(out)}"
+                out.append(Footprint(name, -1, np.ascontiguousarray(v[:-1])))
     return tuple(out)
+
+
+def _wide_pieces(part, gap: float) -> list:
+    """The convex pieces of one connected part of a hole that are no gap walked over.
+
+    A convex part is kept when wider than ``gap``. A part that is not (a pit's cell-stepped
+    edge, a strip between a tread and the rim joining the pit) is first opened by a disc
+    ``gap`` wide (eroded, then grown, by half of it: what remains is where the part is wider
+    than ``gap``), and all pieces of that are kept: the width of each piece says nothing there,
+    since cutting a wide region into convex pieces leaves thin triangles along its edges
+    (generated hall 1095's scanned pit lost 0.06 of its 2.55 m^2 so, and its written scene's
+    opening was smaller than the hall's beyond the bench's tolerance). Pieces under
+    :data:`_SLIVER_AREA` are dropped either way.
+    """
+    pieces = _convex_pieces(part)
+    if len(pieces) == 1:
+        return [p for p in pieces if p.area >= _SLIVER_AREA and _width(p) > gap + _WIDTH_TOL]
+    r = 0.5 * gap + _WIDTH_TOL
+    core = part.buffer(-r, join_style="mitre").buffer(r, join_style="mitre").intersection(part)
+    return [
+        p
+        for region in getattr(core, "geoms", [core])
+        if region.geom_type == "Polygon"
+        for p in _convex_pieces(region)
+        if p.area >= _SLIVER_AREA
+    ]
 
 
 def _tread_steps(graph, level: int) -> set[int]:

@@ -128,14 +128,19 @@ def _site_at(ctx, xy) -> str:
 
 
 def test_a_site_a_hair_under_a_decks_top_stands_on_it(tmp_path):
-    """Generated hall 0 (bench_unseen, issue 47): its mezzanine site is written 0.1 mm under
+    """Generated hall 0 (bench_unseen, issue 47): its mezzanine site was written 0.1 mm under
     the deck's top (both rounded to 0.1 mm); the cycle refused it as "not a standing place"
-    though the floor's check takes either side."""
+    though the floor's check takes either side. The generator now writes the deck's top
+    exactly (``mjwalk.world.levelgendims``), so the site is put 0.1 mm under it here."""
     from mjwalk.world.levelgen import generate_levels
     from mjwalk.world.workplace import load_workplace
 
     hall = generate_levels(0)
-    wp = load_workplace(hall.write(tmp_path / "hall0.xml"), cache=False)
+    site = 'name="mezz_0" pos="-6.3759 -1.0341 1.3188"'
+    assert site in hall.xml
+    xml = hall.xml.replace(site, 'name="mezz_0" pos="-6.3759 -1.0341 1.3187"')
+    (tmp_path / "hall0.xml").write_text(xml)
+    wp = load_workplace(tmp_path / "hall0.xml", cache=False)
     lv = site_level(wp, "mezz_0")
     assert lv is not None
     assert wp.levels.levels[lv].height - wp.stations["mezz_0"].pos[2] == pytest.approx(

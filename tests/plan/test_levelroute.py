@@ -275,11 +275,12 @@ def test_a_two_riser_step_over_a_max_tread_deep_tread_is_one_crossing(tmp_path):
     """Generated hall 710 (``benchmarks/bench_unseen.py``): a platform reached by two risers
     over a tread exactly ``MAX_TREAD`` (0.37 m) deep. Before, the tread (0.37 m + 3e-16 as
     computed) was a platform, the two steps two crossings with no room to stand between them,
-    and the walk to the platform had no route."""
+    and the walk to the platform had no route. (The platform 0.2964 m up: its risers drawn on
+    the written 0.2 mm grid, ``mjwalk.world.levelgendims``; 0.2966 m before.)"""
     from mjwalk.world.levelgen import generate_levels
 
     hall = generate_levels(710)
     graph = load_workplace(hall.write(tmp_path / "levels_710.xml"), cache=False).levels
     (step,) = [c for c in crossings(graph, 0.3) if c.kind == "step"]
     assert graph.levels[step.lower].kind == "floor"
-    assert graph.levels[step.upper].height == pytest.approx(0.2966, abs=1e-6)
+    assert graph.levels[step.upper].height == pytest.approx(0.2964, abs=1e-6)

@@ -21,6 +21,7 @@ from mjwalk.scan.raycast import synthetic_scan
 from mjwalk.scan.scanlevels import ScanLevel, ScanLink
 from mjwalk.scan.scanpits import GUARD_HEIGHT, describe_pits, find_pits, gap_boxes, within_norm
 from mjwalk.scan.scene import read_sites
+from mjwalk.scan.stairfit import WRITE_MARGIN
 from mjwalk.world.levels import level_graph
 from mjwalk.world.norms import MAX_RISER
 from mjwalk.world.surfaces import find_walk_surfaces
@@ -321,14 +322,15 @@ def test_a_pit_stair_of_the_largest_risers_in_a_generated_hall(tmp_path):
 
 def test_a_stair_measured_within_the_tolerance_over_the_limit_is_written_at_it():
     """A pit's flight of three risers measured 0.1904 m (within ``planefit.RISER_TOL`` of the
-    0.19 m limit): its bottom and treads move to 0.19 m multiples below the floor; a flight
-    within the norm is left as measured."""
+    0.19 m limit): its bottom and treads move to multiples of 0.19 m less WRITE_MARGIN below
+    the floor; a flight within the norm is left as measured."""
     cells = np.zeros((4, 4), bool)
     lv = [ScanLevel(k, "tread", h, 0.0, 0.0, cells, 0.0, 0.3, 1.0, 0) for k, h in
           enumerate((0.0, -0.5712, -0.3808, -0.1904))]  # fmt: skip
     link = ScanLink("stair", 1, 0, (0.1904,) * 3, 0.27, (2, 3))
     new_link, new_levels = within_norm(link, tuple(lv))
-    assert new_link.risers == (MAX_RISER,) * 3
-    assert [x.height for x in new_levels] == pytest.approx([0.0, -0.57, -0.38, -0.19])
+    riser = MAX_RISER - WRITE_MARGIN  # inside the limit, so the written boxes keep it
+    assert new_link.risers == (riser,) * 3
+    assert [x.height for x in new_levels] == pytest.approx([0.0, -3 * riser, -2 * riser, -riser])
     ok = ScanLink("stair", 1, 0, (0.17,) * 3, 0.27, (2, 3))
     assert within_norm(ok, tuple(lv)) == (ok, tuple(lv))

@@ -52,11 +52,13 @@ def test_same_seed_same_hall():
     assert generate_levels(7).xml != generate_levels(8).xml
 
 
-@pytest.mark.parametrize("seed", [3, 6])
+@pytest.mark.parametrize("seed", [3, 6, 1065])
 def test_level_graph_holds_the_drawn_levels_and_links(seed):
-    """Hall 3 (a straight stair, a two-riser step, a ramp and a one-riser step) and hall 6 (a
-    pit, a stair turned at a landing): every drawn height is a level and every drawn stair and
-    ramp a link of the compiled scene's level graph."""
+    """Hall 3 (a straight stair, a two-riser step, a ramp and a one-riser step), hall 6 (a
+    pit, a stair turned at a landing) and hall 1065 (a stair with a landing drawn at the step
+    rule's limit: written before as treads 0.2 mm apart, 2 h + g over 0.65 m, single steps):
+    every drawn height is a level and every drawn stair and ramp a link of the compiled scene's
+    level graph."""
     hall = generate_levels(seed)
     model = mujoco.MjModel.from_xml_string(hall.xml)
     data = mujoco.MjData(model)

@@ -141,6 +141,19 @@ def test_regular_flight_is_a_stair_irregular_one_stays_steps():
     assert [lk.kind for lk in g.links] == ["step"] * 2  # two risers: single steps (DIN 18065)
 
 
+def test_a_flight_within_the_build_tolerance_beyond_the_limits_is_no_stair():
+    """DIN 18065's 5 mm tolerance bounds how regular a flight is, not its limits
+    (``norms.STAIR_TOLERANCE``): a regular flight whose step rule 2 h + g is 0.2 mm over 0.65 m
+    is four single steps; one whose risers are 0.2 mm over 0.19 m links nothing."""
+    g = level_graph(find_walk_surfaces(scene(flight([0.17] * 4, tread=0.3102)), None))
+    assert [lk.kind for lk in g.links] == ["step"] * 4
+    g = level_graph(find_walk_surfaces(scene(flight([0.17] * 4, tread=0.3098)), None))
+    assert [lk.kind for lk in g.links] == ["stair"]
+    opts = SurfaceOptions(max_riser=0.25)  # the treads found, the level options' 0.19 m limit
+    g = level_graph(find_walk_surfaces(scene(flight([0.1902] * 4, tread=0.26)), None, opts))
+    assert g.links == ()
+
+
 @pytest.mark.parametrize("name", ["assembly_station", "corridor", "open_floor"])
 def test_flat_shipped_scenes_have_one_level(scenes_dir, name):
     model = mujoco.MjModel.from_xml_path(str(scenes_dir / f"{name}.xml"))

@@ -119,6 +119,54 @@ def test_a_strip_no_wider_than_the_contact_gap_is_no_opening(pit_xml):
     assert _union(ops).area == pytest.approx(1.44 * 2.0, abs=0.02)
 
 
+def _stepped_pit(north: list[float], east: list[float]) -> str:
+    """The shared pit's hall (pit x -1..1, y -0.5..1.5, treads x -1..-0.44) with its north rim
+    in four boxes over x -1..1 and its east rim in four over y -0.5..1.5, each set back from
+    the pit by its entry of ``north`` / ``east`` (m), as a scanned floor's boxes step, cell by
+    cell; the floor boxes beyond the pit's corners meet the rims' unstepped lines."""
+
+    def rect(name: str, x0: float, x1: float, y0: float, y1: float) -> str:
+        return (
+            f'<geom name="{name}" type="box" pos="{(x0 + x1) / 2:.4f} {(y0 + y1) / 2:.4f} '
+            f'-0.255" size="{(x1 - x0) / 2:.4f} {(y1 - y0) / 2:.4f} 0.255"/>'
+        )
+
+    geoms = [
+        '<geom name="floor" type="plane" pos="0 0 -0.51" size="4 3 0.05"/>',
+        rect("floor_s", -4, 4, -3, -0.5),
+        rect("floor_w", -4, -1, -0.5, 1.5),
+        rect("floor_nw", -4, -1, 1.5, 3),
+        rect("floor_ne", 1, 4, 1.5, 3),
+        '<geom name="s1" type="box" pos="-0.86 0.5 -0.34" size="0.14 1 0.17"/>',
+        '<geom name="s2" type="box" pos="-0.58 0.5 -0.425" size="0.14 1 0.085"/>',
+    ]
+    geoms += [
+        rect(f"floor_n{i}", -1 + i / 2, -0.5 + i / 2, 1.5 + d, 3) for i, d in enumerate(north)
+    ]
+    geoms += [rect(f"floor_e{i}", 1 + d, 4, -0.5 + i / 2, i / 2) for i, d in enumerate(east)]
+    return "<mujoco><worldbody>" + "".join(geoms) + "</worldbody></mujoco>"
+
+
+@pytest.mark.parametrize(
+    ("north", "east"),
+    [
+        ([0.0, 0.0, 0.04, 0.06], [0.06, 0.04, 0.02, 0.0]),
+        ([0.0, 0.0, 0.02, 0.04], [0.04, 0.02, 0.02, 0.0]),
+    ],
+)
+def test_a_pit_with_a_cell_stepped_rim_is_an_opening_whole(north, east):
+    """A pit whose rims step back 2-6 cm box by box (:func:`_stepped_pit`): the opening is the
+    pit less the stair and every bay the steps leave, all of it (2.99 and 2.95 m^2); cutting it
+    into convex pieces leaves thin triangles along the steps, and those are no gap walked over
+    (2a82a27 dropped them: 2.985 and 2.94 m^2; generated hall 1095's written pit lost 0.06 m^2
+    so, beyond bench_unseen's opening tolerance)."""
+    xml = _stepped_pit(north, east)
+    ops = openings_of(workplace_from_model(mujoco.MjModel.from_xml_string(xml)).levels, 0)
+    bays = 0.5 * (sum(north) + sum(east))
+    assert _union(ops).area == pytest.approx(1.44 * 2.0 + bays, abs=1e-6)
+    assert _union(ops).bounds == pytest.approx((-0.44, -0.5, 1 + max(east), 1.5 + max(north)))
+
+
 def test_treads_reached_by_steps_are_no_opening_when_no_stair_joins_them(pit_xml):
     """The shared pit with treads at -0.18 and -0.36 m (risers 0.15, 0.18, 0.18 m: too
     irregular for one stair link, three step links as a scanned pit's stair gives): the lower
