@@ -19,7 +19,9 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    on the spot costed) whose first step swings the other foot than the crossing's last
    (:func:`next_foot`: step over step through every crossing), the turn walked as steps on
    the spot before it (:func:`mjwalk.plan.stepturn.stepped_turn`);
-3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`), where along
+3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`; a winder
+   along its walk line, led in from its line-up point,
+   :func:`mjwalk.plan.winderroute.winder_cross_walk`), where along
    its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`), the
    walker's swinging arms a cited clearance from its sides (:func:`~mjwalk.plan.levelroute.
    side_margin`); a level

@@ -3,7 +3,8 @@
 :func:`level_route` finds a walk's legs over levels (:func:`mjwalk.plan.levelplan.plan_level_walk`,
 step 1): the nodes are the walk's start and goal and each usable crossing's lower and upper
 stance; a crossing joins its two stances at its gait's time (:func:`mjwalk.plan.levelcross.
-crossing_time`), and two nodes on one level are joined by the level walk between them, its
+crossing_time`; a conforming winder, :func:`mjwalk.plan.winderroute.winder_time`), and two
+nodes on one level are joined by the level walk between them, its
 obstacle-aware distance (each node's distance field on the level's view,
 :func:`mjwalk.plan.heuristic.goal_distance`) walked from standing to standing with the line-up
 and departure of a stair (:func:`mjwalk.plan.levelcross.walked_distance`,

@@ -17,10 +17,9 @@ riser. A step that climbs or descends a riser takes the stair gait's step time
 (:func:`mjwalk.gait.stairs.stair_gait`, the stair's highest riser and mean walk-line tread, as
 for straight flights); a level step the walker's level step time.
 
-Not yet taken by the level route (:func:`mjwalk.plan.levelsearch.level_route` still refuses a
-walk over a winder, naming it, :func:`mjwalk.plan.turnsteps.turning_steps`): the route, the
-level planner's line-up and stitching, and the legs' swing over a nosing that is not square to
-the step (:mod:`mjwalk.body.legs.edgeswing` measures edges along the step's chord) are to come.
+The level route takes it as a crossing (:mod:`mjwalk.plan.winderroute`: its stances, line-up,
+limits and the walk led in to it); the legs' swing over a nosing that is not square to the
+step (:mod:`mjwalk.body.legs.edgeswing` measures edges along the step's chord) is to come.
 Metres, seconds, radians, world frame, z up, yaw from +x.
 """
 
