@@ -429,7 +429,7 @@ def plan_level_walk(
         )
         legs = [  # a winder lined up with at the end it is entered from
             leg
-            if leg.crossing is None
+            if leg.crossing is None or leg.crossing.kind != "winder"
             else replace(leg, crossing=oriented(leg.crossing, leg.direction))
             for leg in legs
         ]
