@@ -198,3 +198,27 @@ def test_a_winder_breaking_the_step_rule_stays_refused(tmp_path_factory, winder_
     a, b = endpoint(wedges, ends[0], "start"), endpoint(wedges, ends[1], "goal")
     with pytest.raises(PlanningError, match="break DIN 18065"):
         level_route(wedges, a, b, Walker(), PlannerOptions(), 0.19)
+
+
+def _with_straight_flight(xml: str) -> str:
+    """``xml`` with a straight flight of seven 0.29 m treads, 0.17 m risers, 1 m wide, from the
+    floor at x 4.53 m up -x to the deck's edge at x 2.5 m (y 1-2 m)."""
+    treads = "".join(
+        f'<geom name="flight{i}" type="box" size="0.145 0.5 {0.085 * i:.4f}" '
+        f'pos="{2.5 + (7.5 - i) * 0.29:.4f} 1.5 {0.085 * i:.4f}"/>'
+        for i in range(1, 8)
+    )
+    return xml.replace("</worldbody>", treads + "</worldbody>")
+
+
+def test_a_walker_whose_foot_fits_no_winder_tread_takes_the_straight_flight(
+    tmp_path_factory, winder_xml
+):
+    """Both the winder and a straight flight join floor and deck: the 1.75 m walker takes the
+    nearer winder, the 1.85 m walker (foot on no winder tread) the flight."""
+    both = _workplace(tmp_path_factory, _with_straight_flight(winder_xml("balanced")), "both")
+    a, b = endpoint(both, "low", "start"), endpoint(both, "high", "goal")
+    for stature, kind in ((1.75, "winder"), (1.85, "stair")):
+        walker = Walker(stature=stature)
+        legs = level_route(both, a, b, walker, PlannerOptions(), step_up_limit(walker))
+        assert [leg.crossing.kind for leg in legs if leg.crossing is not None] == [kind]
