@@ -78,7 +78,7 @@ from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.stepturn import stepped_turn
 from mjwalk.plan.turnin import turn_into
 from mjwalk.plan.walkpath import WalkPath
-from mjwalk.plan.winderroute import oriented, winder_cross_walk
+from mjwalk.plan.winderroute import oriented_legs, winder_cross_walk
 from mjwalk.world.levelview import level_at, level_view
 from mjwalk.world.norms import EXPOSED_MIN, HEAD_MARGIN, MAX_RISER
 from mjwalk.world.workplace import Workplace
@@ -427,12 +427,7 @@ def plan_level_walk(
         legs = place_crossings(
             workplace, level_route(workplace, a, b, walker, options, limit), options, head
         )
-        legs = [  # a winder lined up with at the end it is entered from
-            leg
-            if leg.crossing is None or leg.crossing.kind != "winder"
-            else replace(leg, crossing=oriented(leg.crossing, leg.direction))
-            for leg in legs
-        ]
+        legs = oriented_legs(legs)  # a winder lined up with at the end it is entered from
     parts: list[tuple[RouteLeg, WalkPath]] = []
     pose: object = start
     foot: str | None = None  # the first step's side after a crossing

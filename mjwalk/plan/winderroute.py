@@ -34,7 +34,7 @@ from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.footfallwalk import footfall_walk
 from mjwalk.plan.levelcross import DEFAULT_STEP_WIDTH, ENTRY_TURN, RISER_GAP, spot_turn
-from mjwalk.plan.levelroute import Crossing, crossing_headroom
+from mjwalk.plan.levelroute import Crossing, RouteLeg, crossing_headroom
 from mjwalk.plan.turnsplit import wrap
 from mjwalk.plan.turnsteps import turning_steps
 from mjwalk.plan.walkpath import PathStep, WalkPath
@@ -150,6 +150,24 @@ def oriented(c: Crossing, direction: str) -> Crossing:
     if not isinstance(c, WinderWay) or c.winder is None or direction == "up":
         return c
     return replace(c, axis=c.winder.normal(-1))
+
+
+def oriented_legs(legs: list[RouteLeg]) -> list[RouteLeg]:
+    """A route's legs with each winder :func:`oriented` the way its leg walks it (every other
+    leg as it was).
+
+    Args:
+        legs: the route's legs (:func:`mjwalk.plan.levelsearch.level_route`).
+
+    Returns:
+        The legs.
+    """
+    return [
+        leg
+        if leg.crossing is None or leg.crossing.kind != "winder"
+        else replace(leg, crossing=oriented(leg.crossing, leg.direction))
+        for leg in legs
+    ]
 
 
 def route_winders(graph: LevelGraph, clear: float) -> list[WinderWay]:

@@ -16,7 +16,7 @@ from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import Walker
 from mjwalk.plan.levelcross import DEFAULT_STEP_WIDTH
 from mjwalk.plan.levelplan import endpoint, plan_level_walk
-from mjwalk.plan.levelroute import step_up_limit
+from mjwalk.plan.levelroute import RouteLeg, step_up_limit
 from mjwalk.plan.levelsearch import level_route
 from mjwalk.plan.levelstitch import KIND_NAMES
 from mjwalk.plan.occupancy import CELL_SIZE
@@ -27,6 +27,7 @@ from mjwalk.plan.winderroute import (
     WinderWay,
     foot_refusal,
     oriented,
+    oriented_legs,
     route_winders,
     winder_cross_walk,
     winder_notes,
@@ -222,3 +223,12 @@ def test_a_walker_whose_foot_fits_no_winder_tread_takes_the_straight_flight(
         walker = Walker(stature=stature)
         legs = level_route(both, a, b, walker, PlannerOptions(), step_up_limit(walker))
         assert [leg.crossing.kind for leg in legs if leg.crossing is not None] == [kind]
+
+
+def test_a_routes_winder_legs_are_oriented_and_the_others_kept(way):
+    level = RouteLeg("level", 0, np.zeros(2), np.ones(2))
+    down = RouteLeg("cross", way.upper, way.end(way.upper), way.end(way.lower), way, "down")
+    legs = oriented_legs([level, down])
+    assert legs[0] is level
+    assert legs[1].crossing is not None and legs[1].crossing.yaw == oriented(way, "down").yaw
+    assert legs[1].crossing.yaw != way.yaw
