@@ -19,7 +19,9 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
    on the spot costed) whose first step swings the other foot than the crossing's last
    (:func:`next_foot`: step over step through every crossing), the turn walked as steps on
    the spot before it (:func:`mjwalk.plan.stepturn.stepped_turn`);
-3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`), where along
+3. each crossing walked step by step (:func:`mjwalk.plan.levelcross.cross_walk`; a winder
+   along its walk line, led in from its line-up point,
+   :func:`mjwalk.plan.winderroute.winder_cross_walk`), where along
    its width it is nearest the walk (:func:`mjwalk.plan.levelroute.place_on_edge`), the
    walker's swinging arms a cited clearance from its sides (:func:`~mjwalk.plan.levelroute.
    side_margin`); a level
@@ -76,6 +78,7 @@ from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.stepturn import stepped_turn
 from mjwalk.plan.turnin import turn_into
 from mjwalk.plan.walkpath import WalkPath
+from mjwalk.plan.winderroute import oriented_legs, winder_cross_walk
 from mjwalk.world.levelview import level_at, level_view
 from mjwalk.world.norms import EXPOSED_MIN, HEAD_MARGIN, MAX_RISER
 from mjwalk.world.workplace import Workplace
@@ -424,6 +427,7 @@ def plan_level_walk(
         legs = place_crossings(
             workplace, level_route(workplace, a, b, walker, options, limit), options, head
         )
+        legs = oriented_legs(legs)  # a winder lined up with at the end it is entered from
     parts: list[tuple[RouteLeg, WalkPath]] = []
     pose: object = start
     foot: str | None = None  # the first step's side after a crossing
@@ -440,7 +444,10 @@ def plan_level_walk(
         assert c is not None
         nxt = legs[k + 1] if k + 1 < len(legs) else None
         walked = _departure(workplace, leg, nxt, walker.step_length, (options, head))
-        prev, lead_in = _turned(workplace, parts, (leg, walked), walker, (options, head))
+        if c.kind == "winder":  # its lead-in turns on the spot where the walk arrives off it
+            prev = parts[-1][1] if parts else None
+        else:
+            prev, lead_in = _turned(workplace, parts, (leg, walked), walker, (options, head))
         # no walk before it: the walker stands where the walk starts (the level leg to the
         # crossing's stance was within its goal area), facing up or down it after the turn on
         # the spot the cycle makes before a walk; the crossing's walk steps to its stance first
@@ -453,11 +460,16 @@ def plan_level_walk(
             # first step keeps that height under its stance foot, not the floor's
             h = workplace.levels.levels[parts[-1][0].level].height - workplace.floor_z
             last = replace(last, foot_z=h, stance_z=h)
-        walk = cross_walk(
-            walked, leg.direction, walker, here, last, workplace.floor_z, lead_in=lead_in
-        )
+        if c.kind == "winder":  # led in (or from standing) along its walk line
+            walk = winder_cross_walk(c, leg.direction, walker, here, last, workplace.floor_z)
+        else:
+            walk = cross_walk(
+                walked, leg.direction, walker, here, last, workplace.floor_z, lead_in=lead_in
+            )
         parts.append((leg, walk))
         end_yaw = c.yaw if leg.direction == "up" else c.yaw + math.pi
+        if c.kind == "winder":  # the heading off its far nosing
+            end_yaw = float(walk.yaw[-1])
         stance = walked.end(c.upper if leg.direction == "up" else c.lower)
         pose = (float(stance[0]), float(stance[1]), end_yaw)
         foot = next_foot(walk.steps[-1].side if walk.steps else None)

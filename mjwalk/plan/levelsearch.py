@@ -3,7 +3,8 @@
 :func:`level_route` finds a walk's legs over levels (:func:`mjwalk.plan.levelplan.plan_level_walk`,
 step 1): the nodes are the walk's start and goal and each usable crossing's lower and upper
 stance; a crossing joins its two stances at its gait's time (:func:`mjwalk.plan.levelcross.
-crossing_time`), and two nodes on one level are joined by the level walk between them, its
+crossing_time`; a conforming winder, :func:`mjwalk.plan.winderroute.winder_time`), and two
+nodes on one level are joined by the level walk between them, its
 obstacle-aware distance (each node's distance field on the level's view,
 :func:`mjwalk.plan.heuristic.goal_distance`) walked from standing to standing with the line-up
 and departure of a stair (:func:`mjwalk.plan.levelcross.walked_distance`,
@@ -48,7 +49,7 @@ from mjwalk.plan.levelroute import (
 from mjwalk.plan.occupancy import CELL_SIZE, MOVES_16, shared_grid
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.turnin import turn_in_time, walked_back
-from mjwalk.plan.turnsteps import turning_steps
+from mjwalk.plan.winderroute import foot_refusal, route_winders, winder_notes, winder_time
 from mjwalk.world.levelview import level_view
 from mjwalk.world.norms import HEAD_MARGIN
 from mjwalk.world.workplace import Workplace
@@ -142,10 +143,11 @@ class _Edges(Mapping):
         out: list[tuple[int, float]] = []
         if u >= 2:  # the crossing between this stance and the other
             c = self.usable[(u - 2) // 2]
+            timed = winder_time if c.kind == "winder" else crossing_time
             if u % 2 == 0:
-                out.append((u + 1, crossing_time(c, "up", self.walker)))
+                out.append((u + 1, timed(c, "up", self.walker)))
             else:
-                out.append((u - 1, crossing_time(c, "down", self.walker)))
+                out.append((u - 1, timed(c, "down", self.walker)))
         lu, uxy = self.nodes[u]
         if u == 1:
             return out  # nothing walks on from the goal
@@ -169,10 +171,13 @@ class _Edges(Mapping):
 def _route(workplace, start, goal, walker: Walker, options, max_riser):
     """:func:`level_route` without its cache."""
     head = walker.stature + HEAD_MARGIN
+    clear = options.radius + CELL_SIZE
     usable = [
         c
-        for c in _crossings(workplace, options.radius + CELL_SIZE)
-        if c.fits(max_riser) and _head_fits(workplace, c, walker.stature)
+        for c in [*_crossings(workplace, clear), *route_winders(workplace.levels, clear)]
+        if c.fits(max_riser)
+        and _head_fits(workplace, c, walker.stature)
+        and foot_refusal(c, walker) is None  # a winder's treads hold the walker's foot
     ]
     # nodes: 0 start, 1 goal, then each crossing's lower and upper stance
     nodes = [(start.level, start.xy), (goal.level, goal.xy)]
@@ -183,10 +188,7 @@ def _route(workplace, start, goal, walker: Walker, options, max_riser):
     edges = _Edges(workplace, (usable, nodes, leads), walker, options, reach)
     path, _ = dijkstra(len(nodes), edges, 0, 1)
     if path is None:
-        why = [
-            *workplace.levels.notes,
-            *turning_steps(workplace.levels, options.radius + CELL_SIZE),
-        ]
+        why = [*workplace.levels.notes, *winder_notes(workplace.levels, clear, walker, max_riser)]
         notes = "".join(f"; {n}" for n in why)  # a ramp that links none, a winder stair
         raise PlanningError(
             f"no route from level L{start.level} to level L{goal.level} of {workplace.name} for "

@@ -20,8 +20,9 @@ from mjwalk.plan.walkpath import PathStep, WalkPath
 from mjwalk.world.norms import LEVEL_TOLERANCE
 from mjwalk.world.workplace import Workplace
 
-#: How each crossing kind is counted in the walk record.
-KIND_NAMES = {"stair": "stairs", "ramp": "ramps", "step": "steps"}
+#: How each crossing kind is counted in the walk record (a winder's steps as stairs: DIN 18065
+#: counts winders among stairs, "gewendelte Treppen").
+KIND_NAMES = {"stair": "stairs", "ramp": "ramps", "step": "steps", "winder": "stairs"}
 
 
 def _part_heights(

@@ -5,10 +5,12 @@ over levels only stepped over (:func:`stepped_over`), each step edge in line wit
 it (:func:`in_line`), the footfalls laid along one axis. A stair whose treads are wedges round a
 post or a winder's corner (DIN 18065:2020 allows such "gewendelte" stairs, a tread measured as
 the chord of the walk line between its nosings) has step edges that turn from one tread to the
-next, so no crossing joins the levels at its ends and a walk between them is refused.
-:func:`turning_steps` names such stairs, one line each, so the refusal says why, with the
-stair measured on its walk line (:mod:`mjwalk.world.walkline`): a tread that breaks DIN
-18065's step rule there is named with its numbers. Metres, world frame.
+next, so no straight crossing joins the levels at its ends: one that meets DIN 18065 on its
+walk line is walked along it (:mod:`mjwalk.plan.windercross`, routed by
+:mod:`mjwalk.plan.winderroute`), one that breaks it is refused. :func:`turning_steps` names
+such stairs, one line each, with the stair measured on its walk line
+(:mod:`mjwalk.world.walkline`): a tread that breaks DIN 18065's step rule there is named with
+its numbers, so the refusal says why. Metres, world frame.
 """
 
 from __future__ import annotations
@@ -116,7 +118,7 @@ def _verdict(graph: LevelGraph, chain: list[LevelLink]) -> str:
     return (
         f"turn at {names} (a winder or spiral stair; on its walk line treads {min(t):.3f}-"
         f"{max(t):.3f} m, 2R + T {min(r):.3f}-{max(r):.3f} m, within DIN 18065's step rule): "
-        "walks over levels take straight flights only"
+        "walked along its walk line"
     )
 
 

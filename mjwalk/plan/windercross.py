@@ -17,10 +17,9 @@ riser. A step that climbs or descends a riser takes the stair gait's step time
 (:func:`mjwalk.gait.stairs.stair_gait`, the stair's highest riser and mean walk-line tread, as
 for straight flights); a level step the walker's level step time.
 
-Not yet taken by the level route (:func:`mjwalk.plan.levelsearch.level_route` still refuses a
-walk over a winder, naming it, :func:`mjwalk.plan.turnsteps.turning_steps`): the route, the
-level planner's line-up and stitching, and the legs' swing over a nosing that is not square to
-the step (:mod:`mjwalk.body.legs.edgeswing` measures edges along the step's chord) are to come.
+The level route takes it as a crossing (:mod:`mjwalk.plan.winderroute`: its stances, line-up,
+limits and the walk led in to it); the legs' swing over a nosing that is not square to the
+step (:mod:`mjwalk.body.legs.edgeswing` measures edges along the step's chord) is to come.
 Metres, seconds, radians, world frame, z up, yaw from +x.
 """
 
@@ -268,11 +267,12 @@ class WinderFootfalls:
 
 
 def winder_footfalls(
-    c: WinderCrossing, direction: str, walker: Walker, step_width: float | None = None
-) -> WinderFootfalls:
+    c: WinderCrossing, direction: str, walker: Walker, step_width: float | None = None,
+    foot: str = "left",
+) -> WinderFootfalls:  # fmt: skip
     """The footfalls of a walk up or down a winder from standing at one end's stance to
-    standing at the other's (module docstring); the left foot swings first (the right where
-    the stance is the first footfall: the walker stands there already, its first step is
+    standing at the other's (module docstring); the ``foot`` swings first (the other
+    where the stance is the first footfall: the walker stands there already, its first step is
     onto the stair).
 
     Args:
@@ -281,6 +281,9 @@ def winder_footfalls(
         walker: the walker (stature, step length and time, stair gait).
         step_width: lateral distance of the feet, metres (None: the walker's, else
             :data:`mjwalk.plan.levelcross.DEFAULT_STEP_WIDTH`).
+        foot: the foot the footfall before the first nosing takes, "left" or "right" (a
+            walk led in to the winder chooses it so its feet alternate,
+            :func:`mjwalk.plan.winderroute.winder_cross_walk`).
 
     Returns:
         The footfalls.
@@ -311,7 +314,8 @@ def winder_footfalls(
         level = [m0 - d * n0 for d in [off, *beyond, stance]]
     del last
     k = 1 + n + len(level)
-    side = np.where(np.arange(k) % 2 == 0, 1.0, -1.0)  # left foot first: left of the way
+    lead = 1.0 if foot == "left" else -1.0  # the left foot left of the way
+    side = np.where(np.arange(k) % 2 == 0, lead, -lead)
     centre = [first + 0.5 * width * side[0] * np.array([-nf[1], nf[0]])]
     yaw, z, tread = [math.atan2(nf[1], nf[0])], [zf], [-1]
     for j, i in enumerate(order, start=1):
@@ -342,7 +346,7 @@ def winder_footfalls(
     at = 0 if stance > off + 1e-9 else 1  # standing at the first footfall: no step to it
     return WinderFootfalls(
         centre_a[at:], ankle[at:], yaw_a[at:], z_a[at:], times[at:], np.array(tread)[at:],
-        "left" if at == 0 else "right",
+        foot if at == 0 else ("right" if foot == "left" else "left"),
     )  # fmt: skip
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import re
 
 import pytest
 
@@ -128,9 +129,13 @@ def test_a_winder_breaking_the_step_rule_is_refused_naming_its_walk_line_tread(
     assert "step rule 0.59-0.65 m" in msg and "\n" not in msg
 
 
-def test_a_winder_meeting_the_step_rule_says_so_when_refused(tmp_path, winder_xml):
-    with pytest.raises(PlanningError, match=r"2R \+ T 0.63\d-0.63\d m, within DIN 18065"):
-        _route(tmp_path, winder_xml("balanced"))
+def test_a_winder_meeting_the_step_rule_says_so(tmp_path, winder_xml):
+    """Such a winder is routed now (tests/plan/test_winderroute.py); its line says so."""
+    path = tmp_path / "balanced.xml"
+    path.write_text(winder_xml("balanced"))
+    (note,) = turning_steps(load_workplace(path).levels, PlannerOptions().radius + CELL_SIZE)
+    assert re.search(r"2R \+ T 0.63\d-0.63\d m, within DIN 18065's step rule\): walked", note)
+    assert len(_route(tmp_path, winder_xml("balanced"))) == 3  # level, winder, level
 
 
 def test_turned_chains_gives_the_winders_chain_bottom_up(winder):

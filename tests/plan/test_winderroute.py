@@ -1,0 +1,234 @@
+"""Tests of mjwalk.plan.winderroute: a conforming winder taken by the route over levels and
+walked end to end, led in from a level walk (issue 47, item 3). The scenes are
+``tests/conftest.py``'s quarter-turn winders; every test here fails on the tree before this
+module (no winder was routed: "walks over levels take straight flights only")."""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+import pytest
+
+from mjwalk.errors import PlanningError
+from mjwalk.gait.default import default_model
+from mjwalk.gait.walker import Walker
+from mjwalk.plan.levelcross import DEFAULT_STEP_WIDTH
+from mjwalk.plan.levelplan import endpoint, plan_level_walk
+from mjwalk.plan.levelroute import RouteLeg, step_up_limit
+from mjwalk.plan.levelsearch import level_route
+from mjwalk.plan.levelstitch import KIND_NAMES
+from mjwalk.plan.occupancy import CELL_SIZE
+from mjwalk.plan.options import PlannerOptions
+from mjwalk.plan.walkpath import PathStep
+from mjwalk.plan.windercross import winder_footfalls
+from mjwalk.plan.winderroute import (
+    WinderWay,
+    foot_refusal,
+    oriented,
+    oriented_legs,
+    route_winders,
+    winder_cross_walk,
+    winder_notes,
+    winder_time,
+)
+from mjwalk.world import load_workplace
+
+CLEAR = PlannerOptions().radius + CELL_SIZE
+
+
+def _workplace(tmp_path_factory, xml: str, name: str):
+    path = tmp_path_factory.mktemp(name) / f"{name}.xml"
+    path.write_text(xml)
+    return load_workplace(path)
+
+
+@pytest.fixture(scope="module")
+def balanced(tmp_path_factory, winder_xml):
+    """The conforming quarter-turn winder: seven treads (five turned), floor to deck, 8 x 0.17 m."""
+    return _workplace(tmp_path_factory, winder_xml("balanced"), "balanced")
+
+
+@pytest.fixture(scope="module")
+def way(balanced) -> WinderWay:
+    (c,) = route_winders(balanced.levels, CLEAR)
+    return c
+
+
+@pytest.fixture(scope="module")
+def model():
+    return default_model(progress=False)
+
+
+def test_the_winder_is_a_route_crossing_along_its_walk_line(way):
+    w = way.winder
+    assert w is not None and way.kind == "winder"
+    assert (way.lower, way.upper) == (w.lower, w.upper)
+    # its stances are the winder's, its bent axis through every nosing's middle
+    for level in (way.lower, way.upper):
+        assert np.allclose(way.end(level), w.end(level), atol=1e-9)
+    assert np.allclose(way.point(way.knots[1:-1]), [e.mean(axis=0) for e in w.nosings], atol=1e-9)
+    # beyond the stances along the first and last nosing's normals
+    assert np.allclose(way.point(way.approach - 0.5), w.end(w.lower) - 0.5 * w.normal(0))
+    assert np.allclose(way.point(way.exit + 0.5), w.end(w.upper) + 0.5 * w.normal(-1))
+    # heights: the floor before the first nosing, each tread, the deck past the last
+    nosing = way.knots[1:-1]
+    assert np.allclose(way.height_at(nosing - 0.01), w.z[:-1])
+    assert np.allclose(way.height_at(nosing + 0.01), w.z[1:])
+    assert way.fits(0.17 + 1e-6) and not way.fits(0.16)
+
+
+def test_the_winder_is_lined_up_with_at_the_end_it_is_entered_from(way):
+    """Up: the first nosing's normal; down: the reverse of the last's (a quarter turn apart)."""
+    w = way.winder
+    assert w is not None
+    up, down = oriented(way, "up"), oriented(way, "down")
+    assert math.isclose(up.yaw, math.atan2(w.normal(0)[1], w.normal(0)[0]))
+    back = -w.normal(-1)
+    assert abs(math.remainder(down.yaw + math.pi - math.atan2(back[1], back[0]), math.tau)) < 1e-9
+    assert abs(math.remainder(up.yaw - down.yaw, math.tau)) == pytest.approx(math.pi / 2, abs=0.05)
+
+
+def test_a_walk_over_levels_joined_only_by_the_winder_goes_up_and_down_it(balanced, model):
+    """Before: PlanningError "... walks over levels take straight flights only"."""
+    walker = Walker()
+    conditioned = model.for_walker(walker)
+    top = balanced.levels.levels[way_upper(balanced)].height - balanced.floor_z
+    for a, b, first, last in (("low", "high", 0.0, top), ("high", "low", top, 0.0)):
+        walk = plan_level_walk(balanced, a, b, conditioned, np.random.default_rng(0))
+        route = walk.meta["levels"]["route"]
+        assert [r["kind"] for r in route] == ["level", "winder", "level"]
+        assert route[1]["direction"] == ("up" if a == "low" else "down")
+        assert walk.z is not None
+        assert walk.z[0] == pytest.approx(first) and walk.z[-1] == pytest.approx(last)
+        # every riser a step on the stairs, the trailing foot's step off the last tread too
+        stairs = walk.meta["levels"]["per_kind"]["stairs"]
+        assert stairs["steps"] == 8 + 1
+        assert stairs["seconds"] > 0.0
+        # the walk turns with the winder, smoothly: no jump of the pelvis, yaw within a step's
+        assert float(np.max(np.linalg.norm(np.diff(walk.xy, axis=0), axis=1))) < 0.03
+        assert float(np.max(np.abs(np.diff(np.unwrap(walk.yaw))))) < 0.05
+
+
+def way_upper(balanced) -> int:
+    (c,) = route_winders(balanced.levels, CLEAR)
+    return c.upper
+
+
+def test_the_winder_counts_as_stairs_in_the_walk_record():
+    assert KIND_NAMES["winder"] == "stairs"
+
+
+def test_the_walk_over_the_winder_is_led_in_from_the_level_walk(way):
+    """The walker arrives walking at the line-up point a step length before the stance: the
+    crossing's first step swings the other foot than the step that brought it there, from
+    that step's landing, and level steps along the first nosing's normal lead into the stair
+    (never a standing start at the first footfall)."""
+    walker = Walker()
+    w = way.winder
+    assert w is not None
+    n0 = w.normal(0)
+    at = w.end(w.lower) - walker.step_length * n0  # the line-up point
+    yaw = math.atan2(n0[1], n0[0])
+    left = np.array([-n0[1], n0[0]])
+    landed = np.array([*(at + 0.06 * left), yaw])
+    stance = np.array([*(at - 0.06 * left - 0.3 * n0), yaw])
+    last = PathStep("left", 0, 60, landed, stance, foot_z=0.0, stance_z=0.0)
+    walk = winder_cross_walk(way, "up", walker, (at, yaw), last, 0.0)
+    first = walk.steps[0]
+    assert first.side == "right"
+    assert np.allclose(first.stance, landed)
+    sides = [s.side for s in walk.steps]
+    assert all(a != b for a, b in itertools.pairwise(sides))
+    # level steps before the first tread, none longer than the step length
+    on_level = [s for s in walk.steps if s.foot_z == 0.0]
+    assert len(on_level) >= 2
+    feet = np.array([s.foot[:2] for s in on_level])
+    gaps = np.linalg.norm(np.diff(np.vstack([landed[:2], feet]), axis=0), axis=1)
+    assert float(np.max(gaps)) <= walker.step_length + DEFAULT_STEP_WIDTH + 1e-9
+    # then every tread once and the deck
+    assert [round(s.foot_z, 3) for s in walk.steps[len(on_level) :]][:8] == [
+        round(0.17 * i, 3) for i in range(1, 9)
+    ]
+
+
+def test_a_walker_arriving_off_the_winders_heading_turns_on_the_spot_first(way):
+    walker = Walker()
+    w = way.winder
+    assert w is not None
+    at = w.end(w.lower) - walker.step_length * w.normal(0)
+    yaw = math.atan2(w.normal(0)[1], w.normal(0)[0]) + math.radians(150)
+    walk = winder_cross_walk(way, "up", walker, (at, yaw), None, 0.0)
+    turns = np.abs(np.diff(np.unwrap([yaw, *[s.foot[2] for s in walk.steps]])))
+    assert float(np.max(turns)) <= math.radians(60) + 1e-6
+
+
+def test_the_route_times_the_winder_by_its_footfalls(way):
+    walker = Walker()
+    assert way.winder is not None
+    for direction in ("up", "down"):
+        want = float(np.sum(winder_footfalls(way.winder, direction, walker).times))
+        assert winder_time(way, direction, walker) == pytest.approx(want)
+
+
+def test_a_foot_too_long_for_the_treads_is_refused_naming_it(balanced, way):
+    """A 1.85 m walker's 0.281 m foot fits no 0.29 m tread keeping 5 mm off its edges."""
+    tall = Walker(stature=1.85)
+    assert foot_refusal(way, tall) is not None and foot_refusal(way, Walker()) is None
+    a, b = endpoint(balanced, "low", "start"), endpoint(balanced, "high", "goal")
+    options = PlannerOptions()
+    with pytest.raises(PlanningError) as err:
+        level_route(balanced, a, b, tall, options, step_up_limit(tall))
+    msg = str(err.value)
+    assert f"the winder from L{way.lower} to L{way.upper} is not taken: winder tread" in msg
+    assert "foot (stature 1.85 m)" in msg and "\n" not in msg
+
+
+def test_a_riser_above_the_step_up_limit_is_refused_naming_it(balanced, way):
+    a, b = endpoint(balanced, "low", "start"), endpoint(balanced, "high", "goal")
+    with pytest.raises(PlanningError, match=r"0.170 m riser, above the walker's step-up limit"):
+        level_route(balanced, a, b, Walker(), PlannerOptions(), 0.15)
+    assert winder_notes(balanced.levels, CLEAR, Walker(), 0.19) == []
+
+
+@pytest.mark.parametrize("ends", [("low", "high"), ("high", "low")])
+def test_a_winder_breaking_the_step_rule_stays_refused(tmp_path_factory, winder_xml, ends):
+    wedges = _workplace(tmp_path_factory, winder_xml("wedges"), "wedges")
+    assert route_winders(wedges.levels, CLEAR) == []
+    a, b = endpoint(wedges, ends[0], "start"), endpoint(wedges, ends[1], "goal")
+    with pytest.raises(PlanningError, match="break DIN 18065"):
+        level_route(wedges, a, b, Walker(), PlannerOptions(), 0.19)
+
+
+def _with_straight_flight(xml: str) -> str:
+    """``xml`` with a straight flight of seven 0.29 m treads, 0.17 m risers, 1 m wide, from the
+    floor at x 4.53 m up -x to the deck's edge at x 2.5 m (y 1-2 m)."""
+    treads = "".join(
+        f'<geom name="flight{i}" type="box" size="0.145 0.5 {0.085 * i:.4f}" '
+        f'pos="{2.5 + (7.5 - i) * 0.29:.4f} 1.5 {0.085 * i:.4f}"/>'
+        for i in range(1, 8)
+    )
+    return xml.replace("</worldbody>", treads + "</worldbody>")
+
+
+def test_a_walker_whose_foot_fits_no_winder_tread_takes_the_straight_flight(
+    tmp_path_factory, winder_xml
+):
+    """Both the winder and a straight flight join floor and deck: the 1.75 m walker takes the
+    nearer winder, the 1.85 m walker (foot on no winder tread) the flight."""
+    both = _workplace(tmp_path_factory, _with_straight_flight(winder_xml("balanced")), "both")
+    a, b = endpoint(both, "low", "start"), endpoint(both, "high", "goal")
+    for stature, kind in ((1.75, "winder"), (1.85, "stair")):
+        walker = Walker(stature=stature)
+        legs = level_route(both, a, b, walker, PlannerOptions(), step_up_limit(walker))
+        assert [leg.crossing.kind for leg in legs if leg.crossing is not None] == [kind]
+
+
+def test_a_routes_winder_legs_are_oriented_and_the_others_kept(way):
+    level = RouteLeg("level", 0, np.zeros(2), np.ones(2))
+    down = RouteLeg("cross", way.upper, way.end(way.upper), way.end(way.lower), way, "down")
+    legs = oriented_legs([level, down])
+    assert legs[0] is level
+    assert legs[1].crossing is not None and legs[1].crossing.yaw == oriented(way, "down").yaw
+    assert legs[1].crossing.yaw != way.yaw
