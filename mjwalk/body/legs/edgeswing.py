@@ -16,6 +16,7 @@ import numpy as np
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import smoothstep, spread
 from mjwalk.body.legs.footpivot import ball_offset
+from mjwalk.body.legs.solecorners import corner_lift, corner_shortfall, rising_risers
 from mjwalk.body.legs.steps import StepFrames
 from mjwalk.world.norms import STAIR_TOE_CLEARANCE
 
@@ -307,6 +308,7 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
     u_f = u_f + np.arange(m) * 1e-12  # strictly increasing for np.interp
     extra, out, need = 0.0, ankle.copy(), 0.0
     descent = surf.descends
+    lines = rising_risers(fr.lift, fr.land, edges.zr, () if descent else surf.risers)
     for _ in range(3):
         # a step down moves forward as long as its heel can still be lowered in time
         end = 1.0 if descent else ASCENT_CLEARANCE_END
@@ -316,8 +318,14 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
             out[:, 2] = rise_held(out[:, 2], _toe_heel(pitch, toe, geom)[1])
             _keep_behind_edges(out, out[:, 2], clearance, pitch, toe, edges, fr, geom)
         out[0], out[-1] = ankle[0], ankle[-1]
+        speed = (out[:, 2].max() - min(out[0, 2], out[-1, 2])) / RISE_SHARE
+        out[:, 2] = corner_lift(
+            out, (pitch, toe, yaw, geom), lines, (SOLE_MARGIN, clearance), speed
+        )
         need = _clearance_deficit(_sole_points(out[1:-1], pitch[1:-1], toe[1:-1], yaw[1:-1], geom),
                                   fr, edges, clearance)  # fmt: skip
+        gap = corner_shortfall(out, (pitch, toe, yaw, geom), lines, (-1e-3, clearance))
+        need = max(need, float(gap.max()))
         if need <= 1e-4 or descent:  # a descent's sole is lifted by sole_rise instead
             break
         extra += need + 0.005
@@ -592,6 +600,8 @@ def sole_rise(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: 
     pts = _sole_points(ankle, pitch, toe, yaw, geom)
     x = (pts[..., :2] - fr.lift[:2]) @ e  # (m, 3)
     need = np.maximum(_sole_need(x, pts[..., 2], edges, margin, margin), 0.0)
+    lines = rising_risers(fr.lift, fr.land, edges.zr, () if surf.descends else surf.risers)
+    need = np.maximum(need, corner_shortfall(ankle, (pitch, toe, yaw, geom), lines, (margin,) * 2))
     need[ends] = 0.0
     if not need.any():
         return need
