@@ -3,9 +3,13 @@ against the nosing ahead (a winder's treads turn under a foot set along the walk
 ~35 deg) has a toe corner nearer the riser than its centre line. The sole is taken as the
 humanoid's foot and toe boxes at the foot's width (:func:`sole_outline`: heel, ball, toe tip
 and the toe block's top front, each at both sides); each known riser the step's chord crosses
-going up (:func:`rising_risers`) is a line in the floor plane with its normal up the stair, and
-the ankle is raised where a corner past that line is not over the upper tread, or the sole
-crosses it lower than the clearance over its nosing (:func:`corner_need`, :func:`corner_lift`).
+going up (:func:`rising_risers`) is a line in the floor plane with its normal up the stair. A
+point past that line is over the upper tread and keeps a margin over it; each side of the sole
+crosses the line with the nosing's clearance under it (:func:`corner_need`). What the corners need
+beyond what the sole's centre line needs at the same risers is the sole's width's cost: the
+ankle is raised by it (:func:`corner_shortfall`, :func:`corner_lift`), so every corner keeps the
+clearance the centre-line plan (``edgeswing``) gives its centre line, and a foot set along a
+riser's normal (a straight flight) is left exactly as that plan made it.
 Used by :mod:`mjwalk.body.legs.edgeswing`. World frame, z up, yaw from +x; metres, radians.
 """
 
@@ -170,25 +174,27 @@ def corner_shortfall(ankle, foot, lines, margins: tuple[float, float]) -> np.nda
     m = len(ankle)
     if not lines or m < 3:
         return np.zeros(m)
-    need = corner_need(ankle[:, :2], sole_outline(*foot), lines, *margins)
-    centre = corner_need(ankle[:, :2], sole_outline(*foot, width=0.0), lines, *margins)
+    pitch, toe, yaw, geom = foot
+    need = corner_need(ankle[:, :2], sole_outline(pitch, toe, yaw, geom), lines, *margins)
+    centre = corner_need(ankle[:, :2], sole_outline(pitch, toe, yaw, geom, 0.0), lines, *margins)
     short = need - np.maximum(centre, ankle[:, 2])
     short[[0, m - 1]] = 0.0
     return np.where(short > REACHED, short, 0.0)
 
 
-def corner_lift(ankle, foot, lines, margins: tuple[float, float], speed: float) -> np.ndarray:
+def corner_lift(ankle, foot, lines, margins: tuple[float, float], rise_share: float) -> np.ndarray:
     """A step up's swing ankle heights raised where its corners need it (:func:`corner_need`),
-    each raise reached ahead and left behind at ``speed`` (the upper envelope of cones, as the
-    centre-line plan rises); the grounded ends and, where no corner falls short, every height
-    unchanged.
+    each raise reached ahead and left behind at the swing's own rise speed: its rise from its
+    lower end to its highest in ``rise_share`` of the swing (the upper envelope of cones, as the
+    centre-line plan rises, ``edgeswing.RISE_SHARE``); the grounded ends and, where no corner
+    falls short, every height unchanged.
 
     Args:
         ankle: (m, 3) the swing ankle from the last grounded sample to the landing, metres.
         foot: (pitch, toe, yaw, geom): the foot's angles (m,) each, radians, and its lengths.
         lines: :func:`rising_risers`' risers.
         margins: (over a tread past a riser, over a riser's line), metres.
-        speed: the ankle's greatest vertical speed, metres per whole swing.
+        rise_share: the share of the swing over which the ankle would rise to its highest.
 
     Returns:
         (m,) the ankle heights, metres.
@@ -200,6 +206,7 @@ def corner_lift(ankle, foot, lines, margins: tuple[float, float], speed: float) 
         return z
     m = len(z)
     tau = np.arange(m) / (m - 1)
+    speed = (z.max() - min(z[0], z[-1])) / rise_share  # metres per whole swing
     need = z[short] + gap[short]
     cone = (need[None, :] - speed * np.abs(tau[:, None] - tau[short][None, :])).max(axis=1)
     cone[[0, m - 1]] = -np.inf
