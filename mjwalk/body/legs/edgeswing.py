@@ -286,7 +286,7 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
 
     Returns:
         (m, 3) the new ankle positions, metres, and the least clearance over the edges
-        reached (metres; ``clearance`` or more where the design holds).
+        reached (metres; ``clearance`` or more where the design holds; its centre line's).
     """
     m = len(ankle)
     tau = np.arange(m) / max(m - 1, 1)
@@ -318,7 +318,6 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
         out[0], out[-1] = ankle[0], ankle[-1]
         need = _clearance_deficit(_sole_points(out[1:-1], pitch[1:-1], toe[1:-1], yaw[1:-1], geom),
                                   fr, edges, clearance)  # fmt: skip
-        need = max(need, float(corner_shortfall(out, foot, lines, (-1e-3, clearance)).max()))
         if need <= 1e-4 or descent:  # a descent's sole is lifted by sole_rise instead
             break
         extra += need + 0.005
