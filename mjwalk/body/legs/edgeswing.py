@@ -1,9 +1,8 @@
-"""The swing foot over step edges (issue 47, deliverable 4): where a step's footprints stand
-at different heights (a step or a stair), the swing foot rises, travels and lowers so that its
-sole clears every edge (nosing) between them by :data:`STAIR_TOE_CLEARANCE` (:func:`edge_swing`);
-:class:`StepSurfaces` holds the heights a step touches. Used by
-:mod:`mjwalk.body.legs.legheights`. World frame, metres, radians.
-"""
+"""The swing foot over step edges (issue 47, deliverable 4): where a step's footprints stand at
+different heights (a step or a stair), the swing foot rises, travels and lowers so that its sole
+clears every edge (nosing) between them by :data:`STAIR_TOE_CLEARANCE` (:func:`edge_swing`);
+:class:`StepSurfaces` holds the heights a step touches. Used by :mod:`.legheights`. World frame,
+metres, radians."""
 
 from __future__ import annotations
 
@@ -16,6 +15,7 @@ import numpy as np
 from mjwalk.body.humanoid import LegGeometry
 from mjwalk.body.legs.curves import smoothstep, spread
 from mjwalk.body.legs.footpivot import ball_offset
+from mjwalk.body.legs.solecorners import corner_lift, corner_shortfall, rising_risers
 from mjwalk.body.legs.steps import StepFrames
 from mjwalk.world.norms import STAIR_TOE_CLEARANCE
 
@@ -177,17 +177,16 @@ def _true_edge(span: tuple[float, float], pair: tuple[float, float], fr: StepFra
 
 
 def _step_edges(fr: StepFrames, surf: StepSurfaces, geom: LegGeometry) -> _Edges:
-    """The edges of an edged step: between the surfaces of the lift, stance and landing
-    footprints in their order along the chord, each where its riser's edge line crosses the
-    chord (:func:`_true_edge`) on a step down, or where the riser is not known and on a step
-    up, anywhere from the toe of the foot behind to the heel of the foot ahead (their midpoint
-    where those overlap). That span held a first step down off a stair's landing, whose
-    landing heel lay just past it, at the landing's height to the last samples (hip 48.9 deg,
-    then the knee 72 -> 8 deg in one frame: gait47), and the last step off a flight likewise
-    (its ankle fell 18.6 cm in one frame at 1.55-1.95 m). Steps up keep the span: with the
-    true edge the closing step onto a stair's top landing, its toes held behind the nosing
-    until they clear it (:func:`_keep_behind_edges`), jumped 23-26 cm forward in one frame
-    at 1.55 and 1.75 m (landing47, not solved)."""
+    """The edges of an edged step: between the surfaces of the lift, stance and landing footprints
+    in their order along the chord, each where its riser's edge line crosses the chord
+    (:func:`_true_edge`) on a step down, or where the riser is not known and on a step up, anywhere
+    from the toe of the foot behind to the heel of the foot ahead (their midpoint where those
+    overlap). That span held a first step down off a stair's landing, whose landing heel lay just
+    past it, at the landing's height to the last samples (hip 48.9 deg, then the knee 72 -> 8 deg in
+    one frame: gait47), and the last step off a flight likewise (its ankle fell 18.6 cm in one frame
+    at 1.55-1.95 m). Steps up keep the span: with the true edge the closing step onto a stair's top
+    landing, its toes held behind the nosing until they clear it (:func:`_keep_behind_edges`),
+    jumped 23-26 cm forward in one frame at 1.55 and 1.75 m (landing47, not solved)."""
     seg = fr.land[:2] - fr.lift[:2]
     length = max(float(np.hypot(*seg)), 1e-9)
     e = seg / length
@@ -218,14 +217,13 @@ def _step_edges(fr: StepFrames, surf: StepSurfaces, geom: LegGeometry) -> _Edges
 
 
 def _edges_off_grounded(edges: _Edges, ends: np.ndarray, fr: StepFrames) -> _Edges:
-    """The edges moved off the grounded feet: the foot at lift-off stands on its surface, so
-    the first edge lies ahead of its sole's foremost point (its toe tip in the toe-off pose,
-    which reaches past the toe of the flat foot), and the landed foot stands on its surface,
-    so the last edge lies behind its sole's rearmost point; an edge whose riser is known
-    stays where it is (a tall walker's toes hang over the nosing ahead, in the air: moved
-    past them, the last step off a flight held its foot up and dropped it 18.6 cm in one
-    frame at 1.95 m). ``ends`` (2, 3, 3): the sole's heel, ball and toe at the last grounded
-    sample before lift-off and at landing."""
+    """The edges moved off the grounded feet: the foot at lift-off stands on its surface, so the
+    first edge lies ahead of its sole's foremost point (its toe tip in the toe-off pose, which
+    reaches past the toe of the flat foot), and the landed foot stands on its surface, so the last
+    edge lies behind its sole's rearmost point; an edge whose riser is known stays where it is (a
+    tall walker's toes hang over the nosing ahead, in the air: moved past them, the last step off a
+    flight held its foot up and dropped it 18.6 cm in one frame at 1.95 m). ``ends`` (2, 3, 3): the
+    sole's heel, ball and toe at the last grounded sample before lift-off and at landing."""
     seg = fr.land[:2] - fr.lift[:2]
     e = seg / max(float(np.hypot(*seg)), 1e-9)
     x = (ends[..., :2] - fr.lift[:2]) @ e  # (2, 3)
@@ -266,14 +264,14 @@ def _clearance_deficit(pts: np.ndarray, fr: StepFrames, edges: _Edges, clearance
 
 def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: LegGeometry,
                clearance: float = STAIR_TOE_CLEARANCE):  # fmt: skip
-    """The swing foot of an edged step (a step or a stair) over its airborne samples. A step
-    up (:func:`_swing_path`) rises until its toes clear the first edge, then travels forward
-    (the flat swing's path, re-timed; its pitch, toes and heading kept) rising on to reach
-    each further edge ``clearance`` above it, and lowers once its heel is past the last;
-    raised further where the sole would still come closer to an edge. A step down
-    (:func:`_swing_path`) the same way for its foot hanging toes down, planned once (the
-    clearance returned is that plan's): :func:`sole_rise` then lifts the sole where the
-    foot, pitched again to what its ankle holds, would dip into a tread.
+    """The swing foot of an edged step (a step or a stair) over its airborne samples. A step up
+    (:func:`_swing_path`) rises until its toes clear the first edge, then travels forward (the flat
+    swing's path, re-timed; its pitch, toes and heading kept) rising on to reach each further edge
+    ``clearance`` above it, and lowers once its heel is past the last; raised further where the sole
+    would still come closer to an edge, or its corners need more than its centre line over a slanted
+    riser (:mod:`.solecorners`). A step down (:func:`_swing_path`) the same way for its foot hanging
+    toes down, planned once (the clearance returned is that plan's): :func:`sole_rise` then lifts
+    the sole where the foot, pitched again to what its ankle holds, would dip into a tread.
 
     Args:
         ankle: (m, 3) the flat swing's ankle from the last grounded sample before lift-off
@@ -288,7 +286,7 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
 
     Returns:
         (m, 3) the new ankle positions, metres, and the least clearance over the edges
-        reached (metres; ``clearance`` or more where the design holds).
+        reached (metres; ``clearance`` or more where the design holds; its centre line's).
     """
     m = len(ankle)
     tau = np.arange(m) / max(m - 1, 1)
@@ -305,8 +303,9 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
     u_f = np.maximum.accumulate(np.clip((ankle[:, :2] - fr.lift[:2]) @ e / length, 0, 1))
     u_f[-1] = max(u_f[-1], u_f[-2] + 1e-9) if m > 1 else u_f[-1]
     u_f = u_f + np.arange(m) * 1e-12  # strictly increasing for np.interp
-    extra, out, need = 0.0, ankle.copy(), 0.0
+    extra, out, need, foot = 0.0, ankle.copy(), 0.0, (pitch, toe, yaw, geom)
     descent = surf.descends
+    lines = rising_risers(fr.lift, fr.land, edges.zr, () if descent else surf.risers)
     for _ in range(3):
         # a step down moves forward as long as its heel can still be lowered in time
         end = 1.0 if descent else ASCENT_CLEARANCE_END
@@ -315,6 +314,7 @@ def edge_swing(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom:
         if not descent:
             out[:, 2] = rise_held(out[:, 2], _toe_heel(pitch, toe, geom)[1])
             _keep_behind_edges(out, out[:, 2], clearance, pitch, toe, edges, fr, geom)
+            out[:, 2] = corner_lift(out, foot, lines, (SOLE_MARGIN, clearance), RISE_SHARE)
         out[0], out[-1] = ankle[0], ankle[-1]
         need = _clearance_deficit(_sole_points(out[1:-1], pitch[1:-1], toe[1:-1], yaw[1:-1], geom),
                                   fr, edges, clearance)  # fmt: skip
@@ -392,24 +392,22 @@ def _sole_need(px, pz, edges: _Edges, margin: float, edge_margin: float,
 
 def _swing_path(ankle, time, foot, edges: _Edges, fr: StepFrames, geom: LegGeometry,
                 levels) -> np.ndarray:  # fmt: skip
-    """The swing ankle of an edged step; for a step up (a stair or a step ascended):
-    it rises until its toes clear the first edge, moves forward from then (the flat swing's
-    path re-timed, over by :data:`ASCENT_CLEARANCE_END`) and rises on as it goes, its sole
-    as pitched reaching each further edge ``clearance`` above it -- not first up to clear the
-    highest edge with the foot held behind the body, which flexed the knee past its cited
-    peak -- and lowers onto the landing tread once its heel is past the last edge. Its height
-    is the least that keeps the sole over the surfaces and ``clearance`` over the edges it
-    spans (:func:`_sole_need`), reached ahead of where it is needed at a bounded speed (the
-    whole rise in :data:`RISE_SHARE` of the swing: the upper envelope of cones).
-    The forward motion of the foot over the lower nosing early, with the foot dorsiflexed,
-    is how stair ascent's swing clears the step (McFadyen & Winter 1988; Riener et al. 2002).
-    A step down the same way: its foot, hanging toes down for its forefoot landing, moves
-    forward once its toes clear the lift tread's nosing and keeps on as long as its heel
-    can still be lowered onto the landing tread in time, its sole ``clearance`` over the
-    nosings it spans (leg pull-through, then foot placement: McFadyen & Winter 1988).
-    ``time`` = (u_f, tau), ``foot`` = (pitch, toe) per sample, ``levels`` = (clearance, the
-    share of the swing by which the forward motion is over at the latest); returns (m, 3)
-    ankles, metres."""
+    """The swing ankle of an edged step; for a step up (a stair or a step ascended): it rises until
+    its toes clear the first edge, moves forward from then (the flat swing's path re-timed, over by
+    :data:`ASCENT_CLEARANCE_END`) and rises on as it goes, its sole as pitched reaching each further
+    edge ``clearance`` above it -- not first up to clear the highest edge with the foot held behind
+    the body, which flexed the knee past its cited peak -- and lowers onto the landing tread once
+    its heel is past the last edge. Its height is the least that keeps the sole over the surfaces
+    and ``clearance`` over the edges it spans (:func:`_sole_need`), reached ahead of where it is
+    needed at a bounded speed (the whole rise in :data:`RISE_SHARE` of the swing: the upper envelope
+    of cones). The forward motion of the foot over the lower nosing early, with the foot
+    dorsiflexed, is how stair ascent's swing clears the step (McFadyen & Winter 1988; Riener et al.
+    2002). A step down the same way: its foot, hanging toes down for its forefoot landing, moves
+    forward once its toes clear the lift tread's nosing and keeps on as long as its heel can still
+    be lowered onto the landing tread in time, its sole ``clearance`` over the nosings it spans (leg
+    pull-through, then foot placement: McFadyen & Winter 1988). ``time`` = (u_f, tau), ``foot`` =
+    (pitch, toe) per sample, ``levels`` = (clearance, the share of the swing by which the forward
+    motion is over at the latest); returns (m, 3) ankles, metres."""
     (u_f, tau), (pitch, toe), (clearance, end) = time, foot, levels
     m = len(ankle)
     tip_x, tip_z, heel_x, heel_z = _toe_heel(pitch, toe, geom)
@@ -527,9 +525,8 @@ def _keep_behind_edges(out, z, clearance, pitch, toe, edges: _Edges, fr: StepFra
 
 def swing_clearance(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: LegGeometry,
                     clearance: float = STAIR_TOE_CLEARANCE) -> float:  # fmt: skip
-    """The least clearance of an edged step's swing sole over its edges (and of its sole
-    points over the surfaces under them), as :func:`edge_swing` reports it, for a swing as it
-    now stands.
+    """The least clearance of an edged step's swing sole over its edges (and of its sole points
+    over the surfaces under them), as :func:`edge_swing` reports it, for a swing as it stands.
 
     Args:
         ankle: (m, 3) the swing ankle from the last grounded sample to the landing, metres.
@@ -592,6 +589,8 @@ def sole_rise(ankle, pitch, toe, yaw, fr: StepFrames, surf: StepSurfaces, geom: 
     pts = _sole_points(ankle, pitch, toe, yaw, geom)
     x = (pts[..., :2] - fr.lift[:2]) @ e  # (m, 3)
     need = np.maximum(_sole_need(x, pts[..., 2], edges, margin, margin), 0.0)
+    lines = rising_risers(fr.lift, fr.land, edges.zr, () if surf.descends else surf.risers)
+    need = np.maximum(need, corner_shortfall(ankle, (pitch, toe, yaw, geom), lines, (margin,) * 2))
     need[ends] = 0.0
     if not need.any():
         return need
