@@ -3,7 +3,9 @@ treads to a level, as stairs are built (DIN 18065 allows 5 mm, ``norms.STAIR_TOL
 
 The riser is the rise between the two end levels over the number of risers; the tread depth and
 the first riser's place a least-squares line through the treads' front and back edges along the
-climb (the top level's axis nearest the treads' run); when a tread is seen in part (its back in
+climb (the top level's axis nearest the treads' run; into a pit, whose top is the floor, the
+axis all its treads share, :func:`~mjwalk.scan.minrect.common_axis`, and the floor's rim along
+the flight as the last riser, :func:`rim_edge`); when a tread is seen in part (its back in
 the shadow of the next tread or level), through the treads' front edges and the top level's. The
 chain is a stair when each tread's fitted height and edges lie within the scan's tolerance of
 the flight (:data:`HEIGHT_TOL`, :data:`EDGE_CELLS`) and the flight is within the norms (riser
