@@ -142,6 +142,7 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
         run = axis_near(top_rect, mids[-1] - mids[0])
     else:
         axis = common_axis([t.cells for t in treads], plan.x0, plan.y0, plan.resolution)
+        # the axis and its normal as a unit square, its axis nearest the treads' run taken
         run = axis_near(
             np.array([[0.0, 0.0], axis, axis + [-axis[1], axis[0]], [-axis[1], axis[0]]]),
             mids[-1] - mids[0],
