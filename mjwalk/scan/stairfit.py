@@ -3,7 +3,9 @@ treads to a level, as stairs are built (DIN 18065 allows 5 mm, ``norms.STAIR_TOL
 
 The riser is the rise between the two end levels over the number of risers; the tread depth and
 the first riser's place a least-squares line through the treads' front and back edges along the
-climb (the top level's axis nearest the treads' run); when a tread is seen in part (its back in
+climb (the top level's axis nearest the treads' run; into a pit, whose top is the floor, the
+axis all its treads share, :func:`~mjwalk.scan.minrect.common_axis`, and the floor's rim along
+the flight as the last riser, :func:`rim_edge`); when a tread is seen in part (its back in
 the shadow of the next tread or level), through the treads' front edges and the top level's. The
 chain is a stair when each tread's fitted height and edges lie within the scan's tolerance of
 the flight (:data:`HEIGHT_TOL`, :data:`EDGE_CELLS`) and the flight is within the norms (riser
@@ -19,7 +21,7 @@ import math
 
 import numpy as np
 
-from mjwalk.scan.minrect import min_rectangle
+from mjwalk.scan.minrect import common_axis, min_rectangle
 from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan
 from mjwalk.scan.planefit import RISER_TOL
 from mjwalk.scan.scanlevels import ScanLevel, seen_in_part
@@ -133,9 +135,18 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
     mids = [cell_centres(t.cells, plan).mean(axis=0) for t in treads]
     top_rect = min_rectangle(top.cells, plan.x0, plan.y0, plan.resolution)
     # a flight down into a pit (its top the floor, whose outline is the hall's) turns with its
-    # own treads: the axis of the tread next to the floor
-    ref = top_rect if top.kind != "floor" else tread_rect(treads[-1], plan)
-    run = axis_near(ref, mids[-1] - mids[0])
+    # own treads: the axis all its treads' rectangles fit best (one tread's own rectangle can
+    # tip by atan(2 res / width), 1.2 deg in generated hall 1069, and its top tread then met
+    # the cell-stepped floor edge in two stretches)
+    if top.kind != "floor":
+        run = axis_near(top_rect, mids[-1] - mids[0])
+    else:
+        axis = common_axis([t.cells for t in treads], plan.x0, plan.y0, plan.resolution)
+        # the axis and its normal as a unit square, its axis nearest the treads' run taken
+        run = axis_near(
+            np.array([[0.0, 0.0], axis, axis + [-axis[1], axis[0]], [-axis[1], axis[0]]]),
+            mids[-1] - mids[0],
+        )
     side = np.array([-run[1], run[0]])
     rows, rhs, lefts, rights = [], [], [], []
     for k, t in enumerate(treads):
@@ -145,9 +156,18 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
         rhs += [along.min(), along.max()]
         lefts.append(across.min())
         rights.append(across.max())
-    a = np.array(rows)
-    coef, *_ = np.linalg.lstsq(a, np.array(rhs), rcond=None)
-    dxy = float(np.abs(a @ coef - rhs).max())
+    a, b = np.array(rows), np.array(rhs)
+    if top.kind == "floor":
+        # into a pit the floor's edge is the last riser, seen whole from the floor's side: the
+        # flight's spacing is fitted through it too, so the top tread meets it (generated hall
+        # 1067: three treads' edges alone gave 0.285 m for 0.2964 m, the top tread written
+        # 5 cm short of the floor and the pit unreachable)
+        span = (float(np.median(lefts)), float(np.median(rights)))
+        front = rim_edge(top, plan, run, side, span, rhs[-2])
+        if np.isfinite(front):
+            a, b = np.vstack([a, [1.0, 0.0, n - 1]]), np.append(b, front)
+    coef, *_ = np.linalg.lstsq(a, b, rcond=None)
+    dxy = float(np.abs(a @ coef - b).max())
     cell = cell_span(run, plan.resolution)  # a cell's extent along the climb
     tol = STAIR_TOLERANCE + EDGE_CELLS * cell
     if dxy > tol or any(seen_in_part(t, plan.resolution) for t in treads):
@@ -227,6 +247,35 @@ def near_edge(
     along, across = c @ run, c @ side
     mine = (along > start) & (across >= span[0]) & (across <= span[1])
     return float(along[mine].min()) if mine.any() else math.inf
+
+
+def rim_edge(
+    top: ScanLevel, plan: FloorPlan, run: np.ndarray, side: np.ndarray, span, start: float
+) -> float:
+    """Where a level begins along a flight, the median over the flight's width: per strip one
+    cell wide across ``side``, its first cell beyond ``start``. A cell-stepped edge or a cell
+    of the level beside the flight's side (generated hall 1069: floor 8 cm nearer than the
+    rim, beside the top tread) moves a few strips, not the median.
+
+    Args:
+        top: the level.
+        plan: the floor plan (its grid).
+        run: (2,) the flight's unit climb direction.
+        side: (2,) the unit direction across it.
+        span: (least, most) across ``side`` of the flight's width, metres.
+        start: the place along ``run`` looked beyond, metres.
+
+    Returns:
+        The median of the strips' first cell centres along ``run``, metres; inf when none.
+    """
+    c = cell_centres(top.cells, plan)
+    along, across = c @ run, c @ side
+    mine = (along > start) & (across >= span[0]) & (across <= span[1])
+    if not mine.any():
+        return math.inf
+    strip = np.round(across[mine] / plan.resolution).astype(np.int64)
+    firsts = [float(along[mine][strip == k].min()) for k in np.unique(strip)]
+    return float(np.median(firsts))
 
 
 def _shadowed_fit(edges: np.ndarray, top_front: float, res: float) -> tuple[np.ndarray, float]:

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from mjwalk.scan.minrect import min_rectangle, rectangle_size
+from mjwalk.scan.minrect import common_axis, min_rectangle, rectangle_size
 
 
 def test_min_rectangle_of_a_turned_region():
@@ -23,3 +23,21 @@ def test_a_line_of_cells_gets_a_rectangle_half_a_cell_wide():
     cells[5, 3:33] = True
     depth, width = rectangle_size(min_rectangle(cells, 0.0, 0.0, 0.02))
     assert depth == pytest.approx(0.01, abs=1e-9) and width == pytest.approx(0.58, abs=1e-9)
+
+
+def test_common_axis_is_the_one_most_treads_share():
+    """Three grid-aligned treads 1.52 m by 0.32 m and a fourth drawn 1.2 deg off (generated
+    hall 1069's top tread, as its cells read): the fourth's own rectangle tips, the common axis
+    of the four is the grid's."""
+    res = 0.02
+    gx, gy = np.meshgrid((np.arange(120) + 0.5) * res, (np.arange(100) + 0.5) * res)
+    cells = [(np.abs(gx - 0.3 - 0.34 * k) <= 0.16) & (np.abs(gy - 1.0) <= 0.76) for k in range(3)]
+    a = math.radians(1.2)
+    u = (gx - 1.32) * math.cos(a) + (gy - 1.0) * math.sin(a)
+    v = -(gx - 1.32) * math.sin(a) + (gy - 1.0) * math.cos(a)
+    cells.append((np.abs(u) <= 0.16) & (np.abs(v) <= 0.76))
+    r = min_rectangle(cells[3], 0.0, 0.0, res)
+    own = (r[1] - r[0]) / np.hypot(*(r[1] - r[0]))
+    ax = common_axis(cells, 0.0, 0.0, res)
+    assert abs(ax[0] * ax[1]) < 1e-12  # along x or y
+    assert abs(own[0] * own[1]) > math.sin(math.radians(0.5)) / 2, own  # tipped

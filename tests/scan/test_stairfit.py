@@ -166,3 +166,67 @@ def test_cell_span():
     assert cell_span(np.array([1.0, 0.0]), RES) == pytest.approx(RES)
     assert cell_span(np.array([0.0, -1.0]), RES) == pytest.approx(RES)
     assert cell_span(np.array([1.0, 1.0]) / np.sqrt(2.0), RES) == pytest.approx(RES * np.sqrt(2))
+
+
+def _written_hall(seed: int, tmp_path):
+    """levelgen's hall ``seed``, scanned as benchmarks/bench_unseen.py does (seeded), the
+    scene built from the scan, written and loaded: (the hall, the scene, the written model)."""
+    import mujoco  # deferred: only the slow generated-hall tests need MuJoCo
+
+    from mjwalk.scan.raycast import synthetic_scan
+    from mjwalk.scan.scene import build_scene
+    from mjwalk.world.levelgen import generate_levels
+    from mjwalk.world.workplace import load_model
+
+    hall = generate_levels(seed)
+    xml = tmp_path / "hall.xml"
+    xml.write_text(hall.xml)
+    pts = synthetic_scan(load_model(xml), list(hall.scanners), step_deg=0.4, noise=0.005, seed=seed)
+    scene = build_scene(pts.points, source=f"levels_{seed}")
+    return hall, scene, mujoco.MjModel.from_xml_string(scene.xml)
+
+
+def _pit_links(model):
+    from mjwalk.world.levels import level_graph  # deferred: with the slow tests' imports
+    from mjwalk.world.surfaces import find_walk_surfaces
+
+    graph = level_graph(find_walk_surfaces(model))
+    return [k for k in graph.links if graph.levels[k.lower].height < -0.05]
+
+
+@pytest.mark.slow  # a generated hall's scan: about 30 s on a loaded 2-core machine
+def test_a_pit_flight_turns_with_all_its_treads(tmp_path):
+    """Hall 1069: its pit's stair runs along the hall's y axis (5 risers 0.1402 m, 1.52 m
+    wide). Its top tread's own rectangle tips 1.2 deg (a cell at a corner); the flight's axis
+    from all four treads lies within atan(res / width) (one cell over the tread's width, half
+    what one tread's rectangle allows) of the true one, and the written pit links the floor by
+    the stair alone (before: 1.19 deg, and two extra ``step`` links beside the stair)."""
+    import mujoco  # deferred: only the slow generated-hall tests need MuJoCo
+
+    _, _, model = _written_hall(1069, tmp_path)
+    yaws = []
+    for g in range(model.ngeom):
+        name = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_GEOM, g) or ""
+        if name.startswith("scan_pit_tread_"):
+            q = model.geom_quat[g]
+            yaws.append(2 * np.arctan2(q[3], q[0]))
+    assert len(yaws) == 4
+    off = [abs((y + np.pi / 4) % (np.pi / 2) - np.pi / 4) for y in yaws]  # from the hall's axes
+    assert max(off) <= np.arctan(RES / 1.52), np.degrees(off)
+    links = _pit_links(model)
+    assert [(k.kind, len(k.risers)) for k in links] == [("stair", 5)]
+
+
+@pytest.mark.slow  # a generated hall's scan: about 30 s on a loaded 2-core machine
+def test_a_pit_flight_meets_the_floor_edge(tmp_path):
+    """Hall 1067: a pit 0.69 m deep reached by 4 risers of 0.1724 m and 0.2964 m treads. Its
+    three treads' edges alone gave 0.285 m, the top tread written 5 cm short of the floor; the
+    floor's rim in the fit puts the tread within a cell over the flight's three treads of the
+    true one and the written pit is reached by its stair (before: no link to the pit)."""
+    _, scene, model = _written_hall(1067, tmp_path)
+    (pit,) = [p for p in scene.pits if p.bottom is not None]
+    assert pit.link is not None and pit.link.kind == "stair"
+    assert pit.link.tread == pytest.approx(0.2964, abs=RES / 3)
+    links = _pit_links(model)
+    assert [(k.kind, len(k.risers)) for k in links] == [("stair", 4)]
+    assert links[0].risers[0] == pytest.approx(0.1724, abs=0.005)
