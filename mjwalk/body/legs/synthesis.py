@@ -223,7 +223,7 @@ def legs_from_walk(
         root, angles, meta["edge_clearance"] = lift_to_levels(
             walk, frames, feet, root, sy.yaw, geom, lowered
         )
-        tilt = ascent_tilt(walk, n)  # the pelvis forward on a stair up, the legs kept
+        tilt = ascent_tilt(walk, n)  # the pelvis tilted back up a stair, the legs kept
         if tilt.any():
             angles, meta["pelvis_tilt"] = tilt_pelvis(angles, tilt), tilt
         lean = ascent_lean(walk, n)  # the trunk forward, in the spine (the timeline)
