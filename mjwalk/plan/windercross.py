@@ -398,17 +398,41 @@ def winder_walk(
         name: (np.array([*(xy0 + sign * 0.5 * width * left), yaw0]), z0)
         for name, sign in (("left", 1.0), ("right", -1.0))
     }
-    k = len(f.times)
-    across = np.stack([-np.sin(f.yaw), np.cos(f.yaw)], axis=1)
-    was = np.concatenate([[yaw0], f.yaw[:-1]])
-    xy, z, yaws, steps = footfall_walk(
-        (f.ankle, f.z, f.times, f.yaw, across, 0.0), feet, f.side, (xy0, z0, yaw0),
-        (was, k, float(f.yaw[-1])), floor_z,
+    track = (f.ankle, f.z, f.times, f.yaw)
+    return footfall_path(c, direction, track, (feet, f.side), (xy0, z0, yaw0), floor_z)
+
+
+def footfall_path(
+    c, direction: str, track: tuple, feet: tuple[dict, str], start: tuple, floor_z: float
+) -> WalkPath:
+    """The walk over a winder's footfalls, every step turning from the one before
+    (:func:`mjwalk.plan.footfallwalk.footfall_walk`), as a :class:`WalkPath`.
+
+    Args:
+        c: the winder (its ``lower``, ``upper`` and :meth:`WinderCrossing.riser_lines`).
+        direction: "up" or "down".
+        track: (ankle points (k, 2) world xy, surface heights (k,) world z, step durations
+            (k,) s, headings (k,) radians) of the footfalls.
+        feet: ({"left", "right"}: (foot pose (3,), world z) before the first step, the first
+            step's swinging foot).
+        start: (pelvis xy (2,), pelvis world z, heading in radians) before the first step.
+        floor_z: the floor's world height, metres.
+
+    Returns:
+        The walk from t = 0, heights above ``floor_z``; ``meta`` names the crossing
+        ("winder") and its nosings' ``edges``.
+    """
+    ankle, z, times, yaw = track
+    across = np.stack([-np.sin(yaw), np.cos(yaw)], axis=1)
+    was = np.concatenate([[start[2]], yaw[:-1]])
+    xy, zz, yaws, steps = footfall_walk(
+        (ankle, z, times, yaw, across, 0.0), feet[0], feet[1], start,
+        (was, len(times), float(yaw[-1])), floor_z,
     )  # fmt: skip
     n = steps[-1].end
     meta = {"crossing": "winder", "direction": direction, "lower": c.lower, "upper": c.upper,
             "edges": c.riser_lines(floor_z)}  # fmt: skip
     return WalkPath(
         t=np.arange(n + 1) / SAMPLE_RATE_HZ, xy=xy, yaw=yaws, steps=steps, meta=meta,
-        z=z - floor_z,
+        z=zz - floor_z,
     )  # fmt: skip

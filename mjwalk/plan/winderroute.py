@@ -29,16 +29,20 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from mjwalk.anthropometry import leg_geometry
-from mjwalk.conventions import SAMPLE_RATE_HZ, other_side
+from mjwalk.conventions import other_side
 from mjwalk.errors import PlanningError
 from mjwalk.gait.walker import Walker
-from mjwalk.plan.footfallwalk import footfall_walk
 from mjwalk.plan.levelcross import DEFAULT_STEP_WIDTH, ENTRY_TURN, RISER_GAP, spot_turn
 from mjwalk.plan.levelroute import Crossing, RouteLeg, crossing_headroom
 from mjwalk.plan.turnsplit import wrap
 from mjwalk.plan.turnsteps import turning_steps
 from mjwalk.plan.walkpath import PathStep, WalkPath
-from mjwalk.plan.windercross import WinderCrossing, winder_crossings, winder_footfalls
+from mjwalk.plan.windercross import (
+    WinderCrossing,
+    footfall_path,
+    winder_crossings,
+    winder_footfalls,
+)
 from mjwalk.world.levels import LevelGraph
 from mjwalk.world.norms import HEAD_MARGIN
 
@@ -351,17 +355,5 @@ def winder_cross_walk(
         raise PlanningError(f"winder walk turns {math.degrees(turn):.0f} deg in one step")
     feet = _feet(last, xy0, yaw0, z0, (width, floor_z))
     pelvis_z = 0.5 * (feet["left"][1] + feet["right"][1])
-    k = len(times)
-    across_all = np.stack([-np.sin(yaw_all), np.cos(yaw_all)], axis=1)
-    was = np.concatenate([[yaw0], yaw_all[:-1]])
-    xy, zz, yaw_s, steps = footfall_walk(
-        (ankle, z, times, yaw_all, across_all, 0.0), feet, swing, (xy0, pelvis_z, yaw0),
-        (was, k, float(yaw_all[-1])), floor_z,
-    )  # fmt: skip
-    n = steps[-1].end
-    meta = {"crossing": "winder", "direction": direction, "lower": c.lower, "upper": c.upper,
-            "edges": c.riser_lines(floor_z)}  # fmt: skip
-    return WalkPath(
-        t=np.arange(n + 1) / SAMPLE_RATE_HZ, xy=xy, yaw=yaw_s, steps=steps, meta=meta,
-        z=zz - floor_z,
-    )  # fmt: skip
+    track = (ankle, z, times, yaw_all)
+    return footfall_path(c, direction, track, (feet, swing), (xy0, pelvis_z, yaw0), floor_z)
