@@ -243,10 +243,8 @@ def near_edge(
         The centre of ``top``'s first cells along ``run`` beyond ``start`` within ``span``,
         metres along ``run``; inf when none.
     """
-    c = cell_centres(top.cells, plan)
-    along, across = c @ run, c @ side
-    mine = (along > start) & (across >= span[0]) & (across <= span[1])
-    return float(along[mine].min()) if mine.any() else math.inf
+    along, _ = _cells_beyond(top, plan, (run, side), span, start)
+    return float(along.min()) if along.size else math.inf
 
 
 def rim_edge(
@@ -268,14 +266,21 @@ def rim_edge(
     Returns:
         The median of the strips' first cell centres along ``run``, metres; inf when none.
     """
-    c = cell_centres(top.cells, plan)
-    along, across = c @ run, c @ side
-    mine = (along > start) & (across >= span[0]) & (across <= span[1])
-    if not mine.any():
+    along, across = _cells_beyond(top, plan, (run, side), span, start)
+    if not along.size:
         return math.inf
-    strip = np.round(across[mine] / plan.resolution).astype(np.int64)
-    firsts = [float(along[mine][strip == k].min()) for k in np.unique(strip)]
+    strip = np.round(across / plan.resolution).astype(np.int64)
+    firsts = [float(along[strip == k].min()) for k in np.unique(strip)]
     return float(np.median(firsts))
+
+
+def _cells_beyond(top: ScanLevel, plan: FloorPlan, axes, span, start: float):
+    """A level's cell centres beyond ``start`` along a flight within its width: (along,
+    across) metres on the flight's ``axes`` (run, side) (:func:`near_edge`, :func:`rim_edge`)."""
+    c = cell_centres(top.cells, plan)
+    along, across = c @ axes[0], c @ axes[1]
+    mine = (along > start) & (across >= span[0]) & (across <= span[1])
+    return along[mine], across[mine]
 
 
 def _shadowed_fit(edges: np.ndarray, top_front: float, res: float) -> tuple[np.ndarray, float]:
