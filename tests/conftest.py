@@ -260,3 +260,22 @@ def _winder_xml(kind: str, riser: float = 0.17) -> str:
 def winder_xml():
     """``winder_xml(kind, riser=0.17)``: a quarter-turn winder's MJCF (``_winder_xml``)."""
     return _winder_xml
+
+
+#: Walks on which nothing rises a riser: no stair-ascent pelvic tilt or trunk lean
+#: (tests/body/test_pelvistilt.py, test_trunklean.py).
+OFF_ASCENT_WALKS = ("stair down", "flat", "ramp up")
+
+
+@pytest.fixture(params=OFF_ASCENT_WALKS)
+def off_ascent_walk(request):
+    """A synthetic walk down a 0.17/0.28 m stair, on the floor or up a 5.5 deg ramp."""
+    import numpy as np  # only this fixture needs them (the rest are scene paths)
+
+    from mjwalk.plan.synthetic import synthetic_ramp_walk, synthetic_stair_walk, synthetic_walk
+
+    return {
+        "stair down": lambda: synthetic_stair_walk(0.17, 0.28, 6, "down"),
+        "flat": synthetic_walk,
+        "ramp up": lambda: synthetic_ramp_walk(np.radians(5.5)),
+    }[request.param]()
