@@ -43,6 +43,7 @@ from mjwalk.plan.windercross import (
     winder_crossings,
     winder_footfalls,
 )
+from mjwalk.plan.windercross import winder_time as footfalls_time
 from mjwalk.world.levels import LevelGraph
 from mjwalk.world.norms import HEAD_MARGIN
 
@@ -226,7 +227,7 @@ def winder_time(c: Crossing, direction: str, walker: Walker) -> float:
         Seconds.
     """
     assert isinstance(c, WinderWay) and c.winder is not None
-    return float(np.sum(winder_footfalls(c.winder, direction, walker).times))
+    return footfalls_time(c.winder, direction, walker)
 
 
 def winder_notes(graph: LevelGraph, clear: float, walker: Walker, max_riser: float) -> list[str]:
