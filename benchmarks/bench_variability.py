@@ -263,7 +263,9 @@ def route_turns(table: dict) -> None:
     walks are much longer than the planned, their length (and its spread) lies in how people
     turn from facing the work into the walk. Since issue 48's turn split
     (:mod:`mjwalk.plan.turnsplit`) a walker standing at its work turns all but 30-60 deg of a
-    turn over 90 deg on the spot and the rest along its first steps."""
+    turn over 90 deg on the spot and the rest along its first steps. Those zone figures bound the
+    zones alone; the planned walks themselves fall short only on T2 car1 -> rack3, where a
+    per-person turn habit would not help (docs/decisions/113, ``bench_turn_spread.py``)."""
     import math
 
     spec = load_cycle_spec(ROOT / "scenes" / "assembly_station.toml")
