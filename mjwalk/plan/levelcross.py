@@ -147,7 +147,9 @@ RISER_GAP = STAIR_TOE_CLEARANCE
 #: m foot stood 0.6 mm into both risers of a 0.28 m tread, and with only this gap going down
 #: its landing heel still caught the upper nosing (6.2 mm; 1.3 mm with 1 cm; measured on the
 #: shipped stair, ``tests/timeline/test_collisions.py``); the multi-level station's cycle,
-#: run 7 of 10 (a 1.85 m older adult): 225 contacts. Feet that fit stand as before.
+#: run 7 of 10 (a 1.85 m older adult): 225 contacts. Feet that fit stand as before. A walker
+#: whose foot keeps less than :data:`mjwalk.world.norms.MIN_TREAD_SHARE` of it on a tread does
+#: not take the flight (:mod:`mjwalk.plan.treadshare`).
 TREAD_RISER_GAP = DESCENT_LOW_CLEARANCE
 
 

@@ -2,7 +2,9 @@
 
 :func:`level_route` finds a walk's legs over levels (:func:`mjwalk.plan.levelplan.plan_level_walk`,
 step 1): the nodes are the walk's start and goal and each usable crossing's lower and upper
-stance; a crossing joins its two stances at its gait's time (:func:`mjwalk.plan.levelcross.
+stance (usable: its risers within the walker's step-up limit, headroom for it, and treads that
+hold its foot, :mod:`mjwalk.plan.treadshare` and :func:`mjwalk.plan.winderroute.foot_refusal`);
+a crossing joins its two stances at its gait's time (:func:`mjwalk.plan.levelcross.
 crossing_time`; a conforming winder, :func:`mjwalk.plan.winderroute.winder_time`), and two
 nodes on one level are joined by the level walk between them, its
 obstacle-aware distance (each node's distance field on the level's view,
@@ -48,6 +50,7 @@ from mjwalk.plan.levelroute import (
 )
 from mjwalk.plan.occupancy import CELL_SIZE, MOVES_16, shared_grid
 from mjwalk.plan.options import PlannerOptions
+from mjwalk.plan.treadshare import flight_notes, flight_refusal
 from mjwalk.plan.turnin import turn_in_time, walked_back
 from mjwalk.plan.winderroute import foot_refusal, route_winders, winder_notes, winder_time
 from mjwalk.world.levelview import level_view
@@ -178,6 +181,7 @@ def _route(workplace, start, goal, walker: Walker, options, max_riser):
         if c.fits(max_riser)
         and _head_fits(workplace, c, walker.stature)
         and foot_refusal(c, walker) is None  # a winder's treads hold the walker's foot
+        and flight_refusal(c, walker) is None  # and a straight flight's
     ]
     # nodes: 0 start, 1 goal, then each crossing's lower and upper stance
     nodes = [(start.level, start.xy), (goal.level, goal.xy)]
@@ -188,7 +192,11 @@ def _route(workplace, start, goal, walker: Walker, options, max_riser):
     edges = _Edges(workplace, (usable, nodes, leads), walker, options, reach)
     path, _ = dijkstra(len(nodes), edges, 0, 1)
     if path is None:
-        why = [*workplace.levels.notes, *winder_notes(workplace.levels, clear, walker, max_riser)]
+        why = [
+            *workplace.levels.notes,
+            *flight_notes(_crossings(workplace, clear), walker),
+            *winder_notes(workplace.levels, clear, walker, max_riser),
+        ]
         notes = "".join(f"; {n}" for n in why)  # a ramp that links none, a winder stair
         raise PlanningError(
             f"no route from level L{start.level} to level L{goal.level} of {workplace.name} for "

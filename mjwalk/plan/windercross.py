@@ -10,7 +10,10 @@ there: the chord of an arc is parallel to the tangent at its middle), so the hea
 tread by tread; feet alternate left and right, each half the walker's step width beside the
 walk line as on a straight flight, moved towards it, and past it within the stair's walk zone
 (:data:`mjwalk.world.norms.WALK_ZONE_SHARE`), where that is what keeps the foot wholly on its
-tread (:func:`tread_foot`); a tread no foot of the walker fits within the walk zone is refused.
+tread (:func:`tread_foot`); where no place holds the whole foot it hangs over the tread's nosing
+as on a straight flight, keeping :data:`mjwalk.world.norms.MIN_TREAD_SHARE` of its length on
+the tread; a tread that holds that share of the walker's foot nowhere in the walk zone is
+refused.
 On the levels before and after the stair the foot stands off the first and last nosing along
 their normals, its toes (heel) at least :data:`mjwalk.plan.levelcross.RISER_GAP` from the
 riser. A step that climbs or descends a riser takes the stair gait's step time
@@ -42,7 +45,7 @@ from mjwalk.plan.turnsteps import turned_chains
 from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.footprint import Footprint
 from mjwalk.world.levels import LevelGraph, LevelLink
-from mjwalk.world.norms import DESCENT_LOW_CLEARANCE, WALK_ZONE_SHARE
+from mjwalk.world.norms import DESCENT_LOW_CLEARANCE, MIN_TREAD_SHARE, WALK_ZONE_SHARE
 from mjwalk.world.walkline import WalkLineTread, walk_line_faults, walk_line_treads
 
 #: Least gap (m) between a foot on a winder's tread and every edge of the tread (its nosings,
@@ -184,7 +187,9 @@ def sole_corners(centre: np.ndarray, yaw: float, stature: float) -> np.ndarray:
     return _corners(np.asarray(centre, dtype=float)[None], h, stature)[0]
 
 
-def tread_foot(c: WinderCrossing, i: int, stature: float, want: float) -> np.ndarray:
+def tread_foot(
+    c: WinderCrossing, i: int, stature: float, want: float, direction: str = "up"
+) -> np.ndarray:
     """Where a foot's sole is centred on tread ``i``, turned along the tread's walk-line chord:
     the chord's middle moved ``want`` metres across it (left of the way up), or, where the
     sole would not keep :data:`TREAD_EDGE_GAP` inside the tread's outline there, the nearest
@@ -192,7 +197,13 @@ def tread_foot(c: WinderCrossing, i: int, stature: float, want: float) -> np.nda
     :data:`~mjwalk.world.norms.WALK_ZONE_SHARE` of the tread's mean nosing length either side
     of the walk line, and along it within the tread) where it does. On a winder the nosings
     slant apart across the foot's width, so a tread deep enough on the walk line may hold the
-    foot only towards its wide end, and there its middle lies further round the turn.
+    foot only towards its wide end, and there its middle lies further round the turn. Where
+    no place holds the whole sole, the foot hangs over the tread's nosing as on a straight
+    flight (:mod:`mjwalk.plan.treadshare`): the nearest place where the part of the sole
+    towards the riser at the tread's back, :data:`~mjwalk.world.norms.MIN_TREAD_SHARE` of
+    its length (the toes going up; going down the heel, kept
+    :data:`~mjwalk.plan.levelcross.RISER_GAP` off that riser, whose nosing the landing heel
+    passes), keeps the edge gap inside the tread (:func:`held_corners`).
 
     Args:
         c: the winder.
@@ -200,12 +211,14 @@ def tread_foot(c: WinderCrossing, i: int, stature: float, want: float) -> np.nda
         stature: the walker's stature, metres.
         want: the offset across the walk line the foot would take, metres (positive: left of
             the way up).
+        direction: "up" or "down", the way the foot faces (its heel or toes over the nosing).
 
     Returns:
         (2,) the sole's centre, world xy, metres.
 
     Raises:
-        PlanningError: no place within the walk zone keeps the sole on the tread.
+        PlanningError: no place within the walk zone keeps that share of the sole on the
+            tread.
     """
     t = c.treads[i]
     start, end = np.asarray(t.start), np.asarray(t.end)
@@ -224,12 +237,46 @@ def tread_foot(c: WinderCrossing, i: int, stature: float, want: float) -> np.nda
     fits = np.all(c.outlines[i].signed_distance(corners) <= -TREAD_EDGE_GAP + 1e-12, axis=1)
     if fits.any():
         return centres[int(np.argmax(fits))]
+    held = held_corners(centres, h, stature, direction)
+    fits = np.all(c.outlines[i].signed_distance(held) <= -TREAD_EDGE_GAP + 1e-12, axis=1)
+    if fits.any():
+        return centres[int(np.argmax(fits))]
     g = leg_geometry(stature)
     raise PlanningError(
-        f"winder tread {t.name}: a {g.foot_front + g.foot_back:.3f} m foot (stature "
-        f"{stature:.2f} m) keeps {TREAD_EDGE_GAP * 1000:.0f} mm inside it nowhere within the "
-        f"walk zone ({2 * half:.2f} m wide)"
+        f"winder tread {t.name}: {100 * MIN_TREAD_SHARE:.0f} % of a "
+        f"{g.foot_front + g.foot_back:.3f} m foot (stature {stature:.2f} m) keeps "
+        f"{TREAD_EDGE_GAP * 1000:.0f} mm inside it going {direction} nowhere within the walk "
+        f"zone ({2 * half:.2f} m wide)"
     )
+
+
+def held_corners(centres: np.ndarray, h: np.ndarray, stature: float, direction: str) -> np.ndarray:
+    """The corners of the part of a sole a tread must hold where the foot hangs over its nosing
+    (:func:`tread_foot`): :data:`~mjwalk.world.norms.MIN_TREAD_SHARE` of the foot's length from
+    its end up the stair (the toes going up, the heel going down), at the foot's width; going
+    down it reaches on past the heel by :data:`~mjwalk.plan.levelcross.RISER_GAP` less
+    :data:`TREAD_EDGE_GAP`, so that, held the edge gap inside the tread, the heel keeps
+    ``RISER_GAP`` off the riser behind it, as on a straight flight
+    (:data:`mjwalk.plan.levelcross.TREAD_RISER_GAP`).
+
+    Args:
+        centres: (n, 2) the soles' centres, world xy, metres.
+        h: (2,) the unit direction up the stair along the feet (the tread's walk-line chord).
+        stature: the walker's stature, metres (:func:`mjwalk.anthropometry.leg_geometry`).
+        direction: "up" or "down".
+
+    Returns:
+        (n, 4, 2) world xy, metres.
+    """
+    g = leg_geometry(stature)
+    h = np.asarray(h, dtype=float)
+    w = np.array([-h[1], h[0]])
+    top = 0.5 * (g.foot_front + g.foot_back)  # the sole's end up the stair, from its centre
+    reach = top + (RISER_GAP - TREAD_EDGE_GAP if direction == "down" else 0.0)
+    bottom = top - MIN_TREAD_SHARE * (g.foot_front + g.foot_back)
+    across = 0.5 * g.foot_width * w
+    offsets = np.array([a * h + b * across for a in (reach, bottom) for b in (1, -1)])
+    return np.asarray(centres, dtype=float)[:, None, :] + offsets[None]
 
 
 def _corners(centres: np.ndarray, h: np.ndarray, stature: float) -> np.ndarray:
@@ -319,7 +366,7 @@ def winder_footfalls(
     centre = [first + 0.5 * width * side[0] * np.array([-nf[1], nf[0]])]
     yaw, z, tread = [math.atan2(nf[1], nf[0])], [zf], [-1]
     for j, i in enumerate(order, start=1):
-        centre.append(tread_foot(c, i, walker.stature, sign * side[j] * 0.5 * width))
+        centre.append(tread_foot(c, i, walker.stature, sign * side[j] * 0.5 * width, direction))
         chord = np.subtract(c.treads[i].end, c.treads[i].start) * sign
         yaw.append(math.atan2(chord[1], chord[0]))
         z.append(float(c.z[i + 1]))

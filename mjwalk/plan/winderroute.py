@@ -11,8 +11,11 @@ it as it takes a straight flight: its stances are route nodes, its riser limit
 walk to it ends at its line-up point a step length before its stance
 (:func:`~mjwalk.plan.levelcross.approach_point`), and the walk record counts its steps onto
 and off its treads as stairs (:func:`mjwalk.plan.levelstitch.step_kinds`). A walker whose foot
-fits no tread of it within its walk zone (:func:`mjwalk.plan.windercross.tread_foot`) does not
-take it (:func:`foot_refusal`), and a route refused names why (:func:`winder_notes`).
+some tread of it holds nowhere within its walk zone, not even
+:data:`~mjwalk.world.norms.MIN_TREAD_SHARE` of it hanging over the nosing
+(:func:`mjwalk.plan.windercross.tread_foot`; a straight flight's rule:
+:mod:`mjwalk.plan.treadshare`), does not take it (:func:`foot_refusal`), and a route refused
+names why (:func:`winder_notes`).
 
 The walk over it (:func:`winder_cross_walk`) arrives already walking, as over a straight
 flight (:func:`mjwalk.plan.levelcross.cross_walk`'s ``lead_in``): level steps from where the
@@ -194,7 +197,8 @@ def route_winders(graph: LevelGraph, clear: float) -> list[WinderWay]:
 
 
 def foot_refusal(c: Crossing, walker: Walker) -> str | None:
-    """Why a walker's foot fits the winder's treads nowhere within its walk zone, up or down
+    """Why a walker's foot stands on some tread of the winder nowhere within its walk zone (not
+    even :data:`~mjwalk.world.norms.MIN_TREAD_SHARE` of it), up or down
     (:func:`mjwalk.plan.windercross.tread_foot`), else None (and None for any other crossing).
 
     Args:

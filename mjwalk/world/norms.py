@@ -98,6 +98,29 @@ STAIR_TOE_CLEARANCE = 0.03
 #: Robertson, Muhaidat et al. 2011, Foster et al. 2014, Di Giulio et al. 2020: abstracts only),
 #: so :data:`STAIR_TOE_CLEARANCE` remains an ascent figure. 5 mm.
 DESCENT_LOW_CLEARANCE = 0.005
+#: Least share of a foot's length that stands on its tread, on a straight flight and on a
+#: winder alike: the part of the sole towards the riser at the tread's back (the toes going
+#: up, the heel going down) within the tread, the rest hanging over the tread's own nosing
+#: (the heel back over it going up, the toes forward over it going down). Slips, falls and
+#: injuries on stairs are more likely where a walker "oversteps, placing only 50-60 % of their
+#: foot on the tread", and rare beyond a 300 mm going (able-2.co.uk, "Solutions when the tread
+#: of the step is too narrow", occupational-therapy advice quoting stair research without
+#: naming it; NOT verified against that research). The studies found measure the same
+#: quantity but give no threshold in what could be read here: foot overhang as a percentage
+#: of foot length grows as the going shrinks from 325 to 175 mm, up and down (Di Giulio et al.,
+#: Front. Sports Act. Living 2:63, 2020), a 3 % shorter foot contact length in descent
+#: raises the risk of an overstep (Francksen et al., Appl. Ergon. 87:103131, 2020), overhang
+#: counted in percent of foot length (Muhaidat et al., Gait Posture 33:504, 2011), larger
+#: goings prevent serious trips (Roys, Appl. Ergon. 32:135, 2001): abstracts only; Templer
+#: 1992, Jackson & Cohen 1995 and Wright & Roys not found. The top of that 50-60 % band: 0.6.
+#: It agrees with DIN 18065 (going >= 0.26 m, or 0.23 m with >= 30 mm nosing projection
+#: (Unterschneidung), as summarised at treppenprofi-hamburg.de/faq-items/untertritt and
+#: treppen-abc.com/de/treppenlexikon/treppenauftritt): 0.26 m of tread is shorter than a
+#: tall adult's shoe, so the standard accepts some overhang on every conforming flight, and
+#: at 0.6 every walker up to 2.2 m (mjwalk.gait.walker.STATURE_RANGE) keeps a conforming
+#: straight flight (``mjwalk.plan.treadshare``: 0.26 m less 35 mm of gaps is 0.67 of a
+#: 2.2 m walker's 0.334 m foot).
+MIN_TREAD_SHARE = 0.6
 
 # --- level and touching surfaces --------------------------------------------------------------
 #: Largest height difference between two touching surfaces that still counts as one level,

@@ -11,11 +11,14 @@ import pytest
 from mjwalk.errors import PlanningError
 from mjwalk.gait.stairs import StairGeometry, stair_gait
 from mjwalk.gait.walker import Walker
+from mjwalk.plan import windercross
+from mjwalk.plan.levelcross import RISER_GAP
 from mjwalk.plan.occupancy import CELL_SIZE
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.turnsplit import WALKING_TURN_MAX
 from mjwalk.plan.windercross import (
     TREAD_EDGE_GAP,
+    held_corners,
     sole_corners,
     tread_foot,
     winder_crossings,
@@ -136,12 +139,53 @@ def test_the_stair_steps_take_the_stair_gaits_time(winder, direction):
     assert winder_time(winder, direction, walker) == pytest.approx(float(f.times.sum()))
 
 
-def test_a_foot_longer_than_a_tread_is_refused_naming_the_tread(winder):
-    """A 1.85 m walker's 0.281 m foot does not fit a 0.29 m tread with 5 mm to spare either
-    end: refused (on a straight flight it hangs over the nosing), the tread named."""
-    with pytest.raises(PlanningError, match=r"winder tread tread1: a 0.281 m foot") as err:
+@pytest.mark.parametrize("direction", ["up", "down"])
+def test_a_foot_longer_than_a_tread_hangs_over_its_nosing_keeping_its_share(
+    balanced, winder, direction
+):
+    """A 1.85 m walker's 0.281 m foot fits not every 0.29 m tread wholly with 5 mm to spare
+    (refused before the tread-share rule) and hangs over the tread's nosing, as on a straight 0.28 m
+    flight (mjwalk.plan.treadshare): on every tread the part of the sole towards the riser at
+    the tread's back, 0.6 of the foot (the toes going up; going down the heel, 3 cm off that
+    riser), keeps 5 mm inside the tread where the whole foot does not (some treads hold it whole
+    at their wide end); no corner crosses the riser at the back, and the overhang is over the
+    nosing before it."""
+    stature = 1.85
+    f = winder_footfalls(winder, direction, Walker(stature=stature))
+    over = 0
+    for centre, yaw, i in zip(f.centre, f.yaw, f.tread, strict=True):
+        if i < 0:
+            continue
+        surface = balanced.levels.surfaces[
+            balanced.levels.levels[winder.treads[i].level].surfaces[0]
+        ]
+        t = winder.treads[i]
+        up = np.subtract(t.end, t.start) / np.linalg.norm(np.subtract(t.end, t.start))
+        corners = sole_corners(centre, float(yaw), stature)
+        a, b = winder.nosings[i + 1]
+        d = (b - a) / np.linalg.norm(b - a)
+        n = -winder.normal(i + 1)  # into the tread from the riser at its back
+        assert abs(float(n @ d)) < 1e-9
+        assert np.all((corners - a) @ n >= TREAD_EDGE_GAP - 1e-9)
+        if np.any(surface.footprint.signed_distance(corners) > -TREAD_EDGE_GAP + 1e-9):
+            over += 1  # not wholly on the tread: its held part is
+            held = held_corners(centre[None], up, stature, direction)[0]
+            assert np.all(surface.footprint.signed_distance(held) <= -TREAD_EDGE_GAP + 1e-9)
+            lower = _inside_nosings(winder, i, corners)
+            assert np.min(lower) < TREAD_EDGE_GAP  # hangs over the nosing before it
+            if direction == "down":  # the heel 3 cm off the riser behind it along the foot
+                heel = corners + (RISER_GAP - TREAD_EDGE_GAP) * up
+                assert np.all((heel - a) @ n >= TREAD_EDGE_GAP - 1e-9)
+    assert over >= 1  # the rule is what let this walker on
+
+
+def test_a_tread_holding_too_little_of_the_foot_is_refused_naming_it(winder, monkeypatch):
+    """Where no place in the walk zone holds the share of the foot a tread must (here the whole
+    foot: the rule's machinery, not its figure), the walk is refused, the tread named."""
+    monkeypatch.setattr(windercross, "MIN_TREAD_SHARE", 1.0)
+    with pytest.raises(PlanningError, match=r"winder tread tread1: 100 % of a 0.281 m foot") as e:
         winder_footfalls(winder, "up", Walker(stature=1.85))
-    assert "\n" not in str(err.value)
+    assert "\n" not in str(e.value) and "going up" in str(e.value)
 
 
 def test_a_foot_that_does_not_fit_on_the_walk_line_moves_to_the_wider_end(winder):

@@ -14,13 +14,15 @@ import pytest
 from mjwalk.errors import PlanningError
 from mjwalk.gait.default import default_model
 from mjwalk.gait.walker import Walker
+from mjwalk.plan import windercross
 from mjwalk.plan.levelcross import DEFAULT_STEP_WIDTH
 from mjwalk.plan.levelplan import endpoint, plan_level_walk
-from mjwalk.plan.levelroute import RouteLeg, step_up_limit
+from mjwalk.plan.levelroute import RouteLeg, crossings, step_up_limit
 from mjwalk.plan.levelsearch import level_route
 from mjwalk.plan.levelstitch import KIND_NAMES
 from mjwalk.plan.occupancy import CELL_SIZE
 from mjwalk.plan.options import PlannerOptions
+from mjwalk.plan.treadshare import flight_refusal
 from mjwalk.plan.walkpath import PathStep
 from mjwalk.plan.windercross import winder_footfalls
 from mjwalk.plan.winderroute import (
@@ -172,9 +174,26 @@ def test_the_route_times_the_winder_by_its_footfalls(way):
         assert winder_time(way, direction, walker) == pytest.approx(want)
 
 
-def test_a_foot_too_long_for_the_treads_is_refused_naming_it(balanced, way):
-    """A 1.85 m walker's 0.281 m foot fits no 0.29 m tread keeping 5 mm off its edges."""
+def test_a_tall_walker_takes_the_winder_as_it_takes_a_straight_flight(balanced, way, scenes_dir):
+    """A 1.85 m walker's 0.281 m foot fits no 0.29 m tread wholly keeping 5 mm off its edges
+    and hangs over the nosings, as on the multi-level station's straight 0.28 m flight: one rule
+    (mjwalk.world.norms.MIN_TREAD_SHARE), both taken (before it the winder was refused and the
+    flight, with no limit on the overhang, taken)."""
     tall = Walker(stature=1.85)
+    assert foot_refusal(way, tall) is None and foot_refusal(way, Walker()) is None
+    station = load_workplace(scenes_dir / "multilevel_station.xml")
+    stair = next(c for c in crossings(station.levels, 0.33) if c.kind == "stair")
+    assert flight_refusal(stair, tall) is None
+    a, b = endpoint(balanced, "low", "start"), endpoint(balanced, "high", "goal")
+    legs = level_route(balanced, a, b, tall, PlannerOptions(), step_up_limit(tall))
+    assert [leg.crossing.kind for leg in legs if leg.crossing is not None] == ["winder"]
+
+
+def test_a_foot_the_treads_hold_too_little_of_is_refused_naming_it(balanced, way, monkeypatch):
+    """With a share of the foot no tread holds (the whole foot with 5 mm to spare: the rule's
+    machinery, not its figure) the route refuses the winder and names the tread."""
+    monkeypatch.setattr(windercross, "MIN_TREAD_SHARE", 1.0)
+    tall = Walker(stature=1.86)  # not the cached route of the test before
     assert foot_refusal(way, tall) is not None and foot_refusal(way, Walker()) is None
     a, b = endpoint(balanced, "low", "start"), endpoint(balanced, "high", "goal")
     options = PlannerOptions()
@@ -182,7 +201,7 @@ def test_a_foot_too_long_for_the_treads_is_refused_naming_it(balanced, way):
         level_route(balanced, a, b, tall, options, step_up_limit(tall))
     msg = str(err.value)
     assert f"the winder from L{way.lower} to L{way.upper} is not taken: winder tread" in msg
-    assert "foot (stature 1.85 m)" in msg and "\n" not in msg
+    assert "foot (stature 1.86 m)" in msg and "\n" not in msg
 
 
 def test_a_riser_above_the_step_up_limit_is_refused_naming_it(balanced, way):
@@ -212,14 +231,18 @@ def _with_straight_flight(xml: str) -> str:
     return xml.replace("</worldbody>", treads + "</worldbody>")
 
 
-def test_a_walker_whose_foot_fits_no_winder_tread_takes_the_straight_flight(
-    tmp_path_factory, winder_xml
+def test_a_walker_whose_foot_no_winder_tread_holds_takes_the_straight_flight(
+    tmp_path_factory, winder_xml, monkeypatch
 ):
-    """Both the winder and a straight flight join floor and deck: the 1.75 m walker takes the
-    nearer winder, the 1.85 m walker (foot on no winder tread) the flight."""
+    """Both the winder and a straight flight join floor and deck: the 1.75 m and the 1.85 m
+    walker take the nearer winder (the 1.85 m walker's foot over its nosings, as on the flight);
+    a walker whose foot no winder tread holds (here, with the whole foot asked of a winder
+    tread: the machinery, not the rule's figure) takes the flight."""
     both = _workplace(tmp_path_factory, _with_straight_flight(winder_xml("balanced")), "both")
     a, b = endpoint(both, "low", "start"), endpoint(both, "high", "goal")
-    for stature, kind in ((1.75, "winder"), (1.85, "stair")):
+    for stature, kind in ((1.75, "winder"), (1.85, "winder"), (1.86, "stair")):
+        if kind == "stair":
+            monkeypatch.setattr(windercross, "MIN_TREAD_SHARE", 1.0)
         walker = Walker(stature=stature)
         legs = level_route(both, a, b, walker, PlannerOptions(), step_up_limit(walker))
         assert [leg.crossing.kind for leg in legs if leg.crossing is not None] == [kind]
