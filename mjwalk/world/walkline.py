@@ -124,17 +124,19 @@ def walk_line_treads(graph: LevelGraph, chain: Sequence[LevelLink]) -> list[Walk
 
 
 def usable_span(chain: Sequence[LevelLink]) -> tuple[list, tuple[float, float] | None]:
-    """Each tread's two nosings, like ends paired all along the chain, and the stretch of them
-    (fractions of each nosing from its first end) where every tread is at least
-    :data:`~mjwalk.world.norms.USABLE_TREAD_DEPTH` deep: the stair's usable width.
+    """Each tread's two nosings, like ends paired all along the chain, and, on a spiral stair,
+    the stretch of them (fractions of each nosing from its first end) where every tread is at
+    least :data:`~mjwalk.world.norms.USABLE_TREAD_DEPTH` deep: its usable width. A spiral stair
+    here is one whose every tread is shallower than that at the same end of its nosings (the
+    post); elsewhere the whole nosings are the usable width and a shallow narrow end a fault.
 
     Args:
         chain: single steps bottom up (:func:`walk_line_treads`).
 
     Returns:
         ([(lower nosing, upper nosing) per tread, each (2, 2) world xy], (first, last)
-        fraction of the usable stretch), the stretch None where it is the whole nosings or
-        where no stretch is deep enough on every tread (then the narrow end says so).
+        fraction of the usable stretch), the stretch None where it is the whole nosings (no
+        spiral) or where no stretch is deep enough on every tread (then the narrow end says so).
     """
     pairs, ref = [], None
     for below, above in itertools.pairwise(chain):
@@ -143,9 +145,15 @@ def usable_span(chain: Sequence[LevelLink]) -> tuple[list, tuple[float, float] |
         b = _like(np.asarray(above.lower_edge, dtype=float), a)  # the pairing that does not cross
         pairs.append((a, b))
         ref = b
+    shallow = {
+        int(np.argmin(d)) if d.min() < norms.USABLE_TREAD_DEPTH - norms.ROUNDING_SLACK else -1
+        for d in (np.linalg.norm(b - a, axis=1) for a, b in pairs)
+    }
+    if len(shallow) != 1 or -1 in shallow:
+        return pairs, None  # no spiral: not every tread narrows under 0.10 m at one side
     lo, hi, cut = 0.0, 1.0, False
     for a, b in pairs:
-        part = _deep_part(a, b, norms.USABLE_TREAD_DEPTH - norms.ROUNDING_SLACK)
+        part = _deep_part(a, b, norms.USABLE_TREAD_DEPTH)
         if part is None:
             return pairs, None
         cut = cut or part != (0.0, 1.0)
