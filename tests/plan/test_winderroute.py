@@ -261,6 +261,20 @@ def test_the_route_times_the_turn_on_the_spot_before_the_winder_as_walked(way, d
     assert winder_time(way, direction, walker, math.atan2(n[1], n[0])) == plain
 
 
+def test_the_turn_before_the_winder_sends_a_walker_from_behind_it_up_the_flight(
+    tmp_path_factory, winder_xml
+):
+    """From (3.5, -1.5) m the winder's line-up point lies behind the walker: it arrives there
+    facing about 180 deg off the way in, two steps on the spot (0.53 s each) before it. With
+    them counted the straight flight is the quicker way, as walked (plan_level_walk, seeds
+    0-2: 12.8-13.2 s by the flight, 13.1-13.9 s by the winder, which ``both`` forced the
+    route over before: the turn was not counted)."""
+    both = _workplace(tmp_path_factory, _with_straight_flight(winder_xml("balanced")), "behind")
+    a, b = endpoint(both, (3.5, -1.5), "start"), endpoint(both, "high", "goal")
+    legs = level_route(both, a, b, Walker(), PlannerOptions(), 0.19)
+    assert [leg.crossing.kind for leg in legs if leg.crossing is not None] == ["stair"]
+
+
 def _spiral(tmp_path_factory, spiral_xml, kind: str):
     """A spiral stair scene (``tests/conftest.py``'s ``SPIRALS[kind]``) and its path."""
     path = tmp_path_factory.mktemp(kind) / f"spiral_{kind}.xml"
