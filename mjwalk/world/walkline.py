@@ -12,7 +12,7 @@ Here a stair is a chain of single-step :class:`~mjwalk.world.levels.LevelLink`\\
 (the levels they step onto): each link's edge is a nosing over the width the two surfaces share
 (:mod:`mjwalk.world.contacts`), so the walk line crosses it at its middle. A spiral stair
 ("Spindeltreppe", DIN 18065: a winder round a central post) has treads that narrow to a few
-centimetres at the post; the part of a turned tread shallower than
+centimetres at the post (every tread shallow at the same side); the part of it shallower than
 :data:`~mjwalk.world.norms.WINDER_MIN_NARROW_TREAD` there is no part of its usable width
 (:data:`mjwalk.world.norms.USABLE_TREAD_DEPTH`), so the nosings are cut to the stretch where
 every tread of the stair is at least that deep (:func:`walk_line_nosings`) and the walk line
