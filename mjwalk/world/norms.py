@@ -69,7 +69,10 @@ WINDER_MIN_NARROW_TREAD = 0.10
 #: 10 cm unterschreitet, zählt nicht zur nutzbaren Treppenlaufbreite"; treppen-abc.com's
 #: Spindeltreppen page: the usable width from 100 mm tread, after DIN 18065; the standard itself
 #: not verifiable here). So the narrow-end rule holds within the usable width by its definition,
-#: and the walk line lies in the middle of that width (:mod:`mjwalk.world.walkline`); a stair
+#: and the walk line lies in the middle of that width (:mod:`mjwalk.world.walkline`), as on any
+#: turning stair up to 1 m wide (above); the same Baunetz page advises a spiral's walk line
+#: "etwa 4/10" of the usable width from the handrail side, the edge of the middle 2/10 walk
+#: zone (:data:`WALK_ZONE_SHARE`) the middle lies in, so the feet may move there; a stair
 #: no stretch of whose width is this deep on every tread keeps its narrow-end fault. Such stairs
 #: are secondary stairs in workplaces: ASR A1.8 (as its predecessor ASR 17/1,2 §3.2, quoted at
 #: https://brandschutzfachplaner.de/flarum/d/1267-spindeltreppen_in_arbeitsst%C3%A4tten_unzul%C3%A4ssig)
