@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import itertools
+import math
 import os
 from pathlib import Path
 
@@ -260,6 +261,73 @@ def _winder_xml(kind: str, riser: float = 0.17) -> str:
 def winder_xml():
     """``winder_xml(kind, riser=0.17)``: a quarter-turn winder's MJCF (``_winder_xml``)."""
     return _winder_xml
+
+
+def _spiral_xml(turn: float, treads: int, outer: float, riser: float = 0.19) -> str:
+    """A spiral stair ("Spindeltreppe", issue 47): ``treads`` wedge treads anticlockwise round a
+    0.10 m post at the origin, out to ``outer`` m, over ``turn`` degrees from the first nosing
+    (along +x, walked up +y) to the last, ``riser`` m risers; then a deck one riser above the
+    last tread beyond the last nosing, and the post (a cylinder) up through it all. Every tread
+    is the one wedge mesh (its outer side three points of the circle), 2 m deep, down into the
+    floor from its top (no floor open under a tread), turned and raised by its geom's pose:
+    MuJoCo's float32 mesh vertices are then alike on every tread, 1 m (exact in float32) off
+    its centre, so each riser is the float64 difference of two
+    poses (treads of meshes of their own heights came out 0.19000006 m high, over
+    ``norms.MAX_RISER`` + ``norms.ROUNDING_SLACK``: no step). Sites ``low`` on the floor before
+    the first nosing, ``high`` on the deck past the last."""
+    post, step, thick = 0.10, math.radians(turn) / treads, 2.0
+    geoms = ['<geom name="floor" type="plane" size="6 6 0.1"/>']
+
+    def at(r: float, th: float) -> tuple[float, float]:
+        return r * math.cos(th), r * math.sin(th)
+
+    poly = [at(post, 0.0), at(outer, 0.0), at(outer, 0.5 * step), at(outer, step), at(post, step)]
+    vert = " ".join(f"{x:.6f} {y:.6f} {h}" for h in (0.0, thick) for x, y in poly)
+    meshes = [f'<mesh name="wedge" vertex="{vert}"/>']
+    for i in range(1, treads + 1):
+        geoms.append(
+            f'<geom name="spiral{i}" type="mesh" mesh="wedge" pos="0 0 {riser * i - thick:.4f}" '
+            f'euler="0 0 {math.degrees((i - 1) * step):.6f}"/>'
+        )
+    last, top = treads * step, riser * (treads + 1)
+    (ux, uy), (vx, vy) = at(1.0, last), at(1.0, last + 0.5 * math.pi)  # the deck's frame
+    half = 0.5 * (outer + 1.0)
+    centre = (half * ux + vx, half * uy + vy)
+    deck = (
+        f'<geom name="deck" type="box" size="{half:.4f} 1.0 {top / 2:.4f}" '
+        f'pos="{centre[0]:.4f} {centre[1]:.4f} {top / 2:.4f}" '
+        f'euler="0 0 {math.degrees(last):.4f}"/>'
+    )
+    high = (0.6 * ux + 1.5 * vx, 0.6 * uy + 1.5 * vy)
+    geoms += [
+        deck,
+        f'<geom name="post" type="cylinder" size="{post} {(top + 1.0) / 2:.4f}" '
+        f'pos="0 0 {(top + 1.0) / 2:.4f}"/>',
+        '<site name="low" pos="0.6 -2.5 0"/>',
+        f'<site name="high" pos="{high[0]:.4f} {high[1]:.4f} {top:.4f}"/>',
+    ]
+    return (
+        f"<mujoco><asset>{''.join(meshes)}</asset><worldbody>"
+        + "".join(geoms)
+        + "</worldbody></mujoco>"
+    )
+
+
+#: Spiral stairs of 0.19 m risers (DIN 18065:2020 Table 1's and ASR A1.8's largest riser) round
+#: a 0.10 m post. The treads narrow to 2 x 0.10 sin(step/2) = 0.04-0.05 m at the post; the part
+#: shallower than 0.10 m is no usable width (``norms.USABLE_TREAD_DEPTH``), so the usable width
+#: runs from r10 = 0.05 / sin(step/2) to the outer edge and the walk line, its middle, measures a
+#: tread of T = 2 r sin(step/2) = 0.05 + outer sin(step/2). "half": seven 25.7 deg treads out to
+#: 0.98 m, T = 0.268 m, 2R + T = 0.648 m (within 0.26-0.37 m and 0.59-0.65 m). "quarter": four
+#: 22.5 deg treads out to 1.12 m, T = 0.268 m. "steep": three 30 deg treads turning a quarter
+#: out to 0.98 m, T = 0.304 m, 2R + T = 0.684 m: over the step rule.
+SPIRALS = {"half": (180.0, 7, 0.98), "quarter": (90.0, 4, 1.12), "steep": (90.0, 3, 0.98)}
+
+
+@pytest.fixture(scope="session")
+def spiral_xml():
+    """``spiral_xml(kind)``: a spiral stair's MJCF (``_spiral_xml(*SPIRALS[kind])``)."""
+    return lambda kind: _spiral_xml(*SPIRALS[kind])
 
 
 #: Walks on which nothing rises a riser: no stair-ascent pelvic tilt or trunk lean

@@ -10,7 +10,8 @@ nodes on one level are joined by the level walk between them, its
 obstacle-aware distance (each node's distance field on the level's view,
 :func:`mjwalk.plan.heuristic.goal_distance`) walked from standing to standing with the line-up
 and departure of a stair (:func:`mjwalk.plan.levelcross.walked_distance`,
-:func:`~mjwalk.plan.levelcross.level_time`) and the turn into a stair as walked (:func:`_entry`).
+:func:`~mjwalk.plan.levelcross.level_time`) and the turn into a stair or winder as walked
+(:func:`_entry`).
 
 A node's edges are made when the search first pops it (:class:`_Edges`), in the order a table of
 every edge would hold them, so the route is the one that table gives; a level whose nodes the
@@ -52,7 +53,13 @@ from mjwalk.plan.occupancy import CELL_SIZE, MOVES_16, shared_grid
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.treadshare import flight_notes, flight_refusal
 from mjwalk.plan.turnin import turn_in_time, walked_back
-from mjwalk.plan.winderroute import foot_refusal, route_winders, winder_notes, winder_time
+from mjwalk.plan.winderroute import (
+    foot_refusal,
+    route_winders,
+    winder_entry_time,
+    winder_notes,
+    winder_time,
+)
 from mjwalk.world.levelview import level_view
 from mjwalk.world.norms import HEAD_MARGIN
 from mjwalk.world.workplace import Workplace
@@ -212,10 +219,11 @@ def _entry(workplace: Workplace, route: tuple, leg: tuple, setup: tuple) -> floa
     as the walk makes it (:func:`mjwalk.plan.turnin.turn_in_time`), or where no such turn fits
     the turn on the spot (:func:`~mjwalk.plan.levelcross.entry_time`); 0 before a step or
     ramp: its leg is searched again facing it (:func:`mjwalk.plan.levelplan._level_leg`).
-    ``route``: (crossings, nodes, leads)."""
+    A winder's turn is its steps on the spot as its walk makes them (:func:`~mjwalk.plan.
+    winderroute.winder_entry_time`). ``route``: (crossings, nodes, leads)."""
     (usable, nodes, leads), (u, v), (walker, options) = route, leg, setup
     c, (lv, uxy), xy = usable[(v - 2) // 2], nodes[u], nodes[v][1]
-    if c.kind != "stair":
+    if c.kind not in ("stair", "winder"):
         return 0.0
     ends = (uxy if leads[u][0] is None else leads[u][0], xy if leads[v][1] is None else leads[v][1])
     if float(np.hypot(*(xy - uxy))) <= walker.step_length + options.goal_tolerance:
@@ -225,6 +233,8 @@ def _entry(workplace: Workplace, route: tuple, leg: tuple, setup: tuple) -> floa
     view = level_view(workplace, lv, head)
     yaw = arrival_heading(view, ends, field, options.radius, walker.step_length)
     direction = "up" if v % 2 == 0 else "down"
+    if c.kind == "winder":  # led in from its line-up point, turned on the spot there first
+        return winder_entry_time(c, direction, walker, yaw)
     heading = c.yaw if direction == "up" else c.yaw + math.pi
     if abs(math.remainder(heading - yaw, math.tau)) <= ENTRY_TURN or leads[v][1] is None:
         return entry_time(c, direction, walker, yaw)  # 0 within ENTRY_TURN

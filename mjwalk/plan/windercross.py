@@ -46,7 +46,12 @@ from mjwalk.plan.walkpath import WalkPath
 from mjwalk.world.footprint import Footprint
 from mjwalk.world.levels import LevelGraph, LevelLink
 from mjwalk.world.norms import DESCENT_LOW_CLEARANCE, MIN_TREAD_SHARE, WALK_ZONE_SHARE
-from mjwalk.world.walkline import WalkLineTread, walk_line_faults, walk_line_treads
+from mjwalk.world.walkline import (
+    WalkLineTread,
+    walk_line_faults,
+    walk_line_nosings,
+    walk_line_treads,
+)
 
 #: Least gap (m) between a foot on a winder's tread and every edge of the tread (its nosings,
 #: its narrow end, its sides): the clearance under which stair-descent studies count a foot's
@@ -67,7 +72,8 @@ class WinderCrossing:
         lower, upper: the levels it joins (indices in the graph's levels).
         treads: its treads measured on the walk line, bottom up.
         nosings: (n + 1) step edges bottom up, each (2, 2) world xy, metres: the first leaves
-            the lower level, the last reaches the upper.
+            the lower level, the last reaches the upper; cut to the stair's usable width
+            (:func:`mjwalk.world.walkline.walk_line_nosings`), so each middle is on the walk line.
         outlines: each tread's top outline (its surface's footprint, world xy).
         risers: each riser's height bottom up, metres.
         z: (n + 2,) world heights of the lower level, each tread and the upper level, metres.
@@ -166,7 +172,7 @@ def _winder(graph: LevelGraph, chain: list[LevelLink], treads, ends, clear) -> W
         outlines.append(surface.footprint)
     z = [graph.levels[lo].height] + [graph.levels[t.level].height for t in treads]
     return WinderCrossing(
-        lo, up, tuple(treads), tuple(np.asarray(k.lower_edge, dtype=float) for k in chain),
+        lo, up, tuple(treads), tuple(walk_line_nosings(chain)),
         tuple(outlines), tuple(float(k.rise) for k in chain),
         np.array([*z, graph.levels[up].height]), float(clear),
     )  # fmt: skip

@@ -218,20 +218,64 @@ def foot_refusal(c: Crossing, walker: Walker) -> str | None:
     return None
 
 
-def winder_time(c: Crossing, direction: str, walker: Walker) -> float:
+def way_in(c: Crossing, direction: str, yaw0: float) -> tuple[float, np.ndarray]:
+    """The heading into a winder at the end it is entered from, and the headings of the steps
+    on the spot a walker facing ``yaw0`` there turns first (:func:`~mjwalk.plan.levelcross.
+    spot_turn`): the one source of both the walk's turn (:func:`winder_cross_walk`) and its
+    time in the route's estimate (:func:`winder_time`).
+
+    Args:
+        c: the winder (:class:`WinderWay`).
+        direction: "up" (along the first nosing's normal) or "down" (against the last's).
+        yaw0: the walker's heading where the walk over it begins, radians.
+
+    Returns:
+        (the heading into it, radians, the nearer turn from ``yaw0``; (m,) the headings after
+        each step on the spot, empty within :data:`~mjwalk.plan.levelcross.ENTRY_TURN`).
+    """
+    assert isinstance(c, WinderWay) and c.winder is not None
+    w = c.winder
+    nf = w.normal(0) if direction == "up" else -w.normal(-1)
+    heading = yaw0 + wrap(math.atan2(nf[1], nf[0]) - yaw0)
+    return heading, spot_turn(yaw0, heading)
+
+
+def winder_time(c: Crossing, direction: str, walker: Walker, arrival: float | None = None) -> float:
     """How long the walk over a winder takes from its stance to standing at the other
-    (:func:`mjwalk.plan.windercross.winder_time`).
+    (:func:`mjwalk.plan.windercross.winder_time`), with the steps on the spot before it when
+    the walker arrives facing ``arrival`` (:func:`way_in`, as :func:`winder_cross_walk` walks
+    them: one level step time each).
 
     Args:
         c: the winder.
         direction: "up" or "down".
         walker: the walker.
+        arrival: the heading the walker arrives at, radians, or None (no turn counted).
 
     Returns:
         Seconds.
     """
     assert isinstance(c, WinderWay) and c.winder is not None
-    return footfalls_time(c.winder, direction, walker)
+    t = footfalls_time(c.winder, direction, walker)
+    return t if arrival is None else t + winder_entry_time(c, direction, walker, arrival)
+
+
+def winder_entry_time(c: Crossing, direction: str, walker: Walker, arrival: float) -> float:
+    """How long a walker who arrives at a winder facing ``arrival`` turns on the spot before
+    it: one level step time (:attr:`Walker.step_duration <mjwalk.gait.walker.Walker.
+    step_duration>`) per step on the spot of :func:`way_in`, as :func:`winder_cross_walk`
+    walks them (the last part of the turn taken by its first step).
+
+    Args:
+        c: the winder (:class:`WinderWay`).
+        direction: "up" or "down".
+        walker: the walker (its level step time).
+        arrival: the walker's heading where the walk over it begins, radians.
+
+    Returns:
+        Seconds (0 for a turn within :data:`~mjwalk.plan.levelcross.ENTRY_TURN`).
+    """
+    return way_in(c, direction, arrival)[1].size * walker.step_duration
 
 
 def winder_notes(graph: LevelGraph, clear: float, walker: Walker, max_riser: float) -> list[str]:
@@ -307,7 +351,7 @@ def winder_cross_walk(
 ) -> WalkPath:
     """The walk over a winder from where the walker is (module docstring): steps on the spot
     first where it faces more than :data:`~mjwalk.plan.levelcross.ENTRY_TURN` off the way in
-    (:func:`~mjwalk.plan.levelcross.spot_turn`), level steps along the entered nosing's normal
+    (:func:`way_in`), level steps along the entered nosing's normal
     into the footfall before it (the walker led in, already walking, from the level walk's end
     at the line-up point; or from standing), then the winder's footfalls
     (:func:`mjwalk.plan.windercross.winder_footfalls`) to standing at the far stance.
@@ -335,8 +379,7 @@ def winder_cross_walk(
     nf = w.normal(0) if direction == "up" else -w.normal(-1)
     m = w.nosings[0].mean(axis=0) if direction == "up" else w.nosings[-1].mean(axis=0)
     z0 = float(w.z[0] if direction == "up" else w.z[-1])
-    heading = yaw0 + wrap(math.atan2(nf[1], nf[0]) - yaw0)
-    spots = spot_turn(yaw0, heading)
+    heading, spots = way_in(c, direction, yaw0)
     lead = _lead_in(w, direction, xy0, walker)
     swing = other_side(last.side) if last is not None else "left"
     k0 = len(spots) + len(lead)  # the steps before the winder's own

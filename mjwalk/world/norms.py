@@ -61,6 +61,27 @@ MIN_STAIR_RISERS = 3
 #: (https://treppenbau-voss.de/n%C3%BCtzliches/treppen-abc/gewendelt), and must meet
 #: :data:`MIN_TREAD`-:data:`MAX_TREAD` and :data:`STEP_RULE` there (:mod:`mjwalk.world.walkline`).
 WINDER_MIN_NARROW_TREAD = 0.10
+#: Least depth of the part of a turned tread that counts to a stair's usable width, metres: on a
+#: spiral stair ("Spindeltreppe", a winder round a central post; DIN 18065) the part of the
+#: treads towards the post that is shallower than the 100 mm least tread does not count to the
+#: usable width (https://www.baunetzwissen.de/treppen/fachwissen/treppenformen/
+#: spindeltreppen-3375193: "Der Teil der Stufen, der zur Spindel hin den Mindestauftritt von
+#: 10 cm unterschreitet, zählt nicht zur nutzbaren Treppenlaufbreite"; treppen-abc.com's
+#: Spindeltreppen page: the usable width from 100 mm tread, after DIN 18065; the standard itself
+#: not verifiable here). So the narrow-end rule holds within the usable width by its definition,
+#: and the walk line lies in the middle of that width (:mod:`mjwalk.world.walkline`), as on any
+#: turning stair up to 1 m wide (above); the same Baunetz page advises a spiral's walk line
+#: "etwa 4/10" of the usable width from the handrail side, the edge of the middle 2/10 walk
+#: zone (:data:`WALK_ZONE_SHARE`) the middle lies in, so the feet may move there; a stair
+#: no stretch of whose width is this deep on every tread keeps its narrow-end fault. Such stairs
+#: are secondary stairs in workplaces: ASR A1.8 (as its predecessor ASR 17/1,2 §3.2, quoted at
+#: https://brandschutzfachplaner.de/flarum/d/1267-spindeltreppen_in_arbeitsst%C3%A4tten_unzul%C3%A4ssig)
+#: admits spiral stairs only as additional, not necessary, stairs; mjwalk measures them against
+#: the limits above all the same (a walk-line tread :data:`MIN_TREAD`-:data:`MAX_TREAD`, risers
+#: up to :data:`MAX_RISER`, :data:`STEP_RULE`), stricter than DIN 18065 Table 1's figures for
+#: additional stairs as public summaries give them (risers to 0.21 m, treads from 0.21 m;
+#: https://www.hausjournal.net/treppenstufen-tiefe; not verified against the standard).
+USABLE_TREAD_DEPTH = WINDER_MIN_NARROW_TREAD
 #: Width of a turning stair's walk zone ("Gehbereich") as a share of its usable width: the
 #: middle 2/10 for usable widths up to 1 m (DIN 18065:2020, as summarised at
 #: https://treppenakademie.de/wissensdatenbank/lauflinie-bei-treppen/; the standard itself not

@@ -9,14 +9,20 @@ the tread's two nosings, and it must meet the tread limits and the step rule the
 turned tread must still be :data:`mjwalk.world.norms.WINDER_MIN_NARROW_TREAD` deep.
 
 Here a stair is a chain of single-step :class:`~mjwalk.world.levels.LevelLink`\\ s over treads
-(the levels they step onto): each link's edge is a nosing over the usable width the two
-surfaces share (:mod:`mjwalk.world.contacts`), so the walk line crosses it at its middle. Metres,
-world frame, z up.
+(the levels they step onto): each link's edge is a nosing over the width the two surfaces share
+(:mod:`mjwalk.world.contacts`), so the walk line crosses it at its middle. A spiral stair
+("Spindeltreppe", DIN 18065: a winder round a central post) has treads that narrow to a few
+centimetres at the post (every tread shallow at the same side); the part of it shallower than
+:data:`~mjwalk.world.norms.WINDER_MIN_NARROW_TREAD` there is no part of its usable width
+(:data:`mjwalk.world.norms.USABLE_TREAD_DEPTH`), so the nosings are cut to the stretch where
+every tread of the stair is at least that deep (:func:`walk_line_nosings`) and the walk line
+crosses each at the middle of that stretch. Metres, world frame, z up.
 """
 
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -82,7 +88,9 @@ class WalkLineTread:
 
 
 def walk_line_treads(graph: LevelGraph, chain: Sequence[LevelLink]) -> list[WalkLineTread]:
-    """The treads a chain of steps passes, measured on its walk line.
+    """The treads a chain of steps passes, measured on its walk line: through the middle of
+    each nosing's usable stretch (:func:`usable_span`; the whole nosing where every tread is
+    deep enough all along it).
 
     Args:
         graph: the scene's levels and links.
@@ -91,14 +99,15 @@ def walk_line_treads(graph: LevelGraph, chain: Sequence[LevelLink]) -> list[Walk
     Returns:
         One :class:`WalkLineTread` per level between the chain's links, bottom up.
     """
+    pairs, span = usable_span(chain)
     out = []
-    for below, above in itertools.pairwise(chain):
-        a = np.asarray(below.upper_edge, dtype=float)
-        b = np.asarray(above.lower_edge, dtype=float)
-        ma, mb = a.mean(axis=0), b.mean(axis=0)
-        same = np.linalg.norm(b - a, axis=1)  # like ends paired: a0-b0, a1-b1
-        crossed = np.linalg.norm(b[::-1] - a, axis=1)
-        ends = same if same.sum() <= crossed.sum() else crossed  # the pairing that does not cross
+    for (below, _), (a, b) in zip(itertools.pairwise(chain), pairs, strict=True):
+        if span is None:  # the whole nosings: their middles, the nearer of their like ends
+            ma, mb = a.mean(axis=0), b.mean(axis=0)
+            ends = np.linalg.norm(b - a, axis=1)
+        else:
+            ma, mb = (e[0] + 0.5 * (span[0] + span[1]) * (e[1] - e[0]) for e in (a, b))
+            ends = np.array([_depth(a, b, u) for u in span])
         level = below.upper
         out.append(
             WalkLineTread(
@@ -112,6 +121,95 @@ def walk_line_treads(graph: LevelGraph, chain: Sequence[LevelLink]) -> list[Walk
             )
         )
     return out
+
+
+def usable_span(chain: Sequence[LevelLink]) -> tuple[list, tuple[float, float] | None]:
+    """Each tread's two nosings, like ends paired all along the chain, and, on a spiral stair,
+    the stretch of them (fractions of each nosing from its first end) where every tread is at
+    least :data:`~mjwalk.world.norms.USABLE_TREAD_DEPTH` deep: its usable width. A spiral stair
+    here is one whose every tread is shallower than that at the same end of its nosings (the
+    post); elsewhere the whole nosings are the usable width and a shallow narrow end a fault.
+
+    Args:
+        chain: single steps bottom up (:func:`walk_line_treads`).
+
+    Returns:
+        ([(lower nosing, upper nosing) per tread, each (2, 2) world xy], (first, last)
+        fraction of the usable stretch), the stretch None where it is the whole nosings (no
+        spiral) or where no stretch is deep enough on every tread (then the narrow end says so).
+    """
+    pairs, ref = [], None
+    for below, above in itertools.pairwise(chain):
+        a = np.asarray(below.upper_edge, dtype=float)
+        a = a if ref is None else _like(a, ref)
+        b = _like(np.asarray(above.lower_edge, dtype=float), a)  # the pairing that does not cross
+        pairs.append((a, b))
+        ref = b
+    shallow = {
+        int(np.argmin(d)) if d.min() < norms.USABLE_TREAD_DEPTH - norms.ROUNDING_SLACK else -1
+        for d in (np.linalg.norm(b - a, axis=1) for a, b in pairs)
+    }
+    if len(shallow) != 1 or -1 in shallow:
+        return pairs, None  # no spiral: not every tread narrows under 0.10 m at one side
+    lo, hi, cut = 0.0, 1.0, False
+    for a, b in pairs:
+        part = _deep_part(a, b, norms.USABLE_TREAD_DEPTH)
+        if part is None:
+            return pairs, None
+        cut = cut or part != (0.0, 1.0)
+        lo, hi = max(lo, part[0]), min(hi, part[1])
+    return pairs, ((lo, hi) if cut and lo < hi else None)
+
+
+def walk_line_nosings(chain: Sequence[LevelLink]) -> list[np.ndarray]:
+    """Each step's nosing (its lower edge) cut to the stair's usable stretch
+    (:func:`usable_span`), so its middle is where the walk line crosses it.
+
+    Args:
+        chain: single steps bottom up (:func:`walk_line_treads`).
+
+    Returns:
+        (2, 2) world xy per link, bottom up: its lower edge itself where nothing is cut.
+    """
+    pairs, span = usable_span(chain)
+    edges = [np.asarray(k.lower_edge, dtype=float) for k in chain]
+    if span is None:
+        return edges
+    first = _like(edges[0], pairs[0][0])
+    lines = [first, *(b for _, b in pairs)]  # the last tread's upper nosing is the top link's
+    return [e[0] + np.outer(span, e[1] - e[0]) for e in lines]
+
+
+def _like(edge: np.ndarray, ref: np.ndarray) -> np.ndarray:
+    """``edge`` with its ends in the order of ``ref``'s: like ends paired (the pairing whose
+    end-to-end distances sum least, the one that does not cross)."""
+    same = np.linalg.norm(edge - ref, axis=1).sum()
+    crossed = np.linalg.norm(edge[::-1] - ref, axis=1).sum()
+    return edge if same <= crossed else edge[::-1]
+
+
+def _depth(a: np.ndarray, b: np.ndarray, u: float) -> float:
+    """A tread's depth between its nosings ``a`` and ``b`` (like ends paired) at fraction ``u``
+    of their length from their first ends, metres."""
+    return float(np.linalg.norm((b[0] - a[0]) + u * ((b[1] - a[1]) - (b[0] - a[0]))))
+
+
+def _deep_part(a: np.ndarray, b: np.ndarray, depth: float) -> tuple[float, float] | None:
+    """The longest stretch (fractions) of nosings ``a``, ``b`` where the tread between them is
+    at least ``depth`` deep, None where it is nowhere: its depth |D0 + u (D1 - D0)| is convex
+    in u, so it is shallower only on one interval between the roots of a quadratic."""
+    d0, e = b[0] - a[0], (b[1] - a[1]) - (b[0] - a[0])
+    qa, qb, qc = float(e @ e), 2.0 * float(d0 @ e), float(d0 @ d0) - depth * depth
+    if qa <= 1e-18:  # parallel nosings: as deep all along
+        return (0.0, 1.0) if qc >= 0.0 else None
+    disc = qb * qb - 4.0 * qa * qc
+    if disc <= 0.0:
+        return (0.0, 1.0)  # nowhere shallower
+    r0, r1 = ((-qb - math.sqrt(disc)) / (2 * qa), (-qb + math.sqrt(disc)) / (2 * qa))
+    if r1 <= 0.0 or r0 >= 1.0:
+        return (0.0, 1.0)  # shallower only beyond the nosings' ends
+    parts = [p for p in ((0.0, r0), (r1, 1.0)) if p[1] > p[0]]
+    return max(parts, key=lambda p: p[1] - p[0]) if parts else None
 
 
 def walk_line_faults(treads: Sequence[WalkLineTread]) -> list[str]:

@@ -31,7 +31,9 @@ from mjwalk.plan.winderroute import (
     oriented,
     oriented_legs,
     route_winders,
+    way_in,
     winder_cross_walk,
+    winder_entry_time,
     winder_notes,
     winder_time,
 )
@@ -255,3 +257,103 @@ def test_a_routes_winder_legs_are_oriented_and_the_others_kept(way):
     assert legs[0] is level
     assert legs[1].crossing is not None and legs[1].crossing.yaw == oriented(way, "down").yaw
     assert legs[1].crossing.yaw != way.yaw
+
+
+@pytest.mark.parametrize("direction", ["up", "down"])
+def test_the_route_times_the_turn_on_the_spot_before_the_winder_as_walked(way, direction):
+    """A walker standing at the winder's stance facing 150 deg off the way in turns on the
+    spot in two steps before it (:func:`way_in`, Patla et al.'s 60 deg a step): the route's
+    time with that arrival (:func:`winder_time`, the search's :func:`winder_entry_time`) counts
+    them and is within one step time of the walk's; without them (the route's time before) it
+    missed the walk by two step times."""
+    walker = Walker()
+    w = way.winder
+    assert w is not None
+    level, n = (w.lower, w.normal(0)) if direction == "up" else (w.upper, -w.normal(-1))
+    yaw = math.atan2(n[1], n[0]) + math.radians(150)
+    assert way_in(way, direction, yaw)[1].size == 2
+    plain = winder_time(way, direction, walker)
+    timed = winder_time(way, direction, walker, yaw)
+    assert timed == pytest.approx(plain + 2 * walker.step_duration)
+    assert winder_entry_time(way, direction, walker, yaw) == pytest.approx(timed - plain)
+    start = (w.end(level), yaw)
+    walk = winder_cross_walk(oriented(way, direction), direction, walker, start, None, 0.0)
+    assert abs(walk.duration - timed) <= walker.step_duration
+    assert abs(walk.duration - plain) > walker.step_duration
+    # facing the way in there is nothing to turn
+    assert winder_time(way, direction, walker, math.atan2(n[1], n[0])) == plain
+
+
+def test_the_turn_before_the_winder_sends_a_walker_from_behind_it_up_the_flight(
+    tmp_path_factory, winder_xml
+):
+    """From (3.5, -1.5) m the winder's line-up point lies behind the walker: it arrives there
+    facing about 180 deg off the way in, two steps on the spot (0.53 s each) before it. With
+    them counted the straight flight is the quicker way, as walked (plan_level_walk, seeds
+    0-2: 12.8-13.2 s by the flight, 13.1-13.9 s by the winder, which ``both`` forced the
+    route over before: the turn was not counted)."""
+    both = _workplace(tmp_path_factory, _with_straight_flight(winder_xml("balanced")), "behind")
+    a, b = endpoint(both, (3.5, -1.5), "start"), endpoint(both, "high", "goal")
+    legs = level_route(both, a, b, Walker(), PlannerOptions(), 0.19)
+    assert [leg.crossing.kind for leg in legs if leg.crossing is not None] == ["stair"]
+
+
+def _spiral(tmp_path_factory, spiral_xml, kind: str):
+    """A spiral stair scene (``tests/conftest.py``'s ``SPIRALS[kind]``) and its path."""
+    path = tmp_path_factory.mktemp(kind) / f"spiral_{kind}.xml"
+    path.write_text(spiral_xml(kind))
+    return load_workplace(path), path
+
+
+@pytest.mark.parametrize("kind", ["half", "quarter"])
+def test_a_spiral_stair_is_routed_as_a_winder_along_its_walk_line(
+    tmp_path_factory, spiral_xml, kind
+):
+    """Round its post, a spiral stair meeting DIN 18065 on its walk line (0.19 m risers, 0.268 m
+    treads) is a winder crossing the 1.55 m and 1.75 m walkers take, up and down. Before, its
+    treads' narrow ends at the post (0.04-0.05 m) refused it: "0.045 m deep at its narrow end,
+    under 0.10 m"."""
+    spiral, _ = _spiral(tmp_path_factory, spiral_xml, kind)
+    (c,) = route_winders(spiral.levels, CLEAR)
+    assert c.winder is not None and c.fits(0.19)
+    for stature in (1.55, 1.75):
+        walker = Walker(stature=stature)
+        assert foot_refusal(c, walker) is None
+        for ends in (("low", "high"), ("high", "low")):
+            a, b = endpoint(spiral, ends[0], "start"), endpoint(spiral, ends[1], "goal")
+            legs = level_route(spiral, a, b, walker, PlannerOptions(), step_up_limit(walker))
+            assert [leg.crossing.kind for leg in legs if leg.crossing is not None] == ["winder"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("stature", [1.55, 1.75])
+def test_a_walk_up_and_down_the_spiral_stair_touches_nothing(
+    tmp_path_factory, spiral_xml, model, stature
+):
+    """The half-turn spiral walked up and down (seed 0) with the legs synthesised and lifted
+    onto its treads: no humanoid-vs-scene contact, the post included."""
+    from mjwalk.timeline import collision_report, timeline_from_walk  # deferred: slow tier only
+
+    spiral, path = _spiral(tmp_path_factory, spiral_xml, "half")
+    conditioned = model.for_walker(Walker(stature=stature))
+    for a, b in (("low", "high"), ("high", "low")):
+        walk = plan_level_walk(spiral, a, b, conditioned, np.random.default_rng(0))
+        assert [r["kind"] for r in walk.meta["levels"]["route"]] == ["level", "winder", "level"]
+        assert walk.meta["levels"]["per_kind"]["stairs"]["steps"] == 8 + 1
+        contacts = collision_report(timeline_from_walk(walk, path, stature=stature))
+        assert contacts == [], (a, b, contacts[:3])
+
+
+@pytest.mark.parametrize("ends", [("low", "high"), ("high", "low")])
+def test_a_spiral_too_steep_on_its_walk_line_is_refused_in_one_line(
+    tmp_path_factory, spiral_xml, ends
+):
+    """Three 30 deg treads turning a quarter: 0.304 m on the walk line, 2R + T = 0.684 m.
+    Before, the walk line lay mid-nosing and the refusal gave 0.280 m and the narrow ends."""
+    steep, _ = _spiral(tmp_path_factory, spiral_xml, "steep")
+    a, b = endpoint(steep, ends[0], "start"), endpoint(steep, ends[1], "goal")
+    with pytest.raises(PlanningError) as err:
+        level_route(steep, a, b, Walker(), PlannerOptions(), 0.19)
+    msg = str(err.value)
+    assert "tread spiral1: 2R + T = 2 x 0.190 + 0.304 = 0.684 m on the walk line" in msg
+    assert "narrow end" not in msg and "\n" not in msg

@@ -3,11 +3,20 @@ issue 47)."""
 
 from __future__ import annotations
 
+import math
+
+import numpy as np
 import pytest
 
 from mjwalk.world import load_workplace, norms
 from mjwalk.world.levels import LevelGraph, LevelLink
-from mjwalk.world.walkline import WalkLineTread, walk_line_faults, walk_line_treads
+from mjwalk.world.walkline import (
+    WalkLineTread,
+    usable_span,
+    walk_line_faults,
+    walk_line_nosings,
+    walk_line_treads,
+)
 
 #: How far a measured tread may lie from the laid-out one, metres: the contact edges between
 #: surfaces are found on a sampled edge (``mjwalk.world.contacts``), a few millimetres.
@@ -81,3 +90,58 @@ def test_the_limits_themselves_pass():
     for tread, riser in ((0.26, 0.165), (0.31, 0.17)):
         t = WalkLineTread("w", 1, tread, riser, norms.WINDER_MIN_NARROW_TREAD, (0, 0), (0, 0))
         assert t.faults() == []
+
+
+#: The spirals' post radius, metres (``tests/conftest.py``'s ``_spiral_xml``).
+POST = 0.10
+
+
+@pytest.mark.parametrize(("kind", "turn", "treads", "outer"), [("half", 180.0, 7, 0.98)])
+def test_a_spiral_stairs_walk_line_is_the_middle_of_its_usable_width(
+    tmp_path, spiral_xml, kind, turn, treads, outer
+):
+    """Round a 0.10 m post the treads are 0.045 m deep at the post; the usable width starts
+    where they are 0.10 m deep (r10 = 0.05 / sin(step / 2) = 0.225 m), and the walk line, its
+    middle, 0.602 m from the post's axis, measures each tread 0.268 m (2R + T = 0.648 m): the
+    stair meets DIN 18065 there. Before: the walk line was the middle of the whole nosing
+    (0.54 m out), each tread 0.240 m, 0.045 m at its narrow end, three faults each."""
+    graph, chain = _stair(tmp_path, spiral_xml(kind))
+    treads_ = walk_line_treads(graph, chain)
+    assert [t.name for t in treads_] == [f"spiral{i}" for i in range(1, treads + 1)]
+    half = 0.5 * math.radians(turn) / treads
+    r10 = 0.5 * norms.USABLE_TREAD_DEPTH / math.sin(half)
+    radius = 0.5 * (r10 + outer)
+    for t in treads_:
+        assert t.tread == pytest.approx(2.0 * radius * math.sin(half), abs=EDGE_TOL), t
+        assert t.riser == pytest.approx(0.19, abs=1e-6)
+        assert t.narrow == pytest.approx(norms.USABLE_TREAD_DEPTH, abs=EDGE_TOL)
+        for p in (t.start, t.end):
+            assert math.hypot(*p) == pytest.approx(radius, abs=EDGE_TOL)
+    assert walk_line_faults(treads_) == []
+    # the nosings cut to that width: each one's middle is where the walk line crosses it
+    nosings = walk_line_nosings(chain)
+    assert len(nosings) == treads + 1
+    for e in nosings:
+        assert sorted(np.hypot(e[:, 0], e[:, 1])) == pytest.approx([r10, outer], abs=EDGE_TOL)
+        assert math.hypot(*e.mean(axis=0)) == pytest.approx(radius, abs=EDGE_TOL)
+
+
+def test_a_spiral_too_steep_on_its_walk_line_names_the_rule_it_breaks(tmp_path, spiral_xml):
+    """Three 30 deg treads turning a quarter: 0.304 m on the walk line, 2R + T = 0.684 m."""
+    graph, chain = _stair(tmp_path, spiral_xml("steep"))
+    faults = walk_line_faults(walk_line_treads(graph, chain))
+    assert [f.split(":")[0] for f in faults] == ["tread spiral1", "tread spiral2", "tread spiral3"]
+    assert (
+        "2R + T = 2 x 0.190 + 0.304 = 0.684 m on the walk line, outside the step rule"
+        in (faults[0])
+    )
+    assert all("narrow end" not in f for f in faults)  # within the usable width: 0.10 m
+
+
+def test_a_winder_deep_enough_all_across_keeps_its_whole_nosings(tmp_path, winder_xml):
+    """The balanced winder's treads are at least 0.109 m deep at their narrow end: nothing is
+    cut, its nosings are the steps' own edges and the walk line their middles (as before)."""
+    _, chain = _stair(tmp_path, winder_xml("balanced"))
+    assert usable_span(chain)[1] is None
+    for e, k in zip(walk_line_nosings(chain), chain, strict=True):
+        assert np.array_equal(e, np.asarray(k.lower_edge, dtype=float))
