@@ -118,6 +118,18 @@ FOOT_ROLL_MAX = math.radians(60.0)
 #: in the first quarter of a step (m): the virtual corpus's maxima (medians 1.33 and 0.48).
 MAX_STRIDE = 1.74
 MAX_LIFT_REACH = 0.64
+#: How far (m) a step's end pelvis and its landing ankle lie at least ahead of its start pelvis,
+#: along its start heading (the step's frame): a walking step goes forward. In the virtual corpus
+#: (the default model's 25 037 steps: straight walks, free walking with its side steps and turns
+#: on the spot, pole turns, short walks, their first and closing steps) no step ends with the
+#: pelvis behind its start (least 0.022 m ahead, median 0.64) nor lands its foot behind it (least
+#: 0.002 m ahead, median 1.01); the transition GP draws such a step only far from its data, and
+#: the leg synthesis, a forward gait's, cannot walk it: station runs 5909 and 9828 of 10 000
+#: (seed 0; issue 50) stepped a foot 0.43-0.47 m behind the start pelvis, the pelvis going back
+#: 0.06-0.20 m, and the stance leg reached its foot only with the pelvis 6.3-7.5 cm lowered
+#: (> :data:`~mjwalk.body.legs.stance.REACH_DROP_MAX`). ASSUMPTION: the limit is the first
+#: principle itself (not backward), 0 m, not the corpus's least figures, which are a sample's.
+MIN_STEP_ADVANCE = 0.0
 #: A walker turning on the spot (or without a start yaw and without a clear guide) sets off
 #: within +-60 degrees of the obstacle-aware downhill heading; without a start yaw but with a
 #: guide it sets off along the guide (:func:`mjwalk.plan.guide.guide_start_heading`).

@@ -72,8 +72,9 @@ from mjwalk.plan.guide import GUIDE_POINTS
     P_KNEE_SHARE2,  # the early-swing knee probe's share of the step (options.KNEE_LEAD)
     P_KNEE_TURN2,  # ... and the swing foot's turned share there (swing_turned)
     P_FOOT_ROLL,  # the reach (m) a planted foot's roll adds along its heading (options.foot_reach)
+    P_STEP_ADVANCE,  # a step's least advance (m; options.MIN_STEP_ADVANCE); nan: none
     P_GUIDE0,  # the guide's GUIDE_POINTS points, x y each (mjwalk.plan.guide); nan: none
-) = range(57)
+) = range(58)
 #: Goal discs: x, y, radius of disc k at P_DISC0 + 3k (see in_goal), after the guide's slots.
 P_DISC0 = P_GUIDE0 + 2 * GUIDE_POINTS
 #: Most discs the goal area can be cut by (:func:`~mjwalk.plan.stepgeom.in_goal`); their count

@@ -6,7 +6,8 @@ the landing ankle and toes and the swing-knee probes in the step's local frame (
 forward, as x + iy; metres), the turn into the world, the clearance test of every point
 against its own limit (bilinear lookup in the workplace's walk field), the landing leg's probes
 from the ankle towards the hip (:func:`~mjwalk.plan.stepgeom.landing_leg_clear`), the leg-reach
-tests, the stance-leg lean test (:func:`~mjwalk.plan.lean.stance_lean_ok`: the stance leg must
+tests, the forward test (a step's end pelvis and landing ankle ahead of its start pelvis), the
+stance-leg lean test (:func:`~mjwalk.plan.lean.stance_lean_ok`: the stance leg must
 follow the pelvis within the ankle's and the hip's sideways ranges), the closing-step test (a
 closing step must end in the goal area; tested first, from its end and heading alone: most
 closing draws end outside it), and for the accepted steps the walked length g
@@ -84,6 +85,7 @@ from mjwalk.plan.slots import (
     P_LIFT_REACH,
     P_PACE,
     P_START_YAW,
+    P_STEP_ADVANCE,
     P_STRIDE,
     P_SWING_LIFT_TURN,
     P_TOE_CLEARANCE,
@@ -252,8 +254,9 @@ def legs_clear(z, r, matrix, offset, loc, rot, node, i, fr, lf, v, v_end, lift_y
                thr, par, ipar, coef):  # fmt: skip
     """Whether the legs and feet of a step whose pelvis samples and ankle keep their
     clearances (:func:`check_into`'s first test) pass the rest of the checks: the landing
-    toes and toe corners, the landing leg, the swing knees, the legs' reach, the landing
-    foot's way in and the stance leg's lean. The order does not matter: each refuses alone.
+    toes and toe corners, the landing leg, the swing knees, the legs' reach, the step going
+    forward (:data:`~mjwalk.plan.options.MIN_STEP_ADVANCE`), the landing foot's way in and the
+    stance leg's lean. The order does not matter: each refuses alone.
 
     Args:
         z: (n, d) standardized features.
@@ -346,6 +349,10 @@ def legs_clear(z, r, matrix, offset, loc, rot, node, i, fr, lf, v, v_end, lift_y
             return False
     if beyond(loc[m] - behind, par[P_STRIDE]) or out_of_reach(loc[m - 1] - loc[m], 1j * land,
                                                               reach, roll):  # fmt: skip
+        return False
+    # a walking step goes forward: its end pelvis and landing ankle ahead of its start pelvis
+    # (the step frame's y; options.MIN_STEP_ADVANCE; a nan slot: no test)
+    if loc[m - 1].imag < par[P_STEP_ADVANCE] or loc[m].imag < par[P_STEP_ADVANCE]:
         return False
     # the landing foot's way in along the chord from the foot behind, turned to its
     # landing yaw: a curved walk's step comes in obliquely, the toes sweeping sideways

@@ -102,11 +102,12 @@ RUN330_PELVIS = [
 ]  # fmt: skip
 
 
-def _one_step(pl, wp, vectors, pelvis, fr, ankle, yaws, landed, behind):
+def _one_step(pl, wp, vectors, pelvis, fr, ankle, yaws, landed, behind, right=False):
     """Whether :func:`stepcheck.check_steps` accepts one decoded step, as a function of the
     lifting foot's heading: the pelvis's samples ``pelvis`` (world x, y), the step's frame
     heading ``fr``, the landing ankle (x, y), the landing foot's and the end pelvis's yaw,
-    the landed and the behind footprints (complex x + iy); radians, metres."""
+    the landed and the behind footprints (complex x + iy); radians, metres. The swing foot is
+    the left one (``right``: the right one)."""
     par, ipar = vectors
     m = int(ipar[slots.I_M])
     assert m == len(pelvis)
@@ -122,7 +123,7 @@ def _one_step(pl, wp, vectors, pelvis, fr, ankle, yaws, landed, behind):
     def accepted(lift_heading: float) -> bool:
         # column 4: no landed heading (no stance-lean check), the lifting foot's heading
         node = np.array([[p, landed, behind, 0.0, complex(math.nan, lift_heading)]])
-        args = (np.zeros((1, 1)), matrix, offset, 1, 1, np.array([fr]), np.array([True]),
+        args = (np.zeros((1, 1)), matrix, offset, 1, 1, np.array([fr]), np.array([not right]),
                 np.zeros(1, bool), node)  # fmt: skip
         return len(stepcheck.check_steps(*args, *rest)[0]) == 1
 
@@ -250,3 +251,64 @@ def test_hall317_s_turning_walk_keeps_its_knees_off_the_thin_box(tmp_path):
     assert np.allclose(start, (6.0879, -1.9730), atol=1e-4)
     walk = plan_walk(wp, start, goal, default_model(), rng=3171)
     assert check_collisions(walk, tmp_path / "hall317.xml") == []
+
+
+#: Station runs 5909 and 9828 of 10 000 (seed 0, main at eea2d7c): walk 4 (to rack 3's stand
+#: zone), the step whose right foot lands behind its start pelvis, the pelvis (16 samples, world
+#: x, y) going back; the stature, the frame heading (the pelvis's at the step's start), the
+#: landing ankle (x, y), the landing foot's and the end pelvis's yaw, the landed and the behind
+#: footprints (x, y) and the behind foot's heading. Leg synthesis then lowered the pelvis 6.3
+#: cm (5909, in the next step) and 7.5 cm (9828) below its gait's height to reach the stance
+#: foot: more than REACH_DROP_MAX, the run refused.
+BACKWARD_STEPS = {
+    5909: (
+        [
+            (-2.882, -1.003), (-2.891, -1.034), (-2.898, -1.063), (-2.903, -1.088),
+            (-2.906, -1.110), (-2.907, -1.129), (-2.906, -1.143), (-2.903, -1.154),
+            (-2.897, -1.160), (-2.889, -1.163), (-2.878, -1.163), (-2.865, -1.159),
+            (-2.850, -1.151), (-2.831, -1.139), (-2.809, -1.123), (-2.784, -1.103),
+        ],
+        1.67, 3.447, (-2.460, -0.924), (3.141, 3.672), (-2.927, -1.165), (-2.831, -0.855),
+        3.329,
+    ),
+    9828: (
+        [
+            (-2.880, -1.153), (-2.871, -1.181), (-2.862, -1.208), (-2.854, -1.234),
+            (-2.846, -1.257), (-2.838, -1.277), (-2.829, -1.295), (-2.820, -1.311),
+            (-2.811, -1.324), (-2.800, -1.336), (-2.789, -1.345), (-2.776, -1.353),
+            (-2.761, -1.359), (-2.743, -1.364), (-2.723, -1.368), (-2.701, -1.370),
+        ],
+        1.71, 3.026, (-2.431, -1.398), (3.104, 3.551), (-3.084, -1.295), (-2.461, -0.912),
+        3.129,
+    ),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("run", sorted(BACKWARD_STEPS))
+def test_a_step_going_backward_is_refused(scenes_dir, run):
+    """A walking step goes forward (options.MIN_STEP_ADVANCE: no step of the virtual corpus
+    ends its pelvis or lands its foot behind its start pelvis): the backward steps of station
+    runs 5909 and 9828, which every other check passes (the slot nan: the check as it was),
+    are refused."""
+    model = default_model()
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    pl = HybridPlanner(wp, "stand_rack3", model, PlannerOptions(radius=0.30))
+    pelvis, stature, fr, ankle, yaws, landed, behind, lift = BACKWARD_STEPS[run]
+    par, ipar = pl.params.vectors(stature)
+    assert par[slots.P_STEP_ADVANCE] == 0.0
+    before = par.copy()
+    before[slots.P_STEP_ADVANCE] = math.nan  # no forward test
+    # the end pelvis and the landing ankle lie behind the start pelvis along the frame heading
+    rot = complex(math.sin(fr), -math.cos(fr))
+    p = complex(*pelvis[0])
+    assert ((complex(*pelvis[-1]) - p) / rot).imag < -0.06
+    assert ((complex(*ankle) - p) / rot).imag < -0.4
+
+    def accepted(vectors, right=True) -> bool:
+        return _one_step(
+            pl, wp, vectors, pelvis, fr, ankle, yaws, complex(*landed), complex(*behind),
+            right=right,
+        )(lift)  # fmt: skip
+
+    assert accepted((before, ipar))  # every other check passes it
+    assert not accepted((par, ipar))
