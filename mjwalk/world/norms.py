@@ -13,11 +13,17 @@ import math
 
 # --- comparing computed lengths with these limits ---------------------------------------------
 #: Slack, metres, on every comparison of a length computed from geoms' corners (a riser, a tread,
-#: a surface's depth or width) with a limit of this module: the float rounding of the corners'
-#: arithmetic, not a tolerance of the norm. A generated hall's 0.19 m riser, exactly
-#: ``MAX_RISER``, came out 0.19000000000000006 m, and its flight and mezzanine were no walk
-#: surfaces (``benchmarks/bench_unseen.py``, hall 214). Far below any measurement's precision.
-ROUNDING_SLACK = 1e-9
+#: a surface's depth or width) with a limit of this module: the float rounding of the corners,
+#: not a tolerance of the norm. A generated hall's 0.19 m riser, exactly ``MAX_RISER``, came out
+#: 0.19000000000000006 m, and its flight and mezzanine were no walk surfaces
+#: (``benchmarks/bench_unseen.py``, hall 214). MuJoCo stores mesh vertices in single precision
+#: (``mjModel.mesh_vert`` is float32, rounded to 2^-24 of their size, about their mesh's centre):
+#: a CAD tread exactly 0.26 m deep (``MIN_TREAD``) measured 0.2599999x m and was no walk surface,
+#: and a mesh flight's 0.19 m risers 0.19000006 m (helper spiral47). A vertex up to 8 m from its
+#: mesh's centre is off by up to 2^-24 x 8 m = 4.8e-7 m, a length between two such vertices
+#: about 1e-6 m: that is the slack. Far below any measurement's precision (a scan's 5 mm noise,
+#: DIN 18065's 5 mm build tolerance).
+ROUNDING_SLACK = 1e-6
 
 # --- stairs and steps -------------------------------------------------------------------------
 #: Smallest and largest riser (Steigung) of a building stair, metres: DIN 18065:2020 Table 1,

@@ -109,15 +109,15 @@ def test_reach_depends_on_the_walkers_riser(station):
 
 def test_a_walker_whose_limit_is_the_riser_rounded_takes_the_stair(station):
     """A stair's riser computed from geoms' corners carries float rounding: a walker whose
-    step-up limit is that riser less the rounding (1e-12 m) still takes the stair (as the
-    contacts and the stair check allow, ``norms.ROUNDING_SLACK``); 1 µm less does not."""
+    step-up limit is that riser less a mesh vertex's rounding (1e-7 m) still takes the stair (as the
+    contacts and the stair check allow, ``norms.ROUNDING_SLACK``); 10 µm less does not."""
     _, _, g = station
     mezz = level_named(g, "mezzanine")
     r = max(
         r for k in g.links if k.kind == "stair" and mezz in (k.lower, k.upper) for r in k.risers
     )
-    assert mezz in g.reachable(max_riser=r - 1e-12)
-    assert mezz not in g.reachable(max_riser=r - 1e-6)
+    assert mezz in g.reachable(max_riser=r - 1e-7)
+    assert mezz not in g.reachable(max_riser=r - 1e-5)
 
 
 def test_a_riser_above_the_limit_gives_no_link():
@@ -300,3 +300,38 @@ def test_a_landing_box_a_centimetre_behind_the_top_riser_is_the_same_riser():
     assert level_named(g, "top") == deck
     assert [(k.kind, k.lower, k.upper) for k in g.links] == [("stair", 0, deck)]
     assert g.links[0].tread == pytest.approx(0.28, abs=1e-6)
+
+
+def _mesh_flight(riser: float, tread: float, n: int) -> mujoco.MjModel:
+    """A flight of ``n`` risers towards +x built as a CAD export writes it: each tread and the
+    landing one prism mesh standing on the floor (vertices in world coordinates, stored by
+    MuJoCo in single precision), 1.2 m wide."""
+    assets, geoms = [], []
+    for k in range(1, n + 1):
+        x0, depth, half = 0.37 + (k - 1) * tread, tread if k < n else 2.0, 0.6 if k < n else 1.0
+        v = " ".join(
+            f"{x:.6f} {y:.6f} {z:.6f}"
+            for x in (x0, x0 + depth)
+            for y in (-half, half)
+            for z in (0.0, riser * k)
+        )
+        assets.append(f'<mesh name="m{k}" vertex="{v}"/>')
+        geoms.append(f'<geom name="t{k}" type="mesh" mesh="m{k}"/>')
+    return mujoco.MjModel.from_xml_string(
+        f"<mujoco><asset>{''.join(assets)}</asset><worldbody>"
+        f'<geom name="floor" type="plane" size="9 9 0.1"/>{"".join(geoms)}</worldbody></mujoco>'
+    )
+
+
+@pytest.mark.parametrize("riser", [0.17, 0.19])
+def test_a_mesh_flight_at_the_limits_is_the_stair_its_boxes_are(riser):
+    """A flight of prism meshes with 0.26 m treads (``MIN_TREAD``) and 0.17 or 0.19 m risers
+    (``MAX_RISER``) is one stair, as the same flight of boxes: its treads' depths and risers,
+    read from single-precision vertices, miss the limits by ~1e-8 m (the tread 0.2599999x m),
+    within ``norms.ROUNDING_SLACK`` (with a 1e-9 m slack the treads were no walk surfaces)."""
+    model = _mesh_flight(riser, 0.26, 6)
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    g = level_graph(find_walk_surfaces(model, data))
+    assert [k.kind for k in g.links] == ["stair"]
+    assert max(g.links[0].risers) == pytest.approx(riser, abs=1e-6)
