@@ -181,9 +181,17 @@ def synthetic_stair_walk(
     # pelvis at step starts midway between the two feet, as synthetic_walk's (whose first step
     # is a half step, so its midway is a quarter step; here the first step is a whole tread):
     # a quarter tread here put the first step off a landing 7 cm nearer above its lifting foot
-    # than the flight's steps (knee 100.1 against 95.5-95.7 deg down at 1.75 m)
-    sp = [0.0] + [0.5 * (s_f[i - 1] + s_f[i]) for i in range(1, n_steps)]
-    sp = [*sp, s_f[-1]]
+    # than the flight's steps (knee 100.1 against 95.5-95.7 deg down at 1.75 m). Up, midway
+    # between the footprints (the points under the ankles, set back from the treads' centres),
+    # as the level planner's walks put it (footfall_walk): midway between the treads' centres
+    # put it the setback (6.65 cm at 1.75 m) ahead of the planner's at every foot contact, the
+    # swing thigh less flexed (hip peak 51.8 deg against the planner's 55.2). Down, still
+    # between the treads' centres (the same 6.65 cm ahead of the planner's pelvis; midway
+    # between the footprints the first step off the top landing peaks at 100.2 deg knee at
+    # 1.75 m, over the cited 100: not checked against the planner's landing steps, hip47d)
+    s_p = s_f - back if direction == "up" else s_f
+    sp = [float(s_p[0])] + [0.5 * (s_p[i - 1] + s_p[i]) for i in range(1, n_steps)]
+    sp = [*sp, float(s_p[-1])]
     knots_t, knots_s = t[bounds], np.asarray(sp)
     if n_hold:
         knots_t, knots_s = np.r_[knots_t, t[-1]], np.r_[knots_s, knots_s[-1]]
