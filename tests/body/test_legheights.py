@@ -89,8 +89,8 @@ def test_stair_ascent_pelvis_and_knee():
 def test_stair_ascent_toe_clearance():
     """Up a 0.17/0.28 stair the swing sole clears every nosing by the cited 3 cm (Hamel et al.
     2005) with the knee peak in its cited range: the foot moves forward once its toes clear
-    the lower nosing and rises on to the upper one (edgeswing._swing_path). The hip peak is
-    the strict xfail below."""
+    the lower nosing and rises on to the upper one (edgeswing._swing_path). The hip peak:
+    test_stair_ascent_hip_peak_within_cited_range below."""
     walk = synthetic_stair_walk(0.17, 0.28, 6, "up")
     motion = legs_from_walk(walk)
     assert KNEE_PEAK_UP[0] <= _peaks(walk, motion, "knee_{}") <= KNEE_PEAK_UP[1]
