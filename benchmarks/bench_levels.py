@@ -60,6 +60,15 @@ group (the thorax itself leans 12.4 deg; the hip-to-C7 line also runs through th
 tilted 2.6 deg backward, and the lumbar segment, flexed by 57 % of the lean), down 0.0 -> 0.0;
 knee, hip, hip IC, at and clearance unchanged (the lean is the spine's, not the pelvis's).
 
+Branch hip47d (``--draws 50 --walks 0``, base eea2d7c run right before with this script): up
+a stair the synthetic walk's pelvis stands at each foot contact midway between the feet (the
+points under the ankles), as the level planner's walks put it (plan.footfallwalk), not midway
+between the treads' centres, the setback (6.65 cm at 1.75 m) further on: up, hip 52.4-53.8 ->
+55.1-56.3 deg (cited 55-75), hip IC 42.2-43.3 -> 43.8-45.0, at 0.58-0.59 -> 0.56-0.58, knee
+100.3-103.7 -> 99.7-101.8; clearance, trunk and every descent, ramp and timing figure
+unchanged (down keeps the treads' centres: midway between the feet its first step off the
+top landing peaks at 100.2 deg knee at 1.75 m, over the cited 100).
+
 Planning cost measured (``--draws 10 --walks 10``, 2-core machine at load average 1.3, three
 runs, branch i47-levelcost): median ms level walk / open-floor walk of the same length / the
 route's level legs planned alone as flat walks: step 1.6-1.8 / 2.6-2.7 / 2.4-2.6 (ratio to flat
