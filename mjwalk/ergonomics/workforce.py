@@ -234,11 +234,9 @@ def _trend(x: np.ndarray, y: np.ndarray) -> dict[str, Any]:
     lo, hi = np.percentile(x, [100 / 3, 200 / 3])
     rng = np.random.default_rng(BOOTSTRAP_SEED)
     idx = rng.integers(0, len(x), size=(BOOTSTRAP, len(x)))
-    xs, ys = x[idx], y[idx]
-    xc = xs - xs.mean(axis=1, keepdims=True)
-    den = (xc**2).sum(axis=1)
-    ok = den > 0
-    slopes = (xc * (ys - ys.mean(axis=1, keepdims=True))).sum(axis=1)[ok] / den[ok]
+    slopes = np.concatenate(
+        [_slopes(x[rows], y[rows]) for rows in np.array_split(idx, _blocks(len(x)))]
+    )
     slope = float(np.polyfit(x, y, 1)[0])
     at = np.linspace(x.min(), x.max(), LOWESS_POINTS)
     fit = lowess(x, y, at)
@@ -258,6 +256,21 @@ def _trend(x: np.ndarray, y: np.ndarray) -> dict[str, Any]:
         "confidence": 0.95,
         "smooth": smooth,
     }
+
+
+def _blocks(n: int) -> int:
+    """How many blocks :data:`BOOTSTRAP` resamples of ``n`` runs make in the cache
+    (:data:`_BAND_BLOCK` elements a block)."""
+    return -(-BOOTSTRAP // max(1, min(BOOTSTRAP, _BAND_BLOCK // max(1, n))))
+
+
+def _slopes(xs: np.ndarray, ys: np.ndarray) -> np.ndarray:
+    """The least-squares slope of each resample (row) of ``xs``, ``ys`` ((B, N)) whose
+    statures are not all one; row reductions, so the same bit for bit in any block."""
+    xc = xs - xs.mean(axis=1, keepdims=True)
+    den = (xc**2).sum(axis=1)
+    ok = den > 0
+    return (xc * (ys - ys.mean(axis=1, keepdims=True))).sum(axis=1)[ok] / den[ok]
 
 
 def _drivers(records: Sequence) -> dict[str, Any]:
