@@ -219,7 +219,8 @@ def spaghetti_png(
             paths = [w.path for w in walks]
             alpha = 0.8 if len(paths) < 5 else max(0.15, 4.0 / len(paths))
             _draw_lines(ax, paths, color=colors[label], lw=0.8, alpha=alpha)
-            # the route's legend entry: a line in the walks' style (a collection's is dashed)
+            # the route's legend entry: a line in the walks' style, its caps as theirs (a
+            # collection's legend line would take a dashed line's)
             ax.plot([], [], color=colors[label], lw=0.8, alpha=alpha, label=label)
             if paths:  # the first walk's start (square) and end (star), as draw_paths marks
                 ax.plot(*paths[0].xy[0], marker="s", color="k", ms=6)
