@@ -98,7 +98,9 @@ def cycle_lifts(ang: BodyAngles, spans: Sequence[TaskSpan], cycle_time: float) -
 
 def _task_lift(run: RunErgonomics, task: TaskErgonomics) -> niosh.Lift | None:
     """The lift of a task (the last one named after it), None without one."""
-    return {lf.task: lf for lf in run.lifts}.get(task.index)
+    # a search from the end, not a dict of the run's lifts per call: ergonomics.csv asks for
+    # each row's lift five times, over 10 000 runs a million calls (issue 50)
+    return next((lf for lf in reversed(run.lifts) if lf.task == task.index), None)
 
 
 def _li_cell(run: RunErgonomics, task: TaskErgonomics) -> str:

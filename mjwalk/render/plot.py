@@ -3,6 +3,7 @@ report's charts (walks by route over the floor plan, cycle-time and walk-length 
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 from pathlib import Path
@@ -12,6 +13,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib import lines as mlines
+from matplotlib.collections import LineCollection
 from matplotlib.patches import Circle, Polygon, Rectangle
 
 from mjwalk._io import atomic_path
@@ -215,7 +218,13 @@ def spaghetti_png(
                 capped = True
             paths = [w.path for w in walks]
             alpha = 0.8 if len(paths) < 5 else max(0.15, 4.0 / len(paths))
-            draw_paths(ax, paths, color=colors[label], label=label, lw=0.8, alpha=alpha)
+            _draw_lines(ax, paths, color=colors[label], lw=0.8, alpha=alpha)
+            # the route's legend entry: a line in the walks' style, its caps as theirs (a
+            # collection's legend line would take a dashed line's)
+            ax.plot([], [], color=colors[label], lw=0.8, alpha=alpha, label=label)
+            if paths:  # the first walk's start (square) and end (star), as draw_paths marks
+                ax.plot(*paths[0].xy[0], marker="s", color="k", ms=6)
+                ax.plot(*paths[0].xy[-1], marker="*", color="k", ms=9)
             if baseline is None:
                 routes += [(label, w.baseline) for w in walks if w.baseline is not None]
         if baseline is not None:
@@ -226,12 +235,11 @@ def spaghetti_png(
         count: dict[str, int] = {}
         for label, _ in routes:
             count[label] = count.get(label, 0) + 1
-        for label, p in routes:
+        for label, group in itertools.groupby(routes, key=lambda lp: lp[0]):
             # many routes overlap on the grid's lines: fainter than the walks they go with
             alpha = 0.9 if count[label] < 5 else max(0.08, 3.0 / count[label])
-            ax.plot(
-                p.xy[:, 0], p.xy[:, 1], ls="--", lw=1.0, alpha=alpha, color=colors.get(label, "k")
-            )
+            _draw_lines(ax, [p for _, p in group], color=colors.get(label, "k"), lw=1.0,
+                        alpha=alpha, ls="--")  # fmt: skip
         if routes:  # one neutral legend entry for all grid-A* routes
             what = "each walk's own ends" if baseline is None else "given routes"
             ax.plot([], [], ls="--", lw=1.8, color="k", label=f"grid A* ({what}, route colour)")
@@ -249,6 +257,40 @@ def spaghetti_png(
         fig.savefig(path, dpi=110)
     finally:
         plt.close(fig)
+
+
+def _draw_lines(ax, paths: Sequence[WalkPath], **style) -> None:
+    """Draw walk paths on ``ax`` as one :class:`~matplotlib.collections.LineCollection` in
+    a line's style (zorder, cap and join styles of :meth:`ax.plot`'s lines), in order.
+
+    One artist instead of one line per walk: the spaghetti plot draws thousands (issue 50:
+    most of the report's time over a few hundred runs went to making and drawing them).
+
+    Args:
+        ax: the matplotlib axes (world frame, metres).
+        paths: the walks.
+        **style: ``color``, ``lw``, ``alpha`` and ``ls`` of the lines.
+    """
+    if not paths:
+        return
+    ls = style.pop("ls", "-")
+    rc = matplotlib.rcParams  # a line's caps and joins, solid or dashed
+    cap, join = (
+        (rc["lines.solid_capstyle"], rc["lines.solid_joinstyle"])
+        if ls == "-"
+        else (rc["lines.dash_capstyle"], rc["lines.dash_joinstyle"])
+    )
+    lines = LineCollection(
+        [p.xy[:, :2] for p in paths],
+        colors=[style.pop("color")],
+        linewidths=style.pop("lw"),
+        linestyles=ls,
+        zorder=mlines.Line2D.zorder,
+        capstyle=cap,
+        joinstyle=join,
+        **style,
+    )
+    ax.add_collection(lines, autolim=False)
 
 
 def histograms_png(path: Path, results: Sequence[CycleResult], rep: dict) -> None:

@@ -19,24 +19,39 @@ def workplace():
     return load_workplace(SCENE)
 
 
-def test_spaghetti_draws_at_most_a_cap_of_walks_per_route(tmp_path, workplace, monkeypatch):
+def test_spaghetti_draws_at_most_a_cap_of_walks_per_route_each_as_one_artist(
+    tmp_path, workplace, monkeypatch
+):
     """A long batch's floor plan draws a capped, evenly spread sample of each route's walks
-    (the statistics and CSVs keep every walk)."""
+    (the statistics and CSVs keep every walk): each route's walks as one line collection and
+    their own grid-A* routes as another, dashed, not a line each (issue 50: thousands of
+    lines were most of the report's time over a few hundred runs)."""
+    from matplotlib.collections import LineCollection
+
     from mjwalk.report import report_dict
 
     results = _results(workplace, runs=12)
-    drawn: dict[str, int] = {}
-    real = plot.draw_paths
-
-    def counting(ax, paths, *args, label=None, **kw):
-        drawn[label] = len(paths)
-        return real(ax, paths, *args, label=label, **kw)
-
-    monkeypatch.setattr(plot, "draw_paths", counting)
+    figures: list = []
+    close = plot.plt.close
+    monkeypatch.setattr(plot.plt, "close", figures.append)  # kept to be looked at
     monkeypatch.setattr(plot, "MAX_DRAWN_PER_ROUTE", 5)
     rep = report_dict(results)
     plot.spaghetti_png(tmp_path / "s.png", results, workplace, None, rep)
-    assert drawn and all(n == 5 for n in drawn.values())  # 12 runs, each route walked 12+ times
+    (fig,) = figures
+    ax = fig.axes[0]
+    lines = [c for c in ax.collections if isinstance(c, LineCollection)]
+    solid = [c for c in lines if c.get_linestyle()[0][1] is None]
+    dashed = [c for c in lines if c.get_linestyle()[0][1] is not None]
+    routes = list(rep["routes"])
+    # 12 runs, each route walked 12+ times: 5 of each drawn, in the route's colour
+    assert len(solid) == len(routes) and all(len(c.get_paths()) == 5 for c in solid)
+    colors = plot.route_colors(routes)
+    assert [tuple(c.get_colors()[0][:3]) for c in solid] == [colors[r][:3] for r in routes]
+    assert sum(len(c.get_paths()) for c in dashed) <= 5 * len(routes)  # with their walks
+    assert len(ax.lines) < 40  # sites, each route's first start and end, legend entries
+    legend = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert legend[: len(routes)] == routes
+    close(fig)
     assert (tmp_path / "s.png").stat().st_size > 0
 
 
