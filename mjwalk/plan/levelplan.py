@@ -75,6 +75,7 @@ from mjwalk.plan.levelsearch import STANCE_TOLERANCE, level_route
 from mjwalk.plan.levelstitch import level_meta, stitch
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
+from mjwalk.plan.shortleg import short_leg
 from mjwalk.plan.stepturn import stepped_turn
 from mjwalk.plan.turnin import turn_into
 from mjwalk.plan.walkpath import WalkPath
@@ -299,17 +300,24 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     walker_model = _foot_model(model, foot)
     planner = _planner(view, leg.end, model, options)
     request = WalkRequest(pose, model=walker_model, turn_on_spot=standing)
+    here = _start_pose(workplace, pose, leg)
     if nxt is None:  # to the walk's goal
-        return planner.plan(request, rng)
+        short = _short(view, here, leg.end, (model, foot, None), rng, options)
+        return short if short is not None else planner.plan(request, rng)
     c = nxt.crossing
     assert c is not None
     heading = c.yaw if nxt.direction == "up" else c.yaw + math.pi
     goal = _approach(view, leg, nxt, walker_step_length(walker_model), options)
+    aim = leg.end if goal is None else goal
+    walk = _short(view, here, aim, (model, foot, heading), rng, options)
+    if walk is not None:  # a step or two along a clear line: nothing to search
+        if goal is not None:
+            walk.meta["approach_point"] = [float(goal[0]), float(goal[1])]
+        return walk
     if goal is not None:  # lined up with the flight a step before its stance
         planner = _planner(view, goal, model, options)
     # the approach heading a preference: its guide on a small budget, else the route search
     budget = min(options.max_expansions, HEADING_BUDGET)
-    aim = leg.end if goal is None else goal
     aimed = _planner(view, aim, model, variant(options, max_expansions=budget))
     try:
         walk = aimed.plan(replace(request, goal_heading=heading), rng)
@@ -330,6 +338,26 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     if goal is not None:
         walk.meta["approach_point"] = [float(goal[0]), float(goal[1])]
     return walk
+
+
+def _start_pose(workplace: Workplace, pose, leg: RouteLeg):
+    """A level leg's start as (world xy, heading or None: free), as the hybrid planner reads
+    it (a site or a point without a heading: free), or None for a text pose "x,y,yaw_deg"
+    (left to the search)."""
+    if isinstance(pose, str):
+        return (leg.start, None) if pose in workplace.stations or pose.count(",") < 2 else None
+    arr = np.asarray(pose, dtype=float).ravel()
+    return (arr[:2], float(arr[2])) if arr.size == 3 else (leg.start, None)
+
+
+def _short(view: Workplace, here, aim: np.ndarray, walk: tuple, rng, options) -> WalkPath | None:
+    """:func:`mjwalk.plan.shortleg.short_leg` of a level leg from ``here`` (:func:`_start_pose`;
+    None: no walk) to ``aim``; ``walk``: (step model, first foot or None: either, the heading
+    the walk goes on with or None)."""
+    model, foot, heading = walk
+    if here is None:
+        return None
+    return short_leg(view, here, aim, _walker(model), options.radius, (foot, heading), rng)
 
 
 def _approach(view: Workplace, leg: RouteLeg, nxt: RouteLeg, lead: float, options):
