@@ -357,7 +357,8 @@ def _short(view: Workplace, here, aim: np.ndarray, walk: tuple, rng, options) ->
     model, foot, heading = walk
     if here is None:
         return None
-    return short_leg(view, here, aim, _walker(model), options.radius, (foot, heading), rng)
+    reach = (options.radius, options.goal_tolerance)
+    return short_leg(view, here, aim, _walker(model), reach, (foot, heading), rng)
 
 
 def _approach(view: Workplace, leg: RouteLeg, nxt: RouteLeg, lead: float, options):

@@ -8,10 +8,11 @@ assembly cost about as much as a flat walk's whole plan. :func:`short_leg` walks
 instead as footfalls along the straight line from its start to its goal, with the footfall
 machinery the crossings use (:func:`mjwalk.plan.footfallwalk.footfall_walk`): from standing with
 the feet side by side, footfalls evenly spaced along the line, none farther apart than the
-walker's step length, each at the walker's step time, and a closing step that brings the
-trailing foot beside the leading one, so the walker stands at the goal facing along the line
-(``n`` step lengths in ``n + 1`` steps, as :func:`mjwalk.plan.levelcross.level_time` times a
-route's level legs). The first step turns the walker from where it faced onto the line.
+walker's step length nor twice the planner's goal tolerance, each at the walker's step time,
+the last at the goal; the pelvis, between the last two, ends half a step short of it, inside
+the goal area, as a searched leg ends there walking on (no closing step: the next crossing
+or leg follows step over step). The first step turns the walker from where it faced onto the
+line.
 
 It does so only where there is nothing to choose: the line at most :data:`SHORT_LEG_STEPS` of
 the walker's step lengths, the body radius clear all along it on the leg's level
@@ -37,12 +38,12 @@ from mjwalk.plan.turnsplit import wrap
 from mjwalk.plan.walkpath import WalkPath
 
 #: The longest level leg (in the walker's step lengths) walked straight rather than searched.
-#: ASSUMPTION: within two step lengths a walk from standing to standing has at most two
-#: footfalls before its closing step; with its straight line clear of every obstacle by the
-#: body radius and its turns within one step's direction change, the search has no route to
-#: choose between and returns that straight walk (the station's legs of 0.31-0.9 m: one or two
-#: steps after 1-8 expansions, seeds 1-2, ``benchmarks/bench_levels.py``). Longer legs have
-#: room for the search's pace, sway and curvature, which stay its own.
+#: ASSUMPTION: within two step lengths a walk from standing has one to three footfalls (three
+#: where twice the goal area is shorter than a step); with its straight line clear of every
+#: obstacle by the body radius and its turns within one step's direction change, the search
+#: has no route to choose between and returns a straight walk (the station's legs of 0.31-0.9
+#: m: one or two steps after 1-8 expansions, seeds 1-2, ``benchmarks/bench_levels.py``).
+#: Longer legs have room for the search's pace, sway and curvature, which stay its own.
 SHORT_LEG_STEPS = 2
 
 
@@ -51,7 +52,7 @@ def short_leg(
     start: tuple[np.ndarray, float | None],
     aim: np.ndarray,
     walker: Walker,
-    radius: float,
+    reach: tuple[float, float],
     ends: tuple[str | None, float | None],
     rng: np.random.Generator,
 ) -> WalkPath | None:
@@ -64,7 +65,7 @@ def short_leg(
         aim: (2,) world xy where the walker stands at the end (the leg's goal or approach
             point).
         walker: the walker (step length, step time, step width).
-        radius: the body radius, metres.
+        reach: (the body radius, the planner's goal tolerance), metres.
         ends: (the first step's swinging foot, "left" or "right", or None: either; the
             heading in radians the walk goes on with at its end, a crossing's up or down its
             axis, or None).
@@ -79,13 +80,16 @@ def short_leg(
     """
     t0 = time.perf_counter()
     side, heading = ends
+    radius, tolerance = reach
     xy0 = np.asarray(start[0], dtype=float)
     line = np.asarray(aim, dtype=float) - xy0
     d, step = float(np.hypot(*line)), walker.step_length
     if not 1e-9 < d <= SHORT_LEG_STEPS * step:
         return None
     psi = math.atan2(float(line[1]), float(line[0]))
-    yaw0 = psi if start[1] is None else float(start[1])
+    # a crossing's stance heading may lie past pi (its yaw + pi): the walk's and its feet's
+    # headings within (-pi, pi], as the search's, so no foot turns a full circle into it
+    yaw0 = psi if start[1] is None else wrap(float(start[1]))
     psi = yaw0 + wrap(psi - yaw0)  # the nearer turn, unwrapped from where the walker faces
     if abs(psi - yaw0) > ENTRY_TURN:
         return None
@@ -95,8 +99,10 @@ def short_leg(
         return None
     if side is None:
         side = "left" if rng.random() < 0.5 else "right"
-    n = max(1, math.ceil(d / step - 1e-9))  # footfalls to the aim, then the closing one
-    u = np.append(np.arange(1, n + 1) / n, 1.0)
+    # footfalls evenly along the line, the last at the aim: the pelvis ends half a step short
+    # of it, inside the planner's goal area as a searched leg's (walking on into a crossing)
+    n = max(1, math.ceil(d / min(step, 2.0 * tolerance) - 1e-9))
+    u = np.arange(1, n + 1) / n
     k = len(u)
     points = xy0 + np.outer(u, line)
     across = np.tile([-math.sin(psi), math.cos(psi)], (k, 1))

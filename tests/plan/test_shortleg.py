@@ -1,5 +1,5 @@
 """Short level legs walked as footfalls along their line (mjwalk.plan.shortleg): not searched,
-within the walker's step length and time, standing at the aim; longer, blocked or turning legs
+within the walker's step length and time, ending in the goal area; longer, blocked or turning legs
 left to the search. Seeded."""
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ def _leg(d: float, yaw0: float | None = 0.0, heading: float | None = None, clear
     start = (np.array([1.0, 2.0]), yaw0)
     aim = np.array([1.0 + d, 2.0])
     rng = np.random.default_rng(3)
-    return short_leg(_Open(clear), start, aim, walker, 0.25, (None, heading), rng), walker
+    return short_leg(_Open(clear), start, aim, walker, (0.25, 0.25), (None, heading), rng), walker
 
 
 @pytest.mark.parametrize("steps", [0.4, 1.0, 1.3, 2.0])
@@ -44,8 +44,9 @@ def test_footfalls_keep_the_walkers_step_limits(steps):
     walk, _ = _leg(steps * walker.step_length)
     assert walk is not None
     walk.validate()
-    n = math.ceil(steps - 1e-9)
-    assert len(walk.steps) == n + 1  # n step lengths, then the closing step
+    d = steps * walker.step_length
+    n = math.ceil(d / min(walker.step_length, 0.5) - 1e-9)  # the goal area 0.25 m about it
+    assert len(walk.steps) == n
     sides = [s.side for s in walk.steps]
     assert all(a != b for a, b in itertools.pairwise(sides))  # feet alternate
     falls = np.array([s.foot[:2] for s in walk.steps])
@@ -56,7 +57,9 @@ def test_footfalls_keep_the_walkers_step_limits(steps):
     assert np.allclose(across, 0.5 * (walker.step_width or DEFAULT_STEP_WIDTH))
     m = max(1, round(walker.step_duration * SAMPLE_RATE_HZ))
     assert all(s.end - s.start == m for s in walk.steps)  # the walker's step time
-    assert np.allclose(walk.xy[-1], [1.0 + steps * walker.step_length, 2.0])  # at the aim
+    assert along[-1] == pytest.approx(d)  # the last footfall at the aim
+    end = walk.xy[-1] - [1.0 + d, 2.0]
+    assert abs(end[1]) < 1e-9 and -0.25 <= end[0] < 0.0  # the pelvis in its goal area
     assert walk.meta["expansions_all"] == 0
 
 
