@@ -12,7 +12,9 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
 2. on each level the hybrid A* unchanged (:class:`~mjwalk.plan.hybrid.HybridPlanner`, kept
    per level view, goal, step model and options, so a route's legs are set up once) in the
    level's view (:func:`mjwalk.world.levelview.level_view`: its surfaces, its obstacles up to
-   the walker's head), from the start or a crossing's stance to the next crossing's stance
+   the walker's head; a leg of at most two step lengths along a clear line, turning within a
+   step at either end, walked as footfalls along it unsearched: :mod:`mjwalk.plan.shortleg`),
+   from the start or a crossing's stance to the next crossing's stance
    (ending in the planner's goal area about it; the heading up or down it a preference, its
    guide searched on :data:`HEADING_BUDGET` expansions before the route search alone) or the
    goal. After a crossing the walker stands on both feet: the leg is a standing start (a turn
