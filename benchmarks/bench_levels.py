@@ -225,6 +225,22 @@ from the distances it sums anyway (125 -> 89 us): about 0.15 ms a walk. Interlea
 30 warm plans, base -> branch, two rounds (load 3): step 2.07/2.05 -> 1.79/1.91 ms (ratio
 2.39/2.29 -> 2.10/2.20), rack1 -> mezzanine 5.10/4.64 -> 4.10/3.99, mezzanine -> rack1
 3.41/3.19 -> 3.02/3.03; at load 11 within noise.
+
+Branch levelcost47k (``--twin-only --walks 10`` and ``--split --walks 10``, CPU ms, base
+eea2d7c and branch interleaved, two rounds each, load 4-6): a level leg of at most two step
+lengths along a line the body clears, turning within a step at either end, is walked as
+footfalls along that line (plan.shortleg, levelcross.line_clear, footfallwalk.footfall_walk;
+the last footfall at the leg's goal, the pelvis half a step short, in the goal area), not
+searched. Warm level / twin, base -> branch: step 2.2/1.1, 1.7/0.9 -> 1.2/1.2, 0.8/0.9 (ratio
+2.02, 1.74 -> 1.01, 0.91; expansions 6 -> 0), ramp 1.47, 1.32 -> 0.79, 0.77 (6 -> 0), stair
+1.19, 1.16 -> 0.77, 0.57 (8 -> 0), rack1 -> mezzanine 2.16, 1.95 -> 1.66, 1.63 (46 -> 27: its
+mezzanine leg unsearched, its floor leg searched; per metre 0.77, 0.70 -> 0.60, 0.59),
+mezzanine -> rack1 1.55, 1.52 -> 1.34, 1.29 (22 -> 13), platform1 -> car1 0.34, 0.30 -> 0.32,
+0.29. Split, base -> branch: step 1.48 ms (hybrid plans 0.88, 2 calls) -> 0.76 (0 calls; the
+short legs in "rest", 0.26 -> 0.46), twin 0.65; rack1 -> mezzanine 4.42 (2.1 calls) -> 3.65
+(1.1). Only rack1 -> mezzanine stays over 1.5 warm (its twin walks 3.0 m, it 8.5 m round to
+the stair's foot). Cold unchanged (4.2-5.4, the levels' set-up). Walks change where a leg is
+short (no sway or drawn pace on it: even footfalls at the walker's step length and time).
 """
 
 from __future__ import annotations

@@ -12,7 +12,9 @@ platform, a mezzanine -- of a scene on several levels (:attr:`Workplace.levels
 2. on each level the hybrid A* unchanged (:class:`~mjwalk.plan.hybrid.HybridPlanner`, kept
    per level view, goal, step model and options, so a route's legs are set up once) in the
    level's view (:func:`mjwalk.world.levelview.level_view`: its surfaces, its obstacles up to
-   the walker's head), from the start or a crossing's stance to the next crossing's stance
+   the walker's head; a leg of at most two step lengths along a clear line, turning within a
+   step at either end, walked as footfalls along it unsearched: :mod:`mjwalk.plan.shortleg`),
+   from the start or a crossing's stance to the next crossing's stance
    (ending in the planner's goal area about it; the heading up or down it a preference, its
    guide searched on :data:`HEADING_BUDGET` expansions before the route search alone) or the
    goal. After a crossing the walker stands on both feet: the leg is a standing start (a turn
@@ -75,6 +77,7 @@ from mjwalk.plan.levelsearch import STANCE_TOLERANCE, level_route
 from mjwalk.plan.levelstitch import level_meta, stitch
 from mjwalk.plan.options import PlannerOptions
 from mjwalk.plan.request import WalkRequest
+from mjwalk.plan.shortleg import short_leg
 from mjwalk.plan.stepturn import stepped_turn
 from mjwalk.plan.turnin import turn_into
 from mjwalk.plan.walkpath import WalkPath
@@ -299,17 +302,24 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     walker_model = _foot_model(model, foot)
     planner = _planner(view, leg.end, model, options)
     request = WalkRequest(pose, model=walker_model, turn_on_spot=standing)
+    here = _start_pose(workplace, pose, leg)
     if nxt is None:  # to the walk's goal
-        return planner.plan(request, rng)
+        short = _short(view, here, leg.end, (model, foot, None), rng, options)
+        return short if short is not None else planner.plan(request, rng)
     c = nxt.crossing
     assert c is not None
     heading = c.yaw if nxt.direction == "up" else c.yaw + math.pi
     goal = _approach(view, leg, nxt, walker_step_length(walker_model), options)
+    aim = leg.end if goal is None else goal
+    walk = _short(view, here, aim, (model, foot, heading), rng, options)
+    if walk is not None:  # a step or two along a clear line: nothing to search
+        if goal is not None:
+            walk.meta["approach_point"] = [float(goal[0]), float(goal[1])]
+        return walk
     if goal is not None:  # lined up with the flight a step before its stance
         planner = _planner(view, goal, model, options)
     # the approach heading a preference: its guide on a small budget, else the route search
     budget = min(options.max_expansions, HEADING_BUDGET)
-    aim = leg.end if goal is None else goal
     aimed = _planner(view, aim, model, variant(options, max_expansions=budget))
     try:
         walk = aimed.plan(replace(request, goal_heading=heading), rng)
@@ -330,6 +340,27 @@ def _level_leg(workplace, leg: RouteLeg, nxt: RouteLeg | None, start, model, rng
     if goal is not None:
         walk.meta["approach_point"] = [float(goal[0]), float(goal[1])]
     return walk
+
+
+def _start_pose(workplace: Workplace, pose, leg: RouteLeg):
+    """A level leg's start as (world xy, heading or None: free), as the hybrid planner reads
+    it (a site or a point without a heading: free), or None for a text pose "x,y,yaw_deg"
+    (left to the search)."""
+    if isinstance(pose, str):
+        return (leg.start, None) if pose in workplace.stations or pose.count(",") < 2 else None
+    arr = np.asarray(pose, dtype=float).ravel()
+    return (arr[:2], float(arr[2])) if arr.size == 3 else (leg.start, None)
+
+
+def _short(view: Workplace, here, aim: np.ndarray, walk: tuple, rng, options) -> WalkPath | None:
+    """:func:`mjwalk.plan.shortleg.short_leg` of a level leg from ``here`` (:func:`_start_pose`;
+    None: no walk) to ``aim``; ``walk``: (step model, first foot or None: either, the heading
+    the walk goes on with or None)."""
+    model, foot, heading = walk
+    if here is None:
+        return None
+    reach = (options.radius, options.goal_tolerance)
+    return short_leg(view, here, aim, _walker(model), reach, (foot, heading), rng)
 
 
 def _approach(view: Workplace, leg: RouteLeg, nxt: RouteLeg, lead: float, options):
