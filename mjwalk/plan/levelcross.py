@@ -516,10 +516,13 @@ def level_time(distance: float, walked: bool, walker: Walker) -> float:
 
 def _lead_in(c: Crossing, s: np.ndarray, times: np.ndarray, xy0, walker: Walker):
     """``s`` and ``times`` with the level steps from ``xy0`` along the axis into the flight's
-    first footfall, evenly spaced, none longer than the walker's step length."""
-    here = float(np.dot(np.asarray(xy0, dtype=float) - c.origin, c.axis))
-    gap = float(s[0]) - here
-    n = max(1, math.ceil(abs(gap) / walker.step_length - 1e-9))
+    first footfall, evenly spaced, none longer than the walker's step length; at least two where
+    ``xy0`` lies more than :data:`STANCE_SLACK` off the axis, so that the foot that leaves for the
+    flight's first footfall has stood on the axis (multi-level station, seed 7 run 1: the walk's
+    last foot 0.48 m off the stair's axis, the knee climbing from it 8 cm into its side wall)."""
+    here = float(np.dot(offset := np.asarray(xy0, dtype=float) - c.origin, c.axis))
+    gap, off = float(s[0]) - here, abs(float(c.axis[0] * offset[1] - c.axis[1] * offset[0]))
+    n = max(1 + (off > STANCE_SLACK), math.ceil(abs(gap) / walker.step_length - 1e-9))
     extra = here + gap * np.arange(1, n) / n
     return np.concatenate([extra, s]), np.concatenate([np.full(n - 1, walker.step_duration), times])
 
