@@ -335,7 +335,8 @@ def test_a_walk_ending_off_the_stairs_axis_lines_its_feet_up_before_the_first_ri
         "left", 0, 67, np.array([-4.423712931143495, 0.08412105145243914, -0.6906953392457857]),
         np.array([-4.962227759972261, 0.5484032479299258, -0.9190364448726835]), 0.0, 0.0,
     )  # fmt: skip
-    walk = cross_walk(c, "up", walker, (xy0, yaw0), last, 0.0, lead_in=True)
+    # its level leg began within a step of the stance: no approach point, no lead_in
+    walk = cross_walk(c, "up", walker, (xy0, yaw0), last, 0.0)
     walk.validate()
     k = next(i for i, s in enumerate(walk.steps) if abs(s.foot_z - s.stance_z) > 1e-6)
     leaves = walk.steps[k - 1].stance[:2] if k else last.foot[:2]  # the climbing foot's start
