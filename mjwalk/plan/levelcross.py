@@ -236,16 +236,16 @@ def cross_walk(
         start: the pelvis' world xy (metres) and heading (radians) where the walk begins, at
             or near the crossing's stance on the level it leaves.
         last: the step that brought the walker there (its landing foot stays the stance foot
-            of the first step here), or None (standing with the feet side by side; more than
-            :data:`STANCE_SLACK` from the stance, two level steps bring the feet onto it).
+            of the first step here; level steps lead from there into the flight, :func:`_lead_in`),
+            or None (standing with the feet side by side; more than :data:`STANCE_SLACK` from
+            the stance, two level steps bring the feet onto it).
         floor_z: the floor's world height, metres (heights are given above it).
         step_width: lateral distance of the feet, metres (None: the walker's, else
             :data:`DEFAULT_STEP_WIDTH`).
         lead_in: the walk that brought the walker there ended at the flight's approach point
             (:func:`approach_point`), up to a step length and its goal area before the stance:
-            level steps along the axis, none longer than the walker's step length, lead from
-            there into the flight's first footfall (with ``last`` given; steps, stairs, ramps);
-            or the turn into the flight while walking (:func:`mjwalk.plan.turnin.turn_into`:
+            led in as from any walk's end (with ``last`` given; steps, stairs, ramps); or the
+            turn into the flight while walking (:func:`mjwalk.plan.turnin.turn_into`:
             footfalls, headings, the end heading), stepped before its first footfall.
 
     Returns:
@@ -261,7 +261,7 @@ def cross_walk(
     turned = lead_in if isinstance(lead_in, tuple) else None  # turnin.turn_into's turn
     yaw = turned[2] if turned else yaw0 + (yaw - yaw0 + math.pi) % (2 * math.pi) - math.pi
     begin = c.approach if direction == "up" else c.exit
-    if lead_in is True and last is not None:
+    if turned is None and last is not None:  # led in from a walk's end (_lead_in)
         s, times = _lead_in(c, s, times, start[0], walker)
     if last is None and float(np.hypot(*(c.point(begin) - xy0))) > STANCE_SLACK:
         # standing off the stance: both feet step onto it first, at the level step time
@@ -516,10 +516,13 @@ def level_time(distance: float, walked: bool, walker: Walker) -> float:
 
 def _lead_in(c: Crossing, s: np.ndarray, times: np.ndarray, xy0, walker: Walker):
     """``s`` and ``times`` with the level steps from ``xy0`` along the axis into the flight's
-    first footfall, evenly spaced, none longer than the walker's step length."""
-    here = float(np.dot(np.asarray(xy0, dtype=float) - c.origin, c.axis))
-    gap = float(s[0]) - here
-    n = max(1, math.ceil(abs(gap) / walker.step_length - 1e-9))
+    first footfall, evenly spaced, none longer than the walker's step length; at least two where
+    ``xy0`` lies more than :data:`STANCE_SLACK` off the axis, so that the foot that leaves for the
+    flight's first footfall has stood on the axis (multi-level station, seed 7 run 1: the walk's
+    last foot 0.48 m off the stair's axis, the knee climbing from it 8 cm into its side wall)."""
+    here = float(np.dot(offset := np.asarray(xy0, dtype=float) - c.origin, c.axis))
+    gap, off = float(s[0]) - here, abs(float(c.axis[0] * offset[1] - c.axis[1] * offset[0]))
+    n = max(1 + (off > STANCE_SLACK), math.ceil(abs(gap) / walker.step_length - 1e-9))
     extra = here + gap * np.arange(1, n) / n
     return np.concatenate([extra, s]), np.concatenate([np.full(n - 1, walker.step_duration), times])
 

@@ -318,3 +318,27 @@ def test_repeated_crossing_walks_are_equal_and_own_their_riser_lines(by_kind):
     feet = [np.asarray([s.foot for s in w.steps]) for w in (first, again, fresh)]
     np.testing.assert_array_equal(feet[0], feet[1])
     assert not np.array_equal(feet[2], feet[0])  # its own setbacks
+
+
+def test_a_walk_ending_off_the_stairs_axis_lines_its_feet_up_before_the_first_riser(by_kind):
+    """The multi-level station's cycle, seed 7 run 1 (issue 47): the level walk to the stair
+    ended with its pelvis 0.24 m east of the axis (within its goal area) and its left foot 0.48
+    m off it, 2.4 cm from the plane of the stair's east wall; the crossing's first climbing step
+    swung that foot onto the first tread, the knee along the foot's 50 deg turn, 8 cm into the
+    wall's end. Now a level step lines the feet up first: the foot that climbs the first riser
+    leaves from its lane on the axis (half the step width off it), not from where the walk put
+    it. Fails on f4101d8 (0.476 m)."""
+    c = by_kind["stair"]
+    walker = Walker(stature=1.73, speed=1.7098660834296446, cadence=117.27030734072214)
+    xy0, yaw0 = np.array([-4.659708142775202, 0.2611763282807874]), -0.8504138548933419
+    last = PathStep(
+        "left", 0, 67, np.array([-4.423712931143495, 0.08412105145243914, -0.6906953392457857]),
+        np.array([-4.962227759972261, 0.5484032479299258, -0.9190364448726835]), 0.0, 0.0,
+    )  # fmt: skip
+    # its level leg began within a step of the stance: no approach point, no lead_in
+    walk = cross_walk(c, "up", walker, (xy0, yaw0), last, 0.0)
+    walk.validate()
+    k = next(i for i, s in enumerate(walk.steps) if abs(s.foot_z - s.stance_z) > 1e-6)
+    leaves = walk.steps[k - 1].stance[:2] if k else last.foot[:2]  # the climbing foot's start
+    off = (leaves - c.origin) @ np.array([-c.axis[1], c.axis[0]])
+    assert abs(abs(off) - 0.06) < 0.01  # DEFAULT_STEP_WIDTH / 2: in its lane
