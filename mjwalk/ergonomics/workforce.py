@@ -104,7 +104,7 @@ def lowess_band(
     order = [np.argsort(d, kind="stable") for d in dist]
     # resamples in blocks that stay in the cache (about 1 MB a block); each resample's figures
     # are row reductions of its own row, so they are the same bit for bit in any block size
-    block = max(1, min(BOOTSTRAP, _BAND_BLOCK // max(1, len(x))))
+    block = _block_size(len(x))
     for s in range(0, BOOTSTRAP, block):
         rows = idx[s : s + block]
         # how often each resample drew each run: (N, B) counts, a resample a column
@@ -258,10 +258,16 @@ def _trend(x: np.ndarray, y: np.ndarray) -> dict[str, Any]:
     }
 
 
-def _blocks(n: int) -> int:
-    """How many blocks :data:`BOOTSTRAP` resamples of ``n`` runs make in the cache
+def _block_size(n: int) -> int:
+    """How many of the :data:`BOOTSTRAP` resamples of ``n`` runs make one block in the cache
     (:data:`_BAND_BLOCK` elements a block)."""
-    return -(-BOOTSTRAP // max(1, min(BOOTSTRAP, _BAND_BLOCK // max(1, n))))
+    return max(1, min(BOOTSTRAP, _BAND_BLOCK // max(1, n)))
+
+
+def _blocks(n: int) -> int:
+    """How many blocks of :func:`_block_size` the :data:`BOOTSTRAP` resamples of ``n`` runs
+    make."""
+    return -(-BOOTSTRAP // _block_size(n))
 
 
 def _slopes(xs: np.ndarray, ys: np.ndarray) -> np.ndarray:

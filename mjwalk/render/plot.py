@@ -115,6 +115,11 @@ def draw_paths(
                     width=0.003,
                     alpha=0.7,
                 )
+    _mark_ends(ax, paths)
+
+
+def _mark_ends(ax, paths: Sequence[WalkPath]) -> None:
+    """Mark the first walk's start (a square) and end (a star) on ``ax``, if there is one."""
     if paths:
         ax.plot(*paths[0].xy[0], marker="s", color="k", ms=6)
         ax.plot(*paths[0].xy[-1], marker="*", color="k", ms=9)
@@ -222,9 +227,7 @@ def spaghetti_png(
             # the route's legend entry: a line in the walks' style, its caps as theirs (a
             # collection's legend line would take a dashed line's)
             ax.plot([], [], color=colors[label], lw=0.8, alpha=alpha, label=label)
-            if paths:  # the first walk's start (square) and end (star), as draw_paths marks
-                ax.plot(*paths[0].xy[0], marker="s", color="k", ms=6)
-                ax.plot(*paths[0].xy[-1], marker="*", color="k", ms=9)
+            _mark_ends(ax, paths)  # as draw_paths marks them
             if baseline is None:
                 routes += [(label, w.baseline) for w in walks if w.baseline is not None]
         if baseline is not None:
