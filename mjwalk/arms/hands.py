@@ -6,7 +6,7 @@ Angles in radians, apertures in metres.
 
 from __future__ import annotations
 
-import functools
+import threading
 
 import mujoco
 import numpy as np
@@ -21,10 +21,20 @@ _FINGERS = ("index", "middle", "ring", "little")
 _OPEN_CMC, _CLOSED_FLEX = 1.1, 1.0
 
 
-@functools.lru_cache(maxsize=4)
+#: Hand models kept per thread and stature (each thread its own MjData: the forward
+#: kinematics write into it, and threads may ask at once).
+_HAND_MODELS = threading.local()
+_HAND_MODELS_KEPT = 4
+
+
 def _hand_model(stature: float):
-    model, jmap = humanoid_model(stature)
-    return model, jmap, mujoco.MjData(model)
+    kept = _HAND_MODELS.__dict__.setdefault("kept", {})
+    if stature not in kept:
+        if len(kept) >= _HAND_MODELS_KEPT:
+            kept.pop(next(iter(kept)))  # the one made first
+        model, jmap = humanoid_model(stature)
+        kept[stature] = (model, jmap, mujoco.MjData(model))
+    return kept[stature]
 
 
 def grip_synergy(closure: float, side: Side = "left") -> dict[str, float]:

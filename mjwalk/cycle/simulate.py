@@ -24,6 +24,7 @@ cluster unchanged (see the README), through joblib.
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Iterable, Sequence
 from functools import partial
 from pathlib import Path
@@ -311,8 +312,24 @@ def cycle_ergonomics(
     return assess_cycle(ang, spans, cycle_time, timeline.fps)
 
 
+#: One cycle at a time per process. A thread backend (``joblib.parallel_config(backend=
+#: "threading")``, a Dask worker with several threads) would run cycles side by side in one
+#: process, where their compiled kernels run without the GIL (:mod:`mjwalk._jit`) over state
+#: kept per process (the cycle context, its memos, the models' caches); the cycle code is not
+#: written for that, and a CI run crashed (segfault) in a threaded batch. Processes (the default
+#: forked workers, loky, Dask's worker processes) are not held back by it.
+_RUN_LOCK = threading.Lock()
+
+
 def _run_one(
     spec: CycleSpec | str, run: int, seed: int, collisions: bool, on_error: str = "raise"
+) -> CycleResult:
+    with _RUN_LOCK:
+        return _run_one_locked(spec, run, seed, collisions, on_error)
+
+
+def _run_one_locked(
+    spec: CycleSpec | str, run: int, seed: int, collisions: bool, on_error: str
 ) -> CycleResult:
     ctx = context_of(spec)
     try:
@@ -365,7 +382,9 @@ def simulate_cycles(
     :class:`CycleSpec` is simulated as it
     is in memory (``dataclasses.replace(spec, reach_model=...)`` runs the new model), a path is
     read in each worker. Under ``joblib.parallel_config(backend="dask")`` or ``"ray"`` the runs
-    go to that cluster unchanged.
+    go to that cluster unchanged. Runs that share a process through threads (joblib's
+    ``"threading"`` backend, a Dask worker with several threads) take turns: one cycle at a
+    time per process (:data:`_RUN_LOCK`).
 
     Args:
         spec: the cycle, or its spec file.

@@ -31,3 +31,16 @@ def test_aperture_closes_with_the_grip_and_is_found_again():
     traj = finger_trajectory(np.array([narrow, target, wide + 0.1]))
     assert traj["index_l_mcp"].shape == (3,)
     assert traj["index_l_mcp"][0] > traj["index_l_mcp"][1] > traj["index_l_mcp"][2]
+
+
+def test_apertures_asked_from_several_threads_at_once_are_the_serial_ones():
+    """Each thread has its own MjData for the forward kinematics (threads may ask at once)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    closures = np.linspace(0.0, 1.0, 40)
+    statures = [1.55, 1.75, 1.95]
+    jobs = [(g, s) for s in statures for g in closures]
+    serial = [pinch_aperture(grip_synergy(g), stature=s) for g, s in jobs]
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        threaded = list(pool.map(lambda a: pinch_aperture(grip_synergy(a[0]), stature=a[1]), jobs))
+    assert threaded == serial

@@ -72,3 +72,34 @@ def test_forked_batch_equals_one_job_and_a_chosen_backend(scenes_dir):
             [w.length for w in r.walks] for r in other
         ]
     assert [r.run for r in forked] == [0, 1, 2]
+
+
+def test_runs_sharing_a_process_through_threads_take_turns(scenes_dir, monkeypatch):
+    """Under a thread backend the runs share this process (its compiled kernels run without the
+    GIL over per-process state): one cycle at a time, the same cycles as one job."""
+    import threading
+    import time
+
+    import mjwalk.cycle.simulate as sim
+
+    inside, most, lock = [0], [0], threading.Lock()
+    real = sim.simulate_cycle
+
+    def counted(*args, **kwargs):
+        with lock:
+            inside[0] += 1
+            most[0] = max(most[0], inside[0])
+        try:
+            time.sleep(0.05)  # room for another thread to come in, if it could
+            return real(*args, **kwargs)
+        finally:
+            with lock:
+                inside[0] -= 1
+
+    monkeypatch.setattr(sim, "simulate_cycle", counted)
+    spec = scenes_dir / "assembly_station.toml"
+    with joblib.parallel_config(backend="threading"):
+        threaded = simulate_cycles(spec, runs=4, seed=3, n_jobs=4, collisions=False)
+    assert most[0] == 1
+    one = simulate_cycles(spec, runs=4, seed=3, n_jobs=1, collisions=False)
+    assert [r.cycle_time for r in threaded] == [r.cycle_time for r in one]
