@@ -69,6 +69,18 @@ between the treads' centres, the setback (6.65 cm at 1.75 m) further on: up, hip
 unchanged (down keeps the treads' centres: midway between the feet its first step off the
 top landing peaks at 100.2 deg knee at 1.75 m, over the cited 100).
 
+Branch descent47 (``--draws 50 --walks 0``, base bebb988's synthetic walk run right before with
+this script): down a stair too the synthetic walk's pelvis stands at each foot contact midway
+between the feet, as the planner's walk down the station's stair puts it: down, knee 96.8-97.8
+-> 100.6-101.7 deg (cited 80-100; the group means' walkers are 1.67-1.73 m, their footprints
+placed for 1.75 m), hip 36.7-37.8 -> 43.1-43.9 (20-45), hip IC 21.8-22.0 -> 23.4-23.5,
+clearance 0.6-1.2 -> 0.6-0.9 cm; up, trunk, ramp and timing unchanged. The knee peak is the
+first step off the top landing from standing (the pelvis still accelerating from rest); on
+the flight's steps from tread to tread 99.6 / 100.2 / 100.5 (adult / older adult / elderly
+mean walker, 1.728 / 1.698 / 1.668 m). The planner's own walk down the station's stair
+(plan_walk mezzanine rack -> rack 1, arriving walking) peaks at 99.2 deg knee, 42.1 hip at
+1.75 m (102.8 / 43.6 at 1.55, 95.8 / 40.0 at 1.85, 92.8 / 38.0 at 2.02 m).
+
 Planning cost measured (``--draws 10 --walks 10``, 2-core machine at load average 1.3, three
 runs, branch i47-levelcost): median ms level walk / open-floor walk of the same length / the
 route's level legs planned alone as flat walks: step 1.6-1.8 / 2.6-2.7 / 2.4-2.6 (ratio to flat

@@ -178,7 +178,7 @@ def synthetic_stair_walk(
     n_hold = round(0.25 * fps)  # the final pose held a quarter second, as synthetic_walk's
     m = bounds[-1] + n_hold + 1
     t = np.arange(m) / fps
-    sp = _pelvis_knots(s_f, back, direction == "up")
+    sp = _pelvis_knots(s_f, back)
     knots_t, knots_s = t[bounds], np.asarray(sp)
     if n_hold:
         knots_t, knots_s = np.r_[knots_t, t[-1]], np.r_[knots_s, knots_s[-1]]
@@ -213,7 +213,7 @@ def synthetic_stair_walk(
     return WalkPath(t=t, xy=xy, yaw=np.full(m, h0), steps=steps, meta=meta, z=height(s_of_t))
 
 
-def _pelvis_knots(s_f: np.ndarray, back: np.ndarray, up: bool) -> list[float]:
+def _pelvis_knots(s_f: np.ndarray, back: np.ndarray) -> list[float]:
     """The pelvis's distance along a synthetic stair walk's heading standing before its first
     step, at each later step's start and at its end: midway between the two feet, as
     :func:`synthetic_walk`'s (whose first step is a half step, so its midway is a quarter
@@ -221,25 +221,22 @@ def _pelvis_knots(s_f: np.ndarray, back: np.ndarray, up: bool) -> list[float]:
     landing 7 cm nearer above its lifting foot than the flight's steps, knee 100.1 against
     95.5-95.7 deg down at 1.75 m).
 
-    Up, midway between the footprints (the points under the ankles, set back from the
-    treads' centres), as the level planner's walks put it
+    Up and down, midway between the footprints (the points under the ankles, set back from
+    the treads' centres), as the level planner's walks put it
     (:func:`mjwalk.plan.footfallwalk.footfall_walk`): midway between the treads' centres put
-    it the setback (6.65 cm at 1.75 m) ahead of the planner's at every foot contact, the
-    swing thigh less flexed (hip peak 51.8 deg against the planner's 55.2, hip47d). Down,
-    still between the treads' centres, the same setback ahead of the planner's pelvis:
-    midway between the footprints, the first step off the top landing peaks at 100.2 deg
-    knee at 1.75 m, over the cited 100 (not yet checked against the planner's landing steps).
+    it the setback (6.65 cm at 1.75 m) ahead of the planner's at every foot contact, up the
+    swing thigh less flexed (hip peak 51.8 deg against the planner's 55.2, hip47d), down
+    the swing knee less flexed (descent47).
 
     Args:
         s_f: (k,) the footprints' tread centres along the heading, metres (the last two: the
             last tread's and the foot closing beside it).
         back: (k,) their setbacks, metres (:func:`mjwalk.plan.levelcross.flight_setback`).
-        up: whether the walk climbs.
 
     Returns:
         (k,) distances along the heading, metres.
     """
-    s_p = s_f - back if up else s_f
+    s_p = s_f - back
     sp = [float(s_p[0])] + [0.5 * (s_p[i - 1] + s_p[i]) for i in range(1, len(s_f) - 1)]
     return [*sp, float(s_p[-1])]
 

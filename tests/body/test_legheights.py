@@ -1,5 +1,6 @@
 """The legs on steps, stairs and ramps (mjwalk.body.legs.legheights, issue 47 deliverable 4)."""
 
+import functools
 from dataclasses import replace
 
 import numpy as np
@@ -224,18 +225,104 @@ def test_stair_descent_knee_hip_and_forefoot_landing():
 
 
 def test_stair_descent_knee_peak():
-    """Down a 0.17/0.28 stair the knee flexion peak lies in the cited range: 96.4 deg at 1.75
-    m (steps 1-5: 96.4, 95.7, 95.7, 95.7, 95.5). The peak is the SWING knee in leg pull-through,
-    not the stance leg lowering the body (82.1 deg). Before (13e4664) the first step off the top
-    landing peaked at 100.1 deg: the synthetic walk put the pelvis a quarter tread on at its
-    start (synthetic_walk's rule for a first half step; the stair's first step is a whole
-    tread), 7.9 cm ahead of the lifting ankle against 14.4 cm in the flight, so the swing foot,
-    held over its tread until its toes cleared the nosing, hung nearer below the hip. The 80-100
-    deg band itself is not verified beyond the abstracts (KNEE_PEAK_DOWN); a 101-person stair
+    """Down a 0.17/0.28 stair the knee flexion peak over the flight's steps from one tread to
+    the next (steps 2-5) lies in the cited range: 99.2 deg at 1.75 m (99.2, 99.2, 99.2, 98.7),
+    as on the planner's own walk down the station's stair (next test). The peak is the SWING
+    knee in leg pull-through, not the stance leg lowering the body. Before descent47 the
+    synthetic walk's pelvis stood midway between the treads' centres at each contact, 6.65 cm
+    further on than the planner's, and the swing knee peaked 95.5-95.7 deg there. The first
+    step off the top landing from standing (step 1) is the strict xfail below. The 80-100 deg
+    band itself is not verified beyond the abstracts (KNEE_PEAK_DOWN); a 101-person stair
     descent dataset's abstract gives knee flexion up to 85 deg."""
     walk = synthetic_stair_walk(0.17, 0.28, 6, "down")
     motion = legs_from_walk(walk)
-    assert KNEE_PEAK_DOWN[0] <= _peaks(walk, motion, "knee_{}") <= KNEE_PEAK_DOWN[1]
+    a, b = walk.steps[2].start, walk.steps[-2].end
+    peak = float(np.rad2deg(max(motion.angles[f"knee_{s}"][a:b].max() for s in "lr")))
+    assert KNEE_PEAK_DOWN[0] <= peak <= KNEE_PEAK_DOWN[1]
+
+
+@functools.cache
+def _planned_descent(scene: str):
+    """The level planner's walk down the station's stair (mezzanine rack to rack 1, seed 1,
+    1.75 m), its legs, and its steps from the top landing onto the first tread to the trailing
+    foot's step off the bottom tread (7 steps)."""
+    from mjwalk.gait.default import default_model  # deferred: only these tests plan
+    from mjwalk.plan.walks import plan_walk  # deferred: only these tests plan
+    from mjwalk.world import load_workplace  # deferred: only these tests load a scene
+
+    wp = load_workplace(scene)
+    walk = plan_walk(wp, "stand_mezz_rack", "stand_rack1", default_model(progress=False), rng=1)
+    top = max(max(s.stance_z, s.foot_z) for s in walk.steps)
+    on_tread = [k for k, s in enumerate(walk.steps) if 0.01 < s.stance_z < top - 0.01]
+    stair = walk.steps[on_tread[0] - 1 : on_tread[-1] + 2]
+    assert len(stair) == 7 and stair[0].stance_z == top and stair[-1].stance_z == 0.0
+    return walk, legs_from_walk(walk), stair
+
+
+def _step_peaks(motion, steps) -> tuple[float, float]:
+    """Knee and hip flexion peaks (deg) of either leg over ``steps`` (consecutive)."""
+    a, b = steps[0].start, steps[-1].end + 1
+    knee, hip = (
+        float(np.rad2deg(max(motion.angles[j.format(s)][a:b].max() for s in "lr")))
+        for j in ("knee_{}", "hip_{}_flex")
+    )
+    return knee, hip
+
+
+def test_the_planners_descent_knee_and_hip_peaks_within_cited_ranges(scenes_dir):
+    """The level planner's own walk down the station's stair (mezzanine rack to rack 1, the
+    walker arriving at the top landing walking) flexes the knee and the hip within the cited
+    ranges on every step onto a lower tread or the floor, the trailing foot's step off the
+    top landing included: measured 99.2 deg knee (the step onto the first tread 88.7), hip
+    42.1 (1.75 m; seeds 1-3 alike: the flight's footfalls and pace do not depend on the draw;
+    1.55 / 1.85 / 2.02 m walkers: knee 102.8 / 95.8 / 92.8, hip 43.6 / 40.0 / 38.0)."""
+    _, motion, stair = _planned_descent(str(scenes_dir / "multilevel_station.xml"))
+    knee, hip = _step_peaks(motion, stair[:-1])
+    assert KNEE_PEAK_DOWN[0] <= knee <= KNEE_PEAK_DOWN[1]
+    assert HIP_PEAK_DOWN[0] <= hip <= HIP_PEAK_DOWN[1]
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="hip 50.3 deg (cited descent 20-45) on the planner's trailing step off the bottom "
+    "tread, a 0.52 m step onto the floor (issue 47)",
+)
+def test_the_planners_step_off_the_bottom_tread_within_descent_ranges(scenes_dir):
+    """On the planner's walk down the station's stair, the trailing foot's step from the
+    bottom tread onto the floor, 0.52 m past the stance foot as the walk goes on to rack 1
+    (the synthetic walk's brings it beside the stance foot), peaks at 97.8 deg knee (inside
+    80-100) and 50.3 deg hip, over the cited descent range (measured 1.75 m, descent47; not
+    investigated: the cited ranges are the flight's steps, no figure for the step from the
+    last tread onto the floor was found in mjwalk's norms)."""
+    _, motion, stair = _planned_descent(str(scenes_dir / "multilevel_station.xml"))
+    knee, hip = _step_peaks(motion, stair[-1:])
+    assert KNEE_PEAK_DOWN[0] <= knee <= KNEE_PEAK_DOWN[1]
+    assert HIP_PEAK_DOWN[0] <= hip <= HIP_PEAK_DOWN[1]
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="knee peak 100.2 deg (cited 80-100) on the synthetic walk's first step off the top "
+    "landing from standing, its pelvis still accelerating (issue 47); the planner's walk 99.2",
+)
+def test_the_first_step_off_a_landing_from_standing_knee_peak():
+    """Down a 0.17/0.28 stair from standing on the top landing, the trailing foot's step off
+    the landing (step 1: from the landing to the second tread) peaks at 100.2 deg knee at 1.75
+    m, 1.0 deg over the flight's 99.2 and over the cited 100. The feet and the pelvis at every
+    contact stand as on the planner's walk (99.2 on that step there); what differs is the
+    pelvis's speed: the synthetic walk starts from rest and its pelvis (a PCHIP through the
+    contacts) moves at 0.41 m/s as step 1 starts against the steady 0.61 (0.28 m per 0.46 s),
+    1.4 cm behind the planner's at 30 % of the swing, when the swing foot is held over the
+    landing until its toes clear the top nosing and the knee peaks (98.6 against 97.5 deg at
+    that sample). How fast a walker starting from standing reaches its steady speed is
+    reported differently (within the first step: Breniere & Do; over about three steps: Mann
+    et al. 1979, J Bone Joint Surg 61-A; neither checked here), so the synthetic start is not
+    changed to either."""
+    walk = synthetic_stair_walk(0.17, 0.28, 6, "down")
+    motion = legs_from_walk(walk)
+    st = walk.steps[1]
+    peak = float(np.rad2deg(motion.angles[f"knee_{st.side[0]}"][st.start : st.end + 1].max()))
+    assert KNEE_PEAK_DOWN[0] <= peak <= KNEE_PEAK_DOWN[1]
 
 
 def test_stair_descent_swing_lowers_smoothly():
@@ -357,7 +444,9 @@ def _tall_stair_peaks(stature: float, direction: str) -> tuple[float, float]:
 def test_tall_walkers_knee_peaks_and_descent_hip_within_cited_ranges(stature):
     """Tall walkers on the stair with the overhanging foot (issue 47, stair47): the knee peaks
     up and down and the hip peak down lie in the cited ranges (measured: knee 99.9 / 95.8 deg
-    up, 97.2 / 94.6 down; hip down 41.6 / 40.0 at 1.85 / 2.02 m)."""
+    up; down, with the pelvis at each contact as the planner's, descent47, knee 96.5 / 93.5,
+    hip 40.8 / 39.0 at 1.85 / 2.02 m; the planner's own walk down the station's stair 95.8 /
+    92.8 and 40.0 / 38.0)."""
     knee, _ = _tall_stair_peaks(stature, "up")
     assert KNEE_PEAK_UP[0] <= knee <= KNEE_PEAK_UP[1]
     knee, hip = _tall_stair_peaks(stature, "down")
@@ -408,14 +497,18 @@ def test_a_short_walkers_descent_knee_peak_is_the_risers_share_of_its_leg():
 
 @pytest.mark.xfail(
     strict=True,
-    reason="knee peak down 100.2 deg at 1.55 m > cited 100 (issue 47): steps 1-5 100.2, 99.7, "
-    "99.6, 99.6, 99.3 deg, the swing knee in pull-through; the riser's share of a shorter leg",
+    reason="knee peak down 104.0 deg at 1.55 m > cited 100 (issue 47): steps 1-5 104.0, 102.9, "
+    "102.9, 102.8, 102.2 deg, the swing knee in pull-through; the planner's walk 102.8; the "
+    "riser's share of a shorter leg",
 )
 def test_a_short_walkers_descent_knee_peak_within_cited_range():
-    """Down the 0.17/0.28 stair a 1.55 m walker's knee peaks at 100.2 deg (steps 1-5 of the
-    synthetic walk: 100.2, 99.7, 99.6, 99.6, 99.3, the swing knee in pull-through each time;
-    104.5 on step 1 before the walk's pelvis started midway between the feet, descent47i; the
-    planner's own walk down the station's stair: 102.5 deg every stair step, a88f200). Measured with
+    """Down the 0.17/0.28 stair a 1.55 m walker's knee peaks at 104.0 deg (steps 1-5 of the
+    synthetic walk: 104.0, 102.9, 102.9, 102.8, 102.2, the swing knee in pull-through each
+    time; the planner's own walk down the station's stair: 102.8 deg on every step from a
+    tread, 94.3 onto the first, descent47). With the pelvis midway between the treads' centres
+    at each contact, 6.65 cm further on than the planner's (before descent47): 100.2, 99.7,
+    99.6, 99.6, 99.3; 104.5 on step 1 before the walk's pelvis started midway between the
+    feet, descent47i. The suspects below were measured at those. Measured with
     each suspect taken out (stair47c): the descent sole's 5 mm (DESCENT_LOW_CLEARANCE) lift
     -0.4 deg, the pelvis lowered to reach (stance.lower_to_reach) -0.8, the soles' lift
     altogether -0.4, the descent swing planned 5 mm instead of 3 cm over the nosings -1.7:
@@ -439,12 +532,23 @@ def test_the_last_step_off_a_stair_flexes_the_knee_as_the_flight_does(stature):
     assert peaks[-1] <= max(peaks[1:-1]) + 1.0
 
 
-@pytest.mark.parametrize("stature", [1.55, DEFAULT_STATURE])
+_FROM_REST = pytest.mark.xfail(
+    strict=True,
+    reason="104.0 deg against the flight's 102.9 at 1.55 m (1.1 deg over) since the synthetic "
+    "walk's pelvis stands as the planner's (descent47): its pelvis still accelerating",
+)
+
+
+@pytest.mark.parametrize("stature", [pytest.param(1.55, marks=_FROM_REST), DEFAULT_STATURE])
 def test_the_first_step_off_a_landing_flexes_the_knee_as_the_flight_does(stature):
     """Down the 0.17/0.28 stair the first step off the top landing (step 1: the trailing foot
     from the landing to the second tread) peaks within 1 deg of the flight's steps 2-5: it
-    starts with the pelvis midway between the feet, as they do (measured 100.2 / 96.4 deg
-    against 99.7 / 95.7 at 1.55 / 1.75 m; before, a quarter tread on: 104.5 / 100.1)."""
+    starts with the pelvis midway between the feet, as they do (measured 104.0 / 100.2 deg
+    against 102.9 / 99.2 at 1.55 / 1.75 m since the pelvis stands at each contact as the
+    planner's, descent47, the 1.75 m walker 1.0 deg over, at the bound: the pelvis starting
+    from rest, test_the_first_step_off_a_landing_from_standing_knee_peak; 100.2 / 96.4
+    against 99.7 / 95.7 midway between the treads' centres; before that, a quarter tread on:
+    104.5 / 100.1)."""
     walk = synthetic_stair_walk(0.17, 0.28, 6, "down", stature=stature)
     motion = legs_from_walk(walk, stature)
     peaks = [
@@ -494,14 +598,19 @@ def test_stair_walks_pelvis_lowering_within_the_bound():
     """Up and down a 0.17/0.28 stair (the level planner's footfalls) the pelvis's whole
     lowering below its gait's height over the stance tread (flat synthesis and lift onto the
     treads together; down a stair the gait's own lowering of a riser per step is not counted)
-    stays under 1 cm on every step (measured: at most 5.1 mm, the first step down), far within
-    REACH_DROP_MAX."""
+    stays under 1 cm on every step but the first two down, and under half REACH_DROP_MAX on
+    those (measured: 2.0 mm on the flight; 11.8 mm on the steps onto the first tread and off
+    the landing since the pelvis stands at each contact as the planner's, descent47, 6.65 cm
+    further back than midway between the treads' centres, where it was 5.1 / 4.8 mm: the
+    leading leg reaches further down and forward to the first tread. The planner's own walk
+    down the station's stair lowers it 26.4 mm there, arriving walking)."""
     for direction in ("up", "down"):
         walk = synthetic_stair_walk(0.17, 0.28, 6, direction)
         low = legs_from_walk(walk).meta["pelvis_lowering"]
         assert len(low) == len(walk.t)
-        for st in walk.steps:
-            assert 0.0 <= low[st.start : st.end + 1].max() < 0.01
+        for k, st in enumerate(walk.steps):
+            bound = 0.5 * REACH_DROP_MAX if direction == "down" and k < 2 else 0.01
+            assert 0.0 <= low[st.start : st.end + 1].max() < bound
 
 
 @pytest.mark.parametrize("flat_drop", [0.0, 0.03, 0.06])
