@@ -81,7 +81,7 @@ def test_clear_turns_leave_the_pieces_as_they_are(tall):
 def test_the_trunk_turns_only_where_the_room_is_short(tall):
     """Frames far from every obstacle keep the standing trunk; frames at the shelf turn it by
     the walk's rule (trunk_turn), within the joints' ranges."""
-    ctx, walk, _ = tall
+    ctx = tall[0]
     jm = ctx.jointmap
     far = np.repeat(standing_pose(ctx, 0.0, 0.0, 0.0)[None], 5, axis=0)
     assert np.array_equal(trunk_clear(ctx, far, 30.0), far)

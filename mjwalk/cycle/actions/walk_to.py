@@ -16,8 +16,9 @@ class Walk(Action):
     """Walk to the task's site (a planned hybrid-A* walk, :func:`~mjwalk.cycle.walking.
     plan_task_walk`): turn on the spot towards the walk's first heading, walk, and turn into
     the facing of the site's work (a turn that would sweep an arm into the scene turning the
-    trunk clear, :mod:`~mjwalk.cycle.turnclear`); a two-handed part stays in the hands in the
-    carrying posture, turns included. Its record is the walk with its grid-A* route for the report."""
+    trunk clear, :mod:`~mjwalk.cycle.turnclear`); a two-handed part stays in the hands in
+    the carrying posture, turns included. Its record is the walk with its grid-A* route for
+    the report."""
 
     def plan(self, run: CycleRun, state: CycleState) -> WalkPath:
         """The walk from where the operator stands, in the heading they face, to a spot in the
