@@ -12,6 +12,7 @@ from mjwalk.cycle.actions.base import CycleRun, CycleState
 from mjwalk.cycle.actions.walk_to import Walk
 from mjwalk.cycle.context import context_of, operator_context
 from mjwalk.cycle.poses import frame_contacts, standing_pose, turn_frames, walk_frames
+from mjwalk.cycle.simulate import simulate_cycles
 from mjwalk.cycle.turnclear import TRUNK_ROTATION, trunk_clear, turn_clear
 from mjwalk.cycle.types import TASK_KINDS, Task
 from mjwalk.gait.walker import Walker
@@ -94,3 +95,16 @@ def test_the_trunk_turns_only_where_the_room_is_short(tall):
         assert np.all((out[:, k] >= lo) & (out[:, k] <= hi))
     rest = np.delete(np.arange(out.shape[1]), [lumbar, thoracic])
     assert np.array_equal(out[:, rest], near[:, rest])
+
+
+@pytest.mark.slow
+def test_station_run_7812_keeps_the_tall_operators_thumb_off_rack_2(scenes_dir):
+    """Run 7812 of 10 000 (seed 0) itself: its 2.06 m operator's right thumb went 1.6 mm into
+    ``rack2_shelf`` (65.07 s and 65.10 s) turning on the spot to carry the tool to rack 3; now
+    no contact, and the cycle takes as long as before (68.77 s)."""
+    spec = scenes_dir / "assembly_station.toml"
+    (result,) = simulate_cycles(spec, runs=10000, seed=0, only=[7812])
+    assert result.operator is not None and round(result.operator.stature, 2) == 2.06
+    assert result.error is None
+    assert result.collisions == []
+    assert result.cycle_time == pytest.approx(68.76666666666665, abs=1e-9)
