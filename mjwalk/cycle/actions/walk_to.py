@@ -6,6 +6,7 @@ import numpy as np
 
 from mjwalk.cycle.actions.base import Action, CycleRun, CycleState, Performed
 from mjwalk.cycle.poses import carry_pose, turn_frames, walk_frames, walk_ground
+from mjwalk.cycle.turnclear import turn_clear
 from mjwalk.cycle.types import WalkRecord
 from mjwalk.cycle.walking import plan_task_walk
 from mjwalk.plan.walkpath import WalkPath
@@ -14,8 +15,10 @@ from mjwalk.plan.walkpath import WalkPath
 class Walk(Action):
     """Walk to the task's site (a planned hybrid-A* walk, :func:`~mjwalk.cycle.walking.
     plan_task_walk`): turn on the spot towards the walk's first heading, walk, and turn into
-    the facing of the site's work; a two-handed part stays in the hands in the carrying
-    posture, turns included. Its record is the walk with its grid-A* route for the report."""
+    the facing of the site's work (a turn that would sweep an arm into the scene turning the
+    trunk clear, :mod:`~mjwalk.cycle.turnclear`); a two-handed part stays in the hands in
+    the carrying posture, turns included. Its record is the walk with its grid-A* route for
+    the report."""
 
     def plan(self, run: CycleRun, state: CycleState) -> WalkPath:
         """The walk from where the operator stands, in the heading they face, to a spot in the
@@ -69,6 +72,8 @@ class Walk(Action):
         end, dt2 = turn_frames(
             ctx, (x, y), float(path.yaw[-1]), face, fps, pose=pose, settle=wf[-1]
         )
+        # a turn that sweeps an arm into the scene turns the trunk clear, into the walk
+        turn, wf, end = turn_clear(ctx, [turn, wf, end], (0, 2), fps)
         after = state.moved(x=x, y=y, yaw=face, home=(x, y), here=self.goal)
         pieces = ((turn, dt), (wf, len(wf) / fps), (end, dt2))
         ground = np.concatenate([  # the surface stood on: where the walk starts, under it, its end
