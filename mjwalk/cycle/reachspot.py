@@ -261,8 +261,9 @@ def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> Work
 
 def _over_edge(search: _Search, upright: WorkingReach) -> tuple[_Search, WorkingReach]:
     """The search with the pre-grasp point out of the board under the target
-    (:func:`~mjwalk.cycle.targets.edge_back`) and its reach, when that reach is clear with the
-    hand on its target; else ``search`` and ``upright`` (its reach, not clear from any spot).
+    (:func:`~mjwalk.cycle.targets.edge_back`) and its reach, when that reach touches nothing,
+    is clearer than ``upright`` and has the hand on its target; else ``search`` and
+    ``upright`` (its reach, not clear from any spot).
 
     A target deeper on a board than :data:`~mjwalk.cycle.targets.APPROACH_BACK` (a part 0.2 m
     back on a shelf) has its pre-grasp point over the board: the reach model, which knows no
@@ -280,7 +281,10 @@ def _over_edge(search: _Search, upright: WorkingReach) -> tuple[_Search, Working
         return search, upright
     edge = replace(search, approach_back=out)
     cand = _settle(edge, lean=False)
-    if cand.distance == np.inf and cand.error <= max(upright.error, REACH_TOLERANCE):
+    # kept when it touches nothing and is clearer, the hand on its target (as a step back)
+    if cand.distance > max(upright.distance, 0.0) and cand.error <= max(
+        upright.error, REACH_TOLERANCE
+    ):
         return edge, cand
     return search, upright
 

@@ -11,6 +11,7 @@ import numpy as np
 
 from mjwalk.arms.chain import arm_segment_lengths
 from mjwalk.body.humanoid import HUMAN_GROUP
+from mjwalk.cycle.standoff import REACH_CLEARANCE
 from mjwalk.cycle.types import TASK_KINDS
 
 #: The hand stops this far above a pick/place site (m) and this far in front of a fasten site.
@@ -33,12 +34,10 @@ BOARD_STEP = 0.01
 #: :data:`~mjwalk.cycle.standoff.REACH_CLEARANCE` the arm keeps; a lower board or the floor
 #: past the edge lies decimetres lower).
 BOARD_TOLERANCE = 0.01
-#: The hand's end (fingertip) stays this far out of a board's front edge at the pre-grasp
-#: point of an approach from out of the board (:func:`~mjwalk.cycle.reachspot.reach_task`),
-#: as a share of stature: a fingertip's radius, 0.0045 H (8 mm at 1.75 m, the figure of
-#: :data:`~mjwalk.cycle.standoff.REACH_CLEARANCE`), and the 1 cm clearance beyond it.
-EDGE_FINGERTIP = 0.0045
-EDGE_CLEARANCE = 0.01
+#: The hand's end stays a hand's length and this much more (m) out of a board's front edge at
+#: the pre-grasp point of an approach from out of the board (:func:`edge_back`): the arm's
+#: clearance from the scene, :data:`~mjwalk.cycle.standoff.REACH_CLEARANCE`.
+EDGE_CLEARANCE = REACH_CLEARANCE
 
 
 def reach_target(kind: str, site_pos: np.ndarray, x: float, y: float) -> np.ndarray:
@@ -195,10 +194,16 @@ def board_run(
 
 
 def edge_back(run: float, stature: float) -> float:
-    """The pre-grasp point's distance back from a target (m, horizontally) that brings the hand's
-    end out of the board under it: the board's run towards the operator (:func:`board_run`) and
-    a fingertip's radius and the clearance beyond the edge (:data:`EDGE_FINGERTIP`,
-    :data:`EDGE_CLEARANCE`); :data:`APPROACH_BACK` when that is out of the board already.
+    """The pre-grasp point's distance back from a target (m, horizontally) that brings the hand
+    out of the board under it: the board's run towards the operator (:func:`board_run`), the
+    hand's length (:func:`~mjwalk.arms.chain.arm_segment_lengths`) and
+    :data:`EDGE_CLEARANCE`, at least :data:`APPROACH_BACK`; :data:`APPROACH_BACK` with no
+    board under the target (``run`` 0).
+    The reach model brings the hand up to its pre-grasp point pointing anywhere from level to
+    straight up, the wrist and forearm trailing below it: with its end a hand's length out of
+    the edge, the wrist (within a hand's length of it) and the hand are out of the board
+    whichever way the hand points, and the hand comes over the edge along the approach
+    (:func:`~mjwalk.cycle.reaching.reach_frames`) instead of the forearm through it.
 
     Args:
         run: the board's run from the target towards the operator (m).
@@ -207,7 +212,10 @@ def edge_back(run: float, stature: float) -> float:
     Returns:
         The distance, metres.
     """
-    return max(APPROACH_BACK, run + EDGE_FINGERTIP * stature + EDGE_CLEARANCE)
+    if run <= 0.0:
+        return APPROACH_BACK
+    hand = float(arm_segment_lengths(stature)[2])
+    return max(APPROACH_BACK, run + hand + EDGE_CLEARANCE)
 
 
 def _free_run(
