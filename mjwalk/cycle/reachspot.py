@@ -115,7 +115,10 @@ def reach_task(
     :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear. When the hand falls short of the
     target from there (a spot a step back for the reach before left, a short operator), the
     operator first steps in towards it, by as much as the hand falls short: the first spot from
-    which the hand is on its target and clear. A step never brings the pelvis closer to an
+    which the hand is on its target and clear. When no spot is clear for shelf work, the search
+    runs again with the pre-grasp point out of the board under the target (a part deeper on
+    its shelf than :data:`~mjwalk.cycle.targets.APPROACH_BACK`: :func:`_over_edge`), kept when
+    that reach touches nothing. A step never brings the pelvis closer to an
     obstacle or the floor's edge than the planner's body radius (or than it was).
 
     The steps are measured from ``start.home`` (where the walk ended, when the operator stands
