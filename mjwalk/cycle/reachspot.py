@@ -6,7 +6,7 @@ metres, radians, z up; frames at ``fps`` per second."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import cached_property
 from typing import TYPE_CHECKING
 
@@ -18,7 +18,15 @@ from mjwalk.cycle.holding import two_hand_frames
 from mjwalk.cycle.levelsite import level_room, reach_room
 from mjwalk.cycle.poses import carry_pose, standing_pose, turn_frames
 from mjwalk.cycle.standoff import REACH_TOLERANCE, STEP_BACK, step_back_offsets
-from mjwalk.cycle.targets import approach_offset, approach_rise, reach_target
+from mjwalk.cycle.targets import (
+    APPROACH_BACK,
+    approach_back_dir,
+    approach_offset,
+    approach_rise,
+    board_run,
+    edge_back,
+    reach_target,
+)
 from mjwalk.cycle.types import TASK_KINDS
 
 if TYPE_CHECKING:
@@ -107,7 +115,10 @@ def reach_task(
     :data:`~mjwalk.cycle.standoff.MAX_STEP_BACK` is clear. When the hand falls short of the
     target from there (a spot a step back for the reach before left, a short operator), the
     operator first steps in towards it, by as much as the hand falls short: the first spot from
-    which the hand is on its target and clear. A step never brings the pelvis closer to an
+    which the hand is on its target and clear. When no spot is clear for shelf work, the search
+    runs again with the pre-grasp point out of the board under the target (a part deeper on
+    its shelf than :data:`~mjwalk.cycle.targets.APPROACH_BACK`: :func:`_over_edge`), kept when
+    that reach touches nothing. A step never brings the pelvis closer to an
     obstacle or the floor's edge than the planner's body radius (or than it was).
 
     The steps are measured from ``start.home`` (where the walk ended, when the operator stands
@@ -160,6 +171,8 @@ def reach_task(
         target=target,
     )
     upright = _settle(search, lean=False)
+    if upright.distance < np.inf and TASK_KINDS[task.kind].approach == "shelf":
+        search, upright = _over_edge(search, upright)
     best = upright
     if upright.error > REACH_TOLERANCE:
         # a target no step brings within the arm's reach (low, as a bin by the feet, or deep):
@@ -194,6 +207,7 @@ class _Search:
     site_pos: np.ndarray
     rise: float
     target: np.ndarray
+    approach_back: float = APPROACH_BACK
 
     @cached_property
     def room(self) -> float:
@@ -229,7 +243,9 @@ def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> Work
     grip = search.held if task.hand == "both" else None
     pose = None if grip is None else carry_pose(ctx, standing_pose(ctx, x, y, yaw), grip)
     turn, dt = turn_frames(ctx, (x, y), yaw, face, fps, to=(xs, ys), pose=pose)
-    approach = approach_offset(task.kind, search.site_pos, xs, ys, search.facing, search.rise)
+    approach = approach_offset(
+        task.kind, search.site_pos, xs, ys, search.facing, search.rise, search.approach_back
+    )
     q0 = turn[-1]
     width = None
     pace, lowering = search.pace, reaching.Lowering(lean, drop)
@@ -244,6 +260,36 @@ def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> Work
         )
     dist = ctx.clearance.distance(np.vstack([turn, rf]))
     return WorkingReach(xs, ys, face, float(s), turn, dt, rf, err, res, width, dist)
+
+
+def _over_edge(search: _Search, upright: WorkingReach) -> tuple[_Search, WorkingReach]:
+    """The search with the pre-grasp point out of the board under the target
+    (:func:`~mjwalk.cycle.targets.edge_back`) and its reach, when that reach touches nothing,
+    is clearer than ``upright`` and has the hand on its target; else ``search`` and
+    ``upright`` (its reach, not clear from any spot).
+
+    A target deeper on a board than :data:`~mjwalk.cycle.targets.APPROACH_BACK` (a part 0.2 m
+    back on a shelf) has its pre-grasp point over the board: the reach model, which knows no
+    scene, then brings the hand up to it in front of the board's front face, the forearm
+    trailing below the hand through the edge (the top shelf of
+    ``scenes/shelving_station.xml``, 1.52 m, for operators up to about 1.71 m: forearm and
+    palm 3-11 mm into its edge). From a pre-grasp point out of the board the hand comes over
+    the edge along the approach, as :func:`~mjwalk.cycle.reaching.reach_frames` means it to.
+    """
+    ctx, task = search.ctx, search.task
+    back = approach_back_dir(task.kind, search.site_pos, *search.home, search.facing)
+    run = board_run(ctx.model, ctx.scratch(), search.target, back)
+    out = edge_back(run, ctx.spec.stature)
+    if math.isinf(out) or not out > search.approach_back:
+        return search, upright
+    edge = replace(search, approach_back=out)
+    cand = _settle(edge, lean=False)
+    # kept when it touches nothing and is clearer, the hand on its target (as a step back)
+    if cand.distance > max(upright.distance, 0.0) and cand.error <= max(
+        upright.error, REACH_TOLERANCE
+    ):
+        return edge, cand
+    return search, upright
 
 
 def _same(a: float, b: float) -> bool:

@@ -55,6 +55,8 @@ def test_too_close_to_a_shelf_the_operator_steps_back(ctx, monkeypatch):
     # edge (with the old hand directions, the elbow also touched the rack's upright)
     with monkeypatch.context() as m:
         m.setattr(reachspot, "step_back_offsets", lambda: np.array([0.0]))
+        # (nor the approach from out of the board, which alone clears it by 2.7 mm)
+        m.setattr(reachspot, "board_run", lambda *_: 0.0)
         stay = _reach(ctx, "rack1_screw1", CLOSE_TO_RACK1, yaw)
     assert stay.step_back == 0.0
     assert stay.distance < 0.0  # overlapping
@@ -245,6 +247,7 @@ def test_under_a_shelf_the_hand_comes_in_low_enough_to_clear_it(scenes_dir, tmp_
     with pytest.MonkeyPatch.context() as m:  # the open-shelf rise, standing (no crouch)
         m.setattr(reachspot, "approach_rise", lambda *_: targets.APPROACH_UP)
         m.setattr(reachspot, "CROUCH_DROPS", ())
+        m.setattr(reachspot, "board_run", lambda *_: 0.0)  # (nor from out of the board)
         old = _reach(ctx, "rack1_screw1", st.pos[:2], st.yaw)
     assert old.distance < 0.0
     # open above (the station as shipped), or under a shelf that is only drawn: the full rise
