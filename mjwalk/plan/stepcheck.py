@@ -113,6 +113,7 @@ from mjwalk.plan.stepgeom import (
     in_goal,
     landing_leg_clear,
     out_of_reach,
+    passes_stance,
     swing_yaw,
     toe_approach_clear,
     unit_turn,
@@ -510,6 +511,9 @@ def check_into(
         loc[m + 1] = decode_col(z, r, matrix, offset, m + 1)
         yaws = loc[m + 1]
         ankle = loc[m] * rot + p
+        # a walking step's swing foot passes its stance foot (a closing step's comes beside it)
+        if not closing and not passes_stance(loc[m], node[i, 1], p, rot, par[P_STEP_ADVANCE]):
+            continue
         if not defer:  # else when the step is taken up (search: legs_recheck)
             if i != lift_i or fr != lift_fr:  # the same for a node's rows (one frame heading)
                 lift_yaw = _lift_turn(node, i, fr, par)
