@@ -6,9 +6,11 @@ the landing ankle and toes and the swing-knee probes in the step's local frame (
 forward, as x + iy; metres), the turn into the world, the clearance test of every point
 against its own limit (bilinear lookup in the workplace's walk field), the landing leg's probes
 from the ankle towards the hip (:func:`~mjwalk.plan.stepgeom.landing_leg_clear`), the leg-reach
-tests, the forward test (a step's end pelvis and landing ankle ahead of its start pelvis), the
-stance-leg lean test (:func:`~mjwalk.plan.lean.stance_lean_ok`: the stance leg must
-follow the pelvis within the ankle's and the hip's sideways ranges), the closing-step test (a
+tests, the forward tests (a step's end pelvis and landing ankle ahead of its start pelvis; a
+walking step's landing ankle ahead of its stance ankle,
+:func:`~mjwalk.plan.stepgeom.passes_stance`), the stance-leg lean test
+(:func:`~mjwalk.plan.lean.stance_lean_ok`: the stance leg must follow the pelvis within the
+ankle's and the hip's sideways ranges), the closing-step test (a
 closing step must end in the goal area; tested first, from its end and heading alone: most
 closing draws end outside it), and for the accepted steps the walked length g
 (:mod:`mjwalk.plan.stepcost`), f = g + weight·h (plus far weight·(h - far from) beyond far
@@ -113,6 +115,7 @@ from mjwalk.plan.stepgeom import (
     in_goal,
     landing_leg_clear,
     out_of_reach,
+    passes_stance,
     swing_yaw,
     toe_approach_clear,
     unit_turn,
@@ -417,7 +420,9 @@ def check_into(
     keeps one set of buffers instead of a dozen new arrays per expansion.
 
     With ``defer`` the legs' and feet's checks (:func:`legs_clear`) are left to the caller:
-    the steps whose pelvis and ankle keep their clearances are accepted and scored, and the
+    the steps whose pelvis and ankle keep their clearances (and, walking steps, whose swing
+    foot passes the stance foot: :func:`~mjwalk.plan.stepgeom.passes_stance`, one
+    subtraction) are accepted and scored, and the
     caller runs :func:`legs_recheck` on a step before it takes the step up. The search does
     so: most accepted steps are never taken up (it ends first), and a step the legs refuse
     is then dropped where it would never have been pushed, so the walks are the same.
@@ -510,6 +515,9 @@ def check_into(
         loc[m + 1] = decode_col(z, r, matrix, offset, m + 1)
         yaws = loc[m + 1]
         ankle = loc[m] * rot + p
+        # a walking step's swing foot passes its stance foot (a closing step's comes beside it)
+        if not closing and not passes_stance(loc[m], node[i, 1], p, rot, par[P_STEP_ADVANCE]):
+            continue
         if not defer:  # else when the step is taken up (search: legs_recheck)
             if i != lift_i or fr != lift_fr:  # the same for a node's rows (one frame heading)
                 lift_yaw = _lift_turn(node, i, fr, par)

@@ -147,6 +147,23 @@ def out_of_reach(v, heading, reach, roll):
 
 
 @njit
+def passes_stance(ankle, landed, p, rot, advance):
+    """Whether a walking step's swing foot passes its stance foot: its landing ankle lies at
+    least ``advance`` metres ahead of the stance ankle along the step's start heading (the step
+    frame's y; :data:`~mjwalk.plan.options.MIN_STEP_ADVANCE`). True without a stance foot (a
+    starter's, nan) or with a nan ``advance`` (no test).
+
+    Args:
+        ankle: the landing ankle, step frame (x + iy, metres).
+        landed: the stance ankle, world x + iy, metres (nan: none).
+        p: the step frame's origin, world x + iy, metres.
+        rot: the step frame's turn into the world (a unit complex).
+        advance: the least advance, metres (nan: no test).
+    """
+    return not (ankle.imag - ((landed - p) * rot.conjugate()).imag < advance)
+
+
+@njit
 def swing_yaw(lift, land, turned):
     """The swing foot's yaw once it has ``turned`` (0 to 1) of its way from its lift-off yaw
     ``lift`` to its landing yaw ``land`` (radians, one frame), the short way round.

@@ -269,14 +269,15 @@ def test_a_task_on_a_platform_scores_as_the_same_task_on_the_floor():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(("run", "stature"), [(5909, 1.67), (9828, 1.71)])
+@pytest.mark.parametrize(("run", "stature"), [(5909, 1.67), (9828, 1.71), (4395, 1.56)])
 def test_the_station_runs_with_a_backward_step_simulate(scenes_dir, run, stature):
     """Seeded: runs 5909 and 9828 of ``mjwalk simulate scenes/assembly_station.toml --runs
     10000`` (seed 0) planned walk 4 with a step whose foot landed 0.43-0.47 m behind its start
-    pelvis, the pelvis going back; the leg synthesis reached the stance foot only with the
-    pelvis 6.3 and 7.5 cm lowered and refused the run (PlanningError). The step check refuses
-    steps going backward (:data:`mjwalk.plan.options.MIN_STEP_ADVANCE`): both simulate, with
-    no contact."""
+    pelvis, the pelvis going back; run 4395 (at bebb988) walk 6 with a step whose foot landed
+    0.24 m behind its stance foot. The leg synthesis reached the stance foot only with the
+    pelvis 6.3, 7.5 and 6.8 cm lowered and refused the run (PlanningError). The step check
+    refuses steps going backward and walking steps whose foot does not pass the stance foot
+    (:data:`mjwalk.plan.options.MIN_STEP_ADVANCE`): all three simulate, with no contact."""
     spec = load_cycle_spec(scenes_dir / "assembly_station.toml")
     (r,) = simulate_cycles(spec, 10000, seed=0, only=[run], on_error="raise")
     assert r.error is None

@@ -386,8 +386,10 @@ def test_walks_to_the_step_are_searched_again_to_arrive_facing_it(station, model
     """rack1 -> platform2's floor leg first arrives at the step more than ENTRY_TURN (60 deg,
     Patla et al. 1991) off its axis in 7 of seeds 0-7 (61-103 deg; main 79a574d walks them so):
     it is searched again facing the step on RESEARCH_SHARE's budget, and the crossing's first
-    step turns more than ENTRY_TURN in 2 of the 8 (seeds 0 and 3, whose re-search ran out of
-    its budget and kept the first walk); at most 2 allowed."""
+    step turns more than ENTRY_TURN in 3 of the 8 (seeds 0, 1 and 3, whose re-search ran out of
+    its budget and kept the first walk; at bebb988 2, seed 1's re-search then arriving at 890 of
+    its 1000 expansions, before the step check refused walking steps whose foot lands behind
+    the stance foot; over seeds 0-39 4 of 40 both then and now); at most 3 allowed."""
     over = 0
     for seed in range(8):
         walk = plan_walk(station, "stand_rack1", "stand_platform2", model, rng=seed)
@@ -397,7 +399,7 @@ def test_walks_to_the_step_are_searched_again_to_arrive_facing_it(station, model
         after = round((route[0]["seconds"] + route[1]["seconds"]) * 120)
         turn = abs((walk.yaw[after] - walk.yaw[before] + math.pi) % (2 * math.pi) - math.pi)
         over += turn > ENTRY_TURN
-    assert over <= 2
+    assert over <= 3
 
 
 @pytest.mark.parametrize("seed", [1, 6, 10])

@@ -187,7 +187,10 @@ def test_no_corpus_step_goes_backward():
     protocol: free walking with side steps and turns on the spot, straight, pole turns, short
     walks, first and closing steps) every step's end pelvis and landing ankle lie ahead of its
     start pelvis along its start heading (the step's local y; the default corpus's 25 037
-    steps: at least 0.022 m and 0.002 m), so the planner's forward test refuses none of them."""
+    steps: at least 0.022 m and 0.002 m), and every walking step's landing ankle ahead of its
+    stance ankle (the default corpus's 22 590: at least 0.043 m; its 2 447 closing steps bring
+    the foot beside the stance foot, 0.001-0.020 m ahead), so the planner's forward tests refuse
+    none of them."""
     takes = generate_corpus(1, seed=5, minutes_per_subject=1.5)
     steps, _ = segment_takes(takes)
     assert len(steps) > 100
@@ -196,4 +199,11 @@ def test_no_corpus_step_goes_backward():
     ankle = np.array([s.footprint[1] for s in steps])
     assert end.min() > MIN_STEP_ADVANCE
     assert ankle.min() > MIN_STEP_ADVANCE
+    walking = [s for s in steps if not s.meta.get("termination")]
+    closing = [s for s in steps if s.meta.get("termination")]
+    assert len(walking) > 100 and len(closing) > 5
+    passed = np.array([s.footprint[1] - s.stance[1] for s in walking])
+    assert passed.min() > MIN_STEP_ADVANCE + 0.04  # the swing foot passes the stance foot
+    beside = np.array([s.footprint[1] - s.stance[1] for s in closing])
+    assert np.all(np.abs(beside) < 0.03)  # a closing step's foot comes beside it
     assert MIN_STEP_ADVANCE == 0.0  # the principle itself, not the sample's least figures

@@ -8,11 +8,16 @@ import numpy as np
 import pytest
 from test_lean import FRAME, M
 
+from mjwalk.anthropometry import leg_geometry
+from mjwalk.body.legs.stance import REACH_DROP_MAX
+from mjwalk.body.legs.synthesis import legs_from_walk
 from mjwalk.gait.default import default_model
+from mjwalk.gait.walker import Walker
 from mjwalk.plan import slots, stepcheck
 from mjwalk.plan.hybrid import HybridPlanner
 from mjwalk.plan.lean import lean_in_range, stance_lean
-from mjwalk.plan.options import SWING_LIFT_TURN, PlannerOptions
+from mjwalk.plan.options import SWING_LIFT_TURN, PlannerOptions, foot_reach
+from mjwalk.plan.request import WalkRequest
 from mjwalk.plan.walks import plan_walk
 from mjwalk.timeline.collisions import check_collisions
 from mjwalk.world import load_workplace
@@ -312,3 +317,113 @@ def test_a_step_going_backward_is_refused(scenes_dir, run):
 
     assert accepted((before, ipar))  # every other check passes it
     assert not accepted((par, ipar))
+
+
+#: Station run 4395 of 10 000 (seed 0, main at bebb988): walk 6 (to rack 2's stand zone) of a
+#: 1.56 m operator, its sixth step: the left foot swinging from (0.042, -0.401) to land at
+#: (0.501, -0.909), 0.24 m behind the right (stance) foot at (0.714, -1.026) along the step's
+#: heading, while the pelvis (16 samples, world x, y) went 0.19 m on and turned from -36.9 to
+#: -67.5 deg. The leg synthesis then reached the stance foot, 0.29 m ahead of its hip at the
+#: landing, only with the pelvis 6.8 cm lowered: more than REACH_DROP_MAX, the run refused.
+RUN4395_PELVIS = [
+    (0.345, -0.725), (0.354, -0.739), (0.363, -0.752), (0.372, -0.764), (0.381, -0.777),
+    (0.389, -0.789), (0.397, -0.800), (0.406, -0.811), (0.414, -0.821), (0.421, -0.831),
+    (0.429, -0.840), (0.436, -0.849), (0.443, -0.858), (0.450, -0.866), (0.456, -0.873),
+    (0.461, -0.880),
+]  # fmt: skip
+
+
+def test_a_step_landing_behind_its_stance_foot_is_refused(scenes_dir):
+    """A walking step's swing foot passes its stance foot (options.MIN_STEP_ADVANCE: every
+    walking step of the virtual corpus lands at least 0.043 m ahead of it): run 4395's step,
+    which lands its foot 0.24 m behind the stance foot but ahead of its start pelvis, and
+    keeps the pelvis within the stance foot's reach (from the pelvis's centre and from the
+    stance hip alike), passes every other check (the slot nan) and is refused."""
+    model = default_model()
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    pl = HybridPlanner(wp, "stand_rack2", model, PlannerOptions(radius=0.30))
+    stature, fr, ankle, stance = 1.56, -0.644, (0.501, -0.909), complex(0.714, -1.026)
+    par, ipar = pl.params.vectors(stature)
+    assert par[slots.P_STEP_ADVANCE] == 0.0
+    before = par.copy()
+    before[slots.P_STEP_ADVANCE] = math.nan  # no forward tests
+    rot = complex(math.sin(fr), -math.cos(fr))
+    p = complex(*RUN4395_PELVIS[0])
+    # ahead of the start pelvis (the end pelvis and the ankle: the backward-step test passes)
+    assert ((complex(*RUN4395_PELVIS[-1]) - p) / rot).imag > 0.18
+    assert ((complex(*ankle) - p) / rot).imag > 0.23
+    assert ((complex(*ankle) - stance) / rot).imag < -0.23  # behind the stance foot
+    # within the stance foot's reach, from the pelvis and from the right (stance) hip
+    reach = foot_reach(stature)[0]
+    hip_y = leg_geometry(stature).hip_y
+    yaws = np.linspace(fr, -1.179, len(RUN4395_PELVIS))  # the pelvis turning, about
+    for (x, y), yaw in zip(RUN4395_PELVIS, yaws, strict=True):
+        assert abs(complex(x, y) - stance) < reach
+        assert abs(complex(x, y) + hip_y * complex(math.sin(yaw), -math.cos(yaw)) - stance) < reach
+
+    def accepted(vectors) -> bool:
+        return _one_step(
+            pl, wp, vectors, RUN4395_PELVIS, fr, ankle, (-0.916, -1.179), stance,
+            complex(0.042, -0.401),
+        )(0.053)  # fmt: skip
+
+    assert accepted((before, ipar))  # every other check passes it
+    assert not accepted((par, ipar))
+
+
+#: Run 4395's walk 6 as the cycle plans it: the planner's goal area, the request, the 1.56 m
+#: operator and the generator's state at the planner's call (captured with a patched
+#: HybridPlanner.plan).
+RUN4395_OPTIONS = {
+    "goal_tolerance": 0.3315,
+    "radius": 0.3,
+    "field_tolerance": 0.1,
+    "goal_within": (
+        (-999.79798, -1.700000000000283, 1000.0),
+        (1000.0, -1.6999999999997164, 1000.0),
+        (0.0, -2.32, 0.663911822078503),
+    ),
+}
+RUN4395_RNG = {
+    "bit_generator": "PCG64",
+    "state": {
+        "state": 71085363061274267203554025669402711488,
+        "inc": 17108495919640527093914482573125731175,
+    },
+    "has_uint32": 0,
+    "uinteger": 2044463890,
+}
+
+
+def test_station_run_4395s_walk_keeps_its_stance_feet_behind_the_swing_feet(scenes_dir):
+    """Run 4395's walk, planned as the cycle plans it: at bebb988 its sixth step landed the
+    left foot 0.24 m behind the right one and the leg synthesis refused the walk
+    (PlanningError: the pelvis 0.068 m lowered, 0.05 m at most). Now every walking step's
+    foot lands ahead of its stance foot along its start heading, and the legs synthesize
+    with the pelvis lowered at most REACH_DROP_MAX."""
+    wp = load_workplace(scenes_dir / "assembly_station.xml")
+    model = default_model()
+    walker = Walker(1.56, 1.3413849790568098, 121.30946832727464, None, "adult")
+    planner = HybridPlanner(wp, (0.0, -1.7), model, PlannerOptions(**RUN4395_OPTIONS))
+    request = WalkRequest(
+        (-0.6433779808699324, -0.054628615131999014, 1.2916376933297675),
+        model.for_walker(walker),
+        (0.039255240267781814, -1.6961176612557949, 0.33172636832550173),
+        turn_on_spot=True,
+        goal_heading=-np.pi / 2,
+        at_work=True,
+        work_heading=np.pi / 2,
+    )
+    rng = np.random.default_rng()
+    rng.bit_generator.state = RUN4395_RNG
+    walk = planner.plan(request, rng)
+    legs = legs_from_walk(walk, walker.stature)  # raised PlanningError at bebb988
+    assert float(np.max(legs.meta["pelvis_lowering"])) <= REACH_DROP_MAX
+    walking = walk.steps[1:-1] if walk.meta.get("closing_step") else walk.steps[1:]
+    assert len(walking) >= 5
+    for s in walking:  # (the first step's stance foot is where the walker stood)
+        fr = walk.yaw[s.start]
+        ahead = (complex(*s.foot[:2]) - complex(*s.stance[:2])) / complex(
+            math.sin(fr), -math.cos(fr)
+        )
+        assert ahead.imag > 0.0

@@ -20,6 +20,7 @@ from mjwalk.plan.slots import params
 from mjwalk.plan.stepgeom import (
     beyond,
     out_of_reach,
+    passes_stance,
     swing_yaw,
     toe_approach_clear,
     unit_turn,
@@ -268,3 +269,18 @@ def test_a_planted_foot_reaches_farther_along_its_heading_than_across_it():
     nowhere = complex(math.nan, math.nan)  # no heading: the reach every way
     assert not out_of_reach(0.549j, nowhere, reach, roll)
     assert out_of_reach(0.551j, nowhere, reach, roll)
+
+
+def test_passes_stance_measures_along_the_step_s_start_heading():
+    """A walking step's landing ankle (step frame) against its stance ankle (world) along the
+    step frame's y, its start heading; a nan stance foot (a starter's) or a nan advance (no
+    test) passes."""
+    fr = 0.0  # the step's start heading: its frame's y is the world's +x
+    rot = complex(math.sin(fr), -math.cos(fr))
+    p = complex(1.0, 2.0)
+    stance = p + 0.3 * 1j * rot  # 0.3 m ahead of the start pelvis, along the step's heading
+    assert passes_stance(0.31j, stance, p, rot, 0.0)  # lands 0.01 m ahead of it
+    assert not passes_stance(0.29j + 0.2, stance, p, rot, 0.0)  # 0.01 m behind, aside
+    assert not passes_stance(0.31j, stance, p, rot, 0.02)
+    assert passes_stance(-0.5j, complex(math.nan, math.nan), p, rot, 0.0)
+    assert passes_stance(-0.5j, stance, p, rot, math.nan)
