@@ -203,3 +203,29 @@ def test_a_landing_turned_less_than_a_cell_over_its_width_is_squared_to_its_flig
     assert np.linalg.norm(e) == pytest.approx(1.4, abs=1e-9)
     kept = rect(5.0)
     assert np.array_equal(square_to_flight(kept, run, 0.02), kept)
+
+
+@pytest.mark.slow  # a generated hall's scan: about 10 s, 40 s on a loaded 2-core machine
+def test_a_step_at_the_norms_limit_stays_a_step_in_the_written_scene(tmp_path):
+    """Hall 1129's 0.19 m step platform (DIN 18065's largest riser) is fitted at 0.19001 m,
+    within the scan's noise over the norm: the scan keeps it as a step, and so must the scene
+    it writes (written at 0.19002 m, it was no step there, and the platform no level)."""
+    from mjwalk.scan.raycast import synthetic_scan
+    from mjwalk.scan.scene import write_scene
+    from mjwalk.world.levelgen import generate_levels
+    from mjwalk.world.norms import MAX_RISER
+    from mjwalk.world.workplace import load_model, load_workplace
+
+    hall = generate_levels(1129)
+    model = load_model(hall.write(tmp_path / "hall.xml"))
+    scan = synthetic_scan(model, list(hall.scanners), step_deg=0.4, noise=0.005, seed=1129)
+    scene = build_scene(scan.points, source="levels_1129")
+    assert scene.levels is not None
+    steps = [k for k in scene.levels.links if k.kind == "step"]
+    assert any(k.risers[0] == pytest.approx(MAX_RISER, abs=0.005) for k in steps)
+    assert all(k.risers[0] <= MAX_RISER for k in steps)  # as written
+    graph = load_workplace(write_scene(scene, tmp_path / "scan.xml"), cache=False).levels
+    z0 = graph.levels[0].height
+    top = [j for j, lv in enumerate(graph.levels) if abs(lv.height - z0 - MAX_RISER) < 0.005]
+    assert len(top) == 1
+    assert any(k.kind == "step" and k.upper == top[0] for k in graph.links)
