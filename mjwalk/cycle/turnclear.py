@@ -31,13 +31,13 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from mjwalk.timeline.frames import room_and_away, trunk_turn
+from mjwalk.timeline.frames import room_and_away, trunk_rotation
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
 
-#: The trunk's rotation joints, turned as :func:`~mjwalk.timeline.frames.ease_arms` turns them:
-#: the lumbar joint to its range first, the thoracic joint the rest.
+#: The trunk's rotation joints, in :func:`~mjwalk.timeline.frames.trunk_rotation`'s order: the
+#: lumbar joint to its range first, the thoracic joint the rest.
 TRUNK_ROTATION = ("lumbar_rot", "thoracic_rot")
 
 
@@ -88,11 +88,9 @@ def trunk_clear(ctx: CycleContext, frames: np.ndarray, fps: float) -> np.ndarray
     jm, r = ctx.jointmap, ctx.jointmap.root
     out = np.array(frames, dtype=float)
     room, away = room_and_away(ctx.workplace, out[:, r : r + 2])
-    yaw = 2.0 * np.arctan2(out[:, r + 6], out[:, r + 3])
-    turn = trunk_turn(yaw, room, away, ctx.spec.stature, fps)
+    turn = trunk_rotation(out, jm, room, away, ctx.spec.stature, fps)
     rest = jm.neutral_qpos(ctx.model, ctx.spec.stature)
-    lumbar, thoracic = (jm.adr(j) for j in TRUNK_ROTATION)
-    part = np.clip(turn, *jm.limits(TRUNK_ROTATION[0]))
-    out[:, lumbar] = rest[lumbar] + part
-    out[:, thoracic] = rest[thoracic] + np.clip(turn - part, *jm.limits(TRUNK_ROTATION[1]))
+    for joint, part in zip(TRUNK_ROTATION, turn, strict=True):
+        k = jm.adr(joint)
+        out[:, k] = rest[k] + part
     return out

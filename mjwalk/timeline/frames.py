@@ -356,14 +356,40 @@ def ease_arms(
             k = jm.adr(f"forearm_{side}_pron")
             qpos[:, k] = qpos[:, k] + tight * ease * (TUCK_PRONATION - qpos[:, k])
     if room is not None and away is not None:
-        yaw = 2.0 * np.arctan2(qpos[:, jm.root + 6], qpos[:, jm.root + 3])
         fps = 1.0 / float(np.median(np.diff(t))) if len(t) > 1 else 30.0
-        turn = trunk_turn(yaw, room, away, stature, fps)
-        lo, hi = jm.limits("lumbar_rot")
-        lumbar = np.clip(turn, lo, hi)
+        lumbar, thoracic = trunk_rotation(qpos, jm, room, away, stature, fps)
         qpos[:, jm.adr("lumbar_rot")] += lumbar
-        qpos[:, jm.adr("thoracic_rot")] += np.clip(turn - lumbar, *jm.limits("thoracic_rot"))
+        qpos[:, jm.adr("thoracic_rot")] += thoracic
     return qpos
+
+
+def trunk_rotation(
+    qpos: np.ndarray,
+    jm: JointMap,
+    room: np.ndarray,
+    away: np.ndarray,
+    stature: float,
+    fps: float,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The trunk's rotation that turns the shoulders clear of the nearest obstacle at frames
+    ``qpos`` (:func:`trunk_turn` at each frame's pelvis yaw), the lumbar joint taking its
+    range first and the thoracic joint the rest, each clipped to its range.
+
+    Args:
+        qpos: (F, nq) the frames (their root's yaw is read).
+        jm: the humanoid's joint map.
+        room: (F,) the room at each frame's pelvis, metres (:func:`room_and_away`).
+        away: (F, 2) the unit direction away from the nearest obstacle, world x, y.
+        stature: the humanoid's stature, metres.
+        fps: frames per second.
+
+    Returns:
+        ``(lumbar, thoracic)``: (F,) each, radians, to add to the pose's own.
+    """
+    yaw = 2.0 * np.arctan2(qpos[:, jm.root + 6], qpos[:, jm.root + 3])
+    turn = trunk_turn(yaw, room, away, stature, fps)
+    lumbar = np.clip(turn, *jm.limits("lumbar_rot"))
+    return lumbar, np.clip(turn - lumbar, *jm.limits("thoracic_rot"))
 
 
 def room_and_away(workplace, xy: np.ndarray, h: float = 0.02) -> tuple[np.ndarray, np.ndarray]:
