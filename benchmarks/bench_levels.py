@@ -253,6 +253,14 @@ short legs in "rest", 0.26 -> 0.46), twin 0.65; rack1 -> mezzanine 4.42 (2.1 cal
 (1.1). Only rack1 -> mezzanine stays over 1.5 warm (its twin walks 3.0 m, it 8.5 m round to
 the stair's foot). Cold unchanged (4.2-5.4, the levels' set-up). Walks change where a leg is
 short (no sway or drawn pace on it: even footfalls at the walker's step length and time).
+
+Branch stair47 (``--draws 50 --walks 0``, ba1cbe5's product): the legs table adds ``riser/leg``,
+the riser over the group's mean walker's leg (thigh + shank): 0.200 / 0.204 / 0.208 / 0.200 /
+0.200 (adult, older adult, elderly, fatigued, brisk; 0.198 at 1.75 m). The norms stay the
+fixed adult ranges: the stature / step-height ratio sets the stair range (J Hum Kinet 26:45,
+abstract only, no figures), no cited range for another ratio was found (docs/decisions/115).
+Every figure unchanged: down, knee 100.6-101.7 deg (over the cited 100: the first step off the
+top landing from standing), hip 43.1-43.9; up, knee 99.7-101.8, hip 55.1-56.3.
 """
 
 from __future__ import annotations

@@ -88,12 +88,6 @@ SLOPE_REACH = 0.3
 #: walking down an unconstrained 13-step staircase outside a laboratory (wearable sensors)
 #: flexed the knee up to 85 deg and the hip 30 deg (joint ranges; no SD of the peak and no
 #: riser or tread in the abstract), inside the descent range below but near its low end.
-#: All four ranges are adults' of ordinary stature on 17-18 cm risers: the stature / step-height
-#: ratio sets the hip and knee's range of movement on stairs ("Hip and Knee Kinematics in
-#: Sagittal Plane during Stair Ascent and Descent in Children, Adolescents and Young Adults",
-#: J Hum Kinet 26:45, six stature groups; abstract only, no figures in it), but no cited range
-#: for another ratio was found, so they are not moved with the walker's stature
-#: (docs/decisions/115).
 KNEE_PEAK_UP = (83.0, 105.0)
 KNEE_PEAK_DOWN = (80.0, 100.0)
 #: Peak hip flexion, degrees: greater up than down by 28.1 deg (SD 4.1) (Protopapadaki et al.
