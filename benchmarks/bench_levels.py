@@ -253,6 +253,14 @@ short legs in "rest", 0.26 -> 0.46), twin 0.65; rack1 -> mezzanine 4.42 (2.1 cal
 (1.1). Only rack1 -> mezzanine stays over 1.5 warm (its twin walks 3.0 m, it 8.5 m round to
 the stair's foot). Cold unchanged (4.2-5.4, the levels' set-up). Walks change where a leg is
 short (no sway or drawn pace on it: even footfalls at the walker's step length and time).
+
+Branch stair47 (``--draws 50 --walks 0``, ba1cbe5's product): the legs table adds ``riser/leg``,
+the riser over the group's mean walker's leg (thigh + shank): 0.200 / 0.204 / 0.208 / 0.200 /
+0.200 (adult, older adult, elderly, fatigued, brisk; 0.198 at 1.75 m). The norms stay the
+fixed adult ranges: the stature / step-height ratio sets the stair range (J Hum Kinet 26:45,
+abstract only, no figures), no cited range for another ratio was found (docs/decisions/115).
+Every figure unchanged: down, knee 100.6-101.7 deg (over the cited 100: the first step off the
+top landing from standing), hip 43.1-43.9; up, knee 99.7-101.8, hip 55.1-56.3.
 """
 
 from __future__ import annotations
@@ -269,11 +277,13 @@ from pathlib import Path
 import mujoco
 import numpy as np
 
+from mjwalk.anthropometry import leg_geometry
 from mjwalk.body.humanoid import attach_humanoid
 from mjwalk.body.legs import legs_from_walk
 from mjwalk.body.legs.analysis import swing_hip_peaks
 from mjwalk.body.legs.edgeswing import STAIR_TOE_CLEARANCE
 from mjwalk.body.legs.legheights import HIP_PEAK_DOWN, HIP_PEAK_UP, KNEE_PEAK_DOWN, KNEE_PEAK_UP
+from mjwalk.conventions import DEFAULT_STATURE
 from mjwalk.cycle.population import Population, preset_group
 from mjwalk.ergonomics.angles import angles_from_qpos
 from mjwalk.errors import PlanningError
@@ -375,6 +385,12 @@ def trunk_flexion(motion, stature: float, a: int, b: int) -> float:
     return float(angles_from_qpos(model, jm, q).trunk_flexion.mean())
 
 
+def _leg(stature: float) -> float:
+    """The humanoid's leg length (thigh + shank, m) at ``stature`` metres."""
+    g = leg_geometry(stature)
+    return g.thigh + g.shank
+
+
 def body_table(draws: int, seed: int) -> None:
     """Print the legs on the stair per preset: the group's mean walker (mean stature, mean
     step time) played up and down the stair (synthetic_stair_walk, legs_from_walk); knee and
@@ -392,11 +408,15 @@ def body_table(draws: int, seed: int) -> None:
         "upright down it); hip IC: the swing hip as its foot lands; at: the peak's share of "
         "the swing (inner steps, mean); trunk: trunk flexion (hip to C7 from the vertical), "
         "inner steps' mean, the timeline's pose (up a stair leaned 12.4 deg in the spine: "
-        "mjwalk.body.legs.trunklean)"
+        "mjwalk.body.legs.trunklean); riser/leg: the riser over the walker's leg (thigh + "
+        f"shank; {STAIR.riser / _leg(DEFAULT_STATURE):.3f} at {DEFAULT_STATURE} m). The norms "
+        "are adults' of ordinary stature on 17-18 cm risers, not moved with riser/leg: the "
+        "stature / step-height ratio sets the stair range (J Hum Kinet 26:45, abstract only) "
+        "but no cited range for another ratio was found (docs/decisions/115)"
     )
     head = (
-        f"{'group':12} {'dir':4} {'stature m':10} {'knee deg':9} {'hip deg':8} {'hip IC':7} "
-        f"{'at':5} {'clear cm':9} {'trunk':6} norm"
+        f"{'group':12} {'dir':4} {'stature m':10} {'riser/leg':10} {'knee deg':9} {'hip deg':8} "
+        f"{'hip IC':7} {'at':5} {'clear cm':9} {'trunk':6} norm"
     )
     print(head)
     print("-" * len(head))
@@ -417,7 +437,8 @@ def body_table(draws: int, seed: int) -> None:
             # down: no published descent clearance found; 5 mm is the studies' low-clearance bound
             least = STAIR_TOE_CLEARANCE if d == "up" else DESCENT_LOW_CLEARANCE
             print(
-                f"{group:12} {d:4} {stature:<10.3f} {knee:<9.1f} {hip:<8.1f} "
+                f"{group:12} {d:4} {stature:<10.3f} {STAIR.riser / _leg(stature):<10.3f} "
+                f"{knee:<9.1f} {hip:<8.1f} "
                 f"{swings[:, 1].mean():<7.1f} {swings[:, 2].mean():<5.2f} "
                 f"{100 * motion.meta['edge_clearance']:<9.1f} "
                 f"{trunk_flexion(motion, stature, a, b):<6.1f} knee {kn[0]:.0f}-{kn[1]:.0f}, "
