@@ -26,7 +26,7 @@ import numpy as np
 from mjwalk.anthropometry import ROM_DEG, leg_geometry
 from mjwalk.body.legs.ik import LEG_JOINTS, leg_ik
 from mjwalk.conventions import side_of_prefix as side_of
-from mjwalk.cycle.tiptoe import tiptoe_pose
+from mjwalk.cycle.tiptoe import heel_rise_of, tiptoe_frames
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
@@ -229,10 +229,9 @@ def crouch_frames(
     frames = q0[None] + np.asarray(w, dtype=float)[:, None] * (target - q0)[None]
     if drop < -1e-9:  # on the toes (mjwalk.cycle.tiptoe): the balls of the feet stay planted
         legs = [jm.adr(n) for n in _leg_joints(toes=True)]
-        for k, wk in enumerate(w):
-            pose = tiptoe_pose(ctx, q0, -drop * float(wk))
-            frames[k, r : r + 3] = pose[r : r + 3]
-            frames[k, legs] = pose[legs]
+        poses = tiptoe_frames(ctx, q0, heel_rise_of(ctx, target), w)
+        frames[:, r : r + 3] = poses[:, r : r + 3]
+        frames[:, legs] = poses[:, legs]
         return frames
     if drop <= 0.0:
         return frames
