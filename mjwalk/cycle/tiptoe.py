@@ -7,9 +7,13 @@ from standing without the forearm coming up through the board's front edge: the 
 it. People rise on their toes for it (a heel rise: the ankles plantar flexed, the feet turning
 about the balls, the toes flat on the floor). Here each foot turns heel-up by the angle that
 lifts its ankle ``rise`` metres about its ball (:func:`~mjwalk.anthropometry.ball_offset` ahead
-of the ankle, on the sole), the pelvis goes up and forward with the ankles (the legs keep
-their shape: straight), the legs are solved by :func:`~mjwalk.body.legs.ik.leg_ik` for the
-pitched feet and the toes extend by the same angle to stay flat.
+of the ankle, on the sole), the pelvis goes up and forward with the ankles and on forward,
+the legs leaning at the ankles as far apart from the hips as standing, until the body's centre
+of mass is over the balls (the weight on the forefoot: moved with the ankles alone it stays
+7.7 cm behind them at H = 1.75 m); the legs are solved by :func:`~mjwalk.body.legs.ik.leg_ik`
+for the pitched feet and the toes extend by the same angle to stay flat. The ergonomic scores
+read a foot whose ankle is more than :data:`mjwalk.ergonomics.angles.FOOT_UP` (5 cm) above its
+lowest as off the floor: a higher rise scores the legs as not supported (RULA, REBA, OWAS).
 
 World frame: metres, z up, yaw from +x; angles in radians.
 """
