@@ -26,6 +26,7 @@ import numpy as np
 from mjwalk.anthropometry import ROM_DEG, leg_geometry
 from mjwalk.body.legs.ik import LEG_JOINTS, leg_ik
 from mjwalk.conventions import side_of_prefix as side_of
+from mjwalk.cycle.tiptoe import heel_rise_of, tiptoe_frames
 
 if TYPE_CHECKING:
     from mjwalk.cycle.context import CycleContext
@@ -206,9 +207,11 @@ def crouch_frames(
     ctx: CycleContext, q0: np.ndarray, target: np.ndarray, w: np.ndarray
 ) -> np.ndarray:
     """Poses on the way from ``q0`` (standing) into ``target`` (a pose whose root and legs are
-    :func:`crouch_pose`'s, or ``q0``'s): every joint interpolated by the weights ``w`` (0:
-    ``q0``, 1: ``target``), and when the target is crouched, the pelvis lowered by that share
-    of its drop and the legs solved for it at each pose, so the feet stay planted all the way.
+    :func:`crouch_pose`'s, :func:`~mjwalk.cycle.tiptoe.tiptoe_pose`'s, or ``q0``'s): every
+    joint interpolated by the weights ``w`` (0: ``q0``, 1: ``target``), and when the target
+    is crouched, the pelvis lowered by that share of its drop and the legs solved for it at
+    each pose, so the feet stay planted all the way; when it is on the toes (the pelvis
+    higher), the heels lifted by that share of the rise, the balls of the feet planted.
 
     Args:
         ctx: the cycle context.
@@ -224,6 +227,12 @@ def crouch_frames(
     q0 = np.asarray(q0, dtype=float)
     drop = float(q0[r + 2] - target[r + 2])
     frames = q0[None] + np.asarray(w, dtype=float)[:, None] * (target - q0)[None]
+    if drop < -1e-9:  # on the toes (mjwalk.cycle.tiptoe): the balls of the feet stay planted
+        legs = [jm.adr(n) for n in _leg_joints(toes=True)]
+        poses = tiptoe_frames(ctx, q0, heel_rise_of(ctx, target), w)
+        frames[:, r : r + 3] = poses[:, r : r + 3]
+        frames[:, legs] = poses[:, legs]
+        return frames
     if drop <= 0.0:
         return frames
     legs = [jm.adr(n) for n in _leg_joints()]
@@ -235,5 +244,5 @@ def crouch_frames(
     return frames
 
 
-def _leg_joints() -> list[str]:
-    return [j.format(p) for j in LEG_JOINTS if not j.startswith("toe") for p in "lr"]
+def _leg_joints(toes: bool = False) -> list[str]:
+    return [j.format(p) for j in LEG_JOINTS if toes or not j.startswith("toe") for p in "lr"]

@@ -33,6 +33,7 @@ from mjwalk.body.legs.curves import smoothstep
 from mjwalk.conventions import Side, other_side, side_prefix
 from mjwalk.cycle.crouch import bend_trunk, crouch_frames, crouch_pose, trunk_bend
 from mjwalk.cycle.handling import RETURN_CASE, body_motion_duration, reach_duration
+from mjwalk.cycle.tiptoe import tiptoe_pose
 from mjwalk.timeline.geomposes import body_poses, supported
 
 if TYPE_CHECKING:
@@ -121,10 +122,14 @@ class Lowering:
             (:func:`leaning`).
         drop: metres the pelvis is lowered in a crouch (:func:`~mjwalk.cycle.crouch.crouch_pose`);
             0: standing.
+        rise: metres the heels lift the pelvis, on the toes
+            (:func:`~mjwalk.cycle.tiptoe.tiptoe_pose`; one-handed reaches standing upright
+            only); 0: feet flat.
     """
 
     lean: bool = False
     drop: float = 0.0
+    rise: float = 0.0
 
 
 #: A reach standing upright (no lean, no crouch).
@@ -193,6 +198,8 @@ def reach_frames(
     base = q0
     if lowering.drop > 0.0:  # crouched: the pelvis lower, the trunk bent (mjwalk.cycle.crouch)
         base = crouch_pose(ctx, q0, lowering.drop)
+    elif lowering.rise > 0.0:  # on the toes (mjwalk.cycle.tiptoe), for a high shelf
+        base = tiptoe_pose(ctx, q0, lowering.rise)
     if lowering.lean:
         base = leaning(ctx, base, [(side, target_w)], float(lengths.sum()) / scale - LEAN_SPARE)
     q, res = _solve_arm(ctx, arm, base, target_w, approach_w, face)

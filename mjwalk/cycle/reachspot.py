@@ -12,6 +12,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from mjwalk.anthropometry import SEG
 from mjwalk.conventions import Side
 from mjwalk.cycle import reaching
 from mjwalk.cycle.holding import two_hand_frames
@@ -27,6 +28,7 @@ from mjwalk.cycle.targets import (
     edge_back,
     reach_target,
 )
+from mjwalk.cycle.tiptoe import rise_steps
 from mjwalk.cycle.types import TASK_KINDS
 
 if TYPE_CHECKING:
@@ -118,7 +120,9 @@ def reach_task(
     which the hand is on its target and clear. When no spot is clear for shelf work, the search
     runs again with the pre-grasp point out of the board under the target (a part deeper on
     its shelf than :data:`~mjwalk.cycle.targets.APPROACH_BACK`: :func:`_over_edge`), kept when
-    that reach touches nothing. A step never brings the pelvis closer to an
+    that reach touches nothing; when it still touches the scene above the shoulder (a short
+    operator at a top shelf), the operator rises on the toes, the lowest heel rise that clears
+    it (:func:`_tiptoe`). A step never brings the pelvis closer to an
     obstacle or the floor's edge than the planner's body radius (or than it was).
 
     The steps are measured from ``start.home`` (where the walk ended, when the operator stands
@@ -173,6 +177,8 @@ def reach_task(
     upright = _settle(search, lean=False)
     if upright.distance < np.inf and TASK_KINDS[task.kind].approach == "shelf":
         search, upright = _over_edge(search, upright)
+        if upright.distance < 0.0 and task.hand != "both" and _overhead(search):
+            search, upright = _tiptoe(search, upright)
     best = upright
     if upright.error > REACH_TOLERANCE:
         # a target no step brings within the arm's reach (low, as a bin by the feet, or deep):
@@ -208,6 +214,7 @@ class _Search:
     rise: float
     target: np.ndarray
     approach_back: float = APPROACH_BACK
+    heel_rise: float = 0.0
 
     @cached_property
     def room(self) -> float:
@@ -248,7 +255,7 @@ def _candidate(search: _Search, s: float, lean: bool, drop: float = 0.0) -> Work
     )
     q0 = turn[-1]
     width = None
-    pace, lowering = search.pace, reaching.Lowering(lean, drop)
+    pace, lowering = search.pace, reaching.Lowering(lean, drop, search.heel_rise)
     if task.hand == "both":
         rf, err, res, width = two_hand_frames(
             ctx, q0, task, approach, pace, held=grip, lowering=lowering
@@ -276,13 +283,9 @@ def _over_edge(search: _Search, upright: WorkingReach) -> tuple[_Search, Working
     palm 3-11 mm into its edge). From a pre-grasp point out of the board the hand comes over
     the edge along the approach, as :func:`~mjwalk.cycle.reaching.reach_frames` means it to.
     """
-    ctx, task = search.ctx, search.task
-    back = approach_back_dir(task.kind, search.site_pos, *search.home, search.facing)
-    run = board_run(ctx.model, ctx.scratch(), search.target, back)
-    out = edge_back(run, ctx.spec.stature)
-    if math.isinf(out) or not out > search.approach_back:
+    edge = _edge_search(search)
+    if edge is None:
         return search, upright
-    edge = replace(search, approach_back=out)
     cand = _settle(edge, lean=False)
     # kept when it touches nothing and is clearer, the hand on its target (as a step back)
     if cand.distance > max(upright.distance, 0.0) and cand.error <= max(
@@ -290,6 +293,56 @@ def _over_edge(search: _Search, upright: WorkingReach) -> tuple[_Search, Working
     ):
         return edge, cand
     return search, upright
+
+
+def _edge_search(search: _Search) -> _Search | None:
+    """``search`` with the pre-grasp point out of the board under the target
+    (:func:`~mjwalk.cycle.targets.edge_back`); None when that is no farther back than its own
+    (no board under the target, or a board no arm reaches over)."""
+    ctx, task = search.ctx, search.task
+    back = approach_back_dir(task.kind, search.site_pos, *search.home, search.facing)
+    run = board_run(ctx.model, ctx.scratch(), search.target, back)
+    out = edge_back(run, ctx.spec.stature)
+    if math.isinf(out) or not out > search.approach_back:
+        return None
+    return replace(search, approach_back=out)
+
+
+def _overhead(search: _Search) -> bool:
+    """Whether the target is above the operator's shoulder (Winter: 0.818 H over the surface
+    they stand on), where rising on the toes brings the shoulder nearer it."""
+    ctx = search.ctx
+    over = float(search.target[2]) - ctx.ground(search.home)
+    return over > SEG["shoulder_height"] * ctx.spec.stature
+
+
+def _tiptoe(search: _Search, upright: WorkingReach) -> tuple[_Search, WorkingReach]:
+    """The search on the toes (:func:`~mjwalk.cycle.tiptoe.tiptoe_pose`), the heels lifting the
+    pelvis :data:`~mjwalk.cycle.tiptoe.RISE_STEP` at a time up to
+    :func:`~mjwalk.cycle.tiptoe.max_rise`: the lowest rise whose reach touches nothing from
+    some spot, the hand on its target; else the clearest rise that touches nothing and is
+    clearer than ``upright``; else ``search`` and ``upright``.
+
+    A short operator's shoulder is too low for the arm to come over the front edge of a board
+    above the head (the top shelf of ``scenes/shelving_station.xml``, 1.52 m, for operators of
+    1.53-1.61 m: the forearm and fingers 16-31 mm into the edge from every spot, with or
+    without the approach from out of the board); people rise on their toes for it. The rise
+    reaches from out of the board (:func:`_edge_search`) when the target has a board under it.
+    """
+    best_search, best = search, upright
+    tolerance = max(upright.error, REACH_TOLERANCE)
+    # the hand comes over the board's edge from out of it (as _over_edge), when it has one
+    edge = _edge_search(search) or search
+    for rise in rise_steps(search.ctx.spec.stature):
+        raised = replace(edge, heel_rise=float(rise))
+        cand = _settle(raised, lean=False)
+        if cand.error > tolerance:
+            continue
+        if cand.distance == np.inf:
+            return raised, cand
+        if cand.distance > max(best.distance, 0.0):
+            best_search, best = raised, cand
+    return best_search, best
 
 
 def _same(a: float, b: float) -> bool:
