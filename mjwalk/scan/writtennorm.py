@@ -9,8 +9,8 @@ beyond it. The written scene is loaded as any scene, whose level graph holds the
 1129). :func:`steps_within_norm` lowers a platform reached by single steps, and
 :func:`stairs_within_norm` writes a flight at its limiting riser (its treads and top level moved
 to that riser's multiples above its bottom), each a margin inside the limit that survives the
-written boxes' rounding. A level that is also another link's lower end, or a ramp's or stair's
-upper end, keeps its measured height (moving it would move that link). Metres, scene frame
+written boxes' rounding. A level other links depend on keeps its measured height (moving it
+would move them), but for a landing a flight goes on from: flights are written bottom up. Metres, scene frame
 (floor at z = 0); pits below the floor: :func:`mjwalk.scan.scanpits.within_norm`.
 """
 
@@ -28,15 +28,16 @@ from mjwalk.world.norms import MAX_RISER, MIN_RISER
 WRITTEN_UNDER = 2e-5
 
 
-def _fixed_levels(links: list[ScanLink], own: ScanLink) -> set[int]:
-    """The levels whose height other links than ``own`` depend on: every other link's lower
-    end, and every other ramp's or stair's upper end."""
+def _held_levels(links: list[ScanLink], own: ScanLink) -> set[int]:
+    """The levels whose height links other than ``own`` depend on: every other link's upper
+    end, and every other link's lower end but a stair's (a flight up from a landing is written
+    after the flight below it, from the landing's height as written)."""
     out: set[int] = set()
     for k in links:
         if k is not own:
-            out.add(k.lower)
-            if k.kind != "step":
-                out.add(k.upper)
+            out.add(k.upper)
+            if k.kind != "stair":
+                out.add(k.lower)
     return out
 
 
@@ -81,9 +82,10 @@ def stairs_within_norm(links: list[ScanLink], heights: list[float]) -> list[Scan
     ``WRITE_MARGIN`` inside: its treads and its top level move, in ``heights``, to that riser's
     multiples above its bottom (by at most the riser count times ``RISER_TOL`` +
     ``WRITE_MARGIN``). A flight of 0.19 m risers fitted at 0.190008 m was written with risers
-    over the norm: no stair in the written scene, only its first tread a step up. A flight
-    whose top is another link's lower end or a ramp's or another stair's upper end keeps its
-    measured riser, and so does one with a tread another link starts or ends on.
+    over the norm: no stair in the written scene, only its first tread a step up. Flights are
+    taken bottom up, each from its bottom as written (hall 1169: a flight of 0.14 m risers
+    fitted at 0.139995 m up to the landing the next flight starts from). A flight whose top or
+    treads another link (but a flight up from its top) starts or ends on keeps its riser.
 
     Args:
         links: the scan's links (a stair's ``via``: its tread levels, bottom up).
@@ -92,14 +94,16 @@ def stairs_within_norm(links: list[ScanLink], heights: list[float]) -> list[Scan
     Returns:
         The links, the moved flights' risers as written.
     """
-    out = []
-    for k in links:
-        moved = {*k.via, k.upper}
-        if k.kind == "stair" and k.risers and not moved & _fixed_levels(links, k):
-            r = min(max(k.risers[0], MIN_RISER + WRITE_MARGIN), MAX_RISER - WRITE_MARGIN)
-            if r != k.risers[0]:
-                for n, i in enumerate([*k.via, k.upper], start=1):
-                    heights[i] = heights[k.lower] + n * r
-                k = dataclasses.replace(k, risers=(r,) * len(k.risers))
-        out.append(k)
-    return out
+    new: dict[int, ScanLink] = {}
+    stairs = [k for k in links if k.kind == "stair" and k.risers]
+    for k in sorted(stairs, key=lambda k: heights[k.lower]):
+        n = len(k.risers)
+        r = (heights[k.upper] - heights[k.lower]) / n
+        if not {*k.via, k.upper} & _held_levels(links, k):
+            r = min(max(r, MIN_RISER + WRITE_MARGIN), MAX_RISER - WRITE_MARGIN)
+            heights[k.upper] = heights[k.lower] + n * r
+        for j, i in enumerate(k.via, start=1):
+            heights[i] = heights[k.lower] + j * r
+        if r != k.risers[0]:
+            new[id(k)] = dataclasses.replace(k, risers=(r,) * n)
+    return [new.get(id(k), k) for k in links]

@@ -90,6 +90,21 @@ def test_a_stair_whose_top_is_another_links_lower_end_keeps_its_riser():
     assert stairs_within_norm(links, list(heights)) == links
 
 
+def test_flights_on_from_a_landing_are_written_bottom_up():
+    """Hall 1169: 4 risers fitted at 0.139995 m up to a landing, 3 more at 0.140008 m on to a
+    deck; raising the landing to the first flight's 0.1401 m takes the second under the norm,
+    so it is written from the landing as written, at 0.1401 m too."""
+    heights = [0.0, 0.139995, 0.27999, 0.419985, 0.55998, 0.699988, 0.839996, 0.980004]
+    links = [
+        ScanLink("stair", 4, 7, (0.140008,) * 3, 0.34, (5, 6)),  # the upper flight first
+        ScanLink("stair", 0, 4, (0.139995,) * 4, 0.35, (1, 2, 3)),
+    ]
+    out = stairs_within_norm(links, heights)
+    r = MIN_RISER + WRITE_MARGIN
+    assert [k.risers[0] for k in out] == pytest.approx([r, r], abs=1e-12)
+    assert heights == pytest.approx([k * r for k in range(8)], abs=1e-12)
+
+
 def test_a_step_platform_over_the_norm_is_lowered_under_it():
     heights = [0.0, 0.19001]
     (out,) = steps_within_norm([ScanLink("step", 0, 1, (0.19001,))], heights)
