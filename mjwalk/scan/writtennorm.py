@@ -10,8 +10,9 @@ beyond it. The written scene is loaded as any scene, whose level graph holds the
 :func:`stairs_within_norm` writes a flight at its limiting riser (its treads and top level moved
 to that riser's multiples above its bottom), each a margin inside the limit that survives the
 written boxes' rounding. A level other links depend on keeps its measured height (moving it
-would move them), but for a landing a flight goes on from: flights are written bottom up. Metres, scene frame
-(floor at z = 0); pits below the floor: :func:`mjwalk.scan.scanpits.within_norm`.
+would move them), but for a landing a flight goes on from: flights are written bottom up.
+Metres, scene frame (floor at z = 0); pits below the floor:
+:func:`mjwalk.scan.scanpits.within_norm`.
 """
 
 from __future__ import annotations
