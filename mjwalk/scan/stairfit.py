@@ -3,15 +3,14 @@ treads to a level, as stairs are built (DIN 18065 allows 5 mm, ``norms.STAIR_TOL
 
 The riser is the rise between the two end levels over the number of risers; the tread depth and
 the first riser's place a least-squares line through the treads' front and back edges along the
-climb (the axis its treads and top level share, :func:`~mjwalk.scan.minrect.common_axis`,
-nearest the treads' run; into a pit, whose top is the floor, the axis its treads share, and the
-floor's rim along the flight as the last riser, :func:`rim_edge`); when a tread is seen in part
-(its back in the shadow of the next tread or level), through the treads' front edges and the top
-level's. The chain is a stair when each tread's fitted height and edges lie within the scan's
-tolerance of the flight (:data:`HEIGHT_TOL`, :data:`EDGE_CELLS`) and the flight is within the
-norms (riser ``MIN_RISER``-``MAX_RISER``, tread ``MIN_TREAD``-``MAX_TREAD``, step rule
-``STEP_RULE``; the riser measured, so within ``planefit.RISER_TOL`` of them, the tread within
-:func:`tread_slack`).
+climb (the top level's axis nearest the treads' run; into a pit, whose top is the floor, the
+axis all its treads share, :func:`~mjwalk.scan.minrect.common_axis`, and the floor's rim along
+the flight as the last riser, :func:`rim_edge`); when a tread is seen in part (its back in
+the shadow of the next tread or level), through the treads' front edges and the top level's. The
+chain is a stair when each tread's fitted height and edges lie within the scan's tolerance of
+the flight (:data:`HEIGHT_TOL`, :data:`EDGE_CELLS`) and the flight is within the norms (riser
+``MIN_RISER``-``MAX_RISER``, tread ``MIN_TREAD``-``MAX_TREAD``, step rule ``STEP_RULE``; the
+riser measured, so within ``planefit.RISER_TOL`` of them, the tread within :func:`tread_slack`).
 Used by :mod:`mjwalk.scan.levelboxes` (flights up), :mod:`mjwalk.scan.scanpits` (down into pits)
 and :mod:`mjwalk.scan.hiddentread`. Metres, scene frame (floor at z = 0).
 """
@@ -135,20 +134,19 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
     dz = max(abs(t.height - h) for t, h in zip(treads, heights, strict=True))
     mids = [cell_centres(t.cells, plan).mean(axis=0) for t in treads]
     top_rect = min_rectangle(top.cells, plan.x0, plan.y0, plan.resolution)
-    # a flight turns with its treads and its top level: the axis all their rectangles fit best
-    # (one region's own rectangle can tip by atan(2 res / width) where a cell more or less at a
-    # corner tips its hull: hall 1163's square 1.19 m landing's rectangle lay on a 1:4 lattice
-    # edge, 1.2 deg off its flight, and the landing written square to it met the last tread
-    # 1.2 cm off the flight's tread); down into a pit (its top the floor, whose outline is the
-    # hall's) its treads alone (hall 1069: a tread's own rectangle 1.2 deg off, its top tread
-    # met the cell-stepped floor edge in two stretches)
-    regions = [t.cells for t in treads] + ([top.cells] if top.kind != "floor" else [])
-    axis = common_axis(regions, plan.x0, plan.y0, plan.resolution)
-    # the axis and its normal as a unit square, its axis nearest the treads' run taken
-    run = axis_near(
-        np.array([[0.0, 0.0], axis, axis + [-axis[1], axis[0]], [-axis[1], axis[0]]]),
-        mids[-1] - mids[0],
-    )
+    # a flight down into a pit (its top the floor, whose outline is the hall's) turns with its
+    # own treads: the axis all its treads' rectangles fit best (one tread's own rectangle can
+    # tip by atan(2 res / width), 1.2 deg in generated hall 1069, and its top tread then met
+    # the cell-stepped floor edge in two stretches)
+    if top.kind != "floor":
+        run = axis_near(top_rect, mids[-1] - mids[0])
+    else:
+        axis = common_axis([t.cells for t in treads], plan.x0, plan.y0, plan.resolution)
+        # the axis and its normal as a unit square, its axis nearest the treads' run taken
+        run = axis_near(
+            np.array([[0.0, 0.0], axis, axis + [-axis[1], axis[0]], [-axis[1], axis[0]]]),
+            mids[-1] - mids[0],
+        )
     side = np.array([-run[1], run[0]])
     rows, rhs, lefts, rights = [], [], [], []
     for k, t in enumerate(treads):
