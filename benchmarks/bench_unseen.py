@@ -269,7 +269,11 @@ def _written(true_graph, scene, to_written: np.ndarray) -> dict:
 def _inner_point(graph, level) -> tuple[float, float]:
     """A point where a level is walked on (world xy, metres): inside its surfaces, not under a
     higher surface (a pit's bottom is the hall's floor plane, under the floor's boxes but in the
-    pit), and :data:`INNER_MARGIN` inside that region's edges when it is wide enough."""
+    pit), and :data:`INNER_MARGIN` inside that region's edges when it is wide enough; where
+    the hall's own graph stands a walker on that level (:meth:`LevelGraph.surface_at`: room
+    above it), since an obstacle no walk surface tops (hall 1146's pedestal, whose deck is no
+    level) hides the level under it in the hall and the written scene alike, and the region's
+    representative point fell on it (level +0.00 m missing in a scene that has it)."""
     import shapely  # deferred: slow to import; the scan stage alone needs it
 
     def poly(i):
@@ -284,8 +288,28 @@ def _inner_point(graph, level) -> tuple[float, float]:
     free = own.difference(shapely.union_all(above)) if above else own
     free = free if not free.is_empty else own
     inner = free.buffer(-INNER_MARGIN)
-    c = (inner if not inner.is_empty else free).representative_point()
+    region = inner if not inner.is_empty else free
+    c = region.representative_point()
+    for q in [(c.x, c.y), *_grid_points(region)]:
+        if graph.surface_at(q, level.height) in level.surfaces:
+            return float(q[0]), float(q[1])
     return float(c.x), float(c.y)
+
+
+def _grid_points(region, n: int = 40) -> list[tuple[float, float]]:
+    """Points of a region on an ``n`` x ``n`` grid over its bounds (world xy, metres), from
+    its representative point outwards."""
+    import shapely  # deferred: slow to import; the scan stage alone needs it
+
+    x0, y0, x1, y1 = region.bounds
+    c = region.representative_point()
+    pts = [
+        (float(x), float(y))
+        for x in np.linspace(x0, x1, n)
+        for y in np.linspace(y0, y1, n)
+        if region.contains(shapely.Point(x, y))
+    ]
+    return sorted(pts, key=lambda q: (q[0] - c.x) ** 2 + (q[1] - c.y) ** 2)
 
 
 #: Metres a level's test point keeps from its edges: five floor-plan cells (2 cm,

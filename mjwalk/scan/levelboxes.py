@@ -42,8 +42,9 @@ from mjwalk.scan.scanlevels import (
 )
 from mjwalk.scan.scanramps import ScanRamp, find_ramps, ramp_box, renumber
 from mjwalk.scan.stairfit import fit_stair
+from mjwalk.scan.writtennorm import stairs_within_norm, steps_within_norm
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
-from mjwalk.world.norms import CONTACT_GAP, MAX_RISER, MIN_STAIR_RISERS
+from mjwalk.world.norms import CONTACT_GAP, MIN_STAIR_RISERS
 
 #: Material of the level boxes.
 LEVEL_MATERIAL = "scan_level"
@@ -327,48 +328,8 @@ def scan_levels(levelled: np.ndarray, plan: FloorPlan) -> LevelPlan | None:
     for chain, fit in stairs:  # a flight's top in parts: its landing strip is one of them
         if len(parts[chain[-1]]) > 1:
             parts[chain[-1]].append(fit["rects"][-1] + fit["tread"] * fit["run"])
-    links = _steps_within_norm(links, heights)
+    links = steps_within_norm(stairs_within_norm(links, heights), heights)
     return _assemble(levels, links, heights, rects, plan, layers, ramps, parts)
-
-
-#: How far under :data:`~mjwalk.world.norms.MAX_RISER` a step the scan measured over it (within
-#: its noise) is written, metres: the written box's centre and half-height are each rounded to
-#: 1e-5 m (:func:`mjwalk.scan.scene.write_scene`), so its top may land 2e-5 m off.
-WRITTEN_UNDER = 2e-5
-
-
-def _steps_within_norm(links: list[ScanLink], heights: list[float]) -> list[ScanLink]:
-    """Lower, in ``heights``, a platform reached only by single steps whose measured riser
-    lies over :data:`~mjwalk.world.norms.MAX_RISER` but within the scan's noise (the scan
-    accepted it: ``RISER_TOL``) to :data:`WRITTEN_UNDER` under the norm, so that the written
-    scene, loaded with the norm's own limit, keeps the step the scan recognised (hall 1129: a
-    0.19 m step platform fitted at 0.19001 m and written at 0.19002 m was no step, and so no
-    level, in the written scene). A platform that is also a stair's, a ramp's or another
-    step's lower end keeps its measured height.
-
-    Args:
-        links: the scan's links.
-        heights: each level's written height, metres (changed in place).
-
-    Returns:
-        The links, the lowered platforms' step risers as written.
-    """
-    lower_of = {k.lower for k in links}
-    others = {k.upper for k in links if k.kind != "step"}
-    tops: dict[int, float] = {}
-    for k in links:
-        if k.kind == "step" and k.upper not in lower_of | others:
-            cap = heights[k.lower] + MAX_RISER - WRITTEN_UNDER
-            if heights[k.upper] > cap:
-                tops[k.upper] = min(tops.get(k.upper, heights[k.upper]), cap)
-    for j, h in tops.items():
-        heights[j] = h
-    return [
-        dataclasses.replace(k, risers=(heights[k.upper] - heights[k.lower],))
-        if k.upper in tops
-        else k
-        for k in links
-    ]
 
 
 def _assemble(

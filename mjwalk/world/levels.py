@@ -397,6 +397,36 @@ def _riser_ahead(
     return max(front, key=lambda k: _segment_length(k.lower_edge)), riser
 
 
+def _first_riser(
+    first: LevelLink, steps: list[LevelLink], options: LevelOptions
+) -> list[LevelLink]:
+    """The stretches of a flight's first riser: the step links from its bottom onto its first
+    tread in line with ``first`` (both ends within ``stair_tol`` of its line); a floor written
+    as boxes round a pit meets it in several (hall 1162: a 0.55 m one was a step of its own).
+
+    Args:
+        first: the step link the flight starts with.
+        steps: all step links.
+        options: the stair tolerance.
+
+    Returns:
+        ``first`` and the other stretches, in ``steps``' order.
+    """
+
+    def in_line(k: LevelLink) -> bool:
+        a, b = k.lower_edge
+        return (
+            max(_line_distance(first.lower_edge, (a, a)), _line_distance(first.lower_edge, (b, b)))
+            <= options.stair_tol
+        )
+
+    return [
+        k
+        for k in steps
+        if k is first or (k.lower == first.lower and k.upper == first.upper and in_line(k))
+    ]
+
+
 def _segment_length(seg: Segment) -> float:
     """A segment's length, metres."""
     return float(np.linalg.norm(np.subtract(seg[1], seg[0])))
@@ -437,6 +467,9 @@ def _stairs(
             chain.append(ahead)
             replaced += riser
         if levels[chain[-1].upper].kind != "tread" and _is_stair(chain, options):
+            stretches = _first_riser(first, steps, options)
+            chain[0] = max(stretches, key=lambda k: _segment_length(k.lower_edge))
+            replaced += [k for k in stretches if k is not first]
             out.append((chain, replaced))
             used.update(k.upper for k in chain[:-1])
     return out

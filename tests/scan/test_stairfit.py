@@ -230,3 +230,39 @@ def test_a_pit_flight_meets_the_floor_edge(tmp_path):
     links = _pit_links(model)
     assert [(k.kind, len(k.risers)) for k in links] == [("stair", 4)]
     assert links[0].risers[0] == pytest.approx(0.1724, abs=0.005)
+
+
+@pytest.mark.slow  # a generated hall's scan: about 30 s on a loaded 2-core machine
+@pytest.mark.xfail(
+    strict=True,
+    reason="open: hall 1163's first flight is fitted along its landing's own rectangle, 1.18 deg "
+    "off (the landing's cells' hull on a 1:4 lattice edge); the axis its treads and landing "
+    "share fixed 1163 but broke hall 1166 (two axis-aligned treads outweighed its landing)",
+)
+def test_a_flight_turns_with_its_treads_and_landing_not_the_landings_rectangle(tmp_path):
+    """Hall 1163: a turning stair, 3 risers of 0.19 m up to a 1.19 m square landing at 0.57 m
+    and 5 more to a deck, both flights square to the landing (yaw 102.85 / 12.85 deg). The
+    landing's own minimum rectangle lies on a 1:4 lattice edge (104.04 deg); the first flight
+    fitted along it meets the landing, written square to the second flight, 1.2 cm off its
+    tread, and the written scene has three steps for its stair. Wanted: the flight within
+    atan(res / width) (a cell over the treads' width) of the hall's, and both flights stairs."""
+    import mujoco  # deferred: only the slow generated-hall tests need MuJoCo
+
+    from mjwalk.world.levels import level_graph  # deferred: with the slow tests' imports
+    from mjwalk.world.surfaces import find_walk_surfaces
+
+    _, scene, model = _written_hall(1163, tmp_path)
+    assert scene.levels is not None
+    low = [k for k in scene.levels.links if k.kind == "stair" and len(k.risers) == 3]
+    (first,) = low
+    yaws = []
+    for i in first.via:
+        g = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, f"scan_level_{i}")
+        q = model.geom_quat[g]
+        yaws.append(2 * np.arctan2(q[3], q[0]))
+    true = np.radians(102.8533)
+    off = [abs((y - true + np.pi / 4) % (np.pi / 2) - np.pi / 4) for y in yaws]
+    assert max(off) <= np.arctan(RES / 1.045), np.degrees(off)  # the treads 1.045 m wide
+    graph = level_graph(find_walk_surfaces(model))
+    stairs = sorted(len(k.risers) for k in graph.links if k.kind == "stair")
+    assert stairs == [3, 5]

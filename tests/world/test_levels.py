@@ -302,6 +302,28 @@ def test_a_landing_box_a_centimetre_behind_the_top_riser_is_the_same_riser():
     assert g.links[0].tread == pytest.approx(0.28, abs=1e-6)
 
 
+def test_a_first_riser_meeting_the_floor_in_two_stretches_is_the_stairs_alone():
+    """A flight of four 0.17 m risers on a floor written as two boxes side by side, their seam
+    across the first riser at y = -0.1 (a floor round a pit, fresh hall 1162 of
+    benchmarks/bench_unseen.py): the floor meets the first tread along two stretches of one
+    riser (0.6 m and 0.8 m), two step links. The flight is one stair crossed at the longer
+    stretch, and the other stays no step onto its first tread (before: an extra step link)."""
+    geoms = (
+        '<geom name="floor_a" type="box" size="3.5 1.45 0.05" pos="0.5 -1.55 -0.05"/>'
+        '<geom name="floor_b" type="box" size="3.5 1.55 0.05" pos="0.5 1.45 -0.05"/>'
+        + three_treads()
+        + '<geom name="deck" type="box" size="1 1 0.34" pos="1.84 0 0.34"/>'
+    )
+    model = mujoco.MjModel.from_xml_string(f"<mujoco><worldbody>{geoms}</worldbody></mujoco>")
+    g = level_graph(find_walk_surfaces(model, None))
+    deck = level_named(g, "deck")
+    assert level_named(g, "floor_a") == level_named(g, "floor_b") == 0
+    assert [(k.kind, k.lower, k.upper) for k in g.links] == [("stair", 0, deck)]
+    (x0, y0), (x1, y1) = g.links[0].lower_edge
+    assert x0 == pytest.approx(0.0, abs=0.03) and x1 == pytest.approx(0.0, abs=0.03)
+    assert abs(y1 - y0) == pytest.approx(0.8, abs=0.05)  # the longer stretch, floor_b's
+
+
 def _mesh_flight(riser: float, tread: float, n: int) -> mujoco.MjModel:
     """A flight of ``n`` risers towards +x built as a CAD export writes it: each tread and the
     landing one prism mesh standing on the floor (vertices in world coordinates, stored by

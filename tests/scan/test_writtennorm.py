@@ -1,0 +1,112 @@
+"""mjwalk.scan.writtennorm: steps and stairs the scan measured a hair outside DIN 18065's riser
+limits are written inside them, so the written scene keeps the links the scan recognised."""
+
+from __future__ import annotations
+
+import mujoco
+import pytest
+
+from mjwalk.scan import build_scene
+from mjwalk.scan.raycast import synthetic_scan
+from mjwalk.scan.scanlevels import ScanLink
+from mjwalk.scan.stairfit import WRITE_MARGIN
+from mjwalk.scan.writtennorm import WRITTEN_UNDER, stairs_within_norm, steps_within_norm
+from mjwalk.world.levels import level_graph
+from mjwalk.world.norms import MAX_RISER, MIN_RISER
+from mjwalk.world.surfaces import find_walk_surfaces
+
+#: A straight flight of four 0.19 m risers (DIN 18065's largest) and 0.265 m treads
+#: (2 h + g = 0.645 m) up to a deck at 0.76 m.
+RISER, TREAD, N = 0.19, 0.265, 4
+
+
+def _flight_xml() -> str:
+    geoms = ['<geom name="floor" type="plane" size="4 3 0.05"/>']
+    for k in range(N - 1):
+        h = (k + 1) * RISER
+        geoms.append(
+            f'<geom name="t{k + 1}" type="box" pos="{TREAD * k + TREAD / 2:.4f} 0 {h / 2:.4f}" '
+            f'size="{TREAD / 2:.4f} 0.5 {h / 2:.4f}"/>'
+        )
+    top, x0 = N * RISER, TREAD * (N - 1)
+    geoms.append(
+        f'<geom name="deck" type="box" pos="{x0 + 0.75:.4f} 0 {top / 2:.4f}" '
+        f'size="0.75 1.0 {top / 2:.4f}"/>'
+    )
+    return "<mujoco><worldbody>" + "".join(geoms) + "</worldbody></mujoco>"
+
+
+@pytest.mark.slow  # a synthetic scan: about 12 s on a loaded 2-core machine
+def test_a_flight_of_0_19_m_risers_fitted_a_hair_over_stays_a_stair_in_the_written_scene():
+    """Scan seed 4 (0.4 deg rays, 5 mm noise) fits the flight's riser at 0.190008 m, within the
+    scan's noise over the norm: the scan keeps the stair, and so must the scene it writes
+    (before: written with 0.19001 m risers, only the first tread was a step up, the deck and
+    the upper treads were no levels of the written scene)."""
+    model = mujoco.MjModel.from_xml_string(_flight_xml())
+    scanners = [(-1.0, 0.3, 1.6), (-2.5, -0.3, 1.7), (1.8, 0.5, 2.4)]
+    scan = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=4)
+    scene = build_scene(scan.points, source="flight")
+    assert scene.levels is not None
+    graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_string(scene.xml)))
+    heights = sorted(lv.height for lv in graph.levels)
+    assert heights == pytest.approx([k * RISER for k in range(N + 1)], abs=0.002)
+    stairs = [k for k in graph.links if k.kind == "stair"]
+    assert len(stairs) == 1 and len(stairs[0].risers) == N
+    assert graph.levels[stairs[0].upper].height == pytest.approx(N * RISER, abs=0.002)
+    (stair,) = [k for k in scene.levels.links if k.kind == "stair"]
+    assert stair.risers == (MAX_RISER - WRITE_MARGIN,) * N  # as written
+
+
+def _stair(riser: float, lower: int = 0, upper: int = 4) -> ScanLink:
+    return ScanLink("stair", lower, upper, (riser,) * 4, 0.265, (1, 2, 3))
+
+
+def test_a_stair_over_the_norm_moves_its_treads_and_top_to_the_limit():
+    heights = [0.0, 0.19002, 0.38004, 0.57006, 0.76008]
+    (out,) = stairs_within_norm([_stair(0.19002)], heights)
+    r = MAX_RISER - WRITE_MARGIN
+    assert out.risers == (r,) * 4
+    assert heights == pytest.approx([0.0, r, 2 * r, 3 * r, 4 * r], abs=1e-12)
+
+
+def test_a_stair_under_the_least_riser_moves_up_to_it():
+    heights = [0.1, 0.2398, 0.3796, 0.5194, 0.6592]
+    (out,) = stairs_within_norm([_stair(0.1398)], heights)
+    r = MIN_RISER + WRITE_MARGIN
+    assert out.risers[0] == pytest.approx(r, abs=1e-12)
+    assert heights[4] == pytest.approx(0.1 + 4 * r, abs=1e-12)
+
+
+def test_a_stair_inside_the_norm_is_unchanged():
+    heights = [0.0, 0.17, 0.34, 0.51, 0.68]
+    links = [_stair(0.17)]
+    assert stairs_within_norm(links, heights) == links
+    assert heights == [0.0, 0.17, 0.34, 0.51, 0.68]
+
+
+def test_a_stair_whose_top_is_another_links_lower_end_keeps_its_riser():
+    heights = [0.0, 0.19002, 0.38004, 0.57006, 0.76008, 0.93]
+    links = [_stair(0.19002), ScanLink("step", 4, 5, (0.16992,))]
+    assert stairs_within_norm(links, list(heights)) == links
+
+
+def test_flights_on_from_a_landing_are_written_bottom_up():
+    """Hall 1169: 4 risers fitted at 0.139995 m up to a landing, 3 more at 0.140008 m on to a
+    deck; raising the landing to the first flight's 0.1401 m takes the second under the norm,
+    so it is written from the landing as written, at 0.1401 m too."""
+    heights = [0.0, 0.139995, 0.27999, 0.419985, 0.55998, 0.699988, 0.839996, 0.980004]
+    links = [
+        ScanLink("stair", 4, 7, (0.140008,) * 3, 0.34, (5, 6)),  # the upper flight first
+        ScanLink("stair", 0, 4, (0.139995,) * 4, 0.35, (1, 2, 3)),
+    ]
+    out = stairs_within_norm(links, heights)
+    r = MIN_RISER + WRITE_MARGIN
+    assert [k.risers[0] for k in out] == pytest.approx([r, r], abs=1e-12)
+    assert heights == pytest.approx([k * r for k in range(8)], abs=1e-12)
+
+
+def test_a_step_platform_over_the_norm_is_lowered_under_it():
+    heights = [0.0, 0.19001]
+    (out,) = steps_within_norm([ScanLink("step", 0, 1, (0.19001,))], heights)
+    assert heights[1] == pytest.approx(MAX_RISER - WRITTEN_UNDER, abs=1e-12)
+    assert out.risers[0] == pytest.approx(heights[1], abs=1e-12)
