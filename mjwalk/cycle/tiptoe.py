@@ -83,10 +83,8 @@ def max_rise(stature: float) -> float:
     Returns:
         Metres (0.075 m at H = 1.53 m).
     """
-    geom = leg_geometry(stature)
     t = PLANTARFLEXION_SHARE * math.radians(-ROM_DEG["ankle_flex"][0])
-    b, a = ball_offset(geom), geom.ankle_height
-    return b * math.sin(t) + a * (math.cos(t) - 1.0)
+    return _ankle_lift(t, leg_geometry(stature))[1]
 
 
 def rise_steps(stature: float) -> np.ndarray:
@@ -116,8 +114,15 @@ def heel_rise_of(ctx: CycleContext, q: np.ndarray) -> float:
     t = float(q[ctx.jointmap.adr("toe_l")])
     if t <= 0.0:
         return 0.0
-    geom = leg_geometry(ctx.spec.stature)
-    return ball_offset(geom) * math.sin(t) + geom.ankle_height * (math.cos(t) - 1.0)
+    return _ankle_lift(t, leg_geometry(ctx.spec.stature))[1]
+
+
+def _ankle_lift(t: float, geom: LegGeometry) -> tuple[float, float]:
+    """How far (m) a foot turned heel-up ``t`` radians about its ball moves its ankle:
+    forward (along the foot) and up."""
+    b, a = ball_offset(geom), geom.ankle_height
+    # the ankle over the ball, (-b, a) from it, turned heel-up by t
+    return b * (1.0 - math.cos(t)) + a * math.sin(t), b * math.sin(t) + a * (math.cos(t) - 1.0)
 
 
 def tiptoe_pose(ctx: CycleContext, q0: np.ndarray, rise: float) -> np.ndarray:
@@ -209,10 +214,9 @@ class _Stance:
         lower by what the legs' tilt costs)."""
         jm = ctx.jointmap
         geom = leg_geometry(ctx.spec.stature)
-        b, a = ball_offset(geom), geom.ankle_height
-        # the ankle over the ball turned heel-up by t: forward and up
-        lift = (b * (1.0 - math.cos(t)) + a * math.sin(t)) * self.ahead
-        lift[2] += b * math.sin(t) + a * (math.cos(t) - 1.0)
+        forward, up = _ankle_lift(t, geom)
+        lift = forward * self.ahead
+        lift[2] += up
         f, h = self.forward, self.up
         dz = h - math.sqrt(max(h * h + f * f - (f + lean) ** 2, 0.0))
         shift = lift + lean * self.ahead - np.array([0.0, 0.0, dz])
@@ -243,9 +247,7 @@ class _Stance:
         """The lean (m) of a pose :meth:`raised` made: its pelvis's forward shift less the
         ankles' (read back from the root)."""
         jm = ctx.jointmap
-        geom = leg_geometry(ctx.spec.stature)
-        b, a = ball_offset(geom), geom.ankle_height
         t = float(q[jm.adr("toe_l")])
         r = jm.root
         moved = float((q[r : r + 3] - self.q0[r : r + 3]) @ self.ahead)
-        return moved - (b * (1.0 - math.cos(t)) + a * math.sin(t))
+        return moved - _ankle_lift(t, leg_geometry(ctx.spec.stature))[0]
