@@ -1,6 +1,7 @@
 """The minimum-area rectangle round a region of floor-plan cells, its two side lengths (a scan
 level's depth and width, :mod:`mjwalk.scan.scanlevels`), and the one axis that fits several
-regions' rectangles best (a flight's treads, :mod:`mjwalk.scan.stairfit`). Metres, scene frame."""
+regions' rectangles best (a flight's treads, :mod:`mjwalk.scan.stairfit`), and the long axis of
+several regions' pooled second moments (a raised flight's treads). Metres, scene frame."""
 
 from __future__ import annotations
 
@@ -89,6 +90,40 @@ def common_axis(regions: list[np.ndarray], x0: float, y0: float, res: float) -> 
             if area < best[0] - 1e-12:
                 best = (area, rot[0])
     return best[1]
+
+
+def principal_axis(regions: list[np.ndarray], x0: float, y0: float, res: float):
+    """The long axis of regions' cell centres' second moments, pooled about each one's centroid.
+
+    A rectangle ``w`` by ``d`` has second moments ``w**2 / 12`` and ``d**2 / 12`` along its
+    sides, so a long region's axis is read from all its cells, not from the few hull corners
+    its minimum rectangle rests on (one cell more or less at a corner turns that by up to about
+    ``atan(2 res / width)``); a square's moments are equal in every direction and give no axis
+    (the ratio 1). Regions pooled this way should share one axis (a flight's treads).
+
+    Args:
+        regions: (ny, nx) bool cells, each a non-empty region on one grid.
+        x0: the grid's lower x, metres.
+        y0: the grid's lower y, metres.
+        res: the cell edge, metres.
+
+    Returns:
+        ``(axis, ratio, axes)``: the pooled long axis, a (2,) unit vector in the scene frame;
+        the ratio of the pooled moments, long over short (at least 1; inf for cells on a line);
+        and each region's own long axis, (2,) unit vectors.
+    """
+    pooled = np.zeros((2, 2))
+    axes = []
+    for cells in regions:
+        iy, ix = np.nonzero(cells)
+        pts = np.column_stack([x0 + (ix + 0.5) * res, y0 + (iy + 0.5) * res])
+        q = pts - pts.mean(axis=0)
+        m = q.T @ q
+        axes.append(np.linalg.eigh(m)[1][:, 1])
+        pooled += m
+    w, v = np.linalg.eigh(pooled)
+    ratio = float(w[1] / w[0]) if w[0] > 1e-12 else math.inf
+    return v[:, 1], ratio, axes
 
 
 def rectangle_size(corners: np.ndarray) -> tuple[float, float]:

@@ -3,7 +3,8 @@ treads to a level, as stairs are built (DIN 18065 allows 5 mm, ``norms.STAIR_TOL
 
 The riser is the rise between the two end levels over the number of risers; the tread depth and
 the first riser's place a least-squares line through the treads' front and back edges along the
-climb (the top level's axis nearest the treads' run; into a pit, whose top is the floor, the
+climb (across the treads' shared long axis, :func:`treads_axis`, else the top level's axis
+nearest the treads' run; into a pit, whose top is the floor, the
 axis all its treads share, :func:`~mjwalk.scan.minrect.common_axis`, and the floor's rim along
 the flight as the last riser, :func:`rim_edge`); when a tread is seen in part (its back in
 the shadow of the next tread or level), through the treads' front edges and the top level's. The
@@ -21,7 +22,7 @@ import math
 
 import numpy as np
 
-from mjwalk.scan.minrect import common_axis, min_rectangle
+from mjwalk.scan.minrect import common_axis, min_rectangle, principal_axis
 from mjwalk.scan.obstacles import FLOOR_TOL, FloorPlan
 from mjwalk.scan.planefit import RISER_TOL
 from mjwalk.scan.scanlevels import ScanLevel, seen_in_part
@@ -31,6 +32,7 @@ from mjwalk.world.norms import (
     MIN_RISER,
     MIN_TREAD,
     STAIR_TOLERANCE,
+    STAND_WIDTH,
     STEP_RULE,
 )
 
@@ -139,14 +141,14 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
     # tip by atan(2 res / width), 1.2 deg in generated hall 1069, and its top tread then met
     # the cell-stepped floor edge in two stretches)
     if top.kind != "floor":
-        run = axis_near(top_rect, mids[-1] - mids[0])
+        axis = treads_axis(treads, plan)
+        # a raised flight climbs across its treads' long axis when they agree on one
+        # (:func:`treads_axis`); else along its top level's rectangle, nearest the treads' run
+        rect = top_rect if axis is None else _unit_square(np.array([-axis[1], axis[0]]))
+        run = axis_near(rect, mids[-1] - mids[0])
     else:
         axis = common_axis([t.cells for t in treads], plan.x0, plan.y0, plan.resolution)
-        # the axis and its normal as a unit square, its axis nearest the treads' run taken
-        run = axis_near(
-            np.array([[0.0, 0.0], axis, axis + [-axis[1], axis[0]], [-axis[1], axis[0]]]),
-            mids[-1] - mids[0],
-        )
+        run = axis_near(_unit_square(axis), mids[-1] - mids[0])
     side = np.array([-run[1], run[0]])
     rows, rhs, lefts, rights = [], [], [], []
     for k, t in enumerate(treads):
@@ -203,6 +205,39 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
         "riser": riser, "tread": tread, "heights": heights, "rects": rects, "run": run,
         "top_edge": first + (n - 1) * tread, "top_rect": top_rect, "dz": dz, "dxy": dxy,
     }  # fmt: skip
+
+
+def treads_axis(treads: list[ScanLevel], plan: FloorPlan) -> np.ndarray | None:
+    """The long axis a raised flight's treads share (across the climb), or None.
+
+    A flight's treads are its many parallel riser edges: each a person wide
+    (``norms.STAND_WIDTH``) and at most ``MAX_TREAD`` deep, so their pooled second moments
+    (:func:`~mjwalk.scan.minrect.principal_axis`, read from all their cells) give the flight's
+    axis. Its top level's own minimum rectangle rests on a few hull corners and can turn by
+    ``atan(2 res / width)``; a square landing's is, besides, no axis at all (its moments are
+    alike in every direction): generated hall 1163's 1.19 m landing's lay 1.18 deg off its
+    flight. The axis holds when the pooled moments are as long as such a tread's,
+    ``(STAND_WIDTH / MAX_TREAD)**2`` (2.6, a square's 1), and every tread's own axis lies within
+    ``atan(2 res / STAND_WIDTH)`` of it (a cell at either end of the narrowest tread).
+
+    Args:
+        treads: the flight's treads, bottom up.
+        plan: the floor plan (its grid).
+
+    Returns:
+        (2,) the unit axis along the treads' width, scene frame; None when they give none.
+    """
+    res = plan.resolution
+    axis, ratio, own = principal_axis([t.cells for t in treads], plan.x0, plan.y0, res)
+    tol = math.atan2(2 * res, STAND_WIDTH)
+    agree = all(abs(float(a @ axis)) >= math.cos(tol) for a in own)
+    return axis if ratio >= (STAND_WIDTH / MAX_TREAD) ** 2 and agree else None
+
+
+def _unit_square(axis: np.ndarray) -> np.ndarray:
+    """An axis and its normal as a unit square's corners, (4, 2), for :func:`axis_near`."""
+    normal = np.array([-axis[1], axis[0]])
+    return np.array([[0.0, 0.0], axis, axis + normal, normal])
 
 
 def tread_slack(risers: int, res: float) -> float:
