@@ -7,16 +7,20 @@ below the level: floor seen (floor points, :attr:`mjwalk.scan.obstacles.FloorPla
 inside the rectangle, farther than :data:`EDGE_CELLS` cells from the level's cells, in a region
 at least a foot wide (:data:`mjwalk.scan.obstacles.GAP_WIDTH`), and what was seen of neither
 next to it (the floor's shadow behind the level's edge). Cells of the rectangle where nothing
-was seen and that only the level walls in (the blind disc under a scanner standing on the
-level) are level, as small unscanned holes are floor
-(:data:`mjwalk.scan.obstacles.HOLE_RADIUS`). Otherwise the cells are sampled on a grid along the
-rectangle's axes and covered greedily by the largest rectangle of cells not yet covered, each
-grown while a whole row or column of the level lies beyond it (so parts overlap rather than
-leave thin slivers), until what is left holds no rectangle a tread deep and a person wide
-(``norms.MIN_TREAD`` by ``norms.STAND_WIDTH``, less a cell each side: no walk surface; those
-cells are left out, never air). The
-parts share the level's height and touch, so ``mjwalk.world.level_graph`` on the written scene
-groups them into the one level. Metres, scene frame.
+was seen and that only the level walls in (the blind disc under a scanner standing on the level,
+the shadow a rack on the level casts towards its edge) are level, as small unscanned holes are
+floor (:data:`mjwalk.scan.obstacles.HOLE_RADIUS`); floor seen within :data:`EDGE_CELLS` of the
+rectangle's outline does not open them to the floor, since that outline lies on the level's
+ragged edge and the floor seen there is the floor beyond it (hall 1178: a rack by the
+mezzanine's edge shadows the deck's corner, and the floor seen beside the deck where the outline
+passes made that corner and the scanners' blind discs next to it air). Otherwise the cells are
+sampled on a grid along the rectangle's axes and covered greedily by the largest rectangle of
+cells not yet covered, each grown while a whole row or column of the level lies beyond it (so
+parts overlap rather than leave thin slivers), until what is left holds no rectangle a tread
+deep and a person wide (``norms.MIN_TREAD`` by ``norms.STAND_WIDTH``, less a cell each side: no
+walk surface; those cells are left out, never air). The parts share the level's height and
+touch, so ``mjwalk.world.level_graph`` on the written scene groups them into the one level.
+Metres, scene frame.
 """
 
 from __future__ import annotations
@@ -134,7 +138,10 @@ def level_parts(
     occ = _sample(cells, pts, plan)
     seen = _sample(plan.floor if plan.seen is None else plan.seen, pts, plan) & ~occ
     lab, _ = ndimage.label(~occ & ~seen, np.ones((3, 3), bool))
-    shadow = np.unique(lab[ndimage.binary_dilation(seen, np.ones((3, 3), bool)) & (lab > 0)])
+    inside = np.zeros_like(seen)  # the rim's floor is the floor beyond the level's ragged edge
+    inside[EDGE_CELLS:-EDGE_CELLS, EDGE_CELLS:-EDGE_CELLS] = True
+    near_seen = ndimage.binary_dilation(seen & inside, np.ones((3, 3), bool))
+    shadow = np.unique(lab[near_seen & (lab > 0)])
     occ |= (lab > 0) & ~np.isin(lab, shadow)  # unseen, walled in by the level: level
     if built is not None:
         occ |= _outside(built, pts)
