@@ -42,13 +42,18 @@ def min_rectangle(cells: np.ndarray, x0: float, y0: float, res: float) -> np.nda
     return corners @ rot
 
 
+def _centres(cells: np.ndarray, x0: float, y0: float, res: float) -> np.ndarray:
+    """A region's cell centres, (K, 2) metres, scene frame."""
+    iy, ix = np.nonzero(cells)
+    return np.column_stack([x0 + (ix + 0.5) * res, y0 + (iy + 0.5) * res])
+
+
 def _hull(cells: np.ndarray, x0: float, y0: float, res: float) -> np.ndarray:
     """The convex hull of a region's cell centres, (K, 2) metres (the centres themselves when
     they lie on a line)."""
     from scipy.spatial import ConvexHull, QhullError  # deferred: scipy.spatial's slow import
 
-    iy, ix = np.nonzero(cells)
-    pts = np.column_stack([x0 + (ix + 0.5) * res, y0 + (iy + 0.5) * res])
+    pts = _centres(cells, x0, y0, res)
     try:
         return pts[ConvexHull(pts).vertices]
     except QhullError:  # a line of cells
@@ -92,7 +97,9 @@ def common_axis(regions: list[np.ndarray], x0: float, y0: float, res: float) -> 
     return best[1]
 
 
-def principal_axis(regions: list[np.ndarray], x0: float, y0: float, res: float):
+def principal_axis(
+    regions: list[np.ndarray], x0: float, y0: float, res: float
+) -> tuple[np.ndarray, float, list[np.ndarray]]:
     """The long axis of regions' cell centres' second moments, pooled about each one's centroid.
 
     A rectangle ``w`` by ``d`` has second moments ``w**2 / 12`` and ``d**2 / 12`` along its
@@ -115,8 +122,7 @@ def principal_axis(regions: list[np.ndarray], x0: float, y0: float, res: float):
     pooled = np.zeros((2, 2))
     axes = []
     for cells in regions:
-        iy, ix = np.nonzero(cells)
-        pts = np.column_stack([x0 + (ix + 0.5) * res, y0 + (iy + 0.5) * res])
+        pts = _centres(cells, x0, y0, res)
         q = pts - pts.mean(axis=0)
         m = q.T @ q
         axes.append(np.linalg.eigh(m)[1][:, 1])
