@@ -87,12 +87,14 @@ def _edge_contacts(
     d = (a1 - a0) / length
     q = p + gap * np.array([d[1], -d[0]])  # the outward normal of a CCW edge
     za = surfaces[ia].height_at(p)
+    qx0, qy0 = (float(v) for v in q.min(axis=0))
+    qx1, qy1 = (float(v) for v in q.max(axis=0))
     out = []
     for ib, sb in enumerate(surfaces):
         if ib == ia:
             continue
-        lo, hi = np.asarray(sb.footprint.bounds()[:2]), np.asarray(sb.footprint.bounds()[2:])
-        if np.any(q.max(axis=0) < lo - gap) or np.any(q.min(axis=0) > hi + gap):
+        x0, y0, x1, y1 = sb.footprint.bounds()
+        if qx1 < x0 - gap or qy1 < y0 - gap or qx0 > x1 + gap or qy0 > y1 + gap:
             continue
         on = sb.contains(q)
         if not np.any(on):

@@ -10,6 +10,7 @@ the slab their stadiums, and vertical (yaw-rotated) boxes their rectangles.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import math
 from dataclasses import dataclass
@@ -68,11 +69,17 @@ class Footprint:
         return self.radius == 0.0
 
     def bounds(self) -> tuple[float, float, float, float]:
-        """The footprint's bounding box.
+        """The footprint's bounding box (worked out once: a level graph asks a surface's
+        thousands of times).
 
         Returns:
             (xmin, ymin, xmax, ymax), metres.
         """
+        return self._box
+
+    @functools.cached_property
+    def _box(self) -> tuple[float, float, float, float]:
+        """:meth:`bounds`, computed on first use (the dataclass is frozen, its vertices fixed)."""
         lo = self.vertices.min(axis=0) - self.radius
         hi = self.vertices.max(axis=0) + self.radius
         return float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])

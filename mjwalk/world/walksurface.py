@@ -188,18 +188,36 @@ class WalkSurface:
             (...) free heights, metres, at least 0.
         """
         xy = np.asarray(xy, dtype=float)
-        z = self.height_at(xy)
-        out = np.full(xy.shape[:-1], np.inf)
-        for o in self.overhead:
-            lo = np.asarray(o.footprint.bounds()[:2])
-            hi = np.asarray(o.footprint.bounds()[2:])
-            near = np.all((xy >= lo) & (xy <= hi), axis=-1) & (o.top > z + _ABOVE)
+        shape = xy.shape[:-1]
+        flat = xy.reshape(-1, 2)
+        z = self.height_at(xy).reshape(-1)  # as the points came (the same arithmetic)
+        out = np.full(len(flat), np.inf)
+        if not self.overhead or out.size == 0:
+            return out.reshape(shape)
+        # Only the geoms whose box meets the points' box and whose top clears the lowest point
+        # can be near one (the test below, point by point, needs both): the rest are skipped.
+        box, top = self._overhead_boxes
+        pmin, pmax = flat.min(axis=0), flat.max(axis=0)
+        meets = np.all(box[:, 2:] >= pmin, axis=1) & np.all(box[:, :2] <= pmax, axis=1)
+        meets &= top > float(np.min(z)) + _ABOVE
+        if np.isnan(pmin).any() or np.isnan(pmax).any() or np.isnan(z).any():
+            meets[:] = True  # a NaN hides the others' extent: test every geom, as below
+        for k in np.flatnonzero(meets):
+            o = self.overhead[k]
+            lo, hi = box[k, :2], box[k, 2:]
+            near = np.all((flat >= lo) & (flat <= hi), axis=-1) & (o.top > z + _ABOVE)
             if not np.any(near):
                 continue
-            under = np.zeros_like(near)
-            under[near] = o.footprint.signed_distance(xy[near]) < -_ON_EDGE
-            out = np.where(under, np.minimum(out, np.maximum(o.bottom - z, 0.0)), out)
-        return out
+            idx = np.flatnonzero(near)
+            at = idx[o.footprint.signed_distance(flat[idx]) < -_ON_EDGE]  # the points under it
+            out[at] = np.minimum(out[at], np.maximum(o.bottom - z[at], 0.0))
+        return out.reshape(shape)
+
+    @functools.cached_property
+    def _overhead_boxes(self) -> tuple[np.ndarray, np.ndarray]:
+        """The overheads' bounding boxes (k, 4: xmin, ymin, xmax, ymax) and tops (k,), metres."""
+        box = np.array([o.footprint.bounds() for o in self.overhead], dtype=float).reshape(-1, 4)
+        return box, np.array([o.top for o in self.overhead], dtype=float)
 
     @functools.cached_property
     def headroom(self) -> HeadroomMap:

@@ -47,6 +47,45 @@ def test_free_height_and_head_fits():
         head_fits(r, xy, 0.0)
 
 
+def _free_height_one_by_one(surface: WalkSurface, xy: np.ndarray) -> np.ndarray:
+    """The free height as first written: every overhead tested against every point (the
+    surface's 1e-3 m overhead reach and 1e-6 m edge tolerance)."""
+    z = surface.height_at(xy)
+    out = np.full(xy.shape[:-1], np.inf)
+    for o in surface.overhead:
+        x0, y0, x1, y1 = o.footprint.bounds()
+        near = np.all((xy >= [x0, y0]) & (xy <= [x1, y1]), axis=-1) & (o.top > z + 1e-3)
+        under = np.zeros_like(near)
+        if np.any(near):
+            under[near] = o.footprint.signed_distance(xy[near]) < -1e-6
+        out = np.where(under, np.minimum(out, np.maximum(o.bottom - z, 0.0)), out)
+    return out
+
+
+def test_free_height_skipping_far_geoms_equals_testing_every_geom():
+    # 40 overheads scattered over and beside a ramp, some under its high end (their tops below
+    # the face there), points in batches, one by one, beyond the footprint and with a NaN
+    rng = np.random.default_rng(47)
+    over = []
+    for k in range(40):
+        x, y = rng.uniform(-3, 4), rng.uniform(-3, 13)
+        w, d = rng.uniform(0.05, 2.0, size=2)
+        bottom = rng.uniform(0.3, 2.5)
+        over.append(Overhead(f"o{k}", square(f"o{k}", x, y, x + w, y + d), bottom, bottom + 0.2))
+    r = ramp(over)
+    xy = rng.uniform([-4, -4], [5, 14], size=(3000, 2))
+    np.testing.assert_array_equal(r.free_height(xy), _free_height_one_by_one(r, xy))
+    grid = xy[:600].reshape(20, 30, 2)
+    np.testing.assert_array_equal(r.free_height(grid), _free_height_one_by_one(r, grid))
+    for p in xy[:200]:
+        assert r.free_height(p) == _free_height_one_by_one(r, p)
+    holed = xy[:50].copy()
+    holed[7] = np.nan
+    np.testing.assert_array_equal(r.free_height(holed), _free_height_one_by_one(r, holed))
+    assert np.isfinite(r.free_height(xy)).sum() > 300  # many points under some geom
+    np.testing.assert_array_equal(ramp().free_height(xy[:5]), np.full(5, np.inf))
+
+
 def test_kind_is_checked():
     with pytest.raises(InputError, match="kind"):
         WalkSurface(0, "x", "roof", 0.0, square("x", 0, 0, 1, 1), 1.0, (0.5, 0.5), 0, 0, 0, 0, 1, 1)

@@ -1,0 +1,106 @@
+"""Cold start of a scene on several levels: each run a fresh process (issue 47's cost target).
+
+Run: PYTHONPATH=. python3 benchmarks/bench_levels_cold.py [--runs 5] [--fresh-cache]
+     [--walk stand_rack1 stand_mezz_rack]
+
+Each run starts a new Python process that loads the default step model, then times (CPU,
+``time.process_time``) ``load_workplace`` of the scene, the first ``plan_walk`` in it (levels,
+level views, crossings, numba kernels first used by a level walk loaded from numba's cache) and
+the same walk again (warm). The same for the station's flat twin (``bench_levels.flat_twin``:
+its levels flattened, the same sites and floor) in its own fresh process, alternating, so the
+ratio of first plans says what a level scene's set-up costs over a flat scene's. Medians over
+``--runs``.
+
+``--fresh-cache`` points each process at an empty workplace cache (``$MJWALK_CACHE_DIR``, a new
+temporary folder; the trained models stay where they are): what the very first run on a scene
+costs. Without it the workplace cache is the user's own: what every later run costs.
+
+The child processes use only mjwalk's public API, so the script runs against any tree
+(``cd`` to it and set ``PYTHONPATH=.``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+CHILD = """
+import json, sys, time
+from pathlib import Path
+from mjwalk.world import load_workplace
+from mjwalk.gait.default import default_model
+from mjwalk.plan.walks import plan_walk
+scene, a, b = sys.argv[1:4]
+model = default_model(progress=False)
+t0 = time.process_time()
+wp = load_workplace(Path(scene))
+t1 = time.process_time()
+w = plan_walk(wp, a, b, model, rng=1)
+t2 = time.process_time()
+plan_walk(wp, a, b, model, rng=2)
+t3 = time.process_time()
+print(json.dumps({"load": t1 - t0, "first": t2 - t1, "warm": t3 - t2, "length": w.length}))
+"""
+
+
+def run_child(scene: Path, a: str, b: str, fresh_cache: bool) -> dict[str, float]:
+    """One fresh process's figures (CPU seconds: load, first plan, warm plan; metres)."""
+    env = dict(os.environ)
+    with tempfile.TemporaryDirectory() as tmp:
+        if fresh_cache:
+            env["MJWALK_CACHE_DIR"] = tmp
+        out = subprocess.run(
+            [sys.executable, "-W", "ignore", "-c", CHILD, str(scene), a, b],
+            capture_output=True, text=True, env=env, check=False,
+        )  # fmt: skip
+    if out.returncode:
+        raise SystemExit(f"child failed:\n{out.stderr}")
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def main() -> None:
+    """Print the medians of the level scene's and its flat twin's cold start."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--walk", nargs=2, default=["stand_rack1", "stand_mezz_rack"])
+    ap.add_argument("--fresh-cache", action="store_true", help="an empty workplace cache per run")
+    args = ap.parse_args()
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from bench_levels import SCENES, flat_twin  # deferred: after the path to benchmarks/
+
+    scene = SCENES / "multilevel_station.xml"
+    rows: dict[str, list[dict[str, float]]] = {"levels": [], "twin": []}
+    with tempfile.TemporaryDirectory() as tmp:
+        twin = flat_twin(scene, Path(tmp) / "flat_twin.xml")
+        run_child(scene, *args.walk, args.fresh_cache)  # warm-up: numba cache, file cache
+        for _ in range(args.runs):
+            rows["levels"].append(run_child(scene, *args.walk, args.fresh_cache))
+            rows["twin"].append(run_child(twin, *args.walk, args.fresh_cache))
+    med = {
+        side: {k: statistics.median(r[k] for r in runs) for k in runs[0]}
+        for side, runs in rows.items()
+    }
+    cache = "empty workplace cache" if args.fresh_cache else "workplace cache kept"
+    print(f"{args.walk[0]} -> {args.walk[1]}, {args.runs} fresh processes each ({cache}), CPU ms:")
+    print(f"{'scene':8} {'load':>7} {'first plan':>11} {'warm':>7} {'length m':>9}")
+    for side, m in med.items():
+        print(
+            f"{side:8} {1000 * m['load']:7.1f} {1000 * m['first']:11.1f} {1000 * m['warm']:7.1f} "
+            f"{m['length']:9.2f}"
+        )
+    lv, tw = med["levels"], med["twin"]
+    print(
+        f"cold ratio (first plan) {lv['first'] / tw['first']:.2f}, "
+        f"load + first plan {(lv['load'] + lv['first']) / (tw['load'] + tw['first']):.2f}, "
+        f"warm {lv['warm'] / tw['warm']:.2f}"
+    )
+
+
+if __name__ == "__main__":
+    main()
