@@ -6,7 +6,8 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from mjwalk.timeline.geomposes import body_poses, geom_poses, supported
+from mjwalk.body.humanoid import humanoid_model
+from mjwalk.timeline.geomposes import POOLED_MIN, body_poses, geom_poses, supported
 
 CHAIN = """<mujoco><worldbody>
 <body name="a" pos=".1 .2 1"><freejoint/><geom type="box" size=".1 .2 .3" pos=".05 0 0"/>
@@ -129,9 +130,6 @@ def test_large_outputs_reuse_memory_only_when_nothing_holds_it():
     """Outputs of at least POOLED_MIN numbers are written into kept memory: a result (or a view
     of it) still held is never written over by a later call, and once dropped its memory
     serves the next call, whose numbers are those of a fresh computation."""
-    from mjwalk.body.humanoid import humanoid_model
-    from mjwalk.timeline.geomposes import POOLED_MIN
-
     m, _ = humanoid_model()
     geoms = np.arange(m.ngeom)
     n = POOLED_MIN // (12 * len(geoms)) + 5  # frames enough to be pooled
