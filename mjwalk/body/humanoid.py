@@ -22,6 +22,7 @@ obstacles.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -60,13 +61,21 @@ PALM_SHARE = 0.45
 
 
 def _rad(name: str) -> list[float]:
+    """The range of joint ``name`` (side stripped) in radians, from :data:`ROM_DEG`."""
+    return list(_rad_kept(name))
+
+
+@functools.cache
+def _rad_kept(name: str) -> tuple[float, float]:
+    """:func:`_rad`, worked out once per name (a humanoid asks for 67 ranges; each operator's
+    stature builds one)."""
     key = name
     if key not in ROM_DEG:
         for suffix in ("_mcp", "_pip", "_dip"):
             if name.endswith(suffix):
                 key = "finger" + suffix
     lo, hi = ROM_DEG[key]
-    return [float(np.deg2rad(lo)), float(np.deg2rad(hi))]
+    return float(np.deg2rad(lo)), float(np.deg2rad(hi))
 
 
 #: Colours (RGBA) of the humanoid's skin, shirt, trousers and shoes.
@@ -442,22 +451,27 @@ class JointMap:
         Returns:
             the map of its hinges (free root excluded); SceneError without a root joint.
         """
-        names, adrs, ranges, root = [], [], [], None
+        names, adrs, rows, root = [], [], [], None
+        # the model's arrays read once (each attribute read of an MjModel makes a new array:
+        # three a joint cost about 0.3 ms a humanoid, built once per operator's stature)
+        types, qposadr = model.jnt_type.tolist(), model.jnt_qposadr.tolist()
+        free = int(mujoco.mjtJoint.mjJNT_FREE)
         for j in range(model.njnt):
             full = mujoco.mj_id2name(model, mujoco.mjtObj.mjOBJ_JOINT, j) or ""
             if not full.startswith(prefix):
                 continue
             short = full[len(prefix) :]
-            if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_FREE:
+            if types[j] == free:
                 if short == "root":
-                    root = int(model.jnt_qposadr[j])
+                    root = qposadr[j]
                 continue
             names.append(short)
-            adrs.append(int(model.jnt_qposadr[j]))
-            ranges.append(model.jnt_range[j].copy())
+            adrs.append(qposadr[j])
+            rows.append(j)
         if root is None:
             raise SceneError(f"model has no humanoid root joint {prefix + 'root'!r}")
-        return cls(tuple(names), np.array(adrs, dtype=int), np.array(ranges), root, prefix)
+        ranges = model.jnt_range[rows] if rows else np.array([])
+        return cls(tuple(names), np.array(adrs, dtype=int), ranges, root, prefix)
 
     def neutral_qpos(self, model: mujoco.MjModel, stature: float = DEFAULT_STATURE) -> np.ndarray:
         """``model.qpos0`` with the humanoid standing upright at the origin facing +x.

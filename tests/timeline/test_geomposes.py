@@ -6,7 +6,8 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from mjwalk.timeline.geomposes import body_poses, geom_poses, supported
+from mjwalk.body.humanoid import humanoid_model
+from mjwalk.timeline.geomposes import POOLED_MIN, body_poses, geom_poses, supported
 
 CHAIN = """<mujoco><worldbody>
 <body name="a" pos=".1 .2 1"><freejoint/><geom type="box" size=".1 .2 .3" pos=".05 0 0"/>
@@ -123,3 +124,32 @@ def test_table_columns_keep_the_layout_of_numpy_indexing():
         want = full[:, col]
         assert a.shape == want.shape and a.strides == want.strides
         assert np.array_equal(a, want) and not np.shares_memory(a, full)
+
+
+def test_large_outputs_reuse_memory_only_when_nothing_holds_it():
+    """Outputs of at least POOLED_MIN numbers are written into kept memory: a result (or a view
+    of it) still held is never written over by a later call, and once dropped its memory
+    serves the next call, whose numbers are those of a fresh computation."""
+    m, _ = humanoid_model()
+    geoms = np.arange(m.ngeom)
+    n = POOLED_MIN // (12 * len(geoms)) + 5  # frames enough to be pooled
+    rng = np.random.default_rng(8)
+    qa = m.qpos0 + rng.normal(scale=0.3, size=(n, m.nq))
+    qb = m.qpos0 + rng.normal(scale=0.3, size=(n, m.nq))
+    first = geom_poses(m, qa, geoms)
+    kept = [a.copy() for a in first]
+    view = first[1][3:7]
+    del first
+    second = geom_poses(m, qb, geoms)  # the view holds the first's memory
+    assert not np.shares_memory(view, second[1])
+    assert np.array_equal(view, kept[1][3:7])
+    del view
+    where = second[0].__array_interface__["data"][0]
+    want = [a.copy() for a in second]
+    del second
+    third = geom_poses(m, qa, geoms)  # the second's memory, free again
+    assert third[0].__array_interface__["data"][0] == where
+    assert all(a.tobytes() == b.tobytes() for a, b in zip(third, kept, strict=True))
+    assert all(
+        a.tobytes() == b.tobytes() for a, b in zip(geom_poses(m, qb, geoms), want, strict=True)
+    )

@@ -396,3 +396,17 @@ def test_slerp_declines_scipys_private_functions_that_differ(monkeypatch):
     monkeypatch.setattr(parts, "_rotation_cy", real)
     monkeypatch.setattr(parts, "_QUATS", [])
     assert parts._quat_functions() is real
+
+
+def test_slerp_composes_compiled_only_as_scipy_does(monkeypatch):
+    """The turn's quaternion products are compiled only after they gave scipy's compose_quat
+    bits (checked once per process, per functions): a compose_quat one ulp off is declined
+    (scipy's own then serves)."""
+    from types import SimpleNamespace
+
+    real = parts._rotation_cy
+    assert parts._compose_agrees(real)
+    off = SimpleNamespace(**{n: getattr(real, n) for n in parts._QUAT_FUNCTIONS.split()})
+    off.compose_quat = lambda p, q: np.nextafter(np.asarray(real.compose_quat(p, q)), 2.0)
+    assert not parts._compose_agrees(off)
+    assert parts._compose_agrees(real)
