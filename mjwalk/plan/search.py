@@ -31,8 +31,9 @@ in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change to this file's text,
 or processes keep running the old machine code (touching the file is not enough). The record of
 such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the GP draw's parts
-inlined, :mod:`mjwalk.gait.gpdraw`; before it, check_into tests the end pelvis and the ankle before the other pelvis samples, and a node keeps its closed-list key
-from the push; before it, the legs' checks
+inlined, :mod:`mjwalk.gait.gpdraw`; before it, check_into tests the end pelvis and the
+ankle before the other pelvis samples, and a node keeps its closed-list key from the push;
+before it, the legs' checks
 deferred to the pop, :func:`~mjwalk.plan.stepcheck.legs_recheck`; before it, the GP draws into
 work arrays kept for the whole search and into ``feats`` itself,
 :func:`~mjwalk.gait.gpdraw.sample_into`, and closing draws whose mean cannot end the walk
