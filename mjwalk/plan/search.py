@@ -32,9 +32,9 @@ in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan
 or processes keep running the old machine code (touching the file is not enough). The record of
 such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the step checks
 inlined into the loop, check_into, legs_recheck, legs_clear and the goal, key and closing
-tests; before it, the GP draw's parts inlined, :mod:`mjwalk.gait.gpdraw`; before it, check_into tests the end pelvis and the
-ankle before the other pelvis samples, and a node keeps its closed-list key from the push;
-before it, the legs' checks
+tests; before it, the GP draw's parts inlined, :mod:`mjwalk.gait.gpdraw`; before it,
+check_into tests the end pelvis and the ankle before the other pelvis samples, and a node
+keeps its closed-list key from the push; before it, the legs' checks
 deferred to the pop, :func:`~mjwalk.plan.stepcheck.legs_recheck`; before it, the GP draws into
 work arrays kept for the whole search and into ``feats`` itself,
 :func:`~mjwalk.gait.gpdraw.sample_into`, and closing draws whose mean cannot end the walk
