@@ -31,6 +31,12 @@ trees alternated on a loaded machine (load 7-8), CPU: hybrid 2.4-2.6 / 2.6-3.0 /
 12.4-12.7 / 13.1-13.2 ms (ae71305) -> 2.2 / 2.3 / 4.8 / 12.6 / 12.6 ms, expansions identical;
 the rest is the compiled search (about 16 us an expansion: 5 us the GP draw, the rest the
 ten steps' checks), so "at most 1.0x grid A*" is not reached by speed-ups that keep the walks.
+Branch plan50 (issue 50: the GP draw and the step checks inlined into the compiled search, the
+side gap's room compiled), 8 alternated rounds each on a loaded machine: hybrid medians
+3.00 / 3.55 / 8.90 / 15.35 / 26.2 ms (9d56241) -> 2.95 / 3.90 / 8.65 / 11.75 / 21.8 ms, the
+same expansions; the paired ratios per round spread 0.6-1.6, wider than the change. Both
+trees' planners in one process, alternated (min of 10 rounds, the same 20 walks a length):
+2.72 -> 2.59 / 3.85 -> 3.71 / 7.35 -> 7.03 ms a walk at 2 / 4 / 8 m (0.955 / 0.962 / 0.957).
 """
 
 from __future__ import annotations

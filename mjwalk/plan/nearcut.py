@@ -21,13 +21,22 @@ callers' answers are bit for bit those of asking every obstacle. Metres, world f
 from __future__ import annotations
 
 import math
+from operator import is_
 
 import numpy as np
 
 from mjwalk._jit import njit
+from mjwalk.world.footprint import polygon_distances
 from mjwalk.world.openings import passing_footprints
 
-__all__ = ["MARGIN", "ObstaclePack", "gap_candidates", "intruding_candidates", "pack"]
+__all__ = [
+    "MARGIN",
+    "ObstaclePack",
+    "gap_candidates",
+    "gap_room",
+    "intruding_candidates",
+    "pack",
+]
 
 #: How far (m) a bound must clear a threshold to decide without the exact call: a million
 #: times the rounding of a distance or product at tens of metres (about 1e-14 m).
@@ -58,6 +67,11 @@ class ObstaclePack:
         self.first = np.concatenate([[0], np.cumsum(self.count)[:-1]]).astype(np.int64)
         self.vertices = np.ascontiguousarray(np.vstack(verts) if verts else np.zeros((0, 2)))
         self.radius = np.array([float(fp.radius) for fp in footprints], dtype=float)
+        # each footprint object's rows (the side gap leaves out the one passed, found by
+        # identity: a dict lookup instead of a test per footprint per route)
+        self.rows: dict[int, list[int]] = {}
+        for k, fp in enumerate(footprints):
+            self.rows.setdefault(id(fp), []).append(k)
 
 
 def pack(workplace) -> ObstaclePack:
@@ -72,12 +86,14 @@ def pack(workplace) -> ObstaclePack:
         The pack.
     """
     obstacles = passing_footprints(workplace)  # its level's openings too (issue 47)
-    ids = tuple(map(id, obstacles))  # the kept footprints live on: their ids are not reused
     kept = workplace.__dict__.get("_obstacle_pack")
-    if kept is None or kept[0] != ids:
-        kept = (ids, ObstaclePack(obstacles), tuple(obstacles))
+    # the same footprint objects in the same order (kept alive by the pack's tuple), tested
+    # object by object in C (building a tuple of their ids took 20 us a call on a 144-box
+    # hall, a tenth of a side choice)
+    if kept is None or len(kept[1]) != len(obstacles) or not all(map(is_, kept[1], obstacles)):
+        kept = (ObstaclePack(obstacles), tuple(obstacles))
         workplace.__dict__["_obstacle_pack"] = kept
-    return kept[1]
+    return kept[0]
 
 
 @njit
@@ -243,3 +259,54 @@ def gap_candidates(
         pk.bounds, pk.vertices, pk.first, pk.count, pk.radius,
         np.ascontiguousarray(passed, dtype=np.bool_), float(gap_open),
     )  # fmt: skip
+
+
+@njit
+def _minimum(a, b):
+    """np.minimum of two floats: ``a`` where a <= b or a is NaN, else ``b`` (NaN propagates)."""
+    return a if (a <= b or a != a) else b
+
+
+@njit
+def gap_room(beside, floor, bounds, vertices, first, count, radius, passed, gap_open):
+    """The room beside each point of a side's route (:func:`mjwalk.plan.sides.side_gap`), in
+    one compiled pass: its distance from the floor's edges, at most ``gap_open``, lowered to
+    every polygon obstacle's exact signed distance (:func:`~mjwalk.world.footprint.
+    polygon_distances`) among :func:`gap_candidates`; the rounded segments among them are
+    left to the caller (their NumPy distance). Each step is the NumPy code's ``np.minimum``
+    (NaN propagating; a minimum's order does not change it), so the room is that code's to
+    the bit.
+
+    Args:
+        beside: (m >= 1, 2) the points, metres, world frame (C-contiguous).
+        floor: (4,) the floor's (xmin, ymin, xmax, ymax), metres.
+        bounds: :attr:`ObstaclePack.bounds`.
+        vertices: :attr:`ObstaclePack.vertices`.
+        first: :attr:`ObstaclePack.first`.
+        count: :attr:`ObstaclePack.count`.
+        radius: :attr:`ObstaclePack.radius`.
+        passed: (n,) bool, which obstacle is the one passed.
+        gap_open: the cap, metres.
+
+    Returns:
+        (room (m,) metres, the rounded-segment candidates' indices, ascending).
+    """
+    m = beside.shape[0]
+    other = np.empty(m)
+    xmin, ymin, xmax, ymax = floor[0], floor[1], floor[2], floor[3]
+    for i in range(m):
+        x, y = beside[i, 0], beside[i, 1]
+        edge = _minimum(_minimum(_minimum(x - xmin, xmax - x), y - ymin), ymax - y)
+        other[i] = _minimum(edge, gap_open)
+    ks = _gap_candidates(beside, other, bounds, vertices, first, count, radius, passed, gap_open)
+    rounded = np.empty(ks.shape[0], dtype=np.int64)
+    nr = 0
+    for k in ks:
+        if radius[k] != 0.0:
+            rounded[nr] = k
+            nr += 1
+            continue
+        d = polygon_distances(beside, vertices[first[k] : first[k] + count[k]])
+        for i in range(m):
+            other[i] = _minimum(other[i], d[i])
+    return other, rounded[:nr]

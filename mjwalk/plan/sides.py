@@ -71,7 +71,7 @@ import numpy as np
 from mjwalk.anthropometry import SEG
 from mjwalk.gait.walker import REFERENCE_SPEED
 from mjwalk.plan.guide import densify, first_below
-from mjwalk.plan.nearcut import gap_candidates, intruding_candidates, pack
+from mjwalk.plan.nearcut import gap_room, intruding_candidates, pack
 from mjwalk.world.openings import passing_footprints
 
 __all__ = [
@@ -212,17 +212,25 @@ def side_gap(workplace, blocker, route, start, goal) -> float:
     if len(beside) == 0:
         beside = pts
     own = blocker.signed_distance(beside)
-    xmin, ymin, xmax, ymax = (float(v) for v in workplace.floor_bounds)
-    other = np.minimum.reduce(
-        [beside[:, 0] - xmin, xmax - beside[:, 0], beside[:, 1] - ymin, ymax - beside[:, 1]]
-    )
-    other = np.minimum(other, GAP_OPEN)
     footprints = passing_footprints(workplace)  # a level's openings too (issue 47)
-    if footprints:  # those within GAP_OPEN that may narrow it (nearcut: exact)
-        passed = [fp is blocker for fp in footprints]
+    if footprints:  # the floor's edges and those within GAP_OPEN that may narrow it, the
+        # polygons' distances in one compiled pass (nearcut.gap_room: exact)
         pk = pack(workplace)
-        for k in gap_candidates(pk, beside, other, passed, GAP_OPEN):
+        passed = np.zeros(len(footprints), dtype=np.bool_)
+        passed[pk.rows.get(id(blocker), [])] = True
+        floor = np.asarray(workplace.floor_bounds, dtype=float)
+        other, rounded = gap_room(
+            np.ascontiguousarray(beside), floor, pk.bounds, pk.vertices, pk.first, pk.count,
+            pk.radius, passed, GAP_OPEN,
+        )  # fmt: skip
+        for k in rounded:  # rounded segments: their own (NumPy) distance
             other = np.minimum(other, footprints[k].signed_distance(beside))
+    else:
+        xmin, ymin, xmax, ymax = (float(v) for v in workplace.floor_bounds)
+        other = np.minimum.reduce(
+            [beside[:, 0] - xmin, xmax - beside[:, 0], beside[:, 1] - ymin, ymax - beside[:, 1]]
+        )
+        other = np.minimum(other, GAP_OPEN)
     return float(np.min(own + other))  # negative depth inside another obstacle narrows it
 
 

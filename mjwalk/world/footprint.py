@@ -111,20 +111,29 @@ def _segment_distance(p: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray
 def _polygon_signed_distance(p: np.ndarray, v: np.ndarray) -> np.ndarray:
     """Signed distance to a convex CCW polygon: outside, to the nearest edge; inside, minus the
     distance to the boundary (the largest signed distance to an edge line). Compiled
-    (:func:`_polygon_kernel`): as NumPy code (a roll, einsums and a stack per call on a few
+    (:func:`polygon_distances`): as NumPy code (a roll, einsums and a stack per call on a few
     points) it was a third of a walk guide's time (``benchmarks/bench_scale.py``)."""
     flat = np.ascontiguousarray(p, dtype=float).reshape(-1, 2)
-    out = _polygon_kernel(flat, np.ascontiguousarray(v, dtype=float))
+    out = polygon_distances(flat, np.ascontiguousarray(v, dtype=float))
     return out.reshape(p.shape[:-1])
 
 
 @njit
-def _polygon_kernel(p, v):
-    """:func:`_polygon_signed_distance` of points (n, 2) to the polygon ``v`` (e, 2): the
-    NumPy version's arithmetic in its order (per edge ab = b - a, t = clip((rel·ab)/|ab|², 0,
-    1), the nearest point's squared distance, the edge line's (rel·n) with n = (ab_y, -ab_x)
-    / |ab|), a NaN in any edge's terms (a repeated vertex's 0/0) propagating as np.min and
-    np.max propagate it."""
+def polygon_distances(p, v):
+    """Signed distances of points to a convex CCW polygon, compiled: what
+    :meth:`Footprint.signed_distance` gives for a polygon footprint, callable from other
+    compiled code (:func:`mjwalk.plan.nearcut.gap_room`). The NumPy version's arithmetic in
+    its order (per edge ab = b - a, t = clip((rel·ab)/|ab|², 0, 1), the nearest point's squared
+    distance, the edge line's (rel·n) with n = (ab_y, -ab_x) / |ab|), a NaN in any edge's terms
+    (a repeated vertex's 0/0) propagating as np.min and np.max propagate it.
+
+    Args:
+        p: (n, 2) points, world x, y, metres (C-contiguous).
+        v: (e, 2) the polygon's vertices, counter-clockwise, metres (C-contiguous).
+
+    Returns:
+        (n,) metres; negative inside (minus the distance to the boundary).
+    """
     n = p.shape[0]
     e = v.shape[0]
     ab = np.empty((e, 2))

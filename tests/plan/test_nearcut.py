@@ -9,7 +9,7 @@ import pytest
 
 from mjwalk.plan.detour import abreast
 from mjwalk.plan.guide import densify, first_below, minimum_jerk_guide
-from mjwalk.plan.nearcut import MARGIN, gap_candidates, intruding_candidates, pack
+from mjwalk.plan.nearcut import MARGIN, gap_candidates, gap_room, intruding_candidates, pack
 from mjwalk.plan.sides import GAP_OPEN, boxes_meeting, intruding, obstacle_bounds, side_gap
 from mjwalk.world import load_workplace
 from mjwalk.world.footprint import Footprint
@@ -172,6 +172,34 @@ def test_gap_candidates_leave_out_only_the_farther_obstacles(hall):
     assert "bench" not in got and "wall" not in got  # the wall is 2.7 m off: farther
     met = {names[k] for k in boxes_meeting(hall, (-0.3, -1.05, 2.8, 1.95))}
     assert got <= met
+
+
+def test_gap_room_is_the_numpy_room_and_leaves_the_rounded_segments(hall):
+    """Points across the hall: the room gap_room gives, lowered by the rounded segments it
+    hands back, is to the bit the NumPy room of asking every obstacle (floor edges, the cap,
+    every other footprint's signed distance); only rounded segments are handed back."""
+    rng = np.random.default_rng(53)
+    pk = pack(hall)
+    floor = np.asarray(hall.floor_bounds, dtype=float)
+    for _ in range(50):
+        beside = rng.uniform([-4.5, -3.5], [4.5, 3.5], size=(int(rng.integers(1, 30)), 2))
+        k_passed = int(rng.integers(len(hall.obstacles)))
+        passed = np.arange(len(hall.obstacles)) == k_passed
+        room, rounded = gap_room(
+            beside, floor, pk.bounds, pk.vertices, pk.first, pk.count, pk.radius, passed, GAP_OPEN
+        )
+        assert all(hall.obstacles[k].radius > 0.0 for k in rounded)
+        for k in rounded:
+            room = np.minimum(room, hall.obstacles[k].signed_distance(beside))
+        xmin, ymin, xmax, ymax = floor
+        want = np.minimum.reduce(
+            [beside[:, 0] - xmin, xmax - beside[:, 0], beside[:, 1] - ymin, ymax - beside[:, 1]]
+        )
+        want = np.minimum(want, GAP_OPEN)
+        for k, fp in enumerate(hall.obstacles):
+            if k != k_passed:
+                want = np.minimum(want, fp.signed_distance(beside))
+        assert np.array_equal(room, want)
 
 
 def test_intruding_candidates_flag_what_bounds_cannot_decide(hall):
