@@ -273,8 +273,17 @@ def _inner_point(graph, level) -> tuple[float, float]:
     the hall's own graph stands a walker on that level (:meth:`LevelGraph.surface_at`: room
     above it), since an obstacle no walk surface tops (hall 1146's pedestal, whose deck is no
     level) hides the level under it in the hall and the written scene alike, and the region's
-    representative point fell on it (level +0.00 m missing in a scene that has it)."""
+    representative point fell on it (level +0.00 m missing in a scene that has it); and, when
+    such a point exists, where nothing stands in the scan's obstacle band
+    (``floor.OBSTACLE_Z_RANGE``) within :data:`INNER_MARGIN` of it: the scan's floor plan writes
+    what it saw in the band as boxes standing on the level, a cell or two wider than the thing
+    (hall 1219's floor point lay 0.2 mm beside a beam at 1.74 m, where the hall has room to
+    stand; written as a column from the floor: level +0.00 m missing and its links)."""
     import shapely  # deferred: slow to import; the scan stage alone needs it
+
+    from mjwalk.world.floor import OBSTACLE_Z_RANGE  # deferred: as every mjwalk import here
+
+    band_top = OBSTACLE_Z_RANGE[1]
 
     def poly(i):
         return shapely.Polygon(np.asarray(graph.surfaces[i].footprint.vertices, dtype=float))
@@ -290,7 +299,15 @@ def _inner_point(graph, level) -> tuple[float, float]:
     inner = free.buffer(-INNER_MARGIN)
     region = inner if not inner.is_empty else free
     c = region.representative_point()
-    for q in [(c.x, c.y), *_grid_points(region)]:
+    points = [(c.x, c.y), *_grid_points(region)]
+    ring = INNER_MARGIN * np.array(
+        [[0.0, 0.0]] + [[np.cos(a), np.sin(a)] for a in np.arange(8) * np.pi / 4]
+    )
+    for q in points:  # nothing in the scan's obstacle band within INNER_MARGIN (hall 1219's beam)
+        i = graph.surface_at(q, level.height)
+        if i in level.surfaces and graph.surfaces[i].free_height(q + ring).min() >= band_top:
+            return float(q[0]), float(q[1])
+    for q in points:
         if graph.surface_at(q, level.height) in level.surfaces:
             return float(q[0]), float(q[1])
     return float(c.x), float(c.y)

@@ -20,7 +20,8 @@ lie on a plane inclined more than ``norms.HORIZONTAL_SLOPE`` and at most
    (``mjwalk.world.contacts.MIN_CROSSING``). The ramp is then the plane's strip between the
    lines where it meets those two heights, as wide as its cells, along the axis of the raised
    level nearest the plane's climb (so the level's edge and the ramp's end meet along their
-   width); its slope is the rise over that run, at most ``norms.MAX_RAMP_SLOPE``.
+   width); its slope is the rise over that run, at most ``norms.MAX_RAMP_SLOPE`` within the
+   scan's noise, and a ramp measured a hair over is written at the limit (:func:`within_limit`).
 
 :func:`ramp_box` writes one as a tilted box whose top face is the ramp, so that
 ``mjwalk.world.find_walk_surfaces`` reads it as a ramp and ``level_graph`` links its two levels.
@@ -41,6 +42,7 @@ from mjwalk.scan.level import HORIZONTAL_DEG, MAX_SURFACE_HEIGHT, VOXEL, voxel_n
 from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, FloorPlan
 from mjwalk.scan.planefit import TRIM_SIGMAS, plane_fit
 from mjwalk.scan.scanlevels import PLANAR_SHARE, ScanLevel, min_rectangle
+from mjwalk.scan.stairfit import WRITE_MARGIN
 from mjwalk.world.contacts import MIN_CROSSING
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.norms import (
@@ -302,9 +304,45 @@ def _ramp_from(
     (lo, h_lo, s_lo), (hi, h_hi, s_hi), w0, w1 = ends
     slope = math.atan(float(np.hypot(*grad)))
     ramp = ScanRamp(lo, hi, run, s_lo, s_hi, w0, w1, h_lo, h_hi, rms, slope)
-    if ramp.length < MIN_TREAD or ramp.slope > MAX_RAMP_SLOPE:
+    if ramp.length < MIN_TREAD or not within_noise(math.tan(ramp.slope), fit[4]):
         return None
-    return ramp
+    return within_limit(ramp)
+
+
+def within_noise(slope: float, err: float) -> bool:
+    """Whether a measured slope is no steeper than ``norms.MAX_RAMP_SLOPE`` as far as the scan
+    can tell: at most ``TRIM_SIGMAS`` of its fit's standard error over it, as a ramp must lie
+    that far over ``norms.HORIZONTAL_SLOPE`` (:func:`find_ramps`) and a riser within
+    ``planefit.RISER_TOL`` of DIN 18065's range; the limit itself is not widened
+    (:func:`within_limit` writes such a ramp at it).
+
+    Args:
+        slope: the measured rise over run (tan of the inclination).
+        err: its standard error (``planefit.plane_fit``), rise over run.
+
+    Returns:
+        True when the slope is a ramp's within the scan's noise.
+    """
+    return slope <= math.tan(MAX_RAMP_SLOPE) + TRIM_SIGMAS * err
+
+
+def within_limit(ramp: ScanRamp) -> ScanRamp:
+    """A ramp measured over ``norms.MAX_RAMP_SLOPE`` (within the scan's noise,
+    :func:`within_noise`), or within ``stairfit.WRITE_MARGIN`` of rise under it, written at the
+    limit: its low end moved down the run until its rise is ``WRITE_MARGIN`` under the
+    limit's over its run, its levels' heights kept (other links may depend on them). The
+    written scene is read with the limit itself (``mjwalk.world.surfaces``: a 10 deg ramp
+    the scan fitted at 10.001 deg and wrote so was no walk surface); a flight at DIN 18065's
+    riser limit is written so too (:mod:`mjwalk.scan.writtennorm`).
+
+    Args:
+        ramp: the ramp as fitted.
+
+    Returns:
+        The ramp, or a copy with ``s_lo`` moved (by a few millimetres).
+    """
+    run = (ramp.h_hi - ramp.h_lo + WRITE_MARGIN) / math.tan(MAX_RAMP_SLOPE)
+    return ramp if ramp.length >= run else dataclasses.replace(ramp, s_lo=ramp.s_hi - run)
 
 
 def find_ramps(
@@ -333,7 +371,7 @@ def find_ramps(
         slope = float(np.hypot(*grad))
         if rms > RAMP_RMS or slope <= HORIZONTAL_SLOPE + TRIM_SIGMAS * err:
             continue
-        if math.atan(slope) > MAX_RAMP_SLOPE:
+        if not within_noise(slope, err):
             continue
         cells = _ramp_cells(levelled, pts, fit, plan, p)
         if not cells.any():

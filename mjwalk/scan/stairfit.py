@@ -187,14 +187,7 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
     )
     if not ok:
         return None
-    # a tread measured within the grid's slack outside the norm's range is written at its limit
-    # (the grid cannot tell them apart; the written scene's level graph is exact at the norm,
-    # so a margin inside it survives the written coordinates' rounding: WRITE_MARGIN),
-    # and so is one whose step rule 2 h + g is (generated halls 1031 and 1032 of
-    # benchmarks/bench_unseen.py: 2 h + g 0.656 and 0.6500+ m written, single steps in the scene)
-    tread = min(max(tread, MIN_TREAD + WRITE_MARGIN), MAX_TREAD - WRITE_MARGIN)
-    rule = (STEP_RULE[0] + WRITE_MARGIN - 2 * riser, STEP_RULE[1] - WRITE_MARGIN - 2 * riser)
-    tread = min(max(tread, rule[0]), rule[1])
+    tread = _written_tread(tread, riser)
     w0, w1 = float(np.median(lefts)), float(np.median(rights))
     rects = []
     for k in range(n - 1):
@@ -205,6 +198,24 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
         "riser": riser, "tread": tread, "heights": heights, "rects": rects, "run": run,
         "top_edge": first + (n - 1) * tread, "top_rect": top_rect, "dz": dz, "dxy": dxy,
     }  # fmt: skip
+
+
+def _written_tread(tread: float, riser: float) -> float:
+    """A fitted tread as written, metres. One measured within the grid's slack outside the
+    norm's range is written at its limit (the grid cannot tell them apart; the written scene's
+    level graph is exact at the norm, so a margin inside it survives the written coordinates'
+    rounding: ``WRITE_MARGIN``), and so is one whose step rule 2 h + g is (generated halls
+    1031 and 1032 of benchmarks/bench_unseen.py: 2 h + g 0.656 and 0.6500+ m written, single
+    steps in the scene). The rule holds for the riser measured and for the one written, which
+    the writer takes to the norm's range (``writtennorm.stairs_within_norm``,
+    ``scanpits.within_norm``): a flight of 0.14 m risers and 0.37 m treads (2 h + g = 0.65 m)
+    measured at 0.139995 m, its tread fitted at 0.3699 m, was written with 0.1401 m risers,
+    2 h + g = 0.6501 m: single steps in the written scene."""
+    written = min(max(riser, MIN_RISER + WRITE_MARGIN), MAX_RISER - WRITE_MARGIN)
+    low, high = min(riser, written), max(riser, written)
+    tread = min(max(tread, MIN_TREAD + WRITE_MARGIN), MAX_TREAD - WRITE_MARGIN)
+    rule = (STEP_RULE[0] + WRITE_MARGIN - 2 * low, STEP_RULE[1] - WRITE_MARGIN - 2 * high)
+    return min(max(tread, rule[0]), rule[1])
 
 
 def treads_axis(treads: list[ScanLevel], plan: FloorPlan) -> np.ndarray | None:

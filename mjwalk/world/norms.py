@@ -165,6 +165,11 @@ HORIZONTAL_SLOPE = 0.01
 #: access to machinery) choose a ramp for 0-20 deg and prefer at most 10 deg (steeper ramps need
 #: cleats). ASR A1.8's own ramp limit could not be verified here.
 MAX_RAMP_SLOPE = math.radians(10.0)
+#: Slack, radians, on comparing a slope computed from a face's corners with a slope limit: the
+#: corners' :data:`ROUNDING_SLACK` over the shallowest walk surface's depth (:data:`MIN_TREAD`),
+#: 3.8e-6 rad (0.0002 deg). A box turned by exactly 10 deg (``euler="0 -10 0"``) measured
+#: 0.17453292519943317 rad, 2e-16 over ``MAX_RAMP_SLOPE``, and was no walk surface.
+SLOPE_ROUNDING_SLACK = ROUNDING_SLACK / MIN_TREAD
 #: Steepest barrier-free ramp, radians: DIN 18040-1:2010 §4.3.8, at most 6 % (atan 0.06,
 #: 3.43 deg), for walkers with rollators or wheelchairs; a stricter limit a planner may apply.
 BARRIER_FREE_RAMP_SLOPE = math.atan(0.06)

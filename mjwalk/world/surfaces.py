@@ -43,6 +43,7 @@ from mjwalk.world.norms import (
     MAX_TREAD,
     MIN_TREAD,
     ROUNDING_SLACK,
+    SLOPE_ROUNDING_SLACK,
     STAND_WIDTH,
 )
 from mjwalk.world.walksurface import HeadroomMap, Overhead, WalkSurface, head_fits
@@ -325,7 +326,7 @@ def _surface_from_face(
     n = np.cross(corners[1] - corners[0], corners[2] - corners[0])
     n = n / np.linalg.norm(n) * (1.0 if n[2] >= 0 else -1.0)
     slope = float(math.acos(min(1.0, float(n[2]))))
-    if slope > options.max_ramp_slope:
+    if slope > options.max_ramp_slope + SLOPE_ROUNDING_SLACK:  # a ramp at the limit is one
         return None
     horizontal = math.tan(slope) <= options.horizontal_slope
     xy = _ccw(corners[:, :2])

@@ -15,9 +15,11 @@ from mjwalk.scan.levelboxes import describe
 from mjwalk.scan.obstacles import floor_plan
 from mjwalk.scan.raycast import synthetic_scan
 from mjwalk.scan.scanlevels import find_levels, find_regions
-from mjwalk.scan.scanramps import ScanRamp, find_ramps, ramp_box
+from mjwalk.scan.scanramps import ScanRamp, find_ramps, ramp_box, within_limit, within_noise
 from mjwalk.scan.scene import read_sites
+from mjwalk.scan.stairfit import WRITE_MARGIN
 from mjwalk.world.levels import level_graph
+from mjwalk.world.norms import MAX_RAMP_SLOPE
 from mjwalk.world.surfaces import find_walk_surfaces
 
 
@@ -99,6 +101,39 @@ def test_too_steep_a_ramp_is_no_ramp():
     level."""
     scan = _scan(15.0)
     assert build_scene(scan.points).levels is None
+
+
+def test_a_ramp_measured_a_hair_over_the_limit_is_written_at_it():
+    """A 10.02 deg ramp: seed 5 fits its plane at 10.0023 deg, within ``TRIM_SIGMAS`` of the
+    fit's standard error (0.008 deg) over ``norms.MAX_RAMP_SLOPE``: the scan cannot tell it
+    from a 10 deg ramp (as a riser within ``planefit.RISER_TOL`` of DIN 18065's), so it is a
+    ramp, written at the limit less ``stairfit.WRITE_MARGIN`` of rise, and a ramp in the
+    written scene (before: refused, the deck no level). 10.1 deg is still no ramp."""
+    scene = build_scene(_scan(10.02).points)
+    assert scene.levels is not None
+    (ramp,) = [k for k in scene.levels.links if k.kind == "ramp"]
+    assert MAX_RAMP_SLOPE - math.radians(0.01) < ramp.slope < MAX_RAMP_SLOPE
+    surfaces = find_walk_surfaces(mujoco.MjModel.from_xml_string(scene.xml))
+    assert [k.kind for k in level_graph(surfaces).links] == ["ramp"]
+    assert build_scene(_scan(10.1).points).levels is None
+
+
+def _ramp(deg: float, rise: float = 0.3) -> ScanRamp:
+    """A ramp along +x from s = 0 up ``rise`` at ``deg`` degrees."""
+    run = rise / math.tan(math.radians(deg))
+    slope = math.radians(deg)
+    return ScanRamp(0, 1, np.array([1.0, 0.0]), 0.0, run, -0.5, 0.5, 0.0, rise, 0.001, slope)
+
+
+def test_within_noise_and_within_limit():
+    limit = math.tan(MAX_RAMP_SLOPE)
+    assert within_noise(limit + 2.9e-4, 1e-4) and not within_noise(limit + 3.1e-4, 1e-4)
+    steep = within_limit(_ramp(10.001))
+    assert steep.s_hi == _ramp(10.001).s_hi and steep.s_lo < 0.0  # the low end moved out
+    assert steep.h_hi - steep.h_lo == pytest.approx(limit * steep.length - WRITE_MARGIN)
+    assert steep.slope < MAX_RAMP_SLOPE
+    gentle = _ramp(9.0)
+    assert within_limit(gentle) is gentle  # within the limit: unchanged
 
 
 def test_ramp_box_top_face_meets_both_levels():

@@ -8,7 +8,7 @@ import pytest
 from mjwalk.scan.minrect import min_rectangle, rectangle_size
 from mjwalk.scan.obstacles import FloorPlan
 from mjwalk.scan.planefit import RISER_TOL
-from mjwalk.scan.scanlevels import ScanLevel, seen_in_part
+from mjwalk.scan.scanlevels import ScanLevel, ScanLink, seen_in_part
 from mjwalk.scan.stairfit import (
     WRITE_MARGIN,
     axis_near,
@@ -19,7 +19,8 @@ from mjwalk.scan.stairfit import (
     tread_slack,
     treads_axis,
 )
-from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_TREAD, STEP_RULE
+from mjwalk.scan.writtennorm import stairs_within_norm
+from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_RISER, MIN_TREAD, STEP_RULE
 
 RES = 0.02
 NY, NX = 60, 120
@@ -84,6 +85,27 @@ def test_a_flight_at_the_step_rule_bound_is_not_refused_for_the_grid():
     rule = 2 * fit["riser"] + fit["tread"]
     assert rule == pytest.approx(STEP_RULE[1] - WRITE_MARGIN, abs=1e-9)
     assert fit["tread"] == pytest.approx(0.65 - 0.292 - WRITE_MARGIN, abs=1e-9)
+
+
+def test_a_flight_measured_under_the_least_riser_keeps_the_step_rule_as_written():
+    """Three 0.14 m risers (DIN 18065's least) and 0.37 m treads (its largest): 2 h + g =
+    0.65 m, the step rule's bound. Measured at 0.139995 m, the riser is written at
+    ``MIN_RISER + WRITE_MARGIN`` (``writtennorm.stairs_within_norm``), so the tread is fitted
+    for that riser: 2 h + g of the written flight within the rule. Before: tread 0.3699 m
+    fitted for the measured riser, written risers 0.1401 m, 2 h + g = 0.6501 m (the written
+    scene read single steps)."""
+    r = 0.139995
+    floor = _level(0, "floor", 0.0, (0, 20))
+    treads = [_level(k + 1, "tread", r * (k + 1), c) for k, c in enumerate([(20, 38), (38, 57)])]
+    deck = _level(3, "platform", 3 * r, (57, 110))
+    fit = fit_stair([0, 1, 2, 3], [floor, *treads, deck], _plan())
+    assert fit is not None and fit["riser"] == pytest.approx(r, abs=1e-12)
+    link = ScanLink("stair", 0, 3, (fit["riser"],) * 3, fit["tread"], (1, 2))
+    (out,) = stairs_within_norm([link], [0.0, r, 2 * r, 3 * r])
+    assert out.risers[0] == pytest.approx(MIN_RISER + WRITE_MARGIN, abs=1e-12)
+    for h in (r, out.risers[0]):  # the rule holds for the riser measured and the one written
+        assert STEP_RULE[0] + WRITE_MARGIN - 1e-12 <= 2 * h + fit["tread"]
+        assert 2 * h + fit["tread"] <= STEP_RULE[1] - WRITE_MARGIN + 1e-12
 
 
 def test_a_flight_beyond_the_grids_slack_is_refused():

@@ -20,15 +20,15 @@ from mjwalk.world.surfaces import find_walk_surfaces
 RISER, TREAD, N = 0.19, 0.265, 4
 
 
-def _flight_xml() -> str:
+def _flight_xml(riser: float = RISER, tread: float = TREAD) -> str:
     geoms = ['<geom name="floor" type="plane" size="4 3 0.05"/>']
     for k in range(N - 1):
-        h = (k + 1) * RISER
+        h = (k + 1) * riser
         geoms.append(
-            f'<geom name="t{k + 1}" type="box" pos="{TREAD * k + TREAD / 2:.4f} 0 {h / 2:.4f}" '
-            f'size="{TREAD / 2:.4f} 0.5 {h / 2:.4f}"/>'
+            f'<geom name="t{k + 1}" type="box" pos="{tread * k + tread / 2:.4f} 0 {h / 2:.4f}" '
+            f'size="{tread / 2:.4f} 0.5 {h / 2:.4f}"/>'
         )
-    top, x0 = N * RISER, TREAD * (N - 1)
+    top, x0 = N * riser, tread * (N - 1)
     geoms.append(
         f'<geom name="deck" type="box" pos="{x0 + 0.75:.4f} 0 {top / 2:.4f}" '
         f'size="0.75 1.0 {top / 2:.4f}"/>'
@@ -55,6 +55,22 @@ def test_a_flight_of_0_19_m_risers_fitted_a_hair_over_stays_a_stair_in_the_writt
     assert graph.levels[stairs[0].upper].height == pytest.approx(N * RISER, abs=0.002)
     (stair,) = [k for k in scene.levels.links if k.kind == "stair"]
     assert stair.risers == (MAX_RISER - WRITE_MARGIN,) * N  # as written
+
+
+def test_a_flight_at_the_least_riser_and_largest_tread_stays_a_stair_in_the_written_scene():
+    """Four 0.14 m risers and 0.37 m treads (2 h + g = 0.65 m, the step rule's bound): scan seed
+    1 measures the riser a hair under 0.14 m, written at ``MIN_RISER + WRITE_MARGIN``; the
+    tread is fitted for that riser, so the written flight keeps the step rule and is a stair
+    (before: tread 0.3699 m, 2 h + g = 0.6501 m written, four single steps)."""
+    model = mujoco.MjModel.from_xml_string(_flight_xml(0.14, 0.37))
+    scanners = [(-1.0, 0.3, 1.6), (-2.5, -0.3, 1.7), (1.8, 0.5, 2.4)]
+    scan = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=1)
+    scene = build_scene(scan.points, source="flight")
+    assert scene.levels is not None
+    (stair,) = [k for k in scene.levels.links if k.kind == "stair"]
+    assert 2 * stair.risers[0] + (stair.tread or 0.0) <= 0.65 - WRITE_MARGIN + 1e-9
+    graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_string(scene.xml)))
+    assert [(k.kind, len(k.risers)) for k in graph.links] == [("stair", N)]
 
 
 def _stair(riser: float, lower: int = 0, upper: int = 4) -> ScanLink:

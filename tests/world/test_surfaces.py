@@ -11,7 +11,7 @@ import pytest
 
 from mjwalk.errors import InputError
 from mjwalk.world import surfaces as surfaces_module
-from mjwalk.world.norms import MAX_TREAD
+from mjwalk.world.norms import MAX_RAMP_SLOPE, MAX_TREAD
 from mjwalk.world.surfaces import SurfaceOptions, find_walk_surfaces
 from mjwalk.world.walksurface import head_fits
 from mjwalk.world.workplace import HUMANOID_PREFIXES
@@ -116,6 +116,24 @@ def test_a_yawed_tread_exactly_max_tread_deep_is_a_tread():
     assert surface.kind == "tread"
     deeper = tread.replace("0.1850", "0.1851")  # 0.3702 m: a platform
     assert find_walk_surfaces(scene(deeper), None)[1].kind == "platform"
+
+
+def test_a_ramp_at_exactly_the_slope_limit_is_a_ramp():
+    """A 3 m slab turned by exactly ``MAX_RAMP_SLOPE`` (10 deg) measures 0.17453292519943317 rad
+    from its top face's corners, 2e-16 over it: within ``norms.SLOPE_ROUNDING_SLACK`` a ramp
+    (before: no walk surface, as a hall's 0.19 m riser read 0.19000000000000006 m was none
+    before ``ROUNDING_SLACK``). 10.001 deg (1.7e-5 rad over) is no walk surface."""
+    for deg, ok in ((10.0, True), (10.001, False)):
+        th = math.radians(deg)
+        z = 1.5 * math.sin(th) - 0.05 * math.cos(th)  # the top face's low edge on the floor
+        ramp = (
+            f'<geom name="ramp" type="box" size="1.5 0.5 0.05" pos="0 0 {z!r}" euler="0 {-deg} 0"/>'
+        )
+
+        surfaces = find_walk_surfaces(scene(ramp), None)
+        assert [s.name for s in surfaces] == (["floor", "ramp"] if ok else ["floor"]), deg
+        if ok:
+            assert surfaces[1].slope == pytest.approx(MAX_RAMP_SLOPE, abs=1e-12)
 
 
 BEAM_PLATFORM = '<geom name="deck" type="box" size="1 0.5 0.085" pos="0 0 0.085"/>'
