@@ -42,7 +42,7 @@ from mjwalk.scan.scanlevels import (
 )
 from mjwalk.scan.scanramps import ScanRamp, find_ramps, ramp_box, renumber
 from mjwalk.scan.stairfit import fit_stair
-from mjwalk.scan.writtennorm import stairs_within_norm, steps_within_norm
+from mjwalk.scan.writtennorm import ramps_to_levels, stairs_within_norm, steps_within_norm
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 from mjwalk.world.norms import CONTACT_GAP, MIN_STAIR_RISERS
 
@@ -328,7 +328,9 @@ def scan_levels(levelled: np.ndarray, plan: FloorPlan) -> LevelPlan | None:
     for chain, fit in stairs:  # a flight's top in parts: its landing strip is one of them
         if len(parts[chain[-1]]) > 1:
             parts[chain[-1]].append(fit["rects"][-1] + fit["tread"] * fit["run"])
+    before = list(heights)
     links = steps_within_norm(stairs_within_norm(links, heights), heights)
+    ramps, links = ramps_to_levels(ramps, links, before, heights)
     return _assemble(levels, links, heights, rects, plan, layers, ramps, parts)
 
 

@@ -10,7 +10,10 @@ beyond it. The written scene is loaded as any scene, whose level graph holds the
 :func:`stairs_within_norm` writes a flight at its limiting riser (its treads and top level moved
 to that riser's multiples above its bottom), each a margin inside the limit that survives the
 written boxes' rounding. A level other links depend on keeps its measured height (moving it
-would move them), but for a landing a flight goes on from: flights are written bottom up.
+would move them), but for a landing a flight goes on from (flights are written bottom up) and
+a flight's top that is otherwise only ramps' ends: a ramp is written from its levels' heights
+as written (:func:`ramps_to_levels`), its low end moved down its run if the limit needs it
+(``scanramps.within_limit``), so it keeps its own norm.
 Metres, scene frame (floor at z = 0); pits below the floor:
 :func:`mjwalk.scan.scanpits.within_norm`.
 """
@@ -20,6 +23,7 @@ from __future__ import annotations
 import dataclasses
 
 from mjwalk.scan.scanlevels import ScanLink
+from mjwalk.scan.scanramps import ScanRamp, within_limit
 from mjwalk.scan.stairfit import WRITE_MARGIN
 from mjwalk.world.norms import MAX_RISER, MIN_RISER
 
@@ -40,6 +44,16 @@ def _held_levels(links: list[ScanLink], own: ScanLink) -> set[int]:
             if k.kind != "stair":
                 out.add(k.lower)
     return out
+
+
+def _only_ramps_on(links: list[ScanLink], own: ScanLink, level: int) -> bool:
+    """Whether every link but ``own`` (and a flight up from ``level``) that starts or ends on
+    ``level`` is a ramp: a ramp follows its levels as written (:func:`ramps_to_levels`)."""
+    return all(
+        k.kind == "ramp"
+        for k in links
+        if k is not own and (k.upper == level or (k.lower == level and k.kind != "stair"))
+    )
 
 
 def steps_within_norm(links: list[ScanLink], heights: list[float]) -> list[ScanLink]:
@@ -85,8 +99,12 @@ def stairs_within_norm(links: list[ScanLink], heights: list[float]) -> list[Scan
     ``WRITE_MARGIN``). A flight of 0.19 m risers fitted at 0.190008 m was written with risers
     over the norm: no stair in the written scene, only its first tread a step up. Flights are
     taken bottom up, each from its bottom as written (hall 1169: a flight of 0.14 m risers
-    fitted at 0.139995 m up to the landing the next flight starts from). A flight whose top or
-    treads another link (but a flight up from its top) starts or ends on keeps its riser.
+    fitted at 0.139995 m up to the landing the next flight starts from). A flight whose top is
+    otherwise only ramps' ends moves it too (a deck reached by a ramp and by a flight of 0.14 m
+    risers fitted at 0.139995 m: the flight was written so, four single steps); the caller
+    writes those ramps to the heights as written (:func:`ramps_to_levels`). A flight whose
+    treads, or whose top, another step or stair (but a flight up from its top) starts or ends
+    on keeps its riser.
 
     Args:
         links: the scan's links (a stair's ``via``: its tread levels, bottom up).
@@ -100,7 +118,8 @@ def stairs_within_norm(links: list[ScanLink], heights: list[float]) -> list[Scan
     for k in sorted(stairs, key=lambda k: heights[k.lower]):
         n = len(k.risers)
         r = (heights[k.upper] - heights[k.lower]) / n
-        if not {*k.via, k.upper} & _held_levels(links, k):
+        held = _held_levels(links, k)
+        if not set(k.via) & held and (k.upper not in held or _only_ramps_on(links, k, k.upper)):
             r = min(max(r, MIN_RISER + WRITE_MARGIN), MAX_RISER - WRITE_MARGIN)
             heights[k.upper] = heights[k.lower] + n * r
         for j, i in enumerate(k.via, start=1):
@@ -108,3 +127,37 @@ def stairs_within_norm(links: list[ScanLink], heights: list[float]) -> list[Scan
         if r != k.risers[0]:
             new[id(k)] = dataclasses.replace(k, risers=(r,) * n)
     return [new.get(id(k), k) for k in links]
+
+
+def ramps_to_levels(
+    ramps: list[ScanRamp], links: list[ScanLink], before: list[float], heights: list[float]
+) -> tuple[list[ScanRamp], list[ScanLink]]:
+    """The ramps whose end level :func:`stairs_within_norm` moved, moved with it: each end by
+    its level's move, the low end then moved down the run if the ramp would be over
+    ``norms.MAX_RAMP_SLOPE`` (``scanramps.within_limit``), so that it still meets its levels
+    and keeps its own norm. Ramps whose levels kept their heights are unchanged.
+
+    Args:
+        ramps: the scan's ramps (``lower``/``upper`` index ``heights``).
+        links: the scan's links, the ramps' among them in the order of ``ramps``.
+        before: each level's height before the flights were written, metres.
+        heights: each level's written height, metres.
+
+    Returns:
+        The ramps and the links, the moved ramps' (slope, radians; run, metres) as written.
+    """
+    out, moved = [], False
+    for r in ramps:
+        d_lo, d_hi = heights[r.lower] - before[r.lower], heights[r.upper] - before[r.upper]
+        if d_lo or d_hi:
+            r = within_limit(dataclasses.replace(r, h_lo=r.h_lo + d_lo, h_hi=r.h_hi + d_hi))
+            moved = True
+        out.append(r)
+    if not moved:
+        return ramps, links
+    it = iter(out)
+    links = [
+        dataclasses.replace(k, slope=(n := next(it)).slope, run=n.length) if k.kind == "ramp" else k
+        for k in links
+    ]
+    return out, links

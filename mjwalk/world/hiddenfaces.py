@@ -21,6 +21,7 @@ from mjwalk.world.norms import (
     MAX_RAMP_SLOPE,
     MIN_TREAD,
     ROUNDING_SLACK,
+    SLOPE_ROUNDING_SLACK,
     STAND_WIDTH,
 )
 
@@ -125,7 +126,8 @@ def upward_planes(
     Args:
         verts: (V, 3) vertices, z up, metres.
         faces: (F, 3) vertex indices.
-        max_slope: the steepest face kept, radians (``norms.MAX_RAMP_SLOPE``: walk faces).
+        max_slope: the steepest face kept, radians (``norms.MAX_RAMP_SLOPE``: walk faces), with
+            ``norms.SLOPE_ROUNDING_SLACK`` (a face at exactly the limit is kept).
 
     Returns:
         One :class:`FacePlane` per plane (faces of one plane in several places together).
@@ -136,7 +138,8 @@ def upward_planes(
     norm = np.linalg.norm(n, axis=1)
     ok = norm > 1e-12
     unit = n[ok] / norm[ok, None]
-    up = unit[:, 2] >= max(math.cos(max_slope), 1e-12)
+    # a face at the limit is one: its corners' rounding is no excess (norms.SLOPE_ROUNDING_SLACK)
+    up = unit[:, 2] >= max(math.cos(max_slope + SLOPE_ROUNDING_SLACK), 1e-12)
     if not up.any():
         return []
     tri, unit = tri[ok][up], unit[up]

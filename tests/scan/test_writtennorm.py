@@ -3,16 +3,25 @@ limits are written inside them, so the written scene keeps the links the scan re
 
 from __future__ import annotations
 
+import math
+
 import mujoco
+import numpy as np
 import pytest
 
 from mjwalk.scan import build_scene
 from mjwalk.scan.raycast import synthetic_scan
 from mjwalk.scan.scanlevels import ScanLink
+from mjwalk.scan.scanramps import ScanRamp
 from mjwalk.scan.stairfit import WRITE_MARGIN
-from mjwalk.scan.writtennorm import WRITTEN_UNDER, stairs_within_norm, steps_within_norm
+from mjwalk.scan.writtennorm import (
+    WRITTEN_UNDER,
+    ramps_to_levels,
+    stairs_within_norm,
+    steps_within_norm,
+)
 from mjwalk.world.levels import level_graph
-from mjwalk.world.norms import MAX_RISER, MIN_RISER
+from mjwalk.world.norms import MAX_RAMP_SLOPE, MAX_RISER, MIN_RISER
 from mjwalk.world.surfaces import find_walk_surfaces
 
 #: A straight flight of four 0.19 m risers (DIN 18065's largest) and 0.265 m treads
@@ -73,6 +82,43 @@ def test_a_flight_at_the_least_riser_and_largest_tread_stays_a_stair_in_the_writ
     assert [(k.kind, len(k.risers)) for k in graph.links] == [("stair", N)]
 
 
+def _deck_by_flight_and_ramp_xml(riser: float = 0.14, tread: float = 0.33) -> str:
+    """Four ``riser`` risers up to a 1.5 m deck, and from its far edge a 4 m ramp (7.97 deg)
+    down to the floor: the deck is the flight's top and the ramp's."""
+    flight = _flight_xml(riser, tread).removesuffix("</worldbody></mujoco>")
+    top, run = N * riser, 4.0
+    th = math.atan(top / run)
+    x = tread * (N - 1) + 1.5 + run / 2 - 0.05 * math.sin(th)
+    z = top / 2 - 0.05 * math.cos(th)
+    return (
+        flight + f'<geom name="ramp" type="box" pos="{x:.5f} 0 {z:.5f}" '
+        f'size="{run / 2 / math.cos(th):.5f} 0.5 0.05" euler="0 {math.degrees(th):.5f} 0"/>'
+        "</worldbody></mujoco>"
+    )
+
+
+@pytest.mark.slow  # a synthetic scan: about 15 s on a loaded 2-core machine
+def test_a_flight_a_hair_under_the_least_riser_to_a_deck_a_ramp_also_reaches_stays_a_stair():
+    """Scan seed 0 fits the flight's riser at 0.13997 m, the deck (the ramp's top too) at
+    0.55988 m: the flight is written at ``MIN_RISER + WRITE_MARGIN``, the deck raised 0.5 mm
+    with the ramp's end, and the written scene reads a stair (before: risers 0.13997 m as
+    measured, four single steps)."""
+    model = mujoco.MjModel.from_xml_string(_deck_by_flight_and_ramp_xml())
+    scanners = [(-1.0, 0.3, 1.6), (-2.5, -0.3, 1.7), (1.8, 0.5, 2.4), (5.5, 1.2, 2.4)]
+    scan = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=0)
+    scene = build_scene(scan.points, source="deck")
+    assert scene.levels is not None
+    r = MIN_RISER + WRITE_MARGIN
+    (stair,) = [k for k in scene.levels.links if k.kind == "stair"]
+    assert stair.risers == pytest.approx((r,) * N, abs=1e-12)
+    (ramp,) = scene.levels.ramps
+    assert ramp.h_hi == pytest.approx(N * r, abs=1e-12) and ramp.slope <= MAX_RAMP_SLOPE
+    assert scene.levels.heights == pytest.approx([k * 0.14 for k in range(N + 1)], abs=0.02)
+    graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_string(scene.xml)))
+    assert [(k.kind, len(k.risers)) for k in graph.links] == [("stair", N)]
+    assert graph.levels[-1].height == pytest.approx(N * r, abs=2e-5)
+
+
 def _stair(riser: float, lower: int = 0, upper: int = 4) -> ScanLink:
     return ScanLink("stair", lower, upper, (riser,) * 4, 0.265, (1, 2, 3))
 
@@ -126,3 +172,56 @@ def test_a_step_platform_over_the_norm_is_lowered_under_it():
     (out,) = steps_within_norm([ScanLink("step", 0, 1, (0.19001,))], heights)
     assert heights[1] == pytest.approx(MAX_RISER - WRITTEN_UNDER, abs=1e-12)
     assert out.risers[0] == pytest.approx(heights[1], abs=1e-12)
+
+
+def _ramp(rise: float, run: float, lower: int = 0, upper: int = 4) -> ScanRamp:
+    slope = math.atan2(rise, run)
+    return ScanRamp(
+        lower, upper, np.array([1.0, 0.0]), 0.0, run, -0.5, 0.5, 0.0, rise, 0.001, slope
+    )
+
+
+def test_a_stair_to_a_deck_a_ramp_also_reaches_moves_the_deck_and_the_ramp_with_it():
+    """A deck reached by a ramp and by four risers fitted at 0.139995 m (under DIN 18065's
+    0.14 m): the deck, otherwise only the ramp's end, goes up to four written risers (before:
+    the flight kept 0.139995 m, four single steps in the written scene), and the ramp's high
+    end with it, still under 10 deg."""
+    heights = [0.0, 0.139995, 0.27999, 0.419985, 0.55998]
+    ramp = _ramp(0.55998, 4.0)
+    links = [_stair(0.139995), ScanLink("ramp", 0, 4, (), slope=ramp.slope, run=ramp.length)]
+    before = list(heights)
+    out = stairs_within_norm(links, heights)
+    r = MIN_RISER + WRITE_MARGIN
+    assert out[0].risers == pytest.approx((r,) * 4, abs=1e-12)
+    assert heights == pytest.approx([k * r for k in range(5)], abs=1e-12)
+    assert abs(heights[4] - before[4]) < 0.02  # within 2 cm of the scan's fit
+    (moved,), out = ramps_to_levels([ramp], out, before, heights)
+    assert (moved.h_lo, moved.h_hi) == pytest.approx((0.0, 4 * r), abs=1e-12)
+    assert moved.length == ramp.length  # 7.97 deg: no need to lengthen it
+    assert out[1].slope == pytest.approx(moved.slope, abs=1e-15) and out[1].slope < MAX_RAMP_SLOPE
+
+
+def test_a_ramp_at_the_limit_whose_deck_a_flight_raises_is_lengthened_to_stay_under_it():
+    heights = [0.0, 0.139995, 0.27999, 0.419985, 0.55998]
+    run = (0.55998 + WRITE_MARGIN) / math.tan(MAX_RAMP_SLOPE)
+    ramp = _ramp(0.55998, run)
+    links = [_stair(0.139995), ScanLink("ramp", 0, 4, (), slope=ramp.slope, run=ramp.length)]
+    before = list(heights)
+    out = stairs_within_norm(links, heights)
+    (moved,), out = ramps_to_levels([ramp], out, before, heights)
+    assert moved.slope <= MAX_RAMP_SLOPE and moved.length > ramp.length
+    assert moved.s_hi == ramp.s_hi  # its high end stays at the deck's edge
+    assert out[1].run == moved.length
+
+
+def test_ramps_whose_levels_kept_their_heights_are_unchanged():
+    ramp = _ramp(0.5, 4.0, 0, 1)
+    links = [ScanLink("ramp", 0, 1, (), slope=ramp.slope, run=ramp.length)]
+    ramps, out = ramps_to_levels([ramp], links, [0.0, 0.5], [0.0, 0.5])
+    assert ramps == [ramp] and out == links
+
+
+def test_a_stair_to_a_deck_a_step_also_reaches_keeps_its_riser():
+    heights = [0.0, 0.139995, 0.27999, 0.419985, 0.55998, 0.4]
+    links = [_stair(0.139995), ScanLink("step", 5, 4, (0.15998,))]
+    assert stairs_within_norm(links, list(heights)) == links

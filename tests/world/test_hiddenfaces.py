@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 import trimesh
 
-from mjwalk.world.hiddenfaces import HIDDEN_DEPTH, hidden_walk_faces
+from mjwalk.world.hiddenfaces import HIDDEN_DEPTH, hidden_walk_faces, upward_planes
+from mjwalk.world.norms import MAX_RAMP_SLOPE
 
 
 def _boxes(spec: list[tuple[float, float, float]], width: float = 1.0) -> trimesh.Trimesh:
@@ -59,3 +62,18 @@ def test_a_step_lower_than_the_tolerance_hides_nothing():
     """A 3 mm step onto a 2 m platform: its hull stands at most 3 mm over the lower part."""
     m = _boxes([(0.0, 1.0, 0.2), (1.0, 3.0, 0.203)])
     assert hidden_walk_faces(m.vertices, m.faces) == []
+
+
+def test_a_face_at_exactly_the_ramp_limit_is_an_upward_plane_and_one_over_it_is_not():
+    """A ramp face 0.3 m long rising 0.3 tan(10 deg): its normal's z came out 1e-16 under
+    cos(10 deg), and the face was no walk face (before: ``upward_planes`` returned none); a
+    face 0.01 deg steeper is still left out."""
+    faces = np.array([[0, 1, 2], [0, 2, 3]])
+
+    def ramp(slope: float) -> np.ndarray:
+        rise = 0.3 * math.tan(slope)
+        return np.array([[0, 0, 0], [0.3, 0, rise], [0.3, 1, rise], [0, 1, 0]], float)
+
+    (plane,) = upward_planes(ramp(MAX_RAMP_SLOPE), faces)
+    assert plane.normal[2] == pytest.approx(math.cos(MAX_RAMP_SLOPE), abs=1e-12)
+    assert upward_planes(ramp(MAX_RAMP_SLOPE + math.radians(0.01)), faces) == []
