@@ -20,11 +20,7 @@ do without the variance skips it (:func:`mjwalk.plan.search.search`'s closing dr
 The search draws thousands of times per walk, one predecessor at a time: it keeps one set of
 work arrays (:func:`new_work`) and draws into its own node arrays (:func:`sample_into`,
 :func:`draw_parts_into`, :func:`compose_into`), the same loops without a dozen small
-allocations per draw. Those and the parts they call (all but :func:`_quadratic_packed`,
-whose sums may be reassociated) are inlined into their compiled callers
-(:func:`mjwalk._jit.njit_inline`): as calls, every level took and dropped a reference to each
-array of the GP's and the work's tuples (numba's atomic reference counts, about 150 a draw);
-the arithmetic is the same.
+allocations per draw.
 """
 
 from __future__ import annotations
@@ -33,7 +29,7 @@ import math
 
 import numpy as np
 
-from mjwalk._jit import njit, njit_inline, njit_sum
+from mjwalk._jit import njit, njit_sum
 
 
 def pack_upper(w: np.ndarray) -> np.ndarray:
@@ -69,7 +65,7 @@ def _quadratic_packed(e, packed):
     return out
 
 
-@njit_inline
+@njit
 def _quadratic(e, c2_w, packed):
     """e W eᵀ per row of e (p, m): packed for one or two rows, as one matrix product (BLAS,
     which reads W once for all rows) for more."""
@@ -123,14 +119,14 @@ def _kernel_rows(x, gp):
     return mean, h, e
 
 
-@njit_inline
+@njit
 def _kernel_rows_into(x, gp, mean, h, e):
     """:func:`_kernel_rows` into ``mean`` (p, d), ``h`` and ``e`` (p, m each)."""
     half_sq_into(x, gp, h)
     exp_rows_into(gp, h, mean, e)
 
 
-@njit_inline
+@njit
 def half_sq_into(x, gp, h):
     """h_ij = |x_i/ℓ - z_j/ℓ|²/2 (clipped at 0) of :func:`moments` into ``h`` (p, m).
 
@@ -161,7 +157,7 @@ def half_sq_into(x, gp, h):
             hi[j] = v
 
 
-@njit_inline
+@njit
 def exp_rows_into(gp, h, mean, e):
     """The kernel rows exp(-h) into ``e`` and the posterior mean into ``mean`` (p, d) of
     :func:`half_sq_into`'s ``h`` (p, m).
@@ -184,7 +180,7 @@ def exp_rows_into(gp, h, mean, e):
                 mean[i, a] += ej * c_alpha[j, a]
 
 
-@njit_inline
+@njit
 def variance(e, gp):
     """The latent variance C - e (C²·W) eᵀ (p,) (not clipped at 0) of the kernel rows
     exp(-h) ``e`` (p, m): the dense quadratic form, most of a draw's arithmetic.
@@ -263,7 +259,7 @@ def new_work(p, gp):
     )
 
 
-@njit_inline
+@njit
 def draw_parts_into(x, n, rng, gp, sharp, work, rows):
     """:func:`draw_parts` into the work arrays ``work`` (:func:`new_work` of x's p rows and
     ``gp``) and ``rows`` (at least p·n): afterwards ``work[0]`` is the posterior mean and
@@ -286,7 +282,7 @@ def draw_parts_into(x, n, rng, gp, sharp, work, rows):
     return eps
 
 
-@njit_inline
+@njit
 def draw_numbers(rng, p, n, gp):
     """The random numbers of a draw of ``n`` successors of ``p`` predecessors by ``gp``, drawn
     from ``rng`` in :func:`sample`'s order: p·n uniforms (the pool choices), p·n pool members,
@@ -306,7 +302,7 @@ def draw_numbers(rng, p, n, gp):
     return u, member, rng.standard_normal(p * n * gp[7].shape[1])
 
 
-@njit_inline
+@njit
 def choose_rows(h, e, u, member, n, gp, sharp, work, rows):
     """Each successor's residual row of the flattened pools into ``rows`` (p·n,): the pool of
     inducing input j with probability ∝ exp(-sharp·(h_j - min h)) (:func:`sample`) at the
@@ -392,7 +388,7 @@ def compose(mean, var, rows, eps, n, pool):
     return out
 
 
-@njit_inline
+@njit
 def compose_into(mean, var, rows, eps, n, pool, out, o0):
     """:func:`compose` for one predecessor (``mean`` (1, d)) with the variance ``var`` (a
     float) into the rows ``o0`` .. ``o0`` + n - 1 of ``out`` (.., d).
@@ -415,7 +411,7 @@ def compose_into(mean, var, rows, eps, n, pool, out, o0):
             out[o0 + r, a] = eps[r * d + a] * sd + mean[0, a] + pool[row, a]
 
 
-@njit_inline
+@njit
 def sample_into(x, n, rng, gp, sharp, work, rows, out, o0):
     """:func:`sample` of one predecessor ``x`` (1, d) into the rows ``o0`` .. ``o0`` + n - 1
     of ``out``, with the work arrays ``work`` (:func:`new_work`) and ``rows`` (>= n): the same

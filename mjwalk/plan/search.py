@@ -30,11 +30,9 @@ functions it calls from other modules (:func:`~mjwalk.plan.stepcheck.check_into`
 in :mod:`~mjwalk.plan.stepgeom`, :mod:`~mjwalk.plan.lean` and :mod:`~mjwalk.plan.stepcost`;
 :func:`~mjwalk.gait.gpdraw.sample`): a change there must come with a change to this file's text,
 or processes keep running the old machine code (touching the file is not enough). The record of
-such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: the step checks
-inlined into the loop, check_into, legs_recheck, legs_clear and the goal, key and closing
-tests; before it, the GP draw's parts inlined, :mod:`mjwalk.gait.gpdraw`; before it,
-check_into tests the end pelvis and the ankle before the other pelvis samples, and a node
-keeps its closed-list key from the push; before it, the legs' checks
+such changes is ``docs/decisions/106-planner-compiled-loop.md`` (last: check_into tests the
+end pelvis and the ankle before the other pelvis samples, and a node keeps its closed-list key
+from the push; before it, the legs' checks
 deferred to the pop, :func:`~mjwalk.plan.stepcheck.legs_recheck`; before it, the GP draws into
 work arrays kept for the whole search and into ``feats`` itself,
 :func:`~mjwalk.gait.gpdraw.sample_into`, and closing draws whose mean cannot end the walk
@@ -52,7 +50,7 @@ import numpy as np
 from numba import types
 from numba.typed import Dict
 
-from mjwalk._jit import njit, njit_inline
+from mjwalk._jit import njit
 from mjwalk.gait.gpdraw import (
     choose_rows,
     compose_into,
@@ -95,7 +93,7 @@ def _grow2(a, n):
     return out
 
 
-@njit_inline
+@njit
 def _predecessor_row(nid, pos, foot, fhead, g, parent, out):
     """Node ``nid``'s row for :func:`~mjwalk.plan.stepcheck.check_into` (its ``node``, (1, 5))
     into ``out``: its end point, the foot its step landed and the foot behind that, g, and
@@ -115,7 +113,7 @@ def _predecessor_row(nid, pos, foot, fhead, g, parent, out):
         out[0, 4] = complex(fhead[nid], fhead[parent[nid]])
 
 
-@njit_inline
+@njit
 def _closing_draws(x, n, rng, gp, reach, sharp, matrix, offset, frame, p, par, ipar, work, rows,
                    z, o0):  # fmt: skip
     """``n`` closing steps drawn from the predecessor ``x`` (1, d) by the closing-step GP

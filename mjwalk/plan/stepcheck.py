@@ -36,7 +36,7 @@ import math
 
 import numpy as np
 
-from mjwalk._jit import njit, njit_inline
+from mjwalk._jit import njit
 from mjwalk.plan.guide import guide_aim, guide_aim_at, guide_nearest
 from mjwalk.plan.lean import lean_in_range, lean_limits, lean_ok, stance_lean, stance_lean_ok
 from mjwalk.plan.slots import (
@@ -252,7 +252,7 @@ def _lift_turn(node, i, fr, par):
     return lift_yaw
 
 
-@njit_inline
+@njit
 def legs_clear(z, r, matrix, offset, loc, rot, node, i, fr, lf, v, v_end, lift_yaw, lean, limits,
                thr, par, ipar, coef):  # fmt: skip
     """Whether the legs and feet of a step whose pelvis samples and ankle keep their
@@ -371,7 +371,7 @@ def legs_clear(z, r, matrix, offset, loc, rot, node, i, fr, lf, v, v_end, lift_y
     return True
 
 
-@njit_inline
+@njit
 def legs_recheck(z, r, matrix, offset, fr, lf, node, thr, par, ipar, coef, loc):
     """:func:`legs_clear` of a step that :func:`check_into` accepted with ``defer``: the same
     decode, turn and field lookups, so the same outcome as check_into without ``defer``.
@@ -409,7 +409,7 @@ def legs_recheck(z, r, matrix, offset, fr, lf, node, thr, par, ipar, coef, loc):
                       coef)  # fmt: skip
 
 
-@njit_inline
+@njit
 def check_into(
     z, matrix, offset, per, n_walk, frame, left, near, node, thr, par, ipar, coef, dist, out,
     accepted, drawn, defer,

@@ -180,7 +180,7 @@ def swing_yaw(lift, land, turned):
     return lift + turned * math.atan2(math.sin(d), math.cos(d))
 
 
-@njit_inline
+@njit
 def within(v, r):
     """``abs(v) <= r`` for a complex ``v``, as :func:`beyond` decides it (nan: False).
 
@@ -199,7 +199,7 @@ def within(v, r):
     return abs(v) <= r
 
 
-@njit_inline
+@njit
 def cell_key(p, heading, par, ipar):
     """Closed-list key of a node at world x + iy ``p`` facing ``heading`` (radians): its grid
     cell (i · span + j) and, with heading bins, times bins plus its heading bin.
@@ -221,7 +221,7 @@ def cell_key(p, heading, par, ipar):
     return key
 
 
-@njit_inline
+@njit
 def in_goal(p, heading, par, ipar):
     """Whether a node at world x + iy ``p`` facing ``heading`` (radians) ends the walk: within
     the tolerance of the goal, within each of the I_N_DISCS goal discs (x, y, radius at
@@ -247,7 +247,7 @@ def in_goal(p, heading, par, ipar):
     return abs(diff) <= par[P_YAW_TOLERANCE]
 
 
-@njit_inline
+@njit
 def closing_ends_miss(mean, rows, eps, pool, sd_cap, matrix, offset, m, frame, p, par, ipar):
     """Whether no closing step of one draw can end in the goal area (:func:`in_goal`'s discs:
     the tolerance about the goal and each goal disc), whatever its posterior standard
@@ -287,7 +287,7 @@ def closing_ends_miss(mean, rows, eps, pool, sd_cap, matrix, offset, m, frame, p
     return True
 
 
-@njit_inline
+@njit
 def closing_ends_far(centre, grow, eps, n, sd_cap, matrix, offset, m, frame, p, par, ipar):
     """Whether no closing step of one draw can end in the goal area (as
     :func:`closing_ends_miss`) whatever its mean, residual and standard deviation, given only
