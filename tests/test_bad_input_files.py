@@ -421,6 +421,9 @@ def _errors(stderr: str) -> list[str]:
     ]
 
 
+# the fast tier's longest (52 s in a quiet warm run: under the 20 000-block file limit its two
+# processes cannot write numba's cache and compile planner and renderer afresh): its 5 min budget
+@pytest.mark.slow
 def test_write_failure_names_the_file(tmp_path, station_walk):
     png = tmp_path / "plan.png"
     argv = ["plan", "station", "--from", "stand_rack2", "--to", "stand_car1", "--n", "0"]
