@@ -53,8 +53,8 @@ from mjwalk.scan.scanlevels import (
     regions_at,
 )
 from mjwalk.scan.scanramps import ScanRamp, find_ramps, renumber
-from mjwalk.scan.stairfit import WRITE_MARGIN, fit_stair
-from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_RISER, MIN_STAIR_RISERS
+from mjwalk.scan.stairfit import fit_stair, written_riser
+from mjwalk.world.norms import MAX_RISER, MAX_TREAD, MIN_STAIR_RISERS
 
 #: Height of the box a gap is written as, metres: the least height of a guard rail round an
 #: opening, 1.1 m (EN ISO 14122-3:2016, 7.2.1); any height in the obstacle band makes it an
@@ -218,7 +218,7 @@ def within_norm(
     Returns:
         The link and the levels, unchanged when its riser is within the norm's range.
     """
-    riser = min(max(link.risers[0], MIN_RISER + WRITE_MARGIN), MAX_RISER - WRITE_MARGIN)
+    riser = written_riser(link.risers[0])
     if riser == link.risers[0]:
         return link, levels
     chain = [link.lower, *link.via]

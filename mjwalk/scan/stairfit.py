@@ -200,6 +200,22 @@ def fit_stair(chain: list[int], levels: list[ScanLevel], plan: FloorPlan) -> dic
     }  # fmt: skip
 
 
+def written_riser(riser: float) -> float:
+    """A flight's riser as the writers write it, metres: within DIN 18065's range
+    (``norms.MIN_RISER``..``MAX_RISER``) ``WRITE_MARGIN`` inside each limit, so that the written
+    scene's level graph, exact at the norm, still reads a stair after the written coordinates'
+    rounding (:func:`mjwalk.scan.writtennorm.stairs_within_norm`,
+    :func:`mjwalk.scan.scanpits.within_norm`; the tread is fitted for it, :func:`fit_stair`).
+
+    Args:
+        riser: the riser measured, metres.
+
+    Returns:
+        The riser written, metres (``riser`` itself when it lies within that range).
+    """
+    return min(max(riser, MIN_RISER + WRITE_MARGIN), MAX_RISER - WRITE_MARGIN)
+
+
 def _written_tread(tread: float, riser: float) -> float:
     """A fitted tread as written, metres. One measured within the grid's slack outside the
     norm's range is written at its limit (the grid cannot tell them apart; the written scene's
@@ -211,7 +227,7 @@ def _written_tread(tread: float, riser: float) -> float:
     ``scanpits.within_norm``): a flight of 0.14 m risers and 0.37 m treads (2 h + g = 0.65 m)
     measured at 0.139995 m, its tread fitted at 0.3699 m, was written with 0.1401 m risers,
     2 h + g = 0.6501 m: single steps in the written scene."""
-    written = min(max(riser, MIN_RISER + WRITE_MARGIN), MAX_RISER - WRITE_MARGIN)
+    written = written_riser(riser)
     low, high = min(riser, written), max(riser, written)
     tread = min(max(tread, MIN_TREAD + WRITE_MARGIN), MAX_TREAD - WRITE_MARGIN)
     rule = (STEP_RULE[0] + WRITE_MARGIN - 2 * low, STEP_RULE[1] - WRITE_MARGIN - 2 * high)

@@ -24,8 +24,8 @@ import dataclasses
 
 from mjwalk.scan.scanlevels import ScanLink
 from mjwalk.scan.scanramps import ScanRamp, within_limit
-from mjwalk.scan.stairfit import WRITE_MARGIN
-from mjwalk.world.norms import MAX_RISER, MIN_RISER
+from mjwalk.scan.stairfit import written_riser
+from mjwalk.world.norms import MAX_RISER
 
 #: How far under :data:`~mjwalk.world.norms.MAX_RISER` a step the scan measured over it (within
 #: its noise) is written, metres: the written box's centre and half-height are each rounded to
@@ -120,7 +120,7 @@ def stairs_within_norm(links: list[ScanLink], heights: list[float]) -> list[Scan
         r = (heights[k.upper] - heights[k.lower]) / n
         held = _held_levels(links, k)
         if not set(k.via) & held and (k.upper not in held or _only_ramps_on(links, k, k.upper)):
-            r = min(max(r, MIN_RISER + WRITE_MARGIN), MAX_RISER - WRITE_MARGIN)
+            r = written_riser(r)
             heights[k.upper] = heights[k.lower] + n * r
         for j, i in enumerate(k.via, start=1):
             heights[i] = heights[k.lower] + j * r
