@@ -213,24 +213,18 @@ def side_gap(workplace, blocker, route, start, goal) -> float:
         beside = pts
     own = blocker.signed_distance(beside)
     footprints = passing_footprints(workplace)  # a level's openings too (issue 47)
-    if footprints:  # the floor's edges and those within GAP_OPEN that may narrow it, the
-        # polygons' distances in one compiled pass (nearcut.gap_room: exact)
-        pk = pack(workplace)
-        passed = np.zeros(len(footprints), dtype=np.bool_)
-        passed[pk.rows.get(id(blocker), [])] = True
-        floor = np.asarray(workplace.floor_bounds, dtype=float)
-        other, rounded = gap_room(
-            np.ascontiguousarray(beside), floor, pk.bounds, pk.vertices, pk.first, pk.count,
-            pk.radius, passed, GAP_OPEN,
-        )  # fmt: skip
-        for k in rounded:  # rounded segments: their own (NumPy) distance
-            other = np.minimum(other, footprints[k].signed_distance(beside))
-    else:
-        xmin, ymin, xmax, ymax = (float(v) for v in workplace.floor_bounds)
-        other = np.minimum.reduce(
-            [beside[:, 0] - xmin, xmax - beside[:, 0], beside[:, 1] - ymin, ymax - beside[:, 1]]
-        )
-        other = np.minimum(other, GAP_OPEN)
+    # the floor's edges and the obstacles within GAP_OPEN that may narrow it, the polygons'
+    # distances in one compiled pass (nearcut.gap_room: exact; none: the floor's alone)
+    pk = pack(workplace)
+    passed = np.zeros(len(footprints), dtype=np.bool_)
+    passed[pk.rows.get(id(blocker), [])] = True
+    floor = np.asarray(workplace.floor_bounds, dtype=float)
+    other, rounded = gap_room(
+        np.ascontiguousarray(beside), floor, pk.bounds, pk.vertices, pk.first, pk.count,
+        pk.radius, passed, GAP_OPEN,
+    )  # fmt: skip
+    for k in rounded:  # rounded segments: their own (NumPy) distance
+        other = np.minimum(other, footprints[k].signed_distance(beside))
     return float(np.min(own + other))  # negative depth inside another obstacle narrows it
 
 
