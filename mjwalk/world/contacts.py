@@ -6,7 +6,8 @@ contact gap) that lies on another surface, with room above it
 a limit, joins the two there. Consecutive such samples make one :class:`Contact`, kept when it
 is at least a body wide (:data:`MIN_CROSSING`). A surface resting on another (a step on the
 floor) meets it along its own edges; two boxes side by side (the treads of a stair) along the
-shared edge, found from both. Metres, world xy.
+shared edge, found from both. A ramp's ends meet levels, whichever of a level's surfaces lies
+beyond them (:func:`level_contacts`). Metres, world xy.
 """
 
 from __future__ import annotations
