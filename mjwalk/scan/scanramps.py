@@ -229,7 +229,10 @@ def _end(
     regions: Sequence[ScanLevel], frame: tuple, z_end: float, s_end: float, up: bool, plan
 ) -> tuple[int, float, float] | None:
     """The region a ramp's plane meets beyond one end of its cells (step 3): (index, height,
-    place along the run where the plane reaches it), or None."""
+    place along the run where the plane reaches it), or None. The region's cells must lie past
+    that place, where a walker steps off the ramp: a ramp's toe within ``FLOOR_TOL`` of the
+    floor is floor to the scan, and over no floor beyond it linked a ramp that ends in the air
+    (the written scene's floor stopped at the toe: no link there)."""
     grad, run, side, w0, w1 = frame
     g = float(grad @ run)
     res = plan.resolution
@@ -244,7 +247,8 @@ def _end(
         q = np.column_stack([plan.x0 + (ix + 0.5) * res, plan.y0 + (iy + 0.5) * res])
         s, w = q @ run, q @ side
         d = CONTACT_GAP + 2 * res + TRIM_SIGMAS * RAMP_RMS / g
-        there = (np.abs(s - s_at) <= d) & (w >= w0) & (w <= w1)
+        beyond = (s - s_at) if up else (s_at - s)  # past the end, off the ramp
+        there = (beyond >= 0.5 * res) & (beyond <= d) & (w >= w0) & (w <= w1)
         if len(np.unique(np.round(w[there] / res))) * res < MIN_CROSSING:
             continue
         if best is None or (r.height < best[1] if up else r.height > best[1]):

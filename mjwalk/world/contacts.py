@@ -6,7 +6,8 @@ contact gap) that lies on another surface, with room above it
 a limit, joins the two there. Consecutive such samples make one :class:`Contact`, kept when it
 is at least a body wide (:data:`MIN_CROSSING`). A surface resting on another (a step on the
 floor) meets it along its own edges; two boxes side by side (the treads of a stair) along the
-shared edge, found from both. Metres, world xy.
+shared edge, found from both. A ramp's ends meet levels, whichever of a level's surfaces lies
+beyond them (:func:`level_contacts`). Metres, world xy.
 """
 
 from __future__ import annotations
@@ -110,6 +111,74 @@ def _edge_contacts(
             r = rise[i:j]
             edge = ((float(s[0]), float(s[1])), (float(e[0]), float(e[1])))
             out.append(Contact(ia, ib, edge, float(np.median(r)), (float(r.min()), float(r.max()))))
+    return out
+
+
+def level_contacts(
+    surfaces: Sequence[WalkSurface],
+    level_of: Sequence[int | None],
+    gap: float = CONTACT_GAP,
+    max_rise: float = MAX_RISER,
+) -> list[Contact]:
+    """The contacts of the edges of the surfaces in no level (the ramps) with levels rather
+    than single surfaces: beyond an edge, consecutive samples on any surface of one level join
+    one stretch, kept when it is a body wide (:data:`MIN_CROSSING`). A level written as
+    several boxes (a scanned floor cut round a pit into strips, issue 47's hall 1243) meets a
+    ramp's end along its width though no one box does; a walker crossing there does not care
+    which box is under the foot.
+
+    Args:
+        surfaces: the walk surfaces.
+        level_of: each surface's level (None: in none, a ramp: its edges are sampled).
+        gap: how far beyond an edge the level is looked for, metres (> 0).
+        max_rise: largest height difference across a contact, metres (>= 0).
+
+    Returns:
+        The contacts by surface ``a``, edge and level, ``b`` the surface under most of the
+        stretch's samples; at each sample the rise is to the level's surface nearest in height.
+    """
+    out: list[Contact] = []
+    edges = [(ia, e) for ia, sa in enumerate(surfaces) if level_of[ia] is None for e in _edges(sa)]
+    for ia, (a0, a1) in edges:
+        length = float(np.linalg.norm(a1 - a0))
+        if length < MIN_CROSSING:
+            continue
+        n = int(min(MAX_EDGE_SAMPLES, max(1, math.ceil(length / EDGE_SPACING))))
+        p = a0 + ((np.arange(n) + 0.5) / n)[:, None] * (a1 - a0)
+        d = (a1 - a0) / length
+        q = p + gap * np.array([d[1], -d[0]])  # the outward normal of a CCW edge
+        za = surfaces[ia].height_at(p)
+        qx0, qy0 = (float(v) for v in q.min(axis=0))
+        qx1, qy1 = (float(v) for v in q.max(axis=0))
+        best: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # level -> (rise, surface)
+        for ib, sb in enumerate(surfaces):
+            lv = level_of[ib]
+            if ib == ia or lv is None:
+                continue
+            x0, y0, x1, y1 = sb.footprint.bounds()
+            if qx1 < x0 - gap or qy1 < y0 - gap or qx0 > x1 + gap or qy0 > y1 + gap:
+                continue
+            on = sb.contains(q)
+            if not np.any(on):
+                continue
+            rise = sb.height_at(q) - za
+            ok = on & (np.abs(rise) <= max_rise + ROUNDING_SLACK)
+            if np.any(ok):
+                ok[ok] = sb.free_height(q[ok]) > EXPOSED_MIN
+            r, who = best.setdefault(lv, (np.full(n, np.inf), np.full(n, -1)))
+            nearer = ok & (np.abs(rise) < np.abs(r))
+            r[nearer], who[nearer] = rise[nearer], ib
+        for r, who in best.values():
+            for i, j in _runs(who >= 0):
+                if (j - i) * length / n < MIN_CROSSING:
+                    continue
+                s, e = a0 + (i / n) * (a1 - a0), a0 + (j / n) * (a1 - a0)
+                edge = ((float(s[0]), float(s[1])), (float(e[0]), float(e[1])))
+                b = int(np.argmax(np.bincount(who[i:j])))
+                rr = r[i:j]
+                out.append(
+                    Contact(ia, b, edge, float(np.median(rr)), (float(rr.min()), float(rr.max())))
+                )
     return out
 
 

@@ -28,7 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from mjwalk.errors import InputError
-from mjwalk.world.contacts import Contact, surface_contacts
+from mjwalk.world.contacts import Contact, level_contacts, surface_contacts
 from mjwalk.world.norms import (
     CONTACT_GAP,
     EXPOSED_MIN,
@@ -501,7 +501,8 @@ def level_graph(surfaces: Sequence[WalkSurface], options: LevelOptions | None = 
         for i in lv.surfaces:
             level_of[i] = lv.index
     steps = _step_links(surfaces, contacts, level_of, options.level_tol)
-    ramps = _ramp_links(surfaces, contacts, level_of, options.level_tol)
+    ramp_ends = level_contacts(surfaces, level_of, options.contact_gap, options.max_riser)
+    ramps = _ramp_links(surfaces, ramp_ends, level_of, options.level_tol)
     stairs = []
     for chain, replaced in _stairs(steps, levels, options):
         treads = tuple(levels[k.upper].surfaces[0] for k in chain[:-1])
@@ -518,7 +519,7 @@ def level_graph(surfaces: Sequence[WalkSurface], options: LevelOptions | None = 
             )
         )  # fmt: skip
         steps = [k for k in steps if all(k is not c for c in replaced)]
-    notes = _ramp_notes(surfaces, contacts, level_of, options.level_tol, ramps)
+    notes = _ramp_notes(surfaces, ramp_ends, level_of, options.level_tol, ramps)
     return LevelGraph(
         tuple(surfaces), tuple(levels), tuple(steps + ramps + stairs), tuple(level_of), notes
     )

@@ -82,10 +82,14 @@ def test_a_flight_at_the_least_riser_and_largest_tread_stays_a_stair_in_the_writ
     assert [(k.kind, len(k.risers)) for k in graph.links] == [("stair", N)]
 
 
-def _deck_by_flight_and_ramp_xml(riser: float = 0.14, tread: float = 0.33) -> str:
+def _deck_by_flight_and_ramp_xml(
+    riser: float = 0.14, tread: float = 0.33, floor: float = 8.0
+) -> str:
     """Four ``riser`` risers up to a 1.5 m deck, and from its far edge a 4 m ramp (7.97 deg)
-    down to the floor: the deck is the flight's top and the ramp's."""
+    down to the floor (its foot at x = 6.49 m): the deck is the flight's top and the ramp's.
+    The floor plane reaches x = ``floor`` metres (4: the ramp runs off its end)."""
     flight = _flight_xml(riser, tread).removesuffix("</worldbody></mujoco>")
+    flight = flight.replace('size="4 3 0.05"', f'size="{floor} 3 0.05"')
     top, run = N * riser, 4.0
     th = math.atan(top / run)
     x = tread * (N - 1) + 1.5 + run / 2 - 0.05 * math.sin(th)
@@ -99,10 +103,11 @@ def _deck_by_flight_and_ramp_xml(riser: float = 0.14, tread: float = 0.33) -> st
 
 @pytest.mark.slow  # a synthetic scan: about 15 s on a loaded 2-core machine
 def test_a_flight_a_hair_under_the_least_riser_to_a_deck_a_ramp_also_reaches_stays_a_stair():
-    """Scan seed 0 fits the flight's riser at 0.13997 m, the deck (the ramp's top too) at
-    0.55988 m: the flight is written at ``MIN_RISER + WRITE_MARGIN``, the deck raised 0.5 mm
-    with the ramp's end, and the written scene reads a stair (before: risers 0.13997 m as
-    measured, four single steps)."""
+    """Scan seed 0 fits the flight's riser a hair under 0.14 m: the flight is written at
+    ``MIN_RISER + WRITE_MARGIN``, the deck raised with the ramp's end, and the written scene
+    reads a stair (before: risers 0.13997 m as measured, four single steps) and the ramp (the
+    floor plane now reaches the ramp's foot; it ended 2.49 m short of it, and neither the
+    hall nor its written scene linked the ramp)."""
     model = mujoco.MjModel.from_xml_string(_deck_by_flight_and_ramp_xml())
     scanners = [(-1.0, 0.3, 1.6), (-2.5, -0.3, 1.7), (1.8, 0.5, 2.4), (5.5, 1.2, 2.4)]
     scan = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=0)
@@ -115,8 +120,28 @@ def test_a_flight_a_hair_under_the_least_riser_to_a_deck_a_ramp_also_reaches_sta
     assert ramp.h_hi == pytest.approx(N * r, abs=1e-12) and ramp.slope <= MAX_RAMP_SLOPE
     assert scene.levels.heights == pytest.approx([k * 0.14 for k in range(N + 1)], abs=0.02)
     graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_string(scene.xml)))
-    assert [(k.kind, len(k.risers)) for k in graph.links] == [("stair", N)]
+    assert [(k.kind, len(k.risers)) for k in graph.links] == [("ramp", 0), ("stair", N)]
     assert graph.levels[-1].height == pytest.approx(N * r, abs=2e-5)
+
+
+@pytest.mark.slow  # a synthetic scan: about 15 s on a loaded 2-core machine
+def test_a_ramp_running_off_the_floors_end_is_linked_in_neither_the_hall_nor_the_scan():
+    """The hall above with its floor plane ending at x = 4 m: the ramp's foot (x = 6.49 m)
+    ends 2.49 m past it, in the air, and the hall's own graph links no ramp ("its ends do
+    not meet two levels"). The ramp's toe, within ``FLOOR_TOL`` of the floor's height, was
+    floor to the scan, which linked the ramp L0 -> L4 (before; the written scene did not:
+    its floor stopped 9 mm past the toe); a level must lie past a ramp's end, where a
+    walker steps off it (``scanramps``), so the scan now links the stair alone, as the hall."""
+    model = mujoco.MjModel.from_xml_string(_deck_by_flight_and_ramp_xml(floor=4.0))
+    hall = level_graph(find_walk_surfaces(model))
+    assert [k.kind for k in hall.links] == ["stair"] and "ramp 'ramp'" in hall.notes[0]
+    scanners = [(-1.0, 0.3, 1.6), (-2.5, -0.3, 1.7), (1.8, 0.5, 2.4), (5.5, 1.2, 2.4)]
+    scan = synthetic_scan(model, scanners, step_deg=0.4, noise=0.005, seed=0)
+    scene = build_scene(scan.points, source="deck")
+    assert scene.levels is not None
+    assert [k.kind for k in scene.levels.links] == ["stair"] and not scene.levels.ramps
+    graph = level_graph(find_walk_surfaces(mujoco.MjModel.from_xml_string(scene.xml)))
+    assert [(k.kind, len(k.risers)) for k in graph.links] == [("stair", N)]
 
 
 def _stair(riser: float, lower: int = 0, upper: int = 4) -> ScanLink:

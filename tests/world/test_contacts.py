@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import math
+
 import mujoco
 import pytest
 
 from mjwalk.errors import InputError
-from mjwalk.world.contacts import MIN_CROSSING, reachable, surface_contacts
+from mjwalk.world.contacts import MIN_CROSSING, level_contacts, reachable, surface_contacts
 from mjwalk.world.surfaces import SurfaceOptions, find_walk_surfaces
 
 
@@ -66,3 +68,36 @@ def test_a_riser_at_the_limit_rounded_over_it_is_a_contact(tmp_path):
     deck = wp.levels.level_of[[s.name for s in wp.levels.surfaces].index("mezz_deck")]
     stairs = [k for k in wp.levels.links if k.kind == "stair" and deck in (k.lower, k.upper)]
     assert [len(k.risers) for k in stairs] == [5]
+
+
+def split_deck() -> str:
+    """A 5 deg ramp 0.9 m wide up to a 0.18 m deck (a step up too) written as two boxes that
+    meet on the ramp's axis (a level in strips, as a scan writes a floor cut round a pit):
+    each box meets the ramp's high end along 0.45 m, less than a body's width
+    (``MIN_CROSSING``, 0.5 m)."""
+    half = 0.18 / math.sin(math.radians(5.0)) / 2
+    x = 1.5 - half * math.cos(math.radians(5.0))
+    z = 0.09 - 0.05 * math.cos(math.radians(5.0))
+    return (
+        '<geom name="deck_a" type="box" size="1.5 0.6 0.09" pos="3 0.6 0.09"/>'
+        '<geom name="deck_b" type="box" size="1.5 0.6 0.09" pos="3 -0.6 0.09"/>'
+        f'<geom name="ramp" type="box" size="{half} 0.45 0.05" pos="{x} 0 {z}" euler="0 -5 0"/>'
+    )
+
+
+def test_a_level_of_several_boxes_meets_a_ramp_end_along_their_joined_stretches():
+    """No one deck box meets the ramp's high end a body wide, the deck's level does: the two
+    0.45 m stretches join into one 0.9 m contact (hall 1243's scanned floor, issue 47)."""
+    ss = surfaces(split_deck())
+    names = [s.name for s in ss]
+    ramp, decks = names.index("ramp"), {names.index("deck_a"), names.index("deck_b")}
+    assert 0.45 < MIN_CROSSING
+    assert not [c for c in surface_contacts(ss) if c.a == ramp and c.b in decks]
+    level_of = [None if s.is_ramp else (1 if i in decks else 0) for i, s in enumerate(ss)]
+    by_level = level_contacts(ss, level_of)
+    assert all(c.a == ramp for c in by_level)
+    (top,) = [c for c in by_level if c.b in decks]
+    assert top.length == pytest.approx(0.9, abs=0.02)
+    assert max(map(abs, top.rise_range)) < 1e-3  # the ramp's top meets the deck flush
+    (foot,) = [c for c in by_level if c.b == 0 and abs(c.rise) < 1e-3]
+    assert foot.length == pytest.approx(0.9, abs=0.02)  # its low end on the floor

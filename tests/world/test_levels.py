@@ -219,6 +219,31 @@ def test_a_ramp_with_a_cross_slope_links_nothing_and_says_why():
     assert f"  note: {note}" in describe_levels(rolled)
 
 
+def test_a_ramp_up_to_a_level_of_several_boxes_links_it():
+    """A 5 deg ramp's high end meets a 0.18 m deck (a step up too) written as two boxes, each
+    along 0.45 m only (less than a body's width): the deck's level meets it along 0.9 m, so
+    the ramp links floor and deck (before: no ramp link, "its ends do not meet two levels";
+    hall 1243's scanned floor, cut round a pit into strips, lost its ramp so)."""
+    half = 0.18 / math.sin(math.radians(5.0)) / 2
+    x = 1.5 - half * math.cos(math.radians(5.0))
+    z = 0.09 - 0.05 * math.cos(math.radians(5.0))
+    g = level_graph(
+        find_walk_surfaces(
+            scene(
+                '<geom name="deck_a" type="box" size="1.5 0.6 0.09" pos="3 0.6 0.09"/>'
+                '<geom name="deck_b" type="box" size="1.5 0.6 0.09" pos="3 -0.6 0.09"/>'
+                f'<geom name="ramp" type="box" size="{half} 0.45 0.05" pos="{x} 0 {z}" '
+                'euler="0 -5 0"/>'
+            )
+        )
+    )
+    assert [lv.kind for lv in g.levels] == ["floor", "platform"]
+    (ramp,) = [k for k in g.links if k.kind == "ramp"]
+    assert (ramp.lower, ramp.upper) == (0, 1) and g.notes == ()
+    assert ramp.rise == pytest.approx(0.18, abs=1e-3)
+    assert math.dist(*ramp.upper_edge) == pytest.approx(0.9, abs=0.02)
+
+
 def test_level_options_are_checked():
     with pytest.raises(InputError, match="level_tol"):
         LevelOptions(level_tol=0.0)
