@@ -84,7 +84,6 @@ def spin_turns(
     stats = {}
     root_c, yaw_c = np.ascontiguousarray(root, dtype=float), np.ascontiguousarray(yaw, dtype=float)
     for s_ in "lr":
-        starts, ends = _contacts(feet.ground[s_], feet.prints[s_], n)
         # the hip rotation of every grounded sample at once (the rows are independent: as
         # per contact), and where it passes its range; the other contacts are left as they are
         bufs = (
@@ -96,6 +95,10 @@ def spin_turns(
         r_all, up_all, down_all = _hip_rotation(feet, s_, root_c, yaw_c, sp, bufs)
         need_all = (up_all > 0) | (down_all > 0)
         worst, count = 0.0, 0
+        if not need_all.any():  # no contact turns (most walks' feet: ~9 in 10 of a station's)
+            stats[s_] = (worst, count)
+            continue
+        starts, ends = _contacts(feet.ground[s_], feet.prints[s_], n)
         # (the contacts with a sample that needs a turn, found at once by a running count)
         seen = np.concatenate([[0], np.cumsum(need_all)])
         after = np.asarray(ends, dtype=np.int64) + 1
