@@ -17,6 +17,13 @@ costs. Without it the workplace cache is the user's own: what every later run co
 ``--no-cache`` loads the scenes with ``cache=False`` (nothing read from or written to the
 workplace cache, whatever it holds).
 
+Session 30 (cut3: hulls kept by the cache policy, headroom maps searched by box; 7b1da36 and the
+branch alternated, fresh processes, CPU, medians of 9 pairs, same child as here): workplace cache
+kept, levels load / first plan 329 / 593 -> 280 / 406 ms, flat twin 339 / 273 -> 272 / 223 ms,
+ratio of first plans 2.10 -> 1.73 (load + first plan 1.41 -> 1.30); cache=False levels 357 / 621
+-> 325 / 514, twin 397 / 285 -> 369 / 224 (the twin gains as much from the headroom maps; ratio
+1.92 -> 2.35). Noisy: this script's own medians of 4 runs varied 1.5-1.9 between two rounds.
+
 The child processes use only mjwalk's public API, so the script runs against any tree
 (``cd`` to it and set ``PYTHONPATH=.``).
 """
