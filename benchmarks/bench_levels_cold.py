@@ -1,7 +1,7 @@
 """Cold start of a scene on several levels: each run a fresh process (issue 47's cost target).
 
 Run: PYTHONPATH=. python3 benchmarks/bench_levels_cold.py [--runs 5] [--fresh-cache]
-     [--walk stand_rack1 stand_mezz_rack]
+     [--no-cache] [--walk stand_rack1 stand_mezz_rack]
 
 Each run starts a new Python process that loads the default step model, then times (CPU,
 ``time.process_time``) ``load_workplace`` of the scene, the first ``plan_walk`` in it (levels,
@@ -14,6 +14,15 @@ ratio of first plans says what a level scene's set-up costs over a flat scene's.
 ``--fresh-cache`` points each process at an empty workplace cache (``$MJWALK_CACHE_DIR``, a new
 temporary folder; the trained models stay where they are): what the very first run on a scene
 costs. Without it the workplace cache is the user's own: what every later run costs.
+``--no-cache`` loads the scenes with ``cache=False`` (nothing read from or written to the
+workplace cache, whatever it holds).
+
+Session 30 (cut3: hulls kept by the cache policy, headroom maps searched by box; 7b1da36 and the
+branch alternated, fresh processes, CPU, medians of 9 pairs, same child as here): workplace cache
+kept, levels load / first plan 329 / 593 -> 280 / 406 ms, flat twin 339 / 273 -> 272 / 223 ms,
+ratio of first plans 2.10 -> 1.73 (load + first plan 1.41 -> 1.30); cache=False levels 357 / 621
+-> 325 / 514, twin 397 / 285 -> 369 / 224 (the twin gains as much from the headroom maps; ratio
+1.92 -> 2.35). Noisy: this script's own medians of 4 runs varied 1.5-1.9 between two rounds.
 
 The child processes use only mjwalk's public API, so the script runs against any tree
 (``cd`` to it and set ``PYTHONPATH=.``).
@@ -36,10 +45,10 @@ from pathlib import Path
 from mjwalk.world import load_workplace
 from mjwalk.gait.default import default_model
 from mjwalk.plan.walks import plan_walk
-scene, a, b = sys.argv[1:4]
+scene, a, b, cache = sys.argv[1:5]
 model = default_model(progress=False)
 t0 = time.process_time()
-wp = load_workplace(Path(scene))
+wp = load_workplace(Path(scene), cache=False if cache == "off" else None)
 t1 = time.process_time()
 w = plan_walk(wp, a, b, model, rng=1)
 t2 = time.process_time()
@@ -49,14 +58,15 @@ print(json.dumps({"load": t1 - t0, "first": t2 - t1, "warm": t3 - t2, "length": 
 """
 
 
-def run_child(scene: Path, a: str, b: str, fresh_cache: bool) -> dict[str, float]:
-    """One fresh process's figures (CPU seconds: load, first plan, warm plan; metres)."""
+def run_child(scene: Path, a: str, b: str, fresh_cache: bool, cache: str) -> dict[str, float]:
+    """One fresh process's figures (CPU seconds: load, first plan, warm plan; metres); ``cache``
+    "off" loads with ``cache=False``, else the default policy."""
     env = dict(os.environ)
     with tempfile.TemporaryDirectory() as tmp:
         if fresh_cache:
             env["MJWALK_CACHE_DIR"] = tmp
         out = subprocess.run(
-            [sys.executable, "-W", "ignore", "-c", CHILD, str(scene), a, b],
+            [sys.executable, "-W", "ignore", "-c", CHILD, str(scene), a, b, cache],
             capture_output=True, text=True, env=env, check=False,
         )  # fmt: skip
     if out.returncode:
@@ -70,6 +80,7 @@ def main() -> None:
     ap.add_argument("--runs", type=int, default=5)
     ap.add_argument("--walk", nargs=2, default=["stand_rack1", "stand_mezz_rack"])
     ap.add_argument("--fresh-cache", action="store_true", help="an empty workplace cache per run")
+    ap.add_argument("--no-cache", action="store_true", help="load with cache=False")
     args = ap.parse_args()
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     from bench_levels import SCENES, flat_twin  # deferred: after the path to benchmarks/
@@ -78,15 +89,18 @@ def main() -> None:
     rows: dict[str, list[dict[str, float]]] = {"levels": [], "twin": []}
     with tempfile.TemporaryDirectory() as tmp:
         twin = flat_twin(scene, Path(tmp) / "flat_twin.xml")
-        run_child(scene, *args.walk, args.fresh_cache)  # warm-up: numba cache, file cache
+        policy = "off" if args.no_cache else "default"
+        run_child(scene, *args.walk, args.fresh_cache, policy)  # warm-up: numba, file cache
+        run_child(twin, *args.walk, args.fresh_cache, policy)
         for _ in range(args.runs):
-            rows["levels"].append(run_child(scene, *args.walk, args.fresh_cache))
-            rows["twin"].append(run_child(twin, *args.walk, args.fresh_cache))
+            rows["levels"].append(run_child(scene, *args.walk, args.fresh_cache, policy))
+            rows["twin"].append(run_child(twin, *args.walk, args.fresh_cache, policy))
     med = {
         side: {k: statistics.median(r[k] for r in runs) for k in runs[0]}
         for side, runs in rows.items()
     }
     cache = "empty workplace cache" if args.fresh_cache else "workplace cache kept"
+    cache += ", cache=False" if args.no_cache else ""
     print(f"{args.walk[0]} -> {args.walk[1]}, {args.runs} fresh processes each ({cache}), CPU ms:")
     print(f"{'scene':8} {'load':>7} {'first plan':>11} {'warm':>7} {'length m':>9}")
     for side, m in med.items():

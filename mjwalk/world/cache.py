@@ -61,6 +61,22 @@ def _deprecated_env() -> None:
     logging.getLogger(__name__).warning(msg)
 
 
+def use_disk(cache: bool | None, auto: bool) -> bool:
+    """The workplace's cache policy (:attr:`mjwalk.world.workplace.WorkplaceOptions.cache`) for
+    one array: whether it is read from and written to this cache.
+
+    Args:
+        cache: the policy: True always, False never, None where ``auto`` says.
+        auto: whether the array is worth keeping by default (its rebuild costs more than a read:
+            a field of at least :data:`AUTO_NODES` nodes, a hull of at least
+            :data:`mjwalk.world.hullstore.DISK_HULL_POINTS` points).
+
+    Returns:
+        ``cache`` when given, else ``auto``.
+    """
+    return cache if cache is not None else auto
+
+
 def content_key(*parts: object, arrays: Iterable[np.ndarray] = ()) -> str:
     """The cache key of everything an array depends on.
 
@@ -82,16 +98,23 @@ def content_key(*parts: object, arrays: Iterable[np.ndarray] = ()) -> str:
     return h.hexdigest()
 
 
-def cached_array(key: str, what: str, build: Callable[[], np.ndarray]) -> np.ndarray:
+def cached_array(
+    key: str,
+    what: str,
+    build: Callable[[], np.ndarray],
+    valid: Callable[[np.ndarray], bool] | None = None,
+) -> np.ndarray:
     """The array stored under a key, memory-mapped; built and stored on a miss.
 
     A cache that cannot be written (read-only home, full disk) is skipped: the built array is
-    returned as is. A damaged file is rebuilt over.
+    returned as is. A damaged file (one NumPy cannot read, or one ``valid`` refuses) is rebuilt
+    over.
 
     Args:
         key: the content key (:func:`content_key`).
         what: which array of the key ("clearance", "walk"...), part of the file name.
         build: makes the array on a miss.
+        valid: checks a stored array before it is used (None: any array NumPy reads is taken).
 
     Returns:
         The array, copy-on-write memory-mapped from ``{key[:32]}-{what}.npy`` when stored.
@@ -99,9 +122,12 @@ def cached_array(key: str, what: str, build: Callable[[], np.ndarray]) -> np.nda
     path = cache_dir() / f"{key[:32]}-{what}.npy"
     if path.is_file():
         try:
-            return np.asarray(np.load(path, mmap_mode="c"))
+            stored = np.asarray(np.load(path, mmap_mode="c"))
         except (OSError, ValueError):  # a damaged file: rebuild over it
             pass
+        else:
+            if valid is None or valid(stored):
+                return stored
     arr = build()
     try:
         with atomic_path(path) as tmp:

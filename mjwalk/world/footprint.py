@@ -11,7 +11,6 @@ the slab their stadiums, and vertical (yaw-rotated) boxes their rectangles.
 from __future__ import annotations
 
 import functools
-import hashlib
 import math
 from dataclasses import dataclass
 
@@ -20,6 +19,7 @@ import numpy as np
 
 from mjwalk._jit import njit
 from mjwalk.boundedmemo import Memo
+from mjwalk.world.hullstore import clear_memo, point_digest, point_hull_edges
 
 #: Angular resolution of the tessellation of curved primitives (segments per full turn).
 _N_AROUND = 128
@@ -27,10 +27,6 @@ _N_AROUND = 128
 _N_RINGS = 48
 
 
-#: Hull edges of point sets (:func:`_clip_hull_to_slab`), by the points' digest: a level's view
-#: and every walker's head band clip the same tessellated geoms again (a 3-D hull of a sloped
-#: capsule's ~12 500 points is ~10 ms).
-_HULL_EDGES: Memo[bytes, np.ndarray] = Memo(limit=32)
 #: Footprints of :func:`geom_footprint` past its exact shapes, by name, geom, the world points'
 #: digest and the slab faces that cut them (exact: equal keys, equal answers).
 _FOOTPRINTS: Memo[tuple, Footprint | None] = Memo(limit=4096)
@@ -38,16 +34,8 @@ _FOOTPRINTS: Memo[tuple, Footprint | None] = Memo(limit=4096)
 
 def clear_memos() -> None:
     """Forget the kept hull edges and footprints (a benchmark's cold start)."""
-    _HULL_EDGES.clear()
+    clear_memo()
     _FOOTPRINTS.clear()
-
-
-def _digest(points: np.ndarray) -> bytes:
-    """A digest of a point array's shape and bytes (BLAKE2b, 16 bytes)."""
-    a = np.ascontiguousarray(points, dtype=float)
-    h = hashlib.blake2b(str(a.shape).encode(), digest_size=16)
-    h.update(a.tobytes())
-    return h.digest()
 
 
 @dataclass(frozen=True)
@@ -228,40 +216,14 @@ def polygon_area(v: np.ndarray) -> float:
     return 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
 
 
-def hull_edges(simplices: np.ndarray) -> np.ndarray:
-    """A 3-D convex hull's edges, each once, in ascending order of the pair: the triangles'
-    sides (i, i + 1 mod 3) sorted within each pair, de-duplicated and sorted lexicographically
-    (as ``sorted`` of a set of pairs gives them), in one NumPy pass instead of a Python loop
-    over the ~10^4 simplices of a tessellated capsule.
-
-    Args:
-        simplices: (f, 3) vertex indices of the hull's triangles (``ConvexHull.simplices``).
-
-    Returns:
-        (e, 2) int64 (low index, high index) pairs.
-    """
-    s = np.asarray(simplices, dtype=np.int64)
-    pairs = np.concatenate([s[:, [0, 1]], s[:, [1, 2]], s[:, [2, 0]]])
-    pairs.sort(axis=1)
-    n = int(s.max()) + 1 if s.size else 1
-    code = np.unique(pairs[:, 0] * n + pairs[:, 1])  # (a, b) -> a n + b keeps their order
-    return np.column_stack([code // n, code % n])
-
-
-def _clip_hull_to_slab(points: np.ndarray, z0: float, z1: float) -> np.ndarray:
-    """Vertices of conv(points) ∩ {z0 <= z <= z1} (points in world coordinates)."""
+def _clip_hull_to_slab(points: np.ndarray, z0: float, z1: float, disk: bool) -> np.ndarray:
+    """Vertices of conv(points) ∩ {z0 <= z <= z1} (points in world coordinates; ``disk``: the
+    hull's edges may be read from and kept in the workplace cache,
+    :func:`mjwalk.world.hullstore.point_hull_edges`)."""
     inside = points[(points[:, 2] >= z0) & (points[:, 2] <= z1)]
     if points[:, 2].min() >= z0 and points[:, 2].max() <= z1:
         return points
-    from scipy.spatial import ConvexHull, QhullError  # deferred: scipy.spatial, ~1 s import
-
-    def edges() -> np.ndarray:
-        try:
-            return hull_edges(ConvexHull(points).simplices)
-        except QhullError:
-            return np.empty((0, 2), dtype=np.int64)
-
-    e = _HULL_EDGES.get(_digest(points), edges)
+    e = point_hull_edges(points, disk)
     if len(e) == 0:  # qhull refused the points (flat or degenerate): the points in the slab
         return inside
     pa, pb = points[e[:, 0]], points[e[:, 1]]
@@ -276,7 +238,12 @@ def _clip_hull_to_slab(points: np.ndarray, z0: float, z1: float) -> np.ndarray:
 
 
 def geom_footprint(
-    model: mujoco.MjModel, data: mujoco.MjData, g: int, z0: float, z1: float
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    g: int,
+    z0: float,
+    z1: float,
+    disk: bool = False,
 ) -> Footprint | None:
     """Footprint of a geom within a horizontal slab.
 
@@ -286,6 +253,9 @@ def geom_footprint(
         g: the geom id.
         z0: the slab's bottom, world z, metres.
         z1: the slab's top, world z, metres.
+        disk: whether a tessellated geom's or large mesh's 3-D hull may be read from and kept
+            in the workplace cache (:mod:`mjwalk.world.hullstore`; the workplace's cache
+            policy). The footprint is the same either way.
 
     Returns:
         The convex footprint of the part of the geom in ``z0 <= z <= z1`` (world x, y), or None
@@ -334,10 +304,10 @@ def geom_footprint(
     # The answer from here on depends on the points and on each slab face only where it cuts
     # them: a face at or beyond their extent clips nothing (no point outside it, no edge across
     # it), so every such face gives the same footprint (the key's infinities).
-    key = (name, g, _digest(world), z0 if z0 > lo else -math.inf, z1 if z1 < hi else math.inf)
+    key = (name, g, point_digest(world), z0 if z0 > lo else -math.inf, z1 if z1 < hi else math.inf)
 
     def footprint() -> Footprint | None:
-        fp = _slab_footprint(name, g, world, z0, z1) if lo <= z1 and hi >= z0 else None
+        fp = _slab_footprint(name, g, world, z0, z1, disk) if lo <= z1 and hi >= z0 else None
         if fp is not None:
             fp.vertices.setflags(write=False)  # shared by every later call with this key
         return fp
@@ -345,9 +315,11 @@ def geom_footprint(
     return _FOOTPRINTS.get(key, footprint)
 
 
-def _slab_footprint(name: str, g: int, world: np.ndarray, z0: float, z1: float) -> Footprint | None:
+def _slab_footprint(
+    name: str, g: int, world: np.ndarray, z0: float, z1: float, disk: bool
+) -> Footprint | None:
     """The footprint of conv(``world``) within ``z0 <= z <= z1`` (:func:`geom_footprint`)."""
-    clipped = _clip_hull_to_slab(world, z0, z1)
+    clipped = _clip_hull_to_slab(world, z0, z1, disk)
     if len(clipped) == 0:
         return None
     xy = clipped[:, :2]

@@ -107,7 +107,9 @@ def level_view(workplace: Workplace, level: int, head: float | None = None) -> W
     known = views.get((lv.index, round(top, 3)))  # this level and band seen before
     if known is not None:
         return views[known]
-    options = replace(base, z_range=(workplace.z_range[0], top), cache=False)
+    # the workplace's cache policy for the hulls its geoms' footprints clip; a view's field is
+    # never stored (cache_key None)
+    options = replace(base, z_range=(workplace.z_range[0], top))
     model = workplace.model
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)

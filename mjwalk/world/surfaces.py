@@ -29,6 +29,7 @@ import numpy as np
 
 from mjwalk._args import check_patterns
 from mjwalk.errors import InputError
+from mjwalk.world.cache import use_disk
 from mjwalk.world.contacts import MIN_CROSSING, reachable, surface_contacts
 from mjwalk.world.floor import find_floor, floor_rect, floor_top, slab_floor
 from mjwalk.world.floorholes import FloorBoxes, floor_boxes, opening_area
@@ -89,6 +90,9 @@ class SurfaceOptions:
         max_riser: highest step between touching surfaces for one to reach the other, metres
             (``norms.MAX_RISER``, 0.19 m).
         contact_gap: widest gap between touching edges, metres (``norms.CONTACT_GAP``).
+        cache: the workplace cache policy for the overhead geoms' 3-D hulls
+            (:attr:`mjwalk.world.workplace.WorkplaceOptions.cache`; False: none read or kept on
+            disk). The surfaces are the same either way.
     """
 
     groups: frozenset[int] | None = None
@@ -102,6 +106,7 @@ class SurfaceOptions:
     min_headroom: float = CLEAR_HEADROOM
     max_riser: float = MAX_RISER
     contact_gap: float = CONTACT_GAP
+    cache: bool | None = None
 
     def __post_init__(self) -> None:
         if self.groups is not None:
@@ -263,8 +268,8 @@ def _calipers(v: np.ndarray) -> tuple[float, float]:
 class _Geoms:
     """The scene's geoms for the overhead search: world bounding boxes and whole footprints."""
 
-    def __init__(self, model: mujoco.MjModel, data: mujoco.MjData) -> None:
-        self.model, self.data = model, data
+    def __init__(self, model: mujoco.MjModel, data: mujoco.MjData, disk: bool) -> None:
+        self.model, self.data, self.disk = model, data, disk
         c, h = model.geom_aabb[:, :3], model.geom_aabb[:, 3:]
         signs = np.array(np.meshgrid([-1, 1], [-1, 1], [-1, 1])).reshape(3, -1).T  # (8, 3)
         rot = data.geom_xmat.reshape(-1, 3, 3)
@@ -279,9 +284,10 @@ class _Geoms:
         surface: the same, without cutting a curved hull)."""
         if self.lo[g, 2] >= z0 - 0.01 and self.hi[g, 2] <= z1:
             if g not in self.whole:
-                self.whole[g] = geom_footprint(self.model, self.data, g, self.lo[g, 2], z1)
+                lo = self.lo[g, 2]
+                self.whole[g] = geom_footprint(self.model, self.data, g, lo, z1, self.disk)
             return self.whole[g]
-        return geom_footprint(self.model, self.data, g, z0, z1)
+        return geom_footprint(self.model, self.data, g, z0, z1, self.disk)
 
     def ceiling_plane(self, g: int) -> Overhead:
         """A plane facing down as an overhead over its rectangle (an infinite one: everywhere)."""
@@ -359,7 +365,7 @@ def _surface_from_face(
     )
 
 
-def _floor_surface(model, data, floor: int) -> WalkSurface:
+def _floor_surface(model, data, floor: int, disk: bool) -> WalkSurface:
     """The floor as a walk surface (an infinite plane: the other geoms' extent plus a margin; a
     slab: its own top face, a yawed one's turned rectangle, :mod:`mjwalk.world.slabfloor`; the
     slabs side by side with it are surfaces of its height, one level with it)."""
@@ -382,7 +388,7 @@ def _floor_surface(model, data, floor: int) -> WalkSurface:
             fp.bounds()
             for g in range(model.ngeom)
             if g != floor
-            and (fp := geom_footprint(model, data, g, z, z + HEADROOM_SCAN)) is not None
+            and (fp := geom_footprint(model, data, g, z, z + HEADROOM_SCAN, disk)) is not None
         ]
         b = np.array(boxes) if boxes else np.array([[c[0] - 1, c[1] - 1, c[0] + 1, c[1] + 1]])
         m = INFINITE_FLOOR_MARGIN
@@ -428,9 +434,10 @@ def find_walk_surfaces(
         mujoco.mj_kinematics(model, data)
     floor = find_floor(model, data, "scene")
     human = {g for g in range(model.ngeom) if _is_humanoid(model, g, options.humanoid_prefixes)}
-    ground = _floor_surface(model, data, floor)
+    disk = use_disk(options.cache, True)  # 3-D hulls kept as obstacle_footprints keeps them
+    ground = _floor_surface(model, data, floor, disk)
     floor_skip = human | {floor}
-    geoms = _Geoms(model, data)
+    geoms = _Geoms(model, data, disk)
     holes = floor_boxes(model, data, floor, "scene")
     if holes is None:
         found = [_with_overhead(ground, geoms, floor_skip)]

@@ -194,24 +194,58 @@ class WalkSurface:
         out = np.full(len(flat), np.inf)
         if not self.overhead or out.size == 0:
             return out.reshape(shape)
-        # Only the geoms whose box meets the points' box and whose top clears the lowest point
-        # can be near one (the test below, point by point, needs both): the rest are skipped.
+        box, _ = self._overhead_boxes
+        for k in self._meeting(flat, z):
+            o = self.overhead[k]
+            lo, hi = box[k, :2], box[k, 2:]
+            near = np.all((flat >= lo) & (flat <= hi), axis=-1) & (o.top > z + _ABOVE)
+            if np.any(near):
+                self._lower_under(out, flat, z, k, np.flatnonzero(near))
+        return out.reshape(shape)
+
+    def _meeting(self, flat: np.ndarray, z: np.ndarray) -> np.ndarray:
+        """The overheads that can be over one of the points (n, 2) at heights z (n,): only the
+        geoms whose box meets the points' box and whose top clears the lowest point can be near
+        one (the test point by point needs both); every geom when a NaN hides the extent."""
         box, top = self._overhead_boxes
         pmin, pmax = flat.min(axis=0), flat.max(axis=0)
         meets = np.all(box[:, 2:] >= pmin, axis=1) & np.all(box[:, :2] <= pmax, axis=1)
         meets &= top > float(np.min(z)) + _ABOVE
         if np.isnan(pmin).any() or np.isnan(pmax).any() or np.isnan(z).any():
-            meets[:] = True  # a NaN hides the others' extent: test every geom, as below
-        for k in np.flatnonzero(meets):
-            o = self.overhead[k]
-            lo, hi = box[k, :2], box[k, 2:]
-            near = np.all((flat >= lo) & (flat <= hi), axis=-1) & (o.top > z + _ABOVE)
-            if not np.any(near):
-                continue
-            idx = np.flatnonzero(near)
-            at = idx[o.footprint.signed_distance(flat[idx]) < -_ON_EDGE]  # the points under it
-            out[at] = np.minimum(out[at], np.maximum(o.bottom - z[at], 0.0))
-        return out.reshape(shape)
+            meets[:] = True  # a NaN hides the others' extent: test every geom
+        return np.flatnonzero(meets)
+
+    def _lower_under(
+        self, out: np.ndarray, flat: np.ndarray, z: np.ndarray, k: int, idx: np.ndarray
+    ) -> None:
+        """Lower ``out`` to overhead k's free height at the points ``idx`` (ascending) of
+        ``flat`` that lie in its box and under its top, where its footprint is over them."""
+        o = self.overhead[k]
+        at = idx[o.footprint.signed_distance(flat[idx]) < -_ON_EDGE]  # the points under it
+        out[at] = np.minimum(out[at], np.maximum(o.bottom - z[at], 0.0))
+
+    def _grid_free_height(
+        self, gx: np.ndarray, gy: np.ndarray, xy: np.ndarray, inside: np.ndarray
+    ) -> np.ndarray:
+        """:meth:`free_height` of ``xy[inside]`` (the nodes of the grid ``gx`` x ``gy``, both
+        increasing, on the footprint), bit for bit: a box's points are found as the block of
+        nodes in its x and y ranges (a search in gx and gy, not a test of every point), taken
+        in the same ascending order, and measured by the same arithmetic."""
+        flat = xy[inside]
+        box, _ = self._overhead_boxes
+        if not self.overhead or not len(flat) or np.isnan(box).any():
+            return self.free_height(flat)  # (a NaN box tests no point: the general test)
+        z = self.height_at(flat).reshape(-1)
+        out = np.full(len(flat), np.inf)
+        rank = (np.cumsum(inside.ravel()) - 1).reshape(inside.shape)  # node -> index in flat
+        for k in self._meeting(flat, z):
+            i0, i1 = np.searchsorted(gx, box[k, 0], "left"), np.searchsorted(gx, box[k, 2], "right")
+            j0, j1 = np.searchsorted(gy, box[k, 1], "left"), np.searchsorted(gy, box[k, 3], "right")
+            block = rank[j0:j1, i0:i1][inside[j0:j1, i0:i1]]  # row-major: ascending
+            idx = block[self.overhead[k].top > z[block] + _ABOVE]
+            if len(idx):
+                self._lower_under(out, flat, z, k, idx)
+        return out
 
     @functools.cached_property
     def _overhead_boxes(self) -> tuple[np.ndarray, np.ndarray]:
@@ -229,7 +263,7 @@ class WalkSurface:
         xy = np.stack(np.meshgrid(gx, gy), axis=-1)
         values = np.full(xy.shape[:2], np.nan)
         inside = self.footprint.signed_distance(xy) < 0.0
-        values[inside] = self.free_height(xy[inside])
+        values[inside] = self._grid_free_height(gx, gy, xy, inside)
         return HeadroomMap(float(gx[0]), float(gy[0]), spacing, values)
 
     @property

@@ -15,7 +15,7 @@ import numpy as np
 
 from mjwalk._args import check_patterns, finite_points, parse_point
 from mjwalk.errors import InputError, SceneError
-from mjwalk.world.cache import AUTO_NODES, cached_array, content_key
+from mjwalk.world.cache import AUTO_NODES, cached_array, content_key, use_disk
 from mjwalk.world.clearance import ClearanceField, build_clearance
 from mjwalk.world.floor import (
     OBSTACLE_Z_RANGE,
@@ -57,7 +57,9 @@ class WorkplaceOptions:
         cache: keep the clearance field, walk field and occupancy grids on disk, keyed by the
             footprints' geometry, and map them into memory (:mod:`mjwalk.world.cache`; workers
             planning in one hall then share one copy). None: for fields of at least
-            :data:`mjwalk.world.cache.AUTO_NODES` nodes (about 20 x 20 m).
+            :data:`mjwalk.world.cache.AUTO_NODES` nodes (about 20 x 20 m). The 3-D hulls of
+            tessellated geoms and large meshes (:mod:`mjwalk.world.hullstore`) are kept
+            unless it is False, the level views' and the walk surfaces' included.
     """
 
     resolution: float = MAX_RESOLUTION
@@ -140,6 +142,7 @@ class Workplace:
                 include=o.include,
                 exclude=o.exclude,
                 humanoid_prefixes=o.humanoid_prefixes,
+                cache=o.cache,
             )
             cached = self._levels = level_graph(
                 find_walk_surfaces(self.model, None, surface_options)
@@ -441,6 +444,10 @@ def obstacle_footprints(
     """The footprints of the obstacle geoms ``options`` selects (not the floor, not a
     humanoid's, not planes), cut to its height band above the floor (or above ``base``).
 
+    Unless ``options.cache`` is False, a geom's 3-D hull of at least
+    :data:`mjwalk.world.hullstore.DISK_HULL_POINTS` points is read from and kept in the
+    workplace cache, whatever the scene's size (qhull takes some 60 ms for one).
+
     Args:
         model: the compiled scene.
         data: its data, kinematics done.
@@ -454,6 +461,7 @@ def obstacle_footprints(
             (:func:`~mjwalk.world.meshimport.concave_mesh_footprints`; a level's view of a
             scene already loaded does not look again).
 
+
     Returns:
         The footprints, in geom order (a concave mesh gives several pieces).
 
@@ -462,6 +470,7 @@ def obstacle_footprints(
     """
     groups, include, exclude = options.groups, options.include, options.exclude
     z_range = options.z_range
+    disk = use_disk(options.cache, True)
     floor_z = floor_top(model, data, floor) if base is None else float(base)
     footprints: list[Footprint] = []
     for g in range(model.ngeom):
@@ -487,7 +496,7 @@ def obstacle_footprints(
         if pieces is not None:
             footprints.extend(pieces)
             continue
-        fp = geom_footprint(model, data, g, z0, z1)
+        fp = geom_footprint(model, data, g, z0, z1, disk)
         if fp is not None:
             footprints.append(fp)
     return footprints
@@ -503,7 +512,7 @@ def _clearance(
     key = None
     nx = int(np.floor((bounds[2] - bounds[0]) / resolution + 1e-9)) + 1
     ny = int(np.floor((bounds[3] - bounds[1]) / resolution + 1e-9)) + 1
-    if options.cache if options.cache is not None else nx * ny >= AUTO_NODES:
+    if use_disk(options.cache, nx * ny >= AUTO_NODES):
         key = content_key(
             "clearance",
             tuple(float(v) for v in bounds),

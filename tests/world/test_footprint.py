@@ -69,23 +69,6 @@ def test_box_geom_footprint_is_its_rotated_rectangle():
     assert geom_footprint(model, data, 2, 0.05, 2.0) is None  # above the band
 
 
-def test_hull_edges_are_the_sorted_set_of_the_triangles_sides():
-    # seeded: the one-pass edges equal the old Python loop's sorted set of (low, high) pairs
-    from scipy.spatial import ConvexHull
-
-    from mjwalk.world.footprint import hull_edges
-
-    rng = np.random.default_rng(47)
-    for n in (4, 9, 200, 2000):
-        hull = ConvexHull(rng.normal(size=(n, 3)))
-        edges = set()
-        for simplex in hull.simplices:
-            for i in range(3):
-                a, b = simplex[i], simplex[(i + 1) % 3]
-                edges.add((min(a, b), max(a, b)))
-        np.testing.assert_array_equal(hull_edges(hull.simplices), np.array(sorted(edges)))
-
-
 def test_a_kept_footprint_equals_a_fresh_one_for_every_slab():
     # a sloped capsule (clipped as a tessellated hull): kept answers are bit-equal to fresh ones,
     # whatever the slab, and a slab face beyond the geom shares the entry of any other such face

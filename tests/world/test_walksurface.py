@@ -86,6 +86,38 @@ def test_free_height_skipping_far_geoms_equals_testing_every_geom():
     np.testing.assert_array_equal(ramp().free_height(xy[:5]), np.full(5, np.inf))
 
 
+def test_headroom_grid_equals_free_height_of_every_node_bit_for_bit():
+    # the map searches each overhead's box in the grid's axes instead of testing every node:
+    # its values equal free_height of the nodes on the footprint (the general test) exactly,
+    # on a ramp with 40 boxes, a round and a rotated overhead, some across its edges or with
+    # edges exactly on nodes, and with nothing over it; NaN off the footprint
+    rng = np.random.default_rng(7)
+    over = []
+    for k in range(40):
+        x, y = rng.uniform(-1, 1.5), rng.uniform(-1, 11)
+        w, d = rng.uniform(0.05, 1.5, size=2)
+        bottom = rng.uniform(0.3, 2.5)
+        over.append(Overhead(f"o{k}", square(f"o{k}", x, y, x + w, y + d), bottom, bottom + 0.2))
+    over.append(Overhead("node", square("node", 0.075, 1.025, 0.425, 2.475), 1.5, 1.7))
+    pipe = Footprint("pipe", 0, np.array([[0.2, 3.0], [0.8, 7.0]]), 0.1)
+    over.append(Overhead("pipe", pipe, 1.2, 1.4))
+    turned = np.array([[0.5, 8.0], [1.2, 8.6], [0.6, 9.3], [-0.1, 8.7]])
+    over.append(Overhead("turned", Footprint("turned", 0, turned), 1.0, 1.3))
+    for r in (ramp(over), ramp()):
+        hm = r.headroom
+        ny, nx = hm.values.shape
+        x0, y0 = r.footprint.bounds()[:2]  # the map's nodes as it places them, cell centres
+        gx = x0 + hm.spacing * (np.arange(nx) + 0.5)
+        gy = y0 + hm.spacing * (np.arange(ny) + 0.5)
+        assert (gx[0], gy[0]) == (hm.x0, hm.y0)
+        xy = np.stack(np.meshgrid(gx, gy), axis=-1)
+        inside = r.footprint.signed_distance(xy) < 0.0
+        want = np.full((ny, nx), np.nan)
+        want[inside] = r.free_height(xy[inside])
+        np.testing.assert_array_equal(hm.values, want)
+    assert np.isfinite(ramp(over).headroom.values).sum() > 1000
+
+
 def test_kind_is_checked():
     with pytest.raises(InputError, match="kind"):
         WalkSurface(0, "x", "roof", 0.0, square("x", 0, 0, 1, 1), 1.0, (0.5, 0.5), 0, 0, 0, 0, 1, 1)
