@@ -29,6 +29,7 @@ import numpy as np
 
 from mjwalk.errors import InputError
 from mjwalk.world.contacts import Contact, level_contacts, surface_contacts
+from mjwalk.world.levelgroups import group_levels
 from mjwalk.world.norms import (
     CONTACT_GAP,
     EXPOSED_MIN,
@@ -237,33 +238,6 @@ class LevelGraph:
                     seen.add(nxt)
                     todo.append(nxt)
         return frozenset(seen)
-
-
-def _group_levels(
-    surfaces: Sequence[WalkSurface], contacts: list[Contact], tol: float
-) -> list[list[int]]:
-    """Groups of horizontal surfaces joined by contacts no higher than ``tol`` (union-find)."""
-    parent = list(range(len(surfaces)))
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for c in contacts:
-        if surfaces[c.a].is_ramp or surfaces[c.b].is_ramp:
-            continue
-        if max(abs(c.rise_range[0]), abs(c.rise_range[1])) <= tol:
-            parent[root(c.a)] = root(c.b)
-    floors = [i for i, s in enumerate(surfaces) if s.kind == "floor"]  # a floor's boxes
-    for i in floors[1:]:  # (mjwalk.world.floorholes) are one level, touching or not
-        parent[root(i)] = root(floors[0])
-    groups: dict[int, list[int]] = {}
-    for i, s in enumerate(surfaces):
-        if not s.is_ramp:
-            groups.setdefault(root(i), []).append(i)
-    return list(groups.values())
 
 
 def _make_levels(surfaces: Sequence[WalkSurface], groups: list[list[int]]) -> list[Level]:
@@ -495,7 +469,7 @@ def level_graph(surfaces: Sequence[WalkSurface], options: LevelOptions | None = 
             "level_graph: no walk surfaces (find_walk_surfaces gives the floor at least)"
         )
     contacts = surface_contacts(surfaces, options.contact_gap, options.max_riser)
-    levels = _make_levels(surfaces, _group_levels(surfaces, contacts, options.level_tol))
+    levels = _make_levels(surfaces, group_levels(surfaces, contacts, options.level_tol))
     level_of: list[int | None] = [None] * len(surfaces)
     for lv in levels:
         for i in lv.surfaces:

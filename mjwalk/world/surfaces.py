@@ -7,7 +7,9 @@ has the clear headroom ``norms.CLEAR_HEADROOM`` above it to stand on (a surface 
 another geom has none). Of the candidates, only those reachable from the floor count: across
 edges that touch (within ``norms.CONTACT_GAP``) with a height difference no larger than a step
 (``norms.MAX_RISER``), so a stair's treads and a ramp are reachable and a table, a shelf or the
-roof of a car on a flat floor is not (it stays an obstacle).
+roof of a car on a flat floor is not (it stays an obstacle). A ramp's end reaches a level across
+any of its touching boxes, as in the level graph (:mod:`mjwalk.world.levelgroups`): a deck of
+several boxes only a ramp reaches, no box meeting it a body wide, is reached.
 
 Geom types: boxes exactly (level, yawed and tilted: a tilted box's top is a ramp); a vertical
 cylinder's top disc (as an inscribed 32-gon); a mesh's top (the convex hull of its vertices
@@ -34,6 +36,7 @@ from mjwalk.world.contacts import MIN_CROSSING, reachable, surface_contacts
 from mjwalk.world.floor import find_floor, floor_rect, floor_top, slab_floor
 from mjwalk.world.floorholes import FloorBoxes, floor_boxes, opening_area
 from mjwalk.world.footprint import Footprint, geom_footprint, polygon_area
+from mjwalk.world.levelgroups import ramp_end_contacts
 from mjwalk.world.norms import (
     CLEAR_HEADROOM,
     CONTACT_GAP,
@@ -461,6 +464,8 @@ def find_walk_surfaces(
             continue
         found.append(s)
     contacts = surface_contacts(found, options.contact_gap, options.max_riser)
+    # a ramp's end meets a level across its boxes, as in the level graph (levelgroups)
+    contacts += ramp_end_contacts(found, contacts, options.contact_gap, options.max_riser)
     keep = reachable(len(found), contacts)
     if holes is not None:  # every floor box is the floor: each one's edge may be a few cells
         for i, s in enumerate(found):  # of a staircase round a turned flight, touching little
