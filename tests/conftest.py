@@ -17,6 +17,43 @@ SCENES = ROOT / "scenes"
 SHARED_DATA = Path(os.environ.get("MJWALK_SHARED_DATA", ROOT.parent / "shared" / "data"))
 
 
+#: Test files run first, in this order (the rest follow, most tests first, as pytest-xdist's
+#: ``--dist loadfile`` orders them by default; pyproject's ``--no-loadscope-reorder`` keeps this
+#: order). On a fresh clone numba compiles the planner, arm and animation kernels on their first
+#: call (``mjwalk/_jit.py``: about 80 s CPU) and the two workers compiled the same kernels at
+#: once when both began with a walking test (test_population and test_legheights: 90 and 82 s
+#: CPU cold against 9 and 6 s warm). The first file compiles them in one worker while the other
+#: runs files that need none of them (the layout's AST checks, the gait model and corpus, the
+#: mocap invariances, the scan writers: about 70 s CPU), and finds them cached afterwards.
+FIRST_FILES = (
+    "tests/cycle/test_population.py",
+    "tests/project/test_layout.py",
+    "tests/gait/test_model.py",
+    "tests/gait/test_corpus.py",
+    "tests/mocap/test_invariance.py",
+    "tests/scan/test_scanramps.py",
+    "tests/scan/test_scanpits.py",
+)
+
+
+def pytest_collection_modifyitems(config, items):
+    """Orders the test files (each kept whole, its tests in their order): :data:`FIRST_FILES`
+    first, then the others with the most tests first."""
+    del config
+    files = [item.nodeid.split("::", 1)[0] for item in items]
+    counts: dict[str, int] = {}
+    for f in files:
+        counts[f] = counts.get(f, 0) + 1
+    first = {f: k for k, f in enumerate(FIRST_FILES)}
+    place = {f: k for k, f in enumerate(dict.fromkeys(files))}
+
+    def key(k: int) -> tuple[int, int, int, int]:
+        f = files[k]
+        return (first.get(f, len(first)), -counts[f], place[f], k)
+
+    items[:] = [items[k] for k in sorted(range(len(items)), key=key)]
+
+
 @pytest.fixture(scope="session")
 def scenes_dir() -> Path:
     return SCENES
