@@ -70,6 +70,45 @@ def _runs(ok: np.ndarray) -> list[tuple[int, int]]:
     return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1), strict=True))
 
 
+_Probe = tuple[float, int, np.ndarray, np.ndarray, tuple[float, float, float, float]]
+
+
+def _edge_probe(sa: WalkSurface, a0: np.ndarray, a1: np.ndarray, gap: float) -> _Probe | None:
+    """An edge a0-a1 (CCW) of ``sa`` sampled: its length, the number of samples, the points
+    ``gap`` beyond it, the edge's heights at them and the points' box (x0, y0, x1, y1); None
+    for an edge shorter than a body."""
+    length = float(np.linalg.norm(a1 - a0))
+    if length < MIN_CROSSING:
+        return None
+    n = int(min(MAX_EDGE_SAMPLES, max(1, math.ceil(length / EDGE_SPACING))))
+    p = a0 + ((np.arange(n) + 0.5) / n)[:, None] * (a1 - a0)
+    d = (a1 - a0) / length
+    q = p + gap * np.array([d[1], -d[0]])  # the outward normal of a CCW edge
+    qx0, qy0 = (float(v) for v in q.min(axis=0))
+    qx1, qy1 = (float(v) for v in q.max(axis=0))
+    return length, n, q, sa.height_at(p), (qx0, qy0, qx1, qy1)
+
+
+def _beyond(
+    sb: WalkSurface, probe: _Probe, gap: float, max_rise: float
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """Which of an edge's probe points (:func:`_edge_probe`) land on ``sb`` within
+    ``max_rise`` and open to step on, and the rise to it at each; None when ``sb`` is nowhere
+    under them."""
+    _, _, q, za, (qx0, qy0, qx1, qy1) = probe
+    x0, y0, x1, y1 = sb.footprint.bounds()
+    if qx1 < x0 - gap or qy1 < y0 - gap or qx0 > x1 + gap or qy0 > y1 + gap:
+        return None
+    on = sb.contains(q)
+    if not np.any(on):
+        return None
+    rise = sb.height_at(q) - za
+    ok = on & (np.abs(rise) <= max_rise + ROUNDING_SLACK)
+    if np.any(ok):
+        ok[ok] = sb.free_height(q[ok]) > EXPOSED_MIN
+    return ok, rise
+
+
 def _edge_contacts(
     surfaces: Sequence[WalkSurface],
     ia: int,
@@ -79,31 +118,18 @@ def _edge_contacts(
     max_rise: float,
 ) -> list[Contact]:
     """The contacts along one edge a0-a1 (CCW) of surface ``ia``."""
-    length = float(np.linalg.norm(a1 - a0))
-    if length < MIN_CROSSING:
+    probe = _edge_probe(surfaces[ia], a0, a1, gap)
+    if probe is None:
         return []
-    n = int(min(MAX_EDGE_SAMPLES, max(1, math.ceil(length / EDGE_SPACING))))
-    t = (np.arange(n) + 0.5) / n
-    p = a0 + t[:, None] * (a1 - a0)
-    d = (a1 - a0) / length
-    q = p + gap * np.array([d[1], -d[0]])  # the outward normal of a CCW edge
-    za = surfaces[ia].height_at(p)
-    qx0, qy0 = (float(v) for v in q.min(axis=0))
-    qx1, qy1 = (float(v) for v in q.max(axis=0))
+    length, n = probe[0], probe[1]
     out = []
     for ib, sb in enumerate(surfaces):
         if ib == ia:
             continue
-        x0, y0, x1, y1 = sb.footprint.bounds()
-        if qx1 < x0 - gap or qy1 < y0 - gap or qx0 > x1 + gap or qy0 > y1 + gap:
+        beyond = _beyond(sb, probe, gap, max_rise)
+        if beyond is None:
             continue
-        on = sb.contains(q)
-        if not np.any(on):
-            continue
-        rise = sb.height_at(q) - za
-        ok = on & (np.abs(rise) <= max_rise + ROUNDING_SLACK)
-        if np.any(ok):
-            ok[ok] = sb.free_height(q[ok]) > EXPOSED_MIN
+        ok, rise = beyond
         for i, j in _runs(ok):
             if (j - i) * length / n < MIN_CROSSING:
                 continue
@@ -140,31 +166,19 @@ def level_contacts(
     out: list[Contact] = []
     edges = [(ia, e) for ia, sa in enumerate(surfaces) if level_of[ia] is None for e in _edges(sa)]
     for ia, (a0, a1) in edges:
-        length = float(np.linalg.norm(a1 - a0))
-        if length < MIN_CROSSING:
+        probe = _edge_probe(surfaces[ia], a0, a1, gap)
+        if probe is None:
             continue
-        n = int(min(MAX_EDGE_SAMPLES, max(1, math.ceil(length / EDGE_SPACING))))
-        p = a0 + ((np.arange(n) + 0.5) / n)[:, None] * (a1 - a0)
-        d = (a1 - a0) / length
-        q = p + gap * np.array([d[1], -d[0]])  # the outward normal of a CCW edge
-        za = surfaces[ia].height_at(p)
-        qx0, qy0 = (float(v) for v in q.min(axis=0))
-        qx1, qy1 = (float(v) for v in q.max(axis=0))
+        length, n = probe[0], probe[1]
         best: dict[int, tuple[np.ndarray, np.ndarray]] = {}  # level -> (rise, surface)
         for ib, sb in enumerate(surfaces):
             lv = level_of[ib]
             if ib == ia or lv is None:
                 continue
-            x0, y0, x1, y1 = sb.footprint.bounds()
-            if qx1 < x0 - gap or qy1 < y0 - gap or qx0 > x1 + gap or qy0 > y1 + gap:
+            beyond = _beyond(sb, probe, gap, max_rise)
+            if beyond is None:
                 continue
-            on = sb.contains(q)
-            if not np.any(on):
-                continue
-            rise = sb.height_at(q) - za
-            ok = on & (np.abs(rise) <= max_rise + ROUNDING_SLACK)
-            if np.any(ok):
-                ok[ok] = sb.free_height(q[ok]) > EXPOSED_MIN
+            ok, rise = beyond
             r, who = best.setdefault(lv, (np.full(n, np.inf), np.full(n, -1)))
             nearer = ok & (np.abs(rise) < np.abs(r))
             r[nearer], who[nearer] = rise[nearer], ib
