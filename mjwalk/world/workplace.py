@@ -461,7 +461,6 @@ def obstacle_footprints(
             (:func:`~mjwalk.world.meshimport.concave_mesh_footprints`; a level's view of a
             scene already loaded does not look again).
 
-
     Returns:
         The footprints, in geom order (a concave mesh gives several pieces).
 
