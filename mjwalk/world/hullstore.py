@@ -157,13 +157,19 @@ def point_hull_edges(points: np.ndarray, disk: bool = False) -> np.ndarray:
         if not disk or n < DISK_HULL_POINTS:
             return _qhull_edges(points)
         key = content_key("hull-edges", _qhull_version(), arrays=[points])
-        stored = cached_array(
-            key,
-            "hulledges",
-            lambda: pack(_qhull_edges(points), n, key),
-            valid=lambda a: unpack(a, n, key) is not None,
-        )
-        edges = unpack(stored, n, key)
-        return edges if edges is not None else _qhull_edges(points)
+        got: list[np.ndarray] = []  # the edges a valid file or qhull gave (checked once)
+
+        def fresh() -> np.ndarray:
+            got.append(_qhull_edges(points))
+            return pack(got[-1], n, key)
+
+        def valid(stored: np.ndarray) -> bool:
+            edges = unpack(stored, n, key)
+            if edges is not None:
+                got.append(edges)
+            return edges is not None
+
+        cached_array(key, "hulledges", fresh, valid=valid)
+        return got[-1]
 
     return _HULL_EDGES.get(point_digest(points), build)

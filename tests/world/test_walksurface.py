@@ -17,6 +17,18 @@ def square(name: str, x0: float, y0: float, x1: float, y1: float) -> Footprint:
     return Footprint(name, 0, np.array([[x0, y0], [x1, y0], [x1, y1], [x0, y1]]))
 
 
+def scattered(rng, xs: tuple, ys: tuple, size: float) -> list[Overhead]:
+    """40 rectangular overheads 0.2 m deep: corners drawn in ``xs`` x ``ys``, sides 0.05 m to
+    ``size``, bottoms 0.3-2.5 m (each drawn x, y, sides, bottom in turn)."""
+    over = []
+    for k in range(40):
+        x, y = rng.uniform(*xs), rng.uniform(*ys)
+        w, d = rng.uniform(0.05, size, size=2)
+        bottom = rng.uniform(0.3, 2.5)
+        over.append(Overhead(f"o{k}", square(f"o{k}", x, y, x + w, y + d), bottom, bottom + 0.2))
+    return over
+
+
 def ramp(overhead=()) -> WalkSurface:
     slope = math.atan(0.1)  # rising 10 % towards +y
     return WalkSurface(
@@ -66,13 +78,7 @@ def test_free_height_skipping_far_geoms_equals_testing_every_geom():
     # 40 overheads scattered over and beside a ramp, some under its high end (their tops below
     # the face there), points in batches, one by one, beyond the footprint and with a NaN
     rng = np.random.default_rng(47)
-    over = []
-    for k in range(40):
-        x, y = rng.uniform(-3, 4), rng.uniform(-3, 13)
-        w, d = rng.uniform(0.05, 2.0, size=2)
-        bottom = rng.uniform(0.3, 2.5)
-        over.append(Overhead(f"o{k}", square(f"o{k}", x, y, x + w, y + d), bottom, bottom + 0.2))
-    r = ramp(over)
+    r = ramp(scattered(rng, (-3, 4), (-3, 13), 2.0))
     xy = rng.uniform([-4, -4], [5, 14], size=(3000, 2))
     np.testing.assert_array_equal(r.free_height(xy), _free_height_one_by_one(r, xy))
     grid = xy[:600].reshape(20, 30, 2)
@@ -92,12 +98,7 @@ def test_headroom_grid_equals_free_height_of_every_node_bit_for_bit():
     # on a ramp with 40 boxes, a round and a rotated overhead, some across its edges or with
     # edges exactly on nodes, and with nothing over it; NaN off the footprint
     rng = np.random.default_rng(7)
-    over = []
-    for k in range(40):
-        x, y = rng.uniform(-1, 1.5), rng.uniform(-1, 11)
-        w, d = rng.uniform(0.05, 1.5, size=2)
-        bottom = rng.uniform(0.3, 2.5)
-        over.append(Overhead(f"o{k}", square(f"o{k}", x, y, x + w, y + d), bottom, bottom + 0.2))
+    over = scattered(rng, (-1, 1.5), (-1, 11), 1.5)
     over.append(Overhead("node", square("node", 0.075, 1.025, 0.425, 2.475), 1.5, 1.7))
     pipe = Footprint("pipe", 0, np.array([[0.2, 3.0], [0.8, 7.0]]), 0.1)
     over.append(Overhead("pipe", pipe, 1.2, 1.4))
