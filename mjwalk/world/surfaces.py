@@ -42,6 +42,7 @@ from mjwalk.world.norms import (
     CONTACT_GAP,
     HEADROOM_SCAN,
     HORIZONTAL_SLOPE,
+    LEVEL_TOLERANCE,
     MAX_RAMP_SLOPE,
     MAX_RISER,
     MAX_TREAD,
@@ -93,6 +94,9 @@ class SurfaceOptions:
         max_riser: highest step between touching surfaces for one to reach the other, metres
             (``norms.MAX_RISER``, 0.19 m).
         contact_gap: widest gap between touching edges, metres (``norms.CONTACT_GAP``).
+        level_tol: touching surfaces this close in height are one level when a ramp's end is
+            matched to a level for reachability, metres (``norms.LEVEL_TOLERANCE``, 4 mm; as
+            :attr:`mjwalk.world.levels.LevelOptions.level_tol`, give both the same value).
         cache: the workplace cache policy for the overhead geoms' 3-D hulls
             (:attr:`mjwalk.world.workplace.WorkplaceOptions.cache`; False: none read or kept on
             disk). The surfaces are the same either way.
@@ -109,6 +113,7 @@ class SurfaceOptions:
     min_headroom: float = CLEAR_HEADROOM
     max_riser: float = MAX_RISER
     contact_gap: float = CONTACT_GAP
+    level_tol: float = LEVEL_TOLERANCE
     cache: bool | None = None
 
     def __post_init__(self) -> None:
@@ -120,10 +125,13 @@ class SurfaceOptions:
             raise InputError(
                 f"horizontal_slope {self.horizontal_slope} must be in [0, tan(max_ramp_slope))"
             )
-        for name in ("min_depth", "min_width", "min_headroom", "max_riser", "contact_gap"):
+        names = ("min_depth", "min_width", "min_headroom", "max_riser", "contact_gap", "level_tol")
+        for name in names:
             v = getattr(self, name)
             if not (math.isfinite(v) and v > 0):
                 raise InputError(f"surface option {name}={v} m must be a positive number")
+        if self.max_riser <= self.level_tol:
+            raise InputError(f"max_riser {self.max_riser} m must exceed level_tol {self.level_tol}")
         if self.min_depth > self.min_width:
             raise InputError(f"min_depth {self.min_depth} m must not exceed min_width")
         if self.min_headroom > HEADROOM_SCAN:
@@ -465,7 +473,9 @@ def find_walk_surfaces(
         found.append(s)
     contacts = surface_contacts(found, options.contact_gap, options.max_riser)
     # a ramp's end meets a level across its boxes, as in the level graph (levelgroups)
-    contacts += ramp_end_contacts(found, contacts, options.contact_gap, options.max_riser)
+    contacts += ramp_end_contacts(
+        found, contacts, options.contact_gap, options.max_riser, options.level_tol
+    )
     keep = reachable(len(found), contacts)
     if holes is not None:  # every floor box is the floor: each one's edge may be a few cells
         for i, s in enumerate(found):  # of a staircase round a turned flight, touching little

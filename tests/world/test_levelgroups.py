@@ -8,10 +8,11 @@ import math
 import mujoco
 import pytest
 
+from mjwalk.errors import InputError
 from mjwalk.world.contacts import surface_contacts
 from mjwalk.world.levelgroups import group_levels, ramp_end_contacts
-from mjwalk.world.levels import level_graph
-from mjwalk.world.surfaces import find_walk_surfaces
+from mjwalk.world.levels import LevelOptions, level_graph
+from mjwalk.world.surfaces import SurfaceOptions, find_walk_surfaces
 
 #: The deck's height and the ramp's slope (under the 10 deg limit, ``norms.MAX_RAMP_SLOPE``).
 RISE, SLOPE = 0.5, math.radians(8.0)
@@ -35,13 +36,15 @@ def ramp() -> str:
     )
 
 
-def deck_xml(ys: tuple[tuple[float, float], ...]) -> str:
-    """The scene: a floor, the ramp and deck boxes standing on the floor, RISE high, one per y
-    range, each from X_TOP to X_TOP + 2.5 m; sites on the floor and on the deck."""
+def deck_xml(ys: tuple[tuple[float, float], ...], lift: float = 0.0) -> str:
+    """The scene: a floor, the ramp and deck boxes standing on the floor, RISE high (the middle
+    box ``lift`` metres higher), one per y range, each from X_TOP to X_TOP + 2.5 m; sites on
+    the floor and on the deck."""
+    tops = [RISE + (lift if k == 1 else 0.0) for k in range(len(ys))]
     boxes = "".join(
-        f'<geom name="deck_{k}" type="box" size="1.25 {(y1 - y0) / 2} {RISE / 2}" '
-        f'pos="{X_TOP + 1.25} {(y0 + y1) / 2} {RISE / 2}"/>'
-        for k, (y0, y1) in enumerate(ys)
+        f'<geom name="deck_{k}" type="box" size="1.25 {(y1 - y0) / 2} {top / 2}" '
+        f'pos="{X_TOP + 1.25} {(y0 + y1) / 2} {top / 2}"/>'
+        for k, ((y0, y1), top) in enumerate(zip(ys, tops, strict=True))
     )
     return (
         '<mujoco model="deck"><worldbody><geom name="floor" type="plane" size="6 4 0.1" '
@@ -50,8 +53,8 @@ def deck_xml(ys: tuple[tuple[float, float], ...]) -> str:
     )
 
 
-def surfaces_of(ys: tuple[tuple[float, float], ...]):
-    return find_walk_surfaces(mujoco.MjModel.from_xml_string(deck_xml(ys)))
+def surfaces_of(ys: tuple[tuple[float, float], ...], lift: float = 0.0, options=None):
+    return find_walk_surfaces(mujoco.MjModel.from_xml_string(deck_xml(ys, lift)), None, options)
 
 
 def test_a_deck_of_boxes_each_meeting_a_ramp_along_less_than_a_body_is_reached_by_it():
@@ -78,6 +81,29 @@ def test_boxes_meeting_a_ramp_along_less_than_a_body_together_stay_unreached():
     found = surfaces_of(TWO)
     assert sorted(s.name for s in found) == ["floor", "ramp"]
     assert not [k for k in level_graph(found).links if k.kind == "ramp"]
+
+
+def test_the_surface_options_level_tolerance_decides_a_ramp_reached_deck():
+    """The three-box deck with its middle box 6 mm higher: under the default 4 mm tolerance
+    (``norms.LEVEL_TOLERANCE``) the boxes are three levels, none meeting the ramp a body wide,
+    so the deck is unreached; with ``SurfaceOptions(level_tol=0.008)`` they are one level the
+    ramp reaches, and the level graph under the same tolerance links it. On 261f168 the
+    option did not exist and reachability always used 4 mm."""
+    assert sorted(s.name for s in surfaces_of(THREE, 0.006)) == ["floor", "ramp"]
+    found = surfaces_of(THREE, 0.006, SurfaceOptions(level_tol=0.008))
+    assert sorted(s.name for s in found) == ["deck_0", "deck_1", "deck_2", "floor", "ramp"]
+    g = level_graph(found, LevelOptions(level_tol=0.008))
+    (link,) = g.links
+    assert (link.kind, link.lower, link.upper) == ("ramp", 0, 1)
+    assert len(g.levels[1].surfaces) == 3
+
+
+def test_surface_options_refuse_a_level_tolerance_over_the_riser():
+    """A level tolerance must be positive and under the step limit (one-line InputError)."""
+    with pytest.raises(InputError, match="level_tol"):
+        SurfaceOptions(level_tol=0.0)
+    with pytest.raises(InputError, match="must exceed level_tol"):
+        SurfaceOptions(level_tol=0.2)
 
 
 def test_group_levels_joins_touching_horizontal_surfaces_and_leaves_ramps_out():
