@@ -205,7 +205,8 @@ def trunk_turn(
     turn = np.clip(turn, -TRUNK_TURN, TRUNK_TURN)
     k = max(1, round(TRUNK_SMOOTH * fps) | 1)
     if k > 1 and len(turn) > k:
-        pad = np.pad(turn, k // 2, mode="edge")
+        h = k // 2  # (np.pad(turn, h, mode="edge"): the end values repeated)
+        pad = np.concatenate((np.full(h, turn[0]), turn, np.full(h, turn[-1])))
         smooth = np.convolve(pad, np.ones(k) / k, mode="valid")
         # smoothing must not undercut the turn a frame needs
         turn = np.where(np.abs(smooth) >= np.abs(turn), smooth, turn)
@@ -356,11 +357,18 @@ def ease_arms(
             k = jm.adr(f"forearm_{side}_pron")
             qpos[:, k] = qpos[:, k] + tight * ease * (TUCK_PRONATION - qpos[:, k])
     if room is not None and away is not None:
-        fps = 1.0 / float(np.median(np.diff(t))) if len(t) > 1 else 30.0
+        fps = 1.0 / float(_median(np.diff(t))) if len(t) > 1 else 30.0
         lumbar, thoracic = trunk_rotation(qpos, jm, room, away, stature, fps)
         qpos[:, jm.adr("lumbar_rot")] += lumbar
         qpos[:, jm.adr("thoracic_rot")] += thoracic
     return qpos
+
+
+def _median(x: np.ndarray) -> float:
+    """``np.median`` of a 1-D float array without NaN, as it computes it (the middle value,
+    or the mean of the middle two: their sum halved), without its wrapper's cost."""
+    s, h = np.sort(x), len(x) // 2
+    return float(s[h]) if len(x) % 2 else float((s[h - 1] + s[h]) / 2.0)
 
 
 def trunk_rotation(

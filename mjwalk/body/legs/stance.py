@@ -434,7 +434,7 @@ def bound_lowering(lowering: np.ndarray, root: np.ndarray) -> float:
         PlanningError: the lowering exceeds :data:`REACH_DROP_MAX` (one line naming the walk
             point).
     """
-    drop = float(np.max(lowering, initial=0.0))
+    drop = float(lowering.max(initial=0.0))  # (np.max's reduction, without its wrapper)
     if drop > REACH_DROP_MAX:
         i = int(np.argmax(lowering))
         raise PlanningError(

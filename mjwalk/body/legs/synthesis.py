@@ -126,6 +126,8 @@ FIT_PASSES = 4
 #: compiled call (:func:`~mjwalk.body.legs.pitchfit.fit_ankle_passes`, bit for bit the numbers
 #: of the loop); False: pass by pass in Python (the tests that compare the two set it).
 COMPILED_FIT = True
+#: Per side the leg's joint names in :data:`~mjwalk.body.legs.ik.LEG_JOINTS` order.
+_LEG_NAMES = {s_: [k.format(s_) for k in LEG_JOINTS] for s_ in "lr"}
 
 
 @dataclass
@@ -337,27 +339,33 @@ def _start(walk: WalkPath, ref: ReferenceGait, geom: LegGeometry) -> _Synth:
     n = len(walk.t)
     xy = np.asarray(walk.xy, float)
     yaw = np.asarray(walk.yaw, float)
+    # the sides' zeroed tracks as disjoint rows of a few blocks (fewer allocations, the same
+    # zeros; "l" row 0, "r" row 1): ankle and prints, fyaw/pitch/toe/cyc, ground
+    vec, flat, on = np.zeros((2, 2, n, 3)), np.zeros((4, 2, n)), np.zeros((2, n), bool)
     feet = FootTracks(
-        ankle={s: np.zeros((n, 3)) for s in "lr"},
-        fyaw={s: np.zeros(n) for s in "lr"},
-        pitch={s: np.zeros(n) for s in "lr"},
-        toe={s: np.zeros(n) for s in "lr"},
-        ground={s: np.zeros(n, bool) for s in "lr"},  # foot on the floor (pivoting on a print)
-        prints={s: np.zeros((n, 3)) for s in "lr"},  # ... on this footprint
+        ankle={"l": vec[0, 0], "r": vec[0, 1]},
+        fyaw={"l": flat[0, 0], "r": flat[0, 1]},
+        pitch={"l": flat[1, 0], "r": flat[1, 1]},
+        toe={"l": flat[2, 0], "r": flat[2, 1]},
+        ground={"l": on[0], "r": on[1]},  # foot on the floor (pivoting on a print)
+        prints={"l": vec[1, 0], "r": vec[1, 1]},  # ... on this footprint
     )
-    # each hip's offset from the pelvis centre (m) at every sample
-    side_dir = np.stack([-np.sin(yaw), np.cos(yaw)], -1)
-    hip_off = {s_: (1.0 if s_ == "l" else -1.0) * geom.hip_y * side_dir for s_ in "lr"}
+    # each hip's offset from the pelvis centre (m) at every sample: (-sin, cos) of the yaw
+    side_dir = np.empty((n, 2))
+    side_dir[:, 0], side_dir[:, 1] = -np.sin(yaw), np.cos(yaw)
+    z, contact = np.empty(n), np.empty(n, dtype=int)
+    z.fill(np.nan)
+    contact.fill(2)
     return _Synth(
         ref=ref,
         geom=geom,
         xy=xy,
         yaw=yaw,
-        z=np.full(n, np.nan),
-        hip_xy={s_: xy + hip_off[s_] for s_ in "lr"},
+        z=z,
+        hip_xy={"l": xy + (1.0 * geom.hip_y) * side_dir, "r": xy + (-1.0 * geom.hip_y) * side_dir},
         feet=feet,
-        cyc={s: np.zeros(n) for s in "lr"},
-        contact=np.full(n, 2, dtype=int),
+        cyc={"l": flat[3, 0], "r": flat[3, 1]},
+        contact=contact,
         phase=np.zeros(n),
         hs_pitch=wc.hs_pitch,
         dorsi_max=np.deg2rad(ROM_DEG["ankle_flex"][1] - 1.0),
@@ -555,7 +563,7 @@ def _clear_floor(
     f = sy.feet
     angles: dict[str, np.ndarray] = {}
     for s_ in "lr":
-        names = [k.format(s_) for k in LEG_JOINTS]
+        names = _LEG_NAMES[s_]
         # where the joint ranges still keep the foot from its target (a trailing foot too far
         # behind for the hip's extension, say), the clipped leg would put the sole below the
         # floor: lift the ankle target by the depth (or, where the ankle is at its

@@ -185,10 +185,13 @@ def step_chords(
         (metres); its squared length (m,) (m², at least 1e-9); its unit normal (m, 2), 90 deg
         CCW.
     """
-    dyaw = np.angle(np.exp(1j * (land[:, 2] - lift[:, 2])))
+    turn = np.exp(1j * (land[:, 2] - lift[:, 2]))
+    dyaw = np.arctan2(turn.imag, turn.real)  # (np.angle's own arithmetic)
     seg = land[:, :2] - lift[:, :2]
     dot = np.matmul(seg[:, None, :], seg[:, :, None])[:, 0, 0]
-    nrm = np.column_stack([-seg[:, 1], seg[:, 0]]) / np.maximum(np.sqrt(dot), 1e-9)[:, None]
+    nrm = np.empty_like(seg)  # (np.column_stack([-seg[:, 1], seg[:, 0]]))
+    nrm[:, 0], nrm[:, 1] = -seg[:, 1], seg[:, 0]
+    nrm /= np.maximum(np.sqrt(dot), 1e-9)[:, None]
     return dyaw, seg, np.maximum(dot, 1e-9), nrm
 
 
