@@ -24,6 +24,13 @@ ratio of first plans 2.10 -> 1.73 (load + first plan 1.41 -> 1.30); cache=False 
 -> 325 / 514, twin 397 / 285 -> 369 / 224 (the twin gains as much from the headroom maps; ratio
 1.92 -> 2.35). Noisy: this script's own medians of 4 runs varied 1.5-1.9 between two rounds.
 
+Session 31 (views47: level views' fields, and so their occupancy grids, kept in the workplace
+cache; 261f168 and the branch alternated, fresh processes, CPU, medians of 7 pairs, this
+script's child, load average 9.3-9.9 on 2 cores): workplace cache kept, levels first plan 365
+-> 304 ms, twin 210 -> 211, ratio of first plans 1.74 -> 1.44 (per-pair median 1.72 -> 1.39;
+load + first plan 1.32 -> 1.21); cache=False unchanged (nothing stored): levels 519 / 543,
+twin 218 / 220, ratio 2.38 / 2.46 (noise).
+
 The child processes use only mjwalk's public API, so the script runs against any tree
 (``cd`` to it and set ``PYTHONPATH=.``).
 """

@@ -64,13 +64,15 @@ def test_a_policy_of_no_cache_writes_nothing(cache_root):
     # (the ball's and the pipe's hulls are big enough to be stored otherwise)
     _prepare(False)
     assert not cache_root.exists() or not any(cache_root.iterdir())
-    # the default on this small scene (its 0.02 m field has < AUTO_NODES nodes): no field stored,
-    # the big hulls are; the box's and the step's are left to qhull
+    # the default on this small scene (its 0.02 m field has < AUTO_NODES nodes): the workplace's
+    # field not stored, the big hulls are (the box's and the step's are left to qhull), and so
+    # is the platform's view's field (mjwalk.world.levelview)
     fpmod.clear_memos()
     _prepare(None)
     stored = sorted(p.name.split("-", 1)[1] for p in cache_root.iterdir())
-    assert stored and set(stored) == {"hulledges.npy"}
-    for p in cache_root.iterdir():
+    assert stored.count("levelview.npy") == 1
+    assert set(stored) == {"hulledges.npy", "levelview.npy"}
+    for p in cache_root.glob("*-hulledges.npy"):
         assert np.load(p)[0, 0] >= DISK_HULL_POINTS
 
 
