@@ -13,15 +13,23 @@ from __future__ import annotations
 
 import hashlib
 import os
+import threading
 from collections.abc import Callable
 from pathlib import Path
 from typing import cast
 
 import numba
+import numba.core.compiler_lock
 import numba.core.event
 import numba.extending
+from numba.core import sigutils
 
 from mjwalk._log import claim_notice, log
+
+try:
+    import fcntl
+except ImportError:  # not POSIX (Windows): each process compiles what it misses, as numba does
+    fcntl = None  # type: ignore[assignment]
 
 #: Where the digest of mjwalk's sources that the cached machine code was compiled from is kept.
 SOURCES_MARK = Path(__file__).resolve().parent / "__pycache__" / "numba-sources.sha1"
@@ -93,10 +101,86 @@ def _cache_failures_warn(dispatcher):
     return dispatcher
 
 
+#: The compile locks (paths) this process holds, with how deep: a kernel whose compile compiles
+#: it again (another signature, or itself through a callee) must not wait for its own lock.
+_HELD: dict[str, int] = {}
+_HELD_GUARD = threading.Lock()
+
+
+def _hold(path: str) -> int | None:
+    """The descriptor of ``path`` locked exclusively (``flock``, waiting for another process
+    that holds it), or None when this process holds it already or it cannot be opened."""
+    with _HELD_GUARD:
+        if path in _HELD:
+            _HELD[path] += 1
+            return None
+        _HELD[path] = 1
+    try:
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
+    except OSError:
+        return None
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX)
+    except OSError:
+        os.close(fd)
+        return None
+    return fd
+
+
+def _release(path: str, fd: int | None) -> None:
+    """Undoes :func:`_hold` (unlocks and closes ``fd`` if it holds one)."""
+    with _HELD_GUARD:
+        _HELD[path] -= 1
+        if not _HELD[path]:
+            del _HELD[path]
+    if fd is not None:
+        fcntl.flock(fd, fcntl.LOCK_UN)
+        os.close(fd)
+
+
+def _compile_once(dispatcher):
+    """``dispatcher`` whose compiles hold a lock file of its own beside its cached machine code
+    (``<module>.<function>.lock`` in numba's cache folder for it, ``flock``), so that of two
+    processes that miss the cache at once (pytest's workers or ``simulate --jobs N`` on a fresh
+    install) one compiles and saves it while the other waits, then loads what the first saved
+    (numba's ``compile`` looks in the cache before it compiles) instead of compiling it again.
+    The lock is taken inside numba's own compiler lock (one compile at a time in a process), one
+    per function: a kernel's compile takes its callees' locks, never its callers', so two
+    processes never wait for each other. Without ``fcntl`` (not POSIX), without a cache folder
+    or where the lock file cannot be written, compiles go on unlocked as before. The machine
+    code is the same either way."""
+    folder = getattr(getattr(dispatcher, "_cache", None), "cache_path", None)
+    compile_ = getattr(dispatcher, "compile", None)
+    if fcntl is None or folder is None or compile_ is None:
+        return dispatcher
+    func = dispatcher.py_func
+    path = os.path.join(folder, f"{func.__module__}.{func.__qualname__}.lock")
+
+    def compile(sig):
+        if tuple(sigutils.normalize_signature(sig)[0]) in dispatcher.overloads:
+            return compile_(sig)  # compiled or loaded already: nothing to wait for
+        with numba.core.compiler_lock.global_compiler_lock:
+            fd = _hold(path)
+            try:
+                return compile_(sig)
+            finally:
+                _release(path, fd)
+
+    dispatcher.compile = compile
+    return dispatcher
+
+
+def _kernel(dispatcher):
+    """``dispatcher`` with its cache writes non-fatal and its compiles locked across processes."""
+    return _compile_once(_cache_failures_warn(dispatcher))
+
+
 def njit(func):
     """``numba.njit`` with mjwalk's settings (cached; ``fastmath`` off: the arithmetic stays
-    that of the NumPy code it replaces), its cache writes non-fatal."""
-    return _cache_failures_warn(_njit(func))
+    that of the NumPy code it replaces), its cache writes non-fatal, one process at a time
+    compiling it (:func:`_compile_once`)."""
+    return _kernel(_njit(func))
 
 
 def njit_inline(func):
@@ -104,7 +188,7 @@ def njit_inline(func):
     for a few-line helper called in a hot loop, where LLVM's own inlining leaves a call whose
     argument passing outweighs the helper's arithmetic (:func:`mjwalk.plan.stepgeom.decode_col`:
     six multiply-adds, 3.6x the cost as a call; issue 50). The arithmetic is the same."""
-    return _cache_failures_warn(_njit_inline(func))
+    return _kernel(_njit_inline(func))
 
 
 def njit_gil(func):
@@ -112,13 +196,13 @@ def njit_gil(func):
     ``objmode``) for a value only NumPy computes bit for bit as the code it replaces needs
     (:func:`mjwalk.body.legs.synthloop.synth_steps`: NumPy's arccos). The callback takes the
     GIL anyway; a ``nogil`` function with one warns at every load."""
-    return _cache_failures_warn(_njit_gil(func))
+    return _kernel(_njit_gil(func))
 
 
 def njit_sum(func):
     """:func:`njit` for long dot products: the sums may be reassociated (and multiply-adds
     fused), so they vectorize, as BLAS's do; nothing else of fastmath (NaN and inf stay IEEE)."""
-    return _cache_failures_warn(_njit_sum(func))
+    return _kernel(_njit_sum(func))
 
 
 #: Logged (INFO, once per command: :func:`mjwalk._log.claim_notice`) when one of mjwalk's
