@@ -5,9 +5,13 @@ from __future__ import annotations
 
 import logging
 import os
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 import numba
+import pytest
 
 from mjwalk import _jit, _log
 
@@ -104,14 +108,11 @@ print(sum(s.cache_misses.values()), sum(s.cache_hits.values()))
 """
 
 
+@pytest.mark.slow  # two fresh interpreters importing numba and mjwalk: 5-15 s wall
 def test_two_processes_missing_the_cache_at_once_compile_a_kernel_once(tmp_path):
     """On a fresh install two processes (pytest's workers, ``simulate --jobs 2``) that need a
     kernel at the same moment: one compiles it, the other waits and loads the cached machine
     code (without the compile lock both compile it: two misses)."""
-    import subprocess
-    import sys
-    import time
-
     (tmp_path / "kernel.py").write_text(_KERNEL)
     (tmp_path / "racer.py").write_text(_RACER)
     go = tmp_path / "go"
