@@ -23,14 +23,20 @@ SHARED_DATA = Path(os.environ.get("MJWALK_SHARED_DATA", ROOT.parent / "shared" /
 #: call (``mjwalk/_jit.py``: about 80 s CPU) and the two workers compiled the same kernels at
 #: once when both began with a walking test (test_population and test_legheights: 90 and 82 s
 #: CPU cold against 9 and 6 s warm). The first file compiles them in one worker while the other
-#: runs files that need none of them (the layout's AST checks, the gait model and corpus, the
-#: mocap invariances, the scan writers: about 70 s CPU), and finds them cached afterwards.
+#: runs other files first, and finds them cached afterwards (``mjwalk/_jit.py``'s compile lock
+#: makes a worker that needs a kernel being compiled wait for it instead of compiling it again).
+#: Run alone on a cold cache (session 31), the layout's AST checks, the gait corpus, the mocap
+#: invariances and BVH reader, the stair gait and the footfall walk compiled no kernel; the gait
+#: model and the scan writers compile a few.
 FIRST_FILES = (
     "tests/cycle/test_population.py",
     "tests/project/test_layout.py",
-    "tests/gait/test_model.py",
     "tests/gait/test_corpus.py",
     "tests/mocap/test_invariance.py",
+    "tests/mocap/test_bvh.py",
+    "tests/gait/test_stairs.py",
+    "tests/plan/test_footfallwalk.py",
+    "tests/gait/test_model.py",
     "tests/scan/test_scanramps.py",
     "tests/scan/test_scanpits.py",
 )
