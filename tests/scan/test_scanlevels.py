@@ -13,6 +13,8 @@ from mjwalk.scan.scanlevels import (
     candidate_heights,
     find_levels,
     fit_plane,
+    rasterize_layers,
+    regions_at,
 )
 
 #: A small hall: a stair of four 0.17 m risers and 0.28 m treads rising towards +x to a 0.68 m
@@ -166,3 +168,35 @@ def test_an_open_stair_seen_between_its_treads_is_one_regular_stair(open_stair_x
     (stair,) = [k for k in lp.links if k.kind == "stair"]
     assert stair.risers == pytest.approx([0.17] * 6, abs=0.01)
     assert stair.tread == pytest.approx(0.27, abs=0.01)
+
+
+def test_a_decks_unseen_bay_beside_an_obstacle_at_its_edge_is_the_deck():
+    """Hall 1270: the blind cones of two scanners on a mezzanine, beside an obstacle standing at
+    the deck's edge, left a bay no ray reached; it was no part of the level (the bay is open
+    to the outside through the obstacle's cells) and the scene stood an obstacle through the
+    deck there, cutting the stair's landing off the rest (fails on 2f34d58)."""
+    h, s = 1.2, 0.01
+    g = np.arange(-2.0, 2.0, s) + s / 2
+    x, y = (a.ravel() for a in np.meshgrid(g, g))
+    on_deck = (np.abs(x) < 1.0) & (np.abs(y) < 1.0)
+    obstacle = (x > 0.6) & (x < 1.0) & (np.abs(y) < 0.2)  # 0.4 m x 0.4 m, on the deck's edge
+    bay = (x > 0.1) & (x <= 0.6) & (np.abs(y) < 0.25)  # seen by no ray
+    floor = np.c_[x[~on_deck], y[~on_deck], np.zeros((~on_deck).sum())]
+    keep = on_deck & ~obstacle & ~bay
+    deck = np.c_[x[keep], y[keep], np.full(keep.sum(), h)]
+    top = np.c_[x[obstacle], y[obstacle], np.full(obstacle.sum(), h + 1.0)]
+    pts = np.vstack([floor, deck, top])
+    plan = floor_plan(pts)
+    layers = rasterize_layers(pts, np.array([h]), plan)
+    regions = regions_at(pts, layers, 1, plan)
+    assert len(regions) == 1
+    cells, fit = regions[0]
+    assert fit[0] == pytest.approx(h, abs=1e-6)
+    r = plan.resolution
+
+    def at(px: float, py: float) -> bool:
+        return bool(cells[int((py - plan.y0) // r), int((px - plan.x0) // r)])
+
+    assert at(0.35, 0.0)  # the bay's middle
+    assert not at(0.8, 0.0)  # the obstacle stays off the deck
+    assert not at(1.3, 0.0)  # the floor beyond the deck
