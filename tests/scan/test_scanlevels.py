@@ -13,6 +13,8 @@ from mjwalk.scan.scanlevels import (
     candidate_heights,
     find_levels,
     fit_plane,
+    rasterize_layers,
+    regions_at,
 )
 
 #: A small hall: a stair of four 0.17 m risers and 0.28 m treads rising towards +x to a 0.68 m
@@ -166,3 +168,53 @@ def test_an_open_stair_seen_between_its_treads_is_one_regular_stair(open_stair_x
     (stair,) = [k for k in lp.links if k.kind == "stair"]
     assert stair.risers == pytest.approx([0.17] * 6, abs=0.01)
     assert stair.tread == pytest.approx(0.27, abs=0.01)
+
+
+def _deck_with_bay(rise: float, heights: list[float]):
+    """A 1.2 m deck (2 m x 2 m, 1 cm point spacing) over the floor, a 0.4 m x 0.4 m block at
+    its edge whose top lies ``rise`` above it, and beside the block a bay no ray reached; its
+    region at candidate 1 of ``heights`` and a lookup: whether a point (x, y) is in it."""
+    h, s = 1.2, 0.01
+    g = np.arange(-2.0, 2.0, s) + s / 2
+    x, y = (a.ravel() for a in np.meshgrid(g, g))
+    on_deck = (np.abs(x) < 1.0) & (np.abs(y) < 1.0)
+    block = (x > 0.6) & (x < 1.0) & (np.abs(y) < 0.2)  # on the deck's edge
+    bay = (x > 0.1) & (x <= 0.6) & (np.abs(y) < 0.25)  # seen by no ray
+    floor = np.c_[x[~on_deck], y[~on_deck], np.zeros((~on_deck).sum())]
+    keep = on_deck & ~block & ~bay
+    deck = np.c_[x[keep], y[keep], np.full(keep.sum(), h)]
+    top = np.c_[x[block], y[block], np.full(block.sum(), h + rise)]
+    pts = np.vstack([floor, deck, top])
+    plan = floor_plan(pts)
+    layers = rasterize_layers(pts, np.array(heights), plan)
+    regions = regions_at(pts, layers, 1, plan)
+    assert len(regions) == 1
+    cells, fit = regions[0]
+    assert fit[0] == pytest.approx(h, abs=1e-6)
+    r = plan.resolution
+
+    def at(px: float, py: float) -> bool:
+        return bool(cells[int((py - plan.y0) // r), int((px - plan.x0) // r)])
+
+    return at
+
+
+def test_a_decks_unseen_bay_beside_an_obstacle_at_its_edge_is_the_deck():
+    """Hall 1270: the blind cones of two scanners on a mezzanine, beside an obstacle standing at
+    the deck's edge, left a bay no ray reached; it was no part of the level (the bay is open
+    to the outside through the obstacle's cells) and the scene stood an obstacle through the
+    deck there, cutting the stair's landing off the rest (fails on 261f168: the bay's middle
+    was not in the region)."""
+    at = _deck_with_bay(1.0, [1.2])
+    assert at(0.35, 0.0)  # the bay's middle
+    assert not at(0.8, 0.0)  # the obstacle stays off the deck
+    assert not at(1.3, 0.0)  # the floor beyond the deck
+
+
+def test_a_decks_unseen_bay_beside_a_higher_tread_is_not_the_deck():
+    """The same bay beside a surface 0.17 m up that is a walk surface at its own candidate
+    height (the next tread of a flight): the deck may end at that riser, so the bay stays out
+    (the unnarrowed rule took it and split hall 1016's flight of eight into five and three)."""
+    at = _deck_with_bay(0.17, [1.2, 1.37])
+    assert not at(0.35, 0.0)
+    assert at(-0.5, 0.0)  # the deck itself

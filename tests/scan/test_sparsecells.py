@@ -7,7 +7,8 @@ import numpy as np
 from scipy import ndimage
 
 from mjwalk.scan.level import VOXEL
-from mjwalk.scan.sparsecells import join_sparse, unseen_cells
+from mjwalk.scan.obstacles import HOLE_RADIUS, MIN_BAND_POINTS
+from mjwalk.scan.sparsecells import enclosed_unseen, join_sparse, other_surfaces, unseen_cells
 from mjwalk.world.floor import OBSTACLE_Z_RANGE
 
 RES = 0.02
@@ -78,3 +79,73 @@ def test_a_gap_where_a_lower_surface_was_seen_is_not_bridged():
     assert _parts(join_sparse(cells, RES, unseen_cells(lowest, 0.5))) == 2
     lowest[:, 6:8] = np.inf
     assert _parts(join_sparse(cells, RES, unseen_cells(lowest, 0.5))) == 1
+
+
+def _deck_grid() -> tuple[np.ndarray, np.ndarray]:
+    """A 40 x 40 grid: a deck at 1.2 m over cells 5-34 with the floor seen around it, an
+    obstacle standing on the deck at its edge (rows 16-23, columns 30-34) and, beside it, a
+    bay no ray reached (rows 16-23, columns 20-29). Returns (deck cells, lowest per cell)."""
+    lowest = np.zeros((40, 40), np.float32)  # the floor seen all round
+    deck = np.zeros((40, 40), bool)
+    deck[5:35, 5:35] = True
+    lowest[deck] = 1.2
+    lowest[16:24, 30:35] = 1.25  # the obstacle's faces and top, over the deck
+    lowest[16:24, 20:30] = np.inf  # the bay
+    deck[16:24, 20:35] = False
+    return deck, lowest
+
+
+def test_an_unseen_bay_ringed_by_the_surface_and_what_stands_on_it_is_the_surface():
+    """Hall 1270's mezzanine: its two scanners' blind cones beside an obstacle standing at its
+    edge; the bay is open to the outside only through the obstacle's cells."""
+    deck, lowest = _deck_grid()
+    assert not ndimage.binary_fill_holes(deck)[20, 25]  # not a hole of the deck's cells
+    holes = enclosed_unseen(deck, lowest, 1.2, RES, np.zeros_like(deck))
+    assert holes[16:24, 20:30].all()
+    assert holes.sum() == 8 * 10
+
+
+def test_an_unseen_region_where_the_floor_shows_round_it_is_not_the_surface():
+    deck, lowest = _deck_grid()
+    lowest[16:24, 30:35] = 0.0  # the floor seen there: the deck ends at the bay
+    assert not enclosed_unseen(deck, lowest, 1.2, RES, np.zeros_like(deck)).any()
+
+
+def test_an_unseen_region_wider_than_a_blind_cone_or_at_the_grid_edge_is_not_the_surface():
+    n = 2 * round(HOLE_RADIUS / RES) + 20
+    deck = np.ones((n, n), bool)
+    lowest = np.full((n, n), 1.2, np.float32)
+    wide = np.zeros((n, n), bool)
+    wide[5:-5, 5:-5] = True  # inscribed radius over HOLE_RADIUS
+    deck[wide], lowest[wide] = False, np.inf
+    assert not enclosed_unseen(deck, lowest, 1.2, RES, np.zeros_like(deck)).any()
+    deck, lowest = _deck_grid()
+    lowest[:, 0], deck[:, 0] = np.inf, False
+    lowest[20, :20] = np.inf  # a corridor of unseen cells to the grid's edge
+    assert not enclosed_unseen(deck, lowest, 1.2, RES, np.zeros_like(deck))[20, 25]
+
+
+def test_an_unseen_region_beside_another_levels_cells_is_not_the_surface():
+    """Hall 1016's flight: a tread's unseen strip ringed by the tread and the next tread up (its
+    lowest point above the tread's) is where the tread ends at a riser, not the tread."""
+    deck, lowest = _deck_grid()
+    lowest[16:24, 30:35] = 1.2 + 0.17  # the next tread's top beside the bay, not an obstacle
+    assert enclosed_unseen(deck, lowest, 1.2, RES, np.zeros_like(deck))[
+        20, 25
+    ]  # as high as an obstacle
+    above = np.zeros_like(deck)
+    above[16:24, 30:35] = True  # ... a walk surface at its own height
+    assert not enclosed_unseen(deck, lowest, 1.2, RES, above).any()
+
+
+def test_other_surfaces_are_the_surface_cells_at_the_other_heights():
+    near = np.zeros((3, 4, 4), np.int32)
+    band = np.zeros((3, 4, 4), np.int32)
+    near[0, 0, 0] = 5  # the floor, left out
+    near[1, 1, 1] = 1  # a tread: no band points over it
+    near[2, 2, 2] = 3  # a surface with an obstacle on it: no walk surface
+    band[2, 2, 2] = MIN_BAND_POINTS
+    band[1, 3, 3] = 9  # band points only: an obstacle
+    got = other_surfaces(near, band, 0)
+    assert got[1, 1] and got.sum() == 1
+    assert other_surfaces(near, band, 1).sum() == 1  # the floor's cell
