@@ -58,14 +58,15 @@ from mjwalk.scan.minrect import min_rectangle, rectangle_size
 from mjwalk.scan.obstacles import FLOOR_TOL, MIN_BAND_POINTS, FloorPlan
 from mjwalk.scan.planefit import RANGE_NOISE, TRIM_SIGMAS, fit_plane, flat_part
 from mjwalk.scan.regionsteps import region_steps, touching, with_shadow
-from mjwalk.scan.sparsecells import enclosed_unseen, join_sparse, other_surfaces, unseen_cells
-from mjwalk.world.floor import OBSTACLE_Z_RANGE
-from mjwalk.world.norms import (
-    HORIZONTAL_SLOPE,
-    MAX_TREAD,
-    MIN_TREAD,
-    STAND_WIDTH,
+from mjwalk.scan.sparsecells import (
+    enclosed_unseen,
+    join_sparse,
+    other_surfaces,
+    unseen_cells,
+    unseen_regions,
 )
+from mjwalk.world.floor import OBSTACLE_Z_RANGE
+from mjwalk.world.norms import HORIZONTAL_SLOPE, MAX_TREAD, MIN_TREAD, STAND_WIDTH
 
 #: Bin of the height histogram, metres.
 HIST_BIN = 0.01
@@ -313,8 +314,9 @@ def regions_at(
     surface = (layers.near[k] > 0) & (layers.band[k] < MIN_BAND_POINTS)
     surface = join_sparse(surface, res, unseen)  # a sparse scan's gaps nothing was seen in
     elsewhere = other_surfaces(layers.near, layers.band, k)  # no bay's ring: other levels
-    if layers.lowest is not None:  # wider holes no ray reached, ringed by it and what stands on it
-        surface |= enclosed_unseen(surface, layers.lowest, h0, res, elsewhere)
+    bays = None if layers.lowest is None else unseen_regions(layers.lowest, h0)  # once
+    if bays is not None:  # wider holes no ray reached, ringed by it and what stands on it
+        surface |= enclosed_unseen(surface, layers.lowest, h0, res, elsewhere, bays)
     lab, n = ndimage.label(surface, np.ones((3, 3), bool))
     if n == 0:
         return []
@@ -347,8 +349,8 @@ def regions_at(
                 continue  # a sloped region: a ramp's strip at this height
             cells, fit, p = flat
         cells = _inlier_cells(p, fit, plan, cells, unseen)
-        if layers.lowest is not None:  # the inliers' join is a voxel's: the wider holes again
-            cells = cells | enclosed_unseen(cells, layers.lowest, h0, res, elsewhere)
+        if bays is not None:  # the inliers' join is a voxel's: the wider holes again
+            cells = cells | enclosed_unseen(cells, layers.lowest, h0, res, elsewhere, bays)
         depth, width = rectangle_size(min_rectangle(cells, plan.x0, plan.y0, res))
         if depth < least - 2 * res or width < STAND_WIDTH - 2 * res:
             continue

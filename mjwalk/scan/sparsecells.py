@@ -102,12 +102,29 @@ def other_surfaces(near: np.ndarray, band: np.ndarray, k: int) -> np.ndarray:
     return out
 
 
+def unseen_regions(lowest: np.ndarray, height: float) -> tuple[np.ndarray, list]:
+    """The connected regions unseen at a surface's height, labelled once for every region of
+    that height :func:`enclosed_unseen` is asked about.
+
+    Args:
+        lowest: (ny, nx) the lowest point's height per cell, metres (+inf: no point).
+        height: the surface's height, metres above the floor.
+
+    Returns:
+        The (ny, nx) labels (8-neighbour, 0: seen) of :func:`unseen_cells` at ``height`` and
+        ``ndimage.find_objects``' slices of each label.
+    """
+    lab, _ = ndimage.label(unseen_cells(lowest, height), np.ones((3, 3), bool))
+    return lab, ndimage.find_objects(lab)
+
+
 def enclosed_unseen(
     cells: np.ndarray,
     lowest: np.ndarray,
     height: float,
     resolution: float,
     elsewhere: np.ndarray,
+    regions: tuple[np.ndarray, list] | None = None,
 ) -> np.ndarray:
     """The unseen holes a surface encloses (see the module's docstring).
 
@@ -118,6 +135,7 @@ def enclosed_unseen(
         resolution: the grid's cell edge, metres.
         elsewhere: (ny, nx) bool, the walk-surface cells at other heights
             (:func:`other_surfaces`).
+        regions: :func:`unseen_regions` at ``height`` (None: labelled here).
 
     Returns:
         (ny, nx) bool: the cells of the connected (8-neighbour) regions :func:`unseen_cells`
@@ -128,14 +146,21 @@ def enclosed_unseen(
         it).
     """
     low = np.asarray(lowest)
-    unseen = unseen_cells(low, height)
-    lab, _ = ndimage.label(unseen, np.ones((3, 3), bool))
-    out = np.zeros(unseen.shape, bool)
-    ny, nx = unseen.shape
-    near = ndimage.binary_dilation(cells, np.ones((3, 3), bool)) & unseen
-    touching = set(np.unique(lab[near]).tolist()) - {0}
-    for r, sl in enumerate(ndimage.find_objects(lab), start=1):
-        if r not in touching or sl is None or sl[0].start == 0 or sl[1].start == 0:
+    lab, objects = regions if regions is not None else unseen_regions(low, height)
+    out = np.zeros(lab.shape, bool)
+    ny, nx = lab.shape
+    rows, cols = np.flatnonzero(cells.any(1)), np.flatnonzero(cells.any(0))
+    if not rows.size:
+        return out
+    # the regions touching the cells, looked for within the cells' box and a cell round it
+    sub = (
+        slice(max(rows[0] - 1, 0), min(rows[-1] + 2, ny)),
+        slice(max(cols[0] - 1, 0), min(cols[-1] + 2, nx)),
+    )
+    near = ndimage.binary_dilation(cells[sub], np.ones((3, 3), bool)) & (lab[sub] > 0)
+    for r in sorted(set(np.unique(lab[sub][near]).tolist()) - {0}):
+        sl = objects[r - 1]
+        if sl is None or sl[0].start == 0 or sl[1].start == 0:
             continue
         if sl[0].stop == ny or sl[1].stop == nx:
             continue
