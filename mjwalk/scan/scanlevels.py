@@ -314,9 +314,9 @@ def regions_at(
     surface = (layers.near[k] > 0) & (layers.band[k] < MIN_BAND_POINTS)
     surface = join_sparse(surface, res, unseen)  # a sparse scan's gaps nothing was seen in
     elsewhere = other_surfaces(layers.near, layers.band, k)  # no bay's ring: other levels
-    bays = None if layers.lowest is None else unseen_regions(layers.lowest, h0)  # once
-    if bays is not None:  # wider holes no ray reached, ringed by it and what stands on it
-        surface |= enclosed_unseen(surface, layers.lowest, h0, res, elsewhere, bays)
+    bays = None if (low := layers.lowest) is None else unseen_regions(low, h0)  # once
+    if low is not None:  # wider holes no ray reached, ringed by it and what stands on it
+        surface |= enclosed_unseen(surface, low, h0, res, elsewhere, bays)
     lab, n = ndimage.label(surface, np.ones((3, 3), bool))
     if n == 0:
         return []
@@ -349,8 +349,8 @@ def regions_at(
                 continue  # a sloped region: a ramp's strip at this height
             cells, fit, p = flat
         cells = _inlier_cells(p, fit, plan, cells, unseen)
-        if bays is not None:  # the inliers' join is a voxel's: the wider holes again
-            cells = cells | enclosed_unseen(cells, layers.lowest, h0, res, elsewhere, bays)
+        if low is not None:  # the inliers' join is a voxel's: the wider holes again
+            cells = cells | enclosed_unseen(cells, low, h0, res, elsewhere, bays)
         depth, width = rectangle_size(min_rectangle(cells, plan.x0, plan.y0, res))
         if depth < least - 2 * res or width < STAND_WIDTH - 2 * res:
             continue
