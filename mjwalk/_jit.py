@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import hashlib
 import os
-import threading
 from collections.abc import Callable
 from pathlib import Path
 from typing import cast
@@ -103,18 +102,17 @@ def _cache_failures_warn(dispatcher):
 
 #: The compile locks (paths) this process holds, with how deep: a kernel whose compile compiles
 #: it again (another signature, or itself through a callee) must not wait for its own lock.
+#: Read and changed only under numba's compiler lock (:func:`_compile_once`), one thread at a time.
 _HELD: dict[str, int] = {}
-_HELD_GUARD = threading.Lock()
 
 
 def _hold(path: str) -> int | None:
     """The descriptor of ``path`` locked exclusively (``flock``, waiting for another process
     that holds it), or None when this process holds it already or it cannot be opened."""
-    with _HELD_GUARD:
-        if path in _HELD:
-            _HELD[path] += 1
-            return None
-        _HELD[path] = 1
+    if path in _HELD:
+        _HELD[path] += 1
+        return None
+    _HELD[path] = 1
     try:
         os.makedirs(os.path.dirname(path), exist_ok=True)
         fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)
@@ -130,10 +128,9 @@ def _hold(path: str) -> int | None:
 
 def _release(path: str, fd: int | None) -> None:
     """Undoes :func:`_hold` (unlocks and closes ``fd`` if it holds one)."""
-    with _HELD_GUARD:
-        _HELD[path] -= 1
-        if not _HELD[path]:
-            del _HELD[path]
+    _HELD[path] -= 1
+    if not _HELD[path]:
+        del _HELD[path]
     if fd is not None:
         fcntl.flock(fd, fcntl.LOCK_UN)
         os.close(fd)
